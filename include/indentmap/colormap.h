@@ -1,0 +1,56 @@
+/* indentmap/colormap.h: colour maps and norms, the single CPU definition of how a value becomes a
+ * colour. The GL renderer uploads the same tables and must reproduce im_colormap_rgb exactly (to
+ * one 8-bit level); its tests compare against this module.
+ *
+ * A norm maps [lo, hi] linearly (or logarithmically, lo > 0) onto the 256 table entries:
+ * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
+ * lo take the `under` colour, above hi the `over` colour, NaN the `bad` colour. Several panels
+ * share a norm by sharing the struct.
+ */
+#ifndef INDENTMAP_COLORMAP_H
+#define INDENTMAP_COLORMAP_H
+
+#include "indentmap/field.h"
+
+#include <stdint.h>
+
+typedef enum im_colormap_id {
+    IM_COLORMAP_VIRIDIS = 0,
+    IM_COLORMAP_CIVIDIS,
+    IM_COLORMAP_MAGMA,
+    IM_COLORMAP_INFERNO,
+    IM_COLORMAP_GREY,
+    IM_COLORMAP_COUNT
+} im_colormap_id;
+
+typedef struct im_colormap {
+    im_colormap_id map;
+    double lo, hi;        /* norm range; hi > lo */
+    int logarithmic;      /* 1: norm in log(value), requires lo > 0 */
+    uint8_t under[3], over[3], bad[3];
+} im_colormap;
+
+/* A colour map with a linear norm on [lo, hi]; under and over take the end colours, bad grey. */
+im_colormap im_colormap_make(im_colormap_id map, double lo, double hi);
+
+/* IM_EINVAL, listing the valid names, for an unknown name. */
+int im_colormap_from_name(const char *name, im_colormap_id *map);
+const char *im_colormap_name(im_colormap_id map);
+
+/* The 256 x 3 table of a map. */
+const uint8_t (*im_colormap_table(im_colormap_id map))[3];
+
+/* IM_EINVAL if the norm is unusable (hi <= lo, non-finite, log with lo <= 0). */
+int im_colormap_check(const im_colormap *colormap);
+
+/* Table index of a value: 0..255, or -1 under, 256 over, -2 NaN. */
+int im_colormap_index(const im_colormap *colormap, double value);
+
+/* The colour of a value (table entry, under, over or bad). */
+void im_colormap_rgb(const im_colormap *colormap, double value, uint8_t rgb[3]);
+
+/* CPU image of a field: one pixel per patch, RGB, stride 3 nx, image row 0 = field row ny - 1
+ * (y up). The reference the GL renderer is tested against. */
+void im_colormap_field_image(const im_colormap *colormap, const im_field *field, uint8_t *rgb);
+
+#endif

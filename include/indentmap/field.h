@@ -1,0 +1,48 @@
+/* indentmap/field.h: a scalar field on a regular grid (heights, forces, gaps, ...).
+ *
+ * Layout: row-major, value (ix, iy) at data[iy * nx + ix], ix along x in [0, nx), iy along y in
+ * [0, ny). Row 0 is y = 0: images put it at the bottom, as a plot's axes would. The grid spacing
+ * delta is the side of one square patch; lengths are in units of delta unless the field carries a
+ * physical spacing (delta != 1, with unit naming it).
+ */
+#ifndef INDENTMAP_FIELD_H
+#define INDENTMAP_FIELD_H
+
+#include <stddef.h>
+
+typedef struct im_field {
+    int nx, ny;      /* grid size, >= 1 each */
+    double delta;    /* patch side in physical units (1 when dimensionless) */
+    char unit[16];   /* physical unit of delta and heights, "" when dimensionless */
+    double *data;    /* nx * ny values, row-major, owned by the field */
+} im_field;
+
+/* Largest side accepted for any grid; guards index arithmetic, not memory. */
+#define IM_FIELD_MAX_SIDE (1 << 16)
+
+/* Allocates a zeroed nx x ny field with spacing delta. Refuses sizes outside [1, IM_FIELD_MAX_SIDE]
+ * and, before allocating, any field that would not fit in the memory available (im_memory_check).
+ * Returns IM_OK and sets *out, or an error status. */
+int im_field_create(int nx, int ny, double delta, im_field **out);
+
+/* Deep copy of a field. */
+int im_field_clone(const im_field *src, im_field **out);
+
+/* Frees a field; accepts NULL. */
+void im_field_free(im_field *field);
+
+static inline size_t im_field_count(const im_field *f) { return (size_t)f->nx * (size_t)f->ny; }
+
+/* IM_ENUMERIC with the first offending index in the message if any value is NaN or Inf; what
+ * names the field in that message. */
+int im_field_check_finite(const im_field *field, const char *what);
+
+/* Physical memory available to this process now, in bytes (MemAvailable from /proc/meminfo,
+ * bounded by the address-space limit); 0 if it cannot be determined. */
+size_t im_memory_available(void);
+
+/* IM_ENOMEM, with the estimate and what is available in the message, when bytes exceed the
+ * memory available; IM_OK otherwise. what names the allocation ("surface 8192 x 8192"). */
+int im_memory_check(double bytes, const char *what);
+
+#endif

@@ -1,0 +1,37 @@
+/* indentmap/status.h: status codes and error messages shared by every module.
+ *
+ * Every fallible function returns an int status (IM_OK on success), GSL style. On failure the
+ * function also records a message naming the file, line or parameter and what was expected;
+ * im_last_error() returns it. The message is per thread, so OpenMP workers do not clobber each
+ * other's messages.
+ */
+#ifndef INDENTMAP_STATUS_H
+#define INDENTMAP_STATUS_H
+
+enum im_status {
+    IM_OK = 0,
+    IM_EINVAL,    /* a parameter is out of range or malformed */
+    IM_EIO,       /* a file could not be opened, read or written */
+    IM_EFORMAT,   /* a file's contents do not follow its format */
+    IM_ENOMEM,    /* an allocation failed, or would exceed the memory available */
+    IM_ENUMERIC,  /* NaN or Inf where finite numbers are required, or a numeric failure */
+    IM_ENOCONV,   /* an iteration did not converge within its cap */
+    IM_EEDGE,     /* contact reached the edge of the modelled surface */
+    IM_EUNSUPPORTED, /* a feature is not available on this machine (e.g. no GL context) */
+    IM_EINTERRUPTED  /* the run was interrupted by a signal */
+};
+
+/* Short fixed description of a status code ("invalid argument", ...). Never NULL. */
+const char *im_strstatus(int status);
+
+/* The last detailed message recorded on this thread, or "" if none. */
+const char *im_last_error(void);
+
+/* Records a printf-style message for this thread and returns status, so that callers can write
+ * `return im_fail(IM_EINVAL, "n = %d: expected n >= 2", n);`. */
+int im_fail(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Prefixes the current message with context ("reading s.npy: ...") and returns status. */
+int im_fail_context(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif

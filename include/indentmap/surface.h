@@ -1,0 +1,126 @@
+/* indentmap/surface.h: self-affine rough surfaces: spectral synthesis and statistics.
+ *
+ * Synthesis (the paper's section 2.2): an isotropic Gaussian surface on an nx x ny grid of spacing
+ * delta whose power spectral density is
+ *     C(q) = C0 |q|^(-2(1+H))   for q_r <= |q| <= q_s,
+ *     C(q) = C0 q_r^(-2(1+H))   for q_0 <= |q| <  q_r   (roll-off plateau, only when lambda_0 > lambda_r),
+ *     C(q) = 0                  elsewhere,
+ * with q = 2 pi / lambda. Each discrete Fourier mode carries C averaged over its cell of the
+ * reciprocal lattice (see psd_cell_average in src/surface/synthesis.c for why), and gets a complex Gaussian amplitude (Gaussian modulus
+ * spread and uniform phase) drawn from a counter-based generator keyed by (seed, kx, ky), where
+ * (kx, ky) are the mode's integer wave numbers on the periodic box. So the surface does not depend
+ * on the thread count, and a surface refined on a finer grid of the same box keeps every mode it
+ * had (spectral interpolation). The mean is zero. C0 is then fixed by the target: h'rms or h_rms.
+ *
+ * Slope definition: h'rms = sqrt(<|grad h|^2>) over both components, as in the paper. The
+ * "spectral" value is that of the band-limited trigonometric interpolant, sqrt(sum q^2 |h_q|^2);
+ * the "finite-difference" value uses forward differences between neighbouring patches,
+ * (h[i+1] - h[i]) / delta, over all interior pairs (no wrap-around). Synthesis scales to the
+ * spectral value unless told otherwise.
+ */
+#ifndef INDENTMAP_SURFACE_H
+#define INDENTMAP_SURFACE_H
+
+#include "indentmap/field.h"
+
+#include <stdint.h>
+
+enum im_slope_definition { IM_SLOPE_SPECTRAL = 0, IM_SLOPE_FINITE_DIFFERENCE = 1 };
+enum im_surface_target { IM_TARGET_SLOPE = 0, IM_TARGET_HEIGHT = 1 };
+
+typedef struct im_surface_params {
+    int nx, ny;            /* grid size (the paper: 512 x 512) */
+    double delta;          /* patch side (1: lengths in delta) */
+    double hurst;          /* Hurst exponent H in (0, 1) (the paper: 0.8) */
+    double lambda_s;       /* short-wavelength cutoff 2 pi / q_s, in units of delta (paper: 4) */
+    double lambda_r;       /* roll-off wavelength 2 pi / q_r, in units of delta (paper: 512) */
+    double lambda_0;       /* longest wavelength 2 pi / q_0; <= lambda_r means no plateau */
+    enum im_surface_target target;  /* which of the two below is imposed */
+    double slope_rms;      /* target h'rms (dimensionless) */
+    double height_rms;     /* target h_rms, in units of delta */
+    enum im_slope_definition slope_definition; /* how the target h'rms is measured */
+    uint64_t seed;
+} im_surface_params;
+
+/* The paper's defaults: 512 x 512, delta = 1, H = 0.8, lambda_s = 4, lambda_r = 512, no
+ * roll-off, target h'rms = 0.08 (spectral), seed 1. */
+im_surface_params im_surface_params_default(void);
+
+/* IM_EINVAL naming the first parameter out of range, IM_OK otherwise. */
+int im_surface_params_check(const im_surface_params *params);
+
+/* Generates a surface. Uses FFTW with the OpenMP threads in force; the result is bit-identical
+ * for any thread count. *out is owned by the caller (im_field_free). */
+int im_surface_generate(const im_surface_params *params, im_field **out);
+
+/* Memory, in bytes, that im_surface_generate needs at its peak for this size. */
+double im_surface_generate_bytes(int nx, int ny);
+
+/* Slope of a surface by either definition (see the top of this header). */
+int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition,
+                         double *slope_rms);
+
+/* Summary statistics of a surface. Moments m_n are those of a profile along x and y (averaged),
+ * computed spectrally, so that h'rms^2 = 2 m2 for an isotropic surface. */
+typedef struct im_surface_stats {
+    double mean;              /* mean height */
+    double height_rms;        /* sqrt(<(h - mean)^2>) */
+    double slope_rms_spectral;
+    double slope_rms_fd;      /* forward differences, see above */
+    double curvature_rms;     /* rms of the mean curvature (h_xx + h_yy) / 2, spectral */
+    double m0, m2, m4;        /* spectral moments of profiles: m2 = <h_x^2>, m4 = <h_xx^2> */
+    double nayak;             /* Nayak's parameter m0 m4 / m2^2 */
+    double height_min, height_max;
+} im_surface_stats;
+
+int im_surface_statistics(const im_field *surface, im_surface_stats *stats);
+
+/* Radially averaged power spectral density C_iso(q) as in Jacobs, Junge and Pastewka (2017):
+ * C(q) = |h~(q)|^2 / A with h~ the discrete Fourier transform scaled by delta^2 and A = L_x L_y,
+ * averaged over the modes in each of `bins` logarithmically spaced shells between the smallest
+ * non-zero |q| and the largest |q| on the grid. q and the average C are written for each bin;
+ * counts[i] is the number of modes in bin i (0 for an empty bin, whose q and C are NaN). */
+typedef struct im_psd {
+    int bins;
+    double *q, *c;
+    long *counts;
+} im_psd;
+
+int im_surface_psd(const im_field *surface, int bins, im_psd **out);
+void im_psd_free(im_psd *psd);
+
+/* Least-squares slope of log C against log q over the non-empty bins with q_min <= q <= q_max;
+ * for a self-affine surface it is -2(1 + H). IM_EINVAL if fewer than two bins qualify. */
+int im_psd_fit_exponent(const im_psd *psd, double q_min, double q_max, double *exponent);
+
+/* Histogram of values in `bins` equal bins over [lo, hi]; values outside are counted in the
+ * first or last bin. density[i] is normalised so that sum(density) * width = 1. */
+typedef struct im_histogram {
+    int bins;
+    double lo, hi;
+    double *centre, *density;
+} im_histogram;
+
+enum im_histogram_quantity {
+    IM_HIST_HEIGHT,      /* h - mean */
+    IM_HIST_SLOPE,       /* both forward-difference slope components, pooled */
+    IM_HIST_CURVATURE    /* five-point mean curvature (h_xx + h_yy) / 2 at interior points */
+};
+
+/* Histogram of a quantity over [mean - 5 sd, mean + 5 sd] of that quantity. */
+int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins,
+                         im_histogram **out);
+void im_histogram_free(im_histogram *histogram);
+
+/* JSON sidecar of a surface file, written atomically beside it: the generation parameters and seed
+ * (params may be NULL for a surface read from a file, then source names that file), the program
+ * version, the grid, and its statistics with the eq. (15) estimate of h_rms where it applies. */
+int im_surface_sidecar_write(const char *path, const im_field *surface, const im_surface_params *params,
+                             const char *source, const im_surface_stats *stats);
+
+/* Expected h_rms of a generated surface, in the units of its heights: from the exact moments of
+ * eq. (13) (which the cell-averaged discrete spectrum reproduces) or from the paper's eq. (15). */
+double im_surface_expected_height_rms(const im_surface_params *params, double slope_rms);
+double im_surface_height_rms_eq15(const im_surface_params *params, double slope_rms);
+
+#endif

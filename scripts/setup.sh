@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages indentmap needs (when missing) and builds it.
+#   scripts/setup.sh [BUILD_DIR] [extra cmake arguments...]
+# As root it runs apt-get; otherwise it prints the exact command to run and stops.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  build-essential cmake pkg-config         # compiler (gcc with OpenMP), build system
+  libfftw3-dev                             # FFTs with the OpenMP threads library (libfftw3_omp)
+  libgsl-dev                               # quadrature and special functions for the theory
+  libpng-dev                               # PNG frames and figures
+  libjansson-dev                           # JSON run records and sidecars
+  libinih-dev                              # INI scene files
+  libcmocka-dev                            # unit tests (one program per module, run by ctest)
+  libegl-dev libgl-dev libosmesa6-dev      # headless OpenGL: EGL first, OSMesa fallback
+  libegl-mesa0 libgl1-mesa-dri             # Mesa's EGL and llvmpipe software renderer
+  libcairo2-dev libfreetype-dev            # annotations, text, PDF/SVG figures
+  fonts-dejavu-core                        # the font figures are set in
+  libgif-dev                               # animated GIFs
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  cmd="apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends ${missing[*]}"
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing ${missing[*]}"
+    bash -c "$cmd"
+  else
+    echo "setup: missing Debian packages; run as root:" >&2
+    echo "  sudo bash -c '$cmd'" >&2
+    exit 1
+  fi
+fi
+
+build_dir=${1:-build}
+shift || true
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build "$build_dir" -j "$(nproc)"

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Sets up, builds with -Werror and runs the whole test suite; then the same tests under
+# AddressSanitizer and UndefinedBehaviorSanitizer (skip those with IM_SKIP_SANITIZE=1).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh build -DIM_WERROR=ON
+(cd build && ctest --output-on-failure -j "$(nproc)")
+if [ "${IM_SKIP_SANITIZE:-0}" != 1 ]; then
+  scripts/setup.sh build-asan -DIM_WERROR=ON -DIM_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     ctest --output-on-failure -j "$(nproc)" -LE slow)
+fi

@@ -1,0 +1,24 @@
+/* The command line: one function per subcommand, each parsing its own options. */
+#ifndef INDENTMAP_CLI_H
+#define INDENTMAP_CLI_H
+
+#include <stdint.h>
+
+/* Subcommands: argv[0] is the subcommand's name. Return the process exit status. */
+int cli_surface(int argc, char **argv);
+int cli_info(int argc, char **argv);
+
+/* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
+enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };
+
+/* Option parsing that names the option in its error: "--n: 'abc' is not an integer". Each
+ * returns 0 on success and prints the message to stderr otherwise. */
+int cli_parse_int(const char *option, const char *text, long min, long max, int *out);
+int cli_parse_u64(const char *option, const char *text, uint64_t *out);
+int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
+
+/* Prints "indentmap: MESSAGE" for the status's last error and returns the exit status that fits
+ * it (2 for invalid input, 1 otherwise). */
+int cli_report(int status);
+
+#endif

@@ -1,0 +1,49 @@
+/* indentmap: the command-line program. Git-style subcommands, each with --help. */
+#include "cli/cli.h"
+
+#include <stdio.h>
+#include <string.h>
+
+typedef struct subcommand {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} subcommand;
+
+static const subcommand SUBCOMMANDS[] = {
+    {"surface", cli_surface, "generate a self-affine rough surface, or measure one (--stats FILE)"},
+    {"info", cli_info, "print the version, FFTW version and OpenMP thread count"},
+};
+static const int SUBCOMMAND_COUNT = (int)(sizeof SUBCOMMANDS / sizeof SUBCOMMANDS[0]);
+
+static void usage(FILE *stream)
+{
+    fprintf(stream, "usage: indentmap [--version] [--help] COMMAND [OPTIONS]\n\n"
+                    "Indentation of rough elastic surfaces by a cone: solve, compare with theory, "
+                    "draw.\n\ncommands:\n");
+    for (int i = 0; i < SUBCOMMAND_COUNT; ++i)
+        fprintf(stream, "  %-10s %s\n", SUBCOMMANDS[i].name, SUBCOMMANDS[i].summary);
+    fprintf(stream, "\n'indentmap COMMAND --help' describes a command's options.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("indentmap %s\n", IM_VERSION);
+        return CLI_EXIT_OK;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+        usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    for (int i = 0; i < SUBCOMMAND_COUNT; ++i)
+        if (strcmp(argv[1], SUBCOMMANDS[i].name) == 0)
+            return SUBCOMMANDS[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "indentmap: '%s' is not a command\n\n", argv[1]);
+    usage(stderr);
+    return CLI_EXIT_USAGE;
+}

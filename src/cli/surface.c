@@ -1,0 +1,241 @@
+/* indentmap surface: generate a rough surface, or measure an existing one. */
+#include "cli/cli.h"
+
+#include "indentmap/colormap.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *stream)
+{
+    fprintf(stream,
+            "usage: indentmap surface [OPTIONS] [--out FILE]\n"
+            "       indentmap surface --stats FILE [--png FILE] [--psd FILE] [--histograms FILE]\n\n"
+            "Generates an isotropic self-affine Gaussian surface by spectral synthesis (the paper's\n"
+            "section 2.2) and prints its statistics; lengths are in grid spacings delta.\n\n"
+            "  --n N              grid columns (default 512)\n"
+            "  --m M              grid rows (default: N)\n"
+            "  --delta D          patch side in physical units (default 1)\n"
+            "  --hurst H          Hurst exponent, 0 < H < 1 (default 0.8)\n"
+            "  --slope S          target h'rms = sqrt(<|grad h|^2>) (default 0.08)\n"
+            "  --height-rms R     target h_rms instead of h'rms, in units of delta\n"
+            "  --slope-def DEF    'spectral' (default) or 'fd' (forward differences): how h'rms is measured\n"
+            "  --lambda-s L       short-wavelength cutoff 2 pi / q_s (default 4)\n"
+            "  --lambda-r L       roll-off wavelength 2 pi / q_r (default: N)\n"
+            "  --lambda-0 L       longest wavelength, > lambda-r adds a roll-off plateau (default: none)\n"
+            "  --seed S           random seed (default 1); the same seed gives the same surface\n"
+            "  --out FILE         write the surface (.npy, .gsf, or text) and FILE.json beside it\n"
+            "  --stats FILE       measure FILE (.npy, .gsf or text matrix) instead of generating\n"
+            "  --png FILE         write a height-field image (viridis, one pixel per patch)\n"
+            "  --psd FILE         write the radially averaged PSD C_iso(q) as CSV\n"
+            "  --histograms FILE  write height, slope and curvature histograms as CSV\n");
+}
+
+typedef struct surface_options {
+    im_surface_params params;
+    int m_given, lambda_r_given;
+    const char *out, *stats, *png, *psd, *histograms;
+} surface_options;
+
+enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
+       OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
+
+static const struct option LONG_OPTIONS[] = {
+    {"n", required_argument, 0, OPT_N}, {"m", required_argument, 0, OPT_M},
+    {"delta", required_argument, 0, OPT_DELTA}, {"hurst", required_argument, 0, OPT_HURST},
+    {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
+    {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
+    {"lambda-r", required_argument, 0, OPT_LR}, {"lambda-0", required_argument, 0, OPT_L0},
+    {"seed", required_argument, 0, OPT_SEED}, {"out", required_argument, 0, OPT_OUT},
+    {"stats", required_argument, 0, OPT_STATS}, {"png", required_argument, 0, OPT_PNG},
+    {"psd", required_argument, 0, OPT_PSD}, {"histograms", required_argument, 0, OPT_HIST},
+    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+
+static int parse_slope_definition(const char *text, enum im_slope_definition *out)
+{
+    if (strcmp(text, "spectral") == 0)
+        *out = IM_SLOPE_SPECTRAL;
+    else if (strcmp(text, "fd") == 0)
+        *out = IM_SLOPE_FINITE_DIFFERENCE;
+    else {
+        fprintf(stderr, "indentmap: --slope-def: '%s': expected 'spectral' or 'fd'\n", text);
+        return -1;
+    }
+    return 0;
+}
+
+/* Applies one option; 0 on success, -1 after printing an error. */
+static int apply_option(int code, const char *arg, surface_options *o)
+{
+    im_surface_params *p = &o->params;
+    switch (code) {
+    case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &p->nx);
+    case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &p->ny);
+    case OPT_DELTA: return cli_parse_double("--delta", arg, 1e-300, 1e300, &p->delta);
+    case OPT_HURST: return cli_parse_double("--hurst", arg, 1e-6, 1 - 1e-6, &p->hurst);
+    case OPT_SLOPE: p->target = IM_TARGET_SLOPE; return cli_parse_double("--slope", arg, 0, 1e6, &p->slope_rms);
+    case OPT_HEIGHT:
+        p->target = IM_TARGET_HEIGHT;
+        return cli_parse_double("--height-rms", arg, 0, 1e12, &p->height_rms);
+    case OPT_SLOPE_DEF: return parse_slope_definition(arg, &p->slope_definition);
+    case OPT_LS: return cli_parse_double("--lambda-s", arg, 2, 1e9, &p->lambda_s);
+    case OPT_LR: o->lambda_r_given = 1; return cli_parse_double("--lambda-r", arg, 2, 1e9, &p->lambda_r);
+    case OPT_L0: return cli_parse_double("--lambda-0", arg, 2, 1e9, &p->lambda_0);
+    case OPT_SEED: return cli_parse_u64("--seed", arg, &p->seed);
+    case OPT_OUT: o->out = arg; return 0;
+    case OPT_STATS: o->stats = arg; return 0;
+    case OPT_PNG: o->png = arg; return 0;
+    case OPT_PSD: o->psd = arg; return 0;
+    case OPT_HIST: o->histograms = arg; return 0;
+    default: return -1;
+    }
+}
+
+static void print_statistics(const im_field *s, const im_surface_stats *st, const im_surface_params *p)
+{
+    printf("grid             %d x %d, delta = %g %s\n", s->nx, s->ny, s->delta, s->unit);
+    printf("mean             %.6g\n", st->mean);
+    printf("h_rms            %.6g\n", st->height_rms);
+    if (p) {
+        printf("h_rms eq. (13)   %.6g   (exact moments of the spectrum)\n",
+               im_surface_expected_height_rms(p, st->slope_rms_spectral));
+        printf("h_rms eq. (15)   %.6g   (the paper's large-zeta approximation)\n",
+               im_surface_height_rms_eq15(p, st->slope_rms_spectral));
+    }
+    printf("h'rms spectral   %.6g\n", st->slope_rms_spectral);
+    printf("h'rms fd         %.6g   (forward differences)\n", st->slope_rms_fd);
+    printf("curvature rms    %.6g   (mean curvature, spectral)\n", st->curvature_rms);
+    printf("m0 m2 m4         %.6g %.6g %.6g\n", st->m0, st->m2, st->m4);
+    printf("Nayak alpha      %.6g\n", st->nayak);
+    printf("height range     [%.6g, %.6g]\n", st->height_min, st->height_max);
+}
+
+static int write_psd_csv(const char *path, const im_field *surface)
+{
+    im_psd *psd = NULL;
+    int status = im_surface_psd(surface, 64, &psd);
+    if (status != IM_OK)
+        return status;
+    im_atomic_file file;
+    status = im_atomic_open(&file, path);
+    if (status == IM_OK) {
+        fprintf(file.stream, "q,c_iso,modes\n");
+        for (int i = 0; i < psd->bins; ++i)
+            if (psd->counts[i])
+                fprintf(file.stream, "%.10g,%.10g,%ld\n", psd->q[i], psd->c[i], psd->counts[i]);
+        status = im_atomic_commit(&file);
+    }
+    im_psd_free(psd);
+    return status;
+}
+
+static int write_histograms_csv(const char *path, const im_field *surface)
+{
+    static const char *const NAMES[] = {"height", "slope", "curvature"};
+    im_atomic_file file;
+    int status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    fprintf(file.stream, "quantity,centre,density\n");
+    for (int q = 0; q < 3 && status == IM_OK; ++q) {
+        im_histogram *h = NULL;
+        status = im_surface_histogram(surface, (enum im_histogram_quantity)q, 101, &h);
+        for (int b = 0; status == IM_OK && b < h->bins; ++b)
+            fprintf(file.stream, "%s,%.10g,%.10g\n", NAMES[q], h->centre[b], h->density[b]);
+        im_histogram_free(h);
+    }
+    if (status != IM_OK) {
+        im_atomic_abort(&file);
+        return status;
+    }
+    return im_atomic_commit(&file);
+}
+
+static int write_height_png(const char *path, const im_field *surface, const im_surface_stats *st)
+{
+    double half_range = fmax(fabs(st->height_min - st->mean), fabs(st->height_max - st->mean));
+    im_colormap colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, st->mean - half_range,
+                                            st->mean + fmax(half_range, 1e-300));
+    uint8_t *rgb = malloc(im_field_count(surface) * 3);
+    if (!rgb)
+        return im_fail(IM_ENOMEM, "%s: image allocation failed", path);
+    im_colormap_field_image(&colormap, surface, rgb);
+    char range[96];
+    snprintf(range, sizeof range, "[%.6g, %.6g]", colormap.lo, colormap.hi);
+    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Title", "height field"},
+                           {"Colour map", "viridis"}, {"Height range", range}};
+    im_png_options options = {texts, 4, 0.0, 6};
+    int status = im_png_write(path, rgb, surface->nx, surface->ny, 3, (size_t)surface->nx * 3, &options);
+    free(rgb);
+    return status;
+}
+
+static int write_outputs(const surface_options *o, const im_field *surface, const im_surface_stats *st,
+                         const im_surface_params *params)
+{
+    int status = IM_OK;
+    if (o->out) {
+        status = im_surface_write(o->out, surface);
+        char sidecar[4200];
+        snprintf(sidecar, sizeof sidecar, "%s.json", o->out);
+        if (status == IM_OK)
+            status = im_surface_sidecar_write(sidecar, surface, params, o->stats, st);
+    }
+    if (status == IM_OK && o->png)
+        status = write_height_png(o->png, surface, st);
+    if (status == IM_OK && o->psd)
+        status = write_psd_csv(o->psd, surface);
+    if (status == IM_OK && o->histograms)
+        status = write_histograms_csv(o->histograms, surface);
+    return status;
+}
+
+static int parse_options(int argc, char **argv, surface_options *o)
+{
+    int code;
+    optind = 1;
+    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
+        if (code == OPT_HELP || code == 'h') {
+            usage(stdout);
+            return 1;
+        }
+        if (code == '?' || apply_option(code, optarg, o) != 0)
+            return -1;
+    }
+    if (optind < argc) {
+        fprintf(stderr, "indentmap: surface: unexpected argument '%s'\n", argv[optind]);
+        return -1;
+    }
+    if (!o->m_given)
+        o->params.ny = o->params.nx;
+    if (!o->lambda_r_given)
+        o->params.lambda_r = o->params.nx > o->params.ny ? o->params.nx : o->params.ny;
+    if (o->params.lambda_0 < o->params.lambda_r)
+        o->params.lambda_0 = o->params.lambda_r;
+    return 0;
+}
+
+int cli_surface(int argc, char **argv)
+{
+    surface_options o = {.params = im_surface_params_default()};
+    int parsed = parse_options(argc, argv, &o);
+    if (parsed != 0)
+        return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    im_field *surface = NULL;
+    int status = o.stats ? im_surface_read(o.stats, &surface) : im_surface_generate(&o.params, &surface);
+    im_surface_stats stats;
+    if (status == IM_OK)
+        status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK) {
+        print_statistics(surface, &stats, o.stats ? NULL : &o.params);
+        status = write_outputs(&o, surface, &stats, o.stats ? NULL : &o.params);
+    }
+    im_field_free(surface);
+    return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
+}

@@ -1,0 +1,98 @@
+#include "indentmap/field.h"
+
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+int im_field_create(int nx, int ny, double delta, im_field **out)
+{
+    *out = NULL;
+    if (nx < 1 || ny < 1 || nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EINVAL, "grid %d x %d: expected each side in [1, %d]", nx, ny,
+                       IM_FIELD_MAX_SIDE);
+    if (!(delta > 0.0) || !isfinite(delta))
+        return im_fail(IM_EINVAL, "grid spacing delta = %g: expected a finite value > 0", delta);
+    char what[64];
+    snprintf(what, sizeof what, "field %d x %d", nx, ny);
+    double bytes = (double)nx * (double)ny * sizeof(double);
+    int status = im_memory_check(bytes, what);
+    if (status != IM_OK)
+        return status;
+    im_field *field = calloc(1, sizeof *field);
+    double *data = calloc((size_t)nx * (size_t)ny, sizeof *data);
+    if (!field || !data) {
+        free(field);
+        free(data);
+        return im_fail(IM_ENOMEM, "%s: allocation of %.0f bytes failed", what, bytes);
+    }
+    field->nx = nx;
+    field->ny = ny;
+    field->delta = delta;
+    field->data = data;
+    *out = field;
+    return IM_OK;
+}
+
+int im_field_clone(const im_field *src, im_field **out)
+{
+    int status = im_field_create(src->nx, src->ny, src->delta, out);
+    if (status != IM_OK)
+        return status;
+    memcpy((*out)->unit, src->unit, sizeof src->unit);
+    memcpy((*out)->data, src->data, im_field_count(src) * sizeof *src->data);
+    return IM_OK;
+}
+
+void im_field_free(im_field *field)
+{
+    if (!field)
+        return;
+    free(field->data);
+    free(field);
+}
+
+int im_field_check_finite(const im_field *field, const char *what)
+{
+    size_t count = im_field_count(field);
+    for (size_t i = 0; i < count; ++i) {
+        if (!isfinite(field->data[i]))
+            return im_fail(IM_ENUMERIC, "%s: value %g at (x=%zu, y=%zu): expected finite numbers",
+                           what, field->data[i], i % (size_t)field->nx, i / (size_t)field->nx);
+    }
+    return IM_OK;
+}
+
+size_t im_memory_available(void)
+{
+    size_t available = 0;
+    FILE *meminfo = fopen("/proc/meminfo", "r");
+    if (meminfo) {
+        char line[256];
+        unsigned long long kib;
+        while (fgets(line, sizeof line, meminfo)) {
+            if (sscanf(line, "MemAvailable: %llu kB", &kib) == 1) {
+                available = (size_t)kib * 1024u;
+                break;
+            }
+        }
+        fclose(meminfo);
+    }
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+        (available == 0 || (size_t)limit.rlim_cur < available))
+        available = (size_t)limit.rlim_cur;
+    return available;
+}
+
+int im_memory_check(double bytes, const char *what)
+{
+    size_t available = im_memory_available();
+    if (available != 0 && bytes > (double)available)
+        return im_fail(IM_ENOMEM, "%s needs about %.1f MiB but only %.1f MiB are available",
+                       what, bytes / 1048576.0, (double)available / 1048576.0);
+    return IM_OK;
+}

@@ -1,0 +1,49 @@
+#include "indentmap/status.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+enum { MESSAGE_CAPACITY = 1024 };
+static _Thread_local char last_message[MESSAGE_CAPACITY];
+
+const char *im_strstatus(int status)
+{
+    switch (status) {
+    case IM_OK: return "success";
+    case IM_EINVAL: return "invalid argument";
+    case IM_EIO: return "input/output error";
+    case IM_EFORMAT: return "malformed file";
+    case IM_ENOMEM: return "not enough memory";
+    case IM_ENUMERIC: return "numerical error";
+    case IM_ENOCONV: return "no convergence";
+    case IM_EEDGE: return "contact reached the surface edge";
+    case IM_EUNSUPPORTED: return "not supported here";
+    case IM_EINTERRUPTED: return "interrupted";
+    default: return "unknown status";
+    }
+}
+
+const char *im_last_error(void) { return last_message; }
+
+int im_fail(int status, const char *fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(last_message, sizeof last_message, fmt, args);
+    va_end(args);
+    return status;
+}
+
+int im_fail_context(int status, const char *fmt, ...)
+{
+    char previous[MESSAGE_CAPACITY];
+    memcpy(previous, last_message, sizeof previous);
+    va_list args;
+    va_start(args, fmt);
+    int used = vsnprintf(last_message, sizeof last_message, fmt, args);
+    va_end(args);
+    if (used >= 0 && (size_t)used < sizeof last_message && previous[0] != '\0')
+        snprintf(last_message + used, sizeof last_message - (size_t)used, ": %s", previous);
+    return status;
+}

@@ -1,0 +1,198 @@
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char NPY_MAGIC[6] = {'\x93', 'N', 'U', 'M', 'P', 'Y'};
+
+static void store_le16(uint8_t *p, uint16_t v) { p[0] = (uint8_t)v; p[1] = (uint8_t)(v >> 8); }
+
+/* Little-endian host assumed for the payload (x86-64, aarch64); checked at compile time. */
+_Static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "npy payload code assumes little-endian");
+
+static int write_payload(FILE *stream, const im_field *field, enum im_npy_dtype dtype)
+{
+    size_t count = im_field_count(field);
+    if (dtype == IM_NPY_FLOAT64)
+        return fwrite(field->data, sizeof(double), count, stream) == count ? IM_OK : IM_EIO;
+    for (size_t i = 0; i < count; ++i) {
+        float value = (float)field->data[i];
+        if (fwrite(&value, sizeof value, 1, stream) != 1)
+            return IM_EIO;
+    }
+    return IM_OK;
+}
+
+int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtype)
+{
+    char dict[128];
+    int dict_length = snprintf(dict, sizeof dict,
+                               "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }",
+                               dtype == IM_NPY_FLOAT64 ? "<f8" : "<f4", field->ny, field->nx);
+    /* magic(6) + version(2) + length(2) + dict + padding + '\n' is a multiple of 64 bytes */
+    size_t header_length = (size_t)dict_length + 1;
+    size_t total = 10 + header_length;
+    size_t padding = (64 - total % 64) % 64;
+    header_length += padding;
+    uint8_t prefix[10];
+    memcpy(prefix, NPY_MAGIC, 6);
+    prefix[6] = 1;
+    prefix[7] = 0;
+    store_le16(prefix + 8, (uint16_t)header_length);
+    im_atomic_file file;
+    int status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    int ok = fwrite(prefix, 1, sizeof prefix, file.stream) == sizeof prefix &&
+             fwrite(dict, 1, (size_t)dict_length, file.stream) == (size_t)dict_length;
+    for (size_t i = 0; ok && i < padding; ++i)
+        ok = fputc(' ', file.stream) != EOF;
+    ok = ok && fputc('\n', file.stream) != EOF && write_payload(file.stream, field, dtype) == IM_OK;
+    if (!ok) {
+        im_atomic_abort(&file);
+        return im_fail(IM_EIO, "%s: write failed: %s", path, strerror(errno));
+    }
+    return im_atomic_commit(&file);
+}
+
+/* Finds the value text after 'key': in a NumPy header dictionary. */
+static const char *dict_value(const char *dict, const char *key)
+{
+    char pattern[32];
+    snprintf(pattern, sizeof pattern, "'%s'", key);
+    const char *at = strstr(dict, pattern);
+    if (!at)
+        return NULL;
+    at += strlen(pattern);
+    while (*at == ' ' || *at == ':')
+        ++at;
+    return at;
+}
+
+static const char *skip_blanks(const char *p)
+{
+    while (*p == ' ')
+        ++p;
+    return p;
+}
+
+/* Parses "(rows, cols)" with an optional trailing comma; 0 for any other shape. */
+static int parse_shape(const char *text, long *rows, long *cols)
+{
+    char *end;
+    const char *p = skip_blanks(text);
+    if (*p++ != '(')
+        return 0;
+    *rows = strtol(p, &end, 10);
+    if (end == p)
+        return 0;
+    p = skip_blanks(end);
+    if (*p++ != ',')
+        return 0;
+    *cols = strtol(p, &end, 10);
+    if (end == p)
+        return 0;
+    p = skip_blanks(end);
+    if (*p == ',')
+        p = skip_blanks(p + 1);
+    return *p == ')';
+}
+
+static int parse_header(const char *path, const char *dict, enum im_npy_dtype *dtype, long *rows,
+                        long *cols)
+{
+    const char *descr = dict_value(dict, "descr");
+    const char *order = dict_value(dict, "fortran_order");
+    const char *shape = dict_value(dict, "shape");
+    if (!descr || !order || !shape)
+        return im_fail(IM_EFORMAT, "%s: header lacks 'descr', 'fortran_order' or 'shape'", path);
+    if (strncmp(descr, "'<f8'", 5) == 0)
+        *dtype = IM_NPY_FLOAT64;
+    else if (strncmp(descr, "'<f4'", 5) == 0)
+        *dtype = IM_NPY_FLOAT32;
+    else
+        return im_fail(IM_EFORMAT, "%s: dtype %.12s is not supported; expected '<f8' or '<f4' "
+                       "(little-endian float64 or float32)", path, descr);
+    if (strncmp(order, "False", 5) != 0)
+        return im_fail(IM_EFORMAT, "%s: Fortran-ordered arrays are not supported; expected C order "
+                       "(save with numpy.ascontiguousarray)", path);
+    if (!parse_shape(shape, rows, cols))
+        return im_fail(IM_EFORMAT, "%s: shape %.24s: expected a 2-D shape (rows, columns)", path, shape);
+    if (*rows < 1 || *cols < 1 || *rows > IM_FIELD_MAX_SIDE || *cols > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side in [1, %d]", path,
+                       *rows, *cols, IM_FIELD_MAX_SIDE);
+    return IM_OK;
+}
+
+static int read_header(FILE *stream, const char *path, enum im_npy_dtype *dtype, long *rows, long *cols)
+{
+    uint8_t prefix[12];
+    if (fread(prefix, 1, 8, stream) != 8 || memcmp(prefix, NPY_MAGIC, 6) != 0)
+        return im_fail(IM_EFORMAT, "%s: not a .npy file (no \\x93NUMPY magic)", path);
+    int major = prefix[6];
+    size_t length_bytes = major == 1 ? 2 : 4;
+    if (major < 1 || major > 3 || fread(prefix + 8, 1, length_bytes, stream) != length_bytes)
+        return im_fail(IM_EFORMAT, "%s: unsupported .npy version %d or truncated header", path, major);
+    size_t header_length = prefix[8] | (size_t)prefix[9] << 8;
+    if (length_bytes == 4)
+        header_length |= (size_t)prefix[10] << 16 | (size_t)prefix[11] << 24;
+    if (header_length > 65536)
+        return im_fail(IM_EFORMAT, "%s: header length %zu is implausible", path, header_length);
+    char *dict = calloc(header_length + 1, 1);
+    if (!dict)
+        return im_fail(IM_ENOMEM, "%s: header allocation failed", path);
+    int status = fread(dict, 1, header_length, stream) == header_length
+                     ? parse_header(path, dict, dtype, rows, cols)
+                     : im_fail(IM_EFORMAT, "%s: truncated header", path);
+    free(dict);
+    return status;
+}
+
+static int read_payload(FILE *stream, const char *path, enum im_npy_dtype dtype, im_field *field)
+{
+    size_t count = im_field_count(field), got;
+    if (dtype == IM_NPY_FLOAT64) {
+        got = fread(field->data, sizeof(double), count, stream);
+    } else {
+        float value;
+        for (got = 0; got < count && fread(&value, sizeof value, 1, stream) == 1; ++got)
+            field->data[got] = value;
+    }
+    if (got != count)
+        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu values (header shape %d x %d)",
+                       path, got, count, field->ny, field->nx);
+    if (fgetc(stream) != EOF)
+        return im_fail(IM_EFORMAT, "%s: more data than the header shape (%d, %d) holds", path,
+                       field->ny, field->nx);
+    return im_field_check_finite(field, path);
+}
+
+int im_npy_read(const char *path, im_field **out)
+{
+    *out = NULL;
+    FILE *stream = fopen(path, "rb");
+    if (!stream)
+        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    enum im_npy_dtype dtype = IM_NPY_FLOAT64;
+    long rows = 0, cols = 0;
+    im_field *field = NULL;
+    int status = read_header(stream, path, &dtype, &rows, &cols);
+    if (status == IM_OK) {
+        status = im_field_create((int)cols, (int)rows, 1.0, &field);
+        if (status != IM_OK)
+            im_fail_context(status, "%s", path);
+    }
+    if (status == IM_OK)
+        status = read_payload(stream, path, dtype, field);
+    fclose(stream);
+    if (status != IM_OK) {
+        im_field_free(field);
+        return status;
+    }
+    *out = field;
+    return IM_OK;
+}

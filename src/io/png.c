@@ -1,0 +1,132 @@
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int check_image(const char *path, int width, int height, int channels)
+{
+    if (width < 1 || height < 1 || width > 1 << 15 || height > 1 << 15)
+        return im_fail(IM_EINVAL, "%s: image %d x %d: expected each side in [1, 32768]", path, width, height);
+    if (channels != 3 && channels != 4)
+        return im_fail(IM_EINVAL, "%s: %d channels: expected 3 (RGB) or 4 (RGBA)", path, channels);
+    return IM_OK;
+}
+
+static void set_metadata(png_structp png, png_infop info, const im_png_options *options)
+{
+    if (!options)
+        return;
+    if (options->text_count > 0) {
+        png_textp texts = calloc((size_t)options->text_count, sizeof *texts);
+        for (int i = 0; texts && i < options->text_count; ++i) {
+            texts[i].compression = PNG_TEXT_COMPRESSION_NONE;
+            texts[i].key = (png_charp)options->texts[i].key;
+            texts[i].text = (png_charp)options->texts[i].value;
+        }
+        if (texts)
+            png_set_text(png, info, texts, options->text_count);
+        free(texts); /* png_set_text copies the strings */
+    }
+    if (options->dots_per_metre > 0.0) {
+        png_uint_32 dpm = (png_uint_32)(options->dots_per_metre + 0.5);
+        png_set_pHYs(png, info, dpm, dpm, PNG_RESOLUTION_METER);
+    }
+}
+
+/* Encodes into an open stream; libpng reports errors through longjmp. */
+static int encode(FILE *stream, const uint8_t *pixels, int width, int height, int channels,
+                  size_t stride, const im_png_options *options)
+{
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!info) {
+        png_destroy_write_struct(&png, NULL);
+        return IM_ENOMEM;
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return IM_EIO;
+    }
+    png_init_io(png, stream);
+    png_set_compression_level(png, options ? options->compression : 6);
+    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8,
+                 channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    set_metadata(png, info, options);
+    png_write_info(png, info);
+    for (int row = 0; row < height; ++row)
+        png_write_row(png, (png_const_bytep)(pixels + (size_t)row * stride));
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    return IM_OK;
+}
+
+int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
+                 size_t stride, const im_png_options *options)
+{
+    int status = check_image(path, width, height, channels);
+    if (status != IM_OK)
+        return status;
+    im_atomic_file file;
+    status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    status = encode(file.stream, pixels, width, height, channels, stride, options);
+    if (status != IM_OK) {
+        im_atomic_abort(&file);
+        return im_fail(status, "%s: PNG encoding failed", path);
+    }
+    return im_atomic_commit(&file);
+}
+
+static int decode(FILE *stream, const char *path, uint8_t **pixels, int *width, int *height, int *channels)
+{
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    uint8_t *volatile buffer = NULL;
+    if (!info) {
+        png_destroy_read_struct(&png, NULL, NULL);
+        return im_fail(IM_ENOMEM, "%s: libpng allocation failed", path);
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        free(buffer);
+        png_destroy_read_struct(&png, &info, NULL);
+        return im_fail(IM_EFORMAT, "%s: not a readable PNG", path);
+    }
+    png_init_io(png, stream);
+    png_read_info(png, info);
+    png_set_expand(png);
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    png_read_update_info(png, info);
+    int w = (int)png_get_image_width(png, info), h = (int)png_get_image_height(png, info);
+    int c = png_get_channels(png, info);
+    buffer = malloc((size_t)w * (size_t)h * (size_t)c);
+    if (!buffer)
+        png_error(png, "out of memory");
+    for (int row = 0; row < h; ++row)
+        png_read_row(png, buffer + (size_t)row * (size_t)w * (size_t)c, NULL);
+    png_read_end(png, NULL);
+    png_destroy_read_struct(&png, &info, NULL);
+    *pixels = buffer;
+    *width = w;
+    *height = h;
+    *channels = c;
+    return IM_OK;
+}
+
+int im_png_read(const char *path, uint8_t **pixels, int *width, int *height, int *channels)
+{
+    *pixels = NULL;
+    FILE *stream = fopen(path, "rb");
+    if (!stream)
+        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    int status = decode(stream, path, pixels, width, height, channels);
+    fclose(stream);
+    return status;
+}

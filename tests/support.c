@@ -1,0 +1,53 @@
+#include "support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char temp_dir[512];
+
+static void remove_temp_dir(void)
+{
+    char command[600];
+    snprintf(command, sizeof command, "rm -rf '%s'", temp_dir);
+    if (system(command) != 0)
+        fprintf(stderr, "could not remove %s\n", temp_dir);
+}
+
+const char *test_temp_dir(void)
+{
+    if (temp_dir[0] == '\0') {
+        const char *base = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
+        snprintf(temp_dir, sizeof temp_dir, "%s/indentmap-test-XXXXXX", base);
+        if (!mkdtemp(temp_dir)) {
+            perror("mkdtemp");
+            exit(1);
+        }
+        atexit(remove_temp_dir);
+    }
+    return temp_dir;
+}
+
+const char *test_path(const char *name)
+{
+    static char buffers[8][700];
+    static int next;
+    char *buffer = buffers[next++ % 8];
+    snprintf(buffer, sizeof buffers[0], "%s/%s", test_temp_dir(), name);
+    return buffer;
+}
+
+void test_write_bytes(const char *path, const void *data, size_t size)
+{
+    FILE *stream = fopen(path, "wb");
+    assert_non_null(stream);
+    assert_int_equal(fwrite(data, 1, size, stream), size);
+    assert_int_equal(fclose(stream), 0);
+}
+
+double test_relative_difference(double a, double b)
+{
+    double scale = fmax(fmax(fabs(a), fabs(b)), 1e-300);
+    return fabs(a - b) / scale;
+}

@@ -1,0 +1,31 @@
+/* Shared helpers for the test programs (cmocka). */
+#ifndef INDENTMAP_TEST_SUPPORT_H
+#define INDENTMAP_TEST_SUPPORT_H
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+/* A fresh empty directory under $TMPDIR (or /tmp) for this test program; removed at exit. */
+const char *test_temp_dir(void);
+
+/* test_temp_dir()/name in a static buffer (one of 8 rotating buffers). */
+const char *test_path(const char *name);
+
+/* Writes bytes to a file; fails the test if it cannot. */
+void test_write_bytes(const char *path, const void *data, size_t size);
+
+/* Relative difference |a - b| / max(|a|, |b|, tiny). */
+double test_relative_difference(double a, double b);
+
+/* Asserts |actual - expected| <= tolerance with a message naming the values. */
+#define assert_close(actual, expected, tolerance)                                                 \
+    do {                                                                                          \
+        double a_ = (actual), e_ = (expected), t_ = (tolerance);                                  \
+        if (!(fabs(a_ - e_) <= t_))                                                               \
+            fail_msg("%s = %.17g, expected %.17g within %g", #actual, a_, e_, t_);                \
+    } while (0)
+
+#endif
