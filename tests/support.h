@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <math.h>
 
 /* A fresh empty directory under $TMPDIR (or /tmp) for this test program; removed at exit. */
 const char *test_temp_dir(void);

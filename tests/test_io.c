@@ -1,0 +1,228 @@
+/* Tests of the file formats: exact round trips and clear refusals of bad files. */
+#include "support.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static im_field *sample_field(int nx, int ny)
+{
+    im_field *f = NULL;
+    assert_int_equal(im_field_create(nx, ny, 1.0, &f), IM_OK);
+    for (size_t i = 0; i < im_field_count(f); ++i)
+        f->data[i] = sin(0.37 * (double)i) * 1e3 + 1.0 / 3.0 + (double)i * 1e-9;
+    return f;
+}
+
+static void assert_fields_equal(const im_field *a, const im_field *b)
+{
+    assert_int_equal(a->nx, b->nx);
+    assert_int_equal(a->ny, b->ny);
+    assert_memory_equal(a->data, b->data, im_field_count(a) * sizeof(double));
+}
+
+static void npy_float64_round_trip_is_exact(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(7, 5), *g = NULL;
+    const char *path = test_path("f64.npy");
+    assert_int_equal(im_npy_write(path, f, IM_NPY_FLOAT64), IM_OK);
+    assert_int_equal(im_npy_read(path, &g), IM_OK);
+    assert_fields_equal(f, g);
+    /* the header is a multiple of 64 bytes, as NumPy writes it */
+    struct stat info;
+    assert_int_equal(stat(path, &info), 0);
+    assert_int_equal((info.st_size - 7 * 5 * 8) % 64, 0);
+    im_field_free(f);
+    im_field_free(g);
+}
+
+static void npy_float32_round_trip_is_exact_in_float(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(6, 4), *g = NULL;
+    for (size_t i = 0; i < im_field_count(f); ++i)
+        f->data[i] = (float)f->data[i];
+    assert_int_equal(im_npy_write(test_path("f32.npy"), f, IM_NPY_FLOAT32), IM_OK);
+    assert_int_equal(im_npy_read(test_path("f32.npy"), &g), IM_OK);
+    assert_fields_equal(f, g);
+    im_field_free(f);
+    im_field_free(g);
+}
+
+static void text_and_gsf_round_trips(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(9, 3), *g = NULL;
+    f->delta = 0.25;
+    strcpy(f->unit, "um");
+    assert_int_equal(im_text_write(test_path("f.txt"), f), IM_OK);
+    assert_int_equal(im_text_read(test_path("f.txt"), &g), IM_OK);
+    assert_fields_equal(f, g);
+    assert_close(g->delta, 0.25, 1e-15);
+    assert_string_equal(g->unit, "um");
+    im_field_free(g);
+    for (size_t i = 0; i < im_field_count(f); ++i)
+        f->data[i] = (float)f->data[i];
+    assert_int_equal(im_gsf_write(test_path("f.gsf"), f), IM_OK);
+    assert_int_equal(im_gsf_read(test_path("f.gsf"), &g), IM_OK);
+    assert_fields_equal(f, g);
+    assert_close(g->delta, 0.25, 1e-15);
+    im_field_free(f);
+    im_field_free(g);
+}
+
+/* Builds a .npy file from a header dictionary and a payload of `values` doubles. */
+static void write_npy(const char *path, const char *dict, size_t values, int fill_nan)
+{
+    size_t dict_length = strlen(dict), header = 10 + dict_length + 1;
+    size_t padding = (64 - header % 64) % 64, length = dict_length + 1 + padding;
+    size_t size = 10 + length + values * 8;
+    unsigned char *bytes = calloc(size, 1);
+    memcpy(bytes, "\x93NUMPY\x01\x00", 8);
+    bytes[8] = (unsigned char)(length & 0xff);
+    bytes[9] = (unsigned char)(length >> 8);
+    memcpy(bytes + 10, dict, dict_length);
+    memset(bytes + 10 + dict_length, ' ', padding);
+    bytes[10 + length - 1] = '\n';
+    double value = fill_nan ? NAN : 1.5;
+    for (size_t i = 0; i < values; ++i)
+        memcpy(bytes + 10 + length + 8 * i, &value, 8);
+    test_write_bytes(path, bytes, size);
+    free(bytes);
+}
+
+static void expect_refusal(int (*reader)(const char *, im_field **), const char *path, int status,
+                           const char *phrase)
+{
+    im_field *f = NULL;
+    int got = reader(path, &f);
+    if (got != status || !strstr(im_last_error(), phrase))
+        fail_msg("%s: status %d (expected %d), message '%s' (expected to contain '%s')", path, got,
+                 status, im_last_error(), phrase);
+    assert_null(f);
+    assert_non_null(strstr(im_last_error(), path));
+}
+
+static void bad_npy_files_are_refused(void **state)
+{
+    (void)state;
+    const char *ok = "{'descr': '<f8', 'fortran_order': False, 'shape': (4, 3), }";
+    write_npy(test_path("short.npy"), ok, 11, 0);
+    expect_refusal(im_npy_read, test_path("short.npy"), IM_EFORMAT, "truncated");
+    write_npy(test_path("long.npy"), ok, 13, 0);
+    expect_refusal(im_npy_read, test_path("long.npy"), IM_EFORMAT, "more data");
+    write_npy(test_path("int.npy"), "{'descr': '<i8', 'fortran_order': False, 'shape': (4, 3), }", 12, 0);
+    expect_refusal(im_npy_read, test_path("int.npy"), IM_EFORMAT, "dtype");
+    write_npy(test_path("big.npy"), "{'descr': '>f8', 'fortran_order': False, 'shape': (4, 3), }", 12, 0);
+    expect_refusal(im_npy_read, test_path("big.npy"), IM_EFORMAT, "dtype");
+    write_npy(test_path("fortran.npy"), "{'descr': '<f8', 'fortran_order': True, 'shape': (4, 3), }", 12, 0);
+    expect_refusal(im_npy_read, test_path("fortran.npy"), IM_EFORMAT, "Fortran");
+    write_npy(test_path("3d.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 3), }", 12, 0);
+    expect_refusal(im_npy_read, test_path("3d.npy"), IM_EFORMAT, "2-D");
+    write_npy(test_path("nan.npy"), ok, 12, 1);
+    expect_refusal(im_npy_read, test_path("nan.npy"), IM_ENUMERIC, "finite");
+    write_npy(test_path("huge.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (60000, 60000), }", 12, 0);
+    expect_refusal(im_npy_read, test_path("huge.npy"), IM_ENOMEM, "MiB");
+    test_write_bytes(test_path("junk.npy"), "hello", 5);
+    expect_refusal(im_npy_read, test_path("junk.npy"), IM_EFORMAT, "magic");
+    expect_refusal(im_npy_read, test_path("missing.npy"), IM_EIO, "cannot open");
+}
+
+static void bad_text_matrices_name_the_line(void **state)
+{
+    (void)state;
+    const char *bad_token = "# Channel: Height\n1 2 3\n4 5 6\n7 x8 9\n";
+    test_write_bytes(test_path("token.txt"), bad_token, strlen(bad_token));
+    expect_refusal(im_text_read, test_path("token.txt"), IM_EFORMAT, "token.txt:4: 'x8' is not a number");
+    const char *ragged = "1 2 3\n4 5\n";
+    test_write_bytes(test_path("ragged.txt"), ragged, strlen(ragged));
+    expect_refusal(im_text_read, test_path("ragged.txt"), IM_EFORMAT, "ragged.txt:2: 2 values");
+    const char *infinite = "1 2\n3 inf\n";
+    test_write_bytes(test_path("inf.txt"), infinite, strlen(infinite));
+    expect_refusal(im_text_read, test_path("inf.txt"), IM_EFORMAT, "inf.txt:2");
+    test_write_bytes(test_path("empty.txt"), "# only a header\n", 16);
+    expect_refusal(im_text_read, test_path("empty.txt"), IM_EFORMAT, "no data");
+}
+
+static void bad_gsf_files_are_refused(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(4, 4);
+    assert_int_equal(im_gsf_write(test_path("good.gsf"), f), IM_OK);
+    FILE *in = fopen(test_path("good.gsf"), "rb");
+    unsigned char bytes[4096];
+    size_t size = fread(bytes, 1, sizeof bytes, in);
+    fclose(in);
+    test_write_bytes(test_path("cut.gsf"), bytes, size - 4);
+    expect_refusal(im_gsf_read, test_path("cut.gsf"), IM_EFORMAT, "truncated");
+    test_write_bytes(test_path("extra.gsf"), bytes, size);
+    FILE *append = fopen(test_path("extra.gsf"), "ab");
+    fwrite("\0\0\0\0", 1, 4, append);
+    fclose(append);
+    expect_refusal(im_gsf_read, test_path("extra.gsf"), IM_EFORMAT, "more data");
+    const char *no_res = "Gwyddion Simple Field 1.0\nXReal = 1\n\0\0";
+    test_write_bytes(test_path("nores.gsf"), no_res, 40);
+    expect_refusal(im_gsf_read, test_path("nores.gsf"), IM_EFORMAT, "XRes");
+    im_field_free(f);
+}
+
+static void atomic_write_leaves_no_partial_file(void **state)
+{
+    (void)state;
+    const char *path = test_path("atomic.txt");
+    assert_int_equal(im_write_file_atomic(path, "first", 5), IM_OK);
+    im_atomic_file file;
+    assert_int_equal(im_atomic_open(&file, path), IM_OK);
+    fputs("half-written", file.stream);
+    im_atomic_abort(&file);
+    FILE *in = fopen(path, "r");
+    char text[16] = "";
+    assert_non_null(fgets(text, sizeof text, in));
+    fclose(in);
+    assert_string_equal(text, "first");
+    struct stat info;
+    assert_int_not_equal(stat(file.temp_path, &info), 0);
+    assert_int_equal(im_write_file_atomic("/nonexistent-dir/x.txt", "x", 1), IM_EIO);
+    assert_non_null(strstr(im_last_error(), "/nonexistent-dir/x.txt"));
+}
+
+static void png_round_trip_keeps_pixels(void **state)
+{
+    (void)state;
+    uint8_t pixels[5 * 3 * 3];
+    for (size_t i = 0; i < sizeof pixels; ++i)
+        pixels[i] = (uint8_t)(i * 17);
+    im_png_text text = {"Title", "test"};
+    im_png_options options = {&text, 1, 11811.0, 9};
+    assert_int_equal(im_png_write(test_path("p.png"), pixels, 5, 3, 3, 15, &options), IM_OK);
+    uint8_t *back = NULL;
+    int w, h, c;
+    assert_int_equal(im_png_read(test_path("p.png"), &back, &w, &h, &c), IM_OK);
+    assert_int_equal(w, 5);
+    assert_int_equal(h, 3);
+    assert_int_equal(c, 3);
+    assert_memory_equal(back, pixels, sizeof pixels);
+    free(back);
+    assert_int_equal(im_png_write(test_path("zero.png"), pixels, 0, 3, 3, 0, NULL), IM_EINVAL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(npy_float64_round_trip_is_exact),
+        cmocka_unit_test(npy_float32_round_trip_is_exact_in_float),
+        cmocka_unit_test(text_and_gsf_round_trips),
+        cmocka_unit_test(bad_npy_files_are_refused),
+        cmocka_unit_test(bad_text_matrices_name_the_line),
+        cmocka_unit_test(bad_gsf_files_are_refused),
+        cmocka_unit_test(atomic_write_leaves_no_partial_file),
+        cmocka_unit_test(png_round_trip_keeps_pixels),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
