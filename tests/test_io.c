@@ -166,7 +166,7 @@ static void bad_gsf_files_are_refused(void **state)
     fwrite("\0\0\0\0", 1, 4, append);
     fclose(append);
     expect_refusal(im_gsf_read, test_path("extra.gsf"), IM_EFORMAT, "more data");
-    static const char no_res[] = "Gwyddion Simple Field 1.0\nXReal = 1\n\0\0";
+    static const char no_res[] = "Gwyddion Simple Field 1.0\nXReal = 1\n\0\0\0\0"; /* 40 bytes */
     test_write_bytes(test_path("nores.gsf"), no_res, sizeof no_res - 1);
     expect_refusal(im_gsf_read, test_path("nores.gsf"), IM_EFORMAT, "XRes");
     im_field_free(f);
