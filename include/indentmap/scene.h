@@ -1,0 +1,84 @@
+/* indentmap/scene.h: scene files, what a user wants to see, in INI (parsed with inih).
+ *
+ * A scene names surfaces (generated families with seeds, or a file), the punch and material, the
+ * loading, and the outputs. Example (scenes/ has the paper's):
+ *
+ *   [scene]
+ *   name = fig4                   ; results go to output/NAME unless `output` is given
+ *   [surfaces]
+ *   n = 512                       ; grid (m = rows, default n)
+ *   hurst = 0.8
+ *   lambda_s = 4
+ *   lambda_r = 512
+ *   slopes = 0, 0.01, 0.02, 0.04, 0.08, 0.16   ; h'rms of each family; 0 is the smooth surface
+ *   seeds = 1:10                  ; first:last, or a list
+ *   [punch]
+ *   shape = cone
+ *   alpha = 80                    ; degrees
+ *   [loading]
+ *   load_star = 30000             ; N* at which panels are drawn
+ *   [output]
+ *   contact_panels = yes
+ *
+ * Errors name the file and line ("fig4.ini:7: ...") and, for an unknown key or section, suggest
+ * the nearest valid one. Paths inside a scene are resolved relative to the scene file.
+ */
+#ifndef INDENTMAP_SCENE_H
+#define INDENTMAP_SCENE_H
+
+#include "indentmap/surface.h"
+
+#include <stdint.h>
+
+enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
+
+enum im_punch_shape { IM_PUNCH_CONE = 0, IM_PUNCH_SPHERE, IM_PUNCH_FLAT };
+enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD };
+enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
+                    IM_ANIMATION_BOTH = 3 };
+
+typedef struct im_scene {
+    char path[IM_SCENE_PATH];        /* the scene file as given */
+    char name[64];
+    char output_dir[IM_SCENE_PATH];  /* default output/NAME */
+    char quality[16];                /* draft | standard | publication */
+
+    im_surface_params surface;       /* template of every generated surface */
+    char surface_file[IM_SCENE_PATH];/* a surface file instead of generated families ("" if none) */
+    double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
+    int family_count;
+    uint64_t seeds[IM_SCENE_MAX_FAMILIES];
+    int seed_count;
+
+    enum im_punch_shape punch;
+    double alpha_degrees;            /* cone semi-opening angle */
+    double radius;                   /* sphere radius or flat punch radius, in delta */
+    double modulus;                  /* composite modulus E* */
+
+    enum im_control control;
+    double load_star;                /* N* at which contact panels are drawn (0: none) */
+    double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty) */
+    int step_count;
+
+    int contact_panels, frames, table;
+    enum im_animation animation;
+    char plots[256];                 /* comma-separated figure names, "" for none */
+} im_scene;
+
+/* Defaults: the paper's surface family and 80 degree cone, E* = 1, no outputs. */
+void im_scene_defaults(im_scene *scene);
+
+/* Parses a scene file into *scene (defaults first). IM_EIO if it cannot be read, IM_EFORMAT with
+ * "PATH:LINE: message" for a malformed line, an unknown section or key (with a suggestion), or a
+ * value out of range (naming the key and what was expected). */
+int im_scene_load(const char *path, im_scene *scene);
+
+/* Resolves a path written in a scene relative to the scene file's directory (absolute paths are
+ * kept). Writes at most size bytes to out. */
+void im_scene_resolve_path(const im_scene *scene, const char *relative, char *out, size_t size);
+
+/* The valid key nearest to an unknown word (Levenshtein distance), for suggestions; NULL if none
+ * is close (distance > half the word's length). section may be NULL to search section names. */
+const char *im_scene_suggest_key(const char *section, const char *word);
+
+#endif

@@ -1,0 +1,386 @@
+#include "indentmap/scene.h"
+
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+/* ---- value parsers: each returns 0 or writes a message into error ---- */
+typedef struct key_spec key_spec;
+typedef int (*value_parser)(const key_spec *spec, const char *value, im_scene *scene, char *error,
+                            size_t error_size);
+
+struct key_spec {
+    const char *section, *key;
+    value_parser parse;
+    size_t offset;           /* of the destination in im_scene */
+    double min, max;         /* numeric range (inclusive) */
+    const char *choices;     /* "a|b|c" for enumerations */
+    size_t capacity;         /* string size or list capacity */
+    size_t count_offset;     /* of the list's count */
+};
+
+#define FIELD(name) offsetof(im_scene, name)
+
+static void *destination(const key_spec *spec, im_scene *scene) { return (char *)scene + spec->offset; }
+
+static int parse_number(const char *text, double *value)
+{
+    char *end;
+    errno = 0;
+    *value = strtod(text, &end);
+    while (*end == ' ' || *end == '\t')
+        ++end;
+    return end != text && *end == '\0' && errno != ERANGE && isfinite(*value);
+}
+
+static int parse_double(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    double v;
+    if (!parse_number(value, &v) || v < spec->min || v > spec->max) {
+        snprintf(error, size, "%s = '%s': expected a number in [%g, %g]", spec->key, value, spec->min, spec->max);
+        return -1;
+    }
+    *(double *)destination(spec, scene) = v;
+    return 0;
+}
+
+static int parse_int(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    double v;
+    if (!parse_number(value, &v) || v != floor(v) || v < spec->min || v > spec->max) {
+        snprintf(error, size, "%s = '%s': expected an integer in [%g, %g]", spec->key, value, spec->min, spec->max);
+        return -1;
+    }
+    *(int *)destination(spec, scene) = (int)v;
+    return 0;
+}
+
+static int parse_string(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    if (strlen(value) >= spec->capacity || value[0] == '\0') {
+        snprintf(error, size, "%s: expected a non-empty value of at most %zu characters", spec->key,
+                 spec->capacity - 1);
+        return -1;
+    }
+    strcpy(destination(spec, scene), value);
+    return 0;
+}
+
+/* Index of value among "a|b|c" choices, or -1. */
+static int choice_index(const char *choices, const char *value)
+{
+    size_t length = strlen(value);
+    int index = 0;
+    for (const char *p = choices; *p; ++index) {
+        size_t word = strcspn(p, "|");
+        if (word == length && strncasecmp(p, value, length) == 0)
+            return index;
+        p += word + (p[word] == '|');
+    }
+    return -1;
+}
+
+static int parse_choice(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    int index = choice_index(spec->choices, value);
+    if (index < 0) {
+        snprintf(error, size, "%s = '%s': expected one of %s", spec->key, value, spec->choices);
+        return -1;
+    }
+    *(int *)destination(spec, scene) = index;
+    return 0;
+}
+
+static int parse_bool(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    int index = choice_index("no|yes|false|true|0|1|off|on", value);
+    if (index < 0) {
+        snprintf(error, size, "%s = '%s': expected yes or no", spec->key, value);
+        return -1;
+    }
+    *(int *)destination(spec, scene) = index % 2;
+    return 0;
+}
+
+/* "a, b, c" or "first:last:count" (count values, evenly spaced) into a list of doubles. */
+static int parse_double_list(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    double *list = destination(spec, scene);
+    int *count = (int *)((char *)scene + spec->count_offset);
+    double first, last, steps;
+    if (sscanf(value, "%lf : %lf : %lf", &first, &last, &steps) == 3) {
+        if (steps < 1 || steps > (double)spec->capacity || steps != floor(steps) || first < spec->min ||
+            last > spec->max || !(last >= first)) {
+            snprintf(error, size, "%s = '%s': expected first:last:count with %g <= first <= last <= %g and "
+                     "1 <= count <= %zu", spec->key, value, spec->min, spec->max, spec->capacity);
+            return -1;
+        }
+        *count = (int)steps;
+        for (int i = 0; i < *count; ++i)
+            list[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
+        return 0;
+    }
+    char buffer[2048];
+    snprintf(buffer, sizeof buffer, "%s", value);
+    *count = 0;
+    for (char *token = strtok(buffer, ","); token; token = strtok(NULL, ",")) {
+        double v;
+        while (*token == ' ' || *token == '\t')
+            ++token;
+        if ((size_t)*count >= spec->capacity || !parse_number(token, &v) || v < spec->min || v > spec->max) {
+            snprintf(error, size, "%s: '%s' in '%s': expected at most %zu numbers in [%g, %g], separated by "
+                     "commas", spec->key, token, value, spec->capacity, spec->min, spec->max);
+            return -1;
+        }
+        list[(*count)++] = v;
+    }
+    return 0;
+}
+
+/* "first:last" (inclusive) or a list of seeds. */
+static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    unsigned long long first, last;
+    int used = 0;
+    if (sscanf(value, "%llu : %llu%n", &first, &last, &used) == 2 && value[used] == '\0') {
+        if (last < first || last - first >= spec->capacity) {
+            snprintf(error, size, "seeds = '%s': expected first:last with at most %zu seeds", value, spec->capacity);
+            return -1;
+        }
+        scene->seed_count = (int)(last - first + 1);
+        for (int i = 0; i < scene->seed_count; ++i)
+            scene->seeds[i] = first + (unsigned long long)i;
+        return 0;
+    }
+    double values[IM_SCENE_MAX_FAMILIES];
+    int count = 0;
+    char buffer[2048];
+    snprintf(buffer, sizeof buffer, "%s", value);
+    for (char *token = strtok(buffer, ","); token; token = strtok(NULL, ",")) {
+        double v;
+        if (count >= IM_SCENE_MAX_FAMILIES || !parse_number(token, &v) || v < 0 || v != floor(v) || v > 1e15) {
+            snprintf(error, size, "seeds = '%s': expected first:last or a list of at most %d non-negative "
+                     "integers", value, IM_SCENE_MAX_FAMILIES);
+            return -1;
+        }
+        values[count++] = v;
+    }
+    scene->seed_count = count;
+    for (int i = 0; i < count; ++i)
+        scene->seeds[i] = (uint64_t)values[i];
+    return 0;
+}
+
+static const key_spec KEYS[] = {
+    {"scene", "name", parse_string, FIELD(name), 0, 0, NULL, sizeof(((im_scene *)0)->name), 0},
+    {"scene", "output", parse_string, FIELD(output_dir), 0, 0, NULL, IM_SCENE_PATH, 0},
+    {"scene", "quality", parse_string, FIELD(quality), 0, 0, NULL, sizeof(((im_scene *)0)->quality), 0},
+    {"surfaces", "n", parse_int, FIELD(surface.nx), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
+    {"surfaces", "m", parse_int, FIELD(surface.ny), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
+    {"surfaces", "hurst", parse_double, FIELD(surface.hurst), 0.01, 0.99, NULL, 0, 0},
+    {"surfaces", "lambda_s", parse_double, FIELD(surface.lambda_s), 2, 1e9, NULL, 0, 0},
+    {"surfaces", "lambda_r", parse_double, FIELD(surface.lambda_r), 2, 1e9, NULL, 0, 0},
+    {"surfaces", "lambda_0", parse_double, FIELD(surface.lambda_0), 2, 1e9, NULL, 0, 0},
+    {"surfaces", "slope_definition", parse_choice, FIELD(surface.slope_definition), 0, 0, "spectral|fd", 0, 0},
+    {"surfaces", "slopes", parse_double_list, FIELD(slopes), 0, 10, NULL, IM_SCENE_MAX_FAMILIES, FIELD(family_count)},
+    {"surfaces", "seeds", parse_seeds, FIELD(seeds), 0, 0, NULL, IM_SCENE_MAX_FAMILIES, 0},
+    {"surfaces", "file", parse_string, FIELD(surface_file), 0, 0, NULL, IM_SCENE_PATH, 0},
+    {"punch", "shape", parse_choice, FIELD(punch), 0, 0, "cone|sphere|flat", 0, 0},
+    {"punch", "alpha", parse_double, FIELD(alpha_degrees), 1e-9, 90 - 1e-9, NULL, 0, 0},
+    {"punch", "radius", parse_double, FIELD(radius), 1e-9, 1e12, NULL, 0, 0},
+    {"material", "modulus", parse_double, FIELD(modulus), 1e-300, 1e300, NULL, 0, 0},
+    {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load", 0, 0},
+    {"loading", "load_star", parse_double, FIELD(load_star), 0, 1e15, NULL, 0, 0},
+    {"loading", "steps", parse_double_list, FIELD(steps), 0, 1e15, NULL, IM_SCENE_MAX_STEPS, FIELD(step_count)},
+    {"output", "contact_panels", parse_bool, FIELD(contact_panels), 0, 0, NULL, 0, 0},
+    {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
+    {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
+    {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
+    {"output", "plots", parse_string, FIELD(plots), 0, 0, NULL, sizeof(((im_scene *)0)->plots), 0},
+};
+static const int KEY_COUNT = (int)(sizeof KEYS / sizeof KEYS[0]);
+
+void im_scene_defaults(im_scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    snprintf(scene->name, sizeof scene->name, "scene");
+    snprintf(scene->quality, sizeof scene->quality, "standard");
+    scene->surface = im_surface_params_default();
+    scene->slopes[0] = scene->surface.slope_rms;
+    scene->family_count = 1;
+    scene->seeds[0] = 1;
+    scene->seed_count = 1;
+    scene->punch = IM_PUNCH_CONE;
+    scene->alpha_degrees = 80.0;
+    scene->radius = 100.0;
+    scene->modulus = 1.0;
+}
+
+static size_t edit_distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b), row[64];
+    if (lb >= 64)
+        return (size_t)-1;
+    for (size_t j = 0; j <= lb; ++j)
+        row[j] = j;
+    for (size_t i = 1; i <= la; ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; ++j) {
+            size_t above = row[j];
+            size_t substitute = diagonal + (a[i - 1] != b[j - 1]);
+            size_t best = above + 1 < row[j - 1] + 1 ? above + 1 : row[j - 1] + 1;
+            row[j] = substitute < best ? substitute : best;
+            diagonal = above;
+        }
+    }
+    return row[lb];
+}
+
+const char *im_scene_suggest_key(const char *section, const char *word)
+{
+    const char *best = NULL;
+    size_t best_distance = strlen(word) / 2 + 1;
+    for (int i = 0; i < KEY_COUNT; ++i) {
+        if (section && strcmp(KEYS[i].section, section) != 0)
+            continue;
+        const char *candidate = section ? KEYS[i].key : KEYS[i].section;
+        size_t distance = edit_distance(word, candidate);
+        if (distance < best_distance) {
+            best_distance = distance;
+            best = candidate;
+        }
+    }
+    return best;
+}
+
+typedef struct parse_context {
+    im_scene *scene;
+    FILE *stream;
+    int line;        /* the line inih is reading, counted by read_line */
+    int error_line;  /* the first line whose key was refused, 0 if none */
+    char error[512];
+} parse_context;
+
+/* inih's line reader: fgets, counting lines so that key errors know their line. */
+static char *read_line(char *buffer, int size, void *user)
+{
+    parse_context *context = user;
+    char *line = fgets(buffer, size, context->stream);
+    if (line)
+        ++context->line;
+    return line;
+}
+
+static int section_exists(const char *section)
+{
+    for (int i = 0; i < KEY_COUNT; ++i)
+        if (strcmp(KEYS[i].section, section) == 0)
+            return 1;
+    return 0;
+}
+
+static void unknown_name(parse_context *context, const char *section, const char *name)
+{
+    int known_section = section_exists(section);
+    const char *suggestion = known_section ? im_scene_suggest_key(section, name)
+                                           : im_scene_suggest_key(NULL, section);
+    if (known_section)
+        snprintf(context->error, sizeof context->error, "unknown key '%s' in [%s]%s%s%s", name, section,
+                 suggestion ? "; did you mean '" : "", suggestion ? suggestion : "", suggestion ? "'?" : "");
+    else
+        snprintf(context->error, sizeof context->error, "unknown section [%s]%s%s%s", section,
+                 suggestion ? "; did you mean [" : "", suggestion ? suggestion : "", suggestion ? "]?" : "");
+}
+
+/* inih calls this for every key; returning 0 stops parsing and makes ini_parse return the line. */
+static int handle_key(void *user, const char *section, const char *name, const char *value)
+{
+    parse_context *context = user;
+    if (context->error_line)
+        return 0; /* keep the first error */
+    int accepted = 0, known = 0;
+    for (int i = 0; i < KEY_COUNT && !known; ++i) {
+        if (strcmp(KEYS[i].section, section) == 0 && strcmp(KEYS[i].key, name) == 0) {
+            known = 1;
+            accepted = KEYS[i].parse(&KEYS[i], value, context->scene, context->error,
+                                     sizeof context->error) == 0;
+        }
+    }
+    if (!known)
+        unknown_name(context, section, name);
+    if (!accepted)
+        context->error_line = context->line;
+    return accepted;
+}
+
+static int check_consistency(const im_scene *scene, char *error, size_t size)
+{
+    if (scene->surface.lambda_r <= scene->surface.lambda_s) {
+        snprintf(error, size, "lambda_r = %g must exceed lambda_s = %g", scene->surface.lambda_r,
+                 scene->surface.lambda_s);
+        return -1;
+    }
+    for (int i = 1; i < scene->step_count; ++i) {
+        if (!(scene->steps[i] > scene->steps[i - 1])) {
+            snprintf(error, size, "steps must increase: %g follows %g", scene->steps[i], scene->steps[i - 1]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Settings that follow from others unless given: rows = columns, lambda_r = the box, output dir. */
+static void complete(im_scene *scene, int ny_given, int lambda_r_given, int output_given)
+{
+    im_surface_params *p = &scene->surface;
+    if (!ny_given)
+        p->ny = p->nx;
+    if (!lambda_r_given)
+        p->lambda_r = p->nx > p->ny ? p->nx : p->ny;
+    if (p->lambda_0 < p->lambda_r)
+        p->lambda_0 = p->lambda_r;
+    if (!output_given)
+        snprintf(scene->output_dir, sizeof scene->output_dir, "output/%s", scene->name);
+}
+
+int im_scene_load(const char *path, im_scene *scene)
+{
+    im_scene_defaults(scene);
+    snprintf(scene->path, sizeof scene->path, "%s", path);
+    scene->surface.ny = -1;
+    scene->surface.lambda_r = -1;
+    scene->output_dir[0] = '\0';
+    parse_context context = {.scene = scene, .stream = fopen(path, "r")};
+    if (!context.stream)
+        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    int line = ini_parse_stream(read_line, &context, handle_key, &context);
+    fclose(context.stream);
+    if (line == -2)
+        return im_fail(IM_ENOMEM, "%s: out of memory while parsing", path);
+    if (line > 0 && line == context.error_line)
+        return im_fail(IM_EFORMAT, "%s:%d: %s", path, line, context.error);
+    if (line > 0)
+        return im_fail(IM_EFORMAT, "%s:%d: malformed line: expected [section], key = value or a comment",
+                       path, line);
+    complete(scene, scene->surface.ny != -1, scene->surface.lambda_r != -1, scene->output_dir[0] != '\0');
+    if (check_consistency(scene, context.error, sizeof context.error) != 0)
+        return im_fail(IM_EFORMAT, "%s: %s", path, context.error);
+    return IM_OK;
+}
+
+void im_scene_resolve_path(const im_scene *scene, const char *relative, char *out, size_t size)
+{
+    const char *slash = strrchr(scene->path, '/');
+    if (relative[0] == '/' || !slash)
+        snprintf(out, size, "%s", relative);
+    else
+        snprintf(out, size, "%.*s/%s", (int)(slash - scene->path), scene->path, relative);
+}

@@ -1,0 +1,115 @@
+/* Tests of the scene parser: values, defaults, and errors with file:line and suggestions. */
+#include "support.h"
+
+#include "indentmap/scene.h"
+#include "indentmap/status.h"
+
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *write_scene(const char *name, const char *text)
+{
+    const char *path = test_path(name);
+    test_write_bytes(path, text, strlen(text));
+    return path;
+}
+
+static void values_are_read(void **state)
+{
+    (void)state;
+    const char *path = write_scene("a.ini", "[scene]\nname = demo\n[surfaces]\nn = 64\nhurst = 0.7\n"
+                                            "slopes = 0, 0.02 ,0.16\nseeds = 3:7\nfile = s.npy\n"
+                                            "[punch]\nshape = Sphere\nradius = 50\n"
+                                            "[loading]\nsteps = 0.5:2:4\n[output]\nframes = yes\n");
+    im_scene scene;
+    assert_int_equal(im_scene_load(path, &scene), IM_OK);
+    assert_string_equal(scene.name, "demo");
+    assert_string_equal(scene.output_dir, "output/demo");
+    assert_int_equal(scene.surface.nx, 64);
+    assert_int_equal(scene.surface.ny, 64);
+    assert_close(scene.surface.lambda_r, 64, 0);
+    assert_int_equal(scene.family_count, 3);
+    assert_close(scene.slopes[1], 0.02, 0);
+    assert_int_equal(scene.seed_count, 5);
+    assert_int_equal(scene.seeds[4], 7);
+    assert_int_equal(scene.punch, IM_PUNCH_SPHERE);
+    assert_int_equal(scene.step_count, 4);
+    assert_close(scene.steps[1], 1.0, 1e-15);
+    assert_true(scene.frames);
+    char resolved[IM_SCENE_PATH];
+    im_scene_resolve_path(&scene, scene.surface_file, resolved, sizeof resolved);
+    assert_string_equal(resolved, test_path("s.npy"));
+}
+
+static void expect_error(const char *name, const char *text, const char *phrase)
+{
+    const char *path = write_scene(name, text);
+    im_scene scene;
+    int status = im_scene_load(path, &scene);
+    char expected[1024];
+    snprintf(expected, sizeof expected, "%s%s", path, phrase);
+    if (status != IM_EFORMAT || !strstr(im_last_error(), expected))
+        fail_msg("%s: status %d, message '%s', expected to contain '%s'", name, status, im_last_error(), expected);
+}
+
+static void errors_name_the_line(void **state)
+{
+    (void)state;
+    expect_error("key.ini", "[surfaces]\nn = 64\n\nhurts = 0.8\n", ":4: unknown key 'hurts' in [surfaces]; did you mean 'hurst'?");
+    expect_error("section.ini", "; comment\n[surface]\nn = 64\n", ":3: unknown section [surface]; did you mean [surfaces]?");
+    expect_error("range.ini", "[punch]\nalpha = 95\n", ":2: alpha = '95': expected a number in");
+    expect_error("number.ini", "[surfaces]\nn = 64x\n", ":2: n = '64x': expected an integer");
+    expect_error("choice.ini", "[punch]\nshape = pyramid\n", ":2: shape = 'pyramid': expected one of cone|sphere|flat");
+    expect_error("malformed.ini", "[punch]\nshape = cone\nthis line has no equals sign\n[material]\nmodulus = -1\n", ":3: malformed line");
+    expect_error("first.ini", "[punch]\nalpha = 100\nshape = pyramid\n", ":2: alpha");
+    expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes: 'abc'");
+    expect_error("order.ini", "[loading]\nsteps = 3, 2\n", ": steps must increase");
+}
+
+static void missing_file_is_an_io_error(void **state)
+{
+    (void)state;
+    im_scene scene;
+    assert_int_equal(im_scene_load(test_path("none.ini"), &scene), IM_EIO);
+    assert_non_null(strstr(im_last_error(), "none.ini: cannot open"));
+}
+
+/* Every bundled scene parses. */
+static void bundled_scenes_parse(void **state)
+{
+    (void)state;
+    const char *source = getenv("IM_SOURCE_DIR");
+    assert_non_null(source);
+    char folder[2048];
+    snprintf(folder, sizeof folder, "%s/scenes", source);
+    DIR *dir = opendir(folder);
+    assert_non_null(dir);
+    int parsed = 0;
+    for (struct dirent *entry; (entry = readdir(dir));) {
+        size_t length = strlen(entry->d_name);
+        if (length < 5 || strcmp(entry->d_name + length - 4, ".ini") != 0)
+            continue;
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", folder, entry->d_name);
+        im_scene scene;
+        if (im_scene_load(path, &scene) != IM_OK)
+            fail_msg("%s", im_last_error());
+        ++parsed;
+    }
+    closedir(dir);
+    assert_true(parsed >= 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(values_are_read),
+        cmocka_unit_test(errors_name_the_line),
+        cmocka_unit_test(missing_file_is_an_io_error),
+        cmocka_unit_test(bundled_scenes_parse),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
