@@ -33,7 +33,6 @@
 enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
 
 enum im_punch_shape { IM_PUNCH_CONE = 0, IM_PUNCH_SPHERE, IM_PUNCH_FLAT };
-enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD };
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
                     IM_ANIMATION_BOTH = 3 };
 
@@ -55,7 +54,7 @@ typedef struct im_scene {
     double radius;                   /* sphere radius or flat punch radius, in delta */
     double modulus;                  /* composite modulus E* */
 
-    enum im_control control;
+    int control;                     /* enum im_control of solver.h: 0 displacement, 1 load */
     double load_star;                /* N* at which contact panels are drawn (0: none) */
     double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty) */
     int step_count;
