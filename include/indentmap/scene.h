@@ -32,7 +32,6 @@
 
 enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
 
-enum im_punch_shape { IM_PUNCH_CONE = 0, IM_PUNCH_SPHERE, IM_PUNCH_FLAT };
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
                     IM_ANIMATION_BOTH = 3 };
 
@@ -49,7 +48,7 @@ typedef struct im_scene {
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
     int seed_count;
 
-    enum im_punch_shape punch;
+    int punch;                       /* enum im_punch_kind of indenter.h: cone, sphere, flat */
     double alpha_degrees;            /* cone semi-opening angle */
     double radius;                   /* sphere radius or flat punch radius, in delta */
     double modulus;                  /* composite modulus E* */

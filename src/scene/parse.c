@@ -217,7 +217,7 @@ void im_scene_defaults(im_scene *scene)
     scene->family_count = 1;
     scene->seeds[0] = 1;
     scene->seed_count = 1;
-    scene->punch = IM_PUNCH_CONE;
+    scene->punch = 0; /* cone */
     scene->alpha_degrees = 80.0;
     scene->radius = 100.0;
     scene->modulus = 1.0;
