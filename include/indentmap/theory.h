@@ -1,11 +1,135 @@
 /* indentmap/theory.h: the paper's theory.
  *
+ * Contact area (eqs. 1-12 and the Appendix's eq. 19): the erf law of a nominally flat rough
+ * contact, the sphere of Pastewka and Robbins, and the cone with a constant (eq. 6) or a
+ * variable (eq. 12) local density of contact. Units: stresses in units of E* when E* = 1 (every
+ * function that needs E* takes it), lengths in grid spacings delta (only ratios of lengths enter
+ * here). The cone's semi-opening angle alpha is in DEGREES, 0 < alpha < 90 (the paper: 80).
+ * h'rms = sqrt(<|grad h|^2>) >= 0 over both slope components, as in the paper.
+ *
+ * Errors: the int functions return IM_OK, or IM_EINVAL with a message naming the parameter and
+ * its range; the quadratures may also return IM_ENOMEM, IM_ENUMERIC or IM_ENOCONV with GSL's
+ * reason in the message. Outputs are written only on success. Nothing aborts: the first
+ * quadrature switches GSL's error handler off (gsl_set_error_handler_off(), a process-wide
+ * setting) and turns GSL's status codes into the project's.
+ *
  * Roughness relations (eqs. 13-15): spectral moments of an isotropic power-law PSD
  * C(q) = A |q|^(-2(1+H)) on q_r < q < q_s with a roll-off plateau C(q_r) on q_0 < q < q_r, with
  * the magnification zeta = q_s / q_r and x = q_0 / q_r (x = 1: no plateau).
  */
 #ifndef INDENTMAP_THEORY_H
 #define INDENTMAP_THEORY_H
+
+/* ---- Contact area: the erf law and its normalising pressure (eqs. 1, 2 and the Appendix) ---- */
+
+/* Eq. (2)'s constant k in p_rough = h'rms E* / k; the paper takes k = 2. */
+#define IM_THEORY_K_DEFAULT 2.0
+
+/* The pressure p_n that normalises the erf law A/A0 = erf(p / p_n). */
+typedef enum im_theory_normalisation {
+    /* p_PR = 2 p_rough / sqrt(pi) = 2 E* h'rms / (sqrt(pi) k): Pastewka and Robbins, the paper's
+     * eqs. (1), (3), (6), (10) and (12), whose erf argument sqrt(pi)/2 p / p_rough is p / p_PR. */
+    IM_THEORY_NORMALISATION_PR = 0,
+    /* p_MG = sqrt(2 V) = E* h'rms / sqrt(2): Manners and Greenwood, eq. (19); k plays no part.
+     * With k = 2, p_MG = sqrt(pi / 2) p_PR. */
+    IM_THEORY_NORMALISATION_MG = 1
+} im_theory_normalisation;
+
+/* The rough interface: what the erf law needs to know about the surface and the materials. */
+typedef struct im_theory_interface {
+    double slope_rms;  /* h'rms >= 0; 0 is a smooth surface (full contact wherever p > 0) */
+    double e_star;     /* plane-strain composite modulus E* > 0 (1: stresses in units of E*) */
+    double k;          /* eq. (2)'s constant, > 0 */
+    im_theory_normalisation normalisation;
+} im_theory_interface;
+
+/* E* = 1, k = IM_THEORY_K_DEFAULT, the paper's normalisation p_PR. */
+im_theory_interface im_theory_interface_default(double slope_rms);
+
+/* Eq. (2): p_rough = h'rms E* / k (0 for a smooth surface). */
+int im_theory_p_rough(const im_theory_interface *rough, double *p_rough);
+
+/* p_n of the interface's normalisation (p_PR or p_MG above; 0 for a smooth surface). */
+int im_theory_normalising_pressure(const im_theory_interface *rough, double *p_n);
+
+/* Eq. (1), nominally flat contact: A/A0 = erf(p_mean / p_n), p_mean >= 0 in the units of E*.
+ * A smooth surface (p_n = 0) gives 1 for p_mean > 0 and 0 for p_mean = 0. */
+int im_theory_flat_area_ratio(const im_theory_interface *rough, double p_mean, double *ratio);
+
+/* ---- The sphere, for comparison (eq. 3) ---- */
+
+/* Hertz: A_Hertz = pi a^2 = pi (3 N R / (4 E*))^(2/3) for load N >= 0, radius R > 0, E* > 0. */
+int im_theory_hertz_area(double load, double radius, double e_star, double *area);
+
+/* Eq. (3): A = A_Hertz erf(p_s / p_n) with the Hertzian mean pressure p_s = N / A_Hertz (with the
+ * PR normalisation this is the paper's erf(sqrt(pi)/2 p_s / p_rough)). N = 0 gives A = 0. */
+int im_theory_sphere_area(const im_theory_interface *rough, double load, double radius, double *area);
+
+/* The crossover load N_c at which N_c / A_Hertz = p_rough (eq. 2's, whatever the normalisation):
+ * N_c = pi^3 (3/4)^2 (h'rms / k)^3 E* R^2; with k = 2 the paper's pi^3 (3/4)^2 (h'rms/2)^3 E* R^2.
+ * Below N_c the rough, linear regime; above it the smooth Hertzian one. */
+int im_theory_sphere_crossover_load(const im_theory_interface *rough, double radius, double *load);
+
+/* ---- The cone (eqs. 4-12, 19) ----
+ *
+ * Everything dimensionless about the cone depends on one number, the erf scale
+ * beta = p_m,c / p_n (the smooth cone's mean pressure over the normalising pressure):
+ *   constant density, eq. (6):   A/A_cone = erf(beta)
+ *   local density, eqs. (10-11): gamma(r) = erf(beta acosh(a / r))
+ *   variable density, eq. (12):  A/A_cone = 2 int_0^1 s erf(beta acosh(1 / s)) ds,  s = r / a
+ * With the PR normalisation beta = sqrt(pi)/2 rho_c and these are the paper's equations.
+ *
+ * Limits. Small beta: both area ratios -> (2/sqrt(pi)) beta, which is rho_c for PR, eq. (8):
+ * the mean of acosh(a/r) over the disc is exactly 1 (the mean pressure is p_m,c), so constant
+ * and variable density agree to first order. They part at third order, through the disc's mean
+ * of acosh^3, pi^2/4 instead of 1: for PR, eq. (6) = rho_c - pi rho_c^3 / 12 + O(rho_c^5) and
+ * eq. (12) = rho_c - pi^3 rho_c^3 / 48 + O(rho_c^5), so eq. (12) < eq. (6). Large beta:
+ * 1 - eq. (6) = erfc(beta) ~ exp(-beta^2) / (beta sqrt(pi)), while the low pressure near the rim
+ * keeps 1 - eq. (12) ~ 1 / (2 beta^2) - 1 / (2 beta^4) (= 2 / (pi rho_c^2) to leading order). */
+
+/* Eq. (4): p_m,c = E* cot(alpha) / 2. */
+int im_theory_cone_mean_pressure(double alpha_deg, double e_star, double *p_mean);
+
+/* Eq. (5): A_cone = 2 N / (E* cot(alpha)) for load N >= 0. */
+int im_theory_cone_area(double load, double alpha_deg, double e_star, double *area);
+
+/* Eq. (7) for any k: rho_c = p_m,c / p_rough = k cot(alpha) / (2 h'rms) (cot(alpha) / h'rms for
+ * k = 2); independent of E* and of the load. A smooth surface gives +INFINITY. */
+int im_theory_cone_rho(const im_theory_interface *rough, double alpha_deg, double *rho_c);
+
+/* beta = p_m,c / p_n from rho_c >= 0 (+INFINITY allowed): sqrt(pi)/2 rho_c for PR, sqrt(2) rho_c / k
+ * for MG (k > 0). */
+int im_theory_erf_scale(double rho_c, im_theory_normalisation normalisation, double k, double *beta);
+
+/* Eq. (8), generalised to either normalisation: A ~ (2/sqrt(pi)) beta A_cone = 2 N / (sqrt(pi) p_n),
+ * the small-beta limit of eqs. (6) and (12) (k N / (E* h'rms) for PR). Needs h'rms > 0, N >= 0. */
+int im_theory_cone_area_small_rho(const im_theory_interface *rough, double load, double *area);
+
+/* Eq. (6), constant density: erf(beta), beta >= 0 (+INFINITY gives 1). */
+int im_theory_cone_area_ratio_constant(double beta, double *ratio);
+
+/* Eq. (12), variable density, integrated in s = r / a as written: adaptive Gauss-Kronrod with
+ * Wynn extrapolation (GSL qags), which copes with the integrand's endpoint singularities (the
+ * logarithm of acosh(1/s) at s = 0, the square root acosh(1/s) ~ sqrt(2 (1 - s)) at s = 1).
+ * For beta > 1 it integrates the complement 2 int s erfc(...) ds, which vanishes (erfc < 1e-318)
+ * where beta acosh(1/s) > 27, so that the rim's boundary layer is never missed. Relative
+ * accuracy about 1e-12. beta = 0 gives 0 exactly, +INFINITY gives 1; beta >= 0. */
+int im_theory_cone_area_ratio_variable(double beta, double *ratio);
+
+/* The same ratio by Greenwood's quadrature (the Appendix), an independent route to eq. (12):
+ * 2 int_0^inf sinh(q) / cosh^3(q) erf(beta q) dq, which is eq. (19), int f_P(p) erf(p / p_n) dp,
+ * with the cone's pressure distribution F_P = tanh^2(p / p_m,c). The integrand is smooth. */
+int im_theory_cone_area_ratio_greenwood(double beta, double *ratio);
+
+/* Eq. (11) divided by p_m,c: p(r) / p_m,c = acosh(a / r) for 0 <= r/a <= 1 (+INFINITY at the apex,
+ * 0 at the rim). */
+int im_theory_cone_pressure(double r_over_a, double *p_over_mean);
+
+/* Eqs. (10)-(11): the local density of contact gamma(r) = erf(beta acosh(a / r)), the paper's
+ * Fig. 1, for beta >= 0 and 0 <= r/a <= 1. gamma = 1 at the apex (beta > 0), 0 at the rim. */
+int im_theory_cone_contact_density(double beta, double r_over_a, double *gamma);
+
+/* ---- Roughness (eqs. 13-15) ---- */
 
 /* Eq. (13) divided by the prefactor A: m_n / A = T(n) q_r^(n - 2H) ((1 - x^(n+2)) / (n + 2)
  * + (zeta^(n - 2H) - 1) / (n - 2H)), T(0) = 2 pi, T(2) = pi, T(4) = 3 pi / 4; n in {0, 2, 4}.

@@ -1,0 +1,54 @@
+#include "theory/quadrature.h"
+
+#include "indentmap/status.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <threads.h>
+
+/* Subintervals the adaptive rule may use; the theory's integrands need far fewer. */
+enum { QUADRATURE_LIMIT = 1000 };
+
+static once_flag gsl_handler_once = ONCE_FLAG_INIT;
+
+/* GSL's default handler aborts the program; the library must return statuses instead. */
+static void switch_gsl_handler_off(void) { gsl_set_error_handler_off(); }
+
+static int status_from_gsl(int gsl_status, const char *what, double lo, double hi)
+{
+    int status;
+    switch (gsl_status) {
+    case GSL_ENOMEM: status = IM_ENOMEM; break;
+    case GSL_EMAXITER:
+    case GSL_EDIVERGE:
+    case GSL_ESING: status = IM_ENOCONV; break;
+    default: status = IM_ENUMERIC; break;
+    }
+    return im_fail(status, "%s on [%g, %g]: GSL quadrature failed: %s", what, lo, hi,
+                   gsl_strerror(gsl_status));
+}
+
+int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what,
+                     double *result)
+{
+    call_once(&gsl_handler_once, switch_gsl_handler_off);
+    if (!(lo < hi)) {
+        *result = 0.0;
+        return IM_OK;
+    }
+    gsl_integration_workspace *workspace = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
+    if (!workspace)
+        return im_fail(IM_ENOMEM, "%s: GSL integration workspace allocation failed", what);
+    gsl_function function = {.function = f, .params = params};
+    double value, abserr;
+    int gsl_status = gsl_integration_qags(&function, lo, hi, 0.0, THEORY_QUADRATURE_EPSREL,
+                                          QUADRATURE_LIMIT, workspace, &value, &abserr);
+    gsl_integration_workspace_free(workspace);
+    if (gsl_status != GSL_SUCCESS)
+        return status_from_gsl(gsl_status, what, lo, hi);
+    if (!isfinite(value))
+        return im_fail(IM_ENUMERIC, "%s on [%g, %g]: the quadrature gave %g", what, lo, hi, value);
+    *result = value;
+    return IM_OK;
+}
