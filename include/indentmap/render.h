@@ -1,0 +1,136 @@
+/* indentmap/render.h: the off-screen OpenGL renderer: draws fields (local contact forces, heights)
+ * into pixel buffers. Annotations (colour bars, labels, layout) are figure.h's job.
+ *
+ * Context: OpenGL 3.3 core, no window system. Backends, in the order `auto` tries them:
+ *   1. EGL on a device (EGL_EXT_device_enumeration + EGL_EXT_platform_device): hardware devices
+ *      (e.g. NVIDIA) first, then Mesa's software device (llvmpipe);
+ *   2. EGL on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless);
+ *   3. OSMesa, loaded at run time with dlopen("libOSMesa.so.8").
+ * The display is always obtained with eglGetPlatformDisplayEXT naming its platform, the context is
+ * surfaceless and draws into a framebuffer object that is read back with glReadPixels. Every GL
+ * function is loaded through eglGetProcAddress or OSMesaGetProcAddress, so the program never links
+ * a GL library. The environment variable IM_RENDER_BACKEND (auto, egl or osmesa) chooses the
+ * backend when the caller asks for IM_RENDER_AUTO; an explicit request wins over it. A machine
+ * where no context can be had gives IM_EUNSUPPORTED with the reason of each attempt.
+ *
+ * Colours: the norm of a colour map (colormap.h) is evaluated on the CPU in double precision by
+ * im_colormap_index, the single definition of value -> table index; the GPU receives each patch's
+ * index as an integer texture and looks it up in the same 256-entry table uploaded as a 256 x 1
+ * texture. (float32 arithmetic in a shader cannot reproduce floor(256 t) for values at a bin
+ * edge.) So a rendered patch has exactly the colour of im_colormap_rgb.
+ *
+ * Images: RGBA, 8 bits per channel, alpha 255, row 0 = top, stride 4 * width. Field row 0 (y = 0)
+ * is at the bottom, as in im_colormap_field_image. Each patch becomes pixels_per_patch x
+ * pixels_per_patch pixels with no interpolation across patches; the data are surrounded by a
+ * frame of boundary_px pixels (the boundary square of the surface).
+ */
+#ifndef INDENTMAP_RENDER_H
+#define INDENTMAP_RENDER_H
+
+#include "indentmap/colormap.h"
+#include "indentmap/field.h"
+
+#include <stdint.h>
+
+typedef enum im_render_backend {
+    IM_RENDER_AUTO = 0,
+    IM_RENDER_EGL,
+    IM_RENDER_OSMESA
+} im_render_backend;
+
+/* "auto", "egl" or "osmesa"; IM_EINVAL naming the valid choices otherwise. */
+int im_render_backend_from_name(const char *name, im_render_backend *backend);
+
+typedef struct im_render_context im_render_context;
+
+/* Opens a context. With IM_RENDER_AUTO, IM_RENDER_BACKEND from the environment decides (unset:
+ * auto). IM_EUNSUPPORTED, with each attempt's reason in the message, when no backend works;
+ * IM_EINVAL for an unknown IM_RENDER_BACKEND. One context per thread at a time: it is made
+ * current on the calling thread. */
+int im_render_open(im_render_backend backend, im_render_context **out);
+
+/* Releases the context and its GL objects; accepts NULL. */
+void im_render_close(im_render_context *context);
+
+/* "egl" or "osmesa". */
+const char *im_render_backend_name(const im_render_context *context);
+/* Which EGL display: "device 1 of 2 (EGL_MESA_device_software)", "surfaceless", or "libOSMesa.so.8". */
+const char *im_render_display_name(const im_render_context *context);
+/* glGetString(GL_RENDERER) and glGetString(GL_VERSION). */
+const char *im_render_gl_renderer(const im_render_context *context);
+const char *im_render_gl_version(const im_render_context *context);
+
+/* A rendered picture. The rectangle of pixels covered by the field (without the frame) is
+ * [data_x, data_x + nx * pixels_per_patch) x [data_y, data_y + ny * pixels_per_patch), with
+ * data_y counted from the top. */
+typedef struct im_image {
+    int width, height;
+    uint8_t *rgba;          /* owned; free with im_image_release */
+    int data_x, data_y;     /* top-left pixel of the field */
+    int pixels_per_patch;
+    int nx, ny;             /* the field's grid */
+    double delta;           /* the field's patch side and unit, for scale bars */
+    char unit[16];
+} im_image;
+
+/* Frees the pixels and zeroes the struct; accepts an image never rendered into (zeroed). */
+void im_image_release(im_image *image);
+
+/* ---- contact map (the paper's Fig. 4) ---- */
+typedef struct im_contact_style {
+    im_colormap colormap;      /* norm on the local compressive force */
+    int pixels_per_patch;      /* integer upscaling, 1..64 */
+    int boundary_px;           /* width of the boundary square around the data, 0..64 */
+    uint8_t background[3];     /* patches not in contact (force <= 0) */
+    uint8_t line[3];           /* boundary square and circle */
+    double circle_radius;      /* smooth-surface contact radius, in patches; <= 0: no circle */
+    double circle_x, circle_y; /* its centre in patches: field coordinates, x right, y up; patch
+                                  (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) */
+    double circle_width_px;    /* line width of the circle in pixels, > 0 */
+} im_contact_style;
+
+/* Defaults for a force field: viridis, linear norm on [0, largest force] (or [0, 1] when no
+ * patch is in contact), 2 pixels per patch, 2-pixel black boundary, light grey (230) background,
+ * no circle (centre preset to the middle of the grid), circle width 2 px. */
+im_contact_style im_contact_style_default(const im_field *force);
+
+/* Draws a contact map: each patch with force > 0 in the colour of its force through the norm
+ * (under / over colours outside the norm's range), patches with force <= 0 (or -Inf) in the
+ * background colour, NaN patches in the colour map's bad colour. A field with no patch in contact
+ * is drawn as background only (a valid picture, not an error). The circle is anti-aliased with
+ * its exact coverage of each pixel across the line (box filter). Errors: IM_EINVAL for a bad
+ * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
+ * the message); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
+int im_render_contact_map(im_render_context *context, const im_field *force,
+                          const im_contact_style *style, im_image *image);
+
+/* ---- height field ---- */
+typedef struct im_height_style {
+    im_colormap colormap;      /* norm on heights */
+    int pixels_per_patch;      /* 1..64 */
+    int boundary_px;           /* 0..64 */
+    uint8_t line[3];           /* boundary colour */
+    double shading;            /* hill-shading strength: 0 none .. 1 full */
+    double light_azimuth;      /* degrees, clockwise from +y (north): 315 = from the upper left */
+    double light_altitude;     /* degrees above the horizon, (0, 90] */
+    double exaggeration;       /* slopes are multiplied by this for the shading only, > 0 */
+    const im_field *contact;   /* optional (NULL): same grid, patches with value > 0 outlined */
+    uint8_t outline[3];        /* contact outline colour */
+    int outline_px;            /* contact outline width in pixels, >= 1 */
+} im_height_style;
+
+/* Defaults for a surface: viridis on [min, max] of the finite heights (a flat surface gets
+ * [h - 1, h + 1]), 2 pixels per patch, 2-pixel black boundary, shading 0.6, light from 315
+ * degrees at 45 degrees, exaggeration chosen so the shaded rms slope is about 0.5, no contact,
+ * white outline 1 px. */
+im_height_style im_height_style_default(const im_field *height);
+
+/* Draws heights through the colour map, hill-shaded with Lambert's law from per-patch normals
+ * (central differences of heights / delta, one-sided at the edges), and, with style->contact,
+ * a line along the edges between patches in contact and patches not in contact, inside the
+ * contact patches. NaN heights take the bad colour, unshaded. Errors as im_render_contact_map,
+ * and IM_EINVAL when the contact field's grid differs. */
+int im_render_height_map(im_render_context *context, const im_field *height,
+                         const im_height_style *style, im_image *image);
+
+#endif

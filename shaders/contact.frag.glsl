@@ -1,0 +1,49 @@
+#version 330 core
+// Contact map: one texel per patch, integer upscaling, boundary frame, anti-aliased circle.
+// Patch codes (computed on the CPU by im_colormap_index): 0..255 table entry, 256 under,
+// 257 over, 258 bad (NaN), 259 not in contact.
+uniform usampler2D codes;      // nx x ny, R16UI
+uniform sampler2D table;       // 256 x 1, RGBA8: the colour map's exact table
+uniform vec3 under_colour, over_colour, bad_colour, background, line_colour;
+uniform ivec2 grid;            // nx, ny
+uniform int scale;             // pixels per patch
+uniform int border;            // width of the boundary frame in pixels
+uniform vec3 circle;           // centre (pixels from the data's lower-left corner) and radius; r <= 0: none
+uniform float circle_width;    // pixels
+out vec4 colour;
+
+vec3 patch_colour(uint code)
+{
+    if (code < 256u)
+        return texelFetch(table, ivec2(int(code), 0), 0).rgb;
+    if (code == 256u)
+        return under_colour;
+    if (code == 257u)
+        return over_colour;
+    if (code == 258u)
+        return bad_colour;
+    return background;
+}
+
+// Fraction of a pixel (box filter across the line) covered by the circle's line: the overlap of
+// [d - 1/2, d + 1/2] with [-w/2, w/2], d the distance from the pixel centre to the circle.
+float circle_coverage(vec2 position)
+{
+    if (circle.z <= 0.0)
+        return 0.0;
+    float d = length(position - circle.xy) - circle.z;
+    float half_width = 0.5 * circle_width;
+    return clamp(min(d + 0.5, half_width) - max(d - 0.5, -half_width), 0.0, 1.0);
+}
+
+void main()
+{
+    ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(border);
+    vec3 c;
+    if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, grid * scale)))
+        c = line_colour;
+    else
+        c = patch_colour(texelFetch(codes, pixel / scale, 0).r);
+    c = mix(c, line_colour, circle_coverage(gl_FragCoord.xy - vec2(border)));
+    colour = vec4(c, 1.0);
+}

@@ -1,0 +1,500 @@
+/* The GL renderer against the CPU colour-map reference, pixel geometry, and bad input. Needs a
+ * real GL context (Mesa llvmpipe in CI); without one each test reports itself skipped. */
+#include "support.h"
+
+#include "indentmap/colormap.h"
+#include "indentmap/field.h"
+#include "indentmap/render.h"
+#include "indentmap/status.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static im_render_context *context;
+static char open_error[2048];
+
+static int open_context(void **state)
+{
+    (void)state;
+    if (im_render_open(IM_RENDER_AUTO, &context) != IM_OK) {
+        snprintf(open_error, sizeof open_error, "%s", im_last_error());
+        context = NULL;
+    } else {
+        print_message("renderer: %s, %s; GL_RENDERER %s; GL_VERSION %s\n", im_render_backend_name(context),
+                      im_render_display_name(context), im_render_gl_renderer(context),
+                      im_render_gl_version(context));
+    }
+    return 0;
+}
+
+static int close_context(void **state)
+{
+    (void)state;
+    im_render_close(context);
+    return 0;
+}
+
+#define REQUIRE_CONTEXT()                                                                         \
+    do {                                                                                          \
+        if (!context) {                                                                           \
+            print_message("SKIPPED (no GL context): %s\n", open_error);                          \
+            skip();                                                                               \
+        }                                                                                         \
+    } while (0)
+
+/* Deterministic pseudo-random numbers in [0, 1). */
+static double uniform(uint64_t *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*state >> 11) * 0x1.0p-53;
+}
+
+static im_field *make_field(int nx, int ny)
+{
+    im_field *f = NULL;
+    assert_int_equal(im_field_create(nx, ny, 1.0, &f), IM_OK);
+    return f;
+}
+
+static const uint8_t *pixel(const im_image *image, int column, int row)
+{
+    return image->rgba + ((size_t)row * image->width + column) * 4;
+}
+
+static void assert_pixel(const im_image *image, int column, int row, const uint8_t expected[3], int tolerance)
+{
+    const uint8_t *p = pixel(image, column, row);
+    for (int k = 0; k < 3; ++k)
+        if (abs((int)p[k] - (int)expected[k]) > tolerance)
+            fail_msg("pixel (%d, %d) = (%d, %d, %d), expected (%d, %d, %d) within %d", column, row, p[0],
+                     p[1], p[2], expected[0], expected[1], expected[2], tolerance);
+    assert_int_equal(p[3], 255);
+}
+
+/* Every pixel of a contact map against im_colormap_field_image (rows top first), with the
+ * background where force <= 0 and the boundary frame in the line colour. */
+static void compare_with_reference(const im_field *force, const im_contact_style *style)
+{
+    im_image image;
+    assert_int_equal(im_render_contact_map(context, force, style, &image), IM_OK);
+    int s = style->pixels_per_patch, b = style->boundary_px;
+    assert_int_equal(image.width, force->nx * s + 2 * b);
+    assert_int_equal(image.height, force->ny * s + 2 * b);
+    uint8_t *reference = malloc(im_field_count(force) * 3);
+    im_colormap_field_image(&style->colormap, force, reference);
+    for (int row = 0; row < image.height; ++row)
+        for (int column = 0; column < image.width; ++column) {
+            int ix = (column - b) / s, r = (row - b) / s;
+            if (column < b || row < b || ix >= force->nx || r >= force->ny) {
+                assert_pixel(&image, column, row, style->line, 0);
+                continue;
+            }
+            double f = force->data[(size_t)(force->ny - 1 - r) * force->nx + ix];
+            uint8_t expected[3];
+            memcpy(expected, reference + ((size_t)r * force->nx + ix) * 3, 3);
+            if (!isnan(f) && !(f > 0.0))
+                memcpy(expected, style->background, 3);
+            assert_pixel(&image, column, row, expected, 1);
+        }
+    free(reference);
+    im_image_release(&image);
+}
+
+/* Random forces over and beyond the norm, with zeros, negatives and NaN, on a non-square grid. */
+static im_field *random_forces(uint64_t seed)
+{
+    im_field *f = make_field(37, 23);
+    for (size_t i = 0; i < im_field_count(f); ++i) {
+        double u = uniform(&seed);
+        f->data[i] = u < 0.1 ? 0.0 : u < 0.15 ? -u : u < 0.17 ? NAN : 1.3 * uniform(&seed) + 1e-3;
+    }
+    return f;
+}
+
+static void test_colours_match_cpu_reference(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *force = random_forces(7);
+    for (int map = 0; map < IM_COLORMAP_COUNT; ++map) {
+        im_contact_style style = im_contact_style_default(force);
+        style.colormap = im_colormap_make((im_colormap_id)map, 0.05, 1.1);
+        style.colormap.under[0] = 250, style.colormap.under[1] = 10, style.colormap.under[2] = 20;
+        style.colormap.over[0] = 5, style.colormap.over[1] = 250, style.colormap.over[2] = 30;
+        style.pixels_per_patch = 1;
+        style.boundary_px = 0;
+        compare_with_reference(force, &style);
+        style.colormap.logarithmic = 1;
+        style.pixels_per_patch = 3;
+        style.boundary_px = 2;
+        compare_with_reference(force, &style);
+    }
+    im_field_free(force);
+}
+
+/* Values exactly on the norm's bin edges, where float arithmetic would round either way. */
+static void test_bin_edges_match_cpu_reference(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *force = make_field(64, 8);
+    for (int i = 0; i < 512; ++i)
+        force->data[i] = 0.3 + 1.7 * (double)(i / 2) / 256.0 * (i % 2 ? 1.0 + 1e-15 : 1.0);
+    im_contact_style style = im_contact_style_default(force);
+    style.colormap = im_colormap_make(IM_COLORMAP_MAGMA, 0.3, 2.0);
+    style.pixels_per_patch = 1;
+    compare_with_reference(force, &style);
+    im_field_free(force);
+}
+
+/* Patch (ix, iy) must cover image columns b + s ix .. and rows b + s (ny - 1 - iy) .. (y up). */
+static void assert_patch_pixels(const im_image *image, const im_field *f, const im_contact_style *style,
+                                const uint8_t lit[3])
+{
+    int s = style->pixels_per_patch, b = style->boundary_px;
+    for (int row = b; row < image->height - b; ++row)
+        for (int column = b; column < image->width - b; ++column) {
+            int ix = (column - b) / s, iy = f->ny - 1 - (row - b) / s;
+            int in_contact = f->data[(size_t)iy * f->nx + ix] > 0.0;
+            assert_pixel(image, column, row, in_contact ? lit : style->background, 0);
+        }
+}
+
+static void render_and_check_pattern(im_field *f)
+{
+    im_contact_style style = im_contact_style_default(f);
+    style.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    style.pixels_per_patch = 4;
+    style.boundary_px = 3;
+    im_image image;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_OK);
+    uint8_t lit[3];
+    im_colormap_rgb(&style.colormap, 1.0, lit);
+    assert_patch_pixels(&image, f, &style, lit);
+    for (int column = 0; column < image.width; ++column) {
+        assert_pixel(&image, column, 0, style.line, 0);
+        assert_pixel(&image, column, image.height - 1, style.line, 0);
+    }
+    im_image_release(&image);
+}
+
+static void test_single_patch_lands_on_its_pixels(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *f = make_field(8, 6);
+    f->data[1 * 8 + 3] = 1.0; /* ix = 3, iy = 1: near the bottom of the picture */
+    render_and_check_pattern(f);
+    /* Spelled out for this one: rows 3 + 4 (6 - 1 - 1) = 19 .. 22, columns 3 + 12 = 15 .. 18. */
+    im_contact_style style = im_contact_style_default(f);
+    style.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    style.pixels_per_patch = 4;
+    style.boundary_px = 3;
+    im_image image;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_OK);
+    uint8_t top_entry[3];
+    memcpy(top_entry, im_colormap_table(IM_COLORMAP_VIRIDIS)[255], 3);
+    assert_pixel(&image, 15, 19, top_entry, 0);
+    assert_pixel(&image, 18, 22, top_entry, 0);
+    assert_pixel(&image, 14, 19, style.background, 0);
+    assert_pixel(&image, 15, 23, style.background, 0);
+    assert_pixel(&image, 15, 18, style.background, 0);
+    im_image_release(&image);
+    im_field_free(f);
+}
+
+static void test_checkerboard_and_disc(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *f = make_field(11, 7);
+    for (int iy = 0; iy < f->ny; ++iy)
+        for (int ix = 0; ix < f->nx; ++ix)
+            f->data[iy * f->nx + ix] = (ix + iy) % 2 ? 1.0 : 0.0;
+    render_and_check_pattern(f);
+    im_field_free(f);
+    f = make_field(20, 20);
+    for (int iy = 0; iy < 20; ++iy)
+        for (int ix = 0; ix < 20; ++ix)
+            f->data[iy * 20 + ix] = hypot(ix + 0.5 - 8.0, iy + 0.5 - 12.0) < 5.5 ? 1.0 : 0.0;
+    render_and_check_pattern(f);
+    im_field_free(f);
+}
+
+/* The circle's coverage, recovered from the pixels, has its centroid at the requested centre and
+ * its mean radius at the requested radius (plus w^2 / (12 R) for a band of width w). */
+static void test_circle_centre_and_radius(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *f = make_field(40, 36);
+    im_contact_style style = im_contact_style_default(f);
+    style.pixels_per_patch = 2;
+    style.boundary_px = 0;
+    style.circle_radius = 12.4;
+    style.circle_x = 19.3;
+    style.circle_y = 17.05;
+    style.circle_width_px = 2.0;
+    im_image image;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_OK);
+    double weight = 0.0, sum_x = 0.0, sum_y = 0.0, sum_r = 0.0;
+    double cx = style.circle_x * 2, cy = style.circle_y * 2, radius = style.circle_radius * 2;
+    for (int row = 0; row < image.height; ++row)
+        for (int column = 0; column < image.width; ++column) {
+            double coverage = (230.0 - pixel(&image, column, row)[0]) / 230.0;
+            double x = column + 0.5, y = image.height - row - 0.5;
+            weight += coverage;
+            sum_x += coverage * x;
+            sum_y += coverage * y;
+            sum_r += coverage * hypot(x - cx, y - cy);
+        }
+    assert_close(sum_x / weight, cx, 0.02);
+    assert_close(sum_y / weight, cy, 0.02);
+    assert_close(sum_r / weight, radius + 4.0 / (12.0 * radius), 0.03);
+    assert_close(weight, 2.0 * M_PI * radius * 2.0, 0.01 * 2.0 * M_PI * radius * 2.0);
+    im_image_release(&image);
+    im_field_free(f);
+}
+
+static void test_repeated_runs_identical(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *force = random_forces(11);
+    im_contact_style style = im_contact_style_default(force);
+    style.circle_radius = 9.7;
+    im_image first, second;
+    assert_int_equal(im_render_contact_map(context, force, &style, &first), IM_OK);
+    assert_int_equal(im_render_contact_map(context, force, &style, &second), IM_OK);
+    assert_memory_equal(first.rgba, second.rgba, (size_t)first.width * first.height * 4);
+    im_image_release(&second);
+    /* A fresh context gives the same picture. */
+    im_render_close(context);
+    assert_int_equal(im_render_open(IM_RENDER_AUTO, &context), IM_OK);
+    assert_int_equal(im_render_contact_map(context, force, &style, &second), IM_OK);
+    assert_memory_equal(first.rgba, second.rgba, (size_t)first.width * first.height * 4);
+    im_image_release(&first);
+    im_image_release(&second);
+    im_field_free(force);
+}
+
+/* Both backends, where each is available, draw the same pixels. */
+static void test_backends_agree(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *force = random_forces(3);
+    im_contact_style style = im_contact_style_default(force);
+    style.circle_radius = 8.2;
+    im_image images[2] = {{0}};
+    const im_render_backend backends[2] = {IM_RENDER_EGL, IM_RENDER_OSMESA};
+    int rendered = 0;
+    for (int i = 0; i < 2; ++i) {
+        im_render_context *other = NULL;
+        if (im_render_open(backends[i], &other) != IM_OK) {
+            print_message("backend %d unavailable: %s\n", (int)backends[i], im_last_error());
+            continue;
+        }
+        print_message("%s: %s, %s\n", im_render_backend_name(other), im_render_gl_renderer(other),
+                      im_render_gl_version(other));
+        assert_int_equal(im_render_contact_map(other, force, &style, &images[rendered]), IM_OK);
+        im_render_close(other);
+        ++rendered;
+    }
+    if (rendered < 2) {
+        im_image_release(&images[0]);
+        im_field_free(force);
+        print_message("SKIPPED: only %d backend available\n", rendered);
+        skip();
+    }
+    assert_memory_equal(images[0].rgba, images[1].rgba, (size_t)images[0].width * images[0].height * 4);
+    im_image_release(&images[0]);
+    im_image_release(&images[1]);
+    im_field_free(force);
+}
+
+static void test_backend_choice(void **state)
+{
+    (void)state;
+    im_render_backend backend;
+    assert_int_equal(im_render_backend_from_name("osmesa", &backend), IM_OK);
+    assert_int_equal(backend, IM_RENDER_OSMESA);
+    assert_int_equal(im_render_backend_from_name("vulkan", &backend), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "auto, egl or osmesa"));
+    setenv("IM_RENDER_BACKEND", "directx", 1);
+    im_render_context *other = NULL;
+    assert_int_equal(im_render_open(IM_RENDER_AUTO, &other), IM_EINVAL);
+    assert_null(other);
+    assert_non_null(strstr(im_last_error(), "IM_RENDER_BACKEND"));
+    unsetenv("IM_RENDER_BACKEND");
+}
+
+/* No patch in contact: a valid picture of background, frame and circle. NaN: the bad colour. */
+static void test_empty_zero_and_nan_fields(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *f = make_field(5, 4);
+    f->data[2] = NAN;
+    im_contact_style style = im_contact_style_default(f);
+    assert_close(style.colormap.hi, 1.0, 0.0); /* nothing in contact: [0, 1] */
+    style.pixels_per_patch = 1;
+    style.boundary_px = 1;
+    im_image image;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_OK);
+    assert_pixel(&image, 1 + 2, 1 + 3, style.colormap.bad, 0); /* iy = 0 is the last data row */
+    assert_pixel(&image, 1 + 1, 1 + 3, style.background, 0);
+    assert_pixel(&image, 1 + 2, 1 + 2, style.background, 0);
+    im_image_release(&image);
+    im_field empty = {0, 0, 1.0, "", NULL};
+    assert_int_equal(im_render_contact_map(context, &empty, &style, &image), IM_EINVAL);
+    assert_null(image.rgba);
+    im_field_free(f);
+}
+
+static void test_bad_styles_refused(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *f = make_field(1024, 4);
+    f->data[0] = 1.0;
+    im_contact_style style = im_contact_style_default(f);
+    im_image image;
+    style.pixels_per_patch = 0; /* a zero-size image */
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "pixels_per_patch"));
+    style.pixels_per_patch = 64; /* 65540 pixels wide: beyond every limit */
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "exceeds"));
+    assert_null(image.rgba);
+    style = im_contact_style_default(f);
+    style.colormap.hi = style.colormap.lo;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    style = im_contact_style_default(f);
+    style.colormap.logarithmic = 1; /* lo = 0 */
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    style = im_contact_style_default(f);
+    style.circle_radius = NAN;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    im_field_free(f);
+}
+
+/* A plane h = g x lit from azimuth az at 45 degrees: Lambert's factor relative to flat ground is
+ * (1 -/+ g) / sqrt(1 + g^2) for light from +x / -x; each patch's grey level scales by it. */
+static void check_plane_shading(double light_azimuth, double expected_factor)
+{
+    const double g = 0.5;
+    im_field *h = make_field(12, 5);
+    for (int iy = 0; iy < 5; ++iy)
+        for (int ix = 0; ix < 12; ++ix)
+            h->data[iy * 12 + ix] = g * ix;
+    im_height_style style = im_height_style_default(h);
+    style.colormap = im_colormap_make(IM_COLORMAP_GREY, -3.0, 10.0);
+    style.shading = 1.0;
+    style.exaggeration = 1.0;
+    style.light_azimuth = light_azimuth;
+    style.light_altitude = 45.0;
+    style.pixels_per_patch = 2;
+    style.boundary_px = 0;
+    im_image image;
+    assert_int_equal(im_render_height_map(context, h, &style, &image), IM_OK);
+    for (int ix = 0; ix < 12; ++ix) {
+        uint8_t base[3], expected[3];
+        im_colormap_rgb(&style.colormap, h->data[ix], base);
+        for (int k = 0; k < 3; ++k) {
+            double v = base[k] * expected_factor;
+            expected[k] = (uint8_t)(v > 255.0 ? 255 : (int)lround(v));
+        }
+        for (int row = 0; row < image.height; ++row)
+            assert_pixel(&image, 2 * ix + 1, row, expected, 1);
+    }
+    im_image_release(&image);
+    im_field_free(h);
+}
+
+static void test_height_shading_of_a_plane(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    check_plane_shading(270.0, 1.5 / sqrt(1.25)); /* light from -x: the slope faces it */
+    check_plane_shading(90.0, 0.5 / sqrt(1.25));
+    check_plane_shading(0.0, 1.0 / sqrt(1.25));   /* light from +y: only the tilt counts */
+}
+
+static void test_height_flat_matches_reference_and_nan(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *h = make_field(9, 7);
+    for (size_t i = 0; i < im_field_count(h); ++i)
+        h->data[i] = 0.25;
+    h->data[3 * 9 + 4] = NAN;
+    im_height_style style = im_height_style_default(h);
+    assert_close(style.colormap.lo, -0.75, 1e-15); /* flat: [h - 1, h + 1] */
+    style.pixels_per_patch = 1;
+    style.boundary_px = 0;
+    im_image image;
+    assert_int_equal(im_render_height_map(context, h, &style, &image), IM_OK);
+    uint8_t expected[3];
+    im_colormap_rgb(&style.colormap, 0.25, expected);
+    for (int row = 0; row < 7; ++row)
+        for (int column = 0; column < 9; ++column)
+            assert_pixel(&image, column, row, row == 3 && column == 4 ? style.colormap.bad : expected, 1);
+    im_image_release(&image);
+    im_field_free(h);
+}
+
+/* A 3 x 3 block of contact patches is outlined inside its own edge, nowhere else. */
+static void test_contact_outline(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *h = make_field(8, 8), *contact = make_field(8, 8);
+    for (int iy = 2; iy <= 4; ++iy)
+        for (int ix = 2; ix <= 4; ++ix)
+            contact->data[iy * 8 + ix] = 1.0;
+    im_height_style style = im_height_style_default(h);
+    style.contact = contact;
+    style.pixels_per_patch = 4;
+    style.boundary_px = 0;
+    style.outline_px = 1;
+    im_image image;
+    assert_int_equal(im_render_height_map(context, h, &style, &image), IM_OK);
+    uint8_t plain[3];
+    im_colormap_rgb(&style.colormap, 0.0, plain);
+    for (int row = 0; row < 32; ++row)
+        for (int column = 0; column < 32; ++column) {
+            int y = 31 - row; /* pixels from the bottom */
+            int inside = column >= 8 && column < 20 && y >= 8 && y < 20;
+            int edge = inside && (column == 8 || column == 19 || y == 8 || y == 19);
+            assert_pixel(&image, column, row, edge ? style.outline : plain, 1);
+        }
+    im_image_release(&image);
+    contact->nx = 7; /* a different grid */
+    assert_int_equal(im_render_height_map(context, h, &style, &image), IM_EINVAL);
+    contact->nx = 8;
+    im_field_free(h);
+    im_field_free(contact);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_backend_choice),
+        cmocka_unit_test(test_colours_match_cpu_reference),
+        cmocka_unit_test(test_bin_edges_match_cpu_reference),
+        cmocka_unit_test(test_single_patch_lands_on_its_pixels),
+        cmocka_unit_test(test_checkerboard_and_disc),
+        cmocka_unit_test(test_circle_centre_and_radius),
+        cmocka_unit_test(test_repeated_runs_identical),
+        cmocka_unit_test(test_backends_agree),
+        cmocka_unit_test(test_empty_zero_and_nan_fields),
+        cmocka_unit_test(test_bad_styles_refused),
+        cmocka_unit_test(test_height_shading_of_a_plane),
+        cmocka_unit_test(test_height_flat_matches_reference_and_nan),
+        cmocka_unit_test(test_contact_outline),
+    };
+    int failed = cmocka_run_group_tests(tests, open_context, close_context);
+    return failed ? failed : open_error[0] ? 77 : 0; /* 77: ctest's SKIP_RETURN_CODE */
+}
