@@ -1,0 +1,160 @@
+/* indentmap/solver.h: frictionless normal contact of a rigid punch with a rough elastic half-space,
+ * by FFT boundary elements and Polonsky-Keer constrained conjugate gradients.
+ *
+ * ---- Model and conventions ----
+ * The surface is an nx x ny grid of square patches of side delta (field.h layout), heights h up;
+ * the punch comes from above. Each patch carries a uniform pressure p >= 0; its force is
+ * f = p delta^2. The surface displacement u (positive = pushed into the half-space, i.e. down) at
+ * a patch centre is the linear (NOT periodic) convolution
+ *     u_i = sum_j K(x_i - x_j) p_j,   K(x, y) = (1 / (pi E*)) integral over the patch of dA / r,
+ * Love's closed form for a uniformly loaded rectangle, evaluated in a cancellation-free asinh form
+ * (im_influence_square). E* = E / (1 - nu^2) is the composite modulus.
+ * Gap. With z(r) the punch profile (indenter.h) and the undeformed gap at first touch
+ *     g0_i = z(|x_i - axis|) - h_i - min_j (z_j - h_j)        (so min g0 = 0),
+ * the gap at approach w is
+ *     g_i = g0_i - w + u_i.
+ * w is the rigid approach counted from first touch: at w = 0 the punch touches the patch of least
+ * undeformed gap. A solution has p_i >= 0, g_i >= 0 and p_i g_i = 0; a patch is in contact when
+ * its force is positive.
+ *
+ * ---- Discretisation of the convolution ----
+ * DC-FFT: pressures are zero-padded to a 2nx x 2ny grid and multiplied in Fourier space by the
+ * spectrum of K sampled on the same padded grid with wrap-around offsets; the product's nx x ny
+ * quadrant is the exact linear convolution. FFTW real-to-complex / complex-to-real transforms; K
+ * is even, so its spectrum is real and stored as such (with the 1 / (4 nx ny) normalisation).
+ *
+ * ---- Algorithm (Polonsky & Keer 1999, Wear 231:206) ----
+ * Conjugate gradients on the contact set I_c = {p > 0}, restarted whenever patches with p = 0 and
+ * g < 0 join; negative pressures are clipped to zero. Displacement control imposes w. Load control
+ * imposes N = delta^2 sum p: the approach is the mean of (u + g0) over I_c, gaps and search
+ * responses have their I_c mean removed, and p is rescaled to the load each iteration (PK's own
+ * variant; cheaper than an outer loop on w, which costs several displacement solves per step).
+ * One convolution per iteration in the steady state: u is updated as u - tau K t, and the few
+ * patches that the clipping or the restarts change are added back by direct summation against the
+ * stored kernel (a full convolution only when they are many).
+ *
+ * ---- Stopping rule ----
+ * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w
+ * i.e. the rms gap left in the contact set and the worst penetration outside it, relative to the
+ * approach. A solve stops when residual <= tol (default 1e-8), checked on u recomputed exactly by
+ * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
+ * iterations. Both the iteration count and the residual are reported for every solve.
+ */
+#ifndef INDENTMAP_SOLVER_H
+#define INDENTMAP_SOLVER_H
+
+#include "indentmap/field.h"
+#include "indentmap/indenter.h"
+
+typedef struct im_solver_options {
+    double e_star;          /* composite modulus E* (default 1) */
+    double tol;             /* stopping tolerance on the relative residual (default 1e-8) */
+    int max_iterations;     /* iteration cap per solve (default 10000) */
+    int fft_measure;        /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
+                               wisdom file is in use, which implies FFTW_MEASURE */
+    const char *wisdom_path;/* FFTW wisdom file imported before planning and exported after it;
+                               NULL (default): the environment variable IM_FFTW_WISDOM, if set */
+    int crop;               /* 1 (default): solve on the window that can touch; 0: whole surface */
+    int window_margin;      /* patches added around the window on each side (default 4) */
+} im_solver_options;
+
+im_solver_options im_solver_options_default(void);
+/* IM_EINVAL naming the first option out of range. */
+int im_solver_options_check(const im_solver_options *options);
+
+/* Displacement at a patch centre offset (x, y) from the centre of a delta x delta patch carrying
+ * unit pressure, for composite modulus e_star (Love 1929). At (0, 0): 4 delta asinh(1) / (pi E*). */
+double im_influence_square(double x, double y, double delta, double e_star);
+
+/* ---- plan / execute on one grid size ---- */
+typedef struct im_solver_plan im_solver_plan;
+
+/* Plans an nx x ny problem (FFTW plans on the 2nx x 2ny padded grid, the kernel and its spectrum,
+ * work buffers) with the OpenMP thread count in force. Serial code only (FFTW's planner is not
+ * thread-safe). IM_ENOMEM when im_solver_plan_bytes exceeds the memory available. */
+int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
+                          im_solver_plan **out);
+void im_solver_plan_free(im_solver_plan *plan);
+
+/* Memory a plan takes, in bytes. */
+double im_solver_plan_bytes(int nx, int ny);
+/* Seconds spent planning (FFTW planning plus the kernel spectrum). */
+double im_solver_plan_seconds(const im_solver_plan *plan);
+/* 1 if the plan was made with FFTW_MEASURE. */
+int im_solver_plan_measured(const im_solver_plan *plan);
+
+/* u = K p on the plan's grid (nx * ny values each; may not alias). */
+void im_solver_convolve(im_solver_plan *plan, const double *pressure, double *displacement);
+
+enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1 };
+
+typedef struct im_solve_result {
+    double approach;        /* w (imposed, or found under load control) */
+    double load;            /* N = delta^2 sum p */
+    long contact_patches;   /* n_p: patches with p > 0 */
+    double mean_pressure;   /* N / (n_p delta^2), 0 without contact */
+    double max_pressure;
+    int iterations;         /* CG iterations (one search-direction convolution each) */
+    int convolutions;       /* all convolutions, including the exact recomputations */
+    double residual;        /* the stopping rule's value at exit */
+    double seconds;         /* wall time of the solve */
+} im_solve_result;
+
+/* Solves one contact problem on the plan's grid. gap0: undeformed gap at first touch (>= 0;
+ * +INFINITY for patches that can never touch). target: w >= 0 (displacement control) or N >= 0
+ * (load control). pressure: in: warm start (any p >= 0; all zero for a cold start), out: the
+ * solution. displacement: out, u = K p. result may be NULL. IM_ENOCONV after the cap (pressure and
+ * displacement hold the last iterate and result its residual); IM_ENUMERIC if the iteration breaks
+ * down (non-finite values). */
+int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
+                    double *pressure, double *displacement, im_solve_result *result);
+
+/* ---- indentation histories on a surface ---- */
+typedef struct im_window {
+    int x0, y0, nx, ny;     /* the solved sub-grid of the surface: [x0, x0 + nx) x [y0, y0 + ny) */
+} im_window;
+
+typedef struct im_step_result {
+    double approach, load;
+    double load_star;       /* N* = A(N) / delta^2 (the paper's 2N / (delta^2 E* cot alpha)) */
+    long contact_patches;
+    double area_ratio;      /* n_p delta^2 / A(N), A from im_indenter_area_for_load; NaN at N = 0 */
+    double mean_pressure, max_pressure;
+    int iterations, convolutions;
+    double residual, seconds;
+} im_step_result;
+
+typedef struct im_indentation im_indentation;
+
+/* Prepares an indentation of surface (heights in units of its delta; copied) by punch.
+ * largest_target is the largest approach (displacement control) or load (load control) the run
+ * will impose: it fixes the solve window, the bounding box of the patches whose undeformed gap is
+ * at most the largest approach, plus options->window_margin, grown to an FFT-friendly size
+ * (2^a 3^b 5^c 7^d) within the surface. Exact, because u >= 0 under compression: no patch with
+ * g0 > w can touch. Under load control the largest approach is bounded by
+ * 1.1 w_smooth(N) + (max h - min h) (a rough surface is everywhere below the smooth one shifted up
+ * by its height range, and the smooth discrete solution is within 1% of the closed form); each
+ * step checks that its approach stays below that bound. The plan is made here (serial code).
+ * Errors: IM_ENUMERIC for NaN/Inf heights, IM_EINVAL for bad punch/options/target. */
+int im_indentation_create(const im_field *surface, const im_indenter *punch, enum im_control control,
+                          double largest_target, const im_solver_options *options, im_indentation **out);
+void im_indentation_free(im_indentation *run);
+
+/* Solves the next step (approach or load, per the run's control), warm-started from the last one.
+ * IM_EINVAL for a target outside [0, largest_target]; IM_ENOCONV (out holds the residual; the run
+ * keeps the last iterate); IM_EEDGE when a contact patch lies on the outer row or column of the
+ * surface, where the finite surface, not the half-space, would decide the answer. */
+int im_indentation_step(im_indentation *run, double target, im_step_result *out);
+
+im_window im_indentation_window(const im_indentation *run);
+const im_solver_plan *im_indentation_plan(const im_indentation *run);
+
+/* Fields of the last step on the FULL surface grid (new fields, caller frees; any pointer may be
+ * NULL to skip that field): force per patch f = p delta^2; displacement u; gap g = g0 - w + u.
+ * Outside the window the force is zero, u is reported as 0 (not computed: the true u there is
+ * positive) and the gap is the undeformed g0 - w, a lower bound of the true gap (> 0 there).
+ * Patches a flat punch can never touch have gap +INFINITY. */
+int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap,
+                          im_field **displacement);
+
+#endif

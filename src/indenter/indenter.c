@@ -1,0 +1,137 @@
+#include "indentmap/indenter.h"
+
+#include "indentmap/status.h"
+
+#include <math.h>
+
+static double cot_degrees(double alpha_degrees) { return 1.0 / tan(alpha_degrees * M_PI / 180.0); }
+
+im_indenter im_indenter_cone(double alpha_degrees)
+{
+    return (im_indenter){.kind = IM_PUNCH_CONE, .alpha_degrees = alpha_degrees, .radius = 1, .centred = 1};
+}
+
+im_indenter im_indenter_sphere(double radius)
+{
+    return (im_indenter){.kind = IM_PUNCH_SPHERE, .alpha_degrees = 80, .radius = radius, .centred = 1};
+}
+
+im_indenter im_indenter_flat(double radius)
+{
+    return (im_indenter){.kind = IM_PUNCH_FLAT, .alpha_degrees = 80, .radius = radius, .centred = 1};
+}
+
+const char *im_punch_name(enum im_punch_kind kind)
+{
+    switch (kind) {
+    case IM_PUNCH_CONE: return "cone";
+    case IM_PUNCH_SPHERE: return "sphere";
+    case IM_PUNCH_FLAT: return "flat";
+    }
+    return "unknown";
+}
+
+int im_indenter_check(const im_indenter *punch)
+{
+    if (!punch)
+        return im_fail(IM_EINVAL, "indenter: NULL");
+    switch (punch->kind) {
+    case IM_PUNCH_CONE:
+        if (!(punch->alpha_degrees > 0 && punch->alpha_degrees < 90))
+            return im_fail(IM_EINVAL, "alpha = %g: expected 0 < alpha < 90 degrees", punch->alpha_degrees);
+        break;
+    case IM_PUNCH_SPHERE:
+    case IM_PUNCH_FLAT:
+        if (!(isfinite(punch->radius) && punch->radius > 0))
+            return im_fail(IM_EINVAL, "%s radius = %g: expected a finite radius > 0",
+                           im_punch_name(punch->kind), punch->radius);
+        break;
+    default: return im_fail(IM_EINVAL, "indenter kind %d: expected cone, sphere or flat", (int)punch->kind);
+    }
+    if (!punch->centred && !(isfinite(punch->x0) && isfinite(punch->y0)))
+        return im_fail(IM_EINVAL, "indenter position (%g, %g): expected finite coordinates", punch->x0,
+                       punch->y0);
+    return IM_OK;
+}
+
+double im_indenter_profile(const im_indenter *punch, double r)
+{
+    switch (punch->kind) {
+    case IM_PUNCH_CONE: return r * cot_degrees(punch->alpha_degrees);
+    case IM_PUNCH_SPHERE: return r * r / (2 * punch->radius);
+    case IM_PUNCH_FLAT: return r <= punch->radius ? 0.0 : INFINITY;
+    }
+    return NAN;
+}
+
+void im_indenter_axis(const im_indenter *punch, int nx, int ny, double delta, double *x, double *y)
+{
+    if (punch->centred) {
+        *x = (nx / 2 + 0.5) * delta;
+        *y = (ny / 2 + 0.5) * delta;
+    } else {
+        *x = punch->x0;
+        *y = punch->y0;
+    }
+}
+
+double im_indenter_load(const im_indenter *punch, double e_star, double w)
+{
+    if (w <= 0)
+        return 0;
+    switch (punch->kind) {
+    case IM_PUNCH_CONE: return 2 * e_star * w * w / (M_PI * cot_degrees(punch->alpha_degrees));
+    case IM_PUNCH_SPHERE: return 4.0 / 3.0 * e_star * sqrt(punch->radius) * pow(w, 1.5);
+    case IM_PUNCH_FLAT: return 2 * punch->radius * e_star * w;
+    }
+    return NAN;
+}
+
+double im_indenter_contact_radius(const im_indenter *punch, double w)
+{
+    if (w <= 0)
+        return 0;
+    switch (punch->kind) {
+    case IM_PUNCH_CONE: return 2 * w / (M_PI * cot_degrees(punch->alpha_degrees));
+    case IM_PUNCH_SPHERE: return sqrt(punch->radius * w);
+    case IM_PUNCH_FLAT: return punch->radius;
+    }
+    return NAN;
+}
+
+double im_indenter_pressure(const im_indenter *punch, double e_star, double w, double r)
+{
+    double a = im_indenter_contact_radius(punch, w);
+    if (w <= 0 || r > a)
+        return 0;
+    switch (punch->kind) {
+    case IM_PUNCH_CONE:
+        return r == 0 ? INFINITY : 0.5 * e_star * cot_degrees(punch->alpha_degrees) * acosh(a / r);
+    case IM_PUNCH_SPHERE: return 2 * e_star * a / (M_PI * punch->radius) * sqrt(1 - (r / a) * (r / a));
+    case IM_PUNCH_FLAT:
+        return r == a ? INFINITY : im_indenter_load(punch, e_star, w) / (2 * M_PI * a * sqrt(a * a - r * r));
+    }
+    return NAN;
+}
+
+double im_indenter_approach_for_load(const im_indenter *punch, double e_star, double n)
+{
+    if (n <= 0)
+        return 0;
+    switch (punch->kind) {
+    case IM_PUNCH_CONE: return sqrt(n * M_PI * cot_degrees(punch->alpha_degrees) / (2 * e_star));
+    case IM_PUNCH_SPHERE: return pow(3 * n / (4 * e_star * sqrt(punch->radius)), 2.0 / 3.0);
+    case IM_PUNCH_FLAT: return n / (2 * punch->radius * e_star);
+    }
+    return NAN;
+}
+
+double im_indenter_area_for_load(const im_indenter *punch, double e_star, double n)
+{
+    if (n <= 0)
+        return 0;
+    if (punch->kind == IM_PUNCH_CONE)
+        return 2 * n / (e_star * cot_degrees(punch->alpha_degrees));
+    double a = im_indenter_contact_radius(punch, im_indenter_approach_for_load(punch, e_star, n));
+    return M_PI * a * a;
+}

@@ -1,0 +1,291 @@
+/* Indentation histories: undeformed gap, solve window, steps, full-grid fields (see solver.h). */
+#include "indentmap/solver.h"
+
+#include "indentmap/status.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct im_indentation {
+    im_indenter punch;
+    enum im_control control;
+    double largest_target;
+    double approach_bound;   /* largest approach the window is exact for */
+    im_solver_options options;
+    int nx, ny;              /* surface grid */
+    double delta;
+    double *gap0;            /* full grid, min 0 */
+    im_window window;
+    double *window_gap0, *pressure, *displacement; /* window grid */
+    im_solver_plan *plan;
+    double approach;         /* last step's */
+};
+
+/* g0 = z(r) - h - min(z - h) over the full grid. */
+static int undeformed_gap(im_indentation *run, const im_field *surface)
+{
+    const int nx = surface->nx, ny = surface->ny;
+    const double d = surface->delta;
+    double ax, ay;
+    im_indenter_axis(&run->punch, nx, ny, d, &ax, &ay);
+    double lowest = INFINITY;
+#pragma omp parallel for schedule(static) reduction(min : lowest)
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            double r = hypot((ix + 0.5) * d - ax, (iy + 0.5) * d - ay);
+            run->gap0[i] = im_indenter_profile(&run->punch, r) - surface->data[i];
+            if (run->gap0[i] < lowest)
+                lowest = run->gap0[i];
+        }
+    if (!isfinite(lowest))
+        return im_fail(IM_EINVAL, "the %s punch at (%g, %g) covers no patch of the %d x %d surface",
+                       im_punch_name(run->punch.kind), ax, ay, nx, ny);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < (size_t)nx * ny; ++i)
+        run->gap0[i] -= lowest;
+    return IM_OK;
+}
+
+/* Smallest 2^a 3^b 5^c 7^d >= n (FFTW is fastest on such sizes). */
+static int fft_friendly(int n)
+{
+    for (int m = n;; ++m) {
+        int k = m;
+        static const int primes[] = {2, 3, 5, 7};
+        for (int j = 0; j < 4; ++j)
+            while (k % primes[j] == 0)
+                k /= primes[j];
+        if (k == 1)
+            return m;
+    }
+}
+
+/* Grows [lo, hi) to a friendly length inside [0, n), centred on the original span; the whole
+ * range when the friendly length does not fit. */
+static void grow_span(int *lo, int *hi, int n)
+{
+    int length = fft_friendly(*hi - *lo);
+    if (length >= n) {
+        *lo = 0;
+        *hi = n;
+        return;
+    }
+    int start = *lo - (length - (*hi - *lo)) / 2;
+    if (start < 0)
+        start = 0;
+    if (start + length > n)
+        start = n - length;
+    *lo = start;
+    *hi = start + length;
+}
+
+static im_window choose_window(const im_indentation *run)
+{
+    if (!run->options.crop)
+        return (im_window){0, 0, run->nx, run->ny};
+    int x_lo = run->nx, x_hi = -1, y_lo = run->ny, y_hi = -1;
+    for (int iy = 0; iy < run->ny; ++iy)
+        for (int ix = 0; ix < run->nx; ++ix)
+            if (run->gap0[(size_t)iy * run->nx + ix] <= run->approach_bound) {
+                x_lo = ix < x_lo ? ix : x_lo;
+                x_hi = ix > x_hi ? ix : x_hi;
+                y_lo = iy < y_lo ? iy : y_lo;
+                y_hi = iy > y_hi ? iy : y_hi;
+            }
+    const int m = run->options.window_margin;
+    int x0 = x_lo - m < 0 ? 0 : x_lo - m, x1 = x_hi + 1 + m > run->nx ? run->nx : x_hi + 1 + m;
+    int y0 = y_lo - m < 0 ? 0 : y_lo - m, y1 = y_hi + 1 + m > run->ny ? run->ny : y_hi + 1 + m;
+    grow_span(&x0, &x1, run->nx);
+    grow_span(&y0, &y1, run->ny);
+    return (im_window){x0, y0, x1 - x0, y1 - y0};
+}
+
+static double height_range(const im_field *surface)
+{
+    double lo = DBL_MAX, hi = -DBL_MAX;
+    for (size_t i = 0; i < im_field_count(surface); ++i) {
+        lo = fmin(lo, surface->data[i]);
+        hi = fmax(hi, surface->data[i]);
+    }
+    return hi - lo;
+}
+
+static int check_create(const im_field *surface, const im_indenter *punch, enum im_control control,
+                        double largest_target, const im_solver_options *options)
+{
+    int status = im_field_check_finite(surface, "surface heights");
+    if (status == IM_OK)
+        status = im_indenter_check(punch);
+    if (status == IM_OK)
+        status = im_solver_options_check(options);
+    if (status != IM_OK)
+        return status;
+    if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
+        return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+    if (!(isfinite(largest_target) && largest_target >= 0))
+        return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0",
+                       control == IM_CONTROL_LOAD ? "load" : "approach", largest_target);
+    if (!(isfinite(surface->delta) && surface->delta > 0))
+        return im_fail(IM_EINVAL, "surface delta = %g: expected > 0", surface->delta);
+    return IM_OK;
+}
+
+static int allocate_window(im_indentation *run)
+{
+    const im_window w = run->window;
+    size_t n = (size_t)w.nx * w.ny;
+    run->window_gap0 = malloc(sizeof(double) * n);
+    run->pressure = calloc(n, sizeof(double));
+    run->displacement = calloc(n, sizeof(double));
+    if (!run->window_gap0 || !run->pressure || !run->displacement)
+        return im_fail(IM_ENOMEM, "indentation window %d x %d", w.nx, w.ny);
+    for (int iy = 0; iy < w.ny; ++iy)
+        memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
+               sizeof(double) * w.nx);
+    return im_solver_plan_create(w.nx, w.ny, run->delta, &run->options, &run->plan);
+}
+
+int im_indentation_create(const im_field *surface, const im_indenter *punch, enum im_control control,
+                          double largest_target, const im_solver_options *options, im_indentation **out)
+{
+    *out = NULL;
+    im_solver_options o = options ? *options : im_solver_options_default();
+    int status = check_create(surface, punch, control, largest_target, &o);
+    if (status != IM_OK)
+        return status;
+    im_indentation *run = calloc(1, sizeof *run);
+    if (!run || !(run->gap0 = malloc(sizeof(double) * im_field_count(surface)))) {
+        free(run);
+        return im_fail(IM_ENOMEM, "indentation of a %d x %d surface", surface->nx, surface->ny);
+    }
+    run->punch = *punch;
+    run->control = control;
+    run->largest_target = largest_target;
+    run->options = o;
+    run->nx = surface->nx;
+    run->ny = surface->ny;
+    run->delta = surface->delta;
+    run->approach_bound = control == IM_CONTROL_DISPLACEMENT
+                              ? largest_target
+                              : 1.1 * im_indenter_approach_for_load(punch, o.e_star, largest_target) +
+                                    height_range(surface);
+    status = undeformed_gap(run, surface);
+    if (status == IM_OK) {
+        run->window = choose_window(run);
+        status = allocate_window(run);
+    }
+    if (status != IM_OK) {
+        im_indentation_free(run);
+        return status;
+    }
+    *out = run;
+    return IM_OK;
+}
+
+void im_indentation_free(im_indentation *run)
+{
+    if (!run)
+        return;
+    im_solver_plan_free(run->plan);
+    free(run->gap0);
+    free(run->window_gap0);
+    free(run->pressure);
+    free(run->displacement);
+    free(run);
+}
+
+/* IM_EEDGE if a contact patch lies on the outer row or column of the surface. */
+static int check_edge(const im_indentation *run)
+{
+    const im_window w = run->window;
+    for (int iy = 0; iy < w.ny; ++iy)
+        for (int ix = 0; ix < w.nx; ++ix) {
+            int sx = ix + w.x0, sy = iy + w.y0;
+            int on_edge = sx == 0 || sy == 0 || sx == run->nx - 1 || sy == run->ny - 1;
+            if (on_edge && run->pressure[(size_t)iy * w.nx + ix] > 0)
+                return im_fail(IM_EEDGE,
+                               "contact reached the edge of the %d x %d surface at patch (%d, %d) "
+                               "(approach %g): the surface is too small for this step",
+                               run->nx, run->ny, sx, sy, run->approach);
+        }
+    return IM_OK;
+}
+
+static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
+{
+    const double d2 = run->delta * run->delta;
+    double area = im_indenter_area_for_load(&run->punch, run->options.e_star, s->load);
+    *out = (im_step_result){.approach = s->approach, .load = s->load, .load_star = area / d2,
+                            .contact_patches = s->contact_patches,
+                            .area_ratio = s->load > 0 ? s->contact_patches * d2 / area : NAN,
+                            .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
+                            .iterations = s->iterations, .convolutions = s->convolutions,
+                            .residual = s->residual, .seconds = s->seconds};
+}
+
+int im_indentation_step(im_indentation *run, double target, im_step_result *out)
+{
+    const char *what = run->control == IM_CONTROL_LOAD ? "load" : "approach";
+    if (!(isfinite(target) && target >= 0 && target <= run->largest_target))
+        return im_fail(IM_EINVAL, "%s = %g: expected a value in [0, %g], the largest %s the run was prepared for",
+                       what, target, run->largest_target, what);
+    im_solve_result s;
+    int status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
+                                 run->displacement, &s);
+    run->approach = s.approach;
+    fill_step(run, &s, out);
+    if (status != IM_OK)
+        return status;
+    if (s.approach > run->approach_bound) /* cannot happen unless the bound is wrong; never hide it */
+        return im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
+                       s.approach, run->approach_bound);
+    return check_edge(run);
+}
+
+im_window im_indentation_window(const im_indentation *run) { return run->window; }
+const im_solver_plan *im_indentation_plan(const im_indentation *run) { return run->plan; }
+
+static int new_full_field(const im_indentation *run, im_field **out)
+{
+    return out ? im_field_create(run->nx, run->ny, run->delta, out) : IM_OK;
+}
+
+int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+{
+    im_field *f = NULL, *g = NULL, *u = NULL;
+    int status = new_full_field(run, force ? &f : NULL);
+    if (status == IM_OK)
+        status = new_full_field(run, gap ? &g : NULL);
+    if (status == IM_OK)
+        status = new_full_field(run, displacement ? &u : NULL);
+    if (status != IM_OK) {
+        im_field_free(f);
+        im_field_free(g);
+        return status;
+    }
+    const im_window w = run->window;
+    const double d2 = run->delta * run->delta, approach = run->approach;
+    if (g)
+        for (size_t i = 0; i < im_field_count(g); ++i)
+            g->data[i] = run->gap0[i] - approach;
+    for (int iy = 0; iy < w.ny; ++iy)
+        for (int ix = 0; ix < w.nx; ++ix) {
+            size_t wi = (size_t)iy * w.nx + ix, i = (size_t)(iy + w.y0) * run->nx + ix + w.x0;
+            if (f)
+                f->data[i] = run->pressure[wi] * d2;
+            if (u)
+                u->data[i] = run->displacement[wi];
+            if (g)
+                g->data[i] += run->displacement[wi];
+        }
+    if (force)
+        *force = f;
+    if (gap)
+        *gap = g;
+    if (displacement)
+        *displacement = u;
+    return IM_OK;
+}

@@ -1,0 +1,339 @@
+/* Polonsky-Keer constrained conjugate gradients (see solver.h for the algorithm and stopping rule). */
+#include "solver/plan.h"
+
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+typedef struct gap_stats {
+    double approach;     /* w used for these gaps */
+    long contact;        /* |I_c| */
+    double sum_squares;  /* G = sum over I_c of g^2 */
+    double penetration;  /* max over p = 0 of -g (0 if none) */
+} gap_stats;
+
+typedef struct pk_run {
+    im_solver_plan *plan;
+    const double *gap0;
+    enum im_control control;
+    double target;
+    double *p, *u;
+    int convolutions;
+} pk_run;
+
+static double mean_over_contact(const double *p, const double *a, const double *b, size_t n, long *count)
+{
+    double sum = 0;
+    long c = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum, c)
+    for (size_t i = 0; i < n; ++i)
+        if (p[i] > 0) {
+            sum += a[i] + (b ? b[i] : 0);
+            ++c;
+        }
+    *count = c;
+    return c ? sum / c : 0;
+}
+
+/* g = u + g0 - w, with w imposed or (load control) the mean of u + g0 over I_c. */
+static gap_stats compute_gaps(const pk_run *r)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    const double *p = r->p, *u = r->u, *g0 = r->gap0;
+    double *g = r->plan->gap;
+    gap_stats s = {.approach = r->target};
+    if (r->control == IM_CONTROL_LOAD)
+        s.approach = mean_over_contact(p, u, g0, n, &s.contact);
+    const double w = s.approach;
+    double squares = 0, penetration = 0;
+    long contact = 0;
+#pragma omp parallel for schedule(static) reduction(+ : squares, contact) reduction(max : penetration)
+    for (size_t i = 0; i < n; ++i) {
+        double gi = u[i] + g0[i] - w;
+        g[i] = gi;
+        if (p[i] > 0) {
+            squares += gi * gi;
+            ++contact;
+        } else if (-gi > penetration)
+            penetration = -gi;
+    }
+    s.contact = contact;
+    s.sum_squares = squares;
+    s.penetration = penetration;
+    return s;
+}
+
+static double relative_residual(const gap_stats *s)
+{
+    double rms = s->contact ? sqrt(s->sum_squares / s->contact) : 0;
+    return fmax(rms, s->penetration) / s->approach;
+}
+
+static void convolve(pk_run *r, const double *in, double *out)
+{
+    im_solver_convolve(r->plan, in, out);
+    ++r->convolutions;
+}
+
+/* Winkler guess p = max(w - g0, 0) / K(0): the local part of the response only. */
+static double winkler_load(const pk_run *r, double w, int store)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    const double k0 = r->plan->kernel[0], d2 = r->plan->delta * r->plan->delta;
+    double sum = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+    for (size_t i = 0; i < n; ++i) {
+        double pi = r->gap0[i] < w ? (w - r->gap0[i]) / k0 : 0;
+        if (store)
+            r->p[i] = pi;
+        sum += pi;
+    }
+    return sum * d2;
+}
+
+/* Cold start: the Winkler guess at the imposed approach, or (load control) at the approach where
+ * it carries the load, found by bisection (at w = K(0) N / delta^2 the first-touch patch alone does). */
+static void cold_start(pk_run *r)
+{
+    double w = r->target;
+    if (r->control == IM_CONTROL_LOAD) {
+        double lo = 0, hi = r->plan->kernel[0] * r->target / (r->plan->delta * r->plan->delta);
+        for (int k = 0; k < 60; ++k) {
+            double mid = 0.5 * (lo + hi);
+            if (winkler_load(r, mid, 0) < r->target)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        w = hi;
+    }
+    winkler_load(r, w, 1);
+}
+
+/* Under load control, rescales p (and u, by linearity) so that delta^2 sum p = N. */
+static void impose_load(pk_run *r)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    double load = 0;
+#pragma omp parallel for schedule(static) reduction(+ : load)
+    for (size_t i = 0; i < n; ++i)
+        load += r->p[i];
+    load *= r->plan->delta * r->plan->delta;
+    if (!(load > 0))
+        return;
+    const double scale = r->target / load;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        r->p[i] *= scale;
+        r->u[i] *= scale;
+    }
+}
+
+/* New search direction t = g + beta t on I_c, 0 elsewhere. */
+static void update_direction(const pk_run *r, double beta)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    double *t = r->plan->direction;
+    const double *g = r->plan->gap, *p = r->p;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        t[i] = p[i] > 0 ? g[i] + beta * t[i] : 0;
+}
+
+/* Step length tau = <g, t> / <K t, t> over I_c (responses centred over I_c under load control). */
+static double step_length(const pk_run *r)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    const double *t = r->plan->direction, *q = r->plan->response, *g = r->plan->gap, *p = r->p;
+    double mean_q = 0;
+    if (r->control == IM_CONTROL_LOAD) {
+        long count;
+        mean_q = mean_over_contact(p, q, NULL, n, &count);
+    }
+    double num = 0, den = 0;
+#pragma omp parallel for schedule(static) reduction(+ : num, den)
+    for (size_t i = 0; i < n; ++i)
+        if (p[i] > 0) {
+            num += g[i] * t[i];
+            den += (q[i] - mean_q) * t[i];
+        }
+    return num / den;
+}
+
+/* p -= tau t on I_c, clipped at zero; patches outside I_c that penetrate (g < 0) join with
+ * p = -tau g. Records how p differs from the plain CG step p - tau t in plan->changed_value and
+ * returns the number of such patches; *joined is set when any patch joined. */
+static long update_pressure(pk_run *r, double tau, int *joined)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    const double *t = r->plan->direction, *g = r->plan->gap;
+    double *p = r->p, *change = r->plan->changed_value;
+    long changes = 0;
+    int any_joined = 0;
+#pragma omp parallel for schedule(static) reduction(+ : changes) reduction(| : any_joined)
+    for (size_t i = 0; i < n; ++i) {
+        double c = 0;
+        if (p[i] > 0) {
+            double next = p[i] - tau * t[i];
+            if (next < 0) {
+                c = -next;
+                next = 0;
+            }
+            p[i] = next;
+        } else if (g[i] < 0) {
+            p[i] = c = -tau * g[i];
+            any_joined = 1;
+        }
+        change[i] = c;
+        changes += c != 0;
+    }
+    *joined = any_joined;
+    return changes;
+}
+
+/* u -= tau K t, then the recorded changes by direct summation; returns 1 if u is exact. When the
+ * changes are many, one FFT of the new p is cheaper and exact. */
+static int update_displacement(pk_run *r, double tau, long changes)
+{
+    im_solver_plan *plan = r->plan;
+    const size_t n = (size_t)plan->nx * plan->ny;
+    if (changes > plan->direct_limit) {
+        convolve(r, r->p, r->u);
+        return 1;
+    }
+    const double *q = plan->response;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        r->u[i] -= tau * q[i];
+    if (changes > 0) {
+        long k = 0;
+        for (size_t i = 0; i < n && k < changes; ++i)
+            if (plan->changed_value[i] != 0) {
+                plan->changed[k] = (long)i;
+                plan->changed_value[k++] = plan->changed_value[i];
+            }
+        solver_add_point_loads(plan, plan->changed, plan->changed_value, changes, r->u);
+    }
+    return 0;
+}
+
+static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control,
+                        double target, const double *p)
+{
+    if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
+        return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+    if (!(isfinite(target) && target >= 0))
+        return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
+                       control == IM_CONTROL_LOAD ? "load" : "approach", target);
+    const size_t n = (size_t)plan->nx * plan->ny;
+    for (size_t i = 0; i < n; ++i) {
+        if (isnan(gap0[i]) || gap0[i] < 0 || gap0[i] == -INFINITY)
+            return im_fail(IM_ENUMERIC, "undeformed gap[%zu] = %g: expected >= 0 or +inf", i, gap0[i]);
+        if (!(isfinite(p[i]) && p[i] >= 0))
+            return im_fail(IM_EINVAL, "warm-start pressure[%zu] = %g: expected finite and >= 0", i, p[i]);
+    }
+    return IM_OK;
+}
+
+static int any_positive(const double *p, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (p[i] > 0)
+            return 1;
+    return 0;
+}
+
+static void summarise(const pk_run *r, const gap_stats *s, im_solve_result *out)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    const double d2 = r->plan->delta * r->plan->delta;
+    double sum = 0, peak = 0;
+    long contact = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum, contact) reduction(max : peak)
+    for (size_t i = 0; i < n; ++i)
+        if (r->p[i] > 0) {
+            sum += r->p[i];
+            ++contact;
+            if (r->p[i] > peak)
+                peak = r->p[i];
+        }
+    out->approach = s->approach;
+    out->load = sum * d2;
+    out->contact_patches = contact;
+    out->mean_pressure = contact ? sum / contact : 0;
+    out->max_pressure = peak;
+}
+
+/* The CG loop proper; returns IM_OK, IM_ENOCONV or IM_ENUMERIC and leaves the last gap_stats. */
+static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
+{
+    const im_solver_options *o = &r->plan->options;
+    int exact = 1, restart = 1;
+    double previous_squares = 1;
+    for (;;) {
+        gap_stats s = compute_gaps(r);
+        *last = s;
+        res->residual = relative_residual(&s);
+        if (!isfinite(res->residual))
+            return im_fail(IM_ENUMERIC, "contact iteration %d: residual is %g", res->iterations, res->residual);
+        if (res->residual <= o->tol) {
+            if (exact)
+                return IM_OK;
+            convolve(r, r->p, r->u); /* confirm on the exact displacement */
+            exact = 1;
+            continue;
+        }
+        if (res->iterations >= o->max_iterations)
+            return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
+                           res->residual, o->tol, res->iterations);
+        if (s.contact == 0) { /* everything was clipped: start again from the local guess */
+            cold_start(r);
+            convolve(r, r->p, r->u);
+            restart = exact = 1;
+            continue;
+        }
+        ++res->iterations;
+        update_direction(r, restart ? 0 : s.sum_squares / previous_squares);
+        previous_squares = s.sum_squares;
+        convolve(r, r->plan->direction, r->plan->response);
+        double tau = step_length(r);
+        if (!isfinite(tau) || tau <= 0)
+            return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
+        long changes = update_pressure(r, tau, &restart);
+        exact = update_displacement(r, tau, changes);
+        if (r->control == IM_CONTROL_LOAD)
+            impose_load(r);
+    }
+}
+
+int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
+                    double *pressure, double *displacement, im_solve_result *result)
+{
+    im_solve_result res = {0};
+    double start = omp_get_wtime();
+    int status = check_inputs(plan, gap0, control, target, pressure);
+    if (status != IM_OK)
+        return status;
+    const size_t n = (size_t)plan->nx * plan->ny;
+    pk_run r = {.plan = plan, .gap0 = gap0, .control = control, .target = target, .p = pressure, .u = displacement};
+    gap_stats last = {0};
+    if (target == 0) { /* no approach or no load: no contact */
+        memset(pressure, 0, sizeof(double) * n);
+        memset(displacement, 0, sizeof(double) * n);
+    } else {
+        if (!any_positive(pressure, n))
+            cold_start(&r);
+        convolve(&r, pressure, displacement);
+        if (control == IM_CONTROL_LOAD)
+            impose_load(&r);
+        status = iterate(&r, &res, &last);
+    }
+    summarise(&r, &last, &res);
+    res.convolutions = r.convolutions;
+    res.seconds = omp_get_wtime() - start;
+    if (result)
+        *result = res;
+    return status;
+}

@@ -1,0 +1,32 @@
+/* Internal: the solver plan's layout, shared by plan.c (set-up, convolution) and pk.c (iteration). */
+#ifndef INDENTMAP_SOLVER_PLAN_H
+#define INDENTMAP_SOLVER_PLAN_H
+
+#include "indentmap/solver.h"
+
+#include <fftw3.h>
+
+struct im_solver_plan {
+    int nx, ny;              /* problem grid */
+    int px, py;              /* padded grid: 2nx x 2ny */
+    double delta;
+    im_solver_options options;
+    double *kernel;          /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
+    double *spectrum;        /* py * (px/2 + 1): real spectrum of K, divided by px * py */
+    double *padded_in;       /* px * py, zero outside the nx x ny quadrant */
+    double *padded_out;      /* px * py */
+    fftw_complex *modes;     /* py * (px/2 + 1) */
+    fftw_plan forward, backward;
+    double *direction, *response, *gap; /* nx * ny work arrays of the iteration */
+    long *changed;           /* nx * ny: indices of patches changed outside the CG step */
+    double *changed_value;   /* their pressure changes */
+    long direct_limit;       /* most changes added by direct summation rather than by FFT */
+    double plan_seconds;
+    int measured;
+};
+
+/* displacement += sum_k value[k] K(x - x_index[k]) over the grid (direct summation). */
+void solver_add_point_loads(const im_solver_plan *plan, const long *index, const double *value, long count,
+                            double *displacement);
+
+#endif

@@ -1,0 +1,383 @@
+/* The contact solver against closed forms (Love's cone, Hertz, the flat punch), against a direct
+ * convolution, and against itself (load vs displacement control, threads, cropping), plus its
+ * refusals. Grids are at most 256^2 so that the program stays fast under the sanitizers. */
+#include "support.h"
+
+#include "indentmap/indenter.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+static im_field *smooth_surface(int n)
+{
+    im_field *s = NULL;
+    assert_int_equal(im_field_create(n, n, 1.0, &s), IM_OK);
+    return s;
+}
+
+static im_field *rough_surface(int n, double slope, uint64_t seed)
+{
+    im_surface_params p = im_surface_params_default();
+    p.nx = p.ny = n;
+    p.lambda_r = n;
+    p.slope_rms = slope;
+    p.seed = seed;
+    im_field *s = NULL;
+    assert_int_equal(im_surface_generate(&p, &s), IM_OK);
+    return s;
+}
+
+static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control,
+                               double largest, const im_solver_options *o)
+{
+    im_indentation *run = NULL;
+    int status = im_indentation_create(s, punch, control, largest, o, &run);
+    if (status != IM_OK)
+        fail_msg("im_indentation_create: %s", im_last_error());
+    return run;
+}
+
+static im_step_result step(im_indentation *run, double target)
+{
+    im_step_result r;
+    int status = im_indentation_step(run, target, &r);
+    if (status != IM_OK)
+        fail_msg("step %g: %s", target, im_last_error());
+    return r;
+}
+
+/* ---- the influence kernel and the linear (non-periodic) convolution ---- */
+
+static void test_influence_kernel(void **state)
+{
+    (void)state;
+    /* centre: (1 / pi E*) 4 delta asinh(1); far away: a point force delta^2 / (pi E* r) */
+    assert_close(im_influence_square(0, 0, 2.0, 3.0), 4 * 2.0 * asinh(1.0) / (M_PI * 3.0), 1e-15);
+    double far = im_influence_square(300, 400, 1.0, 1.0);
+    assert_close(far / (1.0 / (M_PI * 500)), 1, 1e-6);
+    /* a neighbour, against midpoint quadrature of the smooth integrand 1/r over the patch */
+    const int m = 1000;
+    double sum = 0;
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+            /* the point (1, 0) minus a point of the unit patch centred at the origin */
+            double x = 1 - (-0.5 + (i + 0.5) / m), y = -(-0.5 + (j + 0.5) / m);
+            sum += 1 / hypot(x, y) / ((double)m * m);
+        }
+    assert_close(im_influence_square(1, 0, 1, 1) * M_PI, sum, 1e-6);
+}
+
+static void test_convolution_is_linear_not_periodic(void **state)
+{
+    (void)state;
+    const int nx = 13, ny = 9;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(nx, ny, 0.5, NULL, &plan), IM_OK);
+    double p[13 * 9], u[13 * 9];
+    for (int i = 0; i < nx * ny; ++i)
+        p[i] = (double)((i * 7919) % 17) / 17.0;
+    im_solver_convolve(plan, p, u);
+    double worst = 0;
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix) {
+            double direct = 0;
+            for (int jy = 0; jy < ny; ++jy)
+                for (int jx = 0; jx < nx; ++jx)
+                    direct += p[jy * nx + jx] * im_influence_square((ix - jx) * 0.5, (iy - jy) * 0.5, 0.5, 1.0);
+            worst = fmax(worst, fabs(u[iy * nx + ix] - direct) / direct);
+        }
+    if (worst > 1e-12)
+        fail_msg("FFT convolution differs from direct summation by %g (relative)", worst);
+    im_solver_plan_free(plan);
+}
+
+/* ---- closed forms ---- */
+
+static void test_cone_love(void **state)
+{
+    (void)state;
+    im_field *s = smooth_surface(256);
+    im_indenter cone = im_indenter_cone(80);
+    im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 16, NULL);
+    int checked_area = 0;
+    for (int k = 1; k <= 10; ++k) {
+        double w = 1.6 * k;
+        im_step_result r = step(run, w);
+        double love = im_indenter_load(&cone, 1.0, w);
+        if (r.contact_patches > 1000) {
+            if (fabs(r.load / love - 1) > 0.005)
+                fail_msg("w = %g: N = %g, Love %g (%.3f%%)", w, r.load, love, 100 * (r.load / love - 1));
+            /* n_p delta^2 against A_cone: the discrete contact extends ~0.1 delta beyond a (patches
+             * straddling the edge carry force), i.e. +0.3 to +0.9% for 1000 < n_p < 8000 on this
+             * grid; below 0.5% from n_p ~ 8000 (see README). */
+            double limit = r.contact_patches > 8000 ? 0.005 : 0.01;
+            if (fabs(r.area_ratio - 1) > limit)
+                fail_msg("w = %g: n_p = %ld, area ratio %g beyond %g", w, r.contact_patches, r.area_ratio, limit);
+            assert_close(r.load_star / r.contact_patches, 1, limit);
+            checked_area += r.contact_patches > 8000;
+        }
+        assert_true(r.residual <= 1e-8);
+    }
+    assert_true(checked_area >= 2);
+    /* pressure profile of the last step against p_m acosh(a / r), away from apex and edge */
+    im_field *force = NULL;
+    assert_int_equal(im_indentation_fields(run, &force, NULL, NULL), IM_OK);
+    double a = im_indenter_contact_radius(&cone, 16), ax, ay, worst = 0;
+    im_indenter_axis(&cone, 256, 256, 1.0, &ax, &ay);
+    for (int iy = 0; iy < 256; ++iy)
+        for (int ix = 0; ix < 256; ++ix) {
+            double r = hypot(ix + 0.5 - ax, iy + 0.5 - ay);
+            if (r < 0.2 * a || r > 0.8 * a)
+                continue;
+            double exact = im_indenter_pressure(&cone, 1.0, 16, r);
+            worst = fmax(worst, fabs(force->data[iy * 256 + ix] - exact) / exact);
+        }
+    if (worst > 1e-3) /* measured: 5e-5 at a = 58 */
+        fail_msg("cone pressure differs from p_m acosh(a/r) by %g (relative) for 0.2a < r < 0.8a", worst);
+    im_field_free(force);
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
+static void test_sphere_hertz(void **state)
+{
+    (void)state;
+    im_field *s = smooth_surface(128);
+    im_indenter sphere = im_indenter_sphere(1000);
+    const double w = 1.2; /* a = sqrt(R w) ~ 34.6 */
+    im_indentation *run = prepare(s, &sphere, IM_CONTROL_DISPLACEMENT, w, NULL);
+    im_step_result r = step(run, w);
+    double n = im_indenter_load(&sphere, 1, w), a = im_indenter_contact_radius(&sphere, w);
+    double p0 = im_indenter_pressure(&sphere, 1, w, 0);
+    /* measured: load 5e-5, radius 3e-3 (lattice count), peak 5e-5 */
+    if (fabs(r.load / n - 1) > 1e-3)
+        fail_msg("Hertz load: %g vs %g", r.load, n);
+    if (fabs(sqrt(r.contact_patches / M_PI) / a - 1) > 0.01)
+        fail_msg("Hertz radius: sqrt(n_p / pi) = %g vs a = %g", sqrt(r.contact_patches / M_PI), a);
+    if (fabs(r.max_pressure / p0 - 1) > 1e-3)
+        fail_msg("Hertz peak pressure: %g vs p0 = %g", r.max_pressure, p0);
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
+static void test_flat_punch(void **state)
+{
+    (void)state;
+    im_field *s = smooth_surface(96);
+    im_indenter flat = im_indenter_flat(20);
+    const double w = 0.5;
+    im_indentation *run = prepare(s, &flat, IM_CONTROL_DISPLACEMENT, w, NULL);
+    im_step_result r = step(run, w);
+    /* the face is the patches whose centres lie within a: compare with the disc of equal area */
+    double a_eq = sqrt(r.contact_patches / M_PI);
+    double n = 2 * a_eq * w;
+    if (fabs(r.load / n - 1) > 0.01) /* measured: -0.5%, the staircase edge of the discrete face */
+        fail_msg("flat punch: N = %g vs 2 a E* w = %g (n_p = %ld, a_eq = %g)", r.load, n, r.contact_patches, a_eq);
+    im_field *force = NULL;
+    assert_int_equal(im_indentation_fields(run, &force, NULL, NULL), IM_OK);
+    double ax, ay, worst = 0;
+    im_indenter_axis(&flat, 96, 96, 1.0, &ax, &ay);
+    for (int i = 0; i < 96 * 96; ++i) {
+        double rr = hypot(i % 96 + 0.5 - ax, i / 96 + 0.5 - ay);
+        if (rr > 0.6 * a_eq)
+            continue;
+        double exact = r.load / (2 * M_PI * a_eq * sqrt(a_eq * a_eq - rr * rr));
+        worst = fmax(worst, fabs(force->data[i] - exact) / exact);
+    }
+    if (worst > 0.02) /* measured: 1.5% */
+        fail_msg("flat punch pressure differs from N / (2 pi a sqrt(a^2 - r^2)) by %g for r < 0.6 a", worst);
+    im_field_free(force);
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
+/* ---- consistency ---- */
+
+static void assert_complementarity(const im_indentation *run, double w)
+{
+    im_field *f = NULL, *g = NULL;
+    assert_int_equal(im_indentation_fields(run, &f, &g, NULL), IM_OK);
+    double load = 0, work = 0, worst_gap = 0;
+    for (size_t i = 0; i < im_field_count(f); ++i) {
+        assert_true(f->data[i] >= 0);
+        load += f->data[i];
+        work += f->data[i] * fabs(g->data[i]);
+        worst_gap = fmin(worst_gap, g->data[i]);
+    }
+    if (-worst_gap > 1e-7 * w)
+        fail_msg("gap %g < 0 beyond the tolerance at w = %g", worst_gap, w);
+    if (work / (load * w) > 1e-7)
+        fail_msg("force x gap = %g relative to N w", work / (load * w));
+    im_field_free(f);
+    im_field_free(g);
+}
+
+static void test_load_matches_displacement_control(void **state)
+{
+    (void)state;
+    im_field *s = rough_surface(128, 0.08, 3);
+    im_indenter cone = im_indenter_cone(80);
+    im_indentation *d = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 8, NULL);
+    step(d, 4);
+    im_step_result rd = step(d, 8);
+    assert_complementarity(d, 8);
+    im_indentation *l = prepare(s, &cone, IM_CONTROL_LOAD, rd.load, NULL);
+    step(l, 0.5 * rd.load);
+    im_step_result rl = step(l, rd.load);
+    assert_complementarity(l, rl.approach);
+    assert_close(rl.load, rd.load, 1e-10 * rd.load);
+    assert_close(rl.approach, 8, 1e-6 * 8);
+    assert_int_equal(rl.contact_patches, rd.contact_patches);
+    im_indentation_free(d);
+    im_indentation_free(l);
+    im_field_free(s);
+}
+
+static im_step_result run_with_threads(const im_field *s, int threads, int crop, im_field **force,
+                                       im_window *window)
+{
+    int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    im_indenter cone = im_indenter_cone(80);
+    im_solver_options o = im_solver_options_default();
+    o.crop = crop;
+    im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 10, &o);
+    step(run, 5);
+    im_step_result r = step(run, 10);
+    assert_int_equal(im_indentation_fields(run, force, NULL, NULL), IM_OK);
+    *window = im_indentation_window(run);
+    im_indentation_free(run);
+    omp_set_num_threads(saved);
+    return r;
+}
+
+static void assert_same_solution(im_step_result a, const im_field *fa, im_step_result b, const im_field *fb)
+{
+    assert_close(a.load, b.load, 1e-7 * a.load);
+    double peak = 0, worst = 0;
+    long differing = 0;
+    for (size_t i = 0; i < im_field_count(fa); ++i) {
+        peak = fmax(peak, fa->data[i]);
+        worst = fmax(worst, fabs(fa->data[i] - fb->data[i]));
+        differing += (fa->data[i] > 0) != (fb->data[i] > 0);
+    }
+    if (worst > 1e-6 * peak)
+        fail_msg("forces differ by %g (peak %g)", worst, peak);
+    if (differing > 0) /* only patches whose force is at round-off level could flip */
+        fail_msg("%ld patches in contact in one solution only (n_p %ld vs %ld)", differing,
+                 a.contact_patches, b.contact_patches);
+}
+
+static void test_thread_count_independence(void **state)
+{
+    (void)state;
+    im_field *s = rough_surface(128, 0.08, 5), *f1 = NULL, *f2 = NULL;
+    im_window w1, w2;
+    im_step_result one = run_with_threads(s, 1, 1, &f1, &w1), two = run_with_threads(s, 2, 1, &f2, &w2);
+    assert_same_solution(one, f1, two, f2);
+    im_field_free(f1);
+    im_field_free(f2);
+    im_field_free(s);
+}
+
+static void test_cropped_window_equals_full_grid(void **state)
+{
+    (void)state;
+    im_field *s = rough_surface(160, 0.08, 7), *fc = NULL, *ff = NULL;
+    im_window wc, wf;
+    im_step_result cropped = run_with_threads(s, omp_get_max_threads(), 1, &fc, &wc);
+    im_step_result full = run_with_threads(s, omp_get_max_threads(), 0, &ff, &wf);
+    assert_true(wc.nx < s->nx && wc.ny < s->ny);
+    assert_true(wf.nx == s->nx && wf.ny == s->ny && wf.x0 == 0 && wf.y0 == 0);
+    assert_same_solution(cropped, fc, full, ff);
+    im_field_free(fc);
+    im_field_free(ff);
+    im_field_free(s);
+}
+
+/* ---- refusals, with nothing computed lost ---- */
+
+static void test_edge_contact(void **state)
+{
+    (void)state;
+    im_field *s = smooth_surface(48);
+    im_indenter cone = im_indenter_cone(80);
+    im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 8, NULL);
+    im_step_result first = step(run, 2), r;
+    assert_true(first.contact_patches > 0);
+    assert_int_equal(im_indentation_step(run, 8, &r), IM_EEDGE); /* a(8) = 29 > 24 */
+    assert_non_null(strstr(im_last_error(), "edge"));
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
+static void test_no_convergence(void **state)
+{
+    (void)state;
+    im_field *s = rough_surface(64, 0.08, 2);
+    im_indenter cone = im_indenter_cone(80);
+    im_solver_options o = im_solver_options_default();
+    o.max_iterations = 3;
+    o.tol = 1e-14;
+    im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 4, &o);
+    im_step_result r;
+    assert_int_equal(im_indentation_step(run, 4, &r), IM_ENOCONV);
+    assert_int_equal(r.iterations, 3);
+    assert_true(r.residual > 1e-14);
+    assert_non_null(strstr(im_last_error(), "cap"));
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    im_field *s = smooth_surface(32);
+    im_indenter cone = im_indenter_cone(80), bad = im_indenter_cone(90);
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(s, &bad, IM_CONTROL_DISPLACEMENT, 1, NULL, &run), IM_EINVAL);
+    s->data[17] = NAN;
+    assert_int_equal(im_indentation_create(s, &cone, IM_CONTROL_DISPLACEMENT, 1, NULL, &run), IM_ENUMERIC);
+    s->data[17] = INFINITY;
+    assert_int_equal(im_indentation_create(s, &cone, IM_CONTROL_DISPLACEMENT, 1, NULL, &run), IM_ENUMERIC);
+    s->data[17] = 0;
+    assert_int_equal(im_indentation_create(s, &cone, IM_CONTROL_DISPLACEMENT, NAN, NULL, &run), IM_EINVAL);
+    assert_null(run);
+    run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 1, NULL);
+    im_step_result r;
+    assert_int_equal(im_indentation_step(run, 2, &r), IM_EINVAL); /* beyond the prepared window */
+    assert_int_equal(im_indentation_step(run, -1, &r), IM_EINVAL);
+    im_step_result zero = step(run, 0);
+    assert_int_equal(zero.contact_patches, 0);
+    assert_close(zero.load, 0, 0);
+    im_indentation_free(run);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 0;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(8, 8, 1, &o, &plan), IM_EINVAL);
+    assert_null(plan);
+    im_field_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_influence_kernel),
+        cmocka_unit_test(test_convolution_is_linear_not_periodic),
+        cmocka_unit_test(test_cone_love),
+        cmocka_unit_test(test_sphere_hertz),
+        cmocka_unit_test(test_flat_punch),
+        cmocka_unit_test(test_load_matches_displacement_control),
+        cmocka_unit_test(test_thread_count_independence),
+        cmocka_unit_test(test_cropped_window_equals_full_grid),
+        cmocka_unit_test(test_edge_contact),
+        cmocka_unit_test(test_no_convergence),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
