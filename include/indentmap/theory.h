@@ -108,17 +108,20 @@ int im_theory_cone_area_small_rho(const im_theory_interface *rough, double load,
 /* Eq. (6), constant density: erf(beta), beta >= 0 (+INFINITY gives 1). */
 int im_theory_cone_area_ratio_constant(double beta, double *ratio);
 
-/* Eq. (12), variable density, integrated in s = r / a as written: adaptive Gauss-Kronrod with
- * Wynn extrapolation (GSL qags), which copes with the integrand's endpoint singularities (the
- * logarithm of acosh(1/s) at s = 0, the square root acosh(1/s) ~ sqrt(2 (1 - s)) at s = 1).
- * For beta > 1 it integrates the complement 2 int s erfc(...) ds, which vanishes (erfc < 1e-318)
- * where beta acosh(1/s) > 27, so that the rim's boundary layer is never missed. Relative
- * accuracy about 1e-12. beta = 0 gives 0 exactly, +INFINITY gives 1; beta >= 0. */
+/* Eq. (12), variable density, integrated in the radius as written (in t = 1 - r/a, so that the
+ * rim lies where doubles are dense): adaptive Gauss-Kronrod with Wynn extrapolation (GSL qags),
+ * which copes with the integrand's endpoint singularities (the square root acosh(1/s) ~ sqrt(2 t)
+ * at the rim, the logarithm of acosh(1/s) at the apex). For beta > 1 it integrates the complement
+ * 2 int s erfc(...) ds instead, only where beta acosh(1/s) < 27 (beyond, erfc < 1e-318), so that
+ * the narrow rim of partial contact is never missed. Relative accuracy about 1e-12. beta = 0
+ * gives 0 exactly; from beta = 1e8 on (and for +INFINITY) the ratio is 1 exactly, because
+ * 1 - ratio <= 1 / (2 beta^2) rounds away. beta >= 0. */
 int im_theory_cone_area_ratio_variable(double beta, double *ratio);
 
 /* The same ratio by Greenwood's quadrature (the Appendix), an independent route to eq. (12):
  * 2 int_0^inf sinh(q) / cosh^3(q) erf(beta q) dq, which is eq. (19), int f_P(p) erf(p / p_n) dp,
- * with the cone's pressure distribution F_P = tanh^2(p / p_m,c). The integrand is smooth. */
+ * with the cone's pressure distribution F_P = tanh^2(p / p_m,c). The integrand is smooth; the same
+ * complement for beta > 1 and the same ends as eq. (12) above. */
 int im_theory_cone_area_ratio_greenwood(double beta, double *ratio);
 
 /* Eq. (11) divided by p_m,c: p(r) / p_m,c = acosh(a / r) for 0 <= r/a <= 1 (+INFINITY at the apex,

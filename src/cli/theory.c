@@ -1,0 +1,326 @@
+/* indentmap theory: the paper's contact-area theory for a cone, as a table or CSV. */
+#include "cli/cli.h"
+
+#include "indentmap/status.h"
+#include "indentmap/theory.h"
+
+#include <float.h>
+#include <math.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Longest --slope list and --rho sweep accepted. */
+enum { MAX_VALUES = 100000 };
+/* Points of the --gamma grid r/a = 0, 0.01, ..., 1. */
+enum { GAMMA_POINTS = 101 };
+/* Width of a column in the aligned (non-CSV) format. */
+enum { COLUMN_WIDTH = 16 };
+
+static void usage(FILE *stream)
+{
+    fprintf(stream,
+            "usage: indentmap theory --alpha DEG --slope S1,S2,... [OPTIONS]\n"
+            "       indentmap theory --rho MIN:MAX:N [OPTIONS]\n\n"
+            "The contact area of a rough elastic half-space under a cone (the paper's section 2.1):\n"
+            "rho_c = k cot(alpha) / (2 h'rms) (eq. 7), the constant-density ratio A/A_cone of eq. (6)\n"
+            "and the variable-density ratio of eq. (12), or with --gamma the local contact density\n"
+            "gamma(r/a) of eqs. (10)-(11) on r/a = 0, 0.01, ..., 1 (one column per slope or rho_c).\n\n"
+            "  --alpha DEG            cone semi-opening angle in degrees, 0 < DEG < 90 (the paper: 80)\n"
+            "  --slope LIST           comma-separated h'rms values >= 0 (0: smooth, rho_c = inf)\n"
+            "  --rho MIN:MAX:N        N values of rho_c, log-spaced from MIN to MAX (0 < MIN <= MAX)\n"
+            "  --gamma                print gamma(r/a) instead of the area ratios\n"
+            "  --format table|csv     aligned table (default) or CSV; CSV columns are\n"
+            "                         slope,rho_c,area_ratio_eq6,area_ratio_eq12 (no slope with --rho)\n"
+            "  --normalisation pr|mg  the erf law's pressure: pr (default) p_PR = 2 p_rough / sqrt(pi),\n"
+            "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
+            "                         used in eqs. (6), (10) and (12) alike\n"
+            "  --k K                  p_rough = h'rms E* / K, eq. (2) (default 2)\n");
+}
+
+typedef struct theory_options {
+    double alpha;
+    int alpha_given;
+    const char *slope_list, *rho_sweep;
+    int gamma, csv;
+    double k;
+    im_theory_normalisation normalisation;
+} theory_options;
+
+/* The columns' inputs: slopes (with alpha) or rho_c values, and the erf scale of each. */
+typedef struct theory_columns {
+    int count, by_slope;
+    double *slope, *rho_c, *beta;
+} theory_columns;
+
+enum { OPT_ALPHA = 256, OPT_SLOPE, OPT_RHO, OPT_GAMMA, OPT_FORMAT, OPT_NORMALISATION, OPT_K, OPT_HELP };
+
+static const struct option LONG_OPTIONS[] = {
+    {"alpha", required_argument, 0, OPT_ALPHA}, {"slope", required_argument, 0, OPT_SLOPE},
+    {"rho", required_argument, 0, OPT_RHO}, {"gamma", no_argument, 0, OPT_GAMMA},
+    {"format", required_argument, 0, OPT_FORMAT}, {"normalisation", required_argument, 0, OPT_NORMALISATION},
+    {"k", required_argument, 0, OPT_K}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+
+static int parse_choice(const char *option, const char *text, const char *first, const char *second, int *out)
+{
+    if (strcmp(text, first) == 0 || strcmp(text, second) == 0) {
+        *out = strcmp(text, second) == 0;
+        return 0;
+    }
+    fprintf(stderr, "indentmap: %s: '%s': expected '%s' or '%s'\n", option, text, first, second);
+    return -1;
+}
+
+static int apply_option(int code, const char *arg, theory_options *o)
+{
+    int choice;
+    switch (code) {
+    case OPT_ALPHA:
+        o->alpha_given = 1;
+        if (cli_parse_double("--alpha", arg, 0.0, 90.0, &o->alpha) != 0)
+            return -1;
+        if (o->alpha == 0.0 || o->alpha == 90.0) {
+            fprintf(stderr, "indentmap: --alpha = %g: expected 0 < alpha < 90 degrees\n", o->alpha);
+            return -1;
+        }
+        return 0;
+    case OPT_SLOPE: o->slope_list = arg; return 0;
+    case OPT_RHO: o->rho_sweep = arg; return 0;
+    case OPT_GAMMA: o->gamma = 1; return 0;
+    case OPT_FORMAT: return parse_choice("--format", arg, "table", "csv", &o->csv);
+    case OPT_NORMALISATION:
+        if (parse_choice("--normalisation", arg, "pr", "mg", &choice) != 0)
+            return -1;
+        o->normalisation = choice ? IM_THEORY_NORMALISATION_MG : IM_THEORY_NORMALISATION_PR;
+        return 0;
+    case OPT_K: return cli_parse_double("--k", arg, DBL_MIN, DBL_MAX, &o->k);
+    default: return -1;
+    }
+}
+
+/* 1 after --help, 0 when the options are complete and consistent, -1 after printing an error. */
+static int parse_options(int argc, char **argv, theory_options *o)
+{
+    int code;
+    optind = 1;
+    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
+        if (code == OPT_HELP || code == 'h') {
+            usage(stdout);
+            return 1;
+        }
+        if (code == '?' || apply_option(code, optarg, o) != 0)
+            return -1;
+    }
+    const char *problem = NULL;
+    if (optind < argc)
+        fprintf(stderr, "indentmap: theory: unexpected argument '%s'\n", argv[optind]);
+    else if (!o->slope_list == !o->rho_sweep)
+        problem = "give either --slope (with --alpha) or --rho";
+    else if (o->slope_list && !o->alpha_given)
+        problem = "--slope needs --alpha";
+    else if (o->rho_sweep && o->alpha_given)
+        problem = "--alpha has no effect with --rho (rho_c already includes the cone)";
+    else
+        return 0;
+    if (problem)
+        fprintf(stderr, "indentmap: theory: %s\n", problem);
+    return -1;
+}
+
+static void columns_free(theory_columns *c)
+{
+    free(c->slope);
+    free(c->rho_c);
+    free(c->beta);
+}
+
+static int columns_alloc(theory_columns *c, int count)
+{
+    c->count = count;
+    c->slope = calloc((size_t)count, sizeof *c->slope);
+    c->rho_c = calloc((size_t)count, sizeof *c->rho_c);
+    c->beta = calloc((size_t)count, sizeof *c->beta);
+    if (c->slope && c->rho_c && c->beta)
+        return 0;
+    fprintf(stderr, "indentmap: theory: out of memory for %d values\n", count);
+    return -1;
+}
+
+/* "S1,S2,...": each a finite h'rms >= 0. */
+static int parse_slopes(const char *list, theory_columns *c)
+{
+    int count = 1;
+    for (const char *p = list; *p; ++p)
+        count += *p == ',';
+    if (count > MAX_VALUES) {
+        fprintf(stderr, "indentmap: --slope: %d values: expected at most %d\n", count, MAX_VALUES);
+        return -1;
+    }
+    if (columns_alloc(c, count) != 0)
+        return -1;
+    c->by_slope = 1;
+    const char *item = list;
+    for (int i = 0; i < count; ++i) {
+        size_t length = strcspn(item, ",");
+        char text[64];
+        if (length >= sizeof text) {
+            fprintf(stderr, "indentmap: --slope: '%.*s...' is too long for a number\n", 20, item);
+            return -1;
+        }
+        memcpy(text, item, length);
+        text[length] = '\0';
+        if (cli_parse_double("--slope", text, 0.0, DBL_MAX, &c->slope[i]) != 0)
+            return -1;
+        item += length + 1;
+    }
+    return 0;
+}
+
+/* "MIN:MAX:N": N log-spaced values of rho_c from MIN to MAX. */
+static int parse_rho_sweep(const char *sweep, theory_columns *c)
+{
+    char text[128];
+    if (strlen(sweep) >= sizeof text) {
+        fprintf(stderr, "indentmap: --rho: '%.20s...' is too long: expected MIN:MAX:N\n", sweep);
+        return -1;
+    }
+    strcpy(text, sweep);
+    char *first_colon = strchr(text, ':'), *second_colon = first_colon ? strchr(first_colon + 1, ':') : NULL;
+    if (!second_colon || strchr(second_colon + 1, ':')) {
+        fprintf(stderr, "indentmap: --rho: '%s': expected MIN:MAX:N, e.g. 0.1:100:50\n", sweep);
+        return -1;
+    }
+    *first_colon = *second_colon = '\0';
+    double lo, hi;
+    int count;
+    if (cli_parse_double("--rho", text, DBL_MIN, DBL_MAX, &lo) != 0 ||
+        cli_parse_double("--rho", first_colon + 1, DBL_MIN, DBL_MAX, &hi) != 0 ||
+        cli_parse_int("--rho", second_colon + 1, 1, MAX_VALUES, &count) != 0)
+        return -1;
+    if (hi < lo || (count == 1 && hi != lo)) {
+        fprintf(stderr, "indentmap: --rho: '%s': expected MIN <= MAX, and MIN = MAX when N = 1\n", sweep);
+        return -1;
+    }
+    if (columns_alloc(c, count) != 0)
+        return -1;
+    for (int i = 0; i < count; ++i)
+        c->rho_c[i] = count == 1 ? lo : lo * pow(hi / lo, (double)i / (count - 1));
+    return 0;
+}
+
+/* rho_c (from the slopes) and the erf scale beta of every column. */
+static int columns_evaluate(const theory_options *o, theory_columns *c)
+{
+    int status = IM_OK;
+    for (int i = 0; i < c->count && status == IM_OK; ++i) {
+        if (c->by_slope) {
+            im_theory_interface rough = {c->slope[i], 1.0, o->k, o->normalisation};
+            status = im_theory_cone_rho(&rough, o->alpha, &c->rho_c[i]);
+        }
+        if (status == IM_OK)
+            status = im_theory_erf_scale(c->rho_c[i], o->normalisation, o->k, &c->beta[i]);
+    }
+    return status;
+}
+
+static void print_cell(const char *text, int first, int csv)
+{
+    if (csv)
+        printf("%s%s", first ? "" : ",", text);
+    else
+        printf("%s%*s", first ? "" : " ", COLUMN_WIDTH, text);
+}
+
+static void print_number(double value, const char *table_format, int first, int csv)
+{
+    char text[64];
+    snprintf(text, sizeof text, csv ? "%.12g" : table_format, value);
+    print_cell(text, first, csv);
+}
+
+static void print_settings(const theory_options *o)
+{
+    if (o->csv)
+        return;
+    if (o->slope_list)
+        printf("# alpha = %g degrees, ", o->alpha);
+    else
+        printf("# ");
+    printf("k = %g, normalisation %s\n", o->k,
+           o->normalisation == IM_THEORY_NORMALISATION_PR ? "pr (p_PR = 2 p_rough / sqrt(pi))"
+                                                          : "mg (p_MG = E* h'rms / sqrt(2))");
+}
+
+static int print_area_ratios(const theory_options *o, const theory_columns *c)
+{
+    if (c->by_slope)
+        print_cell("slope", 1, o->csv);
+    print_cell("rho_c", !c->by_slope, o->csv);
+    print_cell("area_ratio_eq6", 0, o->csv);
+    print_cell("area_ratio_eq12", 0, o->csv);
+    printf("\n");
+    for (int i = 0; i < c->count; ++i) {
+        double constant, variable;
+        int status = im_theory_cone_area_ratio_constant(c->beta[i], &constant);
+        if (status == IM_OK)
+            status = im_theory_cone_area_ratio_variable(c->beta[i], &variable);
+        if (status != IM_OK)
+            return status;
+        if (c->by_slope)
+            print_number(c->slope[i], "%g", 1, o->csv);
+        print_number(c->rho_c[i], "%.6g", !c->by_slope, o->csv);
+        print_number(constant, "%.6f", 0, o->csv);
+        print_number(variable, "%.6f", 0, o->csv);
+        printf("\n");
+    }
+    return IM_OK;
+}
+
+static int print_contact_density(const theory_options *o, const theory_columns *c)
+{
+    print_cell("r_over_a", 1, o->csv);
+    for (int i = 0; i < c->count; ++i) {
+        char label[64];
+        if (c->by_slope)
+            snprintf(label, sizeof label, "gamma_slope_%g", c->slope[i]);
+        else
+            snprintf(label, sizeof label, "gamma_rho_c_%g", c->rho_c[i]);
+        print_cell(label, 0, o->csv);
+    }
+    printf("\n");
+    for (int j = 0; j < GAMMA_POINTS; ++j) {
+        double r_over_a = (double)j / (GAMMA_POINTS - 1);
+        print_number(r_over_a, "%.2f", 1, o->csv);
+        for (int i = 0; i < c->count; ++i) {
+            double gamma;
+            int status = im_theory_cone_contact_density(c->beta[i], r_over_a, &gamma);
+            if (status != IM_OK)
+                return status;
+            print_number(gamma, "%.6f", 0, o->csv);
+        }
+        printf("\n");
+    }
+    return IM_OK;
+}
+
+int cli_theory(int argc, char **argv)
+{
+    theory_options o = {.k = IM_THEORY_K_DEFAULT, .normalisation = IM_THEORY_NORMALISATION_PR};
+    int parsed = parse_options(argc, argv, &o);
+    if (parsed != 0)
+        return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    theory_columns columns = {0};
+    int parsed_values = o.slope_list ? parse_slopes(o.slope_list, &columns) : parse_rho_sweep(o.rho_sweep, &columns);
+    if (parsed_values != 0) {
+        columns_free(&columns);
+        return CLI_EXIT_USAGE;
+    }
+    int status = columns_evaluate(&o, &columns);
+    if (status == IM_OK) {
+        print_settings(&o);
+        status = o.gamma ? print_contact_density(&o, &columns) : print_area_ratios(&o, &columns);
+    }
+    columns_free(&columns);
+    return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
+}
