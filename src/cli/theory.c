@@ -4,7 +4,6 @@
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 
-#include <float.h>
 #include <math.h>
 #include <getopt.h>
 #include <stdio.h>
@@ -36,7 +35,7 @@ static void usage(FILE *stream)
             "  --normalisation pr|mg  the erf law's pressure: pr (default) p_PR = 2 p_rough / sqrt(pi),\n"
             "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
             "                         used in eqs. (6), (10) and (12) alike\n"
-            "  --k K                  p_rough = h'rms E* / K, eq. (2) (default 2)\n");
+            "  --k K                  p_rough = h'rms E* / K, eq. (2), 1e-6 <= K <= 1e6 (default 2)\n");
 }
 
 typedef struct theory_options {
@@ -94,7 +93,7 @@ static int apply_option(int code, const char *arg, theory_options *o)
             return -1;
         o->normalisation = choice ? IM_THEORY_NORMALISATION_MG : IM_THEORY_NORMALISATION_PR;
         return 0;
-    case OPT_K: return cli_parse_double("--k", arg, DBL_MIN, DBL_MAX, &o->k);
+    case OPT_K: return cli_parse_double("--k", arg, 1e-6, 1e6, &o->k);
     default: return -1;
     }
 }
@@ -170,7 +169,7 @@ static int parse_slopes(const char *list, theory_columns *c)
         }
         memcpy(text, item, length);
         text[length] = '\0';
-        if (cli_parse_double("--slope", text, 0.0, DBL_MAX, &c->slope[i]) != 0)
+        if (cli_parse_double("--slope", text, 0.0, 1e6, &c->slope[i]) != 0)
             return -1;
         item += length + 1;
     }
@@ -194,8 +193,8 @@ static int parse_rho_sweep(const char *sweep, theory_columns *c)
     *first_colon = *second_colon = '\0';
     double lo, hi;
     int count;
-    if (cli_parse_double("--rho", text, DBL_MIN, DBL_MAX, &lo) != 0 ||
-        cli_parse_double("--rho", first_colon + 1, DBL_MIN, DBL_MAX, &hi) != 0 ||
+    if (cli_parse_double("--rho", text, 1e-300, 1e300, &lo) != 0 ||
+        cli_parse_double("--rho", first_colon + 1, 1e-300, 1e300, &hi) != 0 ||
         cli_parse_int("--rho", second_colon + 1, 1, MAX_VALUES, &count) != 0)
         return -1;
     if (hi < lo || (count == 1 && hi != lo)) {
