@@ -7,6 +7,7 @@
 /* Subcommands: argv[0] is the subcommand's name. Return the process exit status. */
 int cli_surface(int argc, char **argv);
 int cli_info(int argc, char **argv);
+int cli_render(int argc, char **argv);
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 

@@ -14,6 +14,7 @@ static const subcommand SUBCOMMANDS[] = {
     {"surface", cli_surface, "generate a self-affine rough surface, or measure one (--stats FILE)"},
     {"theory", cli_theory, "the paper's contact-area theory for a cone: eqs. (6), (7), (12) and gamma(r)"},
     {"indent", cli_indent, "indent a surface with a cone, sphere or flat punch: history.csv, run.json, fields"},
+    {"render", cli_render, "draw a force or height field file as a figure (PNG, PDF, SVG) or animation"},
     {"info", cli_info, "print the version, FFTW version and OpenMP thread count"},
 };
 static const int SUBCOMMAND_COUNT = (int)(sizeof SUBCOMMANDS / sizeof SUBCOMMANDS[0]);

@@ -1,0 +1,89 @@
+/* indentmap/figure.h: publication figures around rendered images (render.h): panel grids with
+ * panel labels and titles, one shared colour bar with ticks and the quantity's name, a scale bar,
+ * and output as PNG (with the run's parameters in tEXt chunks and the resolution in pHYs), PDF or
+ * SVG; frames of an indentation run and animations (GIF, MP4).
+ *
+ * GL draws the data, cairo the annotations. Text uses FreeType on the DejaVu Sans files
+ * (IM_FIGURE_FONT, IM_FIGURE_FONT_BOLD) loaded directly, so output does not depend on fontconfig.
+ * Every file is written atomically (io.h): an unwritable path gives IM_EIO and leaves nothing.
+ *
+ * Sizes: the layout is made in pixels at `dpi`; each data image is placed at its own pixel size
+ * (one image pixel = one figure pixel, at integer offsets, so patches stay crisp). PDF and SVG use
+ * the same layout scaled by 72 / dpi points per pixel, with the data images embedded as rasters
+ * drawn without interpolation. Text sizes are in points.
+ */
+#ifndef INDENTMAP_FIGURE_H
+#define INDENTMAP_FIGURE_H
+
+#include "indentmap/colormap.h"
+#include "indentmap/io.h"
+#include "indentmap/render.h"
+
+#define IM_FIGURE_FONT "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
+#define IM_FIGURE_FONT_BOLD "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
+
+typedef struct im_figure_panel {
+    const im_image *image;  /* the data, from im_render_*; required */
+    const char *label;      /* "(a)", bold, above the panel's left edge; NULL: none */
+    const char *title;      /* above the panel, centred (UTF-8); NULL: none */
+} im_figure_panel;
+
+typedef struct im_figure {
+    int rows, columns;               /* the panel grid, >= 1 each */
+    const im_figure_panel *panels;   /* rows * columns panels, row by row from the top */
+    const im_colormap *colormap;     /* norm of the one shared colour bar; NULL: no colour bar */
+    const char *colorbar_label;      /* the quantity, e.g. "local force f / (E* δ²)" */
+    double scale_bar;                /* length in the images' units (delta, or their unit);
+                                        0: automatic (a 1-2-5 length near a fifth of a panel);
+                                        < 0: none */
+    double dpi;                      /* pixels per inch of the PNG, (0, 2400] */
+    double font_size;                /* points, (0, 72] */
+    const im_png_text *texts;        /* run parameters: PNG tEXt chunks, PDF keywords */
+    int text_count;
+    int png_compression;             /* zlib level 0-9 for PNG output */
+} im_figure;
+
+/* One panel, no colour bar, automatic scale bar, 300 dpi, 8 pt text, PNG compression
+ * IM_FIGURE_PNG_COMPRESSION (chosen from bench/bench_render.c). */
+im_figure im_figure_default(void);
+#define IM_FIGURE_PNG_COMPRESSION 6
+
+/* Output format from the path's extension. */
+typedef enum im_figure_format { IM_FIGURE_PNG, IM_FIGURE_PDF, IM_FIGURE_SVG } im_figure_format;
+/* IM_EINVAL naming the supported extensions (.png, .pdf, .svg) otherwise. */
+int im_figure_format_of(const char *path, im_figure_format *format);
+
+/* Lays out and writes the figure. IM_EINVAL for a bad spec (grid, missing image, dpi, font
+ * size, unknown extension, colour norm), IM_EUNSUPPORTED if the font files cannot be loaded,
+ * IM_EIO if the file cannot be written (nothing is left behind), IM_ENOMEM. */
+int im_figure_write(const im_figure *figure, const char *path);
+
+/* The nice tick values of a colour bar on [lo, hi] (linear: 1-2-5 steps, about 5 ticks; log: the
+ * decades inside, or 1-2-5 multiples when fewer than two decades fit). Writes at most capacity
+ * values in increasing order; returns how many. Exposed for tests. */
+int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity);
+
+/* ---- frames and animations ---- */
+
+/* "DIRECTORY/PREFIX_NNNN.png" (4 digits, more when index >= 10000) into buffer; IM_EINVAL when it
+ * does not fit or index < 0. */
+int im_frame_path(char *buffer, size_t size, const char *directory, const char *prefix, int index);
+
+/* Writes frames[0..count) as an animated GIF (giflib, looping), seconds_per_frame apart. No
+ * quantisation: each frame carries a local colour table of exactly the colours it uses, so a frame
+ * with more than 256 distinct colours is refused (IM_EINVAL naming the frame and the count):
+ * give the GIF raw data images (im_render_*), whose colours are the colour map's table, the
+ * background, under/over/bad and the line colours (an anti-aliased circle adds its blends).
+ * Frames must share one size. */
+int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path);
+
+/* Whether the ffmpeg command is on PATH (as `command -v ffmpeg`). */
+int im_ffmpeg_available(void);
+
+/* Encodes DIRECTORY/PREFIX_%04d.png (frames 0..) into an H.264 MP4 with the ffmpeg command at
+ * frames_per_second, written atomically. IM_EUNSUPPORTED with "ffmpeg not found" when it is not
+ * installed (the frames stay where they are); IM_EIO when ffmpeg fails. */
+int im_animation_mp4(const char *directory, const char *prefix, double frames_per_second,
+                     const char *path);
+
+#endif

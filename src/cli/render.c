@@ -1,0 +1,274 @@
+/* indentmap render: draw a field file as a contact map or a height field, or animate frames. */
+#include "cli/cli.h"
+
+#include "indentmap/colormap.h"
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/render.h"
+#include "indentmap/status.h"
+
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *stream)
+{
+    fprintf(stream,
+            "usage: indentmap render contact FORCE [OPTIONS] --out FILE\n"
+            "       indentmap render height SURFACE [OPTIONS] --out FILE\n"
+            "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n\n"
+            "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
+            "contact: local compressive forces, patches with force <= 0 in a grey background\n"
+            "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
+            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg).\n"
+            "Output format from the extension: .png, .pdf or .svg.\n\n"
+            "  --out FILE          the figure (or the animation for 'animate')\n"
+            "  --raw               PNG of the data image only, without annotations\n"
+            "  --colormap NAME     viridis (default), cividis, magma, inferno or grey\n"
+            "  --vmin V, --vmax V  norm range (default: 0 .. largest force; min .. max height)\n"
+            "  --log               logarithmic norm (needs vmin > 0)\n"
+            "  --scale N           pixels per patch (default 2)\n"
+            "  --circle R          contact circle of radius R patches (contact, animate)\n"
+            "  --circle-x X, --circle-y Y   its centre in patches (default: the grid's middle)\n"
+            "  --contact FILE      outline the patches with value > 0 of FILE (height)\n"
+            "  --label TEXT        panel label, e.g. '(a)'\n"
+            "  --title TEXT        panel title\n"
+            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ')\n"
+            "  --dpi D             resolution (default 300)\n"
+            "  --fps F             animation frames per second (default 5)\n"
+            "  --frames DIR        directory for the frames of 'animate'\n"
+            "  --backend B         auto (default), egl or osmesa; IM_RENDER_BACKEND sets the default\n");
+}
+
+typedef struct render_options {
+    const char *mode, *out, *contact, *label, *title, *quantity, *frames;
+    im_colormap_id map;
+    double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
+    int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw;
+    im_render_backend backend;
+} render_options;
+
+enum { OPT_OUT = 256, OPT_RAW, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG, OPT_SCALE, OPT_CIRCLE, OPT_CX,
+       OPT_CY, OPT_CONTACT, OPT_LABEL, OPT_TITLE, OPT_QUANTITY, OPT_DPI, OPT_FPS, OPT_FRAMES,
+       OPT_BACKEND, OPT_HELP };
+
+static const struct option LONG_OPTIONS[] = {
+    {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
+    {"colormap", required_argument, 0, OPT_MAP}, {"vmin", required_argument, 0, OPT_VMIN},
+    {"vmax", required_argument, 0, OPT_VMAX}, {"log", no_argument, 0, OPT_LOG},
+    {"scale", required_argument, 0, OPT_SCALE}, {"circle", required_argument, 0, OPT_CIRCLE},
+    {"circle-x", required_argument, 0, OPT_CX}, {"circle-y", required_argument, 0, OPT_CY},
+    {"contact", required_argument, 0, OPT_CONTACT}, {"label", required_argument, 0, OPT_LABEL},
+    {"title", required_argument, 0, OPT_TITLE}, {"quantity", required_argument, 0, OPT_QUANTITY},
+    {"dpi", required_argument, 0, OPT_DPI}, {"fps", required_argument, 0, OPT_FPS},
+    {"frames", required_argument, 0, OPT_FRAMES}, {"backend", required_argument, 0, OPT_BACKEND},
+    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+
+static int named(int status, const char *option)
+{
+    if (status != IM_OK)
+        fprintf(stderr, "indentmap: %s: %s\n", option, im_last_error());
+    return status == IM_OK ? 0 : -1;
+}
+
+static int apply_option(int code, const char *arg, render_options *o)
+{
+    switch (code) {
+    case OPT_OUT: o->out = arg; return 0;
+    case OPT_RAW: o->raw = 1; return 0;
+    case OPT_MAP: return named(im_colormap_from_name(arg, &o->map), "--colormap");
+    case OPT_VMIN: o->has_vmin = 1; return cli_parse_double("--vmin", arg, -1e300, 1e300, &o->vmin);
+    case OPT_VMAX: o->has_vmax = 1; return cli_parse_double("--vmax", arg, -1e300, 1e300, &o->vmax);
+    case OPT_LOG: o->logarithmic = 1; return 0;
+    case OPT_SCALE: return cli_parse_int("--scale", arg, 1, 64, &o->scale);
+    case OPT_CIRCLE: return cli_parse_double("--circle", arg, 0.0, 1e9, &o->circle);
+    case OPT_CX: o->has_circle_x = 1; return cli_parse_double("--circle-x", arg, -1e9, 1e9, &o->circle_x);
+    case OPT_CY: o->has_circle_y = 1; return cli_parse_double("--circle-y", arg, -1e9, 1e9, &o->circle_y);
+    case OPT_CONTACT: o->contact = arg; return 0;
+    case OPT_LABEL: o->label = arg; return 0;
+    case OPT_TITLE: o->title = arg; return 0;
+    case OPT_QUANTITY: o->quantity = arg; return 0;
+    case OPT_DPI: return cli_parse_double("--dpi", arg, 1.0, 2400.0, &o->dpi);
+    case OPT_FPS: return cli_parse_double("--fps", arg, 0.01, 100.0, &o->fps);
+    case OPT_FRAMES: o->frames = arg; return 0;
+    case OPT_BACKEND: return named(im_render_backend_from_name(arg, &o->backend), "--backend");
+    default: return -1;
+    }
+}
+
+/* The norm: defaults from the style, overridden by --vmin/--vmax/--log/--colormap. */
+static void apply_norm(const render_options *o, im_colormap *c)
+{
+    double lo = o->has_vmin ? o->vmin : c->lo, hi = o->has_vmax ? o->vmax : c->hi;
+    if (o->logarithmic && !o->has_vmin && hi > 0.0)
+        lo = hi * 1e-3;
+    *c = im_colormap_make(o->map, lo, hi);
+    c->logarithmic = o->logarithmic;
+}
+
+static int render_contact(im_render_context *context, const im_field *force, const render_options *o,
+                          im_image *image, im_colormap *norm)
+{
+    im_contact_style style = im_contact_style_default(force);
+    apply_norm(o, &style.colormap);
+    style.pixels_per_patch = o->scale;
+    style.circle_radius = o->circle;
+    if (o->has_circle_x)
+        style.circle_x = o->circle_x;
+    if (o->has_circle_y)
+        style.circle_y = o->circle_y;
+    *norm = style.colormap;
+    return im_render_contact_map(context, force, &style, image);
+}
+
+static int render_height(im_render_context *context, const im_field *height, const render_options *o,
+                         im_image *image, im_colormap *norm)
+{
+    im_field *contact = NULL;
+    int status = o->contact ? im_surface_read(o->contact, &contact) : IM_OK;
+    if (status != IM_OK)
+        return status;
+    im_height_style style = im_height_style_default(height);
+    apply_norm(o, &style.colormap);
+    style.pixels_per_patch = o->scale;
+    style.contact = contact;
+    *norm = style.colormap;
+    status = im_render_height_map(context, height, &style, image);
+    im_field_free(contact);
+    return status;
+}
+
+static int write_output(const render_options *o, const char *input, const im_image *image,
+                        const im_colormap *norm)
+{
+    char norm_text[128], scale_text[16];
+    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
+    snprintf(scale_text, sizeof scale_text, "%d", o->scale);
+    int contact = strcmp(o->mode, "height") != 0;
+    char height_name[64];
+    snprintf(height_name, sizeof height_name, "height h / %s", image->unit[0] ? image->unit : "δ");
+    const char *quantity = o->quantity ? o->quantity : contact ? "local force f / (E* δ²)" : height_name;
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", input},
+                                 {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
+                                 {"Norm", norm_text}, {"Pixels per patch", scale_text}};
+    if (o->raw) {
+        im_png_options options = {texts, 6, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
+        return im_png_write(o->out, image->rgba, image->width, image->height, 4, (size_t)image->width * 4, &options);
+    }
+    im_figure_panel panel = {image, o->label, o->title};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = norm;
+    figure.colorbar_label = quantity;
+    figure.dpi = o->dpi;
+    figure.texts = texts;
+    figure.text_count = 6;
+    return im_figure_write(&figure, o->out);
+}
+
+/* One contact map per force file into DIR/contact_NNNN.png, then the GIF or MP4. */
+static int animate(im_render_context *context, char **inputs, int count, const render_options *o)
+{
+    int status = im_make_directories(o->frames);
+    im_image *frames = calloc((size_t)count, sizeof *frames);
+    if (!frames)
+        return im_fail(IM_ENOMEM, "animation: out of memory");
+    for (int i = 0; status == IM_OK && i < count; ++i) {
+        im_field *force = NULL;
+        im_colormap norm;
+        char path[4096];
+        status = im_surface_read(inputs[i], &force);
+        if (status == IM_OK)
+            status = render_contact(context, force, o, &frames[i], &norm);
+        if (status == IM_OK)
+            status = im_frame_path(path, sizeof path, o->frames, "contact", i);
+        if (status == IM_OK) {
+            render_options frame_options = *o;
+            frame_options.out = path;
+            status = write_output(&frame_options, inputs[i], &frames[i], &norm);
+        }
+        im_field_free(force);
+    }
+    const char *dot = o->out ? strrchr(o->out, '.') : NULL;
+    if (status == IM_OK && dot && strcmp(dot, ".gif") == 0)
+        status = im_animation_gif(frames, count, 1.0 / o->fps, o->out);
+    else if (status == IM_OK && dot && strcmp(dot, ".mp4") == 0)
+        status = im_animation_mp4(o->frames, "contact", o->fps, o->out);
+    else if (status == IM_OK && o->out)
+        status = im_fail(IM_EINVAL, "%s: expected an animation ending in .gif or .mp4", o->out);
+    for (int i = 0; i < count; ++i)
+        im_image_release(&frames[i]);
+    free(frames);
+    return status;
+}
+
+static int check_usage(const render_options *o, int inputs)
+{
+    int animation = strcmp(o->mode, "animate") == 0;
+    if (strcmp(o->mode, "contact") != 0 && strcmp(o->mode, "height") != 0 && !animation)
+        fprintf(stderr, "indentmap: render: '%s': expected contact, height or animate\n", o->mode);
+    else if (animation ? inputs < 1 : inputs != 1)
+        fprintf(stderr, "indentmap: render %s: expected %s\n", o->mode, animation ? "FORCE files" : "one input file");
+    else if (animation ? !o->frames : !o->out)
+        fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
+    else if (o->raw && !animation && strstr(o->out, ".png") == NULL)
+        fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
+    else
+        return 0;
+    return -1;
+}
+
+static int run(render_options *o, char **inputs, int count)
+{
+    im_render_context *context = NULL;
+    int status = im_render_open(o->backend, &context);
+    if (status != IM_OK)
+        return cli_report(status);
+    if (strcmp(o->mode, "animate") == 0) {
+        status = animate(context, inputs, count, o);
+    } else {
+        im_field *field = NULL;
+        im_image image = {0};
+        im_colormap norm;
+        status = im_surface_read(inputs[0], &field);
+        if (status == IM_OK)
+            status = strcmp(o->mode, "contact") == 0 ? render_contact(context, field, o, &image, &norm)
+                                                     : render_height(context, field, o, &image, &norm);
+        if (status == IM_OK)
+            status = write_output(o, inputs[0], &image, &norm);
+        im_image_release(&image);
+        im_field_free(field);
+    }
+    im_render_close(context);
+    if (status == IM_EUNSUPPORTED && strstr(im_last_error(), "ffmpeg not found")) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return CLI_EXIT_FAILURE;
+    }
+    return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
+}
+
+int cli_render(int argc, char **argv)
+{
+    render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
+                        .backend = IM_RENDER_AUTO};
+    optind = 1;
+    int code;
+    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
+        if (code == OPT_HELP || code == 'h') {
+            usage(stdout);
+            return CLI_EXIT_OK;
+        }
+        if (code == '?' || apply_option(code, optarg, &o) != 0)
+            return CLI_EXIT_USAGE;
+    }
+    if (optind >= argc) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    o.mode = argv[optind];
+    if (check_usage(&o, argc - optind - 1) != 0)
+        return CLI_EXIT_USAGE;
+    return run(&o, argv + optind + 1, argc - optind - 1);
+}

@@ -1,0 +1,223 @@
+/* Frames of an indentation run and animations: GIF with exact per-frame palettes, MP4 via ffmpeg. */
+#include "indentmap/figure.h"
+
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <gif_lib.h>
+#include <math.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+int im_frame_path(char *buffer, size_t size, const char *directory, const char *prefix, int index)
+{
+    if (index < 0)
+        return im_fail(IM_EINVAL, "frame index %d: expected >= 0", index);
+    int length = snprintf(buffer, size, "%s/%s_%04d.png", directory, prefix, index);
+    if (length < 0 || (size_t)length >= size)
+        return im_fail(IM_EINVAL, "frame path %s/%s_%04d.png: longer than %zu bytes", directory, prefix, index, size);
+    return IM_OK;
+}
+
+/* ---- GIF ---- */
+
+enum { PALETTE_SLOTS = 1024 }; /* open-addressing table, load <= 1/4 for 256 colours */
+
+typedef struct palette {
+    int count;
+    GifColorType colours[256];
+    uint32_t keys[PALETTE_SLOTS]; /* colour + 1 (0 = empty) */
+    uint8_t indices[PALETTE_SLOTS];
+} palette;
+
+/* The palette index of a colour, adding it; -1 when the palette is full. */
+static int palette_index(palette *p, uint32_t colour)
+{
+    uint32_t slot = (colour * 2654435761u) >> 22;
+    while (p->keys[slot] && p->keys[slot] != colour + 1)
+        slot = (slot + 1) & (PALETTE_SLOTS - 1);
+    if (p->keys[slot])
+        return p->indices[slot];
+    if (p->count == 256)
+        return -1;
+    p->keys[slot] = colour + 1;
+    p->indices[slot] = (uint8_t)p->count;
+    p->colours[p->count] = (GifColorType){(GifByteType)(colour >> 16), (GifByteType)(colour >> 8), (GifByteType)colour};
+    return p->count++;
+}
+
+/* Palette indices of one frame; IM_EINVAL when it has more than 256 colours. */
+static int index_frame(const im_image *frame, int number, palette *p, GifByteType *indices)
+{
+    memset(p, 0, sizeof *p);
+    size_t pixels = (size_t)frame->width * frame->height;
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint8_t *rgba = frame->rgba + 4 * i;
+        int index = palette_index(p, (uint32_t)rgba[0] << 16 | (uint32_t)rgba[1] << 8 | rgba[2]);
+        if (index < 0)
+            return im_fail(IM_EINVAL, "GIF frame %d has more than 256 colours: a GIF palette holds 256 "
+                           "and is not quantised here; use PNG frames or MP4", number);
+        indices[i] = (GifByteType)index;
+    }
+    return IM_OK;
+}
+
+static int write_to_file(GifFileType *gif, const GifByteType *data, int length)
+{
+    return (int)fwrite(data, 1, (size_t)length, (FILE *)gif->UserData);
+}
+
+/* NETSCAPE2.0 application extension: loop forever. */
+static int put_loop_extension(GifFileType *gif)
+{
+    static const GifByteType loop[3] = {1, 0, 0};
+    return EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) == GIF_OK &&
+           EGifPutExtensionBlock(gif, 11, "NETSCAPE2.0") == GIF_OK &&
+           EGifPutExtensionBlock(gif, 3, loop) == GIF_OK && EGifPutExtensionTrailer(gif) == GIF_OK;
+}
+
+static int put_frame(GifFileType *gif, const im_image *frame, const palette *p, GifByteType *indices,
+                     int delay_centiseconds)
+{
+    GraphicsControlBlock control = {DISPOSE_DO_NOT, false, delay_centiseconds, NO_TRANSPARENT_COLOR};
+    GifByteType extension[4];
+    EGifGCBToExtension(&control, extension);
+    int size = 2;
+    while (size < p->count)
+        size *= 2;
+    ColorMapObject *map = GifMakeMapObject(size, NULL);
+    if (!map)
+        return 0;
+    memset(map->Colors, 0, (size_t)size * sizeof *map->Colors);
+    memcpy(map->Colors, p->colours, (size_t)p->count * sizeof *p->colours);
+    int ok = EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, 4, extension) == GIF_OK &&
+             EGifPutImageDesc(gif, 0, 0, frame->width, frame->height, false, map) == GIF_OK;
+    for (int row = 0; ok && row < frame->height; ++row)
+        ok = EGifPutLine(gif, indices + (size_t)row * frame->width, frame->width) == GIF_OK;
+    GifFreeMapObject(map);
+    return ok;
+}
+
+static int check_frames(const im_image *frames, int count, double seconds_per_frame)
+{
+    if (count < 1 || !frames)
+        return im_fail(IM_EINVAL, "animation: %d frames: expected at least 1", count);
+    if (!(seconds_per_frame >= 0.01 && seconds_per_frame <= 600.0))
+        return im_fail(IM_EINVAL, "animation: %g s per frame: expected [0.01, 600]", seconds_per_frame);
+    for (int i = 0; i < count; ++i) {
+        if (!frames[i].rgba || frames[i].width != frames[0].width || frames[i].height != frames[0].height)
+            return im_fail(IM_EINVAL, "animation: frame %d is %d x %d (or empty): expected %d x %d like frame 0",
+                           i, frames[i].width, frames[i].height, frames[0].width, frames[0].height);
+        if (frames[i].width > 65535 || frames[i].height > 65535)
+            return im_fail(IM_EINVAL, "animation: frame %d x %d: GIF sides are at most 65535",
+                           frames[i].width, frames[i].height);
+    }
+    return IM_OK;
+}
+
+static int encode_gif(FILE *stream, const im_image *frames, int count, int delay, GifByteType *indices)
+{
+    int error = 0;
+    GifFileType *gif = EGifOpen(stream, write_to_file, &error);
+    if (!gif)
+        return im_fail(IM_EIO, "GIF: %s", GifErrorString(error));
+    palette *p = malloc(sizeof *p);
+    EGifSetGifVersion(gif, true);
+    int status = p && EGifPutScreenDesc(gif, frames[0].width, frames[0].height, 8, 0, NULL) == GIF_OK &&
+                         put_loop_extension(gif)
+                     ? IM_OK
+                     : im_fail(IM_EIO, "GIF header: %s", GifErrorString(gif->Error));
+    for (int i = 0; status == IM_OK && i < count; ++i) {
+        status = index_frame(&frames[i], i, p, indices);
+        if (status == IM_OK && !put_frame(gif, &frames[i], p, indices, delay))
+            status = im_fail(IM_EIO, "GIF frame %d: %s", i, GifErrorString(gif->Error));
+    }
+    free(p);
+    if (EGifCloseFile(gif, &error) != GIF_OK && status == IM_OK)
+        status = im_fail(IM_EIO, "GIF: %s", GifErrorString(error));
+    return status;
+}
+
+int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path)
+{
+    int status = check_frames(frames, count, seconds_per_frame);
+    if (status != IM_OK)
+        return status;
+    GifByteType *indices = malloc((size_t)frames[0].width * frames[0].height);
+    if (!indices)
+        return im_fail(IM_ENOMEM, "GIF %d x %d: out of memory", frames[0].width, frames[0].height);
+    im_atomic_file file;
+    status = im_atomic_open(&file, path);
+    if (status == IM_OK) {
+        status = encode_gif(file.stream, frames, count, (int)lround(100.0 * seconds_per_frame), indices);
+        if (status == IM_OK)
+            status = im_atomic_commit(&file);
+        else
+            im_atomic_abort(&file);
+    }
+    free(indices);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s", path);
+    return IM_OK;
+}
+
+/* ---- MP4 through the ffmpeg command ---- */
+
+int im_ffmpeg_available(void)
+{
+    const char *path = getenv("PATH");
+    char candidate[4096];
+    for (const char *p = path; p && *p;) {
+        size_t length = strcspn(p, ":");
+        if (length > 0 && length < sizeof candidate - 8) {
+            snprintf(candidate, sizeof candidate, "%.*s/ffmpeg", (int)length, p);
+            if (access(candidate, X_OK) == 0)
+                return 1;
+        }
+        p += length + (p[length] == ':');
+    }
+    return 0;
+}
+
+static int run_ffmpeg(char *const arguments[])
+{
+    pid_t child;
+    int error = posix_spawnp(&child, "ffmpeg", NULL, NULL, arguments, environ);
+    if (error)
+        return im_fail(IM_EIO, "ffmpeg cannot be started: %s", strerror(error));
+    int wait_status = 0;
+    while (waitpid(child, &wait_status, 0) < 0)
+        if (errno != EINTR)
+            return im_fail(IM_EIO, "ffmpeg: waitpid: %s", strerror(errno));
+    if (!WIFEXITED(wait_status) || WEXITSTATUS(wait_status) != 0)
+        return im_fail(IM_EIO, "ffmpeg failed (status %d); see its messages above", WEXITSTATUS(wait_status));
+    return IM_OK;
+}
+
+int im_animation_mp4(const char *directory, const char *prefix, double frames_per_second, const char *path)
+{
+    if (!im_ffmpeg_available())
+        return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
+    if (!(frames_per_second > 0.0 && frames_per_second <= 240.0))
+        return im_fail(IM_EINVAL, "MP4: %g frames per second: expected (0, 240]", frames_per_second);
+    char pattern[4096], rate[32], temporary[4200];
+    snprintf(pattern, sizeof pattern, "%s/%s_%%04d.png", directory, prefix);
+    snprintf(rate, sizeof rate, "%g", frames_per_second);
+    /* ffmpeg picks the container from the extension, so the temporary name ends in .mp4 too. */
+    snprintf(temporary, sizeof temporary, "%s.tmp.%ld.mp4", path, (long)getpid());
+    char *arguments[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern,
+                         "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt",
+                         "yuv420p", temporary, NULL};
+    int status = run_ffmpeg(arguments);
+    if (status == IM_OK && rename(temporary, path) != 0)
+        status = im_fail(IM_EIO, "%s: cannot rename the encoded video into place: %s", path, strerror(errno));
+    if (status != IM_OK)
+        remove(temporary);
+    return status;
+}

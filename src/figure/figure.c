@@ -1,0 +1,419 @@
+/* Figure layout with cairo: panels, labels, shared colour bar, scale bar; PNG, PDF, SVG output. */
+#include "indentmap/figure.h"
+
+#include "figure/fonts.h"
+#include "indentmap/status.h"
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+enum { MAX_TICKS = 32, MAX_PANELS = 64 };
+
+im_figure im_figure_default(void)
+{
+    im_figure figure = {.rows = 1, .columns = 1, .scale_bar = 0.0, .dpi = 300.0, .font_size = 8.0,
+                        .png_compression = IM_FIGURE_PNG_COMPRESSION};
+    return figure;
+}
+
+int im_figure_format_of(const char *path, im_figure_format *format)
+{
+    const char *dot = strrchr(path, '.');
+    if (dot && strcasecmp(dot, ".png") == 0)
+        *format = IM_FIGURE_PNG;
+    else if (dot && strcasecmp(dot, ".pdf") == 0)
+        *format = IM_FIGURE_PDF;
+    else if (dot && strcasecmp(dot, ".svg") == 0)
+        *format = IM_FIGURE_SVG;
+    else
+        return im_fail(IM_EINVAL, "%s: unknown figure format: expected .png, .pdf or .svg", path);
+    return IM_OK;
+}
+
+/* ---- layout, in pixels at the figure's dpi ---- */
+
+typedef struct layout {
+    double font;                 /* text size in pixels */
+    double line;                 /* thin line width (0.6 pt) in pixels */
+    double margin, gap;          /* outer margin, gap between panels */
+    double title_height;         /* row above each panel for labels and titles (0: none) */
+    int cell_width, cell_height; /* largest image */
+    int grid_x, grid_y;          /* top left of the first panel's title row */
+    double bar_x, bar_y, bar_width, bar_height, tick_length, tick_label_width;
+    double scale_height;         /* strip below the grid for the scale bar */
+    int width, height;
+} layout;
+
+static int has_panel_text(const im_figure *f)
+{
+    for (int i = 0; i < f->rows * f->columns; ++i)
+        if (f->panels[i].label || f->panels[i].title)
+            return 1;
+    return 0;
+}
+
+/* Tick label text: decades as 10 with superscript exponents, else as many decimals as the step
+ * needs; minus signs are U+2212. */
+static void tick_label(const im_colormap *c, const double *ticks, int count, int i, char *text, size_t size)
+{
+    double v = ticks[i];
+    if (c->logarithmic && count >= 2 && fabs(log10(ticks[1] / ticks[0]) - 1.0) < 1e-9) {
+        static const char *const superscripts[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+        int exponent = (int)lround(log10(v));
+        int used = snprintf(text, size, "10%s", exponent < 0 ? "⁻" : "");
+        char digits[16];
+        snprintf(digits, sizeof digits, "%d", abs(exponent));
+        for (const char *d = digits; *d && used < (int)size; ++d)
+            used += snprintf(text + used, size - (size_t)used, "%s", superscripts[*d - '0']);
+        return;
+    }
+    double step = count >= 2 ? ticks[1] - ticks[0] : fabs(v);
+    int decimals = c->logarithmic ? 3 : step > 0 ? (int)fmax(0.0, -floor(log10(step) + 1e-9)) : 0;
+    char number[48];
+    snprintf(number, sizeof number, c->logarithmic ? "%.*g" : "%.*f", c->logarithmic ? 3 : decimals, fabs(v));
+    snprintf(text, size, "%s%s", v < 0 ? "−" : "", number);
+}
+
+static double text_width(cairo_t *cr, const char *text)
+{
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, text, &extents);
+    return extents.x_advance;
+}
+
+static void measure_colorbar(const im_figure *f, cairo_t *cr, layout *l)
+{
+    double ticks[MAX_TICKS];
+    int count = im_figure_ticks(f->colormap, ticks, MAX_TICKS);
+    l->tick_label_width = 0.0;
+    for (int i = 0; i < count; ++i) {
+        char text[64];
+        tick_label(f->colormap, ticks, count, i, text, sizeof text);
+        l->tick_label_width = fmax(l->tick_label_width, text_width(cr, text));
+    }
+}
+
+static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
+{
+    memset(l, 0, sizeof *l);
+    double k = f->dpi / 72.0;
+    l->font = f->font_size * k;
+    l->line = 0.6 * k;
+    l->margin = round(0.8 * l->font);
+    l->gap = round(1.0 * l->font);
+    l->title_height = has_panel_text(f) ? round(1.5 * l->font) : 0.0;
+    for (int i = 0; i < f->rows * f->columns; ++i) {
+        l->cell_width = l->cell_width > f->panels[i].image->width ? l->cell_width : f->panels[i].image->width;
+        l->cell_height = l->cell_height > f->panels[i].image->height ? l->cell_height : f->panels[i].image->height;
+    }
+    l->grid_x = (int)l->margin;
+    l->grid_y = (int)l->margin;
+    double grid_width = f->columns * l->cell_width + (f->columns - 1) * l->gap;
+    double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
+    l->scale_height = f->scale_bar >= 0.0 ? round(2.4 * l->font) : 0.0;
+    double right = l->grid_x + grid_width;
+    if (f->colormap) {
+        cairo_set_font_size(measure, l->font);
+        measure_colorbar(f, measure, l);
+        l->bar_x = round(right + 1.2 * l->font);
+        l->bar_width = round(1.1 * l->font);
+        l->bar_y = l->grid_y + l->title_height;
+        l->bar_height = grid_height - l->title_height;
+        l->tick_length = round(0.4 * l->font);
+        right = l->bar_x + l->bar_width + l->tick_length + 0.3 * l->font + l->tick_label_width +
+                (f->colorbar_label ? 1.6 * l->font : 0.0);
+    }
+    l->width = (int)ceil(right + l->margin);
+    l->height = (int)ceil(l->grid_y + grid_height + l->scale_height + l->margin);
+}
+
+/* ---- drawing ---- */
+
+static void show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
+                      double align, const char *text)
+{
+    cairo_set_font_face(cr, face);
+    cairo_set_font_size(cr, size);
+    cairo_move_to(cr, x - align * text_width(cr, text), y);
+    cairo_show_text(cr, text);
+}
+
+/* A cairo surface holding an RGBA image (opaque) or a table. Caller destroys it. */
+static cairo_surface_t *image_surface(const uint8_t *rgba, int width, int height, size_t stride_bytes,
+                                      int channels)
+{
+    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
+        return surface;
+    cairo_surface_flush(surface);
+    unsigned char *data = cairo_image_surface_get_data(surface);
+    int stride = cairo_image_surface_get_stride(surface);
+    for (int row = 0; row < height; ++row) {
+        uint32_t *out = (uint32_t *)(data + (size_t)row * stride);
+        const uint8_t *in = rgba + (size_t)row * stride_bytes;
+        for (int x = 0; x < width; ++x)
+            out[x] = (uint32_t)in[channels * x] << 16 | (uint32_t)in[channels * x + 1] << 8 | in[channels * x + 2];
+    }
+    cairo_surface_mark_dirty(surface);
+    return surface;
+}
+
+static int paint_surface(cairo_t *cr, cairo_surface_t *surface, double x, double y, double scale_x,
+                         double scale_y)
+{
+    if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(surface);
+        return im_fail(IM_ENOMEM, "figure: image surface: %s", cairo_status_to_string(cairo_surface_status(surface)));
+    }
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, scale_x, scale_y);
+    cairo_set_source_surface(cr, surface, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(surface);
+    return IM_OK;
+}
+
+static void panel_origin(const im_figure *f, const layout *l, int index, int *x, int *y)
+{
+    int row = index / f->columns, column = index % f->columns;
+    *x = l->grid_x + (int)(column * (l->cell_width + l->gap));
+    *y = l->grid_y + (int)(row * (l->title_height + l->cell_height + l->gap) + l->title_height);
+}
+
+static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular,
+                       cairo_font_face_t *bold)
+{
+    for (int i = 0; i < f->rows * f->columns; ++i) {
+        const im_figure_panel *p = &f->panels[i];
+        int x, y;
+        panel_origin(f, l, i, &x, &y);
+        int status = paint_surface(cr, image_surface(p->image->rgba, p->image->width, p->image->height,
+                                                     (size_t)p->image->width * 4, 4), x, y, 1.0, 1.0);
+        if (status != IM_OK)
+            return status;
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        double baseline = y - 0.45 * l->font;
+        if (p->label)
+            show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
+        if (p->title)
+            show_text(cr, regular, l->font, x + 0.5 * p->image->width, baseline, 0.5, p->title);
+    }
+    return IM_OK;
+}
+
+/* 1-2-5 length near a fifth of the data width, in the image's units. */
+static double automatic_scale_bar(const im_image *image)
+{
+    double width = image->nx * (image->unit[0] ? image->delta : 1.0);
+    double target = width / 5.0, magnitude = pow(10.0, floor(log10(target)));
+    double length = magnitude;
+    const double multiples[] = {2.0, 5.0};
+    for (int i = 0; i < 2; ++i)
+        if (multiples[i] * magnitude <= target)
+            length = multiples[i] * magnitude;
+    return length;
+}
+
+/* Under the bottom-left panel: a bar of the given length and its value, in δ or the unit. */
+static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
+{
+    int index = (f->rows - 1) * f->columns, x, y;
+    const im_image *image = f->panels[index].image;
+    panel_origin(f, l, index, &x, &y);
+    double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
+    double patches = image->unit[0] ? length / image->delta : length;
+    double pixels = patches * image->pixels_per_patch;
+    double top = y + l->cell_height + 0.5 * l->font, left = x + image->data_x;
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_rectangle(cr, left, top, pixels, round(0.3 * l->font));
+    cairo_fill(cr);
+    char text[64];
+    snprintf(text, sizeof text, "%g %s", length, image->unit[0] ? image->unit : "δ");
+    show_text(cr, regular, l->font, left + 0.5 * pixels, top + 0.3 * l->font + 1.1 * l->font, 0.5, text);
+}
+
+static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
+{
+    /* The table as a 1 x 256 image, top row = last entry, stretched without interpolation. */
+    const uint8_t(*table)[3] = im_colormap_table(f->colormap->map);
+    uint8_t column[256][3];
+    for (int i = 0; i < 256; ++i)
+        memcpy(column[i], table[255 - i], 3);
+    int status = paint_surface(cr, image_surface(&column[0][0], 1, 256, 3, 3), l->bar_x, l->bar_y,
+                               l->bar_width, l->bar_height / 256.0);
+    if (status != IM_OK)
+        return status;
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, l->line);
+    cairo_rectangle(cr, l->bar_x, l->bar_y, l->bar_width, l->bar_height);
+    cairo_stroke(cr);
+    double ticks[MAX_TICKS];
+    int count = im_figure_ticks(f->colormap, ticks, MAX_TICKS);
+    const im_colormap *c = f->colormap;
+    double right = l->bar_x + l->bar_width;
+    for (int i = 0; i < count; ++i) {
+        double t = c->logarithmic ? log(ticks[i] / c->lo) / log(c->hi / c->lo) : (ticks[i] - c->lo) / (c->hi - c->lo);
+        double y = l->bar_y + (1.0 - t) * l->bar_height;
+        cairo_move_to(cr, right, y);
+        cairo_line_to(cr, right + l->tick_length, y);
+        cairo_stroke(cr);
+        char text[64];
+        tick_label(c, ticks, count, i, text, sizeof text);
+        show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
+    }
+    if (f->colorbar_label) {
+        cairo_save(cr);
+        cairo_translate(cr, right + l->tick_length + 0.3 * l->font + l->tick_label_width + 1.2 * l->font,
+                        l->bar_y + 0.5 * l->bar_height);
+        cairo_rotate(cr, -M_PI / 2.0);
+        show_text(cr, regular, l->font, 0.0, 0.0, 0.5, f->colorbar_label);
+        cairo_restore(cr);
+    }
+    return IM_OK;
+}
+
+static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
+{
+    cairo_font_face_t *regular, *bold;
+    int status = im_figure_fonts(&regular, &bold);
+    if (status != IM_OK)
+        return status;
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    status = draw_panels(f, l, cr, regular, bold);
+    if (status == IM_OK && f->scale_bar >= 0.0)
+        draw_scale_bar(f, l, cr, regular);
+    if (status == IM_OK && f->colormap)
+        status = draw_colorbar(f, l, cr, regular);
+    if (status == IM_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
+        status = im_fail(IM_ENOMEM, "figure: cairo: %s", cairo_status_to_string(cairo_status(cr)));
+    return status;
+}
+
+/* ---- validation and output ---- */
+
+static int check_figure(const im_figure *f)
+{
+    if (f->rows < 1 || f->columns < 1 || f->rows * f->columns > MAX_PANELS || !f->panels)
+        return im_fail(IM_EINVAL, "figure: %d x %d panels: expected 1 to %d panels", f->rows, f->columns, MAX_PANELS);
+    for (int i = 0; i < f->rows * f->columns; ++i)
+        if (!f->panels[i].image || !f->panels[i].image->rgba || f->panels[i].image->width < 1)
+            return im_fail(IM_EINVAL, "figure: panel %d has no image", i + 1);
+    if (!(f->dpi > 0.0 && f->dpi <= 2400.0))
+        return im_fail(IM_EINVAL, "figure: dpi = %g: expected (0, 2400]", f->dpi);
+    if (!(f->font_size > 0.0 && f->font_size <= 72.0))
+        return im_fail(IM_EINVAL, "figure: font size %g pt: expected (0, 72]", f->font_size);
+    if (!isfinite(f->scale_bar))
+        return im_fail(IM_EINVAL, "figure: scale bar %g: expected a finite length", f->scale_bar);
+    if (f->png_compression < 0 || f->png_compression > 9)
+        return im_fail(IM_EINVAL, "figure: PNG compression %d: expected 0-9", f->png_compression);
+    if (f->colormap)
+        return im_colormap_check(f->colormap);
+    return IM_OK;
+}
+
+static int write_png(const im_figure *f, const layout *l, const char *path)
+{
+    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, l->width, l->height);
+    cairo_t *cr = cairo_create(surface);
+    int status = draw_figure(f, l, cr);
+    cairo_destroy(cr);
+    uint8_t *rgb = status == IM_OK ? malloc((size_t)l->width * l->height * 3) : NULL;
+    if (status == IM_OK && !rgb)
+        status = im_fail(IM_ENOMEM, "figure %d x %d: out of memory", l->width, l->height);
+    if (status == IM_OK) {
+        cairo_surface_flush(surface);
+        const unsigned char *data = cairo_image_surface_get_data(surface);
+        int stride = cairo_image_surface_get_stride(surface);
+        for (int row = 0; row < l->height; ++row)
+            for (int x = 0; x < l->width; ++x) {
+                uint32_t p = ((const uint32_t *)(data + (size_t)row * stride))[x];
+                uint8_t *out = rgb + ((size_t)row * l->width + x) * 3;
+                out[0] = (uint8_t)(p >> 16), out[1] = (uint8_t)(p >> 8), out[2] = (uint8_t)p;
+            }
+        im_png_options options = {f->texts, f->text_count, f->dpi / 0.0254, f->png_compression};
+        status = im_png_write(path, rgb, l->width, l->height, 3, (size_t)l->width * 3, &options);
+    }
+    free(rgb);
+    cairo_surface_destroy(surface);
+    return status;
+}
+
+static cairo_status_t write_stream(void *closure, const unsigned char *data, unsigned int length)
+{
+    return fwrite(data, 1, length, (FILE *)closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+static void set_pdf_metadata(const im_figure *f, cairo_surface_t *surface)
+{
+    char keywords[2048] = "";
+    size_t used = 0;
+    for (int i = 0; i < f->text_count && used < sizeof keywords; ++i)
+        used += (size_t)snprintf(keywords + used, sizeof keywords - used, "%s%s=%s", i ? "; " : "",
+                                 f->texts[i].key, f->texts[i].value);
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords);
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "indentmap " IM_VERSION);
+}
+
+static int write_vector(const im_figure *f, const layout *l, const char *path, im_figure_format format)
+{
+    im_atomic_file file;
+    int status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    double points = 72.0 / f->dpi;
+    cairo_surface_t *surface =
+        format == IM_FIGURE_PDF
+            ? cairo_pdf_surface_create_for_stream(write_stream, file.stream, l->width * points, l->height * points)
+            : cairo_svg_surface_create_for_stream(write_stream, file.stream, l->width * points, l->height * points);
+    if (format == IM_FIGURE_PDF)
+        set_pdf_metadata(f, surface);
+    cairo_t *cr = cairo_create(surface);
+    cairo_scale(cr, points, points);
+    status = draw_figure(f, l, cr);
+    cairo_destroy(cr);
+    cairo_surface_finish(surface);
+    cairo_status_t written = cairo_surface_status(surface);
+    cairo_surface_destroy(surface);
+    if (status == IM_OK && written != CAIRO_STATUS_SUCCESS)
+        status = im_fail(IM_EIO, "%s: %s", path, cairo_status_to_string(written));
+    if (status != IM_OK) {
+        im_atomic_abort(&file);
+        return status;
+    }
+    return im_atomic_commit(&file);
+}
+
+int im_figure_write(const im_figure *f, const char *path)
+{
+    im_figure_format format = IM_FIGURE_PNG;
+    int status = im_figure_format_of(path, &format);
+    if (status == IM_OK)
+        status = check_figure(f);
+    if (status != IM_OK)
+        return status;
+    cairo_font_face_t *regular, *bold;
+    status = im_figure_fonts(&regular, &bold);
+    if (status != IM_OK)
+        return status;
+    cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t *measure = cairo_create(scratch);
+    cairo_set_font_face(measure, regular);
+    layout l;
+    make_layout(f, measure, &l);
+    cairo_destroy(measure);
+    cairo_surface_destroy(scratch);
+    if (l.width > 32768 || l.height > 32768)
+        return im_fail(IM_EINVAL, "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "
+                       "or the pixels per patch", l.width, l.height);
+    return format == IM_FIGURE_PNG ? write_png(f, &l, path) : write_vector(f, &l, path, format);
+}

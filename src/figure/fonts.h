@@ -1,0 +1,11 @@
+/* DejaVu Sans regular and bold as cairo font faces, loaded with FreeType from the font files
+ * (no fontconfig). Loaded once per process and kept for its lifetime. */
+#ifndef INDENTMAP_FIGURE_FONTS_H
+#define INDENTMAP_FIGURE_FONTS_H
+
+#include <cairo.h>
+
+/* IM_EUNSUPPORTED naming the file when a font cannot be loaded. The faces are borrowed. */
+int im_figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold);
+
+#endif
