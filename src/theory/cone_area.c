@@ -2,8 +2,9 @@
  * Greenwood's quadrature form of eq. (19) in q = p / p_m,c, two independent routes to the same
  * number. Eq. (12) is integrated in the distance from the rim t = 1 - r/a rather than in s = r/a,
  * so that the square-root singularity at the rim lies at t = 0, where doubles are dense (near
- * s = 1 the adaptive rule would run out of representable subintervals). Both integrate the ratio itself for beta <= 1 and its complement 1 - ratio above, so
- * that neither loses digits to cancellation nor misses the narrow region of partial contact. */
+ * s = 1 the adaptive rule would run out of representable subintervals). Both routes integrate
+ * the ratio itself for beta <= 1 and its complement 1 - ratio above, so that neither loses
+ * digits to cancellation nor misses the narrow rim of partial contact. */
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "theory/cone.h"
@@ -19,7 +20,7 @@ static const double ERFC_NEGLIGIBLE = 27.0;
 static const double ERF_LINEAR_BELOW = 1e-9;
 /* 1 - ratio <= 1 / (2 beta^2) (Greenwood's weight sinh q / cosh^3 q is at most q, and
  * 2 int_0^inf q erfc(beta q) dq = 1 / (2 beta^2)), which is below 2^-54 from beta = 1e8 on: there
- * the ratio rounds to 1 exactly, and the complement would only be an integral of subnormals. */
+ * the ratio rounds to 1 exactly (and far beyond, the complement's interval would underflow). */
 static const double SATURATED_FROM = 1e8;
 /* sinh q / cosh^3 q < 4 exp(-2 q): beyond q = 40 Greenwood's integrand adds less than 1e-32 of
  * the ratio (whose integrand is erf(beta q) <= 2 beta q / sqrt(pi) times that). */
