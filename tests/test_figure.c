@@ -1,0 +1,347 @@
+/* Figures (cairo): panels placed pixel-exact, colour bar drawn from the exact table, ticks, PNG
+ * metadata, PDF/SVG, atomic refusal of bad paths; frames and animations (GIF read back with
+ * giflib, MP4 when ffmpeg is installed). Needs no GL context: images are made by hand. */
+#include "support.h"
+
+#include "indentmap/colormap.h"
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <dirent.h>
+#include <gif_lib.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* A panel image whose pixel (x, y) is (8 x, 9 y, tag): each pixel identifies its position. */
+static im_image make_image(int width, int height, int tag)
+{
+    im_image image = {.width = width, .height = height, .data_x = 2, .data_y = 2,
+                      .pixels_per_patch = 2, .nx = (width - 4) / 2, .ny = (height - 4) / 2, .delta = 1.0};
+    image.rgba = malloc((size_t)width * height * 4);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            uint8_t *p = image.rgba + ((size_t)y * width + x) * 4;
+            p[0] = (uint8_t)(8 * x), p[1] = (uint8_t)(9 * y), p[2] = (uint8_t)tag, p[3] = 255;
+        }
+    return image;
+}
+
+/* The top-left corner of an exact copy of image inside the figure's RGB pixels; fails if absent. */
+static void find_image(const uint8_t *rgb, int width, int height, const im_image *image, int *fx, int *fy)
+{
+    for (int y = 0; y + image->height <= height; ++y)
+        for (int x = 0; x + image->width <= width; ++x) {
+            int match = 1;
+            for (int j = 0; match && j < image->height; ++j)
+                for (int i = 0; match && i < image->width; ++i) {
+                    const uint8_t *a = rgb + ((size_t)(y + j) * width + x + i) * 3;
+                    const uint8_t *b = image->rgba + ((size_t)j * image->width + i) * 4;
+                    match = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+                }
+            if (match) {
+                *fx = x, *fy = y;
+                return;
+            }
+        }
+    fail_msg("panel %d x %d (tag %d) not found pixel-exact in the figure", image->width, image->height,
+             image->rgba[2]);
+}
+
+static uint8_t *read_rgb(const char *path, int *width, int *height)
+{
+    uint8_t *pixels;
+    int channels;
+    assert_int_equal(im_png_read(path, &pixels, width, height, &channels), IM_OK);
+    assert_int_equal(channels, 3);
+    return pixels;
+}
+
+static void test_ticks(void **state)
+{
+    (void)state;
+    double t[32];
+    im_colormap c = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    assert_int_equal(im_figure_ticks(&c, t, 32), 6);
+    for (int i = 0; i < 6; ++i)
+        assert_close(t[i], 0.2 * i, 1e-12);
+    c = im_colormap_make(IM_COLORMAP_VIRIDIS, -0.37, 0.73); /* span 1.1: step 0.5 */
+    assert_int_equal(im_figure_ticks(&c, t, 32), 2);
+    assert_close(t[0], 0.0, 0.0);
+    assert_close(t[1], 0.5, 1e-12);
+    c = im_colormap_make(IM_COLORMAP_VIRIDIS, 1e-3, 1.0);
+    c.logarithmic = 1;
+    assert_int_equal(im_figure_ticks(&c, t, 32), 4);
+    assert_close(t[0], 1e-3, 1e-15);
+    assert_close(t[3], 1.0, 1e-12);
+    c = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.3, 2.0); /* under one decade: 0.5, 1, 2 */
+    c.logarithmic = 1;
+    assert_int_equal(im_figure_ticks(&c, t, 32), 3);
+    assert_close(t[0], 0.5, 1e-12);
+    assert_close(t[1], 1.0, 1e-12);
+    assert_close(t[2], 2.0, 1e-12);
+}
+
+/* Fig. 4's layout: 2 x 3 panels at their own pixel size in a regular grid, one colour bar. */
+static void test_panel_grid_and_colorbar(void **state)
+{
+    (void)state;
+    im_image images[6];
+    im_figure_panel panels[6];
+    const char *labels[6] = {"(a)", "(b)", "(c)", "(d)", "(e)", "(f)"};
+    for (int i = 0; i < 6; ++i) {
+        images[i] = make_image(28, 24, 100 + i);
+        panels[i] = (im_figure_panel){&images[i], labels[i], i == 0 ? "smooth" : "h′rms = 0.01"};
+    }
+    im_colormap norm = im_colormap_make(IM_COLORMAP_MAGMA, 0.0, 2.0);
+    im_figure figure = im_figure_default();
+    figure.rows = 2, figure.columns = 3, figure.panels = panels;
+    figure.colormap = &norm;
+    figure.colorbar_label = "local force f / (E* δ²)";
+    figure.dpi = 150;
+    const char *path = test_path("grid.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x[6], y[6];
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    for (int i = 0; i < 6; ++i)
+        find_image(rgb, width, height, &images[i], &x[i], &y[i]);
+    for (int i = 0; i < 3; ++i) {
+        assert_int_equal(y[i], y[0]);
+        assert_int_equal(y[i + 3], y[3]);
+        assert_int_equal(x[i + 3], x[i]);
+    }
+    assert_true(x[1] > x[0] + 28 && x[2] - x[1] == x[1] - x[0]);
+    assert_true(y[3] > y[0] + 24);
+    /* The colour bar, right of the panels: every pixel of its middle column is a table entry,
+     * running from the last entry at the top to the first at the bottom. */
+    const uint8_t(*table)[3] = im_colormap_table(IM_COLORMAP_MAGMA);
+    int bar_x = -1;
+    for (int column = x[2] + 28; column < width && bar_x < 0; ++column)
+        for (int k = 200; k < 256 && bar_x < 0; ++k)
+            if (memcmp(rgb + ((size_t)(y[0] + 2) * width + column) * 3, table[k], 3) == 0)
+                bar_x = column;
+    assert_true(bar_x > 0);
+    int previous = 256, first = -1, rows = 0;
+    for (int row = y[0]; row < y[3] + 24; ++row) {
+        const uint8_t *p = rgb + ((size_t)row * width + bar_x + 3) * 3;
+        int entry = -1;
+        for (int k = 255; k >= 0 && entry < 0; --k)
+            if (memcmp(p, table[k], 3) == 0)
+                entry = k;
+        if (entry < 0)
+            continue; /* the outline or a tick */
+        assert_true(entry <= previous);
+        previous = entry;
+        first = first < 0 ? entry : first;
+        ++rows;
+    }
+    /* The bar spans the panels' height: its ends are within two rows' worth of entries. */
+    double per_row = 256.0 / rows;
+    assert_true(rows >= 2 * 24);
+    assert_true(first >= 255 - 2 * per_row && previous <= 2 * per_row);
+    free(rgb);
+    for (int i = 0; i < 6; ++i)
+        im_image_release(&images[i]);
+}
+
+/* Finds a PNG chunk of the given type whose data starts with prefix; returns its data or NULL. */
+static const uint8_t *find_chunk(const uint8_t *png, size_t size, const char *type, const char *prefix,
+                                 size_t prefix_length)
+{
+    for (size_t at = 8; at + 12 <= size;) {
+        size_t length = (size_t)png[at] << 24 | (size_t)png[at + 1] << 16 | (size_t)png[at + 2] << 8 | png[at + 3];
+        if (memcmp(png + at + 4, type, 4) == 0 && length >= prefix_length &&
+            memcmp(png + at + 8, prefix, prefix_length) == 0)
+            return png + at + 8;
+        at += length + 12;
+    }
+    return NULL;
+}
+
+static uint8_t *slurp(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    *size = (size_t)ftell(f);
+    rewind(f);
+    uint8_t *data = malloc(*size + 1);
+    assert_int_equal(fread(data, 1, *size, f), *size);
+    data[*size] = 0;
+    fclose(f);
+    return data;
+}
+
+/* Whether binary data (a PDF, with NUL bytes in its streams) contains text. */
+static int contains(const uint8_t *data, size_t size, const char *text)
+{
+    size_t length = strlen(text);
+    for (size_t at = 0; at + length <= size; ++at)
+        if (memcmp(data + at, text, length) == 0)
+            return 1;
+    return 0;
+}
+
+static void test_png_metadata_pdf_svg(void **state)
+{
+    (void)state;
+    im_image image = make_image(30, 30, 7);
+    im_figure_panel panel = {&image, "(a)", NULL};
+    im_png_text texts[] = {{"Indenter", "cone alpha=80"}, {"Software", "indentmap"}};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.texts = texts, figure.text_count = 2;
+    const char *png = test_path("meta.png");
+    assert_int_equal(im_figure_write(&figure, png), IM_OK);
+    size_t size;
+    uint8_t *data = slurp(png, &size);
+    assert_non_null(find_chunk(data, size, "tEXt", "Indenter\0cone alpha=80", 22));
+    const uint8_t *phys = find_chunk(data, size, "pHYs", "", 0);
+    assert_non_null(phys);
+    uint32_t dpm = (uint32_t)phys[0] << 24 | (uint32_t)phys[1] << 16 | (uint32_t)phys[2] << 8 | phys[3];
+    assert_int_equal(dpm, 11811); /* 300 dpi = 11811.02 per metre */
+    free(data);
+    assert_int_equal(im_figure_write(&figure, test_path("meta.pdf")), IM_OK);
+    data = slurp(test_path("meta.pdf"), &size);
+    assert_memory_equal(data, "%PDF-", 5);
+    assert_true(contains(data, size, "Indenter=cone alpha=80"));
+    free(data);
+    assert_int_equal(im_figure_write(&figure, test_path("meta.svg")), IM_OK);
+    data = slurp(test_path("meta.svg"), &size);
+    assert_non_null(strstr((const char *)data, "<svg"));
+    assert_non_null(strstr((const char *)data, "<image"));
+    free(data);
+    im_image_release(&image);
+}
+
+static int directory_entries(const char *path)
+{
+    DIR *dir = opendir(path);
+    int count = 0;
+    for (struct dirent *e; dir && (e = readdir(dir)) != NULL;)
+        count += e->d_name[0] != '.';
+    if (dir)
+        closedir(dir);
+    return count;
+}
+
+static void test_bad_figures_refused(void **state)
+{
+    (void)state;
+    im_image image = make_image(10, 10, 1);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    int before = directory_entries(test_temp_dir());
+    assert_int_equal(im_figure_write(&figure, test_path("missing/dir/figure.png")), IM_EIO);
+    assert_int_equal(im_figure_write(&figure, test_path("missing/dir/figure.pdf")), IM_EIO);
+    assert_int_equal(im_figure_write(&figure, test_path("figure.tiff")), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), ".png, .pdf or .svg"));
+    figure.dpi = 0.0;
+    assert_int_equal(im_figure_write(&figure, test_path("figure.png")), IM_EINVAL);
+    figure = im_figure_default();
+    im_figure_panel empty = {NULL, "(a)", NULL};
+    figure.panels = &empty;
+    assert_int_equal(im_figure_write(&figure, test_path("figure.png")), IM_EINVAL);
+    assert_int_equal(directory_entries(test_temp_dir()), before); /* nothing half-written */
+    im_image_release(&image);
+}
+
+static void test_frame_paths(void **state)
+{
+    (void)state;
+    char path[64];
+    assert_int_equal(im_frame_path(path, sizeof path, "run", "contact", 7), IM_OK);
+    assert_string_equal(path, "run/contact_0007.png");
+    assert_int_equal(im_frame_path(path, sizeof path, "run", "height", 12345), IM_OK);
+    assert_string_equal(path, "run/height_12345.png");
+    assert_int_equal(im_frame_path(path, 10, "run", "contact", 1), IM_EINVAL);
+    assert_int_equal(im_frame_path(path, sizeof path, "run", "contact", -1), IM_EINVAL);
+}
+
+/* Frames with a few exact colours come back from the GIF pixel for pixel. */
+static void test_gif_round_trip(void **state)
+{
+    (void)state;
+    im_image frames[3];
+    for (int k = 0; k < 3; ++k) {
+        frames[k] = make_image(12, 10, 0);
+        for (int i = 0; i < 120; ++i) {
+            uint8_t *p = frames[k].rgba + 4 * i;
+            const uint8_t *entry = im_colormap_table(IM_COLORMAP_VIRIDIS)[(i * 37 + k * 50) % 256];
+            memcpy(p, i % 5 ? entry : (const uint8_t[3]){230, 230, 230}, 3);
+        }
+    }
+    const char *path = test_path("run.gif");
+    assert_int_equal(im_animation_gif(frames, 3, 0.2, path), IM_OK);
+    int error = 0;
+    GifFileType *gif = DGifOpenFileName(path, &error);
+    assert_non_null(gif);
+    assert_int_equal(DGifSlurp(gif), GIF_OK);
+    assert_int_equal(gif->ImageCount, 3);
+    for (int k = 0; k < 3; ++k) {
+        const SavedImage *image = &gif->SavedImages[k];
+        const ColorMapObject *map = image->ImageDesc.ColorMap ? image->ImageDesc.ColorMap : gif->SColorMap;
+        GraphicsControlBlock control;
+        assert_int_equal(DGifSavedExtensionToGCB(gif, k, &control), GIF_OK);
+        assert_int_equal(control.DelayTime, 20);
+        for (int i = 0; i < 120; ++i) {
+            const GifColorType *c = &map->Colors[image->RasterBits[i]];
+            const uint8_t *p = frames[k].rgba + 4 * i;
+            assert_true(c->Red == p[0] && c->Green == p[1] && c->Blue == p[2]);
+        }
+    }
+    DGifCloseFile(gif, &error);
+    /* 300 distinct colours cannot be a GIF frame without quantisation: refused, nothing written. */
+    im_image many = make_image(20, 15, 3);
+    assert_int_equal(im_animation_gif(&many, 1, 0.2, test_path("many.gif")), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "more than 256 colours"));
+    struct stat st;
+    assert_int_not_equal(stat(test_path("many.gif"), &st), 0);
+    im_image_release(&many);
+    for (int k = 0; k < 3; ++k)
+        im_image_release(&frames[k]);
+}
+
+static void test_mp4_or_its_absence(void **state)
+{
+    (void)state;
+    const char *directory = test_path("frames");
+    assert_int_equal(im_make_directories(directory), IM_OK);
+    im_image image = make_image(21, 17, 9);
+    for (int i = 0; i < 3; ++i) {
+        char path[4096];
+        assert_int_equal(im_frame_path(path, sizeof path, directory, "contact", i), IM_OK);
+        assert_int_equal(im_png_write(path, image.rgba, image.width, image.height, 4, 21 * 4, NULL), IM_OK);
+    }
+    const char *video = test_path("run.mp4");
+    int status = im_animation_mp4(directory, "contact", 5.0, video);
+    struct stat st;
+    if (!im_ffmpeg_available()) {
+        assert_int_equal(status, IM_EUNSUPPORTED);
+        assert_non_null(strstr(im_last_error(), "ffmpeg not found"));
+        assert_int_not_equal(stat(video, &st), 0);
+        assert_int_equal(directory_entries(directory), 3); /* the frames are kept */
+    } else {
+        assert_int_equal(status, IM_OK);
+        assert_int_equal(stat(video, &st), 0);
+        assert_true(st.st_size > 0);
+    }
+    im_image_release(&image);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_ticks),
+        cmocka_unit_test(test_panel_grid_and_colorbar),
+        cmocka_unit_test(test_png_metadata_pdf_svg),
+        cmocka_unit_test(test_bad_figures_refused),
+        cmocka_unit_test(test_frame_paths),
+        cmocka_unit_test(test_gif_round_trip),
+        cmocka_unit_test(test_mp4_or_its_absence),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
