@@ -7,51 +7,15 @@
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_DEVICES = 16, MAX_DISPLAYS = 16 };
+enum { MAX_DEVICES = 16 };
 
-/* EGL hands out one EGLDisplay per device; eglTerminate would end every context on it, so the
- * display is terminated when the last of this process's contexts on it is closed. */
-static struct {
-    EGLDisplay display;
-    int users;
-} displays[MAX_DISPLAYS];
-static pthread_mutex_t displays_lock = PTHREAD_MUTEX_INITIALIZER;
-
-static void display_acquire(EGLDisplay display)
-{
-    pthread_mutex_lock(&displays_lock);
-    int free_slot = -1, i = 0;
-    for (; i < MAX_DISPLAYS && displays[i].display != display; ++i)
-        if (free_slot < 0 && displays[i].users == 0)
-            free_slot = i;
-    if (i < MAX_DISPLAYS)
-        ++displays[i].users;
-    else if (free_slot >= 0)
-        displays[free_slot].display = display, displays[free_slot].users = 1;
-    pthread_mutex_unlock(&displays_lock);
-}
-
-/* Terminates the display unless another context still uses it. */
-static void display_release(EGLDisplay display)
-{
-    pthread_mutex_lock(&displays_lock);
-    int others = 0;
-    for (int i = 0; i < MAX_DISPLAYS; ++i)
-        if (displays[i].display == display && displays[i].users > 0) {
-            others = --displays[i].users;
-            if (!others)
-                displays[i].display = NULL;
-        }
-    if (!others)
-        eglTerminate(display);
-    pthread_mutex_unlock(&displays_lock);
-}
-
+/* Displays stay initialised for the life of the process: EGL hands out one EGLDisplay per device,
+ * so eglTerminate would end every other context on it, and Mesa unloads its driver on
+ * eglTerminate, which would orphan the driver's process-wide allocations. */
 int im_render_backend_from_name(const char *name, im_render_backend *backend)
 {
     static const char *const names[] = {"auto", "egl", "osmesa"};
@@ -111,7 +75,6 @@ static int egl_context_on(im_render_context *c, EGLDisplay display, char *reason
         snprintf(reason, size, "eglInitialize failed (EGL error 0x%x)", (unsigned)eglGetError());
         return IM_EUNSUPPORTED;
     }
-    display_acquire(display);
     const char *extensions = eglQueryString(display, EGL_EXTENSIONS);
     EGLContext context = EGL_NO_CONTEXT;
     EGLConfig config = EGL_NO_CONFIG_KHR;
@@ -144,7 +107,6 @@ static int egl_context_on(im_render_context *c, EGLDisplay display, char *reason
         eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(display, context);
     }
-    display_release(display);
     return IM_EUNSUPPORTED;
 }
 
@@ -236,7 +198,7 @@ static void release_backend(im_render_context *c)
     if (c->egl_context) {
         eglMakeCurrent(c->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(c->egl_display, c->egl_context);
-        display_release(c->egl_display);
+        eglReleaseThread();
         c->egl_context = NULL;
     }
     if (c->osmesa.context)

@@ -69,16 +69,19 @@ int im_osmesa_make_current(im_osmesa *osmesa)
     return make_current && make_current(osmesa->context, osmesa->buffer, GL_UNSIGNED_BYTE, 2, 2);
 }
 
+/* The library stays loaded (no dlclose): Mesa's LLVM back end is not safe to unload and load
+ * again in one process, and a later context reuses it. */
 void im_osmesa_close(im_osmesa *osmesa)
 {
     if (osmesa->context) {
         destroy_fn destroy;
+        make_current_fn make_current;
         *(void **)&destroy = symbol(osmesa->library, "OSMesaDestroyContext");
+        *(void **)&make_current = symbol(osmesa->library, "OSMesaMakeCurrent");
+        if (make_current)
+            make_current(NULL, NULL, 0, 0, 0); /* releases the context's framebuffer */
         if (destroy)
             destroy(osmesa->context);
     }
-    if (osmesa->library)
-        dlclose(osmesa->library);
-    get_proc_address = NULL;
     memset(osmesa, 0, sizeof *osmesa);
 }

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Command-line tests of `indentmap render`: outputs, metadata, exit codes, atomic failures.
+# Exits 77 (skipped) when the machine has no OpenGL context.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+passes=0
+
+if "$cli" info | grep -q "render backend: unavailable"; then
+  echo "SKIPPED: $("$cli" info | grep 'render backend')"
+  exit 77
+fi
+
+check() { # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+expect_exit() { # expect_exit CODE PHRASE COMMAND... : exit code and a phrase on stderr
+  local code=$1 phrase=$2; shift 2
+  "$@" >"$dir/out" 2>"$dir/err"
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qF -- "$phrase" "$dir/err"; then
+    echo "got exit $got, stderr: $(cat "$dir/err")"
+    return 1
+  fi
+}
+png_width() { od -An -tu1 -j16 -N4 "$1" | awk '{print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4}'; }
+
+# A field with positive (in contact) and negative patches: a small generated surface.
+"$cli" surface --n 16 --seed 5 --out "$dir/f.npy" >/dev/null 2>&1
+"$cli" surface --n 16 --seed 6 --out "$dir/g.npy" >/dev/null 2>&1
+check "info names the GL renderer" bash -c "'$cli' info | grep -q '^GL_RENDERER: '"
+check "contact map" "$cli" render contact "$dir/f.npy" --circle 5 --label "(a)" --out "$dir/c.png"
+check "PNG carries the colour map" grep -aq "Colormap" "$dir/c.png"
+check "PNG carries the source" grep -aq "f.npy" "$dir/c.png"
+check "raw PNG" "$cli" render contact "$dir/f.npy" --raw --scale 3 --out "$dir/raw.png"
+check "raw PNG width = 16 x 3 + 2 x 2" test "$(png_width "$dir/raw.png")" -eq 52
+check "height field PDF" "$cli" render height "$dir/f.npy" --contact "$dir/g.npy" --out "$dir/h.pdf"
+check "PDF header" bash -c "head -c 5 '$dir/h.pdf' | grep -q '%PDF-'"
+check "height field SVG" "$cli" render height "$dir/f.npy" --out "$dir/h.svg"
+check "SVG embeds the raster" grep -q "<image" "$dir/h.svg"
+check "osmesa backend" "$cli" render contact "$dir/f.npy" --backend osmesa --raw --out "$dir/o.png"
+check "osmesa = egl pixels" bash -c "'$cli' render contact '$dir/f.npy' --backend egl --raw --out '$dir/e.png' && cmp -s '$dir/e.png' '$dir/o.png'"
+
+check "missing --out" expect_exit 2 "--out is required" "$cli" render contact "$dir/f.npy"
+check "unknown mode" expect_exit 2 "expected contact, height or animate" "$cli" render map "$dir/f.npy"
+check "bad colour map" expect_exit 2 "expected viridis" "$cli" render contact "$dir/f.npy" --colormap jet --out "$dir/x.png"
+check "log norm needs vmin > 0" expect_exit 2 "logarithmic" "$cli" render contact "$dir/f.npy" --log --vmin 0 --out "$dir/x.png"
+check "bad backend" expect_exit 2 "auto, egl or osmesa" "$cli" render contact "$dir/f.npy" --backend vulkan --out "$dir/x.png"
+check "bad scale" expect_exit 2 "--scale = 0" "$cli" render contact "$dir/f.npy" --scale 0 --out "$dir/x.png"
+check "unknown extension" expect_exit 2 ".png, .pdf or .svg" "$cli" render contact "$dir/f.npy" --out "$dir/x.tiff"
+check "missing input" expect_exit 1 "missing.npy" "$cli" render contact "$dir/missing.npy" --out "$dir/x.png"
+check "unwritable output" expect_exit 1 "no/such/dir" "$cli" render contact "$dir/f.npy" --out "$dir/no/such/dir/x.png"
+check "nothing half-written" bash -c "! ls '$dir' | grep -q 'x\\.'"
+
+check "animation GIF" "$cli" render animate "$dir/f.npy" "$dir/g.npy" --frames "$dir/frames" --out "$dir/a.gif"
+check "frames written" test -s "$dir/frames/contact_0000.png" -a -s "$dir/frames/contact_0001.png"
+check "GIF header" bash -c "head -c 6 '$dir/a.gif' | grep -q GIF89a"
+if command -v ffmpeg >/dev/null; then
+  check "MP4" "$cli" render animate "$dir/f.npy" "$dir/g.npy" --frames "$dir/frames2" --out "$dir/a.mp4"
+else
+  check "MP4 without ffmpeg" expect_exit 1 "ffmpeg not found" "$cli" render animate "$dir/f.npy" --frames "$dir/frames2" --out "$dir/a.mp4"
+  check "frames kept without ffmpeg" test -s "$dir/frames2/contact_0000.png"
+fi
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
