@@ -7,6 +7,9 @@
  * (IM_FIGURE_FONT, IM_FIGURE_FONT_BOLD) loaded directly, so output does not depend on fontconfig.
  * Every file is written atomically (io.h): an unwritable path gives IM_EIO and leaves nothing.
  *
+ * Text (labels, titles, the colour bar's quantity) is UTF-8 and may contain _{subscript} and
+ * ^{superscript} markup, e.g. "h′_{rms} = 0.08" or "f / (E* δ^{2})".
+ *
  * Sizes: the layout is made in pixels at `dpi`; each data image is placed at its own pixel size
  * (one image pixel = one figure pixel, at integer offsets, so patches stay crisp). PDF and SVG use
  * the same layout scaled by 72 / dpi points per pixel, with the data images embedded as rasters

@@ -16,13 +16,15 @@
 static void usage(FILE *stream)
 {
     fprintf(stream,
-            "usage: indentmap render contact FORCE [OPTIONS] --out FILE\n"
-            "       indentmap render height SURFACE [OPTIONS] --out FILE\n"
+            "usage: indentmap render contact FORCE... [OPTIONS] --out FILE\n"
+            "       indentmap render height SURFACE... [OPTIONS] --out FILE\n"
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n\n"
             "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches with force <= 0 in a grey background\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
             "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg).\n"
+            "Several files make one figure of panels (a), (b), ... with one shared norm and colour\n"
+            "bar, e.g. the paper's Fig. 4: six force files --columns 3 --circle A.\n"
             "Output format from the extension: .png, .pdf or .svg.\n\n"
             "  --out FILE          the figure (or the animation for 'animate')\n"
             "  --raw               PNG of the data image only, without annotations\n"
@@ -35,6 +37,8 @@ static void usage(FILE *stream)
             "  --contact FILE      outline the patches with value > 0 of FILE (height)\n"
             "  --label TEXT        panel label, e.g. '(a)'\n"
             "  --title TEXT        panel title\n"
+            "  --titles LIST       comma-separated panel titles, one per file\n"
+            "  --columns C         panels per row (default: all in one row)\n"
             "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ')\n"
             "  --dpi D             resolution (default 300)\n"
             "  --fps F             animation frames per second (default 5)\n"
@@ -43,16 +47,17 @@ static void usage(FILE *stream)
 }
 
 typedef struct render_options {
-    const char *mode, *out, *contact, *label, *title, *quantity, *frames;
+    const char *mode, *out, *contact, *label, *title, *titles, *quantity, *frames;
     im_colormap_id map;
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
-    int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw;
+    int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
+    double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
     im_render_backend backend;
 } render_options;
 
 enum { OPT_OUT = 256, OPT_RAW, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG, OPT_SCALE, OPT_CIRCLE, OPT_CX,
        OPT_CY, OPT_CONTACT, OPT_LABEL, OPT_TITLE, OPT_QUANTITY, OPT_DPI, OPT_FPS, OPT_FRAMES,
-       OPT_BACKEND, OPT_HELP };
+       OPT_BACKEND, OPT_TITLES, OPT_COLUMNS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
@@ -64,6 +69,7 @@ static const struct option LONG_OPTIONS[] = {
     {"title", required_argument, 0, OPT_TITLE}, {"quantity", required_argument, 0, OPT_QUANTITY},
     {"dpi", required_argument, 0, OPT_DPI}, {"fps", required_argument, 0, OPT_FPS},
     {"frames", required_argument, 0, OPT_FRAMES}, {"backend", required_argument, 0, OPT_BACKEND},
+    {"titles", required_argument, 0, OPT_TITLES}, {"columns", required_argument, 0, OPT_COLUMNS},
     {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
 
 static int named(int status, const char *option)
@@ -89,6 +95,8 @@ static int apply_option(int code, const char *arg, render_options *o)
     case OPT_CONTACT: o->contact = arg; return 0;
     case OPT_LABEL: o->label = arg; return 0;
     case OPT_TITLE: o->title = arg; return 0;
+    case OPT_TITLES: o->titles = arg; return 0;
+    case OPT_COLUMNS: return cli_parse_int("--columns", arg, 1, 64, &o->columns);
     case OPT_QUANTITY: o->quantity = arg; return 0;
     case OPT_DPI: return cli_parse_double("--dpi", arg, 1.0, 2400.0, &o->dpi);
     case OPT_FPS: return cli_parse_double("--fps", arg, 0.01, 100.0, &o->fps);
@@ -101,7 +109,7 @@ static int apply_option(int code, const char *arg, render_options *o)
 /* The norm: defaults from the style, overridden by --vmin/--vmax/--log/--colormap. */
 static void apply_norm(const render_options *o, im_colormap *c)
 {
-    double lo = o->has_vmin ? o->vmin : c->lo, hi = o->has_vmax ? o->vmax : c->hi;
+    double lo = o->has_vmin ? o->vmin : o->shared_lo, hi = o->has_vmax ? o->vmax : o->shared_hi;
     if (o->logarithmic && !o->has_vmin && hi > 0.0)
         lo = hi * 1e-3;
     *c = im_colormap_make(o->map, lo, hi);
@@ -140,26 +148,52 @@ static int render_height(im_render_context *context, const im_field *height, con
     return status;
 }
 
-static int write_output(const render_options *o, const char *input, const im_image *image,
+/* The i-th comma-separated item of list into buffer; "" when missing. */
+static void list_item(const char *list, int i, char *buffer, size_t size)
+{
+    buffer[0] = '\0';
+    for (; list && i > 0; --i)
+        list = strchr(list, ',') ? strchr(list, ',') + 1 : NULL;
+    if (list)
+        snprintf(buffer, size, "%.*s", (int)strcspn(list, ","), list);
+}
+
+/* The figure (or, with --raw, the data image of a single panel), the run's settings as text. */
+static int write_output(const render_options *o, char **inputs, const im_image *images, int count,
                         const im_colormap *norm)
 {
-    char norm_text[128], scale_text[16];
+    char norm_text[128], scale_text[16], sources[2048] = "";
     snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
     snprintf(scale_text, sizeof scale_text, "%d", o->scale);
+    for (int i = 0; i < count; ++i)
+        snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
     char height_name[64];
-    snprintf(height_name, sizeof height_name, "height h / %s", image->unit[0] ? image->unit : "δ");
+    snprintf(height_name, sizeof height_name, "height h / %s", images[0].unit[0] ? images[0].unit : "δ");
     const char *quantity = o->quantity ? o->quantity : contact ? "local force f / (E* δ²)" : height_name;
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", input},
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
                                  {"Norm", norm_text}, {"Pixels per patch", scale_text}};
     if (o->raw) {
         im_png_options options = {texts, 6, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
-        return im_png_write(o->out, image->rgba, image->width, image->height, 4, (size_t)image->width * 4, &options);
+        return im_png_write(o->out, images[0].rgba, images[0].width, images[0].height, 4,
+                            (size_t)images[0].width * 4, &options);
     }
-    im_figure_panel panel = {image, o->label, o->title};
+    int columns = o->columns > 0 ? o->columns : count;
+    if (count % columns != 0)
+        return im_fail(IM_EINVAL, "--columns %d: %d panels do not fill whole rows", columns, count);
+    im_figure_panel panels[64];
+    char labels[64][8], titles[64][128];
+    for (int i = 0; i < count; ++i) {
+        snprintf(labels[i], sizeof labels[i], "(%c)", 'a' + i);
+        list_item(o->titles, i, titles[i], sizeof titles[i]);
+        panels[i] = (im_figure_panel){&images[i], count > 1 ? labels[i] : o->label,
+                                      count > 1 ? (titles[i][0] ? titles[i] : NULL) : o->title};
+    }
     im_figure figure = im_figure_default();
-    figure.panels = &panel;
+    figure.rows = count / columns;
+    figure.columns = columns;
+    figure.panels = panels;
     figure.colormap = norm;
     figure.colorbar_label = quantity;
     figure.dpi = o->dpi;
@@ -168,28 +202,48 @@ static int write_output(const render_options *o, const char *input, const im_ima
     return im_figure_write(&figure, o->out);
 }
 
-/* One contact map per force file into DIR/contact_NNNN.png, then the GIF or MP4. */
-static int animate(im_render_context *context, char **inputs, int count, const render_options *o)
+/* Reads the fields and sets the default norm: the union of their default ranges. */
+static int read_fields(render_options *o, char **inputs, int count, im_field **fields)
+{
+    o->shared_lo = INFINITY;
+    o->shared_hi = -INFINITY;
+    for (int i = 0; i < count; ++i) {
+        int status = im_surface_read(inputs[i], &fields[i]);
+        if (status != IM_OK)
+            return status;
+        im_colormap c = strcmp(o->mode, "height") == 0 ? im_height_style_default(fields[i]).colormap
+                                                       : im_contact_style_default(fields[i]).colormap;
+        o->shared_lo = fmin(o->shared_lo, c.lo);
+        o->shared_hi = fmax(o->shared_hi, c.hi);
+    }
+    return IM_OK;
+}
+
+/* One contact map per force file, all with one norm, into DIR/contact_NNNN.png, then the GIF
+ * or MP4. */
+static int animate(im_render_context *context, char **inputs, int count, render_options *o)
 {
     int status = im_make_directories(o->frames);
+    im_field **fields = calloc((size_t)count, sizeof *fields);
     im_image *frames = calloc((size_t)count, sizeof *frames);
-    if (!frames)
+    if (!fields || !frames) {
+        free(fields);
+        free(frames);
         return im_fail(IM_ENOMEM, "animation: out of memory");
+    }
+    if (status == IM_OK)
+        status = read_fields(o, inputs, count, fields);
     for (int i = 0; status == IM_OK && i < count; ++i) {
-        im_field *force = NULL;
         im_colormap norm;
         char path[4096];
-        status = im_surface_read(inputs[i], &force);
-        if (status == IM_OK)
-            status = render_contact(context, force, o, &frames[i], &norm);
+        status = render_contact(context, fields[i], o, &frames[i], &norm);
         if (status == IM_OK)
             status = im_frame_path(path, sizeof path, o->frames, "contact", i);
         if (status == IM_OK) {
             render_options frame_options = *o;
             frame_options.out = path;
-            status = write_output(&frame_options, inputs[i], &frames[i], &norm);
+            status = write_output(&frame_options, inputs + i, &frames[i], 1, &norm);
         }
-        im_field_free(force);
     }
     const char *dot = o->out ? strrchr(o->out, '.') : NULL;
     if (status == IM_OK && dot && strcmp(dot, ".gif") == 0)
@@ -198,9 +252,34 @@ static int animate(im_render_context *context, char **inputs, int count, const r
         status = im_animation_mp4(o->frames, "contact", o->fps, o->out);
     else if (status == IM_OK && o->out)
         status = im_fail(IM_EINVAL, "%s: expected an animation ending in .gif or .mp4", o->out);
-    for (int i = 0; i < count; ++i)
+    for (int i = 0; i < count; ++i) {
         im_image_release(&frames[i]);
+        im_field_free(fields[i]);
+    }
     free(frames);
+    free(fields);
+    return status;
+}
+
+/* One panel per input with the shared norm, then the figure. */
+static int draw_panels(im_render_context *context, char **inputs, int count, render_options *o)
+{
+    im_field **fields = calloc((size_t)count, sizeof *fields);
+    im_image *images = calloc((size_t)count, sizeof *images);
+    im_colormap norm;
+    int status = fields && images ? read_fields(o, inputs, count, fields)
+                                  : im_fail(IM_ENOMEM, "render: out of memory");
+    for (int i = 0; status == IM_OK && i < count; ++i)
+        status = strcmp(o->mode, "contact") == 0 ? render_contact(context, fields[i], o, &images[i], &norm)
+                                                 : render_height(context, fields[i], o, &images[i], &norm);
+    if (status == IM_OK)
+        status = write_output(o, inputs, images, count, &norm);
+    for (int i = 0; fields && images && i < count; ++i) {
+        im_image_release(&images[i]);
+        im_field_free(fields[i]);
+    }
+    free(images);
+    free(fields);
     return status;
 }
 
@@ -209,8 +288,10 @@ static int check_usage(const render_options *o, int inputs)
     int animation = strcmp(o->mode, "animate") == 0;
     if (strcmp(o->mode, "contact") != 0 && strcmp(o->mode, "height") != 0 && !animation)
         fprintf(stderr, "indentmap: render: '%s': expected contact, height or animate\n", o->mode);
-    else if (animation ? inputs < 1 : inputs != 1)
-        fprintf(stderr, "indentmap: render %s: expected %s\n", o->mode, animation ? "FORCE files" : "one input file");
+    else if (inputs < 1 || inputs > 64)
+        fprintf(stderr, "indentmap: render %s: expected 1 to 64 input files\n", o->mode);
+    else if (o->raw && inputs > 1 && !animation)
+        fprintf(stderr, "indentmap: --raw draws one file\n");
     else if (animation ? !o->frames : !o->out)
         fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
     else if (o->raw && !animation && strstr(o->out, ".png") == NULL)
@@ -229,17 +310,7 @@ static int run(render_options *o, char **inputs, int count)
     if (strcmp(o->mode, "animate") == 0) {
         status = animate(context, inputs, count, o);
     } else {
-        im_field *field = NULL;
-        im_image image = {0};
-        im_colormap norm;
-        status = im_surface_read(inputs[0], &field);
-        if (status == IM_OK)
-            status = strcmp(o->mode, "contact") == 0 ? render_contact(context, field, o, &image, &norm)
-                                                     : render_height(context, field, o, &image, &norm);
-        if (status == IM_OK)
-            status = write_output(o, inputs[0], &image, &norm);
-        im_image_release(&image);
-        im_field_free(field);
+        status = draw_panels(context, inputs, count, o);
     }
     im_render_close(context);
     if (status == IM_EUNSUPPORTED && strstr(im_last_error(), "ffmpeg not found")) {

@@ -135,13 +135,53 @@ static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
 
 /* ---- drawing ---- */
 
+/* Length of the plain run at text: up to the next "_{" or "^{" markup, or the end. */
+static size_t plain_run(const char *text)
+{
+    size_t n = 0;
+    while (text[n] && !((text[n] == '_' || text[n] == '^') && text[n + 1] == '{' && strchr(text + n, '}')))
+        ++n;
+    return n;
+}
+
+/* Draws (draw = 1) or measures text with _{subscript} and ^{superscript} markup at 70 % of the
+ * size; returns the advance. */
+static double rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
+                        const char *text, int draw)
+{
+    double advance = 0.0;
+    cairo_set_font_face(cr, face);
+    while (*text) {
+        double scale = 1.0, rise = 0.0;
+        const char *start = text;
+        size_t n = plain_run(text);
+        if (n == 0) { /* markup */
+            scale = 0.7;
+            rise = text[0] == '_' ? 0.22 * size : -0.38 * size;
+            start = text + 2;
+            n = (size_t)(strchr(start, '}') - start);
+            text = start + n + 1;
+        } else {
+            text += n;
+        }
+        char piece[256];
+        snprintf(piece, sizeof piece, "%.*s", (int)(n < sizeof piece ? n : sizeof piece - 1), start);
+        cairo_set_font_size(cr, size * scale);
+        if (draw) {
+            cairo_move_to(cr, x + advance, y + rise);
+            cairo_show_text(cr, piece);
+        }
+        advance += text_width(cr, piece);
+    }
+    return advance;
+}
+
+/* Text at (x, y) baseline, aligned 0 left, 0.5 centre, 1 right. */
 static void show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
                       double align, const char *text)
 {
-    cairo_set_font_face(cr, face);
-    cairo_set_font_size(cr, size);
-    cairo_move_to(cr, x - align * text_width(cr, text), y);
-    cairo_show_text(cr, text);
+    double width = rich_text(cr, face, size, 0.0, 0.0, text, 0);
+    rich_text(cr, face, size, x - align * width, y, text, 1);
 }
 
 /* A cairo surface holding an RGBA image (opaque) or a table. Caller destroys it. */
@@ -241,6 +281,22 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
     show_text(cr, regular, l->font, left + 0.5 * pixels, top + 0.3 * l->font + 1.1 * l->font, 0.5, text);
 }
 
+/* Unlabelled ticks at 2..9 times each decade of a logarithmic bar, half as long. */
+static void draw_minor_ticks(const im_colormap *c, const layout *l, cairo_t *cr)
+{
+    double right = l->bar_x + l->bar_width;
+    for (double decade = pow(10.0, floor(log10(c->lo))); decade <= c->hi; decade *= 10.0)
+        for (int m = 2; m <= 9; ++m) {
+            double v = m * decade;
+            if (v < c->lo || v > c->hi)
+                continue;
+            double y = l->bar_y + (1.0 - log(v / c->lo) / log(c->hi / c->lo)) * l->bar_height;
+            cairo_move_to(cr, right, y);
+            cairo_line_to(cr, right + 0.5 * l->tick_length, y);
+            cairo_stroke(cr);
+        }
+}
+
 static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
     /* The table as a 1 x 256 image, top row = last entry, stretched without interpolation. */
@@ -270,6 +326,8 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
         tick_label(c, ticks, count, i, text, sizeof text);
         show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
     }
+    if (c->logarithmic)
+        draw_minor_ticks(c, l, cr);
     if (f->colorbar_label) {
         cairo_save(cr);
         cairo_translate(cr, right + l->tick_length + 0.3 * l->font + l->tick_label_width + 1.2 * l->font,
