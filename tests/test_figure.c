@@ -146,6 +146,52 @@ static void test_panel_grid_and_colorbar(void **state)
         im_image_release(&images[i]);
 }
 
+/* Extension triangles: pixels of the over colour above the bar and of the under colour below it,
+ * none without the flags. */
+static int count_colour(const uint8_t *rgb, int width, int height, const uint8_t colour[3], int above_row,
+                        int below_row)
+{
+    int count = 0;
+    for (int row = 0; row < height; ++row)
+        for (int x = 0; x < width; ++x)
+            if (memcmp(rgb + ((size_t)row * width + x) * 3, colour, 3) == 0 && (row < above_row || row > below_row))
+                ++count;
+    return count;
+}
+
+static void test_colorbar_extensions(void **state)
+{
+    (void)state;
+    im_image image = make_image(40, 40, 5);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
+    const uint8_t over[3] = {255, 0, 255}, under[3] = {0, 200, 255};
+    memcpy(norm.over, over, 3);
+    memcpy(norm.under, under, 3);
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = &norm;
+    figure.dpi = 150;
+    const char *path = test_path("extend.png");
+    int width, height, x, y;
+    for (int extend = 0; extend <= 1; ++extend) {
+        figure.extend_under = figure.extend_over = extend;
+        assert_int_equal(im_figure_write(&figure, path), IM_OK);
+        uint8_t *rgb = read_rgb(path, &width, &height);
+        find_image(rgb, width, height, &image, &x, &y);
+        int middle = y + 20;
+        int n_over = count_colour(rgb, width, height, over, middle, height);
+        int n_under = count_colour(rgb, width, height, under, -1, middle);
+        if (extend) {
+            assert_true(n_over > 20 && n_under > 20);
+        } else {
+            assert_int_equal(n_over + n_under, 0);
+        }
+        free(rgb);
+    }
+    im_image_release(&image);
+}
+
 /* Finds a PNG chunk of the given type whose data starts with prefix; returns its data or NULL. */
 static const uint8_t *find_chunk(const uint8_t *png, size_t size, const char *type, const char *prefix,
                                  size_t prefix_length)
@@ -337,6 +383,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ticks),
         cmocka_unit_test(test_panel_grid_and_colorbar),
+        cmocka_unit_test(test_colorbar_extensions),
         cmocka_unit_test(test_png_metadata_pdf_svg),
         cmocka_unit_test(test_bad_figures_refused),
         cmocka_unit_test(test_frame_paths),

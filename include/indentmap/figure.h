@@ -36,6 +36,8 @@ typedef struct im_figure {
     const im_figure_panel *panels;   /* rows * columns panels, row by row from the top */
     const im_colormap *colormap;     /* norm of the one shared colour bar; NULL: no colour bar */
     const char *colorbar_label;      /* the quantity, e.g. "local force f / (E* δ²)" */
+    int extend_under, extend_over;   /* 1: triangles in the under / over colour beyond the bar's
+                                        ends, saying that some values lie outside the norm */
     double scale_bar;                /* length in the images' units (delta, or their unit);
                                         0: automatic (a 1-2-5 length near a fifth of a panel);
                                         < 0: none */

@@ -52,6 +52,7 @@ typedef struct render_options {
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
+    int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
 } render_options;
 
@@ -116,11 +117,25 @@ static void apply_norm(const render_options *o, im_colormap *c)
     c->logarithmic = o->logarithmic;
 }
 
-static int render_contact(im_render_context *context, const im_field *force, const render_options *o,
+/* Notes values outside the norm (force > 0 only for contact maps), for the colour bar. */
+static void note_extremes(render_options *o, const im_field *field, const im_colormap *norm, int contact)
+{
+    for (size_t i = 0; i < im_field_count(field); ++i) {
+        double v = field->data[i];
+        if (isnan(v) || (contact && !(v > 0.0)))
+            continue;
+        int index = im_colormap_index(norm, v);
+        o->extend_under |= index == -1;
+        o->extend_over |= index == 256;
+    }
+}
+
+static int render_contact(im_render_context *context, const im_field *force, render_options *o,
                           im_image *image, im_colormap *norm)
 {
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
+    note_extremes(o, force, &style.colormap, 1);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
     if (o->has_circle_x)
@@ -131,7 +146,7 @@ static int render_contact(im_render_context *context, const im_field *force, con
     return im_render_contact_map(context, force, &style, image);
 }
 
-static int render_height(im_render_context *context, const im_field *height, const render_options *o,
+static int render_height(im_render_context *context, const im_field *height, render_options *o,
                          im_image *image, im_colormap *norm)
 {
     im_field *contact = NULL;
@@ -140,6 +155,7 @@ static int render_height(im_render_context *context, const im_field *height, con
         return status;
     im_height_style style = im_height_style_default(height);
     apply_norm(o, &style.colormap);
+    note_extremes(o, height, &style.colormap, 0);
     style.pixels_per_patch = o->scale;
     style.contact = contact;
     *norm = style.colormap;
@@ -196,6 +212,8 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     figure.panels = panels;
     figure.colormap = norm;
     figure.colorbar_label = quantity;
+    figure.extend_under = o->extend_under;
+    figure.extend_over = o->extend_over;
     figure.dpi = o->dpi;
     figure.texts = texts;
     figure.text_count = 6;

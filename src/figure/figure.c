@@ -123,8 +123,10 @@ static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
         measure_colorbar(f, measure, l);
         l->bar_x = round(right + 1.2 * l->font);
         l->bar_width = round(1.1 * l->font);
-        l->bar_y = l->grid_y + l->title_height;
-        l->bar_height = grid_height - l->title_height;
+        /* Extension triangles for values beyond the norm sit inside the panels' height. */
+        double triangle = round(1.2 * l->bar_width);
+        l->bar_y = l->grid_y + l->title_height + (f->extend_over ? triangle : 0.0);
+        l->bar_height = grid_height - l->title_height - (f->extend_over + f->extend_under) * triangle;
         l->tick_length = round(0.4 * l->font);
         right = l->bar_x + l->bar_width + l->tick_length + 0.3 * l->font + l->tick_label_width +
                 (f->colorbar_label ? 1.6 * l->font : 0.0);
@@ -297,6 +299,21 @@ static void draw_minor_ticks(const im_colormap *c, const layout *l, cairo_t *cr)
         }
 }
 
+/* A triangle beyond one end of the bar (direction -1 up, +1 down) in the under or over colour. */
+static void draw_extension(const layout *l, cairo_t *cr, double base_y, double direction, const uint8_t rgb[3])
+{
+    double triangle = round(1.2 * l->bar_width);
+    cairo_move_to(cr, l->bar_x, base_y);
+    cairo_line_to(cr, l->bar_x + 0.5 * l->bar_width, base_y + direction * triangle);
+    cairo_line_to(cr, l->bar_x + l->bar_width, base_y);
+    cairo_close_path(cr);
+    cairo_set_source_rgb(cr, rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, l->line);
+    cairo_stroke(cr);
+}
+
 static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
     /* The table as a 1 x 256 image, top row = last entry, stretched without interpolation. */
@@ -312,6 +329,10 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
     cairo_set_line_width(cr, l->line);
     cairo_rectangle(cr, l->bar_x, l->bar_y, l->bar_width, l->bar_height);
     cairo_stroke(cr);
+    if (f->extend_over)
+        draw_extension(l, cr, l->bar_y, -1.0, f->colormap->over);
+    if (f->extend_under)
+        draw_extension(l, cr, l->bar_y + l->bar_height, 1.0, f->colormap->under);
     double ticks[MAX_TICKS];
     int count = im_figure_ticks(f->colormap, ticks, MAX_TICKS);
     const im_colormap *c = f->colormap;
