@@ -58,7 +58,11 @@ typedef struct im_scene {
     double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty) */
     int step_count;
 
+    double tol;                      /* solver tolerance (default 1e-6: n_p within 1e-4 of 1e-8's) */
+
     int contact_panels, frames, table;
+    double frames_slope;             /* the family whose history is framed; < 0: the roughest */
+    int frame_count;                 /* steps of the framed history (default 24) */
     enum im_animation animation;
     char plots[256];                 /* comma-separated figure names, "" for none */
 } im_scene;
@@ -70,6 +74,27 @@ void im_scene_defaults(im_scene *scene);
  * "PATH:LINE: message" for a malformed line, an unknown section or key (with a suggestion), or a
  * value out of range (naming the key and what was expected). */
 int im_scene_load(const char *path, im_scene *scene);
+
+/* How im_scene_run runs. */
+typedef struct im_scene_run_options {
+    int resume;          /* 1: reuse results already on disk under the output folder */
+    int quiet;           /* 1: no progress lines on stderr */
+    int backend;         /* im_render_backend of render.h (0: auto) */
+} im_scene_run_options;
+
+/* Runs a scene: derives the least work its outputs need, solves it, and writes under
+ * scene->output_dir:
+ *   contact_panels: panels/force_FAMILY.npy (force per patch at load_star, one per family, first
+ *     seed), results.csv (one row per family: measured n_p and A/A_cone beside eq. (12)), and
+ *     contact_panels.{png,pdf}: the panels in a grid of three columns with one shared colour bar
+ *     and the smooth contact circle, like the paper's Fig. 4. Each panel is solved in load
+ *     control at its load, warm-started by one step at a quarter of it.
+ *   frames: frames/contact_NNNN.png and frames/height_NNNN.png for frame_count load steps up to
+ *     load_star on one family (the deformed surface with its contact outline), and the
+ *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
+ * Every file is written atomically as soon as it is complete; with options->resume, panels whose
+ * force file exists are read back instead of solved. */
+int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
 
 /* Resolves a path written in a scene relative to the scene file's directory (absolute paths are
  * kept). Writes at most size bytes to out. */

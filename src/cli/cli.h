@@ -10,6 +10,7 @@ int cli_info(int argc, char **argv);
 int cli_render(int argc, char **argv);
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
+int cli_run(int argc, char **argv);
 
 /* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };

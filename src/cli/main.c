@@ -15,6 +15,7 @@ static const subcommand SUBCOMMANDS[] = {
     {"theory", cli_theory, "the paper's contact-area theory for a cone: eqs. (6), (7), (12) and gamma(r)"},
     {"indent", cli_indent, "indent a surface with a cone, sphere or flat punch: history.csv, run.json, fields"},
     {"render", cli_render, "draw a force or height field file as a figure (PNG, PDF, SVG) or animation"},
+    {"run", cli_run, "run a scene file (scenes/fig4.ini: the paper's Fig. 4): solve, render, write"},
     {"info", cli_info, "print the version, FFTW version and OpenMP thread count"},
 };
 static const int SUBCOMMAND_COUNT = (int)(sizeof SUBCOMMANDS / sizeof SUBCOMMANDS[0]);

@@ -203,6 +203,9 @@ static const key_spec KEYS[] = {
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
+    {"output", "frames_slope", parse_double, FIELD(frames_slope), 0, 10, NULL, 0, 0},
+    {"output", "frame_count", parse_int, FIELD(frame_count), 1, 10000, NULL, 0, 0},
+    {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
     {"output", "plots", parse_string, FIELD(plots), 0, 0, NULL, sizeof(((im_scene *)0)->plots), 0},
 };
 static const int KEY_COUNT = (int)(sizeof KEYS / sizeof KEYS[0]);
@@ -221,6 +224,9 @@ void im_scene_defaults(im_scene *scene)
     scene->alpha_degrees = 80.0;
     scene->radius = 100.0;
     scene->modulus = 1.0;
+    scene->tol = 1e-6;
+    scene->frames_slope = -1.0;
+    scene->frame_count = 24;
 }
 
 static size_t edit_distance(const char *a, const char *b)

@@ -1,0 +1,210 @@
+/* Frames of one family's indentation history, and animations made from them. */
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+typedef struct framed_history {
+    int count;
+    im_field *surface;
+    im_field **force, **deformed;   /* per step: force per patch, heights h - u */
+    double *load_star;
+} framed_history;
+
+static void history_free(framed_history *h)
+{
+    for (int i = 0; i < h->count; ++i) {
+        if (h->force)
+            im_field_free(h->force[i]);
+        if (h->deformed)
+            im_field_free(h->deformed[i]);
+    }
+    free(h->force);
+    free(h->deformed);
+    free(h->load_star);
+    im_field_free(h->surface);
+}
+
+/* The framed family: the one whose slope is frames_slope, else the roughest. */
+static int framed_family(const im_scene *scene)
+{
+    int chosen = 0;
+    for (int i = 0; i < scene->family_count; ++i) {
+        if (scene->frames_slope >= 0 ? fabs(scene->slopes[i] - scene->frames_slope) < 1e-12
+                                     : scene->slopes[i] > scene->slopes[chosen])
+            chosen = i;
+    }
+    return chosen;
+}
+
+/* Keeps the step's force and deformed heights h - u (u is positive into the half-space). */
+static int keep_step(const im_indentation *run, framed_history *h, int index, const im_step_result *step)
+{
+    im_field *displacement = NULL;
+    int status = im_indentation_fields(run, &h->force[index], NULL, &displacement);
+    if (status == IM_OK)
+        status = im_field_clone(h->surface, &h->deformed[index]);
+    if (status == IM_OK)
+        for (size_t i = 0; i < im_field_count(h->surface); ++i)
+            h->deformed[index]->data[i] -= displacement->data[i];
+    im_field_free(displacement);
+    h->load_star[index] = step->load_star;
+    return status;
+}
+
+/* Load control, frame_count loads evenly spaced up to the load at load_star. */
+static int solve_history(const im_scene *scene, const im_scene_run_options *options, framed_history *h)
+{
+    int family = framed_family(scene);
+    int status = scene_surface(scene, family, scene->seeds[0], &h->surface);
+    h->count = scene->frame_count;
+    h->force = calloc((size_t)h->count, sizeof *h->force);
+    h->deformed = calloc((size_t)h->count, sizeof *h->deformed);
+    h->load_star = calloc((size_t)h->count, sizeof *h->load_star);
+    if (status == IM_OK && (!h->force || !h->deformed || !h->load_star))
+        status = im_fail(IM_ENOMEM, "frames: allocation failed");
+    if (status != IM_OK)
+        return status;
+    double n = scene_load_for_load_star(scene, h->surface->delta);
+    im_indenter punch = scene_punch(scene);
+    im_solver_options solver = scene_solver_options(scene);
+    im_indentation *run = NULL;
+    status = im_indentation_create(h->surface, &punch, IM_CONTROL_LOAD, n, &solver, &run);
+    scene_progress(options, "frames: %d steps of family %d (h'rms = %g)", h->count, family, scene->slopes[family]);
+    for (int i = 0; i < h->count && status == IM_OK; ++i) {
+        im_step_result step;
+        status = im_indentation_step(run, n * (i + 1) / h->count, &step);
+        if (status == IM_OK)
+            status = keep_step(run, h, i, &step);
+    }
+    im_indentation_free(run);
+    return status;
+}
+
+static void field_range(im_field *const *fields, int count, int positive_only, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (int k = 0; k < count; ++k)
+        for (size_t i = 0; i < im_field_count(fields[k]); ++i) {
+            double v = fields[k]->data[i];
+            if (positive_only && !(v > 0.0))
+                continue;
+            *lo = fmin(*lo, v);
+            *hi = fmax(*hi, v);
+        }
+    if (!(*hi > *lo)) {
+        *lo = isfinite(*lo) ? *lo - 1.0 : 0.0;
+        *hi = *lo + 2.0;
+    }
+}
+
+static int write_frame(const im_scene *scene, const im_image *image, const im_colormap *norm,
+                       const char *label, const char *prefix, int index, double load_star)
+{
+    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[64];
+    int status = scene_output_path(scene, "frames", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_frame_path(path, sizeof path, folder, prefix, index);
+    snprintf(title, sizeof title, "N* = %.0f", load_star);
+    im_figure_panel panel = {image, NULL, title};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = norm;
+    figure.colorbar_label = label;
+    figure.dpi = 150;
+    return status == IM_OK ? im_figure_write(&figure, path) : status;
+}
+
+static int render_contact_frame(im_render_context *context, const framed_history *h, int i,
+                                const im_colormap *norm, int with_circle, im_image *image)
+{
+    im_contact_style style = im_contact_style_default(h->force[i]);
+    style.colormap = *norm;
+    style.pixels_per_patch = 1;
+    style.circle_radius = with_circle ? sqrt(h->load_star[i] / M_PI) : 0.0;
+    return im_render_contact_map(context, h->force[i], &style, image);
+}
+
+static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
+                        im_image *gif_frames)
+{
+    double lo, hi;
+    field_range(h->force, h->count, 1, &lo, &hi);
+    im_colormap force_norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, hi);
+    field_range(h->deformed, h->count, 0, &lo, &hi);
+    im_colormap height_norm = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi);
+    int status = IM_OK;
+    for (int i = 0; i < h->count && status == IM_OK; ++i) {
+        im_image contact = {0}, height = {0};
+        status = render_contact_frame(context, h, i, &force_norm, 1, &contact);
+        if (status == IM_OK)
+            status = write_frame(scene, &contact, &force_norm, "local force f / (E* δ²)", "contact", i,
+                                 h->load_star[i]);
+        im_height_style style = im_height_style_default(h->deformed[i]);
+        style.colormap = height_norm;
+        style.pixels_per_patch = 1;
+        style.contact = h->force[i];
+        if (status == IM_OK)
+            status = im_render_height_map(context, h->deformed[i], &style, &height);
+        if (status == IM_OK)
+            status = write_frame(scene, &height, &height_norm, "deformed height (h − u) / δ", "height", i,
+                                 h->load_star[i]);
+        /* GIF frames carry only the data's exact colours: no anti-aliased circle. */
+        if (status == IM_OK)
+            status = render_contact_frame(context, h, i, &force_norm, 0, &gif_frames[i]);
+        im_image_release(&contact);
+        im_image_release(&height);
+    }
+    return status;
+}
+
+static int write_animations(const im_scene *scene, const im_scene_run_options *options, const im_image *frames,
+                            int count)
+{
+    char path[IM_SCENE_PATH];
+    int status = IM_OK;
+    if (scene->animation & IM_ANIMATION_GIF) {
+        status = scene_output_path(scene, "contact.gif", path, sizeof path);
+        if (status == IM_OK)
+            status = im_animation_gif(frames, count, 0.25, path);
+    }
+    if (status != IM_OK || !(scene->animation & IM_ANIMATION_MP4))
+        return status;
+    if (!im_ffmpeg_available()) {
+        scene_progress(options, "ffmpeg is not installed: no contact.mp4 (the frames are in frames/)");
+        return IM_OK;
+    }
+    char folder[IM_SCENE_PATH];
+    status = scene_output_path(scene, "frames", folder, sizeof folder);
+    if (status == IM_OK)
+        status = scene_output_path(scene, "contact.mp4", path, sizeof path);
+    return status == IM_OK ? im_animation_mp4(folder, "contact", 4.0, path) : status;
+}
+
+int scene_run_frames(const im_scene *scene, const im_scene_run_options *options, im_render_context *context)
+{
+    char folder[IM_SCENE_PATH];
+    int status = scene_output_path(scene, "frames", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    framed_history history = {0};
+    if (status == IM_OK)
+        status = solve_history(scene, options, &history);
+    im_image *gif_frames = calloc((size_t)scene->frame_count, sizeof *gif_frames);
+    if (status == IM_OK && !gif_frames)
+        status = im_fail(IM_ENOMEM, "frames: allocation failed");
+    if (status == IM_OK)
+        status = write_frames(scene, context, &history, gif_frames);
+    if (status == IM_OK)
+        status = write_animations(scene, options, gif_frames, history.count);
+    for (int i = 0; gif_frames && i < scene->frame_count; ++i)
+        im_image_release(&gif_frames[i]);
+    free(gif_frames);
+    history_free(&history);
+    return status;
+}

@@ -1,0 +1,208 @@
+/* Contact-map panels at one load for every family (the paper's Fig. 4), and their table. */
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "indentmap/theory.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+typedef struct panel_result {
+    im_field *force;
+    double load, load_star, area_ratio, area_ratio_eq12, height_rms;
+    long contact_patches;
+} panel_result;
+
+/* Solves one family at load n in load control, warm-started by a step at n / 4. */
+static int solve_panel(const im_scene *scene, const im_field *surface, double n, im_field **force)
+{
+    im_indenter punch = scene_punch(scene);
+    im_solver_options options = scene_solver_options(scene);
+    im_indentation *run = NULL;
+    int status = im_indentation_create(surface, &punch, IM_CONTROL_LOAD, n, &options, &run);
+    im_step_result step;
+    if (status == IM_OK)
+        status = im_indentation_step(run, 0.25 * n, &step);
+    if (status == IM_OK)
+        status = im_indentation_step(run, n, &step);
+    if (status == IM_OK)
+        status = im_indentation_fields(run, force, NULL, NULL);
+    im_indentation_free(run);
+    return status;
+}
+
+static double eq12_for_slope(const im_scene *scene, double slope)
+{
+    if (scene->punch != IM_PUNCH_CONE)
+        return NAN;
+    im_theory_interface rough = im_theory_interface_default(slope);
+    rough.e_star = scene->modulus;
+    double rho, beta, ratio;
+    if (im_theory_cone_rho(&rough, scene->alpha_degrees, &rho) != IM_OK ||
+        im_theory_erf_scale(rho, rough.normalisation, rough.k, &beta) != IM_OK ||
+        im_theory_cone_area_ratio_variable(beta, &ratio) != IM_OK)
+        return NAN;
+    return ratio;
+}
+
+/* Load, contact patches and ratios measured on a force field. */
+static void measure_panel(const im_scene *scene, panel_result *r)
+{
+    const im_field *f = r->force;
+    double load = 0.0;
+    long patches = 0;
+    for (size_t i = 0; i < im_field_count(f); ++i) {
+        load += f->data[i];
+        patches += f->data[i] > 0.0;
+    }
+    im_indenter punch = scene_punch(scene);
+    double area = im_indenter_area_for_load(&punch, scene->modulus, load);
+    r->load = load;
+    r->contact_patches = patches;
+    r->load_star = area / (f->delta * f->delta);
+    r->area_ratio = area > 0.0 ? patches * f->delta * f->delta / area : NAN;
+}
+
+static int panel_force(const im_scene *scene, const im_scene_run_options *options, int family,
+                       panel_result *r)
+{
+    char relative[64], path[IM_SCENE_PATH];
+    snprintf(relative, sizeof relative, "panels/force_%02d.npy", family);
+    int status = scene_output_path(scene, relative, path, sizeof path);
+    struct stat info;
+    if (status == IM_OK && options->resume && stat(path, &info) == 0) {
+        scene_progress(options, "family %d: reusing %s", family, path);
+        return im_npy_read(path, &r->force);
+    }
+    im_field *surface = NULL;
+    if (status == IM_OK)
+        status = scene_surface(scene, family, scene->seeds[0], &surface);
+    if (status == IM_OK) {
+        im_surface_stats stats;
+        r->height_rms = im_surface_statistics(surface, &stats) == IM_OK ? stats.height_rms : NAN;
+        double n = scene_load_for_load_star(scene, surface->delta);
+        scene_progress(options, "family %d (h'rms = %g): solving at N = %.6g", family,
+                       scene->slopes[family], n);
+        status = solve_panel(scene, surface, n, &r->force);
+    }
+    im_field_free(surface);
+    if (status == IM_OK)
+        status = im_npy_write(path, r->force, IM_NPY_FLOAT64);
+    return status;
+}
+
+static int write_results_csv(const im_scene *scene, const panel_result *results)
+{
+    char path[IM_SCENE_PATH];
+    int status = scene_output_path(scene, "results.csv", path, sizeof path);
+    im_atomic_file file;
+    if (status == IM_OK)
+        status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    fprintf(file.stream, "family,slope,seed,load,load_star,contact_patches,area_ratio,area_ratio_eq12\n");
+    for (int i = 0; i < scene->family_count; ++i) {
+        const panel_result *r = &results[i];
+        fprintf(file.stream, "%d,%.17g,%llu,%.17g,%.17g,%ld,%.17g,%.17g\n", i, scene->slopes[i],
+                (unsigned long long)scene->seeds[0], r->load, r->load_star, r->contact_patches,
+                r->area_ratio, r->area_ratio_eq12);
+    }
+    return im_atomic_commit(&file);
+}
+
+static double largest_force(const panel_result *results, int count)
+{
+    double largest = 0.0;
+    for (int i = 0; i < count; ++i)
+        for (size_t j = 0; j < im_field_count(results[i].force); ++j)
+            largest = fmax(largest, results[i].force->data[j]);
+    return largest > 0.0 ? largest : 1.0;
+}
+
+/* Renders every panel with one shared norm and the smooth contact circle. */
+static int render_panels(const im_scene *scene, im_render_context *context, const panel_result *results,
+                         im_image *images, im_colormap *norm)
+{
+    int status = IM_OK;
+    *norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest_force(results, scene->family_count));
+    for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
+        const im_field *f = results[i].force;
+        im_contact_style style = im_contact_style_default(f);
+        style.colormap = *norm;
+        style.pixels_per_patch = f->nx <= 256 ? 2 : 1;
+        style.circle_radius = sqrt(results[i].load_star / M_PI); /* A_smooth = N* delta^2 */
+        status = im_render_contact_map(context, f, &style, &images[i]);
+    }
+    return status;
+}
+
+static int write_panel_figure(const im_scene *scene, const im_image *images, const im_colormap *norm)
+{
+    im_figure_panel panels[IM_SCENE_MAX_FAMILIES];
+    char labels[IM_SCENE_MAX_FAMILIES][8], titles[IM_SCENE_MAX_FAMILIES][64];
+    /* Three columns when the panels fill them (Fig. 4's 2 x 3), else two, else one row. */
+    int count = scene->family_count;
+    int columns = count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
+    int rows = count / columns;
+    for (int i = 0; i < count; ++i) {
+        snprintf(labels[i], sizeof labels[i], "(%c)", 'a' + i % 26);
+        scene_family_title(scene, i, titles[i], sizeof titles[i]);
+        panels[i] = (im_figure_panel){&images[i], labels[i], titles[i]};
+    }
+    char load_text[64];
+    snprintf(load_text, sizeof load_text, "N* = %g", scene->load_star);
+    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Scene", scene->path},
+                           {"Load", load_text}};
+    im_figure figure = im_figure_default();
+    figure.rows = rows;
+    figure.columns = columns;
+    figure.panels = panels;
+    figure.colormap = norm;
+    figure.colorbar_label = "local force f / (E* δ²)";
+    figure.texts = texts;
+    figure.text_count = 3;
+    char path[IM_SCENE_PATH];
+    int status = IM_OK;
+    const char *names[] = {"contact_panels.png", "contact_panels.pdf"};
+    for (int k = 0; k < 2 && status == IM_OK; ++k) {
+        status = scene_output_path(scene, names[k], path, sizeof path);
+        if (status == IM_OK)
+            status = im_figure_write(&figure, path);
+    }
+    return status;
+}
+
+int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context)
+{
+    char folder[IM_SCENE_PATH];
+    int status = scene_output_path(scene, "panels", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    panel_result results[IM_SCENE_MAX_FAMILIES] = {0};
+    im_image images[IM_SCENE_MAX_FAMILIES] = {0};
+    for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
+        status = panel_force(scene, options, i, &results[i]);
+        if (status == IM_OK) {
+            measure_panel(scene, &results[i]);
+            results[i].area_ratio_eq12 = eq12_for_slope(scene, scene->slopes[i]);
+            scene_progress(options, "family %d: n_p = %ld, A/A_cone = %.4f (eq. 12: %.4f)", i,
+                           results[i].contact_patches, results[i].area_ratio, results[i].area_ratio_eq12);
+        }
+    }
+    if (status == IM_OK)
+        status = write_results_csv(scene, results);
+    im_colormap norm;
+    if (status == IM_OK)
+        status = render_panels(scene, context, results, images, &norm);
+    if (status == IM_OK)
+        status = write_panel_figure(scene, images, &norm);
+    for (int i = 0; i < scene->family_count; ++i) {
+        im_field_free(results[i].force);
+        im_image_release(&images[i]);
+    }
+    return status;
+}

@@ -1,0 +1,121 @@
+#include "indentmap/scene.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+im_indenter scene_punch(const im_scene *scene)
+{
+    switch (scene->punch) {
+    case IM_PUNCH_SPHERE: return im_indenter_sphere(scene->radius);
+    case IM_PUNCH_FLAT: return im_indenter_flat(scene->radius);
+    default: return im_indenter_cone(scene->alpha_degrees);
+    }
+}
+
+double scene_load_for_load_star(const im_scene *scene, double delta)
+{
+    /* A(N) increases with N for every punch: bisect A(N) = load_star delta^2 in log N. */
+    im_indenter punch = scene_punch(scene);
+    double area = scene->load_star * delta * delta, lo = 1e-300, hi = 1.0;
+    while (im_indenter_area_for_load(&punch, scene->modulus, hi) < area && hi < 1e300)
+        hi *= 2.0;
+    for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-15; ++i) {
+        double mid = sqrt(lo * hi);
+        if (im_indenter_area_for_load(&punch, scene->modulus, mid) < area)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return hi;
+}
+
+int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **out)
+{
+    if (scene->surface_file[0]) {
+        char path[IM_SCENE_PATH];
+        im_scene_resolve_path(scene, scene->surface_file, path, sizeof path);
+        return im_surface_read(path, out);
+    }
+    if (scene->slopes[family] == 0.0)
+        return im_field_create(scene->surface.nx, scene->surface.ny, scene->surface.delta, out);
+    im_surface_params params = scene->surface;
+    params.target = IM_TARGET_SLOPE;
+    params.slope_rms = scene->slopes[family];
+    params.seed = seed;
+    return im_surface_generate(&params, out);
+}
+
+im_solver_options scene_solver_options(const im_scene *scene)
+{
+    im_solver_options options = im_solver_options_default();
+    options.e_star = scene->modulus;
+    options.tol = scene->tol;
+    return options;
+}
+
+void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size)
+{
+    if (scene->surface_file[0])
+        snprintf(buffer, size, "%s", scene->surface_file);
+    else if (scene->slopes[family] == 0.0)
+        snprintf(buffer, size, "smooth");
+    else
+        snprintf(buffer, size, "h'rms = %g", scene->slopes[family]);
+}
+
+int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)
+{
+    int length = snprintf(buffer, size, "%s/%s", scene->output_dir, relative);
+    if (length < 0 || (size_t)length >= size)
+        return im_fail(IM_EINVAL, "output path %s/%s is too long", scene->output_dir, relative);
+    return IM_OK;
+}
+
+void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
+{
+    if (options->quiet)
+        return;
+    va_list args;
+    va_start(args, fmt);
+    fputs("indentmap: ", stderr);
+    vfprintf(stderr, fmt, args);
+    fputc('\n', stderr);
+    va_end(args);
+}
+
+static int check_runnable(const im_scene *scene)
+{
+    if ((scene->contact_panels || scene->frames) && !(scene->load_star > 0.0))
+        return im_fail(IM_EINVAL, "%s: contact panels and frames need [loading] load_star > 0", scene->path);
+    if (scene->surface_file[0] && scene->family_count > 1)
+        return im_fail(IM_EINVAL, "%s: a surface file makes one family; remove [surfaces] slopes", scene->path);
+    im_indenter punch = scene_punch(scene);
+    return im_indenter_check(&punch);
+}
+
+int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
+{
+    int status = check_runnable(scene);
+    if (status == IM_OK)
+        status = im_make_directories(scene->output_dir);
+    if (status != IM_OK || !(scene->contact_panels || scene->frames))
+        return status;
+    im_render_context *context = NULL;
+    status = im_render_open((im_render_backend)options->backend, &context);
+    if (status != IM_OK)
+        return status;
+    scene_progress(options, "rendering with %s (%s)", im_render_backend_name(context),
+                   im_render_gl_renderer(context));
+    if (scene->contact_panels)
+        status = scene_run_panels(scene, options, context);
+    if (status == IM_OK && scene->frames)
+        status = scene_run_frames(scene, options, context);
+    im_render_close(context);
+    return status;
+}

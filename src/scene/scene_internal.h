@@ -1,0 +1,38 @@
+/* Internal: the pieces of a scene run, shared by run.c, panels.c and frames.c. */
+#ifndef INDENTMAP_SCENE_INTERNAL_H
+#define INDENTMAP_SCENE_INTERNAL_H
+
+#include "indentmap/indenter.h"
+#include "indentmap/render.h"
+#include "indentmap/scene.h"
+#include "indentmap/solver.h"
+
+/* The punch a scene describes. */
+im_indenter scene_punch(const im_scene *scene);
+
+/* The load N whose smooth contact area is load_star delta^2 (N* of the paper for a cone). */
+double scene_load_for_load_star(const im_scene *scene, double delta);
+
+/* The surface of one family and seed: flat for slope 0, the file when the scene names one, else
+ * generated. */
+int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **out);
+
+/* Solver options of a scene (its tolerance; everything else default). */
+im_solver_options scene_solver_options(const im_scene *scene);
+
+/* A label for a family: "smooth" or "h'rms = 0.08". */
+void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size);
+
+/* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
+int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
+
+/* Progress line on stderr unless quiet. */
+void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
+                     im_render_context *context);
+int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
+                     im_render_context *context);
+
+#endif
