@@ -92,6 +92,7 @@ typedef struct im_scene_run_options {
  *   frames: frames/contact_NNNN.png and frames/height_NNNN.png for frame_count load steps up to
  *     load_star on one family (the deformed surface with its contact outline), and the
  *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
+ *     The history's last step is that family's panel: it is not solved twice.
  * Every file is written atomically as soon as it is complete; with options->resume, panels whose
  * force file exists are read back instead of solved. */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);

@@ -29,8 +29,7 @@ static void history_free(framed_history *h)
     im_field_free(h->surface);
 }
 
-/* The framed family: the one whose slope is frames_slope, else the roughest. */
-static int framed_family(const im_scene *scene)
+int scene_framed_family(const im_scene *scene)
 {
     int chosen = 0;
     for (int i = 0; i < scene->family_count; ++i) {
@@ -59,7 +58,7 @@ static int keep_step(const im_indentation *run, framed_history *h, int index, co
 /* Load control, frame_count loads evenly spaced up to the load at load_star. */
 static int solve_history(const im_scene *scene, const im_scene_run_options *options, framed_history *h)
 {
-    int family = framed_family(scene);
+    int family = scene_framed_family(scene);
     int status = scene_surface(scene, family, scene->seeds[0], &h->surface);
     h->count = scene->frame_count;
     h->force = calloc((size_t)h->count, sizeof *h->force);
@@ -186,8 +185,10 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     return status == IM_OK ? im_animation_mp4(folder, "contact", 4.0, path) : status;
 }
 
-int scene_run_frames(const im_scene *scene, const im_scene_run_options *options, im_render_context *context)
+int scene_run_frames(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                     im_field **last_force)
 {
+    *last_force = NULL;
     char folder[IM_SCENE_PATH];
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
@@ -202,6 +203,8 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
         status = write_frames(scene, context, &history, gif_frames);
     if (status == IM_OK)
         status = write_animations(scene, options, gif_frames, history.count);
+    if (status == IM_OK)
+        status = im_field_clone(history.force[history.count - 1], last_force);
     for (int i = 0; gif_frames && i < scene->frame_count; ++i)
         im_image_release(&gif_frames[i]);
     free(gif_frames);

@@ -67,13 +67,19 @@ static void measure_panel(const im_scene *scene, panel_result *r)
     r->area_ratio = area > 0.0 ? patches * f->delta * f->delta / area : NAN;
 }
 
+/* The force field of a family at load_star: reused from the frames, read back on --resume, or
+ * solved (and then written at once). */
 static int panel_force(const im_scene *scene, const im_scene_run_options *options, int family,
-                       panel_result *r)
+                       const im_field *known_force, panel_result *r)
 {
     char relative[64], path[IM_SCENE_PATH];
     snprintf(relative, sizeof relative, "panels/force_%02d.npy", family);
     int status = scene_output_path(scene, relative, path, sizeof path);
     struct stat info;
+    if (status == IM_OK && known_force && family == scene_framed_family(scene)) {
+        status = im_field_clone(known_force, &r->force);
+        return status == IM_OK ? im_npy_write(path, r->force, IM_NPY_FLOAT64) : status;
+    }
     if (status == IM_OK && options->resume && stat(path, &info) == 0) {
         scene_progress(options, "family %d: reusing %s", family, path);
         return im_npy_read(path, &r->force);
@@ -176,7 +182,8 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
     return status;
 }
 
-int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context)
+int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                     const im_field *known_force)
 {
     char folder[IM_SCENE_PATH];
     int status = scene_output_path(scene, "panels", folder, sizeof folder);
@@ -185,7 +192,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     panel_result results[IM_SCENE_MAX_FAMILIES] = {0};
     im_image images[IM_SCENE_MAX_FAMILIES] = {0};
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
-        status = panel_force(scene, options, i, &results[i]);
+        status = panel_force(scene, options, i, known_force, &results[i]);
         if (status == IM_OK) {
             measure_panel(scene, &results[i]);
             results[i].area_ratio_eq12 = eq12_for_slope(scene, scene->slopes[i]);

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -270,19 +271,51 @@ const char *im_scene_suggest_key(const char *section, const char *word)
 typedef struct parse_context {
     im_scene *scene;
     FILE *stream;
-    int line;        /* the line inih is reading, counted by read_line */
-    int error_line;  /* the first line whose key was refused, 0 if none */
+    int line;        /* physical lines read so far, counted by read_line */
+    int error_line;  /* the first line refused by read_line or handle_key, 0 if none */
     char error[512];
 } parse_context;
 
-/* inih's line reader: fgets, counting lines so that key errors know their line. */
+/* Stops parsing at the line being read with a message; inih then sees the end of the file. */
+static char *refuse_line(parse_context *context, const char *format, ...) __attribute__((format(printf, 2, 3)));
+static char *refuse_line(parse_context *context, const char *format, ...)
+{
+    va_list arguments;
+    va_start(arguments, format);
+    vsnprintf(context->error, sizeof context->error, format, arguments);
+    va_end(arguments);
+    context->error_line = context->line + 1;
+    return NULL;
+}
+
+/* inih's line reader: one physical line per call, counted so that errors know their line.
+ * Debian's libinih hands it a fixed buffer of INI_MAX_LINE (200) bytes; fgets would cut a longer
+ * line in two and inih would parse the tail as a line of its own, silently when it begins with a
+ * blank (a continuation that replaces the value, e.g. half a `slopes` list). So a line that does
+ * not fit, or a NUL byte (which would end the line early for inih), stops parsing with an error. */
 static char *read_line(char *buffer, int size, void *user)
 {
     parse_context *context = user;
-    char *line = fgets(buffer, size, context->stream);
-    if (line)
-        ++context->line;
-    return line;
+    if (context->error_line)
+        return NULL; /* the first error is reported; nothing after it matters */
+    int length = 0, c;
+    while ((c = getc(context->stream)) != EOF) {
+        if (c == '\0')
+            return refuse_line(context, "a NUL byte: expected a text file");
+        if (c == '\n' && length == size - 1)
+            break; /* the newline itself need not be kept */
+        if (length == size - 1)
+            return refuse_line(context, "line longer than %d characters, the INI reader's limit "
+                               "(for long lists of values use first:last:count)", size - 2);
+        buffer[length++] = (char)c;
+        if (c == '\n')
+            break;
+    }
+    if (length == 0)
+        return NULL; /* end of file, or a read error that im_scene_load reports */
+    buffer[length] = '\0';
+    ++context->line;
+    return buffer;
 }
 
 static int section_exists(const char *section)
@@ -368,14 +401,18 @@ int im_scene_load(const char *path, im_scene *scene)
     if (!context.stream)
         return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
     int line = ini_parse_stream(read_line, &context, handle_key, &context);
+    int read_error = ferror(context.stream) ? errno : 0;
     fclose(context.stream);
     if (line == -2)
         return im_fail(IM_ENOMEM, "%s: out of memory while parsing", path);
-    if (line > 0 && line == context.error_line)
-        return im_fail(IM_EFORMAT, "%s:%d: %s", path, line, context.error);
-    if (line > 0)
+    /* inih's own error (a malformed line) precedes any error of ours, else it is the same line */
+    if (line > 0 && line != context.error_line)
         return im_fail(IM_EFORMAT, "%s:%d: malformed line: expected [section], key = value or a comment",
                        path, line);
+    if (context.error_line)
+        return im_fail(IM_EFORMAT, "%s:%d: %s", path, context.error_line, context.error);
+    if (read_error)
+        return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_error));
     complete(scene, scene->surface.ny != -1, scene->surface.lambda_r != -1, scene->output_dir[0] != '\0');
     if (check_consistency(scene, context.error, sizeof context.error) != 0)
         return im_fail(IM_EFORMAT, "%s: %s", path, context.error);

@@ -112,10 +112,12 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
         return status;
     scene_progress(options, "rendering with %s (%s)", im_render_backend_name(context),
                    im_render_gl_renderer(context));
-    if (scene->contact_panels)
-        status = scene_run_panels(scene, options, context);
-    if (status == IM_OK && scene->frames)
-        status = scene_run_frames(scene, options, context);
+    im_field *framed_force = NULL;
+    if (scene->frames)
+        status = scene_run_frames(scene, options, context, &framed_force);
+    if (status == IM_OK && scene->contact_panels)
+        status = scene_run_panels(scene, options, context, framed_force);
+    im_field_free(framed_force);
     im_render_close(context);
     return status;
 }

@@ -30,9 +30,17 @@ int scene_output_path(const im_scene *scene, const char *relative, char *buffer,
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
-int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
-                     im_render_context *context);
+/* The family whose history is framed: the one whose slope is frames_slope, else the roughest. */
+int scene_framed_family(const im_scene *scene);
+
+/* Frames of the framed family's history; *last_force receives its last step's force field (the
+ * state at load_star), which the panels reuse instead of solving it again. */
 int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
-                     im_render_context *context);
+                     im_render_context *context, im_field **last_force);
+
+/* Panels of every family at load_star; known_force (may be NULL) is the framed family's force,
+ * already solved by the frames. */
+int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
+                     im_render_context *context, const im_field *known_force);
 
 #endif
