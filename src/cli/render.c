@@ -30,7 +30,7 @@ static void usage(FILE *stream)
             "  --raw               PNG of the data image only, without annotations\n"
             "  --colormap NAME     viridis (default), cividis, magma, inferno or grey\n"
             "  --vmin V, --vmax V  norm range (default: 0 .. largest force; min .. max height)\n"
-            "  --log               logarithmic norm (needs vmin > 0)\n"
+            "  --log               logarithmic norm (vmin > 0; default vmin: vmax / 1000)\n"
             "  --scale N           pixels per patch (default 2)\n"
             "  --circle R          contact circle of radius R patches (contact, animate)\n"
             "  --circle-x X, --circle-y Y   its centre in patches (default: the grid's middle)\n"
