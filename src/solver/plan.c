@@ -51,9 +51,10 @@ double im_influence_square(double x, double y, double delta, double e_star)
 
 double im_solver_plan_bytes(int nx, int ny)
 {
-    double n = (double)nx * ny, padded = 4 * n, modes = 2.0 * ny * (nx + 1);
-    /* kernel, 3 work arrays, changes (long + double); spectrum; 2 padded reals; complex modes */
-    return 8 * (n * 6 + modes + 2 * padded + 2 * modes);
+    double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
+    /* kernel, 3 work arrays, changes (long + double); spectrum; 2 padded rows; 2 complex arrays.
+     * While planning, the kernel's transform needs a 4 n temporary on top. */
+    return 8 * (n * 6 + modes + 2 * rows + 2 * 2 * modes + 4 * n);
 }
 
 static const char *wisdom_file(const im_solver_options *o)
@@ -82,10 +83,18 @@ static int make_fft_plans(im_solver_plan *p)
     if (wisdom)
         fftw_import_wisdom_from_filename(wisdom); /* a missing or stale file just means no wisdom */
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
+    const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
     im_fft_prepare_planner();
-    p->forward = fftw_plan_dft_r2c_2d(p->py, p->px, p->padded_in, p->modes, flags);
-    p->backward = fftw_plan_dft_c2r_2d(p->py, p->px, p->modes, p->padded_out, flags);
-    if (!p->forward || !p->backward)
+    /* ny real rows of length px -> ny complex rows of length mx; then mx columns of length py */
+    p->rows_forward = fftw_plan_many_dft_r2c(1, row_length, p->ny, p->rows_in, NULL, 1, p->px, p->half, NULL,
+                                             1, mx, flags);
+    p->columns_forward = fftw_plan_many_dft(1, column_length, mx, p->half, NULL, mx, 1, p->modes, NULL, mx, 1,
+                                            FFTW_FORWARD, flags);
+    p->columns_backward = fftw_plan_many_dft(1, column_length, mx, p->modes, NULL, mx, 1, p->modes, NULL, mx,
+                                             1, FFTW_BACKWARD, flags);
+    p->rows_backward = fftw_plan_many_dft_c2r(1, row_length, p->ny, p->modes, NULL, 1, mx, p->rows_out, NULL,
+                                              1, p->px, flags);
+    if (!p->rows_forward || !p->columns_forward || !p->columns_backward || !p->rows_backward)
         return im_fail(IM_ENOMEM, "FFTW could not plan a %d x %d transform", p->px, p->py);
     return wisdom ? export_wisdom(wisdom) : IM_OK;
 }
@@ -93,11 +102,17 @@ static int make_fft_plans(im_solver_plan *p)
 static long wrapped_offset(long j, long n, long padded) { return j <= n ? j : padded - j; }
 
 /* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
- * that it is even and its spectrum real), then transforms it once. */
-static void compute_kernel(im_solver_plan *p)
+ * that it is even and its spectrum real), then transforms it once with a one-off plan. */
+static int compute_kernel(im_solver_plan *p)
 {
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
     const double e = p->options.e_star, d = p->delta;
+    double *padded = fftw_malloc(sizeof(double) * (size_t)px * py);
+    fftw_plan transform = padded ? fftw_plan_dft_r2c_2d(py, px, padded, p->modes, FFTW_ESTIMATE) : NULL;
+    if (!transform) {
+        fftw_free(padded);
+        return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel transform", nx, ny);
+    }
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy)
         for (int ix = 0; ix < nx; ++ix)
@@ -107,22 +122,23 @@ static void compute_kernel(im_solver_plan *p)
         long dy = wrapped_offset(jy, ny, py);
         for (int jx = 0; jx < px; ++jx) {
             long dx = wrapped_offset(jx, nx, px);
-            p->padded_in[(size_t)jy * px + jx] = dx < nx && dy < ny
-                                                     ? p->kernel[(size_t)dy * nx + dx]
-                                                     : im_influence_square(dx * d, dy * d, d, e);
+            padded[(size_t)jy * px + jx] = dx < nx && dy < ny ? p->kernel[(size_t)dy * nx + dx]
+                                                              : im_influence_square(dx * d, dy * d, d, e);
         }
     }
-    fftw_execute(p->forward);
+    fftw_execute(transform);
+    fftw_destroy_plan(transform);
+    fftw_free(padded);
     const double scale = 1.0 / ((double)px * py);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < (size_t)py * mx; ++k)
         p->spectrum[k] = p->modes[k][0] * scale;
-    memset(p->padded_in, 0, sizeof(double) * (size_t)px * py);
+    return IM_OK;
 }
 
 static int allocate_plan(im_solver_plan *p)
 {
-    size_t n = (size_t)p->nx * p->ny, padded = (size_t)p->px * p->py, modes = (size_t)p->py * (p->px / 2 + 1);
+    size_t n = (size_t)p->nx * p->ny, rows = (size_t)p->px * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
     p->kernel = fftw_malloc(sizeof(double) * n);
     p->direction = fftw_malloc(sizeof(double) * n);
     p->response = fftw_malloc(sizeof(double) * n);
@@ -130,11 +146,12 @@ static int allocate_plan(im_solver_plan *p)
     p->changed = malloc(sizeof(long) * n);
     p->changed_value = malloc(sizeof(double) * n);
     p->spectrum = fftw_malloc(sizeof(double) * modes);
-    p->padded_in = fftw_malloc(sizeof(double) * padded);
-    p->padded_out = fftw_malloc(sizeof(double) * padded);
+    p->rows_in = fftw_malloc(sizeof(double) * rows);
+    p->rows_out = fftw_malloc(sizeof(double) * rows);
+    p->half = fftw_malloc(sizeof(fftw_complex) * modes);
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
     if (!p->kernel || !p->direction || !p->response || !p->gap || !p->changed || !p->changed_value ||
-        !p->spectrum || !p->padded_in || !p->padded_out || !p->modes)
+        !p->spectrum || !p->rows_in || !p->rows_out || !p->half || !p->modes)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: allocation failed", p->nx, p->ny);
     memset(p->direction, 0, sizeof(double) * n);
     return IM_OK;
@@ -169,8 +186,14 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
         im_solver_plan_free(p);
         return status;
     }
-    memset(p->padded_in, 0, sizeof(double) * (size_t)p->px * p->py);
-    compute_kernel(p);
+    /* after planning, which may scribble on the arrays: the zeros the pruning relies on */
+    memset(p->rows_in, 0, sizeof(double) * (size_t)p->px * p->ny);
+    memset(p->half, 0, sizeof(fftw_complex) * (size_t)p->py * (p->px / 2 + 1));
+    status = compute_kernel(p);
+    if (status != IM_OK) {
+        im_solver_plan_free(p);
+        return status;
+    }
     /* Direct summation costs ~nx ny per changed patch; an FFT pair ~10 (4 nx ny) log2(4 nx ny) flops
      * at a few times the speed. Measured on 512 x 512: the crossover is near 60 changes. */
     p->direct_limit = (long)(2.5 * log2(4.0 * nx * ny));
@@ -183,10 +206,10 @@ void im_solver_plan_free(im_solver_plan *p)
 {
     if (!p)
         return;
-    if (p->forward)
-        fftw_destroy_plan(p->forward);
-    if (p->backward)
-        fftw_destroy_plan(p->backward);
+    fftw_plan plans[4] = {p->rows_forward, p->columns_forward, p->columns_backward, p->rows_backward};
+    for (int i = 0; i < 4; ++i)
+        if (plans[i])
+            fftw_destroy_plan(plans[i]);
     fftw_free(p->kernel);
     fftw_free(p->direction);
     fftw_free(p->response);
@@ -194,8 +217,9 @@ void im_solver_plan_free(im_solver_plan *p)
     free(p->changed);
     free(p->changed_value);
     fftw_free(p->spectrum);
-    fftw_free(p->padded_in);
-    fftw_free(p->padded_out);
+    fftw_free(p->rows_in);
+    fftw_free(p->rows_out);
+    fftw_free(p->half);
     fftw_free(p->modes);
     free(p);
 }
@@ -208,17 +232,19 @@ void im_solver_convolve(im_solver_plan *p, const double *pressure, double *displ
     const int nx = p->nx, ny = p->ny, px = p->px, mx = px / 2 + 1;
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy)
-        memcpy(p->padded_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
-    fftw_execute(p->forward);
+        memcpy(p->rows_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
+    fftw_execute(p->rows_forward);
+    fftw_execute(p->columns_forward);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < (size_t)p->py * mx; ++k) {
         p->modes[k][0] *= p->spectrum[k];
         p->modes[k][1] *= p->spectrum[k];
     }
-    fftw_execute(p->backward);
+    fftw_execute(p->columns_backward);
+    fftw_execute(p->rows_backward);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy)
-        memcpy(displacement + (size_t)iy * nx, p->padded_out + (size_t)iy * px, sizeof(double) * nx);
+        memcpy(displacement + (size_t)iy * nx, p->rows_out + (size_t)iy * px, sizeof(double) * nx);
 }
 
 void solver_add_point_loads(const im_solver_plan *p, const long *index, const double *value, long count,

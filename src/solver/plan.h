@@ -13,10 +13,13 @@ struct im_solver_plan {
     im_solver_options options;
     double *kernel;          /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
     double *spectrum;        /* py * (px/2 + 1): real spectrum of K, divided by px * py */
-    double *padded_in;       /* px * py, zero outside the nx x ny quadrant */
-    double *padded_out;      /* px * py */
-    fftw_complex *modes;     /* py * (px/2 + 1) */
-    fftw_plan forward, backward;
+    double *rows_in;         /* ny * px: the grid's rows, zero-padded to px (right halves stay 0) */
+    double *rows_out;        /* ny * px */
+    fftw_complex *half;      /* py * (px/2 + 1): row transforms; rows ny..py-1 stay 0 */
+    fftw_complex *modes;     /* py * (px/2 + 1): the 2-D transform */
+    /* The 2-D transform of the padded grid, pruned: the x transforms of the py - ny zero rows are
+     * skipped going forward, and those of the rows outside the result coming back. */
+    fftw_plan rows_forward, columns_forward, columns_backward, rows_backward;
     double *direction, *response, *gap; /* nx * ny work arrays of the iteration */
     long *changed;           /* nx * ny: indices of patches changed outside the CG step */
     double *changed_value;   /* their pressure changes */
