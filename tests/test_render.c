@@ -231,7 +231,7 @@ static void test_circle_centre_and_radius(void **state)
     im_field *f = make_field(40, 36);
     im_contact_style style = im_contact_style_default(f);
     style.pixels_per_patch = 2;
-    style.boundary_px = 0;
+    style.boundary_px = 3; /* the circle is placed relative to the data, not the frame */
     style.circle_radius = 12.4;
     style.circle_x = 19.3;
     style.circle_y = 17.05;
@@ -240,10 +240,10 @@ static void test_circle_centre_and_radius(void **state)
     assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_OK);
     double weight = 0.0, sum_x = 0.0, sum_y = 0.0, sum_r = 0.0;
     double cx = style.circle_x * 2, cy = style.circle_y * 2, radius = style.circle_radius * 2;
-    for (int row = 0; row < image.height; ++row)
-        for (int column = 0; column < image.width; ++column) {
+    for (int row = 3; row < image.height - 3; ++row)
+        for (int column = 3; column < image.width - 3; ++column) {
             double coverage = (230.0 - pixel(&image, column, row)[0]) / 230.0;
-            double x = column + 0.5, y = image.height - row - 0.5;
+            double x = column - 3 + 0.5, y = image.height - 3 - row - 0.5; /* from the data's corner */
             weight += coverage;
             sum_x += coverage * x;
             sum_y += coverage * y;
