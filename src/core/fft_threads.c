@@ -5,6 +5,10 @@
 #include <pthread.h>
 
 static pthread_once_t fftw_threads_once = PTHREAD_ONCE_INIT;
+static pthread_mutex_t planner_mutex = PTHREAD_MUTEX_INITIALIZER;
+
+void im_fft_planner_lock(void) { pthread_mutex_lock(&planner_mutex); }
+void im_fft_planner_unlock(void) { pthread_mutex_unlock(&planner_mutex); }
 
 static void init_fftw_threads(void)
 {

@@ -91,8 +91,11 @@ void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
 
 static int check_runnable(const im_scene *scene)
 {
-    if ((scene->contact_panels || scene->frames) && !(scene->load_star > 0.0))
-        return im_fail(IM_EINVAL, "%s: contact panels and frames need [loading] load_star > 0", scene->path);
+    if ((scene->contact_panels || scene->frames || scene->table) && !(scene->load_star > 0.0))
+        return im_fail(IM_EINVAL, "%s: contact panels, frames and tables need [loading] load_star > 0",
+                       scene->path);
+    if (scene->table && scene->punch != IM_PUNCH_CONE)
+        return im_fail(IM_EINVAL, "%s: [output] table compares with eq. (12), which is for a cone", scene->path);
     if (scene->surface_file[0] && scene->family_count > 1)
         return im_fail(IM_EINVAL, "%s: a surface file makes one family; remove [surfaces] slopes", scene->path);
     im_indenter punch = scene_punch(scene);
@@ -104,6 +107,8 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     int status = check_runnable(scene);
     if (status == IM_OK)
         status = im_make_directories(scene->output_dir);
+    if (status == IM_OK && scene->table)
+        status = scene_run_table(scene, options);
     if (status != IM_OK || !(scene->contact_panels || scene->frames))
         return status;
     im_render_context *context = NULL;

@@ -43,4 +43,8 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
                      im_render_context *context, const im_field *known_force);
 
+/* The ensemble table at load_star (the paper's Table 1): table/member_FF_SEED.csv for each
+ * surface as soon as it is solved, then table1.csv and table1.md. */
+int scene_run_table(const im_scene *scene, const im_scene_run_options *options);
+
 #endif

@@ -1,0 +1,288 @@
+/* The ensemble table (the paper's Table 1): every seed of every family solved at one load, in
+ * parallel over surfaces; per family the mean and spread of A/A_cone beside eq. (12). */
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "indentmap/theory.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+typedef struct member {
+    int family;
+    uint64_t seed;
+    double height_rms, load, load_star, area_ratio;
+    long contact_patches;
+    int iterations, status;
+    double seconds;
+    char error[256];
+} member;
+
+/* The paper's Table 1 (alpha = 80 degrees), for the Markdown table beside ours. */
+static const struct paper_row {
+    double slope, height_rms, rho_c;
+    long n_p_ref;
+    double area_ratio, sd, eq12;
+} PAPER_TABLE1[] = {
+    {0.00, NAN, INFINITY, 37164, 1.000, 0.0, 1.000},  {0.01, 0.16, 17.63, 37364, 1.002, 0.009, 0.998},
+    {0.02, 0.32, 8.82, 37470, 1.001, 0.017, 0.992},   {0.04, 0.64, 4.41, 37211, 0.985, 0.031, 0.969},
+    {0.08, 1.29, 2.20, 35152, 0.909, 0.045, 0.894},   {0.16, 2.57, 1.10, 30031, 0.724, 0.044, 0.719},
+};
+
+static const struct paper_row *paper_row_for(double slope)
+{
+    for (size_t i = 0; i < sizeof PAPER_TABLE1 / sizeof *PAPER_TABLE1; ++i)
+        if (fabs(PAPER_TABLE1[i].slope - slope) < 1e-12)
+            return &PAPER_TABLE1[i];
+    return NULL;
+}
+
+static int member_path(const im_scene *scene, const member *m, char *path, size_t size)
+{
+    char relative[96];
+    snprintf(relative, sizeof relative, "table/member_%02d_%llu.csv", m->family, (unsigned long long)m->seed);
+    return scene_output_path(scene, relative, path, size);
+}
+
+static const char MEMBER_HEADER[] =
+    "family,slope,seed,height_rms,load,load_star,contact_patches,area_ratio,iterations,seconds\n";
+
+static int write_member(const im_scene *scene, const member *m)
+{
+    char path[IM_SCENE_PATH], text[512];
+    int status = member_path(scene, m, path, sizeof path);
+    int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f\n", MEMBER_HEADER,
+                          m->family, scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms, m->load,
+                          m->load_star, m->contact_patches, m->area_ratio, m->iterations, m->seconds);
+    return status == IM_OK ? im_write_file_atomic(path, text, (size_t)length) : status;
+}
+
+/* Reads a member written by an earlier, interrupted run; 0 if there is none. */
+static int read_member(const im_scene *scene, member *m)
+{
+    char path[IM_SCENE_PATH], header[256];
+    if (member_path(scene, m, path, sizeof path) != IM_OK)
+        return 0;
+    FILE *stream = fopen(path, "r");
+    if (!stream)
+        return 0;
+    double slope;
+    unsigned long long seed;
+    int family;
+    int ok = fgets(header, sizeof header, stream) &&
+             fscanf(stream, "%d,%lf,%llu,%lf,%lf,%lf,%ld,%lf,%d,%lf", &family, &slope, &seed, &m->height_rms,
+                    &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations,
+                    &m->seconds) == 10 && family == m->family && seed == m->seed;
+    fclose(stream);
+    return ok;
+}
+
+/* Solves one member at load_star: load control, warm-started by a step at a quarter of it. */
+static int solve_member(const im_scene *scene, member *m)
+{
+    im_field *surface = NULL;
+    int status = scene_surface(scene, m->family, m->seed, &surface);
+    im_surface_stats stats;
+    if (status == IM_OK)
+        status = im_surface_statistics(surface, &stats);
+    im_indentation *run = NULL;
+    im_step_result step = {0};
+    if (status == IM_OK) {
+        m->height_rms = stats.height_rms;
+        double n = scene_load_for_load_star(scene, surface->delta);
+        im_indenter punch = scene_punch(scene);
+        im_solver_options options = scene_solver_options(scene);
+        status = im_indentation_create(surface, &punch, IM_CONTROL_LOAD, n, &options, &run);
+        if (status == IM_OK)
+            status = im_indentation_step(run, 0.25 * n, &step);
+        int warm_up_iterations = step.iterations;
+        if (status == IM_OK)
+            status = im_indentation_step(run, n, &step);
+        m->iterations = warm_up_iterations + step.iterations;
+    }
+    im_indentation_free(run);
+    im_field_free(surface);
+    m->load = step.load;
+    m->load_star = step.load_star;
+    m->contact_patches = step.contact_patches;
+    m->area_ratio = step.area_ratio;
+    return status;
+}
+
+static void report_progress(const im_scene_run_options *options, int done, int total)
+{
+    if (options->quiet || !isatty(STDERR_FILENO))
+        return;
+    enum { WIDTH = 40 };
+    char bar[WIDTH + 1];
+    int filled = done * WIDTH / total;
+    for (int i = 0; i < WIDTH; ++i)
+        bar[i] = i < filled ? '#' : '.';
+    bar[WIDTH] = '\0';
+    fprintf(stderr, "\r[%s] %d/%d surfaces", bar, done, total);
+    if (done == total)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
+static void run_member(const im_scene *scene, const im_scene_run_options *options, member *m)
+{
+    if (options->resume && read_member(scene, m))
+        return;
+    double start = omp_get_wtime();
+    m->status = solve_member(scene, m);
+    m->seconds = omp_get_wtime() - start;
+    if (m->status == IM_OK)
+        m->status = write_member(scene, m);
+    if (m->status != IM_OK)
+        snprintf(m->error, sizeof m->error, "%s", im_last_error());
+}
+
+/* Every member, surfaces side by side on the available cores (each solve single-threaded). */
+static int run_members(const im_scene *scene, const im_scene_run_options *options, member *members, int count)
+{
+    int done = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int i = 0; i < count; ++i) {
+        run_member(scene, options, &members[i]);
+#pragma omp critical(scene_progress)
+        report_progress(options, ++done, count);
+    }
+    for (int i = 0; i < count; ++i)
+        if (members[i].status != IM_OK)
+            return im_fail(members[i].status, "family %d, seed %llu: %s", members[i].family,
+                           (unsigned long long)members[i].seed, members[i].error);
+    return IM_OK;
+}
+
+typedef struct family_summary {
+    double slope, rho_c, height_rms, area_ratio, sd, eq12, relative_error, n_p_mean;
+    long n_p_ref;
+    int count;
+} family_summary;
+
+static double cone_eq12(const im_scene *scene, double slope, double *rho_c)
+{
+    im_theory_interface rough = im_theory_interface_default(slope);
+    double beta, ratio;
+    if (im_theory_cone_rho(&rough, scene->alpha_degrees, rho_c) != IM_OK ||
+        im_theory_erf_scale(*rho_c, rough.normalisation, rough.k, &beta) != IM_OK ||
+        im_theory_cone_area_ratio_variable(beta, &ratio) != IM_OK)
+        return NAN;
+    return ratio;
+}
+
+static family_summary summarise(const im_scene *scene, const member *members, int count, int family)
+{
+    family_summary s = {.slope = scene->slopes[family], .n_p_ref = -1};
+    double sum = 0.0, sum_sq = 0.0, height = 0.0, patches = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const member *m = &members[i];
+        if (m->family != family)
+            continue;
+        ++s.count;
+        sum += m->area_ratio;
+        sum_sq += m->area_ratio * m->area_ratio;
+        height += m->height_rms;
+        patches += (double)m->contact_patches;
+        if (s.n_p_ref < 0 || m->contact_patches < s.n_p_ref)
+            s.n_p_ref = m->contact_patches;
+    }
+    s.area_ratio = sum / s.count;
+    s.sd = s.count > 1 ? sqrt(fmax(0.0, (sum_sq - s.count * s.area_ratio * s.area_ratio) / (s.count - 1))) : 0.0;
+    s.height_rms = height / s.count;
+    s.n_p_mean = patches / s.count;
+    s.eq12 = cone_eq12(scene, s.slope, &s.rho_c);
+    s.relative_error = fabs(s.area_ratio - s.eq12) / s.area_ratio;
+    return s;
+}
+
+static int write_table_csv(const im_scene *scene, const family_summary *rows)
+{
+    char path[IM_SCENE_PATH];
+    im_atomic_file file;
+    int status = scene_output_path(scene, "table1.csv", path, sizeof path);
+    if (status == IM_OK)
+        status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    fprintf(file.stream, "slope,surfaces,height_rms_mean,rho_c,n_p_ref,n_p_mean,area_ratio_mean,area_ratio_sd,"
+                         "area_ratio_eq12,relative_error\n");
+    for (int f = 0; f < scene->family_count; ++f) {
+        const family_summary *r = &rows[f];
+        fprintf(file.stream, "%.6g,%d,%.6g,%.6g,%ld,%.1f,%.6f,%.6f,%.6f,%.6f\n", r->slope, r->count, r->height_rms,
+                r->rho_c, r->n_p_ref, r->n_p_mean, r->area_ratio, r->sd, r->eq12, r->relative_error);
+    }
+    return im_atomic_commit(&file);
+}
+
+static void markdown_row(FILE *out, const family_summary *r)
+{
+    const struct paper_row *p = paper_row_for(r->slope);
+    char paper[64] = "–";
+    if (p)
+        snprintf(paper, sizeof paper, "%.3f ± %.3f (%ld)", p->area_ratio, p->sd, p->n_p_ref);
+    if (r->slope == 0.0)
+        fprintf(out, "| 0.00 | – | – | %ld | %.3f | %.3f | – | %s |\n", r->n_p_ref, r->area_ratio, r->eq12, paper);
+    else
+        fprintf(out, "| %.2f | %.2f | %.2f | %ld | %.3f ± %.3f | %.3f | %.1f%% | %s |\n", r->slope, r->height_rms,
+                r->rho_c, r->n_p_ref, r->area_ratio, r->sd, r->eq12, 100.0 * r->relative_error, paper);
+}
+
+static int write_table_markdown(const im_scene *scene, const family_summary *rows)
+{
+    char path[IM_SCENE_PATH];
+    im_atomic_file file;
+    int status = scene_output_path(scene, "table1.md", path, sizeof path);
+    if (status == IM_OK)
+        status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    fprintf(file.stream, "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms), beside the paper's "
+                         "Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
+            scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count);
+    fprintf(file.stream, "| h'rms | mean h_rms/δ | ρ_c | n_p,ref | A/A_cone indentmap | A/A_cone eq. (12) | "
+                         "relative error | paper (Icarus) |\n|---|---|---|---|---|---|---|---|\n");
+    for (int f = 0; f < scene->family_count; ++f)
+        markdown_row(file.stream, &rows[f]);
+    return im_atomic_commit(&file);
+}
+
+int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
+{
+    char folder[IM_SCENE_PATH];
+    int status = scene_output_path(scene, "table", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    member *members = calloc((size_t)(scene->family_count * scene->seed_count), sizeof *members);
+    if (status == IM_OK && !members)
+        status = im_fail(IM_ENOMEM, "table: allocation failed");
+    int count = 0;
+    for (int f = 0; status == IM_OK && f < scene->family_count; ++f) {
+        /* A smooth family is one surface whatever the seeds: solve it once. */
+        int seeds = scene->slopes[f] == 0.0 && !scene->surface_file[0] ? 1 : scene->seed_count;
+        for (int k = 0; k < seeds; ++k, ++count) {
+            members[count].family = f;
+            members[count].seed = scene->seeds[k];
+        }
+    }
+    if (status == IM_OK) {
+        scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
+                       scene->load_star);
+        status = run_members(scene, options, members, count);
+    }
+    family_summary rows[IM_SCENE_MAX_FAMILIES];
+    for (int f = 0; status == IM_OK && f < scene->family_count; ++f)
+        rows[f] = summarise(scene, members, count, f);
+    if (status == IM_OK)
+        status = write_table_csv(scene, rows);
+    if (status == IM_OK)
+        status = write_table_markdown(scene, rows);
+    free(members);
+    return status;
+}
