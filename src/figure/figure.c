@@ -2,10 +2,10 @@
 #include "indentmap/figure.h"
 
 #include "figure/fonts.h"
+#include "figure/output.h"
+#include "figure/text.h"
 #include "indentmap/status.h"
 
-#include <cairo-pdf.h>
-#include <cairo-svg.h>
 #include <cairo.h>
 #include <math.h>
 #include <stdio.h>
@@ -58,35 +58,6 @@ static int has_panel_text(const im_figure *f)
     return 0;
 }
 
-/* Tick label text: decades as 10 with superscript exponents, else as many decimals as the step
- * needs; minus signs are U+2212. */
-static void tick_label(const im_colormap *c, const double *ticks, int count, int i, char *text, size_t size)
-{
-    double v = ticks[i];
-    if (c->logarithmic && count >= 2 && fabs(log10(ticks[1] / ticks[0]) - 1.0) < 1e-9) {
-        static const char *const superscripts[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-        int exponent = (int)lround(log10(v));
-        int used = snprintf(text, size, "10%s", exponent < 0 ? "⁻" : "");
-        char digits[16];
-        snprintf(digits, sizeof digits, "%d", abs(exponent));
-        for (const char *d = digits; *d && used < (int)size; ++d)
-            used += snprintf(text + used, size - (size_t)used, "%s", superscripts[*d - '0']);
-        return;
-    }
-    double step = count >= 2 ? ticks[1] - ticks[0] : fabs(v);
-    int decimals = c->logarithmic ? 3 : step > 0 ? (int)fmax(0.0, -floor(log10(step) + 1e-9)) : 0;
-    char number[48];
-    snprintf(number, sizeof number, c->logarithmic ? "%.*g" : "%.*f", c->logarithmic ? 3 : decimals, fabs(v));
-    snprintf(text, size, "%s%s", v < 0 ? "−" : "", number);
-}
-
-static double text_width(cairo_t *cr, const char *text)
-{
-    cairo_text_extents_t extents;
-    cairo_text_extents(cr, text, &extents);
-    return extents.x_advance;
-}
-
 static void measure_colorbar(const im_figure *f, cairo_t *cr, layout *l)
 {
     double ticks[MAX_TICKS];
@@ -94,8 +65,9 @@ static void measure_colorbar(const im_figure *f, cairo_t *cr, layout *l)
     l->tick_label_width = 0.0;
     for (int i = 0; i < count; ++i) {
         char text[64];
-        tick_label(f->colormap, ticks, count, i, text, sizeof text);
-        l->tick_label_width = fmax(l->tick_label_width, text_width(cr, text));
+        im_figure_tick_label(f->colormap->logarithmic, ticks, count, i, text, sizeof text);
+        cairo_font_face_t *face = cairo_get_font_face(cr);
+        l->tick_label_width = fmax(l->tick_label_width, im_figure_rich_text(cr, face, l->font, 0, 0, text, 0));
     }
 }
 
@@ -136,55 +108,6 @@ static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
 }
 
 /* ---- drawing ---- */
-
-/* Length of the plain run at text: up to the next "_{" or "^{" markup, or the end. */
-static size_t plain_run(const char *text)
-{
-    size_t n = 0;
-    while (text[n] && !((text[n] == '_' || text[n] == '^') && text[n + 1] == '{' && strchr(text + n, '}')))
-        ++n;
-    return n;
-}
-
-/* Draws (draw = 1) or measures text with _{subscript} and ^{superscript} markup at 70 % of the
- * size; returns the advance. */
-static double rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                        const char *text, int draw)
-{
-    double advance = 0.0;
-    cairo_set_font_face(cr, face);
-    while (*text) {
-        double scale = 1.0, rise = 0.0;
-        const char *start = text;
-        size_t n = plain_run(text);
-        if (n == 0) { /* markup */
-            scale = 0.7;
-            rise = text[0] == '_' ? 0.22 * size : -0.38 * size;
-            start = text + 2;
-            n = (size_t)(strchr(start, '}') - start);
-            text = start + n + 1;
-        } else {
-            text += n;
-        }
-        char piece[256];
-        snprintf(piece, sizeof piece, "%.*s", (int)(n < sizeof piece ? n : sizeof piece - 1), start);
-        cairo_set_font_size(cr, size * scale);
-        if (draw) {
-            cairo_move_to(cr, x + advance, y + rise);
-            cairo_show_text(cr, piece);
-        }
-        advance += text_width(cr, piece);
-    }
-    return advance;
-}
-
-/* Text at (x, y) baseline, aligned 0 left, 0.5 centre, 1 right. */
-static void show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                      double align, const char *text)
-{
-    double width = rich_text(cr, face, size, 0.0, 0.0, text, 0);
-    rich_text(cr, face, size, x - align * width, y, text, 1);
-}
 
 /* A cairo surface holding an RGBA image (opaque) or a table. Caller destroys it. */
 static cairo_surface_t *image_surface(const uint8_t *rgba, int width, int height, size_t stride_bytes,
@@ -245,9 +168,9 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
         cairo_set_source_rgb(cr, 0, 0, 0);
         double baseline = y - 0.45 * l->font;
         if (p->label)
-            show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
+            im_figure_show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
         if (p->title)
-            show_text(cr, regular, l->font, x + 0.5 * p->image->width, baseline, 0.5, p->title);
+            im_figure_show_text(cr, regular, l->font, x + 0.5 * p->image->width, baseline, 0.5, p->title);
     }
     return IM_OK;
 }
@@ -280,7 +203,7 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
     cairo_fill(cr);
     char text[64];
     snprintf(text, sizeof text, "%g %s", length, image->unit[0] ? image->unit : "δ");
-    show_text(cr, regular, l->font, left + 0.5 * pixels, top + 0.3 * l->font + 1.1 * l->font, 0.5, text);
+    im_figure_show_text(cr, regular, l->font, left + 0.5 * pixels, top + 0.3 * l->font + 1.1 * l->font, 0.5, text);
 }
 
 /* Unlabelled ticks at 2..9 times each decade of a logarithmic bar, half as long. */
@@ -344,8 +267,8 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
         cairo_line_to(cr, right + l->tick_length, y);
         cairo_stroke(cr);
         char text[64];
-        tick_label(c, ticks, count, i, text, sizeof text);
-        show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
+        im_figure_tick_label(c->logarithmic, ticks, count, i, text, sizeof text);
+        im_figure_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
     }
     if (c->logarithmic)
         draw_minor_ticks(c, l, cr);
@@ -354,7 +277,7 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
         cairo_translate(cr, right + l->tick_length + 0.3 * l->font + l->tick_label_width + 1.2 * l->font,
                         l->bar_y + 0.5 * l->bar_height);
         cairo_rotate(cr, -M_PI / 2.0);
-        show_text(cr, regular, l->font, 0.0, 0.0, 0.5, f->colorbar_label);
+        im_figure_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, f->colorbar_label);
         cairo_restore(cr);
     }
     return IM_OK;
@@ -373,9 +296,18 @@ static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
         draw_scale_bar(f, l, cr, regular);
     if (status == IM_OK && f->colormap)
         status = draw_colorbar(f, l, cr, regular);
-    if (status == IM_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
-        status = im_fail(IM_ENOMEM, "figure: cairo: %s", cairo_status_to_string(cairo_status(cr)));
     return status;
+}
+
+typedef struct figure_drawing {
+    const im_figure *figure;
+    const layout *layout;
+} figure_drawing;
+
+static int paint_figure(cairo_t *cr, const void *context)
+{
+    const figure_drawing *d = context;
+    return draw_figure(d->figure, d->layout, cr);
 }
 
 /* ---- validation and output ---- */
@@ -400,78 +332,6 @@ static int check_figure(const im_figure *f)
     return IM_OK;
 }
 
-static int write_png(const im_figure *f, const layout *l, const char *path)
-{
-    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, l->width, l->height);
-    cairo_t *cr = cairo_create(surface);
-    int status = draw_figure(f, l, cr);
-    cairo_destroy(cr);
-    uint8_t *rgb = status == IM_OK ? malloc((size_t)l->width * l->height * 3) : NULL;
-    if (status == IM_OK && !rgb)
-        status = im_fail(IM_ENOMEM, "figure %d x %d: out of memory", l->width, l->height);
-    if (status == IM_OK) {
-        cairo_surface_flush(surface);
-        const unsigned char *data = cairo_image_surface_get_data(surface);
-        int stride = cairo_image_surface_get_stride(surface);
-        for (int row = 0; row < l->height; ++row)
-            for (int x = 0; x < l->width; ++x) {
-                uint32_t p = ((const uint32_t *)(data + (size_t)row * stride))[x];
-                uint8_t *out = rgb + ((size_t)row * l->width + x) * 3;
-                out[0] = (uint8_t)(p >> 16), out[1] = (uint8_t)(p >> 8), out[2] = (uint8_t)p;
-            }
-        im_png_options options = {f->texts, f->text_count, f->dpi / 0.0254, f->png_compression};
-        status = im_png_write(path, rgb, l->width, l->height, 3, (size_t)l->width * 3, &options);
-    }
-    free(rgb);
-    cairo_surface_destroy(surface);
-    return status;
-}
-
-static cairo_status_t write_stream(void *closure, const unsigned char *data, unsigned int length)
-{
-    return fwrite(data, 1, length, (FILE *)closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
-
-static void set_pdf_metadata(const im_figure *f, cairo_surface_t *surface)
-{
-    char keywords[2048] = "";
-    size_t used = 0;
-    for (int i = 0; i < f->text_count && used < sizeof keywords; ++i)
-        used += (size_t)snprintf(keywords + used, sizeof keywords - used, "%s%s=%s", i ? "; " : "",
-                                 f->texts[i].key, f->texts[i].value);
-    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords);
-    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "indentmap " IM_VERSION);
-}
-
-static int write_vector(const im_figure *f, const layout *l, const char *path, im_figure_format format)
-{
-    im_atomic_file file;
-    int status = im_atomic_open(&file, path);
-    if (status != IM_OK)
-        return status;
-    double points = 72.0 / f->dpi;
-    cairo_surface_t *surface =
-        format == IM_FIGURE_PDF
-            ? cairo_pdf_surface_create_for_stream(write_stream, file.stream, l->width * points, l->height * points)
-            : cairo_svg_surface_create_for_stream(write_stream, file.stream, l->width * points, l->height * points);
-    if (format == IM_FIGURE_PDF)
-        set_pdf_metadata(f, surface);
-    cairo_t *cr = cairo_create(surface);
-    cairo_scale(cr, points, points);
-    status = draw_figure(f, l, cr);
-    cairo_destroy(cr);
-    cairo_surface_finish(surface);
-    cairo_status_t written = cairo_surface_status(surface);
-    cairo_surface_destroy(surface);
-    if (status == IM_OK && written != CAIRO_STATUS_SUCCESS)
-        status = im_fail(IM_EIO, "%s: %s", path, cairo_status_to_string(written));
-    if (status != IM_OK) {
-        im_atomic_abort(&file);
-        return status;
-    }
-    return im_atomic_commit(&file);
-}
-
 int im_figure_write(const im_figure *f, const char *path)
 {
     im_figure_format format = IM_FIGURE_PNG;
@@ -494,5 +354,7 @@ int im_figure_write(const im_figure *f, const char *path)
     if (l.width > 32768 || l.height > 32768)
         return im_fail(IM_EINVAL, "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "
                        "or the pixels per patch", l.width, l.height);
-    return format == IM_FIGURE_PNG ? write_png(f, &l, path) : write_vector(f, &l, path, format);
+    im_figure_canvas canvas = {l.width, l.height, f->dpi, f->texts, f->text_count, f->png_compression};
+    figure_drawing drawing = {f, &l};
+    return im_figure_output(path, format, &canvas, paint_figure, &drawing);
 }

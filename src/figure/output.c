@@ -1,0 +1,104 @@
+/* A cairo drawing written as PNG, PDF or SVG, atomically. */
+#include "figure/output.h"
+
+#include "indentmap/status.h"
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static int check_canvas(const im_figure_canvas *c)
+{
+    if (c->width < 1 || c->height < 1 || c->width > 32768 || c->height > 32768)
+        return im_fail(IM_EINVAL, "figure %d x %d pixels: expected 1 to 32768 per side; lower the dpi "
+                       "or the sizes", c->width, c->height);
+    return IM_OK;
+}
+
+static int write_png(const char *path, const im_figure_canvas *c, im_figure_painter paint, const void *context)
+{
+    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, c->width, c->height);
+    cairo_t *cr = cairo_create(surface);
+    int status = paint(cr, context);
+    if (status == IM_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
+        status = im_fail(IM_ENOMEM, "figure: cairo: %s", cairo_status_to_string(cairo_status(cr)));
+    cairo_destroy(cr);
+    uint8_t *rgb = status == IM_OK ? malloc((size_t)c->width * c->height * 3) : NULL;
+    if (status == IM_OK && !rgb)
+        status = im_fail(IM_ENOMEM, "figure %d x %d: out of memory", c->width, c->height);
+    if (status == IM_OK) {
+        cairo_surface_flush(surface);
+        const unsigned char *data = cairo_image_surface_get_data(surface);
+        int stride = cairo_image_surface_get_stride(surface);
+        for (int row = 0; row < c->height; ++row)
+            for (int x = 0; x < c->width; ++x) {
+                uint32_t p = ((const uint32_t *)(data + (size_t)row * stride))[x];
+                uint8_t *out = rgb + ((size_t)row * c->width + x) * 3;
+                out[0] = (uint8_t)(p >> 16), out[1] = (uint8_t)(p >> 8), out[2] = (uint8_t)p;
+            }
+        im_png_options options = {c->texts, c->text_count, c->dpi / 0.0254, c->png_compression};
+        status = im_png_write(path, rgb, c->width, c->height, 3, (size_t)c->width * 3, &options);
+    }
+    free(rgb);
+    cairo_surface_destroy(surface);
+    return status;
+}
+
+static cairo_status_t write_stream(void *closure, const unsigned char *data, unsigned int length)
+{
+    return fwrite(data, 1, length, (FILE *)closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+static void set_pdf_metadata(const im_figure_canvas *c, cairo_surface_t *surface)
+{
+    char keywords[2048] = "";
+    size_t used = 0;
+    for (int i = 0; i < c->text_count && used < sizeof keywords; ++i)
+        used += (size_t)snprintf(keywords + used, sizeof keywords - used, "%s%s=%s", i ? "; " : "",
+                                 c->texts[i].key, c->texts[i].value);
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords);
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "indentmap " IM_VERSION);
+}
+
+static int write_vector(const char *path, im_figure_format format, const im_figure_canvas *c,
+                        im_figure_painter paint, const void *context)
+{
+    im_atomic_file file;
+    int status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    double points = 72.0 / c->dpi;
+    cairo_surface_t *surface =
+        format == IM_FIGURE_PDF
+            ? cairo_pdf_surface_create_for_stream(write_stream, file.stream, c->width * points, c->height * points)
+            : cairo_svg_surface_create_for_stream(write_stream, file.stream, c->width * points, c->height * points);
+    if (format == IM_FIGURE_PDF)
+        set_pdf_metadata(c, surface);
+    cairo_t *cr = cairo_create(surface);
+    cairo_scale(cr, points, points);
+    status = paint(cr, context);
+    if (status == IM_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
+        status = im_fail(IM_ENOMEM, "figure: cairo: %s", cairo_status_to_string(cairo_status(cr)));
+    cairo_destroy(cr);
+    cairo_surface_finish(surface);
+    cairo_status_t written = cairo_surface_status(surface);
+    cairo_surface_destroy(surface);
+    if (status == IM_OK && written != CAIRO_STATUS_SUCCESS)
+        status = im_fail(IM_EIO, "%s: %s", path, cairo_status_to_string(written));
+    if (status != IM_OK) {
+        im_atomic_abort(&file);
+        return status;
+    }
+    return im_atomic_commit(&file);
+}
+
+int im_figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
+                     im_figure_painter paint, const void *context)
+{
+    int status = check_canvas(canvas);
+    if (status != IM_OK)
+        return status;
+    return format == IM_FIGURE_PNG ? write_png(path, canvas, paint, context)
+                                   : write_vector(path, format, canvas, paint, context);
+}

@@ -1,0 +1,22 @@
+/* Text for figures and plots: UTF-8 with _{subscript} and ^{superscript} markup, and the labels
+ * of nice tick values. Shared by the figure module (colour bars) and the plot module (axes). */
+#ifndef INDENTMAP_FIGURE_TEXT_H
+#define INDENTMAP_FIGURE_TEXT_H
+
+#include <cairo.h>
+#include <stddef.h>
+
+/* Draws (draw = 1) or only measures text at baseline (x, y) in face at size (pixels); markup runs
+ * are drawn at 70 % of the size, raised or lowered. Returns the advance (width) in pixels. */
+double im_figure_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
+                           const char *text, int draw);
+
+/* Text at (x, y) baseline, aligned 0 left, 0.5 centre, 1 right. */
+void im_figure_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
+                         double align, const char *text);
+
+/* Label of ticks[i] of count ticks from im_figure_ticks: decades (log ticks a factor 10 apart) as
+ * 10 with superscript exponents, else as many decimals as the step needs; minus signs are U+2212. */
+void im_figure_tick_label(int logarithmic, const double *ticks, int count, int i, char *text, size_t size);
+
+#endif
