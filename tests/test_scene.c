@@ -5,6 +5,7 @@
 #include "indentmap/status.h"
 
 #include <dirent.h>
+#include <ini.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,6 +78,62 @@ static void missing_file_is_an_io_error(void **state)
     assert_non_null(strstr(im_last_error(), "none.ini: cannot open"));
 }
 
+/* "slopes = 0.001, 0.002, ..." of exactly length characters (blanks pad the last item); returns how
+ * many values it lists. */
+static int slopes_line(char *out, size_t length)
+{
+    size_t used = (size_t)snprintf(out, length + 1, "slopes = 0.001");
+    int count = 1;
+    while (used + 7 <= length) /* ", 0.0NN" */
+        used += (size_t)snprintf(out + used, length + 1 - used, ", 0.%03d", ++count);
+    memmove(out + length - 5, out + used - 5, 5);      /* keep the last value at the end ... */
+    memset(out + used - 5, ' ', length - used);         /* ... after blanks that a token may have */
+    out[length] = '\0';
+    return count;
+}
+
+/* inih reads into a buffer of INI_MAX_LINE bytes (200 in Debian's build) and would cut a longer
+ * line in two, parsing the tail as a separate line or even as a continuation of the value. */
+static void long_lines_are_refused(void **state)
+{
+    (void)state;
+    char line[512], text[1024], expected[128];
+    const int limit = INI_MAX_LINE - 1; /* characters, the newline not counted */
+    int count = slopes_line(line, (size_t)limit);
+    assert_int_equal((int)strlen(line), limit);
+    snprintf(text, sizeof text, "[surfaces]\n%s\nseeds = 1:2\n", line);
+    im_scene scene;
+    assert_int_equal(im_scene_load(write_scene("fits.ini", text), &scene), IM_OK);
+    assert_int_equal(scene.family_count, count);
+    assert_close(scene.slopes[count - 1], count * 1e-3, 1e-15);
+    assert_int_equal(scene.seed_count, 2);
+
+    slopes_line(line, (size_t)limit + 1);
+    snprintf(text, sizeof text, "[surfaces]\n%s\nseeds = 1:2\n", line);
+    snprintf(expected, sizeof expected, ":2: line longer than %d characters", limit);
+    expect_error("long.ini", text, expected);
+    /* the old failure: a tail beginning with a blank read as a continuation, replacing the list */
+    slopes_line(line, 400);
+    snprintf(text, sizeof text, "[scene]\nname = x\n[surfaces]\n%s\n", line);
+    expect_error("continued.ini", text, ":4: line longer than");
+    /* a key error before the long line is the one reported */
+    snprintf(text, sizeof text, "[surfaces]\nhurst = 2\n%s\n", line);
+    expect_error("first_error.ini", text, ":2: hurst");
+}
+
+static void binary_and_unreadable_files_are_refused(void **state)
+{
+    (void)state;
+    const char *path = test_path("nul.ini");
+    test_write_bytes(path, "[scene]\nname = a\0b\n", 19);
+    im_scene scene;
+    assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), ":2: a NUL byte"));
+    /* a directory opens for reading on Linux, but cannot be read */
+    assert_int_equal(im_scene_load(test_temp_dir(), &scene), IM_EIO);
+    assert_non_null(strstr(im_last_error(), "cannot read"));
+}
+
 /* Every bundled scene parses. */
 static void bundled_scenes_parse(void **state)
 {
@@ -109,6 +166,8 @@ int main(void)
         cmocka_unit_test(values_are_read),
         cmocka_unit_test(errors_name_the_line),
         cmocka_unit_test(missing_file_is_an_io_error),
+        cmocka_unit_test(long_lines_are_refused),
+        cmocka_unit_test(binary_and_unreadable_files_are_refused),
         cmocka_unit_test(bundled_scenes_parse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -306,7 +306,7 @@ static char *read_line(char *buffer, int size, void *user)
             break; /* the newline itself need not be kept */
         if (length == size - 1)
             return refuse_line(context, "line longer than %d characters, the INI reader's limit "
-                               "(for long lists of values use first:last:count)", size - 2);
+                               "(for long lists of values use first:last:count)", size - 1);
         buffer[length++] = (char)c;
         if (c == '\n')
             break;
@@ -401,7 +401,7 @@ int im_scene_load(const char *path, im_scene *scene)
     if (!context.stream)
         return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
     int line = ini_parse_stream(read_line, &context, handle_key, &context);
-    int read_error = ferror(context.stream) ? errno : 0;
+    int read_failed = ferror(context.stream), read_errno = errno;
     fclose(context.stream);
     if (line == -2)
         return im_fail(IM_ENOMEM, "%s: out of memory while parsing", path);
@@ -411,8 +411,8 @@ int im_scene_load(const char *path, im_scene *scene)
                        path, line);
     if (context.error_line)
         return im_fail(IM_EFORMAT, "%s:%d: %s", path, context.error_line, context.error);
-    if (read_error)
-        return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_error));
+    if (read_failed)
+        return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_errno));
     complete(scene, scene->surface.ny != -1, scene->surface.lambda_r != -1, scene->output_dir[0] != '\0');
     if (check_consistency(scene, context.error, sizeof context.error) != 0)
         return im_fail(IM_EFORMAT, "%s: %s", path, context.error);

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Runs each libFuzzer harness for a bounded time, one after the other on one worker:
+#   fuzz/run.sh [SECONDS] [BUILD_DIR] [HARNESS...]     (defaults: 60, build-fuzz, all four)
+# Builds first (fuzz/build.sh). Each harness starts from the committed seeds in fuzz/corpus/NAME
+# (read only) and adds what it discovers to BUILD_DIR/corpus/NAME; crashing inputs are written to
+# BUILD_DIR/artifacts/NAME/ and the log to BUILD_DIR/logs/NAME.log. Prints one line per harness
+# with libFuzzer's final stats; exits 1 if any harness found a crash, leak, timeout or OOM.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+build_dir=${2:-build-fuzz}
+shift 2 2>/dev/null || shift $#
+harnesses=("$@")
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(scene npy text gsf)
+
+fuzz/build.sh "$build_dir" >/dev/null || exit 1
+failed=0
+printf '%-6s %8s %12s %10s %s\n' harness seconds execs exec/s result
+for name in "${harnesses[@]}"; do
+  mkdir -p "$build_dir/corpus/$name" "$build_dir/artifacts/$name" "$build_dir/logs"
+  dict=()
+  [ -f "fuzz/$name.dict" ] && dict=(-dict="fuzz/$name.dict")
+  log="$build_dir/logs/$name.log"
+  "$build_dir/fuzz_$name" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build_dir/artifacts/$name/" \
+    "${dict[@]}" "$build_dir/corpus/$name" "fuzz/corpus/$name" >"$log" 2>&1
+  status=$?
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  result=ok
+  if [ $status -ne 0 ]; then
+    result="FOUND (exit $status): $(grep -m1 -E '^==[0-9]+==ERROR|runtime error|fuzz: ' "$log") -> $(ls "$build_dir/artifacts/$name" | tail -1)"
+    failed=1
+  fi
+  printf '%-6s %8s %12s %10s %s\n' "$name" "$seconds" "${execs:-?}" "${rate:-?}" "$result"
+done
+exit $failed

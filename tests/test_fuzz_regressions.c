@@ -1,0 +1,83 @@
+/* Every input the fuzzers found (fuzz/regressions/NAME/) and every seed (fuzz/corpus/NAME/) goes
+ * through the same reader as in its harness: each must come back as a status with a consistent
+ * result (fuzz/fuzz_checks.h), with no crash and, in the sanitizer build, no ASan/UBSan report.
+ * Seeds named valid_* must be accepted; the crash inputs and the near-valid seeds are files a
+ * reader may refuse. */
+#include "support.h"
+
+#include "../fuzz/fuzz_checks.h"
+#include "indentmap/io.h"
+#include "indentmap/scene.h"
+
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef int (*surface_reader)(const char *path, im_field **out);
+
+/* The harness name's reader applied to path; NULL if the result is consistent, else the problem. */
+static const char *read_like_harness(const char *harness, const char *path, int *status)
+{
+    if (strcmp(harness, "scene") == 0) {
+        static im_scene scene;
+        *status = im_scene_load(path, &scene);
+        return fuzz_scene_problem(*status, &scene);
+    }
+    surface_reader read = strcmp(harness, "npy") == 0 ? im_npy_read
+                        : strcmp(harness, "gsf") == 0 ? im_gsf_read : im_text_read;
+    im_field *field = NULL;
+    *status = read(path, &field);
+    const char *problem = fuzz_field_problem(*status, field);
+    im_field_free(field);
+    return problem;
+}
+
+/* Feeds every file of fuzz/FOLDER/HARNESS; returns how many there were. */
+static int feed_folder(const char *folder, const char *harness)
+{
+    char directory[4096];
+    snprintf(directory, sizeof directory, "%s/fuzz/%s/%s", getenv("IM_SOURCE_DIR"), folder, harness);
+    DIR *dir = opendir(directory);
+    if (!dir)
+        return 0;
+    int count = 0;
+    for (struct dirent *entry; (entry = readdir(dir));) {
+        if (entry->d_name[0] == '.')
+            continue;
+        char path[8192];
+        snprintf(path, sizeof path, "%s/%s", directory, entry->d_name);
+        int status;
+        const char *problem = read_like_harness(harness, path, &status);
+        if (problem)
+            fail_msg("%s: %s (status %d: %s)", path, problem, status, im_last_error());
+        if (strncmp(entry->d_name, "valid_", 6) == 0 && status != IM_OK)
+            fail_msg("%s: a valid seed was refused: %s", path, im_last_error());
+        ++count;
+    }
+    closedir(dir);
+    return count;
+}
+
+static void feed_harness(const char *harness)
+{
+    assert_non_null(getenv("IM_SOURCE_DIR"));
+    assert_true(feed_folder("corpus", harness) >= 5); /* the seeds are there, so the path is right */
+    feed_folder("regressions", harness);
+}
+
+static void scene_inputs(void **state) { (void)state; feed_harness("scene"); }
+static void npy_inputs(void **state) { (void)state; feed_harness("npy"); }
+static void text_inputs(void **state) { (void)state; feed_harness("text"); }
+static void gsf_inputs(void **state) { (void)state; feed_harness("gsf"); }
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(scene_inputs),
+        cmocka_unit_test(npy_inputs),
+        cmocka_unit_test(text_inputs),
+        cmocka_unit_test(gsf_inputs),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
