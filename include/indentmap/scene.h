@@ -61,6 +61,9 @@ typedef struct im_scene {
     double tol;                      /* solver tolerance (default 1e-6: n_p within 1e-4 of 1e-8's) */
 
     int contact_panels, frames, table;
+    int colormap;                    /* im_colormap_id of colormap.h (default viridis) */
+    int log_norm;                    /* 1: forces on a log norm spanning two decades below the
+                                        largest, smaller forces in the under colour */
     double frames_slope;             /* the family whose history is framed; < 0: the roughest */
     int frame_count;                 /* steps of the framed history (default 24) */
     enum im_animation animation;

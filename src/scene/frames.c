@@ -116,6 +116,7 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_co
     figure.colormap = norm;
     figure.colorbar_label = label;
     figure.dpi = 150;
+    figure.extend_under = norm->logarithmic;
     return status == IM_OK ? im_figure_write(&figure, path) : status;
 }
 
@@ -134,7 +135,7 @@ static int write_frames(const im_scene *scene, im_render_context *context, const
 {
     double lo, hi;
     field_range(h->force, h->count, 1, &lo, &hi);
-    im_colormap force_norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, hi);
+    im_colormap force_norm = scene_force_norm(scene, hi);
     field_range(h->deformed, h->count, 0, &lo, &hi);
     im_colormap height_norm = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi);
     int status = IM_OK;

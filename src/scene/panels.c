@@ -134,7 +134,7 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
                          im_image *images, im_colormap *norm)
 {
     int status = IM_OK;
-    *norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest_force(results, scene->family_count));
+    *norm = scene_force_norm(scene, largest_force(results, scene->family_count));
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
         const im_field *f = results[i].force;
         im_contact_style style = im_contact_style_default(f);
@@ -169,6 +169,7 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
     figure.panels = panels;
     figure.colormap = norm;
     figure.colorbar_label = "local force f / (E* δ²)";
+    figure.extend_under = scene->log_norm;
     figure.texts = texts;
     figure.text_count = 3;
     char path[IM_SCENE_PATH];

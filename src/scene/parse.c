@@ -204,6 +204,8 @@ static const key_spec KEYS[] = {
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
+    {"output", "colormap", parse_choice, FIELD(colormap), 0, 0, "viridis|cividis|magma|inferno|grey", 0, 0},
+    {"output", "log_norm", parse_bool, FIELD(log_norm), 0, 0, NULL, 0, 0},
     {"output", "frames_slope", parse_double, FIELD(frames_slope), 0, 10, NULL, 0, 0},
     {"output", "frame_count", parse_int, FIELD(frame_count), 1, 10000, NULL, 0, 0},
     {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},

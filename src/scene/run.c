@@ -66,7 +66,15 @@ void scene_family_title(const im_scene *scene, int family, char *buffer, size_t 
     else if (scene->slopes[family] == 0.0)
         snprintf(buffer, size, "smooth");
     else
-        snprintf(buffer, size, "h'rms = %g", scene->slopes[family]);
+        snprintf(buffer, size, "h′_{rms} = %g", scene->slopes[family]);
+}
+
+im_colormap scene_force_norm(const im_scene *scene, double largest)
+{
+    double hi = largest > 0.0 ? largest : 1.0;
+    im_colormap norm = im_colormap_make((im_colormap_id)scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
+    norm.logarithmic = scene->log_norm;
+    return norm;
 }
 
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)

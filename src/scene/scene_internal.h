@@ -23,6 +23,10 @@ im_solver_options scene_solver_options(const im_scene *scene);
 /* A label for a family: "smooth" or "h'rms = 0.08". */
 void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size);
 
+/* The colour norm of local forces up to `largest`: the scene's colour map, linear from 0 or log
+ * over the two decades below `largest`. */
+im_colormap scene_force_norm(const im_scene *scene, double largest);
+
 /* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
 
