@@ -1,4 +1,6 @@
-/* Tick values of colour bars. */
+/* Tick values of colour bars and plot axes. */
+#include "figure/ticks.h"
+
 #include "indentmap/figure.h"
 
 #include <math.h>
@@ -14,9 +16,9 @@ static double nice_step(double span, double target)
     return 10.0 * magnitude;
 }
 
-static int linear_ticks(double lo, double hi, double *ticks, int capacity)
+static int linear_ticks(double lo, double hi, double target, double *ticks, int capacity)
 {
-    double span = hi - lo, step = nice_step(span, 5.0);
+    double span = hi - lo, step = nice_step(span, target);
     int count = 0;
     for (double k = ceil(lo / step - 1e-9); count < capacity && k * step <= hi + 1e-9 * span; k += 1.0) {
         double v = k * step;
@@ -43,10 +45,14 @@ static int log_ticks(double lo, double hi, double *ticks, int capacity)
     return count;
 }
 
+int im_figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity)
+{
+    if (capacity < 1 || !(hi > lo) || (logarithmic && !(lo > 0.0)))
+        return 0;
+    return logarithmic ? log_ticks(lo, hi, ticks, capacity) : linear_ticks(lo, hi, target, ticks, capacity);
+}
+
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity)
 {
-    if (capacity < 1 || !(colormap->hi > colormap->lo))
-        return 0;
-    return colormap->logarithmic ? log_ticks(colormap->lo, colormap->hi, ticks, capacity)
-                                 : linear_ticks(colormap->lo, colormap->hi, ticks, capacity);
+    return im_figure_ticks_between(colormap->lo, colormap->hi, colormap->logarithmic, 5.0, ticks, capacity);
 }

@@ -1,0 +1,178 @@
+/* indentmap/plot.h: publication line and scatter plots drawn with cairo, and the paper's figures
+ * that need no contact solution (Figs. 1, 2 and 3).
+ *
+ * A plot is a grid of axes panels (rows x columns, e.g. Fig. 5's 2 x 3). Each panel has a linear
+ * or logarithmic x and y axis with nice ticks (1-2-5 steps, or decades: im_figure_ticks), tick
+ * labels, axis labels, an optional bold panel label "(a)" and a title above it, a frame with
+ * inward ticks on all four sides (labels left and bottom, minor ticks at 2..9 x each decade of a
+ * log axis), and the series drawn inside the frame (clipped to it): lines (solid, dashed,
+ * dotted), markers, symmetric error bars y +- sigma, shaded bands, and a legend of the labelled
+ * series.
+ *
+ * Text is UTF-8 with the figure module's _{subscript} and ^{superscript} markup, e.g. "ρ_{c}" or
+ * "C^{iso}(q) / δ^{4}", in DejaVu Sans loaded with FreeType (no fontconfig).
+ *
+ * Sizes: the axes boxes have the size panel_width x panel_height points; text, line widths and
+ * marker sizes are in points; the layout is made in pixels at dpi (PNG: 300 by default, with a
+ * pHYs chunk and the texts as tEXt chunks); PDF and SVG use the same layout at 72 / dpi points per
+ * pixel (PDF: the texts as keywords). The format comes from the path's extension (.png, .pdf,
+ * .svg). Every file is written atomically: on any error nothing is left at the path.
+ *
+ * Data rules (checked before anything is drawn or written):
+ *   - a series needs n >= 1 points and x, y arrays: IM_EINVAL otherwise;
+ *   - NaN in x or y: the point is skipped and the line is broken there (a gap); its error bar and
+ *     band are skipped too; a NaN sigma or band end skips that bar or that band point only;
+ *   - +-Inf anywhere: IM_ENUMERIC naming the panel, series, array and index;
+ *   - x or y <= 0 on a logarithmic axis: IM_EINVAL naming them (the value has no place on it);
+ *     the lower end y - sigma of an error bar, or a band end, <= 0 on a log y axis is drawn to
+ *     the bottom of the frame;
+ *   - negative sigma: IM_EINVAL;
+ *   - automatic limits need at least one finite point on the panel: IM_EINVAL otherwise.
+ */
+#ifndef INDENTMAP_PLOT_H
+#define INDENTMAP_PLOT_H
+
+#include "indentmap/field.h"
+#include "indentmap/io.h"
+#include "indentmap/surface.h"
+
+#include <stdint.h>
+
+typedef enum im_plot_scale { IM_PLOT_LINEAR = 0, IM_PLOT_LOG = 1 } im_plot_scale;
+
+typedef enum im_plot_line_style {
+    IM_PLOT_SOLID = 0,
+    IM_PLOT_DASHED,   /* 3.5 pt on, 2 pt off (times the line width above 1 pt) */
+    IM_PLOT_DOTTED,   /* round dots 1.6 pt apart (times the line width above 1 pt) */
+    IM_PLOT_NO_LINE   /* markers, error bars and bands only */
+} im_plot_line_style;
+
+typedef enum im_plot_marker {
+    IM_PLOT_MARKER_NONE = 0,
+    IM_PLOT_MARKER_CIRCLE,
+    IM_PLOT_MARKER_SQUARE,
+    IM_PLOT_MARKER_TRIANGLE,
+    IM_PLOT_MARKER_DIAMOND
+} im_plot_marker;
+
+typedef struct im_plot_series {
+    const double *x, *y;        /* n points, in data units; required */
+    int n;                      /* >= 1 */
+    const double *sigma;        /* NULL, or n half-lengths: error bars from y - sigma to y + sigma */
+    const double *band_lo, *band_hi; /* NULL, or n each: a band shaded between them (both needed) */
+    im_plot_line_style line;
+    double line_width;          /* points; 0: 1 pt */
+    im_plot_marker marker;
+    double marker_size;         /* points across; 0: 4 pt */
+    uint8_t color[3];           /* line, markers and bars; the band at 25 % opacity */
+    const char *label;          /* legend entry; NULL: not in the legend */
+} im_plot_series;
+
+typedef struct im_plot_axis {
+    im_plot_scale scale;
+    double lo, hi;              /* fixed limits when lo < hi; otherwise automatic: the data's range
+                                   widened to whole tick steps (linear) or to the nearest 1, 2 or
+                                   5 x 10^k (log) */
+    const char *label;          /* NULL: none */
+} im_plot_axis;
+
+typedef enum im_plot_legend {
+    IM_PLOT_LEGEND_AUTO = 0,    /* the corner of the frame that hides the fewest data points */
+    IM_PLOT_LEGEND_UPPER_RIGHT,
+    IM_PLOT_LEGEND_UPPER_LEFT,
+    IM_PLOT_LEGEND_LOWER_RIGHT,
+    IM_PLOT_LEGEND_LOWER_LEFT,
+    IM_PLOT_LEGEND_HIDDEN       /* no legend even when series have labels */
+} im_plot_legend;
+
+typedef struct im_plot_panel {
+    im_plot_axis x, y;
+    const im_plot_series *series;  /* series_count >= 0 series, drawn in this order */
+    int series_count;
+    const char *label;          /* "(a)", bold, above the frame's left edge; NULL: none */
+    const char *title;          /* above the frame, centred; NULL: none */
+    im_plot_legend legend;      /* drawn when at least one series has a label */
+    const char *legend_title;   /* a first legend row naming what the labels give; NULL: none */
+} im_plot_panel;
+
+typedef struct im_plot {
+    int rows, columns;          /* >= 1 each, at most 64 panels */
+    const im_plot_panel *panels; /* rows * columns panels, row by row from the top */
+    double panel_width, panel_height; /* size of each axes frame in points, (0, 2000] */
+    double dpi;                 /* (0, 2400] */
+    double font_size;           /* points, (0, 72] */
+    const im_png_text *texts;   /* PNG tEXt chunks, PDF keywords; may be NULL */
+    int text_count;
+    int png_compression;        /* zlib level 0-9 */
+} im_plot;
+
+/* One panel (panels must still be set), 160 x 120 pt frames, 300 dpi, 8 pt text, PNG compression
+ * IM_FIGURE_PNG_COMPRESSION. */
+im_plot im_plot_default(void);
+
+/* Checks, lays out and writes the plot. IM_EINVAL for a bad specification or bad data (see the
+ * data rules above; the message names the panel and series, counted from 1), IM_ENUMERIC for
+ * infinities, IM_EUNSUPPORTED when the fonts cannot be loaded, IM_EIO when the file cannot be
+ * written (nothing is left behind), IM_ENOMEM. */
+int im_plot_write(const im_plot *plot, const char *path);
+
+/* Where a panel lands in the PNG that im_plot_write makes, in pixels from the top left corner. */
+typedef struct im_plot_geometry {
+    int width, height;                        /* the whole image */
+    double box_x, box_y, box_width, box_height; /* the frame: data x = lo at box_x, hi at
+                                                 box_x + box_width; y = lo at box_y + box_height */
+    double x_lo, x_hi, y_lo, y_hi;            /* the limits in force (automatic ones resolved) */
+    double legend_x, legend_y, legend_width, legend_height; /* all 0 when there is no legend */
+} im_plot_geometry;
+
+/* The geometry of panel (0-based, row by row). Same errors as im_plot_write, less the file's. */
+int im_plot_geometry_of(const im_plot *plot, int panel, im_plot_geometry *geometry);
+
+/* ---- colours ---- */
+
+/* Okabe and Ito's colour-blind-safe qualitative palette, in the order used for series:
+ * blue, vermillion, bluish green, orange, reddish purple, sky blue, black, yellow; i wraps. */
+#define IM_PLOT_PALETTE_SIZE 8
+void im_plot_palette(int i, uint8_t rgb[3]);
+
+/* Member i of a family of count curves (e.g. increasing roughness) from the viridis table, from
+ * its dark end to 85 % of the way (the last 15 %, pale yellow, reads badly on white). */
+void im_plot_family_color(int i, int count, uint8_t rgb[3]);
+
+/* ---- the paper's figures ----
+ * Each takes the output settings (dpi, font size, frame size, texts, compression) from style
+ * (NULL: im_plot_default(); its rows, columns and panels are ignored) and writes path as
+ * im_plot_write does. The theory is the paper's: the PR normalisation with k = 2. */
+
+/* Fig. 1: the local contact density gamma(r/a) = erf(sqrt(pi)/2 rho_c acosh(a/r)) (eqs. 10-11) on
+ * 0 <= r/a <= 1 for a cone of semi-opening alpha_deg (0 < alpha < 90; the paper: 80) and each of
+ * count roughnesses slope_rms[i] >= 0 (the paper: 0.01, 0.02, 0.04, 0.08, 0.16; 0 is the smooth
+ * surface, gamma = 1), coloured as a viridis family, with h'rms and rho_c (eq. 7) in the legend. */
+int im_plot_figure_contact_density(double alpha_deg, const double *slope_rms, int count,
+                                   const im_plot *style, const char *path);
+
+/* Measured points with error bars for Fig. 2, e.g. the ensemble means +- standard deviations of
+ * A/A_cone at each rho_c. sigma may be NULL (no bars). */
+typedef struct im_plot_points {
+    const double *x, *y, *sigma;
+    int count;                  /* 0: no points */
+    const char *label;          /* legend entry; NULL: "simulations (mean ± sd)" */
+} im_plot_points;
+
+/* Fig. 2: A/A_cone against rho_c on a log axis from 0.1 to 100 (widened to whole decades around
+ * the points): eq. (12) (variable density, solid) and eq. (6) (constant density, dotted), with
+ * the points (NULL or count 0: none), which follow the data rules above (rho_c > 0). */
+int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style, const char *path);
+
+/* Fig. 3, a 2 x 2 figure of a surface: the distributions of (a) slope (both forward-difference
+ * components), (b) height h - mean and (c) mean curvature (im_surface_histogram, `bins` bins,
+ * 10 to 10000), each with the Gaussian of the same mean and standard deviation dashed, and (d)
+ * the isotropic PSD C_iso(q) (im_surface_psd, log-log) with the power law q^(-2(1+H)) of
+ * params->hurst drawn dashed beside it over params' band 2 pi / lambda_r <= q <= 2 pi / lambda_s
+ * (a factor 4 above the spectrum's geometric mean there). Lengths are normalised by the grid
+ * spacing delta: h / delta, curvature x delta, q delta, C / delta^4. params: those the surface was
+ * generated with (only hurst, lambda_s and lambda_r are read). */
+int im_plot_figure_surface(const im_field *surface, const im_surface_params *params, int bins,
+                           const im_plot *style, const char *path);
+
+#endif
