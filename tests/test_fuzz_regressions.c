@@ -71,6 +71,30 @@ static void npy_inputs(void **state) { (void)state; feed_harness("npy"); }
 static void text_inputs(void **state) { (void)state; feed_harness("text"); }
 static void gsf_inputs(void **state) { (void)state; feed_harness("gsf"); }
 
+/* fuzz_npy's out-of-memory input (and its .gsf twin): a header claiming 30000 x 30000 values over
+ * no data made the reader allocate 7.2 GB before finding the data missing. The refusal must now
+ * come from the size check that runs before the allocation, which names the bytes needed. */
+static void oversized_headers_are_refused_before_allocation(void **state)
+{
+    (void)state;
+    const char *files[] = {"npy/oom_shape_30000x30000.npy", "gsf/oom_xres_30000x30000.gsf"};
+    const surface_reader readers[] = {im_npy_read, im_gsf_read};
+    const char *needs[] = {"needs 7200000000 bytes after it, the file has 0",
+                           "needs 3600000000 bytes after it, the file has 0"};
+    for (int i = 0; i < 2; ++i) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/fuzz/regressions/%s", getenv("IM_SOURCE_DIR"), files[i]);
+        im_field *field = NULL;
+        int status = readers[i](path, &field);
+        assert_null(field);
+        if (status == IM_ENOMEM && strstr(im_last_error(), "MiB are available"))
+            continue; /* a machine with less than the 7.2 GB free refuses it earlier still */
+        if (status != IM_EFORMAT || !strstr(im_last_error(), needs[i]))
+            fail_msg("%s: status %d '%s', expected the early size check ('%s')", files[i], status,
+                     im_last_error(), needs[i]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -78,6 +102,7 @@ int main(void)
         cmocka_unit_test(npy_inputs),
         cmocka_unit_test(text_inputs),
         cmocka_unit_test(gsf_inputs),
+        cmocka_unit_test(oversized_headers_are_refused_before_allocation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

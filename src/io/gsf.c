@@ -1,6 +1,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/payload.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -117,6 +118,11 @@ int im_gsf_read(const char *path, im_field **out)
     gsf_header header = {0};
     im_field *field = NULL;
     int status = read_header(stream, path, &header);
+    if (status == IM_OK) {
+        char claim[64];
+        snprintf(claim, sizeof claim, "XRes %ld x YRes %ld float32", header.xres, header.yres);
+        status = im_io_check_grid(stream, path, header.xres, header.yres, 4u, claim);
+    }
     if (status == IM_OK) {
         double delta = header.xreal > 0.0 ? header.xreal / (double)header.xres : 1.0;
         status = im_field_create((int)header.xres, (int)header.yres, delta, &field);

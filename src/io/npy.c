@@ -1,6 +1,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/payload.h"
 
 #include <errno.h>
 #include <math.h>
@@ -181,6 +182,12 @@ int im_npy_read(const char *path, im_field **out)
     long rows = 0, cols = 0;
     im_field *field = NULL;
     int status = read_header(stream, path, &dtype, &rows, &cols);
+    if (status == IM_OK) {
+        char claim[96];
+        int f8 = dtype == IM_NPY_FLOAT64;
+        snprintf(claim, sizeof claim, "shape (%ld, %ld) of %s", rows, cols, f8 ? "<f8" : "<f4");
+        status = im_io_check_grid(stream, path, cols, rows, f8 ? 8u : 4u, claim);
+    }
     if (status == IM_OK) {
         status = im_field_create((int)cols, (int)rows, 1.0, &field);
         if (status != IM_OK)

@@ -1,0 +1,34 @@
+#include "io/payload.h"
+
+#include "indentmap/field.h"
+#include "indentmap/status.h"
+
+#include <sys/stat.h>
+
+static int check_payload_size(FILE *stream, const char *path, uint64_t expected, const char *claim)
+{
+    struct stat info;
+    long position = ftell(stream);
+    if (position < 0 || fstat(fileno(stream), &info) != 0 || !S_ISREG(info.st_mode))
+        return IM_OK;
+    uint64_t present = info.st_size > position ? (uint64_t)(info.st_size - position) : 0;
+    if (present < expected)
+        return im_fail(IM_EFORMAT, "%s: truncated data: the header (%s) needs %llu bytes after it, "
+                       "the file has %llu", path, claim, (unsigned long long)expected,
+                       (unsigned long long)present);
+    if (present > expected)
+        return im_fail(IM_EFORMAT, "%s: more data than the header (%s) holds: %llu bytes after it, "
+                       "%llu expected", path, claim, (unsigned long long)present,
+                       (unsigned long long)expected);
+    return IM_OK;
+}
+
+int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim)
+{
+    char what[4200];
+    snprintf(what, sizeof what, "%s: field %ld x %ld", path, nx, ny);
+    int status = im_memory_check((double)nx * (double)ny * sizeof(double), what);
+    if (status != IM_OK)
+        return status;
+    return check_payload_size(stream, path, (uint64_t)nx * (uint64_t)ny * item_size, claim);
+}

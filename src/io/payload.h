@@ -1,0 +1,17 @@
+/* io/payload.h: a check shared by the binary surface readers (.npy, .gsf). */
+#ifndef INDENTMAP_IO_PAYLOAD_H
+#define INDENTMAP_IO_PAYLOAD_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+/* Runs after a binary reader has parsed a header claiming an nx x ny grid of item_size-byte values
+ * and before it allocates the grid: refuses a grid that would not fit in memory (IM_ENOMEM, as
+ * im_field_create would), then a regular file whose bytes after the stream's position are not
+ * exactly nx * ny * item_size (IM_EFORMAT, "truncated data" or "more data"; `claim` describes the
+ * header in the message). Without it a header claiming a huge grid over a few bytes of data made
+ * the reader allocate gigabytes before finding the data missing (found with fuzz/fuzz_npy). Other
+ * streams (pipes) pass the size check; the readers' own end-of-data checks still apply. */
+int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim);
+
+#endif
