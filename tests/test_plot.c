@@ -394,13 +394,26 @@ static void test_png_pdf_svg(void **state)
     assert_memory_equal(data, "%PDF-", 5);
     assert_true(contains(data, size, "%%EOF", 5));
     assert_true(contains(data, size, "Figure=test plot", 16));
+    /* The trailer's startxref gives the byte offset of the cross-reference table. */
+    const char *startxref = NULL;
+    for (size_t at = 0; at + 9 <= size; ++at)
+        if (memcmp(data + at, "startxref", 9) == 0)
+            startxref = (const char *)data + at + 9;
+    assert_non_null(startxref);
+    long offset = strtol(startxref, NULL, 10);
+    assert_true(offset > 0 && (size_t)offset + 4 < size);
+    assert_memory_equal(data + offset, "xref", 4);
     free(data);
     assert_int_equal(im_plot_write(&plot, test_path("meta.svg")), IM_OK);
     data = slurp(test_path("meta.svg"), &size);
     const char *text = (const char *)data;
     assert_non_null(strstr(text, "<?xml"));
     assert_non_null(strstr(text, "<svg"));
-    assert_non_null(strstr(text, "</svg>"));
+    const char *end = strstr(text, "</svg>");
+    assert_non_null(end);
+    for (end += 6; *end == '\n'; ++end)
+        ;
+    assert_int_equal(*end, '\0'); /* complete: nothing after the closing tag */
     assert_non_null(strstr(text, "width=\"")); /* 72 / 300 points per pixel */
     free(data);
 }
@@ -453,6 +466,10 @@ static void test_bad_input_refused(void **state)
     s.y = nan2;
     refused(&plot, IM_EINVAL, "no finite data");
     s.y = y;
+    double huge[] = {-1e308, 1e308};
+    s.x = huge;
+    refused(&plot, IM_ENUMERIC, "overflow");
+    s.x = x;
     plot.dpi = 0.0;
     refused(&plot, IM_EINVAL, "dpi");
     plot = im_plot_default();

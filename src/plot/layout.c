@@ -199,6 +199,9 @@ static int resolve_axis(int panel, const char *name, const im_plot_axis *axis, r
         if (!(data.hi >= data.lo))
             return im_fail(IM_EINVAL, "plot panel %d: no finite data to set the %s limits: give them", panel, name);
         widen(a, data);
+        if (!isfinite(a->lo) || !isfinite(a->hi) || !(a->hi > a->lo))
+            return im_fail(IM_ENUMERIC, "plot panel %d: %s data from %g to %g: automatic limits overflow; give "
+                           "them", panel, name, data.lo, data.hi);
     }
     a->tick_count = tick_values(a);
     int decades = a->scale == IM_PLOT_LOG && a->tick_count >= 2 && a->ticks[1] / a->ticks[0] > 9.99;
@@ -339,7 +342,7 @@ int plot_make_layout(const im_plot *plot, cairo_t *cr, plot_layout *l)
     }
     double f = l->font, margin = round(0.4 * f);
     double left = ceil(0.4 * f + y_labels + (any_y_label ? 1.5 * f : 0.0));
-    double bottom = ceil(1.4 * f + (any_x_label ? 1.45 * f : 0.0));
+    double bottom = ceil(1.4 * f + (any_x_label ? 1.7 * f : 0.0));
     double top = has_heading(plot) ? round(1.5 * f) : round(0.6 * f);
     double right = ceil(fmax(0.6 * f, x_overhang));
     double box_w = round(plot->panel_width * l->points), box_h = round(plot->panel_height * l->points);

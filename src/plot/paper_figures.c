@@ -236,7 +236,7 @@ static int compute_statistics(const im_field *surface, const im_surface_params *
         return status;
     f->psd_count = normalise_psd(f->psd, surface->delta);
     double exponent = -2.0 * (1.0 + params->hurst);
-    snprintf(f->law_label, sizeof f->law_label, "q^{−%.2g}  (H = %g)", -exponent, params->hurst);
+    snprintf(f->law_label, sizeof f->law_label, "∝ q^{−%.2g}  (H = %g)", -exponent, params->hurst);
     return power_law(f->psd, f->psd_count, exponent, 2.0 * M_PI / params->lambda_r, 2.0 * M_PI / params->lambda_s, f->law_q,
                      f->law_c);
 }
@@ -247,12 +247,14 @@ static void layout_surface_figure(surface_figure *f, int bins)
     static const char *const quantities[3] = {"slope ∂h/∂x, ∂h/∂y", "height (h − h̄) / δ", "curvature κ δ"};
     for (int k = 0; k < 3; ++k) {
         im_plot_series *s = &f->series[2 * k];
-        s[0] = (im_plot_series){.x = f->hist[k]->centre, .y = f->hist[k]->density, .n = bins, .line_width = 1.2,
+        /* The Gaussian, thin and dashed in a second colour, on top of the broad histogram line:
+         * where they agree both stay visible. */
+        s[0] = (im_plot_series){.x = f->hist[k]->centre, .y = f->hist[k]->density, .n = bins, .line_width = 1.8,
                                 .label = "surface"};
         s[1] = (im_plot_series){.x = f->hist[k]->centre, .y = f->gaussian[k], .n = bins, .line = IM_PLOT_DASHED,
-                                .line_width = 1.0, .label = "Gaussian"};
+                                .line_width = 0.9, .label = "Gaussian"};
         im_plot_palette(0, s[0].color);
-        im_plot_palette(6, s[1].color);
+        im_plot_palette(1, s[1].color);
         f->panels[k] = (im_plot_panel){.x = {IM_PLOT_LINEAR, f->hist[k]->lo, f->hist[k]->hi, quantities[k]},
                                        .y = {.label = "probability density"}, .series = s, .series_count = 2,
                                        .label = labels[k], .legend = k == 0 ? IM_PLOT_LEGEND_UPPER_RIGHT
