@@ -107,7 +107,8 @@ static int check_runnable(const im_scene *scene)
     if (scene->surface_file[0] && scene->family_count > 1)
         return im_fail(IM_EINVAL, "%s: a surface file makes one family; remove [surfaces] slopes", scene->path);
     im_indenter punch = scene_punch(scene);
-    return im_indenter_check(&punch);
+    int status = im_indenter_check(&punch);
+    return status == IM_OK ? scene_check_plots(scene) : status;
 }
 
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
@@ -115,6 +116,8 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     int status = check_runnable(scene);
     if (status == IM_OK)
         status = im_make_directories(scene->output_dir);
+    if (status == IM_OK)
+        status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table)
         status = scene_run_table(scene, options);
     if (status != IM_OK || !(scene->contact_panels || scene->frames))

@@ -1,6 +1,7 @@
 /* The ensemble table (the paper's Table 1): every seed of every family solved at one load, in
  * parallel over surfaces; per family the mean and spread of A/A_cone beside eq. (12). */
 #include "indentmap/io.h"
+#include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "scene/scene_internal.h"
@@ -253,6 +254,22 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
     return im_atomic_commit(&file);
 }
 
+/* Fig. 2: the rough families' means and standard deviations against rho_c. */
+static int plot_area_ratio(const im_scene *scene, const family_summary *rows)
+{
+    double x[IM_SCENE_MAX_FAMILIES], y[IM_SCENE_MAX_FAMILIES], sigma[IM_SCENE_MAX_FAMILIES];
+    int count = 0;
+    for (int f = 0; f < scene->family_count; ++f) {
+        if (!(rows[f].slope > 0.0))
+            continue;
+        x[count] = rows[f].rho_c;
+        y[count] = rows[f].area_ratio;
+        sigma[count++] = rows[f].sd;
+    }
+    im_plot_points points = {x, y, sigma, count, NULL};
+    return scene_plot_area_ratio(scene, &points);
+}
+
 int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
 {
     char folder[IM_SCENE_PATH];
@@ -283,6 +300,8 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
         status = write_table_csv(scene, rows);
     if (status == IM_OK)
         status = write_table_markdown(scene, rows);
+    if (status == IM_OK && scene_wants_plot(scene, "fig2"))
+        status = plot_area_ratio(scene, rows);
     free(members);
     return status;
 }

@@ -1,0 +1,99 @@
+/* The paper's line figures that a scene asks for in [output] plots. */
+#include "indentmap/plot.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int scene_wants_plot(const im_scene *scene, const char *name)
+{
+    size_t length = strlen(name);
+    for (const char *p = scene->plots; (p = strstr(p, name)) != NULL; p += length) {
+        int starts = p == scene->plots || p[-1] == ',' || p[-1] == ' ';
+        int ends = p[length] == '\0' || p[length] == ',' || p[length] == ' ';
+        if (starts && ends)
+            return 1;
+    }
+    return 0;
+}
+
+int scene_check_plots(const im_scene *scene)
+{
+    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7"};
+    char copy[sizeof scene->plots];
+    snprintf(copy, sizeof copy, "%s", scene->plots);
+    for (char *name = strtok(copy, ", "); name; name = strtok(NULL, ", ")) {
+        int known = 0;
+        for (size_t i = 0; i < sizeof KNOWN / sizeof *KNOWN; ++i)
+            known |= strcmp(name, KNOWN[i]) == 0;
+        if (!known)
+            return im_fail(IM_EINVAL, "%s: [output] plots: '%s' is not a figure; expected fig1, fig2, fig3, "
+                           "fig5, fig6 or fig7", scene->path, name);
+    }
+    if (scene_wants_plot(scene, "fig2") && !scene->table)
+        return im_fail(IM_EINVAL, "%s: plots = fig2 draws the ensemble of [output] table = yes", scene->path);
+    return IM_OK;
+}
+
+/* Writes NAME.png and NAME.pdf through draw(path). */
+static int write_both(const im_scene *scene, const char *name, int (*draw)(const im_scene *, const void *, const char *),
+                      const void *data)
+{
+    int status = IM_OK;
+    const char *extensions[] = {"png", "pdf"};
+    for (int i = 0; i < 2 && status == IM_OK; ++i) {
+        char relative[64], path[IM_SCENE_PATH];
+        snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
+        status = scene_output_path(scene, relative, path, sizeof path);
+        if (status == IM_OK)
+            status = draw(scene, data, path);
+    }
+    return status;
+}
+
+static int draw_fig1(const im_scene *scene, const void *data, const char *path)
+{
+    (void)data;
+    double slopes[IM_SCENE_MAX_FAMILIES];
+    int count = 0;
+    for (int i = 0; i < scene->family_count; ++i)
+        if (scene->slopes[i] > 0.0)
+            slopes[count++] = scene->slopes[i];
+    return im_plot_figure_contact_density(scene->alpha_degrees, slopes, count, NULL, path);
+}
+
+static int draw_fig2(const im_scene *scene, const void *data, const char *path)
+{
+    (void)scene;
+    return im_plot_figure_area_ratio(data, NULL, path);
+}
+
+static int draw_fig3(const im_scene *scene, const void *data, const char *path)
+{
+    return im_plot_figure_surface(data, &scene->surface, 101, NULL, path);
+}
+
+int scene_plot_area_ratio(const im_scene *scene, const im_plot_points *points)
+{
+    return write_both(scene, "fig2", draw_fig2, points);
+}
+
+int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *options)
+{
+    int status = IM_OK;
+    if (scene_wants_plot(scene, "fig1")) {
+        scene_progress(options, "fig1: local contact density gamma(r/a)");
+        status = write_both(scene, "fig1", draw_fig1, NULL);
+    }
+    if (status == IM_OK && scene_wants_plot(scene, "fig3")) {
+        int family = scene_framed_family(scene);
+        scene_progress(options, "fig3: statistics of the h'rms = %g surface", scene->slopes[family]);
+        im_field *surface = NULL;
+        status = scene_surface(scene, family, scene->seeds[0], &surface);
+        if (status == IM_OK)
+            status = write_both(scene, "fig3", draw_fig3, surface);
+        im_field_free(surface);
+    }
+    return status;
+}
