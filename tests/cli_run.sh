@@ -19,7 +19,7 @@ n = 64
 hurst = 0.8
 lambda_s = 4
 slopes = 0, 0.08
-seeds = 5
+seeds = 5:6
 [punch]
 shape = cone
 alpha = 80
@@ -32,6 +32,8 @@ contact_panels = yes
 frames = yes
 frame_count = 3
 animation = gif
+table = yes
+plots = fig1, fig2, fig3
 INI
 
 "$cli" run "$dir/small.ini" >"$dir/log" 2>&1
@@ -42,7 +44,8 @@ if [ $status -ne 0 ] && ! grep -q "rendering with" "$dir/log"; then
 fi
 check "scene runs" test $status -eq 0
 for f in contact_panels.png contact_panels.pdf results.csv contact.gif panels/force_00.npy panels/force_01.npy \
-         frames/contact_0000.png frames/contact_0002.png frames/height_0002.png; do
+         frames/contact_0000.png frames/contact_0002.png frames/height_0002.png fig1.png fig2.pdf fig3.png \
+         table1.csv table1.md table/member_00_5.csv table/member_01_6.csv; do
   check "wrote $f" test -s "$dir/out/$f"
 done
 check "no temporary files" bash -c "! find '$dir/out' -name '*.tmp.*' | grep -q ."
@@ -52,6 +55,10 @@ check "smooth area ratio near 1" awk -F, 'NR == 2 { exit !($7 > 0.97 && $7 < 1.0
 check "load_star is N*" awk -F, 'NR == 2 { exit !($5 > 599.99 && $5 < 600.01) }' "$dir/out/results.csv"
 check "rough family has less contact" awk -F, 'NR == 2 { s = $6 } NR == 3 { exit !($6 < s) }' "$dir/out/results.csv"
 check "png has the scene in a text chunk" grep -qa "small.ini" "$dir/out/contact_panels.png"
+
+# The table: the smooth family is solved once whatever the seeds, the rough one per seed.
+check "table has two families" awk -F, 'NR == 2 { exit !($2 == 1) } NR == 3 { exit !($2 == 2) }' "$dir/out/table1.csv"
+check "smooth solved once" test ! -e "$dir/out/table/member_00_6.csv"
 
 # Resume reads the panels back instead of solving them.
 "$cli" run --resume "$dir/small.ini" >"$dir/log2" 2>&1
@@ -63,6 +70,9 @@ printf '[surfaces]\nn = 64\nslopes = 0, x\n' >"$dir/bad.ini"
 "$cli" run "$dir/bad.ini" 2>"$dir/err"
 check "damaged scene exits 2" test $? -eq 2
 check "damaged scene names the line" grep -q "bad.ini:3: slopes" "$dir/err"
+printf '[output]\nplots = fig4\n' >"$dir/plot.ini"
+"$cli" run "$dir/plot.ini" 2>"$dir/err"
+check "unknown plot refused" grep -q "plots: 'fig4' is not a figure" "$dir/err"
 "$cli" run "$dir/none.ini" 2>"$dir/err"
 check "missing scene exits 1" test $? -eq 1
 
