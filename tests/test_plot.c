@@ -293,6 +293,28 @@ static void test_nan_gap_and_far_points(void **state)
     free(p.rgb);
 }
 
+static void test_band(void **state)
+{
+    (void)state;
+    double x[] = {0.0, 0.25, 0.5, 0.75, 1.0}, y[] = {0.5, 0.5, 0.5, 0.5, 0.5};
+    double lo[] = {0.2, 0.2, NAN, 0.2, 0.2}, hi[] = {0.4, 0.4, 0.4, 0.4, 0.4};
+    im_plot_series s = {.x = x, .y = y, .n = 5, .band_lo = lo, .band_hi = hi, .line = IM_PLOT_NO_LINE};
+    memcpy(s.color, BLUE, 3);
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = &s, .series_count = 1};
+    im_plot plot = small_plot(&panel);
+    im_plot_geometry g;
+    picture p = draw(&plot, "band.png", &g);
+    /* 25 % blue over white, between 0.2 and 0.4 where band_lo is a number on both sides. */
+    const uint8_t tint[3] = {191, 220, 236};
+    assert_true(same_color(pixel(&p, expected_x(&g, 0.1, 0), expected_y(&g, 0.3, 0)), tint, 3));
+    assert_true(same_color(pixel(&p, expected_x(&g, 0.9, 0), expected_y(&g, 0.21, 0)), tint, 3));
+    assert_true(is_white(pixel(&p, expected_x(&g, 0.1, 0), expected_y(&g, 0.45, 0))));
+    assert_true(is_white(pixel(&p, expected_x(&g, 0.1, 0), expected_y(&g, 0.15, 0))));
+    assert_true(is_white(pixel(&p, expected_x(&g, 0.5, 0), expected_y(&g, 0.3, 0)))); /* the NaN gap */
+    free(p.rgb);
+}
+
 static int count_color(const picture *p, double x, double y, double w, double h, const uint8_t c[3], int dark)
 {
     int n = 0;
@@ -612,6 +634,7 @@ int main(void)
         cmocka_unit_test(test_automatic_limits),
         cmocka_unit_test(test_error_bars),
         cmocka_unit_test(test_nan_gap_and_far_points),
+        cmocka_unit_test(test_band),
         cmocka_unit_test(test_legend),
         cmocka_unit_test(test_png_pdf_svg),
         cmocka_unit_test(test_bad_input_refused),

@@ -21,7 +21,9 @@
  * Data rules (checked before anything is drawn or written):
  *   - a series needs n >= 1 points and x, y arrays: IM_EINVAL otherwise;
  *   - NaN in x or y: the point is skipped and the line is broken there (a gap); its error bar and
- *     band are skipped too; a NaN sigma or band end skips that bar or that band point only;
+ *     band are skipped too; a NaN sigma or band end skips that bar or that band point only; a
+ *     finite point whose pixel position overflows a double (|value| near 1e308 against the
+ *     limits) is a gap as well. Segments leaving the frame, however far, are clipped exactly;
  *   - +-Inf anywhere: IM_ENUMERIC naming the panel, series, array and index;
  *   - x or y <= 0 on a logarithmic axis: IM_EINVAL naming them (the value has no place on it);
  *     the lower end y - sigma of an error bar, or a band end, <= 0 on a log y axis is drawn to
