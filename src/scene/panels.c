@@ -150,9 +150,8 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
 {
     im_figure_panel panels[IM_SCENE_MAX_FAMILIES];
     char labels[IM_SCENE_MAX_FAMILIES][8], titles[IM_SCENE_MAX_FAMILIES][64];
-    /* Three columns when the panels fill them (Fig. 4's 2 x 3), else two, else one row. */
     int count = scene->family_count;
-    int columns = count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
+    int columns = scene_panel_columns(count);
     int rows = count / columns;
     for (int i = 0; i < count; ++i) {
         snprintf(labels[i], sizeof labels[i], "(%c)", 'a' + i % 26);
@@ -183,6 +182,17 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
     return status;
 }
 
+static int plot_density(const im_scene *scene, const panel_result *results)
+{
+    const im_field *forces[IM_SCENE_MAX_FAMILIES];
+    double load_star[IM_SCENE_MAX_FAMILIES];
+    for (int i = 0; i < scene->family_count; ++i) {
+        forces[i] = results[i].force;
+        load_star[i] = results[i].load_star;
+    }
+    return scene_plot_contact_density(scene, forces, load_star);
+}
+
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
                      const im_field *known_force)
 {
@@ -208,6 +218,8 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
         status = render_panels(scene, context, results, images, &norm);
     if (status == IM_OK)
         status = write_panel_figure(scene, images, &norm);
+    if (status == IM_OK && scene_wants_plot(scene, "density"))
+        status = plot_density(scene, results);
     for (int i = 0; i < scene->family_count; ++i) {
         im_field_free(results[i].force);
         im_image_release(&images[i]);

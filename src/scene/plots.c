@@ -20,7 +20,7 @@ int scene_wants_plot(const im_scene *scene, const char *name)
 
 int scene_check_plots(const im_scene *scene)
 {
-    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7"};
+    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density"};
     char copy[sizeof scene->plots];
     snprintf(copy, sizeof copy, "%s", scene->plots);
     for (char *name = strtok(copy, ", "); name; name = strtok(NULL, ", ")) {
@@ -29,8 +29,11 @@ int scene_check_plots(const im_scene *scene)
             known |= strcmp(name, KNOWN[i]) == 0;
         if (!known)
             return im_fail(IM_EINVAL, "%s: [output] plots: '%s' is not a figure; expected fig1, fig2, fig3, "
-                           "fig5, fig6 or fig7", scene->path, name);
+                           "fig5, fig6, fig7 or density", scene->path, name);
     }
+    if (scene_wants_plot(scene, "density") && !scene->contact_panels)
+        return im_fail(IM_EINVAL, "%s: plots = density measures the maps of [output] contact_panels = yes",
+                       scene->path);
     if (scene_wants_plot(scene, "fig2") && !scene->table)
         return im_fail(IM_EINVAL, "%s: plots = fig2 draws the ensemble of [output] table = yes", scene->path);
     return IM_OK;

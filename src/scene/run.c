@@ -69,6 +69,11 @@ void scene_family_title(const im_scene *scene, int family, char *buffer, size_t 
         snprintf(buffer, size, "h′_{rms} = %g", scene->slopes[family]);
 }
 
+int scene_panel_columns(int count)
+{
+    return count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
+}
+
 im_colormap scene_force_norm(const im_scene *scene, double largest)
 {
     double hi = largest > 0.0 ? largest : 1.0;

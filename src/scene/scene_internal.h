@@ -23,6 +23,10 @@ im_solver_options scene_solver_options(const im_scene *scene);
 /* A label for a family: "smooth" or "h'rms = 0.08". */
 void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size);
 
+/* Columns of a grid of count panels: three when they fill whole rows (Fig. 4's 2 x 3), else two,
+ * else a single row. */
+int scene_panel_columns(int count);
+
 /* The colour norm of local forces up to `largest`: the scene's colour map, linear from 0 or log
  * over the two decades below `largest`. */
 im_colormap scene_force_norm(const im_scene *scene, double largest);
@@ -62,5 +66,9 @@ int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *op
 /* fig2: A/A_cone against rho_c from theory, with the ensemble's points. */
 struct im_plot_points;
 int scene_plot_area_ratio(const im_scene *scene, const struct im_plot_points *points);
+
+/* Beyond the paper: ring-averaged contact fraction of each rough family's map beside gamma(r/a)
+ * (contact_density.png/pdf); forces and load_star per family, as the panels solved them. */
+int scene_plot_contact_density(const im_scene *scene, const im_field *const *forces, const double *load_star);
 
 #endif
