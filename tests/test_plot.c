@@ -9,6 +9,7 @@
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
+#include "plot/clip.h"
 
 #include <dirent.h>
 #include <stdio.h>
@@ -313,6 +314,43 @@ static void test_band(void **state)
     assert_true(is_white(pixel(&p, expected_x(&g, 0.1, 0), expected_y(&g, 0.15, 0))));
     assert_true(is_white(pixel(&p, expected_x(&g, 0.5, 0), expected_y(&g, 0.3, 0)))); /* the NaN gap */
     free(p.rgb);
+    /* An upper end far above the frame: the edge towards it is nearly vertical at x = 0.75, so
+     * the band fills the frame above 0.2 on its right; pulling the vertex in would tilt it. */
+    hi[4] = 1e9;
+    p = draw(&plot, "farband.png", &g);
+    assert_true(same_color(pixel(&p, expected_x(&g, 0.875, 0), expected_y(&g, 0.95, 0)), tint, 3));
+    assert_true(is_white(pixel(&p, expected_x(&g, 0.7, 0), expected_y(&g, 0.95, 0))));
+    free(p.rgb);
+}
+
+static double shoelace(const double *xy, int n)
+{
+    double twice = 0.0;
+    for (int i = 0; i < n; ++i) {
+        int j = (i + 1) % n;
+        twice += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
+    }
+    return 0.5 * fabs(twice);
+}
+
+static void test_polygon_clipping(void **state)
+{
+    (void)state;
+    plot_rect unit = {0.0, 0.0, 1.0, 1.0};
+    /* x + y <= 1.2 in the unit square: 1 - 0.8^2 / 2. */
+    double triangle[] = {0.0, 0.0, 1.2, 0.0, 0.0, 1.2}, *out;
+    int n = plot_clip_polygon(triangle, 3, unit, &out);
+    assert_int_equal(n, 5);
+    assert_close(shoelace(out, n), 0.68, 1e-12);
+    free(out);
+    /* A far vertex: the triangle (0, 0.5), (1e12, 0.5), (0, 1e12) covers the square's top half. */
+    double far[] = {0.0, 0.5, 1e12, 0.5, 0.0, 1e12};
+    n = plot_clip_polygon(far, 3, unit, &out);
+    assert_close(shoelace(out, n), 0.5, 1e-9);
+    free(out);
+    double outside[] = {2.0, 2.0, 3.0, 2.0, 3.0, 3.0};
+    assert_int_equal(plot_clip_polygon(outside, 3, unit, &out), 0);
+    assert_null(out);
 }
 
 static int count_color(const picture *p, double x, double y, double w, double h, const uint8_t c[3], int dark)
@@ -634,6 +672,7 @@ int main(void)
         cmocka_unit_test(test_automatic_limits),
         cmocka_unit_test(test_error_bars),
         cmocka_unit_test(test_nan_gap_and_far_points),
+        cmocka_unit_test(test_polygon_clipping),
         cmocka_unit_test(test_band),
         cmocka_unit_test(test_legend),
         cmocka_unit_test(test_png_pdf_svg),

@@ -2,11 +2,13 @@
 #include "plot/layout.h"
 
 #include "figure/fonts.h"
+#include "plot/clip.h"
 #include "figure/text.h"
 #include "indentmap/status.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 /* Line widths and lengths in points. */
 static const double FRAME_WIDTH = 0.6, MAJOR_TICK = 3.5, MINOR_TICK = 2.0;
@@ -139,26 +141,55 @@ static void draw_line(cairo_t *cr, const im_plot_series *s, const frame *f, doub
     cairo_stroke(cr);
 }
 
-/* A vertical pixel position kept within reach of cairo: beyond the widened frame it is clamped
- * (exact for vertical error bars; for bands only vertices far outside the frame move). */
-static double clamp_y(const frame *f, double y)
-{
-    if (isnan(y))
-        return NAN;
-    return fmin(fmax(y, f->top), f->bottom);
-}
-
-static double clamp_x(const frame *f, double x) { return fmin(fmax(x, f->left), f->right); }
+/* A vertical pixel position kept within reach of cairo: beyond the widened frame it is clamped,
+ * which is exact for vertical error bars (+Inf, a value <= 0 on a log axis, goes to the bottom). */
+static double clamp_y(const frame *f, double y) { return fmin(fmax(y, f->top), f->bottom); }
 
 static int band_point(const im_plot_series *s, int i)
 {
     return !isnan(s->x[i]) && !isnan(s->y[i]) && !isnan(s->band_lo[i]) && !isnan(s->band_hi[i]);
 }
 
-/* Polygons between band_lo and band_hi over each run of points where all are numbers. */
-static void draw_band(cairo_t *cr, const im_plot_series *s, const frame *f)
+/* A band vertex in pixels; an infinite position (a value <= 0 on a log axis, or one that
+ * overflows) is put just beyond the widened frame on its side, so that clipping stays finite. */
+static void band_vertex(const frame *f, double x, double y, double *out)
 {
-    for (int start = 0; start < s->n;) {
+    out[0] = px(f, x), out[1] = py(f, y);
+    if (isinf(out[0]))
+        out[0] = out[0] > 0 ? f->right + 1.0 : f->left - 1.0;
+    if (isinf(out[1]))
+        out[1] = out[1] > 0 ? f->bottom + 1.0 : f->top - 1.0;
+}
+
+/* The polygon between band_lo and band_hi over the run start..end, clipped to the widened frame
+ * in doubles, added to the path. */
+static int band_polygon(cairo_t *cr, const im_plot_series *s, const frame *f, int start, int end, double *xy)
+{
+    int n = 0;
+    for (int i = start; i <= end; ++i, ++n)
+        band_vertex(f, s->x[i], s->band_hi[i], xy + 2 * n);
+    for (int i = end; i >= start; --i, ++n)
+        band_vertex(f, s->x[i], s->band_lo[i], xy + 2 * n);
+    double *clipped;
+    n = plot_clip_polygon(xy, n, (plot_rect){f->left, f->top, f->right, f->bottom}, &clipped);
+    if (n < 0)
+        return im_fail(IM_ENOMEM, "plot band of %d points: out of memory", end - start + 1);
+    for (int i = 0; i < n; ++i)
+        cairo_line_to(cr, clipped[2 * i], clipped[2 * i + 1]);
+    cairo_close_path(cr);
+    cairo_new_sub_path(cr);
+    free(clipped);
+    return IM_OK;
+}
+
+/* Polygons between band_lo and band_hi over each run of points where all are numbers. */
+static int draw_band(cairo_t *cr, const im_plot_series *s, const frame *f)
+{
+    double *xy = malloc(4 * sizeof(double) * (size_t)s->n);
+    if (!xy)
+        return im_fail(IM_ENOMEM, "plot band of %d points: out of memory", s->n);
+    int status = IM_OK;
+    for (int start = 0; status == IM_OK && start < s->n;) {
         if (!band_point(s, start)) {
             ++start;
             continue;
@@ -166,17 +197,13 @@ static void draw_band(cairo_t *cr, const im_plot_series *s, const frame *f)
         int end = start;
         while (end + 1 < s->n && band_point(s, end + 1))
             ++end;
-        /* A band end <= 0 on a log axis maps to +Inf pixels: the bottom of the frame. */
-        for (int i = start; i <= end; ++i)
-            cairo_line_to(cr, clamp_x(f, px(f, s->x[i])), clamp_y(f, py(f, s->band_hi[i])));
-        for (int i = end; i >= start; --i)
-            cairo_line_to(cr, clamp_x(f, px(f, s->x[i])), clamp_y(f, py(f, s->band_lo[i])));
-        cairo_close_path(cr);
-        cairo_new_sub_path(cr);
+        status = band_polygon(cr, s, f, start, end, xy);
         start = end + 1;
     }
+    free(xy);
     cairo_set_source_rgba(cr, s->color[0] / 255.0, s->color[1] / 255.0, s->color[2] / 255.0, BAND_OPACITY);
     cairo_fill(cr);
+    return status;
 }
 
 static void draw_error_bars(cairo_t *cr, const im_plot_series *s, const frame *f, double points)
@@ -212,7 +239,7 @@ static void draw_markers(cairo_t *cr, const im_plot_series *s, const frame *f, d
     }
 }
 
-static void draw_series(cairo_t *cr, const im_plot_panel *p, const plot_panel_layout *pl, double points)
+static int draw_series(cairo_t *cr, const im_plot_panel *p, const plot_panel_layout *pl, double points)
 {
     double margin = 20.0 * points;
     frame f = {pl, pl->box_x - margin, pl->box_y - margin, pl->box_x + pl->box_width + margin,
@@ -220,9 +247,10 @@ static void draw_series(cairo_t *cr, const im_plot_panel *p, const plot_panel_la
     cairo_save(cr);
     cairo_rectangle(cr, pl->box_x, pl->box_y, pl->box_width, pl->box_height);
     cairo_clip(cr);
-    for (int i = 0; i < p->series_count; ++i)
+    int status = IM_OK;
+    for (int i = 0; status == IM_OK && i < p->series_count; ++i)
         if (p->series[i].band_lo)
-            draw_band(cr, &p->series[i], &f);
+            status = draw_band(cr, &p->series[i], &f);
     for (int i = 0; i < p->series_count; ++i) {
         const im_plot_series *s = &p->series[i];
         if (s->sigma)
@@ -232,6 +260,7 @@ static void draw_series(cairo_t *cr, const im_plot_panel *p, const plot_panel_la
         draw_markers(cr, s, &f, points);
     }
     cairo_restore(cr);
+    return status;
 }
 
 /* ---- frame, ticks, labels ---- */
@@ -355,10 +384,10 @@ static void draw_legend(cairo_t *cr, cairo_font_face_t *face, const plot_layout 
     }
 }
 
-static void draw_panel(cairo_t *cr, cairo_font_face_t *regular, cairo_font_face_t *bold, const plot_layout *l,
+static int draw_panel(cairo_t *cr, cairo_font_face_t *regular, cairo_font_face_t *bold, const plot_layout *l,
                        const im_plot_panel *p, const plot_panel_layout *pl, double y_label_left)
 {
-    draw_series(cr, p, pl, l->points);
+    int status = draw_series(cr, p, pl, l->points);
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_dash(cr, NULL, 0, 0.0);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
@@ -374,6 +403,7 @@ static void draw_panel(cairo_t *cr, cairo_font_face_t *regular, cairo_font_face_
     if (p->title)
         im_figure_show_text(cr, regular, l->font, pl->box_x + 0.5 * pl->box_width, baseline, 0.5, p->title);
     draw_legend(cr, regular, l, p, pl);
+    return status;
 }
 
 int plot_draw(const im_plot *plot, const plot_layout *l, cairo_t *cr)
@@ -386,10 +416,10 @@ int plot_draw(const im_plot *plot, const plot_layout *l, cairo_t *cr)
     cairo_paint(cr);
     /* The y labels of a column share a left edge: the cell's left edge plus the outer margin. */
     double first_box = l->panels[0].box_x;
-    for (int i = 0; i < l->panel_count; ++i) {
+    for (int i = 0; status == IM_OK && i < l->panel_count; ++i) {
         const plot_panel_layout *pl = &l->panels[i];
         double cell_left = pl->box_x - first_box + round(0.4 * l->font);
-        draw_panel(cr, regular, bold, l, &plot->panels[i], pl, cell_left);
+        status = draw_panel(cr, regular, bold, l, &plot->panels[i], pl, cell_left);
     }
-    return IM_OK;
+    return status;
 }
