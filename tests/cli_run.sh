@@ -25,6 +25,8 @@ shape = cone
 alpha = 80
 [loading]
 load_star = 600
+control = load
+steps = 100:600:3
 [solver]
 tol = 1e-8
 [output]
@@ -33,7 +35,7 @@ frames = yes
 frame_count = 3
 animation = gif
 table = yes
-plots = fig1, fig2, fig3
+plots = fig1, fig2, fig3, fig5, fig6, fig7
 INI
 
 "$cli" run "$dir/small.ini" >"$dir/log" 2>&1
@@ -45,7 +47,8 @@ fi
 check "scene runs" test $status -eq 0
 for f in contact_panels.png contact_panels.pdf results.csv contact.gif panels/force_00.npy panels/force_01.npy \
          frames/contact_0000.png frames/contact_0002.png frames/height_0002.png fig1.png fig2.pdf fig3.png \
-         table1.csv table1.md table/member_00_5.csv table/member_01_6.csv; do
+         table1.csv table1.md table/member_00_5.csv table/member_01_6.csv fig5.png fig6.pdf fig7.png \
+         histories/member_01_6.csv; do
   check "wrote $f" test -s "$dir/out/$f"
 done
 check "no temporary files" bash -c "! find '$dir/out' -name '*.tmp.*' | grep -q ."
@@ -59,6 +62,9 @@ check "png has the scene in a text chunk" grep -qa "small.ini" "$dir/out/contact
 # The table: the smooth family is solved once whatever the seeds, the rough one per seed.
 check "table has two families" awk -F, 'NR == 2 { exit !($2 == 1) } NR == 3 { exit !($2 == 2) }' "$dir/out/table1.csv"
 check "smooth solved once" test ! -e "$dir/out/table/member_00_6.csv"
+
+# Histories in load control reach each N* step: the last row of a rough member is at N* = 600.
+check "history reaches the last N*" awk -F, 'END { exit !($3 > 599.99 && $3 < 600.01) }' "$dir/out/histories/member_01_6.csv"
 
 # Resume reads the panels back instead of solving them.
 "$cli" run --resume "$dir/small.ini" >"$dir/log2" 2>&1

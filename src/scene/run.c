@@ -20,9 +20,14 @@ im_indenter scene_punch(const im_scene *scene)
 
 double scene_load_for_load_star(const im_scene *scene, double delta)
 {
-    /* A(N) increases with N for every punch: bisect A(N) = load_star delta^2 in log N. */
+    return scene_load_for_n_star(scene, scene->load_star, delta);
+}
+
+double scene_load_for_n_star(const im_scene *scene, double n_star, double delta)
+{
+    /* A(N) increases with N for every punch: bisect A(N) = n_star delta^2 in log N. */
     im_indenter punch = scene_punch(scene);
-    double area = scene->load_star * delta * delta, lo = 1e-300, hi = 1.0;
+    double area = n_star * delta * delta, lo = 1e-300, hi = 1.0;
     while (im_indenter_area_for_load(&punch, scene->modulus, hi) < area && hi < 1e300)
         hi *= 2.0;
     for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-15; ++i) {
@@ -125,6 +130,9 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
         status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table)
         status = scene_run_table(scene, options);
+    if (status == IM_OK && (scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") ||
+                            scene_wants_plot(scene, "fig7")))
+        status = scene_run_histories(scene, options);
     if (status != IM_OK || !(scene->contact_panels || scene->frames))
         return status;
     im_render_context *context = NULL;

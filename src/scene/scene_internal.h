@@ -51,6 +51,41 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
                      im_render_context *context, const im_field *known_force);
 
+/* ---- ensembles ---- */
+
+/* One surface of an ensemble and what was measured on it. */
+typedef struct scene_member {
+    int family;
+    uint64_t seed;
+    int status;
+    char error[256];
+    double height_rms;
+    /* the table: the state at load_star */
+    double load, load_star, area_ratio, seconds;
+    long contact_patches;
+    int iterations;
+    /* histories: one row per step that converged */
+    int steps;
+    double *approach, *history_load, *history_load_star, *history_area_ratio;
+    long *history_patches;
+} scene_member;
+
+/* Every family's seeds (a smooth family once); *out is freed by the caller (scene_members_free). */
+int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count);
+void scene_members_free(scene_member *members, int count);
+
+/* Runs solve on every member, in parallel over the available cores (each solve then runs on one
+ * thread), with a progress bar on a terminal. IM_OK, or the first failed member's status with its
+ * family, seed and message. */
+int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
+                       int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
+
+/* The load N whose smooth contact area is n_star delta^2. */
+double scene_load_for_n_star(const im_scene *scene, double n_star, double delta);
+
+/* Histories of every member over [loading] steps, for plots fig5, fig6, fig7. */
+int scene_run_histories(const im_scene *scene, const im_scene_run_options *options);
+
 /* The ensemble table at load_star (the paper's Table 1): table/member_FF_SEED.csv for each
  * surface as soon as it is solved, then table1.csv and table1.md. */
 int scene_run_table(const im_scene *scene, const im_scene_run_options *options);

@@ -12,17 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
-
-typedef struct member {
-    int family;
-    uint64_t seed;
-    double height_rms, load, load_star, area_ratio;
-    long contact_patches;
-    int iterations, status;
-    double seconds;
-    char error[256];
-} member;
 
 /* The paper's Table 1 (alpha = 80 degrees), for the Markdown table beside ours. */
 static const struct paper_row {
@@ -43,7 +32,7 @@ static const struct paper_row *paper_row_for(double slope)
     return NULL;
 }
 
-static int member_path(const im_scene *scene, const member *m, char *path, size_t size)
+static int member_path(const im_scene *scene, const scene_member *m, char *path, size_t size)
 {
     char relative[96];
     snprintf(relative, sizeof relative, "table/member_%02d_%llu.csv", m->family, (unsigned long long)m->seed);
@@ -53,7 +42,7 @@ static int member_path(const im_scene *scene, const member *m, char *path, size_
 static const char MEMBER_HEADER[] =
     "family,slope,seed,height_rms,load,load_star,contact_patches,area_ratio,iterations,seconds\n";
 
-static int write_member(const im_scene *scene, const member *m)
+static int write_member(const im_scene *scene, const scene_member *m)
 {
     char path[IM_SCENE_PATH], text[512];
     int status = member_path(scene, m, path, sizeof path);
@@ -64,7 +53,7 @@ static int write_member(const im_scene *scene, const member *m)
 }
 
 /* Reads a member written by an earlier, interrupted run; 0 if there is none. */
-static int read_member(const im_scene *scene, member *m)
+static int read_member(const im_scene *scene, scene_member *m)
 {
     char path[IM_SCENE_PATH], header[256];
     if (member_path(scene, m, path, sizeof path) != IM_OK)
@@ -84,7 +73,7 @@ static int read_member(const im_scene *scene, member *m)
 }
 
 /* Solves one member at load_star: load control, warm-started by a step at a quarter of it. */
-static int solve_member(const im_scene *scene, member *m)
+static int solve_member(const im_scene *scene, scene_member *m)
 {
     im_field *surface = NULL;
     int status = scene_surface(scene, m->family, m->seed, &surface);
@@ -115,50 +104,15 @@ static int solve_member(const im_scene *scene, member *m)
     return status;
 }
 
-static void report_progress(const im_scene_run_options *options, int done, int total)
-{
-    if (options->quiet || !isatty(STDERR_FILENO))
-        return;
-    enum { WIDTH = 40 };
-    char bar[WIDTH + 1];
-    int filled = done * WIDTH / total;
-    for (int i = 0; i < WIDTH; ++i)
-        bar[i] = i < filled ? '#' : '.';
-    bar[WIDTH] = '\0';
-    fprintf(stderr, "\r[%s] %d/%d surfaces", bar, done, total);
-    if (done == total)
-        fputc('\n', stderr);
-    fflush(stderr);
-}
-
-static void run_member(const im_scene *scene, const im_scene_run_options *options, member *m)
+/* Reads back a member an earlier run wrote, or solves and writes it. */
+static int run_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     if (options->resume && read_member(scene, m))
-        return;
+        return IM_OK;
     double start = omp_get_wtime();
-    m->status = solve_member(scene, m);
+    int status = solve_member(scene, m);
     m->seconds = omp_get_wtime() - start;
-    if (m->status == IM_OK)
-        m->status = write_member(scene, m);
-    if (m->status != IM_OK)
-        snprintf(m->error, sizeof m->error, "%s", im_last_error());
-}
-
-/* Every member, surfaces side by side on the available cores (each solve single-threaded). */
-static int run_members(const im_scene *scene, const im_scene_run_options *options, member *members, int count)
-{
-    int done = 0;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int i = 0; i < count; ++i) {
-        run_member(scene, options, &members[i]);
-#pragma omp critical(scene_progress)
-        report_progress(options, ++done, count);
-    }
-    for (int i = 0; i < count; ++i)
-        if (members[i].status != IM_OK)
-            return im_fail(members[i].status, "family %d, seed %llu: %s", members[i].family,
-                           (unsigned long long)members[i].seed, members[i].error);
-    return IM_OK;
+    return status == IM_OK ? write_member(scene, m) : status;
 }
 
 typedef struct family_summary {
@@ -178,12 +132,12 @@ static double cone_eq12(const im_scene *scene, double slope, double *rho_c)
     return ratio;
 }
 
-static family_summary summarise(const im_scene *scene, const member *members, int count, int family)
+static family_summary summarise(const im_scene *scene, const scene_member *members, int count, int family)
 {
     family_summary s = {.slope = scene->slopes[family], .n_p_ref = -1};
     double sum = 0.0, sum_sq = 0.0, height = 0.0, patches = 0.0;
     for (int i = 0; i < count; ++i) {
-        const member *m = &members[i];
+        const scene_member *m = &members[i];
         if (m->family != family)
             continue;
         ++s.count;
@@ -276,22 +230,14 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
     int status = scene_output_path(scene, "table", folder, sizeof folder);
     if (status == IM_OK)
         status = im_make_directories(folder);
-    member *members = calloc((size_t)(scene->family_count * scene->seed_count), sizeof *members);
-    if (status == IM_OK && !members)
-        status = im_fail(IM_ENOMEM, "table: allocation failed");
+    scene_member *members = NULL;
     int count = 0;
-    for (int f = 0; status == IM_OK && f < scene->family_count; ++f) {
-        /* A smooth family is one surface whatever the seeds: solve it once. */
-        int seeds = scene->slopes[f] == 0.0 && !scene->surface_file[0] ? 1 : scene->seed_count;
-        for (int k = 0; k < seeds; ++k, ++count) {
-            members[count].family = f;
-            members[count].seed = scene->seeds[k];
-        }
-    }
+    if (status == IM_OK)
+        status = scene_ensemble_members(scene, &members, &count);
     if (status == IM_OK) {
         scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
                        scene->load_star);
-        status = run_members(scene, options, members, count);
+        status = scene_ensemble_run(scene, options, members, count, run_member);
     }
     family_summary rows[IM_SCENE_MAX_FAMILIES];
     for (int f = 0; status == IM_OK && f < scene->family_count; ++f)
@@ -302,6 +248,6 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
         status = write_table_markdown(scene, rows);
     if (status == IM_OK && scene_wants_plot(scene, "fig2"))
         status = plot_area_ratio(scene, rows);
-    free(members);
+    scene_members_free(members, count);
     return status;
 }

@@ -1,0 +1,73 @@
+/* Ensembles: every surface of every family, solved side by side on the available cores. */
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count)
+{
+    scene_member *members = calloc((size_t)(scene->family_count * scene->seed_count), sizeof *members);
+    if (!members)
+        return im_fail(IM_ENOMEM, "ensemble: allocation failed");
+    int n = 0;
+    for (int f = 0; f < scene->family_count; ++f) {
+        /* A smooth family is one surface whatever the seeds: solve it once. */
+        int seeds = scene->slopes[f] == 0.0 && !scene->surface_file[0] ? 1 : scene->seed_count;
+        for (int k = 0; k < seeds; ++k, ++n) {
+            members[n].family = f;
+            members[n].seed = scene->seeds[k];
+        }
+    }
+    *out = members;
+    *count = n;
+    return IM_OK;
+}
+
+static void report_progress(const im_scene_run_options *options, int done, int total)
+{
+    if (options->quiet || !isatty(STDERR_FILENO))
+        return;
+    enum { WIDTH = 40 };
+    char bar[WIDTH + 1];
+    int filled = done * WIDTH / total;
+    for (int i = 0; i < WIDTH; ++i)
+        bar[i] = i < filled ? '#' : '.';
+    bar[WIDTH] = '\0';
+    fprintf(stderr, "\r[%s] %d/%d surfaces", bar, done, total);
+    if (done == total)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
+int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
+                       int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
+{
+    int done = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int i = 0; i < count; ++i) {
+        members[i].status = solve(scene, options, &members[i]);
+        if (members[i].status != IM_OK)
+            snprintf(members[i].error, sizeof members[i].error, "%s", im_last_error());
+#pragma omp critical(scene_progress)
+        report_progress(options, ++done, count);
+    }
+    for (int i = 0; i < count; ++i)
+        if (members[i].status != IM_OK)
+            return im_fail(members[i].status, "family %d, seed %llu: %s", members[i].family,
+                           (unsigned long long)members[i].seed, members[i].error);
+    return IM_OK;
+}
+
+void scene_members_free(scene_member *members, int count)
+{
+    for (int i = 0; members && i < count; ++i) {
+        free(members[i].approach);
+        free(members[i].history_load);
+        free(members[i].history_load_star);
+        free(members[i].history_area_ratio);
+        free(members[i].history_patches);
+    }
+    free(members);
+}

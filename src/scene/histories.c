@@ -1,0 +1,338 @@
+/* Indentation histories of every surface of an ensemble ([loading] steps), and the paper's
+ * figures drawn from them: Fig. 5 (A / delta^2 against w), Fig. 6 (N against w) and Fig. 7
+ * (A / A_cone against N*, mean and +- one standard deviation). */
+#include "indentmap/io.h"
+#include "indentmap/plot.h"
+#include "indentmap/status.h"
+#include "indentmap/theory.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int allocate_history(scene_member *m, int steps)
+{
+    m->approach = calloc((size_t)steps, sizeof *m->approach);
+    m->history_load = calloc((size_t)steps, sizeof *m->history_load);
+    m->history_load_star = calloc((size_t)steps, sizeof *m->history_load_star);
+    m->history_area_ratio = calloc((size_t)steps, sizeof *m->history_area_ratio);
+    m->history_patches = calloc((size_t)steps, sizeof *m->history_patches);
+    if (!m->approach || !m->history_load || !m->history_load_star || !m->history_area_ratio || !m->history_patches)
+        return im_fail(IM_ENOMEM, "history: allocation failed");
+    return IM_OK;
+}
+
+static int history_path(const im_scene *scene, const scene_member *m, char *path, size_t size)
+{
+    char relative[96];
+    snprintf(relative, sizeof relative, "histories/member_%02d_%llu.csv", m->family, (unsigned long long)m->seed);
+    return scene_output_path(scene, relative, path, size);
+}
+
+static int write_history(const im_scene *scene, const scene_member *m)
+{
+    char path[IM_SCENE_PATH];
+    im_atomic_file file;
+    int status = history_path(scene, m, path, sizeof path);
+    if (status == IM_OK)
+        status = im_atomic_open(&file, path);
+    if (status != IM_OK)
+        return status;
+    fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g\n", m->family, scene->slopes[m->family],
+            (unsigned long long)m->seed, m->height_rms);
+    fprintf(file.stream, "approach,load,load_star,contact_patches,area_ratio\n");
+    for (int i = 0; i < m->steps; ++i)
+        fprintf(file.stream, "%.17g,%.17g,%.17g,%ld,%.17g\n", m->approach[i], m->history_load[i],
+                m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i]);
+    return im_atomic_commit(&file);
+}
+
+/* Reads a history an earlier run wrote; 0 if there is none (or it is not this member's). */
+static int read_history(const im_scene *scene, scene_member *m)
+{
+    char path[IM_SCENE_PATH], line[256];
+    if (history_path(scene, m, path, sizeof path) != IM_OK)
+        return 0;
+    FILE *stream = fopen(path, "r");
+    if (!stream)
+        return 0;
+    int ok = fgets(line, sizeof line, stream) && sscanf(line, "# family %*d, h'rms %*g, seed %*u, h_rms %lf",
+                                                        &m->height_rms) == 1 && fgets(line, sizeof line, stream);
+    m->steps = 0;
+    while (ok && m->steps < scene->step_count &&
+           fscanf(stream, "%lf,%lf,%lf,%ld,%lf", &m->approach[m->steps], &m->history_load[m->steps],
+                  &m->history_load_star[m->steps], &m->history_patches[m->steps],
+                  &m->history_area_ratio[m->steps]) == 5)
+        ++m->steps;
+    fclose(stream);
+    return ok && m->steps > 0;
+}
+
+/* The target of step i: an approach, or the load at N* = steps[i]. */
+static double step_target(const im_scene *scene, int i, double delta)
+{
+    return scene->control == IM_CONTROL_LOAD ? scene_load_for_n_star(scene, scene->steps[i], delta) : scene->steps[i];
+}
+
+/* Solves the member's history; contact reaching the surface's edge ends it early (the steps
+ * before are kept, as the paper's histories end where Icarus's memory did). */
+static int solve_history(const im_scene *scene, scene_member *m, const im_field *surface)
+{
+    im_indenter punch = scene_punch(scene);
+    im_solver_options options = scene_solver_options(scene);
+    im_indentation *run = NULL;
+    double largest = step_target(scene, scene->step_count - 1, surface->delta);
+    int status = im_indentation_create(surface, &punch, (enum im_control)scene->control, largest, &options, &run);
+    for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
+        im_step_result step;
+        status = im_indentation_step(run, step_target(scene, i, surface->delta), &step);
+        if (status == IM_EEDGE) {
+            status = IM_OK;
+            break;
+        }
+        if (status == IM_OK) {
+            m->approach[i] = step.approach;
+            m->history_load[i] = step.load;
+            m->history_load_star[i] = step.load_star;
+            m->history_patches[i] = step.contact_patches;
+            m->history_area_ratio[i] = step.area_ratio;
+            m->steps = i + 1;
+        }
+    }
+    im_indentation_free(run);
+    return status;
+}
+
+static int run_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+{
+    int status = allocate_history(m, scene->step_count);
+    if (status != IM_OK || (options->resume && read_history(scene, m)))
+        return status;
+    im_field *surface = NULL;
+    status = scene_surface(scene, m->family, m->seed, &surface);
+    im_surface_stats stats;
+    if (status == IM_OK)
+        status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK) {
+        m->height_rms = stats.height_rms;
+        status = solve_history(scene, m, surface);
+    }
+    im_field_free(surface);
+    return status == IM_OK ? write_history(scene, m) : status;
+}
+
+/* ---- figures ---- */
+
+enum { THEORY_POINTS = 101, COMMON_POINTS = 40 };
+
+typedef struct figure_data {
+    im_plot_panel panels[IM_SCENE_MAX_FAMILIES];
+    im_plot_series series[IM_SCENE_MAX_FAMILIES][IM_SCENE_MAX_FAMILIES + 3];
+    char titles[IM_SCENE_MAX_FAMILIES][64];
+    double theory_w[THEORY_POINTS], theory_smooth[THEORY_POINTS];
+    double theory_eq12[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
+} figure_data;
+
+static double cone_cot(const im_scene *scene) { return 1.0 / tan(scene->alpha_degrees * M_PI / 180.0); }
+
+static double eq12_ratio(const im_scene *scene, double slope)
+{
+    im_theory_interface rough = im_theory_interface_default(slope);
+    double rho, beta, ratio;
+    if (im_theory_cone_rho(&rough, scene->alpha_degrees, &rho) != IM_OK ||
+        im_theory_erf_scale(rho, rough.normalisation, rough.k, &beta) != IM_OK ||
+        im_theory_cone_area_ratio_variable(beta, &ratio) != IM_OK)
+        return NAN;
+    return ratio;
+}
+
+static double largest_approach(const scene_member *members, int count)
+{
+    double w = 0.0;
+    for (int i = 0; i < count; ++i)
+        for (int k = 0; k < members[i].steps; ++k)
+            w = fmax(w, members[i].approach[k]);
+    return w > 0.0 ? w : 1.0;
+}
+
+/* A smooth cone's closed forms against w (Love): A / delta^2 = pi a^2 / delta^2, a = 2 w / (pi cot alpha),
+ * or N / (E* delta^2) = 2 w^2 / (pi delta^2 cot alpha). */
+static void fill_theory(const im_scene *scene, figure_data *d, double w_max, int load, double delta)
+{
+    double c = cone_cot(scene);
+    for (int i = 0; i < THEORY_POINTS; ++i) {
+        double w = w_max * i / (THEORY_POINTS - 1), a = 2.0 * w / (M_PI * c);
+        d->theory_w[i] = w;
+        d->theory_smooth[i] = load ? 2.0 * w * w / (M_PI * c * delta * delta) : M_PI * a * a / (delta * delta);
+    }
+}
+
+static int write_plot(const im_scene *scene, const char *name, const im_plot *plot)
+{
+    int status = IM_OK;
+    const char *extensions[] = {"png", "pdf"};
+    for (int i = 0; i < 2 && status == IM_OK; ++i) {
+        char relative[64], path[IM_SCENE_PATH];
+        snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
+        status = scene_output_path(scene, relative, path, sizeof path);
+        if (status == IM_OK)
+            status = im_plot_write(plot, path);
+    }
+    return status;
+}
+
+static im_plot_series thin_line(const double *x, const double *y, int n, int family, int families)
+{
+    im_plot_series s = {.x = x, .y = y, .n = n, .line = IM_PLOT_SOLID, .line_width = 0.5};
+    im_plot_family_color(family, families, s.color);
+    return s;
+}
+
+/* Fig. 5 (load = 0: A / delta^2) or Fig. 6 (load = 1: N / (E* delta^2)) against w, a panel per
+ * family: every surface thin, the smooth theory thick, and for Fig. 5 eq. (12) dashed. */
+static int plot_against_approach(const im_scene *scene, const scene_member *members, int count, int load)
+{
+    static figure_data d;
+    memset(&d, 0, sizeof d);
+    double delta = scene->surface.delta, e_star = scene->modulus;
+    fill_theory(scene, &d, largest_approach(members, count), load, delta);
+    double *scaled = malloc(sizeof *scaled * (size_t)count * (size_t)scene->step_count);
+    if (!scaled)
+        return im_fail(IM_ENOMEM, "fig5/fig6: allocation failed");
+    for (int f = 0; f < scene->family_count; ++f) {
+        int n = 0;
+        for (int i = 0; i < count; ++i) {
+            const scene_member *m = &members[i];
+            double *y = scaled + (size_t)i * scene->step_count;
+            if (m->family != f || m->steps == 0 || n >= IM_SCENE_MAX_FAMILIES)
+                continue;
+            for (int k = 0; k < m->steps; ++k)
+                y[k] = load ? m->history_load[k] / (e_star * delta * delta) : (double)m->history_patches[k];
+            d.series[f][n] = thin_line(m->approach, y, m->steps, f, scene->family_count);
+            d.series[f][n].label = n == 0 ? "surfaces" : NULL;
+            ++n;
+        }
+        im_plot_series smooth = {.x = d.theory_w, .y = d.theory_smooth, .n = THEORY_POINTS, .line = IM_PLOT_SOLID,
+                                 .line_width = 2.0, .label = "smooth (Love)"};
+        d.series[f][n++] = smooth;
+        if (!load && scene->slopes[f] > 0.0) {
+            double ratio = eq12_ratio(scene, scene->slopes[f]);
+            for (int i = 0; i < THEORY_POINTS; ++i)
+                d.theory_eq12[f][i] = ratio * d.theory_smooth[i];
+            im_plot_series eq12 = {.x = d.theory_w, .y = d.theory_eq12[f], .n = THEORY_POINTS,
+                                   .line = IM_PLOT_DASHED, .line_width = 1.0, .label = "eq. (12)"};
+            im_plot_palette(1, eq12.color);
+            d.series[f][n++] = eq12;
+        }
+        scene_family_title(scene, f, d.titles[f], sizeof d.titles[f]);
+        d.panels[f] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "approach w / δ"},
+                                      .y = {IM_PLOT_LINEAR, 0, 0, load ? "load N / (E* δ²)" : "contact area A / δ²"},
+                                      .series = d.series[f], .series_count = n, .title = d.titles[f],
+                                      .legend = f == scene->family_count - 1 ? IM_PLOT_LEGEND_UPPER_LEFT
+                                                                             : IM_PLOT_LEGEND_HIDDEN};
+    }
+    im_plot plot = im_plot_default();
+    plot.columns = scene_panel_columns(scene->family_count);
+    plot.rows = scene->family_count / plot.columns;
+    plot.panels = d.panels;
+    int status = write_plot(scene, load ? "fig6" : "fig5", &plot);
+    free(scaled);
+    return status;
+}
+
+/* Linear interpolation of y(x) at x0 on increasing x; NaN outside. */
+static double interpolate(const double *x, const double *y, int n, double x0)
+{
+    for (int k = 1; k < n; ++k)
+        if (x0 >= x[k - 1] && x0 <= x[k])
+            return x[k] > x[k - 1] ? y[k - 1] + (y[k] - y[k - 1]) * (x0 - x[k - 1]) / (x[k] - x[k - 1]) : y[k];
+    return NAN;
+}
+
+/* Fig. 7: A / A_cone against N* for each rough family: the mean over its surfaces (solid) and
+ * +- one standard deviation (dotted), on the N* range every surface reached. */
+static int plot_area_ratio_against_load(const im_scene *scene, const scene_member *members, int count)
+{
+    static figure_data d;
+    static double grid[IM_SCENE_MAX_FAMILIES][COMMON_POINTS], mean[IM_SCENE_MAX_FAMILIES][COMMON_POINTS];
+    static double lo[IM_SCENE_MAX_FAMILIES][COMMON_POINTS], hi[IM_SCENE_MAX_FAMILIES][COMMON_POINTS];
+    memset(&d, 0, sizeof d);
+    int panels = 0;
+    for (int f = 0; f < scene->family_count; ++f) {
+        if (!(scene->slopes[f] > 0.0))
+            continue;
+        double start = 0.0, end = INFINITY;
+        for (int i = 0; i < count; ++i)
+            if (members[i].family == f && members[i].steps > 1) {
+                start = fmax(start, members[i].history_load_star[0]);
+                end = fmin(end, members[i].history_load_star[members[i].steps - 1]);
+            }
+        if (!(end > start))
+            continue;
+        for (int k = 0; k < COMMON_POINTS; ++k) {
+            double x = start + (end - start) * k / (COMMON_POINTS - 1), sum = 0, sum_sq = 0;
+            int n = 0;
+            for (int i = 0; i < count; ++i) {
+                const scene_member *m = &members[i];
+                double y = m->family == f ? interpolate(m->history_load_star, m->history_area_ratio, m->steps, x) : NAN;
+                if (isnan(y))
+                    continue;
+                sum += y;
+                sum_sq += y * y;
+                ++n;
+            }
+            double mu = sum / n, sd = n > 1 ? sqrt(fmax(0.0, (sum_sq - n * mu * mu) / (n - 1))) : 0.0;
+            grid[panels][k] = x;
+            mean[panels][k] = mu;
+            lo[panels][k] = mu - sd;
+            hi[panels][k] = mu + sd;
+        }
+        im_plot_series series[3] = {
+            {.x = grid[panels], .y = mean[panels], .n = COMMON_POINTS, .line = IM_PLOT_SOLID, .label = "mean"},
+            {.x = grid[panels], .y = lo[panels], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED, .label = "± 1 sd"},
+            {.x = grid[panels], .y = hi[panels], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED}};
+        for (int s = 0; s < 3; ++s)
+            d.series[panels][s] = series[s];
+        scene_family_title(scene, f, d.titles[panels], sizeof d.titles[panels]);
+        d.panels[panels] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "N* = 2N / (δ² E* cot α)"},
+                                           .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{cone}"}, .series = d.series[panels],
+                                           .series_count = 3, .title = d.titles[panels]};
+        ++panels;
+    }
+    if (panels == 0)
+        return im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*", scene->path);
+    im_plot plot = im_plot_default();
+    plot.columns = scene_panel_columns(panels);
+    plot.rows = panels / plot.columns;
+    plot.panels = d.panels;
+    return write_plot(scene, "fig7", &plot);
+}
+
+int scene_run_histories(const im_scene *scene, const im_scene_run_options *options)
+{
+    if (scene->step_count < 1)
+        return im_fail(IM_EINVAL, "%s: plots fig5, fig6 and fig7 need [loading] steps (approaches, or N* "
+                       "values with control = load)", scene->path);
+    char folder[IM_SCENE_PATH];
+    int status = scene_output_path(scene, "histories", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    scene_member *members = NULL;
+    int count = 0;
+    if (status == IM_OK)
+        status = scene_ensemble_members(scene, &members, &count);
+    if (status == IM_OK) {
+        scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
+        status = scene_ensemble_run(scene, options, members, count, run_history);
+    }
+    if (status == IM_OK && scene_wants_plot(scene, "fig5"))
+        status = plot_against_approach(scene, members, count, 0);
+    if (status == IM_OK && scene_wants_plot(scene, "fig6"))
+        status = plot_against_approach(scene, members, count, 1);
+    if (status == IM_OK && scene_wants_plot(scene, "fig7"))
+        status = plot_area_ratio_against_load(scene, members, count);
+    scene_members_free(members, count);
+    return status;
+}
