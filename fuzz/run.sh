@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Runs each libFuzzer harness for a bounded time, one after the other on one worker:
+# Runs each libFuzzer harness for a bounded time, one after the other:
 #   fuzz/run.sh [SECONDS] [BUILD_DIR] [HARNESS...]     (defaults: 60, build-fuzz, all four)
-# Builds first (fuzz/build.sh). Each harness starts from the committed seeds in fuzz/corpus/NAME
-# (read only) and adds what it discovers to BUILD_DIR/corpus/NAME; crashing inputs are written to
+# Builds first (fuzz/build.sh). Each harness runs in one process, starts from the committed seeds
+# in fuzz/corpus/NAME and fuzz/regressions/NAME (read only) and adds what it discovers to
+# BUILD_DIR/corpus/NAME (kept between runs); crashing inputs are written to
 # BUILD_DIR/artifacts/NAME/ and the log to BUILD_DIR/logs/NAME.log. Prints one line per harness
 # with libFuzzer's final stats; exits 1 if any harness found a crash, leak, timeout or OOM.
 set -uo pipefail
@@ -20,10 +21,12 @@ for name in "${harnesses[@]}"; do
   mkdir -p "$build_dir/corpus/$name" "$build_dir/artifacts/$name" "$build_dir/logs"
   dict=()
   [ -f "fuzz/$name.dict" ] && dict=(-dict="fuzz/$name.dict")
+  seeds=("fuzz/corpus/$name")
+  [ -d "fuzz/regressions/$name" ] && seeds+=("fuzz/regressions/$name")
   log="$build_dir/logs/$name.log"
   "$build_dir/fuzz_$name" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build_dir/artifacts/$name/" \
-    "${dict[@]}" "$build_dir/corpus/$name" "fuzz/corpus/$name" >"$log" 2>&1
+    "${dict[@]}" "$build_dir/corpus/$name" "${seeds[@]}" >"$log" 2>&1
   status=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
