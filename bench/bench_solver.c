@@ -1,13 +1,17 @@
 /* Benchmark of the contact solver (not a test).
  *
- *   bench_solver [--repeats R] [--steps S] [--big]
+ *   bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--big]
  *
  * 1. The paper's configuration: 512 x 512, H = 0.8, lambda_s = 4, lambda_r = 512, h'rms = 0.08,
  *    seed 1, alpha = 80 deg, S (default 25) approaches up to w = 31.5 (n_p ~ 37000), displacement
  *    control, at 1 and 2 threads: time per step, iterations per step, time per iteration over the
  *    floor (one forward + one inverse FFT of the padded window with the same FFTW flags), total
  *    time (median of R repeats, default 3), peak memory (ru_maxrss).
- * 2. The same history under load control, imposing the loads found in 1.
+ *    --threads runs one thread count only; at one thread the CPU-time ratio is also printed, which
+ *    other processes sharing the cores disturb less. --measure plans with FFTW_MEASURE (solver
+ *    and floor alike).
+ * 2. The same history under load control, imposing the loads found in 1, and under load control
+ *    by a secant loop on w (skipped with --no-extras, like 3).
  * 3. FFTW planning: FFTW_ESTIMATE, FFTW_MEASURE without and with wisdom, and the per-iteration
  *    time each gives.
  * 4. With --big: a smooth 4096 x 4096 surface and a cone up to n_p ~ 10^6 (6 steps).
@@ -25,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <time.h>
 #include <unistd.h>
 
 #define MAX_REPEATS 15
@@ -34,6 +39,14 @@ static void die(int status, const char *what)
 {
     fprintf(stderr, "bench_solver: %s: %s (%s)\n", what, im_last_error(), im_strstatus(status));
     exit(1);
+}
+
+/* CPU time of the whole process: at one thread it is immune to other processes sharing the cores. */
+static double cpu_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
 static double peak_memory_mib(void)
@@ -55,8 +68,9 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* Median time of one forward r2c + one inverse c2r transform of a px x py grid. */
-static double fft_pair_seconds(int px, int py, unsigned flags)
+/* Median time of one forward r2c + one inverse c2r transform of a px x py grid (wall time, or
+ * CPU time when cpu is set). */
+static double fft_pair_seconds(int px, int py, unsigned flags, int cpu)
 {
     double *real = fftw_malloc(sizeof(double) * px * py);
     fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * py * (px / 2 + 1));
@@ -67,12 +81,12 @@ static double fft_pair_seconds(int px, int py, unsigned flags)
         real[i] = (i % 7) * 0.1;
     double t[9];
     for (int r = 0; r < 9; ++r) {
-        double start = omp_get_wtime();
+        double start = cpu ? cpu_seconds() : omp_get_wtime();
         for (int k = 0; k < 4; ++k) {
             fftw_execute(f);
             fftw_execute(b);
         }
-        t[r] = (omp_get_wtime() - start) / 4;
+        t[r] = ((cpu ? cpu_seconds() : omp_get_wtime()) - start) / 4;
     }
     fftw_destroy_plan(f);
     fftw_destroy_plan(b);
@@ -82,7 +96,7 @@ static double fft_pair_seconds(int px, int py, unsigned flags)
 }
 
 typedef struct history_stats {
-    double total_seconds, plan_seconds, seconds_per_iteration;
+    double total_seconds, plan_seconds, seconds_per_iteration, cpu_per_iteration;
     long iterations, convolutions;
     long final_contacts;
     double loads[MAX_STEPS];
@@ -100,7 +114,7 @@ static history_stats run_history(const im_field *s, const im_indenter *cone, enu
         die(status, "im_indentation_create");
     h.plan_seconds = omp_get_wtime() - start;
     h.window = im_indentation_window(run);
-    double solve = 0;
+    double solve = 0, cpu_start = cpu_seconds();
     for (int k = 0; k < steps; ++k) {
         im_step_result r;
         status = im_indentation_step(run, targets[k], &r);
@@ -117,11 +131,51 @@ static history_stats run_history(const im_field *s, const im_indenter *cone, enu
     }
     h.total_seconds = omp_get_wtime() - start;
     h.seconds_per_iteration = solve / h.iterations;
+    h.cpu_per_iteration = (cpu_seconds() - cpu_start) / h.iterations;
     im_indentation_free(run);
     return h;
 }
 
-static void paper_configuration(int repeats, int steps)
+/* Load control by an outer secant loop on w around displacement-controlled solves (each warm-
+ * started from the last), to compare with Polonsky-Keer's own load control. Stops when N is within
+ * 1e-7 of the target (relative). Returns the total CG iterations. */
+static long secant_history(const im_field *s, const im_indenter *cone, const double *loads, int steps,
+                           double largest_approach, int *solves)
+{
+    im_indentation *run = NULL;
+    im_solver_options o = im_solver_options_default();
+    int status = im_indentation_create(s, cone, IM_CONTROL_DISPLACEMENT, largest_approach, &o, &run);
+    if (status != IM_OK)
+        die(status, "im_indentation_create");
+    long iterations = 0;
+    double w_prev = 0, n_prev = 0;
+    *solves = 0;
+    for (int k = 0; k < steps; ++k) {
+        double target = loads[k];
+        double wa = w_prev, na = n_prev;
+        double wb = k == 0 ? im_indenter_approach_for_load(cone, 1.0, target) : w_prev * sqrt(target / n_prev);
+        for (int it = 0; it < 50; ++it) {
+            im_step_result r;
+            wb = fmin(wb, largest_approach);
+            if ((status = im_indentation_step(run, wb, &r)) != IM_OK)
+                die(status, "secant step");
+            iterations += r.iterations;
+            ++*solves;
+            if (fabs(r.load / target - 1) <= 1e-7)
+                break;
+            double wc = wb + (target - r.load) * (wb - wa) / (r.load - na);
+            wa = wb;
+            na = r.load;
+            wb = wc;
+        }
+        w_prev = wb;
+        n_prev = target;
+    }
+    im_indentation_free(run);
+    return iterations;
+}
+
+static void paper_configuration(int repeats, int steps, int only_threads, int extras, int measure)
 {
     im_surface_params p = im_surface_params_default(); /* 512^2, H 0.8, 4 / 512, h'rms 0.08, seed 1 */
     im_field *s = NULL;
@@ -133,20 +187,32 @@ static void paper_configuration(int repeats, int steps)
     for (int k = 0; k < steps; ++k)
         approaches[k] = 31.5 * (k + 1) / steps;
     im_solver_options o = im_solver_options_default();
+    o.fft_measure = measure;
+    const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+    printf("FFTW planning: %s (the floor uses the same)\n", measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE");
     printf("== paper configuration: 512 x 512, H 0.8, lambda_s 4, lambda_r 512, h'rms 0.08, seed 1, "
            "alpha 80, %d approaches to w = 31.5, tol %g ==\n", steps, o.tol);
     for (int threads = 1; threads <= 2; ++threads) {
+        if (only_threads && threads != only_threads)
+            continue;
         omp_set_num_threads(threads);
-        double totals[MAX_REPEATS], per_it[MAX_REPEATS];
+        double totals[MAX_REPEATS], per_it[MAX_REPEATS], cpu_it[MAX_REPEATS];
         history_stats h = {0};
         for (int r = 0; r < repeats; ++r) {
             h = run_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, steps, &o, r == 0 && threads == 1);
             totals[r] = h.total_seconds;
             per_it[r] = h.seconds_per_iteration;
+            cpu_it[r] = h.cpu_per_iteration;
         }
         memcpy(loads, h.loads, sizeof(double) * steps);
-        double floor = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, FFTW_ESTIMATE);
+        double floor = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, flags, 0);
         double t_it = median(per_it, repeats), total = median(totals, repeats);
+        if (threads == 1) {
+            double cpu_floor = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, flags, 1);
+            double c_it = median(cpu_it, repeats);
+            printf("  CPU time (1 thread, immune to other processes): per iteration %.3f ms, FFT pair %.3f ms, "
+                   "ratio %.3f\n", 1e3 * c_it, 1e3 * cpu_floor, c_it / cpu_floor);
+        }
         printf("threads %d: window %d x %d (padded %d x %d), final n_p %ld\n", threads, h.window.nx, h.window.ny,
                2 * h.window.nx, 2 * h.window.ny, h.final_contacts);
         printf("  total %.3f s (median of %d), per step %.4f s, iterations %ld (%.1f per step), "
@@ -155,12 +221,19 @@ static void paper_configuration(int repeats, int steps)
         printf("  per iteration %.3f ms, FFT pair floor %.3f ms, ratio %.3f, peak RSS so far %.1f MiB\n",
                1e3 * t_it, 1e3 * floor, t_it / floor, peak_memory_mib());
     }
+    if (!extras) {
+        im_field_free(s);
+        return;
+    }
     omp_set_num_threads(2);
     history_stats hl = run_history(s, &cone, IM_CONTROL_LOAD, loads, steps, &o, 0);
     history_stats hd = run_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, steps, &o, 0);
     printf("load control (same loads, 2 threads): iterations %ld vs %ld under displacement control, "
            "time %.3f s vs %.3f s, window %d x %d\n", hl.iterations, hd.iterations, hl.total_seconds,
            hd.total_seconds, hl.window.nx, hl.window.ny);
+    int solves;
+    long secant = secant_history(s, &cone, loads, steps, 1.05 * approaches[steps - 1], &solves);
+    printf("load control by a secant loop on w: %ld iterations in %d displacement solves\n", secant, solves);
     im_field_free(s);
 }
 
@@ -217,7 +290,7 @@ static void big_cone(void)
     im_solver_options o = im_solver_options_default();
     printf("== smooth 4096 x 4096, cone alpha 80, 6 approaches to w = %.2f, 2 threads ==\n", w_max);
     history_stats h = run_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, 6, &o, 1);
-    double floor = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, FFTW_ESTIMATE);
+    double floor = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, FFTW_ESTIMATE, 0);
     printf("window %d x %d: total %.1f s (planning %.2f s), iterations %ld, per iteration %.1f ms, floor %.1f ms "
            "(ratio %.2f), final n_p %ld, peak RSS %.0f MiB\n", h.window.nx, h.window.ny, h.total_seconds,
            h.plan_seconds, h.iterations, 1e3 * h.seconds_per_iteration, 1e3 * floor,
@@ -227,7 +300,7 @@ static void big_cone(void)
 
 int main(int argc, char **argv)
 {
-    int repeats = 3, steps = 25, big = 0;
+    int repeats = 3, steps = 25, big = 0, only_threads = 0, extras = 1, measure = 0;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--repeats") == 0 && i + 1 < argc)
             repeats = atoi(argv[++i]);
@@ -235,8 +308,14 @@ int main(int argc, char **argv)
             steps = atoi(argv[++i]);
         else if (strcmp(argv[i], "--big") == 0)
             big = 1;
+        else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
+            only_threads = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--no-extras") == 0)
+            extras = 0;
+        else if (strcmp(argv[i], "--measure") == 0)
+            measure = 1;
         else {
-            fprintf(stderr, "usage: bench_solver [--repeats R] [--steps S] [--big]\n");
+            fprintf(stderr, "usage: bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--big]\n");
             return 2;
         }
     }
@@ -244,9 +323,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_solver: expected 1 <= repeats <= %d and 1 <= steps <= %d\n", MAX_REPEATS, MAX_STEPS);
         return 2;
     }
+    setvbuf(stdout, NULL, _IOLBF, 0);
     printf("machine: %d processors; FFTW %s\n", omp_get_num_procs(), fftw_version);
-    paper_configuration(repeats, steps);
-    planning_costs();
+    paper_configuration(repeats, steps, only_threads, extras, measure);
+    if (extras)
+        planning_costs();
     if (big)
         big_cone();
     printf("peak RSS %.1f MiB\n", peak_memory_mib());

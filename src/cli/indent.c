@@ -38,7 +38,8 @@ static void usage(FILE *stream)
             "  --tol T             stopping tolerance on the relative gap residual (default 1e-8)\n"
             "  --max-iter K        iteration cap per step (default 10000)\n"
             "  --full              solve on the whole surface, not the window that can touch\n"
-            "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies FFTW_MEASURE\n"
+            "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
+            "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
             "DIR/history.csv is rewritten atomically after every step, so the steps already solved\n"
@@ -59,7 +60,7 @@ typedef struct indent_options {
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
+       OPT_LOAD, OPT_ESTAR, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -69,7 +70,7 @@ static const struct option LONG_OPTIONS[] = {
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
     {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
-    {"full", no_argument, 0, OPT_FULL}, {"wisdom", required_argument, 0, OPT_WISDOM},
+    {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
 
@@ -143,6 +144,7 @@ static int apply_option(int code, const char *arg, indent_options *o)
     case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
     case OPT_FULL: o->solver.crop = 0; return 0;
+    case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
     case OPT_WISDOM: o->wisdom = arg; o->solver.wisdom_path = arg; return 0;
     case OPT_OUT: o->out = arg; return 0;
     case OPT_FIELDS: o->fields = 1; return 0;
