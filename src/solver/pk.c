@@ -299,6 +299,12 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         previous_squares = s.sum_squares;
         convolve(r, r->plan->direction, r->plan->response);
         double tau = step_length(r);
+        if (!(tau > 0) && !restart) {
+            /* Clipping changed the contact set and the conjugate direction no longer descends:
+             * restart from steepest descent, whose step <g, g> / <K g, g> is always positive. */
+            restart = 1;
+            continue;
+        }
         if (!isfinite(tau) || tau <= 0)
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
         long changes = update_pressure(r, tau, &restart);
