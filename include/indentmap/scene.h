@@ -4,7 +4,8 @@
  * loading, and the outputs. Example (scenes/ has the paper's):
  *
  *   [scene]
- *   name = fig4                   ; results go to output/NAME unless `output` is given
+ *   name = fig4                   ; results go to output/NAME (under the working directory) unless
+ *                                 ; `output` is given (a path relative to the scene file)
  *   [surfaces]
  *   n = 512                       ; grid (m = rows, default n)
  *   hurst = 0.8
@@ -28,6 +29,7 @@
 
 #include "indentmap/surface.h"
 
+#include <signal.h>
 #include <stdint.h>
 
 enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
@@ -83,6 +85,11 @@ typedef struct im_scene_run_options {
     int resume;          /* 1: reuse results already on disk under the output folder */
     int quiet;           /* 1: no progress lines on stderr */
     int backend;         /* im_render_backend of render.h (0: auto) */
+    /* Interruption (may be NULL): a signal handler stores the signal's number here. The run
+     * checks it between solver steps and between surfaces (a solve itself is never cut short),
+     * abandons the surface in progress, keeps every finished one on disk and returns
+     * IM_EINTERRUPTED; --resume then continues from there. */
+    const volatile sig_atomic_t *stop;
 } im_scene_run_options;
 
 /* Runs a scene: derives the least work its outputs need, solves it, and writes under
@@ -97,7 +104,13 @@ typedef struct im_scene_run_options {
  *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
  *     The history's last step is that family's panel: it is not solved twice.
  * Every file is written atomically as soon as it is complete; with options->resume, panels whose
- * force file exists are read back instead of solved. */
+ * force file exists, and table and history members whose file exists, are read back instead of
+ * solved.
+ * Before any work: the output folder is locked (OUTPUT/.lock holds the pid; IM_EINVAL naming the
+ * folder and the other pid while another live run holds it; a lock left by a dead process is
+ * taken over with a message; removed when the run ends, however it ends), and the run is refused
+ * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
+ * has, or when the output folder is or contains an input (the scene or its surface file). */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
 
 /* Resolves a path written in a scene relative to the scene file's directory (absolute paths are

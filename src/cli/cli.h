@@ -2,6 +2,7 @@
 #ifndef INDENTMAP_CLI_H
 #define INDENTMAP_CLI_H
 
+#include <signal.h>
 #include <stdint.h>
 
 /* Subcommands: argv[0] is the subcommand's name. Return the process exit status. */
@@ -11,6 +12,12 @@ int cli_render(int argc, char **argv);
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 int cli_run(int argc, char **argv);
+
+/* SIGINT/SIGTERM (interrupt.c): cli_interrupt_install makes them store their number in
+ * cli_stop_signal (a second one ends the process); cli_interrupt_exit_status is 128 + it. */
+extern volatile sig_atomic_t cli_stop_signal;
+int cli_interrupt_install(void);
+int cli_interrupt_exit_status(void);
 
 /* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };

@@ -315,6 +315,10 @@ static int run_steps(const indent_options *o, im_indentation *run, json_t *recor
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
     int status = IM_OK, done = 0;
     for (; done < o->target_count && status == IM_OK; ++done) {
+        if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
+            status = im_fail(IM_EINTERRUPTED, "interrupted by signal %d", (int)cli_stop_signal);
+            break;
+        }
         status = im_indentation_step(run, o->targets[done], &rows[done]);
         if (status != IM_OK)
             break;
@@ -353,7 +357,8 @@ int cli_indent(int argc, char **argv)
     im_field *surface = NULL;
     im_indentation *run = NULL;
     json_t *record = NULL;
-    int status = im_indenter_check(&o.punch);
+    int status = cli_interrupt_install() == 0 ? im_indenter_check(&o.punch)
+                                              : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
     if (status == IM_OK)
         status = load_surface(&o, &surface);
     if (status == IM_OK)
@@ -374,5 +379,9 @@ int cli_indent(int argc, char **argv)
     im_indentation_free(run);
     im_field_free(surface);
     free(o.targets);
+    if (status == IM_EINTERRUPTED) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return cli_interrupt_exit_status();
+    }
     return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
 }

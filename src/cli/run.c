@@ -15,6 +15,8 @@ static void usage(FILE *stream)
                     "Runs a scene: solves what its outputs need and writes them under its output folder\n"
                     "(default output/NAME). Bundled scenes are in scenes/; fig4 is the paper's Fig. 4.\n\n"
                     "  --resume        reuse results already on disk instead of solving them again\n"
+                    "                  (after an interruption: SIGINT or SIGTERM stops at the next solver\n"
+                    "                  step, keeps finished results and exits 130 or 143)\n"
                     "  --quiet         no progress lines\n"
                     "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n");
 }
@@ -47,10 +49,17 @@ int cli_run(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     run.backend = (int)backend;
+    run.stop = &cli_stop_signal;
     im_scene scene;
     int status = im_scene_load(argv[optind], &scene);
+    if (status == IM_OK && cli_interrupt_install() != 0)
+        status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
     if (status == IM_OK)
         status = im_scene_run(&scene, &run);
+    if (status == IM_EINTERRUPTED) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return cli_interrupt_exit_status();
+    }
     if (status != IM_OK)
         return cli_report(status);
     printf("indentmap: scene %s written to %s/\n", scene.name, scene.output_dir);

@@ -41,22 +41,37 @@ static void report_progress(const im_scene_run_options *options, int done, int t
     fflush(stderr);
 }
 
+/* After an interruption: how many members finished, in the message. */
+static int report_interrupted(const im_scene_run_options *options, const scene_member *members, int count)
+{
+    int finished = 0;
+    for (int i = 0; i < count; ++i)
+        finished += members[i].status == IM_OK;
+    char where[96];
+    snprintf(where, sizeof where, "after %d of %d surfaces", finished, count);
+    return scene_interrupted(options, where);
+}
+
 int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
                        int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
 {
     int done = 0;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int i = 0; i < count; ++i) {
-        members[i].status = solve(scene, options, &members[i]);
+        /* Once a signal has asked to stop, the remaining members are skipped, not started. */
+        members[i].status = scene_stop_signal(options) ? IM_EINTERRUPTED : solve(scene, options, &members[i]);
         if (members[i].status != IM_OK)
             snprintf(members[i].error, sizeof members[i].error, "%s", im_last_error());
 #pragma omp critical(scene_progress)
         report_progress(options, ++done, count);
     }
     for (int i = 0; i < count; ++i)
-        if (members[i].status != IM_OK)
+        if (members[i].status != IM_OK && members[i].status != IM_EINTERRUPTED)
             return im_fail(members[i].status, "family %d, seed %llu: %s", members[i].family,
                            (unsigned long long)members[i].seed, members[i].error);
+    for (int i = 0; i < count; ++i)
+        if (members[i].status == IM_EINTERRUPTED)
+            return report_interrupted(options, members, count);
     return IM_OK;
 }
 

@@ -75,6 +75,10 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
     status = im_indentation_create(h->surface, &punch, IM_CONTROL_LOAD, n, &solver, &run);
     scene_progress(options, "frames: %d steps of family %d (h'rms = %g)", h->count, family, scene->slopes[family]);
     for (int i = 0; i < h->count && status == IM_OK; ++i) {
+        if (scene_stop_signal(options)) {
+            status = scene_interrupted(options, "during the frames' history (no frame is written before it ends)");
+            break;
+        }
         im_step_result step;
         status = im_indentation_step(run, n * (i + 1) / h->count, &step);
         if (status == IM_OK)

@@ -78,7 +78,8 @@ static double step_target(const im_scene *scene, int i, double delta)
 
 /* Solves the member's history; contact reaching the surface's edge ends it early (the steps
  * before are kept, as the paper's histories end where Icarus's memory did). */
-static int solve_history(const im_scene *scene, scene_member *m, const im_field *surface)
+static int solve_history(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m,
+                         const im_field *surface)
 {
     im_indenter punch = scene_punch(scene);
     im_solver_options options = scene_solver_options(scene);
@@ -86,6 +87,10 @@ static int solve_history(const im_scene *scene, scene_member *m, const im_field 
     double largest = step_target(scene, scene->step_count - 1, surface->delta);
     int status = im_indentation_create(surface, &punch, (enum im_control)scene->control, largest, &options, &run);
     for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
+        if (scene_stop_signal(run_options)) {
+            status = IM_EINTERRUPTED; /* abandoned: the caller reports the interruption */
+            break;
+        }
         im_step_result step;
         status = im_indentation_step(run, step_target(scene, i, surface->delta), &step);
         if (status == IM_EEDGE) {
@@ -117,7 +122,7 @@ static int run_history(const im_scene *scene, const im_scene_run_options *option
         status = im_surface_statistics(surface, &stats);
     if (status == IM_OK) {
         m->height_rms = stats.height_rms;
-        status = solve_history(scene, m, surface);
+        status = solve_history(scene, options, m, surface);
     }
     im_field_free(surface);
     return status == IM_OK ? write_history(scene, m) : status;
@@ -310,6 +315,71 @@ static int plot_area_ratio_against_load(const im_scene *scene, const scene_membe
     return write_plot(scene, "fig7", &plot);
 }
 
+/* Pastewka and Robbins' three regimes for a sphere: A / A_Hertz against N / N_c for each rough
+ * family (every surface thin) beside eq. (3), on log axes: one asperity at small loads, the
+ * linear rough regime, and the crossover to Hertz above N_c. */
+static int plot_sphere_regimes(const im_scene *scene, const scene_member *members, int count)
+{
+    static figure_data d;
+    static double theory_x[IM_SCENE_MAX_FAMILIES][THEORY_POINTS], theory_y[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
+    memset(&d, 0, sizeof d);
+    double *scaled = malloc(sizeof *scaled * (size_t)count * (size_t)scene->step_count);
+    if (!scaled)
+        return im_fail(IM_ENOMEM, "sphere figure: allocation failed");
+    int panels = 0, status = IM_OK;
+    for (int f = 0; f < scene->family_count && status == IM_OK; ++f) {
+        if (!(scene->slopes[f] > 0.0))
+            continue;
+        im_theory_interface rough = im_theory_interface_default(scene->slopes[f]);
+        rough.e_star = scene->modulus;
+        double n_c = NAN, lo = INFINITY, hi = 0.0;
+        status = im_theory_sphere_crossover_load(&rough, scene->radius, &n_c);
+        int n = 0;
+        for (int i = 0; i < count && status == IM_OK; ++i) {
+            const scene_member *m = &members[i];
+            double *x = scaled + (size_t)i * scene->step_count;
+            if (m->family != f || m->steps == 0 || n >= IM_SCENE_MAX_FAMILIES)
+                continue;
+            for (int k = 0; k < m->steps; ++k) {
+                x[k] = m->history_load[k] / n_c;
+                lo = fmin(lo, x[k]);
+                hi = fmax(hi, x[k]);
+            }
+            d.series[panels][n] = thin_line(x, m->history_area_ratio, m->steps, f, scene->family_count);
+            d.series[panels][n].label = n == 0 ? "surfaces" : NULL;
+            ++n;
+        }
+        for (int k = 0; k < THEORY_POINTS && status == IM_OK && hi > lo; ++k) {
+            double load = n_c * lo * pow(hi / lo, (double)k / (THEORY_POINTS - 1)), area, hertz;
+            status = im_theory_sphere_area(&rough, load, scene->radius, &area);
+            if (status == IM_OK)
+                status = im_theory_hertz_area(load, scene->radius, scene->modulus, &hertz);
+            theory_x[panels][k] = load / n_c;
+            theory_y[panels][k] = area / hertz;
+        }
+        im_plot_series eq3 = {.x = theory_x[panels], .y = theory_y[panels], .n = THEORY_POINTS,
+                              .line = IM_PLOT_SOLID, .line_width = 2.0, .label = "eq. (3)"};
+        d.series[panels][n++] = eq3;
+        scene_family_title(scene, f, d.titles[panels], sizeof d.titles[panels]);
+        d.panels[panels] = (im_plot_panel){.x = {IM_PLOT_LOG, 0, 0, "N / N_{c}"},
+                                           .y = {IM_PLOT_LOG, 0, 0, "A / A_{Hertz}"}, .series = d.series[panels],
+                                           .series_count = n, .title = d.titles[panels],
+                                           .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
+        ++panels;
+    }
+    if (status == IM_OK && panels == 0)
+        status = im_fail(IM_EINVAL, "%s: plots = sphere needs a rough family", scene->path);
+    if (status == IM_OK) {
+        im_plot plot = im_plot_default();
+        plot.columns = scene_panel_columns(panels);
+        plot.rows = panels / plot.columns;
+        plot.panels = d.panels;
+        status = write_plot(scene, "sphere_regimes", &plot);
+    }
+    free(scaled);
+    return status;
+}
+
 int scene_run_histories(const im_scene *scene, const im_scene_run_options *options)
 {
     if (scene->step_count < 1)
@@ -333,6 +403,8 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
         status = plot_against_approach(scene, members, count, 1);
     if (status == IM_OK && scene_wants_plot(scene, "fig7"))
         status = plot_area_ratio_against_load(scene, members, count);
+    if (status == IM_OK && scene_wants_plot(scene, "sphere"))
+        status = plot_sphere_regimes(scene, members, count);
     scene_members_free(members, count);
     return status;
 }

@@ -18,7 +18,8 @@ typedef struct panel_result {
 } panel_result;
 
 /* Solves one family at load n in load control, warm-started by a step at n / 4. */
-static int solve_panel(const im_scene *scene, const im_field *surface, double n, im_field **force)
+static int solve_panel(const im_scene *scene, const im_scene_run_options *run_options, const im_field *surface,
+                       double n, im_field **force)
 {
     im_indenter punch = scene_punch(scene);
     im_solver_options options = scene_solver_options(scene);
@@ -27,6 +28,8 @@ static int solve_panel(const im_scene *scene, const im_field *surface, double n,
     im_step_result step;
     if (status == IM_OK)
         status = im_indentation_step(run, 0.25 * n, &step);
+    if (status == IM_OK && scene_stop_signal(run_options))
+        status = scene_interrupted(run_options, "while solving a panel (abandoned)");
     if (status == IM_OK)
         status = im_indentation_step(run, n, &step);
     if (status == IM_OK)
@@ -93,7 +96,7 @@ static int panel_force(const im_scene *scene, const im_scene_run_options *option
         double n = scene_load_for_load_star(scene, surface->delta);
         scene_progress(options, "family %d (h'rms = %g): solving at N = %.6g", family,
                        scene->slopes[family], n);
-        status = solve_panel(scene, surface, n, &r->force);
+        status = solve_panel(scene, options, surface, n, &r->force);
     }
     im_field_free(surface);
     if (status == IM_OK)
@@ -203,6 +206,12 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     panel_result results[IM_SCENE_MAX_FAMILIES] = {0};
     im_image images[IM_SCENE_MAX_FAMILIES] = {0};
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
+        if (scene_stop_signal(options)) {
+            char where[64];
+            snprintf(where, sizeof where, "after %d of %d panels", i, scene->family_count);
+            status = scene_interrupted(options, where);
+            break;
+        }
         status = panel_force(scene, options, i, known_force, &results[i]);
         if (status == IM_OK) {
             measure_panel(scene, &results[i]);

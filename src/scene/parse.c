@@ -378,7 +378,8 @@ static int check_consistency(const im_scene *scene, char *error, size_t size)
     return 0;
 }
 
-/* Settings that follow from others unless given: rows = columns, lambda_r = the box, output dir. */
+/* Settings that follow from others unless given: rows = columns, lambda_r = the box, output dir
+ * (output/NAME under the working directory; a given one is relative to the scene file). */
 static void complete(im_scene *scene, int ny_given, int lambda_r_given, int output_given)
 {
     im_surface_params *p = &scene->surface;
@@ -388,8 +389,12 @@ static void complete(im_scene *scene, int ny_given, int lambda_r_given, int outp
         p->lambda_r = p->nx > p->ny ? p->nx : p->ny;
     if (p->lambda_0 < p->lambda_r)
         p->lambda_0 = p->lambda_r;
-    if (!output_given)
+    if (!output_given) {
         snprintf(scene->output_dir, sizeof scene->output_dir, "output/%s", scene->name);
+    } else {
+        /* like every path written in a scene, relative to the scene file */
+        im_scene_resolve_path(scene, scene->output_dir, scene->output_dir, sizeof scene->output_dir);
+    }
 }
 
 int im_scene_load(const char *path, im_scene *scene)
@@ -424,8 +429,16 @@ int im_scene_load(const char *path, im_scene *scene)
 void im_scene_resolve_path(const im_scene *scene, const char *relative, char *out, size_t size)
 {
     const char *slash = strrchr(scene->path, '/');
-    if (relative[0] == '/' || !slash)
-        snprintf(out, size, "%s", relative);
-    else
-        snprintf(out, size, "%.*s/%s", (int)(slash - scene->path), scene->path, relative);
+    size_t directory = relative[0] == '/' || !slash ? 0 : (size_t)(slash - scene->path) + 1;
+    size_t length = strlen(relative);
+    if (size == 0)
+        return;
+    /* truncated to size - 1 bytes like snprintf (scene paths are at most IM_SCENE_PATH) */
+    if (directory > size - 1)
+        directory = size - 1;
+    if (length > size - 1 - directory)
+        length = size - 1 - directory;
+    memmove(out + directory, relative, length); /* relative may be out itself */
+    memcpy(out, scene->path, directory);
+    out[directory + length] = '\0';
 }

@@ -95,6 +95,18 @@ int scene_output_path(const im_scene *scene, const char *relative, char *buffer,
     return IM_OK;
 }
 
+int scene_stop_signal(const im_scene_run_options *options)
+{
+    return options->stop ? (int)*options->stop : 0;
+}
+
+int scene_interrupted(const im_scene_run_options *options, const char *where)
+{
+    return im_fail(IM_EINTERRUPTED, "interrupted by signal %d (%s) %s; finished results are kept: "
+                   "run again with --resume to continue", scene_stop_signal(options),
+                   strsignal(scene_stop_signal(options)), where);
+}
+
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
 {
     if (options->quiet)
@@ -121,19 +133,26 @@ static int check_runnable(const im_scene *scene)
     return status == IM_OK ? scene_check_plots(scene) : status;
 }
 
-int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
+/* Between stages: IM_EINTERRUPTED once a signal has asked to stop. */
+static int check_stop(const im_scene_run_options *options, const char *next_stage)
 {
-    int status = check_runnable(scene);
-    if (status == IM_OK)
-        status = im_make_directories(scene->output_dir);
-    if (status == IM_OK)
-        status = scene_run_theory_plots(scene, options);
-    if (status == IM_OK && scene->table)
+    char where[96];
+    snprintf(where, sizeof where, "before %s", next_stage);
+    return scene_stop_signal(options) ? scene_interrupted(options, where) : IM_OK;
+}
+
+static int run_stages(const im_scene *scene, const im_scene_run_options *options)
+{
+    int status = scene_run_theory_plots(scene, options);
+    if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options);
     if (status == IM_OK && (scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") ||
-                            scene_wants_plot(scene, "fig7")))
+                            scene_wants_plot(scene, "fig7")) &&
+        (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options);
     if (status != IM_OK || !(scene->contact_panels || scene->frames))
+        return status;
+    if ((status = check_stop(options, "the frames and panels")) != IM_OK)
         return status;
     im_render_context *context = NULL;
     status = im_render_open((im_render_backend)options->backend, &context);
@@ -148,5 +167,15 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
         status = scene_run_panels(scene, options, context, framed_force);
     im_field_free(framed_force);
     im_render_close(context);
+    return status;
+}
+
+int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
+{
+    int status = check_runnable(scene);
+    if (status == IM_OK)
+        status = im_make_directories(scene->output_dir);
+    if (status == IM_OK)
+        status = run_stages(scene, options);
     return status;
 }

@@ -34,6 +34,13 @@ im_colormap scene_force_norm(const im_scene *scene, double largest);
 /* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
 
+/* The number of the signal that asked the run to stop, or 0 (checked between solver steps and
+ * between surfaces). */
+int scene_stop_signal(const im_scene_run_options *options);
+
+/* IM_EINTERRUPTED with a message naming the signal and where the run stopped (`where`). */
+int scene_interrupted(const im_scene_run_options *options, const char *where);
+
 /* Progress line on stderr unless quiet. */
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));

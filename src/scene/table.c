@@ -73,7 +73,7 @@ static int read_member(const im_scene *scene, scene_member *m)
 }
 
 /* Solves one member at load_star: load control, warm-started by a step at a quarter of it. */
-static int solve_member(const im_scene *scene, scene_member *m)
+static int solve_member(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m)
 {
     im_field *surface = NULL;
     int status = scene_surface(scene, m->family, m->seed, &surface);
@@ -91,6 +91,8 @@ static int solve_member(const im_scene *scene, scene_member *m)
         if (status == IM_OK)
             status = im_indentation_step(run, 0.25 * n, &step);
         int warm_up_iterations = step.iterations;
+        if (status == IM_OK && scene_stop_signal(run_options))
+            status = IM_EINTERRUPTED; /* abandoned: the caller reports the interruption */
         if (status == IM_OK)
             status = im_indentation_step(run, n, &step);
         m->iterations = warm_up_iterations + step.iterations;
@@ -110,7 +112,7 @@ static int run_member(const im_scene *scene, const im_scene_run_options *options
     if (options->resume && read_member(scene, m))
         return IM_OK;
     double start = omp_get_wtime();
-    int status = solve_member(scene, m);
+    int status = solve_member(scene, options, m);
     m->seconds = omp_get_wtime() - start;
     return status == IM_OK ? write_member(scene, m) : status;
 }

@@ -1,0 +1,37 @@
+/* SIGINT and SIGTERM during long subcommands (run, indent): the first signal asks the work to
+ * stop at its next check (between solver steps and between surfaces), so that finished results
+ * are kept and no file is left half-written; a second one ends the process at once. */
+#include "cli/cli.h"
+
+#include <signal.h>
+#include <string.h>
+
+volatile sig_atomic_t cli_stop_signal = 0;
+
+/* Async-signal-safe: stores the number, or restores the default action and re-raises it when the
+ * user insists (a second signal while the first is being honoured). */
+static void on_signal(int signal_number)
+{
+    if (cli_stop_signal) {
+        signal(signal_number, SIG_DFL);
+        raise(signal_number);
+        return;
+    }
+    cli_stop_signal = signal_number;
+}
+
+int cli_interrupt_install(void)
+{
+    struct sigaction action;
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART; /* file writes in progress complete rather than fail with EINTR */
+    cli_stop_signal = 0;
+    return sigaction(SIGINT, &action, NULL) == 0 && sigaction(SIGTERM, &action, NULL) == 0 ? 0 : -1;
+}
+
+int cli_interrupt_exit_status(void)
+{
+    return 128 + (int)cli_stop_signal;
+}
