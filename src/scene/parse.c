@@ -392,8 +392,11 @@ static void complete(im_scene *scene, int ny_given, int lambda_r_given, int outp
     if (!output_given) {
         snprintf(scene->output_dir, sizeof scene->output_dir, "output/%s", scene->name);
     } else {
-        /* like every path written in a scene, relative to the scene file */
-        im_scene_resolve_path(scene, scene->output_dir, scene->output_dir, sizeof scene->output_dir);
+        /* like every path written in a scene, relative to the scene file (resolved from a copy:
+         * the input and output of im_scene_resolve_path may not overlap) */
+        char written[IM_SCENE_PATH];
+        memcpy(written, scene->output_dir, sizeof written);
+        im_scene_resolve_path(scene, written, scene->output_dir, sizeof scene->output_dir);
     }
 }
 
