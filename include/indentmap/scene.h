@@ -106,7 +106,7 @@ typedef struct im_scene_run_options {
  * Every file is written atomically as soon as it is complete; with options->resume, panels whose
  * force file exists, and table and history members whose file exists, are read back instead of
  * solved.
- * Before any work: the output folder is locked (OUTPUT/.lock holds the pid; IM_EINVAL naming the
+ * Before any work: the output folder is locked (OUTPUT/.lock holds the pid; IM_EIO naming the
  * folder and the other pid while another live run holds it; a lock left by a dead process is
  * taken over with a message; removed when the run ends, however it ends), and the run is refused
  * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
@@ -114,7 +114,7 @@ typedef struct im_scene_run_options {
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
 
 /* Resolves a path written in a scene relative to the scene file's directory (absolute paths are
- * kept). Writes at most size bytes to out. */
+ * kept). Writes at most size bytes to out, which may not overlap relative. */
 void im_scene_resolve_path(const im_scene *scene, const char *relative, char *out, size_t size);
 
 /* The valid key nearest to an unknown word (Levenshtein distance), for suggestions; NULL if none

@@ -175,7 +175,11 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     int status = check_runnable(scene);
     if (status == IM_OK)
         status = im_make_directories(scene->output_dir);
+    scene_lock lock = {.fd = -1};
+    if (status == IM_OK)
+        status = scene_lock_acquire(scene, &lock);
     if (status == IM_OK)
         status = run_stages(scene, options);
+    scene_lock_release(&lock);
     return status;
 }

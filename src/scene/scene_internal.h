@@ -41,6 +41,19 @@ int scene_stop_signal(const im_scene_run_options *options);
 /* IM_EINTERRUPTED with a message naming the signal and where the run stopped (`where`). */
 int scene_interrupted(const im_scene_run_options *options, const char *where);
 
+/* The output folder's lock (lock.c). */
+typedef struct scene_lock {
+    int fd;                    /* -1 when not held */
+    char path[IM_SCENE_PATH];
+} scene_lock;
+
+/* Locks OUTPUT/.lock (the folder must exist) and writes this process's pid in it. IM_EIO naming the
+ * folder and the other pid while another live process holds it; a lock file no live process holds
+ * (its writer died) is taken over, with a warning on stderr. */
+int scene_lock_acquire(const im_scene *scene, scene_lock *lock);
+/* Removes the lock file and releases it; nothing if not held. */
+void scene_lock_release(scene_lock *lock);
+
 /* Progress line on stderr unless quiet. */
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));

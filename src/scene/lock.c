@@ -1,0 +1,85 @@
+/* The output folder's lock, OUTPUT/.lock: an flock(2) on the file decides who holds it (the kernel
+ * drops it when its holder dies, so a crash can never leave the folder locked for ever); the file
+ * holds the holder's pid for the messages, and is removed when the run ends. */
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* The pid written in the lock file, or 0 if it holds none. */
+static long lock_owner(int fd)
+{
+    char text[32] = {0};
+    ssize_t length = pread(fd, text, sizeof text - 1, 0);
+    long pid = 0;
+    return length > 0 && sscanf(text, "%ld", &pid) == 1 ? pid : 0;
+}
+
+/* Whether fd is still the file at path (a holder that has just finished unlinks it: a lock taken on
+ * the unlinked file would protect nothing). */
+static int still_linked(int fd, const char *path)
+{
+    struct stat opened, named;
+    return fstat(fd, &opened) == 0 && stat(path, &named) == 0 && opened.st_ino == named.st_ino &&
+           opened.st_dev == named.st_dev;
+}
+
+static int write_owner(int fd, const char *path)
+{
+    char text[32];
+    int length = snprintf(text, sizeof text, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, text, (size_t)length, 0) != length)
+        return im_fail(IM_EIO, "%s: cannot write the lock file: %s", path, strerror(errno));
+    return IM_OK;
+}
+
+int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
+{
+    lock->fd = -1;
+    int status = scene_output_path(scene, ".lock", lock->path, sizeof lock->path);
+    for (int attempt = 0; status == IM_OK && attempt < 100; ++attempt) {
+        int fd = open(lock->path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd < 0)
+            return im_fail(IM_EIO, "%s: cannot create the lock file: %s", lock->path, strerror(errno));
+        if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            char owner[32] = "pid not written yet";
+            if (lock_owner(fd) > 0)
+                snprintf(owner, sizeof owner, "pid %ld", lock_owner(fd));
+            close(fd);
+            return im_fail(IM_EIO, "output folder %s is in use by another indentmap run (%s, lock file %s); "
+                           "wait for it to end or give this scene another [scene] output",
+                           scene->output_dir, owner, lock->path);
+        }
+        if (!still_linked(fd, lock->path)) {
+            close(fd); /* its holder removed it as we opened it: take the new one */
+            continue;
+        }
+        long stale = lock_owner(fd);
+        if (stale > 0 && stale != (long)getpid()) /* a warning, shown even with --quiet */
+            fprintf(stderr, "indentmap: taking over the stale lock %s of pid %ld, which no longer runs\n",
+                    lock->path, stale);
+        status = write_owner(fd, lock->path);
+        if (status != IM_OK) {
+            close(fd);
+            return status;
+        }
+        lock->fd = fd;
+        return IM_OK;
+    }
+    return status == IM_OK ? im_fail(IM_EIO, "%s: the lock file keeps changing", lock->path) : status;
+}
+
+void scene_lock_release(scene_lock *lock)
+{
+    if (lock->fd < 0)
+        return;
+    unlink(lock->path); /* before the lock goes: no one can lock the old file in between and keep it */
+    close(lock->fd);
+    lock->fd = -1;
+}
