@@ -23,6 +23,7 @@ typedef struct pk_run {
     int convolutions;
 } pk_run;
 
+/* Mean of a + b over I_c = {p > 0}. */
 static double mean_over_contact(const double *p, const double *a, const double *b, size_t n, long *count)
 {
     double sum = 0;
@@ -30,7 +31,7 @@ static double mean_over_contact(const double *p, const double *a, const double *
 #pragma omp parallel for schedule(static) reduction(+ : sum, c)
     for (size_t i = 0; i < n; ++i)
         if (p[i] > 0) {
-            sum += a[i] + (b ? b[i] : 0);
+            sum += a[i] + b[i];
             ++c;
         }
     *count = c;
@@ -131,71 +132,94 @@ static void impose_load(pk_run *r)
     }
 }
 
-/* New search direction t = g + beta t on I_c, 0 elsewhere. */
+/* New search direction t = g + beta t on I_c, 0 elsewhere, written also into the padded rows that
+ * the convolution transforms (one pass instead of two). */
 static void update_direction(const pk_run *r, double beta)
 {
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    double *t = r->plan->direction;
-    const double *g = r->plan->gap, *p = r->p;
+    const im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    double *t = plan->direction;
+    const double *g = plan->gap, *p = r->p;
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        t[i] = p[i] > 0 ? g[i] + beta * t[i] : 0;
+    for (int iy = 0; iy < ny; ++iy) {
+        double *padded = plan->rows_in + (size_t)iy * px;
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            t[i] = p[i] > 0 ? g[i] + beta * t[i] : 0;
+            padded[ix] = t[i];
+        }
+    }
 }
 
-/* Step length tau = <g, t> / <K t, t> over I_c (responses centred over I_c under load control). */
+/* Step length tau = <g, t> / <K t, t> over I_c, K t read in place from the convolution's rows;
+ * under load control K t is centred over I_c: <K t - mean, t> = <K t, t> - mean <1, t>. */
 static double step_length(const pk_run *r)
 {
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double *t = r->plan->direction, *q = r->plan->response, *g = r->plan->gap, *p = r->p;
-    double mean_q = 0;
-    if (r->control == IM_CONTROL_LOAD) {
-        long count;
-        mean_q = mean_over_contact(p, q, NULL, n, &count);
-    }
-    double num = 0, den = 0;
-#pragma omp parallel for schedule(static) reduction(+ : num, den)
-    for (size_t i = 0; i < n; ++i)
-        if (p[i] > 0) {
-            num += g[i] * t[i];
-            den += (q[i] - mean_q) * t[i];
+    const im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const double *t = plan->direction, *g = plan->gap, *p = r->p;
+    double num = 0, qt = 0, q_sum = 0, t_sum = 0;
+    long count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : num, qt, q_sum, t_sum, count)
+    for (int iy = 0; iy < ny; ++iy) {
+        const double *q = plan->rows_out + (size_t)iy * px;
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            if (p[i] > 0) {
+                num += g[i] * t[i];
+                qt += q[ix] * t[i];
+                q_sum += q[ix];
+                t_sum += t[i];
+                ++count;
+            }
         }
+    }
+    double den = qt;
+    if (r->control == IM_CONTROL_LOAD && count > 0)
+        den -= q_sum / count * t_sum;
     return num / den;
 }
 
-/* p -= tau t on I_c, clipped at zero; patches outside I_c that penetrate (g < 0) join with
- * p = -tau g. Records how p differs from the plain CG step p - tau t in plan->changed_value and
- * returns the number of such patches; *joined is set when any patch joined. */
+/* In one pass: u -= tau K t; p -= tau t on I_c, clipped at zero; patches outside I_c that penetrate
+ * (g < 0) join with p = -tau g. Records how p differs from the plain CG step p - tau t in
+ * plan->changed_value and returns the number of such patches; *joined is set when any joined. */
 static long update_pressure(pk_run *r, double tau, int *joined)
 {
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double *t = r->plan->direction, *g = r->plan->gap;
-    double *p = r->p, *change = r->plan->changed_value;
+    const im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const double *t = plan->direction, *g = plan->gap;
+    double *p = r->p, *u = r->u, *change = plan->changed_value;
     long changes = 0;
     int any_joined = 0;
 #pragma omp parallel for schedule(static) reduction(+ : changes) reduction(| : any_joined)
-    for (size_t i = 0; i < n; ++i) {
-        double c = 0;
-        if (p[i] > 0) {
-            double next = p[i] - tau * t[i];
-            if (next < 0) {
-                c = -next;
-                next = 0;
+    for (int iy = 0; iy < ny; ++iy) {
+        const double *q = plan->rows_out + (size_t)iy * px;
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            double c = 0;
+            u[i] -= tau * q[ix];
+            if (p[i] > 0) {
+                double next = p[i] - tau * t[i];
+                if (next < 0) {
+                    c = -next;
+                    next = 0;
+                }
+                p[i] = next;
+            } else if (g[i] < 0) {
+                p[i] = c = -tau * g[i];
+                any_joined = 1;
             }
-            p[i] = next;
-        } else if (g[i] < 0) {
-            p[i] = c = -tau * g[i];
-            any_joined = 1;
+            change[i] = c;
+            changes += c != 0;
         }
-        change[i] = c;
-        changes += c != 0;
     }
     *joined = any_joined;
     return changes;
 }
 
-/* u -= tau K t, then the recorded changes by direct summation; returns 1 if u is exact. When the
- * changes are many, one FFT of the new p is cheaper and exact. */
-static int update_displacement(pk_run *r, double tau, long changes)
+/* Adds the recorded changes to u (already moved by -tau K t) by direct summation, or, when they
+ * are many, recomputes u = K p by FFT, which is then cheaper and exact; returns 1 if u is exact. */
+static int update_displacement(pk_run *r, long changes)
 {
     im_solver_plan *plan = r->plan;
     const size_t n = (size_t)plan->nx * plan->ny;
@@ -203,10 +227,6 @@ static int update_displacement(pk_run *r, double tau, long changes)
         convolve(r, r->p, r->u);
         return 1;
     }
-    const double *q = plan->response;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        r->u[i] -= tau * q[i];
     if (changes > 0) {
         long k = 0;
         for (size_t i = 0; i < n && k < changes; ++i)
@@ -297,7 +317,8 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         ++res->iterations;
         update_direction(r, restart ? 0 : s.sum_squares / previous_squares);
         previous_squares = s.sum_squares;
-        convolve(r, r->plan->direction, r->plan->response);
+        solver_convolve_rows(r->plan); /* K t, left in plan->rows_out */
+        ++r->convolutions;
         double tau = step_length(r);
         if (!(tau > 0) && !restart) {
             /* Clipping changed the contact set and the conjugate direction no longer descends:
@@ -308,7 +329,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (!isfinite(tau) || tau <= 0)
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
         long changes = update_pressure(r, tau, &restart);
-        exact = update_displacement(r, tau, changes);
+        exact = update_displacement(r, changes);
         if (r->control == IM_CONTROL_LOAD)
             impose_load(r);
     }

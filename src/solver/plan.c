@@ -52,9 +52,9 @@ double im_influence_square(double x, double y, double delta, double e_star)
 double im_solver_plan_bytes(int nx, int ny)
 {
     double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
-    /* kernel, 3 work arrays, changes (long + double); spectrum; 2 padded rows; 2 complex arrays.
+    /* kernel, 2 work arrays, changes (long + double); spectrum; 2 padded rows; 2 complex arrays.
      * While planning, the kernel's transform needs a 4 n temporary on top. */
-    return 8 * (n * 6 + modes + 2 * rows + 2 * 2 * modes + 4 * n);
+    return 8 * (n * 5 + modes + 2 * rows + 2 * 2 * modes + 4 * n);
 }
 
 static const char *wisdom_file(const im_solver_options *o)
@@ -148,7 +148,6 @@ static int allocate_plan(im_solver_plan *p)
     size_t n = (size_t)p->nx * p->ny, rows = (size_t)p->px * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
     p->kernel = fftw_malloc(sizeof(double) * n);
     p->direction = fftw_malloc(sizeof(double) * n);
-    p->response = fftw_malloc(sizeof(double) * n);
     p->gap = fftw_malloc(sizeof(double) * n);
     p->changed = malloc(sizeof(long) * n);
     p->changed_value = malloc(sizeof(double) * n);
@@ -157,7 +156,7 @@ static int allocate_plan(im_solver_plan *p)
     p->rows_out = fftw_malloc(sizeof(double) * rows);
     p->half = fftw_malloc(sizeof(fftw_complex) * modes);
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
-    if (!p->kernel || !p->direction || !p->response || !p->gap || !p->changed || !p->changed_value ||
+    if (!p->kernel || !p->direction || !p->gap || !p->changed || !p->changed_value ||
         !p->spectrum || !p->rows_in || !p->rows_out || !p->half || !p->modes)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: allocation failed", p->nx, p->ny);
     memset(p->direction, 0, sizeof(double) * n);
@@ -222,7 +221,6 @@ void im_solver_plan_free(im_solver_plan *p)
     im_fft_planner_unlock();
     fftw_free(p->kernel);
     fftw_free(p->direction);
-    fftw_free(p->response);
     fftw_free(p->gap);
     free(p->changed);
     free(p->changed_value);
@@ -237,21 +235,27 @@ void im_solver_plan_free(im_solver_plan *p)
 double im_solver_plan_seconds(const im_solver_plan *p) { return p->plan_seconds; }
 int im_solver_plan_measured(const im_solver_plan *p) { return p->measured; }
 
-void im_solver_convolve(im_solver_plan *p, const double *pressure, double *displacement)
+void solver_convolve_rows(im_solver_plan *p)
 {
-    const int nx = p->nx, ny = p->ny, px = p->px, mx = px / 2 + 1;
-#pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
-        memcpy(p->rows_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
+    const size_t count = (size_t)p->py * (p->px / 2 + 1);
     fftw_execute(p->rows_forward);
     fftw_execute(p->columns_forward);
 #pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < (size_t)p->py * mx; ++k) {
+    for (size_t k = 0; k < count; ++k) {
         p->modes[k][0] *= p->spectrum[k];
         p->modes[k][1] *= p->spectrum[k];
     }
     fftw_execute(p->columns_backward);
     fftw_execute(p->rows_backward);
+}
+
+void im_solver_convolve(im_solver_plan *p, const double *pressure, double *displacement)
+{
+    const int nx = p->nx, ny = p->ny, px = p->px;
+#pragma omp parallel for schedule(static)
+    for (int iy = 0; iy < ny; ++iy)
+        memcpy(p->rows_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
+    solver_convolve_rows(p);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy)
         memcpy(displacement + (size_t)iy * nx, p->rows_out + (size_t)iy * px, sizeof(double) * nx);

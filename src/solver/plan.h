@@ -20,13 +20,17 @@ struct im_solver_plan {
     /* The 2-D transform of the padded grid, pruned: the x transforms of the py - ny zero rows are
      * skipped going forward, and those of the rows outside the result coming back. */
     fftw_plan rows_forward, columns_forward, columns_backward, rows_backward;
-    double *direction, *response, *gap; /* nx * ny work arrays of the iteration */
+    double *direction, *gap; /* nx * ny work arrays of the iteration; K t is read from rows_out */
     long *changed;           /* nx * ny: indices of patches changed outside the CG step */
     double *changed_value;   /* their pressure changes */
     long direct_limit;       /* most changes added by direct summation rather than by FFT */
     double plan_seconds;
     int measured;
 };
+
+/* Transforms rows_in (filled by the caller: the grid's rows, stride px) and leaves the
+ * convolution with K in rows_out (stride px, the first nx values of each of the ny rows). */
+void solver_convolve_rows(im_solver_plan *plan);
 
 /* displacement += sum_k value[k] K(x - x_index[k]) over the grid (direct summation). */
 void solver_add_point_loads(const im_solver_plan *plan, const long *index, const double *value, long count,
