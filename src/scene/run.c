@@ -174,6 +174,8 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
     int status = check_runnable(scene);
     if (status == IM_OK)
+        status = scene_check_limits(scene);
+    if (status == IM_OK)
         status = im_make_directories(scene->output_dir);
     scene_lock lock = {.fd = -1};
     if (status == IM_OK)

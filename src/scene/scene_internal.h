@@ -41,6 +41,12 @@ int scene_stop_signal(const im_scene_run_options *options);
 /* IM_EINTERRUPTED with a message naming the signal and where the run stopped (`where`). */
 int scene_interrupted(const im_scene_run_options *options, const char *where);
 
+/* Before any work (limits.c): the output folder neither is nor contains an input (IM_EINVAL); the
+ * smooth contact at load_star (and at the largest N* step) stays inside the surface (IM_EINVAL);
+ * the memory (IM_ENOMEM) and disk (IM_EIO; free space of the output folder's file system, and the
+ * file-size limit) the outputs need, estimated from above, are there. Messages give the estimate. */
+int scene_check_limits(const im_scene *scene);
+
 /* The output folder's lock (lock.c). */
 typedef struct scene_lock {
     int fd;                    /* -1 when not held */

@@ -1,0 +1,263 @@
+/* Limits checked before any work: the scene's consistency with its grid, the memory and disk its
+ * outputs need against what the machine has, and outputs that would overwrite inputs. The
+ * estimates are upper bounds of the largest terms, not exact accounts: each solve's FFT plan and
+ * fields, the fields the frames keep, and the files at their uncompressed sizes. */
+#include "indentmap/field.h"
+#include "indentmap/io.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+
+enum { PLOT_BYTES = 4 << 20,     /* a plot's PNG and PDF together: well above the measured 0.3 MiB */
+       FRAME_TEXT_BYTES = 1 << 18 }; /* a frame's title, colour bar and labels (measured: 0.03 MiB) */
+static const double MIB = 1048576.0;
+
+typedef struct grid {
+    int nx, ny;
+    double delta;
+} grid;
+
+/* The scene's grid: [surfaces] n, m, or the surface file's (read here: it is an input anyway, and
+ * reading checks it before any work). */
+static int scene_grid(const im_scene *scene, grid *out)
+{
+    *out = (grid){scene->surface.nx, scene->surface.ny, scene->surface.delta};
+    if (!scene->surface_file[0])
+        return IM_OK;
+    im_field *surface = NULL;
+    int status = scene_surface(scene, 0, 0, &surface);
+    if (status == IM_OK)
+        *out = (grid){surface->nx, surface->ny, surface->delta};
+    im_field_free(surface);
+    return status;
+}
+
+static int ensemble_size(const im_scene *scene)
+{
+    int count = 0;
+    for (int f = 0; f < scene->family_count; ++f)
+        count += scene->slopes[f] == 0.0 && !scene->surface_file[0] ? 1 : scene->seed_count;
+    return count;
+}
+
+/* ---- consistency ---- */
+
+/* The smooth contact must stay inside the surface: A = N* delta^2 is a disc of radius
+ * sqrt(N* / pi) patches, which must be less than half the shorter side (else every solve ends at
+ * the surface's edge). */
+static int check_contact_fits(const im_scene *scene, const grid *g, const char *key, double n_star)
+{
+    double radius = sqrt(n_star / M_PI), half = 0.5 * (g->nx < g->ny ? g->nx : g->ny);
+    if (radius >= half)
+        return im_fail(IM_EINVAL, "%s: %s = %g: the smooth contact radius sqrt(N*/pi) = %.1f patches reaches the "
+                       "edge of the %d x %d surface (expected N* < pi (%g)^2 = %.0f)", scene->path, key, n_star,
+                       radius, g->nx, g->ny, half, M_PI * half * half);
+    return IM_OK;
+}
+
+static int check_consistency(const im_scene *scene, const grid *g)
+{
+    int status = IM_OK;
+    if (scene->load_star > 0.0 && (scene->contact_panels || scene->frames || scene->table))
+        status = check_contact_fits(scene, g, "[loading] load_star", scene->load_star);
+    int histories = scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") ||
+                    scene_wants_plot(scene, "fig7");
+    if (status == IM_OK && histories && scene->step_count > 0 && scene->control == IM_CONTROL_LOAD)
+        status = check_contact_fits(scene, g, "[loading] steps (largest)", scene->steps[scene->step_count - 1]);
+    if (status == IM_OK && scene->punch == IM_PUNCH_FLAT && 2.0 * scene->radius >= (g->nx < g->ny ? g->nx : g->ny))
+        status = im_fail(IM_EINVAL, "%s: [punch] radius = %g: a flat punch as wide as the %d x %d surface "
+                         "(radius in patches; expected < %g)", scene->path, scene->radius, g->nx, g->ny,
+                         0.5 * (g->nx < g->ny ? g->nx : g->ny));
+    return status;
+}
+
+/* ---- memory ---- */
+
+/* One solve: its plan on the whole grid (the solve window is at most that) and its fields
+ * (surface, undeformed gap, pressure, displacement, and the copies a step hands out). */
+static double solve_bytes(const grid *g)
+{
+    return im_solver_plan_bytes(g->nx, g->ny) + 8.0 * 8.0 * g->nx * g->ny;
+}
+
+static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
+{
+    double field = 8.0 * g->nx * g->ny, needed = 0.0;
+    int members = ensemble_size(scene), threads = omp_get_max_threads();
+    *at_once = members < threads ? members : threads;
+    if (scene->table || scene->step_count > 0)
+        needed = *at_once * solve_bytes(g) + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
+    if (scene->frames) /* force and deformed heights of every step, and the GIF's RGBA frames */
+        needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 4.0 * g->nx * g->ny));
+    if (scene->contact_panels) /* every family's force, and its panel image (2 pixels a patch when small) */
+        needed = fmax(needed, solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
+    return needed;
+}
+
+static int check_memory(const im_scene *scene, const grid *g)
+{
+    int at_once;
+    double needed = memory_needed(scene, g, &at_once);
+    size_t available = im_memory_available();
+    if (available != 0 && needed > (double)available)
+        return im_fail(IM_ENOMEM, "%s: this scene needs about %.1f MiB of memory (%d surfaces solved at once, "
+                       "%.1f MiB each for the solver plan and fields of a %d x %d grid, plus what the frames and "
+                       "panels keep) but only %.1f MiB are available; use a smaller grid or fewer threads "
+                       "(OMP_NUM_THREADS)", scene->path, needed / MIB, at_once, solve_bytes(g) / MIB, g->nx, g->ny,
+                       (double)available / MIB);
+    return IM_OK;
+}
+
+/* ---- disk ---- */
+
+typedef struct disk_estimate {
+    double total, largest;
+    const char *largest_name;
+} disk_estimate;
+
+static void add_files(disk_estimate *d, double count, double bytes, const char *name)
+{
+    d->total += count * bytes;
+    if (count > 0 && bytes > d->largest) {
+        d->largest = bytes;
+        d->largest_name = name;
+    }
+}
+
+/* Files at their uncompressed sizes (PNG and GIF compress; the figure's margins and colour bar
+ * are counted as a second copy of the image). */
+static disk_estimate disk_needed(const im_scene *scene, const grid *g)
+{
+    double cells = (double)g->nx * g->ny, members = ensemble_size(scene);
+    disk_estimate d = {0.0, 0.0, ""};
+    if (scene->contact_panels) {
+        add_files(&d, scene->family_count, 8.0 * cells + 128.0, "panels/force_NN.npy");
+        add_files(&d, 2.0, scene->family_count * 2.0 * 3.0 * 4.0 * cells + PLOT_BYTES, "contact_panels.png");
+    }
+    if (scene->frames) {
+        add_files(&d, 2.0 * scene->frame_count, 2.0 * 3.0 * cells + FRAME_TEXT_BYTES, "frames/contact_NNNN.png");
+        add_files(&d, 1.0, scene->frame_count * cells + 1024.0, "contact.gif");
+    }
+    if (scene->table)
+        add_files(&d, members, 512.0, "table/member_FF_SEED.csv");
+    add_files(&d, members, 256.0 + 128.0 * scene->step_count, "histories/member_FF_SEED.csv");
+    add_files(&d, 8.0, PLOT_BYTES, "a plot"); /* fig1-fig7, density: at most this many */
+    return d;
+}
+
+/* The length of the longest leading part of path that exists (whole components; 1 for "/"), 0 if
+ * none does (the output folder may not exist yet). */
+static size_t existing_prefix(const char *path)
+{
+    char copy[PATH_MAX];
+    snprintf(copy, sizeof copy, "%s", path);
+    size_t n = strlen(copy);
+    struct stat info;
+    while (n > 0) {
+        copy[n] = '\0';
+        if (stat(copy, &info) == 0)
+            return n;
+        char *slash = strrchr(copy, '/');
+        if (!slash)
+            return 0;
+        n = slash == copy ? 1 : (size_t)(slash - copy);
+    }
+    return 0;
+}
+
+/* The folder whose file system will hold path: its existing leading part, or ".". */
+static void existing_ancestor(const char *path, char *out, size_t size)
+{
+    size_t n = existing_prefix(path);
+    snprintf(out, size, "%.*s", n ? (int)n : 1, n ? path : ".");
+}
+
+static int check_disk(const im_scene *scene, const grid *g)
+{
+    disk_estimate d = disk_needed(scene, g);
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && d.largest > (double)limit.rlim_cur)
+        return im_fail(IM_EIO, "%s: %s would be about %.1f MiB but the file-size limit (ulimit -f) is %.1f MiB",
+                       scene->path, d.largest_name, d.largest / MIB, (double)limit.rlim_cur / MIB);
+    char folder[IM_SCENE_PATH];
+    existing_ancestor(scene->output_dir, folder, sizeof folder);
+    struct statvfs info;
+    if (statvfs(folder, &info) != 0)
+        return IM_OK; /* cannot tell: the writes will report it */
+    double free_bytes = (double)info.f_bavail * (double)info.f_frsize;
+    if (d.total > free_bytes)
+        return im_fail(IM_EIO, "%s: the outputs need about %.1f MiB of disk (the largest, %s, %.1f MiB) but %s has "
+                       "only %.1f MiB free", scene->path, d.total / MIB, d.largest_name, d.largest / MIB, folder,
+                       free_bytes / MIB);
+    return IM_OK;
+}
+
+/* ---- outputs never overwrite inputs ---- */
+
+/* The absolute, symlink-free form of path, which need not exist yet (its missing tail is kept as
+ * written). */
+static int absolute_path(const char *path, char *out)
+{
+    char existing[PATH_MAX], resolved[PATH_MAX];
+    size_t n = existing_prefix(path);
+    existing_ancestor(path, existing, sizeof existing);
+    if (!realpath(existing, resolved))
+        return im_fail(IM_EIO, "%s: cannot resolve: %s", existing, strerror(errno));
+    const char *tail = path + n;
+    while (*tail == '/')
+        ++tail;
+    int length = snprintf(out, PATH_MAX, "%s%s%s", resolved, *tail && strcmp(resolved, "/") ? "/" : "", tail);
+    return length < PATH_MAX ? IM_OK : im_fail(IM_EINVAL, "%s: path too long", path);
+}
+
+static int check_not_inside(const im_scene *scene, const char *output, const char *input, const char *what)
+{
+    char resolved[PATH_MAX];
+    if (!realpath(input, resolved))
+        return IM_OK; /* the reader reports a missing input */
+    size_t n = strlen(output);
+    if (strcmp(resolved, output) == 0 || (strncmp(resolved, output, n) == 0 && resolved[n] == '/'))
+        return im_fail(IM_EINVAL, "%s: [scene] output = %s would hold the %s %s, and could overwrite it; "
+                       "give another output folder", scene->path, scene->output_dir, what, input);
+    return IM_OK;
+}
+
+static int check_outputs_apart(const im_scene *scene)
+{
+    char output[PATH_MAX];
+    int status = absolute_path(scene->output_dir, output);
+    if (status == IM_OK)
+        status = check_not_inside(scene, output, scene->path, "scene file");
+    if (status == IM_OK && scene->surface_file[0]) {
+        char surface[IM_SCENE_PATH];
+        im_scene_resolve_path(scene, scene->surface_file, surface, sizeof surface);
+        status = check_not_inside(scene, output, surface, "surface file");
+    }
+    return status;
+}
+
+int scene_check_limits(const im_scene *scene)
+{
+    grid g;
+    int status = check_outputs_apart(scene);
+    if (status == IM_OK)
+        status = scene_grid(scene, &g);
+    if (status == IM_OK)
+        status = check_consistency(scene, &g);
+    if (status == IM_OK)
+        status = check_memory(scene, &g);
+    if (status == IM_OK)
+        status = check_disk(scene, &g);
+    return status;
+}

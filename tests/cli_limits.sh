@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# Limits checked before any work: memory and disk estimates against the machine (a grid no machine
+# holds; a file-size limit; a 1 MiB tmpfs when mounts are allowed), scene consistency (N* whose
+# smooth contact leaves the surface), paths relative to the scene file, and output folders that
+# would hold an input. Each refusal must name what it refuses and create no output folder.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+passes=0
+check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+
+# scene NAME N LOAD_STAR [more [output] lines]: a table scene writing to out_NAME.
+scene() {
+  local name=$1 n=$2 load_star=$3 extra=${4:-}
+  cat >"$dir/$name.ini" <<INI
+[scene]
+name = $name
+output = out_$name
+[surfaces]
+n = $n
+slopes = 0.08
+seeds = 1:2
+[punch]
+shape = cone
+[loading]
+load_star = $load_star
+[output]
+table = yes
+$extra
+INI
+}
+refused() { # refused NAME EXIT PATTERN: runs the scene, expects the exit status and message, no output
+  "$cli" run --quiet "$dir/$1.ini" >/dev/null 2>"$dir/$1.err"
+  local status=$?
+  check "$1: exit $2" test $status -eq "$2"
+  check "$1: message" grep -q "$3" "$dir/$1.err"
+  check "$1: no output folder" test ! -e "$dir/out_$1"
+}
+
+# Memory: a 65536 x 65536 grid's solver plan alone is about 800 GB.
+scene memory 65536 1000
+refused memory 2 "memory.ini: this scene needs about [0-9.]* MiB of memory (.* 65536 x 65536 grid"
+
+# Disk, per file: the panels' figure of a 512 x 512 family against a 1 MiB file-size limit.
+scene fsize 512 1000 "contact_panels = yes"
+(ulimit -f 1024; "$cli" run --quiet "$dir/fsize.ini" >/dev/null 2>"$dir/fsize.err"; echo $? >"$dir/fsize.status")
+check "file-size limit: exit 1" test "$(cat "$dir/fsize.status")" -eq 1
+check "file-size limit: message" grep -q "contact_panels.png would be about [0-9.]* MiB but the file-size limit (ulimit -f) is 1.0 MiB" "$dir/fsize.err"
+check "file-size limit: no output folder" test ! -e "$dir/out_fsize"
+
+# Disk, in all: frames of a 256 x 256 history into a 1 MiB file system (needs mount rights).
+scene disk 256 1000 "frames = yes"
+mkdir "$dir/tiny"
+if unshare -m true 2>/dev/null && unshare -m sh -c "mount -t tmpfs -o size=1m tmpfs '$dir/tiny'" 2>/dev/null; then
+  sed -i "s|^output = .*|output = $dir/tiny/out|" "$dir/disk.ini"
+  unshare -m sh -c "mount -t tmpfs -o size=1m tmpfs '$dir/tiny' && '$cli' run --quiet '$dir/disk.ini' 2>'$dir/disk.err'; echo \$? >'$dir/disk.status'"
+  check "disk: exit 1" test "$(cat "$dir/disk.status")" -eq 1
+  check "disk: message" grep -q "the outputs need about [0-9.]* MiB of disk (the largest, .*) but $dir/tiny has only 1.0 MiB free" "$dir/disk.err"
+else
+  echo "note: cannot mount a tmpfs here: the free-space check is not exercised"
+fi
+
+# Consistency: at N* = 4000 the smooth contact radius (35.7 patches) exceeds half of 64.
+scene wide 64 4000
+refused wide 2 "wide.ini: \[loading\] load_star = 4000: the smooth contact radius sqrt(N\*/pi) = 35.7 patches reaches the edge of the 64 x 64 surface"
+scene steps 64 600 "plots = fig5
+[loading]
+control = load
+steps = 100:5000:3"
+refused steps 2 "\[loading\] steps (largest) = 5000"
+
+# Outputs never hold inputs: the scene's own folder, or the folder of its surface file.
+scene here 64 600
+sed -i "s|^output = .*|output = .|" "$dir/here.ini"
+"$cli" run --quiet "$dir/here.ini" >/dev/null 2>"$dir/here.err"
+check "output holding the scene: exit 2" test $? -eq 2
+check "output holding the scene: message" grep -q "output = $dir/. would hold the scene file" "$dir/here.err"
+mkdir "$dir/inputs"
+"$cli" surface --n 64 --slope 0.08 --seed 3 --out "$dir/inputs/rough.npy" >/dev/null
+cat >"$dir/file.ini" <<INI
+[scene]
+name = file
+output = inputs
+[surfaces]
+file = inputs/rough.npy
+[loading]
+load_star = 600
+[output]
+table = yes
+INI
+"$cli" run --quiet "$dir/file.ini" >/dev/null 2>"$dir/file.err"
+check "output holding the surface file: exit 2" test $? -eq 2
+check "output holding the surface file: message" grep -q "would hold the surface file $dir/inputs/rough.npy" "$dir/file.err"
+cmp -s <("$cli" surface --n 64 --slope 0.08 --seed 3 --out "$dir/again.npy" >/dev/null; cat "$dir/again.npy") "$dir/inputs/rough.npy"
+check "surface file untouched" test $? -eq 0
+
+# Paths relative to the scene file, whatever the working directory.
+sed -i "s|^output = .*|output = results|" "$dir/file.ini"
+(cd / && "$cli" run --quiet "$dir/file.ini" >/dev/null 2>"$dir/relative.err")
+check "relative paths: runs from /" test $? -eq 0
+check "relative paths: output beside the scene" test -s "$dir/results/table1.csv"
+check "relative paths: the surface file was read" grep -q "^0.08,1," "$dir/results/table1.csv"
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
