@@ -1,6 +1,7 @@
 /* SIGINT and SIGTERM during long subcommands (run, indent): the first signal asks the work to
  * stop at its next check (between solver steps and between surfaces), so that finished results
- * are kept and no file is left half-written; a second one ends the process at once. */
+ * are kept and no file is left half-written; a second one ends the process at once (its
+ * temporary file, PATH.tmp.PID, may then remain). */
 #include "cli/cli.h"
 
 #include <signal.h>
@@ -28,6 +29,9 @@ int cli_interrupt_install(void)
     sigemptyset(&action.sa_mask);
     action.sa_flags = SA_RESTART; /* file writes in progress complete rather than fail with EINTR */
     cli_stop_signal = 0;
+    /* A write past the file-size limit (ulimit -f) then fails with EFBIG and is reported, its
+     * temporary file removed, instead of SIGXFSZ killing the process mid-write. */
+    signal(SIGXFSZ, SIG_IGN);
     return sigaction(SIGINT, &action, NULL) == 0 && sigaction(SIGTERM, &action, NULL) == 0 ? 0 : -1;
 }
 

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# valgrind (memcheck) on a small end-to-end scene: the 64 x 64 scene of tests/cli_run.sh (two
+# families, a table, histories, frames with a GIF, contact panels, plots fig1-fig7), rendered with
+# OSMesa. Fails on any invalid access or use of uninitialised memory, and on any definite or
+# indirect leak; possible leaks are listed, not failed (libgomp's thread stacks are one).
+# Suppressions (tests/valgrind_mesa.supp) cover leaks inside Mesa's libraries only.
+# Labelled slow (about a minute); skipped (77) without valgrind or on a sanitizer build.
+set -u
+cli=$1
+here=$(cd "$(dirname "$0")" && pwd)
+command -v valgrind >/dev/null || { echo "SKIPPED: valgrind is not installed"; exit 77; }
+if ldd "$cli" 2>/dev/null | grep -q "libasan\|libubsan"; then
+  echo "SKIPPED: $cli is a sanitizer build (valgrind cannot run it)"
+  exit 77
+fi
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+sed -n '/^\[scene\]/,/^INI$/p' "$here/cli_run.sh" | grep -v '^INI$' | sed "s|\$dir|$dir|g" >"$dir/small.ini"
+
+IM_RENDER_BACKEND=osmesa OMP_NUM_THREADS=2 valgrind --tool=memcheck --leak-check=full \
+  --errors-for-leak-kinds=definite,indirect --error-exitcode=99 --track-origins=yes --num-callers=30 \
+  --suppressions="$here/valgrind_mesa.supp" "$cli" run --quiet "$dir/small.ini" >"$dir/out.log" 2>"$dir/valgrind.log"
+status=$?
+grep -E "ERROR SUMMARY|definitely lost|indirectly lost|possibly lost|suppressed:" "$dir/valgrind.log" | sed 's/^==[0-9]*== *//'
+if [ $status -ne 0 ]; then
+  if grep -q "no GL context\|cannot open\|OSMesa" "$dir/valgrind.log" && ! grep -q "ERROR SUMMARY: [1-9]" "$dir/valgrind.log"; then
+    echo "SKIPPED: no OpenGL context: $(grep indentmap: "$dir/valgrind.log" | tail -1)"
+    exit 77
+  fi
+  echo "FAIL: exit status $status"
+  cat "$dir/valgrind.log"
+  exit 1
+fi
+for f in table1.csv histories/member_01_6.csv contact.gif contact_panels.png fig7.png; do
+  [ -s "$dir/out/$f" ] || { echo "FAIL: $f not written"; exit 1; }
+done
+echo "valgrind: no invalid access, no definite or indirect leak"
