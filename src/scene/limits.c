@@ -19,7 +19,8 @@
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 
-enum { PLOT_BYTES = 4 << 20,     /* a plot's PNG and PDF together: well above the measured 0.3 MiB */
+enum { PLOT_BYTES = 1 << 20,     /* a plot's PNG and PDF together, besides any surface image it
+                                    embeds (measured at 64 x 64: at most 0.2 MiB) */
        FRAME_TEXT_BYTES = 1 << 18 }; /* a frame's title, colour bar and labels (measured: 0.03 MiB) */
 static const double MIB = 1048576.0;
 
@@ -135,6 +136,18 @@ static void add_files(disk_estimate *d, double count, double bytes, const char *
     }
 }
 
+/* The figures [output] plots names (a comma-separated list, checked by the parser). */
+static int plot_count(const im_scene *scene)
+{
+    int count = 0, in_name = 0;
+    for (const char *c = scene->plots; *c; ++c) {
+        int name_char = *c != ',' && *c != ' ' && *c != '\t';
+        count += name_char && !in_name;
+        in_name = name_char;
+    }
+    return count;
+}
+
 /* Files at their uncompressed sizes (PNG and GIF compress; the figure's margins and colour bar
  * are counted as a second copy of the image). */
 static disk_estimate disk_needed(const im_scene *scene, const grid *g)
@@ -152,7 +165,7 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
     if (scene->table)
         add_files(&d, members, 512.0, "table/member_FF_SEED.csv");
     add_files(&d, members, 256.0 + 128.0 * scene->step_count, "histories/member_FF_SEED.csv");
-    add_files(&d, 8.0, PLOT_BYTES, "a plot"); /* fig1-fig7, density: at most this many */
+    add_files(&d, plot_count(scene), PLOT_BYTES + 2.0 * 3.0 * cells, "a plot");
     return d;
 }
 

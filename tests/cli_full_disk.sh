@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# A disk that fills up during a run: the ensemble of tests/cli_interrupt.sh writes into a 2 MiB
+# tmpfs (mounted in a private mount namespace; skipped, 77, where mounts are not allowed), which
+# another file fills as soon as the first table member is on disk. The run must stop with a clear
+# "No space left on device" error naming the file, exit 1, leave no temporary file and no lock;
+# once space is freed, --resume must finish with the table of a run that was never disturbed.
+# Also: `indentmap indent --fields` past a file-size limit (ulimit -f) fails cleanly.
+set -u
+cli=$1
+if [ -z "${IM_PRIVATE_MOUNTS:-}" ]; then
+  unshare -m true 2>/dev/null || { echo "SKIPPED: no private mount namespace (unshare -m)"; exit 77; }
+  IM_PRIVATE_MOUNTS=1 exec unshare -m bash "$0" "$@"
+fi
+dir=$(mktemp -d)
+trap 'kill "$pid" 2>/dev/null; umount "$dir/tiny" 2>/dev/null; rm -rf "$dir"' EXIT
+pid=
+failures=0
+passes=0
+check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+export OMP_NUM_THREADS=2
+mkdir "$dir/tiny"
+mount -t tmpfs -o size=2m tmpfs "$dir/tiny" 2>/dev/null || { echo "SKIPPED: cannot mount a tmpfs"; exit 77; }
+
+scene() {
+  cat >"$1" <<INI
+[scene]
+name = disk
+output = $2
+[surfaces]
+n = 128
+hurst = 0.8
+lambda_s = 4
+slopes = 0.04, 0.16
+seeds = 1:4
+[punch]
+shape = cone
+alpha = 80
+[loading]
+load_star = 2400
+control = load
+steps = 200:2400:12
+[output]
+table = yes
+plots = fig5
+INI
+}
+scene "$dir/whole.ini" "$dir/whole"
+scene "$dir/tiny.ini" "$dir/tiny/out"
+"$cli" run --quiet "$dir/whole.ini" >/dev/null 2>&1
+check "undisturbed run" test $? -eq 0
+
+"$cli" run --quiet "$dir/tiny.ini" >/dev/null 2>"$dir/full.log" &
+pid=$!
+for _ in $(seq 1200); do compgen -G "$dir/tiny/out/table/member_*.csv" >/dev/null && break; sleep 0.01; done
+dd if=/dev/zero of="$dir/tiny/filler" bs=64k 2>/dev/null
+wait "$pid"
+check "full disk: exit 1" test $? -eq 1
+pid=
+check "full disk: clear message" grep -q "write failed: No space left on device\|cannot open for writing: No space left on device" "$dir/full.log"
+check "full disk: no temporary file" bash -c "! find '$dir/tiny' -name '*.tmp.*' | grep -q ."
+check "full disk: no lock left" test ! -e "$dir/tiny/out/.lock"
+check "full disk: kept members are whole" bash -c "for f in '$dir'/tiny/out/table/member_*.csv; do [ \$(wc -l <\"\$f\") -eq 2 ] || exit 1; done"
+
+rm "$dir/tiny/filler"
+"$cli" run --quiet --resume "$dir/tiny.ini" >/dev/null 2>"$dir/resume.log"
+check "resume after freeing space" test $? -eq 0
+check "table1.csv as undisturbed" cmp "$dir/whole/table1.csv" "$dir/tiny/out/table1.csv"
+for f in "$dir"/whole/histories/*.csv; do
+  check "$(basename "$f") as undisturbed" cmp -s "$f" "$dir/tiny/out/histories/$(basename "$f")"
+done
+
+# indent has no estimate: its field files fail at the file-size limit, with EFBIG, cleanly.
+(ulimit -f 100; "$cli" indent --smooth --n 256 --approach 1:5:3 --fields --out "$dir/indent" >/dev/null 2>"$dir/indent.log"
+ echo $? >"$dir/indent.status")
+check "file-size limit: exit 1" test "$(cat "$dir/indent.status")" -eq 1
+check "file-size limit: message" grep -q "force_0001.npy: write failed: File too large" "$dir/indent.log"
+check "file-size limit: no temporary file" bash -c "! find '$dir/indent' -name '*.tmp.*' | grep -q ."
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
