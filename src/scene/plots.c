@@ -18,9 +18,15 @@ int scene_wants_plot(const im_scene *scene, const char *name)
     return 0;
 }
 
+int scene_wants_histories(const im_scene *scene)
+{
+    return scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") || scene_wants_plot(scene, "fig7") ||
+           scene_wants_plot(scene, "sphere");
+}
+
 int scene_check_plots(const im_scene *scene)
 {
-    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density"};
+    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere"};
     char copy[sizeof scene->plots];
     snprintf(copy, sizeof copy, "%s", scene->plots);
     for (char *name = strtok(copy, ", "); name; name = strtok(NULL, ", ")) {
@@ -29,10 +35,13 @@ int scene_check_plots(const im_scene *scene)
             known |= strcmp(name, KNOWN[i]) == 0;
         if (!known)
             return im_fail(IM_EINVAL, "%s: [output] plots: '%s' is not a figure; expected fig1, fig2, fig3, "
-                           "fig5, fig6, fig7 or density", scene->path, name);
+                           "fig5, fig6, fig7, density or sphere", scene->path, name);
     }
     if (scene_wants_plot(scene, "density") && !scene->contact_panels)
         return im_fail(IM_EINVAL, "%s: plots = density measures the maps of [output] contact_panels = yes",
+                       scene->path);
+    if (scene_wants_plot(scene, "sphere") && scene->punch != IM_PUNCH_SPHERE)
+        return im_fail(IM_EINVAL, "%s: plots = sphere compares with eq. (3): it needs [punch] shape = sphere",
                        scene->path);
     if (scene_wants_plot(scene, "fig2") && !scene->table)
         return im_fail(IM_EINVAL, "%s: plots = fig2 draws the ensemble of [output] table = yes", scene->path);

@@ -146,9 +146,7 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     int status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options);
-    if (status == IM_OK && (scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") ||
-                            scene_wants_plot(scene, "fig7")) &&
-        (status = check_stop(options, "the histories")) == IM_OK)
+    if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options);
     if (status != IM_OK || !(scene->contact_panels || scene->frames))
         return status;

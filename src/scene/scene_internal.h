@@ -119,6 +119,8 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options);
 /* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
 int scene_wants_plot(const im_scene *scene, const char *name);
 int scene_check_plots(const im_scene *scene);
+/* Whether a plot needs the ensemble's histories (fig5, fig6, fig7, sphere). */
+int scene_wants_histories(const im_scene *scene);
 
 /* fig1 (gamma(r/a) of the scene's roughnesses) and fig3 (the framed family's surface), which need
  * no solution. */

@@ -326,6 +326,11 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             restart = 1;
             continue;
         }
+        if (isnan(tau) && restart)
+            /* The direction vanishes on the contact set (under load control, one patch, or gaps
+             * already equal there): only penetrating patches outside it are left to join. Give
+             * them the local (Winkler) step, p = -g / K(0). */
+            tau = 1.0 / r->plan->kernel[0];
         if (!isfinite(tau) || tau <= 0)
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
         long changes = update_pressure(r, tau, &restart);
