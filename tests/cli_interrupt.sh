@@ -70,6 +70,7 @@ run_and_kill INT 'table/member_*.csv'
 check "SIGINT exits 130" test "$(cat "$dir/status")" -eq 130
 check "SIGINT names the signal" grep -q "interrupted by signal 2" "$dir/cut.log"
 check "no temporary files after SIGINT" no_temporary_files
+check "no lock left after SIGINT" test ! -e "$dir/cut/.lock"
 check "SIGINT kept a member" test "$(members table)" -ge 1
 check "SIGINT stopped before the end" test ! -e "$dir/cut/table1.csv"
 mkdir "$dir/kept" && cp "$dir"/cut/table/member_*.csv "$dir/kept/"
@@ -77,6 +78,7 @@ mkdir "$dir/kept" && cp "$dir"/cut/table/member_*.csv "$dir/kept/"
 run_and_kill TERM 'histories/member_*.csv' --resume
 check "SIGTERM exits 143" test "$(cat "$dir/status")" -eq 143
 check "no temporary files after SIGTERM" no_temporary_files
+check "no lock left after SIGTERM" test ! -e "$dir/cut/.lock"
 check "SIGTERM stopped before the end" test "$(members histories)" -lt 8
 
 "$cli" run --quiet --resume "$dir/cut.ini" >/dev/null 2>"$dir/resume.log"
