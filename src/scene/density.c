@@ -88,12 +88,5 @@ int scene_plot_contact_density(const im_scene *scene, const im_field *const *for
     plot.columns = scene_panel_columns(count);
     plot.rows = count / plot.columns;
     plot.panels = panels;
-    const char *names[] = {"contact_density.png", "contact_density.pdf"};
-    for (int k = 0; k < 2 && status == IM_OK; ++k) {
-        char path[IM_SCENE_PATH];
-        status = scene_output_path(scene, names[k], path, sizeof path);
-        if (status == IM_OK)
-            status = im_plot_write(&plot, path);
-    }
-    return status;
+    return scene_write_png_pdf(scene, "contact_density", scene_draw_plot, &plot);
 }

@@ -142,17 +142,6 @@ typedef struct figure_data {
 
 static double cone_cot(const im_scene *scene) { return 1.0 / tan(scene->alpha_degrees * M_PI / 180.0); }
 
-static double eq12_ratio(const im_scene *scene, double slope)
-{
-    im_theory_interface rough = im_theory_interface_default(slope);
-    double rho, beta, ratio;
-    if (im_theory_cone_rho(&rough, scene->alpha_degrees, &rho) != IM_OK ||
-        im_theory_erf_scale(rho, rough.normalisation, rough.k, &beta) != IM_OK ||
-        im_theory_cone_area_ratio_variable(beta, &ratio) != IM_OK)
-        return NAN;
-    return ratio;
-}
-
 static double largest_approach(const scene_member *members, int count)
 {
     double w = 0.0;
@@ -172,20 +161,6 @@ static void fill_theory(const im_scene *scene, figure_data *d, double w_max, int
         d->theory_w[i] = w;
         d->theory_smooth[i] = load ? 2.0 * w * w / (M_PI * c * delta * delta) : M_PI * a * a / (delta * delta);
     }
-}
-
-static int write_plot(const im_scene *scene, const char *name, const im_plot *plot)
-{
-    int status = IM_OK;
-    const char *extensions[] = {"png", "pdf"};
-    for (int i = 0; i < 2 && status == IM_OK; ++i) {
-        char relative[64], path[IM_SCENE_PATH];
-        snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
-        status = scene_output_path(scene, relative, path, sizeof path);
-        if (status == IM_OK)
-            status = im_plot_write(plot, path);
-    }
-    return status;
 }
 
 static im_plot_series thin_line(const double *x, const double *y, int n, int family, int families)
@@ -223,7 +198,7 @@ static int plot_against_approach(const im_scene *scene, const scene_member *memb
                                  .line_width = 2.0, .label = "smooth (Love)"};
         d.series[f][n++] = smooth;
         if (!load && scene->slopes[f] > 0.0) {
-            double ratio = eq12_ratio(scene, scene->slopes[f]);
+            double ratio = scene_eq12(scene, scene->slopes[f], NULL);
             for (int i = 0; i < THEORY_POINTS; ++i)
                 d.theory_eq12[f][i] = ratio * d.theory_smooth[i];
             im_plot_series eq12 = {.x = d.theory_w, .y = d.theory_eq12[f], .n = THEORY_POINTS,
@@ -242,7 +217,7 @@ static int plot_against_approach(const im_scene *scene, const scene_member *memb
     plot.columns = scene_panel_columns(scene->family_count);
     plot.rows = scene->family_count / plot.columns;
     plot.panels = d.panels;
-    int status = write_plot(scene, load ? "fig6" : "fig5", &plot);
+    int status = scene_write_png_pdf(scene, load ? "fig6" : "fig5", scene_draw_plot, &plot);
     free(scaled);
     return status;
 }
@@ -312,7 +287,7 @@ static int plot_area_ratio_against_load(const im_scene *scene, const scene_membe
     plot.columns = scene_panel_columns(panels);
     plot.rows = panels / plot.columns;
     plot.panels = d.panels;
-    return write_plot(scene, "fig7", &plot);
+    return scene_write_png_pdf(scene, "fig7", scene_draw_plot, &plot);
 }
 
 /* Pastewka and Robbins' three regimes for a sphere: A / A_Hertz against N / N_c for each rough
@@ -374,7 +349,7 @@ static int plot_sphere_regimes(const im_scene *scene, const scene_member *member
         plot.columns = scene_panel_columns(panels);
         plot.rows = panels / plot.columns;
         plot.panels = d.panels;
-        status = write_plot(scene, "sphere_regimes", &plot);
+        status = scene_write_png_pdf(scene, "sphere_regimes", scene_draw_plot, &plot);
     }
     free(scaled);
     return status;

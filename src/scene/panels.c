@@ -2,7 +2,6 @@
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
 #include <math.h>
@@ -36,20 +35,6 @@ static int solve_panel(const im_scene *scene, const im_scene_run_options *run_op
         status = im_indentation_fields(run, force, NULL, NULL);
     im_indentation_free(run);
     return status;
-}
-
-static double eq12_for_slope(const im_scene *scene, double slope)
-{
-    if (scene->punch != IM_PUNCH_CONE)
-        return NAN;
-    im_theory_interface rough = im_theory_interface_default(slope);
-    rough.e_star = scene->modulus;
-    double rho, beta, ratio;
-    if (im_theory_cone_rho(&rough, scene->alpha_degrees, &rho) != IM_OK ||
-        im_theory_erf_scale(rho, rough.normalisation, rough.k, &beta) != IM_OK ||
-        im_theory_cone_area_ratio_variable(beta, &ratio) != IM_OK)
-        return NAN;
-    return ratio;
 }
 
 /* Load, contact patches and ratios measured on a force field. */
@@ -149,6 +134,12 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
     return status;
 }
 
+static int draw_figure(const im_scene *scene, const void *figure, const char *path)
+{
+    (void)scene;
+    return im_figure_write(figure, path);
+}
+
 static int write_panel_figure(const im_scene *scene, const im_image *images, const im_colormap *norm)
 {
     im_figure_panel panels[IM_SCENE_MAX_FAMILIES];
@@ -174,15 +165,7 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
     figure.extend_under = scene->log_norm;
     figure.texts = texts;
     figure.text_count = 3;
-    char path[IM_SCENE_PATH];
-    int status = IM_OK;
-    const char *names[] = {"contact_panels.png", "contact_panels.pdf"};
-    for (int k = 0; k < 2 && status == IM_OK; ++k) {
-        status = scene_output_path(scene, names[k], path, sizeof path);
-        if (status == IM_OK)
-            status = im_figure_write(&figure, path);
-    }
-    return status;
+    return scene_write_png_pdf(scene, "contact_panels", draw_figure, &figure);
 }
 
 static int plot_density(const im_scene *scene, const panel_result *results)
@@ -215,7 +198,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
         status = panel_force(scene, options, i, known_force, &results[i]);
         if (status == IM_OK) {
             measure_panel(scene, &results[i]);
-            results[i].area_ratio_eq12 = eq12_for_slope(scene, scene->slopes[i]);
+            results[i].area_ratio_eq12 = scene_eq12(scene, scene->slopes[i], NULL);
             scene_progress(options, "family %d: n_p = %ld, A/A_cone = %.4f (eq. 12: %.4f)", i,
                            results[i].contact_patches, results[i].area_ratio, results[i].area_ratio_eq12);
         }

@@ -48,22 +48,6 @@ int scene_check_plots(const im_scene *scene)
     return IM_OK;
 }
 
-/* Writes NAME.png and NAME.pdf through draw(path). */
-static int write_both(const im_scene *scene, const char *name, int (*draw)(const im_scene *, const void *, const char *),
-                      const void *data)
-{
-    int status = IM_OK;
-    const char *extensions[] = {"png", "pdf"};
-    for (int i = 0; i < 2 && status == IM_OK; ++i) {
-        char relative[64], path[IM_SCENE_PATH];
-        snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
-        status = scene_output_path(scene, relative, path, sizeof path);
-        if (status == IM_OK)
-            status = draw(scene, data, path);
-    }
-    return status;
-}
-
 static int draw_fig1(const im_scene *scene, const void *data, const char *path)
 {
     (void)data;
@@ -88,7 +72,7 @@ static int draw_fig3(const im_scene *scene, const void *data, const char *path)
 
 int scene_plot_area_ratio(const im_scene *scene, const im_plot_points *points)
 {
-    return write_both(scene, "fig2", draw_fig2, points);
+    return scene_write_png_pdf(scene, "fig2", draw_fig2, points);
 }
 
 int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *options)
@@ -96,7 +80,7 @@ int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *op
     int status = IM_OK;
     if (scene_wants_plot(scene, "fig1")) {
         scene_progress(options, "fig1: local contact density gamma(r/a)");
-        status = write_both(scene, "fig1", draw_fig1, NULL);
+        status = scene_write_png_pdf(scene, "fig1", draw_fig1, NULL);
     }
     if (status == IM_OK && scene_wants_plot(scene, "fig3")) {
         int family = scene_framed_family(scene);
@@ -104,7 +88,7 @@ int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *op
         im_field *surface = NULL;
         status = scene_surface(scene, family, scene->seeds[0], &surface);
         if (status == IM_OK)
-            status = write_both(scene, "fig3", draw_fig3, surface);
+            status = scene_write_png_pdf(scene, "fig3", draw_fig3, surface);
         im_field_free(surface);
     }
     return status;

@@ -1,7 +1,9 @@
 #include "indentmap/scene.h"
 
 #include "indentmap/io.h"
+#include "indentmap/plot.h"
 #include "indentmap/status.h"
+#include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
 #include <math.h>
@@ -85,6 +87,39 @@ im_colormap scene_force_norm(const im_scene *scene, double largest)
     im_colormap norm = im_colormap_make((im_colormap_id)scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
     norm.logarithmic = scene->log_norm;
     return norm;
+}
+
+double scene_eq12(const im_scene *scene, double slope, double *rho_c)
+{
+    im_theory_interface rough = im_theory_interface_default(slope);
+    double rho = NAN, beta, ratio;
+    int ok = scene->punch == IM_PUNCH_CONE && im_theory_cone_rho(&rough, scene->alpha_degrees, &rho) == IM_OK &&
+             im_theory_erf_scale(rho, rough.normalisation, rough.k, &beta) == IM_OK &&
+             im_theory_cone_area_ratio_variable(beta, &ratio) == IM_OK;
+    if (rho_c)
+        *rho_c = rho;
+    return ok ? ratio : NAN;
+}
+
+int scene_write_png_pdf(const im_scene *scene, const char *name,
+                        int (*draw)(const im_scene *, const void *, const char *), const void *data)
+{
+    int status = IM_OK;
+    const char *extensions[] = {"png", "pdf"};
+    for (int i = 0; i < 2 && status == IM_OK; ++i) {
+        char relative[128], path[IM_SCENE_PATH];
+        snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
+        status = scene_output_path(scene, relative, path, sizeof path);
+        if (status == IM_OK)
+            status = draw(scene, data, path);
+    }
+    return status;
+}
+
+int scene_draw_plot(const im_scene *scene, const void *plot, const char *path)
+{
+    (void)scene;
+    return im_plot_write(plot, path);
 }
 
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)

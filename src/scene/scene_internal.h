@@ -31,6 +31,16 @@ int scene_panel_columns(int count);
  * over the two decades below `largest`. */
 im_colormap scene_force_norm(const im_scene *scene, double largest);
 
+/* Eq. (12)'s A/A_cone for a cone scene and a roughness (NaN for other punches); *rho_c (may be
+ * NULL) receives rho_c of eq. (7). */
+double scene_eq12(const im_scene *scene, double slope, double *rho_c);
+
+/* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
+int scene_write_png_pdf(const im_scene *scene, const char *name,
+                        int (*draw)(const im_scene *, const void *, const char *), const void *data);
+/* A draw function for scene_write_png_pdf whose data is an im_plot. */
+int scene_draw_plot(const im_scene *scene, const void *plot, const char *path);
+
 /* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
 

@@ -3,7 +3,6 @@
 #include "indentmap/io.h"
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
-#include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
 #include <math.h>
@@ -123,17 +122,6 @@ typedef struct family_summary {
     int count;
 } family_summary;
 
-static double cone_eq12(const im_scene *scene, double slope, double *rho_c)
-{
-    im_theory_interface rough = im_theory_interface_default(slope);
-    double beta, ratio;
-    if (im_theory_cone_rho(&rough, scene->alpha_degrees, rho_c) != IM_OK ||
-        im_theory_erf_scale(*rho_c, rough.normalisation, rough.k, &beta) != IM_OK ||
-        im_theory_cone_area_ratio_variable(beta, &ratio) != IM_OK)
-        return NAN;
-    return ratio;
-}
-
 static family_summary summarise(const im_scene *scene, const scene_member *members, int count, int family)
 {
     family_summary s = {.slope = scene->slopes[family], .n_p_ref = -1};
@@ -154,7 +142,7 @@ static family_summary summarise(const im_scene *scene, const scene_member *membe
     s.sd = s.count > 1 ? sqrt(fmax(0.0, (sum_sq - s.count * s.area_ratio * s.area_ratio) / (s.count - 1))) : 0.0;
     s.height_rms = height / s.count;
     s.n_p_mean = patches / s.count;
-    s.eq12 = cone_eq12(scene, s.slope, &s.rho_c);
+    s.eq12 = scene_eq12(scene, s.slope, &s.rho_c);
     s.relative_error = fabs(s.area_ratio - s.eq12) / s.area_ratio;
     return s;
 }
