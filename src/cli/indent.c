@@ -29,7 +29,8 @@ static void usage(FILE *stream)
             "  --n N, --m M        smooth grid size (default 512, M = N)\n"
             "  --delta D           smooth patch side (default 1)\n"
             "  --punch KIND        cone (default), sphere or flat\n"
-            "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80)\n"
+            "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80); below 60\n"
+            "                      a warning: small-slope elasticity is stretched (still solved)\n"
             "  --radius R          sphere radius or flat punch radius (required for those)\n"
             "  --x X --y Y         punch axis position (default: centre of patch (nx/2, ny/2))\n"
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
@@ -43,7 +44,8 @@ static void usage(FILE *stream)
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
             "DIR/history.csv is rewritten atomically after every step, so the steps already solved\n"
-            "survive a later failure (no convergence: exit 1; contact at the surface's edge: exit 1).\n");
+            "survive a later failure (no convergence: exit 1; contact at the surface's edge: exit 1).\n"
+            "At N = 0 the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
 
 typedef struct indent_options {
@@ -293,6 +295,19 @@ static int write_run_json(const char *dir, json_t *record, int steps_done, int s
 
 /* ---- the run ---- */
 
+/* Small-slope (linear) elasticity assumes the surface slopes are small; a steep cone's flank,
+ * slope cot(alpha), stretches it. Warn, but still solve: the answer is the model's, not nature's. */
+#define STEEP_CONE_DEGREES 60.0
+
+static void warn_if_steep(const im_indenter *punch)
+{
+    if (punch->kind == IM_PUNCH_CONE && punch->alpha_degrees > 0 && punch->alpha_degrees < STEEP_CONE_DEGREES)
+        fprintf(stderr,
+                "indentmap: warning: alpha = %g degrees: the cone flank's slope cot(alpha) = %.3g is not small; "
+                "small-slope elasticity is stretched (alpha >= %g advised)\n",
+                punch->alpha_degrees, 1 / tan(punch->alpha_degrees * M_PI / 180), STEEP_CONE_DEGREES);
+}
+
 static int load_surface(const indent_options *o, im_field **surface)
 {
     if (!o->smooth)
@@ -359,8 +374,10 @@ int cli_indent(int argc, char **argv)
     json_t *record = NULL;
     int status = cli_interrupt_install() == 0 ? im_indenter_check(&o.punch)
                                               : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
-    if (status == IM_OK)
+    if (status == IM_OK) {
+        warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
+    }
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
