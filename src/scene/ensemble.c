@@ -1,10 +1,22 @@
 /* Ensembles: every surface of every family, solved side by side on the available cores. */
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "scene/scene_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
+
+int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count)
+{
+    char path[IM_SCENE_PATH];
+    *members = NULL;
+    *count = 0;
+    int status = scene_output_path(scene, folder, path, sizeof path);
+    if (status == IM_OK)
+        status = im_make_directories(path);
+    return status == IM_OK ? scene_ensemble_members(scene, members, count) : status;
+}
 
 int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count)
 {

@@ -360,14 +360,9 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (scene->step_count < 1)
         return im_fail(IM_EINVAL, "%s: plots fig5, fig6 and fig7 need [loading] steps (approaches, or N* "
                        "values with control = load)", scene->path);
-    char folder[IM_SCENE_PATH];
-    int status = scene_output_path(scene, "histories", folder, sizeof folder);
-    if (status == IM_OK)
-        status = im_make_directories(folder);
     scene_member *members = NULL;
     int count = 0;
-    if (status == IM_OK)
-        status = scene_ensemble_members(scene, &members, &count);
+    int status = scene_ensemble_prepare(scene, "histories", &members, &count);
     if (status == IM_OK) {
         scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
         status = scene_ensemble_run(scene, options, members, count, run_history);

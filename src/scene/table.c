@@ -188,9 +188,10 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
         status = im_atomic_open(&file, path);
     if (status != IM_OK)
         return status;
-    fprintf(file.stream, "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms), beside the paper's "
-                         "Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
-            scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count);
+    fprintf(file.stream, "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms, quality %s, tol %g), "
+                         "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
+            scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count,
+            scene->quality, scene->tol);
     fprintf(file.stream, "| h'rms | mean h_rms/δ | ρ_c | n_p,ref | A/A_cone indentmap | A/A_cone eq. (12) | "
                          "relative error | paper (Icarus) |\n|---|---|---|---|---|---|---|---|\n");
     for (int f = 0; f < scene->family_count; ++f)
@@ -216,14 +217,9 @@ static int plot_area_ratio(const im_scene *scene, const family_summary *rows)
 
 int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
 {
-    char folder[IM_SCENE_PATH];
-    int status = scene_output_path(scene, "table", folder, sizeof folder);
-    if (status == IM_OK)
-        status = im_make_directories(folder);
     scene_member *members = NULL;
     int count = 0;
-    if (status == IM_OK)
-        status = scene_ensemble_members(scene, &members, &count);
+    int status = scene_ensemble_prepare(scene, "table", &members, &count);
     if (status == IM_OK) {
         scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
                        scene->load_star);
