@@ -109,6 +109,8 @@ typedef struct scene_member {
 /* Every family's seeds (a smooth family once); *out is freed by the caller (scene_members_free). */
 int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count);
 void scene_members_free(scene_member *members, int count);
+/* Creates output_dir/folder (where the members' files go) and lists the members. */
+int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count);
 
 /* Runs solve on every member, in parallel over the available cores (each solve then runs on one
  * thread), with a progress bar on a terminal. IM_OK, or the first failed member's status with its
