@@ -41,7 +41,10 @@ typedef struct im_scene {
     char path[IM_SCENE_PATH];        /* the scene file as given */
     char name[64];
     char output_dir[IM_SCENE_PATH];  /* default output/NAME */
-    char quality[16];                /* draft | standard | publication */
+    char quality[16];                /* draft | standard (default) | publication: the solver
+                                        tolerance preset of solver.h (1e-4, 1e-6, 1e-9); anything
+                                        else is refused. [solver] tol, if given, overrides it.
+                                        Both are recorded in OUTPUT/run.json. */
 
     im_surface_params surface;       /* template of every generated surface */
     char surface_file[IM_SCENE_PATH];/* a surface file instead of generated families ("" if none) */
@@ -60,7 +63,7 @@ typedef struct im_scene {
     double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty) */
     int step_count;
 
-    double tol;                      /* solver tolerance (default 1e-6: n_p within 1e-4 of 1e-8's) */
+    double tol;                      /* solver tolerance (default: the quality preset's) */
 
     int contact_panels, frames, table;
     int colormap;                    /* im_colormap_id of colormap.h (default viridis) */

@@ -36,7 +36,10 @@ static void usage(FILE *stream)
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
-            "  --tol T             stopping tolerance on the relative gap residual (default 1e-8)\n"
+            "  --quality Q         draft (tol 1e-4), standard (1e-6) or publication (1e-9): the solver\n"
+            "                      tolerance of a speed/accuracy preset (errors measured in solver.h)\n"
+            "  --tol T             stopping tolerance on the relative gap residual (default 1e-8);\n"
+            "                      overrides --quality. run.json records quality and tol\n"
             "  --max-iter K        iteration cap per step (default 10000)\n"
             "  --full              solve on the whole surface, not the window that can touch\n"
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
@@ -56,13 +59,15 @@ typedef struct indent_options {
     int radius_given, x_given, y_given;
     enum im_control control;
     const char *targets_text;
+    const char *quality; /* preset name, NULL if none given */
+    int tol_given;
     double *targets;
     int target_count;
     im_solver_options solver;
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
+       OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -71,7 +76,7 @@ static const struct option LONG_OPTIONS[] = {
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
-    {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
+    {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
@@ -143,7 +148,8 @@ static int apply_option(int code, const char *arg, indent_options *o)
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         return parse_targets(code == OPT_LOAD ? "--load" : "--approach", arg, &o->targets, &o->target_count);
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
-    case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
+    case OPT_QUALITY: o->quality = arg; return 0;
+    case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
     case OPT_FULL: o->solver.crop = 0; return 0;
     case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
@@ -169,6 +175,27 @@ static int check_options(const indent_options *o)
     return -1;
 }
 
+/* The preset's tolerance, unless --tol was given (it wins, whatever the order). */
+static int apply_quality(indent_options *o)
+{
+    double tol;
+    if (!o->quality)
+        return 0;
+    if (im_quality_tolerance(o->quality, &tol) != IM_OK) {
+        fprintf(stderr, "indentmap: --quality: %s\n", im_last_error());
+        return -1;
+    }
+    if (!o->tol_given)
+        o->solver.tol = tol;
+    return 0;
+}
+
+/* Where the tolerance came from, for run.json. */
+static const char *tolerance_source(const indent_options *o)
+{
+    return o->tol_given ? "--tol" : o->quality ? "--quality" : "default";
+}
+
 static int parse_arguments(int argc, char **argv, indent_options *o)
 {
     *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .out = "output/indent",
@@ -192,7 +219,7 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     if (!o->m_given)
         o->ny = o->nx;
     o->punch.centred = !o->x_given;
-    return check_options(o);
+    return check_options(o) == 0 ? apply_quality(o) : -1;
 }
 
 /* ---- outputs ---- */
@@ -259,14 +286,15 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
         "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:f, s:f, s:i, s:b, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
+        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
         "delta", s->delta, "generator", generator,
         "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
-        "solver", "e_star", o->solver.e_star, "tol", o->solver.tol, "max_iterations", o->solver.max_iterations,
+        "solver", "quality", o->quality ? o->quality : "none", "tol", o->solver.tol, "tol_from", tolerance_source(o),
+        "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
         "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);

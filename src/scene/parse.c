@@ -1,5 +1,6 @@
 #include "indentmap/scene.h"
 
+#include "indentmap/solver.h"
 #include "indentmap/status.h"
 
 #include <errno.h>
@@ -179,10 +180,23 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
     return 0;
 }
 
+/* A quality preset's name (solver.h: im_quality_tolerance); its tolerance is applied after
+ * parsing, unless [solver] tol is given. */
+static int parse_quality(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    double tol;
+    if (strlen(value) >= spec->capacity || im_quality_tolerance(value, &tol) != IM_OK) {
+        snprintf(error, size, "quality = '%s': expected draft, standard or publication", value);
+        return -1;
+    }
+    strcpy(destination(spec, scene), value);
+    return 0;
+}
+
 static const key_spec KEYS[] = {
     {"scene", "name", parse_string, FIELD(name), 0, 0, NULL, sizeof(((im_scene *)0)->name), 0},
     {"scene", "output", parse_string, FIELD(output_dir), 0, 0, NULL, IM_SCENE_PATH, 0},
-    {"scene", "quality", parse_string, FIELD(quality), 0, 0, NULL, sizeof(((im_scene *)0)->quality), 0},
+    {"scene", "quality", parse_quality, FIELD(quality), 0, 0, NULL, sizeof(((im_scene *)0)->quality), 0},
     {"surfaces", "n", parse_int, FIELD(surface.nx), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
     {"surfaces", "m", parse_int, FIELD(surface.ny), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
     {"surfaces", "hurst", parse_double, FIELD(surface.hurst), 0.01, 0.99, NULL, 0, 0},
@@ -378,11 +392,14 @@ static int check_consistency(const im_scene *scene, char *error, size_t size)
     return 0;
 }
 
-/* Settings that follow from others unless given: rows = columns, lambda_r = the box, output dir
+/* Settings that follow from others unless given: the tolerance from the quality preset, rows =
+ * columns, lambda_r = the box, output dir
  * (output/NAME under the working directory; a given one is relative to the scene file). */
-static void complete(im_scene *scene, int ny_given, int lambda_r_given, int output_given)
+static void complete(im_scene *scene, int tol_given, int ny_given, int lambda_r_given, int output_given)
 {
     im_surface_params *p = &scene->surface;
+    if (!tol_given)
+        im_quality_tolerance(scene->quality, &scene->tol); /* validated by parse_quality */
     if (!ny_given)
         p->ny = p->nx;
     if (!lambda_r_given)
@@ -407,6 +424,7 @@ int im_scene_load(const char *path, im_scene *scene)
     scene->surface.ny = -1;
     scene->surface.lambda_r = -1;
     scene->output_dir[0] = '\0';
+    scene->tol = -1;
     parse_context context = {.scene = scene, .stream = fopen(path, "r")};
     if (!context.stream)
         return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
@@ -423,7 +441,8 @@ int im_scene_load(const char *path, im_scene *scene)
         return im_fail(IM_EFORMAT, "%s:%d: %s", path, context.error_line, context.error);
     if (read_failed)
         return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_errno));
-    complete(scene, scene->surface.ny != -1, scene->surface.lambda_r != -1, scene->output_dir[0] != '\0');
+    complete(scene, scene->tol != -1, scene->surface.ny != -1, scene->surface.lambda_r != -1,
+             scene->output_dir[0] != '\0');
     if (check_consistency(scene, context.error, sizeof context.error) != 0)
         return im_fail(IM_EFORMAT, "%s: %s", path, context.error);
     return IM_OK;

@@ -214,6 +214,8 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     if (status == IM_OK)
         status = scene_lock_acquire(scene, &lock);
     if (status == IM_OK)
+        status = scene_write_record(scene);
+    if (status == IM_OK)
         status = run_stages(scene, options);
     scene_lock_release(&lock);
     return status;

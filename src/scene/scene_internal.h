@@ -41,6 +41,9 @@ int scene_write_png_pdf(const im_scene *scene, const char *name,
 /* A draw function for scene_write_png_pdf whose data is an im_plot. */
 int scene_draw_plot(const im_scene *scene, const void *plot, const char *path);
 
+/* OUTPUT/run.json: program, version, scene path, quality preset and solver tolerance (record.c). */
+int scene_write_record(const im_scene *scene);
+
 /* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
 
