@@ -8,9 +8,7 @@ cli=$1
 dir=$(mktemp -d)
 pids=()
 trap 'for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done; rm -rf "$dir"' EXIT
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 export OMP_NUM_THREADS=2
 
 scene() {
@@ -89,5 +87,4 @@ if command -v flock >/dev/null; then
   kill "${pids[0]}"; wait "${pids[0]}" 2>/dev/null; pids=()
 fi
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -6,9 +6,7 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 finite_rows() { ! grep -qi "nan\|inf" <(cut -d, -f1-5 "$1"); }
 
 "$cli" surface --n 64 --slope 0.16 --seed 2 --out "$dir/s.npy" >/dev/null
@@ -24,5 +22,4 @@ check "smooth apex load is imposed" awk -F, 'NR == 2 { exit !($3 > 0.99e-6 && $3
 check "zero approach converges" test $? -eq 0
 check "zero approach has no contact" awk -F, 'NR == 2 { exit !($3 == 0 && $5 == 0) }' "$dir/zero/history.csv"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -14,9 +14,7 @@ fi
 dir=$(mktemp -d)
 trap 'kill "$pid" 2>/dev/null; umount "$dir/tiny" 2>/dev/null; rm -rf "$dir"' EXIT
 pid=
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 export OMP_NUM_THREADS=2
 mkdir "$dir/tiny"
 mount -t tmpfs -o size=2m tmpfs "$dir/tiny" 2>/dev/null || { echo "SKIPPED: cannot mount a tmpfs"; exit 77; }
@@ -76,5 +74,4 @@ check "file-size limit: exit 1" test "$(cat "$dir/indent.status")" -eq 1
 check "file-size limit: message" grep -q "force_0001.npy: write failed: File too large" "$dir/indent.log"
 check "file-size limit: no temporary file" bash -c "! find '$dir/indent' -name '*.tmp.*' | grep -q ."
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -12,9 +12,7 @@ cli=$1
 dir=$(mktemp -d)
 trap 'kill "$pid" 2>/dev/null; rm -rf "$dir"' EXIT
 pid=
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 export OMP_NUM_THREADS=2
 
 scene() {
@@ -111,5 +109,4 @@ check "indent: stopped part way" test "$(wc -l <"$dir/indent/history.csv")" -lt 
 check "indent: history holds every reported step" \
   test "$(wc -l <"$dir/indent/history.csv")" -eq "$(($(grep -c '^step' "$dir/indent.log") + 1))"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

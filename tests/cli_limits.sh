@@ -7,9 +7,7 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 
 # scene NAME N LOAD_STAR [more [output] lines]: a table scene writing to out_NAME.
 scene() {
@@ -103,5 +101,4 @@ check "relative paths: runs from /" test $? -eq 0
 check "relative paths: output beside the scene" test -s "$dir/results/table1.csv"
 check "relative paths: the surface file was read" grep -q "^0.08,1," "$dir/results/table1.csv"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

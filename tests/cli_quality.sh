@@ -6,9 +6,7 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 # The solver block's tol in a run.json, as a number.
 json_tol() { python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["solver"]["tol"])' "$1"; }
 json_field() { python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["solver"][sys.argv[2]])' "$1" "$2"; }
@@ -64,5 +62,4 @@ scene "quality = best" ""
 check "scene quality = best: exit 2" test $? -eq 2
 check "scene quality = best: file, line and choices" grep -q "q.ini:4: quality = 'best': expected draft, standard or publication" "$dir/err"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

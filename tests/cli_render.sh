@@ -5,27 +5,13 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
 
 if "$cli" info | grep -q "render backend: unavailable"; then
   echo "SKIPPED: $("$cli" info | grep 'render backend')"
   exit 77
 fi
 
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
-}
-expect_exit() { # expect_exit CODE PHRASE COMMAND... : exit code and a phrase on stderr
-  local code=$1 phrase=$2; shift 2
-  "$@" >"$dir/out" 2>"$dir/err"
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qF -- "$phrase" "$dir/err"; then
-    echo "got exit $got, stderr: $(cat "$dir/err")"
-    return 1
-  fi
-}
+source "$(dirname "$0")/lib.sh"
 png_width() { od -An -tu1 -j16 -N4 "$1" | awk '{print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4}'; }
 
 # A field with positive (in contact) and negative patches: a small generated surface.
@@ -65,5 +51,4 @@ else
   check "frames kept without ffmpeg" test -s "$dir/frames2/contact_0000.png"
 fi
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

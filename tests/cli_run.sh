@@ -6,9 +6,7 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 
 cat >"$dir/small.ini" <<INI
 [scene]
@@ -82,5 +80,4 @@ check "unknown plot refused" grep -q "plots: 'fig4' is not a figure" "$dir/err"
 "$cli" run "$dir/none.ini" 2>"$dir/err"
 check "missing scene exits 1" test $? -eq 1
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

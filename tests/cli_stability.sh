@@ -7,9 +7,7 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
-check() { local name=$1; shift; if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi; }
+source "$(dirname "$0")/lib.sh"
 # No nan/inf in any column of a history, except area_ratio (column 6) at N = 0, where it is undefined.
 no_nan_anywhere() { ! grep -qi "nan\|inf" "$1"; }
 # Load and contact patches non-decreasing in the approach, all finite.
@@ -102,5 +100,4 @@ check "cold and warm: same n_p" test "$(tail -1 "$dir/cold/history.csv" | cut -d
 check "cold and warm: load within 1e-6 relative" awk -F, 'FNR == 1 { next } NR == FNR { c = $3; next }
     { w = $3 } END { exit !((c - w) ^ 2 < (1e-6 * c) ^ 2 && c > 0) }' "$dir/cold/history.csv" "$dir/warm/history.csv"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -4,22 +4,8 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
 
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
-}
-expect_exit() { # expect_exit CODE PHRASE COMMAND... : exit code and a phrase on stderr
-  local code=$1 phrase=$2; shift 2
-  "$@" >"$dir/out" 2>"$dir/err"
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qF -- "$phrase" "$dir/err"; then
-    echo "got exit $got, stderr: $(cat "$dir/err")"
-    return 1
-  fi
-}
+source "$(dirname "$0")/lib.sh"
 
 check "version" bash -c "'$cli' --version | grep -q '^indentmap [0-9]'"
 check "help lists surface" bash -c "'$cli' --help | grep -q surface"
@@ -57,5 +43,4 @@ check "missing file" expect_exit 1 "cannot open" "$cli" surface --stats "$dir/no
 check "unwritable output" expect_exit 1 "/no/such/dir/s.npy" "$cli" surface --n 32 --out /no/such/dir/s.npy
 check "no temporary files left" bash -c "! ls '$dir' | grep -q tmp"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

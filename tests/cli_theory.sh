@@ -5,22 +5,8 @@ set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-failures=0
-passes=0
 
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
-}
-expect_exit() { # expect_exit CODE PHRASE COMMAND... : exit code and a phrase on stderr
-  local code=$1 phrase=$2; shift 2
-  "$@" >"$dir/out" 2>"$dir/err"
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qF -- "$phrase" "$dir/err"; then
-    echo "got exit $got, stderr: $(cat "$dir/err")"
-    return 1
-  fi
-}
+source "$(dirname "$0")/lib.sh"
 # field FILE ROW COLUMN: one CSV cell (ROW 1 is the header).
 field() { awk -F, -v r="$2" -v c="$3" 'NR == r { print $c }' "$1"; }
 # close A B TOLERANCE: |A - B| <= TOLERANCE.
@@ -100,5 +86,4 @@ check "bad normalisation" expect_exit 2 "--normalisation: 'persson'" "$cli" theo
 check "bad k" expect_exit 2 "--k = 0" "$cli" theory --rho 1:2:3 --k 0
 check "stray argument" expect_exit 2 "unexpected argument 'extra'" "$cli" theory --rho 1:2:3 extra
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -1,0 +1,28 @@
+# Shared by the command-line tests (sourced): counting checks, and the closing line ctest reads.
+failures=0
+passes=0
+
+# check NAME COMMAND...: runs COMMAND; a pass, or "FAIL: NAME" and a failure.
+check() {
+  local name=$1
+  shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+
+# expect_exit CODE PHRASE COMMAND...: COMMAND exits with CODE and writes PHRASE on stderr. Needs the
+# script's temporary folder in $dir.
+expect_exit() {
+  local code=$1 phrase=$2; shift 2
+  "$@" >"$dir/out" 2>"$dir/err"
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qF -- "$phrase" "$dir/err"; then
+    echo "got exit $got, stderr: $(cat "$dir/err")"
+    return 1
+  fi
+}
+
+# finish: prints "N passed, N failed" and fails when any check failed.
+finish() {
+  echo "$passes passed, $failures failed"
+  [ "$failures" -eq 0 ]
+}
