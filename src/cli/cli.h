@@ -4,6 +4,9 @@
 
 #include <signal.h>
 #include <stdint.h>
+#include <stdio.h>
+
+struct option;
 
 /* Subcommands: argv[0] is the subcommand's name. Return the process exit status. */
 int cli_surface(int argc, char **argv);
@@ -27,6 +30,13 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };
 int cli_parse_int(const char *option, const char *text, long min, long max, int *out);
 int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
+
+/* Parses a subcommand's options with getopt_long: apply(code, optarg, state) for each, which
+ * returns 0 or prints its error and returns -1; usage(stdout) for -h or the option whose code is
+ * help_code. Returns 1 after help, 0 when every option was applied, -1 after an error. optind is
+ * left at the first operand. */
+int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),
+                      int (*apply)(int code, const char *arg, void *state), void *state);
 
 /* Prints "indentmap: MESSAGE" for the status's last error and returns the exit status that fits
  * it (2 for invalid input, 1 otherwise). */

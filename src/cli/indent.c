@@ -126,8 +126,9 @@ static int parse_targets(const char *option, const char *text, double **out, int
     return status;
 }
 
-static int apply_option(int code, const char *arg, indent_options *o)
+static int apply_option(int code, const char *arg, void *state)
 {
+    indent_options *o = state;
     switch (code) {
     case OPT_SMOOTH: o->smooth = 1; return 0;
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->nx);
@@ -200,16 +201,9 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 {
     *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .out = "output/indent",
                           .punch = im_indenter_cone(80), .solver = im_solver_options_default()};
-    int code;
-    optind = 1;
-    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
-        if (code == OPT_HELP || code == 'h') {
-            usage(stdout);
-            return 1;
-        }
-        if (code == '?' || apply_option(code, optarg, o) != 0)
-            return -1;
-    }
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
+    if (parsed != 0)
+        return parsed;
     if (optind < argc)
         o->surface_path = argv[optind++];
     if (optind < argc) {

@@ -4,7 +4,6 @@
 #include "indentmap/status.h"
 
 #include <fftw3.h>
-#include <getopt.h>
 #include <gsl/gsl_version.h>
 #include <omp.h>
 #include <png.h>

@@ -3,6 +3,7 @@
 #include "indentmap/status.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,4 +59,20 @@ int cli_report(int status)
     fprintf(stderr, "indentmap: %s\n", im_last_error()[0] ? im_last_error() : im_strstatus(status));
     return (status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM) ? CLI_EXIT_USAGE
                                                                                : CLI_EXIT_FAILURE;
+}
+
+int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),
+                      int (*apply)(int code, const char *arg, void *state), void *state)
+{
+    int code;
+    optind = 1;
+    while ((code = getopt_long(argc, argv, "h", options, NULL)) != -1) {
+        if (code == help_code || code == 'h') {
+            usage(stdout);
+            return 1;
+        }
+        if (code == '?' || apply(code, optarg, state) != 0)
+            return -1;
+    }
+    return 0;
 }

@@ -80,8 +80,9 @@ static int named(int status, const char *option)
     return status == IM_OK ? 0 : -1;
 }
 
-static int apply_option(int code, const char *arg, render_options *o)
+static int apply_option(int code, const char *arg, void *state)
 {
+    render_options *o = state;
     switch (code) {
     case OPT_OUT: o->out = arg; return 0;
     case OPT_RAW: o->raw = 1; return 0;
@@ -342,16 +343,9 @@ int cli_render(int argc, char **argv)
 {
     render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
                         .backend = IM_RENDER_AUTO};
-    optind = 1;
-    int code;
-    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
-        if (code == OPT_HELP || code == 'h') {
-            usage(stdout);
-            return CLI_EXIT_OK;
-        }
-        if (code == '?' || apply_option(code, optarg, &o) != 0)
-            return CLI_EXIT_USAGE;
-    }
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &o);
+    if (parsed != 0)
+        return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     if (optind >= argc) {
         usage(stderr);
         return CLI_EXIT_USAGE;

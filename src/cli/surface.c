@@ -71,8 +71,9 @@ static int parse_slope_definition(const char *text, enum im_slope_definition *ou
 }
 
 /* Applies one option; 0 on success, -1 after printing an error. */
-static int apply_option(int code, const char *arg, surface_options *o)
+static int apply_option(int code, const char *arg, void *state)
 {
+    surface_options *o = state;
     im_surface_params *p = &o->params;
     switch (code) {
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &p->nx);
@@ -198,16 +199,9 @@ static int write_outputs(const surface_options *o, const im_field *surface, cons
 
 static int parse_options(int argc, char **argv, surface_options *o)
 {
-    int code;
-    optind = 1;
-    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
-        if (code == OPT_HELP || code == 'h') {
-            usage(stdout);
-            return 1;
-        }
-        if (code == '?' || apply_option(code, optarg, o) != 0)
-            return -1;
-    }
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
+    if (parsed != 0)
+        return parsed;
     if (optind < argc) {
         fprintf(stderr, "indentmap: surface: unexpected argument '%s'\n", argv[optind]);
         return -1;

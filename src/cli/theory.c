@@ -72,8 +72,9 @@ static int parse_choice(const char *option, const char *text, const char *first,
     return -1;
 }
 
-static int apply_option(int code, const char *arg, theory_options *o)
+static int apply_option(int code, const char *arg, void *state)
 {
+    theory_options *o = state;
     int choice;
     switch (code) {
     case OPT_ALPHA:
@@ -102,16 +103,9 @@ static int apply_option(int code, const char *arg, theory_options *o)
 /* 1 after --help, 0 when the options are complete and consistent, -1 after printing an error. */
 static int parse_options(int argc, char **argv, theory_options *o)
 {
-    int code;
-    optind = 1;
-    while ((code = getopt_long(argc, argv, "h", LONG_OPTIONS, NULL)) != -1) {
-        if (code == OPT_HELP || code == 'h') {
-            usage(stdout);
-            return 1;
-        }
-        if (code == '?' || apply_option(code, optarg, o) != 0)
-            return -1;
-    }
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
+    if (parsed != 0)
+        return parsed;
     const char *problem = NULL;
     if (optind < argc)
         fprintf(stderr, "indentmap: theory: unexpected argument '%s'\n", argv[optind]);
