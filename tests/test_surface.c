@@ -130,6 +130,36 @@ static void refined_surface_keeps_its_modes(void **state)
     im_field_free(b);
 }
 
+/* Without --lambda-0 there is no roll-off plateau whatever lambda_r is: a default surface on a
+ * smaller box equals one generated with lambda_0 = lambda_r explicitly. (A default lambda_0 of
+ * 512 once put a plateau under the longest waves of every box smaller than 512 cells, which also
+ * broke 4x refinement.) And a 4x refinement keeps the surface. */
+static void default_has_no_plateau_and_refines(void **state)
+{
+    (void)state;
+    im_surface_params base = im_surface_params_default();
+    base.nx = base.ny = 128;
+    base.lambda_r = 128;
+    im_surface_params explicit_params = base;
+    explicit_params.lambda_0 = 128;
+    im_surface_params fine = base;
+    fine.nx = fine.ny = 512;
+    fine.delta = 0.25;
+    fine.lambda_s = 16;
+    fine.lambda_r = 512;
+    im_field *a = generate(&base), *b = generate(&explicit_params), *c = generate(&fine);
+    assert_memory_equal(a->data, b->data, im_field_count(a) * sizeof(double));
+    double worst = 0.0;
+    for (int y = 0; y < 128; ++y)
+        for (int x = 0; x < 128; ++x)
+            worst = fmax(worst, fabs(a->data[y * 128 + x] - c->data[(4 * y) * 512 + 4 * x]));
+    if (worst > 1e-10)
+        fail_msg("4x refinement differs at the coarse points by %g", worst);
+    im_field_free(a);
+    im_field_free(b);
+    im_field_free(c);
+}
+
 /* The fitted PSD exponent recovers -2(1 + H): median over seeds, 1024 x 1024. */
 static int compare_doubles(const void *a, const void *b)
 {
@@ -263,6 +293,7 @@ int main(void)
         cmocka_unit_test(surfaces_have_zero_mean),
         cmocka_unit_test(same_seed_same_surface_any_thread_count),
         cmocka_unit_test(refined_surface_keeps_its_modes),
+        cmocka_unit_test(default_has_no_plateau_and_refines),
         cmocka_unit_test(psd_slope_recovers_hurst),
         cmocka_unit_test(mean_height_rms_matches_moments),
         cmocka_unit_test(statistics_of_a_cosine),

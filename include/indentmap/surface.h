@@ -34,7 +34,8 @@ typedef struct im_surface_params {
     double hurst;          /* Hurst exponent H in (0, 1) (the paper: 0.8) */
     double lambda_s;       /* short-wavelength cutoff 2 pi / q_s, in units of delta (paper: 4) */
     double lambda_r;       /* roll-off wavelength 2 pi / q_r, in units of delta (paper: 512) */
-    double lambda_0;       /* longest wavelength 2 pi / q_0; <= lambda_r means no plateau */
+    double lambda_0;       /* longest wavelength 2 pi / q_0; <= lambda_r (default 0) means no plateau,
+                              whatever lambda_r is set to */
     enum im_surface_target target;  /* which of the two below is imposed */
     double slope_rms;      /* target h'rms (dimensionless) */
     double height_rms;     /* target h_rms, in units of delta */
@@ -43,7 +44,7 @@ typedef struct im_surface_params {
 } im_surface_params;
 
 /* The paper's defaults: 512 x 512, delta = 1, H = 0.8, lambda_s = 4, lambda_r = 512, no
- * roll-off, target h'rms = 0.08 (spectral), seed 1. */
+ * roll-off (lambda_0 = 0), target h'rms = 0.08 (spectral), seed 1. */
 im_surface_params im_surface_params_default(void);
 
 /* IM_EINVAL naming the first parameter out of range, IM_OK otherwise. */

@@ -11,7 +11,7 @@ im_surface_params im_surface_params_default(void)
 {
     im_surface_params params = {
         .nx = 512, .ny = 512, .delta = 1.0, .hurst = 0.8,
-        .lambda_s = 4.0, .lambda_r = 512.0, .lambda_0 = 512.0,
+        .lambda_s = 4.0, .lambda_r = 512.0, .lambda_0 = 0.0,
         .target = IM_TARGET_SLOPE, .slope_rms = 0.08, .height_rms = 1.0,
         .slope_definition = IM_SLOPE_SPECTRAL, .seed = 1,
     };
