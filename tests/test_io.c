@@ -77,8 +77,8 @@ static void text_and_gsf_round_trips(void **state)
     im_field_free(g);
 }
 
-/* Builds a .npy file from a header dictionary and a payload of `values` doubles. */
-static void write_npy(const char *path, const char *dict, size_t values, int fill_nan)
+/* Builds a .npy file from a header dictionary and a payload of `values` doubles, each `value`. */
+static void write_npy(const char *path, const char *dict, size_t values, double value)
 {
     size_t dict_length = strlen(dict), header = 10 + dict_length + 1;
     size_t padding = (64 - header % 64) % 64, length = dict_length + 1 + padding;
@@ -90,7 +90,6 @@ static void write_npy(const char *path, const char *dict, size_t values, int fil
     memcpy(bytes + 10, dict, dict_length);
     memset(bytes + 10 + dict_length, ' ', padding);
     bytes[10 + length - 1] = '\n';
-    double value = fill_nan ? NAN : 1.5;
     for (size_t i = 0; i < values; ++i)
         memcpy(bytes + 10 + length + 8 * i, &value, 8);
     test_write_bytes(path, bytes, size);
@@ -113,25 +112,50 @@ static void bad_npy_files_are_refused(void **state)
 {
     (void)state;
     const char *ok = "{'descr': '<f8', 'fortran_order': False, 'shape': (4, 3), }";
-    write_npy(test_path("short.npy"), ok, 11, 0);
+    write_npy(test_path("short.npy"), ok, 11, 1.5);
     expect_refusal(im_npy_read, test_path("short.npy"), IM_EFORMAT, "truncated");
-    write_npy(test_path("long.npy"), ok, 13, 0);
+    write_npy(test_path("long.npy"), ok, 13, 1.5);
     expect_refusal(im_npy_read, test_path("long.npy"), IM_EFORMAT, "more data");
-    write_npy(test_path("int.npy"), "{'descr': '<i8', 'fortran_order': False, 'shape': (4, 3), }", 12, 0);
+    write_npy(test_path("int.npy"), "{'descr': '<i8', 'fortran_order': False, 'shape': (4, 3), }", 12, 1.5);
     expect_refusal(im_npy_read, test_path("int.npy"), IM_EFORMAT, "dtype");
-    write_npy(test_path("big.npy"), "{'descr': '>f8', 'fortran_order': False, 'shape': (4, 3), }", 12, 0);
+    write_npy(test_path("big.npy"), "{'descr': '>f8', 'fortran_order': False, 'shape': (4, 3), }", 12, 1.5);
     expect_refusal(im_npy_read, test_path("big.npy"), IM_EFORMAT, "dtype");
-    write_npy(test_path("fortran.npy"), "{'descr': '<f8', 'fortran_order': True, 'shape': (4, 3), }", 12, 0);
+    write_npy(test_path("fortran.npy"), "{'descr': '<f8', 'fortran_order': True, 'shape': (4, 3), }", 12, 1.5);
     expect_refusal(im_npy_read, test_path("fortran.npy"), IM_EFORMAT, "Fortran");
-    write_npy(test_path("3d.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 3), }", 12, 0);
+    write_npy(test_path("3d.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 3), }", 12, 1.5);
     expect_refusal(im_npy_read, test_path("3d.npy"), IM_EFORMAT, "2-D");
-    write_npy(test_path("nan.npy"), ok, 12, 1);
+    write_npy(test_path("nan.npy"), ok, 12, NAN);
     expect_refusal(im_npy_read, test_path("nan.npy"), IM_ENUMERIC, "finite");
-    write_npy(test_path("huge.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (60000, 60000), }", 12, 0);
-    expect_refusal(im_npy_read, test_path("huge.npy"), IM_ENOMEM, "MiB");
+    expect_refusal(im_npy_read, test_path("nan.npy"), IM_ENUMERIC, "(x=0, y=0)");
+    write_npy(test_path("inf.npy"), ok, 12, INFINITY);
+    expect_refusal(im_npy_read, test_path("inf.npy"), IM_ENUMERIC, "value inf at (x=0, y=0): expected finite");
+    write_npy(test_path("-inf.npy"), ok, 12, -INFINITY);
+    expect_refusal(im_npy_read, test_path("-inf.npy"), IM_ENUMERIC, "value -inf");
+    /* 2^32 x 2^32 doubles = 2^67 bytes: more than any 64-bit address space, refused on every machine
+     * before the side limit and before allocating; the estimate (2^47 MiB) is in the message */
+    write_npy(test_path("huge.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (4294967296, 4294967296), }",
+              12, 1.5);
+    expect_refusal(im_npy_read, test_path("huge.npy"), IM_ENOMEM, "needs about 140737488355328.0 MiB");
+    /* within memory but past the largest side: a format error naming the limit */
+    write_npy(test_path("wide.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 65537), }", 12, 1.5);
+    expect_refusal(im_npy_read, test_path("wide.npy"), IM_EFORMAT, "expected each side in [1, 65536]");
     test_write_bytes(test_path("junk.npy"), "hello", 5);
     expect_refusal(im_npy_read, test_path("junk.npy"), IM_EFORMAT, "magic");
     expect_refusal(im_npy_read, test_path("missing.npy"), IM_EIO, "cannot open");
+}
+
+/* IM_MEMORY_LIMIT_MIB caps the memory the readers may plan for, so a refusal can be tested at a
+ * size every machine holds; a malformed value is refused, naming the variable. */
+static void memory_limit_from_the_environment(void **state)
+{
+    (void)state;
+    write_npy(test_path("2mib.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (512, 512), }", 0, 1.5);
+    assert_int_equal(setenv("IM_MEMORY_LIMIT_MIB", "1", 1), 0);
+    expect_refusal(im_npy_read, test_path("2mib.npy"), IM_ENOMEM, "needs about 2.0 MiB but only 1.0 MiB");
+    assert_int_equal(setenv("IM_MEMORY_LIMIT_MIB", "lots", 1), 0);
+    expect_refusal(im_npy_read, test_path("2mib.npy"), IM_EINVAL, "IM_MEMORY_LIMIT_MIB = 'lots'");
+    assert_int_equal(unsetenv("IM_MEMORY_LIMIT_MIB"), 0);
+    expect_refusal(im_npy_read, test_path("2mib.npy"), IM_EFORMAT, "truncated data");
 }
 
 static void bad_text_matrices_name_the_line(void **state)
@@ -148,6 +172,17 @@ static void bad_text_matrices_name_the_line(void **state)
     expect_refusal(im_text_read, test_path("inf.txt"), IM_EFORMAT, "inf.txt:2");
     test_write_bytes(test_path("empty.txt"), "# only a header\n", 16);
     expect_refusal(im_text_read, test_path("empty.txt"), IM_EFORMAT, "no data");
+}
+
+/* A copy of the 4 x 4 .gsf `bytes` with value (x=1, y=2) replaced by `value` must be refused. */
+static void expect_gsf_value_refused(const unsigned char *bytes, size_t size, float value, const char *name,
+                                     const char *phrase)
+{
+    unsigned char copy[4096];
+    memcpy(copy, bytes, size);
+    memcpy(copy + size - 16 * sizeof value + (2 * 4 + 1) * sizeof value, &value, sizeof value);
+    test_write_bytes(test_path(name), copy, size);
+    expect_refusal(im_gsf_read, test_path(name), IM_ENUMERIC, phrase);
 }
 
 static void bad_gsf_files_are_refused(void **state)
@@ -169,6 +204,9 @@ static void bad_gsf_files_are_refused(void **state)
     static const char no_res[] = "Gwyddion Simple Field 1.0\nXReal = 1\n\0\0\0\0"; /* 40 bytes */
     test_write_bytes(test_path("nores.gsf"), no_res, sizeof no_res - 1);
     expect_refusal(im_gsf_read, test_path("nores.gsf"), IM_EFORMAT, "XRes");
+    expect_gsf_value_refused(bytes, size, NAN, "nan.gsf", "value nan at (x=1, y=2)");
+    expect_gsf_value_refused(bytes, size, INFINITY, "inf.gsf", "value inf at (x=1, y=2)");
+    expect_gsf_value_refused(bytes, size, -INFINITY, "-inf.gsf", "value -inf at (x=1, y=2)");
     im_field_free(f);
 }
 
@@ -219,6 +257,7 @@ int main(void)
         cmocka_unit_test(npy_float32_round_trip_is_exact_in_float),
         cmocka_unit_test(text_and_gsf_round_trips),
         cmocka_unit_test(bad_npy_files_are_refused),
+        cmocka_unit_test(memory_limit_from_the_environment),
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(bad_gsf_files_are_refused),
         cmocka_unit_test(atomic_write_leaves_no_partial_file),

@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -278,10 +279,17 @@ static void bad_parameters_are_refused(void **state)
     p.slope_rms = NAN;
     assert_int_equal(im_surface_generate(&p, &s), IM_EINVAL);
     p = im_surface_params_default();
-    p.nx = p.ny = 60000; /* 27 GiB for the field alone: refused before allocating */
-    p.lambda_r = p.lambda_0 = 60000;
-    assert_int_equal(im_surface_generate(&p, &s), IM_ENOMEM);
-    assert_non_null(strstr(im_last_error(), "MiB"));
+    p.nx = p.ny = 2048; /* about 0.3 GiB at its peak: refused under a 64 MiB cap, before allocating */
+    p.lambda_r = p.lambda_0 = 2048;
+    char estimate[64];
+    snprintf(estimate, sizeof estimate, "needs about %.1f MiB but only 64.0 MiB",
+             im_surface_generate_bytes(2048, 2048) / 1048576.0);
+    assert_int_equal(setenv("IM_MEMORY_LIMIT_MIB", "64", 1), 0);
+    int status = im_surface_generate(&p, &s);
+    assert_int_equal(unsetenv("IM_MEMORY_LIMIT_MIB"), 0);
+    assert_int_equal(status, IM_ENOMEM);
+    if (!strstr(im_last_error(), estimate) || !strstr(im_last_error(), "2048 x 2048"))
+        fail_msg("message '%s' lacks '%s'", im_last_error(), estimate);
     assert_null(s);
 }
 

@@ -88,9 +88,8 @@ static int read_header(FILE *stream, const char *path, gsf_header *h)
         ++offset;
     if (offset % 4 != 0)
         return im_fail(IM_EFORMAT, "%s: header padding is not NUL bytes up to a multiple of 4", path);
-    if (h->xres < 1 || h->yres < 1 || h->xres > IM_FIELD_MAX_SIDE || h->yres > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EFORMAT, "%s: XRes = %ld, YRes = %ld: expected both in [1, %d]", path,
-                       h->xres, h->yres, IM_FIELD_MAX_SIDE);
+    if (h->xres < 1 || h->yres < 1) /* the upper bound is im_io_check_grid's */
+        return im_fail(IM_EFORMAT, "%s: XRes = %ld, YRes = %ld: expected both >= 1", path, h->xres, h->yres);
     return IM_OK;
 }
 

@@ -123,10 +123,9 @@ static int parse_header(const char *path, const char *dict, enum im_npy_dtype *d
                        "(save with numpy.ascontiguousarray)", path);
     if (!parse_shape(shape, rows, cols))
         return im_fail(IM_EFORMAT, "%s: shape %.24s: expected a 2-D shape (rows, columns)", path, shape);
-    if (*rows < 1 || *cols < 1 || *rows > IM_FIELD_MAX_SIDE || *cols > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side in [1, %d]", path,
-                       *rows, *cols, IM_FIELD_MAX_SIDE);
-    return IM_OK;
+    if (*rows < 1 || *cols < 1)
+        return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side >= 1", path, *rows, *cols);
+    return IM_OK; /* the upper bound on the sides is im_io_check_grid's, after the memory check */
 }
 
 static int read_header(FILE *stream, const char *path, enum im_npy_dtype *dtype, long *rows, long *cols)

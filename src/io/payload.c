@@ -30,5 +30,7 @@ int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned 
     int status = im_memory_check((double)nx * (double)ny * sizeof(double), what);
     if (status != IM_OK)
         return status;
+    if (nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: %s: expected each side in [1, %d]", path, claim, IM_FIELD_MAX_SIDE);
     return check_payload_size(stream, path, (uint64_t)nx * (uint64_t)ny * item_size, claim);
 }

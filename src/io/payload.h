@@ -6,8 +6,10 @@
 #include <stdio.h>
 
 /* Runs after a binary reader has parsed a header claiming an nx x ny grid of item_size-byte values
- * and before it allocates the grid: refuses a grid that would not fit in memory (IM_ENOMEM, as
- * im_field_create would), then a regular file whose bytes after the stream's position are not
+ * (each side >= 1) and before it allocates the grid: refuses a grid that would not fit in memory
+ * (IM_ENOMEM, as im_field_create would, with the estimate; nx and ny may be as large as a long, the
+ * estimate is computed in double and anything past SIZE_MAX is refused), then a side larger than
+ * IM_FIELD_MAX_SIDE (IM_EFORMAT), then a regular file whose bytes after the stream's position are not
  * exactly nx * ny * item_size (IM_EFORMAT, "truncated data" or "more data"; `claim` describes the
  * header in the message). Without it a header claiming a huge grid over a few bytes of data made
  * the reader allocate gigabytes before finding the data missing (found with fuzz/fuzz_npy). Other
