@@ -1,17 +1,38 @@
 #!/usr/bin/env bash
 # Command-line tests of `indentmap render`: outputs, metadata, exit codes, atomic failures.
-# Exits 77 (skipped) when the machine has no OpenGL context.
+# Exits 77 (skipped) only when no OpenGL 3.3 core context can be created at all, and fails
+# instead when IM_REQUIRE_GL=1; a renderer that opens a context and then fails always fails.
 set -u
 cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
-if "$cli" info | grep -q "render backend: unavailable"; then
-  echo "SKIPPED: $("$cli" info | grep 'render backend')"
-  exit 77
-fi
+renderer=$("$cli" info | grep '^render backend')
+case $renderer in
+  "render backend: unavailable (no OpenGL 3.3 core context"*)
+    if [ "${IM_REQUIRE_GL:-}" = 1 ]; then
+      echo "FAIL: IM_REQUIRE_GL=1 and $renderer" >&2
+      exit 1
+    fi
+    echo "SKIPPED: $renderer" >&2
+    exit 77 ;;
+  "render backend: egl"* | "render backend: osmesa"*) ;;
+  *)
+    echo "FAIL: the renderer does not work: $renderer" >&2
+    exit 1 ;;
+esac
 
 source "$(dirname "$0")/lib.sh"
+
+# Without an EGL vendor library (glvnd) and with OSMesa excluded, no context exists: this very
+# script skips, unless IM_REQUIRE_GL=1.
+no_gl=(env -u IM_REQUIRE_GL __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json IM_RENDER_BACKEND=egl)
+check "no context: info says so" bash -c "${no_gl[*]} '$cli' info | grep -q '^render backend: unavailable (no OpenGL 3.3 core context'"
+check "no context: skipped" expect_exit 77 "SKIPPED: render backend: unavailable" "${no_gl[@]}" bash "$0" "$cli"
+check "no context, IM_REQUIRE_GL=1: fails" expect_exit 1 "FAIL: IM_REQUIRE_GL=1" "${no_gl[@]}" IM_REQUIRE_GL=1 bash "$0" "$cli"
+check "info --backend osmesa" bash -c "'$cli' info --backend osmesa | grep -q '^render backend: osmesa, libOSMesa'"
+check "info --backend egl" bash -c "IM_RENDER_BACKEND=osmesa '$cli' info --backend egl | grep -q '^render backend: egl, '"
+check "info --backend bad" expect_exit 2 "auto, egl or osmesa" "$cli" info --backend vulkan
 png_width() { od -An -tu1 -j16 -N4 "$1" | awk '{print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4}'; }
 
 # A field with positive (in contact) and negative patches: a small generated surface.

@@ -44,10 +44,19 @@ int im_render_backend_from_name(const char *name, im_render_backend *backend);
 typedef struct im_render_context im_render_context;
 
 /* Opens a context. With IM_RENDER_AUTO, IM_RENDER_BACKEND from the environment decides (unset:
- * auto). IM_EUNSUPPORTED, with each attempt's reason in the message, when no backend works;
- * IM_EINVAL for an unknown IM_RENDER_BACKEND. One context per thread at a time: it is made
- * current on the calling thread. */
+ * auto). When no backend can create an OpenGL 3.3 core context: IM_EUNSUPPORTED with a message
+ * starting IM_RENDER_NO_CONTEXT and listing each attempt's reason. A context that is created but
+ * cannot compile or link the shaders or set up its objects is a defect, not a missing feature:
+ * IM_EUNSUPPORTED with a message naming the shader or GL error, which im_render_context_missing
+ * tells apart. IM_EINVAL for an unknown IM_RENDER_BACKEND. One context per thread at a time: it
+ * is made current on the calling thread. */
 int im_render_open(im_render_backend backend, im_render_context **out);
+
+#define IM_RENDER_NO_CONTEXT "no OpenGL 3.3 core context"
+
+/* 1 when status and message (im_last_error()) from im_render_open mean that no context could be
+ * created at all: the one case where GL tests may skip (and, with IM_REQUIRE_GL=1, must fail). */
+int im_render_context_missing(int status, const char *message);
 
 /* Releases the context and its GL objects; accepts NULL. */
 void im_render_close(im_render_context *context);

@@ -4,6 +4,7 @@
 #include "indentmap/status.h"
 
 #include <fftw3.h>
+#include <getopt.h>
 #include <gsl/gsl_version.h>
 #include <omp.h>
 #include <png.h>
@@ -12,32 +13,54 @@
 
 static void usage(FILE *stream)
 {
-    fprintf(stream, "usage: indentmap info\n\nPrints the version, the libraries in use and the "
-                    "OpenMP thread count (set it with OMP_NUM_THREADS), and the OpenGL renderer the\n"
-                    "environment gives (choose it with IM_RENDER_BACKEND=auto|egl|osmesa).\n");
+    fprintf(stream, "usage: indentmap info [--backend auto|egl|osmesa]\n\nPrints the version, the "
+                    "libraries in use and the OpenMP thread count (set it with OMP_NUM_THREADS), and\n"
+                    "the OpenGL renderer of the backend (default: IM_RENDER_BACKEND, else auto).\n"
+                    "A machine with no OpenGL 3.3 core context prints 'render backend: unavailable (...)';\n"
+                    "a context that opens but fails (shaders, set-up) prints 'render backend: failed (...)'\n"
+                    "and exits 1.\n");
 }
 
-/* The render backend and GL strings; a machine without GL is reported, not an error. */
-static void print_renderer(void)
+/* The render backend and GL strings; a machine without GL is reported, not an error, but a
+ * renderer that opens a context and then fails is. */
+static int print_renderer(im_render_backend backend)
 {
     im_render_context *context = NULL;
-    if (im_render_open(IM_RENDER_AUTO, &context) != IM_OK) {
-        printf("render backend: unavailable (%s)\n", im_last_error());
-        return;
+    int status = im_render_open(backend, &context);
+    if (status != IM_OK) {
+        int missing = im_render_context_missing(status, im_last_error());
+        printf("render backend: %s (%s)\n", missing ? "unavailable" : "failed", im_last_error());
+        return missing ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
     }
     printf("render backend: %s, %s\n", im_render_backend_name(context), im_render_display_name(context));
     printf("GL_RENDERER: %s\n", im_render_gl_renderer(context));
     printf("GL_VERSION: %s\n", im_render_gl_version(context));
     im_render_close(context);
+    return CLI_EXIT_OK;
+}
+
+enum { OPT_BACKEND = 256, OPT_HELP };
+
+static const struct option LONG_OPTIONS[] = {
+    {"backend", required_argument, 0, OPT_BACKEND}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+
+static int apply_option(int code, const char *arg, void *state)
+{
+    if (code != OPT_BACKEND)
+        return -1;
+    if (im_render_backend_from_name(arg, state) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: --backend: %s\n", im_last_error());
+    return -1;
 }
 
 int cli_info(int argc, char **argv)
 {
-    if (argc > 1 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-        usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    if (argc > 1) {
+    im_render_backend backend = IM_RENDER_AUTO;
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &backend);
+    if (parsed != 0)
+        return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (optind < argc) {
         usage(stderr);
         return CLI_EXIT_USAGE;
     }
@@ -46,6 +69,5 @@ int cli_info(int argc, char **argv)
     printf("gsl: %s\n", gsl_version);
     printf("libpng: %s\n", png_libpng_ver);
     printf("openmp threads: %d (of %d processors)\n", omp_get_max_threads(), omp_get_num_procs());
-    print_renderer();
-    return CLI_EXIT_OK;
+    return print_renderer(backend);
 }

@@ -143,6 +143,13 @@ static int egl_try_devices(im_render_context *c, const egl_platform *egl, int so
     return IM_EUNSUPPORTED;
 }
 
+int im_egl_can_enumerate_devices(const char *client_extensions)
+{
+    return has_extension(client_extensions, "EGL_EXT_platform_device") &&
+           (has_extension(client_extensions, "EGL_EXT_device_enumeration") ||
+            has_extension(client_extensions, "EGL_EXT_device_base"));
+}
+
 static int egl_open(im_render_context *c, char *reasons, size_t size)
 {
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
@@ -155,10 +162,11 @@ static int egl_open(im_render_context *c, char *reasons, size_t size)
         return IM_EUNSUPPORTED;
     }
     c->backend = IM_RENDER_EGL;
-    int devices = has_extension(client, "EGL_EXT_platform_device") && egl.query_devices &&
-                  egl.query_device_string;
+    /* Under glvnd eglGetProcAddress returns a dispatch stub for any name, so the pointers being
+     * non-NULL says nothing: the client extensions must name device enumeration. */
+    int devices = im_egl_can_enumerate_devices(client) && egl.query_devices && egl.query_device_string;
     if (!devices)
-        append_reason(reasons, size, "egl: no EGL_EXT_platform_device");
+        append_reason(reasons, size, "egl: no EGL_EXT_platform_device with EGL_EXT_device_enumeration");
     for (int software = 0; devices && software <= 1; ++software)
         if (egl_try_devices(c, &egl, software, reasons, size) == IM_OK)
             return IM_OK;
@@ -215,6 +223,12 @@ static int resolve_backend(im_render_backend *backend)
     return IM_OK;
 }
 
+int im_render_context_missing(int status, const char *message)
+{
+    return status == IM_EUNSUPPORTED && message &&
+           strncmp(message, IM_RENDER_NO_CONTEXT, strlen(IM_RENDER_NO_CONTEXT)) == 0;
+}
+
 int im_render_open(im_render_backend backend, im_render_context **out)
 {
     *out = NULL;
@@ -232,7 +246,7 @@ int im_render_open(im_render_backend backend, im_render_context **out)
         status = osmesa_open(c, reasons, sizeof reasons);
     if (status != IM_OK) {
         free(c);
-        return im_fail(IM_EUNSUPPORTED, "no OpenGL 3.3 core context: %s", reasons);
+        return im_fail(IM_EUNSUPPORTED, "%s: %s", IM_RENDER_NO_CONTEXT, reasons);
     }
     const GLubyte *renderer = c->gl.GetString(GL_RENDERER), *version = c->gl.GetString(GL_VERSION);
     snprintf(c->renderer, sizeof c->renderer, "%s", renderer ? (const char *)renderer : "unknown");

@@ -35,6 +35,10 @@ struct im_render_context {
     GLuint vertex_array, contact_program, height_program;
 };
 
+/* Whether EGL's client extensions allow enumerating devices: EGL_EXT_platform_device and
+ * EGL_EXT_device_enumeration (or EGL_EXT_device_base, which includes it). */
+int im_egl_can_enumerate_devices(const char *client_extensions);
+
 /* Makes the context current on the calling thread (another context may have been used since). */
 int im_render_make_current(im_render_context *context);
 
