@@ -9,6 +9,7 @@
 #include "indentmap/status.h"
 
 #include <dirent.h>
+#include <png.h>
 #include <gif_lib.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -230,6 +231,58 @@ static int contains(const uint8_t *data, size_t size, const char *text)
     return 0;
 }
 
+/* The text chunk called key, read back with libpng: its value and compression (the chunk type:
+ * PNG_TEXT_COMPRESSION_NONE for tEXt, PNG_ITXT_COMPRESSION_NONE for iTXt); fails if absent. */
+static int read_png_text(const char *path, const char *key, char *value, size_t size)
+{
+    FILE *stream = fopen(path, "rb");
+    assert_non_null(stream);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    assert_non_null(info);
+    if (setjmp(png_jmpbuf(png)))
+        fail_msg("%s: libpng cannot read it", path);
+    png_init_io(png, stream);
+    png_read_info(png, info);
+    png_textp texts = NULL;
+    int count = png_get_text(png, info, &texts, NULL), compression = -100;
+    for (int i = 0; i < count; ++i)
+        if (strcmp(texts[i].key, key) == 0) {
+            snprintf(value, size, "%s", texts[i].text);
+            compression = texts[i].compression;
+        }
+    png_destroy_read_struct(&png, &info, NULL);
+    fclose(stream);
+    if (compression == -100)
+        fail_msg("%s: no text chunk '%s'", path, key);
+    return compression;
+}
+
+/* UTF-8 beyond ASCII (tEXt must be Latin-1) goes into iTXt; ASCII stays in tEXt. */
+static void test_png_text_utf8_in_itxt(void **state)
+{
+    (void)state;
+    im_image image = make_image(12, 12, 3);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_png_text texts[] = {{"Quantity", "f / (E* δ²)"}, {"Software", "indentmap"}};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.texts = texts, figure.text_count = 2;
+    const char *path = test_path("utf8.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    char value[128];
+    assert_int_equal(read_png_text(path, "Quantity", value, sizeof value), PNG_ITXT_COMPRESSION_NONE);
+    assert_string_equal(value, "f / (E* δ²)");
+    assert_int_equal(read_png_text(path, "Software", value, sizeof value), PNG_TEXT_COMPRESSION_NONE);
+    assert_string_equal(value, "indentmap");
+    size_t size;
+    uint8_t *data = slurp(path, &size);
+    assert_non_null(find_chunk(data, size, "iTXt", "Quantity\0\0\0\0\0f / (E* δ²)", 9 + 4 + strlen("f / (E* δ²)")));
+    assert_null(find_chunk(data, size, "tEXt", "Quantity", 8));
+    free(data);
+    im_image_release(&image);
+}
+
 static void test_png_metadata_pdf_svg(void **state)
 {
     (void)state;
@@ -385,6 +438,7 @@ int main(void)
         cmocka_unit_test(test_panel_grid_and_colorbar),
         cmocka_unit_test(test_colorbar_extensions),
         cmocka_unit_test(test_png_metadata_pdf_svg),
+        cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),
         cmocka_unit_test(test_frame_paths),
         cmocka_unit_test(test_gif_round_trip),

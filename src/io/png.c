@@ -17,6 +17,15 @@ static int check_image(const char *path, int width, int height, int channels)
     return IM_OK;
 }
 
+/* tEXt holds Latin-1 only; UTF-8 beyond ASCII goes into an uncompressed iTXt chunk. */
+static int is_ascii(const char *text)
+{
+    for (const unsigned char *p = (const unsigned char *)text; *p; ++p)
+        if (*p > 0x7e || (*p < 0x20 && *p != '\n'))
+            return 0;
+    return 1;
+}
+
 static void set_metadata(png_structp png, png_infop info, const im_png_options *options)
 {
     if (!options)
@@ -24,9 +33,12 @@ static void set_metadata(png_structp png, png_infop info, const im_png_options *
     if (options->text_count > 0) {
         png_textp texts = calloc((size_t)options->text_count, sizeof *texts);
         for (int i = 0; texts && i < options->text_count; ++i) {
-            texts[i].compression = PNG_TEXT_COMPRESSION_NONE;
             texts[i].key = (png_charp)options->texts[i].key;
             texts[i].text = (png_charp)options->texts[i].value;
+            texts[i].compression = is_ascii(texts[i].text) ? PNG_TEXT_COMPRESSION_NONE
+                                                            : PNG_ITXT_COMPRESSION_NONE;
+            texts[i].lang = (png_charp)"";
+            texts[i].lang_key = (png_charp)"";
         }
         if (texts)
             png_set_text(png, info, texts, options->text_count);
