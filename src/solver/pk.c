@@ -1,6 +1,7 @@
 /* Polonsky-Keer constrained conjugate gradients (see solver.h for the algorithm and stopping rule). */
 #include "solver/plan.h"
 
+#include "core/summation.h"
 #include "indentmap/status.h"
 
 #include <math.h>
@@ -117,11 +118,7 @@ static void cold_start(pk_run *r)
 static void impose_load(pk_run *r)
 {
     const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    double load = 0;
-#pragma omp parallel for schedule(static) reduction(+ : load)
-    for (size_t i = 0; i < n; ++i)
-        load += r->p[i];
-    load *= r->plan->delta * r->plan->delta;
+    const double load = im_sum_doubles(r->p, n) * r->plan->delta * r->plan->delta; /* p >= 0 */
     if (!(load > 0))
         return;
     const double scale = r->target / load;
@@ -269,16 +266,16 @@ static void summarise(const pk_run *r, const gap_stats *s, im_solve_result *out)
 {
     const size_t n = (size_t)r->plan->nx * r->plan->ny;
     const double d2 = r->plan->delta * r->plan->delta;
-    double sum = 0, peak = 0;
+    double peak = 0;
     long contact = 0;
-#pragma omp parallel for schedule(static) reduction(+ : sum, contact) reduction(max : peak)
+#pragma omp parallel for schedule(static) reduction(+ : contact) reduction(max : peak)
     for (size_t i = 0; i < n; ++i)
         if (r->p[i] > 0) {
-            sum += r->p[i];
             ++contact;
             if (r->p[i] > peak)
                 peak = r->p[i];
         }
+    const double sum = im_sum_doubles(r->p, n); /* p >= 0: the sum over the contact set */
     out->approach = s->approach;
     out->load = sum * d2;
     out->contact_patches = contact;
