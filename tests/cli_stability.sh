@@ -72,6 +72,13 @@ check "indent --help says area_ratio is nan at N = 0" test $? -eq 0
 check "contact at the edge: exit 1" test $? -eq 1
 check "contact at the edge: clear message" grep -q "reached the edge of the 64 x 64 surface" "$dir/err"
 check "contact at the edge: steps before kept" test "$(rows "$dir/edge/history.csv")" -eq 2
+# A load no 32 x 32 surface can carry: the smooth contact radius sqrt(N* / pi) = 601 patches at
+# N = 1e5 (alpha 80), against 15.5 patches from the axis to the edge. Refused before solving.
+"$cli" indent --smooth --n 32 --load 1,100000 --out "$dir/unreachable" >/dev/null 2>"$dir/err"
+check "unreachable load: exit 1" test $? -eq 1
+check "unreachable load: named, with the radius and the room" \
+    grep -q "load 100000 cannot be reached on the 32 x 32 surface: the smooth contact at this load has radius 600.9, but the punch axis is 15.5 from the surface's edge" "$dir/err"
+check "unreachable load: the step before kept" test "$(rows "$dir/unreachable/history.csv")" -eq 1
 
 # ---- sizes ----
 "$cli" indent --smooth --n 8 --approach 0.1,0.3 --out "$dir/g8" >/dev/null 2>&1

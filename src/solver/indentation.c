@@ -197,21 +197,62 @@ void im_indentation_free(im_indentation *run)
     free(run);
 }
 
+/* Whether surface row sy (or, with column set, column sy) holds a contact patch inside the
+ * window; sets *at to its position along the row (column). */
+static int line_in_contact(const im_indentation *run, int line, int column, int *at)
+{
+    const im_window w = run->window;
+    int first = column ? w.x0 : w.y0, extent = column ? w.nx : w.ny;
+    if (line < first || line >= first + extent)
+        return 0;
+    int length = column ? w.ny : w.nx;
+    for (int k = 0; k < length; ++k) {
+        size_t i = column ? (size_t)k * w.nx + (line - w.x0) : (size_t)(line - w.y0) * w.nx + k;
+        if (run->pressure[i] > 0) {
+            *at = k + (column ? w.y0 : w.x0);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* IM_EEDGE if a contact patch lies on the outer row or column of the surface. */
 static int check_edge(const im_indentation *run)
 {
-    const im_window w = run->window;
-    for (int iy = 0; iy < w.ny; ++iy)
-        for (int ix = 0; ix < w.nx; ++ix) {
-            int sx = ix + w.x0, sy = iy + w.y0;
-            int on_edge = sx == 0 || sy == 0 || sx == run->nx - 1 || sy == run->ny - 1;
-            if (on_edge && run->pressure[(size_t)iy * w.nx + ix] > 0)
-                return im_fail(IM_EEDGE,
-                               "contact reached the edge of the %d x %d surface at patch (%d, %d) "
-                               "(approach %g): the surface is too small for this step",
-                               run->nx, run->ny, sx, sy, run->approach);
-        }
-    return IM_OK;
+    const int rows[2] = {0, run->ny - 1}, columns[2] = {0, run->nx - 1};
+    int sx = -1, sy = -1;
+    for (int k = 0; k < 2 && sx < 0; ++k) {
+        if (line_in_contact(run, rows[k], 0, &sx))
+            sy = rows[k];
+        else if (line_in_contact(run, columns[k], 1, &sy))
+            sx = columns[k];
+    }
+    if (sx < 0)
+        return IM_OK;
+    return im_fail(IM_EEDGE,
+                   "contact reached the edge of the %d x %d surface at patch (%d, %d) (approach %g): the "
+                   "surface is too small for this step",
+                   run->nx, run->ny, sx, sy, run->approach);
+}
+
+/* Under load control, IM_EEDGE before solving when the smooth contact at this load would already
+ * reach past the surface's edge: no surface of this size can carry the load without contact
+ * there (a rough contact spreads wider than the smooth one), so the solve would only end at the
+ * edge, or, with a window bound broken by the edge, nowhere sensible. */
+static int check_reachable(const im_indentation *run, double load)
+{
+    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT)
+        return IM_OK;
+    double ax, ay;
+    im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
+    const double room = fmin(fmin(ax, run->nx * run->delta - ax), fmin(ay, run->ny * run->delta - ay));
+    const double radius = sqrt(im_indenter_area_for_load(&run->punch, run->options.e_star, load) / M_PI);
+    if (radius < room)
+        return IM_OK;
+    return im_fail(IM_EEDGE,
+                   "load %g cannot be reached on the %d x %d surface: the smooth contact at this load has "
+                   "radius %.4g, but the punch axis is %.4g from the surface's edge",
+                   load, run->nx, run->ny, radius, room);
 }
 
 static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
@@ -232,17 +273,20 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     if (!(isfinite(target) && target >= 0 && target <= run->largest_target))
         return im_fail(IM_EINVAL, "%s = %g: expected a value in [0, %g], the largest %s the run was prepared for",
                        what, target, run->largest_target, what);
+    int status = check_reachable(run, target);
+    if (status != IM_OK)
+        return status;
     im_solve_result s;
-    int status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
+    status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
                                  run->displacement, &s);
     run->approach = s.approach;
     fill_step(run, &s, out);
-    if (status != IM_OK)
-        return status;
-    if (s.approach > run->approach_bound) /* cannot happen unless the bound is wrong; never hide it */
-        return im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
-                       s.approach, run->approach_bound);
-    return check_edge(run);
+    if (status == IM_OK)
+        status = check_edge(run);
+    if (status == IM_OK && s.approach > run->approach_bound) /* only if the bound were wrong: never hide it */
+        status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
+                         s.approach, run->approach_bound);
+    return status;
 }
 
 im_window im_indentation_window(const im_indentation *run) { return run->window; }
