@@ -8,17 +8,18 @@
  * area is A_cone = 3000 base cells. Knobs, each swept from a baseline (1x, tol 1e-6, margin 4,
  * crop on, 2 threads):
  *   refinement  the same band-limited surface on a grid 1x, 2x, 4x finer over the same box
- *               (im_surface_generate keeps every mode: spectral interpolation); 4x smooth only,
- *               because the 4x (and 3x) rough surfaces differ from the 1x one at its sample points by
- *               up to 0.25 base cells (h max 1.3; 2x agrees to 1e-15): not the same surface;
+ *               (im_surface_generate keeps every mode: spectral interpolation; the 2x and 4x
+ *               surfaces agree with the 1x one at its sample points to 1e-10, tests/test_surface.c);
  *   tolerance   the solver's stopping tolerance 1e-2 .. 1e-10;
  *   window      margin 0, 4, 16 patches around the solve window, and crop off (whole surface);
  *   threads     1 and 2 OpenMP threads.
  * Errors against truth:
  *   smooth  the closed forms: N at the closed-form approach w(N0) (a displacement-controlled
  *           solve) against N0, n_p delta^2 against A_cone(N0), and the patches of the 128 x 128
- *           base grid inside or outside the closed-form contact circle wrongly;
- *   rough   the finest, tightest run (2x, tol 1e-11, crop off) as reference: A/A_cone, N at the
+ *           base grid inside or outside the closed-form contact circle wrongly, and the pressure
+ *           p(r) against (E* cot alpha / 2) acosh(a / r) over the patches with 0.2a < r < 0.8a
+ *           (rms and max relative error);
+ *   rough   the finest, tightest run (4x, tol 1e-11, crop off) as reference: A/A_cone, N at the
  *           reference's approach, and the symmetric difference of the contact maps sampled at the
  *           base patch centres (a refined grid's patch (r i, r j) sits on base patch (i, j)'s
  *           centre, because the cone axis is on a base sample point in the surface's frame).
@@ -72,6 +73,7 @@ typedef struct outcome {
     long contact_patches;
     double load_at_w;                   /* N of the displacement step at the reference approach */
     double error_load, error_area, error;
+    double error_p_rms, error_p_max;    /* smooth: p(r) against the closed form; NaN for rough */
     long symmetric_difference;          /* base patches */
 } outcome;
 
@@ -103,15 +105,50 @@ static int make_surface(enum problem problem, int refine, im_field **out)
 }
 
 /* Contact on the base grid: patch (r i, r j) of the run's grid for base patch (i, j). */
-static int base_contact_map(const im_indentation *run, int refine, unsigned char *map)
+static void base_contact_map(const im_field *force, int refine, unsigned char *map)
+{
+    for (int j = 0; j < BASE; ++j)
+        for (int i = 0; i < BASE; ++i)
+            map[j * BASE + i] = force->data[(size_t)refine * j * force->nx + (size_t)refine * i] > 0;
+}
+
+/* Relative error of the patch pressures p = f / delta^2 against the cone's closed form at approach
+ * w, over the patches with 0.2a < r < 0.8a (r from the axis, which sits on sample (nx/2, ny/2)):
+ * rms in *rms, largest in *max. */
+static void pressure_error(const im_field *force, double w, double *rms, double *max)
+{
+    im_indenter cone = im_indenter_cone(ALPHA);
+    const double a = im_indenter_contact_radius(&cone, w), d = force->delta;
+    double sum = 0, worst = 0;
+    long count = 0;
+    for (int j = 0; j < force->ny; ++j)
+        for (int i = 0; i < force->nx; ++i) {
+            double r = d * hypot(i - force->nx / 2, j - force->ny / 2);
+            if (r <= 0.2 * a || r >= 0.8 * a)
+                continue;
+            double exact = im_indenter_pressure(&cone, 1.0, w, r);
+            double e = fabs(force->data[(size_t)j * force->nx + i] / (d * d) - exact) / exact;
+            sum += e * e;
+            worst = fmax(worst, e);
+            ++count;
+        }
+    *rms = count ? sqrt(sum / count) : NAN;
+    *max = count ? worst : NAN;
+}
+
+/* The base contact map of the run's last step and, for the smooth cone (approach w of the closed
+ * form), the pressure errors. */
+static int inspect_fields(const im_indentation *run, const config *c, double w, unsigned char *map,
+                          outcome *o)
 {
     im_field *force = NULL;
     int status = im_indentation_fields(run, &force, NULL, NULL);
     if (status != IM_OK)
         return status;
-    for (int j = 0; j < BASE; ++j)
-        for (int i = 0; i < BASE; ++i)
-            map[j * BASE + i] = force->data[(size_t)refine * j * force->nx + (size_t)refine * i] > 0;
+    base_contact_map(force, c->refine, map);
+    o->error_p_rms = o->error_p_max = NAN;
+    if (c->problem == SMOOTH)
+        pressure_error(force, w, &o->error_p_rms, &o->error_p_max);
     im_field_free(force);
     return IM_OK;
 }
@@ -178,7 +215,7 @@ static int measure(const config *c, const truth *t, outcome *o, unsigned char *m
         return status;
     }
     unsigned char map[BASE * BASE];
-    status = base_contact_map(run, c->refine, map);
+    status = inspect_fields(run, c, t->approach, map, o);
     im_window w = im_indentation_window(run);
     im_indentation_free(run);
     o->seconds = bench_median(seconds, REPEATS);
@@ -254,11 +291,13 @@ static void smooth_truth(truth *t)
             t->map[j * BASE + i] = hypot(i - BASE / 2, j - BASE / 2) < a;
 }
 
-/* The rough reference: 2x, tol 1e-11, whole surface. Its own load step gives w_ref; N(w_ref) = N0
- * to its tolerance by construction. */
+/* The rough reference: the finest, tightest run (4x, tol 1e-11, whole surface). */
+static const config rough_reference = {"reference", ROUGH, 4, 4, 0, 2, 1e-11};
+
+/* Its own load step gives w_ref; N(w_ref) = N0 to its tolerance by construction. */
 static int rough_truth(truth *t, outcome *reference)
 {
-    config c = {"reference", ROUGH, 2, 4, 0, 2, 1e-11};
+    config c = rough_reference;
     truth none;
     smooth_truth(&none);  /* placeholder approach for the child's displacement step */
     int status = measure_in_child(&c, &none, reference, t->map);
@@ -284,10 +323,8 @@ static int config_list(enum problem p, config *list)
     n = add(list, n, "refinement", p, 1, 1e-6, 4, 1, 2);
     n = add(list, n, "refinement", p, 2, 1e-4, 4, 1, 2);
     n = add(list, n, "refinement", p, 2, 1e-6, 4, 1, 2);
-    if (p == SMOOTH) {
-        n = add(list, n, "refinement", p, 4, 1e-4, 4, 1, 2);
-        n = add(list, n, "refinement", p, 4, 1e-6, 4, 1, 2);
-    }
+    n = add(list, n, "refinement", p, 4, 1e-4, 4, 1, 2);
+    n = add(list, n, "refinement", p, 4, 1e-6, 4, 1, 2);
     static const int margins[] = {0, 4, 16};
     for (int k = 0; k < 3; ++k)
         n = add(list, n, "window", p, 1, 1e-6, margins[k], 1, 2);
@@ -330,10 +367,12 @@ static void csv_row(FILE *f, const measured *m)
 {
     const config *c = &m->config;
     const outcome *o = &m->outcome;
-    fprintf(f, "%s,%s,%d,%.0e,%d,%d,%d,%d,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.3e,%.3e,%.3e,%ld,%d,%dx%d,%.6f,%.1f,%.3f,%d\n",
+    fprintf(f, "%s,%s,%d,%.0e,%d,%d,%d,%d,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.3e,%.3e,%.3e,%.3e,%.3e,%ld,%d,%dx%d,"
+               "%.6f,%.1f,%.3f,%d\n",
             problem_names[c->problem], c->family, c->refine, c->tol, c->margin, c->crop, c->threads,
             o->status, o->approach, o->load, o->area_ratio, o->contact_patches, o->load_at_w,
-            o->area_ratio, o->error_load, o->error_area, o->error, o->symmetric_difference,
+            o->area_ratio, o->error_load, o->error_area, o->error, o->error_p_rms, o->error_p_max,
+            o->symmetric_difference,
             o->iterations, o->window_nx, o->window_ny, o->seconds, o->rss_mib, o->plan_bytes / 1048576.0,
             m->on_frontier);
 }
@@ -355,8 +394,10 @@ static int write_csv(const char *path, const measured *m, int n)
                "(A_cone = %g base cells), E* = 1\n", BASE, BASE, ALPHA, imposed_load(), AREA_CONE);
     fprintf(f, "# wall: median of %d repeats of create + load step (planning included); rss: ru_maxrss of the "
                "forked process per row; error = max(error_N, error_A); symdiff in base patches\n", REPEATS);
+    fprintf(f, "# error_p_rms/max: smooth cone, relative error of p(r) against (E* cot alpha / 2) acosh(a/r) over "
+               "0.2a < r < 0.8a (nan for rough); rough reference: 4x, tol 1e-11, crop off\n");
     fprintf(f, "problem,family,refine,tol,margin,crop,threads,status,approach,load,area_ratio,contact_patches,"
-               "load_at_w_ref,A_over_Acone,error_N,error_A,error,symdiff,iterations,window,wall_s,rss_mib,"
+               "load_at_w_ref,A_over_Acone,error_N,error_A,error,error_p_rms,error_p_max,symdiff,iterations,window,wall_s,rss_mib,"
                "plan_mib,frontier\n");
     for (int i = 0; i < n; ++i)
         csv_row(f, &m[i]);
@@ -424,7 +465,7 @@ static int write_plot(const char *path, const measured *smooth, int ns, const me
     fill_panel(&data[0], smooth, ns);
     fill_panel(&data[1], rough, nr);
     im_plot_panel panels[2];
-    const char *titles[] = {"smooth cone vs closed form", "rough (h'_{rms} = 0.08) vs 2x, tol 10^{-11}"};
+    const char *titles[] = {"smooth cone vs closed form", "rough (h'_{rms} = 0.08) vs 4x, tol 10^{-11}"};
     const char *labels[] = {"(a)", "(b)"};
     for (int p = 0; p < 2; ++p)
         panels[p] = (im_plot_panel){
@@ -450,9 +491,9 @@ static int run_problem(enum problem p, const truth *t, measured *m)
         int status = measure_in_child(&list[i], t, &m[i].outcome, NULL);
         const outcome *o = &m[i].outcome;
         fprintf(stderr, "%s %-10s %dx tol %.0e margin %2d crop %d threads %d: %.4f s, error %.3e (N %.2e, A %.2e), "
-                        "symdiff %ld, %d it, rss %.1f MiB%s\n",
+                        "p %.2e, symdiff %ld, %d it, rss %.1f MiB%s\n",
                 problem_names[p], list[i].family, list[i].refine, list[i].tol, list[i].margin, list[i].crop,
-                list[i].threads, o->seconds, o->error, o->error_load, o->error_area, o->symmetric_difference,
+                list[i].threads, o->seconds, o->error, o->error_load, o->error_area, o->error_p_rms, o->symmetric_difference,
                 o->iterations, o->rss_mib, status == IM_OK ? "" : " FAILED");
     }
     mark_frontier(m, n);
@@ -476,13 +517,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_tradeoff: rough reference: %s\n", im_last_error());
         return 1;
     }
-    fprintf(stderr, "rough reference (2x, tol 1e-11, crop off): w %.6g, A/A_cone %.6g, n_p %ld, %.3f s\n",
+    fprintf(stderr, "rough reference (4x, tol 1e-11, crop off): w %.6g, A/A_cone %.6g, n_p %ld, %.3f s\n",
             reference.approach, reference.area_ratio, reference.contact_patches, reference.seconds);
     int nr = run_problem(ROUGH, &t, rough);
     reference.error = reference.error_load = reference.error_area = 0;
     reference.symmetric_difference = 0;
     reference.load_at_w = t.load;
-    rough[nr++] = (measured){{"reference", ROUGH, 2, 4, 0, 2, 1e-11}, reference, 0};
+    rough[nr++] = (measured){rough_reference, reference, 0};
     static measured all[2 * MAX_CONFIGS + 1];
     memcpy(all, smooth, ns * sizeof *smooth);
     memcpy(all + ns, rough, nr * sizeof *rough);
