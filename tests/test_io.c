@@ -174,6 +174,49 @@ static void bad_text_matrices_name_the_line(void **state)
     expect_refusal(im_text_read, test_path("empty.txt"), IM_EFORMAT, "no data");
 }
 
+/* Writes the first `lines` lines of `text` to `name`, then `extra` (may be ""). */
+static void write_lines(const char *name, const char *text, int lines, const char *extra)
+{
+    const char *end = text;
+    for (int i = 0; i < lines && *end; ++i)
+        end = strchr(end, '\n') + 1;
+    FILE *out = fopen(test_path(name), "wb");
+    assert_non_null(out);
+    fwrite(text, 1, (size_t)(end - text), out);
+    fputs(extra, out);
+    fclose(out);
+}
+
+/* A text matrix whose data disagrees with the grid its header states is refused, naming the header
+ * line, what it said and what was found: a 16 x 16 file cut after 11 rows, or with 2 rows added. */
+static void text_matrix_must_match_its_header(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(16, 16);
+    assert_int_equal(im_text_write(test_path("whole.txt"), f), IM_OK);
+    FILE *in = fopen(test_path("whole.txt"), "rb");
+    static char text[65536];
+    size_t size = fread(text, 1, sizeof text - 1, in);
+    fclose(in);
+    text[size] = '\0';
+    write_lines("cut.txt", text, 3 + 11, ""); /* 3 header lines, then 11 of the 16 rows */
+    expect_refusal(im_text_read, test_path("cut.txt"), IM_EFORMAT,
+                   "cut.txt:1: the header states 16 columns x 16 rows, but the file has 16 columns x 11 rows");
+    write_lines("more.txt", text, 3 + 16, "1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16\n"
+                                          "1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16\n");
+    expect_refusal(im_text_read, test_path("more.txt"), IM_EFORMAT,
+                   "more.txt:1: the header states 16 columns x 16 rows, but the file has 16 columns x 18 rows");
+    const char *narrow = "# Channel: Height\n# grid: 3 columns x 2 rows\n1 2\n3 4\n";
+    test_write_bytes(test_path("narrow.txt"), narrow, strlen(narrow));
+    expect_refusal(im_text_read, test_path("narrow.txt"), IM_EFORMAT,
+                   "narrow.txt:2: the header states 3 columns x 2 rows, but the file has 2 columns x 2 rows");
+    im_field *g = NULL;
+    assert_int_equal(im_text_read(test_path("whole.txt"), &g), IM_OK);
+    assert_fields_equal(f, g);
+    im_field_free(g);
+    im_field_free(f);
+}
+
 /* A copy of the 4 x 4 .gsf `bytes` with value (x=1, y=2) replaced by `value` must be refused. */
 static void expect_gsf_value_refused(const unsigned char *bytes, size_t size, float value, const char *name,
                                      const char *phrase)
@@ -259,6 +302,7 @@ int main(void)
         cmocka_unit_test(bad_npy_files_are_refused),
         cmocka_unit_test(memory_limit_from_the_environment),
         cmocka_unit_test(bad_text_matrices_name_the_line),
+        cmocka_unit_test(text_matrix_must_match_its_header),
         cmocka_unit_test(bad_gsf_files_are_refused),
         cmocka_unit_test(atomic_write_leaves_no_partial_file),
         cmocka_unit_test(png_round_trip_keeps_pixels),

@@ -61,7 +61,35 @@ static void parse_extent_header(const char *line, const char *key, double *exten
 typedef struct text_header {
     double width, height;
     char unit[16];
+    long columns, rows, line; /* a stated "C columns x R rows" and its line; 0 when none */
 } text_header;
+
+/* A header line stating the grid, "... 16 columns x 16 rows ..." (as im_text_write writes it). */
+static void parse_shape_header(const char *line, long line_number, text_header *header)
+{
+    const char *at = strstr(line, " columns x ");
+    if (!at || header->line)
+        return;
+    const char *start = at;
+    while (start > line && start[-1] >= '0' && start[-1] <= '9')
+        --start;
+    long columns, rows;
+    if (start < at && sscanf(start, "%ld columns x %ld rows", &columns, &rows) == 2) {
+        header->columns = columns;
+        header->rows = rows;
+        header->line = line_number;
+    }
+}
+
+/* Refuses data whose size disagrees with a grid the header states. */
+static int check_stated_shape(const char *path, const text_header *header, long columns, long rows)
+{
+    if (!header->line || (header->columns == columns && header->rows == rows))
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s:%ld: the header states %ld columns x %ld rows, but the file has %ld "
+                   "columns x %ld rows of data (%s)", path, header->line, header->columns, header->rows, columns,
+                   rows, rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
+}
 
 /* Parses the numbers of one data line; returns how many, or -1 after recording an error. */
 static long parse_data_line(char *line, const char *path, long line_number, value_list *values)
@@ -101,6 +129,7 @@ static int read_rows(FILE *stream, const char *path, value_list *values, long *c
         if (line[0] == '#') {
             parse_extent_header(line, "Width:", &header->width, header->unit, sizeof header->unit);
             parse_extent_header(line, "Height:", &header->height, header->unit, sizeof header->unit);
+            parse_shape_header(line, line_number, header);
             continue;
         }
         long count = parse_data_line(line, path, line_number, values);
@@ -131,6 +160,8 @@ int im_text_read(const char *path, im_field **out)
     fclose(stream);
     if (status == IM_OK && rows == 0)
         status = im_fail(IM_EFORMAT, "%s: no data rows", path);
+    if (status == IM_OK)
+        status = check_stated_shape(path, &header, columns, rows);
     im_field *field = NULL;
     if (status == IM_OK) {
         double delta = header.width > 0.0 ? header.width / (double)columns : 1.0;
