@@ -156,7 +156,10 @@ void im_indentation_free(im_indentation *run);
 /* Solves the next step (approach or load, per the run's control), warm-started from the last one.
  * IM_EINVAL for a target outside [0, largest_target]; IM_ENOCONV (out holds the residual; the run
  * keeps the last iterate); IM_EEDGE when a contact patch lies on the outer row or column of the
- * surface, where the finite surface, not the half-space, would decide the answer. */
+ * surface, where the finite surface, not the half-space, would decide the answer, and, under load
+ * control, before solving, when the smooth contact at the load would have a radius reaching from
+ * the punch axis past the surface's edge (a load this surface cannot carry). The run's loads and
+ * contact counts are summed with compensation (a few ulp over any grid, whatever the threads). */
 int im_indentation_step(im_indentation *run, double target, im_step_result *out);
 
 im_window im_indentation_window(const im_indentation *run);
