@@ -65,6 +65,12 @@ check "nothing half-written" bash -c "! ls '$dir' | grep -q 'x\\.'"
 check "animation GIF" "$cli" render animate "$dir/f.npy" "$dir/g.npy" --frames "$dir/frames" --out "$dir/a.gif"
 check "frames written" test -s "$dir/frames/contact_0000.png" -a -s "$dir/frames/contact_0001.png"
 check "GIF header" bash -c "head -c 6 '$dir/a.gif' | grep -q GIF89a"
+# 32 x 32 patches: the anti-aliased circle's blends would take a frame past 256 colours.
+"$cli" surface --n 32 --seed 5 --out "$dir/f32.npy" >/dev/null 2>&1
+check "animation GIF with --circle" "$cli" render animate "$dir/f32.npy" "$dir/f32.npy" --circle 8 --frames "$dir/framesc" --out "$dir/c.gif"
+check "GIF with --circle: PNG frames" test -s "$dir/framesc/contact_0001.png"
+check "GIF without --circle" "$cli" render animate "$dir/f32.npy" "$dir/f32.npy" --frames "$dir/framesn" --out "$dir/n.gif"
+check "GIF with --circle differs from without" bash -c "! cmp -s '$dir/n.gif' '$dir/c.gif'"
 if command -v ffmpeg >/dev/null; then
   check "MP4" "$cli" render animate "$dir/f.npy" "$dir/g.npy" --frames "$dir/frames2" --out "$dir/a.mp4"
 else

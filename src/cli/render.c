@@ -22,7 +22,8 @@ static void usage(FILE *stream)
             "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches with force <= 0 in a grey background\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
-            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg).\n"
+            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg); the\n"
+            "GIF draws the --circle aliased (exact palette colours), the PNG frames anti-aliased.\n"
             "Several files make one figure of panels (a), (b), ... with one shared norm and colour\n"
             "bar, e.g. the paper's Fig. 4: six force files --columns 3 --circle A.\n"
             "Output format from the extension: .png, .pdf or .svg.\n\n"
@@ -238,8 +239,43 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
     return IM_OK;
 }
 
+/* Makes the anti-aliased circle of `drawn` aliased, against the same map drawn without it: a
+ * pixel whose coverage (its blend towards the line colour) is at least 1/2 takes the line colour,
+ * any other its data colour. A GIF frame so holds only exact palette colours. */
+static void alias_circle(im_image *drawn, const im_image *plain, const uint8_t line[3])
+{
+    size_t pixels = (size_t)drawn->width * drawn->height;
+    for (size_t i = 0; i < pixels; ++i) {
+        uint8_t *p = drawn->rgba + 4 * i;
+        const uint8_t *q = plain->rgba + 4 * i;
+        int k = 0;
+        for (int c = 1; c < 3; ++c)
+            if (abs(line[c] - q[c]) > abs(line[k] - q[k]))
+                k = c;
+        int full = line[k] - q[k], blend = p[k] - q[k];
+        memcpy(p, full != 0 && 2 * blend * (full > 0 ? 1 : -1) >= abs(full) ? line : q, 3);
+    }
+}
+
+/* The GIF frame of a contact map drawn with --circle: the circle aliased (see alias_circle). */
+static int gif_frame(im_render_context *context, const im_field *force, const render_options *o,
+                     im_image *frame)
+{
+    if (!(o->circle > 0.0))
+        return IM_OK;
+    render_options plain_options = *o;
+    plain_options.circle = 0.0;
+    im_image plain;
+    im_colormap norm;
+    int status = render_contact(context, force, &plain_options, &plain, &norm);
+    if (status == IM_OK)
+        alias_circle(frame, &plain, im_contact_style_default(force).line);
+    im_image_release(&plain);
+    return status;
+}
+
 /* One contact map per force file, all with one norm, into DIR/contact_NNNN.png, then the GIF
- * or MP4. */
+ * (the circle aliased, so that each frame has at most 256 exact colours) or MP4. */
 static int animate(im_render_context *context, char **inputs, int count, render_options *o)
 {
     int status = im_make_directories(o->frames);
@@ -252,6 +288,8 @@ static int animate(im_render_context *context, char **inputs, int count, render_
     }
     if (status == IM_OK)
         status = read_fields(o, inputs, count, fields);
+    const char *dot = o->out ? strrchr(o->out, '.') : NULL;
+    int gif = dot && strcmp(dot, ".gif") == 0;
     for (int i = 0; status == IM_OK && i < count; ++i) {
         im_colormap norm;
         char path[4096];
@@ -263,9 +301,10 @@ static int animate(im_render_context *context, char **inputs, int count, render_
             frame_options.out = path;
             status = write_output(&frame_options, inputs + i, &frames[i], 1, &norm);
         }
+        if (status == IM_OK && gif)
+            status = gif_frame(context, fields[i], o, &frames[i]);
     }
-    const char *dot = o->out ? strrchr(o->out, '.') : NULL;
-    if (status == IM_OK && dot && strcmp(dot, ".gif") == 0)
+    if (status == IM_OK && gif)
         status = im_animation_gif(frames, count, 1.0 / o->fps, o->out);
     else if (status == IM_OK && dot && strcmp(dot, ".mp4") == 0)
         status = im_animation_mp4(o->frames, "contact", o->fps, o->out);
