@@ -517,6 +517,41 @@ static void test_contact_outline(void **state)
     im_field_free(contact);
 }
 
+/* Width in pixels of the outline along the left edge of a contact block, counted along the
+ * block's middle row from its left edge. */
+static int outline_width_drawn(const im_image *image, const uint8_t outline[3], int left_px, int row)
+{
+    int width = 0;
+    while (memcmp(pixel(image, left_px + width, row), outline, 3) == 0)
+        ++width;
+    return width;
+}
+
+/* The default outline grows with the pixels per patch: at least 2 px from 2 pixels per patch. */
+static void test_contact_outline_default_width(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *h = make_field(12, 12), *contact = make_field(12, 12);
+    for (int iy = 3; iy <= 8; ++iy)
+        for (int ix = 3; ix <= 8; ++ix)
+            contact->data[iy * 12 + ix] = 1.0;
+    const int scales[] = {1, 2, 4, 8, 16}, widths[] = {1, 2, 2, 3, 5};
+    for (int k = 0; k < 5; ++k) {
+        im_height_style style = im_height_style_default(h);
+        style.contact = contact;
+        style.pixels_per_patch = scales[k];
+        style.boundary_px = 0;
+        assert_int_equal(im_height_outline_width(&style), widths[k]);
+        im_image image;
+        assert_int_equal(im_render_height_map(context, h, &style, &image), IM_OK);
+        assert_int_equal(outline_width_drawn(&image, style.outline, 3 * scales[k], 6 * scales[k]), widths[k]);
+        im_image_release(&image);
+    }
+    im_field_free(h);
+    im_field_free(contact);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -534,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_height_shading_of_a_plane),
         cmocka_unit_test(test_height_flat_matches_reference_and_nan),
         cmocka_unit_test(test_contact_outline),
+        cmocka_unit_test(test_contact_outline_default_width),
     };
     int failed = cmocka_run_group_tests(tests, open_context, close_context);
     if (skip_all)

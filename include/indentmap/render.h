@@ -125,14 +125,20 @@ typedef struct im_height_style {
     double exaggeration;       /* slopes are multiplied by this for the shading only, > 0 */
     const im_field *contact;   /* optional (NULL): same grid, patches with value > 0 outlined */
     uint8_t outline[3];        /* contact outline colour */
-    int outline_px;            /* contact outline width in pixels, >= 1 */
+    int outline_px;            /* contact outline width in pixels; 0: automatic (see
+                                  im_height_outline_width) */
 } im_height_style;
 
 /* Defaults for a surface: viridis on [min, max] of the finite heights (a flat surface gets
  * [h - 1, h + 1]), 2 pixels per patch, 2-pixel black boundary, shading 0.6, light from 315
  * degrees at 45 degrees, exaggeration chosen so the shaded rms slope is about 0.5, no contact,
- * white outline 1 px. */
+ * white outline of automatic width. */
 im_height_style im_height_style_default(const im_field *height);
+
+/* The contact outline's width in pixels: outline_px when > 0, else automatic, scaled with the
+ * pixels per patch s so that it stays visible at print resolution: 1 px at s = 1, else
+ * max(2, round(s / 3)) (2 px up to 7 pixels per patch, 3 px at 8, 5 px at 16). */
+int im_height_outline_width(const im_height_style *style);
 
 /* Draws heights through the colour map, hill-shaded with Lambert's law from per-patch normals
  * (central differences of heights / delta, one-sided at the edges), and, with style->contact,

@@ -351,8 +351,16 @@ im_height_style im_height_style_default(const im_field *height)
         .pixels_per_patch = 2, .boundary_px = 2, .line = {0, 0, 0},
         .shading = 0.6, .light_azimuth = 315.0, .light_altitude = 45.0,
         .exaggeration = slope > 0.0 ? 0.5 / slope : 1.0,
-        .contact = NULL, .outline = {255, 255, 255}, .outline_px = 1};
+        .contact = NULL, .outline = {255, 255, 255}, .outline_px = 0};
     return style;
+}
+
+int im_height_outline_width(const im_height_style *style)
+{
+    if (style->outline_px > 0)
+        return style->outline_px;
+    int scale = style->pixels_per_patch;
+    return scale < 2 ? 1 : (scale + 1) / 3 > 2 ? (scale + 1) / 3 : 2;
 }
 
 static int check_height_style(const im_height_style *s, const im_field *height)
@@ -367,8 +375,9 @@ static int check_height_style(const im_height_style *s, const im_field *height)
                        "(0, 90] degrees and a finite azimuth", s->light_altitude, s->light_azimuth);
     if (!(s->exaggeration > 0.0 && isfinite(s->exaggeration)))
         return im_fail(IM_EINVAL, "height map: exaggeration = %g: expected > 0", s->exaggeration);
-    if (s->outline_px < 1 || s->outline_px > MAX_PIXELS_PER_PATCH)
-        return im_fail(IM_EINVAL, "height map: outline_px = %d: expected 1..%d", s->outline_px, MAX_PIXELS_PER_PATCH);
+    if (s->outline_px < 0 || s->outline_px > MAX_PIXELS_PER_PATCH)
+        return im_fail(IM_EINVAL, "height map: outline_px = %d: expected 0 (automatic) .. %d", s->outline_px,
+                       MAX_PIXELS_PER_PATCH);
     if (s->contact && height && (s->contact->nx != height->nx || s->contact->ny != height->ny))
         return im_fail(IM_EINVAL, "height map: contact field %d x %d: expected the grid of the heights, %d x %d",
                        s->contact->nx, s->contact->ny, height->nx, height->ny);
@@ -421,7 +430,7 @@ int im_render_height_map(im_render_context *c, const im_field *height, const im_
     set_int(gl, program, "table", 3);
     set_common(gl, program, &s->colormap, height, s->pixels_per_patch, s->boundary_px, s->line);
     set_colour(gl, program, "outline_colour", s->outline);
-    set_int(gl, program, "outline_width", s->outline_px);
+    set_int(gl, program, "outline_width", im_height_outline_width(s));
     double azimuth = s->light_azimuth * M_PI / 180.0, altitude = s->light_altitude * M_PI / 180.0;
     gl->Uniform3f(gl->GetUniformLocation(program, "light"), (float)(cos(altitude) * sin(azimuth)),
                   (float)(cos(altitude) * cos(azimuth)), (float)sin(altitude));
