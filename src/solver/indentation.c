@@ -87,6 +87,7 @@ static im_window choose_window(const im_indentation *run)
     if (!run->options.crop)
         return (im_window){0, 0, run->nx, run->ny};
     int x_lo = run->nx, x_hi = -1, y_lo = run->ny, y_hi = -1;
+#pragma omp parallel for schedule(static) reduction(min : x_lo, y_lo) reduction(max : x_hi, y_hi)
     for (int iy = 0; iy < run->ny; ++iy)
         for (int ix = 0; ix < run->nx; ++ix)
             if (run->gap0[(size_t)iy * run->nx + ix] <= run->approach_bound) {
@@ -106,6 +107,7 @@ static im_window choose_window(const im_indentation *run)
 static double height_range(const im_field *surface)
 {
     double lo = DBL_MAX, hi = -DBL_MAX;
+#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
     for (size_t i = 0; i < im_field_count(surface); ++i) {
         lo = fmin(lo, surface->data[i]);
         hi = fmax(hi, surface->data[i]);
@@ -142,6 +144,7 @@ static int allocate_window(im_indentation *run)
     run->displacement = calloc(n, sizeof(double));
     if (!run->window_gap0 || !run->pressure || !run->displacement)
         return im_fail(IM_ENOMEM, "indentation window %d x %d", w.nx, w.ny);
+#pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
                sizeof(double) * w.nx);
@@ -312,9 +315,12 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
     }
     const im_window w = run->window;
     const double d2 = run->delta * run->delta, approach = run->approach;
-    if (g)
+    if (g) {
+#pragma omp parallel for schedule(static)
         for (size_t i = 0; i < im_field_count(g); ++i)
             g->data[i] = run->gap0[i] - approach;
+    }
+#pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
         for (int ix = 0; ix < w.nx; ++ix) {
             size_t wi = (size_t)iy * w.nx + ix, i = (size_t)(iy + w.y0) * run->nx + ix + w.x0;

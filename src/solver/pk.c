@@ -245,12 +245,19 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
     const size_t n = (size_t)plan->nx * plan->ny;
+    size_t bad_gap = n, bad_pressure = n; /* the first offending index of each, n if none */
+#pragma omp parallel for schedule(static) reduction(min : bad_gap, bad_pressure)
     for (size_t i = 0; i < n; ++i) {
-        if (isnan(gap0[i]) || gap0[i] < 0 || gap0[i] == -INFINITY)
-            return im_fail(IM_ENUMERIC, "undeformed gap[%zu] = %g: expected >= 0 or +inf", i, gap0[i]);
-        if (!(isfinite(p[i]) && p[i] >= 0))
-            return im_fail(IM_EINVAL, "warm-start pressure[%zu] = %g: expected finite and >= 0", i, p[i]);
+        if ((isnan(gap0[i]) || gap0[i] < 0) && i < bad_gap)
+            bad_gap = i;
+        if (!(isfinite(p[i]) && p[i] >= 0) && i < bad_pressure)
+            bad_pressure = i;
     }
+    if (bad_gap < n)
+        return im_fail(IM_ENUMERIC, "undeformed gap[%zu] = %g: expected >= 0 or +inf", bad_gap, gap0[bad_gap]);
+    if (bad_pressure < n)
+        return im_fail(IM_EINVAL, "warm-start pressure[%zu] = %g: expected finite and >= 0", bad_pressure,
+                       p[bad_pressure]);
     return IM_OK;
 }
 
