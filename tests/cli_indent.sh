@@ -17,6 +17,36 @@ for key in '"version"' '"window"' '"threads"' '"tol"' '"steps_completed": 3' '"s
 done
 for f in force gap displacement; do [ -s "$DIR/ok/${f}_0003.npy" ] || fail "missing ${f}_0003.npy"; done
 
+# run.json records the crop setting and the window margin of the solver options the run used.
+grep -q '"crop": true' "$DIR/ok/run.json" || fail "run.json lacks \"crop\": true: $(grep -A12 '"solver"' "$DIR/ok/run.json")"
+grep -q '"window_margin": 4,\?$' "$DIR/ok/run.json" || fail "run.json lacks \"window_margin\": 4"
+"$BIN" indent --smooth --n 48 --approach 1 --full --out "$DIR/full" >/dev/null || fail "--full run exited $?"
+grep -q '"crop": false' "$DIR/full/run.json" || fail "--full: run.json lacks \"crop\": false"
+python3 -c 'import json, sys; w = json.load(open(sys.argv[1]))["window"]; sys.exit(w != {"x0": 0, "y0": 0, "nx": 48, "ny": 48})' \
+    "$DIR/full/run.json" || fail "--full: the window is not the whole 48 x 48 surface"
+
+# The output folder never receives a file over an input: exit 2 naming both, the input unchanged.
+mkdir -p "$DIR/in"
+cp "$DIR/ok/force_0001.npy" "$DIR/in/force_0001.npy"
+cp "$DIR/ok/force_0001.npy" "$DIR/force.orig"
+"$BIN" indent "$DIR/in/force_0001.npy" --approach 0.5 --out "$DIR/in" --fields >/dev/null 2>"$DIR/over.err"
+[ $? -eq 2 ] || fail "an output over the input should exit 2"
+grep -qF -- "--out $DIR/in would write $DIR/in/force_0001.npy over the input file $DIR/in/force_0001.npy" "$DIR/over.err" \
+    || fail "overwrite message: $(cat "$DIR/over.err")"
+cmp -s "$DIR/in/force_0001.npy" "$DIR/force.orig" || fail "the input surface was changed"
+[ ! -e "$DIR/in/history.csv" ] || fail "refused run wrote history.csv"
+# Without --fields the folder gets only history.csv and run.json: the same input is then fine, and
+# a text-matrix surface named history.csv is refused, by a relative path to the same folder.
+"$BIN" indent "$DIR/in/force_0001.npy" --approach 0.5 --out "$DIR/in" >/dev/null || fail "no --fields: exited $?"
+cmp -s "$DIR/in/force_0001.npy" "$DIR/force.orig" || fail "no --fields: the input surface was changed"
+printf '# 3 columns x 3 rows\n0 0 0\n0 0 0\n0 0 0\n' >"$DIR/in/history.csv"
+cp "$DIR/in/history.csv" "$DIR/history.orig"
+(cd "$DIR" && "$BIN" indent in/history.csv --approach 0.1 --out ./in/../in >/dev/null 2>"$DIR/over.err")
+[ $? -eq 2 ] || fail "a surface named history.csv in --out should exit 2"
+cmp -s "$DIR/in/history.csv" "$DIR/history.orig" || fail "the input history.csv was changed"
+grep -qF -- "--out ./in/../in would write ./in/../in/history.csv over the input file in/history.csv" "$DIR/over.err" \
+    || fail "history.csv message: $(cat "$DIR/over.err")"
+
 # Contact reaching the surface's edge at step 3: exit 1, steps 1-2 kept.
 "$BIN" indent --smooth --n 48 --approach 2,4,8 --out "$DIR/edge" >/dev/null 2>"$DIR/edge.err"
 [ $? -eq 1 ] || fail "edge contact should exit 1"

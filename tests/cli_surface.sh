@@ -41,6 +41,55 @@ head -c 100 "$dir/s.npy" >"$dir/cut.npy"
 check "truncated npy" expect_exit 2 "truncated" "$cli" surface --stats "$dir/cut.npy"
 check "missing file" expect_exit 1 "cannot open" "$cli" surface --stats "$dir/none.npy"
 check "unwritable output" expect_exit 1 "/no/such/dir/s.npy" "$cli" surface --n 32 --out /no/such/dir/s.npy
+
+# Bad surface files: exit 2 with a message naming the file and what is wrong. npy FILE DESCR ORDER
+# SHAPE COUNT [LAST]: a .npy of COUNT zero float64 values (the last one replaced by the 8 bytes of
+# LAST, e.g. a NaN), built byte by byte.
+npy() {
+  local dict="{'descr': '$2', 'fortran_order': $3, 'shape': $4, }"
+  local pad=$(( (64 - (10 + ${#dict} + 1) % 64) % 64 ))
+  local length=$(( ${#dict} + 1 + pad )) zeros=$5
+  [ -z "${6:-}" ] || zeros=$(( $5 - 1 ))
+  {
+    printf '\x93NUMPY\x01\x00'
+    printf "\\x$(printf %02x $((length & 255)))\\x$(printf %02x $((length >> 8)))"
+    printf '%s%*s\n' "$dict" "$pad" ''
+    head -c $(( zeros * 8 )) /dev/zero
+    if [ -n "${6:-}" ]; then printf "$6"; fi
+  } >"$1"
+}
+npy "$dir/good.npy" '<f8' False '(2, 3)' 6
+check "hand-built npy is read" bash -c "'$cli' surface --stats '$dir/good.npy' | grep -q 'grid             3 x 2'"
+npy "$dir/int.npy" '<i8' False '(2, 3)' 6
+check "unsupported dtype" expect_exit 2 "int.npy: dtype '<i8' is not supported" "$cli" surface --stats "$dir/int.npy"
+npy "$dir/fortran.npy" '<f8' True '(2, 3)' 6
+check "Fortran order" expect_exit 2 "fortran.npy: Fortran-ordered arrays are not supported" "$cli" surface --stats "$dir/fortran.npy"
+npy "$dir/nan.npy" '<f8' False '(2, 3)' 6 '\x00\x00\x00\x00\x00\x00\xf8\x7f'
+check "NaN height" expect_exit 2 "nan.npy: value nan at (x=2, y=1)" "$cli" surface --stats "$dir/nan.npy"
+npy "$dir/short.npy" '<f8' False '(3, 3)' 8
+check "shape larger than the data" expect_exit 2 "short.npy: truncated data: the header (shape (3, 3) of <f8) needs 72 bytes" \
+  "$cli" surface --stats "$dir/short.npy"
+npy "$dir/long.npy" '<f8' False '(2, 2)' 5
+check "shape smaller than the data" expect_exit 2 "long.npy: more data than the header (shape (2, 2) of <f8)" \
+  "$cli" surface --stats "$dir/long.npy"
+"$cli" surface --n 16 --seed 2 --out "$dir/s16.txt" >/dev/null
+head -n 14 "$dir/s16.txt" >"$dir/cut16.txt"   # 3 header lines and 11 of the 16 rows
+check "text matrix shorter than its header" expect_exit 2 \
+  "cut16.txt:1: the header states 16 columns x 16 rows, but the file has 16 columns x 11 rows" \
+  "$cli" surface --stats "$dir/cut16.txt"
+
+# An output never replaces the measured file: exit 2 naming both paths, the input byte-identical.
+cp "$dir/s.npy" "$dir/s.orig"
+check "--psd onto the input" expect_exit 2 "--psd $dir/s.npy would overwrite the input file $dir/s.npy" \
+  "$cli" surface --stats "$dir/s.npy" --psd "$dir/s.npy"
+check "--histograms onto the input by another path" expect_exit 2 "would overwrite the input file $dir/s.npy" \
+  "$cli" surface --stats "$dir/s.npy" --histograms "$dir/../$(basename "$dir")/./s.npy"
+ln -s "$dir/s.npy" "$dir/link.npy"
+check "--png onto a symlink to the input" expect_exit 2 "--png $dir/link.npy would overwrite the input file $dir/s.npy" \
+  "$cli" surface --stats "$dir/s.npy" --png "$dir/link.npy"
+check "--out onto the input" expect_exit 2 "--out $dir/s.npy would overwrite" \
+  "$cli" surface --stats "$dir/s.npy" --out "$dir/s.npy"
+check "input unchanged" cmp -s "$dir/s.npy" "$dir/s.orig"
 check "no temporary files left" bash -c "! ls '$dir' | grep -q tmp"
 
 finish

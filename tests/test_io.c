@@ -125,12 +125,12 @@ static void bad_npy_files_are_refused(void **state)
     write_npy(test_path("3d.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 3), }", 12, 1.5);
     expect_refusal(im_npy_read, test_path("3d.npy"), IM_EFORMAT, "2-D");
     write_npy(test_path("nan.npy"), ok, 12, NAN);
-    expect_refusal(im_npy_read, test_path("nan.npy"), IM_ENUMERIC, "finite");
-    expect_refusal(im_npy_read, test_path("nan.npy"), IM_ENUMERIC, "(x=0, y=0)");
+    expect_refusal(im_npy_read, test_path("nan.npy"), IM_EFORMAT, "finite");
+    expect_refusal(im_npy_read, test_path("nan.npy"), IM_EFORMAT, "(x=0, y=0)");
     write_npy(test_path("inf.npy"), ok, 12, INFINITY);
-    expect_refusal(im_npy_read, test_path("inf.npy"), IM_ENUMERIC, "value inf at (x=0, y=0): expected finite");
+    expect_refusal(im_npy_read, test_path("inf.npy"), IM_EFORMAT, "value inf at (x=0, y=0): expected finite");
     write_npy(test_path("-inf.npy"), ok, 12, -INFINITY);
-    expect_refusal(im_npy_read, test_path("-inf.npy"), IM_ENUMERIC, "value -inf");
+    expect_refusal(im_npy_read, test_path("-inf.npy"), IM_EFORMAT, "value -inf");
     /* 2^32 x 2^32 doubles = 2^67 bytes: more than any 64-bit address space, refused on every machine
      * before the side limit and before allocating; the estimate (2^47 MiB) is in the message */
     write_npy(test_path("huge.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (4294967296, 4294967296), }",
@@ -225,7 +225,7 @@ static void expect_gsf_value_refused(const unsigned char *bytes, size_t size, fl
     memcpy(copy, bytes, size);
     memcpy(copy + size - 16 * sizeof value + (2 * 4 + 1) * sizeof value, &value, sizeof value);
     test_write_bytes(test_path(name), copy, size);
-    expect_refusal(im_gsf_read, test_path(name), IM_ENUMERIC, phrase);
+    expect_refusal(im_gsf_read, test_path(name), IM_EFORMAT, phrase);
 }
 
 static void bad_gsf_files_are_refused(void **state)

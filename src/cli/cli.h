@@ -38,6 +38,19 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
 int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),
                       int (*apply)(int code, const char *arg, void *state), void *state);
 
+/* Outputs never overwrite inputs. Paths are compared by realpath (symlinks, "." and ".." resolved)
+ * and, for a symlink given as an input, by the link's own name. inputs[0..count) may hold NULLs
+ * (skipped); inputs that do not exist are skipped (their reader reports them).
+ * cli_check_output_file: 0 when the file `output` (of option `option`) is none of the inputs;
+ * otherwise prints "indentmap: OPTION OUTPUT would overwrite the input file INPUT (REALPATH); ..."
+ * and returns -1 (exit CLI_EXIT_USAGE).
+ * cli_check_output_folder: the same for a folder `dir` into which a command writes the files whose
+ * names writes(name, state) accepts: -1, naming DIR/NAME and the input, when an input lies directly
+ * in dir under such a name. */
+int cli_check_output_file(const char *option, const char *output, const char *const *inputs, int count);
+int cli_check_output_folder(const char *option, const char *dir, int (*writes)(const char *name, const void *state),
+                            const void *state, const char *const *inputs, int count);
+
 /* Prints "indentmap: MESSAGE" for the status's last error and returns the exit status that fits
  * it (2 for invalid input, 1 otherwise). */
 int cli_report(int status);

@@ -191,6 +191,37 @@ static int apply_quality(indent_options *o)
     return 0;
 }
 
+/* Whether `name` is one of the files written into the output folder: history.csv, run.json and,
+ * with --fields, {force,gap,displacement}_NNNN.npy for the steps 1..count. */
+static int writes_into_folder(const char *name, const void *state)
+{
+    const indent_options *o = state;
+    static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
+    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0)
+        return 1;
+    for (int i = 0; o->fields && i < 3; ++i) {
+        size_t length = strlen(FIELDS[i]);
+        if (strncmp(name, FIELDS[i], length) != 0)
+            continue;
+        long step = strtol(name + length, NULL, 10);
+        char expected[64];
+        snprintf(expected, sizeof expected, "%s%04ld.npy", FIELDS[i], step);
+        if (step >= 1 && step <= o->target_count && strcmp(name, expected) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* Refuses an output folder whose outputs would replace the surface file or its sidecar. */
+static int check_outputs_apart(const indent_options *o)
+{
+    char sidecar[4200] = "";
+    if (o->surface_path)
+        snprintf(sidecar, sizeof sidecar, "%s.json", o->surface_path);
+    const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL};
+    return cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 2);
+}
+
 /* Where the tolerance came from, for run.json. */
 static const char *tolerance_source(const indent_options *o)
 {
@@ -213,7 +244,9 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     if (!o->m_given)
         o->ny = o->nx;
     o->punch.centred = !o->x_given;
-    return check_options(o) == 0 ? apply_quality(o) : -1;
+    if (check_options(o) != 0 || check_outputs_apart(o) != 0)
+        return -1;
+    return apply_quality(o);
 }
 
 /* ---- outputs ---- */
@@ -280,7 +313,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
         "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
+        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
         "delta", s->delta, "generator", generator,
@@ -290,6 +323,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "solver", "quality", o->quality ? o->quality : "none", "tol", o->solver.tol, "tol_from", tolerance_source(o),
         "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
         "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
+        "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
     if (root && seed)

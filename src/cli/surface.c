@@ -197,6 +197,21 @@ static int write_outputs(const surface_options *o, const im_field *surface, cons
     return status;
 }
 
+/* Refuses any output that is the measured file (--stats): `--psd s.npy` would replace it. */
+static int check_outputs_apart(const surface_options *o)
+{
+    char sidecar[4200] = "";
+    if (o->out)
+        snprintf(sidecar, sizeof sidecar, "%s.json", o->out);
+    const char *const inputs[] = {o->stats};
+    const char *const options[] = {"--out", "--out (its sidecar)", "--png", "--psd", "--histograms"};
+    const char *const outputs[] = {o->out, o->out ? sidecar : NULL, o->png, o->psd, o->histograms};
+    for (int i = 0; i < 5; ++i)
+        if (cli_check_output_file(options[i], outputs[i], inputs, 1) != 0)
+            return -1;
+    return 0;
+}
+
 static int parse_options(int argc, char **argv, surface_options *o)
 {
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
@@ -212,7 +227,7 @@ static int parse_options(int argc, char **argv, surface_options *o)
         o->params.lambda_r = o->params.nx > o->params.ny ? o->params.nx : o->params.ny;
     if (o->params.lambda_0 < o->params.lambda_r)
         o->params.lambda_0 = o->params.lambda_r;
-    return 0;
+    return check_outputs_apart(o);
 }
 
 int cli_surface(int argc, char **argv)

@@ -105,7 +105,7 @@ static int read_values(FILE *stream, const char *path, im_field *field)
     if (fgetc(stream) != EOF)
         return im_fail(IM_EFORMAT, "%s: more data than XRes x YRes = %d x %d holds", path,
                        field->nx, field->ny);
-    return im_field_check_finite(field, path);
+    return im_io_check_finite(field, path);
 }
 
 int im_gsf_read(const char *path, im_field **out)

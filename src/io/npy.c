@@ -103,6 +103,14 @@ static int parse_shape(const char *text, long *rows, long *cols)
     return *p == ')';
 }
 
+/* Length of a quoted value "'<i8'" including both quotes (at most 24), else of its first word. */
+static int quoted_length(const char *text)
+{
+    const char *close = text[0] == '\'' ? strchr(text + 1, '\'') : NULL;
+    size_t length = close ? (size_t)(close - text) + 1 : strcspn(text, ",} ");
+    return length < 24 ? (int)length : 24;
+}
+
 static int parse_header(const char *path, const char *dict, enum im_npy_dtype *dtype, long *rows,
                         long *cols)
 {
@@ -116,8 +124,8 @@ static int parse_header(const char *path, const char *dict, enum im_npy_dtype *d
     else if (strncmp(descr, "'<f4'", 5) == 0)
         *dtype = IM_NPY_FLOAT32;
     else
-        return im_fail(IM_EFORMAT, "%s: dtype %.12s is not supported; expected '<f8' or '<f4' "
-                       "(little-endian float64 or float32)", path, descr);
+        return im_fail(IM_EFORMAT, "%s: dtype %.*s is not supported; expected '<f8' or '<f4' "
+                       "(little-endian float64 or float32)", path, quoted_length(descr), descr);
     if (strncmp(order, "False", 5) != 0)
         return im_fail(IM_EFORMAT, "%s: Fortran-ordered arrays are not supported; expected C order "
                        "(save with numpy.ascontiguousarray)", path);
@@ -168,7 +176,7 @@ static int read_payload(FILE *stream, const char *path, enum im_npy_dtype dtype,
     if (fgetc(stream) != EOF)
         return im_fail(IM_EFORMAT, "%s: more data than the header shape (%d, %d) holds", path,
                        field->ny, field->nx);
-    return im_field_check_finite(field, path);
+    return im_io_check_finite(field, path);
 }
 
 int im_npy_read(const char *path, im_field **out)

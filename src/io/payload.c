@@ -3,6 +3,7 @@
 #include "indentmap/field.h"
 #include "indentmap/status.h"
 
+#include <stdio.h>
 #include <sys/stat.h>
 
 static int check_payload_size(FILE *stream, const char *path, uint64_t expected, const char *claim)
@@ -33,4 +34,13 @@ int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned 
     if (nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
         return im_fail(IM_EFORMAT, "%s: %s: expected each side in [1, %d]", path, claim, IM_FIELD_MAX_SIDE);
     return check_payload_size(stream, path, (uint64_t)nx * (uint64_t)ny * item_size, claim);
+}
+
+int im_io_check_finite(const im_field *field, const char *path)
+{
+    if (im_field_check_finite(field, path) == IM_OK)
+        return IM_OK;
+    char message[4400];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    return im_fail(IM_EFORMAT, "%s (NaN and Inf are not heights)", message);
 }
