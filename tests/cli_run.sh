@@ -64,10 +64,35 @@ check "smooth solved once" test ! -e "$dir/out/table/member_00_6.csv"
 # Histories in load control reach each N* step: the last row of a rough member is at N* = 600.
 check "history reaches the last N*" awk -F, 'END { exit !($3 > 599.99 && $3 < 600.01) }' "$dir/out/histories/member_01_6.csv"
 
+# Nothing solved twice: the table solves each surface at N* = 600; the histories' last step (N* =
+# 600) is the table's; the panels are the table's (smooth) and the frames' last step (rough).
+check "table solves its 3 surfaces" grep -q "table: 3 surfaces: 3 solved, 0 read back" "$dir/log"
+check "histories take N* = 600 from the table" grep -q "histories: 3 steps at load_star taken from the table" "$dir/log"
+check "no panel solved again" grep -q "panels: 2 surfaces: 0 solved, 0 read back, 2 reused" "$dir/log"
+check "history's last step is the table's" cmp <(cut -d, -f5 "$dir/out/table/member_01_6.csv" | tail -1) \
+  <(cut -d, -f2 "$dir/out/histories/member_01_6.csv" | tail -1)
+
 # Resume reads the panels back instead of solving them.
 "$cli" run --resume "$dir/small.ini" >"$dir/log2" 2>&1
 check "resume succeeds" test $? -eq 0
 check "resume reuses panels" grep -q "reusing" "$dir/log2"
+check "resume reads the table back" grep -q "table: 3 surfaces: 0 solved, 3 read back" "$dir/log2"
+check "resume solves no panel" grep -q "panels: 2 surfaces: 0 solved" "$dir/log2"
+
+# An edited scene: --resume solves again what the change touches (with a notice) and ends with the
+# results of a fresh run of the edited scene, not the old ones.
+cp -r "$dir/out" "$dir/old"
+sed -i 's/^slopes = 0, 0.08$/slopes = 0, 0.16/' "$dir/small.ini"
+"$cli" run --resume "$dir/small.ini" >"$dir/log3" 2>&1
+check "edited resume succeeds" test $? -eq 0
+check "edited resume names a stale member" grep -q "member_01_6.csv was made from other inputs" "$dir/log3"
+check "edited resume keeps the smooth member" grep -q "table: 3 surfaces: 2 solved, 1 read back" "$dir/log3"
+sed "s|^output = .*|output = $dir/fresh|" "$dir/small.ini" >"$dir/fresh.ini"
+"$cli" run "$dir/fresh.ini" >/dev/null 2>&1
+for f in table1.csv results.csv histories/member_01_5.csv histories/member_01_6.csv panels/force_01.npy; do
+  check "edited resume: $f as a fresh run" cmp "$dir/fresh/$f" "$dir/out/$f"
+done
+check "edited resume: not the old table" bash -c "! cmp -s '$dir/old/table1.csv' '$dir/out/table1.csv'"
 
 # A damaged scene names its file and line.
 printf '[surfaces]\nn = 64\nslopes = 0, x\n' >"$dir/bad.ini"

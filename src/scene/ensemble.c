@@ -95,6 +95,44 @@ void scene_members_free(scene_member *members, int count)
         free(members[i].history_load_star);
         free(members[i].history_area_ratio);
         free(members[i].history_patches);
+        im_field_free(members[i].force);
     }
     free(members);
+}
+
+void scene_reuse_free(scene_reuse *reuse)
+{
+    scene_members_free(reuse->table, reuse->table_count);
+    for (int f = 0; f < IM_SCENE_MAX_FAMILIES; ++f)
+        im_field_free(reuse->force[f]);
+    *reuse = (scene_reuse){0};
+}
+
+int scene_keeps_force(const im_scene *scene, const scene_member *m)
+{
+    return scene->contact_panels && m->seed == scene->seeds[0];
+}
+
+void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count)
+{
+    for (int i = 0; i < count; ++i) {
+        scene_member *m = &members[i];
+        if (m->force && !reuse->force[m->family]) {
+            reuse->force[m->family] = m->force;
+            m->force = NULL;
+        }
+    }
+}
+
+void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
+                          int count)
+{
+    int solved = 0, read_back = 0, reused = 0;
+    for (int i = 0; i < count; ++i) {
+        solved += members[i].origin == SCENE_SOLVED;
+        read_back += members[i].origin == SCENE_READ_BACK;
+        reused += members[i].origin == SCENE_REUSED;
+    }
+    scene_progress(options, "%s: %d surfaces: %d solved, %d read back, %d reused from an earlier stage", stage,
+                   count, solved, read_back, reused);
 }

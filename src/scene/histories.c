@@ -7,6 +7,7 @@
 #include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,8 +41,9 @@ static int write_history(const im_scene *scene, const scene_member *m)
         status = im_atomic_open(&file, path);
     if (status != IM_OK)
         return status;
-    fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g\n", m->family, scene->slopes[m->family],
-            (unsigned long long)m->seed, m->height_rms);
+    fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g, key %016" PRIx64 "\n", m->family,
+            scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms,
+            scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
     fprintf(file.stream, "approach,load,load_star,contact_patches,area_ratio\n");
     for (int i = 0; i < m->steps; ++i)
         fprintf(file.stream, "%.17g,%.17g,%.17g,%ld,%.17g\n", m->approach[i], m->history_load[i],
@@ -49,8 +51,9 @@ static int write_history(const im_scene *scene, const scene_member *m)
     return im_atomic_commit(&file);
 }
 
-/* Reads a history an earlier run wrote; 0 if there is none (or it is not this member's). */
-static int read_history(const im_scene *scene, scene_member *m)
+/* Reads a history an earlier run wrote; 0 if there is none, it is not this member's, or it was
+ * made from other inputs (its key differs: then it is solved again, with a notice). */
+static int read_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     char path[IM_SCENE_PATH], line[256];
     if (history_path(scene, m, path, sizeof path) != IM_OK)
@@ -58,8 +61,10 @@ static int read_history(const im_scene *scene, scene_member *m)
     FILE *stream = fopen(path, "r");
     if (!stream)
         return 0;
-    int ok = fgets(line, sizeof line, stream) && sscanf(line, "# family %*d, h'rms %*g, seed %*u, h_rms %lf",
-                                                        &m->height_rms) == 1 && fgets(line, sizeof line, stream);
+    uint64_t key = 0;
+    int ok = fgets(line, sizeof line, stream) &&
+             sscanf(line, "# family %*d, h'rms %*g, seed %*u, h_rms %lf, key %" SCNx64, &m->height_rms, &key) == 2 &&
+             fgets(line, sizeof line, stream);
     m->steps = 0;
     while (ok && m->steps < scene->step_count &&
            fscanf(stream, "%lf,%lf,%lf,%ld,%lf", &m->approach[m->steps], &m->history_load[m->steps],
@@ -67,13 +72,34 @@ static int read_history(const im_scene *scene, scene_member *m)
                   &m->history_area_ratio[m->steps]) == 5)
         ++m->steps;
     fclose(stream);
-    return ok && m->steps > 0;
+    ok = ok && m->steps > 0;
+    return scene_key_matches(options, path, ok ? key : 0,
+                             scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
 }
 
 /* The target of step i: an approach, or the load at N* = steps[i]. */
 static double step_target(const im_scene *scene, int i, double delta)
 {
     return scene->control == IM_CONTROL_LOAD ? scene_load_for_n_star(scene, scene->steps[i], delta) : scene->steps[i];
+}
+
+/* Step i of a history. At load_star (load control) the table's state is taken instead of solving
+ * it again; without a table, that step's force is kept for the panels. */
+static int load_star_step(const im_scene *scene, im_indentation *run, scene_member *m, int i, double delta,
+                          im_step_result *step)
+{
+    int at_load_star = i == scene_load_star_step(scene);
+    const scene_member *known = m->at_load_star;
+    if (at_load_star && known) {
+        *step = (im_step_result){.approach = known->load_star_approach, .load = known->load, .load_star = known->load_star,
+                                 .contact_patches = known->contact_patches, .area_ratio = known->area_ratio};
+        m->step_reused = 1;
+        return IM_OK;
+    }
+    int status = im_indentation_step(run, step_target(scene, i, delta), step);
+    if (status == IM_OK && at_load_star && scene_keeps_force(scene, m))
+        status = im_indentation_fields(run, &m->force, NULL, NULL);
+    return status;
 }
 
 /* Solves the member's history; contact reaching the surface's edge ends it early (the steps
@@ -92,7 +118,7 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
             break;
         }
         im_step_result step;
-        status = im_indentation_step(run, step_target(scene, i, surface->delta), &step);
+        status = load_star_step(scene, run, m, i, surface->delta, &step);
         if (status == IM_EEDGE) {
             status = IM_OK;
             break;
@@ -113,8 +139,12 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
 static int run_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     int status = allocate_history(m, scene->step_count);
-    if (status != IM_OK || (options->resume && read_history(scene, m)))
+    if (status != IM_OK)
         return status;
+    if (options->resume && read_history(scene, options, m)) {
+        m->origin = SCENE_READ_BACK;
+        return IM_OK;
+    }
     im_field *surface = NULL;
     status = scene_surface(scene, m->family, m->seed, &surface);
     im_surface_stats stats;
@@ -355,7 +385,30 @@ static int plot_sphere_regimes(const im_scene *scene, const scene_member *member
     return status;
 }
 
-int scene_run_histories(const im_scene *scene, const im_scene_run_options *options)
+/* Points each member at the table's member of the same surface, whose state at load_star a
+ * load-controlled history takes instead of solving it again. */
+static void link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count)
+{
+    if (scene_load_star_step(scene) < 0)
+        return;
+    for (int i = 0; i < count; ++i)
+        for (int k = 0; k < reuse->table_count; ++k)
+            if (reuse->table[k].family == members[i].family && reuse->table[k].seed == members[i].seed &&
+                reuse->table[k].status == IM_OK)
+                members[i].at_load_star = &reuse->table[k];
+}
+
+static void report_histories(const im_scene_run_options *options, const scene_member *members, int count)
+{
+    int reused = 0;
+    for (int i = 0; i < count; ++i)
+        reused += members[i].step_reused;
+    scene_report_origins(options, "histories", members, count);
+    if (reused)
+        scene_progress(options, "histories: %d steps at load_star taken from the table", reused);
+}
+
+int scene_run_histories(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse)
 {
     if (scene->step_count < 1)
         return im_fail(IM_EINVAL, "%s: plots fig5, fig6 and fig7 need [loading] steps (approaches, or N* "
@@ -364,9 +417,13 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     int count = 0;
     int status = scene_ensemble_prepare(scene, "histories", &members, &count);
     if (status == IM_OK) {
+        link_table(scene, reuse, members, count);
         scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
         status = scene_ensemble_run(scene, options, members, count, run_history);
     }
+    if (status == IM_OK)
+        report_histories(options, members, count);
+    scene_reuse_take_forces(reuse, members, count);
     if (status == IM_OK && scene_wants_plot(scene, "fig5"))
         status = plot_against_approach(scene, members, count, 0);
     if (status == IM_OK && scene_wants_plot(scene, "fig6"))

@@ -4,16 +4,17 @@
 #include "indentmap/status.h"
 #include "scene/scene_internal.h"
 
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 typedef struct panel_result {
     im_field *force;
-    double load, load_star, area_ratio, area_ratio_eq12, height_rms;
+    double load, load_star, area_ratio, area_ratio_eq12;
     long contact_patches;
+    enum scene_origin origin;
 } panel_result;
 
 /* Solves one family at load n in load control, warm-started by a step at n / 4. */
@@ -37,6 +38,20 @@ static int solve_panel(const im_scene *scene, const im_scene_run_options *run_op
     return status;
 }
 
+/* Solves the first seed of a family at load_star. */
+static int solve_family(const im_scene *scene, const im_scene_run_options *options, int family, im_field **force)
+{
+    im_field *surface = NULL;
+    int status = scene_surface(scene, family, scene->seeds[0], &surface);
+    if (status == IM_OK) {
+        double n = scene_load_for_load_star(scene, surface->delta);
+        scene_progress(options, "family %d (h'rms = %g): solving at N = %.6g", family, scene->slopes[family], n);
+        status = solve_panel(scene, options, surface, n, force);
+    }
+    im_field_free(surface);
+    return status;
+}
+
 /* Load, contact patches and ratios measured on a force field. */
 static void measure_panel(const im_scene *scene, panel_result *r)
 {
@@ -55,38 +70,68 @@ static void measure_panel(const im_scene *scene, panel_result *r)
     r->area_ratio = area > 0.0 ? patches * f->delta * f->delta / area : NAN;
 }
 
-/* The force field of a family at load_star: reused from the frames, read back on --resume, or
- * solved (and then written at once). */
-static int panel_force(const im_scene *scene, const im_scene_run_options *options, int family,
-                       const im_field *known_force, panel_result *r)
+/* panels/force_FF.npy and panels/force_FF.key (the key of the inputs that made it). */
+static int panel_paths(const im_scene *scene, int family, char *npy, char *key, size_t size)
 {
-    char relative[64], path[IM_SCENE_PATH];
+    char relative[64];
     snprintf(relative, sizeof relative, "panels/force_%02d.npy", family);
-    int status = scene_output_path(scene, relative, path, sizeof path);
-    struct stat info;
-    if (status == IM_OK && known_force && family == scene_framed_family(scene)) {
-        status = im_field_clone(known_force, &r->force);
-        return status == IM_OK ? im_npy_write(path, r->force, IM_NPY_FLOAT64) : status;
-    }
-    if (status == IM_OK && options->resume && stat(path, &info) == 0) {
-        scene_progress(options, "family %d: reusing %s", family, path);
-        return im_npy_read(path, &r->force);
-    }
-    im_field *surface = NULL;
+    int status = scene_output_path(scene, relative, npy, size);
+    snprintf(relative, sizeof relative, "panels/force_%02d.key", family);
+    return status == IM_OK ? scene_output_path(scene, relative, key, size) : status;
+}
+
+static uint64_t panel_key(const im_scene *scene, int family)
+{
+    return scene_result_key(scene, family, scene->seeds[0], SCENE_RESULT_AT_LOAD_STAR);
+}
+
+/* Writes the force file, then its key (a force file without its key is never read back). */
+static int write_panel(const im_scene *scene, int family, const im_field *force)
+{
+    char npy[IM_SCENE_PATH], key[IM_SCENE_PATH], text[32];
+    int status = panel_paths(scene, family, npy, key, sizeof npy);
+    int length = snprintf(text, sizeof text, "%016" PRIx64 "\n", panel_key(scene, family));
     if (status == IM_OK)
-        status = scene_surface(scene, family, scene->seeds[0], &surface);
-    if (status == IM_OK) {
-        im_surface_stats stats;
-        r->height_rms = im_surface_statistics(surface, &stats) == IM_OK ? stats.height_rms : NAN;
-        double n = scene_load_for_load_star(scene, surface->delta);
-        scene_progress(options, "family %d (h'rms = %g): solving at N = %.6g", family,
-                       scene->slopes[family], n);
-        status = solve_panel(scene, options, surface, n, &r->force);
+        status = im_npy_write(npy, force, IM_NPY_FLOAT64);
+    return status == IM_OK ? im_write_file_atomic(key, text, (size_t)length) : status;
+}
+
+/* A force file an earlier run wrote, if its key is this scene's; 0 if none (or stale). */
+static int read_panel(const im_scene *scene, const im_scene_run_options *options, int family, im_field **force)
+{
+    char npy[IM_SCENE_PATH], key_path[IM_SCENE_PATH];
+    if (panel_paths(scene, family, npy, key_path, sizeof npy) != IM_OK)
+        return 0;
+    FILE *stream = fopen(key_path, "r");
+    if (!stream)
+        return 0;
+    uint64_t key = 0;
+    int found = fscanf(stream, "%" SCNx64, &key) == 1;
+    fclose(stream);
+    if (!scene_key_matches(options, npy, found ? key : 0, panel_key(scene, family)))
+        return 0;
+    scene_progress(options, "family %d: reusing %s", family, npy);
+    return im_npy_read(npy, force) == IM_OK;
+}
+
+/* The force field of a family at load_star: reused from the frames, the table or a history of
+ * this run, read back on --resume, or solved; then written at once. */
+static int panel_force(const im_scene *scene, const im_scene_run_options *options, int family,
+                       const scene_reuse *reuse, const im_field *known_force, panel_result *r)
+{
+    const im_field *known = known_force && family == scene_framed_family(scene) ? known_force : reuse->force[family];
+    int status = IM_OK;
+    r->origin = SCENE_REUSED;
+    if (known)
+        status = im_field_clone(known, &r->force);
+    else if (options->resume && read_panel(scene, options, family, &r->force)) {
+        r->origin = SCENE_READ_BACK;
+        return IM_OK;
+    } else {
+        r->origin = SCENE_SOLVED;
+        status = solve_family(scene, options, family, &r->force);
     }
-    im_field_free(surface);
-    if (status == IM_OK)
-        status = im_npy_write(path, r->force, IM_NPY_FLOAT64);
-    return status;
+    return status == IM_OK ? write_panel(scene, family, r->force) : status;
 }
 
 static int write_results_csv(const im_scene *scene, const panel_result *results)
@@ -179,8 +224,21 @@ static int plot_density(const im_scene *scene, const panel_result *results)
     return scene_plot_contact_density(scene, forces, load_star);
 }
 
+/* How many panels were solved, read back and reused. */
+static void report_panels(const im_scene_run_options *options, const panel_result *results, int count)
+{
+    int solved = 0, read_back = 0, reused = 0;
+    for (int i = 0; i < count; ++i) {
+        solved += results[i].origin == SCENE_SOLVED;
+        read_back += results[i].origin == SCENE_READ_BACK;
+        reused += results[i].origin == SCENE_REUSED;
+    }
+    scene_progress(options, "panels: %d surfaces: %d solved, %d read back, %d reused from an earlier stage", count,
+                   solved, read_back, reused);
+}
+
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
-                     const im_field *known_force)
+                     const scene_reuse *reuse, const im_field *known_force)
 {
     char folder[IM_SCENE_PATH];
     int status = scene_output_path(scene, "panels", folder, sizeof folder);
@@ -195,7 +253,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
             status = scene_interrupted(options, where);
             break;
         }
-        status = panel_force(scene, options, i, known_force, &results[i]);
+        status = panel_force(scene, options, i, reuse, known_force, &results[i]);
         if (status == IM_OK) {
             measure_panel(scene, &results[i]);
             results[i].area_ratio_eq12 = scene_eq12(scene, scene->slopes[i], NULL);
@@ -203,6 +261,8 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
                            results[i].contact_patches, results[i].area_ratio, results[i].area_ratio_eq12);
         }
     }
+    if (status == IM_OK)
+        report_panels(options, results, scene->family_count);
     if (status == IM_OK)
         status = write_results_csv(scene, results);
     im_colormap norm;

@@ -176,16 +176,11 @@ static int check_stop(const im_scene_run_options *options, const char *next_stag
     return scene_stop_signal(options) ? scene_interrupted(options, where) : IM_OK;
 }
 
-static int run_stages(const im_scene *scene, const im_scene_run_options *options)
+/* Frames and panels, which need an OpenGL context. */
+static int run_rendered_stages(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse)
 {
-    int status = scene_run_theory_plots(scene, options);
-    if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
-        status = scene_run_table(scene, options);
-    if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
-        status = scene_run_histories(scene, options);
-    if (status != IM_OK || !(scene->contact_panels || scene->frames))
-        return status;
-    if ((status = check_stop(options, "the frames and panels")) != IM_OK)
+    int status = check_stop(options, "the frames and panels");
+    if (status != IM_OK)
         return status;
     im_render_context *context = NULL;
     status = im_render_open((im_render_backend)options->backend, &context);
@@ -197,9 +192,24 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     if (scene->frames)
         status = scene_run_frames(scene, options, context, &framed_force);
     if (status == IM_OK && scene->contact_panels)
-        status = scene_run_panels(scene, options, context, framed_force);
+        status = scene_run_panels(scene, options, context, reuse, framed_force);
     im_field_free(framed_force);
     im_render_close(context);
+    return status;
+}
+
+/* The stages in order; what one solves at load_star, a later one reuses (nothing solved twice). */
+static int run_stages(const im_scene *scene, const im_scene_run_options *options)
+{
+    scene_reuse reuse = {0};
+    int status = scene_run_theory_plots(scene, options);
+    if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
+        status = scene_run_table(scene, options, &reuse);
+    if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
+        status = scene_run_histories(scene, options, &reuse);
+    if (status == IM_OK && (scene->contact_panels || scene->frames))
+        status = run_rendered_stages(scene, options, &reuse);
+    scene_reuse_free(&reuse);
     return status;
 }
 

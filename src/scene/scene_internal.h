@@ -86,28 +86,74 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
                      im_render_context *context, im_field **last_force);
 
 /* Panels of every family at load_star; known_force (may be NULL) is the framed family's force,
- * already solved by the frames. */
+ * already solved by the frames; reuse holds what the table or the histories solved. */
+struct scene_reuse;
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
-                     im_render_context *context, const im_field *known_force);
+                     im_render_context *context, const struct scene_reuse *reuse, const im_field *known_force);
+
+/* ---- keys of kept results (key.c) ---- */
+
+/* What a kept result is: the state at load_star (a table member, a panel), or a history. */
+enum scene_result_kind { SCENE_RESULT_AT_LOAD_STAR, SCENE_RESULT_HISTORY };
+
+/* A hash of every input that determines the result of family's surface with this seed: the
+ * surface (generator parameters, slope, seed, grid; or the file's path, size and time), punch,
+ * material, solver options (tolerance, window), and load_star or the loading control and steps. */
+uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum scene_result_kind kind);
+
+/* The index of the load-controlled step at load_star, -1 if none: there a history takes the
+ * table's state instead of solving it again. */
+int scene_load_star_step(const im_scene *scene);
+
+/* Whether a result kept at path (with key kept) may be reused; if not, says on stderr that it is
+ * solved again (even with --quiet). */
+int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted);
 
 /* ---- ensembles ---- */
+
+/* Where a stage's result came from, counted in its progress line. */
+enum scene_origin { SCENE_SOLVED = 0, SCENE_READ_BACK, SCENE_REUSED };
 
 /* One surface of an ensemble and what was measured on it. */
 typedef struct scene_member {
     int family;
     uint64_t seed;
     int status;
+    enum scene_origin origin;
     char error[256];
     double height_rms;
     /* the table: the state at load_star */
-    double load, load_star, area_ratio, seconds;
+    double load, load_star, area_ratio, seconds, load_star_approach;
     long contact_patches;
     int iterations;
+    im_field *force;               /* force at load_star, kept for a panel (first seed), else NULL */
+    const struct scene_member *at_load_star; /* histories: the table's member of this surface */
+    int step_reused;               /* histories: the step at load_star was the table's */
     /* histories: one row per step that converged */
     int steps;
     double *approach, *history_load, *history_load_star, *history_area_ratio;
     long *history_patches;
 } scene_member;
+
+/* What earlier stages of a run solved, for later stages to reuse: nothing is solved twice. */
+typedef struct scene_reuse {
+    scene_member *table;     /* the table's members (owned; NULL without a table) */
+    int table_count;
+    im_field *force[IM_SCENE_MAX_FAMILIES]; /* force at load_star of each family's first seed (owned),
+                                               kept by the table or a load-controlled history */
+} scene_reuse;
+void scene_reuse_free(scene_reuse *reuse);
+
+/* Whether a solved member keeps its force at load_star for the panels: the scene draws panels and
+ * this is the family's first seed, which the panels show. */
+int scene_keeps_force(const im_scene *scene, const scene_member *m);
+/* Moves the members' kept forces into reuse->force (where a family has none yet). */
+void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count);
+
+/* The progress line of a finished ensemble stage: how many members were solved, read back from an
+ * earlier run (--resume) and reused from an earlier stage of this run. */
+void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
+                          int count);
 
 /* Every family's seeds (a smooth family once); *out is freed by the caller (scene_members_free). */
 int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count);
@@ -124,12 +170,15 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
 /* The load N whose smooth contact area is n_star delta^2. */
 double scene_load_for_n_star(const im_scene *scene, double n_star, double delta);
 
-/* Histories of every member over [loading] steps, for plots fig5, fig6, fig7. */
-int scene_run_histories(const im_scene *scene, const im_scene_run_options *options);
+/* Histories of every member over [loading] steps, for plots fig5, fig6, fig7. A load-controlled
+ * step at load_star takes the table's state (reuse->table) instead of solving it again; without a
+ * table, that step's force is kept in reuse->force for the panels. */
+int scene_run_histories(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse);
 
 /* The ensemble table at load_star (the paper's Table 1): table/member_FF_SEED.csv for each
- * surface as soon as it is solved, then table1.csv and table1.md. */
-int scene_run_table(const im_scene *scene, const im_scene_run_options *options);
+ * surface as soon as it is solved, then table1.csv and table1.md. Its members (and the first
+ * seeds' forces, for panels) are left in *reuse. */
+int scene_run_table(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse);
 
 /* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
 int scene_wants_plot(const im_scene *scene, const char *name);

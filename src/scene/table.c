@@ -5,6 +5,7 @@
 #include "indentmap/status.h"
 #include "scene/scene_internal.h"
 
+#include <inttypes.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -38,21 +39,24 @@ static int member_path(const im_scene *scene, const scene_member *m, char *path,
     return scene_output_path(scene, relative, path, size);
 }
 
-static const char MEMBER_HEADER[] =
-    "family,slope,seed,height_rms,load,load_star,contact_patches,area_ratio,iterations,seconds\n";
+static const char MEMBER_HEADER[] = "family,slope,seed,height_rms,load,load_star,contact_patches,area_ratio,"
+                                    "iterations,seconds,approach,key\n";
 
 static int write_member(const im_scene *scene, const scene_member *m)
 {
-    char path[IM_SCENE_PATH], text[512];
+    char path[IM_SCENE_PATH], text[640];
     int status = member_path(scene, m, path, sizeof path);
-    int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f\n", MEMBER_HEADER,
-                          m->family, scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms, m->load,
-                          m->load_star, m->contact_patches, m->area_ratio, m->iterations, m->seconds);
+    uint64_t key = scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR);
+    int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f,%.17g,%016" PRIx64
+                          "\n", MEMBER_HEADER, m->family, scene->slopes[m->family], (unsigned long long)m->seed,
+                          m->height_rms, m->load, m->load_star, m->contact_patches, m->area_ratio, m->iterations,
+                          m->seconds, m->load_star_approach, key);
     return status == IM_OK ? im_write_file_atomic(path, text, (size_t)length) : status;
 }
 
-/* Reads a member written by an earlier, interrupted run; 0 if there is none. */
-static int read_member(const im_scene *scene, scene_member *m)
+/* Reads a member written by an earlier, interrupted run; 0 if there is none, or if it was made
+ * from other inputs (its key differs: then it is solved again, with a notice). */
+static int read_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     char path[IM_SCENE_PATH], header[256];
     if (member_path(scene, m, path, sizeof path) != IM_OK)
@@ -62,13 +66,15 @@ static int read_member(const im_scene *scene, scene_member *m)
         return 0;
     double slope;
     unsigned long long seed;
+    uint64_t key = 0;
     int family;
-    int ok = fgets(header, sizeof header, stream) &&
-             fscanf(stream, "%d,%lf,%llu,%lf,%lf,%lf,%ld,%lf,%d,%lf", &family, &slope, &seed, &m->height_rms,
-                    &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations,
-                    &m->seconds) == 10 && family == m->family && seed == m->seed;
+    int ok = fgets(header, sizeof header, stream) && strcmp(header, MEMBER_HEADER) == 0 &&
+             fscanf(stream, "%d,%lf,%llu,%lf,%lf,%lf,%ld,%lf,%d,%lf,%lf,%" SCNx64, &family, &slope, &seed,
+                    &m->height_rms, &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations,
+                    &m->seconds, &m->load_star_approach, &key) == 12 && family == m->family && seed == m->seed;
     fclose(stream);
-    return ok;
+    return scene_key_matches(options, path, ok ? key : 0,
+                             scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR));
 }
 
 /* Solves one member at load_star: load control, warm-started by a step at a quarter of it. */
@@ -94,12 +100,15 @@ static int solve_member(const im_scene *scene, const im_scene_run_options *run_o
             status = IM_EINTERRUPTED; /* abandoned: the caller reports the interruption */
         if (status == IM_OK)
             status = im_indentation_step(run, n, &step);
+        if (status == IM_OK && scene_keeps_force(scene, m))
+            status = im_indentation_fields(run, &m->force, NULL, NULL);
         m->iterations = warm_up_iterations + step.iterations;
     }
     im_indentation_free(run);
     im_field_free(surface);
     m->load = step.load;
     m->load_star = step.load_star;
+    m->load_star_approach = step.approach;
     m->contact_patches = step.contact_patches;
     m->area_ratio = step.area_ratio;
     return status;
@@ -108,8 +117,10 @@ static int solve_member(const im_scene *scene, const im_scene_run_options *run_o
 /* Reads back a member an earlier run wrote, or solves and writes it. */
 static int run_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
-    if (options->resume && read_member(scene, m))
+    if (options->resume && read_member(scene, options, m)) {
+        m->origin = SCENE_READ_BACK;
         return IM_OK;
+    }
     double start = omp_get_wtime();
     int status = solve_member(scene, options, m);
     m->seconds = omp_get_wtime() - start;
@@ -117,7 +128,7 @@ static int run_member(const im_scene *scene, const im_scene_run_options *options
 }
 
 typedef struct family_summary {
-    double slope, rho_c, height_rms, area_ratio, sd, eq12, relative_error, n_p_mean;
+    double slope, rho_c, height_rms, area_ratio, sd, eq12, relative_error, n_p_mean, n_p_sd;
     long n_p_ref;
     int count;
 } family_summary;
@@ -125,7 +136,7 @@ typedef struct family_summary {
 static family_summary summarise(const im_scene *scene, const scene_member *members, int count, int family)
 {
     family_summary s = {.slope = scene->slopes[family], .n_p_ref = -1};
-    double sum = 0.0, sum_sq = 0.0, height = 0.0, patches = 0.0;
+    double sum = 0.0, sum_sq = 0.0, height = 0.0, patches = 0.0, patches_sq = 0.0;
     for (int i = 0; i < count; ++i) {
         const scene_member *m = &members[i];
         if (m->family != family)
@@ -135,6 +146,7 @@ static family_summary summarise(const im_scene *scene, const scene_member *membe
         sum_sq += m->area_ratio * m->area_ratio;
         height += m->height_rms;
         patches += (double)m->contact_patches;
+        patches_sq += (double)m->contact_patches * (double)m->contact_patches;
         if (s.n_p_ref < 0 || m->contact_patches < s.n_p_ref)
             s.n_p_ref = m->contact_patches;
     }
@@ -142,6 +154,7 @@ static family_summary summarise(const im_scene *scene, const scene_member *membe
     s.sd = s.count > 1 ? sqrt(fmax(0.0, (sum_sq - s.count * s.area_ratio * s.area_ratio) / (s.count - 1))) : 0.0;
     s.height_rms = height / s.count;
     s.n_p_mean = patches / s.count;
+    s.n_p_sd = s.count > 1 ? sqrt(fmax(0.0, (patches_sq - s.count * s.n_p_mean * s.n_p_mean) / (s.count - 1))) : 0.0;
     s.eq12 = scene_eq12(scene, s.slope, &s.rho_c);
     s.relative_error = fabs(s.area_ratio - s.eq12) / s.area_ratio;
     return s;
@@ -157,11 +170,12 @@ static int write_table_csv(const im_scene *scene, const family_summary *rows)
     if (status != IM_OK)
         return status;
     fprintf(file.stream, "slope,surfaces,height_rms_mean,rho_c,n_p_ref,n_p_mean,area_ratio_mean,area_ratio_sd,"
-                         "area_ratio_eq12,relative_error\n");
+                         "area_ratio_eq12,relative_error,n_p_sd\n");
     for (int f = 0; f < scene->family_count; ++f) {
         const family_summary *r = &rows[f];
-        fprintf(file.stream, "%.6g,%d,%.6g,%.6g,%ld,%.1f,%.6f,%.6f,%.6f,%.6f\n", r->slope, r->count, r->height_rms,
-                r->rho_c, r->n_p_ref, r->n_p_mean, r->area_ratio, r->sd, r->eq12, r->relative_error);
+        fprintf(file.stream, "%.6g,%d,%.6g,%.6g,%ld,%.1f,%.6f,%.6f,%.6f,%.6f,%.1f\n", r->slope, r->count,
+                r->height_rms, r->rho_c, r->n_p_ref, r->n_p_mean, r->area_ratio, r->sd, r->eq12, r->relative_error,
+                r->n_p_sd);
     }
     return im_atomic_commit(&file);
 }
@@ -215,7 +229,7 @@ static int plot_area_ratio(const im_scene *scene, const family_summary *rows)
     return scene_plot_area_ratio(scene, &points);
 }
 
-int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
+int scene_run_table(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse)
 {
     scene_member *members = NULL;
     int count = 0;
@@ -225,6 +239,8 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
                        scene->load_star);
         status = scene_ensemble_run(scene, options, members, count, run_member);
     }
+    if (status == IM_OK)
+        scene_report_origins(options, "table", members, count);
     family_summary rows[IM_SCENE_MAX_FAMILIES];
     for (int f = 0; status == IM_OK && f < scene->family_count; ++f)
         rows[f] = summarise(scene, members, count, f);
@@ -234,6 +250,8 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options)
         status = write_table_markdown(scene, rows);
     if (status == IM_OK && scene_wants_plot(scene, "fig2"))
         status = plot_area_ratio(scene, rows);
-    scene_members_free(members, count);
+    scene_reuse_take_forces(reuse, members, count);
+    reuse->table = members;
+    reuse->table_count = count;
     return status;
 }

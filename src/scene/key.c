@@ -1,0 +1,97 @@
+/* Keys of kept results: a hash of every input that determines a member's result, written with
+ * the result, so that --resume solves again what an edited scene would compute differently. */
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <inttypes.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* FNV-1a, 64 bits, over text fed piece by piece. */
+typedef struct key_hash {
+    uint64_t value;
+} key_hash;
+
+static void key_add(key_hash *hash, const char *format, ...) __attribute__((format(printf, 2, 3)));
+static void key_add(key_hash *hash, const char *format, ...)
+{
+    char text[512];
+    va_list arguments;
+    va_start(arguments, format);
+    int length = vsnprintf(text, sizeof text, format, arguments);
+    va_end(arguments);
+    for (int i = 0; i < length && i < (int)sizeof text - 1; ++i) {
+        hash->value ^= (unsigned char)text[i];
+        hash->value *= UINT64_C(0x100000001b3);
+    }
+}
+
+/* The surface: generator parameters, slope and seed, or the file (path, size and time). */
+static void add_surface(key_hash *hash, const im_scene *scene, int family, uint64_t seed)
+{
+    const im_surface_params *p = &scene->surface;
+    if (scene->surface_file[0]) {
+        char path[IM_SCENE_PATH];
+        struct stat info = {0};
+        im_scene_resolve_path(scene, scene->surface_file, path, sizeof path);
+        stat(path, &info);
+        key_add(hash, "file %s %lld %lld.%09ld;", path, (long long)info.st_size, (long long)info.st_mtim.tv_sec,
+                info.st_mtim.tv_nsec);
+        return;
+    }
+    key_add(hash, "grid %d %d %.17g;", p->nx, p->ny, p->delta);
+    if (scene->slopes[family] == 0.0) {
+        key_add(hash, "smooth;");
+        return;
+    }
+    key_add(hash, "surface %.17g %.17g %.17g %.17g %d %.17g %" PRIu64 ";", p->hurst, p->lambda_s, p->lambda_r,
+            p->lambda_0, (int)p->slope_definition, scene->slopes[family], seed);
+}
+
+/* The punch, the material and the solver (tolerance, iteration cap, window). */
+static void add_contact(key_hash *hash, const im_scene *scene)
+{
+    im_solver_options o = scene_solver_options(scene);
+    key_add(hash, "punch %d %.17g %.17g; modulus %.17g;", scene->punch, scene->alpha_degrees, scene->radius,
+            scene->modulus);
+    key_add(hash, "solver %.17g %.17g %d %d %d;", o.e_star, o.tol, o.max_iterations, o.crop, o.window_margin);
+}
+
+int scene_load_star_step(const im_scene *scene)
+{
+    for (int i = 0; scene->control == IM_CONTROL_LOAD && i < scene->step_count; ++i)
+        if (fabs(scene->steps[i] - scene->load_star) <= 1e-12 * scene->load_star)
+            return i;
+    return -1;
+}
+
+uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum scene_result_kind kind)
+{
+    key_hash hash = {UINT64_C(0xcbf29ce484222325)};
+    key_add(&hash, "indentmap result 1;");
+    add_surface(&hash, scene, family, seed);
+    add_contact(&hash, scene);
+    if (kind == SCENE_RESULT_AT_LOAD_STAR) {
+        key_add(&hash, "load_star %.17g;", scene->load_star);
+    } else {
+        key_add(&hash, "control %d; steps", scene->control);
+        for (int i = 0; i < scene->step_count; ++i)
+            key_add(&hash, " %.17g", scene->steps[i]);
+        if (scene->table && scene_load_star_step(scene) >= 0)
+            key_add(&hash, "; the table's state at load_star %.17g", scene->load_star);
+    }
+    return hash.value;
+}
+
+int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted)
+{
+    if (kept == wanted)
+        return 1;
+    (void)options; /* printed even when quiet: a kept result is being replaced */
+    fprintf(stderr, "indentmap: %s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
+                    "): solving it again\n", path, kept, wanted);
+    return 0;
+}
