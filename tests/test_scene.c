@@ -67,7 +67,11 @@ static void errors_name_the_line(void **state)
     expect_error("malformed.ini", "[punch]\nshape = cone\nthis line has no equals sign\n[material]\nmodulus = -1\n", ":3: malformed line");
     expect_error("first.ini", "[punch]\nalpha = 100\nshape = pyramid\n", ":2: alpha");
     expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes: 'abc'");
-    expect_error("order.ini", "[loading]\nsteps = 3, 2\n", ": steps must increase");
+    expect_error("order.ini", "[loading]\ncontrol = load\n\nsteps = 3, 2\n", ":4: steps must increase");
+    expect_error("lambda.ini", "[surfaces]\nlambda_r = 8\nhurst = 0.8\nlambda_s = 16\n", ":4: lambda_r = 8 must exceed");
+    expect_error("lambda_r.ini", "[surfaces]\nlambda_s = 16\nlambda_r = 8\n", ":3: lambda_r = 8 must exceed");
+    expect_error("box.ini", "[surfaces]\nlambda_s = 16\n\nn = 16\n", ":4: lambda_r = 16 must exceed lambda_s = 16 "
+                 "(lambda_r defaults to the box's side)");
 }
 
 static void missing_file_is_an_io_error(void **state)

@@ -289,8 +289,18 @@ typedef struct parse_context {
     FILE *stream;
     int line;        /* physical lines read so far, counted by read_line */
     int error_line;  /* the first line refused by read_line or handle_key, 0 if none */
+    int key_line[sizeof KEYS / sizeof KEYS[0]]; /* the line of each key given (its last), 0 if none */
     char error[512];
 } parse_context;
+
+/* The line of [section] key in the scene, 0 if it was not given. */
+static int key_line(const parse_context *context, const char *section, const char *key)
+{
+    for (int i = 0; i < KEY_COUNT; ++i)
+        if (strcmp(KEYS[i].section, section) == 0 && strcmp(KEYS[i].key, key) == 0)
+            return context->key_line[i];
+    return 0;
+}
 
 /* Stops parsing at the line being read with a message; inih then sees the end of the file. */
 static char *refuse_line(parse_context *context, const char *format, ...) __attribute__((format(printf, 2, 3)));
@@ -365,6 +375,7 @@ static int handle_key(void *user, const char *section, const char *name, const c
     for (int i = 0; i < KEY_COUNT && !known; ++i) {
         if (strcmp(KEYS[i].section, section) == 0 && strcmp(KEYS[i].key, name) == 0) {
             known = 1;
+            context->key_line[i] = context->line;
             accepted = KEYS[i].parse(&KEYS[i], value, context->scene, context->error,
                                      sizeof context->error) == 0;
         }
@@ -376,17 +387,25 @@ static int handle_key(void *user, const char *section, const char *name, const c
     return accepted;
 }
 
-static int check_consistency(const im_scene *scene, char *error, size_t size)
+/* Settings that contradict each other: a message citing the line of the key at fault (the later
+ * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
+static int check_consistency(parse_context *context)
 {
+    const im_scene *scene = context->scene;
     if (scene->surface.lambda_r <= scene->surface.lambda_s) {
-        snprintf(error, size, "lambda_r = %g must exceed lambda_s = %g", scene->surface.lambda_r,
-                 scene->surface.lambda_s);
-        return -1;
+        int r = key_line(context, "surfaces", "lambda_r"), s = key_line(context, "surfaces", "lambda_s");
+        if (!r) /* lambda_r is the box's side: n (or m) made it */
+            r = key_line(context, "surfaces", "n") > key_line(context, "surfaces", "m") ? key_line(context, "surfaces", "n")
+                                                                                          : key_line(context, "surfaces", "m");
+        snprintf(context->error, sizeof context->error, "lambda_r = %g must exceed lambda_s = %g%s",
+                 scene->surface.lambda_r, scene->surface.lambda_s, key_line(context, "surfaces", "lambda_r") ? "" : " (lambda_r defaults to the box's side)");
+        return r > s ? r : s > 0 ? s : 1;
     }
     for (int i = 1; i < scene->step_count; ++i) {
         if (!(scene->steps[i] > scene->steps[i - 1])) {
-            snprintf(error, size, "steps must increase: %g follows %g", scene->steps[i], scene->steps[i - 1]);
-            return -1;
+            snprintf(context->error, sizeof context->error, "steps must increase: %g follows %g", scene->steps[i],
+                     scene->steps[i - 1]);
+            return key_line(context, "loading", "steps");
         }
     }
     return 0;
@@ -443,8 +462,9 @@ int im_scene_load(const char *path, im_scene *scene)
         return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_errno));
     complete(scene, scene->tol != -1, scene->surface.ny != -1, scene->surface.lambda_r != -1,
              scene->output_dir[0] != '\0');
-    if (check_consistency(scene, context.error, sizeof context.error) != 0)
-        return im_fail(IM_EFORMAT, "%s: %s", path, context.error);
+    int inconsistent = check_consistency(&context);
+    if (inconsistent)
+        return im_fail(IM_EFORMAT, "%s:%d: %s", path, inconsistent, context.error);
     return IM_OK;
 }
 
