@@ -3,6 +3,7 @@
  * giflib, MP4 when ffmpeg is installed). Needs no GL context: images are made by hand. */
 #include "support.h"
 
+#include "figure/text.h"
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
@@ -83,6 +84,176 @@ static void test_ticks(void **state)
     assert_close(t[0], 0.5, 1e-12);
     assert_close(t[1], 1.0, 1e-12);
     assert_close(t[2], 2.0, 1e-12);
+}
+
+/* Log bars spanning under three decades label 1-2-5 multiples, so that at least three labels show;
+ * decades read 10^n; tiny physical values get a power of ten, not a string of zeros. */
+static void test_tick_labels(void **state)
+{
+    (void)state;
+    double t[32];
+    char text[64];
+    im_colormap c = im_colormap_make(IM_COLORMAP_MAGMA, 0.01, 0.3);
+    c.logarithmic = 1;
+    int count = im_figure_ticks(&c, t, 32);
+    assert_int_equal(count, 5); /* 0.01 0.02 0.05 0.1 0.2 */
+    const char *expected[] = {"0.01", "0.02", "0.05", "0.1", "0.2"};
+    for (int i = 0; i < count; ++i) {
+        im_figure_tick_label(1, t, count, i, text, sizeof text);
+        assert_string_equal(text, expected[i]);
+    }
+    c = im_colormap_make(IM_COLORMAP_MAGMA, 1e-3, 1.0);
+    c.logarithmic = 1;
+    count = im_figure_ticks(&c, t, 32);
+    im_figure_tick_label(1, t, count, 0, text, sizeof text);
+    assert_string_equal(text, "10⁻³");
+    const double thinned[] = {1e-3, 1e-1};
+    im_figure_tick_label(1, thinned, 2, 1, text, sizeof text);
+    assert_string_equal(text, "10⁻¹");
+    const double log_small[] = {2e-7, 5e-7};
+    im_figure_tick_label(1, log_small, 2, 1, text, sizeof text);
+    assert_string_equal(text, "5×10⁻⁷");
+    const double metres[] = {0.0, 5e-7, 1e-6, 1.5e-6};
+    const char *metre_labels[] = {"0", "0.5×10⁻⁶", "1.0×10⁻⁶", "1.5×10⁻⁶"};
+    for (int i = 0; i < 4; ++i) {
+        im_figure_tick_label(0, metres, 4, i, text, sizeof text);
+        assert_string_equal(text, metre_labels[i]);
+    }
+    const double plain[] = {-0.2, 0.0, 0.2};
+    im_figure_tick_label(0, plain, 3, 0, text, sizeof text);
+    assert_string_equal(text, "−0.2");
+}
+
+/* Scale bars in metres carry an SI prefix: "5 µm", never "5e-06 m". */
+static void test_length_labels(void **state)
+{
+    (void)state;
+    char text[64];
+    const double lengths[] = {5e-6, 2e-9, 0.002, 0.5, 1.0, 2000.0, 1e-6};
+    const char *labels[] = {"5 µm", "2 nm", "2 mm", "500 mm", "1 m", "2 km", "1 µm"};
+    for (int i = 0; i < 7; ++i) {
+        im_figure_length_label(lengths[i], "m", text, sizeof text);
+        assert_string_equal(text, labels[i]);
+    }
+    im_figure_length_label(100.0, "", text, sizeof text);
+    assert_string_equal(text, "100 δ");
+    im_figure_length_label(20.0, "px", text, sizeof text);
+    assert_string_equal(text, "20 px");
+}
+
+static int is_ink(const uint8_t *rgb, int width, int x, int y)
+{
+    const uint8_t *p = rgb + ((size_t)y * width + x) * 3;
+    return p[0] < 250 || p[1] < 250 || p[2] < 250;
+}
+
+/* Fails when any pixel within 2 pixels of the page's edge is not white: text clipped there. */
+static void assert_clear_edges(const uint8_t *rgb, int width, int height)
+{
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            if ((x < 2 || y < 2 || x >= width - 2 || y >= height - 2) && is_ink(rgb, width, x, y))
+                fail_msg("ink at (%d, %d) on the edge of a %d x %d figure: text clipped", x, y, width, height);
+}
+
+/* The right-most ink column left of `limit` in rows [top, bottom) (-1: none), and the first from
+ * column `from`. */
+static int last_ink_column(const uint8_t *rgb, int width, int top, int bottom, int limit)
+{
+    int last = -1;
+    for (int y = top; y < bottom; ++y)
+        for (int x = 0; x < limit; ++x)
+            if (is_ink(rgb, width, x, y) && x > last)
+                last = x;
+    return last;
+}
+
+static int first_ink_column(const uint8_t *rgb, int width, int top, int bottom, int from)
+{
+    for (int x = from; x < width; ++x)
+        for (int y = top; y < bottom; ++y)
+            if (is_ink(rgb, width, x, y))
+                return x;
+    return -1;
+}
+
+/* A small panel (32 x 32 patches at 2 px) with a label, a long title and a long colour bar label:
+ * nothing is clipped at the page's edges and the title starts well after the label. */
+static void test_small_panel_text_fits(void **state)
+{
+    (void)state;
+    im_image image = make_image(68, 68, 9);
+    im_figure_panel panel = {&image, "(a)", NULL};
+    im_colormap norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = &norm;
+    figure.colorbar_label = "local force f / (E* δ²)";
+    const char *path = test_path("small.png");
+    int width, height, x, y;
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    find_image(rgb, width, height, &image, &x, &y);
+    int label_end = last_ink_column(rgb, width, 0, y, x + image.width);
+    assert_true(label_end > x);
+    free(rgb);
+    panel.title = "a long title";
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    rgb = read_rgb(path, &width, &height);
+    assert_clear_edges(rgb, width, height);
+    find_image(rgb, width, height, &image, &x, &y);
+    double em = 8.0 * 300.0 / 72.0;
+    int title_start = first_ink_column(rgb, width, 0, y, label_end + 1);
+    assert_true(title_start > label_end + 0.4 * em);
+    free(rgb);
+    im_image_release(&image);
+}
+
+/* A short colour bar: its tick labels are thinned, so that the labels' ink forms separate runs
+ * of rows at most one line high with blank rows between them. */
+static void test_short_colorbar_labels_apart(void **state)
+{
+    (void)state;
+    im_image image = make_image(40, 30, 4);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = &norm;
+    figure.scale_bar = -1.0;
+    figure.dpi = 150;
+    const char *path = test_path("short.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x, y;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    find_image(rgb, width, height, &image, &x, &y);
+    assert_clear_edges(rgb, width, height);
+    double em = 8.0 * 150.0 / 72.0;
+    int bar_right = first_ink_column(rgb, width, y + 10, y + 11, x + image.width + 1);
+    while (is_ink(rgb, width, bar_right + 1, y + 10))
+        ++bar_right;
+    int from = bar_right + (int)ceil(0.55 * em), runs = 0, run = 0, gap = 1000;
+    for (int row = 0; row <= height; ++row) {
+        int ink = 0;
+        for (int column = from; row < height && column < width && !ink; ++column)
+            ink = is_ink(rgb, width, column, row);
+        if (ink) {
+            if (run == 0 && runs > 0)
+                assert_true(gap >= 0.2 * em);
+            ++run;
+            gap = 0;
+        } else {
+            if (run > 0) {
+                ++runs;
+                assert_true(run <= 1.05 * em);
+            }
+            run = 0;
+            ++gap;
+        }
+    }
+    assert_true(runs >= 2);
+    free(rgb);
+    im_image_release(&image);
 }
 
 /* Fig. 4's layout: 2 x 3 panels at their own pixel size in a regular grid, one colour bar. */
@@ -435,6 +606,10 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ticks),
+        cmocka_unit_test(test_tick_labels),
+        cmocka_unit_test(test_length_labels),
+        cmocka_unit_test(test_small_panel_text_fits),
+        cmocka_unit_test(test_short_colorbar_labels_apart),
         cmocka_unit_test(test_panel_grid_and_colorbar),
         cmocka_unit_test(test_colorbar_extensions),
         cmocka_unit_test(test_png_metadata_pdf_svg),

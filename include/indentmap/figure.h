@@ -64,7 +64,7 @@ int im_figure_format_of(const char *path, im_figure_format *format);
 int im_figure_write(const im_figure *figure, const char *path);
 
 /* The nice tick values of a colour bar on [lo, hi] (linear: 1-2-5 steps, about 5 ticks; log: the
- * decades inside, or 1-2-5 multiples when fewer than two decades fit). Writes at most capacity
+ * decades inside, or 1-2-5 multiples when fewer than three decades fit). Writes at most capacity
  * values in increasing order; returns how many. Exposed for tests. */
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity);
 

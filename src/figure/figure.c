@@ -46,9 +46,22 @@ typedef struct layout {
     int cell_width, cell_height; /* largest image */
     int grid_x, grid_y;          /* top left of the first panel's title row */
     double bar_x, bar_y, bar_width, bar_height, tick_length, tick_label_width;
+    double ticks[MAX_TICKS];     /* the colour bar's labelled ticks, thinned to fit */
+    int tick_count;
     double scale_height;         /* strip below the grid for the scale bar */
     int width, height;
 } layout;
+
+/* Fonts and a scratch cairo context for measuring text while laying out. */
+typedef struct measure {
+    cairo_t *cr;
+    cairo_font_face_t *regular, *bold;
+} measure;
+
+static double text_width(const measure *m, cairo_font_face_t *face, double size, const char *text)
+{
+    return text ? im_figure_rich_text(m->cr, face, size, 0.0, 0.0, text, 0) : 0.0;
+}
 
 static int has_panel_text(const im_figure *f)
 {
@@ -58,20 +71,93 @@ static int has_panel_text(const im_figure *f)
     return 0;
 }
 
-static void measure_colorbar(const im_figure *f, cairo_t *cr, layout *l)
+/* 1-2-5 length near a fifth of the data width, in the image's units. */
+static double automatic_scale_bar(const im_image *image)
 {
-    double ticks[MAX_TICKS];
-    int count = im_figure_ticks(f->colormap, ticks, MAX_TICKS);
+    double width = image->nx * (image->unit[0] ? image->delta : 1.0);
+    double target = width / 5.0, magnitude = pow(10.0, floor(log10(target)));
+    double length = magnitude;
+    const double multiples[] = {2.0, 5.0};
+    for (int i = 0; i < 2; ++i)
+        if (multiples[i] * magnitude <= target)
+            length = multiples[i] * magnitude;
+    return length;
+}
+
+/* Where a panel's title starts: centred over the image, but never left of the panel's edge nor
+ * over its label (half an em after it). */
+static double title_left(double font, double x, double image_width, double label_width, double title_width)
+{
+    double after_label = x + (label_width > 0.0 ? label_width + 0.5 * font : 0.0);
+    return fmax(x + 0.5 * (image_width - title_width), after_label);
+}
+
+/* Width of a panel's column: its image, or its label and title row when wider. */
+static double panel_width(const im_figure_panel *p, const measure *m, double font)
+{
+    double label = text_width(m, m->bold, font, p->label), title = text_width(m, m->regular, font, p->title);
+    double row = p->title ? title_left(font, 0.0, p->image->width, label, title) + title : label;
+    return fmax(p->image->width, ceil(row));
+}
+
+static double tick_position(const im_colormap *c, const layout *l, double v)
+{
+    double t = c->logarithmic ? log(v / c->lo) / log(c->hi / c->lo) : (v - c->lo) / (c->hi - c->lo);
+    return l->bar_y + (1.0 - t) * l->bar_height;
+}
+
+/* The ticks to label: every k-th of im_figure_ticks, with the smallest k that puts labels at least
+ * 1.2 em apart along the bar. */
+static void choose_ticks(const im_figure *f, layout *l)
+{
+    double all[MAX_TICKS];
+    int count = im_figure_ticks(f->colormap, all, MAX_TICKS), stride = 1;
+    for (; stride < count; ++stride) {
+        int fits = 1;
+        for (int i = stride; i < count && fits; i += stride)
+            fits = tick_position(f->colormap, l, all[i - stride]) - tick_position(f->colormap, l, all[i]) >=
+                   1.2 * l->font;
+        if (fits)
+            break;
+    }
+    l->tick_count = 0;
+    for (int i = 0; i < count; i += stride)
+        l->ticks[l->tick_count++] = all[i];
+}
+
+static void measure_colorbar(const im_figure *f, const measure *m, layout *l)
+{
+    choose_ticks(f, l);
     l->tick_label_width = 0.0;
-    for (int i = 0; i < count; ++i) {
+    for (int i = 0; i < l->tick_count; ++i) {
         char text[64];
-        im_figure_tick_label(f->colormap->logarithmic, ticks, count, i, text, sizeof text);
-        cairo_font_face_t *face = cairo_get_font_face(cr);
-        l->tick_label_width = fmax(l->tick_label_width, im_figure_rich_text(cr, face, l->font, 0, 0, text, 0));
+        im_figure_tick_label(f->colormap->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
+        l->tick_label_width = fmax(l->tick_label_width, text_width(m, m->regular, l->font, text));
     }
 }
 
-static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
+/* The scale bar's length in the images' units, its text and its length in pixels. */
+static double scale_bar(const im_figure *f, char *text, size_t size, double *pixels)
+{
+    const im_image *image = f->panels[(f->rows - 1) * f->columns].image;
+    double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
+    *pixels = (image->unit[0] ? length / image->delta : length) * image->pixels_per_patch;
+    im_figure_length_label(length, image->unit, text, size);
+    return length;
+}
+
+/* Moves the grid down (and grows the page) so that the colour bar's rotated label, centred on
+ * the bar, stays inside the margins. */
+static void fit_colorbar_label(const im_figure *f, const measure *m, layout *l, double *bottom)
+{
+    double half = 0.5 * text_width(m, m->regular, l->font, f->colorbar_label);
+    double centre = l->bar_y + 0.5 * l->bar_height, shift = ceil(fmax(0.0, l->margin - (centre - half)));
+    l->grid_y += (int)shift;
+    l->bar_y += shift;
+    *bottom = fmax(*bottom, centre + shift + half);
+}
+
+static void make_layout(const im_figure *f, const measure *m, layout *l)
 {
     memset(l, 0, sizeof *l);
     double k = f->dpi / 72.0;
@@ -81,7 +167,7 @@ static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
     l->gap = round(1.0 * l->font);
     l->title_height = has_panel_text(f) ? round(1.5 * l->font) : 0.0;
     for (int i = 0; i < f->rows * f->columns; ++i) {
-        l->cell_width = l->cell_width > f->panels[i].image->width ? l->cell_width : f->panels[i].image->width;
+        l->cell_width = (int)fmax(l->cell_width, panel_width(&f->panels[i], m, l->font));
         l->cell_height = l->cell_height > f->panels[i].image->height ? l->cell_height : f->panels[i].image->height;
     }
     l->grid_x = (int)l->margin;
@@ -89,22 +175,29 @@ static void make_layout(const im_figure *f, cairo_t *measure, layout *l)
     double grid_width = f->columns * l->cell_width + (f->columns - 1) * l->gap;
     double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
     l->scale_height = f->scale_bar >= 0.0 ? round(2.4 * l->font) : 0.0;
-    double right = l->grid_x + grid_width;
+    double right = l->grid_x + grid_width, bottom = 0.0;
+    if (f->scale_bar >= 0.0) {
+        char text[64];
+        double pixels;
+        scale_bar(f, text, sizeof text, &pixels);
+        right = fmax(right, l->grid_x + fmax(pixels, text_width(m, m->regular, l->font, text)));
+    }
     if (f->colormap) {
-        cairo_set_font_size(measure, l->font);
-        measure_colorbar(f, measure, l);
-        l->bar_x = round(right + 1.2 * l->font);
+        l->bar_x = round(l->grid_x + grid_width + 1.2 * l->font);
         l->bar_width = round(1.1 * l->font);
         /* Extension triangles for values beyond the norm sit inside the panels' height. */
         double triangle = round(1.2 * l->bar_width);
         l->bar_y = l->grid_y + l->title_height + (f->extend_over ? triangle : 0.0);
         l->bar_height = grid_height - l->title_height - (f->extend_over + f->extend_under) * triangle;
         l->tick_length = round(0.4 * l->font);
-        right = l->bar_x + l->bar_width + l->tick_length + 0.3 * l->font + l->tick_label_width +
-                (f->colorbar_label ? 1.6 * l->font : 0.0);
+        measure_colorbar(f, m, l);
+        if (f->colorbar_label)
+            fit_colorbar_label(f, m, l, &bottom);
+        right = fmax(right, l->bar_x + l->bar_width + l->tick_length + 0.3 * l->font + l->tick_label_width +
+                                (f->colorbar_label ? 1.6 * l->font : 0.0));
     }
     l->width = (int)ceil(right + l->margin);
-    l->height = (int)ceil(l->grid_y + grid_height + l->scale_height + l->margin);
+    l->height = (int)ceil(fmax(l->grid_y + grid_height + l->scale_height, bottom) + l->margin);
 }
 
 /* ---- drawing ---- */
@@ -167,43 +260,35 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
             return status;
         cairo_set_source_rgb(cr, 0, 0, 0);
         double baseline = y - 0.45 * l->font;
+        double label_width = p->label ? im_figure_rich_text(cr, bold, l->font, 0, 0, p->label, 0) : 0.0;
         if (p->label)
             im_figure_show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
-        if (p->title)
-            im_figure_show_text(cr, regular, l->font, x + 0.5 * p->image->width, baseline, 0.5, p->title);
+        if (p->title) {
+            double width = im_figure_rich_text(cr, regular, l->font, 0, 0, p->title, 0);
+            im_figure_show_text(cr, regular, l->font, title_left(l->font, x, p->image->width, label_width, width),
+                                baseline, 0.0, p->title);
+        }
     }
     return IM_OK;
 }
 
-/* 1-2-5 length near a fifth of the data width, in the image's units. */
-static double automatic_scale_bar(const im_image *image)
-{
-    double width = image->nx * (image->unit[0] ? image->delta : 1.0);
-    double target = width / 5.0, magnitude = pow(10.0, floor(log10(target)));
-    double length = magnitude;
-    const double multiples[] = {2.0, 5.0};
-    for (int i = 0; i < 2; ++i)
-        if (multiples[i] * magnitude <= target)
-            length = multiples[i] * magnitude;
-    return length;
-}
-
-/* Under the bottom-left panel: a bar of the given length and its value, in δ or the unit. */
+/* Under the bottom-left panel: a bar of the given length and its value, in δ or the unit; the
+ * text centred under the bar, or starting at the panel's edge when the bar is shorter. */
 static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
     int index = (f->rows - 1) * f->columns, x, y;
     const im_image *image = f->panels[index].image;
     panel_origin(f, l, index, &x, &y);
-    double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
-    double patches = image->unit[0] ? length / image->delta : length;
-    double pixels = patches * image->pixels_per_patch;
+    char text[64];
+    double pixels;
+    scale_bar(f, text, sizeof text, &pixels);
     double top = y + l->cell_height + 0.5 * l->font, left = x + image->data_x;
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, pixels, round(0.3 * l->font));
     cairo_fill(cr);
-    char text[64];
-    snprintf(text, sizeof text, "%g %s", length, image->unit[0] ? image->unit : "δ");
-    im_figure_show_text(cr, regular, l->font, left + 0.5 * pixels, top + 0.3 * l->font + 1.1 * l->font, 0.5, text);
+    double width = im_figure_rich_text(cr, regular, l->font, 0, 0, text, 0);
+    im_figure_show_text(cr, regular, l->font, fmax(x, left + 0.5 * (pixels - width)),
+                        top + 0.3 * l->font + 1.1 * l->font, 0.0, text);
 }
 
 /* Unlabelled ticks at 2..9 times each decade of a logarithmic bar, half as long. */
@@ -256,18 +341,15 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
         draw_extension(l, cr, l->bar_y, -1.0, f->colormap->over);
     if (f->extend_under)
         draw_extension(l, cr, l->bar_y + l->bar_height, 1.0, f->colormap->under);
-    double ticks[MAX_TICKS];
-    int count = im_figure_ticks(f->colormap, ticks, MAX_TICKS);
     const im_colormap *c = f->colormap;
     double right = l->bar_x + l->bar_width;
-    for (int i = 0; i < count; ++i) {
-        double t = c->logarithmic ? log(ticks[i] / c->lo) / log(c->hi / c->lo) : (ticks[i] - c->lo) / (c->hi - c->lo);
-        double y = l->bar_y + (1.0 - t) * l->bar_height;
+    for (int i = 0; i < l->tick_count; ++i) {
+        double y = tick_position(c, l, l->ticks[i]);
         cairo_move_to(cr, right, y);
         cairo_line_to(cr, right + l->tick_length, y);
         cairo_stroke(cr);
         char text[64];
-        im_figure_tick_label(c->logarithmic, ticks, count, i, text, sizeof text);
+        im_figure_tick_label(c->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
         im_figure_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
     }
     if (c->logarithmic)
@@ -345,11 +427,10 @@ int im_figure_write(const im_figure *f, const char *path)
     if (status != IM_OK)
         return status;
     cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
-    cairo_t *measure = cairo_create(scratch);
-    cairo_set_font_face(measure, regular);
+    measure m = {cairo_create(scratch), regular, bold};
     layout l;
-    make_layout(f, measure, &l);
-    cairo_destroy(measure);
+    make_layout(f, &m, &l);
+    cairo_destroy(m.cr);
     cairo_surface_destroy(scratch);
     if (l.width > 32768 || l.height > 32768)
         return im_fail(IM_EINVAL, "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "

@@ -32,8 +32,8 @@ static int log_ticks(double lo, double hi, double *ticks, int capacity)
     int count = 0;
     for (double e = ceil(log10(lo) - 1e-9); count < capacity && pow(10.0, e) <= hi * (1 + 1e-9); e += 1.0)
         ticks[count++] = pow(10.0, e);
-    if (count >= 2)
-        return count;
+    if (count >= 3)
+        return count; /* fewer decades would leave a bar with one or two labels: 1-2-5 instead */
     count = 0;
     const double multiples[] = {1.0, 2.0, 5.0};
     for (double e = floor(log10(lo)); e <= ceil(log10(hi)); e += 1.0)
