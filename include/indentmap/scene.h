@@ -86,7 +86,10 @@ int im_scene_load(const char *path, im_scene *scene);
 /* How im_scene_run runs. */
 typedef struct im_scene_run_options {
     int resume;          /* 1: reuse results already on disk under the output folder */
-    int quiet;           /* 1: no progress lines on stderr */
+    int quiet;           /* 1: no stage lines on stderr ("indentmap: table: 51 surfaces ..."; printed
+                            otherwise, terminal or not, as they are useful in a log). The ensembles'
+                            progress bar is drawn only when stderr is a terminal. Errors, and the
+                            notice that a kept result is stale, are printed in any case. */
     int backend;         /* im_render_backend of render.h (0: auto) */
     /* Interruption (may be NULL): a signal handler stores the signal's number here. The run
      * checks it between solver steps and between surfaces (a solve itself is never cut short),
@@ -106,9 +109,14 @@ typedef struct im_scene_run_options {
  *     load_star on one family (the deformed surface with its contact outline), and the
  *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
  *     The history's last step is that family's panel: it is not solved twice.
- * Every file is written atomically as soon as it is complete; with options->resume, panels whose
- * force file exists, and table and history members whose file exists, are read back instead of
- * solved.
+ * Nothing is solved twice within a run: a load-controlled history's step at load_star takes the
+ * table's state, and a panel takes the force of the table, of such a history, or of the frames'
+ * last step. Each stage's line says how many surfaces it solved, read back and reused.
+ * Every file is written atomically as soon as it is complete, with a key (a hash of every input
+ * that determines it: surface parameters, slope, seed and grid, punch, material, solver tolerance
+ * and window, load_star or the loading control and steps) in its header or, for panels, in
+ * panels/force_FF.key. With options->resume, a kept result whose key is the scene's is read back
+ * instead of solved; one whose key differs is solved again, with a notice on stderr.
  * Before any work: the output folder is locked (OUTPUT/.lock holds the pid; IM_EIO naming the
  * folder and the other pid while another live run holds it; a lock left by a dead process is
  * taken over with a message; removed when the run ends, however it ends), and the run is refused

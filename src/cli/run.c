@@ -16,8 +16,10 @@ static void usage(FILE *stream)
                     "(default output/NAME). Bundled scenes are in scenes/; fig4 is the paper's Fig. 4.\n\n"
                     "  --resume        reuse results already on disk instead of solving them again\n"
                     "                  (after an interruption: SIGINT or SIGTERM stops at the next solver\n"
-                    "                  step, keeps finished results and exits 130 or 143)\n"
-                    "  --quiet         no progress lines\n"
+                    "                  step, keeps finished results and exits 130 or 143); a result made\n"
+                    "                  from other inputs (the scene was edited) is solved again, with a notice\n"
+                    "  --quiet         no stage lines on stderr (errors and notices remain); the progress\n"
+                    "                  bar is drawn only when stderr is a terminal\n"
                     "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n");
 }
 

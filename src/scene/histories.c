@@ -53,7 +53,7 @@ static int write_history(const im_scene *scene, const scene_member *m)
 
 /* Reads a history an earlier run wrote; 0 if there is none, it is not this member's, or it was
  * made from other inputs (its key differs: then it is solved again, with a notice). */
-static int read_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+static int read_history(const im_scene *scene, scene_member *m)
 {
     char path[IM_SCENE_PATH], line[256];
     if (history_path(scene, m, path, sizeof path) != IM_OK)
@@ -73,7 +73,7 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
         ++m->steps;
     fclose(stream);
     ok = ok && m->steps > 0;
-    return scene_key_matches(options, path, ok ? key : 0,
+    return scene_key_matches(path, ok ? key : 0,
                              scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
 }
 
@@ -141,7 +141,7 @@ static int run_history(const im_scene *scene, const im_scene_run_options *option
     int status = allocate_history(m, scene->step_count);
     if (status != IM_OK)
         return status;
-    if (options->resume && read_history(scene, options, m)) {
+    if (options->resume && read_history(scene, m)) {
         m->origin = SCENE_READ_BACK;
         return IM_OK;
     }

@@ -86,11 +86,11 @@ uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum
     return hash.value;
 }
 
-int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted)
+int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted)
 {
     if (kept == wanted)
         return 1;
-    (void)options; /* printed even when quiet: a kept result is being replaced */
+    /* printed even when quiet: a kept result is being replaced */
     fprintf(stderr, "indentmap: %s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
                     "): solving it again\n", path, kept, wanted);
     return 0;

@@ -107,7 +107,7 @@ int scene_load_star_step(const im_scene *scene);
 
 /* Whether a result kept at path (with key kept) may be reused; if not, says on stderr that it is
  * solved again (even with --quiet). */
-int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted);
+int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted);
 
 /* ---- ensembles ---- */
 
