@@ -6,13 +6,13 @@
  * lambda_s = 4 base cells, lambda_r = 128, h'rms = 0.08, seed 1), and the same box smooth (h = 0);
  * an 80 degree cone on the box centre, one load-controlled solve at the load whose smooth contact
  * area is A_cone = 3000 base cells. Knobs, each swept from a baseline (1x, tol 1e-6, margin 4,
- * crop on, 2 threads):
+ * crop on, 1 thread):
  *   refinement  the same band-limited surface on a grid 1x, 2x, 4x finer over the same box
  *               (im_surface_generate keeps every mode: spectral interpolation; the 2x and 4x
  *               surfaces agree with the 1x one at its sample points to 1e-10, tests/test_surface.c);
  *   tolerance   the solver's stopping tolerance 1e-2 .. 1e-10;
  *   window      margin 0, 4, 16 patches around the solve window, and crop off (whole surface);
- *   threads     1 and 2 OpenMP threads.
+ *   threads     2 OpenMP threads at 1x, 2x, 4x (tol 1e-6) against the baseline's 1.
  * Errors against truth:
  *   smooth  the closed forms: N at the closed-form approach w(N0) (a displacement-controlled
  *           solve) against N0, n_p delta^2 against A_cone(N0), and the patches of the 128 x 128
@@ -25,10 +25,12 @@
  *           centre, because the cone axis is on a base sample point in the surface's frame).
  * The plotted error is the larger of the N and A/A_cone relative errors.
  * Every configuration runs in its own forked process: wall time is the median of 3 repeats of
- * (im_indentation_create + the load step), cold start each, planning included; peak RSS is that
+ * (im_indentation_create + the load step), cold start each, planning included, and the whole sweep
+ * is run 3 times, round after round, the median of the rounds kept; peak RSS is that
  * process's ru_maxrss (surface synthesis included, plus the few MiB the parent held at fork).
  * Output: CSV_PATH (one row per configuration, machine and threads in the header comment) and
- * PNG_PATH (error against time, log-log, per problem, with the Pareto frontier as a line).
+ * PNG_PATH (error against CPU time per solve, log-log, per problem, with the Pareto frontier as a
+ *   line; see cost() for why CPU rather than wall time).
  * Run it with OMP_WAIT_POLICY=passive on a shared machine: libgomp's default spin-waiting at
  * barriers stalled 2-thread solves by 1-4 s when other processes held the cores (measured).
  */
@@ -53,6 +55,7 @@
 #define AREA_CONE 3000.0      /* smooth contact area at the imposed load, base cells */
 #define ALPHA 80.0
 #define REPEATS 3
+#define ROUNDS 3              /* the whole sweep, round after round */
 #define MAX_CONFIGS 64
 
 enum problem { SMOOTH = 0, ROUGH = 1 };
@@ -67,7 +70,7 @@ typedef struct config {
 
 typedef struct outcome {
     int status;
-    double seconds, rss_mib, plan_bytes;
+    double seconds, cpu_seconds, rss_mib, plan_bytes;  /* wall and CPU (all threads) per solve */
     int iterations, window_nx, window_ny;
     double approach, load, area_ratio;  /* of the load step */
     long contact_patches;
@@ -187,6 +190,14 @@ static int solve_once(const im_field *surface, const config *c, enum im_control 
     return status;
 }
 
+/* CPU seconds of this process, all threads. */
+static double cpu_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 static double relative(double value, double reference)
 {
     return fabs(value - reference) / fabs(reference);
@@ -202,13 +213,14 @@ static int measure(const config *c, const truth *t, outcome *o, unsigned char *m
     if (status != IM_OK)
         return status;
     const double n0 = imposed_load();
-    double seconds[REPEATS];
+    double seconds[REPEATS], cpu[REPEATS];
     im_step_result step;
     im_indentation *run = NULL;
     for (int k = 0; k < REPEATS && status == IM_OK; ++k) {
-        double start = bench_now();
+        double start = bench_now(), cpu_start = cpu_now();
         status = solve_once(surface, c, IM_CONTROL_LOAD, n0, &step, k == REPEATS - 1 ? &run : NULL);
         seconds[k] = bench_now() - start;
+        cpu[k] = cpu_now() - cpu_start;
     }
     if (status != IM_OK) {
         im_field_free(surface);
@@ -219,6 +231,7 @@ static int measure(const config *c, const truth *t, outcome *o, unsigned char *m
     im_window w = im_indentation_window(run);
     im_indentation_free(run);
     o->seconds = bench_median(seconds, REPEATS);
+    o->cpu_seconds = bench_median(cpu, REPEATS);
     o->plan_bytes = im_solver_plan_bytes(w.nx, w.ny);
     o->window_nx = w.nx;
     o->window_ny = w.ny;
@@ -319,19 +332,18 @@ static int config_list(enum problem p, config *list)
     static const double tols[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-9, 1e-10};
     int n = 0;
     for (int k = 0; k < (int)(sizeof tols / sizeof *tols); ++k)
-        n = add(list, n, "tolerance", p, 1, tols[k], 4, 1, 2);
-    n = add(list, n, "refinement", p, 1, 1e-6, 4, 1, 2);
-    n = add(list, n, "refinement", p, 2, 1e-4, 4, 1, 2);
-    n = add(list, n, "refinement", p, 2, 1e-6, 4, 1, 2);
-    n = add(list, n, "refinement", p, 4, 1e-4, 4, 1, 2);
-    n = add(list, n, "refinement", p, 4, 1e-6, 4, 1, 2);
+        n = add(list, n, "tolerance", p, 1, tols[k], 4, 1, 1);
+    for (int refine = 1; refine <= 4; refine *= 2) {
+        if (refine > 1)
+            n = add(list, n, "refinement-tol-1e-4", p, refine, 1e-4, 4, 1, 1);
+        n = add(list, n, "refinement", p, refine, 1e-6, 4, 1, 1);
+    }
     static const int margins[] = {0, 4, 16};
     for (int k = 0; k < 3; ++k)
-        n = add(list, n, "window", p, 1, 1e-6, margins[k], 1, 2);
-    n = add(list, n, "window", p, 1, 1e-6, 4, 0, 2);
-    n = add(list, n, "threads", p, 1, 1e-6, 4, 1, 1);
-    n = add(list, n, "threads", p, 1, 1e-6, 4, 1, 2);
-    n = add(list, n, "threads", p, 2, 1e-6, 4, 1, 1);
+        n = add(list, n, "window", p, 1, 1e-6, margins[k], 1, 1);
+    n = add(list, n, "window", p, 1, 1e-6, 4, 0, 1);
+    for (int refine = 1; refine <= 4; refine *= 2)
+        n = add(list, n, "threads", p, refine, 1e-6, 4, 1, 2);
     return n;
 }
 
@@ -347,6 +359,13 @@ typedef struct measured {
  * ulp-scale amounts between tolerances that find the same contact set. */
 #define SAME_ERROR 1e-3
 
+/* The cost plotted and used for the frontier: CPU seconds per solve (all threads). On the shared
+ * 2-core machine wall times of 20-200 ms moved by 2-4x with other engineers' load; CPU time moved
+ * far less, and at one thread (every knob but threads) it is the wall time of a quiet machine.
+ * Wall time is in the CSV beside it and decides the threads knob, whose 2-thread points spend
+ * more CPU for less wall time. */
+static double cost(const outcome *o) { return o->cpu_seconds; }
+
 /* Marks the points no other point beats in both time and error (error 0: the reference, left out). */
 static void mark_frontier(measured *m, int n)
 {
@@ -355,9 +374,9 @@ static void mark_frontier(measured *m, int n)
         m[i].on_frontier = a->status == IM_OK && a->error > 0;
         for (int j = 0; j < n && m[i].on_frontier; ++j) {
             const outcome *b = &m[j].outcome;
-            if (j != i && b->status == IM_OK && b->error > 0 && b->seconds <= a->seconds &&
+            if (j != i && b->status == IM_OK && b->error > 0 && cost(b) <= cost(a) &&
                 b->error <= a->error * (1 + SAME_ERROR) &&
-                (b->seconds < a->seconds || b->error < a->error * (1 - SAME_ERROR)))
+                (cost(b) < cost(a) || b->error < a->error * (1 - SAME_ERROR)))
                 m[i].on_frontier = 0;
         }
     }
@@ -368,14 +387,29 @@ static void csv_row(FILE *f, const measured *m)
     const config *c = &m->config;
     const outcome *o = &m->outcome;
     fprintf(f, "%s,%s,%d,%.0e,%d,%d,%d,%d,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.3e,%.3e,%.3e,%.3e,%.3e,%ld,%d,%dx%d,"
-               "%.6f,%.1f,%.3f,%d\n",
+               "%.6f,%.6f,%.1f,%.3f,%d\n",
             problem_names[c->problem], c->family, c->refine, c->tol, c->margin, c->crop, c->threads,
             o->status, o->approach, o->load, o->area_ratio, o->contact_patches, o->load_at_w,
             o->area_ratio, o->error_load, o->error_area, o->error, o->error_p_rms, o->error_p_max,
             o->symmetric_difference,
-            o->iterations, o->window_nx, o->window_ny, o->seconds, o->rss_mib, o->plan_bytes / 1048576.0,
+            o->iterations, o->window_nx, o->window_ny, o->seconds, o->cpu_seconds, o->rss_mib,
+            o->plan_bytes / 1048576.0,
             m->on_frontier);
 }
+
+/* The 1-minute load average (/proc/loadavg), NAN where unreadable. */
+static double load_average(void)
+{
+    double load = NAN;
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (f && fscanf(f, "%lf", &load) != 1)
+        load = NAN;
+    if (f)
+        fclose(f);
+    return load;
+}
+
+static double load_at_start;
 
 static int write_csv(const char *path, const measured *m, int n)
 {
@@ -389,15 +423,16 @@ static int write_csv(const char *path, const measured *m, int n)
     fprintf(f, "# bench_tradeoff: %s %s %s, %ld online cores; threads per row in column threads\n",
             u.sysname, u.release, u.machine, sysconf(_SC_NPROCESSORS_ONLN));
     const char *wait = getenv("OMP_WAIT_POLICY");
-    fprintf(f, "# OMP_WAIT_POLICY=%s\n", wait ? wait : "(unset)");
+    fprintf(f, "# OMP_WAIT_POLICY=%s; load average (1 min) %.2f at the start, %.2f at the end\n",
+            wait ? wait : "(unset)", load_at_start, load_average());
     fprintf(f, "# base %d x %d box, H 0.8, lambda_s 4 base cells, h'rms 0.08, seed 1; cone %g deg; load N0 = %.6g "
                "(A_cone = %g base cells), E* = 1\n", BASE, BASE, ALPHA, imposed_load(), AREA_CONE);
-    fprintf(f, "# wall: median of %d repeats of create + load step (planning included); rss: ru_maxrss of the "
-               "forked process per row; error = max(error_N, error_A); symdiff in base patches\n", REPEATS);
+    fprintf(f, "# wall: median over %d rounds of the median of %d repeats of create + load step (planning included); rss: ru_maxrss of the "
+               "forked process per row; error = max(error_N, error_A); symdiff in base patches\n", ROUNDS, REPEATS);
     fprintf(f, "# error_p_rms/max: smooth cone, relative error of p(r) against (E* cot alpha / 2) acosh(a/r) over "
                "0.2a < r < 0.8a (nan for rough); rough reference: 4x, tol 1e-11, crop off\n");
     fprintf(f, "problem,family,refine,tol,margin,crop,threads,status,approach,load,area_ratio,contact_patches,"
-               "load_at_w_ref,A_over_Acone,error_N,error_A,error,error_p_rms,error_p_max,symdiff,iterations,window,wall_s,rss_mib,"
+               "load_at_w_ref,A_over_Acone,error_N,error_A,error,error_p_rms,error_p_max,symdiff,iterations,window,wall_s,cpu_s,rss_mib,"
                "plan_mib,frontier\n");
     for (int i = 0; i < n; ++i)
         csv_row(f, &m[i]);
@@ -407,8 +442,10 @@ static int write_csv(const char *path, const measured *m, int n)
     return status;
 }
 
-static const char *const families[] = {"tolerance", "refinement", "window", "threads"};
-#define FAMILIES 4
+static const char *const families[] = {"tolerance", "refinement", "refinement-tol-1e-4", "window", "threads"};
+static const char *const legend_labels[] = {"tolerance (1x)", "refinement (1x, 2x, 4x)",
+                                            "refinement, tol 10^{-4}", "window margin, crop", "2 threads (1x, 2x, 4x)"};
+#define FAMILIES 5
 
 /* One panel's series: one marker series per knob family, the frontier as a line. */
 typedef struct panel_data {
@@ -429,25 +466,25 @@ static int by_time(const void *a, const void *b)
 
 static void fill_panel(panel_data *d, const measured *m, int n)
 {
-    static const im_plot_marker markers[] = {IM_PLOT_MARKER_SQUARE, IM_PLOT_MARKER_CIRCLE,
+    static const im_plot_marker markers[] = {IM_PLOT_MARKER_SQUARE, IM_PLOT_MARKER_CIRCLE, IM_PLOT_MARKER_CIRCLE,
                                              IM_PLOT_MARKER_TRIANGLE, IM_PLOT_MARKER_DIAMOND};
     for (int f = 0; f < FAMILIES; ++f) {
         int k = 0;
         for (int i = 0; i < n; ++i)
             if (strcmp(m[i].config.family, families[f]) == 0) {
-                d->x[f][k] = m[i].outcome.seconds;
+                d->x[f][k] = cost(&m[i].outcome);
                 d->y[f][k++] = plotted_error(&m[i].outcome);
             }
         im_plot_series *s = &d->series[f];
         *s = (im_plot_series){.x = d->x[f], .y = d->y[f], .n = k, .line = IM_PLOT_NO_LINE,
-                              .marker = markers[f], .marker_size = 5, .label = families[f]};
+                              .marker = markers[f], .marker_size = f == 2 ? 4 : 5, .label = legend_labels[f]};
         im_plot_palette(f, s->color);
     }
     double pairs[MAX_CONFIGS][2];
     int k = 0;
     for (int i = 0; i < n; ++i)
         if (m[i].on_frontier) {
-            pairs[k][0] = m[i].outcome.seconds;
+            pairs[k][0] = cost(&m[i].outcome);
             pairs[k++][1] = m[i].outcome.error;
         }
     qsort(pairs, (size_t)k, sizeof pairs[0], by_time);
@@ -469,37 +506,54 @@ static int write_plot(const char *path, const measured *smooth, int ns, const me
     const char *labels[] = {"(a)", "(b)"};
     for (int p = 0; p < 2; ++p)
         panels[p] = (im_plot_panel){
-            .x = {IM_PLOT_LOG, 0, 0, "wall time per solve (s)"},
-            .y = {IM_PLOT_LOG, 0, 0, "relative error, max(N, A/A_{cone})"},
+            .x = {IM_PLOT_LOG, 0.01, 3, "CPU time per solve (s, all threads)"},
+            .y = {IM_PLOT_LOG, 1e-7, 1, "relative error, max(N, A/A_{cone})"},
             .series = data[p].series, .series_count = FAMILIES + 1,
-            .label = labels[p], .title = titles[p], .legend = IM_PLOT_LEGEND_AUTO};
+            .label = labels[p], .title = titles[p],
+            /* one legend for both panels, in the empty lower left of (a) (no point below 1e-4) */
+            .legend = p == 0 ? IM_PLOT_LEGEND_LOWER_LEFT : IM_PLOT_LEGEND_HIDDEN,
+            .legend_title = "knob varied (else 1x, tol 10^{-6}, 1 thread)"};
     im_plot plot = im_plot_default();
     plot.columns = 2;
     plot.panels = panels;
     plot.panel_width = 200;
-    plot.panel_height = 150;
+    plot.panel_height = 170;
     plot.dpi = 200;
     return im_plot_write(&plot, path);
 }
 
+static void report(const config *c, const outcome *o, int status)
+{
+    fprintf(stderr, "%s %-10s %dx tol %.0e margin %2d crop %d threads %d: %.4f s (CPU %.4f s), error %.3e (N %.2e, A %.2e), "
+                    "p %.2e, symdiff %ld, %d it, rss %.1f MiB%s\n",
+            problem_names[c->problem], c->family, c->refine, c->tol, c->margin, c->crop, c->threads, o->seconds,
+            o->cpu_seconds, o->error, o->error_load, o->error_area, o->error_p_rms, o->symmetric_difference, o->iterations,
+            o->rss_mib, status == IM_OK ? "" : " FAILED");
+}
+
+/* Measures every configuration ROUNDS times, round by round (so that a burst of load on the shared
+ * machine hits different configurations in different rounds); wall time: the median of the
+ * rounds' medians. The errors are deterministic. */
 static int run_problem(enum problem p, const truth *t, measured *m)
 {
     config list[MAX_CONFIGS];
-    int n = config_list(p, list);
+    int n = config_list(p, list), failed[MAX_CONFIGS] = {0};
+    static double seconds[MAX_CONFIGS][ROUNDS], cpu[MAX_CONFIGS][ROUNDS];
+    for (int r = 0; r < ROUNDS; ++r)
+        for (int i = 0; i < n; ++i) {
+            m[i].config = list[i];
+            failed[i] |= measure_in_child(&list[i], t, &m[i].outcome, NULL) != IM_OK;
+            seconds[i][r] = m[i].outcome.seconds;
+            cpu[i][r] = m[i].outcome.cpu_seconds;
+        }
     for (int i = 0; i < n; ++i) {
-        m[i].config = list[i];
-        int status = measure_in_child(&list[i], t, &m[i].outcome, NULL);
-        const outcome *o = &m[i].outcome;
-        fprintf(stderr, "%s %-10s %dx tol %.0e margin %2d crop %d threads %d: %.4f s, error %.3e (N %.2e, A %.2e), "
-                        "p %.2e, symdiff %ld, %d it, rss %.1f MiB%s\n",
-                problem_names[p], list[i].family, list[i].refine, list[i].tol, list[i].margin, list[i].crop,
-                list[i].threads, o->seconds, o->error, o->error_load, o->error_area, o->error_p_rms, o->symmetric_difference,
-                o->iterations, o->rss_mib, status == IM_OK ? "" : " FAILED");
+        m[i].outcome.seconds = bench_median(seconds[i], ROUNDS);
+        m[i].outcome.cpu_seconds = bench_median(cpu[i], ROUNDS);
+        report(&list[i], &m[i].outcome, failed[i] ? IM_EIO : IM_OK);
     }
     mark_frontier(m, n);
     return n;
 }
-
 int main(int argc, char **argv)
 {
     if (argc != 3) {
@@ -507,6 +561,7 @@ int main(int argc, char **argv)
         return 2;
     }
     double start = bench_now();
+    load_at_start = load_average();
     static measured smooth[MAX_CONFIGS], rough[MAX_CONFIGS + 1];
     truth t;
     smooth_truth(&t);

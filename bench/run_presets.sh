@@ -6,7 +6,8 @@
 # REPEATS (the reference runs once).
 #   BUILD=build-trade THREADS=2 REPEATS=3 bench/run_presets.sh > presets.csv
 # Prints CSV: preset,tol,threads,repeats,wall_median_s,wall_min_s,wall_max_s,cpu_median_s,iterations,
-#             max_rel_error_np,max_rel_error_N,max_residual,load_average_before
+#             max_rel_error_np,max_rel_error_N,max_residual,worst_np_step,reference_np_there,
+#             load_average_before
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD:-build}
@@ -35,18 +36,19 @@ median() { awk -v c="$1" '{print $c}' | sort -g | awk -v all="${2:-}" '{v[NR] = 
        if (all) printf "%.3f,%.3f,%.3f", m, v[1], v[NR]; else printf "%.3f", m}'; }
 
 # compare A B: largest relative errors of n_p and N of history A against history B, the iterations
-# summed over A's steps and A's largest residual.
+# summed over A's steps, A's largest residual, and the step of the largest n_p error with B's n_p there.
 compare() {
   awk -F, 'NR == FNR { if (FNR > 1) { np[$1] = $5; n[$1] = $3 } next }
-           FNR > 1 { e = np[$1] > 0 ? ($5 - np[$1]) / np[$1] : 0; if (e < 0) e = -e; if (e > enp) enp = e;
+           FNR > 1 { e = np[$1] > 0 ? ($5 - np[$1]) / np[$1] : 0; if (e < 0) e = -e;
+                     if (e > enp) { enp = e; worst = $1; at = np[$1] }
                      e = ($3 - n[$1]) / n[$1]; if (e < 0) e = -e; if (e > en) en = e;
                      it += $9; if ($10 > res) res = $10 }
-           END { printf "%d,%.3e,%.3e,%.3e", it, enp, en, res }' "$2/history.csv" "$1/history.csv"
+           END { printf "%d,%.3e,%.3e,%.3e,%d,%d", it, enp, en, res, worst, at }' "$2/history.csv" "$1/history.csv"
 }
 
 load=$(cut -d' ' -f1 /proc/loadavg)
 ref_time=$(run reference --tol 1e-11)
-echo "preset,tol,threads,repeats,wall_median_s,wall_min_s,wall_max_s,cpu_median_s,iterations,max_rel_error_np,max_rel_error_N,max_residual,load_average_before"
+echo "preset,tol,threads,repeats,wall_median_s,wall_min_s,wall_max_s,cpu_median_s,iterations,max_rel_error_np,max_rel_error_N,max_residual,worst_np_step,reference_np_there,load_average_before"
 echo "reference,1e-11,$threads,1,$(echo "$ref_time" | median 1 all),$(echo "$ref_time" | median 2),$(compare "$work/reference" "$work/reference"),$load"
 for preset in draft:1e-4 standard:1e-6 publication:1e-9 ${EXTRA_TOLS:-}; do
   name=${preset%%:*} tol=${preset#*:}
