@@ -18,24 +18,25 @@ within() { awk -F, -v c="$3" -v bound="$4" 'NR == FNR { ref[FNR] = $c; next }
 
 "$cli" surface --n 64 --slope 0.16 --seed 3 --out "$dir/s.npy" >/dev/null
 "$cli" indent "$dir/s.npy" --approach 0.5:6:8 --tol 1e-11 --out "$dir/ref" >/dev/null 2>&1
-for preset in draft:1e-4 standard:1e-6 publication:1e-9; do
+for preset in draft:1e-5 standard:1e-6 publication:1e-9; do
     name=${preset%%:*} tol=${preset#*:}
     "$cli" indent "$dir/s.npy" --approach 0.5:6:8 --quality "$name" --out "$dir/$name" >/dev/null 2>&1
     check "--quality $name runs" test $? -eq 0
     check "--quality $name: run.json tol = $tol" same_number "$(json_tol "$dir/$name/run.json")" "$tol"
     check "--quality $name: run.json names it" test "$(json_field "$dir/$name/run.json" quality)" = "$name"
-    # solver.h: the relative load error is about tol; allow ten times.
-    check "--quality $name: N within 10 tol of tol 1e-11" within "$dir/ref/history.csv" "$dir/$name/history.csv" 3 \
-        "$(awk -v t="$tol" 'BEGIN { print 10 * t }')"
+    # solver.h: the relative load error is within 2 tol (measured 1.2-1.5 tol here).
+    check "--quality $name: N within 2 tol of tol 1e-11" within "$dir/ref/history.csv" "$dir/$name/history.csv" 3 \
+        "$(awk -v t="$tol" 'BEGIN { print 2 * t }')"
 done
-# n_p at draft: within 1% of the reference where 1% is at least one patch (n_p >= 100); on this
-# 64 x 64 surface the first steps have 81 patches or fewer, where one patch is already 1.2%.
-large_contacts() { awk -F, 'NR == 1 || $5 >= 100' "$1" >"$2"; }
+# n_p at draft: within solver.h's 0.2% of the reference where 0.2% is at least one patch
+# (n_p >= 500: the last four of the eight steps on this 64 x 64 surface). The old draft, tol 1e-4,
+# is 0.26-0.3% off there (763 for 761, 1012 for 1009 patches) and would fail.
+large_contacts() { awk -F, 'NR == 1 || $5 >= 500' "$1" >"$2"; }
 large_contacts "$dir/ref/history.csv" "$dir/ref_large.csv"
 awk -F, 'NR == FNR { keep[$1] = 1; next } FNR == 1 || keep[$1]' "$dir/ref_large.csv" "$dir/draft/history.csv" \
     >"$dir/draft_large.csv"
-check "draft: n_p within 1% of tol 1e-11 where n_p >= 100" within "$dir/ref_large.csv" "$dir/draft_large.csv" 5 0.01
-check "draft: some steps have n_p >= 100" test "$(wc -l <"$dir/ref_large.csv")" -ge 3
+check "draft: n_p within 0.2% of tol 1e-11 where n_p >= 500" within "$dir/ref_large.csv" "$dir/draft_large.csv" 5 0.002
+check "draft: four steps have n_p >= 500" test "$(wc -l <"$dir/ref_large.csv")" -eq 5
 check "publication: n_p exact" within "$dir/ref/history.csv" "$dir/publication/history.csv" 5 0
 "$cli" indent "$dir/s.npy" --approach 1 --tol 1e-7 --quality draft --out "$dir/both" >/dev/null 2>&1
 check "--tol overrides --quality (either order)" same_number "$(json_tol "$dir/both/run.json")" 1e-7
@@ -55,8 +56,8 @@ scene() { # $1 quality line, $2 extra lines
 scene "quality = draft" ""
 "$cli" run "$dir/q.ini" >/dev/null 2>&1
 check "scene quality = draft runs" test $? -eq 0
-check "scene quality = draft: run.json tol 1e-4" same_number "$(json_tol "$dir/out/run.json")" 1e-4
-check "scene quality = draft: table1.md says so" grep -q "quality draft, tol 0.0001" "$dir/out/table1.md"
+check "scene quality = draft: run.json tol 1e-5" same_number "$(json_tol "$dir/out/run.json")" 1e-5
+check "scene quality = draft: table1.md says so" grep -q "quality draft, tol 1e-05" "$dir/out/table1.md"
 scene "" ""
 "$cli" run "$dir/q.ini" >/dev/null 2>&1
 check "scene default: standard, tol 1e-6" test "$(json_field "$dir/out/run.json" quality)" = standard -a \

@@ -42,7 +42,7 @@ typedef struct im_scene {
     char name[64];
     char output_dir[IM_SCENE_PATH];  /* default output/NAME */
     char quality[16];                /* draft | standard (default) | publication: the solver
-                                        tolerance preset of solver.h (1e-4, 1e-6, 1e-9); anything
+                                        tolerance preset of solver.h (1e-5, 1e-6, 1e-9); anything
                                         else is refused. [solver] tol, if given, overrides it.
                                         Both are recorded in OUTPUT/run.json. */
 

@@ -66,12 +66,13 @@ im_solver_options im_solver_options_default(void);
 int im_solver_options_check(const im_solver_options *options);
 
 /* Quality presets: the stopping tolerance of a named speed/accuracy trade-off.
- *   draft        1e-4   N within 2e-4, n_p within 1%, about 0.65x the time of standard
- *   standard     1e-6   N within 1.2e-6, n_p within 2.5e-4
- *   publication  1e-9   N within 1e-9, n_p exact, about 1.5x the time of standard
- * (the largest relative errors against tol 1e-11 over 16 steps w = 1..20 of an 80 degree cone on
- * a 256 x 256 h'rms = 0.08 surface, window 240 x 250; /work/notes/readme_quality.md). An explicit tol
- * overrides a preset wherever both can be given. IM_EINVAL naming the name for anything else. */
+ *   draft        1e-5   N within 1.4e-5, n_p within 0.19%, 0.73x the iterations of standard
+ *   standard     1e-6   N within 1.0e-6, n_p within 1.9e-4
+ *   publication  1e-9   N within 1.1e-9, n_p exact, 1.6x the iterations of standard
+ * (the largest relative errors against tol 1e-11 over the paper's history: 25 approaches
+ * w = 1.26..31.5 of an 80 degree cone on the 512 x 512 h'rms = 0.08 surface, seed 1; README,
+ * "Speed against accuracy"). An explicit tol overrides a preset wherever both can be given.
+ * IM_EINVAL naming the name for anything else. */
 int im_quality_tolerance(const char *name, double *tol);
 
 /* Displacement at a patch centre offset (x, y) from the centre of a delta x delta patch carrying

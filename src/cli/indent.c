@@ -36,7 +36,7 @@ static void usage(FILE *stream)
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
-            "  --quality Q         draft (tol 1e-4), standard (1e-6) or publication (1e-9): the solver\n"
+            "  --quality Q         draft (tol 1e-5), standard (1e-6) or publication (1e-9): the solver\n"
             "                      tolerance of a speed/accuracy preset (errors measured in solver.h)\n"
             "  --tol T             stopping tolerance on the relative gap residual (default 1e-8);\n"
             "                      overrides --quality. run.json records quality and tol\n"
