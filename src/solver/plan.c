@@ -52,9 +52,9 @@ double im_influence_square(double x, double y, double delta, double e_star)
 double im_solver_plan_bytes(int nx, int ny)
 {
     double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
-    /* kernel, 2 work arrays, changes (long + double); spectrum; 2 padded rows; 2 complex arrays.
+    /* kernel, 2 work arrays, changes (long + double); spectrum; 2 padded rows; 1 complex array.
      * While planning, the kernel's transform needs a 4 n temporary on top. */
-    return 8 * (n * 5 + modes + 2 * rows + 2 * 2 * modes + 4 * n);
+    return 8 * (n * 5 + modes + 2 * rows + 2 * modes + 4 * n);
 }
 
 static const char *wisdom_file(const im_solver_options *o)
@@ -86,10 +86,11 @@ static int make_fft_plans(im_solver_plan *p)
     if (wisdom)
         fftw_import_wisdom_from_filename(wisdom); /* a missing or stale file just means no wisdom */
     im_fft_prepare_planner();
-    /* ny real rows of length px -> ny complex rows of length mx; then mx columns of length py */
-    p->rows_forward = fftw_plan_many_dft_r2c(1, row_length, p->ny, p->rows_in, NULL, 1, p->px, p->half, NULL,
+    /* ny real rows of length px -> the first ny complex rows of length mx; then, in place, mx
+     * columns of length py */
+    p->rows_forward = fftw_plan_many_dft_r2c(1, row_length, p->ny, p->rows_in, NULL, 1, p->px, p->modes, NULL,
                                              1, mx, flags);
-    p->columns_forward = fftw_plan_many_dft(1, column_length, mx, p->half, NULL, mx, 1, p->modes, NULL, mx, 1,
+    p->columns_forward = fftw_plan_many_dft(1, column_length, mx, p->modes, NULL, mx, 1, p->modes, NULL, mx, 1,
                                             FFTW_FORWARD, flags);
     p->columns_backward = fftw_plan_many_dft(1, column_length, mx, p->modes, NULL, mx, 1, p->modes, NULL, mx,
                                              1, FFTW_BACKWARD, flags);
@@ -154,10 +155,9 @@ static int allocate_plan(im_solver_plan *p)
     p->spectrum = fftw_malloc(sizeof(double) * modes);
     p->rows_in = fftw_malloc(sizeof(double) * rows);
     p->rows_out = fftw_malloc(sizeof(double) * rows);
-    p->half = fftw_malloc(sizeof(fftw_complex) * modes);
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
     if (!p->kernel || !p->direction || !p->gap || !p->changed || !p->changed_value ||
-        !p->spectrum || !p->rows_in || !p->rows_out || !p->half || !p->modes)
+        !p->spectrum || !p->rows_in || !p->rows_out || !p->modes)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: allocation failed", p->nx, p->ny);
     memset(p->direction, 0, sizeof(double) * n);
     return IM_OK;
@@ -194,7 +194,6 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
     }
     /* after planning, which may scribble on the arrays: the zeros the pruning relies on */
     memset(p->rows_in, 0, sizeof(double) * (size_t)p->px * p->ny);
-    memset(p->half, 0, sizeof(fftw_complex) * (size_t)p->py * (p->px / 2 + 1));
     status = compute_kernel(p);
     if (status != IM_OK) {
         im_solver_plan_free(p);
@@ -227,7 +226,6 @@ void im_solver_plan_free(im_solver_plan *p)
     fftw_free(p->spectrum);
     fftw_free(p->rows_in);
     fftw_free(p->rows_out);
-    fftw_free(p->half);
     fftw_free(p->modes);
     free(p);
 }
@@ -237,8 +235,11 @@ int im_solver_plan_measured(const im_solver_plan *p) { return p->measured; }
 
 void solver_convolve_rows(im_solver_plan *p)
 {
-    const size_t count = (size_t)p->py * (p->px / 2 + 1);
+    const size_t mx = p->px / 2 + 1, count = (size_t)p->py * mx;
     fftw_execute(p->rows_forward);
+#pragma omp parallel for schedule(static)
+    for (int iy = p->ny; iy < p->py; ++iy) /* the zero rows of the padding, overwritten last time */
+        memset(p->modes + (size_t)iy * mx, 0, sizeof(fftw_complex) * mx);
     fftw_execute(p->columns_forward);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < count; ++k) {
