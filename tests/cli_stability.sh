@@ -96,6 +96,13 @@ else
     check "a plan over the memory limit: exit 2" test $? -eq 2
     check "a plan over the memory limit: the estimate" grep -q "solver plan 4096 x 4096 needs about [0-9.]* MiB but only" "$dir/err"
     check "refused before any history was written" test ! -e "$dir/big/history.csv"
+    # Near the limit: the 2048 x 2048 plan (608 MiB) is below the 684 MiB limit itself but not below
+    # what the limit leaves once the process's own mappings (surface, gaps, libraries, thread
+    # stacks) are counted; without that, the plan passed the check and its allocation failed later
+    # with no estimate.
+    (ulimit -v 700000; "$cli" indent --smooth --n 2048 --full --approach 1 --out "$dir/near" >/dev/null 2>"$dir/err")
+    check "a plan near the memory limit: exit 2" test $? -eq 2
+    check "a plan near the memory limit: the estimate" grep -q "solver plan 2048 x 2048 needs about [0-9.]* MiB but only" "$dir/err"
 fi
 
 # ---- precision: cold and warm starts reach the same answer ----

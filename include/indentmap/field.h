@@ -37,9 +37,10 @@ static inline size_t im_field_count(const im_field *f) { return (size_t)f->nx * 
  * names the field in that message. */
 int im_field_check_finite(const im_field *field, const char *what);
 
-/* Physical memory available to this process now, in bytes (MemAvailable from /proc/meminfo,
- * bounded by the address-space limit and by the environment variable IM_MEMORY_LIMIT_MIB when set,
- * a user's cap in MiB); 0 if it cannot be determined. */
+/* Physical memory available to this process now, in bytes: MemAvailable from /proc/meminfo,
+ * bounded by what the address-space limit (ulimit -v) leaves beyond the process's present virtual
+ * size and by the environment variable IM_MEMORY_LIMIT_MIB (a user's cap in MiB) when set; 0 if
+ * it cannot be determined. */
 size_t im_memory_available(void);
 
 /* IM_ENOMEM, with the estimate and what is available in the message, when bytes exceed the

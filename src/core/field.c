@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 int im_field_create(int nx, int ny, double delta, im_field **out)
 {
@@ -104,12 +105,32 @@ static size_t smaller_known(size_t available, size_t bound)
     return available == 0 || bound < available ? bound : available;
 }
 
+/* This process's virtual size in bytes (/proc/self/statm); 0 if it cannot be read. */
+static size_t virtual_size(void)
+{
+    FILE *statm = fopen("/proc/self/statm", "r");
+    unsigned long long pages = 0;
+    int read = statm && fscanf(statm, "%llu", &pages) == 1;
+    if (statm)
+        fclose(statm);
+    long page = sysconf(_SC_PAGESIZE);
+    return read && page > 0 ? (size_t)pages * (size_t)page : 0;
+}
+
+/* What an address-space limit (ulimit -v) leaves: the limit less what this process already maps,
+ * fields, plans and thread stacks included. */
+static size_t address_space_left(size_t limit)
+{
+    size_t used = virtual_size();
+    return used < limit ? limit - used : 1; /* 1, not 0: 0 would read as "unknown" */
+}
+
 size_t im_memory_available(void)
 {
     size_t available = meminfo_available();
     struct rlimit limit;
     if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-        available = smaller_known(available, (size_t)limit.rlim_cur);
+        available = smaller_known(available, address_space_left((size_t)limit.rlim_cur));
     double cap = environment_limit();
     if (cap > 0.0)
         available = smaller_known(available, (size_t)cap);
