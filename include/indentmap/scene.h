@@ -114,8 +114,8 @@ typedef struct im_scene_run_options {
  * last step. Each stage's line says how many surfaces it solved, read back and reused.
  * Every file is written atomically as soon as it is complete, with a key (a hash of every input
  * that determines it: surface parameters, slope, seed and grid, punch, material, solver tolerance
- * and window, load_star or the loading control and steps) in its header or, for panels, in
- * panels/force_FF.key. With options->resume, a kept result whose key is the scene's is read back
+ * and window, load_star or the loading control and steps): a `key` column in the table's member
+ * files, a header line in the histories, panels/force_FF.key beside a panel's forces. With options->resume, a kept result whose key is the scene's is read back
  * instead of solved; one whose key differs is solved again, with a notice on stderr.
  * Before any work: the output folder is locked (OUTPUT/.lock holds the pid; IM_EIO naming the
  * folder and the other pid while another live run holds it; a lock left by a dead process is

@@ -180,7 +180,9 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
         char text[64];
         double pixels;
         scale_bar(f, text, sizeof text, &pixels);
-        right = fmax(right, l->grid_x + fmax(pixels, text_width(m, m->regular, l->font, text)));
+        /* the bar starts at the bottom-left panel's data, data_x into its cell */
+        double start = f->panels[(f->rows - 1) * f->columns].image->data_x;
+        right = fmax(right, l->grid_x + start + fmax(pixels, text_width(m, m->regular, l->font, text)));
     }
     if (f->colormap) {
         l->bar_x = round(l->grid_x + grid_width + 1.2 * l->font);

@@ -27,13 +27,14 @@ static int linear_ticks(double lo, double hi, double target, double *ticks, int 
     return count;
 }
 
-static int log_ticks(double lo, double hi, double *ticks, int capacity)
+/* Decades, or 1-2-5 multiples when fewer than min_decades decades lie in [lo, hi]. */
+static int log_ticks(double lo, double hi, int min_decades, double *ticks, int capacity)
 {
     int count = 0;
     for (double e = ceil(log10(lo) - 1e-9); count < capacity && pow(10.0, e) <= hi * (1 + 1e-9); e += 1.0)
         ticks[count++] = pow(10.0, e);
-    if (count >= 3)
-        return count; /* fewer decades would leave a bar with one or two labels: 1-2-5 instead */
+    if (count >= min_decades)
+        return count;
     count = 0;
     const double multiples[] = {1.0, 2.0, 5.0};
     for (double e = floor(log10(lo)); e <= ceil(log10(hi)); e += 1.0)
@@ -49,10 +50,15 @@ int im_figure_ticks_between(double lo, double hi, int logarithmic, double target
 {
     if (capacity < 1 || !(hi > lo) || (logarithmic && !(lo > 0.0)))
         return 0;
-    return logarithmic ? log_ticks(lo, hi, ticks, capacity) : linear_ticks(lo, hi, target, ticks, capacity);
+    return logarithmic ? log_ticks(lo, hi, 2, ticks, capacity) : linear_ticks(lo, hi, target, ticks, capacity);
 }
 
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity)
 {
-    return im_figure_ticks_between(colormap->lo, colormap->hi, colormap->logarithmic, 5.0, ticks, capacity);
+    const double lo = colormap->lo, hi = colormap->hi;
+    if (!colormap->logarithmic || capacity < 1 || !(hi > lo) || !(lo > 0.0))
+        return im_figure_ticks_between(lo, hi, colormap->logarithmic, 5.0, ticks, capacity);
+    /* A colour bar over under three decades would show one or two labels: 1-2-5 there (a plot axis
+     * has its minor ticks and keeps decades from two on). */
+    return log_ticks(lo, hi, 3, ticks, capacity);
 }

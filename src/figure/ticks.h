@@ -2,9 +2,10 @@
 #ifndef INDENTMAP_FIGURE_TICKS_H
 #define INDENTMAP_FIGURE_TICKS_H
 
-/* im_figure_ticks on [lo, hi] with about `target` linear intervals (a 1-2-5 step at least
- * span / target); logarithmic as im_figure_ticks. Returns how many were written (0 for an empty
- * or, when logarithmic, non-positive range). */
+/* Ticks on [lo, hi] for a plot axis: about `target` linear intervals (a 1-2-5 step at least
+ * span / target), or, when logarithmic, the decades, and 1-2-5 multiples only when fewer than
+ * two decades fall inside (colour bars, im_figure_ticks, switch below three). Returns how many
+ * were written (0 for an empty or, when logarithmic, non-positive range). */
 int im_figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity);
 
 #endif

@@ -124,15 +124,27 @@ void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int coun
     }
 }
 
-void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
-                          int count)
+void scene_report_origin_counts(const im_scene_run_options *options, const char *stage,
+                                const enum scene_origin *origins, int count)
 {
     int solved = 0, read_back = 0, reused = 0;
     for (int i = 0; i < count; ++i) {
-        solved += members[i].origin == SCENE_SOLVED;
-        read_back += members[i].origin == SCENE_READ_BACK;
-        reused += members[i].origin == SCENE_REUSED;
+        solved += origins[i] == SCENE_SOLVED;
+        read_back += origins[i] == SCENE_READ_BACK;
+        reused += origins[i] == SCENE_REUSED;
     }
     scene_progress(options, "%s: %d surfaces: %d solved, %d read back, %d reused from an earlier stage", stage,
                    count, solved, read_back, reused);
+}
+
+void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
+                          int count)
+{
+    enum scene_origin *origins = malloc(sizeof *origins * (count > 0 ? count : 1));
+    if (!origins)
+        return; /* a progress line is not worth failing the run */
+    for (int i = 0; i < count; ++i)
+        origins[i] = members[i].origin;
+    scene_report_origin_counts(options, stage, origins, count);
+    free(origins);
 }

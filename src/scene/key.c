@@ -15,6 +15,15 @@ typedef struct key_hash {
     uint64_t value;
 } key_hash;
 
+static void key_add_bytes(key_hash *hash, const char *bytes, size_t length)
+{
+    for (size_t i = 0; i < length; ++i) {
+        hash->value ^= (unsigned char)bytes[i];
+        hash->value *= UINT64_C(0x100000001b3);
+    }
+}
+
+/* Numbers and short words through a buffer; paths, which may be long, go to key_add_bytes. */
 static void key_add(key_hash *hash, const char *format, ...) __attribute__((format(printf, 2, 3)));
 static void key_add(key_hash *hash, const char *format, ...)
 {
@@ -23,10 +32,7 @@ static void key_add(key_hash *hash, const char *format, ...)
     va_start(arguments, format);
     int length = vsnprintf(text, sizeof text, format, arguments);
     va_end(arguments);
-    for (int i = 0; i < length && i < (int)sizeof text - 1; ++i) {
-        hash->value ^= (unsigned char)text[i];
-        hash->value *= UINT64_C(0x100000001b3);
-    }
+    key_add_bytes(hash, text, length < (int)sizeof text ? (size_t)length : sizeof text - 1);
 }
 
 /* The surface: generator parameters, slope and seed, or the file (path, size and time). */
@@ -38,7 +44,9 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
         struct stat info = {0};
         im_scene_resolve_path(scene, scene->surface_file, path, sizeof path);
         stat(path, &info);
-        key_add(hash, "file %s %lld %lld.%09ld;", path, (long long)info.st_size, (long long)info.st_mtim.tv_sec,
+        key_add(hash, "file ");
+        key_add_bytes(hash, path, strlen(path));
+        key_add(hash, " %lld %lld.%09ld;", (long long)info.st_size, (long long)info.st_mtim.tv_sec,
                 info.st_mtim.tv_nsec);
         return;
     }
@@ -91,7 +99,11 @@ int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted)
     if (kept == wanted)
         return 1;
     /* printed even when quiet: a kept result is being replaced */
-    fprintf(stderr, "indentmap: %s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
-                    "): solving it again\n", path, kept, wanted);
+    if (kept == 0)
+        fprintf(stderr, "indentmap: %s cannot be read back (damaged, or written by an older version without a "
+                        "key): solving it again\n", path);
+    else
+        fprintf(stderr, "indentmap: %s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
+                        "): solving it again\n", path, kept, wanted);
     return 0;
 }

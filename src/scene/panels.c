@@ -4,11 +4,13 @@
 #include "indentmap/status.h"
 #include "scene/scene_internal.h"
 
+#include <errno.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 typedef struct panel_result {
     im_field *force;
@@ -85,12 +87,15 @@ static uint64_t panel_key(const im_scene *scene, int family)
     return scene_result_key(scene, family, scene->seeds[0], SCENE_RESULT_AT_LOAD_STAR);
 }
 
-/* Writes the force file, then its key (a force file without its key is never read back). */
+/* Removes the old key, writes the force file, then its key: a force file is read back only beside
+ * its own key, even when a run stops between the two writes. */
 static int write_panel(const im_scene *scene, int family, const im_field *force)
 {
     char npy[IM_SCENE_PATH], key[IM_SCENE_PATH], text[32];
     int status = panel_paths(scene, family, npy, key, sizeof npy);
     int length = snprintf(text, sizeof text, "%016" PRIx64 "\n", panel_key(scene, family));
+    if (status == IM_OK && unlink(key) != 0 && errno != ENOENT)
+        status = im_fail(IM_EIO, "%s: cannot remove the stale key: %s", key, strerror(errno));
     if (status == IM_OK)
         status = im_npy_write(npy, force, IM_NPY_FLOAT64);
     return status == IM_OK ? im_write_file_atomic(key, text, (size_t)length) : status;
@@ -227,14 +232,10 @@ static int plot_density(const im_scene *scene, const panel_result *results)
 /* How many panels were solved, read back and reused. */
 static void report_panels(const im_scene_run_options *options, const panel_result *results, int count)
 {
-    int solved = 0, read_back = 0, reused = 0;
-    for (int i = 0; i < count; ++i) {
-        solved += results[i].origin == SCENE_SOLVED;
-        read_back += results[i].origin == SCENE_READ_BACK;
-        reused += results[i].origin == SCENE_REUSED;
-    }
-    scene_progress(options, "panels: %d surfaces: %d solved, %d read back, %d reused from an earlier stage", count,
-                   solved, read_back, reused);
+    enum scene_origin origins[IM_SCENE_MAX_FAMILIES];
+    for (int i = 0; i < count; ++i)
+        origins[i] = results[i].origin;
+    scene_report_origin_counts(options, "panels", origins, count);
 }
 
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,

@@ -105,8 +105,8 @@ uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum
  * table's state instead of solving it again. */
 int scene_load_star_step(const im_scene *scene);
 
-/* Whether a result kept at path (with key kept) may be reused; if not, says on stderr that it is
- * solved again (even with --quiet). */
+/* Whether a result kept at path (with key kept; 0 when it could not be read) may be reused; if
+ * not, says on stderr why it is solved again (even with --quiet). */
 int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted);
 
 /* ---- ensembles ---- */
@@ -150,8 +150,11 @@ int scene_keeps_force(const im_scene *scene, const scene_member *m);
 /* Moves the members' kept forces into reuse->force (where a family has none yet). */
 void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count);
 
-/* The progress line of a finished ensemble stage: how many members were solved, read back from an
- * earlier run (--resume) and reused from an earlier stage of this run. */
+/* The progress line of a finished stage: how many of its count results were solved, read back
+ * from an earlier run (--resume) and reused from an earlier stage of this run. */
+void scene_report_origin_counts(const im_scene_run_options *options, const char *stage,
+                                const enum scene_origin *origins, int count);
+/* The same for an ensemble stage's members. */
 void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
                           int count);
 
