@@ -50,7 +50,7 @@ load=$(cut -d' ' -f1 /proc/loadavg)
 ref_time=$(run reference --tol 1e-11)
 echo "preset,tol,threads,repeats,wall_median_s,wall_min_s,wall_max_s,cpu_median_s,iterations,max_rel_error_np,max_rel_error_N,max_residual,worst_np_step,reference_np_there,load_average_before"
 echo "reference,1e-11,$threads,1,$(echo "$ref_time" | median 1 all),$(echo "$ref_time" | median 2),$(compare "$work/reference" "$work/reference"),$load"
-for preset in draft:1e-4 standard:1e-6 publication:1e-9 ${EXTRA_TOLS:-}; do
+for preset in draft:1e-5 standard:1e-6 publication:1e-9 ${EXTRA_TOLS:-}; do
   name=${preset%%:*} tol=${preset#*:}
   load=$(cut -d' ' -f1 /proc/loadavg)
   option=(--quality "$name")

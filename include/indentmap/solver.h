@@ -159,8 +159,8 @@ void im_indentation_free(im_indentation *run);
  * keeps the last iterate); IM_EEDGE when a contact patch lies on the outer row or column of the
  * surface, where the finite surface, not the half-space, would decide the answer, and, under load
  * control, before solving, when the smooth contact at the load would have a radius reaching from
- * the punch axis past the surface's edge (a load this surface cannot carry). The run's loads and
- * contact counts are summed with compensation (a few ulp over any grid, whatever the threads). */
+ * the punch axis past the surface's edge (a load this surface cannot carry). Loads are summed with
+ * compensation (a few ulp over any grid, whatever the threads); contact counts are integers. */
 int im_indentation_step(im_indentation *run, double target, im_step_result *out);
 
 im_window im_indentation_window(const im_indentation *run);

@@ -97,7 +97,7 @@ static double environment_limit(void)
     double mib = strtod(text, &end);
     if (end == text || *end != '\0' || !(mib > 0.0) || !isfinite(mib))
         return -1.0;
-    return fmin(mib * 1048576.0, (double)SIZE_MAX);
+    return fmin(mib * 1048576.0, 0x1p63); /* far beyond any machine; converts to size_t exactly */
 }
 
 static size_t smaller_known(size_t available, size_t bound)

@@ -18,44 +18,29 @@ static inline void compensated_add(compensated *c, double x)
 
 static inline double compensated_total(const compensated *c) { return c->sum + c->compensation; }
 
-/* Compensated sum of v[lo..hi), for each element type. */
-typedef double (*range_sum)(const void *v, size_t lo, size_t hi);
-
-static double range_sum_doubles(const void *v, size_t lo, size_t hi)
+/* Compensated sum of v[lo..hi). */
+static double range_sum(const double *v, size_t lo, size_t hi)
 {
-    const double *d = v;
     compensated c = {0, 0};
     for (size_t i = lo; i < hi; ++i)
-        compensated_add(&c, d[i]);
-    return compensated_total(&c);
-}
-
-static double range_sum_floats(const void *v, size_t lo, size_t hi)
-{
-    const float *f = v;
-    compensated c = {0, 0};
-    for (size_t i = lo; i < hi; ++i)
-        compensated_add(&c, (double)f[i]);
+        compensated_add(&c, v[i]);
     return compensated_total(&c);
 }
 
 /* Blocks summed in parallel, then combined in block order, so the result does not depend on the
  * thread count. Without room for the block sums, one compensated pass: as accurate, one thread. */
-static double blocked_sum(const void *v, size_t n, range_sum sum)
+double im_sum_doubles(const double *v, size_t n)
 {
     const size_t blocks = (n + IM_SUM_BLOCK - 1) / IM_SUM_BLOCK;
     double *block = blocks > 1 ? malloc(sizeof(double) * blocks) : NULL;
     if (!block)
-        return sum(v, 0, n);
+        return range_sum(v, 0, n);
 #pragma omp parallel for schedule(static)
     for (size_t b = 0; b < blocks; ++b)
-        block[b] = sum(v, b * IM_SUM_BLOCK, b + 1 < blocks ? (b + 1) * IM_SUM_BLOCK : n);
+        block[b] = range_sum(v, b * IM_SUM_BLOCK, b + 1 < blocks ? (b + 1) * IM_SUM_BLOCK : n);
     compensated total = {0, 0};
     for (size_t b = 0; b < blocks; ++b)
         compensated_add(&total, block[b]);
     free(block);
     return compensated_total(&total);
 }
-
-double im_sum_doubles(const double *v, size_t n) { return blocked_sum(v, n, range_sum_doubles); }
-double im_sum_floats(const float *v, size_t n) { return blocked_sum(v, n, range_sum_floats); }

@@ -2,7 +2,8 @@
  *
  * A plain running sum of n values loses up to n ulp: over the 16.8 million patches of a 4096^2
  * grid that is 2e-9 relative in double and everything in single precision (a float accumulator
- * stops growing at 2^24 times the addend). These sums use Neumaier's compensated summation inside
+ * stops growing at 2^24 times the addend). Single-precision data (float32 .npy files) are
+ * widened to double by the readers and summed here like any other. These sums use Neumaier's compensated summation inside
  * fixed blocks of IM_SUM_BLOCK values, summed in parallel, and then combine the block sums with
  * compensation in block order: the error is a few ulp of the result whatever n, and the result is
  * the same bit for bit for any thread count (the blocks do not depend on it). */
@@ -15,8 +16,5 @@
 
 /* Sum of v[0..n) in double precision, compensated. */
 double im_sum_doubles(const double *v, size_t n);
-
-/* Sum of v[0..n) (single-precision data) accumulated in double precision, compensated. */
-double im_sum_floats(const float *v, size_t n);
 
 #endif

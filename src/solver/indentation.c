@@ -244,11 +244,16 @@ static int check_edge(const im_indentation *run)
  * edge, or, with a window bound broken by the edge, nowhere sensible. */
 static int check_reachable(const im_indentation *run, double load)
 {
-    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT)
+    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT || load == 0)
         return IM_OK;
     double ax, ay;
     im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
     const double room = fmin(fmin(ax, run->nx * run->delta - ax), fmin(ay, run->ny * run->delta - ay));
+    if (!(room > 0))
+        return im_fail(IM_EEDGE,
+                       "load %g cannot be reached: the punch axis (%g, %g) is on the edge of the %d x %d "
+                       "surface or outside it, so any contact reaches the edge",
+                       load, ax, ay, run->nx, run->ny);
     const double radius = sqrt(im_indenter_area_for_load(&run->punch, run->options.e_star, load) / M_PI);
     if (radius < room)
         return IM_OK;
