@@ -1,5 +1,5 @@
 #version 330 core
-// Contact map: one texel per patch, integer upscaling, boundary frame, anti-aliased circle.
+// Contact map: one texel per patch, integer upscaling, boundary frame, anti-aliased (or aliased) circle.
 // Patch codes (computed on the CPU by im_colormap_index): 0..255 table entry, 256 under,
 // 257 over, 258 bad (NaN), 259 not in contact.
 uniform usampler2D codes;      // nx x ny, R16UI
@@ -10,6 +10,7 @@ uniform int scale;             // pixels per patch
 uniform int border;            // width of the boundary frame in pixels
 uniform vec3 circle;           // centre (pixels from the data's lower-left corner) and radius; r <= 0: none
 uniform float circle_width;    // pixels
+uniform int circle_aliased;    // 1: a pixel at least half covered by the line takes its colour, others none
 out vec4 colour;
 
 vec3 patch_colour(uint code)
@@ -44,6 +45,9 @@ void main()
         c = line_colour;
     else
         c = patch_colour(texelFetch(codes, pixel / scale, 0).r);
-    c = mix(c, line_colour, circle_coverage(gl_FragCoord.xy - vec2(border)));
+    float coverage = circle_coverage(gl_FragCoord.xy - vec2(border));
+    if (circle_aliased != 0)
+        coverage = step(0.5, coverage);
+    c = mix(c, line_colour, coverage);
     colour = vec4(c, 1.0);
 }

@@ -275,6 +275,37 @@ static void test_circle_centre_and_radius(void **state)
     im_field_free(f);
 }
 
+/* An aliased circle: every pixel is either the line colour or exactly the map drawn without the
+ * circle, and the line-coloured pixels are those at least half covered: about 2 pi R w of them. */
+static void test_aliased_circle_exact_colours(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *force = random_forces(5);
+    im_contact_style style = im_contact_style_default(force);
+    im_image plain, aliased;
+    assert_int_equal(im_render_contact_map(context, force, &style, &plain), IM_OK);
+    style.circle_radius = 9.3;
+    style.circle_width_px = 2.0;
+    style.circle_aliased = 1;
+    assert_int_equal(im_render_contact_map(context, force, &style, &aliased), IM_OK);
+    long on_line = 0;
+    for (int row = 0; row < plain.height; ++row)
+        for (int column = 0; column < plain.width; ++column) {
+            const uint8_t *a = pixel(&aliased, column, row), *p = pixel(&plain, column, row);
+            int is_line = memcmp(a, style.line, 3) == 0;
+            if (!is_line && memcmp(a, p, 3) != 0)
+                fail_msg("pixel (%d, %d) = (%d, %d, %d): neither the line colour nor the map's", column, row,
+                         a[0], a[1], a[2]);
+            on_line += is_line && memcmp(p, style.line, 3) != 0;
+        }
+    double expected = 2.0 * M_PI * style.circle_radius * style.pixels_per_patch * style.circle_width_px;
+    assert_close((double)on_line, expected, 0.05 * expected);
+    im_image_release(&plain);
+    im_image_release(&aliased);
+    im_field_free(force);
+}
+
 static void test_repeated_runs_identical(void **state)
 {
     (void)state;
@@ -562,6 +593,7 @@ int main(void)
         cmocka_unit_test(test_single_patch_lands_on_its_pixels),
         cmocka_unit_test(test_checkerboard_and_disc),
         cmocka_unit_test(test_circle_centre_and_radius),
+        cmocka_unit_test(test_aliased_circle_exact_colours),
         cmocka_unit_test(test_repeated_runs_identical),
         cmocka_unit_test(test_backends_agree),
         cmocka_unit_test(test_empty_zero_and_nan_fields),

@@ -96,18 +96,21 @@ typedef struct im_contact_style {
     double circle_x, circle_y; /* its centre in patches: field coordinates, x right, y up; patch
                                   (ix, iy) covers [ix, ix + 1) x [iy, iy + 1) */
     double circle_width_px;    /* line width of the circle in pixels, > 0 */
+    int circle_aliased;        /* 0 (default): anti-aliased; 1: a pixel at least half covered by the
+                                  line takes the line colour, any other none, so the image holds
+                                  only exact colours (a GIF palette) */
 } im_contact_style;
 
 /* Defaults for a force field: viridis, linear norm on [0, largest force] (or [0, 1] when no
  * patch is in contact), 2 pixels per patch, 2-pixel black boundary, light grey (230) background,
- * no circle (centre preset to the middle of the grid), circle width 2 px. */
+ * no circle (centre preset to the middle of the grid), circle width 2 px, anti-aliased. */
 im_contact_style im_contact_style_default(const im_field *force);
 
 /* Draws a contact map: each patch with force > 0 in the colour of its force through the norm
  * (under / over colours outside the norm's range), patches with force <= 0 (or -Inf) in the
  * background colour, NaN patches in the colour map's bad colour. A field with no patch in contact
  * is drawn as background only (a valid picture, not an error). The circle is anti-aliased with
- * its exact coverage of each pixel across the line (box filter). Errors: IM_EINVAL for a bad
+ * its exact coverage of each pixel across the line (box filter), or aliased at half coverage. Errors: IM_EINVAL for a bad
  * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
  * the message); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
 int im_render_contact_map(im_render_context *context, const im_field *force,

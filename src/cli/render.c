@@ -52,6 +52,7 @@ typedef struct render_options {
     im_colormap_id map;
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
+    int aliased_circle; /* GIF frames: the circle aliased (exact palette colours) */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
@@ -140,6 +141,7 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     note_extremes(o, force, &style.colormap, 1);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
+    style.circle_aliased = o->aliased_circle;
     if (o->has_circle_x)
         style.circle_x = o->circle_x;
     if (o->has_circle_y)
@@ -239,39 +241,18 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
     return IM_OK;
 }
 
-/* Makes the anti-aliased circle of `drawn` aliased, against the same map drawn without it: a
- * pixel whose coverage (its blend towards the line colour) is at least 1/2 takes the line colour,
- * any other its data colour. A GIF frame so holds only exact palette colours. */
-static void alias_circle(im_image *drawn, const im_image *plain, const uint8_t line[3])
-{
-    size_t pixels = (size_t)drawn->width * drawn->height;
-    for (size_t i = 0; i < pixels; ++i) {
-        uint8_t *p = drawn->rgba + 4 * i;
-        const uint8_t *q = plain->rgba + 4 * i;
-        int k = 0;
-        for (int c = 1; c < 3; ++c)
-            if (abs(line[c] - q[c]) > abs(line[k] - q[k]))
-                k = c;
-        int full = line[k] - q[k], blend = p[k] - q[k];
-        memcpy(p, full != 0 && 2 * blend * (full > 0 ? 1 : -1) >= abs(full) ? line : q, 3);
-    }
-}
-
-/* The GIF frame of a contact map drawn with --circle: the circle aliased (see alias_circle). */
+/* The GIF frame of a contact map drawn with --circle: the same map with the circle aliased, so
+ * that the frame holds only exact palette colours. */
 static int gif_frame(im_render_context *context, const im_field *force, const render_options *o,
                      im_image *frame)
 {
     if (!(o->circle > 0.0))
         return IM_OK;
-    render_options plain_options = *o;
-    plain_options.circle = 0.0;
-    im_image plain;
+    render_options gif_options = *o;
+    gif_options.aliased_circle = 1;
     im_colormap norm;
-    int status = render_contact(context, force, &plain_options, &plain, &norm);
-    if (status == IM_OK)
-        alias_circle(frame, &plain, im_contact_style_default(force).line);
-    im_image_release(&plain);
-    return status;
+    im_image_release(frame);
+    return render_contact(context, force, &gif_options, frame, &norm);
 }
 
 /* One contact map per force file, all with one norm, into DIR/contact_NNNN.png, then the GIF

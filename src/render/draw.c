@@ -309,6 +309,7 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     gl->Uniform3f(gl->GetUniformLocation(program, "circle"), (float)(s->circle_x * scale),
                   (float)(s->circle_y * scale), (float)(s->circle_radius * scale));
     gl->Uniform1f(gl->GetUniformLocation(program, "circle_width"), (float)s->circle_width_px);
+    set_int(gl, program, "circle_aliased", s->circle_aliased != 0);
     status = draw_and_read(c, image->width, image->height, image->rgba);
     return finish(c, status, textures, 2, codes, image);
 }
@@ -360,7 +361,10 @@ int im_height_outline_width(const im_height_style *style)
     if (style->outline_px > 0)
         return style->outline_px;
     int scale = style->pixels_per_patch;
-    return scale < 2 ? 1 : (scale + 1) / 3 > 2 ? (scale + 1) / 3 : 2;
+    if (scale < 2)
+        return 1;
+    int third = (scale + 1) / 3; /* round(scale / 3) */
+    return third > 2 ? third : 2;
 }
 
 static int check_height_style(const im_height_style *s, const im_field *height)
