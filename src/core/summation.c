@@ -2,7 +2,6 @@
 #include "core/summation.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 /* Neumaier's running sum: sum + compensation carries the low-order bits that sum drops. */
 typedef struct compensated {
@@ -28,19 +27,18 @@ static double range_sum(const double *v, size_t lo, size_t hi)
 }
 
 /* Blocks summed in parallel, then combined in block order, so the result does not depend on the
- * thread count. Without room for the block sums, one compensated pass: as accurate, one thread. */
+ * thread count; the block length grows with n so that the block sums fit on the stack. */
 double im_sum_doubles(const double *v, size_t n)
 {
-    const size_t blocks = (n + IM_SUM_BLOCK - 1) / IM_SUM_BLOCK;
-    double *block = blocks > 1 ? malloc(sizeof(double) * blocks) : NULL;
-    if (!block)
-        return range_sum(v, 0, n);
+    const size_t shortest = (n + IM_SUM_MAX_BLOCKS - 1) / IM_SUM_MAX_BLOCKS;
+    const size_t length = shortest > IM_SUM_BLOCK ? shortest : IM_SUM_BLOCK;
+    const size_t blocks = (n + length - 1) / length;
+    double block[IM_SUM_MAX_BLOCKS];
 #pragma omp parallel for schedule(static)
     for (size_t b = 0; b < blocks; ++b)
-        block[b] = range_sum(v, b * IM_SUM_BLOCK, b + 1 < blocks ? (b + 1) * IM_SUM_BLOCK : n);
+        block[b] = range_sum(v, b * length, b + 1 < blocks ? (b + 1) * length : n);
     compensated total = {0, 0};
     for (size_t b = 0; b < blocks; ++b)
         compensated_add(&total, block[b]);
-    free(block);
     return compensated_total(&total);
 }

@@ -3,16 +3,18 @@
  * A plain running sum of n values loses up to n ulp: over the 16.8 million patches of a 4096^2
  * grid that is 2e-9 relative in double and everything in single precision (a float accumulator
  * stops growing at 2^24 times the addend). Single-precision data (float32 .npy files) are
- * widened to double by the readers and summed here like any other. These sums use Neumaier's compensated summation inside
- * fixed blocks of IM_SUM_BLOCK values, summed in parallel, and then combine the block sums with
- * compensation in block order: the error is a few ulp of the result whatever n, and the result is
- * the same bit for bit for any thread count (the blocks do not depend on it). */
+ * widened to double by the readers and summed here like any other. These sums use Neumaier's
+ * compensated summation inside at most IM_SUM_MAX_BLOCKS blocks of at least IM_SUM_BLOCK values,
+ * summed in parallel, and then combine the block sums with compensation in block order: the error
+ * is a few ulp of the result whatever n, and the result is the same bit for bit for any thread
+ * count (the blocks depend on n only). Nothing is allocated: the solver sums every iteration. */
 #ifndef INDENTMAP_CORE_SUMMATION_H
 #define INDENTMAP_CORE_SUMMATION_H
 
 #include <stddef.h>
 
 #define IM_SUM_BLOCK 4096
+#define IM_SUM_MAX_BLOCKS 1024
 
 /* Sum of v[0..n) in double precision, compensated. */
 double im_sum_doubles(const double *v, size_t n);

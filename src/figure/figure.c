@@ -136,14 +136,13 @@ static void measure_colorbar(const im_figure *f, const measure *m, layout *l)
     }
 }
 
-/* The scale bar's length in the images' units, its text and its length in pixels. */
-static double scale_bar(const im_figure *f, char *text, size_t size, double *pixels)
+/* The scale bar's text (its length in the images' units) and its length in pixels. */
+static void scale_bar(const im_figure *f, char *text, size_t size, double *pixels)
 {
     const im_image *image = f->panels[(f->rows - 1) * f->columns].image;
     double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
     *pixels = (image->unit[0] ? length / image->delta : length) * image->pixels_per_patch;
     im_figure_length_label(length, image->unit, text, size);
-    return length;
 }
 
 /* Moves the grid down (and grows the page) so that the colour bar's rotated label, centred on

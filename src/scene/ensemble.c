@@ -124,27 +124,18 @@ void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int coun
     }
 }
 
-void scene_report_origin_counts(const im_scene_run_options *options, const char *stage,
-                                const enum scene_origin *origins, int count)
+void scene_report_origin_counts(const im_scene_run_options *options, const char *stage, const int counted[3])
 {
-    int solved = 0, read_back = 0, reused = 0;
-    for (int i = 0; i < count; ++i) {
-        solved += origins[i] == SCENE_SOLVED;
-        read_back += origins[i] == SCENE_READ_BACK;
-        reused += origins[i] == SCENE_REUSED;
-    }
     scene_progress(options, "%s: %d surfaces: %d solved, %d read back, %d reused from an earlier stage", stage,
-                   count, solved, read_back, reused);
+                   counted[SCENE_SOLVED] + counted[SCENE_READ_BACK] + counted[SCENE_REUSED], counted[SCENE_SOLVED],
+                   counted[SCENE_READ_BACK], counted[SCENE_REUSED]);
 }
 
 void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
                           int count)
 {
-    enum scene_origin *origins = malloc(sizeof *origins * (count > 0 ? count : 1));
-    if (!origins)
-        return; /* a progress line is not worth failing the run */
+    int counted[3] = {0};
     for (int i = 0; i < count; ++i)
-        origins[i] = members[i].origin;
-    scene_report_origin_counts(options, stage, origins, count);
-    free(origins);
+        ++counted[members[i].origin];
+    scene_report_origin_counts(options, stage, counted);
 }

@@ -232,10 +232,10 @@ static int plot_density(const im_scene *scene, const panel_result *results)
 /* How many panels were solved, read back and reused. */
 static void report_panels(const im_scene_run_options *options, const panel_result *results, int count)
 {
-    enum scene_origin origins[IM_SCENE_MAX_FAMILIES];
+    int counted[3] = {0};
     for (int i = 0; i < count; ++i)
-        origins[i] = results[i].origin;
-    scene_report_origin_counts(options, "panels", origins, count);
+        ++counted[results[i].origin];
+    scene_report_origin_counts(options, "panels", counted);
 }
 
 int scene_run_panels(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,

@@ -394,12 +394,12 @@ static int check_consistency(parse_context *context)
     const im_scene *scene = context->scene;
     if (scene->surface.lambda_r <= scene->surface.lambda_s) {
         int r = key_line(context, "surfaces", "lambda_r"), s = key_line(context, "surfaces", "lambda_s");
-        if (!r) /* lambda_r is the box's side: n (or m) made it */
-            r = key_line(context, "surfaces", "n") > key_line(context, "surfaces", "m") ? key_line(context, "surfaces", "n")
-                                                                                          : key_line(context, "surfaces", "m");
+        int n = key_line(context, "surfaces", "n"), m = key_line(context, "surfaces", "m");
+        int r_from = r ? r : n > m ? n : m; /* a default lambda_r is the box's side: n (or m) made it */
         snprintf(context->error, sizeof context->error, "lambda_r = %g must exceed lambda_s = %g%s",
-                 scene->surface.lambda_r, scene->surface.lambda_s, key_line(context, "surfaces", "lambda_r") ? "" : " (lambda_r defaults to the box's side)");
-        return r > s ? r : s > 0 ? s : 1;
+                 scene->surface.lambda_r, scene->surface.lambda_s, r ? "" : " (lambda_r defaults to the box's side)");
+        int line = r_from > s ? r_from : s;
+        return line > 0 ? line : 1;
     }
     for (int i = 1; i < scene->step_count; ++i) {
         if (!(scene->steps[i] > scene->steps[i - 1])) {

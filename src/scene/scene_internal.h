@@ -150,10 +150,9 @@ int scene_keeps_force(const im_scene *scene, const scene_member *m);
 /* Moves the members' kept forces into reuse->force (where a family has none yet). */
 void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count);
 
-/* The progress line of a finished stage: how many of its count results were solved, read back
- * from an earlier run (--resume) and reused from an earlier stage of this run. */
-void scene_report_origin_counts(const im_scene_run_options *options, const char *stage,
-                                const enum scene_origin *origins, int count);
+/* The progress line of a finished stage: how many of its results were solved, read back from an
+ * earlier run (--resume) and reused from an earlier stage of this run (counted[origin]). */
+void scene_report_origin_counts(const im_scene_run_options *options, const char *stage, const int counted[3]);
 /* The same for an ensemble stage's members. */
 void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
                           int count);
