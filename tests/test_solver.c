@@ -114,7 +114,7 @@ static void test_cone_love(void **state)
                 fail_msg("w = %g: N = %g, Love %g (%.3f%%)", w, r.load, love, 100 * (r.load / love - 1));
             /* n_p delta^2 against A_cone: the discrete contact extends ~0.1 delta beyond a (patches
              * straddling the edge carry force), i.e. +0.3 to +0.9% for 1000 < n_p < 8000 on this
-             * grid; below 0.5% from n_p ~ 8000 (see README). */
+             * grid; below 0.5% from n_p ~ 8000 (see docs/solver.md). */
             double limit = r.contact_patches > 8000 ? 0.005 : 0.01;
             if (fabs(r.area_ratio - 1) > limit)
                 fail_msg("w = %g: n_p = %ld, area ratio %g beyond %g", w, r.contact_patches, r.area_ratio, limit);

@@ -70,7 +70,7 @@ int im_solver_options_check(const im_solver_options *options);
  *   standard     1e-6   N within 1.0e-6, n_p within 1.9e-4
  *   publication  1e-9   N within 1.1e-9, n_p exact, 1.6x the iterations of standard
  * (the largest relative errors against tol 1e-11 over the paper's history: 25 approaches
- * w = 1.26..31.5 of an 80 degree cone on the 512 x 512 h'rms = 0.08 surface, seed 1; README,
+ * w = 1.26..31.5 of an 80 degree cone on the 512 x 512 h'rms = 0.08 surface, seed 1; docs/benchmarks.md,
  * "Speed against accuracy"). An explicit tol overrides a preset wherever both can be given.
  * IM_EINVAL naming the name for anything else. */
 int im_quality_tolerance(const char *name, double *tol);
