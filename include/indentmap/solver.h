@@ -59,6 +59,10 @@ typedef struct im_solver_options {
                                NULL (default): the environment variable IM_FFTW_WISDOM, if set */
     int crop;               /* 1 (default): solve on the window that can touch; 0: whole surface */
     int window_margin;      /* patches added around the window on each side (default 4) */
+    int cascade;            /* 1 (default): cold starts from the solution on coarser grids (see
+                               "Cascade start" above); 0: from the local (Winkler) guess */
+    int precondition;       /* 1 (default): preconditioned CG steps on the contact set (see
+                               "Preconditioning" above); 0: plain Polonsky-Keer */
 } im_solver_options;
 
 im_solver_options im_solver_options_default(void);
@@ -111,6 +115,8 @@ typedef struct im_solve_result {
     int convolutions;       /* all convolutions, including the exact recomputations */
     double residual;        /* the stopping rule's value at exit */
     double seconds;         /* wall time of the solve */
+    int coarse_iterations;  /* CG iterations on the cascade's coarser grids (all levels; one on the
+                               grid 2^k times coarser costs ~4^-k of a fine one); 0 without cascade */
 } im_solve_result;
 
 /* Solves one contact problem on the plan's grid. gap0: undeformed gap at first touch (>= 0;
@@ -135,6 +141,7 @@ typedef struct im_step_result {
     double mean_pressure, max_pressure;
     int iterations, convolutions;
     double residual, seconds;
+    int coarse_iterations;  /* as im_solve_result's */
 } im_step_result;
 
 typedef struct im_indentation im_indentation;

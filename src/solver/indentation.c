@@ -272,7 +272,8 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
                             .area_ratio = s->load > 0 ? s->contact_patches * d2 / area : NAN,
                             .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
                             .iterations = s->iterations, .convolutions = s->convolutions,
-                            .residual = s->residual, .seconds = s->seconds};
+                            .residual = s->residual, .seconds = s->seconds,
+                            .coarse_iterations = s->coarse_iterations};
 }
 
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)

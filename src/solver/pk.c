@@ -13,6 +13,7 @@ typedef struct gap_stats {
     long contact;        /* |I_c| */
     double sum_squares;  /* G = sum over I_c of g^2 */
     double penetration;  /* max over p = 0 of -g (0 if none) */
+    double penetration_squares; /* sum over p = 0, g < 0 of g^2 */
 } gap_stats;
 
 typedef struct pk_run {
@@ -49,18 +50,22 @@ static gap_stats compute_gaps(const pk_run *r)
     if (r->control == IM_CONTROL_LOAD)
         s.approach = mean_over_contact(p, u, g0, n, &s.contact);
     const double w = s.approach;
-    double squares = 0, penetration = 0;
+    double squares = 0, penetration = 0, penetration_squares = 0;
     long contact = 0;
-#pragma omp parallel for schedule(static) reduction(+ : squares, contact) reduction(max : penetration)
+#pragma omp parallel for schedule(static) reduction(+ : squares, contact, penetration_squares) reduction(max : penetration)
     for (size_t i = 0; i < n; ++i) {
         double gi = u[i] + g0[i] - w;
         g[i] = gi;
         if (p[i] > 0) {
             squares += gi * gi;
             ++contact;
-        } else if (-gi > penetration)
-            penetration = -gi;
+        } else if (gi < 0) {
+            penetration_squares += gi * gi;
+            if (-gi > penetration)
+                penetration = -gi;
+        }
     }
+    s.penetration_squares = penetration_squares;
     s.contact = contact;
     s.sum_squares = squares;
     s.penetration = penetration;
@@ -131,12 +136,12 @@ static void impose_load(pk_run *r)
 
 /* New search direction t = g + beta t on I_c, 0 elsewhere, written also into the padded rows that
  * the convolution transforms (one pass instead of two). */
-static void update_direction(const pk_run *r, double beta)
+static void update_direction(const pk_run *r, const double *g, double beta)
 {
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
     double *t = plan->direction;
-    const double *g = plan->gap, *p = r->p;
+    const double *p = r->p;
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy) {
         double *padded = plan->rows_in + (size_t)iy * px;
@@ -146,6 +151,47 @@ static void update_direction(const pk_run *r, double beta)
             padded[ix] = t[i];
         }
     }
+}
+
+/* z = M g on I_c (0 elsewhere), M the inverse of K's padded (circulant) spectrum: K is close to
+ * 1 / (E* |k|) in Fourier space, so M ~ E* |k| undoes most of its spread of eigenvalues, which grows
+ * with the contact's size in patches and sets plain CG's rate. Centred over I_c under load control
+ * (the directions keep the load). One more convolution per step. Returns <g, z> over I_c. */
+static double precondition(pk_run *r)
+{
+    im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const double *g = plan->gap, *p = r->p;
+    double *z = plan->preconditioned;
+#pragma omp parallel for schedule(static)
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            plan->rows_in[(size_t)iy * px + ix] = p[i] > 0 ? g[i] : 0;
+        }
+    solver_filter_rows(plan, plan->inverse_spectrum);
+    ++r->convolutions;
+    double z_sum = 0;
+    long count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : z_sum, count)
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            z[i] = p[i] > 0 ? plan->rows_out[(size_t)iy * px + ix] : 0;
+            if (p[i] > 0) {
+                z_sum += z[i];
+                ++count;
+            }
+        }
+    const double mean = r->control == IM_CONTROL_LOAD && count ? z_sum / count : 0;
+    double gz = 0;
+#pragma omp parallel for schedule(static) reduction(+ : gz)
+    for (size_t i = 0; i < (size_t)nx * ny; ++i)
+        if (p[i] > 0) {
+            z[i] -= mean;
+            gz += g[i] * z[i];
+        }
+    return gz;
 }
 
 /* Step length tau = <g, t> / <K t, t> over I_c, K t read in place from the convolution's rows;
@@ -177,10 +223,10 @@ static double step_length(const pk_run *r)
     return num / den;
 }
 
-/* In one pass: u -= tau K t; p -= tau t on I_c, clipped at zero; patches outside I_c that penetrate
- * (g < 0) join with p = -tau g. Records how p differs from the plain CG step p - tau t in
+/* In one pass: u -= tau K t; p -= tau t on I_c, clipped at zero; if allow_join, patches outside I_c
+ * that penetrate (g < 0) join with p = -tau g. Records how p differs from the plain CG step p - tau t in
  * plan->changed_value and returns the number of such patches; *joined is set when any joined. */
-static long update_pressure(pk_run *r, double tau, int *joined)
+static long update_pressure(pk_run *r, double tau, int allow_join, int *joined)
 {
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
@@ -202,7 +248,7 @@ static long update_pressure(pk_run *r, double tau, int *joined)
                     next = 0;
                 }
                 p[i] = next;
-            } else if (g[i] < 0) {
+            } else if (allow_join && g[i] < 0) {
                 p[i] = c = -tau * g[i];
                 any_joined = 1;
             }
@@ -319,8 +365,21 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             continue;
         }
         ++res->iterations;
-        update_direction(r, restart ? 0 : s.sum_squares / previous_squares);
-        previous_squares = s.sum_squares;
+        /* Preconditioned: patches join only in a plain PK step (steepest descent), taken when the
+         * penetration outside I_c outweighs the gap left on it (Dostal's proportioning test); the
+         * other steps are preconditioned CG on I_c, which may only shrink it (clipping). Plain PK
+         * lets patches join in every step. */
+        const int join = !o->precondition || s.penetration_squares > s.sum_squares;
+        if (o->precondition && join)
+            restart = 1;
+        if (join) {
+            update_direction(r, r->plan->gap, restart ? 0 : s.sum_squares / previous_squares);
+            previous_squares = s.sum_squares;
+        } else {
+            double gz = precondition(r);
+            update_direction(r, r->plan->preconditioned, restart ? 0 : gz / previous_squares);
+            previous_squares = gz;
+        }
         solver_convolve_rows(r->plan); /* K t, left in plan->rows_out */
         ++r->convolutions;
         double tau = step_length(r);
@@ -337,7 +396,9 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             tau = 1.0 / r->plan->kernel[0];
         if (!isfinite(tau) || tau <= 0)
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
-        long changes = update_pressure(r, tau, &restart);
+        long changes = update_pressure(r, tau, join, &restart);
+        if (o->precondition && join)
+            restart = 1; /* the next preconditioned step starts its own conjugate sequence */
         exact = update_displacement(r, changes);
         if (r->control == IM_CONTROL_LOAD)
             impose_load(r);
@@ -359,6 +420,8 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);
     } else {
+        if (!any_positive(pressure, n) && plan->coarse)
+            res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
         if (!any_positive(pressure, n))
             cold_start(&r);
         convolve(&r, pressure, displacement);

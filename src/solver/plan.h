@@ -13,6 +13,8 @@ struct im_solver_plan {
     im_solver_options options;
     double *kernel;          /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
     double *spectrum;        /* py * (px/2 + 1): real spectrum of K, divided by px * py */
+    double *inverse_spectrum;/* py * (px/2 + 1): 1 / K's spectrum, divided by px * py (preconditioner) */
+    double *preconditioned;  /* nx * ny: the preconditioned gap */
     double *rows_in;         /* ny * px: the grid's rows, zero-padded to px (right halves stay 0) */
     double *rows_out;        /* ny * px */
     fftw_complex *modes;     /* py * (px/2 + 1): the row transforms, then the 2-D transform */
@@ -27,11 +29,30 @@ struct im_solver_plan {
     long direct_limit;       /* most changes added by direct summation rather than by FFT */
     double plan_seconds;
     int measured;
+    /* The cascade (cascade.c): the plan of the grid twice as coarse (NULL when cascade is off or the
+     * grid is too small), and the coarse problem's gap, pressure and displacement. */
+    struct im_solver_plan *coarse;
+    double *coarse_gap0, *coarse_pressure, *coarse_displacement;
 };
+
+/* Coarse grid sides of a cascade level under an nx x ny grid; 0 when there is none (too small). */
+int solver_cascade_sides(int nx, int ny, int *cx, int *cy);
+
+/* Creates plan->coarse and its arrays (recursively, down to the smallest level). */
+int solver_cascade_create(im_solver_plan *plan);
+void solver_cascade_free(im_solver_plan *plan);
+
+/* Cold start from the coarse grids: restricts gap0, solves there (itself started from the next
+ * level), and prolongs the pressure into pressure. Returns the coarse iterations of all levels;
+ * pressure stays all zero when the coarse grids found no contact. */
+int solver_cascade_start(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
+                         double *pressure);
 
 /* Transforms rows_in (filled by the caller: the grid's rows, stride px) and leaves the
  * convolution with K in rows_out (stride px, the first nx values of each of the ny rows). */
 void solver_convolve_rows(im_solver_plan *plan);
+/* The same with another real multiplier of the padded spectrum (already divided by px * py). */
+void solver_filter_rows(im_solver_plan *plan, const double *multiplier);
 
 /* displacement += sum_k value[k] K(x - x_index[k]) over the grid (direct summation). */
 void solver_add_point_loads(const im_solver_plan *plan, const long *index, const double *value, long count,
