@@ -300,6 +300,57 @@ static void test_cropped_window_equals_full_grid(void **state)
     im_field_free(s);
 }
 
+/* The default solver (cascade cold starts, preconditioned steps) against plain Polonsky-Keer on a
+ * rough cone at tol 1e-10: a cold solve and a warm-started history, under each control. Loads agree
+ * to the tolerance and the contact sets are identical; the cold solve went through the coarse grids
+ * and the warm steps did not. */
+static void compare_with_plain_pk(enum im_control control, const double *targets, int steps)
+{
+    im_field *s = rough_surface(256, 0.08, 11);
+    im_indenter cone = im_indenter_cone(80);
+    im_solver_options fast = im_solver_options_default(), plain = fast;
+    fast.tol = plain.tol = 1e-10;
+    plain.cascade = plain.precondition = 0;
+    im_indentation *a = prepare(s, &cone, control, targets[steps - 1], &fast);
+    im_indentation *b = prepare(s, &cone, control, targets[steps - 1], &plain);
+    for (int k = 0; k < steps; ++k) {
+        im_step_result ra = step(a, targets[k]), rb = step(b, targets[k]);
+        if (k == 0)
+            assert_true(ra.coarse_iterations > 0);
+        else
+            assert_int_equal(ra.coarse_iterations, 0);
+        assert_int_equal(rb.coarse_iterations, 0);
+        im_field *fa = NULL, *fb = NULL;
+        assert_int_equal(im_indentation_fields(a, &fa, NULL, NULL), IM_OK);
+        assert_int_equal(im_indentation_fields(b, &fb, NULL, NULL), IM_OK);
+        assert_close(ra.load, rb.load, 1e-9 * rb.load);
+        assert_close(ra.approach, rb.approach, 1e-9 * rb.approach);
+        assert_same_solution(ra, fa, rb, fb);
+        im_field_free(fa);
+        im_field_free(fb);
+    }
+    im_indentation_free(a);
+    im_indentation_free(b);
+    im_field_free(s);
+}
+
+static void test_accelerated_equals_plain_pk_displacement(void **state)
+{
+    (void)state;
+    /* w = pi a cot(alpha) / 2 for a smooth contact radius a = 256 / 5 */
+    const double w = M_PI * 51.2 / (2 * tan(80 * M_PI / 180)), targets[3] = {w, 1.1 * w, 1.2 * w};
+    compare_with_plain_pk(IM_CONTROL_DISPLACEMENT, targets, 3);
+}
+
+static void test_accelerated_equals_plain_pk_load(void **state)
+{
+    (void)state;
+    im_indenter cone = im_indenter_cone(80);
+    const double w = M_PI * 51.2 / (2 * tan(80 * M_PI / 180)), n = im_indenter_load(&cone, 1, w);
+    const double targets[3] = {0.6 * n, 0.8 * n, n};
+    compare_with_plain_pk(IM_CONTROL_LOAD, targets, 3);
+}
+
 /* ---- refusals, with nothing computed lost ---- */
 
 static void test_edge_contact(void **state)
@@ -375,6 +426,8 @@ int main(void)
         cmocka_unit_test(test_load_matches_displacement_control),
         cmocka_unit_test(test_thread_count_independence),
         cmocka_unit_test(test_cropped_window_equals_full_grid),
+        cmocka_unit_test(test_accelerated_equals_plain_pk_displacement),
+        cmocka_unit_test(test_accelerated_equals_plain_pk_load),
         cmocka_unit_test(test_edge_contact),
         cmocka_unit_test(test_no_convergence),
         cmocka_unit_test(test_bad_input),
