@@ -1,6 +1,6 @@
 /* Benchmark of the contact solver (not a test).
  *
- *   bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--big]
+ *   bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--plain] [--big]
  *
  * 1. The paper's configuration: 512 x 512, H = 0.8, lambda_s = 4, lambda_r = 512, h'rms = 0.08,
  *    seed 1, alpha = 80 deg, S (default 25) approaches up to w = 31.5 (n_p ~ 37000), displacement
@@ -9,7 +9,8 @@
  *    time (median of R repeats, default 3), peak memory (ru_maxrss).
  *    --threads runs one thread count only; at one thread the CPU-time ratio is also printed, which
  *    other processes sharing the cores disturb less. --measure plans with FFTW_MEASURE (solver
- *    and floor alike).
+ *    and floor alike). --plain solves with plain Polonsky-Keer steps and cold starts from the
+ *    local guess (no cascade, no preconditioner: the solver before issue 15).
  * 2. The same history under load control, imposing the loads found in 1, and under load control
  *    by a secant loop on w (skipped with --no-extras, like 3).
  * 3. FFTW planning: FFTW_ESTIMATE, FFTW_MEASURE without and with wisdom, and the per-iteration
@@ -175,6 +176,8 @@ static long secant_history(const im_field *s, const im_indenter *cone, const dou
     return iterations;
 }
 
+static int plain_solver; /* --plain */
+
 static void paper_configuration(int repeats, int steps, int only_threads, int extras, int measure)
 {
     im_surface_params p = im_surface_params_default(); /* 512^2, H 0.8, 4 / 512, h'rms 0.08, seed 1 */
@@ -188,6 +191,8 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
         approaches[k] = 31.5 * (k + 1) / steps;
     im_solver_options o = im_solver_options_default();
     o.fft_measure = measure;
+    if (plain_solver)
+        o.cascade = o.precondition = 0;
     const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
     printf("FFTW planning: %s (the floor uses the same)\n", measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE");
     printf("== paper configuration: 512 x 512, H 0.8, lambda_s 4, lambda_r 512, h'rms 0.08, seed 1, "
@@ -198,7 +203,7 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
         omp_set_num_threads(threads);
         /* the floor is timed right after each repeat, so that both see the same machine load */
         double totals[MAX_REPEATS], per_it[MAX_REPEATS], floors[MAX_REPEATS], ratios[MAX_REPEATS];
-        double cpu_ratios[MAX_REPEATS];
+        double cpu_ratios[MAX_REPEATS], cpu_totals[MAX_REPEATS];
         history_stats h = {0};
         for (int r = 0; r < repeats; ++r) {
             h = run_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, steps, &o, r == 0 && threads == 1);
@@ -206,6 +211,7 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
             per_it[r] = h.seconds_per_iteration;
             floors[r] = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, flags, 0);
             ratios[r] = per_it[r] / floors[r];
+            cpu_totals[r] = h.cpu_per_iteration * h.iterations;
             if (threads == 1)
                 cpu_ratios[r] = h.cpu_per_iteration / fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, flags, 1);
         }
@@ -213,7 +219,8 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
         double t_it = median(per_it, repeats), total = median(totals, repeats), floor = median(floors, repeats);
         double ratio = median(ratios, repeats);
         if (threads == 1)
-            printf("  CPU time (1 thread): per iteration / FFT pair, median ratio %.3f\n", median(cpu_ratios, repeats));
+            printf("  CPU time (1 thread): steps %.3f s (median), per iteration / FFT pair, median ratio %.3f\n",
+                   median(cpu_totals, repeats), median(cpu_ratios, repeats));
         printf("threads %d: window %d x %d (padded %d x %d), final n_p %ld\n", threads, h.window.nx, h.window.ny,
                2 * h.window.nx, 2 * h.window.ny, h.final_contacts);
         printf("  total %.3f s (median of %d), per step %.4f s, iterations %ld (%.1f per step), "
@@ -315,8 +322,10 @@ int main(int argc, char **argv)
             extras = 0;
         else if (strcmp(argv[i], "--measure") == 0)
             measure = 1;
+        else if (strcmp(argv[i], "--plain") == 0)
+            plain_solver = 1;
         else {
-            fprintf(stderr, "usage: bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--big]\n");
+            fprintf(stderr, "usage: bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--plain] [--big]\n");
             return 2;
         }
     }
