@@ -22,6 +22,11 @@ extern volatile sig_atomic_t cli_stop_signal;
 int cli_interrupt_install(void);
 int cli_interrupt_exit_status(void);
 
+/* Unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set, re-executes the program (argv as given) once
+ * with OMP_WAIT_POLICY=passive, so that idle OpenMP threads sleep instead of spinning on cores that
+ * others need (wait_policy.c). Returns only if that is not wanted or the re-execution failed. */
+void cli_prefer_passive_waiting(char **argv);
+
 /* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };
 

@@ -32,6 +32,7 @@ static void usage(FILE *stream)
 
 int main(int argc, char **argv)
 {
+    cli_prefer_passive_waiting(argv);
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;
