@@ -42,6 +42,8 @@ static void usage(FILE *stream)
             "                      overrides --quality. run.json records quality and tol\n"
             "  --max-iter K        iteration cap per step (default 10000)\n"
             "  --full              solve on the whole surface, not the window that can touch\n"
+            "  --plain-pk          plain Polonsky-Keer CG from the local guess: no cascade cold start, no\n"
+            "                      preconditioner (the same answers to the tolerance, slower; docs/solver.md)\n"
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
             "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
             "  --out DIR           output folder (default output/indent)\n"
@@ -67,7 +69,8 @@ typedef struct indent_options {
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
+       OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP,
+       OPT_PLAIN_PK };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -79,7 +82,7 @@ static const struct option LONG_OPTIONS[] = {
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
-    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+    {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK}, {0, 0, 0, 0}};
 
 static int parse_punch(const char *text, enum im_punch_kind *kind)
 {
@@ -153,6 +156,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
     case OPT_FULL: o->solver.crop = 0; return 0;
+    case OPT_PLAIN_PK: o->solver.cascade = o->solver.precondition = 0; return 0;
     case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
     case OPT_WISDOM: o->wisdom = arg; o->solver.wisdom_path = arg; return 0;
     case OPT_OUT: o->out = arg; return 0;
@@ -326,6 +330,11 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
+    json_t *solver = root ? json_object_get(root, "solver") : NULL;
+    if (solver) { /* issue 15's accelerations, on unless --plain-pk */
+        json_object_set_new(solver, "cascade", json_boolean(o->solver.cascade));
+        json_object_set_new(solver, "precondition", json_boolean(o->solver.precondition));
+    }
     if (root && seed)
         json_object_set(root, "seed", seed);
     json_decref(generator);
