@@ -153,40 +153,41 @@ static void update_direction(const pk_run *r, const double *g, double beta)
     }
 }
 
-/* z = M g on I_c (0 elsewhere), M the inverse of K's padded (circulant) spectrum: K is close to
- * 1 / (E* |k|) in Fourier space, so M ~ E* |k| undoes most of its spread of eigenvalues, which grows
- * with the contact's size in patches and sets plain CG's rate. Centred over I_c under load control
- * (the directions keep the load). One more convolution per step. Returns <g, z> over I_c. */
+/* z = M g on I_c (0 elsewhere), M the inverse of a periodic circulant close to K (plan.c): K is
+ * close to 1 / (E* |k|) in Fourier space, so M ~ E* |k| undoes most of its spread of eigenvalues,
+ * which grows with the contact's size in patches and sets plain CG's rate. Centred over I_c under
+ * load control (the directions keep the load). An unpadded transform pair, a quarter of a
+ * convolution's size. Returns <g, z> over I_c. */
 static double precondition(pk_run *r)
 {
     im_solver_plan *plan = r->plan;
-    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const size_t n = (size_t)plan->nx * plan->ny, modes = (size_t)plan->ny * (plan->nx / 2 + 1);
     const double *g = plan->gap, *p = r->p;
     double *z = plan->preconditioned;
 #pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            plan->rows_in[(size_t)iy * px + ix] = p[i] > 0 ? g[i] : 0;
-        }
-    solver_filter_rows(plan, plan->inverse_spectrum);
-    ++r->convolutions;
+    for (size_t i = 0; i < n; ++i)
+        z[i] = p[i] > 0 ? g[i] : 0;
+    fftw_execute(plan->precondition_forward);
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < modes; ++k) {
+        plan->precondition_modes[k][0] *= plan->inverse_spectrum[k];
+        plan->precondition_modes[k][1] *= plan->inverse_spectrum[k];
+    }
+    fftw_execute(plan->precondition_backward);
     double z_sum = 0;
     long count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : z_sum, count)
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            z[i] = p[i] > 0 ? plan->rows_out[(size_t)iy * px + ix] : 0;
-            if (p[i] > 0) {
-                z_sum += z[i];
-                ++count;
-            }
-        }
+    for (size_t i = 0; i < n; ++i) {
+        if (p[i] > 0) {
+            z_sum += z[i];
+            ++count;
+        } else
+            z[i] = 0;
+    }
     const double mean = r->control == IM_CONTROL_LOAD && count ? z_sum / count : 0;
     double gz = 0;
 #pragma omp parallel for schedule(static) reduction(+ : gz)
-    for (size_t i = 0; i < (size_t)nx * ny; ++i)
+    for (size_t i = 0; i < n; ++i)
         if (p[i] > 0) {
             z[i] -= mean;
             gz += g[i] * z[i];

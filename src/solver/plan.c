@@ -58,9 +58,10 @@ double im_influence_square(double x, double y, double delta, double e_star)
 static double level_bytes(int nx, int ny)
 {
     double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
-    /* kernel, 3 work arrays, changes (long + double); spectrum and its inverse; 2 padded rows; 1
-     * complex array. While planning, the kernel's transform needs a 4 n temporary on top. */
-    return 8 * (n * 6 + 2 * modes + 2 * rows + 2 * modes + 4 * n);
+    /* kernel, 3 work arrays, changes (long + double); spectrum; 2 padded rows; 1 complex array; the
+     * preconditioner's spectrum and complex array (1.5 n). While planning, the kernel's transform
+     * needs a 4 n temporary on top. */
+    return 8 * (n * 6 + modes + 2 * rows + 2 * modes + 1.5 * n + 4 * n);
 }
 
 double im_solver_plan_bytes(int nx, int ny)
@@ -111,14 +112,37 @@ static int make_fft_plans(im_solver_plan *p)
                                              1, FFTW_BACKWARD, flags);
     p->rows_backward = fftw_plan_many_dft_c2r(1, row_length, p->ny, p->modes, NULL, 1, mx, p->rows_out, NULL,
                                               1, p->px, flags);
+    p->precondition_forward = fftw_plan_dft_r2c_2d(p->ny, p->nx, p->preconditioned, p->precondition_modes, flags);
+    p->precondition_backward = fftw_plan_dft_c2r_2d(p->ny, p->nx, p->precondition_modes, p->preconditioned, flags);
     int status = wisdom ? export_wisdom(wisdom) : IM_OK;
     im_fft_planner_unlock();
-    if (!p->rows_forward || !p->columns_forward || !p->columns_backward || !p->rows_backward)
+    if (!p->rows_forward || !p->columns_forward || !p->columns_backward || !p->rows_backward ||
+        !p->precondition_forward || !p->precondition_backward)
         return im_fail(IM_ENOMEM, "FFTW could not plan a %d x %d transform", p->px, p->py);
     return status;
 }
 
 static long wrapped_offset(long j, long n, long padded) { return j <= n ? j : padded - j; }
+
+/* M = 1 / the spectrum of K wrapped periodically on the nx x ny grid (offsets min(j, n - j)): the
+ * inverse of a circulant close to K, positive where that spectrum is (0 elsewhere). */
+static void compute_preconditioner(im_solver_plan *p)
+{
+    const int nx = p->nx, ny = p->ny;
+    const size_t modes = (size_t)ny * (nx / 2 + 1);
+#pragma omp parallel for schedule(static)
+    for (int jy = 0; jy < ny; ++jy)
+        for (int jx = 0; jx < nx; ++jx)
+            p->preconditioned[(size_t)jy * nx + jx] = p->kernel[(size_t)(jy <= ny - jy ? jy : ny - jy) * nx +
+                                                                 (jx <= nx - jx ? jx : nx - jx)];
+    fftw_execute(p->precondition_forward);
+    const double scale = 1.0 / ((double)nx * ny);
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < modes; ++k) {
+        double re = p->precondition_modes[k][0];
+        p->inverse_spectrum[k] = re > 0 ? scale / re : 0;
+    }
+}
 
 /* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
  * that it is even and its spectrum real), then transforms it once with a one-off plan. */
@@ -156,9 +180,7 @@ static int compute_kernel(im_solver_plan *p)
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < (size_t)py * mx; ++k)
         p->spectrum[k] = p->modes[k][0] * scale;
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < (size_t)py * mx; ++k)
-        p->inverse_spectrum[k] = p->spectrum[k] > 0 ? scale * scale / p->spectrum[k] : 0;
+    compute_preconditioner(p);
     return IM_OK;
 }
 
@@ -171,13 +193,16 @@ static int allocate_plan(im_solver_plan *p)
     p->changed = malloc(sizeof(long) * n);
     p->changed_value = malloc(sizeof(double) * n);
     p->spectrum = fftw_malloc(sizeof(double) * modes);
-    p->inverse_spectrum = fftw_malloc(sizeof(double) * modes);
+    size_t small_modes = (size_t)p->ny * (p->nx / 2 + 1);
+    p->inverse_spectrum = fftw_malloc(sizeof(double) * small_modes);
     p->preconditioned = fftw_malloc(sizeof(double) * n);
+    p->precondition_modes = fftw_malloc(sizeof(fftw_complex) * small_modes);
     p->rows_in = fftw_malloc(sizeof(double) * rows);
     p->rows_out = fftw_malloc(sizeof(double) * rows);
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
     if (!p->kernel || !p->direction || !p->gap || !p->changed || !p->changed_value ||
-        !p->spectrum || !p->inverse_spectrum || !p->preconditioned || !p->rows_in || !p->rows_out || !p->modes)
+        !p->spectrum || !p->inverse_spectrum || !p->preconditioned || !p->precondition_modes ||
+        !p->rows_in || !p->rows_out || !p->modes)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: allocation failed", p->nx, p->ny);
     memset(p->direction, 0, sizeof(double) * n);
     return IM_OK;
@@ -236,9 +261,10 @@ void im_solver_plan_free(im_solver_plan *p)
 {
     if (!p)
         return;
-    fftw_plan plans[4] = {p->rows_forward, p->columns_forward, p->columns_backward, p->rows_backward};
+    fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,       p->columns_backward,
+                          p->rows_backward, p->precondition_forward, p->precondition_backward};
     im_fft_planner_lock();
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < 6; ++i)
         if (plans[i])
             fftw_destroy_plan(plans[i]);
     im_fft_planner_unlock();
@@ -250,6 +276,7 @@ void im_solver_plan_free(im_solver_plan *p)
     fftw_free(p->spectrum);
     fftw_free(p->inverse_spectrum);
     fftw_free(p->preconditioned);
+    fftw_free(p->precondition_modes);
     fftw_free(p->rows_in);
     fftw_free(p->rows_out);
     fftw_free(p->modes);
@@ -260,9 +287,7 @@ void im_solver_plan_free(im_solver_plan *p)
 double im_solver_plan_seconds(const im_solver_plan *p) { return p->plan_seconds; }
 int im_solver_plan_measured(const im_solver_plan *p) { return p->measured; }
 
-void solver_convolve_rows(im_solver_plan *p) { solver_filter_rows(p, p->spectrum); }
-
-void solver_filter_rows(im_solver_plan *p, const double *multiplier)
+void solver_convolve_rows(im_solver_plan *p)
 {
     const size_t mx = p->px / 2 + 1, count = (size_t)p->py * mx;
     fftw_execute(p->rows_forward);
@@ -272,8 +297,8 @@ void solver_filter_rows(im_solver_plan *p, const double *multiplier)
     fftw_execute(p->columns_forward);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < count; ++k) {
-        p->modes[k][0] *= multiplier[k];
-        p->modes[k][1] *= multiplier[k];
+        p->modes[k][0] *= p->spectrum[k];
+        p->modes[k][1] *= p->spectrum[k];
     }
     fftw_execute(p->columns_backward);
     fftw_execute(p->rows_backward);

@@ -13,8 +13,13 @@ struct im_solver_plan {
     im_solver_options options;
     double *kernel;          /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
     double *spectrum;        /* py * (px/2 + 1): real spectrum of K, divided by px * py */
-    double *inverse_spectrum;/* py * (px/2 + 1): 1 / K's spectrum, divided by px * py (preconditioner) */
-    double *preconditioned;  /* nx * ny: the preconditioned gap */
+    /* The preconditioner M (pk.c): 1 / the spectrum of K wrapped periodically on the nx x ny grid
+     * itself (divided by nx * ny), applied by an unpadded r2c / c2r pair in place of preconditioned,
+     * a quarter of the padded transforms' size. */
+    double *inverse_spectrum;       /* ny * (nx/2 + 1) */
+    double *preconditioned;         /* nx * ny: the gap in, M g out */
+    fftw_complex *precondition_modes; /* ny * (nx/2 + 1) */
+    fftw_plan precondition_forward, precondition_backward;
     double *rows_in;         /* ny * px: the grid's rows, zero-padded to px (right halves stay 0) */
     double *rows_out;        /* ny * px */
     fftw_complex *modes;     /* py * (px/2 + 1): the row transforms, then the 2-D transform */
@@ -51,8 +56,6 @@ int solver_cascade_start(im_solver_plan *plan, const double *gap0, enum im_contr
 /* Transforms rows_in (filled by the caller: the grid's rows, stride px) and leaves the
  * convolution with K in rows_out (stride px, the first nx values of each of the ny rows). */
 void solver_convolve_rows(im_solver_plan *plan);
-/* The same with another real multiplier of the padded spectrum (already divided by px * py). */
-void solver_filter_rows(im_solver_plan *plan, const double *multiplier);
 
 /* displacement += sum_k value[k] K(x - x_index[k]) over the grid (direct summation). */
 void solver_add_point_loads(const im_solver_plan *plan, const long *index, const double *value, long count,
