@@ -40,8 +40,9 @@
  * Plain CG's rate is set by K's spread of eigenvalues on the contact set, which grows with the
  * contact's size in patches (K ~ 1 / (E* |k|)): cold solves took 104 / 167 / 231 iterations at
  * 512^2 / 1024^2 / 2048^2. The steps that keep the contact set are preconditioned CG steps with
- * z = M g on I_c, M the inverse of K's padded spectrum (~ E* |k|): one more convolution each, and
- * 4-6x fewer iterations. Patches join (p = -tau g for g < 0 outside I_c) only in a plain PK step,
+ * z = M g on I_c, M ~ E* |k| the inverse of the spectrum of K's samples wrapped periodically on
+ * the nx x ny grid (unpadded: a transform pair a quarter of a convolution's size), and 3-5x fewer
+ * iterations. Patches join (p = -tau g for g < 0 outside I_c) only in a plain PK step,
  * taken when the penetration outside I_c outweighs the gap left on it, sum over p = 0, g < 0 of g^2
  * > sum over I_c of g^2 (Dostal's proportioning test); the next step restarts the conjugacy.
  * Letting patches join in every step, as plain PK does, restarted the conjugacy at almost every
@@ -133,7 +134,8 @@ typedef struct im_solve_result {
     double mean_pressure;   /* N / (n_p delta^2), 0 without contact */
     double max_pressure;
     int iterations;         /* CG iterations (one search-direction convolution each) */
-    int convolutions;       /* all convolutions, including the exact recomputations */
+    int convolutions;       /* all convolutions with K, including the exact recomputations (not
+                               the preconditioner's unpadded transforms) */
     double residual;        /* the stopping rule's value at exit */
     double seconds;         /* wall time of the solve */
     int coarse_iterations;  /* CG iterations on the cascade's coarser grids (all levels; one on the
