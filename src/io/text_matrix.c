@@ -91,30 +91,26 @@ static int check_stated_shape(const char *path, const text_header *header, long 
                    rows, rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
 }
 
-/* Parses the numbers of one data line; returns how many, or -1 after recording an error. */
-static long parse_data_line(char *line, const char *path, long line_number, value_list *values)
+/* Parses the numbers of one data line into values and *count; IM_EFORMAT or IM_ENOMEM with a message. */
+static int parse_data_line(char *line, const char *path, long line_number, value_list *values, long *count)
 {
-    long count = 0;
+    *count = 0;
     for (char *token = strtok(line, " \t,\r\n"); token; token = strtok(NULL, " \t,\r\n")) {
         char *end;
         errno = 0;
         double value = strtod(token, &end);
         if (end == token || *end != '\0') {
-            im_fail(IM_EFORMAT, "%s:%ld: '%.32s' is not a number", path, line_number, token);
-            return -1;
+            return im_fail(IM_EFORMAT, "%s:%ld: '%.32s' is not a number", path, line_number, token);
         }
         if (!isfinite(value)) {
-            im_fail(IM_EFORMAT, "%s:%ld: value '%.32s' is not finite; heights must be finite numbers",
-                    path, line_number, token);
-            return -1;
+            return im_fail(IM_EFORMAT, "%s:%ld: value '%.32s' is not finite; heights must be finite numbers",
+                           path, line_number, token);
         }
-        if (value_list_push(values, value) != IM_OK) {
-            im_fail(IM_ENOMEM, "%s:%ld: out of memory", path, line_number);
-            return -1;
-        }
-        ++count;
+        if (value_list_push(values, value) != IM_OK)
+            return im_fail(IM_ENOMEM, "%s:%ld: out of memory", path, line_number);
+        ++*count;
     }
-    return count;
+    return IM_OK;
 }
 
 static int read_rows(FILE *stream, const char *path, value_list *values, long *columns, long *rows,
@@ -132,10 +128,11 @@ static int read_rows(FILE *stream, const char *path, value_list *values, long *c
             parse_shape_header(line, line_number, header);
             continue;
         }
-        long count = parse_data_line(line, path, line_number, values);
-        if (count < 0)
-            status = IM_EFORMAT;
-        else if (count > 0 && *columns == 0)
+        long count = 0;
+        status = parse_data_line(line, path, line_number, values, &count);
+        if (status != IM_OK)
+            break;
+        if (count > 0 && *columns == 0)
             *columns = count;
         else if (count > 0 && count != *columns)
             status = im_fail(IM_EFORMAT, "%s:%ld: %ld values, but the first data row has %ld", path,
