@@ -18,6 +18,8 @@ PACKAGES=(
   libcairo2-dev libfreetype-dev            # annotations, text, PDF/SVG figures
   fonts-dejavu-core                        # the font figures are set in
   libgif-dev                               # animated GIFs
+  python3-dev python3-numpy                # the Python package (python/): CPython and numpy C APIs
+  python3-setuptools python3-wheel python3-pip python3-pytest  # its pip build and its tests
 )
 
 missing=()

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the build into a scratch prefix, then builds and runs tests/install/consumer.c against
-# it twice: with pkg-config and with find_package(indentmap). Fails when a header, the library,
-# the .pc file or the CMake package is missing or wrong.
+# it twice, with pkg-config and with find_package(indentmap), and pip-installs the Python package
+# over it. Fails when a header, the library, the .pc file, the CMake package or the Python build is
+# missing or wrong.
 #   install.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1 source=$2
@@ -26,4 +27,17 @@ cmake --build "$prefix/consumer_build" >/dev/null
 "$prefix/consumer_build/consumer"
 # The program must have been linked with the shared library, not with a copy of it.
 ldd "$prefix/consumer_build/consumer" | grep -q "libindentmap.so.$(echo "$soname" | sed 's/.*\.so\.//')"
-echo "install: pkg-config and find_package consumers ran against $soname"
+
+# The Python package, pip-installed on top of the installed library (from a copy of python/, so the
+# build leaves nothing in the source tree), must import and solve.
+cp -r "$source/../../python" "$prefix/python_source"
+PKG_CONFIG_PATH="$lib/pkgconfig" /usr/bin/python3 -m pip install --quiet --no-build-isolation --no-deps \
+  --no-index --target "$prefix/site" "$prefix/python_source" 2>&1 | grep -v "Running pip as the 'root' user" || true
+PYTHONPATH="$prefix/site" /usr/bin/python3 -c '
+import sys, indentmap as im
+assert im._core.__file__.startswith(sys.argv[1]), im._core.__file__
+history = im.indent(im.generate(32, slope=0.05, lambda_s=2), approaches=[1.0])
+assert history["contact_patches"][0] > 0
+print("install: pip-installed Python package", im.__version__, "solved", history["contact_patches"][0], "patches")
+' "$prefix/site"
+echo "install: pkg-config, find_package and pip consumers ran against $soname"

@@ -1,0 +1,127 @@
+"""Arrays in and out, errors, threads and reference counts."""
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import indentmap as im
+
+
+def test_errors_carry_the_library_message(tmp_path):
+    with pytest.raises(im.InvalidArgument) as e:
+        im.generate(2)
+    assert str(e.value).startswith("lambda_r = 2: expected") and e.value.status == 1
+    assert isinstance(e.value, ValueError) and isinstance(e.value, im.Error)
+    with pytest.raises(im.FileError) as e:
+        im.read(tmp_path / "missing.npy")
+    assert "missing.npy" in str(e.value) and isinstance(e.value, OSError)
+    (tmp_path / "bad.txt").write_text("1 2\n3 x\n")
+    with pytest.raises(im.FormatError, match=r"bad.txt:2: 'x' is not a number"):
+        im.read(tmp_path / "bad.txt")
+    with pytest.raises(im.InvalidArgument, match=r"approach = 2: expected a value in \[0, 1\]"):
+        im.Indentation(np.zeros((16, 16)), largest=1.0).step(2.0)
+
+
+def test_edge_contact_is_an_exception():
+    run = im.Indentation(np.zeros((16, 16)), im.Flat(20), largest=1.0)
+    with pytest.raises(im.EdgeContact):
+        run.step(1.0)
+
+
+def test_arrays_converted_or_refused_as_documented(rough64):
+    reference = im.statistics(rough64)
+    wide = np.zeros((64, 128))
+    wide[:, ::2] = rough64
+    assert im.statistics(wide[:, ::2]) == reference            # non-contiguous: copied
+    assert im.statistics(np.asfortranarray(rough64)) == reference
+    assert im.statistics(rough64.astype(np.float32))["height_rms"] == pytest.approx(reference["height_rms"], 1e-6)
+    assert im.statistics(np.arange(64).reshape(8, 8))["mean"] == 31.5   # integers: converted
+    with pytest.raises(TypeError, match="2-D array of real numbers"):
+        im.statistics(rough64.astype(complex))
+    with pytest.raises(TypeError, match="2-D array"):
+        im.statistics(np.zeros(16))
+    with pytest.raises(TypeError):
+        im.statistics(np.array([["a", "b"]]))
+
+
+def test_outputs_own_their_memory(rough64):
+    run = im.Indentation(rough64, largest=1.0)
+    run.step(1.0)
+    force, gap, displacement = run.fields()
+    del run  # the arrays outlive the history
+    assert force.flags.owndata is False and force.base is not None
+    assert np.isfinite(gap[force > 0]).all() and (displacement >= 0).all()
+    assert force.shape == rough64.shape
+
+
+def test_solves_release_the_gil():
+    heights = im.generate(192, slope=0.1, seed=3)
+    run = im.Indentation(heights, largest=20.0, tol=1e-10)
+    span = {}
+
+    def solve():
+        span["start"] = time.perf_counter()
+        run.step(20.0)
+        span["end"] = time.perf_counter()
+
+    thread = threading.Thread(target=solve)
+    ticks = []
+    thread.start()
+    while thread.is_alive():
+        ticks.append(time.perf_counter())
+    thread.join()
+    inside = [t for t in ticks if span["start"] <= t <= span["end"]]
+    duration = span["end"] - span["start"]
+    edges = [span["start"]] + inside + [span["end"]]
+    longest_pause = max(b - a for a, b in zip(edges, edges[1:]))
+    # Held through the solve, the GIL would stop this thread for the whole of it.
+    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s solve"
+
+
+LEAK_PROBE = """
+import os, sys
+import indentmap as im
+heights = im.generate(16, slope=0.05, lambda_s=2, seed=4)
+run = im.Indentation(heights, largest=1.0)
+
+def solve_and_fetch(count):
+    for k in range(count):
+        run.step(0.5 + 0.5 * (k % 2))
+        run.fields()
+
+def resident_kib():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") // 1024
+
+solve_and_fetch(1000)
+refs, rss = sys.getrefcount(heights), resident_kib()
+solve_and_fetch(10000)
+print(sys.getrefcount(heights) - refs, resident_kib() - rss)
+"""
+
+
+def test_no_leak_over_10000_solves():
+    # One OpenMP thread: 10000 tiny solves are then fork/join-free (the subject is memory, not speed).
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    result = subprocess.run([sys.executable, "-c", LEAK_PROBE], capture_output=True, text=True, env=env)
+    assert result.returncode == 0, result.stderr
+    references, kib = map(int, result.stdout.split())
+    assert references == 0
+    # three 16 x 16 fields per solve: a leak of them would be 60 MiB
+    assert kib < 4096, f"resident memory grew by {kib} KiB over 10000 solves"
+
+
+def test_example_runs(tmp_path):
+    source = os.environ.get("IM_SOURCE_DIR")
+    if not source:
+        pytest.skip("IM_SOURCE_DIR is not set (run through ctest)")
+    result = subprocess.run([sys.executable, os.path.join(source, "examples", "rough_cone.py"), str(tmp_path)],
+                            capture_output=True, text=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+    assert result.returncode == 0, result.stderr
+    assert "eq. (12)" in result.stdout
+    for name in ("contact.png", "deformed.png", "panels.pdf"):
+        assert (tmp_path / name).stat().st_size > 1000
