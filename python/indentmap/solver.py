@@ -70,6 +70,24 @@ class Indentation:
         return self._run.window
 
 
+class Plan:
+    """The contact solver on an (ny, nx) grid of spacing ``delta``, for gaps of your own: planned once
+    (FFTW plans, the influence kernel's spectrum), solved many times.
+
+    ``solve(gap0, target)`` takes the undeformed gap at first touch (>= 0; +inf where the punch never
+    touches) and an approach w (``control='displacement'``) or a load N (``control='load'``), optionally a
+    warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
+    without the GIL; creating a plan holds it (FFTW's planner is not thread-safe).
+    """
+
+    def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=1e-8, max_iterations=10000):
+        self._plan = _core.Plan(int(nx), int(nx if ny is None else ny), float(delta), float(e_star), float(tol),
+                                int(max_iterations))
+
+    def solve(self, gap0, target, control="displacement", pressure=None):
+        return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
+
+
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, fields=False, **options):
     """Solves a history of approaches (displacement control) or loads (load control).
 

@@ -37,6 +37,6 @@ PyObject *py_array_from_doubles(const double *values, npy_intp n);
 
 /* Module tables, defined per file. */
 extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[];
-extern PyTypeObject py_indentation_type;
+extern PyTypeObject py_indentation_type, py_plan_type;
 
 #endif

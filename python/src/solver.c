@@ -1,5 +1,6 @@
 /* indentmap._core.Indentation: an indentation history on one surface (im_indentation of
- * solver.h): created once (plan, window), stepped many times with warm starts. */
+ * solver.h): created once (plan, window), stepped many times with warm starts; and
+ * indentmap._core.Plan: the bare solver on a grid (im_solver_plan), for gaps of the caller's own. */
 #include "core.h"
 
 #include "indentmap/indenter.h"
@@ -74,10 +75,8 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     im_field surface = py_field_view(array, delta);
     im_indentation_free(self->run);
     self->run = NULL;
-    int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
-    Py_END_ALLOW_THREADS
+    /* With the GIL held: FFTW's planner, called here, is not thread-safe. */
+    int status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
     Py_DECREF(array);
     if (status != IM_OK) {
         py_raise_status(status);
@@ -160,6 +159,115 @@ static PyMethodDef indentation_methods[] = {
 static PyGetSetDef indentation_getset[] = {
     {"window", (getter)indentation_window, NULL, "(x0, y0, nx, ny) of the solved sub-grid", NULL},
     {NULL, NULL, NULL, NULL, NULL}};
+
+/* ---- Plan ---- */
+typedef struct py_plan {
+    PyObject_HEAD
+    im_solver_plan *plan;
+    int nx, ny, busy;
+} py_plan;
+
+static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
+{
+    static char *keywords[] = {"nx", "ny", "delta", "e_star", "tol", "max_iterations", NULL};
+    im_solver_options o = im_solver_options_default();
+    double delta = 1.0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|dddi", keywords, &self->nx, &self->ny, &delta, &o.e_star, &o.tol,
+                                     &o.max_iterations))
+        return -1;
+    im_solver_plan_free(self->plan);
+    self->plan = NULL;
+    int status = im_solver_plan_create(self->nx, self->ny, delta, &o, &self->plan); /* GIL held: FFTW planner */
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    return 0;
+}
+
+static void plan_dealloc(py_plan *self)
+{
+    im_solver_plan_free(self->plan);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+static PyObject *solve_dict(const im_solve_result *r)
+{
+    return Py_BuildValue("{s:d,s:d,s:l,s:d,s:d,s:i,s:i,s:d,s:d}", "approach", r->approach, "load", r->load,
+                         "contact_patches", r->contact_patches, "mean_pressure", r->mean_pressure, "max_pressure",
+                         r->max_pressure, "iterations", r->iterations, "convolutions", r->convolutions, "residual",
+                         r->residual, "seconds", r->seconds);
+}
+
+/* A new (ny, nx) float64 array: a copy of obj (checked against the plan's grid), or zeros. */
+static PyArrayObject *grid_array(py_plan *self, PyObject *obj, const char *what)
+{
+    npy_intp shape[2] = {self->ny, self->nx};
+    if (obj == Py_None)
+        return (PyArrayObject *)PyArray_ZEROS(2, shape, NPY_DOUBLE, 0);
+    PyArrayObject *given = py_heights_array(obj, what);
+    if (given && (PyArray_DIMS(given)[0] != self->ny || PyArray_DIMS(given)[1] != self->nx)) {
+        PyErr_Format(PyExc_ValueError, "%s: shape (%ld, %ld), the plan's grid is (%d, %d)", what,
+                     (long)PyArray_DIMS(given)[0], (long)PyArray_DIMS(given)[1], self->ny, self->nx);
+        Py_CLEAR(given);
+    }
+    PyArrayObject *copy = given ? (PyArrayObject *)PyArray_NewCopy(given, NPY_CORDER) : NULL;
+    Py_XDECREF(given);
+    return copy;
+}
+
+static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
+{
+    static char *keywords[] = {"gap0", "target", "control", "pressure", NULL};
+    PyObject *gap_obj, *start = Py_None;
+    double target;
+    const char *control_name = "displacement";
+    enum im_control control;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Od|sO", keywords, &gap_obj, &target, &control_name, &start) ||
+        control_from_name(control_name, &control) < 0)
+        return NULL;
+    if (self->busy)
+        return PyErr_Format(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
+    PyArrayObject *gap0 = grid_array(self, gap_obj, "gap0");
+    PyArrayObject *pressure = gap0 ? grid_array(self, start, "pressure") : NULL;
+    PyArrayObject *displacement = pressure ? grid_array(self, Py_None, "displacement") : NULL;
+    if (!displacement) {
+        Py_XDECREF(gap0);
+        Py_XDECREF(pressure);
+        return NULL;
+    }
+    im_solve_result result;
+    int status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_solver_solve(self->plan, PyArray_DATA(gap0), control, target, PyArray_DATA(pressure),
+                             PyArray_DATA(displacement), &result);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
+    Py_DECREF(gap0);
+    if (status != IM_OK) {
+        Py_DECREF(pressure);
+        Py_DECREF(displacement);
+        return py_raise_status(status);
+    }
+    return Py_BuildValue("(NNN)", pressure, displacement, solve_dict(&result));
+}
+
+static PyMethodDef plan_methods[] = {
+    {"solve", (PyCFunction)(void (*)(void))plan_solve, METH_VARARGS | METH_KEYWORDS,
+     "solve(gap0, target, control='displacement', pressure=None) -> (pressure, displacement, result)"},
+    {NULL, NULL, 0, NULL}};
+
+PyTypeObject py_plan_type = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "indentmap._core.Plan",
+    .tp_basicsize = sizeof(py_plan),
+    .tp_dealloc = (destructor)plan_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "The contact solver on one grid (solver.h's im_solver_plan): plan once, solve many.",
+    .tp_methods = plan_methods,
+    .tp_init = (initproc)plan_init,
+    .tp_new = PyType_GenericNew,
+};
 
 PyTypeObject py_indentation_type = {
     PyVarObject_HEAD_INIT(NULL, 0).tp_name = "indentmap._core.Indentation",

@@ -26,6 +26,24 @@ def test_errors_carry_the_library_message(tmp_path):
         im.Indentation(np.zeros((16, 16)), largest=1.0).step(2.0)
 
 
+def test_plan_solves_complementarity_and_warm_starts(rough64):
+    n = 48
+    y, x = np.mgrid[0:n, 0:n] + 0.5
+    profile = np.hypot(x - n / 2, y - n / 2) ** 2 / (2 * 100.0) - rough64[:n, :n]   # a sphere on the rough patch
+    gap0 = profile - profile.min()
+    plan = im.Plan(n, delta=1.0, tol=1e-9)
+    pressure, displacement, result = plan.solve(gap0, 1.5)
+    gap = gap0 - result["approach"] + displacement
+    contact = pressure > 0
+    assert result["contact_patches"] == contact.sum() > 10
+    assert np.abs(gap[contact]).max() < 1e-6 and gap[~contact].min() > -1e-8 * 1.5 * 10
+    assert result["load"] == pytest.approx(pressure.sum(), rel=1e-12)
+    again = plan.solve(gap0, result["load"], control="load", pressure=pressure)[2]
+    assert again["approach"] == pytest.approx(1.5, rel=1e-6) and again["iterations"] <= 2
+    with pytest.raises(ValueError, match=r"plan's grid is \(48, 48\)"):
+        plan.solve(np.zeros((8, 8)), 1.0)
+
+
 def test_edge_contact_is_an_exception():
     run = im.Indentation(np.zeros((16, 16)), im.Flat(20), largest=1.0)
     with pytest.raises(im.EdgeContact):
