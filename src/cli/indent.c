@@ -458,15 +458,15 @@ static double largest(const double *v, int n)
     return m;
 }
 
-/* Solves step `step` (1-based) and writes its history line and fields. */
+/* Solves step `step` (1-based) and writes its fields and history line. */
 static int run_step(const indent_options *o, im_indentation *run, history_file *history, int step)
 {
     im_step_result r;
     int status = im_indentation_step(run, o->targets[step - 1], &r);
+    if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
+        status = write_fields(o->out, run, step);
     if (status == IM_OK)
         status = history_append(history, step, &r);
-    if (status == IM_OK && o->fields)
-        status = write_fields(o->out, run, step);
     if (status == IM_OK) {
         printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", step,
                r.approach, r.load, r.contact_patches, r.area_ratio, r.iterations, r.residual, r.seconds);
