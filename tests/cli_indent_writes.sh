@@ -49,4 +49,8 @@ mkdir "$odd" && cp s.npy "$odd/"
 check "a surface path that is not UTF-8" bash -c "'$cli' indent '$odd/s.npy' --approach 0.5 --out '$odd/out' >/dev/null"
 check "... run.json records it escaped" grep -q '"source": "odd\\\\xff\\\\xfe/s.npy"' "$odd/out/run.json"
 check "... and says so" grep -q '"source_encoding": "escaped"' "$odd/out/run.json"
+printf '[scene]\noutput = out2\n[surfaces]\nn = 32\n[loading]\ncontrol = displacement\nsteps = 0.5, 1\n[output]\nplots = fig5\n' \
+  >"$odd/scene.ini"
+check "a scene path that is not UTF-8" bash -c "'$cli' run --quiet '$odd/scene.ini' >/dev/null"
+check "... its run.json says so" grep -q '"scene_encoding": "escaped"' "$odd/out2/run.json"
 finish
