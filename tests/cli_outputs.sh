@@ -81,6 +81,9 @@ check "run: IM_FFTW_WISDOM onto the scene" refused 2 "IM_FFTW_WISDOM scene.ini" 
   env IM_FFTW_WISDOM=scene.ini "$cli" run scene.ini
 check "run: IM_FFTW_WISDOM onto the surface file" refused 2 "IM_FFTW_WISDOM s.npy" s.npy \
   env IM_FFTW_WISDOM=s.npy "$cli" run file.ini
+check "run: IM_FFTW_WISDOM in the output folder" expect_exit 2 "lies in the output folder here" \
+  env IM_FFTW_WISDOM=here/w.wisdom "$cli" run file.ini
+check "... nothing written" test ! -e here
 check "run: output holding the scene" refused 2 "would hold the scene file" file.ini \
   bash -c "sed 's/^output = here/output = ./' file.ini >dot.ini && cp dot.ini keep/ && '$cli' run dot.ini"
 printf '[scene]\nname = ../../escape\n' >name.ini

@@ -9,7 +9,6 @@
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
-#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -241,9 +240,10 @@ static int protect_inputs(const im_scene *scene)
         status = im_solver_wisdom_check(&solver);
     const char *wisdom = im_solver_wisdom_file(&solver);
     char folder[PATH_MAX], file[PATH_MAX];
-    size_t length = realpath(scene->output_dir, folder) ? strlen(folder) : 0;
-    if (status == IM_OK && wisdom && length && realpath(wisdom, file) && strncmp(file, folder, length) == 0 &&
-        file[length] == '/')
+    int resolved = wisdom && im_path_absolute(scene->output_dir, folder, sizeof folder) == IM_OK &&
+                   im_path_absolute(wisdom, file, sizeof file) == IM_OK;
+    size_t length = resolved ? strlen(folder) : 0;
+    if (status == IM_OK && resolved && strncmp(file, folder, length) == 0 && file[length] == '/')
         status = im_fail(IM_EINVAL, "IM_FFTW_WISDOM %s lies in the output folder %s, where this run writes: "
                          "keep it elsewhere", wisdom, scene->output_dir);
     return status;
