@@ -87,8 +87,10 @@ check "... nothing written" test ! -e here
 check "run: output holding the scene" refused 2 "would hold the scene file" file.ini \
   bash -c "sed 's/^output = here/output = ./' file.ini >dot.ini && cp dot.ini keep/ && '$cli' run dot.ini"
 printf '[scene]\nname = ../../escape\n' >name.ini
-check "run: name = ../../escape" expect_exit 2 "name.ini:2: name = '../../escape': expected a plain name" "$cli" run name.ini
-check "run: nothing written outside output/" test ! -e ../escape -a ! -e output
+mkdir deep # run from here, output/../../escape would be $dir/escape
+check "run: name = ../../escape" expect_exit 2 "name.ini:2: name = '../../escape': expected a plain name" \
+  bash -c "cd deep && '$cli' run ../name.ini"
+check "run: nothing written outside output/" test ! -e escape -a ! -e deep/output
 printf '[scene]\nname = twice\n[surfaces]\nn = 32\nseeds = 1,2,1\n' >seeds.ini
 check "run: duplicate seeds" expect_exit 2 "seeds.ini:5: seeds = '1,2,1': seed 1 is given twice" "$cli" run seeds.ini
 
