@@ -487,8 +487,8 @@ static int run_steps(const indent_options *o, im_indentation *run, history_file 
         if (status != IM_OK)
             break;
     }
-    /* done counts the steps whose history line and fields are all written */
-    if (status != IM_OK && status != IM_EINTERRUPTED)
+    /* done counts the steps whose fields and history line are all written (< target_count here) */
+    if (status != IM_OK)
         im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", done + 1,
                         o->target_count, o->control == IM_CONTROL_LOAD ? "load" : "approach", o->targets[done],
                         done, o->out);
