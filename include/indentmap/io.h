@@ -116,9 +116,10 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
 void im_folder_lock_release(im_folder_lock *lock);
 
 /* Removes the temporary files of atomic writes (im_atomic_is_temporary_name) that a killed run
- * left in folder and in its subfolders one level down. Call it only while holding the folder's
- * lock: another live writer's temporary files would go too. Returns how many were removed. */
-int im_folder_remove_temporaries(const char *folder);
+ * left in folder and, for depth d > 0, in its subfolders d levels down (depth 0: folder only). Call
+ * it only while holding the folder's lock: another live writer's temporary files would go too.
+ * Returns how many were removed. */
+int im_folder_remove_temporaries(const char *folder, int depth);
 
 /* ---- surfaces ---- */
 enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };

@@ -89,8 +89,7 @@ void im_folder_lock_release(im_folder_lock *lock)
     lock->fd = -1;
 }
 
-/* Removes the temporary files directly in folder; descends once more when depth > 0. */
-static int remove_temporaries_in(const char *folder, int depth)
+int im_folder_remove_temporaries(const char *folder, int depth)
 {
     DIR *listing = opendir(folder);
     if (!listing)
@@ -106,15 +105,10 @@ static int remove_temporaries_in(const char *folder, int depth)
         if (lstat(path, &info) != 0)
             continue;
         if (S_ISDIR(info.st_mode) && depth > 0)
-            removed += remove_temporaries_in(path, depth - 1);
+            removed += im_folder_remove_temporaries(path, depth - 1);
         else if (S_ISREG(info.st_mode) && im_atomic_is_temporary_name(entry->d_name) && unlink(path) == 0)
             ++removed;
     }
     closedir(listing);
     return removed;
-}
-
-int im_folder_remove_temporaries(const char *folder)
-{
-    return remove_temporaries_in(folder, 1);
 }
