@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Temporary files of atomic writes: short names (a legal 250-byte final name works), removed when
-# SIGINT or SIGTERM ends `surface` or `render` mid-write, and removed by `run --resume` when a
+# SIGTERM or SIGHUP (or SIGINT) ends `surface` or `render` mid-write, and removed by `run --resume` when a
 # killed run left them in its output folder.
 set -u
 cli=$1
@@ -36,8 +36,9 @@ mkdir big
 check "surface --png: SIGTERM mid-write leaves no temporary file" \
   interrupt TERM 143 big "$cli" surface --n 2048 --png big/h.png
 "$cli" surface --n 512 --out h.npy >/dev/null
-check "render --raw: SIGINT mid-write leaves no temporary file" \
-  interrupt INT 130 big "$cli" render height h.npy --raw --scale 8 --out big/h.png
+# (not SIGINT: a non-interactive shell starts background jobs with SIGINT ignored)
+check "render --raw: SIGHUP mid-write leaves no temporary file" \
+  interrupt HUP 129 big "$cli" render height h.npy --raw --scale 8 --out big/h.png
 
 # run --resume: temporary files a killed run left (this version's and the older PATH.tmp.PID) go
 cat >scene.ini <<INI
