@@ -5,10 +5,12 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 static im_field *sample_field(int nx, int ny)
 {
@@ -293,6 +295,132 @@ static void png_round_trip_keeps_pixels(void **state)
     assert_int_equal(im_png_write(test_path("zero.png"), pixels, 0, 3, 3, 0, NULL), IM_EINVAL);
 }
 
+/* Threads writing one file at once: each write has its own temporary file, so every one succeeds
+ * and the file ends whole (with PATH.tmp.PID, shared by the threads, renames failed). */
+enum { WRITERS = 4, WRITES_EACH = 100 };
+
+static void *write_repeatedly(void *argument)
+{
+    const char *text = argument;
+    long failures = 0;
+    for (int i = 0; i < WRITES_EACH; ++i)
+        failures += im_write_file_atomic(test_path("shared.txt"), text, strlen(text)) != IM_OK;
+    return (void *)failures;
+}
+
+static void concurrent_writes_of_one_file_all_succeed(void **state)
+{
+    (void)state;
+    static const char *const TEXTS[WRITERS] = {"first writer\n", "second writer\n", "third writer\n", "fourth\n"};
+    pthread_t threads[WRITERS];
+    for (int i = 0; i < WRITERS; ++i)
+        assert_int_equal(pthread_create(&threads[i], NULL, write_repeatedly, (void *)TEXTS[i]), 0);
+    long failures = 0;
+    for (int i = 0; i < WRITERS; ++i) {
+        void *result;
+        pthread_join(threads[i], &result);
+        failures += (long)result;
+    }
+    assert_int_equal(failures, 0);
+    FILE *in = fopen(test_path("shared.txt"), "r");
+    char text[64] = "";
+    assert_non_null(fgets(text, sizeof text, in));
+    fclose(in);
+    int whole = 0;
+    for (int i = 0; i < WRITERS; ++i)
+        whole |= strcmp(text, TEXTS[i]) == 0;
+    assert_true(whole);
+}
+
+static void temporary_names_are_short_and_recognised(void **state)
+{
+    (void)state;
+    char name[256];
+    memset(name, 'a', 250);
+    memcpy(name + 246, ".npy", 5); /* a legal 250-byte name: the temporary one must fit too */
+    char path[4096];
+    snprintf(path, sizeof path, "%s", test_path(name));
+    assert_int_equal(im_write_file_atomic(path, "x", 1), IM_OK);
+    im_atomic_file file;
+    assert_int_equal(im_atomic_open(&file, path), IM_OK);
+    const char *temporary = strrchr(file.temp_path, '/') + 1;
+    assert_true(strlen(temporary) < 40);
+    assert_true(im_atomic_is_temporary_name(temporary));
+    im_atomic_abort(&file);
+    assert_true(im_atomic_is_temporary_name("member_01_3.csv.tmp.4242"));
+    assert_true(im_atomic_is_temporary_name("contact.mp4.tmp.17.mp4"));
+    assert_false(im_atomic_is_temporary_name("notes.tmp.txt"));
+    assert_false(im_atomic_is_temporary_name("force_0001.npy"));
+}
+
+static void read_file(const char *path, char *text, size_t size)
+{
+    FILE *in = fopen(path, "rb");
+    assert_non_null(in);
+    size_t n = fread(text, 1, size - 1, in);
+    text[n] = '\0';
+    fclose(in);
+}
+
+static void outputs_never_replace_inputs(void **state)
+{
+    (void)state;
+    char input[4096], sidecar[4200], other_name[4200], text[64];
+    snprintf(input, sizeof input, "%s", test_path("guarded.txt"));
+    snprintf(sidecar, sizeof sidecar, "%s.json", input);
+    assert_int_equal(im_write_file_atomic(input, "input\n", 6), IM_OK);
+    assert_int_equal(im_output_protect(input), IM_OK);
+    snprintf(other_name, sizeof other_name, "%s/./guarded.txt", test_temp_dir());
+    assert_int_equal(im_write_file_atomic(other_name, "output\n", 7), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "would overwrite the input file"));
+    assert_int_equal(im_write_file_atomic(sidecar, "{}\n", 3), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "the sidecar of the input file"));
+    char hard_link[4200];
+    snprintf(hard_link, sizeof hard_link, "%s", test_path("guarded-link.txt"));
+    unlink(hard_link);
+    assert_int_equal(link(input, hard_link), 0);
+    assert_int_equal(im_write_file_atomic(hard_link, "output\n", 7), IM_EINVAL);
+    read_file(input, text, sizeof text);
+    assert_string_equal(text, "input\n");
+    im_output_protect_reset();
+    assert_int_equal(im_write_file_atomic(other_name, "output\n", 7), IM_OK);
+}
+
+static void a_file_of_another_kind_is_not_replaced(void **state)
+{
+    (void)state;
+    const char *scene = test_path("kind.ini"), *png = test_path("kind.png");
+    assert_int_equal(im_write_file_atomic(scene, "# a scene\n[scene]\nname = x\n", 27), IM_OK);
+    uint8_t pixels[3] = {1, 2, 3};
+    assert_int_equal(im_png_write(scene, pixels, 1, 1, 3, 3, NULL), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "holds an INI file (a scene), not a PNG image"));
+    char text[64];
+    read_file(scene, text, sizeof text);
+    assert_string_equal(text, "# a scene\n[scene]\nname = x\n");
+    assert_int_equal(im_png_write(png, pixels, 1, 1, 3, 3, NULL), IM_OK);
+    assert_int_equal(im_png_write(png, pixels, 1, 1, 3, 3, NULL), IM_OK); /* same kind: replaced */
+    assert_int_equal(im_write_file_atomic(png, "text\n", 5), IM_EINVAL);
+    enum im_file_kind kind;
+    assert_int_equal(im_file_kind_of(png, &kind), IM_OK);
+    assert_int_equal(kind, IM_KIND_PNG);
+    assert_int_equal(im_file_kind_of("/dev/null", &kind), IM_EINVAL);
+    assert_int_equal(im_file_kind_of_bytes("(fftw-3.3.10 fftw_wisdom", 24), IM_KIND_WISDOM);
+    assert_int_equal(im_file_kind_of_bytes("\x93NUMPY\x01\x00", 8), IM_KIND_NPY);
+    assert_int_equal(im_file_kind_of_bytes("q,c_iso,modes\n1,2,3\n", 20), IM_KIND_TEXT);
+}
+
+static void paths_that_are_not_utf8_are_escaped(void **state)
+{
+    (void)state;
+    char out[256];
+    assert_int_equal(im_path_utf8("d/\xc3\xa9t\xc3\xa9/s.npy", out, sizeof out), 0);
+    assert_string_equal(out, "d/\xc3\xa9t\xc3\xa9/s.npy");
+    assert_int_equal(im_path_utf8("d/\xff\xfeutf8\\x/s.npy", out, sizeof out), 1);
+    assert_string_equal(out, "d/\\xff\\xfeutf8\\\\x/s.npy");
+    assert_int_equal(im_path_utf8("\xc0\xaf", out, sizeof out), 1); /* an overlong '/' */
+    assert_string_equal(out, "\\xc0\\xaf");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -306,6 +434,11 @@ int main(void)
         cmocka_unit_test(bad_gsf_files_are_refused),
         cmocka_unit_test(atomic_write_leaves_no_partial_file),
         cmocka_unit_test(png_round_trip_keeps_pixels),
+        cmocka_unit_test(concurrent_writes_of_one_file_all_succeed),
+        cmocka_unit_test(temporary_names_are_short_and_recognised),
+        cmocka_unit_test(outputs_never_replace_inputs),
+        cmocka_unit_test(a_file_of_another_kind_is_not_replaced),
+        cmocka_unit_test(paths_that_are_not_utf8_are_escaped),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,9 +1,17 @@
 /* indentmap/io.h: files in and out: surfaces (.npy, text matrix, Gwyddion .gsf), PNG images,
  * and the atomic-write discipline every writer follows.
  *
- * Atomic writes: every file is written to "PATH.tmp.PID" beside its destination and renamed over
- * it only when complete, so an interrupted run never leaves a half-written file and an existing
- * file is replaced whole or not at all.
+ * Atomic writes: every file is written to a temporary file with a short unique name beside its
+ * destination, ".im.tmp.PID.N" (N counts the files this process opened, across threads), and
+ * renamed over it only when complete, so an interrupted run never leaves a half-written file and
+ * an existing file is replaced whole or not at all. A final name of up to NAME_MAX (255) bytes
+ * keeps working: the temporary name does not grow with it.
+ *
+ * The output guard: every atomic write is checked, when it is opened, against the inputs the
+ * process registered (im_output_protect): an input, another name of it (symlink, hard link,
+ * "..") or its sidecar PATH.json is never written (IM_EINVAL). When it is committed, an existing
+ * file is replaced only by a file of the same kind (im_file_kind): a PNG never replaces a scene
+ * file, FFTW wisdom never replaces a surface (IM_EINVAL; the existing file is left as it was).
  *
  * Readers refuse, with IM_EFORMAT and a message naming the file (and the line for text), anything
  * they cannot read exactly: truncated data, extra data, unsupported types, NaN or Inf heights.
@@ -17,25 +25,101 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* ---- the output guard ---- */
+
+/* Registers path as an input of this process: from now on no atomic write may replace it (by any
+ * name that reaches it) or its sidecar path.json. A path that does not exist is registered by name.
+ * IM_ENOMEM if the list cannot grow. Thread-safe. */
+int im_output_protect(const char *path);
+/* Forgets every registered input (for tests and long-lived embedders). */
+void im_output_protect_reset(void);
+/* IM_OK when path is none of the registered inputs and none of their sidecars; otherwise IM_EINVAL
+ * with "PATH would overwrite the input file INPUT (RESOLVED); write it elsewhere" or the sidecar's
+ * message. Cheap (a few stat calls per input): the command line calls it before any work. */
+int im_output_check(const char *path);
+
+/* The absolute form of path with every symlink of its existing leading part resolved; the part
+ * that does not exist yet is appended as written. IM_EINVAL if it does not fit in size. */
+int im_path_absolute(const char *path, char *out, size_t size);
+
+/* What a file holds, recognised from its first bytes. */
+enum im_file_kind {
+    IM_KIND_NONE = 0, /* missing or empty */
+    IM_KIND_NPY, IM_KIND_PNG, IM_KIND_GIF, IM_KIND_PDF, IM_KIND_SVG, IM_KIND_MP4, IM_KIND_GSF,
+    IM_KIND_WISDOM,   /* FFTW wisdom: "(fftw-" */
+    IM_KIND_JSON,     /* starts with '{' */
+    IM_KIND_INI,      /* text whose first line that is not blank or a comment is a [section] */
+    IM_KIND_TEXT,     /* other text (CSV, text matrices, tables): no NUL byte in its head */
+    IM_KIND_BINARY    /* anything else */
+};
+/* The kind of `length` first bytes of a file (512 are enough). */
+enum im_file_kind im_file_kind_of_bytes(const void *bytes, size_t length);
+/* The kind of the file at path (IM_KIND_NONE when missing, empty or unreadable); IM_EINVAL for a
+ * path that is not a regular file (a folder, a device, a FIFO). */
+int im_file_kind_of(const char *path, enum im_file_kind *kind);
+/* "a PNG image", "FFTW wisdom", ... for messages. */
+const char *im_file_kind_name(enum im_file_kind kind);
+
 /* ---- atomic files ---- */
 typedef struct im_atomic_file {
     FILE *stream;        /* write here */
     char path[4096];     /* final destination */
     char temp_path[4128];
+    int slot;            /* internal: its entry in the list of temporary files (-1: none) */
 } im_atomic_file;
 
-/* Opens a temporary file beside path for writing ("wb"). */
+/* Opens a new temporary file beside path for writing (created exclusively, mode 0666 less the
+ * umask). IM_EINVAL when path is a registered input or its sidecar (im_output_check); IM_EIO when
+ * the file cannot be created. */
 int im_atomic_open(im_atomic_file *file, const char *path);
-/* Flushes, syncs, closes and renames into place; on failure removes the temporary file. */
+/* The same with a temporary name ending in suffix (e.g. ".mp4", for a program that picks its
+ * format from the name and writes file->temp_path itself). */
+int im_atomic_open_suffixed(im_atomic_file *file, const char *path, const char *suffix);
+/* Flushes, syncs, closes and renames into place. On failure removes the temporary file and leaves
+ * path as it was: IM_EIO (write or rename failed: the message has errno's reason), IM_EINVAL (path
+ * holds a file of another kind than the one written, see the output guard). */
 int im_atomic_commit(im_atomic_file *file);
 /* Closes and removes the temporary file; the destination is untouched. Accepts a closed file. */
 void im_atomic_abort(im_atomic_file *file);
+/* Removes every temporary file this process has open (async-signal-safe: for a handler of a
+ * fatal signal, which then ends the process). */
+void im_atomic_remove_temporaries(void);
+/* Whether name (a file name without folder) is a temporary name of an atomic write: ".im.tmp.*",
+ * or "NAME.tmp.PID" / "NAME.tmp.PID.mp4" as earlier versions named them. */
+int im_atomic_is_temporary_name(const char *name);
 
 /* Writes a whole text (or binary) buffer atomically. */
 int im_write_file_atomic(const char *path, const void *data, size_t size);
 
 /* Creates a directory and its parents (mkdir -p); IM_OK if it already exists. */
 int im_make_directories(const char *path);
+
+/* A path as UTF-8 text for records (JSON, PNG text chunks): itself when it is valid UTF-8 (returns
+ * 0); otherwise (returns 1) each byte outside valid UTF-8 becomes \xHH and each backslash \\,
+ * so that the bytes can be recovered. out is always terminated; a path that does not fit is cut
+ * (size 4 * PATH_MAX + 1 always fits). */
+int im_path_utf8(const char *path, char *out, size_t size);
+
+/* ---- output folders ---- */
+
+/* An output folder's lock, FOLDER/.lock (the folder must exist), held by `run` and `indent` while
+ * they write there: flock(2) decides who holds it (the kernel drops it when its holder dies) and
+ * the file holds the holder's pid. IM_EIO while another live process holds it, with "output folder
+ * FOLDER is in use by another indentmap run (pid N, lock file F); wait for it to end or ADVICE";
+ * a lock file no live process holds is taken over with a warning on stderr. */
+typedef struct im_folder_lock {
+    int fd;             /* -1 when not held */
+    char path[4104];
+} im_folder_lock;
+int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock);
+/* Removes the lock file and releases it; nothing if not held. */
+void im_folder_lock_release(im_folder_lock *lock);
+
+/* Removes the temporary files of atomic writes (im_atomic_is_temporary_name) that a killed run
+ * left in folder and, for depth d > 0, in its subfolders d levels down (depth 0: folder only). Call
+ * it only while holding the folder's lock: another live writer's temporary files would go too.
+ * Returns how many were removed. */
+int im_folder_remove_temporaries(const char *folder, int depth);
 
 /* ---- surfaces ---- */
 enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };

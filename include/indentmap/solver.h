@@ -65,6 +65,14 @@ im_solver_options im_solver_options_default(void);
 /* IM_EINVAL naming the first option out of range. */
 int im_solver_options_check(const im_solver_options *options);
 
+/* The wisdom file the options name (wisdom_path, else $IM_FFTW_WISDOM), or NULL for none. */
+const char *im_solver_wisdom_file(const im_solver_options *options);
+/* IM_OK when the wisdom file (if any) may be read and replaced: missing, empty or FFTW wisdom, and
+ * no input of the process (io.h: im_output_protect). Otherwise IM_EINVAL naming the file, what it
+ * holds (a surface, a scene, a device) and where the path came from. Planning checks it too, before
+ * reading the file; callers check it before any work. */
+int im_solver_wisdom_check(const im_solver_options *options);
+
 /* Quality presets: the stopping tolerance of a named speed/accuracy trade-off.
  *   draft        1e-5   N within 1.4e-5, n_p within 0.19%, 0.73x the iterations of standard
  *   standard     1e-6   N within 1.0e-6, n_p within 1.9e-4

@@ -16,10 +16,14 @@ int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 int cli_run(int argc, char **argv);
 
-/* SIGINT/SIGTERM (interrupt.c): cli_interrupt_install makes them store their number in
- * cli_stop_signal (a second one ends the process); cli_interrupt_exit_status is 128 + it. */
+/* SIGINT/SIGTERM/SIGHUP (interrupt.c): cli_interrupt_install makes them store their number in
+ * cli_stop_signal (a second one removes the temporary files being written and ends the process);
+ * cli_interrupt_exit_status is 128 + it. cli_interrupt_install_cleanup makes the first one remove
+ * the temporary files and end the process (for commands with nothing to keep). 0, or -1 if
+ * sigaction failed. */
 extern volatile sig_atomic_t cli_stop_signal;
 int cli_interrupt_install(void);
+int cli_interrupt_install_cleanup(void);
 int cli_interrupt_exit_status(void);
 
 /* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
@@ -38,16 +42,17 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
 int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),
                       int (*apply)(int code, const char *arg, void *state), void *state);
 
-/* Outputs never overwrite inputs. Paths are compared by realpath (symlinks, "." and ".." resolved)
- * and, for a symlink given as an input, by the link's own name. inputs[0..count) may hold NULLs
- * (skipped); inputs that do not exist are skipped (their reader reports them).
- * cli_check_output_file: 0 when the file `output` (of option `option`) is none of the inputs;
- * otherwise prints "indentmap: OPTION OUTPUT would overwrite the input file INPUT (REALPATH); ..."
- * and returns -1 (exit CLI_EXIT_USAGE).
+/* Outputs never overwrite inputs (io.h: the output guard). cli_protect_inputs registers
+ * inputs[0..count) (NULLs skipped) as inputs of the process: no write may replace them or their
+ * sidecars; 0, or -1 after printing why not.
+ * cli_check_output_file: 0 when the file `output` (of option `option`; NULL: nothing) is none of
+ * the registered inputs nor their sidecars; otherwise prints "indentmap: OPTION OUTPUT would
+ * overwrite the input file INPUT (REALPATH); ..." and returns -1 (exit CLI_EXIT_USAGE).
  * cli_check_output_folder: the same for a folder `dir` into which a command writes the files whose
- * names writes(name, state) accepts: -1, naming DIR/NAME and the input, when an input lies directly
- * in dir under such a name. */
-int cli_check_output_file(const char *option, const char *output, const char *const *inputs, int count);
+ * names writes(name, state) accepts: -1, naming DIR/NAME and the input, when one of inputs lies
+ * directly in dir under such a name (paths compared by realpath, and for a symlink by its name). */
+int cli_protect_inputs(const char *const *inputs, int count);
+int cli_check_output_file(const char *option, const char *output);
 int cli_check_output_folder(const char *option, const char *dir, int (*writes)(const char *name, const void *state),
                             const void *state, const char *const *inputs, int count);
 

@@ -8,6 +8,9 @@
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <getopt.h>
 #include <jansson.h>
 #include <math.h>
@@ -15,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define MAX_STEPS 100000
 
@@ -46,8 +50,10 @@ static void usage(FILE *stream)
             "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
-            "DIR/history.csv is rewritten atomically after every step, so the steps already solved\n"
-            "survive a later failure (no convergence: exit 1; contact at the surface's edge: exit 1).\n"
+            "DIR/history.csv gets one whole line per step, appended and synced as soon as the step is\n"
+            "solved, so the steps already solved survive a later failure or a crash (no convergence:\n"
+            "exit 1; contact at the surface's edge: exit 1). DIR is locked while the run writes there\n"
+            "(DIR/.lock, as for scenes); the field files of an earlier run in DIR are removed first.\n"
             "At N = 0 the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
 
@@ -191,6 +197,17 @@ static int apply_quality(indent_options *o)
     return 0;
 }
 
+/* Whether name is PREFIX followed by four or more digits and ".npy" (a field file of a step). */
+static int is_step_file(const char *name, const char *prefix)
+{
+    size_t length = strlen(prefix), digits = 0;
+    if (strncmp(name, prefix, length) != 0)
+        return 0;
+    while (name[length + digits] >= '0' && name[length + digits] <= '9')
+        ++digits;
+    return digits >= 4 && strcmp(name + length + digits, ".npy") == 0;
+}
+
 /* Whether `name` is one of the files written into the output folder: history.csv, run.json and,
  * with --fields, {force,gap,displacement}_NNNN.npy for the steps 1..count. */
 static int writes_into_folder(const char *name, const void *state)
@@ -212,14 +229,39 @@ static int writes_into_folder(const char *name, const void *state)
     return 0;
 }
 
-/* Refuses an output folder whose outputs would replace the surface file or its sidecar. */
+/* The wisdom file may be neither an input (checked with the inputs) nor one of the files the run
+ * writes into --out: each would replace the other. */
+static int check_wisdom(const indent_options *o)
+{
+    if (im_solver_wisdom_check(&o->solver) != IM_OK) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return -1;
+    }
+    const char *wisdom = im_solver_wisdom_file(&o->solver);
+    char file[4200], folder[4200];
+    if (!wisdom || im_path_absolute(wisdom, file, sizeof file) != IM_OK ||
+        im_path_absolute(o->out, folder, sizeof folder) != IM_OK)
+        return 0;
+    size_t length = strlen(folder);
+    if (strncmp(file, folder, length) != 0 || file[length] != '/' || !writes_into_folder(file + length + 1, o))
+        return 0;
+    fprintf(stderr, "indentmap: the FFTW wisdom file %s would be one of the run's outputs, %s/%s: give another "
+            "--wisdom (or IM_FFTW_WISDOM) or another --out\n", wisdom, o->out, file + length + 1);
+    return -1;
+}
+
+/* Refuses, before any work, an output folder whose outputs would replace the surface file or its
+ * sidecar, and a wisdom file that is an input or an output. Every write is checked again when it
+ * is opened (io.h: the output guard). */
 static int check_outputs_apart(const indent_options *o)
 {
     char sidecar[4200] = "";
     if (o->surface_path)
         snprintf(sidecar, sizeof sidecar, "%s.json", o->surface_path);
     const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL};
-    return cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 2);
+    if (cli_protect_inputs(inputs, 1) != 0 || cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 2) != 0)
+        return -1;
+    return check_wisdom(o);
 }
 
 /* Where the tolerance came from, for run.json. */
@@ -254,22 +296,53 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 static const char *HISTORY_HEADER = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
                                     "max_pressure,iterations,residual,seconds,convolutions\n";
 
-static int write_history(const char *dir, const im_step_result *rows, int count)
-{
+/* DIR/history.csv, appended step by step. Its header is written atomically (so the file appears
+ * whole); each step is then one line, written with one write(2) and synced (fdatasync), so that a
+ * finished step survives a crash and the cost per step does not grow with the steps before it. A
+ * write that fails part way is cut back to the last whole line. */
+typedef struct history_file {
+    int fd;
+    off_t size; /* bytes of whole lines */
     char path[4200];
-    snprintf(path, sizeof path, "%s/history.csv", dir);
-    im_atomic_file file;
-    int status = im_atomic_open(&file, path);
+} history_file;
+
+static int history_start(const char *dir, history_file *h)
+{
+    h->fd = -1;
+    snprintf(h->path, sizeof h->path, "%s/history.csv", dir);
+    int status = im_write_file_atomic(h->path, HISTORY_HEADER, strlen(HISTORY_HEADER));
     if (status != IM_OK)
         return status;
-    fputs(HISTORY_HEADER, file.stream);
-    for (int i = 0; i < count; ++i) {
-        const im_step_result *r = &rows[i];
-        fprintf(file.stream, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d\n", i + 1, r->approach,
-                r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure, r->max_pressure,
-                r->iterations, r->residual, r->seconds, r->convolutions);
+    h->fd = open(h->path, O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (h->fd < 0)
+        return im_fail(IM_EIO, "%s: cannot open for appending: %s", h->path, strerror(errno));
+    h->size = (off_t)strlen(HISTORY_HEADER);
+    return IM_OK;
+}
+
+static int history_append(history_file *h, int step, const im_step_result *r)
+{
+    char line[512];
+    int length = snprintf(line, sizeof line, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d\n", step,
+                          r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure,
+                          r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions);
+    ssize_t written = write(h->fd, line, (size_t)length);
+    if (written == length && fdatasync(h->fd) == 0) {
+        h->size += length;
+        return IM_OK;
     }
-    return im_atomic_commit(&file);
+    int saved = written < 0 || written == length ? errno : ENOSPC; /* a short write: the disk filled */
+    if (ftruncate(h->fd, h->size) != 0) /* no torn last line */
+        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)",
+                       h->path, strerror(saved), strerror(errno));
+    return im_fail(IM_EIO, "%s: write failed: %s", h->path, strerror(saved));
+}
+
+static void history_close(history_file *h)
+{
+    if (h->fd >= 0)
+        close(h->fd);
+    h->fd = -1;
 }
 
 static int write_fields(const char *dir, const im_indentation *run, int step)
@@ -309,13 +382,15 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *targets = json_array();
     for (int i = 0; i < o->target_count; ++i)
         json_array_append_new(targets, json_real(o->targets[i]));
+    char source[4 * 4200 + 1];
+    int escaped = im_path_utf8(o->surface_path ? o->surface_path : "smooth", source, sizeof source);
     json_t *generator = surface_sidecar_generator(o->surface_path);
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
         "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
         "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
-        "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
+        "surface", "source", source, "nx", s->nx, "ny", s->ny,
         "delta", s->delta, "generator", generator,
         "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
@@ -328,6 +403,8 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "history", "history.csv", "fields", o->fields);
     if (root && seed)
         json_object_set(root, "seed", seed);
+    if (root && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
+        json_object_set_new(json_object_get(root, "surface"), "source_encoding", json_string("escaped"));
     json_decref(generator);
     return root;
 }
@@ -336,7 +413,9 @@ static int write_run_json(const char *dir, json_t *record, int steps_done, int s
 {
     json_object_set_new(record, "steps_completed", json_integer(steps_done));
     json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
-    json_object_set_new(record, "error", json_string(status == IM_OK ? "" : im_last_error()));
+    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
+    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
+    json_object_set_new(record, "error", json_string(error));
     char *text = json_dumps(record, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
     if (!text)
         return im_fail(IM_ENOMEM, "run.json");
@@ -379,39 +458,73 @@ static double largest(const double *v, int n)
     return m;
 }
 
-static int run_steps(const indent_options *o, im_indentation *run, json_t *record)
+/* Solves step `step` (1-based) and writes its fields and history line. */
+static int run_step(const indent_options *o, im_indentation *run, history_file *history, int step)
 {
-    im_step_result *rows = calloc((size_t)o->target_count, sizeof *rows);
-    if (!rows)
-        return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
+    im_step_result r;
+    int status = im_indentation_step(run, o->targets[step - 1], &r);
+    if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
+        status = write_fields(o->out, run, step);
+    if (status == IM_OK)
+        status = history_append(history, step, &r);
+    if (status == IM_OK) {
+        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", step,
+               r.approach, r.load, r.contact_patches, r.area_ratio, r.iterations, r.residual, r.seconds);
+        fflush(stdout);
+    }
+    return status;
+}
+
+static int run_steps(const indent_options *o, im_indentation *run, history_file *history, json_t *record)
+{
     int status = IM_OK, done = 0;
-    for (; done < o->target_count && status == IM_OK; ++done) {
+    for (; done < o->target_count; ++done) {
         if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
             status = im_fail(IM_EINTERRUPTED, "interrupted by signal %d", (int)cli_stop_signal);
             break;
         }
-        status = im_indentation_step(run, o->targets[done], &rows[done]);
+        status = run_step(o, run, history, done + 1);
         if (status != IM_OK)
             break;
-        status = write_history(o->out, rows, done + 1);
-        if (status == IM_OK && o->fields)
-            status = write_fields(o->out, run, done + 1);
-        const im_step_result *r = &rows[done];
-        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n",
-               done + 1, r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual,
-               r->seconds);
-        fflush(stdout);
     }
+    /* done counts the steps whose fields and history line are all written (< target_count here) */
     if (status != IM_OK)
         im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", done + 1,
-                        o->target_count, o->control == IM_CONTROL_LOAD ? "load" : "approach",
-                        o->targets[done < o->target_count ? done : o->target_count - 1], done, o->out);
+                        o->target_count, o->control == IM_CONTROL_LOAD ? "load" : "approach", o->targets[done],
+                        done, o->out);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
-    free(rows);
+    return status;
+}
+
+/* Takes DIR's lock, then removes what an earlier run left there that this one would not replace:
+ * temporary files of a killed run, and field files (this run writes its own, or none). Inputs are
+ * kept (the output guard names them). */
+static int prepare_folder(const indent_options *o, im_folder_lock *lock)
+{
+    int status = im_folder_lock_acquire(o->out, "give this run another --out", lock);
+    if (status != IM_OK)
+        return status;
+    im_folder_remove_temporaries(o->out, 0); /* --out may be any folder: not its subfolders */
+    DIR *listing = opendir(o->out);
+    if (!listing)
+        return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
+    static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
+    for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
+        char path[8192];
+        int field = 0;
+        for (int i = 0; i < 3; ++i)
+            field |= is_step_file(entry->d_name, FIELDS[i]);
+        if (!field || snprintf(path, sizeof path, "%s/%s", o->out, entry->d_name) >= (int)sizeof path ||
+            im_output_check(path) != IM_OK)
+            continue;
+        if (unlink(path) != 0 && errno != ENOENT)
+            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field file: %s", path, strerror(errno));
+    }
+    closedir(listing);
     return status;
 }
 
@@ -439,15 +552,21 @@ int cli_indent(int argc, char **argv)
                                        &run);
     if (status == IM_OK)
         status = im_make_directories(o.out);
+    im_folder_lock lock = {.fd = -1};
+    history_file history = {.fd = -1};
+    if (status == IM_OK)
+        status = prepare_folder(&o, &lock);
     if (status == IM_OK) {
         im_window w = im_indentation_window(run);
         printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads\n", surface->nx, surface->ny,
                w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads());
         record = run_record(&o, surface, run);
-        status = record ? write_history(o.out, NULL, 0) : im_fail(IM_ENOMEM, "run record");
+        status = record ? history_start(o.out, &history) : im_fail(IM_ENOMEM, "run record");
     }
     if (status == IM_OK)
-        status = run_steps(&o, run, record);
+        status = run_steps(&o, run, &history, record);
+    history_close(&history);
+    im_folder_lock_release(&lock);
     json_decref(record);
     im_indentation_free(run);
     im_field_free(surface);

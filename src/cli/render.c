@@ -340,6 +340,25 @@ static int check_usage(const render_options *o, int inputs)
     return -1;
 }
 
+/* Registers the inputs (the fields and --contact) and refuses, before any work, an output that is
+ * one of them: --out, or a frame DIR/contact_NNNN.png of --frames. */
+static int check_outputs_apart(const render_options *o, char **inputs, int count)
+{
+    if (cli_protect_inputs((const char *const *)inputs, count) != 0 || cli_protect_inputs(&o->contact, 1) != 0 ||
+        cli_check_output_file("--out", o->out) != 0)
+        return -1;
+    for (int i = 0; o->frames && strcmp(o->mode, "animate") == 0 && i < count; ++i) {
+        char path[4096];
+        if (im_frame_path(path, sizeof path, o->frames, "contact", i) != IM_OK) {
+            cli_report(IM_EINVAL);
+            return -1;
+        }
+        if (cli_check_output_file("--frames", path) != 0)
+            return -1;
+    }
+    return 0;
+}
+
 static int run(render_options *o, char **inputs, int count)
 {
     im_render_context *context = NULL;
@@ -371,7 +390,9 @@ int cli_render(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     o.mode = argv[optind];
-    if (check_usage(&o, argc - optind - 1) != 0)
+    if (check_usage(&o, argc - optind - 1) != 0 || check_outputs_apart(&o, argv + optind + 1, argc - optind - 1) != 0)
         return CLI_EXIT_USAGE;
+    if (cli_interrupt_install_cleanup() != 0)
+        return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
     return run(&o, argv + optind + 1, argc - optind - 1);
 }

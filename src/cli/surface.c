@@ -197,7 +197,8 @@ static int write_outputs(const surface_options *o, const im_field *surface, cons
     return status;
 }
 
-/* Refuses any output that is the measured file (--stats): `--psd s.npy` would replace it. */
+/* Refuses, before any work, an output that is the measured file (--stats) or its sidecar:
+ * `--psd s.npy` or `--png s.npy.json` would replace it. The writes are checked again when opened. */
 static int check_outputs_apart(const surface_options *o)
 {
     char sidecar[4200] = "";
@@ -206,8 +207,10 @@ static int check_outputs_apart(const surface_options *o)
     const char *const inputs[] = {o->stats};
     const char *const options[] = {"--out", "--out (its sidecar)", "--png", "--psd", "--histograms"};
     const char *const outputs[] = {o->out, o->out ? sidecar : NULL, o->png, o->psd, o->histograms};
+    if (cli_protect_inputs(inputs, 1) != 0)
+        return -1;
     for (int i = 0; i < 5; ++i)
-        if (cli_check_output_file(options[i], outputs[i], inputs, 1) != 0)
+        if (cli_check_output_file(options[i], outputs[i]) != 0)
             return -1;
     return 0;
 }
@@ -236,6 +239,8 @@ int cli_surface(int argc, char **argv)
     int parsed = parse_options(argc, argv, &o);
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (cli_interrupt_install_cleanup() != 0)
+        return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
     im_field *surface = NULL;
     int status = o.stats ? im_surface_read(o.stats, &surface) : im_surface_generate(&o.params, &surface);
     im_surface_stats stats;

@@ -208,6 +208,10 @@ static int check_disk(const im_scene *scene, const grid *g)
     struct statvfs info;
     if (statvfs(folder, &info) != 0)
         return IM_OK; /* cannot tell: the writes will report it */
+    if (info.f_blocks == 0) /* proc, sysfs: "0.0 MiB free" would read as a full disk */
+        return im_fail(IM_EIO, "%s: the output folder %s is on a file system that stores no files (%s has no "
+                       "blocks, like /proc or /sys); give an output folder on a disk", scene->path, scene->output_dir,
+                       folder);
     double free_bytes = (double)info.f_bavail * (double)info.f_frsize;
     if (d.total > free_bytes)
         return im_fail(IM_EIO, "%s: the outputs need about %.1f MiB of disk (the largest, %s, %.1f MiB) but %s has "

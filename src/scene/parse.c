@@ -75,6 +75,18 @@ static int parse_string(const key_spec *spec, const char *value, im_scene *scene
     return 0;
 }
 
+/* [scene] name: the default output folder is output/NAME, so a name is one plain folder name
+ * (no '/', not "." or ".."), which cannot lead the outputs outside output/. */
+static int parse_name(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    if (strchr(value, '/') || strcmp(value, ".") == 0 || strcmp(value, "..") == 0) {
+        snprintf(error, size, "name = '%s': expected a plain name without '/' (nor '.' or '..'): the outputs go to "
+                 "output/NAME; to write elsewhere, give [scene] output", value);
+        return -1;
+    }
+    return parse_string(spec, value, scene, error, size);
+}
+
 /* Index of value among "a|b|c" choices, or -1. */
 static int choice_index(const char *choices, const char *value)
 {
@@ -174,6 +186,13 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
         }
         values[count++] = v;
     }
+    for (int i = 0; i < count; ++i)
+        for (int j = 0; j < i; ++j)
+            if (values[j] == values[i]) { /* one surface twice: averaged as two, and both written to one file */
+                snprintf(error, size, "seeds = '%s': seed %.0f is given twice; each seed is one surface, give each "
+                         "once", value, values[i]);
+                return -1;
+            }
     scene->seed_count = count;
     for (int i = 0; i < count; ++i)
         scene->seeds[i] = (uint64_t)values[i];
@@ -194,7 +213,7 @@ static int parse_quality(const key_spec *spec, const char *value, im_scene *scen
 }
 
 static const key_spec KEYS[] = {
-    {"scene", "name", parse_string, FIELD(name), 0, 0, NULL, sizeof(((im_scene *)0)->name), 0},
+    {"scene", "name", parse_name, FIELD(name), 0, 0, NULL, sizeof(((im_scene *)0)->name), 0},
     {"scene", "output", parse_string, FIELD(output_dir), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"scene", "quality", parse_quality, FIELD(quality), 0, 0, NULL, sizeof(((im_scene *)0)->quality), 0},
     {"surfaces", "n", parse_int, FIELD(surface.nx), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},

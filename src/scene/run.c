@@ -6,6 +6,7 @@
 #include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -154,6 +155,16 @@ void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
     va_end(args);
 }
 
+int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
+{
+    return im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
+}
+
+void scene_lock_release(scene_lock *lock)
+{
+    im_folder_lock_release(lock);
+}
+
 static int check_runnable(const im_scene *scene)
 {
     if ((scene->contact_panels || scene->frames || scene->table) && !(scene->load_star > 0.0))
@@ -213,9 +224,45 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     return status;
 }
 
+/* The scene file and its surface file become inputs no write may replace (io.h: the output
+ * guard), and the FFTW wisdom file ($IM_FFTW_WISDOM) may be neither one of them, nor in the output
+ * folder, nor anything but wisdom. */
+static int protect_inputs(const im_scene *scene)
+{
+    int status = im_output_protect(scene->path);
+    char surface[IM_SCENE_PATH];
+    if (status == IM_OK && scene->surface_file[0]) {
+        im_scene_resolve_path(scene, scene->surface_file, surface, sizeof surface);
+        status = im_output_protect(surface);
+    }
+    im_solver_options solver = scene_solver_options(scene);
+    if (status == IM_OK)
+        status = im_solver_wisdom_check(&solver);
+    const char *wisdom = im_solver_wisdom_file(&solver);
+    char folder[PATH_MAX], file[PATH_MAX];
+    int resolved = wisdom && im_path_absolute(scene->output_dir, folder, sizeof folder) == IM_OK &&
+                   im_path_absolute(wisdom, file, sizeof file) == IM_OK;
+    size_t length = resolved ? strlen(folder) : 0;
+    if (status == IM_OK && resolved && strncmp(file, folder, length) == 0 && file[length] == '/')
+        status = im_fail(IM_EINVAL, "IM_FFTW_WISDOM %s lies in the output folder %s, where this run writes: "
+                         "keep it elsewhere", wisdom, scene->output_dir);
+    return status;
+}
+
+/* Temporary files a killed run left in the (locked) output folder. */
+static void remove_stale_temporaries(const im_scene *scene, const im_scene_run_options *options)
+{
+    int removed = im_folder_remove_temporaries(scene->output_dir, 1); /* table/, histories/, ... */
+    if (removed > 0)
+        scene_progress(options, "removed %d temporary file%s an interrupted run left in %s", removed,
+                       removed == 1 ? "" : "s", scene->output_dir);
+}
+
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
     int status = check_runnable(scene);
+    if (status == IM_OK)
+        status = protect_inputs(scene);
     if (status == IM_OK)
         status = scene_check_limits(scene);
     if (status == IM_OK)
@@ -223,6 +270,8 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     scene_lock lock = {.fd = -1};
     if (status == IM_OK)
         status = scene_lock_acquire(scene, &lock);
+    if (status == IM_OK)
+        remove_stale_temporaries(scene, options);
     if (status == IM_OK)
         status = scene_write_record(scene);
     if (status == IM_OK)

@@ -3,6 +3,7 @@
 #define INDENTMAP_SCENE_INTERNAL_H
 
 #include "indentmap/indenter.h"
+#include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
@@ -60,17 +61,9 @@ int scene_interrupted(const im_scene_run_options *options, const char *where);
  * file-size limit) the outputs need, estimated from above, are there. Messages give the estimate. */
 int scene_check_limits(const im_scene *scene);
 
-/* The output folder's lock (lock.c). */
-typedef struct scene_lock {
-    int fd;                    /* -1 when not held */
-    char path[IM_SCENE_PATH];
-} scene_lock;
-
-/* Locks OUTPUT/.lock (the folder must exist) and writes this process's pid in it. IM_EIO naming the
- * folder and the other pid while another live process holds it; a lock file no live process holds
- * (its writer died) is taken over, with a warning on stderr. */
+/* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
+typedef im_folder_lock scene_lock;
 int scene_lock_acquire(const im_scene *scene, scene_lock *lock);
-/* Removes the lock file and releases it; nothing if not held. */
 void scene_lock_release(scene_lock *lock);
 
 /* Progress line on stderr unless quiet. */

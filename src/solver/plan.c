@@ -5,6 +5,7 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,12 +58,32 @@ double im_solver_plan_bytes(int nx, int ny)
     return 8 * (n * 5 + modes + 2 * rows + 2 * modes + 4 * n);
 }
 
-static const char *wisdom_file(const im_solver_options *o)
+const char *im_solver_wisdom_file(const im_solver_options *o)
 {
     if (o->wisdom_path && o->wisdom_path[0])
         return o->wisdom_path;
     const char *env = getenv("IM_FFTW_WISDOM");
     return env && env[0] ? env : NULL;
+}
+
+int im_solver_wisdom_check(const im_solver_options *o)
+{
+    const char *path = im_solver_wisdom_file(o);
+    if (!path)
+        return IM_OK;
+    const char *source = o->wisdom_path && o->wisdom_path[0] ? "wisdom file" : "IM_FFTW_WISDOM";
+    enum im_file_kind kind;
+    int status = im_file_kind_of(path, &kind);
+    if (status == IM_OK && kind != IM_KIND_NONE && kind != IM_KIND_WISDOM)
+        status = im_fail(IM_EINVAL, "%s holds %s, not FFTW wisdom", path, im_file_kind_name(kind));
+    if (status == IM_OK)
+        status = im_output_check(path);
+    if (status == IM_OK)
+        return IM_OK;
+    char reason[512];
+    snprintf(reason, sizeof reason, "%s", im_last_error());
+    return im_fail(status, "%s %s: %s; it is neither read nor replaced (name a new file, or wisdom this program "
+                   "wrote)", source, path, reason);
 }
 
 /* Writes the accumulated wisdom atomically, so concurrent runs never read a torn file. */
@@ -78,7 +99,10 @@ static int export_wisdom(const char *path)
 
 static int make_fft_plans(im_solver_plan *p)
 {
-    const char *wisdom = wisdom_file(&p->options);
+    const char *wisdom = im_solver_wisdom_file(&p->options);
+    int checked = im_solver_wisdom_check(&p->options);
+    if (checked != IM_OK)
+        return checked;
     p->measured = p->options.fft_measure || wisdom != NULL;
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
     const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
