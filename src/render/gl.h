@@ -50,7 +50,21 @@
     X(Uniform3f, PFNGLUNIFORM3FPROC)                                                              \
     X(GenVertexArrays, PFNGLGENVERTEXARRAYSPROC)                                                  \
     X(BindVertexArray, PFNGLBINDVERTEXARRAYPROC)                                                  \
-    X(DeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC)
+    X(DeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC)                                            \
+    X(Enable, PFNGLENABLEPROC)                                                                    \
+    X(Disable, PFNGLDISABLEPROC)                                                                  \
+    X(Clear, PFNGLCLEARPROC)                                                                      \
+    X(ClearColor, PFNGLCLEARCOLORPROC)                                                            \
+    X(DepthFunc, PFNGLDEPTHFUNCPROC)                                                              \
+    X(DepthMask, PFNGLDEPTHMASKPROC)                                                              \
+    X(BlendFunc, PFNGLBLENDFUNCPROC)                                                              \
+    X(RenderbufferStorageMultisample, PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC)                    \
+    X(BlitFramebuffer, PFNGLBLITFRAMEBUFFERPROC)                                                  \
+    X(UniformMatrix4fv, PFNGLUNIFORMMATRIX4FVPROC)                                                \
+    X(Uniform2fv, PFNGLUNIFORM2FVPROC)                                                            \
+    X(Uniform2f, PFNGLUNIFORM2FPROC)                                                              \
+    X(ColorMask, PFNGLCOLORMASKPROC)                                                              \
+    X(PolygonOffset, PFNGLPOLYGONOFFSETPROC)
 
 typedef struct im_gl {
 #define IM_GL_MEMBER(name, type) type name;

@@ -5,5 +5,9 @@
 extern const char im_shader_fullscreen_vert[];
 extern const char im_shader_contact_frag[];
 extern const char im_shader_height_frag[];
+extern const char im_shader_surface_vert[];
+extern const char im_shader_surface_frag[];
+extern const char im_shader_punch_vert[];
+extern const char im_shader_punch_frag[];
 
 #endif
