@@ -228,7 +228,7 @@ typedef struct im_view3d_style {
 } im_view3d_style;
 
 /* Defaults for a force field (may be NULL): the contact map's norm (im_contact_style_default),
- * 1920 x 1080 pixels, 4 samples, mesh_side 512, true scale (exaggeration 1), shading 0.7, light
+ * 1920 x 1080 pixels, 4 samples, mesh_side 384, true scale (exaggeration 1), shading 0.7, light
  * from 315 degrees at 45 degrees, surface light grey (230), white background, a steel-grey (150,
  * 160, 175) translucent punch of opacity 0.35, perspective from azimuth 20, elevation 35,
  * distance 2.1, field of view 30 degrees. */

@@ -41,7 +41,7 @@ static void usage(FILE *stream)
             "  --exaggeration X      vertical exaggeration (default 1: true scale)\n"
             "  --width W --height H  image size in pixels (default 1920 x 1080)\n"
             "  --samples S           multisamples per pixel: 1, 2, 4 (default) or 8\n"
-            "  --mesh-side N         level of detail: mesh cells along the longer side (default 512)\n"
+            "  --mesh-side N         level of detail: mesh cells along the longer side (default 384)\n"
             "  --colormap NAME       viridis (default), cividis, magma, inferno or grey\n"
             "  --vmin V, --vmax V    force norm range (default 0 .. largest force)\n"
             "  --log                 logarithmic norm (default vmin: vmax / 1000)\n"

@@ -64,7 +64,12 @@
     X(Uniform2fv, PFNGLUNIFORM2FVPROC)                                                            \
     X(Uniform2f, PFNGLUNIFORM2FPROC)                                                              \
     X(ColorMask, PFNGLCOLORMASKPROC)                                                              \
-    X(PolygonOffset, PFNGLPOLYGONOFFSETPROC)
+    X(PolygonOffset, PFNGLPOLYGONOFFSETPROC)                                                      \
+    X(GenBuffers, PFNGLGENBUFFERSPROC)                                                            \
+    X(DeleteBuffers, PFNGLDELETEBUFFERSPROC)                                                      \
+    X(BindBuffer, PFNGLBINDBUFFERPROC)                                                            \
+    X(BufferData, PFNGLBUFFERDATAPROC)                                                            \
+    X(DrawElements, PFNGLDRAWELEMENTSPROC)
 
 typedef struct im_gl {
 #define IM_GL_MEMBER(name, type) type name;

@@ -31,7 +31,7 @@ im_view3d_style im_view3d_style_default(const im_field *force)
     im_view3d_style style = {
         .colormap = force ? im_contact_style_default(force).colormap
                           : im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0),
-        .width = 1920, .height = 1080, .samples = 4, .mesh_side = 512, .exaggeration = 1.0,
+        .width = 1920, .height = 1080, .samples = 4, .mesh_side = 384, .exaggeration = 1.0,
         .shading = 0.7, .light_azimuth = 315.0, .light_altitude = 45.0,
         .surface = {230, 230, 230}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
         .punch_mode = IM_VIEW3D_PUNCH_TRANSLUCENT, .punch_opacity = 0.35, .punch_extent = 0.0,
@@ -342,6 +342,7 @@ static void light_vector(const im_view3d_style *s, float light[3])
 typedef struct surface_inputs {
     uint16_t *codes;
     float *heights, *corners;
+    uint32_t *indices;   /* 6 per mesh cell: (0,0)-(1,0)-(1,1) and (0,0)-(1,1)-(0,1) */
 } surface_inputs;
 
 static void free_inputs(surface_inputs *in)
@@ -349,6 +350,19 @@ static void free_inputs(surface_inputs *in)
     free(in->codes);
     free(in->heights);
     free(in->corners);
+    free(in->indices);
+}
+
+/* Two triangles per cell, split along the diagonal from its corner (a, b) to (a + 1, b + 1). */
+static void mesh_indices(const view_geometry *g, uint32_t *indices)
+{
+    uint32_t row = (uint32_t)g->cells_x + 1;
+    for (uint32_t b = 0; b < (uint32_t)g->cells_y; ++b)
+        for (uint32_t a = 0; a < (uint32_t)g->cells_x; ++a) {
+            uint32_t corner = b * row + a;
+            uint32_t cell[6] = {corner, corner + 1, corner + row + 1, corner, corner + row + 1, corner + row};
+            memcpy(indices + 6 * ((size_t)b * g->cells_x + a), cell, sizeof cell);
+        }
 }
 
 static int make_inputs(const view_geometry *g, const im_field *h, const im_field *force, const im_view3d_style *s,
@@ -358,7 +372,8 @@ static int make_inputs(const view_geometry *g, const im_field *h, const im_field
     in->codes = malloc(count * sizeof *in->codes);
     in->heights = malloc(count * sizeof *in->heights);
     in->corners = malloc(corners * sizeof *in->corners);
-    if (!in->codes || !in->heights || !in->corners) {
+    in->indices = malloc(6 * (size_t)g->cells_x * g->cells_y * sizeof *in->indices);
+    if (!in->codes || !in->heights || !in->corners || !in->indices) {
         free_inputs(in);
         return im_fail(IM_ENOMEM, "3-D view %d x %d: out of memory", h->nx, h->ny);
     }
@@ -369,6 +384,7 @@ static int make_inputs(const view_geometry *g, const im_field *h, const im_field
         in->heights[i] = (float)(h->data[i] / h->delta);
     }
     corner_heights(g, h, in->corners);
+    mesh_indices(g, in->indices);
     return IM_OK;
 }
 
@@ -399,7 +415,14 @@ static void draw_surface(const im_render_context *c, const view_geometry *g, con
     light_vector(s, light);
     gl->Uniform3f(gl->GetUniformLocation(program, "light"), light[0], light[1], light[2]);
     set_matrix(gl, program, f);
-    gl->DrawArrays(GL_TRIANGLES, 0, 6 * g->cells_x * g->cells_y);
+    GLsizei count = 6 * g->cells_x * g->cells_y;
+    GLuint buffer;
+    gl->GenBuffers(1, &buffer);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)count * sizeof *in->indices, in->indices, GL_STATIC_DRAW);
+    gl->DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, NULL);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    gl->DeleteBuffers(1, &buffer);
 }
 
 static void draw_punch(const im_render_context *c, const view_geometry *g, const im_view3d_style *s,
@@ -504,7 +527,8 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
         status = check_style(c, s);
     if (status == IM_OK)
         status = im_memory_check(4.0 * (double)s->width * s->height * (2.0 * s->samples + 2.0) +
-                                 14.0 * (double)im_field_count(height), "3-D view");
+                                 14.0 * (double)im_field_count(height) +
+                                 28.0 * (double)s->mesh_side * s->mesh_side, "3-D view");
     if (status != IM_OK)
         return status;
     view_geometry geometry = {0};
