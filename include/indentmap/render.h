@@ -171,8 +171,8 @@ int im_render_height_map(im_render_context *context, const im_field *height,
  * 2s patches around it; colours and normals stay per patch, so contact patches keep their
  * outlines while the geometry is coarser.
  *
- * Camera: it looks at the target, the centre of the grid (nx / 2, ny / 2) at the middle of the
- * surface's drawn height range, from the direction
+ * Camera: it looks at the target, the centre of the grid (nx / 2, ny / 2) at the height target_z
+ * (by default the middle of the surface's drawn height range), from the direction
  *     (cos(el) sin(az), -cos(el) cos(az), sin(el)),
  * az = azimuth, el = elevation: azimuth 0 looks from the bottom edge of the 2-D map (-y) towards
  * +y, 90 from the right edge (+x). Its right-hand direction is (cos az, sin az, 0) and up is
@@ -205,6 +205,9 @@ typedef struct im_view3d_camera {
     double field_of_view;      /* perspective: vertical, degrees, (1, 120) */
     im_view3d_projection projection;
     double ortho_height;       /* orthographic: world height spanned by the image, in patches; 0 auto */
+    double target_z;           /* height looked at, in world units (exaggerated patches); NAN: the
+                                  middle of the surface's drawn range. Frames of a history fix it
+                                  so that the camera stays put as the surface deforms. */
 } im_view3d_camera;
 
 typedef struct im_view3d_style {
@@ -231,7 +234,7 @@ typedef struct im_view3d_style {
  * 1920 x 1080 pixels, 4 samples, mesh_side 384, true scale (exaggeration 1), shading 0.7, light
  * from 315 degrees at 45 degrees, surface light grey (230), white background, a steel-grey (150,
  * 160, 175) translucent punch of opacity 0.35, perspective from azimuth 20, elevation 35,
- * distance 2.1, field of view 30 degrees. */
+ * distance 2.1, field of view 30 degrees, automatic target height (NAN). */
 im_view3d_style im_view3d_style_default(const im_field *force);
 
 /* Draws the deformed surface `height` (h - u, in the field's units; all values finite) in 3-D,

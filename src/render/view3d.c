@@ -36,7 +36,7 @@ im_view3d_style im_view3d_style_default(const im_field *force)
         .surface = {230, 230, 230}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
         .punch_mode = IM_VIEW3D_PUNCH_TRANSLUCENT, .punch_opacity = 0.35, .punch_extent = 0.0,
         .camera = {.azimuth = 20.0, .elevation = 35.0, .distance = 2.1, .field_of_view = 30.0,
-                   .projection = IM_VIEW3D_PERSPECTIVE, .ortho_height = 0.0}};
+                   .projection = IM_VIEW3D_PERSPECTIVE, .ortho_height = 0.0, .target_z = NAN}};
     return style;
 }
 
@@ -52,6 +52,8 @@ static int check_camera(const im_view3d_camera *k)
         return im_fail(IM_EINVAL, "3-D view: camera distance = %g: expected (0, 1e6) grid sides", k->distance);
     if (!(k->field_of_view > 1.0 && k->field_of_view < 120.0))
         return im_fail(IM_EINVAL, "3-D view: field_of_view = %g: expected (1, 120) degrees", k->field_of_view);
+    if (isinf(k->target_z))
+        return im_fail(IM_EINVAL, "3-D view: target_z is infinite: expected a height or NAN (automatic)");
     if (!(k->ortho_height >= 0.0 && k->ortho_height < 1e9))
         return im_fail(IM_EINVAL, "3-D view: ortho_height = %g: expected 0 (automatic) or a positive "
                        "height in patches", k->ortho_height);
@@ -241,7 +243,7 @@ static void camera_frame_of(const view_geometry *g, const im_view3d_camera *k, d
 {
     camera_axes(k, f);
     double z_hi = g->has_punch ? fmax(g->z_hi, g->punch_top) : g->z_hi;
-    double target[3] = {0.5 * g->nx, 0.5 * g->ny, 0.5 * (g->z_lo + g->z_hi)};
+    double target[3] = {0.5 * g->nx, 0.5 * g->ny, isnan(k->target_z) ? 0.5 * (g->z_lo + g->z_hi) : k->target_z};
     double extent[3] = {0.5 * g->nx, 0.5 * g->ny, fmax(z_hi - target[2], target[2] - g->z_lo)};
     double radius = sqrt(dot3(extent, extent)) + 1.0, longer = g->nx > g->ny ? g->nx : g->ny;
     int perspective = k->projection == IM_VIEW3D_PERSPECTIVE;

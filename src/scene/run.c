@@ -159,6 +159,9 @@ static int check_runnable(const im_scene *scene)
     if ((scene->contact_panels || scene->frames || scene->table) && !(scene->load_star > 0.0))
         return im_fail(IM_EINVAL, "%s: contact panels, frames and tables need [loading] load_star > 0",
                        scene->path);
+    if (scene->frames3d && !scene->frames)
+        return im_fail(IM_EINVAL, "%s: [output] frames3d draws the frames' history in 3-D: set frames = yes too",
+                       scene->path);
     if (scene->table && scene->punch != IM_PUNCH_CONE)
         return im_fail(IM_EINVAL, "%s: [output] table compares with eq. (12), which is for a cone", scene->path);
     if (scene->surface_file[0] && scene->family_count > 1)
