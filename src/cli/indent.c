@@ -7,6 +7,7 @@
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/viewer.h"
 
 #include <getopt.h>
 #include <jansson.h>
@@ -191,13 +192,14 @@ static int apply_quality(indent_options *o)
     return 0;
 }
 
-/* Whether `name` is one of the files written into the output folder: history.csv, run.json and,
+/* Whether `name` is one of the files written into the output folder: history.csv, run.json,
+ * index.html and,
  * with --fields, {force,gap,displacement}_NNNN.npy for the steps 1..count. */
 static int writes_into_folder(const char *name, const void *state)
 {
     const indent_options *o = state;
     static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
-    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0)
+    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0)
         return 1;
     for (int i = 0; o->fields && i < 3; ++i) {
         size_t length = strlen(FIELDS[i]);
@@ -415,6 +417,20 @@ static int run_steps(const indent_options *o, im_indentation *run, json_t *recor
     return status;
 }
 
+/* DIR/index.html over what the run left (viewer.h), even after a failure; the run's own error,
+ * if any, stays the one reported. */
+static int write_viewer_page(const indent_options *o, int status)
+{
+    char message[1024], title[1024];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    snprintf(title, sizeof title, "indentmap indent: %s", o->smooth ? "smooth surface" : o->surface_path);
+    int written = im_viewer_write(o->out, title);
+    if (status == IM_OK)
+        return written;
+    im_fail(status, "%s", message);
+    return status;
+}
+
 int cli_indent(int argc, char **argv)
 {
     indent_options o;
@@ -448,6 +464,8 @@ int cli_indent(int argc, char **argv)
     }
     if (status == IM_OK)
         status = run_steps(&o, run, record);
+    if (record)
+        status = write_viewer_page(&o, status);
     json_decref(record);
     im_indentation_free(run);
     im_field_free(surface);

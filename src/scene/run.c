@@ -3,6 +3,7 @@
 #include "indentmap/io.h"
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
+#include "indentmap/viewer.h"
 #include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
@@ -216,6 +217,20 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     return status;
 }
 
+/* OUTPUT/index.html over what the run left (viewer.h), even after a failure or an interruption;
+ * the run's own error, if any, stays the one returned. */
+static int write_viewer_page(const im_scene *scene, int status)
+{
+    char message[1024], title[IM_SCENE_PATH + 96];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    snprintf(title, sizeof title, "indentmap run: %s (%s)", scene->name, scene->path);
+    int written = im_viewer_write(scene->output_dir, title);
+    if (status == IM_OK)
+        return written;
+    im_fail(status, "%s", message);
+    return status;
+}
+
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
     int status = check_runnable(scene);
@@ -228,8 +243,10 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
         status = scene_lock_acquire(scene, &lock);
     if (status == IM_OK)
         status = scene_write_record(scene);
-    if (status == IM_OK)
+    if (status == IM_OK) {
         status = run_stages(scene, options);
+        status = write_viewer_page(scene, status);
+    }
     scene_lock_release(&lock);
     return status;
 }
