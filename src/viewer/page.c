@@ -102,7 +102,7 @@ static const char STYLE[] =
     "margin-top:1.6em}.figures{display:flex;flex-wrap:wrap;gap:1.2em}figure{margin:0}"
     "figure img{max-width:100%;height:auto;border:1px solid #eee}figcaption{font-size:.85em;color:#555}"
     ".figures figure{flex:1 1 30em;max-width:60em}.frames{display:flex;gap:1em;align-items:flex-start}"
-    ".frames figure{flex:1 1 0;min-width:0}.slider{display:flex;align-items:center;gap:1em;margin:.6em 0}"
+    ".frames figure{flex:1 1 0;min-width:0}.frames figure img{width:100%}.slider{display:flex;align-items:center;gap:1em;margin:.6em 0}"
     ".slider input{flex:1}table{border-collapse:collapse;font-size:.85em;font-variant-numeric:tabular-nums}"
     "th,td{border:1px solid #ddd;padding:.2em .5em;text-align:right}th{background:#f4f4f4}"
     "tr:nth-child(even) td{background:#fafafa}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}"
