@@ -56,7 +56,7 @@ typedef struct view3d_options {
     double vmin, vmax, dpi;
     im_colormap_id map;
     im_indenter punch;
-    int x_given, y_given;
+    int x_given, y_given, radius_given;
     im_view3d_style style;
     im_render_backend backend;
 } view3d_options;
@@ -129,7 +129,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_DISPLACEMENT: o->displacement = arg; return 0;
     case OPT_PUNCH: return apply_punch(o, arg);
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, 1e-9, 90 - 1e-9, &o->punch.alpha_degrees);
-    case OPT_RADIUS: return cli_parse_double("--radius", arg, 1e-300, 1e300, &o->punch.radius);
+    case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, 1e-300, 1e300, &o->punch.radius);
     case OPT_X: o->x_given = 1; return cli_parse_double("--x", arg, -1e300, 1e300, &o->punch.x0);
     case OPT_Y: o->y_given = 1; return cli_parse_double("--y", arg, -1e300, 1e300, &o->punch.y0);
     case OPT_MODE:
@@ -252,7 +252,7 @@ int cli_render_view3d(int argc, char **argv)
         fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
         return CLI_EXIT_USAGE;
     }
-    if ((o.punch.kind == IM_PUNCH_SPHERE || o.punch.kind == IM_PUNCH_FLAT) && !(o.punch.radius > 0.0) && !o.no_punch) {
+    if ((o.punch.kind == IM_PUNCH_SPHERE || o.punch.kind == IM_PUNCH_FLAT) && !o.radius_given && !o.no_punch) {
         fprintf(stderr, "indentmap: --punch %s needs --radius R\n", im_punch_name(o.punch.kind));
         return CLI_EXIT_USAGE;
     }

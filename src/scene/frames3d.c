@@ -66,7 +66,11 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_vi
     im_view3d_exaggeration_text(s->exaggeration, scale, sizeof scale);
     snprintf(title, sizeof title, "N* = %.0f, %s", load_star, scale);
     im_figure_panel panel = {image, NULL, title};
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path}, {"Title", title},
+                                 {"Quantity", "local force f / (E* δ²)"}};
     im_figure figure = im_figure_default();
+    figure.texts = texts;
+    figure.text_count = 4;
     figure.panels = &panel;
     figure.colormap = &s->colormap;
     figure.colorbar_label = "local force f / (E* δ²)";
