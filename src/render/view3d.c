@@ -60,8 +60,11 @@ static int check_camera(const im_view3d_camera *k)
     return IM_OK;
 }
 
-static int check_style(const im_render_context *c, const im_view3d_style *s)
+static int check_style(const im_render_context *c, const im_view3d_style *s, const im_field *height)
 {
+    if (height->nx > c->max_texture_size || height->ny > c->max_texture_size)
+        return im_fail(IM_EINVAL, "3-D view: grid %d x %d exceeds GL_MAX_TEXTURE_SIZE %d of %s", height->nx,
+                       height->ny, c->max_texture_size, c->renderer);
     int status = im_colormap_check(&s->colormap);
     if (status != IM_OK)
         return im_fail_context(status, "3-D view");
@@ -526,7 +529,7 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
     if (status == IM_OK)
         status = im_render_make_current(c);
     if (status == IM_OK)
-        status = check_style(c, s);
+        status = check_style(c, s, height);
     if (status == IM_OK)
         status = im_memory_check(4.0 * (double)s->width * s->height * (2.0 * s->samples + 2.0) +
                                  14.0 * (double)im_field_count(height) +
