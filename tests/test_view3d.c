@@ -355,7 +355,35 @@ static double hit_triangle(const double o[3], const double d[3], const double a[
     return u >= 0 && v >= 0 && u + v <= 1 && distance > 0 ? distance : INFINITY;
 }
 
-/* The nearest hit of the ray on the mesh (two triangles per patch along (x, y)-(x+1, y+1)). */
+/* The nearest hit on the side walls (from each edge down to the base), or INFINITY. */
+static double hit_walls(const scene *sc, const double o[3], const double d[3])
+{
+    int nx = sc->h->nx, ny = sc->h->ny;
+    double nearest = INFINITY, base = INFINITY; /* 0.04 grid sides below the lowest edge corner */
+    for (int y = 0; y <= ny; ++y)
+        for (int x = 0; x <= nx; ++x)
+            if (x == 0 || y == 0 || x == nx || y == ny)
+                base = fmin(base, sc->corners[y * (nx + 1) + x] - 0.04 * (nx > ny ? nx : ny));
+    for (int side = 0; side < 4; ++side) {
+        int count = side % 2 ? ny : nx;
+        for (int j = 0; j < count; ++j) {
+            /* the wall quad under edge segment j of this side */
+            int a[2], b[2];
+            if (side == 0) { a[0] = j; a[1] = 0; b[0] = j + 1; b[1] = 0; }
+            else if (side == 1) { a[0] = nx; a[1] = j; b[0] = nx; b[1] = j + 1; }
+            else if (side == 2) { a[0] = j; a[1] = ny; b[0] = j + 1; b[1] = ny; }
+            else { a[0] = 0; a[1] = j; b[0] = 0; b[1] = j + 1; }
+            double top_a = sc->corners[a[1] * (nx + 1) + a[0]], top_b = sc->corners[b[1] * (nx + 1) + b[0]];
+            double p0[3] = {a[0], a[1], base}, p1[3] = {b[0], b[1], base}, p2[3] = {b[0], b[1], top_b},
+                   p3[3] = {a[0], a[1], top_a};
+            nearest = fmin(nearest, fmin(hit_triangle(o, d, p0, p1, p2), hit_triangle(o, d, p0, p2, p3)));
+        }
+    }
+    return nearest;
+}
+
+/* The nearest hit of the ray on the mesh (two triangles per patch along (x, y)-(x+1, y+1)); 0
+ * when it misses or meets a side wall first. */
 static int cast(const scene *sc, const double o[3], const double d[3], double hit[3])
 {
     int nx = sc->h->nx, ny = sc->h->ny;
@@ -373,7 +401,7 @@ static int cast(const scene *sc, const double o[3], const double d[3], double hi
         }
     for (int i = 0; i < 3; ++i)
         hit[i] = o[i] + nearest * d[i];
-    return isfinite(nearest);
+    return isfinite(nearest) && nearest < hit_walls(sc, o, d);
 }
 
 static double patch_height(const im_field *h, int x, int y)

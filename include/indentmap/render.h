@@ -166,6 +166,10 @@ int im_render_height_map(im_render_context *context, const im_field *height,
  * seen from straight above reproduces the 2-D contact map; shade = 1 + shading * (max(n.l, 0) /
  * l_z - 1), then the colour times shade, clamped to [0, 1].
  *
+ * Side walls close the surface into a block: from each edge corner straight down to a flat base
+ * 0.04 * max(nx, ny) below the lowest edge corner, in the surface colour darkened to 85 %, lit with an
+ * ambient part (0.55 + 0.45 max(n.l, 0)). Seen from straight above they cover no pixel.
+ *
  * Level of detail: with more than mesh_side patches along the longer side, the mesh is built on
  * every s-th corner (s = ceil(longer side / mesh_side)), each corner's height the mean of the 2s x
  * 2s patches around it; colours and normals stay per patch, so contact patches keep their

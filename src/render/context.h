@@ -34,7 +34,7 @@ struct im_render_context {
     im_osmesa osmesa;
     GLint max_texture_size, max_renderbuffer_size, max_viewport[2], max_samples;
     GLuint vertex_array, contact_program, height_program;
-    GLuint surface_program, punch_program;  /* the 3-D view (view3d.c) */
+    GLuint surface_program, punch_program, wall_program;  /* the 3-D view (view3d.c) */
 };
 
 /* Whether EGL's client extensions allow enumerating devices: EGL_EXT_platform_device and

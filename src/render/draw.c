@@ -88,6 +88,7 @@ void im_render_teardown(im_render_context *c)
     c->gl.DeleteProgram(c->height_program);
     c->gl.DeleteProgram(c->surface_program);
     c->gl.DeleteProgram(c->punch_program);
+    c->gl.DeleteProgram(c->wall_program);
     c->gl.DeleteVertexArrays(1, &c->vertex_array);
 }
 

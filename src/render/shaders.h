@@ -9,5 +9,7 @@ extern const char im_shader_surface_vert[];
 extern const char im_shader_surface_frag[];
 extern const char im_shader_punch_vert[];
 extern const char im_shader_punch_frag[];
+extern const char im_shader_wall_vert[];
+extern const char im_shader_wall_frag[];
 
 #endif

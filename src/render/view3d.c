@@ -9,8 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The punch's shaft above its face, in units of the grid's longer side. */
-static const double SHAFT = 0.12;
+/* The punch's shaft above its face, and the block under the surface below its lowest point, in
+ * units of the grid's longer side. */
+static const double SHAFT = 0.12, BASE_DEPTH = 0.04;
+
+/* The walls' colour: the surface colour darkened, as the cut face of a block. */
+static const double WALL_SHADE = 0.85;
 
 enum { PROFILE_POINTS = 64, PUNCH_SEGMENTS = 128, SPHERE_RINGS = 40, MIN_IMAGE_SIDE = 16 };
 
@@ -23,6 +27,9 @@ int im_render_view3d_setup(im_render_context *c)
     if (status == IM_OK)
         status = im_render_link_program(&c->gl, im_shader_punch_vert, "punch.vert", im_shader_punch_frag,
                                         "punch.frag", &c->punch_program);
+    if (status == IM_OK)
+        status = im_render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", im_shader_wall_frag, "wall.frag",
+                                        &c->wall_program);
     return status;
 }
 
@@ -120,6 +127,7 @@ void im_view3d_exaggeration_text(double exaggeration, char *text, size_t size)
 typedef struct view_geometry {
     int nx, ny, stride, cells_x, cells_y;
     double z_lo, z_hi;            /* exaggerated surface heights */
+    double base;                  /* the bottom of the block under the surface */
     int has_punch;
     double axis[2];
     float profile[PROFILE_POINTS][2];
@@ -247,7 +255,7 @@ static void camera_frame_of(const view_geometry *g, const im_view3d_camera *k, d
     camera_axes(k, f);
     double z_hi = g->has_punch ? fmax(g->z_hi, g->punch_top) : g->z_hi;
     double target[3] = {0.5 * g->nx, 0.5 * g->ny, isnan(k->target_z) ? 0.5 * (g->z_lo + g->z_hi) : k->target_z};
-    double extent[3] = {0.5 * g->nx, 0.5 * g->ny, fmax(z_hi - target[2], target[2] - g->z_lo)};
+    double extent[3] = {0.5 * g->nx, 0.5 * g->ny, fmax(z_hi - target[2], target[2] - fmin(g->base, g->z_lo))};
     double radius = sqrt(dot3(extent, extent)) + 1.0, longer = g->nx > g->ny ? g->nx : g->ny;
     int perspective = k->projection == IM_VIEW3D_PERSPECTIVE;
     double distance = perspective ? k->distance * longer : 2.0 * radius + 1.0;
@@ -358,6 +366,19 @@ static void free_inputs(surface_inputs *in)
     free(in->indices);
 }
 
+/* The base of the side walls: BASE_DEPTH grid sides below the lowest edge corner. (The surface
+ * may dip below it inside, where nothing above can see it.) */
+static void wall_base(view_geometry *g, const im_view3d_style *s, const float *corners)
+{
+    int row = g->cells_x + 1, longer = g->nx > g->ny ? g->nx : g->ny;
+    double lowest = INFINITY;
+    for (int a = 0; a <= g->cells_x; ++a)
+        lowest = fmin(lowest, fmin(corners[a], corners[(size_t)g->cells_y * row + a]));
+    for (int b = 0; b <= g->cells_y; ++b)
+        lowest = fmin(lowest, fmin(corners[(size_t)b * row], corners[(size_t)b * row + g->cells_x]));
+    g->base = s->exaggeration * lowest - BASE_DEPTH * longer;
+}
+
 /* Two triangles per cell, split along the diagonal from its corner (a, b) to (a + 1, b + 1). */
 static void mesh_indices(const view_geometry *g, uint32_t *indices)
 {
@@ -370,7 +391,7 @@ static void mesh_indices(const view_geometry *g, uint32_t *indices)
         }
 }
 
-static int make_inputs(const view_geometry *g, const im_field *h, const im_field *force, const im_view3d_style *s,
+static int make_inputs(view_geometry *g, const im_field *h, const im_field *force, const im_view3d_style *s,
                        surface_inputs *in)
 {
     size_t count = im_field_count(h), corners = (size_t)(g->cells_x + 1) * (g->cells_y + 1);
@@ -390,6 +411,7 @@ static int make_inputs(const view_geometry *g, const im_field *h, const im_field
     }
     corner_heights(g, h, in->corners);
     mesh_indices(g, in->indices);
+    wall_base(g, s, in->corners);
     return IM_OK;
 }
 
@@ -428,6 +450,30 @@ static void draw_surface(const im_render_context *c, const view_geometry *g, con
     gl->DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, NULL);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     gl->DeleteBuffers(1, &buffer);
+}
+
+/* The side walls, reusing the surface's corner texture (still bound on unit 2). */
+static void draw_walls(const im_render_context *c, const view_geometry *g, const im_view3d_style *s,
+                       const camera_frame *f)
+{
+    const im_gl *gl = &c->gl;
+    GLuint program = c->wall_program;
+    gl->UseProgram(program);
+    im_render_set_int(gl, program, "corners", 2);
+    gl->Uniform2i(gl->GetUniformLocation(program, "grid"), g->nx, g->ny);
+    gl->Uniform2i(gl->GetUniformLocation(program, "cells"), g->cells_x, g->cells_y);
+    im_render_set_int(gl, program, "stride", g->stride);
+    gl->Uniform1f(gl->GetUniformLocation(program, "exaggeration"), (float)s->exaggeration);
+    gl->Uniform1f(gl->GetUniformLocation(program, "base"), (float)g->base);
+    uint8_t wall[3];
+    for (int k = 0; k < 3; ++k)
+        wall[k] = (uint8_t)(WALL_SHADE * s->surface[k]);
+    im_render_set_colour(gl, program, "wall_colour", wall);
+    float light[3];
+    light_vector(s, light);
+    gl->Uniform3f(gl->GetUniformLocation(program, "light"), light[0], light[1], light[2]);
+    set_matrix(gl, program, f);
+    gl->DrawArrays(GL_TRIANGLES, 0, 6 * 2 * (g->cells_x + g->cells_y));
 }
 
 static void draw_punch(const im_render_context *c, const view_geometry *g, const im_view3d_style *s,
@@ -489,6 +535,7 @@ static int draw_view(const im_render_context *c, const view_geometry *g, const s
         gl->Enable(GL_DEPTH_TEST);
         gl->DepthFunc(GL_LESS);
         draw_surface(c, g, in, s, &frame, textures);
+        draw_walls(c, g, s, &frame);
         if (g->has_punch)
             draw_punch(c, g, s, &frame);
         gl->Disable(GL_DEPTH_TEST);
