@@ -253,13 +253,15 @@ static void test_screenshot_shows_the_panels(void **state)
         if (find_colour(pixels, width, height, channels, colours[k], boxes[k]) < 400)
             fail_msg("panel %d (colour %d, %d, %d) is not in the screenshot", k, colours[k][0], colours[k][1],
                      colours[k][2]);
-    /* side by side, left to right, tops aligned, each panel scaled alike (widths 100 : 100 : 192) */
+    /* side by side, left to right, at one height (100 x 100, 100 x 100 and 192 x 108 images), each
+     * keeping its aspect ratio */
     for (int k = 0; k < 2; ++k) {
         assert_true(boxes[k][2] < boxes[k + 1][0]);
         assert_true(abs(boxes[k][1] - boxes[k + 1][1]) <= 2);
+        assert_true(abs(boxes[k][3] - boxes[k + 1][3]) <= 2);
     }
-    double scale_contact = (boxes[0][2] - boxes[0][0] + 1) / 100.0, scale_view = (boxes[2][2] - boxes[2][0] + 1) / 192.0;
-    assert_true(fabs(scale_contact - scale_view) < 0.03 * scale_view);
+    double view_aspect = (boxes[2][2] - boxes[2][0] + 1.0) / (boxes[2][3] - boxes[2][1] + 1.0);
+    assert_true(fabs(view_aspect - 192.0 / 108.0) < 0.03 * view_aspect);
     free(pixels);
 }
 

@@ -113,7 +113,7 @@ typedef struct im_scene_run_options {
  *   frames3d (with frames): frames/view3d_NNNN.png, the deformed surface of every step in 3-D
  *     (render.h's im_render_view3d, 960 x 540: one force norm, one vertical exaggeration, stated
  *     in each title, and one camera for all), and view3d.gif / view3d.mp4 as `animation` asks
- *     (the GIF's frames dithered to a 252-colour cube).
+ *     (the GIF's frames dithered to a 216-colour cube).
  * Nothing is solved twice within a run: a load-controlled history's step at load_star takes the
  * table's state, and a panel takes the force of the table, of such a history, or of the frames'
  * last step. Each stage's line says how many surfaces it solved, read back and reused.

@@ -5,7 +5,8 @@
  * referenced by relative paths, nothing loaded from the network, so it opens from file:// (and
  * keeps working when the folder is moved or copied whole). It shows, in this order, the parts
  * for which files exist:
- *   - figures: every PNG, GIF and SVG image in DIR (sorted by name), with links to the PDFs and MP4s;
+ *   - figures: every PNG and SVG image in DIR (sorted by name); animations: every GIF; links to
+ *     the PDFs and MP4s;
  *   - frames: the images DIR/frames/PREFIX_NNNN.png grouped by PREFIX (contact, height, view3d,
  *     ...), shown side by side, one step at a time, chosen with a slider (and the arrow keys);
  *     steps that a prefix lacks are left blank;

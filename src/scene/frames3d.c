@@ -80,18 +80,19 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_vi
     return status == IM_OK ? im_figure_write(&figure, path) : status;
 }
 
-/* Reduces an image to the 6 x 7 x 6 colour cube (252 colours) with 4 x 4 ordered dithering, so
- * that a GIF can hold it without a palette search; deterministic. */
+/* Reduces an image to the 6 x 6 x 6 colour cube (216 colours) with 4 x 4 ordered dithering, so
+ * that a GIF can hold it without a palette search; deterministic, and greys stay grey (every
+ * channel has the same levels and threshold). */
 static void dither_to_cube(im_image *image)
 {
     static const int bayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
-    static const int levels[3] = {6, 7, 6};
+
     for (int y = 0; y < image->height; ++y)
         for (int x = 0; x < image->width; ++x) {
             uint8_t *p = image->rgba + ((size_t)y * image->width + x) * 4;
             double threshold = (bayer[y % 4][x % 4] + 0.5) / 16.0;
             for (int k = 0; k < 3; ++k) {
-                int top = levels[k] - 1, q = (int)floor(p[k] * top / 255.0 + threshold);
+                int top = 5, q = (int)floor(p[k] * top / 255.0 + threshold);
                 q = q > top ? top : q;
                 p[k] = (uint8_t)lround(q * 255.0 / top);
             }

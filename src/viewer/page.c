@@ -101,36 +101,48 @@ static const char STYLE[] =
     "h1{font-size:1.5em;margin:0 0 .2em}h2{font-size:1.15em;border-bottom:1px solid #ccc;padding-bottom:.2em;"
     "margin-top:1.6em}.figures{display:flex;flex-wrap:wrap;gap:1.2em}figure{margin:0}"
     "figure img{max-width:100%;height:auto;border:1px solid #eee}figcaption{font-size:.85em;color:#555}"
-    ".figures figure{flex:1 1 30em;max-width:60em}.frames{display:flex;gap:1em;align-items:flex-start}"
+    ".figures figure{flex:0 1 auto;max-width:100%}.animations img{width:30em;image-rendering:pixelated}.frames{display:flex;gap:1em;align-items:flex-start}"
     ".frames figure{flex:1 1 0;min-width:0}.frames figure img{width:100%}.slider{display:flex;align-items:center;gap:1em;margin:.6em 0}"
     ".slider input{flex:1}table{border-collapse:collapse;font-size:.85em;font-variant-numeric:tabular-nums}"
     "th,td{border:1px solid #ddd;padding:.2em .5em;text-align:right}th{background:#f4f4f4}"
     "tr:nth-child(even) td{background:#fafafa}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}"
     ".scroll{max-height:32em;overflow:auto}.note{color:#777;font-size:.85em}";
 
-/* Figures: images shown, documents linked. */
-static int write_figures(FILE *out, const char *dir)
+/* One row of images under a heading: class names the row's style. */
+static void write_images(FILE *out, const name_list *list, const char *heading, const char *class_name)
 {
-    static const char *const images[] = {".png", ".gif", ".svg", NULL}, *const documents[] = {".pdf", ".mp4", NULL};
-    name_list list;
-    int status = list_folder(dir, images, &list);
-    if (status != IM_OK || list.count == 0) {
-        free_names(&list);
-        return status;
-    }
-    fputs("<h2>Figures</h2>\n<div class=\"figures\">\n", out);
-    for (int i = 0; i < list.count; ++i) {
+    if (list->count == 0)
+        return;
+    fprintf(out, "<h2>%s</h2>\n<div class=\"figures %s\">\n", heading, class_name);
+    for (int i = 0; i < list->count; ++i) {
         fputs("<figure><img src=\"", out);
-        escape_all(out, list.names[i]);
+        escape_all(out, list->names[i]);
         fputs("\" alt=\"", out);
-        escape_all(out, list.names[i]);
+        escape_all(out, list->names[i]);
         fputs("\"><figcaption>", out);
-        escape_all(out, list.names[i]);
+        escape_all(out, list->names[i]);
         fputs("</figcaption></figure>\n", out);
     }
     fputs("</div>\n", out);
+}
+
+/* Figures (PNG, SVG) and animations (GIF) shown, documents (PDF, MP4) linked. */
+static int write_figures(FILE *out, const char *dir)
+{
+    static const char *const figures[] = {".png", ".svg", NULL}, *const animations[] = {".gif", NULL},
+                             *const documents[] = {".pdf", ".mp4", NULL};
+    name_list list;
+    int status = list_folder(dir, figures, &list);
+    if (status == IM_OK)
+        write_images(out, &list, "Figures", "");
     free_names(&list);
-    status = list_folder(dir, documents, &list);
+    if (status == IM_OK)
+        status = list_folder(dir, animations, &list);
+    if (status == IM_OK)
+        write_images(out, &list, "Animations", "animations");
+    free_names(&list);
+    if (status == IM_OK)
+        status = list_folder(dir, documents, &list);
     if (status == IM_OK && list.count > 0) {
         fputs("<p class=\"note\">Also:", out);
         for (int i = 0; i < list.count; ++i) {
@@ -242,8 +254,8 @@ static const char SCRIPT[] =
     "if(e.key==='ArrowRight'&&i<steps-1)show(i+1);else if(e.key==='ArrowLeft'&&i>0)show(i-1);});"
     "show(0);})();\n";
 
-/* The width of a PNG from its IHDR chunk; 0 when unreadable. */
-static long png_width(const char *path)
+/* A PNG's aspect ratio (width / height) from its IHDR chunk, times 1000; 1000 when unreadable. */
+static long png_aspect(const char *path)
 {
     unsigned char header[24];
     FILE *f = fopen(path, "rb");
@@ -251,8 +263,10 @@ static long png_width(const char *path)
     if (f)
         fclose(f);
     if (got != sizeof header || memcmp(header + 12, "IHDR", 4) != 0)
-        return 0;
-    return (long)header[16] << 24 | (long)header[17] << 16 | (long)header[18] << 8 | header[19];
+        return 1000;
+    long width = (long)header[16] << 24 | (long)header[17] << 16 | (long)header[18] << 8 | header[19];
+    long height = (long)header[20] << 24 | (long)header[21] << 16 | (long)header[22] << 8 | header[23];
+    return height > 0 && width > 0 && width < (1L << 20) ? 1000 * width / height : 1000;
 }
 
 static int write_frames(FILE *out, const char *dir)
@@ -270,13 +284,13 @@ static int write_frames(FILE *out, const char *dir)
                 steps - 1, steps);
         fputs("<div class=\"frames\">\n", out);
         for (int g = 0; g < count; ++g) {
-            /* Each panel's share of the row is its image's width, so all are scaled alike. */
+            /* Each panel's share of the row is its image's aspect ratio, so all are drawn at one height. */
             char path[PATH_SIZE + 64];
             snprintf(path, sizeof path, "%s/%s", folder, list.names[groups[g].first]);
-            long width = png_width(path);
+            long aspect = png_aspect(path);
             const char *caption = caption_of(groups[g].prefix, strlen(groups[g].prefix));
             fprintf(out, "<figure style=\"flex:%ld 1 0\"><img id=\"frame-%s\" src=\"frames/%s\" alt=\"%s\"><figcaption>%s</figcaption></figure>\n",
-                    width > 0 ? width : 1, groups[g].prefix, list.names[groups[g].first], groups[g].prefix,
+                    aspect, groups[g].prefix, list.names[groups[g].first], groups[g].prefix,
                     caption ? caption : groups[g].prefix);
         }
         fprintf(out, "</div>\n<script>var FRAMES={steps:%d,groups:[", steps);
