@@ -78,6 +78,14 @@ done
 check "page has the 3-D frames" grep -q 'id="frame-view3d"' "$dir/scene/index.html"
 check "page has the contact frames" grep -q 'id="frame-contact"' "$dir/scene/index.html"
 check "frame title states the scale" grep -qa "N\* = 400" "$dir/scene/frames/view3d_0002.png"
+# The real page in headless Chromium (when installed): no console message, the script ran.
+if command -v chromium >/dev/null; then
+  chromium --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking \
+    --disable-component-update --disable-sync --user-data-dir="$dir/profile" --enable-logging=stderr --v=0 \
+    --dump-dom "file://$dir/scene/index.html" >"$dir/dom.html" 2>"$dir/console.log"
+  check "scene page: no console message" bash -c "! grep -q ':CONSOLE' '$dir/console.log'"
+  check "scene page: the slider script ran" grep -q "step 1 of 3" "$dir/dom.html"
+fi
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
 finish
