@@ -59,18 +59,20 @@ static im_view3d_style frames_style(im_field *const *deformed, int count, const 
 static int write_frame(const im_scene *scene, const im_image *image, const im_view3d_style *s, int index,
                        double load_star)
 {
-    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[160], scale[96];
+    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[160], scale[96], norm[128];
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, "view3d", index);
     im_view3d_exaggeration_text(s->exaggeration, scale, sizeof scale);
     snprintf(title, sizeof title, "N* = %.0f, %s", load_star, scale);
+    snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),
+             s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
     im_figure_panel panel = {image, NULL, title};
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path}, {"Title", title},
-                                 {"Quantity", "local force f / (E* δ²)"}};
+                                 {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm}};
     im_figure figure = im_figure_default();
     figure.texts = texts;
-    figure.text_count = 4;
+    figure.text_count = 5;
     figure.panels = &panel;
     figure.colormap = &s->colormap;
     figure.colorbar_label = "local force f / (E* δ²)";
