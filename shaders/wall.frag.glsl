@@ -2,7 +2,6 @@
 // The side walls: the wall colour, diffuse light with an ambient part (walls are vertical, so
 // "relative to level ground" would leave them black).
 uniform vec3 wall_colour, light;
-in vec3 world;
 flat in vec3 normal;
 out vec4 colour;
 

@@ -9,7 +9,6 @@ uniform int stride;
 uniform float exaggeration;
 uniform float base;            // world height of the block's bottom
 uniform mat4 view_projection;
-out vec3 world;
 flat out vec3 normal;
 
 // (along the edge, 0 bottom / 1 top) for the six vertices of a quad.
@@ -34,6 +33,5 @@ void main()
         normal = vec3(-1.0, 0.0, 0.0);
     }
     float top = exaggeration * texelFetch(corners, corner, 0).r;
-    world = vec3(vec2(min(corner * stride, grid)), k.y == 1 ? top : base);
-    gl_Position = view_projection * vec4(world, 1.0);
+    gl_Position = view_projection * vec4(vec2(min(corner * stride, grid)), k.y == 1 ? top : base, 1.0);
 }
