@@ -162,7 +162,7 @@ static void add_profile_point(view_geometry *g, double r, double z)
     g->punch_top = fmax(g->punch_top, z);
 }
 
-/* The punch's profile polyline from its tip outwards, then its flat top back to the axis. */
+/* The punch's profile polyline from its tip outwards, up its shaft, then its flat top back to the axis. */
 static void punch_geometry(view_geometry *g, const im_field *h, const im_indenter *punch, const im_view3d_style *s)
 {
     double x, y, e = s->exaggeration;
