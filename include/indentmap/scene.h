@@ -66,6 +66,7 @@ typedef struct im_scene {
     double tol;                      /* solver tolerance (default: the quality preset's) */
 
     int contact_panels, frames, table;
+    int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
     int colormap;                    /* im_colormap_id of colormap.h (default viridis) */
     int log_norm;                    /* 1: forces on a log norm spanning two decades below the
                                         largest, smaller forces in the under colour */
@@ -109,6 +110,10 @@ typedef struct im_scene_run_options {
  *     load_star on one family (the deformed surface with its contact outline), and the
  *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
  *     The history's last step is that family's panel: it is not solved twice.
+ *   frames3d (with frames): frames/view3d_NNNN.png, the deformed surface of every step in 3-D
+ *     (render.h's im_render_view3d, 960 x 540: one force norm, one vertical exaggeration, stated
+ *     in each title, and one camera for all), and view3d.gif / view3d.mp4 as `animation` asks
+ *     (the GIF's frames dithered to a 216-colour cube).
  * Nothing is solved twice within a run: a load-controlled history's step at load_star takes the
  * table's state, and a panel takes the force of the table, of such a history, or of the frames'
  * last step. Each stage's line says how many surfaces it solved, read back and reused.

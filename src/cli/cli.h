@@ -12,6 +12,7 @@ struct option;
 int cli_surface(int argc, char **argv);
 int cli_info(int argc, char **argv);
 int cli_render(int argc, char **argv);
+int cli_render_view3d(int argc, char **argv); /* render view3d (render_view3d.c) */
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 int cli_run(int argc, char **argv);

@@ -7,6 +7,7 @@
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/viewer.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -208,13 +209,14 @@ static int is_step_file(const char *name, const char *prefix)
     return digits >= 4 && strcmp(name + length + digits, ".npy") == 0;
 }
 
-/* Whether `name` is one of the files written into the output folder: history.csv, run.json and,
+/* Whether `name` is one of the files written into the output folder: history.csv, run.json,
+ * index.html and,
  * with --fields, {force,gap,displacement}_NNNN.npy for the steps 1..count. */
 static int writes_into_folder(const char *name, const void *state)
 {
     const indent_options *o = state;
     static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
-    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0)
+    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0)
         return 1;
     for (int i = 0; o->fields && i < 3; ++i) {
         size_t length = strlen(FIELDS[i]);
@@ -528,6 +530,20 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
     return status;
 }
 
+/* DIR/index.html over what the run left (viewer.h), even after a failure; the run's own error,
+ * if any, stays the one reported. */
+static int write_viewer_page(const indent_options *o, int status)
+{
+    char message[1024], title[1024];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    snprintf(title, sizeof title, "indentmap indent: %s", o->smooth ? "smooth surface" : o->surface_path);
+    int written = im_viewer_write(o->out, title);
+    if (status == IM_OK)
+        return written;
+    im_fail(status, "%s", message);
+    return status;
+}
+
 int cli_indent(int argc, char **argv)
 {
     indent_options o;
@@ -566,6 +582,8 @@ int cli_indent(int argc, char **argv)
     if (status == IM_OK)
         status = run_steps(&o, run, &history, record);
     history_close(&history);
+    if (record)
+        status = write_viewer_page(&o, status);
     im_folder_lock_release(&lock);
     json_decref(record);
     im_indentation_free(run);

@@ -18,7 +18,8 @@ static void usage(FILE *stream)
     fprintf(stream,
             "usage: indentmap render contact FORCE... [OPTIONS] --out FILE\n"
             "       indentmap render height SURFACE... [OPTIONS] --out FILE\n"
-            "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n\n"
+            "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
+            "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
             "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches with force <= 0 in a grey background\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
@@ -380,6 +381,8 @@ static int run(render_options *o, char **inputs, int count)
 
 int cli_render(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "view3d") == 0)
+        return cli_render_view3d(argc - 1, argv + 1);
     render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
                         .backend = IM_RENDER_AUTO};
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &o);

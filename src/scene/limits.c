@@ -101,6 +101,8 @@ static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
         needed = *at_once * solve_bytes(g) + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
     if (scene->frames) /* force and deformed heights of every step, and the GIF's RGBA frames */
         needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 4.0 * g->nx * g->ny));
+    if (scene->frames3d) /* the 3-D frames kept for the GIF (960 x 540 RGBA each) */
+        needed += scene->frame_count * 4.0 * 960.0 * 540.0;
     if (scene->contact_panels) /* every family's force, and its panel image (2 pixels a patch when small) */
         needed = fmax(needed, solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
     return needed;
@@ -161,6 +163,10 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
     if (scene->frames) {
         add_files(&d, 2.0 * scene->frame_count, 2.0 * 3.0 * cells + FRAME_TEXT_BYTES, "frames/contact_NNNN.png");
         add_files(&d, 1.0, scene->frame_count * cells + 1024.0, "contact.gif");
+    }
+    if (scene->frames3d) { /* figures of 960 x 540 views and the GIF of them */
+        add_files(&d, scene->frame_count, 2.0 * 3.0 * 960.0 * 540.0, "frames/view3d_NNNN.png");
+        add_files(&d, 1.0, scene->frame_count * 960.0 * 540.0 + 1024.0, "view3d.gif");
     }
     if (scene->table)
         add_files(&d, members, 512.0, "table/member_FF_SEED.csv");

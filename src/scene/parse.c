@@ -235,6 +235,7 @@ static const key_spec KEYS[] = {
     {"loading", "steps", parse_double_list, FIELD(steps), 0, 1e15, NULL, IM_SCENE_MAX_STEPS, FIELD(step_count)},
     {"output", "contact_panels", parse_bool, FIELD(contact_panels), 0, 0, NULL, 0, 0},
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
+    {"output", "frames3d", parse_bool, FIELD(frames3d), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
     {"output", "colormap", parse_choice, FIELD(colormap), 0, 0, "viridis|cividis|magma|inferno|grey", 0, 0},

@@ -3,6 +3,7 @@
 #include "indentmap/io.h"
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
+#include "indentmap/viewer.h"
 #include "indentmap/theory.h"
 #include "scene/scene_internal.h"
 
@@ -170,6 +171,9 @@ static int check_runnable(const im_scene *scene)
     if ((scene->contact_panels || scene->frames || scene->table) && !(scene->load_star > 0.0))
         return im_fail(IM_EINVAL, "%s: contact panels, frames and tables need [loading] load_star > 0",
                        scene->path);
+    if (scene->frames3d && !scene->frames)
+        return im_fail(IM_EINVAL, "%s: [output] frames3d draws the frames' history in 3-D: set frames = yes too",
+                       scene->path);
     if (scene->table && scene->punch != IM_PUNCH_CONE)
         return im_fail(IM_EINVAL, "%s: [output] table compares with eq. (12), which is for a cone", scene->path);
     if (scene->surface_file[0] && scene->family_count > 1)
@@ -258,6 +262,20 @@ static void remove_stale_temporaries(const im_scene *scene, const im_scene_run_o
                        removed == 1 ? "" : "s", scene->output_dir);
 }
 
+/* OUTPUT/index.html over what the run left (viewer.h), even after a failure or an interruption;
+ * the run's own error, if any, stays the one returned. */
+static int write_viewer_page(const im_scene *scene, int status)
+{
+    char message[1024], title[IM_SCENE_PATH + 96];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    snprintf(title, sizeof title, "indentmap run: %s (%s)", scene->name, scene->path);
+    int written = im_viewer_write(scene->output_dir, title);
+    if (status == IM_OK)
+        return written;
+    im_fail(status, "%s", message);
+    return status;
+}
+
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
     int status = check_runnable(scene);
@@ -274,8 +292,10 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
         remove_stale_temporaries(scene, options);
     if (status == IM_OK)
         status = scene_write_record(scene);
-    if (status == IM_OK)
+    if (status == IM_OK) {
         status = run_stages(scene, options);
+        status = write_viewer_page(scene, status);
+    }
     scene_lock_release(&lock);
     return status;
 }

@@ -75,6 +75,19 @@ int scene_framed_family(const im_scene *scene);
 
 /* Frames of the framed family's history; *last_force receives its last step's force field (the
  * state at load_star), which the panels reuse instead of solving it again. */
+/* The framed history's steps, for the 3-D frames (frames3d.c). */
+typedef struct scene_frames3d_input {
+    int count;
+    im_field *const *deformed, *const *force;  /* per step: h - u and the force per patch */
+    const double *load_star;
+    const im_colormap *norm;                   /* the contact frames' force norm */
+} scene_frames3d_input;
+
+/* frames3d = yes: frames/view3d_NNNN.png, one 3-D view per step (one norm, exaggeration and
+ * camera for all), and view3d.gif (dithered to 216 colours) / view3d.mp4 as `animation` asks. */
+int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                         const scene_frames3d_input *in);
+
 int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
                      im_render_context *context, im_field **last_force);
 

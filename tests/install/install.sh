@@ -26,7 +26,10 @@ cmake -S "$source" -B "$prefix/consumer_build" -DCMAKE_PREFIX_PATH="$prefix" \
 cmake --build "$prefix/consumer_build" >/dev/null
 "$prefix/consumer_build/consumer"
 # The program must have been linked with the shared library, not with a copy of it.
-ldd "$prefix/consumer_build/consumer" | grep -q "libindentmap.so.$(echo "$soname" | sed 's/.*\.so\.//')"
+# (ldd's output is read whole first: `grep -q` would stop reading early, and under pipefail the
+# SIGPIPE that ldd then gets fails the pipeline now and then.)
+libraries=$(ldd "$prefix/consumer_build/consumer")
+grep -q "$soname" <<<"$libraries" || { echo "install: the consumer is not linked with $soname" >&2; exit 1; }
 
 # The Python package, pip-installed on top of the installed library (from a copy of python/, so the
 # build leaves nothing in the source tree), must import and solve.
