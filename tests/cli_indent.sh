@@ -12,6 +12,14 @@ head -1 "$DIR/ok/history.csv" | grep -q '^step,approach,load,load_star,contact_p
     || fail "history.csv header: $(head -1 "$DIR/ok/history.csv")"
 [ "$(wc -l < "$DIR/ok/history.csv")" -eq 4 ] || fail "expected 3 rows"
 awk -F, 'NR == 4 { d = $4 / $5 - 1; if (d < -0.01 || d > 0.01) exit 1 }' "$DIR/ok/history.csv" || fail "N* != n_p at the last step"
+# Theory columns beside the history: Love's N(w) = 2 w^2 / (pi cot 80) and A_cone = N* (delta = 1) at
+# every step, full contact on a smooth surface, and the simulated N within 2% of Love's at w = 6.
+head -1 "$DIR/ok/history.csv" | grep -q ',convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma$' \
+    || fail "history.csv lacks the theory columns: $(head -1 "$DIR/ok/history.csv")"
+awk -F, 'NR > 1 { pi = atan2(0, -1); love = 2 * $2 * $2 / (pi * 0.17632698070846498);
+         if ($13 / love - 1 > 1e-12 || love / $13 - 1 > 1e-12 || $14 != $4 || $15 != 1 || $16 != 1) exit 1 }
+         NR == 4 { d = $3 / $13 - 1; if (d < -0.02 || d > 0.02) exit 1 }' "$DIR/ok/history.csv" \
+    || fail "theory columns differ from Love's closed forms"
 for key in '"version"' '"window"' '"threads"' '"tol"' '"steps_completed": 3' '"source": "smooth"'; do
     grep -q "$key" "$DIR/ok/run.json" || fail "run.json lacks $key"
 done

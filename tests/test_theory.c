@@ -619,6 +619,46 @@ static void punch_pressures_and_densities(void **state)
     assert_failure_names(im_theory_punch_mean_pressure(IM_PUNCH_FLAT, -1.0, 1.0, 1.0, &p), IM_EINVAL, "a");
 }
 
+/* The theory columns of a history step: Love's, Hertz's and Boussinesq's N(w), A_smooth(N) and the
+ * area ratios at the smooth mean pressure, each against its closed form written out here. */
+static void step_columns_are_the_closed_forms(void **state)
+{
+    (void)state;
+    im_theory_interface rough = im_theory_interface_default(0.08);
+    rough.e_star = 2.5;
+    im_theory_step step;
+    im_indenter cone = im_indenter_cone(80.0);
+    const double cot = tan(10.0 * M_PI / 180.0), w = 3.0, load = 40.0;
+    assert_int_equal(im_theory_step_columns(&cone, &rough, w, load, &step), IM_OK);
+    assert_true(test_relative_difference(step.load_smooth, 2.0 * 2.5 * w * w / (M_PI * cot)) < 1e-14);
+    assert_true(test_relative_difference(step.area_smooth, 2.0 * load / (2.5 * cot)) < 1e-14);
+    double beta = erf_scale_pr(cot / 0.08); /* eq. (7): independent of the load */
+    assert_true(test_relative_difference(step.area_ratio_gamma, variable_ratio(beta)) < 1e-14);
+    assert_true(test_relative_difference(step.area_ratio_constant, erf(beta)) < 1e-14);
+
+    im_indenter sphere = im_indenter_sphere(500.0);
+    assert_int_equal(im_theory_step_columns(&sphere, &rough, w, load, &step), IM_OK);
+    assert_true(test_relative_difference(step.load_smooth, 4.0 / 3.0 * 2.5 * sqrt(500.0) * pow(w, 1.5)) < 1e-14);
+    double hertz = M_PI * pow(0.75 * load * 500.0 / 2.5, 2.0 / 3.0), p_rough = 0.08 * 2.5 / 2.0;
+    assert_true(test_relative_difference(step.area_smooth, hertz) < 1e-14);
+    beta = erf_scale_pr(load / hertz / p_rough);
+    assert_true(test_relative_difference(step.area_ratio_gamma, hertz_closed_form(beta)) < 1e-12);
+    assert_true(test_relative_difference(step.area_ratio_constant, erf(beta)) < 1e-14);
+
+    im_indenter flat = im_indenter_flat(20.0);
+    assert_int_equal(im_theory_step_columns(&flat, &rough, w, load, &step), IM_OK);
+    assert_true(test_relative_difference(step.load_smooth, 2.0 * 20.0 * 2.5 * w) < 1e-14);
+    beta = erf_scale_pr(load / (M_PI * 400.0) / p_rough);
+    assert_true(test_relative_difference(step.area_ratio_gamma, boussinesq_closed_form(beta)) < 1e-12);
+
+    assert_int_equal(im_theory_step_columns(&flat, &rough, 0.0, 0.0, &step), IM_OK);
+    assert_true(step.load_smooth == 0.0 && step.area_smooth == 0.0 && isnan(step.area_ratio_gamma));
+    rough.slope_rms = 0.0; /* smooth: full contact */
+    assert_int_equal(im_theory_step_columns(&sphere, &rough, w, load, &step), IM_OK);
+    assert_true(step.area_ratio_gamma == 1.0 && step.area_ratio_constant == 1.0);
+    assert_failure_names(im_theory_step_columns(&flat, &rough, -1.0, 1.0, &step), IM_EINVAL, "w = ");
+}
+
 /* ---- refusals ---- */
 
 static void bad_input_is_refused(void **state)
@@ -682,6 +722,7 @@ int main(void)
         cmocka_unit_test(flat_punch_limits),
         cmocka_unit_test(every_punch_is_linear_at_small_beta),
         cmocka_unit_test(punch_pressures_and_densities),
+        cmocka_unit_test(step_columns_are_the_closed_forms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -180,6 +180,28 @@ int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *rat
 int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star,
                                   double *p_mean);
 
+/* ---- The theory beside a simulated history ----
+ * Per step of an indentation (approach w from first touch, load N), the smooth punch's closed forms
+ * and the rough-contact area ratios, written as the theory columns of every history file. */
+
+/* The column names of im_theory_step, in order (CSV). */
+#define IM_THEORY_STEP_COLUMNS "load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma"
+
+typedef struct im_theory_step {
+    double load_smooth;         /* the smooth punch's N(w): Love (cone), Hertz, Boussinesq (flat) */
+    double area_smooth;         /* A_smooth(N): A_cone (eq. 5), A_Hertz, pi a^2; 0 at N = 0 */
+    double area_ratio_constant; /* erf(p_m / p_n) at p_m = N / A_smooth: eq. (6) (cone), eq. (3)
+                                   (sphere); NaN at N = 0, 1 on a smooth surface */
+    double area_ratio_gamma;    /* the local density's integral: eq. (12) (cone), the Hertz or
+                                   Boussinesq gamma integral; NaN at N = 0, 1 on a smooth surface */
+} im_theory_step;
+
+/* The theory of a step for punch (indenter.h; lengths in its units, loads in E* length^2) on the
+ * rough interface (its E*, k and normalisation). w, N >= 0. IM_EINVAL for a bad punch, interface,
+ * w or N; a quadrature's status otherwise. */
+int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach,
+                           double load, im_theory_step *out);
+
 /* ---- Roughness (eqs. 13-15) ---- */
 
 /* Eq. (13) divided by the prefactor A: m_n / A = T(n) q_r^(n - 2H) ((1 - x^(n+2)) / (n + 2)

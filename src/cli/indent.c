@@ -7,6 +7,8 @@
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
+#include "indentmap/theory.h"
 
 #include <getopt.h>
 #include <jansson.h>
@@ -252,9 +254,9 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 /* ---- outputs ---- */
 
 static const char *HISTORY_HEADER = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
-                                    "max_pressure,iterations,residual,seconds,convolutions\n";
+                                    "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS "\n";
 
-static int write_history(const char *dir, const im_step_result *rows, int count)
+static int write_history(const char *dir, const im_step_result *rows, const im_theory_step *theory, int count)
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/history.csv", dir);
@@ -265,9 +267,11 @@ static int write_history(const char *dir, const im_step_result *rows, int count)
     fputs(HISTORY_HEADER, file.stream);
     for (int i = 0; i < count; ++i) {
         const im_step_result *r = &rows[i];
-        fprintf(file.stream, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d\n", i + 1, r->approach,
-                r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure, r->max_pressure,
-                r->iterations, r->residual, r->seconds, r->convolutions);
+        const im_theory_step *t = &theory[i];
+        fprintf(file.stream, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g\n",
+                i + 1, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure,
+                r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions, t->load_smooth,
+                t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma);
     }
     return im_atomic_commit(&file);
 }
@@ -379,11 +383,16 @@ static double largest(const double *v, int n)
     return m;
 }
 
-static int run_steps(const indent_options *o, im_indentation *run, json_t *record)
+/* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
+static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run, json_t *record)
 {
     im_step_result *rows = calloc((size_t)o->target_count, sizeof *rows);
-    if (!rows)
+    im_theory_step *theory = calloc((size_t)o->target_count, sizeof *theory);
+    if (!rows || !theory) {
+        free(rows);
+        free(theory);
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
+    }
     int status = IM_OK, done = 0;
     for (; done < o->target_count && status == IM_OK; ++done) {
         if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
@@ -391,9 +400,11 @@ static int run_steps(const indent_options *o, im_indentation *run, json_t *recor
             break;
         }
         status = im_indentation_step(run, o->targets[done], &rows[done]);
+        if (status == IM_OK)
+            status = im_theory_step_columns(&o->punch, rough, rows[done].approach, rows[done].load, &theory[done]);
         if (status != IM_OK)
             break;
-        status = write_history(o->out, rows, done + 1);
+        status = write_history(o->out, rows, theory, done + 1);
         if (status == IM_OK && o->fields)
             status = write_fields(o->out, run, done + 1);
         const im_step_result *r = &rows[done];
@@ -412,6 +423,20 @@ static int run_steps(const indent_options *o, im_indentation *run, json_t *recor
     if (status != IM_OK)
         im_fail(status, "%s", message);
     free(rows);
+    free(theory);
+    return status;
+}
+
+/* The theory columns' interface: the surface's h'rms (spectral, h'rms^2 = 2 m2), the solver's E*,
+ * k = 2 and the PR normalisation. */
+static int measured_interface(const indent_options *o, const im_field *surface, im_theory_interface *rough)
+{
+    im_surface_stats stats;
+    int status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK) {
+        *rough = im_theory_interface_default(stats.slope_rms_spectral);
+        rough->e_star = o->solver.e_star;
+    }
     return status;
 }
 
@@ -428,12 +453,15 @@ int cli_indent(int argc, char **argv)
     im_field *surface = NULL;
     im_indentation *run = NULL;
     json_t *record = NULL;
+    im_theory_interface rough;
     int status = cli_interrupt_install() == 0 ? im_indenter_check(&o.punch)
                                               : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
     if (status == IM_OK) {
         warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
     }
+    if (status == IM_OK)
+        status = measured_interface(&o, surface, &rough);
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
@@ -444,10 +472,10 @@ int cli_indent(int argc, char **argv)
         printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads\n", surface->nx, surface->ny,
                w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads());
         record = run_record(&o, surface, run);
-        status = record ? write_history(o.out, NULL, 0) : im_fail(IM_ENOMEM, "run record");
+        status = record ? write_history(o.out, NULL, NULL, 0) : im_fail(IM_ENOMEM, "run record");
     }
     if (status == IM_OK)
-        status = run_steps(&o, run, record);
+        status = run_steps(&o, &rough, run, record);
     json_decref(record);
     im_indentation_free(run);
     im_field_free(surface);

@@ -35,6 +35,12 @@ im_colormap scene_force_norm(const im_scene *scene, double largest);
  * NULL) receives rho_c of eq. (7). */
 double scene_eq12(const im_scene *scene, double slope, double *rho_c);
 
+/* The theory columns (theory.h's im_theory_step) of a step at approach w and load N on a surface
+ * of this h'rms: the scene's punch and E*, k = 2 and the PR normalisation (history_theory.c). */
+struct im_theory_step;
+int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
+                             struct im_theory_step *row);
+
 /* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
 int scene_write_png_pdf(const im_scene *scene, const char *name,
                         int (*draw)(const im_scene *, const void *, const char *), const void *data);
