@@ -659,6 +659,48 @@ static void step_columns_are_the_closed_forms(void **state)
     assert_failure_names(im_theory_step_columns(&flat, &rough, -1.0, 1.0, &step), IM_EINVAL, "w = ");
 }
 
+/* ---- measuring k ---- */
+
+/* A synthetic A(p) curve with a planted k: the fit recovers it to rounding; with a deterministic
+ * +-0.004 scatter, within three standard errors, and the error bar covers the scatter. */
+static void k_fit_recovers_planted_k(void **state)
+{
+    (void)state;
+    enum { POINTS = 24 };
+    const double planted = 2.37;
+    double x[POINTS], area[POINTS], noisy[POINTS];
+    for (int i = 0; i < POINTS; ++i) {
+        x[i] = 0.025 * (i + 1);
+        area[i] = erf(0.5 * sqrt(M_PI) * planted * x[i]);
+        noisy[i] = fmin(1.0, area[i] + (i % 2 ? 0.004 : -0.004) * (i % 3 ? 1.0 : -1.0));
+    }
+    im_theory_k_fit fit;
+    assert_int_equal(im_theory_fit_k(x, area, POINTS, &fit), IM_OK);
+    if (test_relative_difference(fit.k, planted) > 1e-12)
+        fail_msg("k = %.17g, planted %.17g", fit.k, planted);
+    assert_true(fit.k_error < 1e-12 && fit.rms_residual < 1e-14);
+    /* the linear slope over A/A0 <= 0.5 (x <= 0.227 here) is below k: erf bends down */
+    assert_int_equal(fit.linear_points, 9);
+    assert_true(fit.k_linear < planted && fit.k_linear > 0.9 * planted);
+    assert_int_equal(im_theory_fit_k(x, noisy, POINTS, &fit), IM_OK);
+    assert_true(fabs(fit.k - planted) < 3.0 * fit.k_error);
+    assert_true(fit.k_error > 1e-3 && fit.k_error < 0.05);
+    assert_close(fit.rms_residual, 0.004, 0.001);
+    /* the paper's k = 2 is not what this curve says */
+    assert_true(fabs(fit.k - 2.0) > 10.0 * fit.k_error);
+}
+
+static void k_fit_refusals(void **state)
+{
+    (void)state;
+    double x[2] = {0.1, 0.2}, area[2] = {0.2, 1.5};
+    im_theory_k_fit fit;
+    assert_failure_names(im_theory_fit_k(x, area, 2, &fit), IM_EINVAL, "A/A0 = 1.5");
+    x[0] = -1.0;
+    assert_failure_names(im_theory_fit_k(x, area, 1, &fit), IM_EINVAL, "x = p_m");
+    assert_failure_names(im_theory_fit_k(x, area, 0, &fit), IM_EINVAL, "0 points");
+}
+
 /* ---- refusals ---- */
 
 static void bad_input_is_refused(void **state)
@@ -723,6 +765,8 @@ int main(void)
         cmocka_unit_test(every_punch_is_linear_at_small_beta),
         cmocka_unit_test(punch_pressures_and_densities),
         cmocka_unit_test(step_columns_are_the_closed_forms),
+        cmocka_unit_test(k_fit_recovers_planted_k),
+        cmocka_unit_test(k_fit_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

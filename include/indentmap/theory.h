@@ -180,6 +180,23 @@ int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *rat
 int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star,
                                   double *p_mean);
 
+/* ---- Measuring k (eq. 2) on nominally flat contact ----
+ * Eq. (1) with p_rough = h'rms E* / k reads A/A0 = erf(sqrt(pi)/2 k x) in the dimensionless mean
+ * pressure x = p_m / (h'rms E*), linear (A/A0 ~ k x) for small x. */
+
+typedef struct im_theory_k_fit {
+    double k;             /* least-squares k of A/A0 = erf(sqrt(pi)/2 k x) over all points */
+    double k_error;       /* its standard error, sqrt(RSS / (n - 1) / sum J^2), J = dA/dk; 0 for one point */
+    double k_linear;      /* least-squares slope of A/A0 = k x through the origin, over A/A0 <= 0.5 */
+    int linear_points;    /* how many points that slope used (0: none, k_linear NaN) */
+    double rms_residual;  /* rms of A/A0 - erf(...) at the fitted k */
+} im_theory_k_fit;
+
+/* Fits k to count >= 1 points (x_i > 0 finite, 0 <= A_i <= 1) by Gauss-Newton from the linear
+ * estimate; the erf law is monotone in k, so the 1-D least-squares problem has one minimum.
+ * IM_EINVAL naming the first bad point, IM_ENOCONV if Gauss-Newton does not settle in 100 steps. */
+int im_theory_fit_k(const double *pressure_ratio, const double *area_fraction, int count, im_theory_k_fit *out);
+
 /* ---- The theory beside a simulated history ----
  * Per step of an indentation (approach w from first touch, load N), the smooth punch's closed forms
  * and the rough-contact area ratios, written as the theory columns of every history file. */

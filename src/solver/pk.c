@@ -241,6 +241,9 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
 {
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+    if (plan->options.periodic && control != IM_CONTROL_LOAD)
+        return im_fail(IM_EINVAL, "periodic plan: expected load control (a periodic half-space's approach is "
+                       "defined up to a constant)");
     if (!(isfinite(target) && target >= 0))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
