@@ -188,6 +188,10 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
  * seeds' forces, for panels) are left in *reuse. */
 int scene_run_table(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse);
 
+/* plots = flat_k (flat_k.c): eq. (2)'s k measured on every rough surface in the periodic half-space,
+ * fed into eq. (12) beside k = 2 and the table's simulated A/A_cone (reuse, when the table ran). */
+int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse);
+
 /* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
 int scene_wants_plot(const im_scene *scene, const char *name);
 int scene_check_plots(const im_scene *scene);
