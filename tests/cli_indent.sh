@@ -20,6 +20,15 @@ awk -F, 'NR > 1 { pi = atan2(0, -1); love = 2 * $2 * $2 / (pi * 0.17632698070846
          if ($13 / love - 1 > 1e-12 || love / $13 - 1 > 1e-12 || $14 != $4 || $15 != 1 || $16 != 1) exit 1 }
          NR == 4 { d = $3 / $13 - 1; if (d < -0.02 || d > 0.02) exit 1 }' "$DIR/ok/history.csv" \
     || fail "theory columns differ from Love's closed forms"
+# --hardness: a flat punch (a = 10) past full yield (w > 2 H a / E*) carries H on every patch,
+# N = H n_p; run.json records the cap; a negative cap is refused.
+"$BIN" indent --smooth --n 64 --punch flat --radius 10 --hardness 0.05 --approach 1.5 --out "$DIR/hard" >/dev/null \
+    || fail "--hardness run exited $?"
+awk -F, 'NR == 2 { d = $3 / (0.05 * $5) - 1; if (d < -1e-12 || d > 1e-12 || $8 != 0.05) exit 1 }' "$DIR/hard/history.csv" \
+    || fail "--hardness: N != H n_p past full yield: $(sed -n 2p "$DIR/hard/history.csv")"
+grep -q '"hardness": 0.05' "$DIR/hard/run.json" || fail "run.json lacks the hardness"
+"$BIN" indent --smooth --n 16 --hardness -1 --approach 1 --out "$DIR/badh" >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--hardness -1 not refused with exit 2"
 for key in '"version"' '"window"' '"threads"' '"tol"' '"steps_completed": 3' '"source": "smooth"'; do
     grep -q "$key" "$DIR/ok/run.json" || fail "run.json lacks $key"
 done

@@ -37,12 +37,25 @@
  * stored kernel (a full convolution only when they are many).
  *
  * ---- Stopping rule ----
- * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w
+ * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w   (with a hardness, also g at p = H_p)
  * i.e. the rms gap left in the contact set and the worst penetration outside it, relative to the
  * approach. A solve stops when residual <= tol (default 1e-8), checked on u recomputed exactly by
  * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
  * iterations. Both the iteration count and the residual are reported for every solve.
  */
+/* ---- Hardness (perfect plasticity at a pressure cap) ----
+ * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure
+ * would exceed it yields and carries exactly H_p. The solution then satisfies, patch by patch,
+ *     p = 0       and g >= 0   (out of contact)
+ *     0 < p < H_p and g = 0    (elastic contact)
+ *     p = H_p     and g <= 0   (plastic contact: -g is the surface's plastic flattening)
+ * The iteration is the same with I_c = {0 < p < H_p}, every update projected onto [0, H_p], and
+ * patches at either bound that violate their condition released by a local step; the stopping rule's
+ * penetration term counts g > 0 at p = H_p as well. Under load control the elastic pressures are
+ * rescaled with the capped ones fixed, and u is recomputed by FFT (one convolution more per
+ * iteration while a patch is capped). The cone's apex singularity and a flat punch's edge are capped;
+ * in the fully plastic limit A = N / H_p. */
+
 /* ---- Periodic mode (nominally flat contact) ----
  * With options.periodic the grid is one period of a periodic surface pressed by a rigid flat under
  * a mean pressure. The convolution is circular on the nx x ny grid (no padding) with the periodic
@@ -74,6 +87,8 @@ typedef struct im_solver_options {
                                periodic half-space (the grid repeats in x and y), for nominally flat
                                contact: no padding, the kernel's spectrum 2 / (E* |q|) (see
                                "Periodic mode" above); load control only; im_flat_contact_* set it */
+    double hardness;        /* 0 (default): none; H_p > 0: perfect plasticity at the pressure cap
+                               H_p (units of E*'s stress), see "Hardness" above */
 } im_solver_options;
 
 im_solver_options im_solver_options_default(void);

@@ -38,6 +38,8 @@ static void usage(FILE *stream)
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
+            "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
+            "                      stress); default none\n"
             "  --quality Q         draft (tol 1e-5), standard (1e-6) or publication (1e-9): the solver\n"
             "                      tolerance of a speed/accuracy preset (errors measured in solver.h)\n"
             "  --tol T             stopping tolerance on the relative gap residual (default 1e-8);\n"
@@ -69,7 +71,7 @@ typedef struct indent_options {
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
+       OPT_LOAD, OPT_ESTAR, OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -78,6 +80,7 @@ static const struct option LONG_OPTIONS[] = {
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
+    {"hardness", required_argument, 0, OPT_HARDNESS},
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
@@ -151,6 +154,7 @@ static int apply_option(int code, const char *arg, void *state)
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         return parse_targets(code == OPT_LOAD ? "--load" : "--approach", arg, &o->targets, &o->target_count);
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
+    case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_QUALITY: o->quality = arg; return 0;
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
@@ -317,7 +321,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
         "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
+        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
         "delta", s->delta, "generator", generator,
@@ -328,6 +332,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
         "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
         "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
+        "hardness", o->solver.hardness,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
     if (root && seed)

@@ -63,6 +63,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     im_solver_options options = im_solver_options_default();
     options.e_star = scene->modulus;
     options.tol = scene->tol;
+    options.hardness = scene->hardness;
     return options;
 }
 

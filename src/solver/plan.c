@@ -12,7 +12,8 @@
 im_solver_options im_solver_options_default(void)
 {
     return (im_solver_options){.e_star = 1, .tol = 1e-8, .max_iterations = 10000, .fft_measure = 0,
-                               .wisdom_path = NULL, .crop = 1, .window_margin = 4, .periodic = 0};
+                               .wisdom_path = NULL, .crop = 1, .window_margin = 4, .periodic = 0,
+                               .hardness = 0};
 }
 
 int im_solver_options_check(const im_solver_options *o)
@@ -25,6 +26,8 @@ int im_solver_options_check(const im_solver_options *o)
         return im_fail(IM_EINVAL, "max_iterations = %d: expected >= 1", o->max_iterations);
     if (o->window_margin < 0)
         return im_fail(IM_EINVAL, "window_margin = %d: expected >= 0", o->window_margin);
+    if (!(isfinite(o->hardness) && o->hardness >= 0))
+        return im_fail(IM_EINVAL, "hardness = %g: expected a finite pressure cap H_p > 0 (0: none)", o->hardness);
     if (o->periodic != 0 && o->periodic != 1)
         return im_fail(IM_EINVAL, "periodic = %d: expected 0 or 1", o->periodic);
     return IM_OK;
