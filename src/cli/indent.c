@@ -5,6 +5,7 @@
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
+#include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
@@ -258,9 +259,19 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 /* ---- outputs ---- */
 
 static const char *HISTORY_HEADER = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
-                                    "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS "\n";
+                                    "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
+                                    ",stiffness,e_star_sneddon,patches,patch_perimeter\n";
 
-static int write_history(const char *dir, const im_step_result *rows, const im_theory_step *theory, int count)
+/* Beside each solved step: the theory, and what an experiment would measure (measure.h). */
+typedef struct step_extras {
+    im_theory_step theory;
+    double stiffness;       /* dN/dw from this step and the (up to) two before; NaN at the first */
+    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
+    long patches;           /* connected contact patches */
+    double perimeter;       /* their perimeter */
+} step_extras;
+
+static int write_history(const char *dir, const im_step_result *rows, const step_extras *extras, int count)
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/history.csv", dir);
@@ -271,11 +282,15 @@ static int write_history(const char *dir, const im_step_result *rows, const im_t
     fputs(HISTORY_HEADER, file.stream);
     for (int i = 0; i < count; ++i) {
         const im_step_result *r = &rows[i];
-        const im_theory_step *t = &theory[i];
-        fprintf(file.stream, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g\n",
+        const step_extras *e = &extras[i];
+        const im_theory_step *t = &e->theory;
+        fprintf(file.stream,
+                "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld,"
+                "%.17g\n",
                 i + 1, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure,
                 r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions, t->load_smooth,
-                t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma);
+                t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, e->stiffness, e->e_star_sneddon,
+                e->patches, e->perimeter);
     }
     return im_atomic_commit(&file);
 }
@@ -388,14 +403,44 @@ static double largest(const double *v, int n)
     return m;
 }
 
+/* The extras of step i (rows 0..i solved): theory, stiffness from the last three steps (which do not
+ * change as later steps come), Sneddon's modulus, contact patches. */
+static int measure_step(const indent_options *o, const im_theory_interface *rough, const im_indentation *run,
+                        const im_step_result *rows, int i, step_extras *e)
+{
+    int status = im_theory_step_columns(&o->punch, rough, rows[i].approach, rows[i].load, &e->theory);
+    e->stiffness = e->e_star_sneddon = NAN;
+    int first = i >= 2 ? i - 2 : 0;
+    double w[3], n[3], s[3];
+    for (int k = first; k <= i; ++k) {
+        w[k - first] = rows[k].approach;
+        n[k - first] = rows[k].load;
+    }
+    /* a repeated or decreasing approach (load control may repeat one) leaves the stiffness NaN */
+    if (status == IM_OK && i > 0 && im_measure_stiffness(w, n, i - first + 1, s) == IM_OK) {
+        e->stiffness = s[i - first];
+        e->e_star_sneddon = im_measure_sneddon_modulus(e->stiffness, e->theory.area_smooth);
+    }
+    im_field *force = NULL;
+    im_contact_patches patches = {0};
+    if (status == IM_OK)
+        status = im_indentation_fields(run, &force, NULL, NULL);
+    if (status == IM_OK)
+        status = im_measure_contact_patches(force, &patches, NULL);
+    im_field_free(force);
+    e->patches = patches.patches;
+    e->perimeter = patches.perimeter;
+    return status;
+}
+
 /* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
 static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run, json_t *record)
 {
     im_step_result *rows = calloc((size_t)o->target_count, sizeof *rows);
-    im_theory_step *theory = calloc((size_t)o->target_count, sizeof *theory);
-    if (!rows || !theory) {
+    step_extras *extras = calloc((size_t)o->target_count, sizeof *extras);
+    if (!rows || !extras) {
         free(rows);
-        free(theory);
+        free(extras);
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
     }
     int status = IM_OK, done = 0;
@@ -406,10 +451,10 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         }
         status = im_indentation_step(run, o->targets[done], &rows[done]);
         if (status == IM_OK)
-            status = im_theory_step_columns(&o->punch, rough, rows[done].approach, rows[done].load, &theory[done]);
+            status = measure_step(o, rough, run, rows, done, &extras[done]);
         if (status != IM_OK)
             break;
-        status = write_history(o->out, rows, theory, done + 1);
+        status = write_history(o->out, rows, extras, done + 1);
         if (status == IM_OK && o->fields)
             status = write_fields(o->out, run, done + 1);
         const im_step_result *r = &rows[done];
@@ -428,7 +473,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     if (status != IM_OK)
         im_fail(status, "%s", message);
     free(rows);
-    free(theory);
+    free(extras);
     return status;
 }
 
