@@ -160,11 +160,21 @@ static void impose_load_capped(pk_run *r, double cap)
     if (!(elastic_load > 0))
         return;
     const double scale = fmax(0.0, r->target - capped_load) / elastic_load;
+    int clipped = 0;
+#pragma omp parallel for schedule(static) reduction(| : clipped)
+    for (size_t i = 0; i < n; ++i)
+        if (elastic(r->p[i], cap)) {
+            r->p[i] = project(r->p[i] * scale, cap);
+            clipped |= r->p[i] == cap;
+        }
+    if (capped_load > 0 || clipped) { /* a partial rescaling: u by FFT */
+        convolve(r, r->p, r->u);
+        return;
+    }
+    /* nothing capped: all of p was scaled, and u with it by linearity */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        if (elastic(r->p[i], cap))
-            r->p[i] = project(r->p[i] * scale, cap);
-    convolve(r, r->p, r->u);
+        r->u[i] *= scale;
 }
 
 /* Under load control, rescales p (and u, by linearity) so that delta^2 sum p = N. */
