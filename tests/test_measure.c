@@ -33,8 +33,17 @@ static void stiffness_of_closed_forms(void **state)
     assert_true(test_relative_difference(s[1], 2.0 * sqrt(100.0 * 1.01)) < 1e-5);
     assert_int_equal(im_measure_stiffness(w, love, 2, s), IM_OK);
     assert_true(s[0] == s[1] && test_relative_difference(s[0], (love[1] - love[0]) / 0.3) < 1e-14);
-    double back[] = {1.0, 0.5};
-    assert_int_equal(im_measure_stiffness(back, love, 2, s), IM_EINVAL);
+    /* unloading: the same curve walked back gives the same stiffness */
+    double w_back[5], love_back[5];
+    for (int i = 0; i < 5; ++i) {
+        w_back[i] = w[4 - i];
+        love_back[i] = 2.0 * w_back[i] * w_back[i] / (M_PI * cot);
+    }
+    assert_int_equal(im_measure_stiffness(w_back, love_back, 5, s), IM_OK);
+    for (int i = 0; i < 5; ++i)
+        assert_true(test_relative_difference(s[i], 4.0 * w_back[i] / (M_PI * cot)) < 1e-12);
+    double turn[] = {1.0, 2.0, 1.5};
+    assert_int_equal(im_measure_stiffness(turn, love, 3, s), IM_EINVAL);
     assert_int_equal(im_measure_stiffness(w, love, 1, s), IM_EINVAL);
 }
 

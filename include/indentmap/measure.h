@@ -15,7 +15,8 @@
 
 #include "indentmap/field.h"
 
-/* S_i = dN/dw at each of count >= 2 steps with strictly increasing approaches: the three-point
+/* S_i = dN/dw at each of count >= 2 steps with strictly increasing (loading) or strictly decreasing
+ * (unloading) approaches: the three-point
  * derivative for unequal steps inside (exact for a quadratic N(w), Love's cone), one-sided
  * three-point formulas at both ends (two-point when count = 2). stiffness: count values. */
 int im_measure_stiffness(const double *approach, const double *load, int count, double *stiffness);

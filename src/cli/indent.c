@@ -416,7 +416,7 @@ static int measure_step(const indent_options *o, const im_theory_interface *roug
         w[k - first] = rows[k].approach;
         n[k - first] = rows[k].load;
     }
-    /* a repeated or decreasing approach (load control may repeat one) leaves the stiffness NaN */
+    /* a repeated approach or a turn from loading to unloading leaves the stiffness NaN */
     if (status == IM_OK && i > 0 && im_measure_stiffness(w, n, i - first + 1, s) == IM_OK) {
         e->stiffness = s[i - first];
         e->e_star_sneddon = im_measure_sneddon_modulus(e->stiffness, e->theory.area_smooth);

@@ -11,12 +11,13 @@ static int check_history(const double *w, const double *n, int count)
 {
     if (!w || !n || count < 2)
         return im_fail(IM_EINVAL, "stiffness: %d steps: expected at least 2", count);
+    const double direction = w[1] > w[0] ? 1.0 : -1.0; /* loading, or unloading */
     for (int i = 0; i < count; ++i) {
         if (!isfinite(w[i]) || !isfinite(n[i]))
             return im_fail(IM_EINVAL, "stiffness: step %d: w = %g, N = %g: expected finite values", i, w[i], n[i]);
-        if (i > 0 && !(w[i] > w[i - 1]))
-            return im_fail(IM_EINVAL, "stiffness: step %d: w = %g after %g: expected increasing approaches", i,
-                           w[i], w[i - 1]);
+        if (i > 0 && !(direction * (w[i] - w[i - 1]) > 0))
+            return im_fail(IM_EINVAL, "stiffness: step %d: w = %g after %g: expected strictly increasing (loading) "
+                           "or strictly decreasing (unloading) approaches", i, w[i], w[i - 1]);
     }
     return IM_OK;
 }
