@@ -57,6 +57,7 @@ typedef struct im_scene {
     double alpha_degrees;            /* cone semi-opening angle */
     double radius;                   /* sphere radius or flat punch radius, in delta */
     double modulus;                  /* composite modulus E* */
+    double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
     int control;                     /* enum im_control of solver.h: 0 displacement, 1 load */
     double load_star;                /* N* at which contact panels are drawn (0: none) */

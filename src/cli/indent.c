@@ -5,9 +5,12 @@
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
+#include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/viewer.h"
+#include "indentmap/surface.h"
+#include "indentmap/theory.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -41,6 +44,8 @@ static void usage(FILE *stream)
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
+            "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
+            "                      stress); default none\n"
             "  --quality Q         draft (tol 1e-5), standard (1e-6) or publication (1e-9): the solver\n"
             "                      tolerance of a speed/accuracy preset (errors measured in solver.h)\n"
             "  --tol T             stopping tolerance on the relative gap residual (default 1e-8);\n"
@@ -74,7 +79,7 @@ typedef struct indent_options {
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
+       OPT_LOAD, OPT_ESTAR, OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -83,6 +88,7 @@ static const struct option LONG_OPTIONS[] = {
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
+    {"hardness", required_argument, 0, OPT_HARDNESS},
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
@@ -156,6 +162,7 @@ static int apply_option(int code, const char *arg, void *state)
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         return parse_targets(code == OPT_LOAD ? "--load" : "--approach", arg, &o->targets, &o->target_count);
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
+    case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_QUALITY: o->quality = arg; return 0;
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
@@ -296,7 +303,17 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 /* ---- outputs ---- */
 
 static const char *HISTORY_HEADER = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
-                                    "max_pressure,iterations,residual,seconds,convolutions\n";
+                                    "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
+                                    ",stiffness,e_star_sneddon,patches,patch_perimeter\n";
+
+/* Beside each solved step: the theory, and what an experiment would measure (measure.h). */
+typedef struct step_extras {
+    im_theory_step theory;
+    double stiffness;       /* dN/dw from this step and the (up to) two before; NaN at the first */
+    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
+    long patches;           /* connected contact patches */
+    double perimeter;       /* their perimeter */
+} step_extras;
 
 /* DIR/history.csv, appended step by step. Its header is written atomically (so the file appears
  * whole); each step is then one line, written with one write(2) and synced (fdatasync), so that a
@@ -322,12 +339,17 @@ static int history_start(const char *dir, history_file *h)
     return IM_OK;
 }
 
-static int history_append(history_file *h, int step, const im_step_result *r)
+static int history_append(history_file *h, int step, const im_step_result *r, const step_extras *e)
 {
-    char line[512];
-    int length = snprintf(line, sizeof line, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d\n", step,
-                          r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure,
-                          r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions);
+    char line[1024];
+    const im_theory_step *t = &e->theory;
+    int length = snprintf(line, sizeof line,
+                          "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                          "%.17g,%ld,%.17g\n",
+                          step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
+                          r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
+                          t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, e->stiffness,
+                          e->e_star_sneddon, e->patches, e->perimeter);
     ssize_t written = write(h->fd, line, (size_t)length);
     if (written == length && fdatasync(h->fd) == 0) {
         h->size += length;
@@ -390,7 +412,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
         "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
+        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", source, "nx", s->nx, "ny", s->ny,
         "delta", s->delta, "generator", generator,
@@ -401,6 +423,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
         "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
         "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
+        "hardness", o->solver.hardness,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
     if (root && seed)
@@ -460,32 +483,75 @@ static double largest(const double *v, int n)
     return m;
 }
 
-/* Solves step `step` (1-based) and writes its fields and history line. */
-static int run_step(const indent_options *o, im_indentation *run, history_file *history, int step)
+/* The extras of step i (rows 0..i solved): theory, stiffness from the last three steps (which do not
+ * change as later steps come), Sneddon's modulus, contact patches. */
+static int measure_step(const indent_options *o, const im_theory_interface *rough, const im_indentation *run,
+                        const im_step_result *rows, int i, step_extras *e)
 {
-    im_step_result r;
-    int status = im_indentation_step(run, o->targets[step - 1], &r);
-    if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
-        status = write_fields(o->out, run, step);
+    int status = im_theory_step_columns(&o->punch, rough, rows[i].approach, rows[i].load, &e->theory);
+    e->stiffness = e->e_star_sneddon = NAN;
+    int first = i >= 2 ? i - 2 : 0;
+    double w[3], n[3], s[3];
+    for (int k = first; k <= i; ++k) {
+        w[k - first] = rows[k].approach;
+        n[k - first] = rows[k].load;
+    }
+    /* a repeated approach or a turn from loading to unloading leaves the stiffness NaN */
+    if (status == IM_OK && i > 0 && im_measure_stiffness(w, n, i - first + 1, s) == IM_OK) {
+        e->stiffness = s[i - first];
+        e->e_star_sneddon = im_measure_sneddon_modulus(e->stiffness, e->theory.area_smooth);
+    }
+    im_field *force = NULL;
+    im_contact_patches patches = {0};
     if (status == IM_OK)
-        status = history_append(history, step, &r);
+        status = im_indentation_fields(run, &force, NULL, NULL);
+    if (status == IM_OK)
+        status = im_measure_contact_patches(force, &patches, NULL);
+    im_field_free(force);
+    e->patches = patches.patches;
+    e->perimeter = patches.perimeter;
+    return status;
+}
+
+/* Solves step i (0-based; rows[0..i) solved before), measures it, and writes its fields and its
+ * history line. */
+static int run_step(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
+                    history_file *history, im_step_result *rows, step_extras *extras, int i)
+{
+    int status = im_indentation_step(run, o->targets[i], &rows[i]);
+    if (status == IM_OK)
+        status = measure_step(o, rough, run, rows, i, &extras[i]);
+    if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
+        status = write_fields(o->out, run, i + 1);
+    if (status == IM_OK)
+        status = history_append(history, i + 1, &rows[i], &extras[i]);
     if (status == IM_OK) {
-        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", step,
-               r.approach, r.load, r.contact_patches, r.area_ratio, r.iterations, r.residual, r.seconds);
+        const im_step_result *r = &rows[i];
+        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
+               r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual, r->seconds);
         fflush(stdout);
     }
     return status;
 }
 
-static int run_steps(const indent_options *o, im_indentation *run, history_file *history, json_t *record)
+/* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
+static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
+                     history_file *history, json_t *record)
 {
+    im_step_result *rows = calloc((size_t)o->target_count, sizeof *rows);
+    step_extras *extras = calloc((size_t)o->target_count, sizeof *extras);
+    if (!rows || !extras) {
+        free(rows);
+        free(extras);
+        return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
+    }
     int status = IM_OK, done = 0;
     for (; done < o->target_count; ++done) {
         if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
             status = im_fail(IM_EINTERRUPTED, "interrupted by signal %d", (int)cli_stop_signal);
             break;
         }
-        status = run_step(o, run, history, done + 1);
+        status = run_step(o, rough, run, history, rows, extras, done);
         if (status != IM_OK)
             break;
     }
@@ -499,6 +565,8 @@ static int run_steps(const indent_options *o, im_indentation *run, history_file 
     write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
+    free(rows);
+    free(extras);
     return status;
 }
 
@@ -544,6 +612,19 @@ static int write_viewer_page(const indent_options *o, int status)
     return status;
 }
 
+/* The theory columns' interface: the surface's h'rms (spectral, h'rms^2 = 2 m2), the solver's E*,
+ * k = 2 and the PR normalisation. */
+static int measured_interface(const indent_options *o, const im_field *surface, im_theory_interface *rough)
+{
+    im_surface_stats stats;
+    int status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK) {
+        *rough = im_theory_interface_default(stats.slope_rms_spectral);
+        rough->e_star = o->solver.e_star;
+    }
+    return status;
+}
+
 int cli_indent(int argc, char **argv)
 {
     indent_options o;
@@ -557,12 +638,15 @@ int cli_indent(int argc, char **argv)
     im_field *surface = NULL;
     im_indentation *run = NULL;
     json_t *record = NULL;
+    im_theory_interface rough;
     int status = cli_interrupt_install() == 0 ? im_indenter_check(&o.punch)
                                               : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
     if (status == IM_OK) {
         warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
     }
+    if (status == IM_OK)
+        status = measured_interface(&o, surface, &rough);
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
@@ -580,7 +664,7 @@ int cli_indent(int argc, char **argv)
         status = record ? history_start(o.out, &history) : im_fail(IM_ENOMEM, "run record");
     }
     if (status == IM_OK)
-        status = run_steps(&o, run, &history, record);
+        status = run_steps(&o, &rough, run, &history, record);
     history_close(&history);
     if (record)
         status = write_viewer_page(&o, status);

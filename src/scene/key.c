@@ -66,6 +66,8 @@ static void add_contact(key_hash *hash, const im_scene *scene)
     key_add(hash, "punch %d %.17g %.17g; modulus %.17g;", scene->punch, scene->alpha_degrees, scene->radius,
             scene->modulus);
     key_add(hash, "solver %.17g %.17g %d %d %d;", o.e_star, o.tol, o.max_iterations, o.crop, o.window_margin);
+    if (o.hardness > 0) /* only then, so that the keys of results without a cap stay as they were */
+        key_add(hash, "hardness %.17g;", o.hardness);
 }
 
 int scene_load_star_step(const im_scene *scene)

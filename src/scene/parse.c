@@ -230,6 +230,7 @@ static const key_spec KEYS[] = {
     {"punch", "alpha", parse_double, FIELD(alpha_degrees), 1e-9, 90 - 1e-9, NULL, 0, 0},
     {"punch", "radius", parse_double, FIELD(radius), 1e-9, 1e12, NULL, 0, 0},
     {"material", "modulus", parse_double, FIELD(modulus), 1e-300, 1e300, NULL, 0, 0},
+    {"material", "hardness", parse_double, FIELD(hardness), 1e-300, 1e300, NULL, 0, 0},
     {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load", 0, 0},
     {"loading", "load_star", parse_double, FIELD(load_star), 0, 1e15, NULL, 0, 0},
     {"loading", "steps", parse_double_list, FIELD(steps), 0, 1e15, NULL, IM_SCENE_MAX_STEPS, FIELD(step_count)},

@@ -65,6 +65,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     im_solver_options options = im_solver_options_default();
     options.e_star = scene->modulus;
     options.tol = scene->tol;
+    options.hardness = scene->hardness;
     return options;
 }
 
@@ -220,6 +221,8 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     int status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options, &reuse);
+    if (status == IM_OK && scene_wants_plot(scene, "flat_k") && (status = check_stop(options, "the flat contacts")) == IM_OK)
+        status = scene_run_flat_k(scene, options, &reuse);
     if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options, &reuse);
     if (status == IM_OK && (scene->contact_panels || scene->frames))

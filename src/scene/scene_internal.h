@@ -36,6 +36,12 @@ im_colormap scene_force_norm(const im_scene *scene, double largest);
  * NULL) receives rho_c of eq. (7). */
 double scene_eq12(const im_scene *scene, double slope, double *rho_c);
 
+/* The theory columns (theory.h's im_theory_step) of a step at approach w and load N on a surface
+ * of this h'rms: the scene's punch and E*, k = 2 and the PR normalisation (history_theory.c). */
+struct im_theory_step;
+int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
+                             struct im_theory_step *row);
+
 /* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
 int scene_write_png_pdf(const im_scene *scene, const char *name,
                         int (*draw)(const im_scene *, const void *, const char *), const void *data);
@@ -187,6 +193,10 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
  * surface as soon as it is solved, then table1.csv and table1.md. Its members (and the first
  * seeds' forces, for panels) are left in *reuse. */
 int scene_run_table(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse);
+
+/* plots = flat_k (flat_k.c): eq. (2)'s k measured on every rough surface in the periodic half-space,
+ * fed into eq. (12) beside k = 2 and the table's simulated A/A_cone (reuse, when the table ran). */
+int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse);
 
 /* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
 int scene_wants_plot(const im_scene *scene, const char *name);

@@ -13,7 +13,8 @@
 im_solver_options im_solver_options_default(void)
 {
     return (im_solver_options){.e_star = 1, .tol = 1e-8, .max_iterations = 10000, .fft_measure = 0,
-                               .wisdom_path = NULL, .crop = 1, .window_margin = 4};
+                               .wisdom_path = NULL, .crop = 1, .window_margin = 4, .periodic = 0,
+                               .hardness = 0};
 }
 
 int im_solver_options_check(const im_solver_options *o)
@@ -26,6 +27,10 @@ int im_solver_options_check(const im_solver_options *o)
         return im_fail(IM_EINVAL, "max_iterations = %d: expected >= 1", o->max_iterations);
     if (o->window_margin < 0)
         return im_fail(IM_EINVAL, "window_margin = %d: expected >= 0", o->window_margin);
+    if (!(isfinite(o->hardness) && o->hardness >= 0))
+        return im_fail(IM_EINVAL, "hardness = %g: expected a finite pressure cap H_p > 0 (0: none)", o->hardness);
+    if (o->periodic != 0 && o->periodic != 1)
+        return im_fail(IM_EINVAL, "periodic = %d: expected 0 or 1", o->periodic);
     return IM_OK;
 }
 
@@ -206,7 +211,9 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
         return im_fail(IM_ENOMEM, "%s", what);
-    *p = (im_solver_plan){.nx = nx, .ny = ny, .px = 2 * nx, .py = 2 * ny, .delta = delta, .options = o};
+    /* periodic: the circular convolution on the grid itself */
+    const int pad = o.periodic ? 1 : 2;
+    *p = (im_solver_plan){.nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta, .options = o};
     double start = omp_get_wtime();
     status = allocate_plan(p);
     if (status == IM_OK)
@@ -218,7 +225,7 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
     }
     /* after planning, which may scribble on the arrays: the zeros the pruning relies on */
     memset(p->rows_in, 0, sizeof(double) * (size_t)p->px * p->ny);
-    status = compute_kernel(p);
+    status = o.periodic ? solver_periodic_kernel(p) : compute_kernel(p);
     if (status != IM_OK) {
         im_solver_plan_free(p);
         return status;
