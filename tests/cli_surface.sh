@@ -92,4 +92,14 @@ check "--out onto the input" expect_exit 2 "--out $dir/s.npy would overwrite" \
 check "input unchanged" cmp -s "$dir/s.npy" "$dir/s.orig"
 check "no temporary files left" bash -c "! ls '$dir' | grep -q tmp"
 
+# Units (issue 13): --delta, --unit and --height-unit set what a .npy cannot state.
+check "--stats honours --delta and --unit" bash -c "'$cli' surface --stats '$dir/s.npy' --delta 5e-8 --unit m | grep -q 'grid             64 x 64, delta = 5e-08 m'"
+check "--height-unit converts to --unit" bash -c "'$cli' surface --stats '$dir/s.npy' --delta 1 --unit um --height-unit nm | grep -q 'h.rms spectral   5e-05$'"
+check "unknown unit" expect_exit 2 "--unit 'parsec': expected a length unit" "$cli" surface --stats "$dir/s.npy" --unit parsec
+check "heights in a unit, spacing in none" expect_exit 2 "--height-unit = 'nm' gives the heights a unit" \
+  "$cli" surface --stats "$dir/s.npy" --height-unit nm
+printf '# Width: 4 um\n# Height: 8 um\n1 2\n3 4\n' >"$dir/rect.txt"
+check "non-square pixels refused" expect_exit 2 "rect.txt: Width / columns and Height / rows: non-square pixels" \
+  "$cli" surface --stats "$dir/rect.txt"
+
 finish

@@ -3,6 +3,7 @@
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -65,7 +66,7 @@ static void text_and_gsf_round_trips(void **state)
     assert_int_equal(im_text_read(test_path("f.txt"), &g), IM_OK);
     assert_fields_equal(f, g);
     assert_close(g->delta, 0.25, 1e-15);
-    assert_string_equal(g->unit, "um");
+    assert_string_equal(g->unit, "\u00b5m"); /* the canonical spelling */
     im_field_free(g);
     for (size_t i = 0; i < im_field_count(f); ++i)
         f->data[i] = (float)f->data[i];
@@ -253,6 +254,118 @@ static void bad_gsf_files_are_refused(void **state)
     im_field_free(f);
 }
 
+/* Issue 13: a Gwyddion text export (Width in µm, heights in metres) was read with its heights taken
+ * as µm, an h'rms of 6.6e-8 instead of 0.066; the .gsf export of the same data gave 0.066. */
+static void gwyddion_text_and_gsf_exports_give_one_slope(void **state)
+{
+    (void)state;
+    im_surface_params params = im_surface_params_default();
+    params.nx = params.ny = 64;
+    params.lambda_r = 64;
+    params.slope_rms = 0.066;
+    im_field *surface = NULL, *from_text = NULL, *from_gsf = NULL;
+    assert_int_equal(im_surface_generate(&params, &surface), IM_OK);
+    const double pixel_metres = 12.8e-6 / 64; /* heights in delta times this are metres */
+    FILE *text = fopen(test_path("export.txt"), "w");
+    fprintf(text, "# Channel: Height\n# Width: 12.800 \u00b5m\n# Height: 12.800 \u00b5m\n# Value units: m\n");
+    for (int iy = 0; iy < 64; ++iy)
+        for (int ix = 0; ix < 64; ++ix)
+            fprintf(text, "%.17g%c", surface->data[iy * 64 + ix] * pixel_metres, ix == 63 ? '\n' : '\t');
+    fclose(text);
+    im_field *metres = NULL;
+    assert_int_equal(im_field_clone(surface, &metres), IM_OK);
+    for (size_t i = 0; i < im_field_count(metres); ++i)
+        metres->data[i] *= pixel_metres;
+    metres->delta = pixel_metres;
+    strcpy(metres->unit, "m");
+    assert_int_equal(im_gsf_write(test_path("export.gsf"), metres), IM_OK);
+    assert_int_equal(im_surface_read(test_path("export.txt"), &from_text), IM_OK);
+    assert_int_equal(im_surface_read(test_path("export.gsf"), &from_gsf), IM_OK);
+    double slope_text, slope_gsf;
+    assert_int_equal(im_surface_slope_rms(from_text, IM_SLOPE_SPECTRAL, &slope_text), IM_OK);
+    assert_int_equal(im_surface_slope_rms(from_gsf, IM_SLOPE_SPECTRAL, &slope_gsf), IM_OK);
+    assert_close(slope_text, 0.066, 1e-9);
+    assert_close(slope_gsf, 0.066, 1e-6); /* float32 heights */
+    assert_close(from_text->delta, 0.2, 1e-15);
+    assert_string_equal(from_text->unit, "\u00b5m");
+    assert_close(from_gsf->delta, pixel_metres, 1e-20);
+    assert_string_equal(from_gsf->unit, "m");
+    im_field_free(surface);
+    im_field_free(metres);
+    im_field_free(from_text);
+    im_field_free(from_gsf);
+}
+
+/* A 4 x 4 .gsf with the given header lines (after the magic line) and heights 0..15. */
+static const char *write_gsf_header(const char *name, const char *lines)
+{
+    char bytes[1024];
+    int length = snprintf(bytes, sizeof bytes, "Gwyddion Simple Field 1.0\n%s", lines);
+    int padded = (length / 4 + 1) * 4;
+    memset(bytes + length, 0, (size_t)(padded - length));
+    for (int i = 0; i < 16; ++i) {
+        float value = (float)i;
+        memcpy(bytes + padded + 4 * i, &value, 4);
+    }
+    test_write_bytes(test_path(name), bytes, (size_t)padded + 64);
+    return test_path(name);
+}
+
+/* Reliability finding 15: "XRes = 16abc" and "XRes = 1.6e1" were read as 16 and 1, XReal <= 0 or NaN
+ * fell back to a spacing of 1, and YReal (non-square pixels) and ZUnits were ignored. */
+static void gsf_header_values_are_strict(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *lines, *phrase;
+    } cases[] = {
+        {"XRes = 4abc\nYRes = 4\n", "XRes = '4abc': expected a decimal integer"},
+        {"XRes = 0.4e1\nYRes = 4\n", "XRes = '0.4e1': expected a decimal integer"},
+        {"XRes = 4\nYRes = 4\nXReal = 0\n", "XReal = '0': expected a finite length > 0"},
+        {"XRes = 4\nYRes = 4\nXReal = -2\n", "XReal = '-2': expected a finite length > 0"},
+        {"XRes = 4\nYRes = 4\nXReal = nan\n", "XReal = 'nan': expected a finite length > 0"},
+        {"XRes = 4\nYRes = 4\nXReal = 1\nYReal = 1e999\n", "YReal = '1e999'"},
+        {"XRes = 4\nYRes = 4\nXReal = 4e-6\nYReal = 8e-6\nXYUnits = m\n",
+         "XReal / XRes and YReal / YRes: non-square pixels, x spacing 1e-06 and y spacing 2e-06 m"},
+        {"XRes = 4\nYRes = 4\nXReal = 4\nXYUnits = m\nZUnits = V\n", "ZUnits = 'V': expected a length unit"},
+        {"XRes = 4\nYRes = 4\nXReal = 4\nXYUnits = furlong\n", "XYUnits = 'furlong': expected a length unit"},
+        {"XRes = 4\nYRes = 4\nZUnits = m\n", "ZUnits = 'm' gives the heights a unit but the lateral spacing"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i)
+        expect_refusal(im_gsf_read, write_gsf_header("strict.gsf", cases[i].lines), IM_EFORMAT, cases[i].phrase);
+    im_field *g = NULL;
+    assert_int_equal(im_gsf_read(write_gsf_header("nm.gsf", "XRes = 4\nYRes = 4\nXReal = 2\nYReal = 2\n"
+                                                  "XYUnits = um\nZUnits = nm\n"), &g), IM_OK);
+    assert_close(g->delta, 0.5, 1e-15);
+    assert_string_equal(g->unit, "\u00b5m");
+    assert_close(g->data[15], 15e-3, 1e-15); /* nm converted to the lateral µm */
+    im_field_free(g);
+}
+
+/* .npy files state no units: the options set them (and override a file's). */
+static void read_options_set_spacing_and_units(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(5, 4), *g = NULL;
+    assert_int_equal(im_npy_write(test_path("plain.npy"), f, IM_NPY_FLOAT64), IM_OK);
+    im_surface_read_options options = {.set = {.delta_x = 5e-8, .lateral = "m"}};
+    im_surface_read_info info;
+    assert_int_equal(im_surface_read_with(test_path("plain.npy"), &options, &g, &info), IM_OK);
+    assert_close(g->delta, 5e-8, 0.0);
+    assert_string_equal(g->unit, "m");
+    assert_memory_equal(g->data, f->data, im_field_count(f) * sizeof(double)); /* heights already in m */
+    im_field_free(g);
+    options = (im_surface_read_options){.set = {.delta_x = 0.1, .lateral = "um", .height = "nm"}};
+    assert_int_equal(im_surface_read_with(test_path("plain.npy"), &options, &g, &info), IM_OK);
+    assert_close(info.height_factor, 1e-3, 1e-18);
+    assert_close(g->data[7], f->data[7] * 1e-3, 1e-15 * fabs(f->data[7]));
+    im_field_free(g);
+    options = (im_surface_read_options){.set = {.height = "nm"}};
+    assert_int_equal(im_surface_read_with(test_path("plain.npy"), &options, &g, &info), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "--height-unit = 'nm' gives the heights a unit"));
+    im_field_free(f);
+}
+
 static void atomic_write_leaves_no_partial_file(void **state)
 {
     (void)state;
@@ -304,6 +417,9 @@ int main(void)
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(text_matrix_must_match_its_header),
         cmocka_unit_test(bad_gsf_files_are_refused),
+        cmocka_unit_test(gwyddion_text_and_gsf_exports_give_one_slope),
+        cmocka_unit_test(gsf_header_values_are_strict),
+        cmocka_unit_test(read_options_set_spacing_and_units),
         cmocka_unit_test(atomic_write_leaves_no_partial_file),
         cmocka_unit_test(png_round_trip_keeps_pixels),
     };

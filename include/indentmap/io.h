@@ -47,7 +47,8 @@ int im_npy_read(const char *path, im_field **out);
 
 /* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or
  * commas; lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and
- * "# Height:" headers, when present, set the spacing (Width / columns) and unit. A header line
+ * "# Height:" headers, when present, set the spacing (Width / columns, Height / rows) and lateral
+ * unit, and "# Value units: m" the unit of the heights (converted as im_surface_read_with says). A header line
  * stating the grid, "# ... C columns x R rows ..." (as written here), must match the data: a file
  * with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
  * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the
@@ -57,12 +58,53 @@ int im_text_read(const char *path, im_field **out);
 
 /* Gwyddion Simple Field (.gsf): a text header ("Gwyddion Simple Field 1.0", then KEY = VALUE
  * lines with XRes, YRes and optionally XReal, YReal, XYUnits, ZUnits), NUL padding to a multiple
- * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. Writing is provided for
- * round trips and tests. */
+ * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. XRes and YRes must be
+ * decimal integers (no "16abc", no "1.6e1"), XReal and YReal finite numbers > 0; a value that is
+ * not is refused naming its key. YReal defaults to square pixels. Units as for im_surface_read_with.
+ * Writing is provided for round trips and tests. */
 int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
-/* Reads a surface by extension: .npy, .gsf, else a text matrix. */
+/* ---- units of a surface ----
+ * A surface's lateral spacing and its heights are lengths. Files state them (GSF XReal/YReal/
+ * XYUnits/ZUnits, Gwyddion text "# Width:", "# Height:", "# Value units:"), the user may set or
+ * override them (.npy files state none), and a surface read into an im_field always has its heights
+ * in the unit of its spacing (field->unit), converted when the file gives them in another one, so
+ * that slopes such as h'rms are dimensionless and right. Known length units: "m", "cm", "mm", "µm"
+ * (also "um", "μm", "micron"), "nm", "pm", "Å" (also "A", "angstrom"). */
+typedef struct im_surface_units {
+    double delta_x, delta_y; /* pixel spacing along x (columns) and y (rows), in `lateral`; 0: not stated */
+    char lateral[16];        /* unit of the spacing; "" when not stated */
+    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit) */
+} im_surface_units;
+
+/* Metres per unit of a length unit's name (1e-6 for "µm"), and its canonical spelling in
+ * *canonical (may be NULL); 0 when the name is not a known length unit. */
+double im_length_unit_metres(const char *name, const char **canonical);
+
+/* How a surface file is read. Zero-initialised means: as the file states. */
+typedef struct im_surface_read_options {
+    im_surface_units set;    /* each stated member (non-zero, non-empty) overrides the file's; a
+                                delta_x without delta_y sets both */
+} im_surface_read_options;
+
+/* What the reader found and did, for reports and run records. */
+typedef struct im_surface_read_info {
+    im_surface_units file;   /* as the file stated them (zeros and "" where it stated nothing) */
+    im_surface_units used;   /* as applied, after overrides (delta_y = delta_x) */
+    double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
+} im_surface_read_info;
+
+/* Reads a surface by extension (.npy, .gsf, else a text matrix) and applies its units: field->delta
+ * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
+ * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
+ * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
+ * a unit that is not a length, heights in a unit without a lateral unit to convert them to, NaN or
+ * Inf heights. options and info may be NULL. */
+int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
+                         im_surface_read_info *info);
+
+/* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
 /* Writes a surface by extension: .npy (float64), .gsf, else a text matrix. */
 int im_surface_write(const char *path, const im_field *field);

@@ -31,6 +31,10 @@ int cli_parse_int(const char *option, const char *text, long min, long max, int 
 int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
 
+/* A length unit for --unit or --height-unit (io.h: m, mm, µm or um, nm, ...), copied into out
+ * (16 bytes) as given; 0, or -1 after naming the option and the known units. */
+int cli_parse_length_unit(const char *option, const char *text, char *out);
+
 /* Parses a subcommand's options with getopt_long: apply(code, optarg, state) for each, which
  * returns 0 or prints its error and returns -1; usage(stdout) for -h or the option whose code is
  * help_code. Returns 1 after help, 0 when every option was applied, -1 after an error. optind is

@@ -22,12 +22,15 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n\n"
-            "Indents SURFACE (.npy, .gsf or text; heights in units of its delta) with a rigid punch and\n"
-            "solves each step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last.\n"
-            "Units: lengths in delta, stresses in E* (both settable). w counts from first touch.\n\n"
+            "Indents SURFACE (.npy, .gsf or text) with a rigid punch and solves each step (FFT boundary\n"
+            "elements, Polonsky-Keer CG), warm-started from the last. Units: lengths in the surface's\n"
+            "unit (its spacing delta when it states none), stresses in E* (settable). w counts from\n"
+            "first touch.\n\n"
             "  --smooth            a flat surface instead of SURFACE (with --n, --m, --delta)\n"
             "  --n N, --m M        smooth grid size (default 512, M = N)\n"
-            "  --delta D           smooth patch side (default 1)\n"
+            "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"
+            "  --unit U            length unit of delta (m, mm, um, nm, ...); overrides SURFACE's\n"
+            "  --height-unit U     unit of SURFACE's heights, converted to --unit (default: --unit)\n"
             "  --punch KIND        cone (default), sphere or flat\n"
             "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80); below 60\n"
             "                      a warning: small-slope elasticity is stretched (still solved)\n"
@@ -55,6 +58,7 @@ typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
     int smooth, nx, ny, m_given, fields;
     double delta;
+    im_surface_read_options read; /* --delta, --unit, --height-unit for a surface file */
     im_indenter punch;
     int radius_given, x_given, y_given;
     enum im_control control;
@@ -66,12 +70,13 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
        OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
+    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
     {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
@@ -133,7 +138,13 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_SMOOTH: o->smooth = 1; return 0;
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->nx);
     case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->ny);
-    case OPT_DELTA: return cli_parse_double("--delta", arg, 1e-300, 1e300, &o->delta);
+    case OPT_DELTA:
+        if (cli_parse_double("--delta", arg, 1e-300, 1e300, &o->delta) != 0)
+            return -1;
+        o->read.set.delta_x = o->delta;
+        return 0;
+    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
+    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
@@ -312,11 +323,11 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *generator = surface_sidecar_generator(o->surface_path);
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
-        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
+        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
         "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
-        "delta", s->delta, "generator", generator,
+        "delta", s->delta, "unit", s->unit, "generator", generator,
         "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
@@ -367,8 +378,11 @@ static void warn_if_steep(const im_indenter *punch)
 static int load_surface(const indent_options *o, im_field **surface)
 {
     if (!o->smooth)
-        return im_surface_read(o->surface_path, surface);
-    return im_field_create(o->nx, o->ny, o->delta, surface);
+        return im_surface_read_with(o->surface_path, &o->read, surface, NULL);
+    int status = im_field_create(o->nx, o->ny, o->delta, surface);
+    if (status == IM_OK)
+        memcpy((*surface)->unit, o->read.set.lateral, sizeof (*surface)->unit);
+    return status;
 }
 
 static double largest(const double *v, int n)

@@ -1,5 +1,6 @@
 #include "cli/cli.h"
 
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 
 #include <errno.h>
@@ -53,6 +54,17 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
         return -1;
     }
     *out = value;
+    return 0;
+}
+
+int cli_parse_length_unit(const char *option, const char *text, char *out)
+{
+    if (strlen(text) >= 16 || im_length_unit_metres(text, NULL) == 0.0) {
+        fprintf(stderr, "indentmap: %s '%s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, \u00c5)\n",
+                option, text);
+        return -1;
+    }
+    snprintf(out, 16, "%s", text);
     return 0;
 }
 

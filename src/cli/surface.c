@@ -21,7 +21,9 @@ static void usage(FILE *stream)
             "section 2.2) and prints its statistics; lengths are in grid spacings delta.\n\n"
             "  --n N              grid columns (default 512)\n"
             "  --m M              grid rows (default: N)\n"
-            "  --delta D          patch side in physical units (default 1)\n"
+            "  --delta D          patch side in physical units (default 1); with --stats, overrides the file's\n"
+            "  --unit U           length unit of delta (m, mm, um, nm, ...); with --stats, overrides the file's\n"
+            "  --height-unit U    with --stats: unit of the file's heights, converted to --unit\n"
             "  --hurst H          Hurst exponent, 0 < H < 1 (default 0.8)\n"
             "  --slope S          target h'rms = sqrt(<|grad h|^2>) (default 0.08)\n"
             "  --height-rms R     target h_rms instead of h'rms, in units of delta\n"
@@ -39,16 +41,18 @@ static void usage(FILE *stream)
 
 typedef struct surface_options {
     im_surface_params params;
+    im_surface_read_options read; /* --delta, --unit, --height-unit */
     int m_given, lambda_r_given;
     const char *out, *stats, *png, *psd, *histograms;
 } surface_options;
 
-enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
+enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
        OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"n", required_argument, 0, OPT_N}, {"m", required_argument, 0, OPT_M},
     {"delta", required_argument, 0, OPT_DELTA}, {"hurst", required_argument, 0, OPT_HURST},
+    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
     {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
     {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
     {"lambda-r", required_argument, 0, OPT_LR}, {"lambda-0", required_argument, 0, OPT_L0},
@@ -78,7 +82,13 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &p->nx);
     case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &p->ny);
-    case OPT_DELTA: return cli_parse_double("--delta", arg, 1e-300, 1e300, &p->delta);
+    case OPT_DELTA:
+        if (cli_parse_double("--delta", arg, 1e-300, 1e300, &p->delta) != 0)
+            return -1;
+        o->read.set.delta_x = p->delta;
+        return 0;
+    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
+    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_HURST: return cli_parse_double("--hurst", arg, 1e-6, 1 - 1e-6, &p->hurst);
     case OPT_SLOPE: p->target = IM_TARGET_SLOPE; return cli_parse_double("--slope", arg, 0, 1e6, &p->slope_rms);
     case OPT_HEIGHT:
@@ -98,9 +108,25 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-static void print_statistics(const im_field *s, const im_surface_stats *st, const im_surface_params *p)
+/* Where the spacing and the heights' unit came from, for a surface read from a file. */
+static void print_units(const im_field *s, const im_surface_read_info *info)
+{
+    const im_surface_units *file = &info->file;
+    printf("spacing          %s\n", info->used.delta_x != file->delta_x ? "set by --delta"
+                                  : file->delta_x > 0.0           ? "stated by the file"
+                                                                  : "none stated: lengths in delta");
+    if (info->height_factor != 1.0)
+        printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height, info->height_factor);
+    else
+        printf("heights          in %s\n", s->unit[0] ? s->unit : "delta");
+}
+
+static void print_statistics(const im_field *s, const im_surface_stats *st, const im_surface_params *p,
+                             const im_surface_read_info *info)
 {
     printf("grid             %d x %d, delta = %g %s\n", s->nx, s->ny, s->delta, s->unit);
+    if (info)
+        print_units(s, info);
     printf("mean             %.6g\n", st->mean);
     printf("h_rms            %.6g\n", st->height_rms);
     if (p) {
@@ -221,6 +247,10 @@ static int parse_options(int argc, char **argv, surface_options *o)
         fprintf(stderr, "indentmap: surface: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
+    if (!o->stats && o->read.set.height[0]) {
+        fprintf(stderr, "indentmap: surface: --height-unit describes a file's heights: use it with --stats\n");
+        return -1;
+    }
     if (!o->m_given)
         o->params.ny = o->params.nx;
     if (!o->lambda_r_given)
@@ -237,12 +267,16 @@ int cli_surface(int argc, char **argv)
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     im_field *surface = NULL;
-    int status = o.stats ? im_surface_read(o.stats, &surface) : im_surface_generate(&o.params, &surface);
+    im_surface_read_info info;
+    int status = o.stats ? im_surface_read_with(o.stats, &o.read, &surface, &info)
+                         : im_surface_generate(&o.params, &surface);
+    if (status == IM_OK && !o.stats)
+        memcpy(surface->unit, o.read.set.lateral, sizeof surface->unit);
     im_surface_stats stats;
     if (status == IM_OK)
         status = im_surface_statistics(surface, &stats);
     if (status == IM_OK) {
-        print_statistics(surface, &stats, o.stats ? NULL : &o.params);
+        print_statistics(surface, &stats, o.stats ? NULL : &o.params, o.stats ? &info : NULL);
         status = write_outputs(&o, surface, &stats, o.stats ? NULL : &o.params);
     }
     im_field_free(surface);

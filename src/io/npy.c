@@ -2,6 +2,7 @@
 
 #include "indentmap/status.h"
 #include "io/payload.h"
+#include "io/readers.h"
 
 #include <errno.h>
 #include <math.h>
@@ -176,11 +177,12 @@ static int read_payload(FILE *stream, const char *path, enum im_npy_dtype dtype,
     if (fgetc(stream) != EOF)
         return im_fail(IM_EFORMAT, "%s: more data than the header shape (%d, %d) holds", path,
                        field->ny, field->nx);
-    return im_io_check_finite(field, path);
+    return IM_OK;
 }
 
-int im_npy_read(const char *path, im_field **out)
+int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
+    *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit"};
     *out = NULL;
     FILE *stream = fopen(path, "rb");
     if (!stream)
@@ -209,4 +211,9 @@ int im_npy_read(const char *path, im_field **out)
     }
     *out = field;
     return IM_OK;
+}
+
+int im_npy_read(const char *path, im_field **out)
+{
+    return im_surface_read_format(path, im_npy_read_raw, NULL, out, NULL);
 }

@@ -1,0 +1,34 @@
+/* io/readers.h: the surface readers' parsing step, shared by the public readers of io.h.
+ *
+ * A raw reader parses one format into a field of spacing 1 with no unit, heights exactly as stored
+ * (NaN and Inf included), and reports what the file states about its units, with the header keys
+ * that stated them so that messages can name them. im_surface_finish then applies the units. */
+#ifndef INDENTMAP_IO_READERS_H
+#define INDENTMAP_IO_READERS_H
+
+#include "indentmap/io.h"
+
+typedef struct surface_stated {
+    im_surface_units units;  /* what the file states (zeros and "" where nothing) */
+    const char *spacing_keys;/* e.g. "XReal / XRes and YReal / YRes", for messages */
+    const char *lateral_key; /* e.g. "XYUnits" */
+    const char *height_key;  /* e.g. "ZUnits" */
+} surface_stated;
+
+typedef int (*surface_raw_reader)(const char *path, im_field **out, surface_stated *stated);
+
+int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated);
+int im_text_read_raw(const char *path, im_field **out, surface_stated *stated);
+int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated);
+
+/* Applies the stated units and the overrides of options (may be NULL) to a raw field, as
+ * im_surface_read_with describes; fills info (may be NULL). On failure the field is left to the
+ * caller to free. */
+int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
+                      const im_surface_read_options *options, im_surface_read_info *info);
+
+/* A raw reader followed by im_surface_finish; *out is NULL on failure. */
+int im_surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
+                           im_field **out, im_surface_read_info *info);
+
+#endif
