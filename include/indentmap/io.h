@@ -86,6 +86,8 @@ double im_length_unit_metres(const char *name, const char **canonical);
 typedef struct im_surface_read_options {
     im_surface_units set;    /* each stated member (non-zero, non-empty) overrides the file's; a
                                 delta_x without delta_y sets both */
+    int fill;                /* 1: fill missing points (NaN) with im_surface_fill_missing (surface.h);
+                                0: refuse them, naming the first one's (x, y) */
 } im_surface_read_options;
 
 /* What the reader found and did, for reports and run records. */
@@ -93,14 +95,15 @@ typedef struct im_surface_read_info {
     im_surface_units file;   /* as the file stated them (zeros and "" where it stated nothing) */
     im_surface_units used;   /* as applied, after overrides (delta_y = delta_x) */
     double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
+    long filled;             /* missing points filled (options->fill) */
 } im_surface_read_info;
 
 /* Reads a surface by extension (.npy, .gsf, else a text matrix) and applies its units: field->delta
  * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
  * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
  * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
- * a unit that is not a length, heights in a unit without a lateral unit to convert them to, NaN or
- * Inf heights. options and info may be NULL. */
+ * a unit that is not a length, heights in a unit without a lateral unit to convert them to, Inf
+ * heights, and NaN heights (missing points) unless options->fill. options and info may be NULL. */
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info);
 

@@ -31,6 +31,9 @@ static void usage(FILE *stream)
             "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"
             "  --unit U            length unit of delta (m, mm, um, nm, ...); overrides SURFACE's\n"
             "  --height-unit U     unit of SURFACE's heights, converted to --unit (default: --unit)\n"
+            "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
+            "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
+            "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
             "  --punch KIND        cone (default), sphere or flat\n"
             "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80); below 60\n"
             "                      a warning: small-slope elasticity is stretched (still solved)\n"
@@ -58,7 +61,9 @@ typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
     int smooth, nx, ny, m_given, fields;
     double delta;
-    im_surface_read_options read; /* --delta, --unit, --height-unit for a surface file */
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
+    cli_preparation preparation;  /* --crop, --detrend */
+    long filled;                  /* missing points filled on reading */
     im_indenter punch;
     int radius_given, x_given, y_given;
     enum im_control control;
@@ -70,14 +75,15 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
        OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
     {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
-    {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
+    {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
@@ -145,6 +151,9 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
+    case OPT_FILL: o->read.fill = 1; return 0;
+    case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
+    case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
@@ -321,13 +330,15 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     for (int i = 0; i < o->target_count; ++i)
         json_array_append_new(targets, json_real(o->targets[i]));
     json_t *generator = surface_sidecar_generator(o->surface_path);
+    char preparation[256];
+    cli_describe_preparation(&o->preparation, o->filled, preparation, sizeof preparation);
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
-        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
+        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
         "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
-        "delta", s->delta, "unit", s->unit, "generator", generator,
+        "delta", s->delta, "unit", s->unit, "preparation", preparation, "generator", generator,
         "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
@@ -375,10 +386,14 @@ static void warn_if_steep(const im_indenter *punch)
                 punch->alpha_degrees, 1 / tan(punch->alpha_degrees * M_PI / 180), STEEP_CONE_DEGREES);
 }
 
-static int load_surface(const indent_options *o, im_field **surface)
+static int load_surface(indent_options *o, im_field **surface)
 {
-    if (!o->smooth)
-        return im_surface_read_with(o->surface_path, &o->read, surface, NULL);
+    if (!o->smooth) {
+        im_surface_read_info info;
+        int status = im_surface_read_with(o->surface_path, &o->read, surface, &info);
+        o->filled = status == IM_OK ? info.filled : 0;
+        return status == IM_OK ? cli_prepare_surface(&o->preparation, surface) : status;
+    }
     int status = im_field_create(o->nx, o->ny, o->delta, surface);
     if (status == IM_OK)
         memcpy((*surface)->unit, o->read.set.lateral, sizeof (*surface)->unit);

@@ -2,6 +2,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
 #include "io/payload.h"
 #include "io/readers.h"
 
@@ -102,6 +103,22 @@ static int height_factor(const char *path, const surface_stated *s, double *fact
     return IM_OK;
 }
 
+/* Missing points (NaN): filled on request, else refused naming the first one and the remedy. */
+static int missing_points(const char *path, im_field *field, int fill, long *filled)
+{
+    size_t count = im_field_count(field), i = 0;
+    while (i < count && !isnan(field->data[i]))
+        ++i;
+    if (i == count)
+        return IM_OK;
+    if (!fill)
+        return im_fail(IM_EFORMAT, "%s: value nan at (x=%zu, y=%zu): a missing point; expected finite heights "
+                       "(--fill fills missing points from their neighbours)", path, i % (size_t)field->nx,
+                       i / (size_t)field->nx);
+    int status = im_surface_fill_missing(field, filled);
+    return status == IM_OK ? IM_OK : im_fail_context(IM_EFORMAT, "%s", path);
+}
+
 int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
                       const im_surface_read_options *options, im_surface_read_info *info)
 {
@@ -120,11 +137,14 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
         for (size_t i = 0; i < count; ++i)
             field->data[i] *= factor;
     }
-    status = im_io_check_finite(field, path); /* after the conversion, which could overflow */
+    long filled = 0;
+    status = missing_points(path, field, options && options->fill, &filled);
+    if (status == IM_OK)
+        status = im_io_check_finite(field, path); /* after the conversion, which could overflow */
     if (status != IM_OK)
         return status;
     if (info) {
-        *info = (im_surface_read_info){stated->units, merged.units, factor};
+        *info = (im_surface_read_info){stated->units, merged.units, factor, filled};
         snprintf(info->used.lateral, sizeof info->used.lateral, "%s", lateral);
     }
     return IM_OK;
