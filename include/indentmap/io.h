@@ -40,8 +40,16 @@ int im_make_directories(const char *path);
 /* ---- surfaces ---- */
 enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };
 
-/* NumPy .npy, version 1.0, little-endian, C order, 2-D shape (ny, nx) (rows are y). */
+/* NumPy .npy, version 1.0, little-endian, C order, 2-D shape (ny, nx) (rows are y). A .npy states
+ * no units: its sidecar PATH.json does, when present ("delta", "unit" and, for fields other than
+ * heights, "value_unit": written by `surface --out` and im_field_sidecar_write), and im_npy_read takes
+ * them from it (IM_EFORMAT naming the sidecar when it is not a JSON object of those types, or larger
+ * than 1 MiB). */
 int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtype);
+
+/* Writes PATH.json beside the .npy at path: program, version, quantity (e.g. "force per patch"),
+ * the grid, delta, unit and value_unit of field, atomically. */
+int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity);
 /* Reads '<f8' or '<f4', C order, 2-D, versions 1.0 to 3.0. */
 int im_npy_read(const char *path, im_field **out);
 
@@ -88,6 +96,8 @@ typedef struct im_surface_read_options {
                                 delta_x without delta_y sets both */
     int fill;                /* 1: fill missing points (NaN) with im_surface_fill_missing (surface.h);
                                 0: refuse them, naming the first one's (x, y) */
+    char express_in[16];     /* a length unit ("m" for SI): spacing and heights are converted into it
+                                from the surface's unit, which must then be known; "": kept */
 } im_surface_read_options;
 
 /* What the reader found and did, for reports and run records. */

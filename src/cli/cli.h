@@ -5,6 +5,7 @@
 #include "indentmap/surface.h"
 
 #include <signal.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -34,8 +35,11 @@ int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
 
 /* A length unit for --unit or --height-unit (io.h: m, mm, µm or um, nm, ...), copied into out
- * (16 bytes) as given; 0, or -1 after naming the option and the known units. */
+ * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
 int cli_parse_length_unit(const char *option, const char *text, char *out);
+
+/* A unit's name (e.g. --e-star-unit Pa): 1 to size - 1 bytes without blanks or quotes. */
+int cli_parse_name(const char *option, const char *text, char *out, size_t size);
 
 /* Preparation of a measured surface (prepare.c): crop (sides 0: none), then plane or curvature
  * removal. --fill is the reader's (im_surface_read_options.fill). */

@@ -31,6 +31,10 @@ static void usage(FILE *stream)
             "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"
             "  --unit U            length unit of delta (m, mm, um, nm, ...); overrides SURFACE's\n"
             "  --height-unit U     unit of SURFACE's heights, converted to --unit (default: --unit)\n"
+            "  --length-unit U     solve in this length unit (m: SI): SURFACE's spacing and heights are\n"
+            "                      converted into it; approaches, gaps and displacements are in it\n"
+            "  --e-star-unit U     the unit of --e-star (e.g. Pa), for the records: forces are in\n"
+            "                      U x length unit^2 (N for Pa and m)\n"
             "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
             "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
             "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
@@ -63,6 +67,9 @@ typedef struct indent_options {
     double delta;
     im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
     cli_preparation preparation;  /* --crop, --detrend */
+    char e_star_unit[16];         /* --e-star-unit, "" when not given */
+    char force_unit[40];          /* the unit of loads and forces, from the two above */
+    char length_unit[16];         /* the surface's, as solved ("" in units of delta) */
     long filled;                  /* missing points filled on reading */
     im_indenter punch;
     int radius_given, x_given, y_given;
@@ -75,7 +82,7 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
        OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
@@ -83,6 +90,7 @@ static const struct option LONG_OPTIONS[] = {
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
     {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
     {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
     {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
@@ -152,6 +160,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_FILL: o->read.fill = 1; return 0;
+    case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
+    case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
     case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
@@ -292,15 +302,24 @@ static int write_history(const char *dir, const im_step_result *rows, int count)
     return im_atomic_commit(&file);
 }
 
-static int write_fields(const char *dir, const im_indentation *run, int step)
+/* The fields of a step, each FILE.npy with FILE.npy.json stating its units: forces in force_unit,
+ * gaps and displacements in the surface's length unit. */
+static int write_fields(const char *dir, const im_indentation *run, int step, const char *length_unit,
+                        const char *force_unit)
 {
     im_field *f[3] = {NULL, NULL, NULL};
     static const char *const NAMES[3] = {"force", "gap", "displacement"};
+    static const char *const QUANTITIES[3] = {"force per patch", "gap", "surface displacement"};
     int status = im_indentation_fields(run, &f[0], &f[1], &f[2]);
     for (int i = 0; i < 3 && status == IM_OK; ++i) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s_%04d.npy", dir, NAMES[i], step);
+        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", length_unit);
+        if (i == 0)
+            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", force_unit);
         status = im_npy_write(path, f[i], IM_NPY_FLOAT64);
+        if (status == IM_OK)
+            status = im_field_sidecar_write(path, f[i], QUANTITIES[i]);
     }
     for (int i = 0; i < 3; ++i)
         im_field_free(f[i]);
@@ -318,6 +337,15 @@ static json_t *surface_sidecar_generator(const char *surface_path)
     json_t *generator = root ? json_incref(json_object_get(root, "generator")) : NULL;
     json_decref(root);
     return generator;
+}
+
+/* What the numbers of history.csv and the fields are in. */
+static json_t *units_record(const indent_options *o, const im_field *s)
+{
+    const char *length = s->unit[0] ? s->unit : "delta";
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length, "e_star",
+                     o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "load", o->force_unit, "force",
+                     o->force_unit, "load_star", "contact area A(N) / delta^2 (dimensionless)");
 }
 
 static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
@@ -350,6 +378,8 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "history", "history.csv", "fields", o->fields);
     if (root && seed)
         json_object_set(root, "seed", seed);
+    if (root)
+        json_object_set_new(root, "units", units_record(o, s));
     json_decref(generator);
     return root;
 }
@@ -400,6 +430,17 @@ static int load_surface(indent_options *o, im_field **surface)
     return status;
 }
 
+/* N for Pa and m; otherwise "E*-unit length-unit²", with E* and δ standing in for what is not given. */
+static void set_force_unit(indent_options *o, const im_field *surface)
+{
+    memcpy(o->length_unit, surface->unit, sizeof o->length_unit);
+    if (strcmp(o->e_star_unit, "Pa") == 0 && strcmp(surface->unit, "m") == 0)
+        snprintf(o->force_unit, sizeof o->force_unit, "N");
+    else
+        snprintf(o->force_unit, sizeof o->force_unit, "%s %s\u00b2", o->e_star_unit[0] ? o->e_star_unit : "E*",
+                 surface->unit[0] ? surface->unit : "\u03b4");
+}
+
 static double largest(const double *v, int n)
 {
     double m = 0;
@@ -424,7 +465,7 @@ static int run_steps(const indent_options *o, im_indentation *run, json_t *recor
             break;
         status = write_history(o->out, rows, done + 1);
         if (status == IM_OK && o->fields)
-            status = write_fields(o->out, run, done + 1);
+            status = write_fields(o->out, run, done + 1, o->length_unit, o->force_unit);
         const im_step_result *r = &rows[done];
         printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n",
                done + 1, r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual,
@@ -463,6 +504,8 @@ int cli_indent(int argc, char **argv)
         warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
     }
+    if (status == IM_OK)
+        set_force_unit(&o, surface);
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);

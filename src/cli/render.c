@@ -40,7 +40,8 @@ static void usage(FILE *stream)
             "  --title TEXT        panel title\n"
             "  --titles LIST       comma-separated panel titles, one per file\n"
             "  --columns C         panels per row (default: all in one row)\n"
-            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ')\n"
+            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ', in\n"
+            "                      the units the input's sidecar FILE.json states, e.g. 'local force f / N')\n"
             "  --dpi D             resolution (default 300)\n"
             "  --fps F             animation frames per second (default 5)\n"
             "  --frames DIR        directory for the frames of 'animate'\n"
@@ -54,6 +55,7 @@ typedef struct render_options {
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     int aliased_circle; /* GIF frames: the circle aliased (exact palette colours) */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
+    char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
 } render_options;
@@ -188,9 +190,10 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     for (int i = 0; i < count; ++i)
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
-    char height_name[64];
+    char height_name[64], force_name[80];
     snprintf(height_name, sizeof height_name, "height h / %s", images[0].unit[0] ? images[0].unit : "δ");
-    const char *quantity = o->quantity ? o->quantity : contact ? "local force f / (E* δ²)" : height_name;
+    snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
+    const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
                                  {"Norm", norm_text}, {"Pixels per patch", scale_text}};
@@ -233,6 +236,8 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
         int status = im_surface_read(inputs[i], &fields[i]);
         if (status != IM_OK)
             return status;
+        if (i == 0)
+            memcpy(o->value_unit, fields[i]->value_unit, sizeof o->value_unit);
         im_colormap c = strcmp(o->mode, "height") == 0 ? im_height_style_default(fields[i]).colormap
                                                        : im_contact_style_default(fields[i]).colormap;
         o->shared_lo = fmin(o->shared_lo, c.lo);

@@ -204,6 +204,8 @@ int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
     }
     if (status == IM_OK)
         status = read_payload(stream, path, dtype, field);
+    if (status == IM_OK)
+        status = im_npy_sidecar_read(path, stated, field->value_unit, sizeof field->value_unit);
     fclose(stream);
     if (status != IM_OK) {
         im_field_free(field);

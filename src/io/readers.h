@@ -27,6 +27,10 @@ int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated);
 int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
                       const im_surface_read_options *options, im_surface_read_info *info);
 
+/* Reads PATH.json beside a .npy, when present, into stated (spacing and lateral unit) and value_unit
+ * (size bytes); IM_OK without one, IM_EFORMAT naming it when it is malformed. */
+int im_npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size);
+
 /* A raw reader followed by im_surface_finish; *out is NULL on failure. */
 int im_surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
                            im_field **out, im_surface_read_info *info);

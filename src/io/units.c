@@ -119,6 +119,24 @@ static int missing_points(const char *path, im_field *field, int fill, long *fil
     return status == IM_OK ? IM_OK : im_fail_context(IM_EFORMAT, "%s", path);
 }
 
+/* Converts the spacing from the field's lateral unit into `unit`, and multiplies *factor, the
+ * heights' conversion still to be applied, by the same ratio. */
+static int express_in(const char *path, im_field *field, const char *unit, double *factor)
+{
+    const char *canonical = "";
+    double target = im_length_unit_metres(unit, &canonical), source = im_length_unit_metres(field->unit, NULL);
+    if (target == 0.0)
+        return im_fail(IM_EINVAL, "--length-unit '%.15s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
+                       "\u00c5)", unit);
+    if (source == 0.0)
+        return im_fail(IM_EFORMAT, "%s: states no length unit to convert into %s from: give it (--unit)", path, unit);
+    double ratio = source / target;
+    *factor *= ratio;
+    field->delta *= ratio;
+    snprintf(field->unit, sizeof field->unit, "%s", canonical);
+    return IM_OK;
+}
+
 int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
                       const im_surface_read_options *options, im_surface_read_info *info)
 {
@@ -132,6 +150,8 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
         return status;
     field->delta = merged.units.delta_x > 0.0 ? merged.units.delta_x : 1.0;
     snprintf(field->unit, sizeof field->unit, "%s", lateral);
+    if (options && options->express_in[0] && (status = express_in(path, field, options->express_in, &factor)) != IM_OK)
+        return status;
     if (factor != 1.0) {
         size_t count = im_field_count(field);
         for (size_t i = 0; i < count; ++i)
@@ -145,7 +165,7 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
         return status;
     if (info) {
         *info = (im_surface_read_info){stated->units, merged.units, factor, filled};
-        snprintf(info->used.lateral, sizeof info->used.lateral, "%s", lateral);
+        snprintf(info->used.lateral, sizeof info->used.lateral, "%s", field->unit);
     }
     return IM_OK;
 }
