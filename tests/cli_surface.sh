@@ -60,10 +60,10 @@ npy() {
 }
 npy "$dir/good.npy" '<f8' False '(2, 3)' 6
 check "hand-built npy is read" bash -c "'$cli' surface --stats '$dir/good.npy' | grep -q 'grid             3 x 2'"
-npy "$dir/int.npy" '<i8' False '(2, 3)' 6
-check "unsupported dtype" expect_exit 2 "int.npy: dtype '<i8' is not supported" "$cli" surface --stats "$dir/int.npy"
-npy "$dir/fortran.npy" '<f8' True '(2, 3)' 6
-check "Fortran order" expect_exit 2 "fortran.npy: Fortran-ordered arrays are not supported" "$cli" surface --stats "$dir/fortran.npy"
+npy "$dir/complex.npy" '<c16' False '(2, 3)' 12
+check "unsupported dtype" expect_exit 2 "complex.npy: dtype '<c16' is not supported" "$cli" surface --stats "$dir/complex.npy"
+npy "$dir/int.npy" '<i8' True '(2, 3)' 6
+check "int64 in Fortran order is read, the conversion stated" bash -c "'$cli' surface --stats '$dir/int.npy' | grep -q \"values           '<i8' (int64) converted to float64; Fortran order transposed to C order\""
 npy "$dir/nan.npy" '<f8' False '(2, 3)' 6 '\x00\x00\x00\x00\x00\x00\xf8\x7f'
 check "NaN height" expect_exit 2 "nan.npy: value nan at (x=2, y=1)" "$cli" surface --stats "$dir/nan.npy"
 npy "$dir/short.npy" '<f8' False '(3, 3)' 8

@@ -117,12 +117,15 @@ static void bad_npy_files_are_refused(void **state)
     expect_refusal(im_npy_read, test_path("short.npy"), IM_EFORMAT, "truncated");
     write_npy(test_path("long.npy"), ok, 13, 1.5);
     expect_refusal(im_npy_read, test_path("long.npy"), IM_EFORMAT, "more data");
-    write_npy(test_path("int.npy"), "{'descr': '<i8', 'fortran_order': False, 'shape': (4, 3), }", 12, 1.5);
-    expect_refusal(im_npy_read, test_path("int.npy"), IM_EFORMAT, "dtype");
-    write_npy(test_path("big.npy"), "{'descr': '>f8', 'fortran_order': False, 'shape': (4, 3), }", 12, 1.5);
-    expect_refusal(im_npy_read, test_path("big.npy"), IM_EFORMAT, "dtype");
-    write_npy(test_path("fortran.npy"), "{'descr': '<f8', 'fortran_order': True, 'shape': (4, 3), }", 12, 1.5);
-    expect_refusal(im_npy_read, test_path("fortran.npy"), IM_EFORMAT, "Fortran");
+    static const char *const unsupported[] = {"'<c16'", "'<f2'", "'|i2'", "'<i3'", "'<U8'", "'O'"};
+    for (size_t i = 0; i < sizeof unsupported / sizeof *unsupported; ++i) {
+        char dict[128];
+        snprintf(dict, sizeof dict, "{'descr': %s, 'fortran_order': False, 'shape': (4, 3), }", unsupported[i]);
+        write_npy(test_path("type.npy"), dict, 12, 1.5);
+        expect_refusal(im_npy_read, test_path("type.npy"), IM_EFORMAT, "is not supported");
+    }
+    write_npy(test_path("order.npy"), "{'descr': '<f8', 'fortran_order': Maybe, 'shape': (4, 3), }", 12, 1.5);
+    expect_refusal(im_npy_read, test_path("order.npy"), IM_EFORMAT, "fortran_order Maybe");
     write_npy(test_path("3d.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2, 3), }", 12, 1.5);
     expect_refusal(im_npy_read, test_path("3d.npy"), IM_EFORMAT, "2-D");
     write_npy(test_path("nan.npy"), ok, 12, NAN);
@@ -143,6 +146,72 @@ static void bad_npy_files_are_refused(void **state)
     test_write_bytes(test_path("junk.npy"), "hello", 5);
     expect_refusal(im_npy_read, test_path("junk.npy"), IM_EFORMAT, "magic");
     expect_refusal(im_npy_read, test_path("missing.npy"), IM_EIO, "cannot open");
+}
+
+/* A .npy of dict and payload bytes, padded as NumPy does. */
+static void write_npy_bytes(const char *path, const char *dict, const void *payload, size_t payload_size)
+{
+    size_t dict_length = strlen(dict), header = 10 + dict_length + 1;
+    size_t padding = (64 - header % 64) % 64, length = dict_length + 1 + padding;
+    unsigned char bytes[1024];
+    memcpy(bytes, "\x93NUMPY\x01\x00", 8);
+    bytes[8] = (unsigned char)(length & 0xff);
+    bytes[9] = (unsigned char)(length >> 8);
+    memcpy(bytes + 10, dict, dict_length);
+    memset(bytes + 10 + dict_length, ' ', padding);
+    bytes[10 + length - 1] = '\n';
+    memcpy(bytes + 10 + length, payload, payload_size);
+    test_write_bytes(path, bytes, 10 + length + payload_size);
+}
+
+/* Issue 13: .npy in any byte order, Fortran order and integer dtypes is read, converted to double
+ * in C order, and the conversion recorded. Expected values are written by hand, byte by byte. */
+static void npy_of_any_type_is_converted(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *descr;
+        unsigned char payload[48];
+        size_t size;
+        const char *conversion;
+    } cases[] = {
+        {"'>f8'", {0x3f, 0xf8, 0, 0, 0, 0, 0, 0, 0xc0, 0x02, 0, 0, 0, 0, 0, 0}, 16, "'>f8' (float64) converted"},
+        {"'<f4'", {0, 0, 0xc0, 0x3f, 0, 0, 0x20, 0xc0}, 8, "'<f4' (float32) converted"},
+        {"'<i2'", {0x05, 0x00, 0xfd, 0xff}, 4, "'<i2' (int16) converted"},
+        {"'>i4'", {0, 0, 0x01, 0x00, 0xff, 0xff, 0xff, 0xfe}, 8, "'>i4' (int32) converted"},
+        {"'>u2'", {0xff, 0xff, 0x00, 0x07}, 4, "'>u2' (uint16) converted"},
+        {"'|u1'", {200, 3}, 2, "'|u1' (uint8) converted"},
+        {"'|i1'", {0xff, 0x7f}, 2, "'|i1' (int8) converted"},
+        {"'<i8'", {0xfe, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 9, 0, 0, 0, 0, 0, 0, 0}, 16, "'<i8' (int64)"},
+    };
+    static const double expected[][2] = {{1.5, -2.25}, {1.5, -2.5}, {5, -3}, {256, -2}, {65535, 7}, {200, 3},
+                                         {-1, 127}, {-2, 9}};
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
+        char dict[128];
+        snprintf(dict, sizeof dict, "{'descr': %s, 'fortran_order': False, 'shape': (1, 2), }", cases[i].descr);
+        write_npy_bytes(test_path("typed.npy"), dict, cases[i].payload, cases[i].size);
+        im_field *g = NULL;
+        im_surface_read_info info;
+        if (im_surface_read_with(test_path("typed.npy"), NULL, &g, &info) != IM_OK)
+            fail_msg("%s: %s", cases[i].descr, im_last_error());
+        assert_close(g->data[0], expected[i][0], 0.0);
+        assert_close(g->data[1], expected[i][1], 0.0);
+        assert_non_null(strstr(info.conversion, cases[i].conversion));
+        im_field_free(g);
+    }
+    /* Fortran order: a 2 x 3 array stored column by column */
+    const double columns[6] = {11, 21, 12, 22, 13, 23};
+    write_npy_bytes(test_path("fortran.npy"), "{'descr': '<f8', 'fortran_order': True, 'shape': (2, 3), }", columns,
+                    sizeof columns);
+    im_field *g = NULL;
+    im_surface_read_info info;
+    assert_int_equal(im_surface_read_with(test_path("fortran.npy"), NULL, &g, &info), IM_OK);
+    assert_int_equal(g->nx, 3);
+    assert_int_equal(g->ny, 2);
+    const double rows[6] = {11, 12, 13, 21, 22, 23};
+    assert_memory_equal(g->data, rows, sizeof rows);
+    assert_string_equal(info.conversion, "Fortran order transposed to C order");
+    im_field_free(g);
 }
 
 /* IM_MEMORY_LIMIT_MIB caps the memory the readers may plan for, so a refusal can be tested at a
@@ -413,6 +482,7 @@ int main(void)
         cmocka_unit_test(npy_float32_round_trip_is_exact_in_float),
         cmocka_unit_test(text_and_gsf_round_trips),
         cmocka_unit_test(bad_npy_files_are_refused),
+        cmocka_unit_test(npy_of_any_type_is_converted),
         cmocka_unit_test(memory_limit_from_the_environment),
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(text_matrix_must_match_its_header),

@@ -50,7 +50,9 @@ int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtyp
 /* Writes PATH.json beside the .npy at path: program, version, quantity (e.g. "force per patch"),
  * the grid, delta, unit and value_unit of field, atomically. */
 int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity);
-/* Reads '<f8' or '<f4', C order, 2-D, versions 1.0 to 3.0. */
+/* Reads versions 1.0 to 3.0, 2-D, C or Fortran order, floats of 4 or 8 bytes and integers of 1, 2, 4
+ * or 8 bytes (signed or not) in either byte order, each converted to double (int64 and uint64 beyond
+ * 2^53 rounded); im_surface_read_with records the conversion in its info. */
 int im_npy_read(const char *path, im_field **out);
 
 /* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or
@@ -106,6 +108,8 @@ typedef struct im_surface_read_info {
     im_surface_units used;   /* as applied, after overrides (delta_y = delta_x) */
     double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
     long filled;             /* missing points filled (options->fill) */
+    char conversion[96];     /* how the stored values were converted, e.g. "'>i2' (int16) converted to
+                                float64; Fortran order transposed to C order"; "" when none */
 } im_surface_read_info;
 
 /* Reads a surface by extension (.npy, .gsf, else a text matrix) and applies its units: field->delta

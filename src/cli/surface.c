@@ -133,6 +133,8 @@ static void print_units(const im_field *s, const im_surface_read_info *info)
         printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height, info->height_factor);
     else
         printf("heights          in %s\n", s->unit[0] ? s->unit : "delta");
+    if (info->conversion[0])
+        printf("values           %s\n", info->conversion);
 }
 
 static const char *taper_name(const im_taper *taper)

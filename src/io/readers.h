@@ -13,6 +13,7 @@ typedef struct surface_stated {
     const char *spacing_keys;/* e.g. "XReal / XRes and YReal / YRes", for messages */
     const char *lateral_key; /* e.g. "XYUnits" */
     const char *height_key;  /* e.g. "ZUnits" */
+    char conversion[96];     /* how stored values became float64 row-major ("" for none) */
 } surface_stated;
 
 typedef int (*surface_raw_reader)(const char *path, im_field **out, surface_stated *stated);

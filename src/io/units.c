@@ -164,8 +164,10 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
     if (status != IM_OK)
         return status;
     if (info) {
-        *info = (im_surface_read_info){stated->units, merged.units, factor, filled};
+        *info = (im_surface_read_info){.file = stated->units, .used = merged.units, .height_factor = factor,
+                                       .filled = filled};
         snprintf(info->used.lateral, sizeof info->used.lateral, "%s", field->unit);
+        memcpy(info->conversion, stated->conversion, sizeof info->conversion);
     }
     return IM_OK;
 }
