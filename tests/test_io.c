@@ -214,6 +214,65 @@ static void npy_of_any_type_is_converted(void **state)
     im_field_free(g);
 }
 
+/* ISO 25178-71 .sdf: a binary round trip keeps heights, spacing and units (metres); an ASCII file
+ * written by hand is read with its Zscale and a missing point; bad files are refused naming the
+ * file and the field. */
+static void sdf_files_round_trip_and_refuse(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(7, 5), *g = NULL;
+    f->delta = 0.25;
+    strcpy(f->unit, "\u00b5m");
+    assert_int_equal(im_sdf_write(test_path("f.sdf"), f), IM_OK);
+    assert_int_equal(im_surface_read(test_path("f.sdf"), &g), IM_OK);
+    assert_string_equal(g->unit, "m");
+    assert_close(g->delta, 0.25e-6, 1e-22);
+    for (size_t i = 0; i < im_field_count(f); ++i)
+        assert_close(g->data[i], f->data[i] * 1e-6, 1e-21 * fabs(f->data[i]) + 1e-30);
+    im_field_free(g);
+    f->unit[0] = '\0';
+    assert_int_equal(im_sdf_write(test_path("none.sdf"), f), IM_EINVAL);
+    im_field_free(f);
+    static const char head[] = "aISO-1.0\nManufacID = test\nNumPoints = 3\nNumProfiles = 2\nXscale = 1e-6\n"
+                               "Yscale = 1e-6\nZscale = 1e-9\nCompression = 0\nDataType = 5\n*\n";
+    char text[1024];
+    snprintf(text, sizeof text, "%s1 2 3\n4 BAD -6\n*\n", head);
+    test_write_bytes(test_path("a.sdf"), text, strlen(text));
+    im_surface_read_options fill = {.fill = 1};
+    assert_int_equal(im_surface_read_with(test_path("a.sdf"), &fill, &g, NULL), IM_OK);
+    assert_close(g->data[2], 3e-9, 1e-24);
+    assert_close(g->data[5], -6e-9, 1e-24);
+    assert_close(g->data[4], (2e-9 + 4e-9 - 6e-9) / 3.0, 1e-24); /* BAD filled from its neighbours */
+    im_field_free(g);
+    static const struct {
+        const char *from, *to, *phrase;
+    } edits[] = {
+        {"aISO-1.0", "aXYZ-1.0", "not an ISO 25178-71 surface data file"},
+        {"Xscale = 1e-6", "Xscale = 0", "Xscale = 0: expected a finite length in metres > 0"},
+        {"Yscale = 1e-6", "Yscale = nan", "Yscale = nan: expected a finite length"},
+        {"Yscale = 1e-6", "Yscale = 2e-6", "Xscale and Yscale: non-square pixels"},
+        {"NumPoints = 3", "NumPoints = 3x", "NumPoints = '3x': expected a decimal integer"},
+        {"NumProfiles = 2", "NumProfiles = 3", "truncated data"},
+        {"NumProfiles = 2", "Profiles = 2", "the header lacks NumProfiles"},
+        {"Compression = 0", "Compression = 1", "Compression = 1: only uncompressed data"},
+        {"DataType = 5", "DataType = 9", "DataType = 9: expected 0 to 7"},
+        {"1 2 3", "1 2 3 4", "more values than NumPoints x NumProfiles"},
+        {"4 5", "4 x", "value 5 (x=1, y=1): 'x' is not a number"},
+    };
+    for (size_t i = 0; i < sizeof edits / sizeof *edits; ++i) {
+        char body[1024];
+        snprintf(body, sizeof body, "%s1 2 3\n4 5 6\n*\n", head);
+        char *at = strstr(body, edits[i].from);
+        assert_non_null(at);
+        char edited[1024];
+        snprintf(edited, sizeof edited, "%.*s%s%s", (int)(at - body), body, edits[i].to, at + strlen(edits[i].from));
+        test_write_bytes(test_path("bad.sdf"), edited, strlen(edited));
+        expect_refusal(im_sdf_read, test_path("bad.sdf"), IM_EFORMAT, edits[i].phrase);
+    }
+    test_write_bytes(test_path("cut.sdf"), "bISO-1.0indentmap", 17);
+    expect_refusal(im_sdf_read, test_path("cut.sdf"), IM_EFORMAT, "truncated header");
+}
+
 /* IM_MEMORY_LIMIT_MIB caps the memory the readers may plan for, so a refusal can be tested at a
  * size every machine holds; a malformed value is refused, naming the variable. */
 static void memory_limit_from_the_environment(void **state)
@@ -483,6 +542,7 @@ int main(void)
         cmocka_unit_test(text_and_gsf_round_trips),
         cmocka_unit_test(bad_npy_files_are_refused),
         cmocka_unit_test(npy_of_any_type_is_converted),
+        cmocka_unit_test(sdf_files_round_trip_and_refuse),
         cmocka_unit_test(memory_limit_from_the_environment),
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(text_matrix_must_match_its_header),

@@ -75,6 +75,16 @@ int im_text_read(const char *path, im_field **out);
 int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
+/* ISO 25178-71 surface data file (.sdf): ASCII ("aISO-1.0" or "aBCR-1.0") or binary ("bISO-1.0",
+ * "bBCR-1.0"; an 81-byte little-endian header, then the values). NumPoints columns by NumProfiles
+ * rows; Xscale, Yscale (spacings) and Zscale (the height of one unit of a value) in metres, each
+ * checked to be a finite number > 0; DataType 0-7 (uint8/16/32, float, int8/16/32, double);
+ * Compression must be 0; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
+ * than a '*' trailer are refused. Writing is binary, DataType double, in metres (the field needs a
+ * length unit; IM_EINVAL otherwise). */
+int im_sdf_write(const char *path, const im_field *field);
+int im_sdf_read(const char *path, im_field **out);
+
 /* ---- units of a surface ----
  * A surface's lateral spacing and its heights are lengths. Files state them (GSF XReal/YReal/
  * XYUnits/ZUnits, Gwyddion text "# Width:", "# Height:", "# Value units:"), the user may set or
@@ -112,7 +122,7 @@ typedef struct im_surface_read_info {
                                 float64; Fortran order transposed to C order"; "" when none */
 } im_surface_read_info;
 
-/* Reads a surface by extension (.npy, .gsf, else a text matrix) and applies its units: field->delta
+/* Reads a surface by extension (.npy, .gsf, .sdf, else a text matrix) and applies its units: field->delta
  * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
  * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
  * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
@@ -123,7 +133,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
 
 /* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
-/* Writes a surface by extension: .npy (float64), .gsf, else a text matrix. */
+/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), else a text matrix. */
 int im_surface_write(const char *path, const im_field *field);
 
 /* ---- PNG ---- */
