@@ -18,6 +18,7 @@ PACKAGES=(
   libcairo2-dev libfreetype-dev            # annotations, text, PDF/SVG figures
   fonts-dejavu-core                        # the font figures are set in
   libgif-dev                               # animated GIFs
+  libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
 )
 
 missing=()

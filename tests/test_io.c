@@ -6,6 +6,7 @@
 #include "indentmap/surface.h"
 
 #include <math.h>
+#include <netcdf.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -271,6 +272,96 @@ static void sdf_files_round_trip_and_refuse(void **state)
     }
     test_write_bytes(test_path("cut.sdf"), "bISO-1.0indentmap", 17);
     expect_refusal(im_sdf_read, test_path("cut.sdf"), IM_EFORMAT, "truncated header");
+}
+
+/* A NetCDF file with dimensions x = 3, y = 2 and what `edit` defines (heights and coordinates). */
+static const char *write_nc(const char *name, void (*edit)(int ncid, int x, int y))
+{
+    int ncid, dims[2];
+    const char *path = test_path(name);
+    assert_int_equal(nc_create(path, NC_CLOBBER | NC_64BIT_OFFSET, &ncid), NC_NOERR);
+    nc_def_dim(ncid, "x", 3, &dims[0]);
+    nc_def_dim(ncid, "y", 2, &dims[1]);
+    edit(ncid, dims[0], dims[1]);
+    assert_int_equal(nc_close(ncid), NC_NOERR);
+    return path;
+}
+
+static void no_heights(int ncid, int x, int y)
+{
+    int dims[2] = {x, y}, var;
+    nc_def_var(ncid, "height", NC_DOUBLE, 2, dims, &var); /* not the name the layout asks for */
+}
+static void heights_3d(int ncid, int x, int y)
+{
+    int z, dims[3] = {x, y, 0}, var;
+    nc_def_dim(ncid, "z", 2, &z);
+    dims[2] = z;
+    nc_def_var(ncid, "heights", NC_DOUBLE, 3, dims, &var);
+}
+static void heights_text(int ncid, int x, int y)
+{
+    int dims[2] = {x, y}, var;
+    nc_def_var(ncid, "heights", NC_CHAR, 2, dims, &var);
+}
+static void heights_with_length(int ncid, int x, int y, double length, const char *x_unit, const char *y_unit)
+{
+    int dims[2] = {x, y}, var, xv, yv;
+    nc_def_var(ncid, "heights", NC_DOUBLE, 2, dims, &var);
+    nc_def_var(ncid, "x", NC_DOUBLE, 1, &x, &xv);
+    nc_def_var(ncid, "y", NC_DOUBLE, 1, &y, &yv);
+    nc_put_att_double(ncid, xv, "length", NC_DOUBLE, 1, &length);
+    nc_put_att_text(ncid, xv, "length_unit", strlen(x_unit), x_unit);
+    nc_put_att_text(ncid, yv, "length_unit", strlen(y_unit), y_unit);
+}
+static void negative_length(int ncid, int x, int y) { heights_with_length(ncid, x, y, -3.0, "um", "um"); }
+static void nan_length(int ncid, int x, int y) { heights_with_length(ncid, x, y, NAN, "um", "um"); }
+static void two_units(int ncid, int x, int y) { heights_with_length(ncid, x, y, 3.0, "um", "nm"); }
+
+/* NetCDF in SurfaceTopography's layout: a round trip keeps heights (exactly), spacing and unit,
+ * through the heights(x, y) transpose of a non-square grid; malformed files are refused naming the
+ * file and the dimension, variable or attribute. */
+static void netcdf_round_trip_and_refusals(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(7, 5), *g = NULL;
+    f->delta = 0.5;
+    strcpy(f->unit, "\u00b5m");
+    assert_int_equal(im_netcdf_write(test_path("f.nc"), f), IM_OK);
+    assert_int_equal(im_surface_read(test_path("f.nc"), &g), IM_OK);
+    assert_fields_equal(f, g);
+    assert_close(g->delta, 0.5, 0.0);
+    assert_string_equal(g->unit, "\u00b5m");
+    im_field_free(g);
+    int ncid, var, dims[2];
+    size_t length;
+    assert_int_equal(nc_open(test_path("f.nc"), NC_NOWRITE, &ncid), NC_NOERR);
+    assert_int_equal(nc_inq_varid(ncid, "heights", &var), NC_NOERR);
+    nc_inq_vardimid(ncid, var, dims);
+    nc_inq_dimlen(ncid, dims[0], &length);
+    assert_int_equal(length, 7); /* heights(x, y): x first, as SurfaceTopography writes it */
+    size_t at[2] = {4, 3};
+    double value;
+    nc_get_var1_double(ncid, var, at, &value);
+    assert_close(value, f->data[3 * 7 + 4], 0.0);
+    nc_close(ncid);
+    FILE *in = fopen(test_path("f.nc"), "rb");
+    unsigned char bytes[4096];
+    size_t size = fread(bytes, 1, sizeof bytes, in);
+    fclose(in);
+    test_write_bytes(test_path("cut.nc"), bytes, size - 40);
+    expect_refusal(im_netcdf_read, test_path("cut.nc"), IM_EFORMAT, "cut.nc: variable heights (truncated?)");
+    test_write_bytes(test_path("junk.nc"), "CDF\x01 not really", 15);
+    expect_refusal(im_netcdf_read, test_path("junk.nc"), IM_EFORMAT, "cannot open as NetCDF");
+    expect_refusal(im_netcdf_read, write_nc("none.nc", no_heights), IM_EFORMAT, "variable 'heights'");
+    expect_refusal(im_netcdf_read, write_nc("3d.nc", heights_3d), IM_EFORMAT, "heights has 3 dimensions");
+    expect_refusal(im_netcdf_read, write_nc("text.nc", heights_text), IM_EFORMAT, "heights holds text");
+    expect_refusal(im_netcdf_read, write_nc("negative.nc", negative_length), IM_EFORMAT,
+                   "x:length: expected one finite number > 0");
+    expect_refusal(im_netcdf_read, write_nc("nan.nc", nan_length), IM_EFORMAT, "x:length: expected one finite");
+    expect_refusal(im_netcdf_read, write_nc("units.nc", two_units), IM_EFORMAT,
+                   "x:length_unit 'um' and y:length_unit 'nm' differ");
+    im_field_free(f);
 }
 
 /* IM_MEMORY_LIMIT_MIB caps the memory the readers may plan for, so a refusal can be tested at a
@@ -543,6 +634,7 @@ int main(void)
         cmocka_unit_test(bad_npy_files_are_refused),
         cmocka_unit_test(npy_of_any_type_is_converted),
         cmocka_unit_test(sdf_files_round_trip_and_refuse),
+        cmocka_unit_test(netcdf_round_trip_and_refusals),
         cmocka_unit_test(memory_limit_from_the_environment),
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(text_matrix_must_match_its_header),

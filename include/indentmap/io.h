@@ -85,6 +85,18 @@ int im_gsf_read(const char *path, im_field **out);
 int im_sdf_write(const char *path, const im_field *field);
 int im_sdf_read(const char *path, im_field **out);
 
+/* NetCDF (.nc) in the layout of ContactMechanics/SurfaceTopography and contact.engineering:
+ * dimensions x and y, heights(x, y) (first index x; (y, x) is read too), and optional coordinate
+ * variables x and y whose attributes `length` (physical size) and `length_unit` (of lengths and
+ * heights) state the spacing (length / points) and the unit. Any numeric type is read as double;
+ * values equal to the fill value (heights:_FillValue, else netCDF's default for the type, which is
+ * also what netCDF returns for values past the end of a truncated file) are missing points. Refused with IM_EFORMAT naming the file and
+ * the dimension, variable or attribute at fault. Writing uses the classic 64-bit offset format (as
+ * SurfaceTopography does), with length_unit in ASCII ("um" for µm) and periodic = 0, built in
+ * memory and written atomically. */
+int im_netcdf_write(const char *path, const im_field *field);
+int im_netcdf_read(const char *path, im_field **out);
+
 /* ---- units of a surface ----
  * A surface's lateral spacing and its heights are lengths. Files state them (GSF XReal/YReal/
  * XYUnits/ZUnits, Gwyddion text "# Width:", "# Height:", "# Value units:"), the user may set or
@@ -122,7 +134,7 @@ typedef struct im_surface_read_info {
                                 float64; Fortran order transposed to C order"; "" when none */
 } im_surface_read_info;
 
-/* Reads a surface by extension (.npy, .gsf, .sdf, else a text matrix) and applies its units: field->delta
+/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, else a text matrix) and applies its units: field->delta
  * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
  * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
  * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
@@ -133,7 +145,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
 
 /* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
-/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), else a text matrix. */
+/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, else a text matrix. */
 int im_surface_write(const char *path, const im_field *field);
 
 /* ---- PNG ---- */

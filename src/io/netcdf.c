@@ -1,0 +1,308 @@
+/* NetCDF surfaces in the layout of ContactMechanics/SurfaceTopography and contact.engineering:
+ * dimensions x and y, a variable heights(x, y) (the first index is x), and variables x(x) and y(y)
+ * whose attributes `length` (the physical size along that direction), `length_unit` (the unit of
+ * lengths and heights alike) and `periodic` describe the grid. */
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+#include "io/readers.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <netcdf.h>
+#include <netcdf_mem.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* IM_EFORMAT naming the file, what was being read, and netCDF's own message. */
+static int nc_failure(const char *path, const char *what, int error)
+{
+    return im_fail(IM_EFORMAT, "%s: %s: %s", path, what, nc_strerror(error));
+}
+
+/* The length of dimension `name`; IM_EFORMAT naming it when it is missing. */
+static int dimension(int ncid, const char *path, const char *name, int *id, size_t *length)
+{
+    int error = nc_inq_dimid(ncid, name, id);
+    if (error == NC_NOERR)
+        error = nc_inq_dimlen(ncid, *id, length);
+    if (error != NC_NOERR)
+        return im_fail(IM_EFORMAT, "%s: dimension '%s': %s (expected dimensions x and y)", path, name,
+                       nc_strerror(error));
+    if (*length < 1 || *length > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: dimension %s = %zu: expected 1 to %d", path, name, *length, IM_FIELD_MAX_SIDE);
+    return IM_OK;
+}
+
+/* The variable heights with dimensions (x, y) or (y, x); *x_first tells which. */
+static int heights_variable(int ncid, const char *path, int x_dim, int y_dim, int *var, int *x_first)
+{
+    int error = nc_inq_varid(ncid, "heights", var), ndims = 0, dims[NC_MAX_VAR_DIMS];
+    nc_type type;
+    if (error == NC_NOERR)
+        error = nc_inq_var(ncid, *var, NULL, &type, &ndims, NULL, NULL);
+    if (error != NC_NOERR)
+        return nc_failure(path, "variable 'heights'", error);
+    if (ndims != 2)
+        return im_fail(IM_EFORMAT, "%s: variable heights has %d dimensions: expected heights(x, y)", path, ndims);
+    nc_inq_vardimid(ncid, *var, dims);
+    if (!((dims[0] == x_dim && dims[1] == y_dim) || (dims[0] == y_dim && dims[1] == x_dim)))
+        return im_fail(IM_EFORMAT, "%s: variable heights: expected dimensions (x, y)", path);
+    if (type == NC_CHAR || type == NC_STRING)
+        return im_fail(IM_EFORMAT, "%s: variable heights holds text: expected numbers", path);
+    *x_first = dims[0] == x_dim;
+    return IM_OK;
+}
+
+/* Attribute `length` and `length_unit` of the coordinate variable `name`, when present: the
+ * spacing length / points and the unit. IM_EFORMAT naming the attribute when malformed. */
+static int coordinate(int ncid, const char *path, const char *name, size_t points, double *spacing, char *unit)
+{
+    int var;
+    if (nc_inq_varid(ncid, name, &var) != NC_NOERR)
+        return IM_OK; /* optional: then the grid has no physical size */
+    nc_type type;
+    size_t count;
+    if (nc_inq_att(ncid, var, "length", &type, &count) == NC_NOERR) {
+        double length = NAN;
+        if (count != 1 || type == NC_CHAR || type == NC_STRING || nc_get_att_double(ncid, var, "length", &length) ||
+            !isfinite(length) || !(length > 0.0))
+            return im_fail(IM_EFORMAT, "%s: %s:length: expected one finite number > 0", path, name);
+        *spacing = length / (double)points;
+    }
+    if (nc_inq_att(ncid, var, "length_unit", &type, &count) == NC_NOERR) {
+        if (type != NC_CHAR || count < 1 || count > 15 || nc_get_att_text(ncid, var, "length_unit", unit))
+            return im_fail(IM_EFORMAT, "%s: %s:length_unit: expected a short text", path, name);
+        unit[count] = '\0';
+    }
+    return IM_OK;
+}
+
+/* The variable's fill value as a double: its _FillValue, or netCDF's default fill for its type,
+ * which is what a reader gets for values never written, e.g. past the end of a truncated file. */
+static int fill_value(int ncid, int var, double *fill)
+{
+    nc_type type;
+    union { signed char b; unsigned char ub; short s; unsigned short us; int i; unsigned int ui; long long ll;
+            unsigned long long ull; float f; double d; } v;
+    int no_fill = 0;
+    if (nc_inq_vartype(ncid, var, &type) != NC_NOERR || nc_inq_var_fill(ncid, var, &no_fill, &v) != NC_NOERR)
+        return 0;
+    switch (type) {
+    case NC_BYTE: *fill = v.b; break;
+    case NC_UBYTE: *fill = v.ub; break;
+    case NC_SHORT: *fill = v.s; break;
+    case NC_USHORT: *fill = v.us; break;
+    case NC_INT: *fill = v.i; break;
+    case NC_UINT: *fill = v.ui; break;
+    case NC_INT64: *fill = (double)v.ll; break;
+    case NC_UINT64: *fill = (double)v.ull; break;
+    case NC_FLOAT: *fill = v.f; break;
+    default: *fill = v.d;
+    }
+    return 1;
+}
+
+/* Values equal to the fill value are missing points (NaN): refused, or filled on request. */
+static void mark_fill_values(int ncid, int var, im_field *field)
+{
+    double fill;
+    if (!fill_value(ncid, var, &fill))
+        return;
+    size_t n = im_field_count(field);
+    for (size_t i = 0; i < n; ++i)
+        if (field->data[i] == fill)
+            field->data[i] = NAN;
+}
+
+/* heights(x, y) into the row-major field (row y): netCDF maps the x index to a stride of 1 and the y
+ * index to a stride of nx, so the transpose needs no second copy. */
+static int read_heights(int ncid, const char *path, int var, int x_first, im_field *field)
+{
+    size_t start[2] = {0, 0}, count_xy[2] = {(size_t)field->nx, (size_t)field->ny};
+    size_t count_yx[2] = {(size_t)field->ny, (size_t)field->nx};
+    ptrdiff_t stride[2] = {1, 1}, map_xy[2] = {1, field->nx}, map_yx[2] = {field->nx, 1};
+    int error = nc_get_varm_double(ncid, var, start, x_first ? count_xy : count_yx, stride, x_first ? map_xy : map_yx,
+                                   field->data);
+    if (error != NC_NOERR)
+        return nc_failure(path, "variable heights (truncated?)", error);
+    mark_fill_values(ncid, var, field);
+    return IM_OK;
+}
+
+static int read_open(int ncid, const char *path, im_field **out, surface_stated *stated)
+{
+    int x_dim, y_dim, var, x_first;
+    size_t nx, ny;
+    int status = dimension(ncid, path, "x", &x_dim, &nx);
+    if (status == IM_OK)
+        status = dimension(ncid, path, "y", &y_dim, &ny);
+    if (status == IM_OK)
+        status = heights_variable(ncid, path, x_dim, y_dim, &var, &x_first);
+    char x_unit[16] = "", y_unit[16] = "";
+    if (status == IM_OK)
+        status = coordinate(ncid, path, "x", nx, &stated->units.delta_x, x_unit);
+    if (status == IM_OK)
+        status = coordinate(ncid, path, "y", ny, &stated->units.delta_y, y_unit);
+    if (status == IM_OK && y_unit[0] && strcmp(x_unit, y_unit) != 0)
+        status = im_fail(IM_EFORMAT, "%s: x:length_unit '%s' and y:length_unit '%s' differ: expected one unit",
+                         path, x_unit, y_unit);
+    if (status == IM_OK && (status = im_field_create((int)nx, (int)ny, 1.0, out)) != IM_OK)
+        im_fail_context(status, "%s", path);
+    if (status == IM_OK && (status = read_heights(ncid, path, var, x_first, *out)) != IM_OK) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    memcpy(stated->units.lateral, x_unit, sizeof x_unit);
+    return status;
+}
+
+typedef struct mapped_file {
+    void *bytes;   /* NULL when netCDF reads the file itself */
+    size_t size;
+} mapped_file;
+
+/* Opens the dataset. A classic file (CDF1, CDF2, CDF5) is mapped into memory and opened from there:
+ * netCDF then refuses to read past its end, where reading the file directly would return zeros for
+ * the values of a truncated file. NetCDF-4 (HDF5) files are opened directly (HDF5 checks its own
+ * structure). */
+static int open_dataset(const char *path, mapped_file *file, int *ncid)
+{
+    *file = (mapped_file){NULL, 0};
+    int fd = open(path, O_RDONLY), error;
+    struct stat info;
+    if (fd < 0 || fstat(fd, &info) != 0) {
+        int saved = errno;
+        if (fd >= 0)
+            close(fd);
+        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(saved));
+    }
+    unsigned char magic[4] = {0};
+    int classic = S_ISREG(info.st_mode) && read(fd, magic, 4) == 4 && memcmp(magic, "CDF", 3) == 0;
+    if (classic) {
+        file->size = (size_t)info.st_size;
+        file->bytes = mmap(NULL, file->size, PROT_READ, MAP_PRIVATE, fd, 0);
+        if (file->bytes == MAP_FAILED)
+            file->bytes = NULL;
+    }
+    close(fd);
+    if (classic && !file->bytes)
+        return im_fail(IM_EIO, "%s: cannot map the file: %s", path, strerror(errno));
+    error = classic ? nc_open_mem(path, NC_NOWRITE, file->size, file->bytes, ncid) : nc_open(path, NC_NOWRITE, ncid);
+    if (error != NC_NOERR) {
+        if (file->bytes)
+            munmap(file->bytes, file->size);
+        return im_fail(IM_EFORMAT, "%s: cannot open as NetCDF: %s", path, nc_strerror(error));
+    }
+    return IM_OK;
+}
+
+int im_netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
+{
+    *out = NULL;
+    *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y", .lateral_key = "x:length_unit",
+                               .height_key = "x:length_unit"};
+    mapped_file file;
+    int ncid, status = open_dataset(path, &file, &ncid);
+    if (status != IM_OK)
+        return status;
+    status = read_open(ncid, path, out, stated);
+    nc_close(ncid);
+    if (file.bytes)
+        munmap(file.bytes, file.size);
+    return status;
+}
+
+int im_netcdf_read(const char *path, im_field **out)
+{
+    return im_surface_read_format(path, im_netcdf_read_raw, NULL, out, NULL);
+}
+
+/* ---- writing: classic 64-bit offset format, built in memory and written atomically ---- */
+
+/* The unit in ASCII, as SurfaceTopography (through scipy) writes it: "um" for µm, "A" for Å. */
+static const char *ascii_unit(const char *unit)
+{
+    return strcmp(unit, "\u00b5m") == 0 ? "um" : strcmp(unit, "\u00c5") == 0 ? "A" : unit;
+}
+
+static int define_coordinate(int ncid, const char *name, int dim, double length, const char *unit, int *var)
+{
+    int periodic = 0; /* a written surface makes no claim to be periodic */
+    int error = nc_def_var(ncid, name, NC_DOUBLE, 1, &dim, var);
+    if (!error)
+        error = nc_put_att_double(ncid, *var, "length", NC_DOUBLE, 1, &length);
+    if (!error)
+        error = nc_put_att_int(ncid, *var, "periodic", NC_INT, 1, &periodic);
+    if (!error && unit[0])
+        error = nc_put_att_text(ncid, *var, "length_unit", strlen(unit), unit);
+    return error;
+}
+
+static int put_coordinate(int ncid, int var, int points, double spacing)
+{
+    int error = NC_NOERR;
+    for (size_t i = 0; error == NC_NOERR && i < (size_t)points; ++i) {
+        double centre = ((double)i + 0.5) * spacing;
+        error = nc_put_var1_double(ncid, var, &i, &centre);
+    }
+    return error;
+}
+
+/* The heights as heights(x, y): column by column of the row-major field. */
+static int put_heights(int ncid, int var, const im_field *field)
+{
+    int error = NC_NOERR;
+    double *column = malloc((size_t)field->ny * sizeof *column);
+    if (!column)
+        return NC_ENOMEM;
+    for (size_t ix = 0; error == NC_NOERR && ix < (size_t)field->nx; ++ix) {
+        for (size_t iy = 0; iy < (size_t)field->ny; ++iy)
+            column[iy] = field->data[iy * (size_t)field->nx + ix];
+        size_t start[2] = {ix, 0}, count[2] = {1, (size_t)field->ny};
+        error = nc_put_vara_double(ncid, var, start, count, column);
+    }
+    free(column);
+    return error;
+}
+
+static int write_dataset(int ncid, const im_field *field)
+{
+    int dims[2], x_var, y_var, h_var;
+    const char *unit = ascii_unit(field->unit);
+    int error = nc_def_dim(ncid, "x", (size_t)field->nx, &dims[0]);
+    if (!error)
+        error = nc_def_dim(ncid, "y", (size_t)field->ny, &dims[1]);
+    if (!error)
+        error = define_coordinate(ncid, "x", dims[0], field->nx * field->delta, unit, &x_var);
+    if (!error)
+        error = define_coordinate(ncid, "y", dims[1], field->ny * field->delta, unit, &y_var);
+    if (!error)
+        error = nc_def_var(ncid, "heights", NC_DOUBLE, 2, dims, &h_var);
+    if (!error)
+        error = nc_enddef(ncid);
+    if (!error)
+        error = put_coordinate(ncid, x_var, field->nx, field->delta);
+    if (!error)
+        error = put_coordinate(ncid, y_var, field->ny, field->delta);
+    return error ? error : put_heights(ncid, h_var, field);
+}
+
+int im_netcdf_write(const char *path, const im_field *field)
+{
+    int ncid; /* an initial size of 0 lets the buffer grow to the dataset's exact size (no padding) */
+    int error = nc_create_mem(path, NC_64BIT_OFFSET, 0, &ncid);
+    if (error != NC_NOERR)
+        return im_fail(IM_EIO, "%s: cannot create the NetCDF dataset: %s", path, nc_strerror(error));
+    error = write_dataset(ncid, field);
+    NC_memio memio = {0};
+    int closed = nc_close_memio(ncid, &memio);
+    int status = error || closed ? im_fail(IM_EIO, "%s: NetCDF: %s", path, nc_strerror(error ? error : closed))
+                                 : im_write_file_atomic(path, memio.memory, memio.size);
+    free(memio.memory);
+    return status;
+}
