@@ -19,6 +19,7 @@ PACKAGES=(
   fonts-dejavu-core                        # the font figures are set in
   libgif-dev                               # animated GIFs
   libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
+  libzip-dev libxml2-dev                   # ISO 25178-72 .x3p surfaces: zip archive around XML
 )
 
 missing=()

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <netcdf.h>
+#include <zip.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -364,6 +365,90 @@ static void netcdf_round_trip_and_refusals(void **state)
     im_field_free(f);
 }
 
+/* An .x3p archive holding main.xml (xml, may be NULL) and bindata/data.bin (data, may be NULL). */
+static const char *write_x3p(const char *name, const char *xml, const void *data, size_t size)
+{
+    const char *path = test_path(name);
+    remove(path);
+    int error;
+    zip_t *archive = zip_open(path, ZIP_CREATE | ZIP_TRUNCATE, &error);
+    assert_non_null(archive);
+    if (xml)
+        zip_file_add(archive, "main.xml", zip_source_buffer(archive, xml, strlen(xml), 0), 0);
+    if (data)
+        zip_file_add(archive, "bindata/data.bin", zip_source_buffer(archive, data, size, 0), 0);
+    assert_int_equal(zip_close(archive), 0);
+    return path;
+}
+
+/* main.xml of a 3 x 2 grid with the given CX AxisType, CZ DataType, CX Increment and SizeX. */
+static void x3p_xml(char *out, size_t size, const char *cx_type, const char *z_type, const char *increment,
+                    const char *size_x)
+{
+    snprintf(out, size, "<?xml version=\"1.0\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">"
+             "<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>"
+             "<CX><AxisType>%s</AxisType><DataType>D</DataType><Increment>%s</Increment><Offset>0</Offset></CX>"
+             "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CY>"
+             "<CZ><AxisType>A</AxisType><DataType>%s</DataType><Increment>1e-9</Increment><Offset>2e-9</Offset></CZ>"
+             "</Axes></Record1><Record3><MatrixDimension><SizeX>%s</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ>"
+             "</MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3>"
+             "</p:ISO5436_2>\n", cx_type, increment, z_type, size_x);
+}
+
+/* ISO 25178-72 .x3p: a round trip keeps heights, spacing and unit (metres); an archive written by
+ * hand (int16 data, CZ Increment and Offset) reads as Offset + Increment x value; malformed archives
+ * are refused naming the file and the element. */
+static void x3p_round_trip_and_refusals(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(7, 5), *g = NULL;
+    f->delta = 0.5;
+    strcpy(f->unit, "nm");
+    assert_int_equal(im_x3p_write(test_path("f.x3p"), f), IM_OK);
+    assert_int_equal(im_surface_read(test_path("f.x3p"), &g), IM_OK);
+    assert_int_equal(g->nx, 7);
+    assert_int_equal(g->ny, 5);
+    assert_string_equal(g->unit, "m");
+    assert_close(g->delta, 0.5e-9, 1e-25);
+    for (size_t i = 0; i < im_field_count(f); ++i)
+        assert_close(g->data[i], f->data[i] * 1e-9, 0.0); /* the same product, stored as double */
+    im_field_free(g);
+    char xml[2048];
+    const short values[6] = {1, -2, 3, -4, 5, 32767};
+    x3p_xml(xml, sizeof xml, "I", "I", "1e-6", "3");
+    assert_int_equal(im_surface_read(write_x3p("int16.x3p", xml, values, sizeof values), &g), IM_OK);
+    assert_close(g->delta, 1e-6, 0.0);
+    assert_close(g->data[1], 2e-9 - 2e-9, 1e-24);
+    assert_close(g->data[5], 2e-9 + 32767e-9, 1e-21);
+    im_field_free(g);
+    static const struct {
+        const char *cx_type, *z_type, *increment, *size_x, *phrase;
+        size_t bytes;
+    } cases[] = {
+        {"A", "I", "1e-6", "3", "AxisType CX A, CY I, CZ A: expected I, I, A", 12},
+        {"I", "Q", "1e-6", "3", "CZ/DataType 'Q': expected I, L, F or D", 12},
+        {"I", "I", "0", "3", "Increment CX 0, CY 1e-06, CZ 1e-09: expected CX, CY > 0", 12},
+        {"I", "I", "nan", "3", "CX/Increment 'nan': expected a finite number", 12},
+        {"I", "I", "1e-6", "3.5", "MatrixDimension 3.5 x 2 x 1: expected SizeX, SizeY integers", 12},
+        {"I", "I", "1e-6", "3", "bindata/data.bin holds 10 bytes, SizeX x SizeY = 3 x 2 values of type I need 12",
+         10},
+        {"I", "I", "2e-6", "3", "CX/Increment and CY/Increment: non-square pixels", 12},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
+        x3p_xml(xml, sizeof xml, cases[i].cx_type, cases[i].z_type, cases[i].increment, cases[i].size_x);
+        expect_refusal(im_x3p_read, write_x3p("bad.x3p", xml, values, cases[i].bytes), IM_EFORMAT, cases[i].phrase);
+    }
+    expect_refusal(im_x3p_read, write_x3p("noxml.x3p", NULL, values, 12), IM_EFORMAT, "no main.xml: not an x3p");
+    expect_refusal(im_x3p_read, write_x3p("broken.x3p", "<p:ISO5436_2><Record1>", values, 12), IM_EFORMAT,
+                   "not well-formed ISO 5436-2 XML");
+    expect_refusal(im_x3p_read, write_x3p("dtd.x3p", "<?xml version=\"1.0\"?><!DOCTYPE ISO5436_2 [<!ENTITY a "
+                   "\"aaaaaaaaaa\"><!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\">]><ISO5436_2>&b;</ISO5436_2>", values, 12),
+                   IM_EFORMAT, "declares a DTD");
+    test_write_bytes(test_path("plain.x3p"), "PK\x03\x04 not a zip", 17);
+    expect_refusal(im_x3p_read, test_path("plain.x3p"), IM_EFORMAT, "cannot open as an x3p (zip) archive");
+    im_field_free(f);
+}
+
 /* IM_MEMORY_LIMIT_MIB caps the memory the readers may plan for, so a refusal can be tested at a
  * size every machine holds; a malformed value is refused, naming the variable. */
 static void memory_limit_from_the_environment(void **state)
@@ -635,6 +720,7 @@ int main(void)
         cmocka_unit_test(npy_of_any_type_is_converted),
         cmocka_unit_test(sdf_files_round_trip_and_refuse),
         cmocka_unit_test(netcdf_round_trip_and_refusals),
+        cmocka_unit_test(x3p_round_trip_and_refusals),
         cmocka_unit_test(memory_limit_from_the_environment),
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(text_matrix_must_match_its_header),

@@ -97,6 +97,17 @@ int im_sdf_read(const char *path, im_field **out);
 int im_netcdf_write(const char *path, const im_field *field);
 int im_netcdf_read(const char *path, im_field **out);
 
+/* ISO 25178-72 .x3p: a zip archive (libzip) holding main.xml (ISO 5436-2, parsed with libxml2
+ * without network access or entity expansion) and the binary data it links. Read: Record1 Axes CX,
+ * CY of AxisType I with Increment (the spacings, metres), CZ of AxisType A with DataType I (int16),
+ * L (int32), F (float32) or D (float64), heights Offset + Increment x value in metres; Record3
+ * MatrixDimension SizeX, SizeY, SizeZ = 1 and DataLink/PointDataLink, whose entry must hold exactly
+ * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data and checksums are
+ * not read. Refused with IM_EFORMAT naming the file and the element. Written: DataType D in metres
+ * (the field needs a length unit; IM_EINVAL otherwise), without md5 checksums. */
+int im_x3p_write(const char *path, const im_field *field);
+int im_x3p_read(const char *path, im_field **out);
+
 /* ---- units of a surface ----
  * A surface's lateral spacing and its heights are lengths. Files state them (GSF XReal/YReal/
  * XYUnits/ZUnits, Gwyddion text "# Width:", "# Height:", "# Value units:"), the user may set or
@@ -134,7 +145,7 @@ typedef struct im_surface_read_info {
                                 float64; Fortran order transposed to C order"; "" when none */
 } im_surface_read_info;
 
-/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, else a text matrix) and applies its units: field->delta
+/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p, else a text matrix) and applies its units: field->delta
  * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
  * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
  * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
@@ -145,7 +156,8 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
 
 /* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
-/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, else a text matrix. */
+/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, .x3p, else a text
+ * matrix. */
 int im_surface_write(const char *path, const im_field *field);
 
 /* ---- PNG ---- */

@@ -23,6 +23,7 @@ int im_text_read_raw(const char *path, im_field **out, surface_stated *stated);
 int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated);
 int im_sdf_read_raw(const char *path, im_field **out, surface_stated *stated);
 int im_netcdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+int im_x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
 
 /* Applies the stated units and the overrides of options (may be NULL) to a raw field, as
  * im_surface_read_with describes; fills info (may be NULL). On failure the field is left to the

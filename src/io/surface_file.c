@@ -17,6 +17,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
                               : has_extension(path, ".gsf") ? im_gsf_read_raw
                               : has_extension(path, ".sdf") ? im_sdf_read_raw
                               : has_extension(path, ".nc")  ? im_netcdf_read_raw
+                              : has_extension(path, ".x3p") ? im_x3p_read_raw
                                                             : im_text_read_raw;
     return im_surface_read_format(path, read, options, out, info);
 }
@@ -36,5 +37,7 @@ int im_surface_write(const char *path, const im_field *field)
         return im_sdf_write(path, field);
     if (has_extension(path, ".nc"))
         return im_netcdf_write(path, field);
+    if (has_extension(path, ".x3p"))
+        return im_x3p_write(path, field);
     return im_text_write(path, field);
 }
