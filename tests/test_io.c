@@ -444,7 +444,8 @@ static void x3p_round_trip_and_refusals(void **state)
     expect_refusal(im_x3p_read, write_x3p("dtd.x3p", "<?xml version=\"1.0\"?><!DOCTYPE ISO5436_2 [<!ENTITY a "
                    "\"aaaaaaaaaa\"><!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\">]><ISO5436_2>&b;</ISO5436_2>", values, 12),
                    IM_EFORMAT, "declares a DTD");
-    test_write_bytes(test_path("plain.x3p"), "PK\x03\x04 not a zip", 17);
+    static const char not_zip[] = "PK\x03\x04 not a zip";
+    test_write_bytes(test_path("plain.x3p"), not_zip, sizeof not_zip - 1);
     expect_refusal(im_x3p_read, test_path("plain.x3p"), IM_EFORMAT, "cannot open as an x3p (zip) archive");
     im_field_free(f);
 }

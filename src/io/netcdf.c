@@ -2,6 +2,7 @@
  * dimensions x and y, a variable heights(x, y) (the first index is x), and variables x(x) and y(y)
  * whose attributes `length` (the physical size along that direction), `length_unit` (the unit of
  * lengths and heights alike) and `periodic` describe the grid. */
+#define _DEFAULT_SOURCE /* madvise(MADV_DONTNEED): glibc ignores posix_madvise's */
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
@@ -119,22 +120,46 @@ static void mark_fill_values(int ncid, int var, im_field *field)
             field->data[i] = NAN;
 }
 
-/* heights(x, y) into the row-major field (row y): netCDF maps the x index to a stride of 1 and the y
- * index to a stride of nx, so the transpose needs no second copy. */
-static int read_heights(int ncid, const char *path, int var, int x_first, im_field *field)
+typedef struct mapped_file {
+    void *bytes;   /* NULL when netCDF reads the file itself */
+    size_t size;
+} mapped_file;
+
+enum { SLAB = 64 }; /* rows of the stored array read at a time */
+
+/* Pages of the mapped file already read are clean copies of the page cache: dropping them keeps the
+ * reader's resident memory near the field's own (they fault back in if netCDF needs them again). */
+static void release_pages(const mapped_file *file)
 {
-    size_t start[2] = {0, 0}, count_xy[2] = {(size_t)field->nx, (size_t)field->ny};
-    size_t count_yx[2] = {(size_t)field->ny, (size_t)field->nx};
-    ptrdiff_t stride[2] = {1, 1}, map_xy[2] = {1, field->nx}, map_yx[2] = {field->nx, 1};
-    int error = nc_get_varm_double(ncid, var, start, x_first ? count_xy : count_yx, stride, x_first ? map_xy : map_yx,
-                                   field->data);
+    if (file->bytes)
+        madvise(file->bytes, file->size, MADV_DONTNEED);
+}
+
+/* heights into the row-major field (row y), SLAB stored rows at a time: stored as (y, x), straight
+ * into the field; stored as (x, y) (SurfaceTopography's order), through a slab transposed here. */
+static int read_heights(int ncid, const char *path, int var, int x_first, im_field *field, const mapped_file *file)
+{
+    size_t nx = (size_t)field->nx, ny = (size_t)field->ny, rows = x_first ? nx : ny, length = x_first ? ny : nx;
+    double *slab = x_first ? malloc(SLAB * length * sizeof *slab) : NULL;
+    if (x_first && !slab)
+        return im_fail(IM_ENOMEM, "%s: heights: allocation of a %d x %zu slab failed", path, SLAB, length);
+    int error = NC_NOERR;
+    for (size_t row = 0; error == NC_NOERR && row < rows; row += SLAB) {
+        size_t count[2] = {rows - row < SLAB ? rows - row : SLAB, length}, start[2] = {row, 0};
+        error = nc_get_vara_double(ncid, var, start, count, x_first ? slab : field->data + row * nx);
+        for (size_t ix = row; error == NC_NOERR && x_first && ix < row + count[0]; ++ix)
+            for (size_t iy = 0; iy < ny; ++iy)
+                field->data[iy * nx + ix] = slab[(ix - row) * ny + iy];
+        release_pages(file);
+    }
+    free(slab);
     if (error != NC_NOERR)
         return nc_failure(path, "variable heights (truncated?)", error);
     mark_fill_values(ncid, var, field);
     return IM_OK;
 }
 
-static int read_open(int ncid, const char *path, im_field **out, surface_stated *stated)
+static int read_open(int ncid, const char *path, im_field **out, surface_stated *stated, const mapped_file *file)
 {
     int x_dim, y_dim, var, x_first;
     size_t nx, ny;
@@ -153,18 +178,13 @@ static int read_open(int ncid, const char *path, im_field **out, surface_stated 
                          path, x_unit, y_unit);
     if (status == IM_OK && (status = im_field_create((int)nx, (int)ny, 1.0, out)) != IM_OK)
         im_fail_context(status, "%s", path);
-    if (status == IM_OK && (status = read_heights(ncid, path, var, x_first, *out)) != IM_OK) {
+    if (status == IM_OK && (status = read_heights(ncid, path, var, x_first, *out, file)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }
     memcpy(stated->units.lateral, x_unit, sizeof x_unit);
     return status;
 }
-
-typedef struct mapped_file {
-    void *bytes;   /* NULL when netCDF reads the file itself */
-    size_t size;
-} mapped_file;
 
 /* Opens the dataset. A classic file (CDF1, CDF2, CDF5) is mapped into memory and opened from there:
  * netCDF then refuses to read past its end, where reading the file directly would return zeros for
@@ -210,7 +230,7 @@ int im_netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
     int ncid, status = open_dataset(path, &file, &ncid);
     if (status != IM_OK)
         return status;
-    status = read_open(ncid, path, out, stated);
+    status = read_open(ncid, path, out, stated, &file);
     nc_close(ncid);
     if (file.bytes)
         munmap(file.bytes, file.size);
