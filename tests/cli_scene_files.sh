@@ -32,6 +32,7 @@ check "one file: eq. (12) column is indentmap theory at it ($theory)" \
   awk -v a="$(cut -d, -f9 <<<"$row")" -v b="$theory" 'BEGIN { exit !(a - b < 1e-6 && b - a < 1e-6) }'
 check "one file: the definition is stated" grep -q "measured by forward differences" "$dir/one/table1.md"
 check "one file: run.json records it" grep -q '"slope_definition": "forward differences' "$dir/one/run.json"
+check "one file: run.json records the length unit" grep -q '"length_unit": "delta"' "$dir/one/run.json"
 
 # Two files are an ensemble of two: slope the rms of theirs, one member each with its own h'rms.
 scene two "file = a.npy, b.npy"

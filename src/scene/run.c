@@ -94,6 +94,7 @@ int im_scene_measure_files(im_scene *scene)
         scene->surface.nx = first->nx;
         scene->surface.ny = first->ny;
         scene->surface.delta = first->delta;
+        memcpy(scene->file_unit, first->unit, sizeof scene->file_unit);
         scene->slopes[0] = sqrt(sum_squares / scene->file_count);
     }
     im_field_free(first);
