@@ -101,6 +101,20 @@ static void oversized_headers_are_refused_before_allocation(void **state)
     }
 }
 
+/* fuzz_netcdf's out-of-memory input: an 88-byte classic header whose name length made netCDF allocate
+ * gigabytes before finding the file too short. The reader's own walk over the header refuses it
+ * first, naming the file. */
+static void hostile_netcdf_header_is_refused_before_netcdf(void **state)
+{
+    (void)state;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/fuzz/regressions/netcdf/oom_name_length.nc", getenv("IM_SOURCE_DIR"));
+    im_field *field = NULL;
+    assert_int_equal(im_netcdf_read(path, &field), IM_EFORMAT);
+    assert_null(field);
+    assert_non_null(strstr(im_last_error(), "oom_name_length.nc: netCDF header: a count or name runs past the end"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -112,6 +126,7 @@ int main(void)
         cmocka_unit_test(netcdf_inputs),
         cmocka_unit_test(x3p_inputs),
         cmocka_unit_test(oversized_headers_are_refused_before_allocation),
+        cmocka_unit_test(hostile_netcdf_header_is_refused_before_netcdf),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -351,9 +351,11 @@ static void netcdf_round_trip_and_refusals(void **state)
     size_t size = fread(bytes, 1, sizeof bytes, in);
     fclose(in);
     test_write_bytes(test_path("cut.nc"), bytes, size - 40);
-    expect_refusal(im_netcdf_read, test_path("cut.nc"), IM_EFORMAT, "cut.nc: variable heights (truncated?)");
+    expect_refusal(im_netcdf_read, test_path("cut.nc"), IM_EFORMAT, "cut.nc: truncated: a variable's data lies past");
     test_write_bytes(test_path("junk.nc"), "CDF\x01 not really", 15);
-    expect_refusal(im_netcdf_read, test_path("junk.nc"), IM_EFORMAT, "cannot open as NetCDF");
+    expect_refusal(im_netcdf_read, test_path("junk.nc"), IM_EFORMAT, "junk.nc: netCDF header: a count or name runs past");
+    test_write_bytes(test_path("hdf.nc"), "\x89HDF\r\n\x1a\n not really", 19);
+    expect_refusal(im_netcdf_read, test_path("hdf.nc"), IM_EFORMAT, "cannot open as NetCDF");
     expect_refusal(im_netcdf_read, write_nc("none.nc", no_heights), IM_EFORMAT, "variable 'heights'");
     expect_refusal(im_netcdf_read, write_nc("3d.nc", heights_3d), IM_EFORMAT, "heights has 3 dimensions");
     expect_refusal(im_netcdf_read, write_nc("text.nc", heights_text), IM_EFORMAT, "heights holds text");

@@ -12,6 +12,7 @@
 #include <fcntl.h>
 #include <math.h>
 #include <netcdf.h>
+#include <stdint.h>
 #include <netcdf_mem.h>
 #include <stdlib.h>
 #include <string.h>
@@ -186,6 +187,120 @@ static int read_open(int ncid, const char *path, im_field **out, surface_stated 
     return status;
 }
 
+/* ---- a walk over a classic header before netCDF parses it ----
+ * netCDF allocates each name, attribute and list by the counts the header states before it finds
+ * the file too short for them: a hostile 88-byte header made it allocate gigabytes (found with
+ * fuzz/fuzz_netcdf). The walk checks every count against the bytes that remain, and that every
+ * fixed-size variable's data (begin + vsize) lies inside the file. The layout is the netCDF classic
+ * format specification's (CDF1, CDF2 64-bit offset, CDF5 64-bit data). */
+typedef struct header_walk {
+    const unsigned char *bytes;
+    size_t size, at;
+    int version;     /* 1, 2 or 5 */
+} header_walk;
+
+/* A big-endian unsigned integer of `width` bytes; 0 (and the walk at its end) past the end. */
+static uint64_t take(header_walk *w, int width)
+{
+    uint64_t value = 0;
+    if (w->size - w->at < (size_t)width) {
+        w->at = w->size + 1; /* marks the walk as failed */
+        return 0;
+    }
+    for (int i = 0; i < width; ++i)
+        value = value << 8 | w->bytes[w->at++];
+    return value;
+}
+
+static int failed(const header_walk *w) { return w->at > w->size; }
+static int count_width(const header_walk *w) { return w->version == 5 ? 8 : 4; }
+
+/* Skips count items of `item` bytes each, padded to 4, when they fit in what remains. */
+static void skip(header_walk *w, uint64_t count, unsigned item)
+{
+    uint64_t remaining = failed(w) ? 0 : w->size - w->at;
+    if (item == 0 || count > remaining / item) {
+        w->at = w->size + 1;
+        return;
+    }
+    uint64_t bytes = (count * item + 3) / 4 * 4;
+    w->at = bytes > remaining ? w->size + 1 : w->at + (size_t)bytes;
+}
+
+static void skip_name(header_walk *w) { skip(w, take(w, count_width(w)), 1); }
+
+static unsigned type_size(uint64_t type)
+{
+    static const unsigned SIZES[] = {0, 1, 1, 2, 4, 4, 8, 1, 2, 4, 8, 8};
+    return type < sizeof SIZES / sizeof *SIZES ? SIZES[type] : 0;
+}
+
+/* A list: its tag (0 when absent) and element count; the walk fails on another tag. */
+static uint64_t list_count(header_walk *w, uint64_t tag)
+{
+    uint64_t found = take(w, 4), count = take(w, count_width(w));
+    if (found != tag && !(found == 0 && count == 0))
+        w->at = w->size + 1;
+    return count;
+}
+
+static void skip_attributes(header_walk *w)
+{
+    uint64_t count = list_count(w, 0x0C);
+    for (uint64_t i = 0; i < count && !failed(w); ++i) {
+        skip_name(w);
+        unsigned size = type_size(take(w, 4));
+        skip(w, take(w, count_width(w)), size);
+    }
+}
+
+/* Dimensions, attributes and variables; each fixed-size variable's data must lie in the file. */
+static int walk_header(header_walk *w, size_t *dims_out)
+{
+    take(w, 4);                              /* magic and version */
+    take(w, count_width(w));                 /* numrecs */
+    uint64_t dims = list_count(w, 0x0A);
+    uint64_t *lengths = dims && dims < w->size ? calloc((size_t)dims, sizeof *lengths) : NULL;
+    for (uint64_t i = 0; i < dims && lengths && !failed(w); ++i) {
+        skip_name(w);
+        lengths[i] = take(w, count_width(w));
+    }
+    skip_attributes(w);
+    uint64_t vars = list_count(w, 0x0B);
+    int outside = 0;
+    for (uint64_t i = 0; i < vars && !failed(w) && !outside; ++i) {
+        skip_name(w);
+        uint64_t rank = take(w, count_width(w)), record = 0;
+        for (uint64_t d = 0; d < rank && !failed(w); ++d) {
+            uint64_t id = take(w, count_width(w));
+            record |= id >= dims || !lengths || lengths[id] == 0; /* the record dimension, or a bad id */
+        }
+        skip_attributes(w);
+        take(w, 4);                          /* nc_type */
+        uint64_t vsize = take(w, count_width(w)), begin = take(w, w->version == 1 ? 4 : 8);
+        outside = !record && (begin > w->size || vsize > w->size - begin);
+    }
+    free(lengths);
+    *dims_out = (size_t)dims;
+    return failed(w) || (dims && !lengths) ? -1 : outside ? 1 : 0;
+}
+
+static int check_classic_header(const char *path, const unsigned char *bytes, size_t size)
+{
+    header_walk w = {bytes, size, 0, size > 3 ? bytes[3] : 0};
+    if (w.version != 1 && w.version != 2 && w.version != 5)
+        return im_fail(IM_EFORMAT, "%s: not a netCDF classic file (version byte %d)", path, w.version);
+    size_t dims = 0;
+    int result = walk_header(&w, &dims);
+    if (result < 0)
+        return im_fail(IM_EFORMAT, "%s: netCDF header: a count or name runs past the end of the file (%zu bytes)",
+                       path, size);
+    if (result > 0)
+        return im_fail(IM_EFORMAT, "%s: truncated: a variable's data lies past the end of the file (%zu bytes)", path,
+                       size);
+    return IM_OK;
+}
+
 /* Opens the dataset. A classic file (CDF1, CDF2, CDF5) is mapped into memory and opened from there:
  * netCDF then refuses to read past its end, where reading the file directly would return zeros for
  * the values of a truncated file. NetCDF-4 (HDF5) files are opened directly (HDF5 checks its own
@@ -212,6 +327,10 @@ static int open_dataset(const char *path, mapped_file *file, int *ncid)
     close(fd);
     if (classic && !file->bytes)
         return im_fail(IM_EIO, "%s: cannot map the file: %s", path, strerror(errno));
+    if (classic && check_classic_header(path, file->bytes, file->size) != IM_OK) {
+        munmap(file->bytes, file->size);
+        return IM_EFORMAT;
+    }
     error = classic ? nc_open_mem(path, NC_NOWRITE, file->size, file->bytes, ncid) : nc_open(path, NC_NOWRITE, ncid);
     if (error != NC_NOERR) {
         if (file->bytes)
