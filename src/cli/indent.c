@@ -22,10 +22,10 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n\n"
-            "Indents SURFACE (.npy, .gsf or text) with a rigid punch and solves each step (FFT boundary\n"
-            "elements, Polonsky-Keer CG), warm-started from the last. Units: lengths in the surface's\n"
-            "unit (its spacing delta when it states none), stresses in E* (settable). w counts from\n"
-            "first touch.\n\n"
+            "Indents SURFACE (.npy, .gsf, .sdf, .nc, .x3p or text) with a rigid punch and solves each\n"
+            "step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last. Units: lengths\n"
+            "in the surface's unit (its spacing delta when it states none), stresses in E* (settable).\n"
+            "w counts from first touch.\n\n"
             "  --smooth            a flat surface instead of SURFACE (with --n, --m, --delta)\n"
             "  --n N, --m M        smooth grid size (default 512, M = N)\n"
             "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"

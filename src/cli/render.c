@@ -19,7 +19,7 @@ static void usage(FILE *stream)
             "usage: indentmap render contact FORCE... [OPTIONS] --out FILE\n"
             "       indentmap render height SURFACE... [OPTIONS] --out FILE\n"
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n\n"
-            "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
+            "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches with force <= 0 in a grey background\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
             "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg); the\n"
