@@ -21,6 +21,8 @@ PACKAGES=(
   python3-dev python3-numpy                # the Python package (python/): CPython and numpy C APIs
   python3-setuptools python3-wheel python3-pip python3-pytest  # its pip build and its tests
   chromium                                 # tests only: the viewer page (index.html) in headless Chromium
+  libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
+  libzip-dev libxml2-dev                   # ISO 25178-72 .x3p surfaces: zip archive around XML
 )
 
 missing=()

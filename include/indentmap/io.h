@@ -124,14 +124,25 @@ int im_folder_remove_temporaries(const char *folder, int depth);
 /* ---- surfaces ---- */
 enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };
 
-/* NumPy .npy, version 1.0, little-endian, C order, 2-D shape (ny, nx) (rows are y). */
+/* NumPy .npy, version 1.0, little-endian, C order, 2-D shape (ny, nx) (rows are y). A .npy states
+ * no units: its sidecar PATH.json does, when present ("delta", "unit" and, for fields other than
+ * heights, "value_unit": written by `surface --out` and im_field_sidecar_write), and im_npy_read takes
+ * them from it (IM_EFORMAT naming the sidecar when it is not a JSON object of those types, or larger
+ * than 1 MiB). */
 int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtype);
-/* Reads '<f8' or '<f4', C order, 2-D, versions 1.0 to 3.0. */
+
+/* Writes PATH.json beside the .npy at path: program, version, quantity (e.g. "force per patch"),
+ * the grid, delta, unit and value_unit of field, atomically. */
+int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity);
+/* Reads versions 1.0 to 3.0, 2-D, C or Fortran order, floats of 4 or 8 bytes and integers of 1, 2, 4
+ * or 8 bytes (signed or not) in either byte order, each converted to double (int64 and uint64 beyond
+ * 2^53 rounded); im_surface_read_with records the conversion in its info. */
 int im_npy_read(const char *path, im_field **out);
 
 /* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or
  * commas; lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and
- * "# Height:" headers, when present, set the spacing (Width / columns) and unit. A header line
+ * "# Height:" headers, when present, set the spacing (Width / columns, Height / rows) and lateral
+ * unit, and "# Value units: m" the unit of the heights (converted as im_surface_read_with says). A header line
  * stating the grid, "# ... C columns x R rows ..." (as written here), must match the data: a file
  * with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
  * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the
@@ -141,14 +152,96 @@ int im_text_read(const char *path, im_field **out);
 
 /* Gwyddion Simple Field (.gsf): a text header ("Gwyddion Simple Field 1.0", then KEY = VALUE
  * lines with XRes, YRes and optionally XReal, YReal, XYUnits, ZUnits), NUL padding to a multiple
- * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. Writing is provided for
- * round trips and tests. */
+ * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. XRes and YRes must be
+ * decimal integers (no "16abc", no "1.6e1"), XReal and YReal finite numbers > 0; a value that is
+ * not is refused naming its key. YReal defaults to square pixels. Units as for im_surface_read_with.
+ * Writing is provided for round trips and tests. */
 int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
-/* Reads a surface by extension: .npy, .gsf, else a text matrix. */
+/* ISO 25178-71 surface data file (.sdf): ASCII ("aISO-1.0" or "aBCR-1.0") or binary ("bISO-1.0",
+ * "bBCR-1.0"; an 81-byte little-endian header, then the values). NumPoints columns by NumProfiles
+ * rows; Xscale, Yscale (spacings) and Zscale (the height of one unit of a value) in metres, each
+ * checked to be a finite number > 0; DataType 0-7 (uint8/16/32, float, int8/16/32, double);
+ * Compression must be 0; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
+ * than a '*' trailer are refused. Writing is binary, DataType double, in metres (the field needs a
+ * length unit; IM_EINVAL otherwise). */
+int im_sdf_write(const char *path, const im_field *field);
+int im_sdf_read(const char *path, im_field **out);
+
+/* NetCDF (.nc) in the layout of ContactMechanics/SurfaceTopography and contact.engineering:
+ * dimensions x and y, heights(x, y) (first index x; (y, x) is read too), and optional coordinate
+ * variables x and y whose attributes `length` (physical size) and `length_unit` (of lengths and
+ * heights) state the spacing (length / points) and the unit. Any numeric type is read as double;
+ * values equal to the fill value (heights:_FillValue, else netCDF's default for the type, which is
+ * also what netCDF returns for values past the end of a truncated file) are missing points. Refused with IM_EFORMAT naming the file and
+ * the dimension, variable or attribute at fault. Writing uses the classic 64-bit offset format (as
+ * SurfaceTopography does), with length_unit in ASCII ("um" for µm) and periodic = 0, built in
+ * memory and written atomically. */
+int im_netcdf_write(const char *path, const im_field *field);
+int im_netcdf_read(const char *path, im_field **out);
+
+/* ISO 25178-72 .x3p: a zip archive (libzip) holding main.xml (ISO 5436-2, parsed with libxml2
+ * without network access or entity expansion) and the binary data it links. Read: Record1 Axes CX,
+ * CY of AxisType I with Increment (the spacings, metres), CZ of AxisType A with DataType I (int16),
+ * L (int32), F (float32) or D (float64), heights Offset + Increment x value in metres; Record3
+ * MatrixDimension SizeX, SizeY, SizeZ = 1 and DataLink/PointDataLink, whose entry must hold exactly
+ * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data and checksums are
+ * not read. Refused with IM_EFORMAT naming the file and the element. Written: DataType D in metres
+ * (the field needs a length unit; IM_EINVAL otherwise), without md5 checksums. */
+int im_x3p_write(const char *path, const im_field *field);
+int im_x3p_read(const char *path, im_field **out);
+
+/* ---- units of a surface ----
+ * A surface's lateral spacing and its heights are lengths. Files state them (GSF XReal/YReal/
+ * XYUnits/ZUnits, Gwyddion text "# Width:", "# Height:", "# Value units:"), the user may set or
+ * override them (.npy files state none), and a surface read into an im_field always has its heights
+ * in the unit of its spacing (field->unit), converted when the file gives them in another one, so
+ * that slopes such as h'rms are dimensionless and right. Known length units: "m", "cm", "mm", "µm"
+ * (also "um", "μm", "micron"), "nm", "pm", "Å" (also "A", "angstrom"). */
+typedef struct im_surface_units {
+    double delta_x, delta_y; /* pixel spacing along x (columns) and y (rows), in `lateral`; 0: not stated */
+    char lateral[16];        /* unit of the spacing; "" when not stated */
+    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit) */
+} im_surface_units;
+
+/* Metres per unit of a length unit's name (1e-6 for "µm"), and its canonical spelling in
+ * *canonical (may be NULL); 0 when the name is not a known length unit. */
+double im_length_unit_metres(const char *name, const char **canonical);
+
+/* How a surface file is read. Zero-initialised means: as the file states. */
+typedef struct im_surface_read_options {
+    im_surface_units set;    /* each stated member (non-zero, non-empty) overrides the file's; a
+                                delta_x without delta_y sets both */
+    int fill;                /* 1: fill missing points (NaN) with im_surface_fill_missing (surface.h);
+                                0: refuse them, naming the first one's (x, y) */
+    char express_in[16];     /* a length unit ("m" for SI): spacing and heights are converted into it
+                                from the surface's unit, which must then be known; "": kept */
+} im_surface_read_options;
+
+/* What the reader found and did, for reports and run records. */
+typedef struct im_surface_read_info {
+    im_surface_units file;   /* as the file stated them (zeros and "" where it stated nothing) */
+    im_surface_units used;   /* as applied, after overrides (delta_y = delta_x) */
+    double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
+    long filled;             /* missing points filled (options->fill) */
+    char conversion[96];     /* how the stored values were converted, e.g. "'>i2' (int16) converted to
+                                float64; Fortran order transposed to C order"; "" when none */
+} im_surface_read_info;
+
+/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p, else a text matrix) and applies its units: field->delta
+ * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
+ * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
+ * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
+ * a unit that is not a length, heights in a unit without a lateral unit to convert them to, Inf
+ * heights, and NaN heights (missing points) unless options->fill. options and info may be NULL. */
+int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
+                         im_surface_read_info *info);
+
+/* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
-/* Writes a surface by extension: .npy (float64), .gsf, else a text matrix. */
+/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, .x3p, else a text
+ * matrix. */
 int im_surface_write(const char *path, const im_field *field);
 
 /* ---- PNG ---- */

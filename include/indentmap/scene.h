@@ -47,7 +47,18 @@ typedef struct im_scene {
                                         Both are recorded in OUTPUT/run.json. */
 
     im_surface_params surface;       /* template of every generated surface */
-    char surface_file[IM_SCENE_PATH];/* a surface file instead of generated families ("" if none) */
+    char surface_file[IM_SCENE_PATH];/* `file`: surface files instead of generated families, a
+                                        comma-separated list ("" if none). The files are the
+                                        ensemble of one family: seed_count is their number and
+                                        seeds[i] = i picks file i. `slopes` and `seeds` are refused
+                                        beside them (their h'rms is measured, each is one surface). */
+    int file_count;                  /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
+    int detrend;                     /* enum im_detrend of surface.h for the files (default none) */
+    int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
+    char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
+    double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
+                                        surface as solved; measured by im_scene_run, which sets
+                                        slopes[0] to their root mean square (NaN until then) */
     double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
     int family_count;
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
@@ -129,6 +140,15 @@ typedef struct im_scene_run_options {
  * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
  * has, or when the output folder is or contains an input (the scene or its surface file). */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
+
+/* Reads every surface file of a scene (prepared as it will be solved), checks that they share one
+ * grid and spacing (IM_EFORMAT naming the files otherwise), and sets file_slopes[] and slopes[0]
+ * (see above). IM_OK at once for a scene without files. Called by im_scene_run on its copy. */
+int im_scene_measure_files(im_scene *scene);
+
+/* The path of file i of a scene's `file` list, resolved relative to the scene file (as
+ * im_scene_resolve_path); IM_EINVAL when i is out of range. */
+int im_scene_file_path(const im_scene *scene, int i, char *out, size_t size);
 
 /* Resolves a path written in a scene relative to the scene file's directory (absolute paths are
  * kept). Writes at most size bytes to out, which may not overlap relative. */

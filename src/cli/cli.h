@@ -2,7 +2,10 @@
 #ifndef INDENTMAP_CLI_H
 #define INDENTMAP_CLI_H
 
+#include "indentmap/surface.h"
+
 #include <signal.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -35,6 +38,33 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };
 int cli_parse_int(const char *option, const char *text, long min, long max, int *out);
 int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
+
+/* A length unit for --unit or --height-unit (io.h: m, mm, µm or um, nm, ...), copied into out
+ * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
+int cli_parse_length_unit(const char *option, const char *text, char *out);
+
+/* A unit's name (e.g. --e-star-unit Pa): 1 to size - 1 bytes without blanks or quotes. */
+int cli_parse_name(const char *option, const char *text, char *out, size_t size);
+
+/* Preparation of a measured surface (prepare.c): crop (sides 0: none), then plane or curvature
+ * removal. --fill is the reader's (im_surface_read_options.fill). */
+typedef struct cli_preparation {
+    int crop[4];             /* X0, Y0, NX, NY */
+    enum im_detrend detrend;
+    im_taper taper;          /* for spectral estimates only */
+} cli_preparation;
+
+/* --crop X0,Y0,NX,NY; --detrend none|plane|curvature; --window none|hann|tukey[:ALPHA]. Each returns
+ * 0, or -1 after printing what was expected. */
+int cli_parse_crop(const char *text, int crop[4]);
+int cli_parse_detrend(const char *text, enum im_detrend *out);
+int cli_parse_taper(const char *text, im_taper *out);
+
+/* Crops *surface (replacing it) and detrends it; a status naming the option on failure. */
+int cli_prepare_surface(const cli_preparation *preparation, im_field **surface);
+
+/* "plane removed, cropped to 256 x 256 at (0, 0), 3 missing points filled" */
+void cli_describe_preparation(const cli_preparation *preparation, long filled, char *text, size_t size);
 
 /* Parses a subcommand's options with getopt_long: apply(code, optarg, state) for each, which
  * returns 0 or prints its error and returns -1; usage(stdout) for -h or the option whose code is

@@ -30,12 +30,22 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n\n"
-            "Indents SURFACE (.npy, .gsf or text; heights in units of its delta) with a rigid punch and\n"
-            "solves each step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last.\n"
-            "Units: lengths in delta, stresses in E* (both settable). w counts from first touch.\n\n"
+            "Indents SURFACE (.npy, .gsf, .sdf, .nc, .x3p or text) with a rigid punch and solves each\n"
+            "step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last. Units: lengths\n"
+            "in the surface's unit (its spacing delta when it states none), stresses in E* (settable).\n"
+            "w counts from first touch.\n\n"
             "  --smooth            a flat surface instead of SURFACE (with --n, --m, --delta)\n"
             "  --n N, --m M        smooth grid size (default 512, M = N)\n"
-            "  --delta D           smooth patch side (default 1)\n"
+            "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"
+            "  --unit U            length unit of delta (m, mm, um, nm, ...); overrides SURFACE's\n"
+            "  --height-unit U     unit of SURFACE's heights, converted to --unit (default: --unit)\n"
+            "  --length-unit U     solve in this length unit (m: SI): SURFACE's spacing and heights are\n"
+            "                      converted into it; approaches, gaps and displacements are in it\n"
+            "  --e-star-unit U     the unit of --e-star (e.g. Pa), for the records: forces are in\n"
+            "                      U x length unit^2 (N for Pa and m)\n"
+            "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
+            "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
+            "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
             "  --punch KIND        cone (default), sphere or flat\n"
             "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80); below 60\n"
             "                      a warning: small-slope elasticity is stretched (still solved)\n"
@@ -67,6 +77,12 @@ typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
     int smooth, nx, ny, m_given, fields;
     double delta;
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
+    cli_preparation preparation;  /* --crop, --detrend */
+    char e_star_unit[16];         /* --e-star-unit, "" when not given */
+    char force_unit[40];          /* the unit of loads and forces, from the two above */
+    char length_unit[16];         /* the surface's, as solved ("" in units of delta) */
+    long filled;                  /* missing points filled on reading */
     im_indenter punch;
     int radius_given, x_given, y_given;
     enum im_control control;
@@ -78,13 +94,18 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP };
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
+       OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
+       OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
+       OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
-    {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
+    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+    {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
+    {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
@@ -146,7 +167,18 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_SMOOTH: o->smooth = 1; return 0;
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->nx);
     case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->ny);
-    case OPT_DELTA: return cli_parse_double("--delta", arg, 1e-300, 1e300, &o->delta);
+    case OPT_DELTA:
+        if (cli_parse_double("--delta", arg, 1e-300, 1e300, &o->delta) != 0)
+            return -1;
+        o->read.set.delta_x = o->delta;
+        return 0;
+    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
+    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
+    case OPT_FILL: o->read.fill = 1; return 0;
+    case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
+    case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
+    case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
+    case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
@@ -205,7 +237,8 @@ static int apply_quality(indent_options *o)
     return 0;
 }
 
-/* Whether name is PREFIX followed by four or more digits and ".npy" (a field file of a step). */
+/* Whether name is PREFIX followed by four or more digits and ".npy" (a field file of a step) or
+ * ".npy.json" (its units sidecar). */
 static int is_step_file(const char *name, const char *prefix)
 {
     size_t length = strlen(prefix), digits = 0;
@@ -213,12 +246,13 @@ static int is_step_file(const char *name, const char *prefix)
         return 0;
     while (name[length + digits] >= '0' && name[length + digits] <= '9')
         ++digits;
-    return digits >= 4 && strcmp(name + length + digits, ".npy") == 0;
+    const char *suffix = name + length + digits;
+    return digits >= 4 && (strcmp(suffix, ".npy") == 0 || strcmp(suffix, ".npy.json") == 0);
 }
 
 /* Whether `name` is one of the files written into the output folder: history.csv, run.json,
  * index.html and,
- * with --fields, {force,gap,displacement}_NNNN.npy for the steps 1..count. */
+ * with --fields, {force,gap,displacement}_NNNN.npy and their .npy.json sidecars for the steps 1..count. */
 static int writes_into_folder(const char *name, const void *state)
 {
     const indent_options *o = state;
@@ -230,9 +264,10 @@ static int writes_into_folder(const char *name, const void *state)
         if (strncmp(name, FIELDS[i], length) != 0)
             continue;
         long step = strtol(name + length, NULL, 10);
-        char expected[64];
-        snprintf(expected, sizeof expected, "%s%04ld.npy", FIELDS[i], step);
-        if (step >= 1 && step <= o->target_count && strcmp(name, expected) == 0)
+        char field[64], sidecar[80];
+        snprintf(field, sizeof field, "%s%04ld.npy", FIELDS[i], step);
+        snprintf(sidecar, sizeof sidecar, "%s.json", field);
+        if (step >= 1 && step <= o->target_count && (strcmp(name, field) == 0 || strcmp(name, sidecar) == 0))
             return 1;
     }
     return 0;
@@ -369,15 +404,24 @@ static void history_close(history_file *h)
     h->fd = -1;
 }
 
-static int write_fields(const char *dir, const im_indentation *run, int step)
+/* The fields of a step, each FILE.npy with FILE.npy.json stating its units: forces in force_unit,
+ * gaps and displacements in the surface's length unit. */
+static int write_fields(const char *dir, const im_indentation *run, int step, const char *length_unit,
+                        const char *force_unit)
 {
     im_field *f[3] = {NULL, NULL, NULL};
     static const char *const NAMES[3] = {"force", "gap", "displacement"};
+    static const char *const QUANTITIES[3] = {"force per patch", "gap", "surface displacement"};
     int status = im_indentation_fields(run, &f[0], &f[1], &f[2]);
     for (int i = 0; i < 3 && status == IM_OK; ++i) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s_%04d.npy", dir, NAMES[i], step);
+        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", length_unit);
+        if (i == 0)
+            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", force_unit);
         status = im_npy_write(path, f[i], IM_NPY_FLOAT64);
+        if (status == IM_OK)
+            status = im_field_sidecar_write(path, f[i], QUANTITIES[i]);
     }
     for (int i = 0; i < 3; ++i)
         im_field_free(f[i]);
@@ -397,6 +441,15 @@ static json_t *surface_sidecar_generator(const char *surface_path)
     return generator;
 }
 
+/* What the numbers of history.csv and the fields are in. */
+static json_t *units_record(const indent_options *o, const im_field *s)
+{
+    const char *length = s->unit[0] ? s->unit : "delta";
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length, "e_star",
+                     o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "load", o->force_unit, "force",
+                     o->force_unit, "load_star", "contact area A(N) / delta^2 (dimensionless)");
+}
+
 static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
 {
     im_window w = im_indentation_window(run);
@@ -409,13 +462,15 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     char source[4 * 4200 + 1];
     int escaped = im_path_utf8(o->surface_path ? o->surface_path : "smooth", source, sizeof source);
     json_t *generator = surface_sidecar_generator(o->surface_path);
+    char preparation[256];
+    cli_describe_preparation(&o->preparation, o->filled, preparation, sizeof preparation);
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
-        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
+        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
         "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", source, "nx", s->nx, "ny", s->ny,
-        "delta", s->delta, "generator", generator,
+        "delta", s->delta, "unit", s->unit, "preparation", preparation, "generator", generator,
         "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
@@ -430,6 +485,8 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         json_object_set(root, "seed", seed);
     if (root && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(root, "surface"), "source_encoding", json_string("escaped"));
+    if (root)
+        json_object_set_new(root, "units", units_record(o, s));
     json_decref(generator);
     return root;
 }
@@ -468,11 +525,29 @@ static void warn_if_steep(const im_indenter *punch)
                 punch->alpha_degrees, 1 / tan(punch->alpha_degrees * M_PI / 180), STEEP_CONE_DEGREES);
 }
 
-static int load_surface(const indent_options *o, im_field **surface)
+static int load_surface(indent_options *o, im_field **surface)
 {
-    if (!o->smooth)
-        return im_surface_read(o->surface_path, surface);
-    return im_field_create(o->nx, o->ny, o->delta, surface);
+    if (!o->smooth) {
+        im_surface_read_info info;
+        int status = im_surface_read_with(o->surface_path, &o->read, surface, &info);
+        o->filled = status == IM_OK ? info.filled : 0;
+        return status == IM_OK ? cli_prepare_surface(&o->preparation, surface) : status;
+    }
+    int status = im_field_create(o->nx, o->ny, o->delta, surface);
+    if (status == IM_OK)
+        memcpy((*surface)->unit, o->read.set.lateral, sizeof (*surface)->unit);
+    return status;
+}
+
+/* N for Pa and m; otherwise "E*-unit length-unit²", with E* and δ standing in for what is not given. */
+static void set_force_unit(indent_options *o, const im_field *surface)
+{
+    memcpy(o->length_unit, surface->unit, sizeof o->length_unit);
+    if (strcmp(o->e_star_unit, "Pa") == 0 && strcmp(surface->unit, "m") == 0)
+        snprintf(o->force_unit, sizeof o->force_unit, "N");
+    else
+        snprintf(o->force_unit, sizeof o->force_unit, "%s %s\u00b2", o->e_star_unit[0] ? o->e_star_unit : "E*",
+                 surface->unit[0] ? surface->unit : "\u03b4");
 }
 
 static double largest(const double *v, int n)
@@ -522,7 +597,7 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
     if (status == IM_OK)
         status = measure_step(o, rough, run, rows, i, &extras[i]);
     if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
-        status = write_fields(o->out, run, i + 1);
+        status = write_fields(o->out, run, i + 1, o->length_unit, o->force_unit);
     if (status == IM_OK)
         status = history_append(history, i + 1, &rows[i], &extras[i]);
     if (status == IM_OK) {
@@ -645,6 +720,8 @@ int cli_indent(int argc, char **argv)
         warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
     }
+    if (status == IM_OK)
+        set_force_unit(&o, surface);
     if (status == IM_OK)
         status = measured_interface(&o, surface, &rough);
     if (status == IM_OK)

@@ -57,6 +57,30 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
     return 0;
 }
 
+int cli_parse_length_unit(const char *option, const char *text, char *out)
+{
+    const char *canonical = text;
+    if (strlen(text) >= 16 || im_length_unit_metres(text, &canonical) == 0.0) {
+        fprintf(stderr, "indentmap: %s '%s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, \u00c5)\n",
+                option, text);
+        return -1;
+    }
+    snprintf(out, 16, "%s", canonical);
+    return 0;
+}
+
+int cli_parse_name(const char *option, const char *text, char *out, size_t size)
+{
+    size_t length = strlen(text);
+    if (length == 0 || length >= size || strpbrk(text, " \t\n\"\\") != NULL) {
+        fprintf(stderr, "indentmap: %s '%s': expected a unit name of 1 to %zu bytes, no blanks or quotes\n", option,
+                text, size - 1);
+        return -1;
+    }
+    memcpy(out, text, length + 1);
+    return 0;
+}
+
 int cli_report(int status)
 {
     fprintf(stderr, "indentmap: %s\n", im_last_error()[0] ? im_last_error() : im_strstatus(status));

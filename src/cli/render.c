@@ -20,7 +20,7 @@ static void usage(FILE *stream)
             "       indentmap render height SURFACE... [OPTIONS] --out FILE\n"
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
             "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
-            "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
+            "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches with force <= 0 in a grey background\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
             "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg); the\n"
@@ -41,7 +41,8 @@ static void usage(FILE *stream)
             "  --title TEXT        panel title\n"
             "  --titles LIST       comma-separated panel titles, one per file\n"
             "  --columns C         panels per row (default: all in one row)\n"
-            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ')\n"
+            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ', in\n"
+            "                      the units the input's sidecar FILE.json states, e.g. 'local force f / N')\n"
             "  --dpi D             resolution (default 300)\n"
             "  --fps F             animation frames per second (default 5)\n"
             "  --frames DIR        directory for the frames of 'animate'\n"
@@ -55,6 +56,7 @@ typedef struct render_options {
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     int aliased_circle; /* GIF frames: the circle aliased (exact palette colours) */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
+    char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
 } render_options;
@@ -189,9 +191,10 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     for (int i = 0; i < count; ++i)
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
-    char height_name[64];
+    char height_name[64], force_name[80];
     snprintf(height_name, sizeof height_name, "height h / %s", images[0].unit[0] ? images[0].unit : "δ");
-    const char *quantity = o->quantity ? o->quantity : contact ? "local force f / (E* δ²)" : height_name;
+    snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
+    const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
                                  {"Norm", norm_text}, {"Pixels per patch", scale_text}};
@@ -234,6 +237,8 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
         int status = im_surface_read(inputs[i], &fields[i]);
         if (status != IM_OK)
             return status;
+        if (i == 0)
+            memcpy(o->value_unit, fields[i]->value_unit, sizeof o->value_unit);
         im_colormap c = strcmp(o->mode, "height") == 0 ? im_height_style_default(fields[i]).colormap
                                                        : im_contact_style_default(fields[i]).colormap;
         o->shared_lo = fmin(o->shared_lo, c.lo);

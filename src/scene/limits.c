@@ -262,10 +262,11 @@ static int check_outputs_apart(const im_scene *scene)
     int status = absolute_path(scene->output_dir, output);
     if (status == IM_OK)
         status = check_not_inside(scene, output, scene->path, "scene file");
-    if (status == IM_OK && scene->surface_file[0]) {
+    for (int i = 0; status == IM_OK && i < scene->file_count; ++i) {
         char surface[IM_SCENE_PATH];
-        im_scene_resolve_path(scene, scene->surface_file, surface, sizeof surface);
-        status = check_not_inside(scene, output, surface, "surface file");
+        status = im_scene_file_path(scene, i, surface, sizeof surface);
+        if (status == IM_OK)
+            status = check_not_inside(scene, output, surface, "surface file");
     }
     return status;
 }

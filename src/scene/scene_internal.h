@@ -18,6 +18,9 @@ double scene_load_for_load_star(const im_scene *scene, double delta);
  * generated. */
 int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **out);
 
+/* The h'rms of one member: its file's measured one in a scene over files, else its family's. */
+double scene_member_slope(const im_scene *scene, int family, uint64_t seed);
+
 /* Solver options of a scene (its tolerance; everything else default). */
 im_solver_options scene_solver_options(const im_scene *scene);
 

@@ -152,3 +152,25 @@ int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
     height_extremes(surface, &stats->height_min, &stats->height_max);
     return slope_rms_finite_difference(surface, &stats->slope_rms_fd);
 }
+
+int im_surface_statistics_tapered(const im_field *surface, const im_taper *window, im_surface_stats *stats)
+{
+    int status = im_surface_statistics(surface, stats);
+    if (status != IM_OK || window->kind == IM_TAPER_NONE)
+        return status;
+    im_field *windowed = NULL;
+    im_surface_stats spectral;
+    status = im_surface_tapered(surface, window, &windowed);
+    if (status == IM_OK)
+        status = im_surface_statistics(windowed, &spectral);
+    im_field_free(windowed);
+    if (status != IM_OK)
+        return status;
+    stats->slope_rms_spectral = spectral.slope_rms_spectral;
+    stats->curvature_rms = spectral.curvature_rms;
+    stats->m0 = spectral.m0;
+    stats->m2 = spectral.m2;
+    stats->m4 = spectral.m4;
+    stats->nayak = spectral.nayak;
+    return IM_OK;
+}
