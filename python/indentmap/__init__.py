@@ -15,11 +15,11 @@ from . import theory
 from .render import Figure, Image, contact_map, height_map, renderer
 from .scene import run_scene
 from .solver import Cone, Flat, Indentation, Plan, Sphere, indent
-from .surface import Topography, generate, histogram, psd, read, statistics, write
+from .surface import Topography, generate, histogram, prepare, psd, read, statistics, write
 
 __version__ = _core.library_version
 
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography",
-           "Unsupported", "contact_map", "generate", "height_map", "histogram", "indent", "psd", "read", "renderer",
+           "Unsupported", "contact_map", "generate", "height_map", "histogram", "indent", "prepare", "psd", "read", "renderer",
            "run_scene", "statistics", "theory", "write"]

@@ -27,10 +27,23 @@ def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None
                           seed)
 
 
-def statistics(heights, delta=1.0):
+def statistics(heights, delta=1.0, window="none", alpha=0.5):
     """Mean, h_rms, h'rms (``slope_rms_spectral``: the band-limited interpolant's; ``slope_rms_fd``: forward
-    differences), curvature rms, the profile moments m0, m2, m4, Nayak's parameter and the height range."""
-    return _core.statistics(heights, float(delta))
+    differences), curvature rms, the profile moments m0, m2, m4, Nayak's parameter and the height range.
+
+    ``window`` ('none', 'hann' or 'tukey' with the tapered fraction ``alpha``) takes the spectral quantities
+    from a windowed copy: use it, after ``prepare``, for measured (non-periodic) data, whose plain spectral
+    h'rms is dominated by the step at the edges of the periodic box. Synthesised surfaces are periodic:
+    no window."""
+    return _core.statistics(heights, float(delta), window, float(alpha))
+
+
+def prepare(heights, detrend="plane", fill=False):
+    """A prepared copy of measured heights: missing points (NaN) refused with the first one's position, or
+    with ``fill=True`` filled from their known neighbours (rim inwards); then the least-squares plane
+    (``detrend='plane'``: mean and tilt) or quadric ('curvature': also the bow) removed ('none': kept).
+    Crop with numpy slicing. Returns (heights, number of points filled)."""
+    return _core.prepare(heights, detrend, bool(fill))
 
 
 def psd(heights, delta=1.0, bins=64):
@@ -50,10 +63,13 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
 
 
 def read(path):
-    """Reads a surface file (.npy, .gsf or a text matrix): a Topography (heights, delta, unit)."""
+    """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p or a text matrix): a Topography
+    (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives none)."""
     return Topography(*_core.read_surface(path))
 
 
-def write(path, heights, delta=1.0):
-    """Writes heights as .npy, .gsf or a text matrix (by extension), atomically."""
-    _core.write_surface(path, heights, float(delta))
+def write(path, heights, delta=1.0, unit=""):
+    """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
+    matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
+    PATH.json, written when a unit is given)."""
+    _core.write_surface(path, heights, float(delta), unit)
