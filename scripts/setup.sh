@@ -18,6 +18,11 @@ PACKAGES=(
   libcairo2-dev libfreetype-dev            # annotations, text, PDF/SVG figures
   fonts-dejavu-core                        # the font figures are set in
   libgif-dev                               # animated GIFs
+  python3-dev python3-numpy                # the Python package (python/): CPython and numpy C APIs
+  python3-setuptools python3-wheel python3-pip python3-pytest  # its pip build and its tests
+  chromium                                 # tests only: the viewer page (index.html) in headless Chromium
+  libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
+  libzip-dev libxml2-dev                   # ISO 25178-72 .x3p surfaces: zip archive around XML
 )
 
 missing=()

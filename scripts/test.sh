@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 # setup.sh installs Mesa's llvmpipe, so an OpenGL context must exist: a renderer test that cannot
 # get one fails here instead of reporting itself skipped (IM_REQUIRE_GL=0 allows the skip).
 export IM_REQUIRE_GL=${IM_REQUIRE_GL:-1}
+# Likewise setup.sh installs Chromium, so the viewer page's browser tests must run, not skip.
+export IM_REQUIRE_CHROMIUM=${IM_REQUIRE_CHROMIUM:-1}
 scripts/setup.sh build -DIM_WERROR=ON
 (cd build && ctest --output-on-failure -j "$(nproc)")
 if [ "${IM_SKIP_SANITIZE:-0}" != 1 ]; then

@@ -4,7 +4,8 @@
 # another file fills as soon as the first table member is on disk. The run must stop with a clear
 # "No space left on device" error naming the file, exit 1, leave no temporary file and no lock;
 # once space is freed, --resume must finish with the table of a run that was never disturbed.
-# Also: `indentmap indent --fields` past a file-size limit (ulimit -f) fails cleanly.
+# Also: `indentmap indent --fields` past a file-size limit (ulimit -f) fails cleanly, naming the
+# step whose file failed; `render animate` onto a full disk names the frame and the reason.
 set -u
 cli=$1
 if [ -z "${IM_PRIVATE_MOUNTS:-}" ]; then
@@ -73,5 +74,16 @@ done
 check "file-size limit: exit 1" test "$(cat "$dir/indent.status")" -eq 1
 check "file-size limit: message" grep -q "force_0001.npy: write failed: File too large" "$dir/indent.log"
 check "file-size limit: no temporary file" bash -c "! find '$dir/indent' -name '*.tmp.*' | grep -q ."
+check "file-size limit: the failing step is named (step 1, not 2)" grep -q "step 1 of 3 (approach 1; the 0 steps before" "$dir/indent.log"
+
+# render animate onto a full disk: the frame named, with errno's reason (not libpng's bare "Write Error")
+"$cli" indent --smooth --n 64 --approach 1:2:2 --fields --out "$dir/fields" >/dev/null || exit 1
+dd if=/dev/zero of="$dir/tiny/filler" bs=64k 2>/dev/null
+"$cli" render animate "$dir"/fields/force_000{1,2}.npy --frames "$dir/tiny/frames" >/dev/null 2>"$dir/animate.log"
+check "animate, full disk: exit 1" test $? -eq 1
+check "animate, full disk: the frame and the reason" \
+  grep -q "frames/contact_0000.png: write failed: No space left on device" "$dir/animate.log"
+check "animate, full disk: no libpng message" bash -c "! grep -q libpng '$dir/animate.log'"
+check "animate, full disk: no temporary file" bash -c "! find '$dir/tiny' -name '*.tmp.*' | grep -q ."
 
 finish

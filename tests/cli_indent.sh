@@ -12,6 +12,27 @@ head -1 "$DIR/ok/history.csv" | grep -q '^step,approach,load,load_star,contact_p
     || fail "history.csv header: $(head -1 "$DIR/ok/history.csv")"
 [ "$(wc -l < "$DIR/ok/history.csv")" -eq 4 ] || fail "expected 3 rows"
 awk -F, 'NR == 4 { d = $4 / $5 - 1; if (d < -0.01 || d > 0.01) exit 1 }' "$DIR/ok/history.csv" || fail "N* != n_p at the last step"
+# Theory columns beside the history: Love's N(w) = 2 w^2 / (pi cot 80) and A_cone = N* (delta = 1) at
+# every step, full contact on a smooth surface, and the simulated N within 2% of Love's at w = 6.
+head -1 "$DIR/ok/history.csv" | grep -q ',convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter$' \
+    || fail "history.csv lacks the theory columns: $(head -1 "$DIR/ok/history.csv")"
+awk -F, 'NR > 1 { pi = atan2(0, -1); love = 2 * $2 * $2 / (pi * 0.17632698070846498);
+         if ($13 / love - 1 > 1e-12 || love / $13 - 1 > 1e-12 || $14 != $4 || $15 != 1 || $16 != 1) exit 1 }
+         NR == 4 { d = $3 / $13 - 1; if (d < -0.02 || d > 0.02) exit 1 }' "$DIR/ok/history.csv" \
+    || fail "theory columns differ from Love's closed forms"
+# --hardness: a flat punch (a = 10) past full yield (w > 2 H a / E*) carries H on every patch,
+# N = H n_p; run.json records the cap; a negative cap is refused.
+"$BIN" indent --smooth --n 64 --punch flat --radius 10 --hardness 0.05 --approach 1.5 --out "$DIR/hard" >/dev/null \
+    || fail "--hardness run exited $?"
+awk -F, 'NR == 2 { d = $3 / (0.05 * $5) - 1; if (d < -1e-12 || d > 1e-12 || $8 != 0.05) exit 1 }' "$DIR/hard/history.csv" \
+    || fail "--hardness: N != H n_p past full yield: $(sed -n 2p "$DIR/hard/history.csv")"
+grep -q '"hardness": 0.05' "$DIR/hard/run.json" || fail "run.json lacks the hardness"
+"$BIN" indent --smooth --n 16 --hardness -1 --approach 1 --out "$DIR/badh" >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--hardness -1 not refused with exit 2"
+# What an experiment measures: dN/dw from the last three steps gives Sneddon's E* = 1 within 2% on the
+# smooth cone (Love's N(w) is a parabola, which the three-point derivative follows exactly); one patch.
+awk -F, 'NR == 4 { if ($18 < 0.98 || $18 > 1.02 || $19 != 1) exit 1 } NR == 2 { if ($17 != "nan") exit 1 }' "$DIR/ok/history.csv" \
+    || fail "stiffness columns: $(cut -d, -f17- "$DIR/ok/history.csv" | tr '\n' ' ')"
 for key in '"version"' '"window"' '"threads"' '"tol"' '"steps_completed": 3' '"source": "smooth"'; do
     grep -q "$key" "$DIR/ok/run.json" || fail "run.json lacks $key"
 done

@@ -99,6 +99,8 @@ sed -i "s|^output = .*|output = results|" "$dir/file.ini"
 (cd / && "$cli" run --quiet "$dir/file.ini" >/dev/null 2>"$dir/relative.err")
 check "relative paths: runs from /" test $? -eq 0
 check "relative paths: output beside the scene" test -s "$dir/results/table1.csv"
-check "relative paths: the surface file was read" grep -q "^0.08,1," "$dir/results/table1.csv"
+# the table's slope is the file's measured h'rms (forward differences), not the default 0.08 (issue 13)
+fd=$("$cli" surface --stats "$dir/inputs/rough.npy" --detrend none --window none | awk '/^h.rms fd/ { print $3 }')
+check "relative paths: the surface file was read" grep -q "^$fd,1," "$dir/results/table1.csv"
 
 finish

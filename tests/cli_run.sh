@@ -64,6 +64,14 @@ check "smooth solved once" test ! -e "$dir/out/table/member_00_6.csv"
 # Histories in load control reach each N* step: the last row of a rough member is at N* = 600.
 check "history reaches the last N*" awk -F, 'END { exit !($3 > 599.99 && $3 < 600.01) }' "$dir/out/histories/member_01_6.csv"
 
+# Theory beside the history: eq. (12) at rho_c = cot(alpha) / h'rms in every row (the load does not
+# enter it), and A_cone = N* delta^2.
+check "history has the theory columns" bash -c "sed -n 2p '$dir/out/histories/member_01_6.csv' | \
+  grep -qx 'approach,load,load_star,contact_patches,area_ratio,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma'"
+eq12=$("$cli" theory --alpha 80 --slope 0.08 --format csv | awk -F, 'NR == 2 { print $4 }')
+check "history's eq. (12) column" awk -F, -v e="$eq12" 'NR > 2 { d = $9 - e; if (d < -1e-9 || d > 1e-9 || $7 != $3) bad = 1 }
+  END { exit bad }' "$dir/out/histories/member_01_6.csv"
+
 # Nothing solved twice: the table solves each surface at N* = 600; the histories' last step (N* =
 # 600) is the table's; the panels are the table's (smooth) and the frames' last step (rough).
 check "table solves its 3 surfaces" grep -q "table: 3 surfaces: 3 solved, 0 read back" "$dir/log"

@@ -60,10 +60,10 @@ npy() {
 }
 npy "$dir/good.npy" '<f8' False '(2, 3)' 6
 check "hand-built npy is read" bash -c "'$cli' surface --stats '$dir/good.npy' | grep -q 'grid             3 x 2'"
-npy "$dir/int.npy" '<i8' False '(2, 3)' 6
-check "unsupported dtype" expect_exit 2 "int.npy: dtype '<i8' is not supported" "$cli" surface --stats "$dir/int.npy"
-npy "$dir/fortran.npy" '<f8' True '(2, 3)' 6
-check "Fortran order" expect_exit 2 "fortran.npy: Fortran-ordered arrays are not supported" "$cli" surface --stats "$dir/fortran.npy"
+npy "$dir/complex.npy" '<c16' False '(2, 3)' 12
+check "unsupported dtype" expect_exit 2 "complex.npy: dtype '<c16' is not supported" "$cli" surface --stats "$dir/complex.npy"
+npy "$dir/int.npy" '<i8' True '(2, 3)' 6
+check "int64 in Fortran order is read, the conversion stated" bash -c "'$cli' surface --stats '$dir/int.npy' | grep -q \"values           '<i8' (int64) converted to float64; Fortran order transposed to C order\""
 npy "$dir/nan.npy" '<f8' False '(2, 3)' 6 '\x00\x00\x00\x00\x00\x00\xf8\x7f'
 check "NaN height" expect_exit 2 "nan.npy: value nan at (x=2, y=1)" "$cli" surface --stats "$dir/nan.npy"
 npy "$dir/short.npy" '<f8' False '(3, 3)' 8
@@ -91,5 +91,25 @@ check "--out onto the input" expect_exit 2 "--out $dir/s.npy would overwrite" \
   "$cli" surface --stats "$dir/s.npy" --out "$dir/s.npy"
 check "input unchanged" cmp -s "$dir/s.npy" "$dir/s.orig"
 check "no temporary files left" bash -c "! ls '$dir' | grep -q tmp"
+
+# Units (issue 13): --delta, --unit and --height-unit set what a .npy cannot state.
+check "--stats honours --delta and --unit" bash -c "'$cli' surface --stats '$dir/s.npy' --delta 5e-8 --unit m | grep -q 'grid             64 x 64, delta = 5e-08 m'"
+check "--height-unit converts to --unit" bash -c "'$cli' surface --stats '$dir/s.npy' --delta 1 --unit um --height-unit nm --detrend none --window none | grep -q 'h.rms spectral   5e-05 '"
+check "unknown unit" expect_exit 2 "--unit 'parsec': expected a length unit" "$cli" surface --stats "$dir/s.npy" --unit parsec
+check "heights in a unit, spacing in none" expect_exit 2 "--height-unit = 'nm' gives the heights a unit" \
+  "$cli" surface --stats "$dir/s.npy" --height-unit nm
+printf '# Width: 4 um\n# Height: 8 um\n1 2\n3 4\n' >"$dir/rect.txt"
+check "non-square pixels refused" expect_exit 2 "rect.txt: Width / columns and Height / rows: non-square pixels" \
+  "$cli" surface --stats "$dir/rect.txt"
+
+# Preparation (issue 13): missing points refused with their position or filled; crop; the statement.
+printf '1 2 3\n4 nan 6\n7 8 9\n' >"$dir/hole.txt"
+check "missing point refused" expect_exit 2 "hole.txt: value nan at (x=1, y=1): a missing point" "$cli" surface --stats "$dir/hole.txt"
+check "--fill fills it" bash -c "'$cli' surface --stats '$dir/hole.txt' --fill --detrend none --window none | grep -q 'height range     \[1, 9\]'"
+check "--fill is stated" bash -c "'$cli' surface --stats '$dir/hole.txt' --fill | grep -q '1 missing points filled'"
+check "stats state the preparation" bash -c "'$cli' surface --stats '$dir/s.npy' | grep -q 'preparation      plane removed; spectral quantities and PSD of the Hann-tapered surface'"
+check "--crop" bash -c "'$cli' surface --stats '$dir/s.npy' --crop 8,4,32,16 | grep -q 'grid             32 x 16'"
+check "--crop outside" expect_exit 2 "--crop: crop 40,0,32,16: expected X0,Y0,NX,NY" "$cli" surface --stats "$dir/s.npy" --crop 40,0,32,16
+check "--window on generation refused" expect_exit 2 "use them with --stats" "$cli" surface --n 16 --window hann
 
 finish

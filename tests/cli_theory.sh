@@ -86,4 +86,26 @@ check "bad normalisation" expect_exit 2 "--normalisation: 'persson'" "$cli" theo
 check "bad k" expect_exit 2 "--k = 0" "$cli" theory --rho 1:2:3 --k 0
 check "stray argument" expect_exit 2 "unexpected argument 'extra'" "$cli" theory --rho 1:2:3 extra
 
+# Other punches (the local density of contact with Hertz's and Boussinesq's pressures).
+"$cli" theory --punch sphere --rho 0.001:10:9 --format csv >"$dir/sphere.csv"
+check "sphere header" bash -c "head -1 '$dir/sphere.csv' | grep -qx 'rho,area_ratio_eq3,area_ratio_gamma'"
+check "sphere linear at small rho" close "$(field "$dir/sphere.csv" 2 3)" 0.001 1e-6
+check "sphere gamma below eq. (3)" awk -F, 'NR > 1 && $3 >= $2 && $2 < 1 { bad = 1 } END { exit bad }' "$dir/sphere.csv"
+"$cli" theory --punch flat --rho 0.001:100:9 --format csv >"$dir/flat.csv"
+check "flat header" bash -c "head -1 '$dir/flat.csv' | grep -qx 'rho,area_ratio_constant,area_ratio_gamma'"
+check "flat linear at small rho" close "$(field "$dir/flat.csv" 2 3)" 0.001 1e-6
+check "flat saturates" close "$(field "$dir/flat.csv" 10 3)" 1 1e-12
+# At the crossover load N_c = pi^3 (3/4)^2 (h'rms / 2)^3 E* R^2 the Hertzian mean pressure is p_rough.
+n_c=$(awk 'BEGIN { pi = atan2(0, -1); printf "%.17g", pi^3 * 0.5625 * 0.08^3 * 500^2 }')
+"$cli" theory --punch sphere --slope 0.16 --radius 500 --load "$n_c" --format csv >"$dir/nc.csv"
+check "sphere at N_c has rho = 1" close "$(field "$dir/nc.csv" 2 2)" 1 1e-9
+"$cli" theory --punch sphere --rho 1:1:1 --format csv >"$dir/rho1.csv"
+check "slope route = rho route" close "$(field "$dir/nc.csv" 2 4)" "$(field "$dir/rho1.csv" 2 3)" 1e-9
+"$cli" theory --punch flat --rho 1:1:1 --gamma --format csv >"$dir/fg.csv"
+check "flat gamma is 1 at the rim" close "$(field "$dir/fg.csv" 102 2)" 1 0
+check "punch refused" expect_exit 2 "--punch" "$cli" theory --punch wedge --rho 1:1:1
+check "sphere needs radius and load" expect_exit 2 "needs --radius and --load" "$cli" theory --punch sphere --slope 0.1
+check "cone takes no load" expect_exit 2 "--radius and --load are for" "$cli" theory --alpha 80 --slope 0.1 --load 3
+check "sphere takes no alpha" expect_exit 2 "--alpha is for the cone" "$cli" theory --punch flat --alpha 80 --rho 1:1:1
+
 finish

@@ -25,7 +25,10 @@ static const char *read_like_harness(const char *harness, const char *path, int 
         return fuzz_scene_problem(*status, &scene);
     }
     surface_reader read = strcmp(harness, "npy") == 0 ? im_npy_read
-                        : strcmp(harness, "gsf") == 0 ? im_gsf_read : im_text_read;
+                        : strcmp(harness, "gsf") == 0 ? im_gsf_read
+                        : strcmp(harness, "sdf") == 0 ? im_sdf_read
+                        : strcmp(harness, "netcdf") == 0 ? im_netcdf_read
+                        : strcmp(harness, "x3p") == 0 ? im_x3p_read : im_text_read;
     im_field *field = NULL;
     *status = read(path, &field);
     const char *problem = fuzz_field_problem(*status, field);
@@ -70,6 +73,9 @@ static void scene_inputs(void **state) { (void)state; feed_harness("scene"); }
 static void npy_inputs(void **state) { (void)state; feed_harness("npy"); }
 static void text_inputs(void **state) { (void)state; feed_harness("text"); }
 static void gsf_inputs(void **state) { (void)state; feed_harness("gsf"); }
+static void sdf_inputs(void **state) { (void)state; feed_harness("sdf"); }
+static void netcdf_inputs(void **state) { (void)state; feed_harness("netcdf"); }
+static void x3p_inputs(void **state) { (void)state; feed_harness("x3p"); }
 
 /* fuzz_npy's out-of-memory input (and its .gsf twin): a header claiming 30000 x 30000 values over
  * no data made the reader allocate 7.2 GB before finding the data missing. The refusal must now
@@ -95,6 +101,20 @@ static void oversized_headers_are_refused_before_allocation(void **state)
     }
 }
 
+/* fuzz_netcdf's out-of-memory input: an 88-byte classic header whose name length made netCDF allocate
+ * gigabytes before finding the file too short. The reader's own walk over the header refuses it
+ * first, naming the file. */
+static void hostile_netcdf_header_is_refused_before_netcdf(void **state)
+{
+    (void)state;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/fuzz/regressions/netcdf/oom_name_length.nc", getenv("IM_SOURCE_DIR"));
+    im_field *field = NULL;
+    assert_int_equal(im_netcdf_read(path, &field), IM_EFORMAT);
+    assert_null(field);
+    assert_non_null(strstr(im_last_error(), "oom_name_length.nc: netCDF header: a count or name runs past the end"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -102,7 +122,11 @@ int main(void)
         cmocka_unit_test(npy_inputs),
         cmocka_unit_test(text_inputs),
         cmocka_unit_test(gsf_inputs),
+        cmocka_unit_test(sdf_inputs),
+        cmocka_unit_test(netcdf_inputs),
+        cmocka_unit_test(x3p_inputs),
         cmocka_unit_test(oversized_headers_are_refused_before_allocation),
+        cmocka_unit_test(hostile_netcdf_header_is_refused_before_netcdf),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -417,7 +417,7 @@ static void test_empty_zero_and_nan_fields(void **state)
     assert_pixel(&image, 1 + 1, 1 + 3, style.background, 0);
     assert_pixel(&image, 1 + 2, 1 + 2, style.background, 0);
     im_image_release(&image);
-    im_field empty = {0, 0, 1.0, "", NULL};
+    im_field empty = {.nx = 0, .ny = 0, .delta = 1.0};
     assert_int_equal(im_render_contact_map(context, &empty, &style, &image), IM_EINVAL);
     assert_null(image.rgba);
     im_field_free(f);

@@ -22,7 +22,7 @@ static void values_are_read(void **state)
 {
     (void)state;
     const char *path = write_scene("a.ini", "[scene]\nname = demo\n[surfaces]\nn = 64\nhurst = 0.7\n"
-                                            "slopes = 0, 0.02 ,0.16\nseeds = 3:7\nfile = s.npy\n"
+                                            "slopes = 0, 0.02 ,0.16\nseeds = 3:7\n"
                                             "[punch]\nshape = Sphere\nradius = 50\n"
                                             "[loading]\nsteps = 0.5:2:4\n[output]\nframes = yes\n");
     im_scene scene;
@@ -40,9 +40,6 @@ static void values_are_read(void **state)
     assert_int_equal(scene.step_count, 4);
     assert_close(scene.steps[1], 1.0, 1e-15);
     assert_true(scene.frames);
-    char resolved[IM_SCENE_PATH];
-    im_scene_resolve_path(&scene, scene.surface_file, resolved, sizeof resolved);
-    assert_string_equal(resolved, test_path("s.npy"));
 }
 
 static void expect_error(const char *name, const char *text, const char *phrase)
@@ -54,6 +51,32 @@ static void expect_error(const char *name, const char *text, const char *phrase)
     snprintf(expected, sizeof expected, "%s%s", path, phrase);
     if (status != IM_EFORMAT || !strstr(im_last_error(), expected))
         fail_msg("%s: status %d, message '%s', expected to contain '%s'", name, status, im_last_error(), expected);
+}
+
+/* A list of files is the ensemble of one family (reliability finding 4): one member per file, each
+ * path relative to the scene; `slopes` and `seeds` beside them are refused at their line. */
+static void files_form_the_ensemble(void **state)
+{
+    (void)state;
+    const char *path = write_scene("files.ini", "[surfaces]\nfile = s.npy , sub/t.npy\ndetrend = plane\n");
+    im_scene scene;
+    assert_int_equal(im_scene_load(path, &scene), IM_OK);
+    assert_int_equal(scene.file_count, 2);
+    assert_int_equal(scene.family_count, 1);
+    assert_int_equal(scene.seed_count, 2);
+    assert_int_equal(scene.detrend, 1);
+    assert_true(isnan(scene.slopes[0])); /* measured when the scene runs */
+    char resolved[IM_SCENE_PATH];
+    assert_int_equal(im_scene_file_path(&scene, 0, resolved, sizeof resolved), IM_OK);
+    assert_string_equal(resolved, test_path("s.npy"));
+    assert_int_equal(im_scene_file_path(&scene, 1, resolved, sizeof resolved), IM_OK);
+    assert_string_equal(resolved, test_path("sub/t.npy"));
+    assert_int_equal(im_scene_file_path(&scene, 2, resolved, sizeof resolved), IM_EINVAL);
+    expect_error("slopes.ini", "[surfaces]\nfile = s.npy\nslopes = 0.16\n",
+                 ":3: slopes beside `file` (line 2): a file's h'rms is measured from the file, not given");
+    expect_error("seeds.ini", "[surfaces]\nseeds = 1:3\nfile = s.npy\n",
+                 ":2: seeds beside `file` (line 3): the files listed in `file` are the ensemble");
+    expect_error("empty.ini", "[surfaces]\nfile = s.npy,,t.npy\n", ":2: file: expected a comma-separated list");
 }
 
 static void errors_name_the_line(void **state)
@@ -168,6 +191,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(values_are_read),
+        cmocka_unit_test(files_form_the_ensemble),
         cmocka_unit_test(errors_name_the_line),
         cmocka_unit_test(missing_file_is_an_io_error),
         cmocka_unit_test(long_lines_are_refused),

@@ -353,6 +353,43 @@ static void test_accelerated_equals_plain_pk_load(void **state)
 
 /* ---- refusals, with nothing computed lost ---- */
 
+/* The stopping rule bounds both halves of the complementarity conditions: the rms gap over the
+ * contact set AND the penetration of patches outside it, each relative to w. A solve that stops on
+ * the first alone leaves patches inside the punch. Checked on the solution's own fields, for a rough
+ * cone in both controls, at a loose tolerance where the two halves part. */
+static void assert_penetration_within_tol(const im_field *force, const im_field *gap, double w, double tol)
+{
+    double worst = 0;
+    for (size_t i = 0; i < im_field_count(gap); ++i)
+        if (!(force->data[i] > 0) && -gap->data[i] > worst)
+            worst = -gap->data[i];
+    if (!(worst <= tol * w))
+        fail_msg("a patch outside contact penetrates by %.3g > tol w = %.3g", worst, tol * w);
+}
+
+static void test_stopping_rule_bounds_penetration(void **state)
+{
+    (void)state;
+    im_field *s = rough_surface(128, 0.16, 3);
+    im_indenter cone = im_indenter_cone(80);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 3e-3;
+    for (int control = 0; control <= 1; ++control) {
+        double target = control == IM_CONTROL_LOAD ? 400.0 : 4.0;
+        im_indentation *run = prepare(s, &cone, (enum im_control)control, target, &o);
+        for (int k = 1; k <= 4; ++k) {
+            im_step_result r = step(run, target * k / 4);
+            im_field *force = NULL, *gap = NULL;
+            assert_int_equal(im_indentation_fields(run, &force, &gap, NULL), IM_OK);
+            assert_penetration_within_tol(force, gap, r.approach, o.tol);
+            im_field_free(force);
+            im_field_free(gap);
+        }
+        im_indentation_free(run);
+    }
+    im_field_free(s);
+}
+
 static void test_edge_contact(void **state)
 {
     (void)state;
@@ -428,6 +465,7 @@ int main(void)
         cmocka_unit_test(test_cropped_window_equals_full_grid),
         cmocka_unit_test(test_accelerated_equals_plain_pk_displacement),
         cmocka_unit_test(test_accelerated_equals_plain_pk_load),
+        cmocka_unit_test(test_stopping_rule_bounds_penetration),
         cmocka_unit_test(test_edge_contact),
         cmocka_unit_test(test_no_convergence),
         cmocka_unit_test(test_bad_input),

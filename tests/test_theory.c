@@ -440,6 +440,267 @@ static void moments_match_their_definition(void **state)
     }
 }
 
+/* ---- other punches: the local density of contact of the sphere and the flat punch ---- */
+
+enum { LEGENDRE_ORDER = 24, LEGENDRE_PANELS = 48 };
+
+/* The test's own Gauss-Legendre rule in long double: nodes by Newton's iteration on P_n. */
+static void legendre_rule(long double node[LEGENDRE_ORDER], long double weight[LEGENDRE_ORDER])
+{
+    const int n = LEGENDRE_ORDER;
+    for (int i = 0; i < n; ++i) {
+        long double x = cosl(M_PI * (i + 0.75L) / (n + 0.5L)), derivative = 0;
+        for (int iteration = 0; iteration < 100; ++iteration) {
+            long double p0 = 1, p1 = x;
+            for (int k = 2; k <= n; ++k) {
+                long double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            derivative = n * (x * p1 - p0) / (x * x - 1);
+            long double step = p1 / derivative;
+            x -= step;
+            if (fabsl(step) < 1e-19L)
+                break;
+        }
+        node[i] = x;
+        weight[i] = 2 / ((1 - x * x) * derivative * derivative);
+    }
+}
+
+/* A / A_smooth = 2 int_0^1 s gamma(s) ds in s = cos(phi), where both the sphere's square-root
+ * rim and the flat punch's infinite edge pressure are smooth: 2 int cos sin erf(b P(sin)) dphi,
+ * composite Gauss-Legendre on panels halving towards the rim phi = 0 (the flat punch's gamma turns
+ * from erf(beta / 2) to 1 where sin(phi) ~ beta), then one panel down to 0. */
+static double own_area_ratio(enum im_punch_kind kind, double beta)
+{
+    long double node[LEGENDRE_ORDER], weight[LEGENDRE_ORDER], sum = 0;
+    legendre_rule(node, weight);
+    long double hi = (long double)M_PI / 2;
+    for (int j = 0; j <= LEGENDRE_PANELS; ++j) {
+        long double lo = j < LEGENDRE_PANELS ? hi / 2 : 0, half = (hi - lo) / 2;
+        for (int i = 0; i < LEGENDRE_ORDER; ++i) {
+            long double phi = lo + half * (node[i] + 1), s = sinl(phi);
+            long double pressure = kind == IM_PUNCH_SPHERE ? 1.5L * s : 0.5L / s;
+            sum += weight[i] * half * 2 * cosl(phi) * s * erfl(beta * pressure);
+        }
+        hi = lo;
+    }
+    return (double)sum;
+}
+
+static double punch_ratio(enum im_punch_kind kind, double beta)
+{
+    double ratio = NAN;
+    if (im_theory_punch_area_ratio(kind, beta, &ratio) != IM_OK)
+        fail_msg("punch %d at beta = %g: %s", (int)kind, beta, im_last_error());
+    return ratio;
+}
+
+/* Closed forms derived by hand (docs/theory.md): with u = sqrt(1 - s^2) the sphere's ratio is
+ * 2 int_0^1 u erf(b u) du, b = 3 beta / 2, and the flat punch's 2 int_0^1 u erf(c / u) du, c = beta / 2,
+ * both integrable by parts. */
+static double hertz_closed_form(double beta)
+{
+    double b = 1.5 * beta;
+    return erf(b) * (1.0 - 0.5 / (b * b)) + exp(-b * b) / (b * sqrt(M_PI));
+}
+
+static double boussinesq_closed_form(double beta)
+{
+    double c = 0.5 * beta;
+    return erf(c) + 2.0 * c * exp(-c * c) / sqrt(M_PI) - 2.0 * c * c * erfc(c);
+}
+
+/* GSL's qags in u against the test's long double Gauss-Legendre in theta, from the linear regime
+ * (where the closed form cancels) to saturation. */
+static void hertz_gamma_integral_matches_own_quadrature(void **state)
+{
+    (void)state;
+    for (int i = 0; i < 41; ++i) {
+        double beta = log_spaced(1e-3, 30.0, i, 41), ours = own_area_ratio(IM_PUNCH_SPHERE, beta);
+        double library = punch_ratio(IM_PUNCH_SPHERE, beta);
+        if (test_relative_difference(library, ours) > 1e-12)
+            fail_msg("sphere beta = %g: library %.17g, own quadrature %.17g", beta, library, ours);
+        if (beta > 0.1 && test_relative_difference(library, hertz_closed_form(beta)) > 1e-12)
+            fail_msg("sphere beta = %g: library %.17g, closed form %.17g", beta, library, hertz_closed_form(beta));
+    }
+}
+
+static void boussinesq_gamma_integral_matches_own_quadrature(void **state)
+{
+    (void)state;
+    for (int i = 0; i < 41; ++i) {
+        double beta = log_spaced(1e-3, 30.0, i, 41), ours = own_area_ratio(IM_PUNCH_FLAT, beta);
+        double library = punch_ratio(IM_PUNCH_FLAT, beta);
+        if (test_relative_difference(library, ours) > 1e-12)
+            fail_msg("flat beta = %g: library %.17g, own quadrature %.17g", beta, library, ours);
+        if (test_relative_difference(library, boussinesq_closed_form(beta)) > 1e-12)
+            fail_msg("flat beta = %g: library %.17g, closed form %.17g", beta, library,
+                     boussinesq_closed_form(beta));
+    }
+}
+
+/* The flat punch's limits: the linear erf law at the mean pressure,
+ * 2 beta / sqrt(pi) - beta^2 / 2 + beta^3 / (6 sqrt(pi)) (no beta^4 term),
+ * for small beta; for large beta the edge singularity leaves only 8 exp(-beta^2/4) / (beta^3 sqrt(pi))
+ * (1 - 12 / beta^2) out of contact, far less than the sphere's 2 / (9 beta^2). */
+static void flat_punch_limits(void **state)
+{
+    (void)state;
+    for (double beta = 1e-8; beta < 2e-3; beta *= 10.0) {
+        double series = 2.0 * beta / sqrt(M_PI) - 0.5 * beta * beta + beta * beta * beta / (6.0 * sqrt(M_PI));
+        if (test_relative_difference(punch_ratio(IM_PUNCH_FLAT, beta), series) > 1e-11)
+            fail_msg("flat beta = %g: %.17g, series %.17g", beta, punch_ratio(IM_PUNCH_FLAT, beta), series);
+    }
+    for (double beta = 4.0; beta <= 8.0; beta += 2.0) {
+        /* the closed form's complement without cancellation: (1 + 2c^2) erfc(c) - 2c exp(-c^2) / sqrt(pi) */
+        double c = 0.5 * beta, missing = 1.0 - punch_ratio(IM_PUNCH_FLAT, beta);
+        double expected = (1.0 + 2.0 * c * c) * erfc(c) - 2.0 * c * exp(-c * c) / sqrt(M_PI);
+        double asymptote = 8.0 * exp(-c * c) / (beta * beta * beta * sqrt(M_PI));
+        if (fabs(missing - expected) > 1e-12 * expected + 4.0 * DBL_EPSILON)
+            fail_msg("flat beta = %g: 1 - ratio %.6g, closed form %.6g", beta, missing, expected);
+        assert_true(test_relative_difference(expected, asymptote * (1.0 - 12.0 / (beta * beta))) < 200.0 / pow(beta, 4));
+    }
+    for (double beta = 20.0; beta <= 50.0; beta += 10.0) {
+        double sphere_missing = 1.0 - punch_ratio(IM_PUNCH_SPHERE, beta);
+        assert_true(test_relative_difference(sphere_missing, 2.0 / (9.0 * beta * beta)) < 1e-9);
+    }
+    assert_true(punch_ratio(IM_PUNCH_FLAT, 60.0) == 1.0);
+    assert_true(punch_ratio(IM_PUNCH_SPHERE, 1e9) == 1.0);
+    assert_true(punch_ratio(IM_PUNCH_FLAT, 0.0) == 0.0);
+}
+
+/* Every punch's ratio starts as the erf law at its mean pressure: the disc's mean of p / p_m is 1. */
+static void every_punch_is_linear_at_small_beta(void **state)
+{
+    (void)state;
+    const enum im_punch_kind kinds[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT};
+    for (int k = 0; k < 3; ++k) {
+        double beta = 1e-7, ratio = punch_ratio(kinds[k], beta);
+        assert_true(test_relative_difference(ratio, 2.0 * beta / sqrt(M_PI)) < 1e-6);
+        assert_true(punch_ratio(kinds[k], 1.3) < constant_ratio(1.3)); /* erf is concave */
+    }
+    assert_true(punch_ratio(IM_PUNCH_CONE, 2.0) == variable_ratio(2.0));
+}
+
+/* gamma(r) from the smooth pressures: Hertz's 3/2 sqrt(1 - s^2), Boussinesq's 1 / (2 sqrt(1 - s^2)),
+ * Love's acosh(1/s); the mean pressure of each punch at a load. */
+static void punch_pressures_and_densities(void **state)
+{
+    (void)state;
+    double p, gamma;
+    assert_int_equal(im_theory_punch_pressure(IM_PUNCH_SPHERE, 0.6, &p), IM_OK);
+    assert_true(test_relative_difference(p, 1.5 * 0.8) < 1e-15);
+    assert_int_equal(im_theory_punch_pressure(IM_PUNCH_FLAT, 0.6, &p), IM_OK);
+    assert_true(test_relative_difference(p, 0.5 / 0.8) < 1e-15);
+    assert_int_equal(im_theory_punch_pressure(IM_PUNCH_FLAT, 1.0, &p), IM_OK);
+    assert_true(isinf(p));
+    assert_int_equal(im_theory_punch_contact_density(IM_PUNCH_FLAT, 0.7, 1.0, &gamma), IM_OK);
+    assert_true(gamma == 1.0);
+    assert_int_equal(im_theory_punch_contact_density(IM_PUNCH_SPHERE, 0.7, 1.0, &gamma), IM_OK);
+    assert_true(gamma == 0.0);
+    assert_int_equal(im_theory_punch_contact_density(IM_PUNCH_SPHERE, 0.7, 0.6, &gamma), IM_OK);
+    assert_true(test_relative_difference(gamma, erf(0.7 * 1.2)) < 1e-15);
+    double cone;
+    assert_int_equal(im_theory_punch_contact_density(IM_PUNCH_CONE, 0.7, 0.3, &gamma), IM_OK);
+    assert_int_equal(im_theory_cone_contact_density(0.7, 0.3, &cone), IM_OK);
+    assert_true(gamma == cone);
+    double hertz;
+    assert_int_equal(im_theory_punch_mean_pressure(IM_PUNCH_SPHERE, 50.0, 7.0, 2.0, &p), IM_OK);
+    assert_int_equal(im_theory_hertz_area(7.0, 50.0, 2.0, &hertz), IM_OK);
+    assert_true(test_relative_difference(p, 7.0 / hertz) < 1e-15);
+    assert_int_equal(im_theory_punch_mean_pressure(IM_PUNCH_FLAT, 3.0, 7.0, 2.0, &p), IM_OK);
+    assert_true(test_relative_difference(p, 7.0 / (M_PI * 9.0)) < 1e-15);
+    assert_failure_names(im_theory_punch_area_ratio((enum im_punch_kind)9, 1.0, &p), IM_EINVAL, "punch");
+    assert_failure_names(im_theory_punch_area_ratio(IM_PUNCH_FLAT, -1.0, &p), IM_EINVAL, "beta");
+    assert_failure_names(im_theory_punch_pressure(IM_PUNCH_SPHERE, 1.5, &p), IM_EINVAL, "r/a");
+    assert_failure_names(im_theory_punch_mean_pressure(IM_PUNCH_SPHERE, 50.0, 0.0, 1.0, &p), IM_EINVAL, "N");
+    assert_failure_names(im_theory_punch_mean_pressure(IM_PUNCH_FLAT, -1.0, 1.0, 1.0, &p), IM_EINVAL, "a");
+}
+
+/* The theory columns of a history step: Love's, Hertz's and Boussinesq's N(w), A_smooth(N) and the
+ * area ratios at the smooth mean pressure, each against its closed form written out here. */
+static void step_columns_are_the_closed_forms(void **state)
+{
+    (void)state;
+    im_theory_interface rough = im_theory_interface_default(0.08);
+    rough.e_star = 2.5;
+    im_theory_step step;
+    im_indenter cone = im_indenter_cone(80.0);
+    const double cot = tan(10.0 * M_PI / 180.0), w = 3.0, load = 40.0;
+    assert_int_equal(im_theory_step_columns(&cone, &rough, w, load, &step), IM_OK);
+    assert_true(test_relative_difference(step.load_smooth, 2.0 * 2.5 * w * w / (M_PI * cot)) < 1e-14);
+    assert_true(test_relative_difference(step.area_smooth, 2.0 * load / (2.5 * cot)) < 1e-14);
+    double beta = erf_scale_pr(cot / 0.08); /* eq. (7): independent of the load */
+    assert_true(test_relative_difference(step.area_ratio_gamma, variable_ratio(beta)) < 1e-14);
+    assert_true(test_relative_difference(step.area_ratio_constant, erf(beta)) < 1e-14);
+
+    im_indenter sphere = im_indenter_sphere(500.0);
+    assert_int_equal(im_theory_step_columns(&sphere, &rough, w, load, &step), IM_OK);
+    assert_true(test_relative_difference(step.load_smooth, 4.0 / 3.0 * 2.5 * sqrt(500.0) * pow(w, 1.5)) < 1e-14);
+    double hertz = M_PI * pow(0.75 * load * 500.0 / 2.5, 2.0 / 3.0), p_rough = 0.08 * 2.5 / 2.0;
+    assert_true(test_relative_difference(step.area_smooth, hertz) < 1e-14);
+    beta = erf_scale_pr(load / hertz / p_rough);
+    assert_true(test_relative_difference(step.area_ratio_gamma, hertz_closed_form(beta)) < 1e-12);
+    assert_true(test_relative_difference(step.area_ratio_constant, erf(beta)) < 1e-14);
+
+    im_indenter flat = im_indenter_flat(20.0);
+    assert_int_equal(im_theory_step_columns(&flat, &rough, w, load, &step), IM_OK);
+    assert_true(test_relative_difference(step.load_smooth, 2.0 * 20.0 * 2.5 * w) < 1e-14);
+    beta = erf_scale_pr(load / (M_PI * 400.0) / p_rough);
+    assert_true(test_relative_difference(step.area_ratio_gamma, boussinesq_closed_form(beta)) < 1e-12);
+
+    assert_int_equal(im_theory_step_columns(&flat, &rough, 0.0, 0.0, &step), IM_OK);
+    assert_true(step.load_smooth == 0.0 && step.area_smooth == 0.0 && isnan(step.area_ratio_gamma));
+    rough.slope_rms = 0.0; /* smooth: full contact */
+    assert_int_equal(im_theory_step_columns(&sphere, &rough, w, load, &step), IM_OK);
+    assert_true(step.area_ratio_gamma == 1.0 && step.area_ratio_constant == 1.0);
+    assert_failure_names(im_theory_step_columns(&flat, &rough, -1.0, 1.0, &step), IM_EINVAL, "w = ");
+}
+
+/* ---- measuring k ---- */
+
+/* A synthetic A(p) curve with a planted k: the fit recovers it to rounding; with a deterministic
+ * +-0.004 scatter, within three standard errors, and the error bar covers the scatter. */
+static void k_fit_recovers_planted_k(void **state)
+{
+    (void)state;
+    enum { POINTS = 24 };
+    const double planted = 2.37;
+    double x[POINTS], area[POINTS], noisy[POINTS];
+    for (int i = 0; i < POINTS; ++i) {
+        x[i] = 0.025 * (i + 1);
+        area[i] = erf(0.5 * sqrt(M_PI) * planted * x[i]);
+        noisy[i] = fmin(1.0, area[i] + (i % 2 ? 0.004 : -0.004) * (i % 3 ? 1.0 : -1.0));
+    }
+    im_theory_k_fit fit;
+    assert_int_equal(im_theory_fit_k(x, area, POINTS, &fit), IM_OK);
+    if (test_relative_difference(fit.k, planted) > 1e-12)
+        fail_msg("k = %.17g, planted %.17g", fit.k, planted);
+    assert_true(fit.k_error < 1e-12 && fit.rms_residual < 1e-14);
+    /* the linear slope over A/A0 <= 0.5 (x <= 0.227 here) is below k: erf bends down */
+    assert_int_equal(fit.linear_points, 9);
+    assert_true(fit.k_linear < planted && fit.k_linear > 0.9 * planted);
+    assert_int_equal(im_theory_fit_k(x, noisy, POINTS, &fit), IM_OK);
+    assert_true(fabs(fit.k - planted) < 3.0 * fit.k_error);
+    assert_true(fit.k_error > 1e-3 && fit.k_error < 0.05);
+    assert_close(fit.rms_residual, 0.004, 0.001);
+    /* the paper's k = 2 is not what this curve says */
+    assert_true(fabs(fit.k - 2.0) > 10.0 * fit.k_error);
+}
+
+static void k_fit_refusals(void **state)
+{
+    (void)state;
+    double x[2] = {0.1, 0.2}, area[2] = {0.2, 1.5};
+    im_theory_k_fit fit;
+    assert_failure_names(im_theory_fit_k(x, area, 2, &fit), IM_EINVAL, "A/A0 = 1.5");
+    x[0] = -1.0;
+    assert_failure_names(im_theory_fit_k(x, area, 1, &fit), IM_EINVAL, "x = p_m");
+    assert_failure_names(im_theory_fit_k(x, area, 0, &fit), IM_EINVAL, "0 points");
+}
+
 /* ---- refusals ---- */
 
 static void bad_input_is_refused(void **state)
@@ -498,6 +759,14 @@ int main(void)
         cmocka_unit_test(cone_closed_forms),
         cmocka_unit_test(moments_match_their_definition),
         cmocka_unit_test(bad_input_is_refused),
+        cmocka_unit_test(hertz_gamma_integral_matches_own_quadrature),
+        cmocka_unit_test(boussinesq_gamma_integral_matches_own_quadrature),
+        cmocka_unit_test(flat_punch_limits),
+        cmocka_unit_test(every_punch_is_linear_at_small_beta),
+        cmocka_unit_test(punch_pressures_and_densities),
+        cmocka_unit_test(step_columns_are_the_closed_forms),
+        cmocka_unit_test(k_fit_recovers_planted_k),
+        cmocka_unit_test(k_fit_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -15,6 +15,8 @@ typedef struct im_field {
     double delta;    /* patch side in physical units (1 when dimensionless) */
     char unit[16];   /* physical unit of delta and heights, "" when dimensionless */
     double *data;    /* nx * ny values, row-major, owned by the field */
+    char value_unit[40]; /* unit of the values when they are not lengths in `unit` (a force field:
+                            "N", "Pa·µm²", "E* δ²"); "" for heights and other lengths */
 } im_field;
 
 /* Largest side accepted for any grid; guards index arithmetic, not memory. */

@@ -22,8 +22,11 @@
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 
-#define IM_FIGURE_FONT "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
-#define IM_FIGURE_FONT_BOLD "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
+#ifndef IM_FONT_DIR /* the folder is a build setting: cmake -DIM_FONT_DIR=... */
+#define IM_FONT_DIR "/usr/share/fonts/truetype/dejavu"
+#endif
+#define IM_FIGURE_FONT IM_FONT_DIR "/DejaVuSans.ttf"
+#define IM_FIGURE_FONT_BOLD IM_FONT_DIR "/DejaVuSans-Bold.ttf"
 
 typedef struct im_figure_panel {
     const im_image *image;  /* the data, from im_render_*; required */

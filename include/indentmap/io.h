@@ -1,9 +1,17 @@
 /* indentmap/io.h: files in and out: surfaces (.npy, text matrix, Gwyddion .gsf), PNG images,
  * and the atomic-write discipline every writer follows.
  *
- * Atomic writes: every file is written to "PATH.tmp.PID" beside its destination and renamed over
- * it only when complete, so an interrupted run never leaves a half-written file and an existing
- * file is replaced whole or not at all.
+ * Atomic writes: every file is written to a temporary file with a short unique name beside its
+ * destination, ".im.tmp.PID.N" (N counts the files this process opened, across threads), and
+ * renamed over it only when complete, so an interrupted run never leaves a half-written file and
+ * an existing file is replaced whole or not at all. A final name of up to NAME_MAX (255) bytes
+ * keeps working: the temporary name does not grow with it.
+ *
+ * The output guard: every atomic write is checked, when it is opened, against the inputs the
+ * process registered (im_output_protect): an input, another name of it (symlink, hard link,
+ * "..") or its sidecar PATH.json is never written (IM_EINVAL). When it is committed, an existing
+ * file is replaced only by a file of the same kind (im_file_kind): a PNG never replaces a scene
+ * file, FFTW wisdom never replaces a surface (IM_EINVAL; the existing file is left as it was).
  *
  * Readers refuse, with IM_EFORMAT and a message naming the file (and the line for text), anything
  * they cannot read exactly: truncated data, extra data, unsupported types, NaN or Inf heights.
@@ -17,19 +25,68 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* ---- the output guard ---- */
+
+/* Registers path as an input of this process: from now on no atomic write may replace it (by any
+ * name that reaches it) or its sidecar path.json. A path that does not exist is registered by name.
+ * IM_ENOMEM if the list cannot grow. Thread-safe. */
+int im_output_protect(const char *path);
+/* Forgets every registered input (for tests and long-lived embedders). */
+void im_output_protect_reset(void);
+/* IM_OK when path is none of the registered inputs and none of their sidecars; otherwise IM_EINVAL
+ * with "PATH would overwrite the input file INPUT (RESOLVED); write it elsewhere" or the sidecar's
+ * message. Cheap (a few stat calls per input): the command line calls it before any work. */
+int im_output_check(const char *path);
+
+/* The absolute form of path with every symlink of its existing leading part resolved; the part
+ * that does not exist yet is appended as written. IM_EINVAL if it does not fit in size. */
+int im_path_absolute(const char *path, char *out, size_t size);
+
+/* What a file holds, recognised from its first bytes. */
+enum im_file_kind {
+    IM_KIND_NONE = 0, /* missing or empty */
+    IM_KIND_NPY, IM_KIND_PNG, IM_KIND_GIF, IM_KIND_PDF, IM_KIND_SVG, IM_KIND_MP4, IM_KIND_GSF,
+    IM_KIND_WISDOM,   /* FFTW wisdom: "(fftw-" */
+    IM_KIND_JSON,     /* starts with '{' */
+    IM_KIND_INI,      /* text whose first line that is not blank or a comment is a [section] */
+    IM_KIND_TEXT,     /* other text (CSV, text matrices, tables): no NUL byte in its head */
+    IM_KIND_BINARY    /* anything else */
+};
+/* The kind of `length` first bytes of a file (512 are enough). */
+enum im_file_kind im_file_kind_of_bytes(const void *bytes, size_t length);
+/* The kind of the file at path (IM_KIND_NONE when missing, empty or unreadable); IM_EINVAL for a
+ * path that is not a regular file (a folder, a device, a FIFO). */
+int im_file_kind_of(const char *path, enum im_file_kind *kind);
+/* "a PNG image", "FFTW wisdom", ... for messages. */
+const char *im_file_kind_name(enum im_file_kind kind);
+
 /* ---- atomic files ---- */
 typedef struct im_atomic_file {
     FILE *stream;        /* write here */
     char path[4096];     /* final destination */
     char temp_path[4128];
+    int slot;            /* internal: its entry in the list of temporary files (-1: none) */
 } im_atomic_file;
 
-/* Opens a temporary file beside path for writing ("wb"). */
+/* Opens a new temporary file beside path for writing (created exclusively, mode 0666 less the
+ * umask). IM_EINVAL when path is a registered input or its sidecar (im_output_check); IM_EIO when
+ * the file cannot be created. */
 int im_atomic_open(im_atomic_file *file, const char *path);
-/* Flushes, syncs, closes and renames into place; on failure removes the temporary file. */
+/* The same with a temporary name ending in suffix (e.g. ".mp4", for a program that picks its
+ * format from the name and writes file->temp_path itself). */
+int im_atomic_open_suffixed(im_atomic_file *file, const char *path, const char *suffix);
+/* Flushes, syncs, closes and renames into place. On failure removes the temporary file and leaves
+ * path as it was: IM_EIO (write or rename failed: the message has errno's reason), IM_EINVAL (path
+ * holds a file of another kind than the one written, see the output guard). */
 int im_atomic_commit(im_atomic_file *file);
 /* Closes and removes the temporary file; the destination is untouched. Accepts a closed file. */
 void im_atomic_abort(im_atomic_file *file);
+/* Removes every temporary file this process has open (async-signal-safe: for a handler of a
+ * fatal signal, which then ends the process). */
+void im_atomic_remove_temporaries(void);
+/* Whether name (a file name without folder) is a temporary name of an atomic write: ".im.tmp.*",
+ * or "NAME.tmp.PID" / "NAME.tmp.PID.mp4" as earlier versions named them. */
+int im_atomic_is_temporary_name(const char *name);
 
 /* Writes a whole text (or binary) buffer atomically. */
 int im_write_file_atomic(const char *path, const void *data, size_t size);
@@ -37,17 +94,55 @@ int im_write_file_atomic(const char *path, const void *data, size_t size);
 /* Creates a directory and its parents (mkdir -p); IM_OK if it already exists. */
 int im_make_directories(const char *path);
 
+/* A path as UTF-8 text for records (JSON, PNG text chunks): itself when it is valid UTF-8 (returns
+ * 0); otherwise (returns 1) each byte outside valid UTF-8 becomes \xHH and each backslash \\,
+ * so that the bytes can be recovered. out is always terminated; a path that does not fit is cut
+ * (size 4 * PATH_MAX + 1 always fits). */
+int im_path_utf8(const char *path, char *out, size_t size);
+
+/* ---- output folders ---- */
+
+/* An output folder's lock, FOLDER/.lock (the folder must exist), held by `run` and `indent` while
+ * they write there: flock(2) decides who holds it (the kernel drops it when its holder dies) and
+ * the file holds the holder's pid. IM_EIO while another live process holds it, with "output folder
+ * FOLDER is in use by another indentmap run (pid N, lock file F); wait for it to end or ADVICE";
+ * a lock file no live process holds is taken over with a warning on stderr. */
+typedef struct im_folder_lock {
+    int fd;             /* -1 when not held */
+    char path[4104];
+} im_folder_lock;
+int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock);
+/* Removes the lock file and releases it; nothing if not held. */
+void im_folder_lock_release(im_folder_lock *lock);
+
+/* Removes the temporary files of atomic writes (im_atomic_is_temporary_name) that a killed run
+ * left in folder and, for depth d > 0, in its subfolders d levels down (depth 0: folder only). Call
+ * it only while holding the folder's lock: another live writer's temporary files would go too.
+ * Returns how many were removed. */
+int im_folder_remove_temporaries(const char *folder, int depth);
+
 /* ---- surfaces ---- */
 enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };
 
-/* NumPy .npy, version 1.0, little-endian, C order, 2-D shape (ny, nx) (rows are y). */
+/* NumPy .npy, version 1.0, little-endian, C order, 2-D shape (ny, nx) (rows are y). A .npy states
+ * no units: its sidecar PATH.json does, when present ("delta", "unit" and, for fields other than
+ * heights, "value_unit": written by `surface --out` and im_field_sidecar_write), and im_npy_read takes
+ * them from it (IM_EFORMAT naming the sidecar when it is not a JSON object of those types, or larger
+ * than 1 MiB). */
 int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtype);
-/* Reads '<f8' or '<f4', C order, 2-D, versions 1.0 to 3.0. */
+
+/* Writes PATH.json beside the .npy at path: program, version, quantity (e.g. "force per patch"),
+ * the grid, delta, unit and value_unit of field, atomically. */
+int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity);
+/* Reads versions 1.0 to 3.0, 2-D, C or Fortran order, floats of 4 or 8 bytes and integers of 1, 2, 4
+ * or 8 bytes (signed or not) in either byte order, each converted to double (int64 and uint64 beyond
+ * 2^53 rounded); im_surface_read_with records the conversion in its info. */
 int im_npy_read(const char *path, im_field **out);
 
 /* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or
  * commas; lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and
- * "# Height:" headers, when present, set the spacing (Width / columns) and unit. A header line
+ * "# Height:" headers, when present, set the spacing (Width / columns, Height / rows) and lateral
+ * unit, and "# Value units: m" the unit of the heights (converted as im_surface_read_with says). A header line
  * stating the grid, "# ... C columns x R rows ..." (as written here), must match the data: a file
  * with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
  * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the
@@ -57,14 +152,96 @@ int im_text_read(const char *path, im_field **out);
 
 /* Gwyddion Simple Field (.gsf): a text header ("Gwyddion Simple Field 1.0", then KEY = VALUE
  * lines with XRes, YRes and optionally XReal, YReal, XYUnits, ZUnits), NUL padding to a multiple
- * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. Writing is provided for
- * round trips and tests. */
+ * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. XRes and YRes must be
+ * decimal integers (no "16abc", no "1.6e1"), XReal and YReal finite numbers > 0; a value that is
+ * not is refused naming its key. YReal defaults to square pixels. Units as for im_surface_read_with.
+ * Writing is provided for round trips and tests. */
 int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
-/* Reads a surface by extension: .npy, .gsf, else a text matrix. */
+/* ISO 25178-71 surface data file (.sdf): ASCII ("aISO-1.0" or "aBCR-1.0") or binary ("bISO-1.0",
+ * "bBCR-1.0"; an 81-byte little-endian header, then the values). NumPoints columns by NumProfiles
+ * rows; Xscale, Yscale (spacings) and Zscale (the height of one unit of a value) in metres, each
+ * checked to be a finite number > 0; DataType 0-7 (uint8/16/32, float, int8/16/32, double);
+ * Compression must be 0; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
+ * than a '*' trailer are refused. Writing is binary, DataType double, in metres (the field needs a
+ * length unit; IM_EINVAL otherwise). */
+int im_sdf_write(const char *path, const im_field *field);
+int im_sdf_read(const char *path, im_field **out);
+
+/* NetCDF (.nc) in the layout of ContactMechanics/SurfaceTopography and contact.engineering:
+ * dimensions x and y, heights(x, y) (first index x; (y, x) is read too), and optional coordinate
+ * variables x and y whose attributes `length` (physical size) and `length_unit` (of lengths and
+ * heights) state the spacing (length / points) and the unit. Any numeric type is read as double;
+ * values equal to the fill value (heights:_FillValue, else netCDF's default for the type, which is
+ * also what netCDF returns for values past the end of a truncated file) are missing points. Refused with IM_EFORMAT naming the file and
+ * the dimension, variable or attribute at fault. Writing uses the classic 64-bit offset format (as
+ * SurfaceTopography does), with length_unit in ASCII ("um" for µm) and periodic = 0, built in
+ * memory and written atomically. */
+int im_netcdf_write(const char *path, const im_field *field);
+int im_netcdf_read(const char *path, im_field **out);
+
+/* ISO 25178-72 .x3p: a zip archive (libzip) holding main.xml (ISO 5436-2, parsed with libxml2
+ * without network access or entity expansion) and the binary data it links. Read: Record1 Axes CX,
+ * CY of AxisType I with Increment (the spacings, metres), CZ of AxisType A with DataType I (int16),
+ * L (int32), F (float32) or D (float64), heights Offset + Increment x value in metres; Record3
+ * MatrixDimension SizeX, SizeY, SizeZ = 1 and DataLink/PointDataLink, whose entry must hold exactly
+ * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data and checksums are
+ * not read. Refused with IM_EFORMAT naming the file and the element. Written: DataType D in metres
+ * (the field needs a length unit; IM_EINVAL otherwise), without md5 checksums. */
+int im_x3p_write(const char *path, const im_field *field);
+int im_x3p_read(const char *path, im_field **out);
+
+/* ---- units of a surface ----
+ * A surface's lateral spacing and its heights are lengths. Files state them (GSF XReal/YReal/
+ * XYUnits/ZUnits, Gwyddion text "# Width:", "# Height:", "# Value units:"), the user may set or
+ * override them (.npy files state none), and a surface read into an im_field always has its heights
+ * in the unit of its spacing (field->unit), converted when the file gives them in another one, so
+ * that slopes such as h'rms are dimensionless and right. Known length units: "m", "cm", "mm", "µm"
+ * (also "um", "μm", "micron"), "nm", "pm", "Å" (also "A", "angstrom"). */
+typedef struct im_surface_units {
+    double delta_x, delta_y; /* pixel spacing along x (columns) and y (rows), in `lateral`; 0: not stated */
+    char lateral[16];        /* unit of the spacing; "" when not stated */
+    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit) */
+} im_surface_units;
+
+/* Metres per unit of a length unit's name (1e-6 for "µm"), and its canonical spelling in
+ * *canonical (may be NULL); 0 when the name is not a known length unit. */
+double im_length_unit_metres(const char *name, const char **canonical);
+
+/* How a surface file is read. Zero-initialised means: as the file states. */
+typedef struct im_surface_read_options {
+    im_surface_units set;    /* each stated member (non-zero, non-empty) overrides the file's; a
+                                delta_x without delta_y sets both */
+    int fill;                /* 1: fill missing points (NaN) with im_surface_fill_missing (surface.h);
+                                0: refuse them, naming the first one's (x, y) */
+    char express_in[16];     /* a length unit ("m" for SI): spacing and heights are converted into it
+                                from the surface's unit, which must then be known; "": kept */
+} im_surface_read_options;
+
+/* What the reader found and did, for reports and run records. */
+typedef struct im_surface_read_info {
+    im_surface_units file;   /* as the file stated them (zeros and "" where it stated nothing) */
+    im_surface_units used;   /* as applied, after overrides (delta_y = delta_x) */
+    double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
+    long filled;             /* missing points filled (options->fill) */
+    char conversion[96];     /* how the stored values were converted, e.g. "'>i2' (int16) converted to
+                                float64; Fortran order transposed to C order"; "" when none */
+} im_surface_read_info;
+
+/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p, else a text matrix) and applies its units: field->delta
+ * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
+ * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
+ * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
+ * a unit that is not a length, heights in a unit without a lateral unit to convert them to, Inf
+ * heights, and NaN heights (missing points) unless options->fill. options and info may be NULL. */
+int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
+                         im_surface_read_info *info);
+
+/* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
-/* Writes a surface by extension: .npy (float64), .gsf, else a text matrix. */
+/* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, .x3p, else a text
+ * matrix. */
 int im_surface_write(const char *path, const im_field *field);
 
 /* ---- PNG ---- */

@@ -29,6 +29,7 @@
 
 #include "indentmap/colormap.h"
 #include "indentmap/field.h"
+#include "indentmap/indenter.h"
 
 #include <stdint.h>
 
@@ -150,5 +151,110 @@ int im_height_outline_width(const im_height_style *style);
  * and IM_EINVAL when the contact field's grid differs. */
 int im_render_height_map(im_render_context *context, const im_field *height,
                          const im_height_style *style, im_image *image);
+
+/* ---- 3-D view of the deformed surface ----
+ *
+ * World coordinates are in patches: x right and y up as in the 2-D maps (patch (ix, iy) covers
+ * [ix, ix + 1) x [iy, iy + 1)), z = exaggeration * height / delta. The surface is a mesh with one
+ * vertex per patch corner, its height the mean of the (up to four) patches that share the
+ * corner, each square split along its diagonal from (ix, iy) to (ix + 1, iy + 1). A fragment
+ * takes the colour and the normal of the patch it lies in: colour from the force through the
+ * norm (as im_render_contact_map, so contact patches have the exact colours of the 2-D map) or
+ * the surface colour where force <= 0; normal from central differences of the patch heights
+ * (one-sided at the edges), like the 2-D height map. Shading is Lambert's law relative to level
+ * ground: a level patch keeps its exact colour (shade 1) whatever the light, so a flat surface
+ * seen from straight above reproduces the 2-D contact map; shade = 1 + shading * (max(n.l, 0) /
+ * l_z - 1), then the colour times shade, clamped to [0, 1].
+ *
+ * Side walls close the surface into a block: from each edge corner straight down to a flat base
+ * 0.04 * max(nx, ny) below the lowest edge corner, in the surface colour darkened to 85 %, lit with an
+ * ambient part (0.55 + 0.45 max(n.l, 0)). Seen from straight above they cover no pixel.
+ *
+ * Level of detail: with more than mesh_side patches along the longer side, the mesh is built on
+ * every s-th corner (s = ceil(longer side / mesh_side)), each corner's height the mean of the 2s x
+ * 2s patches around it; colours and normals stay per patch, so contact patches keep their
+ * outlines while the geometry is coarser.
+ *
+ * Camera: it looks at the target, the centre of the grid (nx / 2, ny / 2) at the height target_z
+ * (by default the middle of the surface's drawn height range), from the direction
+ *     (cos(el) sin(az), -cos(el) cos(az), sin(el)),
+ * az = azimuth, el = elevation: azimuth 0 looks from the bottom edge of the 2-D map (-y) towards
+ * +y, 90 from the right edge (+x). Its right-hand direction is (cos az, sin az, 0) and up is
+ * right x forward, so a top view (elevation 90, azimuth 0) is oriented as the 2-D map.
+ * Perspective: the eye at target + distance * L * direction, L = max(nx, ny), vertical field of
+ * view field_of_view degrees. Orthographic: ortho_height patches of the world span the image's
+ * height (0: automatic, 1.15 * the grid's diagonal). Pixel centres map to normalised device
+ * coordinates the usual GL way (x from the left, y from the bottom of the image).
+ *
+ * The punch (optional): its profile (indenter.h) revolved around its axis, in world units with
+ * the same exaggeration, placed where it touches the deformed surface: its lowest point at
+ * c = max over patches of (h / delta - profile(r) / delta), r the patch centre's distance from
+ * the axis, i.e. resting on the heights it presses. Drawn out to the radius punch_extent (cone,
+ * sphere), then a cylindrical shaft 0.12 max(nx, ny) high closed by a flat top; a flat punch as
+ * a cylinder of its radius and that height.
+ */
+typedef enum im_view3d_projection { IM_VIEW3D_PERSPECTIVE = 0, IM_VIEW3D_ORTHOGRAPHIC = 1 } im_view3d_projection;
+
+typedef enum im_view3d_punch {
+    IM_VIEW3D_PUNCH_TRANSLUCENT = 0,  /* blended over the scene with punch_opacity */
+    IM_VIEW3D_PUNCH_OPAQUE = 1,       /* solid: what lies behind it is hidden */
+    IM_VIEW3D_PUNCH_CUTAWAY = 2,      /* solid, its half towards the camera removed */
+    IM_VIEW3D_PUNCH_NONE = 3
+} im_view3d_punch;
+
+typedef struct im_view3d_camera {
+    double azimuth;            /* degrees, any finite value (see above) */
+    double elevation;          /* degrees above the horizon, [1, 90] */
+    double distance;           /* perspective: eye-target distance in units of max(nx, ny), > 0 */
+    double field_of_view;      /* perspective: vertical, degrees, (1, 120) */
+    im_view3d_projection projection;
+    double ortho_height;       /* orthographic: world height spanned by the image, in patches; 0 auto */
+    double target_z;           /* height looked at, in world units (exaggerated patches); NAN: the
+                                  middle of the surface's drawn range. Frames of a history fix it
+                                  so that the camera stays put as the surface deforms. */
+} im_view3d_camera;
+
+typedef struct im_view3d_style {
+    im_colormap colormap;      /* norm on the local compressive force */
+    int width, height;         /* image size in pixels, >= 16 each */
+    int samples;               /* multisampling per pixel: 1 (none), 2, 4 or 8; capped at the GL
+                                  implementation's GL_MAX_SAMPLES */
+    int mesh_side;             /* level of detail: most mesh cells along the longer side, >= 8 */
+    double exaggeration;       /* vertical exaggeration, > 0 (1: true scale) */
+    double shading;            /* [0, 1]: 0 unlit (exact colours everywhere) */
+    double light_azimuth;      /* degrees, clockwise from +y, as the 2-D height map */
+    double light_altitude;     /* degrees above the horizon, (0, 90] */
+    uint8_t surface[3];        /* patches not in contact (force <= 0, or no force field) */
+    uint8_t background[3];
+    uint8_t punch_colour[3];
+    im_view3d_punch punch_mode;
+    double punch_opacity;      /* translucent punch: (0, 1) */
+    double punch_extent;       /* radius to which a cone or sphere is drawn, in patches; 0:
+                                  automatic (0.3 * min(nx, ny), a sphere at most its radius) */
+    im_view3d_camera camera;
+} im_view3d_style;
+
+/* Defaults for a force field (may be NULL): the contact map's norm (im_contact_style_default),
+ * 1920 x 1080 pixels, 4 samples, mesh_side 384, true scale (exaggeration 1), shading 0.7, light
+ * from 315 degrees at 45 degrees, surface light grey (230), white background, a steel-grey (150,
+ * 160, 175) translucent punch of opacity 0.35, perspective from azimuth 20, elevation 35,
+ * distance 2.1, field of view 30 degrees, automatic target height (NAN). */
+im_view3d_style im_view3d_style_default(const im_field *force);
+
+/* Draws the deformed surface `height` (h - u, in the field's units; all values finite) in 3-D,
+ * with contact patches coloured by `force` (same grid; NULL: no contact colours) and the punch
+ * (NULL: none; lengths in the units of delta, as solver.h). Multisampled; the read-back image is
+ * the same on every run with the same inputs and renderer. The image's data_x, data_y and
+ * pixels_per_patch are 0 (no patch maps to a fixed pixel square); nx, ny, delta and unit are the
+ * field's. Errors: IM_EINVAL for a bad style (naming the member and the valid range), grids that
+ * differ, or an image larger than the GL limits; IM_ENUMERIC for a non-finite height; IM_ENOMEM;
+ * IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
+int im_render_view3d(im_render_context *context, const im_field *height, const im_field *force,
+                     const im_indenter *punch, const im_view3d_style *style, im_image *image);
+
+/* The statement of the vertical scale to print on a 3-D image: "true vertical scale" for an
+ * exaggeration of 1, else "vertical exaggeration ×X" (UTF-8, X with up to 3 significant digits).
+ * Writes at most size bytes. */
+void im_view3d_exaggeration_text(double exaggeration, char *text, size_t size);
 
 #endif

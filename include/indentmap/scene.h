@@ -47,7 +47,18 @@ typedef struct im_scene {
                                         Both are recorded in OUTPUT/run.json. */
 
     im_surface_params surface;       /* template of every generated surface */
-    char surface_file[IM_SCENE_PATH];/* a surface file instead of generated families ("" if none) */
+    char surface_file[IM_SCENE_PATH];/* `file`: surface files instead of generated families, a
+                                        comma-separated list ("" if none). The files are the
+                                        ensemble of one family: seed_count is their number and
+                                        seeds[i] = i picks file i. `slopes` and `seeds` are refused
+                                        beside them (their h'rms is measured, each is one surface). */
+    int file_count;                  /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
+    int detrend;                     /* enum im_detrend of surface.h for the files (default none) */
+    int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
+    char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
+    double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
+                                        surface as solved; measured by im_scene_run, which sets
+                                        slopes[0] to their root mean square (NaN until then) */
     double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
     int family_count;
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
@@ -57,6 +68,7 @@ typedef struct im_scene {
     double alpha_degrees;            /* cone semi-opening angle */
     double radius;                   /* sphere radius or flat punch radius, in delta */
     double modulus;                  /* composite modulus E* */
+    double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
     int control;                     /* enum im_control of solver.h: 0 displacement, 1 load */
     double load_star;                /* N* at which contact panels are drawn (0: none) */
@@ -66,6 +78,7 @@ typedef struct im_scene {
     double tol;                      /* solver tolerance (default: the quality preset's) */
 
     int contact_panels, frames, table;
+    int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
     int colormap;                    /* im_colormap_id of colormap.h (default viridis) */
     int log_norm;                    /* 1: forces on a log norm spanning two decades below the
                                         largest, smaller forces in the under colour */
@@ -109,6 +122,10 @@ typedef struct im_scene_run_options {
  *     load_star on one family (the deformed surface with its contact outline), and the
  *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
  *     The history's last step is that family's panel: it is not solved twice.
+ *   frames3d (with frames): frames/view3d_NNNN.png, the deformed surface of every step in 3-D
+ *     (render.h's im_render_view3d, 960 x 540: one force norm, one vertical exaggeration, stated
+ *     in each title, and one camera for all), and view3d.gif / view3d.mp4 as `animation` asks
+ *     (the GIF's frames dithered to a 216-colour cube).
  * Nothing is solved twice within a run: a load-controlled history's step at load_star takes the
  * table's state, and a panel takes the force of the table, of such a history, or of the frames'
  * last step. Each stage's line says how many surfaces it solved, read back and reused.
@@ -123,6 +140,15 @@ typedef struct im_scene_run_options {
  * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
  * has, or when the output folder is or contains an input (the scene or its surface file). */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
+
+/* Reads every surface file of a scene (prepared as it will be solved), checks that they share one
+ * grid and spacing (IM_EFORMAT naming the files otherwise), and sets file_slopes[] and slopes[0]
+ * (see above). IM_OK at once for a scene without files. Called by im_scene_run on its copy. */
+int im_scene_measure_files(im_scene *scene);
+
+/* The path of file i of a scene's `file` list, resolved relative to the scene file (as
+ * im_scene_resolve_path); IM_EINVAL when i is out of range. */
+int im_scene_file_path(const im_scene *scene, int i, char *out, size_t size);
 
 /* Resolves a path written in a scene relative to the scene file's directory (absolute paths are
  * kept). Writes at most size bytes to out, which may not overlap relative. */

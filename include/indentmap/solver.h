@@ -46,7 +46,8 @@
  * taken when the penetration outside I_c outweighs the gap left on it, sum over p = 0, g < 0 of g^2
  * > sum over I_c of g^2 (Dostal's proportioning test); the next step restarts the conjugacy.
  * Letting patches join in every step, as plain PK does, restarted the conjugacy at almost every
- * step. Clipping may shrink I_c in any step.
+ * step. Clipping may shrink I_c in any step. Neither this nor the cascade below is used in the
+ * periodic mode or with a hardness (made and measured for the plain half-space): plain PK there.
  *
  * ---- Cascade start (default; option cascade = 0 for the local guess) ----
  * A cold solve (all-zero pressure in) on a grid whose halves are at least 32 patches a side first
@@ -59,12 +60,36 @@
  * sets).
  *
  * ---- Stopping rule ----
- * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w
+ * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w   (with a hardness, also g at p = H_p)
  * i.e. the rms gap left in the contact set and the worst penetration outside it, relative to the
  * approach. A solve stops when residual <= tol (default 1e-8), checked on u recomputed exactly by
  * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
  * iterations. Both the iteration count and the residual are reported for every solve.
  */
+/* ---- Hardness (perfect plasticity at a pressure cap) ----
+ * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure
+ * would exceed it yields and carries exactly H_p. The solution then satisfies, patch by patch,
+ *     p = 0       and g >= 0   (out of contact)
+ *     0 < p < H_p and g = 0    (elastic contact)
+ *     p = H_p     and g <= 0   (plastic contact: -g is the surface's plastic flattening)
+ * The iteration is the same with I_c = {0 < p < H_p}, every update projected onto [0, H_p], and
+ * patches at either bound that violate their condition released by a local step; the stopping rule's
+ * penetration term counts g > 0 at p = H_p as well. Under load control the elastic pressures are
+ * rescaled with the capped ones fixed, and u is recomputed by FFT (one convolution more per
+ * iteration while a patch is capped). The cone's apex singularity and a flat punch's edge are capped;
+ * in the fully plastic limit A = N / H_p. */
+
+/* ---- Periodic mode (nominally flat contact) ----
+ * With options.periodic the grid is one period of a periodic surface pressed by a rigid flat under
+ * a mean pressure. The convolution is circular on the nx x ny grid (no padding) with the periodic
+ * half-space's response u(q) = 2 p(q) / (E* |q|) (Johnson, Contact Mechanics, 13.2): the spectrum
+ * of the sampled pressure is multiplied by 2 / (E* |q|), q = 2 pi (kx / (nx delta), ky / (ny delta))
+ * with the wrapped (signed) mode numbers, and the mean (q = 0) mode by 0, which fixes the free
+ * rigid displacement of a periodic half-space so that mean u = 0. Its real-space value at the
+ * origin tends to Love's 4 delta asinh(1) / (pi E*) on fine grids (the Brillouin zone's mean of
+ * 2 / (E* |q|)). Only load control is meaningful (the approach is defined up to that constant):
+ * displacement control is refused with IM_EINVAL; the reported approach is the mean of u + g0
+ * over the contact. */
 #ifndef INDENTMAP_SOLVER_H
 #define INDENTMAP_SOLVER_H
 
@@ -81,6 +106,12 @@ typedef struct im_solver_options {
                                NULL (default): the environment variable IM_FFTW_WISDOM, if set */
     int crop;               /* 1 (default): solve on the window that can touch; 0: whole surface */
     int window_margin;      /* patches added around the window on each side (default 4) */
+    int periodic;           /* 0 (default): the half-space, DC-FFT on the zero-padded grid; 1: a
+                               periodic half-space (the grid repeats in x and y), for nominally flat
+                               contact: no padding, the kernel's spectrum 2 / (E* |q|) (see
+                               "Periodic mode" above); load control only; im_flat_contact_* set it */
+    double hardness;        /* 0 (default): none; H_p > 0: perfect plasticity at the pressure cap
+                               H_p (units of E*'s stress), see "Hardness" above */
     int cascade;            /* 1 (default): cold starts from the solution on coarser grids (see
                                "Cascade start" above); 0: from the local (Winkler) guess */
     int precondition;       /* 1 (default): preconditioned CG steps on the contact set (see
@@ -90,6 +121,14 @@ typedef struct im_solver_options {
 im_solver_options im_solver_options_default(void);
 /* IM_EINVAL naming the first option out of range. */
 int im_solver_options_check(const im_solver_options *options);
+
+/* The wisdom file the options name (wisdom_path, else $IM_FFTW_WISDOM), or NULL for none. */
+const char *im_solver_wisdom_file(const im_solver_options *options);
+/* IM_OK when the wisdom file (if any) may be read and replaced: missing, empty or FFTW wisdom, and
+ * no input of the process (io.h: im_output_protect). Otherwise IM_EINVAL naming the file, what it
+ * holds (a surface, a scene, a device) and where the path came from. Planning checks it too, before
+ * reading the file; callers check it before any work. */
+int im_solver_wisdom_check(const im_solver_options *options);
 
 /* Quality presets: the stopping tolerance of a named speed/accuracy trade-off.
  *   draft        1e-5   N within 1.4e-5, n_p within 0.19%, 0.73x the iterations of standard
@@ -150,6 +189,34 @@ typedef struct im_solve_result {
  * down (non-finite values). */
 int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                     double *pressure, double *displacement, im_solve_result *result);
+
+/* ---- nominally flat contact: a periodic surface under a rigid flat ---- */
+typedef struct im_flat_result {
+    double mean_pressure;      /* the imposed nominal mean pressure p_m, units of E* */
+    double area_fraction;      /* A / A0 = n_p / (nx ny) */
+    long contact_patches;      /* n_p */
+    double contact_pressure;   /* mean pressure over the contact, p_m / (A / A0); 0 without contact */
+    double max_pressure;
+    double approach;           /* mean of u + g0 over the contact, with mean u = 0 */
+    int iterations;
+    double residual;
+} im_flat_result;
+
+typedef struct im_flat_contact im_flat_contact;
+
+/* Prepares nominally flat, periodic contact of surface (heights in units of its delta, one period
+ * in x and y; not referenced after the call) with a rigid flat: g0 = max h - h. options may be NULL
+ * (defaults); its periodic flag is set here, crop and window are unused. IM_ENUMERIC for NaN/Inf
+ * heights, IM_EINVAL for bad options, IM_ENOMEM. */
+int im_flat_contact_create(const im_field *surface, const im_solver_options *options, im_flat_contact **out);
+void im_flat_contact_free(im_flat_contact *run);
+
+/* Solves the contact at nominal mean pressure p_m >= 0 (units of E*; load N = p_m nx ny delta^2),
+ * warm-started from the last solve. Errors as im_solver_solve's. */
+int im_flat_contact_solve(im_flat_contact *run, double mean_pressure, im_flat_result *out);
+
+/* The pressure field of the last solve (nx * ny values, field.h layout; owned by run). */
+const double *im_flat_contact_pressure(const im_flat_contact *run);
 
 /* ---- indentation histories on a surface ---- */
 typedef struct im_window {

@@ -124,4 +124,48 @@ int im_surface_sidecar_write(const char *path, const im_field *surface, const im
 double im_surface_expected_height_rms(const im_surface_params *params, double slope_rms);
 double im_surface_height_rms_eq15(const im_surface_params *params, double slope_rms);
 
+/* ---- preparation of measured surfaces ----
+ * Synthesised surfaces are periodic and exact; measured ones are not: they are tilted and bowed by
+ * the instrument, have missing points, and end abruptly at the scan's edges, where the periodic
+ * box of a Fourier transform sees a step. The spectral h'rms of such a crop is dominated by that
+ * step (a 256^2 crop of a periodic surface of h'rms 0.08: 0.30 spectral, 0.079 by differences; with
+ * a tilt of 0.05: 1.06). Hence plane and curvature removal, and a window for spectral estimates. */
+
+/* Cuts the nx x ny block at (x0, y0) (nx, ny >= 2) into *out (caller frees); IM_EINVAL naming the
+ * crop and the grid when it does not fit. */
+int im_surface_crop(const im_field *surface, int x0, int y0, int nx, int ny, im_field **out);
+
+/* Fills missing points (NaN) in place by repeated passes, each giving every missing point that has
+ * a known 4-neighbour the mean of its known 4-neighbours (points filled in a pass do not feed each
+ * other in that pass): a hole is filled from its rim inwards, a smooth continuation of its edges.
+ * *filled counts the points filled. IM_ENUMERIC for Inf, or when every point is missing. */
+int im_surface_fill_missing(im_field *surface, long *filled);
+
+enum im_detrend {
+    IM_DETREND_NONE = 0,
+    IM_DETREND_PLANE = 1,     /* least-squares plane a + b x + c y (mean and tilt) */
+    IM_DETREND_CURVATURE = 2  /* least-squares quadric: the plane and x^2, xy, y^2 (bow) */
+};
+
+/* Subtracts the least-squares polynomial in place. IM_ENUMERIC for a non-finite height. */
+int im_surface_detrend(im_field *surface, enum im_detrend detrend);
+
+enum im_taper_kind { IM_TAPER_NONE = 0, IM_TAPER_HANN = 1, IM_TAPER_TUKEY = 2 };
+typedef struct im_taper {
+    enum im_taper_kind kind;
+    double alpha;             /* Tukey: the tapered fraction of the length, alpha / 2 at each end, in
+                                 [0, 1] (1 is Hann, 0 no taper) */
+} im_taper;
+
+/* For spectral estimates of non-periodic data: *out = w (h - mean h) / sqrt(<w^2>) with w the
+ * product of the 1-D window along x and along y, so that the mean power of the data is kept and the
+ * window and its slope vanish at the edges (no step in the periodic box). The surface itself is
+ * never windowed for solving. IM_EINVAL for a Tukey alpha outside [0, 1]. */
+int im_surface_tapered(const im_field *surface, const im_taper *window, im_field **out);
+
+/* im_surface_statistics with the spectral quantities (h'rms spectral, curvature, m0, m2, m4,
+ * Nayak) taken from the windowed surface; the others (mean, h_rms, h'rms fd, range) from the
+ * surface itself. A window of kind IM_TAPER_NONE gives im_surface_statistics. */
+int im_surface_statistics_tapered(const im_field *surface, const im_taper *window, im_surface_stats *stats);
+
 #endif

@@ -20,6 +20,8 @@
 #ifndef INDENTMAP_THEORY_H
 #define INDENTMAP_THEORY_H
 
+#include "indentmap/indenter.h"
+
 /* ---- Contact area: the erf law and its normalising pressure (eqs. 1, 2 and the Appendix) ---- */
 
 /* Eq. (2)'s constant k in p_rough = h'rms E* / k; the paper takes k = 2. */
@@ -131,6 +133,91 @@ int im_theory_cone_pressure(double r_over_a, double *p_over_mean);
 /* Eqs. (10)-(11): the local density of contact gamma(r) = erf(beta acosh(a / r)), the paper's
  * Fig. 1, for beta >= 0 and 0 <= r/a <= 1. gamma = 1 at the apex (beta > 0), 0 at the rim. */
 int im_theory_cone_contact_density(double beta, double r_over_a, double *gamma);
+
+/* ---- Any axisymmetric punch: the local density of contact (beyond the paper) ----
+ *
+ * The paper's closing remark generalised: gamma(r) = erf(p(r) / p_n) with the smooth pressure p(r)
+ * of the punch, and A / A_smooth = (1 / (pi a^2)) int_0^a 2 pi r gamma(r) dr, where A_smooth = pi a^2
+ * is the smooth contact area at the same load (A_cone, A_Hertz, the flat punch's pi a^2). With
+ * s = r / a the smooth pressures divided by their mean p_m = N / A_smooth are
+ *     cone (Love):        acosh(1 / s)                 (p_m = p_m,c, eq. 4)
+ *     sphere (Hertz):     (3/2) sqrt(1 - s^2)          (p_m = N / A_Hertz, eq. 3's p_s)
+ *     flat (Boussinesq):  1 / (2 sqrt(1 - s^2))        (p_m = N / (pi a^2); infinite at the rim)
+ * so that, as for the cone, everything depends on one number, beta = p_m / p_n; with the PR
+ * normalisation beta = sqrt(pi)/2 p_m / p_rough (im_theory_erf_scale with rho = p_m / p_rough).
+ * The constant-density approximation is erf(beta) for every punch (eq. 3 for the sphere, eq. 6 for
+ * the cone: im_theory_cone_area_ratio_constant). For small beta every punch gives
+ * A / A_smooth ~ (2 / sqrt(pi)) beta, the linear erf law at the mean pressure. Unlike the cone, the
+ * sphere and the flat punch have closed forms (derived in docs/theory.md; the tests check them):
+ *     sphere, b = 3 beta / 2:  erf(b) (1 - 1 / (2 b^2)) + exp(-b^2) / (b sqrt(pi))
+ *     flat,   c = beta / 2:    erf(c) + 2 c exp(-c^2) / sqrt(pi) - 2 c^2 erfc(c)
+ * The flat punch's edge singularity saturates gamma at the rim (gamma -> 1) and makes it the most
+ * nearly uniform of the three: 1 - A / A_smooth ~ 8 exp(-beta^2 / 4) / (beta^3 sqrt(pi)), whereas
+ * the sphere's vanishing pressure at the rim leaves 1 / (2 b^2) out of contact. */
+
+/* p(r) / p_m of the punch's smooth contact at s = r / a in [0, 1] (+INFINITY at the cone's apex
+ * and the flat punch's rim, 0 at the cone's and the sphere's rims). IM_EINVAL for s outside
+ * [0, 1] or an unknown kind. */
+int im_theory_punch_pressure(enum im_punch_kind kind, double r_over_a, double *p_over_mean);
+
+/* gamma(r) = erf(beta p(r) / p_m) for beta = p_m / p_n >= 0 and s = r / a in [0, 1]; 0 where the
+ * pressure or beta is 0, 1 where the pressure is infinite (beta > 0). */
+int im_theory_punch_contact_density(enum im_punch_kind kind, double beta, double r_over_a, double *gamma);
+
+/* A / A_smooth = 2 int_0^1 s gamma(s) ds for beta = p_m / p_n >= 0. The cone is eq. (12)
+ * (im_theory_cone_area_ratio_variable). The sphere and the flat punch are integrated by GSL's qags
+ * in u = sqrt(1 - s^2) (s ds = -u du), which removes the rim's square-root singularity and turns the
+ * flat punch's infinite edge pressure into erf(beta / (2 u)) -> 1 as u -> 0, a bounded integrand:
+ * A / A_smooth = 2 int_0^1 u erf(beta P(u)) du with P = 3u/2 (sphere) or 1 / (2u) (flat). Above
+ * beta = 1 the complement 1 - A / A_smooth is integrated instead, only where erfc is representable,
+ * as for the cone. Relative accuracy about 1e-12; beta = 0 gives 0, a ratio within rounding of 1
+ * gives 1. Errors as the cone's. */
+int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *ratio);
+
+/* The smooth mean pressure p_m = N / A_smooth of a punch at load N > 0: the cone's p_m,c (alpha in
+ * degrees in `size`), N / A_Hertz for a sphere of radius `size`, N / (pi a^2) for a flat punch of
+ * radius a = `size` (E* in e_star; lengths and loads in consistent units). */
+int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star,
+                                  double *p_mean);
+
+/* ---- Measuring k (eq. 2) on nominally flat contact ----
+ * Eq. (1) with p_rough = h'rms E* / k reads A/A0 = erf(sqrt(pi)/2 k x) in the dimensionless mean
+ * pressure x = p_m / (h'rms E*), linear (A/A0 ~ k x) for small x. */
+
+typedef struct im_theory_k_fit {
+    double k;             /* least-squares k of A/A0 = erf(sqrt(pi)/2 k x) over all points */
+    double k_error;       /* its standard error, sqrt(RSS / (n - 1) / sum J^2), J = dA/dk; 0 for one point */
+    double k_linear;      /* least-squares slope of A/A0 = k x through the origin, over A/A0 <= 0.5 */
+    int linear_points;    /* how many points that slope used (0: none, k_linear NaN) */
+    double rms_residual;  /* rms of A/A0 - erf(...) at the fitted k */
+} im_theory_k_fit;
+
+/* Fits k to count >= 1 points (x_i > 0 finite, 0 <= A_i <= 1) by Gauss-Newton from the linear
+ * estimate; the erf law is monotone in k, so the 1-D least-squares problem has one minimum.
+ * IM_EINVAL naming the first bad point, IM_ENOCONV if Gauss-Newton does not settle in 100 steps. */
+int im_theory_fit_k(const double *pressure_ratio, const double *area_fraction, int count, im_theory_k_fit *out);
+
+/* ---- The theory beside a simulated history ----
+ * Per step of an indentation (approach w from first touch, load N), the smooth punch's closed forms
+ * and the rough-contact area ratios, written as the theory columns of every history file. */
+
+/* The column names of im_theory_step, in order (CSV). */
+#define IM_THEORY_STEP_COLUMNS "load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma"
+
+typedef struct im_theory_step {
+    double load_smooth;         /* the smooth punch's N(w): Love (cone), Hertz, Boussinesq (flat) */
+    double area_smooth;         /* A_smooth(N): A_cone (eq. 5), A_Hertz, pi a^2; 0 at N = 0 */
+    double area_ratio_constant; /* erf(p_m / p_n) at p_m = N / A_smooth: eq. (6) (cone), eq. (3)
+                                   (sphere); NaN at N = 0, 1 on a smooth surface */
+    double area_ratio_gamma;    /* the local density's integral: eq. (12) (cone), the Hertz or
+                                   Boussinesq gamma integral; NaN at N = 0, 1 on a smooth surface */
+} im_theory_step;
+
+/* The theory of a step for punch (indenter.h; lengths in its units, loads in E* length^2) on the
+ * rough interface (its E*, k and normalisation). w, N >= 0. IM_EINVAL for a bad punch, interface,
+ * w or N; a quadrature's status otherwise. */
+int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach,
+                           double load, im_theory_step *out);
 
 /* ---- Roughness (eqs. 13-15) ---- */
 

@@ -2,7 +2,10 @@
 #ifndef INDENTMAP_CLI_H
 #define INDENTMAP_CLI_H
 
+#include "indentmap/surface.h"
+
 #include <signal.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -12,14 +15,19 @@ struct option;
 int cli_surface(int argc, char **argv);
 int cli_info(int argc, char **argv);
 int cli_render(int argc, char **argv);
+int cli_render_view3d(int argc, char **argv); /* render view3d (render_view3d.c) */
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 int cli_run(int argc, char **argv);
 
-/* SIGINT/SIGTERM (interrupt.c): cli_interrupt_install makes them store their number in
- * cli_stop_signal (a second one ends the process); cli_interrupt_exit_status is 128 + it. */
+/* SIGINT/SIGTERM/SIGHUP (interrupt.c): cli_interrupt_install makes them store their number in
+ * cli_stop_signal (a second one removes the temporary files being written and ends the process);
+ * cli_interrupt_exit_status is 128 + it. cli_interrupt_install_cleanup makes the first one remove
+ * the temporary files and end the process (for commands with nothing to keep). 0, or -1 if
+ * sigaction failed. */
 extern volatile sig_atomic_t cli_stop_signal;
 int cli_interrupt_install(void);
+int cli_interrupt_install_cleanup(void);
 int cli_interrupt_exit_status(void);
 
 /* Unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set, re-executes the program (argv as given) once
@@ -36,6 +44,33 @@ int cli_parse_int(const char *option, const char *text, long min, long max, int 
 int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
 
+/* A length unit for --unit or --height-unit (io.h: m, mm, µm or um, nm, ...), copied into out
+ * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
+int cli_parse_length_unit(const char *option, const char *text, char *out);
+
+/* A unit's name (e.g. --e-star-unit Pa): 1 to size - 1 bytes without blanks or quotes. */
+int cli_parse_name(const char *option, const char *text, char *out, size_t size);
+
+/* Preparation of a measured surface (prepare.c): crop (sides 0: none), then plane or curvature
+ * removal. --fill is the reader's (im_surface_read_options.fill). */
+typedef struct cli_preparation {
+    int crop[4];             /* X0, Y0, NX, NY */
+    enum im_detrend detrend;
+    im_taper taper;          /* for spectral estimates only */
+} cli_preparation;
+
+/* --crop X0,Y0,NX,NY; --detrend none|plane|curvature; --window none|hann|tukey[:ALPHA]. Each returns
+ * 0, or -1 after printing what was expected. */
+int cli_parse_crop(const char *text, int crop[4]);
+int cli_parse_detrend(const char *text, enum im_detrend *out);
+int cli_parse_taper(const char *text, im_taper *out);
+
+/* Crops *surface (replacing it) and detrends it; a status naming the option on failure. */
+int cli_prepare_surface(const cli_preparation *preparation, im_field **surface);
+
+/* "plane removed, cropped to 256 x 256 at (0, 0), 3 missing points filled" */
+void cli_describe_preparation(const cli_preparation *preparation, long filled, char *text, size_t size);
+
 /* Parses a subcommand's options with getopt_long: apply(code, optarg, state) for each, which
  * returns 0 or prints its error and returns -1; usage(stdout) for -h or the option whose code is
  * help_code. Returns 1 after help, 0 when every option was applied, -1 after an error. optind is
@@ -43,16 +78,17 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
 int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),
                       int (*apply)(int code, const char *arg, void *state), void *state);
 
-/* Outputs never overwrite inputs. Paths are compared by realpath (symlinks, "." and ".." resolved)
- * and, for a symlink given as an input, by the link's own name. inputs[0..count) may hold NULLs
- * (skipped); inputs that do not exist are skipped (their reader reports them).
- * cli_check_output_file: 0 when the file `output` (of option `option`) is none of the inputs;
- * otherwise prints "indentmap: OPTION OUTPUT would overwrite the input file INPUT (REALPATH); ..."
- * and returns -1 (exit CLI_EXIT_USAGE).
+/* Outputs never overwrite inputs (io.h: the output guard). cli_protect_inputs registers
+ * inputs[0..count) (NULLs skipped) as inputs of the process: no write may replace them or their
+ * sidecars; 0, or -1 after printing why not.
+ * cli_check_output_file: 0 when the file `output` (of option `option`; NULL: nothing) is none of
+ * the registered inputs nor their sidecars; otherwise prints "indentmap: OPTION OUTPUT would
+ * overwrite the input file INPUT (REALPATH); ..." and returns -1 (exit CLI_EXIT_USAGE).
  * cli_check_output_folder: the same for a folder `dir` into which a command writes the files whose
- * names writes(name, state) accepts: -1, naming DIR/NAME and the input, when an input lies directly
- * in dir under such a name. */
-int cli_check_output_file(const char *option, const char *output, const char *const *inputs, int count);
+ * names writes(name, state) accepts: -1, naming DIR/NAME and the input, when one of inputs lies
+ * directly in dir under such a name (paths compared by realpath, and for a symlink by its name). */
+int cli_protect_inputs(const char *const *inputs, int count);
+int cli_check_output_file(const char *option, const char *output);
 int cli_check_output_folder(const char *option, const char *dir, int (*writes)(const char *name, const void *state),
                             const void *state, const char *const *inputs, int count);
 

@@ -5,9 +5,16 @@
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
+#include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/viewer.h"
+#include "indentmap/surface.h"
+#include "indentmap/theory.h"
 
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <getopt.h>
 #include <jansson.h>
 #include <math.h>
@@ -15,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define MAX_STEPS 100000
 
@@ -22,12 +30,22 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n\n"
-            "Indents SURFACE (.npy, .gsf or text; heights in units of its delta) with a rigid punch and\n"
-            "solves each step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last.\n"
-            "Units: lengths in delta, stresses in E* (both settable). w counts from first touch.\n\n"
+            "Indents SURFACE (.npy, .gsf, .sdf, .nc, .x3p or text) with a rigid punch and solves each\n"
+            "step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last. Units: lengths\n"
+            "in the surface's unit (its spacing delta when it states none), stresses in E* (settable).\n"
+            "w counts from first touch.\n\n"
             "  --smooth            a flat surface instead of SURFACE (with --n, --m, --delta)\n"
             "  --n N, --m M        smooth grid size (default 512, M = N)\n"
-            "  --delta D           smooth patch side (default 1)\n"
+            "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"
+            "  --unit U            length unit of delta (m, mm, um, nm, ...); overrides SURFACE's\n"
+            "  --height-unit U     unit of SURFACE's heights, converted to --unit (default: --unit)\n"
+            "  --length-unit U     solve in this length unit (m: SI): SURFACE's spacing and heights are\n"
+            "                      converted into it; approaches, gaps and displacements are in it\n"
+            "  --e-star-unit U     the unit of --e-star (e.g. Pa), for the records: forces are in\n"
+            "                      U x length unit^2 (N for Pa and m)\n"
+            "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
+            "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
+            "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
             "  --punch KIND        cone (default), sphere or flat\n"
             "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80); below 60\n"
             "                      a warning: small-slope elasticity is stretched (still solved)\n"
@@ -36,6 +54,8 @@ static void usage(FILE *stream)
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
+            "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
+            "                      stress); default none\n"
             "  --quality Q         draft (tol 1e-5), standard (1e-6) or publication (1e-9): the solver\n"
             "                      tolerance of a speed/accuracy preset (errors measured in solver.h)\n"
             "  --tol T             stopping tolerance on the relative gap residual (default 1e-8);\n"
@@ -48,8 +68,10 @@ static void usage(FILE *stream)
             "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
-            "DIR/history.csv is rewritten atomically after every step, so the steps already solved\n"
-            "survive a later failure (no convergence: exit 1; contact at the surface's edge: exit 1).\n"
+            "DIR/history.csv gets one whole line per step, appended and synced as soon as the step is\n"
+            "solved, so the steps already solved survive a later failure or a crash (no convergence:\n"
+            "exit 1; contact at the surface's edge: exit 1). DIR is locked while the run writes there\n"
+            "(DIR/.lock, as for scenes); the field files of an earlier run in DIR are removed first.\n"
             "At N = 0 the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
 
@@ -57,6 +79,12 @@ typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
     int smooth, nx, ny, m_given, fields;
     double delta;
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
+    cli_preparation preparation;  /* --crop, --detrend */
+    char e_star_unit[16];         /* --e-star-unit, "" when not given */
+    char force_unit[40];          /* the unit of loads and forces, from the two above */
+    char length_unit[16];         /* the surface's, as solved ("" in units of delta) */
+    long filled;                  /* missing points filled on reading */
     im_indenter punch;
     int radius_given, x_given, y_given;
     enum im_control control;
@@ -68,17 +96,22 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH,
-       OPT_LOAD, OPT_ESTAR, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS, OPT_HELP,
-       OPT_PLAIN_PK };
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
+       OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
+       OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
+       OPT_HELP, OPT_PLAIN_PK };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
-    {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
+    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+    {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
+    {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
+    {"hardness", required_argument, 0, OPT_HARDNESS},
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
@@ -136,7 +169,18 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_SMOOTH: o->smooth = 1; return 0;
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->nx);
     case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->ny);
-    case OPT_DELTA: return cli_parse_double("--delta", arg, 1e-300, 1e300, &o->delta);
+    case OPT_DELTA:
+        if (cli_parse_double("--delta", arg, 1e-300, 1e300, &o->delta) != 0)
+            return -1;
+        o->read.set.delta_x = o->delta;
+        return 0;
+    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
+    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
+    case OPT_FILL: o->read.fill = 1; return 0;
+    case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
+    case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
+    case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
+    case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
@@ -152,6 +196,7 @@ static int apply_option(int code, const char *arg, void *state)
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         return parse_targets(code == OPT_LOAD ? "--load" : "--approach", arg, &o->targets, &o->target_count);
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
+    case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_QUALITY: o->quality = arg; return 0;
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
@@ -195,35 +240,75 @@ static int apply_quality(indent_options *o)
     return 0;
 }
 
-/* Whether `name` is one of the files written into the output folder: history.csv, run.json and,
- * with --fields, {force,gap,displacement}_NNNN.npy for the steps 1..count. */
+/* Whether name is PREFIX followed by four or more digits and ".npy" (a field file of a step) or
+ * ".npy.json" (its units sidecar). */
+static int is_step_file(const char *name, const char *prefix)
+{
+    size_t length = strlen(prefix), digits = 0;
+    if (strncmp(name, prefix, length) != 0)
+        return 0;
+    while (name[length + digits] >= '0' && name[length + digits] <= '9')
+        ++digits;
+    const char *suffix = name + length + digits;
+    return digits >= 4 && (strcmp(suffix, ".npy") == 0 || strcmp(suffix, ".npy.json") == 0);
+}
+
+/* Whether `name` is one of the files written into the output folder: history.csv, run.json,
+ * index.html and,
+ * with --fields, {force,gap,displacement}_NNNN.npy and their .npy.json sidecars for the steps 1..count. */
 static int writes_into_folder(const char *name, const void *state)
 {
     const indent_options *o = state;
     static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
-    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0)
+    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0)
         return 1;
     for (int i = 0; o->fields && i < 3; ++i) {
         size_t length = strlen(FIELDS[i]);
         if (strncmp(name, FIELDS[i], length) != 0)
             continue;
         long step = strtol(name + length, NULL, 10);
-        char expected[64];
-        snprintf(expected, sizeof expected, "%s%04ld.npy", FIELDS[i], step);
-        if (step >= 1 && step <= o->target_count && strcmp(name, expected) == 0)
+        char field[64], sidecar[80];
+        snprintf(field, sizeof field, "%s%04ld.npy", FIELDS[i], step);
+        snprintf(sidecar, sizeof sidecar, "%s.json", field);
+        if (step >= 1 && step <= o->target_count && (strcmp(name, field) == 0 || strcmp(name, sidecar) == 0))
             return 1;
     }
     return 0;
 }
 
-/* Refuses an output folder whose outputs would replace the surface file or its sidecar. */
+/* The wisdom file may be neither an input (checked with the inputs) nor one of the files the run
+ * writes into --out: each would replace the other. */
+static int check_wisdom(const indent_options *o)
+{
+    if (im_solver_wisdom_check(&o->solver) != IM_OK) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return -1;
+    }
+    const char *wisdom = im_solver_wisdom_file(&o->solver);
+    char file[4200], folder[4200];
+    if (!wisdom || im_path_absolute(wisdom, file, sizeof file) != IM_OK ||
+        im_path_absolute(o->out, folder, sizeof folder) != IM_OK)
+        return 0;
+    size_t length = strlen(folder);
+    if (strncmp(file, folder, length) != 0 || file[length] != '/' || !writes_into_folder(file + length + 1, o))
+        return 0;
+    fprintf(stderr, "indentmap: the FFTW wisdom file %s would be one of the run's outputs, %s/%s: give another "
+            "--wisdom (or IM_FFTW_WISDOM) or another --out\n", wisdom, o->out, file + length + 1);
+    return -1;
+}
+
+/* Refuses, before any work, an output folder whose outputs would replace the surface file or its
+ * sidecar, and a wisdom file that is an input or an output. Every write is checked again when it
+ * is opened (io.h: the output guard). */
 static int check_outputs_apart(const indent_options *o)
 {
     char sidecar[4200] = "";
     if (o->surface_path)
         snprintf(sidecar, sizeof sidecar, "%s.json", o->surface_path);
     const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL};
-    return cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 2);
+    if (cli_protect_inputs(inputs, 1) != 0 || cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 2) != 0)
+        return -1;
+    return check_wisdom(o);
 }
 
 /* Where the tolerance came from, for run.json. */
@@ -256,35 +341,90 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 /* ---- outputs ---- */
 
 static const char *HISTORY_HEADER = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
-                                    "max_pressure,iterations,residual,seconds,convolutions\n";
+                                    "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
+                                    ",stiffness,e_star_sneddon,patches,patch_perimeter\n";
 
-static int write_history(const char *dir, const im_step_result *rows, int count)
-{
+/* Beside each solved step: the theory, and what an experiment would measure (measure.h). */
+typedef struct step_extras {
+    im_theory_step theory;
+    double stiffness;       /* dN/dw from this step and the (up to) two before; NaN at the first */
+    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
+    long patches;           /* connected contact patches */
+    double perimeter;       /* their perimeter */
+} step_extras;
+
+/* DIR/history.csv, appended step by step. Its header is written atomically (so the file appears
+ * whole); each step is then one line, written with one write(2) and synced (fdatasync), so that a
+ * finished step survives a crash and the cost per step does not grow with the steps before it. A
+ * write that fails part way is cut back to the last whole line. */
+typedef struct history_file {
+    int fd;
+    off_t size; /* bytes of whole lines */
     char path[4200];
-    snprintf(path, sizeof path, "%s/history.csv", dir);
-    im_atomic_file file;
-    int status = im_atomic_open(&file, path);
+} history_file;
+
+static int history_start(const char *dir, history_file *h)
+{
+    h->fd = -1;
+    snprintf(h->path, sizeof h->path, "%s/history.csv", dir);
+    int status = im_write_file_atomic(h->path, HISTORY_HEADER, strlen(HISTORY_HEADER));
     if (status != IM_OK)
         return status;
-    fputs(HISTORY_HEADER, file.stream);
-    for (int i = 0; i < count; ++i) {
-        const im_step_result *r = &rows[i];
-        fprintf(file.stream, "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d\n", i + 1, r->approach,
-                r->load, r->load_star, r->contact_patches, r->area_ratio, r->mean_pressure, r->max_pressure,
-                r->iterations, r->residual, r->seconds, r->convolutions);
-    }
-    return im_atomic_commit(&file);
+    h->fd = open(h->path, O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (h->fd < 0)
+        return im_fail(IM_EIO, "%s: cannot open for appending: %s", h->path, strerror(errno));
+    h->size = (off_t)strlen(HISTORY_HEADER);
+    return IM_OK;
 }
 
-static int write_fields(const char *dir, const im_indentation *run, int step)
+static int history_append(history_file *h, int step, const im_step_result *r, const step_extras *e)
+{
+    char line[1024];
+    const im_theory_step *t = &e->theory;
+    int length = snprintf(line, sizeof line,
+                          "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                          "%.17g,%ld,%.17g\n",
+                          step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
+                          r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
+                          t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, e->stiffness,
+                          e->e_star_sneddon, e->patches, e->perimeter);
+    ssize_t written = write(h->fd, line, (size_t)length);
+    if (written == length && fdatasync(h->fd) == 0) {
+        h->size += length;
+        return IM_OK;
+    }
+    int saved = written < 0 || written == length ? errno : ENOSPC; /* a short write: the disk filled */
+    if (ftruncate(h->fd, h->size) != 0) /* no torn last line */
+        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)",
+                       h->path, strerror(saved), strerror(errno));
+    return im_fail(IM_EIO, "%s: write failed: %s", h->path, strerror(saved));
+}
+
+static void history_close(history_file *h)
+{
+    if (h->fd >= 0)
+        close(h->fd);
+    h->fd = -1;
+}
+
+/* The fields of a step, each FILE.npy with FILE.npy.json stating its units: forces in force_unit,
+ * gaps and displacements in the surface's length unit. */
+static int write_fields(const char *dir, const im_indentation *run, int step, const char *length_unit,
+                        const char *force_unit)
 {
     im_field *f[3] = {NULL, NULL, NULL};
     static const char *const NAMES[3] = {"force", "gap", "displacement"};
+    static const char *const QUANTITIES[3] = {"force per patch", "gap", "surface displacement"};
     int status = im_indentation_fields(run, &f[0], &f[1], &f[2]);
     for (int i = 0; i < 3 && status == IM_OK; ++i) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s_%04d.npy", dir, NAMES[i], step);
+        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", length_unit);
+        if (i == 0)
+            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", force_unit);
         status = im_npy_write(path, f[i], IM_NPY_FLOAT64);
+        if (status == IM_OK)
+            status = im_field_sidecar_write(path, f[i], QUANTITIES[i]);
     }
     for (int i = 0; i < 3; ++i)
         im_field_free(f[i]);
@@ -304,6 +444,15 @@ static json_t *surface_sidecar_generator(const char *surface_path)
     return generator;
 }
 
+/* What the numbers of history.csv and the fields are in. */
+static json_t *units_record(const indent_options *o, const im_field *s)
+{
+    const char *length = s->unit[0] ? s->unit : "delta";
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length, "e_star",
+                     o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "load", o->force_unit, "force",
+                     o->force_unit, "load_star", "contact area A(N) / delta^2 (dimensionless)");
+}
+
 static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
 {
     im_window w = im_indentation_window(run);
@@ -313,14 +462,18 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *targets = json_array();
     for (int i = 0; i < o->target_count; ++i)
         json_array_append_new(targets, json_real(o->targets[i]));
+    char source[4 * 4200 + 1];
+    int escaped = im_path_utf8(o->surface_path ? o->surface_path : "smooth", source, sizeof source);
     json_t *generator = surface_sidecar_generator(o->surface_path);
+    char preparation[256];
+    cli_describe_preparation(&o->preparation, o->filled, preparation, sizeof preparation);
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
-        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
+        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
+        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
-        "surface", "source", o->surface_path ? o->surface_path : "smooth", "nx", s->nx, "ny", s->ny,
-        "delta", s->delta, "generator", generator,
+        "surface", "source", source, "nx", s->nx, "ny", s->ny,
+        "delta", s->delta, "unit", s->unit, "preparation", preparation, "generator", generator,
         "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
@@ -328,15 +481,21 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
         "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
         "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
+        "hardness", o->solver.hardness,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
     json_t *solver = root ? json_object_get(root, "solver") : NULL;
-    if (solver) { /* issue 15's accelerations, on unless --plain-pk */
-        json_object_set_new(solver, "cascade", json_boolean(o->solver.cascade));
-        json_object_set_new(solver, "precondition", json_boolean(o->solver.precondition));
+    if (solver) { /* issue 15's accelerations: on unless --plain-pk, off with a hardness (solver.h) */
+        const int plain = o->solver.hardness > 0;
+        json_object_set_new(solver, "cascade", json_boolean(o->solver.cascade && !plain));
+        json_object_set_new(solver, "precondition", json_boolean(o->solver.precondition && !plain));
     }
     if (root && seed)
         json_object_set(root, "seed", seed);
+    if (root && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
+        json_object_set_new(json_object_get(root, "surface"), "source_encoding", json_string("escaped"));
+    if (root)
+        json_object_set_new(root, "units", units_record(o, s));
     json_decref(generator);
     return root;
 }
@@ -345,7 +504,9 @@ static int write_run_json(const char *dir, json_t *record, int steps_done, int s
 {
     json_object_set_new(record, "steps_completed", json_integer(steps_done));
     json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
-    json_object_set_new(record, "error", json_string(status == IM_OK ? "" : im_last_error()));
+    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
+    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
+    json_object_set_new(record, "error", json_string(error));
     char *text = json_dumps(record, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
     if (!text)
         return im_fail(IM_ENOMEM, "run.json");
@@ -373,11 +534,29 @@ static void warn_if_steep(const im_indenter *punch)
                 punch->alpha_degrees, 1 / tan(punch->alpha_degrees * M_PI / 180), STEEP_CONE_DEGREES);
 }
 
-static int load_surface(const indent_options *o, im_field **surface)
+static int load_surface(indent_options *o, im_field **surface)
 {
-    if (!o->smooth)
-        return im_surface_read(o->surface_path, surface);
-    return im_field_create(o->nx, o->ny, o->delta, surface);
+    if (!o->smooth) {
+        im_surface_read_info info;
+        int status = im_surface_read_with(o->surface_path, &o->read, surface, &info);
+        o->filled = status == IM_OK ? info.filled : 0;
+        return status == IM_OK ? cli_prepare_surface(&o->preparation, surface) : status;
+    }
+    int status = im_field_create(o->nx, o->ny, o->delta, surface);
+    if (status == IM_OK)
+        memcpy((*surface)->unit, o->read.set.lateral, sizeof (*surface)->unit);
+    return status;
+}
+
+/* N for Pa and m; otherwise "E*-unit length-unit²", with E* and δ standing in for what is not given. */
+static void set_force_unit(indent_options *o, const im_field *surface)
+{
+    memcpy(o->length_unit, surface->unit, sizeof o->length_unit);
+    if (strcmp(o->e_star_unit, "Pa") == 0 && strcmp(surface->unit, "m") == 0)
+        snprintf(o->force_unit, sizeof o->force_unit, "N");
+    else
+        snprintf(o->force_unit, sizeof o->force_unit, "%s %s\u00b2", o->e_star_unit[0] ? o->e_star_unit : "E*",
+                 surface->unit[0] ? surface->unit : "\u03b4");
 }
 
 static double largest(const double *v, int n)
@@ -388,39 +567,145 @@ static double largest(const double *v, int n)
     return m;
 }
 
-static int run_steps(const indent_options *o, im_indentation *run, json_t *record)
+/* The extras of step i (rows 0..i solved): theory, stiffness from the last three steps (which do not
+ * change as later steps come), Sneddon's modulus, contact patches. */
+static int measure_step(const indent_options *o, const im_theory_interface *rough, const im_indentation *run,
+                        const im_step_result *rows, int i, step_extras *e)
+{
+    int status = im_theory_step_columns(&o->punch, rough, rows[i].approach, rows[i].load, &e->theory);
+    e->stiffness = e->e_star_sneddon = NAN;
+    int first = i >= 2 ? i - 2 : 0;
+    double w[3], n[3], s[3];
+    for (int k = first; k <= i; ++k) {
+        w[k - first] = rows[k].approach;
+        n[k - first] = rows[k].load;
+    }
+    /* a repeated approach or a turn from loading to unloading leaves the stiffness NaN */
+    if (status == IM_OK && i > 0 && im_measure_stiffness(w, n, i - first + 1, s) == IM_OK) {
+        e->stiffness = s[i - first];
+        e->e_star_sneddon = im_measure_sneddon_modulus(e->stiffness, e->theory.area_smooth);
+    }
+    im_field *force = NULL;
+    im_contact_patches patches = {0};
+    if (status == IM_OK)
+        status = im_indentation_fields(run, &force, NULL, NULL);
+    if (status == IM_OK)
+        status = im_measure_contact_patches(force, &patches, NULL);
+    im_field_free(force);
+    e->patches = patches.patches;
+    e->perimeter = patches.perimeter;
+    return status;
+}
+
+/* Solves step i (0-based; rows[0..i) solved before), measures it, and writes its fields and its
+ * history line. */
+static int run_step(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
+                    history_file *history, im_step_result *rows, step_extras *extras, int i)
+{
+    int status = im_indentation_step(run, o->targets[i], &rows[i]);
+    if (status == IM_OK)
+        status = measure_step(o, rough, run, rows, i, &extras[i]);
+    if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
+        status = write_fields(o->out, run, i + 1, o->length_unit, o->force_unit);
+    if (status == IM_OK)
+        status = history_append(history, i + 1, &rows[i], &extras[i]);
+    if (status == IM_OK) {
+        const im_step_result *r = &rows[i];
+        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
+               r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual, r->seconds);
+        fflush(stdout);
+    }
+    return status;
+}
+
+/* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
+static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
+                     history_file *history, json_t *record)
 {
     im_step_result *rows = calloc((size_t)o->target_count, sizeof *rows);
-    if (!rows)
+    step_extras *extras = calloc((size_t)o->target_count, sizeof *extras);
+    if (!rows || !extras) {
+        free(rows);
+        free(extras);
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
+    }
     int status = IM_OK, done = 0;
-    for (; done < o->target_count && status == IM_OK; ++done) {
+    for (; done < o->target_count; ++done) {
         if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
             status = im_fail(IM_EINTERRUPTED, "interrupted by signal %d", (int)cli_stop_signal);
             break;
         }
-        status = im_indentation_step(run, o->targets[done], &rows[done]);
+        status = run_step(o, rough, run, history, rows, extras, done);
         if (status != IM_OK)
             break;
-        status = write_history(o->out, rows, done + 1);
-        if (status == IM_OK && o->fields)
-            status = write_fields(o->out, run, done + 1);
-        const im_step_result *r = &rows[done];
-        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n",
-               done + 1, r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual,
-               r->seconds);
-        fflush(stdout);
     }
+    /* done counts the steps whose fields and history line are all written (< target_count here) */
     if (status != IM_OK)
         im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", done + 1,
-                        o->target_count, o->control == IM_CONTROL_LOAD ? "load" : "approach",
-                        o->targets[done < o->target_count ? done : o->target_count - 1], done, o->out);
+                        o->target_count, o->control == IM_CONTROL_LOAD ? "load" : "approach", o->targets[done],
+                        done, o->out);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
     free(rows);
+    free(extras);
+    return status;
+}
+
+/* Takes DIR's lock, then removes what an earlier run left there that this one would not replace:
+ * temporary files of a killed run, and field files (this run writes its own, or none). Inputs are
+ * kept (the output guard names them). */
+static int prepare_folder(const indent_options *o, im_folder_lock *lock)
+{
+    int status = im_folder_lock_acquire(o->out, "give this run another --out", lock);
+    if (status != IM_OK)
+        return status;
+    im_folder_remove_temporaries(o->out, 0); /* --out may be any folder: not its subfolders */
+    DIR *listing = opendir(o->out);
+    if (!listing)
+        return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
+    static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
+    for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
+        char path[8192];
+        int field = 0;
+        for (int i = 0; i < 3; ++i)
+            field |= is_step_file(entry->d_name, FIELDS[i]);
+        if (!field || snprintf(path, sizeof path, "%s/%s", o->out, entry->d_name) >= (int)sizeof path ||
+            im_output_check(path) != IM_OK)
+            continue;
+        if (unlink(path) != 0 && errno != ENOENT)
+            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field file: %s", path, strerror(errno));
+    }
+    closedir(listing);
+    return status;
+}
+
+/* DIR/index.html over what the run left (viewer.h), even after a failure; the run's own error,
+ * if any, stays the one reported. */
+static int write_viewer_page(const indent_options *o, int status)
+{
+    char message[1024], title[1024];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    snprintf(title, sizeof title, "indentmap indent: %s", o->smooth ? "smooth surface" : o->surface_path);
+    int written = im_viewer_write(o->out, title);
+    if (status == IM_OK)
+        return written;
+    im_fail(status, "%s", message);
+    return status;
+}
+
+/* The theory columns' interface: the surface's h'rms (spectral, h'rms^2 = 2 m2), the solver's E*,
+ * k = 2 and the PR normalisation. */
+static int measured_interface(const indent_options *o, const im_field *surface, im_theory_interface *rough)
+{
+    im_surface_stats stats;
+    int status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK) {
+        *rough = im_theory_interface_default(stats.slope_rms_spectral);
+        rough->e_star = o->solver.e_star;
+    }
     return status;
 }
 
@@ -437,6 +722,7 @@ int cli_indent(int argc, char **argv)
     im_field *surface = NULL;
     im_indentation *run = NULL;
     json_t *record = NULL;
+    im_theory_interface rough;
     int status = cli_interrupt_install() == 0 ? im_indenter_check(&o.punch)
                                               : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
     if (status == IM_OK) {
@@ -444,19 +730,31 @@ int cli_indent(int argc, char **argv)
         status = load_surface(&o, &surface);
     }
     if (status == IM_OK)
+        set_force_unit(&o, surface);
+    if (status == IM_OK)
+        status = measured_interface(&o, surface, &rough);
+    if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
     if (status == IM_OK)
         status = im_make_directories(o.out);
+    im_folder_lock lock = {.fd = -1};
+    history_file history = {.fd = -1};
+    if (status == IM_OK)
+        status = prepare_folder(&o, &lock);
     if (status == IM_OK) {
         im_window w = im_indentation_window(run);
         printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads\n", surface->nx, surface->ny,
                w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads());
         record = run_record(&o, surface, run);
-        status = record ? write_history(o.out, NULL, 0) : im_fail(IM_ENOMEM, "run record");
+        status = record ? history_start(o.out, &history) : im_fail(IM_ENOMEM, "run record");
     }
     if (status == IM_OK)
-        status = run_steps(&o, run, record);
+        status = run_steps(&o, &rough, run, &history, record);
+    history_close(&history);
+    if (record)
+        status = write_viewer_page(&o, status);
+    im_folder_lock_release(&lock);
     json_decref(record);
     im_indentation_free(run);
     im_field_free(surface);

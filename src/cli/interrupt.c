@@ -1,38 +1,61 @@
-/* SIGINT and SIGTERM during long subcommands (run, indent): the first signal asks the work to
- * stop at its next check (between solver steps and between surfaces), so that finished results
- * are kept and no file is left half-written; a second one ends the process at once (its
- * temporary file, PATH.tmp.PID, may then remain). */
+/* SIGINT and SIGTERM. During long subcommands (run, indent) the first signal asks the work to stop
+ * at its next check (between solver steps and between surfaces), so that finished results are kept
+ * and no file is left half-written; a second one ends the process at once. Elsewhere (render,
+ * surface) the first one ends it. Either way the temporary files being written are removed first
+ * (io.h: im_atomic_remove_temporaries), so no "*.im.tmp.*" file is left behind. */
 #include "cli/cli.h"
+
+#include "indentmap/io.h"
 
 #include <signal.h>
 #include <string.h>
 
 volatile sig_atomic_t cli_stop_signal = 0;
 
-/* Async-signal-safe: stores the number, or restores the default action and re-raises it when the
- * user insists (a second signal while the first is being honoured). */
+/* Async-signal-safe: removes the files being written, then dies of the signal. */
+static void end_by_signal(int signal_number)
+{
+    im_atomic_remove_temporaries();
+    signal(signal_number, SIG_DFL);
+    raise(signal_number);
+}
+
+/* Async-signal-safe: stores the number, or ends the process when the user insists (a second signal
+ * while the first is being honoured). */
 static void on_signal(int signal_number)
 {
     if (cli_stop_signal) {
-        signal(signal_number, SIG_DFL);
-        raise(signal_number);
+        end_by_signal(signal_number);
         return;
     }
     cli_stop_signal = signal_number;
 }
 
-int cli_interrupt_install(void)
+static int install(void (*handler)(int))
 {
     struct sigaction action;
     memset(&action, 0, sizeof action);
-    action.sa_handler = on_signal;
+    action.sa_handler = handler;
     sigemptyset(&action.sa_mask);
     action.sa_flags = SA_RESTART; /* file writes in progress complete rather than fail with EINTR */
     cli_stop_signal = 0;
     /* A write past the file-size limit (ulimit -f) then fails with EFBIG and is reported, its
      * temporary file removed, instead of SIGXFSZ killing the process mid-write. */
     signal(SIGXFSZ, SIG_IGN);
-    return sigaction(SIGINT, &action, NULL) == 0 && sigaction(SIGTERM, &action, NULL) == 0 ? 0 : -1;
+    return sigaction(SIGINT, &action, NULL) == 0 && sigaction(SIGTERM, &action, NULL) == 0 &&
+                   sigaction(SIGHUP, &action, NULL) == 0
+               ? 0
+               : -1;
+}
+
+int cli_interrupt_install(void)
+{
+    return install(on_signal);
+}
+
+int cli_interrupt_install_cleanup(void)
+{
+    return install(end_by_signal);
 }
 
 int cli_interrupt_exit_status(void)

@@ -1,6 +1,7 @@
 /* indentmap: the command-line program. Git-style subcommands, each with --help. */
 #include "cli/cli.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -30,6 +31,24 @@ static void usage(FILE *stream)
     fprintf(stream, "\n'indentmap COMMAND --help' describes a command's options.\n");
 }
 
+/* Standard output is checked to the end: a full disk or a closed pipe makes the command fail
+ * (exit 1 with the reason) instead of leaving a cut file behind an exit status of 0. */
+static int close_standard_output(int status)
+{
+    errno = 0;
+    int failed = fflush(stdout) != 0;
+    int saved = errno;
+    failed |= ferror(stdout) != 0;
+    failed |= fclose(stdout) != 0;
+    if (!saved)
+        saved = errno;
+    if (!failed)
+        return status;
+    fprintf(stderr, "indentmap: standard output: write failed: %s; what was written there is incomplete\n",
+            saved ? strerror(saved) : "an earlier write failed");
+    return status == CLI_EXIT_OK ? CLI_EXIT_FAILURE : status;
+}
+
 int main(int argc, char **argv)
 {
     cli_prefer_passive_waiting(argv);
@@ -39,15 +58,15 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "--version") == 0) {
         printf("indentmap %s\n", IM_VERSION);
-        return CLI_EXIT_OK;
+        return close_standard_output(CLI_EXIT_OK);
     }
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
         usage(stdout);
-        return CLI_EXIT_OK;
+        return close_standard_output(CLI_EXIT_OK);
     }
     for (int i = 0; i < SUBCOMMAND_COUNT; ++i)
         if (strcmp(argv[1], SUBCOMMANDS[i].name) == 0)
-            return SUBCOMMANDS[i].run(argc - 1, argv + 1);
+            return close_standard_output(SUBCOMMANDS[i].run(argc - 1, argv + 1));
     fprintf(stderr, "indentmap: '%s' is not a command\n\n", argv[1]);
     usage(stderr);
     return CLI_EXIT_USAGE;

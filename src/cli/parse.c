@@ -1,5 +1,6 @@
 #include "cli/cli.h"
 
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 
 #include <errno.h>
@@ -56,6 +57,30 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
     return 0;
 }
 
+int cli_parse_length_unit(const char *option, const char *text, char *out)
+{
+    const char *canonical = text;
+    if (strlen(text) >= 16 || im_length_unit_metres(text, &canonical) == 0.0) {
+        fprintf(stderr, "indentmap: %s '%s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, \u00c5)\n",
+                option, text);
+        return -1;
+    }
+    snprintf(out, 16, "%s", canonical);
+    return 0;
+}
+
+int cli_parse_name(const char *option, const char *text, char *out, size_t size)
+{
+    size_t length = strlen(text);
+    if (length == 0 || length >= size || strpbrk(text, " \t\n\"\\") != NULL) {
+        fprintf(stderr, "indentmap: %s '%s': expected a unit name of 1 to %zu bytes, no blanks or quotes\n", option,
+                text, size - 1);
+        return -1;
+    }
+    memcpy(out, text, length + 1);
+    return 0;
+}
+
 int cli_report(int status)
 {
     fprintf(stderr, "indentmap: %s\n", im_last_error()[0] ? im_last_error() : im_strstatus(status));
@@ -106,29 +131,22 @@ static void locate(const char *path, path_forms *forms)
         forms->named[0] = '\0'; /* a path that does not exist is no input and overwrites none */
 }
 
-static int same_path(const char *a, const char *b) { return a[0] && strcmp(a, b) == 0; }
-
-static int forms_meet(const path_forms *a, const path_forms *b)
+int cli_protect_inputs(const char *const *inputs, int count)
 {
-    return same_path(a->full, b->full) || same_path(a->full, b->named) || same_path(a->named, b->full) ||
-           same_path(a->named, b->named);
-}
-
-int cli_check_output_file(const char *option, const char *output, const char *const *inputs, int count)
-{
-    path_forms out, in;
-    locate(output, &out);
-    for (int i = 0; output && i < count; ++i) {
-        if (!inputs[i])
-            continue;
-        locate(inputs[i], &in);
-        if (forms_meet(&out, &in)) {
-            fprintf(stderr, "indentmap: %s %s would overwrite the input file %s (%s); write it elsewhere\n",
-                    option, output, inputs[i], in.full);
+    for (int i = 0; i < count; ++i)
+        if (inputs[i] && im_output_protect(inputs[i]) != IM_OK) {
+            fprintf(stderr, "indentmap: %s\n", im_last_error());
             return -1;
         }
-    }
     return 0;
+}
+
+int cli_check_output_file(const char *option, const char *output)
+{
+    if (!output || im_output_check(output) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: %s %s\n", option, im_last_error());
+    return -1;
 }
 
 /* Whether the resolved path `form` lies directly in folder `dir` under a name that writes() claims. */

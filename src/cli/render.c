@@ -18,8 +18,9 @@ static void usage(FILE *stream)
     fprintf(stream,
             "usage: indentmap render contact FORCE... [OPTIONS] --out FILE\n"
             "       indentmap render height SURFACE... [OPTIONS] --out FILE\n"
-            "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n\n"
-            "Draws a field file (.npy, .gsf or text matrix) with the off-screen OpenGL renderer.\n"
+            "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
+            "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
+            "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches with force <= 0 in a grey background\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
             "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg); the\n"
@@ -40,7 +41,8 @@ static void usage(FILE *stream)
             "  --title TEXT        panel title\n"
             "  --titles LIST       comma-separated panel titles, one per file\n"
             "  --columns C         panels per row (default: all in one row)\n"
-            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ')\n"
+            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ', in\n"
+            "                      the units the input's sidecar FILE.json states, e.g. 'local force f / N')\n"
             "  --dpi D             resolution (default 300)\n"
             "  --fps F             animation frames per second (default 5)\n"
             "  --frames DIR        directory for the frames of 'animate'\n"
@@ -54,6 +56,7 @@ typedef struct render_options {
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     int aliased_circle; /* GIF frames: the circle aliased (exact palette colours) */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
+    char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
 } render_options;
@@ -188,9 +191,10 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     for (int i = 0; i < count; ++i)
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
-    char height_name[64];
+    char height_name[64], force_name[80];
     snprintf(height_name, sizeof height_name, "height h / %s", images[0].unit[0] ? images[0].unit : "δ");
-    const char *quantity = o->quantity ? o->quantity : contact ? "local force f / (E* δ²)" : height_name;
+    snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
+    const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
                                  {"Norm", norm_text}, {"Pixels per patch", scale_text}};
@@ -233,6 +237,8 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
         int status = im_surface_read(inputs[i], &fields[i]);
         if (status != IM_OK)
             return status;
+        if (i == 0)
+            memcpy(o->value_unit, fields[i]->value_unit, sizeof o->value_unit);
         im_colormap c = strcmp(o->mode, "height") == 0 ? im_height_style_default(fields[i]).colormap
                                                        : im_contact_style_default(fields[i]).colormap;
         o->shared_lo = fmin(o->shared_lo, c.lo);
@@ -340,6 +346,25 @@ static int check_usage(const render_options *o, int inputs)
     return -1;
 }
 
+/* Registers the inputs (the fields and --contact) and refuses, before any work, an output that is
+ * one of them: --out, or a frame DIR/contact_NNNN.png of --frames. */
+static int check_outputs_apart(const render_options *o, char **inputs, int count)
+{
+    if (cli_protect_inputs((const char *const *)inputs, count) != 0 || cli_protect_inputs(&o->contact, 1) != 0 ||
+        cli_check_output_file("--out", o->out) != 0)
+        return -1;
+    for (int i = 0; o->frames && strcmp(o->mode, "animate") == 0 && i < count; ++i) {
+        char path[4096];
+        if (im_frame_path(path, sizeof path, o->frames, "contact", i) != IM_OK) {
+            cli_report(IM_EINVAL);
+            return -1;
+        }
+        if (cli_check_output_file("--frames", path) != 0)
+            return -1;
+    }
+    return 0;
+}
+
 static int run(render_options *o, char **inputs, int count)
 {
     im_render_context *context = NULL;
@@ -361,6 +386,8 @@ static int run(render_options *o, char **inputs, int count)
 
 int cli_render(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "view3d") == 0)
+        return cli_render_view3d(argc - 1, argv + 1);
     render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
                         .backend = IM_RENDER_AUTO};
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &o);
@@ -371,7 +398,9 @@ int cli_render(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     o.mode = argv[optind];
-    if (check_usage(&o, argc - optind - 1) != 0)
+    if (check_usage(&o, argc - optind - 1) != 0 || check_outputs_apart(&o, argv + optind + 1, argc - optind - 1) != 0)
         return CLI_EXIT_USAGE;
+    if (cli_interrupt_install_cleanup() != 0)
+        return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
     return run(&o, argv + optind + 1, argc - optind - 1);
 }

@@ -21,7 +21,15 @@ static void usage(FILE *stream)
             "section 2.2) and prints its statistics; lengths are in grid spacings delta.\n\n"
             "  --n N              grid columns (default 512)\n"
             "  --m M              grid rows (default: N)\n"
-            "  --delta D          patch side in physical units (default 1)\n"
+            "  --delta D          patch side in physical units (default 1); with --stats, overrides the file's\n"
+            "  --unit U           length unit of delta (m, mm, um, nm, ...); with --stats, overrides the file's\n"
+            "  --height-unit U    with --stats: unit of the file's heights, converted to --unit\n"
+            "  --fill             with --stats: fill missing points (NaN) from their neighbours (default:\n"
+            "                     refuse them, naming the first)\n"
+            "  --crop X0,Y0,NX,NY with --stats: measure only this block of the file\n"
+            "  --detrend D        with --stats: none, plane (default) or curvature: removed before measuring\n"
+            "  --window W         with --stats: taper for the spectral quantities and the PSD of non-periodic\n"
+            "                     data: hann (default), tukey[:ALPHA] (ALPHA 0.5) or none\n"
             "  --hurst H          Hurst exponent, 0 < H < 1 (default 0.8)\n"
             "  --slope S          target h'rms = sqrt(<|grad h|^2>) (default 0.08)\n"
             "  --height-rms R     target h_rms instead of h'rms, in units of delta\n"
@@ -30,8 +38,8 @@ static void usage(FILE *stream)
             "  --lambda-r L       roll-off wavelength 2 pi / q_r (default: N)\n"
             "  --lambda-0 L       longest wavelength, > lambda-r adds a roll-off plateau (default: none)\n"
             "  --seed S           random seed (default 1); the same seed gives the same surface\n"
-            "  --out FILE         write the surface (.npy, .gsf, or text) and FILE.json beside it\n"
-            "  --stats FILE       measure FILE (.npy, .gsf or text matrix) instead of generating\n"
+            "  --out FILE         write the surface (.npy, .gsf, .sdf, .nc, .x3p or text) and FILE.json beside it\n"
+            "  --stats FILE       measure FILE (.npy, .gsf, .sdf, .nc, .x3p or text matrix) instead of generating\n"
             "  --png FILE         write a height-field image (viridis, one pixel per patch)\n"
             "  --psd FILE         write the radially averaged PSD C_iso(q) as CSV\n"
             "  --histograms FILE  write height, slope and curvature histograms as CSV\n");
@@ -39,16 +47,22 @@ static void usage(FILE *stream)
 
 typedef struct surface_options {
     im_surface_params params;
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill */
+    cli_preparation preparation;  /* --crop, --detrend, --window (files only) */
+    int preparation_given;
     int m_given, lambda_r_given;
     const char *out, *stats, *png, *psd, *histograms;
 } surface_options;
 
-enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
+enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
        OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"n", required_argument, 0, OPT_N}, {"m", required_argument, 0, OPT_M},
     {"delta", required_argument, 0, OPT_DELTA}, {"hurst", required_argument, 0, OPT_HURST},
+    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+    {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"detrend", required_argument, 0, OPT_DETREND}, {"window", required_argument, 0, OPT_WINDOW},
     {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
     {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
     {"lambda-r", required_argument, 0, OPT_LR}, {"lambda-0", required_argument, 0, OPT_L0},
@@ -78,7 +92,17 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &p->nx);
     case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &p->ny);
-    case OPT_DELTA: return cli_parse_double("--delta", arg, 1e-300, 1e300, &p->delta);
+    case OPT_DELTA:
+        if (cli_parse_double("--delta", arg, 1e-300, 1e300, &p->delta) != 0)
+            return -1;
+        o->read.set.delta_x = p->delta;
+        return 0;
+    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
+    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
+    case OPT_FILL: o->read.fill = o->preparation_given = 1; return 0;
+    case OPT_CROP: o->preparation_given = 1; return cli_parse_crop(arg, o->preparation.crop);
+    case OPT_DETREND: o->preparation_given = 1; return cli_parse_detrend(arg, &o->preparation.detrend);
+    case OPT_WINDOW: o->preparation_given = 1; return cli_parse_taper(arg, &o->preparation.taper);
     case OPT_HURST: return cli_parse_double("--hurst", arg, 1e-6, 1 - 1e-6, &p->hurst);
     case OPT_SLOPE: p->target = IM_TARGET_SLOPE; return cli_parse_double("--slope", arg, 0, 1e6, &p->slope_rms);
     case OPT_HEIGHT:
@@ -98,9 +122,45 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-static void print_statistics(const im_field *s, const im_surface_stats *st, const im_surface_params *p)
+/* Where the spacing and the heights' unit came from, for a surface read from a file. */
+static void print_units(const im_field *s, const im_surface_read_info *info)
 {
+    const im_surface_units *file = &info->file;
+    printf("spacing          %s\n", info->used.delta_x != file->delta_x ? "set by --delta"
+                                  : file->delta_x > 0.0           ? "stated by the file"
+                                                                  : "none stated: lengths in delta");
+    if (info->height_factor != 1.0)
+        printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height, info->height_factor);
+    else
+        printf("heights          in %s\n", s->unit[0] ? s->unit : "delta");
+    if (info->conversion[0])
+        printf("values           %s\n", info->conversion);
+}
+
+static const char *taper_name(const im_taper *taper)
+{
+    return taper->kind == IM_TAPER_HANN ? "Hann" : taper->kind == IM_TAPER_TUKEY ? "Tukey" : NULL;
+}
+
+/* How a file was prepared, and so what its spectral h'rms means. */
+static void print_preparation(const surface_options *o, const im_surface_read_info *info)
+{
+    char text[256];
+    cli_describe_preparation(&o->preparation, info->filled, text, sizeof text);
+    const char *taper = taper_name(&o->preparation.taper);
+    printf("preparation      %s; spectral quantities and PSD %s%s%s\n", text, taper ? "of the " : "of the data as is",
+           taper ? taper : "", taper ? "-tapered surface" : " (periodic box)");
+}
+
+static void print_statistics(const surface_options *o, const im_field *s, const im_surface_stats *st,
+                             const im_surface_read_info *info)
+{
+    const im_surface_params *p = o->stats ? NULL : &o->params;
     printf("grid             %d x %d, delta = %g %s\n", s->nx, s->ny, s->delta, s->unit);
+    if (info) {
+        print_units(s, info);
+        print_preparation(o, info);
+    }
     printf("mean             %.6g\n", st->mean);
     printf("h_rms            %.6g\n", st->height_rms);
     if (p) {
@@ -109,18 +169,27 @@ static void print_statistics(const im_field *s, const im_surface_stats *st, cons
         printf("h_rms eq. (15)   %.6g   (the paper's large-zeta approximation)\n",
                im_surface_height_rms_eq15(p, st->slope_rms_spectral));
     }
-    printf("h'rms spectral   %.6g\n", st->slope_rms_spectral);
-    printf("h'rms fd         %.6g   (forward differences)\n", st->slope_rms_fd);
+    if (info)
+        printf("h'rms spectral   %.6g   (sqrt(sum q^2 |h_q|^2)%s)\n", st->slope_rms_spectral,
+               o->preparation.taper.kind != IM_TAPER_NONE ? " of the tapered surface" : ", periodic box");
+    else
+        printf("h'rms spectral   %.6g\n", st->slope_rms_spectral);
+    printf("h'rms fd         %.6g   (forward differences%s)\n", st->slope_rms_fd,
+           info ? " of the prepared surface: what scenes compare with theory" : "");
     printf("curvature rms    %.6g   (mean curvature, spectral)\n", st->curvature_rms);
     printf("m0 m2 m4         %.6g %.6g %.6g\n", st->m0, st->m2, st->m4);
     printf("Nayak alpha      %.6g\n", st->nayak);
     printf("height range     [%.6g, %.6g]\n", st->height_min, st->height_max);
 }
 
-static int write_psd_csv(const char *path, const im_field *surface)
+static int write_psd_csv(const char *path, const im_field *surface, const im_taper *taper)
 {
     im_psd *psd = NULL;
-    int status = im_surface_psd(surface, 64, &psd);
+    im_field *tapered = NULL;
+    int status = im_surface_tapered(surface, taper, &tapered);
+    if (status == IM_OK)
+        status = im_surface_psd(tapered, 64, &psd);
+    im_field_free(tapered);
     if (status != IM_OK)
         return status;
     im_atomic_file file;
@@ -191,13 +260,14 @@ static int write_outputs(const surface_options *o, const im_field *surface, cons
     if (status == IM_OK && o->png)
         status = write_height_png(o->png, surface, st);
     if (status == IM_OK && o->psd)
-        status = write_psd_csv(o->psd, surface);
+        status = write_psd_csv(o->psd, surface, &o->preparation.taper);
     if (status == IM_OK && o->histograms)
         status = write_histograms_csv(o->histograms, surface);
     return status;
 }
 
-/* Refuses any output that is the measured file (--stats): `--psd s.npy` would replace it. */
+/* Refuses, before any work, an output that is the measured file (--stats) or its sidecar:
+ * `--psd s.npy` or `--png s.npy.json` would replace it. The writes are checked again when opened. */
 static int check_outputs_apart(const surface_options *o)
 {
     char sidecar[4200] = "";
@@ -206,8 +276,10 @@ static int check_outputs_apart(const surface_options *o)
     const char *const inputs[] = {o->stats};
     const char *const options[] = {"--out", "--out (its sidecar)", "--png", "--psd", "--histograms"};
     const char *const outputs[] = {o->out, o->out ? sidecar : NULL, o->png, o->psd, o->histograms};
+    if (cli_protect_inputs(inputs, 1) != 0)
+        return -1;
     for (int i = 0; i < 5; ++i)
-        if (cli_check_output_file(options[i], outputs[i], inputs, 1) != 0)
+        if (cli_check_output_file(options[i], outputs[i]) != 0)
             return -1;
     return 0;
 }
@@ -221,6 +293,13 @@ static int parse_options(int argc, char **argv, surface_options *o)
         fprintf(stderr, "indentmap: surface: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
+    if (!o->stats && (o->read.set.height[0] || o->preparation_given)) {
+        fprintf(stderr, "indentmap: surface: --height-unit, --fill, --crop, --detrend and --window prepare a file: "
+                "use them with --stats\n");
+        return -1;
+    }
+    if (!o->stats) /* a synthesised surface is periodic and measured exactly */
+        o->preparation = (cli_preparation){.detrend = IM_DETREND_NONE, .taper = {IM_TAPER_NONE, 0.0}};
     if (!o->m_given)
         o->params.ny = o->params.nx;
     if (!o->lambda_r_given)
@@ -232,17 +311,27 @@ static int parse_options(int argc, char **argv, surface_options *o)
 
 int cli_surface(int argc, char **argv)
 {
-    surface_options o = {.params = im_surface_params_default()};
+    /* A file is measured as non-periodic data: plane removed, Hann taper (both can be turned off). */
+    surface_options o = {.params = im_surface_params_default(),
+                         .preparation = {.detrend = IM_DETREND_PLANE, .taper = {IM_TAPER_HANN, 0.0}}};
     int parsed = parse_options(argc, argv, &o);
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (cli_interrupt_install_cleanup() != 0)
+        return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
     im_field *surface = NULL;
-    int status = o.stats ? im_surface_read(o.stats, &surface) : im_surface_generate(&o.params, &surface);
+    im_surface_read_info info;
+    int status = o.stats ? im_surface_read_with(o.stats, &o.read, &surface, &info)
+                         : im_surface_generate(&o.params, &surface);
+    if (status == IM_OK && !o.stats)
+        memcpy(surface->unit, o.read.set.lateral, sizeof surface->unit);
+    if (status == IM_OK && o.stats)
+        status = cli_prepare_surface(&o.preparation, &surface);
     im_surface_stats stats;
     if (status == IM_OK)
-        status = im_surface_statistics(surface, &stats);
+        status = im_surface_statistics_tapered(surface, &o.preparation.taper, &stats);
     if (status == IM_OK) {
-        print_statistics(surface, &stats, o.stats ? NULL : &o.params);
+        print_statistics(&o, surface, &stats, o.stats ? &info : NULL);
         status = write_outputs(&o, surface, &stats, o.stats ? NULL : &o.params);
     }
     im_field_free(surface);

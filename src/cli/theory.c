@@ -1,4 +1,5 @@
-/* indentmap theory: the paper's contact-area theory for a cone, as a table or CSV. */
+/* indentmap theory: the paper's contact-area theory for a cone, and its local density of contact
+ * for a sphere or a flat punch, as a table or CSV. */
 #include "cli/cli.h"
 
 #include "indentmap/status.h"
@@ -21,17 +22,28 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: indentmap theory --alpha DEG --slope S1,S2,... [OPTIONS]\n"
-            "       indentmap theory --rho MIN:MAX:N [OPTIONS]\n\n"
+            "       indentmap theory --rho MIN:MAX:N [OPTIONS]\n"
+            "       indentmap theory --punch sphere|flat --radius R --load N --slope S1,S2,... [OPTIONS]\n"
+            "       indentmap theory --punch sphere|flat --rho MIN:MAX:N [OPTIONS]\n\n"
             "The contact area of a rough elastic half-space under a cone (the paper's section 2.1):\n"
             "rho_c = k cot(alpha) / (2 h'rms) (eq. 7), the constant-density ratio A/A_cone of eq. (6)\n"
             "and the variable-density ratio of eq. (12), or with --gamma the local contact density\n"
-            "gamma(r/a) of eqs. (10)-(11) on r/a = 0, 0.01, ..., 1 (one column per slope or rho_c).\n\n"
+            "gamma(r/a) of eqs. (10)-(11) on r/a = 0, 0.01, ..., 1 (one column per slope or rho_c).\n"
+            "For a sphere (Hertz) or a flat punch (Boussinesq) the same local density with that punch's\n"
+            "smooth pressure: rho = p_m / p_rough with the smooth mean pressure p_m = N / A_smooth, the\n"
+            "constant-density ratio erf(sqrt(pi)/2 rho) (eq. 3 for the sphere) and the integral of gamma.\n\n"
+            "  --punch cone|sphere|flat  the punch (default cone)\n"
+            "  --radius R             sphere radius or flat punch radius, in grid spacings (with --slope)\n"
+            "  --load N               load in E* delta^2 (E* = 1; with --slope, sphere and flat only)\n"
             "  --alpha DEG            cone semi-opening angle in degrees, 0 < DEG < 90 (the paper: 80)\n"
             "  --slope LIST           comma-separated h'rms values >= 0 (0: smooth, rho_c = inf)\n"
-            "  --rho MIN:MAX:N        N values of rho_c, log-spaced from MIN to MAX (0 < MIN <= MAX)\n"
+            "  --rho MIN:MAX:N        N values of rho_c (rho = p_m / p_rough for sphere and flat),\n"
+            "                         log-spaced from MIN to MAX (0 < MIN <= MAX)\n"
             "  --gamma                print gamma(r/a) instead of the area ratios\n"
             "  --format table|csv     aligned table (default) or CSV; CSV columns are\n"
-            "                         slope,rho_c,area_ratio_eq6,area_ratio_eq12 (no slope with --rho),\n"
+            "                         slope,rho_c,area_ratio_eq6,area_ratio_eq12 (no slope with --rho);\n"
+            "                         sphere: slope,rho,area_ratio_eq3,area_ratio_gamma; flat:\n"
+            "                         slope,rho,area_ratio_constant,area_ratio_gamma;\n"
             "                         or r_over_a,gamma_slope_S,... (gamma_rho_c_R,...) with --gamma\n"
             "  --normalisation pr|mg  the erf law's pressure: pr (default) p_PR = 2 p_rough / sqrt(pi),\n"
             "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
@@ -40,8 +52,9 @@ static void usage(FILE *stream)
 }
 
 typedef struct theory_options {
-    double alpha;
-    int alpha_given;
+    enum im_punch_kind punch;
+    double alpha, radius, load;
+    int alpha_given, radius_given, load_given;
     const char *slope_list, *rho_sweep;
     int gamma, csv;
     double k;
@@ -54,13 +67,30 @@ typedef struct theory_columns {
     double *slope, *rho_c, *beta;
 } theory_columns;
 
-enum { OPT_ALPHA = 256, OPT_SLOPE, OPT_RHO, OPT_GAMMA, OPT_FORMAT, OPT_NORMALISATION, OPT_K, OPT_HELP };
+enum {
+    OPT_ALPHA = 256, OPT_SLOPE, OPT_RHO, OPT_GAMMA, OPT_FORMAT, OPT_NORMALISATION, OPT_K, OPT_PUNCH, OPT_RADIUS,
+    OPT_LOAD, OPT_HELP
+};
 
 static const struct option LONG_OPTIONS[] = {
     {"alpha", required_argument, 0, OPT_ALPHA}, {"slope", required_argument, 0, OPT_SLOPE},
     {"rho", required_argument, 0, OPT_RHO}, {"gamma", no_argument, 0, OPT_GAMMA},
     {"format", required_argument, 0, OPT_FORMAT}, {"normalisation", required_argument, 0, OPT_NORMALISATION},
-    {"k", required_argument, 0, OPT_K}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+    {"k", required_argument, 0, OPT_K}, {"punch", required_argument, 0, OPT_PUNCH},
+    {"radius", required_argument, 0, OPT_RADIUS}, {"load", required_argument, 0, OPT_LOAD},
+    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+
+static int parse_punch(const char *text, enum im_punch_kind *out)
+{
+    const enum im_punch_kind kinds[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT};
+    for (int i = 0; i < 3; ++i)
+        if (strcmp(text, im_punch_name(kinds[i])) == 0) {
+            *out = kinds[i];
+            return 0;
+        }
+    fprintf(stderr, "indentmap: --punch: '%s': expected 'cone', 'sphere' or 'flat'\n", text);
+    return -1;
+}
 
 static int parse_choice(const char *option, const char *text, const char *first, const char *second, int *out)
 {
@@ -96,8 +126,39 @@ static int apply_option(int code, const char *arg, void *state)
         o->normalisation = choice ? IM_THEORY_NORMALISATION_MG : IM_THEORY_NORMALISATION_PR;
         return 0;
     case OPT_K: return cli_parse_double("--k", arg, 1e-6, 1e6, &o->k);
+    case OPT_PUNCH: return parse_punch(arg, &o->punch);
+    case OPT_RADIUS:
+        o->radius_given = 1;
+        return cli_parse_double("--radius", arg, 1e-300, 1e300, &o->radius);
+    case OPT_LOAD:
+        o->load_given = 1;
+        return cli_parse_double("--load", arg, 1e-300, 1e300, &o->load);
     default: return -1;
     }
+}
+
+/* What is missing or superfluous for a cone, NULL if nothing. */
+static const char *cone_problem(const theory_options *o)
+{
+    if (o->radius_given || o->load_given)
+        return "--radius and --load are for --punch sphere or flat (a cone's rho_c needs no load)";
+    if (o->slope_list && !o->alpha_given)
+        return "--slope needs --alpha";
+    if (o->rho_sweep && o->alpha_given)
+        return "--alpha has no effect with --rho (rho_c already includes the cone)";
+    return NULL;
+}
+
+/* The same for a sphere or a flat punch. */
+static const char *round_punch_problem(const theory_options *o)
+{
+    if (o->alpha_given)
+        return "--alpha is for the cone; a sphere or a flat punch takes --radius";
+    if (o->slope_list && !(o->radius_given && o->load_given))
+        return "--slope with --punch sphere or flat needs --radius and --load";
+    if (o->rho_sweep && (o->radius_given || o->load_given))
+        return "--radius and --load have no effect with --rho (rho = p_m / p_rough already includes them)";
+    return NULL;
 }
 
 /* 1 after --help, 0 when the options are complete and consistent, -1 after printing an error. */
@@ -106,19 +167,18 @@ static int parse_options(int argc, char **argv, theory_options *o)
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
         return parsed;
-    const char *problem = NULL;
-    if (optind < argc)
+    if (optind < argc) {
         fprintf(stderr, "indentmap: theory: unexpected argument '%s'\n", argv[optind]);
-    else if (!o->slope_list == !o->rho_sweep)
-        problem = "give either --slope (with --alpha) or --rho";
-    else if (o->slope_list && !o->alpha_given)
-        problem = "--slope needs --alpha";
-    else if (o->rho_sweep && o->alpha_given)
-        problem = "--alpha has no effect with --rho (rho_c already includes the cone)";
+        return -1;
+    }
+    const char *problem = NULL;
+    if (!o->slope_list == !o->rho_sweep)
+        problem = "give either --slope (with --alpha, or --radius and --load) or --rho";
     else
+        problem = o->punch == IM_PUNCH_CONE ? cone_problem(o) : round_punch_problem(o);
+    if (!problem)
         return 0;
-    if (problem)
-        fprintf(stderr, "indentmap: theory: %s\n", problem);
+    fprintf(stderr, "indentmap: theory: %s\n", problem);
     return -1;
 }
 
@@ -203,6 +263,18 @@ static int parse_rho_sweep(const char *sweep, theory_columns *c)
     return 0;
 }
 
+/* rho = p_m / p_rough of a sphere or flat punch at the load (+INFINITY on a smooth surface). */
+static int punch_rho(const theory_options *o, const im_theory_interface *rough, double *rho)
+{
+    double p_mean, p_rough;
+    int status = im_theory_punch_mean_pressure(o->punch, o->radius, o->load, rough->e_star, &p_mean);
+    if (status == IM_OK)
+        status = im_theory_p_rough(rough, &p_rough);
+    if (status == IM_OK)
+        *rho = p_rough > 0.0 ? p_mean / p_rough : INFINITY;
+    return status;
+}
+
 /* rho_c (from the slopes) and the erf scale beta of every column. */
 static int columns_evaluate(const theory_options *o, theory_columns *c)
 {
@@ -210,7 +282,8 @@ static int columns_evaluate(const theory_options *o, theory_columns *c)
     for (int i = 0; i < c->count && status == IM_OK; ++i) {
         if (c->by_slope) {
             im_theory_interface rough = {c->slope[i], 1.0, o->k, o->normalisation};
-            status = im_theory_cone_rho(&rough, o->alpha, &c->rho_c[i]);
+            status = o->punch == IM_PUNCH_CONE ? im_theory_cone_rho(&rough, o->alpha, &c->rho_c[i])
+                                               : punch_rho(o, &rough, &c->rho_c[i]);
         }
         if (status == IM_OK)
             status = im_theory_erf_scale(c->rho_c[i], o->normalisation, o->k, &c->beta[i]);
@@ -237,10 +310,13 @@ static void print_settings(const theory_options *o)
 {
     if (o->csv)
         return;
-    if (o->slope_list)
-        printf("# alpha = %g degrees, ", o->alpha);
-    else
-        printf("# ");
+    printf("# ");
+    if (o->punch != IM_PUNCH_CONE)
+        printf("punch %s, ", im_punch_name(o->punch));
+    if (o->slope_list && o->punch == IM_PUNCH_CONE)
+        printf("alpha = %g degrees, ", o->alpha);
+    else if (o->slope_list)
+        printf("radius = %g delta, load = %g E* delta^2, ", o->radius, o->load);
     printf("k = %g, normalisation %s\n", o->k,
            o->normalisation == IM_THEORY_NORMALISATION_PR ? "pr (p_PR = 2 p_rough / sqrt(pi))"
                                                           : "mg (p_MG = E* h'rms / sqrt(2))");
@@ -248,17 +324,20 @@ static void print_settings(const theory_options *o)
 
 static int print_area_ratios(const theory_options *o, const theory_columns *c)
 {
+    /* the cone's columns keep the paper's equation numbers */
+    static const char *const labels[3][3] = {{"rho_c", "area_ratio_eq6", "area_ratio_eq12"},
+                                             {"rho", "area_ratio_eq3", "area_ratio_gamma"},
+                                             {"rho", "area_ratio_constant", "area_ratio_gamma"}};
     if (c->by_slope)
         print_cell("slope", 1, o->csv);
-    print_cell("rho_c", !c->by_slope, o->csv);
-    print_cell("area_ratio_eq6", 0, o->csv);
-    print_cell("area_ratio_eq12", 0, o->csv);
+    for (int k = 0; k < 3; ++k)
+        print_cell(labels[o->punch][k], k == 0 && !c->by_slope, o->csv);
     printf("\n");
     for (int i = 0; i < c->count; ++i) {
         double constant, variable;
         int status = im_theory_cone_area_ratio_constant(c->beta[i], &constant);
         if (status == IM_OK)
-            status = im_theory_cone_area_ratio_variable(c->beta[i], &variable);
+            status = im_theory_punch_area_ratio(o->punch, c->beta[i], &variable);
         if (status != IM_OK)
             return status;
         if (c->by_slope)
@@ -279,7 +358,8 @@ static int print_contact_density(const theory_options *o, const theory_columns *
         if (c->by_slope)
             snprintf(label, sizeof label, "gamma_slope_%g", c->slope[i]);
         else
-            snprintf(label, sizeof label, "gamma_rho_c_%g", c->rho_c[i]);
+            snprintf(label, sizeof label, o->punch == IM_PUNCH_CONE ? "gamma_rho_c_%g" : "gamma_rho_%g",
+                     c->rho_c[i]);
         print_cell(label, 0, o->csv);
     }
     printf("\n");
@@ -288,7 +368,7 @@ static int print_contact_density(const theory_options *o, const theory_columns *
         print_number(r_over_a, "%.2f", 1, o->csv);
         for (int i = 0; i < c->count; ++i) {
             double gamma;
-            int status = im_theory_cone_contact_density(c->beta[i], r_over_a, &gamma);
+            int status = im_theory_punch_contact_density(o->punch, c->beta[i], r_over_a, &gamma);
             if (status != IM_OK)
                 return status;
             print_number(gamma, "%.6f", 0, o->csv);
@@ -300,7 +380,7 @@ static int print_contact_density(const theory_options *o, const theory_columns *
 
 int cli_theory(int argc, char **argv)
 {
-    theory_options o = {.k = IM_THEORY_K_DEFAULT, .normalisation = IM_THEORY_NORMALISATION_PR};
+    theory_options o = {.punch = IM_PUNCH_CONE, .k = IM_THEORY_K_DEFAULT, .normalisation = IM_THEORY_NORMALISATION_PR};
     int parsed = parse_options(argc, argv, &o);
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;

@@ -45,6 +45,7 @@ int im_field_clone(const im_field *src, im_field **out)
     if (status != IM_OK)
         return status;
     memcpy((*out)->unit, src->unit, sizeof src->unit);
+    memcpy((*out)->value_unit, src->value_unit, sizeof src->value_unit);
     memcpy((*out)->data, src->data, im_field_count(src) * sizeof *src->data);
     return IM_OK;
 }

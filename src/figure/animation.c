@@ -206,18 +206,22 @@ int im_animation_mp4(const char *directory, const char *prefix, double frames_pe
         return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
     if (!(frames_per_second > 0.0 && frames_per_second <= 240.0))
         return im_fail(IM_EINVAL, "MP4: %g frames per second: expected (0, 240]", frames_per_second);
-    char pattern[4096], rate[32], temporary[4200];
+    char pattern[4096], rate[32];
     snprintf(pattern, sizeof pattern, "%s/%s_%%04d.png", directory, prefix);
     snprintf(rate, sizeof rate, "%g", frames_per_second);
-    /* ffmpeg picks the container from the extension, so the temporary name ends in .mp4 too. */
-    snprintf(temporary, sizeof temporary, "%s.tmp.%ld.mp4", path, (long)getpid());
+    /* ffmpeg picks the container from the extension, so the temporary name ends in .mp4 too; it
+     * overwrites (-y) the empty temporary file, whose descriptor then syncs what it wrote. */
+    im_atomic_file file;
+    int status = im_atomic_open_suffixed(&file, path, ".mp4");
+    if (status != IM_OK)
+        return status;
     char *arguments[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern,
                          "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt",
-                         "yuv420p", temporary, NULL};
-    int status = run_ffmpeg(arguments);
-    if (status == IM_OK && rename(temporary, path) != 0)
-        status = im_fail(IM_EIO, "%s: cannot rename the encoded video into place: %s", path, strerror(errno));
-    if (status != IM_OK)
-        remove(temporary);
+                         "yuv420p", file.temp_path, NULL};
+    status = run_ffmpeg(arguments);
+    if (status == IM_OK)
+        status = im_atomic_commit(&file);
+    else
+        im_atomic_abort(&file);
     return status;
 }

@@ -1,42 +1,161 @@
+/* Atomic writes: a temporary file with a short unique name beside the destination, renamed over it
+ * when complete. Every file the program writes goes through here, and so through the output guard
+ * (guard.c): no input, no sidecar of an input, no file of another kind is ever replaced. */
 #include "indentmap/io.h"
 
+#include "io/guard.h"
 #include "indentmap/status.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-int im_atomic_open(im_atomic_file *file, const char *path)
+/* ---- temporary files being written, for removal on a fatal signal ---- */
+
+/* A slot is free (0), being filled (1) or holds the path of a temporary file in use (2). The
+ * signal handler only reads slots in state 2 and unlinks their paths: lock-free atomics and
+ * unlink(2) are async-signal-safe. */
+enum { TEMPORARY_SLOTS = 256, SLOT_FREE = 0, SLOT_FILLING = 1, SLOT_READY = 2 };
+static atomic_int slot_state[TEMPORARY_SLOTS];
+static char slot_path[TEMPORARY_SLOTS][sizeof(((im_atomic_file *)0)->temp_path)];
+
+/* Claims a slot for path, or returns -1 when all are taken (the file is then written unlisted). */
+static int claim_slot(const char *path)
+{
+    for (int i = 0; i < TEMPORARY_SLOTS; ++i) {
+        int expected = SLOT_FREE;
+        if (atomic_compare_exchange_strong(&slot_state[i], &expected, SLOT_FILLING)) {
+            snprintf(slot_path[i], sizeof slot_path[i], "%s", path);
+            atomic_store(&slot_state[i], SLOT_READY);
+            return i;
+        }
+    }
+    return -1;
+}
+
+static void release_slot(int slot)
+{
+    if (slot >= 0)
+        atomic_store(&slot_state[slot], SLOT_FREE);
+}
+
+void im_atomic_remove_temporaries(void)
+{
+    for (int i = 0; i < TEMPORARY_SLOTS; ++i)
+        if (atomic_load(&slot_state[i]) == SLOT_READY)
+            unlink(slot_path[i]);
+}
+
+/* ---- temporary names ---- */
+
+/* DIR/.im.tmp.PID.N[SUFFIX] in the destination's folder: unique per process (pid) and per call
+ * (N, shared by all threads), and short, so that any legal final name leaves room for it. */
+static int temporary_name(const char *path, const char *suffix, char *out, size_t size)
+{
+    static atomic_ulong counter;
+    const char *slash = strrchr(path, '/');
+    int folder = slash ? (int)(slash - path) + 1 : 0;
+    int length = snprintf(out, size, "%.*s.im.tmp.%ld.%lu%s", folder, path, (long)getpid(),
+                          (unsigned long)atomic_fetch_add(&counter, 1), suffix);
+    return length > 0 && (size_t)length < size ? IM_OK : im_fail(IM_EINVAL, "%.64s...: path too long", path);
+}
+
+/* Digits only, at least one. */
+static int all_digits(const char *text, size_t length)
+{
+    for (size_t i = 0; i < length; ++i)
+        if (text[i] < '0' || text[i] > '9')
+            return 0;
+    return length > 0;
+}
+
+int im_atomic_is_temporary_name(const char *name)
+{
+    if (strncmp(name, ".im.tmp.", 8) == 0)
+        return 1;
+    const char *marker = strstr(name, ".tmp.");
+    while (marker && strstr(marker + 1, ".tmp."))
+        marker = strstr(marker + 1, ".tmp."); /* the last one */
+    if (!marker || marker == name)
+        return 0;
+    const char *pid = marker + 5;
+    size_t length = strlen(pid);
+    if (length > 4 && strcmp(pid + length - 4, ".mp4") == 0)
+        length -= 4;
+    return all_digits(pid, length);
+}
+
+/* Creates the temporary file exclusively (O_EXCL: a name left by a dead process of the same pid is
+ * skipped), readable back for the kind check at commit. */
+static int create_temporary(im_atomic_file *file, const char *suffix)
+{
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        int status = temporary_name(file->path, suffix, file->temp_path, sizeof file->temp_path);
+        if (status != IM_OK)
+            return status;
+        int fd = open(file->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0 && errno == EEXIST)
+            continue;
+        if (fd < 0)
+            return im_fail(IM_EIO, "%s: cannot open for writing: %s", file->path, strerror(errno));
+        file->slot = claim_slot(file->temp_path);
+        file->stream = fdopen(fd, "w+b");
+        if (file->stream)
+            return IM_OK;
+        int saved = errno;
+        close(fd);
+        unlink(file->temp_path);
+        release_slot(file->slot);
+        return im_fail(IM_EIO, "%s: cannot open for writing: %s", file->path, strerror(saved));
+    }
+    return im_fail(IM_EIO, "%s: no unused temporary name beside it", file->path);
+}
+
+int im_atomic_open_suffixed(im_atomic_file *file, const char *path, const char *suffix)
 {
     memset(file, 0, sizeof *file);
+    file->slot = -1;
     if (strlen(path) >= sizeof file->path)
         return im_fail(IM_EINVAL, "%.64s...: path too long", path);
     strcpy(file->path, path);
-    snprintf(file->temp_path, sizeof file->temp_path, "%s.tmp.%ld", path, (long)getpid());
-    file->stream = fopen(file->temp_path, "wb");
-    if (!file->stream)
-        return im_fail(IM_EIO, "%s: cannot open for writing: %s", path, strerror(errno));
-    return IM_OK;
+    int status = im_output_check(path);
+    return status == IM_OK ? create_temporary(file, suffix ? suffix : "") : status;
+}
+
+int im_atomic_open(im_atomic_file *file, const char *path)
+{
+    return im_atomic_open_suffixed(file, path, NULL);
+}
+
+/* Removes the temporary file and forgets it. */
+static void discard(im_atomic_file *file)
+{
+    unlink(file->temp_path);
+    release_slot(file->slot);
+    file->slot = -1;
 }
 
 int im_atomic_commit(im_atomic_file *file)
 {
     int failed = ferror(file->stream) || fflush(file->stream) != 0 || fsync(fileno(file->stream)) != 0;
     int saved_errno = errno;
+    /* what was written and what it would replace are compared while the stream is open */
+    int status = failed ? IM_OK : im_output_check_replace(file->path, fileno(file->stream));
     failed |= fclose(file->stream) != 0;
     file->stream = NULL;
-    if (failed) {
-        remove(file->temp_path);
-        return im_fail(IM_EIO, "%s: write failed: %s", file->path, strerror(saved_errno));
-    }
-    if (rename(file->temp_path, file->path) != 0) {
-        saved_errno = errno;
-        remove(file->temp_path);
-        return im_fail(IM_EIO, "%s: cannot move into place: %s", file->path, strerror(saved_errno));
-    }
-    return IM_OK;
+    if (failed)
+        status = im_fail(IM_EIO, "%s: write failed: %s", file->path, strerror(saved_errno ? saved_errno : EIO));
+    else if (status == IM_OK && rename(file->temp_path, file->path) != 0)
+        status = im_fail(IM_EIO, "%s: cannot move into place: %s", file->path, strerror(errno));
+    if (status != IM_OK)
+        discard(file);
+    release_slot(file->slot);
+    file->slot = -1;
+    return status;
 }
 
 void im_atomic_abort(im_atomic_file *file)
@@ -44,7 +163,7 @@ void im_atomic_abort(im_atomic_file *file)
     if (file->stream) {
         fclose(file->stream);
         file->stream = NULL;
-        remove(file->temp_path);
+        discard(file);
     }
 }
 
@@ -55,8 +174,9 @@ int im_write_file_atomic(const char *path, const void *data, size_t size)
     if (status != IM_OK)
         return status;
     if (size > 0 && fwrite(data, 1, size, file.stream) != size) {
+        int saved = errno;
         im_atomic_abort(&file);
-        return im_fail(IM_EIO, "%s: write failed: %s", path, strerror(errno));
+        return im_fail(IM_EIO, "%s: write failed: %s", path, strerror(saved));
     }
     return im_atomic_commit(&file);
 }

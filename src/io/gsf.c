@@ -2,8 +2,11 @@
 
 #include "indentmap/status.h"
 #include "io/payload.h"
+#include "io/readers.h"
 
 #include <errno.h>
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,23 +43,64 @@ int im_gsf_write(const char *path, const im_field *field)
 
 typedef struct gsf_header {
     long xres, yres;
-    double xreal;
-    char unit[16];
+    double xreal, yreal;        /* 0 when absent */
+    char xy_units[16], z_units[16];
+    int refused;                /* 1 once a value was refused (the message is recorded) */
 } gsf_header;
 
-static void parse_header_line(const char *line, gsf_header *h)
+/* A decimal integer and nothing else but blanks: "16abc" and "1.6e1" are not pixel counts. */
+static int parse_count(const char *path, const char *key, const char *value, long *out)
+{
+    char *end;
+    errno = 0;
+    long number = strtol(value, &end, 10);
+    if (end == value || end[strspn(end, " \t\r")] != '\0' || errno == ERANGE)
+        return im_fail(IM_EFORMAT, "%s: %s = '%.32s': expected a decimal integer", path, key, value);
+    *out = number;
+    return IM_OK;
+}
+
+/* A finite length > 0 and nothing else but blanks. */
+static int parse_extent(const char *path, const char *key, const char *value, double *out)
+{
+    char *end;
+    double number = strtod(value, &end);
+    if (end == value || end[strspn(end, " \t\r")] != '\0' || !isfinite(number) || !(number > 0.0))
+        return im_fail(IM_EFORMAT, "%s: %s = '%.32s': expected a finite length > 0", path, key, value);
+    *out = number;
+    return IM_OK;
+}
+
+static int parse_units(const char *path, const char *key, const char *value, char *out, size_t size)
+{
+    size_t length = strcspn(value, " \t\r");
+    if (length == 0 || length >= size || value[length + strspn(value + length, " \t\r")] != '\0')
+        return im_fail(IM_EFORMAT, "%s: %s = '%.32s': expected one unit name of at most %zu bytes", path, key,
+                       value, size - 1);
+    snprintf(out, size, "%.*s", (int)length, value);
+    return IM_OK;
+}
+
+/* One KEY = VALUE line; keys other than these six are Gwyddion metadata and ignored. */
+static void parse_header_line(const char *path, const char *line, gsf_header *h)
 {
     char key[64], value[128];
-    if (sscanf(line, " %63[^= ] = %127[^\n]", key, value) != 2)
+    if (h->refused || sscanf(line, " %63[^= ] = %127[^\n]", key, value) != 2)
         return;
+    int status = IM_OK;
     if (strcmp(key, "XRes") == 0)
-        h->xres = strtol(value, NULL, 10);
+        status = parse_count(path, key, value, &h->xres);
     else if (strcmp(key, "YRes") == 0)
-        h->yres = strtol(value, NULL, 10);
+        status = parse_count(path, key, value, &h->yres);
     else if (strcmp(key, "XReal") == 0)
-        h->xreal = strtod(value, NULL);
+        status = parse_extent(path, key, value, &h->xreal);
+    else if (strcmp(key, "YReal") == 0)
+        status = parse_extent(path, key, value, &h->yreal);
     else if (strcmp(key, "XYUnits") == 0)
-        snprintf(h->unit, sizeof h->unit, "%.15s", value);
+        status = parse_units(path, key, value, h->xy_units, sizeof h->xy_units);
+    else if (strcmp(key, "ZUnits") == 0)
+        status = parse_units(path, key, value, h->z_units, sizeof h->z_units);
+    h->refused = status != IM_OK;
 }
 
 /* Reads the text header up to its terminating NUL and skips the padding to a multiple of 4. */
@@ -73,11 +117,13 @@ static int read_header(FILE *stream, const char *path, gsf_header *h)
         ++offset;
         if (c == '\n' || used + 1 == sizeof line) {
             line[used] = '\0';
-            parse_header_line(line, h);
+            parse_header_line(path, line, h);
             used = 0;
         } else {
             line[used++] = (char)c;
         }
+        if (h->refused)
+            return IM_EFORMAT;
         if (offset > 1 << 20)
             return im_fail(IM_EFORMAT, "%s: header has no terminating NUL in its first MiB", path);
     }
@@ -105,10 +151,23 @@ static int read_values(FILE *stream, const char *path, im_field *field)
     if (fgetc(stream) != EOF)
         return im_fail(IM_EFORMAT, "%s: more data than XRes x YRes = %d x %d holds", path,
                        field->nx, field->ny);
-    return im_io_check_finite(field, path);
+    return IM_OK;
 }
 
-int im_gsf_read(const char *path, im_field **out)
+/* What the header states about units: pixel spacing XReal / XRes and YReal / YRes. */
+static void stated_units(const gsf_header *h, surface_stated *stated)
+{
+    *stated = (surface_stated){.spacing_keys = "XReal / XRes and YReal / YRes", .lateral_key = "XYUnits",
+                               .height_key = "ZUnits"};
+    if (h->xreal > 0.0) {
+        stated->units.delta_x = h->xreal / (double)h->xres;
+        stated->units.delta_y = h->yreal > 0.0 ? h->yreal / (double)h->yres : 0.0;
+    }
+    memcpy(stated->units.lateral, h->xy_units, sizeof h->xy_units);
+    memcpy(stated->units.height, h->z_units, sizeof h->z_units);
+}
+
+int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream = fopen(path, "rb");
@@ -123,20 +182,23 @@ int im_gsf_read(const char *path, im_field **out)
         status = im_io_check_grid(stream, path, header.xres, header.yres, 4u, claim);
     }
     if (status == IM_OK) {
-        double delta = header.xreal > 0.0 ? header.xreal / (double)header.xres : 1.0;
-        status = im_field_create((int)header.xres, (int)header.yres, delta, &field);
+        status = im_field_create((int)header.xres, (int)header.yres, 1.0, &field);
         if (status != IM_OK)
             im_fail_context(status, "%s", path);
     }
-    if (status == IM_OK) {
-        snprintf(field->unit, sizeof field->unit, "%s", header.xreal > 0.0 ? header.unit : "");
+    if (status == IM_OK)
         status = read_values(stream, path, field);
-    }
     fclose(stream);
     if (status != IM_OK) {
         im_field_free(field);
         return status;
     }
+    stated_units(&header, stated);
     *out = field;
     return IM_OK;
+}
+
+int im_gsf_read(const char *path, im_field **out)
+{
+    return im_surface_read_format(path, im_gsf_read_raw, NULL, out, NULL);
 }

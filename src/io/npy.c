@@ -2,6 +2,7 @@
 
 #include "indentmap/status.h"
 #include "io/payload.h"
+#include "io/readers.h"
 
 #include <errno.h>
 #include <math.h>
@@ -111,24 +112,46 @@ static int quoted_length(const char *text)
     return length < 24 ? (int)length : 24;
 }
 
-static int parse_header(const char *path, const char *dict, enum im_npy_dtype *dtype, long *rows,
-                        long *cols)
+/* The element type of a .npy: its descr ("'>i2'"), kind ('f' float, 'i' signed, 'u' unsigned), size
+ * in bytes and byte order. */
+typedef struct npy_type {
+    char descr[8];
+    char kind;
+    int size, big_endian, fortran_order;
+} npy_type;
+
+/* Parses "'<f8'"-style descr: byte order '<' (little), '>' (big), '=' (native, little here) or '|'
+ * (not applicable: one byte), kind f (4 or 8 bytes), i or u (1, 2, 4 or 8). 0 for anything else. */
+static int parse_descr(const char *text, npy_type *type)
+{
+    char order, kind, tail;
+    int size;
+    if (sscanf(text, "'%c%c%d%c", &order, &kind, &size, &tail) != 4 || tail != '\'' || !strchr("<>=|", order))
+        return 0;
+    int integer = (kind == 'i' || kind == 'u') && (size == 1 || size == 2 || size == 4 || size == 8);
+    int floating = kind == 'f' && (size == 4 || size == 8);
+    if (!(integer || floating) || (order == '|') != (size == 1))
+        return 0;
+    snprintf(type->descr, sizeof type->descr, "%c%c%d", order, kind, size);
+    type->kind = kind;
+    type->size = size;
+    type->big_endian = order == '>';
+    return 1;
+}
+
+static int parse_header(const char *path, const char *dict, npy_type *type, long *rows, long *cols)
 {
     const char *descr = dict_value(dict, "descr");
     const char *order = dict_value(dict, "fortran_order");
     const char *shape = dict_value(dict, "shape");
     if (!descr || !order || !shape)
         return im_fail(IM_EFORMAT, "%s: header lacks 'descr', 'fortran_order' or 'shape'", path);
-    if (strncmp(descr, "'<f8'", 5) == 0)
-        *dtype = IM_NPY_FLOAT64;
-    else if (strncmp(descr, "'<f4'", 5) == 0)
-        *dtype = IM_NPY_FLOAT32;
-    else
-        return im_fail(IM_EFORMAT, "%s: dtype %.*s is not supported; expected '<f8' or '<f4' "
-                       "(little-endian float64 or float32)", path, quoted_length(descr), descr);
-    if (strncmp(order, "False", 5) != 0)
-        return im_fail(IM_EFORMAT, "%s: Fortran-ordered arrays are not supported; expected C order "
-                       "(save with numpy.ascontiguousarray)", path);
+    if (!parse_descr(descr, type))
+        return im_fail(IM_EFORMAT, "%s: dtype %.*s is not supported; expected a float ('<f8', '>f4', ...) or an "
+                       "integer ('<i2', '>u4', '|u1', ...) of either byte order", path, quoted_length(descr), descr);
+    if (strncmp(order, "False", 5) != 0 && strncmp(order, "True", 4) != 0)
+        return im_fail(IM_EFORMAT, "%s: fortran_order %.8s: expected True or False", path, order);
+    type->fortran_order = order[0] == 'T';
     if (!parse_shape(shape, rows, cols))
         return im_fail(IM_EFORMAT, "%s: shape %.24s: expected a 2-D shape (rows, columns)", path, shape);
     if (*rows < 1 || *cols < 1)
@@ -136,7 +159,7 @@ static int parse_header(const char *path, const char *dict, enum im_npy_dtype *d
     return IM_OK; /* the upper bound on the sides is im_io_check_grid's, after the memory check */
 }
 
-static int read_header(FILE *stream, const char *path, enum im_npy_dtype *dtype, long *rows, long *cols)
+static int read_header(FILE *stream, const char *path, npy_type *type, long *rows, long *cols)
 {
     uint8_t prefix[12];
     if (fread(prefix, 1, 8, stream) != 8 || memcmp(prefix, NPY_MAGIC, 6) != 0)
@@ -154,21 +177,51 @@ static int read_header(FILE *stream, const char *path, enum im_npy_dtype *dtype,
     if (!dict)
         return im_fail(IM_ENOMEM, "%s: header allocation failed", path);
     int status = fread(dict, 1, header_length, stream) == header_length
-                     ? parse_header(path, dict, dtype, rows, cols)
+                     ? parse_header(path, dict, type, rows, cols)
                      : im_fail(IM_EFORMAT, "%s: truncated header", path);
     free(dict);
     return status;
 }
 
-static int read_payload(FILE *stream, const char *path, enum im_npy_dtype dtype, im_field *field)
+/* One element of the payload as a double. */
+static double decode(const uint8_t *bytes, const npy_type *type)
 {
-    size_t count = im_field_count(field), got;
-    if (dtype == IM_NPY_FLOAT64) {
-        got = fread(field->data, sizeof(double), count, stream);
-    } else {
-        float value;
-        for (got = 0; got < count && fread(&value, sizeof value, 1, stream) == 1; ++got)
-            field->data[got] = value;
+    uint8_t ordered[8];
+    for (int i = 0; i < type->size; ++i) /* into the host's (little-endian) order */
+        ordered[i] = bytes[type->big_endian ? type->size - 1 - i : i];
+    union { uint8_t b[8]; double f8; float f4; int8_t i1; int16_t i2; int32_t i4; int64_t i8; uint8_t u1;
+            uint16_t u2; uint32_t u4; uint64_t u8; } v;
+    memcpy(v.b, ordered, (size_t)type->size);
+    switch (type->kind * 16 + type->size) {
+    case 'f' * 16 + 8: return v.f8;
+    case 'f' * 16 + 4: return v.f4;
+    case 'i' * 16 + 1: return v.i1;
+    case 'i' * 16 + 2: return v.i2;
+    case 'i' * 16 + 4: return v.i4;
+    case 'i' * 16 + 8: return (double)v.i8;
+    case 'u' * 16 + 1: return v.u1;
+    case 'u' * 16 + 2: return v.u2;
+    case 'u' * 16 + 4: return v.u4;
+    default: return (double)v.u8;
+    }
+}
+
+/* Reads the payload element by element (in blocks), converting each to double and placing it in
+ * row-major order whatever the file's order. */
+static int read_payload(FILE *stream, const char *path, const npy_type *type, im_field *field)
+{
+    size_t count = im_field_count(field), got = 0, rows = (size_t)field->ny, cols = (size_t)field->nx;
+    uint8_t block[8 * 4096];
+    size_t per_block = sizeof block / (size_t)type->size;
+    while (got < count) {
+        size_t want = count - got < per_block ? count - got : per_block;
+        size_t read = fread(block, (size_t)type->size, want, stream);
+        for (size_t k = 0; k < read; ++k, ++got) {
+            size_t index = type->fortran_order ? (got % rows) * cols + got / rows : got;
+            field->data[index] = decode(block + k * (size_t)type->size, type);
+        }
+        if (read < want)
+            break;
     }
     if (got != count)
         return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu values (header shape %d x %d)",
@@ -176,24 +229,40 @@ static int read_payload(FILE *stream, const char *path, enum im_npy_dtype dtype,
     if (fgetc(stream) != EOF)
         return im_fail(IM_EFORMAT, "%s: more data than the header shape (%d, %d) holds", path,
                        field->ny, field->nx);
-    return im_io_check_finite(field, path);
+    return IM_OK;
 }
 
-int im_npy_read(const char *path, im_field **out)
+/* What was converted to reach float64 in C order, for the read info; "" for '<f8' in C order. */
+static void describe_conversion(const npy_type *type, char *text, size_t size)
 {
+    static const char *const KINDS[] = {"float", "int", "uint"};
+    int kind = type->kind == 'f' ? 0 : type->kind == 'i' ? 1 : 2;
+    int converted = strcmp(type->descr, "<f8") != 0 && strcmp(type->descr, "=f8") != 0;
+    snprintf(text, size, "%s%s%s%s%d%s", converted ? "'" : "", converted ? type->descr : "",
+             converted ? "' (" : "", converted ? KINDS[kind] : "", converted ? 8 * type->size : 0,
+             converted ? ") converted to float64" : "");
+    if (!converted)
+        text[0] = '\0';
+    if (type->fortran_order)
+        snprintf(text + strlen(text), size - strlen(text), "%sFortran order transposed to C order",
+                 converted ? "; " : "");
+}
+
+int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
+{
+    *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit"};
     *out = NULL;
     FILE *stream = fopen(path, "rb");
     if (!stream)
         return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
-    enum im_npy_dtype dtype = IM_NPY_FLOAT64;
+    npy_type type = {0};
     long rows = 0, cols = 0;
     im_field *field = NULL;
-    int status = read_header(stream, path, &dtype, &rows, &cols);
+    int status = read_header(stream, path, &type, &rows, &cols);
     if (status == IM_OK) {
         char claim[96];
-        int f8 = dtype == IM_NPY_FLOAT64;
-        snprintf(claim, sizeof claim, "shape (%ld, %ld) of %s", rows, cols, f8 ? "<f8" : "<f4");
-        status = im_io_check_grid(stream, path, cols, rows, f8 ? 8u : 4u, claim);
+        snprintf(claim, sizeof claim, "shape (%ld, %ld) of %s", rows, cols, type.descr);
+        status = im_io_check_grid(stream, path, cols, rows, (unsigned)type.size, claim);
     }
     if (status == IM_OK) {
         status = im_field_create((int)cols, (int)rows, 1.0, &field);
@@ -201,12 +270,20 @@ int im_npy_read(const char *path, im_field **out)
             im_fail_context(status, "%s", path);
     }
     if (status == IM_OK)
-        status = read_payload(stream, path, dtype, field);
+        status = read_payload(stream, path, &type, field);
+    if (status == IM_OK)
+        status = im_npy_sidecar_read(path, stated, field->value_unit, sizeof field->value_unit);
     fclose(stream);
     if (status != IM_OK) {
         im_field_free(field);
         return status;
     }
+    describe_conversion(&type, stated->conversion, sizeof stated->conversion);
     *out = field;
     return IM_OK;
+}
+
+int im_npy_read(const char *path, im_field **out)
+{
+    return im_surface_read_format(path, im_npy_read_raw, NULL, out, NULL);
 }

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,14 +51,37 @@ static void set_metadata(png_structp png, png_infop info, const im_png_options *
     }
 }
 
+/* What made libpng give up: its message, and errno at that moment (a failed write's reason). */
+typedef struct png_failure {
+    char message[128];
+    int saved_errno;
+} png_failure;
+
+/* libpng's default handler prints "libpng error: Write Error" with no file and no reason; this one
+ * keeps both for the caller's message. */
+static void on_png_error(png_structp png, png_const_charp message)
+{
+    png_failure *failure = png_get_error_ptr(png);
+    failure->saved_errno = errno;
+    snprintf(failure->message, sizeof failure->message, "%s", message);
+    png_longjmp(png, 1);
+}
+
+static void on_png_warning(png_structp png, png_const_charp message)
+{
+    (void)png;
+    (void)message; /* nothing libpng warns about when writing what we give it */
+}
+
 /* Encodes into an open stream; libpng reports errors through longjmp. */
 static int encode(FILE *stream, const uint8_t *pixels, int width, int height, int channels,
-                  size_t stride, const im_png_options *options)
+                  size_t stride, const im_png_options *options, png_failure *failure)
 {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, failure, on_png_error, on_png_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!info) {
         png_destroy_write_struct(&png, NULL);
+        snprintf(failure->message, sizeof failure->message, "libpng allocation failed");
         return IM_ENOMEM;
     }
     if (setjmp(png_jmpbuf(png))) {
@@ -88,10 +112,13 @@ int im_png_write(const char *path, const uint8_t *pixels, int width, int height,
     status = im_atomic_open(&file, path);
     if (status != IM_OK)
         return status;
-    status = encode(file.stream, pixels, width, height, channels, stride, options);
+    png_failure failure = {"", 0};
+    status = encode(file.stream, pixels, width, height, channels, stride, options, &failure);
     if (status != IM_OK) {
         im_atomic_abort(&file);
-        return im_fail(status, "%s: PNG encoding failed", path);
+        if (failure.saved_errno && strstr(failure.message, "Write Error"))
+            return im_fail(status, "%s: write failed: %s", path, strerror(failure.saved_errno));
+        return im_fail(status, "%s: PNG encoding failed: %s", path, failure.message);
     }
     return im_atomic_commit(&file);
 }

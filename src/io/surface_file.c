@@ -1,5 +1,7 @@
 #include "indentmap/io.h"
 
+#include "io/readers.h"
+
 #include <string.h>
 
 static int has_extension(const char *path, const char *extension)
@@ -8,13 +10,21 @@ static int has_extension(const char *path, const char *extension)
     return n > e && strcmp(path + n - e, extension) == 0;
 }
 
+int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
+                         im_surface_read_info *info)
+{
+    surface_raw_reader read = has_extension(path, ".npy")   ? im_npy_read_raw
+                              : has_extension(path, ".gsf") ? im_gsf_read_raw
+                              : has_extension(path, ".sdf") ? im_sdf_read_raw
+                              : has_extension(path, ".nc")  ? im_netcdf_read_raw
+                              : has_extension(path, ".x3p") ? im_x3p_read_raw
+                                                            : im_text_read_raw;
+    return im_surface_read_format(path, read, options, out, info);
+}
+
 int im_surface_read(const char *path, im_field **out)
 {
-    if (has_extension(path, ".npy"))
-        return im_npy_read(path, out);
-    if (has_extension(path, ".gsf"))
-        return im_gsf_read(path, out);
-    return im_text_read(path, out);
+    return im_surface_read_with(path, NULL, out, NULL);
 }
 
 int im_surface_write(const char *path, const im_field *field)
@@ -23,5 +33,11 @@ int im_surface_write(const char *path, const im_field *field)
         return im_npy_write(path, field, IM_NPY_FLOAT64);
     if (has_extension(path, ".gsf"))
         return im_gsf_write(path, field);
+    if (has_extension(path, ".sdf"))
+        return im_sdf_write(path, field);
+    if (has_extension(path, ".nc"))
+        return im_netcdf_write(path, field);
+    if (has_extension(path, ".x3p"))
+        return im_x3p_write(path, field);
     return im_text_write(path, field);
 }

@@ -1,6 +1,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/readers.h"
 
 #include <errno.h>
 #include <math.h>
@@ -17,6 +18,8 @@ int im_text_write(const char *path, const im_field *field)
             field->nx, field->ny);
     fprintf(file.stream, "# Width: %.17g %s\n# Height: %.17g %s\n", field->nx * field->delta,
             field->unit, field->ny * field->delta, field->unit);
+    if (field->unit[0])
+        fprintf(file.stream, "# Value units: %s\n", field->unit);
     for (int iy = 0; iy < field->ny; ++iy) {
         const double *row = field->data + (size_t)iy * field->nx;
         for (int ix = 0; ix < field->nx; ++ix)
@@ -46,23 +49,64 @@ static int value_list_push(value_list *list, double value)
     return IM_OK;
 }
 
-/* Physical extent and unit from a Gwyddion "# Width: 5.12 um" header line. */
-static void parse_extent_header(const char *line, const char *key, double *extent, char *unit, size_t unit_size)
-{
-    size_t key_length = strlen(key);
-    if (strncmp(line + 1 + strspn(line + 1, " "), key, key_length) != 0)
-        return;
-    const char *value = line + 1 + strspn(line + 1, " ") + key_length;
-    char unit_text[16] = "";
-    if (sscanf(value, "%lf %15s", extent, unit_text) >= 1 && unit_text[0])
-        snprintf(unit, unit_size, "%s", unit_text);
-}
-
 typedef struct text_header {
-    double width, height;
-    char unit[16];
+    double width, height;           /* Gwyddion's extents along x and y; 0 when absent */
+    char width_unit[16], height_unit[16], value_unit[16];
     long columns, rows, line; /* a stated "C columns x R rows" and its line; 0 when none */
 } text_header;
+
+/* The text after "# KEY" (blanks skipped), or NULL when the header line is not about KEY. */
+static const char *header_value(const char *line, const char *key)
+{
+    const char *at = line + 1 + strspn(line + 1, " \t");
+    size_t length = strlen(key);
+    return strncmp(at, key, length) == 0 ? at + length + strspn(at + length, " \t") : NULL;
+}
+
+/* A Gwyddion extent line, "# Width: 5.12 um": a finite length > 0 and an optional unit. */
+static int parse_extent_header(const char *path, long line_number, const char *line, const char *key,
+                               double *extent, char *unit, size_t unit_size)
+{
+    const char *value = header_value(line, key);
+    if (!value)
+        return IM_OK;
+    char *end;
+    double number = strtod(value, &end);
+    char unit_text[64] = "";
+    int words = sscanf(end, "%63s", unit_text);
+    if (end == value || !isfinite(number) || !(number > 0.0) || strlen(unit_text) >= unit_size)
+        return im_fail(IM_EFORMAT, "%s:%ld: %s '%.40s': expected a finite length > 0 and a unit", path,
+                       line_number, key, value);
+    *extent = number;
+    snprintf(unit, unit_size, "%s", words == 1 ? unit_text : "");
+    return IM_OK;
+}
+
+/* Gwyddion's "# Value units: m", the unit of the heights. */
+static int parse_value_units(const char *path, long line_number, const char *line, text_header *header)
+{
+    const char *value = header_value(line, "Value units:");
+    char unit[64] = "";
+    if (!value)
+        return IM_OK;
+    if (sscanf(value, "%63s", unit) != 1 || strlen(unit) >= sizeof header->value_unit)
+        return im_fail(IM_EFORMAT, "%s:%ld: Value units '%.40s': expected one unit name", path, line_number,
+                       value);
+    memcpy(header->value_unit, unit, sizeof header->value_unit);
+    return IM_OK;
+}
+
+static int parse_header_line(const char *path, long line_number, const char *line, text_header *header)
+{
+    int status = parse_extent_header(path, line_number, line, "Width:", &header->width, header->width_unit,
+                                     sizeof header->width_unit);
+    if (status == IM_OK)
+        status = parse_extent_header(path, line_number, line, "Height:", &header->height, header->height_unit,
+                                     sizeof header->height_unit);
+    if (status == IM_OK)
+        status = parse_value_units(path, line_number, line, header);
+    return status;
+}
 
 /* A header line stating the grid, "... 16 columns x 16 rows ..." (as im_text_write writes it). */
 static void parse_shape_header(const char *line, long line_number, text_header *header)
@@ -91,30 +135,24 @@ static int check_stated_shape(const char *path, const text_header *header, long 
                    rows, rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
 }
 
-/* Parses the numbers of one data line; returns how many, or -1 after recording an error. */
-static long parse_data_line(char *line, const char *path, long line_number, value_list *values)
+/* Parses the numbers of one data line into values and *count; IM_EFORMAT or IM_ENOMEM with a message. */
+static int parse_data_line(char *line, const char *path, long line_number, value_list *values, long *count)
 {
-    long count = 0;
+    *count = 0;
     for (char *token = strtok(line, " \t,\r\n"); token; token = strtok(NULL, " \t,\r\n")) {
         char *end;
         errno = 0;
         double value = strtod(token, &end);
-        if (end == token || *end != '\0') {
-            im_fail(IM_EFORMAT, "%s:%ld: '%.32s' is not a number", path, line_number, token);
-            return -1;
-        }
-        if (!isfinite(value)) {
-            im_fail(IM_EFORMAT, "%s:%ld: value '%.32s' is not finite; heights must be finite numbers",
-                    path, line_number, token);
-            return -1;
-        }
-        if (value_list_push(values, value) != IM_OK) {
-            im_fail(IM_ENOMEM, "%s:%ld: out of memory", path, line_number);
-            return -1;
-        }
-        ++count;
+        if (end == token || *end != '\0')
+            return im_fail(IM_EFORMAT, "%s:%ld: '%.32s' is not a number", path, line_number, token);
+        if (isinf(value)) /* NaN passes: a missing point, refused or filled once the grid is known */
+            return im_fail(IM_EFORMAT, "%s:%ld: value '%.32s' is not finite; heights must be finite numbers",
+                           path, line_number, token);
+        if (value_list_push(values, value) != IM_OK)
+            return im_fail(IM_ENOMEM, "%s:%ld: out of memory", path, line_number);
+        ++*count;
     }
-    return count;
+    return IM_OK;
 }
 
 static int read_rows(FILE *stream, const char *path, value_list *values, long *columns, long *rows,
@@ -127,15 +165,15 @@ static int read_rows(FILE *stream, const char *path, value_list *values, long *c
     while (status == IM_OK && getline(&line, &capacity, stream) != -1) {
         ++line_number;
         if (line[0] == '#') {
-            parse_extent_header(line, "Width:", &header->width, header->unit, sizeof header->unit);
-            parse_extent_header(line, "Height:", &header->height, header->unit, sizeof header->unit);
+            status = parse_header_line(path, line_number, line, header);
             parse_shape_header(line, line_number, header);
             continue;
         }
-        long count = parse_data_line(line, path, line_number, values);
-        if (count < 0)
-            status = IM_EFORMAT;
-        else if (count > 0 && *columns == 0)
+        long count = 0;
+        status = parse_data_line(line, path, line_number, values, &count);
+        if (status != IM_OK)
+            break;
+        if (count > 0 && *columns == 0)
             *columns = count;
         else if (count > 0 && count != *columns)
             status = im_fail(IM_EFORMAT, "%s:%ld: %ld values, but the first data row has %ld", path,
@@ -147,7 +185,25 @@ static int read_rows(FILE *stream, const char *path, value_list *values, long *c
     return status;
 }
 
-int im_text_read(const char *path, im_field **out)
+/* What the Gwyddion headers state about units; Width and Height in different units are refused. */
+static int stated_units(const char *path, const text_header *header, long columns, long rows,
+                        surface_stated *stated)
+{
+    *stated = (surface_stated){.spacing_keys = "Width / columns and Height / rows", .lateral_key = "Width",
+                               .height_key = "Value units"};
+    if (header->width > 0.0 && header->height > 0.0 && strcmp(header->width_unit, header->height_unit) != 0)
+        return im_fail(IM_EFORMAT, "%s: Width is in '%s' but Height in '%s': expected one lateral unit", path,
+                       header->width_unit, header->height_unit);
+    if (header->width > 0.0) {
+        stated->units.delta_x = header->width / (double)columns;
+        stated->units.delta_y = header->height > 0.0 ? header->height / (double)rows : 0.0;
+        memcpy(stated->units.lateral, header->width_unit, sizeof stated->units.lateral);
+    }
+    memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
+    return IM_OK;
+}
+
+int im_text_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream = fopen(path, "r");
@@ -162,17 +218,20 @@ int im_text_read(const char *path, im_field **out)
         status = im_fail(IM_EFORMAT, "%s: no data rows", path);
     if (status == IM_OK)
         status = check_stated_shape(path, &header, columns, rows);
+    if (status == IM_OK)
+        status = stated_units(path, &header, columns, rows, stated);
     im_field *field = NULL;
-    if (status == IM_OK) {
-        double delta = header.width > 0.0 ? header.width / (double)columns : 1.0;
-        status = im_field_create((int)columns, (int)rows, delta, &field);
-    }
+    if (status == IM_OK)
+        status = im_field_create((int)columns, (int)rows, 1.0, &field);
     if (status == IM_OK) {
         memcpy(field->data, values.values, values.count * sizeof *values.values);
-        if (header.width > 0.0)
-            snprintf(field->unit, sizeof field->unit, "%s", header.unit);
         *out = field;
     }
     free(values.values);
     return status;
+}
+
+int im_text_read(const char *path, im_field **out)
+{
+    return im_surface_read_format(path, im_text_read_raw, NULL, out, NULL);
 }

@@ -7,6 +7,7 @@
 #include "render/gl.h"
 
 #include <stddef.h>
+#include <stdint.h>
 
 /* OSMesa, opened with dlopen (osmesa.c). Kept free of GL headers: GL/osmesa.h brings GL/gl.h. */
 typedef struct im_osmesa {
@@ -31,8 +32,9 @@ struct im_render_context {
     char renderer[256], version[256];
     void *egl_display, *egl_context;  /* EGLDisplay, EGLContext */
     im_osmesa osmesa;
-    GLint max_texture_size, max_renderbuffer_size, max_viewport[2];
+    GLint max_texture_size, max_renderbuffer_size, max_viewport[2], max_samples;
     GLuint vertex_array, contact_program, height_program;
+    GLuint surface_program, punch_program, wall_program;  /* the 3-D view (view3d.c) */
 };
 
 /* Whether EGL's client extensions allow enumerating devices: EGL_EXT_platform_device and
@@ -45,5 +47,35 @@ int im_render_make_current(im_render_context *context);
 /* Compiles the embedded shaders and creates the shared GL objects (draw.c). */
 int im_render_setup(im_render_context *context);
 void im_render_teardown(im_render_context *context);
+
+/* ---- shared by the 2-D maps (draw.c) and the 3-D view (view3d.c) ---- */
+
+/* Patch codes sent to the shaders besides the table indices 0..255 (shaders/contact.frag.glsl). */
+enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259 };
+
+/* The code of a value through the norm: its table index, or under / over / bad. */
+int im_render_patch_code(const im_colormap *colormap, double value);
+
+/* Compiles and links a program; IM_EUNSUPPORTED naming the shader and quoting its log. */
+int im_render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
+                           const char *fragment_source, const char *name, GLuint *out);
+
+/* A nearest-filtered, edge-clamped 2-D texture bound on texture unit `unit`. */
+GLuint im_render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
+                         GLenum format, GLenum type, const void *data);
+/* The colour map's 256-entry table as a 256 x 1 RGBA8 texture on `unit`. */
+GLuint im_render_table_texture(const im_gl *gl, int unit, im_colormap_id map);
+
+void im_render_set_colour(const im_gl *gl, GLuint program, const char *name, const uint8_t rgb[3]);
+void im_render_set_int(const im_gl *gl, GLuint program, const char *name, int value);
+
+/* The size limit of images and framebuffers: the smallest of the GL limits and 32768. */
+long im_render_image_limit(const im_render_context *context);
+
+/* Turns GL's bottom-up rows (glReadPixels) into top-down ones; IM_ENOMEM. */
+int im_render_flip_rows(uint8_t *rgba, int width, int height);
+
+/* Links the 3-D view's programs (view3d.c); called by im_render_setup. */
+int im_render_view3d_setup(im_render_context *context);
 
 #endif

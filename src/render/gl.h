@@ -50,7 +50,26 @@
     X(Uniform3f, PFNGLUNIFORM3FPROC)                                                              \
     X(GenVertexArrays, PFNGLGENVERTEXARRAYSPROC)                                                  \
     X(BindVertexArray, PFNGLBINDVERTEXARRAYPROC)                                                  \
-    X(DeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC)
+    X(DeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC)                                            \
+    X(Enable, PFNGLENABLEPROC)                                                                    \
+    X(Disable, PFNGLDISABLEPROC)                                                                  \
+    X(Clear, PFNGLCLEARPROC)                                                                      \
+    X(ClearColor, PFNGLCLEARCOLORPROC)                                                            \
+    X(DepthFunc, PFNGLDEPTHFUNCPROC)                                                              \
+    X(DepthMask, PFNGLDEPTHMASKPROC)                                                              \
+    X(BlendFunc, PFNGLBLENDFUNCPROC)                                                              \
+    X(RenderbufferStorageMultisample, PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC)                    \
+    X(BlitFramebuffer, PFNGLBLITFRAMEBUFFERPROC)                                                  \
+    X(UniformMatrix4fv, PFNGLUNIFORMMATRIX4FVPROC)                                                \
+    X(Uniform2fv, PFNGLUNIFORM2FVPROC)                                                            \
+    X(Uniform2f, PFNGLUNIFORM2FPROC)                                                              \
+    X(ColorMask, PFNGLCOLORMASKPROC)                                                              \
+    X(PolygonOffset, PFNGLPOLYGONOFFSETPROC)                                                      \
+    X(GenBuffers, PFNGLGENBUFFERSPROC)                                                            \
+    X(DeleteBuffers, PFNGLDELETEBUFFERSPROC)                                                      \
+    X(BindBuffer, PFNGLBINDBUFFERPROC)                                                            \
+    X(BufferData, PFNGLBUFFERDATAPROC)                                                            \
+    X(DrawElements, PFNGLDRAWELEMENTSPROC)
 
 typedef struct im_gl {
 #define IM_GL_MEMBER(name, type) type name;

@@ -5,5 +5,11 @@
 extern const char im_shader_fullscreen_vert[];
 extern const char im_shader_contact_frag[];
 extern const char im_shader_height_frag[];
+extern const char im_shader_surface_vert[];
+extern const char im_shader_surface_frag[];
+extern const char im_shader_punch_vert[];
+extern const char im_shader_punch_frag[];
+extern const char im_shader_wall_vert[];
+extern const char im_shader_wall_frag[];
 
 #endif

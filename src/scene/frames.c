@@ -135,11 +135,12 @@ static int render_contact_frame(im_render_context *context, const framed_history
 }
 
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
-                        im_image *gif_frames)
+                        im_image *gif_frames, im_colormap *norm)
 {
     double lo, hi;
     field_range(h->force, h->count, 1, &lo, &hi);
     im_colormap force_norm = scene_force_norm(scene, hi);
+    *norm = force_norm;
     field_range(h->deformed, h->count, 0, &lo, &hi);
     im_colormap height_norm = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi);
     int status = IM_OK;
@@ -204,10 +205,15 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
     im_image *gif_frames = calloc((size_t)scene->frame_count, sizeof *gif_frames);
     if (status == IM_OK && !gif_frames)
         status = im_fail(IM_ENOMEM, "frames: allocation failed");
+    im_colormap force_norm;
     if (status == IM_OK)
-        status = write_frames(scene, context, &history, gif_frames);
+        status = write_frames(scene, context, &history, gif_frames, &force_norm);
     if (status == IM_OK)
         status = write_animations(scene, options, gif_frames, history.count);
+    if (status == IM_OK && scene->frames3d) {
+        scene_frames3d_input in = {history.count, history.deformed, history.force, history.load_star, &force_norm};
+        status = scene_write_frames3d(scene, options, context, &in);
+    }
     if (status == IM_OK)
         status = im_field_clone(history.force[history.count - 1], last_force);
     for (int i = 0; gif_frames && i < scene->frame_count; ++i)

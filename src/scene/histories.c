@@ -44,10 +44,19 @@ static int write_history(const im_scene *scene, const scene_member *m)
     fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g, key %016" PRIx64 "\n", m->family,
             scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms,
             scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
-    fprintf(file.stream, "approach,load,load_star,contact_patches,area_ratio\n");
-    for (int i = 0; i < m->steps; ++i)
-        fprintf(file.stream, "%.17g,%.17g,%.17g,%ld,%.17g\n", m->approach[i], m->history_load[i],
-                m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i]);
+    fprintf(file.stream, "approach,load,load_star,contact_patches,area_ratio," IM_THEORY_STEP_COLUMNS "\n");
+    for (int i = 0; i < m->steps && status == IM_OK; ++i) {
+        im_theory_step theory;
+        status = scene_history_theory_row(scene, scene->slopes[m->family], m->approach[i], m->history_load[i],
+                                          &theory);
+        fprintf(file.stream, "%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", m->approach[i],
+                m->history_load[i], m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i],
+                theory.load_smooth, theory.area_smooth, theory.area_ratio_constant, theory.area_ratio_gamma);
+    }
+    if (status != IM_OK) {
+        im_atomic_abort(&file);
+        return status;
+    }
     return im_atomic_commit(&file);
 }
 
@@ -67,7 +76,7 @@ static int read_history(const im_scene *scene, scene_member *m)
              fgets(line, sizeof line, stream);
     m->steps = 0;
     while (ok && m->steps < scene->step_count &&
-           fscanf(stream, "%lf,%lf,%lf,%ld,%lf", &m->approach[m->steps], &m->history_load[m->steps],
+           fscanf(stream, "%lf,%lf,%lf,%ld,%lf%*[^\n]", &m->approach[m->steps], /* theory is recomputed */ &m->history_load[m->steps],
                   &m->history_load_star[m->steps], &m->history_patches[m->steps],
                   &m->history_area_ratio[m->steps]) == 5)
         ++m->steps;
@@ -321,12 +330,14 @@ static int plot_area_ratio_against_load(const im_scene *scene, const scene_membe
 }
 
 /* Pastewka and Robbins' three regimes for a sphere: A / A_Hertz against N / N_c for each rough
- * family (every surface thin) beside eq. (3), on log axes: one asperity at small loads, the
- * linear rough regime, and the crossover to Hertz above N_c. */
+ * family (every surface thin) beside eq. (3) and the integral of the local density of contact
+ * with Hertz's pressure, on log axes: one asperity at small loads, the linear rough regime, and
+ * the crossover to Hertz above N_c. */
 static int plot_sphere_regimes(const im_scene *scene, const scene_member *members, int count)
 {
     static figure_data d;
     static double theory_x[IM_SCENE_MAX_FAMILIES][THEORY_POINTS], theory_y[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
+    static double theory_gamma[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
     memset(&d, 0, sizeof d);
     double *scaled = malloc(sizeof *scaled * (size_t)count * (size_t)scene->step_count);
     if (!scaled)
@@ -355,16 +366,19 @@ static int plot_sphere_regimes(const im_scene *scene, const scene_member *member
             ++n;
         }
         for (int k = 0; k < THEORY_POINTS && status == IM_OK && hi > lo; ++k) {
-            double load = n_c * lo * pow(hi / lo, (double)k / (THEORY_POINTS - 1)), area, hertz;
-            status = im_theory_sphere_area(&rough, load, scene->radius, &area);
-            if (status == IM_OK)
-                status = im_theory_hertz_area(load, scene->radius, scene->modulus, &hertz);
+            double load = n_c * lo * pow(hi / lo, (double)k / (THEORY_POINTS - 1));
+            im_theory_step theory;
+            status = scene_history_theory_row(scene, scene->slopes[f], 0.0, load, &theory);
             theory_x[panels][k] = load / n_c;
-            theory_y[panels][k] = area / hertz;
+            theory_y[panels][k] = theory.area_ratio_constant;
+            theory_gamma[panels][k] = theory.area_ratio_gamma;
         }
         im_plot_series eq3 = {.x = theory_x[panels], .y = theory_y[panels], .n = THEORY_POINTS,
                               .line = IM_PLOT_SOLID, .line_width = 2.0, .label = "eq. (3)"};
         d.series[panels][n++] = eq3;
+        im_plot_series gamma = {.x = theory_x[panels], .y = theory_gamma[panels], .n = THEORY_POINTS,
+                                .line = IM_PLOT_DASHED, .line_width = 2.0, .label = "γ integral"};
+        d.series[panels][n++] = gamma;
         scene_family_title(scene, f, d.titles[panels], sizeof d.titles[panels]);
         d.panels[panels] = (im_plot_panel){.x = {IM_PLOT_LOG, 0, 0, "N / N_{c}"},
                                            .y = {IM_PLOT_LOG, 0, 0, "A / A_{Hertz}"}, .series = d.series[panels],

@@ -40,14 +40,14 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
 {
     const im_surface_params *p = &scene->surface;
     if (scene->surface_file[0]) {
-        char path[IM_SCENE_PATH];
+        char path[IM_SCENE_PATH] = "";
         struct stat info = {0};
-        im_scene_resolve_path(scene, scene->surface_file, path, sizeof path);
+        im_scene_file_path(scene, (int)seed, path, sizeof path);
         stat(path, &info);
         key_add(hash, "file ");
         key_add_bytes(hash, path, strlen(path));
-        key_add(hash, " %lld %lld.%09ld;", (long long)info.st_size, (long long)info.st_mtim.tv_sec,
-                info.st_mtim.tv_nsec);
+        key_add(hash, " %lld %lld.%09ld detrend %d fill %d;", (long long)info.st_size, (long long)info.st_mtim.tv_sec,
+                info.st_mtim.tv_nsec, scene->detrend, scene->fill);
         return;
     }
     key_add(hash, "grid %d %d %.17g;", p->nx, p->ny, p->delta);
@@ -66,6 +66,8 @@ static void add_contact(key_hash *hash, const im_scene *scene)
     key_add(hash, "punch %d %.17g %.17g; modulus %.17g;", scene->punch, scene->alpha_degrees, scene->radius,
             scene->modulus);
     key_add(hash, "solver %.17g %.17g %d %d %d;", o.e_star, o.tol, o.max_iterations, o.crop, o.window_margin);
+    if (o.hardness > 0) /* only then, so that the keys of results without a cap stay as they were */
+        key_add(hash, "hardness %.17g;", o.hardness);
 }
 
 int scene_load_star_step(const im_scene *scene)

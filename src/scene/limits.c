@@ -101,6 +101,8 @@ static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
         needed = *at_once * solve_bytes(g) + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
     if (scene->frames) /* force and deformed heights of every step, and the GIF's RGBA frames */
         needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 4.0 * g->nx * g->ny));
+    if (scene->frames3d) /* the 3-D frames kept for the GIF (960 x 540 RGBA each) */
+        needed += scene->frame_count * 4.0 * 960.0 * 540.0;
     if (scene->contact_panels) /* every family's force, and its panel image (2 pixels a patch when small) */
         needed = fmax(needed, solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
     return needed;
@@ -162,6 +164,10 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
         add_files(&d, 2.0 * scene->frame_count, 2.0 * 3.0 * cells + FRAME_TEXT_BYTES, "frames/contact_NNNN.png");
         add_files(&d, 1.0, scene->frame_count * cells + 1024.0, "contact.gif");
     }
+    if (scene->frames3d) { /* figures of 960 x 540 views and the GIF of them */
+        add_files(&d, scene->frame_count, 2.0 * 3.0 * 960.0 * 540.0, "frames/view3d_NNNN.png");
+        add_files(&d, 1.0, scene->frame_count * 960.0 * 540.0 + 1024.0, "view3d.gif");
+    }
     if (scene->table)
         add_files(&d, members, 512.0, "table/member_FF_SEED.csv");
     add_files(&d, members, 256.0 + 128.0 * scene->step_count, "histories/member_FF_SEED.csv");
@@ -208,6 +214,10 @@ static int check_disk(const im_scene *scene, const grid *g)
     struct statvfs info;
     if (statvfs(folder, &info) != 0)
         return IM_OK; /* cannot tell: the writes will report it */
+    if (info.f_blocks == 0) /* proc, sysfs: "0.0 MiB free" would read as a full disk */
+        return im_fail(IM_EIO, "%s: the output folder %s is on a file system that stores no files (%s has no "
+                       "blocks, like /proc or /sys); give an output folder on a disk", scene->path, scene->output_dir,
+                       folder);
     double free_bytes = (double)info.f_bavail * (double)info.f_frsize;
     if (d.total > free_bytes)
         return im_fail(IM_EIO, "%s: the outputs need about %.1f MiB of disk (the largest, %s, %.1f MiB) but %s has "
@@ -252,10 +262,11 @@ static int check_outputs_apart(const im_scene *scene)
     int status = absolute_path(scene->output_dir, output);
     if (status == IM_OK)
         status = check_not_inside(scene, output, scene->path, "scene file");
-    if (status == IM_OK && scene->surface_file[0]) {
+    for (int i = 0; status == IM_OK && i < scene->file_count; ++i) {
         char surface[IM_SCENE_PATH];
-        im_scene_resolve_path(scene, scene->surface_file, surface, sizeof surface);
-        status = check_not_inside(scene, output, surface, "surface file");
+        status = im_scene_file_path(scene, i, surface, sizeof surface);
+        if (status == IM_OK)
+            status = check_not_inside(scene, output, surface, "surface file");
     }
     return status;
 }

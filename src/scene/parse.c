@@ -75,6 +75,18 @@ static int parse_string(const key_spec *spec, const char *value, im_scene *scene
     return 0;
 }
 
+/* [scene] name: the default output folder is output/NAME, so a name is one plain folder name
+ * (no '/', not "." or ".."), which cannot lead the outputs outside output/. */
+static int parse_name(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    if (strchr(value, '/') || strcmp(value, ".") == 0 || strcmp(value, "..") == 0) {
+        snprintf(error, size, "name = '%s': expected a plain name without '/' (nor '.' or '..'): the outputs go to "
+                 "output/NAME; to write elsewhere, give [scene] output", value);
+        return -1;
+    }
+    return parse_string(spec, value, scene, error, size);
+}
+
 /* Index of value among "a|b|c" choices, or -1. */
 static int choice_index(const char *choices, const char *value)
 {
@@ -174,6 +186,13 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
         }
         values[count++] = v;
     }
+    for (int i = 0; i < count; ++i)
+        for (int j = 0; j < i; ++j)
+            if (values[j] == values[i]) { /* one surface twice: averaged as two, and both written to one file */
+                snprintf(error, size, "seeds = '%s': seed %.0f is given twice; each seed is one surface, give each "
+                         "once", value, values[i]);
+                return -1;
+            }
     scene->seed_count = count;
     for (int i = 0; i < count; ++i)
         scene->seeds[i] = (uint64_t)values[i];
@@ -194,7 +213,7 @@ static int parse_quality(const key_spec *spec, const char *value, im_scene *scen
 }
 
 static const key_spec KEYS[] = {
-    {"scene", "name", parse_string, FIELD(name), 0, 0, NULL, sizeof(((im_scene *)0)->name), 0},
+    {"scene", "name", parse_name, FIELD(name), 0, 0, NULL, sizeof(((im_scene *)0)->name), 0},
     {"scene", "output", parse_string, FIELD(output_dir), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"scene", "quality", parse_quality, FIELD(quality), 0, 0, NULL, sizeof(((im_scene *)0)->quality), 0},
     {"surfaces", "n", parse_int, FIELD(surface.nx), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
@@ -207,15 +226,19 @@ static const key_spec KEYS[] = {
     {"surfaces", "slopes", parse_double_list, FIELD(slopes), 0, 10, NULL, IM_SCENE_MAX_FAMILIES, FIELD(family_count)},
     {"surfaces", "seeds", parse_seeds, FIELD(seeds), 0, 0, NULL, IM_SCENE_MAX_FAMILIES, 0},
     {"surfaces", "file", parse_string, FIELD(surface_file), 0, 0, NULL, IM_SCENE_PATH, 0},
+    {"surfaces", "detrend", parse_choice, FIELD(detrend), 0, 0, "none|plane|curvature", 0, 0},
+    {"surfaces", "fill", parse_bool, FIELD(fill), 0, 0, NULL, 0, 0},
     {"punch", "shape", parse_choice, FIELD(punch), 0, 0, "cone|sphere|flat", 0, 0},
     {"punch", "alpha", parse_double, FIELD(alpha_degrees), 1e-9, 90 - 1e-9, NULL, 0, 0},
     {"punch", "radius", parse_double, FIELD(radius), 1e-9, 1e12, NULL, 0, 0},
     {"material", "modulus", parse_double, FIELD(modulus), 1e-300, 1e300, NULL, 0, 0},
+    {"material", "hardness", parse_double, FIELD(hardness), 1e-300, 1e300, NULL, 0, 0},
     {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load", 0, 0},
     {"loading", "load_star", parse_double, FIELD(load_star), 0, 1e15, NULL, 0, 0},
     {"loading", "steps", parse_double_list, FIELD(steps), 0, 1e15, NULL, IM_SCENE_MAX_STEPS, FIELD(step_count)},
     {"output", "contact_panels", parse_bool, FIELD(contact_panels), 0, 0, NULL, 0, 0},
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
+    {"output", "frames3d", parse_bool, FIELD(frames3d), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
     {"output", "colormap", parse_choice, FIELD(colormap), 0, 0, "viridis|cividis|magma|inferno|grey", 0, 0},
@@ -387,6 +410,42 @@ static int handle_key(void *user, const char *section, const char *name, const c
     return accepted;
 }
 
+/* A scene over surface files: they are the ensemble (seeds[i] = i picks file i) and each has its
+ * own h'rms, measured when the scene runs; `slopes` or `seeds` beside them would contradict that
+ * (reliability finding 4: `slopes` labelled the file and chose the theory, `seeds = 1:3` solved
+ * one file three times). Returns the line at fault, 0 if none. */
+static int check_files(parse_context *context)
+{
+    im_scene *scene = context->scene;
+    int slopes = key_line(context, "surfaces", "slopes"), seeds = key_line(context, "surfaces", "seeds");
+    int file = key_line(context, "surfaces", "file");
+    if (slopes || seeds) {
+        snprintf(context->error, sizeof context->error, "%s beside `file` (line %d): %s", slopes ? "slopes" : "seeds",
+                 file, slopes ? "a file's h'rms is measured from the file, not given; remove `slopes`"
+                              : "the files listed in `file` are the ensemble, and seeds would only solve the "
+                                "same file again; remove `seeds`");
+        return slopes ? slopes : seeds;
+    }
+    int count = 1;
+    for (const char *c = scene->surface_file; *c; ++c)
+        count += *c == ',';
+    char path[IM_SCENE_PATH];
+    for (int i = 0; i < count; ++i) {
+        if (i >= IM_SCENE_MAX_FAMILIES || im_scene_file_path(scene, i, path, sizeof path) != IM_OK) {
+            snprintf(context->error, sizeof context->error, "file: expected a comma-separated list of at most %d "
+                     "non-empty paths", IM_SCENE_MAX_FAMILIES);
+            return file;
+        }
+    }
+    scene->file_count = count;
+    scene->family_count = 1;
+    scene->slopes[0] = NAN; /* measured when the scene runs */
+    scene->seed_count = count;
+    for (int i = 0; i < count; ++i)
+        scene->seeds[i] = (uint64_t)i;
+    return 0;
+}
+
 /* Settings that contradict each other: a message citing the line of the key at fault (the later
  * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 static int check_consistency(parse_context *context)
@@ -400,6 +459,11 @@ static int check_consistency(parse_context *context)
                  scene->surface.lambda_r, scene->surface.lambda_s, r ? "" : " (lambda_r defaults to the box's side)");
         int line = r_from > s ? r_from : s;
         return line > 0 ? line : 1;
+    }
+    if (scene->surface_file[0]) {
+        int line = check_files(context);
+        if (line)
+            return line;
     }
     for (int i = 1; i < scene->step_count; ++i) {
         if (!(scene->steps[i] > scene->steps[i - 1])) {
@@ -465,6 +529,28 @@ int im_scene_load(const char *path, im_scene *scene)
     int inconsistent = check_consistency(&context);
     if (inconsistent)
         return im_fail(IM_EFORMAT, "%s:%d: %s", path, inconsistent, context.error);
+    return IM_OK;
+}
+
+int im_scene_file_path(const im_scene *scene, int i, char *out, size_t size)
+{
+    const char *item = scene->surface_file;
+    for (int k = 0; k < i && item; ++k) {
+        item = strchr(item, ',');
+        item = item ? item + 1 : NULL;
+    }
+    if (i < 0 || !item)
+        return im_fail(IM_EINVAL, "%s: file %d: the scene lists fewer files", scene->path, i);
+    item += strspn(item, " \t");
+    size_t length = strcspn(item, ",");
+    while (length > 0 && (item[length - 1] == ' ' || item[length - 1] == '\t'))
+        --length;
+    if (length == 0 || length >= IM_SCENE_PATH)
+        return im_fail(IM_EINVAL, "%s: file %d: an empty or overlong path", scene->path, i);
+    char relative[IM_SCENE_PATH];
+    memcpy(relative, item, length);
+    relative[length] = '\0';
+    im_scene_resolve_path(scene, relative, out, size);
     return IM_OK;
 }
 

@@ -26,7 +26,8 @@ int scene_wants_histories(const im_scene *scene)
 
 int scene_check_plots(const im_scene *scene)
 {
-    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere"};
+    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere",
+                                        "flat_k"};
     char copy[sizeof scene->plots];
     snprintf(copy, sizeof copy, "%s", scene->plots);
     for (char *name = strtok(copy, ", "); name; name = strtok(NULL, ", ")) {
@@ -35,7 +36,7 @@ int scene_check_plots(const im_scene *scene)
             known |= strcmp(name, KNOWN[i]) == 0;
         if (!known)
             return im_fail(IM_EINVAL, "%s: [output] plots: '%s' is not a figure; expected fig1, fig2, fig3, "
-                           "fig5, fig6, fig7, density or sphere", scene->path, name);
+                           "fig5, fig6, fig7, density, sphere or flat_k", scene->path, name);
     }
     if (scene_wants_plot(scene, "density") && !scene->contact_panels)
         return im_fail(IM_EINVAL, "%s: plots = density measures the maps of [output] contact_panels = yes",

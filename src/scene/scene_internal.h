@@ -3,6 +3,7 @@
 #define INDENTMAP_SCENE_INTERNAL_H
 
 #include "indentmap/indenter.h"
+#include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
@@ -16,6 +17,9 @@ double scene_load_for_load_star(const im_scene *scene, double delta);
 /* The surface of one family and seed: flat for slope 0, the file when the scene names one, else
  * generated. */
 int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **out);
+
+/* The h'rms of one member: its file's measured one in a scene over files, else its family's. */
+double scene_member_slope(const im_scene *scene, int family, uint64_t seed);
 
 /* Solver options of a scene (its tolerance; everything else default). */
 im_solver_options scene_solver_options(const im_scene *scene);
@@ -34,6 +38,12 @@ im_colormap scene_force_norm(const im_scene *scene, double largest);
 /* Eq. (12)'s A/A_cone for a cone scene and a roughness (NaN for other punches); *rho_c (may be
  * NULL) receives rho_c of eq. (7). */
 double scene_eq12(const im_scene *scene, double slope, double *rho_c);
+
+/* The theory columns (theory.h's im_theory_step) of a step at approach w and load N on a surface
+ * of this h'rms: the scene's punch and E*, k = 2 and the PR normalisation (history_theory.c). */
+struct im_theory_step;
+int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
+                             struct im_theory_step *row);
 
 /* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
 int scene_write_png_pdf(const im_scene *scene, const char *name,
@@ -60,17 +70,9 @@ int scene_interrupted(const im_scene_run_options *options, const char *where);
  * file-size limit) the outputs need, estimated from above, are there. Messages give the estimate. */
 int scene_check_limits(const im_scene *scene);
 
-/* The output folder's lock (lock.c). */
-typedef struct scene_lock {
-    int fd;                    /* -1 when not held */
-    char path[IM_SCENE_PATH];
-} scene_lock;
-
-/* Locks OUTPUT/.lock (the folder must exist) and writes this process's pid in it. IM_EIO naming the
- * folder and the other pid while another live process holds it; a lock file no live process holds
- * (its writer died) is taken over, with a warning on stderr. */
+/* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
+typedef im_folder_lock scene_lock;
 int scene_lock_acquire(const im_scene *scene, scene_lock *lock);
-/* Removes the lock file and releases it; nothing if not held. */
 void scene_lock_release(scene_lock *lock);
 
 /* Progress line on stderr unless quiet. */
@@ -82,6 +84,19 @@ int scene_framed_family(const im_scene *scene);
 
 /* Frames of the framed family's history; *last_force receives its last step's force field (the
  * state at load_star), which the panels reuse instead of solving it again. */
+/* The framed history's steps, for the 3-D frames (frames3d.c). */
+typedef struct scene_frames3d_input {
+    int count;
+    im_field *const *deformed, *const *force;  /* per step: h - u and the force per patch */
+    const double *load_star;
+    const im_colormap *norm;                   /* the contact frames' force norm */
+} scene_frames3d_input;
+
+/* frames3d = yes: frames/view3d_NNNN.png, one 3-D view per step (one norm, exaggeration and
+ * camera for all), and view3d.gif (dithered to 216 colours) / view3d.mp4 as `animation` asks. */
+int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                         const scene_frames3d_input *in);
+
 int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
                      im_render_context *context, im_field **last_force);
 
@@ -181,6 +196,10 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
  * surface as soon as it is solved, then table1.csv and table1.md. Its members (and the first
  * seeds' forces, for panels) are left in *reuse. */
 int scene_run_table(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse);
+
+/* plots = flat_k (flat_k.c): eq. (2)'s k measured on every rough surface in the periodic half-space,
+ * fed into eq. (12) beside k = 2 and the table's simulated A/A_cone (reuse, when the table ran). */
+int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse);
 
 /* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
 int scene_wants_plot(const im_scene *scene, const char *name);

@@ -48,7 +48,7 @@ static int write_member(const im_scene *scene, const scene_member *m)
     int status = member_path(scene, m, path, sizeof path);
     uint64_t key = scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR);
     int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f,%.17g,%016" PRIx64
-                          "\n", MEMBER_HEADER, m->family, scene->slopes[m->family], (unsigned long long)m->seed,
+                          "\n", MEMBER_HEADER, m->family, scene_member_slope(scene, m->family, m->seed), (unsigned long long)m->seed,
                           m->height_rms, m->load, m->load_star, m->contact_patches, m->area_ratio, m->iterations,
                           m->seconds, m->load_star_approach, key);
     return status == IM_OK ? im_write_file_atomic(path, text, (size_t)length) : status;
@@ -206,6 +206,10 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
                          "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
             scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count,
             scene->quality, scene->tol);
+    if (scene->file_count > 0)
+        fprintf(file.stream, "The surfaces are the %d file(s) of `file`; h'rms is measured by forward differences of "
+                             "each surface as solved (root mean square over the files), and eq. (12) is taken at "
+                             "it.\n\n", scene->file_count);
     fprintf(file.stream, "| h'rms | mean h_rms/δ | ρ_c | n_p,ref | A/A_cone indentmap | A/A_cone eq. (12) | "
                          "relative error | paper (Icarus) |\n|---|---|---|---|---|---|---|---|\n");
     for (int f = 0; f < scene->family_count; ++f)

@@ -125,6 +125,9 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
         status = im_solver_options_check(options);
     if (status != IM_OK)
         return status;
+    if (options->periodic)
+        return im_fail(IM_EINVAL, "periodic = 1: an indentation needs the half-space (periodic mode is for "
+                       "nominally flat contact, im_flat_contact_*)");
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
     if (!(isfinite(largest_target) && largest_target >= 0))

@@ -12,6 +12,8 @@ typedef struct gap_stats {
     double approach;     /* w used for these gaps */
     long contact;        /* |I_c| */
     double sum_squares;  /* G = sum over I_c of g^2 */
+    double moving_squares; /* the same over the patches the CG moves (with a pressure cap, also the
+                              capped ones that unload; otherwise G) */
     double penetration;  /* max over p = 0 of -g (0 if none) */
     double penetration_squares; /* sum over p = 0, g < 0 of g^2 */
 } gap_stats;
@@ -25,14 +27,37 @@ typedef struct pk_run {
     int convolutions;
 } pk_run;
 
-/* Mean of a + b over I_c = {p > 0}. */
-static double mean_over_contact(const double *p, const double *a, const double *b, size_t n, long *count)
+/* ---- the pressure cap (hardness): perfect plasticity at p = H_p ----
+ * The elastic contact is 0 < p < cap; patches at a bound are fixed while their gap agrees: p = 0
+ * needs g >= 0, p = cap needs g <= 0 (the surface has yielded: the overlap -g is its plastic
+ * flattening). The conjugate gradients move the elastic patches and the capped ones whose gap says
+ * they should unload (g > 0), every update projected onto [0, cap]; patches at 0 that penetrate join
+ * as in Polonsky-Keer. Without a hardness the cap is +INFINITY and every line below is the plain
+ * Polonsky-Keer step. */
+static double pressure_cap(const im_solver_plan *plan)
+{
+    return plan->options.hardness > 0 ? plan->options.hardness : INFINITY;
+}
+
+static int elastic(double p, double cap) { return p > 0 && p < cap; }
+
+/* The patches the conjugate gradients move: elastic, or capped and unloading. */
+static int moving(double p, double g, double cap) { return elastic(p, cap) || (p == cap && g > 0); }
+
+/* The projection onto 0 <= p <= cap. */
+static double project(double p, double cap) { return p < 0 ? 0 : (p > cap ? cap : p); }
+
+/* How far a patch at a bound violates its condition: -g at p = 0, g at p = cap. */
+static double bound_violation(double p, double g) { return p > 0 ? g : -g; }
+
+/* Mean of a + b over I_c = {0 < p < cap}. */
+static double mean_over_contact(const double *p, const double *a, const double *b, size_t n, double cap, long *count)
 {
     double sum = 0;
     long c = 0;
 #pragma omp parallel for schedule(static) reduction(+ : sum, c)
     for (size_t i = 0; i < n; ++i)
-        if (p[i] > 0) {
+        if (elastic(p[i], cap)) {
             sum += a[i] + b[i];
             ++c;
         }
@@ -46,28 +71,34 @@ static gap_stats compute_gaps(const pk_run *r)
     const size_t n = (size_t)r->plan->nx * r->plan->ny;
     const double *p = r->p, *u = r->u, *g0 = r->gap0;
     double *g = r->plan->gap;
+    const double cap = pressure_cap(r->plan);
     gap_stats s = {.approach = r->target};
     if (r->control == IM_CONTROL_LOAD)
-        s.approach = mean_over_contact(p, u, g0, n, &s.contact);
+        s.approach = mean_over_contact(p, u, g0, n, cap, &s.contact);
     const double w = s.approach;
-    double squares = 0, penetration = 0, penetration_squares = 0;
+    double squares = 0, moving_squares = 0, penetration = 0, penetration_squares = 0;
     long contact = 0;
-#pragma omp parallel for schedule(static) reduction(+ : squares, contact, penetration_squares) reduction(max : penetration)
+#pragma omp parallel for schedule(static) reduction(+ : squares, moving_squares, contact, penetration_squares) \
+    reduction(max : penetration)
     for (size_t i = 0; i < n; ++i) {
         double gi = u[i] + g0[i] - w;
         g[i] = gi;
-        if (p[i] > 0) {
+        if (elastic(p[i], cap)) {
             squares += gi * gi;
             ++contact;
-        } else if (gi < 0) {
-            penetration_squares += gi * gi;
-            if (-gi > penetration)
-                penetration = -gi;
+        } else {
+            if (bound_violation(p[i], gi) > penetration)
+                penetration = bound_violation(p[i], gi);
+            if (p[i] == 0 && gi < 0) /* would join */
+                penetration_squares += gi * gi;
         }
+        if (moving(p[i], gi, cap))
+            moving_squares += gi * gi;
     }
     s.penetration_squares = penetration_squares;
     s.contact = contact;
     s.sum_squares = squares;
+    s.moving_squares = moving_squares;
     s.penetration = penetration;
     return s;
 }
@@ -119,9 +150,48 @@ static void cold_start(pk_run *r)
     winkler_load(r, w, 1);
 }
 
+/* With a pressure cap, under load control: rescales the elastic pressures so that delta^2 sum p = N
+ * with the capped ones fixed, and recomputes u (a partial rescaling is not linear in p). */
+static void impose_load_capped(pk_run *r, double cap)
+{
+    const size_t n = (size_t)r->plan->nx * r->plan->ny;
+    const double d2 = r->plan->delta * r->plan->delta;
+    double elastic_load = 0, capped_load = 0;
+#pragma omp parallel for schedule(static) reduction(+ : elastic_load, capped_load)
+    for (size_t i = 0; i < n; ++i) {
+        if (elastic(r->p[i], cap))
+            elastic_load += r->p[i] * d2;
+        else
+            capped_load += r->p[i] * d2;
+    }
+    if (!(elastic_load > 0))
+        return;
+    const double scale = fmax(0.0, r->target - capped_load) / elastic_load;
+    int clipped = 0;
+#pragma omp parallel for schedule(static) reduction(| : clipped)
+    for (size_t i = 0; i < n; ++i)
+        if (elastic(r->p[i], cap)) {
+            r->p[i] = project(r->p[i] * scale, cap);
+            clipped |= r->p[i] == cap;
+        }
+    if (capped_load > 0 || clipped) { /* a partial rescaling: u by FFT */
+        convolve(r, r->p, r->u);
+        return;
+    }
+    /* nothing capped: all of p was scaled, and u with it by linearity */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        r->u[i] *= scale;
+}
+
 /* Under load control, rescales p (and u, by linearity) so that delta^2 sum p = N. */
 static void impose_load(pk_run *r)
 {
+    const double cap = pressure_cap(r->plan);
+    if (isfinite(cap)) {
+        impose_load_capped(r, cap);
+        return;
+    }
     const size_t n = (size_t)r->plan->nx * r->plan->ny;
     const double load = im_sum_doubles(r->p, n) * r->plan->delta * r->plan->delta; /* p >= 0 */
     if (!(load > 0))
@@ -134,20 +204,21 @@ static void impose_load(pk_run *r)
     }
 }
 
-/* New search direction t = g + beta t on I_c, 0 elsewhere, written also into the padded rows that
- * the convolution transforms (one pass instead of two). */
-static void update_direction(const pk_run *r, const double *g, double beta)
+/* New search direction t = source + beta t on the moving patches (source: the gap g, or the
+ * preconditioned gap), 0 elsewhere, written also into the padded rows that the convolution
+ * transforms (one pass instead of two). */
+static void update_direction(const pk_run *r, const double *source, double beta)
 {
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
     double *t = plan->direction;
-    const double *p = r->p;
+    const double *g = plan->gap, *p = r->p, cap = pressure_cap(plan);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy) {
         double *padded = plan->rows_in + (size_t)iy * px;
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)iy * nx + ix;
-            t[i] = p[i] > 0 ? g[i] + beta * t[i] : 0;
+            t[i] = moving(p[i], g[i], cap) ? source[i] + beta * t[i] : 0;
             padded[ix] = t[i];
         }
     }
@@ -201,7 +272,7 @@ static double step_length(const pk_run *r)
 {
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
-    const double *t = plan->direction, *g = plan->gap, *p = r->p;
+    const double *t = plan->direction, *g = plan->gap, *p = r->p, cap = pressure_cap(plan);
     double num = 0, qt = 0, q_sum = 0, t_sum = 0;
     long count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : num, qt, q_sum, t_sum, count)
@@ -209,7 +280,7 @@ static double step_length(const pk_run *r)
         const double *q = plan->rows_out + (size_t)iy * px;
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)iy * nx + ix;
-            if (p[i] > 0) {
+            if (moving(p[i], g[i], cap)) {
                 num += g[i] * t[i];
                 qt += q[ix] * t[i];
                 q_sum += q[ix];
@@ -224,14 +295,15 @@ static double step_length(const pk_run *r)
     return num / den;
 }
 
-/* In one pass: u -= tau K t; p -= tau t on I_c, clipped at zero; if allow_join, patches outside I_c
- * that penetrate (g < 0) join with p = -tau g. Records how p differs from the plain CG step p - tau t in
- * plan->changed_value and returns the number of such patches; *joined is set when any joined. */
+/* In one pass: u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; if
+ * allow_join, patches outside I_c that penetrate (p = 0, g < 0) join with p = -tau g (at most cap).
+ * Records how p differs from the plain CG step p - tau t in plan->changed_value and returns the
+ * number of such patches; *joined is set when any joined. */
 static long update_pressure(pk_run *r, double tau, int allow_join, int *joined)
 {
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
-    const double *t = plan->direction, *g = plan->gap;
+    const double *t = plan->direction, *g = plan->gap, cap = pressure_cap(plan);
     double *p = r->p, *u = r->u, *change = plan->changed_value;
     long changes = 0;
     int any_joined = 0;
@@ -242,15 +314,12 @@ static long update_pressure(pk_run *r, double tau, int allow_join, int *joined)
             size_t i = (size_t)iy * nx + ix;
             double c = 0;
             u[i] -= tau * q[ix];
-            if (p[i] > 0) {
+            if (moving(p[i], g[i], cap)) {
                 double next = p[i] - tau * t[i];
-                if (next < 0) {
-                    c = -next;
-                    next = 0;
-                }
-                p[i] = next;
-            } else if (allow_join && g[i] < 0) {
-                p[i] = c = -tau * g[i];
+                p[i] = project(next, cap);
+                c = p[i] - next;
+            } else if (allow_join && p[i] == 0 && g[i] < 0) {
+                p[i] = c = project(-tau * g[i], cap);
                 any_joined = 1;
             }
             change[i] = c;
@@ -288,6 +357,9 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
 {
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+    if (plan->options.periodic && control != IM_CONTROL_LOAD)
+        return im_fail(IM_EINVAL, "periodic plan: expected load control (a periodic half-space's approach is "
+                       "defined up to a constant)");
     if (!(isfinite(target) && target >= 0))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
@@ -359,7 +431,8 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
-        if (s.contact == 0) { /* everything was clipped: start again from the local guess */
+        if (s.contact == 0 && !any_positive(r->p, (size_t)r->plan->nx * r->plan->ny)) {
+            /* everything was clipped (patches at a pressure cap are not): start again from the local guess */
             cold_start(r);
             convolve(r, r->p, r->u);
             restart = exact = 1;
@@ -369,13 +442,13 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         /* Preconditioned: patches join only in a plain PK step (steepest descent), taken when the
          * penetration outside I_c outweighs the gap left on it (Dostal's proportioning test); the
          * other steps are preconditioned CG on I_c, which may only shrink it (clipping). Plain PK
-         * lets patches join in every step. */
+         * lets patches join in every step. (No preconditioner with a pressure cap: plan.c.) */
         const int join = !o->precondition || s.penetration_squares > s.sum_squares;
         if (o->precondition && join)
             restart = 1;
         if (join) {
-            update_direction(r, r->plan->gap, restart ? 0 : s.sum_squares / previous_squares);
-            previous_squares = s.sum_squares;
+            update_direction(r, r->plan->gap, restart ? 0 : s.moving_squares / previous_squares);
+            previous_squares = s.moving_squares;
         } else {
             double gz = precondition(r);
             update_direction(r, r->plan->preconditioned, restart ? 0 : gz / previous_squares);
@@ -425,6 +498,9 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
             res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
         if (!any_positive(pressure, n))
             cold_start(&r);
+        const double cap = pressure_cap(plan); /* a start above the cap (Winkler's, or a warm one) */
+        for (size_t i = 0; i < n && isfinite(cap); ++i)
+            pressure[i] = project(pressure[i], cap);
         convolve(&r, pressure, displacement);
         if (control == IM_CONTROL_LOAD)
             impose_load(&r);

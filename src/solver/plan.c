@@ -5,6 +5,7 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,8 +13,8 @@
 im_solver_options im_solver_options_default(void)
 {
     return (im_solver_options){.e_star = 1, .tol = 1e-8, .max_iterations = 10000, .fft_measure = 0,
-                               .wisdom_path = NULL, .crop = 1, .window_margin = 4, .cascade = 1,
-                               .precondition = 1};
+                               .wisdom_path = NULL, .crop = 1, .window_margin = 4, .periodic = 0,
+                               .hardness = 0, .cascade = 1, .precondition = 1};
 }
 
 int im_solver_options_check(const im_solver_options *o)
@@ -26,6 +27,10 @@ int im_solver_options_check(const im_solver_options *o)
         return im_fail(IM_EINVAL, "max_iterations = %d: expected >= 1", o->max_iterations);
     if (o->window_margin < 0)
         return im_fail(IM_EINVAL, "window_margin = %d: expected >= 0", o->window_margin);
+    if (!(isfinite(o->hardness) && o->hardness >= 0))
+        return im_fail(IM_EINVAL, "hardness = %g: expected a finite pressure cap H_p > 0 (0: none)", o->hardness);
+    if (o->periodic != 0 && o->periodic != 1)
+        return im_fail(IM_EINVAL, "periodic = %d: expected 0 or 1", o->periodic);
     if (o->cascade != 0 && o->cascade != 1)
         return im_fail(IM_EINVAL, "cascade = %d: expected 0 or 1", o->cascade);
     if (o->precondition != 0 && o->precondition != 1)
@@ -73,12 +78,32 @@ double im_solver_plan_bytes(int nx, int ny)
     return level_bytes(nx, ny) + 8 * 3.0 * cx * cy + im_solver_plan_bytes(cx, cy);
 }
 
-static const char *wisdom_file(const im_solver_options *o)
+const char *im_solver_wisdom_file(const im_solver_options *o)
 {
     if (o->wisdom_path && o->wisdom_path[0])
         return o->wisdom_path;
     const char *env = getenv("IM_FFTW_WISDOM");
     return env && env[0] ? env : NULL;
+}
+
+int im_solver_wisdom_check(const im_solver_options *o)
+{
+    const char *path = im_solver_wisdom_file(o);
+    if (!path)
+        return IM_OK;
+    const char *source = o->wisdom_path && o->wisdom_path[0] ? "wisdom file" : "IM_FFTW_WISDOM";
+    enum im_file_kind kind;
+    int status = im_file_kind_of(path, &kind);
+    if (status == IM_OK && kind != IM_KIND_NONE && kind != IM_KIND_WISDOM)
+        status = im_fail(IM_EINVAL, "%s holds %s, not FFTW wisdom", path, im_file_kind_name(kind));
+    if (status == IM_OK)
+        status = im_output_check(path);
+    if (status == IM_OK)
+        return IM_OK;
+    char reason[512];
+    snprintf(reason, sizeof reason, "%s", im_last_error());
+    return im_fail(status, "%s %s: %s; it is neither read nor replaced (name a new file, or wisdom this program "
+                   "wrote)", source, path, reason);
 }
 
 /* Writes the accumulated wisdom atomically, so concurrent runs never read a torn file. */
@@ -94,7 +119,10 @@ static int export_wisdom(const char *path)
 
 static int make_fft_plans(im_solver_plan *p)
 {
-    const char *wisdom = wisdom_file(&p->options);
+    const char *wisdom = im_solver_wisdom_file(&p->options);
+    int checked = im_solver_wisdom_check(&p->options);
+    if (checked != IM_OK)
+        return checked;
     p->measured = p->options.fft_measure || wisdom != NULL;
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
     const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
@@ -227,7 +255,13 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
         return im_fail(IM_ENOMEM, "%s", what);
-    *p = (im_solver_plan){.nx = nx, .ny = ny, .px = 2 * nx, .py = 2 * ny, .delta = delta, .options = o};
+    /* The cascade and the preconditioner were made and measured for the half-space without a
+     * pressure cap: the periodic mode (another kernel) and a hardness (a second bound) keep plain PK. */
+    if (o.periodic || o.hardness > 0)
+        o.cascade = o.precondition = 0;
+    /* periodic: the circular convolution on the grid itself */
+    const int pad = o.periodic ? 1 : 2;
+    *p = (im_solver_plan){.nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta, .options = o};
     double start = omp_get_wtime();
     status = allocate_plan(p);
     if (status == IM_OK)
@@ -239,7 +273,7 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
     }
     /* after planning, which may scribble on the arrays: the zeros the pruning relies on */
     memset(p->rows_in, 0, sizeof(double) * (size_t)p->px * p->ny);
-    status = compute_kernel(p);
+    status = o.periodic ? solver_periodic_kernel(p) : compute_kernel(p);
     if (status != IM_OK) {
         im_solver_plan_free(p);
         return status;

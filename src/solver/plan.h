@@ -8,7 +8,7 @@
 
 struct im_solver_plan {
     int nx, ny;              /* problem grid */
-    int px, py;              /* padded grid: 2nx x 2ny */
+    int px, py;              /* padded grid: 2nx x 2ny (periodic: nx x ny, no padding) */
     double delta;
     im_solver_options options;
     double *kernel;          /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
@@ -60,5 +60,9 @@ void solver_convolve_rows(im_solver_plan *plan);
 /* displacement += sum_k value[k] K(x - x_index[k]) over the grid (direct summation). */
 void solver_add_point_loads(const im_solver_plan *plan, const long *index, const double *value, long count,
                             double *displacement);
+
+/* The periodic half-space's kernel (periodic.c): spectrum 2 / (E* |q|) with a zero mean mode, and
+ * its real-space values for direct sums (options.periodic). IM_OK or IM_ENOMEM. */
+int solver_periodic_kernel(im_solver_plan *plan);
 
 #endif

@@ -60,8 +60,12 @@ int im_surface_sidecar_write(const char *path, const im_field *surface, const im
         json_object_set_new(root, "height_rms_eq15",
                             json_real(im_surface_height_rms_eq15(params, stats->slope_rms_spectral)));
     }
-    if (source)
-        json_object_set_new(root, "source", json_string(source));
+    if (source) { /* a path is bytes; JSON is UTF-8: other bytes are escaped, and that is said */
+        char text[4 * 4096 + 1];
+        if (im_path_utf8(source, text, sizeof text))
+            json_object_set_new(root, "source_encoding", json_string("escaped"));
+        json_object_set_new(root, "source", json_string(text));
+    }
     json_object_set_new(root, "statistics", stats_json(stats));
     char *text = json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
     json_decref(root);

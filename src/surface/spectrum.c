@@ -88,11 +88,12 @@ int surface_spectrum_to_field(const surface_spectrum *spectrum, im_field *field)
     return IM_OK;
 }
 
-double spectrum_weighted_power(const surface_spectrum *s, double (*weight)(double qx, double qy))
+int spectrum_weighted_power(const surface_spectrum *s, double (*weight)(double qx, double qy), double *power)
 {
     double *row_sums = calloc((size_t)s->ny, sizeof *row_sums);
     if (!row_sums)
-        return NAN;
+        return im_fail(IM_ENOMEM, "spectral moment of a %d x %d surface: no memory for %d row sums",
+                       s->half_nx, s->ny, s->ny);
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < s->ny; ++jy) {
         double qy = spectrum_ky(s, jy) * s->qy_step;
@@ -108,5 +109,6 @@ double spectrum_weighted_power(const surface_spectrum *s, double (*weight)(doubl
     for (int jy = 0; jy < s->ny; ++jy)
         total += row_sums[jy];
     free(row_sums);
-    return total;
+    *power = total;
+    return IM_OK;
 }

@@ -41,8 +41,8 @@ static inline double spectrum_weight(const surface_spectrum *s, int jx)
     return (jx == 0 || (s->nx % 2 == 0 && jx == s->nx / 2)) ? 1.0 : 2.0;
 }
 
-/* Sum over the full spectrum of weight(qx, qy) |H_k|^2, in a fixed order (deterministic for any
- * thread count). */
-double spectrum_weighted_power(const surface_spectrum *s, double (*weight)(double qx, double qy));
+/* *power = the sum over the full spectrum of weight(qx, qy) |H_k|^2, in a fixed order (deterministic
+ * for any thread count). IM_ENOMEM if its row sums cannot be allocated. */
+int spectrum_weighted_power(const surface_spectrum *s, double (*weight)(double qx, double qy), double *power);
 
 #endif

@@ -9,11 +9,12 @@
 /* Sums in a fixed order: per-row partial sums in parallel, then rows in sequence. */
 typedef double (*row_term)(const im_field *f, int iy);
 
-static double ordered_sum_over_rows(const im_field *f, int rows, row_term term)
+static int ordered_sum_over_rows(const im_field *f, int rows, row_term term, double *sum)
 {
     double *partial = malloc((size_t)rows * sizeof *partial);
     if (!partial)
-        return NAN;
+        return im_fail(IM_ENOMEM, "statistics of a %d x %d surface: no memory for %d row sums", f->nx, f->ny,
+                       rows);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < rows; ++iy)
         partial[iy] = term(f, iy);
@@ -21,7 +22,8 @@ static double ordered_sum_over_rows(const im_field *f, int rows, row_term term)
     for (int iy = 0; iy < rows; ++iy)
         total += partial[iy];
     free(partial);
-    return total;
+    *sum = total;
+    return IM_OK;
 }
 
 static double row_sum(const im_field *f, int iy)
@@ -53,12 +55,19 @@ static double row_dy_squared(const im_field *f, int iy)
 
 static int slope_rms_finite_difference(const im_field *f, double *slope)
 {
-    double mean_dx2 = f->nx > 1 ? ordered_sum_over_rows(f, f->ny, row_dx_squared) /
-                                      ((double)(f->nx - 1) * f->ny) : 0.0;
-    double mean_dy2 = f->ny > 1 ? ordered_sum_over_rows(f, f->ny - 1, row_dy_squared) /
-                                      ((double)f->nx * (f->ny - 1)) : 0.0;
+    double sum_dx2 = 0.0, sum_dy2 = 0.0;
+    int status = f->nx > 1 ? ordered_sum_over_rows(f, f->ny, row_dx_squared, &sum_dx2) : IM_OK;
+    if (status == IM_OK && f->ny > 1)
+        status = ordered_sum_over_rows(f, f->ny - 1, row_dy_squared, &sum_dy2);
+    if (status != IM_OK)
+        return status;
+    double mean_dx2 = f->nx > 1 ? sum_dx2 / ((double)(f->nx - 1) * f->ny) : 0.0;
+    double mean_dy2 = f->ny > 1 ? sum_dy2 / ((double)f->nx * (f->ny - 1)) : 0.0;
     *slope = sqrt(mean_dx2 + mean_dy2) / f->delta;
-    return isfinite(*slope) ? IM_OK : im_fail(IM_ENOMEM, "slope: allocation failed");
+    if (!isfinite(*slope))
+        return im_fail(IM_ENUMERIC, "slope of a %d x %d surface: the squared height differences overflow "
+                       "(heights of magnitude above ~1e154 in units of delta); rescale the heights", f->nx, f->ny);
+    return IM_OK;
 }
 
 static double weight_q2(double qx, double qy) { return qx * qx + qy * qy; }
@@ -83,9 +92,11 @@ int im_surface_slope_rms(const im_field *surface, enum im_slope_definition defin
     int status = surface_spectrum_of(surface, &spectrum);
     if (status != IM_OK)
         return status;
-    *slope_rms = sqrt(spectrum_weighted_power(&spectrum, weight_q2));
+    double power = 0.0;
+    status = spectrum_weighted_power(&spectrum, weight_q2, &power);
     surface_spectrum_release(&spectrum);
-    return IM_OK;
+    *slope_rms = sqrt(power);
+    return status;
 }
 
 static void height_extremes(const im_field *f, double *lo, double *hi)
@@ -101,6 +112,26 @@ static void height_extremes(const im_field *f, double *lo, double *hi)
     *hi = max;
 }
 
+/* The moments, h_rms, spectral h'rms, curvature and Nayak's parameter from the spectrum. */
+static int spectral_statistics(const surface_spectrum *spectrum, im_surface_stats *stats)
+{
+    double slope2 = 0.0, curvature2 = 0.0;
+    int status = spectrum_weighted_power(spectrum, weight_zero_mean, &stats->m0);
+    if (status == IM_OK)
+        status = spectrum_weighted_power(spectrum, weight_profile_q2, &stats->m2);
+    if (status == IM_OK)
+        status = spectrum_weighted_power(spectrum, weight_profile_q4, &stats->m4);
+    if (status == IM_OK)
+        status = spectrum_weighted_power(spectrum, weight_q2, &slope2);
+    if (status == IM_OK)
+        status = spectrum_weighted_power(spectrum, weight_mean_curvature, &curvature2);
+    stats->height_rms = sqrt(stats->m0);
+    stats->slope_rms_spectral = sqrt(slope2);
+    stats->curvature_rms = sqrt(curvature2);
+    stats->nayak = stats->m2 > 0.0 ? stats->m0 * stats->m4 / (stats->m2 * stats->m2) : NAN;
+    return status;
+}
+
 int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
 {
     int status = im_field_check_finite(surface, "surface");
@@ -110,15 +141,36 @@ int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
     status = surface_spectrum_of(surface, &spectrum);
     if (status != IM_OK)
         return status;
-    stats->mean = ordered_sum_over_rows(surface, surface->ny, row_sum) / (double)im_field_count(surface);
-    stats->m0 = spectrum_weighted_power(&spectrum, weight_zero_mean);
-    stats->height_rms = sqrt(stats->m0);
-    stats->m2 = spectrum_weighted_power(&spectrum, weight_profile_q2);
-    stats->m4 = spectrum_weighted_power(&spectrum, weight_profile_q4);
-    stats->slope_rms_spectral = sqrt(spectrum_weighted_power(&spectrum, weight_q2));
-    stats->curvature_rms = sqrt(spectrum_weighted_power(&spectrum, weight_mean_curvature));
-    stats->nayak = stats->m2 > 0.0 ? stats->m0 * stats->m4 / (stats->m2 * stats->m2) : NAN;
+    status = spectral_statistics(&spectrum, stats);
     surface_spectrum_release(&spectrum);
+    double sum = 0.0;
+    if (status == IM_OK)
+        status = ordered_sum_over_rows(surface, surface->ny, row_sum, &sum);
+    if (status != IM_OK)
+        return status;
+    stats->mean = sum / (double)im_field_count(surface);
     height_extremes(surface, &stats->height_min, &stats->height_max);
     return slope_rms_finite_difference(surface, &stats->slope_rms_fd);
+}
+
+int im_surface_statistics_tapered(const im_field *surface, const im_taper *window, im_surface_stats *stats)
+{
+    int status = im_surface_statistics(surface, stats);
+    if (status != IM_OK || window->kind == IM_TAPER_NONE)
+        return status;
+    im_field *windowed = NULL;
+    im_surface_stats spectral;
+    status = im_surface_tapered(surface, window, &windowed);
+    if (status == IM_OK)
+        status = im_surface_statistics(windowed, &spectral);
+    im_field_free(windowed);
+    if (status != IM_OK)
+        return status;
+    stats->slope_rms_spectral = spectral.slope_rms_spectral;
+    stats->curvature_rms = spectral.curvature_rms;
+    stats->m0 = spectral.m0;
+    stats->m2 = spectral.m2;
+    stats->m4 = spectral.m4;
+    stats->nayak = spectral.nayak;
+    return IM_OK;
 }

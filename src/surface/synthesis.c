@@ -146,13 +146,11 @@ static void scale_field(im_field *field, double factor)
 static int measure_target(const im_surface_params *p, const surface_spectrum *s,
                           const im_field *field, double *value)
 {
-    if (p->target == IM_TARGET_HEIGHT) {
-        *value = sqrt(spectrum_weighted_power(s, weight_one));
-        return IM_OK;
-    }
-    if (p->slope_definition == IM_SLOPE_SPECTRAL) {
-        *value = sqrt(spectrum_weighted_power(s, weight_q2));
-        return IM_OK;
+    if (p->target == IM_TARGET_HEIGHT || p->slope_definition == IM_SLOPE_SPECTRAL) {
+        double power = 0.0;
+        int status = spectrum_weighted_power(s, p->target == IM_TARGET_HEIGHT ? weight_one : weight_q2, &power);
+        *value = sqrt(power);
+        return status;
     }
     return im_surface_slope_rms(field, IM_SLOPE_FINITE_DIFFERENCE, value);
 }

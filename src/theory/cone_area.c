@@ -26,8 +26,7 @@ static const double SATURATED_FROM = 1e8;
  * the ratio (whose integrand is erf(beta q) <= 2 beta q / sqrt(pi) times that). */
 static const double GREENWOOD_TAIL = 40.0;
 
-/* erf(beta x) / beta, which stays accurate (no underflow) as beta -> 0. */
-static double erf_over_beta(double beta, double x)
+double theory_erf_over_beta(double beta, double x)
 {
     double argument = beta * x;
     return argument < ERF_LINEAR_BELOW ? M_2_SQRTPI * x : erf(argument) / beta;
@@ -36,7 +35,7 @@ static double erf_over_beta(double beta, double x)
 /* s erf(beta acosh(1/s)) / beta at s = 1 - t. */
 static double radial_integrand(double t, void *params)
 {
-    return (1.0 - t) * erf_over_beta(*(const double *)params, theory_acosh_inverse_from_rim(t));
+    return (1.0 - t) * theory_erf_over_beta(*(const double *)params, theory_acosh_inverse_from_rim(t));
 }
 
 static double radial_complement_integrand(double t, void *params)
@@ -53,7 +52,7 @@ static double greenwood_weight(double q)
 
 static double greenwood_integrand(double q, void *params)
 {
-    return greenwood_weight(q) * erf_over_beta(*(const double *)params, q);
+    return greenwood_weight(q) * theory_erf_over_beta(*(const double *)params, q);
 }
 
 static double greenwood_complement_integrand(double q, void *params)

@@ -1,9 +1,12 @@
-/* The output folder's lock, OUTPUT/.lock: an flock(2) on the file decides who holds it (the kernel
- * drops it when its holder dies, so a crash can never leave the folder locked for ever); the file
- * holds the holder's pid for the messages, and is removed when the run ends. */
-#include "indentmap/status.h"
-#include "scene/scene_internal.h"
+/* An output folder's lock, FOLDER/.lock, shared by `run` (scenes) and `indent`: an flock(2) on the
+ * file decides who holds it (the kernel drops it when its holder dies, so a crash can never leave
+ * the folder locked for ever); the file holds the holder's pid for the messages, and is removed
+ * when the run ends. */
+#include "indentmap/io.h"
 
+#include "indentmap/status.h"
+
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -39,10 +42,13 @@ static int write_owner(int fd, const char *path)
     return IM_OK;
 }
 
-int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
+int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock)
 {
     lock->fd = -1;
-    int status = scene_output_path(scene, ".lock", lock->path, sizeof lock->path);
+    int length = snprintf(lock->path, sizeof lock->path, "%s/.lock", folder);
+    int status = length > 0 && (size_t)length < sizeof lock->path
+                     ? IM_OK
+                     : im_fail(IM_EINVAL, "output path %s/.lock is too long", folder);
     for (int attempt = 0; status == IM_OK && attempt < 100; ++attempt) {
         int fd = open(lock->path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
         if (fd < 0)
@@ -53,8 +59,7 @@ int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
                 snprintf(owner, sizeof owner, "pid %ld", lock_owner(fd));
             close(fd);
             return im_fail(IM_EIO, "output folder %s is in use by another indentmap run (%s, lock file %s); "
-                           "wait for it to end or give this scene another [scene] output",
-                           scene->output_dir, owner, lock->path);
+                           "wait for it to end or %s", folder, owner, lock->path, advice);
         }
         if (!still_linked(fd, lock->path)) {
             close(fd); /* its holder removed it as we opened it: take the new one */
@@ -75,11 +80,35 @@ int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
     return status == IM_OK ? im_fail(IM_EIO, "%s: the lock file keeps changing", lock->path) : status;
 }
 
-void scene_lock_release(scene_lock *lock)
+void im_folder_lock_release(im_folder_lock *lock)
 {
     if (lock->fd < 0)
         return;
     unlink(lock->path); /* before the lock goes: no one can lock the old file in between and keep it */
     close(lock->fd);
     lock->fd = -1;
+}
+
+int im_folder_remove_temporaries(const char *folder, int depth)
+{
+    DIR *listing = opendir(folder);
+    if (!listing)
+        return 0;
+    int removed = 0;
+    for (struct dirent *entry; (entry = readdir(listing)) != NULL;) {
+        if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
+            continue;
+        char path[8192];
+        if (snprintf(path, sizeof path, "%s/%s", folder, entry->d_name) >= (int)sizeof path)
+            continue;
+        struct stat info;
+        if (lstat(path, &info) != 0)
+            continue;
+        if (S_ISDIR(info.st_mode) && depth > 0)
+            removed += im_folder_remove_temporaries(path, depth - 1);
+        else if (S_ISREG(info.st_mode) && im_atomic_is_temporary_name(entry->d_name) && unlink(path) == 0)
+            ++removed;
+    }
+    closedir(listing);
+    return removed;
 }

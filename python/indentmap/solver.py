@@ -1,0 +1,111 @@
+"""Indentation of a rough surface by a rigid punch (the library's solver.h)."""
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core
+
+
+@dataclass(frozen=True)
+class Cone:
+    """A cone of semi-opening angle ``alpha`` degrees (the paper: 80)."""
+    alpha: float = 80.0
+
+
+@dataclass(frozen=True)
+class Sphere:
+    """A sphere of radius ``radius`` (in the units of delta)."""
+    radius: float
+
+
+@dataclass(frozen=True)
+class Flat:
+    """A flat cylindrical punch of radius ``radius``."""
+    radius: float
+
+
+def _punch_arguments(punch):
+    if isinstance(punch, Cone):
+        return "cone", punch.alpha, 1.0
+    if isinstance(punch, Sphere):
+        return "sphere", 80.0, punch.radius
+    if isinstance(punch, Flat):
+        return "flat", 80.0, punch.radius
+    raise TypeError(f"punch: expected Cone, Sphere or Flat, got {punch!r}")
+
+
+HISTORY_DTYPE = np.dtype([("approach", "f8"), ("load", "f8"), ("load_star", "f8"), ("contact_patches", "i8"),
+                          ("area_ratio", "f8"), ("mean_pressure", "f8"), ("max_pressure", "f8"),
+                          ("iterations", "i4"), ("convolutions", "i4"), ("residual", "f8"), ("seconds", "f8")])
+
+
+class Indentation:
+    """An indentation history on one surface: planned once, stepped many times (warm starts).
+
+    ``control`` is 'displacement' (targets are approaches w, counted from first touch) or 'load'
+    (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
+    window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
+    solver's relative residual (default 1e-8, as ``indentmap indent``). Steps run without the GIL.
+    """
+
+    def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
+                 tol=1e-8, max_iterations=10000, crop=True, window_margin=4, axis=None):
+        kind, alpha, radius = _punch_arguments(punch)
+        x, y = (None, None) if axis is None else axis
+        self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
+                                      e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
+                                      crop=bool(crop), window_margin=int(window_margin), x=x, y=y)
+
+    def step(self, target):
+        """Solves the next step at approach or load ``target``; returns its results as a dict."""
+        return self._run.step(float(target))
+
+    def fields(self):
+        """(force, gap, displacement) of the last step on the full grid, as new arrays."""
+        return self._run.fields()
+
+    @property
+    def window(self):
+        """(x0, y0, nx, ny): the sub-grid that is solved."""
+        return self._run.window
+
+
+class Plan:
+    """The contact solver on an (ny, nx) grid of spacing ``delta``, for gaps of your own: planned once
+    (FFTW plans, the influence kernel's spectrum), solved many times.
+
+    ``solve(gap0, target)`` takes the undeformed gap at first touch (>= 0; +inf where the punch never
+    touches) and an approach w (``control='displacement'``) or a load N (``control='load'``), optionally a
+    warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
+    without the GIL; creating a plan holds it (FFTW's planner is not thread-safe).
+    """
+
+    def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=1e-8, max_iterations=10000):
+        self._plan = _core.Plan(int(nx), int(nx if ny is None else ny), float(delta), float(e_star), float(tol),
+                                int(max_iterations))
+
+    def solve(self, gap0, target, control="displacement", pressure=None):
+        return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
+
+
+def indent(heights, punch=Cone(), *, approaches=None, loads=None, fields=False, **options):
+    """Solves a history of approaches (displacement control) or loads (load control).
+
+    Returns a structured array with one row per step (fields of HISTORY_DTYPE); with ``fields=True``,
+    also a list of dicts {'force', 'gap', 'displacement'} per step. ``options`` go to Indentation.
+    """
+    if (approaches is None) == (loads is None):
+        raise ValueError("give either approaches or loads")
+    targets = np.asarray(approaches if loads is None else loads, dtype=float).ravel()
+    if targets.size == 0:
+        raise ValueError("no steps")
+    run = Indentation(heights, punch, control="displacement" if loads is None else "load",
+                      largest=float(targets.max()), **options)
+    history = np.zeros(targets.size, dtype=HISTORY_DTYPE)
+    per_step = []
+    for i, target in enumerate(targets):
+        result = run.step(target)
+        history[i] = tuple(result[name] for name in HISTORY_DTYPE.names)
+        if fields:
+            per_step.append(dict(zip(("force", "gap", "displacement"), run.fields())))
+    return (history, per_step) if fields else history

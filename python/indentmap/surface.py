@@ -1,0 +1,75 @@
+"""Rough surfaces: synthesis, statistics, spectra and files (the library's surface.h and io.h)."""
+from typing import NamedTuple
+
+import numpy as np
+
+from . import _core
+
+
+class Topography(NamedTuple):
+    """Heights read from a file: ``heights[y, x]``, the grid spacing and its unit ("" if none)."""
+    heights: np.ndarray
+    delta: float
+    unit: str
+
+
+def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None, lambda_0=0.0, slope=0.08,
+             height_rms=None, slope_definition="spectral", seed=1):
+    """An isotropic self-affine Gaussian surface (the paper's section 2.2) as an (m, n) array.
+
+    The same seed gives the same surface for any thread count. ``slope`` is the target h'rms
+    (``slope_definition`` 'spectral' or 'fd'), or give ``height_rms`` (in units of delta) instead.
+    ``lambda_r`` defaults to n; ``lambda_0 > lambda_r`` adds a roll-off plateau.
+    """
+    m = n if m is None else m
+    lambda_r = float(n) if lambda_r is None else lambda_r
+    return _core.generate(n, m, delta, hurst, lambda_s, lambda_r, lambda_0, slope, height_rms, slope_definition,
+                          seed)
+
+
+def statistics(heights, delta=1.0, window="none", alpha=0.5):
+    """Mean, h_rms, h'rms (``slope_rms_spectral``: the band-limited interpolant's; ``slope_rms_fd``: forward
+    differences), curvature rms, the profile moments m0, m2, m4, Nayak's parameter and the height range.
+
+    ``window`` ('none', 'hann' or 'tukey' with the tapered fraction ``alpha``) takes the spectral quantities
+    from a windowed copy: use it, after ``prepare``, for measured (non-periodic) data, whose plain spectral
+    h'rms is dominated by the step at the edges of the periodic box. Synthesised surfaces are periodic:
+    no window."""
+    return _core.statistics(heights, float(delta), window, float(alpha))
+
+
+def prepare(heights, detrend="plane", fill=False):
+    """A prepared copy of measured heights: missing points (NaN) refused with the first one's position, or
+    with ``fill=True`` filled from their known neighbours (rim inwards); then the least-squares plane
+    (``detrend='plane'``: mean and tilt) or quadric ('curvature': also the bow) removed ('none': kept).
+    Crop with numpy slicing. Returns (heights, number of points filled)."""
+    return _core.prepare(heights, detrend, bool(fill))
+
+
+def psd(heights, delta=1.0, bins=64):
+    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays."""
+    return _core.psd(heights, float(delta), int(bins))
+
+
+_QUANTITIES = {"height": 0, "slope": 1, "curvature": 2}
+
+
+def histogram(heights, quantity="height", bins=64, delta=1.0):
+    """Probability density of heights (about the mean), slopes (both components) or curvatures:
+    (bin centres, density)."""
+    if quantity not in _QUANTITIES:
+        raise ValueError(f"quantity {quantity!r}: expected one of {sorted(_QUANTITIES)}")
+    return _core.histogram(heights, float(delta), _QUANTITIES[quantity], int(bins))
+
+
+def read(path):
+    """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p or a text matrix): a Topography
+    (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives none)."""
+    return Topography(*_core.read_surface(path))
+
+
+def write(path, heights, delta=1.0, unit=""):
+    """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
+    matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
+    PATH.json, written when a unit is given)."""
+    _core.write_surface(path, heights, float(delta), unit)

@@ -1,0 +1,42 @@
+/* indentmap._core: the CPython extension over libindentmap. One file per library module
+ * (surface.c, solver.c, theory.c, render.c), arrays.c for numpy <-> im_field, module.c for the
+ * module and its exceptions. Every function raises the library's status as an indentmap.Error
+ * subclass with the library's message; long computations release the GIL. */
+#ifndef INDENTMAP_PY_CORE_H
+#define INDENTMAP_PY_CORE_H
+
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#ifndef IM_PY_DEFINES_NUMPY_API /* module.c holds numpy's API table; the others refer to it */
+#define NO_IMPORT_ARRAY
+#endif
+#define PY_ARRAY_UNIQUE_SYMBOL indentmap_numpy_api
+#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
+#include <numpy/arrayobject.h>
+
+#include "indentmap/field.h"
+
+/* Sets the Python exception for a library status (with im_last_error()) and returns NULL. */
+PyObject *py_raise_status(int status);
+
+/* A C-contiguous, aligned float64 2-D view of obj: borrowed when obj already is one, else a
+ * converted copy (any array-like castable to float64 without loss of kind: bool, ints, floats).
+ * New reference; NULL with TypeError/ValueError set otherwise. `what` names the argument. */
+PyArrayObject *py_heights_array(PyObject *obj, const char *what);
+
+/* An im_field header over the array's memory (no copy; valid while the array lives). */
+im_field py_field_view(PyArrayObject *array, double delta);
+
+/* A new (ny, nx) float64 array owning field (freed with the array); field is consumed, also on
+ * failure. */
+PyObject *py_array_from_field(im_field *field);
+
+/* A new 1-D float64 array copied from n doubles. */
+PyObject *py_array_from_doubles(const double *values, npy_intp n);
+
+/* Module tables, defined per file. */
+extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[];
+extern PyTypeObject py_indentation_type, py_plan_type;
+
+#endif

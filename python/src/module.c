@@ -1,0 +1,95 @@
+/* The module: its exceptions, one per library status, and the tables of the other files. */
+#define IM_PY_DEFINES_NUMPY_API
+#include "core.h"
+
+#include "indentmap/status.h"
+#include "indentmap/version.h"
+
+/* indentmap.Error and its subclasses, indexed by status (IM_EINVAL .. IM_EINTERRUPTED). */
+static PyObject *base_error;
+static PyObject *status_errors[IM_EINTERRUPTED + 1];
+
+typedef struct error_kind {
+    int status;
+    const char *name;     /* indentmap.NAME */
+    PyObject **builtin;   /* the built-in exception it also derives from, or NULL */
+} error_kind;
+
+static const error_kind error_kinds[] = {
+    {IM_EINVAL, "InvalidArgument", &PyExc_ValueError},
+    {IM_EIO, "FileError", &PyExc_OSError},
+    {IM_EFORMAT, "FormatError", &PyExc_ValueError},
+    {IM_ENOMEM, "OutOfMemory", &PyExc_MemoryError},
+    {IM_ENUMERIC, "NumericError", &PyExc_ArithmeticError},
+    {IM_ENOCONV, "NotConverged", NULL},
+    {IM_EEDGE, "EdgeContact", NULL},
+    {IM_EUNSUPPORTED, "Unsupported", NULL},
+    {IM_EINTERRUPTED, "Interrupted", NULL},
+};
+
+PyObject *py_raise_status(int status)
+{
+    PyObject *type = status > IM_OK && status <= IM_EINTERRUPTED && status_errors[status] ? status_errors[status]
+                                                                                          : base_error;
+    const char *message = im_last_error();
+    PyObject *text = PyUnicode_DecodeUTF8(message, (Py_ssize_t)strlen(message), "backslashreplace");
+    PyObject *error = text ? PyObject_CallOneArg(type, text) : NULL;
+    PyObject *code = error ? PyLong_FromLong(status) : NULL;
+    if (code && PyObject_SetAttrString(error, "status", code) == 0)
+        PyErr_SetObject(type, error);
+    Py_XDECREF(code);
+    Py_XDECREF(error);
+    Py_XDECREF(text);
+    return NULL;
+}
+
+static int add_errors(PyObject *module)
+{
+    base_error = PyErr_NewExceptionWithDoc("indentmap.Error",
+                                           "An error reported by libindentmap: str() is its message, .status the library's status code.", NULL, NULL);
+    if (!base_error || PyModule_AddObjectRef(module, "Error", base_error) < 0)
+        return -1;
+    for (size_t i = 0; i < sizeof error_kinds / sizeof *error_kinds; ++i) {
+        const error_kind *kind = &error_kinds[i];
+        char qualified[64];
+        snprintf(qualified, sizeof qualified, "indentmap.%s", kind->name);
+        PyObject *bases = kind->builtin ? PyTuple_Pack(2, base_error, *kind->builtin) : PyTuple_Pack(1, base_error);
+        if (!bases)
+            return -1;
+        PyObject *type = PyErr_NewException(qualified, bases, NULL);
+        Py_DECREF(bases);
+        if (!type || PyModule_AddObjectRef(module, kind->name, type) < 0)
+            return -1;
+        status_errors[kind->status] = type;
+    }
+    return 0;
+}
+
+static int add_methods(PyObject *module, PyMethodDef *methods)
+{
+    return PyModule_AddFunctions(module, methods);
+}
+
+static struct PyModuleDef module_definition = {
+    PyModuleDef_HEAD_INIT, "indentmap._core",
+    "The C extension over libindentmap; use the indentmap package instead.", -1, NULL,
+    NULL, NULL, NULL, NULL};
+
+PyMODINIT_FUNC PyInit__core(void)
+{
+    import_array();
+    PyObject *module = PyModule_Create(&module_definition);
+    if (!module)
+        return NULL;
+    if (add_errors(module) < 0 || add_methods(module, py_surface_methods) < 0 ||
+        add_methods(module, py_theory_methods) < 0 || add_methods(module, py_render_methods) < 0 ||
+        add_methods(module, py_scene_methods) < 0 || PyType_Ready(&py_indentation_type) < 0 ||
+        PyModule_AddObjectRef(module, "Indentation", (PyObject *)&py_indentation_type) < 0 ||
+        PyType_Ready(&py_plan_type) < 0 || PyModule_AddObjectRef(module, "Plan", (PyObject *)&py_plan_type) < 0 ||
+        PyModule_AddStringConstant(module, "library_version", im_version()) < 0 ||
+        PyModule_AddStringConstant(module, "header_version", IM_VERSION_STRING) < 0) {
+        Py_DECREF(module);
+        return NULL;
+    }
+    return module;
+}

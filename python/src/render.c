@@ -1,0 +1,254 @@
+/* Rendering: contact maps and height fields as RGBA arrays, and multi-panel figures written as
+ * PNG/PDF/SVG. One GL context per process, opened at first use and closed at exit; GL work keeps
+ * the GIL (a context is bound to the thread that uses it). */
+#include "core.h"
+
+#include "indentmap/colormap.h"
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/render.h"
+#include "indentmap/status.h"
+
+static im_render_context *context;
+
+static void close_context(void)
+{
+    im_render_close(context);
+    context = NULL;
+}
+
+static int ensure_context(void)
+{
+    if (context)
+        return 0;
+    int status = im_render_open(IM_RENDER_AUTO, &context);
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    Py_AtExit(close_context);
+    return 0;
+}
+
+/* The norm of both kinds of picture: colour map by name, range, linear or logarithmic. */
+static int make_norm(const char *name, double lo, double hi, int logarithmic, im_colormap *norm)
+{
+    im_colormap_id map;
+    int status = im_colormap_from_name(name, &map);
+    if (status == IM_OK) {
+        *norm = im_colormap_make(map, lo, hi);
+        norm->logarithmic = logarithmic;
+        status = im_colormap_check(norm);
+    }
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    return 0;
+}
+
+typedef struct picture_request {
+    int height_map;            /* 0: contact map of forces, 1: height field */
+    const char *colormap;
+    double lo, hi;
+    int logarithmic, scale;
+    double circle_radius, circle_x, circle_y; /* contact maps; radius <= 0: none */
+    PyObject *contact;         /* height fields: forces whose contact is outlined, or None */
+} picture_request;
+
+static int render_one(const im_field *field, const picture_request *r, im_image *image)
+{
+    im_colormap norm;
+    if (ensure_context() < 0 || make_norm(r->colormap, r->lo, r->hi, r->logarithmic, &norm) < 0)
+        return -1;
+    int status;
+    if (!r->height_map) {
+        im_contact_style style = im_contact_style_default(field);
+        style.colormap = norm;
+        style.pixels_per_patch = r->scale;
+        style.circle_radius = r->circle_radius;
+        if (r->circle_radius > 0 && !isnan(r->circle_x)) {
+            style.circle_x = r->circle_x;
+            style.circle_y = r->circle_y;
+        }
+        status = im_render_contact_map(context, field, &style, image);
+    } else {
+        im_height_style style = im_height_style_default(field);
+        style.colormap = norm;
+        style.pixels_per_patch = r->scale;
+        PyArrayObject *contact = r->contact != Py_None ? py_heights_array(r->contact, "contact") : NULL;
+        if (r->contact != Py_None && !contact)
+            return -1;
+        im_field outline = contact ? py_field_view(contact, field->delta) : (im_field){0};
+        style.contact = contact ? &outline : NULL;
+        status = im_render_height_map(context, field, &style, image);
+        Py_XDECREF(contact);
+    }
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    return 0;
+}
+
+static int parse_request(PyObject *kwargs, picture_request *r)
+{
+    static char *keywords[] = {"height_map", "colormap", "vmin", "vmax", "log", "scale", "circle_radius",
+                               "circle_x", "circle_y", "contact", NULL};
+    *r = (picture_request){.colormap = "viridis", .scale = 2, .circle_x = NAN, .circle_y = NAN, .contact = Py_None};
+    PyObject *empty = PyTuple_New(0);
+    if (!empty)
+        return -1;
+    int ok = PyArg_ParseTupleAndKeywords(empty, kwargs, "psddpidddO", keywords, &r->height_map, &r->colormap, &r->lo,
+                                         &r->hi, &r->logarithmic, &r->scale, &r->circle_radius, &r->circle_x,
+                                         &r->circle_y, &r->contact);
+    Py_DECREF(empty);
+    return ok ? 0 : -1;
+}
+
+static PyObject *array_from_image(const im_image *image)
+{
+    npy_intp shape[3] = {image->height, image->width, 4};
+    PyObject *out = PyArray_SimpleNew(3, shape, NPY_UINT8);
+    if (out)
+        memcpy(PyArray_DATA((PyArrayObject *)out), image->rgba, (size_t)image->width * image->height * 4);
+    return out;
+}
+
+/* render(field, delta, **request) -> (height, width, 4) uint8 array, row 0 at the top. */
+static PyObject *render(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    PyObject *obj;
+    double delta;
+    picture_request request;
+    if (!PyArg_ParseTuple(args, "Od", &obj, &delta) || parse_request(kwargs, &request) < 0)
+        return NULL;
+    PyArrayObject *array = py_heights_array(obj, "field");
+    if (!array)
+        return NULL;
+    im_field field = py_field_view(array, delta);
+    im_image image = {0};
+    PyObject *out = render_one(&field, &request, &image) == 0 ? array_from_image(&image) : NULL;
+    im_image_release(&image);
+    Py_DECREF(array);
+    return out;
+}
+
+typedef struct figure_layout {
+    PyObject *labels, *titles; /* lists of str or None, one per panel */
+    int columns;
+    const char *colorbar_label;
+    double dpi, scale_bar;
+} figure_layout;
+
+static const char *item_text(PyObject *list, Py_ssize_t i)
+{
+    PyObject *item = list != Py_None && i < PyList_Size(list) ? PyList_GetItem(list, i) : NULL;
+    return item && item != Py_None ? PyUnicode_AsUTF8(item) : NULL;
+}
+
+static int write_figure(const char *path, im_image *images, Py_ssize_t count, const figure_layout *layout,
+                        const picture_request *request)
+{
+    im_figure_panel *panels = PyMem_Calloc((size_t)count, sizeof *panels);
+    if (!panels) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < count; ++i)
+        panels[i] = (im_figure_panel){.image = &images[i], .label = item_text(layout->labels, i),
+                                      .title = item_text(layout->titles, i)};
+    im_colormap norm;
+    int status = make_norm(request->colormap, request->lo, request->hi, request->logarithmic, &norm) < 0 ? -1 : IM_OK;
+    if (status == IM_OK && !PyErr_Occurred()) {
+        im_figure figure = im_figure_default();
+        figure.columns = layout->columns;
+        figure.rows = (int)((count + layout->columns - 1) / layout->columns);
+        figure.panels = panels;
+        figure.colormap = &norm;
+        figure.colorbar_label = layout->colorbar_label;
+        figure.dpi = layout->dpi;
+        figure.scale_bar = layout->scale_bar;
+        status = figure.rows * figure.columns == count ? im_figure_write(&figure, path)
+                                                       : im_fail(IM_EINVAL, "figure: %ld panels do not fill %d columns",
+                                                                 (long)count, layout->columns);
+        if (status != IM_OK)
+            py_raise_status(status);
+    }
+    PyMem_Free(panels);
+    return PyErr_Occurred() ? -1 : 0;
+}
+
+/* figure(path, fields, delta, labels, titles, columns, colorbar_label, dpi, scale_bar, **request) */
+static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    PyObject *path_bytes, *fields;
+    double delta;
+    figure_layout layout;
+    picture_request request;
+    if (!PyArg_ParseTuple(args, "O&O!dOOisdd", PyUnicode_FSConverter, &path_bytes, &PyList_Type, &fields, &delta,
+                          &layout.labels, &layout.titles, &layout.columns, &layout.colorbar_label, &layout.dpi,
+                          &layout.scale_bar) || parse_request(kwargs, &request) < 0)
+        return NULL;
+    Py_ssize_t count = PyList_Size(fields);
+    im_image *images = PyMem_Calloc((size_t)(count ? count : 1), sizeof *images);
+    int failed = images ? 0 : (PyErr_NoMemory(), -1);
+    for (Py_ssize_t i = 0; i < count && !failed; ++i) {
+        PyArrayObject *array = py_heights_array(PyList_GetItem(fields, i), "panel field");
+        im_field field = array ? py_field_view(array, delta) : (im_field){0};
+        failed = !array || render_one(&field, &request, &images[i]) < 0;
+        Py_XDECREF(array);
+    }
+    if (!failed)
+        failed = write_figure(PyBytes_AS_STRING(path_bytes), images, count, &layout, &request) < 0;
+    for (Py_ssize_t i = 0; images && i < count; ++i)
+        im_image_release(&images[i]);
+    PyMem_Free(images);
+    Py_DECREF(path_bytes);
+    return failed ? NULL : Py_NewRef(Py_None);
+}
+
+/* write_png(path, rgba): an (height, width, 4) uint8 array as a PNG file (atomic, level 6). */
+static PyObject *write_png(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_bytes, *obj;
+    if (!PyArg_ParseTuple(args, "O&O", PyUnicode_FSConverter, &path_bytes, &obj))
+        return NULL;
+    PyArrayObject *rgba = (PyArrayObject *)PyArray_FromAny(obj, PyArray_DescrFromType(NPY_UINT8), 3, 3,
+                                                           NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED, NULL);
+    if (rgba && PyArray_DIMS(rgba)[2] != 4) {
+        PyErr_SetString(PyExc_ValueError, "write_png: expected an (height, width, 4) RGBA array");
+        Py_CLEAR(rgba);
+    }
+    int status = IM_OK;
+    if (rgba) {
+        int width = (int)PyArray_DIMS(rgba)[1], height = (int)PyArray_DIMS(rgba)[0];
+        im_png_options options = {.compression = 6};
+        status = im_png_write(PyBytes_AS_STRING(path_bytes), PyArray_DATA(rgba), width, height, 4,
+                              (size_t)width * 4, &options);
+    }
+    Py_XDECREF(rgba);
+    Py_DECREF(path_bytes);
+    if (PyErr_Occurred())
+        return NULL;
+    return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
+}
+
+static PyObject *renderer(PyObject *self, PyObject *unused)
+{
+    (void)self, (void)unused;
+    if (ensure_context() < 0)
+        return NULL;
+    return Py_BuildValue("{s:s,s:s,s:s}", "backend", im_render_backend_name(context), "gl_renderer",
+                         im_render_gl_renderer(context), "gl_version", im_render_gl_version(context));
+}
+
+PyMethodDef py_render_methods[] = {
+    {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
+    {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
+    {"write_png", write_png, METH_VARARGS, "write_png(path, rgba)"},
+    {"renderer", renderer, METH_NOARGS, "the GL backend and renderer in use"},
+    {NULL, NULL, 0, NULL}};

@@ -1,0 +1,282 @@
+/* indentmap._core.Indentation: an indentation history on one surface (im_indentation of
+ * solver.h): created once (plan, window), stepped many times with warm starts; and
+ * indentmap._core.Plan: the bare solver on a grid (im_solver_plan), for gaps of the caller's own. */
+#include "core.h"
+
+#include "indentmap/indenter.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+
+typedef struct py_indentation {
+    PyObject_HEAD
+    im_indentation *run;
+    int busy; /* a step runs without the GIL: a second thread may not enter the same history */
+} py_indentation;
+
+static int punch_from_arguments(const char *kind, double alpha, double radius, PyObject *x, PyObject *y,
+                                im_indenter *punch)
+{
+    if (strcmp(kind, "cone") == 0)
+        *punch = im_indenter_cone(alpha);
+    else if (strcmp(kind, "sphere") == 0)
+        *punch = im_indenter_sphere(radius);
+    else if (strcmp(kind, "flat") == 0)
+        *punch = im_indenter_flat(radius);
+    else {
+        PyErr_Format(PyExc_ValueError, "punch '%s': expected 'cone', 'sphere' or 'flat'", kind);
+        return -1;
+    }
+    if (x != Py_None || y != Py_None) {
+        if (x == Py_None || y == Py_None) {
+            PyErr_SetString(PyExc_ValueError, "axis: give both x and y, or neither (the centre of the grid)");
+            return -1;
+        }
+        punch->centred = 0;
+        punch->x0 = PyFloat_AsDouble(x);
+        punch->y0 = PyFloat_AsDouble(y);
+        if (PyErr_Occurred())
+            return -1;
+    }
+    return 0;
+}
+
+static int control_from_name(const char *name, enum im_control *control)
+{
+    if (strcmp(name, "displacement") == 0)
+        *control = IM_CONTROL_DISPLACEMENT;
+    else if (strcmp(name, "load") == 0)
+        *control = IM_CONTROL_LOAD;
+    else {
+        PyErr_Format(PyExc_ValueError, "control '%s': expected 'displacement' or 'load'", name);
+        return -1;
+    }
+    return 0;
+}
+
+static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
+{
+    static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
+                               "tol", "max_iterations", "crop", "window_margin", "x", "y", NULL};
+    PyObject *obj, *x = Py_None, *y = Py_None;
+    double delta, alpha, radius, largest;
+    const char *kind, *control_name;
+    im_solver_options o = im_solver_options_default();
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOO", keywords, &obj, &delta, &kind, &alpha,
+                                     &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
+                                     &o.crop, &o.window_margin, &x, &y))
+        return -1;
+    im_indenter punch;
+    enum im_control control;
+    if (punch_from_arguments(kind, alpha, radius, x, y, &punch) < 0 || control_from_name(control_name, &control) < 0)
+        return -1;
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array)
+        return -1;
+    im_field surface = py_field_view(array, delta);
+    im_indentation_free(self->run);
+    self->run = NULL;
+    /* With the GIL held: FFTW's planner, called here, is not thread-safe. */
+    int status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
+    Py_DECREF(array);
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    return 0;
+}
+
+static void indentation_dealloc(py_indentation *self)
+{
+    im_indentation_free(self->run);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+static int check_ready(py_indentation *self)
+{
+    if (!self->run) {
+        PyErr_SetString(PyExc_RuntimeError, "Indentation: not initialised");
+        return -1;
+    }
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
+        return -1;
+    }
+    return 0;
+}
+
+static PyObject *step_dict(const im_step_result *r)
+{
+    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:d,s:d}", "approach", r->approach, "load", r->load,
+                         "load_star", r->load_star, "contact_patches", r->contact_patches, "area_ratio",
+                         r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure", r->max_pressure,
+                         "iterations", r->iterations, "convolutions", r->convolutions, "residual", r->residual,
+                         "seconds", r->seconds);
+}
+
+static PyObject *indentation_step(py_indentation *self, PyObject *arg)
+{
+    double target = PyFloat_AsDouble(arg);
+    if (PyErr_Occurred() || check_ready(self) < 0)
+        return NULL;
+    im_step_result result;
+    int status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_indentation_step(self->run, target, &result);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
+    return status == IM_OK ? step_dict(&result) : py_raise_status(status);
+}
+
+static PyObject *indentation_fields(py_indentation *self, PyObject *unused)
+{
+    (void)unused;
+    if (check_ready(self) < 0)
+        return NULL;
+    im_field *force = NULL, *gap = NULL, *displacement = NULL;
+    int status = im_indentation_fields(self->run, &force, &gap, &displacement);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    return Py_BuildValue("(NNN)", py_array_from_field(force), py_array_from_field(gap),
+                         py_array_from_field(displacement));
+}
+
+static PyObject *indentation_window(py_indentation *self, void *closure)
+{
+    (void)closure;
+    if (check_ready(self) < 0)
+        return NULL;
+    im_window w = im_indentation_window(self->run);
+    return Py_BuildValue("(iiii)", w.x0, w.y0, w.nx, w.ny);
+}
+
+static PyMethodDef indentation_methods[] = {
+    {"step", (PyCFunction)indentation_step, METH_O, "step(target) -> dict: solve the next step"},
+    {"fields", (PyCFunction)indentation_fields, METH_NOARGS,
+     "fields() -> (force, gap, displacement) of the last step on the full grid"},
+    {NULL, NULL, 0, NULL}};
+
+static PyGetSetDef indentation_getset[] = {
+    {"window", (getter)indentation_window, NULL, "(x0, y0, nx, ny) of the solved sub-grid", NULL},
+    {NULL, NULL, NULL, NULL, NULL}};
+
+/* ---- Plan ---- */
+typedef struct py_plan {
+    PyObject_HEAD
+    im_solver_plan *plan;
+    int nx, ny, busy;
+} py_plan;
+
+static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
+{
+    static char *keywords[] = {"nx", "ny", "delta", "e_star", "tol", "max_iterations", NULL};
+    im_solver_options o = im_solver_options_default();
+    double delta = 1.0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|dddi", keywords, &self->nx, &self->ny, &delta, &o.e_star, &o.tol,
+                                     &o.max_iterations))
+        return -1;
+    im_solver_plan_free(self->plan);
+    self->plan = NULL;
+    int status = im_solver_plan_create(self->nx, self->ny, delta, &o, &self->plan); /* GIL held: FFTW planner */
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    return 0;
+}
+
+static void plan_dealloc(py_plan *self)
+{
+    im_solver_plan_free(self->plan);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+static PyObject *solve_dict(const im_solve_result *r)
+{
+    return Py_BuildValue("{s:d,s:d,s:l,s:d,s:d,s:i,s:i,s:d,s:d}", "approach", r->approach, "load", r->load,
+                         "contact_patches", r->contact_patches, "mean_pressure", r->mean_pressure, "max_pressure",
+                         r->max_pressure, "iterations", r->iterations, "convolutions", r->convolutions, "residual",
+                         r->residual, "seconds", r->seconds);
+}
+
+/* A new (ny, nx) float64 array: a copy of obj (checked against the plan's grid), or zeros. */
+static PyArrayObject *grid_array(py_plan *self, PyObject *obj, const char *what)
+{
+    npy_intp shape[2] = {self->ny, self->nx};
+    if (obj == Py_None)
+        return (PyArrayObject *)PyArray_ZEROS(2, shape, NPY_DOUBLE, 0);
+    PyArrayObject *given = py_heights_array(obj, what);
+    if (given && (PyArray_DIMS(given)[0] != self->ny || PyArray_DIMS(given)[1] != self->nx)) {
+        PyErr_Format(PyExc_ValueError, "%s: shape (%ld, %ld), the plan's grid is (%d, %d)", what,
+                     (long)PyArray_DIMS(given)[0], (long)PyArray_DIMS(given)[1], self->ny, self->nx);
+        Py_CLEAR(given);
+    }
+    PyArrayObject *copy = given ? (PyArrayObject *)PyArray_NewCopy(given, NPY_CORDER) : NULL;
+    Py_XDECREF(given);
+    return copy;
+}
+
+static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
+{
+    static char *keywords[] = {"gap0", "target", "control", "pressure", NULL};
+    PyObject *gap_obj, *start = Py_None;
+    double target;
+    const char *control_name = "displacement";
+    enum im_control control;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Od|sO", keywords, &gap_obj, &target, &control_name, &start) ||
+        control_from_name(control_name, &control) < 0)
+        return NULL;
+    if (self->busy)
+        return PyErr_Format(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
+    PyArrayObject *gap0 = grid_array(self, gap_obj, "gap0");
+    PyArrayObject *pressure = gap0 ? grid_array(self, start, "pressure") : NULL;
+    PyArrayObject *displacement = pressure ? grid_array(self, Py_None, "displacement") : NULL;
+    if (!displacement) {
+        Py_XDECREF(gap0);
+        Py_XDECREF(pressure);
+        return NULL;
+    }
+    im_solve_result result;
+    int status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_solver_solve(self->plan, PyArray_DATA(gap0), control, target, PyArray_DATA(pressure),
+                             PyArray_DATA(displacement), &result);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
+    Py_DECREF(gap0);
+    if (status != IM_OK) {
+        Py_DECREF(pressure);
+        Py_DECREF(displacement);
+        return py_raise_status(status);
+    }
+    return Py_BuildValue("(NNN)", pressure, displacement, solve_dict(&result));
+}
+
+static PyMethodDef plan_methods[] = {
+    {"solve", (PyCFunction)(void (*)(void))plan_solve, METH_VARARGS | METH_KEYWORDS,
+     "solve(gap0, target, control='displacement', pressure=None) -> (pressure, displacement, result)"},
+    {NULL, NULL, 0, NULL}};
+
+PyTypeObject py_plan_type = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "indentmap._core.Plan",
+    .tp_basicsize = sizeof(py_plan),
+    .tp_dealloc = (destructor)plan_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "The contact solver on one grid (solver.h's im_solver_plan): plan once, solve many.",
+    .tp_methods = plan_methods,
+    .tp_init = (initproc)plan_init,
+    .tp_new = PyType_GenericNew,
+};
+
+PyTypeObject py_indentation_type = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "indentmap._core.Indentation",
+    .tp_basicsize = sizeof(py_indentation),
+    .tp_dealloc = (destructor)indentation_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "An indentation history on one surface (solver.h's im_indentation).",
+    .tp_methods = indentation_methods,
+    .tp_getset = indentation_getset,
+    .tp_init = (initproc)indentation_init,
+    .tp_new = PyType_GenericNew,
+};

@@ -1,0 +1,255 @@
+/* Surfaces: synthesis, statistics, PSD, histograms, reading and writing files. */
+#include "core.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+
+static int slope_definition_from_name(const char *name, enum im_slope_definition *definition)
+{
+    if (strcmp(name, "spectral") == 0)
+        *definition = IM_SLOPE_SPECTRAL;
+    else if (strcmp(name, "fd") == 0)
+        *definition = IM_SLOPE_FINITE_DIFFERENCE;
+    else {
+        PyErr_Format(PyExc_ValueError, "slope_definition '%s': expected 'spectral' or 'fd'", name);
+        return -1;
+    }
+    return 0;
+}
+
+static PyObject *generate(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *keywords[] = {"nx", "ny", "delta", "hurst", "lambda_s", "lambda_r", "lambda_0", "slope",
+                               "height_rms", "slope_definition", "seed", NULL};
+    im_surface_params p = im_surface_params_default();
+    PyObject *height_rms = Py_None;
+    const char *definition = "spectral";
+    unsigned long long seed = p.seed;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|ddddddOsK", keywords, &p.nx, &p.ny, &p.delta, &p.hurst,
+                                     &p.lambda_s, &p.lambda_r, &p.lambda_0, &p.slope_rms, &height_rms,
+                                     &definition, &seed))
+        return NULL;
+    if (height_rms != Py_None) {
+        p.target = IM_TARGET_HEIGHT;
+        p.height_rms = PyFloat_AsDouble(height_rms);
+        if (PyErr_Occurred())
+            return NULL;
+    }
+    if (slope_definition_from_name(definition, &p.slope_definition) < 0)
+        return NULL;
+    p.seed = seed;
+    im_field *field = NULL;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_surface_generate(&p, &field);
+    Py_END_ALLOW_THREADS
+    return status == IM_OK ? py_array_from_field(field) : py_raise_status(status);
+}
+
+static PyObject *stats_dict(const im_surface_stats *s)
+{
+    return Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "mean", s->mean, "height_rms",
+                         s->height_rms, "slope_rms_spectral", s->slope_rms_spectral, "slope_rms_fd", s->slope_rms_fd,
+                         "curvature_rms", s->curvature_rms, "m0", s->m0, "m2", s->m2, "m4", s->m4, "nayak",
+                         s->nayak, "height_min", s->height_min, "height_max", s->height_max);
+}
+
+static int taper_from_name(const char *name, double alpha, im_taper *taper)
+{
+    if (strcmp(name, "none") == 0)
+        *taper = (im_taper){IM_TAPER_NONE, 0.0};
+    else if (strcmp(name, "hann") == 0)
+        *taper = (im_taper){IM_TAPER_HANN, 1.0};
+    else if (strcmp(name, "tukey") == 0)
+        *taper = (im_taper){IM_TAPER_TUKEY, alpha};
+    else {
+        PyErr_Format(PyExc_ValueError, "window '%s': expected 'none', 'hann' or 'tukey'", name);
+        return -1;
+    }
+    return 0;
+}
+
+/* statistics(heights, delta, window, alpha): spectral quantities from the windowed surface. */
+static PyObject *statistics(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *obj;
+    double delta, alpha;
+    const char *window;
+    im_taper taper;
+    if (!PyArg_ParseTuple(args, "Odsd", &obj, &delta, &window, &alpha) || taper_from_name(window, alpha, &taper) < 0)
+        return NULL;
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array)
+        return NULL;
+    im_field field = py_field_view(array, delta);
+    im_surface_stats stats;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_surface_statistics_tapered(&field, &taper, &stats);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(array);
+    return status == IM_OK ? stats_dict(&stats) : py_raise_status(status);
+}
+
+static PyObject *psd(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *obj;
+    double delta;
+    int bins;
+    if (!PyArg_ParseTuple(args, "Odi", &obj, &delta, &bins))
+        return NULL;
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array)
+        return NULL;
+    im_field field = py_field_view(array, delta);
+    im_psd *result = NULL;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_surface_psd(&field, bins, &result);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(array);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    PyObject *out = Py_BuildValue("(NN)", py_array_from_doubles(result->q, result->bins),
+                                  py_array_from_doubles(result->c, result->bins));
+    im_psd_free(result);
+    return out;
+}
+
+static PyObject *histogram(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *obj;
+    double delta;
+    int quantity, bins;
+    if (!PyArg_ParseTuple(args, "Odii", &obj, &delta, &quantity, &bins))
+        return NULL;
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array)
+        return NULL;
+    im_field field = py_field_view(array, delta);
+    im_histogram *result = NULL;
+    int status = im_surface_histogram(&field, (enum im_histogram_quantity)quantity, bins, &result);
+    Py_DECREF(array);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    PyObject *out = Py_BuildValue("(NN)", py_array_from_doubles(result->centre, result->bins),
+                                  py_array_from_doubles(result->density, result->bins));
+    im_histogram_free(result);
+    return out;
+}
+
+static int detrend_from_name(const char *name, enum im_detrend *detrend)
+{
+    if (strcmp(name, "none") == 0)
+        *detrend = IM_DETREND_NONE;
+    else if (strcmp(name, "plane") == 0)
+        *detrend = IM_DETREND_PLANE;
+    else if (strcmp(name, "curvature") == 0)
+        *detrend = IM_DETREND_CURVATURE;
+    else {
+        PyErr_Format(PyExc_ValueError, "detrend '%s': expected 'none', 'plane' or 'curvature'", name);
+        return -1;
+    }
+    return 0;
+}
+
+/* prepare(heights, detrend, fill) -> (new heights, points filled): NaN filled from their known
+ * neighbours when fill (refused otherwise, with the first one's position), then the least-squares
+ * plane or quadric removed. */
+static PyObject *prepare(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *obj;
+    const char *detrend_name;
+    int fill;
+    enum im_detrend detrend;
+    if (!PyArg_ParseTuple(args, "Osp", &obj, &detrend_name, &fill) || detrend_from_name(detrend_name, &detrend) < 0)
+        return NULL;
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array)
+        return NULL;
+    im_field view = py_field_view(array, 1.0), *copy = NULL;
+    int status = im_field_clone(&view, &copy);
+    Py_DECREF(array);
+    long filled = 0;
+    if (status == IM_OK && fill)
+        status = im_surface_fill_missing(copy, &filled);
+    if (status == IM_OK)
+        status = im_field_check_finite(copy, "heights (fill=True fills missing points)");
+    if (status == IM_OK)
+        status = im_surface_detrend(copy, detrend);
+    if (status != IM_OK) {
+        im_field_free(copy);
+        return py_raise_status(status);
+    }
+    return Py_BuildValue("(Nl)", py_array_from_field(copy), filled);
+}
+
+static PyObject *read_surface(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_bytes;
+    if (!PyArg_ParseTuple(args, "O&", PyUnicode_FSConverter, &path_bytes))
+        return NULL;
+    im_field *field = NULL;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_surface_read(PyBytes_AS_STRING(path_bytes), &field);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(path_bytes);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    double delta = field->delta;
+    PyObject *unit = PyUnicode_DecodeUTF8(field->unit, (Py_ssize_t)strlen(field->unit), "replace");
+    return Py_BuildValue("(NdN)", py_array_from_field(field), delta, unit);
+}
+
+static int has_suffix(const char *path, const char *suffix)
+{
+    size_t n = strlen(path), m = strlen(suffix);
+    return n >= m && strcmp(path + n - m, suffix) == 0;
+}
+
+static PyObject *write_surface(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_bytes, *obj;
+    double delta;
+    const char *unit;
+    if (!PyArg_ParseTuple(args, "O&Ods", PyUnicode_FSConverter, &path_bytes, &obj, &delta, &unit))
+        return NULL;
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array || strlen(unit) >= sizeof ((im_field *)NULL)->unit) {
+        if (array)
+            PyErr_Format(PyExc_ValueError, "unit '%s': at most %zu bytes", unit, sizeof ((im_field *)NULL)->unit - 1);
+        Py_XDECREF(array);
+        Py_DECREF(path_bytes);
+        return NULL;
+    }
+    im_field field = py_field_view(array, delta);
+    snprintf(field.unit, sizeof field.unit, "%s", unit);
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_surface_write(PyBytes_AS_STRING(path_bytes), &field);
+    if (status == IM_OK && field.unit[0] && has_suffix(PyBytes_AS_STRING(path_bytes), ".npy"))
+        status = im_field_sidecar_write(PyBytes_AS_STRING(path_bytes), &field, "height"); /* .npy states no units */
+    Py_END_ALLOW_THREADS
+    Py_DECREF(array);
+    Py_DECREF(path_bytes);
+    return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
+}
+
+PyMethodDef py_surface_methods[] = {
+    {"generate", (PyCFunction)(void (*)(void))generate, METH_VARARGS | METH_KEYWORDS, "Spectral synthesis."},
+    {"statistics", statistics, METH_VARARGS, "statistics(heights, delta, window, alpha) -> dict"},
+    {"prepare", prepare, METH_VARARGS, "prepare(heights, detrend, fill) -> (heights, filled)"},
+    {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
+    {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
+    {"read_surface", read_surface, METH_VARARGS, "read_surface(path) -> (heights, delta, unit)"},
+    {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
+    {NULL, NULL, 0, NULL}};

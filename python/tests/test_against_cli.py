@@ -1,0 +1,60 @@
+"""The Python package and the command line run the same library: the same inputs give the same bits."""
+import csv
+import io
+
+import numpy as np
+
+import indentmap as im
+from conftest import run_cli
+
+
+def read_history(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def test_indent_history_and_fields_bit_for_bit(cli, rough64, tmp_path):
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "0.5,1,2", "--fields", "--out", tmp_path / "out")
+    history, fields = im.indent(rough64, im.Cone(80), approaches=[0.5, 1, 2], fields=True)
+    rows = read_history(tmp_path / "out" / "history.csv")
+    assert len(rows) == 3
+    for k, row in enumerate(rows):
+        for name in ("approach", "load", "load_star", "area_ratio", "mean_pressure", "max_pressure"):
+            assert float(row[name]) == history[k][name], name  # printed with 17 digits: exact
+        for name in ("contact_patches", "iterations", "convolutions"):
+            assert int(row[name]) == history[k][name], name
+        for name in ("force", "gap", "displacement"):
+            saved = np.load(tmp_path / "out" / f"{name}_{k + 1:04d}.npy")
+            assert saved.dtype == np.float64 and saved.shape == fields[k][name].shape
+            assert saved.tobytes() == fields[k][name].tobytes(), name
+
+
+def test_load_control_sphere_bit_for_bit(cli, rough64, tmp_path):
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--punch", "sphere", "--radius", "40", "--load", "2,8",
+            "--fields", "--out", tmp_path / "out")
+    history, fields = im.indent(rough64, im.Sphere(40), loads=[2, 8], fields=True)
+    rows = read_history(tmp_path / "out" / "history.csv")
+    assert [float(r["load"]) for r in rows] == list(history["load"])
+    assert np.load(tmp_path / "out" / "force_0002.npy").tobytes() == fields[1]["force"].tobytes()
+
+
+def test_synthesis_and_statistics_match_the_cli(cli, tmp_path):
+    run_cli(cli, "surface", "--n", "48", "--hurst", "0.7", "--slope", "0.05", "--seed", "9", "--out",
+            tmp_path / "s.npy")
+    ours = im.generate(48, hurst=0.7, slope=0.05, seed=9)
+    assert np.load(tmp_path / "s.npy").tobytes() == ours.tobytes()
+    assert im.read(tmp_path / "s.npy").heights.tobytes() == ours.tobytes()
+
+
+def test_theory_matches_the_cli(cli):
+    out = run_cli(cli, "theory", "--alpha", "80", "--slope", "0.01,0.08,0.16", "--format", "csv").stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    slopes = np.array([float(r["slope"]) for r in rows])
+    eq12 = np.array([float(r["area_ratio_eq12"]) for r in rows])
+    eq6 = np.array([float(r["area_ratio_eq6"]) for r in rows])
+    rho = im.theory.rho_c(slopes, alpha=80)
+    beta = im.theory.beta(rho)
+    np.testing.assert_allclose(im.theory.area_ratio_eq12(beta), eq12, rtol=1e-12)
+    np.testing.assert_allclose(im.theory.area_ratio_eq6(beta), eq6, rtol=1e-12)

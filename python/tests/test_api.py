@@ -1,0 +1,180 @@
+"""Arrays in and out, errors, threads and reference counts."""
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import indentmap as im
+
+
+def test_errors_carry_the_library_message(tmp_path):
+    with pytest.raises(im.InvalidArgument) as e:
+        im.generate(2)
+    assert str(e.value).startswith("lambda_r = 2: expected") and e.value.status == 1
+    assert isinstance(e.value, ValueError) and isinstance(e.value, im.Error)
+    with pytest.raises(im.FileError) as e:
+        im.read(tmp_path / "missing.npy")
+    assert "missing.npy" in str(e.value) and isinstance(e.value, OSError)
+    (tmp_path / "bad.txt").write_text("1 2\n3 x\n")
+    with pytest.raises(im.FormatError, match=r"bad.txt:2: 'x' is not a number"):
+        im.read(tmp_path / "bad.txt")
+    with pytest.raises(im.InvalidArgument, match=r"approach = 2: expected a value in \[0, 1\]"):
+        im.Indentation(np.zeros((16, 16)), largest=1.0).step(2.0)
+
+
+def test_plan_solves_complementarity_and_warm_starts(rough64):
+    n = 48
+    y, x = np.mgrid[0:n, 0:n] + 0.5
+    profile = np.hypot(x - n / 2, y - n / 2) ** 2 / (2 * 100.0) - rough64[:n, :n]   # a sphere on the rough patch
+    gap0 = profile - profile.min()
+    plan = im.Plan(n, delta=1.0, tol=1e-9)
+    pressure, displacement, result = plan.solve(gap0, 1.5)
+    gap = gap0 - result["approach"] + displacement
+    contact = pressure > 0
+    assert result["contact_patches"] == contact.sum() > 10
+    assert np.abs(gap[contact]).max() < 1e-6 and gap[~contact].min() > -1e-8 * 1.5 * 10
+    assert result["load"] == pytest.approx(pressure.sum(), rel=1e-12)
+    again = plan.solve(gap0, result["load"], control="load", pressure=pressure)[2]
+    assert again["approach"] == pytest.approx(1.5, rel=1e-6) and again["iterations"] <= 2
+    with pytest.raises(ValueError, match=r"plan's grid is \(48, 48\)"):
+        plan.solve(np.zeros((8, 8)), 1.0)
+
+
+def test_edge_contact_is_an_exception():
+    run = im.Indentation(np.zeros((16, 16)), im.Flat(20), largest=1.0)
+    with pytest.raises(im.EdgeContact):
+        run.step(1.0)
+
+
+def test_arrays_converted_or_refused_as_documented(rough64):
+    reference = im.statistics(rough64)
+    wide = np.zeros((64, 128))
+    wide[:, ::2] = rough64
+    assert im.statistics(wide[:, ::2]) == reference            # non-contiguous: copied
+    assert im.statistics(np.asfortranarray(rough64)) == reference
+    assert im.statistics(rough64.astype(np.float32))["height_rms"] == pytest.approx(reference["height_rms"], 1e-6)
+    assert im.statistics(np.arange(64).reshape(8, 8))["mean"] == 31.5   # integers: converted
+    with pytest.raises(TypeError, match="2-D array of real numbers"):
+        im.statistics(rough64.astype(complex))
+    with pytest.raises(TypeError, match="2-D array"):
+        im.statistics(np.zeros(16))
+    with pytest.raises(TypeError):
+        im.statistics(np.array([["a", "b"]]))
+
+
+def test_outputs_own_their_memory(rough64):
+    run = im.Indentation(rough64, largest=1.0)
+    run.step(1.0)
+    force, gap, displacement = run.fields()
+    del run  # the arrays outlive the history
+    assert force.flags.owndata is False and force.base is not None
+    assert np.isfinite(gap[force > 0]).all() and (displacement >= 0).all()
+    assert force.shape == rough64.shape
+
+
+def test_solves_release_the_gil():
+    heights = im.generate(192, slope=0.1, seed=3)
+    run = im.Indentation(heights, largest=20.0, tol=1e-10)
+    span = {}
+
+    def solve():
+        span["start"] = time.perf_counter()
+        run.step(20.0)
+        span["end"] = time.perf_counter()
+
+    thread = threading.Thread(target=solve)
+    ticks = []
+    thread.start()
+    while thread.is_alive():
+        ticks.append(time.perf_counter())
+    thread.join()
+    inside = [t for t in ticks if span["start"] <= t <= span["end"]]
+    duration = span["end"] - span["start"]
+    edges = [span["start"]] + inside + [span["end"]]
+    longest_pause = max(b - a for a, b in zip(edges, edges[1:]))
+    # Held through the solve, the GIL would stop this thread for the whole of it.
+    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s solve"
+
+
+LEAK_PROBE = """
+import os, sys
+import indentmap as im
+heights = im.generate(16, slope=0.05, lambda_s=2, seed=4)
+run = im.Indentation(heights, largest=1.0)
+
+def solve_and_fetch(count):
+    for k in range(count):
+        run.step(0.5 + 0.5 * (k % 2))
+        run.fields()
+
+def resident_kib():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") // 1024
+
+solve_and_fetch(1000)
+refs, rss = sys.getrefcount(heights), resident_kib()
+solve_and_fetch(10000)
+print(sys.getrefcount(heights) - refs, resident_kib() - rss)
+"""
+
+
+def test_no_leak_over_10000_solves():
+    # One OpenMP thread: 10000 tiny solves are then fork/join-free (the subject is memory, not speed).
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    result = subprocess.run([sys.executable, "-c", LEAK_PROBE], capture_output=True, text=True, env=env)
+    assert result.returncode == 0, result.stderr
+    references, kib = map(int, result.stdout.split())
+    assert references == 0
+    # three 16 x 16 fields per solve: a leak of them would be 60 MiB
+    assert kib < 4096, f"resident memory grew by {kib} KiB over 10000 solves"
+
+
+def test_example_runs(tmp_path):
+    source = os.environ.get("IM_SOURCE_DIR")
+    if not source:
+        pytest.skip("IM_SOURCE_DIR is not set (run through ctest)")
+    result = subprocess.run([sys.executable, os.path.join(source, "examples", "rough_cone.py"), str(tmp_path)],
+                            capture_output=True, text=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+    assert result.returncode == 0, result.stderr
+    assert "eq. (12)" in result.stdout
+    for name in ("contact.png", "deformed.png", "panels.pdf"):
+        assert (tmp_path / name).stat().st_size > 1000
+
+
+def test_units_round_trip_in_every_format(tmp_path):
+    heights = im.generate(32, slope=0.05, lambda_s=2, seed=6) * 5e-8  # heights in metres
+    for suffix in ("npy", "gsf", "sdf", "nc", "x3p"):
+        path = tmp_path / f"s.{suffix}"
+        im.write(path, heights, delta=5e-8, unit="m")
+        top = im.read(path)
+        assert top.unit == "m" and top.delta == pytest.approx(5e-8, rel=1e-12), suffix
+        np.testing.assert_allclose(top.heights, heights, rtol=1e-6, atol=1e-20, err_msg=suffix)
+
+
+def test_measured_crop_prepared_and_windowed():
+    periodic = im.generate(1024, slope=0.08, seed=11)
+    y, x = np.mgrid[0:256, 0:256]
+    for tilt in (0.0, 0.05):
+        crop = periodic[100:356, 200:456] + tilt * x
+        truth = im.statistics(periodic[100:356, 200:456])["slope_rms_fd"]
+        plain = im.statistics(crop)["slope_rms_spectral"]
+        prepared, filled = im.prepare(crop, detrend="plane")
+        windowed = im.statistics(prepared, window="hann")["slope_rms_spectral"]
+        assert filled == 0
+        assert abs(windowed / truth - 1) < 0.05, (tilt, windowed, truth)
+        assert plain / truth > 3, (tilt, plain, truth)  # the edges' step: 3.9x untilted, 10x tilted
+
+
+def test_missing_points_refused_or_filled():
+    heights = im.generate(32, slope=0.05, lambda_s=2, seed=6)
+    holed = heights.copy()
+    holed[10, 7] = np.nan
+    with pytest.raises(im.NumericError, match="fill=True"):
+        im.prepare(holed, detrend="none")
+    filled, count = im.prepare(holed, detrend="none", fill=True)
+    assert count == 1 and np.isfinite(filled).all()
+    assert filled[10, 7] == pytest.approx(np.mean([heights[9, 7], heights[11, 7], heights[10, 6], heights[10, 8]]))

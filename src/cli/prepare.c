@@ -1,0 +1,73 @@
+/* Options that prepare a measured surface (--fill, --crop, --detrend, --window), shared by
+ * `surface --stats` and `indent`. */
+#include "cli/cli.h"
+
+#include "indentmap/status.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int cli_parse_crop(const char *text, int crop[4])
+{
+    char tail;
+    if (sscanf(text, "%d,%d,%d,%d%c", &crop[0], &crop[1], &crop[2], &crop[3], &tail) != 4 || crop[0] < 0 ||
+        crop[1] < 0 || crop[2] < 2 || crop[3] < 2) {
+        fprintf(stderr, "indentmap: --crop '%s': expected X0,Y0,NX,NY (corner >= 0, sides >= 2)\n", text);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_parse_detrend(const char *text, enum im_detrend *out)
+{
+    static const char *const NAMES[] = {"none", "plane", "curvature"};
+    for (int i = 0; i < 3; ++i)
+        if (strcmp(text, NAMES[i]) == 0) {
+            *out = (enum im_detrend)i;
+            return 0;
+        }
+    fprintf(stderr, "indentmap: --detrend '%s': expected none, plane or curvature\n", text);
+    return -1;
+}
+
+int cli_parse_taper(const char *text, im_taper *out)
+{
+    if (strcmp(text, "none") == 0 || strcmp(text, "hann") == 0) {
+        *out = (im_taper){text[0] == 'h' ? IM_TAPER_HANN : IM_TAPER_NONE, 0.0};
+        return 0;
+    }
+    double alpha = 0.5;
+    char tail;
+    if (strcmp(text, "tukey") == 0 ||
+        (sscanf(text, "tukey:%lf%c", &alpha, &tail) == 1 && alpha >= 0.0 && alpha <= 1.0)) {
+        *out = (im_taper){IM_TAPER_TUKEY, alpha};
+        return 0;
+    }
+    fprintf(stderr, "indentmap: --window '%s': expected none, hann, tukey or tukey:ALPHA (0 <= ALPHA <= 1)\n", text);
+    return -1;
+}
+
+int cli_prepare_surface(const cli_preparation *p, im_field **surface)
+{
+    if (p->crop[2] > 0) {
+        im_field *crop = NULL;
+        int status = im_surface_crop(*surface, p->crop[0], p->crop[1], p->crop[2], p->crop[3], &crop);
+        if (status != IM_OK)
+            return im_fail_context(status, "--crop");
+        im_field_free(*surface);
+        *surface = crop;
+    }
+    return im_surface_detrend(*surface, p->detrend);
+}
+
+void cli_describe_preparation(const cli_preparation *p, long filled, char *text, size_t size)
+{
+    static const char *const DETREND[] = {"nothing removed", "plane removed", "plane and curvature removed"};
+    int length = snprintf(text, size, "%s", DETREND[p->detrend]);
+    if (p->crop[2] > 0)
+        length += snprintf(text + length, size - (size_t)length, ", cropped to %d x %d at (%d, %d)", p->crop[2],
+                           p->crop[3], p->crop[0], p->crop[1]);
+    if (filled > 0 && length < (int)size)
+        snprintf(text + length, size - (size_t)length, ", %ld missing points filled", filled);
+}

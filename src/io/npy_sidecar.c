@@ -1,0 +1,73 @@
+/* The JSON sidecar PATH.json of a .npy file: the units the .npy format cannot state. */
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+#include "io/readers.h"
+
+#include <jansson.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity)
+{
+    char sidecar[4200];
+    snprintf(sidecar, sizeof sidecar, "%s.json", path);
+    json_t *root = json_pack("{s:s, s:s, s:s, s:i, s:i, s:f, s:s, s:s}", "program", "indentmap", "version", IM_VERSION,
+                             "quantity", quantity, "nx", field->nx, "ny", field->ny, "delta", field->delta, "unit",
+                             field->unit, "value_unit", field->value_unit);
+    char *text = root ? json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17)) : NULL;
+    json_decref(root);
+    if (!text)
+        return im_fail(IM_ENOMEM, "%s: cannot build the JSON record", sidecar);
+    size_t length = strlen(text);
+    text[length] = '\n'; /* json_dumps leaves room for the terminator */
+    int status = im_write_file_atomic(sidecar, text, length + 1);
+    free(text);
+    return status;
+}
+
+/* A string member of at most size - 1 bytes, or absent; -1 for another type or a longer string. */
+static int copy_string(json_t *root, const char *key, char *out, size_t size)
+{
+    json_t *value = json_object_get(root, key);
+    if (!value)
+        return 0;
+    if (!json_is_string(value) || json_string_length(value) >= size)
+        return -1;
+    memcpy(out, json_string_value(value), json_string_length(value) + 1);
+    return 0;
+}
+
+int im_npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size)
+{
+    char sidecar[4200];
+    snprintf(sidecar, sizeof sidecar, "%s.json", path);
+    struct stat info;
+    if (stat(sidecar, &info) != 0)
+        return IM_OK; /* none: the .npy states no units */
+    if (!S_ISREG(info.st_mode) || info.st_size > (1 << 20))
+        return im_fail(IM_EFORMAT, "%s: the sidecar stating the units of %s is not a regular file of at most 1 MiB",
+                       sidecar, path);
+    json_error_t error;
+    json_t *root = json_load_file(sidecar, 0, &error);
+    if (!json_is_object(root)) {
+        json_decref(root);
+        return im_fail(IM_EFORMAT, "%s:%d: the sidecar stating the units of %s is not a JSON object (%s); fix or "
+                       "remove it", sidecar, error.line, path, error.text);
+    }
+    json_t *delta = json_object_get(root, "delta");
+    int bad = delta && !(json_is_number(delta) && json_number_value(delta) > 0.0);
+    if (!bad && delta)
+        stated->units.delta_x = stated->units.delta_y = json_number_value(delta);
+    bad = bad || copy_string(root, "unit", stated->units.lateral, sizeof stated->units.lateral) != 0 ||
+          copy_string(root, "value_unit", value_unit, size) != 0;
+    json_decref(root);
+    if (bad)
+        return im_fail(IM_EFORMAT, "%s: expected \"delta\" a number > 0, \"unit\" and \"value_unit\" short strings",
+                       sidecar);
+    stated->spacing_keys = "the sidecar's delta";
+    stated->lateral_key = "the sidecar's unit";
+    return IM_OK;
+}

@@ -1,0 +1,185 @@
+/* Length units of surface files, and the step every reader ends with: applying them. */
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+#include "io/payload.h"
+#include "io/readers.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+typedef struct length_unit {
+    const char *name, *canonical;
+    double metres;
+} length_unit;
+
+/* Spellings met in Gwyddion, profilometer and AFM exports; "µ" is U+00B5, "μ" U+03BC, "Å" U+00C5
+ * and U+212B (the Angstrom sign). */
+static const length_unit LENGTH_UNITS[] = {
+    {"m", "m", 1.0}, {"cm", "cm", 1e-2}, {"mm", "mm", 1e-3},
+    {"\u00b5m", "\u00b5m", 1e-6}, {"\u03bcm", "\u00b5m", 1e-6}, {"um", "\u00b5m", 1e-6},
+    {"micron", "\u00b5m", 1e-6}, {"nm", "nm", 1e-9}, {"pm", "pm", 1e-12},
+    {"\u00c5", "\u00c5", 1e-10}, {"\u212b", "\u00c5", 1e-10}, {"A", "\u00c5", 1e-10},
+    {"angstrom", "\u00c5", 1e-10}};
+
+double im_length_unit_metres(const char *name, const char **canonical)
+{
+    for (size_t i = 0; i < sizeof LENGTH_UNITS / sizeof *LENGTH_UNITS; ++i) {
+        if (strcmp(name, LENGTH_UNITS[i].name) == 0) {
+            if (canonical)
+                *canonical = LENGTH_UNITS[i].canonical;
+            return LENGTH_UNITS[i].metres;
+        }
+    }
+    return 0.0;
+}
+
+/* The file's units with the user's overrides applied, and the keys (or options) behind each. */
+static surface_stated merge_overrides(const surface_stated *stated, const im_surface_read_options *options)
+{
+    surface_stated merged = *stated;
+    const im_surface_units *set = options ? &options->set : NULL;
+    if (set && set->delta_x > 0.0) {
+        merged.units.delta_x = set->delta_x;
+        merged.units.delta_y = set->delta_y > 0.0 ? set->delta_y : set->delta_x;
+        merged.spacing_keys = "--delta";
+    }
+    if (set && set->lateral[0]) {
+        memcpy(merged.units.lateral, set->lateral, sizeof merged.units.lateral);
+        merged.lateral_key = "--unit";
+    }
+    if (set && set->height[0]) {
+        memcpy(merged.units.height, set->height, sizeof merged.units.height);
+        merged.height_key = "--height-unit";
+    }
+    if (merged.units.delta_x > 0.0 && !(merged.units.delta_y > 0.0))
+        merged.units.delta_y = merged.units.delta_x; /* a file stating one extent: square pixels */
+    return merged;
+}
+
+static int check_square_pixels(const char *path, const surface_stated *s)
+{
+    double dx = s->units.delta_x, dy = s->units.delta_y;
+    if (!(dx > 0.0) || fabs(dx - dy) <= 1e-9 * dx)
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: %s: non-square pixels, x spacing %.9g and y spacing %.9g %s: expected equal "
+                   "spacings; resample the data to square pixels first (e.g. Gwyddion's Scale)", path,
+                   s->spacing_keys, dx, dy, s->units.lateral);
+}
+
+/* Metres per unit of a stated unit, or 0 after recording an error naming its key. */
+static double stated_metres(const char *path, const char *key, const char *unit, const char **canonical)
+{
+    double metres = im_length_unit_metres(unit, canonical);
+    if (metres == 0.0)
+        im_fail(IM_EFORMAT, "%s: %s = '%.15s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, \u00c5)",
+                path, key, unit);
+    return metres;
+}
+
+/* Factor that brings the heights into the lateral unit, and the canonical lateral unit; IM_EFORMAT
+ * for a unit that is not a length or heights in a unit with no lateral unit to compare. */
+static int height_factor(const char *path, const surface_stated *s, double *factor, const char **lateral)
+{
+    *factor = 1.0;
+    *lateral = "";
+    if (!s->units.lateral[0] && !s->units.height[0])
+        return IM_OK;
+    if (!s->units.lateral[0])
+        return im_fail(IM_EFORMAT, "%s: %s = '%.15s' gives the heights a unit but the lateral spacing has none: "
+                       "state it (--delta and --unit) so that slopes compare lengths in one unit", path,
+                       s->height_key, s->units.height);
+    double lateral_metres = stated_metres(path, s->lateral_key, s->units.lateral, lateral);
+    if (lateral_metres == 0.0)
+        return IM_EFORMAT;
+    if (!s->units.height[0])
+        return IM_OK;
+    double height_metres = stated_metres(path, s->height_key, s->units.height, NULL);
+    if (height_metres == 0.0)
+        return IM_EFORMAT;
+    *factor = height_metres / lateral_metres;
+    return IM_OK;
+}
+
+/* Missing points (NaN): filled on request, else refused naming the first one and the remedy. */
+static int missing_points(const char *path, im_field *field, int fill, long *filled)
+{
+    size_t count = im_field_count(field), i = 0;
+    while (i < count && !isnan(field->data[i]))
+        ++i;
+    if (i == count)
+        return IM_OK;
+    if (!fill)
+        return im_fail(IM_EFORMAT, "%s: value nan at (x=%zu, y=%zu): a missing point; expected finite heights "
+                       "(--fill fills missing points from their neighbours)", path, i % (size_t)field->nx,
+                       i / (size_t)field->nx);
+    int status = im_surface_fill_missing(field, filled);
+    return status == IM_OK ? IM_OK : im_fail_context(IM_EFORMAT, "%s", path);
+}
+
+/* Converts the spacing from the field's lateral unit into `unit`, and multiplies *factor, the
+ * heights' conversion still to be applied, by the same ratio. */
+static int express_in(const char *path, im_field *field, const char *unit, double *factor)
+{
+    const char *canonical = "";
+    double target = im_length_unit_metres(unit, &canonical), source = im_length_unit_metres(field->unit, NULL);
+    if (target == 0.0)
+        return im_fail(IM_EINVAL, "--length-unit '%.15s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
+                       "\u00c5)", unit);
+    if (source == 0.0)
+        return im_fail(IM_EFORMAT, "%s: states no length unit to convert into %s from: give it (--unit)", path, unit);
+    double ratio = source / target;
+    *factor *= ratio;
+    field->delta *= ratio;
+    snprintf(field->unit, sizeof field->unit, "%s", canonical);
+    return IM_OK;
+}
+
+int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
+                      const im_surface_read_options *options, im_surface_read_info *info)
+{
+    surface_stated merged = merge_overrides(stated, options);
+    double factor;
+    const char *lateral;
+    int status = check_square_pixels(path, &merged);
+    if (status == IM_OK)
+        status = height_factor(path, &merged, &factor, &lateral);
+    if (status != IM_OK)
+        return status;
+    field->delta = merged.units.delta_x > 0.0 ? merged.units.delta_x : 1.0;
+    snprintf(field->unit, sizeof field->unit, "%s", lateral);
+    if (options && options->express_in[0] && (status = express_in(path, field, options->express_in, &factor)) != IM_OK)
+        return status;
+    if (factor != 1.0) {
+        size_t count = im_field_count(field);
+        for (size_t i = 0; i < count; ++i)
+            field->data[i] *= factor;
+    }
+    long filled = 0;
+    status = missing_points(path, field, options && options->fill, &filled);
+    if (status == IM_OK)
+        status = im_io_check_finite(field, path); /* after the conversion, which could overflow */
+    if (status != IM_OK)
+        return status;
+    if (info) {
+        *info = (im_surface_read_info){.file = stated->units, .used = merged.units, .height_factor = factor,
+                                       .filled = filled};
+        snprintf(info->used.lateral, sizeof info->used.lateral, "%s", field->unit);
+        memcpy(info->conversion, stated->conversion, sizeof info->conversion);
+    }
+    return IM_OK;
+}
+
+int im_surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
+                           im_field **out, im_surface_read_info *info)
+{
+    surface_stated stated;
+    int status = read(path, out, &stated);
+    if (status == IM_OK && (status = im_surface_finish(path, *out, &stated, options, info)) != IM_OK) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    return status;
+}

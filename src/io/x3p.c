@@ -1,0 +1,365 @@
+/* ISO 25178-72 .x3p (ISO 5436-2 XML in a zip container): main.xml describes the grid (Record1 Axes:
+ * CX and CY incremental with their Increment in metres, CZ absolute with its DataType, Increment
+ * and Offset; Record3 MatrixDimension SizeX, SizeY, SizeZ = 1, and DataLink PointDataLink naming the
+ * binary data in the archive), and the data holds SizeX x SizeY little-endian values, x fastest.
+ * The zip is read with libzip and the XML with libxml2 (no network, no entity expansion). */
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+#include "io/readers.h"
+
+#include <errno.h>
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zip.h>
+
+enum { X3P_MAX_XML = 16 << 20 }; /* main.xml of a surface is a few kB; more is refused */
+
+typedef struct x3p_grid {
+    long nx, ny, nz;
+    double dx, dy, z_increment, z_offset;
+    char z_type;            /* I int16, L int32, F float32, D float64 */
+    char data_path[256];    /* the PointDataLink */
+} x3p_grid;
+
+/* The first child element of node named name (local name: namespaces ignored), or NULL. */
+static xmlNode *child(xmlNode *node, const char *name)
+{
+    for (xmlNode *c = node ? node->children : NULL; c; c = c->next)
+        if (c->type == XML_ELEMENT_NODE && strcmp((const char *)c->name, name) == 0)
+            return c;
+    return NULL;
+}
+
+/* The text of the element at the path of child names below root (NULL-terminated), or NULL. */
+static xmlNode *find(xmlNode *root, const char *const *names)
+{
+    xmlNode *node = root;
+    for (; node && *names; ++names)
+        node = child(node, *names);
+    return node;
+}
+
+/* The element's text as a finite number; IM_EFORMAT naming the element otherwise (or when missing,
+ * unless optional, in which case *out keeps its default). */
+static int number_at(const char *path, xmlNode *root, const char *const *names, const char *what, int optional,
+                     double *out)
+{
+    xmlNode *node = find(root, names);
+    if (!node)
+        return optional ? IM_OK : im_fail(IM_EFORMAT, "%s: main.xml lacks %s", path, what);
+    xmlChar *text = xmlNodeGetContent(node);
+    char *end;
+    double value = text ? strtod((const char *)text, &end) : NAN;
+    int ok = text && end != (char *)text && end[strspn(end, " \t\r\n")] == '\0' && isfinite(value);
+    if (!ok) {
+        im_fail(IM_EFORMAT, "%s: main.xml %s '%.32s': expected a finite number", path, what,
+                text ? (const char *)text : "");
+        xmlFree(text);
+        return IM_EFORMAT;
+    }
+    xmlFree(text);
+    *out = value;
+    return IM_OK;
+}
+
+static int text_at(const char *path, xmlNode *root, const char *const *names, const char *what, char *out,
+                   size_t size)
+{
+    xmlNode *node = find(root, names);
+    xmlChar *text = node ? xmlNodeGetContent(node) : NULL;
+    const char *value = text ? (const char *)text + strspn((const char *)text, " \t\r\n") : NULL;
+    size_t length = value ? strcspn(value, " \t\r\n") : 0;
+    int ok = value && length > 0 && length < size;
+    if (ok)
+        snprintf(out, size, "%.*s", (int)length, value);
+    else
+        im_fail(IM_EFORMAT, "%s: main.xml %s: %s", path, what, node ? "expected a short word" : "missing");
+    xmlFree(text);
+    return ok ? IM_OK : IM_EFORMAT;
+}
+
+static int parse_axes(const char *path, xmlNode *root, x3p_grid *g)
+{
+    static const char *const CX_TYPE[] = {"Record1", "Axes", "CX", "AxisType", NULL};
+    static const char *const CY_TYPE[] = {"Record1", "Axes", "CY", "AxisType", NULL};
+    static const char *const CZ_TYPE[] = {"Record1", "Axes", "CZ", "AxisType", NULL};
+    static const char *const CZ_DATA[] = {"Record1", "Axes", "CZ", "DataType", NULL};
+    static const char *const CX_INC[] = {"Record1", "Axes", "CX", "Increment", NULL};
+    static const char *const CY_INC[] = {"Record1", "Axes", "CY", "Increment", NULL};
+    static const char *const CZ_INC[] = {"Record1", "Axes", "CZ", "Increment", NULL};
+    static const char *const CZ_OFF[] = {"Record1", "Axes", "CZ", "Offset", NULL};
+    char cx[4], cy[4], cz[4], z_type[4];
+    int status = text_at(path, root, CX_TYPE, "Record1/Axes/CX/AxisType", cx, sizeof cx);
+    if (status == IM_OK)
+        status = text_at(path, root, CY_TYPE, "Record1/Axes/CY/AxisType", cy, sizeof cy);
+    if (status == IM_OK)
+        status = text_at(path, root, CZ_TYPE, "Record1/Axes/CZ/AxisType", cz, sizeof cz);
+    if (status == IM_OK && (strcmp(cx, "I") != 0 || strcmp(cy, "I") != 0 || strcmp(cz, "A") != 0))
+        return im_fail(IM_EFORMAT, "%s: main.xml Record1/Axes: AxisType CX %s, CY %s, CZ %s: expected I, I, A (a "
+                       "regular grid of heights)", path, cx, cy, cz);
+    if (status == IM_OK)
+        status = text_at(path, root, CZ_DATA, "Record1/Axes/CZ/DataType", z_type, sizeof z_type);
+    if (status == IM_OK && (strlen(z_type) != 1 || !strchr("ILFD", z_type[0])))
+        return im_fail(IM_EFORMAT, "%s: main.xml Record1/Axes/CZ/DataType '%s': expected I, L, F or D", path, z_type);
+    g->z_type = z_type[0];
+    g->z_increment = 1.0;
+    if (status == IM_OK)
+        status = number_at(path, root, CX_INC, "Record1/Axes/CX/Increment", 0, &g->dx);
+    if (status == IM_OK)
+        status = number_at(path, root, CY_INC, "Record1/Axes/CY/Increment", 0, &g->dy);
+    if (status == IM_OK)
+        status = number_at(path, root, CZ_INC, "Record1/Axes/CZ/Increment", 1, &g->z_increment);
+    if (status == IM_OK)
+        status = number_at(path, root, CZ_OFF, "Record1/Axes/CZ/Offset", 1, &g->z_offset);
+    if (status == IM_OK && !(g->dx > 0.0 && g->dy > 0.0 && g->z_increment != 0.0))
+        return im_fail(IM_EFORMAT, "%s: main.xml Record1/Axes: Increment CX %g, CY %g, CZ %g: expected CX, CY > 0 "
+                       "and CZ non-zero", path, g->dx, g->dy, g->z_increment);
+    return status;
+}
+
+static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
+{
+    static const char *const SX[] = {"Record3", "MatrixDimension", "SizeX", NULL};
+    static const char *const SY[] = {"Record3", "MatrixDimension", "SizeY", NULL};
+    static const char *const SZ[] = {"Record3", "MatrixDimension", "SizeZ", NULL};
+    static const char *const LINK[] = {"Record3", "DataLink", "PointDataLink", NULL};
+    static const char *const LIST[] = {"Record3", "DataList", NULL};
+    double sx = 0, sy = 0, sz = 0;
+    int status = number_at(path, root, SX, "Record3/MatrixDimension/SizeX", 0, &sx);
+    if (status == IM_OK)
+        status = number_at(path, root, SY, "Record3/MatrixDimension/SizeY", 0, &sy);
+    if (status == IM_OK)
+        status = number_at(path, root, SZ, "Record3/MatrixDimension/SizeZ", 0, &sz);
+    if (status != IM_OK)
+        return status;
+    if (sx != floor(sx) || sy != floor(sy) || sx < 1 || sy < 1 || sx > IM_FIELD_MAX_SIDE || sy > IM_FIELD_MAX_SIDE ||
+        sz != 1)
+        return im_fail(IM_EFORMAT, "%s: main.xml Record3/MatrixDimension %g x %g x %g: expected SizeX, SizeY "
+                       "integers in [1, %d] and SizeZ 1", path, sx, sy, sz, IM_FIELD_MAX_SIDE);
+    g->nx = (long)sx;
+    g->ny = (long)sy;
+    if (!find(root, LINK) && find(root, LIST))
+        return im_fail(IM_EFORMAT, "%s: main.xml Record3/DataList: inline data is not read; expected a binary "
+                       "PointDataLink", path);
+    return text_at(path, root, LINK, "Record3/DataLink/PointDataLink", g->data_path, sizeof g->data_path);
+}
+
+/* main.xml from the archive, parsed; IM_EFORMAT naming what is missing or malformed. */
+static int read_main_xml(zip_t *archive, const char *path, x3p_grid *g)
+{
+    zip_stat_t info;
+    zip_stat_init(&info);
+    if (zip_stat(archive, "main.xml", 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
+        return im_fail(IM_EFORMAT, "%s: the archive has no main.xml: not an x3p file", path);
+    if (info.size > X3P_MAX_XML)
+        return im_fail(IM_EFORMAT, "%s: main.xml is %llu bytes: expected at most %d", path,
+                       (unsigned long long)info.size, X3P_MAX_XML);
+    char *text = malloc((size_t)info.size + 1);
+    zip_file_t *file = text ? zip_fopen(archive, "main.xml", 0) : NULL;
+    zip_int64_t got = file ? zip_fread(file, text, info.size) : -1;
+    if (file)
+        zip_fclose(file);
+    if (got != (zip_int64_t)info.size) {
+        free(text);
+        return im_fail(IM_EFORMAT, "%s: main.xml cannot be read from the archive: %s", path, zip_strerror(archive));
+    }
+    xmlDoc *doc = xmlReadMemory(text, (int)info.size, "main.xml", NULL, XML_PARSE_NONET | XML_PARSE_NOERROR |
+                                XML_PARSE_NOWARNING);
+    free(text);
+    xmlNode *root = doc ? xmlDocGetRootElement(doc) : NULL;
+    int status = IM_OK;
+    if (!root || strcmp((const char *)root->name, "ISO5436_2") != 0)
+        status = im_fail(IM_EFORMAT, "%s: main.xml is not well-formed ISO 5436-2 XML (no ISO5436_2 root)", path);
+    else if (doc->intSubset) /* entities could expand without bound when the text is read */
+        status = im_fail(IM_EFORMAT, "%s: main.xml declares a DTD: not accepted in an x3p file", path);
+    if (status == IM_OK)
+        status = parse_axes(path, root, g);
+    if (status == IM_OK)
+        status = parse_matrix(path, root, g);
+    xmlFreeDoc(doc);
+    return status;
+}
+
+static int value_size(char type) { return type == 'I' ? 2 : type == 'L' || type == 'F' ? 4 : 8; }
+
+static double decode(const uint8_t *b, char type)
+{
+    uint64_t bits = 0;
+    for (int i = value_size(type) - 1; i >= 0; --i)
+        bits = bits << 8 | b[i];
+    union { uint32_t u; float f; } f4 = {(uint32_t)bits};
+    union { uint64_t u; double d; } d8 = {bits};
+    return type == 'I' ? (int16_t)bits : type == 'L' ? (int32_t)bits : type == 'F' ? f4.f : d8.d;
+}
+
+/* The binary data: exactly SizeX x SizeY values, heights Offset + Increment x value, in metres. */
+static int read_data(zip_t *archive, const char *path, const x3p_grid *g, im_field *field)
+{
+    size_t count = im_field_count(field), size = (size_t)value_size(g->z_type);
+    zip_stat_t info;
+    zip_stat_init(&info);
+    if (zip_stat(archive, g->data_path, 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
+        return im_fail(IM_EFORMAT, "%s: PointDataLink '%s' is not in the archive", path, g->data_path);
+    if (info.size != count * size)
+        return im_fail(IM_EFORMAT, "%s: %s holds %llu bytes, SizeX x SizeY = %ld x %ld values of type %c need %zu",
+                       path, g->data_path, (unsigned long long)info.size, g->nx, g->ny, g->z_type, count * size);
+    zip_file_t *file = zip_fopen(archive, g->data_path, 0);
+    if (!file)
+        return im_fail(IM_EFORMAT, "%s: %s cannot be opened: %s", path, g->data_path, zip_strerror(archive));
+    uint8_t block[8 * 4096];
+    size_t done = 0;
+    int status = IM_OK;
+    while (done < count && status == IM_OK) {
+        size_t want = count - done < sizeof block / size ? count - done : sizeof block / size;
+        zip_int64_t got = zip_fread(file, block, want * size);
+        if (got != (zip_int64_t)(want * size))
+            status = im_fail(IM_EFORMAT, "%s: %s: truncated or corrupt after %zu values: %s", path, g->data_path, done,
+                             zip_file_strerror(file));
+        for (size_t k = 0; status == IM_OK && k < want; ++k)
+            field->data[done + k] = g->z_offset + g->z_increment * decode(block + k * size, g->z_type);
+        done += want;
+    }
+    zip_fclose(file);
+    return status;
+}
+
+int im_x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
+{
+    *out = NULL;
+    int error = 0;
+    zip_t *archive = zip_open(path, ZIP_RDONLY | ZIP_CHECKCONS, &error);
+    if (!archive) {
+        zip_error_t z;
+        zip_error_init_with_code(&z, error);
+        int status = im_fail(error == ZIP_ER_OPEN || error == ZIP_ER_NOENT ? IM_EIO : IM_EFORMAT,
+                             "%s: cannot open as an x3p (zip) archive: %s", path, zip_error_strerror(&z));
+        zip_error_fini(&z);
+        return status;
+    }
+    x3p_grid g = {0};
+    int status = read_main_xml(archive, path, &g);
+    if (status == IM_OK && (status = im_field_create((int)g.nx, (int)g.ny, 1.0, out)) != IM_OK)
+        im_fail_context(status, "%s", path);
+    if (status == IM_OK && (status = read_data(archive, path, &g, *out)) != IM_OK) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    zip_discard(archive);
+    *stated = (surface_stated){.units = {g.dx, g.dy, "m", "m"},
+                               .spacing_keys = "Record1/Axes/CX/Increment and CY/Increment",
+                               .lateral_key = "x3p (metres)", .height_key = "x3p (metres)"};
+    return status;
+}
+
+int im_x3p_read(const char *path, im_field **out)
+{
+    return im_surface_read_format(path, im_x3p_read_raw, NULL, out, NULL);
+}
+
+/* ---- writing ---- */
+
+/* A child element in no namespace, as ISO 5436-2 files have them under the p: root (xmlNewChild would
+ * put it in the parent's namespace). Texts here are numbers and fixed words: nothing to escape. */
+static xmlNode *add(xmlNode *parent, const char *name, const char *text)
+{
+    xmlNode *node = xmlNewDocNode(parent->doc, NULL, (const xmlChar *)name, (const xmlChar *)text);
+    return xmlAddChild(parent, node);
+}
+
+static void add_axis(xmlNode *axes, const char *name, const char *type, const char *data_type, double increment)
+{
+    char text[32];
+    xmlNode *axis = add(axes, name, NULL);
+    add(axis, "AxisType", type);
+    add(axis, "DataType", data_type);
+    snprintf(text, sizeof text, "%.17g", increment);
+    add(axis, "Increment", text);
+    add(axis, "Offset", "0");
+}
+
+/* main.xml for a field of spacing `spacing` metres, data in bindata/data.bin as doubles. */
+static xmlDoc *main_xml(const im_field *field, double spacing)
+{
+    xmlDoc *doc = xmlNewDoc((const xmlChar *)"1.0");
+    xmlNode *root = xmlNewNode(NULL, (const xmlChar *)"ISO5436_2");
+    xmlNs *ns = xmlNewNs(root, (const xmlChar *)"http://www.opengps.eu/2008/ISO5436_2", (const xmlChar *)"p");
+    xmlSetNs(root, ns);
+    xmlDocSetRootElement(doc, root);
+    xmlNode *record1 = add(root, "Record1", NULL);
+    add(record1, "Revision", "ISO5436 - 2000");
+    add(record1, "FeatureType", "SUR");
+    xmlNode *axes = add(record1, "Axes", NULL);
+    add_axis(axes, "CX", "I", "D", spacing);
+    add_axis(axes, "CY", "I", "D", spacing);
+    add_axis(axes, "CZ", "A", "D", 1.0);
+    xmlNode *record2 = add(root, "Record2", NULL);
+    add(record2, "Creator", "indentmap " IM_VERSION);
+    xmlNode *record3 = add(root, "Record3", NULL);
+    xmlNode *matrix = add(record3, "MatrixDimension", NULL);
+    char text[32];
+    snprintf(text, sizeof text, "%d", field->nx);
+    add(matrix, "SizeX", text);
+    snprintf(text, sizeof text, "%d", field->ny);
+    add(matrix, "SizeY", text);
+    add(matrix, "SizeZ", "1");
+    add(add(record3, "DataLink", NULL), "PointDataLink", "bindata/data.bin");
+    return doc;
+}
+
+/* Adds a malloc'ed buffer to the archive, which frees it (also on failure). */
+static int add_buffer(zip_t *archive, const char *name, void *bytes, size_t size)
+{
+    zip_source_t *source = zip_source_buffer(archive, bytes, size, 1);
+    if (!source) {
+        free(bytes);
+        return -1;
+    }
+    if (zip_file_add(archive, name, source, ZIP_FL_OVERWRITE) < 0) {
+        zip_source_free(source);
+        return -1;
+    }
+    return 0;
+}
+
+/* Writes heights and spacing in metres (the field needs a length unit). libzip writes the archive
+ * to a temporary file beside path and renames it into place on zip_close, so it is atomic. */
+int im_x3p_write(const char *path, const im_field *field)
+{
+    double metres = im_length_unit_metres(field->unit, NULL);
+    if (metres == 0.0)
+        return im_fail(IM_EINVAL, "%s: an .x3p states metres: the surface needs a length unit (it has '%s')", path,
+                       field->unit);
+    size_t count = im_field_count(field);
+    double *data = malloc(count * sizeof *data);
+    xmlDoc *doc = main_xml(field, field->delta * metres);
+    xmlChar *xml = NULL;
+    int xml_size = 0;
+    xmlDocDumpFormatMemoryEnc(doc, &xml, &xml_size, "UTF-8", 1);
+    xmlFreeDoc(doc);
+    char *xml_copy = xml ? malloc((size_t)xml_size) : NULL;
+    if (xml_copy)
+        memcpy(xml_copy, xml, (size_t)xml_size);
+    xmlFree(xml);
+    int error = 0;
+    zip_t *archive = data && xml_copy ? zip_open(path, ZIP_CREATE | ZIP_TRUNCATE, &error) : NULL;
+    if (!archive) {
+        free(data);
+        free(xml_copy);
+        return im_fail(IM_EIO, "%s: cannot create the x3p archive (zip error %d)", path, error);
+    }
+    for (size_t i = 0; i < count; ++i)
+        data[i] = field->data[i] * metres; /* little-endian host: the bytes are the file's */
+    int failed = add_buffer(archive, "main.xml", xml_copy, (size_t)xml_size) != 0 ||
+                 add_buffer(archive, "bindata/data.bin", data, count * sizeof *data) != 0;
+    if (failed || zip_close(archive) != 0) {
+        int status = im_fail(IM_EIO, "%s: cannot write the x3p archive: %s", path, zip_strerror(archive));
+        zip_discard(archive);
+        return status;
+    }
+    return IM_OK;
+}

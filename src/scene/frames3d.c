@@ -1,0 +1,153 @@
+/* 3-D frames of the framed history (frames3d = yes): one view per step with one colour norm, one
+ * exaggeration and one camera, and their animations. */
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/render.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { FRAME_WIDTH = 960, FRAME_HEIGHT = 540 };
+
+/* The largest 1, 2 or 5 times a power of ten that is at most x (x >= 1), else 1. */
+static double nice_at_most(double x)
+{
+    if (!(x > 1.0))
+        return 1.0;
+    double magnitude = pow(10.0, floor(log10(x))), nice = magnitude;
+    if (5.0 * magnitude <= x)
+        nice = 5.0 * magnitude;
+    else if (2.0 * magnitude <= x)
+        nice = 2.0 * magnitude;
+    return nice;
+}
+
+static void height_range(const im_field *h, double *lo, double *hi)
+{
+    for (size_t i = 0; i < im_field_count(h); ++i) {
+        *lo = fmin(*lo, h->data[i] / h->delta);
+        *hi = fmax(*hi, h->data[i] / h->delta);
+    }
+}
+
+/* One style for every frame (the punch cut away, the camera a little closer than the default):
+ * the relief of the last (deepest) step exaggerated to about an eighth
+ * of the grid's longer side (a 1-2-5 factor, never below true scale), the camera's target fixed at
+ * the middle of all frames' heights. */
+static im_view3d_style frames_style(im_field *const *deformed, int count, const im_colormap *norm)
+{
+    im_view3d_style s = im_view3d_style_default(NULL);
+    s.width = FRAME_WIDTH;
+    s.height = FRAME_HEIGHT;
+    s.colormap = *norm;
+    s.punch_mode = IM_VIEW3D_PUNCH_CUTAWAY; /* the contact under the punch stays in sight */
+    s.camera.distance = 1.75;
+    double lo = INFINITY, hi = -INFINITY;
+    height_range(deformed[count - 1], &lo, &hi);
+    int longer = deformed[0]->nx > deformed[0]->ny ? deformed[0]->nx : deformed[0]->ny;
+    s.exaggeration = hi > lo ? nice_at_most(longer / 8.0 / (hi - lo)) : 1.0;
+    for (int i = 0; i < count; ++i)
+        height_range(deformed[i], &lo, &hi);
+    s.camera.target_z = s.exaggeration * 0.5 * (lo + hi);
+    return s;
+}
+
+static int write_frame(const im_scene *scene, const im_image *image, const im_view3d_style *s, int index,
+                       double load_star)
+{
+    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[160], scale[96], norm[128];
+    int status = scene_output_path(scene, "frames", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_frame_path(path, sizeof path, folder, "view3d", index);
+    im_view3d_exaggeration_text(s->exaggeration, scale, sizeof scale);
+    snprintf(title, sizeof title, "N* = %.0f, %s", load_star, scale);
+    snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),
+             s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
+    im_figure_panel panel = {image, NULL, title};
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path}, {"Title", title},
+                                 {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm}};
+    im_figure figure = im_figure_default();
+    figure.texts = texts;
+    figure.text_count = 5;
+    figure.panels = &panel;
+    figure.colormap = &s->colormap;
+    figure.colorbar_label = "local force f / (E* δ²)";
+    figure.extend_under = s->colormap.logarithmic;
+    figure.scale_bar = -1.0; /* a perspective view has no single scale */
+    figure.dpi = 150;
+    return status == IM_OK ? im_figure_write(&figure, path) : status;
+}
+
+/* Reduces an image to the 6 x 6 x 6 colour cube (216 colours) with 4 x 4 ordered dithering, so
+ * that a GIF can hold it without a palette search; deterministic, and greys stay grey (every
+ * channel has the same levels and threshold). */
+static void dither_to_cube(im_image *image)
+{
+    static const int bayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+
+    for (int y = 0; y < image->height; ++y)
+        for (int x = 0; x < image->width; ++x) {
+            uint8_t *p = image->rgba + ((size_t)y * image->width + x) * 4;
+            double threshold = (bayer[y % 4][x % 4] + 0.5) / 16.0;
+            for (int k = 0; k < 3; ++k) {
+                int top = 5, q = (int)floor(p[k] * top / 255.0 + threshold);
+                q = q > top ? top : q;
+                p[k] = (uint8_t)lround(q * 255.0 / top);
+            }
+        }
+}
+
+static int write_animations(const im_scene *scene, const im_scene_run_options *options, const im_image *frames,
+                            int count)
+{
+    char path[IM_SCENE_PATH], folder[IM_SCENE_PATH];
+    int status = IM_OK;
+    if (scene->animation & IM_ANIMATION_GIF) {
+        status = scene_output_path(scene, "view3d.gif", path, sizeof path);
+        if (status == IM_OK)
+            status = im_animation_gif(frames, count, 0.25, path);
+    }
+    if (status != IM_OK || !(scene->animation & IM_ANIMATION_MP4))
+        return status;
+    if (!im_ffmpeg_available()) {
+        scene_progress(options, "ffmpeg is not installed: no view3d.mp4 (the 3-D frames are in frames/)");
+        return IM_OK;
+    }
+    status = scene_output_path(scene, "frames", folder, sizeof folder);
+    if (status == IM_OK)
+        status = scene_output_path(scene, "view3d.mp4", path, sizeof path);
+    return status == IM_OK ? im_animation_mp4(folder, "view3d", 4.0, path) : status;
+}
+
+int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                         const scene_frames3d_input *in)
+{
+    im_view3d_style style = frames_style(in->deformed, in->count, in->norm);
+    im_indenter punch = scene_punch(scene);
+    int gif = (scene->animation & IM_ANIMATION_GIF) != 0;
+    im_image *frames = calloc((size_t)in->count, sizeof *frames);
+    if (!frames)
+        return im_fail(IM_ENOMEM, "3-D frames: allocation failed");
+    scene_progress(options, "frames3d: %d 3-D views (%s, vertical exaggeration %g)", in->count,
+                   im_render_gl_renderer(context), style.exaggeration);
+    int status = IM_OK;
+    for (int i = 0; i < in->count && status == IM_OK; ++i) {
+        status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &frames[i]);
+        if (status == IM_OK)
+            status = write_frame(scene, &frames[i], &style, i, in->load_star[i]);
+        if (status == IM_OK && gif)
+            dither_to_cube(&frames[i]);
+        else
+            im_image_release(&frames[i]); /* kept only for the GIF */
+    }
+    if (status == IM_OK)
+        status = write_animations(scene, options, frames, in->count);
+    for (int i = 0; i < in->count; ++i)
+        im_image_release(&frames[i]);
+    free(frames);
+    return status;
+}

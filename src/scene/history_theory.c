@@ -1,0 +1,12 @@
+/* The theory beside every simulated history of a scene (the history files' theory columns). */
+#include "indentmap/theory.h"
+#include "scene/scene_internal.h"
+
+int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
+                             im_theory_step *row)
+{
+    im_indenter punch = scene_punch(scene);
+    im_theory_interface rough = im_theory_interface_default(slope);
+    rough.e_star = scene->modulus;
+    return im_theory_step_columns(&punch, &rough, approach, load, row);
+}

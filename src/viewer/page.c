@@ -1,0 +1,425 @@
+/* DIR/index.html: a self-contained page over a run's figures, frames, tables and record. */
+#include "indentmap/viewer.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <ctype.h>
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MAX_NAMES = 4096, MAX_TEXT_BYTES = 4 << 20, MAX_TABLE_ROWS = 2000, PATH_SIZE = 4096 };
+
+typedef struct name_list {
+    char *names[MAX_NAMES];
+    int count;
+} name_list;
+
+static void free_names(name_list *list)
+{
+    for (int i = 0; i < list->count; ++i)
+        free(list->names[i]);
+    list->count = 0;
+}
+
+static int compare_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+static int ends_with(const char *name, const char *suffix)
+{
+    size_t n = strlen(name), s = strlen(suffix);
+    return n > s && strcmp(name + n - s, suffix) == 0;
+}
+
+/* The names in folder whose ending is one of suffixes (NULL-terminated), sorted; a missing
+ * folder gives none. */
+static int list_folder(const char *folder, const char *const *suffixes, name_list *list)
+{
+    list->count = 0;
+    DIR *dir = opendir(folder);
+    if (!dir)
+        return IM_OK;
+    struct dirent *entry;
+    int status = IM_OK;
+    while (status == IM_OK && (entry = readdir(dir)) != NULL) {
+        int wanted = entry->d_name[0] != '.';
+        for (int k = 0; wanted && suffixes[k]; ++k)
+            if (ends_with(entry->d_name, suffixes[k]))
+                break;
+            else if (!suffixes[k + 1])
+                wanted = 0;
+        if (!wanted || list->count == MAX_NAMES)
+            continue;
+        if (!(list->names[list->count] = strdup(entry->d_name)))
+            status = im_fail(IM_ENOMEM, "viewer page: out of memory");
+        else
+            list->count++;
+    }
+    closedir(dir);
+    qsort(list->names, (size_t)list->count, sizeof list->names[0], compare_names);
+    return status;
+}
+
+static void escape(FILE *out, const char *text, size_t length)
+{
+    for (size_t i = 0; i < length; ++i)
+        switch (text[i]) {
+        case '&': fputs("&amp;", out); break;
+        case '<': fputs("&lt;", out); break;
+        case '>': fputs("&gt;", out); break;
+        case '"': fputs("&quot;", out); break;
+        case '\'': fputs("&#39;", out); break;
+        default: fputc(text[i], out);
+        }
+}
+
+static void escape_all(FILE *out, const char *text) { escape(out, text, strlen(text)); }
+
+/* The whole file as a NUL-terminated string; NULL when it is missing, unreadable or too large. */
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = malloc(MAX_TEXT_BYTES + 1);
+    size_t length = text ? fread(text, 1, MAX_TEXT_BYTES + 1, f) : 0;
+    fclose(f);
+    if (!text || length > MAX_TEXT_BYTES) {
+        free(text);
+        return NULL;
+    }
+    text[length] = '\0';
+    return text;
+}
+
+static const char STYLE[] =
+    "body{font-family:'DejaVu Sans',Helvetica,Arial,sans-serif;margin:1.5em 2em;color:#222;background:#fff}"
+    "h1{font-size:1.5em;margin:0 0 .2em}h2{font-size:1.15em;border-bottom:1px solid #ccc;padding-bottom:.2em;"
+    "margin-top:1.6em}.figures{display:flex;flex-wrap:wrap;gap:1.2em}figure{margin:0}"
+    "figure img{max-width:100%;height:auto;border:1px solid #eee}figcaption{font-size:.85em;color:#555}"
+    ".figures figure{flex:0 1 auto;max-width:100%}.animations img{width:30em;image-rendering:pixelated}.frames{display:flex;gap:1em;align-items:flex-start}"
+    ".frames figure{flex:1 1 0;min-width:0}.frames figure img{width:100%}.slider{display:flex;align-items:center;gap:1em;margin:.6em 0}"
+    ".slider input{flex:1}table{border-collapse:collapse;font-size:.85em;font-variant-numeric:tabular-nums}"
+    "th,td{border:1px solid #ddd;padding:.2em .5em;text-align:right}th{background:#f4f4f4}"
+    "tr:nth-child(even) td{background:#fafafa}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}"
+    ".scroll{max-height:32em;overflow:auto}.note{color:#777;font-size:.85em}";
+
+/* One row of images under a heading: class names the row's style. */
+static void write_images(FILE *out, const name_list *list, const char *heading, const char *class_name)
+{
+    if (list->count == 0)
+        return;
+    fprintf(out, "<h2>%s</h2>\n<div class=\"figures %s\">\n", heading, class_name);
+    for (int i = 0; i < list->count; ++i) {
+        fputs("<figure><img src=\"", out);
+        escape_all(out, list->names[i]);
+        fputs("\" alt=\"", out);
+        escape_all(out, list->names[i]);
+        fputs("\"><figcaption>", out);
+        escape_all(out, list->names[i]);
+        fputs("</figcaption></figure>\n", out);
+    }
+    fputs("</div>\n", out);
+}
+
+/* Figures (PNG, SVG) and animations (GIF) shown, documents (PDF, MP4) linked. */
+static int write_figures(FILE *out, const char *dir)
+{
+    static const char *const figures[] = {".png", ".svg", NULL}, *const animations[] = {".gif", NULL},
+                             *const documents[] = {".pdf", ".mp4", NULL};
+    name_list list;
+    int status = list_folder(dir, figures, &list);
+    if (status == IM_OK)
+        write_images(out, &list, "Figures", "");
+    free_names(&list);
+    if (status == IM_OK)
+        status = list_folder(dir, animations, &list);
+    if (status == IM_OK)
+        write_images(out, &list, "Animations", "animations");
+    free_names(&list);
+    if (status == IM_OK)
+        status = list_folder(dir, documents, &list);
+    if (status == IM_OK && list.count > 0) {
+        fputs("<p class=\"note\">Also:", out);
+        for (int i = 0; i < list.count; ++i) {
+            fputs(" <a href=\"", out);
+            escape_all(out, list.names[i]);
+            fputs("\">", out);
+            escape_all(out, list.names[i]);
+            fputs("</a>", out);
+        }
+        fputs("</p>\n", out);
+    }
+    free_names(&list);
+    return status;
+}
+
+/* A frame name PREFIX_NNNN.png, PREFIX of letters, digits, '_' and '-' (so that it can go into
+ * HTML ids and script strings as it is): its prefix length and step number; 0 when it is not one. */
+static int parse_frame_name(const char *name, size_t *prefix, int *step)
+{
+    const char *underscore = strrchr(name, '_');
+    char *end;
+    if (!underscore || underscore == name || !ends_with(name, ".png"))
+        return 0;
+    for (const char *p = name; p < underscore; ++p)
+        if (!(isalnum((unsigned char)*p) || *p == '_' || *p == '-'))
+            return 0;
+    long number = strtol(underscore + 1, &end, 10);
+    if (end == underscore + 1 || strcmp(end, ".png") != 0 || number < 0 || number >= MAX_NAMES)
+        return 0;
+    *prefix = (size_t)(underscore - name);
+    *step = (int)number;
+    return 1;
+}
+
+/* The order of the frame panels: the known prefixes first, with their captions. */
+static const char *caption_of(const char *prefix, size_t length)
+{
+    static const char *const known[][2] = {{"contact", "contact map"}, {"height", "deformed surface (h − u)"},
+                                           {"view3d", "3-D view"}};
+    for (int k = 0; k < 3; ++k)
+        if (strlen(known[k][0]) == length && strncmp(prefix, known[k][0], length) == 0)
+            return known[k][1];
+    return NULL;
+}
+
+typedef struct frame_group {
+    char prefix[64];
+    int rank;             /* known prefixes first */
+    int first;            /* index in the sorted name list of its first frame */
+} frame_group;
+
+static int compare_groups(const void *a, const void *b)
+{
+    const frame_group *x = a, *y = b;
+    return x->rank != y->rank ? x->rank - y->rank : strcmp(x->prefix, y->prefix);
+}
+
+/* Groups of frames by prefix and the number of steps (largest step + 1). */
+static int frame_groups(const name_list *list, frame_group *groups, int capacity, int *steps)
+{
+    int count = 0;
+    *steps = 0;
+    for (int i = 0; i < list->count; ++i) {
+        size_t length;
+        int step;
+        if (!parse_frame_name(list->names[i], &length, &step) || length >= sizeof groups[0].prefix)
+            continue;
+        *steps = step + 1 > *steps ? step + 1 : *steps;
+        int g = 0;
+        while (g < count && !(strlen(groups[g].prefix) == length && strncmp(groups[g].prefix, list->names[i], length) == 0))
+            ++g;
+        if (g == count && count < capacity) {
+            snprintf(groups[count].prefix, sizeof groups[count].prefix, "%.*s", (int)length, list->names[i]);
+            groups[count].rank = caption_of(list->names[i], length) ? 0 : 1;
+            groups[count++].first = i;
+        }
+    }
+    qsort(groups, (size_t)count, sizeof *groups, compare_groups);
+    return count;
+}
+
+/* The frames of one prefix as a JSON array indexed by step (null where missing). */
+static void write_frame_array(FILE *out, const name_list *list, const frame_group *group, int steps)
+{
+    fputs("[", out);
+    for (int step = 0; step < steps; ++step) {
+        char wanted[1024];
+        snprintf(wanted, sizeof wanted, "%s_%04d.png", group->prefix, step);
+        const char *found = bsearch(&(const char *){wanted}, list->names, (size_t)list->count, sizeof list->names[0],
+                                    compare_names) ? wanted : NULL;
+        fputs(step ? "," : "", out);
+        if (!found) {
+            fputs("null", out);
+            continue;
+        }
+        fprintf(out, "\"frames/%s\"", found);
+    }
+    fputs("]", out);
+}
+
+static const char SCRIPT[] =
+    "(function(){var slider=document.getElementById('frame-slider');"
+    "var label=document.getElementById('frame-label');var steps=FRAMES.steps;"
+    "function show(i){FRAMES.groups.forEach(function(g){var img=document.getElementById('frame-'+g.prefix);"
+    "var src=g.frames[i];if(src){img.src=src;img.style.visibility='visible';}else{img.style.visibility='hidden';}});"
+    "label.textContent='step '+(i+1)+' of '+steps;slider.value=i;}"
+    "slider.addEventListener('input',function(){show(parseInt(slider.value,10));});"
+    "document.addEventListener('keydown',function(e){var i=parseInt(slider.value,10);"
+    "if(e.key==='ArrowRight'&&i<steps-1)show(i+1);else if(e.key==='ArrowLeft'&&i>0)show(i-1);});"
+    "show(0);})();\n";
+
+/* A PNG's aspect ratio (width / height) from its IHDR chunk, times 1000; 1000 when unreadable. */
+static long png_aspect(const char *path)
+{
+    unsigned char header[24];
+    FILE *f = fopen(path, "rb");
+    size_t got = f ? fread(header, 1, sizeof header, f) : 0;
+    if (f)
+        fclose(f);
+    if (got != sizeof header || memcmp(header + 12, "IHDR", 4) != 0)
+        return 1000;
+    long width = (long)header[16] << 24 | (long)header[17] << 16 | (long)header[18] << 8 | header[19];
+    long height = (long)header[20] << 24 | (long)header[21] << 16 | (long)header[22] << 8 | header[23];
+    return height > 0 && width > 0 && width < (1L << 20) ? 1000 * width / height : 1000;
+}
+
+static int write_frames(FILE *out, const char *dir)
+{
+    static const char *const pngs[] = {".png", NULL};
+    char folder[PATH_SIZE];
+    snprintf(folder, sizeof folder, "%s/frames", dir);
+    name_list list;
+    int status = list_folder(folder, pngs, &list), steps;
+    frame_group groups[8];
+    int count = status == IM_OK ? frame_groups(&list, groups, 8, &steps) : 0;
+    if (count > 0) {
+        fputs("<h2>Frames</h2>\n<div class=\"slider\"><input type=\"range\" id=\"frame-slider\" min=\"0\" max=\"", out);
+        fprintf(out, "%d\" value=\"0\" step=\"1\" aria-label=\"step\"><span id=\"frame-label\">step 1 of %d</span></div>\n",
+                steps - 1, steps);
+        fputs("<div class=\"frames\">\n", out);
+        for (int g = 0; g < count; ++g) {
+            /* Each panel's share of the row is its image's aspect ratio, so all are drawn at one height. */
+            char path[PATH_SIZE + 64];
+            snprintf(path, sizeof path, "%s/%s", folder, list.names[groups[g].first]);
+            long aspect = png_aspect(path);
+            const char *caption = caption_of(groups[g].prefix, strlen(groups[g].prefix));
+            fprintf(out, "<figure style=\"flex:%ld 1 0\"><img id=\"frame-%s\" src=\"frames/%s\" alt=\"%s\"><figcaption>%s</figcaption></figure>\n",
+                    aspect, groups[g].prefix, list.names[groups[g].first], groups[g].prefix,
+                    caption ? caption : groups[g].prefix);
+        }
+        fprintf(out, "</div>\n<script>var FRAMES={steps:%d,groups:[", steps);
+        for (int g = 0; g < count; ++g) {
+            fprintf(out, "%s{prefix:\"%s\",frames:", g ? "," : "", groups[g].prefix);
+            write_frame_array(out, &list, &groups[g], steps);
+            fputs("}", out);
+        }
+        fprintf(out, "]};\n%s</script>\n", SCRIPT);
+    }
+    free_names(&list);
+    return status;
+}
+
+/* One CSV field from *p (double quotes allowed); advances past its comma. */
+static void write_csv_field(FILE *out, const char **p)
+{
+    const char *s = *p;
+    if (*s == '"') {
+        for (++s; *s && !(*s == '"' && s[1] != '"'); ++s) {
+            s += *s == '"'; /* "" is one quote */
+            escape(out, s, 1);
+        }
+        s += *s == '"';
+    } else {
+        size_t length = strcspn(s, ",\n\r");
+        escape(out, s, length);
+        s += length;
+    }
+    *p = *s == ',' ? s + 1 : s;
+}
+
+static void write_table(FILE *out, const char *dir, const char *name)
+{
+    char path[PATH_SIZE];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    char *text = read_text(path);
+    if (!text)
+        return;
+    fprintf(out, "<h3>%s</h3>\n<div class=\"scroll\"><table>\n", name);
+    const char *p = text;
+    int row = 0;
+    for (; *p && row <= MAX_TABLE_ROWS; ++row) {
+        if (*p == '#') { /* a comment line (a history's key) */
+            p += strcspn(p, "\n");
+            p += *p == '\n';
+            --row;
+            continue;
+        }
+        const char *cell = row == 0 ? "th" : "td";
+        fputs("<tr>", out);
+        while (*p && *p != '\n' && *p != '\r') {
+            fprintf(out, "<%s>", cell);
+            write_csv_field(out, &p);
+            fprintf(out, "</%s>", cell);
+        }
+        fputs("</tr>\n", out);
+        p += strspn(p, "\r\n");
+    }
+    fputs("</table></div>\n", out);
+    if (*p)
+        fprintf(out, "<p class=\"note\">The first %d rows; the rest are in <a href=\"%s\">%s</a>.</p>\n",
+                MAX_TABLE_ROWS, name, name);
+    free(text);
+}
+
+static void write_results(FILE *out, const char *dir)
+{
+    static const char *const tables[] = {"results.csv", "table1.csv", "history.csv"};
+    char path[PATH_SIZE];
+    int any = 0;
+    for (int k = 0; k < 3; ++k) {
+        snprintf(path, sizeof path, "%s/%s", dir, tables[k]);
+        FILE *f = fopen(path, "rb");
+        if (!f)
+            continue;
+        fclose(f);
+        if (!any++)
+            fputs("<h2>Results</h2>\n", out);
+        write_table(out, dir, tables[k]);
+    }
+}
+
+static void write_record(FILE *out, const char *dir)
+{
+    char path[PATH_SIZE];
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    char *text = read_text(path);
+    if (!text)
+        return;
+    fputs("<h2>Run record</h2>\n<p class=\"note\"><a href=\"run.json\">run.json</a></p>\n<pre>", out);
+    escape_all(out, text);
+    fputs("</pre>\n", out);
+    free(text);
+}
+
+int im_viewer_write(const char *dir, const char *title)
+{
+    char *page = NULL;
+    size_t size = 0;
+    FILE *out = open_memstream(&page, &size);
+    if (!out)
+        return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
+    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>", out);
+    escape_all(out, title);
+    fprintf(out, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>", STYLE);
+    escape_all(out, title);
+    fputs("</h1>\n<p class=\"note\">Written by indentmap " IM_VERSION
+          "; every file is beside this page in the run's folder.</p>\n", out);
+    long before = ftell(out);
+    int status = write_figures(out, dir);
+    if (status == IM_OK)
+        status = write_frames(out, dir);
+    if (status == IM_OK) {
+        write_results(out, dir);
+        write_record(out, dir);
+    }
+    if (ftell(out) == before)
+        fputs("<p>This folder holds no figures, frames, tables or run record yet.</p>\n", out);
+    fputs("</body>\n</html>\n", out);
+    if (fclose(out) != 0 || !page) {
+        free(page);
+        return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
+    }
+    char path[PATH_SIZE];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    if (status == IM_OK)
+        status = im_write_file_atomic(path, page, size);
+    free(page);
+    return status;
+}

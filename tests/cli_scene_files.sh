@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Scenes over surface files (issue 13, reliability finding 4): the theory is taken at the files' own
+# measured h'rms (not the default slope 0.08 or a `slopes` label), a list of files is the ensemble,
+# and `slopes`/`seeds` beside `file` are refused at their line.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+
+source "$(dirname "$0")/lib.sh"
+
+"$cli" surface --n 64 --slope 0.16 --seed 2 --out "$dir/a.npy" >/dev/null
+"$cli" surface --n 64 --slope 0.12 --seed 5 --out "$dir/b.npy" >/dev/null
+"$cli" surface --n 32 --slope 0.12 --seed 5 --out "$dir/small.npy" >/dev/null
+fd_slope() { "$cli" surface --stats "$1" --detrend none --window none | awk '/^h.rms fd/ { print $3 }'; }
+
+scene() { # scene NAME FILE-LINE [EXTRA-LINE]
+  printf '[scene]\nname = %s\noutput = %s\n[surfaces]\n%s\n%s\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
+    "$1" "$1" "$2" "${3:-}" >"$dir/$1.ini"
+}
+
+# One file: the table's slope is the file's h'rms by forward differences, and its eq. (12) column is
+# `indentmap theory` at that h'rms.
+scene one "file = a.npy"
+"$cli" run --quiet "$dir/one.ini" >/dev/null 2>"$dir/one.err"
+check "one file: runs" test $? -eq 0
+slope=$(fd_slope "$dir/a.npy")
+row=$(sed -n 2p "$dir/one/table1.csv")
+check "one file: slope column is the file's fd h'rms ($slope)" test "$(cut -d, -f1 <<<"$row")" = "$slope"
+theory=$("$cli" theory --alpha 80 --slope "$slope" --format csv | awk -F, 'NR == 2 { print $4 }')
+check "one file: eq. (12) column is indentmap theory at it ($theory)" \
+  awk -v a="$(cut -d, -f9 <<<"$row")" -v b="$theory" 'BEGIN { exit !(a - b < 1e-6 && b - a < 1e-6) }'
+check "one file: the definition is stated" grep -q "measured by forward differences" "$dir/one/table1.md"
+check "one file: run.json records it" grep -q '"slope_definition": "forward differences' "$dir/one/run.json"
+check "one file: run.json records the length unit" grep -q '"length_unit": "delta"' "$dir/one/run.json"
+
+# Two files are an ensemble of two: slope the rms of theirs, one member each with its own h'rms.
+scene two "file = a.npy, b.npy"
+"$cli" run --quiet "$dir/two.ini" >/dev/null 2>"$dir/two.err"
+check "two files: runs" test $? -eq 0
+sb=$(fd_slope "$dir/b.npy")
+rms=$(awk -v a="$slope" -v b="$sb" 'BEGIN { printf "%.6g", sqrt((a * a + b * b) / 2) }')
+check "two files: 2 surfaces, slope the rms ($rms)" grep -q "^$rms,2," "$dir/two/table1.csv"
+check "two files: members keep their own h'rms" \
+  bash -c "cat '$dir'/two/table/member_00_*.csv | grep -v '^family' | cut -d, -f2 | sort -u | wc -l | grep -qx 2"
+check "two files: sd over different surfaces is not 0" \
+  awk -F, 'NR == 2 { exit !($8 > 0) }' "$dir/two/table1.csv"
+
+scene slopes "file = a.npy" "slopes = 0.16"
+check "slopes beside file refused at its line" expect_exit 2 "slopes.ini:6: slopes beside \`file\` (line 5)" \
+  "$cli" run --quiet "$dir/slopes.ini"
+scene seeds "file = a.npy" "seeds = 1:3"
+check "seeds beside file refused at its line" expect_exit 2 "seeds.ini:6: seeds beside \`file\` (line 5)" \
+  "$cli" run --quiet "$dir/seeds.ini"
+scene mixed "file = a.npy, small.npy"
+check "files of different grids refused" expect_exit 2 "small.npy is 32 x 32 with delta 1  but $dir/a.npy is 64 x 64" \
+  "$cli" run --quiet "$dir/mixed.ini"
+
+finish

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Command-line tests of the 3-D view and the viewer page: `render view3d` (outputs, metadata,
+# errors), `indent` and `run` writing index.html, and a scene's frames3d. Exits 77 (skipped) only
+# when no OpenGL 3.3 core context can be created at all (and IM_REQUIRE_GL is not 1).
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+export OMP_WAIT_POLICY=passive
+
+renderer=$("$cli" info | grep '^render backend')
+case $renderer in
+  "render backend: unavailable (no OpenGL 3.3 core context"*)
+    if [ "${IM_REQUIRE_GL:-}" = 1 ]; then
+      echo "FAIL: IM_REQUIRE_GL=1 and $renderer" >&2
+      exit 1
+    fi
+    echo "SKIPPED: $renderer" >&2
+    exit 77 ;;
+  "render backend: egl"* | "render backend: osmesa"*) ;;
+  *)
+    echo "FAIL: the renderer does not work: $renderer" >&2
+    exit 1 ;;
+esac
+
+source "$(dirname "$0")/lib.sh"
+
+# indent writes its page beside history.csv and run.json, with the history as a table.
+"$cli" indent --smooth --n 64 --alpha 70 --load 50,100 --fields --out "$dir/ind" >"$dir/indent.log" 2>&1
+check "indent runs" test $? -eq 0
+check "indent writes index.html" test -s "$dir/ind/index.html"
+check "the page shows the history" grep -q "<h3>history.csv</h3>" "$dir/ind/index.html"
+check "the page shows the run record" grep -q "Run record" "$dir/ind/index.html"
+
+# render view3d: a figure with the exaggeration stated, a raw image of the asked size.
+"$cli" surface --n 64 --slope 0.1 --seed 2 --out "$dir/s.npy" >/dev/null
+"$cli" indent "$dir/s.npy" --alpha 70 --load 100 --fields --out "$dir/rough" >/dev/null 2>&1
+v3=("$cli" render view3d "$dir/s.npy" --displacement "$dir/rough/displacement_0001.npy"
+    --force "$dir/rough/force_0001.npy" --alpha 70)
+check "view3d figure" "${v3[@]}" --exaggeration 4 --width 400 --height 300 --out "$dir/v.png"
+check "exaggeration in the metadata" grep -qa "vertical exaggeration" "$dir/v.png"
+check "view3d raw" "${v3[@]}" --width 320 --height 200 --raw --punch-mode cutaway --ortho --out "$dir/raw.png"
+check "raw image is 320 x 200" bash -c "head -c 24 '$dir/raw.png' | od -An -tx1 | tr -d ' \n' | grep -q '00000140000000c8\$'"
+check "view3d as PDF" "${v3[@]}" --width 320 --height 200 --out "$dir/v.pdf"
+"$cli" surface --n 32 --out "$dir/small.npy" >/dev/null
+check "force on another grid refused" expect_exit 2 "expected the grid of the heights" \
+  "$cli" render view3d "$dir/s.npy" --force "$dir/small.npy" --out "$dir/x.png"
+check "elevation out of range refused" expect_exit 2 "--elevation" \
+  "$cli" render view3d "$dir/s.npy" --elevation 0 --out "$dir/x.png"
+check "sphere needs a radius" expect_exit 2 "--radius" \
+  "$cli" render view3d "$dir/s.npy" --punch sphere --out "$dir/x.png"
+check "nothing left by refusals" test ! -e "$dir/x.png"
+
+# A scene with frames3d: 3-D frames, their GIF, and the page with the three frame panels.
+cat >"$dir/scene.ini" <<INI
+[scene]
+name = view
+output = $dir/scene
+[surfaces]
+n = 64
+slopes = 0.08
+seeds = 3
+[punch]
+alpha = 70
+[loading]
+load_star = 400
+[output]
+frames = yes
+frames3d = yes
+frame_count = 3
+animation = gif
+INI
+"$cli" run "$dir/scene.ini" >"$dir/run.log" 2>&1
+check "scene runs" test $? -eq 0
+for f in frames/view3d_0000.png frames/view3d_0002.png view3d.gif contact.gif index.html; do
+  check "wrote $f" test -s "$dir/scene/$f"
+done
+check "page has the 3-D frames" grep -q 'id="frame-view3d"' "$dir/scene/index.html"
+check "page has the contact frames" grep -q 'id="frame-contact"' "$dir/scene/index.html"
+check "frame title states the scale" grep -qa "N\* = 400" "$dir/scene/frames/view3d_0002.png"
+# One colour scale for all frames: every 3-D frame's Norm text is the same, and is the first
+# frame's (where the forces are smallest, so a per-frame norm would differ).
+norms=$(for f in "$dir"/scene/frames/view3d_000[0-2].png; do grep -ao 'viridis linear \[[^]]*\]' "$f"; done | sort -u | wc -l)
+check "one norm across the 3-D frames" test "$norms" -eq 1
+# The real page in headless Chromium (when installed): no console message, the script ran.
+if command -v chromium >/dev/null; then
+  chromium --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking \
+    --disable-component-update --disable-sync --user-data-dir="$dir/profile" --enable-logging=stderr --v=0 \
+    --dump-dom "file://$dir/scene/index.html" >"$dir/dom.html" 2>"$dir/console.log"
+  check "scene page: no console message" bash -c "! grep -q ':CONSOLE' '$dir/console.log'"
+  check "scene page: the slider script ran" grep -q "step 1 of 3" "$dir/dom.html"
+fi
+sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
+check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+finish

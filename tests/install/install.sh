@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs the build into a scratch prefix, then builds and runs tests/install/consumer.c against
+# it twice, with pkg-config and with find_package(indentmap), and pip-installs the Python package
+# over it. Fails when a header, the library, the .pc file, the CMake package or the Python build is
+# missing or wrong.
+#   install.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1 source=$2
+prefix=$(mktemp -d)
+trap 'rm -rf "$prefix"' EXIT
+cmake --install "$build" --prefix "$prefix" >/dev/null
+lib=$(find "$prefix" -name 'libindentmap.so' -printf '%h\n' | head -1)
+[ -n "$lib" ] || { echo "install: no libindentmap.so under $prefix" >&2; exit 1; }
+soname=$(objdump -p "$lib/libindentmap.so" | awk '/SONAME/ {print $2}')
+case "$soname" in libindentmap.so.[0-9]*) ;; *) echo "install: SONAME '$soname'" >&2; exit 1 ;; esac
+[ -f "$lib/libindentmap.a" ] || { echo "install: no static library" >&2; exit 1; }
+
+export PKG_CONFIG_PATH="$lib/pkgconfig"
+# shellcheck disable=SC2046
+cc -std=c11 -Wall -Wextra -Werror -o "$prefix/consumer_pc" "$source/consumer.c" \
+   $(pkg-config --cflags --libs indentmap) -lm -Wl,-rpath,"$lib"
+"$prefix/consumer_pc"
+
+cmake -S "$source" -B "$prefix/consumer_build" -DCMAKE_PREFIX_PATH="$prefix" \
+      -DCMAKE_BUILD_RPATH="$lib" >/dev/null
+cmake --build "$prefix/consumer_build" >/dev/null
+"$prefix/consumer_build/consumer"
+# The program must have been linked with the shared library, not with a copy of it.
+# (ldd's output is read whole first: `grep -q` would stop reading early, and under pipefail the
+# SIGPIPE that ldd then gets fails the pipeline now and then.)
+libraries=$(ldd "$prefix/consumer_build/consumer")
+grep -q "$soname" <<<"$libraries" || { echo "install: the consumer is not linked with $soname" >&2; exit 1; }
+
+# The Python package, pip-installed on top of the installed library (from a copy of python/, so the
+# build leaves nothing in the source tree), must import and solve.
+cp -r "$source/../../python" "$prefix/python_source"
+PKG_CONFIG_PATH="$lib/pkgconfig" /usr/bin/python3 -m pip install --quiet --no-build-isolation --no-deps \
+  --no-index --target "$prefix/site" "$prefix/python_source" 2>&1 | grep -v "Running pip as the 'root' user" || true
+PYTHONPATH="$prefix/site" /usr/bin/python3 -c '
+import sys, indentmap as im
+assert im._core.__file__.startswith(sys.argv[1]), im._core.__file__
+history = im.indent(im.generate(32, slope=0.05, lambda_s=2), approaches=[1.0])
+assert history["contact_patches"][0] > 0
+print("install: pip-installed Python package", im.__version__, "solved", history["contact_patches"][0], "patches")
+' "$prefix/site"
+echo "install: pkg-config, find_package and pip consumers ran against $soname"

@@ -1,0 +1,176 @@
+/* Hardness: perfect plasticity at a pressure cap H_p in the constrained solver, against closed
+ * forms (a flat punch pressed past full yield carries H_p pi a^2; the fully plastic limit A = N / H_p
+ * of a blunt cone; the cone's apex singularity capped), the adapted complementarity conditions,
+ * load against displacement control, and the refusal of a bad cap. */
+#include "support.h"
+
+#include "indentmap/indenter.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+enum { N = 64 };
+
+static im_indentation *prepare(const im_indenter *punch, enum im_control control, double largest, double hardness)
+{
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(N, N, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-10;
+    o.hardness = hardness;
+    o.max_iterations = 3000;
+    im_indentation *run = NULL;
+    if (im_indentation_create(surface, punch, control, largest, &o, &run) != IM_OK)
+        fail_msg("im_indentation_create: %s", im_last_error());
+    im_field_free(surface);
+    return run;
+}
+
+static im_step_result step(im_indentation *run, double target)
+{
+    im_step_result r;
+    if (im_indentation_step(run, target, &r) != IM_OK)
+        fail_msg("step %g: %s", target, im_last_error());
+    return r;
+}
+
+/* Every patch: p = 0 with g >= 0, 0 < p < H with g = 0, or p = H with g <= 0 (to tol w), and p <= H.
+ * Returns how many patches are at the cap. */
+static long assert_plastic_complementarity(const im_indentation *run, double hardness, double w)
+{
+    im_field *force = NULL, *gap = NULL;
+    assert_int_equal(im_indentation_fields(run, &force, &gap, NULL), IM_OK);
+    const double slack = 1e-8 * w;
+    long capped = 0;
+    for (int i = 0; i < N * N; ++i) {
+        double p = force->data[i], g = gap->data[i]; /* delta = 1: force = pressure */
+        int ok = p == 0.0 ? g >= -slack : (p < hardness ? fabs(g) <= slack : p == hardness && g <= slack);
+        if (!ok)
+            fail_msg("patch %d: p = %.17g (H = %g), g = %.3g", i, p, hardness, g);
+        capped += p == hardness;
+    }
+    im_field_free(force);
+    im_field_free(gap);
+    return capped;
+}
+
+/* Past w = 2 H a / E* (the centre's displacement under a uniform H on the disc) every patch under
+ * a flat punch has yielded: N = H n_p delta^2 exactly, the closed form H pi a^2 on the grid. */
+static void flat_punch_past_full_yield(void **state)
+{
+    (void)state;
+    const double a = 10.0, hardness = 0.05, w = 3.0 * hardness * a;
+    im_indenter punch = im_indenter_flat(a);
+    im_indentation *run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, hardness);
+    im_step_result r = step(run, w);
+    long capped = assert_plastic_complementarity(run, hardness, w);
+    assert_int_equal(capped, r.contact_patches);
+    assert_true(test_relative_difference(r.load, hardness * r.contact_patches) < 1e-12);
+    assert_true(r.max_pressure == hardness);
+    assert_true(fabs(r.contact_patches - M_PI * a * a) < 2.0 * M_PI * a); /* the disc, to its rim's patches */
+    /* the elastic solution would carry 2 a E* w, twice as much */
+    assert_true(r.load < 0.6 * im_indenter_load(&punch, 1.0, w));
+    im_indentation_free(run);
+}
+
+/* A flat punch whose elastic edge pressure exceeds H but whose centre does not: a yielded ring at the
+ * rim, elastic inside, the complementarity of both, and less load than the elastic solution. */
+static void flat_punch_yields_at_its_rim(void **state)
+{
+    (void)state;
+    const double a = 10.0, hardness = 0.05, w = 0.5 * hardness * a;
+    im_indenter punch = im_indenter_flat(a);
+    im_indentation *run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, hardness);
+    im_step_result r = step(run, w);
+    long capped = assert_plastic_complementarity(run, hardness, w);
+    assert_true(capped > 0 && capped < r.contact_patches);
+    im_field *force = NULL;
+    assert_int_equal(im_indentation_fields(run, &force, NULL, NULL), IM_OK);
+    assert_true(force->data[(N / 2) * N + N / 2] < hardness);
+    assert_true(r.load < im_indenter_load(&punch, 1.0, w) && r.load > 0.5 * im_indenter_load(&punch, 1.0, w));
+    im_field_free(force);
+    im_indentation_free(run);
+}
+
+/* The cone's apex singularity is capped: the apex patch carries H exactly and nothing more does. */
+static void cone_apex_is_capped(void **state)
+{
+    (void)state;
+    const double w = 3.0, p_mean = 0.5 / tan(80.0 * M_PI / 180.0), hardness = 1.5 * p_mean;
+    im_indenter punch = im_indenter_cone(80.0);
+    im_indentation *run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, hardness);
+    im_step_result r = step(run, w);
+    long capped = assert_plastic_complementarity(run, hardness, w);
+    assert_true(capped >= 1);
+    assert_true(r.max_pressure == hardness);
+    im_field *force = NULL;
+    assert_int_equal(im_indentation_fields(run, &force, NULL, NULL), IM_OK);
+    assert_true(force->data[(N / 2) * N + N / 2] == hardness);
+    im_field_free(force);
+    im_indentation_free(run);
+    /* without the cap, the apex carries more */
+    im_indentation *free_run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, 0.0);
+    assert_true(step(free_run, w).max_pressure > 1.2 * hardness);
+    im_indentation_free(free_run);
+}
+
+/* The fully plastic limit: with H far below the cone's mean pressure, A = N / H (within the elastic
+ * rim's share, a few percent). */
+static void cone_fully_plastic_limit(void **state)
+{
+    (void)state;
+    const double w = 3.0, p_mean = 0.5 / tan(80.0 * M_PI / 180.0), hardness = 0.02 * p_mean;
+    im_indenter punch = im_indenter_cone(80.0);
+    im_indentation *run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, hardness);
+    im_step_result r = step(run, w);
+    assert_plastic_complementarity(run, hardness, w);
+    double area = (double)r.contact_patches, plastic_area = r.load / hardness;
+    if (test_relative_difference(area, plastic_area) > 0.05)
+        fail_msg("A = %g patches, N / H = %g", area, plastic_area);
+    im_indentation_free(run);
+}
+
+/* Load control with a cap finds the displacement-controlled state at its load. */
+static void load_control_matches_displacement(void **state)
+{
+    (void)state;
+    const double a = 10.0, hardness = 0.05, w = 0.5 * hardness * a;
+    im_indenter punch = im_indenter_flat(a);
+    im_indentation *run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, hardness);
+    im_step_result by_w = step(run, w);
+    im_indentation_free(run);
+    run = prepare(&punch, IM_CONTROL_LOAD, by_w.load, hardness);
+    im_step_result by_n = step(run, by_w.load);
+    assert_plastic_complementarity(run, hardness, by_n.approach);
+    if (test_relative_difference(by_n.approach, w) > 1e-6)
+        fail_msg("load control: w = %.12g, displacement control %.12g", by_n.approach, w);
+    assert_int_equal(by_n.contact_patches, by_w.contact_patches);
+    im_indentation_free(run);
+}
+
+static void bad_hardness_is_refused(void **state)
+{
+    (void)state;
+    im_solver_options o = im_solver_options_default();
+    o.hardness = -1.0;
+    assert_int_equal(im_solver_options_check(&o), IM_EINVAL);
+    o.hardness = NAN;
+    assert_int_equal(im_solver_options_check(&o), IM_EINVAL);
+    o.hardness = 0.0; /* none */
+    assert_int_equal(im_solver_options_check(&o), IM_OK);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(flat_punch_past_full_yield),
+        cmocka_unit_test(flat_punch_yields_at_its_rim),
+        cmocka_unit_test(cone_apex_is_capped),
+        cmocka_unit_test(cone_fully_plastic_limit),
+        cmocka_unit_test(load_control_matches_displacement),
+        cmocka_unit_test(bad_hardness_is_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

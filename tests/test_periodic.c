@@ -1,0 +1,149 @@
+/* The periodic half-space (nominally flat contact) against Johnson's closed forms for the wavy
+ * surface h = Delta cos(2 pi x / lambda) (Contact Mechanics, 13.2: full contact above
+ * p* = pi E* Delta / lambda, partial contact of half-width a with sin^2(pi a / lambda) = p_m / p*),
+ * its kernel against Love's, and its refusals. */
+#include "support.h"
+
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* One wavelength along x on NX patches, uniform along y: a 1-D wavy surface. */
+enum { NX = 256, NY = 4 };
+static const double AMPLITUDE = 1.0;
+
+static im_field *wavy_surface(void)
+{
+    im_field *s = NULL;
+    assert_int_equal(im_field_create(NX, NY, 1.0, &s), IM_OK);
+    for (int iy = 0; iy < NY; ++iy)
+        for (int ix = 0; ix < NX; ++ix)
+            s->data[iy * NX + ix] = AMPLITUDE * cos(2.0 * M_PI * ix / NX);
+    return s;
+}
+
+static double full_contact_pressure(void) { return M_PI * AMPLITUDE / NX; } /* p*, E* = 1 */
+
+static im_flat_contact *prepare(const im_field *s)
+{
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-10;
+    im_flat_contact *run = NULL;
+    if (im_flat_contact_create(s, &o, &run) != IM_OK)
+        fail_msg("im_flat_contact_create: %s", im_last_error());
+    return run;
+}
+
+static im_flat_result solve(im_flat_contact *run, double mean_pressure)
+{
+    im_flat_result r;
+    if (im_flat_contact_solve(run, mean_pressure, &r) != IM_OK)
+        fail_msg("p_m = %g: %s", mean_pressure, im_last_error());
+    return r;
+}
+
+/* Above p*, full contact with p(x) = p_m + p* cos(2 pi x / lambda) exactly: the sinusoid is one
+ * Fourier mode, on which the spectral kernel 2 / (E* |q|) is exact. */
+static void full_contact_is_johnsons(void **state)
+{
+    (void)state;
+    im_field *s = wavy_surface();
+    im_flat_contact *run = prepare(s);
+    const double p_star = full_contact_pressure(), p_m = 1.5 * p_star;
+    im_flat_result r = solve(run, p_m);
+    assert_int_equal(r.contact_patches, NX * NY);
+    assert_true(r.area_fraction == 1.0);
+    const double *p = im_flat_contact_pressure(run);
+    for (int i = 0; i < NX * NY; ++i) {
+        double expected = p_m + p_star * cos(2.0 * M_PI * (i % NX) / NX);
+        if (fabs(p[i] - expected) > 1e-7 * p_star)
+            fail_msg("patch %d: p = %.12g, Johnson %.12g", i, p[i], expected);
+    }
+    im_flat_contact_free(run);
+    im_field_free(s);
+}
+
+/* Below p*, the contact fraction 2a / lambda = (2 / pi) asin(sqrt(p_m / p*)) to a patch at each
+ * edge, and the pressure at the crest Johnson's 2 p_m / sin(pi a / lambda) within 1%. */
+static void partial_contact_is_johnsons(void **state)
+{
+    (void)state;
+    im_field *s = wavy_surface();
+    im_flat_contact *run = prepare(s);
+    const double p_star = full_contact_pressure(), loads[] = {0.05, 0.2, 0.5, 0.8};
+    for (int k = 0; k < 4; ++k) {
+        im_flat_result r = solve(run, loads[k] * p_star);
+        double psi = asin(sqrt(loads[k])), fraction = 2.0 * psi / M_PI;
+        if (fabs(r.area_fraction - fraction) > 2.0 / NX)
+            fail_msg("p_m / p* = %g: A/A0 = %.6f, Johnson %.6f", loads[k], r.area_fraction, fraction);
+        double crest = im_flat_contact_pressure(run)[0], johnson = 2.0 * loads[k] * p_star / sin(psi);
+        if (test_relative_difference(crest, johnson) > 0.01)
+            fail_msg("p_m / p* = %g: crest pressure %.6g, Johnson %.6g", loads[k], crest, johnson);
+        assert_true(r.residual <= 1e-10);
+    }
+    im_flat_contact_free(run);
+    im_field_free(s);
+}
+
+/* The periodic kernel's value at the origin tends to Love's 4 delta asinh(1) / (pi E*) (the
+ * Brillouin zone's mean of 2 / (E* |q|)); a unit load's response has zero mean. */
+static void kernel_tends_to_loves(void **state)
+{
+    (void)state;
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.e_star = 2.0;
+    const int n = 256;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(n, n, 1.0, &o, &plan), IM_OK);
+    double *p = calloc((size_t)n * n, sizeof *p), *u = calloc((size_t)n * n, sizeof *u);
+    assert_non_null(p);
+    assert_non_null(u);
+    p[0] = 1.0;
+    im_solver_convolve(plan, p, u);
+    double love = 4.0 * asinh(1.0) / (M_PI * 2.0), mean = 0.0;
+    for (int i = 0; i < n * n; ++i)
+        mean += u[i] / ((double)n * n);
+    if (test_relative_difference(u[0] - mean, love) > 0.01)
+        fail_msg("K(0) = %.6g, Love %.6g", u[0], love);
+    assert_true(fabs(mean) < 1e-12);
+    /* periodic: the response to a load at the corner is the same at both neighbours across the edge */
+    assert_true(test_relative_difference(u[1], u[n - 1]) < 1e-12);
+    free(p);
+    free(u);
+    im_solver_plan_free(plan);
+}
+
+static void refusals(void **state)
+{
+    (void)state;
+    im_field *s = wavy_surface();
+    im_flat_contact *run = prepare(s);
+    im_flat_result r;
+    assert_int_equal(im_flat_contact_solve(run, -1.0, &r), IM_EINVAL);
+    im_flat_contact_free(run);
+    s->data[5] = NAN;
+    assert_int_equal(im_flat_contact_create(s, NULL, &run), IM_ENUMERIC);
+    assert_null(run);
+    im_field_free(s);
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(8, 8, 1.0, &o, &plan), IM_OK);
+    double gap[64] = {0}, p[64] = {0}, u[64];
+    assert_int_equal(im_solver_solve(plan, gap, IM_CONTROL_DISPLACEMENT, 1.0, p, u, NULL), IM_EINVAL);
+    im_solver_plan_free(plan);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(full_contact_is_johnsons),
+        cmocka_unit_test(partial_contact_is_johnsons),
+        cmocka_unit_test(kernel_tends_to_loves),
+        cmocka_unit_test(refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,279 @@
+/* The viewer page (viewer.h): its structure, then the page itself in headless Chromium: it loads
+ * without console messages, the slider changes the frames, and a screenshot shows the three frame
+ * panels side by side. The Chromium tests are skipped (exit 77 when nothing else failed) when no
+ * chromium is installed, unless IM_REQUIRE_CHROMIUM=1. */
+#include "support.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "indentmap/viewer.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static int skipped;
+
+/* Frame colours: one per prefix, so that a screenshot tells the panels apart. */
+static const uint8_t CONTACT[3] = {220, 30, 30}, HEIGHT[3] = {30, 160, 30}, VIEW[3] = {30, 30, 220};
+
+static void solid_png(const char *path, int width, int height, const uint8_t rgb[3])
+{
+    uint8_t *pixels = malloc((size_t)width * height * 3);
+    for (int i = 0; i < width * height; ++i)
+        memcpy(pixels + 3 * i, rgb, 3);
+    assert_int_equal(im_png_write(path, pixels, width, height, 3, (size_t)width * 3, NULL), IM_OK);
+    free(pixels);
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        fail_msg("cannot read %s", path);
+    char *text = calloc(1, 1 << 22);
+    size_t length = fread(text, 1, (1 << 22) - 1, f);
+    text[length] = '\0';
+    fclose(f);
+    return text;
+}
+
+/* A run folder: a figure, 4 steps of contact and height frames, 3 of view3d, a results table
+ * with markup and a quoted field, a run record with a script tag. */
+static const char *make_run(void)
+{
+    static char dir[600];
+    char path[700];
+    snprintf(dir, sizeof dir, "%s/run", test_temp_dir());
+    snprintf(path, sizeof path, "%s/frames", dir);
+    assert_int_equal(im_make_directories(path), IM_OK);
+    snprintf(path, sizeof path, "%s/figure.png", dir);
+    solid_png(path, 40, 20, (const uint8_t[3]){128, 128, 128});
+    for (int step = 0; step < 4; ++step) {
+        snprintf(path, sizeof path, "%s/frames/contact_%04d.png", dir, step);
+        solid_png(path, 100, 100, CONTACT);
+        snprintf(path, sizeof path, "%s/frames/height_%04d.png", dir, step);
+        solid_png(path, 100, 100, HEIGHT);
+        snprintf(path, sizeof path, "%s/frames/view3d_%04d.png", dir, step);
+        if (step < 3)
+            solid_png(path, 192, 108, VIEW);
+    }
+    const char results[] = "family,slope,note\n0,0.08,\"a, <b>bold</b> \"\"claim\"\"\"\n1,0.16,plain\n";
+    snprintf(path, sizeof path, "%s/results.csv", dir);
+    test_write_bytes(path, results, strlen(results));
+    const char record[] = "{\"scene\": \"</pre><script>alert(1)</script>\"}\n";
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    test_write_bytes(path, record, strlen(record));
+    assert_int_equal(im_viewer_write(dir, "run <1>"), IM_OK);
+    return dir;
+}
+
+static void test_page_structure(void **state)
+{
+    (void)state;
+    const char *dir = make_run();
+    char path[700];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    char *page = slurp(path);
+    assert_non_null(strstr(page, "<title>run &lt;1&gt;</title>"));
+    assert_non_null(strstr(page, "<img src=\"figure.png\""));
+    /* frames: three panels in the known order, view3d missing its last step */
+    char *contact = strstr(page, "id=\"frame-contact\""), *height = strstr(page, "id=\"frame-height\""),
+         *view = strstr(page, "id=\"frame-view3d\"");
+    assert_true(contact && height && view && contact < height && height < view);
+    assert_non_null(strstr(page, "max=\"3\""));
+    assert_non_null(strstr(page, "\"frames/view3d_0002.png\",null]"));
+    /* tables and record escaped, the quoted field whole */
+    assert_non_null(strstr(page, "<td>a, &lt;b&gt;bold&lt;/b&gt; &quot;claim&quot;</td>"));
+    assert_non_null(strstr(page, "&lt;/pre&gt;&lt;script&gt;alert(1)&lt;/script&gt;"));
+    assert_null(strstr(page, "<script>alert"));
+    /* nothing from the network */
+    assert_null(strstr(page, "http:"));
+    assert_null(strstr(page, "https:"));
+    assert_null(strstr(page, "src=\"//"));
+    free(page);
+}
+
+static void test_empty_folder_and_unwritable(void **state)
+{
+    (void)state;
+    char dir[600], path[700];
+    snprintf(dir, sizeof dir, "%s/empty", test_temp_dir());
+    assert_int_equal(im_make_directories(dir), IM_OK);
+    assert_int_equal(im_viewer_write(dir, "empty"), IM_OK);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    char *page = slurp(path);
+    assert_non_null(strstr(page, "holds no figures, frames, tables or run record yet"));
+    free(page);
+    snprintf(dir, sizeof dir, "%s/missing/folder", test_temp_dir());
+    assert_int_equal(im_viewer_write(dir, "nowhere"), IM_EIO);
+}
+
+/* ---- in Chromium ---- */
+
+static const char *chromium(void)
+{
+    static const char *const candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
+    for (int i = 0; i < 2; ++i)
+        if (access(candidates[i], X_OK) == 0)
+            return candidates[i];
+    return NULL;
+}
+
+#define REQUIRE_CHROMIUM()                                                                        \
+    do {                                                                                          \
+        if (!chromium()) {                                                                        \
+            const char *required = getenv("IM_REQUIRE_CHROMIUM");                                 \
+            if (required && strcmp(required, "1") == 0)                                           \
+                fail_msg("no chromium (IM_REQUIRE_CHROMIUM=1)");                                  \
+            skipped = 1;                                                                          \
+            skip();                                                                               \
+        }                                                                                         \
+    } while (0)
+
+/* Runs headless Chromium on a file with the arguments `what` (e.g. --dump-dom), stdout to out and
+ * stderr (with the console's messages) to log. */
+static void run_chromium(const char *what, const char *page, const char *out, const char *log)
+{
+    static int profile;
+    char command[4096];
+    snprintf(command, sizeof command,
+             "timeout 120 %s --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking "
+             "--disable-component-update --disable-sync --user-data-dir=%s/profile-%d --enable-logging=stderr "
+             "--v=0 --allow-file-access-from-files --window-size=1200,900 %s 'file://%s' >'%s' 2>'%s'",
+             chromium(), test_temp_dir(), profile++, what, page, out, log);
+    if (system(command) != 0)
+        fail_msg("chromium failed: %s (see %s)", command, log);
+}
+
+static int has_console_message(const char *log)
+{
+    char *text = slurp(log);
+    int found = strstr(text, ":CONSOLE") != NULL;
+    free(text);
+    return found;
+}
+
+static void test_page_loads_without_console_messages(void **state)
+{
+    (void)state;
+    REQUIRE_CHROMIUM();
+    const char *dir = make_run();
+    char page[700], out[700], log[700];
+    snprintf(page, sizeof page, "%s/index.html", dir);
+    snprintf(out, sizeof out, "%s/dom.html", test_temp_dir());
+    snprintf(log, sizeof log, "%s/console.log", test_temp_dir());
+    /* The check can fail: a page with a script error and a missing image shows up in the log. */
+    char bad[700];
+    snprintf(bad, sizeof bad, "%s/bad.html", dir);
+    const char bad_page[] = "<!DOCTYPE html><img src=\"missing.png\"><script>no_such_function();</script>\n";
+    test_write_bytes(bad, bad_page, strlen(bad_page));
+    run_chromium("--dump-dom", bad, out, log);
+    assert_true(has_console_message(log));
+    run_chromium("--dump-dom", page, out, log);
+    if (has_console_message(log)) {
+        char *text = slurp(log);
+        fail_msg("console messages from %s:\n%s", page, text);
+    }
+    char *dom = slurp(out);
+    assert_non_null(strstr(dom, "step 1 of 4")); /* the script ran */
+    free(dom);
+}
+
+/* A page that loads the viewer in a frame, moves its slider and records what the frames show. */
+static void test_slider_changes_the_frame(void **state)
+{
+    (void)state;
+    REQUIRE_CHROMIUM();
+    make_run();
+    char harness[700], out[700], log[700];
+    snprintf(harness, sizeof harness, "%s/harness.html", test_temp_dir());
+    snprintf(out, sizeof out, "%s/harness_dom.html", test_temp_dir());
+    snprintf(log, sizeof log, "%s/harness.log", test_temp_dir());
+    const char text[] =
+        "<!DOCTYPE html><body><iframe id=\"f\" src=\"run/index.html\"></iframe><script>\n"
+        "var f=document.getElementById('f');f.onload=function(){var d=f.contentDocument;\n"
+        "var s=d.getElementById('frame-slider');var r=[];\n"
+        "function look(){r.push(d.getElementById('frame-contact').getAttribute('src')+' '+\n"
+        " d.getElementById('frame-view3d').getAttribute('src')+' '+d.getElementById('frame-view3d').style.visibility+' '+\n"
+        " d.getElementById('frame-label').textContent);}\n"
+        "look();[2,3].forEach(function(i){s.value=i;s.dispatchEvent(new Event('input'));look();});\n"
+        "var p=document.createElement('pre');p.id='result';p.textContent=r.join('|');document.body.appendChild(p);};\n"
+        "</script></body>\n";
+    test_write_bytes(harness, text, strlen(text));
+    run_chromium("--dump-dom --virtual-time-budget=5000", harness, out, log);
+    char *dom = slurp(out);
+    const char *expected = "frames/contact_0000.png frames/view3d_0000.png visible step 1 of 4|"
+                           "frames/contact_0002.png frames/view3d_0002.png visible step 3 of 4|"
+                           "frames/contact_0003.png frames/view3d_0002.png hidden step 4 of 4";
+    if (!strstr(dom, expected))
+        fail_msg("the slider did not change the frames as expected:\n%s", dom);
+    free(dom);
+}
+
+/* The bounding box of the screenshot's pixels within 12 levels of rgb. */
+static int find_colour(const uint8_t *pixels, int width, int height, int channels, const uint8_t rgb[3], int box[4])
+{
+    int count = 0;
+    box[0] = box[1] = 1 << 30;
+    box[2] = box[3] = -1;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const uint8_t *p = pixels + ((size_t)y * width + x) * channels;
+            if (abs(p[0] - rgb[0]) > 12 || abs(p[1] - rgb[1]) > 12 || abs(p[2] - rgb[2]) > 12)
+                continue;
+            ++count;
+            box[0] = x < box[0] ? x : box[0];
+            box[1] = y < box[1] ? y : box[1];
+            box[2] = x > box[2] ? x : box[2];
+            box[3] = y > box[3] ? y : box[3];
+        }
+    return count;
+}
+
+static void test_screenshot_shows_the_panels(void **state)
+{
+    (void)state;
+    REQUIRE_CHROMIUM();
+    const char *dir = make_run();
+    char page[700], shot[700], argument[800], out[700], log[700];
+    snprintf(page, sizeof page, "%s/index.html", dir);
+    snprintf(shot, sizeof shot, "%s/shot.png", test_temp_dir());
+    snprintf(argument, sizeof argument, "--screenshot='%s'", shot);
+    snprintf(out, sizeof out, "%s/shot.out", test_temp_dir());
+    snprintf(log, sizeof log, "%s/shot.log", test_temp_dir());
+    run_chromium(argument, page, out, log);
+    uint8_t *pixels;
+    int width, height, channels, boxes[3][4];
+    assert_int_equal(im_png_read(shot, &pixels, &width, &height, &channels), IM_OK);
+    const uint8_t *colours[3] = {CONTACT, HEIGHT, VIEW};
+    for (int k = 0; k < 3; ++k)
+        if (find_colour(pixels, width, height, channels, colours[k], boxes[k]) < 400)
+            fail_msg("panel %d (colour %d, %d, %d) is not in the screenshot", k, colours[k][0], colours[k][1],
+                     colours[k][2]);
+    /* side by side, left to right, at one height (100 x 100, 100 x 100 and 192 x 108 images), each
+     * keeping its aspect ratio */
+    for (int k = 0; k < 2; ++k) {
+        assert_true(boxes[k][2] < boxes[k + 1][0]);
+        assert_true(abs(boxes[k][1] - boxes[k + 1][1]) <= 2);
+        assert_true(abs(boxes[k][3] - boxes[k + 1][3]) <= 2);
+    }
+    double view_aspect = (boxes[2][2] - boxes[2][0] + 1.0) / (boxes[2][3] - boxes[2][1] + 1.0);
+    assert_true(fabs(view_aspect - 192.0 / 108.0) < 0.03 * view_aspect);
+    free(pixels);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_page_structure),
+        cmocka_unit_test(test_empty_folder_and_unwritable),
+        cmocka_unit_test(test_page_loads_without_console_messages),
+        cmocka_unit_test(test_slider_changes_the_frame),
+        cmocka_unit_test(test_screenshot_shows_the_panels),
+    };
+    int failed = cmocka_run_group_tests(tests, NULL, NULL);
+    return failed ? failed : skipped ? 77 : 0; /* 77: ctest's SKIP_RETURN_CODE */
+}
