@@ -20,6 +20,7 @@ PACKAGES=(
   libgif-dev                               # animated GIFs
   python3-dev python3-numpy                # the Python package (python/): CPython and numpy C APIs
   python3-setuptools python3-wheel python3-pip python3-pytest  # its pip build and its tests
+  openmpi-bin libopenmpi-dev libfftw3-mpi-dev  # one grid over MPI ranks (src/mpi/, optional: IM_MPI)
 )
 
 missing=()
