@@ -13,7 +13,8 @@
  *     2 all-to-all transposes), alltoall_s: median of an MPI_Alltoall moving the same volume as
  *     one transpose of the padded spectrum (16 (nx + 1) 2 ny bytes in all), fft_s: median of the
  *     same pair of transforms on one rank's share done serially, without communication (the
- *     local compute rate: a (2nx x 2ny/K) r2c then c2r pair, FFTW_ESTIMATE);
+ *     local compute rate: a (2nx x 2ny/K) r2c then c2r pair, FFTW_ESTIMATE); the _cpu_s values
+ *     are the same medians in CPU seconds of the slowest rank (process user + system time);
  *   iterations, convolutions, solve_wall_s, solve_cpu_s (user + system time summed over ranks),
  *     load, contact (the same for every K).
  * Wall times on a shared machine are noisy: CPU times are printed beside them. */
@@ -72,16 +73,18 @@ static double max_over_ranks(double v)
     return v;
 }
 
-/* Median seconds (slowest rank) of one distributed convolution. */
-static double time_convolution(im_mpi_solver *solver, const double *p, double *u, int repeats)
+/* Median seconds (slowest rank) of one distributed convolution; *cpu: its median CPU seconds. */
+static double time_convolution(im_mpi_solver *solver, const double *p, double *u, int repeats, double *cpu)
 {
-    double t[MAX_REPEATS];
+    double t[MAX_REPEATS], c[MAX_REPEATS];
     for (int k = 0; k < repeats; ++k) {
         MPI_Barrier(MPI_COMM_WORLD);
-        double start = MPI_Wtime();
+        double start = MPI_Wtime(), cpu_start = cpu_seconds();
         im_mpi_convolve(solver, p, u);
         t[k] = max_over_ranks(MPI_Wtime() - start);
+        c[k] = max_over_ranks(cpu_seconds() - cpu_start);
     }
+    *cpu = median(c, repeats);
     return median(t, repeats);
 }
 
@@ -105,7 +108,7 @@ static double time_alltoall(int nx, int ny, int ranks, int repeats)
 
 /* Median seconds of one rank's share of the padded transforms done locally: a 2nx x (2ny / K)
  * r2c then c2r pair (the row and column work of a convolution without its exchanges). */
-static double time_local_fft(int nx, int ny, int ranks, int repeats)
+static double time_local_fft(int nx, int ny, int ranks, int repeats, double *cpu)
 {
     int rows = (2 * ny + ranks - 1) / ranks;
     double *real = fftw_alloc_real((size_t)rows * 2 * ((size_t)nx + 1));
@@ -114,14 +117,16 @@ static double time_local_fft(int nx, int ny, int ranks, int repeats)
     fftw_plan forward = fftw_plan_dft_r2c_2d(rows, 2 * nx, real, modes, FFTW_ESTIMATE);
     fftw_plan backward = fftw_plan_dft_c2r_2d(rows, 2 * nx, modes, real, FFTW_ESTIMATE);
     memset(real, 0, sizeof(double) * (size_t)rows * 2 * ((size_t)nx + 1));
-    double t[MAX_REPEATS];
+    double t[MAX_REPEATS], c[MAX_REPEATS];
     for (int k = 0; k < repeats; ++k) {
         MPI_Barrier(MPI_COMM_WORLD);
-        double start = MPI_Wtime();
+        double start = MPI_Wtime(), cpu_start = cpu_seconds();
         fftw_execute(forward);
         fftw_execute(backward);
         t[k] = max_over_ranks(MPI_Wtime() - start);
+        c[k] = max_over_ranks(cpu_seconds() - cpu_start);
     }
+    *cpu = median(c, repeats);
     fftw_destroy_plan(forward);
     fftw_destroy_plan(backward);
     fftw_free(real);
@@ -161,15 +166,16 @@ static void run(int nx, int ny, int repeats)
         die(status, "solve");
     double cpu = cpu_seconds() - cpu_start;
     MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    double convolution = time_convolution(solver, p, u, repeats);
+    double convolution_cpu, fft_cpu;
+    double convolution = time_convolution(solver, p, u, repeats, &convolution_cpu);
     double rss_peak = max_over_ranks(peak_rss_mib()), rss_growth = max_over_ranks(peak_rss_mib() - rss_before);
-    double alltoall = time_alltoall(nx, ny, ranks, repeats), fft = time_local_fft(nx, ny, ranks, repeats);
+    double alltoall = time_alltoall(nx, ny, ranks, repeats), fft = time_local_fft(nx, ny, ranks, repeats, &fft_cpu);
     if (rank == 0)
         printf("ranks=%d threads=%d nx=%d ny=%d model_mib=%.1f rss_mib=%.1f rss_total_mib=%.1f convolution_s=%.4g "
-               "alltoall_s=%.4g fft_s=%.4g iterations=%d convolutions=%d solve_wall_s=%.4g solve_cpu_s=%.4g "
+               "convolution_cpu_s=%.4g alltoall_s=%.4g fft_s=%.4g fft_cpu_s=%.4g iterations=%d convolutions=%d solve_wall_s=%.4g solve_cpu_s=%.4g "
                "load=%.10g contact=%ld\n",
                ranks, omp_get_max_threads(), nx, ny, im_mpi_solver_bytes(nx, ny, ranks) / 1048576.0, rss_growth,
-               rss_peak, convolution, alltoall, fft, result.iterations, result.convolutions, result.seconds, cpu,
+               rss_peak, convolution, convolution_cpu, alltoall, fft, fft_cpu, result.iterations, result.convolutions, result.seconds, cpu,
                result.load, result.contact_patches);
     im_mpi_solver_free(solver);
     free(heights);

@@ -15,6 +15,8 @@ int cli_render(int argc, char **argv);
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 int cli_run(int argc, char **argv);
+/* One grid over MPI ranks (mpi_indent.c); exists only where IM_HAVE_MPI (indentmap/mpi.h). */
+int cli_mpi_indent(int argc, char **argv);
 
 /* SIGINT/SIGTERM (interrupt.c): cli_interrupt_install makes them store their number in
  * cli_stop_signal (a second one ends the process); cli_interrupt_exit_status is 128 + it. */
