@@ -23,7 +23,6 @@ struct im_mpi_solver {
     fftw_plan forward, backward;
     double *direction, *gap, *response; /* rows * nx work arrays of the iteration (t, g, K t) */
     double *row_sums, *all_row_sums;    /* rows * MPI_SUMS_MAX and ny * MPI_SUMS_MAX */
-    MPI_Datatype row_type;        /* nx contiguous doubles: counts in rows never overflow an int */
 };
 
 #define MPI_SUMS_MAX 5

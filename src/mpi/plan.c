@@ -159,14 +159,11 @@ int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_s
         free(s);
         return status;
     }
-    *s = (im_mpi_solver){.nx = nx, .ny = ny, .px = 2 * nx, .py = 2 * ny, .delta = delta, .options = o,
-                         .row_type = MPI_DATATYPE_NULL};
-    o.wisdom_path = NULL;
+    *s = (im_mpi_solver){.nx = nx, .ny = ny, .px = 2 * nx, .py = 2 * ny, .delta = delta, .options = o};
+    s->options.wisdom_path = NULL; /* not owned, and not used: FFTW-MPI plans are made without wisdom */
     MPI_Comm_dup(comm, &s->comm);
     MPI_Comm_rank(s->comm, &s->rank);
     MPI_Comm_size(s->comm, &s->ranks);
-    MPI_Type_contiguous(nx, MPI_DOUBLE, &s->row_type);
-    MPI_Type_commit(&s->row_type);
     status = set_up(s);
     if (status != IM_OK) {
         im_mpi_solver_free(s);
@@ -195,8 +192,6 @@ void im_mpi_solver_free(im_mpi_solver *s)
     free(s->all_row_sums);
     free(s->row_counts);
     free(s->row_starts);
-    if (s->row_type != MPI_DATATYPE_NULL)
-        MPI_Type_free(&s->row_type);
     MPI_Comm_free(&s->comm);
     free(s);
 }
