@@ -23,6 +23,14 @@ for f in force gap; do
 done
 contact=$(sed -n 2p "$work/result1" | cut -d, -f3)
 [ "$contact" -gt 100 ] || fail "expected a contact of many patches, got '$contact'"
+# the fields agree with the result: sum of forces = load (to the 6 digits 'surface --stats' prints),
+# no gap below zero beyond the tolerance
+load=$(sed -n 2p "$work/result1" | cut -d, -f2)
+mean=$("$cli" surface --stats "$work/out1/force.npy" | awk '$1 == "mean" {print $2}')
+awk -v m="$mean" -v l="$load" 'BEGIN { d = m * 64 * 48 / l - 1; exit !(d < 1e-5 && d > -1e-5) }' ||
+  fail "force.npy sums to $mean x 3072, the load is $load"
+lowest=$("$cli" surface --stats "$work/out1/gap.npy" | awk '$1 == "height" {gsub(/[\[,]/, "", $3); print $3}')
+awk -v g="$lowest" 'BEGIN { exit !(g > -1e-6) }' || fail "gap.npy goes down to $lowest"
 
 # a surface from a file (the gap just written is a valid height field) on 2 ranks
 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/out1/gap.npy" --punch sphere --radius 50 \
