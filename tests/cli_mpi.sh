@@ -13,12 +13,12 @@ trap 'rm -rf "$work"' EXIT
 fail() { echo "FAILED: $*" >&2; exit 1; }
 
 for k in 1 3; do
-  "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --n 64 --m 48 --approach 3 --out "$work/out$k" \
+  "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --n 64 --m 48 --approach 3 --out "$work/out$k" --map 8 \
     > "$work/stdout$k" || fail "mpi-indent on $k ranks exited with $?"
   cut -d, -f1-5 "$work/stdout$k" > "$work/result$k"   # without the seconds
 done
 cmp -s "$work/result1" "$work/result3" || fail "1 and 3 ranks differ: $(cat "$work/result1" "$work/result3")"
-for f in force gap; do
+for f in force gap force_map; do
   cmp -s "$work/out1/$f.npy" "$work/out3/$f.npy" || fail "$f.npy differs between 1 and 3 ranks"
 done
 contact=$(sed -n 2p "$work/result1" | cut -d, -f3)
@@ -29,6 +29,12 @@ load=$(sed -n 2p "$work/result1" | cut -d, -f2)
 mean=$("$cli" surface --stats "$work/out1/force.npy" | awk '$1 == "mean" {print $2}')
 awk -v m="$mean" -v l="$load" 'BEGIN { d = m * 64 * 48 / l - 1; exit !(d < 1e-5 && d > -1e-5) }' ||
   fail "force.npy sums to $mean x 3072, the load is $load"
+# the 8 x 8 map: 8 x 6 blocks (a .npy file keeps no patch side), the same total force
+"$cli" surface --stats "$work/out1/force_map.npy" > "$work/map_stats"
+grep -q "grid *8 x 6," "$work/map_stats" || fail "force_map.npy: $(head -1 "$work/map_stats")"
+map_mean=$(awk '$1 == "mean" {print $2}' "$work/map_stats")
+awk -v m="$map_mean" -v l="$load" 'BEGIN { d = m * 48 / l - 1; exit !(d < 1e-5 && d > -1e-5) }' ||
+  fail "force_map.npy sums to $map_mean x 48, the load is $load"
 lowest=$("$cli" surface --stats "$work/out1/gap.npy" | awk '$1 == "height" {gsub(/[\[,]/, "", $3); print $3}')
 awk -v g="$lowest" 'BEGIN { exit !(g > -1e-6) }' || fail "gap.npy goes down to $lowest"
 

@@ -89,6 +89,14 @@ int im_mpi_undeformed_gap(const im_mpi_solver *solver, const double *heights, co
  * as im_indentation_step reports; IM_OK otherwise. Collective. */
 int im_mpi_check_edge(const im_mpi_solver *solver, const double *pressure);
 
+/* A downsampled map for rendering a large grid, on rank 0: *out (new field, caller frees) is
+ * ceil(nx / factor) x ceil(ny / factor) with patch side factor * delta, each value the sum of
+ * values (this rank's rows, rows * nx) over its factor x factor block (a force map stays a force
+ * map: `indentmap render contact` draws it), summed in a fixed order: the same bits for any rank
+ * count. factor 1 gathers the whole field. *out is NULL on the other ranks. Rank 0 holds ny x
+ * ceil(nx / factor) row sums while gathering. IM_EINVAL for factor < 1, IM_ENOMEM. Collective. */
+int im_mpi_gather_map(const im_mpi_solver *solver, const double *values, int factor, im_field **out);
+
 /* Rows [y0, y0 + rows) of the surface im_surface_generate makes from params (the same modes, each
  * keyed by its wave vector; the transform runs over the ranks of comm): equal to its rows to
  * rounding (a different transform order). Only the spectral slope definition (or a height target)

@@ -5,6 +5,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 
 #include <errno.h>
@@ -22,10 +23,11 @@ typedef struct mpi_indent_options {
     double target;              /* w or N; NaN until given */
     im_solver_options solver;
     const char *out;            /* folder for force.npy and gap.npy, or NULL */
+    int map_factor;             /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */
 } mpi_indent_options;
 
 enum { OPT_SURFACE = 256, OPT_N, OPT_M, OPT_SEED, OPT_SLOPE, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_APPROACH,
-       OPT_LOAD, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_HELP };
+       OPT_LOAD, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"surface", required_argument, 0, OPT_SURFACE}, {"n", required_argument, 0, OPT_N},
@@ -34,7 +36,7 @@ static const struct option LONG_OPTIONS[] = {
     {"alpha", required_argument, 0, OPT_ALPHA}, {"radius", required_argument, 0, OPT_RADIUS},
     {"approach", required_argument, 0, OPT_APPROACH}, {"load", required_argument, 0, OPT_LOAD},
     {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
-    {"out", required_argument, 0, OPT_OUT}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+    {"out", required_argument, 0, OPT_OUT}, {"map", required_argument, 0, OPT_MAP}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
 {
@@ -50,7 +52,10 @@ static void usage(FILE *stream)
             "  --punch cone|sphere   (default cone) --alpha DEG (default 80) --radius R (sphere)\n"
             "  --approach W | --load N   displacement or load control\n"
             "  --tol T --max-iter M      stopping rule (defaults 1e-8, 10000)\n"
-            "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n");
+            "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
+            "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
+            "                  .npy keeps no patch side), gathered on rank 0 (to draw with\n"
+            "                  'indentmap render contact' grids too large to draw whole)\n");
 }
 
 static int apply_option(int code, const char *arg, void *state)
@@ -78,6 +83,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
     case OPT_OUT: o->out = arg; return 0;
+    case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);
     default: return -1;
     }
 }
@@ -88,6 +94,26 @@ static int load_heights(const mpi_indent_options *o, int y0, int rows, double *h
     if (o->surface_file)
         return im_mpi_npy_read_rows(MPI_COMM_WORLD, o->surface_file, y0, rows, heights);
     return im_mpi_surface_generate(MPI_COMM_WORLD, &o->surface, y0, rows, heights);
+}
+
+/* DIR/force_map.npy on rank 0: forces (p delta^2, delta = 1) summed over the map's blocks. */
+static int write_map(const mpi_indent_options *o, const im_mpi_solver *solver, const double *pressure)
+{
+    im_field *map;
+    int status = im_mpi_gather_map(solver, pressure, o->map_factor, &map);
+    if (status != IM_OK)
+        return status;
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/force_map.npy", o->out);
+        status = im_npy_write(path, map, IM_NPY_FLOAT64);
+        im_field_free(map);
+    }
+    int shared = status;
+    MPI_Bcast(&shared, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return shared == IM_OK || rank == 0 ? shared : im_fail(shared, "rank 0 could not write the map");
 }
 
 /* force.npy (p delta^2, delta = 1) and gap.npy (g = g0 - w + u) of this rank's rows. */
@@ -108,7 +134,9 @@ static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver
     snprintf(path, sizeof path, "%s/force.npy", o->out);
     int status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, pressure);
     snprintf(path, sizeof path, "%s/gap.npy", o->out);
-    return status == IM_OK ? im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, gap0) : status;
+    if (status == IM_OK)
+        status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, gap0);
+    return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
 }
 
 /* The grid: the file's shape, or the synthesis's. */
@@ -164,6 +192,10 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
         return parsed;
+    if (o->map_factor > 0 && !o->out) {
+        fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
+        return -1;
+    }
     if (isnan(o->target)) {
         fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");
         return -1;

@@ -1,10 +1,10 @@
 /* The distributed solver against the serial one, run under mpirun with 1, 2, 3 and 4 ranks
  * (tests/mpi/mpi_solver.sh): rank 0 solves the serial problem too and shares its answer, which
  * every rank compares with its rows; loads to 1e-12 relative, contact sets identical. Also: the
- * distributed synthesis against im_surface_generate, and .npy rows through MPI-IO against the
- * serial reader and writer.
- * Prints one line per case with the load in hexadecimal, so the script can check that the
- * loads are the same bits for every rank count. A failed check aborts all ranks. */
+ * distributed synthesis against im_surface_generate, the maps gathered on rank 0 (whole and 5 x 5),
+ * and .npy rows through MPI-IO against the serial reader and writer. Prints one line per case with
+ * the load and the map's total in hexadecimal, so the script can check that they are the same
+ * bits for every rank count. A failed check aborts all ranks. */
 #include "indentmap/io.h"
 #include "indentmap/mpi.h"
 #include "indentmap/solver.h"
@@ -121,6 +121,36 @@ static void compare(const scenario *c, const im_step_result *serial, const im_fi
     check(serial->contact_patches > 20, "a contact of many patches", detail);
 }
 
+/* Rank 0: the whole map (factor 1) is the distributed solution, whose contact set is the serial
+ * one; the 5 x 5 map holds its block sums (to rounding: summed here in another order). Returns
+ * the 5 x 5 map's total, summed in order, for the bit-for-bit check across rank counts. */
+static double check_maps(const scenario *c, const im_field *force, const im_field *whole, const im_field *coarse)
+{
+    char detail[160];
+    snprintf(detail, sizeof detail, "%s: map sizes %d x %d and %d x %d", c->name, whole->nx, whole->ny, coarse->nx,
+             coarse->ny);
+    check(whole->nx == c->nx && whole->ny == c->ny && coarse->nx == (c->nx + 4) / 5 && coarse->ny == (c->ny + 4) / 5 &&
+              coarse->delta == 5.0,
+          "map sizes", detail);
+    double total = 0, worst = 0;
+    for (int by = 0; by < coarse->ny; ++by)
+        for (int bx = 0; bx < coarse->nx; ++bx) {
+            double sum = 0;
+            for (int y = 5 * by; y < 5 * by + 5 && y < c->ny; ++y)
+                for (int x = 5 * bx; x < 5 * bx + 5 && x < c->nx; ++x) {
+                    size_t i = (size_t)y * c->nx + x;
+                    check((whole->data[i] > 0) == (force->data[i] > 0), "whole map's contact set", c->name);
+                    sum += whole->data[i];
+                }
+            double value = coarse->data[(size_t)by * coarse->nx + bx];
+            worst = fmax(worst, fabs(value - sum));
+            total += value;
+        }
+    snprintf(detail, sizeof detail, "%s: a block sum differs by %.3g", c->name, worst);
+    check(worst <= 1e-13 * total, "5 x 5 map", detail);
+    return total;
+}
+
 static void run_scenario(const scenario *c)
 {
     im_field *surface = rough_surface(c);
@@ -145,9 +175,15 @@ static void run_scenario(const scenario *c)
                  "distributed solve");
     check_status(im_mpi_check_edge(solver, pressure), "distributed edge check");
     compare(c, &serial, force, &result, pressure, y0, rows);
+    im_field *whole, *coarse;
+    check_status(im_mpi_gather_map(solver, pressure, 1, &whole), "whole map");
+    check_status(im_mpi_gather_map(solver, pressure, 5, &coarse), "5 x 5 map");
+    check((rank == 0) == (whole != NULL && coarse != NULL), "maps on rank 0 only", c->name);
     if (rank == 0)
-        printf("%s load %a contact %ld iterations %d serial-iterations %d\n", c->name, result.load,
-               result.contact_patches, result.iterations, serial.iterations);
+        printf("%s load %a contact %ld map %a iterations %d serial-iterations %d\n", c->name, result.load,
+               result.contact_patches, check_maps(c, force, whole, coarse), result.iterations, serial.iterations);
+    im_field_free(whole);
+    im_field_free(coarse);
     im_mpi_solver_free(solver);
     free(heights);
     free(gap0);

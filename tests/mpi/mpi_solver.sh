@@ -20,8 +20,8 @@ for ranks in 1 2 3 4 2x2; do
   echo "== ${ranks%x2} rank(s), $threads thread(s) each"
   OMP_NUM_THREADS=$threads "$mpiexec" -n "${ranks%x2}" --oversubscribe -x OMP_NUM_THREADS "$program" "$work" |
     tee "$work/out_$ranks"
-  # the loads (hexadecimal) and contact counts, without the iteration counts
-  cut -d' ' -f1-5 "$work/out_$ranks" > "$work/loads_$ranks"
+  # the loads and map totals (hexadecimal) and contact counts, without the iteration counts
+  cut -d' ' -f1-7 "$work/out_$ranks" > "$work/loads_$ranks"
   [ -s "$work/loads_$ranks" ] || { echo "no output from $ranks rank(s)" >&2; exit 1; }
 done
 for ranks in 2 3 4 2x2; do
