@@ -23,6 +23,7 @@ PACKAGES=(
   chromium                                 # tests only: the viewer page (index.html) in headless Chromium
   libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
   libzip-dev libxml2-dev                   # ISO 25178-72 .x3p surfaces: zip archive around XML
+  openmpi-bin libopenmpi-dev libfftw3-mpi-dev  # one grid over MPI ranks (src/mpi/, optional: IM_MPI)
 )
 
 missing=()

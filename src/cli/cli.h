@@ -19,6 +19,8 @@ int cli_render_view3d(int argc, char **argv); /* render view3d (render_view3d.c)
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
 int cli_run(int argc, char **argv);
+/* One grid over MPI ranks (mpi_indent.c); exists only where IM_HAVE_MPI (indentmap/mpi.h). */
+int cli_mpi_indent(int argc, char **argv);
 
 /* SIGINT/SIGTERM/SIGHUP (interrupt.c): cli_interrupt_install makes them store their number in
  * cli_stop_signal (a second one removes the temporary files being written and ends the process);

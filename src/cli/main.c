@@ -1,5 +1,6 @@
 /* indentmap: the command-line program. Git-style subcommands, each with --help. */
 #include "cli/cli.h"
+#include "indentmap/mpi.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -18,6 +19,9 @@ static const subcommand SUBCOMMANDS[] = {
     {"render", cli_render, "draw a force or height field file as a figure (PNG, PDF, SVG) or animation"},
     {"run", cli_run, "run a scene file (scenes/fig4.ini: the paper's Fig. 4): solve, render, write"},
     {"info", cli_info, "print the version, FFTW version and OpenMP thread count"},
+#if IM_HAVE_MPI
+    {"mpi-indent", cli_mpi_indent, "one indentation of one surface over MPI ranks (mpirun -n K indentmap mpi-indent)"},
+#endif
 };
 static const int SUBCOMMAND_COUNT = (int)(sizeof SUBCOMMANDS / sizeof SUBCOMMANDS[0]);
 

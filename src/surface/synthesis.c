@@ -3,6 +3,7 @@
 #include "core/random.h"
 #include "indentmap/status.h"
 #include "surface/spectrum.h"
+#include "surface/synthesis.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -110,25 +111,24 @@ static double complex mode_amplitude(uint64_t seed, int kx, int ky)
 
 static int is_nyquist(int k, int n) { return n % 2 == 0 && (k == n / 2 || k == -n / 2); }
 
+double complex surface_mode_coefficient(const im_surface_params *p, int kx, int ky, double qx_step,
+                                        double qy_step)
+{
+    /* Nyquist modes have no well-defined slope (and no conjugate partner): no power. */
+    if ((kx == 0 && ky == 0) || is_nyquist(kx, p->nx) || is_nyquist(ky, p->ny))
+        return 0.0;
+    spectrum_band band = band_of(p);
+    double shape = psd_cell_average(&band, kx * qx_step, ky * qy_step, qx_step, qy_step);
+    return shape > 0.0 ? sqrt(shape) * mode_amplitude(p->seed, kx, ky) : 0.0;
+}
+
 static void fill_spectrum(const im_surface_params *p, surface_spectrum *s)
 {
-    spectrum_band band = band_of(p);
 #pragma omp parallel for schedule(static)
-    for (int jy = 0; jy < s->ny; ++jy) {
-        int ky = spectrum_ky(s, jy);
-        for (int jx = 0; jx < s->half_nx; ++jx) {
-            int kx = spectrum_kx(jx);
-            double complex *c = &s->coefficients[(size_t)jy * s->half_nx + jx];
-            /* Nyquist modes have no well-defined slope (and no conjugate partner): no power. */
-            if ((kx == 0 && ky == 0) || is_nyquist(kx, p->nx) || is_nyquist(ky, p->ny)) {
-                *c = 0.0;
-                continue;
-            }
-            double shape = psd_cell_average(&band, kx * s->qx_step, ky * s->qy_step, s->qx_step,
-                                            s->qy_step);
-            *c = shape > 0.0 ? sqrt(shape) * mode_amplitude(p->seed, kx, ky) : 0.0;
-        }
-    }
+    for (int jy = 0; jy < s->ny; ++jy)
+        for (int jx = 0; jx < s->half_nx; ++jx)
+            s->coefficients[(size_t)jy * s->half_nx + jx] =
+                surface_mode_coefficient(p, spectrum_kx(jx), spectrum_ky(s, jy), s->qx_step, s->qy_step);
 }
 
 static double weight_one(double qx, double qy) { (void)qx; (void)qy; return 1.0; }

@@ -1,0 +1,236 @@
+/* indentmap mpi-indent: one indentation of one surface over MPI ranks (run under mpirun; see
+ * docs/mpi.md). Built only with MPI (IM_HAVE_MPI). */
+#include "indentmap/mpi.h"
+
+#if IM_HAVE_MPI
+
+#include "cli/cli.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+typedef struct mpi_indent_options {
+    im_surface_params surface;  /* synthesised when no file is given */
+    const char *surface_file;   /* float64 .npy heights in units of delta, or NULL */
+    im_indenter punch;
+    enum im_control control;
+    double target;              /* w or N; NaN until given */
+    im_solver_options solver;
+    const char *out;            /* folder for force.npy and gap.npy, or NULL */
+    int map_factor;             /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */
+} mpi_indent_options;
+
+enum { OPT_SURFACE = 256, OPT_N, OPT_M, OPT_SEED, OPT_SLOPE, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_APPROACH,
+       OPT_LOAD, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP };
+
+static const struct option LONG_OPTIONS[] = {
+    {"surface", required_argument, 0, OPT_SURFACE}, {"n", required_argument, 0, OPT_N},
+    {"m", required_argument, 0, OPT_M}, {"seed", required_argument, 0, OPT_SEED},
+    {"slope", required_argument, 0, OPT_SLOPE}, {"punch", required_argument, 0, OPT_PUNCH},
+    {"alpha", required_argument, 0, OPT_ALPHA}, {"radius", required_argument, 0, OPT_RADIUS},
+    {"approach", required_argument, 0, OPT_APPROACH}, {"load", required_argument, 0, OPT_LOAD},
+    {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
+    {"out", required_argument, 0, OPT_OUT}, {"map", required_argument, 0, OPT_MAP}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+
+static void usage(FILE *stream)
+{
+    fprintf(stream,
+            "usage: mpirun -n K indentmap mpi-indent (--approach W | --load N) [options]\n\n"
+            "One indentation of one surface over K MPI ranks (each with its OpenMP threads): the whole\n"
+            "grid is solved (no crop window), the result is the same to the bit for any K.\n"
+            "Prints on rank 0: approach,load,contact_patches,iterations,residual,seconds (CSV with header).\n\n"
+            "  --surface FILE  heights (float64 .npy, units of delta = 1), read with MPI-IO; otherwise\n"
+            "                  a surface is synthesised over the ranks:\n"
+            "  --n NX --m NY   its grid (default 512 x 512; lambda_r = the shorter side)\n"
+            "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
+            "  --punch cone|sphere   (default cone) --alpha DEG (default 80) --radius R (sphere)\n"
+            "  --approach W | --load N   displacement or load control\n"
+            "  --tol T --max-iter M      stopping rule (defaults 1e-8, 10000)\n"
+            "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
+            "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
+            "                  .npy keeps no patch side), gathered on rank 0 (to draw with\n"
+            "                  'indentmap render contact' grids too large to draw whole)\n");
+}
+
+static int apply_option(int code, const char *arg, void *state)
+{
+    mpi_indent_options *o = state;
+    switch (code) {
+    case OPT_SURFACE: o->surface_file = arg; return 0;
+    case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.nx);
+    case OPT_M: return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.ny);
+    case OPT_SEED: return cli_parse_u64("--seed", arg, &o->surface.seed);
+    case OPT_SLOPE: return cli_parse_double("--slope", arg, 0, 1e6, &o->surface.slope_rms);
+    case OPT_PUNCH:
+        if (strcmp(arg, "cone") == 0 || strcmp(arg, "sphere") == 0) {
+            o->punch.kind = strcmp(arg, "cone") == 0 ? IM_PUNCH_CONE : IM_PUNCH_SPHERE;
+            return 0;
+        }
+        fprintf(stderr, "indentmap: --punch: '%s': expected cone or sphere\n", arg);
+        return -1;
+    case OPT_ALPHA: return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
+    case OPT_RADIUS: return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
+    case OPT_APPROACH:
+    case OPT_LOAD:
+        o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
+        return cli_parse_double(code == OPT_LOAD ? "--load" : "--approach", arg, 0, 1e300, &o->target);
+    case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
+    case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
+    case OPT_OUT: o->out = arg; return 0;
+    case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);
+    default: return -1;
+    }
+}
+
+/* This rank's rows of the heights: read from the file or synthesised. */
+static int load_heights(const mpi_indent_options *o, int y0, int rows, double *heights)
+{
+    if (o->surface_file)
+        return im_mpi_npy_read_rows(MPI_COMM_WORLD, o->surface_file, y0, rows, heights);
+    return im_mpi_surface_generate(MPI_COMM_WORLD, &o->surface, y0, rows, heights);
+}
+
+/* DIR/force_map.npy on rank 0: forces (p delta^2, delta = 1) summed over the map's blocks. */
+static int write_map(const mpi_indent_options *o, const im_mpi_solver *solver, const double *pressure)
+{
+    im_field *map;
+    int status = im_mpi_gather_map(solver, pressure, o->map_factor, &map);
+    if (status != IM_OK)
+        return status;
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/force_map.npy", o->out);
+        status = im_npy_write(path, map, IM_NPY_FLOAT64);
+        im_field_free(map);
+    }
+    int shared = status;
+    MPI_Bcast(&shared, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return shared == IM_OK || rank == 0 ? shared : im_fail(shared, "rank 0 could not write the map");
+}
+
+/* force.npy (p delta^2, delta = 1) and gap.npy (g = g0 - w + u) of this rank's rows. */
+static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver, double approach, double *pressure,
+                        double *gap0, const double *displacement)
+{
+    int y0, rows, nx = o->surface.nx, ny = o->surface.ny, rank, made = 1;
+    im_mpi_solver_rows(solver, &y0, &rows);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0)
+        made = mkdir(o->out, 0777) == 0 || errno == EEXIST;
+    MPI_Bcast(&made, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!made)
+        return im_fail(IM_EIO, "--out %s: cannot create the folder", o->out);
+    for (size_t i = 0; i < (size_t)rows * nx; ++i)
+        gap0[i] += displacement[i] - approach;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/force.npy", o->out);
+    int status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, pressure);
+    snprintf(path, sizeof path, "%s/gap.npy", o->out);
+    if (status == IM_OK)
+        status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, gap0);
+    return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
+}
+
+/* The grid: the file's shape, or the synthesis's. */
+static int grid_of(mpi_indent_options *o)
+{
+    if (!o->surface_file)
+        return IM_OK;
+    return im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny);
+}
+
+/* Plans, fills the gap, solves and writes; *result on success. */
+static int solve(mpi_indent_options *o, im_solve_result *result)
+{
+    int status = grid_of(o);
+    if (status != IM_OK)
+        return status;
+    if (!o->surface_file)
+        o->surface.lambda_r = o->surface.nx < o->surface.ny ? o->surface.nx : o->surface.ny;
+    im_mpi_solver *solver;
+    if ((status = im_mpi_solver_create(MPI_COMM_WORLD, o->surface.nx, o->surface.ny, 1.0, &o->solver, &solver)) != IM_OK)
+        return status;
+    int y0, rows;
+    im_mpi_solver_rows(solver, &y0, &rows);
+    size_t n = (size_t)rows * o->surface.nx + 1;
+    double *heights = malloc(sizeof(double) * n), *gap0 = malloc(sizeof(double) * n);
+    double *pressure = calloc(n, sizeof(double)), *displacement = malloc(sizeof(double) * n);
+    int have = heights && gap0 && pressure && displacement, all;
+    MPI_Allreduce(&have, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+    status = all ? IM_OK : im_fail(IM_ENOMEM, "mpi-indent: the fields of some rank's %d rows", rows);
+    if (status == IM_OK)
+        status = load_heights(o, y0, rows, heights);
+    if (status == IM_OK)
+        status = im_mpi_undeformed_gap(solver, heights, &o->punch, gap0);
+    if (status == IM_OK)
+        status = im_mpi_solver_solve(solver, gap0, o->control, o->target, pressure, displacement, result);
+    if (status == IM_OK)
+        status = im_mpi_check_edge(solver, pressure);
+    if (status == IM_OK && o->out)
+        status = write_fields(o, solver, result->approach, pressure, gap0, displacement);
+    im_mpi_solver_free(solver);
+    free(heights);
+    free(gap0);
+    free(pressure);
+    free(displacement);
+    return status;
+}
+
+static int parse(int argc, char **argv, mpi_indent_options *o)
+{
+    *o = (mpi_indent_options){.surface = im_surface_params_default(), .punch = im_indenter_cone(80),
+                              .target = NAN, .solver = im_solver_options_default()};
+    o->solver.crop = 0;
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
+    if (parsed != 0)
+        return parsed;
+    if (o->map_factor > 0 && !o->out) {
+        fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
+        return -1;
+    }
+    if (isnan(o->target)) {
+        fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");
+        return -1;
+    }
+    if (optind < argc) {
+        fprintf(stderr, "indentmap: mpi-indent: unexpected argument '%s'\n", argv[optind]);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_mpi_indent(int argc, char **argv)
+{
+    int provided, rank;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    im_mpi_init();
+    mpi_indent_options o;
+    int code = CLI_EXIT_OK;
+    if (rank != 0) /* every rank parses the same arguments: rank 0 speaks for them */
+        (void)freopen("/dev/null", "w", stderr);
+    int parsed = parse(argc, argv, &o);
+    if (parsed != 0)
+        code = parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    im_solve_result result;
+    int status = parsed == 0 ? solve(&o, &result) : IM_OK;
+    if (status != IM_OK)
+        code = cli_report(status);
+    else if (parsed == 0 && rank == 0)
+        printf("approach,load,contact_patches,iterations,residual,seconds\n%.17g,%.17g,%ld,%d,%.3g,%.3f\n",
+               result.approach, result.load, result.contact_patches, result.iterations, result.residual,
+               result.seconds);
+    im_mpi_cleanup();
+    MPI_Finalize();
+    return code;
+}
+
+#endif

@@ -1,0 +1,205 @@
+/* .npy files over ranks with MPI-IO: one header (rank 0), each rank's rows at their offset. */
+#include "mpi/mpi_internal.h"
+
+#include "indentmap/status.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+enum { NPY_PREAMBLE_V1 = 10, NPY_PREAMBLE_V2 = 12, NPY_HEADER_MAX = 65536, NPY_ALIGN = 64 };
+
+/* The value text after 'key': in a header dictionary, or NULL. */
+static const char *dict_value(const char *dict, const char *key)
+{
+    const char *at = strstr(dict, key);
+    if (!at)
+        return NULL;
+    at = strchr(at + strlen(key), ':');
+    if (!at)
+        return NULL;
+    ++at;
+    while (*at == ' ')
+        ++at;
+    return at;
+}
+
+static int parse_dict(const char *path, const char *dict, int *nx, int *ny)
+{
+    const char *descr = dict_value(dict, "'descr'"), *order = dict_value(dict, "'fortran_order'");
+    const char *shape = dict_value(dict, "'shape'");
+    if (!descr || strncmp(descr, "'<f8'", 5) != 0)
+        return im_fail(IM_EFORMAT, "%s: expected dtype '<f8' (little-endian float64) for a distributed read", path);
+    if (!order || strncmp(order, "False", 5) != 0)
+        return im_fail(IM_EFORMAT, "%s: expected fortran_order False (C order)", path);
+    long rows, cols;
+    char close;
+    if (!shape || sscanf(shape, "(%ld ,%ld %c", &rows, &cols, &close) != 3 || close != ')' || rows < 2 ||
+        cols < 2 || rows > IM_FIELD_MAX_SIDE || cols > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: expected a 2-D shape (ny, nx) with sides in [2, %d]", path, IM_FIELD_MAX_SIDE);
+    *ny = (int)rows;
+    *nx = (int)cols;
+    return IM_OK;
+}
+
+/* Rank 0's part: the header's shape and the payload's offset, checked against the file's size. */
+static int read_header_here(const char *path, int *nx, int *ny, long *offset)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return im_fail(IM_EIO, "%s: cannot open for reading", path);
+    unsigned char pre[NPY_PREAMBLE_V2];
+    int status = IM_OK;
+    if (fread(pre, 1, NPY_PREAMBLE_V1, f) != NPY_PREAMBLE_V1 || memcmp(pre, "\x93NUMPY", 6) != 0 ||
+        (pre[6] != 1 && pre[6] != 2))
+        status = im_fail(IM_EFORMAT, "%s: not a .npy file of version 1 or 2", path);
+    long length = 0, preamble = pre[6] == 2 ? NPY_PREAMBLE_V2 : NPY_PREAMBLE_V1;
+    if (status == IM_OK && pre[6] == 2 && fread(pre + NPY_PREAMBLE_V1, 1, 2, f) != 2)
+        status = im_fail(IM_EFORMAT, "%s: truncated .npy preamble", path);
+    if (status == IM_OK) {
+        length = pre[6] == 2 ? (long)pre[8] | (long)pre[9] << 8 | (long)pre[10] << 16 | (long)pre[11] << 24
+                             : (long)pre[8] | (long)pre[9] << 8;
+        if (length > NPY_HEADER_MAX)
+            status = im_fail(IM_EFORMAT, "%s: header of %ld bytes (at most %d expected)", path, length, NPY_HEADER_MAX);
+    }
+    char *dict = status == IM_OK ? calloc((size_t)length + 1, 1) : NULL;
+    if (status == IM_OK && (!dict || fread(dict, 1, (size_t)length, f) != (size_t)length))
+        status = im_fail(IM_EFORMAT, "%s: truncated .npy header", path);
+    if (status == IM_OK)
+        status = parse_dict(path, dict, nx, ny);
+    *offset = preamble + length;
+    if (status == IM_OK && fseek(f, 0, SEEK_END) == 0 && ftell(f) < *offset + 8L * *nx * *ny)
+        status = im_fail(IM_EFORMAT, "%s: %ld bytes, the %d x %d float64 payload needs %ld", path, ftell(f), *nx, *ny,
+                         *offset + 8L * *nx * *ny);
+    free(dict);
+    fclose(f);
+    return status;
+}
+
+static int read_header(MPI_Comm comm, const char *path, int *nx, int *ny, long *offset)
+{
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    long shared[3] = {0, 0, 0};
+    int status = IM_OK;
+    if (rank == 0) {
+        status = read_header_here(path, nx, ny, offset);
+        shared[0] = *nx;
+        shared[1] = *ny;
+        shared[2] = *offset;
+    }
+    status = mpi_collective_status(comm, status);
+    MPI_Bcast(shared, 3, MPI_LONG, 0, comm);
+    *nx = (int)shared[0];
+    *ny = (int)shared[1];
+    *offset = shared[2];
+    return status;
+}
+
+int im_mpi_npy_shape(MPI_Comm comm, const char *path, int *nx, int *ny)
+{
+    long offset;
+    return read_header(comm, path, nx, ny, &offset);
+}
+
+/* Reads or writes this rank's rows at their offset, collectively. */
+static int transfer_rows(MPI_File file, long offset, int nx, int y0, int rows, double *data, int write)
+{
+    MPI_Datatype row;
+    MPI_Type_contiguous(nx, MPI_DOUBLE, &row);
+    MPI_Type_commit(&row);
+    MPI_Offset at = (MPI_Offset)offset + (MPI_Offset)y0 * nx * (MPI_Offset)sizeof(double);
+    int rc = write ? MPI_File_write_at_all(file, at, data, rows, row, MPI_STATUS_IGNORE)
+                   : MPI_File_read_at_all(file, at, data, rows, row, MPI_STATUS_IGNORE);
+    MPI_Type_free(&row);
+    return rc;
+}
+
+int im_mpi_npy_read_rows(MPI_Comm comm, const char *path, int y0, int rows, double *data)
+{
+    int nx, ny;
+    long offset;
+    int status = read_header(comm, path, &nx, &ny, &offset);
+    if (status != IM_OK)
+        return status;
+    if (y0 < 0 || rows < 0 || y0 + rows > ny)
+        status = im_fail(IM_EINVAL, "%s: rows [%d, %d) asked of a file of %d rows", path, y0, y0 + rows, ny);
+    status = mpi_collective_status(comm, status);
+    if (status != IM_OK)
+        return status;
+    MPI_File file;
+    int rc = MPI_File_open(comm, path, MPI_MODE_RDONLY, MPI_INFO_NULL, &file);
+    if (rc == MPI_SUCCESS) {
+        rc = transfer_rows(file, offset, nx, y0, rows, data, 0);
+        MPI_File_close(&file);
+    }
+    return mpi_collective_status(comm, rc == MPI_SUCCESS ? IM_OK : im_fail(IM_EIO, "%s: MPI-IO read failed", path));
+}
+
+/* The version 1.0 header of an ny x nx float64 array, padded so the payload starts on 64 bytes. */
+static long make_header(int nx, int ny, char *header, size_t size)
+{
+    int dict = snprintf(header + NPY_PREAMBLE_V1, size - NPY_PREAMBLE_V1,
+                        "{'descr': '<f8', 'fortran_order': False, 'shape': (%d, %d), }", ny, nx);
+    long total = (NPY_PREAMBLE_V1 + dict + 1 + NPY_ALIGN - 1) / NPY_ALIGN * NPY_ALIGN;
+    memset(header + NPY_PREAMBLE_V1 + dict, ' ', (size_t)(total - NPY_PREAMBLE_V1 - dict - 1));
+    header[total - 1] = '\n';
+    memcpy(header, "\x93NUMPY\x01\x00", 8);
+    header[8] = (char)((total - NPY_PREAMBLE_V1) & 0xff);
+    header[9] = (char)((total - NPY_PREAMBLE_V1) >> 8);
+    return total;
+}
+
+/* A temporary name beside path, the same on every rank (rank 0's process id). */
+static void temporary_name(MPI_Comm comm, const char *path, char *name, size_t size)
+{
+    long id = (long)getpid();
+    MPI_Bcast(&id, 1, MPI_LONG, 0, comm);
+    snprintf(name, size, "%s.tmp.%ld", path, id);
+}
+
+static int write_file(MPI_Comm comm, const char *name, int nx, int ny, int y0, int rows, const double *data)
+{
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    MPI_File file;
+    int rc = MPI_File_open(comm, name, MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
+    if (rc != MPI_SUCCESS)
+        return rc;
+    char header[256];
+    long length = make_header(nx, ny, header, sizeof header);
+    rc = MPI_File_set_size(file, (MPI_Offset)length + (MPI_Offset)nx * ny * (MPI_Offset)sizeof(double));
+    if (rc == MPI_SUCCESS && rank == 0)
+        rc = MPI_File_write_at(file, 0, header, (int)length, MPI_CHAR, MPI_STATUS_IGNORE);
+    int rc_rows = transfer_rows(file, length, nx, y0, rows, (double *)data, 1);
+    rc = rc != MPI_SUCCESS ? rc : rc_rows;
+    int rc_sync = MPI_File_sync(file);
+    int rc_close = MPI_File_close(&file);
+    return rc != MPI_SUCCESS ? rc : rc_sync != MPI_SUCCESS ? rc_sync : rc_close;
+}
+
+int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y0, int rows, const double *data)
+{
+    int status = IM_OK;
+    if (nx < 1 || ny < 1 || y0 < 0 || rows < 0 || y0 + rows > ny)
+        status = im_fail(IM_EINVAL, "%s: rows [%d, %d) of a %d x %d grid", path, y0, y0 + rows, nx, ny);
+    status = mpi_collective_status(comm, status);
+    if (status != IM_OK)
+        return status;
+    char name[4096];
+    temporary_name(comm, path, name, sizeof name);
+    int rc = write_file(comm, name, nx, ny, y0, rows, data);
+    status = rc == MPI_SUCCESS ? IM_OK : im_fail(IM_EIO, "%s: MPI-IO write of %s failed", path, name);
+    status = mpi_collective_status(comm, status);
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    if (rank == 0) {
+        if (status == IM_OK && rename(name, path) != 0)
+            status = im_fail(IM_EIO, "%s: cannot rename %s over it", path, name);
+        if (status != IM_OK)
+            remove(name);
+    }
+    return mpi_collective_status(comm, status);
+}

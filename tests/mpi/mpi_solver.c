@@ -1,0 +1,249 @@
+/* The distributed solver against the serial one, run under mpirun with 1, 2, 3 and 4 ranks
+ * (tests/mpi/mpi_solver.sh): rank 0 solves the serial problem too and shares its answer, which
+ * every rank compares with its rows; loads to 1e-12 relative, contact sets identical. Also: the
+ * distributed synthesis against im_surface_generate, the maps gathered on rank 0 (whole and 5 x 5),
+ * and .npy rows through MPI-IO against the serial reader and writer. Prints one line per case with
+ * the load and the map's total in hexadecimal, so the script can check that they are the same
+ * bits for every rank count. A failed check aborts all ranks. */
+#include "indentmap/io.h"
+#include "indentmap/mpi.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int rank;
+
+static void check(int ok, const char *what, const char *detail)
+{
+    if (ok)
+        return;
+    fprintf(stderr, "rank %d: FAILED %s: %s\n", rank, what, detail);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+}
+
+static void check_status(int status, const char *what)
+{
+    check(status == IM_OK, what, im_last_error());
+}
+
+typedef struct scenario {
+    const char *name;
+    int nx, ny;
+    im_indenter punch;
+    enum im_control control;
+    double approach;  /* displacement control: w; load control: N = the smooth N(w) */
+    unsigned seed;
+} scenario;
+
+static im_field *rough_surface(const scenario *c)
+{
+    im_surface_params params = im_surface_params_default();
+    params.nx = c->nx;
+    params.ny = c->ny;
+    params.lambda_r = c->nx < c->ny ? c->nx : c->ny;
+    params.seed = c->seed;
+    im_field *surface;
+    check_status(im_surface_generate(&params, &surface), "serial synthesis");
+    return surface;
+}
+
+/* The distributed synthesis gives the serial surface's rows to rounding. */
+static void check_synthesis(const scenario *c, const im_field *surface, int y0, int rows, double *heights)
+{
+    im_surface_params params = im_surface_params_default();
+    params.nx = c->nx;
+    params.ny = c->ny;
+    params.lambda_r = c->nx < c->ny ? c->nx : c->ny;
+    params.seed = c->seed;
+    check_status(im_mpi_surface_generate(MPI_COMM_WORLD, &params, y0, rows, heights), "distributed synthesis");
+    double largest = 0, worst = 0;
+    for (size_t i = 0; i < im_field_count(surface); ++i)
+        largest = fmax(largest, fabs(surface->data[i]));
+    for (size_t i = 0; i < (size_t)rows * c->nx; ++i)
+        worst = fmax(worst, fabs(heights[i] - surface->data[(size_t)y0 * c->nx + i]));
+    char detail[128];
+    snprintf(detail, sizeof detail, "%s: largest height difference %.3g of %.3g", c->name, worst, largest);
+    check(worst <= 1e-13 * largest, "synthesis equals im_surface_generate", detail);
+}
+
+static im_solver_options options(void)
+{
+    im_solver_options o = im_solver_options_default();
+    o.crop = 0;
+    o.tol = 1e-12;
+    return o;
+}
+
+static double target_of(const scenario *c)
+{
+    return c->control == IM_CONTROL_LOAD ? im_indenter_load(&c->punch, 1, c->approach) : c->approach;
+}
+
+/* The serial solver's answer, computed on rank 0 and shared: its load, contact count and forces. */
+static void serial_solution(const scenario *c, const im_field *surface, im_step_result *step, im_field **force)
+{
+    check_status(im_field_create(c->nx, c->ny, 1.0, force), "force field");
+    if (rank == 0) {
+        im_solver_options o = options();
+        im_indentation *run;
+        im_field *computed;
+        check_status(im_indentation_create(surface, &c->punch, c->control, target_of(c), &o, &run), "serial plan");
+        check_status(im_indentation_step(run, target_of(c), step), "serial solve");
+        check_status(im_indentation_fields(run, &computed, NULL, NULL), "serial fields");
+        memcpy((*force)->data, computed->data, sizeof(double) * im_field_count(computed));
+        im_field_free(computed);
+        im_indentation_free(run);
+    }
+    MPI_Bcast(step, sizeof *step, MPI_BYTE, 0, MPI_COMM_WORLD);
+    MPI_Bcast((*force)->data, (int)im_field_count(*force), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
+static void compare(const scenario *c, const im_step_result *serial, const im_field *force, const im_solve_result *mpi,
+                    const double *pressure, int y0, int rows)
+{
+    char detail[256];
+    double relative = fabs(mpi->load - serial->load) / serial->load;
+    snprintf(detail, sizeof detail, "%s: load %.17g (serial %.17g), relative difference %.3g", c->name, mpi->load,
+             serial->load, relative);
+    check(relative <= 1e-12, "load as the serial solver's", detail);
+    long differ = 0;
+    for (size_t i = 0; i < (size_t)rows * c->nx; ++i)
+        differ += (pressure[i] > 0) != (force->data[(size_t)y0 * c->nx + i] > 0);
+    MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+    snprintf(detail, sizeof detail, "%s: %ld patches differ; %ld in contact (serial %ld)", c->name, differ,
+             mpi->contact_patches, serial->contact_patches);
+    check(differ == 0 && mpi->contact_patches == serial->contact_patches, "contact set as the serial solver's", detail);
+    check(serial->contact_patches > 20, "a contact of many patches", detail);
+}
+
+/* Rank 0: the whole map (factor 1) is the distributed solution, whose contact set is the serial
+ * one; the 5 x 5 map holds its block sums (to rounding: summed here in another order). Returns
+ * the 5 x 5 map's total, summed in order, for the bit-for-bit check across rank counts. */
+static double check_maps(const scenario *c, const im_field *force, const im_field *whole, const im_field *coarse)
+{
+    char detail[160];
+    snprintf(detail, sizeof detail, "%s: map sizes %d x %d and %d x %d", c->name, whole->nx, whole->ny, coarse->nx,
+             coarse->ny);
+    check(whole->nx == c->nx && whole->ny == c->ny && coarse->nx == (c->nx + 4) / 5 && coarse->ny == (c->ny + 4) / 5 &&
+              coarse->delta == 5.0,
+          "map sizes", detail);
+    double total = 0, worst = 0;
+    for (int by = 0; by < coarse->ny; ++by)
+        for (int bx = 0; bx < coarse->nx; ++bx) {
+            double sum = 0;
+            for (int y = 5 * by; y < 5 * by + 5 && y < c->ny; ++y)
+                for (int x = 5 * bx; x < 5 * bx + 5 && x < c->nx; ++x) {
+                    size_t i = (size_t)y * c->nx + x;
+                    check((whole->data[i] > 0) == (force->data[i] > 0), "whole map's contact set", c->name);
+                    sum += whole->data[i];
+                }
+            double value = coarse->data[(size_t)by * coarse->nx + bx];
+            worst = fmax(worst, fabs(value - sum));
+            total += value;
+        }
+    snprintf(detail, sizeof detail, "%s: a block sum differs by %.3g", c->name, worst);
+    check(worst <= 1e-13 * total, "5 x 5 map", detail);
+    return total;
+}
+
+static void run_scenario(const scenario *c)
+{
+    im_field *surface = rough_surface(c);
+    im_step_result serial;
+    im_field *force;
+    serial_solution(c, surface, &serial, &force);
+
+    im_solver_options o = options();
+    im_mpi_solver *solver;
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "distributed plan");
+    int y0, rows;
+    im_mpi_solver_rows(solver, &y0, &rows);
+    size_t n = (size_t)rows * c->nx + 1;
+    double *heights = malloc(sizeof(double) * n), *gap0 = malloc(sizeof(double) * n);
+    double *pressure = calloc(n, sizeof(double)), *displacement = malloc(sizeof(double) * n);
+    check_synthesis(c, surface, y0, rows, heights);
+    /* the solver on the serial surface's rows, so that both solve the same problem to the bit */
+    memcpy(heights, surface->data + (size_t)y0 * c->nx, sizeof(double) * (n - 1));
+    check_status(im_mpi_undeformed_gap(solver, heights, &c->punch, gap0), "distributed gap");
+    im_solve_result result;
+    check_status(im_mpi_solver_solve(solver, gap0, c->control, target_of(c), pressure, displacement, &result),
+                 "distributed solve");
+    check_status(im_mpi_check_edge(solver, pressure), "distributed edge check");
+    compare(c, &serial, force, &result, pressure, y0, rows);
+    im_field *whole, *coarse;
+    check_status(im_mpi_gather_map(solver, pressure, 1, &whole), "whole map");
+    check_status(im_mpi_gather_map(solver, pressure, 5, &coarse), "5 x 5 map");
+    check((rank == 0) == (whole != NULL && coarse != NULL), "maps on rank 0 only", c->name);
+    if (rank == 0)
+        printf("%s load %a contact %ld map %a iterations %d serial-iterations %d\n", c->name, result.load,
+               result.contact_patches, check_maps(c, force, whole, coarse), result.iterations, serial.iterations);
+    im_field_free(whole);
+    im_field_free(coarse);
+    im_mpi_solver_free(solver);
+    free(heights);
+    free(gap0);
+    free(pressure);
+    free(displacement);
+    im_field_free(force);
+    im_field_free(surface);
+}
+
+/* MPI-IO .npy: rows written by the ranks read back by the serial reader, and rows of a file the
+ * serial writer made read by the ranks, both to the bit. */
+static void check_npy(const char *folder)
+{
+    scenario c = {.name = "npy", .nx = 37, .ny = 29, .seed = 7};
+    im_field *surface = rough_surface(&c);
+    int ranks;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    int y0 = c.ny * rank / ranks, rows = c.ny * (rank + 1) / ranks - y0;
+    char written[4096], serial_path[4096];
+    snprintf(written, sizeof written, "%s/mpi_written_%d.npy", folder, ranks);
+    snprintf(serial_path, sizeof serial_path, "%s/serial_%d.npy", folder, ranks);
+    check_status(im_mpi_npy_write_rows(MPI_COMM_WORLD, written, c.nx, c.ny, y0, rows,
+                                       surface->data + (size_t)y0 * c.nx), "MPI-IO write");
+    if (rank == 0)
+        check_status(im_npy_write(serial_path, surface, IM_NPY_FLOAT64), "serial write");
+    MPI_Barrier(MPI_COMM_WORLD);
+    im_field *back;
+    check_status(im_npy_read(written, &back), "serial read of the MPI-IO file");
+    check(back->nx == c.nx && back->ny == c.ny &&
+              memcmp(back->data, surface->data, sizeof(double) * im_field_count(surface)) == 0,
+          "MPI-IO write", "the file read back differs from the rows written");
+    int nx, ny;
+    check_status(im_mpi_npy_shape(MPI_COMM_WORLD, serial_path, &nx, &ny), "MPI-IO shape");
+    check(nx == c.nx && ny == c.ny, "MPI-IO shape", "shape differs from the serial file's");
+    double *rows_read = malloc(sizeof(double) * ((size_t)rows * nx + 1));
+    check_status(im_mpi_npy_read_rows(MPI_COMM_WORLD, serial_path, y0, rows, rows_read), "MPI-IO read");
+    check(memcmp(rows_read, surface->data + (size_t)y0 * nx, sizeof(double) * (size_t)rows * nx) == 0, "MPI-IO read",
+          "rows differ from the serial file's");
+    free(rows_read);
+    im_field_free(back);
+    im_field_free(surface);
+}
+
+int main(int argc, char **argv)
+{
+    int provided;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    im_mpi_init();
+    const double w_cone = 3.0, w_sphere = 2.0;
+    const scenario cases[] = {
+        {"cone-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1},
+        {"cone-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2},
+        {"sphere-displacement-96x80", 96, 80, im_indenter_sphere(100), IM_CONTROL_DISPLACEMENT, w_sphere, 3},
+        {"sphere-load-50x71", 50, 71, im_indenter_sphere(100), IM_CONTROL_LOAD, w_sphere, 4},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k)
+        run_scenario(&cases[k]);
+    check_npy(argc > 1 ? argv[1] : ".");
+    im_mpi_cleanup();
+    MPI_Finalize();
+    return 0;
+}

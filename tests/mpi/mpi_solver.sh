@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Runs tests/mpi/mpi_solver.c with 1, 2, 3 and 4 ranks of one thread and 2 ranks of 2 OpenMP
+# threads (hybrid; each run compares with the serial solver), then checks that every run gave the
+# same loads to the bit and the same contact counts.
+#   mpi_solver.sh MPIEXEC PROGRAM
+# Loopback only, oversubscribed (more ranks than cores), allowed as root (CI runs as root).
+set -euo pipefail
+mpiexec=$1 program=$2
+export OMPI_MCA_btl=self,vader                 # shared memory and self: no network needed
+export OMPI_MCA_btl_vader_single_copy_mechanism=none  # containers forbid cross-process memory access
+export OMPI_MCA_rmaps_base_oversubscribe=1
+export OMPI_MCA_mpi_yield_when_idle=1          # waiting ranks yield the core (oversubscribed)
+export OMPI_MCA_oob_tcp_if_include=lo
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+for ranks in 1 2 3 4 2x2; do
+  threads=1
+  [ "$ranks" = 2x2 ] && threads=2
+  echo "== ${ranks%x2} rank(s), $threads thread(s) each"
+  OMP_NUM_THREADS=$threads "$mpiexec" -n "${ranks%x2}" --oversubscribe -x OMP_NUM_THREADS "$program" "$work" |
+    tee "$work/out_$ranks"
+  # the loads and map totals (hexadecimal) and contact counts, without the iteration counts
+  cut -d' ' -f1-7 "$work/out_$ranks" > "$work/loads_$ranks"
+  [ -s "$work/loads_$ranks" ] || { echo "no output from $ranks rank(s)" >&2; exit 1; }
+done
+for ranks in 2 3 4 2x2; do
+  if ! cmp -s "$work/loads_1" "$work/loads_$ranks"; then
+    echo "FAILED: $ranks ranks give other loads than 1 rank:" >&2
+    diff "$work/loads_1" "$work/loads_$ranks" >&2 || true
+    exit 1
+  fi
+done
+echo "loads identical to the bit for 1, 2, 3 and 4 ranks and for 2 ranks of 2 threads"
