@@ -36,7 +36,8 @@ def _punch_arguments(punch):
 
 HISTORY_DTYPE = np.dtype([("approach", "f8"), ("load", "f8"), ("load_star", "f8"), ("contact_patches", "i8"),
                           ("area_ratio", "f8"), ("mean_pressure", "f8"), ("max_pressure", "f8"),
-                          ("iterations", "i4"), ("convolutions", "i4"), ("residual", "f8"), ("seconds", "f8")])
+                          ("iterations", "i4"), ("coarse_iterations", "i4"), ("convolutions", "i4"),
+                          ("residual", "f8"), ("seconds", "f8")])
 
 
 class Indentation:

@@ -106,11 +106,11 @@ static int check_ready(py_indentation *self)
 
 static PyObject *step_dict(const im_step_result *r)
 {
-    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:d,s:d}", "approach", r->approach, "load", r->load,
-                         "load_star", r->load_star, "contact_patches", r->contact_patches, "area_ratio",
+    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d}", "approach", r->approach, "load",
+                         r->load, "load_star", r->load_star, "contact_patches", r->contact_patches, "area_ratio",
                          r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure", r->max_pressure,
-                         "iterations", r->iterations, "convolutions", r->convolutions, "residual", r->residual,
-                         "seconds", r->seconds);
+                         "iterations", r->iterations, "coarse_iterations", r->coarse_iterations, "convolutions",
+                         r->convolutions, "residual", r->residual, "seconds", r->seconds);
 }
 
 static PyObject *indentation_step(py_indentation *self, PyObject *arg)
@@ -193,10 +193,10 @@ static void plan_dealloc(py_plan *self)
 
 static PyObject *solve_dict(const im_solve_result *r)
 {
-    return Py_BuildValue("{s:d,s:d,s:l,s:d,s:d,s:i,s:i,s:d,s:d}", "approach", r->approach, "load", r->load,
+    return Py_BuildValue("{s:d,s:d,s:l,s:d,s:d,s:i,s:i,s:i,s:d,s:d}", "approach", r->approach, "load", r->load,
                          "contact_patches", r->contact_patches, "mean_pressure", r->mean_pressure, "max_pressure",
-                         r->max_pressure, "iterations", r->iterations, "convolutions", r->convolutions, "residual",
-                         r->residual, "seconds", r->seconds);
+                         r->max_pressure, "iterations", r->iterations, "coarse_iterations", r->coarse_iterations,
+                         "convolutions", r->convolutions, "residual", r->residual, "seconds", r->seconds);
 }
 
 /* A new (ny, nx) float64 array: a copy of obj (checked against the plan's grid), or zeros. */
