@@ -111,9 +111,10 @@ static int read_values(FILE *stream, const char *path, im_field *field)
 int im_gsf_read(const char *path, im_field **out)
 {
     *out = NULL;
-    FILE *stream = fopen(path, "rb");
-    if (!stream)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *stream;
+    int opened = im_read_open(path, "rb", IM_READ_OR_PIPE, &stream, NULL);
+    if (opened != IM_OK)
+        return opened;
     gsf_header header = {0};
     im_field *field = NULL;
     int status = read_header(stream, path, &header);

@@ -111,6 +111,15 @@ static int quoted_length(const char *text)
     return length < 24 ? (int)length : 24;
 }
 
+/* Length of a "(...)" tuple up to its closing parenthesis (at most 48), so that a message quotes
+ * the shape and not the header's padding after it. */
+static int tuple_length(const char *text)
+{
+    size_t length = strcspn(text, ")");
+    length += text[length] == ')';
+    return length < 48 ? (int)length : 48;
+}
+
 static int parse_header(const char *path, const char *dict, enum im_npy_dtype *dtype, long *rows,
                         long *cols)
 {
@@ -130,7 +139,8 @@ static int parse_header(const char *path, const char *dict, enum im_npy_dtype *d
         return im_fail(IM_EFORMAT, "%s: Fortran-ordered arrays are not supported; expected C order "
                        "(save with numpy.ascontiguousarray)", path);
     if (!parse_shape(shape, rows, cols))
-        return im_fail(IM_EFORMAT, "%s: shape %.24s: expected a 2-D shape (rows, columns)", path, shape);
+        return im_fail(IM_EFORMAT, "%s: shape %.*s: expected a 2-D shape (rows, columns)", path,
+                       tuple_length(shape), shape);
     if (*rows < 1 || *cols < 1)
         return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side >= 1", path, *rows, *cols);
     return IM_OK; /* the upper bound on the sides is im_io_check_grid's, after the memory check */
@@ -182,9 +192,10 @@ static int read_payload(FILE *stream, const char *path, enum im_npy_dtype dtype,
 int im_npy_read(const char *path, im_field **out)
 {
     *out = NULL;
-    FILE *stream = fopen(path, "rb");
-    if (!stream)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *stream;
+    int opened = im_read_open(path, "rb", IM_READ_OR_PIPE, &stream, NULL);
+    if (opened != IM_OK)
+        return opened;
     enum im_npy_dtype dtype = IM_NPY_FLOAT64;
     long rows = 0, cols = 0;
     im_field *field = NULL;
