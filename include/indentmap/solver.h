@@ -99,6 +99,15 @@ int im_solver_plan_measured(const im_solver_plan *plan);
 /* u = K p on the plan's grid (nx * ny values each; may not alias). */
 void im_solver_convolve(im_solver_plan *plan, const double *pressure, double *displacement);
 
+/* The displacement u = K p (positive into the half-space, units of force->delta) on the whole grid
+ * of force (force per patch f = p delta^2, as im_indentation_fields gives it), for the modulus
+ * options->e_star. The solver computes u only in its window and im_indentation_fields reports 0
+ * outside it; what is written or drawn uses this instead (the deformed surface h - u would show a
+ * step at the window's edge). Plans one full-grid convolution per call (FFTW_ESTIMATE; wisdom as
+ * options says). Returns IM_OK and a new field in *displacement (the caller frees it), or IM_ENOMEM
+ * when the plan would not fit in memory. */
+int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement);
+
 enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1 };
 
 typedef struct im_solve_result {

@@ -272,11 +272,29 @@ static int write_history(const char *dir, const im_step_result *rows, int count)
     return im_atomic_commit(&file);
 }
 
-static int write_fields(const char *dir, const im_indentation *run, int step)
+/* Replaces the window's displacement (0 outside it) by the full grid's, and corrects the gap
+ * g = g0 - w + u with it, so that no field written shows the solve window. */
+static int use_full_displacement(const im_solver_options *options, im_field *force, im_field *gap,
+                                 im_field **displacement)
+{
+    im_field *full = NULL;
+    int status = im_displacement_full(force, options, &full);
+    if (status != IM_OK)
+        return status;
+    for (size_t i = 0; i < im_field_count(gap); ++i)
+        gap->data[i] += full->data[i] - (*displacement)->data[i];
+    im_field_free(*displacement);
+    *displacement = full;
+    return IM_OK;
+}
+
+static int write_fields(const char *dir, const im_indentation *run, const im_solver_options *options, int step)
 {
     im_field *f[3] = {NULL, NULL, NULL};
     static const char *const NAMES[3] = {"force", "gap", "displacement"};
     int status = im_indentation_fields(run, &f[0], &f[1], &f[2]);
+    if (status == IM_OK)
+        status = use_full_displacement(options, f[0], f[1], &f[2]);
     for (int i = 0; i < 3 && status == IM_OK; ++i) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s_%04d.npy", dir, NAMES[i], step);
@@ -395,7 +413,7 @@ static int run_steps(const indent_options *o, im_indentation *run, json_t *recor
             break;
         status = write_history(o->out, rows, done + 1);
         if (status == IM_OK && o->fields)
-            status = write_fields(o->out, run, done + 1);
+            status = write_fields(o->out, run, &o->solver, done + 1);
         const im_step_result *r = &rows[done];
         printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n",
                done + 1, r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual,

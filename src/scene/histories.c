@@ -178,8 +178,9 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
     return status;
 }
 
-/* Solves the member's history; contact reaching the surface's edge ends it early (the steps
- * before are kept, as the paper's histories end where Icarus's memory did). */
+/* Solves the member's history. Contact reaching the surface's edge fails it (IM_EEDGE, with the
+ * step): the scene asked for every step, and the pre-flight check (limits.c) refuses the steps
+ * whose smooth contact leaves the surface before any work. */
 static int solve_history(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m,
                          const im_field *surface)
 {
@@ -195,10 +196,10 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
         }
         im_step_result step;
         status = load_star_step(scene, run, m, i, surface->delta, &step);
-        if (status == IM_EEDGE) {
-            status = IM_OK;
-            break;
-        }
+        if (status == IM_EEDGE) /* a history short of the scene's steps would be drawn as if whole */
+            im_fail_context(status, "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
+                            "smaller steps)", i + 1,
+                            scene->step_count, scene->control == IM_CONTROL_LOAD ? "N*" : "approach", scene->steps[i]);
         if (status == IM_OK) {
             m->approach[i] = step.approach;
             m->history_load[i] = step.load;

@@ -128,7 +128,7 @@ typedef struct scene_member {
     uint64_t seed;
     int status;
     enum scene_origin origin;
-    char error[256];
+    char error[512];
     double height_rms;
     /* the table: the state at load_star */
     double load, load_star, area_ratio, seconds, load_star_approach;
