@@ -65,4 +65,22 @@ largest=$(for f in "$dir"/f/force_000[234].npy; do "$cli" surface --stats "$f" |
 norm=$(grep -a -o "linear \[0, [0-9.e+-]*\]" "$dir/frames/contact_0000.png")
 check "zero field: norm up to the largest force ($largest), not 1 ($norm)" \
   awk -v n="$norm" -v m="$largest" 'BEGIN { sub(/.*, /, "", n); sub(/\]/, "", n); exit !(m > 0 && (n - m) ^ 2 < 1e-10 * m * m) }'
+
+# Options accepted silently or explained wrongly before.
+check "surface --n 2 names --n" expect_exit 2 "--n 2: the box's side is the default lambda_r" \
+  "$cli" surface --n 2 --out "$dir/n2.npy"
+check "--lambda-0 below lambda_r" expect_exit 2 "--lambda-0 10: expected >= lambda_r = 64" \
+  "$cli" surface --n 64 --lambda-0 10 --out "$dir/l0.npy"
+check "--approach 1:2" expect_exit 2 "--approach '1:2': expected a range a:b:count (three numbers)" \
+  "$cli" indent "$dir/s.npy" --approach 1:2 --out "$dir/o_a"
+check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.npy" --approach 1,,2 --out "$dir/o_b"
+check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \
+  "$cli" indent "$dir/s.npy" --approach 1 --radius 5 --out "$dir/o_c"
+check "--titles surplus" expect_exit 2 "--titles 'a,b,c': 3 titles for 2 files" \
+  "$cli" render contact "$dir/f/force_0004.npy" "$dir/f/force_0003.npy" --titles a,b,c --out "$dir/t.png"
+check "info: bad IM_RENDER_BACKEND is bad input" expect_exit 2 "IM_RENDER_BACKEND" \
+  env IM_RENDER_BACKEND=bogus "$cli" info
+printf '1e300 1e300\n1e300 1e300\n' >"$dir/huge.txt"
+check "huge heights: refused, not NaN statistics" expect_exit 2 "height 1e+300 at (x=0, y=0): expected |h| <= 1e+100" \
+  "$cli" surface --stats "$dir/huge.txt"
 finish

@@ -112,6 +112,11 @@ static int parse_targets(const char *option, const char *text, double **out, int
         *count = n;
         return 0;
     }
+    if (strchr(text, ':') || strstr(text, ",,") || text[0] == ',' || (text[0] && text[strlen(text) - 1] == ',')) {
+        fprintf(stderr, "indentmap: %s '%s': expected a range a:b:count (three numbers) or a list v1,v2,... "
+                "without empty items\n", option, text);
+        return -1;
+    }
     char *copy = strdup(text), *save = NULL;
     *out = malloc(sizeof(double) * (strlen(text) / 2 + 1));
     *count = 0;
@@ -169,6 +174,8 @@ static int check_options(const indent_options *o)
         fprintf(stderr, "indentmap: give either a SURFACE file or --smooth\n");
     else if (o->punch.kind != IM_PUNCH_CONE && !o->radius_given)
         fprintf(stderr, "indentmap: --punch %s needs --radius\n", im_punch_name(o->punch.kind));
+    else if (o->punch.kind == IM_PUNCH_CONE && o->radius_given)
+        fprintf(stderr, "indentmap: --radius applies to --punch sphere or flat; a cone's shape is --alpha\n");
     else if (o->x_given != o->y_given)
         fprintf(stderr, "indentmap: give both --x and --y, or neither\n");
     else

@@ -169,6 +169,15 @@ static int render_height(im_render_context *context, const im_field *height, ren
 }
 
 /* The i-th comma-separated item of list into buffer; "" when missing. */
+/* The number of comma-separated items in list (0 for NULL). */
+static int list_length(const char *list)
+{
+    int n = list ? 1 : 0;
+    for (; list && (list = strchr(list, ',')) != NULL; ++list)
+        ++n;
+    return n;
+}
+
 static void list_item(const char *list, int i, char *buffer, size_t size)
 {
     buffer[0] = '\0';
@@ -350,6 +359,9 @@ static int check_usage(const render_options *o, int inputs)
         fprintf(stderr, "indentmap: render %s: expected 1 to 64 input files\n", o->mode);
     else if (o->raw && inputs > 1 && !animation)
         fprintf(stderr, "indentmap: --raw draws one file\n");
+    else if (list_length(o->titles) > inputs)
+        fprintf(stderr, "indentmap: --titles '%s': %d titles for %d file%s: expected at most one per file\n",
+                o->titles, list_length(o->titles), inputs, inputs == 1 ? "" : "s");
     else if (animation ? !o->frames : !o->out)
         fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
     else if (o->raw && !animation && strstr(o->out, ".png") == NULL)
