@@ -66,6 +66,39 @@ norm=$(grep -a -o "linear \[0, [0-9.e+-]*\]" "$dir/frames/contact_0000.png")
 check "zero field: norm up to the largest force ($largest), not 1 ($norm)" \
   awk -v n="$norm" -v m="$largest" 'BEGIN { sub(/.*, /, "", n); sub(/\]/, "", n); exit !(m > 0 && (n - m) ^ 2 < 1e-10 * m * m) }'
 
+# An address-space limit (ulimit -v): the estimate counts the threads' stacks and malloc arenas and
+# the renderer, so a scene that cannot run is refused before any work (before: the check passed,
+# the run failed mid-way and left frames/ behind). Not under AddressSanitizer (its shadow memory
+# needs terabytes of address space).
+cat >"$dir/frames.ini" <<INI
+[scene]
+name = frames
+output = out_frames
+[surfaces]
+n = 64
+slopes = 0.08
+seeds = 1
+[punch]
+shape = cone
+[loading]
+load_star = 300
+[output]
+frames = yes
+frame_count = 3
+animation = gif
+INI
+if ldd "$cli" 2>/dev/null | grep -q libasan; then
+  echo "note: AddressSanitizer build: the ulimit -v checks are skipped"
+else
+  (ulimit -v 450000; "$cli" run --quiet "$dir/frames.ini" >/dev/null 2>"$dir/as.err"; echo $? >"$dir/as.status")
+  check "ulimit -v: refused (exit 2)" test "$(cat "$dir/as.status")" -eq 2
+  check "ulimit -v: message" grep -q "frames.ini: this scene needs about [0-9.]* MiB of address space" "$dir/as.err"
+  check "ulimit -v: no output folder" test ! -e "$dir/out_frames"
+  (ulimit -v 1000000; "$cli" run --quiet "$dir/frames.ini" >/dev/null 2>"$dir/as2.err"; echo $? >"$dir/as2.status")
+  check "ulimit -v: a limit that suffices runs the scene" test "$(cat "$dir/as2.status")" -eq 0
+  check "ulimit -v: the frames' last step at load_star" test -f "$dir/out_frames/contact.gif"
+fi
+
 # Options accepted silently or explained wrongly before.
 check "surface --n 2 names --n" expect_exit 2 "--n 2: the box's side is the default lambda_r" \
   "$cli" surface --n 2 --out "$dir/n2.npy"

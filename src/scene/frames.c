@@ -85,7 +85,8 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
             break;
         }
         im_step_result step;
-        status = im_indentation_step(run, n * (i + 1) / h->count, &step);
+        /* the last step exactly at n: n * count / count may round above the largest load prepared */
+        status = im_indentation_step(run, i + 1 == h->count ? n : n * (i + 1) / h->count, &step);
         if (status == IM_OK)
             status = keep_step(scene, run, h, i, &step);
     }
