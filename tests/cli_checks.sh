@@ -109,6 +109,8 @@ check "--approach 1:2" expect_exit 2 "--approach '1:2': expected a range a:b:cou
 check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.npy" --approach 1,,2 --out "$dir/o_b"
 check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \
   "$cli" indent "$dir/s.npy" --approach 1 --radius 5 --out "$dir/o_c"
+check "--x outside the surface" expect_exit 2 "--x 1000 --y 10: the punch's axis lies outside the 64 x 64 surface" \
+  "$cli" indent "$dir/s.npy" --approach 1 --x 1000 --y 10 --out "$dir/o_x"
 check "--titles surplus" expect_exit 2 "--titles 'a,b,c': 3 titles for 2 files" \
   "$cli" render contact "$dir/f/force_0004.npy" "$dir/f/force_0003.npy" --titles a,b,c --out "$dir/t.png"
 check "info: bad IM_RENDER_BACKEND is bad input" expect_exit 2 "IM_RENDER_BACKEND" \

@@ -396,6 +396,16 @@ static int load_surface(const indent_options *o, im_field **surface)
     return im_field_create(o->nx, o->ny, o->delta, surface);
 }
 
+/* --x/--y must put the punch's axis on the surface (before: "the surface is too small"). */
+static int check_axis_inside(const indent_options *o, const im_field *surface)
+{
+    double width = surface->nx * surface->delta, height = surface->ny * surface->delta;
+    if (!o->x_given || (o->punch.x0 >= 0 && o->punch.x0 <= width && o->punch.y0 >= 0 && o->punch.y0 <= height))
+        return IM_OK;
+    return im_fail(IM_EINVAL, "--x %g --y %g: the punch's axis lies outside the %d x %d surface (expected 0 <= x <= "
+                   "%g and 0 <= y <= %g)", o->punch.x0, o->punch.y0, surface->nx, surface->ny, width, height);
+}
+
 static double largest(const double *v, int n)
 {
     double m = 0;
@@ -459,6 +469,8 @@ int cli_indent(int argc, char **argv)
         warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
     }
+    if (status == IM_OK)
+        status = check_axis_inside(&o, surface);
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
