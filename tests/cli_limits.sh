@@ -63,10 +63,8 @@ fi
 # Consistency: at N* = 4000 the smooth contact radius (35.7 patches) exceeds half of 64.
 scene wide 64 4000
 refused wide 2 "wide.ini: \[loading\] load_star = 4000: the smooth contact radius sqrt(N\*/pi) = 35.7 patches reaches the edge of the 64 x 64 surface"
-scene steps 64 600 "plots = fig5
-[loading]
-control = load
-steps = 100:5000:3"
+scene steps 64 600 "plots = fig5"
+sed -i 's/^\[loading\]$/[loading]\ncontrol = load\nsteps = 100:5000:3/' "$dir/steps.ini"
 refused steps 2 "\[loading\] steps (largest) = 5000"
 
 # Outputs never hold inputs: the scene's own folder, or the folder of its surface file.

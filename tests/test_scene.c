@@ -156,9 +156,11 @@ static void binary_and_unreadable_files_are_refused(void **state)
     im_scene scene;
     assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
     assert_non_null(strstr(im_last_error(), ":2: a NUL byte"));
-    /* a directory opens for reading on Linux, but cannot be read */
-    assert_int_equal(im_scene_load(test_temp_dir(), &scene), IM_EIO);
-    assert_non_null(strstr(im_last_error(), "cannot read"));
+    /* a directory opens for reading on Linux, but is refused before any read; so is a device */
+    assert_int_equal(im_scene_load(test_temp_dir(), &scene), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "is a directory"));
+    assert_int_equal(im_scene_load("/dev/zero", &scene), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "/dev/zero is a character device"));
 }
 
 /* Every bundled scene parses. */

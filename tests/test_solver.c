@@ -351,6 +351,46 @@ static void test_accelerated_equals_plain_pk_load(void **state)
     compare_with_plain_pk(IM_CONTROL_LOAD, targets, 3);
 }
 
+/* u on the whole grid, for what is written or drawn: from the cropped run's force it matches the
+ * displacement of the same contact solved on the whole grid (crop off, an independent solve), and
+ * far from the contact Boussinesq's point load u = N / (pi E* r); the window's own u is 0 outside
+ * the window (the step that deformed-surface frames showed). */
+static void test_full_grid_displacement(void **state)
+{
+    (void)state;
+    im_field *s = rough_surface(96, 0.08, 3), *fc = NULL, *uc = NULL, *uf = NULL, *full = NULL;
+    im_indenter cone = im_indenter_cone(80.0);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-10;
+    im_indentation *cropped = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 1.5, &o);
+    im_step_result r = step(cropped, 1.5);
+    assert_int_equal(im_indentation_fields(cropped, &fc, NULL, &uc), IM_OK);
+    im_window w = im_indentation_window(cropped);
+    assert_true(w.x0 > 0 && w.y0 > 0);
+    assert_int_equal(im_displacement_full(fc, &o, &full), IM_OK);
+    o.crop = 0;
+    im_indentation *whole = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 1.5, &o);
+    step(whole, 1.5);
+    assert_int_equal(im_indentation_fields(whole, NULL, NULL, &uf), IM_OK);
+    double peak = 0, worst = 0;
+    for (size_t i = 0; i < im_field_count(uf); ++i) {
+        peak = fmax(peak, uf->data[i]);
+        worst = fmax(worst, fabs(full->data[i] - uf->data[i]));
+    }
+    if (worst > 1e-6 * peak)
+        fail_msg("full-grid u differs from the uncropped solve's by %g (peak %g)", worst, peak);
+    assert_true(uc->data[0] == 0.0); /* the corner is outside the window: the window's u is 0 there */
+    double cx = w.x0 + 0.5 * w.nx, cy = w.y0 + 0.5 * w.ny, r0 = hypot(0.5 - cx, 0.5 - cy);
+    assert_close(full->data[0], r.load / (M_PI * o.e_star * r0), 0.05 * r.load / (M_PI * o.e_star * r0));
+    im_indentation_free(cropped);
+    im_indentation_free(whole);
+    im_field_free(fc);
+    im_field_free(uc);
+    im_field_free(uf);
+    im_field_free(full);
+    im_field_free(s);
+}
+
 /* ---- refusals, with nothing computed lost ---- */
 
 /* The stopping rule bounds both halves of the complementarity conditions: the rms gap over the
@@ -466,6 +506,7 @@ int main(void)
         cmocka_unit_test(test_accelerated_equals_plain_pk_displacement),
         cmocka_unit_test(test_accelerated_equals_plain_pk_load),
         cmocka_unit_test(test_stopping_rule_bounds_penetration),
+        cmocka_unit_test(test_full_grid_displacement),
         cmocka_unit_test(test_edge_contact),
         cmocka_unit_test(test_no_convergence),
         cmocka_unit_test(test_bad_input),

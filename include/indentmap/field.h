@@ -45,6 +45,11 @@ int im_field_check_finite(const im_field *field, const char *what);
  * it cannot be determined. */
 size_t im_memory_available(void);
 
+/* What an address-space limit (ulimit -v) leaves beyond this process's present virtual size, in
+ * bytes; 0 when there is no such limit. Reservations that use no memory (thread stacks, malloc's
+ * per-thread arenas, mapped libraries) count against it. */
+size_t im_address_space_available(void);
+
 /* IM_ENOMEM, with the estimate and what is available in the message, when bytes exceed the
  * memory available; IM_OK otherwise. what names the allocation ("surface 8192 x 8192"). */
 int im_memory_check(double bytes, const char *what);

@@ -121,6 +121,45 @@ void im_folder_lock_release(im_folder_lock *lock);
  * Returns how many were removed. */
 int im_folder_remove_temporaries(const char *folder, int depth);
 
+/* ---- bounded reading ----
+ * Every reader opens its input through im_read_open, so that no input can make it read without
+ * end or without limit: a directory is refused, and so is anything but a regular file or a pipe (a
+ * device such as /dev/zero, a socket), whose reading may never end. Pipes are accepted only by
+ * readers that bound what they read as they go (text lines, below). Reads poll im_stop_requested
+ * (status.h), so that SIGINT/SIGTERM end even a read of a long pipe promptly. */
+enum im_read_source {
+    IM_READ_REGULAR = 0,   /* regular files only */
+    IM_READ_OR_PIPE = 1    /* regular files and pipes (FIFOs, process substitution, stdin) */
+};
+
+/* Opens path with fopen mode ("r", "rb") after checking what it is. Returns IM_OK and sets *stream
+ * (close with fclose) and, when size is not NULL, *size to the file's size in bytes (-1 for a
+ * pipe); IM_EIO when it cannot be opened, IM_EINVAL for a directory or a file of a kind `source`
+ * does not accept; every message names path. */
+int im_read_open(const char *path, const char *mode, enum im_read_source source, FILE **stream, long long *size);
+
+/* One line of text as im_read_line reads it. */
+typedef struct im_text_line {
+    char *text;        /* the line without its newline, NUL-terminated; owned: free() it */
+    size_t length;     /* bytes in text */
+    size_t capacity;   /* bytes allocated */
+    long number;       /* 1-based number of the line last read */
+} im_text_line;
+
+/* Reads the next line of stream into line (zero-initialise it before the first call). Returns
+ * IM_OK with *end = 0 for a line, IM_OK with *end = 1 at the end of the file (nothing read), or an
+ * error whose message names path and the line: a NUL byte (IM_EFORMAT: not a text file), a line
+ * longer than max_length bytes (IM_EFORMAT), a line that would not fit in the memory available
+ * (IM_ENOMEM), a read error (IM_EIO with the system's reason; never taken for the end of the file),
+ * or a stop request (IM_EINTERRUPTED). */
+int im_read_line(FILE *stream, const char *path, size_t max_length, im_text_line *line, int *end);
+
+/* Reads a whole regular text file of at most max_bytes bytes (and within the memory available)
+ * into *text, NUL-terminated, its length in *size when size is not NULL; the caller frees *text.
+ * Errors name path: IM_EIO (open or read), IM_EINVAL (not a regular file, or larger than
+ * max_bytes), IM_ENOMEM, IM_EFORMAT (a NUL byte inside: not text). */
+int im_read_text_file(const char *path, size_t max_bytes, char **text, size_t *size);
+
 /* ---- surfaces ---- */
 enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };
 

@@ -164,6 +164,15 @@ int im_solver_plan_measured(const im_solver_plan *plan);
 /* u = K p on the plan's grid (nx * ny values each; may not alias). */
 void im_solver_convolve(im_solver_plan *plan, const double *pressure, double *displacement);
 
+/* The displacement u = K p (positive into the half-space, units of force->delta) on the whole grid
+ * of force (force per patch f = p delta^2, as im_indentation_fields gives it), for the modulus
+ * options->e_star. The solver computes u only in its window and im_indentation_fields reports 0
+ * outside it; what is written or drawn uses this instead (the deformed surface h - u would show a
+ * step at the window's edge). Plans one full-grid convolution per call (FFTW_ESTIMATE; wisdom as
+ * options says). Returns IM_OK and a new field in *displacement (the caller frees it), or IM_ENOMEM
+ * when the plan would not fit in memory. */
+int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement);
+
 enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1 };
 
 typedef struct im_solve_result {
@@ -270,5 +279,11 @@ const im_solver_plan *im_indentation_plan(const im_indentation *run);
  * Patches a flat punch can never touch have gap +INFINITY. */
 int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap,
                           im_field **displacement);
+
+/* im_indentation_fields with the displacement on the whole grid (im_displacement_full, with the
+ * run's own options) and the gap g = g0 - w + u corrected with it: what is written or drawn. Any
+ * pointer may be NULL to skip that field. */
+int im_indentation_fields_full(const im_indentation *run, im_field **force, im_field **gap,
+                               im_field **displacement);
 
 #endif

@@ -8,6 +8,8 @@
 #ifndef INDENTMAP_STATUS_H
 #define INDENTMAP_STATUS_H
 
+#include <signal.h>
+
 enum im_status {
     IM_OK = 0,
     IM_EINVAL,    /* a parameter is out of range or malformed */
@@ -33,5 +35,13 @@ int im_fail(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3
 
 /* Prefixes the current message with context ("reading s.npy: ...") and returns status. */
 int im_fail_context(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Interruption of long operations that take no stop flag of their own (file reads): the program
+ * registers the flag its SIGINT/SIGTERM handler sets (NULL, the default, disables the check), and
+ * such operations end with IM_EINTERRUPTED once it is non-zero. The flag stays owned by the caller
+ * and must outlive every read. im_stop_requested returns the flag's value (the signal number), 0
+ * when none is registered or none has arrived. */
+void im_set_stop_flag(volatile sig_atomic_t *flag);
+int im_stop_requested(void);
 
 #endif

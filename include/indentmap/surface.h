@@ -74,6 +74,7 @@ typedef struct im_surface_stats {
     double height_min, height_max;
 } im_surface_stats;
 
+/* Refuses (IM_EINVAL, naming the first) heights with |h| > 1e100, whose squares would overflow. */
 int im_surface_statistics(const im_field *surface, im_surface_stats *stats);
 
 /* Radially averaged power spectral density C_iso(q) as in Jacobs, Junge and Pastewka (2017):

@@ -62,7 +62,8 @@ class Indentation:
         return self._run.step(float(target))
 
     def fields(self):
-        """(force, gap, displacement) of the last step on the full grid, as new arrays."""
+        """(force, gap, displacement) of the last step on the full grid, as new arrays: the displacement is
+        computed on the whole grid (one convolution), not only in the solve window."""
         return self._run.fields()
 
     @property

@@ -134,7 +134,7 @@ static PyObject *indentation_fields(py_indentation *self, PyObject *unused)
     if (check_ready(self) < 0)
         return NULL;
     im_field *force = NULL, *gap = NULL, *displacement = NULL;
-    int status = im_indentation_fields(self->run, &force, &gap, &displacement);
+    int status = im_indentation_fields_full(self->run, &force, &gap, &displacement); /* GIL held: it plans */
     if (status != IM_OK)
         return py_raise_status(status);
     return Py_BuildValue("(NNN)", py_array_from_field(force), py_array_from_field(gap),

@@ -148,6 +148,11 @@ static int parse_targets(const char *option, const char *text, double **out, int
         *count = n;
         return 0;
     }
+    if (strchr(text, ':') || strstr(text, ",,") || text[0] == ',' || (text[0] && text[strlen(text) - 1] == ',')) {
+        fprintf(stderr, "indentmap: %s '%s': expected a range a:b:count (three numbers) or a list v1,v2,... "
+                "without empty items\n", option, text);
+        return -1;
+    }
     char *copy = strdup(text), *save = NULL;
     *out = malloc(sizeof(double) * (strlen(text) / 2 + 1));
     *count = 0;
@@ -218,6 +223,8 @@ static int check_options(const indent_options *o)
         fprintf(stderr, "indentmap: give either a SURFACE file or --smooth\n");
     else if (o->punch.kind != IM_PUNCH_CONE && !o->radius_given)
         fprintf(stderr, "indentmap: --punch %s needs --radius\n", im_punch_name(o->punch.kind));
+    else if (o->punch.kind == IM_PUNCH_CONE && o->radius_given)
+        fprintf(stderr, "indentmap: --radius applies to --punch sphere or flat; a cone's shape is --alpha\n");
     else if (o->x_given != o->y_given)
         fprintf(stderr, "indentmap: give both --x and --y, or neither\n");
     else
@@ -407,15 +414,15 @@ static void history_close(history_file *h)
     h->fd = -1;
 }
 
-/* The fields of a step, each FILE.npy with FILE.npy.json stating its units: forces in force_unit,
- * gaps and displacements in the surface's length unit. */
+/* The fields of a step on the full grid, each FILE.npy with FILE.npy.json stating its units: forces in
+ * force_unit, gaps and displacements in the surface's length unit. */
 static int write_fields(const char *dir, const im_indentation *run, int step, const char *length_unit,
                         const char *force_unit)
 {
     im_field *f[3] = {NULL, NULL, NULL};
     static const char *const NAMES[3] = {"force", "gap", "displacement"};
     static const char *const QUANTITIES[3] = {"force per patch", "gap", "surface displacement"};
-    int status = im_indentation_fields(run, &f[0], &f[1], &f[2]);
+    int status = im_indentation_fields_full(run, &f[0], &f[1], &f[2]);
     for (int i = 0; i < 3 && status == IM_OK; ++i) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s_%04d.npy", dir, NAMES[i], step);
@@ -557,6 +564,16 @@ static void set_force_unit(indent_options *o, const im_field *surface)
     else
         snprintf(o->force_unit, sizeof o->force_unit, "%s %s\u00b2", o->e_star_unit[0] ? o->e_star_unit : "E*",
                  surface->unit[0] ? surface->unit : "\u03b4");
+}
+
+/* --x/--y must put the punch's axis on the surface (before: "the surface is too small"). */
+static int check_axis_inside(const indent_options *o, const im_field *surface)
+{
+    double width = surface->nx * surface->delta, height = surface->ny * surface->delta;
+    if (!o->x_given || (o->punch.x0 >= 0 && o->punch.x0 <= width && o->punch.y0 >= 0 && o->punch.y0 <= height))
+        return IM_OK;
+    return im_fail(IM_EINVAL, "--x %g --y %g: the punch's axis lies outside the %d x %d surface (expected 0 <= x <= "
+                   "%g and 0 <= y <= %g)", o->punch.x0, o->punch.y0, surface->nx, surface->ny, width, height);
 }
 
 static double largest(const double *v, int n)
@@ -730,9 +747,11 @@ int cli_indent(int argc, char **argv)
         status = load_surface(&o, &surface);
     }
     if (status == IM_OK)
+        status = check_axis_inside(&o, surface);
+    if (status == IM_OK) {
         set_force_unit(&o, surface);
-    if (status == IM_OK)
         status = measured_interface(&o, surface, &rough);
+    }
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);

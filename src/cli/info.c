@@ -27,6 +27,8 @@ static int print_renderer(im_render_backend backend)
 {
     im_render_context *context = NULL;
     int status = im_render_open(backend, &context);
+    if (status == IM_EINVAL) /* a bad IM_RENDER_BACKEND: bad input, exit 2 as for render */
+        return cli_report(status);
     if (status != IM_OK) {
         int missing = im_render_context_missing(status, im_last_error());
         printf("render backend: %s (%s)\n", missing ? "unavailable" : "failed", im_last_error());

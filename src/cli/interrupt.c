@@ -6,9 +6,11 @@
 #include "cli/cli.h"
 
 #include "indentmap/io.h"
+#include "indentmap/status.h"
 
 #include <signal.h>
 #include <string.h>
+#include <unistd.h>
 
 volatile sig_atomic_t cli_stop_signal = 0;
 
@@ -20,15 +22,20 @@ static void end_by_signal(int signal_number)
     raise(signal_number);
 }
 
-/* Async-signal-safe: stores the number, or ends the process when the user insists (a second signal
- * while the first is being honoured). */
+/* Async-signal-safe: stores the number and says so at once (a step may take minutes, and a
+ * silent Ctrl-C reads as ignored), or ends the process when the user insists (a second signal while
+ * the first is being honoured). */
 static void on_signal(int signal_number)
 {
+    static const char notice[] = "indentmap: stopping at the next safe point (finished results are kept); "
+                                 "signal again to stop at once\n";
     if (cli_stop_signal) {
         end_by_signal(signal_number);
         return;
     }
     cli_stop_signal = signal_number;
+    ssize_t written = write(STDERR_FILENO, notice, sizeof notice - 1);
+    (void)written; /* nothing to do in a handler if stderr is gone */
 }
 
 static int install(void (*handler)(int))
@@ -39,6 +46,7 @@ static int install(void (*handler)(int))
     sigemptyset(&action.sa_mask);
     action.sa_flags = SA_RESTART; /* file writes in progress complete rather than fail with EINTR */
     cli_stop_signal = 0;
+    im_set_stop_flag(&cli_stop_signal); /* file reads poll it too */
     /* A write past the file-size limit (ulimit -f) then fails with EFBIG and is reported, its
      * temporary file removed, instead of SIGXFSZ killing the process mid-write. */
     signal(SIGXFSZ, SIG_IGN);

@@ -172,6 +172,15 @@ static int render_height(im_render_context *context, const im_field *height, ren
 }
 
 /* The i-th comma-separated item of list into buffer; "" when missing. */
+/* The number of comma-separated items in list (0 for NULL). */
+static int list_length(const char *list)
+{
+    int n = list ? 1 : 0;
+    for (; list && (list = strchr(list, ',')) != NULL; ++list)
+        ++n;
+    return n;
+}
+
 static void list_item(const char *list, int i, char *buffer, size_t size)
 {
     buffer[0] = '\0';
@@ -228,22 +237,41 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     return im_figure_write(&figure, o->out);
 }
 
-/* Reads the fields and sets the default norm: the union of their default ranges. */
+/* The default norm of several fields: the union of their finite values (forces: 0 .. the largest;
+ * heights: min .. max), and only when that union is empty or a single value the style's fallback.
+ * Taking the union of each field's default range instead let one all-zero force field widen the
+ * norm of every frame to its fallback [0, 1]. */
+static void set_shared_range(render_options *o, im_field **fields, int count)
+{
+    int height = strcmp(o->mode, "height") == 0;
+    double lo = height ? INFINITY : 0.0, hi = height ? -INFINITY : 0.0;
+    for (int i = 0; i < count; ++i)
+        for (size_t k = 0; k < im_field_count(fields[i]); ++k)
+            if (isfinite(fields[i]->data[k])) {
+                lo = height ? fmin(lo, fields[i]->data[k]) : lo;
+                hi = fmax(hi, fields[i]->data[k]);
+            }
+    if (!(hi > lo)) {
+        im_colormap fallback = height ? im_height_style_default(fields[0]).colormap
+                                      : im_contact_style_default(fields[0]).colormap;
+        lo = fallback.lo;
+        hi = fallback.hi;
+    }
+    o->shared_lo = lo;
+    o->shared_hi = hi;
+}
+
+/* Reads the fields and sets the default norm. */
 static int read_fields(render_options *o, char **inputs, int count, im_field **fields)
 {
-    o->shared_lo = INFINITY;
-    o->shared_hi = -INFINITY;
     for (int i = 0; i < count; ++i) {
         int status = im_surface_read(inputs[i], &fields[i]);
         if (status != IM_OK)
             return status;
         if (i == 0)
             memcpy(o->value_unit, fields[i]->value_unit, sizeof o->value_unit);
-        im_colormap c = strcmp(o->mode, "height") == 0 ? im_height_style_default(fields[i]).colormap
-                                                       : im_contact_style_default(fields[i]).colormap;
-        o->shared_lo = fmin(o->shared_lo, c.lo);
-        o->shared_hi = fmax(o->shared_hi, c.hi);
     }
+    set_shared_range(o, fields, count);
     return IM_OK;
 }
 
@@ -337,6 +365,9 @@ static int check_usage(const render_options *o, int inputs)
         fprintf(stderr, "indentmap: render %s: expected 1 to 64 input files\n", o->mode);
     else if (o->raw && inputs > 1 && !animation)
         fprintf(stderr, "indentmap: --raw draws one file\n");
+    else if (list_length(o->titles) > inputs)
+        fprintf(stderr, "indentmap: --titles '%s': %d titles for %d file%s: expected at most one per file\n",
+                o->titles, list_length(o->titles), inputs, inputs == 1 ? "" : "s");
     else if (animation ? !o->frames : !o->out)
         fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
     else if (o->raw && !animation && strstr(o->out, ".png") == NULL)

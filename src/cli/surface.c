@@ -304,6 +304,16 @@ static int parse_options(int argc, char **argv, surface_options *o)
         o->params.ny = o->params.nx;
     if (!o->lambda_r_given)
         o->params.lambda_r = o->params.nx > o->params.ny ? o->params.nx : o->params.ny;
+    if (!o->stats && !o->lambda_r_given && !(o->params.lambda_r > o->params.lambda_s)) {
+        fprintf(stderr, "indentmap: --n %d: the box's side is the default lambda_r, which must exceed lambda_s = %g: "
+                "expected a larger --n (or --lambda-s, --lambda-r)\n", o->params.nx, o->params.lambda_s);
+        return -1;
+    }
+    if (o->params.lambda_0 != 0.0 && o->params.lambda_0 < o->params.lambda_r) {
+        fprintf(stderr, "indentmap: --lambda-0 %g: expected >= lambda_r = %g (lambda_0 > lambda_r adds a roll-off "
+                "plateau; without --lambda-0 there is none)\n", o->params.lambda_0, o->params.lambda_r);
+        return -1;
+    }
     if (o->params.lambda_0 < o->params.lambda_r)
         o->params.lambda_0 = o->params.lambda_r;
     return check_outputs_apart(o);

@@ -126,6 +126,14 @@ static size_t address_space_left(size_t limit)
     return used < limit ? limit - used : 1; /* 1, not 0: 0 would read as "unknown" */
 }
 
+size_t im_address_space_available(void)
+{
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
+        return 0;
+    return address_space_left((size_t)limit.rlim_cur);
+}
+
 size_t im_memory_available(void)
 {
     size_t available = meminfo_available();

@@ -47,3 +47,9 @@ int im_fail_context(int status, const char *fmt, ...)
         snprintf(last_message + used, sizeof last_message - (size_t)used, ": %s", previous);
     return status;
 }
+
+static volatile sig_atomic_t *stop_flag;
+
+void im_set_stop_flag(volatile sig_atomic_t *flag) { stop_flag = flag; }
+
+int im_stop_requested(void) { return stop_flag ? (int)*stop_flag : 0; }

@@ -170,9 +170,10 @@ static void stated_units(const gsf_header *h, surface_stated *stated)
 int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
-    FILE *stream = fopen(path, "rb");
-    if (!stream)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *stream;
+    int opened = im_read_open(path, "rb", IM_READ_OR_PIPE, &stream, NULL);
+    if (opened != IM_OK)
+        return opened;
     gsf_header header = {0};
     im_field *field = NULL;
     int status = read_header(stream, path, &header);

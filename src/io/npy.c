@@ -139,6 +139,15 @@ static int parse_descr(const char *text, npy_type *type)
     return 1;
 }
 
+/* Length of a "(...)" tuple up to its closing parenthesis (at most 48), so that a message quotes
+ * the shape and not the header's padding after it. */
+static int tuple_length(const char *text)
+{
+    size_t length = strcspn(text, ")");
+    length += text[length] == ')';
+    return length < 48 ? (int)length : 48;
+}
+
 static int parse_header(const char *path, const char *dict, npy_type *type, long *rows, long *cols)
 {
     const char *descr = dict_value(dict, "descr");
@@ -153,7 +162,8 @@ static int parse_header(const char *path, const char *dict, npy_type *type, long
         return im_fail(IM_EFORMAT, "%s: fortran_order %.8s: expected True or False", path, order);
     type->fortran_order = order[0] == 'T';
     if (!parse_shape(shape, rows, cols))
-        return im_fail(IM_EFORMAT, "%s: shape %.24s: expected a 2-D shape (rows, columns)", path, shape);
+        return im_fail(IM_EFORMAT, "%s: shape %.*s: expected a 2-D shape (rows, columns)", path,
+                       tuple_length(shape), shape);
     if (*rows < 1 || *cols < 1)
         return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side >= 1", path, *rows, *cols);
     return IM_OK; /* the upper bound on the sides is im_io_check_grid's, after the memory check */
@@ -252,9 +262,10 @@ int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit"};
     *out = NULL;
-    FILE *stream = fopen(path, "rb");
-    if (!stream)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *stream;
+    int opened = im_read_open(path, "rb", IM_READ_OR_PIPE, &stream, NULL);
+    if (opened != IM_OK)
+        return opened;
     npy_type type = {0};
     long rows = 0, cols = 0;
     im_field *field = NULL;

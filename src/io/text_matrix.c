@@ -35,18 +35,37 @@ typedef struct value_list {
     size_t count, capacity;
 } value_list;
 
-static int value_list_push(value_list *list, double value)
+/* Appends a value; growing the array is checked against the memory available, so that a text
+ * file too large for this machine is refused before it is read whole. */
+static int value_list_push(value_list *list, double value, const char *path, long line_number)
 {
     if (list->count == list->capacity) {
         size_t capacity = list->capacity ? 2 * list->capacity : 4096;
+        char what[4200];
+        snprintf(what, sizeof what, "%s:%ld: room for %zu values", path, line_number, capacity);
+        int status = im_memory_check((double)capacity * sizeof(double), what);
+        if (status != IM_OK)
+            return status;
         double *grown = realloc(list->values, capacity * sizeof *grown);
         if (!grown)
-            return IM_ENOMEM;
+            return im_fail(IM_ENOMEM, "%s: allocation failed", what);
         list->values = grown;
         list->capacity = capacity;
     }
     list->values[list->count++] = value;
     return IM_OK;
+}
+
+/* A token for a message: at most 32 bytes, bytes outside printable ASCII as \xNN (a byte-order
+ * mark or a control character would otherwise be invisible). */
+static void visible_token(const char *token, char *out, size_t size)
+{
+    size_t used = 0;
+    for (size_t i = 0; token[i] && i < 32 && used + 5 < size; ++i) {
+        unsigned char c = (unsigned char)token[i];
+        used += (size_t)snprintf(out + used, size - used, c >= 0x20 && c < 0x7f ? "%c" : "\\x%02x", c);
+    }
+    out[used] = '\0';
 }
 
 typedef struct text_header {
@@ -135,53 +154,75 @@ static int check_stated_shape(const char *path, const text_header *header, long 
                    rows, rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
 }
 
-/* Parses the numbers of one data line into values and *count; IM_EFORMAT or IM_ENOMEM with a message. */
+/* Parses the numbers of one data line into values, counting them in *count. */
 static int parse_data_line(char *line, const char *path, long line_number, value_list *values, long *count)
 {
     *count = 0;
+    char shown[160];
     for (char *token = strtok(line, " \t,\r\n"); token; token = strtok(NULL, " \t,\r\n")) {
         char *end;
         errno = 0;
         double value = strtod(token, &end);
-        if (end == token || *end != '\0')
-            return im_fail(IM_EFORMAT, "%s:%ld: '%.32s' is not a number", path, line_number, token);
-        if (isinf(value)) /* NaN passes: a missing point, refused or filled once the grid is known */
-            return im_fail(IM_EFORMAT, "%s:%ld: value '%.32s' is not finite; heights must be finite numbers",
-                           path, line_number, token);
-        if (value_list_push(values, value) != IM_OK)
-            return im_fail(IM_ENOMEM, "%s:%ld: out of memory", path, line_number);
-        ++*count;
+        if (end == token || *end != '\0') {
+            visible_token(token, shown, sizeof shown);
+            return im_fail(IM_EFORMAT, "%s:%ld: '%s' is not a number", path, line_number, shown);
+        }
+        if (isinf(value)) { /* NaN passes: a missing point, refused or filled once the grid is known */
+            visible_token(token, shown, sizeof shown);
+            return im_fail(IM_EFORMAT, "%s:%ld: value '%s' is not finite; heights must be finite numbers", path,
+                           line_number, shown);
+        }
+        if (++*count > IM_FIELD_MAX_SIDE)
+            return im_fail(IM_EFORMAT, "%s:%ld: more than %d values on one line: expected at most %d columns",
+                           path, line_number, IM_FIELD_MAX_SIDE, IM_FIELD_MAX_SIDE);
+        int status = value_list_push(values, value, path, line_number);
+        if (status != IM_OK)
+            return status;
     }
+    return IM_OK;
+}
+
+/* The longest line accepted: a row of the widest grid at 64 bytes a value (%.17g needs at most 24). */
+static const size_t MAX_LINE_BYTES = (size_t)IM_FIELD_MAX_SIDE * 64u;
+
+/* A UTF-8 byte-order mark, which spreadsheet programs put before the first line, is not data. */
+static char *skip_byte_order_mark(char *text, long line_number)
+{
+    return line_number == 1 && strncmp(text, "\xef\xbb\xbf", 3) == 0 ? text + 3 : text;
+}
+
+/* Adds one line's row of values (or header) to what was read so far. */
+static int take_line(char *text, const char *path, long line_number, value_list *values, long *columns, long *rows,
+                     text_header *header)
+{
+    if (text[0] == '#') {
+        parse_shape_header(text, line_number, header);
+        return parse_header_line(path, line_number, text, header);
+    }
+    long count;
+    int status = parse_data_line(text, path, line_number, values, &count);
+    if (status != IM_OK || count == 0)
+        return status;
+    if (*columns == 0)
+        *columns = count;
+    else if (count != *columns)
+        return im_fail(IM_EFORMAT, "%s:%ld: %ld values, but the first data row has %ld", path, line_number, count,
+                       *columns);
+    if (++*rows > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s:%ld: more than %d data rows: expected at most %d rows", path, line_number,
+                       IM_FIELD_MAX_SIDE, IM_FIELD_MAX_SIDE);
     return IM_OK;
 }
 
 static int read_rows(FILE *stream, const char *path, value_list *values, long *columns, long *rows,
                      text_header *header)
 {
-    char *line = NULL;
-    size_t capacity = 0;
-    long line_number = 0;
-    int status = IM_OK;
-    while (status == IM_OK && getline(&line, &capacity, stream) != -1) {
-        ++line_number;
-        if (line[0] == '#') {
-            status = parse_header_line(path, line_number, line, header);
-            parse_shape_header(line, line_number, header);
-            continue;
-        }
-        long count = 0;
-        status = parse_data_line(line, path, line_number, values, &count);
-        if (status != IM_OK)
-            break;
-        if (count > 0 && *columns == 0)
-            *columns = count;
-        else if (count > 0 && count != *columns)
-            status = im_fail(IM_EFORMAT, "%s:%ld: %ld values, but the first data row has %ld", path,
-                             line_number, count, *columns);
-        if (status == IM_OK && count > 0)
-            ++*rows;
-    }
-    free(line);
+    im_text_line line = {0};
+    int status = IM_OK, end = 0;
+    while (status == IM_OK && (status = im_read_line(stream, path, MAX_LINE_BYTES, &line, &end)) == IM_OK && !end)
+        status = take_line(skip_byte_order_mark(line.text, line.number), path, line.number, values, columns, rows,
+                           header);
+    free(line.text);
     return status;
 }
 
@@ -206,13 +247,14 @@ static int stated_units(const char *path, const text_header *header, long column
 int im_text_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
-    FILE *stream = fopen(path, "r");
-    if (!stream)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    FILE *stream;
+    int status = im_read_open(path, "r", IM_READ_OR_PIPE, &stream, NULL);
+    if (status != IM_OK)
+        return status;
     value_list values = {0};
     long columns = 0, rows = 0;
     text_header header = {0};
-    int status = read_rows(stream, path, &values, &columns, &rows, &header);
+    status = read_rows(stream, path, &values, &columns, &rows, &header);
     fclose(stream);
     if (status == IM_OK && rows == 0)
         status = im_fail(IM_EFORMAT, "%s: no data rows", path);

@@ -40,11 +40,16 @@ int scene_framed_family(const im_scene *scene)
     return chosen;
 }
 
-/* Keeps the step's force and deformed heights h - u (u is positive into the half-space). */
-static int keep_step(const im_indentation *run, framed_history *h, int index, const im_step_result *step)
+/* Keeps the step's force and deformed heights h - u (u is positive into the half-space), with u on
+ * the whole grid (the solver's is 0 outside its window, which drew a step at the window's edge). */
+static int keep_step(const im_scene *scene, const im_indentation *run, framed_history *h, int index,
+                     const im_step_result *step)
 {
     im_field *displacement = NULL;
-    int status = im_indentation_fields(run, &h->force[index], NULL, &displacement);
+    im_solver_options options = scene_solver_options(scene);
+    int status = im_indentation_fields(run, &h->force[index], NULL, NULL);
+    if (status == IM_OK)
+        status = im_displacement_full(h->force[index], &options, &displacement);
     if (status == IM_OK)
         status = im_field_clone(h->surface, &h->deformed[index]);
     if (status == IM_OK)
@@ -80,9 +85,10 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
             break;
         }
         im_step_result step;
-        status = im_indentation_step(run, n * (i + 1) / h->count, &step);
+        /* the last step exactly at n: n * count / count may round above the largest load prepared */
+        status = im_indentation_step(run, i + 1 == h->count ? n : n * (i + 1) / h->count, &step);
         if (status == IM_OK)
-            status = keep_step(run, h, i, &step);
+            status = keep_step(scene, run, h, i, &step);
     }
     im_indentation_free(run);
     return status;

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static int allocate_history(scene_member *m, int steps)
 {
@@ -32,58 +33,140 @@ static int history_path(const im_scene *scene, const scene_member *m, char *path
     return scene_output_path(scene, relative, path, size);
 }
 
-static int write_history(const im_scene *scene, const scene_member *m)
+/* The rows of a history as written to its file, after the header line: the column names, then per
+ * step the solution and the theory beside it (theory.h: the smooth punch at the step's approach and
+ * load), into *rows (caller frees). */
+static int history_rows(const im_scene *scene, const scene_member *m, char **rows, size_t *length)
 {
-    char path[IM_SCENE_PATH];
-    im_atomic_file file;
-    int status = history_path(scene, m, path, sizeof path);
-    if (status == IM_OK)
-        status = im_atomic_open(&file, path);
-    if (status != IM_OK)
-        return status;
-    fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g, key %016" PRIx64 "\n", m->family,
-            scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms,
-            scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
-    fprintf(file.stream, "approach,load,load_star,contact_patches,area_ratio," IM_THEORY_STEP_COLUMNS "\n");
+    char *text = NULL;
+    *rows = NULL;
+    FILE *stream = open_memstream(&text, length);
+    if (!stream)
+        return im_fail(IM_ENOMEM, "history rows: allocation failed");
+    fprintf(stream, "approach,load,load_star,contact_patches,area_ratio," IM_THEORY_STEP_COLUMNS "\n");
+    int status = IM_OK;
     for (int i = 0; i < m->steps && status == IM_OK; ++i) {
         im_theory_step theory;
         status = scene_history_theory_row(scene, scene->slopes[m->family], m->approach[i], m->history_load[i],
                                           &theory);
-        fprintf(file.stream, "%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", m->approach[i],
-                m->history_load[i], m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i],
-                theory.load_smooth, theory.area_smooth, theory.area_ratio_constant, theory.area_ratio_gamma);
+        fprintf(stream, "%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", m->approach[i], m->history_load[i],
+                m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i], theory.load_smooth,
+                theory.area_smooth, theory.area_ratio_constant, theory.area_ratio_gamma);
     }
+    if (fclose(stream) != 0 && status == IM_OK)
+        status = im_fail(IM_ENOMEM, "history rows: allocation failed");
     if (status != IM_OK) {
-        im_atomic_abort(&file);
+        free(text);
         return status;
     }
+    *rows = text;
+    return IM_OK;
+}
+
+/* A history: a header line with the member, its key, its row count and the checksum of the rest
+ * of the file (so that --resume can tell a whole history from one cut short or damaged), then
+ * the rows. */
+static int write_history(const im_scene *scene, const scene_member *m)
+{
+    char path[IM_SCENE_PATH];
+    size_t length = 0;
+    char *rows = NULL;
+    int status = history_path(scene, m, path, sizeof path);
+    if (status == IM_OK)
+        status = history_rows(scene, m, &rows, &length);
+    im_atomic_file file;
+    if (status == IM_OK)
+        status = im_atomic_open(&file, path);
+    if (status != IM_OK) {
+        free(rows);
+        return status;
+    }
+    fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g, key %016" PRIx64 ", rows %d, checksum %016"
+            PRIx64 "\n", m->family, scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms,
+            scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY), m->steps, scene_checksum(rows, length));
+    fwrite(rows, 1, length, file.stream);
+    free(rows);
     return im_atomic_commit(&file);
 }
 
-/* Reads a history an earlier run wrote; 0 if there is none, it is not this member's, or it was
- * made from other inputs (its key differs: then it is solved again, with a notice). */
+/* Parses the rows of a kept history into m (m->steps of them); 0 with why set at the first row
+ * that is not nine numbers on a whole line (the solution's five, read back, and the four of the
+ * theory beside it, which is recomputed) or holds a value that is not finite. */
+static int parse_history_rows(char *text, scene_member *m, int capacity, char *why, size_t why_size)
+{
+    m->steps = 0;
+    char *line = strchr(text, '\n'); /* after the column names */
+    for (line = line ? line + 1 : NULL; line && *line; ++m->steps) {
+        char *next = strchr(line, '\n');
+        int used = 0, i = m->steps;
+        double theory[4];
+        if (!next || i >= capacity ||
+            sscanf(line, "%lf,%lf,%lf,%ld,%lf,%lf,%lf,%lf,%lf%n", &m->approach[i], &m->history_load[i],
+                   &m->history_load_star[i], &m->history_patches[i], &m->history_area_ratio[i], &theory[0],
+                   &theory[1], &theory[2], &theory[3], &used) != 9 ||
+            line + used != next) {
+            snprintf(why, why_size, "row %d is not nine numbers on a whole line", i + 1);
+            return 0;
+        }
+        /* A / A_cone is NaN, as the solver reports it, only where there is no load */
+        int ratio_ok = m->history_load[i] > 0 ? isfinite(m->history_area_ratio[i]) : isnan(m->history_area_ratio[i]);
+        if (!isfinite(m->approach[i]) || !isfinite(m->history_load[i]) || !isfinite(m->history_load_star[i]) ||
+            !ratio_ok) {
+            snprintf(why, why_size, "row %d holds a value that is not finite", i + 1);
+            return 0;
+        }
+        line = next + 1;
+    }
+    return 1;
+}
+
+/* Whether a kept history's text is whole: its header's row count and checksum match the rows,
+ * which are all finite; on success its rows are in m. */
+static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t *key, char *why, size_t why_size)
+{
+    uint64_t checksum = 0;
+    int rows = -1, used = 0;
+    char *body = strchr(text, '\n');
+    if (!body || sscanf(text, "# family %*d, h'rms %*g, seed %*u, h_rms %lf, key %" SCNx64 ", rows %d, checksum %"
+                        SCNx64 "%n", &m->height_rms, key, &rows, &checksum, &used) != 4 || text + used != body) {
+        snprintf(why, why_size, "its first line is not a history header with a row count and checksum; or an older version wrote it");
+        return 0;
+    }
+    ++body;
+    if (!parse_history_rows(body, m, capacity, why, why_size))
+        return 0;
+    if (m->steps != rows || rows < 1) {
+        snprintf(why, why_size, "%d rows where its header says %d", m->steps, rows);
+        return 0;
+    }
+    if (scene_checksum(body, strlen(body)) != checksum) {
+        snprintf(why, why_size, "its rows do not match the checksum of its header: edited");
+        return 0;
+    }
+    return 1;
+}
+
+/* Reads a history an earlier run wrote; 0 if there is none, if it is damaged (cut short, a NaN,
+ * a checksum that does not match) or if it was made from other inputs (its key differs): the last
+ * two are solved again, with a notice. */
 static int read_history(const im_scene *scene, scene_member *m)
 {
-    char path[IM_SCENE_PATH], line[256];
-    if (history_path(scene, m, path, sizeof path) != IM_OK)
+    char path[IM_SCENE_PATH], why[160];
+    if (history_path(scene, m, path, sizeof path) != IM_OK || access(path, F_OK) != 0)
         return 0;
-    FILE *stream = fopen(path, "r");
-    if (!stream)
-        return 0;
+    char *text = NULL;
+    /* a row is at most 9 numbers of 24 characters; far more is not a history */
+    size_t limit = 4096 + (size_t)scene->step_count * 256;
+    if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
+        return scene_kept_damaged(path, im_last_error());
     uint64_t key = 0;
-    int ok = fgets(line, sizeof line, stream) &&
-             sscanf(line, "# family %*d, h'rms %*g, seed %*u, h_rms %lf, key %" SCNx64, &m->height_rms, &key) == 2 &&
-             fgets(line, sizeof line, stream);
-    m->steps = 0;
-    while (ok && m->steps < scene->step_count &&
-           fscanf(stream, "%lf,%lf,%lf,%ld,%lf%*[^\n]", &m->approach[m->steps], /* theory is recomputed */ &m->history_load[m->steps],
-                  &m->history_load_star[m->steps], &m->history_patches[m->steps],
-                  &m->history_area_ratio[m->steps]) == 5)
-        ++m->steps;
-    fclose(stream);
-    ok = ok && m->steps > 0;
-    return scene_key_matches(path, ok ? key : 0,
-                             scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
+    int whole = history_is_whole(text, m, scene->step_count, &key, why, sizeof why);
+    free(text);
+    if (!whole) {
+        m->steps = 0;
+        return scene_kept_damaged(path, why);
+    }
+    return scene_key_matches(path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
 }
 
 /* The target of step i: an approach, or the load at N* = steps[i]. */
@@ -111,8 +194,9 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
     return status;
 }
 
-/* Solves the member's history; contact reaching the surface's edge ends it early (the steps
- * before are kept, as the paper's histories end where Icarus's memory did). */
+/* Solves the member's history. Contact reaching the surface's edge fails it (IM_EEDGE, with the
+ * step): the scene asked for every step, and the pre-flight check (limits.c) refuses the steps
+ * whose smooth contact leaves the surface before any work. */
 static int solve_history(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m,
                          const im_field *surface)
 {
@@ -128,10 +212,10 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
         }
         im_step_result step;
         status = load_star_step(scene, run, m, i, surface->delta, &step);
-        if (status == IM_EEDGE) {
-            status = IM_OK;
-            break;
-        }
+        if (status == IM_EEDGE) /* a history short of the scene's steps would be drawn as if whole */
+            im_fail_context(status, "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
+                            "smaller steps)", i + 1,
+                            scene->step_count, scene->control == IM_CONTROL_LOAD ? "N*" : "approach", scene->steps[i]);
         if (status == IM_OK) {
             m->approach[i] = step.approach;
             m->history_load[i] = step.load;

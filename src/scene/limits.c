@@ -54,17 +54,40 @@ static int ensemble_size(const im_scene *scene)
 
 /* ---- consistency ---- */
 
-/* The smooth contact must stay inside the surface: A = N* delta^2 is a disc of radius
- * sqrt(N* / pi) patches, which must be less than half the shorter side (else every solve ends at
- * the surface's edge). */
+/* The smooth contact must stay inside the surface: a disc of radius `radius` (patches), which
+ * must be less than half the shorter side (else every solve ends at the surface's edge). `how`
+ * says how the radius follows from the value. */
+static int check_radius_fits(const im_scene *scene, const grid *g, const char *key, double value, double radius,
+                             const char *how)
+{
+    double half = 0.5 * (g->nx < g->ny ? g->nx : g->ny);
+    if (radius >= half)
+        return im_fail(IM_EINVAL, "%s: %s = %g: the smooth contact radius %s = %.1f patches reaches the edge of "
+                       "the %d x %d surface (expected a radius < %g patches; use a larger grid or smaller %s)",
+                       scene->path, key, value, how, radius, g->nx, g->ny, half,
+                       strstr(key, "steps") ? "steps" : "loads");
+    return IM_OK;
+}
+
+/* N* is defined by the smooth contact area A = N* delta^2, a disc of radius sqrt(N* / pi) patches,
+ * whatever the punch. */
 static int check_contact_fits(const im_scene *scene, const grid *g, const char *key, double n_star)
 {
-    double radius = sqrt(n_star / M_PI), half = 0.5 * (g->nx < g->ny ? g->nx : g->ny);
-    if (radius >= half)
-        return im_fail(IM_EINVAL, "%s: %s = %g: the smooth contact radius sqrt(N*/pi) = %.1f patches reaches the "
-                       "edge of the %d x %d surface (expected N* < pi (%g)^2 = %.0f)", scene->path, key, n_star,
-                       radius, g->nx, g->ny, half, M_PI * half * half);
-    return IM_OK;
+    return check_radius_fits(scene, g, key, n_star, sqrt(n_star / M_PI), "sqrt(N*/pi)");
+}
+
+/* Every history (any punch, load or displacement control) must reach its last step: refused here,
+ * before any work, when even the smooth contact of that step leaves the surface. */
+static int check_histories_fit(const im_scene *scene, const grid *g)
+{
+    if (!scene_wants_histories(scene) || scene->step_count < 1)
+        return IM_OK;
+    double last = scene->steps[scene->step_count - 1];
+    if (scene->control == IM_CONTROL_LOAD)
+        return check_contact_fits(scene, g, "[loading] steps (largest)", last);
+    im_indenter punch = scene_punch(scene);
+    return check_radius_fits(scene, g, "[loading] steps (largest approach)", last,
+                             im_indenter_contact_radius(&punch, last) / g->delta, "a(w) of the punch");
 }
 
 static int check_consistency(const im_scene *scene, const grid *g)
@@ -72,10 +95,8 @@ static int check_consistency(const im_scene *scene, const grid *g)
     int status = IM_OK;
     if (scene->load_star > 0.0 && (scene->contact_panels || scene->frames || scene->table))
         status = check_contact_fits(scene, g, "[loading] load_star", scene->load_star);
-    int histories = scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") ||
-                    scene_wants_plot(scene, "fig7");
-    if (status == IM_OK && histories && scene->step_count > 0 && scene->control == IM_CONTROL_LOAD)
-        status = check_contact_fits(scene, g, "[loading] steps (largest)", scene->steps[scene->step_count - 1]);
+    if (status == IM_OK)
+        status = check_histories_fit(scene, g);
     if (status == IM_OK && scene->punch == IM_PUNCH_FLAT && 2.0 * scene->radius >= (g->nx < g->ny ? g->nx : g->ny))
         status = im_fail(IM_EINVAL, "%s: [punch] radius = %g: a flat punch as wide as the %d x %d surface "
                          "(radius in patches; expected < %g)", scene->path, scene->radius, g->nx, g->ny,
@@ -108,6 +129,36 @@ static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
     return needed;
 }
 
+/* Address space that holds no data but counts against an address-space limit (ulimit -v), as
+ * measured with VmPeak on Debian 12 (glibc 2.36, Mesa 22.3 llvmpipe): each worker thread beyond
+ * the first reserves its stack and two 64 MiB malloc arenas (136 MiB measured, 512 x 512 solve);
+ * the renderer maps Mesa and LLVM (337 MiB measured with no render threads) and each llvmpipe
+ * thread (LP_NUM_THREADS, else one per processor) 115 MiB more. Without this, fig4 passed the
+ * check under ulimit -v 350000 and failed mid-run. */
+static const double ARENA_BYTES = 64.0 * 1048576.0, RENDERER_BYTES = 360.0 * 1048576.0;
+
+static double thread_stack_bytes(void)
+{
+    struct rlimit limit;
+    if (getrlimit(RLIMIT_STACK, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
+        return 8.0 * 1048576.0; /* glibc's default when the limit is unlimited */
+    return (double)limit.rlim_cur;
+}
+
+static int render_threads(void)
+{
+    const char *text = getenv("LP_NUM_THREADS");
+    return text && text[0] ? atoi(text) : omp_get_num_procs();
+}
+
+static double address_space_overhead(const im_scene *scene)
+{
+    double overhead = (omp_get_max_threads() - 1) * (2.0 * ARENA_BYTES + thread_stack_bytes());
+    if (scene->contact_panels || scene->frames)
+        overhead += RENDERER_BYTES + render_threads() * 2.0 * ARENA_BYTES;
+    return overhead;
+}
+
 static int check_memory(const im_scene *scene, const grid *g)
 {
     int at_once;
@@ -119,6 +170,15 @@ static int check_memory(const im_scene *scene, const grid *g)
                        "panels keep) but only %.1f MiB are available; use a smaller grid or fewer threads "
                        "(OMP_NUM_THREADS)", scene->path, needed / MIB, at_once, solve_bytes(g) / MIB, g->nx, g->ny,
                        (double)available / MIB);
+    size_t address_space = im_address_space_available();
+    double reserved = address_space_overhead(scene);
+    if (address_space != 0 && needed + reserved > (double)address_space)
+        return im_fail(IM_ENOMEM, "%s: this scene needs about %.1f MiB of address space (%.1f MiB of data, %.1f MiB "
+                       "reserved by %d threads%s) but the address-space limit (ulimit -v) leaves %.1f MiB; raise the "
+                       "limit, or use fewer threads (OMP_NUM_THREADS%s)", scene->path, (needed + reserved) / MIB,
+                       needed / MIB, reserved / MIB, omp_get_max_threads(),
+                       scene->contact_panels || scene->frames ? " and the renderer" : "", (double)address_space / MIB,
+                       scene->contact_panels || scene->frames ? ", LP_NUM_THREADS" : "");
     return IM_OK;
 }
 

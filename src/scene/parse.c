@@ -1,5 +1,7 @@
 #include "indentmap/scene.h"
 
+#include "indentmap/io.h"
+
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 
@@ -123,6 +125,37 @@ static int parse_bool(const key_spec *spec, const char *value, im_scene *scene, 
     return 0;
 }
 
+/* The comma-separated items of a list value, trimmed of blanks, into items[] (pointing into
+ * buffer, which it modifies); -1 with a message for an empty list or an empty item ("1,,2", a
+ * trailing comma): strtok skipped those silently. */
+static int split_list(const char *key, const char *value, char *buffer, size_t buffer_size, char **items,
+                      int capacity, int *count, char *error, size_t size)
+{
+    snprintf(buffer, buffer_size, "%s", value);
+    *count = 0;
+    for (char *item = buffer; item; ++*count) {
+        char *comma = strchr(item, ',');
+        if (comma)
+            *comma = '\0';
+        item += strspn(item, " \t");
+        size_t length = strlen(item);
+        while (length > 0 && (item[length - 1] == ' ' || item[length - 1] == '\t'))
+            item[--length] = '\0';
+        if (length == 0) {
+            snprintf(error, size, "%s = '%s': %s", key, value, *count == 0 && !comma ? "expected at least one value"
+                     : "an empty item (two commas, or a comma at either end): expected values separated by commas");
+            return -1;
+        }
+        if (*count >= capacity) {
+            snprintf(error, size, "%s = '%s': more than %d values", key, value, capacity);
+            return -1;
+        }
+        items[*count] = item;
+        item = comma ? comma + 1 : NULL;
+    }
+    return 0;
+}
+
 /* "a, b, c" or "first:last:count" (count values, evenly spaced) into a list of doubles. */
 static int parse_double_list(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
@@ -141,20 +174,18 @@ static int parse_double_list(const key_spec *spec, const char *value, im_scene *
             list[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
         return 0;
     }
-    char buffer[2048];
-    snprintf(buffer, sizeof buffer, "%s", value);
-    *count = 0;
-    for (char *token = strtok(buffer, ","); token; token = strtok(NULL, ",")) {
-        double v;
-        while (*token == ' ' || *token == '\t')
-            ++token;
-        if ((size_t)*count >= spec->capacity || !parse_number(token, &v) || v < spec->min || v > spec->max) {
+    char buffer[2048], *items[IM_SCENE_MAX_STEPS];
+    int n;
+    if (split_list(spec->key, value, buffer, sizeof buffer, items, (int)spec->capacity, &n, error, size) != 0)
+        return -1;
+    for (int i = 0; i < n; ++i) {
+        if (!parse_number(items[i], &list[i]) || list[i] < spec->min || list[i] > spec->max) {
             snprintf(error, size, "%s: '%s' in '%s': expected at most %zu numbers in [%g, %g], separated by "
-                     "commas", spec->key, token, value, spec->capacity, spec->min, spec->max);
+                     "commas", spec->key, items[i], value, spec->capacity, spec->min, spec->max);
             return -1;
         }
-        list[(*count)++] = v;
     }
+    *count = n;
     return 0;
 }
 
@@ -174,17 +205,18 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
         return 0;
     }
     double values[IM_SCENE_MAX_FAMILIES];
-    int count = 0;
-    char buffer[2048];
-    snprintf(buffer, sizeof buffer, "%s", value);
-    for (char *token = strtok(buffer, ","); token; token = strtok(NULL, ",")) {
+    char buffer[2048], *items[IM_SCENE_MAX_FAMILIES];
+    int count;
+    if (split_list("seeds", value, buffer, sizeof buffer, items, IM_SCENE_MAX_FAMILIES, &count, error, size) != 0)
+        return -1;
+    for (int i = 0; i < count; ++i) {
         double v;
-        if (count >= IM_SCENE_MAX_FAMILIES || !parse_number(token, &v) || v < 0 || v != floor(v) || v > 1e15) {
+        if (!parse_number(items[i], &v) || v < 0 || v != floor(v) || v > 1e15) {
             snprintf(error, size, "seeds = '%s': expected first:last or a list of at most %d non-negative "
                      "integers", value, IM_SCENE_MAX_FAMILIES);
             return -1;
         }
-        values[count++] = v;
+        values[i] = v;
     }
     for (int i = 0; i < count; ++i)
         for (int j = 0; j < i; ++j)
@@ -312,7 +344,9 @@ typedef struct parse_context {
     FILE *stream;
     int line;        /* physical lines read so far, counted by read_line */
     int error_line;  /* the first line refused by read_line or handle_key, 0 if none */
-    int key_line[sizeof KEYS / sizeof KEYS[0]]; /* the line of each key given (its last), 0 if none */
+    int key_line[sizeof KEYS / sizeof KEYS[0]]; /* the line of each key given, 0 if none */
+    char sections[16][32]; /* the sections opened so far, to refuse one opened twice */
+    int section_lines[16], section_count;
     char error[512];
 } parse_context;
 
@@ -335,6 +369,31 @@ static char *refuse_line(parse_context *context, const char *format, ...)
     va_end(arguments);
     context->error_line = context->line + 1;
     return NULL;
+}
+
+/* 0 with the error recorded when the line opens a [section] opened before (inih would merge the
+ * two silently, the later keys replacing the earlier); 1 otherwise. */
+static int check_section_once(parse_context *context, const char *line)
+{
+    const char *open = line + strspn(line, " \t");
+    const char *close = *open == '[' ? strchr(open, ']') : NULL;
+    if (!close)
+        return 1;
+    char name[32];
+    snprintf(name, sizeof name, "%.*s", (int)(close - open - 1), open + 1);
+    for (int i = 0; i < context->section_count; ++i) {
+        if (strcmp(context->sections[i], name) == 0) {
+            --context->line; /* refuse_line names the line being read */
+            refuse_line(context, "[%s] is opened twice (first on line %d): expected each section once", name,
+                        context->section_lines[i]);
+            return 0;
+        }
+    }
+    if (context->section_count < (int)(sizeof context->sections / sizeof context->sections[0])) {
+        snprintf(context->sections[context->section_count], sizeof context->sections[0], "%s", name);
+        context->section_lines[context->section_count++] = context->line;
+    }
+    return 1;
 }
 
 /* inih's line reader: one physical line per call, counted so that errors know their line.
@@ -364,7 +423,7 @@ static char *read_line(char *buffer, int size, void *user)
         return NULL; /* end of file, or a read error that im_scene_load reports */
     buffer[length] = '\0';
     ++context->line;
-    return buffer;
+    return check_section_once(context, buffer) ? buffer : NULL;
 }
 
 static int section_exists(const char *section)
@@ -398,6 +457,12 @@ static int handle_key(void *user, const char *section, const char *name, const c
     for (int i = 0; i < KEY_COUNT && !known; ++i) {
         if (strcmp(KEYS[i].section, section) == 0 && strcmp(KEYS[i].key, name) == 0) {
             known = 1;
+            if (context->key_line[i]) {
+                snprintf(context->error, sizeof context->error, "[%s] %s is given twice (first on line %d): "
+                         "expected each key once", section, name, context->key_line[i]);
+                context->error_line = context->line;
+                return 0;
+            }
             context->key_line[i] = context->line;
             accepted = KEYS[i].parse(&KEYS[i], value, context->scene, context->error,
                                      sizeof context->error) == 0;
@@ -500,6 +565,17 @@ static void complete(im_scene *scene, int tol_given, int ny_given, int lambda_r_
     }
 }
 
+/* A scene is a few kilobytes; a larger file is not one (and is not read whole). */
+enum { SCENE_MAX_BYTES = 1 << 20 };
+
+static int any_key_given(const parse_context *context)
+{
+    for (int i = 0; i < KEY_COUNT; ++i)
+        if (context->key_line[i])
+            return 1;
+    return 0;
+}
+
 int im_scene_load(const char *path, im_scene *scene)
 {
     im_scene_defaults(scene);
@@ -508,9 +584,16 @@ int im_scene_load(const char *path, im_scene *scene)
     scene->surface.lambda_r = -1;
     scene->output_dir[0] = '\0';
     scene->tol = -1;
-    parse_context context = {.scene = scene, .stream = fopen(path, "r")};
-    if (!context.stream)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    parse_context context = {.scene = scene};
+    long long size;
+    int opened = im_read_open(path, "r", IM_READ_REGULAR, &context.stream, &size);
+    if (opened != IM_OK)
+        return opened;
+    if (size > SCENE_MAX_BYTES) {
+        fclose(context.stream);
+        return im_fail(IM_EINVAL, "%s: %lld bytes: expected a scene file of at most %d bytes", path, size,
+                       SCENE_MAX_BYTES);
+    }
     int line = ini_parse_stream(read_line, &context, handle_key, &context);
     int read_failed = ferror(context.stream), read_errno = errno;
     fclose(context.stream);
@@ -524,6 +607,9 @@ int im_scene_load(const char *path, im_scene *scene)
         return im_fail(IM_EFORMAT, "%s:%d: %s", path, context.error_line, context.error);
     if (read_failed)
         return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_errno));
+    if (!any_key_given(&context))
+        return im_fail(IM_EFORMAT, "%s: no settings: a scene asks for its outputs with keys such as [output] "
+                       "plots (see docs/scenes.md)", path);
     complete(scene, scene->tol != -1, scene->surface.ny != -1, scene->surface.lambda_r != -1,
              scene->output_dir[0] != '\0');
     int inconsistent = check_consistency(&context);

@@ -124,6 +124,14 @@ int scene_load_star_step(const im_scene *scene);
  * not, says on stderr why it is solved again (even with --quiet). */
 int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted);
 
+/* FNV-1a (64 bits) of length bytes: the checksum a kept history carries of its rows, so that one
+ * cut short or edited is solved again rather than drawn. */
+uint64_t scene_checksum(const char *bytes, size_t length);
+
+/* Says on stderr (even with --quiet) that the kept result at path is damaged (why) and is solved
+ * again; returns 0, for `return scene_kept_damaged(...)` in a reader. */
+int scene_kept_damaged(const char *path, const char *why);
+
 /* ---- ensembles ---- */
 
 /* Where a stage's result came from, counted in its progress line. */
@@ -135,7 +143,7 @@ typedef struct scene_member {
     uint64_t seed;
     int status;
     enum scene_origin origin;
-    char error[256];
+    char error[512];
     double height_rms;
     /* the table: the state at load_star */
     double load, load_star, area_ratio, seconds, load_star_approach;

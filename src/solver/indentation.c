@@ -146,7 +146,8 @@ static int allocate_window(im_indentation *run)
     run->pressure = calloc(n, sizeof(double));
     run->displacement = calloc(n, sizeof(double));
     if (!run->window_gap0 || !run->pressure || !run->displacement)
-        return im_fail(IM_ENOMEM, "indentation window %d x %d", w.nx, w.ny);
+        return im_fail(IM_ENOMEM, "indentation window %d x %d: allocation of 3 x %.1f MiB failed (out of memory, or "
+                       "of the address space ulimit -v leaves)", w.nx, w.ny, sizeof(double) * (double)n / 1048576.0);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,

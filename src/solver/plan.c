@@ -9,6 +9,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 im_solver_options im_solver_options_default(void)
 {
@@ -117,18 +118,37 @@ static int export_wisdom(const char *path)
     return status == IM_OK ? IM_OK : im_fail_context(status, "FFTW wisdom %s", path);
 }
 
+/* Wisdom files hold a few kilobytes per transform size; anything far larger is not one. */
+static const size_t WISDOM_MAX_BYTES = (size_t)64 << 20;
+
+/* The text of a wisdom file, read within bounds (FFTW's own reader spun forever on /dev/zero);
+ * *text stays NULL when there is no file yet. */
+static int read_wisdom(const char *path, char **text)
+{
+    *text = NULL;
+    if (!path || access(path, F_OK) != 0)
+        return IM_OK;
+    int status = im_read_text_file(path, WISDOM_MAX_BYTES, text, NULL);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "FFTW wisdom");
+}
+
 static int make_fft_plans(im_solver_plan *p)
 {
     const char *wisdom = im_solver_wisdom_file(&p->options);
     int checked = im_solver_wisdom_check(&p->options);
     if (checked != IM_OK)
         return checked;
+    char *wisdom_text;
+    int read = read_wisdom(wisdom, &wisdom_text);
+    if (read != IM_OK)
+        return read;
     p->measured = p->options.fft_measure || wisdom != NULL;
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
     const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
     im_fft_planner_lock(); /* ensembles plan from several threads */
-    if (wisdom)
-        fftw_import_wisdom_from_filename(wisdom); /* a missing or stale file just means no wisdom */
+    if (wisdom_text)
+        fftw_import_wisdom_from_string(wisdom_text); /* stale wisdom just means none */
+    free(wisdom_text);
     im_fft_prepare_planner();
     /* ny real rows of length px -> the first ny complex rows of length mx; then, in place, mx
      * columns of length py */

@@ -132,9 +132,26 @@ static int spectral_statistics(const surface_spectrum *spectrum, im_surface_stat
     return status;
 }
 
+/* The statistics square heights (and their spectrum sums n^2 of them), so heights must stay far
+ * below sqrt(DBL_MAX) ~ 1e154: beyond, they overflowed to NaN statistics or to a slope reported as
+ * an allocation failure. No surface in any length unit comes near this bound. */
+static const double LARGEST_HEIGHT = 1e100;
+
+static int check_height_range(const im_field *surface)
+{
+    for (size_t i = 0; i < im_field_count(surface); ++i)
+        if (fabs(surface->data[i]) > LARGEST_HEIGHT)
+            return im_fail(IM_EINVAL, "surface: height %g at (x=%zu, y=%zu): expected |h| <= %g (rescale the "
+                           "heights: their squares must not overflow)", surface->data[i], i % (size_t)surface->nx,
+                           i / (size_t)surface->nx, LARGEST_HEIGHT);
+    return IM_OK;
+}
+
 int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
 {
     int status = im_field_check_finite(surface, "surface");
+    if (status == IM_OK)
+        status = check_height_range(surface);
     if (status != IM_OK)
         return status;
     surface_spectrum spectrum;

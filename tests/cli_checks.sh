@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# What is computed is checked before it is drawn (issue 12): no history step dropped without a
+# word (the pre-flight check refuses steps whose smooth contact leaves the surface, for every punch
+# and control; a history that still reaches the edge fails with the step), and messages for inputs
+# that were accepted silently or explained wrongly.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+source "$(dirname "$0")/lib.sh"
+export OMP_NUM_THREADS=1
+
+history_scene() { # history_scene NAME N SHAPE CONTROL STEPS PLOT [SLOPE]
+  cat >"$dir/$1.ini" <<INI
+[scene]
+name = $1
+output = out_$1
+[surfaces]
+n = $2
+slopes = ${7:-0.08}
+seeds = 1:2
+[punch]
+shape = $3
+radius = 500
+[loading]
+control = $4
+steps = $5
+[output]
+plots = $6
+INI
+}
+refused_before_work() { # refused_before_work NAME PATTERN
+  check "$1: refused" expect_exit 2 "$2" "$cli" run --quiet "$dir/$1.ini"
+  check "$1: no output folder" test ! -e "$dir/out_$1"
+}
+
+# The sphere scene's loads on a grid too small (before: it stopped at the edge, exit 0, and drew a
+# plot that ends before the crossover it exists to show).
+history_scene sphere 64 sphere load "1, 10, 100, 1000, 10000" sphere 0.16
+refused_before_work sphere "sphere.ini: [loading] steps (largest) = 10000: the smooth contact radius sqrt(N*/pi) = 56.4 patches reaches the edge of the 64 x 64 surface"
+# Displacement control: the punch's a(w), for a cone and a sphere.
+history_scene cone_w 32 cone displacement "1, 2, 60" fig5
+refused_before_work cone_w "cone_w.ini: [loading] steps (largest approach) = 60: the smooth contact radius a(w) of the punch"
+history_scene sphere_w 32 sphere displacement "0.1, 0.2, 0.6" fig6
+refused_before_work sphere_w "sphere_w.ini: [loading] steps (largest approach) = 0.6: the smooth contact radius a(w) of the punch = 17.3 patches"
+# Steps that pass the smooth check but whose rough contact reaches the edge: the run fails and says
+# which step, instead of drawing the histories cut short.
+history_scene edge 32 cone load "100:780:4" fig7 0.5
+check "history at the edge fails" expect_exit 1 "step 3 of 4 (N* 553.333; the scene asks for every step" \
+  "$cli" run --quiet "$dir/edge.ini"
+check "history at the edge: no figure" test ! -e "$dir/out_edge/fig7.png"
+
+# render animate: an all-zero force field (approach 0) leaves the shared norm at 0 .. the largest
+# force of the others (the statistics print 6 digits) (before: its fallback range widened every frame's norm to [0, 1]).
+"$cli" surface --n 64 --slope 0.1 --seed 1 --out "$dir/s.npy" >/dev/null
+"$cli" indent "$dir/s.npy" --approach 0:3:4 --fields --out "$dir/f" >"$dir/f.log"
+"$cli" render animate "$dir"/f/force_000{1,2,3,4}.npy --frames "$dir/frames" --out "$dir/a.gif" >/dev/null
+# indent --fields: u on the whole grid, positive everywhere under a positive load (before: 0 outside
+# the solve window, so h - u showed a square step at its edge).
+smallest=$("$cli" surface --stats "$dir/f/displacement_0004.npy" --detrend none | awk '$1 == "height" { sub(/\[/, "", $3); sub(/,/, "", $3); print $3 }')
+check "displacement positive outside the window (smallest $smallest)" awk -v u="$smallest" 'BEGIN { exit !(u > 0) }'
+window=$(grep -o "window \[[0-9]*, [0-9]*)" "$dir/f.log" | head -1)
+check "the window is smaller than the grid ($window)" test -n "$window" -a "$window" != "window [0, 64)"
+largest=$(for f in "$dir"/f/force_000[234].npy; do "$cli" surface --stats "$f" --detrend none | awk '$1 == "height" { sub(/\]/, "", $4); print $4 }'; done | sort -g | tail -1)
+norm=$(grep -a -o "linear \[0, [0-9.e+-]*\]" "$dir/frames/contact_0000.png")
+check "zero field: norm up to the largest force ($largest), not 1 ($norm)" \
+  awk -v n="$norm" -v m="$largest" 'BEGIN { sub(/.*, /, "", n); sub(/\]/, "", n); exit !(m > 0 && (n - m) ^ 2 < 1e-10 * m * m) }'
+
+# An address-space limit (ulimit -v): the estimate counts the threads' stacks and malloc arenas and
+# the renderer, so a scene that cannot run is refused before any work (before: the check passed,
+# the run failed mid-way and left frames/ behind). Not under AddressSanitizer (its shadow memory
+# needs terabytes of address space).
+cat >"$dir/frames.ini" <<INI
+[scene]
+name = frames
+output = out_frames
+[surfaces]
+n = 64
+slopes = 0.08
+seeds = 1
+[punch]
+shape = cone
+[loading]
+load_star = 300
+[output]
+frames = yes
+frame_count = 3
+animation = gif
+INI
+if ldd "$cli" 2>/dev/null | grep -q libasan; then
+  echo "note: AddressSanitizer build: the ulimit -v checks are skipped"
+else
+  (ulimit -v 450000; "$cli" run --quiet "$dir/frames.ini" >/dev/null 2>"$dir/as.err"; echo $? >"$dir/as.status")
+  check "ulimit -v: refused (exit 2)" test "$(cat "$dir/as.status")" -eq 2
+  check "ulimit -v: message" grep -q "frames.ini: this scene needs about [0-9.]* MiB of address space" "$dir/as.err"
+  check "ulimit -v: no output folder" test ! -e "$dir/out_frames"
+  (ulimit -v 1000000; "$cli" run --quiet "$dir/frames.ini" >/dev/null 2>"$dir/as2.err"; echo $? >"$dir/as2.status")
+  check "ulimit -v: a limit that suffices runs the scene" test "$(cat "$dir/as2.status")" -eq 0
+  check "ulimit -v: the frames' last step at load_star" test -f "$dir/out_frames/contact.gif"
+fi
+
+# Options accepted silently or explained wrongly before.
+check "surface --n 2 names --n" expect_exit 2 "--n 2: the box's side is the default lambda_r" \
+  "$cli" surface --n 2 --out "$dir/n2.npy"
+check "--lambda-0 below lambda_r" expect_exit 2 "--lambda-0 10: expected >= lambda_r = 64" \
+  "$cli" surface --n 64 --lambda-0 10 --out "$dir/l0.npy"
+check "--approach 1:2" expect_exit 2 "--approach '1:2': expected a range a:b:count (three numbers)" \
+  "$cli" indent "$dir/s.npy" --approach 1:2 --out "$dir/o_a"
+check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.npy" --approach 1,,2 --out "$dir/o_b"
+check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \
+  "$cli" indent "$dir/s.npy" --approach 1 --radius 5 --out "$dir/o_c"
+check "--x outside the surface" expect_exit 2 "--x 1000 --y 10: the punch's axis lies outside the 64 x 64 surface" \
+  "$cli" indent "$dir/s.npy" --approach 1 --x 1000 --y 10 --out "$dir/o_x"
+check "--titles surplus" expect_exit 2 "--titles 'a,b,c': 3 titles for 2 files" \
+  "$cli" render contact "$dir/f/force_0004.npy" "$dir/f/force_0003.npy" --titles a,b,c --out "$dir/t.png"
+check "info: bad IM_RENDER_BACKEND is bad input" expect_exit 2 "IM_RENDER_BACKEND" \
+  env IM_RENDER_BACKEND=bogus "$cli" info
+printf '1e300 1e300\n1e300 1e300\n' >"$dir/huge.txt"
+# (unprepared: removing the plane of this constant surface leaves it flat, a valid answer)
+check "huge heights: refused, not NaN statistics" expect_exit 2 "height 1e+300 at (x=0, y=0): expected |h| <= 1e+100" \
+  "$cli" surface --stats "$dir/huge.txt" --detrend none
+finish
