@@ -116,6 +116,12 @@ check "--titles surplus" expect_exit 2 "--titles 'a,b,c': 3 titles for 2 files" 
 check "info: bad IM_RENDER_BACKEND is bad input" expect_exit 2 "IM_RENDER_BACKEND" \
   env IM_RENDER_BACKEND=bogus "$cli" info
 printf '1e300 1e300\n1e300 1e300\n' >"$dir/huge.txt"
+# A flat punch's gap is +Inf where the punch can never touch: render reads fields with their NaN and
+# Inf (drawn in the over colour), as it draws them, where a surface to solve on must be finite.
+"$cli" indent "$dir/s.npy" --punch flat --radius 10 --approach 0.2 --fields --out "$dir/flat" >/dev/null
+check "flat punch: its gap holds +Inf" bash -c "\"$cli\" surface --stats \"$dir/flat/gap_0001.npy\" 2>&1 | grep -q 'value inf'"
+check "flat punch: render draws its gap" "$cli" render height "$dir/flat/gap_0001.npy" --out "$dir/gap.png"
+check "... a real picture" test -s "$dir/gap.png"
 # (unprepared: removing the plane of this constant surface leaves it flat, a valid answer)
 check "huge heights: refused, not NaN statistics" expect_exit 2 "height 1e+300 at (x=0, y=0): expected |h| <= 1e+100" \
   "$cli" surface --stats "$dir/huge.txt" --detrend none

@@ -256,6 +256,9 @@ typedef struct im_surface_read_options {
                                 0: refuse them, naming the first one's (x, y) */
     char express_in[16];     /* a length unit ("m" for SI): spacing and heights are converted into it
                                 from the surface's unit, which must then be known; "": kept */
+    int field_values;        /* 1: the file holds a field to draw (forces, gaps, displacements), not
+                                heights to solve on: NaN and Inf are kept (a flat punch's gap is +Inf
+                                where it can never touch); fill is then ignored */
 } im_surface_read_options;
 
 /* What the reader found and did, for reports and run records. */

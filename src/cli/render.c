@@ -264,8 +264,9 @@ static void set_shared_range(render_options *o, im_field **fields, int count)
 /* Reads the fields and sets the default norm. */
 static int read_fields(render_options *o, char **inputs, int count, im_field **fields)
 {
+    const im_surface_read_options fields_to_draw = {.field_values = 1}; /* NaN, +Inf gaps: drawn as such */
     for (int i = 0; i < count; ++i) {
-        int status = im_surface_read(inputs[i], &fields[i]);
+        int status = im_surface_read_with(inputs[i], &fields_to_draw, &fields[i], NULL);
         if (status != IM_OK)
             return status;
         if (i == 0)

@@ -158,11 +158,13 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
             field->data[i] *= factor;
     }
     long filled = 0;
-    status = missing_points(path, field, options && options->fill, &filled);
-    if (status == IM_OK)
-        status = im_io_check_finite(field, path); /* after the conversion, which could overflow */
-    if (status != IM_OK)
-        return status;
+    if (!(options && options->field_values)) { /* heights: none missing or filled, all finite */
+        status = missing_points(path, field, options && options->fill, &filled);
+        if (status == IM_OK)
+            status = im_io_check_finite(field, path); /* after the conversion, which could overflow */
+        if (status != IM_OK)
+            return status;
+    }
     if (info) {
         *info = (im_surface_read_info){.file = stated->units, .used = merged.units, .height_factor = factor,
                                        .filled = filled};
