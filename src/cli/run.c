@@ -1,12 +1,14 @@
 /* indentmap run: runs a scene file. */
 #include "cli/cli.h"
 
+#include "indentmap/mpi.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/status.h"
 
 #include <getopt.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void usage(FILE *stream)
@@ -20,7 +22,37 @@ static void usage(FILE *stream)
                     "                  from other inputs (the scene was edited) is solved again, with a notice\n"
                     "  --quiet         no stage lines on stderr (errors and notices remain); the progress\n"
                     "                  bar is drawn only when stderr is a terminal\n"
-                    "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n");
+                    "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n"
+#if IM_HAVE_MPI
+                    "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"
+                    "out over the K ranks and rank 0 writes the outputs (docs/mpi.md)\n"
+#endif
+                    );
+}
+
+#if IM_HAVE_MPI
+/* Started by mpirun (Open MPI's environment, or a PMI launcher's such as Slurm's srun). */
+static int launched_by_mpirun(void)
+{
+    return getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMIX_RANK") || getenv("PMI_SIZE");
+}
+#endif
+
+/* The exit status of a run; only the reporting rank (rank 0, or a single process) prints. */
+static int finish(int status, const im_scene *scene, int reporting)
+{
+    if (status == IM_EINTERRUPTED) {
+        if (reporting)
+            fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return cli_interrupt_exit_status();
+    }
+    if (status != IM_OK)
+        return reporting                                                             ? cli_report(status)
+               : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE
+                                                                                    : CLI_EXIT_FAILURE;
+    if (reporting)
+        printf("indentmap: scene %s written to %s/\n", scene->name, scene->output_dir);
+    return CLI_EXIT_OK;
 }
 
 int cli_run(int argc, char **argv)
@@ -52,18 +84,29 @@ int cli_run(int argc, char **argv)
     }
     run.backend = (int)backend;
     run.stop = &cli_stop_signal;
+    int rank = 0, over_ranks = 0;
+#if IM_HAVE_MPI
+    over_ranks = launched_by_mpirun();
+    if (over_ranks) { /* before the signal handlers: ours, installed next, are the ones in force */
+        int provided;
+        MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    }
+#endif
     im_scene scene;
     int status = im_scene_load(argv[optind], &scene);
     if (status == IM_OK && cli_interrupt_install() != 0)
         status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
+#if IM_HAVE_MPI
+    if (over_ranks) {
+        if (status == IM_OK) /* every rank loaded the same scene, or every rank failed to */
+            status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, &run);
+        int code = finish(status, &scene, rank == 0);
+        MPI_Finalize();
+        return code;
+    }
+#endif
     if (status == IM_OK)
         status = im_scene_run(&scene, &run);
-    if (status == IM_EINTERRUPTED) {
-        fprintf(stderr, "indentmap: %s\n", im_last_error());
-        return cli_interrupt_exit_status();
-    }
-    if (status != IM_OK)
-        return cli_report(status);
-    printf("indentmap: scene %s written to %s/\n", scene.name, scene.output_dir);
-    return CLI_EXIT_OK;
+    return finish(status, &scene, 1);
 }
