@@ -4,6 +4,7 @@
  * solved, keyed by its inputs); rank 0 then runs the stages alone and reads them back exactly. */
 #include "indentmap/mpi.h"
 
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "scene/scene_internal.h"
 
@@ -108,6 +109,23 @@ static int share_of(const im_scene *scene, const ranks_state *st, int stage, sce
     return status;
 }
 
+/* panels/force_FF.npy of the members that kept their force for the panels, for rank 0's panels. */
+static int write_kept_forces(const im_scene *scene, const scene_member *mine, int n)
+{
+    char folder[IM_SCENE_PATH];
+    int status = IM_OK, created = 0;
+    for (int k = 0; k < n && status == IM_OK; ++k) {
+        if (!mine[k].force)
+            continue;
+        if (!created && (status = scene_output_path(scene, "panels", folder, sizeof folder)) == IM_OK)
+            status = im_make_directories(folder);
+        created = 1;
+        if (status == IM_OK)
+            status = scene_write_panel(scene, mine[k].family, mine[k].force);
+    }
+    return status;
+}
+
 /* Solves this rank's members of a stage and writes them (with the panels' forces they keep); the
  * table's members stay in *table for the histories (their step at load_star). */
 static int solve_stage(const im_scene *scene, const im_scene_run_options *options, ranks_state *st, int stage,
@@ -122,9 +140,8 @@ static int solve_stage(const im_scene *scene, const im_scene_run_options *option
             scene_link_table(scene, table, mine, n);
         if (n > 0)
             status = scene_ensemble_run(scene, options, mine, n, STAGE_SOLVERS[stage]);
-        for (int k = 0; k < n && status == IM_OK; ++k)
-            if (mine[k].force)
-                status = scene_write_panel(scene, mine[k].family, mine[k].force);
+        if (status == IM_OK)
+            status = write_kept_forces(scene, mine, n);
         status = agree(st, status);
     }
     if (status == IM_OK)

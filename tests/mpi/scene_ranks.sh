@@ -79,6 +79,24 @@ for k in 2 4; do
 done
 echo "1, 2 and 4 ranks: the same tables, histories and figures"
 
+# Contact panels (where OpenGL is at hand): the forces the ranks kept for them reach rank 0's panels
+# (counted as reused from the table, as in a single process), the same panels to the byte.
+sed -e 's/^table = yes/table = yes\ncontact_panels = yes/' "$work/ensemble.ini" > "$work/panels.ini"
+cp "$work/ensemble.ini" "$work/plain.ini" && cp "$work/panels.ini" "$work/ensemble.ini"
+if "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/panels_single.log"; then
+  mv "$work/out" "$work/panels_single"
+  run panels_ranks3 "$mpiexec" -n 3 --oversubscribe "$cli"
+  same_outputs panels_single panels_ranks3
+  grep -q "panels: 2 surfaces: 0 solved, 0 read back, 2 reused" "$work/panels_ranks3.log" ||
+    fail "panels on 3 ranks: $(cat "$work/panels_ranks3.log")"
+  echo "3 ranks: the same contact panels"
+else
+  grep -q "rendering with" "$work/panels_single.log" && fail "panels: $(cat "$work/panels_single.log")"
+  echo "no OpenGL context: the panels are not compared"
+  rm -rf "$work/out"
+fi
+cp "$work/plain.ini" "$work/ensemble.ini"
+
 # --resume on 3 ranks over the 4 ranks' folder: every member read back, nothing solved, same files
 cp -r "$work/ranks4" "$work/out"
 "$mpiexec" -n 3 --oversubscribe "$cli" run --resume "$work/ensemble.ini" 2> "$work/resume.log" > /dev/null ||
