@@ -55,6 +55,33 @@ static int finish(int status, const im_scene *scene, int reporting)
     return CLI_EXIT_OK;
 }
 
+/* The scene, and the SIGINT/SIGTERM handlers that let a run stop cleanly. */
+static int load_and_arm(const char *path, im_scene *scene)
+{
+    int status = im_scene_load(path, scene);
+    if (status == IM_OK && cli_interrupt_install() != 0)
+        status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
+    return status;
+}
+
+#if IM_HAVE_MPI
+/* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
+ * force); every rank loads the same scene (or fails to) and runs it over the ranks; rank 0 reports. */
+static int run_under_mpirun(const char *path, const im_scene_run_options *run)
+{
+    int provided, rank;
+    MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    im_scene scene;
+    int status = load_and_arm(path, &scene);
+    if (status == IM_OK)
+        status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, run);
+    int code = finish(status, &scene, rank == 0);
+    MPI_Finalize();
+    return code;
+}
+#endif
+
 int cli_run(int argc, char **argv)
 {
     static const struct option options[] = {{"resume", no_argument, 0, 'r'}, {"quiet", no_argument, 0, 'q'},
@@ -84,28 +111,12 @@ int cli_run(int argc, char **argv)
     }
     run.backend = (int)backend;
     run.stop = &cli_stop_signal;
-    int rank = 0, over_ranks = 0;
 #if IM_HAVE_MPI
-    over_ranks = launched_by_mpirun();
-    if (over_ranks) { /* before the signal handlers: ours, installed next, are the ones in force */
-        int provided;
-        MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
-        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    }
+    if (launched_by_mpirun())
+        return run_under_mpirun(argv[optind], &run);
 #endif
     im_scene scene;
-    int status = im_scene_load(argv[optind], &scene);
-    if (status == IM_OK && cli_interrupt_install() != 0)
-        status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
-#if IM_HAVE_MPI
-    if (over_ranks) {
-        if (status == IM_OK) /* every rank loaded the same scene, or every rank failed to */
-            status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, &run);
-        int code = finish(status, &scene, rank == 0);
-        MPI_Finalize();
-        return code;
-    }
-#endif
+    int status = load_and_arm(argv[optind], &scene);
     if (status == IM_OK)
         status = im_scene_run(&scene, &run);
     return finish(status, &scene, 1);
