@@ -83,7 +83,11 @@ echo "1, 2 and 4 ranks: the same tables, histories and figures"
 # (counted as reused from the table, as in a single process), the same panels to the byte.
 sed -e 's/^table = yes/table = yes\ncontact_panels = yes/' "$work/ensemble.ini" > "$work/panels.ini"
 cp "$work/ensemble.ini" "$work/plain.ini" && cp "$work/panels.ini" "$work/ensemble.ini"
-if "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/panels_single.log"; then
+if [[ ${ASAN_OPTIONS:-} == *fast_unwind_on_malloc=0* ]]; then
+  # the sanitizer pass's full unwinding on every malloc (for Open MPI's suppressions) deadlocks in
+  # llvmpipe's JIT (libgcc's unwinder lock taken again from LLVM's registerEHFrames)
+  echo "sanitizers with full unwinding: the panels are not compared"
+elif "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/panels_single.log"; then
   mv "$work/out" "$work/panels_single"
   run panels_ranks3 "$mpiexec" -n 3 --oversubscribe "$cli"
   same_outputs panels_single panels_ranks3
