@@ -1,12 +1,14 @@
 /* indentmap run: runs a scene file. */
 #include "cli/cli.h"
 
+#include "indentmap/mpi.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/status.h"
 
 #include <getopt.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void usage(FILE *stream)
@@ -20,8 +22,65 @@ static void usage(FILE *stream)
                     "                  from other inputs (the scene was edited) is solved again, with a notice\n"
                     "  --quiet         no stage lines on stderr (errors and notices remain); the progress\n"
                     "                  bar is drawn only when stderr is a terminal\n"
-                    "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n");
+                    "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n"
+#if IM_HAVE_MPI
+                    "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"
+                    "out over the K ranks and rank 0 writes the outputs (docs/mpi.md)\n"
+#endif
+                    );
 }
+
+#if IM_HAVE_MPI
+/* Started by mpirun (Open MPI's environment, or a PMI launcher's such as Slurm's srun). */
+static int launched_by_mpirun(void)
+{
+    return getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMIX_RANK") || getenv("PMI_SIZE");
+}
+#endif
+
+/* The exit status of a run; only the reporting rank (rank 0, or a single process) prints. */
+static int finish(int status, const im_scene *scene, int reporting)
+{
+    if (status == IM_EINTERRUPTED) {
+        if (reporting)
+            fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return cli_interrupt_exit_status();
+    }
+    if (status != IM_OK)
+        return reporting                                                             ? cli_report(status)
+               : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE
+                                                                                    : CLI_EXIT_FAILURE;
+    if (reporting)
+        printf("indentmap: scene %s written to %s/\n", scene->name, scene->output_dir);
+    return CLI_EXIT_OK;
+}
+
+/* The scene, and the SIGINT/SIGTERM handlers that let a run stop cleanly. */
+static int load_and_arm(const char *path, im_scene *scene)
+{
+    int status = im_scene_load(path, scene);
+    if (status == IM_OK && cli_interrupt_install() != 0)
+        status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
+    return status;
+}
+
+#if IM_HAVE_MPI
+/* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
+ * force); every rank loads the same scene (or fails to) and runs it over the ranks; rank 0 reports. */
+static int run_under_mpirun(const char *path, const im_scene_run_options *run)
+{
+    int provided, rank;
+    MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    im_scene scene;
+    int status = load_and_arm(path, &scene);
+    if (status == IM_OK)
+        status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, run);
+    int code = finish(status, &scene, rank == 0);
+    MPI_Finalize();
+    return code;
+}
+#endif
 
 int cli_run(int argc, char **argv)
 {
@@ -52,18 +111,13 @@ int cli_run(int argc, char **argv)
     }
     run.backend = (int)backend;
     run.stop = &cli_stop_signal;
+#if IM_HAVE_MPI
+    if (launched_by_mpirun())
+        return run_under_mpirun(argv[optind], &run);
+#endif
     im_scene scene;
-    int status = im_scene_load(argv[optind], &scene);
-    if (status == IM_OK && cli_interrupt_install() != 0)
-        status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
+    int status = load_and_arm(argv[optind], &scene);
     if (status == IM_OK)
         status = im_scene_run(&scene, &run);
-    if (status == IM_EINTERRUPTED) {
-        fprintf(stderr, "indentmap: %s\n", im_last_error());
-        return cli_interrupt_exit_status();
-    }
-    if (status != IM_OK)
-        return cli_report(status);
-    printf("indentmap: scene %s written to %s/\n", scene.name, scene.output_dir);
-    return CLI_EXIT_OK;
+    return finish(status, &scene, 1);
 }

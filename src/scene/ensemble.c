@@ -64,6 +64,34 @@ static int report_interrupted(const im_scene_run_options *options, const scene_m
     return scene_interrupted(options, where);
 }
 
+/* The MPI run in progress, if any (scene_internal.h: scene_ranks_run). */
+static const scene_ranks_run *ranks_run;
+
+void scene_set_ranks_run(const scene_ranks_run *run)
+{
+    ranks_run = run;
+}
+
+const scene_ranks_run *scene_get_ranks_run(void)
+{
+    return ranks_run;
+}
+
+/* A member the ranks of an MPI run solved: read back from the file its rank wrote (as --resume
+ * would), counted with the origin its rank gave it, with the force its rank kept for the panels. */
+static int read_ranks_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m,
+                             scene_member_solver solve, int origin)
+{
+    im_scene_run_options read_back = *options;
+    read_back.resume = 1;
+    int status = solve(scene, &read_back, m);
+    m->origin = (enum scene_origin)(origin & 3);
+    m->step_reused = (origin >> 2) & 1;
+    if (status == IM_OK && (origin & 8) && !m->force)
+        status = scene_read_panel_force(scene, m->family, &m->force);
+    return status;
+}
+
 int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
                        int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
 {
@@ -71,7 +99,10 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
 #pragma omp parallel for schedule(dynamic, 1)
     for (int i = 0; i < count; ++i) {
         /* Once a signal has asked to stop, the remaining members are skipped, not started. */
-        members[i].status = scene_stop_signal(options) ? IM_EINTERRUPTED : solve(scene, options, &members[i]);
+        int origin = ranks_run ? ranks_run->origin(ranks_run->data, solve, i) : -1;
+        members[i].status = scene_stop_signal(options) ? IM_EINTERRUPTED
+                            : origin >= 0                ? read_ranks_member(scene, options, &members[i], solve, origin)
+                                                         : solve(scene, options, &members[i]);
         if (members[i].status != IM_OK)
             snprintf(members[i].error, sizeof members[i].error, "%s", im_last_error());
 #pragma omp critical(scene_progress)

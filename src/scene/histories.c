@@ -229,7 +229,7 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
     return status;
 }
 
-static int run_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+int scene_history_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     int status = allocate_history(m, scene->step_count);
     if (status != IM_OK)
@@ -483,9 +483,7 @@ static int plot_sphere_regimes(const im_scene *scene, const scene_member *member
     return status;
 }
 
-/* Points each member at the table's member of the same surface, whose state at load_star a
- * load-controlled history takes instead of solving it again. */
-static void link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count)
+void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count)
 {
     if (scene_load_star_step(scene) < 0)
         return;
@@ -515,9 +513,9 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     int count = 0;
     int status = scene_ensemble_prepare(scene, "histories", &members, &count);
     if (status == IM_OK) {
-        link_table(scene, reuse, members, count);
+        scene_link_table(scene, reuse, members, count);
         scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
-        status = scene_ensemble_run(scene, options, members, count, run_history);
+        status = scene_ensemble_run(scene, options, members, count, scene_history_member);
     }
     if (status == IM_OK)
         report_histories(options, members, count);

@@ -87,9 +87,7 @@ static uint64_t panel_key(const im_scene *scene, int family)
     return scene_result_key(scene, family, scene->seeds[0], SCENE_RESULT_AT_LOAD_STAR);
 }
 
-/* Removes the old key, writes the force file, then its key: a force file is read back only beside
- * its own key, even when a run stops between the two writes. */
-static int write_panel(const im_scene *scene, int family, const im_field *force)
+int scene_write_panel(const im_scene *scene, int family, const im_field *force)
 {
     char npy[IM_SCENE_PATH], key[IM_SCENE_PATH], text[32];
     int status = panel_paths(scene, family, npy, key, sizeof npy);
@@ -99,6 +97,13 @@ static int write_panel(const im_scene *scene, int family, const im_field *force)
     if (status == IM_OK)
         status = im_npy_write(npy, force, IM_NPY_FLOAT64);
     return status == IM_OK ? im_write_file_atomic(key, text, (size_t)length) : status;
+}
+
+int scene_read_panel_force(const im_scene *scene, int family, im_field **force)
+{
+    char npy[IM_SCENE_PATH], key[IM_SCENE_PATH];
+    int status = panel_paths(scene, family, npy, key, sizeof npy);
+    return status == IM_OK ? im_npy_read(npy, force) : status;
 }
 
 /* A force file an earlier run wrote, if its key is this scene's; 0 if none (or stale). */
@@ -136,7 +141,7 @@ static int panel_force(const im_scene *scene, const im_scene_run_options *option
         r->origin = SCENE_SOLVED;
         status = solve_family(scene, options, family, &r->force);
     }
-    return status == IM_OK ? write_panel(scene, family, r->force) : status;
+    return status == IM_OK ? scene_write_panel(scene, family, r->force) : status;
 }
 
 static int write_results_csv(const im_scene *scene, const panel_result *results)

@@ -377,8 +377,12 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
         remove_stale_temporaries(scene, options);
     if (status == IM_OK)
         status = scene_write_record(scene);
+    const scene_ranks_run *ranks = scene_get_ranks_run(); /* an MPI run: the ranks solve the members first */
     if (status == IM_OK) {
-        status = run_stages(scene, options);
+        if (ranks)
+            status = ranks->solve_members(scene, options, ranks->data);
+        if (status == IM_OK)
+            status = run_stages(scene, options);
         status = write_viewer_page(scene, status);
     }
     scene_lock_release(&lock);

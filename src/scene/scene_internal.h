@@ -192,6 +192,37 @@ int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_memb
 int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
                        int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
 
+/* The member solvers of the ensemble stages (table.c, histories.c): each reads back a member an
+ * earlier run kept (options->resume) or solves it, and writes it under the output folder. */
+int scene_table_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m);
+int scene_history_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m);
+/* Points each history member at the table's member of the same surface (reuse->table), whose
+ * state at load_star a load-controlled history takes instead of solving it again. */
+void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count);
+
+/* panels/force_FF.npy and its key (the force of family's first seed at load_star): written after
+ * removing the old key, so that the force is read back only beside its own key; read without
+ * checking the key (for a force this run wrote). */
+int scene_write_panel(const im_scene *scene, int family, const im_field *force);
+int scene_read_panel_force(const im_scene *scene, int family, im_field **force);
+
+/* ---- ensembles over MPI ranks (src/mpi/scene_ranks.c; docs/mpi.md) ----
+ * im_scene_run_ranks installs this for the length of one run on rank 0: after the lock, the stale
+ * temporaries and run.json, run.c calls solve_members (every rank solves its share of the members
+ * and writes them; IM_OK or the status the ranks agreed on); the stages then read those members
+ * back (scene_ensemble_run), counting each with the origin its rank gave it. */
+typedef int (*scene_member_solver)(const im_scene *, const im_scene_run_options *, scene_member *);
+typedef struct scene_ranks_run {
+    int (*solve_members)(const im_scene *scene, const im_scene_run_options *options, void *data);
+    /* member index's origin in solve's stage (enum scene_origin, plus 4 when a history took its
+     * step at load_star from the table, plus 8 when its rank kept its force for the panels and
+     * wrote it to panels/), or -1 when the ranks did not solve it */
+    int (*origin)(void *data, scene_member_solver solve, int index);
+    void *data;
+} scene_ranks_run;
+void scene_set_ranks_run(const scene_ranks_run *run); /* NULL (the default): a single process */
+const scene_ranks_run *scene_get_ranks_run(void);
+
 /* The load N whose smooth contact area is n_star delta^2. */
 double scene_load_for_n_star(const im_scene *scene, double n_star, double delta);
 

@@ -114,8 +114,7 @@ static int solve_member(const im_scene *scene, const im_scene_run_options *run_o
     return status;
 }
 
-/* Reads back a member an earlier run wrote, or solves and writes it. */
-static int run_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+int scene_table_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     if (options->resume && read_member(scene, m)) {
         m->origin = SCENE_READ_BACK;
@@ -241,7 +240,7 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
     if (status == IM_OK) {
         scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
                        scene->load_star);
-        status = scene_ensemble_run(scene, options, members, count, run_member);
+        status = scene_ensemble_run(scene, options, members, count, scene_table_member);
     }
     if (status == IM_OK)
         scene_report_origins(options, "table", members, count);

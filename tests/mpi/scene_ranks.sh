@@ -1,0 +1,161 @@
+#!/usr/bin/env bash
+# Ensembles over ranks (docs/mpi.md): a scene of 2 slopes x 3 seeds on 64 x 64 surfaces (a table,
+# load-controlled histories, fig2/fig5/fig7) run by one process and by mpirun on 2 and 4 ranks
+# writes the same files to the byte (PDFs but for their creation date, member files but for
+# their seconds column); --resume under mpirun reads every member back; a member that one rank
+# cannot write fails the run with that rank's message; a locked folder is refused as today; an
+# interrupted run (SIGINT to mpirun) keeps its members and --resume completes it.
+#   scene_ranks.sh MPIEXEC PATH_TO_INDENTMAP
+# Loopback only, oversubscribed (more ranks than cores), allowed as root (CI runs as root).
+set -uo pipefail
+mpiexec=$1 cli=$2
+export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1
+export OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_oob_tcp_if_include=lo
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAILED: $*" >&2; exit 1; }
+
+# One scene file and one output folder for every run (run.json and the PNGs name the scene): each
+# run's folder is moved aside after it.
+cat > "$work/ensemble.ini" <<INI
+[scene]
+name = ensemble
+output = $work/out
+[surfaces]
+n = 64
+hurst = 0.8
+lambda_s = 4
+slopes = 0.04, 0.08
+seeds = 1:3
+[punch]
+shape = cone
+alpha = 80
+[loading]
+load_star = 400
+control = load
+steps = 100:400:4
+[solver]
+tol = 1e-8
+[output]
+table = yes
+plots = fig2, fig5, fig7
+INI
+
+run() { # run NAME COMMAND...: runs the scene, keeps its folder as NAME and its stderr as NAME.log
+  local name=$1
+  shift
+  "$@" run "$work/ensemble.ini" 2> "$work/$name.log" > /dev/null || fail "$name: exit $?: $(cat "$work/$name.log")"
+  mv "$work/out" "$work/$name"
+}
+# The files two runs must share: member files without their seconds column (10), PDFs without
+# their creation date; everything else as written.
+same_outputs() {
+  local a=$work/$1 b=$work/$2 f
+  (cd "$a" && find . -type f ! -name .lock | sort) > "$work/files_$1"
+  (cd "$b" && find . -type f ! -name .lock | sort) > "$work/files_$2"
+  cmp -s "$work/files_$1" "$work/files_$2" || fail "$1 and $2 wrote other files: $(diff "$work/files_$1" "$work/files_$2")"
+  while read -r f; do
+    case $f in
+      ./table/member_*.csv) cmp -s <(cut -d, -f10 --complement "$a/$f") <(cut -d, -f10 --complement "$b/$f") ;;
+      *.pdf) cmp -s <(grep -av CreationDate "$a/$f") <(grep -av CreationDate "$b/$f") ;;
+      *) cmp -s "$a/$f" "$b/$f" ;;
+    esac || fail "$f differs between $1 and $2"
+  done < "$work/files_$1"
+}
+
+run single "$cli"
+for f in table1.csv table1.md fig2.png fig5.png fig7.png histories/member_01_3.csv table/member_00_2.csv; do
+  [ -s "$work/single/$f" ] || fail "the single process wrote no $f"
+done
+for k in 2 4; do
+  run ranks$k "$mpiexec" -n $k --oversubscribe "$cli"
+  same_outputs single ranks$k
+  grep -q "ensembles over $k MPI ranks" "$work/ranks$k.log" || fail "$k ranks: $(cat "$work/ranks$k.log")"
+  # the stage lines count the ranks' members as solved, as a single process counts its own
+  grep -q "table: 6 surfaces: 6 solved, 0 read back" "$work/ranks$k.log" || fail "$k ranks: $(cat "$work/ranks$k.log")"
+  grep -q "histories: 6 steps at load_star taken from the table" "$work/ranks$k.log" ||
+    fail "$k ranks: $(cat "$work/ranks$k.log")"
+done
+echo "1, 2 and 4 ranks: the same tables, histories and figures"
+
+# Contact panels (where OpenGL is at hand): the forces the ranks kept for them reach rank 0's panels
+# (counted as reused from the table, as in a single process), the same panels to the byte.
+sed -e 's/^table = yes/table = yes\ncontact_panels = yes/' "$work/ensemble.ini" > "$work/panels.ini"
+cp "$work/ensemble.ini" "$work/plain.ini" && cp "$work/panels.ini" "$work/ensemble.ini"
+if [[ ${ASAN_OPTIONS:-} == *fast_unwind_on_malloc=0* ]]; then
+  # the sanitizer pass's full unwinding on every malloc (for Open MPI's suppressions) deadlocks in
+  # llvmpipe's JIT (libgcc's unwinder lock taken again from LLVM's registerEHFrames)
+  echo "sanitizers with full unwinding: the panels are not compared"
+elif "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/panels_single.log"; then
+  mv "$work/out" "$work/panels_single"
+  run panels_ranks3 "$mpiexec" -n 3 --oversubscribe "$cli"
+  same_outputs panels_single panels_ranks3
+  grep -q "panels: 2 surfaces: 0 solved, 0 read back, 2 reused" "$work/panels_ranks3.log" ||
+    fail "panels on 3 ranks: $(cat "$work/panels_ranks3.log")"
+  echo "3 ranks: the same contact panels"
+else
+  grep -q "rendering with" "$work/panels_single.log" && fail "panels: $(cat "$work/panels_single.log")"
+  echo "no OpenGL context: the panels are not compared"
+  rm -rf "$work/out"
+fi
+cp "$work/plain.ini" "$work/ensemble.ini"
+
+# --resume on 3 ranks over the 4 ranks' folder: every member read back, nothing solved, same files
+cp -r "$work/ranks4" "$work/out"
+"$mpiexec" -n 3 --oversubscribe "$cli" run --resume "$work/ensemble.ini" 2> "$work/resume.log" > /dev/null ||
+  fail "--resume on 3 ranks: exit $?: $(cat "$work/resume.log")"
+mv "$work/out" "$work/resume"
+grep -q "table: 6 surfaces: 0 solved, 6 read back" "$work/resume.log" || fail "--resume: $(cat "$work/resume.log")"
+grep -q "histories: 6 surfaces: 0 solved, 6 read back" "$work/resume.log" || fail "--resume: $(cat "$work/resume.log")"
+same_outputs single resume
+echo "--resume on 3 ranks: every member read back, the same files"
+
+# A member only rank 1 solves (family 0, seed 2: member 1) cannot be written: the run fails with
+# that rank's message, on 2 and on 4 ranks.
+for k in 2 4; do
+  mkdir -p "$work/out/table/member_00_2.csv"
+  "$mpiexec" -n $k --oversubscribe "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/fail$k.log"
+  status=$?
+  [ $status -ne 0 ] || fail "$k ranks: a member that cannot be written, yet exit 0"
+  grep -q "indentmap: rank 1: family 0, seed 2: .*member_00_2.csv" "$work/fail$k.log" ||
+    fail "$k ranks: expected rank 1's message naming the member: $(cat "$work/fail$k.log")"
+  [ ! -e "$work/out/table1.csv" ] || fail "$k ranks: table1.csv written after a failed member"
+  rm -rf "$work/out"
+done
+echo "a rank's failure fails the run with its message"
+
+# A folder another run holds: refused on rank 0, the other ranks end with it (no hang)
+mkdir -p "$work/out"
+exec 9> "$work/out/.lock" # this shell holds the lock, as another run would
+flock 9
+timeout 120 "$mpiexec" -n 2 --oversubscribe "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/locked.log" 9>&-
+status=$?
+exec 9>&-
+[ $status -ne 0 ] && [ $status -ne 124 ] || fail "locked folder: exit $status: $(cat "$work/locked.log")"
+grep -q "give this scene another \[scene\] output" "$work/locked.log" || fail "locked folder: $(cat "$work/locked.log")"
+[ ! -e "$work/out/table" ] || fail "locked folder: a rank wrote members into it"
+rm -rf "$work/out"
+echo "a locked folder is refused"
+# Interruption: mpirun passes SIGINT on to the ranks (as SIGTERM); every rank stops at its next
+# check, keeps what it finished, leaves no temporary file; --resume on 2 ranks then completes it.
+sed -e 's/^n = 64/n = 128/' -e 's/^seeds = 1:3/seeds = 1:8/' -e 's/^steps = .*/steps = 100:400:8/' \
+  "$work/ensemble.ini" > "$work/longer.ini"
+"$mpiexec" -n 2 --oversubscribe "$cli" run "$work/longer.ini" > /dev/null 2> "$work/interrupted.log" &
+launcher=$!
+for _ in $(seq 600); do grep -q "ensembles over" "$work/interrupted.log" && break; sleep 0.05; done
+sleep 0.3 # every rank past its signal handlers
+kill -INT $launcher
+wait $launcher
+status=$?
+[ $status -ne 0 ] || fail "interrupted: exit 0: $(cat "$work/interrupted.log")"
+grep -q "interrupted by signal" "$work/interrupted.log" || fail "interrupted: $(cat "$work/interrupted.log")"
+! find "$work/out" -name '*.tmp.*' | grep -q . || fail "interrupted: temporary files left"
+[ ! -e "$work/out/table1.csv" ] || fail "interrupted: the run went on to the table"
+"$mpiexec" -n 2 --oversubscribe "$cli" run --resume "$work/longer.ini" > /dev/null 2> "$work/resumed.log" ||
+  fail "--resume after the interruption: exit $?: $(cat "$work/resumed.log")"
+grep -Eq "(table|histories): 16 surfaces: [0-9]+ solved, [1-9][0-9]* read back" "$work/resumed.log" ||
+  fail "--resume after the interruption read nothing back: $(cat "$work/resumed.log")"
+[ -s "$work/out/table1.csv" ] && [ -s "$work/out/fig7.png" ] || fail "--resume after the interruption: no table or fig7"
+echo "an interrupted run keeps its members; --resume completes it"
+echo "scene_ranks: ok"
