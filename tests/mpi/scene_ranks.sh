@@ -139,12 +139,13 @@ rm -rf "$work/out"
 echo "a locked folder is refused"
 # Interruption: mpirun passes SIGINT on to the ranks (as SIGTERM); every rank stops at its next
 # check, keeps what it finished, leaves no temporary file; --resume on 2 ranks then completes it.
-sed -e 's/^n = 64/n = 128/' -e 's/^seeds = 1:3/seeds = 1:8/' -e 's/^steps = .*/steps = 100:400:8/' \
+sed -e 's/^n = 64/n = 192/' -e 's/^seeds = 1:3/seeds = 1:12/' -e 's/^steps = .*/steps = 100:400:12/' \
   "$work/ensemble.ini" > "$work/longer.ini"
 "$mpiexec" -n 2 --oversubscribe "$cli" run "$work/longer.ini" > /dev/null 2> "$work/interrupted.log" &
 launcher=$!
-for _ in $(seq 600); do grep -q "ensembles over" "$work/interrupted.log" && break; sleep 0.05; done
-sleep 0.3 # every rank past its signal handlers
+# signalled once the first member is on disk (every rank is then past its signal handlers), long
+# before the last: the run is made long enough for that on an idle machine
+for _ in $(seq 1200); do ls "$work/out/table"/member_* >/dev/null 2>&1 && break; sleep 0.05; done
 kill -INT $launcher
 wait $launcher
 status=$?
@@ -154,7 +155,7 @@ grep -q "interrupted by signal" "$work/interrupted.log" || fail "interrupted: $(
 [ ! -e "$work/out/table1.csv" ] || fail "interrupted: the run went on to the table"
 "$mpiexec" -n 2 --oversubscribe "$cli" run --resume "$work/longer.ini" > /dev/null 2> "$work/resumed.log" ||
   fail "--resume after the interruption: exit $?: $(cat "$work/resumed.log")"
-grep -Eq "(table|histories): 16 surfaces: [0-9]+ solved, [1-9][0-9]* read back" "$work/resumed.log" ||
+grep -Eq "(table|histories): 24 surfaces: [0-9]+ solved, [1-9][0-9]* read back" "$work/resumed.log" ||
   fail "--resume after the interruption read nothing back: $(cat "$work/resumed.log")"
 [ -s "$work/out/table1.csv" ] && [ -s "$work/out/fig7.png" ] || fail "--resume after the interruption: no table or fig7"
 echo "an interrupted run keeps its members; --resume completes it"
