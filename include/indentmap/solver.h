@@ -103,7 +103,8 @@ typedef struct im_solver_options {
     int fft_measure;        /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
                                wisdom file is in use, which implies FFTW_MEASURE */
     const char *wisdom_path;/* FFTW wisdom file imported before planning and exported after it;
-                               NULL (default): the environment variable IM_FFTW_WISDOM, if set */
+                               NULL (default): the environment variable IM_FFTW_WISDOM, if set;
+                               "": no wisdom at all */
     int crop;               /* 1 (default): solve on the window that can touch; 0: whole surface */
     int window_margin;      /* patches added around the window on each side (default 4) */
     int periodic;           /* 0 (default): the half-space, DC-FFT on the zero-padded grid; 1: a
@@ -172,6 +173,14 @@ void im_solver_convolve(im_solver_plan *plan, const double *pressure, double *di
  * options says). Returns IM_OK and a new field in *displacement (the caller frees it), or IM_ENOMEM
  * when the plan would not fit in memory. */
 int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement);
+
+/* The same with a plan made once for many fields of one grid (frames, steps): the plan of
+ * im_displacement_plan_create (im_solver_plan_create without the solver's coarse levels and
+ * preconditioner, FFTW_ESTIMATE), used by im_displacement_full_with (IM_EINVAL for a force field of
+ * another grid). */
+int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options,
+                                im_solver_plan **plan);
+int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement);
 
 enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1 };
 
@@ -280,10 +289,10 @@ const im_solver_plan *im_indentation_plan(const im_indentation *run);
 int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap,
                           im_field **displacement);
 
-/* im_indentation_fields with the displacement on the whole grid (im_displacement_full, with the
- * run's own options) and the gap g = g0 - w + u corrected with it: what is written or drawn. Any
- * pointer may be NULL to skip that field. */
-int im_indentation_fields_full(const im_indentation *run, im_field **force, im_field **gap,
-                               im_field **displacement);
+/* im_indentation_fields with the displacement on the whole grid (im_displacement_full_with, on a
+ * plan the run makes at the first call and keeps) and the gap g = g0 - w + u corrected with it:
+ * what is written or drawn. Any pointer may be NULL to skip that field. Not thread-safe on one run
+ * (the first call plans). */
+int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement);
 
 #endif

@@ -71,5 +71,5 @@ def read(path):
 def write(path, heights, delta=1.0, unit=""):
     """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
     matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
-    PATH.json, written when a unit is given)."""
+    PATH.json)."""
     _core.write_surface(path, heights, float(delta), unit)

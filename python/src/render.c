@@ -192,6 +192,11 @@ static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
                           &layout.labels, &layout.titles, &layout.columns, &layout.colorbar_label, &layout.dpi,
                           &layout.scale_bar) || parse_request(kwargs, &request) < 0)
         return NULL;
+    if (layout.columns < 1 || PyList_Size(fields) < 1) {
+        Py_DECREF(path_bytes);
+        return PyErr_Format(PyExc_ValueError, "figure: %ld panels in %d columns: expected at least one of each",
+                            (long)PyList_Size(fields), layout.columns);
+    }
     Py_ssize_t count = PyList_Size(fields);
     im_image *images = PyMem_Calloc((size_t)(count ? count : 1), sizeof *images);
     int failed = images ? 0 : (PyErr_NoMemory(), -1);

@@ -69,6 +69,10 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     enum im_control control;
     if (punch_from_arguments(kind, alpha, radius, x, y, &punch) < 0 || control_from_name(control_name, &control) < 0)
         return -1;
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
+        return -1;
+    }
     PyArrayObject *array = py_heights_array(obj, "heights");
     if (!array)
         return -1;
@@ -172,16 +176,24 @@ static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
     static char *keywords[] = {"nx", "ny", "delta", "e_star", "tol", "max_iterations", NULL};
     im_solver_options o = im_solver_options_default();
     double delta = 1.0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|dddi", keywords, &self->nx, &self->ny, &delta, &o.e_star, &o.tol,
+    int nx, ny;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|dddi", keywords, &nx, &ny, &delta, &o.e_star, &o.tol,
                                      &o.max_iterations))
         return -1;
-    im_solver_plan_free(self->plan);
-    self->plan = NULL;
-    int status = im_solver_plan_create(self->nx, self->ny, delta, &o, &self->plan); /* GIL held: FFTW planner */
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
+        return -1;
+    }
+    im_solver_plan *plan = NULL;
+    int status = im_solver_plan_create(nx, ny, delta, &o, &plan); /* GIL held: FFTW's planner */
     if (status != IM_OK) {
         py_raise_status(status);
         return -1;
     }
+    im_solver_plan_free(self->plan); /* only now: a failed re-initialisation keeps the plan it had */
+    self->plan = plan;
+    self->nx = nx;
+    self->ny = ny;
     return 0;
 }
 
@@ -226,6 +238,8 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Od|sO", keywords, &gap_obj, &target, &control_name, &start) ||
         control_from_name(control_name, &control) < 0)
         return NULL;
+    if (!self->plan)
+        return PyErr_Format(PyExc_RuntimeError, "Plan: not initialised");
     if (self->busy)
         return PyErr_Format(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
     PyArrayObject *gap0 = grid_array(self, gap_obj, "gap0");

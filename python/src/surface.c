@@ -236,8 +236,9 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
     int status;
     Py_BEGIN_ALLOW_THREADS
     status = im_surface_write(PyBytes_AS_STRING(path_bytes), &field);
-    if (status == IM_OK && field.unit[0] && has_suffix(PyBytes_AS_STRING(path_bytes), ".npy"))
-        status = im_field_sidecar_write(PyBytes_AS_STRING(path_bytes), &field, "height"); /* .npy states no units */
+    /* A .npy states no units: its sidecar does, always written so that none from an earlier file stays */
+    if (status == IM_OK && has_suffix(PyBytes_AS_STRING(path_bytes), ".npy"))
+        status = im_field_sidecar_write(PyBytes_AS_STRING(path_bytes), &field, "height");
     Py_END_ALLOW_THREADS
     Py_DECREF(array);
     Py_DECREF(path_bytes);

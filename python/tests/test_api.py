@@ -178,3 +178,15 @@ def test_missing_points_refused_or_filled():
     filled, count = im.prepare(holed, detrend="none", fill=True)
     assert count == 1 and np.isfinite(filled).all()
     assert filled[10, 7] == pytest.approx(np.mean([heights[9, 7], heights[11, 7], heights[10, 6], heights[10, 8]]))
+
+
+def test_reinitialising_keeps_a_consistent_object():
+    plan = im._core.Plan(32, 32)
+    with pytest.raises(TypeError):
+        plan.__init__(16, 16, "not a number")
+    gap0 = np.full((32, 32), 1.0)
+    gap0[16, 16] = 0.0
+    pressure, displacement, result = plan.solve(gap0, 0.5)   # still the 32 x 32 plan
+    assert pressure.shape == (32, 32) and result["contact_patches"] >= 1
+    with pytest.raises(ValueError, match="columns"):
+        im.Figure([pressure], columns=0).save("never.png")

@@ -164,6 +164,10 @@ static int parse_targets(const char *option, const char *text, double **out, int
         fprintf(stderr, "indentmap: %s: expected a list 'v1,v2,...' or a range 'a:b:count'\n", option);
         status = -1;
     }
+    if (status == 0 && *count > MAX_STEPS) { /* as for a range: the step files are numbered NNNN */
+        fprintf(stderr, "indentmap: %s: %d values: expected at most %d steps\n", option, *count, MAX_STEPS);
+        status = -1;
+    }
     return status;
 }
 
@@ -416,7 +420,7 @@ static void history_close(history_file *h)
 
 /* The fields of a step on the full grid, each FILE.npy with FILE.npy.json stating its units: forces in
  * force_unit, gaps and displacements in the surface's length unit. */
-static int write_fields(const char *dir, const im_indentation *run, int step, const char *length_unit,
+static int write_fields(const char *dir, im_indentation *run, int step, const char *length_unit,
                         const char *force_unit)
 {
     im_field *f[3] = {NULL, NULL, NULL};
@@ -663,9 +667,11 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
                         done, o->out);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
-    write_run_json(o->out, record, done, status);
+    int recorded = write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
+    else
+        status = recorded; /* a run whose record could not be written did not finish */
     free(rows);
     free(extras);
     return status;
@@ -767,6 +773,12 @@ int cli_indent(int argc, char **argv)
                w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads());
         record = run_record(&o, surface, run);
         status = record ? history_start(o.out, &history) : im_fail(IM_ENOMEM, "run record");
+        if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
+            char message[1024];
+            snprintf(message, sizeof message, "%s", im_last_error());
+            write_run_json(o.out, record, 0, status);
+            im_fail(status, "%s", message);
+        }
     }
     if (status == IM_OK)
         status = run_steps(&o, &rough, run, &history, record);

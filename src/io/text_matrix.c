@@ -159,7 +159,8 @@ static int parse_data_line(char *line, const char *path, long line_number, value
 {
     *count = 0;
     char shown[160];
-    for (char *token = strtok(line, " \t,\r\n"); token; token = strtok(NULL, " \t,\r\n")) {
+    char *rest = NULL; /* strtok_r: surfaces are read by several threads at once (ensembles, Python) */
+    for (char *token = strtok_r(line, " \t,\r\n", &rest); token; token = strtok_r(NULL, " \t,\r\n", &rest)) {
         char *end;
         errno = 0;
         double value = strtod(token, &end);

@@ -13,6 +13,7 @@ typedef struct framed_history {
     im_field *surface;
     im_field **force, **deformed;   /* per step: force per patch, heights h - u */
     double *load_star;
+    im_solver_plan *full_plan;      /* the whole grid's u of every frame, planned once */
 } framed_history;
 
 static void history_free(framed_history *h)
@@ -27,6 +28,7 @@ static void history_free(framed_history *h)
     free(h->deformed);
     free(h->load_star);
     im_field_free(h->surface);
+    im_solver_plan_free(h->full_plan);
 }
 
 int scene_framed_family(const im_scene *scene)
@@ -47,9 +49,13 @@ static int keep_step(const im_scene *scene, const im_indentation *run, framed_hi
 {
     im_field *displacement = NULL;
     im_solver_options options = scene_solver_options(scene);
-    int status = im_indentation_fields(run, &h->force[index], NULL, NULL);
+    int status = h->full_plan ? IM_OK
+                              : im_displacement_plan_create(h->surface->nx, h->surface->ny, h->surface->delta,
+                                                            &options, &h->full_plan);
     if (status == IM_OK)
-        status = im_displacement_full(h->force[index], &options, &displacement);
+        status = im_indentation_fields(run, &h->force[index], NULL, NULL);
+    if (status == IM_OK)
+        status = im_displacement_full_with(h->full_plan, h->force[index], &displacement);
     if (status == IM_OK)
         status = im_field_clone(h->surface, &h->deformed[index]);
     if (status == IM_OK)

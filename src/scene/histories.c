@@ -49,9 +49,10 @@ static int history_rows(const im_scene *scene, const scene_member *m, char **row
         im_theory_step theory;
         status = scene_history_theory_row(scene, scene->slopes[m->family], m->approach[i], m->history_load[i],
                                           &theory);
-        fprintf(stream, "%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", m->approach[i], m->history_load[i],
-                m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i], theory.load_smooth,
-                theory.area_smooth, theory.area_ratio_constant, theory.area_ratio_gamma);
+        if (status == IM_OK)
+            fprintf(stream, "%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", m->approach[i],
+                    m->history_load[i], m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i],
+                    theory.load_smooth, theory.area_smooth, theory.area_ratio_constant, theory.area_ratio_gamma);
     }
     if (fclose(stream) != 0 && status == IM_OK)
         status = im_fail(IM_ENOMEM, "history rows: allocation failed");

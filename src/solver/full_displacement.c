@@ -8,21 +8,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement)
+int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options,
+                                im_solver_plan **plan)
+{
+    im_solver_options o = *options;
+    o.fft_measure = 0; /* a few convolutions: estimating the plan is cheaper than measuring it */
+    o.wisdom_path = ""; /* nor read or written wisdom (IM_FFTW_WISDOM would make it measure) */
+    o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
+    return im_solver_plan_create(nx, ny, delta, &o, plan);
+}
+
+int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement)
 {
     *displacement = NULL;
-    im_solver_options o = *options;
-    o.fft_measure = 0; /* a one-off convolution: estimating the plan is cheaper than measuring it */
-    o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
-    im_solver_plan *plan = NULL;
-    im_field *u = NULL;
     size_t count = im_field_count(force);
+    if (plan->nx != force->nx || plan->ny != force->ny)
+        return im_fail(IM_EINVAL, "full-grid displacement: a %d x %d force field on a %d x %d plan", force->nx,
+                       force->ny, plan->nx, plan->ny);
     double *pressure = malloc(count * sizeof *pressure);
-    int status = pressure ? im_solver_plan_create(force->nx, force->ny, force->delta, &o, &plan)
+    im_field *u = NULL;
+    int status = pressure ? im_field_create(force->nx, force->ny, force->delta, &u)
                           : im_fail(IM_ENOMEM, "full-grid displacement %d x %d: allocation failed", force->nx,
                                     force->ny);
-    if (status == IM_OK)
-        status = im_field_create(force->nx, force->ny, force->delta, &u);
     if (status == IM_OK) {
         double area = force->delta * force->delta;
         for (size_t i = 0; i < count; ++i)
@@ -31,36 +38,17 @@ int im_displacement_full(const im_field *force, const im_solver_options *options
         snprintf(u->unit, sizeof u->unit, "%s", force->unit);
         *displacement = u;
     }
-    im_solver_plan_free(plan);
     free(pressure);
     return status;
 }
 
-int im_indentation_fields_full(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement)
 {
-    im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
-    int status = im_indentation_fields(run, &f, gap ? &g : NULL, &window_u);
+    *displacement = NULL;
+    im_solver_plan *plan = NULL;
+    int status = im_displacement_plan_create(force->nx, force->ny, force->delta, options, &plan);
     if (status == IM_OK)
-        status = im_displacement_full(f, &im_indentation_plan(run)->options, &u);
-    if (status == IM_OK && g) /* g = g0 - w + u: the same gap with the true u */
-        for (size_t i = 0; i < im_field_count(g); ++i)
-            g->data[i] += u->data[i] - window_u->data[i];
-    im_field_free(window_u);
-    if (status != IM_OK) {
-        im_field_free(f);
-        im_field_free(g);
-        im_field_free(u);
-        return status;
-    }
-    if (force)
-        *force = f;
-    else
-        im_field_free(f);
-    if (gap)
-        *gap = g;
-    if (displacement)
-        *displacement = u;
-    else
-        im_field_free(u);
-    return IM_OK;
+        status = im_displacement_full_with(plan, force, displacement);
+    im_solver_plan_free(plan);
+    return status;
 }

@@ -20,6 +20,7 @@ struct im_indentation {
     im_window window;
     double *window_gap0, *pressure, *displacement; /* window grid */
     im_solver_plan *plan;
+    im_solver_plan *full_plan; /* made at the first im_indentation_fields_full: the whole grid's u */
     double approach;         /* last step's */
 };
 
@@ -197,6 +198,7 @@ void im_indentation_free(im_indentation *run)
     if (!run)
         return;
     im_solver_plan_free(run->plan);
+    im_solver_plan_free(run->full_plan);
     free(run->gap0);
     free(run->window_gap0);
     free(run->pressure);
@@ -347,5 +349,38 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
         *gap = g;
     if (displacement)
         *displacement = u;
+    return IM_OK;
+}
+
+int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+{
+    im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
+    int status = run->full_plan ? IM_OK
+                                : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options,
+                                                              &run->full_plan);
+    if (status == IM_OK)
+        status = im_indentation_fields(run, &f, gap ? &g : NULL, &window_u);
+    if (status == IM_OK)
+        status = im_displacement_full_with(run->full_plan, f, &u);
+    if (status == IM_OK && g) /* g = g0 - w + u: the same gap with the true u */
+        for (size_t i = 0; i < im_field_count(g); ++i)
+            g->data[i] += u->data[i] - window_u->data[i];
+    im_field_free(window_u);
+    if (status != IM_OK) {
+        im_field_free(f);
+        im_field_free(g);
+        im_field_free(u);
+        return status;
+    }
+    if (force)
+        *force = f;
+    else
+        im_field_free(f);
+    if (gap)
+        *gap = g;
+    if (displacement)
+        *displacement = u;
+    else
+        im_field_free(u);
     return IM_OK;
 }

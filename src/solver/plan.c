@@ -81,8 +81,8 @@ double im_solver_plan_bytes(int nx, int ny)
 
 const char *im_solver_wisdom_file(const im_solver_options *o)
 {
-    if (o->wisdom_path && o->wisdom_path[0])
-        return o->wisdom_path;
+    if (o->wisdom_path) /* "" names none: no wisdom, whatever the environment says */
+        return o->wisdom_path[0] ? o->wisdom_path : NULL;
     const char *env = getenv("IM_FFTW_WISDOM");
     return env && env[0] ? env : NULL;
 }
