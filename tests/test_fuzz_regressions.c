@@ -115,6 +115,20 @@ static void hostile_netcdf_header_is_refused_before_netcdf(void **state)
     assert_non_null(strstr(im_last_error(), "oom_name_length.nc: netCDF header: a count or name runs past the end"));
 }
 
+/* fuzz_netcdf's crash: a CDF2 header whose variable has an nc_type of no known size made netCDF
+ * divide by zero (SIGFPE in NC_check_vlen). Refused by the reader's walk, naming the file. */
+static void unknown_type_is_refused_before_netcdf(void **state)
+{
+    (void)state;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/fuzz/regressions/netcdf/unknown_type_divides_by_zero.nc",
+             getenv("IM_SOURCE_DIR"));
+    im_field *field = NULL;
+    assert_int_equal(im_netcdf_read(path, &field), IM_EFORMAT);
+    assert_null(field);
+    assert_non_null(strstr(im_last_error(), "unknown_type_divides_by_zero.nc: netCDF header: a variable of no known type"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -127,6 +141,7 @@ int main(void)
         cmocka_unit_test(x3p_inputs),
         cmocka_unit_test(oversized_headers_are_refused_before_allocation),
         cmocka_unit_test(hostile_netcdf_header_is_refused_before_netcdf),
+        cmocka_unit_test(unknown_type_is_refused_before_netcdf),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

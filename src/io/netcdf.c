@@ -254,7 +254,9 @@ static void skip_attributes(header_walk *w)
     }
 }
 
-/* Dimensions, attributes and variables; each fixed-size variable's data must lie in the file. */
+/* Dimensions, attributes and variables; each fixed-size variable's data must lie in the file and
+ * each variable's type must be one of netCDF's. -1: a count or name runs past the end; 1: data
+ * past the end; 2: a variable of no known type (netCDF then divided by its size 0); 0: whole. */
 static int walk_header(header_walk *w, size_t *dims_out)
 {
     take(w, 4);                              /* magic and version */
@@ -267,7 +269,7 @@ static int walk_header(header_walk *w, size_t *dims_out)
     }
     skip_attributes(w);
     uint64_t vars = list_count(w, 0x0B);
-    int outside = 0;
+    int outside = 0, unknown_type = 0;
     for (uint64_t i = 0; i < vars && !failed(w) && !outside; ++i) {
         skip_name(w);
         uint64_t rank = take(w, count_width(w)), record = 0;
@@ -276,13 +278,13 @@ static int walk_header(header_walk *w, size_t *dims_out)
             record |= id >= dims || !lengths || lengths[id] == 0; /* the record dimension, or a bad id */
         }
         skip_attributes(w);
-        take(w, 4);                          /* nc_type */
+        unknown_type |= type_size(take(w, 4)) == 0; /* nc_type: netCDF divides by its size */
         uint64_t vsize = take(w, count_width(w)), begin = take(w, w->version == 1 ? 4 : 8);
         outside = !record && (begin > w->size || vsize > w->size - begin);
     }
     free(lengths);
     *dims_out = (size_t)dims;
-    return failed(w) || (dims && !lengths) ? -1 : outside ? 1 : 0;
+    return failed(w) || (dims && !lengths) ? -1 : outside ? 1 : unknown_type ? 2 : 0;
 }
 
 static int check_classic_header(const char *path, const unsigned char *bytes, size_t size)
@@ -295,9 +297,11 @@ static int check_classic_header(const char *path, const unsigned char *bytes, si
     if (result < 0)
         return im_fail(IM_EFORMAT, "%s: netCDF header: a count or name runs past the end of the file (%zu bytes)",
                        path, size);
-    if (result > 0)
+    if (result == 1)
         return im_fail(IM_EFORMAT, "%s: truncated: a variable's data lies past the end of the file (%zu bytes)", path,
                        size);
+    if (result == 2)
+        return im_fail(IM_EFORMAT, "%s: netCDF header: a variable of no known type (expected a classic nc_type)", path);
     return IM_OK;
 }
 
