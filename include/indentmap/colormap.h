@@ -14,6 +14,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum im_colormap_id {
     IM_COLORMAP_VIRIDIS = 0,
     IM_COLORMAP_CIVIDIS,
@@ -52,5 +56,9 @@ void im_colormap_rgb(const im_colormap *colormap, double value, uint8_t rgb[3]);
 /* CPU image of a field: one pixel per patch, RGB, stride 3 nx, image row 0 = field row ny - 1
  * (y up). The reference the GL renderer is tested against. */
 void im_colormap_field_image(const im_colormap *colormap, const im_field *field, uint8_t *rgb);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct im_field {
     int nx, ny;      /* grid size, >= 1 each */
     double delta;    /* patch side in physical units (1 when dimensionless) */
@@ -53,5 +57,9 @@ size_t im_address_space_available(void);
 /* IM_ENOMEM, with the estimate and what is available in the message, when bytes exceed the
  * memory available; IM_OK otherwise. what names the allocation ("surface 8192 x 8192"). */
 int im_memory_check(double bytes, const char *what);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

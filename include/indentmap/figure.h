@@ -22,6 +22,10 @@
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifndef IM_FONT_DIR /* the folder is a build setting: cmake -DIM_FONT_DIR=... */
 #define IM_FONT_DIR "/usr/share/fonts/truetype/dejavu"
 #endif
@@ -93,5 +97,9 @@ int im_ffmpeg_available(void);
  * installed (the frames stay where they are); IM_EIO when ffmpeg fails. */
 int im_animation_mp4(const char *directory, const char *prefix, double frames_per_second,
                      const char *path);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -24,6 +24,10 @@
 #ifndef INDENTMAP_INDENTER_H
 #define INDENTMAP_INDENTER_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum im_punch_kind { IM_PUNCH_CONE = 0, IM_PUNCH_SPHERE = 1, IM_PUNCH_FLAT = 2 };
 
 typedef struct im_indenter {
@@ -66,5 +70,9 @@ double im_indenter_pressure(const im_indenter *punch, double e_star, double w, d
 double im_indenter_approach_for_load(const im_indenter *punch, double e_star, double n);
 /* Contact area at load n: A_cone = 2N / (E* cot alpha), pi a^2 for Hertz and the flat punch. */
 double im_indenter_area_for_load(const im_indenter *punch, double e_star, double n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

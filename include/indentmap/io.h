@@ -25,6 +25,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---- the output guard ---- */
 
 /* Registers path as an input of this process: from now on no atomic write may replace it (by any
@@ -307,5 +311,9 @@ int im_png_write(const char *path, const uint8_t *pixels, int width, int height,
 /* Reads an 8-bit RGB or RGBA PNG (for tests and figure assembly); *pixels is malloc'ed, rows top
  * first, stride width * channels. */
 int im_png_read(const char *path, uint8_t **pixels, int *width, int *height, int *channels);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -15,6 +15,10 @@
 
 #include "indentmap/field.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* S_i = dN/dw at each of count >= 2 steps with strictly increasing (loading) or strictly decreasing
  * (unloading) approaches: the three-point
  * derivative for unequal steps inside (exact for a quadratic N(w), Love's cone), one-sided
@@ -43,5 +47,9 @@ int im_measure_contact_patches(const im_field *force, im_contact_patches *out, l
  * bins >= 1): counts[bins] (contact, g <= 0, falls in the first bin; gaps >= gap_max and +INFINITY
  * are not counted). */
 int im_measure_gap_histogram(const im_field *gap, double gap_max, int bins, long *counts);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -47,6 +47,10 @@
 
 #include <mpi.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Prepares FFTW for threads within MPI ranks (fftw_init_threads, then fftw_mpi_init). Call once,
  * after MPI_Init_thread with at least MPI_THREAD_FUNNELED, before any other function here. */
 void im_mpi_init(void);
@@ -130,6 +134,10 @@ int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y
  * and the failing rank carry its message, the others "rank K: <message>". Rank 0's status is the
  * run's (its outputs, its message). */
 int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* IM_HAVE_MPI */
 

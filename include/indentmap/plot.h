@@ -40,6 +40,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum im_plot_scale { IM_PLOT_LINEAR = 0, IM_PLOT_LOG = 1 } im_plot_scale;
 
 typedef enum im_plot_line_style {
@@ -176,5 +180,9 @@ int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style
  * generated with (only hurst, lambda_s and lambda_r are read). */
 int im_plot_figure_surface(const im_field *surface, const im_surface_params *params, int bins,
                            const im_plot *style, const char *path);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

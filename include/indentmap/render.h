@@ -33,6 +33,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum im_render_backend {
     IM_RENDER_AUTO = 0,
     IM_RENDER_EGL,
@@ -256,5 +260,9 @@ int im_render_view3d(im_render_context *context, const im_field *height, const i
  * exaggeration of 1, else "vertical exaggeration ×X" (UTF-8, X with up to 3 significant digits).
  * Writes at most size bytes. */
 void im_view3d_exaggeration_text(double exaggeration, char *text, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -32,6 +32,10 @@
 #include <signal.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
 
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
@@ -157,5 +161,9 @@ void im_scene_resolve_path(const im_scene *scene, const char *relative, char *ou
 /* The valid key nearest to an unknown word (Levenshtein distance), for suggestions; NULL if none
  * is close (distance > half the word's length). section may be NULL to search section names. */
 const char *im_scene_suggest_key(const char *section, const char *word);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

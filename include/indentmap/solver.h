@@ -96,6 +96,10 @@
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct im_solver_options {
     double e_star;          /* composite modulus E* (default 1) */
     double tol;             /* stopping tolerance on the relative residual (default 1e-8) */
@@ -294,5 +298,9 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
  * what is written or drawn. Any pointer may be NULL to skip that field. Not thread-safe on one run
  * (the first call plans). */
 int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include <signal.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum im_status {
     IM_OK = 0,
     IM_EINVAL,    /* a parameter is out of range or malformed */
@@ -43,5 +47,9 @@ int im_fail_context(int status, const char *fmt, ...) __attribute__((format(prin
  * when none is registered or none has arrived. */
 void im_set_stop_flag(volatile sig_atomic_t *flag);
 int im_stop_requested(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

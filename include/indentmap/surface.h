@@ -25,6 +25,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum im_slope_definition { IM_SLOPE_SPECTRAL = 0, IM_SLOPE_FINITE_DIFFERENCE = 1 };
 enum im_surface_target { IM_TARGET_SLOPE = 0, IM_TARGET_HEIGHT = 1 };
 
@@ -168,5 +172,9 @@ int im_surface_tapered(const im_field *surface, const im_taper *window, im_field
  * Nayak) taken from the windowed surface; the others (mean, h_rms, h'rms fd, range) from the
  * surface itself. A window of kind IM_TAPER_NONE gives im_surface_statistics. */
 int im_surface_statistics_tapered(const im_field *surface, const im_taper *window, im_surface_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -22,6 +22,10 @@
 
 #include "indentmap/indenter.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---- Contact area: the erf law and its normalising pressure (eqs. 1, 2 and the Appendix) ---- */
 
 /* Eq. (2)'s constant k in p_rough = h'rms E* / k; the paper takes k = 2. */
@@ -235,5 +239,9 @@ double im_theory_height_rms_moments(double slope_rms, double hurst, double q_r, 
  * h_rms ~ h'rms sqrt((1 - H) / H) zeta^H / q_s. It drops zeta^(2H - 2) against 1, which for the
  * paper's surfaces (H = 0.8, zeta = 128) makes it 7.5% lower than the exact moments. */
 double im_theory_height_rms_eq15(double slope_rms, double hurst, double q_s, double zeta);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

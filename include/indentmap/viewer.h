@@ -17,9 +17,17 @@
 #ifndef INDENTMAP_VIEWER_H
 #define INDENTMAP_VIEWER_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Writes DIR/index.html for the files now in DIR. title (UTF-8) heads the page. Errors: IM_EIO
  * when DIR cannot be read or the page cannot be written (naming the path), IM_ENOMEM. A folder
  * with none of the files above still gets a page that says so. */
 int im_viewer_write(const char *dir, const char *title);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

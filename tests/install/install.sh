@@ -20,6 +20,11 @@ export PKG_CONFIG_PATH="$lib/pkgconfig"
 cc -std=c11 -Wall -Wextra -Werror -o "$prefix/consumer_pc" "$source/consumer.c" \
    $(pkg-config --cflags --libs indentmap) -lm -Wl,-rpath,"$lib"
 "$prefix/consumer_pc"
+# The headers are C++-clean (extern "C"): the same program compiled and linked as C++.
+# shellcheck disable=SC2046
+c++ -std=c++17 -Wall -Wextra -Werror -x c++ -o "$prefix/consumer_cxx" "$source/consumer.c" -x none \
+    $(pkg-config --cflags --libs indentmap) -Wl,-rpath,"$lib"
+"$prefix/consumer_cxx"
 
 cmake -S "$source" -B "$prefix/consumer_build" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_RPATH="$lib" >/dev/null
