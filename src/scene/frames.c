@@ -13,7 +13,6 @@ typedef struct framed_history {
     im_field *surface;
     im_field **force, **deformed;   /* per step: force per patch, heights h - u */
     double *load_star;
-    im_solver_plan *full_plan;      /* the whole grid's u of every frame, planned once */
 } framed_history;
 
 static void history_free(framed_history *h)
@@ -28,7 +27,6 @@ static void history_free(framed_history *h)
     free(h->deformed);
     free(h->load_star);
     im_field_free(h->surface);
-    im_solver_plan_free(h->full_plan);
 }
 
 int scene_framed_family(const im_scene *scene)
@@ -44,18 +42,10 @@ int scene_framed_family(const im_scene *scene)
 
 /* Keeps the step's force and deformed heights h - u (u is positive into the half-space), with u on
  * the whole grid (the solver's is 0 outside its window, which drew a step at the window's edge). */
-static int keep_step(const im_scene *scene, const im_indentation *run, framed_history *h, int index,
-                     const im_step_result *step)
+static int keep_step(im_indentation *run, framed_history *h, int index, const im_step_result *step)
 {
     im_field *displacement = NULL;
-    im_solver_options options = scene_solver_options(scene);
-    int status = h->full_plan ? IM_OK
-                              : im_displacement_plan_create(h->surface->nx, h->surface->ny, h->surface->delta,
-                                                            &options, &h->full_plan);
-    if (status == IM_OK)
-        status = im_indentation_fields(run, &h->force[index], NULL, NULL);
-    if (status == IM_OK)
-        status = im_displacement_full_with(h->full_plan, h->force[index], &displacement);
+    int status = im_indentation_fields_full(run, &h->force[index], NULL, &displacement);
     if (status == IM_OK)
         status = im_field_clone(h->surface, &h->deformed[index]);
     if (status == IM_OK)
@@ -94,7 +84,7 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
         /* the last step exactly at n: n * count / count may round above the largest load prepared */
         status = im_indentation_step(run, i + 1 == h->count ? n : n * (i + 1) / h->count, &step);
         if (status == IM_OK)
-            status = keep_step(scene, run, h, i, &step);
+            status = keep_step(run, h, i, &step);
     }
     im_indentation_free(run);
     return status;
