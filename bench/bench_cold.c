@@ -45,7 +45,7 @@ static double fft_pair_cpu(int px, int py)
 {
     double *real = fftw_malloc(sizeof(double) * (size_t)px * py);
     fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * (size_t)py * (px / 2 + 1));
-    im_fft_prepare_planner();
+    fft_prepare_planner();
     fftw_plan f = fftw_plan_dft_r2c_2d(py, px, real, modes, FFTW_ESTIMATE);
     fftw_plan b = fftw_plan_dft_c2r_2d(py, px, modes, real, FFTW_ESTIMATE);
     for (size_t i = 0; i < (size_t)px * py; ++i)

@@ -108,7 +108,7 @@ static double time_pair(void (*fn)(void *), void *data, int repeats)
 static void time_size(int px, int py, int threads, int repeats)
 {
     omp_set_num_threads(threads);
-    im_fft_prepare_planner();
+    fft_prepare_planner();
     pair_double d;
     pair_float f;
     plan_double(&d, px, py);

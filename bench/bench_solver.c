@@ -75,7 +75,7 @@ static double fft_pair_seconds(int px, int py, unsigned flags, int cpu)
 {
     double *real = fftw_malloc(sizeof(double) * px * py);
     fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * py * (px / 2 + 1));
-    im_fft_prepare_planner();
+    fft_prepare_planner();
     fftw_plan f = fftw_plan_dft_r2c_2d(py, px, real, modes, flags);
     fftw_plan b = fftw_plan_dft_c2r_2d(py, px, modes, real, flags);
     for (int i = 0; i < px * py; ++i)

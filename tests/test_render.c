@@ -376,12 +376,12 @@ static void test_missing_context_is_told_apart(void **state)
     assert_false(im_render_context_missing(IM_EUNSUPPORTED, "GL setup failed: error 0x502"));
     assert_false(im_render_context_missing(IM_EINVAL, IM_RENDER_NO_CONTEXT ": but the wrong status"));
     assert_false(im_render_context_missing(IM_OK, ""));
-    assert_true(im_egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_device_enumeration EGL_EXT_platform_device"));
-    assert_true(im_egl_can_enumerate_devices("EGL_EXT_device_base EGL_EXT_platform_device"));
-    assert_false(im_egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_platform_device"));
-    assert_false(im_egl_can_enumerate_devices("EGL_EXT_device_enumeration_extra EGL_EXT_platform_device"));
-    assert_false(im_egl_can_enumerate_devices("EGL_EXT_device_enumeration"));
-    assert_false(im_egl_can_enumerate_devices(NULL));
+    assert_true(egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_device_enumeration EGL_EXT_platform_device"));
+    assert_true(egl_can_enumerate_devices("EGL_EXT_device_base EGL_EXT_platform_device"));
+    assert_false(egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_platform_device"));
+    assert_false(egl_can_enumerate_devices("EGL_EXT_device_enumeration_extra EGL_EXT_platform_device"));
+    assert_false(egl_can_enumerate_devices("EGL_EXT_device_enumeration"));
+    assert_false(egl_can_enumerate_devices(NULL));
 }
 
 static void test_backend_choice(void **state)

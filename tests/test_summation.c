@@ -52,7 +52,7 @@ static void test_single_precision_data(void **state)
     assert_true(fabs(relative_error(naive, exact)) > 0.1); /* what the summation is for */
     for (size_t i = 0; i < COUNT; ++i)
         widened[i] = single[i];
-    assert_true(fabs(relative_error(im_sum_doubles(widened, COUNT), exact)) < 1e-15);
+    assert_true(fabs(relative_error(sum_doubles(widened, COUNT), exact)) < 1e-15);
     free(single);
     free(widened);
 }
@@ -66,7 +66,7 @@ static void test_double_precision_over_19_decades(void **state)
     for (size_t i = 0; i < COUNT; ++i)
         v[i] = cone_like_force(i);
     const __float128 exact = quad_sum_doubles(v, COUNT);
-    double e = relative_error(im_sum_doubles(v, COUNT), exact);
+    double e = relative_error(sum_doubles(v, COUNT), exact);
     assert_true(fabs(e) < 2 * 1.1102230246251565e-16); /* within one rounding of the exact sum */
     free(v);
 }
@@ -82,9 +82,9 @@ static void test_independent_of_thread_count(void **state)
         v[i] = sin(0.37 * (double)i) * exp(-1e-5 * (double)i);
     int threads = omp_get_max_threads();
     omp_set_num_threads(1);
-    double one = im_sum_doubles(v, n);
+    double one = sum_doubles(v, n);
     omp_set_num_threads(3);
-    double three = im_sum_doubles(v, n);
+    double three = sum_doubles(v, n);
     omp_set_num_threads(threads);
     assert_memory_equal(&one, &three, sizeof one);
     assert_true(fabs(relative_error(one, quad_sum_doubles(v, n))) < 1e-15);
@@ -95,8 +95,8 @@ static void test_short_and_empty(void **state)
 {
     (void)state;
     const double v[3] = {1e16, 1.0, -1e16}; /* the 1 survives the cancellation */
-    assert_true(im_sum_doubles(v, 3) == 1.0);
-    assert_true(im_sum_doubles(v, 0) == 0.0);
+    assert_true(sum_doubles(v, 3) == 1.0);
+    assert_true(sum_doubles(v, 0) == 0.0);
 }
 
 int main(void)

@@ -4,13 +4,13 @@
 
 /* Initialises FFTW's OpenMP threading once per process and makes the next plans use as many
  * threads as OpenMP would now. Call it with the planner lock held (below). */
-void im_fft_prepare_planner(void);
+void fft_prepare_planner(void);
 
 /* FFTW's planner (plan creation and destruction, wisdom) is not thread-safe. Code that may run
  * inside a parallel region (an ensemble solving surfaces side by side) brackets every plan
  * creation and destruction with these: one process-wide mutex. Inside a parallel region
  * omp_get_max_threads() is 1, so such plans are single-threaded. */
-void im_fft_planner_lock(void);
-void im_fft_planner_unlock(void);
+void fft_planner_lock(void);
+void fft_planner_unlock(void);
 
 #endif

@@ -28,7 +28,7 @@ static double range_sum(const double *v, size_t lo, size_t hi)
 
 /* Blocks summed in parallel, then combined in block order, so the result does not depend on the
  * thread count; the block length grows with n so that the block sums fit on the stack. */
-double im_sum_doubles(const double *v, size_t n)
+double sum_doubles(const double *v, size_t n)
 {
     const size_t shortest = (n + IM_SUM_MAX_BLOCKS - 1) / IM_SUM_MAX_BLOCKS;
     const size_t length = shortest > IM_SUM_BLOCK ? shortest : IM_SUM_BLOCK;

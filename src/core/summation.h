@@ -17,6 +17,6 @@
 #define IM_SUM_MAX_BLOCKS 1024
 
 /* Sum of v[0..n) in double precision, compensated. */
-double im_sum_doubles(const double *v, size_t n);
+double sum_doubles(const double *v, size_t n);
 
 #endif

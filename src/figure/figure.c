@@ -60,7 +60,7 @@ typedef struct measure {
 
 static double text_width(const measure *m, cairo_font_face_t *face, double size, const char *text)
 {
-    return text ? im_figure_rich_text(m->cr, face, size, 0.0, 0.0, text, 0) : 0.0;
+    return text ? figure_rich_text(m->cr, face, size, 0.0, 0.0, text, 0) : 0.0;
 }
 
 static int has_panel_text(const im_figure *f)
@@ -131,7 +131,7 @@ static void measure_colorbar(const im_figure *f, const measure *m, layout *l)
     l->tick_label_width = 0.0;
     for (int i = 0; i < l->tick_count; ++i) {
         char text[64];
-        im_figure_tick_label(f->colormap->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
+        figure_tick_label(f->colormap->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
         l->tick_label_width = fmax(l->tick_label_width, text_width(m, m->regular, l->font, text));
     }
 }
@@ -142,7 +142,7 @@ static void scale_bar(const im_figure *f, char *text, size_t size, double *pixel
     const im_image *image = f->panels[(f->rows - 1) * f->columns].image;
     double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
     *pixels = (image->unit[0] ? length / image->delta : length) * image->pixels_per_patch;
-    im_figure_length_label(length, image->unit, text, size);
+    figure_length_label(length, image->unit, text, size);
 }
 
 /* Moves the grid down (and grows the page) so that the colour bar's rotated label, centred on
@@ -261,12 +261,12 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
             return status;
         cairo_set_source_rgb(cr, 0, 0, 0);
         double baseline = y - 0.45 * l->font;
-        double label_width = p->label ? im_figure_rich_text(cr, bold, l->font, 0, 0, p->label, 0) : 0.0;
+        double label_width = p->label ? figure_rich_text(cr, bold, l->font, 0, 0, p->label, 0) : 0.0;
         if (p->label)
-            im_figure_show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
+            figure_show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
         if (p->title) {
-            double width = im_figure_rich_text(cr, regular, l->font, 0, 0, p->title, 0);
-            im_figure_show_text(cr, regular, l->font, title_left(l->font, x, p->image->width, label_width, width),
+            double width = figure_rich_text(cr, regular, l->font, 0, 0, p->title, 0);
+            figure_show_text(cr, regular, l->font, title_left(l->font, x, p->image->width, label_width, width),
                                 baseline, 0.0, p->title);
         }
     }
@@ -287,8 +287,8 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, pixels, round(0.3 * l->font));
     cairo_fill(cr);
-    double width = im_figure_rich_text(cr, regular, l->font, 0, 0, text, 0);
-    im_figure_show_text(cr, regular, l->font, fmax(x, left + 0.5 * (pixels - width)),
+    double width = figure_rich_text(cr, regular, l->font, 0, 0, text, 0);
+    figure_show_text(cr, regular, l->font, fmax(x, left + 0.5 * (pixels - width)),
                         top + 0.3 * l->font + 1.1 * l->font, 0.0, text);
 }
 
@@ -350,8 +350,8 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
         cairo_line_to(cr, right + l->tick_length, y);
         cairo_stroke(cr);
         char text[64];
-        im_figure_tick_label(c->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
-        im_figure_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
+        figure_tick_label(c->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
+        figure_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
     }
     if (c->logarithmic)
         draw_minor_ticks(c, l, cr);
@@ -360,7 +360,7 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
         cairo_translate(cr, right + l->tick_length + 0.3 * l->font + l->tick_label_width + 1.2 * l->font,
                         l->bar_y + 0.5 * l->bar_height);
         cairo_rotate(cr, -M_PI / 2.0);
-        im_figure_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, f->colorbar_label);
+        figure_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, f->colorbar_label);
         cairo_restore(cr);
     }
     return IM_OK;
@@ -369,7 +369,7 @@ static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo
 static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
 {
     cairo_font_face_t *regular, *bold;
-    int status = im_figure_fonts(&regular, &bold);
+    int status = figure_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_set_source_rgb(cr, 1, 1, 1);
@@ -424,7 +424,7 @@ int im_figure_write(const im_figure *f, const char *path)
     if (status != IM_OK)
         return status;
     cairo_font_face_t *regular, *bold;
-    status = im_figure_fonts(&regular, &bold);
+    status = figure_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
@@ -438,5 +438,5 @@ int im_figure_write(const im_figure *f, const char *path)
                        "or the pixels per patch", l.width, l.height);
     im_figure_canvas canvas = {l.width, l.height, f->dpi, f->texts, f->text_count, f->png_compression};
     figure_drawing drawing = {f, &l};
-    return im_figure_output(path, format, &canvas, paint_figure, &drawing);
+    return figure_output(path, format, &canvas, paint_figure, &drawing);
 }

@@ -43,7 +43,7 @@ static void load_fonts(void)
     faces[1] = faces[0] ? load(IM_FIGURE_FONT_BOLD) : NULL;
 }
 
-int im_figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold)
+int figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold)
 {
     pthread_once(&once, load_fonts);
     if (!faces[0] || !faces[1])

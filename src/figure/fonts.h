@@ -6,6 +6,6 @@
 #include <cairo.h>
 
 /* IM_EUNSUPPORTED naming the file when a font cannot be loaded. The faces are borrowed. */
-int im_figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold);
+int figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold);
 
 #endif

@@ -93,7 +93,7 @@ static int write_vector(const char *path, im_figure_format format, const im_figu
     return im_atomic_commit(&file);
 }
 
-int im_figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
+int figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
                      im_figure_painter paint, const void *context)
 {
     int status = check_canvas(canvas);

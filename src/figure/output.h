@@ -21,7 +21,7 @@ typedef int (*im_figure_painter)(cairo_t *cr, const void *context);
 
 /* Draws with paint and writes path in format. The painter's failure is returned as it is and
  * nothing is left behind; IM_EIO when the file cannot be written, IM_ENOMEM. */
-int im_figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
+int figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
                      im_figure_painter paint, const void *context);
 
 #endif

@@ -46,7 +46,7 @@ static int log_ticks(double lo, double hi, int min_decades, double *ticks, int c
     return count;
 }
 
-int im_figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity)
+int figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity)
 {
     if (capacity < 1 || !(hi > lo) || (logarithmic && !(lo > 0.0)))
         return 0;
@@ -57,7 +57,7 @@ int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity)
 {
     const double lo = colormap->lo, hi = colormap->hi;
     if (!colormap->logarithmic || capacity < 1 || !(hi > lo) || !(lo > 0.0))
-        return im_figure_ticks_between(lo, hi, colormap->logarithmic, 5.0, ticks, capacity);
+        return figure_ticks_between(lo, hi, colormap->logarithmic, 5.0, ticks, capacity);
     /* A colour bar over under three decades would show one or two labels: 1-2-5 there (a plot axis
      * has its minor ticks and keeps decades from two on). */
     return log_ticks(lo, hi, 3, ticks, capacity);

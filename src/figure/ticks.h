@@ -6,6 +6,6 @@
  * span / target), or, when logarithmic, the decades, and 1-2-5 multiples only when fewer than
  * two decades fall inside (colour bars, im_figure_ticks, switch below three). Returns how many
  * were written (0 for an empty or, when logarithmic, non-positive range). */
-int im_figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity);
+int figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity);
 
 #endif

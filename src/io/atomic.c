@@ -144,7 +144,7 @@ int im_atomic_commit(im_atomic_file *file)
     int failed = ferror(file->stream) || fflush(file->stream) != 0 || fsync(fileno(file->stream)) != 0;
     int saved_errno = errno;
     /* what was written and what it would replace are compared while the stream is open */
-    int status = failed ? IM_OK : im_output_check_replace(file->path, fileno(file->stream));
+    int status = failed ? IM_OK : output_check_replace(file->path, fileno(file->stream));
     failed |= fclose(file->stream) != 0;
     file->stream = NULL;
     if (failed)

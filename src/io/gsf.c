@@ -134,7 +134,7 @@ static int read_header(FILE *stream, const char *path, gsf_header *h)
         ++offset;
     if (offset % 4 != 0)
         return im_fail(IM_EFORMAT, "%s: header padding is not NUL bytes up to a multiple of 4", path);
-    if (h->xres < 1 || h->yres < 1) /* the upper bound is im_io_check_grid's */
+    if (h->xres < 1 || h->yres < 1) /* the upper bound is io_check_grid's */
         return im_fail(IM_EFORMAT, "%s: XRes = %ld, YRes = %ld: expected both >= 1", path, h->xres, h->yres);
     return IM_OK;
 }
@@ -167,7 +167,7 @@ static void stated_units(const gsf_header *h, surface_stated *stated)
     memcpy(stated->units.height, h->z_units, sizeof h->z_units);
 }
 
-int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
+int gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream;
@@ -180,7 +180,7 @@ int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
     if (status == IM_OK) {
         char claim[64];
         snprintf(claim, sizeof claim, "XRes %ld x YRes %ld float32", header.xres, header.yres);
-        status = im_io_check_grid(stream, path, header.xres, header.yres, 4u, claim);
+        status = io_check_grid(stream, path, header.xres, header.yres, 4u, claim);
     }
     if (status == IM_OK) {
         status = im_field_create((int)header.xres, (int)header.yres, 1.0, &field);
@@ -201,5 +201,5 @@ int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_gsf_read(const char *path, im_field **out)
 {
-    return im_surface_read_format(path, im_gsf_read_raw, NULL, out, NULL);
+    return surface_read_format(path, gsf_read_raw, NULL, out, NULL);
 }

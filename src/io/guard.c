@@ -233,7 +233,7 @@ int im_file_kind_of(const char *path, enum im_file_kind *kind)
     return IM_OK;
 }
 
-int im_output_check_replace(const char *path, int written_fd)
+int output_check_replace(const char *path, int written_fd)
 {
     struct stat info;
     if (lstat(path, &info) != 0 || !S_ISREG(info.st_mode) || info.st_size == 0)

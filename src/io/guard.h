@@ -5,6 +5,6 @@
 /* IM_OK when the complete new contents of path, readable from the open descriptor written_fd, may
  * replace what path holds now: nothing, an empty file, something not a regular file (rename
  * replaces a symlink itself), or a file of the same kind. Otherwise IM_EINVAL naming both kinds. */
-int im_output_check_replace(const char *path, int written_fd);
+int output_check_replace(const char *path, int written_fd);
 
 #endif

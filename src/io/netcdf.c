@@ -344,7 +344,7 @@ static int open_dataset(const char *path, mapped_file *file, int *ncid)
     return IM_OK;
 }
 
-int im_netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
+int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y", .lateral_key = "x:length_unit",
@@ -362,7 +362,7 @@ int im_netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_netcdf_read(const char *path, im_field **out)
 {
-    return im_surface_read_format(path, im_netcdf_read_raw, NULL, out, NULL);
+    return surface_read_format(path, netcdf_read_raw, NULL, out, NULL);
 }
 
 /* ---- writing: classic 64-bit offset format, built in memory and written atomically ---- */

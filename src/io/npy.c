@@ -166,7 +166,7 @@ static int parse_header(const char *path, const char *dict, npy_type *type, long
                        tuple_length(shape), shape);
     if (*rows < 1 || *cols < 1)
         return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side >= 1", path, *rows, *cols);
-    return IM_OK; /* the upper bound on the sides is im_io_check_grid's, after the memory check */
+    return IM_OK; /* the upper bound on the sides is io_check_grid's, after the memory check */
 }
 
 static int read_header(FILE *stream, const char *path, npy_type *type, long *rows, long *cols)
@@ -258,7 +258,7 @@ static void describe_conversion(const npy_type *type, char *text, size_t size)
                  converted ? "; " : "");
 }
 
-int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
+int npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit"};
     *out = NULL;
@@ -273,7 +273,7 @@ int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
     if (status == IM_OK) {
         char claim[96];
         snprintf(claim, sizeof claim, "shape (%ld, %ld) of %s", rows, cols, type.descr);
-        status = im_io_check_grid(stream, path, cols, rows, (unsigned)type.size, claim);
+        status = io_check_grid(stream, path, cols, rows, (unsigned)type.size, claim);
     }
     if (status == IM_OK) {
         status = im_field_create((int)cols, (int)rows, 1.0, &field);
@@ -283,7 +283,7 @@ int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
     if (status == IM_OK)
         status = read_payload(stream, path, &type, field);
     if (status == IM_OK)
-        status = im_npy_sidecar_read(path, stated, field->value_unit, sizeof field->value_unit);
+        status = npy_sidecar_read(path, stated, field->value_unit, sizeof field->value_unit);
     fclose(stream);
     if (status != IM_OK) {
         im_field_free(field);
@@ -296,5 +296,5 @@ int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_npy_read(const char *path, im_field **out)
 {
-    return im_surface_read_format(path, im_npy_read_raw, NULL, out, NULL);
+    return surface_read_format(path, npy_read_raw, NULL, out, NULL);
 }

@@ -40,7 +40,7 @@ static int copy_string(json_t *root, const char *key, char *out, size_t size)
     return 0;
 }
 
-int im_npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size)
+int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size)
 {
     char sidecar[4200];
     snprintf(sidecar, sizeof sidecar, "%s.json", path);

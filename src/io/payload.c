@@ -24,7 +24,7 @@ static int check_payload_size(FILE *stream, const char *path, uint64_t expected,
     return IM_OK;
 }
 
-int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim)
+int io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim)
 {
     char what[4200];
     snprintf(what, sizeof what, "%s: field %ld x %ld", path, nx, ny);
@@ -36,7 +36,7 @@ int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned 
     return check_payload_size(stream, path, (uint64_t)nx * (uint64_t)ny * item_size, claim);
 }
 
-int im_io_check_finite(const im_field *field, const char *path)
+int io_check_finite(const im_field *field, const char *path)
 {
     if (im_field_check_finite(field, path) == IM_OK)
         return IM_OK;

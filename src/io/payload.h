@@ -16,11 +16,11 @@
  * header in the message). Without it a header claiming a huge grid over a few bytes of data made
  * the reader allocate gigabytes before finding the data missing (found with fuzz/fuzz_npy). Other
  * streams (pipes) pass the size check; the readers' own end-of-data checks still apply. */
-int im_io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim);
+int io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim);
 
 /* IM_EFORMAT naming path and the first NaN or Inf value with its (x, y), as io.h promises for every
  * reader (im_field_check_finite alone would give IM_ENUMERIC, which the command line reports as a
  * failure while running, exit 1, rather than as bad input, exit 2). */
-int im_io_check_finite(const im_field *field, const char *path);
+int io_check_finite(const im_field *field, const char *path);
 
 #endif

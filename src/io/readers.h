@@ -2,7 +2,7 @@
  *
  * A raw reader parses one format into a field of spacing 1 with no unit, heights exactly as stored
  * (NaN and Inf included), and reports what the file states about its units, with the header keys
- * that stated them so that messages can name them. im_surface_finish then applies the units. */
+ * that stated them so that messages can name them. surface_finish then applies the units. */
 #ifndef INDENTMAP_IO_READERS_H
 #define INDENTMAP_IO_READERS_H
 
@@ -18,25 +18,25 @@ typedef struct surface_stated {
 
 typedef int (*surface_raw_reader)(const char *path, im_field **out, surface_stated *stated);
 
-int im_gsf_read_raw(const char *path, im_field **out, surface_stated *stated);
-int im_text_read_raw(const char *path, im_field **out, surface_stated *stated);
-int im_npy_read_raw(const char *path, im_field **out, surface_stated *stated);
-int im_sdf_read_raw(const char *path, im_field **out, surface_stated *stated);
-int im_netcdf_read_raw(const char *path, im_field **out, surface_stated *stated);
-int im_x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
+int gsf_read_raw(const char *path, im_field **out, surface_stated *stated);
+int text_read_raw(const char *path, im_field **out, surface_stated *stated);
+int npy_read_raw(const char *path, im_field **out, surface_stated *stated);
+int sdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+int x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
 
 /* Applies the stated units and the overrides of options (may be NULL) to a raw field, as
  * im_surface_read_with describes; fills info (may be NULL). On failure the field is left to the
  * caller to free. */
-int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
+int surface_finish(const char *path, im_field *field, const surface_stated *stated,
                       const im_surface_read_options *options, im_surface_read_info *info);
 
 /* Reads PATH.json beside a .npy, when present, into stated (spacing and lateral unit) and value_unit
  * (size bytes); IM_OK without one, IM_EFORMAT naming it when it is malformed. */
-int im_npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size);
+int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size);
 
-/* A raw reader followed by im_surface_finish; *out is NULL on failure. */
-int im_surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
+/* A raw reader followed by surface_finish; *out is NULL on failure. */
+int surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
                            im_field **out, im_surface_read_info *info);
 
 #endif

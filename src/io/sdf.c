@@ -216,7 +216,7 @@ static int check_enough_data(FILE *stream, const char *path, const sdf_header *h
     return IM_OK;
 }
 
-int im_sdf_read_raw(const char *path, im_field **out, surface_stated *stated)
+int sdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream = fopen(path, "rb");
@@ -245,7 +245,7 @@ int im_sdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_sdf_read(const char *path, im_field **out)
 {
-    return im_surface_read_format(path, im_sdf_read_raw, NULL, out, NULL);
+    return surface_read_format(path, sdf_read_raw, NULL, out, NULL);
 }
 
 /* ---- writing: binary, DataType double, heights and spacing in metres (Zscale 1) ---- */

@@ -13,13 +13,13 @@ static int has_extension(const char *path, const char *extension)
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info)
 {
-    surface_raw_reader read = has_extension(path, ".npy")   ? im_npy_read_raw
-                              : has_extension(path, ".gsf") ? im_gsf_read_raw
-                              : has_extension(path, ".sdf") ? im_sdf_read_raw
-                              : has_extension(path, ".nc")  ? im_netcdf_read_raw
-                              : has_extension(path, ".x3p") ? im_x3p_read_raw
-                                                            : im_text_read_raw;
-    return im_surface_read_format(path, read, options, out, info);
+    surface_raw_reader read = has_extension(path, ".npy")   ? npy_read_raw
+                              : has_extension(path, ".gsf") ? gsf_read_raw
+                              : has_extension(path, ".sdf") ? sdf_read_raw
+                              : has_extension(path, ".nc")  ? netcdf_read_raw
+                              : has_extension(path, ".x3p") ? x3p_read_raw
+                                                            : text_read_raw;
+    return surface_read_format(path, read, options, out, info);
 }
 
 int im_surface_read(const char *path, im_field **out)

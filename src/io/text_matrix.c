@@ -245,7 +245,7 @@ static int stated_units(const char *path, const text_header *header, long column
     return IM_OK;
 }
 
-int im_text_read_raw(const char *path, im_field **out, surface_stated *stated)
+int text_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream;
@@ -276,5 +276,5 @@ int im_text_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_text_read(const char *path, im_field **out)
 {
-    return im_surface_read_format(path, im_text_read_raw, NULL, out, NULL);
+    return surface_read_format(path, text_read_raw, NULL, out, NULL);
 }

@@ -137,7 +137,7 @@ static int express_in(const char *path, im_field *field, const char *unit, doubl
     return IM_OK;
 }
 
-int im_surface_finish(const char *path, im_field *field, const surface_stated *stated,
+int surface_finish(const char *path, im_field *field, const surface_stated *stated,
                       const im_surface_read_options *options, im_surface_read_info *info)
 {
     surface_stated merged = merge_overrides(stated, options);
@@ -161,7 +161,7 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
     if (!(options && options->field_values)) { /* heights: none missing or filled, all finite */
         status = missing_points(path, field, options && options->fill, &filled);
         if (status == IM_OK)
-            status = im_io_check_finite(field, path); /* after the conversion, which could overflow */
+            status = io_check_finite(field, path); /* after the conversion, which could overflow */
         if (status != IM_OK)
             return status;
     }
@@ -174,12 +174,12 @@ int im_surface_finish(const char *path, im_field *field, const surface_stated *s
     return IM_OK;
 }
 
-int im_surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
+int surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
                            im_field **out, im_surface_read_info *info)
 {
     surface_stated stated;
     int status = read(path, out, &stated);
-    if (status == IM_OK && (status = im_surface_finish(path, *out, &stated, options, info)) != IM_OK) {
+    if (status == IM_OK && (status = surface_finish(path, *out, &stated, options, info)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }

@@ -228,7 +228,7 @@ static int read_data(zip_t *archive, const char *path, const x3p_grid *g, im_fie
     return status;
 }
 
-int im_x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
+int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     int error = 0;
@@ -258,7 +258,7 @@ int im_x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_x3p_read(const char *path, im_field **out)
 {
-    return im_surface_read_format(path, im_x3p_read_raw, NULL, out, NULL);
+    return surface_read_format(path, x3p_read_raw, NULL, out, NULL);
 }
 
 /* ---- writing ---- */

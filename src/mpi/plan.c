@@ -9,9 +9,9 @@
 
 void im_mpi_init(void)
 {
-    im_fft_planner_lock();
-    im_fft_prepare_planner(); /* fftw_init_threads, which must come before fftw_mpi_init */
-    im_fft_planner_unlock();
+    fft_planner_lock();
+    fft_prepare_planner(); /* fftw_init_threads, which must come before fftw_mpi_init */
+    fft_planner_unlock();
     fftw_mpi_init();
 }
 
@@ -64,13 +64,13 @@ static int allocate(im_mpi_solver *s, ptrdiff_t alloc_local)
 static int make_plans(im_mpi_solver *s)
 {
     unsigned flags = s->options.fft_measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-    im_fft_planner_lock();
-    im_fft_prepare_planner();
+    fft_planner_lock();
+    fft_prepare_planner();
     s->forward = fftw_mpi_plan_dft_r2c_2d(s->py, s->px, s->buffer, (fftw_complex *)s->buffer, s->comm,
                                           flags | FFTW_MPI_TRANSPOSED_OUT);
     s->backward = fftw_mpi_plan_dft_c2r_2d(s->py, s->px, (fftw_complex *)s->buffer, s->buffer, s->comm,
                                            flags | FFTW_MPI_TRANSPOSED_IN);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     if (!s->forward || !s->backward)
         return im_fail(IM_ENOMEM, "FFTW-MPI could not plan a %d x %d transform", s->px, s->py);
     return IM_OK;
@@ -177,12 +177,12 @@ void im_mpi_solver_free(im_mpi_solver *s)
 {
     if (!s)
         return;
-    im_fft_planner_lock();
+    fft_planner_lock();
     if (s->forward)
         fftw_destroy_plan(s->forward);
     if (s->backward)
         fftw_destroy_plan(s->backward);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     fftw_free(s->buffer);
     fftw_free(s->spectrum);
     free(s->direction);

@@ -105,11 +105,11 @@ int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, i
     status = mpi_collective_status(comm, status);
     fftw_plan plan = NULL;
     if (status == IM_OK) {
-        im_fft_planner_lock();
-        im_fft_prepare_planner();
+        fft_planner_lock();
+        fft_prepare_planner();
         plan = fftw_mpi_plan_dft_c2r_2d(p->ny, p->nx, slab.modes, (double *)slab.modes, comm,
                                         FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
-        im_fft_planner_unlock();
+        fft_planner_unlock();
         status = mpi_collective_status(comm, plan ? IM_OK : im_fail(IM_ENOMEM, "FFTW-MPI could not plan the synthesis"));
     }
     if (status == IM_OK) {
@@ -122,10 +122,10 @@ int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, i
                                         "grid: the surface would be flat",
                              p->lambda_s, fmax(p->lambda_0, p->lambda_r), p->nx, p->ny);
     }
-    im_fft_planner_lock();
+    fft_planner_lock();
     if (plan)
         fftw_destroy_plan(plan);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     fftw_free(slab.modes);
     free(column_sums);
     return status;

@@ -46,7 +46,7 @@ void im_plot_family_color(int i, int count, uint8_t rgb[3])
 static int layout_plot(const im_plot *plot, plot_layout *layout)
 {
     cairo_font_face_t *regular, *bold;
-    int status = im_figure_fonts(&regular, &bold);
+    int status = figure_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
@@ -101,7 +101,7 @@ int im_plot_write(const im_plot *plot, const char *path)
         im_figure_canvas canvas = {l->width, l->height, plot->dpi, plot->texts, plot->text_count,
                                    plot->png_compression};
         plot_drawing drawing = {plot, l};
-        status = im_figure_output(path, format, &canvas, paint_plot, &drawing);
+        status = figure_output(path, format, &canvas, paint_plot, &drawing);
     }
     free(l);
     return status;

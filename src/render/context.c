@@ -36,7 +36,7 @@ const char *im_render_display_name(const im_render_context *c) { return c->displ
 const char *im_render_gl_renderer(const im_render_context *c) { return c->renderer; }
 const char *im_render_gl_version(const im_render_context *c) { return c->version; }
 
-int im_gl_load(im_gl *gl, im_gl_loader loader)
+int gl_load(im_gl *gl, im_gl_loader loader)
 {
 #define IM_GL_LOAD(name, type)                                                                    \
     gl->name = (type)loader("gl" #name);                                                          \
@@ -96,7 +96,7 @@ static int egl_context_on(im_render_context *c, EGLDisplay display, char *reason
         snprintf(reason, size, "no OpenGL 3.3 core context (EGL error 0x%x)", (unsigned)eglGetError());
     else if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
         snprintf(reason, size, "eglMakeCurrent failed (EGL error 0x%x)", (unsigned)eglGetError());
-    else if (im_gl_load(&c->gl, egl_loader) != IM_OK)
+    else if (gl_load(&c->gl, egl_loader) != IM_OK)
         snprintf(reason, size, "%s", im_last_error());
     else {
         c->egl_display = display;
@@ -143,7 +143,7 @@ static int egl_try_devices(im_render_context *c, const egl_platform *egl, int so
     return IM_EUNSUPPORTED;
 }
 
-int im_egl_can_enumerate_devices(const char *client_extensions)
+int egl_can_enumerate_devices(const char *client_extensions)
 {
     return has_extension(client_extensions, "EGL_EXT_platform_device") &&
            (has_extension(client_extensions, "EGL_EXT_device_enumeration") ||
@@ -164,7 +164,7 @@ static int egl_open(im_render_context *c, char *reasons, size_t size)
     c->backend = IM_RENDER_EGL;
     /* Under glvnd eglGetProcAddress returns a dispatch stub for any name, so the pointers being
      * non-NULL says nothing: the client extensions must name device enumeration. */
-    int devices = im_egl_can_enumerate_devices(client) && egl.query_devices && egl.query_device_string;
+    int devices = egl_can_enumerate_devices(client) && egl.query_devices && egl.query_device_string;
     if (!devices)
         append_reason(reasons, size, "egl: no EGL_EXT_platform_device with EGL_EXT_device_enumeration");
     for (int software = 0; devices && software <= 1; ++software)
@@ -187,17 +187,17 @@ static int egl_open(im_render_context *c, char *reasons, size_t size)
 static int osmesa_open(im_render_context *c, char *reasons, size_t size)
 {
     char reason[512];
-    if (im_osmesa_open(&c->osmesa, reason, sizeof reason) != IM_OK) {
+    if (osmesa_library_open(&c->osmesa, reason, sizeof reason) != IM_OK) {
         append_reason(reasons, size, reason);
         return IM_EUNSUPPORTED;
     }
     c->backend = IM_RENDER_OSMESA;
     snprintf(c->display_name, sizeof c->display_name, "libOSMesa.so.8");
-    if (im_gl_load(&c->gl, (im_gl_loader)im_osmesa_get_proc) == IM_OK)
+    if (gl_load(&c->gl, (im_gl_loader)osmesa_library_get_proc) == IM_OK)
         return IM_OK;
     snprintf(reason, sizeof reason, "osmesa: %s", im_last_error());
     append_reason(reasons, size, reason);
-    im_osmesa_close(&c->osmesa);
+    osmesa_library_close(&c->osmesa);
     return IM_EUNSUPPORTED;
 }
 
@@ -210,7 +210,7 @@ static void release_backend(im_render_context *c)
         c->egl_context = NULL;
     }
     if (c->osmesa.context)
-        im_osmesa_close(&c->osmesa);
+        osmesa_library_close(&c->osmesa);
 }
 
 static int resolve_backend(im_render_backend *backend)
@@ -251,7 +251,7 @@ int im_render_open(im_render_backend backend, im_render_context **out)
     const GLubyte *renderer = c->gl.GetString(GL_RENDERER), *version = c->gl.GetString(GL_VERSION);
     snprintf(c->renderer, sizeof c->renderer, "%s", renderer ? (const char *)renderer : "unknown");
     snprintf(c->version, sizeof c->version, "%s", version ? (const char *)version : "unknown");
-    status = im_render_setup(c);
+    status = render_setup(c);
     if (status != IM_OK) {
         im_render_close(c);
         return status;
@@ -260,10 +260,10 @@ int im_render_open(im_render_backend backend, im_render_context **out)
     return IM_OK;
 }
 
-int im_render_make_current(im_render_context *c)
+int render_make_current(im_render_context *c)
 {
     int current = c->backend == IM_RENDER_OSMESA
-                      ? im_osmesa_make_current(&c->osmesa)
+                      ? osmesa_library_make_current(&c->osmesa)
                       : (eglBindAPI(EGL_OPENGL_API) &&
                          eglMakeCurrent(c->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, c->egl_context));
     return current ? IM_OK : im_fail(IM_EUNSUPPORTED, "cannot make the %s context current",
@@ -274,8 +274,8 @@ void im_render_close(im_render_context *c)
 {
     if (!c)
         return;
-    if (im_render_make_current(c) == IM_OK)
-        im_render_teardown(c);
+    if (render_make_current(c) == IM_OK)
+        render_teardown(c);
     release_backend(c);
     free(c);
 }

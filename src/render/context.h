@@ -18,12 +18,12 @@ typedef struct im_osmesa {
 
 /* Loads libOSMesa.so.8 and makes a 3.3 core context current; on failure writes why into reason
  * and returns IM_EUNSUPPORTED with everything released. */
-int im_osmesa_open(im_osmesa *osmesa, char *reason, size_t reason_size);
+int osmesa_library_open(im_osmesa *osmesa, char *reason, size_t reason_size);
 /* Makes the context current again on this thread; 1 on success. */
-int im_osmesa_make_current(im_osmesa *osmesa);
+int osmesa_library_make_current(im_osmesa *osmesa);
 /* OSMesaGetProcAddress of the library opened last. */
-void (*im_osmesa_get_proc(const char *name))(void);
-void im_osmesa_close(im_osmesa *osmesa);
+void (*osmesa_library_get_proc(const char *name))(void);
+void osmesa_library_close(im_osmesa *osmesa);
 
 struct im_render_context {
     im_gl gl;
@@ -39,14 +39,14 @@ struct im_render_context {
 
 /* Whether EGL's client extensions allow enumerating devices: EGL_EXT_platform_device and
  * EGL_EXT_device_enumeration (or EGL_EXT_device_base, which includes it). */
-int im_egl_can_enumerate_devices(const char *client_extensions);
+int egl_can_enumerate_devices(const char *client_extensions);
 
 /* Makes the context current on the calling thread (another context may have been used since). */
-int im_render_make_current(im_render_context *context);
+int render_make_current(im_render_context *context);
 
 /* Compiles the embedded shaders and creates the shared GL objects (draw.c). */
-int im_render_setup(im_render_context *context);
-void im_render_teardown(im_render_context *context);
+int render_setup(im_render_context *context);
+void render_teardown(im_render_context *context);
 
 /* ---- shared by the 2-D maps (draw.c) and the 3-D view (view3d.c) ---- */
 
@@ -54,28 +54,28 @@ void im_render_teardown(im_render_context *context);
 enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259 };
 
 /* The code of a value through the norm: its table index, or under / over / bad. */
-int im_render_patch_code(const im_colormap *colormap, double value);
+int render_patch_code(const im_colormap *colormap, double value);
 
 /* Compiles and links a program; IM_EUNSUPPORTED naming the shader and quoting its log. */
-int im_render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
+int render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
                            const char *fragment_source, const char *name, GLuint *out);
 
 /* A nearest-filtered, edge-clamped 2-D texture bound on texture unit `unit`. */
-GLuint im_render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
+GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
                          GLenum format, GLenum type, const void *data);
 /* The colour map's 256-entry table as a 256 x 1 RGBA8 texture on `unit`. */
-GLuint im_render_table_texture(const im_gl *gl, int unit, im_colormap_id map);
+GLuint render_table_texture(const im_gl *gl, int unit, im_colormap_id map);
 
-void im_render_set_colour(const im_gl *gl, GLuint program, const char *name, const uint8_t rgb[3]);
-void im_render_set_int(const im_gl *gl, GLuint program, const char *name, int value);
+void render_set_colour(const im_gl *gl, GLuint program, const char *name, const uint8_t rgb[3]);
+void render_set_int(const im_gl *gl, GLuint program, const char *name, int value);
 
 /* The size limit of images and framebuffers: the smallest of the GL limits and 32768. */
-long im_render_image_limit(const im_render_context *context);
+long render_image_limit(const im_render_context *context);
 
 /* Turns GL's bottom-up rows (glReadPixels) into top-down ones; IM_ENOMEM. */
-int im_render_flip_rows(uint8_t *rgba, int width, int height);
+int render_flip_rows(uint8_t *rgba, int width, int height);
 
-/* Links the 3-D view's programs (view3d.c); called by im_render_setup. */
-int im_render_view3d_setup(im_render_context *context);
+/* Links the 3-D view's programs (view3d.c); called by render_setup. */
+int render_view3d_setup(im_render_context *context);
 
 #endif

@@ -28,7 +28,7 @@ static int compile_shader(const im_gl *gl, GLenum stage, const char *source, con
     return IM_OK;
 }
 
-int im_render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
+int render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
                            const char *fragment_source, const char *name, GLuint *out)
 {
     GLuint vertex, fragment;
@@ -58,20 +58,20 @@ int im_render_link_program(const im_gl *gl, const char *vertex_source, const cha
     return IM_OK;
 }
 
-int im_render_setup(im_render_context *c)
+int render_setup(im_render_context *c)
 {
     const im_gl *gl = &c->gl;
     gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &c->max_texture_size);
     gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &c->max_renderbuffer_size);
     gl->GetIntegerv(GL_MAX_VIEWPORT_DIMS, c->max_viewport);
     gl->GetIntegerv(GL_MAX_SAMPLES, &c->max_samples);
-    int status = im_render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_contact_frag,
+    int status = render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_contact_frag,
                                     "contact.frag", &c->contact_program);
     if (status == IM_OK)
-        status = im_render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_height_frag,
+        status = render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_height_frag,
                                         "height.frag", &c->height_program);
     if (status == IM_OK)
-        status = im_render_view3d_setup(c);
+        status = render_view3d_setup(c);
     if (status != IM_OK)
         return status;
     gl->GenVertexArrays(1, &c->vertex_array);
@@ -80,7 +80,7 @@ int im_render_setup(im_render_context *c)
     return error == GL_NO_ERROR ? IM_OK : im_fail(IM_EUNSUPPORTED, "GL setup failed: error 0x%x", error);
 }
 
-void im_render_teardown(im_render_context *c)
+void render_teardown(im_render_context *c)
 {
     if (!c->gl.DeleteProgram)
         return;
@@ -100,7 +100,7 @@ void im_image_release(im_image *image)
 
 /* ---- validation ---- */
 
-long im_render_image_limit(const im_render_context *c)
+long render_image_limit(const im_render_context *c)
 {
     long limit = c->max_renderbuffer_size;
     limit = limit < c->max_viewport[0] ? limit : c->max_viewport[0];
@@ -120,7 +120,7 @@ static int check_layout(const im_render_context *c, const im_field *field, int s
     if (field->nx > c->max_texture_size || field->ny > c->max_texture_size)
         return im_fail(IM_EINVAL, "%s: grid %d x %d exceeds GL_MAX_TEXTURE_SIZE %d of %s", what,
                        field->nx, field->ny, c->max_texture_size, c->renderer);
-    long limit = im_render_image_limit(c);
+    long limit = render_image_limit(c);
     long width = (long)field->nx * scale + 2L * border, height = (long)field->ny * scale + 2L * border;
     if (width > limit || height > limit)
         return im_fail(IM_EINVAL, "%s: image %ld x %ld pixels exceeds the limit %ld (GL limits of %s); "
@@ -130,7 +130,7 @@ static int check_layout(const im_render_context *c, const im_field *field, int s
 
 /* ---- GL objects ---- */
 
-GLuint im_render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
+GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
                            GLenum format, GLenum type, const void *data)
 {
     GLuint texture;
@@ -146,7 +146,7 @@ GLuint im_render_texture(const im_gl *gl, int unit, GLint internal, int width, i
     return texture;
 }
 
-GLuint im_render_table_texture(const im_gl *gl, int unit, im_colormap_id map)
+GLuint render_table_texture(const im_gl *gl, int unit, im_colormap_id map)
 {
     const uint8_t(*table)[3] = im_colormap_table(map);
     uint8_t rgba[256][4];
@@ -154,15 +154,15 @@ GLuint im_render_table_texture(const im_gl *gl, int unit, im_colormap_id map)
         memcpy(rgba[i], table[i], 3);
         rgba[i][3] = 255;
     }
-    return im_render_texture(gl, unit, GL_RGBA8, 256, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    return render_texture(gl, unit, GL_RGBA8, 256, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
 }
 
-void im_render_set_colour(const im_gl *gl, GLuint program, const char *name, const uint8_t rgb[3])
+void render_set_colour(const im_gl *gl, GLuint program, const char *name, const uint8_t rgb[3])
 {
     gl->Uniform3f(gl->GetUniformLocation(program, name), rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f);
 }
 
-void im_render_set_int(const im_gl *gl, GLuint program, const char *name, int value)
+void render_set_int(const im_gl *gl, GLuint program, const char *name, int value)
 {
     gl->Uniform1i(gl->GetUniformLocation(program, name), value);
 }
@@ -170,13 +170,13 @@ void im_render_set_int(const im_gl *gl, GLuint program, const char *name, int va
 static void set_common(const im_gl *gl, GLuint program, const im_colormap *colormap,
                        const im_field *field, int scale, int border, const uint8_t line[3])
 {
-    im_render_set_colour(gl, program, "under_colour", colormap->under);
-    im_render_set_colour(gl, program, "over_colour", colormap->over);
-    im_render_set_colour(gl, program, "bad_colour", colormap->bad);
-    im_render_set_colour(gl, program, "line_colour", line);
+    render_set_colour(gl, program, "under_colour", colormap->under);
+    render_set_colour(gl, program, "over_colour", colormap->over);
+    render_set_colour(gl, program, "bad_colour", colormap->bad);
+    render_set_colour(gl, program, "line_colour", line);
     gl->Uniform2i(gl->GetUniformLocation(program, "grid"), field->nx, field->ny);
-    im_render_set_int(gl, program, "scale", scale);
-    im_render_set_int(gl, program, "border", border);
+    render_set_int(gl, program, "scale", scale);
+    render_set_int(gl, program, "border", border);
 }
 
 /* Draws the bound program into a width x height framebuffer and reads it back, top row first. */
@@ -206,10 +206,10 @@ static int draw_and_read(const im_render_context *c, int width, int height, uint
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl->DeleteRenderbuffers(1, &colour);
     gl->DeleteFramebuffers(1, &framebuffer);
-    return status == IM_OK ? im_render_flip_rows(rgba, width, height) : status;
+    return status == IM_OK ? render_flip_rows(rgba, width, height) : status;
 }
 
-int im_render_flip_rows(uint8_t *rgba, int width, int height)
+int render_flip_rows(uint8_t *rgba, int width, int height)
 {
     size_t stride = (size_t)width * 4;
     uint8_t *row = malloc(stride);
@@ -241,7 +241,7 @@ static int allocate_image(const im_field *field, int scale, int border, im_image
     return IM_OK;
 }
 
-int im_render_patch_code(const im_colormap *colormap, double value)
+int render_patch_code(const im_colormap *colormap, double value)
 {
     int index = im_colormap_index(colormap, value);
     return index == -2 ? IM_CODE_BAD : index == -1 ? IM_CODE_UNDER : index == 256 ? IM_CODE_OVER : index;
@@ -293,7 +293,7 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     memset(image, 0, sizeof *image);
     int status = check_contact_style(s);
     if (status == IM_OK)
-        status = im_render_make_current(c);
+        status = render_make_current(c);
     if (status == IM_OK)
         status = check_layout(c, force, s->pixels_per_patch, s->boundary_px, "contact map");
     if (status != IM_OK)
@@ -307,22 +307,22 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     }
     for (size_t i = 0; i < count; ++i) {
         double f = force->data[i];
-        codes[i] = (uint16_t)(isnan(f) ? IM_CODE_BAD : f > 0.0 ? im_render_patch_code(&s->colormap, f) : IM_CODE_BACKGROUND);
+        codes[i] = (uint16_t)(isnan(f) ? IM_CODE_BAD : f > 0.0 ? render_patch_code(&s->colormap, f) : IM_CODE_BACKGROUND);
     }
     const im_gl *gl = &c->gl;
     GLuint program = c->contact_program, textures[2];
     gl->UseProgram(program);
-    textures[0] = im_render_texture(gl, 0, GL_R16UI, force->nx, force->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, codes);
-    textures[1] = im_render_table_texture(gl, 1, s->colormap.map);
-    im_render_set_int(gl, program, "codes", 0);
-    im_render_set_int(gl, program, "table", 1);
+    textures[0] = render_texture(gl, 0, GL_R16UI, force->nx, force->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, codes);
+    textures[1] = render_table_texture(gl, 1, s->colormap.map);
+    render_set_int(gl, program, "codes", 0);
+    render_set_int(gl, program, "table", 1);
     set_common(gl, program, &s->colormap, force, s->pixels_per_patch, s->boundary_px, s->line);
-    im_render_set_colour(gl, program, "background", s->background);
+    render_set_colour(gl, program, "background", s->background);
     double scale = s->pixels_per_patch;
     gl->Uniform3f(gl->GetUniformLocation(program, "circle"), (float)(s->circle_x * scale),
                   (float)(s->circle_y * scale), (float)(s->circle_radius * scale));
     gl->Uniform1f(gl->GetUniformLocation(program, "circle_width"), (float)s->circle_width_px);
-    im_render_set_int(gl, program, "circle_aliased", s->circle_aliased != 0);
+    render_set_int(gl, program, "circle_aliased", s->circle_aliased != 0);
     status = draw_and_read(c, image->width, image->height, image->rgba);
     return finish(c, status, textures, 2, codes, image);
 }
@@ -406,7 +406,7 @@ static void height_inputs(const im_field *h, const im_height_style *s, uint16_t 
                           float *scaled, uint8_t *contact)
 {
     for (size_t i = 0; i < im_field_count(h); ++i) {
-        codes[i] = (uint16_t)im_render_patch_code(&s->colormap, h->data[i]);
+        codes[i] = (uint16_t)render_patch_code(&s->colormap, h->data[i]);
         scaled[i] = (float)(h->data[i] / h->delta);
         contact[i] = s->contact && s->contact->data[i] > 0.0;
     }
@@ -418,7 +418,7 @@ int im_render_height_map(im_render_context *c, const im_field *height, const im_
     memset(image, 0, sizeof *image);
     int status = check_height_style(s, height);
     if (status == IM_OK)
-        status = im_render_make_current(c);
+        status = render_make_current(c);
     if (status == IM_OK)
         status = check_layout(c, height, s->pixels_per_patch, s->boundary_px, "height map");
     if (status != IM_OK)
@@ -437,17 +437,17 @@ int im_render_height_map(im_render_context *c, const im_field *height, const im_
     const im_gl *gl = &c->gl;
     GLuint program = c->height_program, textures[4];
     gl->UseProgram(program);
-    textures[0] = im_render_texture(gl, 0, GL_R16UI, height->nx, height->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, codes);
-    textures[1] = im_render_texture(gl, 1, GL_R32F, height->nx, height->ny, GL_RED, GL_FLOAT, scaled);
-    textures[2] = im_render_texture(gl, 2, GL_R8UI, height->nx, height->ny, GL_RED_INTEGER, GL_UNSIGNED_BYTE, contact);
-    textures[3] = im_render_table_texture(gl, 3, s->colormap.map);
-    im_render_set_int(gl, program, "codes", 0);
-    im_render_set_int(gl, program, "heights", 1);
-    im_render_set_int(gl, program, "contact", 2);
-    im_render_set_int(gl, program, "table", 3);
+    textures[0] = render_texture(gl, 0, GL_R16UI, height->nx, height->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, codes);
+    textures[1] = render_texture(gl, 1, GL_R32F, height->nx, height->ny, GL_RED, GL_FLOAT, scaled);
+    textures[2] = render_texture(gl, 2, GL_R8UI, height->nx, height->ny, GL_RED_INTEGER, GL_UNSIGNED_BYTE, contact);
+    textures[3] = render_table_texture(gl, 3, s->colormap.map);
+    render_set_int(gl, program, "codes", 0);
+    render_set_int(gl, program, "heights", 1);
+    render_set_int(gl, program, "contact", 2);
+    render_set_int(gl, program, "table", 3);
     set_common(gl, program, &s->colormap, height, s->pixels_per_patch, s->boundary_px, s->line);
-    im_render_set_colour(gl, program, "outline_colour", s->outline);
-    im_render_set_int(gl, program, "outline_width", im_height_outline_width(s));
+    render_set_colour(gl, program, "outline_colour", s->outline);
+    render_set_int(gl, program, "outline_width", im_height_outline_width(s));
     double azimuth = s->light_azimuth * M_PI / 180.0, altitude = s->light_altitude * M_PI / 180.0;
     gl->Uniform3f(gl->GetUniformLocation(program, "light"), (float)(cos(altitude) * sin(azimuth)),
                   (float)(cos(altitude) * cos(azimuth)), (float)sin(altitude));

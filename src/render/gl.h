@@ -81,6 +81,6 @@ typedef void (*im_gl_proc)(void);
 typedef im_gl_proc (*im_gl_loader)(const char *name);
 
 /* Fills the table through loader; IM_EUNSUPPORTED naming the first missing function. */
-int im_gl_load(im_gl *gl, im_gl_loader loader);
+int gl_load(im_gl *gl, im_gl_loader loader);
 
 #endif

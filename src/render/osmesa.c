@@ -15,7 +15,7 @@ typedef OSMESAproc (*get_proc_fn)(const char *);
 
 static get_proc_fn get_proc_address;
 
-void (*im_osmesa_get_proc(const char *name))(void)
+void (*osmesa_library_get_proc(const char *name))(void)
 {
     return get_proc_address ? (void (*)(void))get_proc_address(name) : NULL;
 }
@@ -26,7 +26,7 @@ static void *symbol(void *library, const char *name)
     return dlsym(library, name);
 }
 
-int im_osmesa_open(im_osmesa *osmesa, char *reason, size_t reason_size)
+int osmesa_library_open(im_osmesa *osmesa, char *reason, size_t reason_size)
 {
     memset(osmesa, 0, sizeof *osmesa);
     osmesa->library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
@@ -41,7 +41,7 @@ int im_osmesa_open(im_osmesa *osmesa, char *reason, size_t reason_size)
     *(void **)&get_proc_address = symbol(osmesa->library, "OSMesaGetProcAddress");
     if (!create || !make_current || !get_proc_address) {
         snprintf(reason, reason_size, "osmesa: libOSMesa.so.8 lacks OSMesaCreateContextAttribs");
-        im_osmesa_close(osmesa);
+        osmesa_library_close(osmesa);
         return IM_EUNSUPPORTED;
     }
     const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
@@ -51,18 +51,18 @@ int im_osmesa_open(im_osmesa *osmesa, char *reason, size_t reason_size)
     osmesa->context = create(attributes, NULL);
     if (!osmesa->context) {
         snprintf(reason, reason_size, "osmesa: no OpenGL 3.3 core context");
-        im_osmesa_close(osmesa);
+        osmesa_library_close(osmesa);
         return IM_EUNSUPPORTED;
     }
     if (!make_current(osmesa->context, osmesa->buffer, GL_UNSIGNED_BYTE, 2, 2)) {
         snprintf(reason, reason_size, "osmesa: OSMesaMakeCurrent failed");
-        im_osmesa_close(osmesa);
+        osmesa_library_close(osmesa);
         return IM_EUNSUPPORTED;
     }
     return IM_OK;
 }
 
-int im_osmesa_make_current(im_osmesa *osmesa)
+int osmesa_library_make_current(im_osmesa *osmesa)
 {
     make_current_fn make_current;
     *(void **)&make_current = symbol(osmesa->library, "OSMesaMakeCurrent");
@@ -71,7 +71,7 @@ int im_osmesa_make_current(im_osmesa *osmesa)
 
 /* The library stays loaded (no dlclose): Mesa's LLVM back end is not safe to unload and load
  * again in one process, and a later context reuses it. */
-void im_osmesa_close(im_osmesa *osmesa)
+void osmesa_library_close(im_osmesa *osmesa)
 {
     if (osmesa->context) {
         destroy_fn destroy;

@@ -20,15 +20,15 @@ enum { PROFILE_POINTS = 64, PUNCH_SEGMENTS = 128, SPHERE_RINGS = 40, MIN_IMAGE_S
 
 static double radians(double degrees) { return degrees * M_PI / 180.0; }
 
-int im_render_view3d_setup(im_render_context *c)
+int render_view3d_setup(im_render_context *c)
 {
-    int status = im_render_link_program(&c->gl, im_shader_surface_vert, "surface.vert", im_shader_surface_frag,
+    int status = render_link_program(&c->gl, im_shader_surface_vert, "surface.vert", im_shader_surface_frag,
                                         "surface.frag", &c->surface_program);
     if (status == IM_OK)
-        status = im_render_link_program(&c->gl, im_shader_punch_vert, "punch.vert", im_shader_punch_frag,
+        status = render_link_program(&c->gl, im_shader_punch_vert, "punch.vert", im_shader_punch_frag,
                                         "punch.frag", &c->punch_program);
     if (status == IM_OK)
-        status = im_render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", im_shader_wall_frag, "wall.frag",
+        status = render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", im_shader_wall_frag, "wall.frag",
                                         &c->wall_program);
     return status;
 }
@@ -75,7 +75,7 @@ static int check_style(const im_render_context *c, const im_view3d_style *s, con
     int status = im_colormap_check(&s->colormap);
     if (status != IM_OK)
         return im_fail_context(status, "3-D view");
-    long limit = im_render_image_limit(c);
+    long limit = render_image_limit(c);
     if (s->width < MIN_IMAGE_SIDE || s->height < MIN_IMAGE_SIDE || s->width > limit || s->height > limit)
         return im_fail(IM_EINVAL, "3-D view: image %d x %d pixels: expected %d..%ld per side (GL limits of %s)",
                        s->width, s->height, MIN_IMAGE_SIDE, limit, c->renderer);
@@ -406,7 +406,7 @@ static int make_inputs(view_geometry *g, const im_field *h, const im_field *forc
     for (size_t i = 0; i < count; ++i) {
         double f = force ? force->data[i] : 0.0;
         in->codes[i] = (uint16_t)(isnan(f) ? IM_CODE_BAD
-                                  : f > 0.0 ? im_render_patch_code(&s->colormap, f) : IM_CODE_BACKGROUND);
+                                  : f > 0.0 ? render_patch_code(&s->colormap, f) : IM_CODE_BACKGROUND);
         in->heights[i] = (float)(h->data[i] / h->delta);
     }
     corner_heights(g, h, in->corners);
@@ -421,21 +421,21 @@ static void draw_surface(const im_render_context *c, const view_geometry *g, con
     const im_gl *gl = &c->gl;
     GLuint program = c->surface_program;
     gl->UseProgram(program);
-    textures[0] = im_render_texture(gl, 0, GL_R16UI, g->nx, g->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, in->codes);
-    textures[1] = im_render_texture(gl, 1, GL_R32F, g->nx, g->ny, GL_RED, GL_FLOAT, in->heights);
-    textures[2] = im_render_texture(gl, 2, GL_R32F, g->cells_x + 1, g->cells_y + 1, GL_RED, GL_FLOAT, in->corners);
-    textures[3] = im_render_table_texture(gl, 3, s->colormap.map);
-    im_render_set_int(gl, program, "codes", 0);
-    im_render_set_int(gl, program, "heights", 1);
-    im_render_set_int(gl, program, "corners", 2);
-    im_render_set_int(gl, program, "table", 3);
-    im_render_set_colour(gl, program, "under_colour", s->colormap.under);
-    im_render_set_colour(gl, program, "over_colour", s->colormap.over);
-    im_render_set_colour(gl, program, "bad_colour", s->colormap.bad);
-    im_render_set_colour(gl, program, "surface_colour", s->surface);
+    textures[0] = render_texture(gl, 0, GL_R16UI, g->nx, g->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, in->codes);
+    textures[1] = render_texture(gl, 1, GL_R32F, g->nx, g->ny, GL_RED, GL_FLOAT, in->heights);
+    textures[2] = render_texture(gl, 2, GL_R32F, g->cells_x + 1, g->cells_y + 1, GL_RED, GL_FLOAT, in->corners);
+    textures[3] = render_table_texture(gl, 3, s->colormap.map);
+    render_set_int(gl, program, "codes", 0);
+    render_set_int(gl, program, "heights", 1);
+    render_set_int(gl, program, "corners", 2);
+    render_set_int(gl, program, "table", 3);
+    render_set_colour(gl, program, "under_colour", s->colormap.under);
+    render_set_colour(gl, program, "over_colour", s->colormap.over);
+    render_set_colour(gl, program, "bad_colour", s->colormap.bad);
+    render_set_colour(gl, program, "surface_colour", s->surface);
     gl->Uniform2i(gl->GetUniformLocation(program, "grid"), g->nx, g->ny);
     gl->Uniform2i(gl->GetUniformLocation(program, "cells"), g->cells_x, g->cells_y);
-    im_render_set_int(gl, program, "stride", g->stride);
+    render_set_int(gl, program, "stride", g->stride);
     gl->Uniform1f(gl->GetUniformLocation(program, "exaggeration"), (float)s->exaggeration);
     gl->Uniform1f(gl->GetUniformLocation(program, "shading"), (float)s->shading);
     float light[3];
@@ -459,16 +459,16 @@ static void draw_walls(const im_render_context *c, const view_geometry *g, const
     const im_gl *gl = &c->gl;
     GLuint program = c->wall_program;
     gl->UseProgram(program);
-    im_render_set_int(gl, program, "corners", 2);
+    render_set_int(gl, program, "corners", 2);
     gl->Uniform2i(gl->GetUniformLocation(program, "grid"), g->nx, g->ny);
     gl->Uniform2i(gl->GetUniformLocation(program, "cells"), g->cells_x, g->cells_y);
-    im_render_set_int(gl, program, "stride", g->stride);
+    render_set_int(gl, program, "stride", g->stride);
     gl->Uniform1f(gl->GetUniformLocation(program, "exaggeration"), (float)s->exaggeration);
     gl->Uniform1f(gl->GetUniformLocation(program, "base"), (float)g->base);
     uint8_t wall[3];
     for (int k = 0; k < 3; ++k)
         wall[k] = (uint8_t)(WALL_SHADE * s->surface[k]);
-    im_render_set_colour(gl, program, "wall_colour", wall);
+    render_set_colour(gl, program, "wall_colour", wall);
     float light[3];
     light_vector(s, light);
     gl->Uniform3f(gl->GetUniformLocation(program, "light"), light[0], light[1], light[2]);
@@ -484,13 +484,13 @@ static void draw_punch(const im_render_context *c, const view_geometry *g, const
     int translucent = s->punch_mode == IM_VIEW3D_PUNCH_TRANSLUCENT;
     gl->UseProgram(program);
     gl->Uniform2fv(gl->GetUniformLocation(program, "profile"), g->profile_count, &g->profile[0][0]);
-    im_render_set_int(gl, program, "segments", PUNCH_SEGMENTS);
+    render_set_int(gl, program, "segments", PUNCH_SEGMENTS);
     gl->Uniform2f(gl->GetUniformLocation(program, "axis"), (float)g->axis[0], (float)g->axis[1]);
     double az = radians(s->camera.azimuth);
     gl->Uniform2f(gl->GetUniformLocation(program, "towards_camera"), (float)sin(az), (float)-cos(az));
-    im_render_set_int(gl, program, "cutaway", s->punch_mode == IM_VIEW3D_PUNCH_CUTAWAY);
+    render_set_int(gl, program, "cutaway", s->punch_mode == IM_VIEW3D_PUNCH_CUTAWAY);
     gl->Uniform1f(gl->GetUniformLocation(program, "opacity"), translucent ? (float)s->punch_opacity : 1.0f);
-    im_render_set_colour(gl, program, "punch_colour", s->punch_colour);
+    render_set_colour(gl, program, "punch_colour", s->punch_colour);
     float light[3];
     light_vector(s, light);
     gl->Uniform3f(gl->GetUniformLocation(program, "light"), light[0], light[1], light[2]);
@@ -551,7 +551,7 @@ static int draw_view(const im_render_context *c, const view_geometry *g, const s
     }
     gl->DeleteTextures(4, textures);
     release_targets(gl, &targets);
-    return status == IM_OK ? im_render_flip_rows(image->rgba, s->width, s->height) : status;
+    return status == IM_OK ? render_flip_rows(image->rgba, s->width, s->height) : status;
 }
 
 static int allocate_view_image(const im_field *h, const im_view3d_style *s, im_image *image)
@@ -574,7 +574,7 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
     memset(image, 0, sizeof *image);
     int status = check_inputs(height, force, punch);
     if (status == IM_OK)
-        status = im_render_make_current(c);
+        status = render_make_current(c);
     if (status == IM_OK)
         status = check_style(c, s, height);
     if (status == IM_OK)

@@ -26,9 +26,9 @@ int solver_periodic_kernel(im_solver_plan *p)
         }
     /* The real-space kernel for direct sums (and K(0) for the Winkler start): the inverse transform
      * of the spectrum, a one-off plan. K is even, so K(|dx|, |dy|) serves every offset. */
-    im_fft_planner_lock();
+    fft_planner_lock();
     fftw_plan inverse = fftw_plan_dft_c2r_2d(ny, nx, p->modes, p->kernel, FFTW_ESTIMATE);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     if (!inverse)
         return im_fail(IM_ENOMEM, "periodic solver plan %d x %d: kernel transform", nx, ny);
     for (size_t k = 0; k < (size_t)ny * mx; ++k) {
@@ -36,9 +36,9 @@ int solver_periodic_kernel(im_solver_plan *p)
         p->modes[k][1] = 0.0;
     }
     fftw_execute(inverse);
-    im_fft_planner_lock();
+    fft_planner_lock();
     fftw_destroy_plan(inverse);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     return IM_OK;
 }
 

@@ -193,7 +193,7 @@ static void impose_load(pk_run *r)
         return;
     }
     const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double load = im_sum_doubles(r->p, n) * r->plan->delta * r->plan->delta; /* p >= 0 */
+    const double load = sum_doubles(r->p, n) * r->plan->delta * r->plan->delta; /* p >= 0 */
     if (!(load > 0))
         return;
     const double scale = r->target / load;
@@ -401,7 +401,7 @@ static void summarise(const pk_run *r, const gap_stats *s, im_solve_result *out)
             if (r->p[i] > peak)
                 peak = r->p[i];
         }
-    const double sum = im_sum_doubles(r->p, n); /* p >= 0: the sum over the contact set */
+    const double sum = sum_doubles(r->p, n); /* p >= 0: the sum over the contact set */
     out->approach = s->approach;
     out->load = sum * d2;
     out->contact_patches = contact;

@@ -145,11 +145,11 @@ static int make_fft_plans(im_solver_plan *p)
     p->measured = p->options.fft_measure || wisdom != NULL;
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
     const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
-    im_fft_planner_lock(); /* ensembles plan from several threads */
+    fft_planner_lock(); /* ensembles plan from several threads */
     if (wisdom_text)
         fftw_import_wisdom_from_string(wisdom_text); /* stale wisdom just means none */
     free(wisdom_text);
-    im_fft_prepare_planner();
+    fft_prepare_planner();
     /* ny real rows of length px -> the first ny complex rows of length mx; then, in place, mx
      * columns of length py */
     p->rows_forward = fftw_plan_many_dft_r2c(1, row_length, p->ny, p->rows_in, NULL, 1, p->px, p->modes, NULL,
@@ -163,7 +163,7 @@ static int make_fft_plans(im_solver_plan *p)
     p->precondition_forward = fftw_plan_dft_r2c_2d(p->ny, p->nx, p->preconditioned, p->precondition_modes, flags);
     p->precondition_backward = fftw_plan_dft_c2r_2d(p->ny, p->nx, p->precondition_modes, p->preconditioned, flags);
     int status = wisdom ? export_wisdom(wisdom) : IM_OK;
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     if (!p->rows_forward || !p->columns_forward || !p->columns_backward || !p->rows_backward ||
         !p->precondition_forward || !p->precondition_backward)
         return im_fail(IM_ENOMEM, "FFTW could not plan a %d x %d transform", p->px, p->py);
@@ -199,9 +199,9 @@ static int compute_kernel(im_solver_plan *p)
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
     const double e = p->options.e_star, d = p->delta;
     double *padded = fftw_malloc(sizeof(double) * (size_t)px * py);
-    im_fft_planner_lock();
+    fft_planner_lock();
     fftw_plan transform = padded ? fftw_plan_dft_r2c_2d(py, px, padded, p->modes, FFTW_ESTIMATE) : NULL;
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     if (!transform) {
         fftw_free(padded);
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel transform", nx, ny);
@@ -220,9 +220,9 @@ static int compute_kernel(im_solver_plan *p)
         }
     }
     fftw_execute(transform);
-    im_fft_planner_lock();
+    fft_planner_lock();
     fftw_destroy_plan(transform);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     fftw_free(padded);
     const double scale = 1.0 / ((double)px * py);
 #pragma omp parallel for schedule(static)
@@ -317,11 +317,11 @@ void im_solver_plan_free(im_solver_plan *p)
         return;
     fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,       p->columns_backward,
                           p->rows_backward, p->precondition_forward, p->precondition_backward};
-    im_fft_planner_lock();
+    fft_planner_lock();
     for (int i = 0; i < 6; ++i)
         if (plans[i])
             fftw_destroy_plan(plans[i]);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     fftw_free(p->kernel);
     fftw_free(p->direction);
     fftw_free(p->gap);

@@ -9,9 +9,9 @@
 
 static void destroy_plan(fftw_plan plan)
 {
-    im_fft_planner_lock();
+    fft_planner_lock();
     fftw_destroy_plan(plan);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
 }
 
 int surface_spectrum_alloc(int nx, int ny, double delta, surface_spectrum *out)
@@ -52,11 +52,11 @@ int surface_spectrum_of(const im_field *field, surface_spectrum *out)
         surface_spectrum_release(out);
         return im_fail(IM_ENOMEM, "spectrum: allocation of the transform input failed");
     }
-    im_fft_planner_lock();
-    im_fft_prepare_planner();
+    fft_planner_lock();
+    fft_prepare_planner();
     fftw_plan plan = fftw_plan_dft_r2c_2d(field->ny, field->nx, input,
                                           (fftw_complex *)out->coefficients, FFTW_ESTIMATE);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     memcpy(input, field->data, count * sizeof *input);
     fftw_execute(plan);
     destroy_plan(plan);
@@ -75,12 +75,12 @@ int surface_spectrum_to_field(const surface_spectrum *spectrum, im_field *field)
     double complex *work = fftw_malloc(spectrum_count * sizeof *work);
     if (!work)
         return im_fail(IM_ENOMEM, "inverse transform: allocation of the work spectrum failed");
-    im_fft_planner_lock();
-    im_fft_prepare_planner();
+    fft_planner_lock();
+    fft_prepare_planner();
     /* c2r transforms overwrite their input: plan and run on a copy. */
     fftw_plan plan = fftw_plan_dft_c2r_2d(field->ny, field->nx, (fftw_complex *)work,
                                           field->data, FFTW_ESTIMATE);
-    im_fft_planner_unlock();
+    fft_planner_unlock();
     memcpy(work, spectrum->coefficients, spectrum_count * sizeof *work);
     fftw_execute(plan);
     destroy_plan(plan);

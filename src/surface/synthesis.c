@@ -101,9 +101,9 @@ static double complex mode_amplitude(uint64_t seed, int kx, int ky)
 {
     int canonical = kx > 0 || (kx == 0 && ky > 0);
     int ckx = canonical ? kx : -kx, cky = canonical ? ky : -ky;
-    uint64_t key = im_hash3(seed, ckx, cky);
-    double u1 = im_uniform_open0(im_mix64(key ^ 0x1u));
-    double u2 = im_uniform_open0(im_mix64(key ^ 0x2u));
+    uint64_t key = hash3(seed, ckx, cky);
+    double u1 = uniform_open0(mix64(key ^ 0x1u));
+    double u2 = uniform_open0(mix64(key ^ 0x2u));
     double radius = sqrt(-log(u1));   /* |z|^2 exponential with mean 1: Box-Muller */
     double complex z = radius * cexp(2.0 * M_PI * I * u2);
     return canonical ? z : conj(z);
