@@ -1,0 +1,29 @@
+/* How a scene's figures name and arrange its families, and colour their forces. */
+#include "scene/scene_internal.h"
+
+#include <stdio.h>
+
+void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size)
+{
+    if (scene->file_count > 1)
+        snprintf(buffer, size, "%d files, h′_{rms} = %.3g", scene->file_count, scene->slopes[family]);
+    else if (scene->surface_file[0])
+        snprintf(buffer, size, "%s, h′_{rms} = %.3g", scene->surface_file, scene->slopes[family]);
+    else if (scene->slopes[family] == 0.0)
+        snprintf(buffer, size, "smooth");
+    else
+        snprintf(buffer, size, "h′_{rms} = %g", scene->slopes[family]);
+}
+
+int scene_panel_columns(int count)
+{
+    return count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
+}
+
+im_colormap scene_force_norm(const im_scene *scene, double largest)
+{
+    double hi = largest > 0.0 ? largest : 1.0;
+    im_colormap norm = im_colormap_make((im_colormap_id)scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
+    norm.logarithmic = scene->log_norm;
+    return norm;
+}

@@ -1,0 +1,46 @@
+/* Where a scene's outputs go: paths under its output folder, figures as PNG and PDF, the folder's
+ * lock. */
+#include "indentmap/plot.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <stdio.h>
+
+int scene_write_png_pdf(const im_scene *scene, const char *name,
+                        int (*draw)(const im_scene *, const void *, const char *), const void *data)
+{
+    int status = IM_OK;
+    const char *extensions[] = {"png", "pdf"};
+    for (int i = 0; i < 2 && status == IM_OK; ++i) {
+        char relative[128], path[IM_SCENE_PATH];
+        snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
+        status = scene_output_path(scene, relative, path, sizeof path);
+        if (status == IM_OK)
+            status = draw(scene, data, path);
+    }
+    return status;
+}
+
+int scene_draw_plot(const im_scene *scene, const void *plot, const char *path)
+{
+    (void)scene;
+    return im_plot_write(plot, path);
+}
+
+int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)
+{
+    int length = snprintf(buffer, size, "%s/%s", scene->output_dir, relative);
+    if (length < 0 || (size_t)length >= size)
+        return im_fail(IM_EINVAL, "output path %s/%s is too long", scene->output_dir, relative);
+    return IM_OK;
+}
+
+int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
+{
+    return im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
+}
+
+void scene_lock_release(scene_lock *lock)
+{
+    im_folder_lock_release(lock);
+}

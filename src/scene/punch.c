@@ -1,0 +1,60 @@
+/* The punch of a scene, the loads that give its N*, its solver options and eq. (12) at its angle. */
+#include "indentmap/scene.h"
+
+#include "indentmap/status.h"
+#include "indentmap/theory.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+
+im_indenter scene_punch(const im_scene *scene)
+{
+    switch (scene->punch) {
+    case IM_PUNCH_SPHERE: return im_indenter_sphere(scene->radius);
+    case IM_PUNCH_FLAT: return im_indenter_flat(scene->radius);
+    default: return im_indenter_cone(scene->alpha_degrees);
+    }
+}
+
+double scene_load_for_load_star(const im_scene *scene, double delta)
+{
+    return scene_load_for_n_star(scene, scene->load_star, delta);
+}
+
+double scene_load_for_n_star(const im_scene *scene, double n_star, double delta)
+{
+    /* A(N) increases with N for every punch: bisect A(N) = n_star delta^2 in log N. */
+    im_indenter punch = scene_punch(scene);
+    double area = n_star * delta * delta, lo = 1e-300, hi = 1.0;
+    while (im_indenter_area_for_load(&punch, scene->modulus, hi) < area && hi < 1e300)
+        hi *= 2.0;
+    for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-15; ++i) {
+        double mid = sqrt(lo * hi);
+        if (im_indenter_area_for_load(&punch, scene->modulus, mid) < area)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return hi;
+}
+
+im_solver_options scene_solver_options(const im_scene *scene)
+{
+    im_solver_options options = im_solver_options_default();
+    options.e_star = scene->modulus;
+    options.tol = scene->tol;
+    options.hardness = scene->hardness;
+    return options;
+}
+
+double scene_eq12(const im_scene *scene, double slope, double *rho_c)
+{
+    im_theory_interface rough = im_theory_interface_default(slope);
+    double rho = NAN, beta, ratio;
+    int ok = scene->punch == IM_PUNCH_CONE && im_theory_cone_rho(&rough, scene->alpha_degrees, &rho) == IM_OK &&
+             im_theory_erf_scale(rho, rough.normalisation, rough.k, &beta) == IM_OK &&
+             im_theory_cone_area_ratio_variable(beta, &ratio) == IM_OK;
+    if (rho_c)
+        *rho_c = rho;
+    return ok ? ratio : NAN;
+}

@@ -1,0 +1,86 @@
+/* The surfaces of a scene: generated per family and seed, or read from its files (measured first,
+ * checked to share one grid). */
+#include "indentmap/scene.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* File i of the scene, read and prepared as it is solved. */
+static int file_surface(const im_scene *scene, int i, im_field **out)
+{
+    char path[IM_SCENE_PATH];
+    int status = im_scene_file_path(scene, i, path, sizeof path);
+    im_surface_read_options read = {.fill = scene->fill};
+    if (status == IM_OK)
+        status = im_surface_read_with(path, &read, out, NULL);
+    if (status == IM_OK && (status = im_surface_detrend(*out, (enum im_detrend)scene->detrend)) != IM_OK) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    return status;
+}
+
+/* An ensemble of files shares one grid and spacing (the panels, limits and sums assume it). */
+static int check_same_grid(const im_scene *scene, const im_field *first, const im_field *other, int i)
+{
+    if (other->nx == first->nx && other->ny == first->ny && other->delta == first->delta &&
+        strcmp(other->unit, first->unit) == 0)
+        return IM_OK;
+    char a[IM_SCENE_PATH], b[IM_SCENE_PATH];
+    im_scene_file_path(scene, 0, a, sizeof a);
+    im_scene_file_path(scene, i, b, sizeof b);
+    return im_fail(IM_EFORMAT, "%s: file: %s is %d x %d with delta %g %s but %s is %d x %d with delta %g %s: the "
+                   "files of an ensemble share one grid", scene->path, b, other->nx, other->ny, other->delta,
+                   other->unit, a, first->nx, first->ny, first->delta, first->unit);
+}
+
+int im_scene_measure_files(im_scene *scene)
+{
+    im_field *first = NULL;
+    double sum_squares = 0.0;
+    int status = IM_OK;
+    for (int i = 0; i < scene->file_count && status == IM_OK; ++i) {
+        im_field *surface = NULL;
+        status = file_surface(scene, i, &surface);
+        if (status == IM_OK && first)
+            status = check_same_grid(scene, first, surface, i);
+        if (status == IM_OK)
+            status = im_surface_slope_rms(surface, IM_SLOPE_FINITE_DIFFERENCE, &scene->file_slopes[i]);
+        sum_squares += status == IM_OK ? scene->file_slopes[i] * scene->file_slopes[i] : 0.0;
+        if (!first)
+            first = surface;
+        else
+            im_field_free(surface);
+    }
+    if (status == IM_OK && first) { /* the grid the scene's records and checks describe */
+        scene->surface.nx = first->nx;
+        scene->surface.ny = first->ny;
+        scene->surface.delta = first->delta;
+        memcpy(scene->file_unit, first->unit, sizeof scene->file_unit);
+        scene->slopes[0] = sqrt(sum_squares / scene->file_count);
+    }
+    im_field_free(first);
+    return status;
+}
+
+int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **out)
+{
+    if (scene->surface_file[0])
+        return file_surface(scene, (int)seed, out);
+    if (scene->slopes[family] == 0.0)
+        return im_field_create(scene->surface.nx, scene->surface.ny, scene->surface.delta, out);
+    im_surface_params params = scene->surface;
+    params.target = IM_TARGET_SLOPE;
+    params.slope_rms = scene->slopes[family];
+    params.seed = seed;
+    return im_surface_generate(&params, out);
+}
+
+double scene_member_slope(const im_scene *scene, int family, uint64_t seed)
+{
+    return scene->file_count > 0 ? scene->file_slopes[seed] : scene->slopes[family];
+}
