@@ -3,7 +3,7 @@
  * giflib, MP4 when ffmpeg is installed). Needs no GL context: images are made by hand. */
 #include "support.h"
 
-#include "figure/text.h"
+#include "typeset/text.h"
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
 #include "indentmap/io.h"

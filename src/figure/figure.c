@@ -1,9 +1,9 @@
 /* Figure layout with cairo: panels, labels, shared colour bar, scale bar; PNG, PDF, SVG output. */
 #include "indentmap/figure.h"
 
-#include "figure/fonts.h"
-#include "figure/output.h"
-#include "figure/text.h"
+#include "typeset/fonts.h"
+#include "typeset/output.h"
+#include "typeset/text.h"
 #include "indentmap/status.h"
 
 #include <cairo.h>

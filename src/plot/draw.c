@@ -1,9 +1,9 @@
 /* Drawing a laid-out plot with cairo, in pixel coordinates. */
 #include "plot/layout.h"
 
-#include "figure/fonts.h"
 #include "plot/clip.h"
-#include "figure/text.h"
+#include "typeset/fonts.h"
+#include "typeset/text.h"
 #include "indentmap/status.h"
 
 #include <math.h>

@@ -1,8 +1,8 @@
 /* Plot checks, limits, ticks and placement, in pixels at the plot's dpi. */
 #include "plot/layout.h"
 
-#include "figure/text.h"
-#include "figure/ticks.h"
+#include "typeset/text.h"
+#include "typeset/ticks.h"
 #include "indentmap/status.h"
 
 #include <math.h>

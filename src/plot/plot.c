@@ -1,8 +1,8 @@
 /* Plots: defaults, colours, layout queries and output through the figure module's writers. */
 #include "indentmap/plot.h"
 
-#include "figure/fonts.h"
-#include "figure/output.h"
+#include "typeset/fonts.h"
+#include "typeset/output.h"
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
 #include "indentmap/status.h"

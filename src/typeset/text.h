@@ -1,7 +1,7 @@
 /* Text for figures and plots: UTF-8 with _{subscript} and ^{superscript} markup, and the labels
  * of nice tick values. Shared by the figure module (colour bars) and the plot module (axes). */
-#ifndef INDENTMAP_FIGURE_TEXT_H
-#define INDENTMAP_FIGURE_TEXT_H
+#ifndef INDENTMAP_TYPESET_TEXT_H
+#define INDENTMAP_TYPESET_TEXT_H
 
 #include <cairo.h>
 #include <stddef.h>

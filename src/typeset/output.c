@@ -1,5 +1,5 @@
 /* A cairo drawing written as PNG, PDF or SVG, atomically. */
-#include "figure/output.h"
+#include "typeset/output.h"
 
 #include "indentmap/status.h"
 

@@ -1,5 +1,5 @@
 /* Tick values of colour bars and plot axes. */
-#include "figure/ticks.h"
+#include "typeset/ticks.h"
 
 #include "indentmap/figure.h"
 

@@ -1,4 +1,4 @@
-#include "figure/fonts.h"
+#include "typeset/fonts.h"
 
 #include "indentmap/figure.h"
 #include "indentmap/status.h"

@@ -1,6 +1,6 @@
 /* Nice tick values on any range, for colour bars (im_figure_ticks) and plot axes. */
-#ifndef INDENTMAP_FIGURE_TICKS_H
-#define INDENTMAP_FIGURE_TICKS_H
+#ifndef INDENTMAP_TYPESET_TICKS_H
+#define INDENTMAP_TYPESET_TICKS_H
 
 /* Ticks on [lo, hi] for a plot axis: about `target` linear intervals (a 1-2-5 step at least
  * span / target), or, when logarithmic, the decades, and 1-2-5 multiples only when fewer than

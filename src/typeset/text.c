@@ -1,5 +1,5 @@
 /* Rich text (sub/superscript markup) and tick labels with cairo. */
-#include "figure/text.h"
+#include "typeset/text.h"
 
 #include <math.h>
 #include <stdio.h>

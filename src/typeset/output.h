@@ -1,7 +1,7 @@
 /* Writing a cairo drawing as PNG (tEXt chunks, pHYs), PDF (keywords, creator) or SVG, atomically.
  * Shared by the figure module and the plot module. */
-#ifndef INDENTMAP_FIGURE_OUTPUT_H
-#define INDENTMAP_FIGURE_OUTPUT_H
+#ifndef INDENTMAP_TYPESET_OUTPUT_H
+#define INDENTMAP_TYPESET_OUTPUT_H
 
 #include "indentmap/figure.h"
 

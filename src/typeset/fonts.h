@@ -1,0 +1,14 @@
+/* typeset/: the typesetting shared by figure/ (maps) and plot/ (line plots); neither includes the
+ * other's private headers.
+ *
+ * DejaVu Sans regular and bold as cairo font faces, loaded with FreeType from the font files
+ * (no fontconfig). Loaded once per process and kept for its lifetime. */
+#ifndef INDENTMAP_TYPESET_FONTS_H
+#define INDENTMAP_TYPESET_FONTS_H
+
+#include <cairo.h>
+
+/* IM_EUNSUPPORTED naming the file when a font cannot be loaded. The faces are borrowed. */
+int figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold);
+
+#endif
