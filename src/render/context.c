@@ -229,7 +229,7 @@ int im_render_context_missing(int status, const char *message)
            strncmp(message, IM_RENDER_NO_CONTEXT, strlen(IM_RENDER_NO_CONTEXT)) == 0;
 }
 
-int im_render_open(im_render_backend backend, im_render_context **out)
+int render_context_open(im_render_backend backend, im_render_context **out)
 {
     *out = NULL;
     int status = resolve_backend(&backend);
@@ -251,11 +251,6 @@ int im_render_open(im_render_backend backend, im_render_context **out)
     const GLubyte *renderer = c->gl.GetString(GL_RENDERER), *version = c->gl.GetString(GL_VERSION);
     snprintf(c->renderer, sizeof c->renderer, "%s", renderer ? (const char *)renderer : "unknown");
     snprintf(c->version, sizeof c->version, "%s", version ? (const char *)version : "unknown");
-    status = render_setup(c);
-    if (status != IM_OK) {
-        im_render_close(c);
-        return status;
-    }
     *out = c;
     return IM_OK;
 }
@@ -270,12 +265,8 @@ int render_make_current(im_render_context *c)
                                      im_render_backend_name(c));
 }
 
-void im_render_close(im_render_context *c)
+void render_context_close(im_render_context *c)
 {
-    if (!c)
-        return;
-    if (render_make_current(c) == IM_OK)
-        render_teardown(c);
     release_backend(c);
     free(c);
 }

@@ -41,6 +41,14 @@ struct im_render_context {
  * EGL_EXT_device_enumeration (or EGL_EXT_device_base, which includes it). */
 int egl_can_enumerate_devices(const char *client_extensions);
 
+/* The context of a backend (context.c), current on the calling thread, without the GL objects of
+ * render_setup: IM_EUNSUPPORTED naming every backend tried and why it failed, IM_EINVAL for a bad
+ * IM_RENDER_BACKEND, IM_ENOMEM. render_context_close releases the backend and frees c. im_render_open
+ * and im_render_close (open.c) add the GL objects, so that context.c and draw.c never call each
+ * other: draw.c and view3d.c use the context, open.c uses both. */
+int render_context_open(im_render_backend backend, im_render_context **out);
+void render_context_close(im_render_context *c);
+
 /* Makes the context current on the calling thread (another context may have been used since). */
 int render_make_current(im_render_context *context);
 
