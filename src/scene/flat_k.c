@@ -5,9 +5,9 @@
  * simulated A/A_cone on the same surfaces. Writes flat/flat_contact.csv, flat_k.csv and
  * flat_k.png/pdf. Not resumable: the stage solves every time it is asked for. */
 #include "indentmap/io.h"
-#include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "paper/figures.h"
 #include "scene/scene_internal.h"
 
 #include <math.h>
@@ -17,7 +17,7 @@
 
 /* The sweep x = p_m / (h'rms E*) = FLAT_STEP, 2 FLAT_STEP, ..., FLAT_POINTS FLAT_STEP: A/A0 from
  * about 5% to 70% with k = 2, across the linear regime the paper quotes ("up to ~50%"). */
-enum { FLAT_POINTS = 16, THEORY_POINTS = 81 };
+enum { FLAT_POINTS = 16 };
 static const double FLAT_STEP = 0.025;
 
 typedef struct flat_family {
@@ -142,43 +142,36 @@ static int write_k_table(const im_scene *scene, const flat_family *families, int
     return im_atomic_commit(&file);
 }
 
-/* A/A0 against x per family: the surfaces' points, erf with the fitted k, erf with k = 2. */
-static int plot_k(const im_scene *scene, const flat_family *families, int count)
+typedef struct flat_k_plot {
+    paper_flat_family families[IM_SCENE_MAX_FAMILIES];
+    int count;
+} flat_k_plot;
+
+static int draw_k(const im_scene *scene, const void *data, const char *path)
 {
-    static double grid[THEORY_POINTS], fitted[IM_SCENE_MAX_FAMILIES][THEORY_POINTS], paper[THEORY_POINTS];
-    static im_plot_series series[IM_SCENE_MAX_FAMILIES][3];
-    static im_plot_panel panels[IM_SCENE_MAX_FAMILIES];
-    static char titles[IM_SCENE_MAX_FAMILIES][96];
-    for (int j = 0; j < THEORY_POINTS; ++j) {
-        grid[j] = FLAT_STEP * FLAT_POINTS * j / (THEORY_POINTS - 1);
-        paper[j] = erf(0.5 * sqrt(M_PI) * IM_THEORY_K_DEFAULT * grid[j]);
-    }
-    for (int i = 0; i < count; ++i) {
-        const flat_family *f = &families[i];
-        for (int j = 0; j < THEORY_POINTS; ++j)
-            fitted[i][j] = erf(0.5 * sqrt(M_PI) * f->fit.k * grid[j]);
-        series[i][0] = (im_plot_series){.x = f->x, .y = f->area, .n = f->points, .line = IM_PLOT_NO_LINE,
-                                        .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 2.5, .label = "surfaces"};
-        series[i][1] = (im_plot_series){.x = grid, .y = fitted[i], .n = THEORY_POINTS, .line = IM_PLOT_SOLID,
-                                        .line_width = 1.5, .label = "erf, fitted k"};
-        series[i][2] = (im_plot_series){.x = grid, .y = paper, .n = THEORY_POINTS, .line = IM_PLOT_DOTTED,
-                                        .line_width = 1.5, .label = "erf, k = 2"};
-        snprintf(titles[i], sizeof titles[i], "h'_{rms} = %g: k = %.3f ± %.3f", scene->slopes[f->family], f->fit.k,
-                 f->fit.k_error);
-        panels[i] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "p_{m} / (h'_{rms} E*)"},
-                                    .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{0}"}, .series = series[i],
-                                    .series_count = 3, .title = titles[i], .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
-    }
-    im_plot plot = im_plot_default();
-    plot.columns = scene_panel_columns(count);
-    plot.rows = count / plot.columns;
-    plot.panels = panels;
-    return scene_write_png_pdf(scene, "flat_k", scene_draw_plot, &plot);
+    (void)scene;
+    const flat_k_plot *plot = data;
+    return paper_figure_flat_k(plot->families, plot->count, FLAT_STEP * FLAT_POINTS, path);
 }
 
-int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse)
+/* A/A0 against x per family (paper/flat_k_figure.c): the surfaces' points, erf with the fitted k,
+ * erf with k = 2. */
+static int plot_k(const im_scene *scene, const flat_family *families, int count)
 {
-    static flat_family families[IM_SCENE_MAX_FAMILIES];
+    flat_k_plot plot = {.count = count};
+    for (int i = 0; i < count; ++i) {
+        const flat_family *f = &families[i];
+        plot.families[i] = (paper_flat_family){scene->slopes[f->family], f->points, f->x, f->area, f->fit.k,
+                                               f->fit.k_error};
+    }
+    return scene_write_png_pdf(scene, "flat_k", draw_k, &plot);
+}
+
+/* The flat contacts of every rough family into families: flat/flat_contact.csv, flat_k.csv and the
+ * figure. */
+static int write_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse,
+                        flat_family *families)
+{
     char path[IM_SCENE_PATH];
     im_atomic_file rows;
     int status = scene_output_path(scene, "flat", path, sizeof path);
@@ -207,5 +200,15 @@ int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options,
         status = write_k_table(scene, families, count);
     if (status == IM_OK)
         status = plot_k(scene, families, count);
+    return status;
+}
+
+int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse)
+{
+    flat_family *families = calloc(IM_SCENE_MAX_FAMILIES, sizeof *families);
+    if (!families)
+        return im_fail(IM_ENOMEM, "flat contacts: allocation failed");
+    int status = write_flat_k(scene, options, reuse, families);
+    free(families);
     return status;
 }

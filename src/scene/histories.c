@@ -1,10 +1,10 @@
-/* Indentation histories of every surface of an ensemble ([loading] steps), and the paper's
- * figures drawn from them: Fig. 5 (A / delta^2 against w), Fig. 6 (N against w) and Fig. 7
- * (A / A_cone against N*, mean and +- one standard deviation). */
+/* Indentation histories of every surface of an ensemble ([loading] steps), gathered for the
+ * paper's figures drawn from them (paper/history_figures.c): Fig. 5 (A / delta^2 against w),
+ * Fig. 6 (N against w) and Fig. 7 (A / A_cone against N*, mean and +- one standard deviation). */
 #include "indentmap/io.h"
-#include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "paper/figures.h"
 #include "scene/scene_internal.h"
 
 #include <inttypes.h>
@@ -252,235 +252,176 @@ int scene_history_member(const im_scene *scene, const im_scene_run_options *opti
     return status == IM_OK ? write_history(scene, m) : status;
 }
 
-/* ---- figures ---- */
+/* ---- figures (paper/figures.h builds them from the histories gathered here) ---- */
 
-enum { THEORY_POINTS = 101, COMMON_POINTS = 40 };
+enum { THEORY_POINTS = 101 };
+_Static_assert((int)PAPER_MAX_PANELS >= (int)IM_SCENE_MAX_FAMILIES, "a figure has a panel per family");
 
-typedef struct figure_data {
-    im_plot_panel panels[IM_SCENE_MAX_FAMILIES];
-    im_plot_series series[IM_SCENE_MAX_FAMILIES][IM_SCENE_MAX_FAMILIES + 3];
+/* The members' histories and the families' titles, as the figure builders take them. */
+typedef struct gathered_histories {
+    paper_histories h;
     char titles[IM_SCENE_MAX_FAMILIES][64];
-    double theory_w[THEORY_POINTS], theory_smooth[THEORY_POINTS];
-    double theory_eq12[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
-} figure_data;
+    const char *title_of[IM_SCENE_MAX_FAMILIES];
+    double eq12[IM_SCENE_MAX_FAMILIES];
+} gathered_histories;
 
 static double cone_cot(const im_scene *scene) { return 1.0 / tan(scene->alpha_degrees * M_PI / 180.0); }
 
-static double largest_approach(const scene_member *members, int count)
+/* *out (caller frees it and out->h.members) borrows the members' rows. */
+static int gather_histories(const im_scene *scene, const scene_member *members, int count, gathered_histories **out)
 {
-    double w = 0.0;
-    for (int i = 0; i < count; ++i)
-        for (int k = 0; k < members[i].steps; ++k)
-            w = fmax(w, members[i].approach[k]);
-    return w > 0.0 ? w : 1.0;
-}
-
-/* A smooth cone's closed forms against w (Love): A / delta^2 = pi a^2 / delta^2, a = 2 w / (pi cot alpha),
- * or N / (E* delta^2) = 2 w^2 / (pi delta^2 cot alpha). */
-static void fill_theory(const im_scene *scene, figure_data *d, double w_max, int load, double delta)
-{
-    double c = cone_cot(scene);
-    for (int i = 0; i < THEORY_POINTS; ++i) {
-        double w = w_max * i / (THEORY_POINTS - 1), a = 2.0 * w / (M_PI * c);
-        d->theory_w[i] = w;
-        d->theory_smooth[i] = load ? 2.0 * w * w / (M_PI * c * delta * delta) : M_PI * a * a / (delta * delta);
+    gathered_histories *g = calloc(1, sizeof *g);
+    paper_history *views = calloc((size_t)count + 1, sizeof *views);
+    if (!g || !views) {
+        free(g);
+        free(views);
+        return im_fail(IM_ENOMEM, "history figures: allocation failed");
     }
-}
-
-static im_plot_series thin_line(const double *x, const double *y, int n, int family, int families)
-{
-    im_plot_series s = {.x = x, .y = y, .n = n, .line = IM_PLOT_SOLID, .line_width = 0.5};
-    im_plot_family_color(family, families, s.color);
-    return s;
-}
-
-/* Fig. 5 (load = 0: A / delta^2) or Fig. 6 (load = 1: N / (E* delta^2)) against w, a panel per
- * family: every surface thin, the smooth theory thick, and for Fig. 5 eq. (12) dashed. */
-static int plot_against_approach(const im_scene *scene, const scene_member *members, int count, int load)
-{
-    static figure_data d;
-    memset(&d, 0, sizeof d);
-    double delta = scene->surface.delta, e_star = scene->modulus;
-    fill_theory(scene, &d, largest_approach(members, count), load, delta);
-    double *scaled = malloc(sizeof *scaled * (size_t)count * (size_t)scene->step_count);
-    if (!scaled)
-        return im_fail(IM_ENOMEM, "fig5/fig6: allocation failed");
+    for (int i = 0; i < count; ++i) {
+        const scene_member *m = &members[i];
+        views[i] = (paper_history){m->family, m->steps, m->approach, m->history_load, m->history_load_star,
+                                   m->history_area_ratio, m->history_patches};
+    }
     for (int f = 0; f < scene->family_count; ++f) {
-        int n = 0;
-        for (int i = 0; i < count; ++i) {
-            const scene_member *m = &members[i];
-            double *y = scaled + (size_t)i * scene->step_count;
-            if (m->family != f || m->steps == 0 || n >= IM_SCENE_MAX_FAMILIES)
-                continue;
-            for (int k = 0; k < m->steps; ++k)
-                y[k] = load ? m->history_load[k] / (e_star * delta * delta) : (double)m->history_patches[k];
-            d.series[f][n] = thin_line(m->approach, y, m->steps, f, scene->family_count);
-            d.series[f][n].label = n == 0 ? "surfaces" : NULL;
-            ++n;
-        }
-        im_plot_series smooth = {.x = d.theory_w, .y = d.theory_smooth, .n = THEORY_POINTS, .line = IM_PLOT_SOLID,
-                                 .line_width = 2.0, .label = "smooth (Love)"};
-        d.series[f][n++] = smooth;
-        if (!load && scene->slopes[f] > 0.0) {
-            double ratio = scene_eq12(scene, scene->slopes[f], NULL);
-            for (int i = 0; i < THEORY_POINTS; ++i)
-                d.theory_eq12[f][i] = ratio * d.theory_smooth[i];
-            im_plot_series eq12 = {.x = d.theory_w, .y = d.theory_eq12[f], .n = THEORY_POINTS,
-                                   .line = IM_PLOT_DASHED, .line_width = 1.0, .label = "eq. (12)"};
-            im_plot_palette(1, eq12.color);
-            d.series[f][n++] = eq12;
-        }
-        scene_family_title(scene, f, d.titles[f], sizeof d.titles[f]);
-        d.panels[f] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "approach w / δ"},
-                                      .y = {IM_PLOT_LINEAR, 0, 0, load ? "load N / (E* δ²)" : "contact area A / δ²"},
-                                      .series = d.series[f], .series_count = n, .title = d.titles[f],
-                                      .legend = f == scene->family_count - 1 ? IM_PLOT_LEGEND_UPPER_LEFT
-                                                                             : IM_PLOT_LEGEND_HIDDEN};
+        scene_family_title(scene, f, g->titles[f], sizeof g->titles[f]);
+        g->title_of[f] = g->titles[f];
+        g->eq12[f] = scene->slopes[f] > 0.0 ? scene_eq12(scene, scene->slopes[f], NULL) : NAN;
     }
-    im_plot plot = im_plot_default();
-    plot.columns = scene_panel_columns(scene->family_count);
-    plot.rows = scene->family_count / plot.columns;
-    plot.panels = d.panels;
-    int status = scene_write_png_pdf(scene, load ? "fig6" : "fig5", scene_draw_plot, &plot);
-    free(scaled);
+    g->h = (paper_histories){.source = scene->path, .family_count = scene->family_count, .slopes = scene->slopes,
+                             .titles = g->title_of, .eq12 = g->eq12, .members = views, .count = count,
+                             .delta = scene->surface.delta, .e_star = scene->modulus, .cot_alpha = cone_cot(scene)};
+    *out = g;
+    return IM_OK;
+}
+
+static void free_gathered(gathered_histories *g)
+{
+    if (g)
+        free((void *)g->h.members);
+    free(g);
+}
+
+static int draw_against_approach(const im_scene *scene, const void *h, const char *path)
+{
+    (void)scene;
+    return paper_figure_against_approach(h, 0, path);
+}
+
+static int draw_load_against_approach(const im_scene *scene, const void *h, const char *path)
+{
+    (void)scene;
+    return paper_figure_against_approach(h, 1, path);
+}
+
+static int draw_area_ratio_against_load(const im_scene *scene, const void *h, const char *path)
+{
+    (void)scene;
+    return paper_figure_area_ratio_against_load(h, path);
+}
+
+/* Fig. 5 (load = 0) or Fig. 6 (load = 1). */
+static int plot_against_approach(const im_scene *scene, const gathered_histories *g, int load)
+{
+    return scene_write_png_pdf(scene, load ? "fig6" : "fig5",
+                               load ? draw_load_against_approach : draw_against_approach, &g->h);
+}
+
+static int plot_area_ratio_against_load(const im_scene *scene, const gathered_histories *g)
+{
+    return scene_write_png_pdf(scene, "fig7", draw_area_ratio_against_load, &g->h);
+}
+
+/* The sphere's rough families: N_c and the theory over the range of N / N_c their surfaces span. */
+typedef struct sphere_theory {
+    paper_sphere_family families[IM_SCENE_MAX_FAMILIES];
+    double x[IM_SCENE_MAX_FAMILIES][THEORY_POINTS], constant[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
+    double gamma[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
+    int count;
+    const paper_histories *h;
+} sphere_theory;
+
+/* The range of N / N_c over the surfaces of family f that the figure draws. */
+static void sphere_load_range(const paper_histories *h, int f, double n_c, double *lo, double *hi)
+{
+    int n = 0;
+    *lo = INFINITY, *hi = 0.0;
+    for (int i = 0; i < h->count; ++i) {
+        const paper_history *m = &h->members[i];
+        if (m->family != f || m->steps == 0 || n >= PAPER_MAX_SURFACE_LINES)
+            continue;
+        for (int k = 0; k < m->steps; ++k) {
+            *lo = fmin(*lo, m->load[k] / n_c);
+            *hi = fmax(*hi, m->load[k] / n_c);
+        }
+        ++n;
+    }
+}
+
+static int sphere_family(const im_scene *scene, const paper_histories *h, int f, sphere_theory *t)
+{
+    int p = t->count;
+    im_theory_interface rough = im_theory_interface_default(scene->slopes[f]);
+    rough.e_star = scene->modulus;
+    double n_c = NAN, lo, hi;
+    int status = im_theory_sphere_crossover_load(&rough, scene->radius, &n_c);
+    if (status == IM_OK)
+        sphere_load_range(h, f, n_c, &lo, &hi);
+    for (int k = 0; k < THEORY_POINTS && status == IM_OK && hi > lo; ++k) {
+        double load = n_c * lo * pow(hi / lo, (double)k / (THEORY_POINTS - 1));
+        im_theory_step theory;
+        status = scene_history_theory_row(scene, scene->slopes[f], 0.0, load, &theory);
+        t->x[p][k] = load / n_c;
+        t->constant[p][k] = theory.area_ratio_constant;
+        t->gamma[p][k] = theory.area_ratio_gamma;
+    }
+    t->families[p] = (paper_sphere_family){f, n_c, THEORY_POINTS, t->x[p], t->constant[p], t->gamma[p]};
+    ++t->count;
     return status;
 }
 
-/* Linear interpolation of y(x) at x0 on increasing x; NaN outside. */
-static double interpolate(const double *x, const double *y, int n, double x0)
+static int draw_sphere_regimes(const im_scene *scene, const void *data, const char *path)
 {
-    for (int k = 1; k < n; ++k)
-        if (x0 >= x[k - 1] && x0 <= x[k])
-            return x[k] > x[k - 1] ? y[k - 1] + (y[k] - y[k - 1]) * (x0 - x[k - 1]) / (x[k] - x[k - 1]) : y[k];
-    return NAN;
-}
-
-/* Fig. 7: A / A_cone against N* for each rough family: the mean over its surfaces (solid) and
- * +- one standard deviation (dotted), on the N* range every surface reached. */
-static int plot_area_ratio_against_load(const im_scene *scene, const scene_member *members, int count)
-{
-    static figure_data d;
-    static double grid[IM_SCENE_MAX_FAMILIES][COMMON_POINTS], mean[IM_SCENE_MAX_FAMILIES][COMMON_POINTS];
-    static double lo[IM_SCENE_MAX_FAMILIES][COMMON_POINTS], hi[IM_SCENE_MAX_FAMILIES][COMMON_POINTS];
-    memset(&d, 0, sizeof d);
-    int panels = 0;
-    for (int f = 0; f < scene->family_count; ++f) {
-        if (!(scene->slopes[f] > 0.0))
-            continue;
-        double start = 0.0, end = INFINITY;
-        for (int i = 0; i < count; ++i)
-            if (members[i].family == f && members[i].steps > 1) {
-                start = fmax(start, members[i].history_load_star[0]);
-                end = fmin(end, members[i].history_load_star[members[i].steps - 1]);
-            }
-        if (!(end > start))
-            continue;
-        for (int k = 0; k < COMMON_POINTS; ++k) {
-            double x = start + (end - start) * k / (COMMON_POINTS - 1), sum = 0, sum_sq = 0;
-            int n = 0;
-            for (int i = 0; i < count; ++i) {
-                const scene_member *m = &members[i];
-                double y = m->family == f ? interpolate(m->history_load_star, m->history_area_ratio, m->steps, x) : NAN;
-                if (isnan(y))
-                    continue;
-                sum += y;
-                sum_sq += y * y;
-                ++n;
-            }
-            double mu = sum / n, sd = n > 1 ? sqrt(fmax(0.0, (sum_sq - n * mu * mu) / (n - 1))) : 0.0;
-            grid[panels][k] = x;
-            mean[panels][k] = mu;
-            lo[panels][k] = mu - sd;
-            hi[panels][k] = mu + sd;
-        }
-        im_plot_series series[3] = {
-            {.x = grid[panels], .y = mean[panels], .n = COMMON_POINTS, .line = IM_PLOT_SOLID, .label = "mean"},
-            {.x = grid[panels], .y = lo[panels], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED, .label = "± 1 sd"},
-            {.x = grid[panels], .y = hi[panels], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED}};
-        for (int s = 0; s < 3; ++s)
-            d.series[panels][s] = series[s];
-        scene_family_title(scene, f, d.titles[panels], sizeof d.titles[panels]);
-        d.panels[panels] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "N* = 2N / (δ² E* cot α)"},
-                                           .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{cone}"}, .series = d.series[panels],
-                                           .series_count = 3, .title = d.titles[panels]};
-        ++panels;
-    }
-    if (panels == 0)
-        return im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*", scene->path);
-    im_plot plot = im_plot_default();
-    plot.columns = scene_panel_columns(panels);
-    plot.rows = panels / plot.columns;
-    plot.panels = d.panels;
-    return scene_write_png_pdf(scene, "fig7", scene_draw_plot, &plot);
+    (void)scene;
+    const sphere_theory *t = data;
+    return paper_figure_sphere_regimes(t->h, t->families, t->count, path);
 }
 
 /* Pastewka and Robbins' three regimes for a sphere: A / A_Hertz against N / N_c for each rough
  * family (every surface thin) beside eq. (3) and the integral of the local density of contact
  * with Hertz's pressure, on log axes: one asperity at small loads, the linear rough regime, and
  * the crossover to Hertz above N_c. */
-static int plot_sphere_regimes(const im_scene *scene, const scene_member *members, int count)
+static int plot_sphere_regimes(const im_scene *scene, const gathered_histories *g)
 {
-    static figure_data d;
-    static double theory_x[IM_SCENE_MAX_FAMILIES][THEORY_POINTS], theory_y[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
-    static double theory_gamma[IM_SCENE_MAX_FAMILIES][THEORY_POINTS];
-    memset(&d, 0, sizeof d);
-    double *scaled = malloc(sizeof *scaled * (size_t)count * (size_t)scene->step_count);
-    if (!scaled)
+    sphere_theory *t = calloc(1, sizeof *t);
+    if (!t)
         return im_fail(IM_ENOMEM, "sphere figure: allocation failed");
-    int panels = 0, status = IM_OK;
-    for (int f = 0; f < scene->family_count && status == IM_OK; ++f) {
-        if (!(scene->slopes[f] > 0.0))
-            continue;
-        im_theory_interface rough = im_theory_interface_default(scene->slopes[f]);
-        rough.e_star = scene->modulus;
-        double n_c = NAN, lo = INFINITY, hi = 0.0;
-        status = im_theory_sphere_crossover_load(&rough, scene->radius, &n_c);
-        int n = 0;
-        for (int i = 0; i < count && status == IM_OK; ++i) {
-            const scene_member *m = &members[i];
-            double *x = scaled + (size_t)i * scene->step_count;
-            if (m->family != f || m->steps == 0 || n >= IM_SCENE_MAX_FAMILIES)
-                continue;
-            for (int k = 0; k < m->steps; ++k) {
-                x[k] = m->history_load[k] / n_c;
-                lo = fmin(lo, x[k]);
-                hi = fmax(hi, x[k]);
-            }
-            d.series[panels][n] = thin_line(x, m->history_area_ratio, m->steps, f, scene->family_count);
-            d.series[panels][n].label = n == 0 ? "surfaces" : NULL;
-            ++n;
-        }
-        for (int k = 0; k < THEORY_POINTS && status == IM_OK && hi > lo; ++k) {
-            double load = n_c * lo * pow(hi / lo, (double)k / (THEORY_POINTS - 1));
-            im_theory_step theory;
-            status = scene_history_theory_row(scene, scene->slopes[f], 0.0, load, &theory);
-            theory_x[panels][k] = load / n_c;
-            theory_y[panels][k] = theory.area_ratio_constant;
-            theory_gamma[panels][k] = theory.area_ratio_gamma;
-        }
-        im_plot_series eq3 = {.x = theory_x[panels], .y = theory_y[panels], .n = THEORY_POINTS,
-                              .line = IM_PLOT_SOLID, .line_width = 2.0, .label = "eq. (3)"};
-        d.series[panels][n++] = eq3;
-        im_plot_series gamma = {.x = theory_x[panels], .y = theory_gamma[panels], .n = THEORY_POINTS,
-                                .line = IM_PLOT_DASHED, .line_width = 2.0, .label = "γ integral"};
-        d.series[panels][n++] = gamma;
-        scene_family_title(scene, f, d.titles[panels], sizeof d.titles[panels]);
-        d.panels[panels] = (im_plot_panel){.x = {IM_PLOT_LOG, 0, 0, "N / N_{c}"},
-                                           .y = {IM_PLOT_LOG, 0, 0, "A / A_{Hertz}"}, .series = d.series[panels],
-                                           .series_count = n, .title = d.titles[panels],
-                                           .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
-        ++panels;
-    }
-    if (status == IM_OK && panels == 0)
+    t->h = &g->h;
+    int status = IM_OK;
+    for (int f = 0; f < scene->family_count && status == IM_OK; ++f)
+        if (scene->slopes[f] > 0.0)
+            status = sphere_family(scene, &g->h, f, t);
+    if (status == IM_OK && t->count == 0)
         status = im_fail(IM_EINVAL, "%s: plots = sphere needs a rough family", scene->path);
-    if (status == IM_OK) {
-        im_plot plot = im_plot_default();
-        plot.columns = scene_panel_columns(panels);
-        plot.rows = panels / plot.columns;
-        plot.panels = d.panels;
-        status = scene_write_png_pdf(scene, "sphere_regimes", scene_draw_plot, &plot);
-    }
-    free(scaled);
+    if (status == IM_OK)
+        status = scene_write_png_pdf(scene, "sphere_regimes", draw_sphere_regimes, t);
+    free(t);
+    return status;
+}
+
+/* The figures [output] plots asks for, from the ensemble's histories. */
+static int plot_histories(const im_scene *scene, const scene_member *members, int count)
+{
+    gathered_histories *g = NULL;
+    int status = gather_histories(scene, members, count, &g);
+    if (status == IM_OK && scene_wants_plot(scene, "fig5"))
+        status = plot_against_approach(scene, g, 0);
+    if (status == IM_OK && scene_wants_plot(scene, "fig6"))
+        status = plot_against_approach(scene, g, 1);
+    if (status == IM_OK && scene_wants_plot(scene, "fig7"))
+        status = plot_area_ratio_against_load(scene, g);
+    if (status == IM_OK && scene_wants_plot(scene, "sphere"))
+        status = plot_sphere_regimes(scene, g);
+    free_gathered(g);
     return status;
 }
 
@@ -521,14 +462,8 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         report_histories(options, members, count);
     scene_reuse_take_forces(reuse, members, count);
-    if (status == IM_OK && scene_wants_plot(scene, "fig5"))
-        status = plot_against_approach(scene, members, count, 0);
-    if (status == IM_OK && scene_wants_plot(scene, "fig6"))
-        status = plot_against_approach(scene, members, count, 1);
-    if (status == IM_OK && scene_wants_plot(scene, "fig7"))
-        status = plot_area_ratio_against_load(scene, members, count);
-    if (status == IM_OK && scene_wants_plot(scene, "sphere"))
-        status = plot_sphere_regimes(scene, members, count);
+    if (status == IM_OK)
+        status = plot_histories(scene, members, count);
     scene_members_free(members, count);
     return status;
 }

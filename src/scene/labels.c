@@ -1,4 +1,4 @@
-/* How a scene's figures name and arrange its families, and colour their forces. */
+/* How a scene's figures name its families and colour their forces. */
 #include "scene/scene_internal.h"
 
 #include <stdio.h>
@@ -13,11 +13,6 @@ void scene_family_title(const im_scene *scene, int family, char *buffer, size_t 
         snprintf(buffer, size, "smooth");
     else
         snprintf(buffer, size, "h′_{rms} = %g", scene->slopes[family]);
-}
-
-int scene_panel_columns(int count)
-{
-    return count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
 }
 
 im_colormap scene_force_norm(const im_scene *scene, double largest)

@@ -1,7 +1,8 @@
-/* Contact-map panels at one load for every family (the paper's Fig. 4), and their table. */
-#include "indentmap/figure.h"
+/* Contact-map panels at one load for every family (the paper's Fig. 4, drawn by
+ * paper/map_figures.c), and their table. */
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "paper/figures.h"
 #include "scene/scene_internal.h"
 
 #include <errno.h>
@@ -189,38 +190,24 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
     return status;
 }
 
-static int draw_figure(const im_scene *scene, const void *figure, const char *path)
+static int draw_figure(const im_scene *scene, const void *panels, const char *path)
 {
     (void)scene;
-    return im_figure_write(figure, path);
+    return paper_figure_contact_panels(panels, path);
 }
 
 static int write_panel_figure(const im_scene *scene, const im_image *images, const im_colormap *norm)
 {
-    im_figure_panel panels[IM_SCENE_MAX_FAMILIES];
-    char labels[IM_SCENE_MAX_FAMILIES][8], titles[IM_SCENE_MAX_FAMILIES][64];
-    int count = scene->family_count;
-    int columns = scene_panel_columns(count);
-    int rows = count / columns;
-    for (int i = 0; i < count; ++i) {
-        snprintf(labels[i], sizeof labels[i], "(%c)", 'a' + i % 26);
+    char titles[IM_SCENE_MAX_FAMILIES][64];
+    const char *title_of[IM_SCENE_MAX_FAMILIES];
+    for (int i = 0; i < scene->family_count; ++i) {
         scene_family_title(scene, i, titles[i], sizeof titles[i]);
-        panels[i] = (im_figure_panel){&images[i], labels[i], titles[i]};
+        title_of[i] = titles[i];
     }
-    char load_text[64];
-    snprintf(load_text, sizeof load_text, "N* = %g", scene->load_star);
-    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Scene", scene->path},
-                           {"Load", load_text}};
-    im_figure figure = im_figure_default();
-    figure.rows = rows;
-    figure.columns = columns;
-    figure.panels = panels;
-    figure.colormap = norm;
-    figure.colorbar_label = "local force f / (E* δ²)";
-    figure.extend_under = scene->log_norm;
-    figure.texts = texts;
-    figure.text_count = 3;
-    return scene_write_png_pdf(scene, "contact_panels", draw_figure, &figure);
+    paper_contact_panels panels = {.count = scene->family_count, .images = images, .titles = title_of,
+                                   .norm = norm, .extend_under = scene->log_norm, .source = scene->path,
+                                   .load_star = scene->load_star};
+    return scene_write_png_pdf(scene, "contact_panels", draw_figure, &panels);
 }
 
 static int plot_density(const im_scene *scene, const panel_result *results)

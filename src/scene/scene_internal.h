@@ -27,10 +27,6 @@ im_solver_options scene_solver_options(const im_scene *scene);
 /* A label for a family: "smooth" or "h'rms = 0.08". */
 void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size);
 
-/* Columns of a grid of count panels: three when they fill whole rows (Fig. 4's 2 x 3), else two,
- * else a single row. */
-int scene_panel_columns(int count);
-
 /* The colour norm of local forces up to `largest`: the scene's colour map, linear from 0 or log
  * over the two decades below `largest`. */
 im_colormap scene_force_norm(const im_scene *scene, double largest);

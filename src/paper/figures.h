@@ -1,0 +1,121 @@
+/* paper/: the paper's figures, built from plain data. A builder takes arrays and numbers (what a
+ * scene measured, or what a test makes up) and one path, lays the figure out with plot/ (line
+ * plots) or figure/ (contact maps) and writes it: PNG, PDF or SVG by the path's extension,
+ * atomically (nothing is left at the path on an error). Builders know nothing of scenes; scene/
+ * gathers the data and calls them once per file (NAME.png, NAME.pdf).
+ *
+ * Builders are re-entrant: they keep nothing between calls (their working memory is allocated per
+ * call), so two threads may build figures at once.
+ *
+ * Figs. 1, 2 and 3, which need no contact solution, are public (plot.h: im_plot_figure_*,
+ * theory_figures.c); the figures drawn from solutions are here (history_figures.c: Figs. 5, 6, 7
+ * and the sphere's regimes; map_figures.c: Fig. 4's contact panels and the contact density;
+ * flat_k_figure.c: eq. (2)'s k measured).
+ *
+ * Units: lengths (approach, radius, axis) in the surface's units, delta its grid spacing, loads N
+ * in those units with E* (the plots divide by E* delta^2). Errors: IM_EINVAL for data that cannot
+ * be drawn (the message names `source`, e.g. the scene file), IM_ENOMEM, and im_plot_write's or
+ * im_figure_write's errors. */
+#ifndef INDENTMAP_PAPER_FIGURES_H
+#define INDENTMAP_PAPER_FIGURES_H
+
+#include "indentmap/colormap.h"
+#include "indentmap/field.h"
+#include "indentmap/render.h"
+
+/* At most this many panels in a figure, and this many surfaces drawn per panel (the first ones). */
+enum { PAPER_MAX_PANELS = 64, PAPER_MAX_SURFACE_LINES = 64 };
+
+/* Columns of a grid of count panels: three when they fill whole rows (Fig. 4's 2 x 3), else two,
+ * else a single row. */
+int paper_panel_columns(int count);
+
+/* ---- histories (history_figures.c) ---- */
+
+/* One surface's indentation history: `steps` rows (borrowed arrays). */
+typedef struct paper_history {
+    int family;                 /* its family (0-based): the panel it is drawn in */
+    int steps;
+    const double *approach;     /* w */
+    const double *load;         /* N */
+    const double *load_star;    /* N* */
+    const double *area_ratio;   /* A / A_cone (cone), A / A_Hertz (sphere) */
+    const long *patches;        /* contact patches n_p (A / delta^2) */
+} paper_history;
+
+/* The histories of an ensemble of families (a family: the surfaces of one roughness). */
+typedef struct paper_histories {
+    const char *source;         /* named in error messages */
+    int family_count;           /* 1 to PAPER_MAX_PANELS */
+    const double *slopes;       /* per family: h'rms, 0 for a smooth family */
+    const char *const *titles;  /* per family: the panel's title */
+    const double *eq12;         /* per family: eq. (12)'s A / A_cone, NaN where none (Fig. 5) */
+    const paper_history *members; /* every surface, in any order */
+    int count;
+    double delta, e_star, cot_alpha; /* grid spacing, E*, cot of the cone's half angle */
+} paper_histories;
+
+/* Fig. 5 (load = 0: A / delta^2) or Fig. 6 (load = 1: N / (E* delta^2)) against w, a panel per
+ * family: every surface thin, the smooth cone's closed form (Love) thick, and for Fig. 5 eq. (12)
+ * dashed on rough families. */
+int paper_figure_against_approach(const paper_histories *h, int load, const char *path);
+
+/* Fig. 7: A / A_cone against N* for each rough family: the mean over its surfaces (solid) and
+ * +- one standard deviation (dotted), on the N* range every surface reached. IM_EINVAL when no
+ * rough family's surfaces share a range. */
+int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path);
+
+/* A rough family of the sphere's figure: its crossover load and the theory curves beside it. */
+typedef struct paper_sphere_family {
+    int family;                 /* index into the histories' families */
+    double crossover_load;      /* N_c of eq. (3) */
+    int theory_points;
+    const double *theory_x;     /* N / N_c */
+    const double *theory_constant, *theory_gamma; /* A / A_Hertz: eq. (3), the gamma integral */
+} paper_sphere_family;
+
+/* Pastewka and Robbins' regimes: A / A_Hertz against N / N_c on log axes, a panel per rough
+ * family (count >= 1): every surface thin, eq. (3) and the gamma integral thick. */
+int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_family *families, int count,
+                                const char *path);
+
+/* ---- contact maps (map_figures.c) ---- */
+
+/* Fig. 4: the rendered contact maps of count families (1 to PAPER_MAX_PANELS) in a grid, labelled
+ * (a), (b), ... and titled, with one colour bar of the shared norm (extended below it when
+ * extend_under). The PNG's texts name the software, `source` and the load N*. */
+typedef struct paper_contact_panels {
+    int count;
+    const im_image *images;     /* count maps (borrowed) */
+    const char *const *titles;  /* count titles */
+    const im_colormap *norm;
+    int extend_under;
+    const char *source;
+    double load_star;
+} paper_contact_panels;
+int paper_figure_contact_panels(const paper_contact_panels *in, const char *path);
+
+/* The local contact density seen directly: the contact fraction of each map averaged over rings
+ * of width 0.05 a around the punch axis, out to 1.3 a, beside gamma(r/a) of eq. (10) for a cone. */
+typedef struct paper_density_map {
+    const im_field *force;      /* force per patch; contact where > 0 */
+    double axis_x, axis_y;      /* the punch axis from the grid's corner */
+    double radius;              /* a, the smooth contact radius */
+    double slope;               /* h'rms (> 0), for gamma and the title */
+} paper_density_map;
+int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count, const char *path);
+
+/* ---- eq. (2)'s k (flat_k_figure.c) ---- */
+
+/* One rough family pressed flat: A / A0 against x = p_m / (h'rms E*) and the fitted k. */
+typedef struct paper_flat_family {
+    double slope;               /* h'rms */
+    int points;
+    const double *x, *area;     /* the surfaces' points */
+    double k, k_error;          /* fitted k of A / A0 = erf(sqrt(pi) / 2 k x) and its error */
+} paper_flat_family;
+
+/* A panel per family: the points, erf with the fitted k and erf with k = 2, over x in [0, x_max]. */
+int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const char *path);
+
+#endif
