@@ -6,7 +6,13 @@
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/histories.h"
+#include "scene/outputs.h"
+#include "scene/panels.h"
+#include "scene/plots.h"
+#include "scene/progress.h"
+#include "scene/table.h"
 
 #include <limits.h>
 #include <stdio.h>

@@ -2,7 +2,9 @@
  * maps of every rough family at the panels' load, with their punch axis and smooth contact radius. */
 #include "indentmap/status.h"
 #include "paper/figures.h"
-#include "scene/scene_internal.h"
+#include "scene/density.h"
+#include "scene/outputs.h"
+#include "scene/punch.h"
 
 #include <math.h>
 

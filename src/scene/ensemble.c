@@ -1,7 +1,10 @@
 /* Ensembles: every surface of every family, solved side by side on the available cores. */
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/outputs.h"
+#include "scene/panels.h"
+#include "scene/progress.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -8,7 +8,12 @@
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "paper/figures.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/flat_k.h"
+#include "scene/outputs.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
 
 #include <math.h>
 #include <stdio.h>

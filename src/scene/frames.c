@@ -2,7 +2,13 @@
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/frames.h"
+#include "scene/frames3d.h"
+#include "scene/labels.h"
+#include "scene/outputs.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
 
 #include <math.h>
 #include <stdio.h>

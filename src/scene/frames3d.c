@@ -4,7 +4,10 @@
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/frames3d.h"
+#include "scene/outputs.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -5,7 +5,16 @@
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "paper/figures.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/histories.h"
+#include "scene/history_theory.h"
+#include "scene/key.h"
+#include "scene/labels.h"
+#include "scene/outputs.h"
+#include "scene/plots.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
 
 #include <inttypes.h>
 #include <math.h>

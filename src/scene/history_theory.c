@@ -1,6 +1,7 @@
 /* The theory beside every simulated history of a scene (the history files' theory columns). */
 #include "indentmap/theory.h"
-#include "scene/scene_internal.h"
+#include "scene/history_theory.h"
+#include "scene/punch.h"
 
 int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
                              im_theory_step *row)

@@ -1,7 +1,8 @@
 /* Keys of kept results: a hash of every input that determines a member's result, written with
  * the result, so that --resume solves again what an edited scene would compute differently. */
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/key.h"
+#include "scene/punch.h"
 
 #include <inttypes.h>
 #include <math.h>

@@ -1,5 +1,5 @@
 /* How a scene's figures name its families and colour their forces. */
-#include "scene/scene_internal.h"
+#include "scene/labels.h"
 
 #include <stdio.h>
 

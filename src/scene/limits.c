@@ -6,7 +6,11 @@
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/limits.h"
+#include "scene/plots.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
 
 #include <errno.h>
 #include <limits.h>

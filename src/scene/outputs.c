@@ -2,7 +2,7 @@
  * lock. */
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/outputs.h"
 
 #include <stdio.h>
 

@@ -3,7 +3,17 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "paper/figures.h"
-#include "scene/scene_internal.h"
+#include "scene/density.h"
+#include "scene/ensemble.h"
+#include "scene/frames.h"
+#include "scene/key.h"
+#include "scene/labels.h"
+#include "scene/outputs.h"
+#include "scene/panels.h"
+#include "scene/plots.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
 
 #include <errno.h>
 #include <inttypes.h>

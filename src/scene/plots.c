@@ -1,7 +1,11 @@
 /* The paper's line figures that a scene asks for in [output] plots. */
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/frames.h"
+#include "scene/outputs.h"
+#include "scene/plots.h"
+#include "scene/progress.h"
+#include "scene/surfaces.h"
 
 #include <stdio.h>
 #include <string.h>

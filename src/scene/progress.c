@@ -1,6 +1,6 @@
 /* What a running scene tells its caller: stage lines, and the signal that asked it to stop. */
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/progress.h"
 
 #include <stdarg.h>
 #include <stdio.h>

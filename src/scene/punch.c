@@ -3,7 +3,7 @@
 
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
-#include "scene/scene_internal.h"
+#include "scene/punch.h"
 
 #include <math.h>
 

@@ -1,5 +1,6 @@
 /* OUTPUT/run.json of a scene run: which quality preset and solver tolerance made its outputs. */
-#include "scene/scene_internal.h"
+#include "scene/outputs.h"
+#include "scene/record.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"

@@ -4,7 +4,18 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/viewer.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/flat_k.h"
+#include "scene/frames.h"
+#include "scene/histories.h"
+#include "scene/limits.h"
+#include "scene/outputs.h"
+#include "scene/panels.h"
+#include "scene/plots.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/record.h"
+#include "scene/table.h"
 
 #include <limits.h>
 #include <stdio.h>

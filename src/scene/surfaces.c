@@ -4,7 +4,7 @@
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/surfaces.h"
 
 #include <math.h>
 #include <string.h>

@@ -3,7 +3,14 @@
 #include "indentmap/io.h"
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
-#include "scene/scene_internal.h"
+#include "scene/ensemble.h"
+#include "scene/key.h"
+#include "scene/outputs.h"
+#include "scene/plots.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
+#include "scene/table.h"
 
 #include <inttypes.h>
 #include <math.h>

@@ -1,0 +1,85 @@
+/* Internal: ensembles: the members of a stage, what stages reuse, and the members over MPI ranks (ensemble.c). */
+#ifndef INDENTMAP_SCENE_ENSEMBLE_H
+#define INDENTMAP_SCENE_ENSEMBLE_H
+
+#include "indentmap/field.h"
+#include "indentmap/scene.h"
+
+#include <stdint.h>
+
+/* Where a stage's result came from, counted in its progress line. */
+enum scene_origin { SCENE_SOLVED = 0, SCENE_READ_BACK, SCENE_REUSED };
+
+/* One surface of an ensemble and what was measured on it. */
+typedef struct scene_member {
+    int family;
+    uint64_t seed;
+    int status;
+    enum scene_origin origin;
+    char error[512];
+    double height_rms;
+    /* the table: the state at load_star */
+    double load, load_star, area_ratio, seconds, load_star_approach;
+    long contact_patches;
+    int iterations;
+    im_field *force;               /* force at load_star, kept for a panel (first seed), else NULL */
+    const struct scene_member *at_load_star; /* histories: the table's member of this surface */
+    int step_reused;               /* histories: the step at load_star was the table's */
+    /* histories: one row per step that converged */
+    int steps;
+    double *approach, *history_load, *history_load_star, *history_area_ratio;
+    long *history_patches;
+} scene_member;
+
+/* What earlier stages of a run solved, for later stages to reuse: nothing is solved twice. */
+typedef struct scene_reuse {
+    scene_member *table;     /* the table's members (owned; NULL without a table) */
+    int table_count;
+    im_field *force[IM_SCENE_MAX_FAMILIES]; /* force at load_star of each family's first seed (owned),
+                                               kept by the table or a load-controlled history */
+} scene_reuse;
+void scene_reuse_free(scene_reuse *reuse);
+
+/* Whether a solved member keeps its force at load_star for the panels: the scene draws panels and
+ * this is the family's first seed, which the panels show. */
+int scene_keeps_force(const im_scene *scene, const scene_member *m);
+/* Moves the members' kept forces into reuse->force (where a family has none yet). */
+void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count);
+
+/* The progress line of a finished stage: how many of its results were solved, read back from an
+ * earlier run (--resume) and reused from an earlier stage of this run (counted[origin]). */
+void scene_report_origin_counts(const im_scene_run_options *options, const char *stage, const int counted[3]);
+/* The same for an ensemble stage's members. */
+void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,
+                          int count);
+
+/* Every family's seeds (a smooth family once); *out is freed by the caller (scene_members_free). */
+int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count);
+void scene_members_free(scene_member *members, int count);
+/* Creates output_dir/folder (where the members' files go) and lists the members. */
+int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count);
+
+/* Runs solve on every member, in parallel over the available cores (each solve then runs on one
+ * thread), with a progress bar on a terminal. IM_OK, or the first failed member's status with its
+ * family, seed and message. */
+int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
+                       int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
+
+/* ---- ensembles over MPI ranks (src/mpi/scene_ranks.c; docs/mpi.md) ----
+ * im_scene_run_ranks installs this for the length of one run on rank 0: after the lock, the stale
+ * temporaries and run.json, run.c calls solve_members (every rank solves its share of the members
+ * and writes them; IM_OK or the status the ranks agreed on); the stages then read those members
+ * back (scene_ensemble_run), counting each with the origin its rank gave it. */
+typedef int (*scene_member_solver)(const im_scene *, const im_scene_run_options *, scene_member *);
+typedef struct scene_ranks_run {
+    int (*solve_members)(const im_scene *scene, const im_scene_run_options *options, void *data);
+    /* member index's origin in solve's stage (enum scene_origin, plus 4 when a history took its
+     * step at load_star from the table, plus 8 when its rank kept its force for the panels and
+     * wrote it to panels/), or -1 when the ranks did not solve it */
+    int (*origin)(void *data, scene_member_solver solve, int index);
+    void *data;
+} scene_ranks_run;
+void scene_set_ranks_run(const scene_ranks_run *run); /* NULL (the default): a single process */
+const scene_ranks_run *scene_get_ranks_run(void);
+
+#endif

@@ -1,0 +1,23 @@
+/* Internal: the frames' history in 3-D (frames3d.c). */
+#ifndef INDENTMAP_SCENE_FRAMES3D_H
+#define INDENTMAP_SCENE_FRAMES3D_H
+
+#include "indentmap/colormap.h"
+#include "indentmap/field.h"
+#include "indentmap/render.h"
+#include "indentmap/scene.h"
+
+/* The framed history's steps, for the 3-D frames (frames3d.c). */
+typedef struct scene_frames3d_input {
+    int count;
+    im_field *const *deformed, *const *force;  /* per step: h - u and the force per patch */
+    const double *load_star;
+    const im_colormap *norm;                   /* the contact frames' force norm */
+} scene_frames3d_input;
+
+/* frames3d = yes: frames/view3d_NNNN.png, one 3-D view per step (one norm, exaggeration and
+ * camera for all), and view3d.gif (dithered to 216 colours) / view3d.mp4 as `animation` asks. */
+int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                         const scene_frames3d_input *in);
+
+#endif

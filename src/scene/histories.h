@@ -1,0 +1,20 @@
+/* Internal: histories of every member over [loading] steps (histories.c). */
+#ifndef INDENTMAP_SCENE_HISTORIES_H
+#define INDENTMAP_SCENE_HISTORIES_H
+
+#include "scene/ensemble.h"
+
+/* The member solver of the histories (the table's is scene_table_member): reads back a member an
+ * earlier run kept (options->resume) or solves it, and writes it under the output folder. */
+int scene_history_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m);
+
+/* Points each history member at the table's member of the same surface (reuse->table), whose
+ * state at load_star a load-controlled history takes instead of solving it again. */
+void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count);
+
+/* Histories of every member over [loading] steps, for plots fig5, fig6, fig7. A load-controlled
+ * step at load_star takes the table's state (reuse->table) instead of solving it again; without a
+ * table, that step's force is kept in reuse->force for the panels. */
+int scene_run_histories(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse);
+
+#endif

@@ -1,0 +1,24 @@
+/* Internal: where a scene's outputs go: paths, figures as PNG and PDF, the folder's lock (outputs.c). */
+#ifndef INDENTMAP_SCENE_OUTPUTS_H
+#define INDENTMAP_SCENE_OUTPUTS_H
+
+#include "indentmap/io.h"
+#include "indentmap/scene.h"
+
+#include <stddef.h>
+
+/* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
+int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
+
+/* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
+int scene_write_png_pdf(const im_scene *scene, const char *name,
+                        int (*draw)(const im_scene *, const void *, const char *), const void *data);
+/* A draw function for scene_write_png_pdf whose data is an im_plot. */
+int scene_draw_plot(const im_scene *scene, const void *plot, const char *path);
+
+/* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
+typedef im_folder_lock scene_lock;
+int scene_lock_acquire(const im_scene *scene, scene_lock *lock);
+void scene_lock_release(scene_lock *lock);
+
+#endif

@@ -1,0 +1,25 @@
+/* Internal: the punch of a scene, the loads that give its N*, its solver options and eq. (12) (punch.c). */
+#ifndef INDENTMAP_SCENE_PUNCH_H
+#define INDENTMAP_SCENE_PUNCH_H
+
+#include "indentmap/indenter.h"
+#include "indentmap/scene.h"
+#include "indentmap/solver.h"
+
+/* The punch a scene describes. */
+im_indenter scene_punch(const im_scene *scene);
+
+/* The load N whose smooth contact area is load_star delta^2 (N* of the paper for a cone). */
+double scene_load_for_load_star(const im_scene *scene, double delta);
+
+/* The load N whose smooth contact area is n_star delta^2. */
+double scene_load_for_n_star(const im_scene *scene, double n_star, double delta);
+
+/* Solver options of a scene (its tolerance; everything else default). */
+im_solver_options scene_solver_options(const im_scene *scene);
+
+/* Eq. (12)'s A/A_cone for a cone scene and a roughness (NaN for other punches); *rho_c (may be
+ * NULL) receives rho_c of eq. (7). */
+double scene_eq12(const im_scene *scene, double slope, double *rho_c);
+
+#endif
