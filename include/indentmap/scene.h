@@ -36,7 +36,8 @@
 extern "C" {
 #endif
 
-enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
+enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
+       IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */ };
 
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
                     IM_ANIMATION_BOTH = 3 };
@@ -70,6 +71,17 @@ typedef struct im_scene {
 
     int punch;                       /* enum im_punch_kind of indenter.h: cone, sphere, flat */
     double alpha_degrees;            /* cone semi-opening angle */
+    /* Sweeps (docs/scenes.md, "Sweeps"): [punch] alpha, [surfaces] hurst and lambda_s may be lists.
+     * Each scalar above holds its list's first value; a count of 0 or 1 is no sweep. A scene with a
+     * list of two or more values runs every combination (alpha x hurst x lambda_s, each with all
+     * slopes x seeds) as a sweep point of its own in OUTPUT/alpha_A_hurst_H_lambda_s_L/; at most
+     * IM_SCENE_MAX_SWEEP_POINTS combinations. */
+    double alphas[IM_SCENE_MAX_SWEEP];   /* degrees */
+    int alpha_count;
+    double hursts[IM_SCENE_MAX_SWEEP];
+    int hurst_count;
+    double lambda_ss[IM_SCENE_MAX_SWEEP]; /* in delta */
+    int lambda_s_count;
     double radius;                   /* sphere radius or flat punch radius, in delta */
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */

@@ -275,8 +275,9 @@ static int run_rendered_stages(const im_scene *scene, const im_scene_run_options
     return status;
 }
 
-/* The stages in order; what one solves at load_star, a later one reuses (nothing solved twice). */
-static int run_stages(const im_scene *scene, const im_scene_run_options *options)
+/* The stages in order; what one solves at load_star, a later one reuses (nothing solved twice).
+ * What they solved is left in *reuse for a sweep (sweep.c); the caller frees it. */
+static int run_stages(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse_out)
 {
     scene_reuse reuse = {0};
     int status = scene_run_theory_plots(scene, options);
@@ -288,6 +289,17 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
         status = scene_run_histories(scene, options, &reuse);
     if (status == IM_OK && (scene->contact_panels || scene->frames))
         status = run_rendered_stages(scene, options, &reuse);
+    *reuse_out = reuse;
+    return status;
+}
+
+/* The stages of a scene, or of each of its sweep points. */
+static int run_scene_stages(const im_scene *scene, const im_scene_run_options *options)
+{
+    if (scene_sweep_count(scene) > 1)
+        return scene_run_sweep(scene, options, run_stages);
+    scene_reuse reuse = {0};
+    int status = run_stages(scene, options, &reuse);
     scene_reuse_free(&reuse);
     return status;
 }
@@ -378,11 +390,14 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         status = scene_write_record(scene);
     const scene_ranks_run *ranks = scene_get_ranks_run(); /* an MPI run: the ranks solve the members first */
+    if (status == IM_OK && ranks && scene_sweep_count(scene) > 1)
+        status = im_fail(IM_EINVAL, "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
+                         "run it without mpirun", scene->path);
     if (status == IM_OK) {
         if (ranks)
             status = ranks->solve_members(scene, options, ranks->data);
         if (status == IM_OK)
-            status = run_stages(scene, options);
+            status = run_scene_stages(scene, options);
         status = write_viewer_page(scene, status);
     }
     scene_lock_release(&lock);
