@@ -310,6 +310,7 @@ static const key_spec KEYS[] = {
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
     {"output", "frames3d", parse_bool, FIELD(frames3d), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
+    {"output", "distributions", parse_bool, FIELD(distributions), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
     {"output", "colormap", parse_choice, FIELD(colormap), 0, 0, "viridis|cividis|magma|inferno|grey", 0, 0},
     {"output", "log_norm", parse_bool, FIELD(log_norm), 0, 0, NULL, 0, 0},

@@ -232,8 +232,8 @@ void scene_lock_release(scene_lock *lock)
 
 static int check_runnable(const im_scene *scene)
 {
-    if ((scene->contact_panels || scene->frames || scene->table) && !(scene->load_star > 0.0))
-        return im_fail(IM_EINVAL, "%s: contact panels, frames and tables need [loading] load_star > 0",
+    if ((scene->contact_panels || scene->frames || scene->table || scene->distributions) && !(scene->load_star > 0.0))
+        return im_fail(IM_EINVAL, "%s: contact panels, frames, tables and distributions need [loading] load_star > 0",
                        scene->path);
     if (scene->frames3d && !scene->frames)
         return im_fail(IM_EINVAL, "%s: [output] frames3d draws the frames' history in 3-D: set frames = yes too",
@@ -285,6 +285,8 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
         status = scene_run_table(scene, options, &reuse);
     if (status == IM_OK && scene_wants_plot(scene, "flat_k") && (status = check_stop(options, "the flat contacts")) == IM_OK)
         status = scene_run_flat_k(scene, options, &reuse);
+    if (status == IM_OK && scene->distributions && (status = check_stop(options, "the distributions")) == IM_OK)
+        status = scene_run_distributions(scene, options);
     if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options, &reuse);
     if (status == IM_OK && (scene->contact_panels || scene->frames))

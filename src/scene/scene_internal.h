@@ -240,6 +240,11 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
  * fed into eq. (12) beside k = 2 and the table's simulated A/A_cone (reuse, when the table ran). */
 int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse);
 
+/* [output] distributions (distributions.c): distributions/family_FF_{gaps,patches,patch_list}.csv,
+ * the gap (in h_rms of the surface, delta for a smooth one) and contact-patch size distributions of
+ * each family's first surface at load_star, solved for them. */
+int scene_run_distributions(const im_scene *scene, const im_scene_run_options *options);
+
 /* ---- sweeps (sweep.c) ---- */
 
 /* The stages of one scene (run.c): what its table solved is left in *reuse (freed by the caller). */
