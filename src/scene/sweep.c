@@ -216,7 +216,6 @@ static int run_point(const im_scene *scene, const im_scene_run_options *options,
         scene_progress(options, "sweep point %d of %d: alpha = %g, hurst = %g, lambda_s = %g (%s)", index + 1,
                        scene_sweep_count(scene), point->alpha_degrees, point->surface.hurst, point->surface.lambda_s,
                        point->output_dir);
-        status = scene_check_limits(point);
     }
     if (status == IM_OK)
         status = im_make_directories(point->output_dir);
@@ -230,13 +229,30 @@ static int run_point(const im_scene *scene, const im_scene_run_options *options,
     return status;
 }
 
+/* Every point's limits (limits.c: the smooth contact inside the surface, memory, disk) before any
+ * work, so that a sweep is not refused half-way. */
+static int check_points(const im_scene *scene)
+{
+    im_scene *point = malloc(sizeof *point);
+    if (!point)
+        return im_fail(IM_ENOMEM, "%s: allocation of a sweep point failed", scene->path);
+    int status = IM_OK;
+    for (int i = 0; i < scene_sweep_count(scene) && status == IM_OK; ++i) {
+        status = scene_sweep_point(scene, i, point);
+        if (status == IM_OK)
+            status = scene_check_limits(point);
+    }
+    free(point);
+    return status;
+}
+
 int scene_run_sweep(const im_scene *scene, const im_scene_run_options *options, scene_stage_runner run_stages)
 {
     int count = scene_sweep_count(scene), row_count = 0;
     sweep_row *rows = calloc((size_t)count * IM_SCENE_MAX_FAMILIES, sizeof *rows);
     if (!rows)
         return im_fail(IM_ENOMEM, "%s: allocation of the sweep's rows failed", scene->path);
-    int status = IM_OK;
+    int status = check_points(scene);
     for (int i = 0; i < count && status == IM_OK; ++i) {
         if (scene_stop_signal(options))
             status = scene_interrupted(options, "between sweep points");
