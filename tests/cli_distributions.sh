@@ -51,6 +51,7 @@ check "scene with distributions runs" test $? -eq 0
 for f in 00 01; do
   for k in gaps patches patch_list; do check "family $f: $k" test -s "$dir/out/distributions/family_${f}_$k.csv"; done
 done
+for f in distributions.png distributions.pdf; do check "wrote $f" test -s "$dir/out/$f"; done
 check "smooth cone: one patch" test "$(wc -l <"$dir/out/distributions/family_00_patch_list.csv")" -eq 2
 member=$(ls "$dir"/out/table/member_01_1.csv)
 n_p=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "contact_patches") c = i } NR == 2 { print $c }' "$member")
