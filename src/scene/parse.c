@@ -550,8 +550,6 @@ static int check_files(parse_context *context)
     return 0;
 }
 
-/* Settings that contradict each other: a message citing the line of the key at fault (the later
- * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 /* Sweep lists that a scene cannot run: a list of angles for another punch, a list of generator
  * parameters beside surface files. Returns the line at fault, 0 if none. */
 static int check_sweeps(parse_context *context)
@@ -594,6 +592,8 @@ static double largest_lambda_s(const im_scene *scene)
     return largest;
 }
 
+/* Settings that contradict each other: a message citing the line of the key at fault (the later
+ * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 static int check_consistency(parse_context *context)
 {
     const im_scene *scene = context->scene;
