@@ -51,8 +51,10 @@ check "other rho_c, other A/A_cone" \
   awk -v a="$(value 2 7)" -v b="$(value 3 7)" -v c="$(value 4 7)" 'BEGIN { exit !(a != b && a != c) }'
 check "the point's table is its rows" awk -F, -v m="$(value 4 7)" \
   'NR == 2 { d = $7 - m; exit !(d * d < 1e-12) }' "$dir/out/alpha_70.5746_hurst_0.8_lambda_s_4/table1.csv"
+touch "$dir/out/alpha_80_hurst_0.8_lambda_s_4/table/.im.tmp.killed" # as a killed run leaves one
 "$cli" run --resume "$dir/s.ini" >"$dir/log" 2>&1
 check "resume runs" test $? -eq 0
+check "a point's stale temporary removed" test ! -e "$dir/out/alpha_80_hurst_0.8_lambda_s_4/table/.im.tmp.killed"
 check "resume reads every point back" test "$(grep -c '0 solved, 6 read back' "$dir/log")" -eq 2
 scene "80, 75"
 "$cli" run --resume "$dir/s.ini" >"$dir/log" 2>&1

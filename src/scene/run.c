@@ -335,7 +335,8 @@ static int protect_inputs(const im_scene *scene)
 /* Temporary files a killed run left in the (locked) output folder. */
 static void remove_stale_temporaries(const im_scene *scene, const im_scene_run_options *options)
 {
-    int removed = im_folder_remove_temporaries(scene->output_dir, 1); /* table/, histories/, ... */
+    /* table/, histories/, ...; a sweep's are one level further down, in its points' folders */
+    int removed = im_folder_remove_temporaries(scene->output_dir, scene_sweep_count(scene) > 1 ? 2 : 1);
     if (removed > 0)
         scene_progress(options, "removed %d temporary file%s an interrupted run left in %s", removed,
                        removed == 1 ? "" : "s", scene->output_dir);
