@@ -70,4 +70,14 @@ check "a lambda_s list runs" test $? -eq 0
 check "four points" test "$(grep -c '^indentmap: sweep point' "$dir/log")" -eq 4
 check "lambda_s = 8 solved anew" test "$(grep -c '6 solved, 0 read back' "$dir/log")" -eq 2
 check "sweep.csv: 8 rows" test "$(wc -l <"$t")" -eq 9
+# The bundled angle sweep runs (from a scratch folder: its output is output/angle_sweep) and
+# A/A_cone rises with rho_c along the six angles, as eq. (12) does.
+scenes=$(cd "$(dirname "$0")/../scenes" && pwd)
+program=$(cd "$(dirname "$cli")" && pwd)/$(basename "$cli")
+(cd "$dir" && "$program" run --quiet "$scenes/angle_sweep.ini" >/dev/null 2>&1)
+check "angle_sweep.ini runs" test $? -eq 0
+a=$dir/output/angle_sweep/sweep.csv
+check "angle_sweep: six angles" test "$(wc -l <"$a")" -eq 7
+check "angle_sweep: A/A_cone rises with rho_c, and so does eq. (12)" awk -F, 'NR > 1 { r[NR] = $5; m[NR] = $7; t[NR] = $9 }
+  END { for (i = 3; i <= NR; ++i) for (j = 2; j <= NR; ++j) if (r[i] > r[j] && (m[i] <= m[j] || t[i] <= t[j])) exit 1 }' "$a"
 finish
