@@ -53,6 +53,46 @@ static void expect_error(const char *name, const char *text, const char *phrase)
         fail_msg("%s: status %d, message '%s', expected to contain '%s'", name, status, im_last_error(), expected);
 }
 
+/* Sweeps: alpha, hurst and lambda_s take lists (the scalar is the first value); lists that cannot
+ * run are refused at their line. */
+static void sweep_lists_are_read(void **state)
+{
+    (void)state;
+    const char *path = write_scene("sweep.ini", "[surfaces]\nn = 64\nhurst = 0.6, 0.8\nlambda_s = 4:8:3\n"
+                                                "[punch]\nalpha = 80, 70\n");
+    im_scene scene;
+    assert_int_equal(im_scene_load(path, &scene), IM_OK);
+    assert_int_equal(scene.alpha_count, 2);
+    assert_close(scene.alphas[1], 70, 0);
+    assert_close(scene.alpha_degrees, 80, 0);
+    assert_int_equal(scene.hurst_count, 2);
+    assert_close(scene.surface.hurst, 0.6, 0);
+    assert_int_equal(scene.lambda_s_count, 3);
+    assert_close(scene.lambda_ss[1], 6, 1e-15);
+    assert_close(scene.surface.lambda_s, 4, 0);
+    const char *single = write_scene("single.ini", "[punch]\nalpha = 75\n");
+    assert_int_equal(im_scene_load(single, &scene), IM_OK);
+    assert_int_equal(scene.alpha_count, 1);
+    assert_close(scene.alpha_degrees, 75, 0);
+}
+
+static void sweep_lists_are_refused_at_their_line(void **state)
+{
+    (void)state;
+    expect_error("sweep_twice.ini", "[scene]\nname = s\n[punch]\nalpha = 80, 70, 80\n",
+                 ":4: alpha = '80, 70, 80': 80 is given twice");
+    expect_error("sweep_range.ini", "[surfaces]\nhurst = 0.8, 1.2\n", ":2: hurst: '1.2' in '0.8, 1.2'");
+    expect_error("sweep_empty.ini", "[surfaces]\nlambda_s = 4,,8\n", ":2: lambda_s = '4,,8': an empty item");
+    expect_error("sweep_sphere.ini", "[punch]\nshape = sphere\nalpha = 80, 70\n[output]\ntable = no\n",
+                 ":3: alpha: a list of angles sweeps a cone's half-angle");
+    expect_error("sweep_file.ini", "[surfaces]\nfile = s.npy\nhurst = 0.7, 0.8\n",
+                 ":3: hurst: a list sweeps the generated surfaces' parameter");
+    expect_error("sweep_lambda_r.ini", "[surfaces]\nlambda_r = 32\nlambda_s = 4, 40\n",
+                 ":3: lambda_r = 32 must exceed lambda_s = 40");
+    expect_error("sweep_points.ini", "[surfaces]\nhurst = 0.1:0.9:9\n[punch]\nalpha = 60:80:8\n",
+                 ":4: the lists of alpha, hurst and lambda_s make 72 sweep points: expected at most 64");
+}
+
 /* A list of files is the ensemble of one family (reliability finding 4): one member per file, each
  * path relative to the scene; `slopes` and `seeds` beside them are refused at their line. */
 static void files_form_the_ensemble(void **state)
@@ -199,6 +239,8 @@ int main(void)
         cmocka_unit_test(long_lines_are_refused),
         cmocka_unit_test(binary_and_unreadable_files_are_refused),
         cmocka_unit_test(bundled_scenes_parse),
+        cmocka_unit_test(sweep_lists_are_read),
+        cmocka_unit_test(sweep_lists_are_refused_at_their_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -48,6 +48,51 @@ int im_measure_contact_patches(const im_field *force, im_contact_patches *out, l
  * are not counted). */
 int im_measure_gap_histogram(const im_field *gap, double gap_max, int bins, long *counts);
 
+/* ---- Distributions at one state (docs/theory.md, "Gap and patch-size distributions") ---- */
+
+/* One contact patch: its cells (area cells delta^2) and the edges between it and no contact,
+ * including the grid's border next to it (perimeter edges delta). */
+typedef struct im_patch {
+    long cells;
+    long edges;
+} im_patch;
+
+/* The patches of a force field (force > 0; 4-neighbour connectivity, not periodic) in order of
+ * first appearance (row by row): *patches is a new array of *count entries (NULL when there is no
+ * contact; the caller frees it). Their cells add up to im_contact_patches' cells and their edges to
+ * its perimeter / delta. */
+int im_measure_patch_list(const im_field *force, im_patch **patches, long *count);
+
+enum { IM_PATCH_BINS = 40 }; /* octaves of patch size: 1 to 2^40 cells */
+
+/* Histogram of patch sizes by octave: bin b holds the patches of 2^b <= cells < 2^(b+1) (so b = 0
+ * is single cells); patches[b], cells[b] and edges[b] (IM_PATCH_BINS each) receive their number,
+ * their cells and their edges. Every patch falls in one bin: the sums are count, the contact's cells
+ * and its edges. IM_EINVAL for NULL arrays with count > 0 or a patch of fewer than 1 cell. */
+int im_measure_patch_histogram(const im_patch *list, long count, long *patches, long *cells, long *edges);
+
+/* The gap outside contact (cells whose force is not > 0) in units of scale > 0 (h_rms, say): bins >= 1
+ * equal bins over [0, g_max / scale], g_max the largest finite gap outside contact (the last bin
+ * includes it; a negative gap, within the solver's tolerance, counts as 0). counts[bins] the cells of
+ * each bin; *bin_width its width in units of scale (0 when no finite gap lies outside contact);
+ * *infinite the cells outside contact whose gap is +Inf (a flat punch's far field). So the counts
+ * and *infinite add up to the cells outside contact, and sum density * bin_width over the bins, with
+ * density = counts / (nx ny bin_width), is the non-contact fraction of finite gap. force and gap
+ * share one grid (IM_EINVAL otherwise, or for a NaN gap outside contact). */
+int im_measure_gap_distribution(const im_field *gap, const im_field *force, double scale, int bins, long *counts,
+                                double *bin_width, long *infinite);
+
+/* Writes the distributions of one state as CSV files (atomically): PREFIX_gaps.csv, the gap outside
+ * contact normalised by height_rms (> 0; the caller passes delta for a smooth surface) in `bins`
+ * bins, columns gap_low,gap_high,cells,density (density per unit gap / height_rms, over all cells:
+ * its integral is the non-contact fraction), and a last row `inf,inf,CELLS,0` for infinite gaps;
+ * PREFIX_patches.csv, the patch-size histogram by octave (non-empty bins), columns
+ * cells_low,cells_high,patches,cells,area,perimeter (area in delta^2 x cells, perimeter in delta x
+ * edges, both in the field's length units); PREFIX_patch_list.csv, one row per patch:
+ * patch,cells,area,perimeter. IM_EIO naming the file. */
+int im_measure_write_distributions(const im_field *force, const im_field *gap, double height_rms, int bins,
+                                   const char *prefix);
+
 #ifdef __cplusplus
 }
 #endif

@@ -36,7 +36,8 @@
 extern "C" {
 #endif
 
-enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096 };
+enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
+       IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */ };
 
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
                     IM_ANIMATION_BOTH = 3 };
@@ -70,6 +71,17 @@ typedef struct im_scene {
 
     int punch;                       /* enum im_punch_kind of indenter.h: cone, sphere, flat */
     double alpha_degrees;            /* cone semi-opening angle */
+    /* Sweeps (docs/scenes.md, "Sweeps"): [punch] alpha, [surfaces] hurst and lambda_s may be lists.
+     * Each scalar above holds its list's first value; a count of 0 or 1 is no sweep. A scene with a
+     * list of two or more values runs every combination (alpha x hurst x lambda_s, each with all
+     * slopes x seeds) as a sweep point of its own in OUTPUT/alpha_A_hurst_H_lambda_s_L/; at most
+     * IM_SCENE_MAX_SWEEP_POINTS combinations. */
+    double alphas[IM_SCENE_MAX_SWEEP];   /* degrees */
+    int alpha_count;
+    double hursts[IM_SCENE_MAX_SWEEP];
+    int hurst_count;
+    double lambda_ss[IM_SCENE_MAX_SWEEP]; /* in delta */
+    int lambda_s_count;
     double radius;                   /* sphere radius or flat punch radius, in delta */
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
@@ -82,6 +94,8 @@ typedef struct im_scene {
     double tol;                      /* solver tolerance (default: the quality preset's) */
 
     int contact_panels, frames, table;
+    int distributions;               /* 1: gap and patch-size distributions at load_star of each
+                                        family's first surface (distributions/, docs/scenes.md) */
     int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
     int colormap;                    /* im_colormap_id of colormap.h (default viridis) */
     int log_norm;                    /* 1: forces on a log norm spanning two decades below the
@@ -130,7 +144,10 @@ typedef struct im_scene_run_options {
  *     (render.h's im_render_view3d, 960 x 540: one force norm, one vertical exaggeration, stated
  *     in each title, and one camera for all), and view3d.gif / view3d.mp4 as `animation` asks
  *     (the GIF's frames dithered to a 216-colour cube).
- * Nothing is solved twice within a run: a load-controlled history's step at load_star takes the
+ *   distributions: distributions/family_FF_{gaps,patches,patch_list}.csv, the gap (in the surface's
+ *     h_rms) and contact-patch size distributions of each family's first surface at load_star
+ *     (measure.h: im_measure_write_distributions), solved for them each time (not kept for --resume).
+ * Nothing is solved twice within a run (but for the distributions): a load-controlled history's step at load_star takes the
  * table's state, and a panel takes the force of the table, of such a history, or of the frames'
  * last step. Each stage's line says how many surfaces it solved, read back and reused.
  * Every file is written atomically as soon as it is complete, with a key (a hash of every input

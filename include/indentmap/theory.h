@@ -223,6 +223,27 @@ typedef struct im_theory_step {
 int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach,
                            double load, im_theory_step *out);
 
+/* ---- Wavy surfaces in the periodic half-space (docs/theory.md, "Wavy surfaces") ----
+ * Closed forms for a rigid flat pressed on one period L of an elastic wavy surface at nominal mean
+ * pressure p_m (E* and lengths in consistent units). Each takes the pressure as a ratio and returns
+ * an area fraction A/A0, NaN for a ratio outside the stated range. */
+
+/* 1-D, h = Delta cos(2 pi x / L) (Westergaard; Johnson, Contact Mechanics, 13.2): the exact contact
+ * fraction 2a / L = (2 / pi) asin(sqrt(p_m / p*)), p* = pi E* Delta / L, for 0 <= p_m / p* <= 1. */
+double im_theory_wavy1d_area_fraction(double pressure_ratio);
+
+/* 2-D, h = Delta (cos(2 pi x / L) + cos(2 pi y / L)): complete contact from p^ = 2 pi E* Delta / L
+ * on (the sum of two 1-D modes; exact). pressure_ratio = p_m / p^ in (0, 1].
+ * Light load (Johnson, Greenwood & Higginson 1985): each crest a Hertzian sphere of radius
+ * R = L^2 / (4 pi^2 Delta) carrying p_m L^2: A/A0 = pi (3 p_m / (8 pi p^))^(2/3) (leading order in
+ * a/L; the neighbours' correction is O((a/L)^2)). */
+double im_theory_wavy2d_light_area_fraction(double pressure_ratio);
+
+/* Near complete contact: one hole per period around the trough, a penny-shaped crack closing
+ * smoothly (zero stress intensity) in the complete contact's pressure p_m - p^ + p^ (pi r / L)^2:
+ * 1 - A/A0 = (3 / (2 pi)) (1 - p_m / p^) (leading order in 1 - p_m / p^; JGH's form). */
+double im_theory_wavy2d_near_full_area_fraction(double pressure_ratio);
+
 /* ---- Roughness (eqs. 13-15) ---- */
 
 /* Eq. (13) divided by the prefactor A: m_n / A = T(n) q_r^(n - 2H) ((1 - x^(n+2)) / (n + 2)

@@ -67,7 +67,10 @@ static void usage(FILE *stream)
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
             "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
             "  --out DIR           output folder (default output/indent)\n"
-            "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
+            "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n"
+            "  --distributions     also write DIR/distributions_NNNN_{gaps,patches,patch_list}.csv for every\n"
+            "                      step: the gap outside contact in units of h_rms, the patch sizes by\n"
+            "                      octave and each patch's area and perimeter (docs/theory.md)\n\n"
             "DIR/history.csv gets one whole line per step, appended and synced as soon as the step is\n"
             "solved, so the steps already solved survive a later failure or a crash (no convergence:\n"
             "exit 1; contact at the surface's edge: exit 1). DIR is locked while the run writes there\n"
@@ -78,6 +81,8 @@ static void usage(FILE *stream)
 typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
     int smooth, nx, ny, m_given, fields;
+    int distributions;            /* --distributions */
+    double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
     im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
     cli_preparation preparation;  /* --crop, --detrend */
@@ -99,7 +104,7 @@ typedef struct indent_options {
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK };
+       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -115,6 +120,7 @@ static const struct option LONG_OPTIONS[] = {
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
+    {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK}, {0, 0, 0, 0}};
 
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -215,6 +221,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_WISDOM: o->wisdom = arg; o->solver.wisdom_path = arg; return 0;
     case OPT_OUT: o->out = arg; return 0;
     case OPT_FIELDS: o->fields = 1; return 0;
+    case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
     default: return -1;
     }
 }
@@ -264,6 +271,22 @@ static int is_step_file(const char *name, const char *prefix)
     return digits >= 4 && (strcmp(suffix, ".npy") == 0 || strcmp(suffix, ".npy.json") == 0);
 }
 
+/* Whether name is distributions_NNNN_{gaps,patches,patch_list}.csv (four or more digits). */
+static int is_distribution_file(const char *name)
+{
+    static const char *const SUFFIXES[3] = {"_gaps.csv", "_patches.csv", "_patch_list.csv"};
+    const char *prefix = "distributions_";
+    size_t length = strlen(prefix), digits = 0;
+    if (strncmp(name, prefix, length) != 0)
+        return 0;
+    while (name[length + digits] >= '0' && name[length + digits] <= '9')
+        ++digits;
+    for (int i = 0; digits >= 4 && i < 3; ++i)
+        if (strcmp(name + length + digits, SUFFIXES[i]) == 0)
+            return 1;
+    return 0;
+}
+
 /* Whether `name` is one of the files written into the output folder: history.csv, run.json,
  * index.html and,
  * with --fields, {force,gap,displacement}_NNNN.npy and their .npy.json sidecars for the steps 1..count. */
@@ -273,6 +296,10 @@ static int writes_into_folder(const char *name, const void *state)
     static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
     if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0)
         return 1;
+    if (o->distributions && is_distribution_file(name)) {
+        long step = strtol(name + strlen("distributions_"), NULL, 10);
+        return step >= 1 && step <= o->target_count;
+    }
     for (int i = 0; o->fields && i < 3; ++i) {
         size_t length = strlen(FIELDS[i]);
         if (strncmp(name, FIELDS[i], length) != 0)
@@ -439,6 +466,20 @@ static int write_fields(const char *dir, im_indentation *run, int step, const ch
     }
     for (int i = 0; i < 3; ++i)
         im_field_free(f[i]);
+    return status;
+}
+
+/* --distributions: the gap and patch-size distributions of a step (measure.h). */
+static int write_distributions(const indent_options *o, im_indentation *run, int step)
+{
+    im_field *force = NULL, *gap = NULL;
+    char prefix[4200];
+    snprintf(prefix, sizeof prefix, "%s/distributions_%04d", o->out, step);
+    int status = im_indentation_fields_full(run, &force, &gap, NULL);
+    if (status == IM_OK)
+        status = im_measure_write_distributions(force, gap, o->gap_scale, 50, prefix);
+    im_field_free(force);
+    im_field_free(gap);
     return status;
 }
 
@@ -628,6 +669,8 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
         status = measure_step(o, rough, run, rows, i, &extras[i]);
     if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
         status = write_fields(o->out, run, i + 1, o->length_unit, o->force_unit);
+    if (status == IM_OK && o->distributions)
+        status = write_distributions(o, run, i + 1);
     if (status == IM_OK)
         status = history_append(history, i + 1, &rows[i], &extras[i]);
     if (status == IM_OK) {
@@ -695,6 +738,7 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
         int field = 0;
         for (int i = 0; i < 3; ++i)
             field |= is_step_file(entry->d_name, FIELDS[i]);
+        field |= is_distribution_file(entry->d_name);
         if (!field || snprintf(path, sizeof path, "%s/%s", o->out, entry->d_name) >= (int)sizeof path ||
             im_output_check(path) != IM_OK)
             continue;
@@ -732,6 +776,16 @@ static int measured_interface(const indent_options *o, const im_field *surface, 
     return status;
 }
 
+/* The unit of --distributions' gaps: the surface's h_rms, its delta when it is smooth. */
+static int set_gap_scale(indent_options *o, const im_field *surface)
+{
+    im_surface_stats stats;
+    int status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK)
+        o->gap_scale = stats.height_rms > 0.0 ? stats.height_rms : surface->delta;
+    return status;
+}
+
 int cli_indent(int argc, char **argv)
 {
     indent_options o;
@@ -758,6 +812,8 @@ int cli_indent(int argc, char **argv)
         set_force_unit(&o, surface);
         status = measured_interface(&o, surface, &rough);
     }
+    if (status == IM_OK)
+        status = set_gap_scale(&o, surface);
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);

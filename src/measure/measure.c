@@ -64,81 +64,36 @@ double im_measure_sneddon_modulus(double stiffness, double area)
     return stiffness >= 0.0 && area > 0.0 ? 0.5 * sqrt(M_PI) * stiffness / sqrt(area) : NAN;
 }
 
-/* Union-find with path halving over cell indices. */
-static long find_root(long *parent, long i)
-{
-    while (parent[i] != i)
-        i = parent[i] = parent[parent[i]];
-    return i;
-}
-
-static void unite(long *parent, long a, long b)
-{
-    a = find_root(parent, a);
-    b = find_root(parent, b);
-    if (a != b)
-        parent[a > b ? a : b] = a < b ? a : b; /* the earlier cell is the root: roots in order of appearance */
-}
-
-/* Edges of a contacting cell that face no contact (or the border). */
-static int open_edges(const im_field *f, int ix, int iy)
-{
-    const int nx = f->nx, ny = f->ny;
-    const double *d = f->data + (size_t)iy * nx + ix;
-    return (ix == 0 || !(d[-1] > 0)) + (ix == nx - 1 || !(d[1] > 0)) + (iy == 0 || !(d[-nx] > 0)) +
-           (iy == ny - 1 || !(d[nx] > 0));
-}
-
+/* The statistics, from the patches' list (distributions.c). */
 int im_measure_contact_patches(const im_field *force, im_contact_patches *out, long **sizes)
 {
     if (!force || !force->data)
         return im_fail(IM_EINVAL, "contact patches: no force field");
-    const int nx = force->nx, ny = force->ny;
-    const size_t n = (size_t)nx * ny;
-    long *parent = malloc(sizeof *parent * n), *size = calloc(n, sizeof *size);
-    if (!parent || !size) {
-        free(parent);
-        free(size);
-        return im_fail(IM_ENOMEM, "contact patches of a %d x %d field", nx, ny);
+    im_patch *list = NULL;
+    long count = 0;
+    int status = im_measure_patch_list(force, &list, &count);
+    if (status != IM_OK)
+        return status;
+    im_contact_patches s = {.patches = count};
+    long edges = 0, *cells = sizes && count > 0 ? malloc(sizeof *cells * (size_t)count) : NULL;
+    if (sizes && count > 0 && !cells) {
+        free(list);
+        return im_fail(IM_ENOMEM, "contact patch sizes (%ld patches)", count);
     }
-    im_contact_patches s = {0};
-    long edges = 0;
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix) {
-            long i = (long)iy * nx + ix;
-            parent[i] = i;
-            if (!(force->data[i] > 0))
-                continue;
-            ++s.cells;
-            edges += open_edges(force, ix, iy);
-            if (ix > 0 && force->data[i - 1] > 0)
-                unite(parent, i, i - 1);
-            if (iy > 0 && force->data[i - nx] > 0)
-                unite(parent, i, i - nx);
-        }
-    for (size_t i = 0; i < n; ++i)
-        if (force->data[i] > 0)
-            ++size[find_root(parent, (long)i)];
-    long *list = NULL;
-    for (size_t i = 0; i < n; ++i)
-        if (size[i] > 0) {
-            ++s.patches;
-            if (size[i] > s.largest)
-                s.largest = size[i];
-        }
-    if (sizes && s.patches > 0 && (list = malloc(sizeof *list * (size_t)s.patches)) != NULL)
-        for (size_t i = 0, k = 0; i < n; ++i)
-            if (size[i] > 0)
-                list[k++] = size[i];
-    free(parent);
-    free(size);
-    if (sizes && s.patches > 0 && !list)
-        return im_fail(IM_ENOMEM, "contact patch sizes (%ld patches)", s.patches);
+    for (long i = 0; i < count; ++i) {
+        s.cells += list[i].cells;
+        edges += list[i].edges;
+        if (list[i].cells > s.largest)
+            s.largest = list[i].cells;
+        if (cells)
+            cells[i] = list[i].cells;
+    }
+    free(list);
     s.mean_area = s.patches ? (double)s.cells / s.patches * force->delta * force->delta : 0.0;
     s.perimeter = edges * force->delta;
     *out = s;
     if (sizes)
-        *sizes = list;
+        *sizes = cells;
     return IM_OK;
 }
 

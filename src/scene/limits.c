@@ -97,7 +97,7 @@ static int check_histories_fit(const im_scene *scene, const grid *g)
 static int check_consistency(const im_scene *scene, const grid *g)
 {
     int status = IM_OK;
-    if (scene->load_star > 0.0 && (scene->contact_panels || scene->frames || scene->table))
+    if (scene->load_star > 0.0 && (scene->contact_panels || scene->frames || scene->table || scene->distributions))
         status = check_contact_fits(scene, g, "[loading] load_star", scene->load_star);
     if (status == IM_OK)
         status = check_histories_fit(scene, g);

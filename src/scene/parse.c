@@ -189,6 +189,43 @@ static int parse_double_list(const key_spec *spec, const char *value, im_scene *
     return 0;
 }
 
+/* The scalar the rest of a scene reads for a sweep list: its first value. */
+static double *sweep_scalar(const key_spec *spec, im_scene *scene)
+{
+    if (strcmp(spec->key, "alpha") == 0)
+        return &scene->alpha_degrees;
+    return strcmp(spec->key, "hurst") == 0 ? &scene->surface.hurst : &scene->surface.lambda_s;
+}
+
+/* [punch] alpha, [surfaces] hurst and lambda_s: one value, or a sweep's list ("a, b" or
+ * first:last:count) whose values each name a sweep point and its folder (printed with %g), so no
+ * two may print alike. */
+static int parse_sweep_list(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    int *count_given = (int *)((char *)scene + spec->count_offset);
+    if (!strpbrk(value, ",:")) { /* one value: the message of a plain number */
+        if (parse_double(spec, value, scene, error, size) != 0)
+            return -1;
+        *count_given = 1;
+    } else if (parse_double_list(spec, value, scene, error, size) != 0) {
+        return -1;
+    }
+    const double *list = destination(spec, scene);
+    for (int i = 1; i < *count_given; ++i)
+        for (int j = 0; j < i; ++j) {
+            char a[32], b[32];
+            snprintf(a, sizeof a, "%g", list[i]);
+            snprintf(b, sizeof b, "%g", list[j]);
+            if (strcmp(a, b) == 0) {
+                snprintf(error, size, "%s = '%s': %s is given twice (to six digits); each value is one sweep point, "
+                         "give each once", spec->key, value, a);
+                return -1;
+            }
+        }
+    *sweep_scalar(spec, scene) = list[0];
+    return 0;
+}
+
 /* "first:last" (inclusive) or a list of seeds. */
 static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
@@ -250,8 +287,9 @@ static const key_spec KEYS[] = {
     {"scene", "quality", parse_quality, FIELD(quality), 0, 0, NULL, sizeof(((im_scene *)0)->quality), 0},
     {"surfaces", "n", parse_int, FIELD(surface.nx), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
     {"surfaces", "m", parse_int, FIELD(surface.ny), 8, IM_FIELD_MAX_SIDE, NULL, 0, 0},
-    {"surfaces", "hurst", parse_double, FIELD(surface.hurst), 0.01, 0.99, NULL, 0, 0},
-    {"surfaces", "lambda_s", parse_double, FIELD(surface.lambda_s), 2, 1e9, NULL, 0, 0},
+    {"surfaces", "hurst", parse_sweep_list, FIELD(hursts), 0.01, 0.99, NULL, IM_SCENE_MAX_SWEEP, FIELD(hurst_count)},
+    {"surfaces", "lambda_s", parse_sweep_list, FIELD(lambda_ss), 2, 1e9, NULL, IM_SCENE_MAX_SWEEP,
+     FIELD(lambda_s_count)},
     {"surfaces", "lambda_r", parse_double, FIELD(surface.lambda_r), 2, 1e9, NULL, 0, 0},
     {"surfaces", "lambda_0", parse_double, FIELD(surface.lambda_0), 2, 1e9, NULL, 0, 0},
     {"surfaces", "slope_definition", parse_choice, FIELD(surface.slope_definition), 0, 0, "spectral|fd", 0, 0},
@@ -261,7 +299,7 @@ static const key_spec KEYS[] = {
     {"surfaces", "detrend", parse_choice, FIELD(detrend), 0, 0, "none|plane|curvature", 0, 0},
     {"surfaces", "fill", parse_bool, FIELD(fill), 0, 0, NULL, 0, 0},
     {"punch", "shape", parse_choice, FIELD(punch), 0, 0, "cone|sphere|flat", 0, 0},
-    {"punch", "alpha", parse_double, FIELD(alpha_degrees), 1e-9, 90 - 1e-9, NULL, 0, 0},
+    {"punch", "alpha", parse_sweep_list, FIELD(alphas), 1e-9, 90 - 1e-9, NULL, IM_SCENE_MAX_SWEEP, FIELD(alpha_count)},
     {"punch", "radius", parse_double, FIELD(radius), 1e-9, 1e12, NULL, 0, 0},
     {"material", "modulus", parse_double, FIELD(modulus), 1e-300, 1e300, NULL, 0, 0},
     {"material", "hardness", parse_double, FIELD(hardness), 1e-300, 1e300, NULL, 0, 0},
@@ -272,6 +310,7 @@ static const key_spec KEYS[] = {
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
     {"output", "frames3d", parse_bool, FIELD(frames3d), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
+    {"output", "distributions", parse_bool, FIELD(distributions), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},
     {"output", "colormap", parse_choice, FIELD(colormap), 0, 0, "viridis|cividis|magma|inferno|grey", 0, 0},
     {"output", "log_norm", parse_bool, FIELD(log_norm), 0, 0, NULL, 0, 0},
@@ -511,17 +550,62 @@ static int check_files(parse_context *context)
     return 0;
 }
 
+/* Sweep lists that a scene cannot run: a list of angles for another punch, a list of generator
+ * parameters beside surface files. Returns the line at fault, 0 if none. */
+static int check_sweeps(parse_context *context)
+{
+    const im_scene *scene = context->scene;
+    if (scene->alpha_count > 1 && scene->punch != IM_PUNCH_CONE) {
+        snprintf(context->error, sizeof context->error, "alpha: a list of angles sweeps a cone's half-angle; "
+                 "[punch] shape is not cone");
+        return key_line(context, "punch", "alpha");
+    }
+    int points = 1, last = 0;
+    const char *keys[][2] = {{"punch", "alpha"}, {"surfaces", "hurst"}, {"surfaces", "lambda_s"}};
+    const int counts[] = {scene->alpha_count, scene->hurst_count, scene->lambda_s_count};
+    for (int i = 0; i < 3; ++i) {
+        points *= counts[i] > 1 ? counts[i] : 1;
+        int line = key_line(context, keys[i][0], keys[i][1]);
+        last = line > last ? line : last;
+    }
+    if (points > IM_SCENE_MAX_SWEEP_POINTS) {
+        snprintf(context->error, sizeof context->error, "the lists of alpha, hurst and lambda_s make %d sweep "
+                 "points: expected at most %d", points, IM_SCENE_MAX_SWEEP_POINTS);
+        return last;
+    }
+    int hurst = scene->hurst_count > 1 ? key_line(context, "surfaces", "hurst") : 0;
+    int lambda_s = scene->lambda_s_count > 1 ? key_line(context, "surfaces", "lambda_s") : 0;
+    if (scene->surface_file[0] && (hurst || lambda_s)) {
+        snprintf(context->error, sizeof context->error, "%s: a list sweeps the generated surfaces' parameter, but "
+                 "the surfaces are the files of `file`", hurst ? "hurst" : "lambda_s");
+        return hurst ? hurst : lambda_s;
+    }
+    return 0;
+}
+
+/* The largest lambda_s of a sweep (the scalar when there is no list). */
+static double largest_lambda_s(const im_scene *scene)
+{
+    double largest = scene->surface.lambda_s;
+    for (int i = 0; i < scene->lambda_s_count; ++i)
+        largest = fmax(largest, scene->lambda_ss[i]);
+    return largest;
+}
+
 /* Settings that contradict each other: a message citing the line of the key at fault (the later
  * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 static int check_consistency(parse_context *context)
 {
     const im_scene *scene = context->scene;
-    if (scene->surface.lambda_r <= scene->surface.lambda_s) {
+    int sweep_line = check_sweeps(context);
+    if (sweep_line)
+        return sweep_line;
+    if (scene->surface.lambda_r <= largest_lambda_s(scene)) {
         int r = key_line(context, "surfaces", "lambda_r"), s = key_line(context, "surfaces", "lambda_s");
         int n = key_line(context, "surfaces", "n"), m = key_line(context, "surfaces", "m");
         int r_from = r ? r : n > m ? n : m; /* a default lambda_r is the box's side: n (or m) made it */
         snprintf(context->error, sizeof context->error, "lambda_r = %g must exceed lambda_s = %g%s",
-                 scene->surface.lambda_r, scene->surface.lambda_s, r ? "" : " (lambda_r defaults to the box's side)");
+                 scene->surface.lambda_r, largest_lambda_s(scene), r ? "" : " (lambda_r defaults to the box's side)");
         int line = r_from > s ? r_from : s;
         return line > 0 ? line : 1;
     }

@@ -4,6 +4,7 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/viewer.h"
+#include "scene/distributions.h"
 #include "scene/ensemble.h"
 #include "scene/flat_k.h"
 #include "scene/frames.h"
@@ -15,6 +16,7 @@
 #include "scene/progress.h"
 #include "scene/punch.h"
 #include "scene/record.h"
+#include "scene/sweep.h"
 #include "scene/table.h"
 
 #include <limits.h>
@@ -24,8 +26,8 @@
 
 static int check_runnable(const im_scene *scene)
 {
-    if ((scene->contact_panels || scene->frames || scene->table) && !(scene->load_star > 0.0))
-        return im_fail(IM_EINVAL, "%s: contact panels, frames and tables need [loading] load_star > 0",
+    if ((scene->contact_panels || scene->frames || scene->table || scene->distributions) && !(scene->load_star > 0.0))
+        return im_fail(IM_EINVAL, "%s: contact panels, frames, tables and distributions need [loading] load_star > 0",
                        scene->path);
     if (scene->frames3d && !scene->frames)
         return im_fail(IM_EINVAL, "%s: [output] frames3d draws the frames' history in 3-D: set frames = yes too",
@@ -67,8 +69,9 @@ static int run_rendered_stages(const im_scene *scene, const im_scene_run_options
     return status;
 }
 
-/* The stages in order; what one solves at load_star, a later one reuses (nothing solved twice). */
-static int run_stages(const im_scene *scene, const im_scene_run_options *options)
+/* The stages in order; what one solves at load_star, a later one reuses (nothing solved twice).
+ * What they solved is left in *reuse for a sweep (sweep.c); the caller frees it. */
+static int run_stages(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse_out)
 {
     scene_reuse reuse = {0};
     int status = scene_run_theory_plots(scene, options);
@@ -76,10 +79,23 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
         status = scene_run_table(scene, options, &reuse);
     if (status == IM_OK && scene_wants_plot(scene, "flat_k") && (status = check_stop(options, "the flat contacts")) == IM_OK)
         status = scene_run_flat_k(scene, options, &reuse);
+    if (status == IM_OK && scene->distributions && (status = check_stop(options, "the distributions")) == IM_OK)
+        status = scene_run_distributions(scene, options);
     if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options, &reuse);
     if (status == IM_OK && (scene->contact_panels || scene->frames))
         status = run_rendered_stages(scene, options, &reuse);
+    *reuse_out = reuse;
+    return status;
+}
+
+/* The stages of a scene, or of each of its sweep points. */
+static int run_scene_stages(const im_scene *scene, const im_scene_run_options *options)
+{
+    if (scene_sweep_count(scene) > 1)
+        return scene_run_sweep(scene, options, run_stages);
+    scene_reuse reuse = {0};
+    int status = run_stages(scene, options, &reuse);
     scene_reuse_free(&reuse);
     return status;
 }
@@ -113,7 +129,8 @@ static int protect_inputs(const im_scene *scene)
 /* Temporary files a killed run left in the (locked) output folder. */
 static void remove_stale_temporaries(const im_scene *scene, const im_scene_run_options *options)
 {
-    int removed = im_folder_remove_temporaries(scene->output_dir, 1); /* table/, histories/, ... */
+    /* table/, histories/, ...; a sweep's are one level further down, in its points' folders */
+    int removed = im_folder_remove_temporaries(scene->output_dir, scene_sweep_count(scene) > 1 ? 2 : 1);
     if (removed > 0)
         scene_progress(options, "removed %d temporary file%s an interrupted run left in %s", removed,
                        removed == 1 ? "" : "s", scene->output_dir);
@@ -170,11 +187,14 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         status = scene_write_record(scene);
     const scene_ranks_run *ranks = scene_get_ranks_run(); /* an MPI run: the ranks solve the members first */
+    if (status == IM_OK && ranks && scene_sweep_count(scene) > 1)
+        status = im_fail(IM_EINVAL, "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
+                         "run it without mpirun", scene->path);
     if (status == IM_OK) {
         if (ranks)
             status = ranks->solve_members(scene, options, ranks->data);
         if (status == IM_OK)
-            status = run_stages(scene, options);
+            status = run_scene_stages(scene, options);
         status = write_viewer_page(scene, status);
     }
     scene_lock_release(&lock);

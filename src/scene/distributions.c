@@ -1,0 +1,165 @@
+/* [output] distributions: the gap and contact-patch size distributions at load_star of each
+ * family's first surface (measure.h: im_measure_write_distributions), as CSV under
+ * OUTPUT/distributions/, and drawn in distributions.png/pdf. Solved here (a full-grid gap needs the
+ * displacement the table and panels do not keep), every time it is asked for. */
+#include "indentmap/measure.h"
+#include "indentmap/plot.h"
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+#include "scene/distributions.h"
+#include "scene/labels.h"
+#include "scene/outputs.h"
+#include "scene/progress.h"
+#include "scene/punch.h"
+#include "scene/surfaces.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+enum { GAP_BINS = 50 };
+
+/* What the plot draws of each family. */
+typedef struct family_curves {
+    double gap[GAP_BINS], gap_density[GAP_BINS];
+    double patch_area[IM_PATCH_BINS], patch_count[IM_PATCH_BINS];
+    char label[64];
+} family_curves;
+
+/* Force and full-grid gap of a surface at load n, in load control warm-started at n / 4. */
+static int solve_state(const im_scene *scene, const im_scene_run_options *options, const im_field *surface,
+                       double n, im_field **force, im_field **gap)
+{
+    im_indenter punch = scene_punch(scene);
+    im_solver_options solver = scene_solver_options(scene);
+    im_indentation *run = NULL;
+    im_step_result step;
+    int status = im_indentation_create(surface, &punch, IM_CONTROL_LOAD, n, &solver, &run);
+    if (status == IM_OK)
+        status = im_indentation_step(run, 0.25 * n, &step);
+    if (status == IM_OK && scene_stop_signal(options))
+        status = scene_interrupted(options, "while solving for the distributions (abandoned)");
+    if (status == IM_OK)
+        status = im_indentation_step(run, n, &step);
+    if (status == IM_OK)
+        status = im_indentation_fields_full(run, force, gap, NULL);
+    im_indentation_free(run);
+    return status;
+}
+
+/* The gaps' unit: the surface's h_rms, or delta for a smooth one. */
+static double gap_scale(const im_field *surface)
+{
+    im_surface_stats stats;
+    int measured = im_surface_statistics(surface, &stats) == IM_OK && stats.height_rms > 0.0;
+    return measured ? stats.height_rms : surface->delta;
+}
+
+/* The plotted curves: gap density at the bins' centres, patches per octave at its smallest area
+ * (NaN where empty: a gap in the log-scaled line). */
+static int measure_curves(const im_field *force, const im_field *gap, double scale, family_curves *c)
+{
+    long counts[GAP_BINS], infinite, patches[IM_PATCH_BINS], cells[IM_PATCH_BINS], edges[IM_PATCH_BINS];
+    double width;
+    int status = im_measure_gap_distribution(gap, force, scale, GAP_BINS, counts, &width, &infinite);
+    for (int b = 0; status == IM_OK && b < GAP_BINS; ++b) {
+        c->gap[b] = (b + 0.5) * width;
+        c->gap_density[b] = counts[b] > 0 ? counts[b] / ((double)im_field_count(gap) * width) : NAN;
+    }
+    im_patch *list = NULL;
+    long count = 0;
+    if (status == IM_OK)
+        status = im_measure_patch_list(force, &list, &count);
+    if (status == IM_OK)
+        status = im_measure_patch_histogram(list, count, patches, cells, edges);
+    for (int b = 0; status == IM_OK && b < IM_PATCH_BINS; ++b) {
+        c->patch_area[b] = (double)(1L << b) * force->delta * force->delta;
+        c->patch_count[b] = patches[b] > 0 ? (double)patches[b] : NAN;
+    }
+    free(list);
+    return status;
+}
+
+static int family_distributions(const im_scene *scene, const im_scene_run_options *options, int family,
+                                family_curves *curves)
+{
+    im_field *surface = NULL, *force = NULL, *gap = NULL;
+    int status = scene_surface(scene, family, scene->seeds[0], &surface);
+    char relative[64], prefix[IM_SCENE_PATH];
+    snprintf(relative, sizeof relative, "distributions/family_%02d", family);
+    if (status == IM_OK)
+        status = scene_output_path(scene, relative, prefix, sizeof prefix);
+    if (status == IM_OK)
+        status = solve_state(scene, options, surface, scene_load_for_load_star(scene, surface->delta), &force, &gap);
+    double scale = status == IM_OK ? gap_scale(surface) : 1.0;
+    if (status == IM_OK)
+        status = im_measure_write_distributions(force, gap, scale, GAP_BINS, prefix);
+    if (status == IM_OK)
+        status = measure_curves(force, gap, scale, curves);
+    scene_family_title(scene, family, curves->label, sizeof curves->label);
+    im_field_free(surface);
+    im_field_free(force);
+    im_field_free(gap);
+    return status;
+}
+
+static int draw_distributions(const im_scene *scene, const void *data, const char *path)
+{
+    (void)scene;
+    return im_plot_write(data, path);
+}
+
+/* (a) the gap density against g / h_rms, (b) patches per octave of size, one line per family. */
+static int plot_distributions(const im_scene *scene, const family_curves *curves)
+{
+    const int count = scene->family_count;
+    im_plot_series *series = calloc(2 * (size_t)count, sizeof *series);
+    if (!series)
+        return im_fail(IM_ENOMEM, "%s: allocation of the distributions' plot failed", scene->path);
+    int rough = 0; /* (a) draws the rough families only: a smooth surface has no h_rms */
+    double most = 1.0;
+    for (int f = 0; f < count; ++f) {
+        for (int b = 0; b < IM_PATCH_BINS; ++b)
+            most = fmax(most, isnan(curves[f].patch_count[b]) ? 0.0 : curves[f].patch_count[b]);
+        series[count + f] = (im_plot_series){.x = curves[f].patch_area, .y = curves[f].patch_count,
+                                             .n = IM_PATCH_BINS, .line = IM_PLOT_NO_LINE,
+                                             .marker = IM_PLOT_MARKER_CIRCLE, .label = curves[f].label};
+        im_plot_family_color(f, count, series[count + f].color);
+        if (!(scene_member_slope(scene, f, scene->seeds[0]) > 0.0))
+            continue;
+        series[rough] = (im_plot_series){.x = curves[f].gap, .y = curves[f].gap_density, .n = GAP_BINS,
+                                         .label = curves[f].label};
+        im_plot_family_color(f, count, series[rough++].color);
+    }
+    im_plot_panel panels[2] = {
+        {.x = {IM_PLOT_LINEAR, 0, 0, "g / h_{rms} outside contact"}, .y = {IM_PLOT_LOG, 0, 0, "density over all cells"},
+         .series = series, .series_count = rough, .label = "(a)", .legend = IM_PLOT_LEGEND_UPPER_RIGHT},
+        {.x = {IM_PLOT_LOG, 0, 0, "patch area A_{i} / δ^{2} (octaves)"}, .y = {IM_PLOT_LOG, 0.5, 2.0 * most, "patches"},
+         .series = series + count, .series_count = count, .label = "(b)", .legend = IM_PLOT_LEGEND_AUTO},
+    };
+    im_plot plot = im_plot_default();
+    plot.columns = rough > 0 ? 2 : 1; /* without a rough family, (b) alone */
+    plot.panels = rough > 0 ? panels : panels + 1;
+    int status = scene_write_png_pdf(scene, "distributions", draw_distributions, &plot);
+    free(series);
+    return status;
+}
+
+int scene_run_distributions(const im_scene *scene, const im_scene_run_options *options)
+{
+    char folder[IM_SCENE_PATH];
+    family_curves *curves = calloc((size_t)scene->family_count, sizeof *curves);
+    int status = curves ? scene_output_path(scene, "distributions", folder, sizeof folder)
+                        : im_fail(IM_ENOMEM, "%s: allocation of the distributions failed", scene->path);
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    if (status == IM_OK)
+        scene_progress(options, "distributions: gaps and patch sizes of %d surfaces at N* = %g", scene->family_count,
+                       scene->load_star);
+    for (int f = 0; f < scene->family_count && status == IM_OK; ++f)
+        status = family_distributions(scene, options, f, &curves[f]);
+    if (status == IM_OK)
+        status = plot_distributions(scene, curves);
+    free(curves);
+    return status;
+}

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Sweeps (docs/scenes.md): a list of alpha runs each angle as a sweep point in its own folder;
+# sweep.csv gathers the families. Physics check: A/A_cone depends on rho_c = cot(alpha) / h'rms
+# alone. Doubling cot(alpha) and h'rms scales every height by 2 (linear elasticity: the same
+# contact at the load with the same smooth contact area N*), so (80 deg, 0.04) and
+# (70.5746 deg, 0.08), both at rho_c = 4.408, must give the same contact, to less than one grid
+# cell of the N* = 300 cells; the other two points (rho_c = 2.20, 8.82) differ from it. Keys:
+# --resume reads back every point it kept, and solves only a new angle.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+source "$(dirname "$0")/lib.sh"
+scene() {
+  cat >"$dir/s.ini" <<INI
+[scene]
+name = s
+output = $dir/out
+[surfaces]
+n = 64
+hurst = 0.8
+lambda_s = 4
+slopes = 0.04, 0.08
+seeds = 1:3
+[punch]
+shape = cone
+alpha = $1
+[loading]
+control = load
+load_star = 300
+[output]
+table = yes
+plots = fig2
+INI
+}
+scene "80, 70.5746"
+"$cli" run "$dir/s.ini" >"$dir/log" 2>&1
+check "sweep runs" test $? -eq 0
+for f in sweep.csv fig2.png fig2.pdf alpha_80_hurst_0.8_lambda_s_4/table1.csv \
+  alpha_70.5746_hurst_0.8_lambda_s_4/table1.csv; do
+  check "wrote $f" test -s "$dir/out/$f"
+done
+t=$dir/out/sweep.csv
+check "four rows: two angles x two slopes" test "$(wc -l <"$t")" -eq 5
+# rows: 2 = (80, 0.04), 3 = (80, 0.08), 4 = (70.57, 0.04), 5 = (70.57, 0.08)
+value() { awk -F, -v r="$1" -v c="$2" 'NR == r { print $c }' "$t"; }
+check "equal rho_c" awk -v a="$(value 2 5)" -v b="$(value 5 5)" 'BEGIN { exit !(a > 4.408 && a < 4.409 && (a - b) ^ 2 < 1e-10) }'
+check "equal rho_c, equal A/A_cone (within one cell of N*)" \
+  awk -v a="$(value 2 7)" -v b="$(value 5 7)" 'BEGIN { d = a - b; exit !(d * d < (1 / 300) ^ 2) }'
+check "other rho_c, other A/A_cone" \
+  awk -v a="$(value 2 7)" -v b="$(value 3 7)" -v c="$(value 4 7)" 'BEGIN { exit !(a != b && a != c) }'
+check "the point's table is its rows" awk -F, -v m="$(value 4 7)" \
+  'NR == 2 { d = $7 - m; exit !(d * d < 1e-12) }' "$dir/out/alpha_70.5746_hurst_0.8_lambda_s_4/table1.csv"
+touch "$dir/out/alpha_80_hurst_0.8_lambda_s_4/table/.im.tmp.killed" # as a killed run leaves one
+"$cli" run --resume "$dir/s.ini" >"$dir/log" 2>&1
+check "resume runs" test $? -eq 0
+check "a point's stale temporary removed" test ! -e "$dir/out/alpha_80_hurst_0.8_lambda_s_4/table/.im.tmp.killed"
+check "resume reads every point back" test "$(grep -c '0 solved, 6 read back' "$dir/log")" -eq 2
+scene "80, 75"
+"$cli" run --resume "$dir/s.ini" >"$dir/log" 2>&1
+check "resume with a new angle runs" test $? -eq 0
+check "the kept angle is read back, the new one solved" \
+  grep -q '0 solved, 6 read back.*6 solved, 0 read back' <(tr '\n' ' ' <"$dir/log")
+check "a new angle, a new folder" test -s "$dir/out/alpha_75_hurst_0.8_lambda_s_4/table1.csv"
+check "sweep.csv now has 75" test "$(awk -F, 'NR > 1 && $1 == 75' "$t" | wc -l)" -eq 2
+# a list of lambda_s: the surfaces differ, so do their keys
+sed -i 's/^lambda_s = 4$/lambda_s = 4, 8/' "$dir/s.ini"
+"$cli" run --resume "$dir/s.ini" >"$dir/log" 2>&1
+check "a lambda_s list runs" test $? -eq 0
+check "four points" test "$(grep -c '^indentmap: sweep point' "$dir/log")" -eq 4
+check "lambda_s = 8 solved anew" test "$(grep -c '6 solved, 0 read back' "$dir/log")" -eq 2
+check "sweep.csv: 8 rows" test "$(wc -l <"$t")" -eq 9
+# The bundled angle sweep runs (from a scratch folder: its output is output/angle_sweep) and
+# A/A_cone rises with rho_c along the six angles, as eq. (12) does.
+scenes=$(cd "$(dirname "$0")/../scenes" && pwd)
+program=$(cd "$(dirname "$cli")" && pwd)/$(basename "$cli")
+(cd "$dir" && "$program" run --quiet "$scenes/angle_sweep.ini" >/dev/null 2>&1)
+check "angle_sweep.ini runs" test $? -eq 0
+a=$dir/output/angle_sweep/sweep.csv
+check "angle_sweep: six angles" test "$(wc -l <"$a")" -eq 7
+check "angle_sweep: A/A_cone rises with rho_c, and so does eq. (12)" awk -F, 'NR > 1 { r[NR] = $5; m[NR] = $7; t[NR] = $9 }
+  END { for (i = 3; i <= NR; ++i) for (j = 2; j <= NR; ++j) if (r[i] > r[j] && (m[i] <= m[j] || t[i] <= t[j])) exit 1 }' "$a"
+finish
