@@ -76,8 +76,9 @@ enum im_punch_kind {
  * radius r_max: N = N(r_max) + 2 r_max E* (w - w(r_max)). im_indenter_pressure is NaN for it
  * (no closed form).
  *
- * 2-D (im_profile_field): an nx x ny height field z (field.h layout, heights in the units of
- * delta, all finite) on the SURFACE'S grid spacing: im_indentation_create refuses a profile whose
+ * 2-D (im_profile_field): an nx x ny height field z (field.h layout, at least 3 x 3 samples, so
+ * that an (n, 2) array is never one; heights in the units of delta, all finite) on the SURFACE'S
+ * grid spacing: im_indentation_create refuses a profile whose
  * delta differs from the surface's (no resampling). Its patch (nx / 2, ny / 2) (the centre patch,
  * as for a centred axis) lies on the punch's axis: the height at offset (dx, dy) from the axis is
  * interpolated bilinearly between the sample centres (so a centred axis on a surface of the same
@@ -111,8 +112,9 @@ im_indenter im_indenter_from_profile(const im_profile *profile);
 /* An axisymmetric profile from n samples r[i], z[i] (copied). IM_EINVAL naming the first
  * offending sample (index, value and what was expected: see "User-given profiles"), IM_ENOMEM. */
 int im_profile_axisymmetric(const double *r, const double *z, int n, im_profile **out);
-/* A 2-D profile from a height field (copied, with its delta). IM_EINVAL naming the first
- * non-finite sample (ix, iy), IM_ENOMEM. */
+/* A 2-D profile from a height field (copied, with its delta). IM_EINVAL for fewer than 3 x 3
+ * samples, a delta not finite and positive, or naming the first non-finite sample (ix, iy);
+ * IM_ENOMEM. */
 int im_profile_field(const im_field *heights, im_profile **out);
 void im_profile_free(im_profile *profile);
 /* IM_PUNCH_PROFILE or IM_PUNCH_PROFILE_2D. */

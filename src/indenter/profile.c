@@ -128,6 +128,9 @@ int im_profile_field(const im_field *heights, im_profile **out)
     *out = NULL;
     if (!heights)
         return im_fail(IM_EINVAL, "2-D profile: NULL height field");
+    if (heights->nx < 3 || heights->ny < 3)
+        return im_fail(IM_EINVAL, "2-D profile of %d x %d samples: expected at least 3 x 3 (the apex and its "
+                       "neighbours; an (n, 2) array is an axisymmetric (r, z) table)", heights->nx, heights->ny);
     if (!(isfinite(heights->delta) && heights->delta > 0))
         return im_fail(IM_EINVAL, "2-D profile delta = %g: expected > 0", heights->delta);
     for (int iy = 0; iy < heights->ny; ++iy)
@@ -181,16 +184,14 @@ double profile_field_height(const im_profile *p, double dx, double dy)
     double u = dx / f->delta + f->nx / 2, v = dy / f->delta + f->ny / 2;
     if (!(u >= 0 && v >= 0 && u <= f->nx - 1 && v <= f->ny - 1))
         return INFINITY;
-    int ix = (int)u, iy = (int)v;
-    ix = ix > f->nx - 2 ? (f->nx > 1 ? f->nx - 2 : 0) : ix;
-    iy = iy > f->ny - 2 ? (f->ny > 1 ? f->ny - 2 : 0) : iy;
+    int ix = (int)u, iy = (int)v; /* at least 3 x 3 samples: ix + 1, iy + 1 exist after the clamps */
+    ix = ix > f->nx - 2 ? f->nx - 2 : ix;
+    iy = iy > f->ny - 2 ? f->ny - 2 : iy;
     double fu = u - ix, fv = v - iy;
-    const double *row = f->data + (size_t)iy * f->nx;
-    const double *next = f->ny > 1 ? row + f->nx : row;
-    int right = f->nx > 1 ? 1 : 0;
+    const double *row = f->data + (size_t)iy * f->nx, *next = row + f->nx;
     /* an exact grid point (fu = fv = 0) reads its sample exactly: the zero-weight terms vanish */
-    double low = fu == 0.0 ? row[ix] : (1 - fu) * row[ix] + fu * row[ix + right];
-    double high = fu == 0.0 ? next[ix] : (1 - fu) * next[ix] + fu * next[ix + right];
+    double low = fu == 0.0 ? row[ix] : (1 - fu) * row[ix] + fu * row[ix + 1];
+    double high = fu == 0.0 ? next[ix] : (1 - fu) * next[ix] + fu * next[ix + 1];
     return fv == 0.0 ? low : (1 - fv) * low + fv * high;
 }
 
