@@ -63,4 +63,30 @@ echo "$message" | grep -q "word.txt:3" || fail "a bad line: message '$message'"
 message=$("$BIN" indent "$DIR/s.npy" --approach 1 --punch profile --profile "$DIR/none.txt" --out "$DIR/x" 2>&1 >/dev/null)
 echo "$message" | grep -q "none.txt" || fail "a missing file: message '$message'"
 [ ! -e "$DIR/x" ] || fail "a refused run made its output folder"
+
+# A scene: [punch] shape = profile with profile = FILE relative to the scene's folder (run from
+# elsewhere); the history equals the cone's; --resume reads it back, and solves again once the
+# profile file changes (the samples are in the result's key).
+mkdir -p "$DIR/scenes"
+cp "$DIR/cone.csv" "$DIR/scenes/tip.csv"
+write_scene() { # NAME SHAPE-LINES
+    printf '[scene]\nname = %s\noutput = %s\n\n[surfaces]\nn = 64\nlambda_r = 64\nslopes = 0.05\nseeds = 1\n\n' \
+        "$1" "$DIR/$1" > "$DIR/scenes/$1.ini"
+    printf '[punch]\n%b\n\n[loading]\nsteps = 0.5, 1.5\n\n[output]\nplots = fig5\n' "$2" >> "$DIR/scenes/$1.ini"
+}
+write_scene tipped 'shape = profile\nprofile = tip.csv'
+write_scene conical 'shape = cone'
+(cd "$DIR" && "$BIN" run --quiet scenes/tipped.ini >/dev/null && "$BIN" run --quiet scenes/conical.ini >/dev/null) || fail "scenes exited $?"
+paste -d, <(grep -v '^#' "$DIR/tipped/histories/member_00_1.csv") <(grep -v '^#' "$DIR/conical/histories/member_00_1.csv") |
+    awk -F, 'NR > 1 { if ($4 != $13) exit 1; d = $2 / $11 - 1; if (d > 1e-7 || d < -1e-7) exit 1 }' \
+    || fail "the scene's profile history differs from the cone's"
+(cd "$DIR" && "$BIN" run --resume scenes/tipped.ini 2>"$DIR/kept.log" >/dev/null) || fail "--resume exited $?"
+grep -q "0 solved, 1 read back" "$DIR/kept.log" || fail "--resume did not read the history back: $(cat "$DIR/kept.log")"
+echo "80,14.1" >> "$DIR/scenes/tip.csv"
+(cd "$DIR" && "$BIN" run --resume scenes/tipped.ini 2>"$DIR/changed.log" >/dev/null) || fail "--resume exited $?"
+grep -q "made from other inputs" "$DIR/changed.log" && grep -q "1 solved, 0 read back" "$DIR/changed.log" \
+    || fail "--resume kept a history of the old profile: $(cat "$DIR/changed.log")"
+write_scene lonely 'shape = profile'
+message=$("$BIN" run --quiet "$DIR/scenes/lonely.ini" 2>&1 >/dev/null)
+echo "$message" | grep -q "shape = profile and profile = FILE go together" || fail "a profile scene without a file: '$message'"
 exit 0
