@@ -160,29 +160,29 @@ static im_field *field_of(int nx, int ny, double delta)
 static void test_field_profile(void **state)
 {
     (void)state;
-    im_field *f = field_of(7, 5, 2.0);
+    im_field *f = field_of(8, 5, 2.0); /* an even side: its centre sample is 4, not 3.5 */
     im_profile *p = NULL;
     assert_int_equal(im_profile_field(f, &p), IM_OK);
     im_indenter punch = im_indenter_from_profile(p);
     assert_int_equal(punch.kind, IM_PUNCH_PROFILE_2D);
     assert_int_equal(im_indenter_check(&punch), IM_OK);
     f->data[0] = 99; /* copied: the caller's array may change */
-    for (int iy = 0; iy < 5; ++iy) /* the centre patch (3, 2) on the axis; samples read exactly */
-        for (int ix = 0; ix < 7; ++ix) {
-            double expected = 0.25 * ix + 1.5 * iy + 0.01 * ((iy * 7 + ix) % 7);
-            assert_true(im_indenter_height(&punch, 2.0 * (ix - 3), 2.0 * (iy - 2)) == expected);
-        }
-    /* halfway between samples: the mean of the four */
-    double mean = 0.25 * (0.25 * 3 + 1.5 * 2 + 0.03 + 0.25 * 4 + 1.5 * 2 + 0.04 + 0.25 * 3 + 1.5 * 3 + 0.03 +
-                          0.25 * 4 + 1.5 * 3 + 0.04);
-    assert_close(im_indenter_height(&punch, 1.0, 1.0), mean, 1e-14);
+    for (int iy = 0; iy < 5; ++iy) /* the centre patch (4, 2) on the axis; samples read exactly */
+        for (int ix = 0; ix < 8; ++ix)
+            if (ix + iy > 0)
+                assert_true(im_indenter_height(&punch, 2.0 * (ix - 4), 2.0 * (iy - 2)) == f->data[iy * 8 + ix]);
+    /* halfway between samples (4, 2), (5, 2), (4, 3), (5, 3): the mean of the four */
+    const double *z = f->data;
+    assert_close(im_indenter_height(&punch, 1.0, 1.0), 0.25 * (z[20] + z[21] + z[28] + z[29]), 1e-14);
+    assert_true(im_indenter_height(&punch, -8.0, -4.0) == 0.0); /* the corner as copied, not the 99 since */
     assert_true(isinf(im_indenter_height(&punch, 6.01, 0)));
+    assert_true(isinf(im_indenter_height(&punch, -8.01, 0)));
     assert_true(isinf(im_indenter_height(&punch, 0, -4.01)));
     assert_true(isnan(im_indenter_load(&punch, 1.0, 1.0)) && isnan(im_indenter_area_for_load(&punch, 1.0, 1.0)));
     assert_true(isnan(im_indenter_approach_for_load(&punch, 1.0, 1.0)) && isnan(im_indenter_profile(&punch, 1.0)));
-    assert_close(im_profile_extent(p), 2.0 * hypot(3, 2), 1e-14);
+    assert_close(im_profile_extent(p), 2.0 * hypot(4, 2), 1e-14);
     im_profile_free(p);
-    f->data[2 * 7 + 4] = INFINITY;
+    f->data[2 * 8 + 4] = INFINITY;
     assert_refused_naming(im_profile_field(f, &p), "(4, 2)");
     im_field *small = field_of(2, 9, 1.0);
     assert_refused_naming(im_profile_field(small, &p), "3 x 3");
