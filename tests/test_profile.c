@@ -57,6 +57,8 @@ static void test_cone_table_is_the_cone(void **state)
     for (double r = 0; r <= 50; r += 0.37) /* Steffen's cubic reproduces a straight line */
         assert_close(im_indenter_profile(&table, r), im_indenter_profile(&cone, r), 1e-13);
     assert_true(isinf(im_indenter_profile(&table, 50.001)));
+    assert_close(im_indenter_profile(&table, -7.5), im_indenter_profile(&cone, 7.5), 1e-13); /* a distance */
+    assert_true(isnan(im_indenter_profile(&table, NAN)));
     assert_close(im_indenter_height(&table, 3, 4), im_indenter_profile(&cone, 5), 1e-13);
     /* Sneddon's integrals against Love's closed forms while the contact is inside r_max = 50 */
     for (double w = 0.05; im_indenter_contact_radius(&cone, w) < 50; w *= 1.7) {

@@ -172,6 +172,9 @@ void im_profile_samples(const im_profile *p, const double **r, const double **z,
 
 double profile_axisymmetric_height(const im_profile *p, double r)
 {
+    r = fabs(r); /* a distance; and GSL's evaluation outside [0, r_max] would call its error handler */
+    if (isnan(r))
+        return NAN;
     if (r > p->r_max)
         return INFINITY;
     return gsl_interp_eval(p->interp, p->r, p->z, r, NULL);
