@@ -29,6 +29,7 @@ paste -d, "$DIR/cone/history.csv" "$DIR/table/history.csv" | awk -F, -v n="$(hea
     || fail "a sampled cone differs from the cone: $(cut -d, -f3,5 "$DIR/cone/history.csv" "$DIR/table/history.csv" | tr '\n' ' ')"
 grep -q '"kind": "profile"' "$DIR/table/run.json" || fail "run.json: kind"
 grep -q "\"profile\": \"$DIR/cone.csv\"" "$DIR/table/run.json" || fail "run.json lacks the profile's path"
+! grep -q '"alpha_degrees"' "$DIR/table/run.json" || fail "run.json gives a profile punch an angle"
 
 # The cone sampled on the surface's grid (81 x 81, centre patch on the axis): a 2-D profile.
 python3 - "$DIR/cone2d.npy" <<'PY'

@@ -519,10 +519,13 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         json_object_set(root, "seed", seed);
     if (root && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(root, "surface"), "source_encoding", json_string("escaped"));
-    if (root && o->profile_path) {
+    if (root && o->profile_path) { /* its shape is the file's: no angle or radius */
         char profile[4 * 4200 + 1];
         im_path_utf8(o->profile_path, profile, sizeof profile);
-        json_object_set_new(json_object_get(root, "punch"), "profile", json_string(profile));
+        json_t *punch = json_object_get(root, "punch");
+        json_object_set_new(punch, "profile", json_string(profile));
+        json_object_del(punch, "alpha_degrees");
+        json_object_del(punch, "radius");
     }
     if (root)
         json_object_set_new(root, "units", units_record(o, s));
