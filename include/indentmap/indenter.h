@@ -7,6 +7,11 @@
  *     sphere of radius R:              z = r^2 / (2 R)   (Hertz's paraboloid; exact for a << R)
  *     flat circular punch, radius a:   z = 0 for r <= a, +infinity outside (the punch's side is
  *                                      vertical, so no patch beyond r = a can touch it)
+ *     profile (axisymmetric):          z(r) interpolated in a table of samples (r_i, z_i), +infinity
+ *                                      beyond the last r (a vertical side, as the flat punch's)
+ *     profile-2d:                      a height field z(x, y) around the axis (not axisymmetric),
+ *                                      +infinity outside the field
+ * (the two profile kinds: see "User-given profiles" below).
  * Lengths are in the units of the grid spacing delta (1 when dimensionless); E* is the composite
  * modulus E / (1 - nu^2) of the half-space (the punch is rigid).
  *
@@ -24,17 +29,71 @@
 #ifndef INDENTMAP_INDENTER_H
 #define INDENTMAP_INDENTER_H
 
+#include "indentmap/field.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-enum im_punch_kind { IM_PUNCH_CONE = 0, IM_PUNCH_SPHERE = 1, IM_PUNCH_FLAT = 2 };
+enum im_punch_kind {
+    IM_PUNCH_CONE = 0,
+    IM_PUNCH_SPHERE = 1,
+    IM_PUNCH_FLAT = 2,
+    IM_PUNCH_PROFILE = 3,    /* axisymmetric profile table (im_profile_axisymmetric) */
+    IM_PUNCH_PROFILE_2D = 4  /* height field around the axis (im_profile_field) */
+};
+
+/* ---- User-given profiles ----
+ * An im_profile holds a punch shape given as data; an im_indenter of kind IM_PUNCH_PROFILE or
+ * IM_PUNCH_PROFILE_2D BORROWS it (the `profile` member): the profile must outlive every indenter,
+ * indentation (solver.h) and scene run made with it, and is freed by im_profile_free only after
+ * them. The profile's constructors COPY the caller's arrays (they may change or go afterwards).
+ * A profile is immutable once made, so one profile may serve several threads and runs at once.
+ *
+ * Axisymmetric (im_profile_axisymmetric): n >= 3 samples (r_i, z_i), lengths in the units of the
+ * surface's delta (the length unit the run is solved in). Required, else IM_EINVAL naming the
+ * sample: all values finite; r_0 = 0 and z_0 = 0 (the apex on the axis, heights above it);
+ * r strictly increasing; z non-decreasing (monotone: the apex is the lowest point, so the smooth
+ * contact is a disc about the axis; a profile with a hollow tip, whose contact would be a ring,
+ * is refused). Between samples z(r) is Steffen's monotone cubic (M. Steffen, Astron. Astrophys.
+ * 239, 443 (1990), GSL's gsl_interp_steffen): it keeps the samples' monotonicity (no overshoot
+ * below a sample, so no spurious dimple that linear interpolation would avoid but a plain spline
+ * would make), reproduces a straight line exactly (a sampled cone is the cone between its
+ * samples), has a continuous slope (which the smooth-contact integrals below use) and converges
+ * faster than linear interpolation on curved profiles (a sphere). Beyond the last sample r_max
+ * the profile is +infinity: the punch's side is vertical there, no patch beyond r_max can touch
+ * it, and the solver's window and edge checks know the punch's extent r_max (as for the flat
+ * punch).
+ * Its smooth-contact forms are Sneddon's (Int. J. Eng. Sci. 3, 47 (1965)) for a contact disc of
+ * radius a <= r_max:
+ *     w(a) = a int_0^(pi/2) z'(a sin t) dt,   N(a) = 2 E* a^2 int_0^(pi/2) sin^2 t z'(a sin t) dt,
+ * tabulated when the profile is made (1024 contact radii, geometric from r_max 1e-9 to r_max,
+ * 512-point midpoint quadrature in t; interpolated log-log between them, which is exact for
+ * power-law profiles such as the cone and the paraboloid) and made non-decreasing in a (exact for
+ * every profile whose smooth contact grows continuously with w: every convex profile; for others
+ * an estimate, used only for the window bound, the reachability check and the normalisations).
+ * Once the whole face r <= r_max touches (w > w(r_max)) the punch presses on as a flat punch of
+ * radius r_max: N = N(r_max) + 2 r_max E* (w - w(r_max)). im_indenter_pressure is NaN for it
+ * (no closed form).
+ *
+ * 2-D (im_profile_field): an nx x ny height field z (field.h layout, at least 3 x 3 samples, so
+ * that an (n, 2) array is never one; heights in the units of delta, all finite) on the SURFACE'S
+ * grid spacing: im_indentation_create refuses a profile whose
+ * delta differs from the surface's (no resampling). Its patch (nx / 2, ny / 2) (the centre patch,
+ * as for a centred axis) lies on the punch's axis: the height at offset (dx, dy) from the axis is
+ * interpolated bilinearly between the sample centres (so a centred axis on a surface of the same
+ * spacing reads the samples themselves), +infinity outside the samples' span. The heights need not
+ * start at 0 (the gap subtracts its minimum). Its smooth-contact forms (load, radius, area,
+ * approach, pressure) are NaN: there is no closed form; the solver then takes the window as the
+ * field's whole footprint and reports load_star and area_ratio as NaN. */
+typedef struct im_profile im_profile;
 
 typedef struct im_indenter {
     enum im_punch_kind kind;
     double alpha_degrees;  /* cone: semi-opening angle, 0 < alpha < 90 (the paper: 80) */
     double radius;         /* sphere: R; flat punch: a (> 0, same units as delta) */
     double x0, y0;         /* axis position in the surface plane (same units as delta) */
+    const im_profile *profile; /* profile kinds: the shape, BORROWED (see above); NULL otherwise */
     int centred;           /* 1: ignore x0, y0 and put the axis on the centre of patch
                               (nx / 2, ny / 2), i.e. at ((nx/2 + 0.5) delta, (ny/2 + 0.5) delta) */
 } im_indenter;
@@ -46,21 +105,58 @@ typedef struct im_indenter {
 im_indenter im_indenter_cone(double alpha_degrees);
 im_indenter im_indenter_sphere(double radius);
 im_indenter im_indenter_flat(double radius);
+/* A centred punch of the profile's kind (IM_PUNCH_PROFILE or IM_PUNCH_PROFILE_2D) that borrows
+ * profile (NULL gives a punch that im_indenter_check refuses). */
+im_indenter im_indenter_from_profile(const im_profile *profile);
 
-/* Name of a kind: "cone", "sphere", "flat". */
+/* An axisymmetric profile from n samples r[i], z[i] (copied). IM_EINVAL naming the first
+ * offending sample (index, value and what was expected: see "User-given profiles"), IM_ENOMEM. */
+int im_profile_axisymmetric(const double *r, const double *z, int n, im_profile **out);
+/* A 2-D profile from a height field (copied, with its delta). IM_EINVAL for fewer than 3 x 3
+ * samples, a delta not finite and positive, or naming the first non-finite sample (ix, iy);
+ * IM_ENOMEM. */
+int im_profile_field(const im_field *heights, im_profile **out);
+void im_profile_free(im_profile *profile);
+/* IM_PUNCH_PROFILE or IM_PUNCH_PROFILE_2D. */
+enum im_punch_kind im_profile_kind(const im_profile *profile);
+/* The last sample's r (axisymmetric), or the distance from the axis to the farthest sample centre
+ * (2-D): no part of the punch beyond it can touch. */
+double im_profile_extent(const im_profile *profile);
+/* The samples as given: axisymmetric, *count samples at r[i], z[i]; 2-D, *field (r, z NULL).
+ * Pointers into the profile (valid while it lives). */
+void im_profile_samples(const im_profile *profile, const double **r, const double **z, int *count,
+                        const im_field **field);
+
+/* Reads a profile file. A .npy file (any case) is a 2-D profile: its heights in the surface's
+ * length unit, its delta set to `delta` (the surface's spacing: the field is on the surface's
+ * grid). Any other file is an axisymmetric table: one sample "r z" or "r,z" per line (spaces,
+ * tabs or one comma between them), r and z in the surface's length unit; blank lines and lines
+ * starting with '#' are skipped, and so is a first line that holds no number (a header such as
+ * "r,z"). IM_EIO naming the file when it cannot be read; IM_EINVAL naming the file and line of
+ * a line that is not two numbers, or the file and the sample's line for a profile that
+ * im_profile_axisymmetric refuses. */
+int im_profile_read(const char *path, double delta, im_profile **out);
+
+/* Name of a kind: "cone", "sphere", "flat", "profile", "profile-2d". */
 const char *im_punch_name(enum im_punch_kind kind);
 
 /* IM_EINVAL naming the parameter when alpha is outside (0, 90) degrees (cone), a radius is not
- * finite and positive (sphere, flat), or the position is not finite. */
+ * finite and positive (sphere, flat), a profile kind has no profile or one of the other kind, or
+ * the position is not finite. */
 int im_indenter_check(const im_indenter *punch);
 
-/* Profile z(r) >= 0 above the punch's lowest point (see above); +INFINITY outside a flat punch. */
+/* Profile z(r) >= 0 above the punch's lowest point (see above); +INFINITY outside a flat punch or
+ * beyond an axisymmetric profile's last sample; NaN for a 2-D profile (use im_indenter_height). */
 double im_indenter_profile(const im_indenter *punch, double r);
+/* Height of the punch face at offset (dx, dy) from the axis: im_indenter_profile(hypot(dx, dy))
+ * for the axisymmetric kinds; the 2-D profile's bilinear interpolation (+INFINITY outside it). */
+double im_indenter_height(const im_indenter *punch, double dx, double dy);
 
 /* The axis position for an nx x ny grid of spacing delta (resolves `centred`). */
 void im_indenter_axis(const im_indenter *punch, int nx, int ny, double delta, double *x, double *y);
 
-/* Smooth-contact closed forms for an approach w >= 0 (0 for w <= 0), modulus e_star. */
+/* Smooth-contact closed forms for an approach w >= 0 (0 for w <= 0), modulus e_star; for the
+ * profile kinds see "User-given profiles" (Sneddon's integrals; NaN for a 2-D profile). */
 double im_indenter_load(const im_indenter *punch, double e_star, double w);          /* N(w) */
 double im_indenter_contact_radius(const im_indenter *punch, double w);               /* a(w) */
 /* Pressure at distance r from the axis at approach w (0 outside the contact; +INFINITY at the

@@ -27,6 +27,7 @@
 #ifndef INDENTMAP_SCENE_H
 #define INDENTMAP_SCENE_H
 
+#include "indentmap/indenter.h"
 #include "indentmap/surface.h"
 
 #include <signal.h>
@@ -69,7 +70,7 @@ typedef struct im_scene {
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
     int seed_count;
 
-    int punch;                       /* enum im_punch_kind of indenter.h: cone, sphere, flat */
+    int punch;                       /* enum im_punch_kind of indenter.h: cone, sphere, flat, profile */
     double alpha_degrees;            /* cone semi-opening angle */
     /* Sweeps (docs/scenes.md, "Sweeps"): [punch] alpha, [surfaces] hurst and lambda_s may be lists.
      * Each scalar above holds its list's first value; a count of 0 or 1 is no sweep. A scene with a
@@ -83,6 +84,11 @@ typedef struct im_scene {
     double lambda_ss[IM_SCENE_MAX_SWEEP]; /* in delta */
     int lambda_s_count;
     double radius;                   /* sphere radius or flat punch radius, in delta */
+    char profile_file[IM_SCENE_PATH];/* [punch] profile: the file of shape = profile (im_profile_read:
+                                        an (r, z) table, or a .npy 2-D field on the scene's grid),
+                                        relative to the scene file's folder */
+    const im_profile *profile;       /* that file read: set by im_scene_run on its copy while it runs
+                                        (the punch borrows it); NULL otherwise */
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 

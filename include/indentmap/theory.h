@@ -216,6 +216,9 @@ typedef struct im_theory_step {
     double area_ratio_gamma;    /* the local density's integral: eq. (12) (cone), the Hertz or
                                    Boussinesq gamma integral; NaN at N = 0, 1 on a smooth surface */
 } im_theory_step;
+/* For a user-given profile punch (indenter.h) load_smooth and area_smooth are Sneddon's
+ * (axisymmetric; NaN for a 2-D profile) and both area ratios are NaN (the rough-contact theory is
+ * for the cone, the sphere and the flat punch). */
 
 /* The theory of a step for punch (indenter.h; lengths in its units, loads in E* length^2) on the
  * rough interface (its E*, k and normalisation). w, N >= 0. IM_EINVAL for a bad punch, interface,

@@ -25,13 +25,16 @@ class Flat:
 
 
 def _punch_arguments(punch):
+    """(kind, alpha, radius, profile array or None) for _core.Indentation."""
     if isinstance(punch, Cone):
-        return "cone", punch.alpha, 1.0
+        return "cone", punch.alpha, 1.0, None
     if isinstance(punch, Sphere):
-        return "sphere", 80.0, punch.radius
+        return "sphere", 80.0, punch.radius, None
     if isinstance(punch, Flat):
-        return "flat", 80.0, punch.radius
-    raise TypeError(f"punch: expected Cone, Sphere or Flat, got {punch!r}")
+        return "flat", 80.0, punch.radius, None
+    if isinstance(punch, np.ndarray):
+        return "profile", 80.0, 1.0, punch
+    raise TypeError(f"punch: expected Cone, Sphere, Flat or a profile array, got {punch!r}")
 
 
 HISTORY_DTYPE = np.dtype([("approach", "f8"), ("load", "f8"), ("load_star", "f8"), ("contact_patches", "i8"),
@@ -43,6 +46,12 @@ HISTORY_DTYPE = np.dtype([("approach", "f8"), ("load", "f8"), ("load_star", "f8"
 class Indentation:
     """An indentation history on one surface: planned once, stepped many times (warm starts).
 
+    ``punch`` is Cone(), Sphere(R), Flat(a) or a user-given profile as a numpy array (indenter.h, "User-given
+    profiles"; copied): an (n, 2) array of rows (r, z) is an axisymmetric profile (r from 0 strictly
+    increasing, z from 0 non-decreasing, monotone cubic between samples, no contact beyond the last r); any
+    other 2-D array (at least 3 x 3) is a height field z[y, x] on the surface's grid (spacing ``delta``)
+    whose centre element [ny // 2, nx // 2] lies on the axis. Lengths in the units of ``delta``.
+
     ``control`` is 'displacement' (targets are approaches w, counted from first touch) or 'load'
     (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
     window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
@@ -51,11 +60,12 @@ class Indentation:
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=1e-8, max_iterations=10000, crop=True, window_margin=4, axis=None):
-        kind, alpha, radius = _punch_arguments(punch)
+        kind, alpha, radius, profile = _punch_arguments(punch)
         x, y = (None, None) if axis is None else axis
         self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
                                       e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
-                                      crop=bool(crop), window_margin=int(window_margin), x=x, y=y)
+                                      crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
+                                      profile=profile)
 
     def step(self, target):
         """Solves the next step at approach or load ``target``; returns its results as a dict."""

@@ -10,20 +10,57 @@
 typedef struct py_indentation {
     PyObject_HEAD
     im_indentation *run;
+    im_profile *profile; /* a profile punch's shape: the run borrows it, so it is freed after the run */
     int busy; /* a step runs without the GIL: a second thread may not enter the same history */
 } py_indentation;
 
-static int punch_from_arguments(const char *kind, double alpha, double radius, PyObject *x, PyObject *y,
-                                im_indenter *punch)
+/* A profile punch's shape from a numpy array (copied by the library): an (n, 2) array of rows (r, z)
+ * is an axisymmetric table; any other 2-D array a height field on the surface's spacing delta. */
+static int profile_from_array(PyObject *obj, double delta, im_profile **out)
 {
-    if (strcmp(kind, "cone") == 0)
+    PyArrayObject *array = py_heights_array(obj, "profile");
+    if (!array)
+        return -1;
+    npy_intp *shape = PyArray_DIMS(array);
+    const double *data = PyArray_DATA(array);
+    int status = IM_OK;
+    if (shape[1] == 2) {
+        double *r = malloc(sizeof(double) * (size_t)shape[0]), *z = malloc(sizeof(double) * (size_t)shape[0]);
+        if (!r || !z)
+            status = im_fail(IM_ENOMEM, "profile of %ld samples", (long)shape[0]);
+        for (npy_intp i = 0; r && z && i < shape[0]; ++i) {
+            r[i] = data[2 * i];
+            z[i] = data[2 * i + 1];
+        }
+        if (r && z)
+            status = im_profile_axisymmetric(r, z, (int)shape[0], out);
+        free(r);
+        free(z);
+    } else {
+        im_field view = py_field_view(array, delta);
+        status = im_profile_field(&view, out);
+    }
+    Py_DECREF(array);
+    if (status != IM_OK) {
+        py_raise_status(status);
+        return -1;
+    }
+    return 0;
+}
+
+static int punch_from_arguments(const char *kind, double alpha, double radius, PyObject *x, PyObject *y,
+                                const im_profile *profile, im_indenter *punch)
+{
+    if (strcmp(kind, "profile") == 0)
+        *punch = im_indenter_from_profile(profile);
+    else if (strcmp(kind, "cone") == 0)
         *punch = im_indenter_cone(alpha);
     else if (strcmp(kind, "sphere") == 0)
         *punch = im_indenter_sphere(radius);
     else if (strcmp(kind, "flat") == 0)
         *punch = im_indenter_flat(radius);
     else {
-        PyErr_Format(PyExc_ValueError, "punch '%s': expected 'cone', 'sphere' or 'flat'", kind);
+        PyErr_Format(PyExc_ValueError, "punch '%s': expected 'cone', 'sphere', 'flat' or 'profile'", kind);
         return -1;
     }
     if (x != Py_None || y != Py_None) {
@@ -56,29 +93,42 @@ static int control_from_name(const char *name, enum im_control *control)
 static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
-                               "tol", "max_iterations", "crop", "window_margin", "x", "y", NULL};
-    PyObject *obj, *x = Py_None, *y = Py_None;
+                               "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", NULL};
+    PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     double delta, alpha, radius, largest;
     const char *kind, *control_name;
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOO", keywords, &obj, &delta, &kind, &alpha,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOO", keywords, &obj, &delta, &kind, &alpha,
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
-                                     &o.crop, &o.window_margin, &x, &y))
-        return -1;
-    im_indenter punch;
-    enum im_control control;
-    if (punch_from_arguments(kind, alpha, radius, x, y, &punch) < 0 || control_from_name(control_name, &control) < 0)
+                                     &o.crop, &o.window_margin, &x, &y, &profile_obj))
         return -1;
     if (self->busy) {
         PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
         return -1;
     }
-    PyArrayObject *array = py_heights_array(obj, "heights");
-    if (!array)
+    if ((strcmp(kind, "profile") == 0) != (profile_obj != Py_None)) {
+        PyErr_SetString(PyExc_ValueError, "punch 'profile' and a profile array go together");
         return -1;
+    }
+    im_profile *profile = NULL;
+    im_indenter punch;
+    enum im_control control;
+    if ((profile_obj != Py_None && profile_from_array(profile_obj, delta, &profile) < 0) ||
+        punch_from_arguments(kind, alpha, radius, x, y, profile, &punch) < 0 ||
+        control_from_name(control_name, &control) < 0) {
+        im_profile_free(profile);
+        return -1;
+    }
+    PyArrayObject *array = py_heights_array(obj, "heights");
+    if (!array) {
+        im_profile_free(profile);
+        return -1;
+    }
     im_field surface = py_field_view(array, delta);
     im_indentation_free(self->run);
     self->run = NULL;
+    im_profile_free(self->profile); /* after the run that borrowed it */
+    self->profile = profile;
     /* With the GIL held: FFTW's planner, called here, is not thread-safe. */
     int status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
     Py_DECREF(array);
@@ -92,6 +142,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
 static void indentation_dealloc(py_indentation *self)
 {
     im_indentation_free(self->run);
+    im_profile_free(self->profile); /* after the run that borrowed it */
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 

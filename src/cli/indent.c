@@ -46,7 +46,13 @@ static void usage(FILE *stream)
             "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
             "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
             "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
-            "  --punch KIND        cone (default), sphere or flat\n"
+            "  --punch KIND        cone (default), sphere, flat or profile (with --profile)\n"
+            "  --profile FILE      the punch's shape for --punch profile: a text file of samples 'r z' or\n"
+            "                      'r,z' per line (axisymmetric: r from 0 increasing, z from 0 non-\n"
+            "                      decreasing; '#' comments; interpolated by a monotone cubic; no contact\n"
+            "                      beyond the last r), or a .npy height field on the surface's grid whose\n"
+            "                      centre patch (nx/2, ny/2) lies on the axis (a 2-D profile); lengths in\n"
+            "                      the surface's length unit (docs/solver.md, \"User-given profiles\")\n"
             "  --alpha A           cone semi-opening angle in degrees, 0 < A < 90 (default 80); below 60\n"
             "                      a warning: small-slope elasticity is stretched (still solved)\n"
             "  --radius R          sphere radius or flat punch radius (required for those)\n"
@@ -91,6 +97,8 @@ typedef struct indent_options {
     char length_unit[16];         /* the surface's, as solved ("" in units of delta) */
     long filled;                  /* missing points filled on reading */
     im_indenter punch;
+    const char *profile_path; /* --profile */
+    im_profile *profile;      /* read from it once the surface's spacing is known; the punch borrows it */
     int radius_given, x_given, y_given;
     enum im_control control;
     const char *targets_text;
@@ -104,7 +112,7 @@ typedef struct indent_options {
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS };
+       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -121,17 +129,18 @@ static const struct option LONG_OPTIONS[] = {
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
-    {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK}, {0, 0, 0, 0}};
+    {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
+    {"profile", required_argument, 0, OPT_PROFILE}, {0, 0, 0, 0}};
 
 static int parse_punch(const char *text, enum im_punch_kind *kind)
 {
-    static const enum im_punch_kind KINDS[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT};
-    for (int i = 0; i < 3; ++i)
+    static const enum im_punch_kind KINDS[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT, IM_PUNCH_PROFILE};
+    for (int i = 0; i < 4; ++i)
         if (strcmp(text, im_punch_name(KINDS[i])) == 0) {
-            *kind = KINDS[i];
+            *kind = KINDS[i]; /* profile: profile-2d once --profile is read, if it is a .npy field */
             return 0;
         }
-    fprintf(stderr, "indentmap: --punch: '%s': expected cone, sphere or flat\n", text);
+    fprintf(stderr, "indentmap: --punch: '%s': expected cone, sphere, flat or profile\n", text);
     return -1;
 }
 
@@ -197,6 +206,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
+    case OPT_PROFILE: o->profile_path = arg; return 0;
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
     case OPT_X: o->x_given = 1; return cli_parse_double("--x", arg, -1e300, 1e300, &o->punch.x0);
@@ -232,10 +242,13 @@ static int check_options(const indent_options *o)
         fprintf(stderr, "indentmap: give --approach LIST or --load LIST\n");
     else if (o->smooth == (o->surface_path != NULL))
         fprintf(stderr, "indentmap: give either a SURFACE file or --smooth\n");
-    else if (o->punch.kind != IM_PUNCH_CONE && !o->radius_given)
+    else if ((o->punch.kind == IM_PUNCH_PROFILE) != (o->profile_path != NULL))
+        fprintf(stderr, "indentmap: --punch profile and --profile FILE go together\n");
+    else if (o->punch.kind != IM_PUNCH_CONE && o->punch.kind != IM_PUNCH_PROFILE && !o->radius_given)
         fprintf(stderr, "indentmap: --punch %s needs --radius\n", im_punch_name(o->punch.kind));
-    else if (o->punch.kind == IM_PUNCH_CONE && o->radius_given)
-        fprintf(stderr, "indentmap: --radius applies to --punch sphere or flat; a cone's shape is --alpha\n");
+    else if ((o->punch.kind == IM_PUNCH_CONE || o->punch.kind == IM_PUNCH_PROFILE) && o->radius_given)
+        fprintf(stderr, "indentmap: --radius applies to --punch sphere or flat; a cone's shape is --alpha, a "
+                "profile's its --profile\n");
     else if (o->x_given != o->y_given)
         fprintf(stderr, "indentmap: give both --x and --y, or neither\n");
     else
@@ -343,8 +356,9 @@ static int check_outputs_apart(const indent_options *o)
     char sidecar[4200] = "";
     if (o->surface_path)
         snprintf(sidecar, sizeof sidecar, "%s.json", o->surface_path);
-    const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL};
-    if (cli_protect_inputs(inputs, 1) != 0 || cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 2) != 0)
+    const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL, o->profile_path};
+    if (cli_protect_inputs(inputs, 1) != 0 || cli_protect_inputs(inputs + 2, 1) != 0 ||
+        cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 3) != 0)
         return -1;
     return check_wisdom(o);
 }
@@ -546,6 +560,14 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         json_object_set(root, "seed", seed);
     if (root && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(root, "surface"), "source_encoding", json_string("escaped"));
+    if (root && o->profile_path) { /* its shape is the file's: no angle or radius */
+        char profile[4 * 4200 + 1];
+        im_path_utf8(o->profile_path, profile, sizeof profile);
+        json_t *punch = json_object_get(root, "punch");
+        json_object_set_new(punch, "profile", json_string(profile));
+        json_object_del(punch, "alpha_degrees");
+        json_object_del(punch, "radius");
+    }
     if (root)
         json_object_set_new(root, "units", units_record(o, s));
     json_decref(generator);
@@ -619,6 +641,23 @@ static int check_axis_inside(const indent_options *o, const im_field *surface)
         return IM_OK;
     return im_fail(IM_EINVAL, "--x %g --y %g: the punch's axis lies outside the %d x %d surface (expected 0 <= x <= "
                    "%g and 0 <= y <= %g)", o->punch.x0, o->punch.y0, surface->nx, surface->ny, width, height);
+}
+
+/* --profile, read now that the surface's spacing (a 2-D profile's) and length unit are known. */
+static int load_profile(indent_options *o, const im_field *surface)
+{
+    if (!o->profile_path)
+        return IM_OK;
+    int status = im_profile_read(o->profile_path, surface->delta, &o->profile);
+    if (status != IM_OK)
+        return im_fail_context(status, "--profile");
+    int centred = o->punch.centred;
+    double x0 = o->punch.x0, y0 = o->punch.y0;
+    o->punch = im_indenter_from_profile(o->profile);
+    o->punch.centred = centred;
+    o->punch.x0 = x0;
+    o->punch.y0 = y0;
+    return im_indenter_check(&o->punch);
 }
 
 static double largest(const double *v, int n)
@@ -800,12 +839,15 @@ int cli_indent(int argc, char **argv)
     im_indentation *run = NULL;
     json_t *record = NULL;
     im_theory_interface rough;
-    int status = cli_interrupt_install() == 0 ? im_indenter_check(&o.punch)
-                                              : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
+    int status = cli_interrupt_install() != 0    ? im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers")
+                 : o.punch.kind == IM_PUNCH_PROFILE ? IM_OK /* checked once read, after the surface */
+                                                    : im_indenter_check(&o.punch);
     if (status == IM_OK) {
         warn_if_steep(&o.punch);
         status = load_surface(&o, &surface);
     }
+    if (status == IM_OK)
+        status = load_profile(&o, surface);
     if (status == IM_OK)
         status = check_axis_inside(&o, surface);
     if (status == IM_OK) {
@@ -844,6 +886,7 @@ int cli_indent(int argc, char **argv)
     im_folder_lock_release(&lock);
     json_decref(record);
     im_indentation_free(run);
+    im_profile_free(o.profile); /* after the run that borrowed it */
     im_field_free(surface);
     free(o.targets);
     if (status == IM_EINTERRUPTED) {

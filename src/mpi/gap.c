@@ -22,8 +22,7 @@ int im_mpi_undeformed_gap(const im_mpi_solver *s, const double *heights, const i
             size_t i = (size_t)row * nx + ix;
             if (!isfinite(heights[i]) && (long)((size_t)s->y0 * nx + i) < bad)
                 bad = (long)((size_t)s->y0 * nx + i);
-            double r = hypot((ix + 0.5) * d - ax, (s->y0 + row + 0.5) * d - ay);
-            gap0[i] = im_indenter_profile(punch, r) - heights[i];
+            gap0[i] = im_indenter_height(punch, (ix + 0.5) * d - ax, (s->y0 + row + 0.5) * d - ay) - heights[i];
             lowest = gap0[i] < lowest ? gap0[i] : lowest;
         }
     MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_LONG, MPI_MIN, s->comm);

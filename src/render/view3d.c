@@ -111,6 +111,9 @@ static int check_inputs(const im_field *height, const im_field *force, const im_
     if (force && (force->nx != height->nx || force->ny != height->ny))
         return im_fail(IM_EINVAL, "3-D view: force field %d x %d: expected the grid of the heights, %d x %d",
                        force->nx, force->ny, height->nx, height->ny);
+    if (punch && punch->kind == IM_PUNCH_PROFILE_2D)
+        return im_fail(IM_EUNSUPPORTED, "3-D view: a 2-D profile punch is not drawn (axisymmetric punches only; "
+                       "draw without the punch)");
     return punch ? im_indenter_check(punch) : IM_OK;
 }
 
@@ -183,6 +186,8 @@ static void punch_geometry(view_geometry *g, const im_field *h, const im_indente
     double extent = s->punch_extent > 0.0 ? s->punch_extent : 0.3 * side;
     if (punch->kind == IM_PUNCH_SPHERE && s->punch_extent <= 0.0)
         extent = fmin(extent, punch->radius / h->delta);
+    if (punch->kind == IM_PUNCH_PROFILE) /* drawn up to its last sample */
+        extent = fmin(extent, im_profile_extent(punch->profile) / h->delta);
     int rings = punch->kind == IM_PUNCH_CONE ? 2 : SPHERE_RINGS;
     for (int k = 0; k < rings; ++k) {
         double r = extent * k / (rings - 1);

@@ -60,12 +60,31 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
             p->lambda_0, (int)p->slope_definition, scene->slopes[family], seed);
 }
 
+/* A profile punch's samples, bytes and all: an edited profile file changes the key. */
+static void add_profile(key_hash *hash, const im_profile *profile)
+{
+    const double *r, *z;
+    const im_field *field;
+    int count;
+    im_profile_samples(profile, &r, &z, &count, &field);
+    key_add(hash, "profile %d;", (int)im_profile_kind(profile));
+    if (field) {
+        key_add(hash, "%d %d %.17g;", field->nx, field->ny, field->delta);
+        key_add_bytes(hash, (const char *)field->data, sizeof(double) * im_field_count(field));
+        return;
+    }
+    key_add_bytes(hash, (const char *)r, sizeof(double) * (size_t)count);
+    key_add_bytes(hash, (const char *)z, sizeof(double) * (size_t)count);
+}
+
 /* The punch, the material and the solver (tolerance, iteration cap, window). */
 static void add_contact(key_hash *hash, const im_scene *scene)
 {
     im_solver_options o = scene_solver_options(scene);
     key_add(hash, "punch %d %.17g %.17g; modulus %.17g;", scene->punch, scene->alpha_degrees, scene->radius,
             scene->modulus);
+    if (scene->profile) /* only then, so that the keys of the other punches stay as they were */
+        add_profile(hash, scene->profile);
     key_add(hash, "solver %.17g %.17g %d %d %d;", o.e_star, o.tol, o.max_iterations, o.crop, o.window_margin);
     if (o.hardness > 0) /* only then, so that the keys of results without a cap stay as they were */
         key_add(hash, "hardness %.17g;", o.hardness);

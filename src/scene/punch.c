@@ -12,6 +12,7 @@ im_indenter scene_punch(const im_scene *scene)
     switch (scene->punch) {
     case IM_PUNCH_SPHERE: return im_indenter_sphere(scene->radius);
     case IM_PUNCH_FLAT: return im_indenter_flat(scene->radius);
+    case IM_PUNCH_PROFILE: return im_indenter_from_profile(scene->profile); /* or a 2-D one, as read */
     default: return im_indenter_cone(scene->alpha_degrees);
     }
 }

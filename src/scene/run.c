@@ -35,6 +35,9 @@ static int check_runnable(const im_scene *scene)
     if (scene->table && scene->punch != IM_PUNCH_CONE)
         return im_fail(IM_EINVAL, "%s: [output] table compares with eq. (12), which is for a cone", scene->path);
     im_indenter punch = scene_punch(scene);
+    if (punch.kind == IM_PUNCH_PROFILE_2D && (scene->contact_panels || scene->frames))
+        return im_fail(IM_EINVAL, "%s: [output] contact panels and frames are drawn at N* = A(N) / delta^2, which "
+                       "a 2-D profile does not define (no smooth-contact area): use a history", scene->path);
     int status = im_indenter_check(&punch);
     return status == IM_OK ? scene_check_plots(scene) : status;
 }
@@ -152,6 +155,20 @@ static int write_viewer_page(const im_scene *scene, int status)
 
 static int run_measured(const im_scene *scene, const im_scene_run_options *options);
 
+/* [punch] profile, read on the scene's grid (a 2-D profile takes its spacing): shape = profile and
+ * a profile file go together. */
+static int read_profile(const im_scene *scene, im_profile **out)
+{
+    if ((scene->punch == IM_PUNCH_PROFILE) != (scene->profile_file[0] != '\0'))
+        return im_fail(IM_EINVAL, "%s: [punch] shape = profile and profile = FILE go together", scene->path);
+    if (!scene->profile_file[0])
+        return IM_OK;
+    char path[IM_SCENE_PATH];
+    im_scene_resolve_path(scene, scene->profile_file, path, sizeof path);
+    int status = im_profile_read(path, scene->surface.delta, out);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "%s: [punch] profile", scene->path);
+}
+
 /* Surface files are measured first (their h'rms is the theory's), on a copy: the caller's scene
  * stays as parsed. */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
@@ -160,13 +177,18 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     if (!measured)
         return im_fail(IM_ENOMEM, "%s: allocation of the scene failed", scene->path);
     *measured = *scene;
+    im_profile *profile = NULL;
     int status = im_scene_measure_files(measured);
+    if (status == IM_OK)
+        status = read_profile(measured, &profile);
+    measured->profile = profile;
     if (status == IM_OK && measured->file_count > 0)
         scene_progress(options, "surface files: h'rms = %.6g (forward differences of the surfaces as solved%s)",
                        measured->slopes[0], measured->file_count > 1 ? ", root mean square over the files" : "");
     if (status == IM_OK)
         status = run_measured(measured, options);
     free(measured);
+    im_profile_free(profile); /* after the run that borrowed it */
     return status;
 }
 
@@ -175,6 +197,11 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     int status = check_runnable(scene);
     if (status == IM_OK)
         status = protect_inputs(scene);
+    char profile[IM_SCENE_PATH];
+    if (status == IM_OK && scene->profile_file[0]) {
+        im_scene_resolve_path(scene, scene->profile_file, profile, sizeof profile);
+        status = im_output_protect(profile);
+    }
     if (status == IM_OK)
         status = scene_check_limits(scene);
     if (status == IM_OK)

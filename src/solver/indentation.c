@@ -36,8 +36,7 @@ static int undeformed_gap(im_indentation *run, const im_field *surface)
     for (int iy = 0; iy < ny; ++iy)
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)iy * nx + ix;
-            double r = hypot((ix + 0.5) * d - ax, (iy + 0.5) * d - ay);
-            run->gap0[i] = im_indenter_profile(&run->punch, r) - surface->data[i];
+            run->gap0[i] = im_indenter_height(&run->punch, (ix + 0.5) * d - ax, (iy + 0.5) * d - ay) - surface->data[i];
             if (run->gap0[i] < lowest)
                 lowest = run->gap0[i];
         }
@@ -116,6 +115,33 @@ static double height_range(const im_field *surface)
     return hi - lo;
 }
 
+/* A 2-D profile is sampled on the surface's grid (indenter.h): the same delta, to rounding. */
+static int check_profile_grid(const im_field *surface, const im_indenter *punch)
+{
+    if (punch->kind != IM_PUNCH_PROFILE_2D)
+        return IM_OK;
+    const double *r, *z;
+    const im_field *field;
+    int count;
+    im_profile_samples(punch->profile, &r, &z, &count, &field);
+    if (fabs(field->delta - surface->delta) <= 1e-12 * surface->delta)
+        return IM_OK;
+    return im_fail(IM_EINVAL, "2-D profile delta = %.17g: expected the surface's delta %.17g (a 2-D profile is "
+                   "sampled on the surface's grid; it is not resampled)", field->delta, surface->delta);
+}
+
+/* The largest approach the window must hold: the target itself, or under load control the smooth
+ * punch's approach for the largest load with a tenth to spare, plus the surface's height range.
+ * A 2-D profile has no smooth estimate: its whole footprint (INFINITY). */
+static double approach_bound(const im_field *surface, const im_indenter *punch, enum im_control control,
+                             double largest_target, double e_star)
+{
+    if (control == IM_CONTROL_DISPLACEMENT)
+        return largest_target;
+    double smooth = im_indenter_approach_for_load(punch, e_star, largest_target);
+    return isfinite(smooth) ? 1.1 * smooth + height_range(surface) : INFINITY;
+}
+
 static int check_create(const im_field *surface, const im_indenter *punch, enum im_control control,
                         double largest_target, const im_solver_options *options)
 {
@@ -136,7 +162,7 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
                        control == IM_CONTROL_LOAD ? "load" : "approach", largest_target);
     if (!(isfinite(surface->delta) && surface->delta > 0))
         return im_fail(IM_EINVAL, "surface delta = %g: expected > 0", surface->delta);
-    return IM_OK;
+    return check_profile_grid(surface, punch);
 }
 
 static int allocate_window(im_indentation *run)
@@ -176,10 +202,7 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
     run->nx = surface->nx;
     run->ny = surface->ny;
     run->delta = surface->delta;
-    run->approach_bound = control == IM_CONTROL_DISPLACEMENT
-                              ? largest_target
-                              : 1.1 * im_indenter_approach_for_load(punch, o.e_star, largest_target) +
-                                    height_range(surface);
+    run->approach_bound = approach_bound(surface, punch, control, largest_target, o.e_star);
     status = undeformed_gap(run, surface);
     if (status == IM_OK) {
         run->window = choose_window(run);
@@ -250,7 +273,9 @@ static int check_edge(const im_indentation *run)
  * edge, or, with a window bound broken by the edge, nowhere sensible. */
 static int check_reachable(const im_indentation *run, double load)
 {
-    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT || load == 0)
+    /* a flat punch's contact radius is its own; a 2-D profile has no smooth-contact estimate */
+    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT || run->punch.kind == IM_PUNCH_PROFILE_2D ||
+        load == 0)
         return IM_OK;
     double ax, ay;
     im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);

@@ -19,7 +19,8 @@ int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *
     im_theory_step step = {.load_smooth = im_indenter_load(punch, rough->e_star, approach),
                            .area_smooth = load > 0.0 ? im_indenter_area_for_load(punch, rough->e_star, load) : 0.0,
                            .area_ratio_constant = NAN, .area_ratio_gamma = NAN};
-    if (load > 0.0) {
+    /* the rough-contact theory is for the cone, the sphere and the flat punch: NaN for a profile */
+    if (load > 0.0 && punch->kind != IM_PUNCH_PROFILE && punch->kind != IM_PUNCH_PROFILE_2D) {
         double rho = p_rough > 0.0 ? load / step.area_smooth / p_rough : INFINITY;
         status = im_theory_erf_scale(rho, rough->normalisation, rough->k, &beta);
         if (status == IM_OK)
