@@ -208,21 +208,40 @@ int scene_interrupted(const im_scene_run_options *options, const char *where)
                    strsignal(scene_stop_signal(options)), where);
 }
 
+/* One message to options->log, formatted here; calls from OpenMP workers are serialised. */
+static void scene_log(const im_scene_run_options *options, im_log_level level, const char *fmt, va_list args)
+{
+    if (!options->log || (level == IM_LOG_INFO && options->quiet))
+        return;
+    char message[2048];
+    vsnprintf(message, sizeof message, fmt, args);
+#pragma omp critical(scene_log)
+    options->log(options->user, level, message);
+}
+
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
 {
-    if (options->quiet)
-        return;
     va_list args;
     va_start(args, fmt);
-    fputs("indentmap: ", stderr);
-    vfprintf(stderr, fmt, args);
-    fputc('\n', stderr);
+    scene_log(options, IM_LOG_INFO, fmt, args);
     va_end(args);
 }
 
-int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
+void scene_warn(const im_scene_run_options *options, const char *fmt, ...)
 {
-    return im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
+    va_list args;
+    va_start(args, fmt);
+    scene_log(options, IM_LOG_WARNING, fmt, args);
+    va_end(args);
+}
+
+int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock)
+{
+    int status = im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
+    if (status == IM_OK && lock->stale_pid > 0)
+        scene_warn(options, "taking over the stale lock %s of pid %ld, which no longer runs", lock->path,
+                   lock->stale_pid);
+    return status;
 }
 
 void scene_lock_release(scene_lock *lock)
@@ -372,7 +391,7 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
         status = im_make_directories(scene->output_dir);
     scene_lock lock = {.fd = -1};
     if (status == IM_OK)
-        status = scene_lock_acquire(scene, &lock);
+        status = scene_lock_acquire(scene, options, &lock);
     if (status == IM_OK)
         remove_stale_temporaries(scene, options);
     if (status == IM_OK)

@@ -72,12 +72,14 @@ int scene_check_limits(const im_scene *scene);
 
 /* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
 typedef im_folder_lock scene_lock;
-int scene_lock_acquire(const im_scene *scene, scene_lock *lock);
+int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock);
 void scene_lock_release(scene_lock *lock);
 
-/* Progress line on stderr unless quiet. */
+/* A stage line (IM_LOG_INFO, dropped when quiet) and a warning (IM_LOG_WARNING, logged even when
+ * quiet) to options->log, if any. */
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+void scene_warn(const im_scene_run_options *options, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The family whose history is framed: the one whose slope is frames_slope, else the roughest. */
 int scene_framed_family(const im_scene *scene);
@@ -121,16 +123,16 @@ uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum
 int scene_load_star_step(const im_scene *scene);
 
 /* Whether a result kept at path (with key kept; 0 when it could not be read) may be reused; if
- * not, says on stderr why it is solved again (even with --quiet). */
-int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted);
+ * not, warns (scene_warn) why it is solved again. */
+int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted);
 
 /* FNV-1a (64 bits) of length bytes: the checksum a kept history carries of its rows, so that one
  * cut short or edited is solved again rather than drawn. */
 uint64_t scene_checksum(const char *bytes, size_t length);
 
-/* Says on stderr (even with --quiet) that the kept result at path is damaged (why) and is solved
- * again; returns 0, for `return scene_kept_damaged(...)` in a reader. */
-int scene_kept_damaged(const char *path, const char *why);
+/* Warns (scene_warn) that the kept result at path is damaged (why) and is solved again; returns 0,
+ * for `return scene_kept_damaged(...)` in a reader. */
+int scene_kept_damaged(const im_scene_run_options *options, const char *path, const char *why);
 
 /* ---- ensembles ---- */
 
@@ -187,7 +189,7 @@ void scene_members_free(scene_member *members, int count);
 int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count);
 
 /* Runs solve on every member, in parallel over the available cores (each solve then runs on one
- * thread), with a progress bar on a terminal. IM_OK, or the first failed member's status with its
+ * thread), reporting each finished member to options->progress. IM_OK, or the first failed member's status with its
  * family, seed and message. */
 int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
                        int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
