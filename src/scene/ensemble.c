@@ -5,7 +5,6 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <unistd.h>
 
 int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count)
 {
