@@ -51,7 +51,7 @@ void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag)
     struct sigaction ours;
     memset(&ours, 0, sizeof ours);
     ours.sa_sigaction = on_interrupt;
-    ours.sa_flags = SA_SIGINFO | (current.sa_flags & SA_RESTART);
+    ours.sa_flags = SA_SIGINFO | (current.sa_flags & (SA_RESTART | SA_ONSTACK));
     sigemptyset(&ours.sa_mask);
     call->armed = sigaction(SIGINT, &ours, NULL) == 0;
 }

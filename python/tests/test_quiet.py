@@ -4,6 +4,7 @@ import contextlib
 import os
 import re
 import signal
+import subprocess
 import tempfile
 import threading
 import time
@@ -82,10 +83,9 @@ def test_library_writes_nothing_on_stderr(tmp_path):
     goes to the log callable as a warning."""
     output = tmp_path / "out"
     output.mkdir()
-    dead = os.fork()
-    if dead == 0:
-        os._exit(0)
-    os.waitpid(dead, 0)
+    ended = subprocess.Popen(["true"])
+    ended.wait()
+    dead = ended.pid
     (output / ".lock").write_text(f"{dead}\n")
     lines = []
     with captured_fd2() as written:

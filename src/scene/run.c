@@ -208,14 +208,15 @@ int scene_interrupted(const im_scene_run_options *options, const char *where)
                    strsignal(scene_stop_signal(options)), where);
 }
 
-/* One message to options->log, formatted here; calls from OpenMP workers are serialised. */
+/* One message to options->log, formatted here; calls from OpenMP workers are serialised, with the
+ * progress calls too (the same critical section as ensemble.c's). */
 static void scene_log(const im_scene_run_options *options, im_log_level level, const char *fmt, va_list args)
 {
     if (!options->log || (level == IM_LOG_INFO && options->quiet))
         return;
     char message[2048];
     vsnprintf(message, sizeof message, fmt, args);
-#pragma omp critical(scene_log)
+#pragma omp critical(scene_progress)
     options->log(options->user, level, message);
 }
 
