@@ -115,6 +115,10 @@ check "--titles surplus" expect_exit 2 "--titles 'a,b,c': 3 titles for 2 files" 
   "$cli" render contact "$dir/f/force_0004.npy" "$dir/f/force_0003.npy" --titles a,b,c --out "$dir/t.png"
 check "info: bad IM_RENDER_BACKEND is bad input" expect_exit 2 "IM_RENDER_BACKEND" \
   env IM_RENDER_BACKEND=bogus "$cli" info
+check "bad IM_MEMORY_LIMIT_MIB is bad input" expect_exit 2 "IM_MEMORY_LIMIT_MIB = 'lots': expected a number of MiB > 0" \
+  env IM_MEMORY_LIMIT_MIB=lots "$cli" surface --stats "$dir/s.npy"
+check "IM_MEMORY_LIMIT_MIB caps the memory" expect_exit 2 "needs about" \
+  env IM_MEMORY_LIMIT_MIB=1 "$cli" surface --n 1024 --out "$dir/capped.npy"
 printf '1e300 1e300\n1e300 1e300\n' >"$dir/huge.txt"
 # A flat punch's gap is +Inf where the punch can never touch: render reads fields with their NaN and
 # Inf (drawn in the over colour), as it draws them, where a surface to solve on must be finite.

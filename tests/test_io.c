@@ -4,6 +4,7 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
+#include "core/memory.h"
 
 #include <math.h>
 #include <netcdf.h>
@@ -454,16 +455,39 @@ static void x3p_round_trip_and_refusals(void **state)
     im_field_free(f);
 }
 
-/* IM_MEMORY_LIMIT_MIB caps the memory the readers may plan for, so a refusal can be tested at a
- * size every machine holds; a malformed value is refused, naming the variable. */
-static void memory_limit_from_the_environment(void **state)
+/* The caller's cap (im_memory_set_limit) limits the memory the readers may plan for, so a refusal
+ * can be tested at a size every machine holds; the library reads no environment variable for it
+ * (the program does: IM_MEMORY_LIMIT_MIB, tested in cli_checks.sh). */
+/* The probe's readings (core/memory.c): MemAvailable within the machine's physical memory, and the
+ * process's virtual size growing by an allocation it maps. */
+static void memory_probe_reads_the_machine(void **state)
+{
+    (void)state;
+    double physical = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
+    size_t available = memory_meminfo_available();
+    assert_true(available > 0 && (double)available <= physical);
+    size_t before = memory_virtual_size();
+    enum { BYTES = 64 << 20 };
+    char *block = malloc(BYTES); /* above glibc's mmap threshold: mapped at once */
+    assert_non_null(block);
+    size_t after = memory_virtual_size();
+    free(block);
+    assert_true(before > 0 && after >= before + BYTES);
+    im_memory_set_limit(BYTES);
+    assert_true(im_memory_available() <= BYTES);
+    im_memory_set_limit(0);
+}
+
+static void memory_limit_set_by_the_caller(void **state)
 {
     (void)state;
     write_npy(test_path("2mib.npy"), "{'descr': '<f8', 'fortran_order': False, 'shape': (512, 512), }", 0, 1.5);
-    assert_int_equal(setenv("IM_MEMORY_LIMIT_MIB", "1", 1), 0);
+    im_memory_set_limit(1048576);
+    assert_int_equal(im_memory_limit(), 1048576);
     expect_refusal(im_npy_read, test_path("2mib.npy"), IM_ENOMEM, "needs about 2.0 MiB but only 1.0 MiB");
-    assert_int_equal(setenv("IM_MEMORY_LIMIT_MIB", "lots", 1), 0);
-    expect_refusal(im_npy_read, test_path("2mib.npy"), IM_EINVAL, "IM_MEMORY_LIMIT_MIB = 'lots'");
+    im_memory_set_limit(0);
+    assert_int_equal(setenv("IM_MEMORY_LIMIT_MIB", "1", 1), 0);
+    expect_refusal(im_npy_read, test_path("2mib.npy"), IM_EFORMAT, "truncated data");
     assert_int_equal(unsetenv("IM_MEMORY_LIMIT_MIB"), 0);
     expect_refusal(im_npy_read, test_path("2mib.npy"), IM_EFORMAT, "truncated data");
 }
@@ -852,7 +876,8 @@ int main(void)
         cmocka_unit_test(sdf_files_round_trip_and_refuse),
         cmocka_unit_test(netcdf_round_trip_and_refusals),
         cmocka_unit_test(x3p_round_trip_and_refusals),
-        cmocka_unit_test(memory_limit_from_the_environment),
+        cmocka_unit_test(memory_probe_reads_the_machine),
+        cmocka_unit_test(memory_limit_set_by_the_caller),
         cmocka_unit_test(bad_text_matrices_name_the_line),
         cmocka_unit_test(text_matrix_must_match_its_header),
         cmocka_unit_test(bad_gsf_files_are_refused),

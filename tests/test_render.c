@@ -392,11 +392,13 @@ static void test_backend_choice(void **state)
     assert_int_equal(backend, IM_RENDER_OSMESA);
     assert_int_equal(im_render_backend_from_name("vulkan", &backend), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "auto, egl or osmesa"));
+    /* the library reads no environment: the program turns IM_RENDER_BACKEND into a backend */
     setenv("IM_RENDER_BACKEND", "directx", 1);
     im_render_context *other = NULL;
-    assert_int_equal(im_render_open(IM_RENDER_AUTO, &other), IM_EINVAL);
-    assert_null(other);
-    assert_non_null(strstr(im_last_error(), "IM_RENDER_BACKEND"));
+    int status = im_render_open(IM_RENDER_AUTO, &other);
+    assert_int_not_equal(status, IM_EINVAL);
+    assert_true(status == IM_OK || status == IM_EUNSUPPORTED);
+    im_render_close(other);
     unsetenv("IM_RENDER_BACKEND");
 }
 

@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -462,6 +463,54 @@ static void test_no_convergence(void **state)
     im_field_free(s);
 }
 
+/* A cone's undeformed gap r cot(alpha) on an n x n grid of unit spacing, axis at the centre. */
+static double *cone_gap(int n, double alpha_degrees)
+{
+    double *gap = malloc(sizeof(double) * (size_t)n * n);
+    assert_non_null(gap);
+    for (int iy = 0; iy < n; ++iy)
+        for (int ix = 0; ix < n; ++ix)
+            gap[(size_t)iy * n + ix] = hypot(ix - 0.5 * (n - 1), iy - 0.5 * (n - 1)) / tan(alpha_degrees * M_PI / 180);
+    return gap;
+}
+
+/* The stop flag: a set flag ends the solve with IM_EINTERRUPTED before its first iteration, with a
+ * valid iterate (p >= 0) left in pressure; the plan stays usable: once the flag is cleared, a cold
+ * solve on it is bit for bit a fresh plan's, and the interrupted iterate is a warm start to the same
+ * answer. */
+static void test_stop_flag_interrupts(void **state)
+{
+    (void)state;
+    enum { N = 64 };
+    const size_t n = (size_t)N * N;
+    double *gap0 = cone_gap(N, 80), *p = calloc(n, sizeof *p), *u = calloc(n, sizeof *u);
+    double *fresh_p = calloc(n, sizeof *p), *fresh_u = calloc(n, sizeof *u);
+    assert_true(p && u && fresh_p && fresh_u);
+    volatile sig_atomic_t stop = SIGINT;
+    im_solver_options o = im_solver_options_default(), plain = o;
+    o.stop = &stop;
+    im_solver_plan *plan = NULL, *fresh = NULL;
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &plain, &fresh), IM_OK);
+    im_solve_result r, reference;
+    assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_DISPLACEMENT, 4.0, p, u, &r), IM_EINTERRUPTED);
+    assert_int_equal(r.iterations, 0);
+    assert_non_null(strstr(im_last_error(), "interrupted by signal 2"));
+    for (size_t i = 0; i < n; ++i)
+        assert_true(p[i] >= 0 && isfinite(p[i]));
+    stop = 0;
+    assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_DISPLACEMENT, 4.0, p, u, &r), IM_OK); /* warm */
+    assert_int_equal(im_solver_solve(fresh, gap0, IM_CONTROL_DISPLACEMENT, 4.0, fresh_p, fresh_u, &reference), IM_OK);
+    assert_true(fabs(r.load - reference.load) <= 1e-6 * reference.load);
+    memset(p, 0, sizeof(double) * n);
+    assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_DISPLACEMENT, 4.0, p, u, &r), IM_OK); /* cold */
+    assert_int_equal(r.iterations, reference.iterations);
+    assert_memory_equal(p, fresh_p, sizeof(double) * n);
+    im_solver_plan_free(plan);
+    im_solver_plan_free(fresh);
+    free(gap0), free(p), free(u), free(fresh_p), free(fresh_u);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -509,6 +558,7 @@ int main(void)
         cmocka_unit_test(test_full_grid_displacement),
         cmocka_unit_test(test_edge_contact),
         cmocka_unit_test(test_no_convergence),
+        cmocka_unit_test(test_stop_flag_interrupts),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

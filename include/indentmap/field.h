@@ -45,9 +45,16 @@ int im_field_check_finite(const im_field *field, const char *what);
 
 /* Physical memory available to this process now, in bytes: MemAvailable from /proc/meminfo,
  * bounded by what the address-space limit (ulimit -v) leaves beyond the process's present virtual
- * size and by the environment variable IM_MEMORY_LIMIT_MIB (a user's cap in MiB) when set; 0 if
- * it cannot be determined. */
+ * size and by the cap of im_memory_set_limit, if any; 0 if it cannot be determined. */
 size_t im_memory_available(void);
+
+/* A cap in bytes on the memory every check (im_memory_check, im_memory_available) allows, below
+ * what the machine has; 0 (the default) for none. Process-wide, like the limits it joins; set it
+ * before starting work. The library reads no environment: the indentmap program sets it from
+ * IM_MEMORY_LIMIT_MIB (MiB; anything but a number > 0 is refused there, exit status 2). */
+void im_memory_set_limit(size_t bytes);
+/* The cap of im_memory_set_limit, 0 when none. */
+size_t im_memory_limit(void);
 
 /* What an address-space limit (ulimit -v) leaves beyond this process's present virtual size, in
  * bytes; 0 when there is no such limit. Reservations that use no memory (thread stacks, malloc's

@@ -110,10 +110,12 @@ int im_path_utf8(const char *path, char *out, size_t size);
  * they write there: flock(2) decides who holds it (the kernel drops it when its holder dies) and
  * the file holds the holder's pid. IM_EIO while another live process holds it, with "output folder
  * FOLDER is in use by another indentmap run (pid N, lock file F); wait for it to end or ADVICE";
- * a lock file no live process holds is taken over with a warning on stderr. */
+ * a lock file no live process holds is taken over silently, and its pid reported in stale_pid for
+ * the caller to tell the user (the indentmap program and scene runs do, as a warning). */
 typedef struct im_folder_lock {
     int fd;             /* -1 when not held */
     char path[4104];
+    long stale_pid;     /* out: the pid of the dead process whose lock was taken over, 0 if none */
 } im_folder_lock;
 int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock);
 /* Removes the lock file and releases it; nothing if not held. */

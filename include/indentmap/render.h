@@ -9,8 +9,8 @@
  * The display is always obtained with eglGetPlatformDisplayEXT naming its platform, the context is
  * surfaceless and draws into a framebuffer object that is read back with glReadPixels. Every GL
  * function is loaded through eglGetProcAddress or OSMesaGetProcAddress, so the program never links
- * a GL library. The environment variable IM_RENDER_BACKEND (auto, egl or osmesa) chooses the
- * backend when the caller asks for IM_RENDER_AUTO; an explicit request wins over it. A machine
+ * a GL library. The caller chooses the backend (the indentmap program's IM_RENDER_BACKEND, auto,
+ * egl or osmesa, applies where its --backend is auto; the library reads no environment). A machine
  * where no context can be had gives IM_EUNSUPPORTED with the reason of each attempt.
  *
  * Colours: the norm of a colour map (colormap.h) is evaluated on the CPU in double precision by
@@ -48,12 +48,12 @@ int im_render_backend_from_name(const char *name, im_render_backend *backend);
 
 typedef struct im_render_context im_render_context;
 
-/* Opens a context. With IM_RENDER_AUTO, IM_RENDER_BACKEND from the environment decides (unset:
- * auto). When no backend can create an OpenGL 3.3 core context: IM_EUNSUPPORTED with a message
+/* Opens a context. IM_RENDER_AUTO tries EGL, then OSMesa (the library reads no environment: the
+ * indentmap program turns IM_RENDER_BACKEND into the backend it passes here). When no backend can create an OpenGL 3.3 core context: IM_EUNSUPPORTED with a message
  * starting IM_RENDER_NO_CONTEXT and listing each attempt's reason. A context that is created but
  * cannot compile or link the shaders or set up its objects is a defect, not a missing feature:
  * IM_EUNSUPPORTED with a message naming the shader or GL error, which im_render_context_missing
- * tells apart. IM_EINVAL for an unknown IM_RENDER_BACKEND. One context per thread at a time: it
+ * tells apart. One context per thread at a time: it
  * is made current on the calling thread. */
 int im_render_open(im_render_backend backend, im_render_context **out);
 

@@ -28,6 +28,7 @@
 #define INDENTMAP_SCENE_H
 
 #include "indentmap/indenter.h"
+#include "indentmap/status.h"
 #include "indentmap/surface.h"
 
 #include <signal.h>
@@ -120,19 +121,27 @@ void im_scene_defaults(im_scene *scene);
  * value out of range (naming the key and what was expected). */
 int im_scene_load(const char *path, im_scene *scene);
 
-/* How im_scene_run runs. */
+/* How im_scene_run runs. The library prints nothing: what the run has to say goes to the
+ * callbacks (status.h), and nowhere when they are NULL (the default of a zeroed struct). */
 typedef struct im_scene_run_options {
     int resume;          /* 1: reuse results already on disk under the output folder */
-    int quiet;           /* 1: no stage lines on stderr ("indentmap: table: 51 surfaces ..."; printed
-                            otherwise, terminal or not, as they are useful in a log). The ensembles'
-                            progress bar is drawn only when stderr is a terminal. Errors, and the
-                            notice that a kept result is stale, are printed in any case. */
+    int quiet;           /* 1: no IM_LOG_INFO lines (the stage lines, "table: 51 surfaces ...") and no
+                            progress calls; warnings (a kept result stale or damaged and solved
+                            again, a stale lock taken over) are logged in any case */
     int backend;         /* im_render_backend of render.h (0: auto) */
     /* Interruption (may be NULL): a signal handler stores the signal's number here. The run
      * checks it between solver steps and between surfaces (a solve itself is never cut short),
      * abandons the surface in progress, keeps every finished one on disk and returns
      * IM_EINTERRUPTED; --resume then continues from there. */
     const volatile sig_atomic_t *stop;
+    /* Log lines (NULL: dropped) and the ensembles' progress (NULL: none), both with `user`. Calls
+     * come from the thread of im_scene_run or from its OpenMP workers, one at a time (the library
+     * serialises them), so a callback needs no lock of its own; it must not call im_scene_run. The
+     * indentmap program's callbacks print the lines on stderr and draw a progress bar there when it
+     * is a terminal. */
+    im_log_fn log;
+    im_progress_fn progress;
+    void *user;
 } im_scene_run_options;
 
 /* Runs a scene: derives the least work its outputs need, solves it, and writes under
@@ -160,10 +169,10 @@ typedef struct im_scene_run_options {
  * that determines it: surface parameters, slope, seed and grid, punch, material, solver tolerance
  * and window, load_star or the loading control and steps): a `key` column in the table's member
  * files, a header line in the histories, panels/force_FF.key beside a panel's forces. With options->resume, a kept result whose key is the scene's is read back
- * instead of solved; one whose key differs is solved again, with a notice on stderr.
+ * instead of solved; one whose key differs is solved again, with a warning to options->log.
  * Before any work: the output folder is locked (OUTPUT/.lock holds the pid; IM_EIO naming the
  * folder and the other pid while another live run holds it; a lock left by a dead process is
- * taken over with a message; removed when the run ends, however it ends), and the run is refused
+ * taken over with a warning to options->log; removed when the run ends, however it ends), and the run is refused
  * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
  * has, or when the output folder is or contains an input (the scene or its surface file). */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);

@@ -64,7 +64,8 @@
  * i.e. the rms gap left in the contact set and the worst penetration outside it, relative to the
  * approach. A solve stops when residual <= tol (default 1e-8), checked on u recomputed exactly by
  * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
- * iterations. Both the iteration count and the residual are reported for every solve.
+ * iterations. Both the iteration count and the residual are reported for every solve. A solve whose
+ * options.stop flag is set ends with IM_EINTERRUPTED after the iteration in progress.
  */
 /* ---- Hardness (perfect plasticity at a pressure cap) ----
  * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure
@@ -96,6 +97,8 @@
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
 
+#include <signal.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -121,6 +124,15 @@ typedef struct im_solver_options {
                                "Cascade start" above); 0: from the local (Winkler) guess */
     int precondition;       /* 1 (default): preconditioned CG steps on the contact set (see
                                "Preconditioning" above); 0: plain Polonsky-Keer */
+    /* Cancellation (NULL, the default: none). A flag the caller owns, typically set by a signal
+     * handler to the signal's number, that must outlive every solve of the plans made with these
+     * options (a plan keeps the pointer). Each solve (im_solver_solve, the cascade's coarse solves,
+     * im_indentation_step, im_flat_contact_solve) reads it once per iteration and, once non-zero,
+     * stops within one iteration with IM_EINTERRUPTED ("contact solve: interrupted by signal N
+     * after K iterations"): pressure and displacement then hold the last iterate (p >= 0, a valid
+     * warm start) and the plan stays usable, so the same solve run again with the flag cleared
+     * gives the uninterrupted answer. Not in the solve's key (it does not change a result). */
+    const volatile sig_atomic_t *stop;
 } im_solver_options;
 
 im_solver_options im_solver_options_default(void);

@@ -48,6 +48,23 @@ int im_fail_context(int status, const char *fmt, ...) __attribute__((format(prin
 void im_set_stop_flag(volatile sig_atomic_t *flag);
 int im_stop_requested(void);
 
+/* Messages of long operations (scene runs), handed to the caller instead of being printed: the
+ * library never writes to stdout or stderr. A log callback, like SQLite's log hook, receives each
+ * message as one line of text without a prefix or newline (valid only during the call); user is
+ * the pointer given beside the callback. Where no callback is given (NULL), messages are dropped.
+ * The indentmap program prints them on stderr as "indentmap: MESSAGE". */
+typedef enum im_log_level {
+    IM_LOG_INFO = 0,    /* progress of a stage ("table: 51 surfaces: 51 solved, ...") */
+    IM_LOG_WARNING = 1  /* a notice the user should see even when quiet: a kept result is stale
+                           or damaged and solved again, a stale lock was taken over */
+} im_log_level;
+typedef void (*im_log_fn)(void *user, im_log_level level, const char *message);
+
+/* Progress of a stage that works through `total` items (surfaces of an ensemble): called with
+ * done = 1, ..., total as each item finishes, in order of finishing. stage names the stage as its
+ * log lines do ("table", "histories"). */
+typedef void (*im_progress_fn)(void *user, const char *stage, int done, int total);
+
 #ifdef __cplusplus
 }
 #endif

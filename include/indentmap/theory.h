@@ -9,9 +9,12 @@
  *
  * Errors: the int functions return IM_OK, or IM_EINVAL with a message naming the parameter and
  * its range; the quadratures may also return IM_ENOMEM, IM_ENUMERIC or IM_ENOCONV with GSL's
- * reason in the message. Outputs are written only on success. Nothing aborts: the first
- * quadrature switches GSL's error handler off (gsl_set_error_handler_off(), a process-wide
- * setting) and turns GSL's status codes into the project's.
+ * reason in the message. Outputs are written only on success. Nothing aborts: GSL's error handler
+ * (one process-wide pointer) is switched off while a quadrature of the library runs and the
+ * application's handler, whatever it was, is put back when it returns, so the application's
+ * handler is never called for the library's errors, which become the project's status codes. An
+ * application thread that calls GSL while another thread is inside an im_theory call finds the
+ * handler off for that time; one that changes the handler then has its change undone.
  *
  * Roughness relations (eqs. 13-15): spectral moments of an isotropic power-law PSD
  * C(q) = A |q|^(-2(1+H)) on q_r < q < q_s with a roll-off plateau C(q_r) on q_0 < q < q_r, with

@@ -55,7 +55,9 @@ class Indentation:
     ``control`` is 'displacement' (targets are approaches w, counted from first touch) or 'load'
     (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
     window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
-    solver's relative residual (default 1e-8, as ``indentmap indent``). Steps run without the GIL.
+    solver's relative residual (default 1e-8, as ``indentmap indent``). Steps run without the GIL; Ctrl-C
+    during a step on the main thread stops it within one iteration and raises KeyboardInterrupt (the
+    history keeps the last iterate as its next warm start).
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
@@ -89,7 +91,8 @@ class Plan:
     ``solve(gap0, target)`` takes the undeformed gap at first touch (>= 0; +inf where the punch never
     touches) and an approach w (``control='displacement'``) or a load N (``control='load'``), optionally a
     warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
-    without the GIL; creating a plan holds it (FFTW's planner is not thread-safe).
+    without the GIL; creating a plan holds it (FFTW's planner is not thread-safe). Ctrl-C during a solve
+    on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
     """
 
     def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=1e-8, max_iterations=10000):

@@ -17,6 +17,8 @@
 
 #include "indentmap/field.h"
 
+#include <signal.h>
+
 /* Sets the Python exception for a library status (with im_last_error()) and returns NULL. */
 PyObject *py_raise_status(int status);
 
@@ -34,6 +36,18 @@ PyObject *py_array_from_field(im_field *field);
 
 /* A new 1-D float64 array copied from n doubles. */
 PyObject *py_array_from_doubles(const double *values, npy_intp n);
+
+/* Ctrl-C during a call without the GIL (interrupt.c). py_interrupt_arm (GIL held, before the call)
+ * clears flag and, on the main thread where Python handles SIGINT, makes SIGINT also set flag (the
+ * library's stop flag for the call); py_interrupt_disarm (GIL held, after it) restores Python's
+ * handler and, if the signal came, lets Python act on it: -1 with KeyboardInterrupt (or what the
+ * application's handler raised) set, else 0. py_interrupt_init (module import) finds the main thread. */
+typedef struct py_interrupt {
+    int armed;
+} py_interrupt;
+int py_interrupt_init(void);
+void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag);
+int py_interrupt_disarm(py_interrupt *call, volatile sig_atomic_t *flag);
 
 /* Module tables, defined per file. */
 extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[];

@@ -81,7 +81,7 @@ PyMODINIT_FUNC PyInit__core(void)
     PyObject *module = PyModule_Create(&module_definition);
     if (!module)
         return NULL;
-    if (add_errors(module) < 0 || add_methods(module, py_surface_methods) < 0 ||
+    if (py_interrupt_init() < 0 || add_errors(module) < 0 || add_methods(module, py_surface_methods) < 0 ||
         add_methods(module, py_theory_methods) < 0 || add_methods(module, py_render_methods) < 0 ||
         add_methods(module, py_scene_methods) < 0 || PyType_Ready(&py_indentation_type) < 0 ||
         PyModule_AddObjectRef(module, "Indentation", (PyObject *)&py_indentation_type) < 0 ||

@@ -12,6 +12,7 @@ typedef struct py_indentation {
     im_indentation *run;
     im_profile *profile; /* a profile punch's shape: the run borrows it, so it is freed after the run */
     int busy; /* a step runs without the GIL: a second thread may not enter the same history */
+    volatile sig_atomic_t stop; /* the solver's stop flag (interrupt.c): set by Ctrl-C during a step */
 } py_indentation;
 
 /* A profile punch's shape from a numpy array (copied by the library): an (n, 2) array of rows (r, z)
@@ -102,6 +103,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
                                      &o.crop, &o.window_margin, &x, &y, &profile_obj))
         return -1;
+    o.stop = &self->stop;
     if (self->busy) {
         PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
         return -1;
@@ -175,11 +177,15 @@ static PyObject *indentation_step(py_indentation *self, PyObject *arg)
         return NULL;
     im_step_result result;
     int status;
+    py_interrupt call;
     self->busy = 1;
+    py_interrupt_arm(&call, &self->stop);
     Py_BEGIN_ALLOW_THREADS
     status = im_indentation_step(self->run, target, &result);
     Py_END_ALLOW_THREADS
     self->busy = 0;
+    if (py_interrupt_disarm(&call, &self->stop) < 0)
+        return NULL;
     return status == IM_OK ? step_dict(&result) : py_raise_status(status);
 }
 
@@ -220,6 +226,7 @@ typedef struct py_plan {
     PyObject_HEAD
     im_solver_plan *plan;
     int nx, ny, busy;
+    volatile sig_atomic_t stop; /* the solver's stop flag (interrupt.c): set by Ctrl-C during a solve */
 } py_plan;
 
 static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
@@ -235,6 +242,7 @@ static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
         PyErr_SetString(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
         return -1;
     }
+    o.stop = &self->stop;
     im_solver_plan *plan = NULL;
     int status = im_solver_plan_create(nx, ny, delta, &o, &plan); /* GIL held: FFTW's planner */
     if (status != IM_OK) {
@@ -303,17 +311,20 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     }
     im_solve_result result;
     int status;
+    py_interrupt call;
     self->busy = 1;
+    py_interrupt_arm(&call, &self->stop);
     Py_BEGIN_ALLOW_THREADS
     status = im_solver_solve(self->plan, PyArray_DATA(gap0), control, target, PyArray_DATA(pressure),
                              PyArray_DATA(displacement), &result);
     Py_END_ALLOW_THREADS
     self->busy = 0;
     Py_DECREF(gap0);
-    if (status != IM_OK) {
+    int interrupted = py_interrupt_disarm(&call, &self->stop) < 0; /* KeyboardInterrupt is set */
+    if (interrupted || status != IM_OK) {
         Py_DECREF(pressure);
         Py_DECREF(displacement);
-        return py_raise_status(status);
+        return interrupted ? NULL : py_raise_status(status);
     }
     return Py_BuildValue("(NNN)", pressure, displacement, solve_dict(&result));
 }

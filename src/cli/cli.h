@@ -2,6 +2,8 @@
 #ifndef INDENTMAP_CLI_H
 #define INDENTMAP_CLI_H
 
+#include "indentmap/render.h"
+#include "indentmap/status.h"
 #include "indentmap/surface.h"
 
 #include <signal.h>
@@ -36,6 +38,24 @@ int cli_interrupt_exit_status(void);
  * with OMP_WAIT_POLICY=passive, so that idle OpenMP threads sleep instead of spinning on cores that
  * others need (wait_policy.c). Returns only if that is not wanted or the re-execution failed. */
 void cli_prefer_passive_waiting(char **argv);
+
+/* The library's messages on stderr (log.c), as callbacks of status.h: cli_log prints
+ * "indentmap: MESSAGE"; cli_progress draws "[####....] done/total surfaces" in place, only when
+ * stderr is a terminal (user unused). cli_warn_stale_lock prints the notice of a lock taken over
+ * (io.h: im_folder_lock's stale_pid), if any. */
+void cli_log(void *user, im_log_level level, const char *message);
+void cli_progress(void *user, const char *stage, int done, int total);
+struct im_folder_lock;
+void cli_warn_stale_lock(const struct im_folder_lock *lock);
+
+/* The environment's settings of the library (environment.c). cli_apply_memory_limit sets
+ * im_memory_set_limit from IM_MEMORY_LIMIT_MIB (MiB; unset or empty: none): 0, or -1 after
+ * printing what was expected. cli_render_backend turns IM_RENDER_AUTO into IM_RENDER_BACKEND's
+ * backend when it is set (an explicit --backend wins): IM_EINVAL naming the variable for a bad
+ * value. cli_render_open is im_render_open after cli_render_backend. */
+int cli_apply_memory_limit(void);
+int cli_render_backend(im_render_backend *backend);
+int cli_render_open(im_render_backend backend, im_render_context **out);
 
 /* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };

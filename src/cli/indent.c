@@ -767,6 +767,7 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
     int status = im_folder_lock_acquire(o->out, "give this run another --out", lock);
     if (status != IM_OK)
         return status;
+    cli_warn_stale_lock(lock);
     im_folder_remove_temporaries(o->out, 0); /* --out may be any folder: not its subfolders */
     DIR *listing = opendir(o->out);
     if (!listing)

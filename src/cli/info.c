@@ -26,7 +26,7 @@ static void usage(FILE *stream)
 static int print_renderer(im_render_backend backend)
 {
     im_render_context *context = NULL;
-    int status = im_render_open(backend, &context);
+    int status = cli_render_open(backend, &context);
     if (status == IM_EINVAL) /* a bad IM_RENDER_BACKEND: bad input, exit 2 as for render */
         return cli_report(status);
     if (status != IM_OK) {

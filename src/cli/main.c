@@ -70,7 +70,8 @@ int main(int argc, char **argv)
     }
     for (int i = 0; i < SUBCOMMAND_COUNT; ++i)
         if (strcmp(argv[1], SUBCOMMANDS[i].name) == 0)
-            return close_standard_output(SUBCOMMANDS[i].run(argc - 1, argv + 1));
+            return cli_apply_memory_limit() != 0 ? CLI_EXIT_USAGE
+                                                 : close_standard_output(SUBCOMMANDS[i].run(argc - 1, argv + 1));
     fprintf(stderr, "indentmap: '%s' is not a command\n\n", argv[1]);
     usage(stderr);
     return CLI_EXIT_USAGE;

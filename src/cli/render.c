@@ -400,7 +400,7 @@ static int check_outputs_apart(const render_options *o, char **inputs, int count
 static int run(render_options *o, char **inputs, int count)
 {
     im_render_context *context = NULL;
-    int status = im_render_open(o->backend, &context);
+    int status = cli_render_open(o->backend, &context);
     if (status != IM_OK)
         return cli_report(status);
     if (strcmp(o->mode, "animate") == 0) {

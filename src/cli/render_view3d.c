@@ -223,7 +223,7 @@ static int run(view3d_options *o, const char *path)
     if (status == IM_OK) {
         apply_norm(o, force, &o->style.colormap);
         o->punch.centred = !(o->x_given || o->y_given);
-        status = im_render_open(o->backend, &context);
+        status = cli_render_open(o->backend, &context);
     }
     if (status == IM_OK)
         status = im_render_view3d(context, height, force, o->no_punch ? NULL : &o->punch, &o->style, &image);

@@ -64,6 +64,15 @@ static int load_and_arm(const char *path, im_scene *scene)
     return status;
 }
 
+/* The backend of a scene that renders: --backend, else IM_RENDER_BACKEND, else auto. */
+static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
+{
+    im_render_backend backend = (im_render_backend)run->backend;
+    int status = scene->contact_panels || scene->frames ? cli_render_backend(&backend) : IM_OK;
+    run->backend = (int)backend;
+    return status;
+}
+
 #if IM_HAVE_MPI
 /* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
  * force); every rank loads the same scene (or fails to) and runs it over the ranks; rank 0 reports. */
@@ -73,9 +82,12 @@ static int run_under_mpirun(const char *path, const im_scene_run_options *run)
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     im_scene scene;
+    im_scene_run_options options = *run;
     int status = load_and_arm(path, &scene);
     if (status == IM_OK)
-        status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, run);
+        status = backend_of_scene(&scene, &options);
+    if (status == IM_OK)
+        status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, &options);
     int code = finish(status, &scene, rank == 0);
     MPI_Finalize();
     return code;
@@ -111,12 +123,16 @@ int cli_run(int argc, char **argv)
     }
     run.backend = (int)backend;
     run.stop = &cli_stop_signal;
+    run.log = cli_log;
+    run.progress = cli_progress;
 #if IM_HAVE_MPI
     if (launched_by_mpirun())
         return run_under_mpirun(argv[optind], &run);
 #endif
     im_scene scene;
     int status = load_and_arm(argv[optind], &scene);
+    if (status == IM_OK)
+        status = backend_of_scene(&scene, &run);
     if (status == IM_OK)
         status = im_scene_run(&scene, &run);
     return finish(status, &scene, 1);

@@ -171,6 +171,7 @@ int im_animation_gif(const im_image *frames, int count, double seconds_per_frame
 
 int im_ffmpeg_available(void)
 {
+    /* PATH is not a setting of the library: it is where posix_spawnp, which runs ffmpeg, will look */
     const char *path = getenv("PATH");
     char candidate[4096];
     for (const char *p = path; p && *p;) {

@@ -45,6 +45,7 @@ static int write_owner(int fd, const char *path)
 int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock)
 {
     lock->fd = -1;
+    lock->stale_pid = 0;
     int length = snprintf(lock->path, sizeof lock->path, "%s/.lock", folder);
     int status = length > 0 && (size_t)length < sizeof lock->path
                      ? IM_OK
@@ -66,9 +67,7 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
             continue;
         }
         long stale = lock_owner(fd);
-        if (stale > 0 && stale != (long)getpid()) /* a warning, shown even with --quiet */
-            fprintf(stderr, "indentmap: taking over the stale lock %s of pid %ld, which no longer runs\n",
-                    lock->path, stale);
+        lock->stale_pid = stale > 0 && stale != (long)getpid() ? stale : 0; /* the caller warns */
         status = write_owner(fd, lock->path);
         if (status != IM_OK) {
             close(fd);

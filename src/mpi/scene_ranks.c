@@ -145,7 +145,7 @@ static int solve_stage(const im_scene *scene, const im_scene_run_options *option
         if (stage == STAGE_HISTORIES)
             scene_link_table(scene, table, mine, n);
         if (n > 0)
-            status = scene_ensemble_run(scene, options, mine, n, STAGE_SOLVERS[stage]);
+            status = scene_ensemble_run(scene, options, STAGE_FOLDERS[stage], mine, n, STAGE_SOLVERS[stage]);
         if (status == IM_OK)
             status = write_kept_forces(scene, mine, n);
         status = agree(st, status);

@@ -213,16 +213,6 @@ static void release_backend(im_render_context *c)
         osmesa_library_close(&c->osmesa);
 }
 
-static int resolve_backend(im_render_backend *backend)
-{
-    const char *variable = getenv("IM_RENDER_BACKEND");
-    if (*backend != IM_RENDER_AUTO || !variable || !*variable)
-        return IM_OK;
-    if (im_render_backend_from_name(variable, backend) != IM_OK)
-        return im_fail_context(IM_EINVAL, "environment variable IM_RENDER_BACKEND");
-    return IM_OK;
-}
-
 int im_render_context_missing(int status, const char *message)
 {
     return status == IM_EUNSUPPORTED && message &&
@@ -232,14 +222,11 @@ int im_render_context_missing(int status, const char *message)
 int render_context_open(im_render_backend backend, im_render_context **out)
 {
     *out = NULL;
-    int status = resolve_backend(&backend);
-    if (status != IM_OK)
-        return status;
     im_render_context *c = calloc(1, sizeof *c);
     if (!c)
         return im_fail(IM_ENOMEM, "render context: out of memory");
     char reasons[2048] = "";
-    status = IM_EUNSUPPORTED;
+    int status = IM_EUNSUPPORTED;
     if (backend != IM_RENDER_OSMESA)
         status = egl_open(c, reasons, sizeof reasons);
     if (status != IM_OK && backend != IM_RENDER_EGL)

@@ -8,7 +8,6 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <unistd.h>
 
 int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count)
 {
@@ -40,20 +39,10 @@ int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count
     return IM_OK;
 }
 
-static void report_progress(const im_scene_run_options *options, int done, int total)
+static void report_progress(const im_scene_run_options *options, const char *stage, int done, int total)
 {
-    if (options->quiet || !isatty(STDERR_FILENO))
-        return;
-    enum { WIDTH = 40 };
-    char bar[WIDTH + 1];
-    int filled = done * WIDTH / total;
-    for (int i = 0; i < WIDTH; ++i)
-        bar[i] = i < filled ? '#' : '.';
-    bar[WIDTH] = '\0';
-    fprintf(stderr, "\r[%s] %d/%d surfaces", bar, done, total);
-    if (done == total)
-        fputc('\n', stderr);
-    fflush(stderr);
+    if (options->progress && !options->quiet)
+        options->progress(options->user, stage, done, total);
 }
 
 /* After an interruption: how many members finished, in the message. */
@@ -95,8 +84,9 @@ static int read_ranks_member(const im_scene *scene, const im_scene_run_options *
     return status;
 }
 
-int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
-                       int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
+int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, const char *stage,
+                       scene_member *members, int count,
+                       int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
 {
     int done = 0;
 #pragma omp parallel for schedule(dynamic, 1)
@@ -109,7 +99,7 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
         if (members[i].status != IM_OK)
             snprintf(members[i].error, sizeof members[i].error, "%s", im_last_error());
 #pragma omp critical(scene_progress)
-        report_progress(options, ++done, count);
+        report_progress(options, stage, ++done, count);
     }
     for (int i = 0; i < count; ++i)
         if (members[i].status != IM_OK && members[i].status != IM_EINTERRUPTED)

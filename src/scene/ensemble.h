@@ -60,10 +60,11 @@ void scene_members_free(scene_member *members, int count);
 int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_member **members, int *count);
 
 /* Runs solve on every member, in parallel over the available cores (each solve then runs on one
- * thread), with a progress bar on a terminal. IM_OK, or the first failed member's status with its
- * family, seed and message. */
-int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, scene_member *members,
-                       int count, int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
+ * thread), reporting each finished member to options->progress under the name stage ("table",
+ * "histories"). IM_OK, or the first failed member's status with its family, seed and message. */
+int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, const char *stage,
+                       scene_member *members, int count,
+                       int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
 
 /* ---- ensembles over MPI ranks (src/mpi/scene_ranks.c; docs/mpi.md) ----
  * im_scene_run_ranks installs this for the length of one run on rank 0: after the lock, the stale

@@ -159,7 +159,7 @@ static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t 
 /* Reads a history an earlier run wrote; 0 if there is none, if it is damaged (cut short, a NaN,
  * a checksum that does not match) or if it was made from other inputs (its key differs): the last
  * two are solved again, with a notice. */
-static int read_history(const im_scene *scene, scene_member *m)
+static int read_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     char path[IM_SCENE_PATH], why[160];
     if (history_path(scene, m, path, sizeof path) != IM_OK || access(path, F_OK) != 0)
@@ -168,15 +168,15 @@ static int read_history(const im_scene *scene, scene_member *m)
     /* a row is at most 9 numbers of 24 characters; far more is not a history */
     size_t limit = 4096 + (size_t)scene->step_count * 256;
     if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
-        return scene_kept_damaged(path, im_last_error());
+        return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
     int whole = history_is_whole(text, m, scene->step_count, &key, why, sizeof why);
     free(text);
     if (!whole) {
         m->steps = 0;
-        return scene_kept_damaged(path, why);
+        return scene_kept_damaged(options, path, why);
     }
-    return scene_key_matches(path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
+    return scene_key_matches(options, path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
 }
 
 /* The target of step i: an approach, or the load at N* = steps[i]. */
@@ -244,7 +244,7 @@ int scene_history_member(const im_scene *scene, const im_scene_run_options *opti
     int status = allocate_history(m, scene->step_count);
     if (status != IM_OK)
         return status;
-    if (options->resume && read_history(scene, m)) {
+    if (options->resume && read_history(scene, options, m)) {
         m->origin = SCENE_READ_BACK;
         return IM_OK;
     }
@@ -466,7 +466,7 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK) {
         scene_link_table(scene, reuse, members, count);
         scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
-        status = scene_ensemble_run(scene, options, members, count, scene_history_member);
+        status = scene_ensemble_run(scene, options, "histories", members, count, scene_history_member);
     }
     if (status == IM_OK)
         report_histories(options, members, count);

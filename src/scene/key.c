@@ -2,6 +2,7 @@
  * the result, so that --resume solves again what an edited scene would compute differently. */
 #include "indentmap/status.h"
 #include "scene/key.h"
+#include "scene/progress.h"
 #include "scene/punch.h"
 
 #include <inttypes.h>
@@ -97,9 +98,9 @@ uint64_t scene_checksum(const char *bytes, size_t length)
     return hash.value;
 }
 
-int scene_kept_damaged(const char *path, const char *why)
+int scene_kept_damaged(const im_scene_run_options *options, const char *path, const char *why)
 {
-    fprintf(stderr, "indentmap: %s is damaged (%s): solving it again\n", path, why);
+    scene_warn(options, "%s is damaged (%s): solving it again", path, why);
     return 0;
 }
 
@@ -129,16 +130,16 @@ uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum
     return hash.value;
 }
 
-int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted)
+int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted)
 {
     if (kept == wanted)
         return 1;
-    /* printed even when quiet: a kept result is being replaced */
+    /* a warning, logged even when quiet: a kept result is being replaced */
     if (kept == 0)
-        fprintf(stderr, "indentmap: %s cannot be read back (damaged, or written by an older version without a "
-                        "key): solving it again\n", path);
+        scene_warn(options, "%s cannot be read back (damaged, or written by an older version without a key): "
+                   "solving it again", path);
     else
-        fprintf(stderr, "indentmap: %s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
-                        "): solving it again\n", path, kept, wanted);
+        scene_warn(options, "%s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
+                   "): solving it again", path, kept, wanted);
     return 0;
 }

@@ -20,15 +20,15 @@ uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum
 int scene_load_star_step(const im_scene *scene);
 
 /* Whether a result kept at path (with key kept; 0 when it could not be read) may be reused; if
- * not, says on stderr why it is solved again (even with --quiet). */
-int scene_key_matches(const char *path, uint64_t kept, uint64_t wanted);
+ * not, warns (scene_warn) why it is solved again. */
+int scene_key_matches(const im_scene_run_options *options, const char *path, uint64_t kept, uint64_t wanted);
 
 /* FNV-1a (64 bits) of length bytes: the checksum a kept history carries of its rows, so that one
  * cut short or edited is solved again rather than drawn. */
 uint64_t scene_checksum(const char *bytes, size_t length);
 
-/* Says on stderr (even with --quiet) that the kept result at path is damaged (why) and is solved
- * again; returns 0, for `return scene_kept_damaged(...)` in a reader. */
-int scene_kept_damaged(const char *path, const char *why);
+/* Warns (scene_warn) that the kept result at path is damaged (why) and is solved again; returns 0,
+ * for `return scene_kept_damaged(...)` in a reader. */
+int scene_kept_damaged(const im_scene_run_options *options, const char *path, const char *why);
 
 #endif

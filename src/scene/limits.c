@@ -151,6 +151,7 @@ static double thread_stack_bytes(void)
 
 static int render_threads(void)
 {
+    /* not a setting of the library: Mesa's llvmpipe reads it in this process, and so sizes its threads */
     const char *text = getenv("LP_NUM_THREADS");
     return text && text[0] ? atoi(text) : omp_get_num_procs();
 }

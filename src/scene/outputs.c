@@ -3,6 +3,7 @@
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "scene/outputs.h"
+#include "scene/progress.h"
 
 #include <stdio.h>
 
@@ -35,9 +36,13 @@ int scene_output_path(const im_scene *scene, const char *relative, char *buffer,
     return IM_OK;
 }
 
-int scene_lock_acquire(const im_scene *scene, scene_lock *lock)
+int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock)
 {
-    return im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
+    int status = im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
+    if (status == IM_OK && lock->stale_pid > 0)
+        scene_warn(options, "taking over the stale lock %s of pid %ld, which no longer runs", lock->path,
+                   lock->stale_pid);
+    return status;
 }
 
 void scene_lock_release(scene_lock *lock)

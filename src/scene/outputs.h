@@ -18,7 +18,7 @@ int scene_draw_plot(const im_scene *scene, const void *plot, const char *path);
 
 /* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
 typedef im_folder_lock scene_lock;
-int scene_lock_acquire(const im_scene *scene, scene_lock *lock);
+int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock);
 void scene_lock_release(scene_lock *lock);
 
 #endif

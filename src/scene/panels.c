@@ -129,7 +129,7 @@ static int read_panel(const im_scene *scene, const im_scene_run_options *options
     uint64_t key = 0;
     int found = fscanf(stream, "%" SCNx64, &key) == 1;
     fclose(stream);
-    if (!scene_key_matches(npy, found ? key : 0, panel_key(scene, family)))
+    if (!scene_key_matches(options, npy, found ? key : 0, panel_key(scene, family)))
         return 0;
     scene_progress(options, "family %d: reusing %s", family, npy);
     return im_npy_read(npy, force) == IM_OK;

@@ -18,14 +18,30 @@ int scene_interrupted(const im_scene_run_options *options, const char *where)
                    strsignal(scene_stop_signal(options)), where);
 }
 
+/* One message to options->log, formatted here; calls from OpenMP workers are serialised, with the
+ * progress calls too (the same critical section as ensemble.c's). */
+static void scene_log(const im_scene_run_options *options, im_log_level level, const char *fmt, va_list args)
+{
+    if (!options->log || (level == IM_LOG_INFO && options->quiet))
+        return;
+    char message[2048];
+    vsnprintf(message, sizeof message, fmt, args);
+#pragma omp critical(scene_progress)
+    options->log(options->user, level, message);
+}
+
 void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
 {
-    if (options->quiet)
-        return;
     va_list args;
     va_start(args, fmt);
-    fputs("indentmap: ", stderr);
-    vfprintf(stderr, fmt, args);
-    fputc('\n', stderr);
+    scene_log(options, IM_LOG_INFO, fmt, args);
+    va_end(args);
+}
+
+void scene_warn(const im_scene_run_options *options, const char *fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    scene_log(options, IM_LOG_WARNING, fmt, args);
     va_end(args);
 }

@@ -208,7 +208,7 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
         status = im_make_directories(scene->output_dir);
     scene_lock lock = {.fd = -1};
     if (status == IM_OK)
-        status = scene_lock_acquire(scene, &lock);
+        status = scene_lock_acquire(scene, options, &lock);
     if (status == IM_OK)
         remove_stale_temporaries(scene, options);
     if (status == IM_OK)

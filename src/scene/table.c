@@ -63,7 +63,7 @@ static int write_member(const im_scene *scene, const scene_member *m)
 
 /* Reads a member written by an earlier, interrupted run; 0 if there is none, or if it was made
  * from other inputs (its key differs: then it is solved again, with a notice). */
-static int read_member(const im_scene *scene, scene_member *m)
+static int read_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     char path[IM_SCENE_PATH], header[256];
     if (member_path(scene, m, path, sizeof path) != IM_OK)
@@ -80,7 +80,7 @@ static int read_member(const im_scene *scene, scene_member *m)
                     &m->height_rms, &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations,
                     &m->seconds, &m->load_star_approach, &key) == 12 && family == m->family && seed == m->seed;
     fclose(stream);
-    return scene_key_matches(path, ok ? key : 0,
+    return scene_key_matches(options, path, ok ? key : 0,
                              scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR));
 }
 
@@ -123,7 +123,7 @@ static int solve_member(const im_scene *scene, const im_scene_run_options *run_o
 
 int scene_table_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
-    if (options->resume && read_member(scene, m)) {
+    if (options->resume && read_member(scene, options, m)) {
         m->origin = SCENE_READ_BACK;
         return IM_OK;
     }
@@ -247,7 +247,7 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
     if (status == IM_OK) {
         scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
                        scene->load_star);
-        status = scene_ensemble_run(scene, options, members, count, scene_table_member);
+        status = scene_ensemble_run(scene, options, "table", members, count, scene_table_member);
     }
     if (status == IM_OK)
         scene_report_origins(options, "table", members, count);

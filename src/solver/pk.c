@@ -409,7 +409,8 @@ static void summarise(const pk_run *r, const gap_stats *s, im_solve_result *out)
     out->max_pressure = peak;
 }
 
-/* The CG loop proper; returns IM_OK, IM_ENOCONV or IM_ENUMERIC and leaves the last gap_stats. */
+/* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC or IM_EINTERRUPTED and leaves the last
+ * gap_stats. */
 static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
 {
     const im_solver_options *o = &r->plan->options;
@@ -431,6 +432,9 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
+        if (o->stop && *o->stop) /* the caller asked to stop: p is still a valid (warm) start */
+            return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations",
+                           (int)*o->stop, res->iterations);
         if (s.contact == 0 && !any_positive(r->p, (size_t)r->plan->nx * r->plan->ny)) {
             /* everything was clipped (patches at a pressure cap are not): start again from the local guess */
             cold_start(r);

@@ -5,15 +5,34 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <math.h>
-#include <threads.h>
+#include <pthread.h>
 
 /* Subintervals the adaptive rule may use; the theory's integrands need far fewer. */
 enum { QUADRATURE_LIMIT = 1000 };
 
-static once_flag gsl_handler_once = ONCE_FLAG_INIT;
+/* GSL's error handler is one process-wide pointer; its default aborts the program, and the library
+ * must return statuses instead. So it is switched off while any quadrature of the library runs and
+ * the application's handler, whatever it was, is put back when the last one ends: a count, under a
+ * lock, since quadratures run on several threads at once. */
+static pthread_mutex_t gsl_handler_lock = PTHREAD_MUTEX_INITIALIZER;
+static int gsl_handler_users;
+static gsl_error_handler_t *application_gsl_handler;
 
-/* GSL's default handler aborts the program; the library must return statuses instead. */
-static void switch_gsl_handler_off(void) { gsl_set_error_handler_off(); }
+static void gsl_handler_off(void)
+{
+    pthread_mutex_lock(&gsl_handler_lock);
+    if (gsl_handler_users++ == 0)
+        application_gsl_handler = gsl_set_error_handler_off();
+    pthread_mutex_unlock(&gsl_handler_lock);
+}
+
+static void gsl_handler_restore(void)
+{
+    pthread_mutex_lock(&gsl_handler_lock);
+    if (--gsl_handler_users == 0)
+        gsl_set_error_handler(application_gsl_handler);
+    pthread_mutex_unlock(&gsl_handler_lock);
+}
 
 static int status_from_gsl(int gsl_status, const char *what, double lo, double hi)
 {
@@ -29,10 +48,8 @@ static int status_from_gsl(int gsl_status, const char *what, double lo, double h
                    gsl_strerror(gsl_status));
 }
 
-int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what,
-                     double *result)
+static int integrate(theory_integrand f, void *params, double lo, double hi, const char *what, double *result)
 {
-    call_once(&gsl_handler_once, switch_gsl_handler_off);
     if (!(lo < hi)) {
         *result = 0.0;
         return IM_OK;
@@ -51,4 +68,13 @@ int theory_integrate(theory_integrand f, void *params, double lo, double hi, con
         return im_fail(IM_ENUMERIC, "%s on [%g, %g]: the quadrature gave %g", what, lo, hi, value);
     *result = value;
     return IM_OK;
+}
+
+int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what,
+                     double *result)
+{
+    gsl_handler_off();
+    int status = integrate(f, params, lo, hi, what, result);
+    gsl_handler_restore();
+    return status;
 }

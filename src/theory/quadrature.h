@@ -1,5 +1,6 @@
 /* Internal: GSL adaptive quadrature for the theory module, with GSL's error handler switched off
- * and GSL's status codes turned into the project's. */
+ * during each call (and the application's put back after it) and GSL's status codes turned into
+ * the project's. */
 #ifndef INDENTMAP_THEORY_QUADRATURE_H
 #define INDENTMAP_THEORY_QUADRATURE_H
 
