@@ -50,6 +50,11 @@ im_indenter im_indenter_flat(double radius);
 /* Name of a kind: "cone", "sphere", "flat". */
 const char *im_punch_name(enum im_punch_kind kind);
 
+/* The kind named by name: "cone", "sphere" or "flat" (any case), as `indent --punch` and a scene's
+ * [punch] shape take it. IM_OK, or IM_EINVAL with "'NAME': expected cone, sphere or flat" (the
+ * front end puts the option or key before it); *kind is left as it was then. */
+int im_punch_parse(const char *name, enum im_punch_kind *kind);
+
 /* IM_EINVAL naming the parameter when alpha is outside (0, 90) degrees (cone), a radius is not
  * finite and positive (sphere, flat), or the position is not finite. */
 int im_indenter_check(const im_indenter *punch);
