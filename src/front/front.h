@@ -5,6 +5,7 @@
 #define INDENTMAP_FRONT_H
 
 #include "indentmap/indenter.h"
+#include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/theory.h"
 
@@ -18,7 +19,7 @@
  * 4096 doubles, copied by value) and a run keeps a row of about 200 bytes per step; at the
  * 0.05-1 s a step of a 512 x 512 solve takes, 4096 steps are already minutes to an hour. The
  * field files of `indent --fields` are numbered with four digits, which 4096 keeps. */
-enum { STEPS_MAX = 4096 };
+enum { STEPS_MAX = IM_SCENE_MAX_STEPS };
 
 /* Parses a step list, "first:last:count" (count values evenly spaced from first to last, both
  * included; last may be below first) or "v1, v2, ..." (blanks around items allowed), of finite

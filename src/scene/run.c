@@ -53,7 +53,7 @@ static int file_surface(const im_scene *scene, int i, im_field **out)
     im_surface_read_options read = {.fill = scene->fill};
     if (status == IM_OK)
         status = im_surface_read_with(path, &read, out, NULL);
-    if (status == IM_OK && (status = im_surface_detrend(*out, (enum im_detrend)scene->detrend)) != IM_OK) {
+    if (status == IM_OK && (status = im_surface_detrend(*out, scene->detrend)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }
@@ -150,7 +150,7 @@ int scene_panel_columns(int count)
 im_colormap scene_force_norm(const im_scene *scene, double largest)
 {
     double hi = largest > 0.0 ? largest : 1.0;
-    im_colormap norm = im_colormap_make((im_colormap_id)scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
+    im_colormap norm = im_colormap_make(scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
     norm.logarithmic = scene->log_norm;
     return norm;
 }
@@ -190,10 +190,7 @@ int scene_draw_plot(const im_scene *scene, const void *plot, const char *path)
 
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)
 {
-    int length = snprintf(buffer, size, "%s/%s", scene->output_dir, relative);
-    if (length < 0 || (size_t)length >= size)
-        return im_fail(IM_EINVAL, "output path %s/%s is too long", scene->output_dir, relative);
-    return IM_OK;
+    return im_path_join(buffer, size, scene->output_dir, relative);
 }
 
 int scene_stop_signal(const im_scene_run_options *options)
@@ -282,7 +279,7 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     int status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options, &reuse);
-    if (status == IM_OK && scene_wants_plot(scene, "flat_k") && (status = check_stop(options, "the flat contacts")) == IM_OK)
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) && (status = check_stop(options, "the flat contacts")) == IM_OK)
         status = scene_run_flat_k(scene, options, &reuse);
     if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options, &reuse);

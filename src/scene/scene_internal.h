@@ -7,6 +7,7 @@
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
+#include "indentmap/theory.h"
 
 /* The punch a scene describes. */
 im_indenter scene_punch(const im_scene *scene);
@@ -39,11 +40,12 @@ im_colormap scene_force_norm(const im_scene *scene, double largest);
  * NULL) receives rho_c of eq. (7). */
 double scene_eq12(const im_scene *scene, double slope, double *rho_c);
 
-/* The theory columns (theory.h's im_theory_step) of a step at approach w and load N on a surface
- * of this h'rms: the scene's punch and E*, k = 2 and the PR normalisation (history_theory.c). */
-struct im_theory_step;
+/* The rough interface of the theory columns of a history on a surface of this h'rms: the scene's
+ * E*, k = 2 and the PR normalisation (history_theory.c). */
+im_theory_interface scene_theory_interface(const im_scene *scene, double slope);
+/* The theory columns (theory.h's im_theory_step) of a step at approach w and load N on it. */
 int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
-                             struct im_theory_step *row);
+                             im_theory_step *row);
 
 /* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
 int scene_write_png_pdf(const im_scene *scene, const char *name,
@@ -152,8 +154,10 @@ typedef struct scene_member {
     im_field *force;               /* force at load_star, kept for a panel (first seed), else NULL */
     const struct scene_member *at_load_star; /* histories: the table's member of this surface */
     int step_reused;               /* histories: the step at load_star was the table's */
-    /* histories: one row per step that converged */
+    /* histories: one row per step that converged (front.h's schema), and the columns the figures
+     * draw, spread from them */
     int steps;
+    struct history_row *history;
     double *approach, *history_load, *history_load_star, *history_area_ratio;
     long *history_patches;
 } scene_member;
@@ -240,8 +244,9 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
  * fed into eq. (12) beside k = 2 and the table's simulated A/A_cone (reuse, when the table ran). */
 int scene_run_flat_k(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse);
 
-/* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
-int scene_wants_plot(const im_scene *scene, const char *name);
+/* Plots: whether [output] plots names one of the figures in the bits of plot; IM_EINVAL when a
+ * plot lacks what it draws (density: contact_panels, sphere: a sphere, fig2: the table). */
+int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot);
 int scene_check_plots(const im_scene *scene);
 /* Whether a plot needs the ensemble's histories (fig5, fig6, fig7, sphere). */
 int scene_wants_histories(const im_scene *scene);
