@@ -74,8 +74,8 @@ int steps_parse(const char *name, const char *text, double *values, int *count, 
             return -1;
         }
         if (!parse_value(item, length, &values[*count])) {
-            snprintf(error, size, "%s: '%.*s' in '%s': expected numbers >= 0 separated by commas", name, (int)length,
-                     item, text);
+            snprintf(error, size, "%s '%s': '%.*s' is not a number >= 0: expected values separated by commas", name,
+                     text, (int)length, item);
             return -1;
         }
         if (!comma)
