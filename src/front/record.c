@@ -1,13 +1,12 @@
 /* The JSON run record of `indent` and of scenes (OUTPUT/run.json): one set of common fields, one
  * writer. */
 #include "front/front.h"
+#include "io/json_file.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 
 #include <limits.h>
-#include <stdlib.h>
-#include <string.h>
 
 /* The solver options a run was made with. The accelerations of issue 15 are on unless switched
  * off, and off with a hardness (solver.h). */
@@ -41,12 +40,5 @@ int run_record_write(const char *dir, const json_t *record)
     int status = im_path_join(path, sizeof path, dir, "run.json");
     if (status != IM_OK)
         return status;
-    char *text = json_dumps(record, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
-    if (!text)
-        return im_fail(IM_ENOMEM, "%s: out of memory", path);
-    size_t length = strlen(text);
-    text[length] = '\n'; /* json_dumps leaves room: its terminator becomes the newline */
-    status = im_write_file_atomic(path, text, length + 1);
-    free(text);
-    return status;
+    return json_file_write(path, record);
 }

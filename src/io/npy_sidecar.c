@@ -2,6 +2,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/json_file.h"
 #include "io/readers.h"
 
 #include <jansson.h>
@@ -19,14 +20,8 @@ int im_field_sidecar_write(const char *path, const im_field *field, const char *
     json_t *root = json_pack("{s:s, s:s, s:s, s:i, s:i, s:f, s:s, s:s}", "program", "indentmap", "version", IM_VERSION,
                              "quantity", quantity, "nx", field->nx, "ny", field->ny, "delta", field->delta, "unit",
                              field->unit, "value_unit", field->value_unit);
-    char *text = root ? json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17)) : NULL;
+    status = json_file_write(sidecar, root);
     json_decref(root);
-    if (!text)
-        return im_fail(IM_ENOMEM, "%s: cannot build the JSON record", sidecar);
-    size_t length = strlen(text);
-    text[length] = '\n'; /* json_dumps leaves room for the terminator */
-    status = im_write_file_atomic(sidecar, text, length + 1);
-    free(text);
     return status;
 }
 
