@@ -141,6 +141,7 @@ int main(int argc, char **argv)
     /* Love's cone: a = 2 w tan(alpha) / pi, so a = n / 5 at w = pi n cot(alpha) / 10 */
     const double approach = M_PI * n / (10 * tan(80 * M_PI / 180));
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the tolerance these figures were measured at (the default is 1e-6) */
     o.tol = tol;
     o.cascade = cascade;
     o.precondition = precondition;

@@ -141,6 +141,7 @@ static void run(int nx, int ny, int repeats)
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     const double rss_before = peak_rss_mib();
     im_solver_options options = im_solver_options_default();
+    options.tol = 1e-8; /* the tolerance these figures were measured at (the default is 1e-6) */
     im_mpi_solver *solver;
     int status = im_mpi_solver_create(MPI_COMM_WORLD, nx, ny, 1.0, &options, &solver);
     if (status != IM_OK)

@@ -36,7 +36,7 @@ static inline const char *fuzz_field_problem(int status, const im_field *field)
 }
 
 /* NULL if im_scene_load's (status, scene) is consistent, else what is wrong: an accepted scene
- * holds its counts within its arrays, terminated strings and lambda_r > lambda_s. */
+ * holds its counts within its arrays, terminated strings, known plot bits and lambda_r > lambda_s. */
 static inline const char *fuzz_scene_problem(int status, const im_scene *s)
 {
     if (status != IM_OK)
@@ -46,8 +46,10 @@ static inline const char *fuzz_scene_problem(int status, const im_scene *s)
         return "a count outside its array";
     if (!fuzz_is_terminated(s->name, sizeof s->name) || !fuzz_is_terminated(s->output_dir, sizeof s->output_dir) ||
         !fuzz_is_terminated(s->quality, sizeof s->quality) ||
-        !fuzz_is_terminated(s->surface_file, sizeof s->surface_file) || !fuzz_is_terminated(s->plots, sizeof s->plots))
+        !fuzz_is_terminated(s->surface_file, sizeof s->surface_file))
         return "an unterminated string";
+    if (s->plots >> 9) /* the bits of enum im_scene_plot: 1 << 0 .. 1 << 8 */
+        return "a plot bit no plot has";
     if (!(s->surface.lambda_r > s->surface.lambda_s))
         return "lambda_r <= lambda_s accepted";
     return NULL;

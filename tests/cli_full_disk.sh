@@ -65,7 +65,7 @@ rm "$dir/tiny/filler"
 check "resume after freeing space" test $? -eq 0
 check "table1.csv as undisturbed" cmp "$dir/whole/table1.csv" "$dir/tiny/out/table1.csv"
 for f in "$dir"/whole/histories/*.csv; do
-  check "$(basename "$f") as undisturbed" cmp -s "$f" "$dir/tiny/out/histories/$(basename "$f")"
+  check "$(basename "$f") as undisturbed" cmp -s <(history_rows "$f") <(history_rows "$dir/tiny/out/histories/$(basename "$f")")
 done
 
 # indent has no estimate: its field files fail at the file-size limit, with EFBIG, cleanly.

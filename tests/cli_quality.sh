@@ -42,7 +42,12 @@ check "publication: n_p exact" within "$dir/ref/history.csv" "$dir/publication/h
 check "--tol overrides --quality (either order)" same_number "$(json_tol "$dir/both/run.json")" 1e-7
 check "run.json says the tolerance came from --tol" test "$(json_field "$dir/both/run.json" tol_from)" = "--tol"
 "$cli" indent "$dir/s.npy" --approach 1 --out "$dir/none" >/dev/null 2>&1
-check "no preset: tol 1e-8 as before, quality none" test "$(json_field "$dir/none/run.json" quality)" = none
+# One default for indent and scenes (solver.h: IM_QUALITY_DEFAULT): the standard preset, tol 1e-6.
+check "no preset: the default, standard" test "$(json_field "$dir/none/run.json" quality)" = standard
+check "no preset: tol 1e-6, as a scene's default" same_number "$(json_tol "$dir/none/run.json")" 1e-6
+check "no preset: tol_from default" test "$(json_field "$dir/none/run.json" tol_from)" = default
+"$cli" indent "$dir/s.npy" --approach 1 --tol 1e-7 --out "$dir/tol_only" >/dev/null 2>&1
+check "--tol alone: quality none" test "$(json_field "$dir/tol_only/run.json" quality)" = none
 "$cli" indent "$dir/s.npy" --approach 1 --quality best --out "$dir/bad" >/dev/null 2>"$dir/err"
 check "--quality best: exit 2" test $? -eq 2
 check "--quality best: the message names the choices" grep -q "quality = 'best': expected draft, standard or publication" "$dir/err"

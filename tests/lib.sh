@@ -26,3 +26,7 @@ finish() {
   echo "$passes passed, $failures failed"
   [ "$failures" -eq 0 ]
 }
+
+# history_rows FILE: a scene history's rows (after its "# ..." header line, whose checksum covers
+# them) but for the solve times (column 11, seconds): what two runs of one scene must agree on.
+history_rows() { tail -n +2 "$1" | cut -d, -f1-10,12-; }

@@ -119,6 +119,7 @@ static int plan(void *context)
 {
     (void)context;
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     im_solver_plan *p = NULL;
     int status = im_solver_plan_create(24, 20, 1.0, &o, &p);
     im_solver_plan_free(p);
@@ -129,6 +130,7 @@ static int indentation(void *context)
 {
     im_indenter cone = im_indenter_cone(80);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     im_indentation *run = NULL;
     im_step_result r;
     int status = im_indentation_create(context, &cone, IM_CONTROL_DISPLACEMENT, 2.0, &o, &run);

@@ -18,6 +18,7 @@ static im_indentation *prepare(const im_indenter *punch, enum im_control control
     im_field *surface = NULL;
     assert_int_equal(im_field_create(N, N, 1.0, &surface), IM_OK);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.tol = 1e-10;
     o.hardness = hardness;
     o.max_iterations = 3000;
@@ -154,6 +155,7 @@ static void bad_hardness_is_refused(void **state)
 {
     (void)state;
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.hardness = -1.0;
     assert_int_equal(im_solver_options_check(&o), IM_EINVAL);
     o.hardness = NAN;

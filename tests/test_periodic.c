@@ -30,6 +30,7 @@ static double full_contact_pressure(void) { return M_PI * AMPLITUDE / NX; } /* p
 static im_flat_contact *prepare(const im_field *s)
 {
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.tol = 1e-10;
     im_flat_contact *run = NULL;
     if (im_flat_contact_create(s, &o, &run) != IM_OK)
@@ -203,6 +204,7 @@ static void kernel_tends_to_loves(void **state)
 {
     (void)state;
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.periodic = 1;
     o.e_star = 2.0;
     const int n = 256;
@@ -239,6 +241,7 @@ static void refusals(void **state)
     assert_null(run);
     im_field_free(s);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.periodic = 1;
     im_solver_plan *plan = NULL;
     assert_int_equal(im_solver_plan_create(8, 8, 1.0, &o, &plan), IM_OK);

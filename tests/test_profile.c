@@ -259,7 +259,9 @@ static im_step_result solve_one(const im_field *s, const im_indenter *punch, enu
 {
     im_indentation *run = NULL;
     im_step_result r;
-    if (im_indentation_create(s, punch, control, target, NULL, &run) != IM_OK ||
+    im_solver_options options = im_solver_options_default();
+    options.tol = 1e-8; /* the bars below (1e-7, 1e-8) were set at this tolerance */
+    if (im_indentation_create(s, punch, control, target, &options, &run) != IM_OK ||
         im_indentation_step(run, target, &r) != IM_OK)
         fail_msg("%s %s %g: %s", im_punch_name(punch->kind), control == IM_CONTROL_LOAD ? "load" : "approach",
                  target, im_last_error());

@@ -126,7 +126,7 @@ static void errors_name_the_line(void **state)
     expect_error("section.ini", "; comment\n[surface]\nn = 64\n", ":3: unknown section [surface]; did you mean [surfaces]?");
     expect_error("range.ini", "[punch]\nalpha = 95\n", ":2: alpha = '95': expected a number in");
     expect_error("number.ini", "[surfaces]\nn = 64x\n", ":2: n = '64x': expected an integer");
-    expect_error("choice.ini", "[punch]\nshape = pyramid\n", ":2: shape = 'pyramid': expected one of cone|sphere|flat");
+    expect_error("choice.ini", "[punch]\nshape = pyramid\n", ":2: shape = 'pyramid': expected cone, sphere, flat or profile");
     expect_error("malformed.ini", "[punch]\nshape = cone\nthis line has no equals sign\n[material]\nmodulus = -1\n", ":3: malformed line");
     expect_error("first.ini", "[punch]\nalpha = 100\nshape = pyramid\n", ":2: alpha");
     expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes: 'abc'");

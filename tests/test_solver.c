@@ -37,7 +37,9 @@ static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum
                                double largest, const im_solver_options *o)
 {
     im_indentation *run = NULL;
-    int status = im_indentation_create(s, punch, control, largest, o, &run);
+    im_solver_options tight = im_solver_options_default();
+    tight.tol = 1e-8; /* without options: the tolerance this file's closed-form bars were set at */
+    int status = im_indentation_create(s, punch, control, largest, o ? o : &tight, &run);
     if (status != IM_OK)
         fail_msg("im_indentation_create: %s", im_last_error());
     return run;
@@ -246,6 +248,7 @@ static im_step_result run_with_threads(const im_field *s, int threads, int crop,
     omp_set_num_threads(threads);
     im_indenter cone = im_indenter_cone(80);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.crop = crop;
     im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 10, &o);
     step(run, 5);
@@ -362,6 +365,7 @@ static void test_full_grid_displacement(void **state)
     im_field *s = rough_surface(96, 0.08, 3), *fc = NULL, *uc = NULL, *uf = NULL, *full = NULL;
     im_indenter cone = im_indenter_cone(80.0);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.tol = 1e-10;
     im_indentation *cropped = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 1.5, &o);
     im_step_result r = step(cropped, 1.5);
@@ -414,6 +418,7 @@ static void test_stopping_rule_bounds_penetration(void **state)
     im_field *s = rough_surface(128, 0.16, 3);
     im_indenter cone = im_indenter_cone(80);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.tol = 3e-3;
     for (int control = 0; control <= 1; ++control) {
         double target = control == IM_CONTROL_LOAD ? 400.0 : 4.0;
@@ -451,6 +456,7 @@ static void test_no_convergence(void **state)
     im_field *s = rough_surface(64, 0.08, 2);
     im_indenter cone = im_indenter_cone(80);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.max_iterations = 3;
     o.tol = 1e-14;
     im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 4, &o);
@@ -534,6 +540,7 @@ static void test_bad_input(void **state)
     assert_close(zero.load, 0, 0);
     im_indentation_free(run);
     im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     o.tol = 0;
     im_solver_plan *plan = NULL;
     assert_int_equal(im_solver_plan_create(8, 8, 1, &o, &plan), IM_EINVAL);

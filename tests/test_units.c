@@ -38,6 +38,7 @@ static void indent(const im_field *surface, double e_star, const double *approac
 {
     im_indenter cone = im_indenter_cone(80.0);
     im_solver_options options = im_solver_options_default();
+    options.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
     options.e_star = e_star;
     options.tol = 1e-13;
     im_indentation *run = NULL;

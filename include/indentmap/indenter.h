@@ -140,6 +140,11 @@ int im_profile_read(const char *path, double delta, im_profile **out);
 /* Name of a kind: "cone", "sphere", "flat", "profile", "profile-2d". */
 const char *im_punch_name(enum im_punch_kind kind);
 
+/* The kind named by name: "cone", "sphere", "flat" or "profile" (any case), as `indent --punch` and a scene's
+ * [punch] shape take it. IM_OK, or IM_EINVAL with "'NAME': expected cone, sphere, flat or profile" (the
+ * front end puts the option or key before it); *kind is left as it was then. */
+int im_punch_parse(const char *name, enum im_punch_kind *kind);
+
 /* IM_EINVAL naming the parameter when alpha is outside (0, 90) degrees (cone), a radius is not
  * finite and positive (sphere, flat), a profile kind has no profile or one of the other kind, or
  * the position is not finite. */

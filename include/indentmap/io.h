@@ -46,6 +46,13 @@ int im_output_check(const char *path);
  * that does not exist yet is appended as written. IM_EINVAL if it does not fit in size. */
 int im_path_absolute(const char *path, char *out, size_t size);
 
+/* Checked path building. im_path_join writes DIR/NAME and im_path_suffix PATH followed by SUFFIX
+ * (e.g. a sidecar's ".json") into out (size bytes, terminated). IM_OK, or IM_EINVAL with
+ * "path too long: L bytes where at most size - 1 fit: 'HEAD...TAIL'" (the path's first and last 60
+ * bytes) when it does not fit, out then being the empty string: a cut path is never handed on. */
+int im_path_join(char *out, size_t size, const char *dir, const char *name);
+int im_path_suffix(char *out, size_t size, const char *path, const char *suffix);
+
 /* What a file holds, recognised from its first bytes. */
 enum im_file_kind {
     IM_KIND_NONE = 0, /* missing or empty */

@@ -27,7 +27,9 @@
 #ifndef INDENTMAP_SCENE_H
 #define INDENTMAP_SCENE_H
 
+#include "indentmap/colormap.h"
 #include "indentmap/indenter.h"
+#include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 
@@ -43,6 +45,23 @@ enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 40
 
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
                     IM_ANIMATION_BOTH = 3 };
+
+/* The figures [output] plots can name ("plots = fig5, fig7"), one bit each of im_scene.plots. */
+enum im_scene_plot {
+    IM_SCENE_PLOT_FIG1 = 1u << 0,    /* fig1: gamma(r/a) of the scene's roughnesses */
+    IM_SCENE_PLOT_FIG2 = 1u << 1,    /* fig2: A/A_cone against rho_c, with the table */
+    IM_SCENE_PLOT_FIG3 = 1u << 2,    /* fig3: the framed family's surface */
+    IM_SCENE_PLOT_FIG5 = 1u << 3,    /* fig5, fig6, fig7: the ensemble's histories */
+    IM_SCENE_PLOT_FIG6 = 1u << 4,
+    IM_SCENE_PLOT_FIG7 = 1u << 5,
+    IM_SCENE_PLOT_DENSITY = 1u << 6, /* ring-averaged contact density of the panels */
+    IM_SCENE_PLOT_SPHERE = 1u << 7,  /* a sphere's histories against eq. (3) */
+    IM_SCENE_PLOT_FLAT_K = 1u << 8   /* eq. (2)'s k measured on the rough surfaces */
+};
+
+/* The name of one plot bit ("fig5"), NULL for anything else; the bit named by name, 0 for none. */
+const char *im_scene_plot_name(enum im_scene_plot plot);
+enum im_scene_plot im_scene_plot_parse(const char *name);
 
 typedef struct im_scene {
     char path[IM_SCENE_PATH];        /* the scene file as given */
@@ -60,7 +79,7 @@ typedef struct im_scene {
                                         seeds[i] = i picks file i. `slopes` and `seeds` are refused
                                         beside them (their h'rms is measured, each is one surface). */
     int file_count;                  /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
-    int detrend;                     /* enum im_detrend of surface.h for the files (default none) */
+    enum im_detrend detrend;         /* for the files (default none) */
     int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
     char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
     double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
@@ -71,7 +90,7 @@ typedef struct im_scene {
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
     int seed_count;
 
-    int punch;                       /* enum im_punch_kind of indenter.h: cone, sphere, flat, profile */
+    enum im_punch_kind punch;        /* cone, sphere, flat, profile (indenter.h: im_punch_parse reads shape) */
     double alpha_degrees;            /* cone semi-opening angle */
     /* Sweeps (docs/scenes.md, "Sweeps"): [punch] alpha, [surfaces] hurst and lambda_s may be lists.
      * Each scalar above holds its list's first value; a count of 0 or 1 is no sweep. A scene with a
@@ -93,24 +112,26 @@ typedef struct im_scene {
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
-    int control;                     /* enum im_control of solver.h: 0 displacement, 1 load */
+    enum im_control control;         /* displacement or load */
     double load_star;                /* N* at which contact panels are drawn (0: none) */
-    double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty) */
+    double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty):
+                                        first:last:count or a list, parsed as `indent --approach` */
     int step_count;
 
-    double tol;                      /* solver tolerance (default: the quality preset's) */
+    double tol;                      /* solver tolerance (default: the quality preset's; the preset
+                                        IM_QUALITY_DEFAULT of solver.h, as for `indent`) */
 
     int contact_panels, frames, table;
     int distributions;               /* 1: gap and patch-size distributions at load_star of each
                                         family's first surface (distributions/, docs/scenes.md) */
     int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
-    int colormap;                    /* im_colormap_id of colormap.h (default viridis) */
+    im_colormap_id colormap;         /* default viridis */
     int log_norm;                    /* 1: forces on a log norm spanning two decades below the
                                         largest, smaller forces in the under colour */
     double frames_slope;             /* the family whose history is framed; < 0: the roughest */
     int frame_count;                 /* steps of the framed history (default 24) */
     enum im_animation animation;
-    char plots[256];                 /* comma-separated figure names, "" for none */
+    unsigned plots;                  /* bit set of enum im_scene_plot, 0 for none */
 } im_scene;
 
 /* Defaults: the paper's surface family and 80 degree cone, E* = 1, no outputs. */

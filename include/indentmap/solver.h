@@ -62,7 +62,7 @@
  * ---- Stopping rule ----
  * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w   (with a hardness, also g at p = H_p)
  * i.e. the rms gap left in the contact set and the worst penetration outside it, relative to the
- * approach. A solve stops when residual <= tol (default 1e-8), checked on u recomputed exactly by
+ * approach. A solve stops when residual <= tol (default 1e-6), checked on u recomputed exactly by
  * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
  * iterations. Both the iteration count and the residual are reported for every solve. A solve whose
  * options.stop flag is set ends with IM_EINTERRUPTED after the iteration in progress.
@@ -105,7 +105,8 @@ extern "C" {
 
 typedef struct im_solver_options {
     double e_star;          /* composite modulus E* (default 1) */
-    double tol;             /* stopping tolerance on the relative residual (default 1e-8) */
+    double tol;             /* stopping tolerance on the relative residual (default 1e-6,
+                               IM_QUALITY_DEFAULT) */
     int max_iterations;     /* iteration cap per solve (default 10000) */
     int fft_measure;        /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
                                wisdom file is in use, which implies FFTW_MEASURE */
@@ -156,6 +157,12 @@ int im_solver_wisdom_check(const im_solver_options *options);
  * "Speed against accuracy"). An explicit tol overrides a preset wherever both can be given.
  * IM_EINVAL naming the name for anything else. */
 int im_quality_tolerance(const char *name, double *tol);
+
+/* The default of every front end and of im_solver_options_default: the standard preset, tol 1e-6
+ * (`indent` without --quality or --tol, a scene without quality or [solver] tol). A tighter
+ * tolerance is asked for explicitly (--tol, --quality publication, options.tol). */
+#define IM_QUALITY_DEFAULT "standard"
+double im_quality_default_tolerance(void);
 
 /* Displacement at a patch centre offset (x, y) from the centre of a delta x delta patch carrying
  * unit pressure, for composite modulus e_star (Love 1929). At (0, 0): 4 delta asinh(1) / (pi E*). */

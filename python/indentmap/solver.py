@@ -55,13 +55,13 @@ class Indentation:
     ``control`` is 'displacement' (targets are approaches w, counted from first touch) or 'load'
     (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
     window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
-    solver's relative residual (default 1e-8, as ``indentmap indent``). Steps run without the GIL; Ctrl-C
-    during a step on the main thread stops it within one iteration and raises KeyboardInterrupt (the
-    history keeps the last iterate as its next warm start).
+    solver's relative residual (default 1e-6, the standard quality preset, as ``indentmap indent`` and
+    scenes). Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
+    iteration and raises KeyboardInterrupt (the history keeps the last iterate as its next warm start).
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
-                 tol=1e-8, max_iterations=10000, crop=True, window_margin=4, axis=None):
+                 tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None):
         kind, alpha, radius, profile = _punch_arguments(punch)
         x, y = (None, None) if axis is None else axis
         self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
@@ -95,7 +95,7 @@ class Plan:
     on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
     """
 
-    def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=1e-8, max_iterations=10000):
+    def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000):
         self._plan = _core.Plan(int(nx), int(nx if ny is None else ny), float(delta), float(e_star), float(tol),
                                 int(max_iterations))
 

@@ -1,6 +1,7 @@
 /* indentmap indent: an indentation history of a surface by a punch, under displacement or load
  * control, written step by step to DIR/history.csv, with DIR/run.json and optional fields. */
 #include "cli/cli.h"
+#include "front/front.h"
 
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
@@ -23,8 +24,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-#define MAX_STEPS 100000
 
 static void usage(FILE *stream)
 {
@@ -57,15 +56,17 @@ static void usage(FILE *stream)
             "                      a warning: small-slope elasticity is stretched (still solved)\n"
             "  --radius R          sphere radius or flat punch radius (required for those)\n"
             "  --x X --y Y         punch axis position (default: centre of patch (nx/2, ny/2))\n"
-            "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'a:b:count' (linear, inclusive)\n"
+            "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'first:last:count' (linear,\n"
+            "                      inclusive); at most 4096 steps, as a scene's [loading] steps\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
             "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
             "                      stress); default none\n"
-            "  --quality Q         draft (tol 1e-5), standard (1e-6) or publication (1e-9): the solver\n"
-            "                      tolerance of a speed/accuracy preset (errors measured in solver.h)\n"
-            "  --tol T             stopping tolerance on the relative gap residual (default 1e-8);\n"
-            "                      overrides --quality. run.json records quality and tol\n"
+            "  --quality Q         draft (tol 1e-5), standard (1e-6, the default, as for scenes) or\n"
+            "                      publication (1e-9): the solver tolerance of a speed/accuracy preset\n"
+            "                      (errors measured in solver.h)\n"
+            "  --tol T             stopping tolerance on the relative gap residual (default: the\n"
+            "                      quality's); overrides --quality. run.json records quality and tol\n"
             "  --max-iter K        iteration cap per step (default 10000)\n"
             "  --full              solve on the whole surface, not the window that can touch\n"
             "  --plain-pk          plain Polonsky-Keer CG from the local guess: no cascade cold start, no\n"
@@ -132,58 +133,25 @@ static const struct option LONG_OPTIONS[] = {
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
     {"profile", required_argument, 0, OPT_PROFILE}, {0, 0, 0, 0}};
 
+/* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
 {
-    static const enum im_punch_kind KINDS[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT, IM_PUNCH_PROFILE};
-    for (int i = 0; i < 4; ++i)
-        if (strcmp(text, im_punch_name(KINDS[i])) == 0) {
-            *kind = KINDS[i]; /* profile: profile-2d once --profile is read, if it is a .npy field */
-            return 0;
-        }
-    fprintf(stderr, "indentmap: --punch: '%s': expected cone, sphere, flat or profile\n", text);
+    if (im_punch_parse(text, kind) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
     return -1;
 }
 
-/* 'a:b:count' (count >= 1 values from a to b inclusive) or 'v1,v2,...'. */
+/* --approach or --load: a step list (front.h: steps_parse, as a scene's [loading] steps). */
 static int parse_targets(const char *option, const char *text, double **out, int *count)
 {
-    double a, b;
-    int n;
-    char tail;
-    if (sscanf(text, "%lf:%lf:%d%c", &a, &b, &n, &tail) == 3) {
-        if (!(isfinite(a) && isfinite(b) && a >= 0 && b >= 0) || n < 1 || n > MAX_STEPS) {
-            fprintf(stderr, "indentmap: %s '%s': expected a:b:count with a, b >= 0 and 1 <= count <= %d\n",
-                    option, text, MAX_STEPS);
-            return -1;
-        }
-        if (!(*out = malloc(sizeof(double) * n)))
-            return -1;
-        for (int i = 0; i < n; ++i)
-            (*out)[i] = n == 1 ? b : a + (b - a) * i / (n - 1);
-        *count = n;
-        return 0;
-    }
-    if (strchr(text, ':') || strstr(text, ",,") || text[0] == ',' || (text[0] && text[strlen(text) - 1] == ',')) {
-        fprintf(stderr, "indentmap: %s '%s': expected a range a:b:count (three numbers) or a list v1,v2,... "
-                "without empty items\n", option, text);
+    char error[512];
+    if (!(*out = malloc(sizeof(double) * STEPS_MAX)))
         return -1;
-    }
-    char *copy = strdup(text), *save = NULL;
-    *out = malloc(sizeof(double) * (strlen(text) / 2 + 1));
-    *count = 0;
-    int status = copy && *out ? 0 : -1;
-    for (char *item = strtok_r(copy, ",", &save); item && status == 0; item = strtok_r(NULL, ",", &save))
-        status = cli_parse_double(option, item, 0, 1e300, &(*out)[(*count)++]);
-    free(copy);
-    if (status == 0 && *count == 0) {
-        fprintf(stderr, "indentmap: %s: expected a list 'v1,v2,...' or a range 'a:b:count'\n", option);
-        status = -1;
-    }
-    if (status == 0 && *count > MAX_STEPS) { /* as for a range: the step files are numbered NNNN */
-        fprintf(stderr, "indentmap: %s: %d values: expected at most %d steps\n", option, *count, MAX_STEPS);
-        status = -1;
-    }
-    return status;
+    if (steps_parse(option, text, *out, count, error, sizeof error) == 0)
+        return 0;
+    fprintf(stderr, "indentmap: %s\n", error);
+    return -1;
 }
 
 static int apply_option(int code, const char *arg, void *state)
@@ -336,7 +304,7 @@ static int check_wisdom(const indent_options *o)
         return -1;
     }
     const char *wisdom = im_solver_wisdom_file(&o->solver);
-    char file[4200], folder[4200];
+    char file[4096], folder[4096];
     if (!wisdom || im_path_absolute(wisdom, file, sizeof file) != IM_OK ||
         im_path_absolute(o->out, folder, sizeof folder) != IM_OK)
         return 0;
@@ -353,9 +321,11 @@ static int check_wisdom(const indent_options *o)
  * is opened (io.h: the output guard). */
 static int check_outputs_apart(const indent_options *o)
 {
-    char sidecar[4200] = "";
-    if (o->surface_path)
-        snprintf(sidecar, sizeof sidecar, "%s.json", o->surface_path);
+    char sidecar[4096] = "";
+    if (o->surface_path && im_path_suffix(sidecar, sizeof sidecar, o->surface_path, ".json") != IM_OK) {
+        fprintf(stderr, "indentmap: SURFACE: %s\n", im_last_error());
+        return -1;
+    }
     const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL, o->profile_path};
     if (cli_protect_inputs(inputs, 1) != 0 || cli_protect_inputs(inputs + 2, 1) != 0 ||
         cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 3) != 0)
@@ -392,73 +362,6 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 
 /* ---- outputs ---- */
 
-static const char *HISTORY_HEADER = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
-                                    "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
-                                    ",stiffness,e_star_sneddon,patches,patch_perimeter\n";
-
-/* Beside each solved step: the theory, and what an experiment would measure (measure.h). */
-typedef struct step_extras {
-    im_theory_step theory;
-    double stiffness;       /* dN/dw from this step and the (up to) two before; NaN at the first */
-    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
-    long patches;           /* connected contact patches */
-    double perimeter;       /* their perimeter */
-} step_extras;
-
-/* DIR/history.csv, appended step by step. Its header is written atomically (so the file appears
- * whole); each step is then one line, written with one write(2) and synced (fdatasync), so that a
- * finished step survives a crash and the cost per step does not grow with the steps before it. A
- * write that fails part way is cut back to the last whole line. */
-typedef struct history_file {
-    int fd;
-    off_t size; /* bytes of whole lines */
-    char path[4200];
-} history_file;
-
-static int history_start(const char *dir, history_file *h)
-{
-    h->fd = -1;
-    snprintf(h->path, sizeof h->path, "%s/history.csv", dir);
-    int status = im_write_file_atomic(h->path, HISTORY_HEADER, strlen(HISTORY_HEADER));
-    if (status != IM_OK)
-        return status;
-    h->fd = open(h->path, O_WRONLY | O_APPEND | O_CLOEXEC);
-    if (h->fd < 0)
-        return im_fail(IM_EIO, "%s: cannot open for appending: %s", h->path, strerror(errno));
-    h->size = (off_t)strlen(HISTORY_HEADER);
-    return IM_OK;
-}
-
-static int history_append(history_file *h, int step, const im_step_result *r, const step_extras *e)
-{
-    char line[1024];
-    const im_theory_step *t = &e->theory;
-    int length = snprintf(line, sizeof line,
-                          "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                          "%.17g,%ld,%.17g\n",
-                          step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
-                          r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
-                          t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, e->stiffness,
-                          e->e_star_sneddon, e->patches, e->perimeter);
-    ssize_t written = write(h->fd, line, (size_t)length);
-    if (written == length && fdatasync(h->fd) == 0) {
-        h->size += length;
-        return IM_OK;
-    }
-    int saved = written < 0 || written == length ? errno : ENOSPC; /* a short write: the disk filled */
-    if (ftruncate(h->fd, h->size) != 0) /* no torn last line */
-        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)",
-                       h->path, strerror(saved), strerror(errno));
-    return im_fail(IM_EIO, "%s: write failed: %s", h->path, strerror(saved));
-}
-
-static void history_close(history_file *h)
-{
-    if (h->fd >= 0)
-        close(h->fd);
-    h->fd = -1;
-}
-
 /* The fields of a step on the full grid, each FILE.npy with FILE.npy.json stating its units: forces in
  * force_unit, gaps and displacements in the surface's length unit. */
 static int write_fields(const char *dir, im_indentation *run, int step, const char *length_unit,
@@ -469,8 +372,11 @@ static int write_fields(const char *dir, im_indentation *run, int step, const ch
     static const char *const QUANTITIES[3] = {"force per patch", "gap", "surface displacement"};
     int status = im_indentation_fields_full(run, &f[0], &f[1], &f[2]);
     for (int i = 0; i < 3 && status == IM_OK; ++i) {
-        char path[4200];
-        snprintf(path, sizeof path, "%s/%s_%04d.npy", dir, NAMES[i], step);
+        char name[64], path[4096];
+        snprintf(name, sizeof name, "%s_%04d.npy", NAMES[i], step);
+        status = im_path_join(path, sizeof path, dir, name);
+        if (status != IM_OK)
+            break;
         snprintf(f[i]->unit, sizeof f[i]->unit, "%s", length_unit);
         if (i == 0)
             snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", force_unit);
@@ -502,8 +408,9 @@ static json_t *surface_sidecar_generator(const char *surface_path)
 {
     if (!surface_path)
         return NULL;
-    char path[4200];
-    snprintf(path, sizeof path, "%s.json", surface_path);
+    char path[4096];
+    if (im_path_suffix(path, sizeof path, surface_path, ".json") != IM_OK)
+        return NULL; /* no sidecar can be there: the surface's own path is refused when read */
     json_t *root = json_load_file(path, 0, NULL);
     json_t *generator = root ? json_incref(json_object_get(root, "generator")) : NULL;
     json_decref(root);
@@ -519,58 +426,68 @@ static json_t *units_record(const indent_options *o, const im_field *s)
                      o->force_unit, "load_star", "contact area A(N) / delta^2 (dimensionless)");
 }
 
-static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
+/* What this run was given beside the common fields (front.h: run_record_create). */
+static json_t *indent_blocks(const indent_options *o, const im_field *s, const im_indentation *run)
 {
     im_window w = im_indentation_window(run);
-    const im_solver_plan *plan = im_indentation_plan(run);
     double ax, ay;
     im_indenter_axis(&o->punch, s->nx, s->ny, s->delta, &ax, &ay);
     json_t *targets = json_array();
     for (int i = 0; i < o->target_count; ++i)
         json_array_append_new(targets, json_real(o->targets[i]));
-    char source[4 * 4200 + 1];
+    char source[4 * 4096 + 1];
     int escaped = im_path_utf8(o->surface_path ? o->surface_path : "smooth", source, sizeof source);
-    json_t *generator = surface_sidecar_generator(o->surface_path);
     char preparation[256];
     cli_describe_preparation(&o->preparation, o->filled, preparation, sizeof preparation);
-    json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
-    json_t *root = json_pack(
-        "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
-        "program", "indentmap indent", "version", IM_VERSION,
-        "surface", "source", source, "nx", s->nx, "ny", s->ny,
-        "delta", s->delta, "unit", s->unit, "preparation", preparation, "generator", generator,
-        "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
+    json_t *blocks = json_pack(
+        "{s:{s:s, s:i, s:i, s:f, s:s, s:s}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, s:{s:i, s:i, s:i, s:i}, s:i, "
+        "s:s, s:b}",
+        "surface", "source", source, "nx", s->nx, "ny", s->ny, "delta", s->delta, "unit", s->unit, "preparation",
+        preparation, "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
-        "solver", "quality", o->quality ? o->quality : "none", "tol", o->solver.tol, "tol_from", tolerance_source(o),
-        "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
-        "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
-        "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
-        "hardness", o->solver.hardness,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
-    json_t *solver = root ? json_object_get(root, "solver") : NULL;
-    if (solver) { /* issue 15's accelerations: on unless --plain-pk, off with a hardness (solver.h) */
-        const int plain = o->solver.hardness > 0;
-        json_object_set_new(solver, "cascade", json_boolean(o->solver.cascade && !plain));
-        json_object_set_new(solver, "precondition", json_boolean(o->solver.precondition && !plain));
+    if (blocks && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
+        json_object_set_new(json_object_get(blocks, "surface"), "source_encoding", json_string("escaped"));
+    return blocks;
+}
+
+/* run.json: the common record (front.h) with the surface (and the generator of its sidecar), the
+ * punch, the targets, the window, the FFT plan and the units. */
+static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
+{
+    const im_solver_plan *plan = im_indentation_plan(run);
+    run_record_solver solver = {.quality = o->quality ? o->quality : o->tol_given ? "none" : IM_QUALITY_DEFAULT,
+                                .tol_from = tolerance_source(o), .options = &o->solver};
+    json_t *root = run_record_create("indentmap indent", o->smooth ? "smooth" : "surface", o->surface_path, &solver);
+    json_t *blocks = root ? indent_blocks(o, s, run) : NULL;
+    if (!blocks) {
+        json_decref(root);
+        return NULL;
     }
-    if (root && seed)
-        json_object_set(root, "seed", seed);
-    if (root && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
-        json_object_set_new(json_object_get(root, "surface"), "source_encoding", json_string("escaped"));
-    if (root && o->profile_path) { /* its shape is the file's: no angle or radius */
-        char profile[4 * 4200 + 1];
+    json_object_update(root, blocks);
+    json_decref(blocks);
+    json_t *solver_block = json_object_get(root, "solver");
+    json_object_set_new(solver_block, "fftw_measure", json_boolean(im_solver_plan_measured(plan)));
+    json_object_set_new(solver_block, "plan_seconds", json_real(im_solver_plan_seconds(plan)));
+    json_t *generator = surface_sidecar_generator(o->surface_path);
+    if (generator) {
+        json_object_set(json_object_get(root, "surface"), "generator", generator);
+        json_t *seed = json_object_get(generator, "seed");
+        if (seed)
+            json_object_set(root, "seed", seed);
+    }
+    if (o->profile_path) { /* its shape is the file's: no angle or radius */
+        char profile[4 * 4096 + 1];
         im_path_utf8(o->profile_path, profile, sizeof profile);
         json_t *punch = json_object_get(root, "punch");
         json_object_set_new(punch, "profile", json_string(profile));
         json_object_del(punch, "alpha_degrees");
         json_object_del(punch, "radius");
     }
-    if (root)
-        json_object_set_new(root, "units", units_record(o, s));
     json_decref(generator);
+    json_object_set_new(root, "units", units_record(o, s));
     return root;
 }
 
@@ -581,16 +498,7 @@ static int write_run_json(const char *dir, json_t *record, int steps_done, int s
     char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
     im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
     json_object_set_new(record, "error", json_string(error));
-    char *text = json_dumps(record, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
-    if (!text)
-        return im_fail(IM_ENOMEM, "run.json");
-    char path[4200];
-    snprintf(path, sizeof path, "%s/run.json", dir);
-    size_t length = strlen(text);
-    text[length] = '\n';
-    int written = im_write_file_atomic(path, text, length + 1);
-    free(text);
-    return written;
+    return run_record_write(dir, record);
 }
 
 /* ---- the run ---- */
@@ -668,52 +576,22 @@ static double largest(const double *v, int n)
     return m;
 }
 
-/* The extras of step i (rows 0..i solved): theory, stiffness from the last three steps (which do not
- * change as later steps come), Sneddon's modulus, contact patches. */
-static int measure_step(const indent_options *o, const im_theory_interface *rough, const im_indentation *run,
-                        const im_step_result *rows, int i, step_extras *e)
-{
-    int status = im_theory_step_columns(&o->punch, rough, rows[i].approach, rows[i].load, &e->theory);
-    e->stiffness = e->e_star_sneddon = NAN;
-    int first = i >= 2 ? i - 2 : 0;
-    double w[3], n[3], s[3];
-    for (int k = first; k <= i; ++k) {
-        w[k - first] = rows[k].approach;
-        n[k - first] = rows[k].load;
-    }
-    /* a repeated approach or a turn from loading to unloading leaves the stiffness NaN */
-    if (status == IM_OK && i > 0 && im_measure_stiffness(w, n, i - first + 1, s) == IM_OK) {
-        e->stiffness = s[i - first];
-        e->e_star_sneddon = im_measure_sneddon_modulus(e->stiffness, e->theory.area_smooth);
-    }
-    im_field *force = NULL;
-    im_contact_patches patches = {0};
-    if (status == IM_OK)
-        status = im_indentation_fields(run, &force, NULL, NULL);
-    if (status == IM_OK)
-        status = im_measure_contact_patches(force, &patches, NULL);
-    im_field_free(force);
-    e->patches = patches.patches;
-    e->perimeter = patches.perimeter;
-    return status;
-}
-
-/* Solves step i (0-based; rows[0..i) solved before), measures it, and writes its fields and its
- * history line. */
+/* Solves step i (0-based; rows[0..i) solved before), measures it (front.h: history_measure), and
+ * writes its fields and its history line. */
 static int run_step(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
-                    history_file *history, im_step_result *rows, step_extras *extras, int i)
+                    history_file *history, history_row *rows, int i)
 {
-    int status = im_indentation_step(run, o->targets[i], &rows[i]);
+    int status = im_indentation_step(run, o->targets[i], &rows[i].result);
     if (status == IM_OK)
-        status = measure_step(o, rough, run, rows, i, &extras[i]);
+        status = history_measure(&o->punch, rough, run, rows, i);
     if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
         status = write_fields(o->out, run, i + 1, o->length_unit, o->force_unit);
     if (status == IM_OK && o->distributions)
         status = write_distributions(o, run, i + 1);
     if (status == IM_OK)
-        status = history_append(history, i + 1, &rows[i], &extras[i]);
+        status = history_append(history, &rows[i]);
     if (status == IM_OK) {
-        const im_step_result *r = &rows[i];
+        const im_step_result *r = &rows[i].result;
         printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
                r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual, r->seconds);
         fflush(stdout);
@@ -725,20 +603,16 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
 static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
                      history_file *history, json_t *record)
 {
-    im_step_result *rows = calloc((size_t)o->target_count, sizeof *rows);
-    step_extras *extras = calloc((size_t)o->target_count, sizeof *extras);
-    if (!rows || !extras) {
-        free(rows);
-        free(extras);
+    history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
+    if (!rows)
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
-    }
     int status = IM_OK, done = 0;
     for (; done < o->target_count; ++done) {
         if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
             status = im_fail(IM_EINTERRUPTED, "interrupted by signal %d", (int)cli_stop_signal);
             break;
         }
-        status = run_step(o, rough, run, history, rows, extras, done);
+        status = run_step(o, rough, run, history, rows, done);
         if (status != IM_OK)
             break;
     }
@@ -755,7 +629,6 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     else
         status = recorded; /* a run whose record could not be written did not finish */
     free(rows);
-    free(extras);
     return status;
 }
 
@@ -774,13 +647,15 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
         return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
     static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
     for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
-        char path[8192];
+        char path[4096];
         int field = 0;
         for (int i = 0; i < 3; ++i)
             field |= is_step_file(entry->d_name, FIELDS[i]);
         field |= is_distribution_file(entry->d_name);
-        if (!field || snprintf(path, sizeof path, "%s/%s", o->out, entry->d_name) >= (int)sizeof path ||
-            im_output_check(path) != IM_OK)
+        if (!field)
+            continue;
+        status = im_path_join(path, sizeof path, o->out, entry->d_name);
+        if (status != IM_OK || im_output_check(path) != IM_OK)
             continue;
         if (unlink(path) != 0 && errno != ENOENT)
             status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field file: %s", path, strerror(errno));

@@ -51,7 +51,7 @@ static void usage(FILE *stream)
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
             "  --punch cone|sphere   (default cone) --alpha DEG (default 80) --radius R (sphere)\n"
             "  --approach W | --load N   displacement or load control\n"
-            "  --tol T --max-iter M      stopping rule (defaults 1e-8, 10000)\n"
+            "  --tol T --max-iter M      stopping rule (defaults 1e-6 as for indent and scenes, 10000)\n"
             "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
             "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
             "                  .npy keeps no patch side), gathered on rank 0 (to draw with\n"
@@ -67,13 +67,16 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_M: return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.ny);
     case OPT_SEED: return cli_parse_u64("--seed", arg, &o->surface.seed);
     case OPT_SLOPE: return cli_parse_double("--slope", arg, 0, 1e6, &o->surface.slope_rms);
-    case OPT_PUNCH:
-        if (strcmp(arg, "cone") == 0 || strcmp(arg, "sphere") == 0) {
-            o->punch.kind = strcmp(arg, "cone") == 0 ? IM_PUNCH_CONE : IM_PUNCH_SPHERE;
-            return 0;
+    case OPT_PUNCH: /* the names of `indent --punch` (indenter.h); a flat punch is not solved over ranks */
+        if (im_punch_parse(arg, &o->punch.kind) != IM_OK) {
+            fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
+            return -1;
         }
-        fprintf(stderr, "indentmap: --punch: '%s': expected cone or sphere\n", arg);
-        return -1;
+        if (o->punch.kind != IM_PUNCH_CONE && o->punch.kind != IM_PUNCH_SPHERE) {
+            fprintf(stderr, "indentmap: --punch %s: mpi-indent solves a cone or a sphere\n", arg);
+            return -1;
+        }
+        return 0;
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
     case OPT_RADIUS: return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
     case OPT_APPROACH:
@@ -107,8 +110,9 @@ static int write_map(const mpi_indent_options *o, const im_mpi_solver *solver, c
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (rank == 0) {
         char path[4096];
-        snprintf(path, sizeof path, "%s/force_map.npy", o->out);
-        status = im_npy_write(path, map, IM_NPY_FLOAT64);
+        status = im_path_join(path, sizeof path, o->out, "force_map.npy");
+        if (status == IM_OK)
+            status = im_npy_write(path, map, IM_NPY_FLOAT64);
         im_field_free(map);
     }
     int shared = status;
@@ -131,9 +135,11 @@ static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver
     for (size_t i = 0; i < (size_t)rows * nx; ++i)
         gap0[i] += displacement[i] - approach;
     char path[4096];
-    snprintf(path, sizeof path, "%s/force.npy", o->out);
-    int status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, pressure);
-    snprintf(path, sizeof path, "%s/gap.npy", o->out);
+    int status = im_path_join(path, sizeof path, o->out, "force.npy"); /* the same on every rank */
+    if (status == IM_OK)
+        status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, pressure);
+    if (status == IM_OK)
+        status = im_path_join(path, sizeof path, o->out, "gap.npy");
     if (status == IM_OK)
         status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, gap0);
     return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;

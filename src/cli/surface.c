@@ -252,8 +252,9 @@ static int write_outputs(const surface_options *o, const im_field *surface, cons
     int status = IM_OK;
     if (o->out) {
         status = im_surface_write(o->out, surface);
-        char sidecar[4200];
-        snprintf(sidecar, sizeof sidecar, "%s.json", o->out);
+        char sidecar[4096];
+        if (status == IM_OK)
+            status = im_path_suffix(sidecar, sizeof sidecar, o->out, ".json");
         if (status == IM_OK)
             status = im_surface_sidecar_write(sidecar, surface, params, o->stats, st);
     }
@@ -270,9 +271,11 @@ static int write_outputs(const surface_options *o, const im_field *surface, cons
  * `--psd s.npy` or `--png s.npy.json` would replace it. The writes are checked again when opened. */
 static int check_outputs_apart(const surface_options *o)
 {
-    char sidecar[4200] = "";
-    if (o->out)
-        snprintf(sidecar, sizeof sidecar, "%s.json", o->out);
+    char sidecar[4096] = "";
+    if (o->out && im_path_suffix(sidecar, sizeof sidecar, o->out, ".json") != IM_OK) {
+        fprintf(stderr, "indentmap: --out: %s\n", im_last_error());
+        return -1;
+    }
     const char *const inputs[] = {o->stats};
     const char *const options[] = {"--out", "--out (its sidecar)", "--png", "--psd", "--histograms"};
     const char *const outputs[] = {o->out, o->out ? sidecar : NULL, o->png, o->psd, o->histograms};

@@ -19,10 +19,9 @@ int im_frame_path(char *buffer, size_t size, const char *directory, const char *
 {
     if (index < 0)
         return im_fail(IM_EINVAL, "frame index %d: expected >= 0", index);
-    int length = snprintf(buffer, size, "%s/%s_%04d.png", directory, prefix, index);
-    if (length < 0 || (size_t)length >= size)
-        return im_fail(IM_EINVAL, "frame path %s/%s_%04d.png: longer than %zu bytes", directory, prefix, index, size);
-    return IM_OK;
+    char name[128];
+    snprintf(name, sizeof name, "%.100s_%04d.png", prefix, index); /* the callers' prefixes are short words */
+    return im_path_join(buffer, size, directory, name);
 }
 
 /* ---- GIF ---- */
@@ -207,8 +206,11 @@ int im_animation_mp4(const char *directory, const char *prefix, double frames_pe
         return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
     if (!(frames_per_second > 0.0 && frames_per_second <= 240.0))
         return im_fail(IM_EINVAL, "MP4: %g frames per second: expected (0, 240]", frames_per_second);
-    char pattern[4096], rate[32];
-    snprintf(pattern, sizeof pattern, "%s/%s_%%04d.png", directory, prefix);
+    char pattern[4096], rate[32], name[128];
+    snprintf(name, sizeof name, "%.100s_%%04d.png", prefix);
+    int joined = im_path_join(pattern, sizeof pattern, directory, name);
+    if (joined != IM_OK)
+        return joined;
     snprintf(rate, sizeof rate, "%g", frames_per_second);
     /* ffmpeg picks the container from the extension, so the temporary name ends in .mp4 too; it
      * overwrites (-y) the empty temporary file, whose descriptor then syncs what it wrote. */

@@ -4,8 +4,21 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <strings.h>
 
 static double cot_degrees(double alpha_degrees) { return 1.0 / tan(alpha_degrees * M_PI / 180.0); }
+
+int im_punch_parse(const char *name, enum im_punch_kind *kind)
+{
+    static const enum im_punch_kind KINDS[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT, IM_PUNCH_PROFILE};
+    for (size_t i = 0; name && i < sizeof KINDS / sizeof KINDS[0]; ++i)
+        if (strcasecmp(name, im_punch_name(KINDS[i])) == 0) {
+            *kind = KINDS[i];
+            return IM_OK;
+        }
+    return im_fail(IM_EINVAL, "'%s': expected cone, sphere, flat or profile", name ? name : "");
+}
 
 im_indenter im_indenter_cone(double alpha_degrees)
 {

@@ -46,10 +46,7 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
 {
     lock->fd = -1;
     lock->stale_pid = 0;
-    int length = snprintf(lock->path, sizeof lock->path, "%s/.lock", folder);
-    int status = length > 0 && (size_t)length < sizeof lock->path
-                     ? IM_OK
-                     : im_fail(IM_EINVAL, "output path %s/.lock is too long", folder);
+    int status = im_path_join(lock->path, sizeof lock->path, folder, ".lock");
     for (int attempt = 0; status == IM_OK && attempt < 100; ++attempt) {
         int fd = open(lock->path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
         if (fd < 0)

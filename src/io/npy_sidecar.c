@@ -2,6 +2,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/json_file.h"
 #include "io/readers.h"
 
 #include <jansson.h>
@@ -12,19 +13,15 @@
 
 int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity)
 {
-    char sidecar[4200];
-    snprintf(sidecar, sizeof sidecar, "%s.json", path);
+    char sidecar[4096];
+    int status = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
+    if (status != IM_OK)
+        return status;
     json_t *root = json_pack("{s:s, s:s, s:s, s:i, s:i, s:f, s:s, s:s}", "program", "indentmap", "version", IM_VERSION,
                              "quantity", quantity, "nx", field->nx, "ny", field->ny, "delta", field->delta, "unit",
                              field->unit, "value_unit", field->value_unit);
-    char *text = root ? json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17)) : NULL;
+    status = json_file_write(sidecar, root);
     json_decref(root);
-    if (!text)
-        return im_fail(IM_ENOMEM, "%s: cannot build the JSON record", sidecar);
-    size_t length = strlen(text);
-    text[length] = '\n'; /* json_dumps leaves room for the terminator */
-    int status = im_write_file_atomic(sidecar, text, length + 1);
-    free(text);
     return status;
 }
 
@@ -42,8 +39,10 @@ static int copy_string(json_t *root, const char *key, char *out, size_t size)
 
 int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size)
 {
-    char sidecar[4200];
-    snprintf(sidecar, sizeof sidecar, "%s.json", path);
+    char sidecar[4096];
+    int joined = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
+    if (joined != IM_OK)
+        return joined;
     struct stat info;
     if (stat(sidecar, &info) != 0)
         return IM_OK; /* none: the .npy states no units */

@@ -115,6 +115,7 @@ void scene_members_free(scene_member *members, int count)
 {
     for (int i = 0; members && i < count; ++i) {
         free(members[i].approach);
+        free(members[i].history);
         free(members[i].history_load);
         free(members[i].history_load_star);
         free(members[i].history_area_ratio);

@@ -4,6 +4,7 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "front/front.h"
 #include "paper/figures.h"
 #include "scene/ensemble.h"
 #include "scene/histories.h"
@@ -25,14 +26,29 @@
 
 static int allocate_history(scene_member *m, int steps)
 {
+    m->history = calloc((size_t)steps, sizeof *m->history);
     m->approach = calloc((size_t)steps, sizeof *m->approach);
     m->history_load = calloc((size_t)steps, sizeof *m->history_load);
     m->history_load_star = calloc((size_t)steps, sizeof *m->history_load_star);
     m->history_area_ratio = calloc((size_t)steps, sizeof *m->history_area_ratio);
     m->history_patches = calloc((size_t)steps, sizeof *m->history_patches);
-    if (!m->approach || !m->history_load || !m->history_load_star || !m->history_area_ratio || !m->history_patches)
+    if (!m->history || !m->approach || !m->history_load || !m->history_load_star || !m->history_area_ratio ||
+        !m->history_patches)
         return im_fail(IM_ENOMEM, "history: allocation failed");
     return IM_OK;
+}
+
+/* The figures' columns of the member's rows (m->history[0..m->steps)). */
+static void spread_rows(scene_member *m)
+{
+    for (int i = 0; i < m->steps; ++i) {
+        const im_step_result *r = &m->history[i].result;
+        m->approach[i] = r->approach;
+        m->history_load[i] = r->load;
+        m->history_load_star[i] = r->load_star;
+        m->history_patches[i] = r->contact_patches;
+        m->history_area_ratio[i] = r->area_ratio;
+    }
 }
 
 static int history_path(const im_scene *scene, const scene_member *m, char *path, size_t size)
@@ -42,32 +58,24 @@ static int history_path(const im_scene *scene, const scene_member *m, char *path
     return scene_output_path(scene, relative, path, size);
 }
 
-/* The rows of a history as written to its file, after the header line: the column names, then per
- * step the solution and the theory beside it (theory.h: the smooth punch at the step's approach and
- * load), into *rows (caller frees). */
-static int history_rows(const im_scene *scene, const scene_member *m, char **rows, size_t *length)
+/* The rows of a history as written to its file, after the header line: the column names, then a
+ * line per step (front.h: the history schema `indent` writes too), into *rows (caller frees). */
+static int history_rows(const scene_member *m, char **rows, size_t *length)
 {
     char *text = NULL;
     *rows = NULL;
     FILE *stream = open_memstream(&text, length);
     if (!stream)
         return im_fail(IM_ENOMEM, "history rows: allocation failed");
-    fprintf(stream, "approach,load,load_star,contact_patches,area_ratio," IM_THEORY_STEP_COLUMNS "\n");
-    int status = IM_OK;
-    for (int i = 0; i < m->steps && status == IM_OK; ++i) {
-        im_theory_step theory;
-        status = scene_history_theory_row(scene, scene->slopes[m->family], m->approach[i], m->history_load[i],
-                                          &theory);
-        if (status == IM_OK)
-            fprintf(stream, "%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", m->approach[i],
-                    m->history_load[i], m->history_load_star[i], m->history_patches[i], m->history_area_ratio[i],
-                    theory.load_smooth, theory.area_smooth, theory.area_ratio_constant, theory.area_ratio_gamma);
+    fprintf(stream, "%s\n", HISTORY_COLUMNS);
+    for (int i = 0; i < m->steps; ++i) {
+        char line[HISTORY_LINE_MAX];
+        history_format(&m->history[i], line, sizeof line);
+        fputs(line, stream);
     }
-    if (fclose(stream) != 0 && status == IM_OK)
-        status = im_fail(IM_ENOMEM, "history rows: allocation failed");
-    if (status != IM_OK) {
+    if (fclose(stream) != 0) {
         free(text);
-        return status;
+        return im_fail(IM_ENOMEM, "history rows: allocation failed");
     }
     *rows = text;
     return IM_OK;
@@ -83,7 +91,7 @@ static int write_history(const im_scene *scene, const scene_member *m)
     char *rows = NULL;
     int status = history_path(scene, m, path, sizeof path);
     if (status == IM_OK)
-        status = history_rows(scene, m, &rows, &length);
+        status = history_rows(m, &rows, &length);
     im_atomic_file file;
     if (status == IM_OK)
         status = im_atomic_open(&file, path);
@@ -99,39 +107,9 @@ static int write_history(const im_scene *scene, const scene_member *m)
     return im_atomic_commit(&file);
 }
 
-/* Parses the rows of a kept history into m (m->steps of them); 0 with why set at the first row
- * that is not nine numbers on a whole line (the solution's five, read back, and the four of the
- * theory beside it, which is recomputed) or holds a value that is not finite. */
-static int parse_history_rows(char *text, scene_member *m, int capacity, char *why, size_t why_size)
-{
-    m->steps = 0;
-    char *line = strchr(text, '\n'); /* after the column names */
-    for (line = line ? line + 1 : NULL; line && *line; ++m->steps) {
-        char *next = strchr(line, '\n');
-        int used = 0, i = m->steps;
-        double theory[4];
-        if (!next || i >= capacity ||
-            sscanf(line, "%lf,%lf,%lf,%ld,%lf,%lf,%lf,%lf,%lf%n", &m->approach[i], &m->history_load[i],
-                   &m->history_load_star[i], &m->history_patches[i], &m->history_area_ratio[i], &theory[0],
-                   &theory[1], &theory[2], &theory[3], &used) != 9 ||
-            line + used != next) {
-            snprintf(why, why_size, "row %d is not nine numbers on a whole line", i + 1);
-            return 0;
-        }
-        /* A / A_cone is NaN, as the solver reports it, only where there is no load */
-        int ratio_ok = m->history_load[i] > 0 ? isfinite(m->history_area_ratio[i]) : isnan(m->history_area_ratio[i]);
-        if (!isfinite(m->approach[i]) || !isfinite(m->history_load[i]) || !isfinite(m->history_load_star[i]) ||
-            !ratio_ok) {
-            snprintf(why, why_size, "row %d holds a value that is not finite", i + 1);
-            return 0;
-        }
-        line = next + 1;
-    }
-    return 1;
-}
-
 /* Whether a kept history's text is whole: its header's row count and checksum match the rows,
- * which are all finite; on success its rows are in m. */
+ * which parse with the one history reader (front.h: this version's columns, every row whole and
+ * finite); on success its rows are in m. */
 static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t *key, char *why, size_t why_size)
 {
     uint64_t checksum = 0;
@@ -143,7 +121,7 @@ static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t 
         return 0;
     }
     ++body;
-    if (!parse_history_rows(body, m, capacity, why, why_size))
+    if (!history_parse(body, m->history, capacity, &m->steps, why, why_size))
         return 0;
     if (m->steps != rows || rows < 1) {
         snprintf(why, why_size, "%d rows where its header says %d", m->steps, rows);
@@ -153,20 +131,21 @@ static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t 
         snprintf(why, why_size, "its rows do not match the checksum of its header: edited");
         return 0;
     }
+    spread_rows(m);
     return 1;
 }
 
 /* Reads a history an earlier run wrote; 0 if there is none, if it is damaged (cut short, a NaN,
- * a checksum that does not match) or if it was made from other inputs (its key differs): the last
- * two are solved again, with a notice. */
+ * a checksum that does not match), of another version's columns, or made from other inputs (its
+ * key differs): those are solved again, with a notice. */
 static int read_history(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     char path[IM_SCENE_PATH], why[160];
     if (history_path(scene, m, path, sizeof path) != IM_OK || access(path, F_OK) != 0)
         return 0;
     char *text = NULL;
-    /* a row is at most 9 numbers of 24 characters; far more is not a history */
-    size_t limit = 4096 + (size_t)scene->step_count * 256;
+    /* a row is at most HISTORY_LINE_MAX characters; far more is not a history */
+    size_t limit = 4096 + (size_t)scene->step_count * HISTORY_LINE_MAX;
     if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
         return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
@@ -186,7 +165,8 @@ static double step_target(const im_scene *scene, int i, double delta)
 }
 
 /* Step i of a history. At load_star (load control) the table's state is taken instead of solving
- * it again; without a table, that step's force is kept for the panels. */
+ * it again (what the table does not keep is unknown in the row: -1 and NaN, front.h); without a
+ * table, that step's force is kept for the panels. */
 static int load_star_step(const im_scene *scene, im_indentation *run, scene_member *m, int i, double delta,
                           im_step_result *step)
 {
@@ -194,7 +174,9 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
     const scene_member *known = m->at_load_star;
     if (at_load_star && known) {
         *step = (im_step_result){.approach = known->load_star_approach, .load = known->load, .load_star = known->load_star,
-                                 .contact_patches = known->contact_patches, .area_ratio = known->area_ratio};
+                                 .contact_patches = known->contact_patches, .area_ratio = known->area_ratio,
+                                 .mean_pressure = NAN, .max_pressure = NAN, .iterations = -1, .convolutions = -1,
+                                 .residual = NAN, .seconds = NAN, .coarse_iterations = -1};
         m->step_reused = 1;
         return IM_OK;
     }
@@ -206,36 +188,35 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
 
 /* Solves the member's history. Contact reaching the surface's edge fails it (IM_EEDGE, with the
  * step): the scene asked for every step, and the pre-flight check (limits.c) refuses the steps
- * whose smooth contact leaves the surface before any work. */
+ * whose smooth contact leaves the surface before any work. Each step is measured as `indent`
+ * measures it (front.h: history_measure), with the theory of the family's h'rms. */
 static int solve_history(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m,
                          const im_field *surface)
 {
     im_indenter punch = scene_punch(scene);
+    im_theory_interface rough = scene_theory_interface(scene, scene->slopes[m->family]);
     im_solver_options options = scene_solver_options(scene);
     im_indentation *run = NULL;
     double largest = step_target(scene, scene->step_count - 1, surface->delta);
-    int status = im_indentation_create(surface, &punch, (enum im_control)scene->control, largest, &options, &run);
+    int status = im_indentation_create(surface, &punch, scene->control, largest, &options, &run);
     for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
         if (scene_stop_signal(run_options)) {
             status = IM_EINTERRUPTED; /* abandoned: the caller reports the interruption */
             break;
         }
-        im_step_result step;
-        status = load_star_step(scene, run, m, i, surface->delta, &step);
+        int from_table = i == scene_load_star_step(scene) && m->at_load_star;
+        status = load_star_step(scene, run, m, i, surface->delta, &m->history[i].result);
         if (status == IM_EEDGE) /* a history short of the scene's steps would be drawn as if whole */
             im_fail_context(status, "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
                             "smaller steps)", i + 1,
                             scene->step_count, scene->control == IM_CONTROL_LOAD ? "N*" : "approach", scene->steps[i]);
-        if (status == IM_OK) {
-            m->approach[i] = step.approach;
-            m->history_load[i] = step.load;
-            m->history_load_star[i] = step.load_star;
-            m->history_patches[i] = step.contact_patches;
-            m->history_area_ratio[i] = step.area_ratio;
+        if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
+            status = history_measure(&punch, &rough, from_table ? NULL : run, m->history, i);
+        if (status == IM_OK)
             m->steps = i + 1;
-        }
     }
     im_indentation_free(run);
+    spread_rows(m);
     return status;
 }
 
@@ -422,13 +403,13 @@ static int plot_histories(const im_scene *scene, const scene_member *members, in
 {
     gathered_histories *g = NULL;
     int status = gather_histories(scene, members, count, &g);
-    if (status == IM_OK && scene_wants_plot(scene, "fig5"))
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FIG5))
         status = plot_against_approach(scene, g, 0);
-    if (status == IM_OK && scene_wants_plot(scene, "fig6"))
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FIG6))
         status = plot_against_approach(scene, g, 1);
-    if (status == IM_OK && scene_wants_plot(scene, "fig7"))
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FIG7))
         status = plot_area_ratio_against_load(scene, g);
-    if (status == IM_OK && scene_wants_plot(scene, "sphere"))
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_SPHERE))
         status = plot_sphere_regimes(scene, g);
     free_gathered(g);
     return status;

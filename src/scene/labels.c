@@ -18,7 +18,7 @@ void scene_family_title(const im_scene *scene, int family, char *buffer, size_t 
 im_colormap scene_force_norm(const im_scene *scene, double largest)
 {
     double hi = largest > 0.0 ? largest : 1.0;
-    im_colormap norm = im_colormap_make((im_colormap_id)scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
+    im_colormap norm = im_colormap_make(scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
     norm.logarithmic = scene->log_norm;
     return norm;
 }

@@ -30,10 +30,7 @@ int scene_draw_plot(const im_scene *scene, const void *plot, const char *path)
 
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)
 {
-    int length = snprintf(buffer, size, "%s/%s", scene->output_dir, relative);
-    if (length < 0 || (size_t)length >= size)
-        return im_fail(IM_EINVAL, "output path %s/%s is too long", scene->output_dir, relative);
-    return IM_OK;
+    return im_path_join(buffer, size, scene->output_dir, relative);
 }
 
 int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock)

@@ -273,7 +273,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
         status = render_panels(scene, context, results, images, &norm);
     if (status == IM_OK)
         status = write_panel_figure(scene, images, &norm);
-    if (status == IM_OK && scene_wants_plot(scene, "density"))
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY))
         status = plot_density(scene, results);
     for (int i = 0; i < scene->family_count; ++i) {
         im_field_free(results[i].force);

@@ -1,5 +1,7 @@
 #include "indentmap/scene.h"
 
+#include "front/front.h"
+
 #include "indentmap/io.h"
 
 #include "indentmap/solver.h"
@@ -103,6 +105,11 @@ static int choice_index(const char *choices, const char *value)
     return -1;
 }
 
+/* parse_choice stores the index of the choice, in the enumerations' order, through an int. */
+_Static_assert(sizeof(enum im_detrend) == sizeof(int) && sizeof(enum im_control) == sizeof(int) &&
+               sizeof(im_colormap_id) == sizeof(int) && sizeof(enum im_animation) == sizeof(int),
+               "an enumeration parse_choice sets is not an int's size");
+
 static int parse_choice(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
     int index = choice_index(spec->choices, value);
@@ -174,7 +181,7 @@ static int parse_double_list(const key_spec *spec, const char *value, im_scene *
             list[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
         return 0;
     }
-    char buffer[2048], *items[IM_SCENE_MAX_STEPS];
+    char buffer[2048], *items[IM_SCENE_MAX_FAMILIES];
     int n;
     if (split_list(spec->key, value, buffer, sizeof buffer, items, (int)spec->capacity, &n, error, size) != 0)
         return -1;
@@ -268,6 +275,65 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
     return 0;
 }
 
+/* [loading] steps: the step list of `indent --approach` (front.h: steps_parse). */
+static int parse_steps(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    (void)spec;
+    return steps_parse("steps", value, scene->steps, &scene->step_count, error, size);
+}
+
+/* [punch] shape: the punch names of `indent --punch` (indenter.h: im_punch_parse). */
+static int parse_punch(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    (void)spec;
+    if (im_punch_parse(value, &scene->punch) == IM_OK)
+        return 0;
+    snprintf(error, size, "shape = %s", im_last_error());
+    return -1;
+}
+
+static size_t edit_distance(const char *a, const char *b);
+
+/* The plot name nearest to an unknown one, NULL if none is close. */
+static const char *suggest_plot(const char *word)
+{
+    const char *best = NULL;
+    size_t best_distance = strlen(word) / 2 + 1;
+    for (unsigned bit = 1; im_scene_plot_name((enum im_scene_plot)bit); bit <<= 1) {
+        size_t distance = edit_distance(word, im_scene_plot_name((enum im_scene_plot)bit));
+        if (distance < best_distance) {
+            best_distance = distance;
+            best = im_scene_plot_name((enum im_scene_plot)bit);
+        }
+    }
+    return best;
+}
+
+/* [output] plots: figure names separated by commas or blanks, into the bit set. */
+static int parse_plots(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    (void)spec;
+    char copy[512], *save = NULL;
+    if (strlen(value) >= sizeof copy) {
+        snprintf(error, size, "plots: expected at most %zu characters", sizeof copy - 1);
+        return -1;
+    }
+    snprintf(copy, sizeof copy, "%s", value);
+    scene->plots = 0;
+    for (char *name = strtok_r(copy, ", \t", &save); name; name = strtok_r(NULL, ", \t", &save)) {
+        enum im_scene_plot plot = im_scene_plot_parse(name);
+        if (!plot) {
+            const char *suggestion = suggest_plot(name);
+            snprintf(error, size, "plots: '%s' is not a figure; %s%s%sexpected fig1, fig2, fig3, fig5, fig6, fig7, "
+                     "density, sphere or flat_k", name, suggestion ? "did you mean '" : "", suggestion ? suggestion : "",
+                     suggestion ? "'? " : "");
+            return -1;
+        }
+        scene->plots |= (unsigned)plot;
+    }
+    return 0;
+}
+
 /* A quality preset's name (solver.h: im_quality_tolerance); its tolerance is applied after
  * parsing, unless [solver] tol is given. */
 static int parse_quality(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
@@ -298,7 +364,7 @@ static const key_spec KEYS[] = {
     {"surfaces", "file", parse_string, FIELD(surface_file), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"surfaces", "detrend", parse_choice, FIELD(detrend), 0, 0, "none|plane|curvature", 0, 0},
     {"surfaces", "fill", parse_bool, FIELD(fill), 0, 0, NULL, 0, 0},
-    {"punch", "shape", parse_choice, FIELD(punch), 0, 0, "cone|sphere|flat|profile", 0, 0},
+    {"punch", "shape", parse_punch, FIELD(punch), 0, 0, NULL, 0, 0},
     {"punch", "profile", parse_string, FIELD(profile_file), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"punch", "alpha", parse_sweep_list, FIELD(alphas), 1e-9, 90 - 1e-9, NULL, IM_SCENE_MAX_SWEEP, FIELD(alpha_count)},
     {"punch", "radius", parse_double, FIELD(radius), 1e-9, 1e12, NULL, 0, 0},
@@ -306,7 +372,7 @@ static const key_spec KEYS[] = {
     {"material", "hardness", parse_double, FIELD(hardness), 1e-300, 1e300, NULL, 0, 0},
     {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load", 0, 0},
     {"loading", "load_star", parse_double, FIELD(load_star), 0, 1e15, NULL, 0, 0},
-    {"loading", "steps", parse_double_list, FIELD(steps), 0, 1e15, NULL, IM_SCENE_MAX_STEPS, FIELD(step_count)},
+    {"loading", "steps", parse_steps, FIELD(steps), 0, 0, NULL, 0, 0},
     {"output", "contact_panels", parse_bool, FIELD(contact_panels), 0, 0, NULL, 0, 0},
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
     {"output", "frames3d", parse_bool, FIELD(frames3d), 0, 0, NULL, 0, 0},
@@ -318,7 +384,7 @@ static const key_spec KEYS[] = {
     {"output", "frames_slope", parse_double, FIELD(frames_slope), 0, 10, NULL, 0, 0},
     {"output", "frame_count", parse_int, FIELD(frame_count), 1, 10000, NULL, 0, 0},
     {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
-    {"output", "plots", parse_string, FIELD(plots), 0, 0, NULL, sizeof(((im_scene *)0)->plots), 0},
+    {"output", "plots", parse_plots, FIELD(plots), 0, 0, NULL, 0, 0},
 };
 static const int KEY_COUNT = (int)(sizeof KEYS / sizeof KEYS[0]);
 
@@ -326,17 +392,17 @@ void im_scene_defaults(im_scene *scene)
 {
     memset(scene, 0, sizeof *scene);
     snprintf(scene->name, sizeof scene->name, "scene");
-    snprintf(scene->quality, sizeof scene->quality, "standard");
+    snprintf(scene->quality, sizeof scene->quality, "%s", IM_QUALITY_DEFAULT);
     scene->surface = im_surface_params_default();
     scene->slopes[0] = scene->surface.slope_rms;
     scene->family_count = 1;
     scene->seeds[0] = 1;
     scene->seed_count = 1;
-    scene->punch = 0; /* cone */
+    scene->punch = IM_PUNCH_CONE;
     scene->alpha_degrees = 80.0;
     scene->radius = 100.0;
     scene->modulus = 1.0;
-    scene->tol = 1e-6;
+    scene->tol = im_quality_default_tolerance();
     scene->frames_slope = -1.0;
     scene->frame_count = 24;
 }

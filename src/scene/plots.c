@@ -10,45 +10,44 @@
 #include <stdio.h>
 #include <string.h>
 
-int scene_wants_plot(const im_scene *scene, const char *name)
+static const char *const PLOT_NAMES[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere",
+                                         "flat_k"}; /* of the bits 1 << 0, 1 << 1, ... */
+enum { PLOT_COUNT = sizeof PLOT_NAMES / sizeof PLOT_NAMES[0] };
+
+const char *im_scene_plot_name(enum im_scene_plot plot)
 {
-    size_t length = strlen(name);
-    for (const char *p = scene->plots; (p = strstr(p, name)) != NULL; p += length) {
-        int starts = p == scene->plots || p[-1] == ',' || p[-1] == ' ';
-        int ends = p[length] == '\0' || p[length] == ',' || p[length] == ' ';
-        if (starts && ends)
-            return 1;
-    }
-    return 0;
+    for (int i = 0; i < PLOT_COUNT; ++i)
+        if ((unsigned)plot == 1u << i)
+            return PLOT_NAMES[i];
+    return NULL;
 }
+
+enum im_scene_plot im_scene_plot_parse(const char *name)
+{
+    for (int i = 0; i < PLOT_COUNT; ++i)
+        if (strcmp(name, PLOT_NAMES[i]) == 0)
+            return (enum im_scene_plot)(1u << i);
+    return (enum im_scene_plot)0;
+}
+
+int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot) { return (scene->plots & plot) != 0; }
 
 int scene_wants_histories(const im_scene *scene)
 {
-    return scene_wants_plot(scene, "fig5") || scene_wants_plot(scene, "fig6") || scene_wants_plot(scene, "fig7") ||
-           scene_wants_plot(scene, "sphere");
+    return scene_wants_plot(scene, IM_SCENE_PLOT_FIG5 | IM_SCENE_PLOT_FIG6 | IM_SCENE_PLOT_FIG7 |
+                                   IM_SCENE_PLOT_SPHERE);
 }
 
+/* The names are checked by the parser (parse.c); here what each plot needs beside it. */
 int scene_check_plots(const im_scene *scene)
 {
-    static const char *const KNOWN[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere",
-                                        "flat_k"};
-    char copy[sizeof scene->plots];
-    snprintf(copy, sizeof copy, "%s", scene->plots);
-    for (char *name = strtok(copy, ", "); name; name = strtok(NULL, ", ")) {
-        int known = 0;
-        for (size_t i = 0; i < sizeof KNOWN / sizeof *KNOWN; ++i)
-            known |= strcmp(name, KNOWN[i]) == 0;
-        if (!known)
-            return im_fail(IM_EINVAL, "%s: [output] plots: '%s' is not a figure; expected fig1, fig2, fig3, "
-                           "fig5, fig6, fig7, density, sphere or flat_k", scene->path, name);
-    }
-    if (scene_wants_plot(scene, "density") && !scene->contact_panels)
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY) && !scene->contact_panels)
         return im_fail(IM_EINVAL, "%s: plots = density measures the maps of [output] contact_panels = yes",
                        scene->path);
-    if (scene_wants_plot(scene, "sphere") && scene->punch != IM_PUNCH_SPHERE)
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_SPHERE) && scene->punch != IM_PUNCH_SPHERE)
         return im_fail(IM_EINVAL, "%s: plots = sphere compares with eq. (3): it needs [punch] shape = sphere",
                        scene->path);
-    if (scene_wants_plot(scene, "fig2") && !scene->table)
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG2) && !scene->table)
         return im_fail(IM_EINVAL, "%s: plots = fig2 draws the ensemble of [output] table = yes", scene->path);
     return IM_OK;
 }
@@ -83,11 +82,11 @@ int scene_plot_area_ratio(const im_scene *scene, const im_plot_points *points)
 int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *options)
 {
     int status = IM_OK;
-    if (scene_wants_plot(scene, "fig1")) {
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG1)) {
         scene_progress(options, "fig1: local contact density gamma(r/a)");
         status = scene_write_png_pdf(scene, "fig1", draw_fig1, NULL);
     }
-    if (status == IM_OK && scene_wants_plot(scene, "fig3")) {
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FIG3)) {
         int family = scene_framed_family(scene);
         scene_progress(options, "fig3: statistics of the h'rms = %g surface", scene->slopes[family]);
         im_field *surface = NULL;

@@ -4,8 +4,9 @@
 
 #include "indentmap/scene.h"
 
-/* Plots: whether [output] plots names a figure; IM_EINVAL naming an unknown one. */
-int scene_wants_plot(const im_scene *scene, const char *name);
+/* Plots: whether [output] plots names one of the figures in the bits of plot; IM_EINVAL when a
+ * plot lacks what it draws (density: contact_panels, sphere: a sphere, fig2: the table). */
+int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot);
 int scene_check_plots(const im_scene *scene);
 /* Whether a plot needs the ensemble's histories (fig5, fig6, fig7, sphere). */
 int scene_wants_histories(const im_scene *scene);

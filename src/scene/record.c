@@ -1,5 +1,7 @@
-/* OUTPUT/run.json of a scene run: which quality preset and solver tolerance made its outputs. */
+/* OUTPUT/run.json of a scene run: the common run record (front.h) and the scene's own fields. */
+#include "front/front.h"
 #include "scene/outputs.h"
+#include "scene/punch.h"
 #include "scene/record.h"
 
 #include "indentmap/io.h"
@@ -26,25 +28,33 @@ static json_t *files_record(const im_scene *scene)
                      scene->file_unit[0] ? scene->file_unit : "delta");
 }
 
+/* Where the scene's tolerance came from (a scene keeps the tolerance, not whether it was given:
+ * one that differs from its preset's was given as [solver] tol). */
+static const char *tolerance_source(const im_scene *scene)
+{
+    double preset = 0;
+    im_quality_tolerance(scene->quality, &preset); /* validated by the parser */
+    if (scene->tol != preset)
+        return "[solver] tol";
+    return strcmp(scene->quality, IM_QUALITY_DEFAULT) == 0 ? "default" : "[scene] quality";
+}
+
+/* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path and the
+ * surface files it measured. */
 int scene_write_record(const im_scene *scene)
 {
-    char path_text[4 * IM_SCENE_PATH + 1]; /* a path is bytes; JSON is UTF-8 */
-    int escaped = im_path_utf8(scene->path, path_text, sizeof path_text);
-    json_t *root = json_pack("{s:s, s:s, s:s, s:{s:s, s:f}}", "program", "indentmap run", "version", IM_VERSION,
-                             "scene", path_text, "solver", "quality", scene->quality, "tol", scene->tol);
-    if (root && escaped)
+    im_solver_options options = scene_solver_options(scene);
+    run_record_solver solver = {.quality = scene->quality, .tol_from = tolerance_source(scene), .options = &options};
+    json_t *root = run_record_create("indentmap run", "scene", scene->path, &solver);
+    if (!root)
+        return im_fail(IM_ENOMEM, "run.json: out of memory");
+    json_t *input = json_object_get(root, "input");
+    json_object_set(root, "scene", json_object_get(input, "path")); /* as before the common record */
+    if (json_object_get(input, "path_encoding"))
         json_object_set_new(root, "scene_encoding", json_string("escaped"));
-    if (root && scene->file_count > 0)
+    if (scene->file_count > 0)
         json_object_set_new(root, "surface_files", files_record(scene));
-    char *text = root ? json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17)) : NULL;
+    int status = run_record_write(scene->output_dir, root);
     json_decref(root);
-    char path[IM_SCENE_PATH + 16];
-    int status = text ? scene_output_path(scene, "run.json", path, sizeof path) : im_fail(IM_ENOMEM, "run.json");
-    if (status == IM_OK) {
-        size_t length = strlen(text);
-        text[length] = '\n'; /* json_dumps leaves room: its terminator becomes the newline */
-        status = im_write_file_atomic(path, text, length + 1);
-    }
-    free(text);
     return status;
 }

@@ -80,7 +80,7 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     int status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options, &reuse);
-    if (status == IM_OK && scene_wants_plot(scene, "flat_k") && (status = check_stop(options, "the flat contacts")) == IM_OK)
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) && (status = check_stop(options, "the flat contacts")) == IM_OK)
         status = scene_run_flat_k(scene, options, &reuse);
     if (status == IM_OK && scene->distributions && (status = check_stop(options, "the distributions")) == IM_OK)
         status = scene_run_distributions(scene, options);

@@ -17,7 +17,7 @@ static int file_surface(const im_scene *scene, int i, im_field **out)
     im_surface_read_options read = {.fill = scene->fill};
     if (status == IM_OK)
         status = im_surface_read_with(path, &read, out, NULL);
-    if (status == IM_OK && (status = im_surface_detrend(*out, (enum im_detrend)scene->detrend)) != IM_OK) {
+    if (status == IM_OK && (status = im_surface_detrend(*out, scene->detrend)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }

@@ -268,7 +268,7 @@ int scene_run_sweep(const im_scene *scene, const im_scene_run_options *options, 
     }
     if (status == IM_OK && scene->table)
         status = write_sweep_csv(scene, rows, row_count);
-    if (status == IM_OK && scene->table && scene_wants_plot(scene, "fig2"))
+    if (status == IM_OK && scene->table && scene_wants_plot(scene, IM_SCENE_PLOT_FIG2))
         status = plot_sweep(scene, rows, row_count);
     free(rows);
     return status;

@@ -258,7 +258,7 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
         status = write_table_csv(scene, rows);
     if (status == IM_OK)
         status = write_table_markdown(scene, rows);
-    if (status == IM_OK && scene_wants_plot(scene, "fig2"))
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FIG2))
         status = plot_area_ratio(scene, rows);
     scene_reuse_take_forces(reuse, members, count);
     reuse->table = members;

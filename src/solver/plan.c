@@ -13,7 +13,7 @@
 
 im_solver_options im_solver_options_default(void)
 {
-    return (im_solver_options){.e_star = 1, .tol = 1e-8, .max_iterations = 10000, .fft_measure = 0,
+    return (im_solver_options){.e_star = 1, .tol = im_quality_default_tolerance(), .max_iterations = 10000, .fft_measure = 0,
                                .wisdom_path = NULL, .crop = 1, .window_margin = 4, .periodic = 0,
                                .hardness = 0, .cascade = 1, .precondition = 1};
 }

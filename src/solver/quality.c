@@ -24,3 +24,10 @@ int im_quality_tolerance(const char *name, double *tol)
         }
     return im_fail(IM_EINVAL, "quality = '%s': expected draft, standard or publication", name ? name : "(null)");
 }
+
+double im_quality_default_tolerance(void)
+{
+    double tol = 0;
+    im_quality_tolerance(IM_QUALITY_DEFAULT, &tol); /* a preset of the table above */
+    return tol;
+}

@@ -3,6 +3,7 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "io/json_file.h"
 
 #include <jansson.h>
 #include <math.h>
@@ -67,13 +68,7 @@ int im_surface_sidecar_write(const char *path, const im_field *surface, const im
         json_object_set_new(root, "source", json_string(text));
     }
     json_object_set_new(root, "statistics", stats_json(stats));
-    char *text = json_dumps(root, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
+    int status = json_file_write(path, root);
     json_decref(root);
-    if (!text)
-        return im_fail(IM_ENOMEM, "%s: cannot format the JSON record", path);
-    size_t length = strlen(text);
-    text[length] = '\n'; /* json_dumps leaves room for the terminator: replace it, write length + 1 */
-    int status = im_write_file_atomic(path, text, length + 1);
-    free(text);
     return status;
 }

@@ -273,7 +273,8 @@ static int write_frames(FILE *out, const char *dir)
 {
     static const char *const pngs[] = {".png", NULL};
     char folder[PATH_SIZE];
-    snprintf(folder, sizeof folder, "%s/frames", dir);
+    if (im_path_join(folder, sizeof folder, dir, "frames") != IM_OK)
+        return IM_OK; /* no frames can be listed there: the page goes without them */
     name_list list;
     int status = list_folder(folder, pngs, &list), steps;
     frame_group groups[8];
@@ -286,7 +287,8 @@ static int write_frames(FILE *out, const char *dir)
         for (int g = 0; g < count; ++g) {
             /* Each panel's share of the row is its image's aspect ratio, so all are drawn at one height. */
             char path[PATH_SIZE + 64];
-            snprintf(path, sizeof path, "%s/%s", folder, list.names[groups[g].first]);
+            /* a path that does not fit is "": png_aspect's default, as for an unreadable image */
+            im_path_join(path, sizeof path, folder, list.names[groups[g].first]);
             long aspect = png_aspect(path);
             const char *caption = caption_of(groups[g].prefix, strlen(groups[g].prefix));
             fprintf(out, "<figure style=\"flex:%ld 1 0\"><img id=\"frame-%s\" src=\"frames/%s\" alt=\"%s\"><figcaption>%s</figcaption></figure>\n",
@@ -326,8 +328,7 @@ static void write_csv_field(FILE *out, const char **p)
 static void write_table(FILE *out, const char *dir, const char *name)
 {
     char path[PATH_SIZE];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    char *text = read_text(path);
+    char *text = im_path_join(path, sizeof path, dir, name) == IM_OK ? read_text(path) : NULL;
     if (!text)
         return;
     fprintf(out, "<h3>%s</h3>\n<div class=\"scroll\"><table>\n", name);
@@ -363,7 +364,8 @@ static void write_results(FILE *out, const char *dir)
     char path[PATH_SIZE];
     int any = 0;
     for (int k = 0; k < 3; ++k) {
-        snprintf(path, sizeof path, "%s/%s", dir, tables[k]);
+        if (im_path_join(path, sizeof path, dir, tables[k]) != IM_OK)
+            continue;
         FILE *f = fopen(path, "rb");
         if (!f)
             continue;
@@ -377,8 +379,7 @@ static void write_results(FILE *out, const char *dir)
 static void write_record(FILE *out, const char *dir)
 {
     char path[PATH_SIZE];
-    snprintf(path, sizeof path, "%s/run.json", dir);
-    char *text = read_text(path);
+    char *text = im_path_join(path, sizeof path, dir, "run.json") == IM_OK ? read_text(path) : NULL;
     if (!text)
         return;
     fputs("<h2>Run record</h2>\n<p class=\"note\"><a href=\"run.json\">run.json</a></p>\n<pre>", out);
@@ -417,7 +418,8 @@ int im_viewer_write(const char *dir, const char *title)
         return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
     }
     char path[PATH_SIZE];
-    snprintf(path, sizeof path, "%s/index.html", dir);
+    if (status == IM_OK)
+        status = im_path_join(path, sizeof path, dir, "index.html");
     if (status == IM_OK)
         status = im_write_file_atomic(path, page, size);
     free(page);

@@ -1,0 +1,99 @@
+/* Internal: what the two front ends, `indentmap indent` (src/cli/indent.c) and scenes (src/scene/),
+ * share, so that each exists once: the history schema with its writer and reader (history.c), the
+ * step-list parser (steps.c) and the JSON run record (record.c). */
+#ifndef INDENTMAP_FRONT_H
+#define INDENTMAP_FRONT_H
+
+#include "indentmap/indenter.h"
+#include "indentmap/scene.h"
+#include "indentmap/solver.h"
+#include "indentmap/theory.h"
+
+#include <jansson.h>
+#include <stddef.h>
+#include <sys/types.h>
+
+/* ---- step lists (steps.c) ---- */
+
+/* The most steps of one history. A scene holds its steps inline (im_scene.steps, 32 KiB for
+ * 4096 doubles, copied by value) and a run keeps a row of about 200 bytes per step; at the
+ * 0.05-1 s a step of a 512 x 512 solve takes, 4096 steps are already minutes to an hour. The
+ * field files of `indent --fields` are numbered with four digits, which 4096 keeps. */
+enum { STEPS_MAX = IM_SCENE_MAX_STEPS };
+
+/* Parses a step list, "first:last:count" (count values evenly spaced from first to last, both
+ * included; last may be below first) or "v1, v2, ..." (blanks around items allowed), of finite
+ * values >= 0, into values[STEPS_MAX]. 0, or -1 with a message "NAME 'TEXT': expected ..." in
+ * error (name is the option or key: "--approach", "steps"). */
+int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t error_size);
+
+/* ---- the history schema (history.c) ---- */
+
+/* The column names of a history, in order: the header line of `indent`'s history.csv and of a
+ * scene's histories/member_FF_SEED.csv (after its "# ..." line). */
+extern const char HISTORY_COLUMNS[];
+
+/* One step of a history: the solver's result, the theory beside it, and what an experiment would
+ * measure. A value the writer did not have (a scene's step taken from its table) is -1 for the
+ * counts (iterations, convolutions, patches) and NaN for the others. */
+typedef struct history_row {
+    int step;               /* 1-based */
+    im_step_result result;
+    im_theory_step theory;
+    double stiffness;       /* dN/dw from this step and the (up to) two before; NaN at the first */
+    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
+    long patches;           /* connected contact patches */
+    double perimeter;       /* their perimeter */
+} history_row;
+
+/* Fills rows[i] (rows[0..i) filled before; rows[i].result set by the caller): its step number, the
+ * theory for punch on the interface rough at its approach and load, the stiffness and Sneddon
+ * modulus, and (run not NULL: the state of this step) the contact patches. */
+int history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
+                    history_row *rows, int i);
+
+/* Row i as one CSV line with its newline, into line (HISTORY_LINE_MAX bytes suffice). Returns its
+ * length. */
+enum { HISTORY_LINE_MAX = 1024 };
+int history_format(const history_row *row, char *line, size_t size);
+
+/* Parses the text of a history from its column line: the line must be HISTORY_COLUMNS (else a
+ * history of another version), then each row whole, with the right number of values, numbers
+ * finite where they must be (approach, load, load_star; area_ratio unless the load is 0). Fills
+ * rows[0..*count) (capacity at most); 0 with a reason in why at the first fault. */
+int history_parse(const char *text, history_row *rows, int capacity, int *count, char *why, size_t why_size);
+
+/* A history file appended step by step (indent): its column line is written atomically, then each
+ * row with one write(2) and synced (fdatasync), so that a finished step survives a crash and the
+ * cost per step does not grow with the steps before it. A write that fails part way is cut back to
+ * the last whole line. */
+typedef struct history_file {
+    int fd;
+    off_t size; /* bytes of whole lines */
+    char path[4096];
+} history_file;
+int history_start(const char *dir, history_file *h);
+int history_append(history_file *h, const history_row *row);
+void history_close(history_file *h);
+
+/* ---- the JSON run record (record.c) ---- */
+
+/* What every run record (OUTPUT/run.json of `indent` and of a scene) holds: the program, the
+ * library's version, the inputs, and the solver options the run was made with. */
+typedef struct run_record_solver {
+    const char *quality;    /* preset name, "none" when the tolerance was given without one */
+    const char *tol_from;   /* "--tol", "--quality", "[solver] tol", "[scene] quality", "default" */
+    const im_solver_options *options;
+} run_record_solver;
+
+/* A new record {"program", "version", "input": {"kind", "path"[, "path_encoding"]}, "solver":
+ * {quality, tol, tol_from, e_star, max_iterations, hardness, crop, window_margin, cascade,
+ * precondition}}, to which a front end adds its own blocks; NULL when out of memory. input_kind:
+ * "surface", "smooth" or "scene"; input_path may be NULL. */
+json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
+                          const run_record_solver *solver);
+
+/* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
+int run_record_write(const char *dir, const json_t *record);
+
+#endif

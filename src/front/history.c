@@ -1,0 +1,158 @@
+/* One history schema for `indent` and scenes: the columns, the measurement beside each solved
+ * step, one row writer, one reader. */
+#include "front/front.h"
+
+#include "indentmap/field.h"
+#include "indentmap/io.h"
+#include "indentmap/measure.h"
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
+                               "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
+                               ",stiffness,e_star_sneddon,patches,patch_perimeter";
+
+enum { HISTORY_VALUES = 20 }; /* the columns above */
+
+/* Contact patches of the run's current state. */
+static int measure_patches(const im_indentation *run, history_row *row)
+{
+    im_field *force = NULL;
+    im_contact_patches patches = {0};
+    int status = im_indentation_fields(run, &force, NULL, NULL);
+    if (status == IM_OK)
+        status = im_measure_contact_patches(force, &patches, NULL);
+    im_field_free(force);
+    row->patches = patches.patches;
+    row->perimeter = patches.perimeter;
+    return status;
+}
+
+int history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
+                    history_row *rows, int i)
+{
+    history_row *row = &rows[i];
+    row->step = i + 1;
+    int status = im_theory_step_columns(punch, rough, row->result.approach, row->result.load, &row->theory);
+    row->stiffness = row->e_star_sneddon = NAN;
+    int first = i >= 2 ? i - 2 : 0;
+    double w[3], n[3], s[3];
+    for (int k = first; k <= i; ++k) {
+        w[k - first] = rows[k].result.approach;
+        n[k - first] = rows[k].result.load;
+    }
+    /* a repeated approach or a turn from loading to unloading leaves the stiffness NaN */
+    if (status == IM_OK && i > 0 && im_measure_stiffness(w, n, i - first + 1, s) == IM_OK) {
+        row->stiffness = s[i - first];
+        row->e_star_sneddon = im_measure_sneddon_modulus(row->stiffness, row->theory.area_smooth);
+    }
+    row->patches = -1;
+    row->perimeter = NAN;
+    return status == IM_OK && run ? measure_patches(run, row) : status;
+}
+
+int history_format(const history_row *row, char *line, size_t size)
+{
+    const im_step_result *r = &row->result;
+    const im_theory_step *t = &row->theory;
+    return snprintf(line, size,
+                    "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                    "%.17g,%ld,%.17g\n",
+                    row->step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
+                    r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
+                    t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, row->stiffness,
+                    row->e_star_sneddon, row->patches, row->perimeter);
+}
+
+/* One row on a whole line [line, end); 0 when it is not HISTORY_VALUES numbers. */
+static int scan_row(const char *line, const char *end, history_row *row)
+{
+    im_step_result *r = &row->result;
+    im_theory_step *t = &row->theory;
+    int used = 0;
+    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf%n",
+                  &row->step, &r->approach, &r->load, &r->load_star, &r->contact_patches, &r->area_ratio,
+                  &r->mean_pressure, &r->max_pressure, &r->iterations, &r->residual, &r->seconds,
+                  &r->convolutions, &t->load_smooth, &t->area_smooth, &t->area_ratio_constant,
+                  &t->area_ratio_gamma, &row->stiffness, &row->e_star_sneddon, &row->patches, &row->perimeter,
+                  &used) == HISTORY_VALUES && line + used == end;
+}
+
+/* Whether the solution's values are finite: A / A_cone is NaN, as the solver reports it, only
+ * where there is no load. */
+static int row_is_finite(const history_row *row)
+{
+    const im_step_result *r = &row->result;
+    int ratio_ok = r->load > 0 ? isfinite(r->area_ratio) : isnan(r->area_ratio);
+    return isfinite(r->approach) && isfinite(r->load) && isfinite(r->load_star) && ratio_ok;
+}
+
+int history_parse(const char *text, history_row *rows, int capacity, int *count, char *why, size_t why_size)
+{
+    size_t columns = strlen(HISTORY_COLUMNS);
+    *count = 0;
+    if (strncmp(text, HISTORY_COLUMNS, columns) != 0 || text[columns] != '\n') {
+        snprintf(why, why_size, "its columns are not this version's history columns (an older version wrote it)");
+        return 0;
+    }
+    for (const char *line = text + columns + 1; *line; ++*count) {
+        const char *next = strchr(line, '\n');
+        if (!next || *count >= capacity || !scan_row(line, next, &rows[*count])) {
+            snprintf(why, why_size, "row %d is not %d numbers on a whole line", *count + 1, HISTORY_VALUES);
+            return 0;
+        }
+        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count])) {
+            snprintf(why, why_size, "row %d holds a value that is not finite or a step out of order", *count + 1);
+            return 0;
+        }
+        line = next + 1;
+    }
+    return 1;
+}
+
+int history_start(const char *dir, history_file *h)
+{
+    h->fd = -1;
+    int status = im_path_join(h->path, sizeof h->path, dir, "history.csv");
+    char header[sizeof HISTORY_COLUMNS + 1];
+    snprintf(header, sizeof header, "%s\n", HISTORY_COLUMNS);
+    if (status == IM_OK)
+        status = im_write_file_atomic(h->path, header, strlen(header));
+    if (status != IM_OK)
+        return status;
+    h->fd = open(h->path, O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (h->fd < 0)
+        return im_fail(IM_EIO, "%s: cannot open for appending: %s", h->path, strerror(errno));
+    h->size = (off_t)strlen(header);
+    return IM_OK;
+}
+
+int history_append(history_file *h, const history_row *row)
+{
+    char line[HISTORY_LINE_MAX];
+    int length = history_format(row, line, sizeof line);
+    ssize_t written = write(h->fd, line, (size_t)length);
+    if (written == length && fdatasync(h->fd) == 0) {
+        h->size += length;
+        return IM_OK;
+    }
+    int saved = written < 0 || written == length ? errno : ENOSPC; /* a short write: the disk filled */
+    if (ftruncate(h->fd, h->size) != 0) /* no torn last line */
+        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)",
+                       h->path, strerror(saved), strerror(errno));
+    return im_fail(IM_EIO, "%s: write failed: %s", h->path, strerror(saved));
+}
+
+void history_close(history_file *h)
+{
+    if (h->fd >= 0)
+        close(h->fd);
+    h->fd = -1;
+}

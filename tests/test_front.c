@@ -1,0 +1,238 @@
+/* What the two front ends (`indentmap indent` and scenes) share (src/front/): one history schema
+ * read by one reader, one step-list parser with one limit, one punch parser, one default
+ * tolerance, and the checked path join. Both front ends are run through the command line
+ * ($IM_CLI) where the test is that they agree. */
+#include "support.h"
+
+#include "front/front.h"
+#include "indentmap/indenter.h"
+#include "indentmap/io.h"
+#include "indentmap/scene.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- step lists ---- */
+
+/* The message of a scene whose [loading] steps is `steps`, after its "FILE:LINE: ". */
+static const char *scene_steps_error(const char *steps)
+{
+    static char message[1024];
+    char text[512];
+    snprintf(text, sizeof text, "[loading]\nsteps = %s\n", steps);
+    const char *path = test_path("steps.ini");
+    test_write_bytes(path, text, strlen(text));
+    im_scene scene;
+    if (im_scene_load(path, &scene) == IM_OK)
+        return NULL;
+    const char *colon = strstr(im_last_error(), ".ini:2: ");
+    snprintf(message, sizeof message, "%s", colon ? colon + 8 : im_last_error());
+    return message;
+}
+
+static void step_lists_one_limit(void **state)
+{
+    (void)state;
+    double values[STEPS_MAX];
+    int count = 0;
+    char error[512];
+    assert_int_equal(steps_parse("steps", "1:2:4096", values, &count, error, sizeof error), 0);
+    assert_int_equal(count, STEPS_MAX);
+    assert_close(values[0], 1, 0);
+    assert_close(values[STEPS_MAX - 1], 2, 0);
+    assert_int_equal(steps_parse("steps", "2:1:3", values, &count, error, sizeof error), 0); /* unloading */
+    assert_close(values[1], 1.5, 1e-15);
+    assert_int_equal(steps_parse("steps", " 0.5 , 1,2e1", values, &count, error, sizeof error), 0);
+    assert_int_equal(count, 3);
+    assert_close(values[2], 20, 0);
+    assert_int_equal(steps_parse("steps", "1:2:4097", values, &count, error, sizeof error), -1);
+    assert_non_null(strstr(error, "1 <= count <= 4096"));
+    /* the scene holds its steps inline: its limit is the parser's */
+    assert_int_equal(IM_SCENE_MAX_STEPS, STEPS_MAX);
+    char *many = malloc(4 * (STEPS_MAX + 1) + 1);
+    assert_non_null(many);
+    many[0] = '\0';
+    for (int i = 0; i <= STEPS_MAX; ++i)
+        strcat(many, i ? ",1.5" : "1.5");
+    assert_int_equal(steps_parse("--load", many, values, &count, error, sizeof error), -1);
+    assert_non_null(strstr(error, "expected at most 4096 steps"));
+    free(many);
+}
+
+/* A scene's steps refuse what `indent --approach` refuses, with the same message. */
+static void step_lists_same_messages(void **state)
+{
+    (void)state;
+    static const char *const BAD[] = {"1:2:5000", "1:2", "1,,2", "1,abc", "-1,2", "1:2:0", ",1", "1:2:3:4"};
+    for (size_t i = 0; i < sizeof BAD / sizeof *BAD; ++i) {
+        double values[STEPS_MAX];
+        int count;
+        char error[512];
+        assert_int_equal(steps_parse("steps", BAD[i], values, &count, error, sizeof error), -1);
+        const char *scene = scene_steps_error(BAD[i]);
+        if (!scene || strcmp(scene, error) != 0)
+            fail_msg("steps = %s: the scene says '%s', the parser '%s'", BAD[i], scene ? scene : "(accepted)", error);
+    }
+}
+
+/* ---- punch names ---- */
+
+static void punch_names_one_parser(void **state)
+{
+    (void)state;
+    enum im_punch_kind kind = IM_PUNCH_CONE;
+    assert_int_equal(im_punch_parse("sphere", &kind), IM_OK);
+    assert_int_equal(kind, IM_PUNCH_SPHERE);
+    assert_int_equal(im_punch_parse("Flat", &kind), IM_OK);
+    assert_int_equal(kind, IM_PUNCH_FLAT);
+    assert_int_equal(im_punch_parse("pyramid", &kind), IM_EINVAL);
+    assert_int_equal(kind, IM_PUNCH_FLAT);
+    char expected[256];
+    snprintf(expected, sizeof expected, "shape = %s", im_last_error());
+    const char *path = test_path("punch.ini");
+    test_write_bytes(path, "[punch]\nshape = pyramid\n", 24);
+    im_scene scene;
+    assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
+    if (!strstr(im_last_error(), expected))
+        fail_msg("scene: '%s', expected to contain '%s'", im_last_error(), expected);
+}
+
+/* ---- one default tolerance ---- */
+
+static void one_default_tolerance(void **state)
+{
+    (void)state;
+    double standard;
+    assert_int_equal(im_quality_tolerance(IM_QUALITY_DEFAULT, &standard), IM_OK);
+    assert_close(im_solver_options_default().tol, standard, 0);
+    im_scene scene;
+    im_scene_defaults(&scene);
+    assert_close(scene.tol, standard, 0);
+    assert_string_equal(scene.quality, IM_QUALITY_DEFAULT);
+}
+
+/* ---- the history schema ---- */
+
+static void read_whole(const char *path, char **text)
+{
+    *text = NULL;
+    if (im_read_text_file(path, 1 << 24, text, NULL) != IM_OK)
+        fail_msg("%s: %s", path, im_last_error());
+}
+
+static void run_cli(const char *arguments)
+{
+    const char *cli = getenv("IM_CLI");
+    if (!cli)
+        fail_msg("IM_CLI is not set (ctest sets it)");
+    char command[4096];
+    snprintf(command, sizeof command, "OMP_NUM_THREADS=1 '%s' %s >/dev/null 2>&1", cli, arguments);
+    if (system(command) != 0)
+        fail_msg("failed: %s", command);
+}
+
+/* The history each front end writes parses with the one reader: indent's history.csv whole, a
+ * scene's after its "# ..." line (key, row count, checksum). */
+static void both_histories_one_reader(void **state)
+{
+    (void)state;
+    const char *dir = test_temp_dir();
+    char arguments[2048], path[1024];
+    snprintf(arguments, sizeof arguments, "indent --smooth --n 32 --approach 0.5:2:3 --out '%s/indent'", dir);
+    run_cli(arguments);
+    const char *scene = "[scene]\noutput = scene\n[surfaces]\nn = 32\nslopes = 0.08\nseeds = 1\n"
+                        "[loading]\nsteps = 0.5:2:3\n[output]\nplots = fig5\n";
+    test_write_bytes(test_path("h.ini"), scene, strlen(scene));
+    snprintf(arguments, sizeof arguments, "run --quiet '%s'", test_path("h.ini"));
+    run_cli(arguments);
+    history_row rows[8];
+    int count = 0;
+    char why[160];
+    snprintf(path, sizeof path, "%s/indent/history.csv", dir);
+    char *indent, *member;
+    read_whole(path, &indent);
+    if (!history_parse(indent, rows, 8, &count, why, sizeof why))
+        fail_msg("indent's history.csv: %s", why);
+    assert_int_equal(count, 3);
+    assert_close(rows[2].result.approach, 2, 0);
+    assert_true(rows[2].patches >= 1 && rows[2].result.iterations > 0 && isfinite(rows[2].stiffness));
+    snprintf(path, sizeof path, "%s/scene/histories/member_00_1.csv", dir);
+    read_whole(path, &member);
+    const char *body = strchr(member, '\n');
+    assert_non_null(body);
+    if (!history_parse(body + 1, rows, 8, &count, why, sizeof why))
+        fail_msg("the scene's history: %s", why);
+    assert_int_equal(count, 3);
+    assert_true(rows[1].result.load > 0 && rows[1].patches >= 1 && isfinite(rows[1].theory.area_ratio_gamma));
+    assert_memory_equal(indent, body + 1, strlen(HISTORY_COLUMNS) + 1); /* the same column line */
+    free(indent);
+    free(member);
+}
+
+/* A history of the previous version (the scene's nine columns) is refused, never misread; so are a
+ * row short of a column, a NaN approach and rows out of order. */
+static void other_histories_refused(void **state)
+{
+    (void)state;
+    static const char *const OLD = "approach,load,load_star,contact_patches,area_ratio,load_smooth,area_smooth,"
+                                   "area_ratio_constant,area_ratio_gamma\n0.5,1,2,3,1,1,2,1,1\n";
+    history_row rows[4];
+    int count;
+    char why[160], text[2048];
+    assert_false(history_parse(OLD, rows, 4, &count, why, sizeof why));
+    assert_non_null(strstr(why, "older version"));
+    history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = 3, .contact_patches = 4,
+                                             .area_ratio = 1, .iterations = 5, .residual = 1e-7},
+                       .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
+    char line[HISTORY_LINE_MAX];
+    history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
+    assert_true(history_parse(text, rows, 4, &count, why, sizeof why));
+    assert_int_equal(count, 1);
+    assert_close(rows[0].result.load_star, 3, 0);
+    assert_int_equal(rows[0].patches, 1);
+    assert_true(isnan(rows[0].stiffness));
+    snprintf(text, sizeof text, "%s\n%.*s\n", HISTORY_COLUMNS, (int)(strrchr(line, ',') - line), line);
+    assert_false(history_parse(text, rows, 4, &count, why, sizeof why)); /* a column short */
+    row.result.approach = NAN;
+    history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
+    assert_false(history_parse(text, rows, 4, &count, why, sizeof why));
+    row.result.approach = 1;
+    row.step = 2;
+    history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
+    assert_false(history_parse(text, rows, 4, &count, why, sizeof why));
+}
+
+/* ---- paths ---- */
+
+static void path_join_refuses_what_does_not_fit(void **state)
+{
+    (void)state;
+    char out[16];
+    assert_int_equal(im_path_join(out, sizeof out, "dir", "name.csv"), IM_OK);
+    assert_string_equal(out, "dir/name.csv");
+    assert_int_equal(im_path_join(out, sizeof out, "directory", "history.csv"), IM_EINVAL);
+    assert_string_equal(out, "");
+    assert_non_null(strstr(im_last_error(), "path too long: 21 bytes where at most 15 fit"));
+    assert_non_null(strstr(im_last_error(), "history.csv'"));
+    assert_int_equal(im_path_suffix(out, sizeof out, "surface.npy", ".json"), IM_EINVAL);
+    assert_int_equal(im_path_suffix(out, sizeof out, "s.npy", ".json"), IM_OK);
+    assert_string_equal(out, "s.npy.json");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(step_lists_one_limit),        cmocka_unit_test(step_lists_same_messages),
+        cmocka_unit_test(punch_names_one_parser),      cmocka_unit_test(one_default_tolerance),
+        cmocka_unit_test(both_histories_one_reader),   cmocka_unit_test(other_histories_refused),
+        cmocka_unit_test(path_join_refuses_what_does_not_fit),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
