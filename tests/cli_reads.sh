@@ -83,7 +83,7 @@ scene_refused empty "empty.ini: no settings" ""
 scene_refused dupkey "dupkey.ini:3: [surfaces] n is given twice (first on line 2)" "[surfaces]\nn = 64\nn = 32\n"
 scene_refused dupsection "dupsection.ini:4: [surfaces] is opened twice (first on line 1)" \
   "[surfaces]\nn = 64\n[output]\n[surfaces]\nm = 32\n"
-scene_refused noslopes "noslopes.ini:2: slopes = '': expected at least one value" "[surfaces]\nslopes =\n"
+scene_refused noslopes "noslopes.ini:2: slopes = '': expected a list v1, v2, ..." "[surfaces]\nslopes =\n"
 scene_refused emptyitem "emptyitem.ini:2: slopes = '0.1,,0.2': an empty item" "[surfaces]\nslopes = 0.1,,0.2\n"
 check "scene /dev/null" expect_exit 2 "/dev/null is a character device" "$cli" run --quiet /dev/null
 

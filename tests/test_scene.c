@@ -81,7 +81,11 @@ static void sweep_lists_are_refused_at_their_line(void **state)
     (void)state;
     expect_error("sweep_twice.ini", "[scene]\nname = s\n[punch]\nalpha = 80, 70, 80\n",
                  ":4: alpha = '80, 70, 80': 80 is given twice");
-    expect_error("sweep_range.ini", "[surfaces]\nhurst = 0.8, 1.2\n", ":2: hurst: '1.2' in '0.8, 1.2'");
+    expect_error("sweep_range.ini", "[surfaces]\nhurst = 0.8, 1.2\n", ":2: hurst = '0.8, 1.2': 1.2 is outside [0.01, 0.99]");
+    /* the lists take the step lists' parser: no trailing text after a range, no repeated family */
+    expect_error("sweep_tail.ini", "[punch]\nalpha = 70:85:4x\n", ":2: alpha = '70:85:4x': expected a range");
+    expect_error("slopes_twice.ini", "[surfaces]\nslopes = 0.08, 0.04, 0.080\n",
+                 ":2: slopes = '0.08, 0.04, 0.080': 0.08 is given twice");
     expect_error("sweep_empty.ini", "[surfaces]\nlambda_s = 4,,8\n", ":2: lambda_s = '4,,8': an empty item");
     expect_error("sweep_sphere.ini", "[punch]\nshape = sphere\nalpha = 80, 70\n[output]\ntable = no\n",
                  ":3: alpha: a list of angles sweeps a cone's half-angle");
@@ -129,7 +133,7 @@ static void errors_name_the_line(void **state)
     expect_error("choice.ini", "[punch]\nshape = pyramid\n", ":2: shape = 'pyramid': expected cone, sphere, flat or profile");
     expect_error("malformed.ini", "[punch]\nshape = cone\nthis line has no equals sign\n[material]\nmodulus = -1\n", ":3: malformed line");
     expect_error("first.ini", "[punch]\nalpha = 100\nshape = pyramid\n", ":2: alpha");
-    expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes: 'abc'");
+    expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes = '0.01, abc': ' abc' is not a number");
     expect_error("order.ini", "[loading]\ncontrol = load\n\nsteps = 3, 2\n", ":4: steps must increase");
     expect_error("lambda.ini", "[surfaces]\nlambda_r = 8\nhurst = 0.8\nlambda_s = 16\n", ":4: lambda_r = 8 must exceed");
     expect_error("lambda_r.ini", "[surfaces]\nlambda_s = 16\nlambda_r = 8\n", ":3: lambda_r = 8 must exceed");

@@ -115,7 +115,8 @@ typedef struct im_scene {
     enum im_control control;         /* displacement or load */
     double load_star;                /* N* at which contact panels are drawn (0: none) */
     double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty):
-                                        first:last:count or a list, parsed as `indent --approach` */
+                                        first:last:count or a list, parsed as `indent --approach`,
+                                        and then required to increase */
     int step_count;
 
     double tol;                      /* solver tolerance (default: the quality preset's; the preset

@@ -41,9 +41,14 @@ PyObject *py_array_from_doubles(const double *values, npy_intp n);
  * clears flag and, on the main thread where Python handles SIGINT, makes SIGINT also set flag (the
  * library's stop flag for the call); py_interrupt_disarm (GIL held, after it) restores Python's
  * handler and, if the signal came, lets Python act on it: -1 with KeyboardInterrupt (or what the
- * application's handler raised) set, else 0. py_interrupt_init (module import) finds the main thread. */
+ * application's handler raised) set, else 0. A call made from a progress or log callback of an armed
+ * call (nested) shares the installed handler: SIGINT then stops the inner call, whose
+ * KeyboardInterrupt, raised in the callback, stops the outer one. py_interrupt_init (module import)
+ * finds the main thread. */
 typedef struct py_interrupt {
-    int armed;
+    int armed;                          /* this call installed the handler (the outermost call) */
+    volatile sig_atomic_t *outer_flag;  /* a call made from a callback of an armed call: the outer
+                                           call's flag, armed again when this one returns */
 } py_interrupt;
 int py_interrupt_init(void);
 void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag);

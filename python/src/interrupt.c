@@ -42,8 +42,16 @@ void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag)
 {
     *flag = 0;
     call->armed = 0;
+    call->outer_flag = NULL;
+    if (PyThread_get_thread_ident() != main_thread)
+        return;
+    if (armed_flag) { /* nested: our handler is installed; saving it as Python's would loop */
+        call->outer_flag = armed_flag;
+        armed_flag = flag;
+        return;
+    }
     struct sigaction current;
-    if (PyThread_get_thread_ident() != main_thread || sigaction(SIGINT, NULL, &current) != 0 ||
+    if (sigaction(SIGINT, NULL, &current) != 0 ||
         (!(current.sa_flags & SA_SIGINFO) && (current.sa_handler == SIG_IGN || current.sa_handler == SIG_DFL)))
         return;
     python_handler = current;
@@ -58,7 +66,10 @@ void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag)
 
 int py_interrupt_disarm(py_interrupt *call, volatile sig_atomic_t *flag)
 {
-    if (call->armed) {
+    if (call->outer_flag) {
+        armed_flag = call->outer_flag;
+        call->outer_flag = NULL;
+    } else if (call->armed) {
         sigaction(SIGINT, &python_handler, NULL);
         armed_flag = NULL;
         call->armed = 0;

@@ -154,3 +154,22 @@ def test_ctrl_c_stops_a_scene_and_resume_finishes_it(tmp_path):
     counts = [re.match(r"(?:table|histories): 31 surfaces: (\d+) solved, (\d+) read back", line) for line in lines]
     solved, read_back = (sum(int(m.group(k)) for m in counts if m) for k in (1, 2))
     assert solved > 0 and read_back > 0, lines  # stopped before the end, keeping what it had finished
+
+
+def test_ctrl_c_in_a_solve_made_by_a_callback(tmp_path):
+    """A log callable (called on the main thread) that solves: SIGINT stops that inner solve, whose
+    KeyboardInterrupt stops the scene; Python's own handler is back afterwards."""
+    gap = rough_cone_gap(512)
+    plan = im.Plan(512, tol=1e-12)
+    sent = []
+
+    def log(level, message):
+        if not sent:
+            sent.extend(interrupt_after(0.2))
+            plan.solve(gap, 20.0)
+    with pytest.raises(KeyboardInterrupt):
+        im.run_scene(write_scene(tmp_path, tmp_path / "out"), log=log)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    interrupt_after(0.05)
+    with pytest.raises(KeyboardInterrupt):
+        time.sleep(5)  # the plain handler, not one left armed by the calls

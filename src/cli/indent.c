@@ -393,9 +393,11 @@ static int write_fields(const char *dir, im_indentation *run, int step, const ch
 static int write_distributions(const indent_options *o, im_indentation *run, int step)
 {
     im_field *force = NULL, *gap = NULL;
-    char prefix[4200];
-    snprintf(prefix, sizeof prefix, "%s/distributions_%04d", o->out, step);
-    int status = im_indentation_fields_full(run, &force, &gap, NULL);
+    char name[32], prefix[4096];
+    snprintf(name, sizeof name, "distributions_%04d", step);
+    int status = im_path_join(prefix, sizeof prefix, o->out, name);
+    if (status == IM_OK)
+        status = im_indentation_fields_full(run, &force, &gap, NULL);
     if (status == IM_OK)
         status = im_measure_write_distributions(force, gap, o->gap_scale, 50, prefix);
     im_field_free(force);

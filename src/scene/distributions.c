@@ -103,12 +103,6 @@ static int family_distributions(const im_scene *scene, const im_scene_run_option
     return status;
 }
 
-static int draw_distributions(const im_scene *scene, const void *data, const char *path)
-{
-    (void)scene;
-    return im_plot_write(data, path);
-}
-
 /* (a) the gap density against g / h_rms, (b) patches per octave of size, one line per family. */
 static int plot_distributions(const im_scene *scene, const family_curves *curves)
 {
@@ -140,7 +134,7 @@ static int plot_distributions(const im_scene *scene, const family_curves *curves
     im_plot plot = im_plot_default();
     plot.columns = rough > 0 ? 2 : 1; /* without a rough family, (b) alone */
     plot.panels = rough > 0 ? panels : panels + 1;
-    int status = scene_write_png_pdf(scene, "distributions", draw_distributions, &plot);
+    int status = scene_write_png_pdf(scene, "distributions", scene_draw_plot, &plot);
     free(series);
     return status;
 }

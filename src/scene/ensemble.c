@@ -56,7 +56,7 @@ static int report_interrupted(const im_scene_run_options *options, const scene_m
     return scene_interrupted(options, where);
 }
 
-/* The MPI run in progress, if any (scene_internal.h: scene_ranks_run). */
+/* The MPI run in progress, if any (ensemble.h: scene_ranks_run). */
 static const scene_ranks_run *ranks_run;
 
 void scene_set_ranks_run(const scene_ranks_run *run)

@@ -163,35 +163,47 @@ static int split_list(const char *key, const char *value, char *buffer, size_t b
     return 0;
 }
 
-/* "a, b, c" or "first:last:count" (count values, evenly spaced) into a list of doubles. */
+/* Whether a list repeats a value as %g prints it: each value of a list is one family or sweep
+ * point, named by it (labels, folders), so no two may print alike. */
+static int repeated_value(const char *key, const char *value, const double *list, int n, char *error, size_t size)
+{
+    for (int i = 1; i < n; ++i)
+        for (int j = 0; j < i; ++j) {
+            char a[32], b[32];
+            snprintf(a, sizeof a, "%g", list[i]);
+            snprintf(b, sizeof b, "%g", list[j]);
+            if (strcmp(a, b) == 0) {
+                snprintf(error, size, "%s = '%s': %s is given twice (to six digits); each value is one family or "
+                         "sweep point, give each once", key, value, a);
+                return 1;
+            }
+        }
+    return 0;
+}
+
+/* "a, b, c" or "first:last:count" (count values, evenly spaced) into a list of doubles: the step
+ * lists' parser (front.h), then this key's capacity and range. */
 static int parse_double_list(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
-    double *list = destination(spec, scene);
-    int *count = (int *)((char *)scene + spec->count_offset);
-    double first, last, steps;
-    if (sscanf(value, "%lf : %lf : %lf", &first, &last, &steps) == 3) {
-        if (steps < 1 || steps > (double)spec->capacity || steps != floor(steps) || first < spec->min ||
-            last > spec->max || !(last >= first)) {
-            snprintf(error, size, "%s = '%s': expected first:last:count with %g <= first <= last <= %g and "
-                     "1 <= count <= %zu", spec->key, value, spec->min, spec->max, spec->capacity);
-            return -1;
-        }
-        *count = (int)steps;
-        for (int i = 0; i < *count; ++i)
-            list[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
-        return 0;
-    }
-    char buffer[2048], *items[IM_SCENE_MAX_FAMILIES];
-    int n;
-    if (split_list(spec->key, value, buffer, sizeof buffer, items, (int)spec->capacity, &n, error, size) != 0)
+    double *list = destination(spec, scene), values[STEPS_MAX];
+    int *count = (int *)((char *)scene + spec->count_offset), n;
+    char name[64];
+    snprintf(name, sizeof name, "%s =", spec->key);
+    if (steps_parse(name, value, values, &n, error, size) != 0)
         return -1;
-    for (int i = 0; i < n; ++i) {
-        if (!parse_number(items[i], &list[i]) || list[i] < spec->min || list[i] > spec->max) {
-            snprintf(error, size, "%s: '%s' in '%s': expected at most %zu numbers in [%g, %g], separated by "
-                     "commas", spec->key, items[i], value, spec->capacity, spec->min, spec->max);
+    if ((size_t)n > spec->capacity) {
+        snprintf(error, size, "%s = '%s': %d values where at most %zu fit", spec->key, value, n, spec->capacity);
+        return -1;
+    }
+    for (int i = 0; i < n; ++i)
+        if (values[i] < spec->min || values[i] > spec->max) {
+            snprintf(error, size, "%s = '%s': %g is outside [%g, %g]", spec->key, value, values[i], spec->min,
+                     spec->max);
             return -1;
         }
-    }
+    if (repeated_value(spec->key, value, values, n, error, size))
+        return -1;
+    memcpy(list, values, (size_t)n * sizeof *list);
     *count = n;
     return 0;
 }
@@ -205,8 +217,7 @@ static double *sweep_scalar(const key_spec *spec, im_scene *scene)
 }
 
 /* [punch] alpha, [surfaces] hurst and lambda_s: one value, or a sweep's list ("a, b" or
- * first:last:count) whose values each name a sweep point and its folder (printed with %g), so no
- * two may print alike. */
+ * first:last:count) whose values each name a sweep point and its folder. */
 static int parse_sweep_list(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
     int *count_given = (int *)((char *)scene + spec->count_offset);
@@ -217,19 +228,7 @@ static int parse_sweep_list(const key_spec *spec, const char *value, im_scene *s
     } else if (parse_double_list(spec, value, scene, error, size) != 0) {
         return -1;
     }
-    const double *list = destination(spec, scene);
-    for (int i = 1; i < *count_given; ++i)
-        for (int j = 0; j < i; ++j) {
-            char a[32], b[32];
-            snprintf(a, sizeof a, "%g", list[i]);
-            snprintf(b, sizeof b, "%g", list[j]);
-            if (strcmp(a, b) == 0) {
-                snprintf(error, size, "%s = '%s': %s is given twice (to six digits); each value is one sweep point, "
-                         "give each once", spec->key, value, a);
-                return -1;
-            }
-        }
-    *sweep_scalar(spec, scene) = list[0];
+    *sweep_scalar(spec, scene) = ((const double *)destination(spec, scene))[0];
     return 0;
 }
 

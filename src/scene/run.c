@@ -1,4 +1,4 @@
-/* A scene run: checks before any work, then the stages in order (scene_internal.h has the pieces). */
+/* A scene run: checks before any work, then the stages in order (the headers beside it have the pieces). */
 #include "indentmap/scene.h"
 
 #include "indentmap/io.h"

@@ -157,6 +157,9 @@ static int group_rows(const im_scene *scene, const sweep_row *rows, int count, s
             first[g->count++] = &rows[i];
             group_label(scene, &rows[i], g->labels[k], sizeof g->labels[k]);
         }
+        if (g->n[k] == IM_SCENE_MAX_SWEEP_POINTS) /* parse.c refuses repeated values, so this is a bug */
+            return im_fail(IM_EINVAL, "%s: fig2 of a sweep: more than %d points of one roughness", scene->path,
+                           IM_SCENE_MAX_SWEEP_POINTS);
         g->x[k][g->n[k]] = rows[i].rho_c;
         g->y[k][g->n[k]] = rows[i].area_ratio;
         g->sigma[k][g->n[k]++] = rows[i].sd;
@@ -165,12 +168,6 @@ static int group_rows(const im_scene *scene, const sweep_row *rows, int count, s
         ++g->total;
     }
     return IM_OK;
-}
-
-static int draw_sweep(const im_scene *scene, const void *data, const char *path)
-{
-    (void)scene;
-    return im_plot_write(data, path);
 }
 
 /* Fig. 2 over the whole sweep: eq. (12) and eq. (6), and each roughness's points (its angles) as a
@@ -206,7 +203,7 @@ static int plot_sweep(const im_scene *scene, const sweep_row *rows, int count)
     im_plot plot = im_plot_default();
     plot.panels = &panel;
     if (status == IM_OK)
-        status = scene_write_png_pdf(scene, "fig2", draw_sweep, &plot);
+        status = scene_write_png_pdf(scene, "fig2", scene_draw_plot, &plot);
     free(g);
     return status;
 }
