@@ -124,8 +124,11 @@ static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
         needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 4.0 * g->nx * g->ny));
     if (scene->frames3d) /* the 3-D frames kept for the GIF (960 x 540 RGBA each) */
         needed += scene->frame_count * 4.0 * 960.0 * 540.0;
-    if (scene->contact_panels) /* every family's force, and its panel image (2 pixels a patch when small) */
-        needed = fmax(needed, solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
+    if (scene->contact_panels) { /* every family's force and panel image (2 pixels a patch when small); the
+                                  * panels are solved side by side, one per thread */
+        int panels_at_once = scene->family_count < threads ? scene->family_count : threads;
+        needed = fmax(needed, panels_at_once * solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
+    }
     return needed;
 }
 
