@@ -65,7 +65,10 @@ static void usage(FILE *stream)
             "  --plain-pk          plain Polonsky-Keer CG from the local guess: no cascade cold start, no\n"
             "                      preconditioner (the same answers to the tolerance, slower; docs/solver.md)\n"
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
-            "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
+            "  --wisdom FILE       FFTW wisdom file, read before planning and updated after it; implies\n"
+            "                      --measure. Default: $IM_FFTW_WISDOM, else the user's cache\n"
+            "                      ($XDG_CACHE_HOME or ~/.cache)/indentmap/fftw-wisdom (docs/solver.md)\n"
+            "  --no-wisdom         no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
             "DIR/history.csv gets one whole line per step, appended and synced as soon as the step is\n"
@@ -77,6 +80,8 @@ static void usage(FILE *stream)
 
 typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
+    int no_wisdom;
+    char wisdom_cache[4096];      /* the cache's wisdom file, when that is the one used */
     int smooth, nx, ny, m_given, fields;
     double delta;
     im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
@@ -99,7 +104,7 @@ typedef struct indent_options {
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK };
+       OPT_HELP, OPT_PLAIN_PK, OPT_NO_WISDOM };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -114,6 +119,7 @@ static const struct option LONG_OPTIONS[] = {
     {"hardness", required_argument, 0, OPT_HARDNESS},
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
+    {"no-wisdom", no_argument, 0, OPT_NO_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK}, {0, 0, 0, 0}};
 
@@ -212,7 +218,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_FULL: o->solver.crop = 0; return 0;
     case OPT_PLAIN_PK: o->solver.cascade = o->solver.precondition = 0; return 0;
     case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
-    case OPT_WISDOM: o->wisdom = arg; o->solver.wisdom_path = arg; return 0;
+    case OPT_WISDOM: o->wisdom = arg; return 0;
+    case OPT_NO_WISDOM: o->no_wisdom = 1; return 0;
     case OPT_OUT: o->out = arg; return 0;
     case OPT_FIELDS: o->fields = 1; return 0;
     default: return -1;
@@ -344,7 +351,13 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     if (!o->m_given)
         o->ny = o->nx;
     o->punch.centred = !o->x_given;
-    if (check_options(o) != 0 || check_outputs_apart(o) != 0)
+    if (check_options(o) != 0)
+        return -1;
+    if (cli_wisdom_resolve(o->wisdom, o->no_wisdom, &o->solver, o->wisdom_cache, sizeof o->wisdom_cache) != IM_OK) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return -1;
+    }
+    if (check_outputs_apart(o) != 0)
         return -1;
     return apply_quality(o);
 }
@@ -481,7 +494,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *seed = generator ? json_object_get(generator, "seed") : NULL;
     json_t *root = json_pack(
         "{s:s, s:s, s:{s:s, s:i, s:i, s:f, s:s, s:s, s:O?}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, "
-        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
+        "s:{s:s, s:f, s:s, s:f, s:i, s:b, s:b, s:f, s:b, s:i, s:f}, s:{s:i, s:i, s:i, s:i}, s:i, s:s, s:b}",
         "program", "indentmap indent", "version", IM_VERSION,
         "surface", "source", source, "nx", s->nx, "ny", s->ny,
         "delta", s->delta, "unit", s->unit, "preparation", preparation, "generator", generator,
@@ -490,7 +503,8 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
         "solver", "quality", o->quality ? o->quality : "none", "tol", o->solver.tol, "tol_from", tolerance_source(o),
         "e_star", o->solver.e_star, "max_iterations", o->solver.max_iterations,
-        "fftw_measure", im_solver_plan_measured(plan), "plan_seconds", im_solver_plan_seconds(plan),
+        "fftw_measure", im_solver_plan_measured(plan), "fftw_wisdom", im_solver_wisdom_file(&o->solver) != NULL,
+        "plan_seconds", im_solver_plan_seconds(plan),
         "crop", o->solver.crop, "window_margin", o->solver.window_margin, /* the options the run was made with */
         "hardness", o->solver.hardness,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),

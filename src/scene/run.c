@@ -127,6 +127,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     options.e_star = scene->modulus;
     options.tol = scene->tol;
     options.hardness = scene->hardness;
+    options.wisdom_path = scene->wisdom_path;
     return options;
 }
 
@@ -293,7 +294,7 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
 }
 
 /* The scene file and its surface files become inputs no write may replace (io.h: the output
- * guard), and the FFTW wisdom file ($IM_FFTW_WISDOM) may be neither one of them, nor in the output
+ * guard), and the FFTW wisdom file (scene->wisdom_path) may be neither one of them, nor in the output
  * folder, nor anything but wisdom. */
 static int protect_inputs(const im_scene *scene)
 {
@@ -313,7 +314,7 @@ static int protect_inputs(const im_scene *scene)
                    im_path_absolute(wisdom, file, sizeof file) == IM_OK;
     size_t length = resolved ? strlen(folder) : 0;
     if (status == IM_OK && resolved && strncmp(file, folder, length) == 0 && file[length] == '/')
-        status = im_fail(IM_EINVAL, "IM_FFTW_WISDOM %s lies in the output folder %s, where this run writes: "
+        status = im_fail(IM_EINVAL, "the FFTW wisdom file %s lies in the output folder %s, where this run writes: "
                          "keep it elsewhere", wisdom, scene->output_dir);
     return status;
 }
