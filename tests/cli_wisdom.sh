@@ -15,7 +15,8 @@ cd "$dir" || exit 1
 wisdom=$dir/cache/indentmap/fftw-wisdom
 
 "$cli" surface --n 48 --seed 2 --out s.npy >/dev/null || exit 1
-indent() { "$cli" indent s.npy --approach 0.4,0.8 --out "$@" >/dev/null; }
+export steps=0.1:1:10 # the cache is the default from 10 steps on
+indent() { "$cli" indent s.npy --approach $steps --out "$@" >/dev/null; }
 answers() { cut -d, -f1-10 "$1/history.csv"; } # all but the timings
 is_wisdom() { [ -s "$1" ] && head -c 6 "$1" | grep -q '(fftw-'; }
 measured() { grep -q '"fftw_measure": true' "$1/run.json" && grep -q '"fftw_wisdom": true' "$1/run.json"; }
@@ -24,6 +25,7 @@ unmeasured() { grep -q '"fftw_measure": false' "$1/run.json" && grep -q '"fftw_w
 # the default: the cache's file is written, and the plans are measured
 check "default: wisdom written to \$XDG_CACHE_HOME/indentmap" bash -c "$(declare -f indent is_wisdom); cli='$cli'; indent o1 && is_wisdom '$wisdom'"
 check "default: the run's plans are measured" measured o1
+check "fewer than 10 steps: no wisdom by default" bash -c "'$cli' indent s.npy --approach 0.5 --out short >/dev/null && grep -q '\"fftw_wisdom\": false' short/run.json"
 cp "$wisdom" first.wisdom
 # the second run imports it: nothing new to measure (the file is the same), the same plans (the same answers)
 check "second run: succeeds" indent o2
@@ -34,10 +36,10 @@ check "no XDG_CACHE_HOME: ~/.cache/indentmap" bash -c "$(declare -f indent is_wi
 
 # a damaged file: FFTW rejects it; notice, the run succeeds, and the file is wisdom again
 head -c 200 first.wisdom >"$wisdom"
-check "truncated wisdom: a notice" expect_exit 0 "FFTW rejects it" "$cli" indent s.npy --approach 0.4,0.8 --out o4
+check "truncated wisdom: a notice" expect_exit 0 "FFTW rejects it" "$cli" indent s.npy --approach $steps --out o4
 check "truncated wisdom: replaced by whole wisdom" is_wisdom "$wisdom"
 printf 'not wisdom at all\n' >"$wisdom"
-check "foreign file in the cache: a notice" expect_exit 0 "not FFTW wisdom" "$cli" indent s.npy --approach 0.4,0.8 --out o5
+check "foreign file in the cache: a notice" expect_exit 0 "not FFTW wisdom" "$cli" indent s.npy --approach $steps --out o5
 check "foreign file in the cache: replaced by wisdom" is_wisdom "$wisdom"
 
 # the off switches: no file is written, nothing is measured
@@ -45,7 +47,7 @@ rm -rf "$dir/cache"
 check "--no-wisdom: succeeds" indent o6 --no-wisdom
 check "--no-wisdom: no file" test ! -e "$wisdom"
 check "--no-wisdom: estimated plans" unmeasured o6
-check "IM_FFTW_WISDOM=\"\": succeeds" env IM_FFTW_WISDOM= "$cli" indent s.npy --approach 0.4,0.8 --out o7
+check "IM_FFTW_WISDOM=\"\": succeeds" env IM_FFTW_WISDOM= "$cli" indent s.npy --approach $steps --out o7
 check "IM_FFTW_WISDOM=\"\": no file" test ! -e "$wisdom"
 check "IM_FFTW_WISDOM=\"\": estimated plans" unmeasured o7
 check "IM_FFTW_WISDOM=FILE: that file instead" bash -c "IM_FFTW_WISDOM='$dir/mine.wisdom' '$cli' indent s.npy --approach 0.4 --out o8 >/dev/null && test ! -e '$wisdom' && head -c 6 '$dir/mine.wisdom' | grep -q '(fftw-'"

@@ -66,8 +66,8 @@ static void usage(FILE *stream)
             "                      preconditioner (the same answers to the tolerance, slower; docs/solver.md)\n"
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
             "  --wisdom FILE       FFTW wisdom file, read before planning and updated after it; implies\n"
-            "                      --measure. Default: $IM_FFTW_WISDOM, else the user's cache\n"
-            "                      ($XDG_CACHE_HOME or ~/.cache)/indentmap/fftw-wisdom (docs/solver.md)\n"
+            "                      --measure. Default: $IM_FFTW_WISDOM, else for runs of 10 steps or more\n"
+            "                      the user's cache ($XDG_CACHE_HOME or ~/.cache)/indentmap/fftw-wisdom\n"
             "  --no-wisdom         no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n\n"
@@ -77,6 +77,9 @@ static void usage(FILE *stream)
             "(DIR/.lock, as for scenes); the field files of an earlier run in DIR are removed first.\n"
             "At N = 0 the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
+
+/* Runs of at least this many steps keep FFTW wisdom in the user's cache by default. */
+enum { CACHED_WISDOM_STEPS = 10 };
 
 typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
@@ -353,7 +356,11 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     o->punch.centred = !o->x_given;
     if (check_options(o) != 0)
         return -1;
-    if (cli_wisdom_resolve(o->wisdom, o->no_wisdom, &o->solver, o->wisdom_cache, sizeof o->wisdom_cache) != IM_OK) {
+    /* The cache only for histories: measuring pays within a 25-step history's first run, while a cold
+     * solve needs ~15 later runs to win its planning back (docs/solver.md, "FFTW wisdom"). */
+    int use_cache = o->target_count >= CACHED_WISDOM_STEPS;
+    if (cli_wisdom_resolve(o->wisdom, o->no_wisdom, use_cache, &o->solver, o->wisdom_cache, sizeof o->wisdom_cache) !=
+        IM_OK) {
         fprintf(stderr, "indentmap: %s\n", im_last_error());
         return -1;
     }

@@ -73,7 +73,7 @@ static int load_and_arm(const char *path, im_scene *scene, run_wisdom *wisdom)
     int status = im_scene_load(path, scene);
     im_solver_options solver = im_solver_options_default();
     if (status == IM_OK)
-        status = cli_wisdom_resolve(wisdom->given, wisdom->off, &solver, wisdom->cache, sizeof wisdom->cache);
+        status = cli_wisdom_resolve(wisdom->given, wisdom->off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
     scene->wisdom_path = solver.wisdom_path;
     if (status == IM_OK && cli_interrupt_install() != 0)
         status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");

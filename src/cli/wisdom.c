@@ -33,7 +33,7 @@ static int cache_path(char *path, size_t size)
 
 /* The cache is ours: a file there that is not wisdom FFTW accepts is removed (with a notice) and
  * planning writes a new one; if it cannot be removed, this run keeps no wisdom. */
-static void use_cache(const char *path, im_solver_options *solver)
+static void use_cache_file(const char *path, im_solver_options *solver)
 {
     solver->wisdom_path = path;
     if (im_solver_wisdom_verify(solver) == IM_OK)
@@ -47,7 +47,8 @@ static void use_cache(const char *path, im_solver_options *solver)
     solver->wisdom_path = NULL;
 }
 
-int cli_wisdom_resolve(const char *given, int off, im_solver_options *solver, char *buffer, size_t size)
+int cli_wisdom_resolve(const char *given, int off, int use_cache, im_solver_options *solver, char *buffer,
+                       size_t size)
 {
     const char *env = getenv("IM_FFTW_WISDOM");
     const char *path = off ? NULL : given ? given : env;
@@ -56,8 +57,8 @@ int cli_wisdom_resolve(const char *given, int off, im_solver_options *solver, ch
     if (off || (!given && env && !env[0])) /* --no-wisdom, or IM_FFTW_WISDOM set but empty */
         return IM_OK;
     if (!path) {
-        if (cache_path(buffer, size))
-            use_cache(buffer, solver);
+        if (use_cache && cache_path(buffer, size))
+            use_cache_file(buffer, solver);
         return IM_OK;
     }
     solver->wisdom_path = path;
