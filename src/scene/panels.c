@@ -266,6 +266,28 @@ static int plot_density(const im_scene *scene, const panel_result *results)
     return scene_plot_contact_density(scene, forces, load_star);
 }
 
+/* The panels' figure and the density plot, side by side (each is CPU work for one thread: layout, PNG
+ * and PDF encoding); their errors are kept per output, as either may run on another thread. */
+static int write_panel_outputs(const im_scene *scene, const panel_result *results, const im_image *images,
+                               const im_colormap *norm)
+{
+    int statuses[2] = {IM_OK, IM_OK};
+    char errors[2][256] = {"", ""};
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < 2; ++k) {
+        if (k == 0)
+            statuses[k] = write_panel_figure(scene, images, norm);
+        else if (scene_wants_plot(scene, "density"))
+            statuses[k] = plot_density(scene, results);
+        if (statuses[k] != IM_OK)
+            snprintf(errors[k], sizeof errors[k], "%s", im_last_error());
+    }
+    for (int k = 0; k < 2; ++k)
+        if (statuses[k] != IM_OK)
+            return im_fail(statuses[k], "%s", errors[k]);
+    return IM_OK;
+}
+
 /* How many panels were solved, read back and reused. */
 static void report_panels(const im_scene_run_options *options, const panel_result *results, int count)
 {
@@ -300,9 +322,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     if (status == IM_OK)
         status = render_panels(scene, context, results, images, &norm);
     if (status == IM_OK)
-        status = write_panel_figure(scene, images, &norm);
-    if (status == IM_OK && scene_wants_plot(scene, "density"))
-        status = plot_density(scene, results);
+        status = write_panel_outputs(scene, results, images, &norm);
     for (int i = 0; i < scene->family_count; ++i) {
         im_field_free(results[i].force);
         im_image_release(&images[i]);
