@@ -5,7 +5,9 @@
 #
 #   what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2
 #
-# usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes "512 1024"]
+# usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes "512 1024"] [--no-wisdom]
+# fig4 keeps FFTW wisdom in a temporary cache, as the CLI does in the user's: one untimed run per thread
+# count fills it first (--no-wisdom: none, FFTW_ESTIMATE plans). bench_cold plans with FFTW_ESTIMATE.
 # (BUILD=DIR picks the build folder, default build.) Threads wait passively (OMP_WAIT_POLICY=passive
 # unless set), as the CLI's do by default.
 # Take the timings on a quiet machine: the load average is printed so that a loaded run shows.
@@ -13,13 +15,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 build=${BUILD:-build}
-repeats=3 only="" sizes="512 1024"
+repeats=3 only="" sizes="512 1024" wisdom=""
 while [ $# -gt 0 ]; do
   case $1 in
     --repeats) repeats=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
     --sizes) sizes=$2; shift 2 ;;
-    *) echo "usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes \"512 1024\"]" >&2; exit 2 ;;
+    --no-wisdom) wisdom=--no-wisdom; shift ;;
+    *) echo "usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes \"512 1024\"] [--no-wisdom]" >&2; exit 2 ;;
   esac
 done
 cmake --build "$build" --target indentmap_cli bench_cold >/dev/null
@@ -34,7 +37,7 @@ fig4_once() {
   local dir="$work/fig4_$1"
   mkdir -p "$dir"
   (cd "$dir" && OMP_NUM_THREADS=$1 XDG_CACHE_HOME="$work/cache" /usr/bin/time -f "%e %U %S" -o time.txt \
-    "$root/$build/indentmap" run "$root/scenes/fig4.ini" --quiet >/dev/null)
+    "$root/$build/indentmap" run "$root/scenes/fig4.ini" --quiet $wisdom >/dev/null)
   awk '{printf "%s %.2f\n", $1, $2 + $3}' "$dir/time.txt"
   rm -rf "$dir"
 }
@@ -61,6 +64,7 @@ echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); OMP_WAIT_POLICY=$OMP_WAIT_POLICY"
 echo "what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2"
 if [ "$only" != solver ]; then
+  fig4_once 1 >/dev/null && fig4_once 2 >/dev/null # fills the wisdom cache
   run_pair fig4 fig4_once
 fi
 if [ "$only" != fig4 ]; then
