@@ -24,9 +24,10 @@ static void usage(FILE *stream)
                     "  --quiet         no stage lines on stderr (errors and notices remain); the progress\n"
                     "                  bar is drawn only when stderr is a terminal\n"
                     "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n"
-                    "  --wisdom FILE   FFTW wisdom file, read before planning and updated after it (the\n"
-                    "                  plans are measured). Default: $IM_FFTW_WISDOM, else the user's\n"
-                    "                  cache ($XDG_CACHE_HOME or ~/.cache)/indentmap/fftw-wisdom\n"
+                    "  --wisdom FILE   FFTW wisdom for the scene's histories, read before planning and\n"
+                    "                  updated after it (their plans are measured). Default:\n"
+                    "                  $IM_FFTW_WISDOM, else the user's cache ($XDG_CACHE_HOME or\n"
+                    "                  ~/.cache)/indentmap/fftw-wisdom (docs/solver.md)\n"
                     "  --no-wisdom     no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
 #if IM_HAVE_MPI
                     "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"

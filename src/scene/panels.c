@@ -25,6 +25,8 @@ static int solve_panel(const im_scene *scene, const im_scene_run_options *run_op
 {
     im_indenter punch = scene_punch(scene);
     im_solver_options options = scene_solver_options(scene);
+    options.wisdom_path = NULL; /* two steps on a window of its own size: measuring its plans would not pay
+                                  * (docs/solver.md, "FFTW wisdom") */
     im_indentation *run = NULL;
     int status = im_indentation_create(surface, &punch, IM_CONTROL_LOAD, n, &options, &run);
     im_step_result step;
