@@ -131,9 +131,9 @@ int im_solver_options_check(const im_solver_options *options);
 /* The wisdom file the options name (wisdom_path), or NULL for none (NULL or ""). */
 const char *im_solver_wisdom_file(const im_solver_options *options);
 /* IM_OK when the wisdom file (if any) may be read and replaced: missing, empty or FFTW wisdom, and
- * no input of the process (io.h: im_output_protect). Otherwise IM_EINVAL naming the file, what it
- * holds (a surface, a scene, a device) and where the path came from. Planning checks it too, before
- * reading the file; callers check it before any work. */
+ * no input of the process (io.h: im_output_protect). Otherwise IM_EINVAL naming the file and what it
+ * holds (a surface, a scene, a device). Planning checks it too, before reading the file; callers check
+ * it before any work. */
 int im_solver_wisdom_check(const im_solver_options *options);
 /* im_solver_wisdom_check, then whether FFTW accepts the file's text: IM_OK when it does, or when the
  * file is missing or empty (it is then imported into the process's wisdom, as planning would);
