@@ -10,7 +10,8 @@
  * (the floor), and the process's peak memory. CPU time is the figure to trust on a shared machine at
  * one thread. --no-cascade starts from the local guess, --no-precondition takes plain PK steps (both:
  * the solver before issue 15). --compare solves once more with both off and prints the relative
- * load difference and the patches whose contact state differs.
+ * load difference and the patches whose contact state differs. --measure plans with FFTW_MEASURE (the
+ * planning time of the first plan is printed: later ones of the same sizes reuse the process's wisdom).
  */
 #include "bench_common.h"
 #include "core/fft_threads.h"
@@ -67,7 +68,7 @@ static double fft_pair_cpu(int px, int py)
 typedef struct cold_solve {
     im_step_result step;
     int coarse_iterations;
-    double wall, cpu;
+    double wall, cpu, plan_seconds;
     im_window window;
     im_field *force;
 } cold_solve;
@@ -79,7 +80,8 @@ static cold_solve solve_cold(const im_field *surface, double approach, const im_
     int status = im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, approach, o, &run);
     if (status != IM_OK)
         die(status, "im_indentation_create");
-    cold_solve c = {.window = im_indentation_window(run)};
+    cold_solve c = {.window = im_indentation_window(run),
+                    .plan_seconds = im_solver_plan_seconds(im_indentation_plan(run))};
     double wall = bench_now(), cpu = cpu_now();
     if ((status = im_indentation_step(run, approach, &c.step)) != IM_OK)
         die(status, "im_indentation_step");
@@ -103,7 +105,7 @@ static long contact_differences(const im_field *a, const im_field *b)
 
 int main(int argc, char **argv)
 {
-    int n = 512, threads = 1, repeats = 3, compare = 0, cascade = 1, precondition = 1;
+    int n = 512, threads = 1, repeats = 3, compare = 0, cascade = 1, precondition = 1, measure = 0;
     double tol = 1e-8;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--n") == 0 && i + 1 < argc)
@@ -120,8 +122,10 @@ int main(int argc, char **argv)
             precondition = 0;
         else if (strcmp(argv[i], "--compare") == 0)
             compare = 1;
+        else if (strcmp(argv[i], "--measure") == 0)
+            measure = 1;
         else {
-            fprintf(stderr, "usage: bench_cold [--n N] [--threads T] [--repeats R] [--tol T] [--no-cascade] [--no-precondition] [--compare]\n");
+            fprintf(stderr, "usage: bench_cold [--n N] [--threads T] [--repeats R] [--tol T] [--no-cascade] [--no-precondition] [--compare] [--measure]\n");
             return 2;
         }
     }
@@ -145,10 +149,13 @@ int main(int argc, char **argv)
     o.tol = tol;
     o.cascade = cascade;
     o.precondition = precondition;
-    double wall[MAX_REPEATS], cpu[MAX_REPEATS];
+    o.fft_measure = measure;
+    double wall[MAX_REPEATS], cpu[MAX_REPEATS], first_plan = -1;
     cold_solve c = {0};
     for (int r = 0; r < repeats; ++r) {
         c = solve_cold(surface, approach, &o, compare && r == 0);
+        if (first_plan < 0) /* later plans of the same sizes find the process's wisdom */
+            first_plan = c.plan_seconds;
         if (r > 0 || !compare)
             continue;
         im_solver_options plain = o;
@@ -174,6 +181,8 @@ int main(int argc, char **argv)
            "CPU %.1f FFT pairs (%.2f per fine iteration; pair %.2f ms), peak RSS %.1f MiB\n",
            c.step.iterations, c.step.convolutions, c.coarse_iterations, bench_median(wall, repeats), cpu_median,
            repeats, cpu_median / floor, cpu_median / floor / c.step.iterations, 1e3 * floor, bench_peak_rss_mib());
+    printf("  planning %.3f s wall (FFTW_%s, the first plan of the process)\n", first_plan,
+           measure ? "MEASURE" : "ESTIMATE");
     im_field_free(surface);
     return 0;
 }

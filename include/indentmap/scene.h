@@ -133,6 +133,9 @@ typedef struct im_scene {
     int frame_count;                 /* steps of the framed history (default 24) */
     enum im_animation animation;
     unsigned plots;                  /* bit set of enum im_scene_plot, 0 for none */
+    const char *wisdom_path;         /* FFTW wisdom file of every solve (solver.h: wisdom_path), not
+                                        from the scene file: NULL (im_scene_load's default) for none;
+                                        the caller sets it after loading. Not owned. */
 } im_scene;
 
 /* Defaults: the paper's surface family and 80 degree cone, E* = 1, no outputs. */

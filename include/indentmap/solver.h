@@ -110,9 +110,10 @@ typedef struct im_solver_options {
     int max_iterations;     /* iteration cap per solve (default 10000) */
     int fft_measure;        /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
                                wisdom file is in use, which implies FFTW_MEASURE */
-    const char *wisdom_path;/* FFTW wisdom file imported before planning and exported after it;
-                               NULL (default): the environment variable IM_FFTW_WISDOM, if set;
-                               "": no wisdom at all */
+    const char *wisdom_path;/* FFTW wisdom file imported before planning and exported (merged with
+                               what the file holds then, replaced atomically) after it; NULL
+                               (default) or "": no wisdom. Not owned. The library reads no
+                               environment: the command line resolves its default (docs/solver.md) */
     int crop;               /* 1 (default): solve on the window that can touch; 0: whole surface */
     int window_margin;      /* patches added around the window on each side (default 4) */
     int periodic;           /* 0 (default): the half-space, DC-FFT on the zero-padded grid; 1: a
@@ -140,13 +141,19 @@ im_solver_options im_solver_options_default(void);
 /* IM_EINVAL naming the first option out of range. */
 int im_solver_options_check(const im_solver_options *options);
 
-/* The wisdom file the options name (wisdom_path, else $IM_FFTW_WISDOM), or NULL for none. */
+/* The wisdom file the options name (wisdom_path), or NULL for none (NULL or ""). */
 const char *im_solver_wisdom_file(const im_solver_options *options);
 /* IM_OK when the wisdom file (if any) may be read and replaced: missing, empty or FFTW wisdom, and
- * no input of the process (io.h: im_output_protect). Otherwise IM_EINVAL naming the file, what it
- * holds (a surface, a scene, a device) and where the path came from. Planning checks it too, before
- * reading the file; callers check it before any work. */
+ * no input of the process (io.h: im_output_protect). Otherwise IM_EINVAL naming the file and what it
+ * holds (a surface, a scene, a device). Planning checks it too, before reading the file; callers check
+ * it before any work. */
 int im_solver_wisdom_check(const im_solver_options *options);
+/* im_solver_wisdom_check, then whether FFTW accepts the file's text: IM_OK when it does, or when the
+ * file is missing or empty (it is then imported into the process's wisdom, as planning would);
+ * IM_EFORMAT naming the file when FFTW rejects it (damaged, truncated, or another FFTW version's).
+ * Planning never fails on such a file: it plans afresh and replaces it; this lets a caller say so.
+ * Thread-safe (FFTW's planner is locked). */
+int im_solver_wisdom_verify(const im_solver_options *options);
 
 /* Quality presets: the stopping tolerance of a named speed/accuracy trade-off.
  *   draft        1e-5   N within 1.4e-5, n_p within 0.19%, 0.73x the iterations of standard

@@ -57,6 +57,18 @@ int cli_apply_memory_limit(void);
 int cli_render_backend(im_render_backend *backend);
 int cli_render_open(im_render_backend backend, im_render_context **out);
 
+/* The FFTW wisdom file of a run (wisdom.c; the library reads no environment): --wisdom FILE (given),
+ * else $IM_FFTW_WISDOM (set but empty: none), else, when use_cache (a run long enough for measured
+ * plans to pay: docs/solver.md, "FFTW wisdom"), the user's cache, $XDG_CACHE_HOME/indentmap/fftw-wisdom
+ * or ~/.cache/indentmap/fftw-wisdom (its folder is created); none with --no-wisdom (off). Sets
+ * solver->wisdom_path (NULL for none; it may point into buffer, which must outlive the run). A damaged
+ * wisdom file gets a notice on stderr and the run goes on (a damaged cache file is removed first); a
+ * named file that may not be replaced (a surface, an input, a device) is an error (status.h), its
+ * message naming where the path came from. IM_OK otherwise. */
+struct im_solver_options;
+int cli_wisdom_resolve(const char *given, int off, int use_cache, struct im_solver_options *solver, char *buffer,
+                       size_t size);
+
 /* Exit statuses: 0 success, 1 a failure while running, 2 bad usage or input. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };
 

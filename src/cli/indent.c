@@ -72,7 +72,10 @@ static void usage(FILE *stream)
             "  --plain-pk          plain Polonsky-Keer CG from the local guess: no cascade cold start, no\n"
             "                      preconditioner (the same answers to the tolerance, slower; docs/solver.md)\n"
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
-            "  --wisdom FILE       FFTW wisdom file (default $IM_FFTW_WISDOM); implies --measure\n"
+            "  --wisdom FILE       FFTW wisdom file, read before planning and updated after it; implies\n"
+            "                      --measure. Default: $IM_FFTW_WISDOM, else for runs of 10 steps or more\n"
+            "                      the user's cache ($XDG_CACHE_HOME or ~/.cache)/indentmap/fftw-wisdom\n"
+            "  --no-wisdom         no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n"
             "  --distributions     also write DIR/distributions_NNNN_{gaps,patches,patch_list}.csv for every\n"
@@ -85,8 +88,13 @@ static void usage(FILE *stream)
             "At N = 0 the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
 
+/* Runs of at least this many steps keep FFTW wisdom in the user's cache by default. */
+enum { CACHED_WISDOM_STEPS = 10 };
+
 typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
+    int no_wisdom;
+    char wisdom_cache[4096];      /* the cache's wisdom file, when that is the one used */
     int smooth, nx, ny, m_given, fields;
     int distributions;            /* --distributions */
     double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
@@ -113,7 +121,7 @@ typedef struct indent_options {
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE };
+       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -128,6 +136,7 @@ static const struct option LONG_OPTIONS[] = {
     {"hardness", required_argument, 0, OPT_HARDNESS},
     {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
+    {"no-wisdom", no_argument, 0, OPT_NO_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
@@ -196,7 +205,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_FULL: o->solver.crop = 0; return 0;
     case OPT_PLAIN_PK: o->solver.cascade = o->solver.precondition = 0; return 0;
     case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
-    case OPT_WISDOM: o->wisdom = arg; o->solver.wisdom_path = arg; return 0;
+    case OPT_WISDOM: o->wisdom = arg; return 0;
+    case OPT_NO_WISDOM: o->no_wisdom = 1; return 0;
     case OPT_OUT: o->out = arg; return 0;
     case OPT_FIELDS: o->fields = 1; return 0;
     case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
@@ -355,7 +365,17 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     if (!o->m_given)
         o->ny = o->nx;
     o->punch.centred = !o->x_given;
-    if (check_options(o) != 0 || check_outputs_apart(o) != 0)
+    if (check_options(o) != 0)
+        return -1;
+    /* The cache only for histories: measuring pays within a 25-step history's first run, while a cold
+     * solve needs ~15 later runs to win its planning back (docs/solver.md, "FFTW wisdom"). */
+    int use_cache = o->target_count >= CACHED_WISDOM_STEPS;
+    if (cli_wisdom_resolve(o->wisdom, o->no_wisdom, use_cache, &o->solver, o->wisdom_cache, sizeof o->wisdom_cache) !=
+        IM_OK) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return -1;
+    }
+    if (check_outputs_apart(o) != 0)
         return -1;
     return apply_quality(o);
 }

@@ -13,7 +13,8 @@
 
 static void usage(FILE *stream)
 {
-    fprintf(stream, "usage: indentmap run SCENE.ini [--resume] [--quiet] [--backend auto|egl|osmesa]\n\n"
+    fprintf(stream, "usage: indentmap run SCENE.ini [--resume] [--quiet] [--backend auto|egl|osmesa]\n"
+                    "                     [--wisdom FILE | --no-wisdom]\n\n"
                     "Runs a scene: solves what its outputs need and writes them under its output folder\n"
                     "(default output/NAME). Bundled scenes are in scenes/; fig4 is the paper's Fig. 4.\n\n"
                     "  --resume        reuse results already on disk instead of solving them again\n"
@@ -23,6 +24,11 @@ static void usage(FILE *stream)
                     "  --quiet         no stage lines on stderr (errors and notices remain); the progress\n"
                     "                  bar is drawn only when stderr is a terminal\n"
                     "  --backend B     OpenGL backend (default auto, or $IM_RENDER_BACKEND)\n"
+                    "  --wisdom FILE   FFTW wisdom for the scene's histories, read before planning and\n"
+                    "                  updated after it (their plans are measured). Default:\n"
+                    "                  $IM_FFTW_WISDOM, else the user's cache ($XDG_CACHE_HOME or\n"
+                    "                  ~/.cache)/indentmap/fftw-wisdom (docs/solver.md)\n"
+                    "  --no-wisdom     no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
 #if IM_HAVE_MPI
                     "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"
                     "out over the K ranks and rank 0 writes the outputs (docs/mpi.md)\n"
@@ -55,10 +61,21 @@ static int finish(int status, const im_scene *scene, int reporting)
     return CLI_EXIT_OK;
 }
 
-/* The scene, and the SIGINT/SIGTERM handlers that let a run stop cleanly. */
-static int load_and_arm(const char *path, im_scene *scene)
+/* The FFTW wisdom file of the run (cli.h: cli_wisdom_resolve), into scene->wisdom_path. */
+typedef struct run_wisdom {
+    const char *given;
+    int off;
+    char cache[4096];
+} run_wisdom;
+
+/* The scene, its wisdom file, and the SIGINT/SIGTERM handlers that let a run stop cleanly. */
+static int load_and_arm(const char *path, im_scene *scene, run_wisdom *wisdom)
 {
     int status = im_scene_load(path, scene);
+    im_solver_options solver = im_solver_options_default();
+    if (status == IM_OK)
+        status = cli_wisdom_resolve(wisdom->given, wisdom->off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
+    scene->wisdom_path = solver.wisdom_path;
     if (status == IM_OK && cli_interrupt_install() != 0)
         status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
     return status;
@@ -76,14 +93,14 @@ static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
 #if IM_HAVE_MPI
 /* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
  * force); every rank loads the same scene (or fails to) and runs it over the ranks; rank 0 reports. */
-static int run_under_mpirun(const char *path, const im_scene_run_options *run)
+static int run_under_mpirun(const char *path, const im_scene_run_options *run, run_wisdom *wisdom)
 {
     int provided, rank;
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     im_scene scene;
     im_scene_run_options options = *run;
-    int status = load_and_arm(path, &scene);
+    int status = load_and_arm(path, &scene, wisdom);
     if (status == IM_OK)
         status = backend_of_scene(&scene, &options);
     if (status == IM_OK)
@@ -98,9 +115,11 @@ int cli_run(int argc, char **argv)
 {
     static const struct option options[] = {{"resume", no_argument, 0, 'r'}, {"quiet", no_argument, 0, 'q'},
                                             {"backend", required_argument, 0, 'b'}, {"help", no_argument, 0, 'h'},
+                                            {"wisdom", required_argument, 0, 'w'}, {"no-wisdom", no_argument, 0, 'W'},
                                             {0, 0, 0, 0}};
     im_scene_run_options run = {0};
     im_render_backend backend = IM_RENDER_AUTO;
+    run_wisdom wisdom = {0};
     int code;
     optind = 1;
     while ((code = getopt_long(argc, argv, "h", options, NULL)) != -1) {
@@ -112,6 +131,10 @@ int cli_run(int argc, char **argv)
             run.resume = 1;
         else if (code == 'q')
             run.quiet = 1;
+        else if (code == 'w')
+            wisdom.given = optarg;
+        else if (code == 'W')
+            wisdom.off = 1;
         else if (code == 'b' && im_render_backend_from_name(optarg, &backend) != IM_OK)
             return cli_report(IM_EINVAL);
         else if (code == '?')
@@ -127,10 +150,10 @@ int cli_run(int argc, char **argv)
     run.progress = cli_progress;
 #if IM_HAVE_MPI
     if (launched_by_mpirun())
-        return run_under_mpirun(argv[optind], &run);
+        return run_under_mpirun(argv[optind], &run, &wisdom);
 #endif
     im_scene scene;
-    int status = load_and_arm(argv[optind], &scene);
+    int status = load_and_arm(argv[optind], &scene, &wisdom);
     if (status == IM_OK)
         status = backend_of_scene(&scene, &run);
     if (status == IM_OK)

@@ -124,12 +124,16 @@ static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
     *at_once = members < threads ? members : threads;
     if (scene->table || scene->step_count > 0)
         needed = *at_once * solve_bytes(g) + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
-    if (scene->frames) /* force and deformed heights of every step, and the GIF's RGBA frames */
-        needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 4.0 * g->nx * g->ny));
+    if (scene->frames) /* force and deformed heights of every step, the GIF's RGBA frames, and the
+                        * contact and height images, all rendered before their figures are written */
+        needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 12.0 * g->nx * g->ny));
     if (scene->frames3d) /* the 3-D frames kept for the GIF (960 x 540 RGBA each) */
         needed += scene->frame_count * 4.0 * 960.0 * 540.0;
-    if (scene->contact_panels) /* every family's force, and its panel image (2 pixels a patch when small) */
-        needed = fmax(needed, solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
+    if (scene->contact_panels) { /* every family's force and panel image (2 pixels a patch when small); the
+                                  * panels are solved side by side, one per thread */
+        int panels_at_once = scene->family_count < threads ? scene->family_count : threads;
+        needed = fmax(needed, panels_at_once * solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
+    }
     return needed;
 }
 

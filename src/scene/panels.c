@@ -36,6 +36,8 @@ static int solve_panel(const im_scene *scene, const im_scene_run_options *run_op
 {
     im_indenter punch = scene_punch(scene);
     im_solver_options options = scene_solver_options(scene);
+    options.wisdom_path = NULL; /* two steps on a window of its own size: measuring its plans would not pay
+                                  * (docs/solver.md, "FFTW wisdom") */
     im_indentation *run = NULL;
     int status = im_indentation_create(surface, &punch, IM_CONTROL_LOAD, n, &options, &run);
     im_step_result step;
@@ -58,6 +60,7 @@ static int solve_family(const im_scene *scene, const im_scene_run_options *optio
     int status = scene_surface(scene, family, scene->seeds[0], &surface);
     if (status == IM_OK) {
         double n = scene_load_for_load_star(scene, surface->delta);
+#pragma omp critical(scene_progress)
         scene_progress(options, "family %d (h'rms = %g): solving at N = %.6g", family, scene->slopes[family], n);
         status = solve_panel(scene, options, surface, n, force);
     }
@@ -131,6 +134,7 @@ static int read_panel(const im_scene *scene, const im_scene_run_options *options
     fclose(stream);
     if (!scene_key_matches(options, npy, found ? key : 0, panel_key(scene, family)))
         return 0;
+#pragma omp critical(scene_progress)
     scene_progress(options, "family %d: reusing %s", family, npy);
     return im_npy_read(npy, force) == IM_OK;
 }
@@ -153,6 +157,36 @@ static int panel_force(const im_scene *scene, const im_scene_run_options *option
         status = solve_family(scene, options, family, &r->force);
     }
     return status == IM_OK ? scene_write_panel(scene, family, r->force) : status;
+}
+
+/* Every family's force, solved side by side, one thread each (inside the parallel loop the solver plans
+ * and iterates single-threaded): on 2 cores that scales better than two threads on each solve in turn
+ * (docs/benchmarks.md), and a panel is the same whatever the thread count. The roughest families, the
+ * dearest, go first so that the threads finish together. A stop signal skips the panels not yet started. */
+static int panel_forces(const im_scene *scene, const im_scene_run_options *options, const scene_reuse *reuse,
+                        const im_field *known_force, panel_result *results)
+{
+    int count = scene->family_count, statuses[IM_SCENE_MAX_FAMILIES];
+    char errors[IM_SCENE_MAX_FAMILIES][256];
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < count; ++k) {
+        int i = count - 1 - k;
+        statuses[i] = scene_stop_signal(options) ? IM_EINTERRUPTED
+                                                 : panel_force(scene, options, i, reuse, known_force, &results[i]);
+        if (statuses[i] != IM_OK)
+            snprintf(errors[i], sizeof errors[i], "%s", im_last_error());
+    }
+    int finished = 0;
+    for (int i = 0; i < count; ++i)
+        finished += statuses[i] == IM_OK;
+    for (int i = 0; i < count; ++i)
+        if (statuses[i] != IM_OK && statuses[i] != IM_EINTERRUPTED)
+            return im_fail(statuses[i], "%s", errors[i]);
+    if (finished == count)
+        return IM_OK;
+    char where[64];
+    snprintf(where, sizeof where, "after %d of %d panels", finished, count);
+    return scene_interrupted(options, where);
 }
 
 static int write_results_csv(const im_scene *scene, const panel_result *results)
@@ -231,6 +265,28 @@ static int plot_density(const im_scene *scene, const panel_result *results)
     return scene_plot_contact_density(scene, forces, load_star);
 }
 
+/* The panels' figure and the density plot, side by side (each is CPU work for one thread: layout, PNG
+ * and PDF encoding); their errors are kept per output, as either may run on another thread. */
+static int write_panel_outputs(const im_scene *scene, const panel_result *results, const im_image *images,
+                               const im_colormap *norm)
+{
+    int statuses[2] = {IM_OK, IM_OK};
+    char errors[2][256] = {"", ""};
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < 2; ++k) {
+        if (k == 0)
+            statuses[k] = write_panel_figure(scene, images, norm);
+        else if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY))
+            statuses[k] = plot_density(scene, results);
+        if (statuses[k] != IM_OK)
+            snprintf(errors[k], sizeof errors[k], "%s", im_last_error());
+    }
+    for (int k = 0; k < 2; ++k)
+        if (statuses[k] != IM_OK)
+            return im_fail(statuses[k], "%s", errors[k]);
+    return IM_OK;
+}
+
 /* How many panels were solved, read back and reused. */
 static void report_panels(const im_scene_run_options *options, const panel_result *results, int count)
 {
@@ -249,20 +305,13 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
         status = im_make_directories(folder);
     panel_result results[IM_SCENE_MAX_FAMILIES] = {0};
     im_image images[IM_SCENE_MAX_FAMILIES] = {0};
+    if (status == IM_OK)
+        status = panel_forces(scene, options, reuse, known_force, results);
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
-        if (scene_stop_signal(options)) {
-            char where[64];
-            snprintf(where, sizeof where, "after %d of %d panels", i, scene->family_count);
-            status = scene_interrupted(options, where);
-            break;
-        }
-        status = panel_force(scene, options, i, reuse, known_force, &results[i]);
-        if (status == IM_OK) {
-            measure_panel(scene, &results[i]);
-            results[i].area_ratio_eq12 = scene_eq12(scene, scene->slopes[i], NULL);
-            scene_progress(options, "family %d: n_p = %ld, A/A_cone = %.4f (eq. 12: %.4f)", i,
-                           results[i].contact_patches, results[i].area_ratio, results[i].area_ratio_eq12);
-        }
+        measure_panel(scene, &results[i]);
+        results[i].area_ratio_eq12 = scene_eq12(scene, scene->slopes[i], NULL);
+        scene_progress(options, "family %d: n_p = %ld, A/A_cone = %.4f (eq. 12: %.4f)", i,
+                       results[i].contact_patches, results[i].area_ratio, results[i].area_ratio_eq12);
     }
     if (status == IM_OK)
         report_panels(options, results, scene->family_count);
@@ -272,9 +321,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     if (status == IM_OK)
         status = render_panels(scene, context, results, images, &norm);
     if (status == IM_OK)
-        status = write_panel_figure(scene, images, &norm);
-    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY))
-        status = plot_density(scene, results);
+        status = write_panel_outputs(scene, results, images, &norm);
     for (int i = 0; i < scene->family_count; ++i) {
         im_field_free(results[i].force);
         im_image_release(&images[i]);

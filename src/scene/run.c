@@ -104,7 +104,7 @@ static int run_scene_stages(const im_scene *scene, const im_scene_run_options *o
 }
 
 /* The scene file and its surface files become inputs no write may replace (io.h: the output
- * guard), and the FFTW wisdom file ($IM_FFTW_WISDOM) may be neither one of them, nor in the output
+ * guard), and the FFTW wisdom file (scene->wisdom_path) may be neither one of them, nor in the output
  * folder, nor anything but wisdom. */
 static int protect_inputs(const im_scene *scene)
 {
@@ -124,7 +124,7 @@ static int protect_inputs(const im_scene *scene)
                    im_path_absolute(wisdom, file, sizeof file) == IM_OK;
     size_t length = resolved ? strlen(folder) : 0;
     if (status == IM_OK && resolved && strncmp(file, folder, length) == 0 && file[length] == '/')
-        status = im_fail(IM_EINVAL, "IM_FFTW_WISDOM %s lies in the output folder %s, where this run writes: "
+        status = im_fail(IM_EINVAL, "the FFTW wisdom file %s lies in the output folder %s, where this run writes: "
                          "keep it elsewhere", wisdom, scene->output_dir);
     return status;
 }

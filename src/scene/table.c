@@ -99,6 +99,8 @@ static int solve_member(const im_scene *scene, const im_scene_run_options *run_o
         double n = scene_load_for_load_star(scene, surface->delta);
         im_indenter punch = scene_punch(scene);
         im_solver_options options = scene_solver_options(scene);
+        options.wisdom_path = NULL; /* two steps on a window of its own size: measuring its plans would not pay
+                                      * (docs/solver.md, "FFTW wisdom") */
         status = im_indentation_create(surface, &punch, IM_CONTROL_LOAD, n, &options, &run);
         if (status == IM_OK)
             status = im_indentation_step(run, 0.25 * n, &step);

@@ -13,7 +13,7 @@ int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_op
 {
     im_solver_options o = *options;
     o.fft_measure = 0; /* a few convolutions: estimating the plan is cheaper than measuring it */
-    o.wisdom_path = ""; /* nor read or written wisdom (IM_FFTW_WISDOM would make it measure) */
+    o.wisdom_path = NULL; /* nor read or written wisdom */
     o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
     return im_solver_plan_create(nx, ny, delta, &o, plan);
 }

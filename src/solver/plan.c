@@ -81,10 +81,7 @@ double im_solver_plan_bytes(int nx, int ny)
 
 const char *im_solver_wisdom_file(const im_solver_options *o)
 {
-    if (o->wisdom_path) /* "" names none: no wisdom, whatever the environment says */
-        return o->wisdom_path[0] ? o->wisdom_path : NULL;
-    const char *env = getenv("IM_FFTW_WISDOM");
-    return env && env[0] ? env : NULL;
+    return o->wisdom_path && o->wisdom_path[0] ? o->wisdom_path : NULL;
 }
 
 int im_solver_wisdom_check(const im_solver_options *o)
@@ -92,7 +89,6 @@ int im_solver_wisdom_check(const im_solver_options *o)
     const char *path = im_solver_wisdom_file(o);
     if (!path)
         return IM_OK;
-    const char *source = o->wisdom_path && o->wisdom_path[0] ? "wisdom file" : "IM_FFTW_WISDOM";
     enum im_file_kind kind;
     int status = im_file_kind_of(path, &kind);
     if (status == IM_OK && kind != IM_KIND_NONE && kind != IM_KIND_WISDOM)
@@ -103,19 +99,8 @@ int im_solver_wisdom_check(const im_solver_options *o)
         return IM_OK;
     char reason[512];
     snprintf(reason, sizeof reason, "%s", im_last_error());
-    return im_fail(status, "%s %s: %s; it is neither read nor replaced (name a new file, or wisdom this program "
-                   "wrote)", source, path, reason);
-}
-
-/* Writes the accumulated wisdom atomically, so concurrent runs never read a torn file. */
-static int export_wisdom(const char *path)
-{
-    char *text = fftw_export_wisdom_to_string();
-    if (!text)
-        return im_fail(IM_ENOMEM, "exporting FFTW wisdom");
-    int status = im_write_file_atomic(path, text, strlen(text));
-    fftw_free(text);
-    return status == IM_OK ? IM_OK : im_fail_context(status, "FFTW wisdom %s", path);
+    return im_fail(status, "wisdom file %s: %s; it is neither read nor replaced (name a new file, or wisdom this "
+                   "program wrote)", path, reason);
 }
 
 /* Wisdom files hold a few kilobytes per transform size; anything far larger is not one. */
@@ -132,6 +117,51 @@ static int read_wisdom(const char *path, char **text)
     return status == IM_OK ? IM_OK : im_fail_context(status, "FFTW wisdom");
 }
 
+/* Imports the wisdom in text (NULL or empty: none); 0 when FFTW rejects it. Planner lock held. FFTW's
+ * threads must be set up first: wisdom carries a signature of the planner's registered algorithms,
+ * which fftw_init_threads extends, so wisdom written by a threaded planner is rejected before it. */
+static int import_wisdom(const char *text)
+{
+    fft_prepare_planner();
+    return !text || !text[0] || fftw_import_wisdom_from_string(text);
+}
+
+int im_solver_wisdom_verify(const im_solver_options *o)
+{
+    const char *path = im_solver_wisdom_file(o);
+    int status = im_solver_wisdom_check(o);
+    char *text = NULL;
+    if (status == IM_OK)
+        status = read_wisdom(path, &text);
+    if (status != IM_OK)
+        return status;
+    fft_planner_lock();
+    int accepted = import_wisdom(text);
+    fft_planner_unlock();
+    free(text);
+    return accepted ? IM_OK
+                    : im_fail(IM_EFORMAT, "wisdom file %s: FFTW rejects it (damaged, or written by another FFTW "
+                              "version)", path);
+}
+
+/* Writes the accumulated wisdom atomically, so concurrent runs never read a torn file. What the file
+ * holds now is merged in first: another run may have added sizes since this one read it (a run that
+ * replaces the file between this read and the rename loses them; they are measured again when next
+ * needed). Planner lock held. */
+static int export_wisdom(const char *path)
+{
+    char *current = NULL;
+    if (read_wisdom(path, &current) == IM_OK)
+        import_wisdom(current); /* rejected text (damaged) is simply replaced */
+    free(current);
+    char *text = fftw_export_wisdom_to_string();
+    if (!text)
+        return im_fail(IM_ENOMEM, "exporting FFTW wisdom");
+    int status = im_write_file_atomic(path, text, strlen(text));
+    fftw_free(text);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "FFTW wisdom %s", path);
+}
+
 static int make_fft_plans(im_solver_plan *p)
 {
     const char *wisdom = im_solver_wisdom_file(&p->options);
@@ -146,8 +176,7 @@ static int make_fft_plans(im_solver_plan *p)
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
     const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
     fft_planner_lock(); /* ensembles plan from several threads */
-    if (wisdom_text)
-        fftw_import_wisdom_from_string(wisdom_text); /* stale wisdom just means none */
+    import_wisdom(wisdom_text); /* damaged or stale wisdom just means none (im_solver_wisdom_verify tells) */
     free(wisdom_text);
     fft_prepare_planner();
     /* ny real rows of length px -> the first ny complex rows of length mx; then, in place, mx

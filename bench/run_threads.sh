@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Two threads against one (issue 15): wall and CPU time of the paper's fig4 scene and of one cold solve
+# (bench_cold) at 1 and 2 OpenMP threads, median of repeats, 1- and 2-thread runs alternated so that a
+# change of load hits both alike. Prints the machine, the load average before and after, and a table:
+#
+#   what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2
+#
+# usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes "512 1024"] [--no-wisdom]
+# fig4 keeps FFTW wisdom in a temporary cache, as the CLI does in the user's: one untimed run per thread
+# count fills it first (--no-wisdom: none, FFTW_ESTIMATE plans). bench_cold plans with FFTW_ESTIMATE.
+# (BUILD=DIR picks the build folder, default build.) Threads wait passively (OMP_WAIT_POLICY=passive
+# unless set), as the CLI's do by default.
+# Take the timings on a quiet machine: the load average is printed so that a loaded run shows.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+build=${BUILD:-build}
+repeats=3 only="" sizes="512 1024" wisdom=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --repeats) repeats=$2; shift 2 ;;
+    --only) only=$2; shift 2 ;;
+    --sizes) sizes=$2; shift 2 ;;
+    --no-wisdom) wisdom=--no-wisdom; shift ;;
+    *) echo "usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes \"512 1024\"] [--no-wisdom]" >&2; exit 2 ;;
+  esac
+done
+cmake --build "$build" --target indentmap_cli bench_cold >/dev/null
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+
+# One fig4 run in a fresh folder: "wall cpu" (CPU = user + system of the process and its threads).
+fig4_once() {
+  local dir="$work/fig4_$1"
+  mkdir -p "$dir"
+  (cd "$dir" && OMP_NUM_THREADS=$1 XDG_CACHE_HOME="$work/cache" /usr/bin/time -f "%e %U %S" -o time.txt \
+    "$root/$build/indentmap" run "$root/scenes/fig4.ini" --quiet $wisdom >/dev/null)
+  awk '{printf "%s %.2f\n", $1, $2 + $3}' "$dir/time.txt"
+  rm -rf "$dir"
+}
+
+# One bench_cold process (it repeats the solve itself): "wall cpu" of its median solve.
+solver_once() {
+  "$build/bench_cold" --n "$1" --threads "$2" --repeats 1 |
+    sed -n 's/.*wall \([0-9.]*\) s, CPU \([0-9.]*\) s.*/\1 \2/p'
+}
+
+run_pair() { # what, command (called as: command THREADS)
+  local what=$1 cmd=$2 t r
+  for r in $(seq "$repeats"); do
+    for t in 1 2; do $cmd "$t" >>"$work/$what.$t"; done
+  done
+  local w1 c1 w2 c2
+  w1=$(cut -d' ' -f1 "$work/$what.1" | median); c1=$(cut -d' ' -f2 "$work/$what.1" | median)
+  w2=$(cut -d' ' -f1 "$work/$what.2" | median); c2=$(cut -d' ' -f2 "$work/$what.2" | median)
+  echo "$what,1,$repeats,$w1,$c1,-"
+  echo "$what,2,$repeats,$w2,$c2,$(awk -v a="$w1" -v b="$w2" 'BEGIN {printf "%.2f", a / b}')"
+}
+
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%FT%TZ); commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); OMP_WAIT_POLICY=$OMP_WAIT_POLICY"
+echo "what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2"
+if [ "$only" != solver ]; then
+  fig4_once 1 >/dev/null && fig4_once 2 >/dev/null # fills the wisdom cache
+  run_pair fig4 fig4_once
+fi
+if [ "$only" != fig4 ]; then
+  for n in $sizes; do
+    eval "solver_$n() { solver_once $n \"\$1\"; }"
+    run_pair "solver_$n" "solver_$n"
+  done
+fi
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
