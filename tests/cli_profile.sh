@@ -88,6 +88,38 @@ echo "80,14.1" >> "$DIR/scenes/tip.csv"
 (cd "$DIR" && "$BIN" run --resume scenes/tipped.ini 2>"$DIR/changed.log" >/dev/null) || fail "--resume exited $?"
 grep -q "made from other inputs" "$DIR/changed.log" && grep -q "1 solved, 0 read back" "$DIR/changed.log" \
     || fail "--resume kept a history of the old profile: $(cat "$DIR/changed.log")"
+# The scene's run.json names the profile file (resolved against the scene's folder, as the run
+# read it: here relative to the working directory, as the scene's path) and its kind.
+grep -q '"kind": "profile"' "$DIR/tipped/run.json" && grep -q '"profile": "scenes/tip.csv"' "$DIR/tipped/run.json" \
+    || fail "the scene's run.json does not record the profile: $(cat "$DIR/tipped/run.json")"
+
+# A 2-D profile in a scene: displacement control solves it (load_star and area_ratio NaN) and
+# --resume reads that history back; load control (steps are N*, which needs the smooth-contact
+# area) and distributions (at load_star) are refused naming the key, nothing solved.
+cp "$DIR/cone2d.npy" "$DIR/scenes/cone2d.npy"
+write_scene field 'shape = profile\nprofile = cone2d.npy'
+"$BIN" run --quiet "$DIR/scenes/field.ini" >/dev/null || fail "a 2-D profile scene exited $?"
+"$BIN" run --resume "$DIR/scenes/field.ini" 2>"$DIR/field.log" >/dev/null || fail "2-D --resume exited $?"
+grep -q "0 solved, 1 read back" "$DIR/field.log" || fail "--resume did not read a 2-D history back: $(cat "$DIR/field.log")"
+sed 's/^\[loading\]$/[loading]\ncontrol = load\nload_star = 1.5/' "$DIR/scenes/field.ini" > "$DIR/scenes/loaded.ini"
+sed -i "s|^output = .*|output = $DIR/loaded|" "$DIR/scenes/loaded.ini"
+message=$("$BIN" run --quiet "$DIR/scenes/loaded.ini" 2>&1 >/dev/null)
+[ $? -eq 2 ] && echo "$message" | grep -q "\[loading\] control = load.*2-D profile" \
+    || fail "load control with a 2-D profile: '$message'"
+[ ! -e "$DIR/loaded/histories" ] || fail "load control with a 2-D profile solved histories"
+sed 's/^plots = fig5$/plots = fig5\ndistributions = yes/' "$DIR/scenes/field.ini" > "$DIR/scenes/spread.ini"
+sed -i -e "s|^output = .*|output = $DIR/spread|" -e 's/^\[loading\]$/[loading]\nload_star = 1.5/' "$DIR/scenes/spread.ini"
+message=$("$BIN" run --quiet "$DIR/scenes/spread.ini" 2>&1 >/dev/null)
+[ $? -eq 2 ] && echo "$message" | grep -q "\[output\] distributions.*2-D profile" \
+    || fail "distributions with a 2-D profile: '$message'"
+
+# A profile path too long once resolved against the scene's folder (a scene path of 4000 bytes
+# and more, within PATH_MAX): refused naming the key, not cut short.
+write_scene overlong "shape = profile\nprofile = $(printf 'd/%.0s' $(seq 50))tip.csv"
+long_scene="$DIR/scenes/$(printf './%.0s' $(seq 2000))overlong.ini"
+message=$("$BIN" run --quiet "$long_scene" 2>&1 >/dev/null)
+[ $? -eq 2 ] && echo "$message" | grep -q "^indentmap: \[punch\] profile: 'd/d/.*tip.csv' is .* bytes.*longer than 4095" || fail "an overlong profile path: '$message'"
+
 write_scene lonely 'shape = profile'
 message=$("$BIN" run --quiet "$DIR/scenes/lonely.ini" 2>&1 >/dev/null)
 echo "$message" | grep -q "shape = profile and profile = FILE go together" || fail "a profile scene without a file: '$message'"

@@ -14,6 +14,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #define MAX_SAMPLES 1024
 
@@ -395,6 +398,55 @@ static void test_solver_profile_extent(void **state)
     im_field_free(s);
 }
 
+#if !defined(__SANITIZE_ADDRESS__) /* see test_interpolation_out_of_memory */
+/* Bytes of address space this process maps now (/proc/self/statm's first field, in pages). */
+static size_t mapped_bytes(void)
+{
+    FILE *statm = fopen("/proc/self/statm", "r");
+    unsigned long pages = 0;
+    if (!statm || fscanf(statm, "%lu", &pages) != 1)
+        _exit(3);
+    fclose(statm);
+    return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
+}
+#endif
+
+/* A profile whose interpolation cannot be allocated: IM_ENOMEM, not GSL's default handler's abort.
+ * In a child whose address space leaves room for the profile's copies of r and z (2 x 8n bytes)
+ * but not for Steffen's state (5 x 8n): the child's exit status says what im_profile_axisymmetric
+ * returned (0: IM_ENOMEM), a signal that it aborted. Not under AddressSanitizer, whose shadow
+ * memory needs far more address space than any such limit allows. */
+static void test_interpolation_out_of_memory(void **state)
+{
+    (void)state;
+#if defined(__SANITIZE_ADDRESS__)
+    skip();
+#else
+    enum { SAMPLES = 1 << 21 };
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        double *r = malloc(sizeof(double) * SAMPLES), *z = calloc(SAMPLES, sizeof(double));
+        if (!r || !z)
+            _exit(3);
+        for (int i = 0; i < SAMPLES; ++i)
+            r[i] = i;
+        size_t arrays = sizeof(double) * SAMPLES;
+        struct rlimit limit = {.rlim_cur = mapped_bytes() + 3 * arrays, .rlim_max = RLIM_INFINITY};
+        if (setrlimit(RLIMIT_AS, &limit) != 0)
+            _exit(3);
+        im_profile *p = NULL;
+        _exit(im_profile_axisymmetric(r, z, SAMPLES, &p) == IM_ENOMEM && !p ? 0 : 1);
+    }
+    int status = 0;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    if (WIFSIGNALED(status))
+        fail_msg("im_profile_axisymmetric was killed by signal %d (GSL's handler aborts)", WTERMSIG(status));
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -409,6 +461,7 @@ int main(void)
         cmocka_unit_test(test_solver_paraboloid_is_hertz),
         cmocka_unit_test(test_solver_exact_sphere),
         cmocka_unit_test(test_solver_profile_extent),
+        cmocka_unit_test(test_interpolation_out_of_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -108,7 +108,9 @@ typedef struct im_scene {
                                         an (r, z) table, or a .npy 2-D field on the scene's grid),
                                         relative to the scene file's folder */
     const im_profile *profile;       /* that file read: set by im_scene_run on its copy while it runs
-                                        (the punch borrows it); NULL otherwise */
+                                        (the punch borrows it; the copy's profile_file then holds the
+                                        path resolved, IM_EINVAL naming [punch] profile when it would
+                                        not fit in IM_SCENE_PATH); NULL otherwise */
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 

@@ -59,9 +59,12 @@ int history_format(const history_row *row, char *line, size_t size);
 
 /* Parses the text of a history from its column line: the line must be HISTORY_COLUMNS (else a
  * history of another version), then each row whole, with the right number of values, numbers
- * finite where they must be (approach, load, load_star; area_ratio unless the load is 0). Fills
- * rows[0..*count) (capacity at most); 0 with a reason in why at the first fault. */
-int history_parse(const char *text, history_row *rows, int capacity, int *count, char *why, size_t why_size);
+ * finite where they must be (approach, load; when the punch has a smooth-contact area, smooth_area
+ * nonzero, load_star and area_ratio unless the load is 0) and NaN where the solver writes NaN
+ * (area_ratio at no load; load_star and area_ratio of a punch without that area, a 2-D profile).
+ * Fills rows[0..*count) (capacity at most); 0 with a reason in why at the first fault. */
+int history_parse(const char *text, int smooth_area, history_row *rows, int capacity, int *count, char *why,
+                  size_t why_size);
 
 /* A history file appended step by step (indent): its column line is written atomically, then each
  * row with one write(2) and synced (fdatasync), so that a finished step survives a crash and the

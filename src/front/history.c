@@ -85,16 +85,19 @@ static int scan_row(const char *line, const char *end, history_row *row)
                   &used) == HISTORY_VALUES && line + used == end;
 }
 
-/* Whether the solution's values are finite: A / A_cone is NaN, as the solver reports it, only
- * where there is no load. */
-static int row_is_finite(const history_row *row)
+/* Whether the solution's values are what the solver reports: approach and load finite; with a
+ * smooth-contact area, N* finite and A / A_cone NaN only where there is no load; without one (a 2-D
+ * profile), both NaN. */
+static int row_is_finite(const history_row *row, int smooth_area)
 {
     const im_step_result *r = &row->result;
-    int ratio_ok = r->load > 0 ? isfinite(r->area_ratio) : isnan(r->area_ratio);
-    return isfinite(r->approach) && isfinite(r->load) && isfinite(r->load_star) && ratio_ok;
+    int ratio_ok = r->load > 0 && smooth_area ? isfinite(r->area_ratio) : isnan(r->area_ratio);
+    int n_star_ok = smooth_area ? isfinite(r->load_star) : isnan(r->load_star);
+    return isfinite(r->approach) && isfinite(r->load) && n_star_ok && ratio_ok;
 }
 
-int history_parse(const char *text, history_row *rows, int capacity, int *count, char *why, size_t why_size)
+int history_parse(const char *text, int smooth_area, history_row *rows, int capacity, int *count, char *why,
+                  size_t why_size)
 {
     size_t columns = strlen(HISTORY_COLUMNS);
     *count = 0;
@@ -108,7 +111,7 @@ int history_parse(const char *text, history_row *rows, int capacity, int *count,
             snprintf(why, why_size, "row %d is not %d numbers on a whole line", *count + 1, HISTORY_VALUES);
             return 0;
         }
-        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count])) {
+        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count], smooth_area)) {
             snprintf(why, why_size, "row %d holds a value that is not finite or a step out of order", *count + 1);
             return 0;
         }

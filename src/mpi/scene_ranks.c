@@ -203,19 +203,16 @@ static int member_origin(void *data, scene_member_solver solve, int index)
 /* Ranks 1..K-1: wait for rank 0's go, solve their share, wait for rank 0's outcome. */
 static int run_worker(ranks_state *st, const im_scene *scene, const im_scene_run_options *options)
 {
-    im_scene *measured = malloc(sizeof *measured); /* as im_scene_run: the files' h'rms measured */
-    int status = measured ? IM_OK : im_fail(IM_ENOMEM, "%s: allocation of the scene failed", scene->path);
-    if (measured) {
-        *measured = *scene;
-        status = im_scene_measure_files(measured);
-    }
+    im_scene *measured = NULL; /* as im_scene_run: files measured, profile read */
+    im_profile *profile = NULL;
+    int status = scene_prepare(scene, &measured, &profile);
     int go = broadcast_status(st, IM_OK);
-    if (go != IM_OK) {
-        free(measured);
-        return im_fail(go, "rank 0 stopped before the members were solved");
-    }
-    status = solve_share(measured ? measured : scene, options, st, status);
+    if (go == IM_OK)
+        status = solve_share(measured ? measured : scene, options, st, status);
     free(measured);
+    im_profile_free(profile); /* after the solves that borrowed it */
+    if (go != IM_OK)
+        return im_fail(go, "rank 0 stopped before the members were solved");
     int outcome = broadcast_status(st, IM_OK);
     return status != IM_OK ? status : outcome != IM_OK ? im_fail(outcome, "rank 0 failed") : IM_OK;
 }

@@ -83,6 +83,14 @@ typedef struct scene_ranks_run {
     void *data;
 } scene_ranks_run;
 void scene_set_ranks_run(const scene_ranks_run *run); /* NULL (the default): a single process */
+
+/* The copy of a scene that runs, made alike by im_scene_run and by every MPI rank (run.c): its
+ * surface files measured (im_scene_measure_files), its [punch] profile resolved against the
+ * scene's folder (the copy's profile_file then holds the resolved path) and read, the copy's
+ * profile borrowing *profile. On IM_OK the caller frees *prepared (free) and then *profile
+ * (im_profile_free; NULL without a profile); on an error (IM_ENOMEM, IM_EINVAL naming the key,
+ * the file's IM_EIO / IM_EINVAL / IM_EFORMAT) both are NULL. */
+int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profile);
 const scene_ranks_run *scene_get_ranks_run(void);
 
 #endif

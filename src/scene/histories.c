@@ -110,7 +110,8 @@ static int write_history(const im_scene *scene, const scene_member *m)
 /* Whether a kept history's text is whole: its header's row count and checksum match the rows,
  * which parse with the one history reader (front.h: this version's columns, every row whole and
  * finite); on success its rows are in m. */
-static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t *key, char *why, size_t why_size)
+static int history_is_whole(char *text, int smooth_area, scene_member *m, int capacity, uint64_t *key, char *why,
+                            size_t why_size)
 {
     uint64_t checksum = 0;
     int rows = -1, used = 0;
@@ -121,7 +122,7 @@ static int history_is_whole(char *text, scene_member *m, int capacity, uint64_t 
         return 0;
     }
     ++body;
-    if (!history_parse(body, m->history, capacity, &m->steps, why, why_size))
+    if (!history_parse(body, smooth_area, m->history, capacity, &m->steps, why, why_size))
         return 0;
     if (m->steps != rows || rows < 1) {
         snprintf(why, why_size, "%d rows where its header says %d", m->steps, rows);
@@ -149,7 +150,8 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
     if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
         return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
-    int whole = history_is_whole(text, m, scene->step_count, &key, why, sizeof why);
+    int smooth_area = scene_punch(scene).kind != IM_PUNCH_PROFILE_2D; /* else N* and A / A_cone are NaN */
+    int whole = history_is_whole(text, smooth_area, m, scene->step_count, &key, why, sizeof why);
     free(text);
     if (!whole) {
         m->steps = 0;

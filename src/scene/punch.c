@@ -26,6 +26,8 @@ double scene_load_for_n_star(const im_scene *scene, double n_star, double delta)
 {
     /* A(N) increases with N for every punch: bisect A(N) = n_star delta^2 in log N. */
     im_indenter punch = scene_punch(scene);
+    if (!isfinite(im_indenter_area_for_load(&punch, scene->modulus, 1.0)))
+        return NAN; /* no smooth-contact area (a 2-D profile): no load has this N* */
     double area = n_star * delta * delta, lo = 1e-300, hi = 1.0;
     while (im_indenter_area_for_load(&punch, scene->modulus, hi) < area && hi < 1e300)
         hi *= 2.0;

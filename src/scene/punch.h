@@ -12,7 +12,8 @@ im_indenter scene_punch(const im_scene *scene);
 /* The load N whose smooth contact area is load_star delta^2 (N* of the paper for a cone). */
 double scene_load_for_load_star(const im_scene *scene, double delta);
 
-/* The load N whose smooth contact area is n_star delta^2. */
+/* The load N whose smooth contact area is n_star delta^2; NaN for a punch without a smooth-contact
+ * area (a 2-D profile: run.c refuses what would ask, and the solver refuses a NaN target). */
 double scene_load_for_n_star(const im_scene *scene, double n_star, double delta);
 
 /* Solver options of a scene (its tolerance; everything else default). */

@@ -39,8 +39,17 @@ static const char *tolerance_source(const im_scene *scene)
     return strcmp(scene->quality, IM_QUALITY_DEFAULT) == 0 ? "default" : "[scene] quality";
 }
 
-/* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path and the
- * surface files it measured. */
+/* A profile punch as indent records it: its kind and its file (resolved against the scene's folder;
+ * escaped where it is not UTF-8). */
+static json_t *profile_record(const im_scene *scene)
+{
+    char path[4 * IM_SCENE_PATH + 1];
+    im_path_utf8(scene->profile_file, path, sizeof path);
+    return json_pack("{s:s, s:s}", "kind", im_punch_name(im_profile_kind(scene->profile)), "profile", path);
+}
+
+/* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
+ * surface files it measured and a profile punch's file. */
 int scene_write_record(const im_scene *scene)
 {
     im_solver_options options = scene_solver_options(scene);
@@ -54,6 +63,8 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(root, "scene_encoding", json_string("escaped"));
     if (scene->file_count > 0)
         json_object_set_new(root, "surface_files", files_record(scene));
+    if (scene->profile)
+        json_object_set_new(root, "punch", profile_record(scene));
     int status = run_record_write(scene->output_dir, root);
     json_decref(root);
     return status;

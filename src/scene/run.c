@@ -24,6 +24,20 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* What a punch without a smooth-contact area (a 2-D profile) cannot run: everything given as
+ * N* = A(N) / delta^2, which needs that area to find its load. */
+static int check_without_area(const im_scene *scene)
+{
+    const char *need = scene->contact_panels || scene->frames ? "[output] contact panels and frames are drawn"
+                       : scene->distributions                   ? "[output] distributions are measured"
+                       : scene->control == IM_CONTROL_LOAD      ? "[loading] control = load takes steps"
+                                                                : NULL;
+    if (!need)
+        return IM_OK;
+    return im_fail(IM_EINVAL, "%s: %s at N* = A(N) / delta^2, which a 2-D profile does not define (no "
+                   "smooth-contact area): use control = displacement and its histories", scene->path, need);
+}
+
 static int check_runnable(const im_scene *scene)
 {
     if ((scene->contact_panels || scene->frames || scene->table || scene->distributions) && !(scene->load_star > 0.0))
@@ -35,10 +49,10 @@ static int check_runnable(const im_scene *scene)
     if (scene->table && scene->punch != IM_PUNCH_CONE)
         return im_fail(IM_EINVAL, "%s: [output] table compares with eq. (12), which is for a cone", scene->path);
     im_indenter punch = scene_punch(scene);
-    if (punch.kind == IM_PUNCH_PROFILE_2D && (scene->contact_panels || scene->frames))
-        return im_fail(IM_EINVAL, "%s: [output] contact panels and frames are drawn at N* = A(N) / delta^2, which "
-                       "a 2-D profile does not define (no smooth-contact area): use a history", scene->path);
-    int status = im_indenter_check(&punch);
+    int status = punch.kind == IM_PUNCH_PROFILE_2D ? check_without_area(scene) : IM_OK;
+    if (status != IM_OK)
+        return status;
+    status = im_indenter_check(&punch);
     return status == IM_OK ? scene_check_plots(scene) : status;
 }
 
@@ -155,33 +169,67 @@ static int write_viewer_page(const im_scene *scene, int status)
 
 static int run_measured(const im_scene *scene, const im_scene_run_options *options);
 
-/* [punch] profile, read on the scene's grid (a 2-D profile takes its spacing): shape = profile and
- * a profile file go together. */
-static int read_profile(const im_scene *scene, im_profile **out)
+/* A path written under key resolved against the scene file's folder into out (size bytes):
+ * IM_EINVAL naming the key when it does not fit (im_scene_resolve_path would cut it short). Both
+ * the scene's path and the written one are shorter than IM_SCENE_PATH, so `whole` holds any. */
+static int resolve_key_path(const im_scene *scene, const char *key, const char *written, char *out, size_t size)
+{
+    char whole[2 * IM_SCENE_PATH];
+    im_scene_resolve_path(scene, written, whole, sizeof whole);
+    size_t length = strlen(whole);
+    if (length >= size)
+        return im_fail(IM_EINVAL, "%s: '%s' is %zu bytes once resolved against the folder of the scene, longer "
+                       "than %zu: %s", key, written, length, size - 1, scene->path); /* the key first: a long path is cut */
+    memcpy(out, whole, length + 1);
+    return IM_OK;
+}
+
+/* [punch] profile, resolved once (the copy's profile_file then holds the resolved path, which the
+ * input protection and run.json use) and read on the scene's grid (a 2-D profile takes its
+ * spacing): shape = profile and a profile file go together. */
+static int read_profile(im_scene *scene, im_profile **out)
 {
     if ((scene->punch == IM_PUNCH_PROFILE) != (scene->profile_file[0] != '\0'))
         return im_fail(IM_EINVAL, "%s: [punch] shape = profile and profile = FILE go together", scene->path);
     if (!scene->profile_file[0])
         return IM_OK;
     char path[IM_SCENE_PATH];
-    im_scene_resolve_path(scene, scene->profile_file, path, sizeof path);
-    int status = im_profile_read(path, scene->surface.delta, out);
+    int status = resolve_key_path(scene, "[punch] profile", scene->profile_file, path, sizeof path);
+    if (status != IM_OK)
+        return status;
+    memcpy(scene->profile_file, path, sizeof path);
+    status = im_profile_read(scene->profile_file, scene->surface.delta, out);
     return status == IM_OK ? IM_OK : im_fail_context(status, "%s: [punch] profile", scene->path);
 }
 
-/* Surface files are measured first (their h'rms is the theory's), on a copy: the caller's scene
- * stays as parsed. */
+int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profile)
+{
+    *prepared = NULL;
+    *profile = NULL;
+    im_scene *copy = malloc(sizeof *copy);
+    if (!copy)
+        return im_fail(IM_ENOMEM, "%s: allocation of the scene failed", scene->path);
+    *copy = *scene;
+    int status = im_scene_measure_files(copy);
+    if (status == IM_OK)
+        status = read_profile(copy, profile);
+    if (status != IM_OK) {
+        free(copy);
+        return status;
+    }
+    copy->profile = *profile;
+    *prepared = copy;
+    return IM_OK;
+}
+
+static int run_measured(const im_scene *scene, const im_scene_run_options *options);
+
+/* Run on the prepared copy: the caller's scene stays as parsed. */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
-    im_scene *measured = malloc(sizeof *measured);
-    if (!measured)
-        return im_fail(IM_ENOMEM, "%s: allocation of the scene failed", scene->path);
-    *measured = *scene;
+    im_scene *measured = NULL;
     im_profile *profile = NULL;
-    int status = im_scene_measure_files(measured);
-    if (status == IM_OK)
-        status = read_profile(measured, &profile);
-    measured->profile = profile;
+    int status = scene_prepare(scene, &measured, &profile);
     if (status == IM_OK && measured->file_count > 0)
         scene_progress(options, "surface files: h'rms = %.6g (forward differences of the surfaces as solved%s)",
                        measured->slopes[0], measured->file_count > 1 ? ", root mean square over the files" : "");
@@ -197,11 +245,8 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     int status = check_runnable(scene);
     if (status == IM_OK)
         status = protect_inputs(scene);
-    char profile[IM_SCENE_PATH];
-    if (status == IM_OK && scene->profile_file[0]) {
-        im_scene_resolve_path(scene, scene->profile_file, profile, sizeof profile);
-        status = im_output_protect(profile);
-    }
+    if (status == IM_OK && scene->profile_file[0]) /* resolved by scene_prepare */
+        status = im_output_protect(scene->profile_file);
     if (status == IM_OK)
         status = scene_check_limits(scene);
     if (status == IM_OK)

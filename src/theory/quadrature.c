@@ -18,7 +18,7 @@ static pthread_mutex_t gsl_handler_lock = PTHREAD_MUTEX_INITIALIZER;
 static int gsl_handler_users;
 static gsl_error_handler_t *application_gsl_handler;
 
-static void gsl_handler_off(void)
+void theory_gsl_handler_off(void)
 {
     pthread_mutex_lock(&gsl_handler_lock);
     if (gsl_handler_users++ == 0)
@@ -26,7 +26,7 @@ static void gsl_handler_off(void)
     pthread_mutex_unlock(&gsl_handler_lock);
 }
 
-static void gsl_handler_restore(void)
+void theory_gsl_handler_restore(void)
 {
     pthread_mutex_lock(&gsl_handler_lock);
     if (--gsl_handler_users == 0)
@@ -73,8 +73,8 @@ static int integrate(theory_integrand f, void *params, double lo, double hi, con
 int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what,
                      double *result)
 {
-    gsl_handler_off();
+    theory_gsl_handler_off();
     int status = integrate(f, params, lo, hi, what, result);
-    gsl_handler_restore();
+    theory_gsl_handler_restore();
     return status;
 }

@@ -81,6 +81,20 @@ for k in 2 4; do
 done
 echo "1, 2 and 4 ranks: the same tables, histories and figures"
 
+# A profile punch (an 80 degree cone as an (r, z) table beside the scene): every rank reads it (the
+# ranks' member keys hold its samples, as rank 0's), the same histories on 2 ranks as in one process.
+printf 'r,z\n0,0\n10,1.7632698070846498\n20,3.5265396141692996\n40,7.053079228338599\n' > "$work/tip.csv"
+sed -e 's/^shape = cone/shape = profile\nprofile = tip.csv/' -e '/^alpha = /d' -e '/^table = /d' -e 's/^plots = .*/plots = fig5/' \
+  -e 's/^control = load/control = displacement/' -e 's/^steps = .*/steps = 0.5, 1.5/' "$work/ensemble.ini" > "$work/profile.ini"
+cp "$work/ensemble.ini" "$work/plain.ini" && cp "$work/profile.ini" "$work/ensemble.ini"
+run profile_single "$cli"
+run profile_ranks2 "$mpiexec" -n 2 --oversubscribe "$cli"
+same_outputs profile_single profile_ranks2
+grep -q "ensembles over 2 MPI ranks" "$work/profile_ranks2.log" && grep -q "histories: 6 surfaces: 6 solved, 0 read back" "$work/profile_ranks2.log" ||
+  fail "a profile on 2 ranks: $(cat "$work/profile_ranks2.log")"
+cp "$work/plain.ini" "$work/ensemble.ini"
+echo "a profile punch: 1 and 2 ranks write the same histories"
+
 # Contact panels (where OpenGL is at hand): the forces the ranks kept for them reach rank 0's panels
 # (counted as reused from the table, as in a single process), the same panels to the byte.
 sed -e 's/^table = yes/table = yes\ncontact_panels = yes/' "$work/ensemble.ini" > "$work/panels.ini"
