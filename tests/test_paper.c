@@ -5,13 +5,27 @@
 #include "indentmap/status.h"
 #include "support.h"
 
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-enum { FAMILIES = 2, SEEDS = 3, STEPS = 6, MEMBERS = FAMILIES * SEEDS, ROUNDS = 8 };
+enum { FAMILIES = 2, SEEDS = 3, STEPS = 6, MEMBERS = FAMILIES * SEEDS, ROUNDS = 8, FIGURES = 4 };
+enum { ANGLES = 4, BINS = 12 };
+
+/* A sweep's made-up groups: each family's A / A_cone at ANGLES values of rho_c. */
+typedef struct made_sweep {
+    double rho_c[FAMILIES][ANGLES], ratio[FAMILIES][ANGLES], sd[FAMILIES][ANGLES];
+    paper_sweep_group groups[FAMILIES];
+} made_sweep;
+
+/* Made-up distributions of the two families (the second rough). */
+typedef struct made_distributions {
+    double gap[FAMILIES][BINS], density[FAMILIES][BINS], area[FAMILIES][BINS], patches[FAMILIES][BINS];
+    paper_distribution_family families[FAMILIES];
+} made_distributions;
 
 /* Made-up histories of two families (smooth, rough); `variant` changes every number, so that
  * figures of the two variants differ wherever one's data leaked into the other's. */
@@ -22,7 +36,35 @@ typedef struct made_histories {
     double slopes[FAMILIES], eq12[FAMILIES];
     const char *titles[FAMILIES];
     paper_histories h;
+    made_sweep sweep;
+    made_distributions distributions;
 } made_histories;
+
+static void make_sweep(int variant, const char *const *labels, made_sweep *m)
+{
+    for (int f = 0; f < FAMILIES; ++f) {
+        for (int i = 0; i < ANGLES; ++i) {
+            m->rho_c[f][i] = (0.5 + i) * (1.0 + f) * (1.0 + 0.3 * variant);
+            m->ratio[f][i] = 0.3 + 0.15 * i + 0.02 * f;
+            m->sd[f][i] = 0.01 * (1 + i);
+        }
+        m->groups[f] = (paper_sweep_group){labels[f], ANGLES, m->rho_c[f], m->ratio[f], m->sd[f]};
+    }
+}
+
+static void make_distributions(int variant, const char *const *labels, made_distributions *m)
+{
+    for (int f = 0; f < FAMILIES; ++f) {
+        for (int b = 0; b < BINS; ++b) {
+            m->gap[f][b] = (b + 0.5) * 0.2;
+            m->density[f][b] = exp(-(1.0 + variant) * m->gap[f][b]);
+            m->area[f][b] = (double)(1L << b);
+            m->patches[f][b] = b < 7 ? (double)(64 >> b) + variant : NAN; /* NaN: empty bins */
+        }
+        m->families[f] = (paper_distribution_family){labels[f], f == 1, BINS, m->gap[f], m->density[f],
+                                                     BINS, m->area[f], m->patches[f]};
+    }
+}
 
 static void make_histories(int variant, made_histories *m)
 {
@@ -45,6 +87,8 @@ static void make_histories(int variant, made_histories *m)
     m->h = (paper_histories){.source = "test.ini", .family_count = FAMILIES, .slopes = m->slopes,
                              .titles = m->titles, .eq12 = m->eq12, .members = m->members, .count = MEMBERS,
                              .delta = 1.0, .e_star = 1.0, .cot_alpha = 0.176};
+    make_sweep(variant, m->titles, &m->sweep);
+    make_distributions(variant, m->titles, &m->distributions);
 }
 
 static char *read_all(const char *path, size_t *size)
@@ -71,13 +115,19 @@ static int same_file(const char *a, const char *b)
     return same;
 }
 
-/* Figs. 7 and 5 of one variant into dir/NAME_v_r.png. */
-static int build(const made_histories *m, int variant, int round, const char *dir, char paths[2][512])
+/* Figs. 7 and 5, the sweep's fig2 and the distributions of one variant into dir/NAME_v_r.png. */
+static int build(const made_histories *m, int variant, int round, const char *dir, char paths[FIGURES][512])
 {
-    snprintf(paths[0], 512, "%s/fig7_%d_%d.png", dir, variant, round);
-    snprintf(paths[1], 512, "%s/fig5_%d_%d.png", dir, variant, round);
+    const char *names[FIGURES] = {"fig7", "fig5", "sweep", "distributions"};
+    for (int i = 0; i < FIGURES; ++i)
+        snprintf(paths[i], 512, "%s/%s_%d_%d.png", dir, names[i], variant, round);
     int status = paper_figure_area_ratio_against_load(&m->h, paths[0]);
-    return status == IM_OK ? paper_figure_against_approach(&m->h, 0, paths[1]) : status;
+    if (status == IM_OK)
+        status = paper_figure_against_approach(&m->h, 0, paths[1]);
+    if (status == IM_OK)
+        status = paper_figure_sweep(m->sweep.groups, FAMILIES, "test.ini", paths[2]);
+    return status == IM_OK ? paper_figure_distributions(m->distributions.families, FAMILIES, "test.ini", paths[3])
+                           : status;
 }
 
 /* Both threads start each round together, so that their builders overlap. */
@@ -86,19 +136,20 @@ static pthread_barrier_t round_start;
 typedef struct builder_thread {
     const made_histories *data;
     int variant, failures;
-    char reference[2][512];
+    char reference[FIGURES][512];
 } builder_thread;
 
 static void *build_rounds(void *arg)
 {
     builder_thread *t = arg;
     for (int r = 0; r < ROUNDS; ++r) {
-        char paths[2][512];
+        char paths[FIGURES][512];
         pthread_barrier_wait(&round_start);
         if (build(t->data, t->variant, r + 1, test_temp_dir(), paths) != IM_OK)
             ++t->failures;
         else
-            t->failures += !same_file(paths[0], t->reference[0]) + !same_file(paths[1], t->reference[1]);
+            for (int i = 0; i < FIGURES; ++i)
+                t->failures += !same_file(paths[i], t->reference[i]);
     }
     return NULL;
 }
@@ -115,8 +166,8 @@ static void test_builders_are_reentrant(void **state)
         threads[v] = (builder_thread){.data = &data[v], .variant = v};
         assert_int_equal(build(&data[v], v, 0, test_temp_dir(), threads[v].reference), IM_OK);
     }
-    assert_false(same_file(threads[0].reference[0], threads[1].reference[0]));
-    assert_false(same_file(threads[0].reference[1], threads[1].reference[1]));
+    for (int i = 0; i < FIGURES; ++i)
+        assert_false(same_file(threads[0].reference[i], threads[1].reference[i]));
     pthread_t ids[2];
     assert_int_equal(pthread_barrier_init(&round_start, NULL, 2), 0);
     for (int v = 0; v < 2; ++v)
@@ -144,6 +195,66 @@ static void test_fig7_needs_a_common_range(void **state)
     assert_int_equal(access(path, F_OK), -1);
 }
 
+/* Draws made_histories' sweep with `groups` groups into name; returns the builder's status. */
+static int sweep_into(const made_sweep *m, int groups, const char *name)
+{
+    return paper_figure_sweep(m->groups, groups, "sweep.ini", test_path(name));
+}
+
+/* The sweep's fig2 draws what it is given: its groups' points (a figure without them differs), on
+ * an axis widened to a far point (the figure changes), and refuses what it cannot draw, naming
+ * the source and writing nothing. */
+static void test_sweep_figure(void **state)
+{
+    (void)state;
+    static made_histories data;
+    make_histories(0, &data);
+    assert_int_equal(sweep_into(&data.sweep, FAMILIES, "sweep_two.png"), IM_OK);
+    assert_int_equal(sweep_into(&data.sweep, 0, "sweep_theory.png"), IM_OK);
+    assert_false(same_file(test_path("sweep_two.png"), test_path("sweep_theory.png")));
+    data.sweep.rho_c[1][ANGLES - 1] = 5000.0; /* beyond 100: the axis widens to 10^4 */
+    assert_int_equal(sweep_into(&data.sweep, FAMILIES, "sweep_wide.png"), IM_OK);
+    assert_false(same_file(test_path("sweep_two.png"), test_path("sweep_wide.png")));
+
+    data.sweep.rho_c[1][0] = 0.0;
+    assert_int_equal(sweep_into(&data.sweep, FAMILIES, "sweep_zero.png"), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "sweep.ini: fig2 of a sweep: group 1's rho_c = 0"));
+    assert_int_equal(access(test_path("sweep_zero.png"), F_OK), -1);
+    data.sweep.rho_c[1][0] = 1.0;
+    paper_sweep_group many[PAPER_MAX_SWEEP_GROUPS + 1];
+    for (int k = 0; k <= PAPER_MAX_SWEEP_GROUPS; ++k)
+        many[k] = data.sweep.groups[k % FAMILIES];
+    assert_int_equal(paper_figure_sweep(many, PAPER_MAX_SWEEP_GROUPS + 1, "sweep.ini", test_path("sweep_many.png")),
+                     IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "sweep.ini: fig2 of a sweep draws at most 8 roughnesses"));
+    assert_int_equal(access(test_path("sweep_many.png"), F_OK), -1);
+    data.sweep.groups[0].area_ratio = NULL;
+    assert_int_equal(sweep_into(&data.sweep, FAMILIES, "sweep_null.png"), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "sweep.ini: fig2 of a sweep: group 0 has 4 points without"));
+}
+
+/* The distributions figure: (a) only with a rough family (a figure of the smooth one alone
+ * differs from both families'), and refusals that name the source and write nothing. */
+static void test_distribution_figure(void **state)
+{
+    (void)state;
+    static made_histories data;
+    make_histories(0, &data);
+    paper_distribution_family *families = data.distributions.families;
+    const char *both = test_path("distributions_both.png"), *smooth = test_path("distributions_smooth.png");
+    assert_int_equal(paper_figure_distributions(families, FAMILIES, "d.ini", both), IM_OK);
+    assert_int_equal(paper_figure_distributions(families, 1, "d.ini", smooth), IM_OK);
+    assert_false(same_file(both, smooth));
+
+    const char *none = test_path("distributions_none.png");
+    assert_int_equal(paper_figure_distributions(families, 0, "d.ini", none), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "d.ini: distributions of 0 families: expected 1 to 64"));
+    families[1].gap_density = NULL;
+    assert_int_equal(paper_figure_distributions(families, FAMILIES, "d.ini", none), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "d.ini: distributions: family 1's bins come without their arrays"));
+    assert_int_equal(access(none, F_OK), -1);
+}
+
 static void test_panel_columns(void **state)
 {
     (void)state;
@@ -157,6 +268,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_builders_are_reentrant),
         cmocka_unit_test(test_fig7_needs_a_common_range),
+        cmocka_unit_test(test_sweep_figure),
+        cmocka_unit_test(test_distribution_figure),
         cmocka_unit_test(test_panel_columns),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -10,7 +10,8 @@
  * Figs. 1, 2 and 3, which need no contact solution, are public (plot.h: im_plot_figure_*,
  * theory_figures.c); the figures drawn from solutions are here (history_figures.c: Figs. 5, 6, 7
  * and the sphere's regimes; map_figures.c: Fig. 4's contact panels and the contact density;
- * flat_k_figure.c: eq. (2)'s k measured).
+ * flat_k_figure.c: eq. (2)'s k measured; sweep_figure.c: Fig. 2 over a sweep's roughnesses;
+ * distribution_figure.c: gap and patch-size distributions).
  *
  * Units: lengths (approach, radius, axis) in the surface's units, delta its grid spacing, loads N
  * in those units with E* (the plots divide by E* delta^2). Errors: IM_EINVAL for data that cannot
@@ -117,5 +118,51 @@ typedef struct paper_flat_family {
 
 /* A panel per family: the points, erf with the fitted k and erf with k = 2, over x in [0, x_max]. */
 int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const char *path);
+
+/* ---- Fig. 2 over a sweep (sweep_figure.c) ---- */
+
+/* At most this many roughness groups in a sweep's Fig. 2. */
+enum { PAPER_MAX_SWEEP_GROUPS = 8 };
+
+/* The points of one roughness (h'rms, H, lambda_s) of a sweep: along a group only alpha varies.
+ * Borrowed arrays of count points: rho_c = cot alpha / h'rms (> 0, finite), the mean A / A_cone
+ * and its standard deviation (NULL: no bars; NaN or 0: no bar at that point). */
+typedef struct paper_sweep_group {
+    const char *label;          /* legend entry */
+    int count;
+    const double *rho_c, *area_ratio, *sd;
+} paper_sweep_group;
+
+/* The theory of Fig. 2 on `points` log-spaced rho_c from lo to hi (PR normalisation, k = 2):
+ * eq. (12) (variable density) into variable and eq. (6) (constant density) into constant.
+ * theory.h's errors. (Shared with the public Fig. 2, theory_figures.c.) */
+int paper_area_ratio_curves(double lo, double hi, int points, double *rho, double *variable, double *constant);
+
+/* A / A_cone against rho_c on a log axis from 0.1 to 100, widened to whole decades around the
+ * points: eq. (12) solid and eq. (6) dotted in black, and each group (0 to PAPER_MAX_SWEEP_GROUPS)
+ * as markers with error bars of its own colour and shape. IM_EINVAL (naming `source`) for too
+ * many groups, a group without arrays or a rho_c that is not positive and finite. */
+int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *source, const char *path);
+
+/* ---- gap and contact-patch size distributions (distribution_figure.c) ---- */
+
+/* One family's distributions at one load (borrowed arrays; NaN where a bin is empty, a gap in
+ * the line). Gaps g in the surface's h_rms, density per cell of the whole grid and unit gap;
+ * patch areas in delta^2 (one per octave: the smallest area of the octave), patches counted. */
+typedef struct paper_distribution_family {
+    const char *label;          /* legend entry */
+    int rough;                  /* non-zero: drawn in (a) too (a smooth surface has no h_rms) */
+    int gap_bins;
+    const double *gap, *gap_density;
+    int patch_bins;
+    const double *patch_area, *patch_count;
+} paper_distribution_family;
+
+/* (a) the gap density against g / h_rms of the rough families (log y), (b) patches per octave of
+ * area of every family (log-log), one colour per family (viridis order); (b) alone when no family
+ * is rough. IM_EINVAL (naming `source`) for count outside 1 to PAPER_MAX_PANELS or a family
+ * without its arrays. */
+int paper_figure_distributions(const paper_distribution_family *families, int count, const char *source,
+                               const char *path);
 
 #endif

@@ -1,6 +1,7 @@
 /* The paper's figures that need no contact solution: Fig. 1 (local contact density of the cone),
  * Fig. 2 (area ratio against rho_c, eqs. 6 and 12) and Fig. 3 (statistics of a surface). */
 #include "indentmap/plot.h"
+#include "paper/figures.h"
 
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
@@ -84,10 +85,10 @@ int im_plot_figure_contact_density(double alpha_deg, const double *slope_rms, in
 
 /* ---- Fig. 2 ---- */
 
-static int area_ratio_curves(double rho_lo, double rho_hi, double *rho, double *variable, double *constant)
+int paper_area_ratio_curves(double rho_lo, double rho_hi, int points, double *rho, double *variable, double *constant)
 {
-    for (int i = 0; i < FIG2_POINTS; ++i) {
-        rho[i] = rho_lo * pow(rho_hi / rho_lo, (double)i / (FIG2_POINTS - 1));
+    for (int i = 0; i < points; ++i) {
+        rho[i] = rho_lo * pow(rho_hi / rho_lo, (double)i / (points - 1));
         double beta;
         int status = im_theory_erf_scale(rho[i], IM_THEORY_NORMALISATION_PR, IM_THEORY_K_DEFAULT, &beta);
         if (status == IM_OK)
@@ -118,7 +119,7 @@ int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style
         return im_fail(IM_EINVAL, "Fig. 2: %d points without x or y arrays", points->count);
     double lo, hi, curves[3][FIG2_POINTS];
     rho_range(points, &lo, &hi);
-    int status = area_ratio_curves(lo, hi, curves[0], curves[1], curves[2]);
+    int status = paper_area_ratio_curves(lo, hi, FIG2_POINTS, curves[0], curves[1], curves[2]);
     if (status != IM_OK)
         return status;
     im_plot_series series[3] = {

@@ -3,9 +3,9 @@
  * OUTPUT/distributions/, and drawn in distributions.png/pdf. Solved here (a full-grid gap needs the
  * displacement the table and panels do not keep), every time it is asked for. */
 #include "indentmap/measure.h"
-#include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
+#include "paper/figures.h"
 #include "scene/distributions.h"
 #include "scene/labels.h"
 #include "scene/outputs.h"
@@ -103,39 +103,25 @@ static int family_distributions(const im_scene *scene, const im_scene_run_option
     return status;
 }
 
-/* (a) the gap density against g / h_rms, (b) patches per octave of size, one line per family. */
+static int draw_distributions(const im_scene *scene, const void *families, const char *path)
+{
+    return paper_figure_distributions(families, scene->family_count, scene->path, path);
+}
+
+/* (a) the gap density against g / h_rms of the rough families, (b) patches per octave of size of
+ * every family (paper/distribution_figure.c). */
 static int plot_distributions(const im_scene *scene, const family_curves *curves)
 {
-    const int count = scene->family_count;
-    im_plot_series *series = calloc(2 * (size_t)count, sizeof *series);
-    if (!series)
+    paper_distribution_family *families = calloc((size_t)scene->family_count, sizeof *families);
+    if (!families)
         return im_fail(IM_ENOMEM, "%s: allocation of the distributions' plot failed", scene->path);
-    int rough = 0; /* (a) draws the rough families only: a smooth surface has no h_rms */
-    double most = 1.0;
-    for (int f = 0; f < count; ++f) {
-        for (int b = 0; b < IM_PATCH_BINS; ++b)
-            most = fmax(most, isnan(curves[f].patch_count[b]) ? 0.0 : curves[f].patch_count[b]);
-        series[count + f] = (im_plot_series){.x = curves[f].patch_area, .y = curves[f].patch_count,
-                                             .n = IM_PATCH_BINS, .line = IM_PLOT_NO_LINE,
-                                             .marker = IM_PLOT_MARKER_CIRCLE, .label = curves[f].label};
-        im_plot_family_color(f, count, series[count + f].color);
-        if (!(scene_member_slope(scene, f, scene->seeds[0]) > 0.0))
-            continue;
-        series[rough] = (im_plot_series){.x = curves[f].gap, .y = curves[f].gap_density, .n = GAP_BINS,
-                                         .label = curves[f].label};
-        im_plot_family_color(f, count, series[rough++].color);
-    }
-    im_plot_panel panels[2] = {
-        {.x = {IM_PLOT_LINEAR, 0, 0, "g / h_{rms} outside contact"}, .y = {IM_PLOT_LOG, 0, 0, "density over all cells"},
-         .series = series, .series_count = rough, .label = "(a)", .legend = IM_PLOT_LEGEND_UPPER_RIGHT},
-        {.x = {IM_PLOT_LOG, 0, 0, "patch area A_{i} / δ^{2} (octaves)"}, .y = {IM_PLOT_LOG, 0.5, 2.0 * most, "patches"},
-         .series = series + count, .series_count = count, .label = "(b)", .legend = IM_PLOT_LEGEND_AUTO},
-    };
-    im_plot plot = im_plot_default();
-    plot.columns = rough > 0 ? 2 : 1; /* without a rough family, (b) alone */
-    plot.panels = rough > 0 ? panels : panels + 1;
-    int status = scene_write_png_pdf(scene, "distributions", scene_draw_plot, &plot);
-    free(series);
+    for (int f = 0; f < scene->family_count; ++f)
+        families[f] = (paper_distribution_family){
+            .label = curves[f].label, .rough = scene_member_slope(scene, f, scene->seeds[0]) > 0.0,
+            .gap_bins = GAP_BINS, .gap = curves[f].gap, .gap_density = curves[f].gap_density,
+            .patch_bins = IM_PATCH_BINS, .patch_area = curves[f].patch_area, .patch_count = curves[f].patch_count};
+    int status = scene_write_png_pdf(scene, "distributions", draw_distributions, families);
+    free(families);
     return status;
 }
 

@@ -2,9 +2,8 @@
  * combination as a sweep point, a scene of its own (one alpha, hurst and lambda_s; all slopes x
  * seeds) in its own folder. The table's families of every point are gathered into sweep.csv and,
  * with plots = fig2, drawn against rho_c beside eq. (12) in the scene's own fig2. */
-#include "indentmap/plot.h"
 #include "indentmap/status.h"
-#include "indentmap/theory.h"
+#include "paper/figures.h"
 #include "scene/labels.h"
 #include "scene/limits.h"
 #include "scene/outputs.h"
@@ -95,33 +94,15 @@ static int write_sweep_csv(const im_scene *scene, const sweep_row *rows, int cou
     return im_atomic_commit(&file);
 }
 
-enum { CURVE_POINTS = 161, MAX_GROUPS = 8 };
-
-/* Eq. (12) (variable density) and eq. (6) (constant density) on a log grid of rho_c over [lo, hi]. */
-static int theory_curves(double lo, double hi, double *rho, double *variable, double *constant)
-{
-    int status = IM_OK;
-    for (int i = 0; i < CURVE_POINTS && status == IM_OK; ++i) {
-        rho[i] = lo * pow(hi / lo, (double)i / (CURVE_POINTS - 1));
-        double beta;
-        status = im_theory_erf_scale(rho[i], IM_THEORY_NORMALISATION_PR, IM_THEORY_K_DEFAULT, &beta);
-        if (status == IM_OK)
-            status = im_theory_cone_area_ratio_variable(beta, &variable[i]);
-        if (status == IM_OK)
-            status = im_theory_cone_area_ratio_constant(beta, &constant[i]);
-    }
-    return status;
-}
+enum { MAX_GROUPS = PAPER_MAX_SWEEP_GROUPS };
 
 /* The points of a sweep, grouped by roughness (h'rms, H, lambda_s): along a group only alpha varies. */
 typedef struct sweep_groups {
     int count;
-    int total;
     char labels[MAX_GROUPS][96];
     double x[MAX_GROUPS][IM_SCENE_MAX_SWEEP_POINTS], y[MAX_GROUPS][IM_SCENE_MAX_SWEEP_POINTS],
         sigma[MAX_GROUPS][IM_SCENE_MAX_SWEEP_POINTS];
-    int n[MAX_GROUPS];
-    double lo, hi;  /* the rho_c axis: [0.1, 100] widened to whole decades around the points */
+    paper_sweep_group groups[MAX_GROUPS]; /* the builder's view of the arrays above */
 } sweep_groups;
 
 static int same_roughness(const sweep_row *a, const sweep_row *b)
@@ -143,7 +124,6 @@ static void group_label(const im_scene *scene, const sweep_row *row, char *label
 static int group_rows(const im_scene *scene, const sweep_row *rows, int count, sweep_groups *g)
 {
     const sweep_row *first[MAX_GROUPS];
-    g->lo = 0.1, g->hi = 100.0;
     for (int i = 0; i < count; ++i) {
         if (!(rows[i].slope > 0.0) || !isfinite(rows[i].rho_c) || !(rows[i].rho_c > 0.0))
             continue;
@@ -153,57 +133,39 @@ static int group_rows(const im_scene *scene, const sweep_row *rows, int count, s
         if (k == MAX_GROUPS)
             return im_fail(IM_EINVAL, "%s: fig2 of a sweep draws at most %d roughnesses (h'rms x H x lambda_s)",
                            scene->path, MAX_GROUPS);
+        paper_sweep_group *group = &g->groups[k];
         if (k == g->count) {
             first[g->count++] = &rows[i];
             group_label(scene, &rows[i], g->labels[k], sizeof g->labels[k]);
+            *group = (paper_sweep_group){.label = g->labels[k], .rho_c = g->x[k], .area_ratio = g->y[k],
+                                         .sd = g->sigma[k]};
         }
-        if (g->n[k] == IM_SCENE_MAX_SWEEP_POINTS) /* parse.c refuses repeated values, so this is a bug */
+        if (group->count == IM_SCENE_MAX_SWEEP_POINTS) /* parse.c refuses repeated values, so this is a bug */
             return im_fail(IM_EINVAL, "%s: fig2 of a sweep: more than %d points of one roughness", scene->path,
                            IM_SCENE_MAX_SWEEP_POINTS);
-        g->x[k][g->n[k]] = rows[i].rho_c;
-        g->y[k][g->n[k]] = rows[i].area_ratio;
-        g->sigma[k][g->n[k]++] = rows[i].sd;
-        g->lo = fmin(g->lo, pow(10.0, floor(log10(rows[i].rho_c))));
-        g->hi = fmax(g->hi, pow(10.0, ceil(log10(rows[i].rho_c))));
-        ++g->total;
+        g->x[k][group->count] = rows[i].rho_c;
+        g->y[k][group->count] = rows[i].area_ratio;
+        g->sigma[k][group->count++] = rows[i].sd;
     }
     return IM_OK;
 }
 
-/* Fig. 2 over the whole sweep: eq. (12) and eq. (6), and each roughness's points (its angles) as a
- * series of its own, against rho_c. */
+static int draw_sweep(const im_scene *scene, const void *data, const char *path)
+{
+    const sweep_groups *g = data;
+    return paper_figure_sweep(g->groups, g->count, scene->path, path);
+}
+
+/* Fig. 2 over the whole sweep (paper/sweep_figure.c): each roughness's points (its angles) as a
+ * series of its own against rho_c, beside eq. (12) and eq. (6). */
 static int plot_sweep(const im_scene *scene, const sweep_row *rows, int count)
 {
     sweep_groups *g = calloc(1, sizeof *g);
     if (!g)
         return im_fail(IM_ENOMEM, "%s: allocation of the sweep's plot failed", scene->path);
-    double rho[CURVE_POINTS], variable[CURVE_POINTS], constant[CURVE_POINTS];
     int status = group_rows(scene, rows, count, g);
     if (status == IM_OK)
-        status = theory_curves(g->lo, g->hi, rho, variable, constant);
-    im_plot_series series[2 + MAX_GROUPS] = {
-        {.x = rho, .y = variable, .n = CURVE_POINTS, .line_width = 1.2, .label = "eq. (12), variable γ"},
-        {.x = rho, .y = constant, .n = CURVE_POINTS, .line = IM_PLOT_DOTTED, .line_width = 1.5,
-         .label = "eq. (6), constant γ"},
-    };
-    im_plot_palette(6, series[0].color); /* black: the theory */
-    im_plot_palette(6, series[1].color);
-    const im_plot_marker markers[] = {IM_PLOT_MARKER_CIRCLE, IM_PLOT_MARKER_SQUARE, IM_PLOT_MARKER_TRIANGLE,
-                                      IM_PLOT_MARKER_DIAMOND};
-    for (int k = 0; k < g->count; ++k) {
-        series[2 + k] = (im_plot_series){.x = g->x[k], .y = g->y[k], .sigma = g->sigma[k], .n = g->n[k],
-                                         .line = IM_PLOT_NO_LINE, .marker = markers[k % 4], .marker_size = 4.0,
-                                         .label = g->labels[k]};
-        im_plot_palette(k, series[2 + k].color);
-    }
-    im_plot_panel panel = {.x = {IM_PLOT_LOG, g->lo, g->hi, "ρ_{c} = cot α / h′_{rms}"},
-                           .y = {IM_PLOT_LINEAR, 0.0, 1.05, "A / A_{cone}"},
-                           .series = series, .series_count = 2 + g->count,
-                           .legend = IM_PLOT_LEGEND_AUTO};
-    im_plot plot = im_plot_default();
-    plot.panels = &panel;
-    if (status == IM_OK)
-        status = scene_write_png_pdf(scene, "fig2", scene_draw_plot, &plot);
+        status = scene_write_png_pdf(scene, "fig2", draw_sweep, g);
     free(g);
     return status;
 }
