@@ -60,7 +60,6 @@ static int solve_family(const im_scene *scene, const im_scene_run_options *optio
     int status = scene_surface(scene, family, scene->seeds[0], &surface);
     if (status == IM_OK) {
         double n = scene_load_for_load_star(scene, surface->delta);
-#pragma omp critical(scene_progress)
         scene_progress(options, "family %d (h'rms = %g): solving at N = %.6g", family, scene->slopes[family], n);
         status = solve_panel(scene, options, surface, n, force);
     }
@@ -134,7 +133,6 @@ static int read_panel(const im_scene *scene, const im_scene_run_options *options
     fclose(stream);
     if (!scene_key_matches(options, npy, found ? key : 0, panel_key(scene, family)))
         return 0;
-#pragma omp critical(scene_progress)
     scene_progress(options, "family %d: reusing %s", family, npy);
     return im_npy_read(npy, force) == IM_OK;
 }
