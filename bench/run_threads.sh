@@ -8,8 +8,8 @@
 # usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes "512 1024"] [--no-wisdom]
 # fig4 keeps FFTW wisdom in a temporary cache, as the CLI does in the user's: one untimed run per thread
 # count fills it first (--no-wisdom: none, FFTW_ESTIMATE plans). bench_cold plans with FFTW_ESTIMATE.
-# (BUILD=DIR picks the build folder, default build.) Threads wait passively (OMP_WAIT_POLICY=passive
-# unless set), as the CLI's do by default.
+# (BUILD=DIR picks the build folder, default build.) Threads spin briefly, then sleep (GOMP_SPINCOUNT=3000
+# unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set), as the CLI's do by default.
 # Take the timings on a quiet machine: the load average is printed so that a loaded run shows.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +26,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 cmake --build "$build" --target indentmap_cli bench_cold >/dev/null
-export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+if [ -z "${OMP_WAIT_POLICY:-}" ]; then export GOMP_SPINCOUNT=${GOMP_SPINCOUNT:-3000}; fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -61,7 +61,7 @@ run_pair() { # what, command (called as: command THREADS)
 }
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%FT%TZ); commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); OMP_WAIT_POLICY=$OMP_WAIT_POLICY"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-unset} GOMP_SPINCOUNT=${GOMP_SPINCOUNT:-unset}"
 echo "what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2"
 if [ "$only" != solver ]; then
   fig4_once 1 >/dev/null && fig4_once 2 >/dev/null # fills the wisdom cache

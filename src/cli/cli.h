@@ -35,9 +35,11 @@ int cli_interrupt_install_cleanup(void);
 int cli_interrupt_exit_status(void);
 
 /* Unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set, re-executes the program (argv as given) once
- * with OMP_WAIT_POLICY=passive, so that idle OpenMP threads sleep instead of spinning on cores that
- * others need (wait_policy.c). Returns only if that is not wanted or the re-execution failed. */
-void cli_prefer_passive_waiting(char **argv);
+ * with GOMP_SPINCOUNT=CLI_SPIN_COUNT, so that idle OpenMP threads spin only briefly before they
+ * sleep, instead of holding for long cores that others need (wait_policy.c). Returns only if that is
+ * not wanted or the re-execution failed. */
+#define CLI_SPIN_COUNT "3000"
+void cli_prefer_short_spinning(char **argv);
 
 /* The library's messages on stderr (log.c), as callbacks of status.h: cli_log prints
  * "indentmap: MESSAGE"; cli_progress draws "[####....] done/total surfaces" in place, only when

@@ -55,7 +55,7 @@ static int close_standard_output(int status)
 
 int main(int argc, char **argv)
 {
-    cli_prefer_passive_waiting(argv);
+    cli_prefer_short_spinning(argv);
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;
