@@ -40,6 +40,10 @@ for f in sweep.csv fig2.png fig2.pdf alpha_80_hurst_0.8_lambda_s_4/table1.csv \
   alpha_70.5746_hurst_0.8_lambda_s_4/table1.csv; do
   check "wrote $f" test -s "$dir/out/$f"
 done
+check "run.json records the sweep's lists" python3 -c 'import json, sys
+s = json.load(open(sys.argv[1]))["sweep"]
+sys.exit(not (s["alpha"] == [80, 70.5746] and s["hurst"] == [0.8] and s["lambda_s"] == [4] and s["points"] == 2))' \
+  "$dir/out/run.json"
 t=$dir/out/sweep.csv
 check "four rows: two angles x two slopes" test "$(wc -l <"$t")" -eq 5
 # rows: 2 = (80, 0.04), 3 = (80, 0.08), 4 = (70.57, 0.04), 5 = (70.57, 0.08)

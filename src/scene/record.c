@@ -3,6 +3,7 @@
 #include "scene/outputs.h"
 #include "scene/punch.h"
 #include "scene/record.h"
+#include "scene/sweep.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -48,8 +49,26 @@ static json_t *profile_record(const im_scene *scene)
     return json_pack("{s:s, s:s}", "kind", im_punch_name(im_profile_kind(scene->profile)), "profile", path);
 }
 
+/* A sweep's lists (each given value; one value where the key is not a list) and how many points
+ * they make, each a scene of its own in OUTPUT/alpha_A_hurst_H_lambda_s_L/ (sweep.h). */
+static json_t *sweep_list(const double *values, int count, double scalar)
+{
+    json_t *list = json_array();
+    for (int i = 0; i < (count > 1 ? count : 1); ++i)
+        json_array_append_new(list, json_real(count > 1 ? values[i] : scalar));
+    return list;
+}
+
+static json_t *sweep_record(const im_scene *scene)
+{
+    return json_pack("{s:o, s:o, s:o, s:i}", "alpha", sweep_list(scene->alphas, scene->alpha_count,
+                     scene->alpha_degrees), "hurst", sweep_list(scene->hursts, scene->hurst_count,
+                     scene->surface.hurst), "lambda_s", sweep_list(scene->lambda_ss, scene->lambda_s_count,
+                     scene->surface.lambda_s), "points", scene_sweep_count(scene));
+}
+
 /* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
- * surface files it measured and a profile punch's file. */
+ * surface files it measured, a profile punch's file and a sweep's lists. */
 int scene_write_record(const im_scene *scene)
 {
     im_solver_options options = scene_solver_options(scene);
@@ -65,6 +84,8 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(root, "surface_files", files_record(scene));
     if (scene->profile)
         json_object_set_new(root, "punch", profile_record(scene));
+    if (scene_sweep_count(scene) > 1)
+        json_object_set_new(root, "sweep", sweep_record(scene));
     int status = run_record_write(scene->output_dir, root);
     json_decref(root);
     return status;
