@@ -3,20 +3,6 @@
 
 #include <math.h>
 
-/* Neumaier's running sum: sum + compensation carries the low-order bits that sum drops. */
-typedef struct compensated {
-    double sum, compensation;
-} compensated;
-
-static inline void compensated_add(compensated *c, double x)
-{
-    double t = c->sum + x;
-    c->compensation += fabs(c->sum) >= fabs(x) ? (c->sum - t) + x : (x - t) + c->sum;
-    c->sum = t;
-}
-
-static inline double compensated_total(const compensated *c) { return c->sum + c->compensation; }
-
 /* Compensated sum of v[lo..hi). */
 static double range_sum(const double *v, size_t lo, size_t hi)
 {

@@ -11,7 +11,22 @@
 #ifndef INDENTMAP_CORE_SUMMATION_H
 #define INDENTMAP_CORE_SUMMATION_H
 
+#include <math.h>
 #include <stddef.h>
+
+/* Neumaier's running sum: sum + compensation carries the low-order bits that sum drops. */
+typedef struct compensated {
+    double sum, compensation;
+} compensated;
+
+static inline void compensated_add(compensated *c, double x)
+{
+    double t = c->sum + x;
+    c->compensation += fabs(c->sum) >= fabs(x) ? (c->sum - t) + x : (x - t) + c->sum;
+    c->sum = t;
+}
+
+static inline double compensated_total(const compensated *c) { return c->sum + c->compensation; }
 
 #define IM_SUM_BLOCK 4096
 #define IM_SUM_MAX_BLOCKS 1024

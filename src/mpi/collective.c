@@ -15,10 +15,10 @@ void mpi_ordered_totals(const im_mpi_solver *s, int k, double *totals)
     MPI_Allgatherv(s->row_sums, s->rows, sums, s->all_row_sums, s->row_counts, s->row_starts, sums, s->comm);
     MPI_Type_free(&sums);
     for (int j = 0; j < k; ++j) {
-        mpi_compensated c = {0, 0};
+        compensated c = {0, 0};
         for (int r = 0; r < s->ny; ++r)
-            mpi_compensated_add(&c, s->all_row_sums[(size_t)r * k + j]);
-        totals[j] = mpi_compensated_total(&c);
+            compensated_add(&c, s->all_row_sums[(size_t)r * k + j]);
+        totals[j] = compensated_total(&c);
     }
 }
 

@@ -2,6 +2,7 @@
 #ifndef INDENTMAP_MPI_INTERNAL_H
 #define INDENTMAP_MPI_INTERNAL_H
 
+#include "core/summation.h"
 #include "indentmap/mpi.h"
 
 #include <fftw3-mpi.h>
@@ -26,20 +27,6 @@ struct im_mpi_solver {
 };
 
 #define MPI_SUMS_MAX 5
-
-/* Neumaier's compensated running sum. */
-typedef struct mpi_compensated {
-    double sum, compensation;
-} mpi_compensated;
-
-static inline void mpi_compensated_add(mpi_compensated *c, double x)
-{
-    double t = c->sum + x;
-    c->compensation += fabs(c->sum) >= fabs(x) ? (c->sum - t) + x : (x - t) + c->sum;
-    c->sum = t;
-}
-
-static inline double mpi_compensated_total(const mpi_compensated *c) { return c->sum + c->compensation; }
 
 /* totals[j] = sum over the surface rows, in row order and compensated, of the per-row sums this
  * rank left in solver->row_sums[r * k + j] (k <= MPI_SUMS_MAX quantities, r its local rows). */

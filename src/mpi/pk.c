@@ -47,15 +47,15 @@ static double contact_total(const pk_run *r, const double *a, const double *b, l
     long c = 0;
 #pragma omp parallel for schedule(static) reduction(+ : c)
     for (int row = 0; row < s->rows; ++row) {
-        mpi_compensated sum = {0, 0};
+        compensated sum = {0, 0};
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)row * nx + ix;
             if (r->p[i] > 0) {
-                mpi_compensated_add(&sum, b ? a[i] + b[i] : a[i]);
+                compensated_add(&sum, b ? a[i] + b[i] : a[i]);
                 ++c;
             }
         }
-        s->row_sums[row] = mpi_compensated_total(&sum);
+        s->row_sums[row] = compensated_total(&sum);
     }
     double total;
     mpi_ordered_totals(s, 1, &total);
@@ -78,18 +78,18 @@ static gap_stats compute_gaps(const pk_run *r)
     long contact = 0;
 #pragma omp parallel for schedule(static) reduction(+ : contact) reduction(max : penetration)
     for (int row = 0; row < s->rows; ++row) {
-        mpi_compensated squares = {0, 0};
+        compensated squares = {0, 0};
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)row * nx + ix;
             double gi = r->u[i] + r->gap0[i] - w;
             s->gap[i] = gi;
             if (r->p[i] > 0) {
-                mpi_compensated_add(&squares, gi * gi);
+                compensated_add(&squares, gi * gi);
                 ++contact;
             } else if (-gi > penetration)
                 penetration = -gi;
         }
-        s->row_sums[row] = mpi_compensated_total(&squares);
+        s->row_sums[row] = compensated_total(&squares);
     }
     mpi_ordered_totals(s, 1, &st.sum_squares);
     st.contact = global_count(s, contact);
@@ -116,15 +116,15 @@ static double winkler_load(const pk_run *r, double w, int store)
     const int nx = s->nx;
 #pragma omp parallel for schedule(static)
     for (int row = 0; row < s->rows; ++row) {
-        mpi_compensated sum = {0, 0};
+        compensated sum = {0, 0};
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)row * nx + ix;
             double pi = r->gap0[i] < w ? (w - r->gap0[i]) / s->k0 : 0;
             if (store)
                 r->p[i] = pi;
-            mpi_compensated_add(&sum, pi);
+            compensated_add(&sum, pi);
         }
-        s->row_sums[row] = mpi_compensated_total(&sum);
+        s->row_sums[row] = compensated_total(&sum);
     }
     double total;
     mpi_ordered_totals(s, 1, &total);
@@ -187,19 +187,19 @@ static double step_length(const pk_run *r)
     long count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : count)
     for (int row = 0; row < s->rows; ++row) {
-        mpi_compensated sums[4] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}}; /* <g,t>, <q,t>, sum q, sum t */
+        compensated sums[4] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}}; /* <g,t>, <q,t>, sum q, sum t */
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)row * nx + ix;
             if (r->p[i] > 0) {
-                mpi_compensated_add(&sums[0], g[i] * t[i]);
-                mpi_compensated_add(&sums[1], q[i] * t[i]);
-                mpi_compensated_add(&sums[2], q[i]);
-                mpi_compensated_add(&sums[3], t[i]);
+                compensated_add(&sums[0], g[i] * t[i]);
+                compensated_add(&sums[1], q[i] * t[i]);
+                compensated_add(&sums[2], q[i]);
+                compensated_add(&sums[3], t[i]);
                 ++count;
             }
         }
         for (int j = 0; j < 4; ++j)
-            s->row_sums[(size_t)row * 4 + j] = mpi_compensated_total(&sums[j]);
+            s->row_sums[(size_t)row * 4 + j] = compensated_total(&sums[j]);
     }
     double totals[4];
     mpi_ordered_totals(s, 4, totals);

@@ -28,7 +28,7 @@ static double fill_columns(const im_surface_params *p, const spectral_slab *slab
 #pragma omp parallel for schedule(static)
     for (ptrdiff_t c = 0; c < slab->local_n1; ++c) {
         int kx = (int)(slab->local_1_start + c);
-        mpi_compensated sum = {0, 0};
+        compensated sum = {0, 0};
         for (int jy = 0; jy < p->ny; ++jy) {
             int ky = jy <= p->ny / 2 ? jy : jy - p->ny;
             double complex h = surface_mode_coefficient(p, kx, ky, qx_step, qy_step);
@@ -36,9 +36,9 @@ static double fill_columns(const im_surface_params *p, const spectral_slab *slab
             slab->modes[(size_t)c * p->ny + jy][1] = cimag(h);
             double qx = kx * qx_step, qy = ky * qy_step;
             double weight = column_weight(kx, p->nx) * (slope ? qx * qx + qy * qy : 1.0);
-            mpi_compensated_add(&sum, weight * (creal(h) * creal(h) + cimag(h) * cimag(h)));
+            compensated_add(&sum, weight * (creal(h) * creal(h) + cimag(h) * cimag(h)));
         }
-        column_sums[c] = mpi_compensated_total(&sum);
+        column_sums[c] = compensated_total(&sum);
     }
     int ranks;
     MPI_Comm_size(slab->comm, &ranks);
@@ -52,13 +52,13 @@ static double fill_columns(const im_surface_params *p, const spectral_slab *slab
         starts[r] = pairs[2 * r + 1];
     }
     MPI_Allgatherv(column_sums, (int)slab->local_n1, MPI_DOUBLE, all, counts, starts, MPI_DOUBLE, slab->comm);
-    mpi_compensated total = {0, 0};
+    compensated total = {0, 0};
     for (int kx = 0; kx < slab->half_nx; ++kx)
-        mpi_compensated_add(&total, all[kx]);
+        compensated_add(&total, all[kx]);
     free(counts);
     free(pairs);
     free(all);
-    return mpi_compensated_total(&total);
+    return compensated_total(&total);
 }
 
 static int check_request(const im_surface_params *p, int y0, int rows)

@@ -128,11 +128,8 @@ static int solve_family(const im_scene *scene, const im_scene_run_options *optio
 
 static int write_k_table(const im_scene *scene, const flat_family *families, int count)
 {
-    char path[IM_SCENE_PATH];
     im_atomic_file file;
-    int status = scene_output_path(scene, "flat_k.csv", path, sizeof path);
-    if (status == IM_OK)
-        status = im_atomic_open(&file, path);
+    int status = scene_open_output(scene, "flat_k.csv", &file);
     if (status != IM_OK)
         return status;
     fprintf(file.stream, "slope,surfaces,points,k,k_error,k_surfaces_mean,k_surfaces_sem,k_linear_to_half,"
@@ -183,9 +180,7 @@ static int write_flat_k(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         status = im_make_directories(path);
     if (status == IM_OK)
-        status = scene_output_path(scene, "flat/flat_contact.csv", path, sizeof path);
-    if (status == IM_OK)
-        status = im_atomic_open(&rows, path);
+        status = scene_open_output(scene, "flat/flat_contact.csv", &rows);
     if (status != IM_OK)
         return status;
     fprintf(rows.stream, "family,slope,seed,pressure_ratio,mean_pressure,area_fraction,contact_patches,iterations,"

@@ -7,6 +7,13 @@
 
 #include <stdio.h>
 
+int scene_open_output(const im_scene *scene, const char *relative, im_atomic_file *file)
+{
+    char path[IM_SCENE_PATH];
+    int status = scene_output_path(scene, relative, path, sizeof path);
+    return status == IM_OK ? im_atomic_open(file, path) : status;
+}
+
 int scene_write_png_pdf(const im_scene *scene, const char *name,
                         int (*draw)(const im_scene *, const void *, const char *), const void *data)
 {

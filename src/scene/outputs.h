@@ -10,6 +10,9 @@
 /* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
 
+/* Opens output_dir/relative for writing through io.h's im_atomic_open (commit or abort it). */
+int scene_open_output(const im_scene *scene, const char *relative, im_atomic_file *file);
+
 /* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
 int scene_write_png_pdf(const im_scene *scene, const char *name,
                         int (*draw)(const im_scene *, const void *, const char *), const void *data);

@@ -189,11 +189,8 @@ static int panel_forces(const im_scene *scene, const im_scene_run_options *optio
 
 static int write_results_csv(const im_scene *scene, const panel_result *results)
 {
-    char path[IM_SCENE_PATH];
-    int status = scene_output_path(scene, "results.csv", path, sizeof path);
     im_atomic_file file;
-    if (status == IM_OK)
-        status = im_atomic_open(&file, path);
+    int status = scene_open_output(scene, "results.csv", &file);
     if (status != IM_OK)
         return status;
     fprintf(file.stream, "family,slope,seed,load,load_star,contact_patches,area_ratio,area_ratio_eq12\n");

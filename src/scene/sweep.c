@@ -79,11 +79,8 @@ static sweep_row sweep_summary(const im_scene *point, const scene_member *member
 
 static int write_sweep_csv(const im_scene *scene, const sweep_row *rows, int count)
 {
-    char path[IM_SCENE_PATH];
     im_atomic_file file;
-    int status = scene_output_path(scene, "sweep.csv", path, sizeof path);
-    if (status == IM_OK)
-        status = im_atomic_open(&file, path);
+    int status = scene_open_output(scene, "sweep.csv", &file);
     if (status != IM_OK)
         return status;
     fprintf(file.stream, "alpha,hurst,lambda_s,slope,rho_c,surfaces,area_ratio_mean,area_ratio_sd,area_ratio_eq12\n");

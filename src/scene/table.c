@@ -170,11 +170,8 @@ static family_summary summarise(const im_scene *scene, const scene_member *membe
 
 static int write_table_csv(const im_scene *scene, const family_summary *rows)
 {
-    char path[IM_SCENE_PATH];
     im_atomic_file file;
-    int status = scene_output_path(scene, "table1.csv", path, sizeof path);
-    if (status == IM_OK)
-        status = im_atomic_open(&file, path);
+    int status = scene_open_output(scene, "table1.csv", &file);
     if (status != IM_OK)
         return status;
     fprintf(file.stream, "slope,surfaces,height_rms_mean,rho_c,n_p_ref,n_p_mean,area_ratio_mean,area_ratio_sd,"
@@ -203,11 +200,8 @@ static void markdown_row(FILE *out, const family_summary *r)
 
 static int write_table_markdown(const im_scene *scene, const family_summary *rows)
 {
-    char path[IM_SCENE_PATH];
     im_atomic_file file;
-    int status = scene_output_path(scene, "table1.md", path, sizeof path);
-    if (status == IM_OK)
-        status = im_atomic_open(&file, path);
+    int status = scene_open_output(scene, "table1.md", &file);
     if (status != IM_OK)
         return status;
     fprintf(file.stream, "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms, quality %s, tol %g), "
