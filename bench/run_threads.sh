@@ -3,8 +3,13 @@
 # (bench_cold) at 1 and 2 OpenMP threads, median of repeats, 1- and 2-thread runs alternated so that a
 # change of load hits both alike. Prints the machine, the load average before and after, and a table:
 #
-#   what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2
+#   what,threads,repeats,median_wall_s,min_wall_s,median_cpu_s,median_ratio_1_over_2,min_ratio_1_over_2,
+#   paired_ratio_median (the median over repeats of one repeat's 1-thread wall / its 2-thread wall)
 #
+# fft_pair_floor_N: the median wall time of the FFT pair each solve needs (bench_cold's floor) at 1 and 2
+# threads and their ratio: what FFTW's own threads gain on that transform. The minimum is printed beside
+# the median because a shared virtual machine's neighbours only ever add time: on the project's 2-core
+# VM the same run varied by +-15% within minutes.
 # usage: bench/run_threads.sh [--repeats R] [--only fig4|solver] [--sizes "512 1024"] [--no-wisdom]
 # fig4 keeps FFTW wisdom in a temporary cache, as the CLI does in the user's: one untimed run per thread
 # count fills it first (--no-wisdom: none, FFTW_ESTIMATE plans). bench_cold plans with FFTW_ESTIMATE.
@@ -42,10 +47,13 @@ fig4_once() {
   rm -rf "$dir"
 }
 
-# One bench_cold process (it repeats the solve itself): "wall cpu" of its median solve.
+# One bench_cold process (it repeats the solve itself): "wall cpu" of its median solve; the wall time of
+# the FFT pair it needs (its floor) is kept in $work/pair_N.T.
 solver_once() {
-  "$build/bench_cold" --n "$1" --threads "$2" --repeats 1 |
-    sed -n 's/.*wall \([0-9.]*\) s, CPU \([0-9.]*\) s.*/\1 \2/p'
+  local out
+  out=$("$build/bench_cold" --n "$1" --threads "$2" --repeats 1)
+  sed -n 's/.*FFT pair of the padded window.*: wall \([0-9.]*\) ms.*/\1/p' <<<"$out" >>"$work/pair_$1.$2"
+  sed -n 's/.*wall \([0-9.]*\) s, CPU \([0-9.]*\) s.*/\1 \2/p' <<<"$out"
 }
 
 run_pair() { # what, command (called as: command THREADS)
@@ -53,16 +61,22 @@ run_pair() { # what, command (called as: command THREADS)
   for r in $(seq "$repeats"); do
     for t in 1 2; do $cmd "$t" >>"$work/$what.$t"; done
   done
-  local w1 c1 w2 c2
+  local w1 c1 w2 c2 m1 m2
   w1=$(cut -d' ' -f1 "$work/$what.1" | median); c1=$(cut -d' ' -f2 "$work/$what.1" | median)
   w2=$(cut -d' ' -f1 "$work/$what.2" | median); c2=$(cut -d' ' -f2 "$work/$what.2" | median)
-  echo "$what,1,$repeats,$w1,$c1,-"
-  echo "$what,2,$repeats,$w2,$c2,$(awk -v a="$w1" -v b="$w2" 'BEGIN {printf "%.2f", a / b}')"
+  m1=$(cut -d' ' -f1 "$work/$what.1" | sort -g | head -1); m2=$(cut -d' ' -f1 "$work/$what.2" | sort -g | head -1)
+  ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
+  # each repeat's 1-thread run and the 2-thread run right after it saw about the same neighbours
+  local paired
+  paired=$(paste -d' ' <(cut -d' ' -f1 "$work/$what.1") <(cut -d' ' -f1 "$work/$what.2") |
+    awk '{print $1 / $2}' | median)
+  echo "$what,1,$repeats,$w1,$m1,$c1,-,-,-"
+  echo "$what,2,$repeats,$w2,$m2,$c2,$(ratio "$w1" "$w2"),$(ratio "$m1" "$m2"),$(printf %.2f "$paired")"
 }
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%FT%TZ); commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-unset} GOMP_SPINCOUNT=${GOMP_SPINCOUNT:-unset}"
-echo "what,threads,repeats,median_wall_s,median_cpu_s,wall_ratio_1_over_2"
+echo "what,threads,repeats,median_wall_s,min_wall_s,median_cpu_s,median_ratio_1_over_2,min_ratio_1_over_2,paired_ratio_median"
 if [ "$only" != solver ]; then
   fig4_once 1 >/dev/null && fig4_once 2 >/dev/null # fills the wisdom cache
   run_pair fig4 fig4_once
@@ -71,6 +85,8 @@ if [ "$only" != fig4 ]; then
   for n in $sizes; do
     eval "solver_$n() { solver_once $n \"\$1\"; }"
     run_pair "solver_$n" "solver_$n"
+    p1=$(median <"$work/pair_$n.1"); p2=$(median <"$work/pair_$n.2")
+    echo "fft_pair_floor_$n,1-2,$repeats,$p1 ms,$p2 ms,-,$(awk -v a="$p1" -v b="$p2" 'BEGIN {printf "%.2f", a / b}'),-,-"
   done
 fi
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
