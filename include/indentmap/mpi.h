@@ -80,7 +80,9 @@ void im_mpi_convolve(im_mpi_solver *solver, const double *pressure, double *disp
 
 /* Solves one contact problem, as im_solver_solve (same arguments, units and errors), with gap0,
  * pressure (in: warm start, out: solution) and displacement (out) holding this rank's rows.
- * result (may be NULL) holds global values, the same on every rank. Collective. */
+ * result (may be NULL) holds global values, the same on every rank. Collective. The options' stop
+ * flag (im_solver_options.stop) is read each iteration on every rank: set on any rank, it stops
+ * every rank at the same iteration with IM_EINTERRUPTED, pressure holding a valid warm start. */
 int im_mpi_solver_solve(im_mpi_solver *solver, const double *gap0, enum im_control control, double target,
                         double *pressure, double *displacement, im_solve_result *result);
 

@@ -129,7 +129,7 @@ typedef struct im_solver_options {
     /* Cancellation (NULL, the default: none). A flag the caller owns, typically set by a signal
      * handler to the signal's number, that must outlive every solve of the plans made with these
      * options (a plan keeps the pointer). Each solve (im_solver_solve, the cascade's coarse solves,
-     * im_indentation_step, im_flat_contact_solve) reads it once per iteration and, once non-zero,
+     * im_indentation_step, im_flat_contact_solve, im_mpi_solver_solve) reads it once per iteration and, once non-zero,
      * stops within one iteration with IM_EINTERRUPTED ("contact solve: interrupted by signal N
      * after K iterations"): pressure and displacement then hold the last iterate (p >= 0, a valid
      * warm start) and the plan stays usable, so the same solve run again with the flag cleared

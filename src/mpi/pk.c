@@ -39,6 +39,15 @@ static double global_max(const im_mpi_solver *s, double mine)
     return all;
 }
 
+/* The caller's stop flag as any rank saw it (mpirun forwards a signal to every rank, not at the same
+ * instant), so that every rank stops at the same iteration: the signal's number, 0 to go on. The
+ * options are the same on every rank, so either all ranks have a flag to read or none has. */
+static int stop_signal(const im_mpi_solver *s)
+{
+    const volatile sig_atomic_t *stop = s->options.stop;
+    return stop ? (int)global_max(s, (double)*stop) : 0;
+}
+
 /* Row-ordered total of v over I_c = {p > 0} (over all patches when p is NULL); *count: |I_c|. */
 static double contact_total(const pk_run *r, const double *a, const double *b, long *count)
 {
@@ -283,7 +292,7 @@ static void summarise(const pk_run *r, const gap_stats *st, im_solve_result *out
 }
 
 /* The CG loop proper (as src/solver/pk.c, with every changed patch added back by an exact
- * convolution); returns IM_OK, IM_ENOCONV or IM_ENUMERIC, the same on every rank. */
+ * convolution); returns IM_OK, IM_ENOCONV, IM_ENUMERIC or IM_EINTERRUPTED, the same on every rank. */
 static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
 {
     const im_solver_options *o = &r->s->options;
@@ -305,6 +314,10 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
+        const int signal = stop_signal(r->s);
+        if (signal) /* p is still a valid (warm) start on every rank */
+            return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations", signal,
+                           res->iterations);
         if (st.contact == 0) { /* everything was clipped: start again from the local guess */
             cold_start(r);
             convolve(r, r->p, r->u);

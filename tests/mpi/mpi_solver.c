@@ -12,6 +12,7 @@
 #include "indentmap/surface.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -199,6 +200,48 @@ static void run_scenario(const scenario *c)
     im_field_free(surface);
 }
 
+/* The stop flag, set on the last rank only, stops every rank at the same iteration with
+ * IM_EINTERRUPTED; cleared, the same solve goes on from the pressure it left to the serial answer. */
+static void check_stop(const scenario *c)
+{
+    im_field *surface = rough_surface(c);
+    im_step_result serial;
+    im_field *force;
+    serial_solution(c, surface, &serial, &force);
+    int size;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    static volatile sig_atomic_t stop;
+    stop = rank == size - 1 ? SIGINT : 0;
+    im_solver_options o = options();
+    o.stop = &stop;
+    im_mpi_solver *solver;
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "distributed plan");
+    int y0, rows;
+    im_mpi_solver_rows(solver, &y0, &rows);
+    size_t n = (size_t)rows * c->nx + 1;
+    double *gap0 = malloc(sizeof(double) * n), *pressure = calloc(n, sizeof(double));
+    double *displacement = malloc(sizeof(double) * n);
+    check_status(im_mpi_undeformed_gap(solver, surface->data + (size_t)y0 * c->nx, &c->punch, gap0),
+                 "distributed gap");
+    im_solve_result result;
+    int status = im_mpi_solver_solve(solver, gap0, c->control, target_of(c), pressure, displacement, &result);
+    char detail[256];
+    snprintf(detail, sizeof detail, "%s: status %d (%s), %d iterations", c->name, status, im_last_error(),
+             result.iterations);
+    check(status == IM_EINTERRUPTED && result.iterations == 0 && strstr(im_last_error(), "signal 2"),
+          "a stop flag on one rank stops every rank", detail);
+    stop = 0;
+    check_status(im_mpi_solver_solve(solver, gap0, c->control, target_of(c), pressure, displacement, &result),
+                 "the solve resumed after the stop");
+    compare(c, &serial, force, &result, pressure, y0, rows);
+    im_mpi_solver_free(solver);
+    free(gap0);
+    free(pressure);
+    free(displacement);
+    im_field_free(force);
+    im_field_free(surface);
+}
+
 /* MPI-IO .npy: rows written by the ranks read back by the serial reader, and rows of a file the
  * serial writer made read by the ranks, both to the bit. */
 static void check_npy(const char *folder)
@@ -248,6 +291,7 @@ int main(int argc, char **argv)
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k)
         run_scenario(&cases[k]);
+    check_stop(&cases[1]);
     check_npy(argc > 1 ? argv[1] : ".");
     im_mpi_cleanup();
     MPI_Finalize();
