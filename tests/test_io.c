@@ -83,6 +83,32 @@ static void text_and_gsf_round_trips(void **state)
     im_field_free(g);
 }
 
+/* A NaN or Inf height is refused by every surface writer before anything is written (the text writer
+ * wrote "inf", which its own reader refused): the message names the file and the point. */
+static void non_finite_heights_are_not_written(void **state)
+{
+    (void)state;
+    const char *names[] = {"nonfinite.txt", "nonfinite.gsf", "nonfinite.sdf", "nonfinite.nc", "nonfinite.x3p",
+                           "nonfinite.npy"};
+    im_field *f = sample_field(5, 4);
+    strcpy(f->unit, "um");
+    for (int k = 0; k < 3; ++k) {
+        f->data[1 * 5 + 2] = k == 0 ? INFINITY : k == 1 ? -INFINITY : NAN;
+        for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
+            const char *path = test_path(names[i]);
+            assert_int_equal(im_surface_write(path, f), IM_EINVAL);
+            assert_non_null(strstr(im_last_error(), path));
+            assert_non_null(strstr(im_last_error(), "(x=2, y=1)"));
+            assert_int_equal(access(path, F_OK), -1);
+        }
+    }
+    assert_int_equal(im_text_write(test_path("direct.txt"), f), IM_EINVAL); /* each writer, not only the dispatcher */
+    assert_int_equal(im_x3p_write(test_path("direct.x3p"), f), IM_EINVAL);
+    f->data[1 * 5 + 2] = 1.0;
+    assert_int_equal(im_surface_write(test_path("good.txt"), f), IM_OK);
+    im_field_free(f);
+}
+
 /* Builds a .npy file from a header dictionary and a payload of `values` doubles, each `value`. */
 static void write_npy(const char *path, const char *dict, size_t values, double value)
 {
@@ -891,6 +917,7 @@ int main(void)
         cmocka_unit_test(outputs_never_replace_inputs),
         cmocka_unit_test(a_file_of_another_kind_is_not_replaced),
         cmocka_unit_test(paths_that_are_not_utf8_are_escaped),
+        cmocka_unit_test(non_finite_heights_are_not_written),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -296,7 +296,8 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
 /* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
 /* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, .x3p, else a text
- * matrix. */
+ * matrix. A NaN or Inf height is refused before anything is written (IM_EINVAL naming the path and
+ * the point), here and by each format's writer: no reader takes such a file back. */
 int im_surface_write(const char *path, const im_field *field);
 
 /* ---- PNG ---- */

@@ -14,6 +14,9 @@ static const char GSF_MAGIC[] = "Gwyddion Simple Field 1.0\n";
 
 int im_gsf_write(const char *path, const im_field *field)
 {
+    int writable = io_check_heights_writable(field, path);
+    if (writable != IM_OK)
+        return writable;
     char header[512];
     int length = snprintf(header, sizeof header, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n",
                           GSF_MAGIC, field->nx, field->ny, field->nx * field->delta,

@@ -6,6 +6,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/payload.h"
 #include "io/readers.h"
 
 #include <errno.h>
@@ -437,6 +438,9 @@ static int write_dataset(int ncid, const im_field *field)
 
 int im_netcdf_write(const char *path, const im_field *field)
 {
+    int writable = io_check_heights_writable(field, path);
+    if (writable != IM_OK)
+        return writable;
     int ncid; /* an initial size of 0 lets the buffer grow to the dataset's exact size (no padding) */
     int error = nc_create_mem(path, NC_64BIT_OFFSET, 0, &ncid);
     if (error != NC_NOERR)

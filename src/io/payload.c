@@ -44,3 +44,13 @@ int io_check_finite(const im_field *field, const char *path)
     snprintf(message, sizeof message, "%s", im_last_error());
     return im_fail(IM_EFORMAT, "%s (NaN and Inf are not heights)", message);
 }
+
+int io_check_heights_writable(const im_field *field, const char *path)
+{
+    if (im_field_check_finite(field, path) == IM_OK)
+        return IM_OK;
+    char message[4400];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    return im_fail(IM_EINVAL, "%s; not written: a surface file holds finite heights only (no reader would "
+                   "take it back)", message);
+}

@@ -5,6 +5,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/payload.h"
 #include "io/readers.h"
 
 #include <errno.h>
@@ -264,6 +265,9 @@ static void store_double(uint8_t *p, double value)
 
 int im_sdf_write(const char *path, const im_field *field)
 {
+    int writable = io_check_heights_writable(field, path);
+    if (writable != IM_OK)
+        return writable;
     double metres = im_length_unit_metres(field->unit, NULL);
     if (metres == 0.0)
         return im_fail(IM_EINVAL, "%s: an .sdf states metres: the surface needs a length unit (it has '%s')", path,

@@ -1,5 +1,7 @@
 #include "indentmap/io.h"
 
+#include "indentmap/status.h"
+#include "io/payload.h"
 #include "io/readers.h"
 
 #include <string.h>
@@ -29,8 +31,10 @@ int im_surface_read(const char *path, im_field **out)
 
 int im_surface_write(const char *path, const im_field *field)
 {
-    if (has_extension(path, ".npy"))
-        return im_npy_write(path, field, IM_NPY_FLOAT64);
+    if (has_extension(path, ".npy")) { /* .npy holds any field; as a surface it must be one */
+        int writable = io_check_heights_writable(field, path);
+        return writable == IM_OK ? im_npy_write(path, field, IM_NPY_FLOAT64) : writable;
+    }
     if (has_extension(path, ".gsf"))
         return im_gsf_write(path, field);
     if (has_extension(path, ".sdf"))

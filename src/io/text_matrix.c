@@ -1,6 +1,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/payload.h"
 #include "io/readers.h"
 
 #include <errno.h>
@@ -10,6 +11,9 @@
 
 int im_text_write(const char *path, const im_field *field)
 {
+    int writable = io_check_heights_writable(field, path);
+    if (writable != IM_OK)
+        return writable;
     im_atomic_file file;
     int status = im_atomic_open(&file, path);
     if (status != IM_OK)

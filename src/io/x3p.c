@@ -6,6 +6,7 @@
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
+#include "io/payload.h"
 #include "io/readers.h"
 
 #include <errno.h>
@@ -330,6 +331,9 @@ static int add_buffer(zip_t *archive, const char *name, void *bytes, size_t size
  * to a temporary file beside path and renames it into place on zip_close, so it is atomic. */
 int im_x3p_write(const char *path, const im_field *field)
 {
+    int writable = io_check_heights_writable(field, path);
+    if (writable != IM_OK)
+        return writable;
     double metres = im_length_unit_metres(field->unit, NULL);
     if (metres == 0.0)
         return im_fail(IM_EINVAL, "%s: an .x3p states metres: the surface needs a length unit (it has '%s')", path,
