@@ -19,7 +19,18 @@ from .surface import Topography, generate, histogram, prepare, psd, read, statis
 
 __version__ = _core.library_version
 
+
+def memory_limit(limit=None):
+    """The cap, in bytes, on the memory the library lets a run use (0: none, the machine's memory).
+
+    With ``limit`` (bytes; 0 removes the cap) sets it first, for the whole process, like the ``indentmap``
+    program's ``IM_MEMORY_LIMIT_MIB``: work that would need more than the cap (or than the machine has)
+    is refused up front with ``OutOfMemory`` naming what and how much, instead of starting to swap.
+    """
+    return _core.memory_limit() if limit is None else _core.memory_limit(int(limit))
+
+
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography",
-           "Unsupported", "contact_map", "generate", "height_map", "histogram", "indent", "prepare", "psd", "read", "renderer",
+           "Unsupported", "contact_map", "generate", "height_map", "histogram", "indent", "memory_limit", "prepare", "psd", "read", "renderer",
            "run_scene", "statistics", "theory", "write"]

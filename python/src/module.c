@@ -2,6 +2,7 @@
 #define IM_PY_DEFINES_NUMPY_API
 #include "core.h"
 
+#include "indentmap/field.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/version.h"
@@ -71,6 +72,27 @@ static int add_methods(PyObject *module, PyMethodDef *methods)
     return PyModule_AddFunctions(module, methods);
 }
 
+/* memory_limit([bytes]) -> the cap in bytes (0: none); with an argument, sets it first (0 removes it). */
+static PyObject *memory_limit(PyObject *self, PyObject *args)
+{
+    (void)self;
+    long long bytes = -1;
+    if (!PyArg_ParseTuple(args, "|L", &bytes))
+        return NULL;
+    if (PyTuple_GET_SIZE(args) == 1) {
+        if (bytes < 0) {
+            PyErr_Format(PyExc_ValueError, "memory limit %lld bytes: expected >= 0 (0: none)", bytes);
+            return NULL;
+        }
+        im_memory_set_limit((size_t)bytes);
+    }
+    return PyLong_FromSize_t(im_memory_limit());
+}
+
+static PyMethodDef core_methods[] = {
+    {"memory_limit", memory_limit, METH_VARARGS, "memory_limit([bytes]) -> the cap in bytes (0: none)"},
+    {NULL, NULL, 0, NULL}};
+
 static struct PyModuleDef module_definition = {
     PyModuleDef_HEAD_INIT, "indentmap._core",
     "The C extension over libindentmap; use the indentmap package instead.", -1, NULL,
@@ -82,7 +104,8 @@ PyMODINIT_FUNC PyInit__core(void)
     PyObject *module = PyModule_Create(&module_definition);
     if (!module)
         return NULL;
-    if (py_interrupt_init() < 0 || add_errors(module) < 0 || add_methods(module, py_surface_methods) < 0 ||
+    if (py_interrupt_init() < 0 || add_errors(module) < 0 || add_methods(module, core_methods) < 0 ||
+        add_methods(module, py_surface_methods) < 0 ||
         add_methods(module, py_theory_methods) < 0 || add_methods(module, py_render_methods) < 0 ||
         add_methods(module, py_scene_methods) < 0 || PyType_Ready(&py_indentation_type) < 0 ||
         PyModule_AddObjectRef(module, "Indentation", (PyObject *)&py_indentation_type) < 0 ||

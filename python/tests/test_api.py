@@ -190,3 +190,17 @@ def test_reinitialising_keeps_a_consistent_object():
     assert pressure.shape == (32, 32) and result["contact_patches"] >= 1
     with pytest.raises(ValueError, match="columns"):
         im.Figure([pressure], columns=0).save("never.png")
+
+
+def test_memory_limit_refuses_work_up_front():
+    assert im.memory_limit() == 0
+    try:
+        assert im.memory_limit(1 << 20) == 1 << 20
+        with pytest.raises(im.OutOfMemory, match=r"solver plan 512 x 512 needs about .* MiB"):
+            im.Plan(512, delta=1.0)
+    finally:
+        im.memory_limit(0)
+    assert im.memory_limit() == 0
+    im.Plan(512, delta=1.0)  # the same plan fits without the cap
+    with pytest.raises(ValueError, match="expected >= 0"):
+        im.memory_limit(-1)
