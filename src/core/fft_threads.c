@@ -16,9 +16,17 @@ static void init_fftw_threads(void)
     fftwf_init_threads();
 }
 
+/* The threads a region started here would have: omp_get_max_threads() still says the team size inside
+ * a parallel region, where a nested region (OpenMP's default: one active level) runs on one thread. */
+static int threads_here(void)
+{
+    return omp_get_active_level() >= omp_get_max_active_levels() ? 1 : omp_get_max_threads();
+}
+
 void fft_prepare_planner(void)
 {
     pthread_once(&fftw_threads_once, init_fftw_threads);
-    fftw_plan_with_nthreads(omp_get_max_threads());
-    fftwf_plan_with_nthreads(omp_get_max_threads());
+    const int threads = threads_here();
+    fftw_plan_with_nthreads(threads);
+    fftwf_plan_with_nthreads(threads);
 }
