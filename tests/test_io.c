@@ -109,6 +109,25 @@ static void non_finite_heights_are_not_written(void **state)
     im_field_free(f);
 }
 
+/* A Gwyddion text export stating only its Height (rows x spacing) states square pixels of Height / rows
+ * in its unit, as one stating only its Width does (it was read in units of delta, the extent ignored). */
+static void a_height_alone_states_the_spacing(void **state)
+{
+    (void)state;
+    const char *only_height = "# Height: 2 um\n1 2 3\n4 5 6\n", *only_width = "# Width: 3 um\n1 2 3\n4 5 6\n";
+    const char *texts[] = {only_height, only_width};
+    for (int k = 0; k < 2; ++k) {
+        test_write_bytes(test_path("extent.txt"), texts[k], strlen(texts[k]));
+        im_field *f = NULL;
+        assert_int_equal(im_text_read(test_path("extent.txt"), &f), IM_OK);
+        assert_int_equal(f->nx, 3);
+        assert_int_equal(f->ny, 2);
+        assert_close(f->delta, 1.0, 1e-15);
+        assert_string_equal(f->unit, "\u00b5m");
+        im_field_free(f);
+    }
+}
+
 /* Builds a .npy file from a header dictionary and a payload of `values` doubles, each `value`. */
 static void write_npy(const char *path, const char *dict, size_t values, double value)
 {
@@ -918,6 +937,7 @@ int main(void)
         cmocka_unit_test(a_file_of_another_kind_is_not_replaced),
         cmocka_unit_test(paths_that_are_not_utf8_are_escaped),
         cmocka_unit_test(non_finite_heights_are_not_written),
+        cmocka_unit_test(a_height_alone_states_the_spacing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -240,10 +240,11 @@ static int stated_units(const char *path, const text_header *header, long column
     if (header->width > 0.0 && header->height > 0.0 && strcmp(header->width_unit, header->height_unit) != 0)
         return im_fail(IM_EFORMAT, "%s: Width is in '%s' but Height in '%s': expected one lateral unit", path,
                        header->width_unit, header->height_unit);
-    if (header->width > 0.0) {
-        stated->units.delta_x = header->width / (double)columns;
+    if (header->width > 0.0 || header->height > 0.0) { /* one extent alone states square pixels */
         stated->units.delta_y = header->height > 0.0 ? header->height / (double)rows : 0.0;
-        memcpy(stated->units.lateral, header->width_unit, sizeof stated->units.lateral);
+        stated->units.delta_x = header->width > 0.0 ? header->width / (double)columns : stated->units.delta_y;
+        memcpy(stated->units.lateral, header->width > 0.0 ? header->width_unit : header->height_unit,
+               sizeof stated->units.lateral);
     }
     memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
     return IM_OK;
