@@ -194,8 +194,8 @@ int im_npy_read(const char *path, im_field **out);
 /* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or
  * commas; lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and
  * "# Height:" headers, when present, set the spacing (Width / columns, Height / rows; one alone states
- * square pixels) and lateral
- * unit, and "# Value units: m" the unit of the heights (converted as im_surface_read_with says). A header line
+ * square pixels) and lateral unit, and "# Value units: m" the unit of the heights (converted as
+ * im_surface_read_with says). A header line
  * stating the grid, "# ... C columns x R rows ..." (as written here), must match the data: a file
  * with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
  * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the
