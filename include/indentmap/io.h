@@ -191,15 +191,14 @@ int im_field_sidecar_write(const char *path, const im_field *field, const char *
  * 2^53 rounded); im_surface_read_with records the conversion in its info. */
 int im_npy_read(const char *path, im_field **out);
 
-/* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or
- * commas; lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and
- * "# Height:" headers, when present, set the spacing (Width / columns, Height / rows; one alone states
- * square pixels) and lateral unit, and "# Value units: m" the unit of the heights (converted as
- * im_surface_read_with says). A header line
- * stating the grid, "# ... C columns x R rows ..." (as written here), must match the data: a file
- * with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
- * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the
- * data. Writing uses %.17g, so a round trip is exact. */
+/* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or commas;
+ * lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and "# Height:" headers, when
+ * present, set the spacing (Width / columns, Height / rows; one alone states square pixels) and lateral
+ * unit, and "# Value units: m" the unit of the heights (converted as im_surface_read_with says). A
+ * header line stating the grid, "# ... C columns x R rows ..." (as written here), must match the data:
+ * a file with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
+ * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the data.
+ * Writing uses %.17g, so a round trip is exact. */
 int im_text_write(const char *path, const im_field *field);
 int im_text_read(const char *path, im_field **out);
 

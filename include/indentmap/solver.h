@@ -126,13 +126,13 @@ typedef struct im_solver_options {
                                "Cascade start" above); 0: from the local (Winkler) guess */
     int precondition;       /* 1 (default): preconditioned CG steps on the contact set (see
                                "Preconditioning" above); 0: plain Polonsky-Keer */
-    /* Cancellation (NULL, the default: none). A flag the caller owns, typically set by a signal
-     * handler to the signal's number, that must outlive every solve of the plans made with these
-     * options (a plan keeps the pointer). Each solve (im_solver_solve, the cascade's coarse solves,
-     * im_indentation_step, im_flat_contact_solve, im_mpi_solver_solve) reads it once per iteration and, once non-zero,
-     * stops within one iteration with IM_EINTERRUPTED ("contact solve: interrupted by signal N
-     * after K iterations"): pressure and displacement then hold the last iterate (p >= 0, a valid
-     * warm start) and the plan stays usable, so the same solve run again with the flag cleared
+    /* Cancellation (NULL, the default: none). A flag the caller owns, typically set by a signal handler
+     * to the signal's number, that must outlive every solve of the plans made with these options (a
+     * plan keeps the pointer). Each solve (im_solver_solve, the cascade's coarse solves,
+     * im_indentation_step, im_flat_contact_solve, im_mpi_solver_solve) reads it once per iteration and,
+     * once non-zero, stops within one iteration with IM_EINTERRUPTED ("contact solve: interrupted by
+     * signal N after K iterations"): pressure and displacement then hold the last iterate (p >= 0, a
+     * valid warm start) and the plan stays usable, so the same solve run again with the flag cleared
      * gives the uninterrupted answer. Not in the solve's key (it does not change a result). */
     const volatile sig_atomic_t *stop;
 } im_solver_options;

@@ -314,10 +314,10 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
-        const int signal = stop_signal(r->s);
-        if (signal) /* p is still a valid (warm) start on every rank */
-            return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations", signal,
-                           res->iterations);
+        const int stopped_by = stop_signal(r->s);
+        if (stopped_by) /* p is still a valid (warm) start on every rank */
+            return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations",
+                           stopped_by, res->iterations);
         if (st.contact == 0) { /* everything was clipped: start again from the local guess */
             cold_start(r);
             convolve(r, r->p, r->u);
