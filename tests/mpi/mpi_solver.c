@@ -158,6 +158,35 @@ static double check_maps(const scenario *c, const im_field *force, const im_fiel
     return total;
 }
 
+/* One distributed problem on the serial surface's rows (so that both solvers solve the same problem
+ * to the bit): the solver, this rank's rows, its undeformed gap, a zero pressure. */
+typedef struct distributed_run {
+    im_mpi_solver *solver;
+    int y0, rows;
+    double *gap0, *pressure, *displacement;
+} distributed_run;
+
+static void distributed_run_create(const scenario *c, const im_field *surface, const im_solver_options *o,
+                                   distributed_run *d)
+{
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, o, &d->solver), "distributed plan");
+    im_mpi_solver_rows(d->solver, &d->y0, &d->rows);
+    size_t n = (size_t)d->rows * c->nx + 1;
+    d->gap0 = malloc(sizeof(double) * n);
+    d->pressure = calloc(n, sizeof(double));
+    d->displacement = malloc(sizeof(double) * n);
+    check_status(im_mpi_undeformed_gap(d->solver, surface->data + (size_t)d->y0 * c->nx, &c->punch, d->gap0),
+                 "distributed gap");
+}
+
+static void distributed_run_free(distributed_run *d)
+{
+    im_mpi_solver_free(d->solver);
+    free(d->gap0);
+    free(d->pressure);
+    free(d->displacement);
+}
+
 static void run_scenario(const scenario *c)
 {
     im_field *surface = rough_surface(c);
@@ -166,36 +195,26 @@ static void run_scenario(const scenario *c)
     serial_solution(c, surface, &serial, &force);
 
     im_solver_options o = options();
-    im_mpi_solver *solver;
-    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "distributed plan");
-    int y0, rows;
-    im_mpi_solver_rows(solver, &y0, &rows);
-    size_t n = (size_t)rows * c->nx + 1;
-    double *heights = malloc(sizeof(double) * n), *gap0 = malloc(sizeof(double) * n);
-    double *pressure = calloc(n, sizeof(double)), *displacement = malloc(sizeof(double) * n);
-    check_synthesis(c, surface, y0, rows, heights);
-    /* the solver on the serial surface's rows, so that both solve the same problem to the bit */
-    memcpy(heights, surface->data + (size_t)y0 * c->nx, sizeof(double) * (n - 1));
-    check_status(im_mpi_undeformed_gap(solver, heights, &c->punch, gap0), "distributed gap");
+    distributed_run d;
+    distributed_run_create(c, surface, &o, &d);
+    double *heights = malloc(sizeof(double) * ((size_t)d.rows * c->nx + 1));
+    check_synthesis(c, surface, d.y0, d.rows, heights);
+    free(heights);
     im_solve_result result;
-    check_status(im_mpi_solver_solve(solver, gap0, c->control, target_of(c), pressure, displacement, &result),
+    check_status(im_mpi_solver_solve(d.solver, d.gap0, c->control, target_of(c), d.pressure, d.displacement, &result),
                  "distributed solve");
-    check_status(im_mpi_check_edge(solver, pressure), "distributed edge check");
-    compare(c, &serial, force, &result, pressure, y0, rows);
+    check_status(im_mpi_check_edge(d.solver, d.pressure), "distributed edge check");
+    compare(c, &serial, force, &result, d.pressure, d.y0, d.rows);
     im_field *whole, *coarse;
-    check_status(im_mpi_gather_map(solver, pressure, 1, &whole), "whole map");
-    check_status(im_mpi_gather_map(solver, pressure, 5, &coarse), "5 x 5 map");
+    check_status(im_mpi_gather_map(d.solver, d.pressure, 1, &whole), "whole map");
+    check_status(im_mpi_gather_map(d.solver, d.pressure, 5, &coarse), "5 x 5 map");
     check((rank == 0) == (whole != NULL && coarse != NULL), "maps on rank 0 only", c->name);
     if (rank == 0)
         printf("%s load %a contact %ld map %a iterations %d serial-iterations %d\n", c->name, result.load,
                result.contact_patches, check_maps(c, force, whole, coarse), result.iterations, serial.iterations);
     im_field_free(whole);
     im_field_free(coarse);
-    im_mpi_solver_free(solver);
-    free(heights);
-    free(gap0);
-    free(pressure);
-    free(displacement);
+    distributed_run_free(&d);
     im_field_free(force);
     im_field_free(surface);
 }
@@ -214,30 +233,20 @@ static void check_stop(const scenario *c)
     stop = rank == size - 1 ? SIGINT : 0;
     im_solver_options o = options();
     o.stop = &stop;
-    im_mpi_solver *solver;
-    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "distributed plan");
-    int y0, rows;
-    im_mpi_solver_rows(solver, &y0, &rows);
-    size_t n = (size_t)rows * c->nx + 1;
-    double *gap0 = malloc(sizeof(double) * n), *pressure = calloc(n, sizeof(double));
-    double *displacement = malloc(sizeof(double) * n);
-    check_status(im_mpi_undeformed_gap(solver, surface->data + (size_t)y0 * c->nx, &c->punch, gap0),
-                 "distributed gap");
+    distributed_run d;
+    distributed_run_create(c, surface, &o, &d);
     im_solve_result result;
-    int status = im_mpi_solver_solve(solver, gap0, c->control, target_of(c), pressure, displacement, &result);
+    int status = im_mpi_solver_solve(d.solver, d.gap0, c->control, target_of(c), d.pressure, d.displacement, &result);
     char detail[256];
     snprintf(detail, sizeof detail, "%s: status %d (%s), %d iterations", c->name, status, im_last_error(),
              result.iterations);
     check(status == IM_EINTERRUPTED && result.iterations == 0 && strstr(im_last_error(), "signal 2"),
           "a stop flag on one rank stops every rank", detail);
     stop = 0;
-    check_status(im_mpi_solver_solve(solver, gap0, c->control, target_of(c), pressure, displacement, &result),
+    check_status(im_mpi_solver_solve(d.solver, d.gap0, c->control, target_of(c), d.pressure, d.displacement, &result),
                  "the solve resumed after the stop");
-    compare(c, &serial, force, &result, pressure, y0, rows);
-    im_mpi_solver_free(solver);
-    free(gap0);
-    free(pressure);
-    free(displacement);
+    compare(c, &serial, force, &result, d.pressure, d.y0, d.rows);
+    distributed_run_free(&d);
     im_field_free(force);
     im_field_free(surface);
 }
