@@ -15,7 +15,7 @@
 #   1.05x its 1-thread run's CPU time: those most likely had two cores to themselves; '-' if none)
 #
 # On the project's 2-core VM bench_cores (a register-only kernel with no serial part) gains 1.0-2.0x from
-# two threads within one minute, and a 512^2 solve's paired ratio is 1.92-2.0 / CPU ratio in every repeat
+# two threads within one minute, and a 512^2 solve's paired ratio is 1.86-1.99 / CPU ratio in every repeat
 # (0.85x at a CPU ratio of 2.27, 2.12x at 0.94): only the estimate and the uncontended repeats say what
 # the program does on a quiet machine. Each repeat also prints a comment line with its times.
 # fft_pair_floor_N: the median wall time of the FFT pair each solve needs (bench_cold's floor) at 1 and 2
