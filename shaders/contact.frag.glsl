@@ -1,10 +1,7 @@
-#version 330 core
 // Contact map: one texel per patch, integer upscaling, boundary frame, anti-aliased (or aliased) circle.
-// Patch codes (computed on the CPU by im_colormap_index): 0..255 table entry, 256 under,
-// 257 over, 258 bad (NaN), 259 not in contact.
+// After shaders/patch_colour.glsl; code 259: not in contact, the background.
 uniform usampler2D codes;      // nx x ny, R16UI
-uniform sampler2D table;       // 256 x 1, RGBA8: the colour map's exact table
-uniform vec3 under_colour, over_colour, bad_colour, background, line_colour;
+uniform vec3 background, line_colour;
 uniform ivec2 grid;            // nx, ny
 uniform int scale;             // pixels per patch
 uniform int border;            // width of the boundary frame in pixels
@@ -12,19 +9,6 @@ uniform vec3 circle;           // centre (pixels from the data's lower-left corn
 uniform float circle_width;    // pixels
 uniform int circle_aliased;    // 1: a pixel at least half covered by the line takes its colour, others none
 out vec4 colour;
-
-vec3 patch_colour(uint code)
-{
-    if (code < 256u)
-        return texelFetch(table, ivec2(int(code), 0), 0).rgb;
-    if (code == 256u)
-        return under_colour;
-    if (code == 257u)
-        return over_colour;
-    if (code == 258u)
-        return bad_colour;
-    return background;
-}
 
 // Fraction of a pixel (box filter across the line) covered by the circle's line: the overlap of
 // [d - 1/2, d + 1/2] with [-w/2, w/2], d the distance from the pixel centre to the circle.
@@ -44,7 +28,7 @@ void main()
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, grid * scale)))
         c = line_colour;
     else
-        c = patch_colour(texelFetch(codes, pixel / scale, 0).r);
+        c = patch_colour(texelFetch(codes, pixel / scale, 0).r, background);
     float coverage = circle_coverage(gl_FragCoord.xy - vec2(border));
     if (circle_aliased != 0)
         coverage = step(0.5, coverage);

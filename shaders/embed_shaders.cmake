@@ -1,4 +1,4 @@
-# Turns each shaders/NAME.STAGE.glsl into `const char im_shader_NAME_STAGE[]` (NUL-terminated) in one
+# Turns each shaders/NAME[.STAGE].glsl into `const char im_shader_NAME[_STAGE][]` (NUL-terminated) in one
 # generated C file. Run as: cmake -DOUTPUT=file.c -DSHADER_DIR=dir -P embed_shaders.cmake
 # The shaders must be ASCII (the bytes initialise a char array).
 file(GLOB SOURCES ${SHADER_DIR}/*.glsl)

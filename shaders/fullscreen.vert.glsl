@@ -1,4 +1,3 @@
-#version 330 core
 // One triangle that covers the whole viewport; the fragment shaders work from gl_FragCoord.
 void main()
 {

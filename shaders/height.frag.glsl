@@ -1,27 +1,14 @@
-#version 330 core
 // Height field: colour map + Lambert hill-shading from per-patch normals, optional contact outline.
-// Codes as in contact.frag.glsl (259 is not used here).
+// After shaders/patch_colour.glsl (code 259 is not used here).
 uniform usampler2D codes;      // nx x ny, R16UI
 uniform sampler2D heights;     // nx x ny, R32F, heights in units of the patch side
 uniform usampler2D contact;    // nx x ny, R8UI, 1 in contact (all 0 without a contact field)
-uniform sampler2D table;       // 256 x 1, RGBA8
-uniform vec3 under_colour, over_colour, bad_colour, line_colour, outline_colour;
+uniform vec3 line_colour, outline_colour;
 uniform ivec2 grid;
 uniform int scale, border, outline_width;
 uniform vec3 light;            // unit vector towards the light
 uniform float shading, exaggeration;
 out vec4 colour;
-
-vec3 patch_colour(uint code)
-{
-    if (code < 256u)
-        return texelFetch(table, ivec2(int(code), 0), 0).rgb;
-    if (code == 256u)
-        return under_colour;
-    if (code == 257u)
-        return over_colour;
-    return bad_colour;
-}
 
 // Height of a neighbour, or the patch's own height outside the grid or where it is NaN.
 float height_at(ivec2 cell, float own)
@@ -73,7 +60,7 @@ void main()
     }
     ivec2 cell = pixel / scale;
     uint code = texelFetch(codes, cell, 0).r;
-    vec3 c = patch_colour(code);
+    vec3 c = patch_colour(code, bad_colour);
     if (code != 258u)
         c = clamp(c * mix(1.0, hill_shade(cell), shading), 0.0, 1.0);
     if (on_outline(cell, pixel - cell * scale))

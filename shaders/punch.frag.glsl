@@ -1,4 +1,3 @@
-#version 330 core
 // The punch: diffuse plus a specular highlight, the normal turned towards the eye; optionally its
 // half towards the camera cut away.
 uniform vec3 punch_colour, light, eye;

@@ -1,4 +1,3 @@
-#version 330 core
 // The punch: a polyline profile (r, z) in world units revolved around the vertical axis, six
 // vertices per quad between two profile points and two of `segments` angles. Normals are smooth
 // around the axis and constant along each profile segment (exact for a cone).

@@ -1,28 +1,13 @@
-#version 330 core
 // The deformed surface: each fragment takes the colour code and the normal of the patch it lies
-// in. Codes as in contact.frag.glsl (259: not in contact, the surface colour).
+// in. After shaders/patch_colour.glsl; code 259: not in contact, the surface colour.
 uniform usampler2D codes;      // nx x ny, R16UI
 uniform sampler2D heights;     // nx x ny, R32F, heights / delta
-uniform sampler2D table;       // 256 x 1, RGBA8
-uniform vec3 under_colour, over_colour, bad_colour, surface_colour;
+uniform vec3 surface_colour;
 uniform ivec2 grid;
 uniform float exaggeration, shading;
 uniform vec3 light;            // unit vector towards the light
 in vec3 world;
 out vec4 colour;
-
-vec3 patch_colour(uint code)
-{
-    if (code < 256u)
-        return texelFetch(table, ivec2(int(code), 0), 0).rgb;
-    if (code == 256u)
-        return under_colour;
-    if (code == 257u)
-        return over_colour;
-    if (code == 258u)
-        return bad_colour;
-    return surface_colour;
-}
 
 float height_at(ivec2 cell)
 {
@@ -43,7 +28,7 @@ vec3 patch_normal(ivec2 cell)
 void main()
 {
     ivec2 cell = clamp(ivec2(floor(world.xy)), ivec2(0), grid - 1);
-    vec3 c = patch_colour(texelFetch(codes, cell, 0).r);
+    vec3 c = patch_colour(texelFetch(codes, cell, 0).r, surface_colour);
     // Lambert's law relative to level ground: a level patch keeps its exact colour.
     float lambert = max(dot(patch_normal(cell), light), 0.0) / light.z;
     colour = vec4(clamp(c * (1.0 + shading * (lambert - 1.0)), 0.0, 1.0), 1.0);

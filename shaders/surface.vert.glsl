@@ -1,4 +1,3 @@
-#version 330 core
 // The deformed surface as a mesh drawn with an index buffer, so that each corner is shaded once:
 // gl_VertexID = b * (cells.x + 1) + a names corner (a, b), which lies at
 // (min(a * stride, nx), min(b * stride, ny)) in patches, at the height (in patches) stored for it

@@ -1,4 +1,3 @@
-#version 330 core
 // The side walls: the wall colour, diffuse light with an ambient part (walls are vertical, so
 // "relative to level ground" would leave them black).
 uniform vec3 wall_colour, light;

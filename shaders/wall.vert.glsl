@@ -1,4 +1,3 @@
-#version 330 core
 // The surface's side walls, from its edge down to a flat base, so that it reads as a solid block:
 // one quad (six vertices) per mesh cell along the four edges, counter-clockwise from the corner
 // (0, 0) seen from above. Corners as in surface.vert.glsl.

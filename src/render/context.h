@@ -58,15 +58,17 @@ void render_teardown(im_render_context *context);
 
 /* ---- shared by the 2-D maps (draw.c) and the 3-D view (view3d.c) ---- */
 
-/* Patch codes sent to the shaders besides the table indices 0..255 (shaders/contact.frag.glsl). */
+/* Patch codes sent to the shaders besides the table indices 0..255 (shaders/patch_colour.glsl). */
 enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259 };
 
 /* The code of a value through the norm: its table index, or under / over / bad. */
 int render_patch_code(const im_colormap *colormap, double value);
 
-/* Compiles and links a program; IM_EUNSUPPORTED naming the shader and quoting its log. */
+/* Compiles and links a program from embedded sources (render/shaders.h), each after the #version
+ * line; the fragment shader also after fragment_prelude (im_shader_patch_colour for those that colour
+ * patches, or NULL). IM_EUNSUPPORTED naming the shader and quoting its log. */
 int render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
-                           const char *fragment_source, const char *name, GLuint *out);
+                        const char *fragment_prelude, const char *fragment_source, const char *name, GLuint *out);
 
 /* A nearest-filtered, edge-clamped 2-D texture bound on texture unit `unit`. */
 GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,

@@ -10,11 +10,15 @@
 
 enum { MAX_PIXELS_PER_PATCH = 64, MAX_BOUNDARY_PX = 64, MAX_IMAGE_SIDE = 32768 };
 
-static int compile_shader(const im_gl *gl, GLenum stage, const char *source, const char *name,
-                          GLuint *out)
+/* Every shader is compiled as GLSL 3.30 core: the #version line is stated here, once. */
+static const char GLSL_VERSION[] = "#version 330 core\n";
+
+static int compile_shader(const im_gl *gl, GLenum stage, const char *prelude, const char *source,
+                          const char *name, GLuint *out)
 {
+    const char *parts[] = {GLSL_VERSION, prelude ? prelude : "", source};
     GLuint shader = gl->CreateShader(stage);
-    gl->ShaderSource(shader, 1, &source, NULL);
+    gl->ShaderSource(shader, 3, parts, NULL);
     gl->CompileShader(shader);
     GLint ok = GL_FALSE;
     gl->GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -29,13 +33,13 @@ static int compile_shader(const im_gl *gl, GLenum stage, const char *source, con
 }
 
 int render_link_program(const im_gl *gl, const char *vertex_source, const char *vertex_name,
-                           const char *fragment_source, const char *name, GLuint *out)
+                        const char *fragment_prelude, const char *fragment_source, const char *name, GLuint *out)
 {
     GLuint vertex, fragment;
-    int status = compile_shader(gl, GL_VERTEX_SHADER, vertex_source, vertex_name, &vertex);
+    int status = compile_shader(gl, GL_VERTEX_SHADER, NULL, vertex_source, vertex_name, &vertex);
     if (status != IM_OK)
         return status;
-    status = compile_shader(gl, GL_FRAGMENT_SHADER, fragment_source, name, &fragment);
+    status = compile_shader(gl, GL_FRAGMENT_SHADER, fragment_prelude, fragment_source, name, &fragment);
     if (status != IM_OK) {
         gl->DeleteShader(vertex);
         return status;
@@ -65,11 +69,11 @@ int render_setup(im_render_context *c)
     gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &c->max_renderbuffer_size);
     gl->GetIntegerv(GL_MAX_VIEWPORT_DIMS, c->max_viewport);
     gl->GetIntegerv(GL_MAX_SAMPLES, &c->max_samples);
-    int status = render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_contact_frag,
-                                    "contact.frag", &c->contact_program);
+    int status = render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_patch_colour,
+                                     im_shader_contact_frag, "contact.frag", &c->contact_program);
     if (status == IM_OK)
-        status = render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_height_frag,
-                                        "height.frag", &c->height_program);
+        status = render_link_program(gl, im_shader_fullscreen_vert, "fullscreen.vert", im_shader_patch_colour,
+                                     im_shader_height_frag, "height.frag", &c->height_program);
     if (status == IM_OK)
         status = render_view3d_setup(c);
     if (status != IM_OK)

@@ -22,14 +22,14 @@ static double radians(double degrees) { return degrees * M_PI / 180.0; }
 
 int render_view3d_setup(im_render_context *c)
 {
-    int status = render_link_program(&c->gl, im_shader_surface_vert, "surface.vert", im_shader_surface_frag,
-                                        "surface.frag", &c->surface_program);
+    int status = render_link_program(&c->gl, im_shader_surface_vert, "surface.vert", im_shader_patch_colour,
+                                     im_shader_surface_frag, "surface.frag", &c->surface_program);
     if (status == IM_OK)
-        status = render_link_program(&c->gl, im_shader_punch_vert, "punch.vert", im_shader_punch_frag,
-                                        "punch.frag", &c->punch_program);
+        status = render_link_program(&c->gl, im_shader_punch_vert, "punch.vert", NULL, im_shader_punch_frag,
+                                     "punch.frag", &c->punch_program);
     if (status == IM_OK)
-        status = render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", im_shader_wall_frag, "wall.frag",
-                                        &c->wall_program);
+        status = render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", NULL, im_shader_wall_frag,
+                                     "wall.frag", &c->wall_program);
     return status;
 }
 
