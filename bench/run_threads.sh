@@ -10,7 +10,8 @@
 #   physical core's two hardware threads, a neighbour, shared caches, or our own spinning),
 #   quiet_estimate_median (paired ratio x CPU ratio, per repeat: the ratio had the second thread cost
 #   no extra CPU time, i.e. the part of the speed-up the program decides; it counts our own extra CPU
-#   time, e.g. spin-waiting, as the machine's, so it is an upper bound for a quiet machine),
+#   time, e.g. spin-waiting, as the machine's, which raises it, and the host running the two threads at
+#   different speeds as ours, which lowers it: build/bench_cores' register kernel reads 1.89-1.99),
 #   uncontended (the median paired ratio, and how many, of the repeats whose 2-thread run took at most
 #   1.05x its 1-thread run's CPU time: those most likely had two cores to themselves; '-' if none)
 #
