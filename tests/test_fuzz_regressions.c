@@ -115,6 +115,21 @@ static void hostile_netcdf_header_is_refused_before_netcdf(void **state)
     assert_non_null(strstr(im_last_error(), "oom_name_length.nc: netCDF header: a count or name runs past the end"));
 }
 
+/* fuzz_netcdf's second out-of-memory input: a 3176-byte classic file whose dimensions declare
+ * 63555 x 14082 heights made the reader allocate 7.2 GB before netCDF found the data missing (the
+ * header walk had passed it: its stated vsize was small). Refused before the allocation. */
+static void netcdf_dimensions_beyond_the_file_are_refused_before_allocation(void **state)
+{
+    (void)state;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/fuzz/regressions/netcdf/oom_dims_63555x14082.nc", getenv("IM_SOURCE_DIR"));
+    im_field *field = NULL;
+    assert_int_equal(im_netcdf_read(path, &field), IM_EFORMAT);
+    assert_null(field);
+    assert_non_null(strstr(im_last_error(), "oom_dims_63555x14082.nc: truncated: heights (63555 x 14082 values of "
+                                            "8 bytes) needs 7159852080 bytes, the file has 3176"));
+}
+
 /* fuzz_netcdf's crash: a CDF2 header whose variable has an nc_type of no known size made netCDF
  * divide by zero (SIGFPE in NC_check_vlen). Refused by the reader's walk, naming the file. */
 static void unknown_type_is_refused_before_netcdf(void **state)
@@ -140,6 +155,7 @@ int main(void)
         cmocka_unit_test(netcdf_inputs),
         cmocka_unit_test(x3p_inputs),
         cmocka_unit_test(oversized_headers_are_refused_before_allocation),
+        cmocka_unit_test(netcdf_dimensions_beyond_the_file_are_refused_before_allocation),
         cmocka_unit_test(hostile_netcdf_header_is_refused_before_netcdf),
         cmocka_unit_test(unknown_type_is_refused_before_netcdf),
     };

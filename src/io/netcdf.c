@@ -161,6 +161,24 @@ static int read_heights(int ncid, const char *path, int var, int x_first, im_fie
     return IM_OK;
 }
 
+/* A classic file must hold the nx x ny values that heights declares before the field is allocated:
+ * netCDF takes the data's size from the dimensions, not from the header's vsize, so a 3 KB file whose
+ * dimensions claimed 63555 x 14082 made the reader allocate 7.2 GB (found with fuzz/fuzz_netcdf).
+ * NetCDF-4 files compress their data, so no such bound holds for them. */
+static int check_heights_fit(int ncid, const char *path, int var, size_t nx, size_t ny, const mapped_file *file)
+{
+    nc_type type;
+    size_t value_size = 0;
+    if (!file->bytes || nc_inq_vartype(ncid, var, &type) != NC_NOERR || nc_inq_type(ncid, type, NULL, &value_size))
+        return IM_OK;
+    /* nx and ny are at most IM_FIELD_MAX_SIDE, the value size at most 8: no overflow */
+    unsigned long long needed = (unsigned long long)nx * ny * value_size;
+    if (needed <= file->size)
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: truncated: heights (%zu x %zu values of %zu bytes) needs %llu bytes, the file has %zu",
+                   path, nx, ny, value_size, needed, file->size);
+}
+
 static int read_open(int ncid, const char *path, im_field **out, surface_stated *stated, const mapped_file *file)
 {
     int x_dim, y_dim, var, x_first;
@@ -170,6 +188,8 @@ static int read_open(int ncid, const char *path, im_field **out, surface_stated 
         status = dimension(ncid, path, "y", &y_dim, &ny);
     if (status == IM_OK)
         status = heights_variable(ncid, path, x_dim, y_dim, &var, &x_first);
+    if (status == IM_OK)
+        status = check_heights_fit(ncid, path, var, nx, ny, file);
     char x_unit[16] = "", y_unit[16] = "";
     if (status == IM_OK)
         status = coordinate(ncid, path, "x", nx, &stated->units.delta_x, x_unit);
