@@ -20,29 +20,7 @@ export OMP_NUM_THREADS=2
 mkdir "$dir/tiny"
 mount -t tmpfs -o size=2m tmpfs "$dir/tiny" 2>/dev/null || { echo "SKIPPED: cannot mount a tmpfs"; exit 77; }
 
-scene() {
-  cat >"$1" <<INI
-[scene]
-name = disk
-output = $2
-[surfaces]
-n = 128
-hurst = 0.8
-lambda_s = 4
-slopes = 0.04, 0.16
-seeds = 1:4
-[punch]
-shape = cone
-alpha = 80
-[loading]
-load_star = 2400
-control = load
-steps = 200:2400:12
-[output]
-table = yes
-plots = fig5
-INI
-}
+scene() { ensemble_scene "$1" disk "$2"; }
 scene "$dir/whole.ini" "$dir/whole"
 scene "$dir/tiny.ini" "$dir/tiny/out"
 "$cli" run --quiet "$dir/whole.ini" >/dev/null 2>&1

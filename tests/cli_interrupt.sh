@@ -15,31 +15,7 @@ pid=
 source "$(dirname "$0")/lib.sh"
 export OMP_NUM_THREADS=2
 
-scene() {
-  cat >"$dir/$1.ini" <<INI
-[scene]
-name = $1
-output = $1
-[surfaces]
-n = 128
-hurst = 0.8
-lambda_s = 4
-slopes = 0.04, 0.16
-seeds = 1:4
-[punch]
-shape = cone
-alpha = 80
-[loading]
-load_star = 2400
-control = load
-steps = 200:2400:12
-[solver]
-tol = 1e-8
-[output]
-table = yes
-plots = fig5
-INI
-}
+scene() { ensemble_scene "$dir/$1.ini" "$1" "$1" 1e-8; }
 scene whole
 scene cut
 

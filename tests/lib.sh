@@ -30,3 +30,33 @@ finish() {
 # history_rows FILE: a scene history's rows (after its "# ..." header line, whose checksum covers
 # them) but for the solve times (column 11, seconds): what two runs of one scene must agree on.
 history_rows() { tail -n +2 "$1" | cut -d, -f1-10,12-; }
+
+# ensemble_scene FILE NAME OUTPUT [TOL]: the reduced ensemble that the concurrency, interrupt and
+# full-disk tests run: 128 x 128, two slopes x four seeds, the 80 deg cone under load control to
+# N* = 2400 in 12 steps, table1.csv and fig5's histories; TOL, when given, the solver's tolerance.
+ensemble_scene() {
+  local solver=""
+  [ -n "${4:-}" ] && solver=$'[solver]\ntol = '"$4"
+  cat >"$1" <<INI
+[scene]
+name = $2
+output = $3
+[surfaces]
+n = 128
+hurst = 0.8
+lambda_s = 4
+slopes = 0.04, 0.16
+seeds = 1:4
+[punch]
+shape = cone
+alpha = 80
+[loading]
+load_star = 2400
+control = load
+steps = 200:2400:12
+$solver
+[output]
+table = yes
+plots = fig5
+INI
+}
