@@ -7,22 +7,8 @@ cli=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
-renderer=$("$cli" info | grep '^render backend')
-case $renderer in
-  "render backend: unavailable (no OpenGL 3.3 core context"*)
-    if [ "${IM_REQUIRE_GL:-}" = 1 ]; then
-      echo "FAIL: IM_REQUIRE_GL=1 and $renderer" >&2
-      exit 1
-    fi
-    echo "SKIPPED: $renderer" >&2
-    exit 77 ;;
-  "render backend: egl"* | "render backend: osmesa"*) ;;
-  *)
-    echo "FAIL: the renderer does not work: $renderer" >&2
-    exit 1 ;;
-esac
-
 source "$(dirname "$0")/lib.sh"
+require_renderer "$cli"
 
 # Without an EGL vendor library (glvnd) and with OSMesa excluded, no context exists: this very
 # script skips, unless IM_REQUIRE_GL=1.

@@ -8,22 +8,8 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 export OMP_WAIT_POLICY=passive
 
-renderer=$("$cli" info | grep '^render backend')
-case $renderer in
-  "render backend: unavailable (no OpenGL 3.3 core context"*)
-    if [ "${IM_REQUIRE_GL:-}" = 1 ]; then
-      echo "FAIL: IM_REQUIRE_GL=1 and $renderer" >&2
-      exit 1
-    fi
-    echo "SKIPPED: $renderer" >&2
-    exit 77 ;;
-  "render backend: egl"* | "render backend: osmesa"*) ;;
-  *)
-    echo "FAIL: the renderer does not work: $renderer" >&2
-    exit 1 ;;
-esac
-
 source "$(dirname "$0")/lib.sh"
+require_renderer "$cli"
 
 # indent writes its page beside history.csv and run.json, with the history as a table.
 "$cli" indent --smooth --n 64 --alpha 70 --load 50,100 --fields --out "$dir/ind" >"$dir/indent.log" 2>&1

@@ -60,3 +60,23 @@ table = yes
 plots = fig5
 INI
 }
+
+# require_renderer CLI: exits 77 (skipped) when no OpenGL 3.3 core context can be created at all,
+# 1 instead when IM_REQUIRE_GL=1, and 1 when a renderer opens a context and then fails.
+require_renderer() {
+  local renderer
+  renderer=$("$1" info | grep '^render backend')
+  case $renderer in
+    "render backend: unavailable (no OpenGL 3.3 core context"*)
+      if [ "${IM_REQUIRE_GL:-}" = 1 ]; then
+        echo "FAIL: IM_REQUIRE_GL=1 and $renderer" >&2
+        exit 1
+      fi
+      echo "SKIPPED: $renderer" >&2
+      exit 77 ;;
+    "render backend: egl"* | "render backend: osmesa"*) ;;
+    *)
+      echo "FAIL: the renderer does not work: $renderer" >&2
+      exit 1 ;;
+  esac
+}
