@@ -5,6 +5,7 @@
 #include "support.h"
 
 #include "render/context.h"
+#include "render/shaders.h"
 
 #include "indentmap/colormap.h"
 #include "indentmap/field.h"
@@ -384,6 +385,27 @@ static void test_missing_context_is_told_apart(void **state)
     assert_false(egl_can_enumerate_devices(NULL));
 }
 
+/* A shader that does not compile is refused with its name, and the compiler's message gives the
+ * line in the shader's own file although the #version line and shaders/patch_colour.glsl (19 lines)
+ * are compiled before it. Mesa writes "0:3(1): error", other drivers "0(3) : error". */
+static void test_shader_errors_name_the_file_and_its_line(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    static const char broken[] = "out vec4 colour;\n"
+                                 "void main() { colour = vec4(patch_colour(0u, vec3(0.0)), 1.0); }\n"
+                                 "not a declaration;\n";
+    assert_int_equal(render_make_current(context), IM_OK); /* another test may have made its own current */
+    GLuint program = 0;
+    int status = render_link_program(&context->gl, im_shader_fullscreen_vert, "fullscreen.vert",
+                                     im_shader_patch_colour, broken, "broken.frag", &program);
+    assert_int_equal(status, IM_EUNSUPPORTED);
+    const char *message = im_last_error();
+    if (!strstr(message, "shader broken.frag does not compile: ") ||
+        !(strstr(message, "0:3(") || strstr(message, "0(3)")))
+        fail_msg("expected broken.frag and its line 3 in: %s", message);
+}
+
 static void test_backend_choice(void **state)
 {
     (void)state;
@@ -590,6 +612,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_missing_context_is_told_apart),
         cmocka_unit_test(test_backend_choice),
+        cmocka_unit_test(test_shader_errors_name_the_file_and_its_line),
         cmocka_unit_test(test_colours_match_cpu_reference),
         cmocka_unit_test(test_bin_edges_match_cpu_reference),
         cmocka_unit_test(test_single_patch_lands_on_its_pixels),

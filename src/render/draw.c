@@ -10,15 +10,16 @@
 
 enum { MAX_PIXELS_PER_PATCH = 64, MAX_BOUNDARY_PX = 64, MAX_IMAGE_SIDE = 32768 };
 
-/* Every shader is compiled as GLSL 3.30 core: the #version line is stated here, once. */
+/* Every shader is compiled as GLSL 3.30 core: the #version line is stated here, once. A "#line 1"
+ * before the shader's own source makes the compiler's messages give that file's line numbers. */
 static const char GLSL_VERSION[] = "#version 330 core\n";
 
 static int compile_shader(const im_gl *gl, GLenum stage, const char *prelude, const char *source,
                           const char *name, GLuint *out)
 {
-    const char *parts[] = {GLSL_VERSION, prelude ? prelude : "", source};
+    const char *parts[] = {GLSL_VERSION, prelude ? prelude : "", "#line 1\n", source};
     GLuint shader = gl->CreateShader(stage);
-    gl->ShaderSource(shader, 3, parts, NULL);
+    gl->ShaderSource(shader, 4, parts, NULL);
     gl->CompileShader(shader);
     GLint ok = GL_FALSE;
     gl->GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
