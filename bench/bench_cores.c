@@ -1,5 +1,5 @@
-/* What T threads can gain over one on this machine at best (not a test): the floor of issue 15's
- * "two threads >= 1.8x one thread".
+/* What T threads can gain over one on this machine at best (not a test): the ceiling against which
+ * issue 15's "two threads >= 1.8x one thread" is read.
  *
  *   bench_cores [--threads T] [--repeats R] [--mib M]
  *
