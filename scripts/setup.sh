@@ -22,7 +22,7 @@ PACKAGES=(
   python3-setuptools python3-wheel python3-pip python3-pytest  # its pip build and its tests
   chromium                                 # tests only: the viewer page (index.html) in headless Chromium
   libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
-  libzip-dev libxml2-dev                   # ISO 25178-72 .x3p surfaces: zip archive around XML
+  libzip-dev libxml2-dev nettle-dev        # ISO 25178-72 .x3p surfaces: zip archive around XML, MD5 checksums
   openmpi-bin libopenmpi-dev libfftw3-mpi-dev  # one grid over MPI ranks (src/mpi/, optional: IM_MPI)
 )
 

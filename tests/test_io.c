@@ -500,6 +500,76 @@ static void x3p_round_trip_and_refusals(void **state)
     im_field_free(f);
 }
 
+/* Adds an entry holding `text` to an existing archive. */
+static void add_to_archive(const char *path, const char *entry, const char *text)
+{
+    int error;
+    zip_t *archive = zip_open(path, 0, &error);
+    assert_non_null(archive);
+    assert_true(zip_file_add(archive, entry, zip_source_buffer(archive, text, strlen(text), 0), ZIP_FL_OVERWRITE) >= 0);
+    assert_int_equal(zip_close(archive), 0);
+}
+
+/* The int16 grid of x3p_round_trip_and_refusals with `link` as its DataLink's content, stored (not
+ * deflated) so that its bytes can be damaged in place. */
+static const char *write_stored_x3p(const char *name, const char *link, const short values[6])
+{
+    char xml[2048], *at;
+    x3p_xml(xml, sizeof xml, "I", "I", "1e-6", "3");
+    at = strstr(xml, "<PointDataLink>");
+    char tail[1024];
+    snprintf(tail, sizeof tail, "%s", strstr(at, "</DataLink>"));
+    snprintf(at, sizeof xml - (size_t)(at - xml), "%s%s", link, tail);
+    const char *path = write_x3p(name, xml, values, 6 * sizeof *values);
+    int error;
+    zip_t *archive = zip_open(path, 0, &error);
+    assert_non_null(archive);
+    assert_int_equal(zip_set_file_compression(archive, zip_name_locate(archive, "bindata/data.bin", 0), ZIP_CM_STORE, 0), 0);
+    assert_int_equal(zip_close(archive), 0);
+    return path;
+}
+
+/* ISO 25178-72 checksums on reading: the data's MD5ChecksumPointData (its value here from Python's
+ * hashlib) and md5checksum.hex, the MD5 of main.xml, must match when stated; a damaged entry is
+ * caught by the zip's CRC-32, which libzip checks only at an entry's end. */
+static void x3p_checksums_are_checked(void **state)
+{
+    (void)state;
+    const short values[6] = {1, -2, 3, -4, 5, 32767};
+    static const char right[] = "<PointDataLink>bindata/data.bin</PointDataLink>"
+                                "<MD5ChecksumPointData>9521F8950F326BFCE7C2BE74EF2E1034</MD5ChecksumPointData>";
+    static const char wrong[] = "<PointDataLink>bindata/data.bin</PointDataLink>"
+                                "<MD5ChecksumPointData>9521F8950F326BFCE7C2BE74EF2E1035</MD5ChecksumPointData>";
+    im_field *g = NULL;
+    assert_int_equal(im_x3p_read(write_stored_x3p("md5_right.x3p", right, values), &g), IM_OK);
+    assert_close(g->data[5], 2e-9 + 32767e-9, 1e-21);
+    im_field_free(g);
+    expect_refusal(im_x3p_read, write_stored_x3p("md5_wrong.x3p", wrong, values), IM_EFORMAT,
+                   "bindata/data.bin: MD5 9521f8950f326bfce7c2be74ef2e1034, but Record3/DataLink/MD5ChecksumPointData "
+                   "states 9521F8950F326BFCE7C2BE74EF2E1035: the file is damaged");
+
+    const char *path = write_stored_x3p("main_md5.x3p", right, values);
+    add_to_archive(path, "md5checksum.hex", "0123456789abcdef0123456789abcdef *main.xml\n");
+    expect_refusal(im_x3p_read, path, IM_EFORMAT, "main.xml: MD5 ");
+    expect_refusal(im_x3p_read, path, IM_EFORMAT, "but md5checksum.hex states 0123456789abcdef0123456789abcdef");
+
+    /* one bit of the stored data flipped in the file: its CRC-32 no longer matches */
+    path = write_stored_x3p("crc.x3p", "<PointDataLink>bindata/data.bin</PointDataLink>", values);
+    FILE *file = fopen(path, "r+b");
+    assert_non_null(file);
+    unsigned char bytes[4096];
+    size_t size = fread(bytes, 1, sizeof bytes, file);
+    size_t at = 0;
+    while (at + sizeof values <= size && memcmp(bytes + at, values, sizeof values) != 0)
+        ++at;
+    assert_true(at + sizeof values <= size); /* the stored values are in the file */
+    bytes[at + 2] ^= 0x01; /* -2 becomes -1 */
+    rewind(file);
+    assert_int_equal(fwrite(bytes, 1, size, file), size);
+    fclose(file);
+    expect_refusal(im_x3p_read, path, IM_EFORMAT, "bindata/data.bin: CRC error");
+}
+
 /* The caller's cap (im_memory_set_limit) limits the memory the readers may plan for, so a refusal
  * can be tested at a size every machine holds; the library reads no environment variable for it
  * (the program does: IM_MEMORY_LIMIT_MIB, tested in cli_checks.sh). */
@@ -921,6 +991,7 @@ int main(void)
         cmocka_unit_test(sdf_files_round_trip_and_refuse),
         cmocka_unit_test(netcdf_round_trip_and_refusals),
         cmocka_unit_test(x3p_round_trip_and_refusals),
+        cmocka_unit_test(x3p_checksums_are_checked),
         cmocka_unit_test(memory_probe_reads_the_machine),
         cmocka_unit_test(memory_limit_set_by_the_caller),
         cmocka_unit_test(bad_text_matrices_name_the_line),

@@ -155,6 +155,30 @@ def test_units_round_trip_in_every_format(tmp_path):
         np.testing.assert_allclose(top.heights, heights, rtol=1e-6, atol=1e-20, err_msg=suffix)
 
 
+def test_x3p_carries_what_the_iso5436_2_schema_requires(tmp_path):
+    """The archive's checksums, computed here with hashlib, and the schema's required records in order."""
+    import hashlib
+    import re
+    import xml.etree.ElementTree as ET
+    import zipfile
+
+    path = tmp_path / "s.x3p"
+    im.write(path, im.generate(32, slope=0.05, lambda_s=2, seed=6) * 5e-8, delta=5e-8, unit="m")
+    archive = zipfile.ZipFile(path)
+    main, data = archive.read("main.xml"), archive.read("bindata/data.bin")
+    assert archive.read("md5checksum.hex").decode() == hashlib.md5(main).hexdigest() + " *main.xml\n"
+    root = ET.fromstring(main)
+    assert root.tag == "{http://www.opengps.eu/2008/ISO5436_2}ISO5436_2"
+    assert [child.tag for child in root] == ["Record1", "Record2", "Record3", "Record4"]
+    assert root.findtext("Record3/DataLink/MD5ChecksumPointData").lower() == hashlib.md5(data).hexdigest()
+    assert root.findtext("Record4/ChecksumFile") == "md5checksum.hex"
+    assert [child.tag for child in root.find("Record2")] == ["Date", "Creator", "Instrument", "ProbingSystem"]
+    assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", root.findtext("Record2/Date"))
+    assert [child.tag for child in root.find("Record2/Instrument")] == ["Manufacturer", "Model", "Serial", "Version"]
+    assert root.findtext("Record2/ProbingSystem/Type") == "Software"
+    assert root.findtext("Record2/ProbingSystem/Identification")
+
+
 def test_measured_crop_prepared_and_windowed():
     periodic = im.generate(1024, slope=0.08, seed=11)
     y, x = np.mgrid[0:256, 0:256]

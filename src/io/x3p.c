@@ -2,7 +2,10 @@
  * CX and CY incremental with their Increment in metres, CZ absolute with its DataType, Increment
  * and Offset; Record3 MatrixDimension SizeX, SizeY, SizeZ = 1, and DataLink PointDataLink naming the
  * binary data in the archive), and the data holds SizeX x SizeY little-endian values, x fastest.
- * The zip is read with libzip and the XML with libxml2 (no network, no entity expansion). */
+ * The zip is read with libzip and the XML with libxml2 (no network, no entity expansion). Written
+ * files carry what the ISO5436_2 schema requires beyond that: Record2 (date, creator, instrument,
+ * probing system "Software"), the data's MD5ChecksumPointData, and Record4's ChecksumFile
+ * md5checksum.hex holding the MD5 of main.xml ("<hex> *main.xml", as md5sum writes it). */
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
@@ -13,9 +16,12 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 #include <math.h>
+#include <nettle/md5.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <time.h>
 #include <zip.h>
 
 enum { X3P_MAX_XML = 16 << 20 }; /* main.xml of a surface is a few kB; more is refused */
@@ -25,7 +31,48 @@ typedef struct x3p_grid {
     double dx, dy, z_increment, z_offset;
     char z_type;            /* I int16, L int32, F float32, D float64 */
     char data_path[256];    /* the PointDataLink */
+    char data_md5[33];      /* its MD5ChecksumPointData (32 hex digits), or "" when none is stated */
 } x3p_grid;
+
+enum { MD5_HEX = 2 * MD5_DIGEST_SIZE };
+
+/* The MD5 that `context` has taken in, as 32 hex digits (upper or lower case) and a terminating NUL. */
+static void md5_finish_hex(struct md5_ctx *context, int upper, char hex[MD5_HEX + 1])
+{
+    uint8_t digest[MD5_DIGEST_SIZE];
+    md5_digest(context, sizeof digest, digest);
+    for (int i = 0; i < MD5_DIGEST_SIZE; ++i)
+        snprintf(hex + 2 * i, 3, upper ? "%02X" : "%02x", digest[i]);
+}
+
+/* The MD5 of size bytes as hex (see md5_finish_hex). */
+static void md5_hex(const void *bytes, size_t size, int upper, char hex[MD5_HEX + 1])
+{
+    struct md5_ctx context;
+    md5_init(&context);
+    md5_update(&context, size, bytes);
+    md5_finish_hex(&context, upper, hex);
+}
+
+/* A stated checksum: IM_OK when it is not 32 hex digits (it says nothing) or equals `hex` in any case;
+ * otherwise IM_EFORMAT naming both, since the bytes were damaged after they were written. */
+static int check_md5(const char *path, const char *what, const char *stated, const char *hex, const char *key)
+{
+    if (strlen(stated) != MD5_HEX || strspn(stated, "0123456789abcdefABCDEF") != MD5_HEX ||
+        strcasecmp(stated, hex) == 0)
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: %s: MD5 %s, but %s states %s: the file is damaged", path, what, hex, key, stated);
+}
+
+/* Reads one byte past an entry's end: libzip checks the entry's CRC-32 only on reaching its end. */
+static int check_entry_end(zip_file_t *file, const char *path, const char *entry)
+{
+    uint8_t extra;
+    zip_int64_t got = zip_fread(file, &extra, 1);
+    if (got == 0)
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: %s: %s", path, entry, got < 0 ? zip_file_strerror(file) : "longer than its size");
+}
 
 /* The first child element of node named name (local name: namespaces ignored), or NULL. */
 static xmlNode *child(xmlNode *node, const char *name)
@@ -147,7 +194,29 @@ static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
     if (!find(root, LINK) && find(root, LIST))
         return im_fail(IM_EFORMAT, "%s: main.xml Record3/DataList: inline data is not read; expected a binary "
                        "PointDataLink", path);
+    static const char *const MD5[] = {"Record3", "DataLink", "MD5ChecksumPointData", NULL};
+    xmlNode *md5 = find(root, MD5);
+    xmlChar *stated = md5 ? xmlNodeGetContent(md5) : NULL;
+    if (stated) /* optional here: files from before the 2020 schema may lack it */
+        sscanf((const char *)stated, "%32s", g->data_md5);
+    xmlFree(stated);
     return text_at(path, root, LINK, "Record3/DataLink/PointDataLink", g->data_path, sizeof g->data_path);
+}
+
+/* md5checksum.hex, when the archive has it: its first word must be the MD5 of main.xml's bytes. */
+static int check_main_checksum(zip_t *archive, const char *path, const char *xml, size_t size)
+{
+    char text[128] = "", stated[MD5_HEX + 1] = "", hex[MD5_HEX + 1];
+    zip_file_t *file = zip_fopen(archive, "md5checksum.hex", 0);
+    if (!file)
+        return IM_OK;
+    zip_int64_t got = zip_fread(file, text, sizeof text - 1);
+    zip_fclose(file);
+    if (got < 0)
+        return im_fail(IM_EFORMAT, "%s: md5checksum.hex cannot be read: %s", path, zip_strerror(archive));
+    sscanf(text, "%32s", stated);
+    md5_hex(xml, size, 0, hex);
+    return check_md5(path, "main.xml", stated, hex, "md5checksum.hex");
 }
 
 /* main.xml from the archive, parsed; IM_EFORMAT naming what is missing or malformed. */
@@ -163,17 +232,21 @@ static int read_main_xml(zip_t *archive, const char *path, x3p_grid *g)
     char *text = malloc((size_t)info.size + 1);
     zip_file_t *file = text ? zip_fopen(archive, "main.xml", 0) : NULL;
     zip_int64_t got = file ? zip_fread(file, text, info.size) : -1;
+    int status = got == (zip_int64_t)info.size
+                     ? check_entry_end(file, path, "main.xml")
+                     : im_fail(IM_EFORMAT, "%s: main.xml cannot be read from the archive: %s", path, zip_strerror(archive));
     if (file)
         zip_fclose(file);
-    if (got != (zip_int64_t)info.size) {
+    if (status == IM_OK)
+        status = check_main_checksum(archive, path, text, (size_t)info.size);
+    if (status != IM_OK) {
         free(text);
-        return im_fail(IM_EFORMAT, "%s: main.xml cannot be read from the archive: %s", path, zip_strerror(archive));
+        return status;
     }
     xmlDoc *doc = xmlReadMemory(text, (int)info.size, "main.xml", NULL, XML_PARSE_NONET | XML_PARSE_NOERROR |
                                 XML_PARSE_NOWARNING);
     free(text);
     xmlNode *root = doc ? xmlDocGetRootElement(doc) : NULL;
-    int status = IM_OK;
     if (!root || strcmp((const char *)root->name, "ISO5436_2") != 0)
         status = im_fail(IM_EFORMAT, "%s: main.xml is not well-formed ISO 5436-2 XML (no ISO5436_2 root)", path);
     else if (doc->intSubset) /* entities could expand without bound when the text is read */
@@ -215,18 +288,27 @@ static int read_data(zip_t *archive, const char *path, const x3p_grid *g, im_fie
     uint8_t block[8 * 4096];
     size_t done = 0;
     int status = IM_OK;
+    struct md5_ctx md5;
+    md5_init(&md5);
     while (done < count && status == IM_OK) {
         size_t want = count - done < sizeof block / size ? count - done : sizeof block / size;
         zip_int64_t got = zip_fread(file, block, want * size);
         if (got != (zip_int64_t)(want * size))
             status = im_fail(IM_EFORMAT, "%s: %s: truncated or corrupt after %zu values: %s", path, g->data_path, done,
                              zip_file_strerror(file));
+        else
+            md5_update(&md5, want * size, block);
         for (size_t k = 0; status == IM_OK && k < want; ++k)
             field->data[done + k] = g->z_offset + g->z_increment * decode(block + k * size, g->z_type);
         done += want;
     }
+    if (status == IM_OK)
+        status = check_entry_end(file, path, g->data_path);
     zip_fclose(file);
-    return status;
+    char hex[MD5_HEX + 1];
+    md5_finish_hex(&md5, 0, hex);
+    return status == IM_OK ? check_md5(path, g->data_path, g->data_md5, hex, "Record3/DataLink/MD5ChecksumPointData")
+                           : status;
 }
 
 int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
@@ -283,8 +365,30 @@ static void add_axis(xmlNode *axes, const char *name, const char *type, const ch
     add(axis, "Offset", "0");
 }
 
-/* main.xml for a field of spacing `spacing` metres, data in bindata/data.bin as doubles. */
-static xmlDoc *main_xml(const im_field *field, double spacing)
+/* Record2: when and by what the file was made. The schema requires a date, an instrument and a probing
+ * system; a computed surface's probing system is "Software". */
+static void add_record2(xmlNode *root)
+{
+    char date[32];
+    time_t now = time(NULL);
+    struct tm utc;
+    strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&now, &utc));
+    xmlNode *record2 = add(root, "Record2", NULL);
+    add(record2, "Date", date);
+    add(record2, "Creator", "indentmap " IM_VERSION);
+    xmlNode *instrument = add(record2, "Instrument", NULL);
+    add(instrument, "Manufacturer", "indentmap");
+    add(instrument, "Model", "indentmap");
+    add(instrument, "Serial", "none");
+    add(instrument, "Version", IM_VERSION);
+    xmlNode *probing = add(record2, "ProbingSystem", NULL);
+    add(probing, "Type", "Software");
+    add(probing, "Identification", "indentmap " IM_VERSION);
+}
+
+/* main.xml for a field of spacing `spacing` metres, data in bindata/data.bin as doubles whose MD5 is
+ * data_md5 (hex). */
+static xmlDoc *main_xml(const im_field *field, double spacing, const char *data_md5)
 {
     xmlDoc *doc = xmlNewDoc((const xmlChar *)"1.0");
     xmlNode *root = xmlNewNode(NULL, (const xmlChar *)"ISO5436_2");
@@ -298,8 +402,7 @@ static xmlDoc *main_xml(const im_field *field, double spacing)
     add_axis(axes, "CX", "I", "D", spacing);
     add_axis(axes, "CY", "I", "D", spacing);
     add_axis(axes, "CZ", "A", "D", 1.0);
-    xmlNode *record2 = add(root, "Record2", NULL);
-    add(record2, "Creator", "indentmap " IM_VERSION);
+    add_record2(root);
     xmlNode *record3 = add(root, "Record3", NULL);
     xmlNode *matrix = add(record3, "MatrixDimension", NULL);
     char text[32];
@@ -308,7 +411,10 @@ static xmlDoc *main_xml(const im_field *field, double spacing)
     snprintf(text, sizeof text, "%d", field->ny);
     add(matrix, "SizeY", text);
     add(matrix, "SizeZ", "1");
-    add(add(record3, "DataLink", NULL), "PointDataLink", "bindata/data.bin");
+    xmlNode *link = add(record3, "DataLink", NULL);
+    add(link, "PointDataLink", "bindata/data.bin");
+    add(link, "MD5ChecksumPointData", data_md5);
+    add(add(root, "Record4", NULL), "ChecksumFile", "md5checksum.hex");
     return doc;
 }
 
@@ -327,6 +433,42 @@ static int add_buffer(zip_t *archive, const char *name, void *bytes, size_t size
     return 0;
 }
 
+/* The heights in metres as the file's doubles (a little-endian host: the bytes are the file's), or NULL. */
+static double *data_in_metres(const im_field *field, double metres)
+{
+    size_t count = im_field_count(field);
+    double *data = malloc(count * sizeof *data);
+    for (size_t i = 0; data && i < count; ++i)
+        data[i] = field->data[i] * metres;
+    return data;
+}
+
+/* The document as UTF-8 text in a malloc'ed buffer (which the archive frees), or NULL; frees doc. */
+static char *dump_xml(xmlDoc *doc, size_t *size)
+{
+    xmlChar *xml = NULL;
+    int length = 0;
+    xmlDocDumpFormatMemoryEnc(doc, &xml, &length, "UTF-8", 1);
+    xmlFreeDoc(doc);
+    char *copy = xml && length > 0 ? malloc((size_t)length) : NULL;
+    if (copy)
+        memcpy(copy, xml, (size_t)length);
+    xmlFree(xml);
+    *size = copy ? (size_t)length : 0;
+    return copy;
+}
+
+/* md5checksum.hex: the MD5 of main.xml as md5sum writes it, in a malloc'ed buffer, or NULL. */
+static char *checksum_file(const char *xml, size_t xml_size, size_t *size)
+{
+    char hex[MD5_HEX + 1], *text = malloc(sizeof hex + sizeof " *main.xml\n");
+    if (!text)
+        return NULL;
+    md5_hex(xml, xml_size, 0, hex);
+    *size = (size_t)snprintf(text, sizeof hex + sizeof " *main.xml\n", "%s *main.xml\n", hex);
+    return text;
+}
+
 /* Writes heights and spacing in metres (the field needs a length unit). libzip writes the archive
  * to a temporary file beside path and renames it into place on zip_close, so it is atomic. */
 int im_x3p_write(const char *path, const im_field *field)
@@ -338,28 +480,26 @@ int im_x3p_write(const char *path, const im_field *field)
     if (metres == 0.0)
         return im_fail(IM_EINVAL, "%s: an .x3p states metres: the surface needs a length unit (it has '%s')", path,
                        field->unit);
-    size_t count = im_field_count(field);
-    double *data = malloc(count * sizeof *data);
-    xmlDoc *doc = main_xml(field, field->delta * metres);
-    xmlChar *xml = NULL;
-    int xml_size = 0;
-    xmlDocDumpFormatMemoryEnc(doc, &xml, &xml_size, "UTF-8", 1);
-    xmlFreeDoc(doc);
-    char *xml_copy = xml ? malloc((size_t)xml_size) : NULL;
-    if (xml_copy)
-        memcpy(xml_copy, xml, (size_t)xml_size);
-    xmlFree(xml);
+    size_t count = im_field_count(field), xml_size = 0, checksum_size = 0;
+    double *data = data_in_metres(field, metres);
+    char data_md5[MD5_HEX + 1] = "";
+    if (data)
+        md5_hex(data, count * sizeof *data, 1, data_md5);
+    char *xml = data ? dump_xml(main_xml(field, field->delta * metres, data_md5), &xml_size) : NULL;
+    char *checksum = xml ? checksum_file(xml, xml_size, &checksum_size) : NULL;
     int error = 0;
-    zip_t *archive = data && xml_copy ? zip_open(path, ZIP_CREATE | ZIP_TRUNCATE, &error) : NULL;
+    zip_t *archive = checksum ? zip_open(path, ZIP_CREATE | ZIP_TRUNCATE, &error) : NULL;
     if (!archive) {
         free(data);
-        free(xml_copy);
-        return im_fail(IM_EIO, "%s: cannot create the x3p archive (zip error %d)", path, error);
+        free(xml);
+        free(checksum);
+        return checksum ? im_fail(IM_EIO, "%s: cannot create the x3p archive (zip error %d)", path, error)
+                        : im_fail(IM_ENOMEM, "%s: allocation of the x3p contents (%zu values) failed", path, count);
     }
-    for (size_t i = 0; i < count; ++i)
-        data[i] = field->data[i] * metres; /* little-endian host: the bytes are the file's */
-    int failed = add_buffer(archive, "main.xml", xml_copy, (size_t)xml_size) != 0 ||
-                 add_buffer(archive, "bindata/data.bin", data, count * sizeof *data) != 0;
+    /* each buffer goes to the archive, which frees it, even after a failure: no short-circuit */
+    int failed = (add_buffer(archive, "main.xml", xml, xml_size) != 0) |
+                 (add_buffer(archive, "bindata/data.bin", data, count * sizeof *data) != 0) |
+                 (add_buffer(archive, "md5checksum.hex", checksum, checksum_size) != 0);
     if (failed || zip_close(archive) != 0) {
         int status = im_fail(IM_EIO, "%s: cannot write the x3p archive: %s", path, zip_strerror(archive));
         zip_discard(archive);
