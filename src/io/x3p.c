@@ -26,15 +26,15 @@
 
 enum { X3P_MAX_XML = 16 << 20 }; /* main.xml of a surface is a few kB; more is refused */
 
+enum { MD5_HEX = 2 * MD5_DIGEST_SIZE }; /* an MD5 in hex digits */
+
 typedef struct x3p_grid {
     long nx, ny, nz;
     double dx, dy, z_increment, z_offset;
     char z_type;            /* I int16, L int32, F float32, D float64 */
     char data_path[256];    /* the PointDataLink */
-    char data_md5[33];      /* its MD5ChecksumPointData (32 hex digits), or "" when none is stated */
+    char data_md5[MD5_HEX + 1]; /* its MD5ChecksumPointData (32 hex digits), or "" when none is stated */
 } x3p_grid;
-
-enum { MD5_HEX = 2 * MD5_DIGEST_SIZE };
 
 /* The MD5 that `context` has taken in, as 32 hex digits (upper or lower case) and a terminating NUL. */
 static void md5_finish_hex(struct md5_ctx *context, int upper, char hex[MD5_HEX + 1])
@@ -197,7 +197,7 @@ static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
     static const char *const MD5[] = {"Record3", "DataLink", "MD5ChecksumPointData", NULL};
     xmlNode *md5 = find(root, MD5);
     xmlChar *stated = md5 ? xmlNodeGetContent(md5) : NULL;
-    if (stated) /* optional here: files from before the 2020 schema may lack it */
+    if (stated) /* required by the schema, optional here: some writers leave it out */
         sscanf((const char *)stated, "%32s", g->data_md5);
     xmlFree(stated);
     return text_at(path, root, LINK, "Record3/DataLink/PointDataLink", g->data_path, sizeof g->data_path);
