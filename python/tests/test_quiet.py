@@ -116,6 +116,22 @@ def interrupt_after(seconds):
     return sent
 
 
+def interrupt_when(folder, pattern, timeout=60.0):
+    """Sends this process SIGINT from a thread as soon as a file matching `pattern` is in `folder` (a
+    fixed delay is not enough: a fast machine finishes a small scene first); returns the list its time
+    goes into."""
+    sent = []
+
+    def watch():
+        deadline = time.perf_counter() + timeout
+        while not any(folder.glob(pattern)) and time.perf_counter() < deadline:
+            time.sleep(0.002)
+        sent.append(time.perf_counter())
+        os.kill(os.getpid(), signal.SIGINT)
+    threading.Thread(target=watch, daemon=True).start()
+    return sent
+
+
 def rough_cone_gap(n):
     y, x = np.mgrid[0:n, 0:n]
     gap = np.hypot(x - (n - 1) / 2, y - (n - 1) / 2) / np.tan(np.radians(80)) - im.generate(n, slope=0.08, seed=1)
@@ -144,7 +160,7 @@ def test_ctrl_c_stops_a_scene_and_resume_finishes_it(tmp_path):
     scene = SCENE.replace("seeds = 1:3", "seeds = 1:30")  # 31 surfaces, some seconds in all
     path = tmp_path / "long.ini"
     path.write_text(scene.format(output=tmp_path / "out"))
-    sent = interrupt_after(0.5)
+    sent = interrupt_when(tmp_path / "out" / "table", "member_*.csv")  # once the first surface is kept
     with pytest.raises(KeyboardInterrupt):
         im.run_scene(path, quiet=True)
     latency = time.perf_counter() - sent[0]
