@@ -49,6 +49,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 median() { sort -g | awk '{v[NR] = $1} END {if (NR) print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
 
 # One fig4 run in a fresh folder: "wall cpu" (CPU = user + system of the process and its threads).
 fig4_once() {
@@ -79,7 +80,6 @@ run_pair() { # what, command (called as: command THREADS)
   w1=$(cut -d' ' -f1 "$work/$what.1" | median); c1=$(cut -d' ' -f2 "$work/$what.1" | median)
   w2=$(cut -d' ' -f1 "$work/$what.2" | median); c2=$(cut -d' ' -f2 "$work/$what.2" | median)
   m1=$(cut -d' ' -f1 "$work/$what.1" | sort -g | head -1); m2=$(cut -d' ' -f1 "$work/$what.2" | sort -g | head -1)
-  ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
   # per repeat (its 1-thread run and the 2-thread run right after it saw about the same neighbours):
   # "wall ratio, CPU ratio, their product"
   paste -d' ' "$work/$what.1" "$work/$what.2" | awk '{print $1 / $3, $4 / $2, $1 / $3 * $4 / $2}' >"$work/$what.r"
@@ -105,7 +105,7 @@ if [ "$only" != fig4 ]; then
     eval "solver_$n() { solver_once $n \"\$1\"; }"
     run_pair "solver_$n" "solver_$n"
     p1=$(median <"$work/pair_$n.1"); p2=$(median <"$work/pair_$n.2")
-    echo "fft_pair_floor_$n,1-2,$repeats,$p1 ms,$p2 ms,-,$(awk -v a="$p1" -v b="$p2" 'BEGIN {printf "%.2f", a / b}'),-,-,-,-,-"
+    echo "fft_pair_floor_$n,1-2,$repeats,$p1 ms,$p2 ms,-,$(ratio "$p1" "$p2"),-,-,-,-,-"
   done
 fi
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
