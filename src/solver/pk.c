@@ -1,31 +1,14 @@
-/* Polonsky-Keer constrained conjugate gradients (see solver.h for the algorithm and stopping rule). */
-#include "solver/plan.h"
+/* Polonsky-Keer constrained conjugate gradients (see solver.h for the algorithm and stopping rule),
+ * written once over the engines of engine.h: this file decides, the engine's passes compute. */
+#include "solver/engine.h"
 
-#include "core/summation.h"
 #include "indentmap/status.h"
 
 #include <math.h>
 #include <omp.h>
 #include <string.h>
 
-typedef struct gap_stats {
-    double approach;     /* w used for these gaps */
-    long contact;        /* |I_c| */
-    double sum_squares;  /* G = sum over I_c of g^2 */
-    double moving_squares; /* the same over the patches the CG moves (with a pressure cap, also the
-                              capped ones that unload; otherwise G) */
-    double penetration;  /* max over p = 0 of -g (0 if none) */
-    double penetration_squares; /* sum over p = 0, g < 0 of g^2 */
-} gap_stats;
-
-typedef struct pk_run {
-    im_solver_plan *plan;
-    const double *gap0;
-    enum im_control control;
-    double target;
-    double *p, *u;
-    int convolutions;
-} pk_run;
+static const solver_engine *engine_of(const pk_run *r) { return r->plan->engine; }
 
 /* ---- the pressure cap (hardness): perfect plasticity at p = H_p ----
  * The elastic contact is 0 < p < cap; patches at a bound are fixed while their gap agrees: p = 0
@@ -39,67 +22,17 @@ static double pressure_cap(const im_solver_plan *plan)
     return plan->options.hardness > 0 ? plan->options.hardness : INFINITY;
 }
 
-static int elastic(double p, double cap) { return p > 0 && p < cap; }
-
-/* The patches the conjugate gradients move: elastic, or capped and unloading. */
-static int moving(double p, double g, double cap) { return elastic(p, cap) || (p == cap && g > 0); }
-
-/* The projection onto 0 <= p <= cap. */
-static double project(double p, double cap) { return p < 0 ? 0 : (p > cap ? cap : p); }
-
-/* How far a patch at a bound violates its condition: -g at p = 0, g at p = cap. */
-static double bound_violation(double p, double g) { return p > 0 ? g : -g; }
-
-/* Mean of a + b over I_c = {0 < p < cap}. */
-static double mean_over_contact(const double *p, const double *a, const double *b, size_t n, double cap, long *count)
-{
-    double sum = 0;
-    long c = 0;
-#pragma omp parallel for schedule(static) reduction(+ : sum, c)
-    for (size_t i = 0; i < n; ++i)
-        if (elastic(p[i], cap)) {
-            sum += a[i] + b[i];
-            ++c;
-        }
-    *count = c;
-    return c ? sum / c : 0;
-}
-
 /* g = u + g0 - w, with w imposed or (load control) the mean of u + g0 over I_c. */
-static gap_stats compute_gaps(const pk_run *r)
+static gap_stats compute_gaps(pk_run *r)
 {
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double *p = r->p, *u = r->u, *g0 = r->gap0;
-    double *g = r->plan->gap;
     const double cap = pressure_cap(r->plan);
-    gap_stats s = {.approach = r->target};
-    if (r->control == IM_CONTROL_LOAD)
-        s.approach = mean_over_contact(p, u, g0, n, cap, &s.contact);
-    const double w = s.approach;
-    double squares = 0, moving_squares = 0, penetration = 0, penetration_squares = 0;
-    long contact = 0;
-#pragma omp parallel for schedule(static) reduction(+ : squares, moving_squares, contact, penetration_squares) \
-    reduction(max : penetration)
-    for (size_t i = 0; i < n; ++i) {
-        double gi = u[i] + g0[i] - w;
-        g[i] = gi;
-        if (elastic(p[i], cap)) {
-            squares += gi * gi;
-            ++contact;
-        } else {
-            if (bound_violation(p[i], gi) > penetration)
-                penetration = bound_violation(p[i], gi);
-            if (p[i] == 0 && gi < 0) /* would join */
-                penetration_squares += gi * gi;
-        }
-        if (moving(p[i], gi, cap))
-            moving_squares += gi * gi;
+    double w = r->target;
+    if (r->control == IM_CONTROL_LOAD) {
+        long count;
+        w = engine_of(r)->contact_mean(r, cap, &count);
     }
-    s.penetration_squares = penetration_squares;
-    s.contact = contact;
-    s.sum_squares = squares;
-    s.moving_squares = moving_squares;
-    s.penetration = penetration;
+    gap_stats s = engine_of(r)->gaps(r, w, cap);
+    s.approach = w;
     return s;
 }
 
@@ -109,79 +42,49 @@ static double relative_residual(const gap_stats *s)
     return fmax(rms, s->penetration) / s->approach;
 }
 
-static void convolve(pk_run *r, const double *in, double *out)
+/* u = K p */
+static void convolve(pk_run *r)
 {
-    im_solver_convolve(r->plan, in, out);
+    engine_of(r)->convolve_pressure(r);
     ++r->convolutions;
 }
 
-/* Winkler guess p = max(w - g0, 0) / K(0): the local part of the response only. */
-static double winkler_load(const pk_run *r, double w, int store)
-{
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double k0 = r->plan->kernel[0], d2 = r->plan->delta * r->plan->delta;
-    double sum = 0;
-#pragma omp parallel for schedule(static) reduction(+ : sum)
-    for (size_t i = 0; i < n; ++i) {
-        double pi = r->gap0[i] < w ? (w - r->gap0[i]) / k0 : 0;
-        if (store)
-            r->p[i] = pi;
-        sum += pi;
-    }
-    return sum * d2;
-}
-
-/* Cold start: the Winkler guess at the imposed approach, or (load control) at the approach where
- * it carries the load, found by bisection (at w = K(0) N / delta^2 the first-touch patch alone does). */
+/* Cold start: the Winkler guess p = max(w - g0, 0) / K(0) (the local part of the response only) at
+ * the imposed approach, or (load control) at the approach where it carries the load, found by
+ * bisection (at w = K(0) N / delta^2 the first-touch patch alone does). */
 static void cold_start(pk_run *r)
 {
+    const double k0 = r->plan->kernel[0];
     double w = r->target;
     if (r->control == IM_CONTROL_LOAD) {
-        double lo = 0, hi = r->plan->kernel[0] * r->target / (r->plan->delta * r->plan->delta);
+        double lo = 0, hi = k0 * r->target / (r->plan->delta * r->plan->delta);
         for (int k = 0; k < 60; ++k) {
             double mid = 0.5 * (lo + hi);
-            if (winkler_load(r, mid, 0) < r->target)
+            if (engine_of(r)->winkler(r, mid, k0, 0) < r->target)
                 lo = mid;
             else
                 hi = mid;
         }
         w = hi;
     }
-    winkler_load(r, w, 1);
+    engine_of(r)->winkler(r, w, k0, 1);
 }
 
 /* With a pressure cap, under load control: rescales the elastic pressures so that delta^2 sum p = N
  * with the capped ones fixed, and recomputes u (a partial rescaling is not linear in p). */
 static void impose_load_capped(pk_run *r, double cap)
 {
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double d2 = r->plan->delta * r->plan->delta;
-    double elastic_load = 0, capped_load = 0;
-#pragma omp parallel for schedule(static) reduction(+ : elastic_load, capped_load)
-    for (size_t i = 0; i < n; ++i) {
-        if (elastic(r->p[i], cap))
-            elastic_load += r->p[i] * d2;
-        else
-            capped_load += r->p[i] * d2;
-    }
+    double elastic_load, capped_load;
+    engine_of(r)->load_split(r, cap, &elastic_load, &capped_load);
     if (!(elastic_load > 0))
         return;
     const double scale = fmax(0.0, r->target - capped_load) / elastic_load;
-    int clipped = 0;
-#pragma omp parallel for schedule(static) reduction(| : clipped)
-    for (size_t i = 0; i < n; ++i)
-        if (elastic(r->p[i], cap)) {
-            r->p[i] = project(r->p[i] * scale, cap);
-            clipped |= r->p[i] == cap;
-        }
+    int clipped = engine_of(r)->scale_elastic(r, scale, cap);
     if (capped_load > 0 || clipped) { /* a partial rescaling: u by FFT */
-        convolve(r, r->p, r->u);
+        convolve(r);
         return;
     }
-    /* nothing capped: all of p was scaled, and u with it by linearity */
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        r->u[i] *= scale;
+    engine_of(r)->scale(r, 1, scale); /* nothing capped: all of p was scaled, and u with it by linearity */
 }
 
 /* Under load control, rescales p (and u, by linearity) so that delta^2 sum p = N. */
@@ -192,163 +95,47 @@ static void impose_load(pk_run *r)
         impose_load_capped(r, cap);
         return;
     }
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
-    const double load = sum_doubles(r->p, n) * r->plan->delta * r->plan->delta; /* p >= 0 */
+    const double load = engine_of(r)->pressure_sum(r) * r->plan->delta * r->plan->delta; /* p >= 0 */
     if (!(load > 0))
         return;
     const double scale = r->target / load;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i) {
-        r->p[i] *= scale;
-        r->u[i] *= scale;
-    }
-}
-
-/* New search direction t = source + beta t on the moving patches (source: the gap g, or the
- * preconditioned gap), 0 elsewhere, written also into the padded rows that the convolution
- * transforms (one pass instead of two). */
-static void update_direction(const pk_run *r, const double *source, double beta)
-{
-    const im_solver_plan *plan = r->plan;
-    const int nx = plan->nx, ny = plan->ny, px = plan->px;
-    double *t = plan->direction;
-    const double *g = plan->gap, *p = r->p, cap = pressure_cap(plan);
-#pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy) {
-        double *padded = plan->rows_in + (size_t)iy * px;
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            t[i] = moving(p[i], g[i], cap) ? source[i] + beta * t[i] : 0;
-            padded[ix] = t[i];
-        }
-    }
+    engine_of(r)->scale(r, scale, scale);
 }
 
 /* z = M g on I_c (0 elsewhere), M the inverse of a periodic circulant close to K (plan.c): K is
  * close to 1 / (E* |k|) in Fourier space, so M ~ E* |k| undoes most of its spread of eigenvalues,
  * which grows with the contact's size in patches and sets plain CG's rate. Centred over I_c under
- * load control (the directions keep the load). An unpadded transform pair, a quarter of a
- * convolution's size. Returns <g, z> over I_c. */
+ * load control (the directions keep the load). Returns <g, z> over I_c. */
 static double precondition(pk_run *r)
 {
-    im_solver_plan *plan = r->plan;
-    const size_t n = (size_t)plan->nx * plan->ny, modes = (size_t)plan->ny * (plan->nx / 2 + 1);
-    const double *g = plan->gap, *p = r->p;
-    double *z = plan->preconditioned;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        z[i] = p[i] > 0 ? g[i] : 0;
-    fftw_execute(plan->precondition_forward);
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < modes; ++k) {
-        plan->precondition_modes[k][0] *= plan->inverse_spectrum[k];
-        plan->precondition_modes[k][1] *= plan->inverse_spectrum[k];
-    }
-    fftw_execute(plan->precondition_backward);
-    double z_sum = 0;
-    long count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : z_sum, count)
-    for (size_t i = 0; i < n; ++i) {
-        if (p[i] > 0) {
-            z_sum += z[i];
-            ++count;
-        } else
-            z[i] = 0;
-    }
+    long count;
+    double z_sum = engine_of(r)->precondition(r, &count);
     const double mean = r->control == IM_CONTROL_LOAD && count ? z_sum / count : 0;
-    double gz = 0;
-#pragma omp parallel for schedule(static) reduction(+ : gz)
-    for (size_t i = 0; i < n; ++i)
-        if (p[i] > 0) {
-            z[i] -= mean;
-            gz += g[i] * z[i];
-        }
-    return gz;
+    return engine_of(r)->precondition_centre(r, mean);
 }
 
-/* Step length tau = <g, t> / <K t, t> over I_c, K t read in place from the convolution's rows;
- * under load control K t is centred over I_c: <K t - mean, t> = <K t, t> - mean <1, t>. */
-static double step_length(const pk_run *r)
+/* Step length tau = <g, t> / <K t, t> over I_c; under load control K t is centred over I_c:
+ * <K t - mean, t> = <K t, t> - mean <1, t>. */
+static double step_length(pk_run *r)
 {
-    const im_solver_plan *plan = r->plan;
-    const int nx = plan->nx, ny = plan->ny, px = plan->px;
-    const double *t = plan->direction, *g = plan->gap, *p = r->p, cap = pressure_cap(plan);
-    double num = 0, qt = 0, q_sum = 0, t_sum = 0;
-    long count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : num, qt, q_sum, t_sum, count)
-    for (int iy = 0; iy < ny; ++iy) {
-        const double *q = plan->rows_out + (size_t)iy * px;
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            if (moving(p[i], g[i], cap)) {
-                num += g[i] * t[i];
-                qt += q[ix] * t[i];
-                q_sum += q[ix];
-                t_sum += t[i];
-                ++count;
-            }
-        }
-    }
-    double den = qt;
-    if (r->control == IM_CONTROL_LOAD && count > 0)
-        den -= q_sum / count * t_sum;
-    return num / den;
+    step_terms s = engine_of(r)->step(r, pressure_cap(r->plan));
+    double den = s.kt_t;
+    if (r->control == IM_CONTROL_LOAD && s.count > 0)
+        den -= s.kt_sum / s.count * s.t_sum;
+    return s.gt / den;
 }
 
-/* In one pass: u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; if
- * allow_join, patches outside I_c that penetrate (p = 0, g < 0) join with p = -tau g (at most cap).
- * Records how p differs from the plain CG step p - tau t in plan->changed_value and returns the
- * number of such patches; *joined is set when any joined. */
-static long update_pressure(pk_run *r, double tau, int allow_join, int *joined)
-{
-    const im_solver_plan *plan = r->plan;
-    const int nx = plan->nx, ny = plan->ny, px = plan->px;
-    const double *t = plan->direction, *g = plan->gap, cap = pressure_cap(plan);
-    double *p = r->p, *u = r->u, *change = plan->changed_value;
-    long changes = 0;
-    int any_joined = 0;
-#pragma omp parallel for schedule(static) reduction(+ : changes) reduction(| : any_joined)
-    for (int iy = 0; iy < ny; ++iy) {
-        const double *q = plan->rows_out + (size_t)iy * px;
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            double c = 0;
-            u[i] -= tau * q[ix];
-            if (moving(p[i], g[i], cap)) {
-                double next = p[i] - tau * t[i];
-                p[i] = project(next, cap);
-                c = p[i] - next;
-            } else if (allow_join && p[i] == 0 && g[i] < 0) {
-                p[i] = c = project(-tau * g[i], cap);
-                any_joined = 1;
-            }
-            change[i] = c;
-            changes += c != 0;
-        }
-    }
-    *joined = any_joined;
-    return changes;
-}
-
-/* Adds the recorded changes to u (already moved by -tau K t) by direct summation, or, when they
- * are many, recomputes u = K p by FFT, which is then cheaper and exact; returns 1 if u is exact. */
+/* Adds the changes that clipping and joining made to u (already moved by -tau K t) by direct
+ * summation, or, when they are many, recomputes u = K p by FFT, which is then cheaper and exact;
+ * returns 1 if u is exact. */
 static int update_displacement(pk_run *r, long changes)
 {
-    im_solver_plan *plan = r->plan;
-    const size_t n = (size_t)plan->nx * plan->ny;
-    if (changes > plan->direct_limit) {
-        convolve(r, r->p, r->u);
+    if (changes > r->plan->direct_limit) {
+        convolve(r);
         return 1;
     }
-    if (changes > 0) {
-        long k = 0;
-        for (size_t i = 0; i < n && k < changes; ++i)
-            if (plan->changed_value[i] != 0) {
-                plan->changed[k] = (long)i;
-                plan->changed_value[k++] = plan->changed_value[i];
-            }
-        solver_add_point_loads(plan, plan->changed, plan->changed_value, changes, r->u);
-    }
+    if (changes > 0)
+        engine_of(r)->add_point_loads(r, changes);
     return 0;
 }
 
@@ -388,20 +175,12 @@ static int any_positive(const double *p, size_t n)
     return 0;
 }
 
-static void summarise(const pk_run *r, const gap_stats *s, im_solve_result *out)
+static void summarise(pk_run *r, const gap_stats *s, im_solve_result *out)
 {
-    const size_t n = (size_t)r->plan->nx * r->plan->ny;
     const double d2 = r->plan->delta * r->plan->delta;
-    double peak = 0;
-    long contact = 0;
-#pragma omp parallel for schedule(static) reduction(+ : contact) reduction(max : peak)
-    for (size_t i = 0; i < n; ++i)
-        if (r->p[i] > 0) {
-            ++contact;
-            if (r->p[i] > peak)
-                peak = r->p[i];
-        }
-    const double sum = sum_doubles(r->p, n); /* p >= 0: the sum over the contact set */
+    double sum, peak;
+    long contact;
+    engine_of(r)->summary(r, &sum, &contact, &peak);
     out->approach = s->approach;
     out->load = sum * d2;
     out->contact_patches = contact;
@@ -409,14 +188,18 @@ static void summarise(const pk_run *r, const gap_stats *s, im_solve_result *out)
     out->max_pressure = peak;
 }
 
-/* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC or IM_EINTERRUPTED and leaves the last
- * gap_stats. */
+/* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC, IM_EINTERRUPTED or an engine's
+ * failure, and leaves the last gap_stats. */
 static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
 {
     const im_solver_options *o = &r->plan->options;
+    const solver_engine *e = engine_of(r);
+    const double cap = pressure_cap(r->plan);
     int exact = 1, restart = 1;
     double previous_squares = 1;
     for (;;) {
+        if (r->status != IM_OK)
+            return r->status;
         gap_stats s = compute_gaps(r);
         *last = s;
         res->residual = relative_residual(&s);
@@ -425,7 +208,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->residual <= o->tol) {
             if (exact)
                 return IM_OK;
-            convolve(r, r->p, r->u); /* confirm on the exact displacement */
+            convolve(r); /* confirm on the exact displacement */
             exact = 1;
             continue;
         }
@@ -435,10 +218,10 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (o->stop && *o->stop) /* the caller asked to stop: p is still a valid (warm) start */
             return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations",
                            (int)*o->stop, res->iterations);
-        if (s.contact == 0 && !any_positive(r->p, (size_t)r->plan->nx * r->plan->ny)) {
+        if (s.contact == 0 && !e->any_positive(r)) {
             /* everything was clipped (patches at a pressure cap are not): start again from the local guess */
             cold_start(r);
-            convolve(r, r->p, r->u);
+            convolve(r);
             restart = exact = 1;
             continue;
         }
@@ -451,14 +234,14 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (o->precondition && join)
             restart = 1;
         if (join) {
-            update_direction(r, r->plan->gap, restart ? 0 : s.moving_squares / previous_squares);
+            e->direction(r, 0, restart ? 0 : s.moving_squares / previous_squares, cap);
             previous_squares = s.moving_squares;
         } else {
             double gz = precondition(r);
-            update_direction(r, r->plan->preconditioned, restart ? 0 : gz / previous_squares);
+            e->direction(r, 1, restart ? 0 : gz / previous_squares, cap);
             previous_squares = gz;
         }
-        solver_convolve_rows(r->plan); /* K t, left in plan->rows_out */
+        e->convolve_direction(r); /* K t, kept by the engine */
         ++r->convolutions;
         double tau = step_length(r);
         if (!(tau > 0) && !restart) {
@@ -474,13 +257,35 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             tau = 1.0 / r->plan->kernel[0];
         if (!isfinite(tau) || tau <= 0)
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
-        long changes = update_pressure(r, tau, join, &restart);
+        long changes = e->update_pressure(r, tau, cap, join, &restart);
         if (o->precondition && join)
             restart = 1; /* the next preconditioned step starts its own conjugate sequence */
         exact = update_displacement(r, changes);
         if (r->control == IM_CONTROL_LOAD)
             impose_load(r);
     }
+}
+
+/* From the start in r->p (a warm start, or zeros: then the local guess) to the answer, on the engine. */
+static int solve_on_engine(pk_run *r, im_solve_result *res)
+{
+    const solver_engine *e = engine_of(r);
+    gap_stats last = {0};
+    int status = e->begin(r);
+    if (status != IM_OK)
+        return status;
+    if (!e->any_positive(r))
+        cold_start(r);
+    const double cap = pressure_cap(r->plan); /* a start above the cap (Winkler's, or a warm one) */
+    if (isfinite(cap))
+        e->clip(r, cap);
+    convolve(r);
+    if (r->control == IM_CONTROL_LOAD)
+        impose_load(r);
+    status = iterate(r, res, &last);
+    summarise(r, &last, res);
+    int finished = e->finish(r); /* p and u back, also after a failure: p is a valid warm start */
+    return status != IM_OK ? status : (r->status != IM_OK ? r->status : finished);
 }
 
 int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
@@ -492,25 +297,16 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     if (status != IM_OK)
         return status;
     const size_t n = (size_t)plan->nx * plan->ny;
-    pk_run r = {.plan = plan, .gap0 = gap0, .control = control, .target = target, .p = pressure, .u = displacement};
-    gap_stats last = {0};
+    pk_run r = {.plan = plan, .gap0 = gap0, .control = control, .target = target, .p = pressure,
+                .u = displacement, .status = IM_OK};
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);
     } else {
         if (!any_positive(pressure, n) && plan->coarse)
             res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
-        if (!any_positive(pressure, n))
-            cold_start(&r);
-        const double cap = pressure_cap(plan); /* a start above the cap (Winkler's, or a warm one) */
-        for (size_t i = 0; i < n && isfinite(cap); ++i)
-            pressure[i] = project(pressure[i], cap);
-        convolve(&r, pressure, displacement);
-        if (control == IM_CONTROL_LOAD)
-            impose_load(&r);
-        status = iterate(&r, &res, &last);
+        status = solve_on_engine(&r, &res);
     }
-    summarise(&r, &last, &res);
     res.convolutions = r.convolutions;
     res.seconds = omp_get_wtime() - start;
     if (result)

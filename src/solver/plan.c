@@ -1,4 +1,4 @@
-#include "solver/plan.h"
+#include "solver/engine.h"
 
 #include "core/fft_threads.h"
 #include "indentmap/io.h"
@@ -310,7 +310,7 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
         o.cascade = o.precondition = 0;
     /* periodic: the circular convolution on the grid itself */
     const int pad = o.periodic ? 1 : 2;
-    *p = (im_solver_plan){.nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta, .options = o};
+    *p = (im_solver_plan){.engine = &solver_engine_cpu, .nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta, .options = o};
     double start = omp_get_wtime();
     status = allocate_plan(p);
     if (status == IM_OK)
@@ -344,6 +344,8 @@ void im_solver_plan_free(im_solver_plan *p)
 {
     if (!p)
         return;
+    if (p->engine)
+        p->engine->free(p);
     fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,       p->columns_backward,
                           p->rows_backward, p->precondition_forward, p->precondition_backward};
     fft_planner_lock();
@@ -389,14 +391,7 @@ void solver_convolve_rows(im_solver_plan *p)
 
 void im_solver_convolve(im_solver_plan *p, const double *pressure, double *displacement)
 {
-    const int nx = p->nx, ny = p->ny, px = p->px;
-#pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
-        memcpy(p->rows_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
-    solver_convolve_rows(p);
-#pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
-        memcpy(displacement + (size_t)iy * nx, p->rows_out + (size_t)iy * px, sizeof(double) * nx);
+    p->engine->convolve_arrays(p, pressure, displacement);
 }
 
 void solver_add_point_loads(const im_solver_plan *p, const long *index, const double *value, long count,

@@ -6,7 +6,12 @@
 
 #include <fftw3.h>
 
+struct solver_engine;
+struct gpu_solver;
+
 struct im_solver_plan {
+    const struct solver_engine *engine; /* whose passes the iteration runs on (engine.h) */
+    struct gpu_solver *gpu;  /* the GPU engine's device state (engine_gpu.c), NULL on the CPU */
     int nx, ny;              /* problem grid */
     int px, py;              /* padded grid: 2nx x 2ny (periodic: nx x ny, no padding) */
     double delta;

@@ -1,0 +1,102 @@
+/* Internal: the grid operations that the one Polonsky-Keer iteration (pk.c) is written over.
+ *
+ * pk.c holds the algorithm: the cold and cascade starts, the stopping rule, the choice between a
+ * plain PK step and a preconditioned CG step, the step length, the restarts, load control and the
+ * pressure cap. An engine holds the fields and does the passes over them, each a fused
+ * element-wise update with the reductions it needs, and the convolutions:
+ *   engine_cpu.c   the plan's own arrays, OpenMP loops and FFTW (the default)
+ *   engine_gpu.c   device-resident fields, compute shaders and VkFFT (IM_GPU builds, device = gpu)
+ * A pass never decides anything: it returns the sums and counts pk.c decides with. Engines give
+ * the same answers to the solve's tolerance; they differ in the order of their sums.
+ *
+ * The patch sets (solver.h, "Hardness"): elastic = 0 < p < cap; moving = elastic, or p = cap and
+ * g > 0 (capped and unloading); cap = +inf without a hardness. */
+#ifndef INDENTMAP_SOLVER_ENGINE_H
+#define INDENTMAP_SOLVER_ENGINE_H
+
+#include "solver/plan.h"
+
+typedef struct gap_stats {
+    double approach;            /* w used for these gaps */
+    long contact;               /* |I_c| */
+    double sum_squares;         /* G = sum over I_c of g^2 */
+    double moving_squares;      /* the same over the moving patches (without a cap: G) */
+    double penetration;         /* max over the patches at a bound of their violation (0 if none) */
+    double penetration_squares; /* sum over p = 0, g < 0 of g^2 */
+} gap_stats;
+
+/* The sums of a step length tau = <g, t> / <K t, t> over the moving patches. */
+typedef struct step_terms {
+    double gt, kt_t, kt_sum, t_sum;
+    long count;
+} step_terms;
+
+typedef struct pk_run {
+    im_solver_plan *plan;
+    const double *gap0;       /* the caller's undeformed gap */
+    enum im_control control;
+    double target;
+    double *p, *u;            /* the caller's pressure (in: a warm start or zeros) and displacement */
+    int convolutions;
+    int status;               /* IM_OK, or the first failure of an engine pass (a lost GPU) */
+} pk_run;
+
+typedef struct solver_engine {
+    const char *name;
+    /* The solve's inputs onto the engine (gap0, p) and its results back (p, u): nothing on the CPU. */
+    int (*begin)(pk_run *r);
+    int (*finish)(pk_run *r);
+    /* u = K p */
+    void (*convolve_pressure)(pk_run *r);
+    /* K t of the current direction, kept for step_terms and update_pressure */
+    void (*convolve_direction)(pk_run *r);
+    /* The mean of u + g0 over the elastic patches, and their count */
+    double (*contact_mean)(pk_run *r, double cap, long *count);
+    /* g = u + g0 - w, and its statistics (approach left for the caller) */
+    gap_stats (*gaps)(pk_run *r, double w, double cap);
+    /* The local (Winkler) guess p = max(w - g0, 0) / k0: its load delta^2 sum p, stored when store */
+    double (*winkler)(pk_run *r, double w, double k0, int store);
+    /* p = min(p, cap) */
+    void (*clip)(pk_run *r, double cap);
+    int (*any_positive)(pk_run *r);
+    /* delta^2 sum p over the elastic and over the other patches */
+    void (*load_split)(pk_run *r, double cap, double *elastic, double *capped);
+    /* p = min(p scale, cap) on the elastic patches; returns whether any reached the cap */
+    int (*scale_elastic)(pk_run *r, double scale, double cap);
+    /* The exact (order-independent) sum of p */
+    double (*pressure_sum)(pk_run *r);
+    /* p *= p_factor, u *= u_factor (a factor of 1 leaves its field unchanged, bit for bit) */
+    void (*scale)(pk_run *r, double p_factor, double u_factor);
+    /* t = source + beta t on the moving patches, 0 elsewhere; source: g, or z when preconditioned */
+    void (*direction)(pk_run *r, int preconditioned, double beta, double cap);
+    /* z = M g restricted to p > 0; returns sum of z there and the count */
+    double (*precondition)(pk_run *r, long *count);
+    /* z -= mean on p > 0; returns <g, z> there */
+    double (*precondition_centre)(pk_run *r, double mean);
+    step_terms (*step)(pk_run *r, double cap);
+    /* u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; with allow_join the
+     * penetrating patches at p = 0 join with min(-tau g, cap). Returns how many patches differ from
+     * the plain step (their changes kept for add_point_loads); *joined when any joined. */
+    long (*update_pressure)(pk_run *r, double tau, double cap, int allow_join, int *joined);
+    /* u += K (the recorded changes), by direct summation; never called when direct_limit is 0 */
+    void (*add_point_loads)(pk_run *r, long changes);
+    /* sum p, the patches with p > 0 and the largest p */
+    void (*summary)(pk_run *r, double *sum, long *contact, double *peak);
+    /* displacement = K pressure for the caller's arrays (im_solver_convolve) */
+    int (*convolve_arrays)(im_solver_plan *plan, const double *pressure, double *displacement);
+    void (*free)(im_solver_plan *plan);
+} solver_engine;
+
+extern const solver_engine solver_engine_cpu;
+
+/* The patch sets, shared by the engines' passes. */
+static inline int solver_elastic(double p, double cap) { return p > 0 && p < cap; }
+static inline int solver_moving(double p, double g, double cap)
+{
+    return solver_elastic(p, cap) || (p == cap && g > 0);
+}
+static inline double solver_project(double p, double cap) { return p < 0 ? 0 : (p > cap ? cap : p); }
+/* How far a patch at a bound violates its condition: -g at p = 0, g at p = cap. */
+static inline double solver_bound_violation(double p, double g) { return p > 0 ? g : -g; }
+
+#endif

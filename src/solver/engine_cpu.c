@@ -1,0 +1,331 @@
+/* The CPU engine of the Polonsky-Keer iteration (engine.h): the plan's own arrays, OpenMP loops,
+ * FFTW transforms (plan.c). Sums are OpenMP reductions, except the load, which is summed exactly
+ * (core/summation.h) so that it is the same for any thread count. */
+#include "solver/engine.h"
+
+#include "core/summation.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+static size_t patches(const pk_run *r) { return (size_t)r->plan->nx * r->plan->ny; }
+
+static int cpu_nothing(pk_run *r)
+{
+    (void)r;
+    return IM_OK;
+}
+
+static void cpu_convolve_pressure(pk_run *r) { im_solver_convolve(r->plan, r->p, r->u); }
+
+static void cpu_convolve_direction(pk_run *r) { solver_convolve_rows(r->plan); }
+
+static double cpu_contact_mean(pk_run *r, double cap, long *count)
+{
+    const size_t n = patches(r);
+    const double *p = r->p, *u = r->u, *g0 = r->gap0;
+    double sum = 0;
+    long c = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum, c)
+    for (size_t i = 0; i < n; ++i)
+        if (solver_elastic(p[i], cap)) {
+            sum += u[i] + g0[i];
+            ++c;
+        }
+    *count = c;
+    return c ? sum / c : 0;
+}
+
+static gap_stats cpu_gaps(pk_run *r, double w, double cap)
+{
+    const size_t n = patches(r);
+    const double *p = r->p, *u = r->u, *g0 = r->gap0;
+    double *g = r->plan->gap;
+    double squares = 0, moving_squares = 0, penetration = 0, penetration_squares = 0;
+    long contact = 0;
+#pragma omp parallel for schedule(static) reduction(+ : squares, moving_squares, contact, penetration_squares) \
+    reduction(max : penetration)
+    for (size_t i = 0; i < n; ++i) {
+        double gi = u[i] + g0[i] - w;
+        g[i] = gi;
+        if (solver_elastic(p[i], cap)) {
+            squares += gi * gi;
+            ++contact;
+        } else {
+            if (solver_bound_violation(p[i], gi) > penetration)
+                penetration = solver_bound_violation(p[i], gi);
+            if (p[i] == 0 && gi < 0) /* would join */
+                penetration_squares += gi * gi;
+        }
+        if (solver_moving(p[i], gi, cap))
+            moving_squares += gi * gi;
+    }
+    return (gap_stats){.contact = contact, .sum_squares = squares, .moving_squares = moving_squares,
+                       .penetration = penetration, .penetration_squares = penetration_squares};
+}
+
+static double cpu_winkler(pk_run *r, double w, double k0, int store)
+{
+    const size_t n = patches(r);
+    const double d2 = r->plan->delta * r->plan->delta;
+    double sum = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+    for (size_t i = 0; i < n; ++i) {
+        double pi = r->gap0[i] < w ? (w - r->gap0[i]) / k0 : 0;
+        if (store)
+            r->p[i] = pi;
+        sum += pi;
+    }
+    return sum * d2;
+}
+
+static void cpu_clip(pk_run *r, double cap)
+{
+    const size_t n = patches(r);
+    for (size_t i = 0; i < n; ++i)
+        r->p[i] = solver_project(r->p[i], cap);
+}
+
+static int cpu_any_positive(pk_run *r)
+{
+    const size_t n = patches(r);
+    for (size_t i = 0; i < n; ++i)
+        if (r->p[i] > 0)
+            return 1;
+    return 0;
+}
+
+static void cpu_load_split(pk_run *r, double cap, double *elastic, double *capped)
+{
+    const size_t n = patches(r);
+    const double d2 = r->plan->delta * r->plan->delta;
+    double elastic_load = 0, capped_load = 0;
+#pragma omp parallel for schedule(static) reduction(+ : elastic_load, capped_load)
+    for (size_t i = 0; i < n; ++i) {
+        if (solver_elastic(r->p[i], cap))
+            elastic_load += r->p[i] * d2;
+        else
+            capped_load += r->p[i] * d2;
+    }
+    *elastic = elastic_load;
+    *capped = capped_load;
+}
+
+static int cpu_scale_elastic(pk_run *r, double scale, double cap)
+{
+    const size_t n = patches(r);
+    int clipped = 0;
+#pragma omp parallel for schedule(static) reduction(| : clipped)
+    for (size_t i = 0; i < n; ++i)
+        if (solver_elastic(r->p[i], cap)) {
+            r->p[i] = solver_project(r->p[i] * scale, cap);
+            clipped |= r->p[i] == cap;
+        }
+    return clipped;
+}
+
+static double cpu_pressure_sum(pk_run *r) { return sum_doubles(r->p, patches(r)); }
+
+static void cpu_scale(pk_run *r, double p_factor, double u_factor)
+{
+    const size_t n = patches(r);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i) {
+        r->p[i] *= p_factor;
+        r->u[i] *= u_factor;
+    }
+}
+
+/* Writes t also into the padded rows that the convolution transforms (one pass instead of two). */
+static void cpu_direction(pk_run *r, int preconditioned, double beta, double cap)
+{
+    const im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    double *t = plan->direction;
+    const double *g = plan->gap, *p = r->p, *source = preconditioned ? plan->preconditioned : plan->gap;
+#pragma omp parallel for schedule(static)
+    for (int iy = 0; iy < ny; ++iy) {
+        double *padded = plan->rows_in + (size_t)iy * px;
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            t[i] = solver_moving(p[i], g[i], cap) ? source[i] + beta * t[i] : 0;
+            padded[ix] = t[i];
+        }
+    }
+}
+
+/* An unpadded transform pair, a quarter of a convolution's size (plan.c). */
+static double cpu_precondition(pk_run *r, long *count)
+{
+    im_solver_plan *plan = r->plan;
+    const size_t n = patches(r), modes = (size_t)plan->ny * (plan->nx / 2 + 1);
+    const double *g = plan->gap, *p = r->p;
+    double *z = plan->preconditioned;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        z[i] = p[i] > 0 ? g[i] : 0;
+    fftw_execute(plan->precondition_forward);
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < modes; ++k) {
+        plan->precondition_modes[k][0] *= plan->inverse_spectrum[k];
+        plan->precondition_modes[k][1] *= plan->inverse_spectrum[k];
+    }
+    fftw_execute(plan->precondition_backward);
+    double z_sum = 0;
+    long c = 0;
+#pragma omp parallel for schedule(static) reduction(+ : z_sum, c)
+    for (size_t i = 0; i < n; ++i) {
+        if (p[i] > 0) {
+            z_sum += z[i];
+            ++c;
+        } else
+            z[i] = 0;
+    }
+    *count = c;
+    return z_sum;
+}
+
+static double cpu_precondition_centre(pk_run *r, double mean)
+{
+    const size_t n = patches(r);
+    const double *g = r->plan->gap, *p = r->p;
+    double *z = r->plan->preconditioned;
+    double gz = 0;
+#pragma omp parallel for schedule(static) reduction(+ : gz)
+    for (size_t i = 0; i < n; ++i)
+        if (p[i] > 0) {
+            z[i] -= mean;
+            gz += g[i] * z[i];
+        }
+    return gz;
+}
+
+/* K t is read in place from the convolution's rows. */
+static step_terms cpu_step(pk_run *r, double cap)
+{
+    const im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const double *t = plan->direction, *g = plan->gap, *p = r->p;
+    double num = 0, qt = 0, q_sum = 0, t_sum = 0;
+    long count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : num, qt, q_sum, t_sum, count)
+    for (int iy = 0; iy < ny; ++iy) {
+        const double *q = plan->rows_out + (size_t)iy * px;
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            if (solver_moving(p[i], g[i], cap)) {
+                num += g[i] * t[i];
+                qt += q[ix] * t[i];
+                q_sum += q[ix];
+                t_sum += t[i];
+                ++count;
+            }
+        }
+    }
+    return (step_terms){.gt = num, .kt_t = qt, .kt_sum = q_sum, .t_sum = t_sum, .count = count};
+}
+
+/* Records how p differs from the plain CG step p - tau t in plan->changed_value. */
+static long cpu_update_pressure(pk_run *r, double tau, double cap, int allow_join, int *joined)
+{
+    const im_solver_plan *plan = r->plan;
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const double *t = plan->direction, *g = plan->gap;
+    double *p = r->p, *u = r->u, *change = plan->changed_value;
+    long changes = 0;
+    int any_joined = 0;
+#pragma omp parallel for schedule(static) reduction(+ : changes) reduction(| : any_joined)
+    for (int iy = 0; iy < ny; ++iy) {
+        const double *q = plan->rows_out + (size_t)iy * px;
+        for (int ix = 0; ix < nx; ++ix) {
+            size_t i = (size_t)iy * nx + ix;
+            double c = 0;
+            u[i] -= tau * q[ix];
+            if (solver_moving(p[i], g[i], cap)) {
+                double next = p[i] - tau * t[i];
+                p[i] = solver_project(next, cap);
+                c = p[i] - next;
+            } else if (allow_join && p[i] == 0 && g[i] < 0) {
+                p[i] = c = solver_project(-tau * g[i], cap);
+                any_joined = 1;
+            }
+            change[i] = c;
+            changes += c != 0;
+        }
+    }
+    *joined = any_joined;
+    return changes;
+}
+
+static void cpu_add_point_loads(pk_run *r, long changes)
+{
+    im_solver_plan *plan = r->plan;
+    const size_t n = patches(r);
+    long k = 0;
+    for (size_t i = 0; i < n && k < changes; ++i)
+        if (plan->changed_value[i] != 0) {
+            plan->changed[k] = (long)i;
+            plan->changed_value[k++] = plan->changed_value[i];
+        }
+    solver_add_point_loads(plan, plan->changed, plan->changed_value, changes, r->u);
+}
+
+static void cpu_summary(pk_run *r, double *sum, long *contact, double *peak)
+{
+    const size_t n = patches(r);
+    double largest = 0;
+    long c = 0;
+#pragma omp parallel for schedule(static) reduction(+ : c) reduction(max : largest)
+    for (size_t i = 0; i < n; ++i)
+        if (r->p[i] > 0) {
+            ++c;
+            if (r->p[i] > largest)
+                largest = r->p[i];
+        }
+    *sum = sum_doubles(r->p, n); /* p >= 0: the sum over the contact set */
+    *contact = c;
+    *peak = largest;
+}
+
+static int cpu_convolve_arrays(im_solver_plan *plan, const double *pressure, double *displacement)
+{
+    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+#pragma omp parallel for schedule(static)
+    for (int iy = 0; iy < ny; ++iy)
+        memcpy(plan->rows_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
+    solver_convolve_rows(plan);
+#pragma omp parallel for schedule(static)
+    for (int iy = 0; iy < ny; ++iy)
+        memcpy(displacement + (size_t)iy * nx, plan->rows_out + (size_t)iy * px, sizeof(double) * nx);
+    return IM_OK;
+}
+
+static void cpu_free(im_solver_plan *plan) { (void)plan; }
+
+const solver_engine solver_engine_cpu = {
+    .name = "cpu",
+    .begin = cpu_nothing,
+    .finish = cpu_nothing,
+    .convolve_pressure = cpu_convolve_pressure,
+    .convolve_direction = cpu_convolve_direction,
+    .contact_mean = cpu_contact_mean,
+    .gaps = cpu_gaps,
+    .winkler = cpu_winkler,
+    .clip = cpu_clip,
+    .any_positive = cpu_any_positive,
+    .load_split = cpu_load_split,
+    .scale_elastic = cpu_scale_elastic,
+    .pressure_sum = cpu_pressure_sum,
+    .scale = cpu_scale,
+    .direction = cpu_direction,
+    .precondition = cpu_precondition,
+    .precondition_centre = cpu_precondition_centre,
+    .step = cpu_step,
+    .update_pressure = cpu_update_pressure,
+    .add_point_loads = cpu_add_point_loads,
+    .summary = cpu_summary,
+    .convolve_arrays = cpu_convolve_arrays,
+    .free = cpu_free,
+};
