@@ -123,6 +123,8 @@ typedef struct im_scene {
 
     double tol;                      /* solver tolerance (default: the quality preset's; the preset
                                         IM_QUALITY_DEFAULT of solver.h, as for `indent`) */
+    int device;                      /* [solver] device = cpu|gpu|auto: the solver's engine, IM_DEVICE_*
+                                        of solver.h (default cpu) */
 
     int contact_panels, frames, table;
     int distributions;               /* 1: gap and patch-size distributions at load_star of each

@@ -80,6 +80,14 @@
  * iteration while a patch is capped). The cone's apex singularity and a flat punch's edge are capped;
  * in the fully plastic limit A = N / H_p. */
 
+/* ---- Engines ----
+ * The iteration is written once (src/solver/pk.c) over an engine of grid passes (engine.h): the
+ * CPU engine (OpenMP, FFTW) and, in builds with IM_GPU, a Vulkan compute engine (VkFFT, double
+ * precision), whose fields stay on the device for a whole solve. Both solve the same problem to the
+ * same stopping rule; their sums run in a different order, so results agree to the tolerance, not
+ * bit for bit. The GPU engine recomputes u by FFT where the CPU engine adds a few changes by direct
+ * summation, and needs grid and transform sides that factor into 2, 3, 5, 7, 11 and 13. */
+
 /* ---- Periodic mode (nominally flat contact) ----
  * With options.periodic the grid is one period of a periodic surface pressed by a rigid flat under
  * a mean pressure. The convolution is circular on the nx x ny grid (no padding) with the periodic
@@ -135,7 +143,19 @@ typedef struct im_solver_options {
      * valid warm start) and the plan stays usable, so the same solve run again with the flag cleared
      * gives the uninterrupted answer. Not in the solve's key (it does not change a result). */
     const volatile sig_atomic_t *stop;
+    /* The engine the solves run on (see "Engines" above): IM_DEVICE_CPU (default), IM_DEVICE_GPU
+     * (a Vulkan device: a hardware GPU when there is one, else a CPU implementation such as lavapipe;
+     * IM_EUNSUPPORTED without any, or in a build without IM_GPU), IM_DEVICE_AUTO (a hardware GPU when
+     * there is one, else the CPU engine: a software Vulkan device is never chosen for speed). */
+    int device;
+    int gpu_validation;     /* 1: run the GPU engine under the Vulkan validation layers (tests, debugging);
+                               IM_EUNSUPPORTED when they are not installed */
 } im_solver_options;
+
+enum im_device { IM_DEVICE_CPU = 0, IM_DEVICE_GPU = 1, IM_DEVICE_AUTO = 2 };
+
+/* "cpu", "gpu", "auto" -> IM_DEVICE_*; IM_EINVAL naming the word otherwise. */
+int im_device_parse(const char *word, int *device);
 
 im_solver_options im_solver_options_default(void);
 /* IM_EINVAL naming the first option out of range. */
@@ -189,6 +209,8 @@ void im_solver_plan_free(im_solver_plan *plan);
 double im_solver_plan_bytes(int nx, int ny);
 /* Seconds spent planning (FFTW planning plus the kernel spectrum). */
 double im_solver_plan_seconds(const im_solver_plan *plan);
+/* The engine a plan's solves run on: "cpu", or the GPU's device name. */
+const char *im_solver_plan_device(const im_solver_plan *plan);
 /* 1 if the plan was made with FFTW_MEASURE. */
 int im_solver_plan_measured(const im_solver_plan *plan);
 

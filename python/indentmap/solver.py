@@ -56,18 +56,19 @@ class Indentation:
     (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
     window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
     solver's relative residual (default 1e-6, the standard quality preset, as ``indentmap indent`` and
-    scenes). Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
+    scenes). ``device`` is the solver's engine: 'cpu' (default), 'gpu' (the Vulkan compute engine) or
+    'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
     iteration and raises KeyboardInterrupt (the history keeps the last iterate as its next warm start).
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
-                 tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None):
+                 tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu"):
         kind, alpha, radius, profile = _punch_arguments(punch)
         x, y = (None, None) if axis is None else axis
         self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
                                       e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
                                       crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
-                                      profile=profile)
+                                      profile=profile, device=str(device))
 
     def step(self, target):
         """Solves the next step at approach or load ``target``; returns its results as a dict."""
@@ -95,9 +96,10 @@ class Plan:
     on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
     """
 
-    def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000):
+    def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000,
+                 device="cpu"):
         self._plan = _core.Plan(int(nx), int(nx if ny is None else ny), float(delta), float(e_star), float(tol),
-                                int(max_iterations))
+                                int(max_iterations), str(device))
 
     def solve(self, gap0, target, control="displacement", pressure=None):
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)

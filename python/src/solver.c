@@ -94,15 +94,20 @@ static int control_from_name(const char *name, enum im_control *control)
 static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
-                               "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", NULL};
+                               "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
+                               NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     double delta, alpha, radius, largest;
-    const char *kind, *control_name;
+    const char *kind, *control_name, *device = "cpu";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOO", keywords, &obj, &delta, &kind, &alpha,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOs", keywords, &obj, &delta, &kind, &alpha,
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
-                                     &o.crop, &o.window_margin, &x, &y, &profile_obj))
+                                     &o.crop, &o.window_margin, &x, &y, &profile_obj, &device))
         return -1;
+    if (im_device_parse(device, &o.device) != IM_OK) {
+        PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);
+        return -1;
+    }
     o.stop = &self->stop;
     if (self->busy) {
         PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
@@ -231,13 +236,18 @@ typedef struct py_plan {
 
 static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
 {
-    static char *keywords[] = {"nx", "ny", "delta", "e_star", "tol", "max_iterations", NULL};
+    static char *keywords[] = {"nx", "ny", "delta", "e_star", "tol", "max_iterations", "device", NULL};
     im_solver_options o = im_solver_options_default();
     double delta = 1.0;
     int nx, ny;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|dddi", keywords, &nx, &ny, &delta, &o.e_star, &o.tol,
-                                     &o.max_iterations))
+    const char *device = "cpu";
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|dddis", keywords, &nx, &ny, &delta, &o.e_star, &o.tol,
+                                     &o.max_iterations, &device))
         return -1;
+    if (im_device_parse(device, &o.device) != IM_OK) {
+        PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);
+        return -1;
+    }
     if (self->busy) {
         PyErr_SetString(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
         return -1;

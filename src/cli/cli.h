@@ -100,6 +100,8 @@ typedef struct cli_preparation {
 int cli_parse_crop(const char *text, int crop[4]);
 int cli_parse_detrend(const char *text, enum im_detrend *out);
 int cli_parse_taper(const char *text, im_taper *out);
+/* --device cpu|gpu|auto (solver.h: IM_DEVICE_*) */
+int cli_parse_device(const char *text, int *device);
 
 /* Crops *surface (replacing it) and detrends it; a status naming the option on failure. */
 int cli_prepare_surface(const cli_preparation *preparation, im_field **surface);

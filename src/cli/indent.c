@@ -71,6 +71,11 @@ static void usage(FILE *stream)
             "  --full              solve on the whole surface, not the window that can touch\n"
             "  --plain-pk          plain Polonsky-Keer CG from the local guess: no cascade cold start, no\n"
             "                      preconditioner (the same answers to the tolerance, slower; docs/solver.md)\n"
+            "  --device D          cpu (default): OpenMP and FFTW; gpu: the Vulkan compute engine (VkFFT,\n"
+            "                      double precision; a CPU Vulkan device such as lavapipe when there is no\n"
+            "                      GPU); auto: a hardware GPU when there is one, else the CPU. The same\n"
+            "                      answers to the tolerance (docs/solver.md, \"Engines\"); indentmap info\n"
+            "                      lists the Vulkan devices\n"
             "  --measure           plan the FFTs with FFTW_MEASURE (slower planning, faster steps)\n"
             "  --wisdom FILE       FFTW wisdom file, read before planning and updated after it; implies\n"
             "                      --measure. Default: $IM_FFTW_WISDOM, else for runs of 10 steps or more\n"
@@ -121,7 +126,7 @@ typedef struct indent_options {
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM };
+       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -140,7 +145,7 @@ static const struct option LONG_OPTIONS[] = {
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
-    {"profile", required_argument, 0, OPT_PROFILE}, {0, 0, 0, 0}};
+    {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE}, {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -205,6 +210,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_FULL: o->solver.crop = 0; return 0;
     case OPT_PLAIN_PK: o->solver.cascade = o->solver.precondition = 0; return 0;
     case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
+    case OPT_DEVICE: return cli_parse_device(arg, &o->solver.device);
     case OPT_WISDOM: o->wisdom = arg; return 0;
     case OPT_NO_WISDOM: o->no_wisdom = 1; return 0;
     case OPT_OUT: o->out = arg; return 0;
@@ -765,8 +771,9 @@ int cli_indent(int argc, char **argv)
         status = prepare_folder(&o, &lock);
     if (status == IM_OK) {
         im_window w = im_indentation_window(run);
-        printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads\n", surface->nx, surface->ny,
-               w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads());
+        printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads, device %s\n", surface->nx,
+               surface->ny, w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads(),
+               im_solver_plan_device(im_indentation_plan(run)));
         record = run_record(&o, surface, run);
         status = record ? history_start(o.out, &history) : im_fail(IM_ENOMEM, "run record");
         if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */

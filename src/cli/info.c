@@ -1,7 +1,11 @@
 #include "cli/cli.h"
 
+#include "indentmap/gpu_config.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
+#if IM_HAVE_GPU
+#include "gpu/vulkan.h"
+#endif
 
 #include <fftw3.h>
 #include <getopt.h>
@@ -18,7 +22,9 @@ static void usage(FILE *stream)
                     "the OpenGL renderer of the backend (default: IM_RENDER_BACKEND, else auto).\n"
                     "A machine with no OpenGL 3.3 core context prints 'render backend: unavailable (...)';\n"
                     "a context that opens but fails (shaders, set-up) prints 'render backend: failed (...)'\n"
-                    "and exits 1.\n");
+                    "and exits 1.\n"
+                    "Then the Vulkan devices the GPU engine could use, one per line ('none: REASON' without\n"
+                    "any, 'not built (IM_GPU off)' in a build without the engine).\n");
 }
 
 /* The render backend and GL strings; a machine without GL is reported, not an error, but a
@@ -39,6 +45,25 @@ static int print_renderer(im_render_backend backend)
     printf("GL_VERSION: %s\n", im_render_gl_version(context));
     im_render_close(context);
     return CLI_EXIT_OK;
+}
+
+/* The Vulkan devices, one line each; none is not an error (the CPU solver needs no GPU). */
+static void print_vulkan_devices(void)
+{
+    printf("Vulkan devices:");
+#if IM_HAVE_GPU
+    char text[4096];
+    if (gpu_devices_describe(text, sizeof text) != IM_OK) {
+        printf(" none: %s\n", im_last_error());
+        return;
+    }
+    printf("\n");
+    char *rest = NULL;
+    for (char *line = strtok_r(text, "\n", &rest); line; line = strtok_r(NULL, "\n", &rest))
+        printf("  %s\n", line);
+#else
+    printf(" not built (IM_GPU off)\n");
+#endif
 }
 
 enum { OPT_BACKEND = 256, OPT_HELP };
@@ -71,5 +96,8 @@ int cli_info(int argc, char **argv)
     printf("gsl: %s\n", gsl_version);
     printf("libpng: %s\n", png_libpng_ver);
     printf("openmp threads: %d (of %d processors)\n", omp_get_max_threads(), omp_get_num_procs());
-    return print_renderer(backend);
+    int status = print_renderer(backend);
+    if (status != CLI_EXIT_USAGE)
+        print_vulkan_devices();
+    return status;
 }

@@ -2,6 +2,7 @@
  * `surface --stats` and `indent`. */
 #include "cli/cli.h"
 
+#include "indentmap/solver.h"
 #include "indentmap/status.h"
 
 #include <stdio.h>
@@ -28,6 +29,14 @@ int cli_parse_detrend(const char *text, enum im_detrend *out)
             return 0;
         }
     fprintf(stderr, "indentmap: --detrend '%s': expected none, plane or curvature\n", text);
+    return -1;
+}
+
+int cli_parse_device(const char *text, int *device)
+{
+    if (im_device_parse(text, device) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: --device '%s': expected cpu, gpu or auto\n", text);
     return -1;
 }
 

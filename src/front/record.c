@@ -14,11 +14,12 @@ static json_t *solver_record(const run_record_solver *s)
 {
     const im_solver_options *o = s->options;
     const int capped = o->hardness > 0;
-    return json_pack("{s:s, s:f, s:s, s:f, s:i, s:f, s:b, s:i, s:b, s:b, s:b}", "quality", s->quality, "tol", o->tol,
+    static const char *const devices[] = {[IM_DEVICE_CPU] = "cpu", [IM_DEVICE_GPU] = "gpu", [IM_DEVICE_AUTO] = "auto"};
+    return json_pack("{s:s, s:f, s:s, s:f, s:i, s:f, s:b, s:i, s:b, s:b, s:b, s:s}", "quality", s->quality, "tol", o->tol,
                      "tol_from", s->tol_from, "e_star", o->e_star, "max_iterations", o->max_iterations, "hardness",
                      o->hardness, "crop", o->crop, "window_margin", o->window_margin, "cascade",
                      o->cascade && !capped, "precondition", o->precondition && !capped, "fftw_wisdom",
-                     im_solver_wisdom_file(o) != NULL);
+                     im_solver_wisdom_file(o) != NULL, "device", devices[o->device]);
 }
 
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,

@@ -383,6 +383,7 @@ static const key_spec KEYS[] = {
     {"output", "frames_slope", parse_double, FIELD(frames_slope), 0, 10, NULL, 0, 0},
     {"output", "frame_count", parse_int, FIELD(frame_count), 1, 10000, NULL, 0, 0},
     {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
+    {"solver", "device", parse_choice, FIELD(device), 0, 0, "cpu|gpu|auto", 0, 0},
     {"output", "plots", parse_plots, FIELD(plots), 0, 0, NULL, 0, 0},
 };
 static const int KEY_COUNT = (int)(sizeof KEYS / sizeof KEYS[0]);

@@ -47,6 +47,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     options.e_star = scene->modulus;
     options.tol = scene->tol;
     options.hardness = scene->hardness;
+    options.device = scene->device;
     options.wisdom_path = scene->wisdom_path;
     return options;
 }

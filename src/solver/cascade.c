@@ -39,7 +39,7 @@ int solver_cascade_create(im_solver_plan *p)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: cascade level %d x %d", p->nx, p->ny, cx, cy);
     im_solver_options o = p->options;
     o.tol = fmax(o.tol, CASCADE_TOL);
-    return im_solver_plan_create(cx, cy, 2 * p->delta, &o, &p->coarse);
+    return solver_plan_create_level(cx, cy, 2 * p->delta, &o, p, &p->coarse);
 }
 
 void solver_cascade_free(im_solver_plan *p)

@@ -89,6 +89,13 @@ typedef struct solver_engine {
 
 extern const solver_engine solver_engine_cpu;
 
+/* Moves a plan made on the CPU (its spectra computed) onto the GPU engine: a new device for a top
+ * plan (finer NULL), the finer level's device for a cascade level. engine_gpu.c, IM_GPU builds. */
+int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer);
+const char *solver_engine_gpu_device(const im_solver_plan *plan);
+/* What the Vulkan validation layers reported so far on a GPU plan's device (-1 on the CPU). */
+long solver_engine_gpu_validation_messages(const im_solver_plan *plan);
+
 /* The patch sets, shared by the engines' passes. */
 static inline int solver_elastic(double p, double cap) { return p > 0 && p < cap; }
 static inline int solver_moving(double p, double g, double cap)

@@ -201,6 +201,8 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (r->status != IM_OK)
             return r->status;
         gap_stats s = compute_gaps(r);
+        if (r->status != IM_OK)
+            return r->status;
         *last = s;
         res->residual = relative_residual(&s);
         if (!isfinite(res->residual))

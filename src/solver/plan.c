@@ -1,6 +1,7 @@
 #include "solver/engine.h"
 
 #include "core/fft_threads.h"
+#include "indentmap/gpu_config.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 
@@ -36,6 +37,10 @@ int im_solver_options_check(const im_solver_options *o)
         return im_fail(IM_EINVAL, "cascade = %d: expected 0 or 1", o->cascade);
     if (o->precondition != 0 && o->precondition != 1)
         return im_fail(IM_EINVAL, "precondition = %d: expected 0 or 1", o->precondition);
+    if (o->device != IM_DEVICE_CPU && o->device != IM_DEVICE_GPU && o->device != IM_DEVICE_AUTO)
+        return im_fail(IM_EINVAL, "device = %d: expected IM_DEVICE_CPU, IM_DEVICE_GPU or IM_DEVICE_AUTO", o->device);
+    if (o->gpu_validation != 0 && o->gpu_validation != 1)
+        return im_fail(IM_EINVAL, "gpu_validation = %d: expected 0 or 1", o->gpu_validation);
     return IM_OK;
 }
 
@@ -285,8 +290,44 @@ static int allocate_plan(im_solver_plan *p)
     return IM_OK;
 }
 
-int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
-                          im_solver_plan **out)
+int im_device_parse(const char *word, int *device)
+{
+    static const char *const names[] = {[IM_DEVICE_CPU] = "cpu", [IM_DEVICE_GPU] = "gpu", [IM_DEVICE_AUTO] = "auto"};
+    for (int k = 0; k < 3; ++k)
+        if (word && strcmp(word, names[k]) == 0) {
+            *device = k;
+            return IM_OK;
+        }
+    return im_fail(IM_EINVAL, "device '%s': expected cpu, gpu or auto", word ? word : "(null)");
+}
+
+const char *im_solver_plan_device(const im_solver_plan *p)
+{
+    return p->engine == &solver_engine_cpu ? "cpu" : solver_engine_gpu_device(p);
+}
+
+/* Moves the plan onto the GPU engine when its options ask for it (auto: when a hardware GPU opens;
+ * otherwise it stays on the CPU, silently, as documented). */
+static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
+{
+    if (p->options.device == IM_DEVICE_CPU || (finer && finer->engine == &solver_engine_cpu))
+        return IM_OK;
+#if IM_HAVE_GPU
+    int status = solver_engine_gpu_attach(p, finer);
+    /* a cascade level VkFFT cannot transform is solved on the CPU (a quarter of the finer level's size) */
+    if (status == IM_EUNSUPPORTED && (finer || p->options.device == IM_DEVICE_AUTO))
+        return IM_OK;
+    return status;
+#else
+    if (p->options.device == IM_DEVICE_AUTO)
+        return IM_OK;
+    return im_fail(IM_EUNSUPPORTED, "device = gpu: this build has no GPU engine (built without IM_GPU: Vulkan, "
+                   "glslang and VkFFT were not found; scripts/setup.sh installs them)");
+#endif
+}
+
+int solver_plan_create_level(int nx, int ny, double delta, const im_solver_options *options,
+                             const im_solver_plan *finer, im_solver_plan **out)
 {
     *out = NULL;
     im_solver_options o = options ? *options : im_solver_options_default();
@@ -331,13 +372,19 @@ int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options 
      * ~c nx ny log2(4 nx ny): the crossover grows like log2(4 nx ny). Measured at 375 x 378, one
      * thread: 0.035 ms per patch against 4.4 ms per convolution, a crossover near 125 patches. */
     p->direct_limit = (long)(6 * log2(4.0 * nx * ny));
-    if ((status = solver_cascade_create(p)) != IM_OK) {
+    if ((status = choose_engine(p, finer)) != IM_OK || (status = solver_cascade_create(p)) != IM_OK) {
         im_solver_plan_free(p);
         return status;
     }
     p->plan_seconds = omp_get_wtime() - start;
     *out = p;
     return IM_OK;
+}
+
+int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
+                          im_solver_plan **out)
+{
+    return solver_plan_create_level(nx, ny, delta, options, NULL, out);
 }
 
 void im_solver_plan_free(im_solver_plan *p)

@@ -45,6 +45,11 @@ struct im_solver_plan {
     double *coarse_gap0, *coarse_pressure, *coarse_displacement;
 };
 
+/* im_solver_plan_create for one level: finer is the plan of the next finer cascade level (NULL for a
+ * top plan), whose engine and device a coarse level shares. */
+int solver_plan_create_level(int nx, int ny, double delta, const im_solver_options *options,
+                             const struct im_solver_plan *finer, struct im_solver_plan **out);
+
 /* Coarse grid sides of a cascade level under an nx x ny grid; 0 when there is none (too small). */
 int solver_cascade_sides(int nx, int ny, int *cx, int *cy);
 

@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# The GPU engine's checks on a machine with an NVIDIA GPU, in one go (issue 30; docs/benchmarks.md,
+# "GPU engine"). The device machine has no package registry and another distribution, so the build is
+# made here and carried there with the shared libraries it needs:
+#   scripts/gpu-check.sh pack   on Debian 12: builds (Release, IM_GPU, bench_gpu) and gathers the programs,
+#                               their libraries (glibc apart, kept for a fallback loader), the Vulkan
+#                               validation layer and the fonts into .gpu-carry/ (ignored by git)
+#   scripts/gpu-check.sh run    on the GPU machine, from the repository root: the Vulkan devices and
+#                               GL_RENDERER (indentmap info), the GPU tests under the validation layers on
+#                               the NVIDIA device, bench_gpu against the CPU engine on all cores, and
+#                               fig4's frames rendered through EGL; logs and pictures to ${OUT:-gpu-check-out}/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+carry=.gpu-carry
+
+pack() {
+  scripts/setup.sh build-gpu -DIM_GPU=ON -DBUILD_TESTING=ON
+  cmake --build build-gpu --target bench_gpu -j "$(nproc)"
+  rm -rf "$carry"
+  mkdir -p "$carry"/{bin,lib,glibc,layers,fonts}
+  cp build-gpu/indentmap build-gpu/test_gpu_solver build-gpu/test_gpu_fft build-gpu/bench_gpu "$carry/bin/"
+  for program in "$carry"/bin/*; do ldd "$program"; done | awk '/=> \// {print $3}' | sort -u |
+    while read -r library; do
+      case "$(basename "$library")" in
+        libc.so.*|libm.so.*|libpthread.so.*|libdl.so.*|librt.so.*) cp -L "$library" "$carry/glibc/" ;;
+        *) cp -L "$library" "$carry/lib/" ;;
+      esac
+    done
+  cp -L /lib64/ld-linux-x86-64.so.2 "$carry/glibc/"
+  cp -L /usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so "$carry/layers/"
+  cp /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json "$carry/layers/"
+  cp /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf /usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf \
+     "$carry/fonts/"
+  du -sh "$carry"
+}
+
+# The NVIDIA driver's Vulkan ICD and EGL vendor files where the device machine keeps them.
+driver_environment() {
+  local nvidia=/usr/local/nvidia/share
+  if [ -f "$nvidia/vulkan/icd.d/nvidia_icd.json" ]; then
+    export VK_DRIVER_FILES="$nvidia/vulkan/icd.d/nvidia_icd.json" VK_ICD_FILENAMES="$nvidia/vulkan/icd.d/nvidia_icd.json"
+  fi
+  if [ -f "$nvidia/glvnd/egl_vendor.d/10_nvidia.json" ]; then
+    export __EGL_VENDOR_LIBRARY_FILENAMES="$nvidia/glvnd/egl_vendor.d/10_nvidia.json"
+  fi
+  export VK_LAYER_PATH="$PWD/$carry/layers"
+  export LD_LIBRARY_PATH="$PWD/$carry/lib:$PWD/$carry/layers:/usr/local/nvidia/lib64:${LD_LIBRARY_PATH:-}"
+}
+
+run() {
+  local out=${OUT:-gpu-check-out}
+  mkdir -p "$out" /usr/share/fonts/truetype/dejavu
+  cp -n "$carry"/fonts/*.ttf /usr/share/fonts/truetype/dejavu/ 2>/dev/null || true
+  driver_environment
+  # The machine's own glibc runs the programs when it is as new as Debian 12's; else the carried one.
+  local runner=()
+  if ! "$carry/bin/indentmap" --version >/dev/null 2>&1; then
+    runner=("$PWD/$carry/glibc/ld-linux-x86-64.so.2" --library-path "$PWD/$carry/glibc:$LD_LIBRARY_PATH")
+    echo "gpu-check: running with the carried glibc"
+  fi
+  nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader | tee "$out/device.txt" || true
+  IM_RENDER_BACKEND=egl "${runner[@]}" "$carry/bin/indentmap" info 2>&1 | tee "$out/info.txt"
+  if grep -q llvmpipe "$out/info.txt" && ! grep -qi nvidia "$out/info.txt"; then
+    echo "gpu-check: only llvmpipe: the NVIDIA driver was not found" >&2
+    exit 1
+  fi
+  local status=0
+  "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
+  "${runner[@]}" "$carry/bin/test_gpu_solver" 2>&1 | tee -a "$out/tests.txt" || status=1
+  "${runner[@]}" "$carry/bin/bench_gpu" --cone 1024,2048,4096 --periodic 1024,2048,4096,8192 --history \
+    --repeats 3 --cpu-limit 2048 2>&1 | tee "$out/bench.txt" || status=1
+  local start=$SECONDS
+  IM_RENDER_BACKEND=egl "${runner[@]}" "$carry/bin/indentmap" run scenes/fig4.ini 2>&1 | tail -5 | tee "$out/fig4.txt" ||
+    status=1
+  echo "fig4 scene: $((SECONDS - start)) s through EGL" | tee -a "$out/fig4.txt"
+  cp output/fig4/contact_panels.png output/fig4/frames/height_0011.png "$out/" 2>/dev/null || status=1
+  return $status
+}
+
+case "${1:-}" in
+  pack) pack ;;
+  run) run ;;
+  *) echo "usage: scripts/gpu-check.sh pack|run" >&2; exit 2 ;;
+esac

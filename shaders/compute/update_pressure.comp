@@ -1,0 +1,39 @@
+// u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; with allow_join the
+// penetrating patches at p = 0 join with min(-tau g, cap): slots (patches that differ from the
+// plain step, 1 if any joined).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 256) in;
+#define SLOTS 2u
+#define MAX_SLOTS 2u
+#define PARTIALS_BINDING 5
+#include "patch_sets.glsl"
+#include "reduce.glsl"
+layout(std430, set = 0, binding = 0) buffer Pressure { double p[]; };
+layout(std430, set = 0, binding = 1) buffer Displacement { double u[]; };
+layout(std430, set = 0, binding = 2) readonly buffer Gap { double g[]; };
+layout(std430, set = 0, binding = 3) readonly buffer Direction { double t[]; };
+layout(std430, set = 0, binding = 4) readonly buffer Real { double real_grid[]; };
+layout(push_constant) uniform Push { double tau; double cap; uint nx; uint ny; uint px; uint allow_join; } pc;
+
+void main()
+{
+    double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf);
+    uint n = pc.nx * pc.ny;
+    for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride()) {
+        double c = 0.0lf, pi = p[i], gi = g[i];
+        u[i] -= pc.tau * real_grid[(i / pc.nx) * pc.px + i % pc.nx];
+        if (moving(pi, gi, pc.cap)) {
+            double next = pi - pc.tau * t[i];
+            p[i] = project(next, pc.cap);
+            c = p[i] - next;
+        } else if (pc.allow_join != 0u && pi == 0.0lf && gi < 0.0lf) {
+            p[i] = project(-pc.tau * gi, pc.cap);
+            c = p[i];
+            v[1] = 1.0lf;
+        }
+        if (c != 0.0lf)
+            v[0] += 1.0lf;
+    }
+    reduce_workgroup(v);
+}

@@ -1,0 +1,177 @@
+/* 2-D double-precision R2C / C2R transforms with VkFFT (vulkan.h). The only file that includes
+ * VkFFT: its 1.6 MB header compiles here once (15-20 s), without sanitizers (CMakeLists.txt), from
+ * the copy cmake/patch_vkfft.cmake makes of Debian's header. */
+#include "gpu/vulkan.h"
+
+#include "indentmap/status.h"
+
+#include <stdlib.h>
+
+/* VkFFT's own code is not held to the project's warnings. */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wunused-variable"
+#pragma GCC diagnostic ignored "-Wunused-but-set-variable"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wformat-truncation"
+#pragma GCC diagnostic ignored "-Wformat-overflow"
+#pragma GCC diagnostic ignored "-Wstringop-truncation"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#pragma GCC diagnostic ignored "-Wdangling-pointer" /* a local barrier, used only during VkFFTAppend */
+#include "vkfft/vkFFT.h"
+#pragma GCC diagnostic pop
+
+struct gpu_fft {
+    VkFFTApplication app;
+    /* VkFFT keeps these pointers (configuration and launches), so they live with the plan. */
+    gpu_handles handles;
+    VkBuffer real, modes;
+    uint64_t real_bytes, modes_bytes;
+    VkCommandBuffer commands;
+    int px, py;
+};
+
+VkDeviceSize gpu_fft_modes_bytes(int px, int py)
+{
+    return (VkDeviceSize)(px / 2 + 1) * py * 2 * sizeof(double);
+}
+
+int gpu_fft_side_supported(int side)
+{
+    if (side < 1)
+        return 0;
+    static const int radices[] = {2, 3, 5, 7, 11, 13};
+    for (int k = 0; k < 6; ++k)
+        while (side % radices[k] == 0)
+            side /= radices[k];
+    return side == 1;
+}
+
+/* The smallest prime factor of side above 13 (side is not supported). */
+static int large_factor(int side)
+{
+    for (int f = 17; f <= side; f += 2)
+        if (side % f == 0)
+            return f;
+    return side;
+}
+
+static int check_sizes(const gpu_context *context, int px, int py, const gpu_buffer *real,
+                       const gpu_buffer *modes)
+{
+    if (px < 2 || py < 2)
+        return im_fail(IM_EINVAL, "GPU FFT %d x %d: expected at least 2 x 2", px, py);
+    int sides[2] = {px, py};
+    for (int k = 0; k < 2; ++k)
+        if (!gpu_fft_side_supported(sides[k]))
+            return im_fail(
+                IM_EUNSUPPORTED,
+                "GPU FFT %d x %d: side %d has a prime factor above 13 (%d); VkFFT's exact radices are 2, 3, "
+                "5, 7, 11 and 13",
+                px, py, sides[k], large_factor(sides[k]));
+    /* VkFFT 1.2.26 binds the real buffer, as the inverse's output, with the modes' size as its
+     * descriptor range (validation: VUID-VkDescriptorBufferInfo-range-00342), so the real buffer
+     * must be as large as the modes buffer; it reads and writes only the first px * py reals. */
+    VkDeviceSize modes_bytes = gpu_fft_modes_bytes(px, py);
+    if (real->bytes < modes_bytes || modes->bytes < modes_bytes)
+        return im_fail(IM_EINVAL,
+                       "GPU FFT %d x %d: buffers of %llu (reals) and %llu (modes) bytes: expected at "
+                       "least %llu each",
+                       px, py, (unsigned long long)real->bytes, (unsigned long long)modes->bytes,
+                       (unsigned long long)modes_bytes);
+    (void)context;
+    return IM_OK;
+}
+
+/* An out-of-place R2C plan: reals (row stride px) in the input buffer, px/2 + 1 complex modes per
+ * row in the main buffer; the inverse writes back to the input buffer and overwrites the modes. */
+static VkFFTConfiguration configuration(gpu_fft *fft)
+{
+    VkFFTConfiguration c = {0};
+    c.FFTdim = 2;
+    c.size[0] = (uint64_t)fft->px;
+    c.size[1] = (uint64_t)fft->py;
+    c.doublePrecision = 1;
+    c.performR2C = 1;
+    c.normalize = 0;
+    c.physicalDevice = fft->handles.physical_device;
+    c.device = fft->handles.device;
+    c.queue = fft->handles.queue;
+    c.commandPool = fft->handles.pool;
+    c.fence = fft->handles.fence;
+    c.isInputFormatted = 1;
+    c.inverseReturnToInputBuffer = 1;
+    c.inputBufferNum = 1;
+    c.inputBuffer = &fft->real;
+    c.inputBufferSize = &fft->real_bytes;
+    c.inputBufferStride[0] = (uint64_t)fft->px; /* in reals */
+    c.inputBufferStride[1] = (uint64_t)fft->px * (uint64_t)fft->py;
+    c.bufferNum = 1;
+    c.buffer = &fft->modes;
+    c.bufferSize = &fft->modes_bytes;
+    c.bufferStride[0] = (uint64_t)(fft->px / 2 + 1); /* in complex numbers */
+    c.bufferStride[1] = (uint64_t)(fft->px / 2 + 1) * (uint64_t)fft->py;
+    return c;
+}
+
+int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out)
+{
+    *out = NULL;
+    int status = check_sizes(context, px, py, real, modes);
+    if (status != IM_OK)
+        return status;
+    gpu_fft *fft = calloc(1, sizeof *fft);
+    if (!fft)
+        return im_fail(IM_ENOMEM, "GPU FFT %d x %d: out of memory", px, py);
+    fft->handles = gpu_context_handles(context);
+    fft->real = real->buffer;
+    fft->modes = modes->buffer;
+    fft->real_bytes = (uint64_t)px * py * sizeof(double);
+    fft->modes_bytes = gpu_fft_modes_bytes(px, py);
+    fft->px = px;
+    fft->py = py;
+    /* VkFFT starts glslang (glslang_initialize_process, reference counted in glslang 12) for the
+     * plan's shaders and stops it again before returning. */
+    VkFFTResult result = initializeVkFFT(&fft->app, configuration(fft));
+    if (result != VKFFT_SUCCESS) {
+        deleteVkFFT(&fft->app);
+        free(fft);
+        return im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: initializeVkFFT: VkFFT error %d", px, py,
+                       (int)result);
+    }
+    *out = fft;
+    return IM_OK;
+}
+
+/* VkFFT records its dispatches (with its own shader-write -> shader-read barriers between them);
+ * the closing barrier orders them before whatever the caller records next. */
+static void append(gpu_context *context, gpu_fft *fft, int direction)
+{
+    fft->commands = gpu_command_buffer(context);
+    if (fft->commands == VK_NULL_HANDLE)
+        return; /* gpu_submit_wait reports why */
+    VkFFTLaunchParams launch = {0};
+    launch.commandBuffer = &fft->commands;
+    VkFFTResult result = VkFFTAppend(&fft->app, direction, &launch);
+    if (result != VKFFT_SUCCESS) {
+        gpu_defer_failure(context,
+                          im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: VkFFTAppend (%s): VkFFT error %d",
+                                  fft->px, fft->py, direction < 0 ? "forward" : "inverse", (int)result));
+        return;
+    }
+    gpu_barrier(context);
+}
+
+void gpu_fft_forward(gpu_context *context, gpu_fft *fft) { append(context, fft, -1); }
+void gpu_fft_inverse(gpu_context *context, gpu_fft *fft) { append(context, fft, 1); }
+
+void gpu_fft_free(gpu_fft *fft)
+{
+    if (!fft)
+        return;
+    deleteVkFFT(&fft->app);
+    free(fft);
+}

@@ -1,0 +1,118 @@
+/* Internal: the Vulkan compute layer under the GPU solver engine (src/gpu/).
+ *
+ * Entry points:
+ *   gpu_context_open / gpu_context_close      one instance, one device with shaderFloat64, one queue
+ *   gpu_devices_describe                      the Vulkan devices this machine has (indentmap info)
+ *   gpu_buffer_create / _free / _upload / _download
+ *   gpu_pipeline_create / _free               a compute pipeline from embedded SPIR-V
+ *   gpu_begin / gpu_dispatch / gpu_barrier / gpu_submit_wait   recording and running work
+ *   gpu_fft_create / _forward / _inverse / _free               VkFFT R2C / C2R in double (fft.c)
+ *
+ * Threads: a context and everything made from it belong to one thread at a time. Errors: every
+ * function returning int returns IM_OK or an IM_E* status with the reason in im_last_error(). */
+#ifndef INDENTMAP_GPU_VULKAN_H
+#define INDENTMAP_GPU_VULKAN_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+typedef struct gpu_context gpu_context;
+
+typedef struct gpu_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    VkDeviceSize bytes;
+    void *mapped; /* host-visible buffers: their persistent mapping (coherent); NULL otherwise */
+} gpu_buffer;
+
+typedef struct gpu_pipeline {
+    VkPipeline pipeline;
+    VkPipelineLayout layout;
+    VkDescriptorSetLayout set_layout;
+    uint32_t bindings;   /* storage buffers at bindings 0 .. bindings - 1 of set 0 */
+    uint32_t push_bytes; /* push-constant block size */
+} gpu_pipeline;
+
+/* Which device a context takes. */
+enum gpu_preference {
+    GPU_PREFER_HARDWARE, /* a discrete, then an integrated or virtual GPU; IM_EUNSUPPORTED if only a CPU device */
+    GPU_ANY              /* as above, else a CPU implementation (lavapipe): tests */
+};
+
+/* Opens the device (it must offer shaderFloat64 and a compute queue). validation = 1 enables
+ * VK_LAYER_KHRONOS_validation with synchronization validation and counts what it reports
+ * (gpu_context_validation_messages); IM_EUNSUPPORTED when the layer is not installed. */
+int gpu_context_open(enum gpu_preference preference, int validation, gpu_context **out);
+void gpu_context_close(gpu_context *context);
+const char *gpu_context_device_name(const gpu_context *context);
+int gpu_context_is_software(const gpu_context *context); /* a CPU implementation (lavapipe) */
+VkDeviceSize gpu_context_max_buffer(const gpu_context *context); /* maxStorageBufferRange */
+long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
+
+/* Writes one line per Vulkan device ("name, type, Vulkan x.y, float64 yes|no, N MiB") into text;
+ * IM_EUNSUPPORTED (with the reason) when there is no Vulkan loader or no device. */
+int gpu_devices_describe(char *text, size_t size);
+
+int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, int host_visible, gpu_buffer *out);
+void gpu_buffer_free(gpu_context *context, gpu_buffer *buffer);
+/* Synchronous copies through a staging buffer (direct for host-visible buffers); offset in bytes. */
+int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize offset, const void *data,
+                      VkDeviceSize bytes);
+int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset, void *data,
+                        VkDeviceSize bytes);
+
+int gpu_pipeline_create(gpu_context *context, const uint32_t *spirv, size_t spirv_bytes, uint32_t bindings,
+                        uint32_t push_bytes, gpu_pipeline *out);
+void gpu_pipeline_free(gpu_context *context, gpu_pipeline *pipeline);
+
+/* Starts recording into the context's command buffer (idempotent while recording). */
+int gpu_begin(gpu_context *context);
+/* Records one dispatch of groups x 1 x 1 workgroups, buffers[k] at binding k (push descriptors),
+ * push: pipeline->push_bytes of constants. Followed by a compute-to-compute memory barrier. */
+void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_buffer *const *buffers,
+                  const void *push, uint32_t groups);
+/* Records filling the whole buffer with zero bits (0.0 in doubles), then a barrier. */
+void gpu_zero(gpu_context *context, gpu_buffer *buffer);
+/* A compute (and transfer) write -> compute (and transfer) read/write barrier. */
+void gpu_barrier(gpu_context *context);
+/* Ends, submits, waits on the fence, and leaves the command buffer ready for gpu_begin. */
+int gpu_submit_wait(gpu_context *context);
+/* The command buffer being recorded (fft.c), begun if it was not; VK_NULL_HANDLE when beginning
+ * failed (gpu_submit_wait reports it). */
+VkCommandBuffer gpu_command_buffer(gpu_context *context);
+/* Keeps a failure met while recording (status, with im_last_error() as it is now) for
+ * gpu_submit_wait to return; the first one is kept and nothing more is recorded until then. */
+void gpu_defer_failure(gpu_context *context, int status);
+
+/* The handles VkFFT takes by pointer (fft.c): they stay valid as long as the context. VkFFT submits
+ * its own set-up work (tables it uploads) on this queue with this pool and fence, so plans are
+ * made between recordings. */
+typedef struct gpu_handles {
+    VkPhysicalDevice *physical_device;
+    VkDevice *device;
+    VkQueue *queue;
+    VkCommandPool *pool;
+    VkFence *fence;
+} gpu_handles;
+gpu_handles gpu_context_handles(gpu_context *context);
+/* "VK_ERROR_DEVICE_LOST" for a VkResult ("unknown VkResult" for codes it does not list). */
+const char *gpu_result_name(VkResult result);
+
+/* ---- FFT (fft.c, the only file that includes vkFFT.h) ----
+ * A 2-D double-precision R2C transform of px x py reals (row-major, row stride px) in `real` into
+ * py x (px/2 + 1) complex modes in `modes`, and the C2R transform back into `real`; unnormalised
+ * (forward then inverse multiplies by px * py), as FFTW's. The inverse overwrites the modes (as
+ * FFTW's c2r destroys its input). Both buffers must hold gpu_fft_modes_bytes(px, py): VkFFT binds
+ * the real buffer with the modes' size, though it touches only the first px * py reals. Sides must
+ * factor into 2, 3, 5, 7, 11 and 13 (VkFFT's exact radices): others are refused with
+ * IM_EUNSUPPORTED naming the side. */
+VkDeviceSize gpu_fft_modes_bytes(int px, int py); /* (px/2 + 1) * py complex doubles */
+typedef struct gpu_fft gpu_fft;
+int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out);
+void gpu_fft_forward(gpu_context *context, gpu_fft *fft); /* records into the current command buffer */
+void gpu_fft_inverse(gpu_context *context, gpu_fft *fft);
+void gpu_fft_free(gpu_fft *fft);
+int gpu_fft_side_supported(int side); /* 1 when side factors into 2, 3, 5, 7, 11, 13 */
+
+#endif

@@ -1,0 +1,581 @@
+/* The GPU engine of the Polonsky-Keer iteration (engine.h): the fields live on a Vulkan device for
+ * the whole solve, each pass is one compute shader (shaders/compute/), the convolutions are VkFFT
+ * transforms in double precision (gpu/fft.c), and every sum is an ordered two-stage reduction
+ * (reduce.glsl) whose few values are all that comes back to the host per pass. Passes without a
+ * result are only recorded; a pass with one submits what was recorded and waits for it.
+ *
+ * The plan made on the CPU (plan.c) gives the kernel's spectrum, the preconditioner's and K(0), so
+ * both engines convolve with the same numbers; the GPU keeps its own copies. Coarse cascade levels
+ * share their finest plan's device and pipelines. */
+#include "solver/engine.h"
+
+#include "gpu/vulkan.h"
+#include "indentmap/status.h"
+
+#include "spirv/clip.h"
+#include "spirv/contact_mean.h"
+#include "spirv/direction.h"
+#include "spirv/gaps.h"
+#include "spirv/load_split.h"
+#include "spirv/multiply.h"
+#include "spirv/pad.h"
+#include "spirv/precondition_centre.h"
+#include "spirv/precondition_mask.h"
+#include "spirv/precondition_restrict.h"
+#include "spirv/reduce_finish.h"
+#include "spirv/scale.h"
+#include "spirv/scale_elastic.h"
+#include "spirv/step.h"
+#include "spirv/summary.h"
+#include "spirv/unpad.h"
+#include "spirv/update_pressure.h"
+#include "spirv/winkler.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- push constants: each mirrors its shader's block (std430: the doubles first) ---- */
+typedef struct { uint32_t nx, ny, px, py; } push_grid;
+typedef struct { uint32_t count; } push_count;
+typedef struct { double value; uint32_t n; } push_value;
+typedef struct { double a, b; uint32_t n, flag; } push_pair;
+typedef struct { double a, b; uint32_t nx, ny, px, py; } push_grid_pair;
+typedef struct { double cap; uint32_t nx, ny, px; } push_step;
+typedef struct { uint32_t groups, slots, max_slots; } push_finish;
+
+enum kernel {
+    K_PAD, K_UNPAD, K_MULTIPLY, K_CONTACT_MEAN, K_GAPS, K_WINKLER, K_CLIP, K_LOAD_SPLIT, K_SCALE_ELASTIC,
+    K_SUMMARY, K_SCALE, K_DIRECTION, K_PRECONDITION_MASK, K_PRECONDITION_RESTRICT, K_PRECONDITION_CENTRE,
+    K_STEP, K_UPDATE_PRESSURE, K_REDUCE_FINISH, K_COUNT
+};
+
+static const struct kernel_source {
+    const uint32_t *code;
+    size_t bytes;
+    uint32_t bindings, push_bytes;
+} KERNELS[K_COUNT] = {
+#define KERNEL(id, name, bindings, push) [id] = {name, sizeof name, bindings, sizeof(push)}
+    KERNEL(K_PAD, spirv_pad, 2, push_grid),
+    KERNEL(K_UNPAD, spirv_unpad, 2, push_grid),
+    KERNEL(K_MULTIPLY, spirv_multiply, 2, push_count),
+    KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, push_value),
+    KERNEL(K_GAPS, spirv_gaps, 5, push_pair),
+    KERNEL(K_WINKLER, spirv_winkler, 3, push_pair),
+    KERNEL(K_CLIP, spirv_clip, 1, push_value),
+    KERNEL(K_LOAD_SPLIT, spirv_load_split, 2, push_pair),
+    KERNEL(K_SCALE_ELASTIC, spirv_scale_elastic, 2, push_pair),
+    KERNEL(K_SUMMARY, spirv_summary, 2, push_count),
+    KERNEL(K_SCALE, spirv_scale, 1, push_value),
+    KERNEL(K_DIRECTION, spirv_direction, 5, push_grid_pair),
+    KERNEL(K_PRECONDITION_MASK, spirv_precondition_mask, 3, push_count),
+    KERNEL(K_PRECONDITION_RESTRICT, spirv_precondition_restrict, 3, push_count),
+    KERNEL(K_PRECONDITION_CENTRE, spirv_precondition_centre, 4, push_value),
+    KERNEL(K_STEP, spirv_step, 5, push_step),
+    KERNEL(K_UPDATE_PRESSURE, spirv_update_pressure, 6, push_grid_pair),
+    KERNEL(K_REDUCE_FINISH, spirv_reduce_finish, 2, push_finish),
+#undef KERNEL
+};
+
+/* A reduction runs at most this many workgroups (reduce_finish.comp folds their partials), and
+ * carries at most this many values. */
+enum { REDUCE_GROUPS = 1024, REDUCE_SLOTS = 8, GROUP_SIZE = 256, MAX_GROUPS = 65535 };
+
+/* What the plans of one solver (its cascade levels) share: one device, its pipelines, and the
+ * buffers of the reductions. */
+typedef struct gpu_device {
+    gpu_context *context;
+    gpu_pipeline kernels[K_COUNT];
+    gpu_buffer partials, result; /* result: host-visible */
+    int references;
+} gpu_device;
+
+struct gpu_solver {
+    gpu_device *device;
+    gpu_buffer gap0, p, u, g, t, z;      /* nx x ny */
+    gpu_buffer real, modes, spectrum;    /* the px x py transform grid and its modes */
+    gpu_buffer precondition_modes, inverse_spectrum;
+    gpu_fft *fft, *precondition_fft;
+    uint32_t nx, ny, px, py;
+};
+
+/* ---- the device and its pipelines ---- */
+
+static void device_release(gpu_device *d)
+{
+    if (!d || --d->references > 0)
+        return;
+    for (int k = 0; k < K_COUNT; ++k)
+        gpu_pipeline_free(d->context, &d->kernels[k]);
+    gpu_buffer_free(d->context, &d->partials);
+    gpu_buffer_free(d->context, &d->result);
+    gpu_context_close(d->context);
+    free(d);
+}
+
+static int device_open(const im_solver_options *o, gpu_device **out)
+{
+    *out = NULL;
+    gpu_device *d = calloc(1, sizeof *d);
+    if (!d)
+        return im_fail(IM_ENOMEM, "GPU engine");
+    d->references = 1;
+    enum gpu_preference preference = o->device == IM_DEVICE_AUTO ? GPU_PREFER_HARDWARE : GPU_ANY;
+    int status = gpu_context_open(preference, o->gpu_validation, &d->context);
+    for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
+        status = gpu_pipeline_create(d->context, KERNELS[k].code, KERNELS[k].bytes, KERNELS[k].bindings,
+                                     KERNELS[k].push_bytes, &d->kernels[k]);
+    const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
+    if (status == IM_OK)
+        status = gpu_buffer_create(d->context, partial_bytes, 0, &d->partials);
+    if (status == IM_OK)
+        status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, 1, &d->result);
+    if (status != IM_OK) {
+        device_release(d);
+        return status;
+    }
+    *out = d;
+    return IM_OK;
+}
+
+/* ---- recording passes ---- */
+
+static struct gpu_solver *solver_of(const pk_run *r) { return r->plan->gpu; }
+static gpu_context *context_of(const struct gpu_solver *s) { return s->device->context; }
+static uint32_t patches(const struct gpu_solver *s) { return s->nx * s->ny; }
+
+static uint32_t groups_for(uint32_t count)
+{
+    uint32_t groups = (count + GROUP_SIZE - 1) / GROUP_SIZE;
+    return groups < 1 ? 1 : (groups > MAX_GROUPS ? MAX_GROUPS : groups);
+}
+
+static uint32_t reduce_groups(uint32_t count)
+{
+    uint32_t groups = groups_for(count);
+    return groups > REDUCE_GROUPS ? REDUCE_GROUPS : groups;
+}
+
+/* Records a pass over count elements (a grid-stride loop in the shader). */
+static void record(struct gpu_solver *s, enum kernel k, const gpu_buffer *const *buffers, const void *push,
+                   uint32_t count)
+{
+    gpu_begin(context_of(s));
+    gpu_dispatch(context_of(s), &s->device->kernels[k], buffers, push, groups_for(count));
+}
+
+/* Records a reducing pass over count elements and its finish, runs everything recorded, and reads
+ * its slots' values into out (NaN after a failure, which r->status keeps). */
+static void reduce(pk_run *r, enum kernel k, const gpu_buffer *const *buffers, const void *push, uint32_t count,
+                   uint32_t slots, uint32_t max_slots, double *out)
+{
+    struct gpu_solver *s = solver_of(r);
+    gpu_context *c = context_of(s);
+    const push_finish finish = {.groups = reduce_groups(count), .slots = slots, .max_slots = max_slots};
+    const gpu_buffer *folded[2] = {&s->device->partials, &s->device->result};
+    int status = gpu_begin(c);
+    if (status == IM_OK) {
+        gpu_dispatch(c, &s->device->kernels[k], buffers, push, finish.groups);
+        gpu_dispatch(c, &s->device->kernels[K_REDUCE_FINISH], folded, &finish, 1);
+        status = gpu_submit_wait(c);
+    }
+    if (status != IM_OK && r->status == IM_OK)
+        r->status = status;
+    for (uint32_t j = 0; j < slots; ++j)
+        out[j] = status == IM_OK ? ((const double *)s->device->result.mapped)[j] : NAN;
+}
+
+/* Runs what is recorded (passes without a result), keeping a failure in r->status. */
+static void flush(pk_run *r)
+{
+    int status = gpu_submit_wait(context_of(solver_of(r)));
+    if (status != IM_OK && r->status == IM_OK)
+        r->status = status;
+}
+
+/* K x of the transform grid `real` (filled by the caller), left there: R2C, times the spectrum, C2R. */
+static void convolve_real(struct gpu_solver *s)
+{
+    const gpu_buffer *multiply[2] = {&s->modes, &s->spectrum};
+    const push_count modes = {.count = s->py * (s->px / 2 + 1)};
+    gpu_fft_forward(context_of(s), s->fft);
+    record(s, K_MULTIPLY, multiply, &modes, modes.count);
+    gpu_fft_inverse(context_of(s), s->fft);
+}
+
+/* u = K p on the device */
+static void record_convolution(struct gpu_solver *s)
+{
+    const push_grid grid = {.nx = s->nx, .ny = s->ny, .px = s->px, .py = s->py};
+    const gpu_buffer *pad[2] = {&s->p, &s->real}, *unpad[2] = {&s->real, &s->u};
+    record(s, K_PAD, pad, &grid, s->px * s->py);
+    convolve_real(s);
+    record(s, K_UNPAD, unpad, &grid, patches(s));
+}
+
+/* ---- the engine's passes ---- */
+
+static int gpu_engine_begin(pk_run *r)
+{
+    struct gpu_solver *s = solver_of(r);
+    const VkDeviceSize bytes = sizeof(double) * patches(s);
+    int status = gpu_buffer_upload(context_of(s), &s->gap0, 0, r->gap0, bytes);
+    if (status == IM_OK)
+        status = gpu_buffer_upload(context_of(s), &s->p, 0, r->p, bytes);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "GPU solve %u x %u", s->nx, s->ny);
+}
+
+static int gpu_engine_finish(pk_run *r)
+{
+    struct gpu_solver *s = solver_of(r);
+    const VkDeviceSize bytes = sizeof(double) * patches(s);
+    flush(r);
+    int status = gpu_buffer_download(context_of(s), &s->p, 0, r->p, bytes);
+    if (status == IM_OK)
+        status = gpu_buffer_download(context_of(s), &s->u, 0, r->u, bytes);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "GPU solve %u x %u", s->nx, s->ny);
+}
+
+static void gpu_engine_convolve_pressure(pk_run *r) { record_convolution(solver_of(r)); }
+
+static void gpu_engine_convolve_direction(pk_run *r) { convolve_real(solver_of(r)); }
+
+static double gpu_engine_contact_mean(pk_run *r, double cap, long *count)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[4] = {&s->p, &s->u, &s->gap0, &s->device->partials};
+    const push_value push = {.value = cap, .n = patches(s)};
+    double v[2];
+    reduce(r, K_CONTACT_MEAN, b, &push, push.n, 2, 0, v);
+    *count = (long)v[1];
+    return v[1] > 0 ? v[0] / v[1] : 0;
+}
+
+static gap_stats gpu_engine_gaps(pk_run *r, double w, double cap)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[5] = {&s->p, &s->u, &s->gap0, &s->g, &s->device->partials};
+    const push_pair push = {.a = w, .b = cap, .n = patches(s)};
+    double v[5];
+    reduce(r, K_GAPS, b, &push, push.n, 5, 1u << 3, v);
+    return (gap_stats){.sum_squares = v[0], .contact = (long)v[1], .moving_squares = v[2], .penetration = v[3],
+                       .penetration_squares = v[4]};
+}
+
+static double gpu_engine_winkler(pk_run *r, double w, double k0, int store)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[3] = {&s->gap0, &s->p, &s->device->partials};
+    const push_pair push = {.a = w, .b = k0, .n = patches(s), .flag = store != 0};
+    double sum;
+    reduce(r, K_WINKLER, b, &push, push.n, 1, 0, &sum);
+    return sum * r->plan->delta * r->plan->delta;
+}
+
+static void gpu_engine_clip(pk_run *r, double cap)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[1] = {&s->p};
+    const push_value push = {.value = cap, .n = patches(s)};
+    record(s, K_CLIP, b, &push, push.n);
+}
+
+static void gpu_engine_summary(pk_run *r, double *sum, long *contact, double *peak)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[2] = {&s->p, &s->device->partials};
+    const push_count push = {.count = patches(s)};
+    double v[3];
+    reduce(r, K_SUMMARY, b, &push, push.count, 3, 1u << 2, v);
+    *sum = v[0];
+    *contact = (long)v[1];
+    *peak = v[2];
+}
+
+static int gpu_engine_any_positive(pk_run *r)
+{
+    double sum, peak;
+    long contact;
+    gpu_engine_summary(r, &sum, &contact, &peak);
+    return contact > 0;
+}
+
+static void gpu_engine_load_split(pk_run *r, double cap, double *elastic, double *capped)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[2] = {&s->p, &s->device->partials};
+    const push_pair push = {.a = cap, .b = r->plan->delta * r->plan->delta, .n = patches(s)};
+    double v[2];
+    reduce(r, K_LOAD_SPLIT, b, &push, push.n, 2, 0, v);
+    *elastic = v[0];
+    *capped = v[1];
+}
+
+static int gpu_engine_scale_elastic(pk_run *r, double scale, double cap)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[2] = {&s->p, &s->device->partials};
+    const push_pair push = {.a = scale, .b = cap, .n = patches(s)};
+    double clipped;
+    reduce(r, K_SCALE_ELASTIC, b, &push, push.n, 1, 1, &clipped);
+    return clipped > 0;
+}
+
+static double gpu_engine_pressure_sum(pk_run *r)
+{
+    double sum, peak;
+    long contact;
+    gpu_engine_summary(r, &sum, &contact, &peak);
+    return sum;
+}
+
+static void gpu_engine_scale(pk_run *r, double p_factor, double u_factor)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *p[1] = {&s->p}, *u[1] = {&s->u};
+    const push_value scale_p = {.value = p_factor, .n = patches(s)}, scale_u = {.value = u_factor, .n = patches(s)};
+    if (p_factor != 1)
+        record(s, K_SCALE, p, &scale_p, scale_p.n);
+    if (u_factor != 1)
+        record(s, K_SCALE, u, &scale_u, scale_u.n);
+}
+
+static void gpu_engine_direction(pk_run *r, int preconditioned, double beta, double cap)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[5] = {&s->p, &s->g, preconditioned ? &s->z : &s->g, &s->t, &s->real};
+    const push_grid_pair push = {.a = beta, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = s->py};
+    record(s, K_DIRECTION, b, &push, s->px * s->py);
+}
+
+static double gpu_engine_precondition(pk_run *r, long *count)
+{
+    struct gpu_solver *s = solver_of(r);
+    const push_count n = {.count = patches(s)};
+    const push_count modes = {.count = s->ny * (s->nx / 2 + 1)};
+    const gpu_buffer *mask[3] = {&s->p, &s->g, &s->z};
+    const gpu_buffer *multiply[2] = {&s->precondition_modes, &s->inverse_spectrum};
+    const gpu_buffer *restrict_to_contact[3] = {&s->p, &s->z, &s->device->partials};
+    record(s, K_PRECONDITION_MASK, mask, &n, n.count);
+    gpu_fft_forward(context_of(s), s->precondition_fft);
+    record(s, K_MULTIPLY, multiply, &modes, modes.count);
+    gpu_fft_inverse(context_of(s), s->precondition_fft);
+    double v[2];
+    reduce(r, K_PRECONDITION_RESTRICT, restrict_to_contact, &n, n.count, 2, 0, v);
+    *count = (long)v[1];
+    return v[0];
+}
+
+static double gpu_engine_precondition_centre(pk_run *r, double mean)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[4] = {&s->p, &s->g, &s->z, &s->device->partials};
+    const push_value push = {.value = mean, .n = patches(s)};
+    double gz;
+    reduce(r, K_PRECONDITION_CENTRE, b, &push, push.n, 1, 0, &gz);
+    return gz;
+}
+
+static step_terms gpu_engine_step(pk_run *r, double cap)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[5] = {&s->p, &s->g, &s->t, &s->real, &s->device->partials};
+    const push_step push = {.cap = cap, .nx = s->nx, .ny = s->ny, .px = s->px};
+    double v[5];
+    reduce(r, K_STEP, b, &push, patches(s), 5, 0, v);
+    return (step_terms){.gt = v[0], .kt_t = v[1], .kt_sum = v[2], .t_sum = v[3], .count = (long)v[4]};
+}
+
+static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int allow_join, int *joined)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[6] = {&s->p, &s->u, &s->g, &s->t, &s->real, &s->device->partials};
+    const push_grid_pair push = {.a = tau, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = allow_join != 0};
+    double v[2];
+    reduce(r, K_UPDATE_PRESSURE, b, &push, patches(s), 2, 1u << 1, v);
+    *joined = v[1] > 0;
+    return (long)v[0];
+}
+
+/* The plan's direct_limit is 0 on the GPU, so pk.c recomputes u by FFT instead of calling this;
+ * should it be called, the exact convolution is still right. */
+static void gpu_engine_add_point_loads(pk_run *r, long changes)
+{
+    (void)changes;
+    record_convolution(solver_of(r));
+}
+
+/* displacement = K pressure through the device; NaN everywhere when the device fails, so that a
+ * failure is never read as a displacement. */
+static int gpu_engine_convolve_arrays(im_solver_plan *plan, const double *pressure, double *displacement)
+{
+    struct gpu_solver *s = plan->gpu;
+    const VkDeviceSize bytes = sizeof(double) * patches(s);
+    int status = gpu_buffer_upload(context_of(s), &s->p, 0, pressure, bytes);
+    if (status == IM_OK)
+        status = gpu_begin(context_of(s));
+    if (status == IM_OK) {
+        record_convolution(s);
+        status = gpu_submit_wait(context_of(s));
+    }
+    if (status == IM_OK)
+        status = gpu_buffer_download(context_of(s), &s->u, 0, displacement, bytes);
+    if (status != IM_OK)
+        for (uint32_t i = 0; i < patches(s); ++i)
+            displacement[i] = NAN;
+    return status;
+}
+
+/* ---- making and freeing a plan's device state ---- */
+
+static void gpu_engine_free(im_solver_plan *plan)
+{
+    struct gpu_solver *s = plan->gpu;
+    if (!s)
+        return;
+    gpu_context *c = context_of(s);
+    gpu_fft_free(s->fft);
+    gpu_fft_free(s->precondition_fft);
+    gpu_buffer *buffers[] = {&s->gap0, &s->p, &s->u, &s->g, &s->t, &s->z, &s->real, &s->modes, &s->spectrum,
+                             &s->precondition_modes, &s->inverse_spectrum};
+    for (size_t k = 0; k < sizeof buffers / sizeof *buffers; ++k)
+        gpu_buffer_free(c, buffers[k]);
+    device_release(s->device);
+    free(s);
+    plan->gpu = NULL;
+}
+
+const solver_engine solver_engine_gpu = {
+    .name = "gpu",
+    .begin = gpu_engine_begin,
+    .finish = gpu_engine_finish,
+    .convolve_pressure = gpu_engine_convolve_pressure,
+    .convolve_direction = gpu_engine_convolve_direction,
+    .contact_mean = gpu_engine_contact_mean,
+    .gaps = gpu_engine_gaps,
+    .winkler = gpu_engine_winkler,
+    .clip = gpu_engine_clip,
+    .any_positive = gpu_engine_any_positive,
+    .load_split = gpu_engine_load_split,
+    .scale_elastic = gpu_engine_scale_elastic,
+    .pressure_sum = gpu_engine_pressure_sum,
+    .scale = gpu_engine_scale,
+    .direction = gpu_engine_direction,
+    .precondition = gpu_engine_precondition,
+    .precondition_centre = gpu_engine_precondition_centre,
+    .step = gpu_engine_step,
+    .update_pressure = gpu_engine_update_pressure,
+    .add_point_loads = gpu_engine_add_point_loads,
+    .summary = gpu_engine_summary,
+    .convolve_arrays = gpu_engine_convolve_arrays,
+    .free = gpu_engine_free,
+};
+
+/* What VkFFT and the shaders' 32-bit indices can take; IM_EUNSUPPORTED naming what cannot. */
+static int check_grid(const im_solver_plan *plan, const gpu_device *d)
+{
+    /* the transforms are nx x ny (periodic, the preconditioner) and 2 nx x 2 ny (the padded grid) */
+    const int sides[2] = {plan->nx, plan->ny};
+    for (int k = 0; k < 2; ++k)
+        if (!gpu_fft_side_supported(sides[k]))
+            return im_fail(IM_EUNSUPPORTED,
+                           "GPU engine: solver grid %d x %d (transforms %d x %d): side %d has a prime factor above "
+                           "13, which VkFFT does not transform exactly; use device = cpu, or a grid whose sides "
+                           "factor into 2, 3, 5, 7, 11 and 13", plan->nx, plan->ny, plan->px, plan->py, sides[k]);
+    const double largest = (double)gpu_fft_modes_bytes(plan->px, plan->py);
+    if ((double)plan->px * plan->py >= 4294967296.0 || largest > (double)gpu_context_max_buffer(d->context))
+        return im_fail(IM_EUNSUPPORTED,
+                       "GPU engine: solver grid %d x %d needs a %.0f MiB buffer; %s takes at most %.0f MiB per "
+                       "buffer (use device = cpu, or a smaller grid)", plan->nx, plan->ny, largest / 1048576.0,
+                       gpu_context_device_name(d->context), (double)gpu_context_max_buffer(d->context) / 1048576.0);
+    return IM_OK;
+}
+
+static int zero_fields(struct gpu_solver *s)
+{
+    gpu_context *c = context_of(s);
+    gpu_buffer *fields[] = {&s->p, &s->u, &s->g, &s->t, &s->z, &s->real};
+    int status = gpu_begin(c);
+    for (size_t k = 0; k < sizeof fields / sizeof *fields && status == IM_OK; ++k)
+        gpu_zero(c, fields[k]);
+    return status == IM_OK ? gpu_submit_wait(c) : status;
+}
+
+static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
+{
+    gpu_context *c = context_of(s);
+    const VkDeviceSize d = sizeof(double), n = (VkDeviceSize)s->nx * s->ny;
+    const VkDeviceSize modes = (VkDeviceSize)s->py * (s->px / 2 + 1), small = (VkDeviceSize)s->ny * (s->nx / 2 + 1);
+    gpu_buffer *fields[] = {&s->gap0, &s->p, &s->u, &s->g, &s->t};
+    int status = IM_OK;
+    for (size_t k = 0; k < sizeof fields / sizeof *fields && status == IM_OK; ++k)
+        status = gpu_buffer_create(c, d * n, 0, fields[k]);
+    /* the transforms' real buffers hold as many bytes as their modes (gpu/vulkan.h: VkFFT binds them so) */
+    if (status == IM_OK)
+        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->nx, s->ny), 0, &s->z);
+    if (status == IM_OK)
+        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->px, s->py), 0, &s->real);
+    if (status == IM_OK)
+        status = gpu_buffer_create(c, 2 * d * modes, 0, &s->modes);
+    if (status == IM_OK)
+        status = gpu_buffer_create(c, d * modes, 0, &s->spectrum);
+    if (status == IM_OK)
+        status = gpu_buffer_upload(c, &s->spectrum, 0, plan->spectrum, d * modes);
+    if (status == IM_OK)
+        status = zero_fields(s); /* t is read (times beta = 0) before it is first written */
+    if (status == IM_OK)
+        status = gpu_fft_create(c, (int)s->px, (int)s->py, &s->real, &s->modes, &s->fft);
+    if (status != IM_OK || !plan->options.precondition)
+        return status;
+    status = gpu_buffer_create(c, 2 * d * small, 0, &s->precondition_modes);
+    if (status == IM_OK)
+        status = gpu_buffer_create(c, d * small, 0, &s->inverse_spectrum);
+    if (status == IM_OK)
+        status = gpu_buffer_upload(c, &s->inverse_spectrum, 0, plan->inverse_spectrum, d * small);
+    if (status == IM_OK)
+        status = gpu_fft_create(c, (int)s->nx, (int)s->ny, &s->z, &s->precondition_modes, &s->precondition_fft);
+    return status;
+}
+
+int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
+{
+    gpu_device *device = NULL;
+    int status = IM_OK;
+    if (finer) {
+        device = finer->gpu->device;
+        ++device->references;
+    } else if ((status = device_open(&plan->options, &device)) != IM_OK)
+        return status;
+    if ((status = check_grid(plan, device)) != IM_OK) {
+        device_release(device);
+        return status;
+    }
+    struct gpu_solver *s = calloc(1, sizeof *s);
+    if (!s) {
+        device_release(device);
+        return im_fail(IM_ENOMEM, "GPU engine %d x %d", plan->nx, plan->ny);
+    }
+    *s = (struct gpu_solver){.device = device, .nx = (uint32_t)plan->nx, .ny = (uint32_t)plan->ny,
+                             .px = (uint32_t)plan->px, .py = (uint32_t)plan->py};
+    plan->gpu = s;
+    status = make_buffers(plan, s);
+    if (status != IM_OK) { /* the plan stays whole on the CPU engine */
+        status = im_fail_context(status, "GPU engine %d x %d on %s", plan->nx, plan->ny,
+                                 gpu_context_device_name(device->context));
+        gpu_engine_free(plan);
+        return status;
+    }
+    plan->engine = &solver_engine_gpu;
+    plan->direct_limit = 0; /* every change to u by FFT: a direct sum is a serial loop on the host */
+    return IM_OK;
+}
+
+const char *solver_engine_gpu_device(const im_solver_plan *plan)
+{
+    return plan->gpu ? gpu_context_device_name(plan->gpu->device->context) : NULL;
+}
+
+long solver_engine_gpu_validation_messages(const im_solver_plan *plan)
+{
+    return plan->gpu ? gpu_context_validation_messages(plan->gpu->device->context) : -1;
+}

@@ -1,0 +1,337 @@
+/* The Vulkan layer under the GPU solver engine (src/gpu/): VkFFT's R2C / C2R against FFTW, its
+ * refusal of sides it cannot do exactly, a compute pipeline (shaders/compute/scale.comp) through
+ * push descriptors and push constants, buffers both ways. Every case runs under the validation
+ * layer with synchronization validation, and must leave it silent.
+ *
+ * Exits 77 (skipped) when the library is built without the GPU layer (IM_GPU off) or when no
+ * Vulkan device with double precision opens (with IM_REQUIRE_GPU=1 that fails instead). A missing
+ * validation layer is a failure: setup.sh installs it. */
+#include "support.h"
+
+#include "indentmap/gpu_config.h"
+
+#include <stdio.h>
+
+#if IM_HAVE_GPU
+
+#include "gpu/vulkan.h"
+#include "indentmap/status.h"
+#include "spirv/scale.h"
+
+#include <dlfcn.h>
+#include <fftw3.h>
+#include <stdlib.h>
+#include <string.h>
+
+static gpu_context *context;
+static char open_error[2048];
+static int skip_all;
+
+static int gpu_required(void)
+{
+    const char *required = getenv("IM_REQUIRE_GPU");
+    return required && strcmp(required, "1") == 0;
+}
+
+static int open_context(void **state)
+{
+    (void)state;
+    if (gpu_context_open(GPU_ANY, 1, &context) == IM_OK) {
+        print_message("device: %s%s\n", gpu_context_device_name(context),
+                      gpu_context_is_software(context) ? " (CPU implementation)" : "");
+        return 0;
+    }
+    snprintf(open_error, sizeof open_error, "%s", im_last_error());
+    /* Only a machine without a usable Vulkan device skips; a missing validation layer fails. */
+    skip_all = !strstr(open_error, "VK_LAYER_KHRONOS_validation") && !gpu_required();
+    context = NULL;
+    return 0;
+}
+
+static int close_context(void **state)
+{
+    (void)state;
+    gpu_context_close(context);
+    return 0;
+}
+
+#define REQUIRE_CONTEXT()                                                                         \
+    do {                                                                                          \
+        if (!context && skip_all) {                                                               \
+            print_message("SKIPPED (no Vulkan device): %s\n", open_error);                        \
+            skip();                                                                               \
+        }                                                                                         \
+        if (!context)                                                                             \
+            fail_msg("the GPU context does not open: %s", open_error);                            \
+    } while (0)
+
+/* Every case ends with a silent validation layer (the count is over the whole program). */
+static void assert_no_validation_messages(void)
+{
+    long messages = gpu_context_validation_messages(context);
+    if (messages != 0)
+        fail_msg("%ld validation warnings or errors (printed above as 'vulkan validation: ...')", messages);
+}
+
+static void ok(int status, const char *what)
+{
+    if (status != IM_OK)
+        fail_msg("%s: %s (%s)", what, im_strstatus(status), im_last_error());
+}
+
+/* Deterministic pseudo-random numbers in [-1, 1). */
+static double uniform(uint64_t *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return 2.0 * (double)(*state >> 11) * 0x1.0p-53 - 1.0;
+}
+
+/* FFTW's r2c of the same px x py reals (rows of px): py x (px/2 + 1) modes. */
+static double *fftw_modes(const double *input, int px, int py)
+{
+    size_t n = (size_t)px * py, m = (size_t)(px / 2 + 1) * py;
+    double *in = fftw_malloc(n * sizeof *in);
+    fftw_complex *out = fftw_malloc(m * sizeof *out);
+    assert_non_null(in);
+    assert_non_null(out);
+    fftw_plan plan = fftw_plan_dft_r2c_2d(py, px, in, out, FFTW_ESTIMATE);
+    memcpy(in, input, n * sizeof *in);
+    fftw_execute(plan);
+    fftw_destroy_plan(plan);
+    double *modes = malloc(2 * m * sizeof *modes);
+    assert_non_null(modes);
+    memcpy(modes, out, 2 * m * sizeof *modes);
+    fftw_free(in);
+    fftw_free(out);
+    return modes;
+}
+
+/* max |a - b| / max |b| over n numbers. */
+static double relative_error(const double *a, const double *b, size_t n)
+{
+    double largest = 0.0, error = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        largest = fmax(largest, fabs(b[i]));
+        error = fmax(error, fabs(a[i] - b[i]));
+    }
+    return largest > 0.0 ? error / largest : error;
+}
+
+static void transform(void (*direction)(gpu_context *, gpu_fft *), gpu_fft *fft)
+{
+    ok(gpu_begin(context), "gpu_begin");
+    direction(context, fft);
+    ok(gpu_submit_wait(context), "gpu_submit_wait");
+}
+
+/* R2C then C2R of random reals on the GPU: the modes equal FFTW's and the round trip gives
+ * px * py times the input (unnormalised), each to 1e-12 of the largest value. The real buffer is
+ * as large as the modes buffer (vulkan.h); its tail past px * py reals must stay untouched. */
+static void check_fft(int px, int py, uint64_t seed)
+{
+    size_t n = (size_t)px * py, m = (size_t)(px / 2 + 1) * py;
+    double *input = malloc(2 * m * sizeof *input), *modes = malloc(2 * m * sizeof *modes);
+    double *back = malloc(2 * m * sizeof *back);
+    assert_true(input && modes && back && 2 * m >= n);
+    for (size_t i = 0; i < 2 * m; ++i)
+        input[i] = i < n ? uniform(&seed) : -1234.5; /* the tail: a sentinel */
+    gpu_buffer real, complex;
+    ok(gpu_buffer_create(context, gpu_fft_modes_bytes(px, py), 0, &real), "real buffer");
+    ok(gpu_buffer_create(context, gpu_fft_modes_bytes(px, py), 0, &complex), "modes buffer");
+    ok(gpu_buffer_upload(context, &real, 0, input, 2 * m * sizeof(double)), "upload");
+    gpu_fft *fft = NULL;
+    ok(gpu_fft_create(context, px, py, &real, &complex, &fft), "gpu_fft_create");
+
+    transform(gpu_fft_forward, fft);
+    ok(gpu_buffer_download(context, &complex, 0, modes, 2 * m * sizeof(double)), "download modes");
+    double *expected = fftw_modes(input, px, py);
+    double modes_error = relative_error(modes, expected, 2 * m);
+    transform(gpu_fft_inverse, fft);
+    ok(gpu_buffer_download(context, &real, 0, back, 2 * m * sizeof(double)), "download reals");
+    for (size_t i = 0; i < n; ++i)
+        input[i] *= (double)n;
+    double round_trip_error = relative_error(back, input, n);
+    size_t tail_changed = 0;
+    for (size_t i = n; i < 2 * m; ++i)
+        tail_changed += back[i] != -1234.5;
+    print_message("%d x %d: modes vs FFTW %.2e, round trip %.2e\n", px, py, modes_error, round_trip_error);
+
+    gpu_fft_free(fft);
+    gpu_buffer_free(context, &real);
+    gpu_buffer_free(context, &complex);
+    free(expected);
+    free(input);
+    free(modes);
+    free(back);
+    if (!(modes_error <= 1e-12))
+        fail_msg("%d x %d: modes differ from FFTW's by %.3g of the largest", px, py, modes_error);
+    if (!(round_trip_error <= 1e-12))
+        fail_msg("%d x %d: forward then inverse differs from px * py * input by %.3g", px, py,
+                 round_trip_error);
+    if (tail_changed)
+        fail_msg("%d x %d: the inverse wrote %zu reals past px * py", px, py, tail_changed);
+}
+
+static void test_fft_small(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    check_fft(16, 16, 1);
+    check_fft(64, 48, 2);
+    assert_no_validation_messages();
+}
+
+static void test_fft_large(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    check_fft(256, 256, 3);
+    check_fft(2048, 1024, 4);
+    assert_no_validation_messages();
+}
+
+/* 17 is prime: VkFFT would take its Bluestein path, which returned zeros in a probe. */
+static void test_fft_sides(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    assert_int_equal(gpu_fft_side_supported(17), 0);
+    assert_int_equal(gpu_fft_side_supported(13 * 16), 1);
+    assert_int_equal(gpu_fft_side_supported(2 * 3 * 5 * 7 * 11 * 13), 1);
+    assert_int_equal(gpu_fft_side_supported(2 * 19), 0);
+    assert_int_equal(gpu_fft_side_supported(0), 0);
+    gpu_buffer real, complex;
+    ok(gpu_buffer_create(context, gpu_fft_modes_bytes(64, 64), 0, &real), "real buffer");
+    ok(gpu_buffer_create(context, gpu_fft_modes_bytes(64, 64), 0, &complex), "modes buffer");
+    gpu_fft *fft = NULL;
+    assert_int_equal(gpu_fft_create(context, 17, 64, &real, &complex, &fft), IM_EUNSUPPORTED);
+    assert_null(fft);
+    if (!strstr(im_last_error(), "side 17 has a prime factor above 13"))
+        fail_msg("unexpected refusal: %s", im_last_error());
+    assert_int_equal(gpu_fft_create(context, 64, 17, &real, &complex, &fft), IM_EUNSUPPORTED);
+    /* Buffers too small for the modes of 128 x 64 (those of 64 x 64). */
+    assert_int_equal(gpu_fft_create(context, 128, 64, &real, &complex, &fft), IM_EINVAL);
+    assert_null(fft);
+    gpu_buffer_free(context, &real);
+    gpu_buffer_free(context, &complex);
+    check_fft(13 * 16, 39, 5);
+    assert_no_validation_messages();
+}
+
+struct scale_push {
+    double factor; /* offset 0, as the shader's std430 block */
+    uint32_t count;
+    uint32_t padding;
+};
+
+/* data *= factor by scale.comp over fewer workgroups than the data needs (the grid-stride loop). */
+static void scale_on_gpu(const gpu_pipeline *pipeline, const gpu_buffer *buffer, uint32_t count,
+                         double factor)
+{
+    struct scale_push push = {.factor = factor, .count = count};
+    const gpu_buffer *buffers[] = {buffer};
+    ok(gpu_begin(context), "gpu_begin");
+    gpu_dispatch(context, pipeline, buffers, &push, 2);
+    gpu_dispatch(context, pipeline, buffers, &push, 1); /* twice: the barrier between must hold */
+    ok(gpu_submit_wait(context), "gpu_submit_wait");
+}
+
+static void test_scale_pipeline(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    enum { N = 1000 };
+    gpu_pipeline pipeline;
+    ok(gpu_pipeline_create(context, spirv_scale, sizeof spirv_scale, 1, sizeof(struct scale_push), &pipeline),
+       "gpu_pipeline_create");
+    double data[N + 2], back[N + 2];
+    uint64_t seed = 7;
+    for (int i = 0; i < N + 2; ++i)
+        data[i] = uniform(&seed);
+    for (int host_visible = 0; host_visible <= 1; ++host_visible) {
+        gpu_buffer buffer;
+        ok(gpu_buffer_create(context, sizeof data, host_visible, &buffer), "buffer");
+        assert_int_equal(buffer.mapped != NULL, host_visible);
+        ok(gpu_buffer_upload(context, &buffer, 0, data, sizeof data), "upload");
+        scale_on_gpu(&pipeline, &buffer, N, 2.0); /* the last two stay as they are */
+        ok(gpu_buffer_download(context, &buffer, 0, back, sizeof back), "download");
+        for (int i = 0; i < N + 2; ++i)
+            if (back[i] != (i < N ? 4.0 : 1.0) * data[i])
+                fail_msg("host_visible %d: element %d = %.17g, expected %.17g", host_visible, i, back[i],
+                         (i < N ? 4.0 : 1.0) * data[i]);
+        /* Part of a buffer at an offset, both ways. */
+        ok(gpu_buffer_upload(context, &buffer, 8 * sizeof(double), data, 3 * sizeof(double)),
+           "upload at offset");
+        ok(gpu_buffer_download(context, &buffer, 7 * sizeof(double), back, 5 * sizeof(double)),
+           "download at offset");
+        assert_true(back[0] == 4.0 * data[7] && back[1] == data[0] && back[3] == data[2] &&
+                    back[4] == 4.0 * data[11]);
+        assert_int_equal(gpu_buffer_download(context, &buffer, sizeof data - 8, back, 16), IM_EINVAL);
+        gpu_buffer_free(context, &buffer);
+    }
+    gpu_pipeline_free(context, &pipeline);
+    assert_no_validation_messages();
+}
+
+/* The device list names the device in use; a machine with only CPU devices refuses
+ * GPU_PREFER_HARDWARE with IM_EUNSUPPORTED, naming them. */
+static void test_devices(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    char text[4096];
+    ok(gpu_devices_describe(text, sizeof text), "gpu_devices_describe");
+    print_message("%s", text);
+    assert_non_null(strstr(text, gpu_context_device_name(context)));
+    assert_non_null(strstr(text, "float64 yes"));
+    assert_true(gpu_context_max_buffer(context) >= 16u << 20);
+    int hardware = strstr(text, ", discrete,") || strstr(text, ", integrated,") || strstr(text, ", virtual,");
+    gpu_context *other = NULL;
+    int status = gpu_context_open(GPU_PREFER_HARDWARE, 0, &other);
+    if (!hardware) {
+        assert_int_equal(status, IM_EUNSUPPORTED);
+        assert_non_null(strstr(im_last_error(), gpu_context_device_name(context)));
+        print_message("GPU_PREFER_HARDWARE: %s\n", im_last_error());
+    }
+    gpu_context_close(other);
+    assert_no_validation_messages();
+}
+
+/* Under AddressSanitizer: the Vulkan loader unloads drivers and layers when an instance ends, so
+ * what they keep until exit would be reported in "<unknown module>"; kept loaded, LeakSanitizer
+ * names their libraries and tests/gpu_lsan.supp can suppress those (and nothing of ours). */
+static void keep_vulkan_libraries_loaded(void)
+{
+#ifdef __SANITIZE_ADDRESS__
+    static const char *const libraries[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so",
+                                            "libVkLayer_MESA_device_select.so"};
+    for (size_t i = 0; i < sizeof libraries / sizeof libraries[0]; ++i)
+        dlopen(libraries[i], RTLD_NOW | RTLD_NODELETE); /* the handle is never closed, on purpose */
+#endif
+}
+
+int main(void)
+{
+    keep_vulkan_libraries_loaded();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_devices),
+        cmocka_unit_test(test_scale_pipeline),
+        cmocka_unit_test(test_fft_small),
+        cmocka_unit_test(test_fft_sides),
+        cmocka_unit_test(test_fft_large),
+    };
+    int failed = cmocka_run_group_tests(tests, open_context, close_context);
+    if (skip_all)
+        fprintf(stderr, "SKIPPED: %s\n", open_error);
+    return failed ? failed : skip_all ? 77 : 0; /* 77: ctest's SKIP_RETURN_CODE */
+}
+
+#else
+
+int main(void)
+{
+    fprintf(stderr, "SKIPPED: the library is built without the GPU layer (IM_GPU off)\n");
+    return 77;
+}
+
+#endif
