@@ -4,7 +4,8 @@
 # made here and carried there with the shared libraries it needs:
 #   scripts/gpu-check.sh pack   on Debian 12: builds (Release, IM_GPU, bench_gpu) and gathers the programs,
 #                               their libraries (glibc apart, kept for a fallback loader), the Vulkan
-#                               validation layer and the fonts into .gpu-carry/ (ignored by git)
+#                               validation layer and the fonts into .gpu-carry/ and .gpu-carry.tar.xz
+#                               (ignored by git; the device call carries the .tar.xz)
 #   scripts/gpu-check.sh run    on the GPU machine, from the repository root: the Vulkan devices and
 #                               GL_RENDERER (indentmap info), the GPU tests under the validation layers on
 #                               the NVIDIA device, bench_gpu against the CPU engine on all cores, and
@@ -31,7 +32,9 @@ pack() {
   cp /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json "$carry/layers/"
   cp /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf /usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf \
      "$carry/fonts/"
-  du -sh "$carry"
+  # one compressed file: the folder is over the 64 MiB a device call carries (ICU's data alone is 31 MiB)
+  tar cJf "$carry.tar.xz" "$carry"
+  du -sh "$carry" "$carry.tar.xz"
 }
 
 # The NVIDIA driver's Vulkan ICD and EGL vendor files where the device machine keeps them.
@@ -49,31 +52,36 @@ driver_environment() {
 
 run() {
   local out=${OUT:-gpu-check-out}
+  [ -d "$carry" ] || tar xJf "$carry.tar.xz"
   mkdir -p "$out" /usr/share/fonts/truetype/dejavu
   cp -n "$carry"/fonts/*.ttf /usr/share/fonts/truetype/dejavu/ 2>/dev/null || true
   driver_environment
+  # the command line's own spin count, set here so that it does not re-execute itself through
+  # /proc/self/exe (the carried loader, when it runs the programs)
+  export GOMP_SPINCOUNT=3000
   # The machine's own glibc runs the programs when it is as new as Debian 12's; else the carried one.
   local runner=()
   if ! "$carry/bin/indentmap" --version >/dev/null 2>&1; then
     runner=("$PWD/$carry/glibc/ld-linux-x86-64.so.2" --library-path "$PWD/$carry/glibc:$LD_LIBRARY_PATH")
     echo "gpu-check: running with the carried glibc"
   fi
-  nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader | tee "$out/device.txt" || true
-  IM_RENDER_BACKEND=egl "${runner[@]}" "$carry/bin/indentmap" info 2>&1 | tee "$out/info.txt"
+  { nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader || true; } | tee "$out/device.txt"
+  local status=0
+  IM_RENDER_BACKEND=egl "${runner[@]}" "$carry/bin/indentmap" info 2>&1 | tee "$out/info.txt" || status=1
   if grep -q llvmpipe "$out/info.txt" && ! grep -qi nvidia "$out/info.txt"; then
     echo "gpu-check: only llvmpipe: the NVIDIA driver was not found" >&2
     exit 1
   fi
-  local status=0
-  "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
-  "${runner[@]}" "$carry/bin/test_gpu_solver" 2>&1 | tee -a "$out/tests.txt" || status=1
-  "${runner[@]}" "$carry/bin/bench_gpu" --cone 1024,2048,4096 --periodic 1024,2048,4096,8192 --history \
-    --repeats 3 --cpu-limit 2048 2>&1 | tee "$out/bench.txt" || status=1
+  # each stage has a time limit of its own, so that one that hangs leaves the others their time
+  timeout 120 "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
+  timeout 180 "${runner[@]}" "$carry/bin/test_gpu_solver" 2>&1 | tee -a "$out/tests.txt" || status=1
   local start=$SECONDS
-  IM_RENDER_BACKEND=egl "${runner[@]}" "$carry/bin/indentmap" run scenes/fig4.ini 2>&1 | tail -5 | tee "$out/fig4.txt" ||
-    status=1
+  IM_RENDER_BACKEND=egl timeout 120 "${runner[@]}" "$carry/bin/indentmap" run scenes/fig4.ini 2>&1 | tail -5 |
+    tee "$out/fig4.txt" || status=1
   echo "fig4 scene: $((SECONDS - start)) s through EGL" | tee -a "$out/fig4.txt"
   cp output/fig4/contact_panels.png output/fig4/frames/height_0011.png "$out/" 2>/dev/null || status=1
+  timeout 240 "${runner[@]}" "$carry/bin/bench_gpu" --cone 1024,2048,4096 --periodic 1024,2048,4096,8192 \
+    --history --repeats 3 --cpu-limit 2048 2>&1 | tee "$out/bench.txt" || status=1
   return $status
 }
 
