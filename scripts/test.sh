@@ -8,6 +8,8 @@ cd "$(dirname "$0")/.."
 export IM_REQUIRE_GL=${IM_REQUIRE_GL:-1}
 # Likewise setup.sh installs Chromium, so the viewer page's browser tests must run, not skip.
 export IM_REQUIRE_CHROMIUM=${IM_REQUIRE_CHROMIUM:-1}
+# And Mesa's lavapipe, so the GPU engine's tests must find a Vulkan device (IM_REQUIRE_GPU=0 allows the skip).
+export IM_REQUIRE_GPU=${IM_REQUIRE_GPU:-1}
 scripts/setup.sh build -DIM_WERROR=ON
 (cd build && ctest --output-on-failure -j "$(nproc)")
 if [ "${IM_SKIP_SANITIZE:-0}" != 1 ]; then

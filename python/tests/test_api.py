@@ -228,3 +228,23 @@ def test_memory_limit_refuses_work_up_front():
     im.Plan(512, delta=1.0)  # the same plan fits without the cap
     with pytest.raises(ValueError, match="expected >= 0"):
         im.memory_limit(-1)
+
+
+def test_device_choice_gives_the_cpu_answers(rough64):
+    """device= picks the solver's engine (issue 30): 'gpu' runs the Vulkan engine (lavapipe in CI) to
+    the CPU's answers, or is refused by name in a build without it; a bad word is a ValueError."""
+    with pytest.raises(ValueError, match="device 'tpu': expected 'cpu', 'gpu' or 'auto'"):
+        im.Plan(32, device="tpu")
+    with pytest.raises(ValueError, match="device 'tpu'"):
+        im.Indentation(rough64, largest=1.0, device="tpu")
+    try:
+        gpu = im.Indentation(rough64, largest=2.0, tol=1e-10, device="gpu")
+    except im.Error as e:
+        assert "no GPU engine" in str(e)
+        return
+    cpu = im.Indentation(rough64, largest=2.0, tol=1e-10, device="cpu")
+    for w in (0.5, 2.0):
+        a, b = cpu.step(w), gpu.step(w)
+        assert b["load"] == pytest.approx(a["load"], rel=1e-10)
+        assert b["contact_patches"] == a["contact_patches"]
+    assert np.array_equal(cpu.fields()[0] > 0, gpu.fields()[0] > 0)

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The solver's engine chosen by the user (issue 30): `indent --device`, a scene's [solver] device and
+# the run records that say which. With the GPU engine built (IM_HAVE_GPU=1) the device is whatever
+# Vulkan device opens first (lavapipe in CI): its history must equal the CPU's to the tolerance, step
+# for step, with the same contact patch counts. Without it, gpu is refused by name and auto falls
+# back to the CPU. Bad words are refused in both front ends.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+. "$(dirname "$0")/lib.sh"
+
+"$cli" surface --n 96 --slope 0.08 --seed 2 --out "$dir/s.npy" >/dev/null
+indent() { "$cli" indent "$dir/s.npy" --approach 0.5:3:3 --tol 1e-10 --no-wisdom --out "$dir/$1" "${@:2}"; }
+
+check "--device bogus refused" expect_exit 2 "--device 'bogus': expected cpu, gpu or auto" indent bad --device bogus
+printf '[scene]\nname = d\noutput = %s/sd\n[surfaces]\nn = 32\n[solver]\ndevice = tpu\n[output]\nplots = fig5\n' "$dir" >"$dir/d.ini"
+check "[solver] device = tpu refused" expect_exit 2 "device" "$cli" run --quiet "$dir/d.ini"
+
+indent cpu --device cpu >"$dir/cpu.txt" 2>&1
+check "cpu: device cpu said" grep -q ", device cpu$" "$dir/cpu.txt"
+check "cpu: run.json records device cpu" grep -q '"device": "cpu"' "$dir/cpu/run.json"
+indent auto --device auto >"$dir/auto.txt" 2>&1
+check "auto runs" test -s "$dir/auto/history.csv"
+
+# columns: step, approach, load, load_star, contact_patches (loads to 1e-10, counts exactly)
+same_history() {
+  python3 - "$1" "$2" <<'PY'
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+assert len(a) == len(b) == 3, (len(a), len(b))
+for x, y in zip(a, b):
+    assert abs(float(x["load"]) - float(y["load"])) <= 1e-10 * abs(float(x["load"])), (x["load"], y["load"])
+    assert x["contact_patches"] == y["contact_patches"], (x["contact_patches"], y["contact_patches"])
+PY
+}
+
+if [ "${IM_HAVE_GPU:-0}" = 1 ]; then
+  indent gpu --device gpu >"$dir/gpu.txt" 2>&1
+  check "gpu: runs" test -s "$dir/gpu/history.csv"
+  check "gpu: the device named" bash -c "grep ', device ' '$dir/gpu.txt' | grep -vq ', device cpu$'"
+  check "gpu: run.json records device gpu" grep -q '"device": "gpu"' "$dir/gpu/run.json"
+  check "gpu: the CPU's history to 1e-10" same_history "$dir/cpu/history.csv" "$dir/gpu/history.csv"
+  printf '[scene]\nname = d\noutput = %s/sg\n[surfaces]\nn = 64\nslopes = 0.08\nseeds = 1\n[loading]\nsteps = 0.5:2:2\n[solver]\ndevice = gpu\ntol = 1e-10\n[output]\nplots = fig5\n' "$dir" >"$dir/g.ini"
+  sed 's/device = gpu/device = cpu/; s/sg$/sc/' "$dir/g.ini" >"$dir/c.ini"
+  "$cli" run --quiet "$dir/g.ini" >/dev/null 2>&1
+  "$cli" run --quiet "$dir/c.ini" >/dev/null 2>&1
+  check "scene on the gpu: the CPU's member history" bash -c \
+    "diff <(tail -n +2 '$dir/sc/histories/member_00_1.csv' | cut -d, -f1,5) <(tail -n +2 '$dir/sg/histories/member_00_1.csv' | cut -d, -f1,5)"
+else
+  check "gpu refused without the engine" expect_exit 2 "no GPU engine" indent gpu --device gpu
+  check "auto falls back to the cpu" grep -q ", device cpu$" "$dir/auto.txt"
+fi
+finish
