@@ -32,6 +32,7 @@ struct gpu_fft {
     uint64_t real_bytes, modes_bytes;
     VkCommandBuffer commands;
     int px, py;
+    int nx, ny; /* the reals outside [0, nx) x [0, ny) are zeros going forward, unwanted coming back */
 };
 
 VkDeviceSize gpu_fft_modes_bytes(int px, int py)
@@ -114,13 +115,31 @@ static VkFFTConfiguration configuration(gpu_fft *fft)
     c.bufferSize = &fft->modes_bytes;
     c.bufferStride[0] = (uint64_t)(fft->px / 2 + 1); /* in complex numbers */
     c.bufferStride[1] = (uint64_t)(fft->px / 2 + 1) * (uint64_t)fft->py;
+    /* Spatial zero padding: the forward transform skips reading the zero block and the inverse
+     * skips writing it (the CPU engine prunes its FFTW transforms the same way, plan.c). */
+    const int data[2] = {fft->nx, fft->ny}, sides[2] = {fft->px, fft->py};
+    for (int axis = 0; axis < 2; ++axis)
+        if (data[axis] < sides[axis]) {
+            c.performZeropadding[axis] = 1;
+            c.fft_zeropad_left[axis] = (uint64_t)data[axis];
+            c.fft_zeropad_right[axis] = (uint64_t)sides[axis];
+        }
     return c;
 }
 
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out)
 {
+    return gpu_fft_create_padded(context, px, py, px, py, real, modes, out);
+}
+
+int gpu_fft_create_padded(gpu_context *context, int px, int py, int nx, int ny, gpu_buffer *real,
+                          gpu_buffer *modes, gpu_fft **out)
+{
     *out = NULL;
     int status = check_sizes(context, px, py, real, modes);
+    if (status == IM_OK && (nx < 1 || nx > px || ny < 1 || ny > py))
+        status = im_fail(IM_EINVAL, "GPU FFT %d x %d: data block %d x %d: expected 1 .. %d x 1 .. %d", px, py,
+                         nx, ny, px, py);
     if (status != IM_OK)
         return status;
     gpu_fft *fft = calloc(1, sizeof *fft);
@@ -133,6 +152,8 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     fft->modes_bytes = gpu_fft_modes_bytes(px, py);
     fft->px = px;
     fft->py = py;
+    fft->nx = nx;
+    fft->ny = ny;
     /* VkFFT starts glslang (glslang_initialize_process, reference counted in glslang 12) for the
      * plan's shaders and stops it again before returning. */
     VkFFTResult result = initializeVkFFT(&fft->app, configuration(fft));
