@@ -81,7 +81,7 @@ run() {
   echo "fig4 scene: $((SECONDS - start)) s through EGL" | tee -a "$out/fig4.txt"
   cp output/fig4/contact_panels.png output/fig4/frames/height_0011.png "$out/" 2>/dev/null || status=1
   timeout 240 "${runner[@]}" "$carry/bin/bench_gpu" --cone 1024,2048,4096 --periodic 1024,2048,4096,8192 \
-    --history --repeats 3 --cpu-limit 4096 2>&1 | tee "$out/bench.txt" || status=1
+    --history --repeats 3 --cpu-limit 2048 2>&1 | tee "$out/bench.txt" || status=1
   return $status
 }
 

@@ -32,7 +32,6 @@ struct gpu_fft {
     uint64_t real_bytes, modes_bytes;
     VkCommandBuffer commands;
     int px, py;
-    int nx, ny; /* the reals outside [0, nx) x [0, ny) are zeros going forward, unwanted coming back */
 };
 
 VkDeviceSize gpu_fft_modes_bytes(int px, int py)
@@ -88,7 +87,11 @@ static int check_sizes(const gpu_context *context, int px, int py, const gpu_buf
 }
 
 /* An out-of-place R2C plan: reals (row stride px) in the input buffer, px/2 + 1 complex modes per
- * row in the main buffer; the inverse writes back to the input buffer and overwrites the modes. */
+ * row in the main buffer; the inverse writes back to the input buffer and overwrites the modes.
+ * The padded grid's zero block is transformed like any data: VkFFT 1.2.26's spatial zero padding
+ * (performZeropadding), tried to skip it as the CPU engine's pruned transforms do, passed every
+ * comparison up to 2048^2 transforms but broke the 8192^2 one on an H200 (a 4096^2 cone solve
+ * stopped at residual 25.7 after 10000 iterations; docs/benchmarks.md, "GPU engine"). */
 static VkFFTConfiguration configuration(gpu_fft *fft)
 {
     VkFFTConfiguration c = {0};
@@ -115,31 +118,13 @@ static VkFFTConfiguration configuration(gpu_fft *fft)
     c.bufferSize = &fft->modes_bytes;
     c.bufferStride[0] = (uint64_t)(fft->px / 2 + 1); /* in complex numbers */
     c.bufferStride[1] = (uint64_t)(fft->px / 2 + 1) * (uint64_t)fft->py;
-    /* Spatial zero padding: the forward transform skips reading the zero block and the inverse
-     * skips writing it (the CPU engine prunes its FFTW transforms the same way, plan.c). */
-    const int data[2] = {fft->nx, fft->ny}, sides[2] = {fft->px, fft->py};
-    for (int axis = 0; axis < 2; ++axis)
-        if (data[axis] < sides[axis]) {
-            c.performZeropadding[axis] = 1;
-            c.fft_zeropad_left[axis] = (uint64_t)data[axis];
-            c.fft_zeropad_right[axis] = (uint64_t)sides[axis];
-        }
     return c;
 }
 
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out)
 {
-    return gpu_fft_create_padded(context, px, py, px, py, real, modes, out);
-}
-
-int gpu_fft_create_padded(gpu_context *context, int px, int py, int nx, int ny, gpu_buffer *real,
-                          gpu_buffer *modes, gpu_fft **out)
-{
     *out = NULL;
     int status = check_sizes(context, px, py, real, modes);
-    if (status == IM_OK && (nx < 1 || nx > px || ny < 1 || ny > py))
-        status = im_fail(IM_EINVAL, "GPU FFT %d x %d: data block %d x %d: expected 1 .. %d x 1 .. %d", px, py,
-                         nx, ny, px, py);
     if (status != IM_OK)
         return status;
     gpu_fft *fft = calloc(1, sizeof *fft);
@@ -152,8 +137,6 @@ int gpu_fft_create_padded(gpu_context *context, int px, int py, int nx, int ny, 
     fft->modes_bytes = gpu_fft_modes_bytes(px, py);
     fft->px = px;
     fft->py = py;
-    fft->nx = nx;
-    fft->ny = ny;
     /* VkFFT starts glslang (glslang_initialize_process, reference counted in glslang 12) for the
      * plan's shaders and stops it again before returning. */
     VkFFTResult result = initializeVkFFT(&fft->app, configuration(fft));

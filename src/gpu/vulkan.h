@@ -110,11 +110,6 @@ const char *gpu_result_name(VkResult result);
 VkDeviceSize gpu_fft_modes_bytes(int px, int py); /* (px/2 + 1) * py complex doubles */
 typedef struct gpu_fft gpu_fft;
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out);
-/* The same for reals that are zero outside [0, nx) x [0, ny) (a zero-padded grid): the forward
- * transform does not read the zeros and the inverse does not write that block (it keeps whatever
- * was there), which saves about a third of a padded pair. */
-int gpu_fft_create_padded(gpu_context *context, int px, int py, int nx, int ny, gpu_buffer *real,
-                          gpu_buffer *modes, gpu_fft **out);
 void gpu_fft_forward(gpu_context *context, gpu_fft *fft); /* records into the current command buffer */
 void gpu_fft_inverse(gpu_context *context, gpu_fft *fft);
 void gpu_fft_free(gpu_fft *fft);

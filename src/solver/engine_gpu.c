@@ -524,8 +524,7 @@ static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
     if (status == IM_OK)
         status = zero_fields(s); /* t is read (times beta = 0) before it is first written */
     if (status == IM_OK)
-        status = gpu_fft_create_padded(c, (int)s->px, (int)s->py, (int)s->nx, (int)s->ny, &s->real, &s->modes,
-                                       &s->fft);
+        status = gpu_fft_create(c, (int)s->px, (int)s->py, &s->real, &s->modes, &s->fft);
     if (status != IM_OK || !plan->options.precondition)
         return status;
     status = gpu_buffer_create(c, 2 * d * small, 0, &s->precondition_modes);
