@@ -1,5 +1,8 @@
 #include "support.h"
 
+#include "indentmap/status.h"
+#include "indentmap/surface.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,4 +53,16 @@ double test_relative_difference(double a, double b)
 {
     double scale = fmax(fmax(fabs(a), fabs(b)), 1e-300);
     return fabs(a - b) / scale;
+}
+
+im_field *test_rough_surface(int n, double slope, uint64_t seed)
+{
+    im_surface_params p = im_surface_params_default();
+    p.nx = p.ny = n;
+    p.lambda_r = n;
+    p.slope_rms = slope;
+    p.seed = seed;
+    im_field *s = NULL;
+    assert_int_equal(im_surface_generate(&p, &s), IM_OK);
+    return s;
 }

@@ -31,18 +31,6 @@ static im_solver_options engine_options(int device)
     return o;
 }
 
-static im_field *rough_surface(int n, double slope, uint64_t seed)
-{
-    im_surface_params p = im_surface_params_default();
-    p.nx = p.ny = n;
-    p.lambda_r = n;
-    p.slope_rms = slope;
-    p.seed = seed;
-    im_field *s = NULL;
-    assert_int_equal(im_surface_generate(&p, &s), IM_OK);
-    return s;
-}
-
 static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control,
                                double largest, const im_solver_options *o)
 {
@@ -111,7 +99,7 @@ static void compare_history(const im_field *s, const im_indenter *punch, enum im
 static void test_rough_cone_displacement(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.08, 3);
+    im_field *s = test_rough_surface(128, 0.08, 3);
     im_indenter cone = im_indenter_cone(80);
     const double approaches[] = {0.5, 2, 4};
     compare_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, 3, 0);
@@ -121,7 +109,7 @@ static void test_rough_cone_displacement(void **state)
 static void test_rough_cone_load(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(256, 0.08, 5);
+    im_field *s = test_rough_surface(256, 0.08, 5);
     im_indenter cone = im_indenter_cone(80);
     const double loads[] = {50, 400};
     compare_history(s, &cone, IM_CONTROL_LOAD, loads, 2, 0);
@@ -131,7 +119,7 @@ static void test_rough_cone_load(void **state)
 static void test_rough_sphere(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.04, 7);
+    im_field *s = test_rough_surface(128, 0.04, 7);
     im_indenter sphere = im_indenter_sphere(400);
     const double loads[] = {20, 120};
     compare_history(s, &sphere, IM_CONTROL_LOAD, loads, 2, 0);
@@ -141,7 +129,7 @@ static void test_rough_sphere(void **state)
 static void test_flat_punch(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(64, 0.02, 9);
+    im_field *s = test_rough_surface(64, 0.02, 9);
     im_indenter flat = im_indenter_flat(20);
     const double approaches[] = {0.3, 1};
     compare_history(s, &flat, IM_CONTROL_DISPLACEMENT, approaches, 2, 0);
@@ -151,7 +139,7 @@ static void test_flat_punch(void **state)
 static void test_hardness_cap(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.08, 11);
+    im_field *s = test_rough_surface(128, 0.08, 11);
     im_indenter cone = im_indenter_cone(80);
     const double loads[] = {100, 600}, approaches[] = {1, 3};
     compare_history(s, &cone, IM_CONTROL_LOAD, loads, 2, 2.0);
@@ -163,7 +151,7 @@ static void test_hardness_cap(void **state)
 static void test_rough_cone_1024(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(1024, 0.08, 13);
+    im_field *s = test_rough_surface(1024, 0.08, 13);
     im_indenter cone = im_indenter_cone(80);
     const double approaches[] = {12};
     compare_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, 1, 0);
@@ -172,7 +160,7 @@ static void test_rough_cone_1024(void **state)
 
 static void compare_flat(int n, double slope, const double *pressures, int count)
 {
-    im_field *s = rough_surface(n, slope, 17);
+    im_field *s = test_rough_surface(n, slope, 17);
     im_solver_options cpu_options = engine_options(IM_DEVICE_CPU), gpu_options = engine_options(IM_DEVICE_GPU);
     im_flat_contact *cpu = NULL, *gpu = NULL;
     assert_int_equal(im_flat_contact_create(s, &cpu_options, &cpu), IM_OK);

@@ -239,18 +239,6 @@ static void test_profile_files(void **state)
 
 /* ---- the solver ---- */
 
-static im_field *rough_surface(int n, double slope, uint64_t seed)
-{
-    im_surface_params params = im_surface_params_default();
-    params.nx = params.ny = n;
-    params.lambda_r = n;
-    params.slope_rms = slope;
-    params.seed = seed;
-    im_field *s = NULL;
-    assert_int_equal(im_surface_generate(&params, &s), IM_OK);
-    return s;
-}
-
 static im_field *smooth_surface(int n)
 {
     im_field *s = NULL;
@@ -285,7 +273,7 @@ static void assert_same_answer(const im_step_result *a, const im_step_result *b,
 static void test_solver_cone_table(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.05, 3);
+    im_field *s = test_rough_surface(128, 0.05, 3);
     im_profile *p = sampled(cone_shape, 80, 60, 6);
     im_indenter table = im_indenter_from_profile(p), cone = im_indenter_cone(80);
     for (double w = 1; w <= 4; w += 1.5) {
@@ -303,7 +291,7 @@ static void test_solver_cone_table(void **state)
 static void test_solver_cone_field(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.05, 4), *f = NULL;
+    im_field *s = test_rough_surface(128, 0.05, 4), *f = NULL;
     assert_int_equal(im_field_create(81, 81, 1.0, &f), IM_OK);
     im_indenter cone = im_indenter_cone(80);
     for (int iy = 0; iy < 81; ++iy)

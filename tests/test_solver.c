@@ -21,18 +21,6 @@ static im_field *smooth_surface(int n)
     return s;
 }
 
-static im_field *rough_surface(int n, double slope, uint64_t seed)
-{
-    im_surface_params p = im_surface_params_default();
-    p.nx = p.ny = n;
-    p.lambda_r = n;
-    p.slope_rms = slope;
-    p.seed = seed;
-    im_field *s = NULL;
-    assert_int_equal(im_surface_generate(&p, &s), IM_OK);
-    return s;
-}
-
 static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control,
                                double largest, const im_solver_options *o)
 {
@@ -223,7 +211,7 @@ static void assert_complementarity(const im_indentation *run, double w)
 static void test_load_matches_displacement_control(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.08, 3);
+    im_field *s = test_rough_surface(128, 0.08, 3);
     im_indenter cone = im_indenter_cone(80);
     im_indentation *d = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 8, NULL);
     step(d, 4);
@@ -280,7 +268,7 @@ static void assert_same_solution(im_step_result a, const im_field *fa, im_step_r
 static void test_thread_count_independence(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.08, 5), *f1 = NULL, *f2 = NULL;
+    im_field *s = test_rough_surface(128, 0.08, 5), *f1 = NULL, *f2 = NULL;
     im_window w1, w2;
     im_step_result one = run_with_threads(s, 1, 1, &f1, &w1), two = run_with_threads(s, 2, 1, &f2, &w2);
     assert_same_solution(one, f1, two, f2);
@@ -292,7 +280,7 @@ static void test_thread_count_independence(void **state)
 static void test_cropped_window_equals_full_grid(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(160, 0.08, 7), *fc = NULL, *ff = NULL;
+    im_field *s = test_rough_surface(160, 0.08, 7), *fc = NULL, *ff = NULL;
     im_window wc, wf;
     im_step_result cropped = run_with_threads(s, omp_get_max_threads(), 1, &fc, &wc);
     im_step_result full = run_with_threads(s, omp_get_max_threads(), 0, &ff, &wf);
@@ -310,7 +298,7 @@ static void test_cropped_window_equals_full_grid(void **state)
  * and the warm steps did not. */
 static void compare_with_plain_pk(enum im_control control, const double *targets, int steps)
 {
-    im_field *s = rough_surface(256, 0.08, 11);
+    im_field *s = test_rough_surface(256, 0.08, 11);
     im_indenter cone = im_indenter_cone(80);
     im_solver_options fast = im_solver_options_default(), plain = fast;
     fast.tol = plain.tol = 1e-10;
@@ -362,7 +350,7 @@ static void test_accelerated_equals_plain_pk_load(void **state)
 static void test_full_grid_displacement(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(96, 0.08, 3), *fc = NULL, *uc = NULL, *uf = NULL, *full = NULL;
+    im_field *s = test_rough_surface(96, 0.08, 3), *fc = NULL, *uc = NULL, *uf = NULL, *full = NULL;
     im_indenter cone = im_indenter_cone(80.0);
     im_solver_options o = im_solver_options_default();
     o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
@@ -415,7 +403,7 @@ static void assert_penetration_within_tol(const im_field *force, const im_field 
 static void test_stopping_rule_bounds_penetration(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(128, 0.16, 3);
+    im_field *s = test_rough_surface(128, 0.16, 3);
     im_indenter cone = im_indenter_cone(80);
     im_solver_options o = im_solver_options_default();
     o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */
@@ -453,7 +441,7 @@ static void test_edge_contact(void **state)
 static void test_no_convergence(void **state)
 {
     (void)state;
-    im_field *s = rough_surface(64, 0.08, 2);
+    im_field *s = test_rough_surface(64, 0.08, 2);
     im_indenter cone = im_indenter_cone(80);
     im_solver_options o = im_solver_options_default();
     o.tol = 1e-8; /* the bars below were set at tol 1e-8 (not the default, 1e-6) */

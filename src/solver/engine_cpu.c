@@ -167,11 +167,7 @@ static double cpu_precondition(pk_run *r, long *count)
     for (size_t i = 0; i < n; ++i)
         z[i] = p[i] > 0 ? g[i] : 0;
     fftw_execute(plan->precondition_forward);
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < modes; ++k) {
-        plan->precondition_modes[k][0] *= plan->inverse_spectrum[k];
-        plan->precondition_modes[k][1] *= plan->inverse_spectrum[k];
-    }
+    solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
     fftw_execute(plan->precondition_backward);
     double z_sum = 0;
     long c = 0;

@@ -419,6 +419,15 @@ void im_solver_plan_free(im_solver_plan *p)
 double im_solver_plan_seconds(const im_solver_plan *p) { return p->plan_seconds; }
 int im_solver_plan_measured(const im_solver_plan *p) { return p->measured; }
 
+void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t count)
+{
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < count; ++k) {
+        modes[k][0] *= spectrum[k];
+        modes[k][1] *= spectrum[k];
+    }
+}
+
 void solver_convolve_rows(im_solver_plan *p)
 {
     const size_t mx = p->px / 2 + 1, count = (size_t)p->py * mx;
@@ -427,11 +436,7 @@ void solver_convolve_rows(im_solver_plan *p)
     for (int iy = p->ny; iy < p->py; ++iy) /* the zero rows of the padding, overwritten last time */
         memset(p->modes + (size_t)iy * mx, 0, sizeof(fftw_complex) * mx);
     fftw_execute(p->columns_forward);
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < count; ++k) {
-        p->modes[k][0] *= p->spectrum[k];
-        p->modes[k][1] *= p->spectrum[k];
-    }
+    solver_multiply_modes(p->modes, p->spectrum, count);
     fftw_execute(p->columns_backward);
     fftw_execute(p->rows_backward);
 }

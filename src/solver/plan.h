@@ -63,6 +63,9 @@ void solver_cascade_free(im_solver_plan *plan);
 int solver_cascade_start(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                          double *pressure);
 
+/* modes[k] *= spectrum[k] (a real, even kernel's spectrum) for k < count. */
+void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t count);
+
 /* Transforms rows_in (filled by the caller: the grid's rows, stride px) and leaves the
  * convolution with K in rows_out (stride px, the first nx values of each of the ny rows). */
 void solver_convolve_rows(im_solver_plan *plan);
