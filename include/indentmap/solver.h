@@ -46,8 +46,9 @@
  * taken when the penetration outside I_c outweighs the gap left on it, sum over p = 0, g < 0 of g^2
  * > sum over I_c of g^2 (Dostal's proportioning test); the next step restarts the conjugacy.
  * Letting patches join in every step, as plain PK does, restarted the conjugacy at almost every
- * step. Clipping may shrink I_c in any step. Neither this nor the cascade below is used in the
- * periodic mode or with a hardness (made and measured for the plain half-space): plain PK there.
+ * step. Clipping may shrink I_c in any step. In the periodic mode K is circulant and M is its exact
+ * inverse E* |q| / 2 (0 on the mean mode). Neither this nor the cascade below is used with a
+ * hardness (a second bound): plain PK there.
  *
  * ---- Cascade start (default; option cascade = 0 for the local guess) ----
  * A cold solve (all-zero pressure in) on a grid whose halves are at least 32 patches a side first
@@ -57,7 +58,7 @@
  * constant (zero where gap0 is infinite). Bemporad & Paggi 2015 (arXiv 1506.00532). The coarse
  * plans are made with the fine one (about a third more memory) and reused. The answer is the fine
  * solve's, to the same stopping rule: tested equal to plain PK's at tol 1e-10 (identical contact
- * sets).
+ * sets). A periodic cell is halved only while both sides are even (a coarse cell keeps the period).
  *
  * ---- Stopping rule ----
  * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w   (with a hardness, also g at p = H_p)

@@ -19,17 +19,19 @@ enum { CASCADE_MIN_SIDE = 32 };
  * from the fine one by the discretisation error anyway, far more than 1e-4. */
 static const double CASCADE_TOL = 1e-4;
 
-int solver_cascade_sides(int nx, int ny, int *cx, int *cy)
+int solver_cascade_sides(int nx, int ny, int periodic, int *cx, int *cy)
 {
     *cx = (nx + 1) / 2;
     *cy = (ny + 1) / 2;
-    return *cx >= CASCADE_MIN_SIDE && *cy >= CASCADE_MIN_SIDE;
+    /* a periodic cell halves only into whole blocks: the coarse cell must have the same period */
+    const int whole = !periodic || (nx % 2 == 0 && ny % 2 == 0);
+    return whole && *cx >= CASCADE_MIN_SIDE && *cy >= CASCADE_MIN_SIDE;
 }
 
 int solver_cascade_create(im_solver_plan *p)
 {
     int cx, cy;
-    if (!p->options.cascade || !solver_cascade_sides(p->nx, p->ny, &cx, &cy))
+    if (!p->options.cascade || !solver_cascade_sides(p->nx, p->ny, p->options.periodic, &cx, &cy))
         return IM_OK;
     size_t n = (size_t)cx * cy;
     p->coarse_gap0 = malloc(sizeof(double) * n);

@@ -23,6 +23,9 @@ int solver_periodic_kernel(im_solver_plan *p)
             double q = hypot(kx * step_x, signed_mode(ky, ny) * step_y);
             /* the mean mode: a periodic half-space's rigid displacement is free; mean u = 0 */
             p->spectrum[(size_t)ky * mx + kx] = q > 0.0 ? 2.0 / (e * q) * scale : 0.0;
+            /* the preconditioner M is K's exact inverse here (K is circulant), E* |q| / 2, but on the
+             * mean mode, where K has none (plan.c applies it like the half-space's: scaled by 1 / (nx ny)) */
+            p->inverse_spectrum[(size_t)ky * mx + kx] = q > 0.0 ? e * q / 2.0 * scale : 0.0;
         }
     /* The real-space kernel for direct sums (and K(0) for the Winkler start): the inverse transform
      * of the spectrum, a one-off plan. K is even, so K(|dx|, |dy|) serves every offset. */

@@ -78,7 +78,7 @@ static double level_bytes(int nx, int ny)
 double im_solver_plan_bytes(int nx, int ny)
 {
     int cx, cy;
-    if (!solver_cascade_sides(nx, ny, &cx, &cy))
+    if (!solver_cascade_sides(nx, ny, 0, &cx, &cy)) /* a periodic plan with an odd side has none: an upper bound */
         return level_bytes(nx, ny);
     /* the coarse levels (about a third more) and each level's coarse gap, pressure, displacement */
     return level_bytes(nx, ny) + 8 * 3.0 * cx * cy + im_solver_plan_bytes(cx, cy);
@@ -345,9 +345,9 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
         return im_fail(IM_ENOMEM, "%s", what);
-    /* The cascade and the preconditioner were made and measured for the half-space without a
-     * pressure cap: the periodic mode (another kernel) and a hardness (a second bound) keep plain PK. */
-    if (o.periodic || o.hardness > 0)
+    /* The cascade and the preconditioner are made for an elastic contact set: with a hardness (a
+     * second bound) the iteration keeps plain PK. */
+    if (o.hardness > 0)
         o.cascade = o.precondition = 0;
     /* periodic: the circular convolution on the grid itself */
     const int pad = o.periodic ? 1 : 2;

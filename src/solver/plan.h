@@ -51,7 +51,7 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
                              const struct im_solver_plan *finer, struct im_solver_plan **out);
 
 /* Coarse grid sides of a cascade level under an nx x ny grid; 0 when there is none (too small). */
-int solver_cascade_sides(int nx, int ny, int *cx, int *cy);
+int solver_cascade_sides(int nx, int ny, int periodic, int *cx, int *cy);
 
 /* Creates plan->coarse and its arrays (recursively, down to the smallest level). */
 int solver_cascade_create(im_solver_plan *plan);
