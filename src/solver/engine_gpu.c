@@ -40,7 +40,7 @@ typedef struct { uint32_t nx, ny, px, py; } push_grid;
 typedef struct { uint32_t count; } push_count;
 typedef struct { double value; uint32_t n; } push_value;
 typedef struct { double a, b; uint32_t n, flag; } push_pair;
-typedef struct { double a, b; uint32_t nx, ny, px, py; } push_grid_pair;
+typedef struct { double a, b; uint32_t nx, ny, px, py; } push_grid_pair; /* update_pressure: py = allow_join */
 typedef struct { double cap; uint32_t nx, ny, px; } push_step;
 typedef struct { uint32_t groups, slots, max_slots; } push_finish;
 
@@ -390,6 +390,7 @@ static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int al
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[6] = {&s->p, &s->u, &s->g, &s->t, &s->real, &s->device->partials};
+    /* the shader's block is {tau, cap, nx, ny, px, allow_join}: the last word carries the flag */
     const push_grid_pair push = {.a = tau, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = allow_join != 0};
     double v[2];
     reduce(r, K_UPDATE_PRESSURE, b, &push, patches(s), 2, 1u << 1, v);
