@@ -37,7 +37,18 @@ int im_field_clone(const im_field *src, im_field **out);
 /* Frees a field; accepts NULL. */
 void im_field_free(im_field *field);
 
-static inline size_t im_field_count(const im_field *f) { return (size_t)f->nx * (size_t)f->ny; }
+/* The number of values, nx * ny; 0 for NULL or a side < 1 (a view im_field_check_view refuses). */
+static inline size_t im_field_count(const im_field *f)
+{
+    return f && f->nx > 0 && f->ny > 0 ? (size_t)f->nx * (size_t)f->ny : 0;
+}
+
+/* IM_OK when field is a valid view: not NULL, nx and ny in [1, IM_FIELD_MAX_SIDE] (so nx * ny fits
+ * any index arithmetic) and data not NULL. Otherwise IM_EINVAL with a message that starts with
+ * `what` (the function and argument: "im_surface_psd: surface") and says which invariant is
+ * broken. Every public function taking a field checks it so (what may be NULL: "field"). The view
+ * cannot tell whether data really holds nx * ny values: that remains the caller's contract. */
+int im_field_check_view(const im_field *field, const char *what);
 
 /* IM_ENUMERIC with the first offending index in the message if any value is NaN or Inf; what
  * names the field in that message. */

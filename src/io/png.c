@@ -1,4 +1,5 @@
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -105,6 +106,8 @@ static int encode(FILE *stream, const uint8_t *pixels, int width, int height, in
 int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
                  size_t stride, const im_png_options *options)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(pixels, "pixels");
     int status = check_image(path, width, height, channels);
     if (status != IM_OK)
         return status;
@@ -161,6 +164,11 @@ static int decode(FILE *stream, const char *path, uint8_t **pixels, int *width, 
 
 int im_png_read(const char *path, uint8_t **pixels, int *width, int *height, int *channels)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(pixels, "pixels");
+    ARG_REQUIRE(width, "width");
+    ARG_REQUIRE(height, "height");
+    ARG_REQUIRE(channels, "channels");
     *pixels = NULL;
     FILE *stream = fopen(path, "rb");
     if (!stream)

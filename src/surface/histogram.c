@@ -1,4 +1,5 @@
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -59,6 +60,8 @@ static void mean_and_sd(const double *x, size_t n, double *mean, double *sd)
 int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins,
                          im_histogram **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     if (bins < 1 || bins > 1000000)
         return im_fail(IM_EINVAL, "histogram bins = %d: expected 1 to 1000000", bins);
