@@ -4,6 +4,9 @@
  * [0, ny). Row 0 is y = 0: images put it at the bottom, as a plot's axes would. The grid spacing
  * delta is the side of one square patch; lengths are in units of delta unless the field carries a
  * physical spacing (delta != 1, with unit naming it).
+ *
+ * Misuse (status.h): every function returns IM_EINVAL for a NULL output or an invalid view
+ * (im_field_check_view) and does not crash; im_field_free accepts NULL.
  */
 #ifndef INDENTMAP_FIELD_H
 #define INDENTMAP_FIELD_H
