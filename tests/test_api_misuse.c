@@ -555,6 +555,48 @@ REPORT(im_mpi_npy_write_rows, "data", im_mpi_npy_write_rows(MPI_COMM_WORLD, path
 REPORT(im_scene_run_ranks, "scene", im_scene_run_ranks(MPI_COMM_WORLD, NULL, NULL))
 #endif
 
+/* ---- sizes and enumerations out of range (the checks most functions always had) ---- */
+REPORT_AS_BEFORE(im_field_create, im_field_create(-3, 4, 1.0, &field_out))
+REPORT_AS_BEFORE(im_surface_psd, im_surface_psd(&good, -3, &psd_out))
+REPORT_AS_BEFORE(im_surface_histogram, im_surface_histogram(&good, IM_HIST_HEIGHT, 0, &histogram_out))
+REPORT_AS_BEFORE(im_surface_histogram, im_surface_histogram(&good, (enum im_histogram_quantity)99, 8, &histogram_out))
+REPORT_AS_BEFORE(im_surface_slope_rms, im_surface_slope_rms(&good, (enum im_slope_definition)99, &d))
+REPORT_AS_BEFORE(im_surface_detrend, im_surface_detrend(&good, (enum im_detrend)99))
+REPORT_AS_BEFORE(im_surface_crop, im_surface_crop(&good, -3, 0, 2, 2, &field_out))
+REPORT_AS_BEFORE(im_surface_crop, im_surface_crop(&good, 0, 0, 1 << 30, 2, &field_out))
+REPORT_AS_BEFORE(im_measure_stiffness, im_measure_stiffness(values, values, -3, out_values))
+REPORT_AS_BEFORE(im_measure_gap_histogram, im_measure_gap_histogram(&good, 1.0, 0, counts))
+REPORT_AS_BEFORE(im_measure_gap_distribution, im_measure_gap_distribution(&good, &good, 1.0, -3, counts, &d, &l1))
+REPORT_AS_BEFORE(im_measure_patch_histogram, im_measure_patch_histogram(patch_list, -3, counts, counts, counts))
+REPORT_AS_BEFORE(im_profile_axisymmetric, im_profile_axisymmetric(r3, z3, -3, &profile_out))
+REPORT_AS_BEFORE(im_theory_fit_k, im_theory_fit_k(values, values, -3, &k_fit))
+REPORT_AS_BEFORE(im_theory_punch_pressure, im_theory_punch_pressure((enum im_punch_kind)99, 0.5, &d))
+REPORT_AS_BEFORE(im_animation_gif, im_animation_gif(&image, -3, 0.1, path_text))
+REPORT_AS_BEFORE(im_frame_path, im_frame_path(text, 0, "d", "p", 0))
+REPORT_AS_BEFORE(im_frame_path, im_frame_path(text, sizeof text, "d", "p", -3))
+REPORT_AS_BEFORE(im_path_join, im_path_join(text, 0, "d", "n"))
+REPORT_AS_BEFORE(im_path_suffix, im_path_suffix(text, 0, "p", ".json"))
+REPORT_AS_BEFORE(im_path_absolute, im_path_absolute("a", text, 0))
+REPORT_AS_BEFORE(im_scene_file_path, im_scene_file_path(&scene, -3, text, sizeof text))
+REPORT_AS_BEFORE(im_plot_geometry_of, im_plot_geometry_of(&plot, -3, &geometry))
+REPORT_AS_BEFORE(im_plot_figure_contact_density, im_plot_figure_contact_density(80.0, values, -3, NULL, path_text))
+REPORT_AS_BEFORE(im_plot_figure_surface, im_plot_figure_surface(&good, &params, -3, NULL, path_text))
+REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 5, 20, NULL))
+REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 3, 2, NULL))
+REPORT_AS_BEFORE(im_solver_solve, im_solver_solve(plan, values, (enum im_control)99, 0.1, out_values, big_values, NULL))
+REPORT_AS_BEFORE(im_indentation_create, im_indentation_create(&good, &cone, (enum im_control)99, 0.5, &options, &run_out))
+ACCEPT(im_figure_ticks, im_figure_ticks(&colormap, out_values, -3) == 0)
+ACCEPT(im_path_utf8, im_path_utf8("a", text, 0) == 0)
+ACCEPT(im_view3d_exaggeration_text, (im_view3d_exaggeration_text(1.0, text, 0), 1))
+ACCEPT(im_scene_resolve_path, (im_scene_resolve_path(&scene, "a", text, 0), 1))
+ACCEPT(im_colormap_name, strcmp(im_colormap_name((im_colormap_id)99), "unknown") == 0)
+ACCEPT(im_colormap_table, im_colormap_table((im_colormap_id)99) == im_colormap_table(IM_COLORMAP_VIRIDIS))
+ACCEPT(im_colormap_make, im_colormap_make((im_colormap_id)99, 0.0, 1.0).hi == 1.0)
+ACCEPT(im_punch_name, strcmp(im_punch_name((enum im_punch_kind)99), "unknown") == 0)
+ACCEPT(im_file_kind_name, strcmp(im_file_kind_name((enum im_file_kind)99), "unknown") == 0)
+ACCEPT(im_strstatus, im_strstatus(99) != NULL && im_strstatus(-1) != NULL)
+ACCEPT(im_scene_plot_name, im_scene_plot_name((enum im_scene_plot)(1u << 30)) == NULL)
+
 /* Public functions of scalars only (or of a value they document as never NULL, such as the status
  * module's format strings): nothing to misuse here. A new function belongs either here or in a case
  * above. */
@@ -624,7 +666,7 @@ static const char *judge(const misuse_case *c, const outcome *o)
         snprintf(why, sizeof why, "ended the process without returning");
     else if (o->status != IM_EINVAL)
         snprintf(why, sizeof why, "%s (status %d), message '%s'",
-                 c->kind == REPORTED ? "did not return IM_EINVAL" : "did not give the safe result", o->status,
+                 c->kind != SAFE ? "did not return IM_EINVAL" : "did not give the safe result", o->status,
                  o->message);
     else if (c->kind == REPORTED_AS_BEFORE && !o->message[0])
         snprintf(why, sizeof why, "no message");

@@ -173,7 +173,10 @@ static const char *const KIND_NAMES[] = {
     [IM_KIND_WISDOM] = "FFTW wisdom", [IM_KIND_JSON] = "JSON", [IM_KIND_INI] = "an INI file (a scene)",
     [IM_KIND_TEXT] = "text", [IM_KIND_BINARY] = "binary data of an unknown kind"};
 
-const char *im_file_kind_name(enum im_file_kind kind) { return KIND_NAMES[kind]; }
+const char *im_file_kind_name(enum im_file_kind kind)
+{
+    return (size_t)kind < sizeof KIND_NAMES / sizeof *KIND_NAMES ? KIND_NAMES[kind] : "unknown"; /* also < 0 */
+}
 
 static int starts_with(const char *head, size_t length, const char *prefix)
 {

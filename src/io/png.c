@@ -111,6 +111,9 @@ int im_png_write(const char *path, const uint8_t *pixels, int width, int height,
     int status = check_image(path, width, height, channels);
     if (status != IM_OK)
         return status;
+    if (stride < (size_t)width * (size_t)channels)
+        return im_fail(IM_EINVAL, "im_png_write: stride = %zu: expected at least width x channels = %d x %d",
+                       stride, width, channels);
     im_atomic_file file;
     status = im_atomic_open(&file, path);
     if (status != IM_OK)

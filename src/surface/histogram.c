@@ -65,6 +65,9 @@ int im_surface_histogram(const im_field *surface, enum im_histogram_quantity qua
     *out = NULL;
     if (bins < 1 || bins > 1000000)
         return im_fail(IM_EINVAL, "histogram bins = %d: expected 1 to 1000000", bins);
+    if (quantity != IM_HIST_HEIGHT && quantity != IM_HIST_SLOPE && quantity != IM_HIST_CURVATURE)
+        return im_fail(IM_EINVAL, "im_surface_histogram: quantity = %d: expected IM_HIST_HEIGHT, IM_HIST_SLOPE "
+                       "or IM_HIST_CURVATURE", (int)quantity);
     size_t n = 0;
     double *samples = collect_samples(surface, quantity, &n);
     im_histogram *hist = calloc(1, sizeof *hist);

@@ -119,6 +119,9 @@ static void remove_term(im_field *f, int px, int py)
 int im_surface_detrend(im_field *surface, enum im_detrend detrend)
 {
     ARG_VIEW(surface, "surface");
+    if (detrend != IM_DETREND_NONE && detrend != IM_DETREND_PLANE && detrend != IM_DETREND_CURVATURE)
+        return im_fail(IM_EINVAL, "im_surface_detrend: detrend = %d: expected IM_DETREND_NONE, _PLANE or "
+                       "_CURVATURE", (int)detrend);
     int status = im_field_check_finite(surface, "detrend");
     if (status != IM_OK || detrend == IM_DETREND_NONE)
         return status;

@@ -89,6 +89,9 @@ int im_surface_slope_rms(const im_field *surface, enum im_slope_definition defin
 {
     ARG_VIEW(surface, "surface");
     ARG_REQUIRE(slope_rms, "slope_rms");
+    if (definition != IM_SLOPE_SPECTRAL && definition != IM_SLOPE_FINITE_DIFFERENCE)
+        return im_fail(IM_EINVAL, "im_surface_slope_rms: definition = %d: expected IM_SLOPE_SPECTRAL or "
+                       "IM_SLOPE_FINITE_DIFFERENCE", (int)definition);
     if (definition == IM_SLOPE_FINITE_DIFFERENCE)
         return slope_rms_finite_difference(surface, slope_rms);
     surface_spectrum spectrum;
