@@ -597,6 +597,35 @@ ACCEPT(im_file_kind_name, strcmp(im_file_kind_name((enum im_file_kind)99), "unkn
 ACCEPT(im_strstatus, im_strstatus(99) != NULL && im_strstatus(-1) != NULL)
 ACCEPT(im_scene_plot_name, im_scene_plot_name((enum im_scene_plot)(1u << 30)) == NULL)
 
+/* ---- pointers inside the structures passed ---- */
+static im_plot plot_of(const im_plot_panel *panels) { im_plot p = im_plot_default(); p.panels = panels; return p; }
+static im_plot_series series_xy(const double *xs, const double *ys) { return (im_plot_series){.x = xs, .y = ys, .n = 3}; }
+static im_plot_panel panel_of(const im_plot_series *series) { return (im_plot_panel){.series = series, .series_count = 1}; }
+static im_plot_series series;
+static im_plot_points points;
+REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(NULL), im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (series = series_xy(NULL, values), plot_panel = panel_of(&series), plot = plot_of(&plot_panel),
+                                 im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (series = series_xy(values, NULL), plot_panel = panel_of(&series), plot = plot_of(&plot_panel),
+                                 im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (plot_panel = (im_plot_panel){.series = NULL, .series_count = 2}, plot = plot_of(&plot_panel),
+                                 im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(&plot_panel), plot.texts = NULL, plot.text_count = 3, im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_figure_area_ratio, (points = (im_plot_points){.x = NULL, .y = values, .count = 3},
+                                             im_plot_figure_area_ratio(&points, NULL, path_text)))
+REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = NULL, im_figure_write(&figure, path_text)))
+REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = &(im_figure_panel){.image = NULL},
+                                   im_figure_write(&figure, path_text)))
+REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = &(im_figure_panel){.image = &image},
+                                   figure.texts = NULL, figure.text_count = 2, im_figure_write(&figure, path_text)))
+REPORT(im_png_write, "texts", im_png_write(path_text, pixels, 4, 4, 3, 12, &(im_png_options){.texts = NULL, .text_count = 2}))
+REPORT(im_png_write, "texts", im_png_write(path_text, pixels, 4, 4, 3, 12,
+                                           &(im_png_options){.texts = &(im_png_text){"k", NULL}, .text_count = 1}))
+REPORT_AS_BEFORE(im_indentation_create, (punch = im_indenter_cone(80.0), punch.kind = IM_PUNCH_PROFILE, punch.profile = NULL,
+                                         im_indentation_create(&good, &punch, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out)))
+REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, .rgba = NULL},
+                                    im_animation_gif(&image, 1, 0.1, path_text)))
+
 /* Public functions of scalars only (or of a value they document as never NULL, such as the status
  * module's format strings): nothing to misuse here. A new function belongs either here or in a case
  * above. */

@@ -103,6 +103,20 @@ static int encode(FILE *stream, const uint8_t *pixels, int width, int height, in
     return IM_OK;
 }
 
+/* The text chunks' array and strings, when there are texts. */
+static int check_texts(const im_png_options *options)
+{
+    if (!options || options->text_count <= 0)
+        return IM_OK;
+    if (!options->texts)
+        return im_fail(IM_EINVAL, "im_png_write: options->texts is NULL: expected text_count = %d texts",
+                       options->text_count);
+    for (int i = 0; i < options->text_count; ++i)
+        if (!options->texts[i].key || !options->texts[i].value)
+            return im_fail(IM_EINVAL, "im_png_write: options->texts[%d] has a NULL key or value: expected text", i);
+    return IM_OK;
+}
+
 int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
                  size_t stride, const im_png_options *options)
 {
@@ -114,6 +128,9 @@ int im_png_write(const char *path, const uint8_t *pixels, int width, int height,
     if (stride < (size_t)width * (size_t)channels)
         return im_fail(IM_EINVAL, "im_png_write: stride = %zu: expected at least width x channels = %d x %d",
                        stride, width, channels);
+    status = check_texts(options);
+    if (status != IM_OK)
+        return status;
     im_atomic_file file;
     status = im_atomic_open(&file, path);
     if (status != IM_OK)

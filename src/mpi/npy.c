@@ -124,7 +124,7 @@ static int transfer_rows(MPI_File file, long offset, int nx, int y0, int rows, d
 int im_mpi_npy_read_rows(MPI_Comm comm, const char *path, int y0, int rows, double *data)
 {
     ARG_REQUIRE(path, "path");
-    ARG_REQUIRE(data, "data");
+    ARG_REQUIRE(data || rows == 0, "data"); /* a rank may own no rows */
     int nx, ny;
     long offset;
     int status = read_header(comm, path, &nx, &ny, &offset);
@@ -189,7 +189,7 @@ static int write_file(MPI_Comm comm, const char *name, int nx, int ny, int y0, i
 int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y0, int rows, const double *data)
 {
     ARG_REQUIRE(path, "path");
-    ARG_REQUIRE(data, "data");
+    ARG_REQUIRE(data || rows == 0, "data"); /* a rank may own no rows */
     int status = IM_OK;
     if (nx < 1 || ny < 1 || y0 < 0 || rows < 0 || y0 + rows > ny)
         status = im_fail(IM_EINVAL, "%s: rows [%d, %d) of a %d x %d grid", path, y0, y0 + rows, nx, ny);

@@ -94,7 +94,7 @@ static int transform_and_move(spectral_slab *slab, fftw_plan plan, double scale,
 int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, int rows, double *heights)
 {
     ARG_REQUIRE(p, "params");
-    ARG_REQUIRE(heights, "heights");
+    ARG_REQUIRE(heights || rows == 0, "heights"); /* a rank may ask for no rows */
     int status = mpi_collective_status(comm, check_request(p, y0, rows));
     if (status != IM_OK)
         return status;
