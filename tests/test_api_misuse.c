@@ -34,6 +34,7 @@
 
 #include <ctype.h>
 #include <dirent.h>
+#include <libgen.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -777,11 +778,16 @@ static char *declarations_of(const char *path)
 static void every_public_function_is_covered(void **state)
 {
     (void)state;
+    /* the source tree: $IM_SOURCE_DIR (ctest sets it), else the folder above this file's */
     const char *source = getenv("IM_SOURCE_DIR");
-    if (!source)
-        skip();
     char folder[4096];
-    snprintf(folder, sizeof folder, "%s/include/indentmap", source);
+    if (source)
+        snprintf(folder, sizeof folder, "%s/include/indentmap", source);
+    else {
+        char here[4096];
+        snprintf(here, sizeof here, "%s", __FILE__);
+        snprintf(folder, sizeof folder, "%s/../include/indentmap", dirname(here));
+    }
     DIR *dir = opendir(folder);
     assert_non_null(dir);
     int missing = 0, functions = 0;
