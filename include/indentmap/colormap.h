@@ -6,6 +6,10 @@
  * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
  * lo take the `under` colour, above hi the `over` colour, NaN the `bad` colour. Several panels
  * share a norm by sharing the struct.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL argument; im_colormap_index gives -2 (as for NaN) for a
+ * NULL colormap, and im_colormap_rgb and im_colormap_field_image do nothing for a NULL argument or
+ * an invalid field view (both record the message).
  */
 #ifndef INDENTMAP_COLORMAP_H
 #define INDENTMAP_COLORMAP_H

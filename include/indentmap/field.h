@@ -4,6 +4,9 @@
  * [0, ny). Row 0 is y = 0: images put it at the bottom, as a plot's axes would. The grid spacing
  * delta is the side of one square patch; lengths are in units of delta unless the field carries a
  * physical spacing (delta != 1, with unit naming it).
+ *
+ * Misuse (status.h): every function returns IM_EINVAL for a NULL output or an invalid view
+ * (im_field_check_view) and does not crash; im_field_free accepts NULL.
  */
 #ifndef INDENTMAP_FIELD_H
 #define INDENTMAP_FIELD_H
@@ -37,7 +40,18 @@ int im_field_clone(const im_field *src, im_field **out);
 /* Frees a field; accepts NULL. */
 void im_field_free(im_field *field);
 
-static inline size_t im_field_count(const im_field *f) { return (size_t)f->nx * (size_t)f->ny; }
+/* The number of values, nx * ny; 0 for NULL or a side < 1 (a view im_field_check_view refuses). */
+static inline size_t im_field_count(const im_field *f)
+{
+    return f && f->nx > 0 && f->ny > 0 ? (size_t)f->nx * (size_t)f->ny : 0;
+}
+
+/* IM_OK when field is a valid view: not NULL, nx and ny in [1, IM_FIELD_MAX_SIDE] (so nx * ny fits
+ * any index arithmetic) and data not NULL. Otherwise IM_EINVAL with a message that starts with
+ * `what` (the function and argument: "im_surface_psd: surface") and says which invariant is
+ * broken. Every public function taking a field checks it so (what may be NULL: "field"). The view
+ * cannot tell whether data really holds nx * ny values: that remains the caller's contract. */
+int im_field_check_view(const im_field *field, const char *what);
 
 /* IM_ENUMERIC with the first offending index in the message if any value is NaN or Inf; what
  * names the field in that message. */

@@ -14,6 +14,9 @@
  * (one image pixel = one figure pixel, at integer offsets, so patches stay crisp). PDF and SVG use
  * the same layout scaled by 72 / dpi points per pixel, with the data images embedded as rasters
  * drawn without interpolation. Text sizes are in points.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL figure, frame list, path or output; im_figure_ticks
+ * gives 0 ticks for a NULL colormap or array.
  */
 #ifndef INDENTMAP_FIGURE_H
 #define INDENTMAP_FIGURE_H

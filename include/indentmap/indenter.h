@@ -25,6 +25,10 @@
  * The contact area as a function of load, A(N), gives the normalisations used by the solver's
  * histories: area_ratio = n_p delta^2 / A(N) and N* = A(N) / delta^2 (= 2N / (delta^2 E* cot alpha)
  * for the cone, the paper's N*), so that a smooth surface has area_ratio ~ 1 and N* ~ n_p.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL argument or an invalid field view; the value functions
+ * of a NULL punch or profile give NaN (im_profile_kind: -1), im_indenter_axis and
+ * im_profile_samples set their outputs to NaN, or NULL and 0; im_profile_free accepts NULL.
  */
 #ifndef INDENTMAP_INDENTER_H
 #define INDENTMAP_INDENTER_H

@@ -16,6 +16,11 @@
  * Readers refuse, with IM_EFORMAT and a message naming the file (and the line for text), anything
  * they cannot read exactly: truncated data, extra data, unsupported types, NaN or Inf heights.
  * Sizes are checked against the memory available before allocating.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL path, buffer, stream or output and for an invalid field
+ * view. For NULL, im_file_kind_of_bytes gives IM_KIND_NONE, im_atomic_is_temporary_name and
+ * im_folder_remove_temporaries 0, im_length_unit_metres 0, im_path_utf8 "" (returns 0);
+ * im_atomic_abort and im_folder_lock_release accept NULL.
  */
 #ifndef INDENTMAP_IO_H
 #define INDENTMAP_IO_H

@@ -9,6 +9,8 @@
  * which is E* for a smooth surface. Units: loads N in E* (length)^2, approaches and lengths in the
  * field's units, stiffness in E* length.
  * Errors: IM_EINVAL naming the argument; IM_ENOMEM. Outputs are written only on success.
+ * Misuse (status.h): NULL arrays, outputs or invalid field views give IM_EINVAL naming the function
+ * and the argument.
  */
 #ifndef INDENTMAP_MEASURE_H
 #define INDENTMAP_MEASURE_H

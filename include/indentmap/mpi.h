@@ -32,6 +32,10 @@
  * All functions taking a communicator are collective: every rank of it must call them, and every
  * rank returns the same status. The message (im_last_error) is the failing rank's own on that
  * rank and "rank K: <its message>" on the others (K the lowest failing rank).
+ *
+ * Misuse (status.h): a NULL solver, path or output, or a grid size out of range, gives IM_EINVAL on
+ * the rank where it happens, before any MPI call (it is not collective): im_mpi_solver_rows sets
+ * 0 rows, im_mpi_convolve does nothing, im_mpi_solver_bytes gives NaN.
  */
 #ifndef INDENTMAP_MPI_H
 #define INDENTMAP_MPI_H

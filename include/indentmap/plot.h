@@ -30,6 +30,9 @@
  *     the bottom of the frame;
  *   - negative sigma: IM_EINVAL;
  *   - automatic limits need at least one finite point on the panel: IM_EINVAL otherwise.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL plot, path, output or series array and for an invalid
+ * field view; im_plot_palette and im_plot_family_color do nothing for a NULL rgb.
  */
 #ifndef INDENTMAP_PLOT_H
 #define INDENTMAP_PLOT_H

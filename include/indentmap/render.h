@@ -23,6 +23,13 @@
  * is at the bottom, as in im_colormap_field_image. Each patch becomes pixels_per_patch x
  * pixels_per_patch pixels with no interpolation across patches; the data are surrounded by a
  * frame of boundary_px pixels (the boundary square of the surface).
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL context, style, image or output and for an invalid field
+ * view (checked before the context is used); the getters give NULL for a NULL context, the style
+ * defaults of an invalid view are those of an empty field (no force: view3d's of NULL),
+ * im_height_outline_width(NULL) is 0, im_render_context_missing(status, NULL) 0, and
+ * im_view3d_exaggeration_text does nothing for NULL text; im_render_close and im_image_release
+ * accept NULL.
  */
 #ifndef INDENTMAP_RENDER_H
 #define INDENTMAP_RENDER_H

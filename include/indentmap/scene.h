@@ -23,6 +23,10 @@
  *
  * Errors name the file and line ("fig4.ini:7: ...") and, for an unknown key or section, suggest
  * the nearest valid one. Paths inside a scene are resolved relative to the scene file.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL scene, path or output; im_scene_defaults(NULL) does
+ * nothing, im_scene_resolve_path writes "" for a NULL scene or relative path, im_scene_plot_parse
+ * (NULL) is 0 and im_scene_suggest_key(section, NULL) NULL.
  */
 #ifndef INDENTMAP_SCENE_H
 #define INDENTMAP_SCENE_H

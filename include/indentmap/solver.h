@@ -67,6 +67,12 @@
  * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
  * iterations. Both the iteration count and the residual are reported for every solve. A solve whose
  * options.stop flag is set ends with IM_EINTERRUPTED after the iteration in progress.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL plan, run, array or output, an invalid field view or a
+ * grid side outside [1, IM_FIELD_MAX_SIDE]. The getters of a NULL plan or run give NaN, NULL, 0 or
+ * an all-zero window, im_solver_convolve does nothing, im_solver_plan_bytes is NaN for such sides.
+ * NULL options mean the defaults (plans, indentations, flat contact, im_displacement_*) and no
+ * wisdom file (im_solver_wisdom_file); the *_free functions accept NULL.
  */
 /* ---- Hardness (perfect plasticity at a pressure cap) ----
  * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure

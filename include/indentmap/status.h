@@ -4,6 +4,15 @@
  * function also records a message naming the file, line or parameter and what was expected;
  * im_last_error() returns it. The message is per thread, so OpenMP workers do not clobber each
  * other's messages.
+ *
+ * Misuse (issue 32, SQLite's rule: a misuse is reported, not undefined): every public function
+ * checks its handles, output pointers and field views at entry. A NULL where a pointer is required,
+ * or a field view that breaks field.h's invariants (im_field_check_view), gives IM_EINVAL with a
+ * message naming the function and the argument ("im_surface_psd: out is NULL: expected a pointer"),
+ * never a crash. Functions returning void or a value record the same message and do nothing or
+ * return their safe result (NULL for a pointer, NaN for a number, 0 for a count or flag; each
+ * header says which); *_free, *_release, *_close and *_abort accept NULL silently.
+ * tests/test_api_misuse.c holds every public function to this.
  */
 #ifndef INDENTMAP_STATUS_H
 #define INDENTMAP_STATUS_H

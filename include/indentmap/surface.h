@@ -17,6 +17,10 @@
  * the "finite-difference" value uses forward differences between neighbouring patches,
  * (h[i+1] - h[i]) / delta, over all interior pairs (no wrap-around). Synthesis scales to the
  * spectral value unless told otherwise.
+ *
+ * Misuse (status.h): IM_EINVAL for NULL parameters or outputs and invalid field views; the value
+ * functions of NULL parameters give NaN, and so does im_surface_generate_bytes for a side outside
+ * [1, IM_FIELD_MAX_SIDE]; im_psd_free and im_histogram_free accept NULL.
  */
 #ifndef INDENTMAP_SURFACE_H
 #define INDENTMAP_SURFACE_H

@@ -19,6 +19,9 @@
  * Roughness relations (eqs. 13-15): spectral moments of an isotropic power-law PSD
  * C(q) = A |q|^(-2(1+H)) on q_r < q < q_s with a roll-off plateau C(q_r) on q_0 < q < q_r, with
  * the magnification zeta = q_s / q_r and x = q_0 / q_r (x = 1: no plateau).
+ *
+ * Misuse (status.h): the int functions return IM_EINVAL for a NULL interface, punch, array or
+ * output, naming the function and the argument.
  */
 #ifndef INDENTMAP_THEORY_H
 #define INDENTMAP_THEORY_H

@@ -13,6 +13,8 @@
  *   - results: each of results.csv, table1.csv and history.csv as an HTML table;
  *   - the run record: run.json, verbatim.
  * Text from the files is HTML-escaped. The page is written atomically (io.h).
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL folder or title.
  */
 #ifndef INDENTMAP_VIEWER_H
 #define INDENTMAP_VIEWER_H

@@ -1,4 +1,5 @@
 #include "indentmap/colormap.h"
+#include "core/args.h"
 
 #include "colormap/colormap_tables.h"
 #include "indentmap/status.h"
@@ -31,6 +32,8 @@ im_colormap im_colormap_make(im_colormap_id map, double lo, double hi)
 
 int im_colormap_from_name(const char *name, im_colormap_id *map)
 {
+    ARG_REQUIRE(name, "name");
+    ARG_REQUIRE(map, "map");
     for (int i = 0; i < IM_COLORMAP_COUNT; ++i) {
         if (strcmp(name, MAP_NAMES[i]) == 0 || (i == IM_COLORMAP_GREY && strcmp(name, "gray") == 0)) {
             *map = (im_colormap_id)i;
@@ -47,6 +50,7 @@ const char *im_colormap_name(im_colormap_id map)
 
 int im_colormap_check(const im_colormap *c)
 {
+    ARG_REQUIRE(c, "colormap");
     if (!isfinite(c->lo) || !isfinite(c->hi) || !(c->hi > c->lo))
         return im_fail(IM_EINVAL, "colour norm [%g, %g]: expected finite lo < hi", c->lo, c->hi);
     if (c->logarithmic && !(c->lo > 0.0))
@@ -56,6 +60,7 @@ int im_colormap_check(const im_colormap *c)
 
 int im_colormap_index(const im_colormap *c, double value)
 {
+    ARG_REQUIRE_OR(c, "colormap", -2);
     if (isnan(value))
         return -2;
     if (value < c->lo)
@@ -69,6 +74,8 @@ int im_colormap_index(const im_colormap *c, double value)
 
 void im_colormap_rgb(const im_colormap *c, double value, uint8_t rgb[3])
 {
+    ARG_REQUIRE_OR(c, "colormap", );
+    ARG_REQUIRE_OR(rgb, "rgb", );
     int index = im_colormap_index(c, value);
     const uint8_t *colour = index == -2 ? c->bad : index == -1 ? c->under : index == 256 ? c->over
                                                                      : im_colormap_table(c->map)[index];
@@ -77,6 +84,9 @@ void im_colormap_rgb(const im_colormap *c, double value, uint8_t rgb[3])
 
 void im_colormap_field_image(const im_colormap *c, const im_field *field, uint8_t *rgb)
 {
+    ARG_REQUIRE_OR(c, "colormap", );
+    ARG_VIEW_OR(field, "field", );
+    ARG_REQUIRE_OR(rgb, "rgb", );
 #pragma omp parallel for schedule(static)
     for (int row = 0; row < field->ny; ++row) {
         const double *values = field->data + (size_t)(field->ny - 1 - row) * field->nx;

@@ -1,6 +1,7 @@
 /* The memory probe: what the machine, the address-space limit and the caller's cap leave for the
  * next allocation, checked before every large one (field.h: im_memory_check). */
 #include "core/memory.h"
+#include "core/args.h"
 
 #include "indentmap/field.h"
 #include "indentmap/status.h"
@@ -82,6 +83,7 @@ size_t im_memory_available(void)
 
 int im_memory_check(double bytes, const char *what)
 {
+    ARG_REQUIRE(what, "what");
     /* Beyond SIZE_MAX no allocation can succeed, whatever the machine reports (or fails to). */
     if (!(bytes <= (double)SIZE_MAX))
         return im_fail(IM_ENOMEM, "%s needs about %.1f MiB, more than this machine can address (%.1f MiB)",

@@ -1,5 +1,6 @@
 /* Frames of an indentation run and animations: GIF with exact per-frame palettes, MP4 via ffmpeg. */
 #include "indentmap/figure.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -17,6 +18,9 @@ extern char **environ;
 
 int im_frame_path(char *buffer, size_t size, const char *directory, const char *prefix, int index)
 {
+    ARG_REQUIRE(buffer, "buffer");
+    ARG_REQUIRE(directory, "directory");
+    ARG_REQUIRE(prefix, "prefix");
     if (index < 0)
         return im_fail(IM_EINVAL, "frame index %d: expected >= 0", index);
     char name[128];
@@ -145,6 +149,8 @@ static int encode_gif(FILE *stream, const im_image *frames, int count, int delay
 
 int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path)
 {
+    ARG_REQUIRE(frames, "frames");
+    ARG_REQUIRE(path, "path");
     int status = check_frames(frames, count, seconds_per_frame);
     if (status != IM_OK)
         return status;
@@ -202,6 +208,9 @@ static int run_ffmpeg(char *const arguments[])
 
 int im_animation_mp4(const char *directory, const char *prefix, double frames_per_second, const char *path)
 {
+    ARG_REQUIRE(directory, "directory");
+    ARG_REQUIRE(prefix, "prefix");
+    ARG_REQUIRE(path, "path");
     if (!im_ffmpeg_available())
         return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
     if (!(frames_per_second > 0.0 && frames_per_second <= 240.0))

@@ -1,5 +1,6 @@
 /* Figure layout with cairo: panels, labels, shared colour bar, scale bar; PNG, PDF, SVG output. */
 #include "indentmap/figure.h"
+#include "core/args.h"
 
 #include "typeset/fonts.h"
 #include "typeset/output.h"
@@ -24,6 +25,8 @@ im_figure im_figure_default(void)
 
 int im_figure_format_of(const char *path, im_figure_format *format)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(format, "format");
     const char *dot = strrchr(path, '.');
     if (dot && strcasecmp(dot, ".png") == 0)
         *format = IM_FIGURE_PNG;
@@ -417,6 +420,8 @@ static int check_figure(const im_figure *f)
 
 int im_figure_write(const im_figure *f, const char *path)
 {
+    ARG_REQUIRE(f, "figure");
+    ARG_REQUIRE(path, "path");
     im_figure_format format = IM_FIGURE_PNG;
     int status = im_figure_format_of(path, &format);
     if (status == IM_OK)

@@ -1,4 +1,5 @@
 #include "indentmap/indenter.h"
+#include "core/args.h"
 
 #include "indenter/profile.h"
 #include "indentmap/status.h"
@@ -11,6 +12,8 @@ static double cot_degrees(double alpha_degrees) { return 1.0 / tan(alpha_degrees
 
 int im_punch_parse(const char *name, enum im_punch_kind *kind)
 {
+    ARG_REQUIRE(name, "name");
+    ARG_REQUIRE(kind, "kind");
     static const enum im_punch_kind KINDS[] = {IM_PUNCH_CONE, IM_PUNCH_SPHERE, IM_PUNCH_FLAT, IM_PUNCH_PROFILE};
     for (size_t i = 0; name && i < sizeof KINDS / sizeof KINDS[0]; ++i)
         if (strcasecmp(name, im_punch_name(KINDS[i])) == 0) {
@@ -60,6 +63,7 @@ static int is_profile(const im_indenter *punch)
 
 int im_indenter_check(const im_indenter *punch)
 {
+    ARG_REQUIRE(punch, "punch");
     if (!punch)
         return im_fail(IM_EINVAL, "indenter: NULL");
     switch (punch->kind) {
@@ -93,6 +97,7 @@ int im_indenter_check(const im_indenter *punch)
 
 double im_indenter_profile(const im_indenter *punch, double r)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     switch (punch->kind) {
     case IM_PUNCH_CONE: return r * cot_degrees(punch->alpha_degrees);
     case IM_PUNCH_SPHERE: return r * r / (2 * punch->radius);
@@ -105,6 +110,7 @@ double im_indenter_profile(const im_indenter *punch, double r)
 
 double im_indenter_height(const im_indenter *punch, double dx, double dy)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     if (punch->kind == IM_PUNCH_PROFILE_2D)
         return profile_field_height(punch->profile, dx, dy);
     return im_indenter_profile(punch, hypot(dx, dy));
@@ -112,6 +118,10 @@ double im_indenter_height(const im_indenter *punch, double dx, double dy)
 
 void im_indenter_axis(const im_indenter *punch, int nx, int ny, double delta, double *x, double *y)
 {
+    ARG_REQUIRE_OR(x, "x", );
+    ARG_REQUIRE_OR(y, "y", );
+    *x = *y = NAN; /* for a NULL punch */
+    ARG_REQUIRE_OR(punch, "punch", );
     if (punch->centred) {
         *x = (nx / 2 + 0.5) * delta;
         *y = (ny / 2 + 0.5) * delta;
@@ -123,6 +133,7 @@ void im_indenter_axis(const im_indenter *punch, int nx, int ny, double delta, do
 
 double im_indenter_load(const im_indenter *punch, double e_star, double w)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     if (w <= 0)
         return 0;
     switch (punch->kind) {
@@ -137,6 +148,7 @@ double im_indenter_load(const im_indenter *punch, double e_star, double w)
 
 double im_indenter_contact_radius(const im_indenter *punch, double w)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     if (w <= 0)
         return 0;
     switch (punch->kind) {
@@ -151,6 +163,7 @@ double im_indenter_contact_radius(const im_indenter *punch, double w)
 
 double im_indenter_pressure(const im_indenter *punch, double e_star, double w, double r)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     if (is_profile(punch))
         return NAN;
     double a = im_indenter_contact_radius(punch, w);
@@ -170,6 +183,7 @@ double im_indenter_pressure(const im_indenter *punch, double e_star, double w, d
 
 double im_indenter_approach_for_load(const im_indenter *punch, double e_star, double n)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     if (n <= 0)
         return 0;
     switch (punch->kind) {
@@ -184,6 +198,7 @@ double im_indenter_approach_for_load(const im_indenter *punch, double e_star, do
 
 double im_indenter_area_for_load(const im_indenter *punch, double e_star, double n)
 {
+    ARG_REQUIRE_OR(punch, "punch", NAN);
     if (n <= 0)
         return 0;
     if (punch->kind == IM_PUNCH_CONE)

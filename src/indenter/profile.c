@@ -2,6 +2,7 @@
  * by Steffen's monotone cubic with Sneddon's smooth-contact integrals tabulated, or a 2-D height
  * field read bilinearly around the axis. */
 #include "indenter/profile.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "theory/quadrature.h"
@@ -28,7 +29,11 @@ struct im_profile {
     im_field *field;
 };
 
-enum im_punch_kind im_profile_kind(const im_profile *profile) { return profile->kind; }
+enum im_punch_kind im_profile_kind(const im_profile *profile)
+{
+    ARG_REQUIRE_OR(profile, "profile", (enum im_punch_kind)-1);
+    return profile->kind;
+}
 
 void im_profile_free(im_profile *profile)
 {
@@ -99,6 +104,9 @@ static void tabulate(im_profile *p)
 
 int im_profile_axisymmetric(const double *r, const double *z, int n, im_profile **out)
 {
+    ARG_REQUIRE(r, "r");
+    ARG_REQUIRE(z, "z");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     int status = check_samples(r, z, n);
     if (status != IM_OK)
@@ -128,6 +136,8 @@ int im_profile_axisymmetric(const double *r, const double *z, int n, im_profile 
 
 int im_profile_field(const im_field *heights, im_profile **out)
 {
+    ARG_VIEW(heights, "heights");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     if (!heights)
         return im_fail(IM_EINVAL, "2-D profile: NULL height field");
@@ -157,6 +167,7 @@ int im_profile_field(const im_field *heights, im_profile **out)
 
 double im_profile_extent(const im_profile *p)
 {
+    ARG_REQUIRE_OR(p, "profile", NAN);
     if (p->kind == IM_PUNCH_PROFILE)
         return p->r_max;
     const im_field *f = p->field;
@@ -167,6 +178,14 @@ double im_profile_extent(const im_profile *p)
 void im_profile_samples(const im_profile *p, const double **r, const double **z, int *count,
                         const im_field **field)
 {
+    ARG_REQUIRE_OR(r, "r", );
+    ARG_REQUIRE_OR(z, "z", );
+    ARG_REQUIRE_OR(count, "count", );
+    ARG_REQUIRE_OR(field, "field", );
+    *r = *z = NULL; /* for a NULL profile */
+    *count = 0;
+    *field = NULL;
+    ARG_REQUIRE_OR(p, "profile", );
     *r = p->r;
     *z = p->z;
     *count = p->kind == IM_PUNCH_PROFILE ? p->count : 0;

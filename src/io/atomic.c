@@ -2,6 +2,7 @@
  * when complete. Every file the program writes goes through here, and so through the output guard
  * (guard.c): no input, no sidecar of an input, no file of another kind is ever replaced. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "io/guard.h"
 #include "indentmap/status.h"
@@ -75,6 +76,7 @@ static int all_digits(const char *text, size_t length)
 
 int im_atomic_is_temporary_name(const char *name)
 {
+    ARG_REQUIRE_OR(name, "name", 0);
     if (strncmp(name, ".im.tmp.", 8) == 0)
         return 1;
     const char *marker = strstr(name, ".tmp.");
@@ -117,6 +119,8 @@ static int create_temporary(im_atomic_file *file, const char *suffix)
 
 int im_atomic_open_suffixed(im_atomic_file *file, const char *path, const char *suffix)
 {
+    ARG_REQUIRE(file, "file");
+    ARG_REQUIRE(path, "path");
     memset(file, 0, sizeof *file);
     file->slot = -1;
     if (strlen(path) >= sizeof file->path)
@@ -128,6 +132,8 @@ int im_atomic_open_suffixed(im_atomic_file *file, const char *path, const char *
 
 int im_atomic_open(im_atomic_file *file, const char *path)
 {
+    ARG_REQUIRE(file, "file");
+    ARG_REQUIRE(path, "path");
     return im_atomic_open_suffixed(file, path, NULL);
 }
 
@@ -141,6 +147,7 @@ static void discard(im_atomic_file *file)
 
 int im_atomic_commit(im_atomic_file *file)
 {
+    ARG_REQUIRE(file, "file");
     int failed = ferror(file->stream) || fflush(file->stream) != 0 || fsync(fileno(file->stream)) != 0;
     int saved_errno = errno;
     /* what was written and what it would replace are compared while the stream is open */
@@ -160,6 +167,8 @@ int im_atomic_commit(im_atomic_file *file)
 
 void im_atomic_abort(im_atomic_file *file)
 {
+    if (!file)
+        return;
     if (file->stream) {
         fclose(file->stream);
         file->stream = NULL;
@@ -169,6 +178,8 @@ void im_atomic_abort(im_atomic_file *file)
 
 int im_write_file_atomic(const char *path, const void *data, size_t size)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(data || size == 0, "data");
     im_atomic_file file;
     int status = im_atomic_open(&file, path);
     if (status != IM_OK)
@@ -183,6 +194,7 @@ int im_write_file_atomic(const char *path, const void *data, size_t size)
 
 int im_make_directories(const char *path)
 {
+    ARG_REQUIRE(path, "path");
     char buffer[4096];
     if (strlen(path) >= sizeof buffer)
         return im_fail(IM_EINVAL, "%.64s...: path too long", path);

@@ -1,5 +1,6 @@
 /* Bounded reading: the open checks and the line reader every reader of the program shares (io.h). */
 #include "indentmap/field.h"
+#include "core/args.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 
@@ -24,6 +25,9 @@ static const char *kind_of(mode_t mode)
 
 int im_read_open(const char *path, const char *mode, enum im_read_source source, FILE **stream, long long *size)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(mode, "mode");
+    ARG_REQUIRE(stream, "stream");
     *stream = NULL;
     FILE *opened = fopen(path, mode);
     if (!opened)
@@ -98,6 +102,9 @@ static int read_line_bytes(FILE *stream, const char *path, size_t max_length, im
 
 int im_read_line(FILE *stream, const char *path, size_t max_length, im_text_line *line, int *end)
 {
+    ARG_REQUIRE(stream, "stream");
+    ARG_REQUIRE(line, "line");
+    ARG_REQUIRE(end, "end");
     *end = 0;
     if (im_stop_requested())
         return im_fail(IM_EINTERRUPTED, "%s:%ld: reading interrupted by signal %d", path, line->number + 1,
@@ -123,6 +130,8 @@ int im_read_line(FILE *stream, const char *path, size_t max_length, im_text_line
 
 int im_read_text_file(const char *path, size_t max_bytes, char **text, size_t *size)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(text, "text");
     *text = NULL;
     FILE *stream;
     long long length;

@@ -1,4 +1,5 @@
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -14,6 +15,8 @@ static const char GSF_MAGIC[] = "Gwyddion Simple Field 1.0\n";
 
 int im_gsf_write(const char *path, const im_field *field)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     int writable = io_check_heights_writable(field, path);
     if (writable != IM_OK)
         return writable;
@@ -204,5 +207,7 @@ int gsf_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_gsf_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return surface_read_format(path, gsf_read_raw, NULL, out, NULL);
 }

@@ -3,6 +3,7 @@
  * and inode, with and without following a symlink) and by name (the folder resolved, the name as
  * given), so that another spelling, a symlink or a hard link of an input is refused too. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "io/guard.h"
 #include "indentmap/status.h"
@@ -45,6 +46,8 @@ static int same_identity(identity a, identity b)
 
 int im_path_absolute(const char *path, char *out, size_t size)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     char prefix[PATH_MAX], resolved[PATH_MAX];
     if (snprintf(prefix, sizeof prefix, "%s", path) >= (int)sizeof prefix)
         return im_fail(IM_EINVAL, "%.64s...: path too long", path);
@@ -90,6 +93,7 @@ static int is_sidecar_name(const char *name, const char *form)
 
 int im_output_protect(const char *path)
 {
+    ARG_REQUIRE(path, "path");
     protected_input entry = {0};
     snprintf(entry.given, sizeof entry.given, "%s", path);
     named_form(path, entry.named);
@@ -141,6 +145,7 @@ static int meets_sidecar(const protected_input *in, const char *named, identity 
 
 int im_output_check(const char *path)
 {
+    ARG_REQUIRE(path, "path");
     char named[PATH_MAX];
     named_form(path, named);
     identity itself = identity_of(path, 0), target = identity_of(path, 1);
@@ -168,7 +173,10 @@ static const char *const KIND_NAMES[] = {
     [IM_KIND_WISDOM] = "FFTW wisdom", [IM_KIND_JSON] = "JSON", [IM_KIND_INI] = "an INI file (a scene)",
     [IM_KIND_TEXT] = "text", [IM_KIND_BINARY] = "binary data of an unknown kind"};
 
-const char *im_file_kind_name(enum im_file_kind kind) { return KIND_NAMES[kind]; }
+const char *im_file_kind_name(enum im_file_kind kind)
+{
+    return (size_t)kind < sizeof KIND_NAMES / sizeof *KIND_NAMES ? KIND_NAMES[kind] : "unknown"; /* also < 0 */
+}
 
 static int starts_with(const char *head, size_t length, const char *prefix)
 {
@@ -193,6 +201,7 @@ static enum im_file_kind text_kind(const char *head, size_t length)
 
 enum im_file_kind im_file_kind_of_bytes(const void *bytes, size_t length)
 {
+    ARG_REQUIRE_OR(bytes, "bytes", IM_KIND_NONE);
     const char *head = bytes;
     static const struct { const char *magic; enum im_file_kind kind; } MAGICS[] = {
         {"\x93NUMPY", IM_KIND_NPY}, {"\x89PNG\r\n\x1a\n", IM_KIND_PNG}, {"GIF8", IM_KIND_GIF},
@@ -219,6 +228,8 @@ static enum im_file_kind kind_of_descriptor(int fd)
 
 int im_file_kind_of(const char *path, enum im_file_kind *kind)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(kind, "kind");
     struct stat info;
     *kind = IM_KIND_NONE;
     if (stat(path, &info) != 0)

@@ -3,6 +3,7 @@
  * the folder locked for ever); the file holds the holder's pid for the messages, and is removed
  * when the run ends. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -44,6 +45,8 @@ static int write_owner(int fd, const char *path)
 
 int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock)
 {
+    ARG_REQUIRE(folder, "folder");
+    ARG_REQUIRE(lock, "lock");
     lock->fd = -1;
     lock->stale_pid = 0;
     int status = im_path_join(lock->path, sizeof lock->path, folder, ".lock");
@@ -78,7 +81,7 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
 
 void im_folder_lock_release(im_folder_lock *lock)
 {
-    if (lock->fd < 0)
+    if (!lock || lock->fd < 0)
         return;
     unlink(lock->path); /* before the lock goes: no one can lock the old file in between and keep it */
     close(lock->fd);
@@ -87,6 +90,7 @@ void im_folder_lock_release(im_folder_lock *lock)
 
 int im_folder_remove_temporaries(const char *folder, int depth)
 {
+    ARG_REQUIRE_OR(folder, "folder", 0);
     DIR *listing = opendir(folder);
     if (!listing)
         return 0;

@@ -4,6 +4,7 @@
  * lengths and heights alike) and `periodic` describe the grid. */
 #define _DEFAULT_SOURCE /* madvise(MADV_DONTNEED): glibc ignores posix_madvise's */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -383,6 +384,8 @@ int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_netcdf_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return surface_read_format(path, netcdf_read_raw, NULL, out, NULL);
 }
 
@@ -458,6 +461,8 @@ static int write_dataset(int ncid, const im_field *field)
 
 int im_netcdf_write(const char *path, const im_field *field)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     int writable = io_check_heights_writable(field, path);
     if (writable != IM_OK)
         return writable;

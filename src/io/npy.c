@@ -1,4 +1,5 @@
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -31,6 +32,8 @@ static int write_payload(FILE *stream, const im_field *field, enum im_npy_dtype 
 
 int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtype)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     char dict[128];
     int dict_length = snprintf(dict, sizeof dict,
                                "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }",
@@ -296,5 +299,7 @@ int npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_npy_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return surface_read_format(path, npy_read_raw, NULL, out, NULL);
 }

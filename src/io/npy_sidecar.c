@@ -1,5 +1,6 @@
 /* The JSON sidecar PATH.json of a .npy file: the units the .npy format cannot state. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/json_file.h"
@@ -13,6 +14,8 @@
 
 int im_field_sidecar_write(const char *path, const im_field *field, const char *quantity)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     char sidecar[4096];
     int status = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
     if (status != IM_OK)

@@ -1,6 +1,7 @@
 /* Checked path building: a path that does not fit its buffer is an error naming it, never a
  * silently truncated path (which could name another file). */
 #include "indentmap/io.h"
+#include "core/args.h"
 #include "indentmap/status.h"
 
 #include <stdio.h>
@@ -39,10 +40,16 @@ static int join_checked(char *out, size_t size, const char *a, const char *separ
 
 int im_path_join(char *out, size_t size, const char *dir, const char *name)
 {
+    ARG_REQUIRE(out, "out");
+    ARG_REQUIRE(dir, "dir");
+    ARG_REQUIRE(name, "name");
     return join_checked(out, size, dir, "/", name);
 }
 
 int im_path_suffix(char *out, size_t size, const char *path, const char *suffix)
 {
+    ARG_REQUIRE(out, "out");
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(suffix, "suffix");
     return join_checked(out, size, path, "", suffix);
 }

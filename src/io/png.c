@@ -1,4 +1,5 @@
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -102,10 +103,32 @@ static int encode(FILE *stream, const uint8_t *pixels, int width, int height, in
     return IM_OK;
 }
 
+/* The text chunks' array and strings, when there are texts. */
+static int check_texts(const im_png_options *options)
+{
+    if (!options || options->text_count <= 0)
+        return IM_OK;
+    if (!options->texts)
+        return im_fail(IM_EINVAL, "im_png_write: options->texts is NULL: expected text_count = %d texts",
+                       options->text_count);
+    for (int i = 0; i < options->text_count; ++i)
+        if (!options->texts[i].key || !options->texts[i].value)
+            return im_fail(IM_EINVAL, "im_png_write: options->texts[%d] has a NULL key or value: expected text", i);
+    return IM_OK;
+}
+
 int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
                  size_t stride, const im_png_options *options)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(pixels, "pixels");
     int status = check_image(path, width, height, channels);
+    if (status != IM_OK)
+        return status;
+    if (stride < (size_t)width * (size_t)channels)
+        return im_fail(IM_EINVAL, "im_png_write: stride = %zu: expected at least width x channels = %d x %d",
+                       stride, width, channels);
+    status = check_texts(options);
     if (status != IM_OK)
         return status;
     im_atomic_file file;
@@ -161,6 +184,11 @@ static int decode(FILE *stream, const char *path, uint8_t **pixels, int *width, 
 
 int im_png_read(const char *path, uint8_t **pixels, int *width, int *height, int *channels)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(pixels, "pixels");
+    ARG_REQUIRE(width, "width");
+    ARG_REQUIRE(height, "height");
+    ARG_REQUIRE(channels, "channels");
     *pixels = NULL;
     FILE *stream = fopen(path, "rb");
     if (!stream)

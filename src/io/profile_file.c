@@ -1,6 +1,7 @@
 /* Profile files (indenter.h's im_profile_read): a .npy height field for a 2-D profile, or an
  * (r, z) table, one sample per line, for an axisymmetric one. */
 #include "indentmap/indenter.h"
+#include "core/args.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -144,6 +145,8 @@ static int read_field_profile(const char *path, double delta, im_profile **out)
 
 int im_profile_read(const char *path, double delta, im_profile **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     size_t length = path ? strlen(path) : 0;
     if (!path)

@@ -3,6 +3,7 @@
  * Xscale and Yscale and the height unit Zscale, all in metres, then the values row by row, each a
  * height in units of Zscale. Missing points: NaN, or "BAD" in the ASCII form. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -246,6 +247,8 @@ int sdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_sdf_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return surface_read_format(path, sdf_read_raw, NULL, out, NULL);
 }
 
@@ -265,6 +268,8 @@ static void store_double(uint8_t *p, double value)
 
 int im_sdf_write(const char *path, const im_field *field)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     int writable = io_check_heights_writable(field, path);
     if (writable != IM_OK)
         return writable;

@@ -1,4 +1,5 @@
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -15,6 +16,8 @@ static int has_extension(const char *path, const char *extension)
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     surface_raw_reader read = has_extension(path, ".npy")   ? npy_read_raw
                               : has_extension(path, ".gsf") ? gsf_read_raw
                               : has_extension(path, ".sdf") ? sdf_read_raw
@@ -26,11 +29,15 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
 
 int im_surface_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return im_surface_read_with(path, NULL, out, NULL);
 }
 
 int im_surface_write(const char *path, const im_field *field)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     if (has_extension(path, ".npy")) { /* .npy holds any field; as a surface it must be one */
         int writable = io_check_heights_writable(field, path);
         return writable == IM_OK ? im_npy_write(path, field, IM_NPY_FLOAT64) : writable;

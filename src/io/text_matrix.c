@@ -1,4 +1,5 @@
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -11,6 +12,8 @@
 
 int im_text_write(const char *path, const im_field *field)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     int writable = io_check_heights_writable(field, path);
     if (writable != IM_OK)
         return writable;
@@ -281,5 +284,7 @@ int text_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_text_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return surface_read_format(path, text_read_raw, NULL, out, NULL);
 }

@@ -1,5 +1,6 @@
 /* Length units of surface files, and the step every reader ends with: applying them. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
@@ -26,6 +27,7 @@ static const length_unit LENGTH_UNITS[] = {
 
 double im_length_unit_metres(const char *name, const char **canonical)
 {
+    ARG_REQUIRE_OR(name, "name", 0.0);
     for (size_t i = 0; i < sizeof LENGTH_UNITS / sizeof *LENGTH_UNITS; ++i) {
         if (strcmp(name, LENGTH_UNITS[i].name) == 0) {
             if (canonical)

@@ -1,5 +1,6 @@
 /* Paths in records (run.json, sidecars): a path is bytes, JSON text is UTF-8. */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -34,6 +35,10 @@ static int is_utf8(const char *text)
 
 int im_path_utf8(const char *path, char *out, size_t size)
 {
+    ARG_REQUIRE_OR(out, "out", 0);
+    if (size > 0)
+        out[0] = '\0'; /* a NULL path gives "" */
+    ARG_REQUIRE_OR(path, "path", 0);
     if (is_utf8(path)) {
         snprintf(out, size, "%s", path);
         return 0;

@@ -7,6 +7,7 @@
  * probing system "Software"), the data's MD5ChecksumPointData, and Record4's ChecksumFile
  * md5checksum.hex holding the MD5 of main.xml ("<hex> *main.xml", as md5sum writes it). */
 #include "indentmap/io.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "io/payload.h"
@@ -343,6 +344,8 @@ int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
 
 int im_x3p_read(const char *path, im_field **out)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(out, "out");
     return surface_read_format(path, x3p_read_raw, NULL, out, NULL);
 }
 
@@ -475,6 +478,8 @@ static char *checksum_file(const char *xml, size_t xml_size, size_t *size)
  * to a temporary file beside path and renames it into place on zip_close, so it is atomic. */
 int im_x3p_write(const char *path, const im_field *field)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(field, "field");
     int writable = io_check_heights_writable(field, path);
     if (writable != IM_OK)
         return writable;

@@ -1,5 +1,6 @@
 /* Gap and patch-size distributions at one state (measure.h). */
 #include "indentmap/io.h"
+#include "core/args.h"
 #include "indentmap/measure.h"
 #include "indentmap/status.h"
 
@@ -65,6 +66,9 @@ static void label(const im_field *force, long *parent, long *cells, long *edges)
 
 int im_measure_patch_list(const im_field *force, im_patch **patches, long *count)
 {
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(patches, "patches");
+    ARG_REQUIRE(count, "count");
     if (!force || !force->data || !patches || !count)
         return im_fail(IM_EINVAL, "patch list: no force field or outputs");
     const size_t n = im_field_count(force);
@@ -96,6 +100,7 @@ int im_measure_patch_list(const im_field *force, im_patch **patches, long *count
 
 int im_measure_patch_histogram(const im_patch *list, long count, long *patches, long *cells, long *edges)
 {
+    ARG_REQUIRE(list, "list");
     if (count > 0 && (!list || !patches || !cells || !edges))
         return im_fail(IM_EINVAL, "patch histogram: NULL arrays for %ld patches", count);
     if (patches && cells && edges) {
@@ -135,6 +140,11 @@ static int largest_free_gap(const im_field *gap, const im_field *force, double *
 int im_measure_gap_distribution(const im_field *gap, const im_field *force, double scale, int bins, long *counts,
                                 double *bin_width, long *infinite)
 {
+    ARG_VIEW(gap, "gap");
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(counts, "counts");
+    ARG_REQUIRE(bin_width, "bin_width");
+    ARG_REQUIRE(infinite, "infinite");
     if (!gap || !force || !gap->data || !force->data || !counts || !bin_width || !infinite)
         return im_fail(IM_EINVAL, "gap distribution: no gap or force field, or no outputs");
     if (gap->nx != force->nx || gap->ny != force->ny)
@@ -228,6 +238,9 @@ static int prefixed(const char *prefix, const char *suffix, char *out, size_t si
 int im_measure_write_distributions(const im_field *force, const im_field *gap, double height_rms, int bins,
                                    const char *prefix)
 {
+    ARG_VIEW(force, "force");
+    ARG_VIEW(gap, "gap");
+    ARG_REQUIRE(prefix, "prefix");
     if (!force || !force->data || !prefix)
         return im_fail(IM_EINVAL, "distributions: no force field or prefix");
     char path[4096];

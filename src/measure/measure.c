@@ -1,5 +1,6 @@
 /* What an indentation experiment measures (see measure.h). */
 #include "indentmap/measure.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -45,6 +46,9 @@ static double parabola_slope(const double *x, const double *y, int a, int j)
 
 int im_measure_stiffness(const double *approach, const double *load, int count, double *stiffness)
 {
+    ARG_REQUIRE(approach, "approach");
+    ARG_REQUIRE(load, "load");
+    ARG_REQUIRE(stiffness, "stiffness");
     int status = check_history(approach, load, count);
     if (status != IM_OK)
         return status;
@@ -67,6 +71,8 @@ double im_measure_sneddon_modulus(double stiffness, double area)
 /* The statistics, from the patches' list (distributions.c). */
 int im_measure_contact_patches(const im_field *force, im_contact_patches *out, long **sizes)
 {
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(out, "out");
     if (!force || !force->data)
         return im_fail(IM_EINVAL, "contact patches: no force field");
     im_patch *list = NULL;
@@ -99,6 +105,8 @@ int im_measure_contact_patches(const im_field *force, im_contact_patches *out, l
 
 int im_measure_gap_histogram(const im_field *gap, double gap_max, int bins, long *counts)
 {
+    ARG_VIEW(gap, "gap");
+    ARG_REQUIRE(counts, "counts");
     if (!gap || !gap->data || !counts)
         return im_fail(IM_EINVAL, "gap histogram: no gap field or counts");
     if (!(gap_max > 0.0 && isfinite(gap_max)) || bins < 1)

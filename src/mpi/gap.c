@@ -1,5 +1,6 @@
 /* The undeformed gap and the edge check over ranks (solver.h's definitions). */
 #include "mpi/mpi_internal.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -7,6 +8,7 @@
 
 int im_mpi_undeformed_gap(const im_mpi_solver *s, const double *heights, const im_indenter *punch, double *gap0)
 {
+    ARG_REQUIRE(s, "solver");
     int status = im_indenter_check(punch);
     if (status != IM_OK)
         return status; /* the same punch on every rank: the same answer */
@@ -53,6 +55,7 @@ static long first_edge_contact(const im_mpi_solver *s, const double *p)
 
 int im_mpi_check_edge(const im_mpi_solver *s, const double *pressure)
 {
+    ARG_REQUIRE(s, "solver");
     long first = first_edge_contact(s, pressure);
     MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_LONG, MPI_MIN, s->comm);
     if (first == LONG_MAX)

@@ -1,5 +1,6 @@
 /* A downsampled map of a distributed field, gathered on rank 0 (for rendering large grids). */
 #include "mpi/mpi_internal.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -35,6 +36,7 @@ static void add_block_rows(const im_mpi_solver *s, const double *all, int factor
 
 int im_mpi_gather_map(const im_mpi_solver *s, const double *values, int factor, im_field **out)
 {
+    ARG_REQUIRE(s, "solver");
     *out = NULL;
     if (factor < 1)
         return im_fail(IM_EINVAL, "map factor %d: expected >= 1", factor);

@@ -1,5 +1,6 @@
 /* .npy files over ranks with MPI-IO: one header (rank 0), each rank's rows at their offset. */
 #include "mpi/mpi_internal.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -100,6 +101,9 @@ static int read_header(MPI_Comm comm, const char *path, int *nx, int *ny, long *
 
 int im_mpi_npy_shape(MPI_Comm comm, const char *path, int *nx, int *ny)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(nx, "nx");
+    ARG_REQUIRE(ny, "ny");
     long offset;
     return read_header(comm, path, nx, ny, &offset);
 }
@@ -119,6 +123,8 @@ static int transfer_rows(MPI_File file, long offset, int nx, int y0, int rows, d
 
 int im_mpi_npy_read_rows(MPI_Comm comm, const char *path, int y0, int rows, double *data)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(data || rows == 0, "data"); /* a rank may own no rows */
     int nx, ny;
     long offset;
     int status = read_header(comm, path, &nx, &ny, &offset);
@@ -182,6 +188,8 @@ static int write_file(MPI_Comm comm, const char *name, int nx, int ny, int y0, i
 
 int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y0, int rows, const double *data)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(data || rows == 0, "data"); /* a rank may own no rows */
     int status = IM_OK;
     if (nx < 1 || ny < 1 || y0 < 0 || rows < 0 || y0 + rows > ny)
         status = im_fail(IM_EINVAL, "%s: rows [%d, %d) of a %d x %d grid", path, y0, y0 + rows, nx, ny);

@@ -1,6 +1,7 @@
 /* Polonsky-Keer constrained conjugate gradients over ranks (solver.h's algorithm and stopping
  * rule; sums in row order, see mpi.h). */
 #include "mpi/mpi_internal.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -350,6 +351,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
 int im_mpi_solver_solve(im_mpi_solver *s, const double *gap0, enum im_control control, double target,
                         double *pressure, double *displacement, im_solve_result *result)
 {
+    ARG_REQUIRE(s, "solver");
     im_solve_result res = {0};
     double start = MPI_Wtime();
     int status = check_inputs(s, gap0, control, target, pressure);

@@ -1,5 +1,6 @@
 /* The distributed solver's plan: slabs, FFTW-MPI transforms, the kernel spectrum, convolution. */
 #include "mpi/mpi_internal.h"
+#include "core/args.h"
 
 #include "core/fft_threads.h"
 #include "indentmap/status.h"
@@ -26,6 +27,7 @@ static ptrdiff_t block_of(ptrdiff_t n, int ranks) { return (n + ranks - 1) / ran
 
 double im_mpi_solver_bytes(int nx, int ny, int ranks)
 {
+    ARG_SIDES_OR(nx, ny, NAN);
     const double rows0 = (double)block_of(2 * (ptrdiff_t)ny, ranks); /* rank 0's padded rows */
     const double rows = rows0 < ny ? rows0 : ny;                     /* its surface rows */
     const double columns = (double)block_of(nx + 1, ranks);          /* its spectrum columns */
@@ -38,6 +40,10 @@ double im_mpi_solver_bytes(int nx, int ny, int ranks)
 
 void im_mpi_solver_rows(const im_mpi_solver *s, int *y0, int *rows)
 {
+    ARG_REQUIRE_OR(y0, "y0", );
+    ARG_REQUIRE_OR(rows, "rows", );
+    *y0 = *rows = 0; /* for a NULL solver */
+    ARG_REQUIRE_OR(s, "solver", );
     *y0 = s->y0;
     *rows = s->rows;
 }
@@ -148,6 +154,8 @@ static int set_up(im_mpi_solver *s)
 int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_solver_options *options,
                          im_mpi_solver **out)
 {
+    ARG_REQUIRE(out, "out");
+
     *out = NULL;
     im_solver_options o = options ? *options : im_solver_options_default();
     int status = check_create(nx, ny, delta, &o); /* the same arguments on every rank: the same answer */
@@ -198,6 +206,7 @@ void im_mpi_solver_free(im_mpi_solver *s)
 
 void im_mpi_convolve(im_mpi_solver *s, const double *pressure, double *displacement)
 {
+    ARG_REQUIRE_OR(s, "solver", );
     const size_t stride = padded_stride(s);
     const int nx = s->nx;
     /* every padded row is rewritten: the c2r transform leaves garbage in the padding */

@@ -3,6 +3,7 @@
  * folder, with the scene code's own member solvers (which write every member as soon as it is
  * solved, keyed by its inputs); rank 0 then runs the stages alone and reads them back exactly. */
 #include "indentmap/mpi.h"
+#include "core/args.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -219,6 +220,7 @@ static int run_worker(ranks_state *st, const im_scene *scene, const im_scene_run
 
 int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options)
 {
+    ARG_REQUIRE(scene, "scene");
     ranks_state st = {.comm = comm};
     MPI_Comm_rank(comm, &st.rank);
     MPI_Comm_size(comm, &st.ranks);

@@ -2,6 +2,7 @@
  * the mode-keyed generator, one FFTW-MPI c2r transform makes the rows, which then move to the
  * rows each rank asked for. */
 #include "mpi/mpi_internal.h"
+#include "core/args.h"
 
 #include "core/fft_threads.h"
 #include "indentmap/status.h"
@@ -92,6 +93,8 @@ static int transform_and_move(spectral_slab *slab, fftw_plan plan, double scale,
 
 int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, int rows, double *heights)
 {
+    ARG_REQUIRE(p, "params");
+    ARG_REQUIRE(heights || rows == 0, "heights"); /* a rank may ask for no rows */
     int status = mpi_collective_status(comm, check_request(p, y0, rows));
     if (status != IM_OK)
         return status;

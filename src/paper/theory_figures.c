@@ -1,6 +1,7 @@
 /* The paper's figures that need no contact solution: Fig. 1 (local contact density of the cone),
  * Fig. 2 (area ratio against rho_c, eqs. 6 and 12) and Fig. 3 (statistics of a surface). */
 #include "indentmap/plot.h"
+#include "core/args.h"
 #include "paper/figures.h"
 
 #include "indentmap/status.h"
@@ -46,6 +47,8 @@ static int density_label(double slope_rms, double rho, char *text, size_t size)
 int im_plot_figure_contact_density(double alpha_deg, const double *slope_rms, int count,
                                    const im_plot *style, const char *path)
 {
+    ARG_REQUIRE(slope_rms, "slope_rms");
+    ARG_REQUIRE(path, "path");
     if (count < 1 || count > FIG1_MAX_CURVES || !slope_rms)
         return im_fail(IM_EINVAL, "Fig. 1: %d roughness values: expected 1 to %d", count, FIG1_MAX_CURVES);
     double *buffer = malloc(sizeof(double) * 2 * FIG1_POINTS * (size_t)count);
@@ -114,6 +117,7 @@ static void rho_range(const im_plot_points *points, double *lo, double *hi)
 
 int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style, const char *path)
 {
+    ARG_REQUIRE(path, "path");
     int has_points = points && points->count > 0;
     if (has_points && (!points->x || !points->y))
         return im_fail(IM_EINVAL, "Fig. 2: %d points without x or y arrays", points->count);
@@ -275,6 +279,9 @@ static void layout_surface_figure(surface_figure *f, int bins)
 int im_plot_figure_surface(const im_field *surface, const im_surface_params *params, int bins,
                            const im_plot *style, const char *path)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(params, "params");
+    ARG_REQUIRE(path, "path");
     if (!surface || !params)
         return im_fail(IM_EINVAL, "Fig. 3: a surface and its parameters are required");
     if (bins < 10 || bins > 10000)

@@ -1,5 +1,6 @@
 /* Plots: defaults, colours, layout queries and output through the figure module's writers. */
 #include "indentmap/plot.h"
+#include "core/args.h"
 
 #include "typeset/fonts.h"
 #include "typeset/output.h"
@@ -20,6 +21,7 @@ im_plot im_plot_default(void)
 
 void im_plot_palette(int i, uint8_t rgb[3])
 {
+    ARG_REQUIRE_OR(rgb, "rgb", );
     static const uint8_t okabe_ito[IM_PLOT_PALETTE_SIZE][3] = {
         {0, 114, 178},   /* blue */
         {213, 94, 0},    /* vermillion */
@@ -36,6 +38,7 @@ void im_plot_palette(int i, uint8_t rgb[3])
 
 void im_plot_family_color(int i, int count, uint8_t rgb[3])
 {
+    ARG_REQUIRE_OR(rgb, "rgb", );
     const uint8_t(*table)[3] = im_colormap_table(IM_COLORMAP_VIRIDIS);
     double t = count > 1 ? (double)i / (count - 1) : 0.0;
     int index = (int)lround(0.85 * 255.0 * fmin(fmax(t, 0.0), 1.0));
@@ -60,6 +63,8 @@ static int layout_plot(const im_plot *plot, plot_layout *layout)
 
 int im_plot_geometry_of(const im_plot *plot, int panel, im_plot_geometry *g)
 {
+    ARG_REQUIRE(plot, "plot");
+    ARG_REQUIRE(g, "geometry");
     plot_layout *l = malloc(sizeof *l);
     if (!l)
         return im_fail(IM_ENOMEM, "plot layout: out of memory");
@@ -89,6 +94,8 @@ static int paint_plot(cairo_t *cr, const void *context)
 
 int im_plot_write(const im_plot *plot, const char *path)
 {
+    ARG_REQUIRE(plot, "plot");
+    ARG_REQUIRE(path, "path");
     im_figure_format format;
     int status = im_figure_format_of(path, &format);
     if (status != IM_OK)

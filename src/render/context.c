@@ -2,6 +2,7 @@
 #define EGL_NO_X11
 #define MESA_EGL_NO_X11_HEADERS
 #include "render/context.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -18,6 +19,8 @@ enum { MAX_DEVICES = 16 };
  * eglTerminate, which would orphan the driver's process-wide allocations. */
 int im_render_backend_from_name(const char *name, im_render_backend *backend)
 {
+    ARG_REQUIRE(name, "name");
+    ARG_REQUIRE(backend, "backend");
     static const char *const names[] = {"auto", "egl", "osmesa"};
     for (int i = 0; i < 3; ++i) {
         if (strcmp(name, names[i]) == 0) {
@@ -30,11 +33,26 @@ int im_render_backend_from_name(const char *name, im_render_backend *backend)
 
 const char *im_render_backend_name(const im_render_context *c)
 {
+    ARG_REQUIRE_OR(c, "context", NULL);
     return c->backend == IM_RENDER_OSMESA ? "osmesa" : "egl";
 }
-const char *im_render_display_name(const im_render_context *c) { return c->display_name; }
-const char *im_render_gl_renderer(const im_render_context *c) { return c->renderer; }
-const char *im_render_gl_version(const im_render_context *c) { return c->version; }
+const char *im_render_display_name(const im_render_context *c)
+{
+    ARG_REQUIRE_OR(c, "context", NULL);
+    return c->display_name;
+}
+
+const char *im_render_gl_renderer(const im_render_context *c)
+{
+    ARG_REQUIRE_OR(c, "context", NULL);
+    return c->renderer;
+}
+
+const char *im_render_gl_version(const im_render_context *c)
+{
+    ARG_REQUIRE_OR(c, "context", NULL);
+    return c->version;
+}
 
 int gl_load(im_gl *gl, im_gl_loader loader)
 {
@@ -215,6 +233,7 @@ static void release_backend(im_render_context *c)
 
 int im_render_context_missing(int status, const char *message)
 {
+    ARG_REQUIRE_OR(message, "message", 0);
     return status == IM_EUNSUPPORTED && message &&
            strncmp(message, IM_RENDER_NO_CONTEXT, strlen(IM_RENDER_NO_CONTEXT)) == 0;
 }

@@ -1,5 +1,6 @@
 /* Drawing fields with the GL context: shader programs, textures, framebuffer, read-back. */
 #include "render/context.h"
+#include "core/args.h"
 #include "render/shaders.h"
 
 #include "indentmap/status.h"
@@ -99,6 +100,8 @@ void render_teardown(im_render_context *c)
 
 void im_image_release(im_image *image)
 {
+    if (!image)
+        return;
     free(image->rgba);
     memset(image, 0, sizeof *image);
 }
@@ -267,14 +270,16 @@ static int finish(const im_render_context *c, int status, GLuint *textures, int 
 im_contact_style im_contact_style_default(const im_field *force)
 {
     double largest = 0.0;
-    for (size_t i = 0; i < im_field_count(force); ++i)
+    size_t count = arg_view(__func__, "force", force) == IM_OK ? im_field_count(force) : 0; /* invalid: empty */
+    for (size_t i = 0; i < count; ++i)
         if (isfinite(force->data[i]) && force->data[i] > largest)
             largest = force->data[i];
     im_contact_style style = {
         .colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest > 0.0 ? largest : 1.0),
         .pixels_per_patch = 2, .boundary_px = 2,
         .background = {230, 230, 230}, .line = {0, 0, 0},
-        .circle_radius = 0.0, .circle_x = 0.5 * force->nx, .circle_y = 0.5 * force->ny,
+        .circle_radius = 0.0, .circle_x = count ? 0.5 * force->nx : 0.0,
+        .circle_y = count ? 0.5 * force->ny : 0.0,
         .circle_width_px = 2.0};
     return style;
 }
@@ -295,6 +300,10 @@ static int check_contact_style(const im_contact_style *s)
 int im_render_contact_map(im_render_context *c, const im_field *force, const im_contact_style *s,
                           im_image *image)
 {
+    ARG_REQUIRE(c, "context");
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(s, "style");
+    ARG_REQUIRE(image, "image");
     memset(image, 0, sizeof *image);
     int status = check_contact_style(s);
     if (status == IM_OK)
@@ -354,7 +363,8 @@ static double slope_rms(const im_field *h)
 im_height_style im_height_style_default(const im_field *height)
 {
     double lo = INFINITY, hi = -INFINITY;
-    for (size_t i = 0; i < im_field_count(height); ++i)
+    size_t count = arg_view(__func__, "height", height) == IM_OK ? im_field_count(height) : 0; /* invalid: empty */
+    for (size_t i = 0; i < count; ++i)
         if (isfinite(height->data[i])) {
             lo = fmin(lo, height->data[i]);
             hi = fmax(hi, height->data[i]);
@@ -364,7 +374,7 @@ im_height_style im_height_style_default(const im_field *height)
         lo = mid - 1.0;
         hi = mid + 1.0;
     }
-    double slope = slope_rms(height);
+    double slope = count ? slope_rms(height) : 0.0;
     im_height_style style = {
         .colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi),
         .pixels_per_patch = 2, .boundary_px = 2, .line = {0, 0, 0},
@@ -376,6 +386,7 @@ im_height_style im_height_style_default(const im_field *height)
 
 int im_height_outline_width(const im_height_style *style)
 {
+    ARG_REQUIRE_OR(style, "style", 0);
     if (style->outline_px > 0)
         return style->outline_px;
     int scale = style->pixels_per_patch;
@@ -420,6 +431,12 @@ static void height_inputs(const im_field *h, const im_height_style *s, uint16_t 
 int im_render_height_map(im_render_context *c, const im_field *height, const im_height_style *s,
                          im_image *image)
 {
+    ARG_REQUIRE(c, "context");
+    ARG_VIEW(height, "height");
+    ARG_REQUIRE(s, "style");
+    ARG_REQUIRE(image, "image");
+    if (s->contact)
+        ARG_VIEW(s->contact, "style->contact");
     memset(image, 0, sizeof *image);
     int status = check_height_style(s, height);
     if (status == IM_OK)

@@ -1,6 +1,7 @@
 /* A render context ready to draw: the backend's context (context.c) with the shared GL objects
  * (draw.c) created on it. */
 #include "render/context.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -8,6 +9,7 @@
 
 int im_render_open(im_render_backend backend, im_render_context **out)
 {
+    ARG_REQUIRE(out, "out");
     int status = render_context_open(backend, out);
     if (status != IM_OK)
         return status;

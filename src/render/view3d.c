@@ -1,5 +1,6 @@
 /* The 3-D view of the deformed surface: a lit mesh coloured by local force, the punch, a camera. */
 #include "render/context.h"
+#include "core/args.h"
 #include "render/shaders.h"
 
 #include "indentmap/status.h"
@@ -35,6 +36,8 @@ int render_view3d_setup(im_render_context *c)
 
 im_view3d_style im_view3d_style_default(const im_field *force)
 {
+    if (force && arg_view(__func__, "force", force) != IM_OK)
+        force = NULL; /* an invalid view: the defaults without a force field */
     im_view3d_style style = {
         .colormap = force ? im_contact_style_default(force).colormap
                           : im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0),
@@ -119,6 +122,7 @@ static int check_inputs(const im_field *height, const im_field *force, const im_
 
 void im_view3d_exaggeration_text(double exaggeration, char *text, size_t size)
 {
+    ARG_REQUIRE_OR(text, "text", );
     if (exaggeration == 1.0)
         snprintf(text, size, "true vertical scale");
     else
@@ -576,6 +580,12 @@ static int allocate_view_image(const im_field *h, const im_view3d_style *s, im_i
 int im_render_view3d(im_render_context *c, const im_field *height, const im_field *force,
                      const im_indenter *punch, const im_view3d_style *s, im_image *image)
 {
+    ARG_REQUIRE(c, "context");
+    ARG_VIEW(height, "height");
+    ARG_REQUIRE(s, "style");
+    ARG_REQUIRE(image, "image");
+    if (force)
+        ARG_VIEW(force, "force");
     memset(image, 0, sizeof *image);
     int status = check_inputs(height, force, punch);
     if (status == IM_OK)

@@ -1,4 +1,5 @@
 #include "indentmap/scene.h"
+#include "core/args.h"
 
 #include "front/front.h"
 
@@ -390,6 +391,7 @@ static const int KEY_COUNT = (int)(sizeof KEYS / sizeof KEYS[0]);
 
 void im_scene_defaults(im_scene *scene)
 {
+    ARG_REQUIRE_OR(scene, "scene", );
     memset(scene, 0, sizeof *scene);
     snprintf(scene->name, sizeof scene->name, "scene");
     snprintf(scene->quality, sizeof scene->quality, "%s", IM_QUALITY_DEFAULT);
@@ -430,6 +432,7 @@ static size_t edit_distance(const char *a, const char *b)
 
 const char *im_scene_suggest_key(const char *section, const char *word)
 {
+    ARG_REQUIRE_OR(word, "word", NULL);
     const char *best = NULL;
     size_t best_distance = strlen(word) / 2 + 1;
     for (int i = 0; i < KEY_COUNT; ++i) {
@@ -729,6 +732,8 @@ static int any_key_given(const parse_context *context)
 
 int im_scene_load(const char *path, im_scene *scene)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(scene, "scene");
     im_scene_defaults(scene);
     snprintf(scene->path, sizeof scene->path, "%s", path);
     scene->surface.ny = -1;
@@ -771,6 +776,8 @@ int im_scene_load(const char *path, im_scene *scene)
 
 int im_scene_file_path(const im_scene *scene, int i, char *out, size_t size)
 {
+    ARG_REQUIRE(scene, "scene");
+    ARG_REQUIRE(out, "out");
     const char *item = scene->surface_file;
     for (int k = 0; k < i && item; ++k) {
         item = strchr(item, ',');
@@ -793,6 +800,11 @@ int im_scene_file_path(const im_scene *scene, int i, char *out, size_t size)
 
 void im_scene_resolve_path(const im_scene *scene, const char *relative, char *out, size_t size)
 {
+    ARG_REQUIRE_OR(out, "out", );
+    if (size > 0)
+        out[0] = '\0'; /* a NULL scene or relative path gives "" */
+    ARG_REQUIRE_OR(scene, "scene", );
+    ARG_REQUIRE_OR(relative, "relative", );
     const char *slash = strrchr(scene->path, '/');
     size_t directory = relative[0] == '/' || !slash ? 0 : (size_t)(slash - scene->path) + 1;
     size_t length = strlen(relative);

@@ -1,5 +1,6 @@
 /* The paper's line figures that a scene asks for in [output] plots. */
 #include "indentmap/plot.h"
+#include "core/args.h"
 #include "indentmap/status.h"
 #include "scene/frames.h"
 #include "scene/outputs.h"
@@ -24,6 +25,7 @@ const char *im_scene_plot_name(enum im_scene_plot plot)
 
 enum im_scene_plot im_scene_plot_parse(const char *name)
 {
+    ARG_REQUIRE_OR(name, "name", 0);
     for (int i = 0; i < PLOT_COUNT; ++i)
         if (strcmp(name, PLOT_NAMES[i]) == 0)
             return (enum im_scene_plot)(1u << i);

@@ -1,5 +1,6 @@
 /* A scene run: checks before any work, then the stages in order (the headers beside it have the pieces). */
 #include "indentmap/scene.h"
+#include "core/args.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -227,6 +228,7 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
 /* Run on the prepared copy: the caller's scene stays as parsed. */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
+    ARG_REQUIRE(scene, "scene");
     im_scene *measured = NULL;
     im_profile *profile = NULL;
     int status = scene_prepare(scene, &measured, &profile);

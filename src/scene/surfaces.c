@@ -1,6 +1,7 @@
 /* The surfaces of a scene: generated per family and seed, or read from its files (measured first,
  * checked to share one grid). */
 #include "indentmap/scene.h"
+#include "core/args.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -40,6 +41,7 @@ static int check_same_grid(const im_scene *scene, const im_field *first, const i
 
 int im_scene_measure_files(im_scene *scene)
 {
+    ARG_REQUIRE(scene, "scene");
     im_field *first = NULL;
     double sum_squares = 0.0;
     int status = IM_OK;

@@ -2,6 +2,7 @@
  * its window (the contact and a margin); written or drawn as 0 outside, h - u showed a square step
  * at the window's edge. One convolution on the full grid gives the true u everywhere. */
 #include "indentmap/solver.h"
+#include "core/args.h"
 #include "indentmap/status.h"
 #include "solver/plan.h"
 
@@ -11,7 +12,9 @@
 int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options,
                                 im_solver_plan **plan)
 {
-    im_solver_options o = *options;
+    ARG_REQUIRE(plan, "plan");
+    ARG_SIDES(nx, ny);
+    im_solver_options o = options ? *options : im_solver_options_default(); /* NULL: the defaults */
     o.fft_measure = 0; /* a few convolutions: estimating the plan is cheaper than measuring it */
     o.wisdom_path = NULL; /* nor read or written wisdom */
     o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
@@ -20,6 +23,9 @@ int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_op
 
 int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement)
 {
+    ARG_REQUIRE(plan, "plan");
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(displacement, "displacement");
     *displacement = NULL;
     size_t count = im_field_count(force);
     if (plan->nx != force->nx || plan->ny != force->ny)
@@ -44,6 +50,8 @@ int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_fi
 
 int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement)
 {
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(displacement, "displacement");
     *displacement = NULL;
     im_solver_plan *plan = NULL;
     int status = im_displacement_plan_create(force->nx, force->ny, force->delta, options, &plan);

@@ -1,5 +1,6 @@
 /* Indentation histories: undeformed gap, solve window, steps, full-grid fields (see solver.h). */
 #include "indentmap/solver.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -185,6 +186,9 @@ static int allocate_window(im_indentation *run)
 int im_indentation_create(const im_field *surface, const im_indenter *punch, enum im_control control,
                           double largest_target, const im_solver_options *options, im_indentation **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(punch, "punch");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     im_solver_options o = options ? *options : im_solver_options_default();
     int status = check_create(surface, punch, control, largest_target, &o);
@@ -309,6 +313,8 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
 
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
 {
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(out, "out");
     const char *what = run->control == IM_CONTROL_LOAD ? "load" : "approach";
     if (!(isfinite(target) && target >= 0 && target <= run->largest_target))
         return im_fail(IM_EINVAL, "%s = %g: expected a value in [0, %g], the largest %s the run was prepared for",
@@ -329,8 +335,17 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     return status;
 }
 
-im_window im_indentation_window(const im_indentation *run) { return run->window; }
-const im_solver_plan *im_indentation_plan(const im_indentation *run) { return run->plan; }
+im_window im_indentation_window(const im_indentation *run)
+{
+    ARG_REQUIRE_OR(run, "run", (im_window){0});
+    return run->window;
+}
+
+const im_solver_plan *im_indentation_plan(const im_indentation *run)
+{
+    ARG_REQUIRE_OR(run, "run", NULL);
+    return run->plan;
+}
 
 static int new_full_field(const im_indentation *run, im_field **out)
 {
@@ -339,6 +354,7 @@ static int new_full_field(const im_indentation *run, im_field **out)
 
 int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
+    ARG_REQUIRE(run, "run");
     im_field *f = NULL, *g = NULL, *u = NULL;
     int status = new_full_field(run, force ? &f : NULL);
     if (status == IM_OK)
@@ -379,6 +395,7 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
 
 int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
+    ARG_REQUIRE(run, "run");
     im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
     int status = run->full_plan ? IM_OK
                                 : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options,

@@ -1,6 +1,7 @@
 /* The periodic half-space (solver.h, "Periodic mode"): the kernel's spectrum 2 / (E* |q|) on the
  * unpadded grid, and nominally flat contact of a periodic surface under a mean pressure. */
 #include "solver/plan.h"
+#include "core/args.h"
 
 #include "core/fft_threads.h"
 #include "indentmap/status.h"
@@ -75,6 +76,8 @@ static void flat_gap(const im_field *surface, double *gap0)
 
 int im_flat_contact_create(const im_field *surface, const im_solver_options *options, im_flat_contact **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     if (!surface || !surface->data)
         return im_fail(IM_EINVAL, "flat contact: no surface");
@@ -105,6 +108,8 @@ int im_flat_contact_create(const im_field *surface, const im_solver_options *opt
 
 int im_flat_contact_solve(im_flat_contact *run, double mean_pressure, im_flat_result *out)
 {
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(out, "out");
     if (!(isfinite(mean_pressure) && mean_pressure >= 0.0))
         return im_fail(IM_EINVAL, "mean pressure = %g: expected a finite p_m >= 0", mean_pressure);
     im_solve_result solve;
@@ -118,4 +123,8 @@ int im_flat_contact_solve(im_flat_contact *run, double mean_pressure, im_flat_re
     return status;
 }
 
-const double *im_flat_contact_pressure(const im_flat_contact *run) { return run->pressure; }
+const double *im_flat_contact_pressure(const im_flat_contact *run)
+{
+    ARG_REQUIRE_OR(run, "run", NULL);
+    return run->pressure;
+}

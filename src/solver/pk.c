@@ -1,6 +1,7 @@
 /* Polonsky-Keer constrained conjugate gradients (see solver.h for the algorithm and stopping rule),
  * written once over the engines of engine.h: this file decides, the engine's passes compute. */
 #include "solver/engine.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -293,6 +294,10 @@ static int solve_on_engine(pk_run *r, im_solve_result *res)
 int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                     double *pressure, double *displacement, im_solve_result *result)
 {
+    ARG_REQUIRE(plan, "plan");
+    ARG_REQUIRE(gap0, "gap0");
+    ARG_REQUIRE(pressure, "pressure");
+    ARG_REQUIRE(displacement, "displacement");
     im_solve_result res = {0};
     double start = omp_get_wtime();
     int status = check_inputs(plan, gap0, control, target, pressure);

@@ -1,4 +1,5 @@
 #include "solver/engine.h"
+#include "core/args.h"
 
 #include "core/fft_threads.h"
 #include "indentmap/gpu_config.h"
@@ -21,6 +22,7 @@ im_solver_options im_solver_options_default(void)
 
 int im_solver_options_check(const im_solver_options *o)
 {
+    ARG_REQUIRE(o, "options");
     if (!(isfinite(o->e_star) && o->e_star > 0))
         return im_fail(IM_EINVAL, "E* = %g: expected a finite modulus > 0", o->e_star);
     if (!(o->tol > 0 && o->tol < 1))
@@ -77,6 +79,7 @@ static double level_bytes(int nx, int ny)
 
 double im_solver_plan_bytes(int nx, int ny)
 {
+    ARG_SIDES_OR(nx, ny, NAN);
     int cx, cy;
     if (!solver_cascade_sides(nx, ny, 0, &cx, &cy)) /* a periodic plan with an odd side has none: an upper bound */
         return level_bytes(nx, ny);
@@ -86,11 +89,12 @@ double im_solver_plan_bytes(int nx, int ny)
 
 const char *im_solver_wisdom_file(const im_solver_options *o)
 {
-    return o->wisdom_path && o->wisdom_path[0] ? o->wisdom_path : NULL;
+    return o && o->wisdom_path && o->wisdom_path[0] ? o->wisdom_path : NULL; /* NULL options: none */
 }
 
 int im_solver_wisdom_check(const im_solver_options *o)
 {
+    ARG_REQUIRE(o, "options");
     const char *path = im_solver_wisdom_file(o);
     if (!path)
         return IM_OK;
@@ -133,6 +137,7 @@ static int import_wisdom(const char *text)
 
 int im_solver_wisdom_verify(const im_solver_options *o)
 {
+    ARG_REQUIRE(o, "options");
     const char *path = im_solver_wisdom_file(o);
     int status = im_solver_wisdom_check(o);
     char *text = NULL;
@@ -292,6 +297,8 @@ static int allocate_plan(im_solver_plan *p)
 
 int im_device_parse(const char *word, int *device)
 {
+    ARG_REQUIRE(word, "word");
+    ARG_REQUIRE(device, "device");
     static const char *const names[] = {[IM_DEVICE_CPU] = "cpu", [IM_DEVICE_GPU] = "gpu", [IM_DEVICE_AUTO] = "auto"};
     for (int k = 0; k < 3; ++k)
         if (word && strcmp(word, names[k]) == 0) {
@@ -303,6 +310,7 @@ int im_device_parse(const char *word, int *device)
 
 const char *im_solver_plan_device(const im_solver_plan *p)
 {
+    ARG_REQUIRE_OR(p, "plan", NULL);
     return p->engine == &solver_engine_cpu ? "cpu" : solver_engine_gpu_device(p);
 }
 
@@ -384,6 +392,8 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
 int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
                           im_solver_plan **out)
 {
+    ARG_REQUIRE(out, "out");
+    ARG_SIDES(nx, ny);
     return solver_plan_create_level(nx, ny, delta, options, NULL, out);
 }
 
@@ -416,8 +426,17 @@ void im_solver_plan_free(im_solver_plan *p)
     free(p);
 }
 
-double im_solver_plan_seconds(const im_solver_plan *p) { return p->plan_seconds; }
-int im_solver_plan_measured(const im_solver_plan *p) { return p->measured; }
+double im_solver_plan_seconds(const im_solver_plan *p)
+{
+    ARG_REQUIRE_OR(p, "plan", NAN);
+    return p->plan_seconds;
+}
+
+int im_solver_plan_measured(const im_solver_plan *p)
+{
+    ARG_REQUIRE_OR(p, "plan", 0);
+    return p->measured;
+}
 
 void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t count)
 {
@@ -443,6 +462,9 @@ void solver_convolve_rows(im_solver_plan *p)
 
 void im_solver_convolve(im_solver_plan *p, const double *pressure, double *displacement)
 {
+    ARG_REQUIRE_OR(p, "plan", );
+    ARG_REQUIRE_OR(pressure, "pressure", );
+    ARG_REQUIRE_OR(displacement, "displacement", );
     p->engine->convolve_arrays(p, pressure, displacement);
 }
 

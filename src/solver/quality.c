@@ -1,5 +1,6 @@
 /* Named speed/accuracy presets of the solver tolerance (solver.h). */
 #include "indentmap/solver.h"
+#include "core/args.h"
 #include "indentmap/status.h"
 
 #include <string.h>
@@ -17,6 +18,8 @@ static const quality_preset PRESETS[] = {{"draft", 1e-5}, {"standard", 1e-6}, {"
 
 int im_quality_tolerance(const char *name, double *tol)
 {
+    ARG_REQUIRE(name, "name");
+    ARG_REQUIRE(tol, "tol");
     for (size_t i = 0; name && i < sizeof PRESETS / sizeof PRESETS[0]; ++i)
         if (strcmp(name, PRESETS[i].name) == 0) {
             *tol = PRESETS[i].tol;

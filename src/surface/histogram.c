@@ -1,4 +1,5 @@
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -59,9 +60,14 @@ static void mean_and_sd(const double *x, size_t n, double *mean, double *sd)
 int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins,
                          im_histogram **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     if (bins < 1 || bins > 1000000)
         return im_fail(IM_EINVAL, "histogram bins = %d: expected 1 to 1000000", bins);
+    if (quantity != IM_HIST_HEIGHT && quantity != IM_HIST_SLOPE && quantity != IM_HIST_CURVATURE)
+        return im_fail(IM_EINVAL, "im_surface_histogram: quantity = %d: expected IM_HIST_HEIGHT, IM_HIST_SLOPE "
+                       "or IM_HIST_CURVATURE", (int)quantity);
     size_t n = 0;
     double *samples = collect_samples(surface, quantity, &n);
     im_histogram *hist = calloc(1, sizeof *hist);

@@ -1,6 +1,7 @@
 /* Preparation of measured surfaces: missing points, cropping, plane and curvature removal, and the
  * window for spectral estimates of non-periodic data (surface.h). */
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 
@@ -10,6 +11,8 @@
 
 int im_surface_crop(const im_field *surface, int x0, int y0, int nx, int ny, im_field **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     if (x0 < 0 || y0 < 0 || nx < 2 || ny < 2 || x0 > surface->nx - nx || y0 > surface->ny - ny)
         return im_fail(IM_EINVAL, "crop %d,%d,%d,%d: expected X0,Y0,NX,NY with NX, NY >= 2 inside the %d x %d "
@@ -61,6 +64,8 @@ static long fill_pass(im_field *f, double *next)
 
 int im_surface_fill_missing(im_field *surface, long *filled)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(filled, "filled");
     *filled = 0;
     size_t count = im_field_count(surface);
     for (size_t i = 0; i < count; ++i)
@@ -113,6 +118,10 @@ static void remove_term(im_field *f, int px, int py)
 
 int im_surface_detrend(im_field *surface, enum im_detrend detrend)
 {
+    ARG_VIEW(surface, "surface");
+    if (detrend != IM_DETREND_NONE && detrend != IM_DETREND_PLANE && detrend != IM_DETREND_CURVATURE)
+        return im_fail(IM_EINVAL, "im_surface_detrend: detrend = %d: expected IM_DETREND_NONE, _PLANE or "
+                       "_CURVATURE", (int)detrend);
     int status = im_field_check_finite(surface, "detrend");
     if (status != IM_OK || detrend == IM_DETREND_NONE)
         return status;
@@ -139,6 +148,8 @@ static double window_value(const im_taper *window, int i, int n)
 
 int im_surface_tapered(const im_field *surface, const im_taper *window, im_field **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(out, "out");
     if (window->kind == IM_TAPER_TUKEY && !(window->alpha >= 0.0 && window->alpha <= 1.0))
         return im_fail(IM_EINVAL, "Tukey window alpha = %g: expected 0 <= alpha <= 1", window->alpha);
     int status = im_field_clone(surface, out);

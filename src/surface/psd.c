@@ -1,4 +1,5 @@
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "surface/spectrum.h"
@@ -54,6 +55,8 @@ static void accumulate(im_psd *psd, const surface_spectrum *s, double log_lo, do
 
 int im_surface_psd(const im_field *surface, int bins, im_psd **out)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     if (bins < 1 || bins > 100000)
         return im_fail(IM_EINVAL, "psd bins = %d: expected 1 to 100000", bins);
@@ -89,6 +92,8 @@ int im_surface_psd(const im_field *surface, int bins, im_psd **out)
 
 int im_psd_fit_exponent(const im_psd *psd, double q_min, double q_max, double *exponent)
 {
+    ARG_REQUIRE(psd, "psd");
+    ARG_REQUIRE(exponent, "exponent");
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int used = 0;
     for (int i = 0; i < psd->bins; ++i) {

@@ -1,4 +1,5 @@
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -15,12 +16,14 @@ static double zeta_of(const im_surface_params *p) { return p->lambda_r / p->lamb
 
 double im_surface_expected_height_rms(const im_surface_params *p, double slope_rms)
 {
+    ARG_REQUIRE_OR(p, "params", NAN);
     double x = p->lambda_0 > p->lambda_r ? p->lambda_r / p->lambda_0 : 1.0;
     return im_theory_height_rms_moments(slope_rms, p->hurst, q_r_of(p), zeta_of(p), x);
 }
 
 double im_surface_height_rms_eq15(const im_surface_params *p, double slope_rms)
 {
+    ARG_REQUIRE_OR(p, "params", NAN);
     return im_theory_height_rms_eq15(slope_rms, p->hurst, q_r_of(p) * zeta_of(p), zeta_of(p));
 }
 
@@ -49,6 +52,8 @@ static json_t *stats_json(const im_surface_stats *s)
 int im_surface_sidecar_write(const char *path, const im_field *surface, const im_surface_params *params,
                              const char *source, const im_surface_stats *stats)
 {
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(surface, "surface");
     json_t *root = json_pack("{s:s, s:s, s:i, s:i, s:f, s:s}", "program", "indentmap",
                              "version", IM_VERSION, "nx", surface->nx, "ny", surface->ny,
                              "delta", surface->delta, "unit", surface->unit);

@@ -1,4 +1,5 @@
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "indentmap/status.h"
 #include "surface/spectrum.h"
@@ -86,6 +87,11 @@ static double weight_zero_mean(double qx, double qy) { return (qx == 0.0 && qy =
 int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition,
                          double *slope_rms)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(slope_rms, "slope_rms");
+    if (definition != IM_SLOPE_SPECTRAL && definition != IM_SLOPE_FINITE_DIFFERENCE)
+        return im_fail(IM_EINVAL, "im_surface_slope_rms: definition = %d: expected IM_SLOPE_SPECTRAL or "
+                       "IM_SLOPE_FINITE_DIFFERENCE", (int)definition);
     if (definition == IM_SLOPE_FINITE_DIFFERENCE)
         return slope_rms_finite_difference(surface, slope_rms);
     surface_spectrum spectrum;
@@ -149,6 +155,8 @@ static int check_height_range(const im_field *surface)
 
 int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(stats, "stats");
     int status = im_field_check_finite(surface, "surface");
     if (status == IM_OK)
         status = check_height_range(surface);
@@ -172,6 +180,8 @@ int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
 
 int im_surface_statistics_tapered(const im_field *surface, const im_taper *window, im_surface_stats *stats)
 {
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(stats, "stats");
     int status = im_surface_statistics(surface, stats);
     if (status != IM_OK || window->kind == IM_TAPER_NONE)
         return status;

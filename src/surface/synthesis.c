@@ -1,4 +1,5 @@
 #include "indentmap/surface.h"
+#include "core/args.h"
 
 #include "core/random.h"
 #include "indentmap/status.h"
@@ -21,6 +22,7 @@ im_surface_params im_surface_params_default(void)
 
 int im_surface_params_check(const im_surface_params *p)
 {
+    ARG_REQUIRE(p, "params");
     if (p->nx < 2 || p->ny < 2 || p->nx > IM_FIELD_MAX_SIDE || p->ny > IM_FIELD_MAX_SIDE)
         return im_fail(IM_EINVAL, "grid %d x %d: expected each side in [2, %d]", p->nx, p->ny,
                        IM_FIELD_MAX_SIDE);
@@ -45,6 +47,7 @@ int im_surface_params_check(const im_surface_params *p)
 
 double im_surface_generate_bytes(int nx, int ny)
 {
+    ARG_SIDES_OR(nx, ny, NAN);
     double cells = (double)nx * (double)ny;
     /* the field, its half spectrum, and the inverse transform's work copy */
     return cells * sizeof(double) + 2.0 * (nx / 2 + 1) * (double)ny * 2.0 * sizeof(double);
@@ -157,6 +160,8 @@ static int measure_target(const im_surface_params *p, const surface_spectrum *s,
 
 int im_surface_generate(const im_surface_params *p, im_field **out)
 {
+    ARG_REQUIRE(p, "params");
+    ARG_REQUIRE(out, "out");
     *out = NULL;
     int status = im_surface_params_check(p);
     if (status != IM_OK)

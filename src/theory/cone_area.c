@@ -6,6 +6,7 @@
  * the ratio itself for beta <= 1 and its complement 1 - ratio above, so that neither loses
  * digits to cancellation nor misses the narrow rim of partial contact. */
 #include "indentmap/status.h"
+#include "core/args.h"
 #include "indentmap/theory.h"
 #include "theory/cone.h"
 #include "theory/quadrature.h"
@@ -72,6 +73,7 @@ static int area_ratio_ends(double beta, double *ratio, int *done)
 
 int im_theory_cone_area_ratio_variable(double beta, double *ratio)
 {
+    ARG_REQUIRE(ratio, "ratio");
     int done;
     int status = area_ratio_ends(beta, ratio, &done);
     if (done)
@@ -96,6 +98,7 @@ int im_theory_cone_area_ratio_variable(double beta, double *ratio)
 
 int im_theory_cone_area_ratio_greenwood(double beta, double *ratio)
 {
+    ARG_REQUIRE(ratio, "ratio");
     int done;
     int status = area_ratio_ends(beta, ratio, &done);
     if (done)

@@ -1,5 +1,6 @@
 /* Closed forms of the contact theory: the erf law, the sphere and the cone (eqs. 1-11). */
 #include "indentmap/status.h"
+#include "core/args.h"
 #include "theory/cone.h"
 #include "indentmap/theory.h"
 
@@ -63,6 +64,8 @@ static double erf_law(double p, double p_n)
 
 int im_theory_p_rough(const im_theory_interface *rough, double *p_rough)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(p_rough, "p_rough");
     int status = check_interface(rough);
     if (status != IM_OK)
         return status;
@@ -72,6 +75,8 @@ int im_theory_p_rough(const im_theory_interface *rough, double *p_rough)
 
 int im_theory_normalising_pressure(const im_theory_interface *rough, double *p_n)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(p_n, "p_n");
     int status = check_interface(rough);
     if (status != IM_OK)
         return status;
@@ -84,6 +89,8 @@ int im_theory_normalising_pressure(const im_theory_interface *rough, double *p_n
 
 int im_theory_flat_area_ratio(const im_theory_interface *rough, double p_mean, double *ratio)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(ratio, "ratio");
     double p_n;
     int status = im_theory_normalising_pressure(rough, &p_n);
     if (status == IM_OK)
@@ -95,6 +102,7 @@ int im_theory_flat_area_ratio(const im_theory_interface *rough, double p_mean, d
 
 int im_theory_hertz_area(double load, double radius, double e_star, double *area)
 {
+    ARG_REQUIRE(area, "area");
     int status = check_nonnegative("N", load);
     if (status == IM_OK)
         status = check_positive("R", radius);
@@ -107,6 +115,8 @@ int im_theory_hertz_area(double load, double radius, double e_star, double *area
 
 int im_theory_sphere_area(const im_theory_interface *rough, double load, double radius, double *area)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(area, "area");
     double p_n, hertz;
     int status = im_theory_normalising_pressure(rough, &p_n);
     if (status == IM_OK)
@@ -119,6 +129,8 @@ int im_theory_sphere_area(const im_theory_interface *rough, double load, double 
 
 int im_theory_sphere_crossover_load(const im_theory_interface *rough, double radius, double *load)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(load, "load");
     double p_rough;
     int status = im_theory_p_rough(rough, &p_rough);
     if (status == IM_OK)
@@ -133,6 +145,7 @@ int im_theory_sphere_crossover_load(const im_theory_interface *rough, double rad
 
 int im_theory_cone_mean_pressure(double alpha_deg, double e_star, double *p_mean)
 {
+    ARG_REQUIRE(p_mean, "p_mean");
     int status = check_alpha(alpha_deg);
     if (status == IM_OK)
         status = check_positive("E*", e_star);
@@ -143,6 +156,7 @@ int im_theory_cone_mean_pressure(double alpha_deg, double e_star, double *p_mean
 
 int im_theory_cone_area(double load, double alpha_deg, double e_star, double *area)
 {
+    ARG_REQUIRE(area, "area");
     double p_mean;
     int status = im_theory_cone_mean_pressure(alpha_deg, e_star, &p_mean);
     if (status == IM_OK)
@@ -154,6 +168,8 @@ int im_theory_cone_area(double load, double alpha_deg, double e_star, double *ar
 
 int im_theory_cone_rho(const im_theory_interface *rough, double alpha_deg, double *rho_c)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(rho_c, "rho_c");
     double p_rough, p_mean;
     int status = im_theory_p_rough(rough, &p_rough);
     if (status == IM_OK)
@@ -165,6 +181,7 @@ int im_theory_cone_rho(const im_theory_interface *rough, double alpha_deg, doubl
 
 int im_theory_erf_scale(double rho_c, im_theory_normalisation normalisation, double k, double *beta)
 {
+    ARG_REQUIRE(beta, "beta");
     if (!(rho_c >= 0.0))
         return im_fail(IM_EINVAL, "rho_c = %g: expected rho_c >= 0", rho_c);
     if (!(k > 0.0 && isfinite(k)))
@@ -182,6 +199,8 @@ int im_theory_erf_scale(double rho_c, im_theory_normalisation normalisation, dou
 
 int im_theory_cone_area_small_rho(const im_theory_interface *rough, double load, double *area)
 {
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(area, "area");
     double p_n;
     int status = im_theory_normalising_pressure(rough, &p_n);
     if (status == IM_OK && !(p_n > 0.0))
@@ -202,6 +221,7 @@ int theory_check_erf_scale(double beta)
 
 int im_theory_cone_area_ratio_constant(double beta, double *ratio)
 {
+    ARG_REQUIRE(ratio, "ratio");
     int status = theory_check_erf_scale(beta);
     if (status == IM_OK)
         *ratio = erf(beta);
@@ -221,6 +241,7 @@ double theory_acosh_inverse_from_rim(double t) { return acosh_inverse(1.0 - t, t
 
 int im_theory_cone_pressure(double r_over_a, double *p_over_mean)
 {
+    ARG_REQUIRE(p_over_mean, "p_over_mean");
     if (!(r_over_a >= 0.0 && r_over_a <= 1.0))
         return im_fail(IM_EINVAL, "r/a = %g: expected 0 <= r/a <= 1", r_over_a);
     *p_over_mean = theory_acosh_inverse(r_over_a);
@@ -229,6 +250,7 @@ int im_theory_cone_pressure(double r_over_a, double *p_over_mean)
 
 int im_theory_cone_contact_density(double beta, double r_over_a, double *gamma)
 {
+    ARG_REQUIRE(gamma, "gamma");
     double p_over_mean = 0.0;
     int status = theory_check_erf_scale(beta);
     if (status == IM_OK)

@@ -1,6 +1,7 @@
 /* Eq. (2)'s k measured: least squares of the erf law A/A0 = erf(sqrt(pi)/2 k x) to nominally flat
  * contact, x = p_m / (h'rms E*). */
 #include "indentmap/status.h"
+#include "core/args.h"
 #include "indentmap/theory.h"
 
 #include <math.h>
@@ -52,6 +53,9 @@ static void normal_equation(const double *x, const double *area, int count, doub
 
 int im_theory_fit_k(const double *pressure_ratio, const double *area_fraction, int count, im_theory_k_fit *out)
 {
+    ARG_REQUIRE(pressure_ratio, "pressure_ratio");
+    ARG_REQUIRE(area_fraction, "area_fraction");
+    ARG_REQUIRE(out, "out");
     int status = check_points(pressure_ratio, area_fraction, count);
     if (status != IM_OK)
         return status;

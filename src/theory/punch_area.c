@@ -3,6 +3,7 @@
  * The sphere and the flat punch are integrated in u = sqrt(1 - s^2) (see theory.h), where the
  * sphere's pressure is linear and the flat punch's edge singularity becomes a bounded erf. */
 #include "indentmap/status.h"
+#include "core/args.h"
 #include "indentmap/theory.h"
 #include "theory/cone.h"
 #include "theory/quadrature.h"
@@ -29,6 +30,7 @@ static int check_kind(enum im_punch_kind kind)
 
 int im_theory_punch_pressure(enum im_punch_kind kind, double r_over_a, double *p_over_mean)
 {
+    ARG_REQUIRE(p_over_mean, "p_over_mean");
     int status = check_kind(kind);
     if (status != IM_OK)
         return status;
@@ -46,6 +48,7 @@ int im_theory_punch_pressure(enum im_punch_kind kind, double r_over_a, double *p
 
 int im_theory_punch_contact_density(enum im_punch_kind kind, double beta, double r_over_a, double *gamma)
 {
+    ARG_REQUIRE(gamma, "gamma");
     double p_over_mean = 0.0;
     int status = theory_check_erf_scale(beta);
     if (status == IM_OK)
@@ -100,6 +103,7 @@ static void complement_interval(enum im_punch_kind kind, double beta, double *lo
 
 int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *ratio)
 {
+    ARG_REQUIRE(ratio, "ratio");
     int status = check_kind(kind);
     if (status == IM_OK)
         status = theory_check_erf_scale(beta);
@@ -147,6 +151,7 @@ int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *rat
 int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star,
                                   double *p_mean)
 {
+    ARG_REQUIRE(p_mean, "p_mean");
     int status = check_kind(kind);
     if (status != IM_OK)
         return status;

@@ -1,6 +1,7 @@
 /* The theory beside a simulated history: per step, the smooth punch's closed forms (indenter.h) and
  * the rough-contact area ratios at the smooth mean pressure. */
 #include "indentmap/status.h"
+#include "core/args.h"
 #include "indentmap/theory.h"
 
 #include <math.h>
@@ -8,6 +9,9 @@
 int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach,
                            double load, im_theory_step *out)
 {
+    ARG_REQUIRE(punch, "punch");
+    ARG_REQUIRE(rough, "rough");
+    ARG_REQUIRE(out, "out");
     double p_rough, beta;
     int status = im_indenter_check(punch);
     if (status == IM_OK)

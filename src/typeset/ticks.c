@@ -1,5 +1,6 @@
 /* Tick values of colour bars and plot axes. */
 #include "typeset/ticks.h"
+#include "core/args.h"
 
 #include "indentmap/figure.h"
 
@@ -55,6 +56,8 @@ int figure_ticks_between(double lo, double hi, int logarithmic, double target, d
 
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity)
 {
+    ARG_REQUIRE_OR(colormap, "colormap", 0);
+    ARG_REQUIRE_OR(ticks, "ticks", 0);
     const double lo = colormap->lo, hi = colormap->hi;
     if (!colormap->logarithmic || capacity < 1 || !(hi > lo) || !(lo > 0.0))
         return figure_ticks_between(lo, hi, colormap->logarithmic, 5.0, ticks, capacity);

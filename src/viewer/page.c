@@ -1,5 +1,6 @@
 /* DIR/index.html: a self-contained page over a run's figures, frames, tables and record. */
 #include "indentmap/viewer.h"
+#include "core/args.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -390,6 +391,8 @@ static void write_record(FILE *out, const char *dir)
 
 int im_viewer_write(const char *dir, const char *title)
 {
+    ARG_REQUIRE(dir, "dir");
+    ARG_REQUIRE(title, "title");
     char *page = NULL;
     size_t size = 0;
     FILE *out = open_memstream(&page, &size);
