@@ -20,6 +20,7 @@ check "[solver] device = tpu refused" expect_exit 2 "device" "$cli" run --quiet 
 indent cpu --device cpu >"$dir/cpu.txt" 2>&1
 check "cpu: device cpu said" grep -q ", device cpu$" "$dir/cpu.txt"
 check "cpu: run.json records device cpu" grep -q '"device": "cpu"' "$dir/cpu/run.json"
+check "cpu: run.json names the engine's device" grep -q '"device_name": "cpu"' "$dir/cpu/run.json"
 indent auto --device auto >"$dir/auto.txt" 2>&1
 check "auto runs" test -s "$dir/auto/history.csv"
 
@@ -40,6 +41,7 @@ if [ "${IM_HAVE_GPU:-0}" = 1 ]; then
   check "gpu: runs" test -s "$dir/gpu/history.csv"
   check "gpu: the device named" bash -c "grep ', device ' '$dir/gpu.txt' | grep -vq ', device cpu$'"
   check "gpu: run.json records device gpu" grep -q '"device": "gpu"' "$dir/gpu/run.json"
+  check "gpu: run.json names the Vulkan device" bash -c "grep '\"device_name\"' '$dir/gpu/run.json' | grep -vq '\"cpu\"'"
   check "gpu: the CPU's history to 1e-10" same_history "$dir/cpu/history.csv" "$dir/gpu/history.csv"
   printf '[scene]\nname = d\noutput = %s/sg\n[surfaces]\nn = 64\nslopes = 0.08\nseeds = 1\n[loading]\nsteps = 0.5:2:2\n[solver]\ndevice = gpu\ntol = 1e-10\n[output]\nplots = fig5\n' "$dir" >"$dir/g.ini"
   sed 's/device = gpu/device = cpu/; s/sg$/sc/' "$dir/g.ini" >"$dir/c.ini"

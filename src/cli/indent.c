@@ -499,6 +499,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_t *solver_block = json_object_get(root, "solver");
     json_object_set_new(solver_block, "fftw_measure", json_boolean(im_solver_plan_measured(plan)));
     json_object_set_new(solver_block, "plan_seconds", json_real(im_solver_plan_seconds(plan)));
+    json_object_set_new(root, "device_name", json_string(im_solver_plan_device(plan))); /* beside threads */
     json_t *generator = surface_sidecar_generator(o->surface_path);
     if (generator) {
         json_object_set(json_object_get(root, "surface"), "generator", generator);
