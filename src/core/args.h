@@ -7,7 +7,6 @@
 #define INDENTMAP_CORE_ARGS_H
 
 #include "indentmap/field.h"
-#include "core/args.h"
 #include "indentmap/status.h"
 
 #include <math.h>

@@ -234,7 +234,7 @@ static void release_backend(im_render_context *c)
 int im_render_context_missing(int status, const char *message)
 {
     ARG_REQUIRE_OR(message, "message", 0);
-    return status == IM_EUNSUPPORTED && message &&
+    return status == IM_EUNSUPPORTED &&
            strncmp(message, IM_RENDER_NO_CONTEXT, strlen(IM_RENDER_NO_CONTEXT)) == 0;
 }
 

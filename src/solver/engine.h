@@ -103,6 +103,14 @@ static inline int solver_moving(double p, double g, double cap)
     return solver_elastic(p, cap) || (p == cap && g > 0);
 }
 static inline double solver_project(double p, double cap) { return p < 0 ? 0 : (p > cap ? cap : p); }
+/* Whether any of the n pressures is positive (a warm start, or a contact left). */
+static inline int solver_any_positive(const double *p, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (p[i] > 0)
+            return 1;
+    return 0;
+}
 /* How far a patch at a bound violates its condition: -g at p = 0, g at p = cap. */
 static inline double solver_bound_violation(double p, double g) { return p > 0 ? g : -g; }
 

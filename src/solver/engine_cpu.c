@@ -88,14 +88,7 @@ static void cpu_clip(pk_run *r, double cap)
         r->p[i] = solver_project(r->p[i], cap);
 }
 
-static int cpu_any_positive(pk_run *r)
-{
-    const size_t n = patches(r);
-    for (size_t i = 0; i < n; ++i)
-        if (r->p[i] > 0)
-            return 1;
-    return 0;
-}
+static int cpu_any_positive(pk_run *r) { return solver_any_positive(r->p, patches(r)); }
 
 static void cpu_load_split(pk_run *r, double cap, double *elastic, double *capped)
 {

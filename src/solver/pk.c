@@ -168,14 +168,6 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
     return IM_OK;
 }
 
-static int any_positive(const double *p, size_t n)
-{
-    for (size_t i = 0; i < n; ++i)
-        if (p[i] > 0)
-            return 1;
-    return 0;
-}
-
 static void summarise(pk_run *r, const gap_stats *s, im_solve_result *out)
 {
     const double d2 = r->plan->delta * r->plan->delta;
@@ -310,7 +302,7 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);
     } else {
-        if (!any_positive(pressure, n) && plan->coarse)
+        if (!solver_any_positive(pressure, n) && plan->coarse)
             res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
         status = solve_on_engine(&r, &res);
     }
