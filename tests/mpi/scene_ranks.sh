@@ -153,16 +153,24 @@ grep -q "give this scene another \[scene\] output" "$work/locked.log" || fail "l
 [ ! -e "$work/out/table" ] || fail "locked folder: a rank wrote members into it"
 rm -rf "$work/out"
 echo "a locked folder is refused"
-# Interruption: mpirun passes SIGINT on to the ranks (as SIGTERM); every rank stops at its next
-# check, keeps what it finished, leaves no temporary file; --resume on 2 ranks then completes it.
+# Interruption. On SIGINT, mpirun (Open MPI 4.1) sends the ranks SIGCONT at once, SIGTERM
+# odls_base_sigkill_timeout seconds later (1 by default) and SIGKILL as long again after that:
+# timed against a member stage of about a second, that races. So the test freezes both ranks once
+# the first member is on disk (every rank is then past its signal handlers), sends them the SIGTERM
+# mpirun would send, and thaws them: the signal surely lands in the member stage. mpirun reports the
+# ranks' exit as it would after a Ctrl-C; it waits two of its timeouts before it ends after a rank's
+# non-zero exit, set to 5 s so that a slow rank still reaches its check on a loaded machine.
 sed -e 's/^n = 64/n = 192/' -e 's/^seeds = 1:3/seeds = 1:12/' -e 's/^steps = .*/steps = 100:400:12/' \
   "$work/ensemble.ini" > "$work/longer.ini"
-"$mpiexec" -n 2 --oversubscribe "$cli" run "$work/longer.ini" > /dev/null 2> "$work/interrupted.log" &
+OMPI_MCA_odls_base_sigkill_timeout=5 "$mpiexec" -n 2 --oversubscribe "$cli" run "$work/longer.ini" \
+  > /dev/null 2> "$work/interrupted.log" &
 launcher=$!
-# signalled once the first member is on disk (every rank is then past its signal handlers), long
-# before the last: the run is made long enough for that on an idle machine
 for _ in $(seq 1200); do ls "$work/out/table"/member_* >/dev/null 2>&1 && break; sleep 0.05; done
-kill -INT $launcher
+ranks=$(pgrep -P $launcher)
+[ "$(echo $ranks | wc -w)" = 2 ] || fail "interrupted: the ranks under mpirun: '$ranks'"
+kill -STOP $ranks
+kill -TERM $ranks
+kill -CONT $ranks
 wait $launcher
 status=$?
 [ $status -ne 0 ] || fail "interrupted: exit 0: $(cat "$work/interrupted.log")"
