@@ -461,6 +461,8 @@ SAFE_RESULT(im_indentation_window, "run", im_indentation_window(NULL).nx == 0)
 SAFE_RESULT(im_indentation_plan, "run", im_indentation_plan(NULL) == NULL)
 REPORT(im_indentation_fields, "run", im_indentation_fields(NULL, &field_out, NULL, NULL))
 REPORT(im_indentation_fields_full, "run", im_indentation_fields_full(NULL, &field_out, NULL, NULL))
+REPORT(im_indentation_plastic, "run", im_indentation_plastic(NULL, &field_out))
+REPORT(im_indentation_plastic, "plastic", im_indentation_plastic(run, NULL))
 
 /* ---- surface.h ---- */
 REPORT(im_surface_params_check, "params", im_surface_params_check(NULL))

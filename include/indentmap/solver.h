@@ -85,7 +85,15 @@
  * penetration term counts g > 0 at p = H_p as well. Under load control the elastic pressures are
  * rescaled with the capped ones fixed, and u is recomputed by FFT (one convolution more per
  * iteration while a patch is capped). The cone's apex singularity and a flat punch's edge are capped;
- * in the fully plastic limit A = N / H_p. */
+ * in the fully plastic limit A = N / H_p.
+ * Memory (an indentation, im_indentation_step): after each step the overlap -g of every capped patch
+ * is added to its plastic depth d and to its undeformed gap (g0 + d: the surface pushed down by d),
+ * as the BEM elastic-perfectly-plastic models of Almqvist et al. (2007) and Sahlin et al. (2010) do.
+ * The solved state stays a solution (g = 0 there now) and the next step sees the deformed surface:
+ * unloading is elastic, reloading retraces the unloading curve until a patch reaches H_p again, and
+ * the energy H_p delta^2 sum(increments of d) is dissipated (im_step_result). The gaps that
+ * im_indentation_fields reports are those of the deformed surface. The approach w stays counted
+ * from first touch of the undeformed surface. A single im_solver_solve has no memory. */
 
 /* ---- Engines ----
  * The iteration is written once (src/solver/pk.c) over an engine of grid passes (engine.h): the
@@ -309,6 +317,11 @@ typedef struct im_step_result {
     int iterations, convolutions;
     double residual, seconds;
     int coarse_iterations;  /* as im_solve_result's */
+    /* Plastic memory (with a hardness; 0 without): */
+    long yielding_patches;  /* patches at the cap in this step (they flowed, or would under more load) */
+    double plastic_depth;   /* the largest plastic depth so far (units of delta) */
+    double plastic_work;    /* energy dissipated so far: H_p delta^2 times the summed depth increments
+                               (units of E*'s stress times delta^3) */
 } im_step_result;
 
 typedef struct im_indentation im_indentation;
@@ -329,6 +342,8 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
 void im_indentation_free(im_indentation *run);
 
 /* Solves the next step (approach or load, per the run's control), warm-started from the last one.
+ * Targets may go up and down. With a hardness the run remembers plastic flow ("Hardness" above):
+ * each step starts from the surface the steps before deformed.
  * IM_EINVAL for a target outside [0, largest_target]; IM_ENOCONV (out holds the residual; the run
  * keeps the last iterate); IM_EEDGE when a contact patch lies on the outer row or column of the
  * surface, where the finite surface, not the half-space, would decide the answer, and, under load
@@ -336,6 +351,11 @@ void im_indentation_free(im_indentation *run);
  * the punch axis past the surface's edge (a load this surface cannot carry). Loads are summed with
  * compensation (a few ulp over any grid, whatever the threads); contact counts are integers. */
 int im_indentation_step(im_indentation *run, double target, im_step_result *out);
+
+/* The plastic depth accumulated so far on the FULL surface grid (a new field, caller frees; units of
+ * delta, >= 0, positive where the surface was flattened down; 0 outside the window and without a
+ * hardness): the residual impression once the punch is withdrawn. */
+int im_indentation_plastic(const im_indentation *run, im_field **plastic);
 
 im_window im_indentation_window(const im_indentation *run);
 const im_solver_plan *im_indentation_plan(const im_indentation *run);

@@ -1,4 +1,5 @@
-/* Indentation histories: undeformed gap, solve window, steps, full-grid fields (see solver.h). */
+/* Indentation histories: undeformed gap, solve window, steps with plastic memory, full-grid fields
+ * (see solver.h). */
 #include "indentmap/solver.h"
 #include "core/args.h"
 
@@ -19,7 +20,9 @@ struct im_indentation {
     double delta;
     double *gap0;            /* full grid, min 0 */
     im_window window;
-    double *window_gap0, *pressure, *displacement; /* window grid */
+    double *window_gap0, *pressure, *displacement; /* window grid; window_gap0 includes the plastic depth */
+    double *plastic;         /* window grid: plastic depth accumulated over the steps (>= 0, never decreases) */
+    double plastic_work;     /* H_p delta^2 times the sum of the depth increments: the energy dissipated */
     im_solver_plan *plan;
     im_solver_plan *full_plan; /* made at the first im_indentation_fields_full: the whole grid's u */
     double approach;         /* last step's */
@@ -173,8 +176,9 @@ static int allocate_window(im_indentation *run)
     run->window_gap0 = malloc(sizeof(double) * n);
     run->pressure = calloc(n, sizeof(double));
     run->displacement = calloc(n, sizeof(double));
-    if (!run->window_gap0 || !run->pressure || !run->displacement)
-        return im_fail(IM_ENOMEM, "indentation window %d x %d: allocation of 3 x %.1f MiB failed (out of memory, or "
+    run->plastic = calloc(n, sizeof(double));
+    if (!run->window_gap0 || !run->pressure || !run->displacement || !run->plastic)
+        return im_fail(IM_ENOMEM, "indentation window %d x %d: allocation of 4 x %.1f MiB failed (out of memory, or "
                        "of the address space ulimit -v leaves)", w.nx, w.ny, sizeof(double) * (double)n / 1048576.0);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
@@ -230,6 +234,7 @@ void im_indentation_free(im_indentation *run)
     free(run->window_gap0);
     free(run->pressure);
     free(run->displacement);
+    free(run->plastic);
     free(run);
 }
 
@@ -298,6 +303,47 @@ static int check_reachable(const im_indentation *run, double load)
                    load, run->nx, run->ny, radius, room);
 }
 
+/* Plastic memory. A solved step leaves every patch at the cap with g = g0 - w + u <= 0: the overlap
+ * -g is the surface's plastic flattening in this step. It is added to the patch's plastic depth and
+ * to its undeformed gap, so that the state solved stays the solution (g = 0 there now) and every
+ * later step sees the deformed surface: unloading is elastic from it, and reloading retraces the
+ * unloading curve until a patch reaches the cap again. Returns the patches that yielded. */
+static long accumulate_plastic_flow(im_indentation *run, double approach)
+{
+    const double cap = run->options.hardness;
+    const im_window w = run->window;
+    long yielding = 0;
+    double work = 0;
+#pragma omp parallel for schedule(static) reduction(+ : yielding, work)
+    for (int iy = 0; iy < w.ny; ++iy)
+        for (int ix = 0; ix < w.nx; ++ix) {
+            size_t wi = (size_t)iy * w.nx + ix;
+            if (!(run->pressure[wi] >= cap))
+                continue;
+            ++yielding;
+            double flow = -(run->window_gap0[wi] - approach + run->displacement[wi]);
+            if (!(flow > 0))
+                continue;
+            run->plastic[wi] += flow;
+            run->window_gap0[wi] += flow;
+            run->gap0[(size_t)(iy + w.y0) * run->nx + ix + w.x0] += flow;
+            work += flow;
+        }
+    run->plastic_work += cap * run->delta * run->delta * work;
+    return yielding;
+}
+
+/* The largest plastic depth so far. */
+static double deepest_plastic(const im_indentation *run)
+{
+    double deepest = 0;
+    const size_t n = (size_t)run->window.nx * run->window.ny;
+#pragma omp parallel for schedule(static) reduction(max : deepest)
+    for (size_t i = 0; i < n; ++i)
+        deepest = fmax(deepest, run->plastic[i]);
+    return deepest;
+}
+
 static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
 {
     const double d2 = run->delta * run->delta;
@@ -308,7 +354,8 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
                             .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
                             .iterations = s->iterations, .convolutions = s->convolutions,
                             .residual = s->residual, .seconds = s->seconds,
-                            .coarse_iterations = s->coarse_iterations};
+                            .coarse_iterations = s->coarse_iterations, .yielding_patches = 0,
+                            .plastic_depth = deepest_plastic(run), .plastic_work = run->plastic_work};
 }
 
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
@@ -326,13 +373,32 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
                                  run->displacement, &s);
     run->approach = s.approach;
+    long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
     fill_step(run, &s, out);
+    out->yielding_patches = yielding;
     if (status == IM_OK)
         status = check_edge(run);
     if (status == IM_OK && s.approach > run->approach_bound) /* only if the bound were wrong: never hide it */
         status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
                          s.approach, run->approach_bound);
     return status;
+}
+
+int im_indentation_plastic(const im_indentation *run, im_field **plastic)
+{
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(plastic, "plastic");
+    *plastic = NULL;
+    im_field *field = NULL;
+    int status = im_field_create(run->nx, run->ny, run->delta, &field);
+    if (status != IM_OK)
+        return status;
+    const im_window w = run->window;
+    for (int iy = 0; iy < w.ny; ++iy)
+        memcpy(field->data + (size_t)(iy + w.y0) * run->nx + w.x0, run->plastic + (size_t)iy * w.nx,
+               sizeof(double) * w.nx);
+    *plastic = field;
+    return IM_OK;
 }
 
 im_window im_indentation_window(const im_indentation *run)
