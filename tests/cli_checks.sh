@@ -104,7 +104,7 @@ check "surface --n 2 names --n" expect_exit 2 "--n 2: the box's side is the defa
   "$cli" surface --n 2 --out "$dir/n2.npy"
 check "--lambda-0 below lambda_r" expect_exit 2 "--lambda-0 10: expected >= lambda_r = 64" \
   "$cli" surface --n 64 --lambda-0 10 --out "$dir/l0.npy"
-check "--approach 1:2" expect_exit 2 "--approach '1:2': expected a range first:last:count (three numbers" \
+check "--approach 1:2" expect_exit 2 "--approach '1:2': '1:2' is not a range first:last:count (three numbers" \
   "$cli" indent "$dir/s.npy" --approach 1:2 --out "$dir/o_a"
 check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.npy" --approach 1,,2 --out "$dir/o_b"
 check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \

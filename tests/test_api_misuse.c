@@ -121,6 +121,7 @@ static const double r3[] = {0.0, 1.0, 2.0}, z3[] = {0.0, 1.0, 2.0};
 static im_field *field_out;
 static im_profile *profile_out;
 static im_psd *psd_out;
+static int count_out;
 static im_histogram *histogram_out;
 static im_solver_plan *plan_out;
 static im_indentation *run_out;
@@ -338,6 +339,13 @@ REPORT(im_png_read, "channels", im_png_read(path_text, &pixels_out, &i1, &i2, NU
 REPORT(im_measure_stiffness, "approach", im_measure_stiffness(NULL, values, 3, out_values))
 REPORT(im_measure_stiffness, "load", im_measure_stiffness(values, NULL, 3, out_values))
 REPORT(im_measure_stiffness, "stiffness", im_measure_stiffness(values, values, 3, NULL))
+REPORT(im_measure_unloading, "punch", im_measure_unloading(NULL, values, values, NULL, 3, NULL, 0, &count_out))
+REPORT(im_measure_unloading, "approach", im_measure_unloading(&cone, NULL, values, NULL, 3, NULL, 0, &count_out))
+REPORT(im_measure_unloading, "load", im_measure_unloading(&cone, values, NULL, NULL, 3, NULL, 0, &count_out))
+REPORT(im_measure_unloading, "found", im_measure_unloading(&cone, values, values, NULL, 3, NULL, 0, NULL))
+REPORT(im_measure_unloading, "branches", im_measure_unloading(&cone, values, values, NULL, 3, NULL, 2, &count_out))
+SAFE_RESULT(im_measure_epsilon, "punch", isnan(im_measure_epsilon(NULL)))
+SAFE_RESULT(im_measure_projected_area, "punch", isnan(im_measure_projected_area(NULL, 1.0)))
 REPORT_VIEW(im_measure_contact_patches, "force", im_measure_contact_patches(BAD, &patches, NULL))
 REPORT(im_measure_contact_patches, "out", im_measure_contact_patches(&good, NULL, NULL))
 REPORT_VIEW(im_measure_gap_histogram, "gap", im_measure_gap_histogram(BAD, 1.0, 4, counts))

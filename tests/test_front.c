@@ -49,6 +49,16 @@ static void step_lists_one_limit(void **state)
     assert_int_equal(steps_parse("steps", " 0.5 , 1,2e1", values, &count, error, sizeof error), 0);
     assert_int_equal(count, 3);
     assert_close(values[2], 20, 0);
+    /* values and ranges mixed: a loading-unloading history */
+    assert_int_equal(steps_parse("--approach", "2:8:4, 7:2:6,3", values, &count, error, sizeof error), 0);
+    assert_int_equal(count, 11);
+    const double cycle[] = {2, 4, 6, 8, 7, 6, 5, 4, 3, 2, 3};
+    for (int i = 0; i < 11; ++i)
+        assert_close(values[i], cycle[i], 1e-15);
+    assert_int_equal(steps_parse("steps", "1:2:4000,3:4:97", values, &count, error, sizeof error), -1);
+    assert_non_null(strstr(error, "expected at most 4096 steps"));
+    assert_int_equal(steps_parse("steps", "1:2:3,4:5", values, &count, error, sizeof error), -1);
+    assert_non_null(strstr(error, "'4:5' is not a range first:last:count"));
     assert_int_equal(steps_parse("steps", "1:2:4097", values, &count, error, sizeof error), -1);
     assert_non_null(strstr(error, "1 <= count <= 4096"));
     /* the scene holds its steps inline: its limit is the parser's */

@@ -16,6 +16,7 @@
 #define INDENTMAP_MEASURE_H
 
 #include "indentmap/field.h"
+#include "indentmap/indenter.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -29,6 +30,45 @@ int im_measure_stiffness(const double *approach, const double *load, int count, 
 
 /* Sneddon / Oliver-Pharr: E*_eff = (sqrt(pi) / 2) S / sqrt(A) for S >= 0 and A > 0 (NaN otherwise). */
 double im_measure_sneddon_modulus(double stiffness, double area);
+
+/* ---- The indentation analysis of unloading branches (Oliver & Pharr, J. Mater. Res. 7, 1564 (1992)) ----
+ * A history whose approach rises to a top and then falls holds an unloading branch: from the top step
+ * while the approach strictly decreases. For each, with h the approach (counted from first touch) and
+ * P the load:
+ *   S     = dP/dh at the top: the slope there of the parabola through the top and the next two
+ *           unloading steps (im_measure_stiffness's one-sided formula; NaN with fewer than 3 points);
+ *   h_c   = h_max - epsilon P_max / S, epsilon the punch's geometry factor: 0.72 cone, 0.75 sphere and
+ *           axisymmetric profiles (Oliver-Pharr's paraboloid), 1 flat punch;
+ *   A_p   = pi r^2 with z(r) = h_c on the punch's profile (the projected area at the contact depth;
+ *           the flat punch's pi a^2); NaN for a 2-D profile;
+ *   H_IT  = P_max / A_p;   E_r = (sqrt(pi) / 2) S / sqrt(A_p) (Sneddon, beta = 1);
+ *   h_r   = the residual approach: where the withdrawn punch touches the impression it left (the
+ *           state's min of g0 + plastic depth, im_step_result.residual_approach, at the branch's last
+ *           step), when that step's load is 0; NaN otherwise (the curve alone cannot give it: P = 0
+ *           below h_r, and extrapolating the last unloading steps is no measurement);
+ *   W_in  = the trapezoid integral of P dh over the loading steps before the top (from h = 0, P = 0
+ *           for the first branch, else from the step the approach last turned up at);
+ *   W_out = the same over the unloading branch (the elastic work given back); with a full unload
+ *           W_in - W_out is the loop's area, the dissipated energy. */
+typedef struct im_unloading_branch {
+    int top_step, last_step;   /* 1-based steps of the history: the top, the branch's last */
+    int loading_from;          /* 1-based step the loading before the top started at (0: the origin) */
+    double approach_max, load_max, stiffness, epsilon, contact_depth, area_projected;
+    double hardness, modulus, residual_approach, work_in, work_out;
+} im_unloading_branch;
+
+/* The unloading branches of a history of count steps (approach, load and, may be NULL, the residual
+ * approach of each step's state), for punch: at most capacity of them into branches (*found says how
+ * many there are). IM_EINVAL naming the argument for NULL arrays, count < 1, non-finite approaches or
+ * loads, an invalid punch. */
+int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load,
+                         const double *residual, int count, im_unloading_branch *branches, int capacity, int *found);
+
+/* Oliver-Pharr's epsilon for the punch (see above); NaN for a 2-D profile. */
+double im_measure_epsilon(const im_indenter *punch);
+/* The punch's cross-section area pi r^2 at height h_c above its lowest point; NaN for a 2-D profile
+ * or h_c < 0. */
+double im_measure_projected_area(const im_indenter *punch, double contact_depth);
 
 /* Connected contact patches (force > 0; 4-neighbour connectivity, not periodic). */
 typedef struct im_contact_patches {

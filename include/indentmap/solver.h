@@ -322,6 +322,8 @@ typedef struct im_step_result {
     double plastic_depth;   /* the largest plastic depth so far (units of delta) */
     double plastic_work;    /* energy dissipated so far: H_p delta^2 times the summed depth increments
                                (units of E*'s stress times delta^3) */
+    double residual_approach; /* min of g0 + plastic depth over the window: the approach at which the
+                               withdrawn punch would touch the impression (0 without plastic flow) */
 } im_step_result;
 
 typedef struct im_indentation im_indentation;

@@ -25,63 +25,79 @@ static int parse_value(const char *start, size_t length, double *value)
     return end == item + length && errno != ERANGE && isfinite(*value) && *value >= 0;
 }
 
-/* "first:last:count": 1 when text is one (parsed or refused), 0 when it holds no ':'. */
-static int parse_range(const char *name, const char *text, double *values, int *count, char *error, size_t size,
-                       int *failed)
+/* "first:last:count" spanning [start, start + length) into values (room for `room` values); 0 with a
+ * message naming the item when it is not one or holds more values than fit. */
+static int parse_range(const char *name, const char *text, const char *start, size_t length, double *values,
+                       int room, int *count, char *error, size_t size)
 {
-    const char *colon = strchr(text, ':'), *second = colon ? strchr(colon + 1, ':') : NULL;
-    if (!colon)
-        return 0;
+    const char *colon = memchr(start, ':', length), *end = start + length;
+    const char *second = colon ? memchr(colon + 1, ':', (size_t)(end - colon - 1)) : NULL;
     double first, last, n;
-    *failed = 1;
-    if (!second || strchr(second + 1, ':') || !parse_value(text, (size_t)(colon - text), &first) ||
+    if (!second || memchr(second + 1, ':', (size_t)(end - second - 1)) ||
+        !parse_value(start, (size_t)(colon - start), &first) ||
         !parse_value(colon + 1, (size_t)(second - colon - 1), &last) ||
-        !parse_value(second + 1, strlen(second + 1), &n)) {
-        snprintf(error, size, "%s '%s': expected a range first:last:count (three numbers >= 0) or a list "
-                 "v1, v2, ...", name, text);
-        return 1;
+        !parse_value(second + 1, (size_t)(end - second - 1), &n)) {
+        snprintf(error, size, "%s '%s': '%.*s' is not a range first:last:count (three numbers >= 0): expected "
+                 "values and ranges separated by commas", name, text, (int)length, start);
+        return 0;
     }
     if (n < 1 || n > STEPS_MAX || n != floor(n)) {
-        snprintf(error, size, "%s '%s': expected first:last:count with 1 <= count <= %d (an integer)", name, text,
-                 STEPS_MAX);
-        return 1;
+        snprintf(error, size, "%s '%s': '%.*s': expected first:last:count with 1 <= count <= %d (an integer)",
+                 name, text, (int)length, start, STEPS_MAX);
+        return 0;
+    }
+    if (n > room) {
+        snprintf(error, size, "%s '%.64s%s': more than %d values: expected at most %d steps", name, text,
+                 strlen(text) > 64 ? "..." : "", STEPS_MAX, STEPS_MAX);
+        return 0;
     }
     *count = (int)n;
     for (int i = 0; i < *count; ++i)
         values[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
-    *failed = 0;
+    return 1;
+}
+
+/* One comma-separated item: a value or a range. Adds its values after values[0..*count). */
+static int parse_item(const char *name, const char *text, const char *item, size_t length, double *values,
+                      int *count, char *error, size_t size)
+{
+    if (memchr(item, ':', length)) {
+        int added = 0;
+        if (!parse_range(name, text, item, length, values + *count, STEPS_MAX - *count, &added, error, size))
+            return 0;
+        *count += added;
+        return 1;
+    }
+    if (*count >= STEPS_MAX) {
+        snprintf(error, size, "%s '%.64s%s': more than %d values: expected at most %d steps", name, text,
+                 strlen(text) > 64 ? "..." : "", STEPS_MAX, STEPS_MAX);
+        return 0;
+    }
+    if (!parse_value(item, length, &values[*count])) {
+        snprintf(error, size, "%s '%s': '%.*s' is not a number >= 0: expected values and ranges separated by "
+                 "commas", name, text, (int)length, item);
+        return 0;
+    }
+    ++*count;
     return 1;
 }
 
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t size)
 {
-    int failed = 0;
     *count = 0;
-    if (parse_range(name, text, values, count, error, size, &failed))
-        return failed ? -1 : 0;
-    for (const char *item = text;; ++*count) {
+    for (const char *item = text;;) {
         const char *comma = strchr(item, ',');
         size_t length = comma ? (size_t)(comma - item) : strlen(item);
-        if (*count >= STEPS_MAX) {
-            snprintf(error, size, "%s '%.64s%s': more than %d values: expected at most %d steps", name, text,
-                     strlen(text) > 64 ? "..." : "", STEPS_MAX, STEPS_MAX);
-            return -1;
-        }
         if (strspn(item, " \t") >= length) {
             snprintf(error, size, "%s '%s': %s", name, text, *count == 0 && !comma ? "expected a list v1, v2, ... "
                      "or a range first:last:count" : "an empty item (two commas, or a comma at either end): "
                      "expected values separated by commas");
             return -1;
         }
-        if (!parse_value(item, length, &values[*count])) {
-            snprintf(error, size, "%s '%s': '%.*s' is not a number >= 0: expected values separated by commas", name,
-                     text, (int)length, item);
+        if (!parse_item(name, text, item, length, values, count, error, size))
             return -1;
-        }
         if (!comma)
-            break;
+            return 0;
         item = comma + 1;
     }
-    ++*count;
-    return 0;
 }

@@ -333,15 +333,19 @@ static long accumulate_plastic_flow(im_indentation *run, double approach)
     return yielding;
 }
 
-/* The largest plastic depth so far. */
-static double deepest_plastic(const im_indentation *run)
+/* The largest plastic depth so far, and the least undeformed gap (g0 + plastic depth): where the
+ * punch, withdrawn, would first touch the surface. */
+static void plastic_extremes(const im_indentation *run, double *deepest, double *touch)
 {
-    double deepest = 0;
+    double d = 0, g = INFINITY;
     const size_t n = (size_t)run->window.nx * run->window.ny;
-#pragma omp parallel for schedule(static) reduction(max : deepest)
-    for (size_t i = 0; i < n; ++i)
-        deepest = fmax(deepest, run->plastic[i]);
-    return deepest;
+#pragma omp parallel for schedule(static) reduction(max : d) reduction(min : g)
+    for (size_t i = 0; i < n; ++i) {
+        d = fmax(d, run->plastic[i]);
+        g = fmin(g, run->window_gap0[i]);
+    }
+    *deepest = d;
+    *touch = g;
 }
 
 static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
@@ -354,8 +358,8 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
                             .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
                             .iterations = s->iterations, .convolutions = s->convolutions,
                             .residual = s->residual, .seconds = s->seconds,
-                            .coarse_iterations = s->coarse_iterations, .yielding_patches = 0,
-                            .plastic_depth = deepest_plastic(run), .plastic_work = run->plastic_work};
+                            .coarse_iterations = s->coarse_iterations, .plastic_work = run->plastic_work};
+    plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
 }
 
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
