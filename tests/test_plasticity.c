@@ -181,6 +181,75 @@ static void no_hardness_no_memory(void **state)
     im_indentation_free(run);
 }
 
+/* Load control with a hardness (the approach searched with displacement-controlled solves) walks the
+ * same history as displacement control at the loads that one found: the same approaches, up and down. */
+static void load_control_follows_displacement_control(void **state)
+{
+    (void)state;
+    im_indenter cone = im_indenter_cone(cone_alpha);
+    const double approaches[] = {1.0, 2.0, 3.0, 2.5, 2.0, 1.5, 2.5, 3.5};
+    enum { STEPS = sizeof approaches / sizeof *approaches };
+    double loads[STEPS];
+    im_indentation *by_w = prepare(&cone, 3.5, cone_hardness(), 1e-10);
+    for (int k = 0; k < STEPS; ++k)
+        loads[k] = step(by_w, approaches[k]).load;
+    im_indentation_free(by_w);
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(N, N, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-10;
+    o.hardness = cone_hardness();
+    im_indentation *by_n = NULL;
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_LOAD, loads[STEPS - 1], &o, &by_n), IM_OK);
+    im_field_free(surface);
+    for (int k = 0; k < STEPS; ++k) {
+        im_step_result r = step(by_n, loads[k]);
+        if (test_relative_difference(r.approach, approaches[k]) > 1e-7 ||
+            test_relative_difference(r.load, loads[k]) > 1e-9)
+            fail_msg("step %d: load control w = %.12g N = %.12g; displacement control w = %.12g N = %.12g", k + 1,
+                     r.approach, r.load, approaches[k], loads[k]);
+    }
+    im_indentation_free(by_n);
+}
+
+/* A rough contact under a low hardness: the local start puts every touching patch at the cap, where
+ * Polonsky-Keer's load control has no elastic patch to take the approach from (it failed with
+ * "residual is inf"); then a large unloading step from the yielded state, whose restarts left patches
+ * above the cap that never moved again (residual 0.7 after any number of iterations). */
+static void yielded_rough_contact_loads_and_unloads(void **state)
+{
+    (void)state;
+    im_field *surface = test_rough_surface(256, 0.08, 1);
+    im_solver_options o = im_solver_options_default();
+    o.hardness = 0.05;
+    o.tol = 1e-9; /* the load is found to tol (1e-6 relative at least) where the solves resolve it */
+    o.max_iterations = 2000;
+    im_indenter cone = im_indenter_cone(cone_alpha);
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_LOAD, 60.0, &o, &run), IM_OK);
+    const double loads[] = {60.0, 45.0, 5.0, 0.0};
+    double previous = INFINITY;
+    for (int k = 0; k < 4; ++k) {
+        im_step_result r = step(run, loads[k]);
+        if (loads[k] > 0 && test_relative_difference(r.load, loads[k]) > 1e-6)
+            fail_msg("load %g: N = %.9g", loads[k], r.load);
+        assert_true(r.approach < previous);
+        assert_true(r.iterations < 2000);
+        previous = r.approach;
+        if (k == 3) /* withdrawn: the approach where the punch touches what it left */
+            assert_close(r.approach, r.residual_approach, 0);
+    }
+    im_indentation_free(run);
+    /* displacement control: one step to 8.66 (fully yielded near the axis), then down in two jumps */
+    o.tol = 1e-6;
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 8.66452, &o, &run), IM_OK);
+    const double approaches[] = {8.66452, 7.96676, 5.31116678};
+    for (int k = 0; k < 3; ++k)
+        assert_true(step(run, approaches[k]).iterations < 2000);
+    im_indentation_free(run);
+    im_field_free(surface);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -189,6 +258,8 @@ int main(void)
         cmocka_unit_test(yielded_flat_punch_unloads_elastically),
         cmocka_unit_test(energy_balance_converges),
         cmocka_unit_test(no_hardness_no_memory),
+        cmocka_unit_test(load_control_follows_displacement_control),
+        cmocka_unit_test(yielded_rough_contact_loads_and_unloads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

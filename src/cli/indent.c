@@ -104,6 +104,7 @@ typedef struct indent_options {
     int distributions;            /* --distributions */
     double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
+    double surface_delta;         /* the patch side as solved (the surface's, after --delta) */
     im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
     cli_preparation preparation;  /* --crop, --detrend */
     char e_star_unit[16];         /* --e-star-unit, "" when not given */
@@ -284,20 +285,27 @@ static int is_distribution_file(const char *name)
     return 0;
 }
 
+/* The fields --fields writes per step: the first three always, the plastic depth with a hardness. */
+static const char *const STEP_FIELDS[4] = {"force_", "gap_", "displacement_", "plastic_"};
+
+static int step_field_count(const indent_options *o) { return o->solver.hardness > 0 ? 4 : 3; }
+
 /* Whether `name` is one of the files written into the output folder: history.csv, run.json,
- * index.html and,
- * with --fields, {force,gap,displacement}_NNNN.npy and their .npy.json sidecars for the steps 1..count. */
+ * index.html, indentation.csv and,
+ * with --fields, {force,gap,displacement[,plastic]}_NNNN.npy and their .npy.json sidecars for the steps
+ * 1..count. */
 static int writes_into_folder(const char *name, const void *state)
 {
     const indent_options *o = state;
-    static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
-    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0)
+    const char *const *FIELDS = STEP_FIELDS;
+    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0 ||
+        strcmp(name, "indentation.csv") == 0)
         return 1;
     if (o->distributions && is_distribution_file(name)) {
         long step = strtol(name + strlen("distributions_"), NULL, 10);
         return step >= 1 && step <= o->target_count;
     }
-    for (int i = 0; o->fields && i < 3; ++i) {
+    for (int i = 0; o->fields && i < step_field_count(o); ++i) {
         size_t length = strlen(FIELDS[i]);
         if (strncmp(name, FIELDS[i], length) != 0)
             continue;
@@ -389,28 +397,30 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 /* ---- outputs ---- */
 
 /* The fields of a step on the full grid, each FILE.npy with FILE.npy.json stating its units: forces in
- * force_unit, gaps and displacements in the surface's length unit. */
-static int write_fields(const char *dir, im_indentation *run, int step, const char *length_unit,
-                        const char *force_unit)
+ * force_unit, gaps, displacements and plastic depths in the surface's length unit. */
+static int write_fields(const indent_options *o, im_indentation *run, int step)
 {
-    im_field *f[3] = {NULL, NULL, NULL};
-    static const char *const NAMES[3] = {"force", "gap", "displacement"};
-    static const char *const QUANTITIES[3] = {"force per patch", "gap", "surface displacement"};
+    im_field *f[4] = {NULL, NULL, NULL, NULL};
+    static const char *const QUANTITIES[4] = {"force per patch", "gap", "surface displacement",
+                                              "plastic depth (the surface flattened down by yielding)"};
+    const int count = step_field_count(o);
     int status = im_indentation_fields_full(run, &f[0], &f[1], &f[2]);
-    for (int i = 0; i < 3 && status == IM_OK; ++i) {
+    if (status == IM_OK && count == 4)
+        status = im_indentation_plastic(run, &f[3]);
+    for (int i = 0; i < count && status == IM_OK; ++i) {
         char name[64], path[4096];
-        snprintf(name, sizeof name, "%s_%04d.npy", NAMES[i], step);
-        status = im_path_join(path, sizeof path, dir, name);
+        snprintf(name, sizeof name, "%s%04d.npy", STEP_FIELDS[i], step);
+        status = im_path_join(path, sizeof path, o->out, name);
         if (status != IM_OK)
             break;
-        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", length_unit);
+        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", o->length_unit);
         if (i == 0)
-            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", force_unit);
+            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", o->force_unit);
         status = im_npy_write(path, f[i], IM_NPY_FLOAT64);
         if (status == IM_OK)
             status = im_field_sidecar_write(path, f[i], QUANTITIES[i]);
     }
-    for (int i = 0; i < 3; ++i)
+    for (int i = 0; i < 4; ++i)
         im_field_free(f[i]);
     return status;
 }
@@ -614,7 +624,7 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
     if (status == IM_OK)
         status = history_measure(&o->punch, rough, run, rows, i);
     if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
-        status = write_fields(o->out, run, i + 1, o->length_unit, o->force_unit);
+        status = write_fields(o, run, i + 1);
     if (status == IM_OK && o->distributions)
         status = write_distributions(o, run, i + 1);
     if (status == IM_OK)
@@ -626,6 +636,21 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
         fflush(stdout);
     }
     return status;
+}
+
+/* indentation.csv over the steps done (front.h), said on stdout and in run.json; a failure here is
+ * reported but leaves the run's own status alone (the history is the result). */
+static void write_analysis(const indent_options *o, const history_row *rows, int done, json_t *record)
+{
+    int branches = 0;
+    if (analysis_write(o->out, &o->punch, rows, done, o->surface_delta, &branches) != IM_OK) {
+        fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
+        return;
+    }
+    json_object_set_new(record, "indentation", branches > 0 ? json_string("indentation.csv") : json_null());
+    if (branches > 0)
+        printf("indentation analysis of %d unloading branch%s: %s/indentation.csv\n", branches,
+               branches == 1 ? "" : "es", o->out);
 }
 
 /* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
@@ -652,6 +677,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
                         done, o->out);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
+    write_analysis(o, rows, done, record);
     int recorded = write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
@@ -674,12 +700,11 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
     DIR *listing = opendir(o->out);
     if (!listing)
         return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
-    static const char *const FIELDS[3] = {"force_", "gap_", "displacement_"};
     for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
         char path[4096];
-        int field = 0;
-        for (int i = 0; i < 3; ++i)
-            field |= is_step_file(entry->d_name, FIELDS[i]);
+        int field = strcmp(entry->d_name, "indentation.csv") == 0; /* written again only if it applies */
+        for (int i = 0; i < 4; ++i)
+            field |= is_step_file(entry->d_name, STEP_FIELDS[i]);
         field |= is_distribution_file(entry->d_name);
         if (!field)
             continue;
@@ -756,6 +781,7 @@ int cli_indent(int argc, char **argv)
     if (status == IM_OK)
         status = check_axis_inside(&o, surface);
     if (status == IM_OK) {
+        o.surface_delta = surface->delta;
         set_force_unit(&o, surface);
         status = measured_interface(&o, surface, &rough);
     }

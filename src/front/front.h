@@ -79,6 +79,18 @@ int history_start(const char *dir, history_file *h);
 int history_append(history_file *h, const history_row *row);
 void history_close(history_file *h);
 
+/* ---- the indentation analysis of a history's unloading branches (analysis.c) ---- */
+
+/* The columns of DIR/indentation.csv: one row per unloading branch (measure.h, im_measure_unloading),
+ * with the real contact area n_p delta^2 at the top and the dissipation the solver reports at the
+ * branch's last step. */
+extern const char ANALYSIS_COLUMNS[];
+
+/* Analyses rows[0..count) (measure.h) and, when they hold an unloading branch, writes
+ * DIR/indentation.csv atomically; *branches says how many (0: no file written). */
+int analysis_write(const char *dir, const im_indenter *punch, const history_row *rows, int count, double delta,
+                   int *branches);
+
 /* ---- the JSON run record (record.c) ---- */
 
 /* What every run record (OUTPUT/run.json of `indent` and of a scene) holds: the program, the

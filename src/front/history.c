@@ -17,9 +17,10 @@
 
 const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
                                "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
-                               ",stiffness,e_star_sneddon,patches,patch_perimeter";
+                               ",stiffness,e_star_sneddon,patches,patch_perimeter,"
+                               "yielding_patches,plastic_depth,plastic_work,residual_approach";
 
-enum { HISTORY_VALUES = 20 }; /* the columns above */
+enum { HISTORY_VALUES = 24 }; /* the columns above */
 
 /* Contact patches of the run's current state. */
 static int measure_patches(const im_indentation *run, history_row *row)
@@ -67,11 +68,12 @@ int history_format(const history_row *row, char *line, size_t size)
     const im_theory_step *t = &row->theory;
     return snprintf(line, size,
                     "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                    "%.17g,%ld,%.17g\n",
+                    "%.17g,%ld,%.17g,%ld,%.17g,%.17g,%.17g\n",
                     row->step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
                     r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
                     t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, row->stiffness,
-                    row->e_star_sneddon, row->patches, row->perimeter);
+                    row->e_star_sneddon, row->patches, row->perimeter, r->yielding_patches, r->plastic_depth,
+                    r->plastic_work, r->residual_approach);
 }
 
 /* One row on a whole line [line, end); 0 when it is not HISTORY_VALUES numbers. */
@@ -80,11 +82,12 @@ static int scan_row(const char *line, const char *end, history_row *row)
     im_step_result *r = &row->result;
     im_theory_step *t = &row->theory;
     int used = 0;
-    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf%n",
+    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf%n",
                   &row->step, &r->approach, &r->load, &r->load_star, &r->contact_patches, &r->area_ratio,
                   &r->mean_pressure, &r->max_pressure, &r->iterations, &r->residual, &r->seconds,
                   &r->convolutions, &t->load_smooth, &t->area_smooth, &t->area_ratio_constant,
                   &t->area_ratio_gamma, &row->stiffness, &row->e_star_sneddon, &row->patches, &row->perimeter,
+                  &r->yielding_patches, &r->plastic_depth, &r->plastic_work, &r->residual_approach,
                   &used) == HISTORY_VALUES && line + used == end;
 }
 

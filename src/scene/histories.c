@@ -174,11 +174,13 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
 {
     int at_load_star = i == scene_load_star_step(scene);
     const scene_member *known = m->at_load_star;
-    if (at_load_star && known) {
+    /* with a hardness the step is solved all the same: the run must remember its plastic flow */
+    if (at_load_star && known && !(scene->hardness > 0)) {
         *step = (im_step_result){.approach = known->load_star_approach, .load = known->load, .load_star = known->load_star,
                                  .contact_patches = known->contact_patches, .area_ratio = known->area_ratio,
                                  .mean_pressure = NAN, .max_pressure = NAN, .iterations = -1, .convolutions = -1,
-                                 .residual = NAN, .seconds = NAN, .coarse_iterations = -1};
+                                 .residual = NAN, .seconds = NAN, .coarse_iterations = -1, .yielding_patches = 0,
+                                 .plastic_depth = 0, .plastic_work = 0, .residual_approach = 0};
         m->step_reused = 1;
         return IM_OK;
     }

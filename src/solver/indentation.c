@@ -136,13 +136,18 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
 
 /* The largest approach the window must hold: the target itself, or under load control the smooth
  * punch's approach for the largest load with a tenth to spare, plus the surface's height range.
- * A 2-D profile has no smooth estimate: its whole footprint (INFINITY). */
+ * With a hardness H_p a contact can sink deeper than the elastic one: to the depth at which the
+ * punch's cross-section carries the load at H_p everywhere (pi r^2 H_p = N, at height z(r)), which
+ * bounds the fully plastic approach. A 2-D profile has no smooth estimate: its whole footprint
+ * (INFINITY). */
 static double approach_bound(const im_field *surface, const im_indenter *punch, enum im_control control,
-                             double largest_target, double e_star)
+                             double largest_target, const im_solver_options *o)
 {
     if (control == IM_CONTROL_DISPLACEMENT)
         return largest_target;
-    double smooth = im_indenter_approach_for_load(punch, e_star, largest_target);
+    double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
+    if (o->hardness > 0)
+        smooth = fmax(smooth, im_indenter_profile(punch, sqrt(largest_target / (M_PI * o->hardness))));
     return isfinite(smooth) ? 1.1 * smooth + height_range(surface) : INFINITY;
 }
 
@@ -210,7 +215,7 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
     run->nx = surface->nx;
     run->ny = surface->ny;
     run->delta = surface->delta;
-    run->approach_bound = approach_bound(surface, punch, control, largest_target, o.e_star);
+    run->approach_bound = approach_bound(surface, punch, control, largest_target, &o);
     status = undeformed_gap(run, surface);
     if (status == IM_OK) {
         run->window = choose_window(run);
@@ -348,6 +353,14 @@ static void plastic_extremes(const im_indentation *run, double *deepest, double 
     *touch = g;
 }
 
+/* The largest approach at which the punch carries nothing: where it touches the (deformed) surface. */
+static double withdrawn_approach(const im_indentation *run)
+{
+    double deepest, touch;
+    plastic_extremes(run, &deepest, &touch);
+    return touch;
+}
+
 static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
 {
     const double d2 = run->delta * run->delta;
@@ -362,6 +375,95 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
 }
 
+/* ---- load control with a hardness: the approach that carries the load ----
+ * Polonsky-Keer's load control takes the approach from the elastic patches (0 < p < H_p); once every
+ * contact patch is capped (a fully plastic start, a small load on a soft surface) there are none and
+ * the approach is undefined. With a hardness the load is reached instead by displacement-controlled
+ * solves on the approach, each warm-started from the last: N(w) is continuous and non-decreasing, so
+ * a bracket and the Illinois variant of regula falsi find it, to |N - target| <= tol target. */
+enum { LOAD_SEARCH_MAX = 200 };
+
+typedef struct load_search {
+    im_indentation *run;
+    double target;
+    im_solve_result last;  /* the last trial's, with iterations, convolutions and seconds summed */
+    int trials;
+} load_search;
+
+/* One displacement-controlled solve at approach w; returns its load minus the target in *excess. */
+static int trial(load_search *search, double w, double *excess)
+{
+    im_indentation *run = search->run;
+    im_solve_result s;
+    int status = im_solver_solve(run->plan, run->window_gap0, IM_CONTROL_DISPLACEMENT, w, run->pressure,
+                                 run->displacement, &s);
+    s.iterations += search->last.iterations;
+    s.convolutions += search->last.convolutions;
+    s.coarse_iterations += search->last.coarse_iterations;
+    s.seconds += search->last.seconds;
+    search->last = s;
+    ++search->trials;
+    *excess = s.load - search->target;
+    return status;
+}
+
+/* [lo, hi] with N(lo) <= target <= N(hi), from the last step's approach (or the smooth estimate)
+ * doubled while it carries too little; IM_EEDGE when no approach within the window's bound carries
+ * the load. */
+static int bracket_load(load_search *search, double *lo, double *e_lo, double *hi, double *e_hi)
+{
+    im_indentation *run = search->run;
+    double w = run->approach > 0 ? run->approach
+                                 : im_indenter_approach_for_load(&run->punch, run->options.e_star, search->target);
+    if (!(isfinite(w) && w > 0 && w <= run->approach_bound))
+        w = fmin(run->approach_bound, run->delta);
+    *lo = 0, *e_lo = -search->target; /* no approach, no load */
+    *hi = w;
+    int status = trial(search, w, e_hi);
+    while (status == IM_OK && *e_hi < 0) {
+        if (*hi >= run->approach_bound)
+            return im_fail(IM_EEDGE, "load %g cannot be reached: at the approach %g that bounds the window the "
+                           "contact carries %g (a yielded contact carries at most H_p times its area)",
+                           search->target, *hi, search->target + *e_hi);
+        *lo = *hi, *e_lo = *e_hi;
+        *hi = fmin(2 * *hi, run->approach_bound);
+        status = trial(search, *hi, e_hi);
+    }
+    return status;
+}
+
+/* The approach that carries target, to |N - target| <= tol target, or to tol w in the approach where
+ * the solves (each exact to tol w in the gap) cannot resolve the load closer; the state is the last
+ * solve's. */
+static int solve_at_load(im_indentation *run, double target, im_solve_result *out)
+{
+    load_search search = {.run = run, .target = target};
+    const double tol = run->options.tol;
+    double lo, e_lo, hi, e_hi;
+    int status = bracket_load(&search, &lo, &e_lo, &hi, &e_hi), side = 0;
+    double e = e_hi;
+    while (status == IM_OK && fabs(e) > tol * target && hi - lo > tol * hi) {
+        if (search.trials >= LOAD_SEARCH_MAX) {
+            status = im_fail(IM_ENOCONV, "load %g: no approach in [%.17g, %.17g] carries it to tol %g after %d "
+                             "solves", target, lo, hi, tol, search.trials);
+            break;
+        }
+        double w = (lo * e_hi - hi * e_lo) / (e_hi - e_lo);
+        status = trial(&search, w, &e);
+        if (e < 0) { /* Illinois: the end kept twice running has its value halved */
+            lo = w, e_lo = e;
+            e_hi *= side == -1 ? 0.5 : 1;
+            side = -1;
+        } else {
+            hi = w, e_hi = e;
+            e_lo *= side == 1 ? 0.5 : 1;
+            side = 1;
+        }
+    }
+    *out = search.last;
+    return status;
+}
+
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
@@ -374,8 +476,13 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     if (status != IM_OK)
         return status;
     im_solve_result s;
-    status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
+    if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0)
+        status = solve_at_load(run, target, &s);
+    else
+        status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
                                  run->displacement, &s);
+    if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0)
+        s.approach = withdrawn_approach(run); /* N = 0 holds at any approach up to it */
     run->approach = s.approach;
     long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
     fill_step(run, &s, out);

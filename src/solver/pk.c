@@ -69,6 +69,9 @@ static void cold_start(pk_run *r)
         w = hi;
     }
     engine_of(r)->winkler(r, w, k0, 1);
+    const double cap = pressure_cap(r->plan);
+    if (isfinite(cap)) /* a patch above the cap is neither elastic nor at the bound: it would never move */
+        engine_of(r)->clip(r, cap);
 }
 
 /* With a pressure cap, under load control: rescales the elastic pressures so that delta^2 sum p = N
@@ -271,7 +274,7 @@ static int solve_on_engine(pk_run *r, im_solve_result *res)
         return status;
     if (!e->any_positive(r))
         cold_start(r);
-    const double cap = pressure_cap(r->plan); /* a start above the cap (Winkler's, or a warm one) */
+    const double cap = pressure_cap(r->plan); /* a warm start above the cap */
     if (isfinite(cap))
         e->clip(r, cap);
     convolve(r);
