@@ -29,6 +29,26 @@ awk -F, 'NR == 2 { d = $3 / (0.05 * $5) - 1; if (d < -1e-12 || d > 1e-12 || $8 !
 grep -q '"hardness": 0.05' "$DIR/hard/run.json" || fail "run.json lacks the hardness"
 "$BIN" indent --smooth --n 16 --hardness -1 --approach 1 --out "$DIR/badh" >/dev/null 2>&1
 [ $? -eq 2 ] || fail "--hardness -1 not refused with exit 2"
+# Loading and unloading with the cap's memory (issue 26): a smooth cone to w = 6 and back to 0. No flow
+# while unloading (plastic_work constant from the top on, yielding_patches 0), the residual impression
+# left (residual_approach = plastic_depth on a smooth cone, whose apex patch yields most); one unloading
+# branch in indentation.csv with Oliver-Pharr's E_r within 5% of E* = 1 (measured 0.975), a real area at
+# the top; the plastic depth written with the fields.
+"$BIN" indent --smooth --n 96 --approach 1:6:3,4.5:0:4 --hardness 0.1 --fields --out "$DIR/cycle" >/dev/null \
+    || fail "loading-unloading run exited $?"
+awk -F, 'NR == 4 { top = $23 } NR > 4 { if ($23 != top || $21 != 0 || !(top > 0) || $24 != $22) exit 1 }' \
+    "$DIR/cycle/history.csv" || fail "unloading flowed or lost its impression: $(cut -d, -f2,3,21- "$DIR/cycle/history.csv")"
+[ "$(head -1 "$DIR/cycle/indentation.csv")" = "branch,top_step,last_step,loading_from,approach_max,load_max,stiffness,epsilon,contact_depth,area_projected,area_real,hardness_it,modulus_reduced,residual_approach,work_in,work_out,dissipated" ] \
+    || fail "indentation.csv header: $(head -1 "$DIR/cycle/indentation.csv")"
+awk -F, 'NR == 2 { if ($2 != 3 || $3 != 7 || $8 != 0.72 || $13 < 0.95 || $13 > 1.05 || !($11 > 0) || !($14 > 0)) exit 1 }
+         END { if (NR != 2) exit 1 }' "$DIR/cycle/indentation.csv" || fail "indentation.csv: $(cat "$DIR/cycle/indentation.csv")"
+[ -s "$DIR/cycle/plastic_0007.npy" ] && [ -s "$DIR/cycle/plastic_0007.npy.json" ] || fail "no plastic_0007.npy"
+grep -q '"indentation": "indentation.csv"' "$DIR/cycle/run.json" || fail "run.json does not name indentation.csv"
+! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
+# the same folder run again with loading only: no stale analysis or plastic field is left
+"$BIN" indent --smooth --n 96 --approach 1:6:3 --fields --out "$DIR/cycle" >/dev/null || fail "rerun exited $?"
+[ ! -e "$DIR/cycle/indentation.csv" ] && ! ls "$DIR/cycle" | grep -q plastic_ || fail "stale indentation.csv or plastic field"
+grep -q '"indentation": null' "$DIR/cycle/run.json" || fail "run.json names an analysis the run did not write"
 # What an experiment measures: dN/dw from the last three steps gives Sneddon's E* = 1 within 2% on the
 # smooth cone (Love's N(w) is a parabola, which the three-point derivative follows exactly); one patch.
 # Steps 1 and 2 have no three steps to differentiate: NaN, not a secant (issue 26: a secant was 25% low).
