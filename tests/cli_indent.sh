@@ -43,11 +43,14 @@ awk -F, 'NR == 4 { top = $23 } NR > 4 { if ($23 != top || $21 != 0 || !(top > 0)
 awk -F, 'NR == 2 { if ($2 != 3 || $3 != 7 || $8 != 0.72 || $13 < 0.95 || $13 > 1.05 || !($11 > 0) || !($14 > 0)) exit 1 }
          END { if (NR != 2) exit 1 }' "$DIR/cycle/indentation.csv" || fail "indentation.csv: $(cat "$DIR/cycle/indentation.csv")"
 [ -s "$DIR/cycle/plastic_0007.npy" ] && [ -s "$DIR/cycle/plastic_0007.npy.json" ] || fail "no plastic_0007.npy"
+head -c 8 "$DIR/cycle/load_displacement.png" | od -An -tx1 | grep -q '89 50 4e 47' && head -c 5 "$DIR/cycle/load_displacement.pdf" | grep -q '%PDF' \
+    || fail "no load-displacement figure"
 grep -q '"indentation": "indentation.csv"' "$DIR/cycle/run.json" || fail "run.json does not name indentation.csv"
 ! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
 # the same folder run again with loading only: no stale analysis or plastic field is left
 "$BIN" indent --smooth --n 96 --approach 1:6:3 --fields --out "$DIR/cycle" >/dev/null || fail "rerun exited $?"
-[ ! -e "$DIR/cycle/indentation.csv" ] && ! ls "$DIR/cycle" | grep -q plastic_ || fail "stale indentation.csv or plastic field"
+[ ! -e "$DIR/cycle/indentation.csv" ] && [ ! -e "$DIR/cycle/load_displacement.png" ] && ! ls "$DIR/cycle" | grep -q plastic_ \
+    || fail "stale indentation.csv, figure or plastic field"
 grep -q '"indentation": null' "$DIR/cycle/run.json" || fail "run.json names an analysis the run did not write"
 # What an experiment measures: dN/dw from the last three steps gives Sneddon's E* = 1 within 2% on the
 # smooth cone (Love's N(w) is a parabola, which the three-point derivative follows exactly); one patch.

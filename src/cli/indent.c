@@ -285,6 +285,13 @@ static int is_distribution_file(const char *name)
     return 0;
 }
 
+/* The files of the indentation analysis, written only when the history unloads. */
+static int is_analysis_file(const char *name)
+{
+    return strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
+           strcmp(name, "load_displacement.pdf") == 0;
+}
+
 /* The fields --fields writes per step: the first three always, the plastic depth with a hardness. */
 static const char *const STEP_FIELDS[4] = {"force_", "gap_", "displacement_", "plastic_"};
 
@@ -299,7 +306,7 @@ static int writes_into_folder(const char *name, const void *state)
     const indent_options *o = state;
     const char *const *FIELDS = STEP_FIELDS;
     if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0 ||
-        strcmp(name, "indentation.csv") == 0)
+        is_analysis_file(name))
         return 1;
     if (o->distributions && is_distribution_file(name)) {
         long step = strtol(name + strlen("distributions_"), NULL, 10);
@@ -648,9 +655,14 @@ static void write_analysis(const indent_options *o, const history_row *rows, int
         return;
     }
     json_object_set_new(record, "indentation", branches > 0 ? json_string("indentation.csv") : json_null());
-    if (branches > 0)
-        printf("indentation analysis of %d unloading branch%s: %s/indentation.csv\n", branches,
-               branches == 1 ? "" : "es", o->out);
+    if (branches == 0)
+        return;
+    if (analysis_figure(o->out, &o->punch, rows, done, o->length_unit, o->force_unit) != IM_OK) {
+        fprintf(stderr, "indentmap: load-displacement figure: %s\n", im_last_error());
+        return;
+    }
+    printf("indentation analysis of %d unloading branch%s: %s/indentation.csv, load_displacement.png and .pdf\n",
+           branches, branches == 1 ? "" : "es", o->out);
 }
 
 /* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
@@ -702,7 +714,7 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
         return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
     for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
         char path[4096];
-        int field = strcmp(entry->d_name, "indentation.csv") == 0; /* written again only if it applies */
+        int field = is_analysis_file(entry->d_name); /* written again only if the history unloads */
         for (int i = 0; i < 4; ++i)
             field |= is_step_file(entry->d_name, STEP_FIELDS[i]);
         field |= is_distribution_file(entry->d_name);

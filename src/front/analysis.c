@@ -4,8 +4,10 @@
 
 #include "indentmap/io.h"
 #include "indentmap/measure.h"
+#include "indentmap/plot.h"
 #include "indentmap/status.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -65,5 +67,117 @@ int analysis_write(const char *dir, const im_indenter *punch, const history_row 
         status = write_branches(dir, found, *branches, rows, delta);
     free(columns);
     free(found);
+    return status;
+}
+
+/* ---- the load-displacement figure ---- */
+
+/* Segments of the history as polylines broken by NaN: loading ones (the approach rises, from the origin
+ * at the first step) in one series, unloading ones in the other; 3 points per segment. */
+typedef struct segments {
+    double *x, *y;
+    int n;
+} segments;
+
+static void add_segment(segments *s, double x0, double y0, double x1, double y1)
+{
+    const double points[3][2] = {{x0, y0}, {x1, y1}, {NAN, NAN}};
+    for (int k = 0; k < 3; ++k, ++s->n) {
+        s->x[s->n] = points[k][0];
+        s->y[s->n] = points[k][1];
+    }
+}
+
+static void split_segments(const history_row *rows, int count, segments *up, segments *down)
+{
+    double w0 = 0, n0 = 0;
+    for (int k = 0; k < count; ++k) {
+        const double w = rows[k].result.approach, n = rows[k].result.load;
+        add_segment(w >= w0 ? up : down, w0, n0, w, n);
+        w0 = w;
+        n0 = n;
+    }
+}
+
+/* Each branch's tangent at its top, from N = 0 to the top. */
+static int tangents(const im_unloading_branch *b, int found, segments *t)
+{
+    int drawn = 0;
+    for (int k = 0; k < found; ++k)
+        if (isfinite(b[k].stiffness) && b[k].stiffness > 0) {
+            add_segment(t, b[k].approach_max - b[k].load_max / b[k].stiffness, 0, b[k].approach_max,
+                        b[k].load_max);
+            ++drawn;
+        }
+    return drawn;
+}
+
+static im_plot_series series_of(const segments *s, int palette, im_plot_line_style line, im_plot_marker marker,
+                                const char *label)
+{
+    im_plot_series series = {.x = s->x, .y = s->y, .n = s->n, .line = line, .line_width = 1.2, .marker = marker,
+                             .marker_size = 3.5, .label = label};
+    im_plot_palette(palette, series.color);
+    return series;
+}
+
+static int draw_figure(const char *dir, const segments *up, const segments *down, const segments *tangent,
+                       const char *x_label, const char *y_label)
+{
+    im_plot_series series[3];
+    int n = 0;
+    if (up->n > 0)
+        series[n++] = series_of(up, 0, IM_PLOT_SOLID, IM_PLOT_MARKER_CIRCLE, "loading");
+    series[n++] = series_of(down, 1, IM_PLOT_SOLID, IM_PLOT_MARKER_SQUARE, "unloading");
+    if (tangent->n > 0) {
+        series[n] = series_of(tangent, 0, IM_PLOT_DASHED, IM_PLOT_MARKER_NONE, "tangent at the top (S)");
+        series[n].color[0] = series[n].color[1] = series[n].color[2] = 70; /* dark grey: a construction line */
+        ++n;
+    }
+    im_plot_panel panel = {.x = {.label = x_label}, .y = {.label = y_label}, .series = series, .series_count = n,
+                           .legend = IM_PLOT_LEGEND_UPPER_LEFT};
+    im_plot plot = im_plot_default();
+    plot.panels = &panel;
+    plot.panel_width = 220;
+    plot.panel_height = 160;
+    int status = IM_OK;
+    static const char *const NAMES[2] = {"load_displacement.png", "load_displacement.pdf"};
+    for (int k = 0; k < 2 && status == IM_OK; ++k) {
+        char path[4096];
+        status = im_path_join(path, sizeof path, dir, NAMES[k]);
+        if (status == IM_OK)
+            status = im_plot_write(&plot, path);
+    }
+    return status;
+}
+
+int analysis_figure(const char *dir, const im_indenter *punch, const history_row *rows, int count,
+                    const char *length_unit, const char *force_unit)
+{
+    segments up = {0}, down = {0}, tangent = {0};
+    im_unloading_branch *b = malloc(sizeof *b * (size_t)count);
+    double *columns = malloc(sizeof(double) * 2 * (size_t)count);
+    const size_t room = 3 * (size_t)count + 3;
+    up.x = malloc(sizeof(double) * 6 * room);
+    int status = b && columns && up.x ? IM_OK : im_fail(IM_ENOMEM, "load-displacement figure of %d steps", count);
+    int found = 0;
+    if (status == IM_OK) {
+        up.y = up.x + room, down.x = up.x + 2 * room, down.y = up.x + 3 * room;
+        tangent.x = up.x + 4 * room, tangent.y = up.x + 5 * room;
+        for (int k = 0; k < count; ++k)
+            columns[k] = rows[k].result.approach, columns[count + k] = rows[k].result.load;
+        status = im_measure_unloading(punch, columns, columns + count, NULL, count, b, count, &found);
+    }
+    if (status == IM_OK) {
+        split_segments(rows, count, &up, &down);
+        tangents(b, found, &tangent);
+        char x_label[64], y_label[64];
+        snprintf(x_label, sizeof x_label, "approach w (%s)", length_unit[0] ? length_unit : "δ");
+        snprintf(y_label, sizeof y_label, "load N (%s)", force_unit[0] ? force_unit : "E^{*} δ^{2}");
+        status = draw_figure(dir, &up, &down, &tangent, x_label, y_label);
+    }
+    free(b);
+    free(columns);
+    free(up.x);
     return status;
 }

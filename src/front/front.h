@@ -91,6 +91,12 @@ extern const char ANALYSIS_COLUMNS[];
 int analysis_write(const char *dir, const im_indenter *punch, const history_row *rows, int count, double delta,
                    int *branches);
 
+/* DIR/load_displacement.{png,pdf}: the history's N(w), loading segments and unloading segments in two
+ * colours, with each unloading branch's tangent at its top (slope S, to N = 0: Oliver-Pharr's
+ * construction). Axis labels name length_unit and force_unit ("" for delta and E* delta^2). */
+int analysis_figure(const char *dir, const im_indenter *punch, const history_row *rows, int count,
+                    const char *length_unit, const char *force_unit);
+
 /* ---- the JSON run record (record.c) ---- */
 
 /* What every run record (OUTPUT/run.json of `indent` and of a scene) holds: the program, the
