@@ -40,7 +40,8 @@ def _punch_arguments(punch):
 HISTORY_DTYPE = np.dtype([("approach", "f8"), ("load", "f8"), ("load_star", "f8"), ("contact_patches", "i8"),
                           ("area_ratio", "f8"), ("mean_pressure", "f8"), ("max_pressure", "f8"),
                           ("iterations", "i4"), ("coarse_iterations", "i4"), ("convolutions", "i4"),
-                          ("residual", "f8"), ("seconds", "f8")])
+                          ("residual", "f8"), ("seconds", "f8"), ("yielding_patches", "i8"),
+                          ("plastic_depth", "f8"), ("plastic_work", "f8"), ("residual_approach", "f8")])
 
 
 class Indentation:
@@ -59,16 +60,22 @@ class Indentation:
     scenes). ``device`` is the solver's engine: 'cpu' (default), 'gpu' (the Vulkan compute engine) or
     'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
     iteration and raises KeyboardInterrupt (the history keeps the last iterate as its next warm start).
+
+    ``hardness`` H_p > 0 caps the pressure (perfect plasticity, ``indentmap indent --hardness``) and the
+    history remembers it: each step adds the capped patches' overlap to a plastic depth and starts from
+    the deformed surface, so unloading is elastic and reloading retraces it (docs/solver.md, "Hardness").
+    Targets may go up and down; ``plastic()`` gives the plastic depth so far.
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
-                 tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu"):
+                 tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
+                 hardness=0.0):
         kind, alpha, radius, profile = _punch_arguments(punch)
         x, y = (None, None) if axis is None else axis
         self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
                                       e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
                                       crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
-                                      profile=profile, device=str(device))
+                                      profile=profile, device=str(device), hardness=float(hardness))
 
     def step(self, target):
         """Solves the next step at approach or load ``target``; returns its results as a dict."""
@@ -78,6 +85,11 @@ class Indentation:
         """(force, gap, displacement) of the last step on the full grid, as new arrays: the displacement is
         computed on the whole grid (one convolution), not only in the solve window."""
         return self._run.fields()
+
+    def plastic(self):
+        """The plastic depth accumulated so far on the full grid (units of delta; 0 without a hardness):
+        the residual impression once the punch is withdrawn."""
+        return self._run.plastic()
 
     @property
     def window(self):
@@ -109,7 +121,9 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, fields=False, 
     """Solves a history of approaches (displacement control) or loads (load control).
 
     Returns a structured array with one row per step (fields of HISTORY_DTYPE); with ``fields=True``,
-    also a list of dicts {'force', 'gap', 'displacement'} per step. ``options`` go to Indentation.
+    also a list of dicts {'force', 'gap', 'displacement'} per step ('plastic' too with a hardness).
+    ``options`` go to Indentation. Targets may go up and down (``np.r_[2:8:4j, 7:0:8j]`` loads to 8 and
+    unloads): ``unloading(history, punch)`` then gives the indentation analysis.
     """
     if (approaches is None) == (loads is None):
         raise ValueError("give either approaches or loads")
@@ -124,5 +138,34 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, fields=False, 
         result = run.step(target)
         history[i] = tuple(result[name] for name in HISTORY_DTYPE.names)
         if fields:
-            per_step.append(dict(zip(("force", "gap", "displacement"), run.fields())))
+            step_fields = dict(zip(("force", "gap", "displacement"), run.fields()))
+            if options.get("hardness", 0) > 0:
+                step_fields["plastic"] = run.plastic()
+            per_step.append(step_fields)
     return (history, per_step) if fields else history
+
+
+UNLOADING_DTYPE = np.dtype([("branch", "i4"), ("top_step", "i4"), ("last_step", "i4"), ("loading_from", "i4"),
+                            ("approach_max", "f8"), ("load_max", "f8"), ("stiffness", "f8"), ("epsilon", "f8"),
+                            ("contact_depth", "f8"), ("area_projected", "f8"), ("area_real", "f8"),
+                            ("hardness_it", "f8"), ("modulus_reduced", "f8"), ("residual_approach", "f8"),
+                            ("work_in", "f8"), ("work_out", "f8"), ("dissipated", "f8")])
+
+
+def unloading(history, punch=Cone(), *, delta=1.0):
+    """The indentation analysis of a history's unloading branches: one row per branch, with the columns of
+    ``indentmap indent``'s indentation.csv (docs/solver.md, "Indentation analysis"): Oliver-Pharr's S, h_c,
+    A_p, H_IT and E_r with the punch's own area function, the real area n_p delta^2 at the top, the residual
+    approach, the works in and out and the dissipation. ``history`` is what ``indent`` returns."""
+    kind, alpha, radius, profile = _punch_arguments(punch)
+    history = np.asarray(history)
+    branches = _core.unloading(kind, alpha, radius, np.ascontiguousarray(history["approach"], dtype=float),
+                               np.ascontiguousarray(history["load"], dtype=float),
+                               np.ascontiguousarray(history["residual_approach"], dtype=float), profile,
+                               float(delta))
+    table = np.zeros(len(branches), dtype=UNLOADING_DTYPE)
+    for i, b in enumerate(branches):
+        row = dict(b, branch=i + 1, area_real=history["contact_patches"][b["top_step"] - 1] * delta * delta,
+                   dissipated=history["plastic_work"][b["last_step"] - 1])
+        table[i] = tuple(row[name] for name in UNLOADING_DTYPE.names)
+    return table

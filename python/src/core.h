@@ -55,7 +55,8 @@ void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag);
 int py_interrupt_disarm(py_interrupt *call, volatile sig_atomic_t *flag);
 
 /* Module tables, defined per file. */
-extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[];
+extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[],
+    py_solver_methods[];
 extern PyTypeObject py_indentation_type, py_plan_type;
 
 #endif

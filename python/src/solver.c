@@ -4,6 +4,7 @@
 #include "core.h"
 
 #include "indentmap/indenter.h"
+#include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 
@@ -95,14 +96,14 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
                                "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
-                               NULL};
+                               "hardness", NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     double delta, alpha, radius, largest;
     const char *kind, *control_name, *device = "cpu";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOs", keywords, &obj, &delta, &kind, &alpha,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsd", keywords, &obj, &delta, &kind, &alpha,
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
-                                     &o.crop, &o.window_margin, &x, &y, &profile_obj, &device))
+                                     &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness))
         return -1;
     if (im_device_parse(device, &o.device) != IM_OK) {
         PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);
@@ -168,11 +169,13 @@ static int check_ready(py_indentation *self)
 
 static PyObject *step_dict(const im_step_result *r)
 {
-    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d}", "approach", r->approach, "load",
-                         r->load, "load_star", r->load_star, "contact_patches", r->contact_patches, "area_ratio",
-                         r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure", r->max_pressure,
-                         "iterations", r->iterations, "coarse_iterations", r->coarse_iterations, "convolutions",
-                         r->convolutions, "residual", r->residual, "seconds", r->seconds);
+    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d}", "approach", r->approach,
+                         "load", r->load, "load_star", r->load_star, "contact_patches", r->contact_patches,
+                         "area_ratio", r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure",
+                         r->max_pressure, "iterations", r->iterations, "coarse_iterations", r->coarse_iterations,
+                         "convolutions", r->convolutions, "residual", r->residual, "seconds", r->seconds,
+                         "yielding_patches", r->yielding_patches, "plastic_depth", r->plastic_depth,
+                         "plastic_work", r->plastic_work, "residual_approach", r->residual_approach);
 }
 
 static PyObject *indentation_step(py_indentation *self, PyObject *arg)
@@ -207,6 +210,16 @@ static PyObject *indentation_fields(py_indentation *self, PyObject *unused)
                          py_array_from_field(displacement));
 }
 
+static PyObject *indentation_plastic(py_indentation *self, PyObject *unused)
+{
+    (void)unused;
+    if (check_ready(self) < 0)
+        return NULL;
+    im_field *plastic = NULL;
+    int status = im_indentation_plastic(self->run, &plastic);
+    return status == IM_OK ? py_array_from_field(plastic) : py_raise_status(status);
+}
+
 static PyObject *indentation_window(py_indentation *self, void *closure)
 {
     (void)closure;
@@ -220,6 +233,8 @@ static PyMethodDef indentation_methods[] = {
     {"step", (PyCFunction)indentation_step, METH_O, "step(target) -> dict: solve the next step"},
     {"fields", (PyCFunction)indentation_fields, METH_NOARGS,
      "fields() -> (force, gap, displacement) of the last step on the full grid"},
+    {"plastic", (PyCFunction)indentation_plastic, METH_NOARGS,
+     "plastic() -> the plastic depth accumulated so far on the full grid"},
     {NULL, NULL, 0, NULL}};
 
 static PyGetSetDef indentation_getset[] = {
@@ -366,3 +381,87 @@ PyTypeObject py_indentation_type = {
     .tp_init = (initproc)indentation_init,
     .tp_new = PyType_GenericNew,
 };
+
+/* ---- the indentation analysis (measure.h) ---- */
+
+static int double_vector(PyObject *obj, npy_intp n, const char *what, PyArrayObject **out)
+{
+    *out = (PyArrayObject *)PyArray_FROMANY(obj, NPY_DOUBLE, 1, 1, NPY_ARRAY_IN_ARRAY);
+    if (!*out)
+        return -1;
+    if (n >= 0 && PyArray_SIZE(*out) != n) {
+        PyErr_Format(PyExc_ValueError, "%s: %ld values, expected %ld (one per step)", what,
+                     (long)PyArray_SIZE(*out), (long)n);
+        Py_CLEAR(*out);
+        return -1;
+    }
+    return 0;
+}
+
+static PyObject *branch_dict(const im_unloading_branch *b)
+{
+    return Py_BuildValue("{s:i,s:i,s:i,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "top_step", b->top_step,
+                         "last_step", b->last_step, "loading_from", b->loading_from, "approach_max", b->approach_max,
+                         "load_max", b->load_max, "stiffness", b->stiffness, "epsilon", b->epsilon, "contact_depth",
+                         b->contact_depth, "area_projected", b->area_projected, "hardness_it", b->hardness,
+                         "modulus_reduced", b->modulus, "residual_approach", b->residual_approach, "work_in",
+                         b->work_in, "work_out", b->work_out);
+}
+
+static PyObject *branches_list(const im_unloading_branch *b, int found)
+{
+    PyObject *list = PyList_New(found);
+    for (int k = 0; list && k < found; ++k) {
+        PyObject *item = branch_dict(&b[k]);
+        if (!item) {
+            Py_CLEAR(list);
+            break;
+        }
+        PyList_SET_ITEM(list, k, item);
+    }
+    return list;
+}
+
+/* unloading(punch, alpha, radius, approach, load, residual, profile, delta) -> list of dicts */
+static PyObject *unloading(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *kind;
+    double alpha, radius, delta;
+    PyObject *approach_obj, *load_obj, *residual_obj, *profile_obj;
+    if (!PyArg_ParseTuple(args, "sddOOOOd", &kind, &alpha, &radius, &approach_obj, &load_obj, &residual_obj,
+                          &profile_obj, &delta))
+        return NULL;
+    PyArrayObject *approach = NULL, *load = NULL, *residual = NULL;
+    im_profile *profile = NULL;
+    im_indenter punch;
+    PyObject *result = NULL;
+    if (double_vector(approach_obj, -1, "approach", &approach) < 0 ||
+        double_vector(load_obj, PyArray_SIZE(approach), "load", &load) < 0 ||
+        (residual_obj != Py_None &&
+         double_vector(residual_obj, PyArray_SIZE(approach), "residual_approach", &residual) < 0) ||
+        (profile_obj != Py_None && profile_from_array(profile_obj, delta, &profile) < 0) ||
+        punch_from_arguments(kind, alpha, radius, Py_None, Py_None, profile, &punch) < 0)
+        goto done;
+    int count = (int)PyArray_SIZE(approach), found = 0;
+    im_unloading_branch *b = malloc(sizeof *b * (size_t)(count > 0 ? count : 1));
+    if (!b) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    int status = im_measure_unloading(&punch, PyArray_DATA(approach), PyArray_DATA(load),
+                                      residual ? PyArray_DATA(residual) : NULL, count, b, count, &found);
+    result = status == IM_OK ? branches_list(b, found) : py_raise_status(status);
+    free(b);
+done:
+    Py_XDECREF(approach);
+    Py_XDECREF(load);
+    Py_XDECREF(residual);
+    im_profile_free(profile);
+    return result;
+}
+
+PyMethodDef py_solver_methods[] = {
+    {"unloading", unloading, METH_VARARGS,
+     "unloading(punch, alpha, radius, approach, load, residual, profile, delta) -> [dict per unloading branch]"},
+    {NULL, NULL, 0, NULL}};

@@ -40,6 +40,30 @@ def test_load_control_sphere_bit_for_bit(cli, rough64, tmp_path):
     assert np.load(tmp_path / "out" / "force_0002.npy").tobytes() == fields[1]["force"].tobytes()
 
 
+def test_loading_unloading_with_hardness_bit_for_bit(cli, rough64, tmp_path):
+    """A cycle with the cap's memory: the same history, plastic fields and indentation analysis."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "1:3:3,2.5:0:6", "--hardness", "0.05", "--fields",
+            "--out", tmp_path / "out")
+    approaches = np.r_[np.linspace(1, 3, 3), np.linspace(2.5, 0, 6)]
+    history, fields = im.indent(rough64, im.Cone(80), approaches=approaches, hardness=0.05, fields=True)
+    rows = read_history(tmp_path / "out" / "history.csv")
+    for k, row in enumerate(rows):
+        for name in ("approach", "load", "plastic_depth", "plastic_work", "residual_approach"):
+            assert float(row[name]) == history[k][name], name
+        assert int(row["yielding_patches"]) == history[k]["yielding_patches"]
+    assert history["plastic_work"][2] > 0 and (history["plastic_work"][3:] == history["plastic_work"][2]).all()
+    saved = np.load(tmp_path / "out" / "plastic_0009.npy")
+    assert saved.tobytes() == fields[8]["plastic"].tobytes() and saved.max() == history["plastic_depth"][8]
+    table = im.unloading(history, im.Cone(80))
+    with open(tmp_path / "out" / "indentation.csv") as f:
+        csv_rows = list(csv.DictReader(f))
+    assert len(table) == len(csv_rows) == 1
+    for name in im.solver.UNLOADING_DTYPE.names:
+        assert float(csv_rows[0][name]) == table[0][name], name
+    assert table[0]["top_step"] == 3 and table[0]["last_step"] == 9 and table[0]["residual_approach"] > 0
+
+
 def test_synthesis_and_statistics_match_the_cli(cli, tmp_path):
     run_cli(cli, "surface", "--n", "48", "--hurst", "0.7", "--slope", "0.05", "--seed", "9", "--out",
             tmp_path / "s.npy")
