@@ -87,8 +87,11 @@ static void add_contact(key_hash *hash, const im_scene *scene)
     if (scene->profile) /* only then, so that the keys of the other punches stay as they were */
         add_profile(hash, scene->profile);
     key_add(hash, "solver %.17g %.17g %d %d %d;", o.e_star, o.tol, o.max_iterations, o.crop, o.window_margin);
-    if (o.hardness > 0) /* only then, so that the keys of results without a cap stay as they were */
-        key_add(hash, "hardness %.17g;", o.hardness);
+    /* only then, so that the keys of results without a cap stay as they were; "memory": results made
+     * since the cap remembers its plastic flow (and load control searches the approach) differ from
+     * the memoryless cap's, which --resume must not reuse */
+    if (o.hardness > 0)
+        key_add(hash, "hardness %.17g; memory;", o.hardness);
 }
 
 uint64_t scene_checksum(const char *bytes, size_t length)
