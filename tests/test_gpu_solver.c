@@ -66,6 +66,8 @@ static void assert_same_step(const im_step_result *cpu, const im_step_result *gp
         fail_msg("step %d: cpu N = %.17g w = %.17g, gpu N = %.17g w = %.17g", step, cpu->load, cpu->approach,
                  gpu->load, gpu->approach);
     assert_int_equal(cpu->contact_patches, gpu->contact_patches);
+    if (test_relative_difference(cpu->plastic_work, gpu->plastic_work) > 1e-9)
+        fail_msg("step %d: cpu dissipation %.17g, gpu %.17g", step, cpu->plastic_work, gpu->plastic_work);
 }
 
 /* Runs the same history on both engines and compares every step. */
@@ -74,8 +76,11 @@ static void compare_history(const im_field *s, const im_indenter *punch, enum im
 {
     im_solver_options cpu_options = engine_options(IM_DEVICE_CPU), gpu_options = engine_options(IM_DEVICE_GPU);
     cpu_options.hardness = gpu_options.hardness = hardness;
-    im_indentation *cpu = prepare(s, punch, control, targets[count - 1], &cpu_options);
-    im_indentation *gpu = prepare(s, punch, control, targets[count - 1], &gpu_options);
+    double largest = 0;
+    for (int k = 0; k < count; ++k)
+        largest = fmax(largest, targets[k]);
+    im_indentation *cpu = prepare(s, punch, control, largest, &cpu_options);
+    im_indentation *gpu = prepare(s, punch, control, largest, &gpu_options);
     assert_string_equal(im_solver_plan_device(im_indentation_plan(cpu)), "cpu");
     assert_string_not_equal(im_solver_plan_device(im_indentation_plan(gpu)), "cpu");
     for (int k = 0; k < count; ++k) {
@@ -144,6 +149,10 @@ static void test_hardness_cap(void **state)
     const double loads[] = {100, 600}, approaches[] = {1, 3};
     compare_history(s, &cone, IM_CONTROL_LOAD, loads, 2, 2.0);
     compare_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, 2, 0.5);
+    /* the cap's memory: loading and unloading, under both controls (load control searches the approach) */
+    const double cycle[] = {1, 2.5, 4, 3, 1.5, 0.5}, load_cycle[] = {20, 45, 30, 5};
+    compare_history(s, &cone, IM_CONTROL_DISPLACEMENT, cycle, 6, 0.05);
+    compare_history(s, &cone, IM_CONTROL_LOAD, load_cycle, 4, 0.05);
     im_field_free(s);
 }
 
