@@ -59,6 +59,13 @@ static void usage(FILE *stream)
             "  --approach LIST     imposed approaches w: 'w1,w2,...' or 'first:last:count' (linear,\n"
             "                      inclusive); at most 4096 steps, as a scene's [loading] steps\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
+            "  --periodic          SURFACE is one period of a periodic surface (nominally flat contact):\n"
+            "                      the periodic half-space, under load control only; the punch is a\n"
+            "                      rigid flat on the whole cell unless --punch gives one, which then\n"
+            "                      repeats with the cell. area_ratio is A / A0; load_star and the\n"
+            "                      theory columns are nan (docs/solver.md, \"Periodic indentation\")\n"
+            "  --pressure LIST     with --periodic: mean pressures p_m (units of E*) instead of --load\n"
+            "                      (N = p_m times the cell's area), same syntax\n"
             "  --e-star E          composite modulus E* (default 1)\n"
             "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
             "                      stress); default none\n"
@@ -114,7 +121,8 @@ typedef struct indent_options {
     im_indenter punch;
     const char *profile_path; /* --profile */
     im_profile *profile;      /* read from it once the surface's spacing is known; the punch borrows it */
-    int radius_given, x_given, y_given;
+    int radius_given, x_given, y_given, punch_given;
+    int pressures;            /* --pressure: the targets are mean pressures until the cell is known */
     enum im_control control;
     const char *targets_text;
     const char *quality; /* preset name, NULL if none given */
@@ -127,7 +135,8 @@ typedef struct indent_options {
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE };
+       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
+       OPT_PRESSURE };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -146,7 +155,8 @@ static const struct option LONG_OPTIONS[] = {
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
     {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
-    {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE}, {0, 0, 0, 0}};
+    {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE},
+    {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE}, {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -188,7 +198,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
     case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
-    case OPT_PUNCH: return parse_punch(arg, &o->punch.kind);
+    case OPT_PUNCH: o->punch_given = 1; return parse_punch(arg, &o->punch.kind);
+    case OPT_PERIODIC: o->solver.periodic = 1; return 0;
     case OPT_PROFILE: o->profile_path = arg; return 0;
     case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
@@ -196,13 +207,16 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_Y: o->y_given = 1; return cli_parse_double("--y", arg, -1e300, 1e300, &o->punch.y0);
     case OPT_APPROACH:
     case OPT_LOAD:
+    case OPT_PRESSURE:
         if (o->targets_text) {
-            fprintf(stderr, "indentmap: give one of --approach and --load, once\n");
+            fprintf(stderr, "indentmap: give one of --approach, --load and --pressure, once\n");
             return -1;
         }
         o->targets_text = arg;
-        o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
-        return parse_targets(code == OPT_LOAD ? "--load" : "--approach", arg, &o->targets, &o->target_count);
+        o->control = code == OPT_APPROACH ? IM_CONTROL_DISPLACEMENT : IM_CONTROL_LOAD;
+        o->pressures = code == OPT_PRESSURE;
+        return parse_targets(code == OPT_LOAD ? "--load" : code == OPT_PRESSURE ? "--pressure" : "--approach", arg,
+                             &o->targets, &o->target_count);
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_QUALITY: o->quality = arg; return 0;
@@ -225,6 +239,12 @@ static int check_options(const indent_options *o)
 {
     if (!o->targets_text)
         fprintf(stderr, "indentmap: give --approach LIST or --load LIST\n");
+    else if (o->solver.periodic && o->control != IM_CONTROL_LOAD)
+        fprintf(stderr, "indentmap: --periodic takes --load LIST or --pressure LIST, not --approach: a periodic "
+                "half-space's approach is defined up to a constant\n");
+    else if (o->pressures && !o->solver.periodic)
+        fprintf(stderr, "indentmap: --pressure (a mean pressure over the cell) needs --periodic; a punch on the "
+                "half-space takes --load\n");
     else if (o->smooth == (o->surface_path != NULL))
         fprintf(stderr, "indentmap: give either a SURFACE file or --smooth\n");
     else if ((o->punch.kind == IM_PUNCH_PROFILE) != (o->profile_path != NULL))
@@ -466,9 +486,11 @@ static json_t *surface_sidecar_generator(const char *surface_path)
 static json_t *units_record(const indent_options *o, const im_field *s)
 {
     const char *length = s->unit[0] ? s->unit : "delta";
-    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length, "e_star",
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length, "e_star",
                      o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "load", o->force_unit, "force",
-                     o->force_unit, "load_star", "contact area A(N) / delta^2 (dimensionless)");
+                     o->force_unit, "load_star",
+                     o->solver.periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
+                     "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)");
 }
 
 /* What this run was given beside the common fields (front.h: run_record_create). */
@@ -493,6 +515,8 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
+    if (blocks)
+        json_object_set_new(blocks, "periodic", json_boolean(o->solver.periodic));
     if (blocks && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(blocks, "surface"), "source_encoding", json_string("escaped"));
     return blocks;
@@ -629,7 +653,7 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
 {
     int status = im_indentation_step(run, o->targets[i], &rows[i].result);
     if (status == IM_OK)
-        status = history_measure(&o->punch, rough, run, rows, i);
+        status = history_measure(&o->punch, o->solver.periodic ? NULL : rough, run, rows, i);
     if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
         status = write_fields(o, run, i + 1);
     if (status == IM_OK && o->distributions)
@@ -650,6 +674,10 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
 static void write_analysis(const indent_options *o, const history_row *rows, int done, json_t *record)
 {
     int branches = 0;
+    if (o->solver.periodic) { /* Oliver-Pharr's areas are a punch's on a half-space */
+        json_object_set_new(record, "indentation", json_null());
+        return;
+    }
     if (analysis_write(o->out, &o->punch, rows, done, o->surface_delta, &branches) != IM_OK) {
         fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
         return;
@@ -663,6 +691,52 @@ static void write_analysis(const indent_options *o, const history_row *rows, int
     }
     printf("indentation analysis of %d unloading branch%s: %s/indentation.csv, load_displacement.png and .pdf\n",
            branches, branches == 1 ? "" : "es", o->out);
+}
+
+/* The rms of the steps across the cell's edges (last column to first, last row to first) and of the
+ * steps between neighbours inside it. */
+static void edge_steps(const im_field *s, double *edge_rms, double *inner_rms)
+{
+    double edge = 0, inner = 0;
+    long edges = 0, inners = 0;
+    for (int iy = 0; iy < s->ny; ++iy)
+        for (int ix = 0; ix < s->nx; ++ix) {
+            const double h = s->data[(size_t)iy * s->nx + ix];
+            const double right = s->data[(size_t)iy * s->nx + (ix + 1) % s->nx];
+            const double below = s->data[(size_t)((iy + 1) % s->ny) * s->nx + ix];
+            const double dx = right - h, dy = below - h;
+            if (ix + 1 == s->nx)
+                edge += dx * dx, ++edges;
+            else
+                inner += dx * dx, ++inners;
+            if (iy + 1 == s->ny)
+                edge += dy * dy, ++edges;
+            else
+                inner += dy * dy, ++inners;
+        }
+    *edge_rms = edges ? sqrt(edge / edges) : 0;
+    *inner_rms = inners ? sqrt(inner / inners) : 0;
+}
+
+/* --periodic: the rigid flat when no --punch was given (a flat punch wider than the cell's diagonal
+ * covers every nearest image), loads from --pressure's mean pressures, and a warning when SURFACE is
+ * not periodic (the solver joins its edges, as ContactMechanics warns). */
+static void prepare_periodic(indent_options *o, const im_field *surface)
+{
+    if (!o->solver.periodic)
+        return;
+    const double cell = (double)surface->nx * surface->ny * surface->delta * surface->delta;
+    if (!o->punch_given)
+        o->punch = im_indenter_flat(2.0 * hypot(surface->nx, surface->ny) * surface->delta);
+    for (int i = 0; o->pressures && i < o->target_count; ++i)
+        o->targets[i] *= cell;
+    double edge, inner;
+    edge_steps(surface, &edge, &inner);
+    if (edge > 3.0 * inner)
+        fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
+                "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
+                "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
+                o->surface_path ? o->surface_path : "the surface", edge, edge / inner, inner);
 }
 
 /* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
@@ -790,8 +864,10 @@ int cli_indent(int argc, char **argv)
     }
     if (status == IM_OK)
         status = load_profile(&o, surface);
-    if (status == IM_OK)
+    if (status == IM_OK) {
+        prepare_periodic(&o, surface);
         status = check_axis_inside(&o, surface);
+    }
     if (status == IM_OK) {
         o.surface_delta = surface->delta;
         set_force_unit(&o, surface);

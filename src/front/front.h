@@ -47,7 +47,8 @@ typedef struct history_row {
 } history_row;
 
 /* Fills rows[i] (rows[0..i) filled before; rows[i].result set by the caller): its step number, the
- * theory for punch on the interface rough at its approach and load, the stiffness and Sneddon
+ * theory for punch on the interface rough at its approach and load (NaN when rough is NULL: a periodic
+ * cell), the stiffness and Sneddon
  * modulus, and (run not NULL: the state of this step) the contact patches. */
 int history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
                     history_row *rows, int i);

@@ -41,7 +41,11 @@ int history_measure(const im_indenter *punch, const im_theory_interface *rough, 
 {
     history_row *row = &rows[i];
     row->step = i + 1;
-    int status = im_theory_step_columns(punch, rough, row->result.approach, row->result.load, &row->theory);
+    int status = IM_OK;
+    if (rough) /* none for a periodic cell: the theory is the half-space's */
+        status = im_theory_step_columns(punch, rough, row->result.approach, row->result.load, &row->theory);
+    else
+        row->theory = (im_theory_step){NAN, NAN, NAN, NAN};
     row->stiffness = row->e_star_sneddon = NAN;
     /* Three steps on one branch (the parabola's slope: exact for Love's quadratic N(w)); at the first
      * two steps, a repeated approach or a turn from loading to unloading the stiffness stays NaN. Two

@@ -39,6 +39,7 @@ typedef struct pk_run {
     double *p, *u;            /* the caller's pressure (in: a warm start or zeros) and displacement */
     int convolutions;
     int status;               /* IM_OK, or the first failure of an engine pass (a lost GPU) */
+    double approach;          /* load control: the last approach taken from the elastic patches (NaN: none) */
 } pk_run;
 
 typedef struct solver_engine {

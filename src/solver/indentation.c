@@ -40,7 +40,12 @@ static int undeformed_gap(im_indentation *run, const im_field *surface)
     for (int iy = 0; iy < ny; ++iy)
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)iy * nx + ix;
-            run->gap0[i] = im_indenter_height(&run->punch, (ix + 0.5) * d - ax, (iy + 0.5) * d - ay) - surface->data[i];
+            double dx = (ix + 0.5) * d - ax, dy = (iy + 0.5) * d - ay;
+            if (run->options.periodic) { /* the punch repeats with the cell: the nearest image */
+                dx -= nx * d * round(dx / (nx * d));
+                dy -= ny * d * round(dy / (ny * d));
+            }
+            run->gap0[i] = im_indenter_height(&run->punch, dx, dy) - surface->data[i];
             if (run->gap0[i] < lowest)
                 lowest = run->gap0[i];
         }
@@ -88,7 +93,7 @@ static void grow_span(int *lo, int *hi, int n)
 
 static im_window choose_window(const im_indentation *run)
 {
-    if (!run->options.crop)
+    if (!run->options.crop || run->options.periodic) /* a periodic cell has no outside to crop */
         return (im_window){0, 0, run->nx, run->ny};
     int x_lo = run->nx, x_hi = -1, y_lo = run->ny, y_hi = -1;
 #pragma omp parallel for schedule(static) reduction(min : x_lo, y_lo) reduction(max : x_hi, y_hi)
@@ -145,6 +150,8 @@ static double approach_bound(const im_field *surface, const im_indenter *punch, 
 {
     if (control == IM_CONTROL_DISPLACEMENT)
         return largest_target;
+    if (o->periodic) /* no window to bound */
+        return INFINITY;
     double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
     if (o->hardness > 0)
         smooth = fmax(smooth, im_indenter_profile(punch, sqrt(largest_target / (M_PI * o->hardness))));
@@ -161,9 +168,9 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
         status = im_solver_options_check(options);
     if (status != IM_OK)
         return status;
-    if (options->periodic)
-        return im_fail(IM_EINVAL, "periodic = 1: an indentation needs the half-space (periodic mode is for "
-                       "nominally flat contact, im_flat_contact_*)");
+    if (options->periodic && control != IM_CONTROL_LOAD)
+        return im_fail(IM_EINVAL, "periodic = 1: expected load control (a periodic half-space's approach is "
+                       "defined up to a constant: give loads, or mean pressures times the cell's area)");
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
     if (!(isfinite(largest_target) && largest_target >= 0))
@@ -287,9 +294,10 @@ static int check_edge(const im_indentation *run)
  * edge, or, with a window bound broken by the edge, nowhere sensible. */
 static int check_reachable(const im_indentation *run, double load)
 {
-    /* a flat punch's contact radius is its own; a 2-D profile has no smooth-contact estimate */
+    /* a flat punch's contact radius is its own; a 2-D profile has no smooth-contact estimate; a
+     * periodic cell has no edge */
     if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT || run->punch.kind == IM_PUNCH_PROFILE_2D ||
-        load == 0)
+        load == 0 || run->options.periodic)
         return IM_OK;
     double ax, ay;
     im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
@@ -364,7 +372,9 @@ static double withdrawn_approach(const im_indentation *run)
 static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
 {
     const double d2 = run->delta * run->delta;
-    double area = im_indenter_area_for_load(&run->punch, run->options.e_star, s->load);
+    /* periodic: no smooth half-space contact to compare with; the area ratio is A / A0 of the cell */
+    double area = run->options.periodic ? (s->load > 0 ? (double)run->nx * run->ny * d2 : NAN)
+                                        : im_indenter_area_for_load(&run->punch, run->options.e_star, s->load);
     *out = (im_step_result){.approach = s->approach, .load = s->load, .load_star = area / d2,
                             .contact_patches = s->contact_patches,
                             .area_ratio = s->load > 0 ? s->contact_patches * d2 / area : NAN,
@@ -372,6 +382,8 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
                             .iterations = s->iterations, .convolutions = s->convolutions,
                             .residual = s->residual, .seconds = s->seconds,
                             .coarse_iterations = s->coarse_iterations, .plastic_work = run->plastic_work};
+    if (run->options.periodic)
+        out->load_star = NAN;
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
 }
 
@@ -475,8 +487,14 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     int status = check_reachable(run, target);
     if (status != IM_OK)
         return status;
+    const double cell_capacity = run->options.hardness * run->nx * run->ny * run->delta * run->delta;
+    if (run->options.periodic && run->options.hardness > 0 && target >= cell_capacity)
+        return im_fail(IM_EINVAL, "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
+                       "load every patch would have yielded: full contact, no approach to find)", target,
+                       run->options.hardness, cell_capacity);
     im_solve_result s;
-    if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0)
+    /* (a periodic plan has no displacement control to search with: Polonsky-Keer's own load control) */
+    if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0 && !run->options.periodic)
         status = solve_at_load(run, target, &s);
     else
         status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
@@ -487,7 +505,7 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
     fill_step(run, &s, out);
     out->yielding_patches = yielding;
-    if (status == IM_OK)
+    if (status == IM_OK && !run->options.periodic) /* a periodic cell has no edge */
         status = check_edge(run);
     if (status == IM_OK && s.approach > run->approach_bound) /* only if the bound were wrong: never hide it */
         status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
@@ -573,6 +591,8 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
 int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
     ARG_REQUIRE(run, "run");
+    if (run->options.periodic) /* the solve covers the whole cell with the periodic u already */
+        return im_indentation_fields(run, force, gap, displacement);
     im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
     int status = run->full_plan ? IM_OK
                                 : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options,

@@ -31,6 +31,12 @@ static gap_stats compute_gaps(pk_run *r)
     if (r->control == IM_CONTROL_LOAD) {
         long count;
         w = engine_of(r)->contact_mean(r, cap, &count);
+        /* With a cap every contact patch may be capped for a while (none elastic to take the approach
+         * from): the approach stays where it was; the capped patches whose gap opens then unload and the
+         * penetrating free ones join, which restores an elastic set. */
+        if (count == 0 && isfinite(cap) && isfinite(r->approach))
+            w = r->approach;
+        r->approach = w;
     }
     gap_stats s = engine_of(r)->gaps(r, w, cap);
     s.approach = w;
@@ -300,7 +306,7 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
         return status;
     const size_t n = (size_t)plan->nx * plan->ny;
     pk_run r = {.plan = plan, .gap0 = gap0, .control = control, .target = target, .p = pressure,
-                .u = displacement, .status = IM_OK};
+                .u = displacement, .status = IM_OK, .approach = NAN};
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);
