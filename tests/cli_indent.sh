@@ -47,6 +47,26 @@ head -c 8 "$DIR/cycle/load_displacement.png" | od -An -tx1 | grep -q '89 50 4e 4
     || fail "no load-displacement figure"
 grep -q '"indentation": "indentation.csv"' "$DIR/cycle/run.json" || fail "run.json does not name indentation.csv"
 ! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
+# --periodic (issue 26): a generated (periodic) surface under a rigid flat at two mean pressures: load =
+# p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole
+# cell, no warning; --approach and a lone --pressure refused; a ramp (not periodic) warned about.
+"$BIN" surface --n 64 --slope 0.08 --seed 3 --out "$DIR/cell.npy" > /dev/null || fail "surface for --periodic"
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.002,0.01 --fields --out "$DIR/per" > /dev/null 2> "$DIR/per.err" \
+    || fail "--periodic exited $?: $(cat "$DIR/per.err")"
+[ ! -s "$DIR/per.err" ] || fail "--periodic on a periodic surface said: $(cat "$DIR/per.err")"
+awk -F, 'NR == 2 { p = 0.002 } NR == 3 { p = 0.01 } NR > 1 {
+         if ($3 / (p * 4096) - 1 > 1e-12 || 1 - $3 / (p * 4096) > 1e-12 || $6 != $5 / 4096 || $4 != "nan" || $13 != "nan") exit 1 }
+         END { if (NR != 3) exit 1 }' "$DIR/per/history.csv" || fail "--periodic history: $(cat "$DIR/per/history.csv")"
+grep -q '"periodic": true' "$DIR/per/run.json" || fail "run.json does not say periodic"
+[ -s "$DIR/per/force_0002.npy" ] || fail "--periodic --fields wrote no force_0002.npy"
+"$BIN" indent "$DIR/cell.npy" --periodic --approach 1 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
+[ $? -eq 2 ] && grep -q "periodic takes --load LIST or --pressure LIST" "$DIR/per_w.err" || fail "--periodic --approach: $(cat "$DIR/per_w.err")"
+"$BIN" indent "$DIR/cell.npy" --pressure 0.01 --out "$DIR/per_p" > /dev/null 2> "$DIR/per_p.err"
+[ $? -eq 2 ] && grep -q "needs --periodic" "$DIR/per_p.err" || fail "--pressure without --periodic: $(cat "$DIR/per_p.err")"
+awk 'BEGIN { for (y = 0; y < 32; ++y) { line = ""; for (x = 0; x < 32; ++x) line = line (x ? " " : "") 0.1 * x; print line } }' \
+    > "$DIR/ramp.txt"
+"$BIN" indent "$DIR/ramp.txt" --periodic --pressure 0.001 --out "$DIR/per_r" > /dev/null 2> "$DIR/per_r.err"
+grep -q "is not periodic: the steps across its edges have rms" "$DIR/per_r.err" || fail "no warning for a ramp: $(cat "$DIR/per_r.err")"
 # the same folder run again with loading only: no stale analysis or plastic field is left
 "$BIN" indent --smooth --n 96 --approach 1:6:3 --fields --out "$DIR/cycle" >/dev/null || fail "rerun exited $?"
 [ ! -e "$DIR/cycle/indentation.csv" ] && [ ! -e "$DIR/cycle/load_displacement.png" ] && ! ls "$DIR/cycle" | grep -q plastic_ \
