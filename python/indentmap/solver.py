@@ -65,17 +65,28 @@ class Indentation:
     history remembers it: each step adds the capped patches' overlap to a plastic depth and starts from
     the deformed surface, so unloading is elastic and reloading retraces it (docs/solver.md, "Hardness").
     Targets may go up and down; ``plastic()`` gives the plastic depth so far.
+
+    ``periodic=True``: the heights are one period of a periodic surface (nominally flat contact, as
+    ``indentmap indent --periodic``): the periodic half-space over the whole cell, load control only, the
+    punch repeated with the cell, or a rigid flat when ``punch`` is None; ``area_ratio`` is then A / A0
+    and ``load_star`` NaN.
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
-                 hardness=0.0):
+                 hardness=0.0, periodic=False):
+        if punch is None:
+            if not periodic:
+                raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
+            ny, nx = np.shape(heights)
+            punch = Flat(2.0 * np.hypot(nx, ny) * delta)  # wider than the cell: every nearest image
         kind, alpha, radius, profile = _punch_arguments(punch)
         x, y = (None, None) if axis is None else axis
         self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
                                       e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
                                       crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
-                                      profile=profile, device=str(device), hardness=float(hardness))
+                                      profile=profile, device=str(device), hardness=float(hardness),
+                                      periodic=bool(periodic))
 
     def step(self, target):
         """Solves the next step at approach or load ``target``; returns its results as a dict."""
@@ -117,16 +128,22 @@ class Plan:
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
 
 
-def indent(heights, punch=Cone(), *, approaches=None, loads=None, fields=False, **options):
+def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, fields=False, **options):
     """Solves a history of approaches (displacement control) or loads (load control).
 
     Returns a structured array with one row per step (fields of HISTORY_DTYPE); with ``fields=True``,
     also a list of dicts {'force', 'gap', 'displacement'} per step ('plastic' too with a hardness).
     ``options`` go to Indentation. Targets may go up and down (``np.r_[2:8:4j, 7:0:8j]`` loads to 8 and
-    unloads): ``unloading(history, punch)`` then gives the indentation analysis.
+    unloads): ``unloading(history, punch)`` then gives the indentation analysis. ``pressures`` (with
+    ``periodic=True``): mean pressures over the cell instead of loads, as ``indent --pressure``.
     """
-    if (approaches is None) == (loads is None):
-        raise ValueError("give either approaches or loads")
+    if sum(t is not None for t in (approaches, loads, pressures)) != 1:
+        raise ValueError("give one of approaches, loads and pressures")
+    if pressures is not None:
+        if not options.get("periodic", False):
+            raise ValueError("pressures (mean pressures over the cell) need periodic=True; give loads otherwise")
+        ny, nx = np.shape(heights)
+        loads = np.asarray(pressures, dtype=float) * (nx * ny * options.get("delta", 1.0) ** 2)
     targets = np.asarray(approaches if loads is None else loads, dtype=float).ravel()
     if targets.size == 0:
         raise ValueError("no steps")

@@ -96,14 +96,15 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
                                "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
-                               "hardness", NULL};
+                               "hardness", "periodic", NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     double delta, alpha, radius, largest;
     const char *kind, *control_name, *device = "cpu";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsd", keywords, &obj, &delta, &kind, &alpha,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdp", keywords, &obj, &delta, &kind, &alpha,
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
-                                     &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness))
+                                     &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
+                                     &o.periodic))
         return -1;
     if (im_device_parse(device, &o.device) != IM_OK) {
         PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);

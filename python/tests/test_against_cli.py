@@ -64,6 +64,20 @@ def test_loading_unloading_with_hardness_bit_for_bit(cli, rough64, tmp_path):
     assert table[0]["top_step"] == 3 and table[0]["last_step"] == 9 and table[0]["residual_approach"] > 0
 
 
+def test_periodic_bit_for_bit(cli, rough64, tmp_path):
+    """indent --periodic --pressure and indent(..., periodic=True, pressures=...): the same rows and forces."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--pressure", "0.002,0.01", "--fields", "--out",
+            tmp_path / "out")
+    history, fields = im.indent(rough64, None, pressures=[0.002, 0.01], periodic=True, fields=True)
+    rows = read_history(tmp_path / "out" / "history.csv")
+    for k, row in enumerate(rows):
+        for name in ("approach", "load", "area_ratio", "mean_pressure", "max_pressure"):
+            assert float(row[name]) == history[k][name], name
+        assert np.isnan(history[k]["load_star"]) and history[k]["area_ratio"] == history[k]["contact_patches"] / 64**2
+        assert np.load(tmp_path / "out" / f"force_{k + 1:04d}.npy").tobytes() == fields[k]["force"].tobytes()
+
+
 def test_synthesis_and_statistics_match_the_cli(cli, tmp_path):
     run_cli(cli, "surface", "--n", "48", "--hurst", "0.7", "--slope", "0.05", "--seed", "9", "--out",
             tmp_path / "s.npy")
