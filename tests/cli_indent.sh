@@ -58,6 +58,9 @@ awk -F, 'NR == 2 { p = 0.002 } NR == 3 { p = 0.01 } NR > 1 {
          if ($3 / (p * 4096) - 1 > 1e-12 || 1 - $3 / (p * 4096) > 1e-12 || $6 != $5 / 4096 || $4 != "nan" || $13 != "nan") exit 1 }
          END { if (NR != 3) exit 1 }' "$DIR/per/history.csv" || fail "--periodic history: $(cat "$DIR/per/history.csv")"
 grep -q '"periodic": true' "$DIR/per/run.json" || fail "run.json does not say periodic"
+# k of eq. (2) fitted to the steps (theory.h): recorded with its error, range and h'rms definition
+grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spectral"' "$DIR/per/run.json" \
+    && grep -q '"k_error"' "$DIR/per/run.json" || fail "run.json has no k fit: $(cat "$DIR/per/run.json")"
 [ -s "$DIR/per/force_0002.npy" ] || fail "--periodic --fields wrote no force_0002.npy"
 "$BIN" indent "$DIR/cell.npy" --periodic --approach 1 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
 [ $? -eq 2 ] && grep -q "periodic takes --load LIST or --pressure LIST" "$DIR/per_w.err" || fail "--periodic --approach: $(cat "$DIR/per_w.err")"

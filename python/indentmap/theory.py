@@ -74,3 +74,13 @@ def hertz_area(load, radius, e_star=1.0):
 def cone_area(load, alpha=80.0, e_star=1.0):
     """Eq. (5): A_cone = 2 N / (E* cot(alpha))."""
     return _apply("cone_area", load, alpha=float(alpha), e_star=float(e_star))
+
+
+def fit_k(pressure_ratio, area_fraction):
+    """k of eq. (2) fitted to nominally flat contact: A/A0 = erf(sqrt(pi)/2 k x) in x = p_m / (h'rms E*)
+    (least squares, Gauss-Newton; theory.h: im_theory_fit_k). Returns a dict: k, its standard error
+    k_error, k_linear (the slope of A/A0 = k x through the origin over A/A0 <= 0.5) with linear_points,
+    and rms_residual. For a periodic history: x = load / (nx ny delta^2 h'rms E*), A/A0 = area_ratio."""
+    x = np.ascontiguousarray(np.ravel(pressure_ratio), dtype=float)
+    a = np.ascontiguousarray(np.ravel(area_fraction), dtype=float)
+    return _core.fit_k(x, a)

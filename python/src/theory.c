@@ -2,6 +2,8 @@
  * already broadcast to one shape: _core.theory(name, a, b, params) -> array. */
 #include "core.h"
 
+#include <stdint.h>
+
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 
@@ -147,6 +149,28 @@ static PyObject *theory(PyObject *self, PyObject *args)
     return out;
 }
 
+/* fit_k(pressure_ratio, area_fraction): two contiguous float64 arrays of one size -> dict (theory.h) */
+static PyObject *fit_k(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyArrayObject *x, *area;
+    if (!PyArg_ParseTuple(args, "O!O!", &PyArray_Type, &x, &PyArray_Type, &area))
+        return NULL;
+    npy_intp n = PyArray_SIZE(x);
+    if (PyArray_TYPE(x) != NPY_DOUBLE || PyArray_TYPE(area) != NPY_DOUBLE || !PyArray_IS_C_CONTIGUOUS(x) ||
+        !PyArray_IS_C_CONTIGUOUS(area) || PyArray_SIZE(area) != n || n < 1 || n > INT32_MAX) {
+        PyErr_SetString(PyExc_ValueError, "fit_k: expected two float64 arrays of one size >= 1");
+        return NULL;
+    }
+    im_theory_k_fit fit;
+    int status = im_theory_fit_k(PyArray_DATA(x), PyArray_DATA(area), (int)n, &fit);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    return Py_BuildValue("{s:d,s:d,s:d,s:i,s:d}", "k", fit.k, "k_error", fit.k_error, "k_linear", fit.k_linear,
+                         "linear_points", fit.linear_points, "rms_residual", fit.rms_residual);
+}
+
 PyMethodDef py_theory_methods[] = {
     {"theory", theory, METH_VARARGS, "theory(name, a, b, params) -> array (see indentmap.theory)"},
+    {"fit_k", fit_k, METH_VARARGS, "fit_k(pressure_ratio, area_fraction) -> dict (see indentmap.theory.fit_k)"},
     {NULL, NULL, 0, NULL}};

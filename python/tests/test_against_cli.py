@@ -76,6 +76,12 @@ def test_periodic_bit_for_bit(cli, rough64, tmp_path):
             assert float(row[name]) == history[k][name], name
         assert np.isnan(history[k]["load_star"]) and history[k]["area_ratio"] == history[k]["contact_patches"] / 64**2
         assert np.load(tmp_path / "out" / f"force_{k + 1:04d}.npy").tobytes() == fields[k]["force"].tobytes()
+    # k of eq. (2): the CLI's run.json and theory.fit_k over the same history, h'rms spectral
+    import json
+    record = json.load(open(tmp_path / "out" / "run.json"))["k_fit"]
+    slope = im.statistics(rough64)["slope_rms_spectral"]
+    fit = im.theory.fit_k(history["load"] / (64 * 64 * slope), history["area_ratio"])
+    assert abs(fit["k"] - record["k"]) <= 1e-12 * record["k"] and abs(fit["k_error"] - record["k_error"]) <= 1e-9
 
 
 def test_synthesis_and_statistics_match_the_cli(cli, tmp_path):

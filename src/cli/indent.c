@@ -123,6 +123,7 @@ typedef struct indent_options {
     im_profile *profile;      /* read from it once the surface's spacing is known; the punch borrows it */
     int radius_given, x_given, y_given, punch_given;
     int pressures;            /* --pressure: the targets are mean pressures until the cell is known */
+    double cell_area;         /* --periodic: nx ny delta^2 */
     enum im_control control;
     const char *targets_text;
     const char *quality; /* preset name, NULL if none given */
@@ -669,6 +670,37 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
     return status;
 }
 
+/* --periodic: k of eq. (2) fitted to the steps done with load (theory.h: im_theory_fit_k, x = p_m /
+ * (h'rms E*) with the surface's spectral h'rms), printed and recorded in run.json with its range. */
+static void write_k_fit(const indent_options *o, const im_theory_interface *rough, const history_row *rows,
+                        int done, json_t *record)
+{
+    double *x = malloc(sizeof(double) * (size_t)(done + 1)), *area = malloc(sizeof(double) * (size_t)(done + 1));
+    int points = 0;
+    for (int i = 0; x && area && i < done; ++i)
+        if (rows[i].result.load > 0) {
+            x[points] = rows[i].result.load / o->cell_area / (rough->slope_rms * rough->e_star);
+            area[points++] = rows[i].result.area_ratio;
+        }
+    im_theory_k_fit fit;
+    if (points > 0 && rough->slope_rms > 0 && im_theory_fit_k(x, area, points, &fit) == IM_OK) {
+        double lo = x[0], hi = x[0], a_lo = area[0], a_hi = area[0];
+        for (int i = 1; i < points; ++i)
+            lo = fmin(lo, x[i]), hi = fmax(hi, x[i]), a_lo = fmin(a_lo, area[i]), a_hi = fmax(a_hi, area[i]);
+        printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
+               "h'rms %.6g, spectral); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit.k, fit.k_error,
+               points, lo, hi, a_lo, a_hi, rough->slope_rms, fit.k_linear, fit.linear_points);
+        json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit.k, "k_error",
+                                  fit.k_error, "rms_residual", fit.rms_residual, "points", points, "linear_points",
+                                  fit.linear_points, "pressure_ratio_range", lo, hi, "area_fraction_range", a_lo,
+                                  a_hi, "slope_rms", rough->slope_rms, "slope_rms_definition", "spectral");
+        json_object_set_new(block, "k_linear", isfinite(fit.k_linear) ? json_real(fit.k_linear) : json_null());
+        json_object_set_new(record, "k_fit", block);
+    }
+    free(x);
+    free(area);
+}
+
 /* indentation.csv over the steps done (front.h), said on stdout and in run.json; a failure here is
  * reported but leaves the run's own status alone (the history is the result). */
 static void write_analysis(const indent_options *o, const history_row *rows, int done, json_t *record)
@@ -726,6 +758,7 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
     if (!o->solver.periodic)
         return;
     const double cell = (double)surface->nx * surface->ny * surface->delta * surface->delta;
+    o->cell_area = cell;
     if (!o->punch_given)
         o->punch = im_indenter_flat(2.0 * hypot(surface->nx, surface->ny) * surface->delta);
     for (int i = 0; o->pressures && i < o->target_count; ++i)
@@ -764,6 +797,8 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     write_analysis(o, rows, done, record);
+    if (o->solver.periodic)
+        write_k_fit(o, rough, rows, done, record);
     int recorded = write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
