@@ -834,6 +834,30 @@ static void atomic_write_leaves_no_partial_file(void **state)
     assert_non_null(strstr(im_last_error(), "/nonexistent-dir/x.txt"));
 }
 
+/* Writers never replace what is not a regular file (issue 32): a FIFO, a device node, a symbolic link
+ * to one are refused and left as they were; a link to a regular file is written through. */
+static void special_files_are_not_replaced(void **state)
+{
+    (void)state;
+    const char *fifo = test_path("fifo");
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(im_write_file_atomic(fifo, "x", 1), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "is a FIFO, not a regular file"));
+    struct stat info;
+    assert_int_equal(lstat(fifo, &info), 0);
+    assert_true(S_ISFIFO(info.st_mode));
+    im_field *h = test_rough_surface(8, 0.1, 1);
+    assert_int_equal(im_npy_write("/dev/null", h, IM_NPY_FLOAT64), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "/dev/null is a character device"));
+    assert_int_equal(stat("/dev/null", &info), 0);
+    assert_true(S_ISCHR(info.st_mode));
+    const char *link = test_path("link-to-null");
+    assert_int_equal(symlink("/dev/null", link), 0);
+    assert_int_equal(im_write_file_atomic(link, "x", 1), IM_EINVAL);
+    assert_int_equal(im_write_file_atomic(test_path("plain.txt"), "x", 1), IM_OK);
+    im_field_free(h);
+}
+
 static void png_round_trip_keeps_pixels(void **state)
 {
     (void)state;
@@ -1001,6 +1025,7 @@ int main(void)
         cmocka_unit_test(gsf_header_values_are_strict),
         cmocka_unit_test(read_options_set_spacing_and_units),
         cmocka_unit_test(atomic_write_leaves_no_partial_file),
+        cmocka_unit_test(special_files_are_not_replaced),
         cmocka_unit_test(png_round_trip_keeps_pixels),
         cmocka_unit_test(concurrent_writes_of_one_file_all_succeed),
         cmocka_unit_test(temporary_names_are_short_and_recognised),

@@ -24,6 +24,13 @@ def test_errors_carry_the_library_message(tmp_path):
         im.read(tmp_path / "bad.txt")
     with pytest.raises(im.InvalidArgument, match=r"approach = 2: expected a value in \[0, 1\]"):
         im.Indentation(np.zeros((16, 16)), largest=1.0).step(2.0)
+    # a device node is not replaced by the file (issue 32: as root im.write("/dev/full", h) replaced it)
+    with pytest.raises(im.InvalidArgument, match=r"/dev/full is a character device, not a regular file"):
+        im.write("/dev/full", np.zeros((4, 4)))
+    os.mkfifo(tmp_path / "fifo")
+    with pytest.raises(im.InvalidArgument, match=r"is a FIFO"):
+        im.write(tmp_path / "fifo", np.zeros((4, 4)))
+    assert (tmp_path / "fifo").is_fifo()
 
 
 def test_plan_solves_complementarity_and_warm_starts(rough64):

@@ -143,6 +143,26 @@ static int meets_sidecar(const protected_input *in, const char *named, identity 
            is_sidecar_name(named, in->full);
 }
 
+/* What a path that is not a regular file or a folder names, for the refusal below. */
+static const char *special_kind(mode_t mode)
+{
+    return S_ISCHR(mode) ? "character device" : S_ISBLK(mode) ? "block device" : S_ISFIFO(mode) ? "FIFO" :
+           S_ISSOCK(mode) ? "socket" : "special file";
+}
+
+/* Outputs are written by renaming a new file over the old one: over a device node or a FIFO (as root:
+ * /dev/stdout, /dev/full) that would replace the node itself. Refused: a regular file, a folder (the
+ * rename then fails with its own message) or a new name are fine. */
+static int check_replaceable(const char *path)
+{
+    struct stat info;
+    if (stat(path, &info) != 0 || S_ISREG(info.st_mode) || S_ISDIR(info.st_mode))
+        return IM_OK;
+    return im_fail(IM_EINVAL, "%s is a %s, not a regular file: an output replaces its file by renaming a new one "
+                   "over it, which would replace the %s itself; give a file name", path,
+                   special_kind(info.st_mode), special_kind(info.st_mode));
+}
+
 int im_output_check(const char *path)
 {
     ARG_REQUIRE(path, "path");
@@ -161,7 +181,7 @@ int im_output_check(const char *path)
                              "elsewhere", path, in->given, in->given);
     }
     pthread_mutex_unlock(&inputs_lock);
-    return status;
+    return status == IM_OK ? check_replaceable(path) : status;
 }
 
 /* ---- kinds of files ---- */
