@@ -21,7 +21,7 @@ slopes = ${7:-0.08}
 seeds = 1:2
 [punch]
 shape = $3
-radius = 500
+$([ "$3" = cone ] || echo "radius = 500")
 [loading]
 control = $4
 steps = $5
@@ -107,6 +107,8 @@ check "--lambda-0 below lambda_r" expect_exit 2 "--lambda-0 10: expected >= lamb
 check "--approach 1:2" expect_exit 2 "--approach '1:2': '1:2' is not a range first:last:count (three numbers" \
   "$cli" indent "$dir/s.npy" --approach 1:2 --out "$dir/o_a"
 check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.npy" --approach 1,,2 --out "$dir/o_b"
+check "--out ''" expect_exit 2 "--out '': expected a file or folder name" "$cli" indent "$dir/s.npy" --approach 1 --out ''
+check "--psd ''" expect_exit 2 "--psd '': expected a file or folder name" "$cli" surface --n 16 --psd '' --out "$dir/p.npy"
 check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \
   "$cli" indent "$dir/s.npy" --approach 1 --radius 5 --out "$dir/o_c"
 check "--x outside the surface" expect_exit 2 "--x 1000 --y 10: the punch's axis lies outside the 64 x 64 surface" \

@@ -83,6 +83,8 @@ static void sweep_lists_are_refused_at_their_line(void **state)
                  ":4: alpha = '80, 70, 80': 80 is given twice");
     expect_error("sweep_range.ini", "[surfaces]\nhurst = 0.8, 1.2\n", ":2: hurst = '0.8, 1.2': 1.2 is outside [0.01, 0.99]");
     /* the lists take the step lists' parser: no trailing text after a range, no repeated family */
+    expect_error("cone_radius.ini", "[punch]\nshape = cone\nradius = 5\n",
+                 ":3: radius applies to shape = sphere or flat; a cone's shape is its alpha");
     expect_error("sweep_tail.ini", "[punch]\nalpha = 70:85:4x\n", ":2: alpha = '70:85:4x': '70:85:4x' is not a range first:last:count");
     expect_error("slopes_twice.ini", "[surfaces]\nslopes = 0.08, 0.04, 0.080\n",
                  ":2: slopes = '0.08, 0.04, 0.080': 0.08 is given twice");

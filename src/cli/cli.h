@@ -84,6 +84,10 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
  * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
 int cli_parse_length_unit(const char *option, const char *text, char *out);
 
+/* A path given to an option (--out, --psd, --frames, --wisdom): any text but the empty one, which names
+ * no file (it failed later as "indentmap: : cannot create directory"). 0, or -1 after saying so. */
+int cli_parse_path(const char *option, const char *text, const char **out);
+
 /* A unit's name (e.g. --e-star-unit Pa): 1 to size - 1 bytes without blanks or quotes. */
 int cli_parse_name(const char *option, const char *text, char *out, size_t size);
 

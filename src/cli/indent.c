@@ -227,9 +227,9 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_PLAIN_PK: o->solver.cascade = o->solver.precondition = 0; return 0;
     case OPT_MEASURE: o->solver.fft_measure = 1; return 0;
     case OPT_DEVICE: return cli_parse_device(arg, &o->solver.device);
-    case OPT_WISDOM: o->wisdom = arg; return 0;
+    case OPT_WISDOM: return cli_parse_path("--wisdom", arg, &o->wisdom);
     case OPT_NO_WISDOM: o->no_wisdom = 1; return 0;
-    case OPT_OUT: o->out = arg; return 0;
+    case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_FIELDS: o->fields = 1; return 0;
     case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
     default: return -1;

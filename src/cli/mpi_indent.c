@@ -85,7 +85,7 @@ static int apply_option(int code, const char *arg, void *state)
         return cli_parse_double(code == OPT_LOAD ? "--load" : "--approach", arg, 0, 1e300, &o->target);
     case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
-    case OPT_OUT: o->out = arg; return 0;
+    case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);
     default: return -1;
     }

@@ -69,6 +69,16 @@ int cli_parse_length_unit(const char *option, const char *text, char *out)
     return 0;
 }
 
+int cli_parse_path(const char *option, const char *text, const char **out)
+{
+    if (text[0] == '\0') {
+        fprintf(stderr, "indentmap: %s '': expected a file or folder name\n", option);
+        return -1;
+    }
+    *out = text;
+    return 0;
+}
+
 int cli_parse_name(const char *option, const char *text, char *out, size_t size)
 {
     size_t length = strlen(text);

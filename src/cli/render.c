@@ -89,7 +89,7 @@ static int apply_option(int code, const char *arg, void *state)
 {
     render_options *o = state;
     switch (code) {
-    case OPT_OUT: o->out = arg; return 0;
+    case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_RAW: o->raw = 1; return 0;
     case OPT_MAP: return named(im_colormap_from_name(arg, &o->map), "--colormap");
     case OPT_VMIN: o->has_vmin = 1; return cli_parse_double("--vmin", arg, -1e300, 1e300, &o->vmin);
@@ -107,7 +107,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_QUANTITY: o->quantity = arg; return 0;
     case OPT_DPI: return cli_parse_double("--dpi", arg, 1.0, 2400.0, &o->dpi);
     case OPT_FPS: return cli_parse_double("--fps", arg, 0.01, 100.0, &o->fps);
-    case OPT_FRAMES: o->frames = arg; return 0;
+    case OPT_FRAMES: return cli_parse_path("--frames", arg, &o->frames);
     case OPT_BACKEND: return named(im_render_backend_from_name(arg, &o->backend), "--backend");
     default: return -1;
     }

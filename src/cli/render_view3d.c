@@ -123,7 +123,7 @@ static int apply_option(int code, const char *arg, void *state)
     static const char *const modes[] = {"translucent", "opaque", "cutaway", "none"};
     int choice;
     switch (code) {
-    case OPT_OUT: o->out = arg; return 0;
+    case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_RAW: o->raw = 1; return 0;
     case OPT_FORCE: o->force = arg; return 0;
     case OPT_DISPLACEMENT: o->displacement = arg; return 0;

@@ -113,10 +113,10 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_LR: o->lambda_r_given = 1; return cli_parse_double("--lambda-r", arg, 2, 1e9, &p->lambda_r);
     case OPT_L0: return cli_parse_double("--lambda-0", arg, 2, 1e9, &p->lambda_0);
     case OPT_SEED: return cli_parse_u64("--seed", arg, &p->seed);
-    case OPT_OUT: o->out = arg; return 0;
+    case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_STATS: o->stats = arg; return 0;
     case OPT_PNG: o->png = arg; return 0;
-    case OPT_PSD: o->psd = arg; return 0;
+    case OPT_PSD: return cli_parse_path("--psd", arg, &o->psd);
     case OPT_HIST: o->histograms = arg; return 0;
     default: return -1;
     }

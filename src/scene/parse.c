@@ -622,6 +622,19 @@ static int check_files(parse_context *context)
 
 /* Sweep lists that a scene cannot run: a list of angles for another punch, a list of generator
  * parameters beside surface files. Returns the line at fault, 0 if none. */
+/* A key the punch does not have: a cone's radius (indent refuses --radius with a cone alike). */
+static int check_punch_keys(parse_context *context)
+{
+    const im_scene *scene = context->scene;
+    int radius = key_line(context, "punch", "radius");
+    if (radius && (scene->punch == IM_PUNCH_CONE || scene->punch == IM_PUNCH_PROFILE)) {
+        snprintf(context->error, sizeof context->error, "radius applies to shape = sphere or flat; a %s's shape is "
+                 "its %s", im_punch_name(scene->punch), scene->punch == IM_PUNCH_CONE ? "alpha" : "profile");
+        return radius;
+    }
+    return 0;
+}
+
 static int check_sweeps(parse_context *context)
 {
     const im_scene *scene = context->scene;
@@ -670,6 +683,9 @@ static int check_consistency(parse_context *context)
     int sweep_line = check_sweeps(context);
     if (sweep_line)
         return sweep_line;
+    int punch_line = check_punch_keys(context);
+    if (punch_line)
+        return punch_line;
     if (scene->surface.lambda_r <= largest_lambda_s(scene)) {
         int r = key_line(context, "surfaces", "lambda_r"), s = key_line(context, "surfaces", "lambda_s");
         int n = key_line(context, "surfaces", "n"), m = key_line(context, "surfaces", "m");
