@@ -117,6 +117,29 @@ static void periodic_memory(void **state)
     im_field_free(s);
 }
 
+/* One spike on a flat cell, a rigid flat, a cap: the local start puts the whole load on the spike, which
+ * the cap clips to H_p, and no patch is left elastic. The load control must not accept the capped
+ * spike's load as the answer (it did, once it kept its approach: N = 0.1 for a load of 0.5); with no
+ * patch that can join or unload it says so. */
+static void capped_spike_is_not_an_answer(void **state)
+{
+    (void)state;
+    enum { N = 32 };
+    im_field *s = NULL;
+    assert_int_equal(im_field_create(N, N, 1.0, &s), IM_OK);
+    s->data[(N / 2) * N + N / 2] = 1.0;
+    im_indenter flat = im_indenter_flat(2.0 * N);
+    im_indentation *run = periodic_run(s, &flat, 0.5, 0.1);
+    im_step_result r;
+    int status = im_indentation_step(run, 0.5, &r);
+    if (status == IM_OK && test_relative_difference(r.load, 0.5) > 1e-6)
+        fail_msg("load control answered N = %.9g for the load 0.5", r.load);
+    if (status != IM_OK)
+        assert_non_null(strstr(im_last_error(), "every patch in contact is at the hardness cap"));
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
 static void displacement_control_is_refused(void **state)
 {
     (void)state;
@@ -137,6 +160,7 @@ int main(void)
         cmocka_unit_test(rigid_flat_is_flat_contact),
         cmocka_unit_test(repeated_cone_is_the_half_spaces),
         cmocka_unit_test(periodic_memory),
+        cmocka_unit_test(capped_spike_is_not_an_answer),
         cmocka_unit_test(displacement_control_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

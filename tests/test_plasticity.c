@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 enum { N = 64 };
 
@@ -212,6 +213,25 @@ static void load_control_follows_displacement_control(void **state)
     im_indentation_free(by_n);
 }
 
+/* A flat punch at a hardness carries at most H_p on each patch it covers: a larger load is refused as
+ * out of reach (it searched ~1000 doublings of the approach, then failed on an infinite one). */
+static void load_beyond_a_yielded_punch_is_refused(void **state)
+{
+    (void)state;
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(N, N, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.hardness = 0.05;
+    im_indenter flat = im_indenter_flat(10.0);
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_LOAD, 20.0, &o, &run), IM_OK);
+    im_step_result r;
+    assert_int_equal(im_indentation_step(run, 20.0, &r), IM_EEDGE);
+    assert_non_null(strstr(im_last_error(), "load 20 cannot be reached"));
+    im_indentation_free(run);
+    im_field_free(surface);
+}
+
 /* A rough contact under a low hardness: the local start puts every touching patch at the cap, where
  * Polonsky-Keer's load control has no elastic patch to take the approach from (it failed with
  * "residual is inf"); then a large unloading step from the yielded state, whose restarts left patches
@@ -260,6 +280,7 @@ int main(void)
         cmocka_unit_test(no_hardness_no_memory),
         cmocka_unit_test(load_control_follows_displacement_control),
         cmocka_unit_test(yielded_rough_contact_loads_and_unloads),
+        cmocka_unit_test(load_beyond_a_yielded_punch_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

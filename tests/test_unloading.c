@@ -67,6 +67,33 @@ static void flat_punch_works_are_exact(void **state)
     assert_close(b.modulus, e_star, 1e-9);
 }
 
+/* A top held over two steps (a repeated target) is one top, the last of them; a flat punch's h_c = h - P/S,
+ * 0 but for rounding at non-dyadic steps, is 0 and its area the punch's. */
+static void repeated_tops_and_rounding(void **state)
+{
+    (void)state;
+    double h[] = {0, 2, 4, 6, 8, 8 * (1 + 1e-9), 6, 4, 2, 0}, p[10];
+    for (int k = 0; k < 10; ++k)
+        p[k] = love_load(h[k]);
+    im_indenter cone = im_indenter_cone(alpha);
+    im_unloading_branch b[2];
+    int found = 0;
+    assert_int_equal(im_measure_unloading(&cone, h, p, NULL, 10, b, 2, &found), IM_OK);
+    assert_int_equal(found, 1);
+    assert_int_equal(b[0].top_step, 6);
+    assert_int_equal(b[0].last_step, 10);
+    assert_true(isfinite(b[0].stiffness));
+    const double radius = 3.0;
+    double w[] = {0.3, 0.7, 1.1, 0.9, 0.5, 0.1}, n[6];
+    for (int k = 0; k < 6; ++k)
+        n[k] = 2 * e_star * radius * w[k];
+    im_indenter flat = im_indenter_flat(radius);
+    assert_int_equal(im_measure_unloading(&flat, w, n, NULL, 6, b, 1, &found), IM_OK);
+    assert_int_equal(found, 1);
+    assert_close(b[0].contact_depth, 0, 0);
+    assert_close(b[0].modulus, e_star, 1e-9);
+}
+
 /* Two cycles and a final loading: two branches, each loading from where the approach last turned up. */
 static void branches_of_a_cycling_history(void **state)
 {
@@ -165,6 +192,7 @@ int main(void)
         cmocka_unit_test(love_cone_in_closed_form),
         cmocka_unit_test(flat_punch_works_are_exact),
         cmocka_unit_test(branches_of_a_cycling_history),
+        cmocka_unit_test(repeated_tops_and_rounding),
         cmocka_unit_test(plastic_loop_area_is_the_dissipation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

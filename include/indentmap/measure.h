@@ -33,7 +33,8 @@ double im_measure_sneddon_modulus(double stiffness, double area);
 
 /* ---- The indentation analysis of unloading branches (Oliver & Pharr, J. Mater. Res. 7, 1564 (1992)) ----
  * A history whose approach rises to a top and then falls holds an unloading branch: from the top step
- * while the approach strictly decreases. For each, with h the approach (counted from first touch) and
+ * (the last of a top held over several steps) while the approach decreases; approaches within 1e-6 of
+ * each other (relative) count as one (a repeated target, or load control finding one load twice). For each, with h the approach (counted from first touch) and
  * P the load:
  *   S     = dP/dh at the top: the slope there of the parabola through the top and the next two
  *           unloading steps (im_measure_stiffness's one-sided formula; NaN with fewer than 3 points);
@@ -49,7 +50,8 @@ double im_measure_sneddon_modulus(double stiffness, double area);
  *   W_in  = the trapezoid integral of P dh over the loading steps before the top (from h = 0, P = 0
  *           for the first branch, else from the step the approach last turned up at);
  *   W_out = the same over the unloading branch (the elastic work given back); with a full unload
- *           W_in - W_out is the loop's area, the dissipated energy. */
+ *           W_in - W_out is the loop's area, the dissipated energy.
+ * h_c within 1e-9 h_max below 0 (a flat punch, h = P / S, to rounding) is 0. */
 typedef struct im_unloading_branch {
     int top_step, last_step;   /* 1-based steps of the history: the top, the branch's last */
     int loading_from;          /* 1-based step the loading before the top started at (0: the origin) */

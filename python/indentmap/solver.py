@@ -182,7 +182,8 @@ def unloading(history, punch=Cone(), *, delta=1.0):
                                float(delta))
     table = np.zeros(len(branches), dtype=UNLOADING_DTYPE)
     for i, b in enumerate(branches):
+        before = history["plastic_work"][b["loading_from"] - 1] if b["loading_from"] > 0 else 0.0
         row = dict(b, branch=i + 1, area_real=history["contact_patches"][b["top_step"] - 1] * delta * delta,
-                   dissipated=history["plastic_work"][b["last_step"] - 1])
+                   dissipated=history["plastic_work"][b["last_step"] - 1] - before)
         table[i] = tuple(row[name] for name in UNLOADING_DTYPE.names)
     return table

@@ -670,8 +670,9 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
     return status;
 }
 
-/* --periodic: k of eq. (2) fitted to the steps done with load (theory.h: im_theory_fit_k, x = p_m /
- * (h'rms E*) with the surface's spectral h'rms), printed and recorded in run.json with its range. */
+/* --periodic under a rigid flat without a hardness: k of eq. (2) fitted to the steps done with load
+ * (theory.h: im_theory_fit_k, x = p_m / (h'rms E*) with the surface's spectral h'rms), printed and
+ * recorded in run.json with its range. */
 static void write_k_fit(const indent_options *o, const im_theory_interface *rough, const history_row *rows,
                         int done, json_t *record)
 {
@@ -797,8 +798,11 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     write_analysis(o, rows, done, record);
-    if (o->solver.periodic)
+    /* eq. (2) is an elastic law for a rigid flat: no fit with a cap or a repeated punch */
+    if (o->solver.periodic && !o->punch_given && !(o->solver.hardness > 0))
         write_k_fit(o, rough, rows, done, record);
+    if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
+        im_fail(status, "%s", message);
     int recorded = write_run_json(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);

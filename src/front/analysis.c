@@ -21,12 +21,14 @@ static int format_branch(int index, const im_unloading_branch *b, const history_
                          size_t size)
 {
     const im_step_result *top = &rows[b->top_step - 1].result, *last = &rows[b->last_step - 1].result;
+    /* dissipated in this cycle: from the state the loading started at (the origin: none) */
+    const double before = b->loading_from > 0 ? rows[b->loading_from - 1].result.plastic_work : 0;
     return snprintf(line, size,
                     "%d,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
                     index + 1, b->top_step, b->last_step, b->loading_from, b->approach_max, b->load_max,
                     b->stiffness, b->epsilon, b->contact_depth, b->area_projected,
                     (double)top->contact_patches * delta * delta, b->hardness, b->modulus, b->residual_approach,
-                    b->work_in, b->work_out, last->plastic_work);
+                    b->work_in, b->work_out, last->plastic_work - before);
 }
 
 static int write_branches(const char *dir, const im_unloading_branch *b, int found, const history_row *rows,

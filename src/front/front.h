@@ -83,8 +83,8 @@ void history_close(history_file *h);
 /* ---- the indentation analysis of a history's unloading branches (analysis.c) ---- */
 
 /* The columns of DIR/indentation.csv: one row per unloading branch (measure.h, im_measure_unloading),
- * with the real contact area n_p delta^2 at the top and the dissipation the solver reports at the
- * branch's last step. */
+ * with the real contact area n_p delta^2 at the top and the dissipation the solver reports over the
+ * cycle (from the step the loading started at to the branch's last step). */
 extern const char ANALYSIS_COLUMNS[];
 
 /* Analyses rows[0..count) (measure.h) and, when they hold an unloading branch, writes

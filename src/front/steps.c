@@ -54,6 +54,7 @@ static int parse_range(const char *name, const char *text, const char *start, si
     *count = (int)n;
     for (int i = 0; i < *count; ++i)
         values[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
+    values[*count - 1] = last; /* exactly: 0:0.3:3 must end at 0.3, not 0.30000000000000004 */
     return 1;
 }
 

@@ -70,6 +70,8 @@ static im_unloading_branch analyse_branch(const im_indenter *punch, const double
                              .approach_max = h[top], .load_max = p[top], .epsilon = im_measure_epsilon(punch)};
     b.stiffness = top_stiffness(h, p, top, last);
     b.contact_depth = h[top] - b.epsilon * p[top] / b.stiffness;
+    if (b.contact_depth < 0 && b.contact_depth > -1e-9 * h[top]) /* 0 but for rounding (a flat punch: h = P / S) */
+        b.contact_depth = 0;
     b.area_projected = im_measure_projected_area(punch, b.contact_depth);
     b.hardness = b.area_projected > 0 ? p[top] / b.area_projected : NAN;
     b.modulus = im_measure_sneddon_modulus(b.stiffness, b.area_projected);
@@ -78,6 +80,12 @@ static im_unloading_branch analyse_branch(const im_indenter *punch, const double
     b.work_out = -work_over(h, p, top, last, 0);
     return b;
 }
+
+/* Approaches within APPROACH_TIE of each other (relative) are one: a repeated target, or the approach
+ * load control finds twice for one load (its solves are exact to the tolerance, 1e-6 by default). */
+#define APPROACH_TIE 1e-6
+
+static int below(double a, double b) { return a < b - APPROACH_TIE * fabs(b); }
 
 static int check_unloading_arguments(const im_indenter *punch, const double *approach, const double *load, int count)
 {
@@ -103,16 +111,20 @@ int im_measure_unloading(const im_indenter *punch, const double *approach, const
     if (status != IM_OK)
         return status;
     for (int k = 0; k + 1 < count; ++k) {
-        const int top = (k == 0 ? approach[0] > 0 : approach[k] > approach[k - 1]) && approach[k + 1] < approach[k];
-        if (!top)
+        if (!below(approach[k + 1], approach[k]))
             continue;
-        int from = k; /* back along the loading to where it started: step `from`, or -1 for the origin */
-        while (from > 0 && approach[from - 1] < approach[from])
+        int plateau = k; /* a top held over several steps (a repeated target, or load control's noise) */
+        while (plateau > 0 && !below(approach[plateau - 1], approach[k]) && !below(approach[k], approach[plateau - 1]))
+            --plateau;
+        if (!(plateau == 0 ? approach[0] > 0 : below(approach[plateau - 1], approach[k])))
+            continue; /* reached by unloading: no top */
+        int from = plateau; /* back along the loading to where it started: step `from`, or -1 for the origin */
+        while (from > 0 && below(approach[from - 1], approach[from]))
             --from;
         if (from == 0 && approach[0] > 0)
             from = -1;
         int last = k + 1;
-        while (last + 1 < count && approach[last + 1] < approach[last])
+        while (last + 1 < count && below(approach[last + 1], approach[last]))
             ++last;
         if (*found < capacity)
             branches[*found] = analyse_branch(punch, approach, load, residual, from, k, last);

@@ -433,10 +433,14 @@ static int bracket_load(load_search *search, double *lo, double *e_lo, double *h
     *hi = w;
     int status = trial(search, w, e_hi);
     while (status == IM_OK && *e_hi < 0) {
-        if (*hi >= run->approach_bound)
-            return im_fail(IM_EEDGE, "load %g cannot be reached: at the approach %g that bounds the window the "
-                           "contact carries %g (a yielded contact carries at most H_p times its area)",
-                           search->target, *hi, search->target + *e_hi);
+        /* the window's bound reached, or the load no longer grows: every patch the punch can reach has
+         * yielded (a flat punch's or a profile's rim: the bound is then infinite) */
+        const int plateau = *lo > 0 && !(*e_hi > *e_lo + 1e-12 * search->target);
+        if (*hi >= run->approach_bound || plateau || search->trials >= LOAD_SEARCH_MAX)
+            return im_fail(IM_EEDGE, "load %g cannot be reached: at the approach %g the contact carries %g%s "
+                           "(a yielded contact carries at most H_p times the area the punch can reach)",
+                           search->target, *hi, search->target + *e_hi,
+                           plateau ? ", no more than at half that approach" : "");
         *lo = *hi, *e_lo = *e_hi;
         *hi = fmin(2 * *hi, run->approach_bound);
         status = trial(search, *hi, e_hi);
@@ -502,14 +506,15 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0)
         s.approach = withdrawn_approach(run); /* N = 0 holds at any approach up to it */
     run->approach = s.approach;
-    long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
-    fill_step(run, &s, out);
-    out->yielding_patches = yielding;
     if (status == IM_OK && !run->options.periodic) /* a periodic cell has no edge */
         status = check_edge(run);
     if (status == IM_OK && s.approach > run->approach_bound) /* only if the bound were wrong: never hide it */
         status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
                          s.approach, run->approach_bound);
+    /* a step that failed leaves the surface as it was: the history stays the one reported */
+    long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
+    fill_step(run, &s, out);
+    out->yielding_patches = yielding;
     return status;
 }
 

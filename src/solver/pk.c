@@ -73,6 +73,7 @@ static void cold_start(pk_run *r)
                 hi = mid;
         }
         w = hi;
+        r->approach = w; /* load control's approach until an elastic set forms (compute_gaps) */
     }
     engine_of(r)->winkler(r, w, k0, 1);
     const double cap = pressure_cap(r->plan);
@@ -190,6 +191,25 @@ static void summarise(pk_run *r, const gap_stats *s, im_solve_result *out)
     out->max_pressure = peak;
 }
 
+/* Load control with a cap while no patch is elastic (compute_gaps kept the approach): impose_load has
+ * nothing to rescale, so the load is whatever the capped patches carry, and the stopping rule, which
+ * does not look at the load, must not accept it (*missed). With no capped patch that would unload and
+ * no free one that would join, nothing can change: IM_ENOCONV at once, saying why. */
+static int check_capped_load(pk_run *r, const gap_stats *s, int iteration, int *missed)
+{
+    const double cap = pressure_cap(r->plan);
+    if (r->control != IM_CONTROL_LOAD || !isfinite(cap) || s->contact > 0)
+        return IM_OK;
+    const double load = engine_of(r)->pressure_sum(r) * r->plan->delta * r->plan->delta;
+    *missed = !(fabs(load - r->target) <= r->plan->options.tol * r->target);
+    if (!*missed || s->moving_squares > 0 || s->penetration_squares > 0)
+        return IM_OK;
+    return im_fail(IM_ENOCONV, "contact iteration %d: every patch in contact is at the hardness cap H_p = %g, "
+                   "carrying %g of the load %g, and no patch can join or unload at the approach %g (load control "
+                   "with a cap needs an elastic patch; a smaller load step, or displacement control, avoids it)",
+                   iteration, cap, load, r->target, s->approach);
+}
+
 /* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC, IM_EINTERRUPTED or an engine's
  * failure, and leaves the last gap_stats. */
 static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
@@ -209,7 +229,11 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         res->residual = relative_residual(&s);
         if (!isfinite(res->residual))
             return im_fail(IM_ENUMERIC, "contact iteration %d: residual is %g", res->iterations, res->residual);
-        if (res->residual <= o->tol) {
+        int load_missed = 0;
+        int status = check_capped_load(r, &s, res->iterations, &load_missed);
+        if (status != IM_OK)
+            return status;
+        if (res->residual <= o->tol && !load_missed) {
             if (exact)
                 return IM_OK;
             convolve(r); /* confirm on the exact displacement */
