@@ -34,8 +34,8 @@ double im_measure_sneddon_modulus(double stiffness, double area);
 /* ---- The indentation analysis of unloading branches (Oliver & Pharr, J. Mater. Res. 7, 1564 (1992)) ----
  * A history whose approach rises to a top and then falls holds an unloading branch: from the top step
  * (the last of a top held over several steps) while the approach decreases; approaches within 1e-6 of
- * each other (relative) count as one (a repeated target, or load control finding one load twice). For each, with h the approach (counted from first touch) and
- * P the load:
+ * each other (relative) count as one (a repeated target, or load control finding one load twice).
+ * For each, with h the approach (counted from first touch) and P the load:
  *   S     = dP/dh at the top: the slope there of the parabola through the top and the next two
  *           unloading steps (im_measure_stiffness's one-sided formula; NaN with fewer than 3 points);
  *   h_c   = h_max - epsilon P_max / S, epsilon the punch's geometry factor: 0.72 cone, 0.75 sphere and

@@ -23,8 +23,9 @@ enum { STEPS_MAX = IM_SCENE_MAX_STEPS };
 
 /* Parses a step list: items separated by commas (blanks around them allowed), each a value or a range
  * "first:last:count" (count values evenly spaced from first to last, both included; last may be below
- * first), of finite values >= 0, into values[STEPS_MAX]: "2:8:4, 7:2:6" loads to 8 and unloads to 2. 0, or -1 with a message "NAME 'TEXT': expected ..." in
- * error (name is the option or key: "--approach", "steps"). */
+ * first), of finite values >= 0, into values[STEPS_MAX]: "2:8:4, 7:2:6" loads to 8 and unloads to 2.
+ * 0, or -1 with a message "NAME 'TEXT': expected ..." in error (name is the option or key:
+ * "--approach", "steps"). */
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t error_size);
 
 /* ---- the history schema (history.c) ---- */

@@ -620,8 +620,6 @@ static int check_files(parse_context *context)
     return 0;
 }
 
-/* Sweep lists that a scene cannot run: a list of angles for another punch, a list of generator
- * parameters beside surface files. Returns the line at fault, 0 if none. */
 /* A key the punch does not have: a cone's radius (indent refuses --radius with a cone alike). */
 static int check_punch_keys(parse_context *context)
 {
@@ -635,6 +633,8 @@ static int check_punch_keys(parse_context *context)
     return 0;
 }
 
+/* Sweep lists that a scene cannot run: a list of angles for another punch, a list of generator
+ * parameters beside surface files. Returns the line at fault, 0 if none. */
 static int check_sweeps(parse_context *context)
 {
     const im_scene *scene = context->scene;
