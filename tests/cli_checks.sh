@@ -107,6 +107,12 @@ check "--lambda-0 below lambda_r" expect_exit 2 "--lambda-0 10: expected >= lamb
 check "--approach 1:2" expect_exit 2 "--approach '1:2': '1:2' is not a range first:last:count (three numbers" \
   "$cli" indent "$dir/s.npy" --approach 1:2 --out "$dir/o_a"
 check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.npy" --approach 1,,2 --out "$dir/o_b"
+check "--delta 1e300" expect_exit 2 "surface delta = 1e+300: expected 1e-150 <= delta <= 1e150" \
+  "$cli" indent --smooth --n 32 --approach 1 --delta 1e300 --out "$dir/o_d"
+awk 'BEGIN { for (y = 0; y < 8; ++y) { line = ""; for (x = 0; x < 8; ++x) line = line (x ? " " : "") ((x == 3 && y == 2) ? 1e308 : 0); print line } }' \
+  > "$dir/huge.txt"
+check "render height 1e308" expect_exit 2 "height map: height 1e+308 (1e+308 delta) at patch (3, 2): expected |h| <= 1e18 delta" \
+  "$cli" render height "$dir/huge.txt" --out "$dir/huge.png"
 check "--out ''" expect_exit 2 "--out '': expected a file or folder name" "$cli" indent "$dir/s.npy" --approach 1 --out ''
 check "--psd ''" expect_exit 2 "--psd '': expected a file or folder name" "$cli" surface --n 16 --psd '' --out "$dir/p.npy"
 check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \

@@ -396,9 +396,26 @@ int im_height_outline_width(const im_height_style *style)
     return third > 2 ? third : 2;
 }
 
+/* The renderer draws heights / delta in float32: a height beyond its range (or one whose slopes
+ * overflow) is named, not reported as the exaggeration it would make 0 (issue 32). */
+static int check_height_range(const im_field *height)
+{
+    for (size_t i = 0; height && i < im_field_count(height); ++i) {
+        const double h = height->data[i] / height->delta;
+        if (isfinite(h) && fabs(h) > 1e18)
+            return im_fail(IM_EINVAL, "height map: height %g (%g delta) at patch (%zu, %zu): expected |h| <= "
+                           "1e18 delta (drawn in float32, with slopes squared)", height->data[i], h,
+                           i % (size_t)height->nx, i / (size_t)height->nx);
+    }
+    return IM_OK;
+}
+
 static int check_height_style(const im_height_style *s, const im_field *height)
 {
-    int status = im_colormap_check(&s->colormap);
+    int status = check_height_range(height);
+    if (status != IM_OK)
+        return status;
+    status = im_colormap_check(&s->colormap);
     if (status != IM_OK)
         return im_fail_context(status, "height map");
     if (!(s->shading >= 0.0 && s->shading <= 1.0))

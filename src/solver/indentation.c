@@ -178,6 +178,11 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
                        control == IM_CONTROL_LOAD ? "load" : "approach", largest_target);
     if (!(isfinite(surface->delta) && surface->delta > 0))
         return im_fail(IM_EINVAL, "surface delta = %g: expected > 0", surface->delta);
+    /* forces are pressures times delta^2: a square out of range made "N = inf" of a unit load */
+    if (!(surface->delta >= 1e-150 && surface->delta <= 1e150))
+        return im_fail(IM_EINVAL, "surface delta = %g: expected 1e-150 <= delta <= 1e150 (patch areas delta^2 and "
+                       "the forces on them must be finite doubles): express the lengths in another unit",
+                       surface->delta);
     return check_profile_grid(surface, punch);
 }
 
