@@ -110,9 +110,9 @@ check "--approach 1,,2" expect_exit 2 "--approach '1,,2'" "$cli" indent "$dir/s.
 check "--delta 1e300" expect_exit 2 "surface delta = 1e+300: expected 1e-150 <= delta <= 1e150" \
   "$cli" indent --smooth --n 32 --approach 1 --delta 1e300 --out "$dir/o_d"
 awk 'BEGIN { for (y = 0; y < 8; ++y) { line = ""; for (x = 0; x < 8; ++x) line = line (x ? " " : "") ((x == 3 && y == 2) ? 1e308 : 0); print line } }' \
-  > "$dir/huge.txt"
+  > "$dir/huge_field.txt"
 check "render height 1e308" expect_exit 2 "height map: height 1e+308 (1e+308 delta) at patch (3, 2): expected |h| <= 1e18 delta" \
-  "$cli" render height "$dir/huge.txt" --out "$dir/huge.png"
+  "$cli" render height "$dir/huge_field.txt" --out "$dir/huge.png"
 check "--out ''" expect_exit 2 "--out '': expected a file or folder name" "$cli" indent "$dir/s.npy" --approach 1 --out ''
 check "--psd ''" expect_exit 2 "--psd '': expected a file or folder name" "$cli" surface --n 16 --psd '' --out "$dir/p.npy"
 check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \
@@ -134,6 +134,7 @@ printf '1e300 1e300\n1e300 1e300\n' >"$dir/huge.txt"
 check "flat punch: its gap holds +Inf" bash -c "\"$cli\" surface --stats \"$dir/flat/gap_0001.npy\" 2>&1 | grep -q 'value inf'"
 check "flat punch: render draws its gap" "$cli" render height "$dir/flat/gap_0001.npy" --out "$dir/gap.png"
 check "... a real picture" test -s "$dir/gap.png"
+check "... its colour bar names a gap, as its sidecar says" grep -aq "Quantity.*gap g / " "$dir/gap.png"
 # (unprepared: removing the plane of this constant surface leaves it flat, a valid answer)
 check "huge heights: refused, not NaN statistics" expect_exit 2 "height 1e+300 at (x=0, y=0): expected |h| <= 1e+100" \
   "$cli" surface --stats "$dir/huge.txt" --detrend none

@@ -8,6 +8,7 @@
 #include "indentmap/status.h"
 
 #include <getopt.h>
+#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,7 +42,8 @@ static void usage(FILE *stream)
             "  --title TEXT        panel title\n"
             "  --titles LIST       comma-separated panel titles, one per file\n"
             "  --columns C         panels per row (default: all in one row)\n"
-            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ', in\n"
+            "  --quantity TEXT     colour bar label (default: 'local force f / (E* δ²)' or 'height h / δ' (gap g,\n"
+            "                      displacement u or plastic depth d when FILE.json says so), in\n"
             "                      the units the input's sidecar FILE.json states, e.g. 'local force f / N')\n"
             "  --dpi D             resolution (default 300)\n"
             "  --fps F             animation frames per second (default 5)\n"
@@ -190,6 +192,25 @@ static void list_item(const char *list, int i, char *buffer, size_t size)
         snprintf(buffer, size, "%.*s", (int)strcspn(list, ","), list);
 }
 
+/* The colour bar's default name of a height-mode field: what its sidecar FILE.json says it is
+ * (indent --fields writes gaps, displacements and plastic depths beside the forces), "height h" for a
+ * surface or a file without one. */
+static const char *height_quantity(const char *path)
+{
+    static const char *const KNOWN[][2] = {{"gap", "gap g"},
+                                           {"surface displacement", "displacement u"},
+                                           {"plastic depth", "plastic depth d"}};
+    char sidecar[4096];
+    snprintf(sidecar, sizeof sidecar, "%s.json", path);
+    json_t *record = json_load_file(sidecar, 0, NULL);
+    const char *stated = json_string_value(json_object_get(record, "quantity")), *name = "height h";
+    for (size_t i = 0; stated && i < sizeof KNOWN / sizeof *KNOWN; ++i)
+        if (strncmp(stated, KNOWN[i][0], strlen(KNOWN[i][0])) == 0)
+            name = KNOWN[i][1];
+    json_decref(record);
+    return name;
+}
+
 /* The figure (or, with --raw, the data image of a single panel), the run's settings as text. */
 static int write_output(const render_options *o, char **inputs, const im_image *images, int count,
                         const im_colormap *norm)
@@ -201,7 +222,8 @@ static int write_output(const render_options *o, char **inputs, const im_image *
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
     char height_name[64], force_name[80];
-    snprintf(height_name, sizeof height_name, "height h / %s", images[0].unit[0] ? images[0].unit : "δ");
+    snprintf(height_name, sizeof height_name, "%s / %s", contact ? "" : height_quantity(inputs[0]),
+             images[0].unit[0] ? images[0].unit : "δ");
     snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
     const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
