@@ -136,6 +136,30 @@ check "flat punch: render draws its gap" "$cli" render height "$dir/flat/gap_000
 check "... a real picture" test -s "$dir/gap.png"
 check "... its colour bar names a gap, as its sidecar says" grep -aq "Quantity.*gap g / " "$dir/gap.png"
 # (unprepared: removing the plane of this constant surface leaves it flat, a valid answer)
+# A scene with a hardness may unload (issue 26): its member histories go up and down, nothing flows while
+# unloading, and the load returns to 0 at the approach where the punch meets the impression it left.
+cat >"$dir/unload.ini" <<INI
+[scene]
+name = unload
+output = out_unload
+[surfaces]
+n = 64
+slopes = 0.08
+seeds = 1
+[punch]
+shape = cone
+[material]
+hardness = 0.05
+[loading]
+control = load
+steps = 100:400:4, 300:0:4
+[output]
+plots = fig5
+INI
+check "a scene that unloads with a hardness" "$cli" run --quiet "$dir/unload.ini"
+check "... its history keeps the impression" awk -F, 'NR > 2 && !/^#/ { n++; w[n] = $2; N[n] = $3; work[n] = $23; r[n] = $24 }
+  END { if (n != 8 || !(work[4] > 0) || work[8] != work[4] || N[8] != 0 || w[8] != r[8] || !(w[5] < w[4])) exit 1 }' \
+  "$dir/out_unload/histories/member_00_1.csv"
 check "huge heights: refused, not NaN statistics" expect_exit 2 "height 1e+300 at (x=0, y=0): expected |h| <= 1e+100" \
   "$cli" surface --stats "$dir/huge.txt" --detrend none
 finish

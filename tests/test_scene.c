@@ -137,6 +137,12 @@ static void errors_name_the_line(void **state)
     expect_error("first.ini", "[punch]\nalpha = 100\nshape = pyramid\n", ":2: alpha");
     expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes = '0.01, abc': ' abc' is not a number");
     expect_error("order.ini", "[loading]\ncontrol = load\n\nsteps = 3, 2\n", ":4: steps must increase");
+    /* with a hardness a history may unload (the cap remembers): the same list is read */
+    im_scene unloading;
+    assert_int_equal(im_scene_load(write_scene("unload.ini", "[material]\nhardness = 0.1\n[loading]\ncontrol = "
+                                                             "load\nsteps = 1:3:3, 2\n"), &unloading), IM_OK);
+    assert_int_equal(unloading.step_count, 4);
+    assert_true(unloading.steps[3] == 2.0);
     expect_error("lambda.ini", "[surfaces]\nlambda_r = 8\nhurst = 0.8\nlambda_s = 16\n", ":4: lambda_r = 8 must exceed");
     expect_error("lambda_r.ini", "[surfaces]\nlambda_s = 16\nlambda_r = 8\n", ":3: lambda_r = 8 must exceed");
     expect_error("box.ini", "[surfaces]\nlambda_s = 16\n\nn = 16\n", ":4: lambda_r = 16 must exceed lambda_s = 16 "

@@ -201,7 +201,9 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
     im_theory_interface rough = scene_theory_interface(scene, scene->slopes[m->family]);
     im_solver_options options = scene_solver_options(scene);
     im_indentation *run = NULL;
-    double largest = step_target(scene, scene->step_count - 1, surface->delta);
+    double largest = 0; /* the largest step: a history with a hardness may go down */
+    for (int i = 0; i < scene->step_count; ++i)
+        largest = fmax(largest, step_target(scene, i, surface->delta));
     int status = im_indentation_create(surface, &punch, scene->control, largest, &options, &run);
     for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
         if (scene_stop_signal(run_options)) {

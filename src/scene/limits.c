@@ -86,7 +86,9 @@ static int check_histories_fit(const im_scene *scene, const grid *g)
 {
     if (!scene_wants_histories(scene) || scene->step_count < 1)
         return IM_OK;
-    double last = scene->steps[scene->step_count - 1];
+    double last = scene->steps[0]; /* the largest step (a history with a hardness may go down) */
+    for (int i = 1; i < scene->step_count; ++i)
+        last = fmax(last, scene->steps[i]);
     if (scene->control == IM_CONTROL_LOAD)
         return check_contact_fits(scene, g, "[loading] steps (largest)", last);
     im_indenter punch = scene_punch(scene);

@@ -700,9 +700,12 @@ static int check_consistency(parse_context *context)
         if (line)
             return line;
     }
-    for (int i = 1; i < scene->step_count; ++i) {
+    /* a history that goes down needs the cap's memory; without one, unloading only retraces loading and
+     * a list out of order is more likely a slip */
+    for (int i = 1; i < scene->step_count && !(scene->hardness > 0); ++i) {
         if (!(scene->steps[i] > scene->steps[i - 1])) {
-            snprintf(context->error, sizeof context->error, "steps must increase: %g follows %g", scene->steps[i],
+            snprintf(context->error, sizeof context->error, "steps must increase: %g follows %g (a history that "
+                     "unloads needs [material] hardness: without one unloading retraces loading)", scene->steps[i],
                      scene->steps[i - 1]);
             return key_line(context, "loading", "steps");
         }
