@@ -38,8 +38,13 @@ check "alpha = 89.9: run.json says which step failed" grep -q '"steps_completed"
 check "alpha = 30 still solves" test $? -eq 0
 check "alpha = 30 warns about small-slope elasticity" grep -q "warning: alpha = 30.*small-slope elasticity is stretched" "$dir/err"
 check "alpha = 30: finite and monotone" monotone_finite "$dir/steep/history.csv"
-"$cli" indent --smooth --n 32 --alpha 80 --approach 0.5 --out "$dir/usual" >/dev/null 2>"$dir/err"
+"$cli" indent --smooth --n 32 --alpha 80 --approach 2 --out "$dir/usual" >/dev/null 2>"$dir/err"
 check "alpha = 80 does not warn" test ! -s "$dir/err"
+# A contact of a few patches is below the grid's resolution: said once (issue 32: at 1 patch a smooth cone
+# carried 2.4x Love's load without a word), and not for a resolved one (above).
+"$cli" indent --smooth --n 256 --alpha 89.9999 --approach 1e-6,2e-6,4e-6 --out "$dir/tiny" >/dev/null 2>"$dir/err"
+check "a contact of 1 patch is said to be unresolved, once" \
+  test "$(grep -c "step 1: the contact covers 1 patch, too few for the grid to resolve it" "$dir/err")" = 1 -a "$(grep -c "too few" "$dir/err")" = 1
 
 # ---- roughness ----
 for slope in 0 1e-6 1.0; do
