@@ -46,6 +46,9 @@ awk -F, 'NR == 2 { if ($2 != 3 || $3 != 7 || $8 != 0.72 || $13 < 0.95 || $13 > 1
 head -c 8 "$DIR/cycle/load_displacement.png" | od -An -tx1 | grep -q '89 50 4e 47' && head -c 5 "$DIR/cycle/load_displacement.pdf" | grep -q '%PDF' \
     || fail "no load-displacement figure"
 grep -q '"indentation": "indentation.csv"' "$DIR/cycle/run.json" || fail "run.json does not name indentation.csv"
+# the run page shows the analysis, its numbers to 6 digits with the whole value on hover (issue 31: 17 digits)
+grep -q '<h3>indentation.csv</h3>' "$DIR/cycle/index.html" && grep -q '<span title="0.71999999999999997">0.72</span>' "$DIR/cycle/index.html" \
+    || fail "the page lacks the analysis or shows its numbers whole"
 ! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
 # --periodic (issue 26): a generated (periodic) surface under a rigid flat at two mean pressures: load =
 # p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole

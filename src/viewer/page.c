@@ -6,6 +6,7 @@
 #include "indentmap/status.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -308,6 +309,25 @@ static int write_frames(FILE *out, const char *dir)
     return status;
 }
 
+/* An unquoted CSV value: a number written with more than 6 significant digits is shown with 6 (the
+ * files keep 17 for the machine; a page is read by people), the whole of it on hover. */
+static void write_csv_value(FILE *out, const char *s, size_t length)
+{
+    char text[64], *end;
+    if (length > 0 && length < sizeof text) {
+        memcpy(text, s, length);
+        text[length] = '\0';
+        double value = strtod(text, &end);
+        char shown[32];
+        snprintf(shown, sizeof shown, "%.6g", value);
+        if (end == text + length && isfinite(value) && strlen(shown) < length) {
+            fprintf(out, "<span title=\"%s\">%s</span>", text, shown);
+            return;
+        }
+    }
+    escape(out, s, length);
+}
+
 /* One CSV field from *p (double quotes allowed); advances past its comma. */
 static void write_csv_field(FILE *out, const char **p)
 {
@@ -320,7 +340,7 @@ static void write_csv_field(FILE *out, const char **p)
         s += *s == '"';
     } else {
         size_t length = strcspn(s, ",\n\r");
-        escape(out, s, length);
+        write_csv_value(out, s, length);
         s += length;
     }
     *p = *s == ',' ? s + 1 : s;
@@ -361,10 +381,10 @@ static void write_table(FILE *out, const char *dir, const char *name)
 
 static void write_results(FILE *out, const char *dir)
 {
-    static const char *const tables[] = {"results.csv", "table1.csv", "history.csv"};
+    static const char *const tables[] = {"results.csv", "table1.csv", "indentation.csv", "history.csv"};
     char path[PATH_SIZE];
     int any = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k) {
         if (im_path_join(path, sizeof path, dir, tables[k]) != IM_OK)
             continue;
         FILE *f = fopen(path, "rb");
