@@ -67,6 +67,8 @@ grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spect
 [ -s "$DIR/per/force_0002.npy" ] || fail "--periodic --fields wrote no force_0002.npy"
 "$BIN" indent "$DIR/cell.npy" --periodic --approach 1 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
 [ $? -eq 2 ] && grep -q "periodic takes --load LIST or --pressure LIST" "$DIR/per_w.err" || fail "--periodic --approach: $(cat "$DIR/per_w.err")"
+"$BIN" indent "$DIR/cell.npy" --periodic --alpha 70 --pressure 0.01 --out "$DIR/per_a" > /dev/null 2> "$DIR/per_a.err"
+[ $? -eq 2 ] && grep -q "apply to a punch" "$DIR/per_a.err" || fail "--periodic --alpha without --punch: $(cat "$DIR/per_a.err")"
 "$BIN" indent "$DIR/cell.npy" --pressure 0.01 --out "$DIR/per_p" > /dev/null 2> "$DIR/per_p.err"
 [ $? -eq 2 ] && grep -q "needs --periodic" "$DIR/per_p.err" || fail "--pressure without --periodic: $(cat "$DIR/per_p.err")"
 awk 'BEGIN { for (y = 0; y < 32; ++y) { line = ""; for (x = 0; x < 32; ++x) line = line (x ? " " : "") 0.1 * x; print line } }' \

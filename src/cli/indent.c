@@ -121,7 +121,7 @@ typedef struct indent_options {
     im_indenter punch;
     const char *profile_path; /* --profile */
     im_profile *profile;      /* read from it once the surface's spacing is known; the punch borrows it */
-    int radius_given, x_given, y_given, punch_given;
+    int radius_given, x_given, y_given, punch_given, alpha_given;
     int pressures;            /* --pressure: the targets are mean pressures until the cell is known */
     double cell_area;         /* --periodic: nx ny delta^2 */
     enum im_control control;
@@ -202,7 +202,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_PUNCH: o->punch_given = 1; return parse_punch(arg, &o->punch.kind);
     case OPT_PERIODIC: o->solver.periodic = 1; return 0;
     case OPT_PROFILE: o->profile_path = arg; return 0;
-    case OPT_ALPHA: return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
+    case OPT_ALPHA: o->alpha_given = 1; return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
     case OPT_X: o->x_given = 1; return cli_parse_double("--x", arg, -1e300, 1e300, &o->punch.x0);
     case OPT_Y: o->y_given = 1; return cli_parse_double("--y", arg, -1e300, 1e300, &o->punch.y0);
@@ -243,6 +243,9 @@ static int check_options(const indent_options *o)
     else if (o->solver.periodic && o->control != IM_CONTROL_LOAD)
         fprintf(stderr, "indentmap: --periodic takes --load LIST or --pressure LIST, not --approach: a periodic "
                 "half-space's approach is defined up to a constant\n");
+    else if (o->solver.periodic && !o->punch_given && (o->alpha_given || o->x_given))
+        fprintf(stderr, "indentmap: --periodic without --punch presses a rigid flat on the cell: --alpha, --x and --y "
+                "apply to a punch (give --punch cone to repeat a cone with the cell)\n");
     else if (o->pressures && !o->solver.periodic)
         fprintf(stderr, "indentmap: --pressure (a mean pressure over the cell) needs --periodic; a punch on the "
                 "half-space takes --load\n");
