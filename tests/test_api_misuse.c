@@ -21,6 +21,7 @@
 #include "indentmap/figure.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
+#include "indentmap/history.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
 #include "indentmap/plot.h"
@@ -122,6 +123,8 @@ static im_field *field_out;
 static im_profile *profile_out;
 static im_psd *psd_out;
 static int count_out;
+static im_history_row history_row_out;
+static char big_text[2048];
 static im_histogram *histogram_out;
 static im_solver_plan *plan_out;
 static im_indentation *run_out;
@@ -339,6 +342,14 @@ REPORT(im_png_read, "channels", im_png_read(path_text, &pixels_out, &i1, &i2, NU
 REPORT(im_measure_stiffness, "approach", im_measure_stiffness(NULL, values, 3, out_values))
 REPORT(im_measure_stiffness, "load", im_measure_stiffness(values, NULL, 3, out_values))
 REPORT(im_measure_stiffness, "stiffness", im_measure_stiffness(values, values, 3, NULL))
+REPORT(im_history_measure, "punch", im_history_measure(NULL, NULL, NULL, &history_row_out, 0))
+REPORT(im_history_measure, "rows", im_history_measure(&cone, NULL, NULL, NULL, 0))
+SAFE_RESULT(im_history_format, "row", im_history_format(NULL, big_text, sizeof big_text) == -1)
+SAFE_RESULT(im_history_format, "line", im_history_format(&history_row_out, NULL, 0) == -1)
+SAFE_RESULT(im_history_parse, "text", im_history_parse(NULL, 1, &history_row_out, 1, &count_out, big_text, 64) == 0)
+SAFE_RESULT(im_history_parse, "rows", im_history_parse("x", 1, NULL, 1, &count_out, big_text, 64) == 0)
+SAFE_RESULT(im_history_parse, "count", im_history_parse("x", 1, &history_row_out, 1, NULL, big_text, 64) == 0)
+SAFE_RESULT(im_history_parse, "why", im_history_parse("x", 1, &history_row_out, 1, &count_out, NULL, 64) == 0)
 REPORT(im_measure_unloading, "punch", im_measure_unloading(NULL, values, values, NULL, 3, NULL, 0, &count_out))
 REPORT(im_measure_unloading, "approach", im_measure_unloading(&cone, NULL, values, NULL, 3, NULL, 0, &count_out))
 REPORT(im_measure_unloading, "load", im_measure_unloading(&cone, values, NULL, NULL, 3, NULL, 0, &count_out))
@@ -645,7 +656,7 @@ static const char *const no_pointer_arguments[] = {
     "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default",
     "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",
-    "im_measure_sneddon_modulus", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
+    "im_measure_sneddon_modulus", "im_history_columns", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
     "im_scene_plot_name", "im_solver_options_default", "im_quality_default_tolerance",
     "im_influence_square", "im_strstatus", "im_last_error", "im_fail", "im_fail_context",
     "im_set_stop_flag", "im_stop_requested", "im_surface_params_default",

@@ -159,13 +159,13 @@ static void both_histories_one_reader(void **state)
     test_write_bytes(test_path("h.ini"), scene, strlen(scene));
     snprintf(arguments, sizeof arguments, "run --quiet '%s'", test_path("h.ini"));
     run_cli(arguments);
-    history_row rows[8];
+    im_history_row rows[8];
     int count = 0;
     char why[160];
     snprintf(path, sizeof path, "%s/indent/history.csv", dir);
     char *indent, *member;
     read_whole(path, &indent);
-    if (!history_parse(indent, 1, rows, 8, &count, why, sizeof why))
+    if (!im_history_parse(indent, 1, rows, 8, &count, why, sizeof why))
         fail_msg("indent's history.csv: %s", why);
     assert_int_equal(count, 3);
     assert_close(rows[2].result.approach, 2, 0);
@@ -174,11 +174,11 @@ static void both_histories_one_reader(void **state)
     read_whole(path, &member);
     const char *body = strchr(member, '\n');
     assert_non_null(body);
-    if (!history_parse(body + 1, 1, rows, 8, &count, why, sizeof why))
+    if (!im_history_parse(body + 1, 1, rows, 8, &count, why, sizeof why))
         fail_msg("the scene's history: %s", why);
     assert_int_equal(count, 3);
     assert_true(rows[1].result.load > 0 && rows[1].patches >= 1 && isfinite(rows[1].theory.area_ratio_gamma));
-    assert_memory_equal(indent, body + 1, strlen(HISTORY_COLUMNS) + 1); /* the same column line */
+    assert_memory_equal(indent, body + 1, strlen(im_history_columns()) + 1); /* the same column line */
     free(indent);
     free(member);
 }
@@ -190,33 +190,33 @@ static void other_histories_refused(void **state)
     (void)state;
     static const char *const OLD = "approach,load,load_star,contact_patches,area_ratio,load_smooth,area_smooth,"
                                    "area_ratio_constant,area_ratio_gamma\n0.5,1,2,3,1,1,2,1,1\n";
-    history_row rows[4];
+    im_history_row rows[4];
     int count;
     char why[160], text[2048];
-    assert_false(history_parse(OLD, 1, rows, 4, &count, why, sizeof why));
+    assert_false(im_history_parse(OLD, 1, rows, 4, &count, why, sizeof why));
     assert_non_null(strstr(why, "older version"));
-    history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = 3, .contact_patches = 4,
+    im_history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = 3, .contact_patches = 4,
                                              .area_ratio = 1, .iterations = 5, .residual = 1e-7},
                        .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
-    char line[HISTORY_LINE_MAX];
-    history_format(&row, line, sizeof line);
-    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
-    assert_true(history_parse(text, 1, rows, 4, &count, why, sizeof why));
+    char line[IM_HISTORY_LINE_MAX];
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_true(im_history_parse(text, 1, rows, 4, &count, why, sizeof why));
     assert_int_equal(count, 1);
     assert_close(rows[0].result.load_star, 3, 0);
     assert_int_equal(rows[0].patches, 1);
     assert_true(isnan(rows[0].stiffness));
-    snprintf(text, sizeof text, "%s\n%.*s\n", HISTORY_COLUMNS, (int)(strrchr(line, ',') - line), line);
-    assert_false(history_parse(text, 1, rows, 4, &count, why, sizeof why)); /* a column short */
+    snprintf(text, sizeof text, "%s\n%.*s\n", im_history_columns(), (int)(strrchr(line, ',') - line), line);
+    assert_false(im_history_parse(text, 1, rows, 4, &count, why, sizeof why)); /* a column short */
     row.result.approach = NAN;
-    history_format(&row, line, sizeof line);
-    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
-    assert_false(history_parse(text, 1, rows, 4, &count, why, sizeof why));
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_false(im_history_parse(text, 1, rows, 4, &count, why, sizeof why));
     row.result.approach = 1;
     row.step = 2;
-    history_format(&row, line, sizeof line);
-    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
-    assert_false(history_parse(text, 1, rows, 4, &count, why, sizeof why));
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_false(im_history_parse(text, 1, rows, 4, &count, why, sizeof why));
 }
 
 /* A punch without a smooth-contact area (a 2-D profile): its rows' N* and A / A_cone are NaN, as
@@ -225,27 +225,27 @@ static void other_histories_refused(void **state)
 static void histories_without_smooth_area(void **state)
 {
     (void)state;
-    history_row rows[2];
+    im_history_row rows[2];
     int count;
-    char why[160], text[2048], line[HISTORY_LINE_MAX];
-    history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = NAN, .contact_patches = 4,
+    char why[160], text[2048], line[IM_HISTORY_LINE_MAX];
+    im_history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = NAN, .contact_patches = 4,
                                              .area_ratio = NAN, .iterations = 5, .residual = 1e-7},
                        .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
-    history_format(&row, line, sizeof line);
-    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
-    assert_true(history_parse(text, 0, rows, 2, &count, why, sizeof why));
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_true(im_history_parse(text, 0, rows, 2, &count, why, sizeof why));
     assert_int_equal(count, 1);
     assert_true(isnan(rows[0].result.load_star) && isnan(rows[0].result.area_ratio));
-    assert_false(history_parse(text, 1, rows, 2, &count, why, sizeof why)); /* a cone's has numbers there */
+    assert_false(im_history_parse(text, 1, rows, 2, &count, why, sizeof why)); /* a cone's has numbers there */
     row.result.load_star = 3;
-    history_format(&row, line, sizeof line);
-    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
-    assert_false(history_parse(text, 0, rows, 2, &count, why, sizeof why));
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_false(im_history_parse(text, 0, rows, 2, &count, why, sizeof why));
     row.result.load_star = NAN;
     row.result.approach = NAN;
-    history_format(&row, line, sizeof line);
-    snprintf(text, sizeof text, "%s\n%s", HISTORY_COLUMNS, line);
-    assert_false(history_parse(text, 0, rows, 2, &count, why, sizeof why));
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_false(im_history_parse(text, 0, rows, 2, &count, why, sizeof why));
 }
 
 /* ---- paths ---- */

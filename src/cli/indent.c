@@ -653,7 +653,7 @@ static double largest(const double *v, int n)
 /* Once per run: a contact of a few patches is below the grid's resolution (a smooth cone at 1 patch
  * carries 2.4x Love's load, at 9 patches 1.05x; issue 32), which nothing else would say. */
 enum { RESOLVED_PATCHES = 10 };
-static void warn_if_unresolved(const history_row *rows, int i)
+static void warn_if_unresolved(const im_history_row *rows, int i)
 {
     const long n = rows[i].result.contact_patches;
     for (int k = 0; k < i; ++k)
@@ -665,14 +665,14 @@ static void warn_if_unresolved(const history_row *rows, int i)
                 "approach or load\n", i + 1, n, n == 1 ? "" : "es");
 }
 
-/* Solves step i (0-based; rows[0..i) solved before), measures it (front.h: history_measure), and
+/* Solves step i (0-based; rows[0..i) solved before), measures it (history.h: im_history_measure), and
  * writes its fields and its history line. */
 static int run_step(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
-                    history_file *history, history_row *rows, int i)
+                    history_file *history, im_history_row *rows, int i)
 {
     int status = im_indentation_step(run, o->targets[i], &rows[i].result);
     if (status == IM_OK)
-        status = history_measure(&o->punch, o->solver.periodic ? NULL : rough, run, rows, i);
+        status = im_history_measure(&o->punch, o->solver.periodic ? NULL : rough, run, rows, i);
     if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
         status = write_fields(o, run, i + 1);
     if (status == IM_OK && o->distributions)
@@ -693,7 +693,7 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
 /* --periodic under a rigid flat without a hardness: k of eq. (2) fitted to the steps done with load
  * (theory.h: im_theory_fit_k, x = p_m / (h'rms E*) with the surface's spectral h'rms), printed and
  * recorded in run.json with its range. */
-static void write_k_fit(const indent_options *o, const im_theory_interface *rough, const history_row *rows,
+static void write_k_fit(const indent_options *o, const im_theory_interface *rough, const im_history_row *rows,
                         int done, json_t *record)
 {
     double *x = malloc(sizeof(double) * (size_t)(done + 1)), *area = malloc(sizeof(double) * (size_t)(done + 1));
@@ -724,7 +724,7 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
 
 /* indentation.csv over the steps done (front.h), said on stdout and in run.json; a failure here is
  * reported but leaves the run's own status alone (the history is the result). */
-static void write_analysis(const indent_options *o, const history_row *rows, int done, json_t *record)
+static void write_analysis(const indent_options *o, const im_history_row *rows, int done, json_t *record)
 {
     int branches = 0;
     if (o->solver.periodic) { /* Oliver-Pharr's areas are a punch's on a half-space */
@@ -797,7 +797,7 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
 static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
                      history_file *history, json_t *record)
 {
-    history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
+    im_history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
     if (!rows)
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
     int status = IM_OK, done = 0;

@@ -17,7 +17,7 @@ const char ANALYSIS_COLUMNS[] = "branch,top_step,last_step,loading_from,approach
 
 enum { ANALYSIS_LINE_MAX = 640 };
 
-static int format_branch(int index, const im_unloading_branch *b, const history_row *rows, double delta, char *line,
+static int format_branch(int index, const im_unloading_branch *b, const im_history_row *rows, double delta, char *line,
                          size_t size)
 {
     const im_step_result *top = &rows[b->top_step - 1].result, *last = &rows[b->last_step - 1].result;
@@ -31,7 +31,7 @@ static int format_branch(int index, const im_unloading_branch *b, const history_
                     b->work_in, b->work_out, last->plastic_work - before);
 }
 
-static int write_branches(const char *dir, const im_unloading_branch *b, int found, const history_row *rows,
+static int write_branches(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
                           double delta)
 {
     size_t size = sizeof ANALYSIS_COLUMNS + 1 + (size_t)found * ANALYSIS_LINE_MAX, used = 0;
@@ -48,7 +48,7 @@ static int write_branches(const char *dir, const im_unloading_branch *b, int fou
     return status;
 }
 
-int analysis_write(const char *dir, const im_indenter *punch, const history_row *rows, int count, double delta,
+int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
                    int *branches)
 {
     *branches = 0;
@@ -90,7 +90,7 @@ static void add_segment(segments *s, double x0, double y0, double x1, double y1)
     }
 }
 
-static void split_segments(const history_row *rows, int count, segments *up, segments *down)
+static void split_segments(const im_history_row *rows, int count, segments *up, segments *down)
 {
     double w0 = 0, n0 = 0;
     for (int k = 0; k < count; ++k) {
@@ -153,7 +153,7 @@ static int draw_figure(const char *dir, const segments *up, const segments *down
     return status;
 }
 
-int analysis_figure(const char *dir, const im_indenter *punch, const history_row *rows, int count,
+int analysis_figure(const char *dir, const im_indenter *punch, const im_history_row *rows, int count,
                     const char *length_unit, const char *force_unit)
 {
     segments up = {0}, down = {0}, tangent = {0};

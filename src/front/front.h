@@ -1,9 +1,11 @@
 /* Internal: what the two front ends, `indentmap indent` (src/cli/indent.c) and scenes (src/scene/),
- * share, so that each exists once: the history schema with its writer and reader (history.c), the
- * step-list parser (steps.c) and the JSON run record (record.c). */
+ * share, so that each exists once: the history file appended step by step (history_file.c; its
+ * schema is the public history.h), the step-list parser (steps.c), the indentation analysis'
+ * files (analysis.c) and the JSON run record (record.c). */
 #ifndef INDENTMAP_FRONT_H
 #define INDENTMAP_FRONT_H
 
+#include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
@@ -28,45 +30,7 @@ enum { STEPS_MAX = IM_SCENE_MAX_STEPS };
  * "--approach", "steps"). */
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t error_size);
 
-/* ---- the history schema (history.c) ---- */
-
-/* The column names of a history, in order: the header line of `indent`'s history.csv and of a
- * scene's histories/member_FF_SEED.csv (after its "# ..." line). */
-extern const char HISTORY_COLUMNS[];
-
-/* One step of a history: the solver's result, the theory beside it, and what an experiment would
- * measure. A value the writer did not have (a scene's step taken from its table) is -1 for the
- * counts (iterations, convolutions, patches) and NaN for the others. */
-typedef struct history_row {
-    int step;               /* 1-based */
-    im_step_result result;
-    im_theory_step theory;
-    double stiffness;       /* dN/dw from this step and the (up to) two before; NaN at the first */
-    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
-    long patches;           /* connected contact patches */
-    double perimeter;       /* their perimeter */
-} history_row;
-
-/* Fills rows[i] (rows[0..i) filled before; rows[i].result set by the caller): its step number, the
- * theory for punch on the interface rough at its approach and load (NaN when rough is NULL: a periodic
- * cell), the stiffness and Sneddon
- * modulus, and (run not NULL: the state of this step) the contact patches. */
-int history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
-                    history_row *rows, int i);
-
-/* Row i as one CSV line with its newline, into line (HISTORY_LINE_MAX bytes suffice). Returns its
- * length. */
-enum { HISTORY_LINE_MAX = 1024 };
-int history_format(const history_row *row, char *line, size_t size);
-
-/* Parses the text of a history from its column line: the line must be HISTORY_COLUMNS (else a
- * history of another version), then each row whole, with the right number of values, numbers
- * finite where they must be (approach, load; when the punch has a smooth-contact area, smooth_area
- * nonzero, load_star and area_ratio unless the load is 0) and NaN where the solver writes NaN
- * (area_ratio at no load; load_star and area_ratio of a punch without that area, a 2-D profile).
- * Fills rows[0..*count) (capacity at most); 0 with a reason in why at the first fault. */
-int history_parse(const char *text, int smooth_area, history_row *rows, int capacity, int *count, char *why,
-                  size_t why_size);
+/* ---- history.csv appended step by step (history_file.c; the schema is history.h's) ---- */
 
 /* A history file appended step by step (indent): its column line is written atomically, then each
  * row with one write(2) and synced (fdatasync), so that a finished step survives a crash and the
@@ -78,7 +42,7 @@ typedef struct history_file {
     char path[4096];
 } history_file;
 int history_start(const char *dir, history_file *h);
-int history_append(history_file *h, const history_row *row);
+int history_append(history_file *h, const im_history_row *row);
 void history_close(history_file *h);
 
 /* ---- the indentation analysis of a history's unloading branches (analysis.c) ---- */
@@ -90,13 +54,13 @@ extern const char ANALYSIS_COLUMNS[];
 
 /* Analyses rows[0..count) (measure.h) and, when they hold an unloading branch, writes
  * DIR/indentation.csv atomically; *branches says how many (0: no file written). */
-int analysis_write(const char *dir, const im_indenter *punch, const history_row *rows, int count, double delta,
+int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
                    int *branches);
 
 /* DIR/load_displacement.{png,pdf}: the history's N(w), loading segments and unloading segments in two
  * colours, with each unloading branch's tangent at its top (slope S, to N = 0: Oliver-Pharr's
  * construction). Axis labels name length_unit and force_unit ("" for delta and E* delta^2). */
-int analysis_figure(const char *dir, const im_indenter *punch, const history_row *rows, int count,
+int analysis_figure(const char *dir, const im_indenter *punch, const im_history_row *rows, int count,
                     const char *length_unit, const char *force_unit);
 
 /* ---- the JSON run record (record.c) ---- */

@@ -67,10 +67,10 @@ static int history_rows(const scene_member *m, char **rows, size_t *length)
     FILE *stream = open_memstream(&text, length);
     if (!stream)
         return im_fail(IM_ENOMEM, "history rows: allocation failed");
-    fprintf(stream, "%s\n", HISTORY_COLUMNS);
+    fprintf(stream, "%s\n", im_history_columns());
     for (int i = 0; i < m->steps; ++i) {
-        char line[HISTORY_LINE_MAX];
-        history_format(&m->history[i], line, sizeof line);
+        char line[IM_HISTORY_LINE_MAX];
+        im_history_format(&m->history[i], line, sizeof line);
         fputs(line, stream);
     }
     if (fclose(stream) != 0) {
@@ -122,7 +122,7 @@ static int history_is_whole(char *text, int smooth_area, scene_member *m, int ca
         return 0;
     }
     ++body;
-    if (!history_parse(body, smooth_area, m->history, capacity, &m->steps, why, why_size))
+    if (!im_history_parse(body, smooth_area, m->history, capacity, &m->steps, why, why_size))
         return 0;
     if (m->steps != rows || rows < 1) {
         snprintf(why, why_size, "%d rows where its header says %d", m->steps, rows);
@@ -145,8 +145,8 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
     if (history_path(scene, m, path, sizeof path) != IM_OK || access(path, F_OK) != 0)
         return 0;
     char *text = NULL;
-    /* a row is at most HISTORY_LINE_MAX characters; far more is not a history */
-    size_t limit = 4096 + (size_t)scene->step_count * HISTORY_LINE_MAX;
+    /* a row is at most IM_HISTORY_LINE_MAX characters; far more is not a history */
+    size_t limit = 4096 + (size_t)scene->step_count * IM_HISTORY_LINE_MAX;
     if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
         return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
@@ -193,7 +193,7 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
 /* Solves the member's history. Contact reaching the surface's edge fails it (IM_EEDGE, with the
  * step): the scene asked for every step, and the pre-flight check (limits.c) refuses the steps
  * whose smooth contact leaves the surface before any work. Each step is measured as `indent`
- * measures it (front.h: history_measure), with the theory of the family's h'rms. */
+ * measures it (history.h: im_history_measure), with the theory of the family's h'rms. */
 static int solve_history(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m,
                          const im_field *surface)
 {
@@ -217,7 +217,7 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
                             "smaller steps)", i + 1,
                             scene->step_count, scene->control == IM_CONTROL_LOAD ? "N*" : "approach", scene->steps[i]);
         if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
-            status = history_measure(&punch, &rough, from_table ? NULL : run, m->history, i);
+            status = im_history_measure(&punch, &rough, from_table ? NULL : run, m->history, i);
         if (status == IM_OK)
             m->steps = i + 1;
     }

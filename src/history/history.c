@@ -1,29 +1,29 @@
-/* One history schema for `indent` and scenes: the columns, the measurement beside each solved
- * step, one row writer, one reader. */
-#include "front/front.h"
+/* The one history schema (history.h): the columns, the measurement beside each solved step, one row
+ * writer, one reader. */
+#include "indentmap/history.h"
+#include "core/args.h"
 
 #include "indentmap/field.h"
 #include "indentmap/io.h"
 #include "indentmap/measure.h"
 #include "indentmap/status.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
-const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
+static const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
                                "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
                                ",stiffness,e_star_sneddon,patches,patch_perimeter,"
                                "yielding_patches,plastic_depth,plastic_work,residual_approach";
 
 enum { HISTORY_VALUES = 24 }; /* the columns above */
 
+const char *im_history_columns(void) { return HISTORY_COLUMNS; }
+
 /* Contact patches of the run's current state. */
-static int measure_patches(const im_indentation *run, history_row *row)
+static int measure_patches(const im_indentation *run, im_history_row *row)
 {
     im_field *force = NULL;
     im_contact_patches patches = {0};
@@ -36,10 +36,14 @@ static int measure_patches(const im_indentation *run, history_row *row)
     return status;
 }
 
-int history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
-                    history_row *rows, int i)
+int im_history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
+                       im_history_row *rows, int i)
 {
-    history_row *row = &rows[i];
+    ARG_REQUIRE(punch, "punch");
+    ARG_REQUIRE(rows, "rows");
+    if (i < 0)
+        return im_fail(IM_EINVAL, "history row %d: expected >= 0", i);
+    im_history_row *row = &rows[i];
     row->step = i + 1;
     int status = IM_OK;
     if (rough) /* none for a periodic cell: the theory is the half-space's */
@@ -66,8 +70,10 @@ int history_measure(const im_indenter *punch, const im_theory_interface *rough, 
     return status == IM_OK && run ? measure_patches(run, row) : status;
 }
 
-int history_format(const history_row *row, char *line, size_t size)
+int im_history_format(const im_history_row *row, char *line, size_t size)
 {
+    ARG_REQUIRE_OR(row, "row", -1);
+    ARG_REQUIRE_OR(line, "line", -1);
     const im_step_result *r = &row->result;
     const im_theory_step *t = &row->theory;
     return snprintf(line, size,
@@ -81,7 +87,7 @@ int history_format(const history_row *row, char *line, size_t size)
 }
 
 /* One row on a whole line [line, end); 0 when it is not HISTORY_VALUES numbers. */
-static int scan_row(const char *line, const char *end, history_row *row)
+static int scan_row(const char *line, const char *end, im_history_row *row)
 {
     im_step_result *r = &row->result;
     im_theory_step *t = &row->theory;
@@ -98,7 +104,7 @@ static int scan_row(const char *line, const char *end, history_row *row)
 /* Whether the solution's values are what the solver reports: approach and load finite; with a
  * smooth-contact area, N* finite and A / A_cone NaN only where there is no load; without one (a 2-D
  * profile), both NaN. */
-static int row_is_finite(const history_row *row, int smooth_area)
+static int row_is_finite(const im_history_row *row, int smooth_area)
 {
     const im_step_result *r = &row->result;
     int ratio_ok = r->load > 0 && smooth_area ? isfinite(r->area_ratio) : isnan(r->area_ratio);
@@ -106,9 +112,13 @@ static int row_is_finite(const history_row *row, int smooth_area)
     return isfinite(r->approach) && isfinite(r->load) && n_star_ok && ratio_ok;
 }
 
-int history_parse(const char *text, int smooth_area, history_row *rows, int capacity, int *count, char *why,
-                  size_t why_size)
+int im_history_parse(const char *text, int smooth_area, im_history_row *rows, int capacity, int *count, char *why,
+                     size_t why_size)
 {
+    ARG_REQUIRE_OR(text, "text", 0);
+    ARG_REQUIRE_OR(rows, "rows", 0);
+    ARG_REQUIRE_OR(count, "count", 0);
+    ARG_REQUIRE_OR(why, "why", 0);
     size_t columns = strlen(HISTORY_COLUMNS);
     *count = 0;
     if (strncmp(text, HISTORY_COLUMNS, columns) != 0 || text[columns] != '\n') {
@@ -128,44 +138,4 @@ int history_parse(const char *text, int smooth_area, history_row *rows, int capa
         line = next + 1;
     }
     return 1;
-}
-
-int history_start(const char *dir, history_file *h)
-{
-    h->fd = -1;
-    int status = im_path_join(h->path, sizeof h->path, dir, "history.csv");
-    char header[sizeof HISTORY_COLUMNS + 1];
-    snprintf(header, sizeof header, "%s\n", HISTORY_COLUMNS);
-    if (status == IM_OK)
-        status = im_write_file_atomic(h->path, header, strlen(header));
-    if (status != IM_OK)
-        return status;
-    h->fd = open(h->path, O_WRONLY | O_APPEND | O_CLOEXEC);
-    if (h->fd < 0)
-        return im_fail(IM_EIO, "%s: cannot open for appending: %s", h->path, strerror(errno));
-    h->size = (off_t)strlen(header);
-    return IM_OK;
-}
-
-int history_append(history_file *h, const history_row *row)
-{
-    char line[HISTORY_LINE_MAX];
-    int length = history_format(row, line, sizeof line);
-    ssize_t written = write(h->fd, line, (size_t)length);
-    if (written == length && fdatasync(h->fd) == 0) {
-        h->size += length;
-        return IM_OK;
-    }
-    int saved = written < 0 || written == length ? errno : ENOSPC; /* a short write: the disk filled */
-    if (ftruncate(h->fd, h->size) != 0) /* no torn last line */
-        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)",
-                       h->path, strerror(saved), strerror(errno));
-    return im_fail(IM_EIO, "%s: write failed: %s", h->path, strerror(saved));
-}
-
-void history_close(history_file *h)
-{
-    if (h->fd >= 0)
-        close(h->fd);
-    h->fd = -1;
 }

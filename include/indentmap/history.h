@@ -1,0 +1,71 @@
+/* indentmap/history.h: the one history schema of every front end — `indent`'s history.csv, a scene's
+ * histories/member_FF_SEED.csv and Python's history arrays: its columns, the measurement beside each
+ * solved step, one row writer and one reader.
+ *
+ * Entry points: im_history_columns, im_history_measure, im_history_format, im_history_parse.
+ *
+ * Columns, in order: step, the solver's results (approach, load, load_star, contact_patches,
+ * area_ratio, mean_pressure, max_pressure, iterations, residual, seconds, convolutions), the theory
+ * beside them (load_smooth, area_smooth, area_ratio_constant, area_ratio_gamma; theory.h), what an
+ * experiment measures (stiffness, e_star_sneddon, patches, patch_perimeter; measure.h) and the plastic
+ * memory (yielding_patches, plastic_depth, plastic_work, residual_approach; solver.h). Numbers are
+ * written with 17 significant digits (residual and seconds with 7), so a history read back is the one
+ * written.
+ *
+ * Misuse (status.h): NULL arrays or outputs give IM_EINVAL naming the function and the argument.
+ * Thread-safe on distinct rows. */
+#ifndef INDENTMAP_HISTORY_H
+#define INDENTMAP_HISTORY_H
+
+#include "indentmap/indenter.h"
+#include "indentmap/solver.h"
+#include "indentmap/theory.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One step of a history. A value the writer did not have (a scene's step taken from its table) is -1
+ * for the counts (iterations, convolutions, patches) and NaN for the others. */
+typedef struct im_history_row {
+    int step;               /* 1-based */
+    im_step_result result;
+    im_theory_step theory;
+    double stiffness;       /* dN/dw from this step and the two before on one branch; NaN otherwise */
+    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
+    long patches;           /* connected contact patches */
+    double perimeter;       /* their perimeter */
+} im_history_row;
+
+/* The column line (without its newline), the same for every history this version writes. */
+const char *im_history_columns(void);
+
+/* Fills rows[i] (rows[0..i) filled before; rows[i].result set by the caller, e.g. by
+ * im_indentation_step): its step number, the theory for punch on the interface rough at its approach
+ * and load (NaN when rough is NULL: a periodic cell), the stiffness and Sneddon modulus, and (run not
+ * NULL: the state of this step) the contact patches. IM_EINVAL for i < 0. */
+int im_history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
+                       im_history_row *rows, int i);
+
+/* The row as one CSV line with its newline, into line (IM_HISTORY_LINE_MAX bytes suffice). Returns its
+ * length; -1 (IM_EINVAL) for a NULL row or line. */
+enum { IM_HISTORY_LINE_MAX = 1024 };
+int im_history_format(const im_history_row *row, char *line, size_t size);
+
+/* Parses the text of a history from its column line: the line must be im_history_columns() (else a
+ * history of another version), then each row whole, with the right number of values, numbers finite
+ * where they must be (approach, load; when the punch has a smooth-contact area, smooth_area nonzero,
+ * load_star and area_ratio unless the load is 0) and NaN where the solver writes NaN (area_ratio at no
+ * load; load_star and area_ratio of a punch without that area, a 2-D profile). Fills rows[0..*count)
+ * (capacity at most). Returns 1, or 0 with a reason in why at the first fault (also for NULL
+ * arguments). */
+int im_history_parse(const char *text, int smooth_area, im_history_row *rows, int capacity, int *count, char *why,
+                     size_t why_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
