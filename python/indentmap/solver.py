@@ -37,11 +37,33 @@ def _punch_arguments(punch):
     raise TypeError(f"punch: expected Cone, Sphere, Flat or a profile array, got {punch!r}")
 
 
-HISTORY_DTYPE = np.dtype([("approach", "f8"), ("load", "f8"), ("load_star", "f8"), ("contact_patches", "i8"),
-                          ("area_ratio", "f8"), ("mean_pressure", "f8"), ("max_pressure", "f8"),
-                          ("iterations", "i4"), ("coarse_iterations", "i4"), ("convolutions", "i4"),
-                          ("residual", "f8"), ("seconds", "f8"), ("yielding_patches", "i8"),
-                          ("plastic_depth", "f8"), ("plastic_work", "f8"), ("residual_approach", "f8")])
+# The integer columns of a history (history.h); every other column is float64.
+_INTEGER_COLUMNS = {"step", "contact_patches", "iterations", "convolutions", "patches", "yielding_patches"}
+
+
+def _history_array(text, source="history"):
+    """A structured array of a history's text: history.csv's columns, names and values (17 digits: the
+    numbers written)."""
+    lines = [line for line in text.splitlines() if line and not line.startswith("#")]
+    if not lines or lines[0] != _core.history_columns:
+        raise ValueError(f"{source}: its columns are not this version's history columns "
+                         f"({_core.history_columns})")
+    names = lines[0].split(",")
+    dtype = np.dtype([(name, "i8" if name in _INTEGER_COLUMNS else "f8") for name in names])
+    rows = []
+    for number, line in enumerate(lines[1:], start=2):
+        values = line.split(",")
+        if len(values) != len(names):
+            raise ValueError(f"{source}: line {number}: {len(values)} values, expected {len(names)}")
+        rows.append(tuple(int(v) if n in _INTEGER_COLUMNS else float(v) for n, v in zip(names, values)))
+    return np.array(rows, dtype=dtype)
+
+
+def read_history(path):
+    """A history.csv (``indentmap indent``) or a scene's histories/member_FF_SEED.csv as the structured
+    array ``indent`` returns: the same columns, names and values."""
+    with open(path) as f:
+        return _history_array(f.read(), str(path))
 
 
 class Indentation:
@@ -97,6 +119,12 @@ class Indentation:
         computed on the whole grid (one convolution), not only in the solve window."""
         return self._run.fields()
 
+    def history(self):
+        """The steps solved so far as a structured array with history.csv's columns (docs/solver.md):
+        the solver's results, the theory beside them, the stiffness, the contact patches and the plastic
+        memory, measured as ``indentmap indent`` measures them."""
+        return _history_array(self._run.history_text())
+
     def plastic(self):
         """The plastic depth accumulated so far on the full grid (units of delta; 0 without a hardness):
         the residual impression once the punch is withdrawn."""
@@ -131,7 +159,8 @@ class Plan:
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, fields=False, **options):
     """Solves a history of approaches (displacement control) or loads (load control).
 
-    Returns a structured array with one row per step (fields of HISTORY_DTYPE); with ``fields=True``,
+    Returns a structured array with one row per step and history.csv's columns (``read_history`` reads a
+    history.csv into the same array); with ``fields=True``,
     also a list of dicts {'force', 'gap', 'displacement'} per step ('plastic' too with a hardness).
     ``options`` go to Indentation. Targets may go up and down (``np.r_[2:8:4j, 7:0:8j]`` loads to 8 and
     unloads): ``unloading(history, punch)`` then gives the indentation analysis. ``pressures`` (with
@@ -149,16 +178,15 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
         raise ValueError("no steps")
     run = Indentation(heights, punch, control="displacement" if loads is None else "load",
                       largest=float(targets.max()), **options)
-    history = np.zeros(targets.size, dtype=HISTORY_DTYPE)
     per_step = []
-    for i, target in enumerate(targets):
-        result = run.step(target)
-        history[i] = tuple(result[name] for name in HISTORY_DTYPE.names)
+    for target in targets:
+        run.step(target)
         if fields:
             step_fields = dict(zip(("force", "gap", "displacement"), run.fields()))
             if options.get("hardness", 0) > 0:
                 step_fields["plastic"] = run.plastic()
             per_step.append(step_fields)
+    history = run.history()
     return (history, per_step) if fields else history
 
 

@@ -3,15 +3,23 @@
  * indentmap._core.Plan: the bare solver on a grid (im_solver_plan), for gaps of the caller's own. */
 #include "core.h"
 
+#include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
 
 typedef struct py_indentation {
     PyObject_HEAD
     im_indentation *run;
     im_profile *profile; /* a profile punch's shape: the run borrows it, so it is freed after the run */
+    /* the history of the steps solved, measured as every front end does (history.h) */
+    im_indenter punch;
+    im_theory_interface rough; /* the surface's spectral h'rms and E*, as `indent`'s theory columns */
+    int periodic;              /* no half-space theory beside a periodic cell */
+    im_history_row *rows;
+    int row_count, row_capacity;
     int busy; /* a step runs without the GIL: a second thread may not enter the same history */
     volatile sig_atomic_t stop; /* the solver's stop flag (interrupt.c): set by Ctrl-C during a step */
 } py_indentation;
@@ -138,8 +146,18 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     self->run = NULL;
     im_profile_free(self->profile); /* after the run that borrowed it */
     self->profile = profile;
+    self->row_count = 0;
     /* With the GIL held: FFTW's planner, called here, is not thread-safe. */
     int status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
+    im_surface_stats stats;
+    if (status == IM_OK)
+        status = im_surface_statistics(&surface, &stats);
+    if (status == IM_OK) {
+        self->punch = punch;
+        self->rough = im_theory_interface_default(stats.slope_rms_spectral);
+        self->rough.e_star = o.e_star;
+        self->periodic = o.periodic;
+    }
     Py_DECREF(array);
     if (status != IM_OK) {
         py_raise_status(status);
@@ -150,6 +168,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
 
 static void indentation_dealloc(py_indentation *self)
 {
+    free(self->rows);
     im_indentation_free(self->run);
     im_profile_free(self->profile); /* after the run that borrowed it */
     Py_TYPE(self)->tp_free((PyObject *)self);
@@ -179,6 +198,42 @@ static PyObject *step_dict(const im_step_result *r)
                          "plastic_work", r->plastic_work, "residual_approach", r->residual_approach);
 }
 
+/* The solved step as the next row of the history, measured as `indent` measures it (history.h). */
+static int record_row(py_indentation *self, const im_step_result *result)
+{
+    if (self->row_count == self->row_capacity) {
+        int capacity = self->row_capacity ? 2 * self->row_capacity : 16;
+        im_history_row *rows = realloc(self->rows, sizeof *rows * (size_t)capacity);
+        if (!rows)
+            return im_fail(IM_ENOMEM, "history of %d steps", capacity);
+        self->rows = rows;
+        self->row_capacity = capacity;
+    }
+    self->rows[self->row_count].result = *result;
+    int status = im_history_measure(&self->punch, self->periodic ? NULL : &self->rough, self->run, self->rows,
+                                    self->row_count);
+    self->row_count += status == IM_OK;
+    return status;
+}
+
+/* The history of the steps solved as the text of a history.csv: its column line, then a row per step. */
+static PyObject *indentation_history_text(py_indentation *self, PyObject *unused)
+{
+    (void)unused;
+    if (check_ready(self) < 0)
+        return NULL;
+    size_t size = IM_HISTORY_LINE_MAX * (size_t)(self->row_count + 1), used = 0;
+    char *text = malloc(size);
+    if (!text)
+        return PyErr_NoMemory();
+    used += (size_t)snprintf(text, size, "%s\n", im_history_columns());
+    for (int i = 0; i < self->row_count; ++i)
+        used += (size_t)im_history_format(&self->rows[i], text + used, size - used);
+    PyObject *out = PyUnicode_FromStringAndSize(text, (Py_ssize_t)used);
+    free(text);
+    return out;
+}
+
 static PyObject *indentation_step(py_indentation *self, PyObject *arg)
 {
     double target = PyFloat_AsDouble(arg);
@@ -195,6 +250,8 @@ static PyObject *indentation_step(py_indentation *self, PyObject *arg)
     self->busy = 0;
     if (py_interrupt_disarm(&call, &self->stop) < 0)
         return NULL;
+    if (status == IM_OK)
+        status = record_row(self, &result);
     return status == IM_OK ? step_dict(&result) : py_raise_status(status);
 }
 
@@ -236,6 +293,8 @@ static PyMethodDef indentation_methods[] = {
      "fields() -> (force, gap, displacement) of the last step on the full grid"},
     {"plastic", (PyCFunction)indentation_plastic, METH_NOARGS,
      "plastic() -> the plastic depth accumulated so far on the full grid"},
+    {"history_text", (PyCFunction)indentation_history_text, METH_NOARGS,
+     "history_text() -> the steps solved as the text of a history.csv"},
     {NULL, NULL, 0, NULL}};
 
 static PyGetSetDef indentation_getset[] = {

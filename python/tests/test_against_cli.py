@@ -3,6 +3,7 @@ import csv
 import io
 
 import numpy as np
+import pytest
 
 import indentmap as im
 from conftest import run_cli
@@ -28,6 +29,25 @@ def test_indent_history_and_fields_bit_for_bit(cli, rough64, tmp_path):
             saved = np.load(tmp_path / "out" / f"{name}_{k + 1:04d}.npy")
             assert saved.dtype == np.float64 and saved.shape == fields[k][name].shape
             assert saved.tobytes() == fields[k][name].tobytes(), name
+
+
+def test_one_history_schema(cli, rough64, tmp_path):
+    """indent's array has history.csv's columns, names and values (the theory, the stiffness, the patches,
+    the plastic memory included), and read_history reads the CLI's file into the same array."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "0.5:2:4,1.5", "--hardness", "0.3", "--out",
+            tmp_path / "out")
+    ours = im.indent(rough64, im.Cone(80), approaches=[0.5, 1, 1.5, 2, 1.5], hardness=0.3)
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    assert ours.dtype == theirs.dtype and ours.dtype.names == tuple(im._core.history_columns.split(","))
+    assert len(ours) == len(theirs) == 5
+    for name in ours.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(ours[name], theirs[name], err_msg=name)
+    assert np.isfinite(ours["stiffness"][2]) and np.isnan(ours["stiffness"][:2]).all()
+    (tmp_path / "old.csv").write_text("step,approach\n1,2\n")
+    with pytest.raises(ValueError, match="not this version's history columns"):
+        im.read_history(tmp_path / "old.csv")
 
 
 def test_load_control_sphere_bit_for_bit(cli, rough64, tmp_path):
