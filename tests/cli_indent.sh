@@ -75,6 +75,23 @@ awk 'BEGIN { for (y = 0; y < 32; ++y) { line = ""; for (x = 0; x < 32; ++x) line
     > "$DIR/ramp.txt"
 "$BIN" indent "$DIR/ramp.txt" --periodic --pressure 0.001 --out "$DIR/per_r" > /dev/null 2> "$DIR/per_r.err"
 grep -q "is not periodic: the steps across its edges have rms" "$DIR/per_r.err" || fail "no warning for a ramp: $(cat "$DIR/per_r.err")"
+# The theory's h'rms (issue 26: generated surfaces used the spectral one, files the forward differences'
+# elsewhere): spectral for a surface known to be periodic, forward differences for a measured one, the other
+# by --slope-definition; run.json states the value, the definition and what chose it.
+"$BIN" indent "$DIR/cell.npy" --approach 1 --out "$DIR/sd_gen" > /dev/null 2>&1 || fail "slope: generated run"
+grep -A3 '"theory_slope_rms"' "$DIR/sd_gen/run.json" | grep -q '"definition": "spectral"' || fail "generated: not spectral"
+awk 'BEGIN { srand(3); for (y = 0; y < 48; ++y) { line = ""; for (x = 0; x < 48; ++x) line = line (x ? " " : "") 0.02 * x + 0.3 * rand(); print line } }' \
+    > "$DIR/measured.txt"
+"$BIN" indent "$DIR/measured.txt" --approach 0.5 --out "$DIR/sd_file" > /dev/null 2>&1 || fail "slope: measured run"
+grep -A3 '"theory_slope_rms"' "$DIR/sd_file/run.json" | grep -q '"definition": "finite differences"' &&
+    grep -q '"chosen_by": "default: a measured surface"' "$DIR/sd_file/run.json" || fail "measured: not fd: $(cat "$DIR/sd_file/run.json")"
+"$BIN" indent "$DIR/measured.txt" --approach 0.5 --slope-definition spectral --out "$DIR/sd_spec" > /dev/null 2>&1 || fail "slope: chosen"
+grep -A3 '"theory_slope_rms"' "$DIR/sd_spec/run.json" | grep -q '"definition": "spectral"' &&
+    grep -q '"chosen_by": "--slope-definition"' "$DIR/sd_spec/run.json" || fail "--slope-definition spectral not taken"
+[ "$(sed -n 2p "$DIR/sd_spec/history.csv" | cut -d, -f16)" != "$(sed -n 2p "$DIR/sd_file/history.csv" | cut -d, -f16)" ] \
+    || fail "the two h'rms gave the same eq. (12) column"
+"$BIN" indent "$DIR/measured.txt" --approach 0.5 --slope-definition sobel --out "$DIR/sd_bad" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "--slope-definition sobel not refused"
 # the same folder run again with loading only: no stale analysis or plastic field is left
 "$BIN" indent --smooth --n 96 --approach 1:6:3 --fields --out "$DIR/cycle" >/dev/null || fail "rerun exited $?"
 [ ! -e "$DIR/cycle/indentation.csv" ] && [ ! -e "$DIR/cycle/load_displacement.png" ] && ! ls "$DIR/cycle" | grep -q plastic_ \

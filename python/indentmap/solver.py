@@ -92,11 +92,15 @@ class Indentation:
     ``indentmap indent --periodic``): the periodic half-space over the whole cell, load control only, the
     punch repeated with the cell, or a rigid flat when ``punch`` is None; ``area_ratio`` is then A / A0
     and ``load_star`` NaN.
+
+    ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
+    differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
+    measured surface's edges would count in its spectrum), as ``indentmap indent`` for a file.
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
-                 hardness=0.0, periodic=False):
+                 hardness=0.0, periodic=False, slope_definition=None):
         if punch is None:
             if not periodic:
                 raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
@@ -108,7 +112,7 @@ class Indentation:
                                       e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
                                       crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
                                       profile=profile, device=str(device), hardness=float(hardness),
-                                      periodic=bool(periodic))
+                                      periodic=bool(periodic), slope_definition=slope_definition or "")
 
     def step(self, target):
         """Solves the next step at approach or load ``target``; returns its results as a dict."""

@@ -104,16 +104,25 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
                                "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
-                               "hardness", "periodic", NULL};
+                               "hardness", "periodic", "slope_definition", NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     double delta, alpha, radius, largest;
-    const char *kind, *control_name, *device = "cpu";
+    const char *kind, *control_name, *device = "cpu", *slope_name = "";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdp", keywords, &obj, &delta, &kind, &alpha,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdps", keywords, &obj, &delta, &kind, &alpha,
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
                                      &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
-                                     &o.periodic))
+                                     &o.periodic, &slope_name))
         return -1;
+    /* the theory's h'rms (as indent --slope-definition): spectral for a periodic cell, else forward
+     * differences (an array may be measured: its edges would count in the spectrum) */
+    enum im_slope_definition slope_definition = o.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+    if (strcmp(slope_name, "spectral") == 0 || strcmp(slope_name, "fd") == 0)
+        slope_definition = slope_name[0] == 's' ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+    else if (slope_name[0]) {
+        PyErr_Format(PyExc_ValueError, "slope_definition '%s': expected 'spectral' or 'fd'", slope_name);
+        return -1;
+    }
     if (im_device_parse(device, &o.device) != IM_OK) {
         PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);
         return -1;
@@ -149,12 +158,12 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     self->row_count = 0;
     /* With the GIL held: FFTW's planner, called here, is not thread-safe. */
     int status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
-    im_surface_stats stats;
+    double slope = 0;
     if (status == IM_OK)
-        status = im_surface_statistics(&surface, &stats);
+        status = im_surface_slope_rms(&surface, slope_definition, &slope);
     if (status == IM_OK) {
         self->punch = punch;
-        self->rough = im_theory_interface_default(stats.slope_rms_spectral);
+        self->rough = im_theory_interface_default(slope);
         self->rough.e_star = o.e_star;
         self->periodic = o.periodic;
     }

@@ -45,6 +45,13 @@ def test_one_history_schema(cli, rough64, tmp_path):
         if name != "seconds":
             np.testing.assert_array_equal(ours[name], theirs[name], err_msg=name)
     assert np.isfinite(ours["stiffness"][2]) and np.isnan(ours["stiffness"][:2]).all()
+    # the theory's h'rms: forward differences by default for an array (as indent for a file), spectral on request
+    fd = im.indent(rough64, im.Cone(80), approaches=[1.0], slope_definition="fd")
+    spectral = im.indent(rough64, im.Cone(80), approaches=[1.0], slope_definition="spectral")
+    default = im.indent(rough64, im.Cone(80), approaches=[1.0])
+    assert default["area_ratio_gamma"][0] == fd["area_ratio_gamma"][0] != spectral["area_ratio_gamma"][0]
+    with pytest.raises(ValueError, match="slope_definition 'sobel'"):
+        im.Indentation(rough64, largest=1.0, slope_definition="sobel")
     (tmp_path / "old.csv").write_text("step,approach\n1,2\n")
     with pytest.raises(ValueError, match="not this version's history columns"):
         im.read_history(tmp_path / "old.csv")

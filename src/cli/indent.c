@@ -66,6 +66,11 @@ static void usage(FILE *stream)
             "                      theory columns are nan (docs/solver.md, \"Periodic indentation\")\n"
             "  --pressure LIST     with --periodic: mean pressures p_m (units of E*) instead of --load\n"
             "                      (N = p_m times the cell's area), same syntax\n"
+            "  --slope-definition D  the h'rms of the theory columns and the k fit: spectral (the\n"
+            "                      band-limited interpolant's) or fd (forward differences). Default: spectral\n"
+            "                      for a surface known to be periodic (generated, --smooth, --periodic), fd\n"
+            "                      for a measured one (its edges would count in the spectrum), as scenes\n"
+            "                      and Python do; run.json states which\n"
             "  --e-star E          composite modulus E* (default 1)\n"
             "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
             "                      stress); default none\n"
@@ -124,6 +129,9 @@ typedef struct indent_options {
     int radius_given, x_given, y_given, punch_given, alpha_given;
     int pressures;            /* --pressure: the targets are mean pressures until the cell is known */
     double cell_area;         /* --periodic: nx ny delta^2 */
+    int slope_definition;     /* --slope-definition: IM_SLOPE_*, or -1: by the surface (slope_rule) */
+    const char *slope_reason; /* why the theory's h'rms is the one it is, for run.json and the k fit */
+    double theory_slope;      /* that h'rms */
     enum im_control control;
     const char *targets_text;
     const char *quality; /* preset name, NULL if none given */
@@ -137,7 +145,7 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
-       OPT_PRESSURE };
+       OPT_PRESSURE, OPT_SLOPE_DEFINITION };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -157,7 +165,8 @@ static const struct option LONG_OPTIONS[] = {
     {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
     {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE},
-    {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE}, {0, 0, 0, 0}};
+    {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE},
+    {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION}, {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -201,6 +210,13 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_PUNCH: o->punch_given = 1; return parse_punch(arg, &o->punch.kind);
     case OPT_PERIODIC: o->solver.periodic = 1; return 0;
+    case OPT_SLOPE_DEFINITION:
+        if (strcmp(arg, "spectral") == 0 || strcmp(arg, "fd") == 0) {
+            o->slope_definition = strcmp(arg, "fd") == 0 ? IM_SLOPE_FINITE_DIFFERENCE : IM_SLOPE_SPECTRAL;
+            return 0;
+        }
+        fprintf(stderr, "indentmap: --slope-definition %s: expected spectral or fd\n", arg);
+        return -1;
     case OPT_PROFILE: o->profile_path = arg; return 0;
     case OPT_ALPHA: o->alpha_given = 1; return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
@@ -316,6 +332,11 @@ static int is_analysis_file(const char *name)
            strcmp(name, "load_displacement.pdf") == 0;
 }
 
+static const char *slope_definition_name(int definition)
+{
+    return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
+}
+
 /* The fields --fields writes per step: the first three always, the plastic depth with a hardness. */
 static const char *const STEP_FIELDS[4] = {"force_", "gap_", "displacement_", "plastic_"};
 
@@ -396,7 +417,7 @@ static const char *tolerance_source(const indent_options *o)
 
 static int parse_arguments(int argc, char **argv, indent_options *o)
 {
-    *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .out = "output/indent",
+    *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .out = "output/indent", .slope_definition = -1,
                           .punch = im_indenter_cone(80), .solver = im_solver_options_default()};
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
@@ -519,8 +540,13 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
         "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
-    if (blocks)
+    if (blocks) {
         json_object_set_new(blocks, "periodic", json_boolean(o->solver.periodic));
+        json_object_set_new(blocks, "theory_slope_rms",
+                            json_pack("{s:f, s:s, s:s}", "value", o->theory_slope, "definition",
+                                      slope_definition_name(o->slope_definition), "chosen_by",
+                                      o->slope_reason ? o->slope_reason : "none"));
+    }
     if (blocks && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(blocks, "surface"), "source_encoding", json_string("escaped"));
     return blocks;
@@ -709,12 +735,14 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
         for (int i = 1; i < points; ++i)
             lo = fmin(lo, x[i]), hi = fmax(hi, x[i]), a_lo = fmin(a_lo, area[i]), a_hi = fmax(a_hi, area[i]);
         printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-               "h'rms %.6g, spectral); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit.k, fit.k_error,
-               points, lo, hi, a_lo, a_hi, rough->slope_rms, fit.k_linear, fit.linear_points);
+               "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit.k, fit.k_error,
+               points, lo, hi, a_lo, a_hi, rough->slope_rms, slope_definition_name(o->slope_definition),
+               fit.k_linear, fit.linear_points);
         json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit.k, "k_error",
                                   fit.k_error, "rms_residual", fit.rms_residual, "points", points, "linear_points",
                                   fit.linear_points, "pressure_ratio_range", lo, hi, "area_fraction_range", a_lo,
-                                  a_hi, "slope_rms", rough->slope_rms, "slope_rms_definition", "spectral");
+                                  a_hi, "slope_rms", rough->slope_rms, "slope_rms_definition",
+                                  slope_definition_name(o->slope_definition));
         json_object_set_new(block, "k_linear", isfinite(fit.k_linear) ? json_real(fit.k_linear) : json_null());
         json_object_set_new(record, "k_fit", block);
     }
@@ -877,15 +905,28 @@ static int write_viewer_page(const indent_options *o, int status)
     return status;
 }
 
-/* The theory columns' interface: the surface's h'rms (spectral, h'rms^2 = 2 m2), the solver's E*,
- * k = 2 and the PR normalisation. */
-static int measured_interface(const indent_options *o, const im_field *surface, im_theory_interface *rough)
+/* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
+ * The h'rms is --slope-definition's, else spectral for a surface known to be periodic (generated: its
+ * sidecar names the generator; --smooth; solved as a periodic cell) and forward differences for a
+ * measured one (the rule of scenes and of Python). */
+static int measured_interface(indent_options *o, const im_field *surface, im_theory_interface *rough)
 {
-    im_surface_stats stats;
-    int status = im_surface_statistics(surface, &stats);
+    json_t *generator = surface_sidecar_generator(o->surface_path);
+    const int generated = o->smooth || generator;
+    json_decref(generator);
+    if (o->slope_definition < 0) {
+        o->slope_definition = generated || o->solver.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+        o->slope_reason = generated ? "default: a generated surface" : o->solver.periodic ? "default: a periodic cell"
+                                                                                         : "default: a measured surface";
+    } else {
+        o->slope_reason = "--slope-definition";
+    }
+    double slope;
+    int status = im_surface_slope_rms(surface, (enum im_slope_definition)o->slope_definition, &slope);
     if (status == IM_OK) {
-        *rough = im_theory_interface_default(stats.slope_rms_spectral);
+        *rough = im_theory_interface_default(slope);
         rough->e_star = o->solver.e_star;
+        o->theory_slope = slope;
     }
     return status;
 }
