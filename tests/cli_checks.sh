@@ -157,6 +157,7 @@ steps = 100:400:4, 300:0:4
 plots = fig5
 INI
 check "a scene that unloads with a hardness" "$cli" run --quiet "$dir/unload.ini"
+check "... its run.json states the theory's h'rms definition" grep -q '"definition": "spectral"' "$dir/out_unload/run.json"
 check "... its history keeps the impression" awk -F, 'NR > 2 && !/^#/ { n++; w[n] = $2; N[n] = $3; work[n] = $23; r[n] = $24 }
   END { if (n != 8 || !(work[4] > 0) || work[8] != work[4] || N[8] != 0 || w[8] != r[8] || !(w[5] < w[4])) exit 1 }' \
   "$dir/out_unload/histories/member_00_1.csv"

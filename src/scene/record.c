@@ -86,6 +86,11 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(root, "punch", profile_record(scene));
     if (scene_sweep_count(scene) > 1)
         json_object_set_new(root, "sweep", sweep_record(scene));
+    /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */
+    json_object_set_new(root, "theory_slope_rms",
+                        json_pack("{s:s, s:s}", "definition", scene->file_count > 0 ? "finite differences" : "spectral",
+                                  "chosen_by", scene->file_count > 0 ? "default: measured surfaces (the files)"
+                                                                     : "default: generated surfaces (their target)"));
     int status = run_record_write(scene->output_dir, root);
     json_decref(root);
     return status;
