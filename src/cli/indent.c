@@ -759,17 +759,14 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
         json_object_set_new(record, "indentation", json_null());
         return;
     }
-    if (analysis_write(o->out, &o->punch, rows, done, o->surface_delta, &branches) != IM_OK) {
+    if (analysis_write(o->out, &o->punch, rows, done, o->surface_delta, o->length_unit, o->force_unit, &branches) !=
+        IM_OK) {
         fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
         return;
     }
     json_object_set_new(record, "indentation", branches > 0 ? json_string("indentation.csv") : json_null());
     if (branches == 0)
         return;
-    if (analysis_figure(o->out, &o->punch, rows, done, o->length_unit, o->force_unit) != IM_OK) {
-        fprintf(stderr, "indentmap: load-displacement figure: %s\n", im_last_error());
-        return;
-    }
     printf("indentation analysis of %d unloading branch%s: %s/indentation.csv, load_displacement.png and .pdf\n",
            branches, branches == 1 ? "" : "es", o->out);
 }

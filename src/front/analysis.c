@@ -48,30 +48,6 @@ static int write_branches(const char *dir, const im_unloading_branch *b, int fou
     return status;
 }
 
-int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   int *branches)
-{
-    *branches = 0;
-    if (count < 2)
-        return IM_OK;
-    double *columns = malloc(sizeof(double) * 3 * (size_t)count);
-    im_unloading_branch *found = malloc(sizeof *found * (size_t)count);
-    int status = columns && found ? IM_OK : im_fail(IM_ENOMEM, "indentation analysis of %d steps", count);
-    for (int k = 0; status == IM_OK && k < count; ++k) {
-        columns[k] = rows[k].result.approach;
-        columns[count + k] = rows[k].result.load;
-        columns[2 * count + k] = rows[k].result.residual_approach;
-    }
-    if (status == IM_OK)
-        status = im_measure_unloading(punch, columns, columns + count, columns + 2 * count, count, found, count,
-                                      branches);
-    if (status == IM_OK && *branches > 0)
-        status = write_branches(dir, found, *branches, rows, delta);
-    free(columns);
-    free(found);
-    return status;
-}
-
 /* ---- the load-displacement figure ---- */
 
 /* Segments of the history as polylines broken by NaN: loading ones (the approach rises, from the origin
@@ -153,33 +129,50 @@ static int draw_figure(const char *dir, const segments *up, const segments *down
     return status;
 }
 
-int analysis_figure(const char *dir, const im_indenter *punch, const im_history_row *rows, int count,
-                    const char *length_unit, const char *force_unit)
+static int write_figure(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
+                        int count, const char *length_unit, const char *force_unit)
 {
     segments up = {0}, down = {0}, tangent = {0};
-    im_unloading_branch *b = malloc(sizeof *b * (size_t)count);
-    double *columns = malloc(sizeof(double) * 2 * (size_t)count);
     const size_t room = 3 * (size_t)count + 3;
     up.x = malloc(sizeof(double) * 6 * room);
-    int status = b && columns && up.x ? IM_OK : im_fail(IM_ENOMEM, "load-displacement figure of %d steps", count);
-    int found = 0;
-    if (status == IM_OK) {
-        up.y = up.x + room, down.x = up.x + 2 * room, down.y = up.x + 3 * room;
-        tangent.x = up.x + 4 * room, tangent.y = up.x + 5 * room;
-        for (int k = 0; k < count; ++k)
-            columns[k] = rows[k].result.approach, columns[count + k] = rows[k].result.load;
-        status = im_measure_unloading(punch, columns, columns + count, NULL, count, b, count, &found);
-    }
-    if (status == IM_OK) {
-        split_segments(rows, count, &up, &down);
-        tangents(b, found, &tangent);
-        char x_label[64], y_label[64];
-        snprintf(x_label, sizeof x_label, "approach w (%s)", length_unit[0] ? length_unit : "δ");
-        snprintf(y_label, sizeof y_label, "load N (%s)", force_unit[0] ? force_unit : "E^{*} δ^{2}");
-        status = draw_figure(dir, &up, &down, &tangent, x_label, y_label);
-    }
-    free(b);
-    free(columns);
+    if (!up.x)
+        return im_fail(IM_ENOMEM, "load-displacement figure of %d steps", count);
+    up.y = up.x + room, down.x = up.x + 2 * room, down.y = up.x + 3 * room;
+    tangent.x = up.x + 4 * room, tangent.y = up.x + 5 * room;
+    split_segments(rows, count, &up, &down);
+    tangents(b, found, &tangent);
+    char x_label[64], y_label[64];
+    snprintf(x_label, sizeof x_label, "approach w (%s)", length_unit[0] ? length_unit : "δ");
+    snprintf(y_label, sizeof y_label, "load N (%s)", force_unit[0] ? force_unit : "E^{*} δ^{2}");
+    int status = draw_figure(dir, &up, &down, &tangent, x_label, y_label);
     free(up.x);
+    return status;
+}
+
+/* ---- both, from one analysis ---- */
+
+int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
+                   const char *length_unit, const char *force_unit, int *branches)
+{
+    *branches = 0;
+    if (count < 2)
+        return IM_OK;
+    double *columns = malloc(sizeof(double) * 3 * (size_t)count);
+    im_unloading_branch *found = malloc(sizeof *found * (size_t)count);
+    int status = columns && found ? IM_OK : im_fail(IM_ENOMEM, "indentation analysis of %d steps", count);
+    for (int k = 0; status == IM_OK && k < count; ++k) {
+        columns[k] = rows[k].result.approach;
+        columns[count + k] = rows[k].result.load;
+        columns[2 * count + k] = rows[k].result.residual_approach;
+    }
+    if (status == IM_OK)
+        status = im_measure_unloading(punch, columns, columns + count, columns + 2 * count, count, found, count,
+                                      branches);
+    if (status == IM_OK && *branches > 0)
+        status = write_branches(dir, found, *branches, rows, delta);
+    if (status == IM_OK && *branches > 0)
+        status = write_figure(dir, found, *branches, rows, count, length_unit, force_unit);
+    free(columns);
+    free(found);
     return status;
 }

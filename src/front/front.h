@@ -53,15 +53,12 @@ void history_close(history_file *h);
 extern const char ANALYSIS_COLUMNS[];
 
 /* Analyses rows[0..count) (measure.h) and, when they hold an unloading branch, writes
- * DIR/indentation.csv atomically; *branches says how many (0: no file written). */
+ * DIR/indentation.csv and DIR/load_displacement.{png,pdf} atomically: the history's N(w), loading and
+ * unloading segments in two colours, with each branch's tangent at its top (slope S, to N = 0:
+ * Oliver-Pharr's construction), its axes in length_unit and force_unit ("" for delta and
+ * E* delta^2). *branches says how many branches (0: nothing written). */
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   int *branches);
-
-/* DIR/load_displacement.{png,pdf}: the history's N(w), loading segments and unloading segments in two
- * colours, with each unloading branch's tangent at its top (slope S, to N = 0: Oliver-Pharr's
- * construction). Axis labels name length_unit and force_unit ("" for delta and E* delta^2). */
-int analysis_figure(const char *dir, const im_indenter *punch, const im_history_row *rows, int count,
-                    const char *length_unit, const char *force_unit);
+                   const char *length_unit, const char *force_unit, int *branches);
 
 /* ---- the JSON run record (record.c) ---- */
 

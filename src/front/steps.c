@@ -25,6 +25,14 @@ static int parse_value(const char *start, size_t length, double *value)
     return end == item + length && errno != ERANGE && isfinite(*value) && *value >= 0;
 }
 
+/* The refusal of a list of more than STEPS_MAX values; returns 0. */
+static int too_many_steps(const char *name, const char *text, char *error, size_t size)
+{
+    snprintf(error, size, "%s '%.64s%s': more than %d values: expected at most %d steps", name, text,
+             strlen(text) > 64 ? "..." : "", STEPS_MAX, STEPS_MAX);
+    return 0;
+}
+
 /* "first:last:count" spanning [start, start + length) into values (room for `room` values); 0 with a
  * message naming the item when it is not one or holds more values than fit. */
 static int parse_range(const char *name, const char *text, const char *start, size_t length, double *values,
@@ -46,11 +54,8 @@ static int parse_range(const char *name, const char *text, const char *start, si
                  name, text, (int)length, start, STEPS_MAX);
         return 0;
     }
-    if (n > room) {
-        snprintf(error, size, "%s '%.64s%s': more than %d values: expected at most %d steps", name, text,
-                 strlen(text) > 64 ? "..." : "", STEPS_MAX, STEPS_MAX);
-        return 0;
-    }
+    if (n > room)
+        return too_many_steps(name, text, error, size);
     *count = (int)n;
     for (int i = 0; i < *count; ++i)
         values[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
@@ -69,11 +74,8 @@ static int parse_item(const char *name, const char *text, const char *item, size
         *count += added;
         return 1;
     }
-    if (*count >= STEPS_MAX) {
-        snprintf(error, size, "%s '%.64s%s': more than %d values: expected at most %d steps", name, text,
-                 strlen(text) > 64 ? "..." : "", STEPS_MAX, STEPS_MAX);
-        return 0;
-    }
+    if (*count >= STEPS_MAX)
+        return too_many_steps(name, text, error, size);
     if (!parse_value(item, length, &values[*count])) {
         snprintf(error, size, "%s '%s': '%.*s' is not a number >= 0: expected values and ranges separated by "
                  "commas", name, text, (int)length, item);
