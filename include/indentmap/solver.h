@@ -114,6 +114,26 @@
  * 2 / (E* |q|)). Only load control is meaningful (the approach is defined up to that constant):
  * displacement control is refused with IM_EINVAL; the reported approach is the mean of u + g0
  * over the contact. */
+/* ---- Adhesion (the Maugis-Dugdale law) ----
+ * With options.adhesion_work = w > 0 and adhesion_range = delta_c the surfaces attract: a constant
+ * tensile stress sigma0 = w / delta_c acts on every patch whose gap is at most delta_c, and on the
+ * patches in contact (Maugis 1992; Johnson & Greenwood 1997). The net pressure is
+ *     p = p_r - sigma0   on the adhesive zone Z = {g <= delta_c} (contact included),  p = p_r elsewhere,
+ * with the repulsive part p_r >= 0, g >= 0, p_r g = 0 (the stress is continuous at the contact's edge:
+ * no JKR singularity). The work of separating a patch is sigma0 delta_c = w. Given Z this is the
+ * repulsive problem with the undeformed gap g0 - sigma0 K 1_Z; an indentation step alternates that
+ * solve (any engine) with Z taken from its gaps until Z stops changing (src/solver/adhesion.c). The
+ * passes are monotone: a step whose approach is not below the last one's only adds to Z, a
+ * retraction only removes from it, so each step ends on the state its history leads to (jump-in on
+ * approach, pull-off on retraction: the hysteresis). Each pass is one warm-started solve and one
+ * convolution.
+ * Displacement control only (under load control the force-distance curve's unstable branches are
+ * jumps), the half-space only (not periodic), and no hardness with it: IM_EINVAL. Approaches may be
+ * negative (the punch pulled away): im_indentation_step takes w in [-largest, largest]. The window is
+ * chosen for g0 <= largest + 2 delta_c; a step whose zone reaches the window's outer row or column
+ * fails with IM_EEDGE (solve the whole surface: crop = 0). Step results give the net load (negative
+ * under tension), the tensile force and the patches under tension and under compression;
+ * contact_patches are those with p_r > 0 (g = 0). Fields report the net force and displacement. */
 #ifndef INDENTMAP_SOLVER_H
 #define INDENTMAP_SOLVER_H
 
@@ -165,6 +185,10 @@ typedef struct im_solver_options {
     int device;
     int gpu_validation;     /* 1: run the GPU engine under the Vulkan validation layers (tests, debugging);
                                IM_EUNSUPPORTED when they are not installed */
+    /* Adhesion (see "Adhesion" above; 0, the default: none). It acts in an indentation only: a plan
+     * made with adhesion_work > 0 is refused (a single solve is the repulsive problem). */
+    double adhesion_work;   /* work of adhesion w (E*'s stress times length), the Maugis-Dugdale law's */
+    double adhesion_range;  /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls */
 } im_solver_options;
 
 enum im_device { IM_DEVICE_CPU = 0, IM_DEVICE_GPU = 1, IM_DEVICE_AUTO = 2 };
@@ -324,6 +348,10 @@ typedef struct im_step_result {
                                (units of E*'s stress times delta^3) */
     double residual_approach; /* min of g0 + plastic depth over the window: the approach at which the
                                withdrawn punch would touch the impression (0 without plastic flow) */
+    /* Adhesion (0 without): */
+    double tensile_force;   /* delta^2 times the sum of -p over the patches under tension (>= 0) */
+    long adhesive_patches;  /* patches whose net pressure is tensile (p < 0) */
+    long repulsive_patches; /* patches whose net pressure is compressive (p > 0) */
 } im_step_result;
 
 typedef struct im_indentation im_indentation;

@@ -18,6 +18,7 @@ int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_op
     o.fft_measure = 0; /* a few convolutions: estimating the plan is cheaper than measuring it */
     o.wisdom_path = NULL; /* nor read or written wisdom */
     o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
+    o.adhesion_work = o.adhesion_range = 0; /* u = K p whatever the interaction that made p */
     return im_solver_plan_create(nx, ny, delta, &o, plan);
 }
 

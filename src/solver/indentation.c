@@ -2,6 +2,7 @@
  * (see solver.h). */
 #include "indentmap/solver.h"
 #include "core/args.h"
+#include "solver/adhesion.h"
 
 #include "indentmap/status.h"
 
@@ -26,6 +27,7 @@ struct im_indentation {
     im_solver_plan *plan;
     im_solver_plan *full_plan; /* made at the first im_indentation_fields_full: the whole grid's u */
     double approach;         /* last step's */
+    adhesion_state *adhesion; /* with a work of adhesion (adhesion.h); the plan's options have none */
 };
 
 /* g0 = z(r) - h - min(z - h) over the full grid. */
@@ -148,8 +150,8 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
 static double approach_bound(const im_field *surface, const im_indenter *punch, enum im_control control,
                              double largest_target, const im_solver_options *o)
 {
-    if (control == IM_CONTROL_DISPLACEMENT)
-        return largest_target;
+    if (control == IM_CONTROL_DISPLACEMENT) /* with adhesion, also the zone a gap delta_c beyond contact */
+        return largest_target + 2 * o->adhesion_range;
     if (o->periodic) /* no window to bound */
         return INFINITY;
     double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
@@ -173,6 +175,11 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
                        "defined up to a constant: give loads, or mean pressures times the cell's area)");
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+    if (options->adhesion_work > 0 && (control != IM_CONTROL_DISPLACEMENT || options->periodic || options->hardness > 0))
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected displacement control on the half-space without a "
+                       "hardness (adhesion under %s is not available)", options->adhesion_work,
+                       control != IM_CONTROL_DISPLACEMENT ? "load control" : options->periodic ? "the periodic mode"
+                                                                                            : "a hardness");
     if (!(isfinite(largest_target) && largest_target >= 0))
         return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", largest_target);
@@ -201,7 +208,12 @@ static int allocate_window(im_indentation *run)
     for (int iy = 0; iy < w.ny; ++iy)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
                sizeof(double) * w.nx);
-    return im_solver_plan_create(w.nx, w.ny, run->delta, &run->options, &run->plan);
+    im_solver_options repulsive = run->options;
+    repulsive.adhesion_work = repulsive.adhesion_range = 0;
+    int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
+    if (status == IM_OK && run->options.adhesion_work > 0)
+        status = adhesion_create(w.nx, w.ny, run->options.adhesion_work, run->options.adhesion_range, &run->adhesion);
+    return status;
 }
 
 int im_indentation_create(const im_field *surface, const im_indenter *punch, enum im_control control,
@@ -252,6 +264,7 @@ void im_indentation_free(im_indentation *run)
     free(run->pressure);
     free(run->displacement);
     free(run->plastic);
+    adhesion_free(run->adhesion);
     free(run);
 }
 
@@ -291,6 +304,21 @@ static int check_edge(const im_indentation *run)
                    "contact reached the edge of the %d x %d surface at patch (%d, %d) (approach %g): the "
                    "surface is too small for this step",
                    run->nx, run->ny, sx, sy, run->approach);
+}
+
+/* IM_EEDGE when the adhesive zone reaches the window's outer row or column: the surface's edge, or a
+ * window chosen from the undeformed gap that the zone outgrew. */
+static int check_zone(const im_indentation *run)
+{
+    int x, y;
+    if (!adhesion_zone_on_border(run->adhesion, &x, &y))
+        return IM_OK;
+    const im_window w = run->window;
+    const int whole = w.nx == run->nx && w.ny == run->ny;
+    return im_fail(IM_EEDGE, "the adhesive zone reached the edge of the %s at patch (%d, %d) (approach %g): %s",
+                   whole ? "surface" : "solve window", x + w.x0, y + w.y0, run->approach,
+                   whole ? "the surface is too small for this step"
+                         : "the window chosen from the undeformed gap is too small; solve the whole surface (crop = 0)");
 }
 
 /* Under load control, IM_EEDGE before solving when the smooth contact at this load would already
@@ -387,9 +415,12 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
                             .iterations = s->iterations, .convolutions = s->convolutions,
                             .residual = s->residual, .seconds = s->seconds,
                             .coarse_iterations = s->coarse_iterations, .plastic_work = run->plastic_work};
-    if (run->options.periodic)
+    if (run->options.periodic || s->load < 0) /* under tension: no smooth contact of that load */
         out->load_star = NAN;
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
+    if (run->adhesion)
+        adhesion_split(run->adhesion, run->pressure, run->delta, &out->tensile_force, &out->adhesive_patches,
+                       &out->repulsive_patches);
 }
 
 /* ---- load control with a hardness: the approach that carries the load ----
@@ -490,9 +521,10 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
     const char *what = run->control == IM_CONTROL_LOAD ? "load" : "approach";
-    if (!(isfinite(target) && target >= 0 && target <= run->largest_target))
-        return im_fail(IM_EINVAL, "%s = %g: expected a value in [0, %g], the largest %s the run was prepared for",
-                       what, target, run->largest_target, what);
+    const double lowest = run->adhesion ? -run->largest_target : 0; /* adhesion: the punch pulled away too */
+    if (!(isfinite(target) && target >= lowest && target <= run->largest_target))
+        return im_fail(IM_EINVAL, "%s = %g: expected a value in [%g, %g], the largest %s the run was prepared for%s",
+                       what, target, lowest, run->largest_target, what, run->adhesion ? " and its negative" : "");
     int status = check_reachable(run, target);
     if (status != IM_OK)
         return status;
@@ -503,7 +535,10 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
                        run->options.hardness, cell_capacity);
     im_solve_result s;
     /* (a periodic plan has no displacement control to search with: Polonsky-Keer's own load control) */
-    if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0 && !run->options.periodic)
+    if (run->adhesion)
+        status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, target, run->pressure, run->displacement,
+                                &s);
+    else if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0 && !run->options.periodic)
         status = solve_at_load(run, target, &s);
     else
         status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
@@ -513,6 +548,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     run->approach = s.approach;
     if (status == IM_OK && !run->options.periodic) /* a periodic cell has no edge */
         status = check_edge(run);
+    if (status == IM_OK && run->adhesion)
+        status = check_zone(run);
     if (status == IM_OK && s.approach > run->approach_bound) /* only if the bound were wrong: never hide it */
         status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
                          s.approach, run->approach_bound);
@@ -582,12 +619,13 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
     for (int iy = 0; iy < w.ny; ++iy)
         for (int ix = 0; ix < w.nx; ++ix) {
             size_t wi = (size_t)iy * w.nx + ix, i = (size_t)(iy + w.y0) * run->nx + ix + w.x0;
+            const double u_net = adhesion_net_displacement(run->adhesion, wi, run->displacement[wi]);
             if (f)
-                f->data[i] = run->pressure[wi] * d2;
+                f->data[i] = adhesion_net_pressure(run->adhesion, wi, run->pressure[wi]) * d2;
             if (u)
-                u->data[i] = run->displacement[wi];
+                u->data[i] = u_net;
             if (g)
-                g->data[i] += run->displacement[wi];
+                g->data[i] += u_net;
         }
     if (force)
         *force = f;

@@ -20,6 +20,23 @@ im_solver_options im_solver_options_default(void)
                                .hardness = 0, .cascade = 1, .precondition = 1};
 }
 
+/* Work and range both > 0 (adhesion) or both 0 (none). */
+static int check_adhesion(const im_solver_options *o)
+{
+    if (!(isfinite(o->adhesion_work) && o->adhesion_work >= 0))
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected a finite work of adhesion w >= 0 (0: none)",
+                       o->adhesion_work);
+    if (!(isfinite(o->adhesion_range) && o->adhesion_range >= 0))
+        return im_fail(IM_EINVAL, "adhesion range = %g: expected a finite gap delta_c > 0", o->adhesion_range);
+    if ((o->adhesion_work > 0) != (o->adhesion_range > 0))
+        return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: expected both > 0 (adhesion) or both 0 (none)",
+                       o->adhesion_work, o->adhesion_range);
+    if (o->adhesion_work > 0 && !(isfinite(o->adhesion_work / o->adhesion_range)))
+        return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: the stress w / delta_c is not finite",
+                       o->adhesion_work, o->adhesion_range);
+    return IM_OK;
+}
+
 int im_solver_options_check(const im_solver_options *o)
 {
     ARG_REQUIRE(o, "options");
@@ -43,7 +60,7 @@ int im_solver_options_check(const im_solver_options *o)
         return im_fail(IM_EINVAL, "device = %d: expected IM_DEVICE_CPU, IM_DEVICE_GPU or IM_DEVICE_AUTO", o->device);
     if (o->gpu_validation != 0 && o->gpu_validation != 1)
         return im_fail(IM_EINVAL, "gpu_validation = %d: expected 0 or 1", o->gpu_validation);
-    return IM_OK;
+    return check_adhesion(o);
 }
 
 /* One corner term of Love's rectangle integral, X asinh(Y/|X|) + Y asinh(X/|Y|): the antiderivative
@@ -342,6 +359,9 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     int status = im_solver_options_check(&o);
     if (status != IM_OK)
         return status;
+    if (o.adhesion_work > 0)
+        return im_fail(IM_EINVAL, "adhesion work = %g: adhesion acts in an indentation (im_indentation_create); a "
+                       "solver plan solves the repulsive problem (expected adhesion_work = 0)", o.adhesion_work);
     if (nx < 1 || ny < 1 || nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
         return im_fail(IM_EINVAL, "solver grid %d x %d: expected sides in [1, %d]", nx, ny, IM_FIELD_MAX_SIDE);
     if (!(isfinite(delta) && delta > 0))

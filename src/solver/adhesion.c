@@ -1,0 +1,232 @@
+/* Maugis-Dugdale adhesion in an indentation (solver.h, "Adhesion").
+ *
+ * The net pressure is p = p_r - sigma0 1_Z: a repulsive part p_r >= 0 with p_r g = 0, and the
+ * adhesive stress sigma0 over the zone Z = {p_r > 0 or g <= delta_c}. Given Z the problem is the
+ * repulsive one with the undeformed gap g0 - sigma0 K 1_Z (the zone's stress lifts the surface), solved
+ * by the plan's Polonsky-Keer; the zone is then taken from the new gaps, and so on to a fixed point.
+ *
+ * The passes are monotone. Adding stress to Z lowers every gap of the constrained half-space (a
+ * comparison principle of the obstacle problem), so from a state below the solution the zone only
+ * grows, and from one above it only shrinks. An approach step (w at least the last step's) starts from
+ * the last zone, which lies inside the new one, and only adds patches; a retraction step only removes
+ * them. Each pass changes at least one patch of a finite set, so the passes end, and they end on the
+ * state the history leads to: the least zone on approach, the largest on retraction. That is the
+ * hysteresis of adhesive contact (jump-in late on approach, pull-off late on retraction) without a
+ * rule of its own. */
+#include "solver/adhesion.h"
+#include "solver/plan.h"
+
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A zone still changing after this many passes is reported (each pass moves its edge by at least one
+ * patch, so a grid side of 8192 patches needs at most a few thousand). */
+enum { ADHESION_PASSES_MAX = 20000 };
+
+int adhesion_create(int nx, int ny, double work, double range, adhesion_state **out)
+{
+    const size_t n = (size_t)nx * ny;
+    adhesion_state *a = calloc(1, sizeof *a);
+    *out = NULL;
+    if (a) {
+        a->share = calloc(n, sizeof(double));
+        a->gaps = malloc(n * sizeof(double));
+        a->lift = calloc(n, sizeof(double));
+        a->gap0 = malloc(n * sizeof(double));
+    }
+    if (!a || !a->share || !a->gaps || !a->lift || !a->gap0) {
+        adhesion_free(a);
+        return im_fail(IM_ENOMEM, "adhesion on a %d x %d window", nx, ny);
+    }
+    a->stress = work / range;
+    a->range = range;
+    a->nx = nx;
+    a->ny = ny;
+    *out = a;
+    return IM_OK;
+}
+
+void adhesion_free(adhesion_state *a)
+{
+    if (!a)
+        return;
+    free(a->share);
+    free(a->gaps);
+    free(a->lift);
+    free(a->gap0);
+    free(a);
+}
+
+/* The repulsive solve's gap: g0 - sigma0 lift, shifted so that its least finite value is 0 (the
+ * solver's convention: first touch at approach 0). */
+static void lifted_gap(adhesion_state *a, const double *gap0)
+{
+    const size_t n = (size_t)a->nx * a->ny;
+    double lowest = INFINITY;
+#pragma omp parallel for schedule(static) reduction(min : lowest)
+    for (size_t i = 0; i < n; ++i) {
+        a->gap0[i] = gap0[i] - a->stress * a->lift[i];
+        lowest = fmin(lowest, a->gap0[i]);
+    }
+    a->shift = isfinite(lowest) ? -lowest : 0;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        a->gap0[i] += a->shift;
+}
+
+/* The gap at window patch (x, y), or NaN off the window or where the punch cannot reach. */
+static double gap_at(const adhesion_state *a, const double *gaps, int x, int y)
+{
+    if (x < 0 || y < 0 || x >= a->nx || y >= a->ny)
+        return NAN;
+    double g = gaps[(size_t)y * a->nx + x];
+    return isfinite(g) ? g : NAN;
+}
+
+/* Half the gap's change across patch (x, y) along one axis: central, or one-sided at a missing side. */
+static double half_change(const adhesion_state *a, const double *gaps, int x, int y, int dx, int dy)
+{
+    double before = gap_at(a, gaps, x - dx, y - dy), after = gap_at(a, gaps, x + dx, y + dy);
+    double here = gaps[(size_t)y * a->nx + x];
+    if (!isnan(before) && !isnan(after))
+        return 0.5 * (after - before);
+    if (!isnan(after))
+        return after - here;
+    return isnan(before) ? 0 : here - before;
+}
+
+/* The share of patch (x, y) whose gap is at most delta_c, the gap taken linear across the patch: the
+ * zone's edge cuts patches, and a share rather than all or nothing keeps the discrete problem from
+ * holding the edge at a patch boundary (lattice trapping: approach and retraction would stop at
+ * different edges, and the pull-off would be overestimated by the edge's pinning). */
+static double zone_share(const adhesion_state *a, const double *gaps, int x, int y)
+{
+    const double g = gaps[(size_t)y * a->nx + x];
+    if (!isfinite(g))
+        return 0;
+    const double spread = hypot(half_change(a, gaps, x, y, 1, 0), half_change(a, gaps, x, y, 0, 1));
+    if (!(spread > 0))
+        return g <= a->range;
+    return fmin(1, fmax(0, 0.5 + (a->range - g) / (2 * spread)));
+}
+
+/* Z's shares from the gaps of the repulsive solution at approach w_lifted (grow: only raised; else only
+ * lowered, but 1 in repulsive contact). Returns the largest change. */
+static double update_zone(adhesion_state *a, double w_lifted, const double *pressure, const double *displacement,
+                          int grow)
+{
+    const size_t n = (size_t)a->nx * a->ny;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        a->gaps[i] = a->gap0[i] - w_lifted + displacement[i];
+    double largest = 0, area = 0;
+    long count = 0;
+#pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : count, area)
+    for (int y = 0; y < a->ny; ++y)
+        for (int x = 0; x < a->nx; ++x) {
+            const size_t i = (size_t)y * a->nx + x;
+            const double target = pressure[i] > 0 ? 1 : zone_share(a, a->gaps, x, y), old = a->share[i];
+            const double share = pressure[i] > 0 ? 1 : grow ? fmax(old, target) : fmin(old, target);
+            largest = fmax(largest, fabs(share - old));
+            a->share[i] = share;
+            count += share > 0;
+            area += share;
+        }
+    a->zone_patches = count;
+    a->zone_area = area;
+    return largest;
+}
+
+/* Adds a pass's counts to the step's. */
+static void add_counts(im_solve_result *total, const im_solve_result *pass)
+{
+    total->iterations += pass->iterations;
+    total->convolutions += pass->convolutions;
+    total->coarse_iterations += pass->coarse_iterations;
+    total->seconds += pass->seconds;
+}
+
+/* The step's result: the last pass's solution with the net load. */
+static void net_result(const adhesion_state *a, const im_solver_plan *plan, double w, const im_solve_result *last,
+                       im_solve_result *out)
+{
+    const double d2 = plan->delta * plan->delta;
+    out->approach = w;
+    out->load = last->load - a->stress * d2 * a->zone_area;
+    out->contact_patches = last->contact_patches;
+    out->mean_pressure = last->contact_patches ? out->load / (last->contact_patches * d2) : 0;
+    out->max_pressure = last->contact_patches ? last->max_pressure - a->stress : (a->zone_patches ? -a->stress : 0);
+    out->residual = last->residual;
+}
+
+int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, double w, double *pressure,
+                   double *displacement, im_solve_result *result)
+{
+    const int grow = !a->stepped || w >= a->approach;
+    const size_t n = (size_t)a->nx * a->ny;
+    im_solve_result total = {0}, pass = {0};
+    int status = IM_OK;
+    const double settle = plan->options.tol; /* the shares settled as the gaps are solved */
+    for (int passes = 1;; ++passes) {
+        lifted_gap(a, gap0);
+        const double w_lifted = w + a->shift;
+        if (w_lifted > 0) {
+            status = im_solver_solve(plan, a->gap0, IM_CONTROL_DISPLACEMENT, w_lifted, pressure, displacement, &pass);
+        } else { /* the lifted surface does not reach the punch: no repulsive contact */
+            memset(pressure, 0, n * sizeof(double));
+            memset(displacement, 0, n * sizeof(double));
+            pass = (im_solve_result){.approach = w_lifted};
+        }
+        add_counts(&total, &pass);
+        if (status != IM_OK || update_zone(a, w_lifted, pressure, displacement, grow) <= settle)
+            break;
+        if (passes >= ADHESION_PASSES_MAX) {
+            status = im_fail(IM_ENOCONV, "adhesive zone at approach %g: still changing after %d passes (%ld patches)",
+                             w, passes, a->zone_patches);
+            break;
+        }
+        im_solver_convolve(plan, a->share, a->lift);
+        ++total.convolutions;
+    }
+    a->approach = w;
+    a->stepped = 1;
+    net_result(a, plan, w, &pass, &total);
+    *result = total;
+    return status;
+}
+
+void adhesion_split(const adhesion_state *a, const double *pressure, double delta, double *tensile,
+                    long *adhesive_patches, long *repulsive_patches)
+{
+    const size_t n = (size_t)a->nx * a->ny;
+    double pull = 0;
+    long adhesive = 0, repulsive = 0;
+#pragma omp parallel for schedule(static) reduction(+ : pull, adhesive, repulsive)
+    for (size_t i = 0; i < n; ++i) {
+        const double p = adhesion_net_pressure(a, i, pressure[i]);
+        pull += p < 0 ? -p : 0;
+        adhesive += p < 0;
+        repulsive += p > 0;
+    }
+    *tensile = pull * delta * delta;
+    *adhesive_patches = adhesive;
+    *repulsive_patches = repulsive;
+}
+
+int adhesion_zone_on_border(const adhesion_state *a, int *x, int *y)
+{
+    for (int iy = 0; iy < a->ny; ++iy)
+        for (int ix = 0; ix < a->nx; ix += (iy == 0 || iy == a->ny - 1) ? 1 : a->nx - 1) {
+            if (a->share[(size_t)iy * a->nx + ix] > 0) {
+                *x = ix;
+                *y = iy;
+                return 1;
+            }
+            if (a->nx == 1)
+                break;
+        }
+    return 0;
+}

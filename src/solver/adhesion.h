@@ -1,0 +1,54 @@
+/* Internal: adhesion of the Maugis-Dugdale kind in an indentation (solver.h, "Adhesion"), written
+ * above the engines: the adhesive stress enters each solve as a displacement added to the
+ * undeformed gap, and the repulsive problem is im_solver_solve's, on whatever engine the plan has. */
+#ifndef INDENTMAP_SOLVER_ADHESION_H
+#define INDENTMAP_SOLVER_ADHESION_H
+
+#include "indentmap/solver.h"
+
+/* The adhesive zone Z (patches where the stress sigma0 = w / delta_c pulls the surface up: repulsive
+ * contact, or a gap of at most delta_c) and what it does to the surface, on the solve window. */
+typedef struct adhesion_state {
+    double stress;           /* sigma0 */
+    double range;            /* delta_c */
+    int nx, ny;              /* the window */
+    double *share;           /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
+    double *gaps;            /* the last pass's gaps */
+    double *lift;            /* K 1_Z: the displacement of a unit stress on Z (sigma0 lift pulls up) */
+    double *gap0;            /* the repulsive solve's undeformed gap: g0 - sigma0 lift + shift */
+    double shift;            /* what was added to make min gap0 = 0 */
+    long zone_patches;       /* patches with a share > 0 */
+    double zone_area;        /* the sum of the shares (patches) */
+    double approach;         /* the last step's (retraction shrinks Z, approach grows it) */
+    int stepped;             /* 0 before the first step */
+} adhesion_state;
+
+/* A state for an nx x ny window (IM_ENOMEM), with w and delta_c checked by the caller. */
+int adhesion_create(int nx, int ny, double work, double range, adhesion_state **out);
+void adhesion_free(adhesion_state *a);
+
+/* The step at approach w under displacement control: the repulsive pressure p_r and its
+ * displacement u_r (warm in, solution out) on the window's gap0, Z iterated to its fixed point.
+ * result: the repulsive solve's counts summed over the passes, with the NET load and approach w. */
+int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, double w, double *pressure,
+                   double *displacement, im_solve_result *result);
+
+/* The net pressure and displacement of window patch i from the repulsive ones. */
+static inline double adhesion_net_pressure(const adhesion_state *a, size_t i, double repulsive)
+{
+    return a ? repulsive - a->stress * a->share[i] : repulsive;
+}
+static inline double adhesion_net_displacement(const adhesion_state *a, size_t i, double repulsive)
+{
+    return a ? repulsive - a->stress * a->lift[i] : repulsive;
+}
+
+/* Sums of the net pressure over the window: tensile force delta^2 sum(-p) over p < 0, the patches
+ * with p < 0 and p > 0. */
+void adhesion_split(const adhesion_state *a, const double *pressure, double delta, double *tensile,
+                    long *adhesive_patches, long *repulsive_patches);
+
+/* Whether Z reaches the window's outer row or column (*x, *y: the patch, window coordinates). */
+int adhesion_zone_on_border(const adhesion_state *a, int *x, int *y);
+
+#endif
