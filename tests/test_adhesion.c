@@ -15,6 +15,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* ---- the Maugis-Dugdale sphere, reduced: with K = 4 E* / 3,
  *   A = a (K / (pi w R^2))^(1/3),  P = N / (pi w R),  D = delta (K^2 / (pi^2 w^2 R))^(1/3),
@@ -197,11 +198,167 @@ static void sphere_follows_maugis_dugdale(void **state)
     }
 }
 
+/* Jump-in and jump-out: on approach the surface snaps into contact before the undeformed surfaces
+ * meet, on retraction it holds on to a more negative approach (Maugis-Dugdale's least approach), and
+ * the force-distance loop encloses work (dissipated by the two jumps). */
+static void approach_and_retraction_differ(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(1.0, 8);
+    im_indentation *run = sphere_run(&c, 2.0);
+    double jump_in = NAN, jump_out = NAN, loop = 0, last_d = NAN, last_n = 0;
+    for (int k = 0; k <= 60; ++k) {
+        const double d = k <= 30 ? -1.5 + 0.1 * k : 1.5 - 0.1 * (k - 30);
+        im_step_result r = sphere_step(run, &c, d);
+        if (k <= 30 && r.contact_patches > 0 && isnan(jump_in))
+            jump_in = d;
+        if (k > 30 && r.contact_patches > 0)
+            jump_out = d;
+        if (k > 0) /* the trapezoid rule: approach adds, retraction subtracts */
+            loop += 0.5 * (r.load + last_n) * (d - last_d);
+        last_d = d;
+        last_n = r.load;
+    }
+    im_indentation_free(run);
+    const double separation = md_approach(1.0, md_minimiser(md_approach, 1.0, 1e-4, 3));
+    print_message("jump-in at D = %.2f, last contact on retraction at D = %.2f (Maugis-Dugdale separates at %.3f); "
+                  "loop work %.4g\n", jump_in, jump_out, separation, loop);
+    assert_true(jump_in < 0);                    /* the surface reaches up to the punch */
+    assert_true(jump_in > jump_out + 0.3);       /* and lets go much later */
+    assert_true(fabs(jump_out - separation) <= 0.1 + 1e-9); /* within a step of the reference's separation */
+    assert_true(loop > 0); /* the retraction pulls where the approach did not: work lost in the jumps */
+}
+
+/* A vanishing work of adhesion gives the repulsive answers: the same loads to 1e-8 and the same contact
+ * on a rough surface under a cone. */
+static void vanishing_work_is_repulsive(void **state)
+{
+    (void)state;
+    im_field *surface = test_rough_surface(64, 0.08, 3);
+    im_indenter cone = im_indenter_cone(80.0);
+    im_solver_options plain = im_solver_options_default(), sticky = plain;
+    plain.tol = sticky.tol = 1e-10;
+    sticky.adhesion_work = 1e-16;
+    sticky.adhesion_range = 1e-6;
+    im_indentation *a = NULL, *b = NULL;
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 4, &plain, &a), IM_OK);
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 4, &sticky, &b), IM_OK);
+    for (double w = 1; w <= 4; w += 1) {
+        im_step_result ra, rb;
+        assert_int_equal(im_indentation_step(a, w, &ra), IM_OK);
+        assert_int_equal(im_indentation_step(b, w, &rb), IM_OK);
+        if (!(test_relative_difference(ra.load, rb.load) <= 1e-8 && ra.contact_patches == rb.contact_patches))
+            fail_msg("w = %g: load %.17g against %.17g, contact %ld against %ld", w, rb.load, ra.load,
+                     rb.contact_patches, ra.contact_patches);
+        /* at most sigma0 on every patch */
+        assert_true(rb.tensile_force <= sticky.adhesion_work / sticky.adhesion_range * 64 * 64);
+    }
+    im_indentation_free(a);
+    im_indentation_free(b);
+    im_field_free(surface);
+}
+
+/* The step's sums are the net force field's: load = sum f, tensile force = -sum of the negative f,
+ * the patches under tension and compression counted; and the field's displacement is K f. */
+static void step_sums_are_the_fields(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(1.0, 8);
+    im_indentation *run = sphere_run(&c, 2.0);
+    sphere_step(run, &c, 0.5);
+    im_step_result r = sphere_step(run, &c, -0.3);
+    assert_true(r.load < 0 && r.tensile_force > 0 && r.adhesive_patches > 0 && r.repulsive_patches > 0);
+    im_field *force = NULL, *displacement = NULL, *again = NULL;
+    assert_int_equal(im_indentation_fields(run, &force, NULL, &displacement), IM_OK);
+    double sum = 0, pull = 0;
+    long negative = 0, positive = 0;
+    for (size_t i = 0; i < im_field_count(force); ++i) {
+        sum += force->data[i];
+        pull += force->data[i] < 0 ? -force->data[i] : 0;
+        negative += force->data[i] < 0;
+        positive += force->data[i] > 0;
+    }
+    assert_close(sum, r.load, 1e-12 * r.tensile_force);
+    assert_close(pull, r.tensile_force, 1e-12 * r.tensile_force);
+    assert_int_equal(negative, r.adhesive_patches);
+    assert_int_equal(positive, r.repulsive_patches);
+    im_solver_options o = im_solver_options_default();
+    assert_int_equal(im_displacement_full(force, &o, &again), IM_OK);
+    const im_window w = im_indentation_window(run);
+    double worst = 0, largest = 0;
+    for (int y = w.y0; y < w.y0 + w.ny; ++y)
+        for (int x = w.x0; x < w.x0 + w.nx; ++x) {
+            size_t i = (size_t)y * force->nx + x;
+            worst = fmax(worst, fabs(again->data[i] - displacement->data[i]));
+            largest = fmax(largest, fabs(again->data[i]));
+        }
+    assert_true(worst <= 1e-10 * largest);
+    im_field_free(force);
+    im_field_free(displacement);
+    im_field_free(again);
+    im_indentation_free(run);
+}
+
+/* The combinations the solver does not solve, and a zone that outgrows the surface, are refused. */
+static void refusals(void **state)
+{
+    (void)state;
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(24, 24, 1.0, &surface), IM_OK);
+    im_indenter sphere = im_indenter_sphere(40);
+    im_indentation *run = NULL;
+    im_solver_plan *plan = NULL;
+    im_solver_options o = im_solver_options_default();
+    o.adhesion_work = 0.01;
+    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "adhesion work"));
+    o.adhesion_range = 0.5;
+    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_LOAD, 1, &o, &run), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "load control"));
+    o.hardness = 0.1;
+    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "hardness"));
+    o.hardness = 0;
+    assert_int_equal(im_solver_plan_create(24, 24, 1.0, &o, &plan), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "acts in an indentation"));
+    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_OK);
+    im_step_result r;
+    assert_int_equal(im_indentation_step(run, -1.5, &r), IM_EINVAL);
+    /* a wide, weak zone on a small surface: it reaches the surface's edge */
+    o.adhesion_work = 0.5;
+    o.adhesion_range = 20;
+    im_indentation_free(run);
+    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_OK);
+    assert_int_equal(im_indentation_step(run, 1, &r), IM_EEDGE);
+    assert_non_null(strstr(im_last_error(), "adhesive zone reached the edge"));
+    im_indentation_free(run);
+    im_field_free(surface);
+}
+
+/* The zone length and Maugis's lambda of the sphere cases above, from their definitions. */
+static void zone_length_and_lambda(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(3.0, 10);
+    im_solver_options o = im_solver_options_default();
+    o.adhesion_work = c.work;
+    o.adhesion_range = c.range;
+    assert_close(im_adhesion_maugis_lambda(&o, c.radius), 3.0, 1e-12);
+    assert_close(im_adhesion_zone_length(&o), M_PI * c.work / (8 * c.stress * c.stress), 1e-12);
+    o.adhesion_work = 0;
+    assert_true(isnan(im_adhesion_zone_length(&o)) && isnan(im_adhesion_maugis_lambda(&o, 1)));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(reference_reaches_dmt_and_jkr),
         cmocka_unit_test(sphere_follows_maugis_dugdale),
+        cmocka_unit_test(approach_and_retraction_differ),
+        cmocka_unit_test(vanishing_work_is_repulsive),
+        cmocka_unit_test(step_sums_are_the_fields),
+        cmocka_unit_test(refusals),
+        cmocka_unit_test(zone_length_and_lambda),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -448,6 +448,8 @@ REPORT(im_solver_plan_create, "nx", im_solver_plan_create(-3, 8, 1.0, &options, 
 ACCEPT(im_solver_plan_free, (im_solver_plan_free(NULL), 1))
 SAFE_RESULT(im_solver_plan_bytes, "nx", isnan(im_solver_plan_bytes(-3, 8)))
 SAFE_RESULT(im_solver_plan_seconds, "plan", isnan(im_solver_plan_seconds(NULL)))
+SAFE_RESULT(im_adhesion_zone_length, "options", isnan(im_adhesion_zone_length(NULL)))
+SAFE_RESULT(im_adhesion_maugis_lambda, "options", isnan(im_adhesion_maugis_lambda(NULL, 1.0)))
 SAFE_RESULT(im_solver_plan_device, "plan", im_solver_plan_device(NULL) == NULL)
 SAFE_RESULT(im_solver_plan_measured, "plan", im_solver_plan_measured(NULL) == 0)
 SAFE_RESULT(im_solver_convolve, "plan", (im_solver_convolve(NULL, values, out_values), 1))

@@ -120,13 +120,18 @@
  * patches in contact (Maugis 1992; Johnson & Greenwood 1997). The net pressure is
  *     p = p_r - sigma0   on the adhesive zone Z = {g <= delta_c} (contact included),  p = p_r elsewhere,
  * with the repulsive part p_r >= 0, g >= 0, p_r g = 0 (the stress is continuous at the contact's edge:
- * no JKR singularity). The work of separating a patch is sigma0 delta_c = w. Given Z this is the
- * repulsive problem with the undeformed gap g0 - sigma0 K 1_Z; an indentation step alternates that
- * solve (any engine) with Z taken from its gaps until Z stops changing (src/solver/adhesion.c). The
- * passes are monotone: a step whose approach is not below the last one's only adds to Z, a
- * retraction only removes from it, so each step ends on the state its history leads to (jump-in on
- * approach, pull-off on retraction: the hysteresis). Each pass is one warm-started solve and one
- * convolution.
+ * no JKR singularity). The work of separating a patch is sigma0 delta_c = w. A patch cut by the
+ * zone's edge carries the stress on its share of Z (the gap taken linear across it). Given Z this is
+ * the repulsive problem with the undeformed gap g0 - sigma0 K 1_Z; an indentation step alternates that
+ * solve (any engine) with Z taken from its gaps until no share moves by more than tol
+ * (src/solver/adhesion.c). The passes are monotone: a step whose approach is not below the last
+ * one's only adds to Z, a retraction only removes from it, so each step ends on the state its history
+ * leads to (jump-in on approach, pull-off on retraction: the hysteresis). Each pass is one
+ * warm-started solve and one convolution.
+ * Resolution: Z must span patches. A Dugdale zone's length at a crack tip is of the order of
+ * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 1.3% of Maugis-Dugdale's at
+ * l = 3 patches, 19% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
+ * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length).
  * Displacement control only (under load control the force-distance curve's unstable branches are
  * jumps), the half-space only (not periodic), and no hardness with it: IM_EINVAL. Approaches may be
  * negative (the punch pulled away): im_indentation_step takes w in [-largest, largest]. The window is
@@ -353,6 +358,17 @@ typedef struct im_step_result {
     long adhesive_patches;  /* patches whose net pressure is tensile (p < 0) */
     long repulsive_patches; /* patches whose net pressure is compressive (p > 0) */
 } im_step_result;
+
+/* The length l = pi E* w / (8 sigma0^2) = pi E* delta_c^2 / (8 w) (units of delta_c) of the Dugdale zone
+ * at a crack tip, for options' adhesion: the zone must span patches ("Adhesion" above). NaN without
+ * adhesion or for NULL or invalid options. */
+double im_adhesion_zone_length(const im_solver_options *options);
+
+/* Maugis's transition parameter of a sphere (paraboloid) of radius R under options' adhesion:
+ * lambda = 2 sigma0 (R / (pi w K^2))^(1/3), K = 4 E* / 3 (lambda > 5: JKR, lambda < 0.1: DMT; Tabor's
+ * mu = lambda / 1.157 for a Lennard-Jones law of the same work and peak stress). NaN without adhesion,
+ * for R <= 0 or NULL or invalid options. */
+double im_adhesion_maugis_lambda(const im_solver_options *options, double radius);
 
 typedef struct im_indentation im_indentation;
 
