@@ -14,7 +14,7 @@ head -1 "$DIR/ok/history.csv" | grep -q '^step,approach,load,load_star,contact_p
 awk -F, 'NR == 4 { d = $4 / $5 - 1; if (d < -0.01 || d > 0.01) exit 1 }' "$DIR/ok/history.csv" || fail "N* != n_p at the last step"
 # Theory columns beside the history: Love's N(w) = 2 w^2 / (pi cot 80) and A_cone = N* (delta = 1) at
 # every step, full contact on a smooth surface, and the simulated N within 2% of Love's at w = 6.
-head -1 "$DIR/ok/history.csv" | grep -q ',convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter,yielding_patches,plastic_depth,plastic_work,residual_approach$' \
+head -1 "$DIR/ok/history.csv" | grep -q ',convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter,yielding_patches,plastic_depth,plastic_work,residual_approach,tensile_force,adhesive_patches,repulsive_patches$' \
     || fail "history.csv lacks the theory columns: $(head -1 "$DIR/ok/history.csv")"
 awk -F, 'NR > 1 { pi = atan2(0, -1); love = 2 * $2 * $2 / (pi * 0.17632698070846498);
          if ($13 / love - 1 > 1e-12 || love / $13 - 1 > 1e-12 || $14 != $4 || $15 != 1 || $16 != 1) exit 1 }

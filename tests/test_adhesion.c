@@ -7,6 +7,7 @@
 #include "support.h"
 
 #include "indentmap/indenter.h"
+#include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 
@@ -349,6 +350,27 @@ static void zone_length_and_lambda(void **state)
     assert_true(isnan(im_adhesion_zone_length(&o)) && isnan(im_adhesion_maugis_lambda(&o, 1)));
 }
 
+/* The summary of a hand-made history: approach without contact, a jump into contact at w = 2, a
+ * retraction pulling 2 at w = 1 and separating below it; the loop's trapezoids add up to 2. */
+static void summary_of_a_loop(void **state)
+{
+    (void)state;
+    const double w[] = {0, 1, 2, 1, 0}, n[] = {0, 0, -1, -2, 0};
+    const long contact[] = {0, 0, 5, 5, 0};
+    im_adhesion_summary s;
+    assert_int_equal(im_measure_adhesion(w, n, contact, 5, &s), IM_OK);
+    assert_true(s.pull_off_force == 2 && s.pull_off_approach == 1);
+    assert_true(s.jump_in_approach == 2 && s.jump_out_approach == 1);
+    assert_close(s.hysteresis_work, 2.0, 1e-15);
+    const double none[] = {0, 1};
+    const long touching[] = {1, 2};
+    assert_int_equal(im_measure_adhesion(w, none, touching, 2, &s), IM_OK);
+    assert_true(isnan(s.pull_off_force) && isnan(s.jump_in_approach) && isnan(s.jump_out_approach));
+    const double broken[] = {0, NAN};
+    assert_int_equal(im_measure_adhesion(broken, n, contact, 2, &s), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "step 2"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -359,6 +381,7 @@ int main(void)
         cmocka_unit_test(step_sums_are_the_fields),
         cmocka_unit_test(refusals),
         cmocka_unit_test(zone_length_and_lambda),
+        cmocka_unit_test(summary_of_a_loop),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -113,6 +113,8 @@ static im_plot_panel plot_panel;
 static im_figure figure;
 static im_surface_params params;
 static im_scene scene;
+static long contact[64];
+static im_adhesion_summary adhesion;
 static im_taper taper = {IM_TAPER_HANN, 1.0};
 static int dummy_context; /* a non-NULL context that no function may touch before its checks */
 #define CONTEXT ((im_render_context *)(void *)&dummy_context)
@@ -448,6 +450,10 @@ REPORT(im_solver_plan_create, "nx", im_solver_plan_create(-3, 8, 1.0, &options, 
 ACCEPT(im_solver_plan_free, (im_solver_plan_free(NULL), 1))
 SAFE_RESULT(im_solver_plan_bytes, "nx", isnan(im_solver_plan_bytes(-3, 8)))
 SAFE_RESULT(im_solver_plan_seconds, "plan", isnan(im_solver_plan_seconds(NULL)))
+REPORT(im_measure_adhesion, "approach", im_measure_adhesion(NULL, values, contact, 2, &adhesion))
+REPORT(im_measure_adhesion, "load", im_measure_adhesion(values, NULL, contact, 2, &adhesion))
+REPORT(im_measure_adhesion, "contact", im_measure_adhesion(values, values, NULL, 2, &adhesion))
+REPORT(im_measure_adhesion, "out", im_measure_adhesion(values, values, contact, 2, NULL))
 SAFE_RESULT(im_adhesion_zone_length, "options", isnan(im_adhesion_zone_length(NULL)))
 SAFE_RESULT(im_adhesion_maugis_lambda, "options", isnan(im_adhesion_maugis_lambda(NULL, 1.0)))
 SAFE_RESULT(im_solver_plan_device, "plan", im_solver_plan_device(NULL) == NULL)

@@ -8,7 +8,8 @@
  * area_ratio, mean_pressure, max_pressure, iterations, residual, seconds, convolutions), the theory
  * beside them (load_smooth, area_smooth, area_ratio_constant, area_ratio_gamma; theory.h), what an
  * experiment measures (stiffness, e_star_sneddon, patches, patch_perimeter; measure.h) and the plastic
- * memory (yielding_patches, plastic_depth, plastic_work, residual_approach; solver.h). Numbers are
+ * memory (yielding_patches, plastic_depth, plastic_work, residual_approach; solver.h) and adhesion
+ * (tensile_force, adhesive_patches, repulsive_patches; solver.h, 0 without). Numbers are
  * written with 17 significant digits (residual and seconds with 7), so a history read back is the one
  * written.
  *
@@ -57,7 +58,7 @@ int im_history_format(const im_history_row *row, char *line, size_t size);
 /* Parses the text of a history from its column line: the line must be im_history_columns() (else a
  * history of another version), then each row whole, with the right number of values, numbers finite
  * where they must be (approach, load; when the punch has a smooth-contact area, smooth_area nonzero,
- * load_star and area_ratio unless the load is 0) and NaN where the solver writes NaN (area_ratio at no
+ * load_star unless the load is tensile and area_ratio unless it is not compressive) and NaN where the solver writes NaN (area_ratio at no
  * load; load_star and area_ratio of a punch without that area, a 2-D profile). Fills rows[0..*count)
  * (capacity at most). Returns 1, or 0 with a reason in why at the first fault (also for NULL
  * arguments). */

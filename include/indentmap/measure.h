@@ -137,6 +137,23 @@ int im_measure_gap_distribution(const im_field *gap, const im_field *force, doub
 int im_measure_write_distributions(const im_field *force, const im_field *gap, double height_rms, int bins,
                                    const char *prefix);
 
+/* ---- adhesion: a force-distance history's pull-off, jumps and lost work (solver.h, "Adhesion") ---- */
+typedef struct im_adhesion_summary {
+    double pull_off_force;    /* the most tensile load, -min N (> 0), NaN when no step pulls */
+    double pull_off_approach; /* the approach of that step */
+    double jump_in_approach;  /* the first step in contact right after one out of contact, the approach
+                                 rising (the surface snapped up to the punch); NaN when none */
+    double jump_out_approach; /* the last step in contact right before one out of contact, the approach
+                                 falling (separation lies between it and the next); NaN when none */
+    double hysteresis_work;   /* sum of N dw over the history (trapezoids): the work the punch did, lost
+                                 in the jumps when the history returns to where it began */
+} im_adhesion_summary;
+
+/* Summarises count >= 1 steps of approaches, net loads and contact patches (p_r > 0). IM_EINVAL for
+ * NULL arrays, count < 1 or a non-finite approach or load (naming the step). */
+int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count,
+                        im_adhesion_summary *out);
+
 #ifdef __cplusplus
 }
 #endif

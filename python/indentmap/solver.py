@@ -38,7 +38,8 @@ def _punch_arguments(punch):
 
 
 # The integer columns of a history (history.h); every other column is float64.
-_INTEGER_COLUMNS = {"step", "contact_patches", "iterations", "convolutions", "patches", "yielding_patches"}
+_INTEGER_COLUMNS = {"step", "contact_patches", "iterations", "convolutions", "patches", "yielding_patches",
+                    "adhesive_patches", "repulsive_patches"}
 
 
 def _history_array(text, source="history"):

@@ -198,13 +198,15 @@ static int check_ready(py_indentation *self)
 
 static PyObject *step_dict(const im_step_result *r)
 {
-    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d}", "approach", r->approach,
+    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d,s:d,s:l,s:l}", "approach", r->approach,
                          "load", r->load, "load_star", r->load_star, "contact_patches", r->contact_patches,
                          "area_ratio", r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure",
                          r->max_pressure, "iterations", r->iterations, "coarse_iterations", r->coarse_iterations,
                          "convolutions", r->convolutions, "residual", r->residual, "seconds", r->seconds,
                          "yielding_patches", r->yielding_patches, "plastic_depth", r->plastic_depth,
-                         "plastic_work", r->plastic_work, "residual_approach", r->residual_approach);
+                         "plastic_work", r->plastic_work, "residual_approach", r->residual_approach,
+                         "tensile_force", r->tensile_force, "adhesive_patches", r->adhesive_patches,
+                         "repulsive_patches", r->repulsive_patches);
 }
 
 /* The solved step as the next row of the history, measured as `indent` measures it (history.h). */

@@ -29,6 +29,9 @@ enum { STEPS_MAX = IM_SCENE_MAX_STEPS };
  * 0, or -1 with a message "NAME 'TEXT': expected ..." in error (name is the option or key:
  * "--approach", "steps"). */
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t error_size);
+/* The same, with negative values too when negative is nonzero (approaches pulling away, with adhesion). */
+int steps_parse_signed(const char *name, const char *text, int negative, double *values, int *count, char *error,
+                       size_t error_size);
 
 /* ---- history.csv appended step by step (history_file.c; the schema is history.h's) ---- */
 

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A finite number >= 0 spanning the whole of [start, start + length), blanks around it allowed. */
-static int parse_value(const char *start, size_t length, double *value)
+/* A finite number >= lowest spanning the whole of [start, start + length), blanks around it allowed. */
+static int parse_value(const char *start, size_t length, double lowest, double *value)
 {
     char item[128], *end;
     while (length > 0 && (*start == ' ' || *start == '\t'))
@@ -22,7 +22,7 @@ static int parse_value(const char *start, size_t length, double *value)
     item[length] = '\0';
     errno = 0;
     *value = strtod(item, &end);
-    return end == item + length && errno != ERANGE && isfinite(*value) && *value >= 0;
+    return end == item + length && errno != ERANGE && isfinite(*value) && *value >= lowest;
 }
 
 /* The refusal of a list of more than STEPS_MAX values; returns 0. */
@@ -35,18 +35,18 @@ static int too_many_steps(const char *name, const char *text, char *error, size_
 
 /* "first:last:count" spanning [start, start + length) into values (room for `room` values); 0 with a
  * message naming the item when it is not one or holds more values than fit. */
-static int parse_range(const char *name, const char *text, const char *start, size_t length, double *values,
-                       int room, int *count, char *error, size_t size)
+static int parse_range(const char *name, const char *text, const char *start, size_t length, double lowest,
+                       double *values, int room, int *count, char *error, size_t size)
 {
     const char *colon = memchr(start, ':', length), *end = start + length;
     const char *second = colon ? memchr(colon + 1, ':', (size_t)(end - colon - 1)) : NULL;
     double first, last, n;
     if (!second || memchr(second + 1, ':', (size_t)(end - second - 1)) ||
-        !parse_value(start, (size_t)(colon - start), &first) ||
-        !parse_value(colon + 1, (size_t)(second - colon - 1), &last) ||
-        !parse_value(second + 1, (size_t)(end - second - 1), &n)) {
-        snprintf(error, size, "%s '%s': '%.*s' is not a range first:last:count (three numbers >= 0): expected "
-                 "values and ranges separated by commas", name, text, (int)length, start);
+        !parse_value(start, (size_t)(colon - start), lowest, &first) ||
+        !parse_value(colon + 1, (size_t)(second - colon - 1), lowest, &last) ||
+        !parse_value(second + 1, (size_t)(end - second - 1), 0, &n)) {
+        snprintf(error, size, "%s '%s': '%.*s' is not a range first:last:count (three numbers%s): expected "
+                 "values and ranges separated by commas", name, text, (int)length, start, lowest == 0 ? " >= 0" : "");
         return 0;
     }
     if (n < 1 || n > STEPS_MAX || n != floor(n)) {
@@ -64,21 +64,21 @@ static int parse_range(const char *name, const char *text, const char *start, si
 }
 
 /* One comma-separated item: a value or a range. Adds its values after values[0..*count). */
-static int parse_item(const char *name, const char *text, const char *item, size_t length, double *values,
-                      int *count, char *error, size_t size)
+static int parse_item(const char *name, const char *text, const char *item, size_t length, double lowest,
+                      double *values, int *count, char *error, size_t size)
 {
     if (memchr(item, ':', length)) {
         int added = 0;
-        if (!parse_range(name, text, item, length, values + *count, STEPS_MAX - *count, &added, error, size))
+        if (!parse_range(name, text, item, length, lowest, values + *count, STEPS_MAX - *count, &added, error, size))
             return 0;
         *count += added;
         return 1;
     }
     if (*count >= STEPS_MAX)
         return too_many_steps(name, text, error, size);
-    if (!parse_value(item, length, &values[*count])) {
-        snprintf(error, size, "%s '%s': '%.*s' is not a number >= 0: expected values and ranges separated by "
-                 "commas", name, text, (int)length, item);
+    if (!parse_value(item, length, lowest, &values[*count])) {
+        snprintf(error, size, "%s '%s': '%.*s' is not a number%s: expected values and ranges separated by "
+                 "commas", name, text, (int)length, item, lowest == 0 ? " >= 0" : "");
         return 0;
     }
     ++*count;
@@ -87,6 +87,13 @@ static int parse_item(const char *name, const char *text, const char *item, size
 
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t size)
 {
+    return steps_parse_signed(name, text, 0, values, count, error, size);
+}
+
+int steps_parse_signed(const char *name, const char *text, int negative, double *values, int *count, char *error,
+                       size_t size)
+{
+    const double lowest = negative ? -INFINITY : 0;
     *count = 0;
     for (const char *item = text;;) {
         const char *comma = strchr(item, ',');
@@ -97,7 +104,7 @@ int steps_parse(const char *name, const char *text, double *values, int *count, 
                      "expected values separated by commas");
             return -1;
         }
-        if (!parse_item(name, text, item, length, values, count, error, size))
+        if (!parse_item(name, text, item, length, lowest, values, count, error, size))
             return -1;
         if (!comma)
             return 0;

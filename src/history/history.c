@@ -16,9 +16,10 @@
 static const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
                                "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
                                ",stiffness,e_star_sneddon,patches,patch_perimeter,"
-                               "yielding_patches,plastic_depth,plastic_work,residual_approach";
+                               "yielding_patches,plastic_depth,plastic_work,residual_approach,"
+                               "tensile_force,adhesive_patches,repulsive_patches";
 
-enum { HISTORY_VALUES = 24 }; /* the columns above */
+enum { HISTORY_VALUES = 27 }; /* the columns above */
 
 const char *im_history_columns(void) { return HISTORY_COLUMNS; }
 
@@ -46,7 +47,9 @@ int im_history_measure(const im_indenter *punch, const im_theory_interface *roug
     im_history_row *row = &rows[i];
     row->step = i + 1;
     int status = IM_OK;
-    if (rough) /* none for a periodic cell: the theory is the half-space's */
+    /* none for a periodic cell (the theory is the half-space's), nor for an adhesive step pulled below
+     * first touch or into tension (the theory is of repulsive contact) */
+    if (rough && row->result.approach >= 0 && row->result.load >= 0)
         status = im_theory_step_columns(punch, rough, row->result.approach, row->result.load, &row->theory);
     else
         row->theory = (im_theory_step){NAN, NAN, NAN, NAN};
@@ -78,12 +81,13 @@ int im_history_format(const im_history_row *row, char *line, size_t size)
     const im_theory_step *t = &row->theory;
     return snprintf(line, size,
                     "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                    "%.17g,%ld,%.17g,%ld,%.17g,%.17g,%.17g\n",
+                    "%.17g,%ld,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%ld,%ld\n",
                     row->step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
                     r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
                     t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, row->stiffness,
                     row->e_star_sneddon, row->patches, row->perimeter, r->yielding_patches, r->plastic_depth,
-                    r->plastic_work, r->residual_approach);
+                    r->plastic_work, r->residual_approach, r->tensile_force, r->adhesive_patches,
+                    r->repulsive_patches);
 }
 
 /* One row on a whole line [line, end); 0 when it is not HISTORY_VALUES numbers. */
@@ -92,23 +96,23 @@ static int scan_row(const char *line, const char *end, im_history_row *row)
     im_step_result *r = &row->result;
     im_theory_step *t = &row->theory;
     int used = 0;
-    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf%n",
+    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf,%lf,%ld,%ld%n",
                   &row->step, &r->approach, &r->load, &r->load_star, &r->contact_patches, &r->area_ratio,
                   &r->mean_pressure, &r->max_pressure, &r->iterations, &r->residual, &r->seconds,
                   &r->convolutions, &t->load_smooth, &t->area_smooth, &t->area_ratio_constant,
                   &t->area_ratio_gamma, &row->stiffness, &row->e_star_sneddon, &row->patches, &row->perimeter,
                   &r->yielding_patches, &r->plastic_depth, &r->plastic_work, &r->residual_approach,
-                  &used) == HISTORY_VALUES && line + used == end;
+                  &r->tensile_force, &r->adhesive_patches, &r->repulsive_patches, &used) == HISTORY_VALUES && line + used == end;
 }
 
 /* Whether the solution's values are what the solver reports: approach and load finite; with a
- * smooth-contact area, N* finite and A / A_cone NaN only where there is no load; without one (a 2-D
- * profile), both NaN. */
+ * smooth-contact area, N* finite unless the load is tensile (adhesion) and A / A_cone NaN only where
+ * there is no compressive load; without one (a 2-D profile), both NaN. */
 static int row_is_finite(const im_history_row *row, int smooth_area)
 {
     const im_step_result *r = &row->result;
     int ratio_ok = r->load > 0 && smooth_area ? isfinite(r->area_ratio) : isnan(r->area_ratio);
-    int n_star_ok = smooth_area ? isfinite(r->load_star) : isnan(r->load_star);
+    int n_star_ok = smooth_area && r->load >= 0 ? isfinite(r->load_star) : isnan(r->load_star);
     return isfinite(r->approach) && isfinite(r->load) && n_star_ok && ratio_ok;
 }
 
