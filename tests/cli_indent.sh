@@ -50,6 +50,31 @@ grep -q '"indentation": "indentation.csv"' "$DIR/cycle/run.json" || fail "run.js
 grep -q '<h3>indentation.csv</h3>' "$DIR/cycle/index.html" && grep -q '<span title="0.71999999999999997">0.72</span>' "$DIR/cycle/index.html" \
     || fail "the page lacks the analysis or shows its numbers whole"
 ! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
+# Adhesion (issue 27): a sphere at Maugis's lambda = 1 (R = 64, w = 0.05305, delta_c = 0.6366: a reduced
+# radius of 8 patches) approached from w = -1 and pulled back to -1.5. Its pull-off force within 3% of
+# Maugis-Dugdale's 1.6007 pi w R = 17.07 (tests/test_adhesion.c solves that reference; 17.30 here), the
+# jump into contact on approach at a larger w than the last contact on retraction, tension in the history,
+# the force-distance figure, no Oliver-Pharr table; the refusals of what adhesion does not take.
+"$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+    --approach -1:2:16,1.9:-1.5:35 --out "$DIR/sticky" > "$DIR/sticky.log" || fail "adhesion run exited $?"
+python3 - "$DIR/sticky/run.json" <<'PY' || fail "run.json's adhesion block: $(grep -A16 '"adhesion"' "$DIR/sticky/run.json")"
+import json, sys
+a = json.load(open(sys.argv[1]))["adhesion"]
+assert abs(a["pull_off_force"] / 17.07 - 1) < 0.03, a
+assert a["jump_in_approach"] > a["jump_out_approach"] + 0.2 and a["hysteresis_work"] > 0, a
+assert abs(a["maugis_lambda"] - 1) < 1e-4 and abs(a["zone_length_patches"] - 3.0) < 1e-3, a
+PY
+awk -F, 'NR > 1 && $3 < 0 && $25 > 0 && $26 > 0 { pulled = 1 } END { exit !pulled }' "$DIR/sticky/history.csv" \
+    || fail "no step under tension in the history"
+head -c 8 "$DIR/sticky/force_distance.png" | od -An -tx1 | grep -q '89 50 4e 47' && [ ! -e "$DIR/sticky/indentation.csv" ] \
+    || fail "no force-distance figure, or an Oliver-Pharr table of an adhesive history"
+grep -q "adhesion: pull-off force" "$DIR/sticky.log" || fail "the pull-off is not said"
+for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1:1:3|negative approach" \
+           "--adhesion-work 0.1 --adhesion-range 1 --load 1|takes --approach" \
+           "--adhesion-work 0.1 --adhesion-range 1 --hardness 1 --approach 1|with --hardness"; do
+    "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"
+    [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
+done
 # --periodic (issue 26): a generated (periodic) surface under a rigid flat at two mean pressures: load =
 # p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole
 # cell, no warning; --approach and a lone --pressure refused; a ramp (not periodic) warned about.

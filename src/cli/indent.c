@@ -74,6 +74,13 @@ static void usage(FILE *stream)
             "  --e-star E          composite modulus E* (default 1)\n"
             "  --hardness H        perfect plasticity: no patch carries more than H (units of E*'s\n"
             "                      stress); default none\n"
+            "  --adhesion-work W   adhesion (Maugis-Dugdale): the work of adhesion W (E*'s stress times\n"
+            "                      the length unit), with --adhesion-range: the stress W / D pulls every\n"
+            "                      patch whose gap is at most D. Under --approach only, whose values may\n"
+            "                      then be negative (the punch pulled away): the force-distance curve\n"
+            "                      with its jumps, pull-off and lost work (run.json \"adhesion\",\n"
+            "                      force_distance.png and .pdf; docs/solver.md, \"Adhesion\")\n"
+            "  --adhesion-range D  the range of the adhesive stress (length unit); with --adhesion-work\n"
             "  --quality Q         draft (tol 1e-5), standard (1e-6, the default, as for scenes) or\n"
             "                      publication (1e-9): the solver tolerance of a speed/accuracy preset\n"
             "                      (errors measured in solver.h)\n"
@@ -145,7 +152,7 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
-       OPT_PRESSURE, OPT_SLOPE_DEFINITION };
+       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -166,7 +173,9 @@ static const struct option LONG_OPTIONS[] = {
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
     {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE},
     {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE},
-    {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION}, {0, 0, 0, 0}};
+    {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION},
+    {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
+    {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE}, {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -177,13 +186,14 @@ static int parse_punch(const char *text, enum im_punch_kind *kind)
     return -1;
 }
 
-/* --approach or --load: a step list (front.h: steps_parse, as a scene's [loading] steps). */
+/* --approach or --load: a step list (front.h: steps_parse, as a scene's [loading] steps); approaches may
+ * be negative (refused later unless adhesion pulls there). */
 static int parse_targets(const char *option, const char *text, double **out, int *count)
 {
     char error[512];
     if (!(*out = malloc(sizeof(double) * STEPS_MAX)))
         return -1;
-    if (steps_parse(option, text, *out, count, error, sizeof error) == 0)
+    if (steps_parse_signed(option, text, strcmp(option, "--approach") == 0, *out, count, error, sizeof error) == 0)
         return 0;
     fprintf(stderr, "indentmap: %s\n", error);
     return -1;
@@ -236,6 +246,9 @@ static int apply_option(int code, const char *arg, void *state)
                              &o->targets, &o->target_count);
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
+    case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->solver.adhesion_work);
+    case OPT_ADHESION_RANGE:
+        return cli_parse_double("--adhesion-range", arg, 1e-300, 1e300, &o->solver.adhesion_range);
     case OPT_QUALITY: o->quality = arg; return 0;
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
@@ -250,6 +263,36 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
     default: return -1;
     }
+}
+
+/* The first negative target, or NaN. */
+static double first_negative(const indent_options *o)
+{
+    for (int i = 0; i < o->target_count; ++i)
+        if (o->targets[i] < 0)
+            return o->targets[i];
+    return NAN;
+}
+
+/* Adhesion's options: both or neither, displacement control on the half-space without a hardness; a
+ * negative approach only where adhesion can pull. 0, or -1 with the message said. */
+static int check_adhesion_options(const indent_options *o)
+{
+    const int adhesion = o->solver.adhesion_work > 0;
+    if (adhesion != (o->solver.adhesion_range > 0))
+        fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
+    else if (adhesion && (o->control != IM_CONTROL_DISPLACEMENT || o->solver.periodic))
+        fprintf(stderr, "indentmap: --adhesion-work takes --approach on the half-space: under load control an adhesive "
+                "contact jumps where its force-distance curve turns (pull-off), and the periodic mode has no adhesion yet\n");
+    else if (adhesion && o->solver.hardness > 0)
+        fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
+    else if (!adhesion && !isnan(first_negative(o)))
+        fprintf(stderr, "indentmap: --approach %g: a negative approach (the punch away from first touch) carries "
+                "nothing without adhesion: expected values >= 0, or give --adhesion-work and --adhesion-range\n",
+                first_negative(o));
+    else
+        return 0;
+    return -1;
 }
 
 static int check_options(const indent_options *o)
@@ -277,7 +320,7 @@ static int check_options(const indent_options *o)
     else if (o->x_given != o->y_given)
         fprintf(stderr, "indentmap: give both --x and --y, or neither\n");
     else
-        return 0;
+        return check_adhesion_options(o);
     return -1;
 }
 
@@ -325,11 +368,12 @@ static int is_distribution_file(const char *name)
     return 0;
 }
 
-/* The files of the indentation analysis, written only when the history unloads. */
+/* The files of the indentation analysis, written only when the history unloads, and of adhesion. */
 static int is_analysis_file(const char *name)
 {
     return strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
-           strcmp(name, "load_displacement.pdf") == 0;
+           strcmp(name, "load_displacement.pdf") == 0 || strcmp(name, "force_distance.png") == 0 ||
+           strcmp(name, "force_distance.pdf") == 0;
 }
 
 static const char *slope_definition_name(int definition)
@@ -552,6 +596,25 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
     return blocks;
 }
 
+/* A number for JSON: null for NaN. */
+static json_t *json_number(double value) { return isfinite(value) ? json_real(value) : json_null(); }
+
+/* The adhesive law as run.json states it: work, range, stress, the Dugdale zone's length (in the length
+ * unit and in patches) and, for a sphere, Maugis's lambda and Tabor's mu. */
+static json_t *adhesion_law_record(const indent_options *o)
+{
+    const double length = im_adhesion_zone_length(&o->solver), lambda = im_adhesion_maugis_lambda(&o->solver,
+                                                                                                  o->punch.radius);
+    json_t *law = json_pack("{s:s, s:f, s:f, s:f, s:f, s:f}", "law", "Maugis-Dugdale", "work", o->solver.adhesion_work,
+                            "range", o->solver.adhesion_range, "stress",
+                            o->solver.adhesion_work / o->solver.adhesion_range, "zone_length", length,
+                            "zone_length_patches", length / o->surface_delta);
+    const int sphere = o->punch.kind == IM_PUNCH_SPHERE;
+    json_object_set_new(law, "maugis_lambda", sphere ? json_number(lambda) : json_null());
+    json_object_set_new(law, "tabor_mu", sphere ? json_number(lambda / 1.157) : json_null());
+    return law;
+}
+
 /* run.json: the common record (front.h) with the surface (and the generator of its sidecar), the
  * punch, the targets, the window, the FFT plan and the units. */
 static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
@@ -588,6 +651,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     }
     json_decref(generator);
     json_object_set_new(root, "units", units_record(o, s));
+    json_object_set_new(root, "adhesion", o->solver.adhesion_work > 0 ? adhesion_law_record(o) : json_null());
     return root;
 }
 
@@ -668,11 +732,12 @@ static int load_profile(indent_options *o, const im_field *surface)
     return im_indenter_check(&o->punch);
 }
 
+/* The largest |target| (approaches below 0 pull away, with adhesion). */
 static double largest(const double *v, int n)
 {
     double m = 0;
     for (int i = 0; i < n; ++i)
-        m = fmax(m, v[i]);
+        m = fmax(m, fabs(v[i]));
     return m;
 }
 
@@ -750,11 +815,49 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
     free(area);
 }
 
+/* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
+static void warn_if_zone_unresolved(const indent_options *o)
+{
+    const double patches = im_adhesion_zone_length(&o->solver) / o->surface_delta;
+    if (patches < 1)
+        fprintf(stderr, "indentmap: warning: the adhesive zone's length pi E* D^2 / (8 W) = %.3g patches is below one "
+                "patch: the grid does not resolve it and the pull-off comes out too strong (a sphere: 19%% at 0.33 "
+                "patches, several times at 0.1; 1.3%% at 3): use a finer delta or a wider --adhesion-range\n",
+                patches);
+}
+
+/* With adhesion: the pull-off, the jumps and the lost work (front.h), printed and in run.json's
+ * "adhesion" block beside the law, and force_distance.{png,pdf}. */
+static void write_adhesion(const indent_options *o, const im_history_row *rows, int done, json_t *record)
+{
+    im_adhesion_summary summary;
+    json_t *law = json_object_get(record, "adhesion");
+    if (done < 1 || analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &summary) != IM_OK) {
+        if (done >= 1)
+            fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+        return;
+    }
+    json_object_set_new(law, "pull_off_force", json_number(summary.pull_off_force));
+    json_object_set_new(law, "pull_off_approach", json_number(summary.pull_off_approach));
+    json_object_set_new(law, "jump_in_approach", json_number(summary.jump_in_approach));
+    json_object_set_new(law, "jump_out_approach", json_number(summary.jump_out_approach));
+    json_object_set_new(law, "hysteresis_work", json_real(summary.hysteresis_work));
+    json_object_set_new(law, "figure", json_string("force_distance.png"));
+    printf("adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
+           "work lost %.6g; %s/force_distance.png and .pdf\n", summary.pull_off_force, summary.pull_off_approach,
+           summary.jump_in_approach, summary.jump_out_approach, summary.hysteresis_work, o->out);
+}
+
 /* indentation.csv over the steps done (front.h), said on stdout and in run.json; a failure here is
  * reported but leaves the run's own status alone (the history is the result). */
 static void write_analysis(const indent_options *o, const im_history_row *rows, int done, json_t *record)
 {
     int branches = 0;
+    if (o->solver.adhesion_work > 0) { /* Oliver-Pharr's analysis is of repulsive contact */
+        json_object_set_new(record, "indentation", json_null());
+        write_adhesion(o, rows, done, record);
+        return;
+    }
     if (o->solver.periodic) { /* Oliver-Pharr's areas are a punch's on a half-space */
         json_object_set_new(record, "indentation", json_null());
         return;
@@ -975,6 +1078,8 @@ int cli_indent(int argc, char **argv)
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
+    if (status == IM_OK && o.solver.adhesion_work > 0)
+        warn_if_zone_unresolved(&o);
     if (status == IM_OK)
         status = im_make_directories(o.out);
     im_folder_lock lock = {.fd = -1};

@@ -66,10 +66,12 @@ static void add_segment(segments *s, double x0, double y0, double x1, double y1)
     }
 }
 
-static void split_segments(const im_history_row *rows, int count, segments *up, segments *down)
+/* from_origin: the first segment starts at (0, 0), the unloaded first touch; else at the first step (an
+ * adhesive history may begin anywhere, below first touch too). */
+static void split_segments(const im_history_row *rows, int count, int from_origin, segments *up, segments *down)
 {
-    double w0 = 0, n0 = 0;
-    for (int k = 0; k < count; ++k) {
+    double w0 = from_origin ? 0 : rows[0].result.approach, n0 = from_origin ? 0 : rows[0].result.load;
+    for (int k = from_origin ? 0 : 1; k < count; ++k) {
         const double w = rows[k].result.approach, n = rows[k].result.load;
         add_segment(w >= w0 ? up : down, w0, n0, w, n);
         w0 = w;
@@ -99,34 +101,58 @@ static im_plot_series series_of(const segments *s, int palette, im_plot_line_sty
     return series;
 }
 
-static int draw_figure(const char *dir, const segments *up, const segments *down, const segments *tangent,
-                       const char *x_label, const char *y_label)
+/* What a force-distance figure is called and what its series say. */
+typedef struct figure_words {
+    const char *file;            /* DIR/FILE.png and .pdf */
+    const char *up, *down;       /* the rising and the falling segments */
+    const char *construction;    /* the grey dashed series (a tangent, a marker) */
+    im_plot_legend legend;
+} figure_words;
+
+static const figure_words LOAD_DISPLACEMENT = {"load_displacement", "loading", "unloading", "tangent at the top (S)",
+                                               IM_PLOT_LEGEND_UPPER_LEFT};
+static const figure_words FORCE_DISTANCE = {"force_distance", "approach", "retraction", "pull-off",
+                                            IM_PLOT_LEGEND_UPPER_LEFT};
+
+static int draw_figure(const char *dir, const figure_words *words, const segments *up, const segments *down,
+                       const segments *construction, const char *x_label, const char *y_label)
 {
     im_plot_series series[3];
     int n = 0;
     if (up->n > 0)
-        series[n++] = series_of(up, 0, IM_PLOT_SOLID, IM_PLOT_MARKER_CIRCLE, "loading");
-    series[n++] = series_of(down, 1, IM_PLOT_SOLID, IM_PLOT_MARKER_SQUARE, "unloading");
-    if (tangent->n > 0) {
-        series[n] = series_of(tangent, 0, IM_PLOT_DASHED, IM_PLOT_MARKER_NONE, "tangent at the top (S)");
-        series[n].color[0] = series[n].color[1] = series[n].color[2] = 70; /* dark grey: a construction line */
+        series[n++] = series_of(up, 0, IM_PLOT_SOLID, IM_PLOT_MARKER_CIRCLE, words->up);
+    if (down->n > 0)
+        series[n++] = series_of(down, 1, IM_PLOT_SOLID, IM_PLOT_MARKER_SQUARE, words->down);
+    if (construction->n > 0) {
+        series[n] = series_of(construction, 0, IM_PLOT_DASHED, construction->n == 1 ? IM_PLOT_MARKER_DIAMOND
+                                                                                     : IM_PLOT_MARKER_NONE,
+                              words->construction);
+        series[n].color[0] = series[n].color[1] = series[n].color[2] = 70; /* dark grey: a construction */
         ++n;
     }
     im_plot_panel panel = {.x = {.label = x_label}, .y = {.label = y_label}, .series = series, .series_count = n,
-                           .legend = IM_PLOT_LEGEND_UPPER_LEFT};
+                           .legend = words->legend};
     im_plot plot = im_plot_default();
     plot.panels = &panel;
     plot.panel_width = 220;
     plot.panel_height = 160;
     int status = IM_OK;
-    static const char *const NAMES[2] = {"load_displacement.png", "load_displacement.pdf"};
+    static const char *const SUFFIXES[2] = {".png", ".pdf"};
     for (int k = 0; k < 2 && status == IM_OK; ++k) {
-        char path[4096];
-        status = im_path_join(path, sizeof path, dir, NAMES[k]);
+        char name[64], path[4096];
+        snprintf(name, sizeof name, "%s%s", words->file, SUFFIXES[k]);
+        status = im_path_join(path, sizeof path, dir, name);
         if (status == IM_OK)
             status = im_plot_write(&plot, path);
     }
     return status;
+}
+
+/* The figure's axis labels in the run's units ("" for delta and E* delta^2). */
+static void axis_labels(const char *length_unit, const char *force_unit, char *x_label, char *y_label, size_t size)
+{
+    snprintf(x_label, size, "approach w (%s)", length_unit[0] ? length_unit : "δ");
+    snprintf(y_label, size, "load N (%s)", force_unit[0] ? force_unit : "E^{*} δ^{2}");
 }
 
 static int write_figure(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
@@ -139,12 +165,11 @@ static int write_figure(const char *dir, const im_unloading_branch *b, int found
         return im_fail(IM_ENOMEM, "load-displacement figure of %d steps", count);
     up.y = up.x + room, down.x = up.x + 2 * room, down.y = up.x + 3 * room;
     tangent.x = up.x + 4 * room, tangent.y = up.x + 5 * room;
-    split_segments(rows, count, &up, &down);
+    split_segments(rows, count, 1, &up, &down);
     tangents(b, found, &tangent);
     char x_label[64], y_label[64];
-    snprintf(x_label, sizeof x_label, "approach w (%s)", length_unit[0] ? length_unit : "δ");
-    snprintf(y_label, sizeof y_label, "load N (%s)", force_unit[0] ? force_unit : "E^{*} δ^{2}");
-    int status = draw_figure(dir, &up, &down, &tangent, x_label, y_label);
+    axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
+    int status = draw_figure(dir, &LOAD_DISPLACEMENT, &up, &down, &tangent, x_label, y_label);
     free(up.x);
     return status;
 }
@@ -174,5 +199,45 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
         status = write_figure(dir, found, *branches, rows, count, length_unit, force_unit);
     free(columns);
     free(found);
+    return status;
+}
+
+/* ---- adhesion: the summary and the force-distance figure ---- */
+
+int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
+                            const char *force_unit, im_adhesion_summary *summary)
+{
+    if (count < 1)
+        return im_fail(IM_EINVAL, "adhesion summary: no step solved");
+    const size_t room = 3 * (size_t)count + 3;
+    double *columns = malloc(sizeof(double) * (2 * (size_t)count + 6 * room));
+    long *contact = malloc(sizeof(long) * (size_t)count);
+    if (!columns || !contact) {
+        free(columns);
+        free(contact);
+        return im_fail(IM_ENOMEM, "force-distance figure of %d steps", count);
+    }
+    for (int k = 0; k < count; ++k) {
+        columns[k] = rows[k].result.approach;
+        columns[count + k] = rows[k].result.load;
+        contact[k] = rows[k].result.contact_patches;
+    }
+    int status = im_measure_adhesion(columns, columns + count, contact, count, summary);
+    double *plot = columns + 2 * (size_t)count;
+    segments up = {plot, plot + room, 0}, down = {plot + 2 * room, plot + 3 * room, 0};
+    segments marker = {plot + 4 * room, plot + 5 * room, 0};
+    if (status == IM_OK && isfinite(summary->pull_off_force)) {
+        marker.x[0] = summary->pull_off_approach;
+        marker.y[0] = -summary->pull_off_force;
+        marker.n = 1;
+    }
+    if (status == IM_OK) {
+        split_segments(rows, count, 0, &up, &down);
+        char x_label[64], y_label[64];
+        axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
+        status = draw_figure(dir, &FORCE_DISTANCE, &up, &down, &marker, x_label, y_label);
+    }
+    free(columns);
+    free(contact);
     return status;
 }

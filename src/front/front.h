@@ -7,6 +7,7 @@
 
 #include "indentmap/history.h"
 #include "indentmap/indenter.h"
+#include "indentmap/measure.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/theory.h"
@@ -62,6 +63,12 @@ extern const char ANALYSIS_COLUMNS[];
  * E* delta^2). *branches says how many branches (0: nothing written). */
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
                    const char *length_unit, const char *force_unit, int *branches);
+
+/* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, and
+ * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
+ * pull-off marked. IM_EINVAL for count < 1. */
+int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
+                            const char *force_unit, im_adhesion_summary *summary);
 
 /* ---- the JSON run record (record.c) ---- */
 
