@@ -69,7 +69,7 @@ awk -F, 'NR > 1 && $3 < 0 && $25 > 0 && $26 > 0 { pulled = 1 } END { exit !pulle
 head -c 8 "$DIR/sticky/force_distance.png" | od -An -tx1 | grep -q '89 50 4e 47' && [ ! -e "$DIR/sticky/indentation.csv" ] \
     || fail "no force-distance figure, or an Oliver-Pharr table of an adhesive history"
 grep -q "adhesion: pull-off force" "$DIR/sticky.log" || fail "the pull-off is not said"
-for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1:1:3|negative approach" \
+for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
            "--adhesion-work 0.1 --adhesion-range 1 --load 1|takes --approach" \
            "--adhesion-work 0.1 --adhesion-range 1 --hardness 1 --approach 1|with --hardness"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"

@@ -94,6 +94,11 @@ class Indentation:
     punch repeated with the cell, or a rigid flat when ``punch`` is None; ``area_ratio`` is then A / A0
     and ``load_star`` NaN.
 
+    ``adhesion_work`` w and ``adhesion_range`` delta_c (both > 0) make the surfaces attract (the
+    Maugis-Dugdale law, ``indentmap indent --adhesion-work --adhesion-range``; docs/solver.md, "Adhesion"):
+    displacement control on the half-space only; approaches may then be negative down to -largest (the
+    punch pulled away), loads negative under tension; ``adhesion(history)`` gives the pull-off.
+
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
     measured surface's edges would count in its spectrum), as ``indentmap indent`` for a file.
@@ -101,7 +106,7 @@ class Indentation:
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
-                 hardness=0.0, periodic=False, slope_definition=None):
+                 hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0):
         if punch is None:
             if not periodic:
                 raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
@@ -113,7 +118,8 @@ class Indentation:
                                       e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
                                       crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
                                       profile=profile, device=str(device), hardness=float(hardness),
-                                      periodic=bool(periodic), slope_definition=slope_definition or "")
+                                      periodic=bool(periodic), slope_definition=slope_definition or "",
+                                      adhesion_work=float(adhesion_work), adhesion_range=float(adhesion_range))
 
     def step(self, target):
         """Solves the next step at approach or load ``target``; returns its results as a dict."""
@@ -182,7 +188,7 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     if targets.size == 0:
         raise ValueError("no steps")
     run = Indentation(heights, punch, control="displacement" if loads is None else "load",
-                      largest=float(targets.max()), **options)
+                      largest=float(np.abs(targets).max()), **options)
     per_step = []
     for target in targets:
         run.step(target)
@@ -220,3 +226,15 @@ def unloading(history, punch=Cone(), *, delta=1.0):
                    dissipated=history["plastic_work"][b["last_step"] - 1] - before)
         table[i] = tuple(row[name] for name in UNLOADING_DTYPE.names)
     return table
+
+
+def adhesion(history):
+    """The pull-off of an adhesive history (``Indentation(..., adhesion_work=, adhesion_range=)``) as
+    ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``pull_off_force`` (the most
+    tensile load, positive; NaN when nothing pulls) and its ``pull_off_approach``, ``jump_in_approach`` (first
+    contact on approach after none), ``jump_out_approach`` (last contact retracting before none) and
+    ``hysteresis_work`` (sum of N dw: the work lost over a closed history)."""
+    history = np.asarray(history)
+    return _core.adhesion(np.ascontiguousarray(history["approach"], dtype=float),
+                          np.ascontiguousarray(history["load"], dtype=float),
+                          np.ascontiguousarray(history["contact_patches"], dtype=float))

@@ -104,15 +104,15 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
                                "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
-                               "hardness", "periodic", "slope_definition", NULL};
+                               "hardness", "periodic", "slope_definition", "adhesion_work", "adhesion_range", NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     double delta, alpha, radius, largest;
     const char *kind, *control_name, *device = "cpu", *slope_name = "";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdps", keywords, &obj, &delta, &kind, &alpha,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsdd", keywords, &obj, &delta, &kind, &alpha,
                                      &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
                                      &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
-                                     &o.periodic, &slope_name))
+                                     &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range))
         return -1;
     /* the theory's h'rms (as indent --slope-definition): spectral for a periodic cell, else forward
      * differences (an array may be measured: its edges would count in the spectrum) */
@@ -532,7 +532,45 @@ done:
     return result;
 }
 
+/* adhesion(approach, load, contact) -> dict (measure.h: im_measure_adhesion); NaN where there is none */
+static PyObject *adhesion(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *approach_obj, *load_obj, *contact_obj;
+    if (!PyArg_ParseTuple(args, "OOO", &approach_obj, &load_obj, &contact_obj))
+        return NULL;
+    PyArrayObject *approach = NULL, *load = NULL, *contact = NULL;
+    PyObject *result = NULL;
+    long *patches = NULL;
+    if (double_vector(approach_obj, -1, "approach", &approach) < 0 ||
+        double_vector(load_obj, PyArray_SIZE(approach), "load", &load) < 0 ||
+        double_vector(contact_obj, PyArray_SIZE(approach), "contact_patches", &contact) < 0)
+        goto done;
+    const int count = (int)PyArray_SIZE(approach);
+    if (!(patches = malloc(sizeof *patches * (size_t)(count > 0 ? count : 1)))) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    for (int k = 0; k < count; ++k)
+        patches[k] = (long)((const double *)PyArray_DATA(contact))[k];
+    im_adhesion_summary a;
+    int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, &a);
+    result = status != IM_OK ? py_raise_status(status)
+                             : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force,
+                                             "pull_off_approach", a.pull_off_approach, "jump_in_approach",
+                                             a.jump_in_approach, "jump_out_approach", a.jump_out_approach,
+                                             "hysteresis_work", a.hysteresis_work);
+done:
+    free(patches);
+    Py_XDECREF(approach);
+    Py_XDECREF(load);
+    Py_XDECREF(contact);
+    return result;
+}
+
 PyMethodDef py_solver_methods[] = {
+    {"adhesion", adhesion, METH_VARARGS,
+     "adhesion(approach, load, contact_patches) -> dict: pull-off force and approach, jumps, work lost"},
     {"unloading", unloading, METH_VARARGS,
      "unloading(punch, alpha, radius, approach, load, residual, profile, delta) -> [dict per unloading branch]"},
     {NULL, NULL, 0, NULL}};

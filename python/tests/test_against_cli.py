@@ -91,6 +91,30 @@ def test_loading_unloading_with_hardness_bit_for_bit(cli, rough64, tmp_path):
     assert table[0]["top_step"] == 3 and table[0]["last_step"] == 9 and table[0]["residual_approach"] > 0
 
 
+def test_adhesion_bit_for_bit(cli, rough64, tmp_path):
+    """An adhesive approach and retraction of a sphere on the rough surface: the same history (tension, the
+    adhesive and repulsive patches), the same net force field, and adhesion() equal to run.json's block."""
+    import json
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--punch", "sphere", "--radius", "40", "--adhesion-work", "0.02",
+            "--adhesion-range", "0.5", "--approach", "-0.5:1.5:3,1:-1:5", "--fields", "--out", tmp_path / "out")
+    approaches = np.r_[np.linspace(-0.5, 1.5, 3), np.linspace(1, -1, 5)]
+    history, fields = im.indent(rough64, im.Sphere(40), approaches=approaches, adhesion_work=0.02,
+                                adhesion_range=0.5, fields=True)
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    assert (history["load"] < 0).any() and (history["tensile_force"] > 0).any()
+    assert np.load(tmp_path / "out" / "force_0008.npy").tobytes() == fields[7]["force"].tobytes()
+    record = json.loads((tmp_path / "out" / "run.json").read_text())["adhesion"]
+    summary = im.adhesion(history)
+    for name, value in summary.items():
+        assert value == record[name] or (np.isnan(value) and record[name] is None), name
+    with pytest.raises(im.InvalidArgument, match="displacement control"):
+        im.Indentation(rough64, im.Sphere(40), control="load", largest=1.0, adhesion_work=0.02, adhesion_range=0.5)
+
+
 def test_periodic_bit_for_bit(cli, rough64, tmp_path):
     """indent --periodic --pressure and indent(..., periodic=True, pressures=...): the same rows and forces."""
     im.write(tmp_path / "s.npy", rough64)

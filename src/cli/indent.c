@@ -186,14 +186,16 @@ static int parse_punch(const char *text, enum im_punch_kind *kind)
     return -1;
 }
 
-/* --approach or --load: a step list (front.h: steps_parse, as a scene's [loading] steps); approaches may
- * be negative (refused later unless adhesion pulls there). */
-static int parse_targets(const char *option, const char *text, double **out, int *count)
+/* --approach, --load or --pressure, once all options are read: a step list (front.h: steps_parse, as a
+ * scene's [loading] steps, with its messages); approaches may be negative with adhesion. */
+static int parse_targets(indent_options *o)
 {
     char error[512];
-    if (!(*out = malloc(sizeof(double) * STEPS_MAX)))
+    const char *option = o->control == IM_CONTROL_DISPLACEMENT ? "--approach" : o->pressures ? "--pressure" : "--load";
+    const int negative = o->control == IM_CONTROL_DISPLACEMENT && o->solver.adhesion_work > 0;
+    if (!(o->targets = malloc(sizeof(double) * STEPS_MAX)))
         return -1;
-    if (steps_parse_signed(option, text, strcmp(option, "--approach") == 0, *out, count, error, sizeof error) == 0)
+    if (steps_parse_signed(option, o->targets_text, negative, o->targets, &o->target_count, error, sizeof error) == 0)
         return 0;
     fprintf(stderr, "indentmap: %s\n", error);
     return -1;
@@ -242,8 +244,7 @@ static int apply_option(int code, const char *arg, void *state)
         o->targets_text = arg;
         o->control = code == OPT_APPROACH ? IM_CONTROL_DISPLACEMENT : IM_CONTROL_LOAD;
         o->pressures = code == OPT_PRESSURE;
-        return parse_targets(code == OPT_LOAD ? "--load" : code == OPT_PRESSURE ? "--pressure" : "--approach", arg,
-                             &o->targets, &o->target_count);
+        return 0;
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->solver.adhesion_work);
@@ -265,17 +266,9 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-/* The first negative target, or NaN. */
-static double first_negative(const indent_options *o)
-{
-    for (int i = 0; i < o->target_count; ++i)
-        if (o->targets[i] < 0)
-            return o->targets[i];
-    return NAN;
-}
-
-/* Adhesion's options: both or neither, displacement control on the half-space without a hardness; a
- * negative approach only where adhesion can pull. 0, or -1 with the message said. */
+/* Adhesion's options: both or neither, displacement control on the half-space without a hardness (a
+ * negative approach is refused by the step list's parser without adhesion). 0, or -1 with the message
+ * said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
@@ -286,10 +279,6 @@ static int check_adhesion_options(const indent_options *o)
                 "contact jumps where its force-distance curve turns (pull-off), and the periodic mode has no adhesion yet\n");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
-    else if (!adhesion && !isnan(first_negative(o)))
-        fprintf(stderr, "indentmap: --approach %g: a negative approach (the punch away from first touch) carries "
-                "nothing without adhesion: expected values >= 0, or give --adhesion-work and --adhesion-range\n",
-                first_negative(o));
     else
         return 0;
     return -1;
@@ -475,7 +464,7 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     if (!o->m_given)
         o->ny = o->nx;
     o->punch.centred = !o->x_given;
-    if (check_options(o) != 0)
+    if (check_options(o) != 0 || parse_targets(o) != 0)
         return -1;
     /* The cache only for histories: measuring pays within a 25-step history's first run, while a cold
      * solve needs ~15 later runs to win its planning back (docs/solver.md, "FFTW wisdom"). */
