@@ -91,8 +91,8 @@ static void assert_pixel(const im_image *image, int column, int row, const uint8
     assert_int_equal(p[3], 255);
 }
 
-/* Every pixel of a contact map against im_colormap_field_image (rows top first), with the
- * background where force <= 0 and the boundary frame in the line colour. */
+/* Every pixel of a contact map against im_colormap_field_image (rows top first), with the tensile
+ * colour where force < 0, the background where it is 0 and the boundary frame in the line colour. */
 static void compare_with_reference(const im_field *force, const im_contact_style *style)
 {
     im_image image;
@@ -112,7 +112,9 @@ static void compare_with_reference(const im_field *force, const im_contact_style
             double f = force->data[(size_t)(force->ny - 1 - r) * force->nx + ix];
             uint8_t expected[3];
             memcpy(expected, reference + ((size_t)r * force->nx + ix) * 3, 3);
-            if (!isnan(f) && !(f > 0.0))
+            if (f < 0.0) /* under tension (adhesion) */
+                memcpy(expected, style->tensile, 3);
+            else if (!isnan(f) && !(f > 0.0))
                 memcpy(expected, style->background, 3);
             assert_pixel(&image, column, row, expected, 1);
         }

@@ -217,6 +217,7 @@ static void test_flat_top_view_is_the_contact_map(void **state)
         im_view3d_style s = plain_style(nx * scale, ny * scale);
         s.colormap = map_style.colormap;
         memcpy(s.surface, map_style.background, 3);
+        memcpy(s.tensile, map_style.tensile, 3);
         s.mesh_side = meshes[k];
         s.camera.projection = IM_VIEW3D_ORTHOGRAPHIC;
         s.camera.elevation = 90.0;
@@ -422,7 +423,7 @@ static void shaded_colour(const scene *sc, int x, int y, double rgb[3])
     if (f > 0.0)
         im_colormap_rgb(&s->colormap, f, base);
     else
-        memcpy(base, s->surface, 3);
+        memcpy(base, f < 0.0 ? s->tensile : s->surface, 3); /* under tension (adhesion), or out of contact */
     int left = x > 0 ? x - 1 : 0, right = x < h->nx - 1 ? x + 1 : x;
     int down = y > 0 ? y - 1 : 0, up = y < h->ny - 1 ? y + 1 : y;
     double sx = s->exaggeration * (patch_height(h, right, y) - patch_height(h, left, y)) / (right - left);

@@ -102,7 +102,8 @@ typedef struct im_contact_style {
     im_colormap colormap;      /* norm on the local compressive force */
     int pixels_per_patch;      /* integer upscaling, 1..64 */
     int boundary_px;           /* width of the boundary square around the data, 0..64 */
-    uint8_t background[3];     /* patches not in contact (force <= 0) */
+    uint8_t background[3];     /* patches not in contact (force = 0) */
+    uint8_t tensile[3];        /* patches under tension (force < 0: adhesion, solver.h), whatever the norm */
     uint8_t line[3];           /* boundary square and circle */
     double circle_radius;      /* smooth-surface contact radius, in patches; <= 0: no circle */
     double circle_x, circle_y; /* its centre in patches: field coordinates, x right, y up; patch
@@ -115,12 +116,13 @@ typedef struct im_contact_style {
 
 /* Defaults for a force field: viridis, linear norm on [0, largest force] (or [0, 1] when no
  * patch is in contact), 2 pixels per patch, 2-pixel black boundary, light grey (230) background,
+ * tensile patches light blue (150, 190, 235: no viridis or magma colour is near it),
  * no circle (centre preset to the middle of the grid), circle width 2 px, anti-aliased. */
 im_contact_style im_contact_style_default(const im_field *force);
 
 /* Draws a contact map: each patch with force > 0 in the colour of its force through the norm
- * (under / over colours outside the norm's range), patches with force <= 0 (or -Inf) in the
- * background colour, NaN patches in the colour map's bad colour. A field with no patch in contact
+ * (under / over colours outside the norm's range), patches with force < 0 (tension) in the tensile
+ * colour, patches with force 0 in the background colour, NaN patches in the colour map's bad colour. A field with no patch in contact
  * is drawn as background only (a valid picture, not an error). The circle is anti-aliased with
  * its exact coverage of each pixel across the line (box filter), or aliased at half coverage. Errors: IM_EINVAL for a bad
  * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
@@ -235,7 +237,8 @@ typedef struct im_view3d_style {
     double shading;            /* [0, 1]: 0 unlit (exact colours everywhere) */
     double light_azimuth;      /* degrees, clockwise from +y, as the 2-D height map */
     double light_altitude;     /* degrees above the horizon, (0, 90] */
-    uint8_t surface[3];        /* patches not in contact (force <= 0, or no force field) */
+    uint8_t surface[3];        /* patches not in contact (force = 0, or no force field) */
+    uint8_t tensile[3];        /* patches under tension (force < 0: adhesion), as the contact map's */
     uint8_t background[3];
     uint8_t punch_colour[3];
     im_view3d_punch punch_mode;
@@ -247,7 +250,8 @@ typedef struct im_view3d_style {
 
 /* Defaults for a force field (may be NULL): the contact map's norm (im_contact_style_default),
  * 1920 x 1080 pixels, 4 samples, mesh_side 384, true scale (exaggeration 1), shading 0.7, light
- * from 315 degrees at 45 degrees, surface light grey (230), white background, a steel-grey (150,
+ * from 315 degrees at 45 degrees, surface light grey (230), tensile patches light blue (150, 190, 235),
+ * white background, a steel-grey (150,
  * 160, 175) translucent punch of opacity 0.35, perspective from azimuth 20, elevation 35,
  * distance 2.1, field of view 30 degrees, automatic target height (NAN). */
 im_view3d_style im_view3d_style_default(const im_field *force);

@@ -22,7 +22,7 @@ static void usage(FILE *stream)
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
             "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
             "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
-            "contact: local compressive forces, patches with force <= 0 in a grey background\n"
+            "contact: local compressive forces, patches under tension (adhesion) light blue, none grey\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
             "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg); the\n"
             "GIF draws the --circle aliased (exact palette colours), the PNG frames anti-aliased.\n"

@@ -59,7 +59,7 @@ void render_teardown(im_render_context *context);
 /* ---- shared by the 2-D maps (draw.c) and the 3-D view (view3d.c) ---- */
 
 /* Patch codes sent to the shaders besides the table indices 0..255 (shaders/patch_colour.glsl). */
-enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259 };
+enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259, IM_CODE_TENSILE = 260 };
 
 /* The code of a value through the norm: its table index, or under / over / bad. */
 int render_patch_code(const im_colormap *colormap, double value);

@@ -277,7 +277,7 @@ im_contact_style im_contact_style_default(const im_field *force)
     im_contact_style style = {
         .colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest > 0.0 ? largest : 1.0),
         .pixels_per_patch = 2, .boundary_px = 2,
-        .background = {230, 230, 230}, .line = {0, 0, 0},
+        .background = {230, 230, 230}, .tensile = {150, 190, 235}, .line = {0, 0, 0},
         .circle_radius = 0.0, .circle_x = count ? 0.5 * force->nx : 0.0,
         .circle_y = count ? 0.5 * force->ny : 0.0,
         .circle_width_px = 2.0};
@@ -321,7 +321,10 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     }
     for (size_t i = 0; i < count; ++i) {
         double f = force->data[i];
-        codes[i] = (uint16_t)(isnan(f) ? IM_CODE_BAD : f > 0.0 ? render_patch_code(&s->colormap, f) : IM_CODE_BACKGROUND);
+        codes[i] = (uint16_t)(isnan(f)    ? IM_CODE_BAD
+                              : f > 0.0 ? render_patch_code(&s->colormap, f)
+                              : f < 0.0 ? IM_CODE_TENSILE
+                                        : IM_CODE_BACKGROUND);
     }
     const im_gl *gl = &c->gl;
     GLuint program = c->contact_program, textures[2];
@@ -332,6 +335,7 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     render_set_int(gl, program, "table", 1);
     set_common(gl, program, &s->colormap, force, s->pixels_per_patch, s->boundary_px, s->line);
     render_set_colour(gl, program, "background", s->background);
+    render_set_colour(gl, program, "tensile", s->tensile);
     double scale = s->pixels_per_patch;
     gl->Uniform3f(gl->GetUniformLocation(program, "circle"), (float)(s->circle_x * scale),
                   (float)(s->circle_y * scale), (float)(s->circle_radius * scale));

@@ -43,7 +43,7 @@ im_view3d_style im_view3d_style_default(const im_field *force)
                           : im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0),
         .width = 1920, .height = 1080, .samples = 4, .mesh_side = 384, .exaggeration = 1.0,
         .shading = 0.7, .light_azimuth = 315.0, .light_altitude = 45.0,
-        .surface = {230, 230, 230}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
+        .surface = {230, 230, 230}, .tensile = {150, 190, 235}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
         .punch_mode = IM_VIEW3D_PUNCH_TRANSLUCENT, .punch_opacity = 0.35, .punch_extent = 0.0,
         .camera = {.azimuth = 20.0, .elevation = 35.0, .distance = 2.1, .field_of_view = 30.0,
                    .projection = IM_VIEW3D_PERSPECTIVE, .ortho_height = 0.0, .target_z = NAN}};
@@ -414,8 +414,10 @@ static int make_inputs(view_geometry *g, const im_field *h, const im_field *forc
     }
     for (size_t i = 0; i < count; ++i) {
         double f = force ? force->data[i] : 0.0;
-        in->codes[i] = (uint16_t)(isnan(f) ? IM_CODE_BAD
-                                  : f > 0.0 ? render_patch_code(&s->colormap, f) : IM_CODE_BACKGROUND);
+        in->codes[i] = (uint16_t)(isnan(f)    ? IM_CODE_BAD
+                                  : f > 0.0 ? render_patch_code(&s->colormap, f)
+                                  : f < 0.0 ? IM_CODE_TENSILE
+                                            : IM_CODE_BACKGROUND);
         in->heights[i] = (float)(h->data[i] / h->delta);
     }
     corner_heights(g, h, in->corners);
@@ -442,6 +444,7 @@ static void draw_surface(const im_render_context *c, const view_geometry *g, con
     render_set_colour(gl, program, "over_colour", s->colormap.over);
     render_set_colour(gl, program, "bad_colour", s->colormap.bad);
     render_set_colour(gl, program, "surface_colour", s->surface);
+    render_set_colour(gl, program, "tensile", s->tensile);
     gl->Uniform2i(gl->GetUniformLocation(program, "grid"), g->nx, g->ny);
     gl->Uniform2i(gl->GetUniformLocation(program, "cells"), g->cells_x, g->cells_y);
     render_set_int(gl, program, "stride", g->stride);
