@@ -68,17 +68,22 @@ static void assert_same_step(const im_step_result *cpu, const im_step_result *gp
     assert_int_equal(cpu->contact_patches, gpu->contact_patches);
     if (test_relative_difference(cpu->plastic_work, gpu->plastic_work) > 1e-9)
         fail_msg("step %d: cpu dissipation %.17g, gpu %.17g", step, cpu->plastic_work, gpu->plastic_work);
+    if (test_relative_difference(cpu->tensile_force, gpu->tensile_force) > 1e-9)
+        fail_msg("step %d: cpu tensile force %.17g, gpu %.17g", step, cpu->tensile_force, gpu->tensile_force);
 }
 
-/* Runs the same history on both engines and compares every step. */
-static void compare_history(const im_field *s, const im_indenter *punch, enum im_control control,
-                            const double *targets, int count, double hardness)
+/* Runs the same history on both engines, with the physics of `physics` (hardness, adhesion), and compares
+ * every step. */
+static void compare_runs(const im_field *s, const im_indenter *punch, enum im_control control, const double *targets,
+                         int count, const im_solver_options *physics)
 {
     im_solver_options cpu_options = engine_options(IM_DEVICE_CPU), gpu_options = engine_options(IM_DEVICE_GPU);
-    cpu_options.hardness = gpu_options.hardness = hardness;
+    cpu_options.hardness = gpu_options.hardness = physics->hardness;
+    cpu_options.adhesion_work = gpu_options.adhesion_work = physics->adhesion_work;
+    cpu_options.adhesion_range = gpu_options.adhesion_range = physics->adhesion_range;
     double largest = 0;
     for (int k = 0; k < count; ++k)
-        largest = fmax(largest, targets[k]);
+        largest = fmax(largest, fabs(targets[k]));
     im_indentation *cpu = prepare(s, punch, control, largest, &cpu_options);
     im_indentation *gpu = prepare(s, punch, control, largest, &gpu_options);
     assert_string_equal(im_solver_plan_device(im_indentation_plan(cpu)), "cpu");
@@ -99,6 +104,13 @@ static void compare_history(const im_field *s, const im_indenter *punch, enum im
     assert_no_validation_messages(im_indentation_plan(gpu));
     im_indentation_free(cpu);
     im_indentation_free(gpu);
+}
+
+static void compare_history(const im_field *s, const im_indenter *punch, enum im_control control,
+                            const double *targets, int count, double hardness)
+{
+    im_solver_options physics = {.hardness = hardness};
+    compare_runs(s, punch, control, targets, count, &physics);
 }
 
 static void test_rough_cone_displacement(void **state)
@@ -153,6 +165,19 @@ static void test_hardness_cap(void **state)
     const double cycle[] = {1, 2.5, 4, 3, 1.5, 0.5}, load_cycle[] = {20, 45, 30, 5};
     compare_history(s, &cone, IM_CONTROL_DISPLACEMENT, cycle, 6, 0.05);
     compare_history(s, &cone, IM_CONTROL_LOAD, load_cycle, 4, 0.05);
+    im_field_free(s);
+}
+
+/* Adhesion runs its passes over the plan's engine: an approach, a retraction through pull-off and the
+ * separated punch give the same loads, tension and contact on both. */
+static void test_adhesion(void **state)
+{
+    (void)state;
+    im_field *s = test_rough_surface(96, 0.04, 13);
+    im_indenter sphere = im_indenter_sphere(64);
+    const double approaches[] = {-0.5, 1, 2.5, 1, 0, -1, -2};
+    im_solver_options physics = {.adhesion_work = 0.05, .adhesion_range = 0.6};
+    compare_runs(s, &sphere, IM_CONTROL_DISPLACEMENT, approaches, 7, &physics);
     im_field_free(s);
 }
 
@@ -272,6 +297,7 @@ int main(void)
         cmocka_unit_test(test_rough_sphere),
         cmocka_unit_test(test_flat_punch),
         cmocka_unit_test(test_hardness_cap),
+        cmocka_unit_test(test_adhesion),
         cmocka_unit_test(test_periodic_flat),
         cmocka_unit_test(test_rough_cone_1024),
     };
