@@ -1,7 +1,7 @@
 // Contact map: one texel per patch, integer upscaling, boundary frame, anti-aliased (or aliased) circle.
-// After shaders/patch_colour.glsl; code 259: not in contact, the background; 260: under tension.
+// After shaders/patch_colour.glsl; code 259: not in contact, the background.
 uniform usampler2D codes;      // nx x ny, R16UI
-uniform vec3 background, tensile, line_colour;
+uniform vec3 background, line_colour;
 uniform ivec2 grid;            // nx, ny
 uniform int scale;             // pixels per patch
 uniform int border;            // width of the boundary frame in pixels
@@ -28,10 +28,7 @@ void main()
     if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, grid * scale)))
         c = line_colour;
     else
-    {
-        uint code = texelFetch(codes, pixel / scale, 0).r;
-        c = code == 260u ? tensile : patch_colour(code, background);
-    }
+        c = patch_colour(texelFetch(codes, pixel / scale, 0).r, background);
     float coverage = circle_coverage(gl_FragCoord.xy - vec2(border));
     if (circle_aliased != 0)
         coverage = step(0.5, coverage);

@@ -1,9 +1,8 @@
 // The deformed surface: each fragment takes the colour code and the normal of the patch it lies
-// in. After shaders/patch_colour.glsl; code 259: not in contact, the surface colour; 260: under tension.
+// in. After shaders/patch_colour.glsl; code 259: not in contact, the surface colour.
 uniform usampler2D codes;      // nx x ny, R16UI
 uniform sampler2D heights;     // nx x ny, R32F, heights / delta
 uniform vec3 surface_colour;
-uniform vec3 tensile;          // code 260: under tension (adhesion)
 uniform ivec2 grid;
 uniform float exaggeration, shading;
 uniform vec3 light;            // unit vector towards the light
@@ -29,8 +28,7 @@ vec3 patch_normal(ivec2 cell)
 void main()
 {
     ivec2 cell = clamp(ivec2(floor(world.xy)), ivec2(0), grid - 1);
-    uint code = texelFetch(codes, cell, 0).r;
-    vec3 c = code == 260u ? tensile : patch_colour(code, surface_colour);
+    vec3 c = patch_colour(texelFetch(codes, cell, 0).r, surface_colour);
     // Lambert's law relative to level ground: a level patch keeps its exact colour.
     float lambert = max(dot(patch_normal(cell), light), 0.0) / light.z;
     colour = vec4(clamp(c * (1.0 + shading * (lambert - 1.0)), 0.0, 1.0), 1.0);

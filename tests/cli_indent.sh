@@ -52,7 +52,7 @@ grep -q '<h3>indentation.csv</h3>' "$DIR/cycle/index.html" && grep -q '<span tit
 ! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
 # Adhesion (issue 27): a sphere at Maugis's lambda = 1 (R = 64, w = 0.05305, delta_c = 0.6366: a reduced
 # radius of 8 patches) approached from w = -1 and pulled back to -1.5. Its pull-off force within 3% of
-# Maugis-Dugdale's 1.6007 pi w R = 17.07 (tests/test_adhesion.c solves that reference; 17.30 here), the
+# Maugis-Dugdale's 1.6007 pi w R = 17.07 (tests/test_adhesion.c solves that reference; 17.17 here), the
 # jump into contact on approach at a larger w than the last contact on retraction, tension in the history,
 # the force-distance figure, no Oliver-Pharr table; the refusals of what adhesion does not take.
 "$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \

@@ -187,7 +187,7 @@ static void sphere_follows_maugis_dugdale(void **state)
     (void)state;
     static const struct {
         double lambda, coarse, fine, bound;
-    } cases[] = {{0.3, 5, 10, 0.01}, {1, 6, 12, 0.03}, {3, 10, 20, 0.1}};
+    } cases[] = {{0.3, 5, 10, 0.004}, {1, 6, 12, 0.017}, {3, 10, 20, 0.07}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
         const double coarse = sphere_retraction_error(cases[k].lambda, cases[k].coarse);
         const double fine = sphere_retraction_error(cases[k].lambda, cases[k].fine);
@@ -251,8 +251,9 @@ static void vanishing_work_is_repulsive(void **state)
         if (!(test_relative_difference(ra.load, rb.load) <= 1e-8 && ra.contact_patches == rb.contact_patches))
             fail_msg("w = %g: load %.17g against %.17g, contact %ld against %ld", w, rb.load, ra.load,
                      rb.contact_patches, ra.contact_patches);
-        /* at most sigma0 on every patch */
-        assert_true(rb.tensile_force <= sticky.adhesion_work / sticky.adhesion_range * 64 * 64);
+        /* the zone pulls, with at most sigma0 on each patch under tension */
+        const double stress = sticky.adhesion_work / sticky.adhesion_range;
+        assert_true(rb.tensile_force > 0 && rb.tensile_force <= stress * (double)rb.adhesive_patches * (1 + 1e-12));
     }
     im_indentation_free(a);
     im_indentation_free(b);
@@ -318,7 +319,7 @@ static void refusals(void **state)
     assert_non_null(strstr(im_last_error(), "load control"));
     o.hardness = 0.1;
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "hardness"));
+    assert_non_null(strstr(im_last_error(), "adhesion under a hardness"));
     o.hardness = 0;
     assert_int_equal(im_solver_plan_create(24, 24, 1.0, &o, &plan), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "acts in an indentation"));

@@ -123,14 +123,14 @@
  * no JKR singularity). The work of separating a patch is sigma0 delta_c = w. A patch cut by the
  * zone's edge carries the stress on its share of Z (the gap taken linear across it). Given Z this is
  * the repulsive problem with the undeformed gap g0 - sigma0 K 1_Z; an indentation step alternates that
- * solve (any engine) with Z taken from its gaps until no share moves by more than tol
+ * solve (any engine) with Z taken from its gaps until no share would move by more than tol / 100
  * (src/solver/adhesion.c). The passes are monotone: a step whose approach is not below the last
  * one's only adds to Z, a retraction only removes from it, so each step ends on the state its history
  * leads to (jump-in on approach, pull-off on retraction: the hysteresis). Each pass is one
  * warm-started solve and one convolution.
  * Resolution: Z must span patches. A Dugdale zone's length at a crack tip is of the order of
- * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 1.3% of Maugis-Dugdale's at
- * l = 3 patches, 19% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
+ * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 0.6% of Maugis-Dugdale's at
+ * l = 3 patches, 8% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
  * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length).
  * Displacement control only (under load control the force-distance curve's unstable branches are
  * jumps), the half-space only (not periodic), and no hardness with it: IM_EINVAL. Approaches may be
@@ -378,7 +378,8 @@ typedef struct im_indentation im_indentation;
  * will impose: it fixes the solve window, the bounding box of the patches whose undeformed gap is
  * at most the largest approach, plus options->window_margin, grown to an FFT-friendly size
  * (2^a 3^b 5^c 7^d) within the surface. Exact, because u >= 0 under compression: no patch with
- * g0 > w can touch. Under load control the largest approach is bounded by
+ * g0 > w can touch (with adhesion the surface is pulled up: the bound adds 2 delta_c, a margin that a
+ * step checks, "Adhesion" above). Under load control the largest approach is bounded by
  * 1.1 w_smooth(N) + (max h - min h) (a rough surface is everywhere below the smooth one shifted up
  * by its height range, and the smooth discrete solution is within 1% of the closed form); each
  * step checks that its approach stays below that bound. The plan is made here (serial code).

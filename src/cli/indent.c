@@ -274,7 +274,7 @@ static int check_adhesion_options(const indent_options *o)
     const int adhesion = o->solver.adhesion_work > 0;
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
-    else if (adhesion && (o->control != IM_CONTROL_DISPLACEMENT || o->solver.periodic))
+    else if (adhesion && o->control != IM_CONTROL_DISPLACEMENT) /* (--periodic takes no --approach) */
         fprintf(stderr, "indentmap: --adhesion-work takes --approach on the half-space: under load control an adhesive "
                 "contact jumps where its force-distance curve turns (pull-off), and the periodic mode has no adhesion yet\n");
     else if (adhesion && o->solver.hardness > 0)
@@ -810,8 +810,8 @@ static void warn_if_zone_unresolved(const indent_options *o)
     const double patches = im_adhesion_zone_length(&o->solver) / o->surface_delta;
     if (patches < 1)
         fprintf(stderr, "indentmap: warning: the adhesive zone's length pi E* D^2 / (8 W) = %.3g patches is below one "
-                "patch: the grid does not resolve it and the pull-off comes out too strong (a sphere: 19%% at 0.33 "
-                "patches, several times at 0.1; 1.3%% at 3): use a finer delta or a wider --adhesion-range\n",
+                "patch: the grid does not resolve it and the pull-off comes out too strong (a sphere: 8%% at 0.33 "
+                "patches, 5 times at 0.03; 0.6%% at 3): use a finer delta or a wider --adhesion-range\n",
                 patches);
 }
 
@@ -819,13 +819,12 @@ static void warn_if_zone_unresolved(const indent_options *o)
  * "adhesion" block beside the law, and force_distance.{png,pdf}. */
 static void write_adhesion(const indent_options *o, const im_history_row *rows, int done, json_t *record)
 {
-    im_adhesion_summary summary;
+    im_adhesion_summary summary = {.hysteresis_work = NAN}; /* NaN: not summarised */
     json_t *law = json_object_get(record, "adhesion");
-    if (done < 1 || analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &summary) != IM_OK) {
-        if (done >= 1)
-            fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+    if (done >= 1 && analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &summary) != IM_OK)
+        fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+    if (isnan(summary.hysteresis_work))
         return;
-    }
     json_object_set_new(law, "pull_off_force", json_number(summary.pull_off_force));
     json_object_set_new(law, "pull_off_approach", json_number(summary.pull_off_approach));
     json_object_set_new(law, "jump_in_approach", json_number(summary.jump_in_approach));

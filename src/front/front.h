@@ -64,9 +64,9 @@ extern const char ANALYSIS_COLUMNS[];
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
                    const char *length_unit, const char *force_unit, int *branches);
 
-/* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, and
+/* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
- * pull-off marked. IM_EINVAL for count < 1. */
+ * pull-off marked. IM_EINVAL for count < 1; a figure that cannot be written leaves the summary set. */
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
                             const char *force_unit, im_adhesion_summary *summary);
 

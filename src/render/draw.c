@@ -335,7 +335,7 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     render_set_int(gl, program, "table", 1);
     set_common(gl, program, &s->colormap, force, s->pixels_per_patch, s->boundary_px, s->line);
     render_set_colour(gl, program, "background", s->background);
-    render_set_colour(gl, program, "tensile", s->tensile);
+    render_set_colour(gl, program, "tensile_colour", s->tensile);
     double scale = s->pixels_per_patch;
     gl->Uniform3f(gl->GetUniformLocation(program, "circle"), (float)(s->circle_x * scale),
                   (float)(s->circle_y * scale), (float)(s->circle_radius * scale));

@@ -444,7 +444,7 @@ static void draw_surface(const im_render_context *c, const view_geometry *g, con
     render_set_colour(gl, program, "over_colour", s->colormap.over);
     render_set_colour(gl, program, "bad_colour", s->colormap.bad);
     render_set_colour(gl, program, "surface_colour", s->surface);
-    render_set_colour(gl, program, "tensile", s->tensile);
+    render_set_colour(gl, program, "tensile_colour", s->tensile);
     gl->Uniform2i(gl->GetUniformLocation(program, "grid"), g->nx, g->ny);
     gl->Uniform2i(gl->GetUniformLocation(program, "cells"), g->cells_x, g->cells_y);
     render_set_int(gl, program, "stride", g->stride);

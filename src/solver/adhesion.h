@@ -14,6 +14,7 @@ typedef struct adhesion_state {
     int nx, ny;              /* the window */
     double *share;           /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
     double *gaps;            /* the last pass's gaps */
+    double *proposal;        /* the shares they call for */
     double *lift;            /* K 1_Z: the displacement of a unit stress on Z (sigma0 lift pulls up) */
     double *gap0;            /* the repulsive solve's undeformed gap: g0 - sigma0 lift + shift */
     double shift;            /* what was added to make min gap0 = 0 */

@@ -175,11 +175,11 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
                        "defined up to a constant: give loads, or mean pressures times the cell's area)");
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
-    if (options->adhesion_work > 0 && (control != IM_CONTROL_DISPLACEMENT || options->periodic || options->hardness > 0))
+    /* (the periodic mode, load control only, is refused with load control) */
+    if (options->adhesion_work > 0 && (control != IM_CONTROL_DISPLACEMENT || options->hardness > 0))
         return im_fail(IM_EINVAL, "adhesion work = %g: expected displacement control on the half-space without a "
                        "hardness (adhesion under %s is not available)", options->adhesion_work,
-                       control != IM_CONTROL_DISPLACEMENT ? "load control" : options->periodic ? "the periodic mode"
-                                                                                            : "a hardness");
+                       control != IM_CONTROL_DISPLACEMENT ? "load control" : "a hardness");
     if (!(isfinite(largest_target) && largest_target >= 0))
         return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", largest_target);
@@ -318,7 +318,8 @@ static int check_zone(const im_indentation *run)
     return im_fail(IM_EEDGE, "the adhesive zone reached the edge of the %s at patch (%d, %d) (approach %g): %s",
                    whole ? "surface" : "solve window", x + w.x0, y + w.y0, run->approach,
                    whole ? "the surface is too small for this step"
-                         : "the window chosen from the undeformed gap is too small; solve the whole surface (crop = 0)");
+                         : "the window chosen from the undeformed gap is too small; solve the whole surface (options "
+                           "crop = 0, indent --full)");
 }
 
 /* Under load control, IM_EEDGE before solving when the smooth contact at this load would already

@@ -27,7 +27,7 @@ static int check_adhesion(const im_solver_options *o)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected a finite work of adhesion w >= 0 (0: none)",
                        o->adhesion_work);
     if (!(isfinite(o->adhesion_range) && o->adhesion_range >= 0))
-        return im_fail(IM_EINVAL, "adhesion range = %g: expected a finite gap delta_c > 0", o->adhesion_range);
+        return im_fail(IM_EINVAL, "adhesion range = %g: expected a finite gap delta_c > 0 (0: none)", o->adhesion_range);
     if ((o->adhesion_work > 0) != (o->adhesion_range > 0))
         return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: expected both > 0 (adhesion) or both 0 (none)",
                        o->adhesion_work, o->adhesion_range);
