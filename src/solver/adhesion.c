@@ -25,6 +25,7 @@
 #include "solver/plan.h"
 
 #include "core/args.h"
+#include "core/summation.h"
 #include "indentmap/status.h"
 
 #include <math.h>
@@ -148,20 +149,19 @@ static double propose_shares(adhesion_state *a, double w_lifted, const double *p
     return largest;
 }
 
-/* Takes the proposed shares, and counts the zone's patches and area. */
+/* Takes the proposed shares, and counts the zone's patches and area (summed as the solver sums loads:
+ * the same bits for any thread count). */
 static void apply_shares(adhesion_state *a)
 {
     const size_t n = (size_t)a->nx * a->ny;
-    double area = 0;
     long count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : count, area)
+#pragma omp parallel for schedule(static) reduction(+ : count)
     for (size_t i = 0; i < n; ++i) {
         a->share[i] = a->proposal[i];
         count += a->share[i] > 0;
-        area += a->share[i];
     }
     a->zone_patches = count;
-    a->zone_area = area;
+    a->zone_area = sum_doubles(a->share, n);
 }
 
 /* Adds a pass's counts to the step's. */
@@ -229,20 +229,20 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
     return status;
 }
 
-void adhesion_split(const adhesion_state *a, const double *pressure, double delta, double *tensile,
+void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile,
                     long *adhesive_patches, long *repulsive_patches)
 {
     const size_t n = (size_t)a->nx * a->ny;
-    double pull = 0;
     long adhesive = 0, repulsive = 0;
-#pragma omp parallel for schedule(static) reduction(+ : pull, adhesive, repulsive)
+    double *pull = a->proposal; /* free between steps: the tension of each patch, summed as loads are */
+#pragma omp parallel for schedule(static) reduction(+ : adhesive, repulsive)
     for (size_t i = 0; i < n; ++i) {
         const double p = adhesion_net_pressure(a, i, pressure[i]);
-        pull += p < 0 ? -p : 0;
+        pull[i] = p < 0 ? -p : 0;
         adhesive += p < 0;
         repulsive += p > 0;
     }
-    *tensile = pull * delta * delta;
+    *tensile = sum_doubles(pull, n) * delta * delta;
     *adhesive_patches = adhesive;
     *repulsive_patches = repulsive;
 }

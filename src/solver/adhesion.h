@@ -14,7 +14,7 @@ typedef struct adhesion_state {
     int nx, ny;              /* the window */
     double *share;           /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
     double *gaps;            /* the last pass's gaps */
-    double *proposal;        /* the shares they call for */
+    double *proposal;        /* the shares they call for (between steps: adhesion_split's scratch) */
     double *lift;            /* K 1_Z: the displacement of a unit stress on Z (sigma0 lift pulls up) */
     double *gap0;            /* the repulsive solve's undeformed gap: g0 - sigma0 lift + shift */
     double shift;            /* what was added to make min gap0 = 0 */
@@ -44,9 +44,9 @@ static inline double adhesion_net_displacement(const adhesion_state *a, size_t i
     return a ? repulsive - a->stress * a->lift[i] : repulsive;
 }
 
-/* Sums of the net pressure over the window: tensile force delta^2 sum(-p) over p < 0, the patches
- * with p < 0 and p > 0. */
-void adhesion_split(const adhesion_state *a, const double *pressure, double delta, double *tensile,
+/* Sums of the net pressure over the window: tensile force delta^2 sum(-p) over p < 0 (compensated, as
+ * loads; a->proposal is its scratch), the patches with p < 0 and p > 0. */
+void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile,
                     long *adhesive_patches, long *repulsive_patches);
 
 /* Whether Z reaches the window's outer row or column (*x, *y: the patch, window coordinates). */
