@@ -98,12 +98,12 @@ check "--height-unit converts to --unit" bash -c "'$cli' surface --stats '$dir/s
 check "unknown unit" expect_exit 2 "--unit 'parsec': expected a length unit" "$cli" surface --stats "$dir/s.npy" --unit parsec
 check "heights in a unit, spacing in none" expect_exit 2 "--height-unit = 'nm' gives the heights a unit" \
   "$cli" surface --stats "$dir/s.npy" --height-unit nm
-printf '# Width: 4 um\n# Height: 8 um\n1 2\n3 4\n' >"$dir/rect.txt"
+printf '# Width: 3 um\n# Height: 6 um\n1 2 3\n4 5 6\n7 8 9\n' >"$dir/rect.txt"
 check "non-square pixels refused" expect_exit 2 "rect.txt: Width / columns and Height / rows: non-square pixels" \
   "$cli" surface --stats "$dir/rect.txt"
 
 # Preparation (issue 13): missing points refused with their position or filled; crop; the statement.
-printf '1 2 3\n4 nan 6\n7 8 9\n' >"$dir/hole.txt"
+printf '1 2 3 4\n5 nan 6 7\n8 9 1 2\n' >"$dir/hole.txt"
 check "missing point refused" expect_exit 2 "hole.txt: value nan at (x=1, y=1): a missing point" "$cli" surface --stats "$dir/hole.txt"
 check "--fill fills it" bash -c "'$cli' surface --stats '$dir/hole.txt' --fill --detrend none --window none | grep -q 'height range     \[1, 9\]'"
 check "--fill is stated" bash -c "'$cli' surface --stats '$dir/hole.txt' --fill | grep -q '1 missing points filled'"

@@ -114,14 +114,15 @@ static void non_finite_heights_are_not_written(void **state)
 static void a_height_alone_states_the_spacing(void **state)
 {
     (void)state;
-    const char *only_height = "# Height: 2 um\n1 2 3\n4 5 6\n", *only_width = "# Width: 3 um\n1 2 3\n4 5 6\n";
+    const char *only_height = "# Height: 3 um\n1 2 3\n4 5 6\n7 8 9\n",
+               *only_width = "# Width: 3 um\n1 2 3\n4 5 6\n7 8 9\n";
     const char *texts[] = {only_height, only_width};
     for (int k = 0; k < 2; ++k) {
         test_write_bytes(test_path("extent.txt"), texts[k], strlen(texts[k]));
         im_field *f = NULL;
         assert_int_equal(im_text_read(test_path("extent.txt"), &f), IM_OK);
         assert_int_equal(f->nx, 3);
-        assert_int_equal(f->ny, 2);
+        assert_int_equal(f->ny, 3);
         assert_close(f->delta, 1.0, 1e-15);
         assert_string_equal(f->unit, "\u00b5m");
         im_field_free(f);

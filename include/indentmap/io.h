@@ -196,14 +196,25 @@ int im_field_sidecar_write(const char *path, const im_field *field, const char *
  * 2^53 rounded); im_surface_read_with records the conversion in its info. */
 int im_npy_read(const char *path, im_field **out);
 
-/* Plain text matrix: one grid row per line (row 0 first), values separated by blanks, tabs or commas;
- * lines starting with '#' are header lines. Gwyddion's "# Width: 5.12 um" and "# Height:" headers, when
- * present, set the spacing (Width / columns, Height / rows; one alone states square pixels) and lateral
- * unit, and "# Value units: m" the unit of the heights (converted as im_surface_read_with says). A
- * header line stating the grid, "# ... C columns x R rows ..." (as written here), must match the data:
- * a file with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and the
- * data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the data.
- * Writing uses %.17g, so a round trip is exact. */
+/* Plain text: one grid row per line (row 0 first), values separated by blanks, tabs, commas or
+ * semicolons ("1,5 2,25" with blanks or semicolons between values and no '.' is read with decimal
+ * commas: 1.5 and 2.25); lines starting with '#' are header lines. What the numbers are:
+ * - three columns (and no header stating a matrix): x y z points, in any order; when each (x, y) of a
+ *   regular grid appears once, the heights on that grid, spaced by the steps of x and y; otherwise
+ *   refused (scattered points, repeats, uneven steps);
+ * - fewer than three columns or rows: a line scan (a 1-D profile), refused with that reason;
+ * - otherwise a matrix.
+ * Gwyddion's "# Width: 5.12 um" and "# Height:" headers ("# Breite:" and "# Höhe:" from a German
+ * Gwyddion; Height in another length unit is converted into Width's) set the spacing (Width /
+ * columns, Height / rows; one alone states square pixels) and lateral unit, and "# Value units: m"
+ * the unit of the heights (converted as im_surface_read_with says). Wyko/Vision ASCII headers before
+ * the numbers, "h=ROWS w=COLUMNS", "pixel size=3.7e-007 m", "data unit=rad" and "height conversion
+ * factor (-> m)=2.9e-008", set the grid, the spacing and heights in metres (value times the factor);
+ * a data unit that is not a length with no factor, or another key=value line, is refused. A header
+ * stating the grid (Vision's, or "# ... C columns x R rows ..." as written here) must match the data:
+ * a file with rows missing or added is refused (IM_EFORMAT, naming that line, the header's grid and
+ * the data's). Gwyddion's Width and Height are extents, not counts, and are not checked against the
+ * data. Writing uses %.17g, so a round trip is exact. */
 int im_text_write(const char *path, const im_field *field);
 int im_text_read(const char *path, im_field **out);
 

@@ -4,7 +4,10 @@
 #include "indentmap/status.h"
 #include "io/payload.h"
 #include "io/readers.h"
+#include "io/text_header.h"
+#include "io/text_points.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -75,90 +78,31 @@ static void visible_token(const char *token, char *out, size_t size)
     out[used] = '\0';
 }
 
-typedef struct text_header {
-    double width, height;           /* Gwyddion's extents along x and y; 0 when absent */
-    char width_unit[16], height_unit[16], value_unit[16];
-    long columns, rows, line; /* a stated "C columns x R rows" and its line; 0 when none */
-} text_header;
-
-/* The text after "# KEY" (blanks skipped), or NULL when the header line is not about KEY. */
-static const char *header_value(const char *line, const char *key)
+/* The number of fields of line between any of separators. */
+static int count_fields(const char *line, const char *separators)
 {
-    const char *at = line + 1 + strspn(line + 1, " \t");
-    size_t length = strlen(key);
-    return strncmp(at, key, length) == 0 ? at + length + strspn(at + length, " \t") : NULL;
-}
-
-/* A Gwyddion extent line, "# Width: 5.12 um": a finite length > 0 and an optional unit. */
-static int parse_extent_header(const char *path, long line_number, const char *line, const char *key,
-                               double *extent, char *unit, size_t unit_size)
-{
-    const char *value = header_value(line, key);
-    if (!value)
-        return IM_OK;
-    char *end;
-    double number = strtod(value, &end);
-    char unit_text[64] = "";
-    int words = sscanf(end, "%63s", unit_text);
-    if (end == value || !isfinite(number) || !(number > 0.0) || strlen(unit_text) >= unit_size)
-        return im_fail(IM_EFORMAT, "%s:%ld: %s '%.40s': expected a finite length > 0 and a unit", path,
-                       line_number, key, value);
-    *extent = number;
-    snprintf(unit, unit_size, "%s", words == 1 ? unit_text : "");
-    return IM_OK;
-}
-
-/* Gwyddion's "# Value units: m", the unit of the heights. */
-static int parse_value_units(const char *path, long line_number, const char *line, text_header *header)
-{
-    const char *value = header_value(line, "Value units:");
-    char unit[64] = "";
-    if (!value)
-        return IM_OK;
-    if (sscanf(value, "%63s", unit) != 1 || strlen(unit) >= sizeof header->value_unit)
-        return im_fail(IM_EFORMAT, "%s:%ld: Value units '%.40s': expected one unit name", path, line_number,
-                       value);
-    memcpy(header->value_unit, unit, sizeof header->value_unit);
-    return IM_OK;
-}
-
-static int parse_header_line(const char *path, long line_number, const char *line, text_header *header)
-{
-    int status = parse_extent_header(path, line_number, line, "Width:", &header->width, header->width_unit,
-                                     sizeof header->width_unit);
-    if (status == IM_OK)
-        status = parse_extent_header(path, line_number, line, "Height:", &header->height, header->height_unit,
-                                     sizeof header->height_unit);
-    if (status == IM_OK)
-        status = parse_value_units(path, line_number, line, header);
-    return status;
-}
-
-/* A header line stating the grid, "... 16 columns x 16 rows ..." (as im_text_write writes it). */
-static void parse_shape_header(const char *line, long line_number, text_header *header)
-{
-    const char *at = strstr(line, " columns x ");
-    if (!at || header->line)
-        return;
-    const char *start = at;
-    while (start > line && start[-1] >= '0' && start[-1] <= '9')
-        --start;
-    long columns, rows;
-    if (start < at && sscanf(start, "%ld columns x %ld rows", &columns, &rows) == 2) {
-        header->columns = columns;
-        header->rows = rows;
-        header->line = line_number;
+    int count = 0;
+    for (const char *at = line + strspn(line, separators); *at; at += strspn(at, separators)) {
+        ++count;
+        at += strcspn(at, separators);
     }
+    return count;
 }
 
-/* Refuses data whose size disagrees with a grid the header states. */
-static int check_stated_shape(const char *path, const text_header *header, long columns, long rows)
+/* A line written with decimal commas ("1,5 -2,25" or "1,5;-2,25": no '.', a comma between digits,
+ * and blanks or semicolons between the values) has its commas turned into points, so that "1,5" is
+ * read as 1.5, not split into 1 and 5; returns 1 for such a line. Commas between values (CSV) stay
+ * separators. */
+static int decimal_commas_to_points(char *line)
 {
-    if (!header->line || (header->columns == columns && header->rows == rows))
-        return IM_OK;
-    return im_fail(IM_EFORMAT, "%s:%ld: the header states %ld columns x %ld rows, but the file has %ld "
-                   "columns x %ld rows of data (%s)", path, header->line, header->columns, header->rows, columns,
-                   rows, rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
+    if (strchr(line, '.') || count_fields(line, " \t;\r\n") < 2)
+        return 0;
+    int decimal = 0;
+    for (char *at = strchr(line, ','); at; at = strchr(at + 1, ','))
+        decimal |= at > line && isdigit((unsigned char)at[-1]) && isdigit((unsigned char)at[1]);
+    for (char *at = strchr(line, ','); decimal && at; at = strchr(at + 1, ','))
+        *at = '.';
+    return decimal;
 }
 
 /* Parses the numbers of one data line into values, counting them in *count. */
@@ -166,8 +110,9 @@ static int parse_data_line(char *line, const char *path, long line_number, value
 {
     *count = 0;
     char shown[160];
+    const char *separators = decimal_commas_to_points(line) ? " \t;\r\n" : " \t,;\r\n";
     char *rest = NULL; /* strtok_r: surfaces are read by several threads at once (ensembles, Python) */
-    for (char *token = strtok_r(line, " \t,\r\n", &rest); token; token = strtok_r(NULL, " \t,\r\n", &rest)) {
+    for (char *token = strtok_r(line, separators, &rest); token; token = strtok_r(NULL, separators, &rest)) {
         char *end;
         errno = 0;
         double value = strtod(token, &end);
@@ -203,10 +148,10 @@ static char *skip_byte_order_mark(char *text, long line_number)
 static int take_line(char *text, const char *path, long line_number, value_list *values, long *columns, long *rows,
                      text_header *header)
 {
-    if (text[0] == '#') {
-        parse_shape_header(text, line_number, header);
-        return parse_header_line(path, line_number, text, header);
-    }
+    if (text[0] == '#')
+        return text_header_parse_comment(path, line_number, text, header);
+    if (*rows == 0 && text_header_is_vision_line(text))
+        return text_header_parse_vision(path, line_number, text, header);
     long count;
     int status = parse_data_line(text, path, line_number, values, &count);
     if (status != IM_OK || count == 0)
@@ -216,7 +161,7 @@ static int take_line(char *text, const char *path, long line_number, value_list 
     else if (count != *columns)
         return im_fail(IM_EFORMAT, "%s:%ld: %ld values, but the first data row has %ld", path, line_number, count,
                        *columns);
-    if (++*rows > IM_FIELD_MAX_SIDE)
+    if (++*rows > IM_FIELD_MAX_SIDE && *columns != 3) /* x y z points may be many more than a side */
         return im_fail(IM_EFORMAT, "%s:%ld: more than %d data rows: expected at most %d rows", path, line_number,
                        IM_FIELD_MAX_SIDE, IM_FIELD_MAX_SIDE);
     return IM_OK;
@@ -234,23 +179,43 @@ static int read_rows(FILE *stream, const char *path, value_list *values, long *c
     return status;
 }
 
-/* What the Gwyddion headers state about units; Width and Height in different units are refused. */
-static int stated_units(const char *path, const text_header *header, long columns, long rows,
-                        surface_stated *stated)
+/* A file of one or two columns (or rows) is a profile, which a 2-D contact cannot use; reading it as
+ * a 2 x N map would give a number a researcher might publish. */
+static int refuse_line_scan(const char *path, long columns, long rows)
 {
-    *stated = (surface_stated){.spacing_keys = "Width / columns and Height / rows", .lateral_key = "Width",
-                               .height_key = "Value units"};
-    if (header->width > 0.0 && header->height > 0.0 && strcmp(header->width_unit, header->height_unit) != 0)
-        return im_fail(IM_EFORMAT, "%s: Width is in '%s' but Height in '%s': expected one lateral unit", path,
-                       header->width_unit, header->height_unit);
-    if (header->width > 0.0 || header->height > 0.0) { /* one extent alone states square pixels */
-        stated->units.delta_y = header->height > 0.0 ? header->height / (double)rows : 0.0;
-        stated->units.delta_x = header->width > 0.0 ? header->width / (double)columns : stated->units.delta_y;
-        memcpy(stated->units.lateral, header->width > 0.0 ? header->width_unit : header->height_unit,
-               sizeof stated->units.lateral);
+    return im_fail(IM_EFORMAT, "%s: %ld column%s x %ld row%s of numbers: a line scan (a 1-D profile: heights, or "
+                   "x and height pairs), not a map; a 2-D contact needs heights on a grid of at least 3 x 3", path,
+                   columns, columns == 1 ? "" : "s", rows, rows == 1 ? "" : "s");
+}
+
+/* The numbers as a columns x rows matrix, each multiplied by factor (1: as stored). */
+static int matrix_field(const value_list *values, long columns, long rows, double factor, im_field **out)
+{
+    int status = im_field_create((int)columns, (int)rows, 1.0, out);
+    for (size_t k = 0; status == IM_OK && k < values->count; ++k)
+        (*out)->data[k] = values->values[k] * factor;
+    return status;
+}
+
+/* The grid the numbers and their header describe: a matrix, or x y z points placed on their grid. */
+static int numbers_to_field(const char *path, const value_list *values, long columns, long rows,
+                            const text_header *header, im_field **out, surface_stated *stated)
+{
+    if (rows == 0)
+        return im_fail(IM_EFORMAT, "%s: no data rows", path);
+    int status = text_header_check_shape(path, header, columns, rows);
+    if (status != IM_OK)
+        return status;
+    if (columns == 3 && !text_header_states_a_matrix(header)) {
+        status = text_points_grid(path, values->values, rows, out, stated);
+        memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
+        return status;
     }
-    memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
-    return IM_OK;
+    if (columns < 3 || rows < 3)
+        return refuse_line_scan(path, columns, rows);
+    double factor;
+    status = text_header_stated_units(path, header, columns, rows, stated, &factor);
+    return status == IM_OK ? matrix_field(values, columns, rows, factor, out) : status;
 }
 
 int text_read_raw(const char *path, im_field **out, surface_stated *stated)
@@ -265,19 +230,13 @@ int text_read_raw(const char *path, im_field **out, surface_stated *stated)
     text_header header = {0};
     status = read_rows(stream, path, &values, &columns, &rows, &header);
     fclose(stream);
-    if (status == IM_OK && rows == 0)
-        status = im_fail(IM_EFORMAT, "%s: no data rows", path);
-    if (status == IM_OK)
-        status = check_stated_shape(path, &header, columns, rows);
-    if (status == IM_OK)
-        status = stated_units(path, &header, columns, rows, stated);
     im_field *field = NULL;
     if (status == IM_OK)
-        status = im_field_create((int)columns, (int)rows, 1.0, &field);
-    if (status == IM_OK) {
-        memcpy(field->data, values.values, values.count * sizeof *values.values);
+        status = numbers_to_field(path, &values, columns, rows, &header, &field, stated);
+    if (status == IM_OK)
         *out = field;
-    }
+    else
+        im_field_free(field);
     free(values.values);
     return status;
 }

@@ -1,0 +1,14 @@
+/* io/text_points.h: a text file of three columns, x y z, sampling a regular grid in any order
+ * (as profilometers and SurfaceTopography's xyz exports write them). */
+#ifndef INDENTMAP_IO_TEXT_POINTS_H
+#define INDENTMAP_IO_TEXT_POINTS_H
+
+#include "io/readers.h"
+
+/* values holds points x y z triples. When each (x, y) of a regular grid (at least 2 x 2, steps equal
+ * to 1e-6 of a step) appears exactly once, *out is the grid of z (x along columns, y along rows, a
+ * missing z stays NaN) and stated holds the steps as the spacing. Otherwise IM_EFORMAT naming path and
+ * what is not a grid. */
+int text_points_grid(const char *path, const double *values, long points, im_field **out, surface_stated *stated);
+
+#endif

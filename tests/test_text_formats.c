@@ -1,0 +1,126 @@
+/* What a text surface file is: a matrix, x y z points on a grid, or a line scan (refused); the
+ * headers of Gwyddion (English and German) and Wyko/Vision; decimal commas. Each case is one that
+ * SurfaceTopography's example files showed read wrong or refused (issue 25, real-data.md). */
+#include "support.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <string.h>
+
+static im_field *read_text(const char *name, const char *text, im_surface_read_info *info)
+{
+    test_write_bytes(test_path(name), text, strlen(text));
+    im_field *f = NULL;
+    int status = im_surface_read_with(test_path(name), NULL, &f, info);
+    if (status != IM_OK)
+        fail_msg("%s: %s", name, im_last_error());
+    return f;
+}
+
+static void expect_text_refused(const char *name, const char *text, const char *phrase)
+{
+    test_write_bytes(test_path(name), text, strlen(text));
+    im_field *f = NULL;
+    int status = im_surface_read(test_path(name), &f);
+    if (status != IM_EFORMAT || !strstr(im_last_error(), phrase))
+        fail_msg("%s: status %d, message '%s' (expected to contain '%s')", name, status, im_last_error(), phrase);
+    assert_null(f);
+    assert_non_null(strstr(im_last_error(), name));
+}
+
+static void line_scans_are_refused_as_such(void **state)
+{
+    (void)state;
+    expect_text_refused("heights.txt", "1\n2\n3\n4\n5\n", "1 column x 5 rows of numbers: a line scan");
+    expect_text_refused("xz.txt", "0 1.5\n1 2.5\n2 3.5\n3 4.5\n", "2 columns x 4 rows of numbers: a line scan");
+    expect_text_refused("row.txt", "1 2 3 4 5 6\n", "6 columns x 1 row of numbers: a line scan");
+    expect_text_refused("two_rows.csv", "1,2,3,4\n5,6,7,8\n", "4 columns x 2 rows");
+}
+
+/* Points in scrambled order give the matrix of the same heights; the steps are the spacing. */
+static void xyz_points_on_a_grid_are_a_map(void **state)
+{
+    (void)state;
+    const char *points = "0.5 0 3\n0 0 1\n1.0 0 5\n0 0.5 2\n0.5 0.5 4\n1.0 0.5 6\n";
+    im_field *f = read_text("points.txt", points, NULL);
+    assert_int_equal(f->nx, 3);
+    assert_int_equal(f->ny, 2);
+    assert_close(f->delta, 0.5, 1e-15);
+    const double expected[] = {1, 3, 5, 2, 4, 6};
+    for (int k = 0; k < 6; ++k)
+        assert_close(f->data[k], expected[k], 0.0);
+    im_field_free(f);
+    expect_text_refused("repeat.txt", "0 0 1\n1 0 2\n0 1 3\n1 1 4\n0 0 5\n1 0 6\n",
+                        "not a regular grid");
+    expect_text_refused("uneven.txt", "0 0 1\n1 0 2\n3 0 3\n0 1 4\n1 1 5\n3 1 6\n", "x or y not equally spaced");
+    expect_text_refused("scattered.txt", "0 0 1\n0.3 0.7 2\n0.9 0.1 3\n0.2 0.4 4\n", "not a regular grid");
+}
+
+/* "1,5" is one and a half, never the two numbers 1 and 5; commas between values stay separators. */
+static void decimal_commas_are_read_as_decimals(void **state)
+{
+    (void)state;
+    im_field *f = read_text("komma.txt", "1,5\t-2,25\t3\t4,125\n0,5 1 2 3\n7,5;8;9;10\n", NULL);
+    assert_int_equal(f->nx, 4);
+    assert_int_equal(f->ny, 3);
+    const double expected[] = {1.5, -2.25, 3, 4.125, 0.5, 1, 2, 3, 7.5, 8, 9, 10};
+    for (int k = 0; k < 12; ++k)
+        assert_close(f->data[k], expected[k], 0.0);
+    im_field_free(f);
+    f = read_text("plain.csv", "1,5,2,3\n0.5,1,2,3\n4,5,6,7\n", NULL);
+    assert_int_equal(f->nx, 4);
+    assert_close(f->data[1], 5.0, 0.0);
+    im_field_free(f);
+}
+
+/* A German Gwyddion export, Height in nm beside Width in µm: one lateral unit, square pixels. */
+static void gwyddion_headers_in_german_and_two_prefixes(void **state)
+{
+    (void)state;
+    const char *german = "# Kanal: Topographie\n# Breite: 3 \u00b5m\n# H\u00f6he: 3000 nm\n# Value units: nm\n"
+                         "1 2 3\n4 5 6\n7 8 9\n";
+    im_field *f = read_text("deutsch.txt", german, NULL);
+    assert_close(f->delta, 1.0, 1e-15);
+    assert_string_equal(f->unit, "\u00b5m");
+    assert_close(f->data[8], 9e-3, 2e-18); /* 9 nm in µm, to a rounding */
+    im_field_free(f);
+    expect_text_refused("odd_units.txt", "# Width: 3 um\n# Height: 3 furlongs\n1 2 3\n4 5 6\n7 8 9\n",
+                        "expected two length units");
+}
+
+/* Wyko/Vision ASCII: values times the height conversion factor are metres; pixel size the spacing. */
+static void vision_headers_convert_the_values(void **state)
+{
+    (void)state;
+    const char *vision = "h=3 w=4\npixel size=3.69862e-007 m\ndata unit=rad\n"
+                         "height conversion factor (-> m)=6.30079e-008\n1 2 3 4\n5 6 7 8\n9 10 11 -12\n";
+    im_surface_read_info info;
+    im_field *f = read_text("vision.txt", vision, &info);
+    assert_int_equal(f->nx, 4);
+    assert_int_equal(f->ny, 3);
+    assert_close(f->delta, 3.69862e-7, 1e-21);
+    assert_string_equal(f->unit, "m");
+    assert_close(f->data[11], -12 * 6.30079e-8, 1e-22);
+    assert_non_null(strstr(info.conversion, "height conversion factor"));
+    im_field_free(f);
+    expect_text_refused("vision_rows.txt", "h=4 w=4\npixel size=1 um\n1 2 3 4\n5 6 7 8\n9 10 11 12\n",
+                        "the header states 4 columns x 4 rows");
+    expect_text_refused("vision_phase.txt", "h=3 w=3\npixel size=1 um\ndata unit=rad\n1 2 3\n4 5 6\n7 8 9\n",
+                        "data unit = 'rad' is not a length");
+    expect_text_refused("vision_key.txt", "h=3 w=3\nwavelength=633 nm\n1 2 3\n4 5 6\n7 8 9\n",
+                        "a header line of a kind this reader does not know");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(line_scans_are_refused_as_such),
+        cmocka_unit_test(xyz_points_on_a_grid_are_a_map),
+        cmocka_unit_test(decimal_commas_are_read_as_decimals),
+        cmocka_unit_test(gwyddion_headers_in_german_and_two_prefixes),
+        cmocka_unit_test(vision_headers_convert_the_values),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
