@@ -288,6 +288,8 @@ typedef struct im_surface_read_options {
     int field_values;        /* 1: the file holds a field to draw (forces, gaps, displacements), not
                                 heights to solve on: NaN and Inf are kept (a flat punch's gap is +Inf
                                 where it can never touch); fill is then ignored */
+    char channel[64];        /* of a multi-channel instrument file read through Gwyddion: an index or
+                                a title (case ignored); "": the first channel holding lengths */
 } im_surface_read_options;
 
 /* What the reader found and did, for reports and run records. */
@@ -300,7 +302,14 @@ typedef struct im_surface_read_info {
                                 float64; Fortran order transposed to C order"; "" when none */
 } im_surface_read_info;
 
-/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p, else a text matrix) and applies its units: field->delta
+/* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p), else as text (see im_text_read) when the
+ * file is text whose first data line starts with a number, else through Gwyddion's file modules when
+ * this build has them (im_gwyddion_reader): Bruker Nanoscope, Asylum .ibw, Park TIFF, Zygo MetroPro,
+ * Wyko .opd, Sensofar .plu, Alicona .al3d, Digital Surf .sur, FRT, Nanosurf .nid, Molecular Imaging
+ * .mi, WSxM .stp, BCR and more (`indentmap formats` lists them). From such a file the channel
+ * options->channel names is read, by default the first whose values are lengths (a file of one
+ * channel without a unit is read as a bare matrix); masked (invalid) points become missing points;
+ * info->conversion names the module and channel. Then its units are applied: field->delta
  * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
  * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
  * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
@@ -311,6 +320,12 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
 
 /* im_surface_read_with(path, NULL, out, NULL). */
 int im_surface_read(const char *path, im_field **out);
+
+/* The path of indentmap-gwyddion-read, the program that runs Gwyddion's file modules (GPL-2.0+, kept
+ * out of this library: see README's License), or NULL when this build has none. The environment
+ * variable INDENTMAP_GWYDDION_READER chooses another; otherwise the build tree's, then the installed
+ * one. */
+const char *im_gwyddion_reader(void);
 /* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, .x3p, else a text
  * matrix. A NaN or Inf height is refused before anything is written (IM_EINVAL naming the path and
  * the point), here and by each format's writer: no reader takes such a file back. */

@@ -16,6 +16,7 @@ struct option;
 /* Subcommands: argv[0] is the subcommand's name. Return the process exit status. */
 int cli_surface(int argc, char **argv);
 int cli_info(int argc, char **argv);
+int cli_formats(int argc, char **argv);
 int cli_render(int argc, char **argv);
 int cli_render_view3d(int argc, char **argv); /* render view3d (render_view3d.c) */
 int cli_indent(int argc, char **argv);
@@ -83,6 +84,10 @@ int cli_parse_double(const char *option, const char *text, double min, double ma
 /* A length unit for --unit or --height-unit (io.h: m, mm, µm or um, nm, ...), copied into out
  * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
 int cli_parse_length_unit(const char *option, const char *text, char *out);
+
+/* --channel of an instrument file (io.h: an index or a title, read through Gwyddion): 1 to 63 bytes,
+ * copied into out (64 bytes); 0, or -1 after saying what was expected. */
+int cli_parse_channel(const char *text, char *out);
 
 /* A path given to an option (--out, --psd, --frames, --wisdom): any text but the empty one, which names
  * no file (it failed later as "indentmap: : cannot create directory"). 0, or -1 after saying so. */

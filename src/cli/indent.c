@@ -38,6 +38,8 @@ static void usage(FILE *stream)
             "  --delta D           patch side: of the smooth surface (default 1), or overriding SURFACE's\n"
             "  --unit U            length unit of delta (m, mm, um, nm, ...); overrides SURFACE's\n"
             "  --height-unit U     unit of SURFACE's heights, converted to --unit (default: --unit)\n"
+            "  --channel C         SURFACE's channel (index or title), for an instrument file read through\n"
+            "                      Gwyddion (default: the first holding heights)\n"
             "  --length-unit U     solve in this length unit (m: SI): SURFACE's spacing and heights are\n"
             "                      converted into it; approaches, gaps and displacements are in it\n"
             "  --e-star-unit U     the unit of --e-star (e.g. Pa), for the records: forces are in\n"
@@ -148,7 +150,7 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
@@ -158,6 +160,7 @@ static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
     {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+    {"channel", required_argument, 0, OPT_CHANNEL},
     {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
     {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
     {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
@@ -215,6 +218,7 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
+    case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
     case OPT_FILL: o->read.fill = 1; return 0;
     case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
     case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);

@@ -18,6 +18,7 @@ static const subcommand SUBCOMMANDS[] = {
     {"indent", cli_indent, "indent a surface with a cone, sphere or flat punch: history.csv, run.json, fields"},
     {"render", cli_render, "draw a force or height field file as a figure (PNG, PDF, SVG) or animation"},
     {"run", cli_run, "run a scene file (scenes/fig4.ini: the paper's Fig. 4): solve, render, write"},
+    {"formats", cli_formats, "list the surface formats this build reads (its own, and Gwyddion's file modules)"},
     {"info", cli_info, "print the version, FFTW version and OpenMP thread count"},
 #if IM_HAVE_MPI
     {"mpi-indent", cli_mpi_indent, "one indentation of one surface over MPI ranks (mpirun -n K indentmap mpi-indent)"},

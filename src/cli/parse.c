@@ -69,6 +69,16 @@ int cli_parse_length_unit(const char *option, const char *text, char *out)
     return 0;
 }
 
+int cli_parse_channel(const char *text, char *out)
+{
+    if (!text[0] || strlen(text) >= 64) {
+        fprintf(stderr, "indentmap: --channel '%.70s': expected a channel's index or title of 1 to 63 bytes\n", text);
+        return -1;
+    }
+    snprintf(out, 64, "%s", text);
+    return 0;
+}
+
 int cli_parse_path(const char *option, const char *text, const char **out)
 {
     if (text[0] == '\0') {

@@ -24,6 +24,8 @@ static void usage(FILE *stream)
             "  --delta D          patch side in physical units (default 1); with --stats, overrides the file's\n"
             "  --unit U           length unit of delta (m, mm, um, nm, ...); with --stats, overrides the file's\n"
             "  --height-unit U    with --stats: unit of the file's heights, converted to --unit\n"
+            "  --channel C        with --stats: the channel (index or title) of an instrument file read\n"
+            "                     through Gwyddion (default: the first holding heights)\n"
             "  --fill             with --stats: fill missing points (NaN) from their neighbours (default:\n"
             "                     refuse them, naming the first)\n"
             "  --crop X0,Y0,NX,NY with --stats: measure only this block of the file\n"
@@ -54,13 +56,14 @@ typedef struct surface_options {
     const char *out, *stats, *png, *psd, *histograms;
 } surface_options;
 
-enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
+enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
        OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"n", required_argument, 0, OPT_N}, {"m", required_argument, 0, OPT_M},
     {"delta", required_argument, 0, OPT_DELTA}, {"hurst", required_argument, 0, OPT_HURST},
     {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+    {"channel", required_argument, 0, OPT_CHANNEL},
     {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
     {"detrend", required_argument, 0, OPT_DETREND}, {"window", required_argument, 0, OPT_WINDOW},
     {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
@@ -99,6 +102,7 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
+    case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
     case OPT_FILL: o->read.fill = o->preparation_given = 1; return 0;
     case OPT_CROP: o->preparation_given = 1; return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: o->preparation_given = 1; return cli_parse_detrend(arg, &o->preparation.detrend);
@@ -296,8 +300,8 @@ static int parse_options(int argc, char **argv, surface_options *o)
         fprintf(stderr, "indentmap: surface: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
-    if (!o->stats && (o->read.set.height[0] || o->preparation_given)) {
-        fprintf(stderr, "indentmap: surface: --height-unit, --fill, --crop, --detrend and --window prepare a file: "
+    if (!o->stats && (o->read.set.height[0] || o->read.channel[0] || o->preparation_given)) {
+        fprintf(stderr, "indentmap: surface: --height-unit, --channel, --fill, --crop, --detrend and --window read a file: "
                 "use them with --stats\n");
         return -1;
     }

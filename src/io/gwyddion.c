@@ -1,0 +1,247 @@
+/* Instrument formats through Gwyddion's file modules: the program that runs them, and its stream. */
+#define _GNU_SOURCE /* pipe2 */
+#include "io/gwyddion.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+const char *im_gwyddion_reader(void)
+{
+    const char *chosen = getenv("INDENTMAP_GWYDDION_READER");
+    if (chosen && chosen[0])
+        return access(chosen, X_OK) == 0 ? chosen : NULL;
+#ifdef IM_GWYDDION_READER_BUILD
+    if (access(IM_GWYDDION_READER_BUILD, X_OK) == 0)
+        return IM_GWYDDION_READER_BUILD;
+#endif
+#ifdef IM_GWYDDION_READER_INSTALLED
+    if (access(IM_GWYDDION_READER_INSTALLED, X_OK) == 0)
+        return IM_GWYDDION_READER_INSTALLED;
+#endif
+    return NULL;
+}
+
+enum { STREAM_LINE = 4096, MAX_LISTED = 8 };
+
+/* One text line of the stream, without its newline, control bytes shown as '?' (titles come from
+ * the files); 0 at the end of the stream. */
+static int stream_line(FILE *stream, char *line)
+{
+    if (!fgets(line, STREAM_LINE, stream))
+        return 0;
+    size_t length = strcspn(line, "\n");
+    if (line[length] != '\n')
+        for (int c = fgetc(stream); c != EOF && c != '\n'; c = fgetc(stream))
+            ; /* a longer line is cut */
+    line[length] = '\0';
+    for (char *at = line; *at; ++at)
+        if ((unsigned char)*at < 0x20 && *at != '\t')
+            *at = '?';
+    return 1;
+}
+
+typedef struct stream_header {
+    char module[64];
+    char channels[512]; /* "0 'Height' [m], 1 'Phase' [deg], ..." for messages */
+    int channel_count;
+    int id, nx, ny, masked;
+    double x_extent, y_extent;
+    char lateral[16], height[16];
+    char title[64];     /* the chosen channel's */
+} stream_header;
+
+/* "channel ID<TAB>XRES<TAB>YRES<TAB>ZUNIT<TAB>TITLE": appended to the list for messages. */
+static void take_channel_line(const char *line, stream_header *header)
+{
+    int id = -1, consumed = 0;
+    char unit[32] = "";
+    sscanf(line, "channel %d\t%*d\t%*d\t%31[^\t]\t%n", &id, unit, &consumed);
+    const char *title = consumed ? line + consumed : "";
+    size_t used = strlen(header->channels);
+    if (header->channel_count < MAX_LISTED)
+        snprintf(header->channels + used, sizeof header->channels - used, "%s%d '%.40s' [%s]",
+                 header->channel_count ? ", " : "", id, title, unit);
+    else if (header->channel_count == MAX_LISTED)
+        snprintf(header->channels + used, sizeof header->channels - used, ", ...");
+    ++header->channel_count;
+}
+
+static int take_field_line(const char *path, const char *line, stream_header *header)
+{
+    char lateral[32], height[32];
+    if (sscanf(line, "field %d %d %d %lf %lf %31s %31s %d", &header->id, &header->nx, &header->ny,
+               &header->x_extent, &header->y_extent, lateral, height, &header->masked) != 8 ||
+        header->nx < 1 || header->ny < 1 || header->nx > IM_FIELD_MAX_SIDE || header->ny > IM_FIELD_MAX_SIDE ||
+        !isfinite(header->x_extent) || !(header->x_extent > 0.0) || !isfinite(header->y_extent) ||
+        !(header->y_extent > 0.0) || (header->masked != 0 && header->masked != 1))
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's reader described the field as '%.80s': expected sides 1 to %d "
+                       "and extents > 0", path, line, IM_FIELD_MAX_SIDE);
+    snprintf(header->lateral, sizeof header->lateral, "%.15s", strcmp(lateral, "-") ? lateral : "");
+    snprintf(header->height, sizeof header->height, "%.15s", strcmp(height, "-") ? height : "");
+    return IM_OK;
+}
+
+/* The chosen channel's title, from the channel lines seen (for the record). */
+static void remember_title(const char *line, stream_header *header, int id)
+{
+    int seen = -1, consumed = 0;
+    sscanf(line, "channel %d\t%*d\t%*d\t%*[^\t]\t%n", &seen, &consumed);
+    if (seen == id && consumed)
+        snprintf(header->title, sizeof header->title, "%.63s", line + consumed);
+}
+
+static int read_stream_header(FILE *stream, const char *path, stream_header *header)
+{
+    char line[STREAM_LINE];
+    if (!stream_line(stream, line) || strcmp(line, "indentmap-gwyddion-read 1") != 0)
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's reader gave no answer one can read (first line '%.40s')", path,
+                       line);
+    char channel_lines[MAX_LISTED * 2][128] = {{0}};
+    int kept = 0;
+    while (stream_line(stream, line)) {
+        if (strncmp(line, "error ", 6) == 0)
+            return im_fail(IM_EFORMAT, "%s: Gwyddion's file modules cannot read it: %.200s", path, line + 6);
+        if (sscanf(line, "module %63s", header->module) == 1)
+            continue;
+        if (strncmp(line, "channel ", 8) == 0) {
+            take_channel_line(line, header);
+            if (kept < MAX_LISTED * 2)
+                snprintf(channel_lines[kept++], sizeof channel_lines[0], "%.127s", line);
+            continue;
+        }
+        if (strncmp(line, "field ", 6) != 0)
+            return im_fail(IM_EFORMAT, "%s: Gwyddion's reader wrote '%.40s': expected a field", path, line);
+        int status = take_field_line(path, line, header);
+        for (int k = 0; status == IM_OK && k < kept; ++k)
+            remember_title(channel_lines[k], header, header->id);
+        return status;
+    }
+    return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended before the field", path);
+}
+
+/* The heights, and NaN where the mask marks a point invalid; nothing may follow. */
+static int read_stream_values(FILE *stream, const char *path, const stream_header *header, im_field *field)
+{
+    size_t count = im_field_count(field);
+    if (fread(field->data, sizeof(double), count, stream) != count)
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended inside the heights (%zu expected)", path, count);
+    for (size_t k = 0; header->masked && k < count; ++k) {
+        int invalid = fgetc(stream);
+        if (invalid == EOF)
+            return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended inside the mask", path);
+        if (invalid)
+            field->data[k] = NAN;
+    }
+    return fgetc(stream) == EOF ? IM_OK : im_fail(IM_EFORMAT, "%s: Gwyddion's reader wrote more than the field", path);
+}
+
+/* Gwyddion keeps values in base SI units: heights in "m", and any other unit is not a height. */
+static int state_units(const char *path, const stream_header *header, surface_stated *stated)
+{
+    if (header->height[0] && strcmp(header->height, "m") != 0)
+        return im_fail(IM_EFORMAT, "%s: channel %d '%.40s' holds values in '%s', not heights (a length); its "
+                       "channels: %s; choose one with --channel", path, header->id, header->title, header->height,
+                       header->channels);
+    *stated = (surface_stated){.spacing_keys = "Gwyddion's xreal / xres and yreal / yres",
+                               .lateral_key = "Gwyddion's lateral unit", .height_key = "Gwyddion's value unit"};
+    stated->units.delta_x = header->x_extent / header->nx;
+    stated->units.delta_y = header->y_extent / header->ny;
+    snprintf(stated->units.lateral, sizeof stated->units.lateral, "%s", header->lateral);
+    snprintf(stated->units.height, sizeof stated->units.height, "%s", header->height);
+    snprintf(stated->conversion, sizeof stated->conversion, "Gwyddion '%.16s': channel %d '%.24s' of %d",
+             header->module, header->id, header->title, header->channel_count);
+    return IM_OK;
+}
+
+int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated)
+{
+    *out = NULL;
+    stream_header header = {0};
+    int status = read_stream_header(stream, path, &header);
+    if (status == IM_OK)
+        status = state_units(path, &header, stated);
+    im_field *field = NULL;
+    if (status == IM_OK)
+        status = im_field_create(header.nx, header.ny, 1.0, &field);
+    if (status == IM_OK)
+        status = read_stream_values(stream, path, &header, field);
+    if (status == IM_OK)
+        *out = field;
+    else
+        im_field_free(field);
+    return status;
+}
+
+/* Starts the program on path with its standard output on a pipe (*from), its input and errors on
+ * /dev/null (Gwyddion's warnings are not this reader's messages). */
+static int start_reader(const char *program, const char *path, const char *channel, pid_t *child, FILE **from)
+{
+    int ends[2];
+    if (pipe2(ends, O_CLOEXEC) != 0)
+        return im_fail(IM_EIO, "%s: cannot start Gwyddion's reader: %s", path, strerror(errno));
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, ends[1], 1);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    char *arguments[] = {(char *)program, (char *)path, channel[0] ? (char *)channel : NULL, NULL};
+    int failed = posix_spawn(child, program, &actions, NULL, arguments, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(ends[1]);
+    if (failed) {
+        close(ends[0]);
+        return im_fail(IM_EIO, "%s: cannot start Gwyddion's reader %s: %s", path, program, strerror(failed));
+    }
+    *from = fdopen(ends[0], "rb");
+    if (*from)
+        return IM_OK;
+    close(ends[0]); /* the reader gets SIGPIPE */
+    return im_fail(IM_ENOMEM, "%s: cannot read Gwyddion's reader: %s", path, strerror(errno));
+}
+
+/* The program's end: a crash in a vendor parser is a refusal of the file, not of the caller. */
+static int finish_reader(const char *path, pid_t child, int parsed)
+{
+    int how;
+    while (waitpid(child, &how, 0) < 0 && errno == EINTR)
+        ;
+    if (WIFSIGNALED(how) && WTERMSIG(how) != SIGPIPE)
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's file module crashed reading it (signal %d): a damaged file?", path,
+                       WTERMSIG(how));
+    return parsed;
+}
+
+int gwyddion_read_raw(const char *path, const char *channel, im_field **out, surface_stated *stated)
+{
+    *out = NULL;
+    const char *program = im_gwyddion_reader();
+    if (!program)
+        return im_fail(IM_EFORMAT, "%s: a format read through Gwyddion's file modules, which this build lacks "
+                       "(install libgwyddion20-dev and gwyddion, then rebuild)", path);
+    pid_t child;
+    FILE *from = NULL;
+    int status = start_reader(program, path, channel ? channel : "", &child, &from);
+    if (status == IM_OK) {
+        status = gwyddion_stream_parse(from, path, out, stated);
+        fclose(from); /* before the wait: a reader still writing gets SIGPIPE rather than blocking */
+    }
+    if (from || status != IM_EIO)
+        status = finish_reader(path, child, status);
+    if (status != IM_OK && *out) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    return status;
+}

@@ -1,0 +1,210 @@
+/* indentmap-gwyddion-read: reads one instrument file with Gwyddion's file modules and hands the
+ * chosen channel to indentmap over its standard output.
+ *
+ * Why a separate program: Gwyddion's file modules (GPL-2.0-or-later) are plug-ins of the Gwyddion
+ * application and pull GTK 2 in at run time; a vendor parser that crashes on a damaged file must not
+ * take the caller (a Python kernel, an MPI rank) down with it. So libindentmap never links them: it
+ * runs this program (src/io/gwyddion.c) and reads the stream below.
+ *
+ * Usage: indentmap-gwyddion-read FILE [CHANNEL]      CHANNEL: an index or a title; default: the first
+ *                                                    channel whose values are lengths
+ *        indentmap-gwyddion-read --formats           the file modules that load, "NAME<TAB>WHAT" a line
+ * Stream (text lines, then binary; see src/io/gwyddion.h):
+ *   indentmap-gwyddion-read 1
+ *   module NAME
+ *   channel ID<TAB>XRES<TAB>YRES<TAB>ZUNIT<TAB>TITLE      one line per channel, ZUNIT "-" when none
+ *   field ID XRES YRES XREAL YREAL XYUNIT ZUNIT MASK      the chosen channel (units "-" when none)
+ *   XRES*YRES doubles (native byte order), row 0 first; then, when MASK is 1, XRES*YRES bytes (1: the
+ *   point is invalid)
+ * or, at any point before the field line, "error MESSAGE" and exit status 2. */
+#include <libgwyddion/gwyddion.h>
+#include <libgwymodule/gwymodule-file.h>
+#include <libgwymodule/gwymoduleloader.h>
+#include <libprocess/datafield.h>
+#include <libprocess/gwyprocess.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Declared in Gwyddion's app/app.h, which includes GTK's development headers; this program needs
+ * only this one function of it (loading the file modules without a display). */
+void gwy_app_init_nongui(const gchar *option, ...);
+
+enum { MAX_CHANNELS = 256 };
+
+typedef struct channel {
+    int id;
+    GwyDataField *data, *mask;
+    const char *title;
+} channel;
+
+static int fail(const char *format, const char *detail)
+{
+    printf("error ");
+    printf(format, detail);
+    printf("\n");
+    return 2;
+}
+
+/* The channel id of a container key "/ID/data", or -1. */
+static int data_key_id(const char *key)
+{
+    int id, consumed = 0;
+    return sscanf(key, "/%d/data%n", &id, &consumed) == 1 && key[consumed] == '\0' && id >= 0 ? id : -1;
+}
+
+static void collect_channel(gpointer key, gpointer value, gpointer user)
+{
+    GArray *channels = user;
+    int id = data_key_id(g_quark_to_string(GPOINTER_TO_UINT(key)));
+    GValue *held = value;
+    if (id < 0 || !G_VALUE_HOLDS_OBJECT(held) || !GWY_IS_DATA_FIELD(g_value_get_object(held)))
+        return;
+    channel found = {.id = id, .data = g_value_get_object(held)};
+    g_array_append_val(channels, found);
+}
+
+static gint by_id(gconstpointer a, gconstpointer b)
+{
+    return ((const channel *)a)->id - ((const channel *)b)->id;
+}
+
+/* Each channel's title and mask ("/ID/data/title", "/ID/mask"), when the file has them. */
+static void complete_channels(GwyContainer *container, GArray *channels)
+{
+    for (guint k = 0; k < channels->len; ++k) {
+        channel *c = &g_array_index(channels, channel, k);
+        char key[64];
+        const guchar *title = NULL;
+        snprintf(key, sizeof key, "/%d/data/title", c->id);
+        c->title = gwy_container_gis_string_by_name(container, key, &title) ? (const char *)title : "";
+        GObject *mask = NULL;
+        snprintf(key, sizeof key, "/%d/mask", c->id);
+        if (gwy_container_gis_object_by_name(container, key, &mask) && GWY_IS_DATA_FIELD(mask))
+            c->mask = GWY_DATA_FIELD(mask);
+    }
+}
+
+/* A unit's plain name, "-" for none (the caller frees it). */
+static gchar *unit_name(GwySIUnit *unit)
+{
+    gchar *name = gwy_si_unit_get_string(unit, GWY_SI_UNIT_FORMAT_PLAIN);
+    if (!name[0]) {
+        g_free(name);
+        name = g_strdup("-");
+    }
+    return name;
+}
+
+static int holds_lengths(const channel *c)
+{
+    gchar *z = unit_name(gwy_data_field_get_si_unit_z(c->data));
+    int length = strcmp(z, "m") == 0;
+    g_free(z);
+    return length;
+}
+
+static void print_channels(const GArray *channels)
+{
+    for (guint k = 0; k < channels->len; ++k) {
+        const channel *c = &g_array_index(channels, channel, k);
+        gchar *z = unit_name(gwy_data_field_get_si_unit_z(c->data));
+        printf("channel %d\t%d\t%d\t%s\t%s\n", c->id, gwy_data_field_get_xres(c->data),
+               gwy_data_field_get_yres(c->data), z, c->title);
+        g_free(z);
+    }
+}
+
+/* The channel asked for (an index or a title, case ignored), or by default the first holding lengths
+ * (a lone channel of unknown unit is taken as a bare matrix would be); NULL when none is. */
+static const channel *choose_channel(const GArray *channels, const char *asked)
+{
+    char *end = NULL;
+    long index = asked ? strtol(asked, &end, 10) : -1;
+    int by_index = asked && end != asked && *end == '\0';
+    for (guint k = 0; k < channels->len; ++k) {
+        const channel *c = &g_array_index(channels, channel, k);
+        if (asked ? (by_index ? c->id == index : g_ascii_strcasecmp(c->title, asked) == 0) : holds_lengths(c))
+            return c;
+    }
+    if (!asked && channels->len == 1) {
+        gchar *z = unit_name(gwy_data_field_get_si_unit_z(g_array_index(channels, channel, 0).data));
+        int unknown = strcmp(z, "-") == 0;
+        g_free(z);
+        return unknown ? &g_array_index(channels, channel, 0) : NULL;
+    }
+    return NULL;
+}
+
+static void write_field(const channel *c)
+{
+    GwyDataField *data = c->data;
+    int xres = gwy_data_field_get_xres(data), yres = gwy_data_field_get_yres(data);
+    int masked = c->mask && gwy_data_field_get_xres(c->mask) == xres && gwy_data_field_get_yres(c->mask) == yres;
+    gchar *xy = unit_name(gwy_data_field_get_si_unit_xy(data)), *z = unit_name(gwy_data_field_get_si_unit_z(data));
+    printf("field %d %d %d %.17g %.17g %s %s %d\n", c->id, xres, yres, gwy_data_field_get_xreal(data),
+           gwy_data_field_get_yreal(data), xy, z, masked);
+    g_free(xy);
+    g_free(z);
+    fwrite(gwy_data_field_get_data_const(data), sizeof(double), (size_t)xres * (size_t)yres, stdout);
+    if (!masked)
+        return;
+    const double *mask = gwy_data_field_get_data_const(c->mask);
+    for (size_t k = 0; k < (size_t)xres * (size_t)yres; ++k)
+        putchar(mask[k] > 0.5);
+}
+
+/* A module that loads files: its name and what it reads, e.g. "nanoscope<TAB>Nanoscope III files". */
+static void print_module(gpointer name, gpointer user)
+{
+    (void)user;
+    if (gwy_file_func_get_operations(name) & GWY_FILE_OPERATION_LOAD)
+        printf("%s\t%s\n", (const char *)name, gwy_file_func_get_description(name));
+}
+
+static int list_formats(void)
+{
+    gwy_file_func_foreach(print_module, NULL);
+    return 0;
+}
+
+static int read_file(const char *path, const char *asked)
+{
+    printf("indentmap-gwyddion-read 1\n");
+    GError *error = NULL;
+    const char *module = gwy_file_detect(path, FALSE, GWY_FILE_OPERATION_LOAD);
+    GwyContainer *container = gwy_file_load(path, GWY_RUN_NONINTERACTIVE, &error);
+    if (!container)
+        return fail("%s", error ? error->message : "Gwyddion gave no reason");
+    printf("module %s\n", module ? module : "-");
+    GArray *channels = g_array_new(FALSE, FALSE, sizeof(channel));
+    gwy_container_foreach(container, NULL, collect_channel, channels);
+    g_array_sort(channels, by_id);
+    complete_channels(container, channels);
+    print_channels(channels);
+    const channel *chosen = channels->len ? choose_channel(channels, asked) : NULL;
+    int status = 0;
+    if (chosen)
+        write_field(chosen);
+    else
+        status = channels->len == 0 ? fail("%s", "the file holds no image (data field)")
+                 : asked ? fail("no channel has the index or title '%s'", asked)
+                         : fail("%s", "no channel holds heights (values in a length unit)");
+    g_array_free(channels, TRUE);
+    g_object_unref(container);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || argc > 3) {
+        fprintf(stderr, "usage: %s FILE [CHANNEL] | --formats\n", argv[0]);
+        return 2;
+    }
+    gwy_app_init_nongui(NULL);
+    if (strcmp(argv[1], "--formats") == 0)
+        return list_formats();
+    int status = read_file(argv[1], argc == 3 ? argv[2] : NULL);
+    return fflush(stdout) == 0 && status == 0 ? 0 : status ? status : 1;
+}
