@@ -368,6 +368,46 @@ static void negative_length(int ncid, int x, int y) { heights_with_length(ncid, 
 static void nan_length(int ncid, int x, int y) { heights_with_length(ncid, x, y, NAN, "um", "um"); }
 static void two_units(int ncid, int x, int y) { heights_with_length(ncid, x, y, 3.0, "um", "nm"); }
 
+/* SurfaceTopography and contact.engineering today: x:unit, y:unit and heights:unit (nc-1.nc of its
+ * examples); heights 1..6 in um on a grid of nm. */
+static void heights_with_unit_attributes(int ncid, int x, int y)
+{
+    int dims[2] = {x, y}, var, xv, yv;
+    double length = 3.0, heights[6] = {1, 2, 3, 4, 5, 6};
+    nc_def_var(ncid, "heights", NC_DOUBLE, 2, dims, &var);
+    nc_def_var(ncid, "x", NC_DOUBLE, 1, &x, &xv);
+    nc_def_var(ncid, "y", NC_DOUBLE, 1, &y, &yv);
+    nc_put_att_double(ncid, xv, "length", NC_DOUBLE, 1, &length);
+    nc_put_att_text(ncid, xv, "unit", 2, "nm");
+    nc_put_att_text(ncid, yv, "unit", 2, "nm");
+    nc_put_att_text(ncid, var, "unit", 2, "um");
+    nc_enddef(ncid);
+    nc_put_var_double(ncid, var, heights);
+}
+
+static void netcdf_unit_attributes_are_read_and_written(void **state)
+{
+    (void)state;
+    im_field *g = NULL;
+    assert_int_equal(im_surface_read(write_nc("unit.nc", heights_with_unit_attributes), &g), IM_OK);
+    assert_close(g->delta, 1.0, 0.0);
+    assert_string_equal(g->unit, "nm");
+    assert_close(g->data[1], 3000.0, 1e-12); /* heights(x = 1, y = 0) = 3 um, in nm */
+    int ncid, var;
+    char unit[16] = "";
+    assert_int_equal(im_netcdf_write(test_path("written.nc"), g), IM_OK);
+    assert_int_equal(nc_open(test_path("written.nc"), NC_NOWRITE, &ncid), NC_NOERR);
+    const char *names[] = {"x", "y", "heights"};
+    for (int k = 0; k < 3; ++k) {
+        memset(unit, 0, sizeof unit);
+        assert_int_equal(nc_inq_varid(ncid, names[k], &var), NC_NOERR);
+        assert_int_equal(nc_get_att_text(ncid, var, "unit", unit), NC_NOERR);
+        assert_string_equal(unit, "nm");
+    }
+    nc_close(ncid);
+    im_field_free(g);
+}
+
 /* NetCDF in SurfaceTopography's layout: a round trip keeps heights (exactly), spacing and unit,
  * through the heights(x, y) transpose of a non-square grid; malformed files are refused naming the
  * file and the dimension, variable or attribute. */
@@ -412,7 +452,7 @@ static void netcdf_round_trip_and_refusals(void **state)
                    "x:length: expected one finite number > 0");
     expect_refusal(im_netcdf_read, write_nc("nan.nc", nan_length), IM_EFORMAT, "x:length: expected one finite");
     expect_refusal(im_netcdf_read, write_nc("units.nc", two_units), IM_EFORMAT,
-                   "x:length_unit 'um' and y:length_unit 'nm' differ");
+                   "x's unit 'um' and y's unit 'nm' differ");
     im_field_free(f);
 }
 
@@ -1015,6 +1055,7 @@ int main(void)
         cmocka_unit_test(npy_of_any_type_is_converted),
         cmocka_unit_test(sdf_files_round_trip_and_refuse),
         cmocka_unit_test(netcdf_round_trip_and_refusals),
+        cmocka_unit_test(netcdf_unit_attributes_are_read_and_written),
         cmocka_unit_test(x3p_round_trip_and_refusals),
         cmocka_unit_test(x3p_checksums_are_checked),
         cmocka_unit_test(memory_probe_reads_the_machine),

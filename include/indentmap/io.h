@@ -239,13 +239,15 @@ int im_sdf_read(const char *path, im_field **out);
 
 /* NetCDF (.nc) in the layout of ContactMechanics/SurfaceTopography and contact.engineering:
  * dimensions x and y, heights(x, y) (first index x; (y, x) is read too), and optional coordinate
- * variables x and y whose attributes `length` (physical size) and `length_unit` (of lengths and
- * heights) state the spacing (length / points) and the unit. Any numeric type is read as double;
+ * variables x and y whose attributes `length` (physical size) and `unit` (today's name; `length_unit`
+ * in older files) state the spacing (length / points) and the lateral unit; heights:unit the unit of
+ * the heights (else the lateral one). Any numeric type is read as double;
  * values equal to the fill value (heights:_FillValue, else netCDF's default for the type, which is
  * also what netCDF returns for values past the end of a truncated file) are missing points. Refused with IM_EFORMAT naming the file and
  * the dimension, variable or attribute at fault. Writing uses the classic 64-bit offset format (as
- * SurfaceTopography does), with length_unit in ASCII ("um" for µm) and periodic = 0, built in
- * memory and written atomically. */
+ * SurfaceTopography does), with the unit in ASCII ("um" for µm) and periodic = 0, built in
+ * memory and written atomically; the unit is written as x:unit, y:unit and heights:unit and, for older
+ * readers, x:length_unit and y:length_unit. */
 int im_netcdf_write(const char *path, const im_field *field);
 int im_netcdf_read(const char *path, im_field **out);
 

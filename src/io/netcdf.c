@@ -62,8 +62,23 @@ static int heights_variable(int ncid, const char *path, int x_dim, int y_dim, in
     return IM_OK;
 }
 
-/* Attribute `length` and `length_unit` of the coordinate variable `name`, when present: the
- * spacing length / points and the unit. IM_EFORMAT naming the attribute when malformed. */
+/* A short text attribute (a unit name) of variable var into unit (16 bytes), when present; IM_EFORMAT
+ * naming "NAME:ATTRIBUTE" when it is not a text of 1 to 15 bytes. */
+static int unit_attribute(int ncid, int var, const char *path, const char *name, const char *attribute, char *unit)
+{
+    nc_type type;
+    size_t count;
+    if (nc_inq_att(ncid, var, attribute, &type, &count) != NC_NOERR)
+        return IM_OK;
+    if (type != NC_CHAR || count < 1 || count > 15 || nc_get_att_text(ncid, var, attribute, unit))
+        return im_fail(IM_EFORMAT, "%s: %s:%s: expected a short text (a unit)", path, name, attribute);
+    unit[count] = '\0';
+    return IM_OK;
+}
+
+/* Attribute `length` of the coordinate variable `name`, when present, gives the spacing length /
+ * points; its unit is `unit` (SurfaceTopography and contact.engineering today) or `length_unit` (their
+ * older files). IM_EFORMAT naming the attribute when malformed. */
 static int coordinate(int ncid, const char *path, const char *name, size_t points, double *spacing, char *unit)
 {
     int var;
@@ -78,12 +93,8 @@ static int coordinate(int ncid, const char *path, const char *name, size_t point
             return im_fail(IM_EFORMAT, "%s: %s:length: expected one finite number > 0", path, name);
         *spacing = length / (double)points;
     }
-    if (nc_inq_att(ncid, var, "length_unit", &type, &count) == NC_NOERR) {
-        if (type != NC_CHAR || count < 1 || count > 15 || nc_get_att_text(ncid, var, "length_unit", unit))
-            return im_fail(IM_EFORMAT, "%s: %s:length_unit: expected a short text", path, name);
-        unit[count] = '\0';
-    }
-    return IM_OK;
+    int status = unit_attribute(ncid, var, path, name, "length_unit", unit);
+    return status == IM_OK ? unit_attribute(ncid, var, path, name, "unit", unit) : status;
 }
 
 /* The variable's fill value as a double: its _FillValue, or netCDF's default fill for its type,
@@ -197,8 +208,11 @@ static int read_open(int ncid, const char *path, im_field **out, surface_stated 
     if (status == IM_OK)
         status = coordinate(ncid, path, "y", ny, &stated->units.delta_y, y_unit);
     if (status == IM_OK && y_unit[0] && strcmp(x_unit, y_unit) != 0)
-        status = im_fail(IM_EFORMAT, "%s: x:length_unit '%s' and y:length_unit '%s' differ: expected one unit",
-                         path, x_unit, y_unit);
+        status = im_fail(IM_EFORMAT, "%s: x's unit '%s' and y's unit '%s' differ: expected one unit", path, x_unit,
+                         y_unit);
+    char height_unit[16] = "";
+    if (status == IM_OK)
+        status = unit_attribute(ncid, var, path, "heights", "unit", height_unit);
     if (status == IM_OK && (status = im_field_create((int)nx, (int)ny, 1.0, out)) != IM_OK)
         im_fail_context(status, "%s", path);
     if (status == IM_OK && (status = read_heights(ncid, path, var, x_first, *out, file)) != IM_OK) {
@@ -206,6 +220,9 @@ static int read_open(int ncid, const char *path, im_field **out, surface_stated 
         *out = NULL;
     }
     memcpy(stated->units.lateral, x_unit, sizeof x_unit);
+    memcpy(stated->units.height, height_unit[0] ? height_unit : x_unit, sizeof height_unit);
+    if (height_unit[0])
+        stated->height_key = "heights:unit";
     return status;
 }
 
@@ -369,8 +386,8 @@ static int open_dataset(const char *path, mapped_file *file, int *ncid)
 int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
-    *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y", .lateral_key = "x:length_unit",
-                               .height_key = "x:length_unit"};
+    *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y", .lateral_key = "x:unit",
+                               .height_key = "x:unit"};
     mapped_file file;
     int ncid, status = open_dataset(path, &file, &ncid);
     if (status != IM_OK)
@@ -405,6 +422,8 @@ static int define_coordinate(int ncid, const char *name, int dim, double length,
         error = nc_put_att_double(ncid, *var, "length", NC_DOUBLE, 1, &length);
     if (!error)
         error = nc_put_att_int(ncid, *var, "periodic", NC_INT, 1, &periodic);
+    if (!error && unit[0]) /* today's name, and the one older readers know */
+        error = nc_put_att_text(ncid, *var, "unit", strlen(unit), unit);
     if (!error && unit[0])
         error = nc_put_att_text(ncid, *var, "length_unit", strlen(unit), unit);
     return error;
@@ -450,6 +469,8 @@ static int write_dataset(int ncid, const im_field *field)
         error = define_coordinate(ncid, "y", dims[1], field->ny * field->delta, unit, &y_var);
     if (!error)
         error = nc_def_var(ncid, "heights", NC_DOUBLE, 2, dims, &h_var);
+    if (!error && unit[0])
+        error = nc_put_att_text(ncid, h_var, "unit", strlen(unit), unit);
     if (!error)
         error = nc_enddef(ncid);
     if (!error)

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Instrument files (issue 25): each read with the grid, spacing, unit and h_rms Gwyddion 2.62 gives for
+# it, or refused with a reason that names what the file is. tests/data/instruments/ holds a few
+# (MIT, see its README); the 61 files of the workplace's shared/test-data/surfaces/ are checked too
+# when that folder is beside the checkout.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+here=$(cd "$(dirname "$0")" && pwd)
+data=$here/data/instruments
+source "$here/lib.sh"
+
+# stats FILE [OPTIONS]: surface --stats without detrending or taper, as Gwyddion's rms is taken.
+stats() { local file=$1; shift; "$cli" surface --stats "$file" --detrend none --window none "$@"; }
+
+# stated FILE KEY VALUE [REL]: the --stats line KEY holds VALUE (to REL relative, default 5e-6: the
+# six digits printed).
+stated() {
+  awk -v key="$2" -v want="$3" -v rel="${4:-5e-6}" '
+    index($0, key) == 1 { split(substr($0, length(key) + 1), w, " "); got = w[1] + 0; found = 1
+      if ((got - want) ^ 2 > (rel * want) ^ 2) { print key ": " got ", Gwyddion: " want; exit 1 } }
+    END { if (!found) { print "no line " key; exit 1 } }' "$1"
+}
+
+# The text readers (no Gwyddion needed).
+stats "$data/matrix-4.txt" >"$dir/vision" 2>&1
+check "Vision export: grid and pixel size" grep -q 'grid             75 x 305, delta = 3.69862e-07 m' "$dir/vision"
+check "Vision export: heights through the conversion factor" grep -q 'height conversion factor 2.91818e-08' "$dir/vision"
+stats "$data/xyz-1-different-order.txt" >"$dir/xyz" 2>&1
+check "scrambled x y z points: a 4 x 4 map" grep -q 'grid             4 x 4, delta = 1 *$' "$dir/xyz"
+check "German Gwyddion export: Breite and Höhe read, non-square refused naming both" expect_exit 2 \
+  "x spacing 4.11333333 and y spacing 1.419725 µm" "$cli" surface --stats "$data/gwyddion-export-german.txt"
+
+if "$cli" formats | grep -q "not in this build"; then
+  echo "indentmap-gwyddion-read not built: the instrument formats are not checked"
+  finish
+  exit $?
+fi
+check "formats lists Gwyddion's Nanoscope module" bash -c "'$cli' formats | grep -q '^  nanoscope '"
+
+# Gwyddion 2.62's numbers: xres x yres, xreal / xres, gwy_data_field_get_rms of the default channel.
+stats "$data/di-3.di" >"$dir/di3" 2>&1
+check "Nanoscope: grid and spacing" grep -q 'grid             256 x 256, delta = 3.90625e-08 m' "$dir/di3"
+check "Nanoscope: the first channel in a length unit" grep -q "channel 0 'ZSensor' of 4" "$dir/di3"
+check "Nanoscope: h_rms as Gwyddion's" stated "$dir/di3" h_rms 2.26425e-07
+stats "$data/di-3.di" --channel Height >"$dir/di3h" 2>&1
+check "Nanoscope: --channel by title" stated "$dir/di3h" h_rms 2.64003e-07
+check "Nanoscope: a channel that is not heights is refused, naming the channels" expect_exit 2 \
+  "channel 2 'Phase' holds values in 'deg', not heights (a length); its channels: 0 'ZSensor' [m]" \
+  "$cli" surface --stats "$data/di-3.di" --channel 2
+check "Nanoscope: a channel not there" expect_exit 2 "no channel has the index or title 'Friction'" \
+  "$cli" surface --stats "$data/di-3.di" --channel Friction
+# The same scan through Gwyddion's text export and through the instrument file: one surface.
+"$cli" surface --stats "$data/matrix-3.txt" >"$dir/m3" 2>&1
+"$cli" surface --stats "$data/di-3.di" >"$dir/di3p" 2>&1
+check "Gwyddion's export of the ZSensor channel gives the Nanoscope file's slopes" \
+  bash -c "diff <(grep \"^h'rms\" '$dir/m3') <(grep \"^h'rms\" '$dir/di3p')"
+check "... and its h_rms (µm against m)" bash -c "grep -qx 'h_rms            0.0352229' '$dir/m3' && grep -qx 'h_rms            3.52229e-08' '$dir/di3p'"
+stats "$data/stp-1.stp" >"$dir/stp" 2>&1
+check "WSxM: grid and spacing" grep -q 'grid             256 x 256, delta = 2.34375e-09 m' "$dir/stp"
+check "WSxM: h_rms as Gwyddion's" stated "$dir/stp" h_rms 1.65416e-09
+stats "$data/al3d-1.al3d" >"$dir/al3d" 2>&1
+check "Alicona: grid and spacing" grep -q 'grid             200 x 296, delta = 4.38027e-07 m' "$dir/al3d"
+# Gwyddion's rms is one-pass: heights 1e4 times their rms lose it about 3e-6 (two-pass: 7.688266e-06).
+check "Alicona: h_rms as Gwyddion's (to its one-pass rounding)" stated "$dir/al3d" h_rms 7.68829e-06 1e-5
+stats "$data/10x10-one_channel_without_name.ibw" >"$dir/ibw" 2>&1
+check "Igor wave without units: read as a bare matrix" grep -q 'grid             10 x 10, delta = 1 *$' "$dir/ibw"
+check "Igor wave: h_rms as Gwyddion's" stated "$dir/ibw" h_rms 0.480049
+head -c 300000 "$data/di-3.di" >"$dir/cut.di"
+check "a truncated Nanoscope file is refused by its module's reason" expect_exit 2 \
+  "cut.di: Gwyddion's file modules cannot read it: File is truncated" "$cli" surface --stats "$dir/cut.di"
+printf 'GARBAGE\0\1\2\3 not a surface' >"$dir/junk.bin"
+check "a binary file no module reads" expect_exit 2 "junk.bin: Gwyddion's file modules cannot read it" \
+  "$cli" surface --stats "$dir/junk.bin"
+"$cli" indent "$data/stp-1.stp" --channel Topography --crop 96,96,64,64 --approach 1e-9:4e-9:2 --out "$dir/run" \
+  >"$dir/indent" 2>&1
+check "indent solves on a WSxM scan's channel" grep -q '^2,' "$dir/run/history.csv"
+
+# refused_with PHRASE OUTPUT: surface --stats printed PHRASE and no grid.
+refused_with() { grep -qF -- "$1" "$2" && ! grep -q '^grid' "$2"; }
+
+# The shared folder's 61 files: read (grid given) or refused with the phrase that says why.
+shared=${IM_TEST_SURFACES:-$here/../../shared/test-data/surfaces}
+if [ ! -d "$shared" ]; then
+  echo "no $shared: the 61 shared instrument files are not checked"
+  finish
+  exit $?
+fi
+while read -r file outcome rest; do
+  [ -z "$file" ] && continue
+  "$cli" surface --stats "$shared/$file" >"$dir/one" 2>&1
+  if [ "$outcome" = read ]; then
+    check "$file: read $rest" grep -q "^grid             $rest" "$dir/one"
+  else
+    check "$file: refused ($rest)" refused_with "$rest" "$dir/one"
+  fi
+done <"$here/data/instrument_outcomes.txt"
+finish
