@@ -76,6 +76,14 @@ check "a binary file no module reads" expect_exit 2 "junk.bin: Gwyddion's file m
 "$cli" indent "$data/stp-1.stp" --channel Topography --crop 96,96,64,64 --approach 1e-9:4e-9:2 --out "$dir/run" \
   >"$dir/indent" 2>&1
 check "indent solves on a WSxM scan's channel" grep -q '^2,' "$dir/run/history.csv"
+# A scene over an instrument file: its channel key, the file's own h'rms in the table and run.json.
+printf '[scene]\nname = wsxm\noutput = wsxm\n[surfaces]\nfile = %s\nchannel = 0\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
+  "$data/stp-1.stp" >"$dir/wsxm.ini"
+"$cli" run --quiet "$dir/wsxm.ini" >/dev/null 2>"$dir/wsxm.err"
+slope=$(stats "$data/stp-1.stp" --channel Topography | awk '/^h.rms fd/ { print $3 }')
+check "a scene over a WSxM scan: its table's slope is the file's h'rms ($slope)" \
+  test "$(sed -n 2p "$dir/wsxm/table1.csv" | cut -d, -f1)" = "$slope"
+check "... and run.json records the channel" grep -q '"channel": "0"' "$dir/wsxm/run.json"
 
 # refused_with PHRASE OUTPUT: surface --stats printed PHRASE and no grid.
 refused_with() { grep -qF -- "$1" "$2" && ! grep -q '^grid' "$2"; }

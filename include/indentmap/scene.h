@@ -85,6 +85,8 @@ typedef struct im_scene {
     int file_count;                  /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
     enum im_detrend detrend;         /* for the files (default none) */
     int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
+    char channel[64];                /* the files' channel (instrument files read through Gwyddion: an
+                                        index or a title); "": the first holding heights */
     char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
     double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
                                         surface as solved; measured by im_scene_run, which sets

@@ -62,10 +62,14 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
     return _core.histogram(heights, float(delta), _QUANTITIES[quantity], int(bins))
 
 
-def read(path):
-    """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p or a text matrix): a Topography
-    (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives none)."""
-    return Topography(*_core.read_surface(path))
+def read(path, channel=None, fill=False):
+    """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p, text, or an instrument's file
+    through Gwyddion's file modules when the build has them: ``indentmap formats`` lists them): a
+    Topography (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives
+    none). ``channel`` (an index or a title) chooses the channel of a multi-channel instrument file
+    (default: the first holding heights); ``fill=True`` fills missing (masked) points from their
+    neighbours, which are refused otherwise, as ``indent --fill`` does."""
+    return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill)))
 
 
 def write(path, heights, delta=1.0, unit=""):

@@ -153,3 +153,23 @@ def test_theory_matches_the_cli(cli):
     beta = im.theory.beta(rho)
     np.testing.assert_allclose(im.theory.area_ratio_eq12(beta), eq12, rtol=1e-12)
     np.testing.assert_allclose(im.theory.area_ratio_eq6(beta), eq6, rtol=1e-12)
+
+
+def test_instrument_file_channels(cli):
+    """An instrument file through Gwyddion's modules: the default channel is the first holding
+    heights; by title or by index the same other one, with Gwyddion's rms; a channel that is not
+    heights is refused."""
+    import os
+    data = os.path.join(os.environ.get("IM_SOURCE_DIR", ""), "tests", "data", "instruments")
+    if "not in this build" in run_cli(cli, "formats").stdout:
+        pytest.skip("this build has no indentmap-gwyddion-read")
+    di3 = os.path.join(data, "di-3.di")
+    default = im.read(di3)
+    assert default.heights.shape == (256, 256) and default.unit == "m"
+    assert abs(default.delta - 1e-5 / 256) < 1e-20
+    by_title, by_index = im.read(di3, channel="Height"), im.read(di3, channel=3)
+    assert by_title.heights.tobytes() == by_index.heights.tobytes()
+    assert by_title.heights.tobytes() != default.heights.tobytes()
+    assert abs(by_title.heights.std() - 2.64003e-07) < 2e-12  # Gwyddion 2.62's rms of that channel
+    with pytest.raises(im.FormatError, match="holds values in 'deg'"):
+        im.read(di3, channel="Phase")

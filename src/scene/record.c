@@ -22,10 +22,10 @@ static json_t *files_record(const im_scene *scene)
         im_scene_file_path(scene, i, path, sizeof path);
         json_array_append_new(files, json_pack("{s:s, s:f}", "path", path, "slope_rms", scene->file_slopes[i]));
     }
-    return json_pack("{s:o, s:f, s:s, s:s, s:b, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
+    return json_pack("{s:o, s:f, s:s, s:s, s:b, s:s, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
                      "slope_definition", "forward differences of each surface as solved; the ensemble's is their "
                      "root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend], "fill",
-                     scene->fill, "delta", scene->surface.delta, "length_unit",
+                     scene->fill, "channel", scene->channel[0] ? scene->channel : "first holding heights", "delta", scene->surface.delta, "length_unit",
                      scene->file_unit[0] ? scene->file_unit : "delta");
 }
 

@@ -16,6 +16,7 @@ static int file_surface(const im_scene *scene, int i, im_field **out)
     char path[IM_SCENE_PATH];
     int status = im_scene_file_path(scene, i, path, sizeof path);
     im_surface_read_options read = {.fill = scene->fill};
+    memcpy(read.channel, scene->channel, sizeof read.channel);
     if (status == IM_OK)
         status = im_surface_read_with(path, &read, out, NULL);
     if (status == IM_OK && (status = im_surface_detrend(*out, scene->detrend)) != IM_OK) {
