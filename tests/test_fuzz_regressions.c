@@ -8,6 +8,7 @@
 #include "../fuzz/fuzz_checks.h"
 #include "indentmap/io.h"
 #include "indentmap/scene.h"
+#include "io/gwyddion.h"
 
 #include <dirent.h>
 #include <stdio.h>
@@ -28,7 +29,8 @@ static const char *read_like_harness(const char *harness, const char *path, int 
                         : strcmp(harness, "gsf") == 0 ? im_gsf_read
                         : strcmp(harness, "sdf") == 0 ? im_sdf_read
                         : strcmp(harness, "netcdf") == 0 ? im_netcdf_read
-                        : strcmp(harness, "x3p") == 0 ? im_x3p_read : im_text_read;
+                        : strcmp(harness, "x3p") == 0 ? im_x3p_read
+                        : strcmp(harness, "gwyddion") == 0 ? gwyddion_stream_file_read : im_text_read;
     im_field *field = NULL;
     *status = read(path, &field);
     const char *problem = fuzz_field_problem(*status, field);
@@ -76,6 +78,7 @@ static void gsf_inputs(void **state) { (void)state; feed_harness("gsf"); }
 static void sdf_inputs(void **state) { (void)state; feed_harness("sdf"); }
 static void netcdf_inputs(void **state) { (void)state; feed_harness("netcdf"); }
 static void x3p_inputs(void **state) { (void)state; feed_harness("x3p"); }
+static void gwyddion_inputs(void **state) { (void)state; feed_harness("gwyddion"); }
 
 /* fuzz_npy's out-of-memory input (and its .gsf twin): a header claiming 30000 x 30000 values over
  * no data made the reader allocate 7.2 GB before finding the data missing. The refusal must now
@@ -152,6 +155,7 @@ int main(void)
         cmocka_unit_test(sdf_inputs),
         cmocka_unit_test(netcdf_inputs),
         cmocka_unit_test(x3p_inputs),
+        cmocka_unit_test(gwyddion_inputs),
         cmocka_unit_test(oversized_headers_are_refused_before_allocation),
         cmocka_unit_test(netcdf_dimensions_beyond_the_file_are_refused_before_allocation),
         cmocka_unit_test(hostile_netcdf_header_is_refused_before_netcdf),
