@@ -113,6 +113,22 @@ static void vision_headers_convert_the_values(void **state)
                         "a header line of a kind this reader does not know");
 }
 
+/* Text a reader here cannot take, refused by what it is rather than by its first odd byte. */
+static void utf16_and_gzip_text_are_named(void **state)
+{
+    (void)state;
+    const char utf16[] = "\xff\xfe" "1\0 \0" "2\0\n\0";
+    test_write_bytes(test_path("unicode.txt"), utf16, sizeof utf16 - 1);
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read(test_path("unicode.txt"), &f), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "UTF-16 text"));
+    const char gzip[] = "\x1f\x8b\x08\x00\x00\x00\x00\x00";
+    test_write_bytes(test_path("matrix.txt.gz"), gzip, sizeof gzip - 1);
+    assert_int_equal(im_surface_read(test_path("matrix.txt.gz"), &f), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "gzip-compressed: decompress it first"));
+    assert_null(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -121,6 +137,7 @@ int main(void)
         cmocka_unit_test(decimal_commas_are_read_as_decimals),
         cmocka_unit_test(gwyddion_headers_in_german_and_two_prefixes),
         cmocka_unit_test(vision_headers_convert_the_values),
+        cmocka_unit_test(utf16_and_gzip_text_are_named),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

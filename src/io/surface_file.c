@@ -19,33 +19,40 @@ static int has_extension(const char *path, const char *extension)
     return n > e && strcmp(path + n - e, extension) == 0;
 }
 
-/* 1 when the file is text whose first data line (after '#' comments, blank lines and key=value
- * headers) starts with a number, as the text reader needs; 0 for a binary file (a NUL byte in its
- * first 64 KiB) or text of another kind (a vendor's header). A pipe is taken as text: it cannot be
- * looked at twice. */
-static int holds_text_numbers(const char *path)
+enum file_kind { TEXT_OF_NUMBERS, OTHER_TEXT, UTF16_TEXT, GZIP, BINARY };
+
+/* What a file looks like from its first 64 KiB: text whose first data line (after '#' comments, blank
+ * lines and key=value headers) starts with a number, as the text reader needs; other text (a vendor's
+ * header, column names), whose first data line goes into first_line; UTF-16 text (by its byte-order
+ * mark, as spreadsheet programs save "Unicode text"); gzip-compressed; or binary (a NUL byte). A pipe
+ * is taken as text of numbers: it cannot be looked at twice. */
+static enum file_kind look_at(const char *path, char *first_line, size_t size)
 {
     struct stat about;
     FILE *stream = stat(path, &about) == 0 && S_ISREG(about.st_mode) ? fopen(path, "rb") : NULL;
-    if (!stream)
-        return 1; /* the text reader names what is wrong with it */
     static const size_t LOOKED_AT = 65536;
-    char *head = malloc(LOOKED_AT + 1);
+    char *head = stream ? malloc(LOOKED_AT + 1) : NULL;
     size_t length = head ? fread(head, 1, LOOKED_AT, stream) : 0;
-    fclose(stream);
+    if (stream)
+        fclose(stream);
     if (!head)
-        return 1;
+        return TEXT_OF_NUMBERS; /* the text reader names what is wrong with it */
     head[length] = '\0';
-    int text = memchr(head, '\0', length) == NULL;
-    for (char *line = head; text && line < head + length; line += strcspn(line, "\n") + 1) {
+    int utf16 = length >= 2 && ((head[0] == '\xff' && head[1] == '\xfe') || (head[0] == '\xfe' && head[1] == '\xff'));
+    int gzip = length >= 2 && head[0] == '\x1f' && head[1] == '\x8b';
+    enum file_kind kind = utf16 ? UTF16_TEXT : gzip ? GZIP : memchr(head, '\0', length) ? BINARY : TEXT_OF_NUMBERS;
+    for (char *line = head; kind == TEXT_OF_NUMBERS && line < head + length; line += strcspn(line, "\n") + 1) {
         line += strspn(line, " \t\r\xef\xbb\xbf");
         if (*line == '\n' || *line == '#' || (isalpha((unsigned char)*line) && line[strcspn(line, "=\n")] == '='))
             continue;
-        text = strchr("0123456789+-.", *line) != NULL || strncasecmp(line, "nan", 3) == 0;
+        if (*line && !strchr("0123456789+-.", *line) && strncasecmp(line, "nan", 3) != 0) {
+            kind = OTHER_TEXT;
+            snprintf(first_line, size, "%.*s", (int)strcspn(line, "\r\n"), line);
+        }
         break;
     }
     free(head);
-    return text;
+    return kind;
 }
 
 static surface_raw_reader reader_by_extension(const char *path)
@@ -72,6 +79,20 @@ static int read_through_gwyddion(const char *path, const im_surface_read_options
     return status;
 }
 
+/* Text that is not numbers and that no Gwyddion module reads: say what it is, not only that no module
+ * reads it (a table with a header row of column names, a profiler's text export of a line scan). */
+static int refuse_other_text(const char *path, const char *first_line)
+{
+    char shown[48];
+    size_t used = 0;
+    for (size_t i = 0; first_line[i] && used + 1 < sizeof shown; ++i)
+        shown[used++] = (unsigned char)first_line[i] < 0x20 ? '?' : first_line[i];
+    shown[used] = '\0';
+    return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers (column names, or a "
+                   "vendor's text export), and no Gwyddion file module reads it: expected a matrix of heights "
+                   "(a header row of column names is not read; remove it)", path, shown);
+}
+
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info)
 {
@@ -79,9 +100,21 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     ARG_REQUIRE(out, "out");
     *out = NULL;
     surface_raw_reader read = reader_by_extension(path);
-    if (!read && im_gwyddion_reader() && !holds_text_numbers(path))
-        return read_through_gwyddion(path, options, out, info);
-    return surface_read_format(path, read ? read : text_read_raw, options, out, info);
+    if (read)
+        return surface_read_format(path, read, options, out, info);
+    char first_line[48] = "";
+    enum file_kind kind = look_at(path, first_line, sizeof first_line);
+    if (kind == UTF16_TEXT)
+        return im_fail(IM_EFORMAT, "%s: UTF-16 text (a byte-order mark FF FE or FE FF): expected ASCII or UTF-8 text; "
+                       "save it as UTF-8", path);
+    if (kind == GZIP)
+        return im_fail(IM_EFORMAT, "%s: gzip-compressed: decompress it first (gunzip -k FILE)", path);
+    if (kind == TEXT_OF_NUMBERS || !im_gwyddion_reader()) /* the text reader says what is wrong */
+        return surface_read_format(path, text_read_raw, options, out, info);
+    int status = read_through_gwyddion(path, options, out, info);
+    if (status == IM_EFORMAT && kind == OTHER_TEXT && strstr(im_last_error(), "No module can load this file type"))
+        return refuse_other_text(path, first_line);
+    return status;
 }
 
 int im_surface_read(const char *path, im_field **out)
