@@ -661,7 +661,7 @@ REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, 
  * above. */
 static const char *const no_pointer_arguments[] = {
     "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_memory_available",
-    "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default",
+    "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gwyddion_reader",
     "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",
     "im_measure_sneddon_modulus", "im_history_columns", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
