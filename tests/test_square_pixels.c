@@ -142,6 +142,129 @@ static void impossible_grids_are_refused(void **state)
     im_field_free(field);
 }
 
+/* A Gwyddion text export of 4 x 4 heights 0..15, Width 4 µm and Height 4 (1 + stretch) µm. */
+static const char *write_export(const char *name, double stretch)
+{
+    char text[512];
+    snprintf(text, sizeof text, "# Width: 4 um\n# Height: %.17g um\n0 1 2 3\n4 5 6 7\n8 9 10 11\n12 13 14 15\n",
+             4.0 * (1.0 + stretch));
+    test_write_bytes(test_path(name), text, strlen(text));
+    return test_path(name);
+}
+
+/* Within IM_SQUARE_PIXEL_TOLERANCE the pixels are square: the mean spacing, the difference recorded;
+ * just beyond it they are refused with both spacings, the difference, the tolerance and the option. */
+static void spacings_within_rounding_are_square(void **state)
+{
+    (void)state;
+    const double within = 0.9 * IM_SQUARE_PIXEL_TOLERANCE, beyond = 1.1 * IM_SQUARE_PIXEL_TOLERANCE;
+    im_field *f = NULL;
+    im_surface_read_info info;
+    assert_int_equal(im_surface_read_with(write_export("within.txt", within), NULL, &f, &info), IM_OK);
+    assert_close(f->delta, 1.0 + within / 2, 1e-15);
+    assert_close(info.spacing_difference, within / (1.0 + within / 2), 1e-15);
+    assert_string_equal(info.resampled, "");
+    assert_int_equal(f->nx * f->ny, 16);
+    im_field_free(f);
+    assert_int_equal(im_surface_read_with(write_export("square.txt", 0.0), NULL, &f, &info), IM_OK);
+    assert_true(f->delta == 1.0 && info.spacing_difference == 0.0);
+    im_field_free(f);
+    const char *path = write_export("beyond.txt", beyond);
+    assert_int_equal(im_surface_read_with(path, NULL, &f, &info), IM_EFORMAT);
+    assert_null(f);
+    const char *message = im_last_error();
+    static const char *const phrases[] = {"beyond.txt: Width / columns and Height / rows: non-square pixels",
+                                          "x spacing 1 and y spacing 1.00001678 um", "differ by 1.68e-05 of their mean",
+                                          "beyond the 1.53e-05 (2^-16) that rounding explains", "--resample-square"};
+    for (size_t i = 0; i < sizeof phrases / sizeof *phrases; ++i)
+        if (!strstr(message, phrases[i]))
+            fail_msg("message '%s' lacks '%s'", message, phrases[i]);
+}
+
+/* Width 3 µm, Height 6 µm on 3 x 3 points: pixels 1 x 2 µm, resampled onto 3 x 5 of 1 µm (rows 1
+ * and 3 the means of their neighbours); the missing point is filled on the stored grid first, and
+ * the spacings are recorded in the unit read into (here m). */
+static void resample_square_reads_rectangular_pixels(void **state)
+{
+    (void)state;
+    const char *text = "# Width: 3 um\n# Height: 6 um\n1 2 3\n4 nan 6\n7 8 9\n";
+    test_write_bytes(test_path("rect.txt"), text, strlen(text));
+    im_field *f = NULL;
+    im_surface_read_info info;
+    im_surface_read_options options = {.fill = 1, .express_in = "m"};
+    assert_int_equal(im_surface_read_with(test_path("rect.txt"), &options, &f, &info), IM_EFORMAT);
+    options.resample_square = 1;
+    assert_int_equal(im_surface_read_with(test_path("rect.txt"), &options, &f, &info), IM_OK);
+    assert_int_equal(f->nx, 3);
+    assert_int_equal(f->ny, 5);
+    assert_close(f->delta, 1e-6, 1e-21);
+    assert_string_equal(f->unit, "m");
+    const double expected[15] = {1, 2, 3, 2.5, 3.5, 4.5, 4, 5, 6, 5.5, 6.5, 7.5, 7, 8, 9};
+    for (int i = 0; i < 15; ++i)
+        assert_close(f->data[i], expected[i] * 1e-6, 1e-21); /* the filled point: (2 + 4 + 6 + 8) / 4 */
+    assert_string_equal(info.resampled, "bilinear");
+    assert_true(info.resampled_delta == f->delta);
+    assert_int_equal(info.stored_nx, 3);
+    assert_int_equal(info.stored_ny, 3);
+    assert_int_equal(info.filled, 1);
+    assert_close(info.used.delta_x, 1e-6, 1e-21);
+    assert_close(info.used.delta_y, 2e-6, 1e-21);
+    assert_string_equal(info.used.lateral, "m");
+    assert_close(info.spacing_difference, 2.0 / 3.0, 1e-15);
+    im_field_free(f);
+}
+
+/* x3p-2.x3p (SurfaceTopography's test data, MIT): 650 x 650 points of 1.2765651e-07 x 3.14582114e-07 m.
+ * Refused as it is; resampled onto 650 x 1600 of 1.2765651e-07 m, the last node within the stored
+ * extent, each node the linear blend of the stored rows around it. */
+static void an_instrument_file_with_tall_pixels(void **state)
+{
+    (void)state;
+    const char *source = getenv("IM_SOURCE_DIR");
+    char path[4096];
+    struct stat folder;
+    snprintf(path, sizeof path, "%s/../shared/test-data/surfaces", source ? source : ".");
+    if (!source || stat(path, &folder) != 0) {
+        print_message("%s: absent, skipped\n", path);
+        skip();
+    }
+    snprintf(path + strlen(path), sizeof path - strlen(path), "/x3p-2.x3p");
+    const double dx = 1.27656509837346e-007, dy = 3.14582113527746e-007; /* main.xml's Increments */
+    im_field *stored = NULL, *square = NULL;
+    im_surface_read_options options = {0};
+    assert_int_equal(im_surface_read_with(path, &options, &square, NULL), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "x spacing 1.2765651e-07 and y spacing 3.14582114e-07 m differ by 0.845"));
+    options.resample_square = 1;
+    im_surface_read_info info;
+    if (im_surface_read_with(path, &options, &square, &info) != IM_OK)
+        fail_msg("%s", im_last_error());
+    assert_int_equal(square->nx, 650);
+    assert_int_equal(square->ny, 1600);
+    assert_true(square->delta == dx);
+    assert_string_equal(square->unit, "m");
+    assert_true(1599 * dx <= 649 * dy);
+    assert_int_equal(info.stored_nx, 650);
+    assert_int_equal(info.stored_ny, 650);
+    assert_string_equal(info.resampled, "bilinear");
+    options = (im_surface_read_options){.set = {.delta_x = 1.0}}; /* the stored values, on a square grid */
+    assert_int_equal(im_surface_read_with(path, &options, &stored, NULL), IM_OK);
+    double largest = 0.0, worst = 0.0;
+    for (int j = 0; j < square->ny; ++j) {
+        double at = j * (dx / dy);
+        int row = (int)at < 649 ? (int)at : 648;
+        double w = at - row;
+        for (int i = 0; i < 650; ++i) {
+            double a = stored->data[row * 650 + i], b = stored->data[(row + 1) * 650 + i];
+            double expected = w == 0.0 ? a : (1.0 - w) * a + w * b;
+            largest = fmax(largest, fabs(a));
+            worst = fmax(worst, fabs(square->data[(size_t)j * 650 + i] - expected));
+        }
+    }
+    assert_true(worst <= 1e-15 * largest);
+    im_field_free(stored);
+    im_field_free(square);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -149,6 +272,9 @@ int main(void)
         cmocka_unit_test(a_sine_is_within_the_interpolation_bound),
         cmocka_unit_test(a_missing_point_spreads_to_the_nodes_it_touches),
         cmocka_unit_test(impossible_grids_are_refused),
+        cmocka_unit_test(spacings_within_rounding_are_square),
+        cmocka_unit_test(resample_square_reads_rectangular_pixels),
+        cmocka_unit_test(an_instrument_file_with_tall_pixels),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
