@@ -62,10 +62,16 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
     return _core.histogram(heights, float(delta), _QUANTITIES[quantity], int(bins))
 
 
-def read(path):
+def read(path, *, resample_square=False):
     """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p or a text matrix): a Topography
-    (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives none)."""
-    return Topography(*_core.read_surface(path))
+    (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives none).
+
+    Pixels whose x and y spacings differ by at most 2^-16 of their mean (what rounding in headers and
+    float32 storage explains) are read as square, of their mean spacing. Beyond that a FormatError names
+    both spacings, unless ``resample_square=True``: then the heights are resampled bilinearly onto
+    square pixels of the finer spacing, within the stored extent (more rows or columns; ``delta`` is
+    that spacing)."""
+    return Topography(*_core.read_surface(path, bool(resample_square)))
 
 
 def write(path, heights, delta=1.0, unit=""):

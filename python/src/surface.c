@@ -190,16 +190,18 @@ static PyObject *prepare(PyObject *self, PyObject *args)
     return Py_BuildValue("(Nl)", py_array_from_field(copy), filled);
 }
 
+/* read_surface(path, resample_square) -> (heights, delta, unit) */
 static PyObject *read_surface(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_bytes;
-    if (!PyArg_ParseTuple(args, "O&", PyUnicode_FSConverter, &path_bytes))
+    im_surface_read_options options = {0};
+    if (!PyArg_ParseTuple(args, "O&p", PyUnicode_FSConverter, &path_bytes, &options.resample_square))
         return NULL;
     im_field *field = NULL;
     int status;
     Py_BEGIN_ALLOW_THREADS
-    status = im_surface_read(PyBytes_AS_STRING(path_bytes), &field);
+    status = im_surface_read_with(PyBytes_AS_STRING(path_bytes), &options, &field, NULL);
     Py_END_ALLOW_THREADS
     Py_DECREF(path_bytes);
     if (status != IM_OK)
@@ -251,6 +253,6 @@ PyMethodDef py_surface_methods[] = {
     {"prepare", prepare, METH_VARARGS, "prepare(heights, detrend, fill) -> (heights, filled)"},
     {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
-    {"read_surface", read_surface, METH_VARARGS, "read_surface(path) -> (heights, delta, unit)"},
+    {"read_surface", read_surface, METH_VARARGS, "read_surface(path, resample_square) -> (heights, delta, unit)"},
     {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
     {NULL, NULL, 0, NULL}};
