@@ -287,7 +287,7 @@ double im_length_unit_metres(const char *name, const char **canonical);
  * (1e-6) would refuse it. Taking the mean misplaces a point by at most 2^-17 spacings per spacing
  * from the first: half a pixel across the largest grid (IM_FIELD_MAX_SIDE), 0.03 across 4096.
  * Beyond it the pixels are refused unless resample_square is set. */
-#define IM_SQUARE_PIXEL_TOLERANCE 0x1p-16
+#define IM_SQUARE_PIXEL_TOLERANCE (1.0 / 65536.0) /* 2^-16 */
 
 /* How a surface file is read. Zero-initialised means: as the file states. */
 typedef struct im_surface_read_options {
