@@ -127,7 +127,7 @@ check "bad IM_MEMORY_LIMIT_MIB is bad input" expect_exit 2 "IM_MEMORY_LIMIT_MIB 
   env IM_MEMORY_LIMIT_MIB=lots "$cli" surface --stats "$dir/s.npy"
 check "IM_MEMORY_LIMIT_MIB caps the memory" expect_exit 2 "needs about" \
   env IM_MEMORY_LIMIT_MIB=1 "$cli" surface --n 1024 --out "$dir/capped.npy"
-printf '1e300 1e300\n1e300 1e300\n' >"$dir/huge.txt"
+printf '1e300 1e300 1e300 1e300\n1e300 1e300 1e300 1e300\n1e300 1e300 1e300 1e300\n' >"$dir/huge.txt"
 # A flat punch's gap is +Inf where the punch can never touch: render reads fields with their NaN and
 # Inf (drawn in the over colour), as it draws them, where a surface to solve on must be finite.
 "$cli" indent "$dir/s.npy" --punch flat --radius 10 --approach 0.2 --fields --out "$dir/flat" >/dev/null

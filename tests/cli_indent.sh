@@ -183,4 +183,21 @@ printf '0 0 0\n0 nan 0\n0 0 0\n' > "$DIR/nan.txt"
 [ $? -eq 2 ] || fail "a NaN height should exit 2"
 "$BIN" indent --smooth --n 64 --out "$DIR/none" 2>/dev/null
 [ $? -eq 2 ] || fail "missing --approach/--load should exit 2"
+
+# Pixels 1 x 2 um (issue 25): refused naming --resample-square; with it, solved on 8 x 15 pixels of
+# 1 um, and run.json's surface.pixels records the spacings, their difference and the resampling.
+awk 'BEGIN { print "# Width: 8 um"; print "# Height: 16 um";
+             for (j = 0; j < 8; ++j) { row = ""; for (i = 0; i < 8; ++i) row = row " " 0.01 * (i + j); print row } }' > "$DIR/rect.txt"
+"$BIN" indent "$DIR/rect.txt" --approach 0.1 --out "$DIR/rect" 2>"$DIR/rect.err"
+[ $? -eq 2 ] && grep -q -- '--resample-square' "$DIR/rect.err" || fail "non-square pixels: $(cat "$DIR/rect.err")"
+"$BIN" indent "$DIR/rect.txt" --resample-square --approach 0.1 --out "$DIR/rect" >/dev/null 2>&1 || fail "--resample-square exited $?"
+python3 - "$DIR/rect/run.json" <<'PY' || fail "run.json's surface.pixels: $(grep -A12 '"pixels"' "$DIR/rect/run.json")"
+import json, sys
+surface = json.load(open(sys.argv[1]))["surface"]
+pixels = surface["pixels"]
+assert (surface["nx"], surface["ny"], surface["delta"]) == (8, 15, 1.0), surface
+assert (pixels["delta_x"], pixels["delta_y"]) == (1.0, 2.0), pixels
+assert abs(pixels["relative_difference"] - 2 / 3) < 1e-15 and pixels["tolerance"] == 2.0 ** -16, pixels
+assert pixels["resampled"] == {"method": "bilinear", "delta": 1.0, "stored_nx": 8, "stored_ny": 8}, pixels
+PY
 echo ok

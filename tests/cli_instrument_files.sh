@@ -71,7 +71,7 @@ head -c 300000 "$data/di-3.di" >"$dir/cut.di"
 check "a truncated Nanoscope file is refused by its module's reason" expect_exit 2 \
   "cut.di: Gwyddion's file modules cannot read it: File is truncated" "$cli" surface --stats "$dir/cut.di"
 printf 'GARBAGE\0\1\2\3 not a surface' >"$dir/junk.bin"
-check "a binary file no module reads" expect_exit 2 "junk.bin: Gwyddion's file modules cannot read it" \
+check "a binary file no module reads" expect_exit 2 "junk.bin: a binary file no reader here opens: none of Gwyddion's" \
   "$cli" surface --stats "$dir/junk.bin"
 "$cli" indent "$data/stp-1.stp" --channel Topography --crop 96,96,64,64 --approach 1e-9:4e-9:2 --out "$dir/run" \
   >"$dir/indent" 2>&1

@@ -35,7 +35,7 @@ check "scene file = /dev/zero" expect_exit 2 "/dev/zero is a character device" \
 # Text: a NUL byte ends nothing silently; a byte-order mark is skipped at the start, shown elsewhere.
 printf '0 1\x00 5\n1 0\n' >"$dir/nul.txt"
 check "NUL byte" expect_exit 2 "nul.txt:1: a NUL byte at column 4" "$cli" surface --stats "$dir/nul.txt"
-printf '\xef\xbb\xbf0 1\n1 0\n' >"$dir/bom.txt"
+printf '\xef\xbb\xbf0 1 2 3\n1 0 2 3\n3 4 5 6\n' >"$dir/bom.txt"
 check "leading BOM skipped" "$cli" surface --stats "$dir/bom.txt"
 printf '0 1\n\xef\xbb\xbf1 0\n' >"$dir/bom2.txt"
 check "BOM shown" expect_exit 2 "bom2.txt:2: '\\xef\\xbb\\xbf1' is not a number" "$cli" surface --stats "$dir/bom2.txt"

@@ -56,4 +56,21 @@ scene mixed "file = a.npy, small.npy"
 check "files of different grids refused" expect_exit 2 "small.npy is 32 x 32 with delta 1  but $dir/a.npy is 64 x 64" \
   "$cli" run --quiet "$dir/mixed.ini"
 
+# Pixels 1 x 2 um (issue 25): refused naming the key; `resample_square = yes` resamples them, and
+# run.json records the key and, per file, the spacings' difference and the method.
+"$cli" surface --n 64 --slope 0.1 --out "$dir/square.txt" >/dev/null
+(printf '# Width: 64 um\n# Height: 128 um\n'; grep -v '^#' "$dir/square.txt") >"$dir/rect.txt"
+scene rect "file = rect.txt"
+check "non-square pixels refused naming the key" expect_exit 2 "resample_square = yes in a scene" \
+  "$cli" run --quiet "$dir/rect.ini"
+scene rect "file = rect.txt" "resample_square = yes"
+"$cli" run --quiet "$dir/rect.ini" >/dev/null 2>"$dir/rect.err"
+check "resample_square: runs" test $? -eq 0
+check "resample_square: run.json records it" python3 -c '
+import json, sys
+files = json.load(open(sys.argv[1]))["surface_files"]
+entry = files["files"][0]
+sys.exit(not (files["resample_square"] is True and entry["resampled"] == "bilinear"
+              and abs(entry["spacing_difference"] - 2 / 3) < 1e-15 and files["delta"] == 1.0))' "$dir/rect/run.json"
+
 finish

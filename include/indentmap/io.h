@@ -279,6 +279,18 @@ typedef struct im_surface_units {
  * *canonical (may be NULL); 0 when the name is not a known length unit. */
 double im_length_unit_metres(const char *name, const char **canonical);
 
+/* Pixels whose x and y spacings differ by at most this, relative to their mean, are square: read
+ * with the mean spacing, the difference recorded (im_surface_read_info.spacing_difference). 2^-16,
+ * 1.5e-5, because spacings reach a reader rounded: stored as float32 (a 24-bit significand: 6e-8
+ * relative each), and printed in headers with 6 or 7 significant digits (%g: up to 5e-6 relative
+ * each, 5e-7 with 7). x and y are rounded apart (on a grid that is not square XReal and YReal are
+ * different numbers), so one square pixel can come out as 6-digit spacings 1e-5 apart: a 512 x 256
+ * grid of 1.23456789e-8 m pixels, printed "6.32099e-06" and "3.16049e-06", differs by 1.6e-6; 2^-20
+ * (1e-6) would refuse it. Taking the mean misplaces a point by at most 2^-17 spacings per spacing
+ * from the first: half a pixel across the largest grid (IM_FIELD_MAX_SIDE), 0.03 across 4096.
+ * Beyond it the pixels are refused unless resample_square is set. */
+#define IM_SQUARE_PIXEL_TOLERANCE (1.0 / 65536.0) /* 2^-16 */
+
 /* How a surface file is read. Zero-initialised means: as the file states. */
 typedef struct im_surface_read_options {
     im_surface_units set;    /* each stated member (non-zero, non-empty) overrides the file's; a
@@ -292,16 +304,31 @@ typedef struct im_surface_read_options {
                                 where it can never touch); fill is then ignored */
     char channel[64];        /* of a multi-channel instrument file read through Gwyddion: an index or
                                 a title (case ignored); "": the first channel holding lengths */
+    int resample_square;     /* 1: pixels whose spacings differ beyond IM_SQUARE_PIXEL_TOLERANCE are
+                                resampled onto square pixels of the finer spacing after the heights are
+                                converted and their missing points refused or filled
+                                (im_surface_resample_square, surface.h: bilinear, within the stored
+                                extent); 0: they are refused */
 } im_surface_read_options;
 
 /* What the reader found and did, for reports and run records. */
 typedef struct im_surface_read_info {
     im_surface_units file;   /* as the file stated them (zeros and "" where it stated nothing) */
-    im_surface_units used;   /* as applied, after overrides (delta_y = delta_x) */
+    im_surface_units used;   /* after overrides (delta_y = delta_x when only delta_x is set), in the unit
+                                of the field read (used.lateral: after express_in); field->delta is
+                                delta_x when they are equal, their mean when they differ within
+                                IM_SQUARE_PIXEL_TOLERANCE, the finer when the grid was resampled */
     double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
     long filled;             /* missing points filled (options->fill) */
     char conversion[96];     /* how the stored values were converted, e.g. "'>i2' (int16) converted to
                                 float64; Fortran order transposed to C order"; "" when none */
+    double spacing_difference; /* |used.delta_x - used.delta_y| / their mean: 0 for square pixels */
+    char resampled[16];      /* how the grid was brought to square pixels: "bilinear" (resample_square,
+                                spacing_difference beyond IM_SQUARE_PIXEL_TOLERANCE), or "" when it
+                                was not resampled */
+    double resampled_delta;  /* the square pixels' spacing when resampled (field->delta, in its unit);
+                                0 otherwise */
+    int stored_nx, stored_ny; /* the grid as the file stores it (before resampling) */
 } im_surface_read_info;
 
 /* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p), else as text (see im_text_read) when the
@@ -314,9 +341,11 @@ typedef struct im_surface_read_info {
  * info->conversion names the module and channel. Then its units are applied: field->delta
  * is the spacing (1 when none is stated), field->unit the canonical lateral unit, heights converted
  * into it. Refused with IM_EFORMAT, naming the file and the header field (or option): pixels that
- * are not square (x and y spacing differing by more than 1e-9 relative: resample the data first),
- * a unit that is not a length, heights in a unit without a lateral unit to convert them to, Inf
- * heights, and NaN heights (missing points) unless options->fill. options and info may be NULL. */
+ * are not square (x and y spacings differing by more than IM_SQUARE_PIXEL_TOLERANCE of their mean;
+ * the message names both spacings, their difference, the tolerance and the option that resamples)
+ * unless options->resample_square, a unit that is not a length, heights in a unit without a lateral
+ * unit to convert them to, Inf heights, and NaN heights (missing points) unless options->fill.
+ * options and info may be NULL. */
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info);
 

@@ -87,10 +87,15 @@ typedef struct im_scene {
     int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
     char channel[64];                /* the files' channel (instrument files read through Gwyddion: an
                                         index or a title); "": the first holding heights */
+    int resample_square;             /* 1: resample files whose pixels are not square onto square ones
+                                        (io.h: im_surface_read_options.resample_square); 0: refuse them */
     char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
     double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
                                         surface as solved; measured by im_scene_run, which sets
                                         slopes[0] to their root mean square (NaN until then) */
+    double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* each file's |delta_x - delta_y| / their
+                                        mean as read (io.h: spacing_difference), measured with them */
+    int file_resampled[IM_SCENE_MAX_FAMILIES]; /* 1 where that file was resampled onto square pixels */
     double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
     int family_count;
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
@@ -213,8 +218,8 @@ typedef struct im_scene_run_options {
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
 
 /* Reads every surface file of a scene (prepared as it will be solved), checks that they share one
- * grid and spacing (IM_EFORMAT naming the files otherwise), and sets file_slopes[] and slopes[0]
- * (see above). IM_OK at once for a scene without files. Called by im_scene_run on its copy. */
+ * grid and spacing (IM_EFORMAT naming the files otherwise), and sets file_slopes[], slopes[0],
+ * file_spacing_differences[] and file_resampled[] (see above). IM_OK at once for a scene without files. Called by im_scene_run on its copy. */
 int im_scene_measure_files(im_scene *scene);
 
 /* The path of file i of a scene's `file` list, resolved relative to the scene file (as

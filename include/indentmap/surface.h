@@ -150,6 +150,19 @@ int im_surface_crop(const im_field *surface, int x0, int y0, int nx, int ny, im_
  * *filled counts the points filled. IM_ENUMERIC for Inf, or when every point is missing. */
 int im_surface_fill_missing(im_field *surface, long *filled);
 
+/* Resamples a field whose pixels are delta_x wide along x and delta_y along y onto square pixels of
+ * the finer of the two spacings, by bilinear interpolation, into *out (caller frees; unit and
+ * value_unit kept, field->delta ignored). The new nodes are j * min(delta_x, delta_y) from the first
+ * point along each axis, as many as lie within the old grid's extent ((nx - 1) delta_x by (ny - 1)
+ * delta_y): nothing is extrapolated, the finer axis keeps its points, and the coarser one gets
+ * floor((n - 1) ratio) + 1 nodes for the ratio of the spacings. A node takes the values of the old
+ * points around it that have a weight in its blend, so a missing point (NaN) makes NaN every node it
+ * touches and no other (as does Inf, or +Inf beside -Inf). Planes and bilinear functions are
+ * reproduced to rounding; a smooth field is off by at most (h^2 / 8) max |d^2 z / dy^2| for the
+ * coarser spacing h (here y). IM_EINVAL for a spacing that is not finite > 0, or a new side beyond
+ * IM_FIELD_MAX_SIDE (the message names the grid and the spacings); IM_ENOMEM as im_field_create. */
+int im_surface_resample_square(const im_field *field, double delta_x, double delta_y, im_field **out);
+
 enum im_detrend {
     IM_DETREND_NONE = 0,
     IM_DETREND_PLANE = 1,     /* least-squares plane a + b x + c y (mean and tilt) */

@@ -62,14 +62,21 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
     return _core.histogram(heights, float(delta), _QUANTITIES[quantity], int(bins))
 
 
-def read(path, channel=None, fill=False):
+def read(path, channel=None, fill=False, resample_square=False):
     """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p, text, or an instrument's file
     through Gwyddion's file modules when the build has them: ``indentmap formats`` lists them): a
     Topography (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives
     none). ``channel`` (an index or a title) chooses the channel of a multi-channel instrument file
     (default: the first holding heights); ``fill=True`` fills missing (masked) points from their
-    neighbours, which are refused otherwise, as ``indent --fill`` does."""
-    return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill)))
+    neighbours, which are refused otherwise, as ``indent --fill`` does.
+
+    Pixels whose x and y spacings differ by at most 2^-16 of their mean (what rounding in headers and
+    float32 storage explains) are read as square, of their mean spacing. Beyond that a FormatError names
+    both spacings, unless ``resample_square=True``: then the heights are resampled bilinearly onto
+    square pixels of the finer spacing, within the stored extent (more rows or columns; ``delta`` is
+    that spacing)."""
+    return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill),
+                                          bool(resample_square)))
 
 
 def write(path, heights, delta=1.0, unit=""):

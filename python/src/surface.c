@@ -190,16 +190,16 @@ static PyObject *prepare(PyObject *self, PyObject *args)
     return Py_BuildValue("(Nl)", py_array_from_field(copy), filled);
 }
 
-/* read_surface(path, channel, fill) -> (heights, delta, unit) */
+/* read_surface(path, channel, fill, resample_square) -> (heights, delta, unit) */
 static PyObject *read_surface(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_bytes;
     const char *channel;
-    int fill;
-    if (!PyArg_ParseTuple(args, "O&sp", PyUnicode_FSConverter, &path_bytes, &channel, &fill))
+    int fill, resample_square;
+    if (!PyArg_ParseTuple(args, "O&spp", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square))
         return NULL;
-    im_surface_read_options options = {.fill = fill};
+    im_surface_read_options options = {.fill = fill, .resample_square = resample_square};
     if (strlen(channel) >= sizeof options.channel) {
         Py_DECREF(path_bytes);
         return py_raise_status(im_fail(IM_EINVAL, "channel '%.70s': expected an index or title of at most %zu bytes",
@@ -261,6 +261,7 @@ PyMethodDef py_surface_methods[] = {
     {"prepare", prepare, METH_VARARGS, "prepare(heights, detrend, fill) -> (heights, filled)"},
     {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
-    {"read_surface", read_surface, METH_VARARGS, "read_surface(path, channel, fill) -> (heights, delta, unit)"},
+    {"read_surface", read_surface, METH_VARARGS,
+     "read_surface(path, channel, fill, resample_square) -> (heights, delta, unit)"},
     {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
     {NULL, NULL, 0, NULL}};

@@ -162,6 +162,21 @@ def test_units_round_trip_in_every_format(tmp_path):
         np.testing.assert_allclose(top.heights, heights, rtol=1e-6, atol=1e-20, err_msg=suffix)
 
 
+def test_rectangular_pixels_are_refused_or_resampled(tmp_path):
+    """Pixels 1 x 2.5 um: refused naming the keyword; with resample_square=True a plane sampled on them
+    comes back on square pixels of 1 um, 3 x 11 (floor(4 x 2.5) + 1 rows), still the same plane."""
+    x, y = np.meshgrid(np.arange(3) * 1.0, np.arange(5) * 2.5)
+    path = tmp_path / "rect.txt"
+    rows = "\n".join(" ".join(repr(v) for v in row) for row in 0.5 + 0.25 * x - 0.125 * y)
+    path.write_text(f"# Width: 3 um\n# Height: 12.5 um\n{rows}\n")
+    with pytest.raises(im.FormatError, match=r"x spacing 1 and y spacing 2.5 um differ by 0.857.*resample_square=True"):
+        im.read(path)
+    top = im.read(path, resample_square=True)
+    assert top.heights.shape == (11, 3) and top.delta == 1.0 and top.unit == "\u00b5m"
+    x, y = np.meshgrid(np.arange(3) * 1.0, np.arange(11) * 1.0)
+    np.testing.assert_allclose(top.heights, 0.5 + 0.25 * x - 0.125 * y, rtol=0, atol=1e-15)
+
+
 def test_x3p_carries_what_the_iso5436_2_schema_requires(tmp_path):
     """The archive's checksums, computed here with hashlib, and the schema's required records in order."""
     import hashlib

@@ -45,6 +45,9 @@ static void usage(FILE *stream)
             "  --e-star-unit U     the unit of --e-star (e.g. Pa), for the records: forces are in\n"
             "                      U x length unit^2 (N for Pa and m)\n"
             "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
+            "  --resample-square   resample SURFACE's pixels when they are not square (x and y spacings\n"
+            "                      differing by more than 2^-16 of their mean) bilinearly onto square pixels\n"
+            "                      of the finer spacing (default: refuse them); run.json records it\n"
             "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
             "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
             "  --punch KIND        cone (default), sphere, flat or profile (with --profile)\n"
@@ -126,12 +129,13 @@ typedef struct indent_options {
     double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
     double surface_delta;         /* the patch side as solved (the surface's, after --delta) */
-    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill for a surface file */
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --resample-square for a file */
     cli_preparation preparation;  /* --crop, --detrend */
     char e_star_unit[16];         /* --e-star-unit, "" when not given */
     char force_unit[40];          /* the unit of loads and forces, from the two above */
     char length_unit[16];         /* the surface's, as solved ("" in units of delta) */
     long filled;                  /* missing points filled on reading */
+    im_surface_read_info read_info; /* how SURFACE was read (its pixels, for run.json) */
     im_indenter punch;
     const char *profile_path; /* --profile */
     im_profile *profile;      /* read from it once the surface's spacing is known; the punch borrows it */
@@ -150,7 +154,7 @@ typedef struct indent_options {
     im_solver_options solver;
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL,
+enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL, OPT_RESAMPLE,
        OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
@@ -161,7 +165,8 @@ static const struct option LONG_OPTIONS[] = {
     {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
     {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
     {"channel", required_argument, 0, OPT_CHANNEL},
-    {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
+    {"crop", required_argument, 0, OPT_CROP},
     {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
     {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
@@ -220,6 +225,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
     case OPT_FILL: o->read.fill = 1; return 0;
+    case OPT_RESAMPLE: o->read.resample_square = 1; return 0;
     case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
     case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
     case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
@@ -555,6 +561,19 @@ static json_t *units_record(const indent_options *o, const im_field *s)
                      "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)");
 }
 
+/* SURFACE's pixels as read: its spacings along x and y (in the surface's unit), their relative
+ * difference, and the resampling onto square pixels (method, spacing and the stored grid), or null. */
+static json_t *pixels_record(const im_surface_read_info *info)
+{
+    json_t *resampled = info->resampled[0] ? json_pack("{s:s, s:f, s:i, s:i}", "method", info->resampled, "delta",
+                                                       info->resampled_delta, "stored_nx", info->stored_nx,
+                                                       "stored_ny", info->stored_ny)
+                                           : json_null();
+    return json_pack("{s:f, s:f, s:f, s:f, s:o}", "delta_x", info->used.delta_x, "delta_y", info->used.delta_y,
+                     "relative_difference", info->spacing_difference, "tolerance", IM_SQUARE_PIXEL_TOLERANCE,
+                     "resampled", resampled);
+}
+
 /* What this run was given beside the common fields (front.h: run_record_create). */
 static json_t *indent_blocks(const indent_options *o, const im_field *s, const im_indentation *run)
 {
@@ -584,6 +603,8 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
                                       slope_definition_name(o->slope_definition), "chosen_by",
                                       o->slope_reason ? o->slope_reason : "none"));
     }
+    if (blocks && o->surface_path && o->read_info.used.delta_x > 0.0)
+        json_object_set_new(json_object_get(blocks, "surface"), "pixels", pixels_record(&o->read_info));
     if (blocks && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(blocks, "surface"), "source_encoding", json_string("escaped"));
     return blocks;
@@ -676,9 +697,8 @@ static void warn_if_steep(const im_indenter *punch)
 static int load_surface(indent_options *o, im_field **surface)
 {
     if (!o->smooth) {
-        im_surface_read_info info;
-        int status = im_surface_read_with(o->surface_path, &o->read, surface, &info);
-        o->filled = status == IM_OK ? info.filled : 0;
+        int status = im_surface_read_with(o->surface_path, &o->read, surface, &o->read_info);
+        o->filled = status == IM_OK ? o->read_info.filled : 0;
         return status == IM_OK ? cli_prepare_surface(&o->preparation, surface) : status;
     }
     int status = im_field_create(o->nx, o->ny, o->delta, surface);

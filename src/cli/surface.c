@@ -28,6 +28,9 @@ static void usage(FILE *stream)
             "                     through Gwyddion (default: the first holding heights)\n"
             "  --fill             with --stats: fill missing points (NaN) from their neighbours (default:\n"
             "                     refuse them, naming the first)\n"
+            "  --resample-square  with --stats: resample pixels that are not square (x and y spacings differing\n"
+            "                     by more than 2^-16 of their mean) bilinearly onto square pixels of the finer\n"
+            "                     spacing (default: refuse them; closer spacings are read as square, their mean)\n"
             "  --crop X0,Y0,NX,NY with --stats: measure only this block of the file\n"
             "  --detrend D        with --stats: none, plane (default) or curvature: removed before measuring\n"
             "  --window W         with --stats: taper for the spectral quantities and the PSD of non-periodic\n"
@@ -49,14 +52,14 @@ static void usage(FILE *stream)
 
 typedef struct surface_options {
     im_surface_params params;
-    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill */
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --resample-square */
     cli_preparation preparation;  /* --crop, --detrend, --window (files only) */
     int preparation_given;
     int m_given, lambda_r_given;
     const char *out, *stats, *png, *psd, *histograms;
 } surface_options;
 
-enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_CROP, OPT_DETREND, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
+enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_RESAMPLE, OPT_CROP, OPT_DETREND, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
        OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
@@ -64,7 +67,8 @@ static const struct option LONG_OPTIONS[] = {
     {"delta", required_argument, 0, OPT_DELTA}, {"hurst", required_argument, 0, OPT_HURST},
     {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
     {"channel", required_argument, 0, OPT_CHANNEL},
-    {"fill", no_argument, 0, OPT_FILL}, {"crop", required_argument, 0, OPT_CROP},
+    {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
+    {"crop", required_argument, 0, OPT_CROP},
     {"detrend", required_argument, 0, OPT_DETREND}, {"window", required_argument, 0, OPT_WINDOW},
     {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
     {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
@@ -104,6 +108,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
     case OPT_FILL: o->read.fill = o->preparation_given = 1; return 0;
+    case OPT_RESAMPLE: o->read.resample_square = o->preparation_given = 1; return 0;
     case OPT_CROP: o->preparation_given = 1; return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: o->preparation_given = 1; return cli_parse_detrend(arg, &o->preparation.detrend);
     case OPT_WINDOW: o->preparation_given = 1; return cli_parse_taper(arg, &o->preparation.taper);
@@ -141,6 +146,21 @@ static void print_units(const im_field *s, const im_surface_read_info *info)
         printf("values           %s\n", info->conversion);
 }
 
+/* Pixels that were not square: resampled onto square ones, or read as square within the tolerance. */
+static void print_pixels(const im_surface_read_info *info)
+{
+    const im_surface_units *u = &info->used;
+    const char *space = u->lateral[0] ? " " : "";
+    if (info->resampled[0])
+        printf("pixels           %d x %d of %.9g x %.9g%s%s, resampled (%s) onto square pixels of %.9g%s%s\n",
+               info->stored_nx, info->stored_ny, u->delta_x, u->delta_y, space, u->lateral, info->resampled,
+               info->resampled_delta, space, u->lateral);
+    else if (info->spacing_difference > 0.0)
+        printf("pixels           x spacing %.9g and y spacing %.9g%s%s differ by %.3g of their mean, within the %.3g "
+               "that rounding explains: read as square, of their mean\n", u->delta_x, u->delta_y, space, u->lateral,
+               info->spacing_difference, IM_SQUARE_PIXEL_TOLERANCE);
+}
+
 static const char *taper_name(const im_taper *taper)
 {
     return taper->kind == IM_TAPER_HANN ? "Hann" : taper->kind == IM_TAPER_TUKEY ? "Tukey" : NULL;
@@ -163,6 +183,7 @@ static void print_statistics(const surface_options *o, const im_field *s, const 
     printf("grid             %d x %d, delta = %g %s\n", s->nx, s->ny, s->delta, s->unit);
     if (info) {
         print_units(s, info);
+        print_pixels(info);
         print_preparation(o, info);
     }
     printf("mean             %.6g\n", st->mean);
@@ -301,7 +322,8 @@ static int parse_options(int argc, char **argv, surface_options *o)
         return -1;
     }
     if (!o->stats && (o->read.set.height[0] || o->read.channel[0] || o->preparation_given)) {
-        fprintf(stderr, "indentmap: surface: --height-unit, --channel, --fill, --crop, --detrend and --window read a file: "
+        fprintf(stderr, "indentmap: surface: --height-unit, --channel, --fill, --resample-square, --crop, --detrend and "
+                "--window read a file: "
                 "use them with --stats\n");
         return -1;
     }

@@ -93,6 +93,21 @@ static int refuse_other_text(const char *path, const char *first_line)
                    "(a header row of column names is not read; remove it)", path, shown);
 }
 
+/* A binary file no Gwyddion module reads: the text reader's refusal names the first NUL byte (a text
+ * file with a stray one is told where it is), and the message says that no module reads it either. */
+static int refuse_binary(const char *path, const im_surface_read_options *options)
+{
+    im_field *field = NULL;
+    int status = surface_read_format(path, text_read_raw, options, &field, NULL);
+    im_field_free(field);
+    if (status == IM_OK) /* cannot be: the file holds a NUL byte the text reader refuses */
+        return im_fail(IM_EFORMAT, "%s: no Gwyddion file module reads it", path);
+    char text_refusal[512];
+    snprintf(text_refusal, sizeof text_refusal, "%s", im_last_error());
+    return im_fail(status, "%s: a binary file no reader here opens: none of Gwyddion's file modules reads it "
+                   "('indentmap formats' lists those that do), and as text: %s", path, text_refusal);
+}
+
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info)
 {
@@ -112,9 +127,9 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     if (kind == TEXT_OF_NUMBERS || !im_gwyddion_reader()) /* the text reader says what is wrong */
         return surface_read_format(path, text_read_raw, options, out, info);
     int status = read_through_gwyddion(path, options, out, info);
-    if (status == IM_EFORMAT && kind == OTHER_TEXT && strstr(im_last_error(), "No module can load this file type"))
-        return refuse_other_text(path, first_line);
-    return status;
+    if (status != IM_EFORMAT || !strstr(im_last_error(), "No module can load this file type"))
+        return status;
+    return kind == OTHER_TEXT ? refuse_other_text(path, first_line) : refuse_binary(path, options);
 }
 
 int im_surface_read(const char *path, im_field **out)

@@ -61,14 +61,24 @@ static surface_stated merge_overrides(const surface_stated *stated, const im_sur
     return merged;
 }
 
-static int check_square_pixels(const char *path, const surface_stated *s)
+/* |delta_x - delta_y| / their mean; 0 when no spacing is stated. */
+static double spacing_difference(const im_surface_units *u)
 {
-    double dx = s->units.delta_x, dy = s->units.delta_y;
-    if (!(dx > 0.0) || fabs(dx - dy) <= 1e-9 * dx)
+    return u->delta_x > 0.0 ? fabs(u->delta_x - u->delta_y) / (0.5 * (u->delta_x + u->delta_y)) : 0.0;
+}
+
+/* Pixels square within IM_SQUARE_PIXEL_TOLERANCE (difference: spacing_difference), or to be
+ * resampled; otherwise refused. */
+static int check_square_pixels(const char *path, const surface_stated *s, double difference, int resample)
+{
+    if (difference <= IM_SQUARE_PIXEL_TOLERANCE || resample)
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: %s: non-square pixels, x spacing %.9g and y spacing %.9g %s: expected equal "
-                   "spacings; resample the data to square pixels first (e.g. Gwyddion's Scale)", path,
-                   s->spacing_keys, dx, dy, s->units.lateral);
+    const char *unit = s->units.lateral;
+    return im_fail(IM_EFORMAT, "%s: %s: non-square pixels, x spacing %.9g and y spacing %.9g%s%s differ by %.3g "
+                   "of their mean, beyond the %.3g (2^-16) that rounding explains: resample them onto square pixels "
+                   "(--resample-square; resample_square = yes in a scene, resample_square=True in Python)", path,
+                   s->spacing_keys, s->units.delta_x, s->units.delta_y, unit[0] ? " " : "", unit, difference,
+                   IM_SQUARE_PIXEL_TOLERANCE);
 }
 
 /* Metres per unit of a stated unit, or 0 after recording an error naming its key. */
@@ -121,9 +131,9 @@ static int missing_points(const char *path, im_field *field, int fill, long *fil
     return status == IM_OK ? IM_OK : im_fail_context(IM_EFORMAT, "%s", path);
 }
 
-/* Converts the spacing from the field's lateral unit into `unit`, and multiplies *factor, the
- * heights' conversion still to be applied, by the same ratio. */
-static int express_in(const char *path, im_field *field, const char *unit, double *factor)
+/* Converts the spacing from the field's lateral unit into `unit`, multiplies *factor, the heights'
+ * conversion still to be applied, by the same ratio and sets *ratio to it. */
+static int express_in(const char *path, im_field *field, const char *unit, double *factor, double *ratio)
 {
     const char *canonical = "";
     double target = im_length_unit_metres(unit, &canonical), source = im_length_unit_metres(field->unit, NULL);
@@ -132,10 +142,55 @@ static int express_in(const char *path, im_field *field, const char *unit, doubl
                        "\u00c5)", unit);
     if (source == 0.0)
         return im_fail(IM_EFORMAT, "%s: states no length unit to convert into %s from: give it (--unit)", path, unit);
-    double ratio = source / target;
-    *factor *= ratio;
-    field->delta *= ratio;
+    *ratio = source / target;
+    *factor *= *ratio;
+    field->delta *= *ratio;
     snprintf(field->unit, sizeof field->unit, "%s", canonical);
+    return IM_OK;
+}
+
+/* The spacing and unit of the field, and its heights brought into that unit (and into express_in's,
+ * whose ratio to the stated unit goes to *ratio). */
+static int apply_units(const char *path, im_field *field, const surface_stated *merged,
+                       const im_surface_read_options *options, double *factor, double *ratio)
+{
+    const char *lateral;
+    int status = height_factor(path, merged, factor, &lateral);
+    if (status != IM_OK)
+        return status;
+    const im_surface_units *u = &merged->units;
+    field->delta = u->delta_x > 0.0 ? 0.5 * (u->delta_x + u->delta_y) : 1.0; /* delta_x when they are equal */
+    snprintf(field->unit, sizeof field->unit, "%s", lateral);
+    *ratio = 1.0;
+    if (options && options->express_in[0] && (status = express_in(path, field, options->express_in, factor, ratio)) !=
+        IM_OK)
+        return status;
+    if (*factor != 1.0) {
+        size_t count = im_field_count(field);
+        for (size_t i = 0; i < count; ++i)
+            field->data[i] *= *factor;
+    }
+    return IM_OK;
+}
+
+/* Heights to solve on: none missing (or filled, counted in *filled), all finite. */
+static int check_heights(const char *path, im_field *field, const im_surface_read_options *options, long *filled)
+{
+    int status = missing_points(path, field, options && options->fill, filled);
+    return status == IM_OK ? io_check_finite(field, path) : status; /* after the conversion, which could overflow */
+}
+
+/* Replaces the field's grid by square pixels of the finer of the spacings delta_x and delta_y. */
+static int resample_in_place(const char *path, im_field *field, double delta_x, double delta_y)
+{
+    im_field *square = NULL;
+    int status = im_surface_resample_square(field, delta_x, delta_y, &square);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s", path);
+    im_field stored = *field;
+    *field = *square;
+    *square = stored;
+    im_field_free(square);
     return IM_OK;
 }
 
@@ -143,36 +198,30 @@ int surface_finish(const char *path, im_field *field, const surface_stated *stat
                       const im_surface_read_options *options, im_surface_read_info *info)
 {
     surface_stated merged = merge_overrides(stated, options);
-    double factor;
-    const char *lateral;
-    int status = check_square_pixels(path, &merged);
+    const int resample = options && options->resample_square;
+    const double difference = spacing_difference(&merged.units);
+    double factor = 1.0, ratio = 1.0;
+    int status = check_square_pixels(path, &merged, difference, resample);
     if (status == IM_OK)
-        status = height_factor(path, &merged, &factor, &lateral);
-    if (status != IM_OK)
-        return status;
-    field->delta = merged.units.delta_x > 0.0 ? merged.units.delta_x : 1.0;
-    snprintf(field->unit, sizeof field->unit, "%s", lateral);
-    if (options && options->express_in[0] && (status = express_in(path, field, options->express_in, &factor)) != IM_OK)
-        return status;
-    if (factor != 1.0) {
-        size_t count = im_field_count(field);
-        for (size_t i = 0; i < count; ++i)
-            field->data[i] *= factor;
-    }
+        status = apply_units(path, field, &merged, options, &factor, &ratio);
     long filled = 0;
-    if (!(options && options->field_values)) { /* heights: none missing or filled, all finite */
-        status = missing_points(path, field, options && options->fill, &filled);
-        if (status == IM_OK)
-            status = io_check_finite(field, path); /* after the conversion, which could overflow */
-        if (status != IM_OK)
-            return status;
-    }
-    if (info) {
-        *info = (im_surface_read_info){.file = stated->units, .used = merged.units, .height_factor = factor,
-                                       .filled = filled};
-        snprintf(info->used.lateral, sizeof info->used.lateral, "%s", field->unit);
-        memcpy(info->conversion, stated->conversion, sizeof info->conversion);
-    }
+    if (status == IM_OK && !(options && options->field_values)) /* heights: none missing or filled, all finite */
+        status = check_heights(path, field, options, &filled);
+    im_surface_units used = merged.units;
+    used.delta_x *= ratio;
+    used.delta_y *= ratio;
+    snprintf(used.lateral, sizeof used.lateral, "%s", field->unit);
+    const int stored_nx = field->nx, stored_ny = field->ny;
+    const int resampling = status == IM_OK && resample && difference > IM_SQUARE_PIXEL_TOLERANCE;
+    if (resampling)
+        status = resample_in_place(path, field, used.delta_x, used.delta_y);
+    if (status != IM_OK || !info)
+        return status;
+    *info = (im_surface_read_info){.file = stated->units, .used = used, .height_factor = factor, .filled = filled,
+                                   .spacing_difference = difference, .resampled_delta = resampling ? field->delta : 0.0,
+                                   .stored_nx = stored_nx, .stored_ny = stored_ny};
+    memcpy(info->conversion, stated->conversion, sizeof info->conversion);
+    snprintf(info->resampled, sizeof info->resampled, "%s", resampling ? "bilinear" : "");
     return IM_OK;
 }
 

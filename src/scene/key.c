@@ -50,6 +50,8 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
         key_add_bytes(hash, path, strlen(path));
         key_add(hash, " %lld %lld.%09ld detrend %d fill %d;", (long long)info.st_size, (long long)info.st_mtim.tv_sec,
                 info.st_mtim.tv_nsec, scene->detrend, scene->fill);
+        if (scene->resample_square) /* only then: the keys of results read without it stay as they were */
+            key_add(hash, "resample_square;");
         return;
     }
     key_add(hash, "grid %d %d %.17g;", p->nx, p->ny, p->delta);

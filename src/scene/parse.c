@@ -365,6 +365,7 @@ static const key_spec KEYS[] = {
     {"surfaces", "detrend", parse_choice, FIELD(detrend), 0, 0, "none|plane|curvature", 0, 0},
     {"surfaces", "fill", parse_bool, FIELD(fill), 0, 0, NULL, 0, 0},
     {"surfaces", "channel", parse_string, FIELD(channel), 0, 0, NULL, 64, 0},
+    {"surfaces", "resample_square", parse_bool, FIELD(resample_square), 0, 0, NULL, 0, 0},
     {"punch", "shape", parse_punch, FIELD(punch), 0, 0, NULL, 0, 0},
     {"punch", "profile", parse_string, FIELD(profile_file), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"punch", "alpha", parse_sweep_list, FIELD(alphas), 1e-9, 90 - 1e-9, NULL, IM_SCENE_MAX_SWEEP, FIELD(alpha_count)},

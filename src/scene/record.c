@@ -12,7 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The files of a scene over files, each with its measured h'rms, and what that h'rms is. */
+/* The files of a scene over files, each with its measured h'rms and its pixels (the relative difference
+ * of its spacings; resampled: the method, or null), and what that h'rms is. */
 static json_t *files_record(const im_scene *scene)
 {
     static const char *const DETREND[] = {"none", "plane", "curvature"};
@@ -20,12 +21,15 @@ static json_t *files_record(const im_scene *scene)
     for (int i = 0; i < scene->file_count; ++i) {
         char path[IM_SCENE_PATH];
         im_scene_file_path(scene, i, path, sizeof path);
-        json_array_append_new(files, json_pack("{s:s, s:f}", "path", path, "slope_rms", scene->file_slopes[i]));
+        json_array_append_new(files, json_pack("{s:s, s:f, s:f, s:o}", "path", path, "slope_rms", scene->file_slopes[i],
+                                               "spacing_difference", scene->file_spacing_differences[i], "resampled",
+                                               scene->file_resampled[i] ? json_string("bilinear") : json_null()));
     }
-    return json_pack("{s:o, s:f, s:s, s:s, s:b, s:s, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
+    return json_pack("{s:o, s:f, s:s, s:s, s:b, s:s, s:b, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
                      "slope_definition", "forward differences of each surface as solved; the ensemble's is their "
                      "root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend], "fill",
-                     scene->fill, "channel", scene->channel[0] ? scene->channel : "first holding heights", "delta", scene->surface.delta, "length_unit",
+                     scene->fill, "channel", scene->channel[0] ? scene->channel : "first holding heights",
+                     "resample_square", scene->resample_square, "delta", scene->surface.delta, "length_unit",
                      scene->file_unit[0] ? scene->file_unit : "delta");
 }
 

@@ -10,15 +10,15 @@
 #include <math.h>
 #include <string.h>
 
-/* File i of the scene, read and prepared as it is solved. */
-static int file_surface(const im_scene *scene, int i, im_field **out)
+/* File i of the scene, read and prepared as it is solved; info (may be NULL): how it was read. */
+static int file_surface(const im_scene *scene, int i, im_field **out, im_surface_read_info *info)
 {
     char path[IM_SCENE_PATH];
     int status = im_scene_file_path(scene, i, path, sizeof path);
-    im_surface_read_options read = {.fill = scene->fill};
+    im_surface_read_options read = {.fill = scene->fill, .resample_square = scene->resample_square};
     memcpy(read.channel, scene->channel, sizeof read.channel);
     if (status == IM_OK)
-        status = im_surface_read_with(path, &read, out, NULL);
+        status = im_surface_read_with(path, &read, out, info);
     if (status == IM_OK && (status = im_surface_detrend(*out, scene->detrend)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
@@ -48,7 +48,12 @@ int im_scene_measure_files(im_scene *scene)
     int status = IM_OK;
     for (int i = 0; i < scene->file_count && status == IM_OK; ++i) {
         im_field *surface = NULL;
-        status = file_surface(scene, i, &surface);
+        im_surface_read_info info;
+        status = file_surface(scene, i, &surface, &info);
+        if (status == IM_OK) {
+            scene->file_spacing_differences[i] = info.spacing_difference;
+            scene->file_resampled[i] = info.resampled[0] != '\0';
+        }
         if (status == IM_OK && first)
             status = check_same_grid(scene, first, surface, i);
         if (status == IM_OK)
@@ -73,7 +78,7 @@ int im_scene_measure_files(im_scene *scene)
 int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **out)
 {
     if (scene->surface_file[0])
-        return file_surface(scene, (int)seed, out);
+        return file_surface(scene, (int)seed, out, NULL);
     if (scene->slopes[family] == 0.0)
         return im_field_create(scene->surface.nx, scene->surface.ny, scene->surface.delta, out);
     im_surface_params params = scene->surface;
