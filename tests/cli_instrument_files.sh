@@ -76,6 +76,7 @@ check "a binary file no module reads" expect_exit 2 "junk.bin: a binary file no 
 "$cli" indent "$data/stp-1.stp" --channel Topography --crop 96,96,64,64 --approach 1e-9:4e-9:2 --out "$dir/run" \
   >"$dir/indent" 2>&1
 check "indent solves on a WSxM scan's channel" grep -q '^2,' "$dir/run/history.csv"
+check "... and run.json names the module and channel" grep -q "\"values\": \"Gwyddion 'wsxmfile': channel 0 'Topography' of 1\"" "$dir/run/run.json"
 # A scene over an instrument file: its channel key, the file's own h'rms in the table and run.json.
 printf '[scene]\nname = wsxm\noutput = wsxm\n[surfaces]\nfile = %s\nchannel = 0\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
   "$data/stp-1.stp" >"$dir/wsxm.ini"

@@ -605,6 +605,8 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
     }
     if (blocks && o->surface_path && o->read_info.used.delta_x > 0.0)
         json_object_set_new(json_object_get(blocks, "surface"), "pixels", pixels_record(&o->read_info));
+    if (blocks && o->surface_path && o->read_info.conversion[0]) /* e.g. the instrument file's module and channel */
+        json_object_set_new(json_object_get(blocks, "surface"), "values", json_string(o->read_info.conversion));
     if (blocks && escaped) /* the path is not UTF-8: its other bytes are written \xHH, backslashes \\ */
         json_object_set_new(json_object_get(blocks, "surface"), "source_encoding", json_string("escaped"));
     return blocks;
