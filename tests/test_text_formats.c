@@ -129,6 +129,28 @@ static void utf16_and_gzip_text_are_named(void **state)
     assert_null(f);
 }
 
+/* --unit on a file that states its unit converts into it (finding D2: the spacing's number was kept
+ * and relabelled, slopes off by the ratio); with --delta it restates both, as for a file stating none. */
+static void unit_converts_a_stated_unit(void **state)
+{
+    (void)state;
+    const char *text = "# Width: 3 um\n# Value units: um\n1 2 3\n4 5 6\n7 8 9\n";
+    test_write_bytes(test_path("stated.txt"), text, strlen(text));
+    im_surface_read_options options = {.set = {.lateral = "nm"}};
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read_with(test_path("stated.txt"), &options, &f, NULL), IM_OK);
+    assert_string_equal(f->unit, "nm");
+    assert_close(f->delta, 1000.0, 1e-9);
+    assert_close(f->data[8], 9000.0, 1e-9); /* the slopes are the file's */
+    im_field_free(f);
+    options.set.delta_x = 2.0;
+    assert_int_equal(im_surface_read_with(test_path("stated.txt"), &options, &f, NULL), IM_OK);
+    assert_close(f->delta, 2.0, 0.0);
+    assert_string_equal(f->unit, "nm");
+    assert_close(f->data[8], 9000.0, 1e-9);
+    im_field_free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -138,6 +160,7 @@ int main(void)
         cmocka_unit_test(gwyddion_headers_in_german_and_two_prefixes),
         cmocka_unit_test(vision_headers_convert_the_values),
         cmocka_unit_test(utf16_and_gzip_text_are_named),
+        cmocka_unit_test(unit_converts_a_stated_unit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

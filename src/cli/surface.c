@@ -22,7 +22,8 @@ static void usage(FILE *stream)
             "  --n N              grid columns (default 512)\n"
             "  --m M              grid rows (default: N)\n"
             "  --delta D          patch side in physical units (default 1); with --stats, overrides the file's\n"
-            "  --unit U           length unit of delta (m, mm, um, nm, ...); with --stats, overrides the file's\n"
+            "  --unit U           length unit of delta (m, mm, um, nm, ...); with --stats, a file stating its\n"
+            "                     unit is converted into U (with --delta, both are restated)\n"
             "  --height-unit U    with --stats: unit of the file's heights, converted to --unit\n"
             "  --channel C        with --stats: the channel (index or title) of an instrument file read\n"
             "                     through Gwyddion (default: the first holding heights)\n"
@@ -132,12 +133,15 @@ static int apply_option(int code, const char *arg, void *state)
 }
 
 /* Where the spacing and the heights' unit came from, for a surface read from a file. */
-static void print_units(const im_field *s, const im_surface_read_info *info)
+static void print_units(const im_field *s, const im_surface_read_info *info, const im_surface_read_options *read)
 {
     const im_surface_units *file = &info->file;
-    printf("spacing          %s\n", info->used.delta_x != file->delta_x ? "set by --delta"
-                                  : file->delta_x > 0.0           ? "stated by the file"
-                                                                  : "none stated: lengths in delta");
+    printf("spacing          %s", read->set.delta_x > 0.0 ? "set by --delta"
+                                  : file->delta_x > 0.0   ? "stated by the file"
+                                                          : "none stated: lengths in delta");
+    if (!(read->set.delta_x > 0.0) && file->delta_x > 0.0 && strcmp(file->lateral, s->unit) != 0 && file->lateral[0])
+        printf(", %.9g %s, converted into %s", file->delta_x, file->lateral, s->unit);
+    printf("\n");
     if (info->height_factor != 1.0)
         printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height, info->height_factor);
     else
@@ -182,7 +186,7 @@ static void print_statistics(const surface_options *o, const im_field *s, const 
     const im_surface_params *p = o->stats ? NULL : &o->params;
     printf("grid             %d x %d, delta = %g %s\n", s->nx, s->ny, s->delta, s->unit);
     if (info) {
-        print_units(s, info);
+        print_units(s, info, &o->read);
         print_pixels(info);
         print_preparation(o, info);
     }

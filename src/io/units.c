@@ -38,6 +38,23 @@ double im_length_unit_metres(const char *name, const char **canonical)
     return 0.0;
 }
 
+/* 1 when --unit (options->set.lateral) is to convert the surface into that unit rather than name its
+ * unit: the file states a length unit and --delta does not restate the spacing. Relabelling would
+ * keep the spacing's number and change what it means (a 78.125 nm spacing read as 7.8125e-08 nm). */
+static int unit_converts(const surface_stated *stated, const im_surface_read_options *options)
+{
+    return options && options->set.lateral[0] && !(options->set.delta_x > 0.0) &&
+           im_length_unit_metres(stated->units.lateral, NULL) > 0.0;
+}
+
+/* The unit the surface is converted into: express_in, else --unit on a file stating its own; "": none. */
+static const char *conversion_target(const surface_stated *stated, const im_surface_read_options *options)
+{
+    if (options && options->express_in[0])
+        return options->express_in;
+    return unit_converts(stated, options) ? options->set.lateral : "";
+}
+
 /* The file's units with the user's overrides applied, and the keys (or options) behind each. */
 static surface_stated merge_overrides(const surface_stated *stated, const im_surface_read_options *options)
 {
@@ -48,7 +65,7 @@ static surface_stated merge_overrides(const surface_stated *stated, const im_sur
         merged.units.delta_y = set->delta_y > 0.0 ? set->delta_y : set->delta_x;
         merged.spacing_keys = "--delta";
     }
-    if (set && set->lateral[0]) {
+    if (set && set->lateral[0] && !unit_converts(stated, options)) {
         memcpy(merged.units.lateral, set->lateral, sizeof merged.units.lateral);
         merged.lateral_key = "--unit";
     }
@@ -162,8 +179,8 @@ static int apply_units(const char *path, im_field *field, const surface_stated *
     field->delta = u->delta_x > 0.0 ? 0.5 * (u->delta_x + u->delta_y) : 1.0; /* delta_x when they are equal */
     snprintf(field->unit, sizeof field->unit, "%s", lateral);
     *ratio = 1.0;
-    if (options && options->express_in[0] && (status = express_in(path, field, options->express_in, factor, ratio)) !=
-        IM_OK)
+    const char *target = conversion_target(merged, options);
+    if (target[0] && (status = express_in(path, field, target, factor, ratio)) != IM_OK)
         return status;
     if (*factor != 1.0) {
         size_t count = im_field_count(field);
