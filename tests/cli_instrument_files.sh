@@ -32,6 +32,17 @@ check "scrambled x y z points: a 4 x 4 map" grep -q 'grid             4 x 4, del
 check "German Gwyddion export: Breite and Höhe read, non-square refused naming both" expect_exit 2 \
   "x spacing 4.11333333 and y spacing 1.419725 µm" "$cli" surface --stats "$data/gwyddion-export-german.txt"
 
+# Warnings and records a researcher needs (finding D17, D14).
+printf '1 2 3 4\nnan 5 6 7\n8 nan 9 1\n2 3 nan 4\n' >"$dir/holes.txt"
+check "--fill inventing 19% of a surface is said" expect_exit 0 "--fill invented 18.8% of the surface (3 of 16 points)" \
+  "$cli" surface --stats "$dir/holes.txt" --fill
+"$cli" surface --n 64 --slope 1.5 --seed 4 --out "$dir/steep.npy" >/dev/null
+"$cli" indent "$dir/steep.npy" --approach 4 --out "$dir/steep" >"$dir/steep.out" 2>&1
+check "h'rms beyond small slopes is said" grep -q "h'rms = 1.5: slopes steeper than 45 degrees" "$dir/steep.out"
+check "... and beyond the cone's flank" grep -q "is 8.51 times the cone flank's slope cot(alpha) = 0.176" "$dir/steep.out"
+check "run.json states the pressure unit" grep -q '"pressure": "the unit of --e-star"' "$dir/steep/run.json"
+check "run.json keeps no radius for a cone" bash -c "! grep -q '\"radius\"' '$dir/steep/run.json'"
+
 if "$cli" formats | grep -q "not in this build"; then
   echo "indentmap-gwyddion-read not built: the instrument formats are not checked"
   finish

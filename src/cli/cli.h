@@ -115,6 +115,10 @@ int cli_parse_device(const char *text, int *device);
 /* Crops *surface (replacing it) and detrends it; a status naming the option on failure. */
 int cli_prepare_surface(const cli_preparation *preparation, im_field **surface);
 
+/* A warning when --fill invented more than 5% of the surface: statistics and contact on it are then
+ * partly the fill's (finding D17: 30% of a profilometer scan filled without a word). */
+void cli_warn_if_much_filled(const char *path, long filled, size_t points);
+
 /* "plane removed, cropped to 256 x 256 at (0, 0), 3 missing points filled" */
 void cli_describe_preparation(const cli_preparation *preparation, long filled, char *text, size_t size);
 

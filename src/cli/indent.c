@@ -555,9 +555,13 @@ static json_t *surface_sidecar_generator(const char *surface_path)
 static json_t *units_record(const indent_options *o, const im_field *s)
 {
     const char *length = s->unit[0] ? s->unit : "delta";
-    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length, "e_star",
-                     o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "load", o->force_unit, "force",
-                     o->force_unit, "load_star",
+    const char *stress = o->e_star_unit[0] ? o->e_star_unit : "the unit of --e-star";
+    char stiffness[64], work[64];
+    snprintf(stiffness, sizeof stiffness, "(%s) / %s", o->force_unit, length);
+    snprintf(work, sizeof work, "(%s) %s", o->force_unit, length);
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length,
+                     "e_star", o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "pressure", stress,
+                     "stiffness", stiffness, "work", work, "load", o->force_unit, "force", o->force_unit, "load_star",
                      o->solver.periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
                      "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)");
 }
@@ -573,6 +577,15 @@ static json_t *pixels_record(const im_surface_read_info *info)
     return json_pack("{s:f, s:f, s:f, s:f, s:o}", "delta_x", info->used.delta_x, "delta_y", info->used.delta_y,
                      "relative_difference", info->spacing_difference, "tolerance", IM_SQUARE_PIXEL_TOLERANCE,
                      "resampled", resampled);
+}
+
+/* A cone has no radius and a sphere or flat punch no angle: their defaults are not the run's (D14). */
+static void drop_meaningless_punch_fields(json_t *punch, enum im_punch_kind kind)
+{
+    if (kind == IM_PUNCH_CONE)
+        json_object_del(punch, "radius");
+    if (kind == IM_PUNCH_SPHERE || kind == IM_PUNCH_FLAT)
+        json_object_del(punch, "alpha_degrees");
 }
 
 /* What this run was given beside the common fields (front.h: run_record_create). */
@@ -667,6 +680,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         json_object_del(punch, "radius");
     }
     json_decref(generator);
+    drop_meaningless_punch_fields(json_object_get(root, "punch"), o->punch.kind);
     json_object_set_new(root, "units", units_record(o, s));
     json_object_set_new(root, "adhesion", o->solver.adhesion_work > 0 ? adhesion_law_record(o) : json_null());
     return root;
@@ -695,6 +709,21 @@ static void warn_if_steep(const im_indenter *punch)
                 "indentmap: warning: alpha = %g degrees: the cone flank's slope cot(alpha) = %.3g is not small; "
                 "small-slope elasticity is stretched (alpha >= %g advised)\n",
                 punch->alpha_degrees, 1 / tan(punch->alpha_degrees * M_PI / 180), STEEP_CONE_DEGREES);
+}
+
+/* The same for the surface: the half-space's small-slope elasticity and the paper's theory assume
+ * slopes well below 1 and, for a cone, below its flank's; a measured part can be far beyond both
+ * (finding D17: a machined part with h'rms 1.15 under an 80 degree cone, flank 0.176). */
+static void warn_if_rough_beyond_small_slopes(const indent_options *o)
+{
+    const double flank = o->punch.kind == IM_PUNCH_CONE ? 1 / tan(o->punch.alpha_degrees * M_PI / 180) : INFINITY;
+    if (o->theory_slope > 1.0)
+        fprintf(stderr, "indentmap: warning: the surface's h'rms = %.3g: slopes steeper than 45 degrees on average, "
+                "where small-slope elasticity is stretched\n", o->theory_slope);
+    if (o->theory_slope > flank)
+        fprintf(stderr, "indentmap: warning: the surface's h'rms = %.3g is %.3g times the cone flank's slope cot(alpha) "
+                "= %.3g: the roughness, not the cone, shapes the contact, beyond the paper's theory (h'rms below "
+                "cot(alpha))\n", o->theory_slope, o->theory_slope / flank, flank);
 }
 
 static int load_surface(indent_options *o, im_field **surface)
@@ -1087,6 +1116,10 @@ int cli_indent(int argc, char **argv)
         o.surface_delta = surface->delta;
         set_force_unit(&o, surface);
         status = measured_interface(&o, surface, &rough);
+    }
+    if (status == IM_OK && !o.smooth) {
+        warn_if_rough_beyond_small_slopes(&o);
+        cli_warn_if_much_filled(o.surface_path, o.filled, im_field_count(surface));
     }
     if (status == IM_OK)
         status = set_gap_scale(&o, surface);

@@ -368,8 +368,10 @@ int cli_surface(int argc, char **argv)
                          : im_surface_generate(&o.params, &surface);
     if (status == IM_OK && !o.stats)
         memcpy(surface->unit, o.read.set.lateral, sizeof surface->unit);
-    if (status == IM_OK && o.stats)
+    if (status == IM_OK && o.stats) {
+        cli_warn_if_much_filled(o.stats, info.filled, im_field_count(surface));
         status = cli_prepare_surface(&o.preparation, &surface);
+    }
     im_surface_stats stats;
     if (status == IM_OK)
         status = im_surface_statistics_tapered(surface, &o.preparation.taper, &stats);
