@@ -33,6 +33,8 @@ check "German Gwyddion export: Breite and Höhe read, non-square refused naming 
   "x spacing 4.11333333 and y spacing 1.419725 µm" "$cli" surface --stats "$data/gwyddion-export-german.txt"
 
 # Warnings and records a researcher needs (finding D17, D14).
+printf '# Width: 6\n1 2 3\n4 5 6\n7 8 9\n' >"$dir/unnamed.txt"
+check "a unitless spacing of 2: heights in its unnamed unit, not in delta" bash -c "'$cli' surface --stats '$dir/unnamed.txt' | grep -q \"heights          in the spacing's unit\""
 printf '1 2 3 4\nnan 5 6 7\n8 nan 9 1\n2 3 nan 4\n' >"$dir/holes.txt"
 check "--fill inventing 19% of a surface is said" expect_exit 0 "--fill invented 18.8% of the surface (3 of 16 points)" \
   "$cli" surface --stats "$dir/holes.txt" --fill

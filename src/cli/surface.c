@@ -145,7 +145,9 @@ static void print_units(const im_field *s, const im_surface_read_info *info, con
     if (info->height_factor != 1.0)
         printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height, info->height_factor);
     else
-        printf("heights          in %s\n", s->unit[0] ? s->unit : "delta");
+        printf("heights          in %s\n", s->unit[0]         ? s->unit
+                                           : s->delta == 1.0 ? "delta"
+                                                             : "the spacing's unit (not named; --unit names it)");
     if (info->conversion[0])
         printf("values           %s\n", info->conversion);
 }
