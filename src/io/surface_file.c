@@ -24,35 +24,38 @@ enum file_kind { TEXT_OF_NUMBERS, OTHER_TEXT, UTF16_TEXT, GZIP, BINARY };
 /* What a file looks like from its first 64 KiB: text whose first data line (after '#' comments, blank
  * lines and key=value headers) starts with a number, as the text reader needs; other text (a vendor's
  * header, column names), whose first data line goes into first_line; UTF-16 text (by its byte-order
- * mark, as spreadsheet programs save "Unicode text"); gzip-compressed; or binary (a NUL byte). A pipe
+ * mark, as spreadsheet programs save "Unicode text"); gzip-compressed (text, decompressed by the text
+ * reader); or binary (a NUL byte). A pipe
  * is taken as text of numbers: it cannot be looked at twice. */
-static enum file_kind look_at(const char *path, char *first_line, size_t size)
+static int look_at(const char *path, enum file_kind *kind, char *first_line, size_t size)
 {
+    *kind = TEXT_OF_NUMBERS; /* unless seen otherwise: the text reader names what is wrong */
     struct stat about;
     FILE *stream = stat(path, &about) == 0 && S_ISREG(about.st_mode) ? fopen(path, "rb") : NULL;
+    if (!stream)
+        return IM_OK;
     static const size_t LOOKED_AT = 65536;
-    char *head = stream ? malloc(LOOKED_AT + 1) : NULL;
+    char *head = malloc(LOOKED_AT + 1);
     size_t length = head ? fread(head, 1, LOOKED_AT, stream) : 0;
-    if (stream)
-        fclose(stream);
+    fclose(stream);
     if (!head)
-        return TEXT_OF_NUMBERS; /* the text reader names what is wrong with it */
+        return im_fail(IM_ENOMEM, "%s: allocation of %zu bytes to look at it failed", path, LOOKED_AT + 1);
     head[length] = '\0';
     int utf16 = length >= 2 && ((head[0] == '\xff' && head[1] == '\xfe') || (head[0] == '\xfe' && head[1] == '\xff'));
     int gzip = length >= 2 && head[0] == '\x1f' && head[1] == '\x8b';
-    enum file_kind kind = utf16 ? UTF16_TEXT : gzip ? GZIP : memchr(head, '\0', length) ? BINARY : TEXT_OF_NUMBERS;
-    for (char *line = head; kind == TEXT_OF_NUMBERS && line < head + length; line += strcspn(line, "\n") + 1) {
+    *kind = utf16 ? UTF16_TEXT : gzip ? GZIP : memchr(head, '\0', length) ? BINARY : TEXT_OF_NUMBERS;
+    for (char *line = head; *kind == TEXT_OF_NUMBERS && line < head + length; line += strcspn(line, "\n") + 1) {
         line += strspn(line, " \t\r\xef\xbb\xbf");
         if (*line == '\n' || *line == '#' || (isalpha((unsigned char)*line) && line[strcspn(line, "=\n")] == '='))
             continue;
         if (*line && !strchr("0123456789+-.", *line) && strncasecmp(line, "nan", 3) != 0) {
-            kind = OTHER_TEXT;
+            *kind = OTHER_TEXT;
             snprintf(first_line, size, "%.*s", (int)strcspn(line, "\r\n"), line);
         }
         break;
     }
     free(head);
-    return kind;
+    return IM_OK;
 }
 
 static surface_raw_reader reader_by_extension(const char *path)
@@ -118,13 +121,14 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     if (read)
         return surface_read_format(path, read, options, out, info);
     char first_line[48] = "";
-    enum file_kind kind = look_at(path, first_line, sizeof first_line);
+    enum file_kind kind;
+    int looked = look_at(path, &kind, first_line, sizeof first_line);
+    if (looked != IM_OK)
+        return looked;
     if (kind == UTF16_TEXT)
         return im_fail(IM_EFORMAT, "%s: UTF-16 text (a byte-order mark FF FE or FE FF): expected ASCII or UTF-8 text; "
                        "save it as UTF-8", path);
-    if (kind == GZIP)
-        return im_fail(IM_EFORMAT, "%s: gzip-compressed: decompress it first (gunzip -k FILE)", path);
-    if (kind == TEXT_OF_NUMBERS || !im_gwyddion_reader()) /* the text reader says what is wrong */
+    if (kind == TEXT_OF_NUMBERS || kind == GZIP || !im_gwyddion_reader()) /* the text reader says what is wrong */
         return surface_read_format(path, text_read_raw, options, out, info);
     int status = read_through_gwyddion(path, options, out, info);
     if (status != IM_EFORMAT || !strstr(im_last_error(), "No module can load this file type"))

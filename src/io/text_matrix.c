@@ -3,6 +3,7 @@
 
 #include "indentmap/status.h"
 #include "io/payload.h"
+#include "io/gzip_stream.h"
 #include "io/readers.h"
 #include "io/text_header.h"
 #include "io/text_points.h"
@@ -218,21 +219,35 @@ static int numbers_to_field(const char *path, const value_list *values, long col
     return status == IM_OK ? matrix_field(values, columns, rows, factor, out) : status;
 }
 
+/* The record of how the values were read says the text was gzip-compressed. */
+static void note_decompressed(surface_stated *stated)
+{
+    char before[sizeof stated->conversion];
+    memcpy(before, stated->conversion, sizeof before);
+    snprintf(stated->conversion, sizeof stated->conversion, "%s%.70s", before[0] ? "gzip-compressed text; " :
+             "gzip-compressed text", before);
+}
+
 int text_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream;
-    int status = im_read_open(path, "r", IM_READ_OR_PIPE, &stream, NULL);
+    int compressed = 0, status = im_read_open(path, "r", IM_READ_OR_PIPE, &stream, NULL);
+    if (status == IM_OK)
+        status = io_gunzip_if_compressed(&stream, path, &compressed);
     if (status != IM_OK)
         return status;
     value_list values = {0};
     long columns = 0, rows = 0;
     text_header header = {0};
     status = read_rows(stream, path, &values, &columns, &rows, &header);
-    fclose(stream);
+    if (fclose(stream) != 0 && status == IM_OK && compressed) /* zlib found the stream cut or its CRC wrong */
+        status = im_fail(IM_EFORMAT, "%s: the gzip stream ends early or is damaged", path);
     im_field *field = NULL;
     if (status == IM_OK)
         status = numbers_to_field(path, &values, columns, rows, &header, &field, stated);
+    if (status == IM_OK && compressed)
+        note_decompressed(stated);
     if (status == IM_OK)
         *out = field;
     else
