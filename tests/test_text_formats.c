@@ -53,17 +53,21 @@ static void line_scans_are_refused_as_such(void **state)
 static void xyz_points_on_a_grid_are_a_map(void **state)
 {
     (void)state;
-    const char *points = "0.5 0 3\n0 0 1\n1.0 0 5\n0 0.5 2\n0.5 0.5 4\n1.0 0.5 6\n";
+    const char *points = "0.5 0 3\n0 0 1\n1.0 0 5\n0 0.5 2\n0.5 0.5 4\n1.0 0.5 6\n0 1 7\n1.0 1 9\n0.5 1 8\n";
     im_field *f = read_text("points.txt", points, NULL);
     assert_int_equal(f->nx, 3);
-    assert_int_equal(f->ny, 2);
+    assert_int_equal(f->ny, 3);
     assert_close(f->delta, 0.5, 1e-15);
-    const double expected[] = {1, 3, 5, 2, 4, 6};
-    for (int k = 0; k < 6; ++k)
+    const double expected[] = {1, 3, 5, 2, 4, 6, 7, 8, 9};
+    for (int k = 0; k < 9; ++k)
         assert_close(f->data[k], expected[k], 0.0);
     im_field_free(f);
-    expect_text_refused("repeat.txt", "0 0 1\n1 0 2\n0 1 3\n1 1 4\n0 0 5\n1 0 6\n",
-                        "not a regular grid");
+    expect_text_refused("repeat.txt", "0 0 1\n1 0 2\n2 0 3\n0 1 4\n1 1 5\n2 1 6\n0 2 7\n0 2 8\n2 2 9\n",
+                        "point 8 repeats (x, y) = (0, 2)");
+    expect_text_refused("profile.txt", "0 0 1\n1 0 2\n2 0 3\n0 1 4\n1 1 5\n2 1 6\n", "on a 3 x 2 grid: a line scan");
+    /* a NaN position sorted into the middle of the x values placed a point far off the grid (SIGSEGV) */
+    expect_text_refused("nan_x.txt", "0 0 1\n0 1 4\nnan 0 2\n2 0 3\n2 1 5\n2 1 6\n",
+                        "point 3 has (x, y) = (nan, 0): expected finite positions");
     expect_text_refused("uneven.txt", "0 0 1\n1 0 2\n3 0 3\n0 1 4\n1 1 5\n3 1 6\n", "x or y not equally spaced");
     expect_text_refused("scattered.txt", "0 0 1\n0.3 0.7 2\n0.9 0.1 3\n0.2 0.4 4\n", "not a regular grid");
 }

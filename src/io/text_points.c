@@ -77,6 +77,10 @@ static int place_points(const char *path, const double *values, long points, con
     int status = IM_OK;
     for (long k = 0; k < points && status == IM_OK; ++k) {
         long ix = lround((values[3 * k] - x->start) / x->step), iy = lround((values[3 * k + 1] - y->start) / y->step);
+        if (ix < 0 || ix >= x->count || iy < 0 || iy >= y->count) { /* cannot be: the axes hold every value */
+            status = im_fail(IM_EFORMAT, "%s: point %ld lies off the grid", path, k + 1);
+            break;
+        }
         size_t node = (size_t)iy * (size_t)x->count + (size_t)ix;
         if (taken[node])
             status = im_fail(IM_EFORMAT, "%s: point %ld repeats (x, y) = (%.9g, %.9g): expected each node of the "
@@ -88,19 +92,34 @@ static int place_points(const char *path, const double *values, long points, con
     return status;
 }
 
+/* x and y must be numbers: a NaN among them sorts anywhere and would place a point outside the grid. */
+static int check_finite_positions(const char *path, const double *values, long points)
+{
+    for (long k = 0; k < points; ++k)
+        if (!isfinite(values[3 * k]) || !isfinite(values[3 * k + 1]))
+            return im_fail(IM_EFORMAT, "%s: point %ld has (x, y) = (%g, %g): expected finite positions (a missing "
+                           "height is a NaN z)", path, k + 1, values[3 * k], values[3 * k + 1]);
+    return IM_OK;
+}
+
 int text_points_grid(const char *path, const double *values, long points, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     grid_axis x, y;
-    int status = axis_of_column(values, points, 0, &x);
+    int status = check_finite_positions(path, values, points);
+    if (status == IM_OK)
+        status = axis_of_column(values, points, 0, &x);
     if (status == IM_OK)
         status = axis_of_column(values, points, 1, &y);
     if (status != IM_OK)
         return status;
-    if (x.count < 2 || y.count < 2 || x.count * y.count != points)
+    if (x.count * y.count != points)
         return not_a_grid(path, &x, &y, points, "distinct x times distinct y is not the number of points");
     if (!(x.step > 0.0) || !(y.step > 0.0))
         return not_a_grid(path, &x, &y, points, "x or y not equally spaced");
+    if (x.count < 3 || y.count < 3)
+        return im_fail(IM_EFORMAT, "%s: x y z points on a %ld x %ld grid: a line scan (a 1-D profile), not a map; a 2-D "
+                       "contact needs heights on a grid of at least 3 x 3", path, x.count, y.count);
     if (x.count > IM_FIELD_MAX_SIDE || y.count > IM_FIELD_MAX_SIDE)
         return im_fail(IM_EFORMAT, "%s: x y z points on a %ld x %ld grid: expected at most %d a side", path,
                        x.count, y.count, IM_FIELD_MAX_SIDE);
