@@ -8,6 +8,7 @@
 #include "io/gwyddion.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -56,6 +57,7 @@ static void a_stream_that_lies_is_refused(void **state)
     expect_stream_refused("short_data.bin", "ended inside the heights (3 x 3 claimed, 40 bytes left)");
     expect_stream_refused("extra_data.bin", "wrote more than the field");
     expect_stream_refused("non_square.bin", "non-square pixels");
+    expect_stream_refused("unknown_format.bin", "no Gwyddion file module reads this format");
 }
 
 /* INDENTMAP_GWYDDION_READER names the program; one that cannot be run is no program. */
@@ -111,6 +113,50 @@ static void what_comes_through_the_pipe_is_checked(void **state)
     im_field_free(f);
     fake_reader("crash.sh", "printf 'indentmap-gwyddion-read 1\\n'; kill -SEGV $$");
     expect_read_refused("Gwyddion's file module crashed reading it (signal 11)");
+    fake_reader("hang.sh", "kill -ALRM $$"); /* what the reader's own alarm does to a module that hangs */
+    expect_read_refused("Gwyddion's file module ran out of time reading it");
+    fake_reader("loader.sh", "echo 'libgwyapp2.so.0: cannot open shared object file' >&2; exit 127");
+    expect_read_refused("Gwyddion's reader ended with status 127: libgwyapp2.so.0: cannot open shared object file");
+    unsetenv("INDENTMAP_GWYDDION_READER");
+}
+
+/* Another part of the process reaping children (SIGCHLD ignored: the status is gone) does not turn a
+ * good read into a crash (the status was read uninitialised). */
+static void a_reaped_reader_is_judged_by_its_stream(void **state)
+{
+    (void)state;
+    char body[4200];
+    snprintf(body, sizeof body, "cat '%s'", seed("valid_heights.bin"));
+    fake_reader("good.sh", body);
+    void (*before)(int) = signal(SIGCHLD, SIG_IGN);
+    im_field *f = NULL;
+    for (int k = 0; k < 5; ++k) {
+        assert_int_equal(im_surface_read(seed("valid_heights.bin"), &f), IM_OK);
+        im_field_free(f);
+    }
+    signal(SIGCHLD, before);
+    unsetenv("INDENTMAP_GWYDDION_READER");
+}
+
+/* Values without a unit beside sizes in metres are not taken for metres; --height-unit says what they are. */
+static void unitless_values_beside_metres_need_their_unit(void **state)
+{
+    (void)state;
+    const char *stream = "indentmap-gwyddion-read 1\nmodule x\nchannel 0\t3\t3\t-\tCounts\n"
+                         "field 0 3 3 3e-06 3e-06 m - 0 Counts\n";
+    char bytes[256];
+    size_t length = strlen(stream);
+    memcpy(bytes, stream, length);
+    memset(bytes + length, 0, 9 * sizeof(double));
+    test_write_bytes(test_path("counts.bin"), bytes, length + 9 * sizeof(double));
+    char body[4200];
+    snprintf(body, sizeof body, "cat '%s'", test_path("counts.bin"));
+    fake_reader("counts.sh", body);
+    expect_read_refused("its values have no unit beside lateral sizes in m: give their unit (--height-unit)");
+    im_surface_read_options options = {.set = {.height = "nm"}};
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read_with(seed("valid_heights.bin"), &options, &f, NULL), IM_OK);
+    im_field_free(f);
     unsetenv("INDENTMAP_GWYDDION_READER");
 }
 
@@ -121,6 +167,8 @@ int main(void)
         cmocka_unit_test(a_stream_that_lies_is_refused),
         cmocka_unit_test(the_program_is_chosen_by_the_environment),
         cmocka_unit_test(what_comes_through_the_pipe_is_checked),
+        cmocka_unit_test(a_reaped_reader_is_judged_by_its_stream),
+        cmocka_unit_test(unitless_values_beside_metres_need_their_unit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -180,6 +180,9 @@ static void unit_converts_a_stated_unit(void **state)
     assert_close(f->delta, 1000.0, 1e-9);
     assert_close(f->data[8], 9000.0, 1e-9); /* the slopes are the file's */
     im_field_free(f);
+    im_surface_read_options channel = {.channel = "Height"}; /* one channel: asking for one is a mistake */
+    assert_int_equal(im_surface_read_with(test_path("stated.txt"), &channel, &f, NULL), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "channel 'Height' asked of a file read by indentmap's own reader"));
     options.set.delta_x = 2.0;
     assert_int_equal(im_surface_read_with(test_path("stated.txt"), &options, &f, NULL), IM_OK);
     assert_close(f->delta, 2.0, 0.0);

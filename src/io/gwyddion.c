@@ -18,15 +18,31 @@
 
 extern char **environ;
 
+/* The program beside the running executable (a build tree's, or bin/ beside libexec/ when installed
+ * so): found through /proc/self/exe, the program's own folder, never a path fixed at build time
+ * that someone else could create later. */
+static const char *reader_beside_this_program(void)
+{
+    static __thread char path[4096];
+    ssize_t length = readlink("/proc/self/exe", path, sizeof path - 64);
+    if (length <= 0)
+        return NULL;
+    path[length] = '\0';
+    char *slash = strrchr(path, '/');
+    if (!slash)
+        return NULL;
+    snprintf(slash + 1, 64, "indentmap-gwyddion-read");
+    return access(path, X_OK) == 0 ? path : NULL;
+}
+
 const char *im_gwyddion_reader(void)
 {
-    const char *chosen = getenv("INDENTMAP_GWYDDION_READER");
+    const char *chosen = secure_getenv("INDENTMAP_GWYDDION_READER");
     if (chosen && chosen[0])
         return access(chosen, X_OK) == 0 ? chosen : NULL;
-#ifdef IM_GWYDDION_READER_BUILD
-    if (access(IM_GWYDDION_READER_BUILD, X_OK) == 0)
-        return IM_GWYDDION_READER_BUILD;
-#endif
+    const char *beside = reader_beside_this_program();
+    if (beside)
+        return beside;
 #ifdef IM_GWYDDION_READER_INSTALLED
     if (access(IM_GWYDDION_READER_INSTALLED, X_OK) == 0)
         return IM_GWYDDION_READER_INSTALLED;
@@ -40,8 +56,10 @@ enum { STREAM_LINE = 4096, MAX_LISTED = 8 };
  * the files); 0 at the end of the stream. */
 static int stream_line(FILE *stream, char *line)
 {
-    if (!fgets(line, STREAM_LINE, stream))
+    if (!fgets(line, STREAM_LINE, stream)) {
+        line[0] = '\0';
         return 0;
+    }
     size_t length = strcspn(line, "\n");
     if (line[length] != '\n')
         for (int c = fgetc(stream); c != EOF && c != '\n'; c = fgetc(stream))
@@ -82,8 +100,9 @@ static void take_channel_line(const char *line, stream_header *header)
 static int take_field_line(const char *path, const char *line, stream_header *header)
 {
     char lateral[32], height[32];
-    if (sscanf(line, "field %d %d %d %lf %lf %31s %31s %d", &header->id, &header->nx, &header->ny,
-               &header->x_extent, &header->y_extent, lateral, height, &header->masked) != 8 ||
+    int consumed = 0;
+    if (sscanf(line, "field %d %d %d %lf %lf %31s %31s %d %n", &header->id, &header->nx, &header->ny,
+               &header->x_extent, &header->y_extent, lateral, height, &header->masked, &consumed) != 8 ||
         header->nx < 1 || header->ny < 1 || header->nx > IM_FIELD_MAX_SIDE || header->ny > IM_FIELD_MAX_SIDE ||
         !isfinite(header->x_extent) || !(header->x_extent > 0.0) || !isfinite(header->y_extent) ||
         !(header->y_extent > 0.0) || (header->masked != 0 && header->masked != 1))
@@ -91,16 +110,8 @@ static int take_field_line(const char *path, const char *line, stream_header *he
                        "and extents > 0", path, line, IM_FIELD_MAX_SIDE);
     snprintf(header->lateral, sizeof header->lateral, "%.15s", strcmp(lateral, "-") ? lateral : "");
     snprintf(header->height, sizeof header->height, "%.15s", strcmp(height, "-") ? height : "");
+    snprintf(header->title, sizeof header->title, "%.63s", consumed ? line + consumed : "");
     return IM_OK;
-}
-
-/* The chosen channel's title, from the channel lines seen (for the record). */
-static void remember_title(const char *line, stream_header *header, int id)
-{
-    int seen = -1, consumed = 0;
-    sscanf(line, "channel %d\t%*d\t%*d\t%*[^\t]\t%n", &seen, &consumed);
-    if (seen == id && consumed)
-        snprintf(header->title, sizeof header->title, "%.63s", line + consumed);
 }
 
 static int read_stream_header(FILE *stream, const char *path, stream_header *header)
@@ -109,25 +120,20 @@ static int read_stream_header(FILE *stream, const char *path, stream_header *hea
     if (!stream_line(stream, line) || strcmp(line, "indentmap-gwyddion-read 1") != 0)
         return im_fail(IM_EFORMAT, "%s: Gwyddion's reader gave no answer one can read (first line '%.40s')", path,
                        line);
-    char channel_lines[MAX_LISTED * 2][128] = {{0}};
-    int kept = 0;
     while (stream_line(stream, line)) {
-        if (strncmp(line, "error ", 6) == 0)
-            return im_fail(IM_EFORMAT, "%s: Gwyddion's file modules cannot read it: %.200s", path, line + 6);
+        if (strncmp(line, "error unknown-format ", 21) == 0)
+            return im_fail(IM_EFORMAT, "%s: " GWYDDION_UNKNOWN_FORMAT ": %.200s", path, line + 21);
+        if (strncmp(line, "error failed ", 13) == 0)
+            return im_fail(IM_EFORMAT, "%s: Gwyddion's file modules cannot read it: %.200s", path, line + 13);
         if (sscanf(line, "module %63s", header->module) == 1)
             continue;
         if (strncmp(line, "channel ", 8) == 0) {
             take_channel_line(line, header);
-            if (kept < MAX_LISTED * 2)
-                snprintf(channel_lines[kept++], sizeof channel_lines[0], "%.127s", line);
             continue;
         }
         if (strncmp(line, "field ", 6) != 0)
             return im_fail(IM_EFORMAT, "%s: Gwyddion's reader wrote '%.40s': expected a field", path, line);
-        int status = take_field_line(path, line, header);
-        for (int k = 0; status == IM_OK && k < kept; ++k)
-            remember_title(channel_lines[k], header, header->id);
-        return status;
+        return take_field_line(path, line, header);
     }
     return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended before the field", path);
 }
@@ -220,61 +226,126 @@ int gwyddion_stream_file_read(const char *path, im_field **out)
     return status;
 }
 
-/* Starts the program on path with its standard output on a pipe (*from), its input and errors on
- * /dev/null (Gwyddion's warnings are not this reader's messages). */
-static int start_reader(const char *program, const char *path, const char *channel, pid_t *child, FILE **from)
+/* The program's environment for one read: a pipe for its stream, a temporary file for its errors. */
+typedef struct reader_process {
+    pid_t child;
+    FILE *from, *errors;
+    int started;
+} reader_process;
+
+/* Spawn attributes: no signal blocked and the default actions for those a caller may have changed
+ * (Python ignores SIGPIPE; the alarm that bounds a module's time must end it). */
+static void default_signals(posix_spawnattr_t *attributes)
+{
+    sigset_t none, defaults;
+    sigemptyset(&none);
+    sigemptyset(&defaults);
+    int reset[] = {SIGPIPE, SIGINT, SIGTERM, SIGALRM, SIGCHLD};
+    for (size_t k = 0; k < sizeof reset / sizeof *reset; ++k)
+        sigaddset(&defaults, reset[k]);
+    posix_spawnattr_init(attributes);
+    posix_spawnattr_setsigmask(attributes, &none);
+    posix_spawnattr_setsigdefault(attributes, &defaults);
+    posix_spawnattr_setflags(attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+}
+
+/* Starts the program on path ("--" first: a file may be named like an option), its stream on a pipe,
+ * its errors (Gwyddion's warnings, a loader's message) into a temporary file quoted on failure. */
+static int start_reader(const char *program, const char *path, const char *channel, reader_process *reader)
 {
     int ends[2];
-    if (pipe2(ends, O_CLOEXEC) != 0)
+    reader->errors = tmpfile();
+    if (!reader->errors || pipe2(ends, O_CLOEXEC) != 0)
         return im_fail(IM_EIO, "%s: cannot start Gwyddion's reader: %s", path, strerror(errno));
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_adddup2(&actions, ends[1], 1);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    char *arguments[] = {(char *)program, (char *)path, channel[0] ? (char *)channel : NULL, NULL};
-    int failed = posix_spawn(child, program, &actions, NULL, arguments, environ);
+    posix_spawn_file_actions_adddup2(&actions, fileno(reader->errors), 2);
+    posix_spawnattr_t attributes;
+    default_signals(&attributes);
+    char *arguments[] = {(char *)program, "--", (char *)path, channel[0] ? (char *)channel : NULL, NULL};
+    int failed = posix_spawn(&reader->child, program, &actions, &attributes, arguments, environ);
     posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
     close(ends[1]);
     if (failed) {
         close(ends[0]);
         return im_fail(IM_EIO, "%s: cannot start Gwyddion's reader %s: %s", path, program, strerror(failed));
     }
-    *from = fdopen(ends[0], "rb");
-    if (*from)
+    reader->started = 1;
+    reader->from = fdopen(ends[0], "rb");
+    if (reader->from)
         return IM_OK;
-    close(ends[0]); /* the reader gets SIGPIPE */
+    close(ends[0]); /* the reader's next write fails and ends it */
     return im_fail(IM_ENOMEM, "%s: cannot read Gwyddion's reader: %s", path, strerror(errno));
 }
 
-/* The program's end: a crash in a vendor parser is a refusal of the file, not of the caller. */
-static int finish_reader(const char *path, pid_t child, int parsed)
+/* The last line the program wrote on its standard error, or "". */
+static void last_error_line(FILE *errors, char *line, size_t size)
 {
-    int how;
-    while (waitpid(child, &how, 0) < 0 && errno == EINTR)
+    char text[STREAM_LINE];
+    line[0] = '\0';
+    rewind(errors);
+    while (fgets(text, sizeof text, errors))
+        if (text[strspn(text, " \t\r\n")])
+            snprintf(line, size, "%.*s", (int)strcspn(text, "\r\n"), text);
+}
+
+/* The program's end: a crash or a hang in a vendor parser is a refusal of the file, not of the caller.
+ * When another part of the process reaps children (SIGCHLD ignored, a watcher), the status is gone:
+ * the stream alone then decides. */
+static int finish_reader(const char *path, const reader_process *reader, int parsed)
+{
+    int how = 0;
+    pid_t ended;
+    while ((ended = waitpid(reader->child, &how, 0)) < 0 && errno == EINTR)
         ;
+    if (ended < 0)
+        return parsed;
+    char said[200];
+    last_error_line(reader->errors, said, sizeof said);
+    if (WIFSIGNALED(how) && WTERMSIG(how) == SIGALRM)
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's file module ran out of time reading it (a damaged file?)", path);
     if (WIFSIGNALED(how) && WTERMSIG(how) != SIGPIPE)
-        return im_fail(IM_EFORMAT, "%s: Gwyddion's file module crashed reading it (signal %d): a damaged file?", path,
-                       WTERMSIG(how));
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's file module crashed reading it (signal %d): a damaged file?%s%s",
+                       path, WTERMSIG(how), said[0] ? " It said: " : "", said);
+    if (parsed != IM_OK && WIFEXITED(how) && WEXITSTATUS(how) != 0 && WEXITSTATUS(how) != 2)
+        return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended with status %d%s%s", path, WEXITSTATUS(how),
+                       said[0] ? ": " : "", said);
     return parsed;
 }
 
-int gwyddion_read_raw(const char *path, const char *channel, im_field **out, surface_stated *stated)
+/* Values without a unit beside lateral sizes in a unit are counts or volts as often as lengths: their
+ * unit is not guessed (a file with no units at all is read as a bare matrix). */
+static int check_height_unit(const char *path, const surface_stated *stated, const im_surface_read_options *options)
+{
+    if (stated->units.height[0] || !stated->units.lateral[0] || (options && options->set.height[0]))
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: %s: its values have no unit beside lateral sizes in %s: give their unit "
+                   "(--height-unit) if they are heights", path, stated->conversion, stated->units.lateral);
+}
+
+int gwyddion_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                      surface_stated *stated)
 {
     *out = NULL;
     const char *program = im_gwyddion_reader();
     if (!program)
         return im_fail(IM_EFORMAT, "%s: a format read through Gwyddion's file modules, which this build lacks "
                        "(install libgwyddion20-dev and gwyddion, then rebuild)", path);
-    pid_t child;
-    FILE *from = NULL;
-    int status = start_reader(program, path, channel ? channel : "", &child, &from);
-    if (status == IM_OK) {
-        status = gwyddion_stream_parse(from, path, out, stated);
-        fclose(from); /* before the wait: a reader still writing gets SIGPIPE rather than blocking */
-    }
-    if (from || status != IM_EIO)
-        status = finish_reader(path, child, status);
+    reader_process reader = {0};
+    int status = start_reader(program, path, options ? options->channel : "", &reader);
+    if (status == IM_OK)
+        status = gwyddion_stream_parse(reader.from, path, out, stated);
+    if (reader.from)
+        fclose(reader.from); /* before the wait: a reader still writing ends on the closed pipe */
+    if (reader.started)
+        status = finish_reader(path, &reader, status);
+    if (reader.errors)
+        fclose(reader.errors);
+    if (status == IM_OK)
+        status = check_height_unit(path, stated, options);
     if (status != IM_OK && *out) {
         im_field_free(*out);
         *out = NULL;

@@ -10,11 +10,17 @@
 
 #include <stdio.h>
 
-/* Reads path through Gwyddion: channel is an index or a title ("" for the first channel holding
- * lengths). Masked (invalid) points become NaN. IM_EFORMAT naming path when Gwyddion cannot read it,
- * when the channel asked for is not there (the message lists the channels), when the chosen channel's
- * values are not lengths, or when the program fails; IM_EUNSUPPORTED when this build has no program. */
-int gwyddion_read_raw(const char *path, const char *channel, im_field **out, surface_stated *stated);
+/* The words of the refusal when no Gwyddion module reads a file's format (callers look for them). */
+#define GWYDDION_UNKNOWN_FORMAT "no Gwyddion file module reads this format"
+
+/* Reads path through Gwyddion: options->channel is an index or a title ("" for the first channel
+ * holding lengths; options may be NULL). Masked (invalid) points become NaN. IM_EFORMAT naming path
+ * when this build has no program, when Gwyddion cannot read the file, when the channel asked for is
+ * not there, when the chosen channel's values are not lengths (the message lists the channels), when
+ * they have no unit beside a lateral unit and options->set.height gives none, or when the program
+ * crashes, runs out of time or ends without a field (its last line of errors quoted). */
+int gwyddion_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                      surface_stated *stated);
 
 /* Parses the program's stream into a raw field and its stated units, as gwyddion_read_raw does. */
 int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated);

@@ -73,7 +73,7 @@ static int read_through_gwyddion(const char *path, const im_surface_read_options
 {
     surface_stated stated;
     im_field *field = NULL;
-    int status = gwyddion_read_raw(path, options ? options->channel : "", &field, &stated);
+    int status = gwyddion_read_raw(path, options, &field, &stated);
     if (status == IM_OK)
         status = surface_finish(path, field, &stated, options, info);
     if (status != IM_OK)
@@ -94,6 +94,16 @@ static int refuse_other_text(const char *path, const char *first_line)
     return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers (column names, or a "
                    "vendor's text export), and no Gwyddion file module reads it: expected a matrix of heights "
                    "(a header row of column names is not read; remove it)", path, shown);
+}
+
+/* 1 (after saying why) when a channel is asked of a file indentmap's own readers read: they hold one. */
+static int refuse_channel(const char *path, const im_surface_read_options *options)
+{
+    if (!options || !options->channel[0])
+        return 0;
+    im_fail(IM_EINVAL, "%s: channel '%.63s' asked of a file read by indentmap's own reader, which holds one channel "
+            "(channels are chosen in instrument files read through Gwyddion's modules)", path, options->channel);
+    return 1;
 }
 
 /* A binary file no Gwyddion module reads: the text reader's refusal names the first NUL byte (a text
@@ -119,7 +129,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     *out = NULL;
     surface_raw_reader read = reader_by_extension(path);
     if (read)
-        return surface_read_format(path, read, options, out, info);
+        return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, read, options, out, info);
     char first_line[48] = "";
     enum file_kind kind;
     int looked = look_at(path, &kind, first_line, sizeof first_line);
@@ -129,9 +139,9 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
         return im_fail(IM_EFORMAT, "%s: UTF-16 text (a byte-order mark FF FE or FE FF): expected ASCII or UTF-8 text; "
                        "save it as UTF-8", path);
     if (kind == TEXT_OF_NUMBERS || kind == GZIP || !im_gwyddion_reader()) /* the text reader says what is wrong */
-        return surface_read_format(path, text_read_raw, options, out, info);
+        return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, text_read_raw, options, out, info);
     int status = read_through_gwyddion(path, options, out, info);
-    if (status != IM_EFORMAT || !strstr(im_last_error(), "No module can load this file type"))
+    if (status != IM_EFORMAT || !strstr(im_last_error(), GWYDDION_UNKNOWN_FORMAT))
         return status;
     return kind == OTHER_TEXT ? refuse_other_text(path, first_line) : refuse_binary(path, options);
 }

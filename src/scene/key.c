@@ -48,8 +48,10 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
         stat(path, &info);
         key_add(hash, "file ");
         key_add_bytes(hash, path, strlen(path));
-        key_add(hash, " %lld %lld.%09ld detrend %d fill %d;", (long long)info.st_size, (long long)info.st_mtim.tv_sec,
-                info.st_mtim.tv_nsec, scene->detrend, scene->fill);
+        /* "readers 2": the readers now read some files differently (x y z points, decimal commas, NetCDF's
+         * x:unit), so results kept from the earlier readers are solved again */
+        key_add(hash, " %lld %lld.%09ld detrend %d fill %d readers 2 channel '%s';", (long long)info.st_size,
+                (long long)info.st_mtim.tv_sec, info.st_mtim.tv_nsec, scene->detrend, scene->fill, scene->channel);
         if (scene->resample_square) /* only then: the keys of results read without it stay as they were */
             key_add(hash, "resample_square;");
         return;

@@ -6,17 +6,20 @@
  * take the caller (a Python kernel, an MPI rank) down with it. So libindentmap never links them: it
  * runs this program (src/io/gwyddion.c) and reads the stream below.
  *
- * Usage: indentmap-gwyddion-read FILE [CHANNEL]      CHANNEL: an index or a title; default: the first
+ * Usage: indentmap-gwyddion-read [--] FILE [CHANNEL] CHANNEL: an index or a title; default: the first
  *                                                    channel whose values are lengths
  *        indentmap-gwyddion-read --formats           the file modules that load, "NAME<TAB>WHAT" a line
  * Stream (text lines, then binary; see src/io/gwyddion.h):
  *   indentmap-gwyddion-read 1
  *   module NAME
  *   channel ID<TAB>XRES<TAB>YRES<TAB>ZUNIT<TAB>TITLE      one line per channel, ZUNIT "-" when none
- *   field ID XRES YRES XREAL YREAL XYUNIT ZUNIT MASK      the chosen channel (units "-" when none)
+ *   field ID XRES YRES XREAL YREAL XYUNIT ZUNIT MASK TITLE the chosen channel (units "-" when none)
  *   XRES*YRES doubles (native byte order), row 0 first; then, when MASK is 1, XRES*YRES bytes (1: the
  *   point is invalid)
- * or, at any point before the field line, "error MESSAGE" and exit status 2. */
+ * or, at any point before the field line, "error KIND MESSAGE" (KIND: unknown-format when no module
+ * reads the file, else failed) and exit status 2. Titles and units come from the file: control bytes
+ * are written as '?' and blanks in units as '_', so that no file can break a line. A module that
+ * runs longer than READ_SECONDS is ended by SIGALRM (a parser looping on a damaged file). */
 #include <libgwyddion/gwyddion.h>
 #include <libgwymodule/gwymodule-file.h>
 #include <libgwymodule/gwymoduleloader.h>
@@ -26,12 +29,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Declared in Gwyddion's app/app.h, which includes GTK's development headers; this program needs
  * only this one function of it (loading the file modules without a display). */
 void gwy_app_init_nongui(const gchar *option, ...);
 
-enum { MAX_CHANNELS = 256 };
+enum { READ_SECONDS = 300 };
 
 typedef struct channel {
     int id;
@@ -39,12 +43,22 @@ typedef struct channel {
     const char *title;
 } channel;
 
-static int fail(const char *format, const char *detail)
+static int fail(const char *kind, const char *format, const char *detail)
 {
-    printf("error ");
+    printf("error %s ", kind);
     printf(format, detail);
     printf("\n");
     return 2;
+}
+
+/* A copy of text from the file that cannot break a line of the stream (the caller frees it). */
+static gchar *one_line(const char *text, char blank)
+{
+    gchar *copy = g_strdup(text ? text : "");
+    for (gchar *at = copy; *at; ++at)
+        if ((unsigned char)*at < 0x20 || *at == 0x7f || (blank && *at == ' '))
+            *at = (unsigned char)*at < 0x20 || *at == 0x7f ? '?' : blank;
+    return copy;
 }
 
 /* The channel id of a container key "/ID/data", or -1. */
@@ -86,15 +100,13 @@ static void complete_channels(GwyContainer *container, GArray *channels)
     }
 }
 
-/* A unit's plain name, "-" for none (the caller frees it). */
+/* A unit's plain name as one word, "-" for none (the caller frees it). */
 static gchar *unit_name(GwySIUnit *unit)
 {
     gchar *name = gwy_si_unit_get_string(unit, GWY_SI_UNIT_FORMAT_PLAIN);
-    if (!name[0]) {
-        g_free(name);
-        name = g_strdup("-");
-    }
-    return name;
+    gchar *word = one_line(name[0] ? name : "-", '_');
+    g_free(name);
+    return word;
 }
 
 static int holds_lengths(const channel *c)
@@ -109,10 +121,11 @@ static void print_channels(const GArray *channels)
 {
     for (guint k = 0; k < channels->len; ++k) {
         const channel *c = &g_array_index(channels, channel, k);
-        gchar *z = unit_name(gwy_data_field_get_si_unit_z(c->data));
+        gchar *z = unit_name(gwy_data_field_get_si_unit_z(c->data)), *title = one_line(c->title, 0);
         printf("channel %d\t%d\t%d\t%s\t%s\n", c->id, gwy_data_field_get_xres(c->data),
-               gwy_data_field_get_yres(c->data), z, c->title);
+               gwy_data_field_get_yres(c->data), z, title);
         g_free(z);
+        g_free(title);
     }
 }
 
@@ -137,16 +150,21 @@ static const channel *choose_channel(const GArray *channels, const char *asked)
     return NULL;
 }
 
-static void write_field(const channel *c)
+/* masks_invalid: the module's masks mark invalid points (instrument importers); in Gwyddion's own
+ * .gwy files a mask is a selection the user made (grains, a threshold), not missing data. */
+static void write_field(const channel *c, int masks_invalid)
 {
     GwyDataField *data = c->data;
     int xres = gwy_data_field_get_xres(data), yres = gwy_data_field_get_yres(data);
-    int masked = c->mask && gwy_data_field_get_xres(c->mask) == xres && gwy_data_field_get_yres(c->mask) == yres;
+    int masked = masks_invalid && c->mask && gwy_data_field_get_xres(c->mask) == xres &&
+                 gwy_data_field_get_yres(c->mask) == yres;
     gchar *xy = unit_name(gwy_data_field_get_si_unit_xy(data)), *z = unit_name(gwy_data_field_get_si_unit_z(data));
-    printf("field %d %d %d %.17g %.17g %s %s %d\n", c->id, xres, yres, gwy_data_field_get_xreal(data),
-           gwy_data_field_get_yreal(data), xy, z, masked);
+    gchar *title = one_line(c->title, 0);
+    printf("field %d %d %d %.17g %.17g %s %s %d %s\n", c->id, xres, yres, gwy_data_field_get_xreal(data),
+           gwy_data_field_get_yreal(data), xy, z, masked, title);
     g_free(xy);
     g_free(z);
+    g_free(title);
     fwrite(gwy_data_field_get_data_const(data), sizeof(double), (size_t)xres * (size_t)yres, stdout);
     if (!masked)
         return;
@@ -175,8 +193,10 @@ static int read_file(const char *path, const char *asked)
     GError *error = NULL;
     const char *module = gwy_file_detect(path, FALSE, GWY_FILE_OPERATION_LOAD);
     GwyContainer *container = gwy_file_load(path, GWY_RUN_NONINTERACTIVE, &error);
-    if (!container)
-        return fail("%s", error ? error->message : "Gwyddion gave no reason");
+    if (!container) {
+        int unknown = error && error->domain == GWY_MODULE_FILE_ERROR && error->code == GWY_MODULE_FILE_ERROR_UNIMPLEMENTED;
+        return fail(unknown ? "unknown-format" : "failed", "%s", error ? error->message : "Gwyddion gave no reason");
+    }
     printf("module %s\n", module ? module : "-");
     GArray *channels = g_array_new(FALSE, FALSE, sizeof(channel));
     gwy_container_foreach(container, NULL, collect_channel, channels);
@@ -186,11 +206,11 @@ static int read_file(const char *path, const char *asked)
     const channel *chosen = channels->len ? choose_channel(channels, asked) : NULL;
     int status = 0;
     if (chosen)
-        write_field(chosen);
+        write_field(chosen, !module || strcmp(module, "gwyfile") != 0);
     else
-        status = channels->len == 0 ? fail("%s", "the file holds no image (data field)")
-                 : asked ? fail("no channel has the index or title '%s'", asked)
-                         : fail("%s", "no channel holds heights (values in a length unit)");
+        status = channels->len == 0 ? fail("failed", "%s", "the file holds no image (data field)")
+                 : asked ? fail("failed", "no channel has the index or title '%s'", asked)
+                         : fail("failed", "%s", "no channel holds heights (values in a length unit)");
     g_array_free(channels, TRUE);
     g_object_unref(container);
     return status;
@@ -198,13 +218,15 @@ static int read_file(const char *path, const char *asked)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2 || argc > 3) {
-        fprintf(stderr, "usage: %s FILE [CHANNEL] | --formats\n", argv[0]);
+    int first = argc > 1 && strcmp(argv[1], "--") == 0 ? 2 : 1; /* "--": a file may be named --formats */
+    if (argc - first < 1 || argc - first > 2) {
+        fprintf(stderr, "usage: %s [--] FILE [CHANNEL] | --formats\n", argv[0]);
         return 2;
     }
+    alarm(READ_SECONDS);
     gwy_app_init_nongui(NULL);
-    if (strcmp(argv[1], "--formats") == 0)
+    if (first == 1 && strcmp(argv[1], "--formats") == 0)
         return list_formats();
-    int status = read_file(argv[1], argc == 3 ? argv[2] : NULL);
+    int status = read_file(argv[first], argc - first == 2 ? argv[first + 1] : NULL);
     return fflush(stdout) == 0 && status == 0 ? 0 : status ? status : 1;
 }
