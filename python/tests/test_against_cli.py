@@ -173,3 +173,27 @@ def test_instrument_file_channels(cli):
     assert abs(by_title.heights.std() - 2.64003e-07) < 2e-12  # Gwyddion 2.62's rms of that channel
     with pytest.raises(im.FormatError, match="holds values in 'deg'"):
         im.read(di3, channel="Phase")
+
+
+def test_instrument_file_orientation_matches_gwyddions_export(cli):
+    """The Nanoscope scan through Gwyddion's module and Gwyddion's own text export of its ZSensor channel
+    (plane-levelled) are one surface, row for row: they differ by a plane alone (to the export's rounding),
+    which a flip or transpose would not (h'rms cannot tell these apart)."""
+    import os
+    data = os.path.join(os.environ.get("IM_SOURCE_DIR", ""), "tests", "data", "instruments")
+    if "not in this build" in run_cli(cli, "formats").stdout:
+        pytest.skip("this build has no indentmap-gwyddion-read")
+    export = im.read(os.path.join(data, "matrix-3.txt"))
+    scan = im.read(os.path.join(data, "di-3.di"))
+    assert export.unit == "µm" and scan.unit == "m"
+
+    def off_plane(d):
+        y, x = np.mgrid[0:d.shape[0], 0:d.shape[1]]
+        a = np.c_[np.ones(d.size), x.ravel(), y.ravel()]
+        c, *_ = np.linalg.lstsq(a, d.ravel(), rcond=None)
+        return np.abs(d.ravel() - a @ c).max()
+
+    same = export.heights - scan.heights * 1e6
+    assert off_plane(same) < 1e-5  # µm: the export's 6 digits
+    for moved in (scan.heights[::-1], scan.heights[:, ::-1], scan.heights.T):
+        assert off_plane(export.heights - moved * 1e6) > 0.1
