@@ -91,13 +91,15 @@ check "a binary file no module reads" expect_exit 2 "junk.bin: a binary file no 
 check "indent solves on a WSxM scan's channel" grep -q '^2,' "$dir/run/history.csv"
 check "... and run.json names the module and channel" grep -q "\"values\": \"Gwyddion 'wsxmfile': channel 0 'Topography' of 1\"" "$dir/run/run.json"
 # A scene over an instrument file: its channel key, the file's own h'rms in the table and run.json.
-printf '[scene]\nname = wsxm\noutput = wsxm\n[surfaces]\nfile = %s\nchannel = 0\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
+printf '[scene]\nname = wsxm\noutput = wsxm\n[surfaces]\nfile = %s\nchannel = 0\nalign = median\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
   "$data/stp-1.stp" >"$dir/wsxm.ini"
 "$cli" run --quiet "$dir/wsxm.ini" >/dev/null 2>"$dir/wsxm.err"
-slope=$(stats "$data/stp-1.stp" --channel Topography | awk '/^h.rms fd/ { print $3 }')
+slope=$(stats "$data/stp-1.stp" --channel Topography --align median | awk '/^h.rms fd/ { print $3 }')
 check "a scene over a WSxM scan: its table's slope is the file's h'rms ($slope)" \
   test "$(sed -n 2p "$dir/wsxm/table1.csv" | cut -d, -f1)" = "$slope"
 check "... and run.json records the channel" grep -q '"channel": "0"' "$dir/wsxm/run.json"
+check "... and the rows' alignment" grep -q '"align": "median"' "$dir/wsxm/run.json"
+check "surface --stats states the alignment" bash -c "'$cli' surface --stats '$data/stp-1.stp' --align line | grep -q 'rows aligned (line)'"
 
 # refused_with PHRASE OUTPUT: surface --stats printed PHRASE and no grid.
 refused_with() { grep -qF -- "$1" "$2" && ! grep -q '^grid' "$2"; }

@@ -84,6 +84,7 @@ typedef struct im_scene {
                                         beside them (their h'rms is measured, each is one surface). */
     int file_count;                  /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
     enum im_detrend detrend;         /* for the files (default none) */
+    enum im_row_alignment align;     /* the files' scan-line alignment, before detrend (default none) */
     int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
     char channel[64];                /* the files' channel (instrument files read through Gwyddion: an
                                         index or a title); "": the first holding heights */

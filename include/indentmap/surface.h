@@ -172,6 +172,14 @@ enum im_detrend {
 /* Subtracts the least-squares polynomial in place. IM_ENUMERIC for a non-finite height. */
 int im_surface_detrend(im_field *surface, enum im_detrend detrend);
 
+/* Scan-line alignment of an AFM image (rows are the scan lines, along x): each row's offset (its median
+ * or mean) or its least-squares line is removed and the mean of the rows' levels kept, as Gwyddion's
+ * Align Rows does; the streaks a drifting feedback leaves are gone. A surface that varies only along x
+ * plus a constant per row comes back exactly as one row repeated (median, mean). In place; IM_EINVAL for
+ * an unknown method, IM_ENUMERIC for a non-finite height (fill missing points first). */
+enum im_row_alignment { IM_ALIGN_NONE = 0, IM_ALIGN_MEDIAN = 1, IM_ALIGN_MEAN = 2, IM_ALIGN_LINE = 3 };
+int im_surface_align_rows(im_field *surface, enum im_row_alignment how);
+
 enum im_taper_kind { IM_TAPER_NONE = 0, IM_TAPER_HANN = 1, IM_TAPER_TUKEY = 2 };
 typedef struct im_taper {
     enum im_taper_kind kind;

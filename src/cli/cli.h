@@ -101,6 +101,7 @@ int cli_parse_name(const char *option, const char *text, char *out, size_t size)
 typedef struct cli_preparation {
     int crop[4];             /* X0, Y0, NX, NY */
     enum im_detrend detrend;
+    enum im_row_alignment align; /* scan lines, before the detrending */
     im_taper taper;          /* for spectral estimates only */
 } cli_preparation;
 
@@ -108,6 +109,8 @@ typedef struct cli_preparation {
  * 0, or -1 after printing what was expected. */
 int cli_parse_crop(const char *text, int crop[4]);
 int cli_parse_detrend(const char *text, enum im_detrend *out);
+/* --align none|median|mean|line (surface.h: im_surface_align_rows) */
+int cli_parse_align(const char *text, enum im_row_alignment *out);
 int cli_parse_taper(const char *text, im_taper *out);
 /* --device cpu|gpu|auto (solver.h: IM_DEVICE_*) */
 int cli_parse_device(const char *text, int *device);

@@ -51,6 +51,8 @@ static void usage(FILE *stream)
             "                      of the finer spacing (default: refuse them); run.json records it\n"
             "  --crop X0,Y0,NX,NY  indent only this block of SURFACE\n"
             "  --detrend D         none (default), plane or curvature: removed from SURFACE before solving\n"
+            "  --align A           scan-line alignment of SURFACE's rows before detrending: none (default),\n"
+            "                      median, mean or line (each row's offset or tilt removed, as AFM images need)\n"
             "  --punch KIND        cone (default), sphere, flat or profile (with --profile)\n"
             "  --profile FILE      the punch's shape for --punch profile: a text file of samples 'r z' or\n"
             "                      'r,z' per line (axisymmetric: r from 0 increasing, z from 0 non-\n"
@@ -156,7 +158,7 @@ typedef struct indent_options {
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL, OPT_RESAMPLE,
-       OPT_CROP, OPT_DETREND, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
+       OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
        OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE };
@@ -169,7 +171,7 @@ static const struct option LONG_OPTIONS[] = {
     {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
     {"crop", required_argument, 0, OPT_CROP},
     {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
-    {"detrend", required_argument, 0, OPT_DETREND}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
+    {"detrend", required_argument, 0, OPT_DETREND}, {"align", required_argument, 0, OPT_ALIGN}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
     {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
     {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
@@ -231,6 +233,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
     case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
+    case OPT_ALIGN: return cli_parse_align(arg, &o->preparation.align);
     case OPT_PUNCH: o->punch_given = 1; return parse_punch(arg, &o->punch.kind);
     case OPT_PERIODIC: o->solver.periodic = 1; return 0;
     case OPT_SLOPE_DEFINITION:

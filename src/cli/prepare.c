@@ -1,4 +1,4 @@
-/* Options that prepare a measured surface (--fill, --crop, --detrend, --window), shared by
+/* Options that prepare a measured surface (--fill, --crop, --align, --detrend, --window), shared by
  * `surface --stats` and `indent`. */
 #include "cli/cli.h"
 
@@ -29,6 +29,18 @@ int cli_parse_detrend(const char *text, enum im_detrend *out)
             return 0;
         }
     fprintf(stderr, "indentmap: --detrend '%s': expected none, plane or curvature\n", text);
+    return -1;
+}
+
+int cli_parse_align(const char *text, enum im_row_alignment *out)
+{
+    static const char *const NAMES[] = {"none", "median", "mean", "line"};
+    for (int i = 0; i < 4; ++i)
+        if (strcmp(text, NAMES[i]) == 0) {
+            *out = (enum im_row_alignment)i;
+            return 0;
+        }
+    fprintf(stderr, "indentmap: --align '%s': expected none, median, mean or line (scan lines: rows)\n", text);
     return -1;
 }
 
@@ -67,6 +79,9 @@ int cli_prepare_surface(const cli_preparation *p, im_field **surface)
         im_field_free(*surface);
         *surface = crop;
     }
+    int status = im_surface_align_rows(*surface, p->align);
+    if (status != IM_OK)
+        return im_fail_context(status, "--align");
     return im_surface_detrend(*surface, p->detrend);
 }
 
@@ -85,6 +100,9 @@ void cli_describe_preparation(const cli_preparation *p, long filled, char *text,
     if (p->crop[2] > 0)
         length += snprintf(text + length, size - (size_t)length, ", cropped to %d x %d at (%d, %d)", p->crop[2],
                            p->crop[3], p->crop[0], p->crop[1]);
+    static const char *const ALIGN[] = {"", "median", "mean", "line"};
+    if (p->align != IM_ALIGN_NONE && length < (int)size)
+        length += snprintf(text + length, size - (size_t)length, ", rows aligned (%s)", ALIGN[p->align]);
     if (filled > 0 && length < (int)size)
         snprintf(text + length, size - (size_t)length, ", %ld missing points filled", filled);
 }

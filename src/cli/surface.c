@@ -34,6 +34,8 @@ static void usage(FILE *stream)
             "                     spacing (default: refuse them; closer spacings are read as square, their mean)\n"
             "  --crop X0,Y0,NX,NY with --stats: measure only this block of the file\n"
             "  --detrend D        with --stats: none, plane (default) or curvature: removed before measuring\n"
+            "  --align A          with --stats: scan-line alignment of the rows before detrending: none\n"
+            "                     (default), median, mean or line (each row's offset or tilt removed)\n"
             "  --window W         with --stats: taper for the spectral quantities and the PSD of non-periodic\n"
             "                     data: hann (default), tukey[:ALPHA] (ALPHA 0.5) or none\n"
             "  --hurst H          Hurst exponent, 0 < H < 1 (default 0.8)\n"
@@ -60,7 +62,7 @@ typedef struct surface_options {
     const char *out, *stats, *png, *psd, *histograms;
 } surface_options;
 
-enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_RESAMPLE, OPT_CROP, OPT_DETREND, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
+enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_RESAMPLE, OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
        OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
@@ -70,7 +72,7 @@ static const struct option LONG_OPTIONS[] = {
     {"channel", required_argument, 0, OPT_CHANNEL},
     {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
     {"crop", required_argument, 0, OPT_CROP},
-    {"detrend", required_argument, 0, OPT_DETREND}, {"window", required_argument, 0, OPT_WINDOW},
+    {"detrend", required_argument, 0, OPT_DETREND}, {"align", required_argument, 0, OPT_ALIGN}, {"window", required_argument, 0, OPT_WINDOW},
     {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
     {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
     {"lambda-r", required_argument, 0, OPT_LR}, {"lambda-0", required_argument, 0, OPT_L0},
@@ -112,6 +114,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_RESAMPLE: o->read.resample_square = o->preparation_given = 1; return 0;
     case OPT_CROP: o->preparation_given = 1; return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: o->preparation_given = 1; return cli_parse_detrend(arg, &o->preparation.detrend);
+    case OPT_ALIGN: o->preparation_given = 1; return cli_parse_align(arg, &o->preparation.align);
     case OPT_WINDOW: o->preparation_given = 1; return cli_parse_taper(arg, &o->preparation.taper);
     case OPT_HURST: return cli_parse_double("--hurst", arg, 1e-6, 1 - 1e-6, &p->hurst);
     case OPT_SLOPE: p->target = IM_TARGET_SLOPE; return cli_parse_double("--slope", arg, 0, 1e6, &p->slope_rms);
@@ -328,8 +331,8 @@ static int parse_options(int argc, char **argv, surface_options *o)
         return -1;
     }
     if (!o->stats && (o->read.set.height[0] || o->read.channel[0] || o->preparation_given)) {
-        fprintf(stderr, "indentmap: surface: --height-unit, --channel, --fill, --resample-square, --crop, --detrend and "
-                "--window read a file: "
+        fprintf(stderr, "indentmap: surface: --height-unit, --channel, --fill, --resample-square, --crop, --align, --detrend "
+                "and --window read a file: "
                 "use them with --stats\n");
         return -1;
     }

@@ -52,6 +52,8 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
          * x:unit), so results kept from the earlier readers are solved again */
         key_add(hash, " %lld %lld.%09ld detrend %d fill %d readers 2 channel '%s';", (long long)info.st_size,
                 (long long)info.st_mtim.tv_sec, info.st_mtim.tv_nsec, scene->detrend, scene->fill, scene->channel);
+        if (scene->align != IM_ALIGN_NONE)
+            key_add(hash, "align %d;", (int)scene->align);
         if (scene->resample_square) /* only then: the keys of results read without it stay as they were */
             key_add(hash, "resample_square;");
         return;

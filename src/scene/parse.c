@@ -363,6 +363,7 @@ static const key_spec KEYS[] = {
     {"surfaces", "seeds", parse_seeds, FIELD(seeds), 0, 0, NULL, IM_SCENE_MAX_FAMILIES, 0},
     {"surfaces", "file", parse_string, FIELD(surface_file), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"surfaces", "detrend", parse_choice, FIELD(detrend), 0, 0, "none|plane|curvature", 0, 0},
+    {"surfaces", "align", parse_choice, FIELD(align), 0, 0, "none|median|mean|line", 0, 0},
     {"surfaces", "fill", parse_bool, FIELD(fill), 0, 0, NULL, 0, 0},
     {"surfaces", "channel", parse_string, FIELD(channel), 0, 0, NULL, 64, 0},
     {"surfaces", "resample_square", parse_bool, FIELD(resample_square), 0, 0, NULL, 0, 0},

@@ -25,9 +25,11 @@ static json_t *files_record(const im_scene *scene)
                                                "spacing_difference", scene->file_spacing_differences[i], "resampled",
                                                scene->file_resampled[i] ? json_string("bilinear") : json_null()));
     }
-    return json_pack("{s:o, s:f, s:s, s:s, s:b, s:s, s:b, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
+    static const char *const ALIGN[] = {"none", "median", "mean", "line"};
+    return json_pack("{s:o, s:f, s:s, s:s, s:s, s:b, s:s, s:b, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
                      "slope_definition", "forward differences of each surface as solved; the ensemble's is their "
-                     "root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend], "fill",
+                     "root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend], "align",
+                     ALIGN[scene->align], "fill",
                      scene->fill, "channel", scene->channel[0] ? scene->channel : "first holding heights",
                      "resample_square", scene->resample_square, "delta", scene->surface.delta, "length_unit",
                      scene->file_unit[0] ? scene->file_unit : "delta");
