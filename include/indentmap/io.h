@@ -223,7 +223,10 @@ int im_text_read(const char *path, im_field **out);
  * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. XRes and YRes must be
  * decimal integers (no "16abc", no "1.6e1"), XReal and YReal finite numbers > 0; a value that is
  * not is refused naming its key. YReal defaults to square pixels. Units as for im_surface_read_with.
- * Writing is provided for round trips and tests. */
+ * Writing is in base SI units, as Gwyddion writes and reads them (it keeps no prefix: "XYUnits = um"
+ * would read as metres): a field in a known length unit is written with XReal, YReal and the heights
+ * in metres and XYUnits = ZUnits = m; a field without a unit with no units; another unit is refused
+ * (IM_EINVAL, nothing written). */
 int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 

@@ -13,6 +13,22 @@
 
 static const char GSF_MAGIC[] = "Gwyddion Simple Field 1.0\n";
 
+/* The header (its length in *length), in base SI units when the field's unit is a known length:
+ * Gwyddion writes and reads metres and keeps no prefix ("XYUnits = um" reads as metres). *metres
+ * scales the lengths (1 for a field without units). */
+static int write_header(char *header, size_t size, const im_field *field, const char *path, double *metres,
+                        int *length)
+{
+    *metres = field->unit[0] ? im_length_unit_metres(field->unit, NULL) : 1.0;
+    if (*metres == 0.0)
+        return im_fail(IM_EINVAL, "%s: unit '%.15s' is not a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
+                       "\u00c5): a .gsf states its lengths in metres", path, field->unit);
+    *length = snprintf(header, size, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n%s", GSF_MAGIC,
+                       field->nx, field->ny, field->nx * field->delta * *metres, field->ny * field->delta * *metres,
+                       field->unit[0] ? "XYUnits = m\nZUnits = m\n" : "");
+    return IM_OK;
+}
+
 int im_gsf_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
@@ -21,23 +37,21 @@ int im_gsf_write(const char *path, const im_field *field)
     if (writable != IM_OK)
         return writable;
     char header[512];
-    int length = snprintf(header, sizeof header, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n",
-                          GSF_MAGIC, field->nx, field->ny, field->nx * field->delta,
-                          field->ny * field->delta);
-    if (field->unit[0])
-        length += snprintf(header + length, sizeof header - (size_t)length,
-                           "XYUnits = %s\nZUnits = %s\n", field->unit, field->unit);
+    double metres;
+    int length = 0;
+    int status = write_header(header, sizeof header, field, path, &metres, &length);
+    if (status != IM_OK)
+        return status;
     size_t padding = 4 - (size_t)length % 4; /* at least one NUL ends the header */
     im_atomic_file file;
-    int status = im_atomic_open(&file, path);
-    if (status != IM_OK)
+    if ((status = im_atomic_open(&file, path)) != IM_OK)
         return status;
     int ok = fwrite(header, 1, (size_t)length, file.stream) == (size_t)length;
     for (size_t i = 0; ok && i < padding; ++i)
         ok = fputc('\0', file.stream) != EOF;
     size_t count = im_field_count(field);
     for (size_t i = 0; ok && i < count; ++i) {
-        float value = (float)field->data[i];
+        float value = (float)(field->data[i] * metres);
         ok = fwrite(&value, sizeof value, 1, file.stream) == 1;
     }
     if (!ok) {
