@@ -96,17 +96,13 @@ static void gsf_refuses_a_unit_that_is_not_a_length(void **state)
     im_field_free(f);
 }
 
-/* Gwyddion's reader, run by indentmap-gwyddion-read, sees the extents written here in metres: its
- * "field" line gives XRES YRES XREAL YREAL XYUNIT ZUNIT. */
-static void gwyddion_reads_the_written_extent(void **state)
+/* Gwyddion's reading of path, run by indentmap-gwyddion-read: the extents and units of its "field"
+ * line (XRES YRES XREAL YREAL XYUNIT ZUNIT). 0 when this build has no such program. */
+static int gwyddion_extents(const char *path, double *xreal, double *yreal, char xy_unit[16], char z_unit[16])
 {
-    (void)state;
     const char *reader = im_gwyddion_reader();
     if (!reader)
-        skip();
-    im_field *f = ramp_field(96, 64, 0.05, "\u00b5m");
-    const char *path = test_path("for_gwyddion.gsf");
-    assert_int_equal(im_gsf_write(path, f), IM_OK);
+        return 0;
     char command[8400], line[512] = "";
     snprintf(command, sizeof command, "'%s' '%s'", reader, path);
     FILE *out = popen(command, "r");
@@ -115,16 +111,145 @@ static void gwyddion_reads_the_written_extent(void **state)
         ;
     pclose(out);
     int index, nx, ny;
+    assert_int_equal(sscanf(line, "field %d %d %d %lf %lf %15s %15s", &index, &nx, &ny, xreal, yreal, xy_unit,
+                            z_unit), 7);
+    return 1;
+}
+
+/* Gwyddion's reader sees the extents written here in metres. */
+static void gwyddion_reads_the_written_extent(void **state)
+{
+    (void)state;
+    im_field *f = ramp_field(96, 64, 0.05, "\u00b5m");
+    const char *path = test_path("for_gwyddion.gsf");
+    assert_int_equal(im_gsf_write(path, f), IM_OK);
+    im_field_free(f);
     double xreal, yreal;
     char xy_unit[16], z_unit[16];
-    assert_int_equal(sscanf(line, "field %d %d %d %lf %lf %15s %15s", &index, &nx, &ny, &xreal, &yreal, xy_unit,
-                            z_unit), 7);
-    assert_int_equal(nx, 96);
-    assert_int_equal(ny, 64);
+    if (!gwyddion_extents(path, &xreal, &yreal, xy_unit, z_unit))
+        skip();
     assert_close(xreal, 4.8e-6, 4.8e-6 * 1e-15);
     assert_close(yreal, 3.2e-6, 3.2e-6 * 1e-15);
     assert_string_equal(xy_unit, "m");
     assert_string_equal(z_unit, "m");
+}
+
+/* A .gsf of nx x ny values i * 1e-3 with the given header lines after the magic line. */
+static const char *write_gsf(const char *name, const char *lines, int nx, int ny)
+{
+    const char *path = test_path(name);
+    FILE *out = fopen(path, "wb");
+    assert_non_null(out);
+    int length = fprintf(out, "Gwyddion Simple Field 1.0\n%s", lines);
+    for (int i = length % 4; i < 4; ++i)
+        fputc('\0', out);
+    for (int i = 0; i < nx * ny; ++i) {
+        float value = (float)(i * 1e-3);
+        fwrite(&value, sizeof value, 1, out);
+    }
+    fclose(out);
+    return path;
+}
+
+static void expect_read_refused(const char *path, const im_surface_read_options *options, const char *phrase)
+{
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read_with(path, options, &f, NULL), IM_EFORMAT);
+    assert_null(f);
+    if (!strstr(im_last_error(), phrase))
+        fail_msg("message '%s' lacks '%s'", im_last_error(), phrase);
+}
+
+/* D12: without XReal and YReal the extents are 1.0 each, in XYUnits: a 4 x 4 grid has a spacing of
+ * 0.25 m (it was 1 m, "none stated"), as Gwyddion reads it. */
+static void gsf_extents_default_to_one(void **state)
+{
+    (void)state;
+    const char *path = write_gsf("no_extents.gsf", "XRes = 4\nYRes = 4\nXYUnits = m\nZUnits = m\n", 4, 4);
+    im_field *f = NULL;
+    im_surface_read_info info;
+    assert_int_equal(im_surface_read_with(path, NULL, &f, &info), IM_OK);
+    assert_true(f->delta == 0.25);
+    assert_string_equal(f->unit, "m");
+    assert_true(info.file.delta_x == 0.25 && info.file.delta_y == 0.25);
+    im_field_free(f);
+    double xreal, yreal;
+    char xy_unit[16], z_unit[16];
+    if (gwyddion_extents(path, &xreal, &yreal, xy_unit, z_unit))
+        assert_true(xreal == 1.0 && yreal == 1.0);
+}
+
+/* Each absent extent is 1.0 on its own: XReal alone on a 4 x 2 grid gives pixels 1e-6 x 0.5 m, and
+ * no extents on a 4 x 2 grid pixels 0.25 x 0.5; both refused as non-square, naming the default;
+ * --delta sets square ones. */
+static void gsf_absent_extents_are_named(void **state)
+{
+    (void)state;
+    const char *x_only = write_gsf("x_only.gsf", "XRes = 4\nYRes = 2\nXReal = 4e-6\nXYUnits = m\nZUnits = m\n", 4, 2);
+    expect_read_refused(x_only, NULL, "(no YReal: 1.0, the GSF default): non-square pixels, x spacing 1e-06 and y "
+                        "spacing 0.5 m");
+    const char *bare = write_gsf("bare_4x2.gsf", "XRes = 4\nYRes = 2\n", 4, 2);
+    expect_read_refused(bare, NULL, "(no XReal, no YReal: 1.0 each, the GSF default): non-square pixels, x spacing "
+                        "0.25 and y spacing 0.5 differ");
+    im_surface_read_options options = {.set = {.delta_x = 2.0}};
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read_with(bare, &options, &f, NULL), IM_OK);
+    assert_true(f->delta == 2.0 && f->data[7] == (double)(float)7e-3);
+    im_field_free(f);
+}
+
+/* D12: without ZUnits the heights' unit is unknown, not XYUnits': refused naming ZUnits, read once
+ * --height-unit states it (here nm, converted into the lateral metres). */
+static void gsf_without_z_units_is_refused(void **state)
+{
+    (void)state;
+    const char *path = write_gsf("no_z.gsf", "XRes = 4\nYRes = 4\nXReal = 4e-6\nYReal = 4e-6\nXYUnits = m\n",
+                                 4, 4);
+    expect_read_refused(path, NULL, "no ZUnits: the heights' unit is not stated, and is not assumed to be the "
+                        "lateral unit (m)");
+    im_surface_read_options options = {.set = {.height = "nm"}};
+    im_field *f = NULL;
+    im_surface_read_info info;
+    assert_int_equal(im_surface_read_with(path, &options, &f, &info), IM_OK);
+    assert_close(f->data[5], (double)(float)5e-3 * 1e-9, 1e-24);
+    assert_true(info.height_factor == 1e-9);
+    im_field_free(f);
+    double xreal, yreal;
+    char xy_unit[16], z_unit[16];
+    if (gwyddion_extents(path, &xreal, &yreal, xy_unit, z_unit))
+        assert_string_not_equal(z_unit, "m"); /* Gwyddion too: no unit ("-" in its stream) */
+}
+
+/* A lateral unit given with --unit to a .gsf without units does not state the heights' unit either;
+ * without any unit the file is read as it is, lengths in one unnamed unit. */
+static void gsf_with_no_units_is_read_bare(void **state)
+{
+    (void)state;
+    const char *path = write_gsf("bare.gsf", "XRes = 4\nYRes = 4\nXReal = 8\nYReal = 8\n", 4, 4);
+    im_surface_read_options options = {.set = {.lateral = "um"}};
+    expect_read_refused(path, &options, "no ZUnits");
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read_with(path, NULL, &f, NULL), IM_OK);
+    assert_true(f->delta == 2.0 && f->unit[0] == '\0' && f->data[5] == (double)(float)5e-3);
+    im_field_free(f);
+}
+
+/* Other formats keep their rule: a Gwyddion text with a Width and no Value units has its heights in
+ * the Width's unit. */
+static void text_heights_stay_in_the_lateral_unit(void **state)
+{
+    (void)state;
+    const char *path = test_path("width_only.txt");
+    FILE *out = fopen(path, "w");
+    assert_non_null(out);
+    fprintf(out, "# Width: 4 um\n# Height: 4 um\n");
+    for (int iy = 0; iy < 4; ++iy)
+        fprintf(out, "%d 1 2 3\n", iy);
+    fclose(out);
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read(path, &f), IM_OK);
+    assert_string_equal(f->unit, "\u00b5m");
+    assert_true(f->delta == 1.0 && f->data[4] == 1.0);
     im_field_free(f);
 }
 
@@ -135,6 +260,11 @@ int main(void)
         cmocka_unit_test(gsf_without_unit_states_none),
         cmocka_unit_test(gsf_refuses_a_unit_that_is_not_a_length),
         cmocka_unit_test(gwyddion_reads_the_written_extent),
+        cmocka_unit_test(gsf_extents_default_to_one),
+        cmocka_unit_test(gsf_absent_extents_are_named),
+        cmocka_unit_test(gsf_without_z_units_is_refused),
+        cmocka_unit_test(gsf_with_no_units_is_read_bare),
+        cmocka_unit_test(text_heights_stay_in_the_lateral_unit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

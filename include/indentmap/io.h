@@ -222,7 +222,11 @@ int im_text_read(const char *path, im_field **out);
  * lines with XRes, YRes and optionally XReal, YReal, XYUnits, ZUnits), NUL padding to a multiple
  * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. XRes and YRes must be
  * decimal integers (no "16abc", no "1.6e1"), XReal and YReal finite numbers > 0; a value that is
- * not is refused naming its key. YReal defaults to square pixels. Units as for im_surface_read_with.
+ * not is refused naming its key. As the GSF specification says, an absent XReal or YReal is 1.0 (each
+ * on its own: a spacing of 1.0 / XRes, 1.0 / YRes in XYUnits), and XYUnits and ZUnits have no default:
+ * without ZUnits the heights' unit is unknown, not XYUnits', and such a file is refused (IM_EFORMAT
+ * naming ZUnits) when the spacing has a unit, unless the heights' unit is set (options->set.height);
+ * without either unit it is read bare. Units as for im_surface_read_with.
  * Writing is in base SI units, as Gwyddion writes and reads them (it keeps no prefix: "XYUnits = um"
  * would read as metres): a field in a known length unit is written with XReal, YReal and the heights
  * in metres and XYUnits = ZUnits = m; a field without a unit with no units; another unit is refused
@@ -275,7 +279,9 @@ int im_x3p_read(const char *path, im_field **out);
 typedef struct im_surface_units {
     double delta_x, delta_y; /* pixel spacing along x (columns) and y (rows), in `lateral`; 0: not stated */
     char lateral[16];        /* unit of the spacing; "" when not stated */
-    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit) */
+    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit; for a
+                                .gsf, whose heights are then in no known unit, refused when the spacing
+                                has one) */
 } im_surface_units;
 
 /* Metres per unit of a length unit's name (1e-6 for "µm"), and its canonical spelling in

@@ -174,15 +174,21 @@ static int read_values(FILE *stream, const char *path, im_field *field)
     return IM_OK;
 }
 
-/* What the header states about units: pixel spacing XReal / XRes and YReal / YRes. */
+/* The spacing keys, naming the GSF specification's default for an absent XReal (bit 0) or YReal (bit 1). */
+static const char *const SPACING_KEYS[4] = {
+    "XReal / XRes and YReal / YRes", "XReal / XRes and YReal / YRes (no XReal: 1.0, the GSF default)",
+    "XReal / XRes and YReal / YRes (no YReal: 1.0, the GSF default)",
+    "XReal / XRes and YReal / YRes (no XReal, no YReal: 1.0 each, the GSF default)"};
+
+/* What the header states about units: pixel spacing XReal / XRes and YReal / YRes, each extent 1.0
+ * when absent (the specification's default); heights without ZUnits have an unknown unit. */
 static void stated_units(const gsf_header *h, surface_stated *stated)
 {
-    *stated = (surface_stated){.spacing_keys = "XReal / XRes and YReal / YRes", .lateral_key = "XYUnits",
-                               .height_key = "ZUnits"};
-    if (h->xreal > 0.0) {
-        stated->units.delta_x = h->xreal / (double)h->xres;
-        stated->units.delta_y = h->yreal > 0.0 ? h->yreal / (double)h->yres : 0.0;
-    }
+    int absent = (h->xreal > 0.0 ? 0 : 1) | (h->yreal > 0.0 ? 0 : 2);
+    *stated = (surface_stated){.spacing_keys = SPACING_KEYS[absent], .lateral_key = "XYUnits",
+                               .height_key = "ZUnits", .height_unit_unknown = 1};
+    stated->units.delta_x = (h->xreal > 0.0 ? h->xreal : 1.0) / (double)h->xres;
+    stated->units.delta_y = (h->yreal > 0.0 ? h->yreal : 1.0) / (double)h->yres;
     memcpy(stated->units.lateral, h->xy_units, sizeof h->xy_units);
     memcpy(stated->units.height, h->z_units, sizeof h->z_units);
 }

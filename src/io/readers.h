@@ -13,6 +13,9 @@ typedef struct surface_stated {
     const char *spacing_keys;/* e.g. "XReal / XRes and YReal / YRes", for messages */
     const char *lateral_key; /* e.g. "XYUnits" */
     const char *height_key;  /* e.g. "ZUnits" */
+    int height_unit_unknown; /* 1: heights with no stated unit have an unknown one (a .gsf without
+                                ZUnits), refused once the spacing has a unit; 0: they are in the
+                                lateral unit */
     char conversion[96];     /* how stored values became float64 row-major ("" for none) */
 } surface_stated;
 
