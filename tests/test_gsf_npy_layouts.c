@@ -253,6 +253,136 @@ static void text_heights_stay_in_the_lateral_unit(void **state)
     im_field_free(f);
 }
 
+/* D15: a .npy indexed [x, y], as SurfaceTopography's heights() are: value x * 1000 + y at [x, y], of
+ * shape (128, 64), so a 128 x 64 grid (nx 128 along x). Written as a field of 64 columns by 128 rows. */
+static const char *write_xy_npy(const char *name)
+{
+    im_field *f = NULL;
+    assert_int_equal(im_field_create(64, 128, 1.0, &f), IM_OK);
+    for (int x = 0; x < 128; ++x)
+        for (int y = 0; y < 64; ++y)
+            f->data[(size_t)x * 64 + y] = x * 1000.0 + y;
+    const char *path = test_path(name);
+    assert_int_equal(im_npy_write(path, f, IM_NPY_FLOAT64), IM_OK);
+    im_field_free(f);
+    return path;
+}
+
+/* The field holds (x, y) of write_xy_npy at data[y * nx + x]: read with rows along y. */
+static void assert_rows_are_y(const im_field *f)
+{
+    assert_int_equal(f->nx, 128);
+    assert_int_equal(f->ny, 64);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 128; ++x)
+            assert_true(f->data[(size_t)y * 128 + x] == x * 1000.0 + y);
+}
+
+static im_field *read_npy(const char *path, enum im_npy_order order, im_surface_read_info *info)
+{
+    im_surface_read_options options = {.npy_order = order};
+    im_field *f = NULL;
+    if (im_surface_read_with(path, &options, &f, info) != IM_OK)
+        fail_msg("%s", im_last_error());
+    return f;
+}
+
+static void write_text(const char *path, const char *text)
+{
+    test_write_bytes(path, text, strlen(text));
+}
+
+/* npy_order = IM_NPY_ORDER_XY transposes, and says so; the default and yx keep the stored rows. */
+static void npy_order_xy_transposes(void **state)
+{
+    (void)state;
+    const char *path = write_xy_npy("xy.npy");
+    im_surface_read_info info;
+    im_field *f = read_npy(path, IM_NPY_ORDER_XY, &info);
+    assert_rows_are_y(f);
+    assert_string_equal(info.conversion, "indexed [x, y]");
+    assert_int_equal(info.stored_nx, 128);
+    im_field_free(f);
+    for (int order = IM_NPY_ORDER_SIDECAR; order <= IM_NPY_ORDER_YX; ++order) {
+        f = read_npy(path, (enum im_npy_order)order, &info);
+        assert_true(f->nx == 64 && f->ny == 128 && f->data[5 * 64 + 3] == 5003.0);
+        assert_string_equal(info.conversion, "");
+        im_field_free(f);
+    }
+}
+
+/* The sidecar's "order": "xy" transposes by default (im_npy_read too); the option overrides it. */
+static void sidecar_order_is_honoured(void **state)
+{
+    (void)state;
+    const char *path = write_xy_npy("sidecar_xy.npy");
+    write_text(test_path("sidecar_xy.npy.json"), "{\"delta\": 0.5, \"unit\": \"nm\", \"order\": \"xy\"}");
+    im_field *f = read_npy(path, IM_NPY_ORDER_SIDECAR, NULL);
+    assert_rows_are_y(f);
+    assert_true(f->delta == 0.5);
+    assert_string_equal(f->unit, "nm");
+    im_field_free(f);
+    assert_int_equal(im_npy_read(path, &f), IM_OK);
+    assert_rows_are_y(f);
+    im_field_free(f);
+    f = read_npy(path, IM_NPY_ORDER_YX, NULL);
+    assert_true(f->nx == 64 && f->ny == 128);
+    im_field_free(f);
+}
+
+/* The order is of the indices, not of the memory: a Fortran-ordered [x, y] array (whose bytes are
+ * those of a C-ordered [y, x] one) reads the same, both transpositions stated. */
+static void fortran_order_is_independent(void **state)
+{
+    (void)state;
+    static const char header[] = "{'descr': '<f8', 'fortran_order': True, 'shape': (128, 64), }";
+    char bytes[128] = "\x93NUMPY\x01\x00";
+    bytes[8] = 118; /* header length: 10 + 118 = 128 bytes before the data */
+    memset(bytes + 10, ' ', 118);
+    memcpy(bytes + 10, header, sizeof header - 1);
+    bytes[127] = '\n';
+    double *values = malloc(128 * 64 * sizeof *values);
+    assert_non_null(values);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 128; ++x)
+            values[y * 128 + x] = x * 1000.0 + y; /* column-major [x, y]: x fastest */
+    const char *path = test_path("fortran_xy.npy");
+    FILE *out = fopen(path, "wb");
+    assert_non_null(out);
+    assert_int_equal(fwrite(bytes, 1, sizeof bytes, out), sizeof bytes);
+    assert_int_equal(fwrite(values, sizeof *values, 128 * 64, out), 128 * 64);
+    fclose(out);
+    free(values);
+    im_surface_read_info info;
+    im_field *f = read_npy(path, IM_NPY_ORDER_XY, &info);
+    assert_rows_are_y(f);
+    assert_string_equal(info.conversion, "Fortran order transposed to C order; indexed [x, y]");
+    im_field_free(f);
+}
+
+/* A sidecar "order" other than "yx" or "xy" is refused naming the sidecar; an npy_order outside the
+ * enumeration is misuse; other formats ignore the option. */
+static void bad_orders_are_refused(void **state)
+{
+    (void)state;
+    const char *path = write_xy_npy("bad_order.npy");
+    const char *orders[] = {"{\"order\": \"x\"}", "{\"order\": \"C\"}", "{\"order\": 1}", "{\"order\": \"yxyx\"}"};
+    for (size_t i = 0; i < sizeof orders / sizeof *orders; ++i) {
+        write_text(test_path("bad_order.npy.json"), orders[i]);
+        im_field *f = NULL;
+        assert_int_equal(im_npy_read(path, &f), IM_EFORMAT);
+        assert_non_null(strstr(im_last_error(), "bad_order.npy.json: expected"));
+        assert_non_null(strstr(im_last_error(), "\"order\" \"yx\" or \"xy\""));
+    }
+    im_surface_read_options options = {.npy_order = (enum im_npy_order)3};
+    im_field *f = NULL;
+    assert_int_equal(im_surface_read_with(path, &options, &f, NULL), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "im_surface_read_with: options->npy_order = 3"));
+    f = read_npy(write_gsf("order.gsf", "XRes = 4\nYRes = 2\nXReal = 4\nYReal = 2\n", 4, 2), IM_NPY_ORDER_XY, NULL);
+    assert_true(f->nx == 4 && f->ny == 2);
+    im_field_free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -265,6 +395,10 @@ int main(void)
         cmocka_unit_test(gsf_without_z_units_is_refused),
         cmocka_unit_test(gsf_with_no_units_is_read_bare),
         cmocka_unit_test(text_heights_stay_in_the_lateral_unit),
+        cmocka_unit_test(npy_order_xy_transposes),
+        cmocka_unit_test(sidecar_order_is_honoured),
+        cmocka_unit_test(fortran_order_is_independent),
+        cmocka_unit_test(bad_orders_are_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

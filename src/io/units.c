@@ -243,7 +243,11 @@ int surface_read_format(const char *path, surface_raw_reader read, const im_surf
 {
     surface_stated stated;
     int status = read(path, out, &stated);
-    if (status == IM_OK && (status = surface_finish(path, *out, &stated, options, info)) != IM_OK) {
+    if (status == IM_OK)
+        status = npy_apply_order(path, *out, &stated, options);
+    if (status == IM_OK)
+        status = surface_finish(path, *out, &stated, options, info);
+    if (status != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }
