@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # .npy arrays indexed [x, y], as SurfaceTopography's heights() are (issue 25, D15): --npy-order on
-# surface --stats and indent, and a sidecar's "order", on a 128 x 64 grid stored with shape (128, 64).
-# The values themselves: tests/test_gsf_npy_layouts.c.
+# surface --stats and indent, a sidecar's "order", and a scene's npy_order, on a 128 x 64 grid stored
+# with shape (128, 64). The values themselves: tests/test_gsf_npy_layouts.c.
 set -u
 cli=$1
 dir=$(mktemp -d)
@@ -31,5 +31,23 @@ check "run.json: how the values were read" grep -q '"values": "indexed \[x, y\]"
 sed 's/^{/{"order": "xy", /' "$dir/xy.npy.json" >"$dir/tmp.json" && mv "$dir/tmp.json" "$dir/xy.npy.json"
 check "sidecar order xy: 128 x 64" test "$(grid "$dir/xy.npy")" = "128x64"
 check "--npy-order yx overrides the sidecar" test "$(grid "$dir/xy.npy" --npy-order yx)" = "64x128"
+
+# A scene's npy_order reaches every file: xy.npy (sidecar: xy) and rows.npy (128 x 64, rows along y)
+# share one grid as their sidecars say, not when npy_order overrides both.
+"$cli" surface --n 128 --m 64 --slope 0.1 --seed 3 --out "$dir/rows.npy" >/dev/null
+scene() { # scene NAME [KEY-LINE]
+  printf '[scene]\nname = %s\noutput = %s\n[surfaces]\nfile = xy.npy, rows.npy\n%s\n[loading]\nload_star = 100\n' \
+    "$1" "$1" "${2:-}" >"$dir/$1.ini"
+}
+scene sidecar
+"$cli" run --quiet "$dir/sidecar.ini" >/dev/null 2>&1
+check "scene: the sidecars' orders give one grid" test $? -eq 0
+check "scene: run.json records npy_order" grep -q '"npy_order": "sidecar"' "$dir/sidecar/run.json"
+scene yx "npy_order = yx"
+check "scene: npy_order = yx overrides the sidecar" expect_exit 2 "is 128 x 64 with delta" \
+  "$cli" run --quiet "$dir/yx.ini"
+scene bad "npy_order = zx"
+check "scene: npy_order = zx is refused" expect_exit 2 "npy_order = 'zx': expected one of sidecar|yx|xy" \
+  "$cli" run --quiet "$dir/bad.ini"
 
 finish

@@ -4,6 +4,7 @@
 #include "support.h"
 
 #include "indentmap/io.h"
+#include "indentmap/scene.h"
 #include "indentmap/status.h"
 
 #include <stdio.h>
@@ -383,6 +384,20 @@ static void bad_orders_are_refused(void **state)
     im_field_free(f);
 }
 
+/* A scene's npy_order = yx|xy|sidecar; anything else refused at its line. */
+static void scene_key_npy_order(void **state)
+{
+    (void)state;
+    const char *path = test_path("order.ini");
+    write_text(path, "[surfaces]\nfile = xy.npy\nnpy_order = xy\n");
+    im_scene scene;
+    assert_int_equal(im_scene_load(path, &scene), IM_OK);
+    assert_int_equal(scene.npy_order, IM_NPY_ORDER_XY);
+    write_text(path, "[surfaces]\nfile = xy.npy\nnpy_order = x\n");
+    assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "order.ini:3: npy_order = 'x': expected one of sidecar|yx|xy"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -399,6 +414,7 @@ int main(void)
         cmocka_unit_test(sidecar_order_is_honoured),
         cmocka_unit_test(fortran_order_is_independent),
         cmocka_unit_test(bad_orders_are_refused),
+        cmocka_unit_test(scene_key_npy_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

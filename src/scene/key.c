@@ -52,6 +52,8 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
                 info.st_mtim.tv_nsec, scene->detrend, scene->fill);
         if (scene->resample_square) /* only then: the keys of results read without it stay as they were */
             key_add(hash, "resample_square;");
+        if (scene->npy_order) /* likewise */
+            key_add(hash, "npy_order %d;", (int)scene->npy_order);
         return;
     }
     key_add(hash, "grid %d %d %.17g;", p->nx, p->ny, p->delta);
