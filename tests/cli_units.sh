@@ -10,7 +10,7 @@ trap 'rm -rf "$dir"' EXIT
 source "$(dirname "$0")/lib.sh"
 
 "$cli" surface --n 32 --delta 0.2 --unit um --slope 0.1 --out "$dir/s.gsf" >/dev/null
-check "the .gsf states µm" grep -aq "XYUnits = µm" "$dir/s.gsf"
+check "the .gsf states metres, as Gwyddion reads it" grep -aqx "XYUnits = m" "$dir/s.gsf"
 "$cli" indent "$dir/s.gsf" --length-unit m --e-star 1e9 --e-star-unit Pa --approach 1e-7,2e-7 --fields \
   --out "$dir/si" >/dev/null 2>&1
 check "SI indentation runs" test $? -eq 0
@@ -25,7 +25,8 @@ status=$?
 if [ $status -eq 0 ]; then
   check "render labels the force in N" grep -aq "local force f / N" "$dir/f.png"
 fi
-"$cli" indent "$dir/s.gsf" --e-star 2 --approach 0.02 --fields --out "$dir/um" >/dev/null 2>&1
+"$cli" surface --n 32 --delta 0.2 --unit um --slope 0.1 --out "$dir/s.npy" >/dev/null
+"$cli" indent "$dir/s.npy" --e-star 2 --approach 0.02 --fields --out "$dir/um" >/dev/null 2>&1
 check "no --e-star-unit: forces in E* µm²" grep -q '"value_unit": "E\* µm²"' "$dir/um/force_0001.npy.json"
 "$cli" surface --n 16 --out "$dir/plain.npy" >/dev/null
 check "--length-unit needs a unit" expect_exit 2 "plain.npy: states no length unit to convert into m from" \

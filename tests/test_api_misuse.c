@@ -327,6 +327,8 @@ REPORT(im_x3p_read, "out", im_x3p_read(path_text, NULL))
 SAFE_RESULT(im_length_unit_metres, "name", im_length_unit_metres(NULL, NULL) == 0.0)
 REPORT(im_surface_read_with, "path", im_surface_read_with(NULL, NULL, &field_out, NULL))
 REPORT(im_surface_read_with, "out", im_surface_read_with(path_text, NULL, NULL, NULL))
+REPORT(im_surface_read_with, "npy_order",
+       im_surface_read_with(path_text, &(im_surface_read_options){.npy_order = (enum im_npy_order)7}, &field_out, NULL))
 REPORT(im_surface_read, "path", im_surface_read(NULL, &field_out))
 REPORT(im_surface_read, "out", im_surface_read(path_text, NULL))
 REPORT_VIEW(im_surface_write, "field", im_surface_write(path_text, BAD))

@@ -75,6 +75,7 @@ static void text_and_gsf_round_trips(void **state)
     im_field_free(g);
     for (size_t i = 0; i < im_field_count(f); ++i)
         f->data[i] = (float)f->data[i];
+    f->unit[0] = '\0'; /* a field in µm is written in metres: tests/test_gsf_npy_layouts.c */
     assert_int_equal(im_gsf_write(test_path("f.gsf"), f), IM_OK);
     assert_int_equal(im_gsf_read(test_path("f.gsf"), &g), IM_OK);
     assert_fields_equal(f, g);

@@ -185,7 +185,8 @@ enum im_npy_dtype { IM_NPY_FLOAT64 = 0, IM_NPY_FLOAT32 = 1 };
  * no units: its sidecar PATH.json does, when present ("delta", "unit" and, for fields other than
  * heights, "value_unit": written by `surface --out` and im_field_sidecar_write), and im_npy_read takes
  * them from it (IM_EFORMAT naming the sidecar when it is not a JSON object of those types, or larger
- * than 1 MiB). */
+ * than 1 MiB). A sidecar's "order": "xy" says that the array is indexed [x, y] (enum im_npy_order):
+ * it is read transposed, rows along y; "yx" (and none) is the layout above. */
 int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtype);
 
 /* Writes PATH.json beside the .npy at path: program, version, quantity (e.g. "force per patch"),
@@ -222,8 +223,15 @@ int im_text_read(const char *path, im_field **out);
  * lines with XRes, YRes and optionally XReal, YReal, XYUnits, ZUnits), NUL padding to a multiple
  * of 4 bytes, then XRes * YRes little-endian float32 values, row by row. XRes and YRes must be
  * decimal integers (no "16abc", no "1.6e1"), XReal and YReal finite numbers > 0; a value that is
- * not is refused naming its key. YReal defaults to square pixels. Units as for im_surface_read_with.
- * Writing is provided for round trips and tests. */
+ * not is refused naming its key. As the GSF specification says, an absent XReal or YReal is 1.0 (each
+ * on its own: a spacing of 1.0 / XRes, 1.0 / YRes in XYUnits), and XYUnits and ZUnits have no default:
+ * without ZUnits the heights' unit is unknown, not XYUnits', and such a file is refused (IM_EFORMAT
+ * naming ZUnits) when the spacing has a unit, unless the heights' unit is set (options->set.height);
+ * without either unit it is read bare. Units as for im_surface_read_with.
+ * Writing is in base SI units, as Gwyddion writes and reads them (it keeps no prefix: "XYUnits = um"
+ * would read as metres): a field in a known length unit is written with XReal, YReal and the heights
+ * in metres and XYUnits = ZUnits = m; a field without a unit with no units; another unit is refused
+ * (IM_EINVAL, nothing written). */
 int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
@@ -272,7 +280,9 @@ int im_x3p_read(const char *path, im_field **out);
 typedef struct im_surface_units {
     double delta_x, delta_y; /* pixel spacing along x (columns) and y (rows), in `lateral`; 0: not stated */
     char lateral[16];        /* unit of the spacing; "" when not stated */
-    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit) */
+    char height[16];         /* unit of the heights; "" when not stated (then: the lateral unit; for a
+                                .gsf, whose heights are then in no known unit, refused when the spacing
+                                has one) */
 } im_surface_units;
 
 /* Metres per unit of a length unit's name (1e-6 for "µm"), and its canonical spelling in
@@ -290,6 +300,15 @@ double im_length_unit_metres(const char *name, const char **canonical);
  * from the first: half a pixel across the largest grid (IM_FIELD_MAX_SIDE), 0.03 across 4096.
  * Beyond it the pixels are refused unless resample_square is set. */
 #define IM_SQUARE_PIXEL_TOLERANCE (1.0 / 65536.0) /* 2^-16 */
+
+/* Which index of a .npy array is x. indentmap writes and reads arrays of shape (ny, nx), rows along y
+ * (the first index is y, as NumPy images are); SurfaceTopography's heights() are indexed [x, y], shape
+ * (nx, ny). The order is of the array's indices, whatever its memory order (C or Fortran). */
+enum im_npy_order {
+    IM_NPY_ORDER_SIDECAR = 0, /* as the sidecar PATH.json states ("order": "yx" or "xy"), else yx */
+    IM_NPY_ORDER_YX = 1,      /* the first index is y: rows are y */
+    IM_NPY_ORDER_XY = 2       /* the first index is x: the array is transposed on reading */
+};
 
 /* How a surface file is read. Zero-initialised means: as the file states. */
 typedef struct im_surface_read_options {
@@ -309,6 +328,8 @@ typedef struct im_surface_read_options {
                                 converted and their missing points refused or filled
                                 (im_surface_resample_square, surface.h: bilinear, within the stored
                                 extent); 0: they are refused */
+    enum im_npy_order npy_order; /* of a .npy: overrides its sidecar's "order" (IM_NPY_ORDER_SIDECAR: keeps
+                                it); other formats' layouts are their own, and ignore it */
 } im_surface_read_options;
 
 /* What the reader found and did, for reports and run records. */
@@ -344,8 +365,10 @@ typedef struct im_surface_read_info {
  * are not square (x and y spacings differing by more than IM_SQUARE_PIXEL_TOLERANCE of their mean;
  * the message names both spacings, their difference, the tolerance and the option that resamples)
  * unless options->resample_square, a unit that is not a length, heights in a unit without a lateral
- * unit to convert them to, Inf heights, and NaN heights (missing points) unless options->fill.
- * options and info may be NULL. */
+ * unit to convert them to, Inf heights, and NaN heights (missing points) unless options->fill. A .npy
+ * indexed [x, y] (options->npy_order, else its sidecar's "order") is transposed first, and
+ * info->conversion says "indexed [x, y]". options and info may be NULL; IM_EINVAL for an npy_order
+ * outside the enumeration. */
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
                          im_surface_read_info *info);
 

@@ -33,6 +33,7 @@
 
 #include "indentmap/colormap.h"
 #include "indentmap/indenter.h"
+#include "indentmap/io.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
@@ -90,6 +91,8 @@ typedef struct im_scene {
                                         index or a title); "": the first holding heights */
     int resample_square;             /* 1: resample files whose pixels are not square onto square ones
                                         (io.h: im_surface_read_options.resample_square); 0: refuse them */
+    enum im_npy_order npy_order;     /* `npy_order`: which index of the .npy files is x (io.h; sidecar, the
+                                        default: as each file's sidecar states, else yx) */
     char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
     double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
                                         surface as solved; measured by im_scene_run, which sets

@@ -62,7 +62,10 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
     return _core.histogram(heights, float(delta), _QUANTITIES[quantity], int(bins))
 
 
-def read(path, channel=None, fill=False, resample_square=False):
+_NPY_ORDERS = {None: 0, "yx": 1, "xy": 2}
+
+
+def read(path, channel=None, fill=False, resample_square=False, npy_order=None):
     """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p, text, or an instrument's file
     through Gwyddion's file modules when the build has them: ``indentmap formats`` lists them): a
     Topography (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives
@@ -70,13 +73,20 @@ def read(path, channel=None, fill=False, resample_square=False):
     (default: the first holding heights); ``fill=True`` fills missing (masked) points from their
     neighbours, which are refused otherwise, as ``indent --fill`` does.
 
+    ``npy_order`` says which index of a .npy array is x: ``"yx"`` (rows are y, as ``heights`` here are
+    indexed [y, x]) or ``"xy"`` (the first index is x, as SurfaceTopography's ``heights()``: such an
+    array is transposed); None (default) takes the sidecar's ``"order"``, else ``"yx"``. Other
+    formats ignore it.
+
     Pixels whose x and y spacings differ by at most 2^-16 of their mean (what rounding in headers and
     float32 storage explains) are read as square, of their mean spacing. Beyond that a FormatError names
     both spacings, unless ``resample_square=True``: then the heights are resampled bilinearly onto
     square pixels of the finer spacing, within the stored extent (more rows or columns; ``delta`` is
     that spacing)."""
+    if npy_order not in _NPY_ORDERS:
+        raise ValueError(f"npy_order {npy_order!r}: expected 'yx', 'xy' or None (the sidecar's order, else yx)")
     return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill),
-                                          bool(resample_square)))
+                                          bool(resample_square), _NPY_ORDERS[npy_order]))
 
 
 def write(path, heights, delta=1.0, unit=""):

@@ -190,16 +190,19 @@ static PyObject *prepare(PyObject *self, PyObject *args)
     return Py_BuildValue("(Nl)", py_array_from_field(copy), filled);
 }
 
-/* read_surface(path, channel, fill, resample_square) -> (heights, delta, unit) */
+/* read_surface(path, channel, fill, resample_square, npy_order) -> (heights, delta, unit); npy_order is
+ * an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy) */
 static PyObject *read_surface(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_bytes;
     const char *channel;
-    int fill, resample_square;
-    if (!PyArg_ParseTuple(args, "O&spp", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square))
+    int fill, resample_square, npy_order;
+    if (!PyArg_ParseTuple(args, "O&sppi", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square,
+                          &npy_order))
         return NULL;
-    im_surface_read_options options = {.fill = fill, .resample_square = resample_square};
+    im_surface_read_options options = {.fill = fill, .resample_square = resample_square,
+                                       .npy_order = (enum im_npy_order)npy_order};
     if (strlen(channel) >= sizeof options.channel) {
         Py_DECREF(path_bytes);
         return py_raise_status(im_fail(IM_EINVAL, "channel '%.70s': expected an index or title of at most %zu bytes",
@@ -262,6 +265,6 @@ PyMethodDef py_surface_methods[] = {
     {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
     {"read_surface", read_surface, METH_VARARGS,
-     "read_surface(path, channel, fill, resample_square) -> (heights, delta, unit)"},
+     "read_surface(path, channel, fill, resample_square, npy_order) -> (heights, delta, unit)"},
     {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
     {NULL, NULL, 0, NULL}};

@@ -2,6 +2,7 @@
 #ifndef INDENTMAP_CLI_H
 #define INDENTMAP_CLI_H
 
+#include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
@@ -88,6 +89,10 @@ int cli_parse_length_unit(const char *option, const char *text, char *out);
 /* --channel of an instrument file (io.h: an index or a title, read through Gwyddion): 1 to 63 bytes,
  * copied into out (64 bytes); 0, or -1 after saying what was expected. */
 int cli_parse_channel(const char *text, char *out);
+
+/* --npy-order yx|xy: which index of a .npy array is x (io.h: enum im_npy_order). 0, or -1 after saying
+ * what was expected. */
+int cli_parse_npy_order(const char *text, enum im_npy_order *out);
 
 /* A path given to an option (--out, --psd, --frames, --wisdom): any text but the empty one, which names
  * no file (it failed later as "indentmap: : cannot create directory"). 0, or -1 after saying so. */

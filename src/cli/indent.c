@@ -46,6 +46,8 @@ static void usage(FILE *stream)
             "  --e-star-unit U     the unit of --e-star (e.g. Pa), for the records: forces are in\n"
             "                      U x length unit^2 (N for Pa and m)\n"
             "  --fill              fill SURFACE's missing points (NaN) from their neighbours (default: refuse)\n"
+            "  --npy-order O       yx (rows are y) or xy (the first index is x, as SurfaceTopography's\n"
+            "                      heights()) for a .npy SURFACE (default: its sidecar's, else yx)\n"
             "  --resample-square   resample SURFACE's pixels when they are not square (x and y spacings\n"
             "                      differing by more than 2^-16 of their mean) bilinearly onto square pixels\n"
             "                      of the finer spacing (default: refuse them); run.json records it\n"
@@ -132,7 +134,7 @@ typedef struct indent_options {
     double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
     double surface_delta;         /* the patch side as solved (the surface's, after --delta) */
-    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --resample-square for a file */
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --npy-order, --resample-square */
     cli_preparation preparation;  /* --crop, --detrend */
     char e_star_unit[16];         /* --e-star-unit, "" when not given */
     char force_unit[40];          /* the unit of loads and forces, from the two above */
@@ -161,7 +163,7 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
-       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE };
+       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -170,6 +172,7 @@ static const struct option LONG_OPTIONS[] = {
     {"channel", required_argument, 0, OPT_CHANNEL},
     {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
     {"crop", required_argument, 0, OPT_CROP},
+    {"npy-order", required_argument, 0, OPT_NPY_ORDER},
     {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
     {"detrend", required_argument, 0, OPT_DETREND}, {"align", required_argument, 0, OPT_ALIGN}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
     {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
@@ -228,6 +231,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
     case OPT_FILL: o->read.fill = 1; return 0;
+    case OPT_NPY_ORDER: return cli_parse_npy_order(arg, &o->read.npy_order);
     case OPT_RESAMPLE: o->read.resample_square = 1; return 0;
     case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
     case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);

@@ -79,6 +79,17 @@ int cli_parse_channel(const char *text, char *out)
     return 0;
 }
 
+int cli_parse_npy_order(const char *text, enum im_npy_order *out)
+{
+    if (strcmp(text, "yx") == 0 || strcmp(text, "xy") == 0) {
+        *out = text[0] == 'x' ? IM_NPY_ORDER_XY : IM_NPY_ORDER_YX;
+        return 0;
+    }
+    fprintf(stderr, "indentmap: --npy-order '%.20s': expected yx (rows are y) or xy (the first index is x, as "
+            "SurfaceTopography's heights() arrays)\n", text);
+    return -1;
+}
+
 int cli_parse_path(const char *option, const char *text, const char **out)
 {
     if (text[0] == '\0') {

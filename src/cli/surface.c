@@ -29,6 +29,8 @@ static void usage(FILE *stream)
             "                     through Gwyddion (default: the first holding heights)\n"
             "  --fill             with --stats: fill missing points (NaN) from their neighbours (default:\n"
             "                     refuse them, naming the first)\n"
+            "  --npy-order O      with --stats: yx (rows are y) or xy (the first index is x, as\n"
+            "                     SurfaceTopography's heights()) for a .npy (default: its sidecar's, else yx)\n"
             "  --resample-square  with --stats: resample pixels that are not square (x and y spacings differing\n"
             "                     by more than 2^-16 of their mean) bilinearly onto square pixels of the finer\n"
             "                     spacing (default: refuse them; closer spacings are read as square, their mean)\n"
@@ -55,7 +57,7 @@ static void usage(FILE *stream)
 
 typedef struct surface_options {
     im_surface_params params;
-    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --resample-square */
+    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --npy-order, --resample-square */
     cli_preparation preparation;  /* --crop, --detrend, --window (files only) */
     int preparation_given;
     int m_given, lambda_r_given;
@@ -63,7 +65,7 @@ typedef struct surface_options {
 } surface_options;
 
 enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_RESAMPLE, OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
-       OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP };
+       OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP, OPT_NPY_ORDER };
 
 static const struct option LONG_OPTIONS[] = {
     {"n", required_argument, 0, OPT_N}, {"m", required_argument, 0, OPT_M},
@@ -72,6 +74,7 @@ static const struct option LONG_OPTIONS[] = {
     {"channel", required_argument, 0, OPT_CHANNEL},
     {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
     {"crop", required_argument, 0, OPT_CROP},
+    {"npy-order", required_argument, 0, OPT_NPY_ORDER},
     {"detrend", required_argument, 0, OPT_DETREND}, {"align", required_argument, 0, OPT_ALIGN}, {"window", required_argument, 0, OPT_WINDOW},
     {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
     {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
@@ -111,6 +114,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
     case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
     case OPT_FILL: o->read.fill = o->preparation_given = 1; return 0;
+    case OPT_NPY_ORDER: o->preparation_given = 1; return cli_parse_npy_order(arg, &o->read.npy_order);
     case OPT_RESAMPLE: o->read.resample_square = o->preparation_given = 1; return 0;
     case OPT_CROP: o->preparation_given = 1; return cli_parse_crop(arg, o->preparation.crop);
     case OPT_DETREND: o->preparation_given = 1; return cli_parse_detrend(arg, &o->preparation.detrend);

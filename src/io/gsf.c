@@ -13,6 +13,22 @@
 
 static const char GSF_MAGIC[] = "Gwyddion Simple Field 1.0\n";
 
+/* The header (its length in *length), in base SI units when the field's unit is a known length:
+ * Gwyddion writes and reads metres and keeps no prefix ("XYUnits = um" reads as metres). *metres
+ * scales the lengths (1 for a field without units). */
+static int write_header(char *header, size_t size, const im_field *field, const char *path, double *metres,
+                        int *length)
+{
+    *metres = field->unit[0] ? im_length_unit_metres(field->unit, NULL) : 1.0;
+    if (*metres == 0.0)
+        return im_fail(IM_EINVAL, "%s: unit '%.15s' is not a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
+                       "\u00c5): a .gsf states its lengths in metres", path, field->unit);
+    *length = snprintf(header, size, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n%s", GSF_MAGIC,
+                       field->nx, field->ny, field->nx * field->delta * *metres, field->ny * field->delta * *metres,
+                       field->unit[0] ? "XYUnits = m\nZUnits = m\n" : "");
+    return IM_OK;
+}
+
 int im_gsf_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
@@ -21,23 +37,21 @@ int im_gsf_write(const char *path, const im_field *field)
     if (writable != IM_OK)
         return writable;
     char header[512];
-    int length = snprintf(header, sizeof header, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n",
-                          GSF_MAGIC, field->nx, field->ny, field->nx * field->delta,
-                          field->ny * field->delta);
-    if (field->unit[0])
-        length += snprintf(header + length, sizeof header - (size_t)length,
-                           "XYUnits = %s\nZUnits = %s\n", field->unit, field->unit);
+    double metres;
+    int length = 0;
+    int status = write_header(header, sizeof header, field, path, &metres, &length);
+    if (status != IM_OK)
+        return status;
     size_t padding = 4 - (size_t)length % 4; /* at least one NUL ends the header */
     im_atomic_file file;
-    int status = im_atomic_open(&file, path);
-    if (status != IM_OK)
+    if ((status = im_atomic_open(&file, path)) != IM_OK)
         return status;
     int ok = fwrite(header, 1, (size_t)length, file.stream) == (size_t)length;
     for (size_t i = 0; ok && i < padding; ++i)
         ok = fputc('\0', file.stream) != EOF;
     size_t count = im_field_count(field);
     for (size_t i = 0; ok && i < count; ++i) {
-        float value = (float)field->data[i];
+        float value = (float)(field->data[i] * metres);
         ok = fwrite(&value, sizeof value, 1, file.stream) == 1;
     }
     if (!ok) {
@@ -160,15 +174,21 @@ static int read_values(FILE *stream, const char *path, im_field *field)
     return IM_OK;
 }
 
-/* What the header states about units: pixel spacing XReal / XRes and YReal / YRes. */
+/* The spacing keys, naming the GSF specification's default for an absent XReal (bit 0) or YReal (bit 1). */
+static const char *const SPACING_KEYS[4] = {
+    "XReal / XRes and YReal / YRes", "XReal / XRes and YReal / YRes (no XReal: 1.0, the GSF default)",
+    "XReal / XRes and YReal / YRes (no YReal: 1.0, the GSF default)",
+    "XReal / XRes and YReal / YRes (no XReal, no YReal: 1.0 each, the GSF default)"};
+
+/* What the header states about units: pixel spacing XReal / XRes and YReal / YRes, each extent 1.0
+ * when absent (the specification's default); heights without ZUnits have an unknown unit. */
 static void stated_units(const gsf_header *h, surface_stated *stated)
 {
-    *stated = (surface_stated){.spacing_keys = "XReal / XRes and YReal / YRes", .lateral_key = "XYUnits",
-                               .height_key = "ZUnits"};
-    if (h->xreal > 0.0) {
-        stated->units.delta_x = h->xreal / (double)h->xres;
-        stated->units.delta_y = h->yreal > 0.0 ? h->yreal / (double)h->yres : 0.0;
-    }
+    int absent = (h->xreal > 0.0 ? 0 : 1) | (h->yreal > 0.0 ? 0 : 2);
+    *stated = (surface_stated){.spacing_keys = SPACING_KEYS[absent], .lateral_key = "XYUnits",
+                               .height_key = "ZUnits", .height_unit_unknown = 1};
+    stated->units.delta_x = (h->xreal > 0.0 ? h->xreal : 1.0) / (double)h->xres;
+    stated->units.delta_y = (h->yreal > 0.0 ? h->yreal : 1.0) / (double)h->yres;
     memcpy(stated->units.lateral, h->xy_units, sizeof h->xy_units);
     memcpy(stated->units.height, h->z_units, sizeof h->z_units);
 }

@@ -263,7 +263,8 @@ static void describe_conversion(const npy_type *type, char *text, size_t size)
 
 int npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
-    *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit"};
+    *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit",
+                               .npy_order = IM_NPY_ORDER_YX};
     *out = NULL;
     FILE *stream;
     int opened = im_read_open(path, "rb", IM_READ_OR_PIPE, &stream, NULL);
@@ -295,6 +296,36 @@ int npy_read_raw(const char *path, im_field **out, surface_stated *stated)
     describe_conversion(&type, stated->conversion, sizeof stated->conversion);
     *out = field;
     return IM_OK;
+}
+
+/* The field of an array indexed [x, y] (field->nx is its second extent, ny its first), rows along y. */
+static int transpose(const char *path, im_field *field)
+{
+    im_field *rows_y = NULL;
+    int status = im_field_create(field->ny, field->nx, field->delta, &rows_y);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s: indexed [x, y], transposed", path);
+    for (size_t x = 0; x < (size_t)rows_y->nx; ++x)
+        for (size_t y = 0; y < (size_t)rows_y->ny; ++y)
+            rows_y->data[y * (size_t)rows_y->nx + x] = field->data[x * (size_t)field->nx + y];
+    double *stored = field->data;
+    field->data = rows_y->data;
+    rows_y->data = stored;
+    field->nx = rows_y->nx;
+    field->ny = rows_y->ny;
+    im_field_free(rows_y);
+    return IM_OK;
+}
+
+int npy_apply_order(const char *path, im_field *field, surface_stated *stated,
+                    const im_surface_read_options *options)
+{
+    enum im_npy_order order = options && options->npy_order ? options->npy_order : stated->npy_order;
+    if (stated->npy_order == IM_NPY_ORDER_SIDECAR || order != IM_NPY_ORDER_XY)
+        return IM_OK; /* not a .npy, or rows along y */
+    size_t used = strlen(stated->conversion);
+    snprintf(stated->conversion + used, sizeof stated->conversion - used, "%sindexed [x, y]", used ? "; " : "");
+    return transpose(path, field);
 }
 
 int im_npy_read(const char *path, im_field **out)

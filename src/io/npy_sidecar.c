@@ -40,6 +40,14 @@ static int copy_string(json_t *root, const char *key, char *out, size_t size)
     return 0;
 }
 
+/* "order": "yx" (rows are y) or "xy" (the first index is x); absent (""): left as it is. -1 otherwise. */
+static int parse_order(const char *order, enum im_npy_order *out)
+{
+    if (order[0])
+        *out = strcmp(order, "xy") == 0 ? IM_NPY_ORDER_XY : strcmp(order, "yx") == 0 ? IM_NPY_ORDER_YX : 0;
+    return *out == IM_NPY_ORDER_SIDECAR ? -1 : 0;
+}
+
 int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size)
 {
     char sidecar[4096];
@@ -63,12 +71,14 @@ int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit,
     int bad = delta && !(json_is_number(delta) && json_number_value(delta) > 0.0);
     if (!bad && delta)
         stated->units.delta_x = stated->units.delta_y = json_number_value(delta);
+    char order[4] = "";
     bad = bad || copy_string(root, "unit", stated->units.lateral, sizeof stated->units.lateral) != 0 ||
-          copy_string(root, "value_unit", value_unit, size) != 0;
+          copy_string(root, "value_unit", value_unit, size) != 0 ||
+          copy_string(root, "order", order, sizeof order) != 0 || parse_order(order, &stated->npy_order) != 0;
     json_decref(root);
     if (bad)
-        return im_fail(IM_EFORMAT, "%s: expected \"delta\" a number > 0, \"unit\" and \"value_unit\" short strings",
-                       sidecar);
+        return im_fail(IM_EFORMAT, "%s: expected \"delta\" a number > 0, \"unit\" and \"value_unit\" short strings, "
+                       "\"order\" \"yx\" or \"xy\"", sidecar);
     stated->spacing_keys = "the sidecar's delta";
     stated->lateral_key = "the sidecar's unit";
     return IM_OK;

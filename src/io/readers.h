@@ -13,7 +13,12 @@ typedef struct surface_stated {
     const char *spacing_keys;/* e.g. "XReal / XRes and YReal / YRes", for messages */
     const char *lateral_key; /* e.g. "XYUnits" */
     const char *height_key;  /* e.g. "ZUnits" */
+    int height_unit_unknown; /* 1: heights with no stated unit have an unknown one (a .gsf without
+                                ZUnits), refused once the spacing has a unit; 0: they are in the
+                                lateral unit */
     char conversion[96];     /* how stored values became float64 row-major ("" for none) */
+    enum im_npy_order npy_order; /* a .npy's, as its sidecar states it (IM_NPY_ORDER_YX without one);
+                                IM_NPY_ORDER_SIDECAR (0) for the other formats: their layout is fixed */
 } surface_stated;
 
 typedef int (*surface_raw_reader)(const char *path, im_field **out, surface_stated *stated);
@@ -31,11 +36,17 @@ int x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
 int surface_finish(const char *path, im_field *field, const surface_stated *stated,
                       const im_surface_read_options *options, im_surface_read_info *info);
 
-/* Reads PATH.json beside a .npy, when present, into stated (spacing and lateral unit) and value_unit
- * (size bytes); IM_OK without one, IM_EFORMAT naming it when it is malformed. */
+/* Reads PATH.json beside a .npy, when present, into stated (spacing, lateral unit, array order) and
+ * value_unit (size bytes); IM_OK without one, IM_EFORMAT naming it when it is malformed. */
 int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit, size_t size);
 
-/* A raw reader followed by surface_finish; *out is NULL on failure. */
+/* A .npy indexed [x, y] (options->npy_order, else stated->npy_order, the sidecar's) transposed so that
+ * its rows are y, "indexed [x, y]" added to stated->conversion; other formats' fields are left as they
+ * are. IM_ENOMEM naming path when the transposed copy does not fit. */
+int npy_apply_order(const char *path, im_field *field, surface_stated *stated,
+                    const im_surface_read_options *options);
+
+/* A raw reader, npy_apply_order, then surface_finish; *out is NULL on failure. */
 int surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
                            im_field **out, im_surface_read_info *info);
 

@@ -127,6 +127,9 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     ARG_REQUIRE(path, "path");
     ARG_REQUIRE(out, "out");
     *out = NULL;
+    if (options && (unsigned)options->npy_order > IM_NPY_ORDER_XY)
+        return im_fail(IM_EINVAL, "%s: options->npy_order = %d: expected IM_NPY_ORDER_SIDECAR, IM_NPY_ORDER_YX or "
+                       "IM_NPY_ORDER_XY", __func__, (int)options->npy_order);
     surface_raw_reader read = reader_by_extension(path);
     if (read)
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, read, options, out, info);

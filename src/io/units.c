@@ -132,6 +132,16 @@ static int height_factor(const char *path, const surface_stated *s, double *fact
     return IM_OK;
 }
 
+/* Heights whose unit the file leaves unknown beside a lateral unit: not assumed to share it. */
+static int check_height_unit_stated(const char *path, const surface_stated *s)
+{
+    if (!s->height_unit_unknown || !s->units.lateral[0] || s->units.height[0])
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: no %s: the heights' unit is not stated, and is not assumed to be the lateral "
+                   "unit (%s): state it (a %s line, or --height-unit)", path, s->height_key, s->units.lateral,
+                   s->height_key);
+}
+
 /* Missing points (NaN): filled on request, else refused naming the first one and the remedy. */
 static int missing_points(const char *path, im_field *field, int fill, long *filled)
 {
@@ -218,9 +228,12 @@ int surface_finish(const char *path, im_field *field, const surface_stated *stat
     const int resample = options && options->resample_square;
     const double difference = spacing_difference(&merged.units);
     double factor = 1.0, ratio = 1.0;
-    int status = check_square_pixels(path, &merged, difference, resample);
+    /* what the file states wrong (a unit that is not a length), then its pixels, then what it leaves unstated */
+    int status = apply_units(path, field, &merged, options, &factor, &ratio);
     if (status == IM_OK)
-        status = apply_units(path, field, &merged, options, &factor, &ratio);
+        status = check_square_pixels(path, &merged, difference, resample);
+    if (status == IM_OK)
+        status = check_height_unit_stated(path, &merged);
     long filled = 0;
     if (status == IM_OK && !(options && options->field_values)) /* heights: none missing or filled, all finite */
         status = check_heights(path, field, options, &filled);
@@ -247,7 +260,11 @@ int surface_read_format(const char *path, surface_raw_reader read, const im_surf
 {
     surface_stated stated;
     int status = read(path, out, &stated);
-    if (status == IM_OK && (status = surface_finish(path, *out, &stated, options, info)) != IM_OK) {
+    if (status == IM_OK)
+        status = npy_apply_order(path, *out, &stated, options);
+    if (status == IM_OK)
+        status = surface_finish(path, *out, &stated, options, info);
+    if (status != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }

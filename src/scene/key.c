@@ -56,6 +56,8 @@ static void add_surface(key_hash *hash, const im_scene *scene, int family, uint6
             key_add(hash, "align %d;", (int)scene->align);
         if (scene->resample_square) /* only then: the keys of results read without it stay as they were */
             key_add(hash, "resample_square;");
+        if (scene->npy_order) /* likewise */
+            key_add(hash, "npy_order %d;", (int)scene->npy_order);
         return;
     }
     key_add(hash, "grid %d %d %.17g;", p->nx, p->ny, p->delta);

@@ -108,7 +108,8 @@ static int choice_index(const char *choices, const char *value)
 
 /* parse_choice stores the index of the choice, in the enumerations' order, through an int. */
 _Static_assert(sizeof(enum im_detrend) == sizeof(int) && sizeof(enum im_control) == sizeof(int) &&
-               sizeof(im_colormap_id) == sizeof(int) && sizeof(enum im_animation) == sizeof(int),
+               sizeof(im_colormap_id) == sizeof(int) && sizeof(enum im_animation) == sizeof(int) &&
+               sizeof(enum im_npy_order) == sizeof(int),
                "an enumeration parse_choice sets is not an int's size");
 
 static int parse_choice(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
@@ -365,6 +366,7 @@ static const key_spec KEYS[] = {
     {"surfaces", "detrend", parse_choice, FIELD(detrend), 0, 0, "none|plane|curvature", 0, 0},
     {"surfaces", "align", parse_choice, FIELD(align), 0, 0, "none|median|mean|line", 0, 0},
     {"surfaces", "fill", parse_bool, FIELD(fill), 0, 0, NULL, 0, 0},
+    {"surfaces", "npy_order", parse_choice, FIELD(npy_order), 0, 0, "sidecar|yx|xy", 0, 0},
     {"surfaces", "channel", parse_string, FIELD(channel), 0, 0, NULL, 64, 0},
     {"surfaces", "resample_square", parse_bool, FIELD(resample_square), 0, 0, NULL, 0, 0},
     {"punch", "shape", parse_punch, FIELD(punch), 0, 0, NULL, 0, 0},

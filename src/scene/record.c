@@ -13,10 +13,11 @@
 #include <string.h>
 
 /* The files of a scene over files, each with its measured h'rms and its pixels (the relative difference
- * of its spacings; resampled: the method, or null), and what that h'rms is. */
+ * of its spacings; resampled: the method, or null), how they were read, and what that h'rms is. */
 static json_t *files_record(const im_scene *scene)
 {
     static const char *const DETREND[] = {"none", "plane", "curvature"};
+    static const char *const NPY_ORDER[] = {"sidecar", "yx", "xy"};
     json_t *files = json_array();
     for (int i = 0; i < scene->file_count; ++i) {
         char path[IM_SCENE_PATH];
@@ -26,13 +27,13 @@ static json_t *files_record(const im_scene *scene)
                                                scene->file_resampled[i] ? json_string("bilinear") : json_null()));
     }
     static const char *const ALIGN[] = {"none", "median", "mean", "line"};
-    return json_pack("{s:o, s:f, s:s, s:s, s:s, s:b, s:s, s:b, s:f, s:s}", "files", files, "slope_rms", scene->slopes[0],
-                     "slope_definition", "forward differences of each surface as solved; the ensemble's is their "
-                     "root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend], "align",
-                     ALIGN[scene->align], "fill",
+    return json_pack("{s:o, s:f, s:s, s:s, s:s, s:b, s:s, s:b, s:s, s:f, s:s}", "files", files, "slope_rms",
+                     scene->slopes[0], "slope_definition", "forward differences of each surface as solved; the "
+                     "ensemble's is their root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend],
+                     "align", ALIGN[scene->align], "fill",
                      scene->fill, "channel", scene->channel[0] ? scene->channel : "first holding heights",
-                     "resample_square", scene->resample_square, "delta", scene->surface.delta, "length_unit",
-                     scene->file_unit[0] ? scene->file_unit : "delta");
+                     "resample_square", scene->resample_square, "npy_order", NPY_ORDER[scene->npy_order], "delta",
+                     scene->surface.delta, "length_unit", scene->file_unit[0] ? scene->file_unit : "delta");
 }
 
 /* Where the scene's tolerance came from (a scene keeps the tolerance, not whether it was given:

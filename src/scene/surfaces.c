@@ -15,7 +15,8 @@ static int file_surface(const im_scene *scene, int i, im_field **out, im_surface
 {
     char path[IM_SCENE_PATH];
     int status = im_scene_file_path(scene, i, path, sizeof path);
-    im_surface_read_options read = {.fill = scene->fill, .resample_square = scene->resample_square};
+    im_surface_read_options read = {.fill = scene->fill, .resample_square = scene->resample_square,
+                                    .npy_order = scene->npy_order};
     memcpy(read.channel, scene->channel, sizeof read.channel);
     if (status == IM_OK)
         status = im_surface_read_with(path, &read, out, info);
