@@ -256,9 +256,13 @@ int im_netcdf_read(const char *path, im_field **out);
  * CY of AxisType I with Increment (the spacings, metres), CZ of AxisType A with DataType I (int16),
  * L (int32), F (float32) or D (float64), heights Offset + Increment x value in metres; Record3
  * MatrixDimension SizeX, SizeY, SizeZ = 1 and DataLink/PointDataLink, whose entry must hold exactly
- * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data and checksums are
- * not read. Refused with IM_EFORMAT naming the file and the element. Written: DataType D in metres
- * (the field needs a length unit; IM_EINVAL otherwise), without md5 checksums. */
+ * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data are not read.
+ * Stated checksums must match: the data's MD5ChecksumPointData, and each line of md5checksum.hex
+ * ("<md5> *<entry>", as md5sum writes it) that of the entry it names, main.xml when it names none
+ * (SurfaceTopography names bindata/data.bin); every entry is read to its end so that libzip checks its
+ * CRC-32. Refused with IM_EFORMAT naming the file and the element or entry. Written: DataType D in
+ * metres (the field needs a length unit; IM_EINVAL otherwise), with MD5ChecksumPointData and
+ * md5checksum.hex naming main.xml. */
 int im_x3p_write(const char *path, const im_field *field);
 int im_x3p_read(const char *path, im_field **out);
 
