@@ -1,7 +1,9 @@
-/* Files as other programs write them (issue 25, docs/surfaces.md): the variants of a format that
- * real writers produce beyond what its standard's first reading suggests, each from a real file in
- * tests/data/instruments/ and from edited copies of it.
- * - x3p from SurfaceTopography: md5checksum.hex holds the MD5 of bindata/data.bin, not main.xml's. */
+/* Files as other programs write them (issue 25, docs/surfaces.md): variants of a format that real
+ * writers produce and that were misread or refused, each from a real file in tests/data/instruments/
+ * and from edited copies of it.
+ * - x3p from SurfaceTopography: md5checksum.hex holds the MD5 of bindata/data.bin, not main.xml's.
+ * - x3p with a ValidPointsLink (derived from a MountainsMap file): ISO 5436-2's bit array of
+ *   valid points; an invalid point is a missing one. */
 #include "support.h"
 
 #include "indentmap/io.h"
@@ -39,7 +41,7 @@ static const char *copied(const char *name, const char *copy)
     return path;
 }
 
-/* The bytes of an archive's entry (malloc'ed) and their count. */
+/* The bytes of an archive's entry (malloc'ed, with room for a terminating NUL) and their count. */
 static uint8_t *entry_bytes(const char *path, const char *entry, size_t *size)
 {
     int error;
@@ -63,10 +65,11 @@ static void replace_entry(const char *path, const char *entry, const void *bytes
     int error;
     zip_t *archive = zip_open(path, 0, &error);
     assert_non_null(archive);
-    void *copy = malloc(size ? size : 1);
-    assert_non_null(copy);
-    memcpy(copy, bytes, size);
-    zip_source_t *source = zip_source_buffer(archive, copy, size, 1);
+    void *copy = size ? malloc(size) : NULL; /* libzip frees a buffer it is given, but not an empty one */
+    assert_true(copy || !size);
+    if (copy)
+        memcpy(copy, bytes, size);
+    zip_source_t *source = zip_source_buffer(archive, copy, size, copy != NULL);
     assert_non_null(source);
     assert_true(zip_file_add(archive, entry, source, ZIP_FL_OVERWRITE) >= 0);
     assert_int_equal(zip_close(archive), 0);
@@ -75,6 +78,33 @@ static void replace_entry(const char *path, const char *entry, const void *bytes
 static void replace_text_entry(const char *path, const char *entry, const char *text)
 {
     replace_entry(path, entry, text, strlen(text));
+}
+
+/* Replaces the one occurrence of `old` in a text entry by `new`. */
+static void edit_entry(const char *path, const char *entry, const char *old, const char *new)
+{
+    size_t size = 0;
+    char *text = (char *)entry_bytes(path, entry, &size);
+    text[size] = '\0';
+    char *at = strstr(text, old);
+    assert_non_null(at);
+    size_t edited_size = size - strlen(old) + strlen(new);
+    char *edited = malloc(edited_size + 1);
+    assert_non_null(edited);
+    snprintf(edited, edited_size + 1, "%.*s%s%s", (int)(at - text), text, new, at + strlen(old));
+    replace_text_entry(path, entry, edited);
+    free(edited);
+    free(text);
+}
+
+/* Reads path keeping its missing points (NaN), as field_values does; the test fails on a refusal. */
+static im_field *read_keeping_missing_points(const char *path)
+{
+    im_surface_read_options options = {.field_values = 1};
+    im_field *field = NULL;
+    if (im_surface_read_with(path, &options, &field, NULL) != IM_OK)
+        fail_msg("%s", im_last_error());
+    return field;
 }
 
 /* reader refuses path with IM_EFORMAT and a message naming the path and holding `phrase`. */
@@ -180,12 +210,94 @@ static void checksum_lines_are_checked_against_their_entries(void **state)
     expect_refusal(im_x3p_read, path, "md5checksum.hex's entry 'bindata/other.bin' is not in the archive");
 }
 
+/* ---- x3p: ValidPointsLink ---- */
+
+/* bindata/valid.bin holds 5000 bytes, a bit per point of the 200 x 200 grid; 400 are 0. Those points
+ * hold 0 in data.bin and were read as heights (Offset, -3.7e-8 m): h_rms 9.91056e-08 over all points,
+ * 9.96049e-08 over the valid ones (Python over the entries: bits least significant first). */
+static void invalid_points_are_missing_points(void **state)
+{
+    (void)state;
+    const char *path = instrument_file("x3p-2-crop200-L-validpoints.x3p");
+    im_field *field = NULL;
+    im_surface_read_options fill_off = {0};
+    assert_int_equal(im_surface_read_with(path, &fill_off, &field, NULL), IM_EFORMAT);
+    assert_null(field);
+    if (!strstr(im_last_error(), "value nan at (x=108, y=0): a missing point"))
+        fail_msg("expected the first invalid point (x=108, y=0) refused: %s", im_last_error());
+
+    field = read_keeping_missing_points(path);
+    size_t finite = 0;
+    assert_close(finite_rms(field, &finite), 9.960489911416533e-08, 1e-20);
+    assert_int_equal(finite, 200 * 200 - 400);
+    assert_true(isnan(field->data[108]) && field->data[0] == 6.579781341994847e-08);
+    im_field_free(field);
+
+    im_surface_read_options fill_on = {.fill = 1};
+    im_surface_read_info info;
+    assert_int_equal(im_surface_read_with(path, &fill_on, &field, &info), IM_OK);
+    assert_int_equal(info.filled, 400);
+    im_field_free(field);
+}
+
+/* The bits of a 3 x 2 grid from an edited copy: least significant first, 0 invalid, and the two bits
+ * past the sixth point padding, whatever they hold. */
+static void valid_point_bits_are_least_significant_first(void **state)
+{
+    (void)state;
+    const char *path = copied("surfacetopography-written.x3p", "bits.x3p");
+    edit_entry(path, "main.xml", "<SizeX>96</SizeX>", "<SizeX>3</SizeX>");
+    edit_entry(path, "main.xml", "<SizeY>64</SizeY>", "<SizeY>2</SizeY>");
+    edit_entry(path, "main.xml", "<MD5ChecksumPointData>BC50BECEDF300696C0ACBBB7FCB4534A</MD5ChecksumPointData>",
+               "<ValidPointsLink>bindata/valid.bin</ValidPointsLink>");
+    replace_text_entry(path, "md5checksum.hex", "");
+    const double heights[6] = {1e-9, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9}; /* float64 as the host stores it: little-endian */
+    replace_entry(path, "bindata/data.bin", heights, sizeof heights);
+    const uint8_t masks[2] = {0x2D, 0xED}; /* 0b00101101 and 0b11101101: points 1 and 4 invalid */
+    for (int m = 0; m < 2; ++m) {
+        replace_entry(path, "bindata/valid.bin", &masks[m], 1);
+        im_field *field = read_keeping_missing_points(path);
+        for (int i = 0; i < 6; ++i)
+            if (i == 1 || i == 4 ? !isnan(field->data[i]) : field->data[i] != heights[i])
+                fail_msg("mask %#x, point %d: %g", masks[m], i, field->data[i]);
+        im_field_free(field);
+    }
+}
+
+/* valid.bin must hold exactly a bit per point, match its MD5ChecksumValidPoints, and be there. */
+static void damaged_valid_points_are_refused(void **state)
+{
+    (void)state;
+    const char *path = copied("x3p-2-crop200-L-validpoints.x3p", "valid-damaged.x3p");
+    size_t size = 0;
+    uint8_t *bits = entry_bytes(path, "bindata/valid.bin", &size);
+    assert_int_equal(size, 5000);
+    replace_entry(path, "bindata/valid.bin", bits, size - 1);
+    expect_refusal(im_x3p_read, path, "bindata/valid.bin holds 4999 bytes, SizeX x SizeY = 200 x 200 points of a "
+                                      "bit each need 5000");
+    bits[0] ^= 0x01;
+    replace_entry(path, "bindata/valid.bin", bits, size);
+    expect_refusal(im_x3p_read, path, "bindata/valid.bin: MD5 ");
+    expect_refusal(im_x3p_read, path, "but Record3/DataLink/MD5ChecksumValidPoints states "
+                                      "5C4E6385CAC7F188CBF4D7E00B1C4C19: the file is damaged");
+    free(bits);
+    int error;
+    zip_t *archive = zip_open(path, 0, &error);
+    assert_non_null(archive);
+    assert_int_equal(zip_delete(archive, (zip_uint64_t)zip_name_locate(archive, "bindata/valid.bin", 0)), 0);
+    assert_int_equal(zip_close(archive), 0);
+    expect_refusal(im_x3p_read, path, "ValidPointsLink 'bindata/valid.bin' is not in the archive");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(surfacetopography_x3p_is_read),
         cmocka_unit_test(surfacetopography_x3p_with_damaged_data_is_refused),
         cmocka_unit_test(checksum_lines_are_checked_against_their_entries),
+        cmocka_unit_test(invalid_points_are_missing_points),
+        cmocka_unit_test(valid_point_bits_are_least_significant_first),
+        cmocka_unit_test(damaged_valid_points_are_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

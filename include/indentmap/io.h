@@ -256,7 +256,10 @@ int im_netcdf_read(const char *path, im_field **out);
  * CY of AxisType I with Increment (the spacings, metres), CZ of AxisType A with DataType I (int16),
  * L (int32), F (float32) or D (float64), heights Offset + Increment x value in metres; Record3
  * MatrixDimension SizeX, SizeY, SizeZ = 1 and DataLink/PointDataLink, whose entry must hold exactly
- * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data are not read.
+ * SizeX x SizeY values (x fastest). NaN marks a missing point, and so does a point that
+ * DataLink/ValidPointsLink marks invalid: that entry, when linked, must hold a bit per point in the
+ * same order, least significant bit first, 1 valid (ISO 5436-2), (SizeX x SizeY + 7) / 8 bytes, and
+ * match its MD5ChecksumValidPoints when one is stated. Inline DataList data are not read.
  * Stated checksums must match: the data's MD5ChecksumPointData, and each line of md5checksum.hex
  * ("<md5> *<entry>", as md5sum writes it) that of the entry it names, main.xml when it names none
  * (SurfaceTopography names bindata/data.bin); every entry is read to its end so that libzip checks its

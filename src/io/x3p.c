@@ -2,6 +2,9 @@
  * CX and CY incremental with their Increment in metres, CZ absolute with its DataType, Increment
  * and Offset; Record3 MatrixDimension SizeX, SizeY, SizeZ = 1, and DataLink PointDataLink naming the
  * binary data in the archive), and the data holds SizeX x SizeY little-endian values, x fastest.
+ * DataLink ValidPointsLink, when present, names a packed bit array of the points' validity: a bit
+ * per point in the data's order, least significant bit first, 1 valid; an invalid point is a missing
+ * point (NaN) whatever the data hold there.
  * The zip is read with libzip and the XML with libxml2 (no network, no entity expansion). Written
  * files carry what the ISO5436_2 schema requires beyond that: Record2 (date, creator, instrument,
  * probing system "Software"), the data's MD5ChecksumPointData, and Record4's ChecksumFile
@@ -35,12 +38,20 @@ enum { MD5_HEX = 2 * MD5_DIGEST_SIZE }; /* an MD5 in hex digits */
 
 enum { X3P_BLOCK = 8 * 4096 }; /* entries are read in blocks of this many bytes: whole values of any type */
 
+/* An entry of the archive that Record3/DataLink links. */
+typedef struct x3p_link {
+    const char *key;        /* the element naming it, e.g. "PointDataLink" */
+    const char *md5_key;    /* the element stating its MD5, e.g. "MD5ChecksumPointData" */
+    char path[256];         /* the entry; "" when an optional link is absent */
+    char md5[MD5_HEX + 1];  /* its stated MD5 (32 hex digits), or "" when none is stated */
+} x3p_link;
+
 typedef struct x3p_grid {
     long nx, ny, nz;
     double dx, dy, z_increment, z_offset;
     char z_type;            /* I int16, L int32, F float32, D float64 */
-    char data_path[256];    /* the PointDataLink */
-    char data_md5[MD5_HEX + 1]; /* its MD5ChecksumPointData (32 hex digits), or "" when none is stated */
+    x3p_link data;          /* the values: PointDataLink */
+    x3p_link valid;         /* the valid points' bits: ValidPointsLink, when there is one */
 } x3p_grid;
 
 /* The MD5 that `context` has taken in, as 32 hex digits (upper or lower case) and a terminating NUL. */
@@ -177,12 +188,31 @@ static int parse_axes(const char *path, xmlNode *root, x3p_grid *g)
     return status;
 }
 
+/* Record3/DataLink/<key> into link, with the MD5 its <md5_key> states (required by the schema,
+ * optional here: some writers leave it out). */
+static int parse_link(const char *path, xmlNode *root, const char *key, const char *md5_key, x3p_link *link)
+{
+    const char *const names[] = {"Record3", "DataLink", key, NULL};
+    const char *const md5_names[] = {"Record3", "DataLink", md5_key, NULL};
+    char what[64];
+    link->key = key;
+    link->md5_key = md5_key;
+    xmlNode *md5 = find(root, md5_names);
+    xmlChar *stated = md5 ? xmlNodeGetContent(md5) : NULL;
+    if (stated)
+        sscanf((const char *)stated, "%32s", link->md5);
+    xmlFree(stated);
+    snprintf(what, sizeof what, "Record3/DataLink/%s", key);
+    return text_at(path, root, names, what, link->path, sizeof link->path);
+}
+
 static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
 {
     static const char *const SX[] = {"Record3", "MatrixDimension", "SizeX", NULL};
     static const char *const SY[] = {"Record3", "MatrixDimension", "SizeY", NULL};
     static const char *const SZ[] = {"Record3", "MatrixDimension", "SizeZ", NULL};
     static const char *const LINK[] = {"Record3", "DataLink", "PointDataLink", NULL};
+    static const char *const VALID[] = {"Record3", "DataLink", "ValidPointsLink", NULL};
     static const char *const LIST[] = {"Record3", "DataList", NULL};
     double sx = 0, sy = 0, sz = 0;
     int status = number_at(path, root, SX, "Record3/MatrixDimension/SizeX", 0, &sx);
@@ -201,13 +231,10 @@ static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
     if (!find(root, LINK) && find(root, LIST))
         return im_fail(IM_EFORMAT, "%s: main.xml Record3/DataList: inline data is not read; expected a binary "
                        "PointDataLink", path);
-    static const char *const MD5[] = {"Record3", "DataLink", "MD5ChecksumPointData", NULL};
-    xmlNode *md5 = find(root, MD5);
-    xmlChar *stated = md5 ? xmlNodeGetContent(md5) : NULL;
-    if (stated) /* required by the schema, optional here: some writers leave it out */
-        sscanf((const char *)stated, "%32s", g->data_md5);
-    xmlFree(stated);
-    return text_at(path, root, LINK, "Record3/DataLink/PointDataLink", g->data_path, sizeof g->data_path);
+    status = parse_link(path, root, "PointDataLink", "MD5ChecksumPointData", &g->data);
+    if (status == IM_OK && find(root, VALID))
+        status = parse_link(path, root, "ValidPointsLink", "MD5ChecksumValidPoints", &g->valid);
+    return status;
 }
 
 /* The size of the entry `name`, which `key` links; IM_EFORMAT naming both when the archive lacks it. */
@@ -395,22 +422,52 @@ static void decode_heights(void *context, const uint8_t *bytes, size_t size, siz
             sink->g->z_offset + sink->g->z_increment * decode(bytes + k * value, sink->g->z_type);
 }
 
-/* The binary data: exactly SizeX x SizeY values, heights Offset + Increment x value, in metres. */
-static int read_data(zip_t *archive, const char *path, const x3p_grid *g, im_field *field)
+/* A sink marking the invalid points of the field `context` missing (NaN): a bit per point, least
+ * significant first, 0 invalid; the bits past the last point, in the last byte, are padding. */
+static void mark_invalid_points(void *context, const uint8_t *bytes, size_t size, size_t offset)
 {
-    size_t count = im_field_count(field), need = count * (size_t)value_size(g->z_type), size = 0;
-    int status = entry_size(archive, path, g->data_path, "PointDataLink", &size);
+    im_field *field = context;
+    size_t count = im_field_count(field);
+    for (size_t k = 0; k < size; ++k)
+        for (int bit = 0; bit < 8; ++bit) {
+            size_t point = (offset + k) * 8 + (size_t)bit;
+            if (point < count && !(bytes[k] >> bit & 1))
+                field->data[point] = NAN;
+        }
+}
+
+/* The entry link names must hold exactly `need` bytes (`needs` says what for); it is read through sink
+ * and its MD5 checked when one is stated. */
+static int read_link(zip_t *archive, const char *path, const x3p_link *link, size_t need, const char *needs,
+                     entry_sink sink, void *context)
+{
+    size_t size = 0;
+    int status = entry_size(archive, path, link->path, link->key, &size);
     if (status == IM_OK && size != need)
-        return im_fail(IM_EFORMAT, "%s: %s holds %zu bytes, SizeX x SizeY = %ld x %ld values of type %c need %zu",
-                       path, g->data_path, size, g->nx, g->ny, g->z_type, need);
-    const int stated_md5 = g->data_md5[0] != '\0'; /* the MD5 is taken only when there is one to check */
-    char hex[MD5_HEX + 1];
-    heights_sink sink = {g, field};
+        return im_fail(IM_EFORMAT, "%s: %s holds %zu bytes, %s need %zu", path, link->path, size, needs, need);
+    const int stated_md5 = link->md5[0] != '\0'; /* the MD5 is taken only when there is one to check */
+    char hex[MD5_HEX + 1], md5_key[64];
     if (status == IM_OK)
-        status = read_entry(archive, path, g->data_path, need, decode_heights, &sink, stated_md5 ? hex : NULL);
+        status = read_entry(archive, path, link->path, need, sink, context, stated_md5 ? hex : NULL);
     if (status != IM_OK || !stated_md5)
         return status;
-    return check_md5(path, g->data_path, g->data_md5, hex, "Record3/DataLink/MD5ChecksumPointData");
+    snprintf(md5_key, sizeof md5_key, "Record3/DataLink/%s", link->md5_key);
+    return check_md5(path, link->path, link->md5, hex, md5_key);
+}
+
+/* The values, heights Offset + Increment x value in metres, then the valid points' bits, if any. */
+static int read_values(zip_t *archive, const char *path, const x3p_grid *g, im_field *field)
+{
+    size_t count = im_field_count(field);
+    char needs[96];
+    snprintf(needs, sizeof needs, "SizeX x SizeY = %ld x %ld values of type %c", g->nx, g->ny, g->z_type);
+    heights_sink heights = {g, field};
+    int status = read_link(archive, path, &g->data, count * (size_t)value_size(g->z_type), needs, decode_heights,
+                           &heights);
+    if (status != IM_OK || g->valid.path[0] == '\0')
+        return status;
+    snprintf(needs, sizeof needs, "SizeX x SizeY = %ld x %ld points of a bit each", g->nx, g->ny);
+    return read_link(archive, path, &g->valid, (count + 7) / 8, needs, mark_invalid_points, field);
 }
 
 int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
@@ -430,7 +487,7 @@ int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
     int status = read_main_xml(archive, path, &g);
     if (status == IM_OK && (status = im_field_create((int)g.nx, (int)g.ny, 1.0, out)) != IM_OK)
         im_fail_context(status, "%s", path);
-    if (status == IM_OK && (status = read_data(archive, path, &g, *out)) != IM_OK) {
+    if (status == IM_OK && (status = read_values(archive, path, &g, *out)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }
