@@ -3,7 +3,8 @@
  * and from edited copies of it.
  * - x3p from SurfaceTopography: md5checksum.hex holds the MD5 of bindata/data.bin, not main.xml's.
  * - x3p with a ValidPointsLink (derived from a MountainsMap file): ISO 5436-2's bit array of
- *   valid points; an invalid point is a missing one. */
+ *   valid points; an invalid point is a missing one.
+ * - sdf from Gwyddion 2.62: version "aBCR-0.0", header keys NumDataSet and NanPresent. */
 #include "support.h"
 
 #include "indentmap/io.h"
@@ -289,6 +290,94 @@ static void damaged_valid_points_are_refused(void **state)
     expect_refusal(im_x3p_read, path, "ValidPointsLink 'bindata/valid.bin' is not in the archive");
 }
 
+/* ---- sdf: Gwyddion's version and keys ---- */
+
+/* Gwyddion 2.62's export of SurfaceTopography's mi-1.mi was refused at its version, aBCR-0.0. Its
+ * .gsf export reads the same (docs/surfaces.md); values from Python over the file's text. */
+static void gwyddion_sdf_is_read(void **state)
+{
+    (void)state;
+    im_field *field = NULL;
+    if (im_sdf_read(instrument_file("mi-1-mi-gwyddion.sdf"), &field) != IM_OK)
+        fail_msg("%s", im_last_error());
+    assert_int_equal(field->nx, 256);
+    assert_int_equal(field->ny, 256);
+    assert_true(field->delta == 7.8125e-08);
+    assert_string_equal(field->unit, "m");
+    assert_true(field->data[0] == -4.9869e-07 && field->data[256] == -4.97804e-07);
+    size_t finite = 0;
+    assert_close(finite_rms(field, &finite), 3.3215426341495554e-08, 1e-20);
+    im_field_free(field);
+}
+
+/* A 2 x 2 ASCII file as Gwyddion writes it, with these NumDataSet and NanPresent values and third
+ * value; its path. */
+static const char *gwyddion_ascii_sdf(const char *name, const char *data_sets, const char *nan_present,
+                                      const char *third)
+{
+    char text[512];
+    int length = snprintf(text, sizeof text,
+                          "aBCR-0.0\nManufacID   = Gwyddion\nNumPoints   = 2\nNumProfiles = 2\n"
+                          "Xscale      = 1.000000e-06\nYscale      = 1.000000e-06\nZscale      = 1.000000e-09\n"
+                          "Zresolution = -1\nCompression = 0\nDataType    = 3\nCheckType   = 0\n"
+                          "NumDataSet  = %s\nNanPresent  = %s\n*\n1\n2\n%s\n4\n",
+                          data_sets, nan_present, third);
+    const char *path = test_path(name);
+    test_write_bytes(path, text, (size_t)length);
+    return path;
+}
+
+/* NumDataSet must be 1 (a file of more data sets is refused naming it), NanPresent 0 or 1. */
+static void gwyddion_sdf_keys_are_checked(void **state)
+{
+    (void)state;
+    im_field *field = NULL;
+    assert_int_equal(im_sdf_read(gwyddion_ascii_sdf("one.sdf", "1", "0", "3"), &field), IM_OK);
+    assert_close(field->data[2], 3e-9, 1e-24);
+    assert_true(field->delta == 1e-6);
+    im_field_free(field);
+    field = read_keeping_missing_points(gwyddion_ascii_sdf("nan.sdf", "1", "1", "BAD"));
+    assert_true(isnan(field->data[2]));
+    assert_close(field->data[3], 4e-9, 1e-24);
+    im_field_free(field);
+    expect_refusal(im_sdf_read, gwyddion_ascii_sdf("two.sdf", "2", "0", "3"),
+                   "NumDataSet = 2: only files of one data set (1) are read");
+    expect_refusal(im_sdf_read, gwyddion_ascii_sdf("none.sdf", "0", "0", "3"), "NumDataSet = 0");
+    expect_refusal(im_sdf_read, gwyddion_ascii_sdf("word.sdf", "one", "0", "3"),
+                   "NumDataSet = 'one': expected a decimal integer");
+    expect_refusal(im_sdf_read, gwyddion_ascii_sdf("flag.sdf", "1", "2", "3"), "NanPresent = 2: expected 0 or 1");
+}
+
+/* The binary form's version "bBCR-0.0" is read; versions beyond the known ones are still refused. */
+static void gwyddion_sdf_versions_are_read(void **state)
+{
+    (void)state;
+    im_field *written = NULL, *read = NULL;
+    assert_int_equal(im_field_create(3, 2, 2e-6, &written), IM_OK);
+    snprintf(written->unit, sizeof written->unit, "m");
+    for (int i = 0; i < 6; ++i)
+        written->data[i] = 1e-9 * (i - 2.5);
+    const char *path = test_path("binary.sdf");
+    assert_int_equal(im_sdf_write(path, written), IM_OK);
+    FILE *file = fopen(path, "r+b");
+    assert_non_null(file);
+    assert_int_equal(fwrite("bBCR-0.0", 1, 8, file), 8);
+    assert_int_equal(fclose(file), 0);
+    if (im_sdf_read(path, &read) != IM_OK)
+        fail_msg("%s", im_last_error());
+    assert_memory_equal(read->data, written->data, sizeof(double) * 6);
+    assert_true(read->delta == 2e-6);
+    im_field_free(read);
+    im_field_free(written);
+
+    path = gwyddion_ascii_sdf("version.sdf", "1", "0", "3");
+    file = fopen(path, "r+b");
+    assert_non_null(file);
+    assert_int_equal(fwrite("aBCR-0.1", 1, 8, file), 8);
+    assert_int_equal(fclose(file), 0);
+    expect_refusal(im_sdf_read, path, "not an ISO 25178-71 surface data file");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -298,6 +387,9 @@ int main(void)
         cmocka_unit_test(invalid_points_are_missing_points),
         cmocka_unit_test(valid_point_bits_are_least_significant_first),
         cmocka_unit_test(damaged_valid_points_are_refused),
+        cmocka_unit_test(gwyddion_sdf_is_read),
+        cmocka_unit_test(gwyddion_sdf_keys_are_checked),
+        cmocka_unit_test(gwyddion_sdf_versions_are_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

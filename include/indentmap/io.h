@@ -228,10 +228,11 @@ int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
 /* ISO 25178-71 surface data file (.sdf): ASCII ("aISO-1.0" or "aBCR-1.0") or binary ("bISO-1.0",
- * "bBCR-1.0"; an 81-byte little-endian header, then the values). NumPoints columns by NumProfiles
- * rows; Xscale, Yscale (spacings) and Zscale (the height of one unit of a value) in metres, each
- * checked to be a finite number > 0; DataType 0-7 (uint8/16/32, float, int8/16/32, double);
- * Compression must be 0; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
+ * "bBCR-1.0"; an 81-byte little-endian header, then the values), and Gwyddion's "aBCR-0.0" and
+ * "bBCR-0.0". NumPoints columns by NumProfiles rows; Xscale, Yscale (spacings) and Zscale (the height
+ * of one unit of a value) in metres, each checked to be a finite number > 0; DataType 0-7
+ * (uint8/16/32, float, int8/16/32, double); Compression must be 0; Gwyddion's NumDataSet, when
+ * present, must be 1 and NanPresent 0 or 1; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
  * than a '*' trailer are refused. Writing is binary, DataType double, in metres (the field needs a
  * length unit; IM_EINVAL otherwise). */
 int im_sdf_write(const char *path, const im_field *field);
