@@ -236,10 +236,11 @@ int im_gsf_write(const char *path, const im_field *field);
 int im_gsf_read(const char *path, im_field **out);
 
 /* ISO 25178-71 surface data file (.sdf): ASCII ("aISO-1.0" or "aBCR-1.0") or binary ("bISO-1.0",
- * "bBCR-1.0"; an 81-byte little-endian header, then the values). NumPoints columns by NumProfiles
- * rows; Xscale, Yscale (spacings) and Zscale (the height of one unit of a value) in metres, each
- * checked to be a finite number > 0; DataType 0-7 (uint8/16/32, float, int8/16/32, double);
- * Compression must be 0; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
+ * "bBCR-1.0"; an 81-byte little-endian header, then the values), and Gwyddion's "aBCR-0.0" and
+ * "bBCR-0.0". NumPoints columns by NumProfiles rows; Xscale, Yscale (spacings) and Zscale (the height
+ * of one unit of a value) in metres, each checked to be a finite number > 0; DataType 0-7
+ * (uint8/16/32, float, int8/16/32, double); Compression must be 0; Gwyddion's NumDataSet, when
+ * present, must be 1 and NanPresent 0 or 1; "BAD" (ASCII) or NaN marks a missing point. Values after the data other
  * than a '*' trailer are refused. Writing is binary, DataType double, in metres (the field needs a
  * length unit; IM_EINVAL otherwise). */
 int im_sdf_write(const char *path, const im_field *field);
@@ -264,9 +265,16 @@ int im_netcdf_read(const char *path, im_field **out);
  * CY of AxisType I with Increment (the spacings, metres), CZ of AxisType A with DataType I (int16),
  * L (int32), F (float32) or D (float64), heights Offset + Increment x value in metres; Record3
  * MatrixDimension SizeX, SizeY, SizeZ = 1 and DataLink/PointDataLink, whose entry must hold exactly
- * SizeX x SizeY values (x fastest). NaN marks a missing point. Inline DataList data and checksums are
- * not read. Refused with IM_EFORMAT naming the file and the element. Written: DataType D in metres
- * (the field needs a length unit; IM_EINVAL otherwise), without md5 checksums. */
+ * SizeX x SizeY values (x fastest). NaN marks a missing point, and so does a point that
+ * DataLink/ValidPointsLink marks invalid: that entry, when linked, must hold a bit per point in the
+ * same order, least significant bit first, 1 valid (ISO 5436-2), (SizeX x SizeY + 7) / 8 bytes, and
+ * match its MD5ChecksumValidPoints when one is stated. Inline DataList data are not read.
+ * Stated checksums must match: the data's MD5ChecksumPointData, and each line of md5checksum.hex
+ * ("<md5> *<entry>", as md5sum writes it) that of the entry it names, main.xml when it names none
+ * (SurfaceTopography names bindata/data.bin); every entry is read to its end so that libzip checks its
+ * CRC-32. Refused with IM_EFORMAT naming the file and the element or entry. Written: DataType D in
+ * metres (the field needs a length unit; IM_EINVAL otherwise), with MD5ChecksumPointData and
+ * md5checksum.hex naming main.xml. */
 int im_x3p_write(const char *path, const im_field *field);
 int im_x3p_read(const char *path, im_field **out);
 

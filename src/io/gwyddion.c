@@ -114,13 +114,14 @@ static int take_field_line(const char *path, const char *line, stream_header *he
     return IM_OK;
 }
 
-static int read_stream_header(FILE *stream, const char *path, stream_header *header)
+static int read_stream_header(FILE *stream, const char *path, stream_header *header, int *answered)
 {
     char line[STREAM_LINE];
     if (!stream_line(stream, line) || strcmp(line, "indentmap-gwyddion-read 1") != 0)
         return im_fail(IM_EFORMAT, "%s: Gwyddion's reader gave no answer one can read (first line '%.40s')", path,
                        line);
     while (stream_line(stream, line)) {
+        *answered = strncmp(line, "error ", 6) == 0 || strncmp(line, "field ", 6) == 0;
         if (strncmp(line, "error unknown-format ", 21) == 0)
             return im_fail(IM_EFORMAT, "%s: " GWYDDION_UNKNOWN_FORMAT ": %.200s", path, line + 21);
         if (strncmp(line, "error failed ", 13) == 0)
@@ -186,11 +187,13 @@ static int check_values_present(FILE *stream, const char *path, const stream_hea
                    path, header->nx, header->ny, (long long)(about.st_size - at));
 }
 
-int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated)
+/* The stream parsed; *answered says whether it held an error line or a field (else the program's exit
+ * status and errors explain it better). */
+static int stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated, int *answered)
 {
     *out = NULL;
     stream_header header = {0};
-    int status = read_stream_header(stream, path, &header);
+    int status = read_stream_header(stream, path, &header, answered);
     if (status == IM_OK)
         status = state_units(path, &header, stated);
     if (status == IM_OK)
@@ -205,6 +208,12 @@ int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surfac
     else
         im_field_free(field);
     return status;
+}
+
+int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated)
+{
+    int answered = 0;
+    return stream_parse(stream, path, out, stated, &answered);
 }
 
 int gwyddion_stream_file_read(const char *path, im_field **out)
@@ -231,6 +240,7 @@ typedef struct reader_process {
     pid_t child;
     FILE *from, *errors;
     int started;
+    int answered; /* the stream held an error line or a field: its words are the refusal */
 } reader_process;
 
 /* Spawn attributes: no signal blocked and the default actions for those a caller may have changed
@@ -310,7 +320,7 @@ static int finish_reader(const char *path, const reader_process *reader, int par
     if (WIFSIGNALED(how) && WTERMSIG(how) != SIGPIPE)
         return im_fail(IM_EFORMAT, "%s: Gwyddion's file module crashed reading it (signal %d): a damaged file?%s%s",
                        path, WTERMSIG(how), said[0] ? " It said: " : "", said);
-    if (parsed != IM_OK && WIFEXITED(how) && WEXITSTATUS(how) != 0 && WEXITSTATUS(how) != 2)
+    if (parsed != IM_OK && !reader->answered && WIFEXITED(how) && WEXITSTATUS(how) != 0)
         return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended with status %d%s%s", path, WEXITSTATUS(how),
                        said[0] ? ": " : "", said);
     return parsed;
@@ -337,7 +347,7 @@ int gwyddion_read_raw(const char *path, const im_surface_read_options *options, 
     reader_process reader = {0};
     int status = start_reader(program, path, options ? options->channel : "", &reader);
     if (status == IM_OK)
-        status = gwyddion_stream_parse(reader.from, path, out, stated);
+        status = stream_parse(reader.from, path, out, stated, &reader.answered);
     if (reader.from)
         fclose(reader.from); /* before the wait: a reader still writing ends on the closed pipe */
     if (reader.started)

@@ -1,7 +1,9 @@
 /* ISO 25178-71 surface data files (.sdf), ASCII ("aISO-1.0", or the older "aBCR-1.0") and binary
  * ("bISO-1.0", "bBCR-1.0"): a header stating NumPoints (columns) by NumProfiles (rows), the spacings
  * Xscale and Yscale and the height unit Zscale, all in metres, then the values row by row, each a
- * height in units of Zscale. Missing points: NaN, or "BAD" in the ASCII form. */
+ * height in units of Zscale. Missing points: NaN, or "BAD" in the ASCII form. Gwyddion writes the
+ * version "aBCR-0.0" (or "bBCR-0.0") and two more ASCII keys: NumDataSet (the data sets that follow:
+ * one is read) and NanPresent (0 or 1: whether values are NaN). */
 #include "indentmap/io.h"
 #include "core/args.h"
 
@@ -26,7 +28,11 @@ typedef struct sdf_header {
     long points, profiles;           /* NumPoints (columns, along x), NumProfiles (rows, along y) */
     double xscale, yscale, zscale;   /* metres per step and per unit of a value */
     long compression, data_type;
+    long data_sets, nan_present;     /* Gwyddion's NumDataSet and NanPresent (1 and 0 when absent) */
 } sdf_header;
+
+/* The versions read: the standard's, the older BCR ones and Gwyddion's (after 'a' or 'b'). */
+static const char *const SDF_VERSIONS[] = {"ISO-1.0", "BCR-1.0", "BCR-0.0"};
 
 /* A header value that must be finite and > 0. */
 static int check_scale(const char *path, const char *key, double value)
@@ -45,6 +51,11 @@ static int check_header(const char *path, const sdf_header *h)
         return im_fail(IM_EFORMAT, "%s: Compression = %ld: only uncompressed data (0) is read", path, h->compression);
     if (h->data_type < 0 || h->data_type >= SDF_TYPES)
         return im_fail(IM_EFORMAT, "%s: DataType = %ld: expected 0 to 7", path, h->data_type);
+    if (h->data_sets != 1)
+        return im_fail(IM_EFORMAT, "%s: NumDataSet = %ld: only files of one data set (1) are read", path,
+                       h->data_sets);
+    if (h->nan_present != 0 && h->nan_present != 1)
+        return im_fail(IM_EFORMAT, "%s: NanPresent = %ld: expected 0 or 1", path, h->nan_present);
     int status = check_scale(path, "Xscale", h->xscale);
     if (status == IM_OK)
         status = check_scale(path, "Yscale", h->yscale);
@@ -53,18 +64,23 @@ static int check_header(const char *path, const sdf_header *h)
 
 /* ---- ASCII ---- */
 
+/* The header keys read: integers first, then lengths. */
+enum { SDF_LONG_KEYS = 6, SDF_KEYS = 9 };
+static const char *const SDF_KEY_NAMES[SDF_KEYS] = {"NumPoints",  "NumProfiles", "Compression",
+                                                    "DataType",   "NumDataSet",  "NanPresent",
+                                                    "Xscale",     "Yscale",      "Zscale"};
+
 /* "Key = value" into the header; IM_EFORMAT naming the key for a value that is not a number. */
 static int parse_ascii_line(const char *path, long line_number, const char *line, sdf_header *h, int *seen)
 {
-    static const char *const LONGS[] = {"NumPoints", "NumProfiles", "Compression", "DataType"};
-    static const char *const DOUBLES[] = {"Xscale", "Yscale", "Zscale"};
-    long *long_fields[] = {&h->points, &h->profiles, &h->compression, &h->data_type};
-    double *double_fields[] = {&h->xscale, &h->yscale, &h->zscale};
+    long *long_fields[SDF_LONG_KEYS] = {&h->points,    &h->profiles,  &h->compression,
+                                        &h->data_type, &h->data_sets, &h->nan_present};
+    double *double_fields[SDF_KEYS - SDF_LONG_KEYS] = {&h->xscale, &h->yscale, &h->zscale};
     char key[32], value[64], *end;
     if (sscanf(line, " %31[A-Za-z] = %63s", key, value) != 2)
         return IM_OK; /* dates, manufacturer and the like: not needed */
-    for (int i = 0; i < 4; ++i)
-        if (strcmp(key, LONGS[i]) == 0) {
+    for (int i = 0; i < SDF_LONG_KEYS; ++i)
+        if (strcmp(key, SDF_KEY_NAMES[i]) == 0) {
             errno = 0;
             *long_fields[i] = strtol(value, &end, 10);
             if (*end != '\0' || errno == ERANGE)
@@ -72,21 +88,20 @@ static int parse_ascii_line(const char *path, long line_number, const char *line
                                value);
             seen[i] = 1;
         }
-    for (int i = 0; i < 3; ++i)
-        if (strcmp(key, DOUBLES[i]) == 0) {
-            *double_fields[i] = strtod(value, &end);
+    for (int i = SDF_LONG_KEYS; i < SDF_KEYS; ++i)
+        if (strcmp(key, SDF_KEY_NAMES[i]) == 0) {
+            *double_fields[i - SDF_LONG_KEYS] = strtod(value, &end);
             if (*end != '\0')
                 return im_fail(IM_EFORMAT, "%s:%ld: %s = '%s': expected a number", path, line_number, key, value);
-            seen[4 + i] = 1;
+            seen[i] = 1;
         }
     return IM_OK;
 }
 
 static int read_ascii_header(FILE *stream, const char *path, sdf_header *h, long *line_number)
 {
-    static const char *const REQUIRED[] = {"NumPoints", "NumProfiles", "Compression", "DataType", "Xscale",
-                                           "Yscale", "Zscale"};
-    int seen[7] = {0, 0, 1, 1, 0, 0, 0}; /* Compression and DataType may be absent (0, and text values) */
+    /* Compression and DataType may be absent (0, and text values), NumDataSet and NanPresent too */
+    int seen[SDF_KEYS] = {0, 0, 1, 1, 1, 1, 0, 0, 0};
     char line[256];
     int status = IM_OK;
     while (status == IM_OK && fgets(line, sizeof line, stream)) {
@@ -99,9 +114,9 @@ static int read_ascii_header(FILE *stream, const char *path, sdf_header *h, long
         return status;
     if (feof(stream))
         return im_fail(IM_EFORMAT, "%s: truncated: no '*' line ends the header", path);
-    for (int i = 0; i < 7; ++i)
+    for (int i = 0; i < SDF_KEYS; ++i)
         if (!seen[i])
-            return im_fail(IM_EFORMAT, "%s: the header lacks %s", path, REQUIRED[i]);
+            return im_fail(IM_EFORMAT, "%s: the header lacks %s", path, SDF_KEY_NAMES[i]);
     return check_header(path, h);
 }
 
@@ -183,15 +198,22 @@ static int read_binary_values(FILE *stream, const char *path, const sdf_header *
 
 /* ---- reading ---- */
 
+/* Whether the 7 bytes after the version's 'a' or 'b' are one of SDF_VERSIONS. */
+static int known_version(const char *version)
+{
+    for (size_t i = 0; i < sizeof SDF_VERSIONS / sizeof *SDF_VERSIONS; ++i)
+        if (memcmp(version, SDF_VERSIONS[i], 7) == 0)
+            return 1;
+    return 0;
+}
+
 static int read_header(FILE *stream, const char *path, sdf_header *h, int *ascii)
 {
     char magic[8];
     long line = 1;
-    if (fread(magic, 1, 8, stream) != 8 ||
-        (memcmp(magic + 1, "ISO-1.0", 7) != 0 && memcmp(magic + 1, "BCR-1.0", 7) != 0) ||
-        (magic[0] != 'a' && magic[0] != 'b'))
-        return im_fail(IM_EFORMAT, "%s: not an ISO 25178-71 surface data file (no aISO-1.0, bISO-1.0, aBCR-1.0 or "
-                       "bBCR-1.0 first)", path);
+    if (fread(magic, 1, 8, stream) != 8 || (magic[0] != 'a' && magic[0] != 'b') || !known_version(magic + 1))
+        return im_fail(IM_EFORMAT, "%s: not an ISO 25178-71 surface data file (no aISO-1.0, bISO-1.0, aBCR-1.0, "
+                       "bBCR-1.0, aBCR-0.0 or bBCR-0.0 first)", path);
     *ascii = magic[0] == 'a';
     if (!*ascii)
         return read_binary_header(stream, path, h);
@@ -224,7 +246,7 @@ int sdf_read_raw(const char *path, im_field **out, surface_stated *stated)
     FILE *stream = fopen(path, "rb");
     if (!stream)
         return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
-    sdf_header h = {0};
+    sdf_header h = {.data_sets = 1};
     int ascii = 0;
     im_field *field = NULL;
     int status = read_header(stream, path, &h, &ascii);

@@ -2,10 +2,15 @@
  * CX and CY incremental with their Increment in metres, CZ absolute with its DataType, Increment
  * and Offset; Record3 MatrixDimension SizeX, SizeY, SizeZ = 1, and DataLink PointDataLink naming the
  * binary data in the archive), and the data holds SizeX x SizeY little-endian values, x fastest.
+ * DataLink ValidPointsLink, when present, names a packed bit array of the points' validity: a bit
+ * per point in the data's order, least significant bit first, 1 valid; an invalid point is a missing
+ * point (NaN) whatever the data hold there.
  * The zip is read with libzip and the XML with libxml2 (no network, no entity expansion). Written
  * files carry what the ISO5436_2 schema requires beyond that: Record2 (date, creator, instrument,
  * probing system "Software"), the data's MD5ChecksumPointData, and Record4's ChecksumFile
- * md5checksum.hex holding the MD5 of main.xml ("<hex> *main.xml", as md5sum writes it). */
+ * md5checksum.hex holding the MD5 of main.xml ("<hex> *main.xml", as md5sum writes it). Read, each
+ * line of md5checksum.hex is checked against the entry it names: most writers name main.xml,
+ * SurfaceTopography names bindata/data.bin; a line naming none is main.xml's. */
 #include "indentmap/io.h"
 #include "core/args.h"
 
@@ -27,14 +32,26 @@
 
 enum { X3P_MAX_XML = 16 << 20 }; /* main.xml of a surface is a few kB; more is refused */
 
+enum { X3P_MAX_CHECKSUM_FILE = 4096 }; /* md5checksum.hex holds a line or two */
+
 enum { MD5_HEX = 2 * MD5_DIGEST_SIZE }; /* an MD5 in hex digits */
+
+enum { X3P_BLOCK = 8 * 4096 }; /* entries are read in blocks of this many bytes: whole values of any type */
+
+/* An entry of the archive that Record3/DataLink links. */
+typedef struct x3p_link {
+    const char *key;        /* the element naming it, e.g. "PointDataLink" */
+    const char *md5_key;    /* the element stating its MD5, e.g. "MD5ChecksumPointData" */
+    char path[256];         /* the entry; "" when an optional link is absent */
+    char md5[MD5_HEX + 1];  /* its stated MD5 (32 hex digits), or "" when none is stated */
+} x3p_link;
 
 typedef struct x3p_grid {
     long nx, ny, nz;
     double dx, dy, z_increment, z_offset;
     char z_type;            /* I int16, L int32, F float32, D float64 */
-    char data_path[256];    /* the PointDataLink */
-    char data_md5[MD5_HEX + 1]; /* its MD5ChecksumPointData (32 hex digits), or "" when none is stated */
+    x3p_link data;          /* the values: PointDataLink */
+    x3p_link valid;         /* the valid points' bits: ValidPointsLink, when there is one */
 } x3p_grid;
 
 /* The MD5 that `context` has taken in, as 32 hex digits (upper or lower case) and a terminating NUL. */
@@ -171,12 +188,31 @@ static int parse_axes(const char *path, xmlNode *root, x3p_grid *g)
     return status;
 }
 
+/* Record3/DataLink/<key> into link, with the MD5 its <md5_key> states (required by the schema,
+ * optional here: some writers leave it out). */
+static int parse_link(const char *path, xmlNode *root, const char *key, const char *md5_key, x3p_link *link)
+{
+    const char *const names[] = {"Record3", "DataLink", key, NULL};
+    const char *const md5_names[] = {"Record3", "DataLink", md5_key, NULL};
+    char what[64];
+    link->key = key;
+    link->md5_key = md5_key;
+    xmlNode *md5 = find(root, md5_names);
+    xmlChar *stated = md5 ? xmlNodeGetContent(md5) : NULL;
+    if (stated)
+        sscanf((const char *)stated, "%32s", link->md5);
+    xmlFree(stated);
+    snprintf(what, sizeof what, "Record3/DataLink/%s", key);
+    return text_at(path, root, names, what, link->path, sizeof link->path);
+}
+
 static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
 {
     static const char *const SX[] = {"Record3", "MatrixDimension", "SizeX", NULL};
     static const char *const SY[] = {"Record3", "MatrixDimension", "SizeY", NULL};
     static const char *const SZ[] = {"Record3", "MatrixDimension", "SizeZ", NULL};
     static const char *const LINK[] = {"Record3", "DataLink", "PointDataLink", NULL};
+    static const char *const VALID[] = {"Record3", "DataLink", "ValidPointsLink", NULL};
     static const char *const LIST[] = {"Record3", "DataList", NULL};
     double sx = 0, sy = 0, sz = 0;
     int status = number_at(path, root, SX, "Record3/MatrixDimension/SizeX", 0, &sx);
@@ -195,29 +231,127 @@ static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
     if (!find(root, LINK) && find(root, LIST))
         return im_fail(IM_EFORMAT, "%s: main.xml Record3/DataList: inline data is not read; expected a binary "
                        "PointDataLink", path);
-    static const char *const MD5[] = {"Record3", "DataLink", "MD5ChecksumPointData", NULL};
-    xmlNode *md5 = find(root, MD5);
-    xmlChar *stated = md5 ? xmlNodeGetContent(md5) : NULL;
-    if (stated) /* required by the schema, optional here: some writers leave it out */
-        sscanf((const char *)stated, "%32s", g->data_md5);
-    xmlFree(stated);
-    return text_at(path, root, LINK, "Record3/DataLink/PointDataLink", g->data_path, sizeof g->data_path);
+    status = parse_link(path, root, "PointDataLink", "MD5ChecksumPointData", &g->data);
+    if (status == IM_OK && find(root, VALID))
+        status = parse_link(path, root, "ValidPointsLink", "MD5ChecksumValidPoints", &g->valid);
+    return status;
 }
 
-/* md5checksum.hex, when the archive has it: its first word must be the MD5 of main.xml's bytes. */
-static int check_main_checksum(zip_t *archive, const char *path, const char *xml, size_t size)
+/* The size of the entry `name`, which `key` links; IM_EFORMAT naming both when the archive lacks it. */
+static int entry_size(zip_t *archive, const char *path, const char *name, const char *key, size_t *size)
 {
-    char text[128] = "", stated[MD5_HEX + 1] = "", hex[MD5_HEX + 1];
-    zip_file_t *file = zip_fopen(archive, "md5checksum.hex", 0);
+    zip_stat_t info;
+    zip_stat_init(&info);
+    if (zip_stat(archive, name, 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
+        return im_fail(IM_EFORMAT, "%s: %s '%s' is not in the archive", path, key, name);
+    *size = (size_t)info.size;
+    return IM_OK;
+}
+
+/* What a reader does with an entry's bytes as they arrive: `size` bytes from byte `offset` of the
+ * entry, a multiple of X3P_BLOCK. */
+typedef void (*entry_sink)(void *context, const uint8_t *bytes, size_t size, size_t offset);
+
+/* Reads the `size` bytes of entry `name` and one past them (check_entry_end), handing each block to
+ * sink (when not NULL) and taking their MD5 into hex (when not NULL). */
+static int read_entry(zip_t *archive, const char *path, const char *name, size_t size, entry_sink sink,
+                      void *context, char hex[MD5_HEX + 1])
+{
+    zip_file_t *file = zip_fopen(archive, name, 0);
     if (!file)
-        return IM_OK;
-    zip_int64_t got = zip_fread(file, text, sizeof text - 1);
+        return im_fail(IM_EFORMAT, "%s: %s cannot be opened: %s", path, name, zip_strerror(archive));
+    uint8_t block[X3P_BLOCK];
+    struct md5_ctx md5;
+    md5_init(&md5);
+    int status = IM_OK;
+    for (size_t done = 0; done < size && status == IM_OK; done += X3P_BLOCK) {
+        size_t want = size - done < X3P_BLOCK ? size - done : X3P_BLOCK;
+        if (zip_fread(file, block, want) != (zip_int64_t)want)
+            status = im_fail(IM_EFORMAT, "%s: %s: truncated or corrupt after %zu bytes: %s", path, name, done,
+                             zip_file_strerror(file));
+        if (status == IM_OK && hex)
+            md5_update(&md5, want, block);
+        if (status == IM_OK && sink)
+            sink(context, block, want, done);
+    }
+    if (status == IM_OK)
+        status = check_entry_end(file, path, name);
     zip_fclose(file);
-    if (got < 0)
-        return im_fail(IM_EFORMAT, "%s: md5checksum.hex cannot be read: %s", path, zip_strerror(archive));
-    sscanf(text, "%32s", stated);
-    md5_hex(xml, size, 0, hex);
-    return check_md5(path, "main.xml", stated, hex, "md5checksum.hex");
+    if (status == IM_OK && hex)
+        md5_finish_hex(&md5, 0, hex);
+    return status;
+}
+
+/* A sink copying the bytes into the buffer `context`. */
+static void copy_bytes(void *context, const uint8_t *bytes, size_t size, size_t offset)
+{
+    memcpy((uint8_t *)context + offset, bytes, size);
+}
+
+/* md5checksum.hex's text (at most X3P_MAX_CHECKSUM_FILE bytes, NUL-terminated); "" when the archive
+ * has none. */
+static int read_checksum_file(zip_t *archive, const char *path, char text[X3P_MAX_CHECKSUM_FILE + 1])
+{
+    zip_stat_t info;
+    zip_stat_init(&info);
+    text[0] = '\0';
+    if (zip_stat(archive, "md5checksum.hex", 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
+        return IM_OK;
+    if (info.size > X3P_MAX_CHECKSUM_FILE)
+        return im_fail(IM_EFORMAT, "%s: md5checksum.hex is %llu bytes: expected at most %d", path,
+                       (unsigned long long)info.size, X3P_MAX_CHECKSUM_FILE);
+    int status = read_entry(archive, path, "md5checksum.hex", (size_t)info.size, copy_bytes, text, NULL);
+    text[status == IM_OK ? (size_t)info.size : 0] = '\0';
+    return status;
+}
+
+/* The MD5 of the entry a line of md5checksum.hex names: main.xml's bytes (xml) when it names main.xml or
+ * nothing, else the named entry's. */
+static int named_entry_md5(zip_t *archive, const char *path, const char *name, const char *xml, size_t xml_size,
+                           char hex[MD5_HEX + 1])
+{
+    if (strcmp(name, "main.xml") == 0) {
+        md5_hex(xml, xml_size, 0, hex);
+        return IM_OK;
+    }
+    size_t size = 0;
+    int status = entry_size(archive, path, name, "md5checksum.hex's entry", &size);
+    return status == IM_OK ? read_entry(archive, path, name, size, NULL, NULL, hex) : status;
+}
+
+/* One line of md5checksum.hex as md5sum writes it: 32 hex digits, blanks, '*' (binary mode) or not,
+ * and the name of the entry whose MD5 they are (main.xml when the line names none). A line that does
+ * not start with 32 hex digits states nothing. */
+static int check_checksum_line(zip_t *archive, const char *path, const char *line, const char *xml,
+                               size_t xml_size)
+{
+    static const char BLANKS[] = " \t";
+    char stated[MD5_HEX + 1], name[256], hex[MD5_HEX + 1];
+    line += strspn(line, BLANKS);
+    size_t digits = strspn(line, "0123456789abcdefABCDEF");
+    if (digits != MD5_HEX || (line[digits] != '\0' && !strchr(BLANKS, line[digits])))
+        return IM_OK;
+    snprintf(stated, sizeof stated, "%.*s", MD5_HEX, line);
+    const char *rest = line + MD5_HEX + strspn(line + MD5_HEX, BLANKS);
+    rest += *rest == '*';
+    size_t length = strlen(rest);
+    while (length > 0 && strchr(BLANKS, rest[length - 1]))
+        --length;
+    if (length == 0)
+        rest = "main.xml", length = strlen(rest);
+    snprintf(name, sizeof name, "%.*s", (int)length, rest);
+    int status = named_entry_md5(archive, path, name, xml, xml_size, hex);
+    return status == IM_OK ? check_md5(path, name, stated, hex, "md5checksum.hex") : status;
+}
+
+/* md5checksum.hex, when the archive has it: every line's MD5 must be that of the entry it names. */
+static int check_checksum_file(zip_t *archive, const char *path, const char *xml, size_t xml_size)
+{
+    char text[X3P_MAX_CHECKSUM_FILE + 1], *save = NULL;
+    int status = read_checksum_file(archive, path, text);
+    for (char *line = strtok_r(text, "\r\n", &save); line && status == IM_OK; line = strtok_r(NULL, "\r\n", &save))
+        status = check_checksum_line(archive, path, line, xml, xml_size);
+    return status;
 }
 
 /* main.xml from the archive, parsed; IM_EFORMAT naming what is missing or malformed. */
@@ -239,7 +373,7 @@ static int read_main_xml(zip_t *archive, const char *path, x3p_grid *g)
     if (file)
         zip_fclose(file);
     if (status == IM_OK)
-        status = check_main_checksum(archive, path, text, (size_t)info.size);
+        status = check_checksum_file(archive, path, text, (size_t)info.size);
     if (status != IM_OK) {
         free(text);
         return status;
@@ -272,46 +406,68 @@ static double decode(const uint8_t *b, char type)
     return type == 'I' ? (int16_t)bits : type == 'L' ? (int32_t)bits : type == 'F' ? f4.f : d8.d;
 }
 
-/* The binary data: exactly SizeX x SizeY values, heights Offset + Increment x value, in metres. */
-static int read_data(zip_t *archive, const char *path, const x3p_grid *g, im_field *field)
+/* The heights' destination while the data entry is read. */
+typedef struct heights_sink {
+    const x3p_grid *g;
+    im_field *field;
+} heights_sink;
+
+/* A sink decoding whole values into heights Offset + Increment x value. */
+static void decode_heights(void *context, const uint8_t *bytes, size_t size, size_t offset)
 {
-    size_t count = im_field_count(field), size = (size_t)value_size(g->z_type);
-    zip_stat_t info;
-    zip_stat_init(&info);
-    if (zip_stat(archive, g->data_path, 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
-        return im_fail(IM_EFORMAT, "%s: PointDataLink '%s' is not in the archive", path, g->data_path);
-    if (info.size != count * size)
-        return im_fail(IM_EFORMAT, "%s: %s holds %llu bytes, SizeX x SizeY = %ld x %ld values of type %c need %zu",
-                       path, g->data_path, (unsigned long long)info.size, g->nx, g->ny, g->z_type, count * size);
-    zip_file_t *file = zip_fopen(archive, g->data_path, 0);
-    if (!file)
-        return im_fail(IM_EFORMAT, "%s: %s cannot be opened: %s", path, g->data_path, zip_strerror(archive));
-    uint8_t block[8 * 4096];
-    size_t done = 0;
-    int status = IM_OK;
-    const int stated_md5 = g->data_md5[0] != '\0'; /* the MD5 is taken only when there is one to check */
-    struct md5_ctx md5;
-    md5_init(&md5);
-    while (done < count && status == IM_OK) {
-        size_t want = count - done < sizeof block / size ? count - done : sizeof block / size;
-        zip_int64_t got = zip_fread(file, block, want * size);
-        if (got != (zip_int64_t)(want * size))
-            status = im_fail(IM_EFORMAT, "%s: %s: truncated or corrupt after %zu values: %s", path, g->data_path, done,
-                             zip_file_strerror(file));
-        else if (stated_md5)
-            md5_update(&md5, want * size, block);
-        for (size_t k = 0; status == IM_OK && k < want; ++k)
-            field->data[done + k] = g->z_offset + g->z_increment * decode(block + k * size, g->z_type);
-        done += want;
-    }
+    const heights_sink *sink = context;
+    size_t value = (size_t)value_size(sink->g->z_type), first = offset / value;
+    for (size_t k = 0; k < size / value; ++k)
+        sink->field->data[first + k] =
+            sink->g->z_offset + sink->g->z_increment * decode(bytes + k * value, sink->g->z_type);
+}
+
+/* A sink marking the invalid points of the field `context` missing (NaN): a bit per point, least
+ * significant first, 0 invalid; the bits past the last point, in the last byte, are padding. */
+static void mark_invalid_points(void *context, const uint8_t *bytes, size_t size, size_t offset)
+{
+    im_field *field = context;
+    size_t count = im_field_count(field);
+    for (size_t k = 0; k < size; ++k)
+        for (int bit = 0; bit < 8; ++bit) {
+            size_t point = (offset + k) * 8 + (size_t)bit;
+            if (point < count && !(bytes[k] >> bit & 1))
+                field->data[point] = NAN;
+        }
+}
+
+/* The entry link names must hold exactly `need` bytes (`needs` says what for); it is read through sink
+ * and its MD5 checked when one is stated. */
+static int read_link(zip_t *archive, const char *path, const x3p_link *link, size_t need, const char *needs,
+                     entry_sink sink, void *context)
+{
+    size_t size = 0;
+    int status = entry_size(archive, path, link->path, link->key, &size);
+    if (status == IM_OK && size != need)
+        return im_fail(IM_EFORMAT, "%s: %s holds %zu bytes, %s need %zu", path, link->path, size, needs, need);
+    const int stated_md5 = link->md5[0] != '\0'; /* the MD5 is taken only when there is one to check */
+    char hex[MD5_HEX + 1], md5_key[64];
     if (status == IM_OK)
-        status = check_entry_end(file, path, g->data_path);
-    zip_fclose(file);
+        status = read_entry(archive, path, link->path, need, sink, context, stated_md5 ? hex : NULL);
     if (status != IM_OK || !stated_md5)
         return status;
-    char hex[MD5_HEX + 1];
-    md5_finish_hex(&md5, 0, hex);
-    return check_md5(path, g->data_path, g->data_md5, hex, "Record3/DataLink/MD5ChecksumPointData");
+    snprintf(md5_key, sizeof md5_key, "Record3/DataLink/%s", link->md5_key);
+    return check_md5(path, link->path, link->md5, hex, md5_key);
+}
+
+/* The values, heights Offset + Increment x value in metres, then the valid points' bits, if any. */
+static int read_values(zip_t *archive, const char *path, const x3p_grid *g, im_field *field)
+{
+    size_t count = im_field_count(field);
+    char needs[96];
+    snprintf(needs, sizeof needs, "SizeX x SizeY = %ld x %ld values of type %c", g->nx, g->ny, g->z_type);
+    heights_sink heights = {g, field};
+    int status = read_link(archive, path, &g->data, count * (size_t)value_size(g->z_type), needs, decode_heights,
+                           &heights);
+    if (status != IM_OK || g->valid.path[0] == '\0')
+        return status;
+    snprintf(needs, sizeof needs, "SizeX x SizeY = %ld x %ld points of a bit each", g->nx, g->ny);
+    return read_link(archive, path, &g->valid, (count + 7) / 8, needs, mark_invalid_points, field);
 }
 
 int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
@@ -331,7 +487,7 @@ int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
     int status = read_main_xml(archive, path, &g);
     if (status == IM_OK && (status = im_field_create((int)g.nx, (int)g.ny, 1.0, out)) != IM_OK)
         im_fail_context(status, "%s", path);
-    if (status == IM_OK && (status = read_data(archive, path, &g, *out)) != IM_OK) {
+    if (status == IM_OK && (status = read_values(archive, path, &g, *out)) != IM_OK) {
         im_field_free(*out);
         *out = NULL;
     }
