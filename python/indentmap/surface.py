@@ -38,12 +38,14 @@ def statistics(heights, delta=1.0, window="none", alpha=0.5):
     return _core.statistics(heights, float(delta), window, float(alpha))
 
 
-def prepare(heights, detrend="plane", fill=False):
+def prepare(heights, detrend="plane", fill=False, align="none"):
     """A prepared copy of measured heights: missing points (NaN) refused with the first one's position, or
-    with ``fill=True`` filled from their known neighbours (rim inwards); then the least-squares plane
-    (``detrend='plane'``: mean and tilt) or quadric ('curvature': also the bow) removed ('none': kept).
-    Crop with numpy slicing. Returns (heights, number of points filled)."""
-    return _core.prepare(heights, detrend, bool(fill))
+    with ``fill=True`` filled from their known neighbours (rim inwards); then the scan lines (rows)
+    aligned (``align='median'``, 'mean' or 'line': each row's offset or tilt removed, as ``--align``
+    does); then the least-squares plane (``detrend='plane'``: mean and tilt) or quadric ('curvature':
+    also the bow) removed ('none': kept). Crop with numpy slicing. Returns (heights, number of points
+    filled)."""
+    return _core.prepare(heights, detrend, bool(fill), align)
 
 
 def psd(heights, delta=1.0, bins=64):

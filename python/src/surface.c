@@ -161,14 +161,29 @@ static int detrend_from_name(const char *name, enum im_detrend *detrend)
 /* prepare(heights, detrend, fill) -> (new heights, points filled): NaN filled from their known
  * neighbours when fill (refused otherwise, with the first one's position), then the least-squares
  * plane or quadric removed. */
+static int align_from_name(const char *name, enum im_row_alignment *out)
+{
+    static const char *const NAMES[] = {"none", "median", "mean", "line"};
+    for (int i = 0; i < 4; ++i)
+        if (strcmp(name, NAMES[i]) == 0) {
+            *out = (enum im_row_alignment)i;
+            return 0;
+        }
+    py_raise_status(im_fail(IM_EINVAL, "align '%.40s': expected 'none', 'median', 'mean' or 'line'", name));
+    return -1;
+}
+
+/* prepare(heights, detrend, fill, align) -> (new heights, points filled) */
 static PyObject *prepare(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *obj;
-    const char *detrend_name;
+    const char *detrend_name, *align_name;
     int fill;
     enum im_detrend detrend;
-    if (!PyArg_ParseTuple(args, "Osp", &obj, &detrend_name, &fill) || detrend_from_name(detrend_name, &detrend) < 0)
+    enum im_row_alignment align;
+    if (!PyArg_ParseTuple(args, "Osps", &obj, &detrend_name, &fill, &align_name) ||
+        detrend_from_name(detrend_name, &detrend) < 0 || align_from_name(align_name, &align) < 0)
         return NULL;
     PyArrayObject *array = py_heights_array(obj, "heights");
     if (!array)
@@ -181,6 +196,8 @@ static PyObject *prepare(PyObject *self, PyObject *args)
         status = im_surface_fill_missing(copy, &filled);
     if (status == IM_OK)
         status = im_field_check_finite(copy, "heights (fill=True fills missing points)");
+    if (status == IM_OK)
+        status = im_surface_align_rows(copy, align);
     if (status == IM_OK)
         status = im_surface_detrend(copy, detrend);
     if (status != IM_OK) {
@@ -261,7 +278,7 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
 PyMethodDef py_surface_methods[] = {
     {"generate", (PyCFunction)(void (*)(void))generate, METH_VARARGS | METH_KEYWORDS, "Spectral synthesis."},
     {"statistics", statistics, METH_VARARGS, "statistics(heights, delta, window, alpha) -> dict"},
-    {"prepare", prepare, METH_VARARGS, "prepare(heights, detrend, fill) -> (heights, filled)"},
+    {"prepare", prepare, METH_VARARGS, "prepare(heights, detrend, fill, align) -> (heights, filled)"},
     {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
     {"read_surface", read_surface, METH_VARARGS,

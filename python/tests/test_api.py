@@ -270,3 +270,16 @@ def test_device_choice_gives_the_cpu_answers(rough64):
         assert b["load"] == pytest.approx(a["load"], rel=1e-10)
         assert b["contact_patches"] == a["contact_patches"]
     assert np.array_equal(cpu.fields()[0] > 0, gpu.fields()[0] > 0)
+
+
+def test_prepare_aligns_scan_lines_as_the_cli(tmp_path):
+    """align='median' removes each row's offset (streaks of a drifting AFM feedback) as --align does:
+    a profile along x plus an offset per row comes back as one row repeated, its mean kept."""
+    x = np.arange(40)
+    rows = np.sin(0.3 * x)[None, :] + 4.0 * np.cos(1.3 * np.arange(12))[:, None]
+    aligned, filled = im.prepare(rows, detrend="none", align="median")
+    assert filled == 0
+    assert np.abs(aligned - aligned[0]).max() < 1e-13
+    assert abs(aligned.mean() - rows.mean()) < 1e-12
+    with pytest.raises(im.InvalidArgument, match="align 'rows'"):
+        im.prepare(rows, align="rows")
