@@ -586,12 +586,13 @@ static json_t *pixels_record(const im_surface_read_info *info)
                      "resampled", resampled);
 }
 
-/* A cone has no radius and a sphere or flat punch no angle: their defaults are not the run's (D14). */
+/* A cone has no radius, a sphere or flat punch no angle, a profile neither (its shape is the file's):
+ * their defaults are not the run's (D14). */
 static void drop_meaningless_punch_fields(json_t *punch, enum im_punch_kind kind)
 {
-    if (kind == IM_PUNCH_CONE)
+    if (kind != IM_PUNCH_SPHERE && kind != IM_PUNCH_FLAT)
         json_object_del(punch, "radius");
-    if (kind == IM_PUNCH_SPHERE || kind == IM_PUNCH_FLAT)
+    if (kind != IM_PUNCH_CONE)
         json_object_del(punch, "alpha_degrees");
 }
 
@@ -678,13 +679,11 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
         if (seed)
             json_object_set(root, "seed", seed);
     }
-    if (o->profile_path) { /* its shape is the file's: no angle or radius */
+    if (o->profile_path) { /* its shape is the file's (drop_meaningless_punch_fields: no angle or radius) */
         char profile[4 * 4096 + 1];
         im_path_utf8(o->profile_path, profile, sizeof profile);
         json_t *punch = json_object_get(root, "punch");
         json_object_set_new(punch, "profile", json_string(profile));
-        json_object_del(punch, "alpha_degrees");
-        json_object_del(punch, "radius");
     }
     json_decref(generator);
     drop_meaningless_punch_fields(json_object_get(root, "punch"), o->punch.kind);

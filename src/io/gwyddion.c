@@ -210,12 +210,6 @@ static int stream_parse(FILE *stream, const char *path, im_field **out, surface_
     return status;
 }
 
-int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated)
-{
-    int answered = 0;
-    return stream_parse(stream, path, out, stated, &answered);
-}
-
 int gwyddion_stream_file_read(const char *path, im_field **out)
 {
     *out = NULL;
@@ -224,7 +218,8 @@ int gwyddion_stream_file_read(const char *path, im_field **out)
         return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
     surface_stated stated;
     im_field *field = NULL;
-    int status = gwyddion_stream_parse(stream, path, &field, &stated);
+    int answered = 0;
+    int status = stream_parse(stream, path, &field, &stated, &answered);
     fclose(stream);
     if (status == IM_OK)
         status = surface_finish(path, field, &stated, NULL, NULL);

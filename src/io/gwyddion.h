@@ -22,9 +22,6 @@
 int gwyddion_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
                       surface_stated *stated);
 
-/* Parses the program's stream into a raw field and its stated units, as gwyddion_read_raw does. */
-int gwyddion_stream_parse(FILE *stream, const char *path, im_field **out, surface_stated *stated);
-
 /* A file holding such a stream, parsed and finished (units applied, missing points refused) as a read
  * through the program would be: what fuzz/fuzz_gwyddion.c and its regression test feed. */
 int gwyddion_stream_file_read(const char *path, im_field **out);

@@ -1,17 +1,12 @@
 /* x y z points in a text file, placed on the regular grid they sample. */
 #include "io/text_points.h"
 
+#include "core/sort.h"
 #include "indentmap/status.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* The distinct values of one column (every third value from `first`), sorted, into *distinct. */
 static int distinct_values(const double *values, long points, int first, double **distinct, long *count)
@@ -21,7 +16,7 @@ static int distinct_values(const double *values, long points, int first, double 
         return im_fail(IM_ENOMEM, "x y z points: allocation failed");
     for (long k = 0; k < points; ++k)
         sorted[k] = values[3 * k + first];
-    qsort(sorted, (size_t)points, sizeof *sorted, compare_doubles);
+    sort_doubles(sorted, (size_t)points);
     long n = 0;
     for (long k = 0; k < points; ++k)
         if (n == 0 || sorted[k] != sorted[n - 1])

@@ -4,23 +4,18 @@
 #include "indentmap/surface.h"
 #include "core/args.h"
 
+#include "core/sort.h"
 #include "indentmap/status.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* The median of n values (scratch holds n doubles; the values are left as they were). */
 static double median_of(const double *values, int n, double *scratch)
 {
     memcpy(scratch, values, (size_t)n * sizeof *scratch);
-    qsort(scratch, (size_t)n, sizeof *scratch, compare_doubles);
+    sort_doubles(scratch, (size_t)n);
     return n % 2 ? scratch[n / 2] : 0.5 * (scratch[n / 2 - 1] + scratch[n / 2]);
 }
 
