@@ -9,7 +9,8 @@
 #   scripts/gpu-check.sh run    on the GPU machine, from the repository root: the Vulkan devices and
 #                               GL_RENDERER (indentmap info), the GPU tests under the validation layers on
 #                               the NVIDIA device, bench_gpu against the CPU engine on all cores, and
-#                               fig4's frames rendered through EGL; logs and pictures to ${OUT:-gpu-check-out}/
+#                               fig4's frames rendered through EGL, and a profile of the largest solves
+#                               (INDENTMAP_GPU_PROFILE); logs and pictures to ${OUT:-gpu-check-out}/
 set -euo pipefail
 cd "$(dirname "$0")/.."
 carry=.gpu-carry
@@ -82,6 +83,11 @@ run() {
   cp output/fig4/contact_panels.png output/fig4/frames/height_0011.png "$out/" 2>/dev/null || status=1
   timeout 240 "${runner[@]}" "$carry/bin/bench_gpu" --cone 1024,2048,4096 --periodic 1024,2048,4096,8192 \
     --history --repeats 3 --cpu-limit 2048 2>&1 | tee "$out/bench.txt" || status=1
+  # where the device time goes (src/gpu/profile.h), on the largest sizes, in a run of its own so that
+  # the timestamps stay out of the figures above
+  INDENTMAP_GPU_PROFILE=1 timeout 120 "${runner[@]}" "$carry/bin/bench_gpu" --cone 4096 --periodic 8192 \
+    --repeats 1 --cpu-limit 0 > "$out/profile.txt" 2>&1 || status=1
+  cat "$out/profile.txt"
   return $status
 }
 

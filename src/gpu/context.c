@@ -2,11 +2,14 @@
  * command buffer (vulkan.h). The FFT is in fft.c. */
 #include "gpu/vulkan.h"
 
+#include "gpu/profile.h"
+
 #include "indentmap/status.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 enum { MAX_DEVICES = 16, MAX_BINDINGS = 16 };
 
@@ -32,6 +35,7 @@ struct gpu_context {
     char deferred_error[512];
     gpu_buffer staging; /* host-visible, grown on demand, for uploads and downloads */
     long validation_messages;
+    gpu_profile *profile; /* NULL unless INDENTMAP_GPU_PROFILE asks for one */
     char name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
 };
 
@@ -341,6 +345,8 @@ int gpu_context_open(enum gpu_preference preference, int validation, gpu_context
         status = create_device(context);
     if (status == IM_OK)
         status = create_commands(context);
+    if (status == IM_OK)
+        context->profile = gpu_profile_open(context->device, context->physical, context->queue_family);
     if (status != IM_OK) {
         gpu_context_close(context);
         return status;
@@ -355,6 +361,7 @@ void gpu_context_close(gpu_context *context)
         return;
     if (context->device) {
         vkDeviceWaitIdle(context->device);
+        gpu_profile_close(context->profile, context->name, stderr);
         gpu_buffer_free(context, &context->staging);
         vkDestroyFence(context->device, context->fence, NULL);
         vkDestroyCommandPool(context->device, context->pool, NULL); /* frees the command buffer */
@@ -543,6 +550,7 @@ static int copy_and_wait(gpu_context *context, VkBuffer from, VkDeviceSize from_
         return status;
     VkBufferCopy region = {.srcOffset = from_offset, .dstOffset = to_offset, .size = bytes};
     vkCmdCopyBuffer(context->commands, from, to, 1, &region);
+    gpu_mark(context, "copy to or from the host");
     return gpu_submit_wait(context);
 }
 
@@ -679,6 +687,7 @@ int gpu_begin(gpu_context *context)
                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     VK_CHECK(vkBeginCommandBuffer(context->commands, &info));
     context->recording = 1;
+    gpu_profile_begin(context->profile, context->commands);
     return IM_OK;
 }
 
@@ -723,6 +732,13 @@ void gpu_zero(gpu_context *context, gpu_buffer *buffer)
         return;
     vkCmdFillBuffer(context->commands, buffer->buffer, 0, VK_WHOLE_SIZE, 0);
     gpu_barrier(context);
+    gpu_mark(context, "zero");
+}
+
+void gpu_mark(gpu_context *context, const char *label)
+{
+    if (recording(context))
+        gpu_profile_mark(context->profile, context->commands, label);
 }
 
 void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_buffer *const *buffers,
@@ -749,6 +765,7 @@ void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_
                            pipeline->push_bytes, push);
     vkCmdDispatch(context->commands, groups, 1, 1);
     gpu_barrier(context);
+    gpu_mark(context, pipeline->label ? pipeline->label : "dispatch");
 }
 
 /* After a failed submission the command buffer is reset, so the next gpu_begin starts afresh. */
@@ -770,9 +787,13 @@ static int end_submit_wait(gpu_context *context)
     VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
                            .commandBufferCount = 1,
                            .pCommandBuffers = &context->commands};
+    struct timespec start, end;
+    clock_gettime(CLOCK_MONOTONIC, &start);
     VK_CHECK(vkQueueSubmit(context->queue, 1, &submit, context->fence));
     VK_CHECK(vkWaitForFences(context->device, 1, &context->fence, VK_TRUE, UINT64_MAX));
+    clock_gettime(CLOCK_MONOTONIC, &end);
     VK_CHECK(vkResetFences(context->device, 1, &context->fence));
+    gpu_profile_collect(context->profile, (double)(end.tv_sec - start.tv_sec) + 1e-9 * (end.tv_nsec - start.tv_nsec));
     return IM_OK;
 }
 

@@ -5,6 +5,7 @@
 
 #include "indentmap/status.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 
 /* VkFFT's own code is not held to the project's warnings. */
@@ -32,6 +33,7 @@ struct gpu_fft {
     uint64_t real_bytes, modes_bytes;
     VkCommandBuffer commands;
     int px, py;
+    char labels[2][40]; /* a profile's names of the forward and the inverse transform */
 };
 
 VkDeviceSize gpu_fft_modes_bytes(int px, int py)
@@ -137,6 +139,8 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     fft->modes_bytes = gpu_fft_modes_bytes(px, py);
     fft->px = px;
     fft->py = py;
+    snprintf(fft->labels[0], sizeof fft->labels[0], "FFT R2C %d x %d", px, py);
+    snprintf(fft->labels[1], sizeof fft->labels[1], "FFT C2R %d x %d", px, py);
     /* VkFFT starts glslang (glslang_initialize_process, reference counted in glslang 12) for the
      * plan's shaders and stops it again before returning. */
     VkFFTResult result = initializeVkFFT(&fft->app, configuration(fft));
@@ -167,6 +171,7 @@ static void append(gpu_context *context, gpu_fft *fft, int direction)
         return;
     }
     gpu_barrier(context);
+    gpu_mark(context, fft->labels[direction < 0 ? 0 : 1]);
 }
 
 void gpu_fft_forward(gpu_context *context, gpu_fft *fft) { append(context, fft, -1); }

@@ -32,6 +32,7 @@ typedef struct gpu_pipeline {
     VkDescriptorSetLayout set_layout;
     uint32_t bindings;   /* storage buffers at bindings 0 .. bindings - 1 of set 0 */
     uint32_t push_bytes; /* push-constant block size */
+    const char *label;   /* the pass's name in a profile (profile.h); set by its maker */
 } gpu_pipeline;
 
 /* Which device a context takes. */
@@ -76,6 +77,9 @@ void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_
 void gpu_zero(gpu_context *context, gpu_buffer *buffer);
 /* A compute (and transfer) write -> compute (and transfer) read/write barrier. */
 void gpu_barrier(gpu_context *context);
+/* Marks the end of a pass recorded other than by gpu_dispatch (an FFT) for a profile (profile.h);
+ * nothing when the context does not profile. */
+void gpu_mark(gpu_context *context, const char *label);
 /* Ends, submits, waits on the fence, and leaves the command buffer ready for gpu_begin. */
 int gpu_submit_wait(gpu_context *context);
 /* The command buffer being recorded (fft.c), begun if it was not; VK_NULL_HANDLE when beginning

@@ -54,8 +54,9 @@ static const struct kernel_source {
     const uint32_t *code;
     size_t bytes;
     uint32_t bindings, push_bytes;
+    const char *label; /* its name in a GPU profile */
 } KERNELS[K_COUNT] = {
-#define KERNEL(id, name, bindings, push) [id] = {name, sizeof name, bindings, sizeof(push)}
+#define KERNEL(id, name, bindings, push) [id] = {name, sizeof name, bindings, sizeof(push), #name + 6}
     KERNEL(K_PAD, spirv_pad, 2, push_grid),
     KERNEL(K_UNPAD, spirv_unpad, 2, push_grid),
     KERNEL(K_MULTIPLY, spirv_multiply, 2, push_count),
@@ -125,6 +126,8 @@ static int device_open(const im_solver_options *o, gpu_device **out)
     for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
         status = gpu_pipeline_create(d->context, KERNELS[k].code, KERNELS[k].bytes, KERNELS[k].bindings,
                                      KERNELS[k].push_bytes, &d->kernels[k]);
+    for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
+        d->kernels[k].label = KERNELS[k].label;
     const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
     if (status == IM_OK)
         status = gpu_buffer_create(d->context, partial_bytes, 0, &d->partials);
