@@ -248,16 +248,17 @@ static void test_scale_pipeline(void **state)
     uint64_t seed = 7;
     for (int i = 0; i < N + 2; ++i)
         data[i] = uniform(&seed);
-    for (int host_visible = 0; host_visible <= 1; ++host_visible) {
+    for (enum gpu_memory memory = GPU_DEVICE_LOCAL; memory <= GPU_HOST_READ; ++memory) {
+        const int host_visible = memory != GPU_DEVICE_LOCAL;
         gpu_buffer buffer;
-        ok(gpu_buffer_create(context, sizeof data, host_visible, &buffer), "buffer");
+        ok(gpu_buffer_create(context, sizeof data, memory, &buffer), "buffer");
         assert_int_equal(buffer.mapped != NULL, host_visible);
         ok(gpu_buffer_upload(context, &buffer, 0, data, sizeof data), "upload");
         scale_on_gpu(&pipeline, &buffer, N, 2.0); /* the last two stay as they are */
         ok(gpu_buffer_download(context, &buffer, 0, back, sizeof back), "download");
         for (int i = 0; i < N + 2; ++i)
             if (back[i] != (i < N ? 4.0 : 1.0) * data[i])
-                fail_msg("host_visible %d: element %d = %.17g, expected %.17g", host_visible, i, back[i],
+                fail_msg("memory %d: element %d = %.17g, expected %.17g", (int)memory, i, back[i],
                          (i < N ? 4.0 : 1.0) * data[i]);
         /* Part of a buffer at an offset, both ways. */
         ok(gpu_buffer_upload(context, &buffer, 8 * sizeof(double), data, 3 * sizeof(double)),
@@ -275,6 +276,36 @@ static void test_scale_pipeline(void **state)
 
 /* The device list names the device in use; a machine with only CPU devices refuses
  * GPU_PREFER_HARDWARE with IM_EUNSUPPORTED, naming them. */
+/* Copies larger than the staging copy's 4 MiB chunks, with a ragged end, after a smaller copy
+ * (the staging buffers grow) and into a reserved context: every double comes back bit for bit. */
+static void test_large_transfers(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    const size_t count = (9u << 20) / sizeof(double) + 3; /* three chunks, the last short */
+    double *data = malloc(sizeof(double) * count), *back = malloc(sizeof(double) * count);
+    assert_non_null(data);
+    assert_non_null(back);
+    uint64_t seed = 11;
+    for (size_t i = 0; i < count; ++i)
+        data[i] = uniform(&seed);
+    gpu_buffer buffer;
+    ok(gpu_buffer_create(context, sizeof(double) * count, GPU_DEVICE_LOCAL, &buffer), "buffer");
+    ok(gpu_buffer_upload(context, &buffer, 0, data, 1024), "small upload first");
+    ok(gpu_buffer_upload(context, &buffer, 0, data, sizeof(double) * count), "large upload");
+    memset(back, 0, sizeof(double) * count);
+    ok(gpu_buffer_download(context, &buffer, 0, back, sizeof(double) * count), "large download");
+    assert_memory_equal(back, data, sizeof(double) * count);
+    ok(gpu_context_reserve_staging(context, sizeof(double) * 2 * count), "reserve");
+    ok(gpu_buffer_download(context, &buffer, sizeof(double) * 5, back, sizeof(double) * (count - 5)),
+       "download at an offset");
+    assert_memory_equal(back, data + 5, sizeof(double) * (count - 5));
+    gpu_buffer_free(context, &buffer);
+    free(data);
+    free(back);
+    assert_no_validation_messages();
+}
+
 static void test_devices(void **state)
 {
     (void)state;
@@ -316,6 +347,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_devices),
         cmocka_unit_test(test_scale_pipeline),
+        cmocka_unit_test(test_large_transfers),
         cmocka_unit_test(test_fft_small),
         cmocka_unit_test(test_fft_sides),
         cmocka_unit_test(test_fft_large),

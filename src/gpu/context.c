@@ -33,7 +33,7 @@ struct gpu_context {
     int recording;
     int deferred_status; /* a failure while recording (void functions), returned by gpu_submit_wait */
     char deferred_error[512];
-    gpu_buffer staging; /* host-visible, grown on demand, for uploads and downloads */
+    gpu_buffer upload, download; /* staging (GPU_HOST_WRITE, GPU_HOST_READ), grown on demand */
     long validation_messages;
     gpu_profile *profile; /* NULL unless INDENTMAP_GPU_PROFILE asks for one */
     char name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
@@ -362,7 +362,8 @@ void gpu_context_close(gpu_context *context)
     if (context->device) {
         vkDeviceWaitIdle(context->device);
         gpu_profile_close(context->profile, context->name, stderr);
-        gpu_buffer_free(context, &context->staging);
+        gpu_buffer_free(context, &context->upload);
+        gpu_buffer_free(context, &context->download);
         vkDestroyFence(context->device, context->fence, NULL);
         vkDestroyCommandPool(context->device, context->pool, NULL); /* frees the command buffer */
         vkDestroyDevice(context->device, NULL);
@@ -468,15 +469,24 @@ static int memory_type(const gpu_context *context, uint32_t allowed, VkMemoryPro
     return 0;
 }
 
-static int allocate_memory(gpu_context *context, gpu_buffer *buffer, int host_visible)
+/* The memory type for a use: GPU_HOST_READ takes a cached type first and settles for any coherent one. */
+static int memory_type_for(const gpu_context *context, uint32_t allowed, enum gpu_memory memory, uint32_t *type)
+{
+    const VkMemoryPropertyFlags mapped = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if (memory == GPU_DEVICE_LOCAL)
+        return memory_type(context, allowed, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, type);
+    if (memory == GPU_HOST_READ && memory_type(context, allowed, mapped | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, type))
+        return 1;
+    return memory_type(context, allowed, mapped, type);
+}
+
+static int allocate_memory(gpu_context *context, gpu_buffer *buffer, enum gpu_memory memory)
 {
     VkMemoryRequirements needs;
     vkGetBufferMemoryRequirements(context->device, buffer->buffer, &needs);
-    VkMemoryPropertyFlags wanted =
-        host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     uint32_t type;
-    if (!memory_type(context, needs.memoryTypeBits, wanted, &type))
+    const int host_visible = memory != GPU_DEVICE_LOCAL;
+    if (!memory_type_for(context, needs.memoryTypeBits, memory, &type))
         return im_fail(IM_EUNSUPPORTED, "GPU buffer: no %s memory type on %s",
                        host_visible ? "host-visible coherent" : "device-local", context->name);
     VkMemoryAllocateInfo info = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
@@ -489,7 +499,7 @@ static int allocate_memory(gpu_context *context, gpu_buffer *buffer, int host_vi
     return IM_OK;
 }
 
-int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, int host_visible, gpu_buffer *out)
+int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, enum gpu_memory memory, gpu_buffer *out)
 {
     *out = (gpu_buffer){0};
     if (bytes == 0)
@@ -507,7 +517,7 @@ int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, int host_visible
     if (result != VK_SUCCESS)
         return vk_fail(result, "vkCreateBuffer");
     out->bytes = bytes;
-    int status = allocate_memory(context, out, host_visible);
+    int status = allocate_memory(context, out, memory);
     if (status != IM_OK)
         gpu_buffer_free(context, out);
     return status;
@@ -533,12 +543,31 @@ static int check_range(const gpu_buffer *buffer, VkDeviceSize offset, VkDeviceSi
     return IM_OK;
 }
 
-static int ensure_staging(gpu_context *context, VkDeviceSize bytes)
+static int ensure_staging(gpu_context *context, gpu_buffer *staging, enum gpu_memory memory, VkDeviceSize bytes)
 {
-    if (context->staging.bytes >= bytes)
+    if (staging->bytes >= bytes)
         return IM_OK;
-    gpu_buffer_free(context, &context->staging);
-    return gpu_buffer_create(context, bytes, 1, &context->staging);
+    gpu_buffer_free(context, staging);
+    return gpu_buffer_create(context, bytes, memory, staging);
+}
+
+int gpu_context_reserve_staging(gpu_context *context, VkDeviceSize bytes)
+{
+    int status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, bytes);
+    return status == IM_OK ? ensure_staging(context, &context->download, GPU_HOST_READ, bytes) : status;
+}
+
+/* memcpy by all threads for large copies: one thread's copy into or out of mapped memory is a
+ * fraction of what the host's memory can carry. */
+static void copy_threaded(void *to, const void *from, size_t bytes)
+{
+    enum { CHUNK = 1 << 22 };
+    const long chunks = (long)((bytes + CHUNK - 1) / CHUNK);
+#pragma omp parallel for schedule(static) if (chunks > 1)
+    for (long k = 0; k < chunks; ++k) {
+        const size_t start = (size_t)k * CHUNK, length = bytes - start < CHUNK ? bytes - start : CHUNK;
+        memcpy((char *)to + start, (const char *)from + start, length);
+    }
 }
 
 /* One copy between a buffer and the staging buffer, run to completion. */
@@ -573,11 +602,11 @@ int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize off
         memcpy((char *)buffer->mapped + offset, data, bytes);
         return IM_OK;
     }
-    status = ensure_staging(context, bytes);
+    status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, bytes);
     if (status != IM_OK)
         return status;
-    memcpy(context->staging.mapped, data, bytes);
-    return copy_and_wait(context, context->staging.buffer, 0, buffer->buffer, offset, bytes);
+    copy_threaded(context->upload.mapped, data, bytes);
+    return copy_and_wait(context, context->upload.buffer, 0, buffer->buffer, offset, bytes);
 }
 
 int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset, void *data,
@@ -592,11 +621,11 @@ int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDevice
         memcpy(data, (const char *)buffer->mapped + offset, bytes);
         return IM_OK;
     }
-    status = ensure_staging(context, bytes);
+    status = ensure_staging(context, &context->download, GPU_HOST_READ, bytes);
     if (status == IM_OK)
-        status = copy_and_wait(context, buffer->buffer, offset, context->staging.buffer, 0, bytes);
+        status = copy_and_wait(context, buffer->buffer, offset, context->download.buffer, 0, bytes);
     if (status == IM_OK)
-        memcpy(data, context->staging.mapped, bytes);
+        copy_threaded(data, context->download.mapped, bytes);
     return status;
 }
 

@@ -55,9 +55,18 @@ long gpu_context_validation_messages(const gpu_context *context); /* warnings an
  * IM_EUNSUPPORTED (with the reason) when there is no Vulkan loader or no device. */
 int gpu_devices_describe(char *text, size_t size);
 
-int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, int host_visible, gpu_buffer *out);
+/* Where a buffer's memory lives. */
+enum gpu_memory {
+    GPU_DEVICE_LOCAL, /* the device's own memory: the fields */
+    GPU_HOST_WRITE,   /* host-visible and coherent, mapped: what the host writes (uploads) */
+    GPU_HOST_READ     /* the same, and cached on the host where the device offers it: what the host reads
+                       * (results, downloads), since the host reads uncached mapped memory far slower */
+};
+int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, enum gpu_memory memory, gpu_buffer *out);
 void gpu_buffer_free(gpu_context *context, gpu_buffer *buffer);
-/* Synchronous copies through a staging buffer (direct for host-visible buffers); offset in bytes. */
+/* Synchronous copies through a staging buffer (direct for host-visible buffers); offset in bytes.
+ * The staging buffers grow to the largest copy; gpu_context_reserve_staging sizes them at once. */
+int gpu_context_reserve_staging(gpu_context *context, VkDeviceSize bytes);
 int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize offset, const void *data,
                       VkDeviceSize bytes);
 int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset, void *data,

@@ -130,9 +130,9 @@ static int device_open(const im_solver_options *o, gpu_device **out)
         d->kernels[k].label = KERNELS[k].label;
     const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
     if (status == IM_OK)
-        status = gpu_buffer_create(d->context, partial_bytes, 0, &d->partials);
+        status = gpu_buffer_create(d->context, partial_bytes, GPU_DEVICE_LOCAL, &d->partials);
     if (status == IM_OK)
-        status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, 1, &d->result);
+        status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, GPU_HOST_READ, &d->result);
     if (status != IM_OK) {
         device_release(d);
         return status;
@@ -513,16 +513,16 @@ static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
     gpu_buffer *fields[] = {&s->gap0, &s->p, &s->u, &s->g, &s->t};
     int status = IM_OK;
     for (size_t k = 0; k < sizeof fields / sizeof *fields && status == IM_OK; ++k)
-        status = gpu_buffer_create(c, d * n, 0, fields[k]);
+        status = gpu_buffer_create(c, d * n, GPU_DEVICE_LOCAL, fields[k]);
     /* the transforms' real buffers hold as many bytes as their modes (gpu/vulkan.h: VkFFT binds them so) */
     if (status == IM_OK)
-        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->nx, s->ny), 0, &s->z);
+        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->nx, s->ny), GPU_DEVICE_LOCAL, &s->z);
     if (status == IM_OK)
-        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->px, s->py), 0, &s->real);
+        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->px, s->py), GPU_DEVICE_LOCAL, &s->real);
     if (status == IM_OK)
-        status = gpu_buffer_create(c, 2 * d * modes, 0, &s->modes);
+        status = gpu_buffer_create(c, 2 * d * modes, GPU_DEVICE_LOCAL, &s->modes);
     if (status == IM_OK)
-        status = gpu_buffer_create(c, d * modes, 0, &s->spectrum);
+        status = gpu_buffer_create(c, d * modes, GPU_DEVICE_LOCAL, &s->spectrum);
     if (status == IM_OK)
         status = gpu_buffer_upload(c, &s->spectrum, 0, plan->spectrum, d * modes);
     if (status == IM_OK)
@@ -531,9 +531,9 @@ static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
         status = gpu_fft_create(c, (int)s->px, (int)s->py, &s->real, &s->modes, &s->fft);
     if (status != IM_OK || !plan->options.precondition)
         return status;
-    status = gpu_buffer_create(c, 2 * d * small, 0, &s->precondition_modes);
+    status = gpu_buffer_create(c, 2 * d * small, GPU_DEVICE_LOCAL, &s->precondition_modes);
     if (status == IM_OK)
-        status = gpu_buffer_create(c, d * small, 0, &s->inverse_spectrum);
+        status = gpu_buffer_create(c, d * small, GPU_DEVICE_LOCAL, &s->inverse_spectrum);
     if (status == IM_OK)
         status = gpu_buffer_upload(c, &s->inverse_spectrum, 0, plan->inverse_spectrum, d * small);
     if (status == IM_OK)
@@ -550,6 +550,12 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
         ++device->references;
     } else if ((status = device_open(&plan->options, &device)) != IM_OK)
         return status;
+    else /* the top plan's fields are the largest a solve copies: no staging grows level by level */
+        status = gpu_context_reserve_staging(device->context, sizeof(double) * (VkDeviceSize)plan->nx * plan->ny);
+    if (status != IM_OK) {
+        device_release(device);
+        return status;
+    }
     if ((status = check_grid(plan, device)) != IM_OK) {
         device_release(device);
         return status;
