@@ -557,6 +557,13 @@ int gpu_context_reserve_staging(gpu_context *context, VkDeviceSize bytes)
     return status == IM_OK ? ensure_staging(context, &context->download, GPU_HOST_READ, bytes) : status;
 }
 
+static double seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 /* memcpy by all threads for large copies: one thread's copy into or out of mapped memory is a
  * fraction of what the host's memory can carry. */
 static void copy_threaded(void *to, const void *from, size_t bytes)
@@ -605,7 +612,9 @@ int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize off
     status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, bytes);
     if (status != IM_OK)
         return status;
+    const double start = seconds_now();
     copy_threaded(context->upload.mapped, data, bytes);
+    gpu_profile_host(context->profile, "copy into staging", seconds_now() - start);
     return copy_and_wait(context, context->upload.buffer, 0, buffer->buffer, offset, bytes);
 }
 
@@ -624,8 +633,11 @@ int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDevice
     status = ensure_staging(context, &context->download, GPU_HOST_READ, bytes);
     if (status == IM_OK)
         status = copy_and_wait(context, buffer->buffer, offset, context->download.buffer, 0, bytes);
-    if (status == IM_OK)
+    if (status == IM_OK) {
+        const double start = seconds_now();
         copy_threaded(data, context->download.mapped, bytes);
+        gpu_profile_host(context->profile, "copy out of staging", seconds_now() - start);
+    }
     return status;
 }
 
@@ -816,13 +828,12 @@ static int end_submit_wait(gpu_context *context)
     VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
                            .commandBufferCount = 1,
                            .pCommandBuffers = &context->commands};
-    struct timespec start, end;
-    clock_gettime(CLOCK_MONOTONIC, &start);
+    const double start = seconds_now();
     VK_CHECK(vkQueueSubmit(context->queue, 1, &submit, context->fence));
     VK_CHECK(vkWaitForFences(context->device, 1, &context->fence, VK_TRUE, UINT64_MAX));
-    clock_gettime(CLOCK_MONOTONIC, &end);
+    const double waited = seconds_now() - start;
     VK_CHECK(vkResetFences(context->device, 1, &context->fence));
-    gpu_profile_collect(context->profile, (double)(end.tv_sec - start.tv_sec) + 1e-9 * (end.tv_nsec - start.tv_nsec));
+    gpu_profile_collect(context->profile, waited);
     return IM_OK;
 }
 

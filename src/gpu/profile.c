@@ -24,6 +24,8 @@ struct gpu_profile {
     long untimed;                  /* passes past MAX_MARKS in one submission */
     label_total totals[MAX_LABELS];
     int label_count;
+    label_total host[4]; /* host work, not part of the device's span */
+    int host_count;
     long submissions;
     double host_seconds, device_seconds;
 };
@@ -121,6 +123,23 @@ void gpu_profile_collect(gpu_profile *p, double host_seconds)
     p->device_seconds += (double)((ticks[marks - 1] - ticks[0]) & p->valid_mask) * p->seconds_per_tick;
 }
 
+void gpu_profile_host(gpu_profile *p, const char *label, double seconds)
+{
+    if (!p)
+        return;
+    int k = 0;
+    while (k < p->host_count && strcmp(p->host[k].label, label) != 0)
+        ++k;
+    if (k == p->host_count) {
+        if (k == (int)(sizeof p->host / sizeof *p->host))
+            return;
+        snprintf(p->host[k].label, sizeof p->host[k].label, "%s", label);
+        ++p->host_count;
+    }
+    ++p->host[k].passes;
+    p->host[k].seconds += seconds;
+}
+
 static int by_time(const void *a, const void *b)
 {
     const double x = ((const label_total *)a)->seconds, y = ((const label_total *)b)->seconds;
@@ -142,6 +161,8 @@ void gpu_profile_close(gpu_profile *p, const char *device_name, FILE *report)
         fprintf(report, "  %-34s %9ld %11.3f %6.1f%% %10.2f\n", t->label, t->passes, t->seconds * 1e3,
                 p->device_seconds > 0 ? 100 * t->seconds / p->device_seconds : 0, t->seconds / t->passes * 1e6);
     }
+    for (int k = 0; k < p->host_count; ++k)
+        fprintf(report, "  host: %-28s %9ld %11.3f ms\n", p->host[k].label, p->host[k].passes, p->host[k].seconds * 1e3);
     vkDestroyQueryPool(p->device, p->pool, NULL);
     free(p);
 }

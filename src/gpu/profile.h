@@ -25,6 +25,8 @@ void gpu_profile_mark(gpu_profile *profile, VkCommandBuffer commands, const char
 /* After the submission's fence: adds the marks' times to their labels; host_seconds is the wall
  * time from submitting to the fence. */
 void gpu_profile_collect(gpu_profile *profile, double host_seconds);
+/* Host work beside the device's (a copy into or out of staging memory): seconds under label. */
+void gpu_profile_host(gpu_profile *profile, const char *label, double seconds);
 /* Writes the totals (per label: passes, device ms, share) to report and frees the profile. */
 void gpu_profile_close(gpu_profile *profile, const char *device_name, FILE *report);
 
