@@ -2,7 +2,8 @@
 # The GPU engine's checks on a machine with an NVIDIA GPU, in one go (issue 30; docs/benchmarks.md,
 # "GPU engine"). The device machine has no package registry and another distribution, so the build is
 # made here and carried there with the shared libraries it needs:
-#   scripts/gpu-check.sh pack   on Debian 12: builds (Release, IM_GPU, bench_gpu) and gathers the programs,
+#   scripts/gpu-check.sh pack   on Debian 12: builds (Release, IM_GPU, bench_gpu) and gathers the programs
+#                               (and BASELINE_BENCH, an earlier bench_gpu to time against, when given),
 #                               their libraries (glibc apart, kept for a fallback loader), the Vulkan
 #                               validation layer and the fonts into .gpu-carry/ and .gpu-carry.tar.xz
 #                               (ignored by git; the device call carries the .tar.xz)
@@ -21,6 +22,8 @@ pack() {
   rm -rf "$carry"
   mkdir -p "$carry"/{bin,lib,glibc,layers,fonts}
   cp build-gpu/indentmap build-gpu/test_gpu_solver build-gpu/test_gpu_fft build-gpu/bench_gpu "$carry/bin/"
+  # a baseline to time against on the same machine (BASELINE_BENCH=path to an earlier bench_gpu)
+  if [ -n "${BASELINE_BENCH:-}" ]; then cp "$BASELINE_BENCH" "$carry/bin/bench_gpu_base"; fi
   for program in "$carry"/bin/*; do ldd "$program"; done | awk '/=> \// {print $3}' | sort -u |
     while read -r library; do
       case "$(basename "$library")" in
@@ -81,8 +84,13 @@ run() {
     tee "$out/fig4.txt" || status=1
   echo "fig4 scene: $((SECONDS - start)) s through EGL" | tee -a "$out/fig4.txt"
   cp output/fig4/contact_panels.png output/fig4/frames/height_0011.png "$out/" 2>/dev/null || status=1
-  timeout 240 "${runner[@]}" "$carry/bin/bench_gpu" --cone 1024,2048,4096 --periodic 1024,2048,4096,8192 \
-    --history --repeats 3 --cpu-limit 2048 2>&1 | tee "$out/bench.txt" || status=1
+  local sizes=(--cone 1024,2048,4096 --periodic 1024,2048,4096,8192 --repeats 3)
+  if [ -x "$carry/bin/bench_gpu_base" ]; then # the GPU alone: the CPU engine has not changed between them
+    timeout 240 "${runner[@]}" "$carry/bin/bench_gpu_base" "${sizes[@]}" --cpu-limit 0 2>&1 |
+      tee "$out/bench_base.txt" || status=1
+  fi
+  timeout 240 "${runner[@]}" "$carry/bin/bench_gpu" "${sizes[@]}" --history --cpu-limit 2048 2>&1 |
+    tee "$out/bench.txt" || status=1
   # where the device time goes (src/gpu/profile.h), on the largest sizes, in a run of its own so that
   # the timestamps stay out of the figures above
   INDENTMAP_GPU_PROFILE=1 timeout 120 "${runner[@]}" "$carry/bin/bench_gpu" --cone 4096 --periodic 8192 \
