@@ -59,9 +59,22 @@ static void assert_same_contact(const im_field *a, const im_field *b, int step)
         fail_msg("step %d: the contact sets differ in %ld of %ld patches", step, differ, contact);
 }
 
-static void assert_same_step(const im_step_result *cpu, const im_step_result *gpu, int step)
+/* Load control with a hardness searches the approach (indentation.c, solve_at_load): it stops at
+ * |N - target| <= tol target, or where the approach's bracket is tol w wide and the solves cannot
+ * resolve N closer; on an unloading branch, steep in N(w), that leaves N up to (dN/dw) tol w from
+ * the target (3.6e-10 N seen on an H200's host: CPU 29.999999989, GPU 29.9999999994 for 30, their
+ * approaches 6.4e-11 apart). There the engines' approaches are compared to 1e-10 and each load to
+ * the target within what the bracket resolves; everywhere else the loads to 1e-10. */
+static const double SEARCHED_LOAD_TOL = 1e-9;
+
+static void assert_same_step(const im_step_result *cpu, const im_step_result *gpu, int step, double searched_target)
 {
-    if (test_relative_difference(cpu->load, gpu->load) > 1e-10 ||
+    const int searched = isfinite(searched_target);
+    if (searched && (test_relative_difference(cpu->load, searched_target) > SEARCHED_LOAD_TOL ||
+                     test_relative_difference(gpu->load, searched_target) > SEARCHED_LOAD_TOL))
+        fail_msg("step %d: target %.17g: cpu N = %.17g, gpu N = %.17g", step, searched_target, cpu->load,
+                 gpu->load);
+    if ((!searched && test_relative_difference(cpu->load, gpu->load) > 1e-10) ||
         test_relative_difference(cpu->approach, gpu->approach) > 1e-10)
         fail_msg("step %d: cpu N = %.17g w = %.17g, gpu N = %.17g w = %.17g", step, cpu->load, cpu->approach,
                  gpu->load, gpu->approach);
@@ -94,7 +107,8 @@ static double compare_runs(const im_field *s, const im_indenter *punch, enum im_
         assert_int_equal(im_indentation_step(cpu, targets[k], &a), IM_OK);
         if (im_indentation_step(gpu, targets[k], &b) != IM_OK)
             fail_msg("gpu step %d: %s", k, im_last_error());
-        assert_same_step(&a, &b, k);
+        const int searched = control == IM_CONTROL_LOAD && physics->hardness > 0;
+        assert_same_step(&a, &b, k, searched ? targets[k] : NAN);
         least_load = fmin(least_load, a.load);
         im_field *fa = NULL, *fb = NULL;
         assert_int_equal(im_indentation_fields(cpu, &fa, NULL, NULL), IM_OK);
