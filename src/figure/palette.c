@@ -217,7 +217,7 @@ static weighted_colour *list_colours(const colour_table *t, size_t *n)
         if (t->keys[i] && t->counts[i]) {
             uint32_t rgb = t->keys[i] - 1;
             colours[(*n)++] = (weighted_colour){{(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb}, 0,
-                                                (double)t->counts[i]};
+                                                sqrt((double)t->counts[i])};
         }
     return colours;
 }
