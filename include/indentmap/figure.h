@@ -95,8 +95,9 @@ int im_figure_write_frame(const im_figure *figure, const char *path, im_image *f
  * map's 256, anti-aliased text and lines, a lit 3-D surface's shades), so one palette is built from
  * all the frames' pixels: their own colours when there are at most `colours` of them (the GIF is
  * then exact), else a greedy variance split of the colour cube (the box of colours with the largest
- * pixel-weighted squared error split along its widest channel, where the halves' error is least),
- * each box's mean a palette colour. Every pixel then takes its nearest palette colour, or with
+ * weighted squared error split along its widest channel, where the halves' error is least; a colour
+ * weighs the square root of its pixel count, so that a colour map's rarer colours keep entries),
+ * each box's weighted mean a palette colour. Every pixel then takes its nearest palette colour, or with
  * dither an error-diffused (Floyd–Steinberg, serpentine) one; docs/rendering.md has the measured
  * colour errors of both. */
 typedef struct im_gif_options {

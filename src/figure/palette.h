@@ -19,8 +19,11 @@ int colour_table_build(const im_image *frames, int count, colour_table **table);
 void colour_table_free(colour_table *table);
 
 /* At most `colours` colours: the frames' own colours when there are no more, else boxes of the colour
- * cube split greedily (the box with the largest pixel-weighted squared error, along its widest channel,
- * where the two halves' error is least) and each box's mean. IM_ENOMEM. */
+ * cube split greedily (the box with the largest weighted squared error, along its widest channel, where
+ * the two halves' error is least) and each box's weighted mean. A colour weighs the square root of its
+ * pixel count, so that a colour map's rarer colours keep entries beside a large lit surface's greys
+ * (bench/bench_gif.c: on the 3-D frames the largest ΔE fell from 34 to 22, the mean rose from 0.14 to
+ * 0.22). IM_ENOMEM. */
 int palette_build(const colour_table *table, int colours, gif_palette *palette);
 
 /* The palette index of every pixel of frame: its nearest palette colour (RGB distance) or, with dither,
