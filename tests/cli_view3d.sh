@@ -78,4 +78,26 @@ if command -v chromium >/dev/null; then
 fi
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+
+# Frame size and rate: frame_rate sets every GIF frame's delay (1/10 s: a graphic control extension
+# 21 f9 04 04 0a 00 per frame), frame3d_width/height the 3-D view, frame_scale the 2-D maps' pixels per
+# patch (the contact frame is larger than at 1); the GIF frames are the annotated PNG frames' size.
+png_size() { python3 -c "import struct,sys; d=open(sys.argv[1],'rb').read(24); print(*struct.unpack('>II', d[16:24]))" "$1"; }
+gif_size() { python3 -c "import struct,sys; d=open(sys.argv[1],'rb').read(10); print(*struct.unpack('<HH', d[6:10]))" "$1"; }
+delays() { python3 -c "import sys; print(open(sys.argv[1],'rb').read().count(bytes.fromhex('21f904040a00')))" "$1"; }
+sed -e "s|^output = .*|output = $dir/sized|" -e 's/^animation = gif/animation = gif\nframe_rate = 10\nframe_scale = 2\nframe3d_width = 480\nframe3d_height = 270/' \
+  "$dir/scene.ini" >"$dir/sized.ini"
+check "scene with frame size and rate" "$cli" run "$dir/sized.ini"
+check "3 frames of 1/10 s in contact.gif" test "$(delays "$dir/sized/contact.gif")" -eq 3
+check "3 frames of 1/10 s in view3d.gif" test "$(delays "$dir/sized/view3d.gif")" -eq 3
+check "contact.gif is the PNG frame's size" test "$(gif_size "$dir/sized/contact.gif")" = "$(png_size "$dir/sized/frames/contact_0000.png")"
+check "view3d.gif is the PNG frame's size" test "$(gif_size "$dir/sized/view3d.gif")" = "$(png_size "$dir/sized/frames/view3d_0000.png")"
+read -r w1 h1 < <(png_size "$dir/scene/frames/contact_0000.png")
+read -r w2 h2 < <(png_size "$dir/sized/frames/contact_0000.png")
+check "frame_scale = 2 makes a larger contact frame" test "$w2" -gt "$w1" -a "$h2" -gt "$h1"
+read -r w3 _ < <(png_size "$dir/scene/frames/view3d_0000.png")
+read -r w4 _ < <(png_size "$dir/sized/frames/view3d_0000.png")
+check "frame3d_width = 480 narrows the 3-D frame by 480" test $((w3 - w4)) -eq 480
+sed 's/^frame_rate = 10/frame_rate = 0/' "$dir/sized.ini" >"$dir/bad.ini"
+check "frame_rate 0 refused" expect_exit 2 "frame_rate = '0': expected a number in [0.01, 100]" "$cli" run "$dir/bad.ini"
 finish

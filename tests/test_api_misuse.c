@@ -138,7 +138,8 @@ static im_flat_result flat_result;
 static im_step_result step_result;
 static im_theory_k_fit k_fit;
 static im_theory_step theory_step;
-static im_image image;
+static im_image image, image_out;
+static im_gif_options gif_options;
 static im_plot_geometry geometry;
 static im_atomic_file atomic;
 static im_folder_lock lock;
@@ -185,6 +186,7 @@ static void make_fixtures(void)
     plot_panel = (im_plot_panel){0};
     plot.panels = &plot_panel;
     figure = im_figure_default();
+    gif_options = im_gif_options_default();
     params = im_surface_params_default();
     im_scene_defaults(&scene);
     assert_int_equal(im_solver_plan_create(8, 8, 1.0, &options, &plan), IM_OK);
@@ -228,6 +230,12 @@ REPORT(im_frame_path, "directory", im_frame_path(text, sizeof text, NULL, "p", 0
 REPORT(im_frame_path, "prefix", im_frame_path(text, sizeof text, "d", NULL, 0))
 REPORT(im_animation_gif, "frames", im_animation_gif(NULL, 2, 0.1, path_text))
 REPORT(im_animation_gif, "path", im_animation_gif(&image, 1, 0.1, NULL))
+REPORT(im_animation_gif_with, "frames", im_animation_gif_with(NULL, 2, &gif_options, path_text))
+REPORT(im_animation_gif_with, "options", im_animation_gif_with(&image, 1, NULL, path_text))
+REPORT(im_animation_gif_with, "path", im_animation_gif_with(&image, 1, &gif_options, NULL))
+REPORT(im_figure_write_frame, "figure", im_figure_write_frame(NULL, path_text, &image_out))
+REPORT(im_figure_write_frame, "path", im_figure_write_frame(&figure, NULL, &image_out))
+REPORT(im_figure_write_frame, "frame", im_figure_write_frame(&figure, path_text, NULL))
 REPORT(im_animation_mp4, "directory", im_animation_mp4(NULL, "p", 10.0, path_text))
 REPORT(im_animation_mp4, "prefix", im_animation_mp4("d", NULL, 10.0, path_text))
 REPORT(im_animation_mp4, "path", im_animation_mp4("d", "p", 10.0, NULL))
@@ -668,7 +676,7 @@ REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, 
  * above. */
 static const char *const no_pointer_arguments[] = {
     "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_memory_available",
-    "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gwyddion_reader",
+    "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gif_options_default", "im_gwyddion_reader",
     "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",
     "im_measure_sneddon_modulus", "im_history_columns", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",

@@ -84,12 +84,38 @@ int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity);
  * does not fit or index < 0. */
 int im_frame_path(char *buffer, size_t size, const char *directory, const char *prefix, int index);
 
-/* Writes frames[0..count) as an animated GIF (giflib, looping), seconds_per_frame apart. No
- * quantisation: each frame carries a local colour table of exactly the colours it uses, so a frame
- * with more than 256 distinct colours is refused (IM_EINVAL naming the frame and the count):
- * give the GIF raw data images (im_render_*), whose colours are the colour map's table, the
- * background, under/over/bad and the line colours (an anti-aliased circle adds its blends).
- * Frames must share one size. */
+/* Writes the figure as the PNG frame path (as im_figure_write; IM_EINVAL unless path ends in .png)
+ * and gives its pixels (RGBA, alpha 255; only the size and the pixels are set) in *frame, to be
+ * released with im_image_release: the one annotated frame (panel, title, colour bar, scale bar) that
+ * the PNG frames, the MP4 (made from those PNG files) and the GIF (made from the returned images)
+ * all show. *frame is zeroed first and stays empty on failure. */
+int im_figure_write_frame(const im_figure *figure, const char *path, im_image *frame);
+
+/* How a GIF is written. A GIF holds at most 256 colours; an annotated frame has more (the colour
+ * map's 256, anti-aliased text and lines, a lit 3-D surface's shades), so one palette is built from
+ * all the frames' pixels: their own colours when there are at most `colours` of them (the GIF is
+ * then exact), else a greedy variance split of the colour cube (the box of colours with the largest
+ * weighted squared error split along its widest channel, where the halves' error is least; a colour
+ * weighs the square root of its pixel count, so that a colour map's rarer colours keep entries),
+ * each box's weighted mean a palette colour. Every pixel then takes its nearest palette colour, or with
+ * dither an error-diffused (Floyd–Steinberg, serpentine) one; docs/rendering.md has the measured
+ * colour errors of both. */
+typedef struct im_gif_options {
+    double seconds_per_frame; /* [0.01, 600]; stored in 1/100 s */
+    int colours;              /* the palette's size limit, 2 to 256 */
+    int dither;               /* 0: nearest colour (the default), 1: Floyd–Steinberg */
+} im_gif_options;
+
+/* 0.25 s per frame, 256 colours, no dithering. */
+im_gif_options im_gif_options_default(void);
+
+/* Writes frames[0..count) as a looping animated GIF (giflib) with one global palette as above.
+ * Frames must share one size (at most 65535 per side). IM_EINVAL naming the option or the frame for
+ * a bad one, IM_EIO (nothing left behind), IM_ENOMEM. */
+int im_animation_gif_with(const im_image *frames, int count, const im_gif_options *options,
+                          const char *path);
+
+/* im_animation_gif_with with the default options but seconds_per_frame. */
 int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path);
 
 /* Whether the ffmpeg command is on PATH (as `command -v ffmpeg`). */

@@ -150,6 +150,9 @@ typedef struct im_scene {
                                         largest, smaller forces in the under colour */
     double frames_slope;             /* the family whose history is framed; < 0: the roughest */
     int frame_count;                 /* steps of the framed history (default 24) */
+    double frame_rate;               /* frames per second of contact/view3d .gif and .mp4 (default 4) */
+    int frame_scale;                 /* pixels per patch of the contact and height frames (default 1) */
+    int frame3d_width, frame3d_height; /* the 3-D frames' view in pixels (default 960 x 540) */
     enum im_animation animation;
     unsigned plots;                  /* bit set of enum im_scene_plot, 0 for none */
     const char *wisdom_path;         /* FFTW wisdom file of every solve (solver.h: wisdom_path), not
@@ -196,13 +199,15 @@ typedef struct im_scene_run_options {
  *     and the smooth contact circle, like the paper's Fig. 4. Each panel is solved in load
  *     control at its load, warm-started by one step at a quarter of it.
  *   frames: frames/contact_NNNN.png and frames/height_NNNN.png for frame_count load steps up to
- *     load_star on one family (the deformed surface with its contact outline), and the
- *     animations contact.gif (and contact.mp4 when ffmpeg is installed, animation = mp4|both).
+ *     load_star on one family (the deformed surface with its contact outline), frame_scale pixels
+ *     a patch, and the animations contact.gif (and contact.mp4 when ffmpeg is installed,
+ *     animation = mp4|both) at frame_rate frames a second: both show the annotated contact frames
+ *     themselves (N*, colour bar, scale bar, the smooth contact circle; figure.h).
  *     The history's last step is that family's panel: it is not solved twice.
  *   frames3d (with frames): frames/view3d_NNNN.png, the deformed surface of every step in 3-D
- *     (render.h's im_render_view3d, 960 x 540: one force norm, one vertical exaggeration, stated
- *     in each title, and one camera for all), and view3d.gif / view3d.mp4 as `animation` asks
- *     (the GIF's frames dithered to a 216-colour cube).
+ *     (render.h's im_render_view3d, frame3d_width x frame3d_height: one force norm, one vertical
+ *     exaggeration, stated in each title, and one camera for all), and view3d.gif / view3d.mp4 of
+ *     those annotated frames as `animation` asks (the GIF with one 256-colour palette).
  *   distributions: distributions/family_FF_{gaps,patches,patch_list}.csv, the gap (in the surface's
  *     h_rms) and contact-patch size distributions of each family's first surface at load_star
  *     (measure.h: im_measure_write_distributions), solved for them each time (not kept for --resume).

@@ -24,8 +24,8 @@ static void usage(FILE *stream)
             "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, patches under tension (adhesion) light blue, none grey\n"
             "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
-            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg); the\n"
-            "GIF draws the --circle aliased (exact palette colours), the PNG frames anti-aliased.\n"
+            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg) of those\n"
+            "same annotated frames (the GIF with one 256-colour palette built from all of them).\n"
             "Several files make one figure of panels (a), (b), ... with one shared norm and colour\n"
             "bar, e.g. the paper's Fig. 4: six force files --columns 3 --circle A.\n"
             "Output format from the extension: .png, .pdf or .svg.\n\n"
@@ -56,7 +56,6 @@ typedef struct render_options {
     im_colormap_id map;
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
-    int aliased_circle; /* GIF frames: the circle aliased (exact palette colours) */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
     char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
@@ -146,7 +145,6 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     note_extremes(o, force, &style.colormap, 1);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
-    style.circle_aliased = o->aliased_circle;
     if (o->has_circle_x)
         style.circle_x = o->circle_x;
     if (o->has_circle_y)
@@ -211,9 +209,10 @@ static const char *height_quantity(const char *path)
     return name;
 }
 
-/* The figure (or, with --raw, the data image of a single panel), the run's settings as text. */
+/* The figure (or, with --raw, the data image of a single panel), the run's settings as text; when frame is
+ * not NULL, the figure's pixels too (im_figure_write_frame). */
 static int write_output(const render_options *o, char **inputs, const im_image *images, int count,
-                        const im_colormap *norm)
+                        const im_colormap *norm, im_image *frame)
 {
     char norm_text[128], scale_text[16], sources[2048] = "";
     snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
@@ -256,7 +255,7 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     figure.dpi = o->dpi;
     figure.texts = texts;
     figure.text_count = 6;
-    return im_figure_write(&figure, o->out);
+    return frame ? im_figure_write_frame(&figure, o->out, frame) : im_figure_write(&figure, o->out);
 }
 
 /* The default norm of several fields: the union of their finite values (forces: 0 .. the largest;
@@ -298,22 +297,31 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
     return IM_OK;
 }
 
-/* The GIF frame of a contact map drawn with --circle: the same map with the circle aliased, so
- * that the frame holds only exact palette colours. */
-static int gif_frame(im_render_context *context, const im_field *force, const render_options *o,
-                     im_image *frame)
+/* Frame i: its contact map into DIR/contact_NNNN.png, as a figure or (--raw) the map alone; for a GIF,
+ * the frame's pixels as written stay in *frame. */
+static int write_animation_frame(im_render_context *context, im_field *field, char **input, int i,
+                                 render_options *o, int gif, im_image *frame)
 {
-    if (!(o->circle > 0.0))
-        return IM_OK;
-    render_options gif_options = *o;
-    gif_options.aliased_circle = 1;
     im_colormap norm;
-    im_image_release(frame);
-    return render_contact(context, force, &gif_options, frame, &norm);
+    im_image image = {0};
+    char path[4096];
+    int status = render_contact(context, field, o, &image, &norm);
+    if (status == IM_OK)
+        status = im_frame_path(path, sizeof path, o->frames, "contact", i);
+    if (status == IM_OK) {
+        render_options frame_options = *o;
+        frame_options.out = path;
+        status = write_output(&frame_options, input, &image, 1, &norm, gif && !o->raw ? frame : NULL);
+    }
+    if (status == IM_OK && gif && o->raw)
+        *frame = image; /* the PNG frame is the map itself */
+    else
+        im_image_release(&image);
+    return status;
 }
 
-/* One contact map per force file, all with one norm, into DIR/contact_NNNN.png, then the GIF
- * (the circle aliased, so that each frame has at most 256 exact colours) or MP4. */
+/* One contact map per force file, all with one norm, into DIR/contact_NNNN.png, then the GIF or MP4 of
+ * those frames. */
 static int animate(im_render_context *context, char **inputs, int count, render_options *o)
 {
     int status = im_make_directories(o->frames);
@@ -328,20 +336,8 @@ static int animate(im_render_context *context, char **inputs, int count, render_
         status = read_fields(o, inputs, count, fields);
     const char *dot = o->out ? strrchr(o->out, '.') : NULL;
     int gif = dot && strcmp(dot, ".gif") == 0;
-    for (int i = 0; status == IM_OK && i < count; ++i) {
-        im_colormap norm;
-        char path[4096];
-        status = render_contact(context, fields[i], o, &frames[i], &norm);
-        if (status == IM_OK)
-            status = im_frame_path(path, sizeof path, o->frames, "contact", i);
-        if (status == IM_OK) {
-            render_options frame_options = *o;
-            frame_options.out = path;
-            status = write_output(&frame_options, inputs + i, &frames[i], 1, &norm);
-        }
-        if (status == IM_OK && gif)
-            status = gif_frame(context, fields[i], o, &frames[i]);
-    }
+    for (int i = 0; status == IM_OK && i < count; ++i)
+        status = write_animation_frame(context, fields[i], inputs + i, i, o, gif, &frames[i]);
     if (status == IM_OK && gif)
         status = im_animation_gif(frames, count, 1.0 / o->fps, o->out);
     else if (status == IM_OK && dot && strcmp(dot, ".mp4") == 0)
@@ -369,7 +365,7 @@ static int draw_panels(im_render_context *context, char **inputs, int count, ren
         status = strcmp(o->mode, "contact") == 0 ? render_contact(context, fields[i], o, &images[i], &norm)
                                                  : render_height(context, fields[i], o, &images[i], &norm);
     if (status == IM_OK)
-        status = write_output(o, inputs, images, count, &norm);
+        status = write_output(o, inputs, images, count, &norm, NULL);
     for (int i = 0; fields && images && i < count; ++i) {
         im_image_release(&images[i]);
         im_field_free(fields[i]);

@@ -1,6 +1,7 @@
-/* Frames of an indentation run and animations: GIF with exact per-frame palettes, MP4 via ffmpeg. */
+/* Frames of an indentation run and animations: GIF with one palette built from all its frames, MP4 via ffmpeg. */
 #include "indentmap/figure.h"
 #include "core/args.h"
+#include "figure/palette.h"
 
 #include "indentmap/status.h"
 
@@ -30,45 +31,9 @@ int im_frame_path(char *buffer, size_t size, const char *directory, const char *
 
 /* ---- GIF ---- */
 
-enum { PALETTE_SLOTS = 1024 }; /* open-addressing table, load <= 1/4 for 256 colours */
-
-typedef struct palette {
-    int count;
-    GifColorType colours[256];
-    uint32_t keys[PALETTE_SLOTS]; /* colour + 1 (0 = empty) */
-    uint8_t indices[PALETTE_SLOTS];
-} palette;
-
-/* The palette index of a colour, adding it; -1 when the palette is full. */
-static int palette_index(palette *p, uint32_t colour)
+im_gif_options im_gif_options_default(void)
 {
-    uint32_t slot = (colour * 2654435761u) >> 22;
-    while (p->keys[slot] && p->keys[slot] != colour + 1)
-        slot = (slot + 1) & (PALETTE_SLOTS - 1);
-    if (p->keys[slot])
-        return p->indices[slot];
-    if (p->count == 256)
-        return -1;
-    p->keys[slot] = colour + 1;
-    p->indices[slot] = (uint8_t)p->count;
-    p->colours[p->count] = (GifColorType){(GifByteType)(colour >> 16), (GifByteType)(colour >> 8), (GifByteType)colour};
-    return p->count++;
-}
-
-/* Palette indices of one frame; IM_EINVAL when it has more than 256 colours. */
-static int index_frame(const im_image *frame, int number, palette *p, GifByteType *indices)
-{
-    memset(p, 0, sizeof *p);
-    size_t pixels = (size_t)frame->width * frame->height;
-    for (size_t i = 0; i < pixels; ++i) {
-        const uint8_t *rgba = frame->rgba + 4 * i;
-        int index = palette_index(p, (uint32_t)rgba[0] << 16 | (uint32_t)rgba[1] << 8 | rgba[2]);
-        if (index < 0)
-            return im_fail(IM_EINVAL, "GIF frame %d has more than 256 colours: a GIF palette holds 256 "
-                           "and is not quantised here; use PNG frames or MP4", number);
-        indices[i] = (GifByteType)index;
-    }
-    return IM_OK;
+    return (im_gif_options){.seconds_per_frame = 0.25, .colours = 256, .dither = 0};
 }
 
 static int write_to_file(GifFileType *gif, const GifByteType *data, int length)
@@ -85,12 +50,9 @@ static int put_loop_extension(GifFileType *gif)
            EGifPutExtensionBlock(gif, 3, loop) == GIF_OK && EGifPutExtensionTrailer(gif) == GIF_OK;
 }
 
-static int put_frame(GifFileType *gif, const im_image *frame, const palette *p, GifByteType *indices,
-                     int delay_centiseconds)
+/* The screen descriptor with the palette as the global colour table (padded to a power of two). */
+static int put_screen(GifFileType *gif, const im_image *frame, const gif_palette *p)
 {
-    GraphicsControlBlock control = {DISPOSE_DO_NOT, false, delay_centiseconds, NO_TRANSPARENT_COLOR};
-    GifByteType extension[4];
-    EGifGCBToExtension(&control, extension);
     int size = 2;
     while (size < p->count)
         size *= 2;
@@ -98,21 +60,41 @@ static int put_frame(GifFileType *gif, const im_image *frame, const palette *p, 
     if (!map)
         return 0;
     memset(map->Colors, 0, (size_t)size * sizeof *map->Colors);
-    memcpy(map->Colors, p->colours, (size_t)p->count * sizeof *p->colours);
-    int ok = EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, 4, extension) == GIF_OK &&
-             EGifPutImageDesc(gif, 0, 0, frame->width, frame->height, false, map) == GIF_OK;
-    for (int row = 0; ok && row < frame->height; ++row)
-        ok = EGifPutLine(gif, indices + (size_t)row * frame->width, frame->width) == GIF_OK;
+    for (int i = 0; i < p->count; ++i)
+        map->Colors[i] = (GifColorType){p->rgb[i][0], p->rgb[i][1], p->rgb[i][2]};
+    int ok = EGifPutScreenDesc(gif, frame->width, frame->height, 8, 0, map) == GIF_OK;
     GifFreeMapObject(map);
     return ok;
 }
 
-static int check_frames(const im_image *frames, int count, double seconds_per_frame)
+static int put_frame(GifFileType *gif, const im_image *frame, const GifByteType *indices, int delay_centiseconds)
 {
-    if (count < 1 || !frames)
+    GraphicsControlBlock control = {DISPOSE_DO_NOT, false, delay_centiseconds, NO_TRANSPARENT_COLOR};
+    GifByteType extension[4];
+    EGifGCBToExtension(&control, extension);
+    int ok = EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, 4, extension) == GIF_OK &&
+             EGifPutImageDesc(gif, 0, 0, frame->width, frame->height, false, NULL) == GIF_OK;
+    for (int row = 0; ok && row < frame->height; ++row)
+        ok = EGifPutLine(gif, (GifByteType *)indices + (size_t)row * frame->width, frame->width) == GIF_OK;
+    return ok;
+}
+
+static int check_options(const im_gif_options *o)
+{
+    if (!(o->seconds_per_frame >= 0.01 && o->seconds_per_frame <= 600.0))
+        return im_fail(IM_EINVAL, "GIF: %g s per frame: expected [0.01, 600] (GIF delays are in 1/100 s)",
+                       o->seconds_per_frame);
+    if (o->colours < 2 || o->colours > 256)
+        return im_fail(IM_EINVAL, "GIF: %d colours: expected 2 to 256", o->colours);
+    if (o->dither != 0 && o->dither != 1)
+        return im_fail(IM_EINVAL, "GIF: dither = %d: expected 0 or 1", o->dither);
+    return IM_OK;
+}
+
+static int check_frames(const im_image *frames, int count)
+{
+    if (count < 1)
         return im_fail(IM_EINVAL, "animation: %d frames: expected at least 1", count);
-    if (!(seconds_per_frame >= 0.01 && seconds_per_frame <= 600.0))
-        return im_fail(IM_EINVAL, "animation: %g s per frame: expected [0.01, 600]", seconds_per_frame);
     for (int i = 0; i < count; ++i) {
         if (!frames[i].rgba || frames[i].width != frames[0].width || frames[i].height != frames[0].height)
             return im_fail(IM_EINVAL, "animation: frame %d is %d x %d (or empty): expected %d x %d like frame 0",
@@ -124,52 +106,83 @@ static int check_frames(const im_image *frames, int count, double seconds_per_fr
     return IM_OK;
 }
 
-static int encode_gif(FILE *stream, const im_image *frames, int count, int delay, GifByteType *indices)
+typedef struct gif_input {
+    const im_image *frames;
+    int count;
+    const im_gif_options *options;
+    colour_table *table;
+    const gif_palette *palette;
+    GifByteType *indices;
+} gif_input;
+
+static int encode_gif(FILE *stream, const gif_input *in)
 {
     int error = 0;
     GifFileType *gif = EGifOpen(stream, write_to_file, &error);
     if (!gif)
         return im_fail(IM_EIO, "GIF: %s", GifErrorString(error));
-    palette *p = malloc(sizeof *p);
     EGifSetGifVersion(gif, true);
-    int status = p && EGifPutScreenDesc(gif, frames[0].width, frames[0].height, 8, 0, NULL) == GIF_OK &&
-                         put_loop_extension(gif)
+    int status = put_screen(gif, &in->frames[0], in->palette) && put_loop_extension(gif)
                      ? IM_OK
                      : im_fail(IM_EIO, "GIF header: %s", GifErrorString(gif->Error));
-    for (int i = 0; status == IM_OK && i < count; ++i) {
-        status = index_frame(&frames[i], i, p, indices);
-        if (status == IM_OK && !put_frame(gif, &frames[i], p, indices, delay))
+    int delay = (int)lround(100.0 * in->options->seconds_per_frame);
+    for (int i = 0; status == IM_OK && i < in->count; ++i) {
+        status = palette_index_frame(in->table, in->palette, &in->frames[i], in->options->dither, in->indices);
+        if (status == IM_OK && !put_frame(gif, &in->frames[i], in->indices, delay))
             status = im_fail(IM_EIO, "GIF frame %d: %s", i, GifErrorString(gif->Error));
     }
-    free(p);
     if (EGifCloseFile(gif, &error) != GIF_OK && status == IM_OK)
         status = im_fail(IM_EIO, "GIF: %s", GifErrorString(error));
     return status;
+}
+
+static int write_gif(gif_input *in, const char *path)
+{
+    gif_palette palette;
+    int status = colour_table_build(in->frames, in->count, &in->table);
+    if (status == IM_OK)
+        status = palette_build(in->table, in->options->colours, &palette);
+    in->palette = &palette;
+    im_atomic_file file;
+    if (status == IM_OK)
+        status = im_atomic_open(&file, path);
+    if (status == IM_OK) {
+        status = encode_gif(file.stream, in);
+        if (status == IM_OK)
+            status = im_atomic_commit(&file);
+        else
+            im_atomic_abort(&file);
+    }
+    colour_table_free(in->table);
+    return status;
+}
+
+int im_animation_gif_with(const im_image *frames, int count, const im_gif_options *options, const char *path)
+{
+    ARG_REQUIRE(frames, "frames");
+    ARG_REQUIRE(options, "options");
+    ARG_REQUIRE(path, "path");
+    int status = check_options(options);
+    if (status == IM_OK)
+        status = check_frames(frames, count);
+    if (status != IM_OK)
+        return status;
+    gif_input in = {frames, count, options, NULL, NULL, malloc((size_t)frames[0].width * frames[0].height)};
+    status = in.indices ? write_gif(&in, path)
+                        : im_fail(IM_ENOMEM, "GIF %d x %d: out of memory", frames[0].width, frames[0].height);
+    free(in.indices);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s", path);
+    return IM_OK;
 }
 
 int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path)
 {
     ARG_REQUIRE(frames, "frames");
     ARG_REQUIRE(path, "path");
-    int status = check_frames(frames, count, seconds_per_frame);
-    if (status != IM_OK)
-        return status;
-    GifByteType *indices = malloc((size_t)frames[0].width * frames[0].height);
-    if (!indices)
-        return im_fail(IM_ENOMEM, "GIF %d x %d: out of memory", frames[0].width, frames[0].height);
-    im_atomic_file file;
-    status = im_atomic_open(&file, path);
-    if (status == IM_OK) {
-        status = encode_gif(file.stream, frames, count, (int)lround(100.0 * seconds_per_frame), indices);
-        if (status == IM_OK)
-            status = im_atomic_commit(&file);
-        else
-            im_atomic_abort(&file);
-    }
-    free(indices);
-    if (status != IM_OK)
-        return im_fail_context(status, "%s", path);
-    return IM_OK;
+    im_gif_options options = im_gif_options_default();
+    options.seconds_per_frame = seconds_per_frame;
+    return im_animation_gif_with(frames, count, &options, path);
 }
 
 /* ---- MP4 through the ffmpeg command ---- */

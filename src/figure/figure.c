@@ -418,30 +418,57 @@ static int check_figure(const im_figure *f)
     return IM_OK;
 }
 
+/* Checks the figure and lays it out. */
+static int prepare(const im_figure *f, layout *l)
+{
+    int status = check_figure(f);
+    cairo_font_face_t *regular, *bold;
+    if (status == IM_OK)
+        status = figure_fonts(&regular, &bold);
+    if (status != IM_OK)
+        return status;
+    cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    measure m = {cairo_create(scratch), regular, bold};
+    make_layout(f, &m, l);
+    cairo_destroy(m.cr);
+    cairo_surface_destroy(scratch);
+    if (l->width > 32768 || l->height > 32768)
+        return im_fail(IM_EINVAL, "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "
+                       "or the pixels per patch", l->width, l->height);
+    return IM_OK;
+}
+
+/* Writes the figure as path in format; a PNG's pixels also in *frame when frame is not NULL. */
+static int output(const im_figure *f, const char *path, im_figure_format format, im_image *frame)
+{
+    layout l;
+    int status = prepare(f, &l);
+    if (status != IM_OK)
+        return status;
+    im_figure_canvas canvas = {l.width, l.height, f->dpi, f->texts, f->text_count, f->png_compression};
+    figure_drawing drawing = {f, &l};
+    return format == IM_FIGURE_PNG ? figure_output_frame(path, &canvas, paint_figure, &drawing, frame)
+                                   : figure_output(path, format, &canvas, paint_figure, &drawing);
+}
+
 int im_figure_write(const im_figure *f, const char *path)
 {
     ARG_REQUIRE(f, "figure");
     ARG_REQUIRE(path, "path");
     im_figure_format format = IM_FIGURE_PNG;
     int status = im_figure_format_of(path, &format);
-    if (status == IM_OK)
-        status = check_figure(f);
-    if (status != IM_OK)
-        return status;
-    cairo_font_face_t *regular, *bold;
-    status = figure_fonts(&regular, &bold);
-    if (status != IM_OK)
-        return status;
-    cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
-    measure m = {cairo_create(scratch), regular, bold};
-    layout l;
-    make_layout(f, &m, &l);
-    cairo_destroy(m.cr);
-    cairo_surface_destroy(scratch);
-    if (l.width > 32768 || l.height > 32768)
-        return im_fail(IM_EINVAL, "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "
-                       "or the pixels per patch", l.width, l.height);
-    im_figure_canvas canvas = {l.width, l.height, f->dpi, f->texts, f->text_count, f->png_compression};
-    figure_drawing drawing = {f, &l};
-    return figure_output(path, format, &canvas, paint_figure, &drawing);
+    return status == IM_OK ? output(f, path, format, NULL) : status;
+}
+
+int im_figure_write_frame(const im_figure *f, const char *path, im_image *frame)
+{
+    ARG_REQUIRE(f, "figure");
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(frame, "frame");
+    *frame = (im_image){0};
+    im_figure_format format = IM_FIGURE_PNG;
+    int status = im_figure_format_of(path, &format);
+    if (status == IM_OK && format != IM_FIGURE_PNG)
+        status = im_fail(IM_EINVAL, "%s: a frame is a PNG: expected a path ending in .png", path);
+    return status == IM_OK ? output(f, path, format, frame) : status;
 }

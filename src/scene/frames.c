@@ -114,76 +114,76 @@ static void field_range(im_field *const *fields, int count, int positive_only, d
     }
 }
 
-static int write_frame(const im_scene *scene, const im_image *image, const im_colormap *norm,
-                       const char *label, const char *prefix, int index, double load_star)
-{
-    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[64];
-    int status = scene_output_path(scene, "frames", folder, sizeof folder);
-    if (status == IM_OK)
-        status = im_frame_path(path, sizeof path, folder, prefix, index);
-    snprintf(title, sizeof title, "N* = %.0f", load_star);
-    im_figure_panel panel = {image, NULL, title};
-    im_figure figure = im_figure_default();
-    figure.panels = &panel;
-    figure.colormap = norm;
-    figure.colorbar_label = label;
-    figure.dpi = 150;
-    figure.extend_under = norm->logarithmic;
-    return status == IM_OK ? im_figure_write(&figure, path) : status;
-}
-
-/* One frame's figure and how writing it went (kept with the figure: it may be written on another thread,
- * whose last error message is its own). */
+/* One frame's figure, written as PNG by whichever thread takes it, with the status and message of that
+ * write (another thread's last error is its own) and the frame's pixels, which the GIF reuses. */
 typedef struct frame_figure {
-    im_image image;
+    im_image image, frame;
     const im_colormap *norm;
     const char *label, *prefix;
-    int index;
+    int index, keep; /* keep: the frame's pixels are wanted (the contact GIF's) */
     double load_star;
     int status;
     char error[256];
 } frame_figure;
 
+static int write_frame(const im_scene *scene, frame_figure *f)
+{
+    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[64];
+    int status = scene_output_path(scene, "frames", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_frame_path(path, sizeof path, folder, f->prefix, f->index);
+    snprintf(title, sizeof title, "N* = %.0f", f->load_star);
+    im_figure_panel panel = {&f->image, NULL, title};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = f->norm;
+    figure.colorbar_label = f->label;
+    figure.dpi = 150;
+    figure.extend_under = f->norm->logarithmic;
+    if (status != IM_OK)
+        return status;
+    return f->keep ? im_figure_write_frame(&figure, path, &f->frame) : im_figure_write(&figure, path);
+}
+
 static void write_frame_figure(const im_scene *scene, frame_figure *f)
 {
-    f->status = write_frame(scene, &f->image, f->norm, f->label, f->prefix, f->index, f->load_star);
+    f->status = write_frame(scene, f);
     if (f->status != IM_OK)
         snprintf(f->error, sizeof f->error, "%s", im_last_error());
 }
 
 static int render_contact_frame(im_render_context *context, const framed_history *h, int i,
-                                const im_colormap *norm, int with_circle, im_image *image)
+                                const im_colormap *norm, int pixels_per_patch, im_image *image)
 {
     im_contact_style style = im_contact_style_default(h->force[i]);
     style.colormap = *norm;
-    style.pixels_per_patch = 1;
-    style.circle_radius = with_circle ? sqrt(h->load_star[i] / M_PI) : 0.0;
+    style.pixels_per_patch = pixels_per_patch;
+    style.circle_radius = sqrt(h->load_star[i] / M_PI);
     return im_render_contact_map(context, h->force[i], &style, image);
 }
 
-/* Step i's contact and height images (figures[0], figures[1]) and its GIF frame. */
-static int render_step(im_render_context *context, const framed_history *h, int i, const im_colormap *force_norm,
-                       const im_colormap *height_norm, frame_figure *figures, im_image *gif_frame)
+/* Step i's contact and height images (figures[0], figures[1]). */
+static int render_step(im_render_context *context, const im_scene *scene, const framed_history *h, int i,
+                       const im_colormap *force_norm, const im_colormap *height_norm, frame_figure *figures)
 {
     figures[0] = (frame_figure){.norm = force_norm, .label = "local force f / (E* δ²)", .prefix = "contact",
-                                .index = i, .load_star = h->load_star[i]};
+                                .index = i, .keep = (scene->animation & IM_ANIMATION_GIF) != 0,
+                                .load_star = h->load_star[i]};
     figures[1] = (frame_figure){.norm = height_norm, .label = "deformed height (h − u) / δ", .prefix = "height",
                                 .index = i, .load_star = h->load_star[i]};
-    int status = render_contact_frame(context, h, i, force_norm, 1, &figures[0].image);
+    int status = render_contact_frame(context, h, i, force_norm, scene->frame_scale, &figures[0].image);
     im_height_style style = im_height_style_default(h->deformed[i]);
     style.colormap = *height_norm;
-    style.pixels_per_patch = 1;
+    style.pixels_per_patch = scene->frame_scale;
     style.contact = h->force[i];
     if (status == IM_OK)
         status = im_render_height_map(context, h->deformed[i], &style, &figures[1].image);
-    /* GIF frames carry only the data's exact colours: no anti-aliased circle. */
-    if (status == IM_OK)
-        status = render_contact_frame(context, h, i, force_norm, 0, gif_frame);
     return status;
 }
 
 /* Renders every step on this thread, which holds the GL context, then writes the figures side by side
- * (cairo layout and PNG encoding: a sixth of fig4's CPU time at one thread). */
+ * (cairo layout and PNG encoding: a sixth of fig4's CPU time at one thread); the contact frames' pixels
+ * go to gif_frames. */
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
                         im_image *gif_frames, im_colormap *norm)
 {
@@ -197,7 +197,7 @@ static int write_frames(const im_scene *scene, im_render_context *context, const
     frame_figure *figures = calloc((size_t)count, sizeof *figures);
     int status = figures ? IM_OK : im_fail(IM_ENOMEM, "frames: allocation failed");
     for (int i = 0; i < h->count && status == IM_OK; ++i)
-        status = render_step(context, h, i, &force_norm, &height_norm, &figures[2 * i], &gif_frames[i]);
+        status = render_step(context, scene, h, i, &force_norm, &height_norm, &figures[2 * i]);
     if (status == IM_OK) {
 #pragma omp parallel for schedule(dynamic, 1)
         for (int k = 0; k < count; ++k)
@@ -206,8 +206,13 @@ static int write_frames(const im_scene *scene, im_render_context *context, const
             if (figures[k].status != IM_OK)
                 status = im_fail(figures[k].status, "%s", figures[k].error);
     }
-    for (int k = 0; figures && k < count; ++k)
+    for (int k = 0; figures && k < count; ++k) {
         im_image_release(&figures[k].image);
+        if (figures[k].keep && status == IM_OK)
+            gif_frames[k / 2] = figures[k].frame;
+        else
+            im_image_release(&figures[k].frame);
+    }
     free(figures);
     return status;
 }
@@ -220,7 +225,7 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     if (scene->animation & IM_ANIMATION_GIF) {
         status = scene_output_path(scene, "contact.gif", path, sizeof path);
         if (status == IM_OK)
-            status = im_animation_gif(frames, count, 0.25, path);
+            status = im_animation_gif(frames, count, 1.0 / scene->frame_rate, path);
     }
     if (status != IM_OK || !(scene->animation & IM_ANIMATION_MP4))
         return status;
@@ -232,7 +237,7 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = scene_output_path(scene, "contact.mp4", path, sizeof path);
-    return status == IM_OK ? im_animation_mp4(folder, "contact", 4.0, path) : status;
+    return status == IM_OK ? im_animation_mp4(folder, "contact", scene->frame_rate, path) : status;
 }
 
 int scene_run_frames(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,

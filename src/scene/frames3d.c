@@ -14,8 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { FRAME_WIDTH = 960, FRAME_HEIGHT = 540 };
-
 /* The largest 1, 2 or 5 times a power of ten that is at most x (x >= 1), else 1. */
 static double nice_at_most(double x)
 {
@@ -41,11 +39,12 @@ static void height_range(const im_field *h, double *lo, double *hi)
  * the relief of the last (deepest) step exaggerated to about an eighth
  * of the grid's longer side (a 1-2-5 factor, never below true scale), the camera's target fixed at
  * the middle of all frames' heights. */
-static im_view3d_style frames_style(im_field *const *deformed, int count, const im_colormap *norm)
+static im_view3d_style frames_style(const im_scene *scene, im_field *const *deformed, int count,
+                                    const im_colormap *norm)
 {
     im_view3d_style s = im_view3d_style_default(NULL);
-    s.width = FRAME_WIDTH;
-    s.height = FRAME_HEIGHT;
+    s.width = scene->frame3d_width;
+    s.height = scene->frame3d_height;
     s.colormap = *norm;
     s.punch_mode = IM_VIEW3D_PUNCH_CUTAWAY; /* the contact under the punch stays in sight */
     s.camera.distance = 1.75;
@@ -59,8 +58,9 @@ static im_view3d_style frames_style(im_field *const *deformed, int count, const 
     return s;
 }
 
+/* The annotated frame as frames/view3d_NNNN.png, its pixels in *frame when frame is not NULL. */
 static int write_frame(const im_scene *scene, const im_image *image, const im_view3d_style *s, int index,
-                       double load_star)
+                       double load_star, im_image *frame)
 {
     char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[160], scale[96], norm[128];
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
@@ -82,26 +82,9 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_vi
     figure.extend_under = s->colormap.logarithmic;
     figure.scale_bar = -1.0; /* a perspective view has no single scale */
     figure.dpi = 150;
-    return status == IM_OK ? im_figure_write(&figure, path) : status;
-}
-
-/* Reduces an image to the 6 x 6 x 6 colour cube (216 colours) with 4 x 4 ordered dithering, so
- * that a GIF can hold it without a palette search; deterministic, and greys stay grey (every
- * channel has the same levels and threshold). */
-static void dither_to_cube(im_image *image)
-{
-    static const int bayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
-
-    for (int y = 0; y < image->height; ++y)
-        for (int x = 0; x < image->width; ++x) {
-            uint8_t *p = image->rgba + ((size_t)y * image->width + x) * 4;
-            double threshold = (bayer[y % 4][x % 4] + 0.5) / 16.0;
-            for (int k = 0; k < 3; ++k) {
-                int top = 5, q = (int)floor(p[k] * top / 255.0 + threshold);
-                q = q > top ? top : q;
-                p[k] = (uint8_t)lround(q * 255.0 / top);
-            }
-        }
+    if (status != IM_OK)
+        return status;
+    return frame ? im_figure_write_frame(&figure, path, frame) : im_figure_write(&figure, path);
 }
 
 static int write_animations(const im_scene *scene, const im_scene_run_options *options, const im_image *frames,
@@ -112,7 +95,7 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     if (scene->animation & IM_ANIMATION_GIF) {
         status = scene_output_path(scene, "view3d.gif", path, sizeof path);
         if (status == IM_OK)
-            status = im_animation_gif(frames, count, 0.25, path);
+            status = im_animation_gif(frames, count, 1.0 / scene->frame_rate, path);
     }
     if (status != IM_OK || !(scene->animation & IM_ANIMATION_MP4))
         return status;
@@ -123,13 +106,13 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = scene_output_path(scene, "view3d.mp4", path, sizeof path);
-    return status == IM_OK ? im_animation_mp4(folder, "view3d", 4.0, path) : status;
+    return status == IM_OK ? im_animation_mp4(folder, "view3d", scene->frame_rate, path) : status;
 }
 
 int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
                          const scene_frames3d_input *in)
 {
-    im_view3d_style style = frames_style(in->deformed, in->count, in->norm);
+    im_view3d_style style = frames_style(scene, in->deformed, in->count, in->norm);
     im_indenter punch = scene_punch(scene);
     int gif = (scene->animation & IM_ANIMATION_GIF) != 0;
     im_image *frames = calloc((size_t)in->count, sizeof *frames);
@@ -139,13 +122,11 @@ int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *opti
                    im_render_gl_renderer(context), style.exaggeration);
     int status = IM_OK;
     for (int i = 0; i < in->count && status == IM_OK; ++i) {
-        status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &frames[i]);
+        im_image view = {0};
+        status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &view);
         if (status == IM_OK)
-            status = write_frame(scene, &frames[i], &style, i, in->load_star[i]);
-        if (status == IM_OK && gif)
-            dither_to_cube(&frames[i]);
-        else
-            im_image_release(&frames[i]); /* kept only for the GIF */
+            status = write_frame(scene, &view, &style, i, in->load_star[i], gif ? &frames[i] : NULL);
+        im_image_release(&view);
     }
     if (status == IM_OK)
         status = write_animations(scene, options, frames, in->count);

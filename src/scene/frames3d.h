@@ -15,8 +15,8 @@ typedef struct scene_frames3d_input {
     const im_colormap *norm;                   /* the contact frames' force norm */
 } scene_frames3d_input;
 
-/* frames3d = yes: frames/view3d_NNNN.png, one 3-D view per step (one norm, exaggeration and
- * camera for all), and view3d.gif (dithered to 216 colours) / view3d.mp4 as `animation` asks. */
+/* frames3d = yes: frames/view3d_NNNN.png, one annotated 3-D view per step (one norm, exaggeration and
+ * camera for all), and view3d.gif / view3d.mp4 of those frames as `animation` asks. */
 int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
                          const scene_frames3d_input *in);
 

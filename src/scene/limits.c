@@ -126,11 +126,13 @@ static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
     *at_once = members < threads ? members : threads;
     if (scene->table || scene->step_count > 0)
         needed = *at_once * solve_bytes(g) + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
-    if (scene->frames) /* force and deformed heights of every step, the GIF's RGBA frames, and the
-                        * contact and height images, all rendered before their figures are written */
-        needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 12.0 * g->nx * g->ny));
-    if (scene->frames3d) /* the 3-D frames kept for the GIF (960 x 540 RGBA each) */
-        needed += scene->frame_count * 4.0 * 960.0 * 540.0;
+    double frame_pixels = (double)scene->frame_scale * scene->frame_scale * g->nx * g->ny;
+    if (scene->frames) /* force and deformed heights of every step, the contact and height images, all
+                        * rendered before their figures are written, and the contact figures (counted as
+                        * twice the image) kept for the GIF */
+        needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 16.0 * frame_pixels));
+    if (scene->frames3d) /* the 3-D frames' figures kept for the GIF (RGBA, twice the view) */
+        needed += scene->frame_count * 8.0 * scene->frame3d_width * scene->frame3d_height;
     if (scene->contact_panels) { /* every family's force and panel image (2 pixels a patch when small); the
                                   * panels are solved side by side, one per thread */
         int panels_at_once = scene->family_count < threads ? scene->family_count : threads;
@@ -222,13 +224,15 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
         add_files(&d, scene->family_count, 8.0 * cells + 128.0, "panels/force_NN.npy");
         add_files(&d, 2.0, scene->family_count * 2.0 * 3.0 * 4.0 * cells + PLOT_BYTES, "contact_panels.png");
     }
-    if (scene->frames) {
-        add_files(&d, 2.0 * scene->frame_count, 2.0 * 3.0 * cells + FRAME_TEXT_BYTES, "frames/contact_NNNN.png");
-        add_files(&d, 1.0, scene->frame_count * cells + 1024.0, "contact.gif");
+    double frame_cells = cells * scene->frame_scale * scene->frame_scale,
+           view = (double)scene->frame3d_width * scene->frame3d_height;
+    if (scene->frames) { /* the GIF: one byte a pixel of the figures */
+        add_files(&d, 2.0 * scene->frame_count, 2.0 * 3.0 * frame_cells + FRAME_TEXT_BYTES, "frames/contact_NNNN.png");
+        add_files(&d, 1.0, scene->frame_count * 2.0 * frame_cells + 1024.0, "contact.gif");
     }
-    if (scene->frames3d) { /* figures of 960 x 540 views and the GIF of them */
-        add_files(&d, scene->frame_count, 2.0 * 3.0 * 960.0 * 540.0, "frames/view3d_NNNN.png");
-        add_files(&d, 1.0, scene->frame_count * 960.0 * 540.0 + 1024.0, "view3d.gif");
+    if (scene->frames3d) { /* figures of the views and the GIF of them */
+        add_files(&d, scene->frame_count, 2.0 * 3.0 * view, "frames/view3d_NNNN.png");
+        add_files(&d, 1.0, scene->frame_count * 2.0 * view + 1024.0, "view3d.gif");
     }
     if (scene->table)
         add_files(&d, members, 512.0, "table/member_FF_SEED.csv");

@@ -388,6 +388,10 @@ static const key_spec KEYS[] = {
     {"output", "log_norm", parse_bool, FIELD(log_norm), 0, 0, NULL, 0, 0},
     {"output", "frames_slope", parse_double, FIELD(frames_slope), 0, 10, NULL, 0, 0},
     {"output", "frame_count", parse_int, FIELD(frame_count), 1, 10000, NULL, 0, 0},
+    {"output", "frame_rate", parse_double, FIELD(frame_rate), 0.01, 100, NULL, 0, 0},
+    {"output", "frame_scale", parse_int, FIELD(frame_scale), 1, 16, NULL, 0, 0},
+    {"output", "frame3d_width", parse_int, FIELD(frame3d_width), 64, 7680, NULL, 0, 0},
+    {"output", "frame3d_height", parse_int, FIELD(frame3d_height), 64, 4320, NULL, 0, 0},
     {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
     {"solver", "device", parse_choice, FIELD(device), 0, 0, "cpu|gpu|auto", 0, 0},
     {"output", "plots", parse_plots, FIELD(plots), 0, 0, NULL, 0, 0},
@@ -412,6 +416,10 @@ void im_scene_defaults(im_scene *scene)
     scene->tol = im_quality_default_tolerance();
     scene->frames_slope = -1.0;
     scene->frame_count = 24;
+    scene->frame_rate = 4.0;
+    scene->frame_scale = 1;
+    scene->frame3d_width = 960;
+    scene->frame3d_height = 540;
 }
 
 static size_t edit_distance(const char *a, const char *b)

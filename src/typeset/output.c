@@ -7,6 +7,7 @@
 #include <cairo-svg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static int check_canvas(const im_figure_canvas *c)
 {
@@ -16,7 +17,8 @@ static int check_canvas(const im_figure_canvas *c)
     return IM_OK;
 }
 
-static int write_png(const char *path, const im_figure_canvas *c, im_figure_painter paint, const void *context)
+/* Paints the canvas into an RGBA image (alpha 255), the pixels a PNG of it holds. */
+static int raster(const im_figure_canvas *c, im_figure_painter paint, const void *context, im_image *image)
 {
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, c->width, c->height);
     cairo_t *cr = cairo_create(surface);
@@ -24,8 +26,9 @@ static int write_png(const char *path, const im_figure_canvas *c, im_figure_pain
     if (status == IM_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
         status = im_fail(IM_ENOMEM, "figure: cairo: %s", cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
-    uint8_t *rgb = status == IM_OK ? malloc((size_t)c->width * c->height * 3) : NULL;
-    if (status == IM_OK && !rgb)
+    *image = (im_image){.width = c->width, .height = c->height};
+    image->rgba = status == IM_OK ? malloc((size_t)c->width * c->height * 4) : NULL;
+    if (status == IM_OK && !image->rgba)
         status = im_fail(IM_ENOMEM, "figure %d x %d: out of memory", c->width, c->height);
     if (status == IM_OK) {
         cairo_surface_flush(surface);
@@ -34,14 +37,42 @@ static int write_png(const char *path, const im_figure_canvas *c, im_figure_pain
         for (int row = 0; row < c->height; ++row)
             for (int x = 0; x < c->width; ++x) {
                 uint32_t p = ((const uint32_t *)(data + (size_t)row * stride))[x];
-                uint8_t *out = rgb + ((size_t)row * c->width + x) * 3;
-                out[0] = (uint8_t)(p >> 16), out[1] = (uint8_t)(p >> 8), out[2] = (uint8_t)p;
+                uint8_t *out = image->rgba + ((size_t)row * c->width + x) * 4;
+                out[0] = (uint8_t)(p >> 16), out[1] = (uint8_t)(p >> 8), out[2] = (uint8_t)p, out[3] = 255;
             }
-        im_png_options options = {c->texts, c->text_count, c->dpi / 0.0254, c->png_compression};
-        status = im_png_write(path, rgb, c->width, c->height, 3, (size_t)c->width * 3, &options);
     }
-    free(rgb);
     cairo_surface_destroy(surface);
+    return status;
+}
+
+/* The image as an RGB PNG with the canvas's texts and resolution. */
+static int write_image_png(const char *path, const im_figure_canvas *c, const im_image *image)
+{
+    size_t pixels = (size_t)image->width * image->height;
+    uint8_t *rgb = malloc(pixels * 3);
+    if (!rgb)
+        return im_fail(IM_ENOMEM, "figure %d x %d: out of memory", image->width, image->height);
+    for (size_t i = 0; i < pixels; ++i)
+        memcpy(rgb + 3 * i, image->rgba + 4 * i, 3);
+    im_png_options options = {c->texts, c->text_count, c->dpi / 0.0254, c->png_compression};
+    int status = im_png_write(path, rgb, image->width, image->height, 3, (size_t)image->width * 3, &options);
+    free(rgb);
+    return status;
+}
+
+int figure_output_frame(const char *path, const im_figure_canvas *canvas, im_figure_painter paint,
+                        const void *context, im_image *frame)
+{
+    int status = check_canvas(canvas);
+    im_image image = {0};
+    if (status == IM_OK)
+        status = raster(canvas, paint, context, &image);
+    if (status == IM_OK)
+        status = write_image_png(path, canvas, &image);
+    if (status == IM_OK && frame)
+        *frame = image;
+    else
+        im_image_release(&image);
     return status;
 }
 
@@ -96,9 +127,8 @@ static int write_vector(const char *path, im_figure_format format, const im_figu
 int figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
                      im_figure_painter paint, const void *context)
 {
+    if (format == IM_FIGURE_PNG)
+        return figure_output_frame(path, canvas, paint, context, NULL);
     int status = check_canvas(canvas);
-    if (status != IM_OK)
-        return status;
-    return format == IM_FIGURE_PNG ? write_png(path, canvas, paint, context)
-                                   : write_vector(path, format, canvas, paint, context);
+    return status == IM_OK ? write_vector(path, format, canvas, paint, context) : status;
 }

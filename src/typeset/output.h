@@ -24,4 +24,9 @@ typedef int (*im_figure_painter)(cairo_t *cr, const void *context);
 int figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
                      im_figure_painter paint, const void *context);
 
+/* As figure_output for a PNG, and when frame is not NULL the PNG's pixels (RGBA, alpha 255) in
+ * *frame (im_image_release; only the size and the pixels are set). */
+int figure_output_frame(const char *path, const im_figure_canvas *canvas, im_figure_painter paint,
+                        const void *context, im_image *frame);
+
 #endif
