@@ -40,6 +40,16 @@ awk -v m="$map_mean" -v l="$load" 'BEGIN { d = m * 48 / l - 1; exit !(d < 1e-5 &
 lowest=$("$cli" surface --stats "$work/out1/gap.npy" --detrend none | awk '$1 == "height" {gsub(/[\[,]/, "", $3); print $3}')
 awk -v g="$lowest" 'BEGIN { exit !(g > -1e-6) }' || fail "gap.npy goes down to $lowest"
 
+# a hardness cap: the same result on 1 and 3 ranks, no force above H (force = pressure at delta 1)
+for k in 1 3; do
+  "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --n 64 --m 48 --approach 3 --hardness 0.12 --tol 1e-8 \
+    --out "$work/cap$k" | cut -d, -f1-5 > "$work/cap_result$k" || fail "mpi-indent --hardness on $k ranks"
+done
+cmp -s "$work/cap_result1" "$work/cap_result3" || fail "--hardness: 1 and 3 ranks differ: $(cat "$work/cap_result"*)"
+cmp -s "$work/cap_result1" "$work/result1" && fail "--hardness changed nothing: $(cat "$work/cap_result1")"
+highest=$("$cli" surface --stats "$work/cap1/force.npy" --detrend none | awk '$1 == "height" {gsub(/[\],]/, "", $4); print $4}')
+awk -v h="$highest" 'BEGIN { exit !(h <= 0.12 && h > 0.119) }' || fail "--hardness 0.12: the largest force is $highest"
+
 # a surface from a file (the gap just written is a valid height field) on 2 ranks
 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/out1/gap.npy" --punch sphere --radius 50 \
   --load 10 > "$work/stdout_file" || fail "mpi-indent --surface exited with $?"

@@ -23,10 +23,12 @@
  * Every sum of the iteration (loads, gap norms, step lengths) is formed per surface row with
  * compensation, the row sums gathered (MPI_Allgatherv) and added in row order with compensation
  * on every rank: the result does not depend on the rank or thread count. Counts and maxima are
- * exact. The solver runs the algorithm and stopping rule of solver.h (Polonsky-Keer, residual
- * <= tol on the exact displacement); where the serial solver adds a few changed patches by direct
- * summation, this one recomputes the convolution (exact, one more convolution). Crop windows do
- * not apply: the whole grid is solved (the serial solver with crop = 0).
+ * exact. The solver runs the serial solver's own iteration (solver.h: Polonsky-Keer, the
+ * preconditioner, the hardness cap, residual <= tol on the exact displacement) on an MPI engine,
+ * and takes as many iterations as the serial solver with cascade = 0. Where the serial solver adds
+ * a few changed patches by direct summation, this one recomputes the convolution (exact, one more
+ * convolution). Crop windows do not apply: the whole grid is solved (the serial solver with
+ * crop = 0); nor does the cascade start (cold starts are the local guess).
  *
  * ---- Errors ----
  * All functions taking a communicator are collective: every rank of it must call them, and every
@@ -64,8 +66,10 @@ void im_mpi_cleanup(void);
 typedef struct im_mpi_solver im_mpi_solver;
 
 /* Plans an nx x ny problem of patch side delta over the ranks of comm (the communicator is
- * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop and
- * window_margin are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or options;
+ * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop,
+ * window_margin and cascade are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
+ * options; IM_EUNSUPPORTED, naming it, for what the distributed solver does not do: adhesion
+ * (adhesion_work > 0), periodic = 1, device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU);
  * IM_ENOMEM when this rank's share (im_mpi_solver_bytes) does not fit or FFTW cannot plan. */
 int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_solver_options *options,
                          im_mpi_solver **out);

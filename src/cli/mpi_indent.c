@@ -27,7 +27,7 @@ typedef struct mpi_indent_options {
 } mpi_indent_options;
 
 enum { OPT_SURFACE = 256, OPT_N, OPT_M, OPT_SEED, OPT_SLOPE, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_APPROACH,
-       OPT_LOAD, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP };
+       OPT_LOAD, OPT_HARDNESS, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"surface", required_argument, 0, OPT_SURFACE}, {"n", required_argument, 0, OPT_N},
@@ -35,7 +35,7 @@ static const struct option LONG_OPTIONS[] = {
     {"slope", required_argument, 0, OPT_SLOPE}, {"punch", required_argument, 0, OPT_PUNCH},
     {"alpha", required_argument, 0, OPT_ALPHA}, {"radius", required_argument, 0, OPT_RADIUS},
     {"approach", required_argument, 0, OPT_APPROACH}, {"load", required_argument, 0, OPT_LOAD},
-    {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
+    {"hardness", required_argument, 0, OPT_HARDNESS}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
     {"out", required_argument, 0, OPT_OUT}, {"map", required_argument, 0, OPT_MAP}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
@@ -51,6 +51,9 @@ static void usage(FILE *stream)
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
             "  --punch cone|sphere   (default cone) --alpha DEG (default 80) --radius R (sphere)\n"
             "  --approach W | --load N   displacement or load control\n"
+            "  --hardness H    perfect plasticity: no patch carries more than H (units of E*'s stress);\n"
+            "                  with --load, Polonsky-Keer's load control with the cap (indent's search\n"
+            "                  of the approach is serial)\n"
             "  --tol T --max-iter M      stopping rule (defaults 1e-6 as for indent and scenes, 10000)\n"
             "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
             "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
@@ -83,6 +86,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_LOAD:
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         return cli_parse_double(code == OPT_LOAD ? "--load" : "--approach", arg, 0, 1e300, &o->target);
+    case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);

@@ -6,6 +6,8 @@
  * element-wise update with the reductions it needs, and the convolutions:
  *   engine_cpu.c   the plan's own arrays, OpenMP loops and FFTW (the default)
  *   engine_gpu.c   device-resident fields, compute shaders and VkFFT (IM_GPU builds, device = gpu)
+ *   mpi/engine_mpi.c  this rank's rows, FFTW-MPI transforms; every sum, count and flag a pass returns
+ *                  is global (row-ordered sums: the same bits on every rank, so every rank decides alike)
  * A pass never decides anything: it returns the sums and counts pk.c decides with. Engines give
  * the same answers to the solve's tolerance; they differ in the order of their sums.
  *
@@ -83,12 +85,19 @@ typedef struct solver_engine {
     void (*add_point_loads)(pk_run *r, long changes);
     /* sum p, the patches with p > 0 and the largest p */
     void (*summary)(pk_run *r, double *sum, long *contact, double *peak);
+    /* The caller's stop flag (options.stop) as the solve must read it: NULL reads it directly (one
+     * process); over ranks, as any rank saw it, so that every rank stops at the same iteration. */
+    int (*stop_signal)(pk_run *r);
     /* displacement = K pressure for the caller's arrays (im_solver_convolve) */
     int (*convolve_arrays)(im_solver_plan *plan, const double *pressure, double *displacement);
     void (*free)(im_solver_plan *plan);
 } solver_engine;
 
 extern const solver_engine solver_engine_cpu;
+
+/* From the start in r->p (a warm start, or zeros: then the local guess) to the answer on the plan's
+ * engine, r filled by the caller (pk.c): no input checks, no cascade, target > 0. */
+int solver_pk_solve(pk_run *r, im_solve_result *res);
 
 /* Moves a plan made on the CPU (its spectra computed) onto the GPU engine: a new device for a top
  * plan (finer NULL), the finer level's device for a cascade level. engine_gpu.c, IM_GPU builds. */

@@ -210,6 +210,15 @@ static int check_capped_load(pk_run *r, const gap_stats *s, int iteration, int *
                    iteration, cap, load, r->target, s->approach);
 }
 
+/* The caller's stop flag: the signal's number, 0 to go on. */
+static int stop_signal(pk_run *r)
+{
+    if (engine_of(r)->stop_signal)
+        return engine_of(r)->stop_signal(r);
+    const volatile sig_atomic_t *stop = r->plan->options.stop;
+    return stop ? (int)*stop : 0;
+}
+
 /* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC, IM_EINTERRUPTED or an engine's
  * failure, and leaves the last gap_stats. */
 static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
@@ -243,9 +252,10 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
-        if (o->stop && *o->stop) /* the caller asked to stop: p is still a valid (warm) start */
+        const int stopped_by = stop_signal(r);
+        if (stopped_by) /* the caller asked to stop: p is still a valid (warm) start */
             return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations",
-                           (int)*o->stop, res->iterations);
+                           stopped_by, res->iterations);
         if (s.contact == 0 && !e->any_positive(r)) {
             /* everything was clipped (patches at a pressure cap are not): start again from the local guess */
             cold_start(r);
@@ -294,8 +304,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
     }
 }
 
-/* From the start in r->p (a warm start, or zeros: then the local guess) to the answer, on the engine. */
-static int solve_on_engine(pk_run *r, im_solve_result *res)
+int solver_pk_solve(pk_run *r, im_solve_result *res)
 {
     const solver_engine *e = engine_of(r);
     gap_stats last = {0};
@@ -337,7 +346,7 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     } else {
         if (!solver_any_positive(pressure, n) && plan->coarse)
             res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
-        status = solve_on_engine(&r, &res);
+        status = solver_pk_solve(&r, &res);
     }
     res.convolutions = r.convolutions;
     res.seconds = omp_get_wtime() - start;

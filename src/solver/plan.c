@@ -351,6 +351,12 @@ static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
 #endif
 }
 
+void solver_plan_options(im_solver_options *o)
+{
+    if (o->hardness > 0)
+        o->cascade = o->precondition = 0;
+}
+
 int solver_plan_create_level(int nx, int ny, double delta, const im_solver_options *options,
                              const im_solver_plan *finer, im_solver_plan **out)
 {
@@ -373,10 +379,7 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
         return im_fail(IM_ENOMEM, "%s", what);
-    /* The cascade and the preconditioner are made for an elastic contact set: with a hardness (a
-     * second bound) the iteration keeps plain PK. */
-    if (o.hardness > 0)
-        o.cascade = o.precondition = 0;
+    solver_plan_options(&o);
     /* periodic: the circular convolution on the grid itself */
     const int pad = o.periodic ? 1 : 2;
     *p = (im_solver_plan){.engine = &solver_engine_cpu, .nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta, .options = o};

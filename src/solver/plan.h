@@ -8,10 +8,15 @@
 
 struct solver_engine;
 struct gpu_solver;
+struct im_mpi_solver;
 
 struct im_solver_plan {
     const struct solver_engine *engine; /* whose passes the iteration runs on (engine.h) */
     struct gpu_solver *gpu;  /* the GPU engine's device state (engine_gpu.c), NULL on the CPU */
+    /* The MPI engine's ranks and slabs (src/mpi/engine_mpi.c), NULL otherwise. An MPI plan is part of
+     * its im_mpi_solver and holds only what pk.c reads: options, delta, kernel (K(0) alone) and a
+     * direct_limit of 0; its fields and transforms are the solver's. */
+    struct im_mpi_solver *mpi;
     int nx, ny;              /* problem grid */
     int px, py;              /* padded grid: 2nx x 2ny (periodic: nx x ny, no padding) */
     double delta;
@@ -44,6 +49,10 @@ struct im_solver_plan {
     struct im_solver_plan *coarse;
     double *coarse_gap0, *coarse_pressure, *coarse_displacement;
 };
+
+/* The options a plan iterates with: the cascade and the preconditioner are made for an elastic
+ * contact set, so with a hardness (a second bound) the iteration keeps plain PK. */
+void solver_plan_options(im_solver_options *o);
 
 /* im_solver_plan_create for one level: finer is the plan of the next finer cascade level (NULL for a
  * top plan), whose engine and device a coarse level shares. */
