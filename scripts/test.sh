@@ -12,6 +12,11 @@ export IM_REQUIRE_CHROMIUM=${IM_REQUIRE_CHROMIUM:-1}
 export IM_REQUIRE_GPU=${IM_REQUIRE_GPU:-1}
 scripts/setup.sh build -DIM_WERROR=ON
 (cd build && ctest --output-on-failure -j "$(nproc)")
+# The optional engines and readers off: the library and the command line must still build (the GPU,
+# MPI and Gwyddion parts are optional by design; a call into one from the core once broke this).
+cmake -S . -B build-minimal -DIM_WERROR=ON -DIM_GPU=OFF -DIM_MPI=OFF -DIM_GWYDDION=OFF -DIM_PYTHON=OFF \
+  -DBUILD_TESTING=OFF > /dev/null
+cmake --build build-minimal --target indentmap_cli -j "$(nproc)" > /dev/null
 if [ "${IM_SKIP_SANITIZE:-0}" != 1 ]; then
   scripts/setup.sh build-asan -DIM_WERROR=ON -DIM_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
   # Mesa's on-disk shader cache off: with it, LeakSanitizer's tracer crashed ("Tracer caught signal 11")

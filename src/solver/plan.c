@@ -328,7 +328,11 @@ int im_device_parse(const char *word, int *device)
 const char *im_solver_plan_device(const im_solver_plan *p)
 {
     ARG_REQUIRE_OR(p, "plan", NULL);
-    return p->engine == &solver_engine_cpu ? "cpu" : solver_engine_gpu_device(p);
+#if IM_HAVE_GPU
+    if (p->gpu)
+        return solver_engine_gpu_device(p);
+#endif
+    return p->engine->name; /* "cpu", or "mpi" for a distributed solver's plan */
 }
 
 /* Moves the plan onto the GPU engine when its options ask for it (auto: when a hardware GPU opens;
