@@ -70,6 +70,7 @@ run() {
     echo "gpu-check: running with the carried glibc"
   fi
   { nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader || true; } | tee "$out/device.txt"
+  { grep -m1 "model name" /proc/cpuinfo || true; } | tee -a "$out/device.txt"
   local status=0
   IM_RENDER_BACKEND=egl "${runner[@]}" "$carry/bin/indentmap" info 2>&1 | tee "$out/info.txt" || status=1
   if grep -q llvmpipe "$out/info.txt" && ! grep -qi nvidia "$out/info.txt"; then
