@@ -61,21 +61,28 @@ static void assert_same_contact(const im_field *a, const im_field *b, int step)
 
 /* Load control with a hardness searches the approach (indentation.c, solve_at_load): it stops at
  * |N - target| <= tol target, or where the approach's bracket is tol w wide and the solves cannot
- * resolve N closer; on an unloading branch, steep in N(w), that leaves N up to (dN/dw) tol w from
- * the target (3.6e-10 N seen on an H200's host: CPU 29.999999989, GPU 29.9999999994 for 30, their
- * approaches 6.4e-11 apart). There the engines' approaches are compared to 1e-10 and each load to
- * the target within what the bracket resolves; everywhere else the loads to 1e-10. */
-static const double SEARCHED_LOAD_TOL = 1e-9;
+ * resolve N closer; on a steep unloading branch that leaves N up to (dN/dw) tol w from the target
+ * (seen: 3.6e-10 N on an H200's host, CPU 29.999999989 and GPU 29.9999999994 for 30 with approaches
+ * 6.4e-11 apart; 1.5e-9 N on both engines for 5 on lavapipe). There the approaches are compared to
+ * 1e-10, the loads to each other within the larger of their misses of the target, and each miss to
+ * SEARCHED_LOAD_TOL (100 tol: an unloading branch with (dN/dw) w / N up to 100); elsewhere the loads
+ * to 1e-10. */
+static const double SEARCHED_LOAD_TOL = 1e-8;
+
+static int loads_agree(const im_step_result *cpu, const im_step_result *gpu, double searched_target)
+{
+    if (test_relative_difference(cpu->load, gpu->load) <= 1e-10)
+        return 1;
+    if (!isfinite(searched_target))
+        return 0;
+    const double cpu_miss = fabs(cpu->load - searched_target), gpu_miss = fabs(gpu->load - searched_target);
+    return fmax(cpu_miss, gpu_miss) <= SEARCHED_LOAD_TOL * searched_target &&
+           fabs(cpu->load - gpu->load) <= fmax(cpu_miss, gpu_miss);
+}
 
 static void assert_same_step(const im_step_result *cpu, const im_step_result *gpu, int step, double searched_target)
 {
-    const int searched = isfinite(searched_target);
-    if (searched && (test_relative_difference(cpu->load, searched_target) > SEARCHED_LOAD_TOL ||
-                     test_relative_difference(gpu->load, searched_target) > SEARCHED_LOAD_TOL))
-        fail_msg("step %d: target %.17g: cpu N = %.17g, gpu N = %.17g", step, searched_target, cpu->load,
-                 gpu->load);
-    if ((!searched && test_relative_difference(cpu->load, gpu->load) > 1e-10) ||
-        test_relative_difference(cpu->approach, gpu->approach) > 1e-10)
+    if (!loads_agree(cpu, gpu, searched_target) || test_relative_difference(cpu->approach, gpu->approach) > 1e-10)
         fail_msg("step %d: cpu N = %.17g w = %.17g, gpu N = %.17g w = %.17g", step, cpu->load, cpu->approach,
                  gpu->load, gpu->approach);
     assert_int_equal(cpu->contact_patches, gpu->contact_patches);
