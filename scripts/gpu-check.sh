@@ -85,7 +85,7 @@ run() {
     tee "$out/fig4.txt" || status=1
   echo "fig4 scene: $((SECONDS - start)) s through EGL" | tee -a "$out/fig4.txt"
   cp output/fig4/contact_panels.png output/fig4/frames/height_0011.png "$out/" 2>/dev/null || status=1
-  # (the same arguments for both: the CPU engine's solves between the GPU's change the GPU's times)
+  # the same arguments for both, so that the two runs differ only in the build
   local sizes=(--cone 1024,2048,4096 --periodic 1024,2048,4096,8192 --history --repeats 3 --cpu-limit 2048)
   if [ -x "$carry/bin/bench_gpu_base" ]; then
     timeout 240 "${runner[@]}" "$carry/bin/bench_gpu_base" "${sizes[@]}" 2>&1 | tee "$out/bench_base.txt" || status=1
