@@ -157,15 +157,7 @@ static void mpi_load_split(pk_run *r, double cap, double *elastic, double *cappe
 static int mpi_scale_elastic(pk_run *r, double scale, double cap)
 {
     const im_mpi_solver *s = ranks_of(r);
-    const size_t n = local_patches(s);
-    int clipped = 0;
-#pragma omp parallel for schedule(static) reduction(| : clipped)
-    for (size_t i = 0; i < n; ++i)
-        if (solver_elastic(r->p[i], cap)) {
-            r->p[i] = solver_project(r->p[i] * scale, cap);
-            clipped |= r->p[i] == cap;
-        }
-    return global_any(s, clipped);
+    return global_any(s, solver_scale_elastic_patches(r->p, local_patches(s), scale, cap));
 }
 
 static double mpi_pressure_sum(pk_run *r)

@@ -106,6 +106,10 @@ const char *solver_engine_gpu_device(const im_solver_plan *plan);
 /* What the Vulkan validation layers reported so far on a GPU plan's device (-1 on the CPU). */
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan);
 
+/* p = min(p scale, cap) on the elastic patches of p[0..n); whether any reached the cap (engine_cpu.c,
+ * also the MPI engine's pass on its rows). */
+int solver_scale_elastic_patches(double *p, size_t n, double scale, double cap);
+
 /* The patch sets, shared by the engines' passes. */
 static inline int solver_elastic(double p, double cap) { return p > 0 && p < cap; }
 static inline int solver_moving(double p, double g, double cap)

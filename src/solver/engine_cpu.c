@@ -106,17 +106,21 @@ static void cpu_load_split(pk_run *r, double cap, double *elastic, double *cappe
     *capped = capped_load;
 }
 
-static int cpu_scale_elastic(pk_run *r, double scale, double cap)
+int solver_scale_elastic_patches(double *p, size_t n, double scale, double cap)
 {
-    const size_t n = patches(r);
     int clipped = 0;
 #pragma omp parallel for schedule(static) reduction(| : clipped)
     for (size_t i = 0; i < n; ++i)
-        if (solver_elastic(r->p[i], cap)) {
-            r->p[i] = solver_project(r->p[i] * scale, cap);
-            clipped |= r->p[i] == cap;
+        if (solver_elastic(p[i], cap)) {
+            p[i] = solver_project(p[i] * scale, cap);
+            clipped |= p[i] == cap;
         }
     return clipped;
+}
+
+static int cpu_scale_elastic(pk_run *r, double scale, double cap)
+{
+    return solver_scale_elastic_patches(r->p, patches(r), scale, cap);
 }
 
 static double cpu_pressure_sum(pk_run *r) { return sum_doubles(r->p, patches(r)); }
