@@ -1,6 +1,7 @@
 // u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; with allow_join the
 // penetrating patches at p = 0 join with min(-tau g, cap): slots (patches that differ from the
-// plain step, 1 if any joined).
+// plain step, 1 if any joined). The changes themselves are appended to the change list
+// (point_loads.glsl) while it has room; the host zeroes its count before the pass.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
@@ -9,11 +10,15 @@ layout(local_size_x = 256) in;
 #define PARTIALS_BINDING 5
 #include "patch_sets.glsl"
 #include "reduce.glsl"
+#include "point_loads.glsl"
 layout(std430, set = 0, binding = 0) buffer Pressure { double p[]; };
 layout(std430, set = 0, binding = 1) buffer Displacement { double u[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Gap { double g[]; };
 layout(std430, set = 0, binding = 3) readonly buffer Direction { double t[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Real { double real_grid[]; };
+layout(std430, set = 0, binding = 6) buffer ChangeCount { uint change_count; };
+layout(std430, set = 0, binding = 7) writeonly buffer ChangeIndex { uint change_index[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer ChangeValue { double change_value[]; };
 layout(push_constant) uniform Push { double tau; double cap; uint nx; uint ny; uint px; uint allow_join; } pc;
 
 void main()
@@ -32,8 +37,14 @@ void main()
             c = p[i];
             v[1] = 1.0lf;
         }
-        if (c != 0.0lf)
+        if (c != 0.0lf) {
             v[0] += 1.0lf;
+            uint slot = atomicAdd(change_count, 1u);
+            if (slot < CHANGE_CAPACITY) {
+                change_index[slot] = i;
+                change_value[slot] = c;
+            }
+        }
     }
     reduce_workgroup(v);
 }
