@@ -267,12 +267,20 @@ static int collect_made(const struct scene_outputs *o, int finished, path_list *
     return walk.status;
 }
 
+static int compare_paths(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* outputs.txt, its paths sorted: the same for two runs of a scene, whatever the order of the folder. */
 static int write_manifest(const struct scene_outputs *o, int finished)
 {
     path_list made = {0};
     im_atomic_file file;
     char path[IM_SCENE_PATH];
     int status = collect_made(o, finished, &made);
+    if (status == IM_OK && made.count > 1)
+        qsort(made.items, (size_t)made.count, sizeof *made.items, compare_paths);
     if (status == IM_OK)
         status = im_path_join(path, sizeof path, o->root, MANIFEST);
     if (status == IM_OK)
