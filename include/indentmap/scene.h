@@ -158,6 +158,8 @@ typedef struct im_scene {
     const char *wisdom_path;         /* FFTW wisdom file of every solve (solver.h: wisdom_path), not
                                         from the scene file: NULL (im_scene_load's default) for none;
                                         the caller sets it after loading. Not owned. */
+    struct scene_outputs *outputs;   /* internal: what the run makes in output_dir, set by
+                                        im_scene_run on its copy while it runs; NULL otherwise */
 } im_scene;
 
 /* Defaults: the paper's surface family and 80 degree cone, E* = 1, no outputs. */

@@ -138,12 +138,13 @@ int scene_keeps_force(const im_scene *scene, const scene_member *m)
     return scene->contact_panels && m->seed == scene->seeds[0];
 }
 
-void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count)
+void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count, enum scene_result_kind kind)
 {
     for (int i = 0; i < count; ++i) {
         scene_member *m = &members[i];
         if (m->force && !reuse->force[m->family]) {
             reuse->force[m->family] = m->force;
+            reuse->force_kind[m->family] = kind;
             m->force = NULL;
         }
     }

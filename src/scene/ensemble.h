@@ -4,6 +4,7 @@
 
 #include "indentmap/field.h"
 #include "indentmap/scene.h"
+#include "scene/key.h"
 
 #include <stdint.h>
 
@@ -39,14 +40,15 @@ typedef struct scene_reuse {
     int table_count;
     im_field *force[IM_SCENE_MAX_FAMILIES]; /* force at load_star of each family's first seed (owned),
                                                kept by the table or a load-controlled history */
+    enum scene_result_kind force_kind[IM_SCENE_MAX_FAMILIES]; /* which of the two made it (key.h) */
 } scene_reuse;
 void scene_reuse_free(scene_reuse *reuse);
 
 /* Whether a solved member keeps its force at load_star for the panels: the scene draws panels and
  * this is the family's first seed, which the panels show. */
 int scene_keeps_force(const im_scene *scene, const scene_member *m);
-/* Moves the members' kept forces into reuse->force (where a family has none yet). */
-void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count);
+/* Moves the members' kept forces into reuse->force (where a family has none yet), made as kind. */
+void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int count, enum scene_result_kind kind);
 
 /* The progress line of a finished stage: how many of its results were solved, read back from an
  * earlier run (--resume) and reused from an earlier stage of this run (counted[origin]). */

@@ -5,6 +5,7 @@
 #include "scene/frames.h"
 #include "scene/frames3d.h"
 #include "scene/labels.h"
+#include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
@@ -132,6 +133,8 @@ static int write_frame(const im_scene *scene, frame_figure *f)
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, f->prefix, f->index);
+    if (status == IM_OK)
+        scene_outputs_note(scene, path);
     snprintf(title, sizeof title, "N* = %.0f", f->load_star);
     im_figure_panel panel = {&f->image, NULL, title};
     im_figure figure = im_figure_default();

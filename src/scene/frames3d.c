@@ -5,6 +5,7 @@
 #include "indentmap/render.h"
 #include "indentmap/status.h"
 #include "scene/frames3d.h"
+#include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
@@ -66,6 +67,8 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_vi
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, "view3d", index);
+    if (status == IM_OK)
+        scene_outputs_note(scene, path);
     im_view3d_exaggeration_text(s->exaggeration, scale, sizeof scale);
     snprintf(title, sizeof title, "N* = %.0f, %s", load_star, scale);
     snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),

@@ -457,7 +457,7 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     }
     if (status == IM_OK)
         report_histories(options, members, count);
-    scene_reuse_take_forces(reuse, members, count);
+    scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_HISTORY);
     if (status == IM_OK)
         status = plot_histories(scene, members, count);
     scene_members_free(members, count);

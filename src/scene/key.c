@@ -129,8 +129,10 @@ uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum
     key_add(&hash, "indentmap result 1;");
     add_surface(&hash, scene, family, seed);
     add_contact(&hash, scene);
-    if (kind == SCENE_RESULT_AT_LOAD_STAR) {
+    if (kind != SCENE_RESULT_HISTORY) {
         key_add(&hash, "load_star %.17g;", scene->load_star);
+        if (kind == SCENE_RESULT_FRAMED)
+            key_add(&hash, "frames %d;", scene->frame_count);
     } else {
         key_add(&hash, "control %d; steps", scene->control);
         for (int i = 0; i < scene->step_count; ++i)

@@ -7,8 +7,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* What a kept result is: the state at load_star (a table member, a panel), or a history. */
-enum scene_result_kind { SCENE_RESULT_AT_LOAD_STAR, SCENE_RESULT_HISTORY };
+/* What a kept result is: the state at load_star solved in two steps (a table member, a panel), a
+ * history, or the last of the frames' steps (the framed family's panel). */
+enum scene_result_kind { SCENE_RESULT_AT_LOAD_STAR, SCENE_RESULT_HISTORY, SCENE_RESULT_FRAMED };
 
 /* A hash of every input that determines the result of family's surface with this seed: the
  * surface (generator parameters, slope, seed, grid; or the file's path, size and time), punch,

@@ -2,6 +2,7 @@
  * lock. */
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
+#include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/progress.h"
 
@@ -37,7 +38,10 @@ int scene_draw_plot(const im_scene *scene, const void *plot, const char *path)
 
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)
 {
-    return im_path_join(buffer, size, scene->output_dir, relative);
+    int status = im_path_join(buffer, size, scene->output_dir, relative);
+    if (status == IM_OK)
+        scene_outputs_note(scene, buffer);
+    return status;
 }
 
 int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock)

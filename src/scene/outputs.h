@@ -7,7 +7,8 @@
 
 #include <stddef.h>
 
-/* output_dir/relative into buffer; IM_EINVAL if it does not fit. */
+/* output_dir/relative into buffer, noted as an output of the run (manifest.h: a damaged file there is
+ * removed); IM_EINVAL if it does not fit. */
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size);
 
 /* Opens output_dir/relative for writing through io.h's im_atomic_open (commit or abort it). */

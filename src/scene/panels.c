@@ -95,21 +95,39 @@ static int panel_paths(const im_scene *scene, int family, char *npy, char *key, 
     return status == IM_OK ? scene_output_path(scene, relative, key, size) : status;
 }
 
-static uint64_t panel_key(const im_scene *scene, int family)
+/* The key of a panel made as kind: the state at load_star solved in two steps (by the table or
+ * here), a history's state there, or the last of the frames' steps. */
+static uint64_t panel_key(const im_scene *scene, int family, enum scene_result_kind kind)
 {
-    return scene_result_key(scene, family, scene->seeds[0], SCENE_RESULT_AT_LOAD_STAR);
+    return scene_result_key(scene, family, scene->seeds[0], kind);
 }
 
-int scene_write_panel(const im_scene *scene, int family, const im_field *force)
+/* The checksum of a force field: its grid, spacing and values. */
+static uint64_t force_checksum(const im_field *force)
 {
-    char npy[IM_SCENE_PATH], key[IM_SCENE_PATH], text[32];
+    char text[96];
+    uint64_t values = scene_checksum((const char *)force->data, sizeof(double) * im_field_count(force));
+    int length = snprintf(text, sizeof text, "%d %d %.17g %016" PRIx64, force->nx, force->ny, force->delta, values);
+    return scene_checksum(text, (size_t)length);
+}
+
+/* force_FF.npy, then force_FF.key: the key of what made it and the checksum of the force. */
+static int write_panel(const im_scene *scene, int family, const im_field *force, enum scene_result_kind kind)
+{
+    char npy[IM_SCENE_PATH], key[IM_SCENE_PATH], text[48];
     int status = panel_paths(scene, family, npy, key, sizeof npy);
-    int length = snprintf(text, sizeof text, "%016" PRIx64 "\n", panel_key(scene, family));
+    int length = snprintf(text, sizeof text, "%016" PRIx64 " %016" PRIx64 "\n", panel_key(scene, family, kind),
+                          force_checksum(force));
     if (status == IM_OK && unlink(key) != 0 && errno != ENOENT)
         status = im_fail(IM_EIO, "%s: cannot remove the stale key: %s", key, strerror(errno));
     if (status == IM_OK)
         status = im_npy_write(npy, force, IM_NPY_FLOAT64);
     return status == IM_OK ? im_write_file_atomic(key, text, (size_t)length) : status;
+}
+
+int scene_write_panel(const im_scene *scene, int family, const im_field *force)
+{
+    return write_panel(scene, family, force, SCENE_RESULT_AT_LOAD_STAR);
 }
 
 int scene_read_panel_force(const im_scene *scene, int family, im_field **force)
@@ -119,7 +137,16 @@ int scene_read_panel_force(const im_scene *scene, int family, im_field **force)
     return status == IM_OK ? im_npy_read(npy, force) : status;
 }
 
-/* A force file an earlier run wrote, if its key is this scene's; 0 if none (or stale). */
+/* What a fresh run takes as a panel that is not framed: the table's state, else a load-controlled
+ * history's at load_star, else the panel's own two-step solve. */
+static enum scene_result_kind fresh_panel_kind(const im_scene *scene)
+{
+    int from_history = !scene->table && scene_wants_histories(scene) && scene_load_star_step(scene) >= 0;
+    return from_history ? SCENE_RESULT_HISTORY : SCENE_RESULT_AT_LOAD_STAR;
+}
+
+/* A force file an earlier run wrote, if its key is the one a fresh run would make and its checksum
+ * holds; 0 if none (or stale, or damaged: then with a notice). */
 static int read_panel(const im_scene *scene, const im_scene_run_options *options, int family, im_field **force)
 {
     char npy[IM_SCENE_PATH], key_path[IM_SCENE_PATH];
@@ -128,21 +155,31 @@ static int read_panel(const im_scene *scene, const im_scene_run_options *options
     FILE *stream = fopen(key_path, "r");
     if (!stream)
         return 0;
-    uint64_t key = 0;
-    int found = fscanf(stream, "%" SCNx64, &key) == 1;
+    uint64_t key = 0, checksum = 0;
+    int found = fscanf(stream, "%" SCNx64 " %" SCNx64, &key, &checksum) == 2;
     fclose(stream);
-    if (!scene_key_matches(options, npy, found ? key : 0, panel_key(scene, family)))
+    if (!scene_key_matches(options, npy, found ? key : 0, panel_key(scene, family, fresh_panel_kind(scene))))
         return 0;
+    if (im_npy_read(npy, force) != IM_OK)
+        return scene_kept_damaged(options, npy, im_last_error());
+    if (force_checksum(*force) != checksum) {
+        im_field_free(*force);
+        *force = NULL;
+        return scene_kept_damaged(options, npy, "its values do not match the checksum in its .key file: edited");
+    }
     scene_progress(options, "family %d: reusing %s", family, npy);
-    return im_npy_read(npy, force) == IM_OK;
+    return 1;
 }
 
 /* The force field of a family at load_star: reused from the frames, the table or a history of
- * this run, read back on --resume, or solved; then written at once. */
+ * this run, read back on --resume, or solved; then written at once with the key of what made it. */
 static int panel_force(const im_scene *scene, const im_scene_run_options *options, int family,
                        const scene_reuse *reuse, const im_field *known_force, panel_result *r)
 {
-    const im_field *known = known_force && family == scene_framed_family(scene) ? known_force : reuse->force[family];
+    int framed = known_force && family == scene_framed_family(scene);
+    const im_field *known = framed ? known_force : reuse->force[family];
+    enum scene_result_kind kind = framed ? SCENE_RESULT_FRAMED : known ? reuse->force_kind[family]
+                                                                       : SCENE_RESULT_AT_LOAD_STAR;
     int status = IM_OK;
     r->origin = SCENE_REUSED;
     if (known)
@@ -154,7 +191,7 @@ static int panel_force(const im_scene *scene, const im_scene_run_options *option
         r->origin = SCENE_SOLVED;
         status = solve_family(scene, options, family, &r->force);
     }
-    return status == IM_OK ? scene_write_panel(scene, family, r->force) : status;
+    return status == IM_OK ? write_panel(scene, family, r->force, kind) : status;
 }
 
 /* Every family's force, solved side by side, one thread each (inside the parallel loop the solver plans

@@ -11,6 +11,7 @@
 #include "scene/frames.h"
 #include "scene/histories.h"
 #include "scene/limits.h"
+#include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/panels.h"
 #include "scene/plots.h"
@@ -156,10 +157,12 @@ static void remove_stale_temporaries(const im_scene *scene, const im_scene_run_o
 
 /* OUTPUT/index.html over what the run left (viewer.h), even after a failure or an interruption;
  * the run's own error, if any, stays the one returned. */
-static int write_viewer_page(const im_scene *scene, int status)
+static int write_viewer_page(const im_scene *scene, const im_scene_run_options *options, int status)
 {
-    char message[1024], title[IM_SCENE_PATH + 96];
+    char message[1024], title[IM_SCENE_PATH + 96], page[IM_SCENE_PATH];
     snprintf(message, sizeof message, "%s", im_last_error());
+    if (im_path_join(page, sizeof page, scene->output_dir, "index.html") == IM_OK)
+        scene_output_repair(options, page);
     snprintf(title, sizeof title, "indentmap run: %s (%s)", scene->name, scene->path);
     int written = im_viewer_write(scene->output_dir, title);
     if (status == IM_OK)
@@ -168,7 +171,19 @@ static int write_viewer_page(const im_scene *scene, int status)
     return status;
 }
 
-static int run_measured(const im_scene *scene, const im_scene_run_options *options);
+static int run_measured(im_scene *scene, const im_scene_run_options *options);
+
+/* OUTPUT/run.json (a damaged one removed first), then the noting of the run's outputs from its time. */
+static int write_record(im_scene *scene, const im_scene_run_options *options)
+{
+    char record[IM_SCENE_PATH];
+    int status = im_path_join(record, sizeof record, scene->output_dir, "run.json");
+    if (status == IM_OK)
+        scene_output_repair(options, record);
+    if (status == IM_OK)
+        status = scene_write_record(scene);
+    return status == IM_OK ? scene_outputs_open(scene, options) : status;
+}
 
 /* A path written under key resolved against the scene file's folder into out (size bytes):
  * IM_EINVAL naming the key when it does not fit (im_scene_resolve_path would cut it short). Both
@@ -219,11 +234,12 @@ int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profi
         return status;
     }
     copy->profile = *profile;
+    copy->outputs = NULL;
     *prepared = copy;
     return IM_OK;
 }
 
-static int run_measured(const im_scene *scene, const im_scene_run_options *options);
+static int run_measured(im_scene *scene, const im_scene_run_options *options);
 
 /* Run on the prepared copy: the caller's scene stays as parsed. */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
@@ -242,7 +258,7 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     return status;
 }
 
-static int run_measured(const im_scene *scene, const im_scene_run_options *options)
+static int run_measured(im_scene *scene, const im_scene_run_options *options)
 {
     int status = check_runnable(scene);
     if (status == IM_OK)
@@ -259,7 +275,7 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         remove_stale_temporaries(scene, options);
     if (status == IM_OK)
-        status = scene_write_record(scene);
+        status = write_record(scene, options);
     const scene_ranks_run *ranks = scene_get_ranks_run(); /* an MPI run: the ranks solve the members first */
     if (status == IM_OK && ranks && scene_sweep_count(scene) > 1)
         status = im_fail(IM_EINVAL, "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
@@ -269,7 +285,8 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
             status = ranks->solve_members(scene, options, ranks->data);
         if (status == IM_OK)
             status = run_scene_stages(scene, options);
-        status = write_viewer_page(scene, status);
+        status = scene_outputs_close(scene, status);
+        status = write_viewer_page(scene, options, status);
     }
     scene_lock_release(&lock);
     return status;

@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* The paper's Table 1 (alpha = 80 degrees), for the Markdown table beside ours. */
 static const struct paper_row {
@@ -47,41 +48,73 @@ static int member_path(const im_scene *scene, const scene_member *m, char *path,
 }
 
 static const char MEMBER_HEADER[] = "family,slope,seed,height_rms,load,load_star,contact_patches,area_ratio,"
-                                    "iterations,seconds,approach,key\n";
+                                    "iterations,seconds,approach,key,checksum\n";
 
+/* The header, then one row whose last column is the checksum of the row before it: a kept member
+ * with a changed digit is solved again, not read into the table. */
 static int write_member(const im_scene *scene, const scene_member *m)
 {
     char path[IM_SCENE_PATH], text[640];
     int status = member_path(scene, m, path, sizeof path);
     uint64_t key = scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR);
-    int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f,%.17g,%016" PRIx64
-                          "\n", MEMBER_HEADER, m->family, scene_member_slope(scene, m->family, m->seed), (unsigned long long)m->seed,
+    size_t header = sizeof MEMBER_HEADER - 1;
+    int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f,%.17g,%016" PRIx64,
+                          MEMBER_HEADER, m->family, scene_member_slope(scene, m->family, m->seed), (unsigned long long)m->seed,
                           m->height_rms, m->load, m->load_star, m->contact_patches, m->area_ratio, m->iterations,
                           m->seconds, m->load_star_approach, key);
+    uint64_t checksum = scene_checksum(text + header, (size_t)length - header);
+    length += snprintf(text + length, sizeof text - (size_t)length, ",%016" PRIx64 "\n", checksum);
     return status == IM_OK ? im_write_file_atomic(path, text, (size_t)length) : status;
 }
 
-/* Reads a member written by an earlier, interrupted run; 0 if there is none, or if it was made
- * from other inputs (its key differs: then it is solved again, with a notice). */
-static int read_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+/* A kept member's row (after the header) into m and *key; 0 with why when it is not this version's
+ * whole row of this member, or its checksum does not match it (edited). */
+static int member_is_whole(const char *text, scene_member *m, uint64_t *key, char *why, size_t why_size)
 {
-    char path[IM_SCENE_PATH], header[256];
-    if (member_path(scene, m, path, sizeof path) != IM_OK)
-        return 0;
-    FILE *stream = fopen(path, "r");
-    if (!stream)
-        return 0;
+    size_t header = sizeof MEMBER_HEADER - 1;
+    const char *row = strncmp(text, MEMBER_HEADER, header) == 0 ? text + header : NULL, *last = NULL;
     double slope;
     unsigned long long seed;
+    uint64_t checksum = 0;
+    int family, used = 0;
+    if (row)
+        last = strrchr(row, ',');
+    if (!last || sscanf(last, ",%" SCNx64 "%n", &checksum, &used) != 1 || strcmp(last + used, "\n") != 0 ||
+        sscanf(row, "%d,%lf,%llu,%lf,%lf,%lf,%ld,%lf,%d,%lf,%lf,%" SCNx64, &family, &slope, &seed, &m->height_rms,
+               &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations, &m->seconds,
+               &m->load_star_approach, key) != 12) {
+        snprintf(why, why_size, "expected the header line \"%.40s...\" and one row ending in a key and a checksum; "
+                 "or an older version wrote it", MEMBER_HEADER);
+        return 0;
+    }
+    if (family != m->family || seed != m->seed) {
+        snprintf(why, why_size, "it holds family %d, seed %llu, where its name says %d, %llu", family, seed, m->family,
+                 (unsigned long long)m->seed);
+        return 0;
+    }
+    if (scene_checksum(row, (size_t)(last - row)) != checksum) {
+        snprintf(why, why_size, "its row does not match its checksum: edited");
+        return 0;
+    }
+    return 1;
+}
+
+/* Reads a member written by an earlier, interrupted run; 0 if there is none, if it is damaged, or
+ * if it was made from other inputs (its key differs): then it is solved again, with a notice. */
+static int read_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+{
+    char path[IM_SCENE_PATH], why[160];
+    if (member_path(scene, m, path, sizeof path) != IM_OK || access(path, F_OK) != 0)
+        return 0;
+    char *text = NULL;
+    if (im_read_text_file(path, 4096, &text, NULL) != IM_OK)
+        return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
-    int family;
-    int ok = fgets(header, sizeof header, stream) && strcmp(header, MEMBER_HEADER) == 0 &&
-             fscanf(stream, "%d,%lf,%llu,%lf,%lf,%lf,%ld,%lf,%d,%lf,%lf,%" SCNx64, &family, &slope, &seed,
-                    &m->height_rms, &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations,
-                    &m->seconds, &m->load_star_approach, &key) == 12 && family == m->family && seed == m->seed;
-    fclose(stream);
-    return scene_key_matches(options, path, ok ? key : 0,
-                             scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR));
+    int whole = member_is_whole(text, m, &key, why, sizeof why);
+    free(text);
+    if (!whole)
+        return scene_kept_damaged(options, path, why);
+    return scene_key_matches(options, path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR));
 }
 
 /* Solves one member at load_star: load control, warm-started by a step at a quarter of it. */
@@ -256,7 +289,7 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
         status = write_table_markdown(scene, rows);
     if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FIG2))
         status = plot_area_ratio(scene, rows);
-    scene_reuse_take_forces(reuse, members, count);
+    scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_AT_LOAD_STAR);
     reuse->table = members;
     reuse->table_count = count;
     return status;
