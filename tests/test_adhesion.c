@@ -1,7 +1,8 @@
 /* Adhesion (solver.h, "Adhesion"): a smooth sphere against the Maugis-Dugdale solution (theory.h,
  * "Adhesion"; the reference's own limits are test_theory_adhesion's) across the Tabor-Maugis parameter
- * lambda from the DMT side to the JKR side, its load along the retraction and its pull-off, and a flat
- * punch against Kendall's pull-off, with errors that shrink as the grid is refined; hysteresis
+ * lambda from the DMT side to the JKR side, its load along the retraction and its pull-off, a flat punch
+ * against Kendall's pull-off and a cone against the JKR cone's, with errors that shrink as the grid is
+ * refined; hysteresis
  * (jump-in on approach later than jump-out on retraction); a vanishing work recovering the repulsive
  * answers; the net force field's sums; and the combinations refused. */
 #include "support.h"
@@ -199,6 +200,54 @@ static void flat_punch_follows_kendall(void **state)
     assert_true(fabs(2 * e[2].pull_off - e[1].pull_off) < 0.01);
 }
 
+/* A smooth cone (alpha = 60 degrees) whose JKR pull-off radius a_c = 18 w / (pi E* cot^2 alpha) spans a_c
+ * patches, its Dugdale zone l = 2 patches, against the JKR cone of Maugis & Barquins: the signed relative
+ * error of the least load of a retraction (refined by the parabola) from 2.5 times JKR's pull-off approach. */
+static double cone_pull_off_error(double patches)
+{
+    const double alpha = 60, cot = 1 / tan(alpha * M_PI / 180), work = patches * M_PI * cot * cot / 18;
+    const im_theory_adhesion law = {1.0, work, sqrt(8 * work * 2.0 / M_PI)};
+    im_theory_adhesive_point jkr;
+    assert_int_equal(im_theory_jkr_cone_pull_off(&law, alpha, &jkr), IM_OK);
+    const int n = (int)(6 * patches) + 16;
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(n, n, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8;
+    o.adhesion_work = law.work;
+    o.adhesion_range = law.range;
+    im_indenter cone = im_indenter_cone(alpha);
+    im_indentation *run = NULL;
+    const double top = 2.5 * jkr.approach;
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, top, &o, &run), IM_OK);
+    im_field_free(surface);
+    double loads[64];
+    int count = 0;
+    im_step_result r = {0};
+    for (int k = 0; k < 64 && (k <= 5 || r.contact_patches > 0); ++k) {
+        const double d = k <= 5 ? top * k / 5 : top - 0.1 * jkr.approach * (k - 5);
+        if (im_indentation_step(run, d, &r) != IM_OK)
+            fail_msg("cone a_c = %g patches, w = %g: %s", patches, d, im_last_error());
+        if (k > 5 && r.contact_patches > 0)
+            loads[count++] = r.load;
+    }
+    im_indentation_free(run);
+    assert_true(count >= 10 && r.contact_patches == 0); /* it came off */
+    return least_load(loads, count) / jkr.load - 1;
+}
+
+/* The errors are of the first order in l / a_c, as the flat punch's: they halve as a_c doubles, and the
+ * extrapolation 2 e(16) - e(8) leaves less than 3% of JKR's. */
+static void cone_follows_jkr(void **state)
+{
+    (void)state;
+    const double coarse = cone_pull_off_error(8), fine = cone_pull_off_error(16);
+    print_message("cone: pull-off %+.4f off JKR's at a_c = 8 patches, %+.4f at 16; extrapolated %+.4f\n", coarse, fine,
+                  2 * fine - coarse);
+    assert_true(fabs(fine) < 0.6 * fabs(coarse) && fabs(fine) < 0.12);
+    assert_true(fabs(2 * fine - coarse) < 0.03);
+}
+
 /* Jump-in and jump-out: on approach the surface snaps into contact before the undeformed surfaces
  * meet, on retraction it holds on to a more negative approach (Maugis-Dugdale's least approach), and
  * the force-distance loop encloses work (dissipated by the two jumps). */
@@ -377,6 +426,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sphere_follows_maugis_dugdale),
         cmocka_unit_test(flat_punch_follows_kendall),
+        cmocka_unit_test(cone_follows_jkr),
         cmocka_unit_test(approach_and_retraction_differ),
         cmocka_unit_test(vanishing_work_is_repulsive),
         cmocka_unit_test(step_sums_are_the_fields),
