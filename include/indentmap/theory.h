@@ -293,12 +293,13 @@ int im_theory_md_sphere(const im_theory_adhesion *law, double radius, double con
 
 /* The sphere's pull-off under load control: the least load of the curve above (-3/2 pi w R at large
  * lambda, -2 pi w R at small), found by golden section in a over (0, 3 L], L = (pi w R^2 / K)^(1/3)
- * (the minimum lies at a -> 0 below lambda ~ 0.94; the search's lower end is 1e-4 L). The least load of
- * a displacement-controlled retraction is the same point (it lies on the branch fixed grips follow). */
+ * (the search's lower end is 1e-4 L). Its contact radius exceeds the separation's (below), so it lies on
+ * the branch fixed grips follow: the least load of a displacement-controlled retraction is the same. */
 int im_theory_md_sphere_pull_off(const im_theory_adhesion *law, double radius, im_theory_adhesive_point *out);
 
 /* The separation under displacement control: the point of least approach (JKR's fixed-grip
- * separation at -5/6 pi w R at large lambda). */
+ * separation at -5/6 pi w R at large lambda). Below lambda ~ 0.94 the contact shrinks to nothing without a
+ * jump: the least approach is at a -> 0, returned at the search's lower end 1e-4 L. */
 int im_theory_md_sphere_separation(const im_theory_adhesion *law, double radius, im_theory_adhesive_point *out);
 
 /* The load at approach delta on the branch that displacement control follows (the contact radius above
