@@ -69,7 +69,7 @@ refuse "log-axis figures" "$sticky" "plots = fig7" "plots = fig7 or sphere"
 refuse "a hardness" "$sticky" '[material]
 hardness = 1' "[adhesion] with [material] hardness"
 scene "$dir/bad.ini" "" ""
-check "negative steps without adhesion" expect_exit 2 "steps below 0 (the punch pulled away) need [adhesion]" \
+check "negative steps without adhesion (indent's message)" expect_exit 2 "'-1:2:16' is not a range first:last:count (three numbers >= 0)" \
     "$cli" run "$dir/bad.ini"
 sed 's/control = displacement/control = load/' "$dir/sticky.ini" > "$dir/bad.ini"
 check "load control" expect_exit 2 "[adhesion] takes [loading] control = displacement" "$cli" run "$dir/bad.ini"

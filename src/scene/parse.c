@@ -276,11 +276,13 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
     return 0;
 }
 
-/* [loading] steps: the step list of `indent --approach` (front.h: steps_parse). */
+/* [loading] steps: the step list of `indent --approach` (front.h: steps_parse_signed), below 0 with
+ * [adhesion] only, as `indent` takes negative approaches with --adhesion-work only: so it is parsed once
+ * every key is known. */
 static int parse_steps(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
-    (void)spec; /* negative approaches are refused after parsing, unless [adhesion] pulls */
-    return steps_parse_signed("steps", value, 1, scene->steps, &scene->step_count, error, size);
+    (void)spec, (void)value, (void)scene, (void)error, (void)size;
+    return 0; /* kept by handle_key, parsed once every key is known (parse_kept_steps) */
 }
 
 /* [adhesion] law: the solver has the Maugis-Dugdale law only. */
@@ -484,6 +486,7 @@ typedef struct parse_context {
     int key_line[sizeof KEYS / sizeof KEYS[0]]; /* the line of each key given, 0 if none */
     char sections[16][32]; /* the sections opened so far, to refuse one opened twice */
     int section_lines[16], section_count;
+    char steps[INI_MAX_LINE]; /* [loading] steps as written (a line of inih's buffer fits) */
     char error[512];
 } parse_context;
 
@@ -601,6 +604,8 @@ static int handle_key(void *user, const char *section, const char *name, const c
                 return 0;
             }
             context->key_line[i] = context->line;
+            if (KEYS[i].parse == parse_steps)
+                snprintf(context->steps, sizeof context->steps, "%s", value);
             accepted = KEYS[i].parse(&KEYS[i], value, context->scene, context->error,
                                      sizeof context->error) == 0;
         }
@@ -713,15 +718,11 @@ static int adhesion_line(const parse_context *context)
     return 0;
 }
 
-/* What [adhesion] cannot take, or its message for a scene without it: a negative step. */
+/* What [adhesion] cannot take, NULL if nothing. */
 static const char *adhesion_conflict(const im_scene *scene)
 {
-    if (!(scene->adhesion_work > 0)) {
-        for (int i = 0; i < scene->step_count; ++i)
-            if (scene->steps[i] < 0)
-                return "steps below 0 (the punch pulled away) need [adhesion]: without it they touch nothing";
+    if (!(scene->adhesion_work > 0))
         return NULL;
-    }
     if (!(scene->adhesion_range > 0))
         return "[adhesion] work and range go together: expected both";
     if (scene->control != IM_CONTROL_DISPLACEMENT)
@@ -757,11 +758,29 @@ static int check_adhesion(parse_context *context)
     return line > 0 ? line : 1;
 }
 
+/* [loading] steps (kept by handle_key) into the scene: below 0 with [adhesion] only. 0, or the line of the
+ * key with the message in context->error. */
+static int parse_kept_steps(parse_context *context)
+{
+    im_scene *scene = context->scene;
+    const int line = key_line(context, "loading", "steps");
+    if (line && steps_parse_signed("steps", context->steps, scene->adhesion_work > 0, scene->steps, &scene->step_count,
+                                   context->error, sizeof context->error) != 0)
+        return line;
+    return 0;
+}
+
 /* Settings that contradict each other: a message citing the line of the key at fault (the later
  * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 static int check_consistency(parse_context *context)
 {
     const im_scene *scene = context->scene;
+    int adhesion_line = check_adhesion(context); /* first: whether steps may go below 0 */
+    if (adhesion_line)
+        return adhesion_line;
+    int steps_line = parse_kept_steps(context);
+    if (steps_line)
+        return steps_line;
     int sweep_line = check_sweeps(context);
     if (sweep_line)
         return sweep_line;
@@ -782,9 +801,6 @@ static int check_consistency(parse_context *context)
         if (line)
             return line;
     }
-    int adhesion_line = check_adhesion(context);
-    if (adhesion_line)
-        return adhesion_line;
     /* a history that goes down needs the cap's memory (or adhesion's); without one, unloading only
      * retraces loading and a list out of order is more likely a slip */
     for (int i = 1; i < scene->step_count && !(scene->hardness > 0) && !(scene->adhesion_work > 0); ++i) {
