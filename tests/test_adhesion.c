@@ -1,7 +1,8 @@
-/* Adhesion (solver.h, "Adhesion"): a sphere against the Maugis-Dugdale solution (Maugis 1992, in Johnson
- * and Greenwood's 1997 reduced form), evaluated here on its own with GSL, across the Tabor-Maugis
- * parameter lambda from the DMT side to the JKR side, with an error that shrinks as the grid is refined;
- * the reference itself against the DMT (2 pi w R) and JKR (3/2 pi w R) pull-off forces; hysteresis
+/* Adhesion (solver.h, "Adhesion"): a smooth sphere against the Maugis-Dugdale solution (theory.h,
+ * "Adhesion"; the reference's own limits are test_theory_adhesion's) across the Tabor-Maugis parameter
+ * lambda from the DMT side to the JKR side, its load along the retraction and its pull-off, a flat punch
+ * against Kendall's pull-off and a cone against the JKR cone's, with errors that shrink as the grid is
+ * refined; hysteresis
  * (jump-in on approach later than jump-out on retraction); a vanishing work recovering the repulsive
  * answers; the net force field's sums; and the combinations refused. */
 #include "support.h"
@@ -10,119 +11,19 @@
 #include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/theory.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---- the Maugis-Dugdale sphere, reduced: with K = 4 E* / 3,
- *   A = a (K / (pi w R^2))^(1/3),  P = N / (pi w R),  D = delta (K^2 / (pi^2 w^2 R))^(1/3),
- *   lambda = 2 sigma0 (R / (pi w K^2))^(1/3),  m = c / a (c: the zone's outer radius):
- *   lambda A^2 / 2 [s + (m^2 - 2) atan s] + 4 lambda^2 A / 3 [s atan s - m + 1] = 1,  s = sqrt(m^2 - 1)
- *   P = A^3 - lambda A^2 [s + m^2 atan s],   D = A^2 - 4 lambda A s / 3 ---- */
-typedef struct md_point {
-    double radius, m, load, approach;
-} md_point;
-
-static double md_zone_equation(double m, void *params)
-{
-    const double *p = params, lambda = p[0], a = p[1];
-    const double s = sqrt(m * m - 1), t = atan(s);
-    return lambda * a * a / 2 * (s + (m * m - 2) * t) + 4 * lambda * lambda * a / 3 * (s * t - m + 1) - 1;
-}
-
-/* Brent's root of f in [lo, hi] (f(lo) < 0 < f(hi)) to 1e-14. */
-static double md_root(double (*f)(double, void *), void *params, double lo, double hi)
-{
-    gsl_function fn = {f, params};
-    gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    assert_int_equal(gsl_root_fsolver_set(solver, &fn, lo, hi), GSL_SUCCESS);
-    double x = lo;
-    for (int i = 0; i < 500; ++i) {
-        gsl_root_fsolver_iterate(solver);
-        x = gsl_root_fsolver_root(solver);
-        if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver), gsl_root_fsolver_x_upper(solver), 1e-15, 1e-14) ==
-            GSL_SUCCESS)
-            break;
-    }
-    gsl_root_fsolver_free(solver);
-    return x;
-}
-
-static md_point md_at_radius(double lambda, double a)
-{
-    double params[2] = {lambda, a}, hi = 2;
-    while (md_zone_equation(hi, params) < 0)
-        hi *= 2;
-    const double m = md_root(md_zone_equation, params, 1, hi), s = sqrt(m * m - 1);
-    return (md_point){a, m, a * a * a - lambda * a * a * (s + m * m * atan(s)), a * a - 4.0 / 3.0 * lambda * a * s};
-}
-
-static double md_load(double lambda, double a) { return md_at_radius(lambda, a).load; }
-static double md_approach(double lambda, double a) { return md_at_radius(lambda, a).approach; }
-
-/* The minimiser of f(lambda, .) over [lo, hi] (golden section; both curves are unimodal there). */
-static double md_minimiser(double (*f)(double, double), double lambda, double lo, double hi)
-{
-    const double g = (sqrt(5) - 1) / 2;
-    double a = lo, b = hi;
-    while (b - a > 1e-12) {
-        double c = b - g * (b - a), d = a + g * (b - a);
-        if (f(lambda, c) < f(lambda, d))
-            b = d;
-        else
-            a = c;
-    }
-    return (a + b) / 2;
-}
-
-static double md_pull_off(double lambda) { return md_load(lambda, md_minimiser(md_load, lambda, 1e-3, 3)); }
-
-typedef struct md_branch {
-    double lambda, target;
-} md_branch;
-
-static double md_approach_minus_target(double a, void *params)
-{
-    const md_branch *b = params;
-    return md_approach(b->lambda, a) - b->target;
-}
-
-/* The load at reduced approach D on the branch that displacement control follows (the contact radius
- * larger than at the least approach); NaN below that least approach (separated). */
-static double md_load_at_approach(double lambda, double d)
-{
-    const double lowest = md_minimiser(md_approach, lambda, 1e-4, 3);
-    if (d <= md_approach(lambda, lowest))
-        return NAN;
-    md_branch b = {lambda, d};
-    double hi = 2;
-    while (md_approach_minus_target(hi, &b) < 0)
-        hi *= 2;
-    return md_load(lambda, md_root(md_approach_minus_target, &b, lowest, hi));
-}
-
-/* The reference reaches both limits: DMT's 2 pi w R at small lambda, JKR's 3/2 pi w R at large lambda,
- * and JKR's fixed-grip separation load 5/6 of it where the approach is least. */
-static void reference_reaches_dmt_and_jkr(void **state)
-{
-    (void)state;
-    assert_close(md_pull_off(0.01), -2.0, 2e-3);
-    assert_close(md_pull_off(100), -1.5, 1e-4);
-    const double jkr = 100;
-    assert_close(md_load(jkr, md_minimiser(md_approach, jkr, 1e-3, 3)), -5.0 / 6.0, 1e-4);
-    /* in between, the pull-off moves monotonically from one to the other */
-    assert_true(md_pull_off(0.3) < md_pull_off(1) && md_pull_off(1) < md_pull_off(3));
-}
 
 /* ---- the simulated sphere: a flat surface, the grid's patches of side 1, the reduced radius scale
  * L = (pi w R^2 / K)^(1/3) = `scale` patches and R = 8 L ---- */
 typedef struct sphere_case {
     double lambda, scale;
     double radius, work, stress, range, approach_unit, load_unit;
+    im_theory_adhesion law;
 } sphere_case;
 
 static sphere_case sphere_case_make(double lambda, double scale)
@@ -130,7 +31,7 @@ static sphere_case sphere_case_make(double lambda, double scale)
     const double k = 4.0 / 3.0, radius = 8 * scale, work = k * pow(scale, 3) / (M_PI * radius * radius);
     const double stress = lambda / 2 * cbrt(M_PI * work * k * k / radius);
     return (sphere_case){lambda, scale, radius, work, stress, work / stress, scale * scale / radius,
-                         M_PI * work * radius};
+                         M_PI * work * radius, {1.0, work, work / stress}};
 }
 
 static im_indentation *sphere_run(const sphere_case *c, double largest)
@@ -158,30 +59,59 @@ static im_step_result sphere_step(im_indentation *run, const sphere_case *c, dou
     return r;
 }
 
-/* The largest |P - P_MD(D)| over a retraction from D = 1.5 to 0.05 past the reference's separation,
- * in units of pi w R, after an approach to D = 1.5. */
-static double sphere_retraction_error(double lambda, double scale)
+/* The reduced separation D of the case's Maugis-Dugdale sphere (its least approach, in L^2 / R). */
+static double md_separation(const sphere_case *c)
+{
+    im_theory_adhesive_point p;
+    assert_int_equal(im_theory_md_sphere_separation(&c->law, c->radius, &p), IM_OK);
+    return p.approach / c->approach_unit;
+}
+
+/* The least of sampled loads, refined by the parabola through it and its two neighbours (the curve is
+ * smooth there: its error is of the third order in the step, not the second). */
+static double least_load(const double *load, int count)
+{
+    int k = 0;
+    for (int i = 1; i < count; ++i)
+        k = load[i] < load[k] ? i : k;
+    if (k == 0 || k == count - 1)
+        return load[k];
+    const double curvature = load[k - 1] - 2 * load[k] + load[k + 1];
+    return load[k] - (load[k + 1] - load[k - 1]) * (load[k + 1] - load[k - 1]) / (8 * curvature);
+}
+
+/* A retraction's errors in units of pi w R: the largest |P - P_MD(D)| from D = 1.5 to 0.05 past the
+ * reference's separation, after an approach to D = 1.5, and the pull-off's (the least load). */
+typedef struct sphere_errors {
+    double curve, pull_off;
+} sphere_errors;
+
+static sphere_errors sphere_retraction_errors(double lambda, double scale)
 {
     const sphere_case c = sphere_case_make(lambda, scale);
     im_indentation *run = sphere_run(&c, 2.0);
     for (double d = 0.25; d <= 1.5; d += 0.25)
         sphere_step(run, &c, d);
-    const double separation = md_approach(lambda, md_minimiser(md_approach, lambda, 1e-4, 3));
-    double worst = 0;
-    int compared = 0;
-    for (double d = 1.5; d > separation + 0.05; d -= 0.1) {
-        im_step_result r = sphere_step(run, &c, d);
-        const double expected = md_load_at_approach(lambda, d);
-        worst = fmax(worst, fabs(r.load / c.load_unit - expected));
-        ++compared;
+    const double separation = md_separation(&c);
+    double loads[64], expected;
+    sphere_errors e = {0, 0};
+    int count = 0;
+    for (double d = 1.5; d > separation + 0.05 && count < 64; d -= 0.1) {
+        loads[count] = sphere_step(run, &c, d).load / c.load_unit;
+        assert_int_equal(im_theory_md_sphere_load_at_approach(&c.law, c.radius, d * c.approach_unit, &expected), IM_OK);
+        e.curve = fmax(e.curve, fabs(loads[count++] - expected / c.load_unit));
     }
-    assert_true(compared >= 10);
+    assert_true(count >= 10);
     im_indentation_free(run);
-    return worst;
+    im_theory_adhesive_point pull_off;
+    assert_int_equal(im_theory_md_sphere_pull_off(&c.law, c.radius, &pull_off), IM_OK);
+    e.pull_off = fabs(least_load(loads, count) - pull_off.load / c.load_unit);
+    return e;
 }
 
-/* Along the retraction the simulated force follows Maugis-Dugdale's, and the error shrinks with the grid:
- * lambda = 0.3 (DMT side), 1, 3 (JKR side; its zone is a few patches wide only on the finer grid). */
+/* Along the retraction the simulated force follows Maugis-Dugdale's, the least of it is the pull-off, and
+ * both errors shrink with the grid: lambda = 0.3 (DMT side), 1, 3 (JKR side; its zone is a few patches
+ * wide only on the finer grid). */
 static void sphere_follows_maugis_dugdale(void **state)
 {
     (void)state;
@@ -189,14 +119,133 @@ static void sphere_follows_maugis_dugdale(void **state)
         double lambda, coarse, fine, bound;
     } cases[] = {{0.3, 5, 10, 0.004}, {1, 6, 12, 0.017}, {3, 10, 20, 0.07}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
-        const double coarse = sphere_retraction_error(cases[k].lambda, cases[k].coarse);
-        const double fine = sphere_retraction_error(cases[k].lambda, cases[k].fine);
-        print_message("lambda %g: largest |P - P_MD| / (pi w R) %.4f at L = %g patches, %.4f at L = %g\n",
-                      cases[k].lambda, coarse, cases[k].coarse, fine, cases[k].fine);
-        if (!(fine < coarse && fine <= cases[k].bound))
+        const sphere_errors coarse = sphere_retraction_errors(cases[k].lambda, cases[k].coarse);
+        const sphere_errors fine = sphere_retraction_errors(cases[k].lambda, cases[k].fine);
+        print_message("lambda %g: largest |P - P_MD| / (pi w R) %.4f at L = %g patches, %.4f at L = %g; pull-off "
+                      "error %.4f, %.4f\n", cases[k].lambda, coarse.curve, cases[k].coarse, fine.curve, cases[k].fine,
+                      coarse.pull_off, fine.pull_off);
+        if (!(fine.curve < coarse.curve && fine.curve <= cases[k].bound))
             fail_msg("lambda %g: errors %.4f (L = %g) and %.4f (L = %g): expected the finer below the coarser and "
-                     "below %g", cases[k].lambda, coarse, cases[k].coarse, fine, cases[k].fine, cases[k].bound);
+                     "below %g", cases[k].lambda, coarse.curve, cases[k].coarse, fine.curve, cases[k].fine,
+                     cases[k].bound);
+        if (!(fine.pull_off < coarse.pull_off && fine.pull_off <= cases[k].bound))
+            fail_msg("lambda %g: pull-off errors %.4f (L = %g) and %.4f (L = %g): expected the finer below the "
+                     "coarser and below %g", cases[k].lambda, coarse.pull_off, cases[k].coarse, fine.pull_off,
+                     cases[k].fine, cases[k].bound);
     }
+}
+
+/* A smooth flat punch of radius a patches, the Dugdale zone l = pi E* delta_c^2 / (8 w) = 2 patches
+ * (w = 0.01), against Kendall: the signed relative error of the least load (the pull-off) and the largest
+ * relative error of the stiffness 2 E* a (the load at half Kendall's approach, pulling, and at as much
+ * pressing). */
+typedef struct flat_errors {
+    double pull_off, stiffness;
+} flat_errors;
+
+static flat_errors flat_errors_at(double radius)
+{
+    const double work = 0.01, range = sqrt(8 * work * 2.0 / M_PI);
+    const im_theory_adhesion law = {1.0, work, range};
+    im_theory_adhesive_point kendall;
+    assert_int_equal(im_theory_kendall_pull_off(&law, radius, &kendall), IM_OK);
+    const int n = 2 * (int)radius + 12;
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(n, n, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8;
+    o.adhesion_work = work;
+    o.adhesion_range = range;
+    im_indenter flat = im_indenter_flat(radius);
+    im_indentation *run = NULL;
+    const double dk = -kendall.approach;
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_DISPLACEMENT, 2 * dk, &o, &run), IM_OK);
+    im_field_free(surface);
+    flat_errors e = {0, 0};
+    double least = 0;
+    im_step_result r = {0};
+    for (int k = 0; k < 400; ++k) {
+        const double d = k <= 13 ? (0.5 - 0.1 * k) * dk : (-0.8 - 0.004 * (k - 13)) * dk;
+        if (im_indentation_step(run, d, &r) != IM_OK)
+            fail_msg("flat punch a = %g, w = %g: %s", radius, d, im_last_error());
+        least = fmin(least, r.load);
+        if (k == 0 || k == 10) /* w = +-dk / 2 */
+            e.stiffness = fmax(e.stiffness, fabs(r.load / (2 * radius * d) - 1));
+        if (r.contact_patches == 0)
+            break;
+    }
+    im_indentation_free(run);
+    assert_int_equal(r.contact_patches, 0); /* it came off */
+    e.pull_off = least / kendall.load - 1;
+    return e;
+}
+
+/* The errors are of the first order in 1 / a (the grid's discrete disc and the zone's finite width): they
+ * halve as a doubles, and Richardson's extrapolation 2 e(32) - e(16) of the signed pull-off error leaves
+ * less than 1% of Kendall's. */
+static void flat_punch_follows_kendall(void **state)
+{
+    (void)state;
+    const double radii[] = {8, 16, 32};
+    flat_errors e[3];
+    for (int k = 0; k < 3; ++k) {
+        e[k] = flat_errors_at(radii[k]);
+        print_message("flat punch a = %g patches (a / l = %g): pull-off %+.4f off Kendall's, stiffness %.4f off "
+                      "2 E* a\n", radii[k], radii[k] / 2, e[k].pull_off, e[k].stiffness);
+    }
+    print_message("extrapolated pull-off error %+.4f\n", 2 * e[2].pull_off - e[1].pull_off);
+    for (int k = 0; k < 2; ++k)
+        assert_true(fabs(e[k + 1].pull_off) < 0.6 * fabs(e[k].pull_off) && e[k + 1].stiffness < 0.6 * e[k].stiffness);
+    assert_true(fabs(e[2].pull_off) < 0.08 && e[2].stiffness < 0.02);
+    assert_true(fabs(2 * e[2].pull_off - e[1].pull_off) < 0.01);
+}
+
+/* A smooth cone (alpha = 60 degrees) whose JKR pull-off radius a_c = 18 w / (pi E* cot^2 alpha) spans a_c
+ * patches, its Dugdale zone l = 2 patches, against the JKR cone of Maugis & Barquins: the signed relative
+ * error of the least load of a retraction (refined by the parabola) from 2.5 times JKR's pull-off approach. */
+static double cone_pull_off_error(double patches)
+{
+    const double alpha = 60, cot = 1 / tan(alpha * M_PI / 180), work = patches * M_PI * cot * cot / 18;
+    const im_theory_adhesion law = {1.0, work, sqrt(8 * work * 2.0 / M_PI)};
+    im_theory_adhesive_point jkr;
+    assert_int_equal(im_theory_jkr_cone_pull_off(&law, alpha, &jkr), IM_OK);
+    const int n = (int)(6 * patches) + 16;
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(n, n, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8;
+    o.adhesion_work = law.work;
+    o.adhesion_range = law.range;
+    im_indenter cone = im_indenter_cone(alpha);
+    im_indentation *run = NULL;
+    const double top = 2.5 * jkr.approach;
+    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, top, &o, &run), IM_OK);
+    im_field_free(surface);
+    double loads[64];
+    int count = 0;
+    im_step_result r = {0};
+    for (int k = 0; k < 64 && (k <= 5 || r.contact_patches > 0); ++k) {
+        const double d = k <= 5 ? top * k / 5 : top - 0.1 * jkr.approach * (k - 5);
+        if (im_indentation_step(run, d, &r) != IM_OK)
+            fail_msg("cone a_c = %g patches, w = %g: %s", patches, d, im_last_error());
+        if (k > 5 && r.contact_patches > 0)
+            loads[count++] = r.load;
+    }
+    im_indentation_free(run);
+    assert_true(count >= 10 && r.contact_patches == 0); /* it came off */
+    return least_load(loads, count) / jkr.load - 1;
+}
+
+/* The errors are of the first order in l / a_c, as the flat punch's: they halve as a_c doubles, and the
+ * extrapolation 2 e(16) - e(8) leaves less than 3% of JKR's. */
+static void cone_follows_jkr(void **state)
+{
+    (void)state;
+    const double coarse = cone_pull_off_error(8), fine = cone_pull_off_error(16);
+    print_message("cone: pull-off %+.4f off JKR's at a_c = 8 patches, %+.4f at 16; extrapolated %+.4f\n", coarse, fine,
+                  2 * fine - coarse);
+    assert_true(fabs(fine) < 0.6 * fabs(coarse) && fabs(fine) < 0.12);
+    assert_true(fabs(2 * fine - coarse) < 0.03);
 }
 
 /* Jump-in and jump-out: on approach the surface snaps into contact before the undeformed surfaces
@@ -221,7 +270,7 @@ static void approach_and_retraction_differ(void **state)
         last_n = r.load;
     }
     im_indentation_free(run);
-    const double separation = md_approach(1.0, md_minimiser(md_approach, 1.0, 1e-4, 3));
+    const double separation = md_separation(&c);
     print_message("jump-in at D = %.2f, last contact on retraction at D = %.2f (Maugis-Dugdale separates at %.3f); "
                   "loop work %.4g\n", jump_in, jump_out, separation, loop);
     assert_true(jump_in < 0);                    /* the surface reaches up to the punch */
@@ -375,8 +424,9 @@ static void summary_of_a_loop(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(reference_reaches_dmt_and_jkr),
         cmocka_unit_test(sphere_follows_maugis_dugdale),
+        cmocka_unit_test(flat_punch_follows_kendall),
+        cmocka_unit_test(cone_follows_jkr),
         cmocka_unit_test(approach_and_retraction_differ),
         cmocka_unit_test(vanishing_work_is_repulsive),
         cmocka_unit_test(step_sums_are_the_fields),

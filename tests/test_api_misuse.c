@@ -104,6 +104,8 @@ static im_psd *psd;
 static im_solver_options options;
 static im_indenter cone, punch;
 static im_theory_interface rough;
+static im_theory_adhesion adhesion_law = {1.0, 0.1, 0.5};
+static im_theory_adhesive_point adhesive_point;
 static im_colormap colormap;
 static im_contact_style contact_style;
 static im_height_style height_style;
@@ -562,6 +564,24 @@ REPORT(im_theory_cone_contact_density, "gamma", im_theory_cone_contact_density(1
 REPORT(im_theory_punch_pressure, "p_over_mean", im_theory_punch_pressure(IM_PUNCH_CONE, 0.5, NULL))
 REPORT(im_theory_punch_contact_density, "gamma", im_theory_punch_contact_density(IM_PUNCH_CONE, 1.0, 0.5, NULL))
 REPORT(im_theory_punch_area_ratio, "ratio", im_theory_punch_area_ratio(IM_PUNCH_CONE, 1.0, NULL))
+REPORT(im_theory_maugis_lambda, "law", im_theory_maugis_lambda(NULL, 10.0, &d))
+REPORT(im_theory_maugis_lambda, "lambda", im_theory_maugis_lambda(&adhesion_law, 10.0, NULL))
+REPORT(im_theory_md_sphere, "law", im_theory_md_sphere(NULL, 10.0, 1.0, &adhesive_point))
+REPORT(im_theory_md_sphere, "out", im_theory_md_sphere(&adhesion_law, 10.0, 1.0, NULL))
+REPORT(im_theory_md_sphere_pull_off, "law", im_theory_md_sphere_pull_off(NULL, 10.0, &adhesive_point))
+REPORT(im_theory_md_sphere_pull_off, "out", im_theory_md_sphere_pull_off(&adhesion_law, 10.0, NULL))
+REPORT(im_theory_md_sphere_separation, "law", im_theory_md_sphere_separation(NULL, 10.0, &adhesive_point))
+REPORT(im_theory_md_sphere_separation, "out", im_theory_md_sphere_separation(&adhesion_law, 10.0, NULL))
+REPORT(im_theory_md_sphere_load_at_approach, "law", im_theory_md_sphere_load_at_approach(NULL, 10.0, 1.0, &d))
+REPORT(im_theory_md_sphere_load_at_approach, "load", im_theory_md_sphere_load_at_approach(&adhesion_law, 10.0, 1.0, NULL))
+REPORT(im_theory_kendall_pull_off, "law", im_theory_kendall_pull_off(NULL, 10.0, &adhesive_point))
+REPORT(im_theory_kendall_pull_off, "out", im_theory_kendall_pull_off(&adhesion_law, 10.0, NULL))
+REPORT(im_theory_kendall_load_at_approach, "law", im_theory_kendall_load_at_approach(NULL, 10.0, 1.0, &d))
+REPORT(im_theory_kendall_load_at_approach, "load", im_theory_kendall_load_at_approach(&adhesion_law, 10.0, 1.0, NULL))
+REPORT(im_theory_jkr_cone, "law", im_theory_jkr_cone(NULL, 80.0, 1.0, &adhesive_point))
+REPORT(im_theory_jkr_cone, "out", im_theory_jkr_cone(&adhesion_law, 80.0, 1.0, NULL))
+REPORT(im_theory_jkr_cone_pull_off, "law", im_theory_jkr_cone_pull_off(NULL, 80.0, &adhesive_point))
+REPORT(im_theory_jkr_cone_pull_off, "out", im_theory_jkr_cone_pull_off(&adhesion_law, 80.0, NULL))
 REPORT(im_theory_punch_mean_pressure, "p_mean", im_theory_punch_mean_pressure(IM_PUNCH_CONE, 80.0, 1.0, 1.0, NULL))
 REPORT(im_theory_fit_k, "pressure_ratio", im_theory_fit_k(NULL, values, 2, &k_fit))
 REPORT(im_theory_fit_k, "area_fraction", im_theory_fit_k(values, NULL, 2, &k_fit))

@@ -129,6 +129,14 @@ typedef struct im_scene {
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
+    /* [adhesion] (docs/scenes.md, "Adhesion"; solver.h, "Adhesion"): work w > 0 and range delta_c > 0
+     * together, 0 for none; law 0 is maugis-dugdale, the only one. Every history is then solved with it
+     * (displacement control; steps may go down and below 0, pulling the punch away); what is solved
+     * under load control or in the periodic mode (panels, frames, table, distributions, flat_k) is
+     * refused beside it. Part of every result's key. */
+    double adhesion_work, adhesion_range;
+    int adhesion_law;
+
     enum im_control control;         /* displacement or load */
     double load_star;                /* N* at which contact panels are drawn (0: none) */
     double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty):

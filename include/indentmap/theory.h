@@ -253,6 +253,80 @@ double im_theory_wavy2d_light_area_fraction(double pressure_ratio);
  * 1 - A/A0 = (3 / (2 pi)) (1 - p_m / p^) (leading order in 1 - p_m / p^; JGH's form). */
 double im_theory_wavy2d_near_full_area_fraction(double pressure_ratio);
 
+/* ---- Adhesion: the smooth references of the adhesive solver (issue 27; solver.h, "Adhesion") ----
+ * The Maugis-Dugdale law: a constant tensile stress sigma0 = w / delta_c wherever the gap is at most
+ * delta_c (the solver's adhesion_range), the work of adhesion w = sigma0 delta_c. Units as above: E* a
+ * stress, w a stress times a length, lengths (R, a, delta_c, approaches) in one unit, loads in E* times
+ * length^2. Loads are signed (negative: the punch is pulled); an approach is that of distant points,
+ * 0 where the undeformed surfaces touch (the solver's w; negative: pulled away). Derivations and
+ * sources in docs/theory.md, "Adhesion". */
+
+typedef struct im_theory_adhesion {
+    double e_star; /* E* > 0 */
+    double work;   /* w > 0: the work of adhesion */
+    double range;  /* delta_c > 0: the gap over which sigma0 = w / delta_c pulls (the JKR forms below,
+                      the limit delta_c -> 0, do not use it) */
+} im_theory_adhesion;
+
+/* A point of an adhesive contact: contact radius a, the adhesive zone's outer radius c >= a (c = a for
+ * the JKR forms), signed load N and approach delta. */
+typedef struct im_theory_adhesive_point {
+    double contact_radius;
+    double zone_radius;
+    double load;
+    double approach;
+} im_theory_adhesive_point;
+
+/* Maugis's transition parameter of a sphere (paraboloid z = r^2 / (2R)) of radius R > 0:
+ * lambda = 2 sigma0 (R / (pi w K^2))^(1/3), K = 4 E* / 3 (lambda > 5: JKR; lambda < 0.1: DMT). */
+int im_theory_maugis_lambda(const im_theory_adhesion *law, double radius, double *lambda);
+
+/* The Maugis-Dugdale sphere (Maugis 1992, in Johnson & Greenwood's 1997 reduced form) at contact
+ * radius a > 0: with K = 4 E* / 3, A = a (K / (pi w R^2))^(1/3) and m = c / a, s = sqrt(m^2 - 1),
+ *   lambda A^2 / 2 [s + (m^2 - 2) atan s] + 4 lambda^2 A / 3 [s atan s - m + 1] = 1   (m by Brent)
+ *   N / (pi w R) = A^3 - lambda A^2 [s + m^2 atan s]
+ *   delta (K^2 / (pi^2 w^2 R))^(1/3) = A^2 - 4 lambda A s / 3.
+ * Large lambda gives JKR (N = 4 E* a^3 / (3 R) - sqrt(8 pi w E* a^3), delta = a^2 / R - sqrt(2 pi w a / E*)),
+ * small lambda DMT (Hertz's N(a) less 2 pi w R, delta = a^2 / R). lambda by im_theory_maugis_lambda. */
+int im_theory_md_sphere(const im_theory_adhesion *law, double radius, double contact_radius,
+                        im_theory_adhesive_point *out);
+
+/* The sphere's pull-off under load control: the least load of the curve above (-3/2 pi w R at large
+ * lambda, -2 pi w R at small), found by golden section in a over (0, 3 L], L = (pi w R^2 / K)^(1/3)
+ * (the search's lower end is 1e-4 L). Its contact radius exceeds the separation's (below), so it lies on
+ * the branch fixed grips follow: the least load of a displacement-controlled retraction is the same. */
+int im_theory_md_sphere_pull_off(const im_theory_adhesion *law, double radius, im_theory_adhesive_point *out);
+
+/* The separation under displacement control: the point of least approach (JKR's fixed-grip
+ * separation at -5/6 pi w R at large lambda). Below lambda ~ 0.94 the contact shrinks to nothing without a
+ * jump: the least approach is at a -> 0, returned at the search's lower end 1e-4 L. */
+int im_theory_md_sphere_separation(const im_theory_adhesion *law, double radius, im_theory_adhesive_point *out);
+
+/* The load at approach delta on the branch that displacement control follows (the contact radius above
+ * the separation's); NaN below the separation's approach (separated). */
+int im_theory_md_sphere_load_at_approach(const im_theory_adhesion *law, double radius, double approach,
+                                         double *load);
+
+/* Kendall (1971), the adhesive flat punch of radius a > 0 (the JKR limit: law->range unused): in full
+ * contact N = 2 E* a delta (Boussinesq), until the edge crack's energy release rate
+ * N^2 / (8 pi a^3 E*) reaches w: pull-off at N_c = -sqrt(8 pi a^3 E* w), delta_c = -sqrt(2 pi w a / E*),
+ * under load and displacement control alike (the crack grows unstably inwards). */
+int im_theory_kendall_pull_off(const im_theory_adhesion *law, double punch_radius, im_theory_adhesive_point *out);
+
+/* The flat punch's load at approach delta: 2 E* a delta from Kendall's delta_c on, NaN below it. */
+int im_theory_kendall_load_at_approach(const im_theory_adhesion *law, double punch_radius, double approach,
+                                       double *load);
+
+/* The JKR cone (Maugis & Barquins 1981; Love's cone z = r cot(alpha), alpha the semi-opening angle in
+ * degrees, with Kendall's flat punch superposed and the energy balance G = w; law->range unused):
+ *   N = (pi / 2) E* cot(alpha) a^2 - sqrt(8 pi E* w a^3),   delta = (pi / 2) cot(alpha) a - sqrt(2 pi w a / E*). */
+int im_theory_jkr_cone(const im_theory_adhesion *law, double alpha_deg, double contact_radius,
+                       im_theory_adhesive_point *out);
+
+/* The JKR cone's pull-off (least load; on the fixed-grip branch too): a_c = 18 w / (pi E* cot^2 alpha),
+ * N_c = -54 w^2 / (pi E* cot^3 alpha). */
+int im_theory_jkr_cone_pull_off(const im_theory_adhesion *law, double alpha_deg, im_theory_adhesive_point *out);
+
 /* ---- Roughness (eqs. 13-15) ---- */
 
 /* Eq. (13) divided by the prefactor A: m_n / A = T(n) q_r^(n - 2H) ((1 - x^(n+2)) / (n + 2)

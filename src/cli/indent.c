@@ -877,6 +877,33 @@ static void warn_if_zone_unresolved(const indent_options *o)
                 patches);
 }
 
+/* The smooth punch's adhesive theory (front.h: a sphere's Maugis-Dugdale, a flat punch's Kendall) beside the
+ * measured pull-off in run.json's "adhesion" block ("theory": null for the other punches or a rough
+ * surface) and adhesion_theory.csv beside the history. */
+static void write_adhesion_theory(const indent_options *o, const im_history_row *rows, int done, json_t *law)
+{
+    const im_theory_adhesion theory = {o->solver.e_star, o->solver.adhesion_work, o->solver.adhesion_range};
+    const char *model = NULL;
+    im_theory_adhesive_point pull_off;
+    int status = o->smooth ? adhesion_theory_pull_off(&o->punch, &theory, &model, &pull_off) : IM_OK;
+    if (status == IM_OK && model)
+        status = adhesion_theory_write(o->out, &o->punch, &theory, rows, done);
+    if (status != IM_OK) {
+        fprintf(stderr, "indentmap: adhesion theory: %s\n", im_last_error());
+        model = NULL;
+    }
+    if (!model) {
+        json_object_set_new(law, "theory", json_null());
+        return;
+    }
+    json_object_set_new(law, "theory", json_pack("{s:s, s:f, s:f, s:f, s:s}", "model", model, "pull_off_force",
+                                                 -pull_off.load, "pull_off_approach", pull_off.approach,
+                                                 "contact_radius", pull_off.contact_radius, "file",
+                                                 "adhesion_theory.csv"));
+    printf("adhesion theory (%s): pull-off force %.6g at w = %.6g; %s/adhesion_theory.csv\n", model, -pull_off.load,
+           pull_off.approach, o->out);
+}
+
 /* With adhesion: the pull-off, the jumps and the lost work (front.h), printed and in run.json's
  * "adhesion" block beside the law, and force_distance.{png,pdf}. */
 static void write_adhesion(const indent_options *o, const im_history_row *rows, int done, json_t *record)
@@ -896,6 +923,7 @@ static void write_adhesion(const indent_options *o, const im_history_row *rows, 
     printf("adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
            "work lost %.6g; %s/force_distance.png and .pdf\n", summary.pull_off_force, summary.pull_off_approach,
            summary.jump_in_approach, summary.jump_out_approach, summary.hysteresis_work, o->out);
+    write_adhesion_theory(o, rows, done, law);
 }
 
 /* indentation.csv over the steps done (front.h), said on stdout and in run.json; a failure here is

@@ -70,6 +70,19 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
                             const char *force_unit, im_adhesion_summary *summary);
 
+/* The smooth adhesive theory of punch under law (theory.h, "Adhesion"; adhesion_theory.c): "Maugis-Dugdale
+ * sphere" or "Kendall flat punch" into *model and the pull-off point into *pull_off; NULL *model (IM_OK)
+ * for the other punches, which have none verified. A theory's status otherwise. */
+int adhesion_theory_pull_off(const im_indenter *punch, const im_theory_adhesion *law, const char **model,
+                             im_theory_adhesive_point *pull_off);
+
+/* DIR/adhesion_theory.csv atomically: step,approach,load,load_theory per row, load_theory the theory's load
+ * at the step's approach on the branch displacement control follows from contact (NaN where the theory
+ * has come off; the approach before the jump into contact is not on it). For the punches
+ * adhesion_theory_pull_off knows; IM_EINVAL for another. */
+int adhesion_theory_write(const char *dir, const im_indenter *punch, const im_theory_adhesion *law,
+                          const im_history_row *rows, int count);
+
 /* ---- the JSON run record (record.c) ---- */
 
 /* What every run record (OUTPUT/run.json of `indent` and of a scene) holds: the program, the

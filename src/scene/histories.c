@@ -201,9 +201,9 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
     im_theory_interface rough = scene_theory_interface(scene, scene->slopes[m->family]);
     im_solver_options options = scene_solver_options(scene);
     im_indentation *run = NULL;
-    double largest = 0; /* the largest step: a history with a hardness may go down */
+    double largest = 0; /* the largest step: a history with a hardness may go down, one with adhesion below 0 */
     for (int i = 0; i < scene->step_count; ++i)
-        largest = fmax(largest, step_target(scene, i, surface->delta));
+        largest = fmax(largest, fabs(step_target(scene, i, surface->delta)));
     int status = im_indentation_create(surface, &punch, scene->control, largest, &options, &run);
     for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
         if (scene_stop_signal(run_options)) {

@@ -100,6 +100,8 @@ static void add_contact(key_hash *hash, const im_scene *scene)
      * the memoryless cap's, which --resume must not reuse */
     if (o.hardness > 0)
         key_add(hash, "hardness %.17g; memory;", o.hardness);
+    if (o.adhesion_work > 0) /* likewise: only then */
+        key_add(hash, "adhesion maugis-dugdale %.17g %.17g;", o.adhesion_work, o.adhesion_range);
 }
 
 uint64_t scene_checksum(const char *bytes, size_t length)

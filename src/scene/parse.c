@@ -276,11 +276,25 @@ static int parse_seeds(const key_spec *spec, const char *value, im_scene *scene,
     return 0;
 }
 
-/* [loading] steps: the step list of `indent --approach` (front.h: steps_parse). */
+/* [loading] steps: the step list of `indent --approach` (front.h: steps_parse_signed), below 0 with
+ * [adhesion] only, as `indent` takes negative approaches with --adhesion-work only: so it is parsed once
+ * every key is known. */
 static int parse_steps(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
-    (void)spec;
-    return steps_parse("steps", value, scene->steps, &scene->step_count, error, size);
+    (void)spec, (void)value, (void)scene, (void)error, (void)size;
+    return 0; /* kept by handle_key, parsed once every key is known (parse_kept_steps) */
+}
+
+/* [adhesion] law: the solver has the Maugis-Dugdale law only. */
+static int parse_adhesion_law(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
+{
+    if (choice_index(spec->choices, value) != 0) {
+        snprintf(error, size, "law = '%s': expected maugis-dugdale (the only adhesive law of the solver: a constant "
+                 "stress w / range up to the gap range)", value);
+        return -1;
+    }
+    *(int *)destination(spec, scene) = 0;
+    return 0;
 }
 
 /* [punch] shape: the punch names of `indent --punch` (indenter.h: im_punch_parse). */
@@ -392,6 +406,9 @@ static const key_spec KEYS[] = {
     {"output", "frame_scale", parse_int, FIELD(frame_scale), 1, 16, NULL, 0, 0},
     {"output", "frame3d_width", parse_int, FIELD(frame3d_width), 64, 7680, NULL, 0, 0},
     {"output", "frame3d_height", parse_int, FIELD(frame3d_height), 64, 4320, NULL, 0, 0},
+    {"adhesion", "work", parse_double, FIELD(adhesion_work), 1e-300, 1e300, NULL, 0, 0},
+    {"adhesion", "range", parse_double, FIELD(adhesion_range), 1e-300, 1e300, NULL, 0, 0},
+    {"adhesion", "law", parse_adhesion_law, FIELD(adhesion_law), 0, 0, "maugis-dugdale", 0, 0},
     {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
     {"solver", "device", parse_choice, FIELD(device), 0, 0, "cpu|gpu|auto", 0, 0},
     {"output", "plots", parse_plots, FIELD(plots), 0, 0, NULL, 0, 0},
@@ -469,6 +486,7 @@ typedef struct parse_context {
     int key_line[sizeof KEYS / sizeof KEYS[0]]; /* the line of each key given, 0 if none */
     char sections[16][32]; /* the sections opened so far, to refuse one opened twice */
     int section_lines[16], section_count;
+    char steps[INI_MAX_LINE]; /* [loading] steps as written (a line of inih's buffer fits) */
     char error[512];
 } parse_context;
 
@@ -586,6 +604,8 @@ static int handle_key(void *user, const char *section, const char *name, const c
                 return 0;
             }
             context->key_line[i] = context->line;
+            if (KEYS[i].parse == parse_steps)
+                snprintf(context->steps, sizeof context->steps, "%s", value);
             accepted = KEYS[i].parse(&KEYS[i], value, context->scene, context->error,
                                      sizeof context->error) == 0;
         }
@@ -688,11 +708,79 @@ static double largest_lambda_s(const im_scene *scene)
     return largest;
 }
 
+/* The line of the first [adhesion] key given, 0 if none. */
+static int adhesion_line(const parse_context *context)
+{
+    const char *keys[] = {"work", "range", "law"};
+    for (int i = 0; i < 3; ++i)
+        if (key_line(context, "adhesion", keys[i]))
+            return key_line(context, "adhesion", keys[i]);
+    return 0;
+}
+
+/* What [adhesion] cannot take, NULL if nothing. */
+static const char *adhesion_conflict(const im_scene *scene)
+{
+    if (!(scene->adhesion_work > 0))
+        return NULL;
+    if (!(scene->adhesion_range > 0))
+        return "[adhesion] work and range go together: expected both";
+    if (scene->control != IM_CONTROL_DISPLACEMENT)
+        return "[adhesion] takes [loading] control = displacement: under load control an adhesive contact jumps "
+               "where its force-distance curve turns (pull-off)";
+    if (scene->hardness > 0)
+        return "[adhesion] with [material] hardness: adhesion with plasticity is not available";
+    if (scene->contact_panels || scene->frames || scene->table || scene->distributions)
+        return "[adhesion] with [output] contact_panels, frames, table or distributions: those are solved under "
+               "load control at load_star, which an adhesive contact does not take (its histories, plots = fig5, "
+               "fig6, fig7 or sphere, do)";
+    if (scene->plots & (IM_SCENE_PLOT_FIG7 | IM_SCENE_PLOT_SPHERE))
+        return "[adhesion] with plots = fig7 or sphere: they set repulsive contact against N* on log axes, which a "
+               "pulled (negative) load leaves (fig5 and fig6 draw adhesive histories)";
+    if (scene->plots & IM_SCENE_PLOT_FLAT_K)
+        return "[adhesion] with plots = flat_k: its flat panels are solved in the periodic half-space, which has "
+               "no adhesion";
+    return NULL;
+}
+
+/* [adhesion]'s consistency: a message in context->error and the line of the [adhesion] key (or of
+ * [loading] steps), 0 if consistent. */
+static int check_adhesion(parse_context *context)
+{
+    const im_scene *scene = context->scene;
+    const int given = adhesion_line(context);
+    const char *conflict = given && !(scene->adhesion_work > 0) ? "[adhesion] work and range go together: expected both"
+                                                                 : adhesion_conflict(scene);
+    if (!conflict)
+        return 0;
+    snprintf(context->error, sizeof context->error, "%s", conflict);
+    int line = given ? given : key_line(context, "loading", "steps");
+    return line > 0 ? line : 1;
+}
+
+/* [loading] steps (kept by handle_key) into the scene: below 0 with [adhesion] only. 0, or the line of the
+ * key with the message in context->error. */
+static int parse_kept_steps(parse_context *context)
+{
+    im_scene *scene = context->scene;
+    const int line = key_line(context, "loading", "steps");
+    if (line && steps_parse_signed("steps", context->steps, scene->adhesion_work > 0, scene->steps, &scene->step_count,
+                                   context->error, sizeof context->error) != 0)
+        return line;
+    return 0;
+}
+
 /* Settings that contradict each other: a message citing the line of the key at fault (the later
  * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 static int check_consistency(parse_context *context)
 {
     const im_scene *scene = context->scene;
+    int adhesion_line = check_adhesion(context); /* first: whether steps may go below 0 */
+    if (adhesion_line)
+        return adhesion_line;
+    int steps_line = parse_kept_steps(context);
+    if (steps_line)
+        return steps_line;
     int sweep_line = check_sweeps(context);
     if (sweep_line)
         return sweep_line;
@@ -713,9 +801,9 @@ static int check_consistency(parse_context *context)
         if (line)
             return line;
     }
-    /* a history that goes down needs the cap's memory; without one, unloading only retraces loading and
-     * a list out of order is more likely a slip */
-    for (int i = 1; i < scene->step_count && !(scene->hardness > 0); ++i) {
+    /* a history that goes down needs the cap's memory (or adhesion's); without one, unloading only
+     * retraces loading and a list out of order is more likely a slip */
+    for (int i = 1; i < scene->step_count && !(scene->hardness > 0) && !(scene->adhesion_work > 0); ++i) {
         if (!(scene->steps[i] > scene->steps[i - 1])) {
             snprintf(context->error, sizeof context->error, "steps must increase: %g follows %g (a history that "
                      "unloads needs [material] hardness: without one unloading retraces loading)", scene->steps[i],

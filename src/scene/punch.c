@@ -47,6 +47,8 @@ im_solver_options scene_solver_options(const im_scene *scene)
     options.e_star = scene->modulus;
     options.tol = scene->tol;
     options.hardness = scene->hardness;
+    options.adhesion_work = scene->adhesion_work;
+    options.adhesion_range = scene->adhesion_range;
     options.device = scene->device;
     options.wisdom_path = scene->wisdom_path;
     return options;

@@ -93,6 +93,12 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(root, "punch", profile_record(scene));
     if (scene_sweep_count(scene) > 1)
         json_object_set_new(root, "sweep", sweep_record(scene));
+    json_object_set_new(root, "adhesion",
+                        scene->adhesion_work > 0
+                            ? json_pack("{s:s, s:f, s:f, s:f}", "law", "Maugis-Dugdale", "work", scene->adhesion_work,
+                                        "range", scene->adhesion_range, "stress",
+                                        scene->adhesion_work / scene->adhesion_range)
+                            : json_null());
     /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */
     json_object_set_new(root, "theory_slope_rms",
                         json_pack("{s:s, s:s}", "definition", scene->file_count > 0 ? "finite differences" : "spectral",

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# A scene's [adhesion] (issue 27): a smooth sphere at Maugis's lambda = 1 (R = 64, w = 0.05305,
+# delta_c = 0.6366, the reduced radius 8 patches, as cli_indent's) approached from w = -1 and pulled back to
+# -1.5: its history pulls, its least load is within 3% of Maugis-Dugdale's 1.6007 pi w R = 17.07
+# (theory.h, im_theory_md_sphere_pull_off; test_theory_adhesion), and it equals `indent`'s of the same
+# settings. --resume reads it back; another work of adhesion, or none, is solved again (the key). The
+# refusals name the key and what is expected.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+source "$(dirname "$0")/lib.sh"
+
+scene() { # scene FILE ADHESION-LINES [OUTPUT-LINES [STEPS [FOLDER]]]
+    printf '[scene]\nname = sticky\noutput = %s/%s\n[surfaces]\nn = 96\nslopes = 0\nseeds = 1\n[punch]\nshape = sphere\nradius = 64\n%s\n[loading]\ncontrol = displacement\nsteps = %s\n[output]\n%s\n' \
+        "$dir" "${5:-res}" "$2" "${4:--1:2:16, 1.9:-1.5:35}" "${3:-plots = fig5, fig6}" > "$1"
+}
+sticky='[adhesion]
+work = 0.05305
+range = 0.6366
+law = maugis-dugdale'
+scene "$dir/sticky.ini" "$sticky" ""
+check "the adhesive scene runs" "$cli" run "$dir/sticky.ini" 2> "$dir/run.err" > /dev/null
+history=$dir/res/histories/member_00_1.csv
+pull_off() { python3 - "$1" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
+print(-min(float(r["load"]) for r in rows))
+PY
+}
+check "the history pulls, its pull-off within 3% of Maugis-Dugdale's 17.07" \
+    python3 -c "import sys; p = float(sys.argv[1]); sys.exit(not abs(p / 17.07 - 1) < 0.03)" "$(pull_off "$history")"
+"$cli" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+    --approach -1:2:16,1.9:-1.5:35 --out "$dir/indent" > /dev/null 2>&1
+check "the scene's history is indent's" python3 - "$history" "$dir/indent/history.csv" <<'PY'
+import csv, sys
+def loads(path):
+    return [float(r["load"]) for r in csv.DictReader(l for l in open(path) if not l.startswith("#"))]
+a, b = loads(sys.argv[1]), loads(sys.argv[2])
+sys.exit(not (len(a) == len(b) == 51 and max(abs(x - y) for x, y in zip(a, b)) <= 1e-9 * max(map(abs, b))))
+PY
+check "run.json states the law" python3 -c "import json, sys; a = json.load(open(sys.argv[1]))['adhesion']; \
+sys.exit(not (a['law'] == 'Maugis-Dugdale' and a['work'] == 0.05305 and a['range'] == 0.6366))" "$dir/res/run.json"
+check "--resume reads the adhesive history back" expect_exit 0 "0 solved, 1 read back" "$cli" run --resume "$dir/sticky.ini"
+scene "$dir/stronger.ini" "${sticky/0.05305/0.06}" ""
+check "another work is solved again" expect_exit 0 "made from other inputs" "$cli" run --resume "$dir/stronger.ini"
+scene "$dir/plain.ini" "" "" "0.1:2:16" plain
+"$cli" run "$dir/plain.ini" > /dev/null 2>&1
+scene "$dir/pulling.ini" "$sticky" "" "0.1:2:16" plain
+check "adhesion is not reused from a plain scene" expect_exit 0 "made from other inputs" \
+    "$cli" run --resume "$dir/pulling.ini"
+
+# The refusals, each naming the key at fault and what is expected.
+refuse() { # NAME ADHESION-LINES EXTRA-LINES PHRASE
+    scene "$dir/bad.ini" "$2" "$3"
+    check "$1" expect_exit 2 "$4" "$cli" run "$dir/bad.ini"
+}
+refuse "another law" "${sticky/maugis-dugdale/lennard-jones}" "" "law = 'lennard-jones': expected maugis-dugdale"
+refuse "work without range" '[adhesion]
+work = 0.1' "" "[adhesion] work and range go together"
+refuse "range without work" '[adhesion]
+range = 0.1' "" "[adhesion] work and range go together"
+refuse "a negative work" '[adhesion]
+work = -1
+range = 1' "" "work = '-1': expected a number in"
+refuse "panels under load control" "$sticky" "contact_panels = yes" "contact_panels, frames, table or distributions"
+refuse "periodic flat panels" "$sticky" "plots = flat_k" "plots = flat_k: its flat panels are solved in the periodic"
+refuse "log-axis figures" "$sticky" "plots = fig7" "plots = fig7 or sphere"
+refuse "a hardness" "$sticky" '[material]
+hardness = 1' "[adhesion] with [material] hardness"
+scene "$dir/bad.ini" "" ""
+check "negative steps without adhesion (indent's message)" expect_exit 2 "'-1:2:16' is not a range first:last:count (three numbers >= 0)" \
+    "$cli" run "$dir/bad.ini"
+sed 's/control = displacement/control = load/' "$dir/sticky.ini" > "$dir/bad.ini"
+check "load control" expect_exit 2 "[adhesion] takes [loading] control = displacement" "$cli" run "$dir/bad.ini"
+finish
