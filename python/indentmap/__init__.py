@@ -8,6 +8,7 @@ Errors are ``indentmap.Error`` subclasses; ``str(error)`` is the library's messa
 InvalidArgument and FormatError (also ValueError), FileError (OSError), OutOfMemory (MemoryError),
 NumericError (ArithmeticError), NotConverged, EdgeContact, Unsupported, Interrupted.
 """
+from . import _wait_policy  # first: libgomp reads its wait policy when _core loads it
 from . import _core
 from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, InvalidArgument, NotConverged,
                     NumericError, OutOfMemory, Unsupported)
