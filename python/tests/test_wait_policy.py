@@ -36,5 +36,5 @@ def test_an_active_policy_is_kept():
 
 def test_same_count_as_the_program():
     source = Path(os.environ.get("IM_SOURCE_DIR", Path(__file__).resolve().parents[2]))
-    header = (source / "src" / "cli" / "cli.h").read_text()
+    header = (source / "src" / "cli" / "cli.h").read_text(encoding="utf-8")
     assert re.search(r'#define CLI_SPIN_COUNT "(\d+)"', header).group(1) == _wait_policy.SPIN_COUNT
