@@ -80,7 +80,8 @@ class Indentation:
     (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
     window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
     solver's relative residual (default 1e-6, the standard quality preset, as ``indentmap indent`` and
-    scenes). ``device`` is the solver's engine: 'cpu' (default), 'gpu' (the Vulkan compute engine) or
+    scenes); ``quality`` names a preset instead, as ``indentmap indent --quality``: 'draft' (1e-5),
+    'standard' (1e-6) or 'publication' (1e-9), which a ``tol`` given overrides. ``device`` is the solver's engine: 'cpu' (default), 'gpu' (the Vulkan compute engine) or
     'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
     iteration and raises KeyboardInterrupt (the history keeps the last iterate as its next warm start).
 
@@ -105,8 +106,11 @@ class Indentation:
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
-                 tol=_core.default_tol, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
-                 hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0):
+                 tol=None, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
+                 hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
+                 quality=None):
+        if tol is None:
+            tol = _core.default_tol if quality is None else _core.quality_tolerance(str(quality))
         if punch is None:
             if not periodic:
                 raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")

@@ -568,7 +568,21 @@ done:
     return result;
 }
 
+/* quality_tolerance(name) -> tol (solver.h: im_quality_tolerance): draft, standard or publication */
+static PyObject *quality_tolerance(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *name;
+    double tol = 0.0;
+    if (!PyArg_ParseTuple(args, "s", &name))
+        return NULL;
+    int status = im_quality_tolerance(name, &tol);
+    return status == IM_OK ? PyFloat_FromDouble(tol) : py_raise_status(status);
+}
+
 PyMethodDef py_solver_methods[] = {
+    {"quality_tolerance", quality_tolerance, METH_VARARGS,
+     "quality_tolerance(name) -> the solver tolerance of a quality preset (draft, standard, publication)"},
     {"adhesion", adhesion, METH_VARARGS,
      "adhesion(approach, load, contact_patches) -> dict: pull-off force and approach, jumps, work lost"},
     {"unloading", unloading, METH_VARARGS,

@@ -1,0 +1,176 @@
+"""The one table of what the ``indentmap`` program's subcommands and options are in Python.
+
+Every subcommand (``"indent"``, ``"render view3d"``) and every long option (``"indent --hardness"``) the
+program's ``--help`` lists has one entry: ``Python(target, parameter)``, the function, class or method
+(a dotted name in the ``indentmap`` package) and, for an option, the keyword parameter of its signature
+that does the same; or ``Reason(text)``, why there is none. ``NOT_YET`` marks what Python cannot do yet
+(issue 29; docs/python.md, "What Python cannot do yet"). python/tests/test_cli_parity.py walks the
+program's help and fails for an option missing here, for a target or parameter that does not exist, and
+for an entry whose subcommand or option the program no longer has: a new option needs a decision here.
+"""
+from typing import NamedTuple, Optional
+
+
+class Python(NamedTuple):
+    """The Python counterpart: ``target`` (dotted, within ``indentmap``) and its keyword ``parameter``."""
+    target: str
+    parameter: Optional[str] = None
+    note: str = ""
+
+
+class Reason(NamedTuple):
+    """Why there is no Python counterpart."""
+    text: str
+
+
+NOT_YET = Reason("not yet in Python (issue 29)")
+OUT = Reason("Python returns arrays and objects instead of writing files: save them with numpy or im.write")
+CROP = Reason("slice the array: heights[y0:y0 + ny, x0:x0 + nx]")
+SMOOTH = Reason("a flat surface is np.zeros((m, n))")
+# The program picks its OpenGL backend (--backend, IM_RENDER_BACKEND); Python always opens auto: not yet.
+BACKEND = NOT_YET
+MPI = Reason("MPI runs are the program's (mpirun -n K indentmap mpi-indent); Python runs in one process")
+PRINT = Reason("Python returns arrays; print or format them with numpy")
+
+PARITY = {
+    # ---- surface: generate or measure ----
+    "surface": Python("generate"),
+    "surface --n": Python("generate", "n"),
+    "surface --m": Python("generate", "m"),
+    "surface --delta": Python("generate", "delta"),
+    "surface --unit": Python("write", "unit", "the unit is written with the file; no conversion on reading"),
+    "surface --height-unit": NOT_YET,
+    "surface --channel": Python("read", "channel"),
+    "surface --fill": Python("read", "fill"),
+    "surface --resample-square": Python("read", "resample_square"),
+    "surface --crop": CROP,
+    "surface --npy-order": Python("read", "npy_order"),
+    "surface --detrend": Python("prepare", "detrend"),
+    "surface --align": Python("prepare", "align"),
+    "surface --window": Python("statistics", "window"),
+    "surface --hurst": Python("generate", "hurst"),
+    "surface --slope": Python("generate", "slope"),
+    "surface --height-rms": Python("generate", "height_rms"),
+    "surface --slope-def": Python("generate", "slope_definition"),
+    "surface --lambda-s": Python("generate", "lambda_s"),
+    "surface --lambda-r": Python("generate", "lambda_r"),
+    "surface --lambda-0": Python("generate", "lambda_0"),
+    "surface --seed": Python("generate", "seed"),
+    "surface --out": Python("write"),
+    "surface --stats": Python("statistics", note="of read(path).heights"),
+    "surface --png": Python("height_map", note="Image.save writes the PNG"),
+    "surface --psd": Python("psd"),
+    "surface --histograms": Python("histogram"),
+    # ---- theory ----
+    "theory": Python("theory"),
+    "theory --alpha": Python("theory.area_ratio", "alpha"),
+    "theory --slope": Python("theory.area_ratio", "slope"),
+    "theory --rho": Python("theory.beta", "rho"),
+    "theory --gamma": Python("theory.gamma"),
+    "theory --format": PRINT,
+    "theory --normalisation": Python("theory.area_ratio", "normalisation"),
+    "theory --k": Python("theory.area_ratio", "k"),
+    "theory --punch": Python("theory.sphere_area", note="the sphere; the flat punch's ratio is not yet in Python"),
+    "theory --radius": Python("theory.sphere_area", "radius"),
+    "theory --load": Python("theory.sphere_area", "load"),
+    # ---- indent ----
+    "indent": Python("indent"),
+    "indent --smooth": SMOOTH,
+    "indent --n": SMOOTH,
+    "indent --m": SMOOTH,
+    "indent --delta": Python("Indentation", "delta"),
+    "indent --unit": NOT_YET,
+    "indent --height-unit": NOT_YET,
+    "indent --channel": Python("read", "channel"),
+    "indent --length-unit": NOT_YET,
+    "indent --e-star-unit": NOT_YET,
+    "indent --fill": Python("read", "fill"),
+    "indent --npy-order": Python("read", "npy_order"),
+    "indent --resample-square": Python("read", "resample_square"),
+    "indent --crop": CROP,
+    "indent --detrend": Python("prepare", "detrend"),
+    "indent --align": Python("prepare", "align"),
+    "indent --punch": Python("indent", "punch", "Cone(), Sphere(R), Flat(a) or a profile array"),
+    "indent --profile": Python("Indentation", "punch", "the profile as a numpy array (np.loadtxt or np.load)"),
+    "indent --alpha": Python("Cone", "alpha"),
+    "indent --radius": Python("Sphere", "radius", "Flat(radius) for the flat punch"),
+    "indent --x": Python("Indentation", "axis"),
+    "indent --y": Python("Indentation", "axis"),
+    "indent --approach": Python("indent", "approaches"),
+    "indent --load": Python("indent", "loads"),
+    "indent --periodic": Python("Indentation", "periodic"),
+    "indent --pressure": Python("indent", "pressures"),
+    "indent --slope-definition": Python("Indentation", "slope_definition"),
+    "indent --e-star": Python("Indentation", "e_star"),
+    "indent --hardness": Python("Indentation", "hardness"),
+    "indent --adhesion-work": Python("Indentation", "adhesion_work"),
+    "indent --adhesion-range": Python("Indentation", "adhesion_range"),
+    "indent --quality": Python("Indentation", "quality"),
+    "indent --tol": Python("Indentation", "tol"),
+    "indent --max-iter": Python("Indentation", "max_iterations"),
+    "indent --full": Python("Indentation", "crop", "crop=False solves on the whole surface"),
+    "indent --plain-pk": NOT_YET,
+    "indent --device": Python("Indentation", "device"),
+    "indent --measure": NOT_YET,
+    "indent --wisdom": NOT_YET,
+    "indent --no-wisdom": Reason("Python plans with FFTW_ESTIMATE and reads no wisdom file"),
+    "indent --out": OUT,
+    "indent --fields": Python("indent", "fields"),
+    "indent --distributions": NOT_YET,
+    # ---- render ----
+    "render": Python("Figure"),
+    "render contact": Python("contact_map"),
+    "render height": Python("height_map"),
+    "render animate": NOT_YET,
+    "render --out": Python("Figure.save", note="Image.save for one picture"),
+    "render --raw": Python("contact_map", note="contact_map and height_map give the data image"),
+    "render --colormap": Python("contact_map", "colormap"),
+    "render --vmin": Python("contact_map", "vmin"),
+    "render --vmax": Python("contact_map", "vmax"),
+    "render --log": Python("contact_map", "log"),
+    "render --scale": Python("contact_map", "scale"),
+    "render --circle": Python("contact_map", "circle_radius"),
+    "render --circle-x": Python("contact_map", "circle_centre"),
+    "render --circle-y": Python("contact_map", "circle_centre"),
+    "render --contact": Python("height_map", "contact"),
+    "render --label": Python("Figure", "labels"),
+    "render --title": Python("Figure", "titles"),
+    "render --titles": Python("Figure", "titles"),
+    "render --columns": Python("Figure", "columns"),
+    "render --quantity": Python("Figure", "colorbar_label"),
+    "render --dpi": Python("Figure", "dpi"),
+    "render --fps": NOT_YET,
+    "render --frames": NOT_YET,
+    "render --backend": BACKEND,
+    # ---- render view3d: the 3-D view ----
+    "render view3d": NOT_YET,
+    **{f"render view3d --{name}": NOT_YET for name in (
+        "out", "raw", "force", "displacement", "punch", "alpha", "radius", "x", "y", "punch-mode", "azimuth",
+        "elevation", "distance", "fov", "ortho", "ortho-height", "exaggeration", "width", "height", "samples",
+        "mesh-side", "colormap", "vmin", "vmax", "log", "title", "dpi")},
+    "render view3d --backend": BACKEND,
+    # ---- run: scenes ----
+    "run": Python("run_scene"),
+    "run --resume": Python("run_scene", "resume"),
+    "run --quiet": Python("run_scene", "quiet"),
+    "run --backend": BACKEND,
+    "run --wisdom": NOT_YET,
+    "run --no-wisdom": NOT_YET,
+    # ---- formats, info ----
+    "formats": NOT_YET,
+    "info": NOT_YET,
+    "info --backend": BACKEND,
+    # ---- mpi-indent (in builds with MPI) ----
+    "mpi-indent": MPI,
+    **{f"mpi-indent --{name}": MPI for name in (
+        "surface", "n", "m", "seed", "slope", "punch", "alpha", "radius", "approach", "load", "hardness", "tol",
+        "max-iter", "out", "map")},
+}
+
+# Subcommands only some builds have: their entries may name what this build's program lacks.
+OPTIONAL_COMMANDS = {"mpi-indent"}
+
+
+def not_yet():
+    """The entries Python cannot do yet, in the table's order."""
+    return [key for key, value in PARITY.items() if value == NOT_YET]
