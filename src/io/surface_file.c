@@ -5,6 +5,7 @@
 #include "io/payload.h"
 #include "io/gwyddion.h"
 #include "io/readers.h"
+#include "io/text_columns.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -22,7 +23,8 @@ static int has_extension(const char *path, const char *extension)
 enum file_kind { TEXT_OF_NUMBERS, OTHER_TEXT, UTF16_TEXT, GZIP, BINARY };
 
 /* What a file looks like from its first 64 KiB: text whose first data line (after '#' comments, blank
- * lines and key=value headers) starts with a number, as the text reader needs; other text (a vendor's
+ * lines and key=value headers) starts with a number or a column named x (a header row of x y z points),
+ * as the text reader needs; other text (a vendor's
  * header, column names), whose first data line goes into first_line; UTF-16 text (by its byte-order
  * mark, as spreadsheet programs save "Unicode text"); gzip-compressed (text, decompressed by the text
  * reader); or binary (a NUL byte). A pipe
@@ -48,7 +50,8 @@ static int look_at(const char *path, enum file_kind *kind, char *first_line, siz
         line += strspn(line, " \t\r\xef\xbb\xbf");
         if (*line == '\n' || *line == '#' || (isalpha((unsigned char)*line) && line[strcspn(line, "=\n")] == '='))
             continue;
-        if (*line && !strchr("0123456789+-.", *line) && strncasecmp(line, "nan", 3) != 0) {
+        if (*line && !strchr("0123456789+-.", *line) && strncasecmp(line, "nan", 3) != 0 &&
+            !text_columns_names_x_first(line)) {
             *kind = OTHER_TEXT;
             snprintf(first_line, size, "%.*s", (int)strcspn(line, "\r\n"), line);
         }
@@ -93,7 +96,7 @@ static int refuse_other_text(const char *path, const char *first_line)
     shown[used] = '\0';
     return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers (column names, or a "
                    "vendor's text export), and no Gwyddion file module reads it: expected a matrix of heights "
-                   "(a header row of column names is not read; remove it)", path, shown);
+                   "(a header row of column names is read above x y z points only: x, y and a height)", path, shown);
 }
 
 /* 1 (after saying why) when a channel is asked of a file indentmap's own readers read: they hold one. */
