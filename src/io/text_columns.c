@@ -133,29 +133,28 @@ int text_columns_parse(const char *path, long line_number, const char *line, tex
     return IM_OK;
 }
 
-int text_columns_check_shape(const char *path, const text_columns *columns, const text_header *header,
-                             long data_columns)
+int text_columns_check(const char *path, const text_columns *columns, const text_header *header, long data_columns)
 {
-    if (!columns->line || (data_columns == 3 && !text_header_states_a_matrix(header)))
+    if (!columns->line)
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s:%ld: a header row of x, y and height names above %s: expected x y z points, 3 "
-                   "values a row, under no header stating a matrix's grid or extent", path, columns->line,
-                   data_columns != 3 ? "rows of another number of values" : "a header stating a matrix");
-}
-
-int text_columns_stated_units(const char *path, const text_columns *columns, const text_header *header,
-                              surface_stated *stated)
-{
-    memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
+    if (data_columns != 3 || text_header_states_a_matrix(header))
+        return im_fail(IM_EFORMAT, "%s:%ld: a header row of x, y and height names above %s: expected x y z points, "
+                       "3 values a row, under no header stating a matrix's grid or extent", path, columns->line,
+                       data_columns != 3 ? "rows of another number of values" : "a header stating a matrix");
     if (header->value_unit[0] && columns->height[0] &&
         im_length_unit_metres(header->value_unit, NULL) != im_length_unit_metres(columns->height, NULL))
         return im_fail(IM_EFORMAT, "%s:%ld: header row states the height in '%s' but '# Value units:' in '%s': "
                        "expected one unit", path, columns->line, columns->height, header->value_unit);
+    return IM_OK;
+}
+
+void text_columns_stated_units(const text_columns *columns, const text_header *header, surface_stated *stated)
+{
+    memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
     if (!columns->lateral[0])
-        return IM_OK;
+        return;
     memcpy(stated->units.lateral, columns->lateral, sizeof stated->units.lateral);
     memcpy(stated->units.height, columns->height, sizeof stated->units.height);
     stated->lateral_key = "the header row's x and y unit";
     stated->height_key = "the header row's height unit";
-    return IM_OK;
 }

@@ -25,13 +25,12 @@ int text_columns_names_x_first(const char *line);
 int text_columns_parse(const char *path, long line_number, const char *line, text_columns *columns);
 
 /* Refuses a header row above anything but 3 columns of points (a matrix's row of names says nothing
- * of its spacing), and above a header stating a matrix's grid or extent. */
-int text_columns_check_shape(const char *path, const text_columns *columns, const text_header *header,
-                             long data_columns);
+ * of its spacing) or above a header stating a matrix's grid or extent, and a '# Value units:' line of
+ * header that the row's height unit contradicts. */
+int text_columns_check(const char *path, const text_columns *columns, const text_header *header, long data_columns);
 
-/* The units of x y z points under a header row (if any, columns->line > 0) and a '# Value units:' line
- * of header, into stated, whose keys then name the row; refuses a Value units the row contradicts. */
-int text_columns_stated_units(const char *path, const text_columns *columns, const text_header *header,
-                              surface_stated *stated);
+/* The units of x y z points under a header row (if any: columns->line > 0) and a '# Value units:' line
+ * of header, into stated, whose keys then name the row when it states them. */
+void text_columns_stated_units(const text_columns *columns, const text_header *header, surface_stated *stated);
 
 #endif

@@ -212,10 +212,12 @@ static int numbers_to_field(const char *path, const value_list *values, long col
     if (status != IM_OK)
         return status;
     if (names->line || (columns == 3 && !text_header_states_a_matrix(header))) {
-        status = text_columns_check_shape(path, names, header, columns);
+        status = text_columns_check(path, names, header, columns);
         if (status == IM_OK)
             status = text_points_grid(path, values->values, rows, out, stated);
-        return status == IM_OK ? text_columns_stated_units(path, names, header, stated) : status;
+        if (status == IM_OK)
+            text_columns_stated_units(names, header, stated);
+        return status;
     }
     if (columns < 3 || rows < 3)
         return refuse_line_scan(path, columns, rows);
