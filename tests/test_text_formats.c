@@ -191,6 +191,98 @@ static void unit_converts_a_stated_unit(void **state)
     im_field_free(f);
 }
 
+/* The points of xyz_points_on_a_grid_are_a_map, as rows under a header row (sep between values). */
+static void write_points(const char *name, const char *header_row, const char *sep)
+{
+    static const double xyz[9][3] = {{0.5, 0, 3}, {0, 0, 1}, {1, 0, 5}, {0, 0.5, 2}, {0.5, 0.5, 4}, {1, 0.5, 6},
+                                     {0, 1, 7}, {1, 1, 9}, {0.5, 1, 8}};
+    char text[1024];
+    size_t used = (size_t)snprintf(text, sizeof text, "%s", header_row);
+    for (int k = 0; k < 9; ++k)
+        used += (size_t)snprintf(text + used, sizeof text - used, "%g%s%g%s%g\n", xyz[k][0], sep, xyz[k][1], sep,
+                                 xyz[k][2]);
+    test_write_bytes(test_path(name), text, used);
+}
+
+/* The file read in metres, with its units given (lateral, height: "" none) as --unit and --height-unit. */
+static im_field *read_in_metres(const char *name, const char *lateral, const char *height)
+{
+    im_surface_read_options options = {.express_in = "m"};
+    snprintf(options.set.lateral, sizeof options.set.lateral, "%s", lateral);
+    snprintf(options.set.height, sizeof options.set.height, "%s", height);
+    im_field *f = NULL;
+    if (im_surface_read_with(test_path(name), &options, &f, NULL) != IM_OK)
+        fail_msg("%s: %s", name, im_last_error());
+    return f;
+}
+
+static void expect_same_field(const im_field *a, const im_field *b)
+{
+    assert_int_equal(a->nx, b->nx);
+    assert_int_equal(a->ny, b->ny);
+    assert_string_equal(a->unit, b->unit);
+    assert_close(a->delta, b->delta, 1e-12 * b->delta);
+    for (int k = 0; k < a->nx * a->ny; ++k)
+        assert_close(a->data[k], b->data[k], 1e-12 * fabs(b->data[k]));
+}
+
+/* A header row of column names (issue 25): its units are the units given as options, converted (the
+ * height alone when only its unit differs); the same numbers without it give the same metres. */
+static void header_rows_of_column_names_state_units(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name, *row, *sep, *lateral, *height;
+    } cases[] = {
+        {"names.txt", "x y z\n", " ", "", ""},
+        {"brackets.txt", "x[um] y[um] z[nm]\n", " ", "um", "nm"},
+        {"parens.tsv", "X (\u00b5m)\tY (\u00b5m)\tHeight (nm)\r\n", "\t", "um", "nm"},
+        {"quoted.csv", "\"x\",\"y\",\"height\"\n", ",", "", ""},
+        {"quoted_units.csv", "\"x [mm]\";\"y [mm]\";\"z [mm]\"\n", ";", "mm", "mm"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; ++c) {
+        write_points(cases[c].name, cases[c].row, cases[c].sep);
+        write_points("bare.txt", "", cases[c].sep);
+        im_field *headed = cases[c].lateral[0] ? read_in_metres(cases[c].name, "", "") : read_text_file(cases[c].name, NULL);
+        im_field *bare = cases[c].lateral[0] ? read_in_metres("bare.txt", cases[c].lateral, cases[c].height)
+                                             : read_text_file("bare.txt", NULL);
+        expect_same_field(headed, bare);
+        im_field_free(headed);
+        im_field_free(bare);
+    }
+    im_surface_read_info info;
+    write_points("z_in_nm.txt", "x[um] y[um] z[nm]\n", " ");
+    im_field *f = read_text_file("z_in_nm.txt", &info);
+    assert_string_equal(f->unit, "\u00b5m");
+    assert_close(f->delta, 0.5, 1e-15);        /* x and y as stated */
+    assert_close(f->data[8], 9e-3, 1e-17);     /* 9 nm in µm */
+    assert_close(info.height_factor, 1e-3, 1e-18);
+    im_field_free(f);
+}
+
+static void bad_header_rows_are_refused_by_line(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name, *text, *phrase;
+    } cases[] = {
+        {"names_abc.txt", "# points\nx y w\n0 0 1\n", ":2: header row names its columns 'x', 'y', 'w': expected three"},
+        {"names_order.txt", "y x z\n0 0 1\n", ":1: header row names its columns 'y', 'x', 'z'"},
+        {"names_furlong.txt", "x[furlong] y[furlong] z[nm]\n0 0 1\n", ":1: header row: column 'x' in 'furlong': "
+                                                                     "expected a length unit"},
+        {"names_partial.txt", "x y z[nm]\n0 0 1\n", ":1: header row states units for 1 of its 3 columns"},
+        {"names_xy.txt", "x[um] y[nm] z[nm]\n0 0 1\n", ":1: header row states x in 'um' but y in 'nm'"},
+        {"names_open.txt", "x[um y[um] z[nm]\n0 0 1\n", ":1: header row 'x[um y[um] z[nm]': column 1 is not a name"},
+        {"names_four.txt", "x y z w\n0 0 1 2\n", ":1: header row 'x y z w' of at least 4 column names"},
+        {"names_matrix.txt", "x y z\n1 2 3 4\n5 6 7 8\n9 10 11 12\n", ":1: a header row of x, y and height names "
+                                                                      "above rows of another number of values"},
+        {"names_value.txt", "# Value units: um\nx[um] y[um] z[nm]\n0 0 1\n", ":2: header row states the height in "
+                                                                              "'nm' but '# Value units:' in 'um'"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; ++c)
+        expect_text_refused(cases[c].name, cases[c].text, cases[c].phrase);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -202,6 +294,8 @@ int main(void)
         cmocka_unit_test(utf16_text_is_named),
         cmocka_unit_test(gzip_text_is_read_decompressed),
         cmocka_unit_test(unit_converts_a_stated_unit),
+        cmocka_unit_test(header_rows_of_column_names_state_units),
+        cmocka_unit_test(bad_header_rows_are_refused_by_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -5,6 +5,7 @@
 #include "io/payload.h"
 #include "io/gwyddion.h"
 #include "io/readers.h"
+#include "io/text_columns.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -22,7 +23,8 @@ static int has_extension(const char *path, const char *extension)
 enum file_kind { TEXT_OF_NUMBERS, OTHER_TEXT, UTF16_TEXT, GZIP, BINARY };
 
 /* What a file looks like from its first 64 KiB: text whose first data line (after '#' comments, blank
- * lines and key=value headers) starts with a number, as the text reader needs; other text (a vendor's
+ * lines and key=value headers) starts with a number or a column named x (a header row of x y z points),
+ * as the text reader needs; other text (a vendor's
  * header, column names), whose first data line goes into first_line; UTF-16 text (by its byte-order
  * mark, as spreadsheet programs save "Unicode text"); gzip-compressed (text, decompressed by the text
  * reader); or binary (a NUL byte). A pipe
@@ -48,7 +50,8 @@ static int look_at(const char *path, enum file_kind *kind, char *first_line, siz
         line += strspn(line, " \t\r\xef\xbb\xbf");
         if (*line == '\n' || *line == '#' || (isalpha((unsigned char)*line) && line[strcspn(line, "=\n")] == '='))
             continue;
-        if (*line && !strchr("0123456789+-.", *line) && strncasecmp(line, "nan", 3) != 0) {
+        if (*line && !strchr("0123456789+-.", *line) && strncasecmp(line, "nan", 3) != 0 &&
+            !text_columns_names_x_first(line)) {
             *kind = OTHER_TEXT;
             snprintf(first_line, size, "%.*s", (int)strcspn(line, "\r\n"), line);
         }
@@ -83,17 +86,26 @@ static int read_through_gwyddion(const char *path, const im_surface_read_options
 }
 
 /* Text that is not numbers and that no Gwyddion module reads: say what it is, not only that no module
- * reads it (a table with a header row of column names, a profiler's text export of a line scan). */
-static int refuse_other_text(const char *path, const char *first_line)
+ * reads it (a table with a header row of column names, a profiler's text export of a line scan), and
+ * the text reader's refusal, which names the line and what it expected there. */
+static int refuse_other_text(const char *path, const char *first_line, const im_surface_read_options *options)
 {
     char shown[48];
     size_t used = 0;
     for (size_t i = 0; first_line[i] && used + 1 < sizeof shown; ++i)
         shown[used++] = (unsigned char)first_line[i] < 0x20 ? '?' : first_line[i];
     shown[used] = '\0';
+    im_field *field = NULL;
+    int status = surface_read_format(path, text_read_raw, options, &field, NULL);
+    im_field_free(field);
+    if (status == IM_OK) /* cannot be: the text reader reads only lines that begin with a number or an x */
+        return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers", path, shown);
+    char text_refusal[512];
+    snprintf(text_refusal, sizeof text_refusal, "%s", im_last_error());
     return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers (column names, or a "
-                   "vendor's text export), and no Gwyddion file module reads it: expected a matrix of heights "
-                   "(a header row of column names is not read; remove it)", path, shown);
+                   "vendor's text export), and no Gwyddion file module reads it: expected a matrix of heights, or "
+                   "x y z points under a header row naming x, y and a height; as text: %s", path, shown,
+                   text_refusal);
 }
 
 /* 1 (after saying why) when a channel is asked of a file indentmap's own readers read: they hold one. */
@@ -146,7 +158,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     int status = read_through_gwyddion(path, options, out, info);
     if (status != IM_EFORMAT || !strstr(im_last_error(), GWYDDION_UNKNOWN_FORMAT))
         return status;
-    return kind == OTHER_TEXT ? refuse_other_text(path, first_line) : refuse_binary(path, options);
+    return kind == OTHER_TEXT ? refuse_other_text(path, first_line, options) : refuse_binary(path, options);
 }
 
 int im_surface_read(const char *path, im_field **out)

@@ -5,6 +5,7 @@
 #include "io/payload.h"
 #include "io/gzip_stream.h"
 #include "io/readers.h"
+#include "io/text_columns.h"
 #include "io/text_header.h"
 #include "io/text_points.h"
 
@@ -145,14 +146,16 @@ static char *skip_byte_order_mark(char *text, long line_number)
     return line_number == 1 && strncmp(text, "\xef\xbb\xbf", 3) == 0 ? text + 3 : text;
 }
 
-/* Adds one line's row of values (or header) to what was read so far. */
+/* Adds one line's row of values (or header, or header row of column names) to what was read so far. */
 static int take_line(char *text, const char *path, long line_number, value_list *values, long *columns, long *rows,
-                     text_header *header)
+                     text_header *header, text_columns *names)
 {
     if (text[0] == '#')
         return text_header_parse_comment(path, line_number, text, header);
     if (*rows == 0 && text_header_is_vision_line(text))
         return text_header_parse_vision(path, line_number, text, header);
+    if (*rows == 0 && !names->line && text_columns_is_named_row(text))
+        return text_columns_parse(path, line_number, text, names);
     long count;
     int status = parse_data_line(text, path, line_number, values, &count);
     if (status != IM_OK || count == 0)
@@ -169,13 +172,13 @@ static int take_line(char *text, const char *path, long line_number, value_list 
 }
 
 static int read_rows(FILE *stream, const char *path, value_list *values, long *columns, long *rows,
-                     text_header *header)
+                     text_header *header, text_columns *names)
 {
     im_text_line line = {0};
     int status = IM_OK, end = 0;
     while (status == IM_OK && (status = im_read_line(stream, path, MAX_LINE_BYTES, &line, &end)) == IM_OK && !end)
         status = take_line(skip_byte_order_mark(line.text, line.number), path, line.number, values, columns, rows,
-                           header);
+                           header, names);
     free(line.text);
     return status;
 }
@@ -200,16 +203,20 @@ static int matrix_field(const value_list *values, long columns, long rows, doubl
 
 /* The grid the numbers and their header describe: a matrix, or x y z points placed on their grid. */
 static int numbers_to_field(const char *path, const value_list *values, long columns, long rows,
-                            const text_header *header, im_field **out, surface_stated *stated)
+                            const text_header *header, const text_columns *names, im_field **out,
+                            surface_stated *stated)
 {
     if (rows == 0)
         return im_fail(IM_EFORMAT, "%s: no data rows", path);
     int status = text_header_check_shape(path, header, columns, rows);
     if (status != IM_OK)
         return status;
-    if (columns == 3 && !text_header_states_a_matrix(header)) {
-        status = text_points_grid(path, values->values, rows, out, stated);
-        memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
+    if (names->line || (columns == 3 && !text_header_states_a_matrix(header))) {
+        status = text_columns_check(path, names, header, columns);
+        if (status == IM_OK)
+            status = text_points_grid(path, values->values, rows, out, stated);
+        if (status == IM_OK)
+            text_columns_stated_units(names, header, stated);
         return status;
     }
     if (columns < 3 || rows < 3)
@@ -240,12 +247,13 @@ int text_read_raw(const char *path, im_field **out, surface_stated *stated)
     value_list values = {0};
     long columns = 0, rows = 0;
     text_header header = {0};
-    status = read_rows(stream, path, &values, &columns, &rows, &header);
+    text_columns names = {0};
+    status = read_rows(stream, path, &values, &columns, &rows, &header, &names);
     if (fclose(stream) != 0 && status == IM_OK && compressed) /* zlib found the stream cut or its CRC wrong */
         status = im_fail(IM_EFORMAT, "%s: the gzip stream ends early or is damaged", path);
     im_field *field = NULL;
     if (status == IM_OK)
-        status = numbers_to_field(path, &values, columns, rows, &header, &field, stated);
+        status = numbers_to_field(path, &values, columns, rows, &header, &names, &field, stated);
     if (status == IM_OK && compressed)
         note_decompressed(stated);
     if (status == IM_OK)
