@@ -99,12 +99,17 @@ static int create_temporary(im_atomic_file *file, const char *suffix)
         int status = temporary_name(file->path, suffix, file->temp_path, sizeof file->temp_path);
         if (status != IM_OK)
             return status;
-        int fd = open(file->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd < 0 && errno == EEXIST)
-            continue;
-        if (fd < 0)
-            return im_fail(IM_EIO, "%s: cannot open for writing: %s", file->path, strerror(errno));
+        /* listed before it exists: a fatal signal between the open and the listing would leave it */
         file->slot = claim_slot(file->temp_path);
+        int fd = open(file->temp_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0) {
+            int saved = errno;
+            release_slot(file->slot);
+            file->slot = -1;
+            if (saved == EEXIST)
+                continue;
+            return im_fail(IM_EIO, "%s: cannot open for writing: %s", file->path, strerror(saved));
+        }
         file->stream = fdopen(fd, "w+b");
         if (file->stream)
             return IM_OK;
