@@ -14,7 +14,7 @@ head -1 "$DIR/ok/history.csv" | grep -q '^step,approach,load,load_star,contact_p
 awk -F, 'NR == 4 { d = $4 / $5 - 1; if (d < -0.01 || d > 0.01) exit 1 }' "$DIR/ok/history.csv" || fail "N* != n_p at the last step"
 # Theory columns beside the history: Love's N(w) = 2 w^2 / (pi cot 80) and A_cone = N* (delta = 1) at
 # every step, full contact on a smooth surface, and the simulated N within 2% of Love's at w = 6.
-head -1 "$DIR/ok/history.csv" | grep -q ',convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter,yielding_patches,plastic_depth,plastic_work,residual_approach,tensile_force,adhesive_patches,repulsive_patches$' \
+head -1 "$DIR/ok/history.csv" | grep -q ',convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter,yielding_patches,plastic_depth,plastic_work,residual_approach,tensile_force,adhesive_patches,repulsive_patches,mean_gap$' \
     || fail "history.csv lacks the theory columns: $(head -1 "$DIR/ok/history.csv")"
 awk -F, 'NR > 1 { pi = atan2(0, -1); love = 2 * $2 * $2 / (pi * 0.17632698070846498);
          if ($13 / love - 1 > 1e-12 || love / $13 - 1 > 1e-12 || $14 != $4 || $15 != 1 || $16 != 1) exit 1 }
@@ -104,7 +104,7 @@ for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is no
 done
 # --periodic (issue 26): a generated (periodic) surface under a rigid flat at two mean pressures: load =
 # p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole
-# cell, no warning; --approach and a lone --pressure refused; a ramp (not periodic) warned about.
+# cell, no warning; a lone --pressure refused; a ramp (not periodic) warned about.
 "$BIN" surface --n 64 --slope 0.08 --seed 3 --out "$DIR/cell.npy" > /dev/null || fail "surface for --periodic"
 "$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.002,0.01 --fields --out "$DIR/per" > /dev/null 2> "$DIR/per.err" \
     || fail "--periodic exited $?: $(cat "$DIR/per.err")"
@@ -117,8 +117,20 @@ grep -q '"periodic": true' "$DIR/per/run.json" || fail "run.json does not say pe
 grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spectral"' "$DIR/per/run.json" \
     && grep -q '"k_error"' "$DIR/per/run.json" || fail "run.json has no k fit: $(cat "$DIR/per/run.json")"
 [ -s "$DIR/per/force_0002.npy" ] || fail "--periodic --fields wrote no force_0002.npy"
-"$BIN" indent "$DIR/cell.npy" --periodic --approach 1 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
-[ $? -eq 2 ] && grep -q "periodic takes --load LIST or --pressure LIST" "$DIR/per_w.err" || fail "--periodic --approach: $(cat "$DIR/per_w.err")"
+# --mean-gap (mean u = 0: the mean gap is mean g0 - w): at the mean gaps the pressures left, the same loads
+# to the solver's tolerance, the mean gaps reported as imposed to that tolerance (1e-6: a contact patch's gap is
+# 0 to tol w); without --periodic, or at 0, refused
+gaps=$(awk -F, 'NR > 1 { printf "%s%s", (NR > 2 ? "," : ""), $28 }' "$DIR/per/history.csv")
+"$BIN" indent "$DIR/cell.npy" --periodic --mean-gap "$gaps" --out "$DIR/per_g" > /dev/null 2> "$DIR/per_g.err" \
+    || fail "--periodic --mean-gap $gaps exited $?: $(cat "$DIR/per_g.err")"
+paste -d, "$DIR/per/history.csv" "$DIR/per_g/history.csv" | awk -F, 'NR > 1 {
+    d = $3 / $31 - 1; e = $28 / $56 - 1; if (d > 1e-5 || -d > 1e-5 || e > 1e-6 || -e > 1e-6) exit 1 } END { if (NR != 3) exit 1 }' \
+    || fail "--mean-gap $gaps: $(cat "$DIR/per_g/history.csv")"
+grep -q '"control": "mean_gap"' "$DIR/per_g/run.json" || fail "run.json does not say mean_gap"
+"$BIN" indent "$DIR/cell.npy" --mean-gap 0.5 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
+[ $? -eq 2 ] && grep -q "needs --periodic" "$DIR/per_w.err" || fail "--mean-gap without --periodic: $(cat "$DIR/per_w.err")"
+"$BIN" indent "$DIR/cell.npy" --periodic --mean-gap 0 --out "$DIR/per_z" > /dev/null 2> "$DIR/per_z.err"
+[ $? -ne 0 ] && grep -q "mean gap = 0: expected > 0" "$DIR/per_z.err" || fail "--mean-gap 0: $(cat "$DIR/per_z.err")"
 "$BIN" indent "$DIR/cell.npy" --periodic --alpha 70 --pressure 0.01 --out "$DIR/per_a" > /dev/null 2> "$DIR/per_a.err"
 [ $? -eq 2 ] && grep -q "apply to a punch" "$DIR/per_a.err" || fail "--periodic --alpha without --punch: $(cat "$DIR/per_a.err")"
 "$BIN" indent "$DIR/cell.npy" --pressure 0.01 --out "$DIR/per_p" > /dev/null 2> "$DIR/per_p.err"

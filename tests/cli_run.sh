@@ -67,7 +67,7 @@ check "history reaches the last N*" awk -F, 'END { exit !($4 > 599.99 && $4 < 60
 # Theory beside the history: eq. (12) at rho_c = cot(alpha) / h'rms in every row (the load does not
 # enter it), and A_cone = N* delta^2. The columns are indent's history.csv's (one schema; cli_front_ends.sh).
 check "history has the theory columns" bash -c "sed -n 2p '$dir/out/histories/member_01_6.csv' | \
-  grep -qx 'step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,max_pressure,iterations,residual,seconds,convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter,yielding_patches,plastic_depth,plastic_work,residual_approach,tensile_force,adhesive_patches,repulsive_patches'"
+  grep -qx 'step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,max_pressure,iterations,residual,seconds,convolutions,load_smooth,area_smooth,area_ratio_constant,area_ratio_gamma,stiffness,e_star_sneddon,patches,patch_perimeter,yielding_patches,plastic_depth,plastic_work,residual_approach,tensile_force,adhesive_patches,repulsive_patches,mean_gap'"
 eq12=$("$cli" theory --alpha 80 --slope 0.08 --format csv | awk -F, 'NR == 2 { print $4 }')
 check "history's eq. (12) column" awk -F, -v e="$eq12" 'NR > 2 { d = $16 - e; if (d < -1e-9 || d > 1e-9 || $14 != $4) bad = 1 }
   END { exit bad }' "$dir/out/histories/member_01_6.csv"

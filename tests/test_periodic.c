@@ -260,6 +260,41 @@ static void preconditioned_cascade_is_plain_pk(void **state)
     accelerated_equals_plain(255, 0.01);
 }
 
+/* Mean-gap control (displacement control with mean u = 0) and load control describe one state: a cell
+ * solved at the mean gap that load control reports for p_m gives p_m back, with the same contact set,
+ * cold and warm, accelerated or plain, even and odd sides. */
+static void mean_gap_is_load_control(int n, double mean_pressure, int accelerated)
+{
+    im_field *s = test_rough_surface(n, 0.08, 4);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-10;
+    o.cascade = o.precondition = accelerated;
+    im_flat_contact *by_load = NULL, *by_gap = NULL;
+    assert_int_equal(im_flat_contact_create(s, &o, &by_load), IM_OK);
+    assert_int_equal(im_flat_contact_create(s, &o, &by_gap), IM_OK);
+    im_flat_result rl = solve(by_load, mean_pressure), rg;
+    if (im_flat_contact_solve_gap(by_gap, rl.mean_gap, &rg) != IM_OK)
+        fail_msg("%d^2: mean gap %g: %s", n, rl.mean_gap, im_last_error());
+    if (test_relative_difference(rg.mean_pressure, mean_pressure) > 1e-9)
+        fail_msg("%d^2: p_m %.17g at the mean gap of p_m = %.17g", n, rg.mean_pressure, mean_pressure);
+    const double *pl = im_flat_contact_pressure(by_load), *pg = im_flat_contact_pressure(by_gap);
+    for (size_t i = 0; i < im_field_count(s); ++i)
+        if ((pl[i] > 0) != (pg[i] > 0))
+            fail_msg("%d^2: patch %zu in contact under one control only", n, i);
+    im_flat_contact_free(by_load);
+    im_flat_contact_free(by_gap);
+    im_field_free(s);
+}
+
+static void mean_gap_control(void **state)
+{
+    (void)state;
+    mean_gap_is_load_control(256, 0.004, 1);
+    mean_gap_is_load_control(256, 0.004, 0);
+    mean_gap_is_load_control(255, 0.01, 1);
+    mean_gap_is_load_control(256, 0.04, 1);
+}
+
 static void refusals(void **state)
 {
     (void)state;
@@ -292,6 +327,7 @@ int main(void)
         cmocka_unit_test(wavy_2d_is_jghs_asymptotes),
         cmocka_unit_test(wavy_1d_converges),
         cmocka_unit_test(preconditioned_cascade_is_plain_pk),
+        cmocka_unit_test(mean_gap_control),
         cmocka_unit_test(refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,7 @@
 /* Periodic contact as an indentation (solver.h, "Periodic mode"; options.periodic in
  * im_indentation_create): a rigid flat on a rough cell is im_flat_contact bit for bit; a cone repeated
  * with a cell much larger than its contact carries the half-space cone's contact; the hardness's
- * memory holds in a periodic cell; displacement control is refused. */
+ * memory holds in a periodic cell; mean-gap and displacement control reach load control's states. */
 #include "support.h"
 
 #include "indentmap/solver.h"
@@ -140,17 +140,122 @@ static void capped_spike_is_not_an_answer(void **state)
     im_field_free(s);
 }
 
-static void displacement_control_is_refused(void **state)
+static im_indentation *mean_gap_run(const im_field *surface, double largest, double hardness)
+{
+    im_indenter flat = im_indenter_flat(2.0 * surface->nx);
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.tol = 1e-10;
+    o.hardness = hardness;
+    im_indentation *run = NULL;
+    if (im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, largest, &o, &run) != IM_OK)
+        fail_msg("mean-gap indentation: %s", im_last_error());
+    return run;
+}
+
+/* Mean-gap control and load control describe one state: a rough cell pressed to the mean gaps that
+ * load control reports carries those loads on the same patches; the mean gap reported is the one
+ * imposed, and an approach imposed (displacement control) is the same state again. */
+static void mean_gap_is_load_control(void **state)
+{
+    (void)state;
+    enum { N = 128 };
+    im_field *s = test_rough_surface(N, 0.08, 2);
+    im_indenter flat = im_indenter_flat(2.0 * N);
+    const double pressures[] = {0.002, 0.01, 0.004}, cell = (double)N * N;
+    im_indentation *by_load = periodic_run(s, &flat, 0.01 * cell, 0), *by_gap = mean_gap_run(s, 10.0, 0);
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.tol = 1e-10;
+    im_indentation *by_approach = NULL;
+    assert_int_equal(im_indentation_create(s, &flat, IM_CONTROL_DISPLACEMENT, 10.0, &o, &by_approach), IM_OK);
+    for (int k = 0; k < 3; ++k) {
+        im_step_result l = step(by_load, pressures[k] * cell), g = step(by_gap, l.mean_gap),
+                       w = step(by_approach, l.approach);
+        if (test_relative_difference(g.load, l.load) > 1e-8 || test_relative_difference(w.load, l.load) > 1e-8)
+            fail_msg("p_m %g: load %.17g under load control, %.17g at its mean gap, %.17g at its approach",
+                     pressures[k], l.load, g.load, w.load);
+        assert_int_equal(g.contact_patches, l.contact_patches);
+        assert_int_equal(w.contact_patches, l.contact_patches);
+        if (fabs(g.mean_gap - l.mean_gap) > 1e-9 * l.mean_gap)
+            fail_msg("mean gap %.17g imposed, %.17g reported", l.mean_gap, g.mean_gap);
+    }
+    im_indentation_free(by_load);
+    im_indentation_free(by_gap);
+    im_indentation_free(by_approach);
+    im_field_free(s);
+}
+
+/* With a hardness the yielded patches' overlap is plastic flattening, not gap: the approach is searched
+ * until the mean of max(g, 0) is the one imposed. Load control at the loads it found reaches the same
+ * states (the mean gaps again); unloading is elastic, reloading retraces it. */
+static void mean_gap_with_memory(void **state)
+{
+    (void)state;
+    enum { N = 64 };
+    im_field *s = test_rough_surface(N, 0.08, 4);
+    im_indenter flat = im_indenter_flat(2.0 * N);
+    const double cell = (double)N * N, hardness = 0.05, gaps[] = {0.4, 0.2, 0.4, 0.2};
+    im_indentation *by_gap = mean_gap_run(s, 1.0, hardness), *by_load = periodic_run(s, &flat, 0.5 * cell, hardness);
+    im_step_result g[4];
+    for (int k = 0; k < 4; ++k) {
+        g[k] = step(by_gap, gaps[k]);
+        if (fabs(g[k].mean_gap - gaps[k]) > 1e-10 * gaps[k])
+            fail_msg("step %d: mean gap %.17g imposed, %.17g reached", k + 1, gaps[k], g[k].mean_gap);
+    }
+    assert_true(g[0].yielding_patches > 0 && g[1].plastic_work > g[0].plastic_work);
+    assert_true(g[2].plastic_work == g[1].plastic_work && g[2].yielding_patches == 0);
+    if (test_relative_difference(g[3].load, g[1].load) > 1e-8)
+        fail_msg("reload to the smaller gap: N = %.12g, loading gave %.12g", g[3].load, g[1].load);
+    for (int k = 0; k < 2; ++k) {
+        im_step_result l = step(by_load, g[k].load);
+        if (fabs(l.mean_gap - gaps[k]) > 1e-7 * gaps[k])
+            fail_msg("load %.12g: mean gap %.12g under load control, %.12g imposed", g[k].load, l.mean_gap, gaps[k]);
+    }
+    im_indentation_free(by_gap);
+    im_indentation_free(by_load);
+    im_field_free(s);
+}
+
+/* A mean gap above the undeformed cell's: the flat does not reach the surface. */
+static void mean_gap_clear_of_the_surface(void **state)
 {
     (void)state;
     im_field *s = test_rough_surface(32, 0.08, 1);
-    im_indenter flat = im_indenter_flat(64);
+    im_indentation *run = mean_gap_run(s, 100.0, 0);
+    im_step_result r = step(run, 100.0);
+    assert_true(r.load == 0 && r.contact_patches == 0 && r.approach < 0);
+    assert_true(fabs(r.mean_gap - 100.0) < 1e-12 * 100.0);
+    im_indentation_free(run);
+    im_field_free(s);
+}
+
+static void mean_gap_refusals(void **state)
+{
+    (void)state;
+    im_field *s = test_rough_surface(32, 0.08, 1);
+    im_indenter flat = im_indenter_flat(64), cone = im_indenter_cone(80.0);
     im_solver_options o = im_solver_options_default();
-    o.periodic = 1;
     im_indentation *run = NULL;
-    assert_int_equal(im_indentation_create(s, &flat, IM_CONTROL_DISPLACEMENT, 1.0, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "expected load control"));
+    assert_int_equal(im_indentation_create(s, &cone, IM_CONTROL_MEAN_GAP, 1.0, &o, &run), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "expected a periodic cell"));
     assert_null(run);
+    o.periodic = 1;
+    o.adhesion_work = 0.01;
+    o.adhesion_range = 0.1;
+    assert_int_equal(im_indentation_create(s, &flat, IM_CONTROL_DISPLACEMENT, 1.0, &o, &run), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "no adhesion"));
+    run = mean_gap_run(s, 1.0, 0);
+    im_step_result r;
+    assert_int_equal(im_indentation_step(run, 0.0, &r), IM_EINVAL);
+    assert_int_equal(im_indentation_step(run, 1.5, &r), IM_EINVAL);
+    im_indentation_free(run);
+    /* the half-space has no mean gap */
+    o = im_solver_options_default();
+    assert_int_equal(im_indentation_create(s, &cone, IM_CONTROL_DISPLACEMENT, 1.0, &o, &run), IM_OK);
+    r = step(run, 0.5);
+    assert_true(isnan(r.mean_gap));
+    im_indentation_free(run);
     im_field_free(s);
 }
 
@@ -161,7 +266,10 @@ int main(void)
         cmocka_unit_test(repeated_cone_is_the_half_spaces),
         cmocka_unit_test(periodic_memory),
         cmocka_unit_test(capped_spike_is_not_an_answer),
-        cmocka_unit_test(displacement_control_is_refused),
+        cmocka_unit_test(mean_gap_is_load_control),
+        cmocka_unit_test(mean_gap_with_memory),
+        cmocka_unit_test(mean_gap_clear_of_the_surface),
+        cmocka_unit_test(mean_gap_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

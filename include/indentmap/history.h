@@ -9,7 +9,8 @@
  * beside them (load_smooth, area_smooth, area_ratio_constant, area_ratio_gamma; theory.h), what an
  * experiment measures (stiffness, e_star_sneddon, patches, patch_perimeter; measure.h) and the plastic
  * memory (yielding_patches, plastic_depth, plastic_work, residual_approach; solver.h) and adhesion
- * (tensile_force, adhesive_patches, repulsive_patches; solver.h, 0 without). Numbers are
+ * (tensile_force, adhesive_patches, repulsive_patches; solver.h, 0 without) and a periodic cell's mean
+ * gap (mean_gap; solver.h, NaN on the half-space). Numbers are
  * written with 17 significant digits (residual and seconds with 7), so a history read back is the one
  * written.
  *

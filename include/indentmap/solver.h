@@ -111,9 +111,10 @@
  * with the wrapped (signed) mode numbers, and the mean (q = 0) mode by 0, which fixes the free
  * rigid displacement of a periodic half-space so that mean u = 0. Its real-space value at the
  * origin tends to Love's 4 delta asinh(1) / (pi E*) on fine grids (the Brillouin zone's mean of
- * 2 / (E* |q|)). Only load control is meaningful (the approach is defined up to that constant):
- * displacement control is refused with IM_EINVAL; the reported approach is the mean of u + g0
- * over the contact. */
+ * 2 / (E* |q|)). Under load control the reported approach is the mean of u + g0 over the contact.
+ * With mean u = 0 an approach w also fixes the mean gap over the cell, mean g0 - w, whatever the
+ * pressure: displacement control is mean-gap control (Persson's u-bar). Without a hardness it needs
+ * w < mean g0 (IM_EINVAL otherwise): a mean gap <= 0 is full contact at an infinite pressure. */
 /* ---- Adhesion (the Maugis-Dugdale law) ----
  * With options.adhesion_work = w > 0 and adhesion_range = delta_c the surfaces attract: a constant
  * tensile stress sigma0 = w / delta_c acts on every patch whose gap is at most delta_c, and on the
@@ -278,7 +279,9 @@ int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_op
                                 im_solver_plan **plan);
 int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement);
 
-enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1 };
+/* What a solve or a step imposes: the approach w, the load N, or (im_indentation on a periodic cell
+ * only) the mean gap over the cell, the mean of max(g, 0): Persson's u-bar (see "Periodic mode"). */
+enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1, IM_CONTROL_MEAN_GAP = 2 };
 
 typedef struct im_solve_result {
     double approach;        /* w (imposed, or found under load control) */
@@ -311,7 +314,9 @@ typedef struct im_flat_result {
     long contact_patches;      /* n_p */
     double contact_pressure;   /* mean pressure over the contact, p_m / (A / A0); 0 without contact */
     double max_pressure;
-    double approach;           /* mean of u + g0 over the contact, with mean u = 0 */
+    double approach;           /* mean of u + g0 over the contact, with mean u = 0 (the imposed one
+                                  under mean-gap control) */
+    double mean_gap;           /* the mean gap over the cell, mean g0 - approach (mean u = 0) */
     int iterations;
     double residual;
 } im_flat_result;
@@ -328,6 +333,14 @@ void im_flat_contact_free(im_flat_contact *run);
 /* Solves the contact at nominal mean pressure p_m >= 0 (units of E*; load N = p_m nx ny delta^2),
  * warm-started from the last solve. Errors as im_solver_solve's. */
 int im_flat_contact_solve(im_flat_contact *run, double mean_pressure, im_flat_result *out);
+
+/* Solves the contact at the mean gap g_m (units of delta) over the cell: the mean separation of the
+ * flat and the deformed surface (Persson's u-bar), imposed as the approach w = mean g0 - g_m
+ * (displacement control; mean u = 0), warm-started from the last solve. out->mean_pressure is the
+ * load's. 0 < g_m <= mean g0 (at mean g0 the flat touches the highest patch; as g_m falls to 0 the
+ * contact fills the cell and the mean pressure grows without bound): IM_EINVAL outside it. Errors
+ * otherwise as im_solver_solve's. */
+int im_flat_contact_solve_gap(im_flat_contact *run, double mean_gap, im_flat_result *out);
 
 /* The pressure field of the last solve (nx * ny values, field.h layout; owned by run). */
 const double *im_flat_contact_pressure(const im_flat_contact *run);
@@ -357,6 +370,9 @@ typedef struct im_step_result {
     double tensile_force;   /* delta^2 times the sum of -p over the patches under tension (>= 0) */
     long adhesive_patches;  /* patches whose net pressure is tensile (p < 0) */
     long repulsive_patches; /* patches whose net pressure is compressive (p > 0) */
+    /* A periodic cell (NaN on the half-space): */
+    double mean_gap;        /* the mean of max(g, 0) over the cell (Persson's u-bar; mean u = 0): a yielded
+                               patch's overlap is its plastic flattening and counts 0 */
 } im_step_result;
 
 /* The length l = pi E* w / (8 sigma0^2) = pi E* delta_c^2 / (8 w) (units of delta_c) of the Dugdale zone

@@ -100,6 +100,7 @@ PARITY = {
     "indent --load": Python("indent", "loads"),
     "indent --periodic": Python("Indentation", "periodic"),
     "indent --pressure": Python("indent", "pressures"),
+    "indent --mean-gap": Python("indent", "mean_gaps"),
     "indent --slope-definition": Python("Indentation", "slope_definition"),
     "indent --e-star": Python("Indentation", "e_star"),
     "indent --hardness": Python("Indentation", "hardness"),

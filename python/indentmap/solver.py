@@ -76,8 +76,9 @@ class Indentation:
     other 2-D array (at least 3 x 3) is a height field z[y, x] on the surface's grid (spacing ``delta``)
     whose centre element [ny // 2, nx // 2] lies on the axis. Lengths in the units of ``delta``.
 
-    ``control`` is 'displacement' (targets are approaches w, counted from first touch) or 'load'
-    (targets are loads N); ``largest`` is the largest target the history will impose (it fixes the solve
+    ``control`` is 'displacement' (targets are approaches w, counted from first touch), 'load'
+    (targets are loads N) or, with ``periodic=True``, 'mean_gap' (targets are mean gaps over the cell, the
+    mean of max(g, 0): Persson's u-bar, each > 0); ``largest`` is the largest target the history will impose (it fixes the solve
     window). The surface is copied into the plan: the array may change afterwards. ``tol`` is the
     solver's relative residual (default 1e-6, the standard quality preset, as ``indentmap indent`` and
     scenes); ``quality`` names a preset instead, as ``indentmap indent --quality``: 'draft' (1e-5),
@@ -91,8 +92,8 @@ class Indentation:
     Targets may go up and down; ``plastic()`` gives the plastic depth so far.
 
     ``periodic=True``: the heights are one period of a periodic surface (nominally flat contact, as
-    ``indentmap indent --periodic``): the periodic half-space over the whole cell, load control only, the
-    punch repeated with the cell, or a rigid flat when ``punch`` is None; ``area_ratio`` is then A / A0
+    ``indentmap indent --periodic``): the periodic half-space over the whole cell (mean u = 0), under any
+    control, the punch repeated with the cell, or a rigid flat when ``punch`` is None; ``area_ratio`` is then A / A0
     and ``load_star`` NaN.
 
     ``adhesion_work`` w and ``adhesion_range`` delta_c (both > 0) make the surfaces attract (the
@@ -126,7 +127,7 @@ class Indentation:
                                       adhesion_work=float(adhesion_work), adhesion_range=float(adhesion_range))
 
     def step(self, target):
-        """Solves the next step at approach or load ``target``; returns its results as a dict."""
+        """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict."""
         return self._run.step(float(target))
 
     def fields(self):
@@ -171,27 +172,33 @@ class Plan:
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
 
 
-def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, fields=False, **options):
-    """Solves a history of approaches (displacement control) or loads (load control).
+def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, fields=False,
+           **options):
+    """Solves a history of approaches (displacement control), loads (load control) or mean gaps.
 
     Returns a structured array with one row per step and history.csv's columns (``read_history`` reads a
     history.csv into the same array); with ``fields=True``,
     also a list of dicts {'force', 'gap', 'displacement'} per step ('plastic' too with a hardness).
     ``options`` go to Indentation. Targets may go up and down (``np.r_[2:8:4j, 7:0:8j]`` loads to 8 and
     unloads): ``unloading(history, punch)`` then gives the indentation analysis. ``pressures`` (with
-    ``periodic=True``): mean pressures over the cell instead of loads, as ``indent --pressure``.
+    ``periodic=True``): mean pressures over the cell instead of loads, as ``indent --pressure``;
+    ``mean_gaps`` (with ``periodic=True``): mean gaps over the cell, as ``indent --mean-gap``.
     """
-    if sum(t is not None for t in (approaches, loads, pressures)) != 1:
-        raise ValueError("give one of approaches, loads and pressures")
+    if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
+        raise ValueError("give one of approaches, loads, pressures and mean_gaps")
+    if mean_gaps is not None and not options.get("periodic", False):
+        raise ValueError("mean_gaps (mean gaps over the cell) need periodic=True")
     if pressures is not None:
         if not options.get("periodic", False):
             raise ValueError("pressures (mean pressures over the cell) need periodic=True; give loads otherwise")
         ny, nx = np.shape(heights)
         loads = np.asarray(pressures, dtype=float) * (nx * ny * options.get("delta", 1.0) ** 2)
-    targets = np.asarray(approaches if loads is None else loads, dtype=float).ravel()
+    control, targets = ("load", loads) if loads is not None else ("mean_gap", mean_gaps) if mean_gaps is not None \
+        else ("displacement", approaches)
+    targets = np.asarray(targets, dtype=float).ravel()
     if targets.size == 0:
         raise ValueError("no steps")
-    run = Indentation(heights, punch, control="displacement" if loads is None else "load",
+    run = Indentation(heights, punch, control=control,
                       largest=float(np.abs(targets).max()), **options)
     per_step = []
     for target in targets:

@@ -93,8 +93,10 @@ static int control_from_name(const char *name, enum im_control *control)
         *control = IM_CONTROL_DISPLACEMENT;
     else if (strcmp(name, "load") == 0)
         *control = IM_CONTROL_LOAD;
+    else if (strcmp(name, "mean_gap") == 0)
+        *control = IM_CONTROL_MEAN_GAP;
     else {
-        PyErr_Format(PyExc_ValueError, "control '%s': expected 'displacement' or 'load'", name);
+        PyErr_Format(PyExc_ValueError, "control '%s': expected 'displacement', 'load' or 'mean_gap'", name);
         return -1;
     }
     return 0;
@@ -198,7 +200,7 @@ static int check_ready(py_indentation *self)
 
 static PyObject *step_dict(const im_step_result *r)
 {
-    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d,s:d,s:l,s:l}", "approach", r->approach,
+    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d,s:d,s:l,s:l,s:d}", "approach", r->approach,
                          "load", r->load, "load_star", r->load_star, "contact_patches", r->contact_patches,
                          "area_ratio", r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure",
                          r->max_pressure, "iterations", r->iterations, "coarse_iterations", r->coarse_iterations,
@@ -206,7 +208,7 @@ static PyObject *step_dict(const im_step_result *r)
                          "yielding_patches", r->yielding_patches, "plastic_depth", r->plastic_depth,
                          "plastic_work", r->plastic_work, "residual_approach", r->residual_approach,
                          "tensile_force", r->tensile_force, "adhesive_patches", r->adhesive_patches,
-                         "repulsive_patches", r->repulsive_patches);
+                         "repulsive_patches", r->repulsive_patches, "mean_gap", r->mean_gap);
 }
 
 /* The solved step as the next row of the history, measured as `indent` measures it (history.h). */

@@ -135,6 +135,23 @@ def test_periodic_bit_for_bit(cli, rough64, tmp_path):
     assert abs(fit["k"] - record["k"]) <= 1e-12 * record["k"] and abs(fit["k_error"] - record["k_error"]) <= 1e-9
 
 
+def test_periodic_mean_gap_bit_for_bit(cli, rough64, tmp_path):
+    """indent --periodic --mean-gap and indent(..., periodic=True, mean_gaps=...): the same rows, with a
+    hardness (the searched approach) and unloading; the mean gap reached is the one imposed."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--hardness", "0.05", "--mean-gap", "0.4,0.2,0.4",
+            "--out", tmp_path / "out")
+    history = im.indent(rough64, None, mean_gaps=[0.4, 0.2, 0.4], periodic=True, hardness=0.05)
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    np.testing.assert_allclose(history["mean_gap"], [0.4, 0.2, 0.4], rtol=1e-6)
+    assert history["yielding_patches"][1] > 0 and history["plastic_work"][2] == history["plastic_work"][1]
+    with pytest.raises(ValueError, match="periodic=True"):
+        im.indent(rough64, im.Cone(), mean_gaps=[0.4])
+
+
 def test_synthesis_and_statistics_match_the_cli(cli, tmp_path):
     run_cli(cli, "surface", "--n", "48", "--hurst", "0.7", "--slope", "0.05", "--seed", "9", "--out",
             tmp_path / "s.npy")

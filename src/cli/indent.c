@@ -70,12 +70,15 @@ static void usage(FILE *stream)
             "                      inclusive); at most 4096 steps, as a scene's [loading] steps\n"
             "  --load LIST         imposed loads N instead (load control), same syntax\n"
             "  --periodic          SURFACE is one period of a periodic surface (nominally flat contact):\n"
-            "                      the periodic half-space, under load control only; the punch is a\n"
+            "                      the periodic half-space (mean u = 0), under --load, --pressure,\n"
+            "                      --mean-gap or --approach; the punch is a\n"
             "                      rigid flat on the whole cell unless --punch gives one, which then\n"
             "                      repeats with the cell. area_ratio is A / A0; load_star and the\n"
             "                      theory columns are nan (docs/solver.md, \"Periodic indentation\")\n"
             "  --pressure LIST     with --periodic: mean pressures p_m (units of E*) instead of --load\n"
             "                      (N = p_m times the cell's area), same syntax\n"
+            "  --mean-gap LIST     with --periodic: mean gaps over the cell (Persson's u-bar, the mean of\n"
+            "                      max(g, 0); length unit of SURFACE), each > 0, same syntax\n"
             "  --slope-definition D  the h'rms of the theory columns and the k fit: spectral (the\n"
             "                      band-limited interpolant's) or fd (forward differences). Default: spectral\n"
             "                      for a surface known to be periodic (generated, --smooth, --periodic), fd\n"
@@ -163,7 +166,7 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
-       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER };
+       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER, OPT_MEAN_GAP };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -187,6 +190,7 @@ static const struct option LONG_OPTIONS[] = {
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
     {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE},
     {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE},
+    {"mean-gap", required_argument, 0, OPT_MEAN_GAP},
     {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION},
     {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
     {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE}, {0, 0, 0, 0}};
@@ -200,12 +204,27 @@ static int parse_punch(const char *text, enum im_punch_kind *kind)
     return -1;
 }
 
-/* --approach, --load or --pressure, once all options are read: a step list (front.h: steps_parse, as a
- * scene's [loading] steps, with its messages); approaches may be negative with adhesion. */
+/* The option that gave the targets. */
+static const char *target_option(const indent_options *o)
+{
+    if (o->control == IM_CONTROL_MEAN_GAP)
+        return "--mean-gap";
+    return o->control == IM_CONTROL_DISPLACEMENT ? "--approach" : o->pressures ? "--pressure" : "--load";
+}
+
+/* What the targets are, in run.json and messages. */
+static const char *target_name(enum im_control control)
+{
+    return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean_gap" : "approach";
+}
+
+/* --approach, --load, --pressure or --mean-gap, once all options are read: a step list (front.h:
+ * steps_parse, as a scene's [loading] steps, with its messages); approaches may be negative with
+ * adhesion. */
 static int parse_targets(indent_options *o)
 {
     char error[512];
-    const char *option = o->control == IM_CONTROL_DISPLACEMENT ? "--approach" : o->pressures ? "--pressure" : "--load";
+    const char *option = target_option(o);
     const int negative = o->control == IM_CONTROL_DISPLACEMENT && o->solver.adhesion_work > 0;
     if (!(o->targets = malloc(sizeof(double) * STEPS_MAX)))
         return -1;
@@ -255,12 +274,15 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_APPROACH:
     case OPT_LOAD:
     case OPT_PRESSURE:
+    case OPT_MEAN_GAP:
         if (o->targets_text) {
-            fprintf(stderr, "indentmap: give one of --approach, --load and --pressure, once\n");
+            fprintf(stderr, "indentmap: give one of --approach, --load, --pressure and --mean-gap, once\n");
             return -1;
         }
         o->targets_text = arg;
-        o->control = code == OPT_APPROACH ? IM_CONTROL_DISPLACEMENT : IM_CONTROL_LOAD;
+        o->control = code == OPT_APPROACH   ? IM_CONTROL_DISPLACEMENT
+                     : code == OPT_MEAN_GAP ? IM_CONTROL_MEAN_GAP
+                                            : IM_CONTROL_LOAD;
         o->pressures = code == OPT_PRESSURE;
         return 0;
     case OPT_ESTAR: return cli_parse_double("--e-star", arg, 1e-300, 1e300, &o->solver.e_star);
@@ -292,9 +314,11 @@ static int check_adhesion_options(const indent_options *o)
     const int adhesion = o->solver.adhesion_work > 0;
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
-    else if (adhesion && o->control != IM_CONTROL_DISPLACEMENT) /* (--periodic takes no --approach) */
-        fprintf(stderr, "indentmap: --adhesion-work takes --approach on the half-space: under load control an adhesive "
-                "contact jumps where its force-distance curve turns (pull-off), and the periodic mode has no adhesion yet\n");
+    else if (adhesion && o->control != IM_CONTROL_DISPLACEMENT)
+        fprintf(stderr, "indentmap: --adhesion-work takes --approach: under load control an adhesive contact jumps "
+                "where its force-distance curve turns (pull-off)\n");
+    else if (adhesion && o->solver.periodic)
+        fprintf(stderr, "indentmap: --adhesion-work with --periodic: the periodic mode has no adhesion yet\n");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
     else
@@ -305,10 +329,9 @@ static int check_adhesion_options(const indent_options *o)
 static int check_options(const indent_options *o)
 {
     if (!o->targets_text)
-        fprintf(stderr, "indentmap: give --approach LIST or --load LIST\n");
-    else if (o->solver.periodic && o->control != IM_CONTROL_LOAD)
-        fprintf(stderr, "indentmap: --periodic takes --load LIST or --pressure LIST, not --approach: a periodic "
-                "half-space's approach is defined up to a constant\n");
+        fprintf(stderr, "indentmap: give --approach LIST or --load LIST (with --periodic also --pressure or --mean-gap)\n");
+    else if (o->control == IM_CONTROL_MEAN_GAP && !o->solver.periodic)
+        fprintf(stderr, "indentmap: --mean-gap (a mean gap over the cell) needs --periodic; the half-space has none\n");
     else if (o->solver.periodic && !o->punch_given && (o->alpha_given || o->x_given))
         fprintf(stderr, "indentmap: --periodic without --punch presses a rigid flat on the cell: --alpha, --x and --y "
                 "apply to a punch (give --punch cone to repeat a cone with the cell)\n");
@@ -615,7 +638,7 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
         "surface", "source", source, "nx", s->nx, "ny", s->ny, "delta", s->delta, "unit", s->unit, "preparation",
         preparation, "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
         "radius", o->punch.radius, "x", ax, "y", ay,
-        "control", o->control == IM_CONTROL_LOAD ? "load" : "approach", "targets", targets,
+        "control", target_name(o->control), "targets", targets,
         "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
         "history", "history.csv", "fields", o->fields);
     if (blocks) {
@@ -825,8 +848,11 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
         warn_if_unresolved(rows, i);
     if (status == IM_OK) {
         const im_step_result *r = &rows[i].result;
-        printf("step %d: w = %.6g  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
-               r->approach, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual, r->seconds);
+        char gap[48] = "";
+        if (o->solver.periodic)
+            snprintf(gap, sizeof gap, "  mean gap = %.6g", r->mean_gap);
+        printf("step %d: w = %.6g%s  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
+               r->approach, gap, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual, r->seconds);
         fflush(stdout);
     }
     return status;
@@ -1019,7 +1045,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     /* done counts the steps whose fields and history line are all written (< target_count here) */
     if (status != IM_OK)
         im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", done + 1,
-                        o->target_count, o->control == IM_CONTROL_LOAD ? "load" : "approach", o->targets[done],
+                        o->target_count, target_name(o->control), o->targets[done],
                         done, o->out);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());

@@ -12,19 +12,48 @@ static double range_sum(const double *v, size_t lo, size_t hi)
     return compensated_total(&c);
 }
 
-/* Blocks summed in parallel, then combined in block order, so the result does not depend on the
- * thread count; the block length grows with n so that the block sums fit on the stack. */
-double sum_doubles(const double *v, size_t n)
+/* Compensated sum of term(i) over [lo, hi). */
+static double terms_sum(size_t lo, size_t hi, double (*term)(size_t, const void *), const void *context)
+{
+    compensated c = {0, 0};
+    for (size_t i = lo; i < hi; ++i)
+        compensated_add(&c, term(i, context));
+    return compensated_total(&c);
+}
+
+/* The blocks' layout: the block length grows with n so that the block sums fit on the stack. */
+static size_t block_length(size_t n)
 {
     const size_t shortest = (n + IM_SUM_MAX_BLOCKS - 1) / IM_SUM_MAX_BLOCKS;
-    const size_t length = shortest > IM_SUM_BLOCK ? shortest : IM_SUM_BLOCK;
-    const size_t blocks = (n + length - 1) / length;
-    double block[IM_SUM_MAX_BLOCKS];
-#pragma omp parallel for schedule(static)
-    for (size_t b = 0; b < blocks; ++b)
-        block[b] = range_sum(v, b * length, b + 1 < blocks ? (b + 1) * length : n);
+    return shortest > IM_SUM_BLOCK ? shortest : IM_SUM_BLOCK;
+}
+
+static double combine(const double *block, size_t blocks)
+{
     compensated total = {0, 0};
     for (size_t b = 0; b < blocks; ++b)
         compensated_add(&total, block[b]);
     return compensated_total(&total);
+}
+
+/* Blocks summed in parallel, then combined in block order, so the result does not depend on the
+ * thread count. */
+double sum_doubles(const double *v, size_t n)
+{
+    const size_t length = block_length(n), blocks = (n + length - 1) / length;
+    double block[IM_SUM_MAX_BLOCKS];
+#pragma omp parallel for schedule(static)
+    for (size_t b = 0; b < blocks; ++b)
+        block[b] = range_sum(v, b * length, b + 1 < blocks ? (b + 1) * length : n);
+    return combine(block, blocks);
+}
+
+double sum_terms(size_t n, double (*term)(size_t i, const void *context), const void *context)
+{
+    const size_t length = block_length(n), blocks = (n + length - 1) / length;
+    double block[IM_SUM_MAX_BLOCKS];
+#pragma omp parallel for schedule(static)
+    for (size_t b = 0; b < blocks; ++b)
+        block[b] = terms_sum(b * length, b + 1 < blocks ? (b + 1) * length : n, term, context);
+    return combine(block, blocks);
 }

@@ -34,4 +34,7 @@ static inline double compensated_total(const compensated *c) { return c->sum + c
 /* Sum of v[0..n) in double precision, compensated. */
 double sum_doubles(const double *v, size_t n);
 
+/* Sum of term(i, context) over i in [0, n), the same way (for values no array holds). */
+double sum_terms(size_t n, double (*term)(size_t i, const void *context), const void *context);
+
 #endif

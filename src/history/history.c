@@ -17,9 +17,9 @@ static const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patc
                                "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
                                ",stiffness,e_star_sneddon,patches,patch_perimeter,"
                                "yielding_patches,plastic_depth,plastic_work,residual_approach,"
-                               "tensile_force,adhesive_patches,repulsive_patches";
+                               "tensile_force,adhesive_patches,repulsive_patches,mean_gap";
 
-enum { HISTORY_VALUES = 27 }; /* the columns above */
+enum { HISTORY_VALUES = 28 }; /* the columns above */
 
 const char *im_history_columns(void) { return HISTORY_COLUMNS; }
 
@@ -81,13 +81,13 @@ int im_history_format(const im_history_row *row, char *line, size_t size)
     const im_theory_step *t = &row->theory;
     return snprintf(line, size,
                     "%d,%.17g,%.17g,%.17g,%ld,%.17g,%.17g,%.17g,%d,%.6e,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                    "%.17g,%ld,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%ld,%ld\n",
+                    "%.17g,%ld,%.17g,%ld,%.17g,%.17g,%.17g,%.17g,%ld,%ld,%.17g\n",
                     row->step, r->approach, r->load, r->load_star, r->contact_patches, r->area_ratio,
                     r->mean_pressure, r->max_pressure, r->iterations, r->residual, r->seconds, r->convolutions,
                     t->load_smooth, t->area_smooth, t->area_ratio_constant, t->area_ratio_gamma, row->stiffness,
                     row->e_star_sneddon, row->patches, row->perimeter, r->yielding_patches, r->plastic_depth,
                     r->plastic_work, r->residual_approach, r->tensile_force, r->adhesive_patches,
-                    r->repulsive_patches);
+                    r->repulsive_patches, r->mean_gap);
 }
 
 /* One row on a whole line [line, end); 0 when it is not HISTORY_VALUES numbers. */
@@ -96,13 +96,13 @@ static int scan_row(const char *line, const char *end, im_history_row *row)
     im_step_result *r = &row->result;
     im_theory_step *t = &row->theory;
     int used = 0;
-    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf,%lf,%ld,%ld%n",
+    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf,%lf,%ld,%ld,%lf%n",
                   &row->step, &r->approach, &r->load, &r->load_star, &r->contact_patches, &r->area_ratio,
                   &r->mean_pressure, &r->max_pressure, &r->iterations, &r->residual, &r->seconds,
                   &r->convolutions, &t->load_smooth, &t->area_smooth, &t->area_ratio_constant,
                   &t->area_ratio_gamma, &row->stiffness, &row->e_star_sneddon, &row->patches, &row->perimeter,
                   &r->yielding_patches, &r->plastic_depth, &r->plastic_work, &r->residual_approach,
-                  &r->tensile_force, &r->adhesive_patches, &r->repulsive_patches, &used) == HISTORY_VALUES && line + used == end;
+                  &r->tensile_force, &r->adhesive_patches, &r->repulsive_patches, &r->mean_gap, &used) == HISTORY_VALUES && line + used == end;
 }
 
 /* Whether the solution's values are what the solver reports: approach and load finite; with a

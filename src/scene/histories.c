@@ -180,7 +180,7 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
                                  .contact_patches = known->contact_patches, .area_ratio = known->area_ratio,
                                  .mean_pressure = NAN, .max_pressure = NAN, .iterations = -1, .convolutions = -1,
                                  .residual = NAN, .seconds = NAN, .coarse_iterations = -1, .yielding_patches = 0,
-                                 .plastic_depth = 0, .plastic_work = 0, .residual_approach = 0};
+                                 .plastic_depth = 0, .plastic_work = 0, .residual_approach = 0, .mean_gap = NAN};
         m->step_reused = 1;
         return IM_OK;
     }

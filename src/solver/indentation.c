@@ -2,6 +2,7 @@
  * (see solver.h). */
 #include "indentmap/solver.h"
 #include "core/args.h"
+#include "core/summation.h"
 #include "solver/adhesion.h"
 
 #include "indentmap/status.h"
@@ -160,6 +161,11 @@ static double approach_bound(const im_field *surface, const im_indenter *punch, 
     return isfinite(smooth) ? 1.1 * smooth + height_range(surface) : INFINITY;
 }
 
+static const char *control_target(enum im_control control)
+{
+    return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean gap" : "approach";
+}
+
 static int check_create(const im_field *surface, const im_indenter *punch, enum im_control control,
                         double largest_target, const im_solver_options *options)
 {
@@ -170,19 +176,21 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
         status = im_solver_options_check(options);
     if (status != IM_OK)
         return status;
-    if (options->periodic && control != IM_CONTROL_LOAD)
-        return im_fail(IM_EINVAL, "periodic = 1: expected load control (a periodic half-space's approach is "
-                       "defined up to a constant: give loads, or mean pressures times the cell's area)");
-    if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
-        return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
-    /* (the periodic mode, load control only, is refused with load control) */
+    if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD && control != IM_CONTROL_MEAN_GAP)
+        return im_fail(IM_EINVAL, "control %d: expected displacement, load or mean gap", (int)control);
+    if (options->adhesion_work > 0 && options->periodic)
+        return im_fail(IM_EINVAL, "adhesion work = %g on a periodic cell: the periodic mode has no adhesion yet",
+                       options->adhesion_work);
+    if (control == IM_CONTROL_MEAN_GAP && !options->periodic)
+        return im_fail(IM_EINVAL, "mean-gap control: expected a periodic cell (periodic = 1; the half-space has no "
+                       "mean gap)");
     if (options->adhesion_work > 0 && (control != IM_CONTROL_DISPLACEMENT || options->hardness > 0))
         return im_fail(IM_EINVAL, "adhesion work = %g: expected displacement control on the half-space without a "
                        "hardness (adhesion under %s is not available)", options->adhesion_work,
                        control != IM_CONTROL_DISPLACEMENT ? "load control" : "a hardness");
     if (!(isfinite(largest_target) && largest_target >= 0))
-        return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0",
-                       control == IM_CONTROL_LOAD ? "load" : "approach", largest_target);
+        return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0", control_target(control),
+                       largest_target);
     if (!(isfinite(surface->delta) && surface->delta > 0))
         return im_fail(IM_EINVAL, "surface delta = %g: expected > 0", surface->delta);
     /* forces are pressures times delta^2: a square out of range made "N = inf" of a unit load */
@@ -403,6 +411,26 @@ static double withdrawn_approach(const im_indentation *run)
     return touch;
 }
 
+/* The mean over the (periodic) cell of the gap max(g0 - w + u, 0): Persson's u-bar. A yielded patch's
+ * overlap is its plastic flattening (accumulate_plastic_flow), so it counts 0. */
+typedef struct gap_terms {
+    const double *gap0, *u;
+    double approach;
+} gap_terms;
+
+static double open_gap(size_t i, const void *context)
+{
+    const gap_terms *t = context;
+    return fmax(t->gap0[i] - t->approach + t->u[i], 0.0);
+}
+
+static double mean_open_gap(const im_indentation *run, double approach)
+{
+    const size_t n = (size_t)run->window.nx * run->window.ny;
+    const gap_terms terms = {run->window_gap0, run->displacement, approach};
+    return sum_terms(n, open_gap, &terms) / (double)n;
+}
+
 static void fill_step(const im_indentation *run, const im_solve_result *s, im_step_result *out)
 {
     const double d2 = run->delta * run->delta;
@@ -418,29 +446,39 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
                             .coarse_iterations = s->coarse_iterations, .plastic_work = run->plastic_work};
     if (run->options.periodic || s->load < 0) /* under tension: no smooth contact of that load */
         out->load_star = NAN;
+    out->mean_gap = run->options.periodic ? mean_open_gap(run, s->approach) : NAN;
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
     if (run->adhesion)
         adhesion_split(run->adhesion, run->pressure, run->delta, &out->tensile_force, &out->adhesive_patches,
                        &out->repulsive_patches);
 }
 
-/* ---- load control with a hardness: the approach that carries the load ----
+/* ---- searched approaches: load control with a hardness, mean-gap control with one ----
  * Polonsky-Keer's load control takes the approach from the elastic patches (0 < p < H_p); once every
  * contact patch is capped (a fully plastic start, a small load on a soft surface) there are none and
  * the approach is undefined. With a hardness the load is reached instead by displacement-controlled
  * solves on the approach, each warm-started from the last: N(w) is continuous and non-decreasing, so
- * a bracket and the Illinois variant of regula falsi find it, to |N - target| <= tol target. */
-enum { LOAD_SEARCH_MAX = 200 };
+ * a bracket and the Illinois variant of regula falsi find it, to |N - target| <= tol target. A
+ * periodic cell's mean gap with a hardness is found the same way (it falls as w grows). */
+enum { SEARCH_MAX = 200 };
 
-typedef struct load_search {
+typedef struct approach_search {
     im_indentation *run;
     double target;
+    /* what the search matches to target: non-decreasing in the approach */
+    double (*measure)(const im_indentation *run, const im_solve_result *s);
     im_solve_result last;  /* the last trial's, with iterations, convolutions and seconds summed */
     int trials;
-} load_search;
+} approach_search;
 
-/* One displacement-controlled solve at approach w; returns its load minus the target in *excess. */
-static int trial(load_search *search, double w, double *excess)
+static double solved_load(const im_indentation *run, const im_solve_result *s)
+{
+    (void)run;
+    return s->load;
+}
+
+/* One displacement-controlled solve at approach w; returns its measure minus the target in *excess. */
+static int trial(approach_search *search, double w, double *excess)
 {
     im_indentation *run = search->run;
     im_solve_result s;
@@ -452,14 +490,14 @@ static int trial(load_search *search, double w, double *excess)
     s.seconds += search->last.seconds;
     search->last = s;
     ++search->trials;
-    *excess = s.load - search->target;
+    *excess = search->measure(run, &s) - search->target;
     return status;
 }
 
 /* [lo, hi] with N(lo) <= target <= N(hi), from the last step's approach (or the smooth estimate)
  * doubled while it carries too little; IM_EEDGE when no approach within the window's bound carries
  * the load. */
-static int bracket_load(load_search *search, double *lo, double *e_lo, double *hi, double *e_hi)
+static int bracket_load(approach_search *search, double *lo, double *e_lo, double *hi, double *e_hi)
 {
     im_indentation *run = search->run;
     double w = run->approach > 0 ? run->approach
@@ -473,7 +511,7 @@ static int bracket_load(load_search *search, double *lo, double *e_lo, double *h
         /* the window's bound reached, or the load no longer grows: every patch the punch can reach has
          * yielded (a flat punch's or a profile's rim: the bound is then infinite) */
         const int plateau = *lo > 0 && !(*e_hi > *e_lo + 1e-12 * search->target);
-        if (*hi >= run->approach_bound || plateau || search->trials >= LOAD_SEARCH_MAX)
+        if (*hi >= run->approach_bound || plateau || search->trials >= SEARCH_MAX)
             return im_fail(IM_EEDGE, "load %g cannot be reached: at the approach %g the contact carries %g%s "
                            "(a yielded contact carries at most H_p times the area the punch can reach)",
                            search->target, *hi, search->target + *e_hi,
@@ -485,24 +523,21 @@ static int bracket_load(load_search *search, double *lo, double *e_lo, double *h
     return status;
 }
 
-/* The approach that carries target, to |N - target| <= tol target, or to tol w in the approach where
- * the solves (each exact to tol w in the gap) cannot resolve the load closer; the state is the last
- * solve's. */
-static int solve_at_load(im_indentation *run, double target, im_solve_result *out)
+/* Narrows [lo, hi] (excess e_lo <= 0 <= e_hi) to |excess| <= tol scale, or to tol w in the approach
+ * where the solves (each exact to tol w in the gap) cannot resolve the measure closer; the state is
+ * the last solve's. */
+static int refine(approach_search *search, double lo, double e_lo, double hi, double e_hi, double e, double scale)
 {
-    load_search search = {.run = run, .target = target};
-    const double tol = run->options.tol;
-    double lo, e_lo, hi, e_hi;
-    int status = bracket_load(&search, &lo, &e_lo, &hi, &e_hi), side = 0;
-    double e = e_hi;
-    while (status == IM_OK && fabs(e) > tol * target && hi - lo > tol * hi) {
-        if (search.trials >= LOAD_SEARCH_MAX) {
-            status = im_fail(IM_ENOCONV, "load %g: no approach in [%.17g, %.17g] carries it to tol %g after %d "
-                             "solves", target, lo, hi, tol, search.trials);
-            break;
-        }
+    const double tol = search->run->options.tol;
+    int status = IM_OK, side = 0;
+    while (fabs(e) > tol * scale && hi - lo > tol * hi) {
+        if (search->trials >= SEARCH_MAX)
+            return im_fail(IM_ENOCONV, "target %g: no approach in [%.17g, %.17g] reaches it to tol %g after %d "
+                           "solves", search->target, lo, hi, tol, search->trials);
         double w = (lo * e_hi - hi * e_lo) / (e_hi - e_lo);
-        status = trial(&search, w, &e);
+        status = trial(search, w, &e);
+        if (status != IM_OK)
+            return status;
         if (e < 0) { /* Illinois: the end kept twice running has its value halved */
             lo = w, e_lo = e;
             e_hi *= side == -1 ? 0.5 : 1;
@@ -513,6 +548,55 @@ static int solve_at_load(im_indentation *run, double target, im_solve_result *ou
             side = 1;
         }
     }
+    return status;
+}
+
+/* The approach that carries target (see above). */
+static int solve_at_load(im_indentation *run, double target, im_solve_result *out)
+{
+    approach_search search = {.run = run, .target = target, .measure = solved_load};
+    double lo, e_lo, hi, e_hi;
+    int status = bracket_load(&search, &lo, &e_lo, &hi, &e_hi);
+    if (status == IM_OK)
+        status = refine(&search, lo, e_lo, hi, e_hi, e_hi, target);
+    *out = search.last;
+    return status;
+}
+
+static double negative_mean_gap(const im_indentation *run, const im_solve_result *s)
+{
+    return -mean_open_gap(run, s->approach);
+}
+
+/* Mean-gap control: with mean u = 0 the approach mean g0 - target gives the mean gap target exactly
+ * (one solve) unless patches yield; with a hardness their overlap opens no gap, so the approach is
+ * searched from there upwards (the mean gap falls as w grows, to 0 once every patch has yielded). A
+ * target above mean g0 leaves the flat clear of the surface: no contact, at a negative approach. */
+static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
+{
+    const size_t n = (size_t)run->window.nx * run->window.ny;
+    const double w = sum_doubles(run->window_gap0, n) / (double)n - target;
+    approach_search search = {.run = run, .target = -target, .measure = negative_mean_gap};
+    double e_lo, e_hi;
+    int status = trial(&search, fmax(w, 0.0), &e_lo);
+    search.last.approach = w;
+    if (status != IM_OK || !(run->options.hardness > 0) || !(w > 0) || fabs(e_lo) <= run->options.tol * target) {
+        *out = search.last;
+        return status;
+    }
+    double lo = w, hi = w, step = target;
+    do { /* e_lo <= 0: yielding left the gap above the target; move on until it is below */
+        hi = lo + step;
+        step *= 2;
+        status = trial(&search, hi, &e_hi);
+        if (status == IM_OK && e_hi < 0)
+            lo = hi, e_lo = e_hi;
+    } while (status == IM_OK && e_hi < 0 && search.trials < SEARCH_MAX);
+    if (status == IM_OK && e_hi < 0)
+        status = im_fail(IM_ENOCONV, "mean gap %g: not reached up to the approach %g after %d solves", target, hi,
+                         search.trials);
+    if (status == IM_OK)
+        status = refine(&search, lo, e_lo, hi, e_hi, e_hi, target);
     *out = search.last;
     return status;
 }
@@ -521,11 +605,13 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
-    const char *what = run->control == IM_CONTROL_LOAD ? "load" : "approach";
+    const char *what = control_target(run->control);
     const double lowest = run->adhesion ? -run->largest_target : 0; /* adhesion: the punch pulled away too */
     if (!(isfinite(target) && target >= lowest && target <= run->largest_target))
         return im_fail(IM_EINVAL, "%s = %g: expected a value in [%g, %g], the largest %s the run was prepared for%s",
                        what, target, lowest, run->largest_target, what, run->adhesion ? " and its negative" : "");
+    if (run->control == IM_CONTROL_MEAN_GAP && !(target > 0))
+        return im_fail(IM_EINVAL, "mean gap = %g: expected > 0 (at 0 the cell is in full contact)", target);
     int status = check_reachable(run, target);
     if (status != IM_OK)
         return status;
@@ -535,12 +621,14 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
                        "load every patch would have yielded: full contact, no approach to find)", target,
                        run->options.hardness, cell_capacity);
     im_solve_result s;
-    /* (a periodic plan has no displacement control to search with: Polonsky-Keer's own load control) */
+    /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
     if (run->adhesion)
         status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, target, run->pressure, run->displacement,
                                 &s);
     else if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0 && !run->options.periodic)
         status = solve_at_load(run, target, &s);
+    else if (run->control == IM_CONTROL_MEAN_GAP)
+        status = solve_at_mean_gap(run, target, &s);
     else
         status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
                                  run->displacement, &s);

@@ -2,6 +2,7 @@
  * unpadded grid, and nominally flat contact of a periodic surface under a mean pressure. */
 #include "solver/plan.h"
 #include "core/args.h"
+#include "core/summation.h"
 
 #include "core/fft_threads.h"
 #include "indentmap/status.h"
@@ -50,6 +51,7 @@ struct im_flat_contact {
     im_solver_plan *plan;
     double *gap0, *pressure, *displacement;
     double cell_area;       /* nx ny delta^2: the load per unit mean pressure */
+    double mean_gap0;       /* the mean of gap0: the mean gap at approach 0 (mean u = 0 always) */
 };
 
 void im_flat_contact_free(im_flat_contact *run)
@@ -96,6 +98,7 @@ int im_flat_contact_create(const im_field *surface, const im_solver_options *opt
         status = im_fail(IM_ENOMEM, "flat contact %d x %d", surface->nx, surface->ny);
     if (status == IM_OK) {
         flat_gap(surface, run->gap0);
+        run->mean_gap0 = sum_doubles(run->gap0, n) / (double)n;
         status = im_solver_plan_create(surface->nx, surface->ny, surface->delta, &o, &run->plan);
     }
     if (status != IM_OK) {
@@ -104,6 +107,17 @@ int im_flat_contact_create(const im_field *surface, const im_solver_options *opt
     }
     *out = run;
     return IM_OK;
+}
+
+static void flat_result(const im_flat_contact *run, const im_solve_result *solve, im_flat_result *out)
+{
+    const double patches = (double)run->plan->nx * run->plan->ny;
+    *out = (im_flat_result){.mean_pressure = solve->load / run->cell_area,
+                            .area_fraction = solve->contact_patches / patches,
+                            .contact_patches = solve->contact_patches, .contact_pressure = solve->mean_pressure,
+                            .max_pressure = solve->max_pressure, .approach = solve->approach,
+                            .mean_gap = run->mean_gap0 - solve->approach, .iterations = solve->iterations,
+                            .residual = solve->residual};
 }
 
 int im_flat_contact_solve(im_flat_contact *run, double mean_pressure, im_flat_result *out)
@@ -115,11 +129,24 @@ int im_flat_contact_solve(im_flat_contact *run, double mean_pressure, im_flat_re
     im_solve_result solve;
     int status = im_solver_solve(run->plan, run->gap0, IM_CONTROL_LOAD, mean_pressure * run->cell_area,
                                  run->pressure, run->displacement, &solve);
-    const double patches = (double)run->plan->nx * run->plan->ny;
-    *out = (im_flat_result){.mean_pressure = mean_pressure, .area_fraction = solve.contact_patches / patches,
-                            .contact_patches = solve.contact_patches, .contact_pressure = solve.mean_pressure,
-                            .max_pressure = solve.max_pressure, .approach = solve.approach,
-                            .iterations = solve.iterations, .residual = solve.residual};
+    flat_result(run, &solve, out);
+    out->mean_pressure = mean_pressure; /* the imposed one, not the load's rounding */
+    return status;
+}
+
+int im_flat_contact_solve_gap(im_flat_contact *run, double mean_gap, im_flat_result *out)
+{
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(out, "out");
+    if (!(isfinite(mean_gap) && mean_gap > 0.0 && mean_gap <= run->mean_gap0))
+        return im_fail(IM_EINVAL, "mean gap = %g: expected 0 < mean gap <= %.17g, the undeformed cell's (at that "
+                       "gap the flat just touches the highest patch; at 0 the contact is full, at an infinite "
+                       "pressure)", mean_gap, run->mean_gap0);
+    im_solve_result solve;
+    int status = im_solver_solve(run->plan, run->gap0, IM_CONTROL_DISPLACEMENT, run->mean_gap0 - mean_gap,
+                                 run->pressure, run->displacement, &solve);
+    flat_result(run, &solve, out);
+    out->mean_gap = mean_gap; /* the imposed one */
     return status;
 }
 

@@ -2,6 +2,7 @@
  * written once over the engines of engine.h: this file decides, the engine's passes compute. */
 #include "solver/engine.h"
 #include "core/args.h"
+#include "core/summation.h"
 
 #include "indentmap/status.h"
 
@@ -150,14 +151,28 @@ static int update_displacement(pk_run *r, long changes)
     return 0;
 }
 
+/* A periodic cell under an imposed approach w: mean u = 0 (solver.h, "Periodic mode"), so the mean gap
+ * is mean g0 - w whatever the pressure. Without a cap it must stay positive: a cell pressed to a mean
+ * gap <= 0 is in full contact, which takes an infinite mean pressure. */
+static int check_periodic_approach(const im_solver_plan *plan, const double *gap0, enum im_control control,
+                                   double target)
+{
+    if (!plan->options.periodic || control != IM_CONTROL_DISPLACEMENT || plan->options.hardness > 0)
+        return IM_OK;
+    const size_t n = (size_t)plan->nx * plan->ny;
+    const double mean_gap = sum_doubles(gap0, n) / (double)n - target;
+    if (mean_gap > 0)
+        return IM_OK;
+    return im_fail(IM_EINVAL, "approach %g on a periodic cell: its mean gap would be %g, expected > 0 (the mean "
+                   "of the undeformed gap is %g; full contact needs an infinite mean pressure)", target, mean_gap,
+                   mean_gap + target);
+}
+
 static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control,
                         double target, const double *p)
 {
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
-    if (plan->options.periodic && control != IM_CONTROL_LOAD)
-        return im_fail(IM_EINVAL, "periodic plan: expected load control (a periodic half-space's approach is "
-                       "defined up to a constant)");
     if (!(isfinite(target) && target >= 0))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
@@ -175,7 +190,7 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
     if (bad_pressure < n)
         return im_fail(IM_EINVAL, "warm-start pressure[%zu] = %g: expected finite and >= 0", bad_pressure,
                        p[bad_pressure]);
-    return IM_OK;
+    return check_periodic_approach(plan, gap0, control, target);
 }
 
 static void summarise(pk_run *r, const gap_stats *s, im_solve_result *out)
