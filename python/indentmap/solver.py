@@ -216,14 +216,26 @@ UNLOADING_DTYPE = np.dtype([("branch", "i4"), ("top_step", "i4"), ("last_step", 
                             ("approach_max", "f8"), ("load_max", "f8"), ("stiffness", "f8"), ("epsilon", "f8"),
                             ("contact_depth", "f8"), ("area_projected", "f8"), ("area_real", "f8"),
                             ("hardness_it", "f8"), ("modulus_reduced", "f8"), ("residual_approach", "f8"),
-                            ("work_in", "f8"), ("work_out", "f8"), ("dissipated", "f8")])
+                            ("work_in", "f8"), ("work_out", "f8"), ("dissipated", "f8"),
+                            ("area_real_theory", "f8"), ("stiffness_smooth", "f8")])
 
 
-def unloading(history, punch=Cone(), *, delta=1.0):
+def _theory_beside(history, top, e_star):
+    """eq. (12)'s real area and the smooth punch's stiffness 2 E* sqrt(A_smooth / pi) at a branch's top load
+    (row index top), NaN where the top yielded, pulled or carries nothing (the theory is elastic, repulsive)."""
+    if history["yielding_patches"][top] > 0 or history["tensile_force"][top] > 0 or not history["load"][top] > 0:
+        return np.nan, np.nan
+    area = history["area_smooth"][top]
+    return area * history["area_ratio_gamma"][top], 2.0 * e_star * np.sqrt(area / np.pi)
+
+
+def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
     """The indentation analysis of a history's unloading branches: one row per branch, with the columns of
     ``indentmap indent``'s indentation.csv (docs/solver.md, "Indentation analysis"): Oliver-Pharr's S, h_c,
     A_p, H_IT and E_r with the punch's own area function, the real area n_p delta^2 at the top, the residual
-    approach, the works in and out and the dissipation. ``history`` is what ``indent`` returns."""
+    approach, the works in and out and the dissipation, then the theory beside them at an elastic top: eq.
+    (12)'s real area and the smooth punch's stiffness (``e_star``: the history's E*). ``history`` is what
+    ``indent`` returns."""
     kind, alpha, radius, profile = _punch_arguments(punch)
     history = np.asarray(history)
     branches = _core.unloading(kind, alpha, radius, np.ascontiguousarray(history["approach"], dtype=float),
@@ -233,8 +245,10 @@ def unloading(history, punch=Cone(), *, delta=1.0):
     table = np.zeros(len(branches), dtype=UNLOADING_DTYPE)
     for i, b in enumerate(branches):
         before = history["plastic_work"][b["loading_from"] - 1] if b["loading_from"] > 0 else 0.0
+        area_theory, stiffness_smooth = _theory_beside(history, b["top_step"] - 1, e_star)
         row = dict(b, branch=i + 1, area_real=history["contact_patches"][b["top_step"] - 1] * delta * delta,
-                   dissipated=history["plastic_work"][b["last_step"] - 1] - before)
+                   dissipated=history["plastic_work"][b["last_step"] - 1] - before, area_real_theory=area_theory,
+                   stiffness_smooth=stiffness_smooth)
         table[i] = tuple(row[name] for name in UNLOADING_DTYPE.names)
     return table
 

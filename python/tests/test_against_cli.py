@@ -87,8 +87,32 @@ def test_loading_unloading_with_hardness_bit_for_bit(cli, rough64, tmp_path):
         csv_rows = list(csv.DictReader(f))
     assert len(table) == len(csv_rows) == 1
     for name in im.solver.UNLOADING_DTYPE.names:
-        assert float(csv_rows[0][name]) == table[0][name], name
+        np.testing.assert_array_equal(float(csv_rows[0][name]), table[0][name], err_msg=name)
     assert table[0]["top_step"] == 3 and table[0]["last_step"] == 9 and table[0]["residual_approach"] > 0
+    # the top yielded: the elastic theory is not beside it
+    assert np.isnan(table[0]["area_real_theory"]) and np.isnan(table[0]["stiffness_smooth"])
+
+
+def test_elastic_unloading_with_theory_bit_for_bit(cli, rough64, tmp_path):
+    """An elastic load-unload cycle of a cone at E* = 2: indentation.csv's theory beside the branch (eq. (12)'s
+    area, the smooth stiffness) is Python's unloading(), and is the theory module's own numbers."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--e-star", "2", "--approach", "1:3:3,2.5:1:4", "--out", tmp_path / "out")
+    history = im.read_history(tmp_path / "out" / "history.csv")
+    table = im.unloading(history, im.Cone(80), e_star=2.0)
+    with open(tmp_path / "out" / "indentation.csv") as f:
+        csv_rows = list(csv.DictReader(f))
+    assert len(table) == len(csv_rows) == 1
+    for name in im.solver.UNLOADING_DTYPE.names:
+        np.testing.assert_array_equal(float(csv_rows[0][name]), table[0][name], err_msg=name)
+    top = table[0]["top_step"] - 1
+    load = history["load"][top]
+    smooth_area = im.theory.cone_area(load, 80.0, e_star=2.0)
+    assert table[0]["stiffness_smooth"] == pytest.approx(2 * 2.0 * np.sqrt(smooth_area / np.pi), rel=1e-14)
+    import json
+    slope = json.load(open(tmp_path / "out" / "run.json"))["theory_slope_rms"]["value"]
+    ratio = im.theory.area_ratio(slope, 80.0)  # eq. (12): load-independent for a cone
+    assert 0.5 < ratio < 1 and table[0]["area_real_theory"] == pytest.approx(smooth_area * ratio, rel=1e-9)
 
 
 def test_adhesion_bit_for_bit(cli, rough64, tmp_path):

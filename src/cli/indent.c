@@ -966,8 +966,9 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
         json_object_set_new(record, "indentation", json_null());
         return;
     }
-    if (analysis_write(o->out, &o->punch, rows, done, o->surface_delta, o->length_unit, o->force_unit, &branches) !=
-        IM_OK) {
+    int status = analysis_write(o->out, &o->punch, rows, done, o->surface_delta, o->solver.e_star, o->length_unit,
+                                o->force_unit, &branches);
+    if (status != IM_OK) {
         fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
         return;
     }

@@ -13,26 +13,44 @@
 
 const char ANALYSIS_COLUMNS[] = "branch,top_step,last_step,loading_from,approach_max,load_max,stiffness,epsilon,"
                                 "contact_depth,area_projected,area_real,hardness_it,modulus_reduced,"
-                                "residual_approach,work_in,work_out,dissipated";
+                                "residual_approach,work_in,work_out,dissipated,area_real_theory,stiffness_smooth";
 
 enum { ANALYSIS_LINE_MAX = 640 };
 
-static int format_branch(int index, const im_unloading_branch *b, const im_history_row *rows, double delta, char *line,
-                         size_t size)
+/* The theory beside a branch, at its top load (the paper's erf local density is a theory of elastic,
+ * repulsive contact: NaN when the top yielded or pulled): the real contact area of eq. (12) (the punch's
+ * gamma integral, theory.h; NaN without a rough-surface theory, e.g. a profile punch) and the smooth
+ * punch's unloading stiffness at that load, Sneddon's 2 E* a with pi a^2 = A_smooth(N), which the rough
+ * contact approaches as its load grows (the paper's Fig. 6). */
+static void theory_beside(const im_history_row *top, double e_star, double *area_real, double *stiffness)
+{
+    const im_step_result *r = &top->result;
+    *area_real = *stiffness = NAN;
+    if (r->yielding_patches > 0 || r->tensile_force > 0 || !(r->load > 0))
+        return;
+    *area_real = top->theory.area_smooth * top->theory.area_ratio_gamma;
+    *stiffness = 2.0 * e_star * sqrt(top->theory.area_smooth / M_PI);
+}
+
+static int format_branch(int index, const im_unloading_branch *b, const im_history_row *rows, double delta,
+                         double e_star, char *line, size_t size)
 {
     const im_step_result *top = &rows[b->top_step - 1].result, *last = &rows[b->last_step - 1].result;
     /* dissipated in this cycle: from the state the loading started at (the origin: none) */
     const double before = b->loading_from > 0 ? rows[b->loading_from - 1].result.plastic_work : 0;
+    double area_theory, stiffness_smooth;
+    theory_beside(&rows[b->top_step - 1], e_star, &area_theory, &stiffness_smooth);
     return snprintf(line, size,
-                    "%d,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                    "%d,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                    "%.17g\n",
                     index + 1, b->top_step, b->last_step, b->loading_from, b->approach_max, b->load_max,
                     b->stiffness, b->epsilon, b->contact_depth, b->area_projected,
                     (double)top->contact_patches * delta * delta, b->hardness, b->modulus, b->residual_approach,
-                    b->work_in, b->work_out, last->plastic_work - before);
+                    b->work_in, b->work_out, last->plastic_work - before, area_theory, stiffness_smooth);
 }
 
 static int write_branches(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
-                          double delta)
+                          double delta, double e_star)
 {
     size_t size = sizeof ANALYSIS_COLUMNS + 1 + (size_t)found * ANALYSIS_LINE_MAX, used = 0;
     char *text = malloc(size), path[4096];
@@ -40,7 +58,7 @@ static int write_branches(const char *dir, const im_unloading_branch *b, int fou
         return im_fail(IM_ENOMEM, "indentation.csv of %d branches", found);
     used += (size_t)snprintf(text, size, "%s\n", ANALYSIS_COLUMNS);
     for (int k = 0; k < found; ++k)
-        used += (size_t)format_branch(k, &b[k], rows, delta, text + used, size - used);
+        used += (size_t)format_branch(k, &b[k], rows, delta, e_star, text + used, size - used);
     int status = im_path_join(path, sizeof path, dir, "indentation.csv");
     if (status == IM_OK)
         status = im_write_file_atomic(path, text, used);
@@ -177,7 +195,7 @@ static int write_figure(const char *dir, const im_unloading_branch *b, int found
 /* ---- both, from one analysis ---- */
 
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   const char *length_unit, const char *force_unit, int *branches)
+                   double e_star, const char *length_unit, const char *force_unit, int *branches)
 {
     *branches = 0;
     if (count < 2)
@@ -194,7 +212,7 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
         status = im_measure_unloading(punch, columns, columns + count, columns + 2 * count, count, found, count,
                                       branches);
     if (status == IM_OK && *branches > 0)
-        status = write_branches(dir, found, *branches, rows, delta);
+        status = write_branches(dir, found, *branches, rows, delta, e_star);
     if (status == IM_OK && *branches > 0)
         status = write_figure(dir, found, *branches, rows, count, length_unit, force_unit);
     free(columns);

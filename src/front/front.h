@@ -53,7 +53,9 @@ void history_close(history_file *h);
 
 /* The columns of DIR/indentation.csv: one row per unloading branch (measure.h, im_measure_unloading),
  * with the real contact area n_p delta^2 at the top and the dissipation the solver reports over the
- * cycle (from the step the loading started at to the branch's last step). */
+ * cycle (from the step the loading started at to the branch's last step), then the theory beside it
+ * at the top load where the top is elastic and repulsive (NaN otherwise): eq. (12)'s real area and the
+ * smooth punch's stiffness 2 E* sqrt(A_smooth / pi) (E* = e_star). */
 extern const char ANALYSIS_COLUMNS[];
 
 /* Analyses rows[0..count) (measure.h) and, when they hold an unloading branch, writes
@@ -62,7 +64,7 @@ extern const char ANALYSIS_COLUMNS[];
  * Oliver-Pharr's construction), its axes in length_unit and force_unit ("" for delta and
  * E* delta^2). *branches says how many branches (0: nothing written). */
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   const char *length_unit, const char *force_unit, int *branches);
+                   double e_star, const char *length_unit, const char *force_unit, int *branches);
 
 /* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
