@@ -106,6 +106,7 @@ static double compare_runs(const im_field *s, const im_indenter *punch, enum im_
     cpu_options.hardness = gpu_options.hardness = physics->hardness;
     cpu_options.adhesion_work = gpu_options.adhesion_work = physics->adhesion_work;
     cpu_options.adhesion_range = gpu_options.adhesion_range = physics->adhesion_range;
+    cpu_options.periodic = gpu_options.periodic = physics->periodic;
     double largest = 0;
     for (int k = 0; k < count; ++k)
         largest = fmax(largest, fabs(targets[k]));
@@ -254,6 +255,19 @@ static void test_periodic_flat(void **state)
     compare_flat(512, 0.1, large, 1);
 }
 
+/* Mean-gap control of a periodic cell (displacement control with mean u = 0) over the GPU engine: the same
+ * loads, approaches and contact at three mean gaps, down and up. */
+static void test_periodic_mean_gap(void **state)
+{
+    (void)state;
+    im_field *s = test_rough_surface(128, 0.1, 19);
+    im_indenter flat = im_indenter_flat(2.0 * 128 * 1.5);
+    const double gaps[] = {0.5, 0.3, 0.4};
+    im_solver_options physics = {.periodic = 1};
+    compare_runs(s, &flat, IM_CONTROL_MEAN_GAP, gaps, 3, &physics);
+    im_field_free(s);
+}
+
 /* The convolution alone, for a pressure of the caller's: both engines' K p agree to rounding. */
 static void test_convolution(void **state)
 {
@@ -327,6 +341,7 @@ int main(void)
         cmocka_unit_test(test_hardness_cap),
         cmocka_unit_test(test_adhesion),
         cmocka_unit_test(test_periodic_flat),
+        cmocka_unit_test(test_periodic_mean_gap),
         cmocka_unit_test(test_rough_cone_1024),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
