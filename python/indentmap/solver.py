@@ -96,7 +96,8 @@ class Indentation:
     solver's relative residual (default 1e-6, the standard quality preset, as ``indentmap indent`` and
     scenes); ``quality`` names a preset instead, as ``indentmap indent --quality``: 'draft' (1e-5),
     'standard' (1e-6) or 'publication' (1e-9), which a ``tol`` given overrides. ``device`` is the solver's engine: 'cpu' (default), 'gpu' (the Vulkan compute engine) or
-    'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
+    'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Planning, steps and
+    ``fields()`` run without the GIL; Ctrl-C during a step on the main thread stops it within one
     iteration and raises KeyboardInterrupt (the history keeps the last iterate as its next warm start).
 
     ``hardness`` H_p > 0 caps the pressure (perfect plasticity, ``indentmap indent --hardness``) and the
