@@ -440,6 +440,7 @@ SAFE_RESULT(im_scene_defaults, "scene", (im_scene_defaults(NULL), 1))
 REPORT(im_scene_load, "path", im_scene_load(NULL, &scene))
 REPORT(im_scene_load, "scene", im_scene_load(path_text, NULL))
 REPORT(im_scene_run, "scene", im_scene_run(NULL, NULL))
+REPORT(im_scene_run, "options", im_scene_run(&scene, NULL))
 REPORT(im_scene_measure_files, "scene", im_scene_measure_files(NULL))
 REPORT(im_scene_file_path, "scene", im_scene_file_path(NULL, 0, text, sizeof text))
 REPORT(im_scene_file_path, "out", im_scene_file_path(&scene, 0, NULL, 64))
@@ -618,6 +619,7 @@ REPORT(im_mpi_npy_read_rows, "data", im_mpi_npy_read_rows(MPI_COMM_WORLD, path_t
 REPORT(im_mpi_npy_write_rows, "path", im_mpi_npy_write_rows(MPI_COMM_WORLD, NULL, 8, 8, 0, 1, values))
 REPORT(im_mpi_npy_write_rows, "data", im_mpi_npy_write_rows(MPI_COMM_WORLD, path_text, 8, 8, 0, 1, NULL))
 REPORT(im_scene_run_ranks, "scene", im_scene_run_ranks(MPI_COMM_WORLD, NULL, NULL))
+REPORT(im_scene_run_ranks, "options", im_scene_run_ranks(MPI_COMM_WORLD, &scene, NULL))
 #endif
 
 /* ---- sizes and enumerations out of range (the checks most functions always had) ---- */

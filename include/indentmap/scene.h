@@ -182,9 +182,10 @@ int im_scene_load(const char *path, im_scene *scene);
  * callbacks (status.h), and nowhere when they are NULL (the default of a zeroed struct). */
 typedef struct im_scene_run_options {
     int resume;          /* 1: reuse results already on disk under the output folder */
-    int quiet;           /* 1: no IM_LOG_INFO lines (the stage lines, "table: 51 surfaces ...") and no
-                            progress calls; warnings (a kept result stale or damaged and solved
-                            again, a stale lock taken over) are logged in any case */
+    int quiet;           /* 1: no IM_LOG_INFO lines (the stage lines, "table: 51 surfaces ..."); warnings
+                            (a kept result stale or damaged and solved again, a stale lock taken
+                            over) are logged in any case, and progress calls are made as without it
+                            (a caller that wants none gives no progress callback) */
     int backend;         /* im_render_backend of render.h (0: auto) */
     /* Interruption (may be NULL): a signal handler stores the signal's number here. The run
      * checks it between solver steps and between surfaces (a solve itself is never cut short),
@@ -192,8 +193,9 @@ typedef struct im_scene_run_options {
      * IM_EINTERRUPTED; --resume then continues from there. */
     const volatile sig_atomic_t *stop;
     /* Log lines (NULL: dropped) and the ensembles' progress (NULL: none), both with `user`. Calls
-     * come from the thread of im_scene_run or from its OpenMP workers, one at a time (the library
-     * serialises them), so a callback needs no lock of its own; it must not call im_scene_run. The
+     * come from the thread of im_scene_run or from its OpenMP workers, one at a time (serialised by
+     * a lock of this run's own), so a callback needs no lock of its own; it may call the library,
+     * another im_scene_run included (whose callbacks have their own lock). The
      * indentmap program's callbacks print the lines on stderr and draw a progress bar there when it
      * is a terminal. */
     im_log_fn log;

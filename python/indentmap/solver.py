@@ -3,7 +3,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 
 
 @dataclass(frozen=True)
@@ -27,14 +27,28 @@ class Flat:
 def _punch_arguments(punch):
     """(kind, alpha, radius, profile array or None) for _core.Indentation."""
     if isinstance(punch, Cone):
-        return "cone", punch.alpha, 1.0, None
+        return "cone", _checks.real("Cone.alpha", punch.alpha), 1.0, None
     if isinstance(punch, Sphere):
-        return "sphere", 80.0, punch.radius, None
+        return "sphere", 80.0, _checks.real("Sphere.radius", punch.radius), None
     if isinstance(punch, Flat):
-        return "flat", 80.0, punch.radius, None
+        return "flat", 80.0, _checks.real("Flat.radius", punch.radius), None
     if isinstance(punch, np.ndarray):
         return "profile", 80.0, 1.0, punch
     raise TypeError(f"punch: expected Cone, Sphere, Flat or a profile array, got {punch!r}")
+
+
+def _axis_on_surface(axis, shape, delta):
+    """(x, y) of the punch's axis, checked to be two numbers on the surface (as ``indent --x --y``): one
+    beyond it would only fail at the first step, as contact reaching the edge."""
+    if isinstance(axis, (str, bytes)) or not hasattr(axis, "__len__") or len(axis) != 2:
+        raise TypeError(f"axis: expected (x, y), two numbers, got {axis!r}")
+    x, y = _checks.real("axis x", axis[0]), _checks.real("axis y", axis[1])
+    if len(shape) == 2:  # else the heights are refused, naming them
+        width, height = shape[1] * delta, shape[0] * delta
+        if not (0 <= x <= width and 0 <= y <= height):
+            raise ValueError(f"axis = ({x:g}, {y:g}): the punch's axis lies outside the {shape[1]} x {shape[0]} "
+                             f"surface (expected 0 <= x <= {width:g} and 0 <= y <= {height:g})")
+    return x, y
 
 
 # The integer columns of a history (history.h); every other column is float64.
@@ -83,7 +97,8 @@ class Indentation:
     solver's relative residual (default 1e-6, the standard quality preset, as ``indentmap indent`` and
     scenes); ``quality`` names a preset instead, as ``indentmap indent --quality``: 'draft' (1e-5),
     'standard' (1e-6) or 'publication' (1e-9), which a ``tol`` given overrides. ``device`` is the solver's engine: 'cpu' (default), 'gpu' (the Vulkan compute engine) or
-    'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Steps run without the GIL; Ctrl-C during a step on the main thread stops it within one
+    'auto' (a hardware GPU when there is one), as ``indentmap indent --device``. Planning, steps and
+    ``fields()`` run without the GIL; Ctrl-C during a step on the main thread stops it within one
     iteration and raises KeyboardInterrupt (the history keeps the last iterate as its next warm start).
 
     ``hardness`` H_p > 0 caps the pressure (perfect plasticity, ``indentmap indent --hardness``) and the
@@ -111,20 +126,27 @@ class Indentation:
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
                  quality=None):
         if tol is None:
-            tol = _core.default_tol if quality is None else _core.quality_tolerance(str(quality))
+            tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
         if punch is None:
             if not periodic:
                 raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
             ny, nx = np.shape(heights)
             punch = Flat(2.0 * np.hypot(nx, ny) * delta)  # wider than the cell: every nearest image
         kind, alpha, radius, profile = _punch_arguments(punch)
-        x, y = (None, None) if axis is None else axis
-        self._run = _core.Indentation(heights, float(delta), kind, alpha, radius, control, float(largest),
-                                      e_star=float(e_star), tol=float(tol), max_iterations=int(max_iterations),
-                                      crop=bool(crop), window_margin=int(window_margin), x=x, y=y,
-                                      profile=profile, device=str(device), hardness=float(hardness),
-                                      periodic=bool(periodic), slope_definition=slope_definition or "",
-                                      adhesion_work=float(adhesion_work), adhesion_range=float(adhesion_range))
+        delta = _checks.real("delta", delta)
+        x, y = (None, None) if axis is None else _axis_on_surface(axis, np.shape(heights), delta)
+        self._run = _core.Indentation(heights, delta, kind, alpha, radius, _checks.text("control", control),
+                                      _checks.real("largest", largest), e_star=_checks.real("e_star", e_star),
+                                      tol=_checks.real("tol", tol),
+                                      max_iterations=_checks.integer("max_iterations", max_iterations),
+                                      crop=_checks.flag("crop", crop),
+                                      window_margin=_checks.integer("window_margin", window_margin), x=x, y=y,
+                                      profile=profile, device=_checks.text("device", device),
+                                      hardness=_checks.real("hardness", hardness),
+                                      periodic=_checks.flag("periodic", periodic),
+                                      slope_definition=_checks.text("slope_definition", slope_definition or ""),
+                                      adhesion_work=_checks.real("adhesion_work", adhesion_work),
+                                      adhesion_range=_checks.real("adhesion_range", adhesion_range))
 
     def step(self, target):
         """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict."""

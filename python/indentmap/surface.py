@@ -3,7 +3,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 
 
 class Topography(NamedTuple):
@@ -19,12 +19,21 @@ def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None
 
     The same seed gives the same surface for any thread count. ``slope`` is the target h'rms
     (``slope_definition`` 'spectral' or 'fd'), or give ``height_rms`` (in units of delta) instead.
-    ``lambda_r`` defaults to n; ``lambda_0 > lambda_r`` adds a roll-off plateau.
+    ``lambda_r`` defaults to n; ``lambda_0 > lambda_r`` adds a roll-off plateau. ``seed`` is an integer in
+    [0, 2^64 - 1]. An argument of the wrong kind raises TypeError, a value out of its range ValueError
+    (``InvalidArgument`` from the library), naming the parameter and what was expected.
     """
-    m = n if m is None else m
-    lambda_r = float(n) if lambda_r is None else lambda_r
-    return _core.generate(n, m, delta, hurst, lambda_s, lambda_r, lambda_0, slope, height_rms, slope_definition,
-                          seed)
+    n = _checks.integer("n", n)
+    m = n if m is None else _checks.integer("m", m)
+    lambda_r = float(n) if lambda_r is None else _checks.real("lambda_r", lambda_r)
+    lambda_0 = _checks.real("lambda_0", lambda_0)
+    if lambda_0 != 0 and not lambda_0 >= lambda_r:  # a longest wave shorter than the roll-off: no plateau
+        raise ValueError(f"lambda_0 = {lambda_0:g}: expected >= lambda_r = {lambda_r:g} (lambda_0 > lambda_r adds "
+                         "a roll-off plateau; 0, the default, none)")
+    return _core.generate(n, m, _checks.real("delta", delta), _checks.real("hurst", hurst),
+                          _checks.real("lambda_s", lambda_s), lambda_r, lambda_0, _checks.real("slope", slope),
+                          None if height_rms is None else _checks.real("height_rms", height_rms),
+                          _checks.text("slope_definition", slope_definition), _checks.seed(seed))
 
 
 def statistics(heights, delta=1.0, window="none", alpha=0.5):

@@ -20,7 +20,7 @@ typedef struct py_indentation {
     int periodic;              /* no half-space theory beside a periodic cell */
     im_history_row *rows;
     int row_count, row_capacity;
-    int busy; /* a step runs without the GIL: a second thread may not enter the same history */
+    int busy; /* a call (creation, step, fields) runs without the GIL: no second thread may enter it */
     volatile sig_atomic_t stop; /* the solver's stop flag (interrupt.c): set by Ctrl-C during a step */
 } py_indentation;
 
@@ -102,6 +102,8 @@ static int control_from_name(const char *name, enum im_control *control)
     return 0;
 }
 
+static int check_idle(py_indentation *self);
+
 static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
@@ -130,10 +132,6 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
         return -1;
     }
     o.stop = &self->stop;
-    if (self->busy) {
-        PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
-        return -1;
-    }
     if ((strcmp(kind, "profile") == 0) != (profile_obj != Py_None)) {
         PyErr_SetString(PyExc_ValueError, "punch 'profile' and a profile array go together");
         return -1;
@@ -148,7 +146,8 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
         return -1;
     }
     PyArrayObject *array = py_heights_array(obj, "heights");
-    if (!array) {
+    if (!array || check_idle(self) < 0) {
+        Py_XDECREF(array);
         im_profile_free(profile);
         return -1;
     }
@@ -158,11 +157,15 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     im_profile_free(self->profile); /* after the run that borrowed it */
     self->profile = profile;
     self->row_count = 0;
-    /* With the GIL held: FFTW's planner, called here, is not thread-safe. */
-    int status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
+    int status;
     double slope = 0;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS /* planning: the library serialises FFTW's planner itself */
+    status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
     if (status == IM_OK)
         status = im_surface_slope_rms(&surface, slope_definition, &slope);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
     if (status == IM_OK) {
         self->punch = punch;
         self->rough = im_theory_interface_default(slope);
@@ -185,17 +188,22 @@ static void indentation_dealloc(py_indentation *self)
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
+static int check_idle(py_indentation *self)
+{
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "Indentation: a call on this history is running in another thread");
+        return -1;
+    }
+    return 0;
+}
+
 static int check_ready(py_indentation *self)
 {
     if (!self->run) {
         PyErr_SetString(PyExc_RuntimeError, "Indentation: not initialised");
         return -1;
     }
-    if (self->busy) {
-        PyErr_SetString(PyExc_RuntimeError, "Indentation: a step of this history is running in another thread");
-        return -1;
-    }
-    return 0;
+    return check_idle(self);
 }
 
 static PyObject *step_dict(const im_step_result *r)
@@ -274,7 +282,12 @@ static PyObject *indentation_fields(py_indentation *self, PyObject *unused)
     if (check_ready(self) < 0)
         return NULL;
     im_field *force = NULL, *gap = NULL, *displacement = NULL;
-    int status = im_indentation_fields_full(self->run, &force, &gap, &displacement); /* GIL held: it plans */
+    int status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS /* a convolution on the full grid, planned under the library's planner lock */
+    status = im_indentation_fields_full(self->run, &force, &gap, &displacement);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
     if (status != IM_OK)
         return py_raise_status(status);
     return Py_BuildValue("(NNN)", py_array_from_field(force), py_array_from_field(gap),
@@ -342,7 +355,12 @@ static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
     }
     o.stop = &self->stop;
     im_solver_plan *plan = NULL;
-    int status = im_solver_plan_create(nx, ny, delta, &o, &plan); /* GIL held: FFTW's planner */
+    int status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS /* the library serialises FFTW's planner itself */
+    status = im_solver_plan_create(nx, ny, delta, &o, &plan);
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
     if (status != IM_OK) {
         py_raise_status(status);
         return -1;

@@ -83,28 +83,68 @@ def test_outputs_own_their_memory(rough64):
     assert force.shape == rough64.shape
 
 
-def test_solves_release_the_gil():
-    heights = im.generate(192, slope=0.1, seed=3)
-    run = im.Indentation(heights, largest=20.0, tol=1e-10)
+def longest_pause_of_this_thread(work):
+    """Runs work() in a thread while this one counts; the longest this thread went without running during
+    work(), and how long work() took."""
     span = {}
 
-    def solve():
+    def timed():
         span["start"] = time.perf_counter()
-        run.step(20.0)
+        work()
         span["end"] = time.perf_counter()
 
-    thread = threading.Thread(target=solve)
+    thread = threading.Thread(target=timed)
     ticks = []
     thread.start()
     while thread.is_alive():
         ticks.append(time.perf_counter())
     thread.join()
     inside = [t for t in ticks if span["start"] <= t <= span["end"]]
-    duration = span["end"] - span["start"]
     edges = [span["start"]] + inside + [span["end"]]
-    longest_pause = max(b - a for a, b in zip(edges, edges[1:]))
-    # Held through the solve, the GIL would stop this thread for the whole of it.
-    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s solve"
+    return max(b - a for a, b in zip(edges, edges[1:])), span["end"] - span["start"]
+
+
+@pytest.mark.parametrize("call", ["create", "step", "fields", "plan"])
+def test_long_calls_release_the_gil(call):
+    """Planning a history or a plan, a solve and the full-grid fields run without the GIL (issue 32: planning
+    and fields held it)."""
+    heights = im.generate(192 if call == "step" else 512, slope=0.1, seed=3)
+    run = None if call in ("create", "plan") else im.Indentation(heights, largest=20.0, tol=1e-10)
+    if call == "fields":
+        run.step(5.0)
+    work = {"create": lambda: im.Indentation(heights, largest=20.0, crop=False), "step": lambda: run.step(20.0),
+            "fields": lambda: run.fields(), "plan": lambda: im.Plan(768)}[call]
+    longest_pause, duration = longest_pause_of_this_thread(work)
+    # Held through the call, the GIL would stop this thread for the whole of it.
+    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s {call}"
+
+
+def indentation_history(seed, spans=None):
+    """A history on its own surface (planned, stepped up and down, its fields taken), with when it ran."""
+    start = time.perf_counter()
+    run = im.Indentation(im.generate(128, slope=0.1, seed=seed), largest=8.0)
+    for target in (2.0, 5.0, 8.0, 4.0):
+        run.step(target)
+    force = run.fields()[0]
+    if spans is not None:
+        spans[seed] = (start, time.perf_counter())
+    history = run.history()
+    return [history[name].tobytes() for name in history.dtype.names if name != "seconds"], force.tobytes()
+
+
+def test_indentations_in_threads_equal_serial_ones():
+    """Four histories in four threads: the bits of four solved one after another, and they ran at the same time."""
+    seeds = range(1, 5)
+    serial = {seed: indentation_history(seed) for seed in seeds}
+    spans, threaded = {}, {}
+    threads = [threading.Thread(target=lambda s=seed: threaded.__setitem__(s, indentation_history(s, spans)))
+               for seed in seeds]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert threaded == serial
+    assert max(start for start, _ in spans.values()) < min(end for _, end in spans.values()), spans
 
 
 LEAK_PROBE = """

@@ -1,10 +1,12 @@
 """A quiet library under Python: scenes report progress and log lines to callables (nothing on stderr),
 and Ctrl-C stops a long solve or a scene promptly with KeyboardInterrupt, leaving the plan usable."""
 import contextlib
+import json
 import os
 import re
 import signal
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -189,3 +191,57 @@ def test_ctrl_c_in_a_solve_made_by_a_callback(tmp_path):
     interrupt_after(0.05)
     with pytest.raises(KeyboardInterrupt):
         time.sleep(5)  # the plain handler, not one left armed by the calls
+
+
+def test_quiet_silences_the_log_but_not_progress(tmp_path):
+    """quiet drops the stage lines only: a progress bar (or a callable that cancels by raising) still runs."""
+    events, lines = [], []
+    im.run_scene(write_scene(tmp_path, tmp_path / "out"), quiet=True,
+                 progress=lambda stage, done, total: events.append((stage, done, total)),
+                 log=lambda level, message: lines.append(message))
+    assert lines == []
+    for stage in ("table", "histories"):
+        assert [e for e in events if e[0] == stage] == [(stage, k, 4) for k in range(1, 5)]
+
+
+REENTRANT = """
+import json
+import sys
+import indentmap as im
+
+def loads():
+    history = im.indent(im.generate(32, slope=0.05, lambda_s=2, seed=6), approaches=[0.5, 1.0])
+    return history["load"].tolist()
+
+outer, inner, alone = sys.argv[1:4]
+seen = []
+
+def progress(stage, done, total):
+    if not seen:  # the first call comes from a solver thread, inside the outer run's callback lock
+        seen.extend((im.run_scene(inner, quiet=True), loads()))
+
+im.run_scene(outer, progress=progress, log=lambda level, message: None)
+print(json.dumps(seen + [im.run_scene(alone, quiet=True), loads()]))
+"""
+
+
+def test_a_progress_callback_may_run_another_scene(tmp_path):
+    """A callback that runs a scene and solves inside another scene's run: both finish (it waited forever on
+    the library's lock, issue 32), the inner scene's table is the one a run of its own writes; the inner solve
+    gives the loads a solve of its own gives."""
+    folders = {name: tmp_path / name for name in ("outer", "inner", "alone")}
+    scenes = []
+    for name, folder in folders.items():
+        path = tmp_path / f"{name}.ini"
+        path.write_text(SCENE.format(output=folder).replace("name = quiet", f"name = {name}"))
+        scenes.append(path)
+    done = subprocess.run([sys.executable, "-c", REENTRANT, *map(str, scenes)], timeout=120, capture_output=True,
+                          text=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+    assert done.returncode == 0, done.stderr
+    inner, solved, alone, solved_alone = json.loads(done.stdout)
+    assert (inner, alone) == (str(folders["inner"]), str(folders["alone"]))
+    # equal to the solver's tolerance: a solve nested in the run's OpenMP team runs on other threads
+    assert solved == pytest.approx(solved_alone, rel=im._core.default_tol)
+    table = (folders["inner"] / "table1.csv").read_bytes()
+    assert table and table == (folders["alone"] / "table1.csv").read_bytes()
+    assert (folders["outer"] / "table1.csv").is_file()

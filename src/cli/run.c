@@ -147,7 +147,7 @@ int cli_run(int argc, char **argv)
     run.backend = (int)backend;
     run.stop = &cli_stop_signal;
     run.log = cli_log;
-    run.progress = cli_progress;
+    run.progress = run.quiet ? NULL : cli_progress; /* --quiet: no bar either */
 #if IM_HAVE_MPI
     if (launched_by_mpirun())
         return run_under_mpirun(argv[optind], &run, &wisdom);

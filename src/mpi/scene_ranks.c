@@ -167,6 +167,7 @@ static int solve_share(const im_scene *scene, const im_scene_run_options *option
 {
     im_scene_run_options quiet = *options;
     quiet.quiet = 1;
+    quiet.progress = NULL;
     scene_reuse table = {0};
     if (scene->table)
         status = solve_stage(scene, &quiet, st, STAGE_TABLE, &table, status);
@@ -221,6 +222,7 @@ static int run_worker(ranks_state *st, const im_scene *scene, const im_scene_run
 int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options)
 {
     ARG_REQUIRE(scene, "scene");
+    ARG_REQUIRE(options, "options");
     ranks_state st = {.comm = comm};
     MPI_Comm_rank(comm, &st.rank);
     MPI_Comm_size(comm, &st.ranks);
@@ -236,7 +238,10 @@ int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_
          * ranks learn from the go; else they wait for the outcome */
         broadcast_status(&st, status);
     } else {
-        status = run_worker(&st, scene, options);
+        scene_callbacks callbacks; /* as im_scene_run: a worker's warnings come one at a time */
+        im_scene_run_options run = scene_callbacks_begin(options, &callbacks);
+        status = run_worker(&st, scene, &run);
+        scene_callbacks_end(&callbacks);
     }
     for (int s = 0; s < STAGES; ++s)
         free(st.origins[s]);

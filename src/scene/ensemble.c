@@ -41,7 +41,7 @@ int scene_ensemble_members(const im_scene *scene, scene_member **out, int *count
 
 static void report_progress(const im_scene_run_options *options, const char *stage, int done, int total)
 {
-    if (options->progress && !options->quiet)
+    if (options->progress)
         options->progress(options->user, stage, done, total);
 }
 
@@ -89,6 +89,8 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
                        int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
 {
     int done = 0;
+    omp_lock_t counting; /* done counts up in the order of the calls; this ensemble's own lock (progress.h) */
+    omp_init_lock(&counting);
 #pragma omp parallel for schedule(dynamic, 1)
     for (int i = 0; i < count; ++i) {
         /* Once a signal has asked to stop, the remaining members are skipped, not started. */
@@ -98,9 +100,11 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
                                                          : solve(scene, options, &members[i]);
         if (members[i].status != IM_OK)
             snprintf(members[i].error, sizeof members[i].error, "%s", im_last_error());
-#pragma omp critical(scene_progress)
+        omp_set_lock(&counting);
         report_progress(options, stage, ++done, count);
+        omp_unset_lock(&counting);
     }
+    omp_destroy_lock(&counting);
     for (int i = 0; i < count; ++i)
         if (members[i].status != IM_OK && members[i].status != IM_EINTERRUPTED)
             return im_fail(members[i].status, "family %d, seed %llu: %s", members[i].family,

@@ -18,15 +18,45 @@ int scene_interrupted(const im_scene_run_options *options, const char *where)
                    strsignal(scene_stop_signal(options)), where);
 }
 
-/* One message to options->log, formatted here; calls from OpenMP workers are serialised, with the
- * progress calls too (the same critical section as ensemble.c's). */
+static void serialised_log(void *user, im_log_level level, const char *message)
+{
+    scene_callbacks *c = user;
+    omp_set_lock(&c->lock);
+    c->log(c->user, level, message);
+    omp_unset_lock(&c->lock);
+}
+
+static void serialised_progress(void *user, const char *stage, int done, int total)
+{
+    scene_callbacks *c = user;
+    omp_set_lock(&c->lock);
+    c->progress(c->user, stage, done, total);
+    omp_unset_lock(&c->lock);
+}
+
+im_scene_run_options scene_callbacks_begin(const im_scene_run_options *given, scene_callbacks *callbacks)
+{
+    *callbacks = (scene_callbacks){.log = given->log, .progress = given->progress, .user = given->user};
+    omp_init_lock(&callbacks->lock);
+    im_scene_run_options run = *given;
+    run.log = given->log ? serialised_log : NULL;
+    run.progress = given->progress ? serialised_progress : NULL;
+    run.user = callbacks;
+    return run;
+}
+
+void scene_callbacks_end(scene_callbacks *callbacks)
+{
+    omp_destroy_lock(&callbacks->lock);
+}
+
+/* One message to options->log (serialised by scene_callbacks_begin's lock), formatted here. */
 static void scene_log(const im_scene_run_options *options, im_log_level level, const char *fmt, va_list args)
 {
     if (!options->log || (level == IM_LOG_INFO && options->quiet))
         return;
     char message[2048];
     vsnprintf(message, sizeof message, fmt, args);
-#pragma omp critical(scene_progress)
     options->log(options->user, level, message);
 }
 

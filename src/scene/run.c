@@ -242,9 +242,13 @@ int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profi
 static int run_measured(im_scene *scene, const im_scene_run_options *options);
 
 /* Run on the prepared copy: the caller's scene stays as parsed. */
-int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
+int im_scene_run(const im_scene *scene, const im_scene_run_options *given)
 {
     ARG_REQUIRE(scene, "scene");
+    ARG_REQUIRE(given, "options");
+    scene_callbacks callbacks;
+    im_scene_run_options run = scene_callbacks_begin(given, &callbacks);
+    const im_scene_run_options *options = &run;
     im_scene *measured = NULL;
     im_profile *profile = NULL;
     int status = scene_prepare(scene, &measured, &profile);
@@ -255,6 +259,7 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
         status = run_measured(measured, options);
     free(measured);
     im_profile_free(profile); /* after the run that borrowed it */
+    scene_callbacks_end(&callbacks);
     return status;
 }
 

@@ -1,0 +1,44 @@
+"""Arguments checked for their kind before they reach the library, which checks their ranges and names the
+parameter in its message. A conversion such as ``int(2.5)`` or ``bool("no")`` would pass a value the caller
+never meant without a word, and ``float("x")`` would fail without naming the parameter."""
+import numbers
+
+import numpy as np
+
+SEED_LIMIT = 2 ** 64  # the library's seeds are unsigned 64-bit integers
+
+
+def real(name, value):
+    """value as a float: a real number (an int, a float or a numpy scalar), not a bool or a string."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name}: expected a real number, got {value!r}")
+    return float(value)
+
+
+def integer(name, value):
+    """value as an int: an integer (not a bool, and not a float even when whole)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name}: expected an integer, got {value!r}")
+    return int(value)
+
+
+def flag(name, value):
+    """value as a bool: True or False (numpy's too), not a truthy string or number."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name}: expected True or False, got {value!r}")
+    return bool(value)
+
+
+def seed(value):
+    """A seed as the library takes it: an integer in [0, 2^64 - 1] (one outside would wrap to another)."""
+    value = integer("seed", value)
+    if not 0 <= value < SEED_LIMIT:
+        raise ValueError(f"seed = {value}: expected an integer in [0, 2^64 - 1]")
+    return value
+
+
+def text(name, value):
+    """value, a str."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: expected a string, got {value!r}")
+    return value
