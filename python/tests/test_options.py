@@ -21,7 +21,7 @@ INDENTATION = [
     ("punch", im.Cone("80"), TypeError, r"Cone.alpha: expected a real number, got '80'"),
     ("punch", im.Sphere(NAN), ValueError, r"sphere radius = nan: expected a finite radius > 0"),
     ("punch", im.Flat(True), TypeError, r"Flat.radius: expected a real number, got True"),
-    ("control", "force", ValueError, r"control 'force': expected 'displacement' or 'load'"),
+    ("control", "force", ValueError, r"control 'force': expected 'displacement', 'load' or 'mean_gap'"),
     ("control", 1, TypeError, r"control: expected a string, got 1"),
     ("largest", -1, ValueError, r"largest approach = -1: expected a finite value >= 0"),
     ("largest", INF, ValueError, r"largest approach = inf: expected a finite value >= 0"),
