@@ -233,6 +233,10 @@ typedef struct im_scene_run_options {
  *   distributions: distributions/family_FF_{gaps,patches,patch_list}.csv, the gap (in the surface's
  *     h_rms) and contact-patch size distributions of each family's first surface at load_star
  *     (measure.h: im_measure_write_distributions), solved for them each time (not kept for --resume).
+ *   periodic: histories/member_FF_SEED.csv at the mean pressures of steps and, with the rigid flat and no
+ *     hardness, k_fit.csv: k of eq. (2) fitted to each rough member's history (as `indent --periodic`).
+ *   histories that unload (steps going down, with a hardness, not periodic): indentation/member_FF_SEED.csv,
+ *     each member's indentation analysis (`indent`'s indentation.csv).
  * Nothing is solved twice within a run (but for the distributions): a load-controlled history's step at load_star takes the
  * table's state, and a panel takes the force of the table, of such a history, or of the frames'
  * last step. Each stage's line says how many surfaces it solved, read back and reused.
