@@ -680,7 +680,8 @@ static const struct {
                              "periodic cell does not have"},
     {"output", "contact_panels", FIELD(contact_panels),
      "the panels are solved at load_star N* and drawn with the smooth contact circle"},
-    {"output", "frames", FIELD(frames), "the frames are solved up to load_star N* and drawn with the smooth contact circle"},
+    {"output", "frames", FIELD(frames),
+     "the frames are solved up to load_star N* and drawn with the smooth contact circle"},
     {"output", "table", FIELD(table), "the table compares A/A_cone at load_star N* with eq. (12)"},
     {"output", "distributions", FIELD(distributions), "the distributions are measured at load_star N*"},
 };

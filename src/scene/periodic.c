@@ -78,8 +78,11 @@ int scene_periodic_results(const im_scene *scene, const im_scene_run_options *op
     if (k_rows)
         fprintf(k_rows, "family,slope,seed,slope_rms,points,k,k_error,rms_residual,k_linear,linear_points,"
                         "pressure_ratio_min,pressure_ratio_max,area_fraction_min,area_fraction_max\n");
-    for (int i = 0; i < count && status == IM_OK; ++i)
+    int rough = 0;
+    for (int i = 0; i < count && status == IM_OK; ++i) {
         status = member_results(scene, options, &members[i], k_rows);
+        rough += scene->slopes[members[i].family] > 0;
+    }
     if (!fits)
         return status;
     if (status != IM_OK) {
@@ -88,6 +91,6 @@ int scene_periodic_results(const im_scene *scene, const im_scene_run_options *op
     }
     status = im_atomic_commit(&file);
     if (status == IM_OK)
-        scene_progress(options, "periodic: k of eq. (2) of %d surfaces in k_fit.csv", count);
+        scene_progress(options, "periodic: k of eq. (2) of %d rough surfaces in k_fit.csv", rough);
     return status;
 }
