@@ -248,6 +248,35 @@ static void histories_without_smooth_area(void **state)
     assert_false(im_history_parse(text, 0, rows, 2, &count, why, sizeof why));
 }
 
+/* A periodic cell's row (solver.h, "Periodic mode"): N* NaN beside a finite A / A0, which neither a smooth
+ * punch's rows (N* finite) nor a 2-D profile's (both NaN) hold. */
+static void histories_of_a_periodic_cell(void **state)
+{
+    (void)state;
+    im_history_row rows[2];
+    int count;
+    char why[160], text[2048], line[IM_HISTORY_LINE_MAX];
+    im_history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = NAN, .contact_patches = 4,
+                                             .area_ratio = 0.25, .iterations = 5, .residual = 1e-7},
+                       .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_true(im_history_parse(text, IM_HISTORY_AREA_CELL, rows, 2, &count, why, sizeof why));
+    assert_int_equal(count, 1);
+    assert_true(isnan(rows[0].result.load_star) && rows[0].result.area_ratio == 0.25);
+    assert_false(im_history_parse(text, IM_HISTORY_AREA_SMOOTH, rows, 2, &count, why, sizeof why));
+    assert_false(im_history_parse(text, IM_HISTORY_AREA_NONE, rows, 2, &count, why, sizeof why));
+    row.result.load_star = 3; /* a cell has no N* */
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_false(im_history_parse(text, IM_HISTORY_AREA_CELL, rows, 2, &count, why, sizeof why));
+    row.result.load_star = NAN;
+    row.result.area_ratio = NAN; /* under a load, A / A0 is a number */
+    im_history_format(&row, line, sizeof line);
+    snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
+    assert_false(im_history_parse(text, IM_HISTORY_AREA_CELL, rows, 2, &count, why, sizeof why));
+}
+
 /* ---- paths ---- */
 
 static void path_join_refuses_what_does_not_fit(void **state)
@@ -272,6 +301,7 @@ int main(void)
         cmocka_unit_test(punch_names_one_parser),      cmocka_unit_test(one_default_tolerance),
         cmocka_unit_test(both_histories_one_reader),   cmocka_unit_test(other_histories_refused),
         cmocka_unit_test(histories_without_smooth_area),
+        cmocka_unit_test(histories_of_a_periodic_cell),
         cmocka_unit_test(path_join_refuses_what_does_not_fit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -56,14 +56,19 @@ int im_history_measure(const im_indenter *punch, const im_theory_interface *roug
 enum { IM_HISTORY_LINE_MAX = 1024 };
 int im_history_format(const im_history_row *row, char *line, size_t size);
 
+/* What area_ratio and load_star are measured against, im_history_parse's area: no area (a 2-D
+ * profile: both NaN), the smooth punch's (load_star = A(N) / delta^2), or the periodic cell's (area_ratio
+ * = A / A0, load_star NaN; solver.h, "Periodic mode"). */
+enum { IM_HISTORY_AREA_NONE = 0, IM_HISTORY_AREA_SMOOTH = 1, IM_HISTORY_AREA_CELL = 2 };
+
 /* Parses the text of a history from its column line: the line must be im_history_columns() (else a
  * history of another version), then each row whole, with the right number of values, numbers finite
- * where they must be (approach, load; when the punch has a smooth-contact area, smooth_area nonzero,
- * load_star unless the load is tensile and area_ratio unless it is not compressive) and NaN where the solver writes NaN (area_ratio at no
- * load; load_star and area_ratio of a punch without that area, a 2-D profile). Fills rows[0..*count)
- * (capacity at most). Returns 1, or 0 with a reason in why at the first fault (also for NULL
- * arguments). */
-int im_history_parse(const char *text, int smooth_area, im_history_row *rows, int capacity, int *count, char *why,
+ * where they must be (approach, load; with IM_HISTORY_AREA_SMOOTH, load_star unless the load is
+ * tensile; with it or IM_HISTORY_AREA_CELL, area_ratio unless the load is not compressive) and NaN where
+ * the solver writes NaN (area_ratio at no load; load_star but with a smooth-contact area, area_ratio
+ * without any area). Fills rows[0..*count) (capacity at most). Returns 1, or 0 with a reason in why at
+ * the first fault (also for NULL arguments). */
+int im_history_parse(const char *text, int area, im_history_row *rows, int capacity, int *count, char *why,
                      size_t why_size);
 
 #ifdef __cplusplus

@@ -64,6 +64,9 @@ enum im_scene_plot {
     IM_SCENE_PLOT_FLAT_K = 1u << 8   /* eq. (2)'s k measured on the rough surfaces */
 };
 
+/* im_scene.periodic. */
+enum { IM_SCENE_PERIODIC_FLAT = 1, IM_SCENE_PERIODIC_PUNCH = 2 };
+
 /* The name of one plot bit ("fig5"), NULL for anything else; the bit named by name, 0 for none. */
 const char *im_scene_plot_name(enum im_scene_plot plot);
 enum im_scene_plot im_scene_plot_parse(const char *name);
@@ -126,6 +129,15 @@ typedef struct im_scene {
                                         (the punch borrows it; the copy's profile_file then holds the
                                         path resolved, IM_EINVAL naming [punch] profile when it would
                                         not fit in IM_SCENE_PATH); NULL otherwise */
+    /* [punch] periodic = yes (docs/scenes.md, "Periodic contact"; solver.h, "Periodic mode"): every
+     * surface is one period of a periodic surface, pressed on the whole cell under mean-pressure control:
+     * [loading] steps are mean pressures p_m (units of E*; control is then load, and `control` itself is
+     * refused). IM_SCENE_PERIODIC_FLAT without [punch] shape: a rigid flat on the whole cell, as `indent
+     * --periodic`; IM_SCENE_PERIODIC_PUNCH with one: that punch, repeated with the cell. 0: the half-space.
+     * What needs the smooth contact on a half-space (load_star, panels, frames, table, distributions,
+     * adhesion and the plots but fig3 and flat_k) is refused beside it, naming the key. Part of every
+     * result's key. */
+    int periodic;
     double modulus;                  /* composite modulus E* */
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
@@ -223,6 +235,10 @@ typedef struct im_scene_run_options {
  *   distributions: distributions/family_FF_{gaps,patches,patch_list}.csv, the gap (in the surface's
  *     h_rms) and contact-patch size distributions of each family's first surface at load_star
  *     (measure.h: im_measure_write_distributions), solved for them each time (not kept for --resume).
+ *   periodic: histories/member_FF_SEED.csv at the mean pressures of steps and, with the rigid flat and no
+ *     hardness, k_fit.csv: k of eq. (2) fitted to each rough member's history (as `indent --periodic`).
+ *   histories that unload (steps going down, with a hardness, not periodic): indentation/member_FF_SEED.csv,
+ *     each member's indentation analysis (`indent`'s indentation.csv).
  * Nothing is solved twice within a run (but for the distributions): a load-controlled history's step at load_star takes the
  * table's state, and a panel takes the force of the table, of such a history, or of the frames'
  * last step. Each stage's line says how many surfaces it solved, read back and reused.

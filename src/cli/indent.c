@@ -858,38 +858,29 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
     return status;
 }
 
-/* --periodic under a rigid flat without a hardness: k of eq. (2) fitted to the steps done with load
- * (theory.h: im_theory_fit_k, x = p_m / (h'rms E*) with the surface's spectral h'rms), printed and
- * recorded in run.json with its range. */
+/* --periodic under a rigid flat without a hardness: k of eq. (2) fitted to the steps done (front.h:
+ * periodic_fit_k, with the surface's h'rms of --slope-definition), printed and recorded in run.json
+ * with its range. */
 static void write_k_fit(const indent_options *o, const im_theory_interface *rough, const im_history_row *rows,
                         int done, json_t *record)
 {
-    double *x = malloc(sizeof(double) * (size_t)(done + 1)), *area = malloc(sizeof(double) * (size_t)(done + 1));
-    int points = 0;
-    for (int i = 0; x && area && i < done; ++i)
-        if (rows[i].result.load > 0) {
-            x[points] = rows[i].result.load / o->cell_area / (rough->slope_rms * rough->e_star);
-            area[points++] = rows[i].result.area_ratio;
-        }
-    im_theory_k_fit fit;
-    if (points > 0 && rough->slope_rms > 0 && im_theory_fit_k(x, area, points, &fit) == IM_OK) {
-        double lo = x[0], hi = x[0], a_lo = area[0], a_hi = area[0];
-        for (int i = 1; i < points; ++i)
-            lo = fmin(lo, x[i]), hi = fmax(hi, x[i]), a_lo = fmin(a_lo, area[i]), a_hi = fmax(a_hi, area[i]);
-        printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-               "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit.k, fit.k_error,
-               points, lo, hi, a_lo, a_hi, rough->slope_rms, slope_definition_name(o->slope_definition),
-               fit.k_linear, fit.linear_points);
-        json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit.k, "k_error",
-                                  fit.k_error, "rms_residual", fit.rms_residual, "points", points, "linear_points",
-                                  fit.linear_points, "pressure_ratio_range", lo, hi, "area_fraction_range", a_lo,
-                                  a_hi, "slope_rms", rough->slope_rms, "slope_rms_definition",
-                                  slope_definition_name(o->slope_definition));
-        json_object_set_new(block, "k_linear", isfinite(fit.k_linear) ? json_real(fit.k_linear) : json_null());
-        json_object_set_new(record, "k_fit", block);
+    periodic_k_fit k;
+    if (periodic_fit_k(rows, done, o->cell_area, rough->slope_rms, rough->e_star, &k) != IM_OK) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+        return;
     }
-    free(x);
-    free(area);
+    const im_theory_k_fit *fit = &k.fit;
+    printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
+           "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit->k, fit->k_error, k.points,
+           k.pressure_ratio[0], k.pressure_ratio[1], k.area_fraction[0], k.area_fraction[1], rough->slope_rms,
+           slope_definition_name(o->slope_definition), fit->k_linear, fit->linear_points);
+    json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
+                              fit->k_error, "rms_residual", fit->rms_residual, "points", k.points, "linear_points",
+                              fit->linear_points, "pressure_ratio_range", k.pressure_ratio[0], k.pressure_ratio[1],
+                              "area_fraction_range", k.area_fraction[0], k.area_fraction[1], "slope_rms",
+                              rough->slope_rms, "slope_rms_definition", slope_definition_name(o->slope_definition));
+    json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
+    json_object_set_new(record, "k_fit", block);
 }
 
 /* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
@@ -979,31 +970,6 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
            branches, branches == 1 ? "" : "es", o->out);
 }
 
-/* The rms of the steps across the cell's edges (last column to first, last row to first) and of the
- * steps between neighbours inside it. */
-static void edge_steps(const im_field *s, double *edge_rms, double *inner_rms)
-{
-    double edge = 0, inner = 0;
-    long edges = 0, inners = 0;
-    for (int iy = 0; iy < s->ny; ++iy)
-        for (int ix = 0; ix < s->nx; ++ix) {
-            const double h = s->data[(size_t)iy * s->nx + ix];
-            const double right = s->data[(size_t)iy * s->nx + (ix + 1) % s->nx];
-            const double below = s->data[(size_t)((iy + 1) % s->ny) * s->nx + ix];
-            const double dx = right - h, dy = below - h;
-            if (ix + 1 == s->nx)
-                edge += dx * dx, ++edges;
-            else
-                inner += dx * dx, ++inners;
-            if (iy + 1 == s->ny)
-                edge += dy * dy, ++edges;
-            else
-                inner += dy * dy, ++inners;
-        }
-    *edge_rms = edges ? sqrt(edge / edges) : 0;
-    *inner_rms = inners ? sqrt(inner / inners) : 0;
-}
-
 /* --periodic: the rigid flat when no --punch was given (a flat punch wider than the cell's diagonal
  * covers every nearest image), loads from --pressure's mean pressures, and a warning when SURFACE is
  * not periodic (the solver joins its edges, as ContactMechanics warns). */
@@ -1011,15 +977,13 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
 {
     if (!o->solver.periodic)
         return;
-    const double cell = (double)surface->nx * surface->ny * surface->delta * surface->delta;
-    o->cell_area = cell;
+    o->cell_area = periodic_cell_area(surface);
     if (!o->punch_given)
-        o->punch = im_indenter_flat(2.0 * hypot(surface->nx, surface->ny) * surface->delta);
+        o->punch = periodic_rigid_flat(surface);
     for (int i = 0; o->pressures && i < o->target_count; ++i)
-        o->targets[i] *= cell;
+        o->targets[i] *= o->cell_area;
     double edge, inner;
-    edge_steps(surface, &edge, &inner);
-    if (edge > 3.0 * inner)
+    if (periodic_edge_mismatch(surface, &edge, &inner))
         fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
                 "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
                 "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",

@@ -49,19 +49,17 @@ static int format_branch(int index, const im_unloading_branch *b, const im_histo
                     b->work_in, b->work_out, last->plastic_work - before, area_theory, stiffness_smooth);
 }
 
-static int write_branches(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
+static int write_branches(const char *path, const im_unloading_branch *b, int found, const im_history_row *rows,
                           double delta, double e_star)
 {
     size_t size = sizeof ANALYSIS_COLUMNS + 1 + (size_t)found * ANALYSIS_LINE_MAX, used = 0;
-    char *text = malloc(size), path[4096];
+    char *text = malloc(size);
     if (!text)
         return im_fail(IM_ENOMEM, "indentation.csv of %d branches", found);
     used += (size_t)snprintf(text, size, "%s\n", ANALYSIS_COLUMNS);
     for (int k = 0; k < found; ++k)
         used += (size_t)format_branch(k, &b[k], rows, delta, e_star, text + used, size - used);
-    int status = im_path_join(path, sizeof path, dir, "indentation.csv");
-    if (status == IM_OK)
-        status = im_write_file_atomic(path, text, used);
+    int status = im_write_file_atomic(path, text, used);
     free(text);
     return status;
 }
@@ -194,28 +192,56 @@ static int write_figure(const char *dir, const im_unloading_branch *b, int found
 
 /* ---- both, from one analysis ---- */
 
-int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   double e_star, const char *length_unit, const char *force_unit, int *branches)
+/* The unloading branches of rows[0..count) (measure.h) into *found (count of them at most; the caller
+ * frees it), their number into *branches. */
+static int measure_branches(const im_indenter *punch, const im_history_row *rows, int count,
+                            im_unloading_branch **found, int *branches)
 {
     *branches = 0;
-    if (count < 2)
-        return IM_OK;
     double *columns = malloc(sizeof(double) * 3 * (size_t)count);
-    im_unloading_branch *found = malloc(sizeof *found * (size_t)count);
-    int status = columns && found ? IM_OK : im_fail(IM_ENOMEM, "indentation analysis of %d steps", count);
+    *found = malloc(sizeof **found * (size_t)count);
+    int status = columns && *found ? IM_OK : im_fail(IM_ENOMEM, "indentation analysis of %d steps", count);
     for (int k = 0; status == IM_OK && k < count; ++k) {
         columns[k] = rows[k].result.approach;
         columns[count + k] = rows[k].result.load;
         columns[2 * count + k] = rows[k].result.residual_approach;
     }
     if (status == IM_OK)
-        status = im_measure_unloading(punch, columns, columns + count, columns + 2 * count, count, found, count,
+        status = im_measure_unloading(punch, columns, columns + count, columns + 2 * count, count, *found, count,
                                       branches);
+    free(columns);
+    return status;
+}
+
+int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
+                         double delta, double e_star, int *branches)
+{
+    *branches = 0;
+    if (count < 2)
+        return IM_OK;
+    im_unloading_branch *found = NULL;
+    int status = measure_branches(punch, rows, count, &found, branches);
     if (status == IM_OK && *branches > 0)
-        status = write_branches(dir, found, *branches, rows, delta, e_star);
+        status = write_branches(path, found, *branches, rows, delta, e_star);
+    free(found);
+    return status;
+}
+
+int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
+                   double e_star, const char *length_unit, const char *force_unit, int *branches)
+{
+    *branches = 0;
+    if (count < 2)
+        return IM_OK;
+    char path[4096];
+    im_unloading_branch *found = NULL;
+    int status = im_path_join(path, sizeof path, dir, "indentation.csv");
+    if (status == IM_OK)
+        status = measure_branches(punch, rows, count, &found, branches);
+    if (status == IM_OK && *branches > 0)
+        status = write_branches(path, found, *branches, rows, delta, e_star);
     if (status == IM_OK && *branches > 0)
         status = write_figure(dir, found, *branches, rows, count, length_unit, force_unit);
-    free(columns);
     free(found);
     return status;
 }

@@ -66,6 +66,11 @@ extern const char ANALYSIS_COLUMNS[];
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
                    double e_star, const char *length_unit, const char *force_unit, int *branches);
 
+/* The same table alone at path (a scene's per-member file), atomically, when rows[0..count) hold an
+ * unloading branch; *branches says how many (0: nothing written). */
+int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
+                         double delta, double e_star, int *branches);
+
 /* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
  * pull-off marked. IM_EINVAL for count < 1; a figure that cannot be written leaves the summary set. */
@@ -84,6 +89,31 @@ int adhesion_theory_pull_off(const im_indenter *punch, const im_theory_adhesion 
  * adhesion_theory_pull_off knows; IM_EINVAL for another. */
 int adhesion_theory_write(const char *dir, const im_indenter *punch, const im_theory_adhesion *law,
                           const im_history_row *rows, int count);
+
+/* ---- the periodic mode (periodic.c; solver.h, "Periodic mode") ---- */
+
+/* The cell's area nx ny delta^2: a mean pressure p_m is the load p_m times it. */
+double periodic_cell_area(const im_field *surface);
+
+/* The rigid flat pressed on the whole cell (the punch of a periodic run that names none). */
+im_indenter periodic_rigid_flat(const im_field *surface);
+
+/* A surface given as one period is not periodic when the rms of its steps across the cell's edges (last
+ * column to first, last row to first) exceeds this many times that of the steps inside it. */
+#define PERIODIC_EDGE_RATIO 3.0
+
+/* Those two rms into *edge_rms and *inner_rms; 1 when the surface is not periodic by that rule. */
+int periodic_edge_mismatch(const im_field *surface, double *edge_rms, double *inner_rms);
+
+/* k of eq. (2) fitted to a periodic history under a rigid flat (theory.h: im_theory_fit_k) over its steps
+ * with a positive load, x = p_m / (h'rms E*), with the ranges of x and of A/A0 it spans. */
+typedef struct periodic_k_fit {
+    im_theory_k_fit fit;
+    int points;
+    double pressure_ratio[2], area_fraction[2]; /* least and largest */
+} periodic_k_fit;
+int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
+                   periodic_k_fit *out);
 
 /* ---- the JSON run record (record.c) ---- */
 

@@ -107,16 +107,17 @@ static int scan_row(const char *line, const char *end, im_history_row *row)
 
 /* Whether the solution's values are what the solver reports: approach and load finite; with a
  * smooth-contact area, N* finite unless the load is tensile (adhesion) and A / A_cone NaN only where
- * there is no compressive load; without one (a 2-D profile), both NaN. */
-static int row_is_finite(const im_history_row *row, int smooth_area)
+ * there is no compressive load; without one (a 2-D profile), both NaN; on a periodic cell, N* NaN and
+ * A / A0 as A / A_cone. */
+static int row_is_finite(const im_history_row *row, int area)
 {
     const im_step_result *r = &row->result;
-    int ratio_ok = r->load > 0 && smooth_area ? isfinite(r->area_ratio) : isnan(r->area_ratio);
-    int n_star_ok = smooth_area && r->load >= 0 ? isfinite(r->load_star) : isnan(r->load_star);
+    int ratio_ok = r->load > 0 && area != IM_HISTORY_AREA_NONE ? isfinite(r->area_ratio) : isnan(r->area_ratio);
+    int n_star_ok = area == IM_HISTORY_AREA_SMOOTH && r->load >= 0 ? isfinite(r->load_star) : isnan(r->load_star);
     return isfinite(r->approach) && isfinite(r->load) && n_star_ok && ratio_ok;
 }
 
-int im_history_parse(const char *text, int smooth_area, im_history_row *rows, int capacity, int *count, char *why,
+int im_history_parse(const char *text, int area, im_history_row *rows, int capacity, int *count, char *why,
                      size_t why_size)
 {
     ARG_REQUIRE_OR(text, "text", 0);
@@ -135,7 +136,7 @@ int im_history_parse(const char *text, int smooth_area, im_history_row *rows, in
             snprintf(why, why_size, "row %d is not %d numbers on a whole line", *count + 1, HISTORY_VALUES);
             return 0;
         }
-        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count], smooth_area)) {
+        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count], area)) {
             snprintf(why, why_size, "row %d holds a value that is not finite or a step out of order", *count + 1);
             return 0;
         }

@@ -12,6 +12,7 @@
 #include "scene/key.h"
 #include "scene/labels.h"
 #include "scene/outputs.h"
+#include "scene/periodic.h"
 #include "scene/plots.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
@@ -110,7 +111,7 @@ static int write_history(const im_scene *scene, const scene_member *m)
 /* Whether a kept history's text is whole: its header's row count and checksum match the rows,
  * which parse with the one history reader (front.h: this version's columns, every row whole and
  * finite); on success its rows are in m. */
-static int history_is_whole(char *text, int smooth_area, scene_member *m, int capacity, uint64_t *key, char *why,
+static int history_is_whole(char *text, int area, scene_member *m, int capacity, uint64_t *key, char *why,
                             size_t why_size)
 {
     uint64_t checksum = 0;
@@ -122,7 +123,7 @@ static int history_is_whole(char *text, int smooth_area, scene_member *m, int ca
         return 0;
     }
     ++body;
-    if (!im_history_parse(body, smooth_area, m->history, capacity, &m->steps, why, why_size))
+    if (!im_history_parse(body, area, m->history, capacity, &m->steps, why, why_size))
         return 0;
     if (m->steps != rows || rows < 1) {
         snprintf(why, why_size, "%d rows where its header says %d", m->steps, rows);
@@ -150,8 +151,10 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
     if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
         return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
-    int smooth_area = scene_punch(scene).kind != IM_PUNCH_PROFILE_2D; /* else N* and A / A_cone are NaN */
-    int whole = history_is_whole(text, smooth_area, m, scene->step_count, &key, why, sizeof why);
+    int area = scene->periodic                                    ? IM_HISTORY_AREA_CELL
+               : scene_punch(scene).kind != IM_PUNCH_PROFILE_2D ? IM_HISTORY_AREA_SMOOTH
+                                                                : IM_HISTORY_AREA_NONE;
+    int whole = history_is_whole(text, area, m, scene->step_count, &key, why, sizeof why);
     free(text);
     if (!whole) {
         m->steps = 0;
@@ -160,17 +163,27 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
     return scene_key_matches(options, path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
 }
 
-/* The target of step i: an approach, or the load at N* = steps[i]. */
-static double step_target(const im_scene *scene, int i, double delta)
+/* The target of step i: an approach, the load at N* = steps[i], or in the periodic mode the load of the
+ * mean pressure steps[i] over the cell (as `indent --periodic --pressure`). */
+static double step_target(const im_scene *scene, int i, const im_field *surface)
 {
-    return scene->control == IM_CONTROL_LOAD ? scene_load_for_n_star(scene, scene->steps[i], delta) : scene->steps[i];
+    if (scene->periodic)
+        return scene->steps[i] * periodic_cell_area(surface);
+    return scene->control == IM_CONTROL_LOAD ? scene_load_for_n_star(scene, scene->steps[i], surface->delta)
+                                             : scene->steps[i];
+}
+
+/* What a step of the scene's list is. */
+static const char *step_name(const im_scene *scene)
+{
+    return scene->periodic ? "mean pressure" : scene->control == IM_CONTROL_LOAD ? "N*" : "approach";
 }
 
 /* Step i of a history. At load_star (load control) the table's state is taken instead of solving
  * it again (what the table does not keep is unknown in the row: -1 and NaN, front.h); without a
  * table, that step's force is kept for the panels. */
-static int load_star_step(const im_scene *scene, im_indentation *run, scene_member *m, int i, double delta,
-                          im_step_result *step)
+static int load_star_step(const im_scene *scene, im_indentation *run, scene_member *m, int i,
+                          const im_field *surface, im_step_result *step)
 {
     int at_load_star = i == scene_load_star_step(scene);
     const scene_member *known = m->at_load_star;
@@ -184,7 +197,7 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
         m->step_reused = 1;
         return IM_OK;
     }
-    int status = im_indentation_step(run, step_target(scene, i, delta), step);
+    int status = im_indentation_step(run, step_target(scene, i, surface), step);
     if (status == IM_OK && at_load_star && scene_keeps_force(scene, m))
         status = im_indentation_fields(run, &m->force, NULL, NULL);
     return status;
@@ -197,13 +210,14 @@ static int load_star_step(const im_scene *scene, im_indentation *run, scene_memb
 static int solve_history(const im_scene *scene, const im_scene_run_options *run_options, scene_member *m,
                          const im_field *surface)
 {
-    im_indenter punch = scene_punch(scene);
+    im_indenter punch = scene_member_punch(scene, surface);
     im_theory_interface rough = scene_theory_interface(scene, scene->slopes[m->family]);
+    const im_theory_interface *theory = scene->periodic ? NULL : &rough; /* as indent: none for a cell */
     im_solver_options options = scene_solver_options(scene);
     im_indentation *run = NULL;
     double largest = 0; /* the largest step: a history with a hardness may go down, one with adhesion below 0 */
     for (int i = 0; i < scene->step_count; ++i)
-        largest = fmax(largest, fabs(step_target(scene, i, surface->delta)));
+        largest = fmax(largest, fabs(step_target(scene, i, surface)));
     int status = im_indentation_create(surface, &punch, scene->control, largest, &options, &run);
     for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
         if (scene_stop_signal(run_options)) {
@@ -211,13 +225,12 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
             break;
         }
         int from_table = i == scene_load_star_step(scene) && m->at_load_star;
-        status = load_star_step(scene, run, m, i, surface->delta, &m->history[i].result);
+        status = load_star_step(scene, run, m, i, surface, &m->history[i].result);
         if (status == IM_EEDGE) /* a history short of the scene's steps would be drawn as if whole */
             im_fail_context(status, "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
-                            "smaller steps)", i + 1,
-                            scene->step_count, scene->control == IM_CONTROL_LOAD ? "N*" : "approach", scene->steps[i]);
+                            "smaller steps)", i + 1, scene->step_count, step_name(scene), scene->steps[i]);
         if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
-            status = im_history_measure(&punch, &rough, from_table ? NULL : run, m->history, i);
+            status = im_history_measure(&punch, theory, from_table ? NULL : run, m->history, i);
         if (status == IM_OK)
             m->steps = i + 1;
     }
@@ -432,6 +445,45 @@ void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_mem
                 members[i].at_load_star = &reuse->table[k];
 }
 
+/* Whether the histories unload (steps that go down, with a hardness's memory): then each member's
+ * indentation analysis is written. Not in the periodic mode, as `indent --periodic` (Oliver-Pharr's
+ * areas are a punch's on a half-space), nor with adhesion (its summary is another). */
+static int histories_unload(const im_scene *scene)
+{
+    for (int i = 1; i < scene->step_count && scene->hardness > 0 && !scene->periodic; ++i)
+        if (scene->steps[i] < scene->steps[i - 1])
+            return 1;
+    return 0;
+}
+
+/* indentation/member_FF_SEED.csv: the analysis of a member's unloading branches, indent's
+ * indentation.csv (front.h: analysis_write_table), drawn again from the history by every run. */
+static int write_indentation(const im_scene *scene, const scene_member *m)
+{
+    char relative[96], path[IM_SCENE_PATH];
+    snprintf(relative, sizeof relative, "indentation/member_%02d_%llu.csv", m->family, (unsigned long long)m->seed);
+    im_indenter punch = scene_punch(scene);
+    int branches = 0, status = scene_output_path(scene, relative, path, sizeof path);
+    if (status == IM_OK)
+        status = analysis_write_table(path, &punch, m->history, m->steps, scene->surface.delta, scene->modulus,
+                                      &branches);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "%s", relative);
+}
+
+static int write_indentations(const im_scene *scene, const im_scene_run_options *options,
+                              const scene_member *members, int count)
+{
+    char folder[IM_SCENE_PATH];
+    int status = scene_output_path(scene, "indentation", folder, sizeof folder);
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    for (int i = 0; i < count && status == IM_OK; ++i)
+        status = write_indentation(scene, &members[i]);
+    if (status == IM_OK)
+        scene_progress(options, "histories: the indentation analysis of %d surfaces in indentation/", count);
+    return status;
+}
+
 static void report_histories(const im_scene_run_options *options, const scene_member *members, int count)
 {
     int reused = 0;
@@ -458,6 +510,10 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         report_histories(options, members, count);
     scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_HISTORY);
+    if (status == IM_OK && histories_unload(scene))
+        status = write_indentations(scene, options, members, count);
+    if (status == IM_OK && scene->periodic)
+        status = scene_periodic_results(scene, options, members, count);
     if (status == IM_OK)
         status = plot_histories(scene, members, count);
     scene_members_free(members, count);

@@ -100,6 +100,8 @@ static void add_contact(key_hash *hash, const im_scene *scene)
      * the memoryless cap's, which --resume must not reuse */
     if (o.hardness > 0)
         key_add(hash, "hardness %.17g; memory;", o.hardness);
+    if (scene->periodic) /* likewise */
+        key_add(hash, "periodic %d;", scene->periodic);
     if (o.adhesion_work > 0) /* likewise: only then */
         key_add(hash, "adhesion maugis-dugdale %.17g %.17g;", o.adhesion_work, o.adhesion_range);
 }
@@ -119,7 +121,7 @@ int scene_kept_damaged(const im_scene_run_options *options, const char *path, co
 
 int scene_load_star_step(const im_scene *scene)
 {
-    for (int i = 0; scene->control == IM_CONTROL_LOAD && i < scene->step_count; ++i)
+    for (int i = 0; scene->control == IM_CONTROL_LOAD && !scene->periodic && i < scene->step_count; ++i)
         if (fabs(scene->steps[i] - scene->load_star) <= 1e-12 * scene->load_star)
             return i;
     return -1;

@@ -84,7 +84,7 @@ static int check_contact_fits(const im_scene *scene, const grid *g, const char *
  * before any work, when even the smooth contact of that step leaves the surface. */
 static int check_histories_fit(const im_scene *scene, const grid *g)
 {
-    if (!scene_wants_histories(scene) || scene->step_count < 1)
+    if (!scene_wants_histories(scene) || scene->step_count < 1 || scene->periodic) /* the cell is all contact */
         return IM_OK;
     double last = scene->steps[0]; /* the largest step (a history with a hardness may go down) */
     for (int i = 1; i < scene->step_count; ++i)

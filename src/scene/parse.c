@@ -387,6 +387,7 @@ static const key_spec KEYS[] = {
     {"punch", "profile", parse_string, FIELD(profile_file), 0, 0, NULL, IM_SCENE_PATH, 0},
     {"punch", "alpha", parse_sweep_list, FIELD(alphas), 1e-9, 90 - 1e-9, NULL, IM_SCENE_MAX_SWEEP, FIELD(alpha_count)},
     {"punch", "radius", parse_double, FIELD(radius), 1e-9, 1e12, NULL, 0, 0},
+    {"punch", "periodic", parse_bool, FIELD(periodic), 0, 0, NULL, 0, 0},
     {"material", "modulus", parse_double, FIELD(modulus), 1e-300, 1e300, NULL, 0, 0},
     {"material", "hardness", parse_double, FIELD(hardness), 1e-300, 1e300, NULL, 0, 0},
     {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load", 0, 0},
@@ -666,6 +667,79 @@ static int check_punch_keys(parse_context *context)
     return 0;
 }
 
+/* What a periodic scene cannot take, each key with its section and why: all is solved at a mean pressure
+ * on the whole cell, where there is no smooth contact on a half-space (its area N*, circle or theory). */
+static const struct {
+    const char *section, *key;
+    size_t flag; /* offsetof the yes/no it sets (refused when yes), 0: refused whenever given */
+    const char *why;
+} PERIODIC_REFUSED[] = {
+    {"loading", "control", 0, "a periodic scene is under mean-pressure control: its steps are mean pressures p_m "
+                           "(units of E*); remove control"},
+    {"loading", "load_star", 0, "N* = A(N) / delta^2 is a smooth punch's contact area on a half-space, which the "
+                             "periodic cell does not have"},
+    {"output", "contact_panels", FIELD(contact_panels),
+     "the panels are solved at load_star N* and drawn with the smooth contact circle"},
+    {"output", "frames", FIELD(frames),
+     "the frames are solved up to load_star N* and drawn with the smooth contact circle"},
+    {"output", "table", FIELD(table), "the table compares A/A_cone at load_star N* with eq. (12)"},
+    {"output", "distributions", FIELD(distributions), "the distributions are measured at load_star N*"},
+};
+
+/* The plots a periodic scene draws: the surfaces' own (fig3) and k's flat contacts (flat_k); the others
+ * set a punch's contact on a half-space against its theory (Love's, Hertz's, eq. (12), gamma(r/a)). */
+static const unsigned PERIODIC_PLOTS = IM_SCENE_PLOT_FIG3 | IM_SCENE_PLOT_FLAT_K;
+
+/* A plot a periodic scene cannot draw, NULL if none. */
+static const char *periodic_refused_plot(const im_scene *scene)
+{
+    for (unsigned bit = 1; im_scene_plot_name((enum im_scene_plot)bit); bit <<= 1)
+        if ((scene->plots & bit) && !(bit & PERIODIC_PLOTS))
+            return im_scene_plot_name((enum im_scene_plot)bit);
+    return NULL;
+}
+
+/* [punch] periodic: sets which punch presses the cell (the rigid flat unless shape is given) and load
+ * control, and refuses what does not apply. Returns the line at fault, 0 if none. */
+static int check_periodic(parse_context *context)
+{
+    im_scene *scene = context->scene;
+    if (!scene->periodic)
+        return 0;
+    const int shape = key_line(context, "punch", "shape");
+    scene->periodic = shape ? IM_SCENE_PERIODIC_PUNCH : IM_SCENE_PERIODIC_FLAT;
+    scene->control = IM_CONTROL_LOAD;
+    for (size_t i = 0; i < sizeof PERIODIC_REFUSED / sizeof *PERIODIC_REFUSED; ++i) {
+        const int line = key_line(context, PERIODIC_REFUSED[i].section, PERIODIC_REFUSED[i].key);
+        const size_t flag = PERIODIC_REFUSED[i].flag;
+        if (line && (!flag || *(const int *)((const char *)scene + flag))) {
+            snprintf(context->error, sizeof context->error, "[%s] %s beside [punch] periodic: %s",
+                     PERIODIC_REFUSED[i].section, PERIODIC_REFUSED[i].key, PERIODIC_REFUSED[i].why);
+            return line;
+        }
+    }
+    const char *const punch_keys[] = {"alpha", "radius", "profile"};
+    for (int i = 0; !shape && i < 3; ++i)
+        if (key_line(context, "punch", punch_keys[i])) {
+            snprintf(context->error, sizeof context->error, "[punch] %s beside periodic without shape: a rigid flat "
+                     "is pressed on the whole cell, which has no %s; give shape for a punch repeated with the "
+                     "cell", punch_keys[i], punch_keys[i]);
+            return key_line(context, "punch", punch_keys[i]);
+        }
+    const char *plot = periodic_refused_plot(scene);
+    if (plot) {
+        snprintf(context->error, sizeof context->error, "plots = %s beside [punch] periodic: it sets a punch's "
+                 "contact on a half-space against its smooth theory; a periodic scene draws fig3 and flat_k", plot);
+        return key_line(context, "output", "plots");
+    }
+    if (scene->step_count < 1) {
+        snprintf(context->error, sizeof context->error, "[punch] periodic needs [loading] steps: the mean "
+                 "pressures p_m (units of E*) of each surface's history");
+        return key_line(context, "punch", "periodic");
+    }
+    return 0;
+}
+
 /* Sweep lists that a scene cannot run: a list of angles for another punch, a list of generator
  * parameters beside surface files. Returns the line at fault, 0 if none. */
 static int check_sweeps(parse_context *context)
@@ -737,6 +811,8 @@ static const char *adhesion_conflict(const im_scene *scene)
     if (scene->plots & (IM_SCENE_PLOT_FIG7 | IM_SCENE_PLOT_SPHERE))
         return "[adhesion] with plots = fig7 or sphere: they set repulsive contact against N* on log axes, which a "
                "pulled (negative) load leaves (fig5 and fig6 draw adhesive histories)";
+    if (scene->periodic)
+        return "[adhesion] with [punch] periodic: the periodic half-space has no adhesion";
     if (scene->plots & IM_SCENE_PLOT_FLAT_K)
         return "[adhesion] with plots = flat_k: its flat panels are solved in the periodic half-space, which has "
                "no adhesion";
@@ -781,6 +857,9 @@ static int check_consistency(parse_context *context)
     int steps_line = parse_kept_steps(context);
     if (steps_line)
         return steps_line;
+    int periodic_line = check_periodic(context);
+    if (periodic_line)
+        return periodic_line;
     int sweep_line = check_sweeps(context);
     if (sweep_line)
         return sweep_line;

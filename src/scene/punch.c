@@ -3,6 +3,7 @@
 
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "front/front.h"
 #include "scene/punch.h"
 
 #include <math.h>
@@ -15,6 +16,11 @@ im_indenter scene_punch(const im_scene *scene)
     case IM_PUNCH_PROFILE: return im_indenter_from_profile(scene->profile); /* or a 2-D one, as read */
     default: return im_indenter_cone(scene->alpha_degrees);
     }
+}
+
+im_indenter scene_member_punch(const im_scene *scene, const im_field *surface)
+{
+    return scene->periodic == IM_SCENE_PERIODIC_FLAT ? periodic_rigid_flat(surface) : scene_punch(scene);
 }
 
 double scene_load_for_load_star(const im_scene *scene, double delta)
@@ -51,6 +57,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     options.adhesion_range = scene->adhesion_range;
     options.device = scene->device;
     options.wisdom_path = scene->wisdom_path;
+    options.periodic = scene->periodic != 0;
     return options;
 }
 

@@ -9,6 +9,10 @@
 /* The punch a scene describes. */
 im_indenter scene_punch(const im_scene *scene);
 
+/* The punch that presses a member's surface: scene_punch, or with [punch] periodic and no shape the
+ * rigid flat on the whole cell (front.h: periodic_rigid_flat, as `indent --periodic`). */
+im_indenter scene_member_punch(const im_scene *scene, const im_field *surface);
+
 /* The load N whose smooth contact area is load_star delta^2 (N* of the paper for a cone). */
 double scene_load_for_load_star(const im_scene *scene, double delta);
 

@@ -1,6 +1,7 @@
 /* OUTPUT/run.json of a scene run: the common run record (front.h) and the scene's own fields. */
 #include "front/front.h"
 #include "scene/outputs.h"
+#include "scene/periodic.h"
 #include "scene/punch.h"
 #include "scene/record.h"
 #include "scene/sweep.h"
@@ -74,6 +75,20 @@ static json_t *sweep_record(const im_scene *scene)
                      scene->surface.lambda_s), "points", scene_sweep_count(scene));
 }
 
+/* [punch] periodic: the punch, what the steps are and where k of eq. (2) is (null without). */
+static json_t *periodic_record(const im_scene *scene)
+{
+    if (!scene->periodic)
+        return json_null();
+    const int flat = scene->periodic == IM_SCENE_PERIODIC_FLAT;
+    json_t *record = json_pack("{s:s, s:s, s:s}", "punch", flat ? "rigid flat on the whole cell"
+                                                                : im_punch_name(scene->punch),
+                               "steps", "mean pressures p_m (units of E*)", "k_fit_slope_rms",
+                               "spectral, of each surface as solved");
+    json_object_set_new(record, "k_fit", scene_periodic_fits_k(scene) ? json_string("k_fit.csv") : json_null());
+    return record;
+}
+
 /* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
  * surface files it measured, a profile punch's file and a sweep's lists. */
 int scene_write_record(const im_scene *scene)
@@ -99,6 +114,7 @@ int scene_write_record(const im_scene *scene)
                                         "range", scene->adhesion_range, "stress",
                                         scene->adhesion_work / scene->adhesion_range)
                             : json_null());
+    json_object_set_new(root, "periodic", periodic_record(scene));
     /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */
     json_object_set_new(root, "theory_slope_rms",
                         json_pack("{s:s, s:s}", "definition", scene->file_count > 0 ? "finite differences" : "spectral",

@@ -1,0 +1,71 @@
+/* The periodic mode's pieces both front ends share (front.h): the cell, the rigid flat pressed on it,
+ * the edge-mismatch test of a surface given as one period, and k of eq. (2) fitted to a history. */
+#include "front/front.h"
+
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+double periodic_cell_area(const im_field *surface)
+{
+    return (double)surface->nx * surface->ny * surface->delta * surface->delta;
+}
+
+/* A flat punch wider than the cell's diagonal covers every nearest image of the cell. */
+im_indenter periodic_rigid_flat(const im_field *surface)
+{
+    return im_indenter_flat(2.0 * hypot(surface->nx, surface->ny) * surface->delta);
+}
+
+int periodic_edge_mismatch(const im_field *s, double *edge_rms, double *inner_rms)
+{
+    double edge = 0, inner = 0;
+    long edges = 0, inners = 0;
+    for (int iy = 0; iy < s->ny; ++iy)
+        for (int ix = 0; ix < s->nx; ++ix) {
+            const double h = s->data[(size_t)iy * s->nx + ix];
+            const double dx = s->data[(size_t)iy * s->nx + (ix + 1) % s->nx] - h;
+            const double dy = s->data[(size_t)((iy + 1) % s->ny) * s->nx + ix] - h;
+            if (ix + 1 == s->nx)
+                edge += dx * dx, ++edges;
+            else
+                inner += dx * dx, ++inners;
+            if (iy + 1 == s->ny)
+                edge += dy * dy, ++edges;
+            else
+                inner += dy * dy, ++inners;
+        }
+    *edge_rms = edges ? sqrt(edge / edges) : 0;
+    *inner_rms = inners ? sqrt(inner / inners) : 0;
+    return *edge_rms > PERIODIC_EDGE_RATIO * *inner_rms;
+}
+
+int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
+                   periodic_k_fit *out)
+{
+    *out = (periodic_k_fit){.points = 0};
+    if (!(slope_rms > 0))
+        return im_fail(IM_EINVAL, "k of eq. (2): the surface's h'rms is %g: expected a rough surface (> 0)",
+                       slope_rms);
+    double *x = malloc(sizeof(double) * (size_t)(count + 1)), *area = malloc(sizeof(double) * (size_t)(count + 1));
+    int status = x && area ? IM_OK : im_fail(IM_ENOMEM, "k of eq. (2) over %d steps", count);
+    for (int i = 0; status == IM_OK && i < count; ++i)
+        if (rows[i].result.load > 0) {
+            x[out->points] = rows[i].result.load / cell_area / (slope_rms * e_star);
+            area[out->points++] = rows[i].result.area_ratio;
+        }
+    if (status == IM_OK && out->points == 0)
+        status = im_fail(IM_EINVAL, "k of eq. (2): no step with a positive load");
+    if (status == IM_OK)
+        status = im_theory_fit_k(x, area, out->points, &out->fit);
+    for (int i = 0; status == IM_OK && i < out->points; ++i) {
+        out->pressure_ratio[0] = i ? fmin(out->pressure_ratio[0], x[i]) : x[i];
+        out->pressure_ratio[1] = i ? fmax(out->pressure_ratio[1], x[i]) : x[i];
+        out->area_fraction[0] = i ? fmin(out->area_fraction[0], area[i]) : area[i];
+        out->area_fraction[1] = i ? fmax(out->area_fraction[1], area[i]) : area[i];
+    }
+    free(x);
+    free(area);
+    return status;
+}

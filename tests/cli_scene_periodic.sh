@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# A scene's [punch] periodic (issue 26): a generated 64 x 64 cell under a rigid flat at six mean pressures,
+# read as a scene's surface file and by `indent --periodic --pressure`: the scene's history is indent's and
+# its k_fit.csv row is indent's run.json "k_fit", both exactly (one thread each, the same helpers); --resume
+# reads the history back and draws the same k; a sphere repeated with the cell under a hardness, loaded and
+# unloaded, is indent's too. A ramp (not periodic) is warned about; what needs a half-space is refused,
+# naming the key. Then an indentation/member_FF_SEED.csv per member of a hardness history that goes up and
+# down, equal to indent's indentation.csv, and the example scene scenes/periodic.ini.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+source "$(dirname "$0")/lib.sh"
+export OMP_NUM_THREADS=1 # a scene solves each member on one thread: so does indent here, for equal bits
+
+"$cli" surface --n 64 --slope 0.08 --seed 3 --out "$dir/cell.npy" > /dev/null
+scene() { # scene FILE SURFACE PUNCH-LINES LOADING-LINES [OTHER-LINES [OUTPUT]]
+    printf '[scene]\nname = cell\noutput = %s\n[surfaces]\nfile = %s\n[punch]\nperiodic = yes\n%s\n[loading]\n%s\n%s\n' \
+        "${6:-res}" "$2" "$3" "$4" "${5:-}" > "$1"
+}
+rows() { tail -n +2 "$1" | cut -d, -f1-10,12-; } # a history's rows but the solve times
+scene "$dir/flat.ini" cell.npy "" "steps = 0.002:0.03:6"
+check "the periodic scene runs" "$cli" run "$dir/flat.ini" 2> "$dir/run.err" > /dev/null
+check "a periodic surface is not warned about" [ -z "$(grep -i warn "$dir/run.err")" ]
+"$cli" indent "$dir/cell.npy" --periodic --pressure 0.002:0.03:6 --out "$dir/indent" > /dev/null
+check "the scene's history is indent --periodic's" \
+    cmp <(rows "$dir/res/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent/history.csv")
+k_fit_matches() { python3 - "$1" "$2" <<'PY'
+import csv, json, math, sys
+row = next(csv.DictReader(open(sys.argv[1])))
+fit = json.load(open(sys.argv[2]))["k_fit"]
+pairs = [(row["k"], fit["k"]), (row["k_error"], fit["k_error"]), (row["rms_residual"], fit["rms_residual"]),
+         (row["k_linear"], fit["k_linear"]), (row["slope_rms"], fit["slope_rms"]),
+         (row["points"], fit["points"]), (row["linear_points"], fit["linear_points"]),
+         (row["pressure_ratio_min"], fit["pressure_ratio_range"][0]),
+         (row["pressure_ratio_max"], fit["pressure_ratio_range"][1]),
+         (row["area_fraction_min"], fit["area_fraction_range"][0]),
+         (row["area_fraction_max"], fit["area_fraction_range"][1])]
+sys.exit(not all(float(a) == float(b) for a, b in pairs) or not 1.5 < fit["k"] < 2.5)
+PY
+}
+check "k_fit.csv is indent's k fit" k_fit_matches "$dir/res/k_fit.csv" "$dir/indent/run.json"
+check "run.json states the periodic mode" python3 -c "import json, sys; p = json.load(open(sys.argv[1]))['periodic']; \
+sys.exit(not (p['punch'] == 'rigid flat on the whole cell' and p['k_fit'] == 'k_fit.csv'))" "$dir/res/run.json"
+cp "$dir/res/k_fit.csv" "$dir/k_fit.csv"
+check "--resume reads the periodic history back" expect_exit 0 "0 solved, 1 read back" "$cli" run --resume "$dir/flat.ini"
+check "and draws the same k" cmp "$dir/k_fit.csv" "$dir/res/k_fit.csv"
+scene "$dir/more.ini" cell.npy "" "steps = 0.002:0.03:7"
+check "other pressures are solved again" expect_exit 0 "made from other inputs" "$cli" run --resume "$dir/more.ini"
+
+# A sphere repeated with the cell, with a hardness, loaded and unloaded: indent's history; no k (a cap).
+scene "$dir/sphere.ini" cell.npy $'shape = sphere\nradius = 20' "steps = 0.01:0.05:3, 0.03:0.01:2" \
+    $'[material]\nhardness = 0.4' sphere
+check "a repeated sphere with a hardness runs" "$cli" run "$dir/sphere.ini" > /dev/null 2>&1
+"$cli" indent "$dir/cell.npy" --periodic --punch sphere --radius 20 --hardness 0.4 \
+    --pressure 0.01:0.05:3,0.03:0.01:2 --out "$dir/indent_sphere" > /dev/null
+check "its history is indent's, plastic flow and all" \
+    cmp <(rows "$dir/sphere/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_sphere/history.csv")
+check "the history yields" awk -F, 'NR > 2 && $21 > 0 { y = 1 } END { exit !y }' "$dir/sphere/histories/member_00_0.csv"
+check "no k with a hardness" [ ! -e "$dir/sphere/k_fit.csv" ]
+
+# A ramp is not periodic: the warning of indent, naming the file.
+python3 -c "
+with open('$dir/ramp.txt', 'w') as f:
+    f.writelines(' '.join('%g' % (0.1 * x) for x in range(32)) + '\n' for y in range(32))"
+scene "$dir/ramp.ini" ramp.txt "" "steps = 0.01" "" ramp
+check "a ramp is warned about" expect_exit 0 "ramp.txt: the surface of family 0, seed 0 is not periodic" \
+    "$cli" run "$dir/ramp.ini"
+
+# The refusals, each naming the key at fault.
+refuse() { # NAME PUNCH-LINES LOADING-LINES OTHER-LINES PHRASE
+    scene "$dir/bad.ini" cell.npy "$2" "$3" "$4" bad
+    check "$1" expect_exit 2 "$5" "$cli" run "$dir/bad.ini"
+}
+refuse "load control" "" $'control = load\nsteps = 0.01' "" "bad.ini:10: [loading] control beside [punch] periodic"
+refuse "load_star" "" $'load_star = 100\nsteps = 0.01' "" "[loading] load_star beside [punch] periodic"
+refuse "the table" "" "steps = 0.01" $'[output]\ntable = yes' "[output] table beside [punch] periodic"
+refuse "frames" "" "steps = 0.01" $'[output]\ncontact_panels = no\nframes = yes' "[output] frames beside"
+refuse "Love's theory" "" "steps = 0.01" $'[output]\nplots = fig6' "plots = fig6 beside [punch] periodic"
+refuse "the smooth contact circle" "" "steps = 0.01" $'[output]\nplots = fig1' "plots = fig1 beside [punch] periodic"
+refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha beside periodic without shape"
+refuse "adhesion" "" "steps = 0.01" $'[adhesion]\nwork = 0.1\nrange = 1' "[adhesion] with [punch] periodic"
+refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
+refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"
+
+# An indentation analysis per member of a hardness history that goes up and down: indent's indentation.csv.
+printf '[scene]\nname = cycle\noutput = cycle\n[surfaces]\nfile = cell.npy\n[punch]\nshape = cone\nalpha = 80\n[material]\nhardness = 0.3\n[loading]\ncontrol = displacement\nsteps = 1:4:4, 3:1:3\n[output]\nplots = fig5\n' \
+    > "$dir/cycle.ini"
+check "a cycle with a hardness runs" expect_exit 0 "the indentation analysis of 1 surfaces" "$cli" run "$dir/cycle.ini"
+"$cli" indent "$dir/cell.npy" --hardness 0.3 --approach 1:4:4,3:1:3 --out "$dir/indent_cycle" > /dev/null
+check "the member's indentation.csv is indent's" \
+    cmp "$dir/cycle/indentation/member_00_0.csv" "$dir/indent_cycle/indentation.csv"
+check "outputs.txt lists it" grep -qx "indentation/member_00_0.csv" "$dir/cycle/outputs.txt"
+printf 'x\0y' > "$dir/cycle/indentation/member_00_0.csv"
+check "--resume makes a damaged one again" expect_exit 0 "holds binary" "$cli" run --resume "$dir/cycle.ini"
+check "as it was" cmp "$dir/cycle/indentation/member_00_0.csv" "$dir/indent_cycle/indentation.csv"
+sed -i 's/1:4:4, 3:1:3/1:4:4/' "$dir/cycle.ini"
+check "a history that only loads removes it" expect_exit 0 "indentation/member_00_0.csv" "$cli" run "$dir/cycle.ini"
+check "removed" [ ! -e "$dir/cycle/indentation/member_00_0.csv" ]
+
+# The example scene.
+check "scenes/periodic.ini runs" bash -c "cd '$dir' && '$cli' run '$(cd "$(dirname "$0")/.." && pwd)/scenes/periodic.ini' > /dev/null 2>&1"
+check "with k near eq. (2)'s 2 on its four surfaces" python3 -c "import csv, sys; r = list(csv.DictReader(open(sys.argv[1]))); \
+sys.exit(not (len(r) == 4 and all(1.6 < float(x['k']) < 2.3 and float(x['k_error']) < 0.05 for x in r)))" \
+    "$dir/output/periodic/k_fit.csv"
+finish
