@@ -215,6 +215,13 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
+    int shorter = o->surface.nx < o->surface.ny ? o->surface.nx : o->surface.ny;
+    if (!o->surface_file && !(shorter > o->surface.lambda_s)) { /* solve() makes lambda_r the shorter side */
+        fprintf(stderr, "indentmap: mpi-indent: --n %d --m %d: the shorter side is the surface's lambda_r, which "
+                "must exceed lambda_s = %g: expected --n and --m > %g\n", o->surface.nx, o->surface.ny,
+                o->surface.lambda_s, o->surface.lambda_s);
+        return -1;
+    }
     return 0;
 }
 
