@@ -141,9 +141,9 @@ int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file)
     char *words = NULL;
     size_t length = 0;
     int status = records ? words_of(count, args, &words, &length) : im_fail(IM_ENOMEM, "the ranks' records");
-    if (status == IM_OK && file)
-        status = file_hash(file, &mine[FILE_HASH]);
     if ((status = mpi_collective_status(comm, status)) == IM_OK) {
+        /* a file that a rank cannot read is reported after the arguments, which may explain it */
+        int read = file ? file_hash(file, &mine[FILE_HASH]) : IM_OK;
         mine[WORDS_HASH] = scene_checksum(words, length);
         mine[WORDS_LENGTH] = length;
         MPI_Allgather(mine, RECORD, MPI_UINT64_T, records, RECORD, MPI_UINT64_T, comm);
@@ -151,7 +151,8 @@ int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file)
         int first = 0, differing = differing_ranks(records, ranks, WORDS_HASH, list, sizeof list, &first);
         if (differing > 0)
             status = words_differ(comm, records, ranks, words, list, differing, first);
-        else if ((differing = differing_ranks(records, ranks, FILE_HASH, list, sizeof list, &first)) > 0)
+        else if ((status = mpi_collective_status(comm, read)) == IM_OK &&
+                 (differing = differing_ranks(records, ranks, FILE_HASH, list, sizeof list, &first)) > 0)
             status = im_fail(IM_EINVAL, "%s: rank%s %s read%s other bytes from it than rank 0: every rank must read "
                              "the same file", file, differing > 1 ? "s" : "", list, differing > 1 ? "" : "s");
     }
