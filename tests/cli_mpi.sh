@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # indentmap mpi-indent (MPI builds; skipped, exit 77, elsewhere): the same result and the same
-# field files to the byte on 1 and 3 ranks, a file surface read back, and clear errors.
+# field files to the byte on 1 and 3 ranks, a file surface read back, and clear errors; ranks
+# started with different commands, folders or scenes, or an error on one rank only, stop every rank
+# with one message (mpi-indent and run under mpirun), never a hang or MPI's own error.
 #   cli_mpi.sh PATH_TO_INDENTMAP
 set -uo pipefail
 cli=$1
@@ -62,4 +64,67 @@ status=$?
 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/missing.npy" --approach 1 > /dev/null 2> "$work/err2"
 status=$?
 [ $status -ne 0 ] && grep -q "missing.npy: cannot open" "$work/err2" || fail "missing file: status $status, $(cat "$work/err2")"
+# A grid smaller than the rank count: a 3 x 3 surface (6 padded rows) on 7 ranks, some of them with
+# no rows, gives the one-rank result; a side not above lambda_s = 4 is refused naming --n and --m.
+"$cli" surface --n 3 --lambda-s 2 --out "$work/s3.npy" > /dev/null || fail "surface --n 3"
+for k in 1 7; do
+  timeout 120 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --surface "$work/s3.npy" --alpha 60 --approach 0.3 \
+    --out "$work/fields$k" 2> "$work/small$k.err" | cut -d, -f1-5 > "$work/small$k" || fail "3 x 3 on $k ranks: $(cat "$work/small$k.err")"
+done
+cmp -s "$work/small1" "$work/small7" && cmp -s "$work/fields1/force.npy" "$work/fields7/force.npy" ||
+  fail "a 3 x 3 grid: 1 and 7 ranks differ: $(cat "$work/small1" "$work/small7")"
+
+# refused NAME EXIT PATTERN MPIEXEC_ARGUMENTS...: mpiexec ends within 60 s (a hang is a failure)
+# with exit status EXIT and one message from indentmap, matching PATTERN.
+refused() {
+  local name=$1 expected=$2 pattern=$3
+  shift 3
+  timeout 60 "$mpiexec" --oversubscribe "$@" > /dev/null 2> "$work/$name.err"
+  local status=$?
+  [ $status -eq "$expected" ] || fail "$name: exit $status, expected $expected: $(cat "$work/$name.err")"
+  grep -q -- "$pattern" "$work/$name.err" || fail "$name: expected '$pattern': $(cat "$work/$name.err")"
+  [ "$(grep -c '^indentmap:' "$work/$name.err")" = 1 ] || fail "$name: not one message: $(cat "$work/$name.err")"
+}
+refused tiny_grid 2 "mpi-indent: --n 2 --m 512: the shorter side .* must exceed lambda_s = 4: expected --n and --m > 4" \
+  -n 3 "$cli" mpi-indent --n 2 --approach 1
+
+# Ranks given different commands (MPMD launches, A : B) stop together with rank 0's message.
+start="the MPI ranks were not started alike"
+same="start every rank with the same command in the same folder"
+cd "$work" || fail "cd $work"
+refused out 2 "$start: rank 1 differs from rank 0 (rank 1's argument 7 is 'o2' (after --out), rank 0's 'o1'): $same" \
+  -n 1 "$cli" mpi-indent --n 64 --approach 5 --out o1 : -n 1 "$cli" mpi-indent --n 64 --approach 5 --out o2
+[ ! -e o1 ] && [ ! -e o2 ] || fail "different --out: a folder was made"
+refused grid 2 "$start: rank 1 differs from rank 0 (rank 1's argument 3 is '32' (after --n), rank 0's '64')" \
+  -n 1 "$cli" mpi-indent --n 64 --approach 5 : -n 1 "$cli" mpi-indent --n 32 --approach 5
+refused control 2 "$start: rank 2 differs from rank 0 (rank 2's argument 4 is '--load', rank 0's '--approach')" \
+  -n 2 "$cli" mpi-indent --n 64 --approach 5 : -n 1 "$cli" mpi-indent --n 64 --load 5
+refused commands 2 "$start: ranks 1, 2 differ from rank 0 (rank 1's argument 1 is 'run', rank 0's 'mpi-indent')" \
+  -n 1 "$cli" mpi-indent --n 64 --approach 5 : -n 2 "$cli" run "$work/a.ini"
+
+# Scenes: two scene files; the same file name read from two folders; the same arguments naming
+# files of other bytes (each rank's /proc/self/fd/7 opened on another scene, differing only in
+# their output folders, into which rank 1 used to write its members); a rank whose own wisdom file
+# cannot be used (IM_FFTW_WISDOM, a folder, on rank 1 only: the other rank used to wait forever).
+export IM_FFTW_WISDOM="$work/wisdom"
+scene() { # scene FILE OUTPUT
+  printf '[scene]\nname = s\noutput = %s\n[surfaces]\nn = 32\nhurst = 0.8\nlambda_s = 4\nslopes = 0.08\nseeds = 1:2\n' "$2" > "$1"
+  printf '[punch]\nshape = cone\nalpha = 80\n[loading]\nload_star = 100\ncontrol = load\nsteps = 50:100:2\n[output]\ntable = yes\n' >> "$1"
+}
+mkdir -p "$work/d1" "$work/d2"
+scene "$work/a.ini" "$work/out_a"
+scene "$work/b.ini" "$work/out_b"
+scene "$work/d1/s.ini" "$work/out_a"
+scene "$work/d2/s.ini" "$work/out_a"
+refused scenes 2 "$start: rank 1 differs from rank 0 (rank 1's argument 2 is '$work/b.ini', rank 0's '$work/a.ini')" \
+  -n 1 "$cli" run "$work/a.ini" : -n 1 "$cli" run "$work/b.ini"
+refused folders 2 "$start: rank 1 differs from rank 0 (rank 1 runs in the folder $work/d2, rank 0 in $work/d1)" \
+  -n 1 -wdir "$work/d1" "$cli" run s.ini : -n 1 -wdir "$work/d2" "$cli" run s.ini
+refused scene_bytes 2 "/proc/self/fd/7: rank 1 reads other bytes from it than rank 0: every rank must read the same file" \
+  -n 1 bash -c "exec '$cli' run /proc/self/fd/7 7< '$work/a.ini'" : -n 1 bash -c "exec '$cli' run /proc/self/fd/7 7< '$work/b.ini'"
+[ ! -e "$work/out_a" ] && [ ! -e "$work/out_b" ] || fail "scenes of other bytes: a rank wrote $(ls -d "$work"/out_*)"
+refused one_rank 2 "rank 1: IM_FFTW_WISDOM $work: wisdom file $work: .* is not a regular file" \
+  -n 1 "$cli" run "$work/a.ini" : -n 1 -x IM_FFTW_WISDOM="$work" "$cli" run "$work/a.ini"
+"$mpiexec" -n 2 --oversubscribe "$cli" run "$work/a.ini" > /dev/null 2> "$work/alike.err" || fail "a scene on 2 ranks: $(cat "$work/alike.err")"
+[ -s "$work/out_a/table1.csv" ] || fail "a scene on 2 ranks wrote no table1.csv"
 echo "cli_mpi: ok"

@@ -5,6 +5,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "mpi/agree.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 
@@ -214,6 +215,13 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
+    int shorter = o->surface.nx < o->surface.ny ? o->surface.nx : o->surface.ny;
+    if (!o->surface_file && !(shorter > o->surface.lambda_s)) { /* solve() makes lambda_r the shorter side */
+        fprintf(stderr, "indentmap: mpi-indent: --n %d --m %d: the shorter side is the surface's lambda_r, which "
+                "must exceed lambda_s = %g: expected --n and --m > %g\n", o->surface.nx, o->surface.ny,
+                o->surface.lambda_s, o->surface.lambda_s);
+        return -1;
+    }
     return 0;
 }
 
@@ -225,13 +233,15 @@ int cli_mpi_indent(int argc, char **argv)
     im_mpi_init();
     mpi_indent_options o;
     int code = CLI_EXIT_OK;
-    if (rank != 0) /* every rank parses the same arguments: rank 0 speaks for them */
+    if (rank != 0) /* every rank parses the same arguments (checked first): rank 0 speaks for them */
         (void)freopen("/dev/null", "w", stderr);
-    int parsed = parse(argc, argv, &o);
+    int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, NULL);
+    int parsed = status == IM_OK ? parse(argc, argv, &o) : 0;
     if (parsed != 0)
         code = parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     im_solve_result result;
-    int status = parsed == 0 ? solve(&o, &result) : IM_OK;
+    if (status == IM_OK && parsed == 0)
+        status = solve(&o, &result);
     if (status != IM_OK)
         code = cli_report(status);
     else if (parsed == 0 && rank == 0)

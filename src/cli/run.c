@@ -5,6 +5,9 @@
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/status.h"
+#if IM_HAVE_MPI
+#include "mpi/agree.h"
+#endif
 
 #include <getopt.h>
 #include <stdio.h>
@@ -92,17 +95,23 @@ static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
 
 #if IM_HAVE_MPI
 /* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
- * force); every rank loads the same scene (or fails to) and runs it over the ranks; rank 0 reports. */
-static int run_under_mpirun(const char *path, const im_scene_run_options *run, run_wisdom *wisdom)
+ * force); every rank checks that it was given the same command and scene as the others, loads it,
+ * and runs it over the ranks once all have loaded it (an error on one rank, such as a wisdom file
+ * or backend of its own environment, stops all); rank 0 reports. */
+static int run_under_mpirun(int argc, char **argv, const im_scene_run_options *run, run_wisdom *wisdom)
 {
     int provided, rank;
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     im_scene scene;
     im_scene_run_options options = *run;
-    int status = load_and_arm(path, &scene, wisdom);
-    if (status == IM_OK)
-        status = backend_of_scene(&scene, &options);
+    int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, argv[optind]);
+    if (status == IM_OK) {
+        status = load_and_arm(argv[optind], &scene, wisdom);
+        if (status == IM_OK)
+            status = backend_of_scene(&scene, &options);
+        status = mpi_collective_status(MPI_COMM_WORLD, status);
+    }
     if (status == IM_OK)
         status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, &options);
     int code = finish(status, &scene, rank == 0);
@@ -150,7 +159,7 @@ int cli_run(int argc, char **argv)
     run.progress = run.quiet ? NULL : cli_progress; /* --quiet: no bar either */
 #if IM_HAVE_MPI
     if (launched_by_mpirun())
-        return run_under_mpirun(argv[optind], &run, &wisdom);
+        return run_under_mpirun(argc, argv, &run, &wisdom);
 #endif
     im_scene scene;
     int status = load_and_arm(argv[optind], &scene, &wisdom);

@@ -3,6 +3,7 @@
 #define INDENTMAP_MPI_INTERNAL_H
 
 #include "core/summation.h"
+#include "mpi/agree.h"
 #include "indentmap/mpi.h"
 #include "solver/engine.h"
 
@@ -48,10 +49,6 @@ void mpi_convolve(im_mpi_solver *solver, const double *pressure, double *displac
 /* totals[j] = sum over the surface rows, in row order and compensated, of the per-row sums this
  * rank left in solver->row_sums[r * k + j] (k <= MPI_SUMS_MAX quantities, r its local rows). */
 void mpi_ordered_totals(const im_mpi_solver *solver, int k, double *totals);
-
-/* The same status on every rank: the lowest failing rank's, with its message carried to the
- * others as "rank K: ...". */
-int mpi_collective_status(MPI_Comm comm, int status);
 
 /* Moves rows between decompositions: this rank has rows [have_y0, have_y0 + have_rows) of an
  * nx-wide grid (stride have_stride) and wants rows [want_y0, want_y0 + want_rows) (stride nx). */

@@ -1,0 +1,19 @@
+/* Internal: what the ranks of an MPI run agree on before they work together (collective.c,
+ * inputs.c), also used by the command line under mpirun. */
+#ifndef INDENTMAP_MPI_AGREE_H
+#define INDENTMAP_MPI_AGREE_H
+
+#include <mpi.h>
+
+/* The same status on every rank: the lowest failing rank's, with its message carried to the
+ * others as "rank K: ...". */
+int mpi_collective_status(MPI_Comm comm, int status);
+
+/* Whether every rank of comm was started alike: the same working folder, the same count arguments
+ * args (a command's, after the program's name) and, when file is not NULL, the same bytes in that
+ * file (a scene). IM_OK, or IM_EINVAL on every rank with rank 0's message naming the ranks that
+ * differ and the first difference (the folder, the argument, or the file); a file that some rank
+ * cannot read fails every rank with that rank's message, as mpi_collective_status. Collective. */
+int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file);
+
+#endif
