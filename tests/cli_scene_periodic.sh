@@ -3,7 +3,7 @@
 # read as a scene's surface file and by `indent --periodic --pressure`: the scene's history is indent's and
 # its k_fit.csv row is indent's run.json "k_fit", both exactly (one thread each, the same helpers); --resume
 # reads the history back and draws the same k; a sphere repeated with the cell under a hardness, loaded and
-# unloaded, is indent's too. A ramp (not periodic) is warned about; what needs a half-space is refused,
+# unloaded, is indent's too; so are mean gaps (control = mean_gap). A ramp (not periodic) is warned about; what needs a half-space is refused,
 # naming the key. Then an indentation/member_FF_SEED.csv per member of a hardness history that goes up and
 # down, equal to indent's indentation.csv, and the example scene scenes/periodic.ini.
 set -u
@@ -48,6 +48,15 @@ check "and draws the same k" cmp "$dir/k_fit.csv" "$dir/res/k_fit.csv"
 scene "$dir/more.ini" cell.npy "" "steps = 0.002:0.03:7"
 check "other pressures are solved again" expect_exit 0 "made from other inputs" "$cli" run --resume "$dir/more.ini"
 
+# Mean gaps (control = mean_gap): indent --periodic --mean-gap's history, with a hardness, falling and rising.
+scene "$dir/gap.ini" cell.npy "" $'control = mean_gap\nsteps = 0.4:0.2:3, 0.3' $'[material]\nhardness = 0.05' gap
+check "a mean-gap scene runs" "$cli" run "$dir/gap.ini" > /dev/null 2>&1
+"$cli" indent "$dir/cell.npy" --periodic --hardness 0.05 --mean-gap 0.4:0.2:3,0.3 --out "$dir/indent_gap" > /dev/null
+check "its history is indent --mean-gap's" \
+    cmp <(rows "$dir/gap/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_gap/history.csv")
+check "the mean gaps are the steps" awk -F, '/^#/ || /^step/ { next } { split("0.4 0.3 0.2 0.3", g, " "); d = $28 / g[++k] - 1
+    if (d > 1e-6 || -d > 1e-6) bad = 1 } END { exit bad || k != 4 }' "$dir/gap/histories/member_00_0.csv"
+
 # A sphere repeated with the cell, with a hardness, loaded and unloaded: indent's history; no k (a cap).
 scene "$dir/sphere.ini" cell.npy $'shape = sphere\nradius = 20' "steps = 0.01:0.05:3, 0.03:0.01:2" \
     $'[material]\nhardness = 0.4' sphere
@@ -82,6 +91,10 @@ refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha 
 refuse "adhesion" "" "steps = 0.01" $'[adhesion]\nwork = 0.1\nrange = 1' "[adhesion] with [punch] periodic"
 refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
 refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"
+refuse "mean gaps that rise without a hardness" "" $'control = mean_gap\nsteps = 0.2, 0.3' "" "steps must decrease"
+printf '[scene]\nname = hs\noutput = hs\n[surfaces]\nfile = cell.npy\n[punch]\nshape = cone\n[loading]\ncontrol = mean_gap\nsteps = 0.5\n' \
+    > "$dir/hs.ini"
+check "mean gaps on the half-space" expect_exit 2 "control = mean_gap needs [punch] periodic" "$cli" run "$dir/hs.ini"
 
 # An indentation analysis per member of a hardness history that goes up and down: indent's indentation.csv.
 printf '[scene]\nname = cycle\noutput = cycle\n[surfaces]\nfile = cell.npy\n[punch]\nshape = cone\nalpha = 80\n[material]\nhardness = 0.3\n[loading]\ncontrol = displacement\nsteps = 1:4:4, 3:1:3\n[output]\nplots = fig5\n' \

@@ -131,8 +131,9 @@ typedef struct im_scene {
                                         not fit in IM_SCENE_PATH); NULL otherwise */
     /* [punch] periodic = yes (docs/scenes.md, "Periodic contact"; solver.h, "Periodic mode"): every
      * surface is one period of a periodic surface, pressed on the whole cell under mean-pressure control:
-     * [loading] steps are mean pressures p_m (units of E*; control is then load, and `control` itself is
-     * refused). IM_SCENE_PERIODIC_FLAT without [punch] shape: a rigid flat on the whole cell, as `indent
+     * [loading] steps are mean pressures p_m (units of E*; control is then load), or with [loading]
+     * control = mean_gap mean gaps over the cell (solver.h, IM_CONTROL_MEAN_GAP; any other control is
+     * refused, and mean_gap without periodic). IM_SCENE_PERIODIC_FLAT without [punch] shape: a rigid flat on the whole cell, as `indent
      * --periodic`; IM_SCENE_PERIODIC_PUNCH with one: that punch, repeated with the cell. 0: the half-space.
      * What needs the smooth contact on a half-space (load_star, panels, frames, table, distributions,
      * adhesion and the plots but fig3 and flat_k) is refused beside it, naming the key. Part of every
@@ -149,7 +150,7 @@ typedef struct im_scene {
     double adhesion_work, adhesion_range;
     int adhesion_law;
 
-    enum im_control control;         /* displacement or load */
+    enum im_control control;         /* displacement, load or (periodic only) mean gap */
     double load_star;                /* N* at which contact panels are drawn (0: none) */
     double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty):
                                         first:last:count or a list, parsed as `indent --approach`,

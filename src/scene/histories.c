@@ -164,9 +164,11 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
 }
 
 /* The target of step i: an approach, the load at N* = steps[i], or in the periodic mode the load of the
- * mean pressure steps[i] over the cell (as `indent --periodic --pressure`). */
+ * mean pressure steps[i] over the cell (as `indent --periodic --pressure`) or the mean gap steps[i]. */
 static double step_target(const im_scene *scene, int i, const im_field *surface)
 {
+    if (scene->control == IM_CONTROL_MEAN_GAP)
+        return scene->steps[i];
     if (scene->periodic)
         return scene->steps[i] * periodic_cell_area(surface);
     return scene->control == IM_CONTROL_LOAD ? scene_load_for_n_star(scene, scene->steps[i], surface->delta)
@@ -176,7 +178,9 @@ static double step_target(const im_scene *scene, int i, const im_field *surface)
 /* What a step of the scene's list is. */
 static const char *step_name(const im_scene *scene)
 {
-    return scene->periodic ? "mean pressure" : scene->control == IM_CONTROL_LOAD ? "N*" : "approach";
+    if (scene->periodic)
+        return scene->control == IM_CONTROL_MEAN_GAP ? "mean gap" : "mean pressure";
+    return scene->control == IM_CONTROL_LOAD ? "N*" : "approach";
 }
 
 /* Step i of a history. At load_star (load control) the table's state is taken instead of solving

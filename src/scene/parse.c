@@ -390,7 +390,7 @@ static const key_spec KEYS[] = {
     {"punch", "periodic", parse_bool, FIELD(periodic), 0, 0, NULL, 0, 0},
     {"material", "modulus", parse_double, FIELD(modulus), 1e-300, 1e300, NULL, 0, 0},
     {"material", "hardness", parse_double, FIELD(hardness), 1e-300, 1e300, NULL, 0, 0},
-    {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load", 0, 0},
+    {"loading", "control", parse_choice, FIELD(control), 0, 0, "displacement|load|mean_gap", 0, 0},
     {"loading", "load_star", parse_double, FIELD(load_star), 0, 1e15, NULL, 0, 0},
     {"loading", "steps", parse_steps, FIELD(steps), 0, 0, NULL, 0, 0},
     {"output", "contact_panels", parse_bool, FIELD(contact_panels), 0, 0, NULL, 0, 0},
@@ -674,8 +674,6 @@ static const struct {
     size_t flag; /* offsetof the yes/no it sets (refused when yes), 0: refused whenever given */
     const char *why;
 } PERIODIC_REFUSED[] = {
-    {"loading", "control", 0, "a periodic scene is under mean-pressure control: its steps are mean pressures p_m "
-                           "(units of E*); remove control"},
     {"loading", "load_star", 0, "N* = A(N) / delta^2 is a smooth punch's contact area on a half-space, which the "
                              "periodic cell does not have"},
     {"output", "contact_panels", FIELD(contact_panels),
@@ -708,7 +706,14 @@ static int check_periodic(parse_context *context)
         return 0;
     const int shape = key_line(context, "punch", "shape");
     scene->periodic = shape ? IM_SCENE_PERIODIC_PUNCH : IM_SCENE_PERIODIC_FLAT;
-    scene->control = IM_CONTROL_LOAD;
+    const int control = key_line(context, "loading", "control");
+    if (control && scene->control != IM_CONTROL_MEAN_GAP) {
+        snprintf(context->error, sizeof context->error, "[loading] control beside [punch] periodic: a periodic scene's "
+                 "steps are mean pressures p_m (units of E*), or mean gaps with control = mean_gap");
+        return control;
+    }
+    if (!control)
+        scene->control = IM_CONTROL_LOAD; /* mean pressures */
     for (size_t i = 0; i < sizeof PERIODIC_REFUSED / sizeof *PERIODIC_REFUSED; ++i) {
         const int line = key_line(context, PERIODIC_REFUSED[i].section, PERIODIC_REFUSED[i].key);
         const size_t flag = PERIODIC_REFUSED[i].flag;
@@ -880,13 +885,19 @@ static int check_consistency(parse_context *context)
         if (line)
             return line;
     }
-    /* a history that goes down needs the cap's memory (or adhesion's); without one, unloading only
-     * retraces loading and a list out of order is more likely a slip */
+    if (scene->control == IM_CONTROL_MEAN_GAP && !scene->periodic) {
+        snprintf(context->error, sizeof context->error, "control = mean_gap needs [punch] periodic: the half-space "
+                 "has no mean gap");
+        return key_line(context, "loading", "control");
+    }
+    /* a history that unloads needs the cap's memory (or adhesion's); without one, unloading only
+     * retraces loading and a list out of order is more likely a slip. Mean gaps load as they fall. */
+    const double sense = scene->control == IM_CONTROL_MEAN_GAP ? -1 : 1;
     for (int i = 1; i < scene->step_count && !(scene->hardness > 0) && !(scene->adhesion_work > 0); ++i) {
-        if (!(scene->steps[i] > scene->steps[i - 1])) {
-            snprintf(context->error, sizeof context->error, "steps must increase: %g follows %g (a history that "
-                     "unloads needs [material] hardness: without one unloading retraces loading)", scene->steps[i],
-                     scene->steps[i - 1]);
+        if (!(sense * scene->steps[i] > sense * scene->steps[i - 1])) {
+            snprintf(context->error, sizeof context->error, "steps must %s: %g follows %g (a history that "
+                     "unloads needs [material] hardness: without one unloading retraces loading)",
+                     sense > 0 ? "increase" : "decrease (mean gaps)", scene->steps[i], scene->steps[i - 1]);
             return key_line(context, "loading", "steps");
         }
     }
