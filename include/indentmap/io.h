@@ -161,7 +161,8 @@ enum im_read_source {
 /* Opens path with fopen mode ("r", "rb") after checking what it is. Returns IM_OK and sets *stream
  * (close with fclose) and, when size is not NULL, *size to the file's size in bytes (-1 for a
  * pipe); IM_EIO when it cannot be opened, IM_EINVAL for a directory or a file of a kind `source`
- * does not accept; every message names path. */
+ * does not accept; every message names path. The open never blocks: a pipe with no writer yet is
+ * waited for while polling im_stop_requested (IM_EINTERRUPTED once a stop is requested). */
 int im_read_open(const char *path, const char *mode, enum im_read_source source, FILE **stream, long long *size);
 
 /* One line of text as im_read_line reads it. */
