@@ -81,6 +81,17 @@ static int load_and_arm(const char *path, im_scene *scene, run_wisdom *wisdom)
     return status;
 }
 
+/* A scene that asks for no output would solve and draw nothing and still succeed: refused here, not by
+ * the parser, since scenes built in code parse without [output] and set what they want after. */
+static int check_asks_for_output(const im_scene *scene)
+{
+    if (scene->table || scene->plots || scene->contact_panels || scene->frames || scene->distributions)
+        return IM_OK;
+    return im_fail(IM_EINVAL, "%s: no output asked for: expected an [output] section with table, contact_panels, "
+                   "frames or distributions = yes, or plots = a figure (nothing would be solved or drawn)",
+                   scene->path);
+}
+
 /* The backend of a scene that renders: --backend, else IM_RENDER_BACKEND, else auto. */
 static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
 {
@@ -101,6 +112,8 @@ static int run_under_mpirun(const char *path, const im_scene_run_options *run, r
     im_scene scene;
     im_scene_run_options options = *run;
     int status = load_and_arm(path, &scene, wisdom);
+    if (status == IM_OK)
+        status = check_asks_for_output(&scene);
     if (status == IM_OK)
         status = backend_of_scene(&scene, &options);
     if (status == IM_OK)
@@ -154,6 +167,8 @@ int cli_run(int argc, char **argv)
 #endif
     im_scene scene;
     int status = load_and_arm(argv[optind], &scene, &wisdom);
+    if (status == IM_OK)
+        status = check_asks_for_output(&scene);
     if (status == IM_OK)
         status = backend_of_scene(&scene, &run);
     if (status == IM_OK)
