@@ -29,6 +29,8 @@ static void usage(FILE *stream)
                     "                  $IM_FFTW_WISDOM, else the user's cache ($XDG_CACHE_HOME or\n"
                     "                  ~/.cache)/indentmap/fftw-wisdom (docs/solver.md)\n"
                     "  --no-wisdom     no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
+                    "\nIM_NO_SPACE_CHECK=1 skips the check of the free disk against the outputs' estimated\n"
+                    "size (an upper bound); a disk that fills still stops the run, keeping what it finished.\n"
 #if IM_HAVE_MPI
                     "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"
                     "out over the K ranks and rank 0 writes the outputs (docs/mpi.md)\n"
@@ -158,6 +160,7 @@ int cli_run(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     run.backend = (int)backend;
+    run.no_space_check = cli_space_check_off();
     run.stop = &cli_stop_signal;
     run.log = cli_log;
     run.progress = cli_progress;

@@ -267,7 +267,7 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options)
     if (status == IM_OK && scene->profile_file[0]) /* resolved by scene_prepare */
         status = im_output_protect(scene->profile_file);
     if (status == IM_OK)
-        status = scene_check_limits(scene);
+        status = scene_check_limits(scene, options);
     if (status == IM_OK)
         status = im_make_directories(scene->output_dir);
     scene_lock lock = {.fd = -1};
