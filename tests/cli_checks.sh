@@ -163,4 +163,11 @@ check "... its history keeps the impression" awk -F, 'NR > 2 && !/^#/ { n++; w[n
   "$dir/out_unload/histories/member_00_1.csv"
 check "huge heights: refused, not NaN statistics" expect_exit 2 "height 1e+300 at (x=0, y=0): expected |h| <= 1e+100" \
   "$cli" surface --stats "$dir/huge.txt" --detrend none
+# a scene asking for no output solved nothing and exited 0, silently
+printf '[scene]\noutput = %s\n[surfaces]\nn = 32\n[loading]\nsteps = 0.4\n' "$dir/nothing" >"$dir/nothing.ini"
+check "no [output]: refused naming the file" expect_exit 2 "nothing.ini: no output asked for: expected an [output] section" \
+  "$cli" run "$dir/nothing.ini"
+printf '[output]\nplots =\ntable = no\n' >>"$dir/nothing.ini"
+check "[output] asking for nothing: refused" expect_exit 2 "nothing.ini: no output asked for" "$cli" run "$dir/nothing.ini"
+check "no output: no folder made" test ! -e "$dir/nothing"
 finish

@@ -57,4 +57,17 @@ member=$(ls "$dir"/out/table/member_01_1.csv)
 n_p=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "contact_patches") c = i } NR == 2 { print $c }' "$member")
 check "rough family: cells = the table's n_p" test "$(column_sum "$dir/out/distributions/family_01_patches.csv" 4)" -eq "$n_p"
 check "rough family: gaps integrate" close "$(integral "$dir/out/distributions/family_01_gaps.csv")" "$(awk -v n="$n_p" 'BEGIN { printf "%.12g", 1 - n / 4096 }')" 1e-9
+
+# --resume with damaged distribution files: each is removed with a notice and made again, byte for byte.
+cp -r "$dir/out" "$dir/first"
+printf '\1\2\0\3 binary garbage' >"$dir/out/distributions/family_01_gaps.csv"
+printf 'x\0y' >"$dir/out/distributions/family_00_patch_list.csv"
+"$cli" run --resume "$dir/d.ini" >"$dir/log" 2>&1
+check "resume over damaged distributions runs" test $? -eq 0
+for f in family_01_gaps family_00_patch_list; do
+  check "resume: $f.csv damaged: notice" grep -q "distributions/$f.csv holds binary data.*damaged, removed, and made again" "$dir/log"
+done
+for f in "$dir"/first/distributions/*.csv; do
+  check "resume: $(basename "$f") as the first run's" cmp -s "$f" "$dir/out/distributions/$(basename "$f")"
+done
 finish

@@ -56,6 +56,46 @@ if unshare -m true 2>/dev/null && unshare -m sh -c "mount -t tmpfs -o size=1m tm
   unshare -m sh -c "mount -t tmpfs -o size=1m tmpfs '$dir/tiny' && '$cli' run --quiet '$dir/disk.ini' 2>'$dir/disk.err'; echo \$? >'$dir/disk.status'"
   check "disk: exit 1" test "$(cat "$dir/disk.status")" -eq 1
   check "disk: message" grep -q "the outputs need about [0-9.]* MiB of disk (the largest, .*) but $dir/tiny has only 1.0 MiB free" "$dir/disk.err"
+  # The estimate is an honest upper bound (it was 16.4 MiB for the 1.3 MiB of this scene, refused on a
+  # 20 MB disk), and IM_NO_SPACE_CHECK=1 overrides it: a scene of table, fig7, panels and 16 frames.
+  cat >"$dir/fits.ini" <<INI
+[scene]
+name = fits
+output = $dir/tiny/out
+[surfaces]
+n = 128
+slopes = 0.04, 0.16
+seeds = 1:4
+[punch]
+shape = cone
+alpha = 80
+[loading]
+load_star = 2400
+control = load
+steps = 300:2400:8
+[output]
+table = yes
+plots = fig7
+contact_panels = yes
+frames = yes
+frame_count = 16
+INI
+  in_tmpfs() { # in_tmpfs SIZE COMMAND: COMMAND with a fresh tmpfs of SIZE at $dir/tiny
+    unshare -m sh -c "mount -t tmpfs -o size=$1 tmpfs '$dir/tiny' && $2"
+  }
+  in_tmpfs 8m "'$cli' run --quiet '$dir/fits.ini' 2>'$dir/fits.err' && du -sb '$dir/tiny/out' | cut -f1 >'$dir/fits.bytes'"
+  check "disk: the scene fits 8 MiB" test -s "$dir/fits.bytes"
+  in_tmpfs 1m "'$cli' run --quiet '$dir/fits.ini' 2>'$dir/estimate.err'"
+  estimate=$(sed -n 's/.*the outputs need about \([0-9.]*\) MiB of disk.*/\1/p' "$dir/estimate.err")
+  check "disk: the estimate ($estimate MiB) is at least what the scene writes" \
+    awk -v e="$estimate" -v b="$(cat "$dir/fits.bytes")" 'BEGIN { exit !(e != "" && e * 1048576 >= b) }'
+  check "disk: the estimate is at most 4x what the scene writes" \
+    awk -v e="$estimate" -v b="$(cat "$dir/fits.bytes")" 'BEGIN { exit !(e != "" && e * 1048576 <= 4 * b) }'
+  check "disk: the refusal names the override" grep -q "IM_NO_SPACE_CHECK=1 runs anyway" "$dir/estimate.err"
+  in_tmpfs 3m "'$cli' run --quiet '$dir/fits.ini' 2>'$dir/small.err'; echo \$? >'$dir/small.status'"
+  check "disk: under the estimate: refused" test "$(cat "$dir/small.status")" -eq 1
+  in_tmpfs 3m "IM_NO_SPACE_CHECK=1 '$cli' run --quiet '$dir/fits.ini' 2>'$dir/override.err'; echo \$? >'$dir/override.status'"
+  check "disk: IM_NO_SPACE_CHECK=1: runs where the outputs fit" test "$(cat "$dir/override.status")" -eq 0
 else
   echo "note: cannot mount a tmpfs here: the free-space check is not exercised"
 fi

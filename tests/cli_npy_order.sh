@@ -36,7 +36,7 @@ check "--npy-order yx overrides the sidecar" test "$(grid "$dir/xy.npy" --npy-or
 # share one grid as their sidecars say, not when npy_order overrides both.
 "$cli" surface --n 128 --m 64 --slope 0.1 --seed 3 --out "$dir/rows.npy" >/dev/null
 scene() { # scene NAME [KEY-LINE]
-  printf '[scene]\nname = %s\noutput = %s\n[surfaces]\nfile = xy.npy, rows.npy\n%s\n[loading]\nload_star = 100\n' \
+  printf '[scene]\nname = %s\noutput = %s\n[surfaces]\nfile = xy.npy, rows.npy\n%s\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
     "$1" "$1" "${2:-}" >"$dir/$1.ini"
 }
 scene sidecar

@@ -57,4 +57,24 @@ printf '[scene]\noutput = sc\n[surfaces]\nfile = s.npy\n[loading]\nsteps = 0.4, 
 check "run --no-wisdom: no file" bash -c "'$cli' run scene.ini --quiet --no-wisdom >/dev/null && test ! -e '$wisdom'"
 rm -rf sc
 check "run: wisdom written to the cache" bash -c "'$cli' run scene.ini --quiet >/dev/null && head -c 6 '$wisdom' | grep -q '(fftw-'"
+
+# --resume keeps a scene's results only while their plans can be had: wisdom kept, they are read back;
+# wisdom removed (it is then measured anew) or plans estimated instead, everything is solved again with
+# a notice, and the outputs are then a fresh run's with the same wisdom, byte for byte.
+resume() { "$cli" run --resume scene.ini "$@" >/dev/null 2>resume.err; }
+check "resume, the same wisdom: succeeds" resume
+check "resume, the same wisdom: read back" grep -q "0 solved, 1 read back" resume.err
+check "resume, the same wisdom: no notice" bash -c "! grep -q 'other FFTW plans' resume.err"
+rm "$wisdom"
+check "resume, wisdom removed: succeeds" resume
+check "resume, wisdom removed: a notice" grep -q "sc/fftw-plans.txt: the kept results were solved with other FFTW plans than this run's (the wisdom file no longer holds every plan" resume.err
+check "resume, wisdom removed: solved again" grep -q "1 solved, 0 read back" resume.err
+sed 's/^output = sc$/output = fresh/' scene.ini >fresh.ini
+"$cli" run --quiet fresh.ini >/dev/null
+for f in fresh/histories/*.csv; do
+  check "resume, wisdom removed: $(basename "$f") as a fresh run's" cmp -s <(history_rows "$f") <(history_rows "sc/histories/$(basename "$f")")
+done
+check "resume, estimated plans after measured: succeeds" resume --no-wisdom
+check "resume, estimated plans after measured: a notice" grep -q "they were measured with FFTW wisdom, and this run estimates its plans" resume.err
+check "resume, estimated plans after measured: solved again" grep -q "1 solved, 0 read back" resume.err
 finish

@@ -300,6 +300,8 @@ REPORT(im_folder_lock_acquire, "folder", im_folder_lock_acquire(NULL, "advice", 
 REPORT(im_folder_lock_acquire, "lock", im_folder_lock_acquire(test_temp_dir(), "advice", NULL))
 ACCEPT(im_folder_lock_release, (im_folder_lock_release(NULL), 1))
 SAFE_RESULT(im_folder_remove_temporaries, "folder", im_folder_remove_temporaries(NULL, 0) == 0)
+SAFE_RESULT(im_pair_writers_lock, "path", im_pair_writers_lock(NULL) == -1)
+ACCEPT(im_pair_writers_unlock, (im_pair_writers_unlock(-1), 1))
 REPORT(im_read_open, "path", im_read_open(NULL, "r", IM_READ_REGULAR, &stream, NULL))
 REPORT(im_read_open, "mode", im_read_open(path_text, NULL, IM_READ_REGULAR, &stream, NULL))
 REPORT(im_read_open, "stream", im_read_open(path_text, "r", IM_READ_REGULAR, NULL, NULL))

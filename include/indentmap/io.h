@@ -20,7 +20,7 @@
  * Misuse (status.h): IM_EINVAL for a NULL path, buffer, stream or output and for an invalid field
  * view. For NULL, im_file_kind_of_bytes gives IM_KIND_NONE, im_atomic_is_temporary_name and
  * im_folder_remove_temporaries 0, im_length_unit_metres 0, im_path_utf8 "" (returns 0);
- * im_atomic_abort and im_folder_lock_release accept NULL.
+ * im_atomic_abort and im_folder_lock_release accept NULL; im_pair_writers_lock(NULL) is -1.
  */
 #ifndef INDENTMAP_IO_H
 #define INDENTMAP_IO_H
@@ -133,6 +133,14 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
 /* Removes the lock file and releases it; nothing if not held. */
 void im_folder_lock_release(im_folder_lock *lock);
 
+/* A file and its sidecar (FILE.npy and FILE.npy.json) are two renames: writers of one pair take
+ * turns under an flock(2) on the folder holding path, waited for, so that the pair left behind is
+ * one writer's whole (without it, racing writers left one's data beside another's sidecar). Returns
+ * the lock's descriptor for im_pair_writers_unlock, or -1 with IM_EIO's message naming the folder. */
+int im_pair_writers_lock(const char *path);
+/* Releases it; nothing for -1. */
+void im_pair_writers_unlock(int fd);
+
 /* Removes the temporary files of atomic writes (im_atomic_is_temporary_name) that a killed run
  * left in folder and, for depth d > 0, in its subfolders d levels down (depth 0: folder only). Call
  * it only while holding the folder's lock: another live writer's temporary files would go too.
@@ -153,7 +161,8 @@ enum im_read_source {
 /* Opens path with fopen mode ("r", "rb") after checking what it is. Returns IM_OK and sets *stream
  * (close with fclose) and, when size is not NULL, *size to the file's size in bytes (-1 for a
  * pipe); IM_EIO when it cannot be opened, IM_EINVAL for a directory or a file of a kind `source`
- * does not accept; every message names path. */
+ * does not accept; every message names path. The open never blocks: a pipe with no writer yet is
+ * waited for while polling im_stop_requested (IM_EINTERRUPTED once a stop is requested). */
 int im_read_open(const char *path, const char *mode, enum im_read_source source, FILE **stream, long long *size);
 
 /* One line of text as im_read_line reads it. */

@@ -200,6 +200,8 @@ typedef struct im_scene_run_options {
                             over) are logged in any case, and progress calls are made as without it
                             (a caller that wants none gives no progress callback) */
     int backend;         /* im_render_backend of render.h (0: auto) */
+    int no_space_check;  /* 1: skip the check of the free disk against the outputs' estimated size
+                            (an upper bound; a full disk still stops the run, keeping what it finished) */
     /* Interruption (may be NULL): a signal handler stores the signal's number here. The run
      * checks it between solver steps and between surfaces (a solve itself is never cut short),
      * abandons the surface in progress, keeps every finished one on disk and returns

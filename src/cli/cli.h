@@ -56,8 +56,10 @@ void cli_warn_stale_lock(const struct im_folder_lock *lock);
  * im_memory_set_limit from IM_MEMORY_LIMIT_MIB (MiB; unset or empty: none): 0, or -1 after
  * printing what was expected. cli_render_backend turns IM_RENDER_AUTO into IM_RENDER_BACKEND's
  * backend when it is set (an explicit --backend wins): IM_EINVAL naming the variable for a bad
- * value. cli_render_open is im_render_open after cli_render_backend. */
+ * value. cli_render_open is im_render_open after cli_render_backend. cli_space_check_off: 1 when
+ * IM_NO_SPACE_CHECK is set to anything but "" or "0" (run's im_scene_run_options.no_space_check). */
 int cli_apply_memory_limit(void);
+int cli_space_check_off(void);
 int cli_render_backend(im_render_backend *backend);
 int cli_render_open(im_render_backend backend, im_render_context **out);
 

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int cli_apply_memory_limit(void)
 {
@@ -23,6 +24,12 @@ int cli_apply_memory_limit(void)
     }
     im_memory_set_limit((size_t)fmin(mib * 1048576.0, 0x1p63)); /* far beyond any machine; exact in size_t */
     return 0;
+}
+
+int cli_space_check_off(void)
+{
+    const char *off = getenv("IM_NO_SPACE_CHECK");
+    return off && off[0] && strcmp(off, "0") != 0;
 }
 
 int cli_render_backend(im_render_backend *backend)

@@ -542,9 +542,11 @@ static int write_fields(const indent_options *o, im_indentation *run, int step)
         snprintf(f[i]->unit, sizeof f[i]->unit, "%s", o->length_unit);
         if (i == 0)
             snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", o->force_unit);
-        status = im_npy_write(path, f[i], IM_NPY_FLOAT64);
+        int pair_lock = im_pair_writers_lock(path);
+        status = pair_lock < 0 ? IM_EIO : im_npy_write(path, f[i], IM_NPY_FLOAT64);
         if (status == IM_OK)
             status = im_field_sidecar_write(path, f[i], QUANTITIES[i]);
+        im_pair_writers_unlock(pair_lock);
     }
     for (int i = 0; i < 4; ++i)
         im_field_free(f[i]);

@@ -32,6 +32,8 @@ static void usage(FILE *stream)
                     "                  $IM_FFTW_WISDOM, else the user's cache ($XDG_CACHE_HOME or\n"
                     "                  ~/.cache)/indentmap/fftw-wisdom (docs/solver.md)\n"
                     "  --no-wisdom     no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
+                    "\nIM_NO_SPACE_CHECK=1 skips the check of the free disk against the outputs' estimated\n"
+                    "size (an upper bound); a disk that fills still stops the run, keeping what it finished.\n"
 #if IM_HAVE_MPI
                     "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"
                     "out over the K ranks and rank 0 writes the outputs (docs/mpi.md)\n"
@@ -84,6 +86,18 @@ static int load_and_arm(const char *path, im_scene *scene, run_wisdom *wisdom)
     return status;
 }
 
+/* A scene that asks for no output would solve and draw nothing and still succeed: refused here, not by
+ * the parser, since scenes built in code parse without [output] and set what they want after. */
+static int check_asks_for_output(const im_scene *scene)
+{
+    if (scene->table || scene->plots || scene->contact_panels || scene->frames || scene->frames3d ||
+        scene->distributions) /* frames3d alone: check_runnable says it needs frames */
+        return IM_OK;
+    return im_fail(IM_EINVAL, "%s: no output asked for: expected an [output] section with table, contact_panels, "
+                   "frames or distributions = yes, or plots = a figure (nothing would be solved or drawn)",
+                   scene->path);
+}
+
 /* The backend of a scene that renders: --backend, else IM_RENDER_BACKEND, else auto. */
 static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
 {
@@ -108,6 +122,8 @@ static int run_under_mpirun(int argc, char **argv, const im_scene_run_options *r
     int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, argv[optind]);
     if (status == IM_OK) {
         status = load_and_arm(argv[optind], &scene, wisdom);
+        if (status == IM_OK)
+            status = check_asks_for_output(&scene);
         if (status == IM_OK)
             status = backend_of_scene(&scene, &options);
         status = mpi_collective_status(MPI_COMM_WORLD, status);
@@ -154,6 +170,7 @@ int cli_run(int argc, char **argv)
         return CLI_EXIT_USAGE;
     }
     run.backend = (int)backend;
+    run.no_space_check = cli_space_check_off();
     run.stop = &cli_stop_signal;
     run.log = cli_log;
     run.progress = run.quiet ? NULL : cli_progress; /* --quiet: no bar either */
@@ -163,6 +180,8 @@ int cli_run(int argc, char **argv)
 #endif
     im_scene scene;
     int status = load_and_arm(argv[optind], &scene, &wisdom);
+    if (status == IM_OK)
+        status = check_asks_for_output(&scene);
     if (status == IM_OK)
         status = backend_of_scene(&scene, &run);
     if (status == IM_OK)

@@ -5,9 +5,12 @@
 #include "indentmap/status.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* What a file that is neither regular nor a pipe is, for the message. */
 static const char *kind_of(mode_t mode)
@@ -23,26 +26,61 @@ static const char *kind_of(mode_t mode)
     return S_ISFIFO(mode) ? "a pipe" : "not a regular file";
 }
 
+/* Waits, polling the stop flag, until a pipe has data or its writer has come and gone: a named pipe
+ * no program writes to would otherwise hold the open (and the program) beyond SIGINT/SIGTERM. */
+static int wait_for_pipe(int fd, const char *path)
+{
+    struct pollfd pipe_end = {.fd = fd, .events = POLLIN};
+    for (;;) {
+        int ready = poll(&pipe_end, 1, 100);
+        if (ready > 0)
+            return IM_OK;
+        if (ready < 0 && errno != EINTR)
+            return im_fail(IM_EIO, "%s: cannot wait for the pipe: %s", path, strerror(errno));
+        if (im_stop_requested())
+            return im_fail(IM_EINTERRUPTED, "%s is a pipe no program has written to: waiting for one interrupted by "
+                           "signal %d", path, im_stop_requested());
+    }
+}
+
+/* Opened without blocking (a FIFO with no writer, a terminal), its kind checked before anything is
+ * read; then blocking again for the reads. */
+static int open_checked(const char *path, enum im_read_source source, int *fd, struct stat *info)
+{
+    *fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (*fd < 0)
+        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    int status = IM_OK;
+    if (fstat(*fd, info) != 0)
+        status = im_fail(IM_EIO, "%s: cannot examine: %s", path, strerror(errno));
+    else if (!S_ISREG(info->st_mode) && !(source == IM_READ_OR_PIPE && S_ISFIFO(info->st_mode)))
+        status = im_fail(IM_EINVAL, "%s is %s: expected a regular file%s", path, kind_of(info->st_mode),
+                         source == IM_READ_OR_PIPE ? " or a pipe" : "");
+    else if (S_ISFIFO(info->st_mode))
+        status = wait_for_pipe(*fd, path);
+    if (status == IM_OK && fcntl(*fd, F_SETFL, fcntl(*fd, F_GETFL) & ~O_NONBLOCK) != 0)
+        status = im_fail(IM_EIO, "%s: cannot set blocking reads: %s", path, strerror(errno));
+    if (status != IM_OK)
+        close(*fd);
+    return status;
+}
+
 int im_read_open(const char *path, const char *mode, enum im_read_source source, FILE **stream, long long *size)
 {
     ARG_REQUIRE(path, "path");
     ARG_REQUIRE(mode, "mode");
     ARG_REQUIRE(stream, "stream");
     *stream = NULL;
-    FILE *opened = fopen(path, mode);
-    if (!opened)
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(errno));
+    int fd;
     struct stat info;
-    if (fstat(fileno(opened), &info) != 0) {
+    int status = open_checked(path, source, &fd, &info);
+    if (status != IM_OK)
+        return status;
+    FILE *opened = fdopen(fd, mode);
+    if (!opened) {
         int error = errno;
-        fclose(opened);
-        return im_fail(IM_EIO, "%s: cannot examine: %s", path, strerror(error));
-    }
-    int accepted = S_ISREG(info.st_mode) || (source == IM_READ_OR_PIPE && S_ISFIFO(info.st_mode));
-    if (!accepted) {
-        fclose(opened);
-        return im_fail(IM_EINVAL, "%s is %s: expected a regular file%s", path, kind_of(info.st_mode),
-                       source == IM_READ_OR_PIPE ? " or a pipe" : "");
+        close(fd);
+        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(error));
     }
     if (size)
         *size = S_ISREG(info.st_mode) ? (long long)info.st_size : -1;

@@ -88,6 +88,38 @@ void im_folder_lock_release(im_folder_lock *lock)
     lock->fd = -1;
 }
 
+int im_pair_writers_lock(const char *path)
+{
+    ARG_REQUIRE_OR(path, "path", -1);
+    char folder[4096];
+    if (strlen(path) >= sizeof folder) {
+        im_fail(IM_EINVAL, "%.64s...: path too long", path);
+        return -1;
+    }
+    strcpy(folder, path);
+    char *slash = strrchr(folder, '/');
+    if (!slash)
+        strcpy(folder, ".");
+    else
+        slash[slash == folder] = '\0'; /* "/name" is in "/" */
+    int fd = open(folder, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    int locked = fd >= 0 ? flock(fd, LOCK_EX) : -1;
+    while (locked != 0 && fd >= 0 && errno == EINTR)
+        locked = flock(fd, LOCK_EX);
+    if (locked == 0)
+        return fd;
+    im_fail(IM_EIO, "%s: cannot lock the folder for writing %s and its sidecar: %s", folder, path, strerror(errno));
+    if (fd >= 0)
+        close(fd);
+    return -1;
+}
+
+void im_pair_writers_unlock(int fd)
+{
+    if (fd >= 0)
+        close(fd); /* closing the only descriptor releases the flock */
+}
+
 int im_folder_remove_temporaries(const char *folder, int depth)
 {
     ARG_REQUIRE_OR(folder, "folder", 0);

@@ -351,23 +351,20 @@ static int check_classic_header(const char *path, const unsigned char *bytes, si
 static int open_dataset(const char *path, mapped_file *file, int *ncid)
 {
     *file = (mapped_file){NULL, 0};
-    int fd = open(path, O_RDONLY), error;
-    struct stat info;
-    if (fd < 0 || fstat(fd, &info) != 0) {
-        int saved = errno;
-        if (fd >= 0)
-            close(fd);
-        return im_fail(IM_EIO, "%s: cannot open: %s", path, strerror(saved));
-    }
+    FILE *stream;
+    long long size;
+    int error, status = im_read_open(path, "rb", IM_READ_REGULAR, &stream, &size); /* never a FIFO or device */
+    if (status != IM_OK)
+        return status;
     unsigned char magic[4] = {0};
-    int classic = S_ISREG(info.st_mode) && read(fd, magic, 4) == 4 && memcmp(magic, "CDF", 3) == 0;
+    int classic = fread(magic, 1, 4, stream) == 4 && memcmp(magic, "CDF", 3) == 0;
     if (classic) {
-        file->size = (size_t)info.st_size;
-        file->bytes = mmap(NULL, file->size, PROT_READ, MAP_PRIVATE, fd, 0);
+        file->size = (size_t)size;
+        file->bytes = mmap(NULL, file->size, PROT_READ, MAP_PRIVATE, fileno(stream), 0);
         if (file->bytes == MAP_FAILED)
             file->bytes = NULL;
     }
-    close(fd);
+    fclose(stream);
     if (classic && !file->bytes)
         return im_fail(IM_EIO, "%s: cannot map the file: %s", path, strerror(errno));
     if (classic && check_classic_header(path, file->bytes, file->size) != IM_OK) {

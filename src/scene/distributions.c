@@ -80,6 +80,21 @@ static int measure_curves(const im_field *force, const im_field *gap, double sca
     return status;
 }
 
+/* Notes the files im_measure_write_distributions writes under relative (measure.h names them), so
+ * that a damaged one is removed with a notice before it is written again: the writer's kind guard
+ * would refuse to replace it. */
+static int note_family_files(const im_scene *scene, const char *relative)
+{
+    static const char *const SUFFIXES[] = {"_gaps.csv", "_patches.csv", "_patch_list.csv"};
+    int status = IM_OK;
+    for (int i = 0; i < 3 && status == IM_OK; ++i) {
+        char name[96], path[IM_SCENE_PATH];
+        snprintf(name, sizeof name, "%s%s", relative, SUFFIXES[i]);
+        status = scene_output_path(scene, name, path, sizeof path);
+    }
+    return status;
+}
+
 static int family_distributions(const im_scene *scene, const im_scene_run_options *options, int family,
                                 family_curves *curves)
 {
@@ -87,6 +102,8 @@ static int family_distributions(const im_scene *scene, const im_scene_run_option
     int status = scene_surface(scene, family, scene->seeds[0], &surface);
     char relative[64], prefix[IM_SCENE_PATH];
     snprintf(relative, sizeof relative, "distributions/family_%02d", family);
+    if (status == IM_OK)
+        status = note_family_files(scene, relative);
     if (status == IM_OK)
         status = scene_output_path(scene, relative, prefix, sizeof prefix);
     if (status == IM_OK)

@@ -14,6 +14,7 @@
 #include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/panels.h"
+#include "scene/plans.h"
 #include "scene/plots.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
@@ -271,7 +272,7 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options)
     if (status == IM_OK && scene->profile_file[0]) /* resolved by scene_prepare */
         status = im_output_protect(scene->profile_file);
     if (status == IM_OK)
-        status = scene_check_limits(scene);
+        status = scene_check_limits(scene, options);
     if (status == IM_OK)
         status = im_make_directories(scene->output_dir);
     scene_lock lock = {.fd = -1};
@@ -279,6 +280,10 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options)
         status = scene_lock_acquire(scene, options, &lock);
     if (status == IM_OK)
         remove_stale_temporaries(scene, options);
+    im_scene_run_options checked = *options;
+    if (status == IM_OK && checked.resume && scene_plans_changed(scene, options))
+        checked.resume = 0; /* the kept results' last bits are not this run's: a fresh run */
+    options = &checked;
     if (status == IM_OK)
         status = write_record(scene, options);
     const scene_ranks_run *ranks = scene_get_ranks_run(); /* an MPI run: the ranks solve the members first */
@@ -290,7 +295,8 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options)
             status = ranks->solve_members(scene, options, ranks->data);
         if (status == IM_OK)
             status = run_scene_stages(scene, options);
-        status = scene_outputs_close(scene, status);
+        int recorded = scene_plans_record(scene); /* also after an interruption: what was solved is kept */
+        status = scene_outputs_close(scene, status == IM_OK ? recorded : status);
         status = write_viewer_page(scene, options, status);
     }
     scene_lock_release(&lock);

@@ -194,7 +194,7 @@ static int run_point(const im_scene *scene, const im_scene_run_options *options,
 
 /* Every point's limits (limits.c: the smooth contact inside the surface, memory, disk) before any
  * work, so that a sweep is not refused half-way. */
-static int check_points(const im_scene *scene)
+static int check_points(const im_scene *scene, const im_scene_run_options *options)
 {
     im_scene *point = malloc(sizeof *point);
     if (!point)
@@ -203,7 +203,7 @@ static int check_points(const im_scene *scene)
     for (int i = 0; i < scene_sweep_count(scene) && status == IM_OK; ++i) {
         status = scene_sweep_point(scene, i, point);
         if (status == IM_OK)
-            status = scene_check_limits(point);
+            status = scene_check_limits(point, options);
     }
     free(point);
     return status;
@@ -215,7 +215,7 @@ int scene_run_sweep(const im_scene *scene, const im_scene_run_options *options, 
     sweep_row *rows = calloc((size_t)count * IM_SCENE_MAX_FAMILIES, sizeof *rows);
     if (!rows)
         return im_fail(IM_ENOMEM, "%s: allocation of the sweep's rows failed", scene->path);
-    int status = check_points(scene);
+    int status = check_points(scene, options);
     for (int i = 0; i < count && status == IM_OK; ++i) {
         if (scene_stop_signal(options))
             status = scene_interrupted(options, "between sweep points");
