@@ -238,9 +238,9 @@ REPORT(im_animation_gif_with, "path", im_animation_gif_with(&image, 1, &gif_opti
 REPORT(im_figure_write_frame, "figure", im_figure_write_frame(NULL, path_text, &image_out))
 REPORT(im_figure_write_frame, "path", im_figure_write_frame(&figure, NULL, &image_out))
 REPORT(im_figure_write_frame, "frame", im_figure_write_frame(&figure, path_text, NULL))
-REPORT(im_animation_mp4, "directory", im_animation_mp4(NULL, "p", 10.0, path_text))
-REPORT(im_animation_mp4, "prefix", im_animation_mp4("d", NULL, 10.0, path_text))
-REPORT(im_animation_mp4, "path", im_animation_mp4("d", "p", 10.0, NULL))
+REPORT(im_animation_mp4, "directory", im_animation_mp4(NULL, "p", 2, 10.0, path_text))
+REPORT(im_animation_mp4, "prefix", im_animation_mp4("d", NULL, 2, 10.0, path_text))
+REPORT(im_animation_mp4, "path", im_animation_mp4("d", "p", 2, 10.0, NULL))
 
 /* ---- indenter.h ---- */
 ACCEPT(im_indenter_from_profile, (punch = im_indenter_from_profile(NULL), im_indenter_check(&punch) == IM_EINVAL))

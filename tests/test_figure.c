@@ -742,6 +742,28 @@ static void test_gif_annotated_like_png(void **state)
     free(g.rgba);
 }
 
+/* Two frames of three encoded are the video of a folder holding those two alone (a frame left from a
+ * longer run is not read): the same bytes (x264 is deterministic for the same input). */
+static void assert_mp4_reads_count_frames(const char *three, const im_image *image)
+{
+    const char *two = test_path("two_frames");
+    assert_int_equal(im_make_directories(two), IM_OK);
+    for (int i = 0; i < 2; ++i) {
+        char path[4096];
+        assert_int_equal(im_frame_path(path, sizeof path, two, "contact", i), IM_OK);
+        assert_int_equal(im_png_write(path, image->rgba, image->width, image->height, 4, image->width * 4, NULL),
+                         IM_OK);
+    }
+    const char *first = test_path("first_two.mp4"), *alone = test_path("alone.mp4");
+    assert_int_equal(im_animation_mp4(three, "contact", 2, 5.0, first), IM_OK);
+    assert_int_equal(im_animation_mp4(two, "contact", 2, 5.0, alone), IM_OK);
+    size_t a_size = 0, b_size = 0;
+    uint8_t *a = slurp(first, &a_size), *b = slurp(alone, &b_size);
+    assert_true(a && b && a_size == b_size && memcmp(a, b, a_size) == 0);
+    free(a);
+    free(b);
+}
+
 static void test_mp4_or_its_absence(void **state)
 {
     (void)state;
@@ -754,7 +776,7 @@ static void test_mp4_or_its_absence(void **state)
         assert_int_equal(im_png_write(path, image.rgba, image.width, image.height, 4, 21 * 4, NULL), IM_OK);
     }
     const char *video = test_path("run.mp4");
-    int status = im_animation_mp4(directory, "contact", 5.0, video);
+    int status = im_animation_mp4(directory, "contact", 3, 5.0, video);
     struct stat st;
     if (!im_ffmpeg_available()) {
         assert_int_equal(status, IM_EUNSUPPORTED);
@@ -765,7 +787,9 @@ static void test_mp4_or_its_absence(void **state)
         assert_int_equal(status, IM_OK);
         assert_int_equal(stat(video, &st), 0);
         assert_true(st.st_size > 0);
+        assert_mp4_reads_count_frames(directory, &image);
     }
+    assert_int_equal(im_animation_mp4(directory, "contact", 0, 5.0, video), IM_EINVAL);
     im_image_release(&image);
 }
 

@@ -121,10 +121,11 @@ int im_animation_gif(const im_image *frames, int count, double seconds_per_frame
 /* Whether the ffmpeg command is on PATH (as `command -v ffmpeg`). */
 int im_ffmpeg_available(void);
 
-/* Encodes DIRECTORY/PREFIX_%04d.png (frames 0..) into an H.264 MP4 with the ffmpeg command at
+/* Encodes DIRECTORY/PREFIX_%04d.png, frames 0 to count - 1 (later ones in the folder, such as a
+ * longer earlier run's, are not read), into an H.264 MP4 with the ffmpeg command at
  * frames_per_second, written atomically. IM_EUNSUPPORTED with "ffmpeg not found" when it is not
- * installed (the frames stay where they are); IM_EIO when ffmpeg fails. */
-int im_animation_mp4(const char *directory, const char *prefix, double frames_per_second,
+ * installed (the frames stay where they are); IM_EINVAL for count < 1; IM_EIO when ffmpeg fails. */
+int im_animation_mp4(const char *directory, const char *prefix, int count, double frames_per_second,
                      const char *path);
 
 #ifdef __cplusplus

@@ -341,7 +341,7 @@ static int animate(im_render_context *context, char **inputs, int count, render_
     if (status == IM_OK && gif)
         status = im_animation_gif(frames, count, 1.0 / o->fps, o->out);
     else if (status == IM_OK && dot && strcmp(dot, ".mp4") == 0)
-        status = im_animation_mp4(o->frames, "contact", o->fps, o->out);
+        status = im_animation_mp4(o->frames, "contact", count, o->fps, o->out);
     else if (status == IM_OK && o->out)
         status = im_fail(IM_EINVAL, "%s: expected an animation ending in .gif or .mp4", o->out);
     for (int i = 0; i < count; ++i) {

@@ -219,7 +219,7 @@ static int run_ffmpeg(char *const arguments[])
     return IM_OK;
 }
 
-int im_animation_mp4(const char *directory, const char *prefix, double frames_per_second, const char *path)
+int im_animation_mp4(const char *directory, const char *prefix, int count, double frames_per_second, const char *path)
 {
     ARG_REQUIRE(directory, "directory");
     ARG_REQUIRE(prefix, "prefix");
@@ -228,19 +228,24 @@ int im_animation_mp4(const char *directory, const char *prefix, double frames_pe
         return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
     if (!(frames_per_second > 0.0 && frames_per_second <= 240.0))
         return im_fail(IM_EINVAL, "MP4: %g frames per second: expected (0, 240]", frames_per_second);
-    char pattern[4096], rate[32], name[128];
+    if (count < 1)
+        return im_fail(IM_EINVAL, "MP4: %d frames: expected at least 1", count);
+    char pattern[4096], rate[32], frames[32], name[128];
     snprintf(name, sizeof name, "%.100s_%%04d.png", prefix);
     int joined = im_path_join(pattern, sizeof pattern, directory, name);
     if (joined != IM_OK)
         return joined;
     snprintf(rate, sizeof rate, "%g", frames_per_second);
+    snprintf(frames, sizeof frames, "%d", count);
     /* ffmpeg picks the container from the extension, so the temporary name ends in .mp4 too; it
      * overwrites (-y) the empty temporary file, whose descriptor then syncs what it wrote. */
     im_atomic_file file;
     int status = im_atomic_open_suffixed(&file, path, ".mp4");
     if (status != IM_OK)
         return status;
-    char *arguments[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern,
+    /* -frames:v: ffmpeg reads the pattern until its numbering stops, so a frame left from a longer run
+     * would otherwise be encoded too */
+    char *arguments[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern, "-frames:v", frames,
                          "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt",
                          "yuv420p", file.temp_path, NULL};
     status = run_ffmpeg(arguments);

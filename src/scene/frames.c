@@ -240,7 +240,7 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = scene_output_path(scene, "contact.mp4", path, sizeof path);
-    return status == IM_OK ? im_animation_mp4(folder, "contact", scene->frame_rate, path) : status;
+    return status == IM_OK ? im_animation_mp4(folder, "contact", count, scene->frame_rate, path) : status;
 }
 
 int scene_run_frames(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
