@@ -11,17 +11,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-static im_indentation *periodic_run(const im_field *surface, const im_indenter *punch, double largest,
-                                    double hardness)
+static im_indentation *periodic_run_under(const im_field *surface, const im_indenter *punch, enum im_control control,
+                                          double largest, double hardness)
 {
     im_solver_options o = im_solver_options_default();
     o.periodic = 1;
     o.tol = 1e-10;
     o.hardness = hardness;
     im_indentation *run = NULL;
-    if (im_indentation_create(surface, punch, IM_CONTROL_LOAD, largest, &o, &run) != IM_OK)
+    if (im_indentation_create(surface, punch, control, largest, &o, &run) != IM_OK)
         fail_msg("periodic indentation: %s", im_last_error());
     return run;
+}
+
+static im_indentation *periodic_run(const im_field *surface, const im_indenter *punch, double largest,
+                                    double hardness)
+{
+    return periodic_run_under(surface, punch, IM_CONTROL_LOAD, largest, hardness);
 }
 
 static im_step_result step(im_indentation *run, double load)
@@ -140,17 +146,11 @@ static void capped_spike_is_not_an_answer(void **state)
     im_field_free(s);
 }
 
+/* A rigid flat on the cell (a flat punch wider than its diagonal) under mean-gap control. */
 static im_indentation *mean_gap_run(const im_field *surface, double largest, double hardness)
 {
     im_indenter flat = im_indenter_flat(2.0 * surface->nx);
-    im_solver_options o = im_solver_options_default();
-    o.periodic = 1;
-    o.tol = 1e-10;
-    o.hardness = hardness;
-    im_indentation *run = NULL;
-    if (im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, largest, &o, &run) != IM_OK)
-        fail_msg("mean-gap indentation: %s", im_last_error());
-    return run;
+    return periodic_run_under(surface, &flat, IM_CONTROL_MEAN_GAP, largest, hardness);
 }
 
 /* Mean-gap control and load control describe one state: a rough cell pressed to the mean gaps that
@@ -163,12 +163,8 @@ static void mean_gap_is_load_control(void **state)
     im_field *s = test_rough_surface(N, 0.08, 2);
     im_indenter flat = im_indenter_flat(2.0 * N);
     const double pressures[] = {0.002, 0.01, 0.004}, cell = (double)N * N;
-    im_indentation *by_load = periodic_run(s, &flat, 0.01 * cell, 0), *by_gap = mean_gap_run(s, 10.0, 0);
-    im_solver_options o = im_solver_options_default();
-    o.periodic = 1;
-    o.tol = 1e-10;
-    im_indentation *by_approach = NULL;
-    assert_int_equal(im_indentation_create(s, &flat, IM_CONTROL_DISPLACEMENT, 10.0, &o, &by_approach), IM_OK);
+    im_indentation *by_load = periodic_run(s, &flat, 0.01 * cell, 0), *by_gap = mean_gap_run(s, 10.0, 0),
+                   *by_approach = periodic_run_under(s, &flat, IM_CONTROL_DISPLACEMENT, 10.0, 0);
     for (int k = 0; k < 3; ++k) {
         im_step_result l = step(by_load, pressures[k] * cell), g = step(by_gap, l.mean_gap),
                        w = step(by_approach, l.approach);
