@@ -87,11 +87,12 @@ static int load_and_arm(const char *path, im_scene *scene, run_wisdom *wisdom)
 }
 
 /* A scene that asks for no output would solve and draw nothing and still succeed: refused here, not by
- * the parser, since scenes built in code parse without [output] and set what they want after. */
+ * the parser, since scenes built in code parse without [output] and set what they want after. A
+ * periodic scene writes each surface's history and k without one. */
 static int check_asks_for_output(const im_scene *scene)
 {
     if (scene->table || scene->plots || scene->contact_panels || scene->frames || scene->frames3d ||
-        scene->distributions) /* frames3d alone: check_runnable says it needs frames */
+        scene->distributions || scene->periodic) /* frames3d alone: check_runnable says it needs frames */
         return IM_OK;
     return im_fail(IM_EINVAL, "%s: no output asked for: expected an [output] section with table, contact_panels, "
                    "frames or distributions = yes, or plots = a figure (nothing would be solved or drawn)",

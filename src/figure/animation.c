@@ -224,12 +224,12 @@ int im_animation_mp4(const char *directory, const char *prefix, int count, doubl
     ARG_REQUIRE(directory, "directory");
     ARG_REQUIRE(prefix, "prefix");
     ARG_REQUIRE(path, "path");
-    if (!im_ffmpeg_available())
-        return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
     if (!(frames_per_second > 0.0 && frames_per_second <= 240.0))
         return im_fail(IM_EINVAL, "MP4: %g frames per second: expected (0, 240]", frames_per_second);
     if (count < 1)
         return im_fail(IM_EINVAL, "MP4: %d frames: expected at least 1", count);
+    if (!im_ffmpeg_available())
+        return im_fail(IM_EUNSUPPORTED, "ffmpeg not found on PATH: no MP4 written; the frames are in %s", directory);
     char pattern[4096], rate[32], frames[32], name[128];
     snprintf(name, sizeof name, "%.100s_%%04d.png", prefix);
     int joined = im_path_join(pattern, sizeof pattern, directory, name);
