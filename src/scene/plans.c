@@ -77,6 +77,8 @@ static const char *run_wisdom(const im_scene *scene)
 /* Whether every checksum of kept is in now (both sorted). */
 static int holds_all(const line_sums *now, const uint64_t *kept, size_t count)
 {
+    if (now->count == 0) /* no wisdom now (items NULL: bsearch must not see it) */
+        return count == 0;
     for (size_t i = 0; i < count; ++i)
         if (!bsearch(&kept[i], now->items, now->count, sizeof *kept, compare_sums))
             return 0;
