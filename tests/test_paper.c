@@ -195,6 +195,41 @@ static void test_fig7_needs_a_common_range(void **state)
     assert_int_equal(access(path, F_OK), -1);
 }
 
+/* fig7.csv holds what Fig. 7 plots: made_histories' rough family has A / A_cone = 0.948 + 2e-5 N*
+ * - 0.0102 s for seed s = 0, 1, 2 on N* from 120 (the last first point) to 600 (the first last),
+ * so the mean is 0.9378 + 2e-5 N* and the sample sd 0.0102 at every N*; the smooth family is not
+ * in it. */
+static void test_fig7_statistics(void **state)
+{
+    (void)state;
+    static made_histories data;
+    make_histories(0, &data);
+    const char *path = test_path("fig7.csv");
+    FILE *out = fopen(path, "w");
+    assert_non_null(out);
+    assert_int_equal(paper_write_area_ratio_statistics(&data.h, out), IM_OK);
+    fclose(out);
+    FILE *in = fopen(path, "r");
+    char header[128];
+    assert_non_null(fgets(header, sizeof header, in));
+    assert_string_equal(header, "slope,n_star,area_ratio_mean,area_ratio_sd,surfaces,area_ratio_eq12\n");
+    double slope, n_star, mean, sd, eq12, first = NAN, last = NAN;
+    int surfaces, rows = 0;
+    while (fscanf(in, "%lf,%lf,%lf,%lf,%d,%lf\n", &slope, &n_star, &mean, &sd, &surfaces, &eq12) == 6) {
+        assert_close(slope, 0.08, 0.0);
+        assert_close(mean, 0.9378 + 2e-5 * n_star, 1e-12);
+        assert_close(sd, 0.0102, 1e-12);
+        assert_int_equal(surfaces, SEEDS);
+        assert_close(eq12, 0.9, 0.0);
+        first = rows++ == 0 ? n_star : first;
+        last = n_star;
+    }
+    fclose(in);
+    assert_int_equal(rows, 40);
+    assert_close(first, 120.0, 1e-12);
+    assert_close(last, 600.0, 1e-12);
+}
+
 /* Draws made_histories' sweep with `groups` groups into name; returns the builder's status. */
 static int sweep_into(const made_sweep *m, int groups, const char *name)
 {
@@ -268,6 +303,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_builders_are_reentrant),
         cmocka_unit_test(test_fig7_needs_a_common_range),
+        cmocka_unit_test(test_fig7_statistics),
         cmocka_unit_test(test_sweep_figure),
         cmocka_unit_test(test_distribution_figure),
         cmocka_unit_test(test_panel_columns),

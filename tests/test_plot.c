@@ -403,6 +403,53 @@ static void test_legend(void **state)
     free(p.rgb);
 }
 
+/* Data y of the pixel row py on a linear y axis of the geometry g. */
+static double data_y(const im_plot_geometry *g, double py)
+{
+    return g->y_lo + (g->y_hi - g->y_lo) * (g->box_y + g->box_height - py) / g->box_height;
+}
+
+/* IM_PLOT_LEGEND_AUTO: a corner whose box a line passes within a few pixels of, with no vertex
+ * near it, is not taken (the older rule counted sampled points inside the box only); when every
+ * corner is touched the legend goes outside on the right and the figure widens by it. */
+static void test_legend_keeps_clear_of_lines(void **state)
+{
+    (void)state;
+    double x[] = {0.0, 1.0}, y[] = {0.0, 0.0};
+    im_plot_series s = {.x = x, .y = y, .n = 2, .label = "a line"};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = &s, .series_count = 1};
+    im_plot plot = small_plot(&panel);
+    im_plot_geometry free_corner, g;
+    assert_int_equal(im_plot_geometry_of(&plot, 0, &free_corner), IM_OK);
+    assert_true(free_corner.legend_x > free_corner.box_x + 0.5 * free_corner.box_width); /* upper right */
+    /* A horizontal line 2 pixels below the upper-right legend, its vertices at the frame's sides. */
+    y[0] = y[1] = data_y(&free_corner, free_corner.legend_y + free_corner.legend_height + 2.0);
+    assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
+    assert_true(g.legend_y > g.box_y + 0.5 * g.box_height); /* a lower corner */
+    /* Lines along the top and the bottom rows of legends: no corner is clear. */
+    double xs[] = {0.0, 1.0, NAN, 0.0, 1.0};
+    double ys[] = {y[0], y[0], NAN, 0.0, 0.0};
+    ys[3] = ys[4] = data_y(&free_corner, free_corner.box_y + free_corner.box_height - free_corner.legend_height - 2.0 -
+                                             (free_corner.legend_y - free_corner.box_y));
+    s = (im_plot_series){.x = xs, .y = ys, .n = 5, .label = "two lines"};
+    assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
+    assert_true(g.legend_x >= g.box_x + g.box_width);
+    assert_close(g.legend_y, g.box_y, 0.0);
+    assert_true(g.width >= free_corner.width + (int)g.legend_width);
+    /* Stated, it goes outside as well; a stated corner stays where it is told. */
+    panel.legend = IM_PLOT_LEGEND_UPPER_RIGHT;
+    assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
+    assert_close(g.legend_x + g.legend_width, free_corner.legend_x + free_corner.legend_width, 0.0);
+    assert_int_equal(g.width, free_corner.width);
+    panel.legend = IM_PLOT_LEGEND_OUTSIDE_RIGHT;
+    s.n = 2;
+    assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
+    assert_true(g.legend_x >= g.box_x + g.box_width);
+    panel.legend = (im_plot_legend)(IM_PLOT_LEGEND_OUTSIDE_RIGHT + 1);
+    assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_EINVAL);
+}
+
 static uint8_t *slurp(const char *path, size_t *size)
 {
     FILE *stream = fopen(path, "rb");
@@ -675,6 +722,7 @@ int main(void)
         cmocka_unit_test(test_polygon_clipping),
         cmocka_unit_test(test_band),
         cmocka_unit_test(test_legend),
+        cmocka_unit_test(test_legend_keeps_clear_of_lines),
         cmocka_unit_test(test_png_pdf_svg),
         cmocka_unit_test(test_bad_input_refused),
         cmocka_unit_test(test_palette),

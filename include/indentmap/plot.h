@@ -86,12 +86,15 @@ typedef struct im_plot_axis {
 } im_plot_axis;
 
 typedef enum im_plot_legend {
-    IM_PLOT_LEGEND_AUTO = 0,    /* the corner of the frame that hides the fewest data points */
+    IM_PLOT_LEGEND_AUTO = 0,    /* the first corner of the frame (in the order below) whose legend box,
+                                   grown by half a font size all round, touches no line, marker or
+                                   error bar; outside on the right when every corner would */
     IM_PLOT_LEGEND_UPPER_RIGHT,
     IM_PLOT_LEGEND_UPPER_LEFT,
     IM_PLOT_LEGEND_LOWER_RIGHT,
     IM_PLOT_LEGEND_LOWER_LEFT,
-    IM_PLOT_LEGEND_HIDDEN       /* no legend even when series have labels */
+    IM_PLOT_LEGEND_HIDDEN,      /* no legend even when series have labels */
+    IM_PLOT_LEGEND_OUTSIDE_RIGHT /* right of the frame, top-aligned with it; the figure widens */
 } im_plot_legend;
 
 typedef struct im_plot_panel {

@@ -24,6 +24,8 @@
 #include "indentmap/field.h"
 #include "indentmap/render.h"
 
+#include <stdio.h>
+
 /* At most this many panels in a figure, and this many surfaces drawn per panel (the first ones). */
 enum { PAPER_MAX_PANELS = 64, PAPER_MAX_SURFACE_LINES = 64 };
 
@@ -65,6 +67,10 @@ int paper_figure_against_approach(const paper_histories *h, int load, const char
  * +- one standard deviation (dotted), on the N* range every surface reached. IM_EINVAL when no
  * rough family's surfaces share a range. */
 int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path);
+/* The numbers Fig. 7 plots, as CSV on out: a header, then per rough family and N* point the slope,
+ * N*, the mean and standard deviation of A / A_cone, the surfaces averaged and eq. (12)'s ratio
+ * (nan where the family has none). Same errors as the figure, and nothing written on any. */
+int paper_write_area_ratio_statistics(const paper_histories *h, FILE *out);
 
 /* A rough family of the sphere's figure: its crossover load and the theory curves beside it. */
 typedef struct paper_sphere_family {

@@ -153,8 +153,13 @@ static double interpolate(const double *x, const double *y, int n, double x0)
 
 typedef struct load_figure {
     panel_grid grid;
+    int panels;                 /* rough families drawn */
+    int family[PAPER_MAX_PANELS];
     double x[PAPER_MAX_PANELS][COMMON_POINTS], mean[PAPER_MAX_PANELS][COMMON_POINTS];
-    double lo[PAPER_MAX_PANELS][COMMON_POINTS], hi[PAPER_MAX_PANELS][COMMON_POINTS];
+    double sd[PAPER_MAX_PANELS][COMMON_POINTS], lo[PAPER_MAX_PANELS][COMMON_POINTS];
+    double hi[PAPER_MAX_PANELS][COMMON_POINTS];
+    int surfaces[PAPER_MAX_PANELS][COMMON_POINTS];
+    double eq12_x[PAPER_MAX_PANELS][2], eq12_y[PAPER_MAX_PANELS][2];
 } load_figure;
 
 /* The N* range every surface of family f reached: 0 when they share none. */
@@ -169,7 +174,7 @@ static int common_range(const paper_histories *h, int f, double *start, double *
     return *end > *start;
 }
 
-/* Mean and +- one standard deviation of family f's A / A_cone at COMMON_POINTS N* on [start, end]. */
+/* Mean and standard deviation of family f's A / A_cone at COMMON_POINTS N* on [start, end]. */
 static void mean_and_spread(const paper_histories *h, int f, double start, double end, load_figure *d, int panel)
 {
     for (int k = 0; k < COMMON_POINTS; ++k) {
@@ -187,23 +192,49 @@ static void mean_and_spread(const paper_histories *h, int f, double start, doubl
         double mu = sum / n, sd = n > 1 ? sqrt(fmax(0.0, (sum_sq - n * mu * mu) / (n - 1))) : 0.0;
         d->x[panel][k] = x;
         d->mean[panel][k] = mu;
+        d->sd[panel][k] = sd;
         d->lo[panel][k] = mu - sd;
         d->hi[panel][k] = mu + sd;
+        d->surfaces[panel][k] = n;
     }
 }
 
-static void load_panel(const paper_histories *h, int f, load_figure *d, int panel)
+/* The statistics of every rough family whose surfaces share a range of N*: the number of panels. */
+static int gather_statistics(const paper_histories *h, load_figure *d)
 {
-    im_plot_series series[3] = {
-        {.x = d->x[panel], .y = d->mean[panel], .n = COMMON_POINTS, .line = IM_PLOT_SOLID, .label = "mean"},
-        {.x = d->x[panel], .y = d->lo[panel], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED, .label = "± 1 sd"},
-        {.x = d->x[panel], .y = d->hi[panel], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED}};
-    for (int s = 0; s < 3; ++s)
-        d->grid.series[panel][s] = series[s];
+    int panels = 0;
+    for (int f = 0; f < h->family_count; ++f) {
+        double start, end;
+        if (!(h->slopes[f] > 0.0) || !common_range(h, f, &start, &end))
+            continue;
+        d->family[panels] = f;
+        mean_and_spread(h, f, start, end, d, panels++);
+    }
+    return panels;
+}
+
+/* Family f's panel: the mean, +- one sd and, where the family has one, eq. (12)'s ratio (a
+ * constant in N*) over the same range. */
+static void load_panel(const paper_histories *h, load_figure *d, int panel)
+{
+    int f = d->family[panel], n = 3;
+    im_plot_series *series = d->grid.series[panel];
+    series[0] = (im_plot_series){.x = d->x[panel], .y = d->mean[panel], .n = COMMON_POINTS, .label = "mean"};
+    series[1] = (im_plot_series){.x = d->x[panel], .y = d->lo[panel], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED,
+                                 .label = "± 1 sd"};
+    series[2] = (im_plot_series){.x = d->x[panel], .y = d->hi[panel], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED};
+    if (isfinite(h->eq12[f])) {
+        d->eq12_x[panel][0] = d->x[panel][0], d->eq12_x[panel][1] = d->x[panel][COMMON_POINTS - 1];
+        d->eq12_y[panel][0] = d->eq12_y[panel][1] = h->eq12[f];
+        series[n] = (im_plot_series){.x = d->eq12_x[panel], .y = d->eq12_y[panel], .n = 2, .line = IM_PLOT_DASHED,
+                                     .label = "eq. (12)"};
+        im_plot_palette(1, series[n++].color);
+    }
     d->grid.panels[panel] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "N* = 2N / (δ² E* cot α)"},
                                             .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{cone}"},
-                                            .series = d->grid.series[panel], .series_count = 3,
-                                            .title = h->titles[f]};
+                                            .series = series, .series_count = n, .title = h->titles[f],
+                                            .legend = panel == d->panels - 1 ? IM_PLOT_LEGEND_AUTO
+                                                                             : IM_PLOT_LEGEND_HIDDEN};
 }
 
 int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path)
@@ -214,19 +245,35 @@ int paper_figure_area_ratio_against_load(const paper_histories *h, const char *p
         return status;
     if (!d)
         return im_fail(IM_ENOMEM, "fig7: allocation failed");
-    int panels = 0;
-    for (int f = 0; f < h->family_count; ++f) {
-        double start, end;
-        if (!(h->slopes[f] > 0.0) || !common_range(h, f, &start, &end))
-            continue;
-        mean_and_spread(h, f, start, end, d, panels);
-        load_panel(h, f, d, panels++);
-    }
+    int panels = d->panels = gather_statistics(h, d);
+    for (int p = 0; p < panels; ++p)
+        load_panel(h, d, p);
     status = panels == 0 ? im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*",
                                    h->source)
                          : write_grid(d->grid.panels, panels, path);
     free(d);
     return status;
+}
+
+int paper_write_area_ratio_statistics(const paper_histories *h, FILE *out)
+{
+    int status = check_families(h, "fig7");
+    load_figure *d = status == IM_OK ? calloc(1, sizeof *d) : NULL;
+    if (status != IM_OK)
+        return status;
+    if (!d)
+        return im_fail(IM_ENOMEM, "fig7: allocation failed");
+    int panels = gather_statistics(h, d);
+    if (panels > 0)
+        fprintf(out, "slope,n_star,area_ratio_mean,area_ratio_sd,surfaces,area_ratio_eq12\n");
+    for (int p = 0; p < panels; ++p)
+        for (int k = 0; k < COMMON_POINTS; ++k)
+            fprintf(out, "%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", h->slopes[d->family[p]], d->x[p][k], d->mean[p][k],
+                    d->sd[p][k], d->surfaces[p][k], h->eq12[d->family[p]]);
+    free(d);
+    return panels == 0 ? im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*",
+                                 h->source)
+                       : IM_OK;
 }
 
 /* The sphere's panel of one rough family: its surfaces (x = N / N_c, into `scaled`) and the

@@ -142,7 +142,7 @@ int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style
     im_plot_panel panel = {.x = {IM_PLOT_LOG, lo, hi, "ρ_{c} = cot α / h′_{rms}"},
                            .y = {IM_PLOT_LINEAR, 0.0, 1.05, "A / A_{cone}"},
                            .series = series, .series_count = has_points ? 3 : 2,
-                           .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
+                           .legend = IM_PLOT_LEGEND_AUTO};
     im_plot plot = plot_like(style, 1, 1, &panel);
     return im_plot_write(&plot, path);
 }

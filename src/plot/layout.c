@@ -1,4 +1,5 @@
 /* Plot checks, limits, ticks and placement, in pixels at the plot's dpi. */
+#include "plot/clip.h"
 #include "plot/layout.h"
 
 #include "typeset/text.h"
@@ -105,7 +106,7 @@ static int check_panel(int index, const im_plot_panel *p)
         status = check_axis(index, "y", &p->y);
     if (status == IM_OK && (p->series_count < 0 || (p->series_count > 0 && !p->series)))
         return im_fail(IM_EINVAL, "plot panel %d: %d series without an array", index, p->series_count);
-    if (status == IM_OK && ((int)p->legend < IM_PLOT_LEGEND_AUTO || p->legend > IM_PLOT_LEGEND_HIDDEN))
+    if (status == IM_OK && ((int)p->legend < IM_PLOT_LEGEND_AUTO || p->legend > IM_PLOT_LEGEND_OUTSIDE_RIGHT))
         return im_fail(IM_EINVAL, "plot panel %d: legend position %d unknown", index, (int)p->legend);
     for (int s = 0; status == IM_OK && s < p->series_count; ++s)
         status = check_series(index, s + 1, &p->series[s], p);
@@ -246,30 +247,66 @@ static void tick_label_widths(cairo_t *cr, const plot_layout *l, const plot_axis
     }
 }
 
-/* Number of sampled data positions (points and 8 along each segment) inside a rectangle. */
-static int covered(const im_plot_panel *p, const plot_panel_layout *pl, double x0, double y0, double w, double h)
+/* Whether the segment from (ax, ay) to (bx, by) meets the rectangle r (Liang-Barsky); a point
+ * when both ends are equal. Non-finite ends (gaps, log axes' zeros) meet nothing. */
+static int segment_meets(plot_rect r, double ax, double ay, double bx, double by)
 {
-    int count = 0;
-    for (int s = 0; s < p->series_count; ++s) {
-        const im_plot_series *series = &p->series[s];
-        double px_prev = NAN, py_prev = NAN;
-        for (int i = 0; i < series->n; ++i) {
-            double px = plot_axis_pixel(&pl->x, series->x[i], pl->box_x, pl->box_width);
-            double py = plot_axis_pixel(&pl->y, series->y[i], pl->box_y + pl->box_height, -pl->box_height);
-            int steps = series->line != IM_PLOT_NO_LINE && isfinite(px_prev + py_prev) ? 8 : 1;
-            for (int k = 1; k <= steps && isfinite(px + py); ++k) {
-                double f = (double)k / steps;
-                double qx = steps > 1 ? px_prev + f * (px - px_prev) : px;
-                double qy = steps > 1 ? py_prev + f * (py - py_prev) : py;
-                count += qx >= x0 && qx <= x0 + w && qy >= y0 && qy <= y0 + h;
-            }
-            px_prev = px, py_prev = py;
+    if (!isfinite(ax + ay + bx + by))
+        return 0;
+    double t0 = 0.0, t1 = 1.0, dx = bx - ax, dy = by - ay;
+    const double p[4] = {-dx, dx, -dy, dy}, q[4] = {ax - r.left, r.right - ax, ay - r.top, r.bottom - ay};
+    for (int i = 0; i < 4; ++i) {
+        if (p[i] == 0.0) {
+            if (q[i] < 0.0)
+                return 0;
+        } else if (p[i] < 0.0) {
+            t0 = fmax(t0, q[i] / p[i]);
+        } else {
+            t1 = fmin(t1, q[i] / p[i]);
         }
     }
-    return count;
+    return t0 <= t1;
 }
 
-static void place_legend(cairo_t *cr, const im_plot_panel *p, const plot_layout *l, plot_panel_layout *pl)
+/* Whether series s draws anything (line, marker, error bar, band edge) inside r. */
+static int series_meets(const im_plot_series *s, const plot_panel_layout *pl, plot_rect r)
+{
+    double bottom = pl->box_y + pl->box_height;
+    for (int i = 0; i < s->n; ++i) {
+        double x = plot_axis_pixel(&pl->x, s->x[i], pl->box_x, pl->box_width);
+        double y = plot_axis_pixel(&pl->y, s->y[i], bottom, -pl->box_height);
+        double x0 = i > 0 ? plot_axis_pixel(&pl->x, s->x[i - 1], pl->box_x, pl->box_width) : x;
+        double y0 = i > 0 ? plot_axis_pixel(&pl->y, s->y[i - 1], bottom, -pl->box_height) : y;
+        if (segment_meets(r, x, y, x, y) || (s->line != IM_PLOT_NO_LINE && segment_meets(r, x0, y0, x, y)))
+            return 1;
+        if (s->sigma && isfinite(s->sigma[i]) &&
+            segment_meets(r, x, plot_axis_pixel(&pl->y, s->y[i] - s->sigma[i], bottom, -pl->box_height), x,
+                          plot_axis_pixel(&pl->y, s->y[i] + s->sigma[i], bottom, -pl->box_height)))
+            return 1;
+        for (int edge = 0; edge < 2 && s->band_lo && s->band_hi; ++edge) {
+            const double *band = edge ? s->band_hi : s->band_lo;
+            if (segment_meets(r, x, plot_axis_pixel(&pl->y, band[i], bottom, -pl->box_height), x,
+                              plot_axis_pixel(&pl->y, band[i > 0 ? i - 1 : 0], bottom, -pl->box_height)))
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* Whether a legend at (x, y) of the panel's legend size, grown by `clearance` all round, would
+ * touch anything the panel draws. */
+static int legend_touches_data(const im_plot_panel *p, const plot_panel_layout *pl, double x, double y,
+                               double clearance)
+{
+    plot_rect r = {x - clearance, y - clearance, x + pl->legend_width + clearance, y + pl->legend_height + clearance};
+    for (int s = 0; s < p->series_count; ++s)
+        if (series_meets(&p->series[s], pl, r))
+            return 1;
+    return 0;
+}
+
+/* The legend's size from its entries (0 x 0: no legend). */
+static void size_legend(cairo_t *cr, const im_plot_panel *p, const plot_layout *l, plot_panel_layout *pl)
 {
     int entries = p->legend_title ? 1 : 0;
     double text = p->legend_title ? text_width(cr, l, p->legend_title) - plot_legend_sample_length(l) - 0.5 * l->font : 0.0;
@@ -278,26 +315,52 @@ static void place_legend(cairo_t *cr, const im_plot_panel *p, const plot_layout 
             ++entries;
             text = fmax(text, text_width(cr, l, p->series[s].label));
         }
+    pl->legend_width = pl->legend_height = 0.0;
     if (entries == (p->legend_title ? 1 : 0) || p->legend == IM_PLOT_LEGEND_HIDDEN)
         return;
-    double pad = plot_legend_padding(l), inset = round(0.5 * l->font);
+    double pad = plot_legend_padding(l);
     pl->legend_width = ceil(2 * pad + plot_legend_sample_length(l) + 0.5 * l->font + text);
     pl->legend_height = 2 * pad + entries * plot_legend_row_height(l);
+}
+
+/* Places a sized legend: at its stated corner or outside, or for IM_PLOT_LEGEND_AUTO at the first
+ * corner that touches no data, else outside. The frame must be placed. Returns whether it went
+ * outside. */
+static int place_legend(const im_plot_panel *p, const plot_layout *l, plot_panel_layout *pl)
+{
+    if (pl->legend_width <= 0.0)
+        return 0;
+    double inset = round(0.5 * l->font);
     double left = pl->box_x + inset, right = pl->box_x + pl->box_width - inset - pl->legend_width;
     double top = pl->box_y + inset, bottom = pl->box_y + pl->box_height - inset - pl->legend_height;
-    /* Corners in the order of im_plot_legend (upper right first). */
-    const double corner_x[4] = {right, left, right, left}, corner_y[4] = {top, top, bottom, bottom};
-    int best = p->legend == IM_PLOT_LEGEND_AUTO ? 0 : (int)p->legend - 1;
-    if (p->legend == IM_PLOT_LEGEND_AUTO) {
-        int fewest = covered(p, pl, corner_x[0], corner_y[0], pl->legend_width, pl->legend_height);
-        for (int c = 1; c < 4 && fewest > 0; ++c) {
-            int n = covered(p, pl, corner_x[c], corner_y[c], pl->legend_width, pl->legend_height);
-            if (n < fewest)
-                fewest = n, best = c;
-        }
+    /* Corners in the order of im_plot_legend (upper right first); the fifth place is outside. */
+    const double place_x[5] = {right, left, right, left, pl->box_x + pl->box_width + 2 * inset};
+    const double place_y[5] = {top, top, bottom, bottom, pl->box_y};
+    int chosen = p->legend == IM_PLOT_LEGEND_OUTSIDE_RIGHT ? 4 : (int)p->legend - 1;
+    if (p->legend == IM_PLOT_LEGEND_AUTO)
+        for (chosen = 0; chosen < 4 && legend_touches_data(p, pl, place_x[chosen], place_y[chosen], inset);)
+            ++chosen;
+    pl->legend_x = place_x[chosen];
+    pl->legend_y = place_y[chosen];
+    return chosen == 4;
+}
+
+/* The room right of the frames that legends placed outside need: `inner` for a panel of any column
+ * but the last (it pushes the next column over), `last` for one of the last column (it widens the
+ * figure only). A frame at the origin is enough to choose, since only the frame's size matters. */
+static void outside_legend_room(cairo_t *cr, const im_plot *plot, plot_layout *l, double box_w, double box_h,
+                                double *inner, double *last)
+{
+    *inner = *last = 0.0;
+    for (int i = 0; i < l->panel_count; ++i) {
+        plot_panel_layout *pl = &l->panels[i];
+        pl->box_x = pl->box_y = 0.0, pl->box_width = box_w, pl->box_height = box_h;
+        size_legend(cr, &plot->panels[i], l, pl);
+        if (!place_legend(&plot->panels[i], l, pl))
+            continue;
+        double *room = i % plot->columns == plot->columns - 1 ? last : inner;
+        *room = fmax(*room, pl->legend_width + 2 * round(0.5 * l->font));
     }
-    pl->legend_x = corner_x[best];
-    pl->legend_y = corner_y[best];
 }
 
 static int has_heading(const im_plot *plot)
@@ -344,17 +407,19 @@ int plot_make_layout(const im_plot *plot, cairo_t *cr, plot_layout *l)
     double left = ceil(0.4 * f + y_labels + (any_y_label ? 1.5 * f : 0.0));
     double bottom = ceil(1.4 * f + (any_x_label ? 1.7 * f : 0.0));
     double top = has_heading(plot) ? round(1.5 * f) : round(0.6 * f);
-    double right = ceil(fmax(0.6 * f, x_overhang));
     double box_w = round(plot->panel_width * l->points), box_h = round(plot->panel_height * l->points);
+    double inner_room, last_room;
+    outside_legend_room(cr, plot, l, box_w, box_h, &inner_room, &last_room);
+    double right = ceil(fmax(0.6 * f, x_overhang) + inner_room);
     double cell_w = left + box_w + right, cell_h = top + box_h + bottom;
-    l->width = (int)(2 * margin + plot->columns * cell_w);
+    l->width = (int)(2 * margin + plot->columns * cell_w + ceil(fmax(0.0, last_room - inner_room)));
     l->height = (int)(2 * margin + plot->rows * cell_h);
     for (int i = 0; i < l->panel_count; ++i) {
         plot_panel_layout *pl = &l->panels[i];
         pl->box_x = margin + (i % plot->columns) * cell_w + left;
         pl->box_y = margin + (double)(i / plot->columns) * cell_h + top;
         pl->box_width = box_w, pl->box_height = box_h;
-        place_legend(cr, &plot->panels[i], l, pl);
+        place_legend(&plot->panels[i], l, pl);
     }
     if (l->width > 32768 || l->height > 32768)
         return im_fail(IM_EINVAL, "plot %d x %d pixels: expected at most 32768 per side; lower the dpi or the "

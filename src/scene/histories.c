@@ -339,9 +339,20 @@ static int plot_against_approach(const im_scene *scene, const gathered_histories
                                load ? draw_load_against_approach : draw_against_approach, &g->h);
 }
 
+/* Fig. 7 and fig7.csv, the numbers it plots. */
 static int plot_area_ratio_against_load(const im_scene *scene, const gathered_histories *g)
 {
-    return scene_write_png_pdf(scene, "fig7", draw_area_ratio_against_load, &g->h);
+    im_atomic_file file;
+    int status = scene_open_output(scene, "fig7.csv", &file);
+    if (status != IM_OK)
+        return status;
+    status = paper_write_area_ratio_statistics(&g->h, file.stream);
+    if (status != IM_OK) {
+        im_atomic_abort(&file);
+        return status;
+    }
+    status = im_atomic_commit(&file);
+    return status == IM_OK ? scene_write_png_pdf(scene, "fig7", draw_area_ratio_against_load, &g->h) : status;
 }
 
 /* The sphere's rough families: N_c and the theory over the range of N / N_c their surfaces span. */
