@@ -45,7 +45,7 @@ fi
 check "scene runs" test $status -eq 0
 for f in contact_panels.png contact_panels.pdf results.csv contact.gif panels/force_00.npy panels/force_01.npy \
          frames/contact_0000.png frames/contact_0002.png frames/height_0002.png fig1.png fig2.pdf fig3.png \
-         table1.csv table1.md table/member_00_5.csv table/member_01_6.csv fig5.png fig6.pdf fig7.png \
+         table1.csv table1.md table/member_00_5.csv table/member_01_6.csv fig5.png fig6.pdf fig7.png fig7.csv \
          histories/member_01_6.csv; do
   check "wrote $f" test -s "$dir/out/$f"
 done
@@ -71,6 +71,14 @@ check "history has the theory columns" bash -c "sed -n 2p '$dir/out/histories/me
 eq12=$("$cli" theory --alpha 80 --slope 0.08 --format csv | awk -F, 'NR == 2 { print $4 }')
 check "history's eq. (12) column" awk -F, -v e="$eq12" 'NR > 2 { d = $16 - e; if (d < -1e-9 || d > 1e-9 || $14 != $4) bad = 1 }
   END { exit bad }' "$dir/out/histories/member_01_6.csv"
+
+# fig7.csv: the plotted mean of the rough family at its last N* (600) is the mean of its two
+# surfaces' A/A_cone there, and eq. (12) the theory's.
+check "fig7.csv's last mean is the surfaces' mean at N* = 600" awk -F, -v e="$eq12" '
+  FNR == 1 { file++ } file <= 2 && FNR > 2 { last[file] = $6 }
+  file == 3 && FNR > 1 { mean = $3; n_star = $2; eq = $6 }
+  END { d = mean - (last[1] + last[2]) / 2; exit !(d * d < 1e-20 && n_star > 599.99 && (eq - e) ^ 2 < 1e-18) }' \
+  "$dir/out/histories/member_01_5.csv" "$dir/out/histories/member_01_6.csv" "$dir/out/fig7.csv"
 
 # Nothing solved twice: the table solves each surface at N* = 600; the histories' last step (N* =
 # 600) is the table's; the panels are the table's (smooth) and the frames' last step (rough).
@@ -104,6 +112,14 @@ for f in histories/member_01_5.csv histories/member_01_6.csv; do
   check "edited resume: $f as a fresh run" cmp <(history_rows "$dir/fresh/$f") <(history_rows "$dir/out/$f")
 done
 check "edited resume: not the old table" bash -c "! cmp -s '$dir/old/table1.csv' '$dir/out/table1.csv'"
+
+# The sphere's figure draws steps of at least 10 contact patches: loads that never reach them are
+# refused, naming the resolution.
+printf '[scene]\nname = tiny\noutput = %s\n[surfaces]\nn = 64\nslopes = 0.16\nseeds = 1\n[punch]\nshape = sphere\nradius = 60\n[loading]\ncontrol = load\nsteps = 1, 2, 3\n[output]\nplots = sphere\n' \
+  "$dir/tiny" >"$dir/tiny.ini"
+"$cli" run --quiet "$dir/tiny.ini" 2>"$dir/tiny.err"
+check "a sphere figure below the grid's resolution is refused" test $? -eq 2
+check "... naming the resolution" grep -qF "the surfaces of h'rms 0.16 reach 10 contact patches (the grid's resolution) at fewer than two" "$dir/tiny.err"
 
 # A damaged scene names its file and line.
 printf '[surfaces]\nn = 64\nslopes = 0, x\n' >"$dir/bad.ini"

@@ -230,6 +230,19 @@ static void test_fig7_statistics(void **state)
     assert_close(last, 600.0, 1e-12);
 }
 
+/* The sphere's figure starts a surface at its first step of PAPER_MIN_PATCHES contact patches. */
+static void test_first_resolved_step(void **state)
+{
+    (void)state;
+    long few[] = {1, 1, 5, 9, 10, 30}, none[] = {1, 2, 3, 4, 5, 9};
+    paper_history m = {.steps = 6, .patches = few};
+    assert_int_equal(paper_first_resolved_step(&m), 4);
+    m.patches = none;
+    assert_int_equal(paper_first_resolved_step(&m), 6);
+    m.steps = 0;
+    assert_int_equal(paper_first_resolved_step(&m), 0);
+}
+
 /* Draws made_histories' sweep with `groups` groups into name; returns the builder's status. */
 static int sweep_into(const made_sweep *m, int groups, const char *name)
 {
@@ -304,6 +317,7 @@ int main(void)
         cmocka_unit_test(test_builders_are_reentrant),
         cmocka_unit_test(test_fig7_needs_a_common_range),
         cmocka_unit_test(test_fig7_statistics),
+        cmocka_unit_test(test_first_resolved_step),
         cmocka_unit_test(test_sweep_figure),
         cmocka_unit_test(test_distribution_figure),
         cmocka_unit_test(test_panel_columns),

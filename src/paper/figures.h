@@ -72,6 +72,13 @@ int paper_figure_area_ratio_against_load(const paper_histories *h, const char *p
  * (nan where the family has none). Same errors as the figure, and nothing written on any. */
 int paper_write_area_ratio_statistics(const paper_histories *h, FILE *out);
 
+/* A contact of fewer patches than this is below the grid's resolution: its area is counted in
+ * whole patches (one patch more or less is 10 % or more of it), so the sphere's figure starts each
+ * surface at its first step of at least this many contact patches. */
+enum { PAPER_MIN_PATCHES = 10 };
+/* The first step of m with at least PAPER_MIN_PATCHES contact patches; m->steps when none has. */
+int paper_first_resolved_step(const paper_history *m);
+
 /* A rough family of the sphere's figure: its crossover load and the theory curves beside it. */
 typedef struct paper_sphere_family {
     int family;                 /* index into the histories' families */
@@ -82,7 +89,8 @@ typedef struct paper_sphere_family {
 } paper_sphere_family;
 
 /* Pastewka and Robbins' regimes: A / A_Hertz against N / N_c on log axes, a panel per rough
- * family (count >= 1): every surface thin, eq. (3) and the gamma integral thick. */
+ * family (count >= 1): every surface thin from its first resolved step (below), eq. (3) thick and
+ * the gamma integral dashed in a second colour on top of it (the two nearly coincide). */
 int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_family *families, int count,
                                 const char *path);
 

@@ -178,7 +178,9 @@ static int common_range(const paper_histories *h, int f, double *start, double *
 static void mean_and_spread(const paper_histories *h, int f, double start, double end, load_figure *d, int panel)
 {
     for (int k = 0; k < COMMON_POINTS; ++k) {
-        double x = start + (end - start) * k / (COMMON_POINTS - 1), sum = 0, sum_sq = 0;
+        /* The ends exactly: start + (end - start) may round past the surface that reached only end. */
+        double x = k == COMMON_POINTS - 1 ? end : start + (end - start) * k / (COMMON_POINTS - 1);
+        double sum = 0, sum_sq = 0;
         int n = 0;
         for (int i = 0; i < h->count; ++i) {
             const paper_history *m = &h->members[i];
@@ -276,6 +278,14 @@ int paper_write_area_ratio_statistics(const paper_histories *h, FILE *out)
                        : IM_OK;
 }
 
+int paper_first_resolved_step(const paper_history *m)
+{
+    int k = 0;
+    while (k < m->steps && m->patches[k] < PAPER_MIN_PATCHES)
+        ++k;
+    return k;
+}
+
 /* The sphere's panel of one rough family: its surfaces (x = N / N_c, into `scaled`) and the
  * theory. */
 static void sphere_panel(const paper_histories *h, const paper_sphere_family *s, double *scaled, int row,
@@ -286,19 +296,21 @@ static void sphere_panel(const paper_histories *h, const paper_sphere_family *s,
     for (int i = 0; i < h->count; ++i) {
         const paper_history *m = &h->members[i];
         double *x = scaled + (size_t)i * row;
-        if (m->family != f || m->steps == 0 || n >= PAPER_MAX_SURFACE_LINES)
+        int first = m->family == f ? paper_first_resolved_step(m) : m->steps;
+        if (first == m->steps || n >= PAPER_MAX_SURFACE_LINES)
             continue;
-        for (int k = 0; k < m->steps; ++k)
+        for (int k = first; k < m->steps; ++k)
             x[k] = m->load[k] / s->crossover_load;
-        series[n] = thin_line(x, m->area_ratio, m->steps, f, h->family_count);
-        series[n].label = n == 0 ? "surfaces" : NULL;
+        series[n] = thin_line(x + first, m->area_ratio + first, m->steps - first, f, h->family_count);
+        series[n].label = n == 0 ? "surfaces (n_{p} ≥ 10)" : NULL;
         ++n;
     }
     im_plot_series eq3 = {.x = s->theory_x, .y = s->theory_constant, .n = s->theory_points,
                           .line = IM_PLOT_SOLID, .line_width = 2.0, .label = "eq. (3)"};
     series[n++] = eq3;
     im_plot_series gamma = {.x = s->theory_x, .y = s->theory_gamma, .n = s->theory_points,
-                            .line = IM_PLOT_DASHED, .line_width = 2.0, .label = "γ integral"};
+                            .line = IM_PLOT_DASHED, .line_width = 1.2, .label = "γ integral"};
+    im_plot_palette(1, gamma.color); /* vermillion over eq. (3)'s black: both stay visible */
     series[n++] = gamma;
     grid->panels[panel] = (im_plot_panel){.x = {IM_PLOT_LOG, 0, 0, "N / N_{c}"},
                                           .y = {IM_PLOT_LOG, 0, 0, "A / A_{Hertz}"}, .series = series,

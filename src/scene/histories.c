@@ -373,7 +373,7 @@ static void sphere_load_range(const paper_histories *h, int f, double n_c, doubl
         const paper_history *m = &h->members[i];
         if (m->family != f || m->steps == 0 || n >= PAPER_MAX_SURFACE_LINES)
             continue;
-        for (int k = 0; k < m->steps; ++k) {
+        for (int k = paper_first_resolved_step(m); k < m->steps; ++k) {
             *lo = fmin(*lo, m->load[k] / n_c);
             *hi = fmax(*hi, m->load[k] / n_c);
         }
@@ -390,6 +390,10 @@ static int sphere_family(const im_scene *scene, const paper_histories *h, int f,
     int status = im_theory_sphere_crossover_load(&rough, scene->radius, &n_c);
     if (status == IM_OK)
         sphere_load_range(h, f, n_c, &lo, &hi);
+    if (status == IM_OK && !(hi > lo))
+        status = im_fail(IM_EINVAL, "%s: plots = sphere: the surfaces of h'rms %g reach %d contact patches (the "
+                         "grid's resolution) at fewer than two of [loading] steps: raise the loads",
+                         scene->path, scene->slopes[f], PAPER_MIN_PATCHES);
     for (int k = 0; k < THEORY_POINTS && status == IM_OK && hi > lo; ++k) {
         double load = n_c * lo * pow(hi / lo, (double)k / (THEORY_POINTS - 1));
         im_theory_step theory;
