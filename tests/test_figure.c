@@ -210,6 +210,43 @@ static void test_small_panel_text_fits(void **state)
     im_image_release(&image);
 }
 
+/* The note (e.g. "N* = 37000") sits under the panels and ends at the grid's right edge, clear of
+ * the scale bar's text; a note longer than the grid widens the figure instead of being clipped. */
+static void test_note_under_the_panels(void **state)
+{
+    (void)state;
+    im_image image = make_image(600, 120, 5);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    const char *path = test_path("note.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x, y;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    find_image(rgb, width, height, &image, &x, &y);
+    int bottom = y + image.height, plain_width = width, plain_height = height;
+    int scale_text_end = last_ink_column(rgb, width, bottom, height, width);
+    free(rgb);
+    figure.note = "N* = 37000";
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    rgb = read_rgb(path, &width, &height);
+    assert_int_equal(width, plain_width);
+    assert_int_equal(height, plain_height);
+    assert_clear_edges(rgb, width, height);
+    int note_end = last_ink_column(rgb, width, bottom, height, width);
+    assert_true(note_end <= x + image.width && note_end >= x + image.width - 3); /* right-aligned */
+    int note_start = first_ink_column(rgb, width, bottom + 1, height, scale_text_end + 1);
+    assert_true(note_start > scale_text_end + 8.0 * 300.0 / 72.0 * 0.9); /* a gap after the scale bar */
+    free(rgb);
+    figure.note = "a note much longer than the narrow panel it is written under";
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    rgb = read_rgb(path, &width, &height);
+    assert_true(width > plain_width);
+    assert_clear_edges(rgb, width, height);
+    free(rgb);
+    im_image_release(&image);
+}
+
 /* A short colour bar: its tick labels are thinned, so that the labels' ink forms separate runs
  * of rows at most one line high with blank rows between them. */
 static void test_short_colorbar_labels_apart(void **state)
@@ -800,6 +837,7 @@ int main(void)
         cmocka_unit_test(test_tick_labels),
         cmocka_unit_test(test_length_labels),
         cmocka_unit_test(test_small_panel_text_fits),
+        cmocka_unit_test(test_note_under_the_panels),
         cmocka_unit_test(test_short_colorbar_labels_apart),
         cmocka_unit_test(test_panel_grid_and_colorbar),
         cmocka_unit_test(test_colorbar_extensions),

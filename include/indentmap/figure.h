@@ -56,6 +56,8 @@ typedef struct im_figure {
     const im_png_text *texts;        /* run parameters: PNG tEXt chunks, PDF keywords */
     int text_count;
     int png_compression;             /* zlib level 0-9 for PNG output */
+    const char *note;                /* one line under the panels, ending at the grid's right edge
+                                        (e.g. the punch and the load, "N* = 37000"); NULL: none */
 } im_figure;
 
 /* One panel, no colour bar, automatic scale bar, 300 dpi, 8 pt text, PNG compression

@@ -51,7 +51,8 @@ typedef struct layout {
     double bar_x, bar_y, bar_width, bar_height, tick_length, tick_label_width;
     double ticks[MAX_TICKS];     /* the colour bar's labelled ticks, thinned to fit */
     int tick_count;
-    double scale_height;         /* strip below the grid for the scale bar */
+    double scale_height;         /* strip below the grid for the scale bar and the note */
+    double note_x;               /* where the note starts */
     int width, height;
 } layout;
 
@@ -176,15 +177,22 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
     l->grid_y = (int)l->margin;
     double grid_width = f->columns * l->cell_width + (f->columns - 1) * l->gap;
     double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
-    l->scale_height = f->scale_bar >= 0.0 ? round(2.4 * l->font) : 0.0;
-    double right = l->grid_x + grid_width, bottom = 0.0;
+    l->scale_height = f->scale_bar >= 0.0 || f->note ? round(2.4 * l->font) : 0.0;
+    double right = l->grid_x + grid_width, bottom = 0.0, scale_end = l->grid_x;
     if (f->scale_bar >= 0.0) {
         char text[64];
         double pixels;
         scale_bar(f, text, sizeof text, &pixels);
         /* the bar starts at the bottom-left panel's data, data_x into its cell */
         double start = f->panels[(f->rows - 1) * f->columns].image->data_x;
-        right = fmax(right, l->grid_x + start + fmax(pixels, text_width(m, m->regular, l->font, text)));
+        scale_end = l->grid_x + start + fmax(pixels, text_width(m, m->regular, l->font, text));
+        right = fmax(right, scale_end);
+    }
+    if (f->note) {
+        /* Right-aligned with the grid, never over the scale bar's text: the figure widens instead. */
+        double width = text_width(m, m->regular, l->font, f->note);
+        l->note_x = fmax(l->grid_x + grid_width - width, f->scale_bar >= 0.0 ? scale_end + l->font : l->grid_x);
+        right = fmax(right, l->note_x + width);
     }
     if (f->colormap) {
         l->bar_x = round(l->grid_x + grid_width + 1.2 * l->font);
@@ -295,6 +303,15 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
                         top + 0.3 * l->font + 1.1 * l->font, 0.0, text);
 }
 
+/* The note under the grid, on the scale bar's text line. */
+static void draw_note(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
+{
+    double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
+    double top = l->grid_y + grid_height + 0.5 * l->font;
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    figure_show_text(cr, regular, l->font, l->note_x, top + 0.3 * l->font + 1.1 * l->font, 0.0, f->note);
+}
+
 /* Unlabelled ticks at 2..9 times each decade of a logarithmic bar, half as long. */
 static void draw_minor_ticks(const im_colormap *c, const layout *l, cairo_t *cr)
 {
@@ -380,6 +397,8 @@ static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
     status = draw_panels(f, l, cr, regular, bold);
     if (status == IM_OK && f->scale_bar >= 0.0)
         draw_scale_bar(f, l, cr, regular);
+    if (status == IM_OK && f->note)
+        draw_note(f, l, cr, regular);
     if (status == IM_OK && f->colormap)
         status = draw_colorbar(f, l, cr, regular);
     return status;

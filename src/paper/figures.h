@@ -98,7 +98,8 @@ int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_fam
 
 /* Fig. 4: the rendered contact maps of count families (1 to PAPER_MAX_PANELS) in a grid, labelled
  * (a), (b), ... and titled, with one colour bar of the shared norm (extended below it when
- * extend_under). The PNG's texts name the software, `source` and the load N*. */
+ * extend_under) and the load N* stated under the panels. The PNG's texts name the software,
+ * `source` and the load N*. */
 typedef struct paper_contact_panels {
     int count;
     const im_image *images;     /* count maps (borrowed) */
@@ -117,6 +118,7 @@ typedef struct paper_density_map {
     double axis_x, axis_y;      /* the punch axis from the grid's corner */
     double radius;              /* a, the smooth contact radius */
     double slope;               /* h'rms (> 0), for gamma and the title */
+    double load_star;           /* N* of the map, stated in its title */
 } paper_density_map;
 int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count, const char *path);
 

@@ -36,6 +36,7 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const char *path
     figure.extend_under = in->extend_under;
     figure.texts = texts;
     figure.text_count = 3;
+    figure.note = load_text;
     return im_figure_write(&figure, path);
 }
 
@@ -87,7 +88,7 @@ typedef struct density_figure {
     char titles[PAPER_MAX_PANELS][64];
 } density_figure;
 
-static int density_panel(double alpha_degrees, const paper_density_map *map, density_figure *d, int i)
+static int density_panel(double alpha_degrees, const paper_density_map *map, density_figure *d, int i, int count)
 {
     ring_fractions(map, d->rings[i], d->fractions[i]);
     int status = theory_density(alpha_degrees, map->slope, d->theory_r[i], d->theory_gamma[i], DENSITY_THEORY_POINTS);
@@ -99,11 +100,11 @@ static int density_panel(double alpha_degrees, const paper_density_map *map, den
     im_plot_palette(6, theory.color);
     d->series[i][0] = theory;
     d->series[i][1] = measured;
-    snprintf(d->titles[i], sizeof d->titles[i], "h′_{rms} = %g", map->slope);
+    snprintf(d->titles[i], sizeof d->titles[i], "h′_{rms} = %g, N* = %.4g", map->slope, map->load_star);
     d->panels[i] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0.0, 1.3, "r / a"},
                                    .y = {IM_PLOT_LINEAR, 0.0, 1.05, "contact density"},
                                    .series = d->series[i], .series_count = 2, .title = d->titles[i],
-                                   .legend = i == 0 ? IM_PLOT_LEGEND_LOWER_LEFT : IM_PLOT_LEGEND_HIDDEN};
+                                   .legend = i == count - 1 ? IM_PLOT_LEGEND_AUTO : IM_PLOT_LEGEND_HIDDEN};
     return status;
 }
 
@@ -116,7 +117,7 @@ int paper_figure_contact_density(double alpha_degrees, const paper_density_map *
         return im_fail(IM_ENOMEM, "contact density: allocation failed");
     int status = IM_OK;
     for (int i = 0; i < count && status == IM_OK; ++i)
-        status = density_panel(alpha_degrees, &maps[i], d, i);
+        status = density_panel(alpha_degrees, &maps[i], d, i, count);
     if (status == IM_OK) {
         im_plot plot = im_plot_default();
         plot.columns = paper_panel_columns(count);

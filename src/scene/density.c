@@ -27,7 +27,7 @@ int scene_plot_contact_density(const im_scene *scene, const im_field *const *for
         if (!(scene->slopes[f] > 0.0))
             continue;
         paper_density_map *map = &d.maps[d.count++];
-        *map = (paper_density_map){.force = forces[f], .slope = scene->slopes[f]};
+        *map = (paper_density_map){.force = forces[f], .slope = scene->slopes[f], .load_star = load_star[f]};
         map->radius = sqrt(load_star[f] / M_PI) * forces[f]->delta; /* smooth contact radius */
         im_indenter_axis(&punch, forces[f]->nx, forces[f]->ny, forces[f]->delta, &map->axis_x, &map->axis_y);
     }
