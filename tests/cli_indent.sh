@@ -7,7 +7,9 @@ trap 'rm -rf "$DIR"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # A smooth cone: history columns, one row per step, run.json, fields; N* = n_p within 1% (Love).
-"$BIN" indent --smooth --n 96 --approach 1:6:3 --out "$DIR/ok" --fields >/dev/null || fail "smooth run exited $?"
+"$BIN" indent --smooth --n 96 --approach 1:6:3 --out "$DIR/ok" --fields >"$DIR/ok.out" || fail "smooth run exited $?"
+# The step lines name the area the ratio divides by (the smooth punch's, not a nominal A0).
+grep -q '^step 3: .* A/A_cone = 1\.0' "$DIR/ok.out" || fail "step line: $(tail -1 "$DIR/ok.out")"
 head -1 "$DIR/ok/history.csv" | grep -q '^step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,max_pressure,iterations,residual,seconds' \
     || fail "history.csv header: $(head -1 "$DIR/ok/history.csv")"
 [ "$(wc -l < "$DIR/ok/history.csv")" -eq 4 ] || fail "expected 3 rows"
@@ -22,8 +24,9 @@ awk -F, 'NR > 1 { pi = atan2(0, -1); love = 2 * $2 * $2 / (pi * 0.17632698070846
     || fail "theory columns differ from Love's closed forms"
 # --hardness: a flat punch (a = 10) past full yield (w > 2 H a / E*) carries H on every patch,
 # N = H n_p; run.json records the cap; a negative cap is refused.
-"$BIN" indent --smooth --n 64 --punch flat --radius 10 --hardness 0.05 --approach 1.5 --out "$DIR/hard" >/dev/null \
+"$BIN" indent --smooth --n 64 --punch flat --radius 10 --hardness 0.05 --approach 1.5 --out "$DIR/hard" >"$DIR/hard.out" \
     || fail "--hardness run exited $?"
+grep -q ' A/A_punch = ' "$DIR/hard.out" || fail "flat punch step line: $(cat "$DIR/hard.out")"
 awk -F, 'NR == 2 { d = $3 / (0.05 * $5) - 1; if (d < -1e-12 || d > 1e-12 || $8 != 0.05) exit 1 }' "$DIR/hard/history.csv" \
     || fail "--hardness: N != H n_p past full yield: $(sed -n 2p "$DIR/hard/history.csv")"
 grep -q '"hardness": 0.05' "$DIR/hard/run.json" || fail "run.json lacks the hardness"

@@ -832,6 +832,20 @@ static void warn_if_unresolved(const im_history_row *rows, int i)
                 "approach or load\n", i + 1, n, n == 1 ? "" : "es");
 }
 
+/* What the step line's area ratio divides by: the cell (periodic), or the smooth punch's area at the
+ * load (the history's area_ratio, indenter.h). */
+static const char *area_ratio_name(const indent_options *o)
+{
+    if (o->solver.periodic)
+        return "A/A0";
+    switch (o->punch.kind) {
+    case IM_PUNCH_CONE: return "A/A_cone";
+    case IM_PUNCH_SPHERE: return "A/A_Hertz";
+    case IM_PUNCH_FLAT: return "A/A_punch";
+    default: return "A/A_smooth";
+    }
+}
+
 /* Solves step i (0-based; rows[0..i) solved before), measures it (history.h: im_history_measure), and
  * writes its fields and its history line. */
 static int run_step(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
@@ -853,8 +867,9 @@ static int run_step(const indent_options *o, const im_theory_interface *rough, i
         char gap[48] = "";
         if (o->solver.periodic)
             snprintf(gap, sizeof gap, "  mean gap = %.6g", r->mean_gap);
-        printf("step %d: w = %.6g%s  N = %.6g  n_p = %ld  A/A0 = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
-               r->approach, gap, r->load, r->contact_patches, r->area_ratio, r->iterations, r->residual, r->seconds);
+        printf("step %d: w = %.6g%s  N = %.6g  n_p = %ld  %s = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
+               r->approach, gap, r->load, r->contact_patches, area_ratio_name(o), r->area_ratio, r->iterations,
+               r->residual, r->seconds);
         fflush(stdout);
     }
     return status;
