@@ -8,6 +8,7 @@
 #include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/measure.h"
+#include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/theory.h"
@@ -114,6 +115,33 @@ typedef struct periodic_k_fit {
 } periodic_k_fit;
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
                    periodic_k_fit *out);
+
+/* ---- frames of a history (frame.c): what a scene's frames and `indent --frames` draw alike ---- */
+
+/* The colour norm of local forces up to `largest` (<= 0: 1): map, linear from 0 or log over the two
+ * decades below `largest`. */
+im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest);
+
+/* A step's contact map: its force field through norm at pixels_per_patch, with the smooth contact
+ * circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y) in patches. */
+typedef struct frame_contact {
+    const im_field *force;
+    const im_colormap *norm;
+    int pixels_per_patch;
+    double circle_radius, circle_x, circle_y;
+} frame_contact;
+int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image);
+
+/* What a frame's figure says: its title (e.g. "N* = 400") and its colour bar's norm and label. */
+typedef struct frame_words {
+    const char *title;
+    const im_colormap *norm;
+    const char *colorbar_label;
+} frame_words;
+
+/* Writes image as a frame's figure at path (figure.h: one panel, the colour bar with an under triangle on
+ * a log norm, the scale bar, 150 dpi), atomically; kept (not NULL) receives the frame's pixels. */
+int frame_figure_write(const im_image *image, const frame_words *words, const char *path, im_image *kept);
 
 /* ---- the JSON run record (record.c) ---- */
 
