@@ -398,10 +398,12 @@ static int is_distribution_file(const char *name)
     return 0;
 }
 
-/* The files of the indentation analysis, written only when the history unloads, and of adhesion. */
+/* The files written after the steps: the history figure, the indentation analysis (only when the
+ * history unloads) and adhesion's. */
 static int is_analysis_file(const char *name)
 {
-    return strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
+    return strcmp(name, "history.png") == 0 || strcmp(name, "history.pdf") == 0 ||
+           strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
            strcmp(name, "load_displacement.pdf") == 0 || strcmp(name, "force_distance.png") == 0 ||
            strcmp(name, "force_distance.pdf") == 0;
 }
@@ -972,6 +974,19 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
            branches, branches == 1 ? "" : "es", o->out);
 }
 
+/* DIR/history.{png,pdf} (front.h: history_figure_write), with the theory where the run is elastic and
+ * repulsive; a failure here is reported but leaves the run's own status alone. */
+static void write_history_figure(const indent_options *o, const im_theory_interface *rough,
+                                 const im_history_row *rows, int done)
+{
+    const int elastic = !(o->solver.hardness > 0) && !(o->solver.adhesion_work > 0);
+    const history_figure figure = {rows, done, &o->punch, o->solver.periodic ? o->cell_area : 0.0,
+                                   o->solver.periodic && !o->punch_given && elastic ? rough : NULL, elastic,
+                                   o->length_unit, o->force_unit, o->e_star_unit};
+    if (history_figure_write(o->out, &figure) != IM_OK)
+        fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
+}
+
 /* --periodic: the rigid flat when no --punch was given (a flat punch wider than the cell's diagonal
  * covers every nearest image), loads from --pressure's mean pressures, and a warning when SURFACE is
  * not periodic (the solver joins its edges, as ContactMechanics warns). */
@@ -1017,6 +1032,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     write_analysis(o, rows, done, record);
+    write_history_figure(o, rough, rows, done);
     /* eq. (2) is an elastic law for a rigid flat: no fit with a cap or a repeated punch */
     if (o->solver.periodic && !o->punch_given && !(o->solver.hardness > 0))
         write_k_fit(o, rough, rows, done, record);

@@ -91,6 +91,29 @@ int adhesion_theory_pull_off(const im_indenter *punch, const im_theory_adhesion 
 int adhesion_theory_write(const char *dir, const im_indenter *punch, const im_theory_adhesion *law,
                           const im_history_row *rows, int count);
 
+/* ---- the history figure (history_figure.c) ---- */
+
+/* What DIR/history.{png,pdf} draws of rows[0..count), as the paper draws it: on a periodic cell
+ * (cell_area > 0) the contact fraction A / A0 against the mean pressure N / A0, with eq. (1) under a rigid
+ * flat (flat_theory, the surface's interface; NULL: none); a cone or a sphere on the half-space A / A_cone
+ * (A / A_Hertz) against N* (Fig. 7), with the theory columns (eqs. (12) and (6); the gamma integral and
+ * eq. (3)) when theory is set (elastic, repulsive runs); any other run the load against the approach
+ * (Fig. 6) with the smooth punch's load. Units: "" for delta, E* delta^2 and E*. Nothing is written for
+ * count < 1; the plot's errors otherwise (IM_EINVAL when no step has a finite point). */
+typedef struct history_figure {
+    const im_history_row *rows;
+    int count;
+    const im_indenter *punch;
+    double cell_area;
+    const im_theory_interface *flat_theory;
+    int theory;
+    const char *length_unit, *force_unit, *pressure_unit;
+} history_figure;
+int history_figure_write(const char *dir, const history_figure *h);
+
+/* The axis labels of N against w in the run's units ("" for delta and E* delta^2). */
+void history_axis_labels(const char *length_unit, const char *force_unit, char *x_label, char *y_label, size_t size);
+
 /* ---- the periodic mode (periodic.c; solver.h, "Periodic mode") ---- */
 
 /* The cell's area nx ny delta^2: a mean pressure p_m is the load p_m times it. */
