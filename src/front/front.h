@@ -166,6 +166,14 @@ typedef struct frame_words {
  * a log norm, the scale bar, 150 dpi), atomically; kept (not NULL) receives the frame's pixels. */
 int frame_figure_write(const im_image *image, const frame_words *words, const char *path, im_image *kept);
 
+/* ---- the units of the history's and the analysis' columns (units.c) ---- */
+
+/* {"COLUMN": "UNIT", ...} for every column of history.csv (history.h) and indentation.csv
+ * (ANALYSIS_COLUMNS): "1" for numbers without a unit, "s" for seconds, else built from the run's length,
+ * force and pressure units ("m²", "N / m", "N m"). run.json's "units" block holds it as "columns", from
+ * which the viewer page heads its tables. NULL when out of memory. */
+json_t *column_units_record(const char *length, const char *force, const char *pressure);
+
 /* ---- the JSON run record (record.c) ---- */
 
 /* What every run record (OUTPUT/run.json of `indent` and of a scene) holds: the program, the
