@@ -17,6 +17,25 @@ check "indent runs" test $? -eq 0
 check "indent writes index.html" test -s "$dir/ind/index.html"
 check "the page shows the history" grep -q "<h3>history.csv</h3>" "$dir/ind/index.html"
 check "the page shows the run record" grep -q "Run record" "$dir/ind/index.html"
+check "indent draws its history" test -s "$dir/ind/history.png"
+check "the page shows the history figure" grep -q '<img src="history.png"' "$dir/ind/index.html"
+check "the history table's headers carry units" grep -q '<th>load<br><span class="unit">(E\* δ²)</span></th>' "$dir/ind/index.html"
+
+# --frames: a contact frame per step under the slider; a shorter rerun leaves none of the longer one's.
+"$cli" indent --smooth --n 64 --alpha 70 --load 50:150:3 --frames --out "$dir/fr" >"$dir/frames.log" 2>&1
+check "indent --frames runs" test $? -eq 0
+check "a frame per step" test -s "$dir/fr/frames/contact_0002.png" -a ! -e "$dir/fr/frames/contact_0003.png"
+check "the page has the slider" grep -q 'id="frame-slider"' "$dir/fr/index.html"
+"$cli" indent --smooth --n 64 --alpha 70 --load 50,150 --frames --out "$dir/fr" >/dev/null 2>&1
+check "the earlier run's frames are removed" test ! -e "$dir/fr/frames/contact_0002.png"
+check "the periodic cell's history is drawn" bash -c "'$cli' indent --smooth --n 32 --periodic --punch sphere \
+  --radius 8 --load 5,10 --out '$dir/per' >/dev/null 2>&1 && test -s '$dir/per/history.png'"
+
+# --page-embed: one file, its images inside it.
+"$cli" indent --smooth --n 64 --alpha 70 --load 50:150:3 --frames --page-embed --out "$dir/emb" >/dev/null 2>&1
+check "indent --page-embed runs" test $? -eq 0
+check "the embedded page has no relative image" bash -c "! grep -qE 'src=\"[^d]|\"frames/' '$dir/emb/index.html'"
+check "the embedded page holds the images" grep -q 'src="data:image/png;base64,' "$dir/emb/index.html"
 
 # render view3d: a figure with the exaggeration stated, a raw image of the asked size.
 "$cli" surface --n 64 --slope 0.1 --seed 2 --out "$dir/s.npy" >/dev/null

@@ -598,6 +598,9 @@ REPORT(im_theory_step_columns, "out", im_theory_step_columns(&cone, &rough, 1.0,
 /* ---- viewer.h ---- */
 REPORT(im_viewer_write, "dir", im_viewer_write(NULL, "title"))
 REPORT(im_viewer_write, "title", im_viewer_write(test_temp_dir(), NULL))
+REPORT(im_viewer_write_with, "dir", im_viewer_write_with(NULL, "title", &(im_viewer_options){0}))
+REPORT(im_viewer_write_with, "title", im_viewer_write_with(test_temp_dir(), NULL, &(im_viewer_options){0}))
+REPORT(im_viewer_write_with, "options", im_viewer_write_with(test_temp_dir(), "title", NULL))
 
 /* ---- mpi.h (the checks come before any MPI call: MPI is not initialised here) ---- */
 #if IM_HAVE_MPI

@@ -111,6 +111,109 @@ static void test_empty_folder_and_unwritable(void **state)
     assert_int_equal(im_viewer_write(dir, "nowhere"), IM_EIO);
 }
 
+/* Decodes the base64 text at s (up to its closing quote) into out; its length. */
+static size_t base64_decode(const char *s, unsigned char *out)
+{
+    size_t length = 0;
+    unsigned long bits = 0;
+    int count = 0;
+    for (; *s && *s != '"' && *s != '='; ++s) {
+        const char *alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        const char *at = strchr(alphabet, *s);
+        assert_non_null(at);
+        bits = bits << 6 | (unsigned long)(at - alphabet);
+        if (++count == 4) {
+            out[length++] = (unsigned char)(bits >> 16), out[length++] = (unsigned char)(bits >> 8);
+            out[length++] = (unsigned char)bits, bits = 0, count = 0;
+        }
+    }
+    if (count == 3)
+        out[length++] = (unsigned char)(bits >> 10), out[length++] = (unsigned char)(bits >> 2);
+    else if (count == 2)
+        out[length++] = (unsigned char)(bits >> 4);
+    return length;
+}
+
+static void test_embedded_page_is_one_file(void **state)
+{
+    (void)state;
+    const char *dir = make_run();
+    char path[700];
+    const im_viewer_options options = {.embed_images = 1};
+    assert_int_equal(im_viewer_write_with(dir, "embedded", &options), IM_OK);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    char *page = slurp(path);
+    /* no image, frame or file referenced by a relative path */
+    assert_null(strstr(page, "src=\"figure.png\""));
+    assert_null(strstr(page, "frames/"));
+    assert_null(strstr(page, "href="));
+    /* the figure's data URI decodes to the file's bytes */
+    const char *uri = strstr(page, "<img src=\"data:image/png;base64,");
+    assert_non_null(uri);
+    snprintf(path, sizeof path, "%s/figure.png", dir);
+    char *file = slurp(path);
+    FILE *f = fopen(path, "rb");
+    fseek(f, 0, SEEK_END);
+    size_t size = (size_t)ftell(f);
+    fclose(f);
+    unsigned char *decoded = malloc(strlen(uri));
+    size_t length = base64_decode(uri + strlen("<img src=\"data:image/png;base64,"), decoded);
+    assert_int_equal(length, size);
+    assert_memory_equal(decoded, file, size);
+    /* every frame step is a data URI, the missing one null */
+    assert_non_null(strstr(page, "\"data:image/png;base64,"));
+    assert_non_null(strstr(page, ",null]"));
+    free(decoded);
+    free(file);
+    free(page);
+}
+
+/* The encoder's padding: files of 1, 2 and 3 bytes mod 3 decode to themselves. */
+static void test_embedded_padding(void **state)
+{
+    (void)state;
+    char dir[600], path[700];
+    snprintf(dir, sizeof dir, "%s/padding", test_temp_dir());
+    assert_int_equal(im_make_directories(dir), IM_OK);
+    const char *const contents[3] = {"a", "ab", "abc"};
+    const im_viewer_options options = {.embed_images = 1};
+    for (int k = 0; k < 3; ++k) {
+        snprintf(path, sizeof path, "%s/x.png", dir);
+        test_write_bytes(path, contents[k], strlen(contents[k]));
+        assert_int_equal(im_viewer_write_with(dir, "padding", &options), IM_OK);
+        snprintf(path, sizeof path, "%s/index.html", dir);
+        char *page = slurp(path);
+        const char *uri = strstr(page, "base64,");
+        assert_non_null(uri);
+        unsigned char decoded[8];
+        assert_int_equal(base64_decode(uri + strlen("base64,"), decoded), strlen(contents[k]));
+        assert_memory_equal(decoded, contents[k], strlen(contents[k]));
+        free(page);
+    }
+}
+
+/* run.json's units.columns head the tables: a unit under each name it knows, none under others. */
+static void test_table_headers_carry_units(void **state)
+{
+    (void)state;
+    char dir[600], path[700];
+    snprintf(dir, sizeof dir, "%s/units", test_temp_dir());
+    assert_int_equal(im_make_directories(dir), IM_OK);
+    const char history[] = "step,load,note\n1,2.5,x\n";
+    snprintf(path, sizeof path, "%s/history.csv", dir);
+    test_write_bytes(path, history, strlen(history));
+    const char record[] = "{\"units\": {\"load\": \"N\", \"columns\": {\"step\": \"1\", \"load\": \"N <b>\"}}}\n";
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    test_write_bytes(path, record, strlen(record));
+    assert_int_equal(im_viewer_write(dir, "units"), IM_OK);
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    char *page = slurp(path);
+    assert_non_null(strstr(page, "<th>step<br><span class=\"unit\">(1)</span></th>"));
+    assert_non_null(strstr(page, "<th>load<br><span class=\"unit\">(N &lt;b&gt;)</span></th>"));
+    assert_non_null(strstr(page, "<th>note</th>"));
+    free(page);
+}
+
 /* ---- in Chromium ---- */
 
 static const char *chromium(void)
@@ -265,14 +368,66 @@ static void test_screenshot_shows_the_panels(void **state)
     free(pixels);
 }
 
+/* `indent --frames` on a small grid: its page shows history.png loaded and a slider that moves the
+ * contact frames, in Chromium. Skipped without chromium, or without OpenGL (the run then fails to
+ * draw its frames and says so) unless IM_REQUIRE_GL=1. */
+static void test_indent_page_in_chromium(void **state)
+{
+    (void)state;
+    REQUIRE_CHROMIUM();
+    const char *cli = getenv("IM_CLI");
+    if (!cli)
+        fail_msg("IM_CLI names no program");
+    char command[2048], log[700], harness[700], out[700], chrome_log[700];
+    snprintf(log, sizeof log, "%s/indent.log", test_temp_dir());
+    snprintf(command, sizeof command, "'%s' indent --smooth --n 64 --alpha 70 --load 40:160:3 --frames --out '%s/ind' >'%s' 2>&1",
+             cli, test_temp_dir(), log);
+    if (system(command) != 0) {
+        char *text = slurp(log);
+        const char *required = getenv("IM_REQUIRE_GL");
+        if (strstr(text, "no OpenGL 3.3 core context") && !(required && strcmp(required, "1") == 0)) {
+            free(text);
+            skipped = 1;
+            skip();
+        }
+        fail_msg("%s failed:\n%s", command, text);
+    }
+    snprintf(harness, sizeof harness, "%s/indent_harness.html", test_temp_dir());
+    snprintf(out, sizeof out, "%s/indent_dom.html", test_temp_dir());
+    snprintf(chrome_log, sizeof chrome_log, "%s/indent_harness.log", test_temp_dir());
+    const char text[] =
+        "<!DOCTYPE html><body><iframe id=\"f\" src=\"ind/index.html\"></iframe><script>\n"
+        "var f=document.getElementById('f');f.onload=function(){var d=f.contentDocument;\n"
+        "var h=d.querySelector('img[alt=\"history.png\"]');var s=d.getElementById('frame-slider');var r=[];\n"
+        "r.push(h&&h.complete&&h.naturalWidth>0?'history loaded':'no history');\n"
+        "function look(){var c=d.getElementById('frame-contact');r.push(c.getAttribute('src')+' '+\n"
+        " (c.complete&&c.naturalWidth>0?'loaded':'not loaded')+' '+d.getElementById('frame-label').textContent);}\n"
+        "look();s.value=2;s.dispatchEvent(new Event('input'));\n"
+        "d.getElementById('frame-contact').onload=function(){look();var p=document.createElement('pre');\n"
+        "p.id='result';p.textContent=r.join('|');document.body.appendChild(p);};};\n"
+        "</script></body>\n";
+    test_write_bytes(harness, text, strlen(text));
+    run_chromium("--dump-dom --virtual-time-budget=5000", harness, out, chrome_log);
+    char *dom = slurp(out);
+    const char *expected = "history loaded|frames/contact_0000.png loaded step 1 of 3|"
+                           "frames/contact_0002.png loaded step 3 of 3";
+    if (!strstr(dom, expected))
+        fail_msg("the indent page's history figure or slider did not work as expected:\n%s", dom);
+    free(dom);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_page_structure),
         cmocka_unit_test(test_empty_folder_and_unwritable),
+        cmocka_unit_test(test_embedded_page_is_one_file),
+        cmocka_unit_test(test_embedded_padding),
+        cmocka_unit_test(test_table_headers_carry_units),
         cmocka_unit_test(test_page_loads_without_console_messages),
         cmocka_unit_test(test_slider_changes_the_frame),
         cmocka_unit_test(test_screenshot_shows_the_panels),
+        cmocka_unit_test(test_indent_page_in_chromium),
     };
     int failed = cmocka_run_group_tests(tests, NULL, NULL);
     return failed ? failed : skipped ? 77 : 0; /* 77: ctest's SKIP_RETURN_CODE */

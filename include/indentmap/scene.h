@@ -166,6 +166,7 @@ typedef struct im_scene {
     int distributions;               /* 1: gap and patch-size distributions at load_star of each
                                         family's first surface (distributions/, docs/scenes.md) */
     int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
+    int page_embed;                  /* 1: index.html carries its images as data URIs (viewer.h) */
     im_colormap_id colormap;         /* default viridis */
     int log_norm;                    /* 1: forces on a log norm spanning two decades below the
                                         largest, smaller forces in the under colour */
@@ -235,6 +236,8 @@ typedef struct im_scene_run_options {
  *     (render.h's im_render_view3d, frame3d_width x frame3d_height: one force norm, one vertical
  *     exaggeration, stated in each title, and one camera for all), and view3d.gif / view3d.mp4 of
  *     those annotated frames as `animation` asks (the GIF with one 256-colour palette).
+ *   page_embed: index.html (viewer.h, written by every run) carries its images as data URIs, one
+ *     file that travels alone (default no: images referenced by relative paths).
  *   distributions: distributions/family_FF_{gaps,patches,patch_list}.csv, the gap (in the surface's
  *     h_rms) and contact-patch size distributions of each family's first surface at load_star
  *     (measure.h: im_measure_write_distributions), solved for them each time (not kept for --resume).

@@ -10,11 +10,17 @@
  *   - frames: the images DIR/frames/PREFIX_NNNN.png grouped by PREFIX (contact, height, view3d,
  *     ...), shown side by side, one step at a time, chosen with a slider (and the arrow keys);
  *     steps that a prefix lacks are left blank;
- *   - results: each of results.csv, table1.csv and history.csv as an HTML table;
+ *   - results: each of results.csv, table1.csv, indentation.csv and history.csv as an HTML table,
+ *     numbers shown with 6 significant digits (all of them on hover); a column that run.json's
+ *     "units" block names in its "columns" object ({"load": "N", ...}) has its unit under its name;
  *   - the run record: run.json, verbatim.
  * Text from the files is HTML-escaped. The page is written atomically (io.h).
  *
- * Misuse (status.h): IM_EINVAL for a NULL folder or title.
+ * With embed_images the page carries every image it shows (figures, animations, frames) as a base64
+ * data URI, so that it travels as one file (about 4/3 of its images' bytes); the PDFs, MP4s, CSV files
+ * and run.json it would link to are named, not linked.
+ *
+ * Misuse (status.h): IM_EINVAL for a NULL folder, title or options.
  */
 #ifndef INDENTMAP_VIEWER_H
 #define INDENTMAP_VIEWER_H
@@ -27,6 +33,14 @@ extern "C" {
  * when DIR cannot be read or the page cannot be written (naming the path), IM_ENOMEM. A folder
  * with none of the files above still gets a page that says so. */
 int im_viewer_write(const char *dir, const char *title);
+
+typedef struct im_viewer_options {
+    int embed_images;   /* 1: images as data URIs, the page one file; 0 (default): relative paths */
+} im_viewer_options;
+
+/* The same with options. Also IM_EIO naming an image that cannot be read whole to embed (or is over
+ * 256 MiB). */
+int im_viewer_write_with(const char *dir, const char *title, const im_viewer_options *options);
 
 #ifdef __cplusplus
 }

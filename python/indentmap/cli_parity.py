@@ -117,6 +117,9 @@ PARITY = {
     "indent --no-wisdom": Reason("Python plans with FFTW_ESTIMATE and reads no wisdom file"),
     "indent --out": OUT,
     "indent --fields": Python("indent", "fields"),
+    "indent --frames": Reason("Python returns the fields (fields=True); draw contact maps with the program's "
+                              "render contact or a scene's frames = yes"),
+    "indent --page-embed": OUT,
     "indent --distributions": NOT_YET,
     # ---- render ----
     "render": Python("Figure"),

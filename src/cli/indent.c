@@ -115,6 +115,10 @@ static void usage(FILE *stream)
             "  --no-wisdom         no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
             "  --out DIR           output folder (default output/indent)\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n"
+            "  --frames            also draw DIR/frames/contact_NNNN.png for every step (the step's contact\n"
+            "                      map, one log force norm over all steps; implies --fields, needs OpenGL),\n"
+            "                      which index.html shows under a slider\n"
+            "  --page-embed        index.html carries its images as data URIs: one file that travels alone\n"
             "  --distributions     also write DIR/distributions_NNNN_{gaps,patches,patch_list}.csv for every\n"
             "                      step: the gap outside contact in units of h_rms, the patch sizes by\n"
             "                      octave and each patch's area and perimeter (docs/theory.md)\n\n"
@@ -133,6 +137,8 @@ typedef struct indent_options {
     int no_wisdom;
     char wisdom_cache[4096];      /* the cache's wisdom file, when that is the one used */
     int smooth, nx, ny, m_given, fields;
+    int frames;                   /* --frames (sets fields) */
+    int page_embed;               /* --page-embed */
     int distributions;            /* --distributions */
     double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
@@ -166,7 +172,8 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
-       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER, OPT_MEAN_GAP };
+       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER, OPT_MEAN_GAP,
+       OPT_FRAMES, OPT_PAGE_EMBED };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -186,6 +193,7 @@ static const struct option LONG_OPTIONS[] = {
     {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
     {"no-wisdom", no_argument, 0, OPT_NO_WISDOM},
     {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
+    {"frames", no_argument, 0, OPT_FRAMES}, {"page-embed", no_argument, 0, OPT_PAGE_EMBED},
     {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
     {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
     {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE},
@@ -301,6 +309,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_NO_WISDOM: o->no_wisdom = 1; return 0;
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_FIELDS: o->fields = 1; return 0;
+    case OPT_FRAMES: o->frames = o->fields = 1; return 0; /* drawn from the force fields */
+    case OPT_PAGE_EMBED: o->page_embed = 1; return 0;
     case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
     default: return -1;
     }
@@ -398,10 +408,12 @@ static int is_distribution_file(const char *name)
     return 0;
 }
 
-/* The files of the indentation analysis, written only when the history unloads, and of adhesion. */
+/* The files written after the steps: the history figure, the indentation analysis (only when the
+ * history unloads) and adhesion's. */
 static int is_analysis_file(const char *name)
 {
-    return strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
+    return strcmp(name, "history.png") == 0 || strcmp(name, "history.pdf") == 0 ||
+           strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
            strcmp(name, "load_displacement.pdf") == 0 || strcmp(name, "force_distance.png") == 0 ||
            strcmp(name, "force_distance.pdf") == 0;
 }
@@ -591,11 +603,13 @@ static json_t *units_record(const indent_options *o, const im_field *s)
     char stiffness[64], work[64];
     snprintf(stiffness, sizeof stiffness, "(%s) / %s", o->force_unit, length);
     snprintf(work, sizeof work, "(%s) %s", o->force_unit, length);
-    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s}", "length", length, "approach", length,
+    const char *pressure = o->e_star_unit[0] ? o->e_star_unit : "E*";
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:o*}", "length", length, "approach", length,
                      "e_star", o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "pressure", stress,
                      "stiffness", stiffness, "work", work, "load", o->force_unit, "force", o->force_unit, "load_star",
                      o->solver.periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
-                     "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)");
+                     "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)", "columns",
+                     column_units_record(s->unit[0] ? s->unit : "δ", o->force_unit, pressure));
 }
 
 /* SURFACE's pixels as read: its spacings along x and y (in the surface's unit), their relative
@@ -987,6 +1001,19 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
            branches, branches == 1 ? "" : "es", o->out);
 }
 
+/* DIR/history.{png,pdf} (front.h: history_figure_write), with the theory where the run is elastic and
+ * repulsive; a failure here is reported but leaves the run's own status alone. */
+static void write_history_figure(const indent_options *o, const im_theory_interface *rough,
+                                 const im_history_row *rows, int done)
+{
+    const int elastic = !(o->solver.hardness > 0) && !(o->solver.adhesion_work > 0);
+    const history_figure figure = {rows, done, &o->punch, o->solver.periodic ? o->cell_area : 0.0,
+                                   o->solver.periodic && !o->punch_given && elastic ? rough : NULL, elastic,
+                                   o->length_unit, o->force_unit, o->e_star_unit};
+    if (history_figure_write(o->out, &figure) != IM_OK)
+        fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
+}
+
 /* --periodic: the rigid flat when no --punch was given (a flat punch wider than the cell's diagonal
  * covers every nearest image), loads from --pressure's mean pressures, and a warning when SURFACE is
  * not periodic (the solver joins its edges, as ContactMechanics warns). */
@@ -1007,9 +1034,23 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
                 o->surface_path ? o->surface_path : "the surface", edge, edge / inner, inner);
 }
 
+/* --frames of the steps done (cli.h: indent_frames_write): a failure is the run's error when it had none. */
+static void draw_frames(const indent_options *o, const im_history_row *rows, int done, im_render_context *context,
+                        int *status, char *message, size_t size)
+{
+    const indent_frames frames = {o->out, rows, done, &o->punch, o->force_unit};
+    int drawn = indent_frames_write(context, &frames);
+    if (drawn != IM_OK && *status == IM_OK) {
+        *status = drawn;
+        snprintf(message, size, "%s", im_last_error());
+    } else if (drawn != IM_OK) {
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+    }
+}
+
 /* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
 static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
-                     history_file *history, json_t *record)
+                     history_file *history, im_render_context *context, json_t *record)
 {
     im_history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
     if (!rows)
@@ -1031,7 +1072,10 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
                         done, o->out);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
+    if (o->frames) /* of the steps done, also when a later step failed */
+        draw_frames(o, rows, done, context, &status, message, sizeof message);
     write_analysis(o, rows, done, record);
+    write_history_figure(o, rough, rows, done);
     /* eq. (2) is an elastic law for a rigid flat: no fit with a cap or a repeated punch */
     if (o->solver.periodic && !o->punch_given && !(o->solver.hardness > 0))
         write_k_fit(o, rough, rows, done, record);
@@ -1043,6 +1087,36 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     else
         status = recorded; /* a run whose record could not be written did not finish */
     free(rows);
+    return status;
+}
+
+/* Whether name is contact_NNNN.png (four or more digits), a frame of --frames. */
+static int is_frame_file(const char *name)
+{
+    const char *prefix = "contact_";
+    if (strncmp(name, prefix, strlen(prefix)) != 0)
+        return 0;
+    size_t digits = strspn(name + strlen(prefix), "0123456789");
+    return digits >= 4 && strcmp(name + strlen(prefix) + digits, ".png") == 0;
+}
+
+/* An earlier run's DIR/frames/contact_NNNN.png: the viewer page would show them beside this run's. */
+static int remove_earlier_frames(const indent_options *o)
+{
+    char folder[4096];
+    DIR *listing = im_path_join(folder, sizeof folder, o->out, "frames") == IM_OK ? opendir(folder) : NULL;
+    if (!listing)
+        return IM_OK; /* none there */
+    int status = IM_OK;
+    for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
+        char path[4096 + 256];
+        if (!is_frame_file(entry->d_name))
+            continue;
+        snprintf(path, sizeof path, "%s/%s", folder, entry->d_name);
+        if (im_output_check(path) == IM_OK && unlink(path) != 0 && errno != ENOENT)
+            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's frame: %s", path, strerror(errno));
+    }
+    closedir(listing);
     return status;
 }
 
@@ -1074,7 +1148,7 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
             status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field file: %s", path, strerror(errno));
     }
     closedir(listing);
-    return status;
+    return status == IM_OK ? remove_earlier_frames(o) : status;
 }
 
 /* DIR/index.html over what the run left (viewer.h), even after a failure; the run's own error,
@@ -1084,7 +1158,8 @@ static int write_viewer_page(const indent_options *o, int status)
     char message[1024], title[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     snprintf(title, sizeof title, "indentmap indent: %s", o->smooth ? "smooth surface" : o->surface_path);
-    int written = im_viewer_write(o->out, title);
+    const im_viewer_options options = {.embed_images = o->page_embed};
+    int written = im_viewer_write_with(o->out, title, &options);
     if (status == IM_OK)
         return written;
     im_fail(status, "%s", message);
@@ -1165,6 +1240,9 @@ int cli_indent(int argc, char **argv)
     }
     if (status == IM_OK)
         status = set_gap_scale(&o, surface);
+    im_render_context *context = NULL; /* --frames: opened before any step is solved */
+    if (status == IM_OK && o.frames)
+        status = cli_render_open(IM_RENDER_AUTO, &context);
     if (status == IM_OK)
         status = im_indentation_create(surface, &o.punch, o.control, largest(o.targets, o.target_count), &o.solver,
                                        &run);
@@ -1191,11 +1269,12 @@ int cli_indent(int argc, char **argv)
         }
     }
     if (status == IM_OK)
-        status = run_steps(&o, &rough, run, &history, record);
+        status = run_steps(&o, &rough, run, &history, context, record);
     history_close(&history);
     if (record)
         status = write_viewer_page(&o, status);
     im_folder_lock_release(&lock);
+    im_render_close(context);
     json_decref(record);
     im_indentation_free(run);
     im_profile_free(o.profile); /* after the run that borrowed it */

@@ -164,13 +164,6 @@ static int draw_figure(const char *dir, const figure_words *words, const segment
     return status;
 }
 
-/* The figure's axis labels in the run's units ("" for delta and E* delta^2). */
-static void axis_labels(const char *length_unit, const char *force_unit, char *x_label, char *y_label, size_t size)
-{
-    snprintf(x_label, size, "approach w (%s)", length_unit[0] ? length_unit : "δ");
-    snprintf(y_label, size, "load N (%s)", force_unit[0] ? force_unit : "E^{*} δ^{2}");
-}
-
 static int write_figure(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
                         int count, const char *length_unit, const char *force_unit)
 {
@@ -184,7 +177,7 @@ static int write_figure(const char *dir, const im_unloading_branch *b, int found
     split_segments(rows, count, 1, &up, &down);
     tangents(b, found, &tangent);
     char x_label[64], y_label[64];
-    axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
+    history_axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
     int status = draw_figure(dir, &LOAD_DISPLACEMENT, &up, &down, &tangent, x_label, y_label);
     free(up.x);
     return status;
@@ -278,7 +271,7 @@ int analysis_write_adhesion(const char *dir, const im_history_row *rows, int cou
     if (status == IM_OK) {
         split_segments(rows, count, 0, &up, &down);
         char x_label[64], y_label[64];
-        axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
+        history_axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
         status = draw_figure(dir, &FORCE_DISTANCE, &up, &down, &marker, x_label, y_label);
     }
     free(columns);

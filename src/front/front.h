@@ -8,6 +8,7 @@
 #include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/measure.h"
+#include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/theory.h"
@@ -90,6 +91,29 @@ int adhesion_theory_pull_off(const im_indenter *punch, const im_theory_adhesion 
 int adhesion_theory_write(const char *dir, const im_indenter *punch, const im_theory_adhesion *law,
                           const im_history_row *rows, int count);
 
+/* ---- the history figure (history_figure.c) ---- */
+
+/* What DIR/history.{png,pdf} draws of rows[0..count), as the paper draws it: on a periodic cell
+ * (cell_area > 0) the contact fraction A / A0 against the mean pressure N / A0, with eq. (1) under a rigid
+ * flat (flat_theory, the surface's interface; NULL: none); a cone or a sphere on the half-space A / A_cone
+ * (A / A_Hertz) against N* (Fig. 7), with the theory columns (eqs. (12) and (6); the gamma integral and
+ * eq. (3)) when theory is set (elastic, repulsive runs); any other run the load against the approach
+ * (Fig. 6) with the smooth punch's load. Units: "" for delta, E* delta^2 and E*. Nothing is written for
+ * count < 1; the plot's errors otherwise (IM_EINVAL when no step has a finite point). */
+typedef struct history_figure {
+    const im_history_row *rows;
+    int count;
+    const im_indenter *punch;
+    double cell_area;
+    const im_theory_interface *flat_theory;
+    int theory;
+    const char *length_unit, *force_unit, *pressure_unit;
+} history_figure;
+int history_figure_write(const char *dir, const history_figure *h);
+
+/* The axis labels of N against w in the run's units ("" for delta and E* delta^2). */
+void history_axis_labels(const char *length_unit, const char *force_unit, char *x_label, char *y_label, size_t size);
+
 /* ---- the periodic mode (periodic.c; solver.h, "Periodic mode") ---- */
 
 /* The cell's area nx ny delta^2: a mean pressure p_m is the load p_m times it. */
@@ -114,6 +138,41 @@ typedef struct periodic_k_fit {
 } periodic_k_fit;
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
                    periodic_k_fit *out);
+
+/* ---- frames of a history (frame.c): what a scene's frames and `indent --frames` draw alike ---- */
+
+/* The colour norm of local forces up to `largest` (<= 0: 1): map, linear from 0 or log over the two
+ * decades below `largest`. */
+im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest);
+
+/* A step's contact map: its force field through norm at pixels_per_patch, with the smooth contact
+ * circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y) in patches. */
+typedef struct frame_contact {
+    const im_field *force;
+    const im_colormap *norm;
+    int pixels_per_patch;
+    double circle_radius, circle_x, circle_y;
+} frame_contact;
+int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image);
+
+/* What a frame's figure says: its title (e.g. "N* = 400") and its colour bar's norm and label. */
+typedef struct frame_words {
+    const char *title;
+    const im_colormap *norm;
+    const char *colorbar_label;
+} frame_words;
+
+/* Writes image as a frame's figure at path (figure.h: one panel, the colour bar with an under triangle on
+ * a log norm, the scale bar, 150 dpi), atomically; kept (not NULL) receives the frame's pixels. */
+int frame_figure_write(const im_image *image, const frame_words *words, const char *path, im_image *kept);
+
+/* ---- the units of the history's and the analysis' columns (units.c) ---- */
+
+/* {"COLUMN": "UNIT", ...} for every column of history.csv (history.h) and indentation.csv
+ * (ANALYSIS_COLUMNS): "1" for numbers without a unit, "s" for seconds, else built from the run's length,
+ * force and pressure units ("m²", "N / m", "N m"). run.json's "units" block holds it as "columns", from
+ * which the viewer page heads its tables. NULL when out of memory. */
+json_t *column_units_record(const char *length, const char *force, const char *pressure);
 
 /* ---- the JSON run record (record.c) ---- */
 

@@ -1,4 +1,5 @@
 /* Frames of one family's indentation history, and animations made from them. */
+#include "front/front.h"
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -133,19 +134,12 @@ static int write_frame(const im_scene *scene, frame_figure *f)
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, f->prefix, f->index);
-    if (status == IM_OK)
-        scene_outputs_note(scene, path);
-    snprintf(title, sizeof title, "N* = %.0f", f->load_star);
-    im_figure_panel panel = {&f->image, NULL, title};
-    im_figure figure = im_figure_default();
-    figure.panels = &panel;
-    figure.colormap = f->norm;
-    figure.colorbar_label = f->label;
-    figure.dpi = 150;
-    figure.extend_under = f->norm->logarithmic;
     if (status != IM_OK)
         return status;
-    return f->keep ? im_figure_write_frame(&figure, path, &f->frame) : im_figure_write(&figure, path);
+    scene_outputs_note(scene, path);
+    snprintf(title, sizeof title, "N* = %.0f", f->load_star);
+    const frame_words words = {title, f->norm, f->label};
+    return frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
 }
 
 static void write_frame_figure(const im_scene *scene, frame_figure *f)
@@ -158,11 +152,9 @@ static void write_frame_figure(const im_scene *scene, frame_figure *f)
 static int render_contact_frame(im_render_context *context, const framed_history *h, int i,
                                 const im_colormap *norm, int pixels_per_patch, im_image *image)
 {
-    im_contact_style style = im_contact_style_default(h->force[i]);
-    style.colormap = *norm;
-    style.pixels_per_patch = pixels_per_patch;
-    style.circle_radius = sqrt(h->load_star[i] / M_PI);
-    return im_render_contact_map(context, h->force[i], &style, image);
+    const frame_contact contact = {h->force[i], norm, pixels_per_patch, sqrt(h->load_star[i] / M_PI),
+                                   0.5 * h->force[i]->nx, 0.5 * h->force[i]->ny};
+    return frame_contact_render(context, &contact, image);
 }
 
 /* Step i's contact and height images (figures[0], figures[1]). */

@@ -1,5 +1,6 @@
 /* How a scene's figures name its families and colour their forces. */
 #include "scene/labels.h"
+#include "front/front.h"
 
 #include <stdio.h>
 
@@ -17,8 +18,5 @@ void scene_family_title(const im_scene *scene, int family, char *buffer, size_t 
 
 im_colormap scene_force_norm(const im_scene *scene, double largest)
 {
-    double hi = largest > 0.0 ? largest : 1.0;
-    im_colormap norm = im_colormap_make(scene->colormap, scene->log_norm ? 0.01 * hi : 0.0, hi);
-    norm.logarithmic = scene->log_norm;
-    return norm;
+    return frame_force_norm(scene->colormap, scene->log_norm, largest);
 }

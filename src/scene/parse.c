@@ -396,6 +396,7 @@ static const key_spec KEYS[] = {
     {"output", "contact_panels", parse_bool, FIELD(contact_panels), 0, 0, NULL, 0, 0},
     {"output", "frames", parse_bool, FIELD(frames), 0, 0, NULL, 0, 0},
     {"output", "frames3d", parse_bool, FIELD(frames3d), 0, 0, NULL, 0, 0},
+    {"output", "page_embed", parse_bool, FIELD(page_embed), 0, 0, NULL, 0, 0},
     {"output", "table", parse_bool, FIELD(table), 0, 0, NULL, 0, 0},
     {"output", "distributions", parse_bool, FIELD(distributions), 0, 0, NULL, 0, 0},
     {"output", "animation", parse_choice, FIELD(animation), 0, 0, "none|gif|mp4|both", 0, 0},

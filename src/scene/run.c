@@ -165,7 +165,8 @@ static int write_viewer_page(const im_scene *scene, const im_scene_run_options *
     if (im_path_join(page, sizeof page, scene->output_dir, "index.html") == IM_OK)
         scene_output_repair(options, page);
     snprintf(title, sizeof title, "indentmap run: %s (%s)", scene->name, scene->path);
-    int written = im_viewer_write(scene->output_dir, title);
+    const im_viewer_options page_options = {.embed_images = scene->page_embed};
+    int written = im_viewer_write_with(scene->output_dir, title, &page_options);
     if (status == IM_OK)
         return written;
     im_fail(status, "%s", message);

@@ -6,6 +6,7 @@
 #include "indentmap/status.h"
 
 #include <ctype.h>
+#include <jansson.h>
 #include <math.h>
 #include <dirent.h>
 #include <stdio.h>
@@ -13,6 +14,16 @@
 #include <string.h>
 
 enum { MAX_NAMES = 4096, MAX_TEXT_BYTES = 4 << 20, MAX_TABLE_ROWS = 2000, PATH_SIZE = 4096 };
+/* The largest image a page embeds (--page-embed): 256 MiB. */
+#define MAX_IMAGE_BYTES ((long)256 << 20)
+
+/* What every part of the page is written with. */
+typedef struct page {
+    FILE *out;
+    const char *dir;
+    int embed;                 /* images as data URIs (viewer.h: im_viewer_options) */
+    const json_t *units;       /* run.json's units.columns, or NULL */
+} page;
 
 typedef struct name_list {
     char *names[MAX_NAMES];
@@ -98,6 +109,58 @@ static char *read_text(const char *path)
     return text;
 }
 
+/* RFC 4648 base64 of data[0..size), with padding, no line breaks. */
+static void write_base64(FILE *out, const unsigned char *data, size_t size)
+{
+    static const char ALPHABET[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < size; i += 3) {
+        const size_t left = size - i;
+        const unsigned long bits = (unsigned long)data[i] << 16 | (left > 1 ? (unsigned long)data[i + 1] << 8 : 0) |
+                                   (left > 2 ? data[i + 2] : 0);
+        const char quad[4] = {ALPHABET[bits >> 18 & 63], ALPHABET[bits >> 12 & 63],
+                              left > 1 ? ALPHABET[bits >> 6 & 63] : '=', left > 2 ? ALPHABET[bits & 63] : '='};
+        fwrite(quad, 1, 4, out);
+    }
+}
+
+static const char *media_type(const char *name)
+{
+    return ends_with(name, ".svg") ? "image/svg+xml" : ends_with(name, ".gif") ? "image/gif" : "image/png";
+}
+
+/* An image's file as a data URI: "data:TYPE;base64,...". IM_EIO naming the file when it cannot be read
+ * whole (or is larger than MAX_IMAGE_BYTES). */
+static int write_data_uri(FILE *out, const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long size = f && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    unsigned char *data = size >= 0 && size <= MAX_IMAGE_BYTES && fseek(f, 0, SEEK_SET) == 0
+                              ? malloc((size_t)size + 1) : NULL;
+    int read = data && fread(data, 1, (size_t)size, f) == (size_t)size;
+    if (f)
+        fclose(f);
+    if (read) {
+        fprintf(out, "data:%s;base64,", media_type(path));
+        write_base64(out, data, (size_t)size);
+    }
+    free(data);
+    return read ? IM_OK : im_fail(IM_EIO, "viewer page: cannot embed %s (unreadable, or over %ld MiB)", path,
+                                  MAX_IMAGE_BYTES >> 20);
+}
+
+/* Where an image is, relative to the page (name under dir): the name itself, or its data URI when the
+ * page embeds its images. */
+static int write_source(const page *p, const char *name)
+{
+    if (!p->embed) {
+        escape_all(p->out, name);
+        return IM_OK;
+    }
+    char path[PATH_SIZE];
+    int status = im_path_join(path, sizeof path, p->dir, name);
+    return status == IM_OK ? write_data_uri(p->out, path) : status;
+}
+
 static const char STYLE[] =
     "body{font-family:'DejaVu Sans',Helvetica,Arial,sans-serif;margin:1.5em 2em;color:#222;background:#fff}"
     "h1{font-size:1.5em;margin:0 0 .2em}h2{font-size:1.15em;border-bottom:1px solid #ccc;padding-bottom:.2em;"
@@ -108,17 +171,19 @@ static const char STYLE[] =
     ".slider input{flex:1}table{border-collapse:collapse;font-size:.85em;font-variant-numeric:tabular-nums}"
     "th,td{border:1px solid #ddd;padding:.2em .5em;text-align:right}th{background:#f4f4f4}"
     "tr:nth-child(even) td{background:#fafafa}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}"
-    ".scroll{max-height:32em;overflow:auto}.note{color:#777;font-size:.85em}";
+    ".scroll{max-height:32em;overflow:auto}.note{color:#777;font-size:.85em}.unit{font-weight:normal;color:#555}";
 
 /* One row of images under a heading: class names the row's style. */
-static void write_images(FILE *out, const name_list *list, const char *heading, const char *class_name)
+static int write_images(const page *p, const name_list *list, const char *heading, const char *class_name)
 {
+    FILE *out = p->out;
+    int status = IM_OK;
     if (list->count == 0)
-        return;
+        return status;
     fprintf(out, "<h2>%s</h2>\n<div class=\"figures %s\">\n", heading, class_name);
-    for (int i = 0; i < list->count; ++i) {
+    for (int i = 0; i < list->count && status == IM_OK; ++i) {
         fputs("<figure><img src=\"", out);
-        escape_all(out, list->names[i]);
+        status = write_source(p, list->names[i]);
         fputs("\" alt=\"", out);
         escape_all(out, list->names[i]);
         fputs("\"><figcaption>", out);
@@ -126,34 +191,45 @@ static void write_images(FILE *out, const name_list *list, const char *heading, 
         fputs("</figcaption></figure>\n", out);
     }
     fputs("</div>\n", out);
+    return status;
 }
 
-/* Figures (PNG, SVG) and animations (GIF) shown, documents (PDF, MP4) linked. */
-static int write_figures(FILE *out, const char *dir)
+/* A link to a file beside the page; its name alone on a page that embeds its images. */
+static void write_link(const page *p, const char *name)
 {
+    fputs(p->embed ? " " : " <a href=\"", p->out);
+    if (!p->embed) {
+        escape_all(p->out, name);
+        fputs("\">", p->out);
+    }
+    escape_all(p->out, name);
+    fputs(p->embed ? "" : "</a>", p->out);
+}
+
+/* Figures (PNG, SVG) and animations (GIF) shown, documents (PDF, MP4) linked (named only, on a page that
+ * embeds its images: it may travel without them). */
+static int write_figures(const page *p)
+{
+    FILE *out = p->out;
+    const char *dir = p->dir;
     static const char *const figures[] = {".png", ".svg", NULL}, *const animations[] = {".gif", NULL},
                              *const documents[] = {".pdf", ".mp4", NULL};
     name_list list;
     int status = list_folder(dir, figures, &list);
     if (status == IM_OK)
-        write_images(out, &list, "Figures", "");
+        status = write_images(p, &list, "Figures", "");
     free_names(&list);
     if (status == IM_OK)
         status = list_folder(dir, animations, &list);
     if (status == IM_OK)
-        write_images(out, &list, "Animations", "animations");
+        status = write_images(p, &list, "Animations", "animations");
     free_names(&list);
     if (status == IM_OK)
         status = list_folder(dir, documents, &list);
     if (status == IM_OK && list.count > 0) {
-        fputs("<p class=\"note\">Also:", out);
-        for (int i = 0; i < list.count; ++i) {
-            fputs(" <a href=\"", out);
-            escape_all(out, list.names[i]);
-            fputs("\">", out);
-            escape_all(out, list.names[i]);
-            fputs("</a>", out);
-        }
+        fputs(p->embed ? "<p class=\"note\">Also in the run's folder:" : "<p class=\"note\">Also:", out);
+        for (int i = 0; i < list.count; ++i)
+            write_link(p, list.names[i]);
         fputs("</p>\n", out);
     }
     free_names(&list);
@@ -226,11 +302,21 @@ static int frame_groups(const name_list *list, frame_group *groups, int capacity
     return count;
 }
 
-/* The frames of one prefix as a JSON array indexed by step (null where missing). */
-static void write_frame_array(FILE *out, const name_list *list, const frame_group *group, int steps)
+/* A frame's image source: frames/NAME, or its data URI. */
+static int write_frame_source(const page *p, const char *name)
 {
+    char relative[PATH_SIZE];
+    int status = im_path_join(relative, sizeof relative, "frames", name);
+    return status == IM_OK ? write_source(p, relative) : status;
+}
+
+/* The frames of one prefix as a JSON array indexed by step (null where missing). */
+static int write_frame_array(const page *p, const name_list *list, const frame_group *group, int steps)
+{
+    FILE *out = p->out;
+    int status = IM_OK;
     fputs("[", out);
-    for (int step = 0; step < steps; ++step) {
+    for (int step = 0; step < steps && status == IM_OK; ++step) {
         char wanted[1024];
         snprintf(wanted, sizeof wanted, "%s_%04d.png", group->prefix, step);
         const char *found = bsearch(&(const char *){wanted}, list->names, (size_t)list->count, sizeof list->names[0],
@@ -240,9 +326,12 @@ static void write_frame_array(FILE *out, const name_list *list, const frame_grou
             fputs("null", out);
             continue;
         }
-        fprintf(out, "\"frames/%s\"", found);
+        fputs("\"", out);
+        status = write_frame_source(p, found);
+        fputs("\"", out);
     }
     fputs("]", out);
+    return status;
 }
 
 static const char SCRIPT[] =
@@ -271,11 +360,34 @@ static long png_aspect(const char *path)
     return height > 0 && width > 0 && width < (1L << 20) ? 1000 * width / height : 1000;
 }
 
-static int write_frames(FILE *out, const char *dir)
+/* The frame panels side by side, each showing its prefix's first frame until the script takes over. */
+static int write_frame_panels(const page *p, const char *folder, const name_list *list, const frame_group *groups,
+                              int count)
+{
+    int status = IM_OK;
+    fputs("<div class=\"frames\">\n", p->out);
+    for (int g = 0; g < count && status == IM_OK; ++g) {
+        /* Each panel's share of the row is its image's aspect ratio, so all are drawn at one height. */
+        char path[PATH_SIZE + 64];
+        /* a path that does not fit is "": png_aspect's default, as for an unreadable image */
+        im_path_join(path, sizeof path, folder, list->names[groups[g].first]);
+        const char *caption = caption_of(groups[g].prefix, strlen(groups[g].prefix));
+        fprintf(p->out, "<figure style=\"flex:%ld 1 0\"><img id=\"frame-%s\" src=\"", png_aspect(path),
+                groups[g].prefix);
+        status = write_frame_source(p, list->names[groups[g].first]);
+        fprintf(p->out, "\" alt=\"%s\"><figcaption>%s</figcaption></figure>\n", groups[g].prefix,
+                caption ? caption : groups[g].prefix);
+    }
+    fputs("</div>\n", p->out);
+    return status;
+}
+
+static int write_frames(const page *p)
 {
     static const char *const pngs[] = {".png", NULL};
+    FILE *out = p->out;
     char folder[PATH_SIZE];
-    if (im_path_join(folder, sizeof folder, dir, "frames") != IM_OK)
+    if (im_path_join(folder, sizeof folder, p->dir, "frames") != IM_OK)
         return IM_OK; /* no frames can be listed there: the page goes without them */
     name_list list;
     int status = list_folder(folder, pngs, &list), steps;
@@ -285,22 +397,11 @@ static int write_frames(FILE *out, const char *dir)
         fputs("<h2>Frames</h2>\n<div class=\"slider\"><input type=\"range\" id=\"frame-slider\" min=\"0\" max=\"", out);
         fprintf(out, "%d\" value=\"0\" step=\"1\" aria-label=\"step\"><span id=\"frame-label\">step 1 of %d</span></div>\n",
                 steps - 1, steps);
-        fputs("<div class=\"frames\">\n", out);
-        for (int g = 0; g < count; ++g) {
-            /* Each panel's share of the row is its image's aspect ratio, so all are drawn at one height. */
-            char path[PATH_SIZE + 64];
-            /* a path that does not fit is "": png_aspect's default, as for an unreadable image */
-            im_path_join(path, sizeof path, folder, list.names[groups[g].first]);
-            long aspect = png_aspect(path);
-            const char *caption = caption_of(groups[g].prefix, strlen(groups[g].prefix));
-            fprintf(out, "<figure style=\"flex:%ld 1 0\"><img id=\"frame-%s\" src=\"frames/%s\" alt=\"%s\"><figcaption>%s</figcaption></figure>\n",
-                    aspect, groups[g].prefix, list.names[groups[g].first], groups[g].prefix,
-                    caption ? caption : groups[g].prefix);
-        }
-        fprintf(out, "</div>\n<script>var FRAMES={steps:%d,groups:[", steps);
-        for (int g = 0; g < count; ++g) {
+        status = write_frame_panels(p, folder, &list, groups, count);
+        fprintf(out, "<script>var FRAMES={steps:%d,groups:[", steps);
+        for (int g = 0; g < count && status == IM_OK; ++g) {
             fprintf(out, "%s{prefix:\"%s\",frames:", g ? "," : "", groups[g].prefix);
-            write_frame_array(out, &list, &groups[g], steps);
+            status = write_frame_array(p, &list, &groups[g], steps);
             fputs("}", out);
         }
         fprintf(out, "]};\n%s</script>\n", SCRIPT);
@@ -346,41 +447,69 @@ static void write_csv_field(FILE *out, const char **p)
     *p = *s == ',' ? s + 1 : s;
 }
 
-static void write_table(FILE *out, const char *dir, const char *name)
+/* A header cell: the column's name and, under it, its unit from run.json's units.columns when that
+ * names it ("1": a number without unit). */
+static void write_header_field(const page *p, const char **cursor)
 {
+    const char *s = *cursor, *unit = NULL;
+    size_t length = *s == '"' ? 0 : strcspn(s, ",\n\r");
+    char name[128];
+    if (p->units && length > 0 && length < sizeof name) {
+        memcpy(name, s, length);
+        name[length] = '\0';
+        unit = json_string_value(json_object_get(p->units, name));
+    }
+    write_csv_field(p->out, cursor);
+    if (!unit)
+        return;
+    fputs("<br><span class=\"unit\">(", p->out);
+    escape_all(p->out, unit);
+    fputs(")</span>", p->out);
+}
+
+static void write_table(const page *p, const char *name)
+{
+    FILE *out = p->out;
     char path[PATH_SIZE];
-    char *text = im_path_join(path, sizeof path, dir, name) == IM_OK ? read_text(path) : NULL;
+    char *text = im_path_join(path, sizeof path, p->dir, name) == IM_OK ? read_text(path) : NULL;
     if (!text)
         return;
     fprintf(out, "<h3>%s</h3>\n<div class=\"scroll\"><table>\n", name);
-    const char *p = text;
+    const char *c = text;
     int row = 0;
-    for (; *p && row <= MAX_TABLE_ROWS; ++row) {
-        if (*p == '#') { /* a comment line (a history's key) */
-            p += strcspn(p, "\n");
-            p += *p == '\n';
+    for (; *c && row <= MAX_TABLE_ROWS; ++row) {
+        if (*c == '#') { /* a comment line (a history's key) */
+            c += strcspn(c, "\n");
+            c += *c == '\n';
             --row;
             continue;
         }
         const char *cell = row == 0 ? "th" : "td";
         fputs("<tr>", out);
-        while (*p && *p != '\n' && *p != '\r') {
+        while (*c && *c != '\n' && *c != '\r') {
             fprintf(out, "<%s>", cell);
-            write_csv_field(out, &p);
+            if (row == 0)
+                write_header_field(p, &c);
+            else
+                write_csv_field(out, &c);
             fprintf(out, "</%s>", cell);
         }
         fputs("</tr>\n", out);
-        p += strspn(p, "\r\n");
+        c += strspn(c, "\r\n");
     }
     fputs("</table></div>\n", out);
-    if (*p)
-        fprintf(out, "<p class=\"note\">The first %d rows; the rest are in <a href=\"%s\">%s</a>.</p>\n",
-                MAX_TABLE_ROWS, name, name);
+    if (*c) {
+        fprintf(out, "<p class=\"note\">The first %d rows; the rest are in", MAX_TABLE_ROWS);
+        write_link(p, name);
+        fputs(".</p>\n", out);
+    }
     free(text);
 }
 
-static void write_results(FILE *out, const char *dir)
+static void write_results(const page *p)
 {
+    FILE *out = p->out;
+    const char *dir = p->dir;
     static const char *const tables[] = {"results.csv", "table1.csv", "indentation.csv", "history.csv"};
     char path[PATH_SIZE];
     int any = 0;
@@ -393,58 +522,79 @@ static void write_results(FILE *out, const char *dir)
         fclose(f);
         if (!any++)
             fputs("<h2>Results</h2>\n", out);
-        write_table(out, dir, tables[k]);
+        write_table(p, tables[k]);
     }
 }
 
-static void write_record(FILE *out, const char *dir)
+static void write_record(const page *p, const char *text)
 {
-    char path[PATH_SIZE];
-    char *text = im_path_join(path, sizeof path, dir, "run.json") == IM_OK ? read_text(path) : NULL;
+    FILE *out = p->out;
     if (!text)
         return;
-    fputs("<h2>Run record</h2>\n<p class=\"note\"><a href=\"run.json\">run.json</a></p>\n<pre>", out);
+    fputs("<h2>Run record</h2>\n<p class=\"note\">", out);
+    write_link(p, "run.json");
+    fputs("</p>\n<pre>", out);
     escape_all(out, text);
     fputs("</pre>\n", out);
-    free(text);
 }
 
-int im_viewer_write(const char *dir, const char *title)
+/* The page's text into p->out: its head, then each part for which files exist. */
+static int write_page(const page *p, const char *title, const char *record)
 {
-    ARG_REQUIRE(dir, "dir");
-    ARG_REQUIRE(title, "title");
-    char *page = NULL;
-    size_t size = 0;
-    FILE *out = open_memstream(&page, &size);
-    if (!out)
-        return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
+    FILE *out = p->out;
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
           "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>", out);
     escape_all(out, title);
     fprintf(out, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>", STYLE);
     escape_all(out, title);
-    fputs("</h1>\n<p class=\"note\">Written by indentmap " IM_VERSION
-          "; every file is beside this page in the run's folder.</p>\n", out);
+    fputs(p->embed ? "</h1>\n<p class=\"note\">Written by indentmap " IM_VERSION
+                     "; its images are in this page, which stands alone.</p>\n"
+                   : "</h1>\n<p class=\"note\">Written by indentmap " IM_VERSION
+                     "; every file is beside this page in the run's folder.</p>\n", out);
     long before = ftell(out);
-    int status = write_figures(out, dir);
+    int status = write_figures(p);
     if (status == IM_OK)
-        status = write_frames(out, dir);
+        status = write_frames(p);
     if (status == IM_OK) {
-        write_results(out, dir);
-        write_record(out, dir);
+        write_results(p);
+        write_record(p, record);
     }
     if (ftell(out) == before)
         fputs("<p>This folder holds no figures, frames, tables or run record yet.</p>\n", out);
     fputs("</body>\n</html>\n", out);
-    if (fclose(out) != 0 || !page) {
-        free(page);
+    return status;
+}
+
+int im_viewer_write_with(const char *dir, const char *title, const im_viewer_options *options)
+{
+    ARG_REQUIRE(dir, "dir");
+    ARG_REQUIRE(title, "title");
+    ARG_REQUIRE(options, "options");
+    char *text = NULL, path[PATH_SIZE];
+    size_t size = 0;
+    page p = {open_memstream(&text, &size), dir, options->embed_images, NULL};
+    if (!p.out)
+        return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
+    char *record = im_path_join(path, sizeof path, dir, "run.json") == IM_OK ? read_text(path) : NULL;
+    json_t *root = record ? json_loads(record, 0, NULL) : NULL;
+    p.units = json_object_get(json_object_get(root, "units"), "columns");
+    int status = write_page(&p, title, record);
+    json_decref(root);
+    free(record);
+    if (fclose(p.out) != 0 || !text) {
+        free(text);
         return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
     }
-    char path[PATH_SIZE];
     if (status == IM_OK)
         status = im_path_join(path, sizeof path, dir, "index.html");
     if (status == IM_OK)
-        status = im_write_file_atomic(path, page, size);
-    free(page);
+        status = im_write_file_atomic(path, text, size);
+    free(text);
     return status;
+}
+
+int im_viewer_write(const char *dir, const char *title)
+{
+    const im_viewer_options options = {0};
+    return im_viewer_write_with(dir, title, &options);
 }

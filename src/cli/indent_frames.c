@@ -1,0 +1,90 @@
+/* indent --frames: DIR/frames/contact_NNNN.png of every step solved (NNNN = step - 1, so that the viewer's
+ * step k is the history's), drawn from the step's DIR/force_NNNN.npy with one force norm over all steps,
+ * as a scene draws its frames (front.h, "frames of a history"). */
+#include "cli/cli.h"
+#include "front/front.h"
+
+#include "indentmap/figure.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static int read_force(const char *dir, int step, im_field **force)
+{
+    char name[64], path[4096];
+    snprintf(name, sizeof name, "force_%04d.npy", step);
+    int status = im_path_join(path, sizeof path, dir, name);
+    return status == IM_OK ? im_npy_read(path, force) : status;
+}
+
+/* The largest force of any step: the top of the frames' one norm. */
+static int largest_force(const indent_frames *f, double *largest)
+{
+    *largest = 0.0;
+    int status = IM_OK;
+    for (int step = 1; step <= f->count && status == IM_OK; ++step) {
+        im_field *force = NULL;
+        status = read_force(f->dir, step, &force);
+        for (size_t i = 0; status == IM_OK && i < im_field_count(force); ++i)
+            *largest = fmax(*largest, force->data[i]);
+        im_field_free(force);
+    }
+    return status;
+}
+
+/* Enough pixels per patch for a map of about 384 pixels across (1 to 8): a 64 x 64 grid is drawn 6 times. */
+static int pixels_per_patch(const im_field *force)
+{
+    const int side = force->nx > force->ny ? force->nx : force->ny;
+    const int scale = (384 + side - 1) / side;
+    return scale < 1 ? 1 : scale > 8 ? 8 : scale;
+}
+
+/* Step's frame: its contact map with the smooth punch's contact circle (none where N* is not finite: a
+ * periodic cell, a 2-D profile), titled with N* (else N). */
+static int write_frame(im_render_context *context, const indent_frames *f, const im_colormap *norm,
+                       const char *folder, int step)
+{
+    const im_step_result *r = &f->rows[step - 1].result;
+    im_field *force = NULL;
+    im_image image = {0};
+    int status = read_force(f->dir, step, &force);
+    if (status != IM_OK)
+        return status;
+    double axis_x, axis_y;
+    im_indenter_axis(f->punch, force->nx, force->ny, force->delta, &axis_x, &axis_y);
+    const frame_contact contact = {force, norm, pixels_per_patch(force), sqrt(r->load_star / M_PI), axis_x / force->delta,
+                                   axis_y / force->delta};
+    char title[96], label[96], path[4096];
+    if (isfinite(r->load_star))
+        snprintf(title, sizeof title, "step %d: N* = %.4g", step, r->load_star);
+    else
+        snprintf(title, sizeof title, "step %d: N = %.4g %s", step, r->load, f->force_unit);
+    snprintf(label, sizeof label, "local force f (%s)", f->force_unit);
+    const frame_words words = {title, norm, label};
+    status = frame_contact_render(context, &contact, &image);
+    if (status == IM_OK)
+        status = im_frame_path(path, sizeof path, folder, "contact", step - 1);
+    if (status == IM_OK)
+        status = frame_figure_write(&image, &words, path, NULL);
+    im_image_release(&image);
+    im_field_free(force);
+    return status;
+}
+
+int indent_frames_write(im_render_context *context, const indent_frames *f)
+{
+    char folder[4096];
+    double largest = 0.0;
+    int status = im_path_join(folder, sizeof folder, f->dir, "frames");
+    if (status == IM_OK)
+        status = im_make_directories(folder);
+    if (status == IM_OK)
+        status = largest_force(f, &largest);
+    const im_colormap norm = frame_force_norm(IM_COLORMAP_MAGMA, 1, largest);
+    for (int step = 1; step <= f->count && status == IM_OK; ++step)
+        status = write_frame(context, f, &norm, folder, step);
+    return status == IM_OK ? status : im_fail_context(status, "--frames");
+}

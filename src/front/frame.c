@@ -1,0 +1,39 @@
+/* One annotated frame of a history (front.h, "Frames"): the contact map a scene's frames and
+ * `indent --frames` draw, and the figure every frame is written as. */
+#include "front/front.h"
+
+#include "indentmap/figure.h"
+#include "indentmap/status.h"
+
+im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest)
+{
+    double hi = largest > 0.0 ? largest : 1.0;
+    im_colormap norm = im_colormap_make(map, logarithmic ? 0.01 * hi : 0.0, hi);
+    norm.logarithmic = logarithmic;
+    return norm;
+}
+
+int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image)
+{
+    im_contact_style style = im_contact_style_default(contact->force);
+    style.colormap = *contact->norm;
+    style.pixels_per_patch = contact->pixels_per_patch;
+    if (contact->circle_radius > 0.0) { /* NaN or 0: no smooth contact to outline */
+        style.circle_radius = contact->circle_radius;
+        style.circle_x = contact->circle_x;
+        style.circle_y = contact->circle_y;
+    }
+    return im_render_contact_map(context, contact->force, &style, image);
+}
+
+int frame_figure_write(const im_image *image, const frame_words *words, const char *path, im_image *kept)
+{
+    im_figure_panel panel = {image, NULL, words->title};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = words->norm;
+    figure.colorbar_label = words->colorbar_label;
+    figure.dpi = 150;
+    figure.extend_under = words->norm->logarithmic;
+    return kept ? im_figure_write_frame(&figure, path, kept) : im_figure_write(&figure, path);
+}

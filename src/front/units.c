@@ -1,0 +1,45 @@
+/* The unit of every column of history.csv and indentation.csv, for run.json (front.h). */
+#include "front/front.h"
+
+#include <stdio.h>
+
+/* What each column is, in the run's base units. */
+typedef enum column_kind { NUMBER, LENGTH, AREA, FORCE, PRESSURE, STIFFNESS, WORK, SECONDS } column_kind;
+
+typedef struct column_unit {
+    const char *name;
+    column_kind kind;
+} column_unit;
+
+static const column_unit COLUMNS[] = {
+    /* history.csv (history.h) */
+    {"step", NUMBER}, {"approach", LENGTH}, {"load", FORCE}, {"load_star", NUMBER}, {"contact_patches", NUMBER},
+    {"area_ratio", NUMBER}, {"mean_pressure", PRESSURE}, {"max_pressure", PRESSURE}, {"iterations", NUMBER},
+    {"residual", NUMBER}, {"seconds", SECONDS}, {"convolutions", NUMBER}, {"load_smooth", FORCE},
+    {"area_smooth", AREA}, {"area_ratio_constant", NUMBER}, {"area_ratio_gamma", NUMBER},
+    {"stiffness", STIFFNESS}, {"e_star_sneddon", PRESSURE}, {"patches", NUMBER}, {"patch_perimeter", LENGTH},
+    {"yielding_patches", NUMBER}, {"plastic_depth", LENGTH}, {"plastic_work", WORK},
+    {"residual_approach", LENGTH}, {"tensile_force", FORCE}, {"adhesive_patches", NUMBER},
+    {"repulsive_patches", NUMBER}, {"mean_gap", LENGTH},
+    /* indentation.csv (ANALYSIS_COLUMNS) beside the names above */
+    {"branch", NUMBER}, {"top_step", NUMBER}, {"last_step", NUMBER}, {"loading_from", NUMBER},
+    {"approach_max", LENGTH}, {"load_max", FORCE}, {"epsilon", NUMBER}, {"contact_depth", LENGTH},
+    {"area_projected", AREA}, {"area_real", AREA}, {"hardness_it", PRESSURE}, {"modulus_reduced", PRESSURE},
+    {"work_in", WORK}, {"work_out", WORK}, {"dissipated", WORK}, {"area_real_theory", AREA},
+    {"stiffness_smooth", STIFFNESS}};
+
+json_t *column_units_record(const char *length, const char *force, const char *pressure)
+{
+    char area[64], stiffness[96], work[96];
+    snprintf(area, sizeof area, "%s²", length);
+    snprintf(stiffness, sizeof stiffness, "%s / %s", force, length);
+    snprintf(work, sizeof work, "%s %s", force, length);
+    const char *const units[] = {"1", length, area, force, pressure, stiffness, work, "s"};
+    json_t *columns = json_object();
+    for (size_t i = 0; columns && i < sizeof COLUMNS / sizeof *COLUMNS; ++i)
+        if (json_object_set_new(columns, COLUMNS[i].name, json_string(units[COLUMNS[i].kind])) != 0) {
+            json_decref(columns);
+            return NULL;
+        }
+    return columns;
+}
