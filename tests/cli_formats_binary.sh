@@ -20,7 +20,7 @@ near() {
     END { if (!found) { print "no line " key; exit 1 } }' "$1"
 }
 
-check "formats lists .tmd, .h5 and .zip" bash -c "'\$cli' formats | grep -q '^  .h5 ' && '\$cli' formats | grep -q '^  .zip ' && '\$cli' formats | grep -q '^  .tmd '"
+check "formats lists .tmd, .h5 and .zip" bash -c "'$cli' formats | grep -q '^  .h5 ' && '$cli' formats | grep -q '^  .zip ' && '$cli' formats | grep -q '^  .tmd '"
 
 # ---- TrueMap .tmd: constructed files (Python writes the layout GelSight's writetmd documents) ----
 # tmd FILE COMMENT COLUMNS ROWS LENGTH_X LENGTH_Y [VALUES...]: heights 10 y + x when no VALUES given.
