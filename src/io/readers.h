@@ -35,6 +35,10 @@ int tmd_read_raw(const char *path, im_field **out, surface_stated *stated);
 typedef int (*surface_channel_reader)(const char *path, const im_surface_read_options *options, im_field **out,
                                       surface_stated *stated);
 
+/* A channel reader, then surface_finish (as surface_read_format); *out is NULL on failure. */
+int surface_read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
+                                im_field **out, im_surface_read_info *info);
+
 /* Plain HDF5 (hdf5.c): each 2-D numeric data set is a channel, by default the first; a bare matrix. */
 int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
                   surface_stated *stated);

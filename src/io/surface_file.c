@@ -94,8 +94,8 @@ static surface_channel_reader channel_reader_for(const char *path)
                                                                                              : NULL;
 }
 
-static int read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
-                               im_field **out, im_surface_read_info *info)
+int surface_read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
+                                im_field **out, im_surface_read_info *info)
 {
     surface_stated stated;
     im_field *field = NULL;
@@ -170,7 +170,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, read, options, out, info);
     surface_channel_reader read_channels = channel_reader_for(path);
     if (read_channels)
-        return read_channel_format(path, read_channels, options, out, info);
+        return surface_read_channel_format(path, read_channels, options, out, info);
     char first_line[48] = "";
     enum file_kind kind;
     int looked = look_at(path, &kind, first_line, sizeof first_line);
@@ -181,7 +181,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
                        "save it as UTF-8", path);
     if (kind == TEXT_OF_NUMBERS || kind == GZIP || !im_gwyddion_reader()) /* the text reader says what is wrong */
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, text_read_raw, options, out, info);
-    int status = read_channel_format(path, gwyddion_read_raw, options, out, info);
+    int status = surface_read_channel_format(path, gwyddion_read_raw, options, out, info);
     if (status != IM_EFORMAT || !strstr(im_last_error(), GWYDDION_UNKNOWN_FORMAT))
         return status;
     return kind == OTHER_TEXT ? refuse_other_text(path, first_line, options) : refuse_binary(path, options);
