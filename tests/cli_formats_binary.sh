@@ -150,6 +150,8 @@ if "$cli" formats | grep -q "^  nanoscope "; then
   check "... heights as the inner file read alone (height_scale is the file's own factor, not applied twice)" \
     diff <(grep -E '^(h_rms|mean)' "$dir/inner") <(grep -E '^(h_rms|mean)' "$dir/zip")
 fi
+check "mnt-1.mnt: refused saying it is an OLE2 document and what to export" expect_exit 2 \
+  "an OLE2 (Microsoft compound) document, as Digital Surf's Mountains documents (.mnt)" "$cli" surface --stats "$shared/mnt-1.mnt"
 check "container-2.zip: its line scans refused as such" expect_exit 2 "'uncd_stylus_300um_5mar_3.txt' is a line scan" \
   "$cli" surface --stats "$zip" --channel uncd_stylus_300um_5mar_3.txt
 finish

@@ -72,26 +72,28 @@ static surface_raw_reader reader_by_extension(const char *path)
                                          : NULL;
 }
 
-/* HDF5's signature: 89 'HDF' CR LF 1A LF at the start. */
-static int starts_as_hdf5(const char *path)
+/* 1 when the file's first 8 bytes are signature. */
+static int starts_with(const char *path, const unsigned char signature[8])
 {
-    static const unsigned char HDF5_SIGNATURE[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
     unsigned char head[8];
     struct stat about;
     FILE *stream = stat(path, &about) == 0 && S_ISREG(about.st_mode) ? fopen(path, "rb") : NULL;
     size_t got = stream ? fread(head, 1, sizeof head, stream) : 0;
     if (stream)
         fclose(stream);
-    return got == sizeof head && memcmp(head, HDF5_SIGNATURE, sizeof head) == 0;
+    return got == sizeof head && memcmp(head, signature, sizeof head) == 0;
 }
+
+static const unsigned char HDF5_SIGNATURE[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+static const unsigned char OLE2_SIGNATURE[8] = {0xd0, 0xcf, 0x11, 0xe0, 0xa1, 0xb1, 0x1a, 0xe1};
 
 /* Readers of several channels that indentmap has itself: HDF5 (by extension or signature; after the
  * extensions above, since a NetCDF-4 .nc is HDF5 too) and contact.engineering containers (.zip). */
 static surface_channel_reader channel_reader_for(const char *path)
 {
-    return has_extension(path, ".h5") || has_extension(path, ".hdf5") || starts_as_hdf5(path) ? hdf5_read_raw
-           : has_extension(path, ".zip")                                                     ? container_read_raw
-                                                                                             : NULL;
+    if (has_extension(path, ".h5") || has_extension(path, ".hdf5") || starts_with(path, HDF5_SIGNATURE))
+        return hdf5_read_raw;
+    return has_extension(path, ".zip") ? container_read_raw : NULL;
 }
 
 int surface_read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
@@ -145,6 +147,10 @@ static int refuse_channel(const char *path, const im_surface_read_options *optio
  * file with a stray one is told where it is), and the message says that no module reads it either. */
 static int refuse_binary(const char *path, const im_surface_read_options *options)
 {
+    if (starts_with(path, OLE2_SIGNATURE))
+        return im_fail(IM_EFORMAT, "%s: an OLE2 (Microsoft compound) document, as Digital Surf's Mountains documents "
+                       "(.mnt) and spreadsheets (.xls) are, which no reader here opens: export the studiable from "
+                       "MountainsMap as .sur (read through Gwyddion's modules) or the heights as text", path);
     im_field *field = NULL;
     int status = surface_read_format(path, text_read_raw, options, &field, NULL);
     im_field_free(field);
