@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs each libFuzzer harness for a bounded time, one after the other:
-#   fuzz/run.sh [SECONDS] [BUILD_DIR] [HARNESS...]     (defaults: 60, build-fuzz, all eight)
+#   fuzz/run.sh [SECONDS] [BUILD_DIR] [HARNESS...]     (defaults: 60, build-fuzz, all eleven)
 # Builds first (fuzz/build.sh). Each harness runs in one process, starts from the committed seeds
 # in fuzz/corpus/NAME and fuzz/regressions/NAME (read only) and adds what it discovers to
 # BUILD_DIR/corpus/NAME (kept between runs); crashing inputs are written to
@@ -12,7 +12,7 @@ seconds=${1:-60}
 build_dir=${2:-build-fuzz}
 shift 2 2>/dev/null || shift $#
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(scene npy text gsf sdf netcdf x3p gwyddion)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(scene npy text gsf sdf netcdf x3p gwyddion tmd hdf5 container)
 
 fuzz/build.sh "$build_dir" >/dev/null || exit 1
 failed=0

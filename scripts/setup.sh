@@ -23,6 +23,8 @@ PACKAGES=(
   chromium                                 # tests only: the viewer page (index.html) in headless Chromium
   libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
   libzip-dev libxml2-dev nettle-dev        # ISO 25178-72 .x3p surfaces: zip archive around XML, MD5 checksums
+  libhdf5-dev libyaml-dev                  # plain HDF5 surfaces; contact.engineering containers' meta.yml
+  hdf5-tools                               # tests only: h5dump, the independent reading of HDF5 heights
   openmpi-bin libopenmpi-dev libfftw3-mpi-dev  # one grid over MPI ranks (src/mpi/, optional: IM_MPI)
   libvulkan-dev libvkfft-dev glslang-dev glslang-tools spirv-tools  # the GPU solver engine (src/gpu/, optional: IM_GPU)
   mesa-vulkan-drivers vulkan-validationlayers  # lavapipe and the validation layers for its tests

@@ -9,6 +9,7 @@
 #include "indentmap/io.h"
 #include "indentmap/scene.h"
 #include "io/gwyddion.h"
+#include "io/readers.h"
 
 #include <dirent.h>
 #include <stdio.h>
@@ -16,6 +17,17 @@
 #include <string.h>
 
 typedef int (*surface_reader)(const char *path, im_field **out);
+
+/* The readers the harnesses fuzz_tmd, fuzz_hdf5 and fuzz_container call, as those call them. */
+static int tmd_read(const char *path, im_field **out) { return surface_read_format(path, tmd_read_raw, NULL, out, NULL); }
+static int hdf5_read(const char *path, im_field **out)
+{
+    return surface_read_channel_format(path, hdf5_read_raw, NULL, out, NULL);
+}
+static int container_read(const char *path, im_field **out)
+{
+    return surface_read_channel_format(path, container_read_raw, NULL, out, NULL);
+}
 
 /* The harness name's reader applied to path; NULL if the result is consistent, else the problem. */
 static const char *read_like_harness(const char *harness, const char *path, int *status)
@@ -30,6 +42,9 @@ static const char *read_like_harness(const char *harness, const char *path, int 
                         : strcmp(harness, "sdf") == 0 ? im_sdf_read
                         : strcmp(harness, "netcdf") == 0 ? im_netcdf_read
                         : strcmp(harness, "x3p") == 0 ? im_x3p_read
+                        : strcmp(harness, "tmd") == 0 ? tmd_read
+                        : strcmp(harness, "hdf5") == 0 ? hdf5_read
+                        : strcmp(harness, "container") == 0 ? container_read
                         : strcmp(harness, "gwyddion") == 0 ? gwyddion_stream_file_read : im_text_read;
     im_field *field = NULL;
     *status = read(path, &field);
@@ -78,6 +93,9 @@ static void gsf_inputs(void **state) { (void)state; feed_harness("gsf"); }
 static void sdf_inputs(void **state) { (void)state; feed_harness("sdf"); }
 static void netcdf_inputs(void **state) { (void)state; feed_harness("netcdf"); }
 static void x3p_inputs(void **state) { (void)state; feed_harness("x3p"); }
+static void tmd_inputs(void **state) { (void)state; feed_harness("tmd"); }
+static void hdf5_inputs(void **state) { (void)state; feed_harness("hdf5"); }
+static void container_inputs(void **state) { (void)state; feed_harness("container"); }
 static void gwyddion_inputs(void **state) { (void)state; feed_harness("gwyddion"); }
 
 /* fuzz_npy's out-of-memory input (and its .gsf twin): a header claiming 30000 x 30000 values over
@@ -155,6 +173,9 @@ int main(void)
         cmocka_unit_test(sdf_inputs),
         cmocka_unit_test(netcdf_inputs),
         cmocka_unit_test(x3p_inputs),
+        cmocka_unit_test(tmd_inputs),
+        cmocka_unit_test(hdf5_inputs),
+        cmocka_unit_test(container_inputs),
         cmocka_unit_test(gwyddion_inputs),
         cmocka_unit_test(oversized_headers_are_refused_before_allocation),
         cmocka_unit_test(netcdf_dimensions_beyond_the_file_are_refused_before_allocation),

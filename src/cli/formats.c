@@ -21,6 +21,9 @@ static const char *const OWN_FORMATS[] = {
     ".sdf   ISO 25178-71, ASCII or binary                                        read, write",
     ".nc    NetCDF, SurfaceTopography / contact.engineering layout               read, write",
     ".x3p   ISO 25178-72 (ISO 5436-2 XML in a zip)                               read, write",
+    ".tmd   TrueMap / GelSight binary (lengths and heights in mm)                read",
+    ".h5    HDF5: each 2-D numeric data set a channel; a bare matrix             read",
+    ".zip   contact.engineering container (meta.yml): each topography a channel  read",
     "text   matrix; x y z points on a grid; Gwyddion (English, German) and\n"
     "         Wyko/Vision ASCII exports; decimal commas                          read, write (matrix)",
 };

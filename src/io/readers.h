@@ -29,6 +29,23 @@ int npy_read_raw(const char *path, im_field **out, surface_stated *stated);
 int sdf_read_raw(const char *path, im_field **out, surface_stated *stated);
 int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated);
 int x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
+int tmd_read_raw(const char *path, im_field **out, surface_stated *stated);
+
+/* A raw reader of files that hold several channels, options->channel choosing one (options may be NULL). */
+typedef int (*surface_channel_reader)(const char *path, const im_surface_read_options *options, im_field **out,
+                                      surface_stated *stated);
+
+/* A channel reader, then surface_finish (as surface_read_format); *out is NULL on failure. */
+int surface_read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
+                                im_field **out, im_surface_read_info *info);
+
+/* Plain HDF5 (hdf5.c): each 2-D numeric data set is a channel, by default the first; a bare matrix. */
+int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                  surface_stated *stated);
+/* A contact.engineering container (container.c): each topography of its meta.yml is a channel, by
+ * default the first that is not a line scan. */
+int container_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                       surface_stated *stated);
 
 /* Applies the stated units and the overrides of options (may be NULL) to a raw field, as
  * im_surface_read_with describes; fills info (may be NULL). On failure the field is left to the

@@ -68,15 +68,40 @@ static surface_raw_reader reader_by_extension(const char *path)
            : has_extension(path, ".sdf") ? sdf_read_raw
            : has_extension(path, ".nc")  ? netcdf_read_raw
            : has_extension(path, ".x3p") ? x3p_read_raw
+           : has_extension(path, ".tmd") ? tmd_read_raw
                                          : NULL;
 }
 
-static int read_through_gwyddion(const char *path, const im_surface_read_options *options, im_field **out,
-                                 im_surface_read_info *info)
+/* 1 when the file's first 8 bytes are signature. */
+static int starts_with(const char *path, const unsigned char signature[8])
+{
+    unsigned char head[8];
+    struct stat about;
+    FILE *stream = stat(path, &about) == 0 && S_ISREG(about.st_mode) ? fopen(path, "rb") : NULL;
+    size_t got = stream ? fread(head, 1, sizeof head, stream) : 0;
+    if (stream)
+        fclose(stream);
+    return got == sizeof head && memcmp(head, signature, sizeof head) == 0;
+}
+
+static const unsigned char HDF5_SIGNATURE[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+static const unsigned char OLE2_SIGNATURE[8] = {0xd0, 0xcf, 0x11, 0xe0, 0xa1, 0xb1, 0x1a, 0xe1};
+
+/* Readers of several channels that indentmap has itself: HDF5 (by extension or signature; after the
+ * extensions above, since a NetCDF-4 .nc is HDF5 too) and contact.engineering containers (.zip). */
+static surface_channel_reader channel_reader_for(const char *path)
+{
+    if (has_extension(path, ".h5") || has_extension(path, ".hdf5") || starts_with(path, HDF5_SIGNATURE))
+        return hdf5_read_raw;
+    return has_extension(path, ".zip") ? container_read_raw : NULL;
+}
+
+int surface_read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
+                                im_field **out, im_surface_read_info *info)
 {
     surface_stated stated;
     im_field *field = NULL;
-    int status = gwyddion_read_raw(path, options, &field, &stated);
+    int status = read(path, options, &field, &stated);
     if (status == IM_OK)
         status = surface_finish(path, field, &stated, options, info);
     if (status != IM_OK)
@@ -122,6 +147,10 @@ static int refuse_channel(const char *path, const im_surface_read_options *optio
  * file with a stray one is told where it is), and the message says that no module reads it either. */
 static int refuse_binary(const char *path, const im_surface_read_options *options)
 {
+    if (starts_with(path, OLE2_SIGNATURE))
+        return im_fail(IM_EFORMAT, "%s: an OLE2 (Microsoft compound) document, as Digital Surf's Mountains documents "
+                       "(.mnt) and spreadsheets (.xls) are, which no reader here opens: export the studiable from "
+                       "MountainsMap as .sur (read through Gwyddion's modules) or the heights as text", path);
     im_field *field = NULL;
     int status = surface_read_format(path, text_read_raw, options, &field, NULL);
     im_field_free(field);
@@ -145,6 +174,9 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     surface_raw_reader read = reader_by_extension(path);
     if (read)
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, read, options, out, info);
+    surface_channel_reader read_channels = channel_reader_for(path);
+    if (read_channels)
+        return surface_read_channel_format(path, read_channels, options, out, info);
     char first_line[48] = "";
     enum file_kind kind;
     int looked = look_at(path, &kind, first_line, sizeof first_line);
@@ -155,7 +187,7 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
                        "save it as UTF-8", path);
     if (kind == TEXT_OF_NUMBERS || kind == GZIP || !im_gwyddion_reader()) /* the text reader says what is wrong */
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, text_read_raw, options, out, info);
-    int status = read_through_gwyddion(path, options, out, info);
+    int status = surface_read_channel_format(path, gwyddion_read_raw, options, out, info);
     if (status != IM_EFORMAT || !strstr(im_last_error(), GWYDDION_UNKNOWN_FORMAT))
         return status;
     return kind == OTHER_TEXT ? refuse_other_text(path, first_line, options) : refuse_binary(path, options);

@@ -1,0 +1,207 @@
+/* Plain HDF5 files (libhdf5): every 2-D numeric data set, in the order libhdf5 visits them (by name,
+ * groups included), is a channel; 1-D data sets are line scans and are not. As SurfaceTopography reads
+ * them, the first index of a data set runs along x and the second along y, and the file states no
+ * spacing or unit: a bare matrix. */
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+#include "io/readers.h"
+
+#include <ctype.h>
+#include <hdf5.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+enum { MAX_DATA_SETS = 1024, SLAB_ROWS = 64 };
+
+typedef struct data_set {
+    char *name;
+    hsize_t nx, ny;
+} data_set;
+
+typedef struct data_sets {
+    data_set maps[MAX_DATA_SETS]; /* 2-D numeric: the channels */
+    int map_count;
+    int line_count;               /* 1-D numeric: line scans */
+} data_sets;
+
+/* Rank and sizes of a numeric data set; 0 for anything else (text, compound, empty). */
+static int numeric_rank(hid_t file, const char *name, hsize_t dims[2])
+{
+    hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+    if (set < 0)
+        return 0;
+    hid_t type = H5Dget_type(set), space = H5Dget_space(set);
+    H5T_class_t kind = type >= 0 ? H5Tget_class(type) : H5T_NO_CLASS;
+    int rank = space >= 0 ? H5Sget_simple_extent_ndims(space) : -1;
+    if (rank < 1 || rank > 2 || (kind != H5T_INTEGER && kind != H5T_FLOAT) ||
+        H5Sget_simple_extent_dims(space, dims, NULL) != rank || dims[0] < 1 || (rank == 2 && dims[1] < 1))
+        rank = 0;
+    if (space >= 0)
+        H5Sclose(space);
+    if (type >= 0)
+        H5Tclose(type);
+    H5Dclose(set);
+    return rank;
+}
+
+static herr_t take_data_set(hid_t file, const char *name, const H5O_info_t *about, void *sets_)
+{
+    data_sets *sets = sets_;
+    hsize_t dims[2] = {0, 0};
+    int rank = about->type == H5O_TYPE_DATASET ? numeric_rank(file, name, dims) : 0;
+    if (rank == 1)
+        ++sets->line_count;
+    if (rank != 2 || sets->map_count == MAX_DATA_SETS)
+        return 0;
+    char *copy = strdup(name);
+    if (!copy)
+        return -1;
+    sets->maps[sets->map_count++] = (data_set){.name = copy, .nx = dims[0], .ny = dims[1]};
+    return 0;
+}
+
+static void free_data_sets(data_sets *sets)
+{
+    for (int k = 0; k < sets->map_count; ++k)
+        free(sets->maps[k].name);
+}
+
+/* "0 'dataset1' (256 x 256), 1 'dataset2' (640 x 480)" for messages. */
+static void list_data_sets(const data_sets *sets, char *list, size_t size)
+{
+    size_t used = 0;
+    list[0] = '\0';
+    for (int k = 0; k < sets->map_count && used + 1 < size; ++k)
+        used += (size_t)snprintf(list + used, size - used, "%s%d '%.40s' (%llu x %llu)", k ? ", " : "", k,
+                                 sets->maps[k].name, (unsigned long long)sets->maps[k].nx,
+                                 (unsigned long long)sets->maps[k].ny);
+}
+
+static int all_digits(const char *text)
+{
+    for (const char *c = text; *c; ++c)
+        if (!isdigit((unsigned char)*c))
+            return 0;
+    return *text != '\0';
+}
+
+/* The channel asked for (an index, or a name with or without its leading '/', case ignored), else the
+ * first, into *k; IM_EFORMAT listing the data sets when there is none. */
+static int choose(const char *path, const data_sets *sets, const char *asked, int *k)
+{
+    char list[1024];
+    list_data_sets(sets, list, sizeof list);
+    if (sets->map_count == 0)
+        return im_fail(IM_EFORMAT, "%s: HDF5 file without a 2-D numeric data set (%d 1-D: line scans, which a 2-D "
+                       "contact solver cannot indent): expected a data set of heights (x, y)", path,
+                       sets->line_count);
+    for (*k = 0; asked[0] && *k < sets->map_count; ++*k) {
+        const char *name = sets->maps[*k].name;
+        if ((all_digits(asked) && atol(asked) == *k) || strcasecmp(asked, name) == 0 ||
+            (asked[0] == '/' && strcasecmp(asked + 1, name) == 0))
+            return IM_OK;
+    }
+    if (!asked[0])
+        return IM_OK;
+    return im_fail(IM_EFORMAT, "%s: no channel has the index or name '%s'; its 2-D data sets: %s; choose one with "
+                   "--channel", path, asked, list);
+}
+
+/* Reads data set [x, y] in slabs of SLAB_ROWS x-rows into the field's rows of y. */
+static int read_transposed(hid_t file, const char *path, const data_set *chosen, im_field *field)
+{
+    hid_t set = H5Dopen2(file, chosen->name, H5P_DEFAULT);
+    hid_t space = set >= 0 ? H5Dget_space(set) : -1;
+    double *slab = malloc(sizeof *slab * SLAB_ROWS * chosen->ny);
+    herr_t error = set < 0 || space < 0 || !slab ? -1 : 0;
+    for (hsize_t x0 = 0; error >= 0 && x0 < chosen->nx; x0 += SLAB_ROWS) {
+        hsize_t start[2] = {x0, 0}, count[2] = {chosen->nx - x0 < SLAB_ROWS ? chosen->nx - x0 : SLAB_ROWS, chosen->ny};
+        hid_t memory = H5Screate_simple(2, count, NULL);
+        error = memory < 0 ? -1 : H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
+        if (error >= 0)
+            error = H5Dread(set, H5T_NATIVE_DOUBLE, memory, space, H5P_DEFAULT, slab);
+        for (hsize_t x = 0; error >= 0 && x < count[0]; ++x)
+            for (hsize_t y = 0; y < chosen->ny; ++y)
+                field->data[y * chosen->nx + x0 + x] = slab[x * chosen->ny + y];
+        if (memory >= 0)
+            H5Sclose(memory);
+    }
+    free(slab);
+    if (space >= 0)
+        H5Sclose(space);
+    if (set >= 0)
+        H5Dclose(set);
+    return error < 0 ? im_fail(IM_EFORMAT, "%s: data set '%.200s': libhdf5 cannot read its %llu x %llu values as "
+                               "numbers", path, chosen->name, (unsigned long long)chosen->nx,
+                               (unsigned long long)chosen->ny) : IM_OK;
+}
+
+static int read_chosen(hid_t file, const char *path, const data_sets *sets, int k, im_field **out)
+{
+    const data_set *chosen = &sets->maps[k];
+    if (chosen->nx > IM_FIELD_MAX_SIDE || chosen->ny > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: data set '%.200s' is %llu x %llu: expected each side in [1, %d]", path,
+                       chosen->name, (unsigned long long)chosen->nx, (unsigned long long)chosen->ny,
+                       IM_FIELD_MAX_SIDE);
+    int status = im_field_create((int)chosen->nx, (int)chosen->ny, 1.0, out);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s", path);
+    status = read_transposed(file, path, chosen, *out);
+    if (status != IM_OK) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    return status;
+}
+
+static int read_file(hid_t file, const char *path, const im_surface_read_options *options, im_field **out,
+                     surface_stated *stated)
+{
+    data_sets *sets = calloc(1, sizeof *sets);
+    if (!sets)
+        return im_fail(IM_ENOMEM, "%s: allocation of the data set list failed", path);
+    int status = IM_OK;
+    if (H5Ovisit(file, H5_INDEX_NAME, H5_ITER_INC, take_data_set, sets) < 0)
+        status = im_fail(IM_EFORMAT, "%s: libhdf5 cannot list the file's data sets (a damaged HDF5 file)", path);
+    int k = 0;
+    if (status == IM_OK)
+        status = choose(path, sets, options ? options->channel : "", &k);
+    if (status == IM_OK)
+        status = read_chosen(file, path, sets, k, out);
+    if (status == IM_OK) {
+        *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit"};
+        snprintf(stated->conversion, sizeof stated->conversion, "HDF5 data set '%.40s', channel %d of %d, "
+                 "indexed [x, y]", sets->maps[k].name, k, sets->map_count);
+    }
+    free_data_sets(sets);
+    free(sets);
+    return status;
+}
+
+int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                  surface_stated *stated)
+{
+    *out = NULL;
+    FILE *stream;
+    int status = im_read_open(path, "rb", IM_READ_REGULAR, &stream, NULL);
+    if (status != IM_OK)
+        return status;
+    fclose(stream);
+    H5E_auto2_t report;
+    void *report_data;
+    H5Eget_auto2(H5E_DEFAULT, &report, &report_data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* libhdf5 prints its error stack otherwise: the message says it */
+    hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (file < 0)
+        status = im_fail(IM_EFORMAT, "%s: libhdf5 cannot open it: expected an HDF5 file (magic 89 'HDF' 0D 0A 1A "
+                         "0A)", path);
+    else {
+        status = read_file(file, path, options, out, stated);
+        H5Fclose(file);
+    }
+    H5Eset_auto2(H5E_DEFAULT, report, report_data);
+    return status;
+}
