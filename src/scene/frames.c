@@ -2,6 +2,7 @@
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "paper/figures.h"
 #include "scene/frames.h"
 #include "scene/frames3d.h"
 #include "scene/labels.h"
@@ -137,7 +138,11 @@ static int write_frame(const im_scene *scene, frame_figure *f)
         scene_outputs_note(scene, path);
     snprintf(title, sizeof title, "N* = %.0f", f->load_star);
     im_figure_panel panel = {&f->image, NULL, title};
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path},
+                                 {PAPER_SCENE_CONTENTS, scene->contents}};
     im_figure figure = im_figure_default();
+    figure.texts = texts;
+    figure.text_count = scene->contents[0] ? 3 : 2;
     figure.panels = &panel;
     figure.colormap = f->norm;
     figure.colorbar_label = f->label;
