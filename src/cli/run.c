@@ -106,9 +106,10 @@ static int load_and_arm(const run_source *source, im_scene *scene, run_wisdom *w
 {
     int status = load_scene(source, scene);
     im_solver_options solver = im_solver_options_default();
-    int off = wisdom->off || (scene->recorded_plans == 0 && !wisdom->given);
-    if (status == IM_OK)
+    if (status == IM_OK) {
+        int off = wisdom->off || (scene->recorded_plans == 0 && !wisdom->given);
         status = cli_wisdom_resolve(wisdom->given, off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
+    }
     scene->wisdom_path = solver.wisdom_path;
     if (status == IM_OK && cli_interrupt_install() != 0)
         status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
