@@ -24,7 +24,7 @@
  * Errors name the file and line ("fig4.ini:7: ...") and, for an unknown key or section, suggest
  * the nearest valid one. Paths inside a scene are resolved relative to the scene file.
  *
- * Misuse (status.h): IM_EINVAL for a NULL scene, path or output; im_scene_defaults(NULL) does
+ * Misuse (status.h): IM_EINVAL for a NULL scene, path, record or output; im_scene_defaults(NULL) does
  * nothing, im_scene_resolve_path writes "" for a NULL scene or relative path, im_scene_plot_parse
  * (NULL) is 0 and im_scene_suggest_key(section, NULL) NULL.
  */
@@ -46,7 +46,8 @@ extern "C" {
 #endif
 
 enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
-       IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */ };
+       IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */,
+       IM_SCENE_CONTENTS = 16384 /* im_scene.contents: every key at most once, each line < 200 bytes */ };
 
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
                     IM_ANIMATION_BOTH = 3 };
@@ -73,6 +74,14 @@ enum im_scene_plot im_scene_plot_parse(const char *name);
 
 typedef struct im_scene {
     char path[IM_SCENE_PATH];        /* the scene file as given */
+    char contents[IM_SCENE_CONTENTS];/* what the scene file set, as parsed: "[section]\nkey = value\n" for
+                                        every key given, in the file's order, values trimmed, comments and
+                                        blank lines dropped (the other keys take their defaults). Runs
+                                        record it: run.json's scene_contents, PNG and PDF metadata */
+    char from_record[IM_SCENE_PATH]; /* the run.json the scene was rebuilt from (im_scene_load_record),
+                                        "" for a scene file */
+    int recorded_plans;              /* rebuilt from a record: 1 when its run's FFTW plans were measured
+                                        (a wisdom file), 0 when estimated; -1 for a scene file */
     char name[64];
     char output_dir[IM_SCENE_PATH];  /* default output/NAME */
     char quality[16];                /* draft | standard (default) | publication: the solver
@@ -191,6 +200,16 @@ void im_scene_defaults(im_scene *scene);
  * "PATH:LINE: message" for a malformed line, an unknown section or key (with a suggestion), or a
  * value out of range (naming the key and what was expected). */
 int im_scene_load(const char *path, im_scene *scene);
+
+/* Rebuilds the scene a run recorded in its run.json (docs/scenes.md, "Provenance"): its
+ * scene_contents parsed as im_scene_load parses a file, with paths resolved against the recorded
+ * scene file's folder (scene->path is that file's absolute path; the file itself need not exist any
+ * more), from_record set to record and recorded_plans to how the run's FFTW plans were made. Refused
+ * (IM_EFORMAT naming the record and what was expected) for a record that is not a scene run's or
+ * has no scene_contents (an earlier build's, before issue 31), IM_EINVAL for a record of another
+ * version (its numbers may differ in their last bits: rerun with that version) and for an input
+ * (a surface or profile file) whose SHA-256 is no longer the recorded one, naming the file. */
+int im_scene_load_record(const char *record, im_scene *scene);
 
 /* How im_scene_run runs. The library prints nothing: what the run has to say goes to the
  * callbacks (status.h), and nowhere when they are NULL (the default of a zeroed struct). */

@@ -160,6 +160,8 @@ PARITY = {
     "run --backend": BACKEND,
     "run --wisdom": NOT_YET,
     "run --no-wisdom": NOT_YET,
+    "run --from-record": Python("run_scene_from_record"),
+    "run --out": Python("run_scene", "out"),
     # ---- formats, info ----
     "formats": NOT_YET,
     "info": NOT_YET,

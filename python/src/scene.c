@@ -54,32 +54,61 @@ static void call_log(void *user, im_log_level level, const char *message)
     PyGILState_Release(gil);
 }
 
+/* Where a scene comes from (a scene file, or a run's record: from_record) and where it writes (out,
+ * NULL for its own output folder). */
+typedef struct scene_source {
+    const char *path, *out;
+    int from_record;
+} scene_source;
+
+/* The scene of a file or a record; out replaces its output folder. */
+static int load_scene(const scene_source *source, im_scene *scene)
+{
+    int status = source->from_record ? im_scene_load_record(source->path, scene) : im_scene_load(source->path, scene);
+    if (status != IM_OK || !source->out)
+        return status;
+    if (strlen(source->out) >= sizeof scene->output_dir)
+        return im_fail(IM_EINVAL, "out %s: expected a path shorter than %zu bytes", source->out,
+                       sizeof scene->output_dir);
+    snprintf(scene->output_dir, sizeof scene->output_dir, "%s", source->out);
+    return IM_OK;
+}
+
 /* Loads and runs the scene without the GIL (Ctrl-C armed: interrupt.c); IM_OK or a status. */
-static int load_and_run(const char *path, im_scene *scene, const im_scene_run_options *options,
+static int load_and_run(const scene_source *source, im_scene *scene, const im_scene_run_options *options,
                         volatile sig_atomic_t *stop, py_interrupt *call)
 {
     int status;
     py_interrupt_arm(call, stop);
     Py_BEGIN_ALLOW_THREADS
-    status = im_scene_load(path, scene);
+    status = load_scene(source, scene);
     if (status == IM_OK)
         status = im_scene_run(scene, options);
     Py_END_ALLOW_THREADS
     return status;
 }
 
+/* PyArg's converter of an optional path: None leaves *out NULL, else PyUnicode_FSConverter's bytes. */
+static int optional_path(PyObject *object, void *out)
+{
+    if (object == Py_None)
+        return 1;
+    return PyUnicode_FSConverter(object, out);
+}
+
 static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"path", "resume", "quiet", "progress", "log", NULL};
-    PyObject *path_bytes, *progress = Py_None, *log = Py_None;
-    int resume = 0, quiet = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|ppOO", keywords, PyUnicode_FSConverter, &path_bytes, &resume,
-                                     &quiet, &progress, &log))
+    static char *keywords[] = {"path", "resume", "quiet", "progress", "log", "out", "from_record", NULL};
+    PyObject *path_bytes, *progress = Py_None, *log = Py_None, *out_bytes = NULL;
+    int resume = 0, quiet = 0, from_record = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|ppOOO&p", keywords, PyUnicode_FSConverter, &path_bytes,
+                                     &resume, &quiet, &progress, &log, optional_path, &out_bytes, &from_record))
         return NULL;
     im_scene *scene = PyMem_Calloc(1, sizeof *scene);
     if (!scene) {
         Py_DECREF(path_bytes);
+        Py_XDECREF(out_bytes);
         return PyErr_NoMemory();
     }
     volatile sig_atomic_t stop = 0;
@@ -88,8 +117,10 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
                                      .progress = progress != Py_None ? call_progress : NULL,
                                      .log = log != Py_None ? call_log : NULL};
     py_interrupt call;
-    int status = load_and_run(PyBytes_AS_STRING(path_bytes), scene, &options, &stop, &call);
+    scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL, from_record};
+    int status = load_and_run(&source, scene, &options, &stop, &call);
     Py_DECREF(path_bytes);
+    Py_XDECREF(out_bytes);
     int interrupted = py_interrupt_disarm(&call, &stop) < 0; /* KeyboardInterrupt is set */
     if (callbacks.error_type && !interrupted)
         PyErr_Restore(callbacks.error_type, callbacks.error_value, callbacks.error_traceback);
@@ -107,5 +138,6 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 
 PyMethodDef py_scene_methods[] = {
     {"run_scene", (PyCFunction)(void (*)(void))run_scene, METH_VARARGS | METH_KEYWORDS,
-     "run_scene(path, resume=False, quiet=False, progress=None, log=None) -> output folder"},
+     "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, from_record=False) -> output "
+     "folder"},
     {NULL, NULL, 0, NULL}};

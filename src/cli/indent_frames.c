@@ -7,6 +7,7 @@
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "indentmap/version.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -63,7 +64,8 @@ static int write_frame(im_render_context *context, const indent_frames *f, const
     else
         snprintf(title, sizeof title, "step %d: N = %.4g %s", step, r->load, f->force_unit);
     snprintf(label, sizeof label, "local force f (%s)", f->force_unit);
-    const frame_words words = {title, norm, label};
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}};
+    const frame_words words = {title, norm, label, texts, 1};
     status = frame_contact_render(context, &contact, &image);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, "contact", step - 1);

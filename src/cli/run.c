@@ -17,9 +17,15 @@
 static void usage(FILE *stream)
 {
     fprintf(stream, "usage: indentmap run SCENE.ini [--resume] [--quiet] [--backend auto|egl|osmesa]\n"
-                    "                     [--wisdom FILE | --no-wisdom]\n\n"
+                    "                     [--wisdom FILE | --no-wisdom] [--out DIR]\n"
+                    "       indentmap run --from-record DIR/run.json [--out NEWDIR] [options as above]\n\n"
                     "Runs a scene: solves what its outputs need and writes them under its output folder\n"
                     "(default output/NAME). Bundled scenes are in scenes/; fig4 is the paper's Fig. 4.\n\n"
+                    "  --from-record R the scene a run recorded in its run.json R (its keys as parsed), run\n"
+                    "                  again: refused when an input file's SHA-256 is no longer the recorded\n"
+                    "                  one or R was made by another version; its FFTW plans as recorded\n"
+                    "                  (estimated ones unless --wisdom is given) (docs/scenes.md, \"Provenance\")\n"
+                    "  --out DIR       write under DIR instead of the scene's output folder\n"
                     "  --resume        reuse results already on disk instead of solving them again\n"
                     "                  (after an interruption: SIGINT or SIGTERM stops at the next solver\n"
                     "                  step, keeps finished results and exits 130 or 143); a result made\n"
@@ -73,13 +79,37 @@ typedef struct run_wisdom {
     char cache[4096];
 } run_wisdom;
 
-/* The scene, its wisdom file, and the SIGINT/SIGTERM handlers that let a run stop cleanly. */
-static int load_and_arm(const char *path, im_scene *scene, run_wisdom *wisdom)
+/* Where the scene comes from and where it writes: a scene file or a run's record (--from-record),
+ * and --out. */
+typedef struct run_source {
+    const char *path;
+    int from_record;
+    const char *out;
+} run_source;
+
+/* The scene of a file or a record; --out replaces its output folder. */
+static int load_scene(const run_source *source, im_scene *scene)
 {
-    int status = im_scene_load(path, scene);
+    int status = source->from_record ? im_scene_load_record(source->path, scene) : im_scene_load(source->path, scene);
+    if (status != IM_OK || !source->out)
+        return status;
+    if (strlen(source->out) >= sizeof scene->output_dir)
+        return im_fail(IM_EINVAL, "--out %s: expected a path shorter than %zu bytes", source->out,
+                       sizeof scene->output_dir);
+    snprintf(scene->output_dir, sizeof scene->output_dir, "%s", source->out);
+    return IM_OK;
+}
+
+/* The scene, its wisdom file, and the SIGINT/SIGTERM handlers that let a run stop cleanly. A scene
+ * rebuilt from a record whose plans were estimated is estimated again unless --wisdom is given. */
+static int load_and_arm(const run_source *source, im_scene *scene, run_wisdom *wisdom)
+{
+    int status = load_scene(source, scene);
     im_solver_options solver = im_solver_options_default();
-    if (status == IM_OK)
-        status = cli_wisdom_resolve(wisdom->given, wisdom->off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
+    if (status == IM_OK) {
+        int off = wisdom->off || (scene->recorded_plans == 0 && !wisdom->given);
+        status = cli_wisdom_resolve(wisdom->given, off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
+    }
     scene->wisdom_path = solver.wisdom_path;
     if (status == IM_OK && cli_interrupt_install() != 0)
         status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
@@ -113,16 +143,17 @@ static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
  * force); every rank checks that it was given the same command and scene as the others, loads it,
  * and runs it over the ranks once all have loaded it (an error on one rank, such as a wisdom file
  * or backend of its own environment, stops all); rank 0 reports. */
-static int run_under_mpirun(int argc, char **argv, const im_scene_run_options *run, run_wisdom *wisdom)
+static int run_under_mpirun(int argc, char **argv, const run_source *source, const im_scene_run_options *run,
+                            run_wisdom *wisdom)
 {
     int provided, rank;
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     im_scene scene;
     im_scene_run_options options = *run;
-    int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, argv[optind]);
+    int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, source->path);
     if (status == IM_OK) {
-        status = load_and_arm(argv[optind], &scene, wisdom);
+        status = load_and_arm(source, &scene, wisdom);
         if (status == IM_OK)
             status = check_asks_for_output(&scene);
         if (status == IM_OK)
@@ -142,8 +173,10 @@ int cli_run(int argc, char **argv)
     static const struct option options[] = {{"resume", no_argument, 0, 'r'}, {"quiet", no_argument, 0, 'q'},
                                             {"backend", required_argument, 0, 'b'}, {"help", no_argument, 0, 'h'},
                                             {"wisdom", required_argument, 0, 'w'}, {"no-wisdom", no_argument, 0, 'W'},
-                                            {0, 0, 0, 0}};
+                                            {"from-record", required_argument, 0, 'R'},
+                                            {"out", required_argument, 0, 'o'}, {0, 0, 0, 0}};
     im_scene_run_options run = {0};
+    run_source source = {0};
     im_render_backend backend = IM_RENDER_AUTO;
     run_wisdom wisdom = {0};
     int code;
@@ -161,15 +194,21 @@ int cli_run(int argc, char **argv)
             wisdom.given = optarg;
         else if (code == 'W')
             wisdom.off = 1;
+        else if (code == 'R')
+            source = (run_source){.path = optarg, .from_record = 1, .out = source.out};
+        else if (code == 'o')
+            source.out = optarg;
         else if (code == 'b' && im_render_backend_from_name(optarg, &backend) != IM_OK)
             return cli_report(IM_EINVAL);
         else if (code == '?')
             return CLI_EXIT_USAGE;
     }
-    if (optind != argc - 1) {
+    if (optind != argc - !source.from_record) { /* a scene file, or a record */
         usage(stderr);
         return CLI_EXIT_USAGE;
     }
+    if (!source.from_record)
+        source.path = argv[optind];
     run.backend = (int)backend;
     run.no_space_check = cli_space_check_off();
     run.stop = &cli_stop_signal;
@@ -177,10 +216,10 @@ int cli_run(int argc, char **argv)
     run.progress = run.quiet ? NULL : cli_progress; /* --quiet: no bar either */
 #if IM_HAVE_MPI
     if (launched_by_mpirun())
-        return run_under_mpirun(argc, argv, &run, &wisdom);
+        return run_under_mpirun(argc, argv, &source, &run, &wisdom);
 #endif
     im_scene scene;
-    int status = load_and_arm(argv[optind], &scene, &wisdom);
+    int status = load_and_arm(&source, &scene, &wisdom);
     if (status == IM_OK)
         status = check_asks_for_output(&scene);
     if (status == IM_OK)

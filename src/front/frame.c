@@ -35,5 +35,7 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
     figure.colorbar_label = words->colorbar_label;
     figure.dpi = 150;
     figure.extend_under = words->norm->logarithmic;
+    figure.texts = words->texts;
+    figure.text_count = words->text_count;
     return kept ? im_figure_write_frame(&figure, path, kept) : im_figure_write(&figure, path);
 }

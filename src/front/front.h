@@ -160,6 +160,8 @@ typedef struct frame_words {
     const char *title;
     const im_colormap *norm;
     const char *colorbar_label;
+    const im_png_text *texts;       /* PNG text chunks (e.g. the scene's contents); NULL: none */
+    int text_count;
 } frame_words;
 
 /* Writes image as a frame's figure at path (figure.h: one panel, the colour bar with an under triangle on

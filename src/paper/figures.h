@@ -96,10 +96,15 @@ int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_fam
 
 /* ---- contact maps (map_figures.c) ---- */
 
+/* The key of the text chunk (PNG) and metadata entry (PDF) holding a scene's contents as parsed
+ * (im_scene.contents), beside its "Software" and "Source" or "Scene" (the path). */
+#define PAPER_SCENE_CONTENTS "Scene contents"
+
 /* Fig. 4: the rendered contact maps of count families (1 to PAPER_MAX_PANELS) in a grid, labelled
  * (a), (b), ... and titled, with one colour bar of the shared norm (extended below it when
  * extend_under) and the load N* stated under the panels. The PNG's texts name the software,
- * `source` and the load N*. */
+ * `source` and the load N*, and hold `contents` (the scene as parsed, under PAPER_SCENE_CONTENTS)
+ * unless it is NULL or "". */
 typedef struct paper_contact_panels {
     int count;
     const im_image *images;     /* count maps (borrowed) */
@@ -107,6 +112,7 @@ typedef struct paper_contact_panels {
     const im_colormap *norm;
     int extend_under;
     const char *source;
+    const char *contents;
     double load_star;
 } paper_contact_panels;
 int paper_figure_contact_panels(const paper_contact_panels *in, const char *path);

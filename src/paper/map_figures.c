@@ -26,7 +26,8 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const char *path
     }
     char load_text[64];
     snprintf(load_text, sizeof load_text, "N* = %g", in->load_star);
-    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Scene", in->source}, {"Load", load_text}};
+    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Scene", in->source}, {"Load", load_text},
+                           {PAPER_SCENE_CONTENTS, in->contents}};
     im_figure figure = im_figure_default();
     figure.rows = in->count / columns;
     figure.columns = columns;
@@ -35,7 +36,7 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const char *path
     figure.colorbar_label = "local force f / (E* δ²)";
     figure.extend_under = in->extend_under;
     figure.texts = texts;
-    figure.text_count = 3;
+    figure.text_count = in->contents && in->contents[0] ? 4 : 3;
     figure.note = load_text;
     return im_figure_write(&figure, path);
 }

@@ -3,6 +3,7 @@
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "paper/figures.h"
 #include "scene/frames.h"
 #include "scene/frames3d.h"
 #include "scene/labels.h"
@@ -138,7 +139,9 @@ static int write_frame(const im_scene *scene, frame_figure *f)
         return status;
     scene_outputs_note(scene, path);
     snprintf(title, sizeof title, "N* = %.0f", f->load_star);
-    const frame_words words = {title, f->norm, f->label};
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path},
+                                 {PAPER_SCENE_CONTENTS, scene->contents}};
+    const frame_words words = {title, f->norm, f->label, texts, scene->contents[0] ? 3 : 2};
     return frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
 }
 

@@ -4,6 +4,7 @@
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
+#include "paper/figures.h"
 #include "scene/frames3d.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
@@ -75,10 +76,11 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_vi
              s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
     im_figure_panel panel = {image, NULL, title};
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path}, {"Title", title},
-                                 {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm}};
+                                 {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm},
+                                 {PAPER_SCENE_CONTENTS, scene->contents}};
     im_figure figure = im_figure_default();
     figure.texts = texts;
-    figure.text_count = 5;
+    figure.text_count = scene->contents[0] ? 6 : 5;
     figure.panels = &panel;
     figure.colormap = &s->colormap;
     figure.colorbar_label = "local force f / (E* δ²)";

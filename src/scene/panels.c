@@ -282,7 +282,7 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
     }
     paper_contact_panels panels = {.count = scene->family_count, .images = images, .titles = title_of,
                                    .norm = norm, .extend_under = scene->log_norm, .source = scene->path,
-                                   .load_star = scene->load_star};
+                                   .contents = scene->contents, .load_star = scene->load_star};
     return scene_write_png_pdf(scene, "contact_panels", draw_figure, &panels);
 }
 

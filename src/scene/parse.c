@@ -439,6 +439,7 @@ void im_scene_defaults(im_scene *scene)
     scene->frame_scale = 1;
     scene->frame3d_width = 960;
     scene->frame3d_height = 540;
+    scene->recorded_plans = -1;
 }
 
 static size_t edit_distance(const char *a, const char *b)
@@ -489,6 +490,7 @@ typedef struct parse_context {
     char sections[16][32]; /* the sections opened so far, to refuse one opened twice */
     int section_lines[16], section_count;
     char steps[INI_MAX_LINE]; /* [loading] steps as written (a line of inih's buffer fits) */
+    char contents_section[32]; /* the section of the last key noted in the scene's contents */
     char error[512];
 } parse_context;
 
@@ -589,6 +591,24 @@ static void unknown_name(parse_context *context, const char *section, const char
                  suggestion ? "; did you mean [" : "", suggestion ? suggestion : "", suggestion ? "]?" : "");
 }
 
+/* Every key given fits in im_scene.contents: each once, its line within inih's buffer, and each
+ * section's header once. */
+_Static_assert(sizeof KEYS / sizeof KEYS[0] * (INI_MAX_LINE + 4) + 16 * 32 < IM_SCENE_CONTENTS,
+               "im_scene.contents holds every key a scene can give");
+
+/* Appends a key accepted to the scene's contents, under its section's header when the section
+ * changes (each section is opened once: check_section_once). */
+static void note_contents(parse_context *context, const char *section, const char *name, const char *value)
+{
+    char *contents = context->scene->contents;
+    size_t used = strlen(contents), size = sizeof context->scene->contents;
+    if (strcmp(context->contents_section, section) != 0) {
+        snprintf(context->contents_section, sizeof context->contents_section, "%s", section);
+        used += (size_t)snprintf(contents + used, size - used, "[%s]\n", section);
+    }
+    snprintf(contents + used, size - used, "%s = %s\n", name, value);
+}
+
 /* inih calls this for every key; returning 0 stops parsing and makes ini_parse return the line. */
 static int handle_key(void *user, const char *section, const char *name, const char *value)
 {
@@ -610,6 +630,8 @@ static int handle_key(void *user, const char *section, const char *name, const c
                 snprintf(context->steps, sizeof context->steps, "%s", value);
             accepted = KEYS[i].parse(&KEYS[i], value, context->scene, context->error,
                                      sizeof context->error) == 0;
+            if (accepted)
+                note_contents(context, section, name, value);
         }
     }
     if (!known)
@@ -941,26 +963,21 @@ static int any_key_given(const parse_context *context)
     return 0;
 }
 
-int im_scene_load(const char *path, im_scene *scene)
+/* The defaults, and what complete() fills unless the scene gives it. */
+static void begin_scene(im_scene *scene, const char *path)
 {
-    ARG_REQUIRE(path, "path");
-    ARG_REQUIRE(scene, "scene");
     im_scene_defaults(scene);
     snprintf(scene->path, sizeof scene->path, "%s", path);
     scene->surface.ny = -1;
     scene->surface.lambda_r = -1;
     scene->output_dir[0] = '\0';
     scene->tol = -1;
-    parse_context context = {.scene = scene};
-    long long size;
-    int opened = im_read_open(path, "r", IM_READ_REGULAR, &context.stream, &size);
-    if (opened != IM_OK)
-        return opened;
-    if (size > SCENE_MAX_BYTES) {
-        fclose(context.stream);
-        return im_fail(IM_EINVAL, "%s: %lld bytes: expected a scene file of at most %d bytes", path, size,
-                       SCENE_MAX_BYTES);
-    }
+}
+
+/* Parses an open scene into *scene (set up by its caller) and closes the stream. */
+static int parse_stream(const char *path, FILE *stream, im_scene *scene)
+{
+    parse_context context = {.scene = scene, .stream = stream};
     int line = ini_parse_stream(read_line, &context, handle_key, &context);
     int read_failed = ferror(context.stream), read_errno = errno;
     fclose(context.stream);
@@ -983,6 +1000,33 @@ int im_scene_load(const char *path, im_scene *scene)
     if (inconsistent)
         return im_fail(IM_EFORMAT, "%s:%d: %s", path, inconsistent, context.error);
     return IM_OK;
+}
+
+int im_scene_load(const char *path, im_scene *scene)
+{
+    ARG_REQUIRE(path, "path");
+    ARG_REQUIRE(scene, "scene");
+    begin_scene(scene, path);
+    FILE *stream;
+    long long size;
+    int opened = im_read_open(path, "r", IM_READ_REGULAR, &stream, &size);
+    if (opened != IM_OK)
+        return opened;
+    if (size > SCENE_MAX_BYTES) {
+        fclose(stream);
+        return im_fail(IM_EINVAL, "%s: %lld bytes: expected a scene file of at most %d bytes", path, size,
+                       SCENE_MAX_BYTES);
+    }
+    return parse_stream(path, stream, scene);
+}
+
+int scene_load_text(const char *text, const char *path, im_scene *scene)
+{
+    begin_scene(scene, path);
+    FILE *stream = fmemopen((void *)text, strlen(text), "r");
+    if (!stream)
+        return im_fail(IM_ENOMEM, "%s: cannot read the scene's contents: %s", path, strerror(errno));
+    return parse_stream(path, stream, scene);
 }
 
 int im_scene_file_path(const im_scene *scene, int i, char *out, size_t size)

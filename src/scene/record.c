@@ -2,6 +2,7 @@
 #include "front/front.h"
 #include "scene/outputs.h"
 #include "scene/periodic.h"
+#include "scene/provenance.h"
 #include "scene/punch.h"
 #include "scene/record.h"
 #include "scene/sweep.h"
@@ -89,6 +90,26 @@ static json_t *periodic_record(const im_scene *scene)
     return record;
 }
 
+/* What makes the run again from its record (provenance.h): the scene's contents, its inputs' SHA-256
+ * and the record it was itself rebuilt from (null for a scene file). */
+static int add_provenance(const im_scene *scene, json_t *root)
+{
+    json_t *contents, *inputs = NULL;
+    int status = scene_contents_record(scene, &contents);
+    if (status == IM_OK)
+        status = scene_inputs_record(scene, &inputs);
+    if (status != IM_OK) {
+        json_decref(contents);
+        return im_fail_context(status, "run.json");
+    }
+    char from[4 * IM_SCENE_PATH + 1];
+    im_path_utf8(scene->from_record, from, sizeof from);
+    json_object_set_new(root, "scene_contents", contents);
+    json_object_set_new(root, "inputs", inputs);
+    json_object_set_new(root, "from_record", scene->from_record[0] ? json_string(from) : json_null());
+    return IM_OK;
+}
+
 /* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
  * surface files it measured, a profile punch's file and a sweep's lists. */
 int scene_write_record(const im_scene *scene)
@@ -120,7 +141,9 @@ int scene_write_record(const im_scene *scene)
                         json_pack("{s:s, s:s}", "definition", scene->file_count > 0 ? "finite differences" : "spectral",
                                   "chosen_by", scene->file_count > 0 ? "default: measured surfaces (the files)"
                                                                      : "default: generated surfaces (their target)"));
-    int status = run_record_write(scene->output_dir, root);
+    int status = add_provenance(scene, root);
+    if (status == IM_OK)
+        status = run_record_write(scene->output_dir, root);
     json_decref(root);
     return status;
 }

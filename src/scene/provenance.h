@@ -1,0 +1,24 @@
+/* Internal: a scene run's provenance (provenance.c; docs/scenes.md, "Provenance"): the scene's contents
+ * and its inputs' checksums as run.json records them, and the scene rebuilt from such a record. */
+#ifndef INDENTMAP_SCENE_PROVENANCE_H
+#define INDENTMAP_SCENE_PROVENANCE_H
+
+#include "indentmap/scene.h"
+
+#include <jansson.h>
+
+/* Parses scene text as im_scene_load parses a file named path (parse.c): its errors name path and
+ * the line of text, and paths in it resolve against path's folder. */
+int scene_load_text(const char *text, const char *path, im_scene *scene);
+
+/* run.json's "scene_contents" into *record: what the scene file set ({"section": {"key": "value"}}),
+ * which keys that is, and the scene file's absolute path. IM_EFORMAT for a value or path that is not
+ * UTF-8 (a record holds text), *record NULL on failure. */
+int scene_contents_record(const im_scene *scene, json_t **record);
+
+/* run.json's "inputs" into *record: each surface and profile file of the scene as it runs (its profile
+ * path already resolved: scene_prepare) with its key, absolute path and SHA-256; the error of one
+ * that cannot be read, *record NULL. */
+int scene_inputs_record(const im_scene *scene, json_t **record);
+
+#endif

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Provenance (issue 31): a scene run's run.json carries the scene's contents as parsed and its inputs'
+# SHA-256, so that `run --from-record` makes the run again after its scene file was edited, and refuses
+# when an input changed or the record is of another version; its figures carry the contents too.
+# The scene is scenes/fig4.ini reduced to 64 x 64 (N* = 580, the paper's contact radius relative to the
+# box; 3 frames): fig4 itself takes 8 s, and many times that under the sanitizers. Exit 77 (skipped)
+# when no OpenGL context can be had.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+source "$(dirname "$0")/lib.sh"
+export IM_FFTW_WISDOM="$dir/wisdom" # never the user's cache
+
+sed -e 's/^n = 512/n = 64/' -e 's/^lambda_r = 512/lambda_r = 64/' -e 's/^load_star = 37000 .*/load_star = 580/' \
+    -e 's/^frame_count = 12/frame_count = 3/' "$(dirname "$0")/../scenes/fig4.ini" >"$dir/fig4.ini"
+"$cli" run --quiet --no-wisdom "$dir/fig4.ini" --out "$dir/a" >"$dir/log" 2>&1
+status=$?
+if [ $status -ne 0 ] && grep -q "OpenGL\|EGL\|OSMesa" "$dir/log"; then
+  echo "SKIPPED: no OpenGL context: $(tail -1 "$dir/log")"
+  exit 77
+fi
+check "reduced fig4 runs into --out" test $status -eq 0 -a -s "$dir/a/results.csv"
+
+# The record holds every key the file set, as parsed (comments dropped), and the file's absolute path.
+record_value() { python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$@"; }
+check "record has [punch] alpha" test "$(record_value "$dir/a/run.json" 'd["scene_contents"]["sections"]["punch"]["alpha"]')" = 80
+check "record has load_star without its comment" \
+  test "$(record_value "$dir/a/run.json" 'd["scene_contents"]["sections"]["loading"]["load_star"]')" = 580
+check "record names the scene file" \
+  test "$(record_value "$dir/a/run.json" 'd["scene_contents"]["scene_file"]')" = "$(realpath "$dir/fig4.ini")"
+check "a generated scene has no input files" test "$(record_value "$dir/a/run.json" 'len(d["inputs"])')" = 0
+
+# The figures carry the contents: a text chunk of the PNGs, the PDF's Subject.
+check "panels PNG holds the contents" grep -qa "alpha = 80" "$dir/a/contact_panels.png"
+check "frame PNG holds the contents" grep -qa "slopes = 0, 0.01, 0.02, 0.04, 0.08, 0.16" "$dir/a/frames/contact_0000.png"
+pdf_subject() { python3 -c 'import re, sys
+hexes = re.search(rb"/Subject <FEFF([0-9A-F]*)>", open(sys.argv[1], "rb").read()).group(1)
+print(bytes.fromhex(hexes.decode()).decode("utf-16-be"))' "$1"; }
+check "panels PDF holds the contents" bash -c "$(declare -f pdf_subject); pdf_subject '$dir/a/contact_panels.pdf' | grep -x 'alpha = 80' >/dev/null"
+
+# Edited afterwards, the scene file solves something else; its record still makes the same results.
+sed -i 's/^alpha = 80/alpha = 70/' "$dir/fig4.ini"
+"$cli" run --quiet --no-wisdom "$dir/fig4.ini" --out "$dir/edited" >/dev/null 2>&1
+check "the edited scene's results differ" bash -c "! cmp -s '$dir/a/results.csv' '$dir/edited/results.csv'"
+"$cli" run --quiet --from-record "$dir/a/run.json" --out "$dir/b" >"$dir/log" 2>&1
+check "--from-record runs" test $? -eq 0
+check "--from-record remakes results.csv byte for byte" cmp "$dir/a/results.csv" "$dir/b/results.csv"
+check "--from-record remakes the panels' forces" cmp "$dir/a/panels/force_05.npy" "$dir/b/panels/force_05.npy"
+check "the new record names the one it came from" test "$(record_value "$dir/b/run.json" 'd["from_record"]')" = "$dir/a/run.json"
+check "plans estimated as recorded" test "$(record_value "$dir/b/run.json" 'd["solver"]["fftw_wisdom"]')" = False
+check "the new record has the same contents" \
+  test "$(record_value "$dir/b/run.json" 'd["scene_contents"]')" = "$(record_value "$dir/a/run.json" 'd["scene_contents"]')"
+
+# Refused, exit 2, naming the file: another version, a record without contents, not a record.
+sed 's/"version": "[^"]*"/"version": "0.0.9"/' "$dir/a/run.json" >"$dir/old_version.json"
+check "another version refused" expect_exit 2 "old_version.json: made by indentmap 0.0.9" \
+  "$cli" run --from-record "$dir/old_version.json" --out "$dir/c"
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); del d["scene_contents"]; json.dump(d, open(sys.argv[2], "w"))' \
+  "$dir/a/run.json" "$dir/bare.json"
+check "a record without contents refused" expect_exit 2 "bare.json: no scene_contents" \
+  "$cli" run --from-record "$dir/bare.json" --out "$dir/c"
+check "a scene file is not a record" expect_exit 2 "fig4.ini:1:" "$cli" run --from-record "$dir/fig4.ini" --out "$dir/c"
+check "a record and a scene refused together" expect_exit 2 "usage" \
+  "$cli" run --from-record "$dir/a/run.json" "$dir/fig4.ini"
+
+# A scene over a surface file: its SHA-256 is recorded and checked.
+"$cli" surface --n 64 --slope 0.16 --seed 2 --out "$dir/s.npy" >/dev/null
+printf '[scene]\nname = files\n[surfaces]\nfile = s.npy\n[loading]\nload_star = 580\n[output]\ntable = yes\n' \
+  >"$dir/files.ini"
+"$cli" run --quiet --no-wisdom "$dir/files.ini" --out "$dir/f" >/dev/null 2>&1
+check "the surface file's SHA-256 is recorded" \
+  test "$(record_value "$dir/f/run.json" 'd["inputs"][0]["sha256"]')" = "$(sha256sum "$dir/s.npy" | cut -d' ' -f1)"
+"$cli" run --quiet --from-record "$dir/f/run.json" --out "$dir/g" >/dev/null 2>&1
+check "a scene over a file is made again" cmp "$dir/f/table1.csv" "$dir/g/table1.csv"
+"$cli" surface --n 64 --slope 0.16 --seed 3 --out "$dir/s.npy" >/dev/null
+check "a changed input refused, naming it" expect_exit 2 "s.npy: [surfaces] file has changed since the run" \
+  "$cli" run --from-record "$dir/f/run.json" --out "$dir/h"
+check "nothing written for a refused record" test ! -e "$dir/h"
+
+finish
