@@ -5,6 +5,7 @@
 #include "io/payload.h"
 #include "io/gwyddion.h"
 #include "io/readers.h"
+#include "io/spreadsheet.h"
 #include "io/text_columns.h"
 
 #include <ctype.h>
@@ -160,6 +161,8 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     int looked = look_at(path, &kind, first_line, sizeof first_line);
     if (looked != IM_OK)
         return looked;
+    if (kind == BINARY && spreadsheet_is_one(path))
+        return spreadsheet_refuse(path);
     if (kind == TEXT_OF_NUMBERS || kind == GZIP || kind == UTF16_TEXT || !im_gwyddion_reader())
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, text_read_raw, options, out, info);
     if (kind == OTHER_TEXT && refused_as_line_scan(path, options))
