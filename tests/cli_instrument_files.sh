@@ -32,6 +32,27 @@ check "scrambled x y z points: a 4 x 4 map" grep -q 'grid             4 x 4, del
 check "German Gwyddion export: Breite and Höhe read, non-square refused naming both" expect_exit 2 \
   "x spacing 4.11333333 and y spacing 1.419725 µm" "$cli" surface --stats "$data/gwyddion-export-german.txt"
 
+# Line scans named as such (issue 25), whatever stands above their numbers or holds them.
+line_scan="a line scan (a 1-D profile), not a map"
+check "csv-1: a header row naming x and height" expect_exit 2 \
+  "under the header row 'X_(microns),y1' (line 1): $line_scan" "$cli" surface --stats "$data/csv-1.csv"
+check "csv-2: UTF-16 decoded, an index column beside x and height" expect_exit 2 \
+  "under the header row 'index,x in µm,y in µm' (line 1): $line_scan (positions and heights, beside an index column" \
+  "$cli" surface --stats "$data/csv-2.csv"
+check "csv-3: UTF-16 decoded" expect_exit 2 "under the header row 'x in µm,y in µm' (line 1): $line_scan" \
+  "$cli" surface --stats "$data/csv-3.csv"
+check "xy-2: a row of units and a count" expect_exit 2 \
+  "under a row of units 'µm µm' (line 1), a lone number, 23 (line 2): $line_scan" "$cli" surface --stats "$data/xy-2.txt"
+check "Dektak CSV export named" expect_exit 2 \
+  "under a Bruker Dektak profilometer's CSV export of a stylus profile ('Scan Parameters', line 1)" \
+  "$cli" surface --stats "$data/dektak-1-head.csv"
+check "HFM: x, height and a validity column" expect_exit 2 \
+  "a row of units '[mm];[mm];[1/0]' (line 2): $line_scan (positions and heights, beside a validity column 'valid')" \
+  "$cli" surface --stats "$data/hfm-1-head.hfm"
+check "Mitutoyo spreadsheet: a line scan in columns E and F" expect_exit 2 \
+  "a Mitutoyo SurfTest export: its fullest sheet, xl/worksheets/sheet2.xml, holds numbers in 2 columns (E, F) of 960 rows: $line_scan" \
+  "$cli" surface --stats "$data/mitutoyo_mock.xlsx"
+
 # Warnings and records a researcher needs (finding D17, D14).
 printf '# Width: 6\n1 2 3\n4 5 6\n7 8 9\n' >"$dir/unnamed.txt"
 check "a unitless spacing of 2: heights in its unnamed unit, not in delta" bash -c "'$cli' surface --stats '$dir/unnamed.txt' | grep -q \"heights          in the spacing's unit\""
@@ -50,6 +71,9 @@ if "$cli" formats | grep -q "not in this build"; then
   finish
   exit $?
 fi
+check "OPDx of a profile: Gwyddion's curves named a line scan" expect_exit 2 \
+  "a line scan (a 1-D profile), not a map: Gwyddion's module 'dektakvca' reads it as 1 curve in 1 graph, the longest of 3001 points" \
+  "$cli" surface --stats "$data/opdx-3.opdx"
 check "formats lists Gwyddion's Nanoscope module" bash -c "'$cli' formats | grep -q '^  nanoscope '"
 
 # Gwyddion 2.62's numbers: xres x yres, xreal / xres, gwy_data_field_get_rms of the default channel.

@@ -127,16 +127,94 @@ static void vision_headers_convert_the_values(void **state)
                         "a header line of a kind this reader does not know");
 }
 
-/* UTF-16 text is refused by what it is rather than by its first odd byte. */
-static void utf16_text_is_named(void **state)
+/* UTF-16 text (little- and big-endian, by its byte-order mark) is read as the UTF-8 it spells: a
+ * matrix under a Gwyddion header in µm, with a character outside the BMP (a surrogate pair) in a comment. */
+static void utf16_text_is_decoded(void **state)
 {
     (void)state;
-    const char utf16[] = "\xff\xfe" "1\0 \0" "2\0\n\0";
-    test_write_bytes(test_path("unicode.txt"), utf16, sizeof utf16 - 1);
-    im_field *f = NULL;
-    assert_int_equal(im_surface_read(test_path("unicode.txt"), &f), IM_EFORMAT);
-    assert_non_null(strstr(im_last_error(), "UTF-16 text"));
-    assert_null(f);
+    const char *utf8 = "# \xf0\x9d\x91\xa7 map\n# Width: 6 \xc2\xb5m\n1 2 3\n4 5 6\n7 8 9\n";
+    for (int big = 0; big <= 1; ++big) {
+        char utf16[256] = {big ? '\xfe' : '\xff', big ? '\xff' : '\xfe'};
+        size_t length = 2;
+        static const unsigned short PAIR[2] = {0xd835, 0xdc67}; /* U+1D467 */
+        for (const unsigned char *at = (const unsigned char *)utf8; *at; ++at) {
+            unsigned unit = *at < 0x80 ? *at : *at == 0xc2 ? (at[1] & 0x3fu) | 0x80u : PAIR[0];
+            if (*at == 0xf0) { /* the 4-byte character: its pair */
+                utf16[length++] = (char)(big ? PAIR[0] >> 8 : PAIR[0] & 0xff);
+                utf16[length++] = (char)(big ? PAIR[0] & 0xff : PAIR[0] >> 8);
+                unit = PAIR[1];
+                at += 3;
+            } else if (*at == 0xc2) {
+                ++at;
+            }
+            utf16[length++] = (char)(big ? unit >> 8 : unit & 0xff);
+            utf16[length++] = (char)(big ? unit & 0xff : unit >> 8);
+        }
+        test_write_bytes(test_path("unicode.txt"), utf16, length);
+        im_surface_read_info info;
+        im_field *f = read_text_file("unicode.txt", &info);
+        assert_int_equal(f->nx, 3);
+        assert_int_equal(f->ny, 3);
+        assert_close(f->delta, 2.0, 1e-15);
+        assert_string_equal(f->unit, "\xc2\xb5m");
+        assert_close(f->data[5], 6.0, 0.0);
+        assert_non_null(strstr(info.conversion, big ? "UTF-16BE text" : "UTF-16LE text"));
+        im_field_free(f);
+    }
+}
+
+/* UTF-16 that is not text is refused naming the byte: lone surrogates, a NUL, an odd length. */
+static void broken_utf16_is_refused_by_offset(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name, *bytes;
+        size_t length;
+        const char *phrase;
+    } CASES[] = {
+        {"high.txt", "\xff\xfe" "1\0" "\x00\xd8" " \0", 8, "a lone high surrogate 0xD800 at byte 4"},
+        {"low.txt", "\xfe\xff" "\0" "1" "\xdc\x00", 6, "a lone low surrogate 0xDC00 at byte 4"},
+        {"nul.txt", "\xff\xfe" "1\0" "\0\0", 6, "a NUL character (U+0000) at byte 4"},
+        {"odd.txt", "\xff\xfe" "1\0" "2", 5, "UTF-16 text of 5 bytes, an odd number"},
+    };
+    for (size_t k = 0; k < sizeof CASES / sizeof CASES[0]; ++k) {
+        test_write_bytes(test_path(CASES[k].name), CASES[k].bytes, CASES[k].length);
+        im_field *f = NULL;
+        assert_int_equal(im_text_read(test_path(CASES[k].name), &f), IM_EFORMAT);
+        if (!strstr(im_last_error(), CASES[k].phrase) || !strstr(im_last_error(), CASES[k].name))
+            fail_msg("%s: '%s' (expected '%s')", CASES[k].name, im_last_error(), CASES[k].phrase);
+        assert_null(f);
+    }
+}
+
+/* Text above the numbers says what they are (issue 25): column names with units in them, a row of
+ * units, a count, an index or validity column, a profiler's report; a line scan whatever the
+ * separators (commas, semicolons, decimal commas), refused naming the text; text above a matrix, or
+ * no numbers at all, refused for what it is. */
+static void text_above_a_line_scan_names_it(void **state)
+{
+    (void)state;
+    expect_text_refused("names.csv", "X_(microns),y1\n0.0386,2.10425\n0.0772,2.08494\n0.1158,2.06564\n",
+                        "3 rows of numbers under the header row 'X_(microns),y1' (line 1): a line scan (a 1-D profile)");
+    expect_text_refused("index.csv", "index,x in \xc2\xb5m,y in \xc2\xb5m\n0,-1,2\n1,0,3\n2,1,4\n",
+                        "3 columns x 3 rows of numbers under the header row 'index,x in \xc2\xb5m,y in \xc2\xb5m' (line 1): "
+                        "a line scan (a 1-D profile), not a map (positions and heights, beside an index column 'index')");
+    expect_text_refused("valid.hfm", "X;Y;valid\r\n[mm];[mm];[1/0]\r\n8.6722;106.6;1\r\n8.6727;106.7;1\r\n",
+                        "a row of units '[mm];[mm];[1/0]' (line 2): a line scan (a 1-D profile), not a map (positions and "
+                        "heights, beside a validity column 'valid')");
+    expect_text_refused("units.txt", "\xc2\xb5m \xc2\xb5m\n3\n 1.5,  2.5\n 2.5,  3.5\n 3.5,  4.5\n",
+                        "2 columns x 3 rows of numbers under a row of units '\xc2\xb5m \xc2\xb5m' (line 1), a lone number, 3 "
+                        "(line 2): a line scan");
+    expect_text_refused("commas.csv", "x;h\n0,5;1,25\n1,0;2,5\n1,5;3,75\n", "2 columns x 3 rows of numbers under");
+    expect_text_refused("dektak.csv", "Scan Parameters\nScan Type,Standard Scan\n\nScan Data\nLateral um,Raw Micrometer,\n"
+                        "0.0,-0.00933,,\n0.2,-0.00760,,\n", "under a Bruker Dektak profilometer's CSV export of a stylus "
+                        "profile ('Scan Parameters', line 1), the header row 'Lateral um,Raw Micrometer,' (line 5): a line scan");
+    expect_text_refused("above_matrix.txt", "[nm]\n1 2 3\n4 5 6\n7 8 9\n",
+                        "above_matrix.txt:1: '[nm]' is text above 3 columns of numbers");
+    expect_text_refused("names_matrix.txt", "some words\n1 2 3\n4 5 6\n7 8 9\n",
+                        "names_matrix.txt:1: header row 'some words' of 2 column names");
+    expect_text_refused("count_matrix.txt", "3\n1 2 3\n4 5 6\n7 8 9\n", ":1: a lone number, 3, above rows of 3 values");
+    expect_text_refused("nonsense.txt", "This is nonsense.\n", "no numbers: 1 line of text (line 1: 'This is nonsense.')");
 }
 
 /* gzip-compressed text reads as the text it holds (matrix-4.txt.gz); cut short, it is refused. */
@@ -291,7 +369,9 @@ int main(void)
         cmocka_unit_test(decimal_commas_are_read_as_decimals),
         cmocka_unit_test(gwyddion_headers_in_german_and_two_prefixes),
         cmocka_unit_test(vision_headers_convert_the_values),
-        cmocka_unit_test(utf16_text_is_named),
+        cmocka_unit_test(utf16_text_is_decoded),
+        cmocka_unit_test(broken_utf16_is_refused_by_offset),
+        cmocka_unit_test(text_above_a_line_scan_names_it),
         cmocka_unit_test(gzip_text_is_read_decompressed),
         cmocka_unit_test(unit_converts_a_stated_unit),
         cmocka_unit_test(header_rows_of_column_names_state_units),

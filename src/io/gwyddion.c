@@ -124,6 +124,9 @@ static int read_stream_header(FILE *stream, const char *path, stream_header *hea
         *answered = strncmp(line, "error ", 6) == 0 || strncmp(line, "field ", 6) == 0;
         if (strncmp(line, "error unknown-format ", 21) == 0)
             return im_fail(IM_EFORMAT, "%s: " GWYDDION_UNKNOWN_FORMAT ": %.200s", path, line + 21);
+        if (strncmp(line, "error line-scan ", 16) == 0)
+            return im_fail(IM_EFORMAT, "%s: " LINE_SCAN_REFUSAL ": Gwyddion's module '%s' reads it as %.200s; "
+                           LINE_SCAN_ADVICE, path, header->module, line + 16);
         if (strncmp(line, "error failed ", 13) == 0)
             return im_fail(IM_EFORMAT, "%s: Gwyddion's file modules cannot read it: %.200s", path, line + 13);
         if (sscanf(line, "module %63s", header->module) == 1)

@@ -21,6 +21,10 @@ typedef struct surface_stated {
                                 IM_NPY_ORDER_SIDECAR (0) for the other formats: their layout is fixed */
 } surface_stated;
 
+/* The words every refusal of a 1-D profile (a line scan) holds, whatever read it, and its advice. */
+#define LINE_SCAN_REFUSAL "a line scan (a 1-D profile), not a map"
+#define LINE_SCAN_ADVICE "a 2-D contact needs heights on a grid of at least 3 x 3"
+
 typedef int (*surface_raw_reader)(const char *path, im_field **out, surface_stated *stated);
 
 int gsf_read_raw(const char *path, im_field **out, surface_stated *stated);

@@ -5,6 +5,7 @@
 #include "io/payload.h"
 #include "io/gwyddion.h"
 #include "io/readers.h"
+#include "io/spreadsheet.h"
 #include "io/text_columns.h"
 
 #include <ctype.h>
@@ -26,8 +27,8 @@ enum file_kind { TEXT_OF_NUMBERS, OTHER_TEXT, UTF16_TEXT, GZIP, BINARY };
  * lines and key=value headers) starts with a number or a column named x (a header row of x y z points),
  * as the text reader needs; other text (a vendor's
  * header, column names), whose first data line goes into first_line; UTF-16 text (by its byte-order
- * mark, as spreadsheet programs save "Unicode text"); gzip-compressed (text, decompressed by the text
- * reader); or binary (a NUL byte). A pipe
+ * mark, as spreadsheet programs save "Unicode text", decoded by the text reader); gzip-compressed (text,
+ * decompressed by the text reader); or binary (a NUL byte). A pipe
  * is taken as text of numbers: it cannot be looked at twice. */
 static int look_at(const char *path, enum file_kind *kind, char *first_line, size_t size)
 {
@@ -133,6 +134,16 @@ static int refuse_other_text(const char *path, const char *first_line, const im_
                    text_refusal);
 }
 
+/* 1 when the text reader refuses the file as a line scan (its refusal then stands): text whose first
+ * line is not numbers is judged by the text above its numbers before any Gwyddion module is tried. */
+static int refused_as_line_scan(const char *path, const im_surface_read_options *options)
+{
+    im_field *field = NULL;
+    int status = surface_read_format(path, text_read_raw, options, &field, NULL);
+    im_field_free(field);
+    return status == IM_EFORMAT && strstr(im_last_error(), LINE_SCAN_REFUSAL);
+}
+
 /* 1 (after saying why) when a channel is asked of a file indentmap's own readers read: they hold one. */
 static int refuse_channel(const char *path, const im_surface_read_options *options)
 {
@@ -182,11 +193,12 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     int looked = look_at(path, &kind, first_line, sizeof first_line);
     if (looked != IM_OK)
         return looked;
-    if (kind == UTF16_TEXT)
-        return im_fail(IM_EFORMAT, "%s: UTF-16 text (a byte-order mark FF FE or FE FF): expected ASCII or UTF-8 text; "
-                       "save it as UTF-8", path);
-    if (kind == TEXT_OF_NUMBERS || kind == GZIP || !im_gwyddion_reader()) /* the text reader says what is wrong */
+    if (kind == BINARY && spreadsheet_is_one(path))
+        return spreadsheet_refuse(path);
+    if (kind == TEXT_OF_NUMBERS || kind == GZIP || kind == UTF16_TEXT || !im_gwyddion_reader())
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, text_read_raw, options, out, info);
+    if (kind == OTHER_TEXT && refused_as_line_scan(path, options))
+        return IM_EFORMAT;
     int status = surface_read_channel_format(path, gwyddion_read_raw, options, out, info);
     if (status != IM_EFORMAT || !strstr(im_last_error(), GWYDDION_UNKNOWN_FORMAT))
         return status;

@@ -8,6 +8,8 @@
 #include "io/text_columns.h"
 #include "io/text_header.h"
 #include "io/text_points.h"
+#include "io/text_preamble.h"
+#include "io/utf16_text.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -146,39 +148,76 @@ static char *skip_byte_order_mark(char *text, long line_number)
     return line_number == 1 && strncmp(text, "\xef\xbb\xbf", 3) == 0 ? text + 3 : text;
 }
 
-/* Adds one line's row of values (or header, or header row of column names) to what was read so far. */
-static int take_line(char *text, const char *path, long line_number, value_list *values, long *columns, long *rows,
-                     text_header *header, text_columns *names)
+/* What has been read of a text file so far. */
+typedef struct text_reading {
+    value_list values;
+    long columns, rows, first_row_line;
+    text_header header;
+    text_columns names;     /* a header row naming x, y and a height */
+    text_preamble preamble; /* other text above the numbers */
+} text_reading;
+
+/* A line of text above the numbers: a header row of x y z points, or what the numbers are judged with. */
+static void take_text_line(const char *text, const char *path, long line_number, text_reading *reading)
 {
-    if (text[0] == '#')
-        return text_header_parse_comment(path, line_number, text, header);
-    if (*rows == 0 && text_header_is_vision_line(text))
-        return text_header_parse_vision(path, line_number, text, header);
-    if (*rows == 0 && !names->line && text_columns_is_named_row(text))
-        return text_columns_parse(path, line_number, text, names);
-    long count;
-    int status = parse_data_line(text, path, line_number, values, &count);
-    if (status != IM_OK || count == 0)
-        return status;
-    if (*columns == 0)
-        *columns = count;
-    else if (count != *columns)
+    if (!text_columns_is_named_row(text))
+        text_preamble_take(&reading->preamble, line_number, text, "");
+    else if (text_columns_parse(path, line_number, text, &reading->names) != IM_OK)
+        text_preamble_take(&reading->preamble, line_number, text, im_last_error());
+}
+
+/* 1 when value can count rows: a whole number, not negative. */
+static int is_count(double value)
+{
+    return value >= 0.0 && value == floor(value);
+}
+
+/* A row of count values, the last count of reading->values. A lone whole number on the first row above
+ * rows of more values is their count (a profile's point count), not a row. */
+static int take_row(const char *path, long line_number, long count, text_reading *reading)
+{
+    double *values = reading->values.values;
+    if (reading->rows == 1 && reading->columns == 1 && count > 1 && is_count(values[0])) { /* 1 + count values */
+        text_preamble_take_count(&reading->preamble, reading->first_row_line, values[0]);
+        memmove(values, values + 1, (size_t)count * sizeof *values);
+        --reading->values.count;
+        reading->rows = 0;
+        reading->columns = 0;
+    }
+    if (reading->columns == 0) {
+        reading->columns = count;
+        reading->first_row_line = line_number;
+    } else if (count != reading->columns)
         return im_fail(IM_EFORMAT, "%s:%ld: %ld values, but the first data row has %ld", path, line_number, count,
-                       *columns);
-    if (++*rows > IM_FIELD_MAX_SIDE && *columns != 3) /* x y z points may be many more than a side */
+                       reading->columns);
+    if (++reading->rows > IM_FIELD_MAX_SIDE && reading->columns != 3) /* x y z points may be many more than a side */
         return im_fail(IM_EFORMAT, "%s:%ld: more than %d data rows: expected at most %d rows", path, line_number,
                        IM_FIELD_MAX_SIDE, IM_FIELD_MAX_SIDE);
     return IM_OK;
 }
 
-static int read_rows(FILE *stream, const char *path, value_list *values, long *columns, long *rows,
-                     text_header *header, text_columns *names)
+/* Adds one line's row of values (or header, or text above the numbers) to what was read so far. */
+static int take_line(char *text, const char *path, long line_number, text_reading *reading)
+{
+    if (text[0] == '#')
+        return text_header_parse_comment(path, line_number, text, &reading->header);
+    if (reading->rows == 0 && text_header_is_vision_line(text))
+        return text_header_parse_vision(path, line_number, text, &reading->header);
+    if (reading->rows == 0 && !reading->names.line && text_preamble_is_text(text)) {
+        take_text_line(text, path, line_number, reading);
+        return IM_OK;
+    }
+    long count;
+    int status = parse_data_line(text, path, line_number, &reading->values, &count);
+    return status != IM_OK || count == 0 ? status : take_row(path, line_number, count, reading);
+}
+
+static int read_rows(FILE *stream, const char *path, text_reading *reading)
 {
     im_text_line line = {0};
     int status = IM_OK, end = 0;
     while (status == IM_OK && (status = im_read_line(stream, path, MAX_LINE_BYTES, &line, &end)) == IM_OK && !end)
-        status = take_line(skip_byte_order_mark(line.text, line.number), path, line.number, values, columns, rows,
-                           header, names);
+        status = take_line(skip_byte_order_mark(line.text, line.number), path, line.number, reading);
     free(line.text);
     return status;
 }
@@ -187,9 +226,9 @@ static int read_rows(FILE *stream, const char *path, value_list *values, long *c
  * a 2 x N map would give a number a researcher might publish. */
 static int refuse_line_scan(const char *path, long columns, long rows)
 {
-    return im_fail(IM_EFORMAT, "%s: %ld column%s x %ld row%s of numbers: a line scan (a 1-D profile: heights, or "
-                   "x and height pairs), not a map; a 2-D contact needs heights on a grid of at least 3 x 3", path,
-                   columns, columns == 1 ? "" : "s", rows, rows == 1 ? "" : "s");
+    return im_fail(IM_EFORMAT, "%s: %ld column%s x %ld row%s of numbers: " LINE_SCAN_REFUSAL " (heights, or x and "
+                   "height pairs); " LINE_SCAN_ADVICE, path, columns, columns == 1 ? "" : "s", rows,
+                   rows == 1 ? "" : "s");
 }
 
 /* The numbers as a columns x rows matrix, each multiplied by factor (1: as stored). */
@@ -201,29 +240,32 @@ static int matrix_field(const value_list *values, long columns, long rows, doubl
     return status;
 }
 
-/* The grid the numbers and their header describe: a matrix, or x y z points placed on their grid. */
-static int numbers_to_field(const char *path, const value_list *values, long columns, long rows,
-                            const text_header *header, const text_columns *names, im_field **out,
-                            surface_stated *stated)
+/* The grid the numbers and their header describe: a matrix, or x y z points placed on their grid; text
+ * above them (not a header row of x y z points) says what they are, a line scan, when it is refused. */
+static int numbers_to_field(const char *path, const text_reading *reading, im_field **out, surface_stated *stated)
 {
+    long columns = reading->columns, rows = reading->rows;
+    if (reading->preamble.lines)
+        return text_preamble_refuse(path, &reading->preamble, columns, rows);
     if (rows == 0)
         return im_fail(IM_EFORMAT, "%s: no data rows", path);
+    const text_header *header = &reading->header;
     int status = text_header_check_shape(path, header, columns, rows);
     if (status != IM_OK)
         return status;
-    if (names->line || (columns == 3 && !text_header_states_a_matrix(header))) {
-        status = text_columns_check(path, names, header, columns);
+    if (reading->names.line || (columns == 3 && !text_header_states_a_matrix(header))) {
+        status = text_columns_check(path, &reading->names, header, columns);
         if (status == IM_OK)
-            status = text_points_grid(path, values->values, rows, out, stated);
+            status = text_points_grid(path, reading->values.values, rows, out, stated);
         if (status == IM_OK)
-            text_columns_stated_units(names, header, stated);
+            text_columns_stated_units(&reading->names, header, stated);
         return status;
     }
     if (columns < 3 || rows < 3)
         return refuse_line_scan(path, columns, rows);
     double factor;
     status = text_header_stated_units(path, header, columns, rows, stated, &factor);
-    return status == IM_OK ? matrix_field(values, columns, rows, factor, out) : status;
+    return status == IM_OK ? matrix_field(&reading->values, columns, rows, factor, out) : status;
 }
 
 /* The record of how the values were read says the text was gzip-compressed. */
@@ -235,32 +277,52 @@ static void note_decompressed(surface_stated *stated)
              "gzip-compressed text", before);
 }
 
+/* The record of how the values were read says the text was UTF-16 (decoded to UTF-8). */
+static void note_encoding(surface_stated *stated, const char *encoding)
+{
+    char before[sizeof stated->conversion];
+    memcpy(before, stated->conversion, sizeof before);
+    snprintf(stated->conversion, sizeof stated->conversion, "%s text%s%.70s", encoding, before[0] ? "; " : "",
+             before);
+}
+
+/* The file's text: decompressed when it is gzip, decoded when it is UTF-16. */
+static int open_text(const char *path, FILE **stream, int *compressed, const char **encoding)
+{
+    *encoding = NULL;
+    int status = im_read_open(path, "r", IM_READ_OR_PIPE, stream, NULL);
+    if (status == IM_OK)
+        status = io_gunzip_if_compressed(stream, path, compressed);
+    if (status == IM_OK && !*compressed)
+        status = io_utf16_decode_if_marked(stream, path, encoding);
+    return status;
+}
+
 int text_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     FILE *stream;
-    int compressed = 0, status = im_read_open(path, "r", IM_READ_OR_PIPE, &stream, NULL);
-    if (status == IM_OK)
-        status = io_gunzip_if_compressed(&stream, path, &compressed);
+    int compressed = 0;
+    const char *encoding;
+    int status = open_text(path, &stream, &compressed, &encoding);
     if (status != IM_OK)
         return status;
-    value_list values = {0};
-    long columns = 0, rows = 0;
-    text_header header = {0};
-    text_columns names = {0};
-    status = read_rows(stream, path, &values, &columns, &rows, &header, &names);
+    text_reading reading = {0};
+    status = read_rows(stream, path, &reading);
     if (fclose(stream) != 0 && status == IM_OK && compressed) /* zlib found the stream cut or its CRC wrong */
         status = im_fail(IM_EFORMAT, "%s: the gzip stream ends early or is damaged", path);
     im_field *field = NULL;
     if (status == IM_OK)
-        status = numbers_to_field(path, &values, columns, rows, &header, &names, &field, stated);
+        status = numbers_to_field(path, &reading, &field, stated);
     if (status == IM_OK && compressed)
         note_decompressed(stated);
+    if (status == IM_OK && encoding)
+        note_encoding(stated, encoding);
     if (status == IM_OK)
         *out = field;
     else
         im_field_free(field);
-    free(values.values);
+    free(reading.values.values);
     return status;
 }
 

@@ -17,7 +17,8 @@
  *   XRES*YRES doubles (native byte order), row 0 first; then, when MASK is 1, XRES*YRES bytes (1: the
  *   point is invalid)
  * or, at any point before the field line, "error KIND MESSAGE" (KIND: unknown-format when no module
- * reads the file, else failed) and exit status 2. Titles and units come from the file: control bytes
+ * reads the file; line-scan when the file holds no image but curves, a profile's graph, MESSAGE then
+ * saying how many; else failed) and exit status 2. Titles and units come from the file: control bytes
  * are written as '?' and blanks in units as '_', so that no file can break a line. A module that
  * runs longer than READ_SECONDS is ended by SIGALRM (a parser looping on a damaged file). */
 #include <libgwyddion/gwyddion.h>
@@ -34,6 +35,14 @@
 /* Declared in Gwyddion's app/app.h, which includes GTK's development headers; this program needs
  * only this one function of it (loading the file modules without a display). */
 void gwy_app_init_nongui(const gchar *option, ...);
+
+/* Declared in Gwyddion's libgwydgets/gwygraphmodel.h and gwygraphcurvemodel.h, which include GTK's
+ * development headers too: a module reading a profile (a stylus scan) gives graphs of curves, no image. */
+typedef struct _GwyGraphModel GwyGraphModel;
+typedef struct _GwyGraphCurveModel GwyGraphCurveModel;
+gint gwy_graph_model_get_n_curves(GwyGraphModel *gmodel);
+GwyGraphCurveModel *gwy_graph_model_get_curve(GwyGraphModel *gmodel, gint cindex);
+gint gwy_graph_curve_model_get_ndata(GwyGraphCurveModel *gcmodel);
 
 enum { READ_SECONDS = 300 };
 
@@ -173,6 +182,42 @@ static void write_field(const channel *c, int masks_invalid)
         putchar(mask[k] > 0.5);
 }
 
+/* The curves of the container's graphs: how many graphs, curves and points of the longest curve. */
+typedef struct curves_found {
+    GType graph_type;
+    int graphs, curves, longest;
+} curves_found;
+
+static void count_curves(gpointer key, gpointer value, gpointer user)
+{
+    (void)key;
+    curves_found *found = user;
+    GValue *held = value;
+    if (!found->graph_type || !G_VALUE_HOLDS_OBJECT(held) ||
+        !G_TYPE_CHECK_INSTANCE_TYPE(g_value_get_object(held), found->graph_type))
+        return;
+    GwyGraphModel *graph = (GwyGraphModel *)g_value_get_object(held);
+    int curves = gwy_graph_model_get_n_curves(graph);
+    ++found->graphs;
+    found->curves += curves;
+    for (int k = 0; k < curves; ++k) {
+        int points = gwy_graph_curve_model_get_ndata(gwy_graph_model_get_curve(graph, k));
+        found->longest = points > found->longest ? points : found->longest;
+    }
+}
+
+/* A container without images: a line scan when it holds curves (Bruker's OPDx of a stylus profile). */
+static int refuse_without_images(GwyContainer *container)
+{
+    curves_found found = {.graph_type = g_type_from_name("GwyGraphModel")};
+    gwy_container_foreach(container, NULL, count_curves, &found);
+    if (found.curves == 0)
+        return fail("failed", "%s", "the file holds no image (data field)");
+    printf("error line-scan %d curve%s in %d graph%s, the longest of %d points, and no image (data field)\n",
+           found.curves, found.curves == 1 ? "" : "s", found.graphs, found.graphs == 1 ? "" : "s", found.longest);
+    return 2;
+}
+
 /* A module that loads files: its name and what it reads, e.g. "nanoscope<TAB>Nanoscope III files". */
 static void print_module(gpointer name, gpointer user)
 {
@@ -208,7 +253,7 @@ static int read_file(const char *path, const char *asked)
     if (chosen)
         write_field(chosen, !module || strcmp(module, "gwyfile") != 0);
     else
-        status = channels->len == 0 ? fail("failed", "%s", "the file holds no image (data field)")
+        status = channels->len == 0 ? refuse_without_images(container)
                  : asked ? fail("failed", "no channel has the index or title '%s'", asked)
                          : fail("failed", "%s", "no channel holds heights (values in a length unit)");
     g_array_free(channels, TRUE);
