@@ -239,43 +239,43 @@ static void load_panel(const paper_histories *h, load_figure *d, int panel)
                                                                              : IM_PLOT_LEGEND_HIDDEN};
 }
 
-int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path)
+/* Fig. 7's statistics of h into a new *d (the caller frees it): IM_EINVAL when no rough family's
+ * surfaces share a range of N*, or check_families' errors, IM_ENOMEM. */
+static int load_statistics(const paper_histories *h, load_figure **d)
 {
     int status = check_families(h, "fig7");
-    load_figure *d = status == IM_OK ? calloc(1, sizeof *d) : NULL;
-    if (status != IM_OK)
-        return status;
-    if (!d)
-        return im_fail(IM_ENOMEM, "fig7: allocation failed");
-    int panels = d->panels = gather_statistics(h, d);
-    for (int p = 0; p < panels; ++p)
+    *d = status == IM_OK ? calloc(1, sizeof **d) : NULL;
+    if (status == IM_OK && !*d)
+        status = im_fail(IM_ENOMEM, "fig7: allocation failed");
+    if (status == IM_OK && ((*d)->panels = gather_statistics(h, *d)) == 0)
+        status = im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*", h->source);
+    return status;
+}
+
+int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path)
+{
+    load_figure *d;
+    int status = load_statistics(h, &d);
+    for (int p = 0; status == IM_OK && p < d->panels; ++p)
         load_panel(h, d, p);
-    status = panels == 0 ? im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*",
-                                   h->source)
-                         : write_grid(d->grid.panels, panels, path);
+    if (status == IM_OK)
+        status = write_grid(d->grid.panels, d->panels, path);
     free(d);
     return status;
 }
 
 int paper_write_area_ratio_statistics(const paper_histories *h, FILE *out)
 {
-    int status = check_families(h, "fig7");
-    load_figure *d = status == IM_OK ? calloc(1, sizeof *d) : NULL;
-    if (status != IM_OK)
-        return status;
-    if (!d)
-        return im_fail(IM_ENOMEM, "fig7: allocation failed");
-    int panels = gather_statistics(h, d);
-    if (panels > 0)
+    load_figure *d;
+    int status = load_statistics(h, &d);
+    if (status == IM_OK)
         fprintf(out, "slope,n_star,area_ratio_mean,area_ratio_sd,surfaces,area_ratio_eq12\n");
-    for (int p = 0; p < panels; ++p)
+    for (int p = 0; status == IM_OK && p < d->panels; ++p)
         for (int k = 0; k < COMMON_POINTS; ++k)
             fprintf(out, "%.17g,%.17g,%.17g,%.17g,%d,%.17g\n", h->slopes[d->family[p]], d->x[p][k], d->mean[p][k],
                     d->sd[p][k], d->surfaces[p][k], h->eq12[d->family[p]]);
     free(d);
-    return panels == 0 ? im_fail(IM_EINVAL, "%s: fig7 needs a rough family whose surfaces share a range of N*",
-                                 h->source)
-                       : IM_OK;
+    return status;
 }
 
 int paper_first_resolved_step(const paper_history *m)
