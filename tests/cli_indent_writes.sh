@@ -53,4 +53,8 @@ printf '[scene]\noutput = out2\n[surfaces]\nn = 32\n[loading]\ncontrol = displac
   >"$odd/scene.ini"
 check "a scene path that is not UTF-8" bash -c "'$cli' run --quiet '$odd/scene.ini' >/dev/null"
 check "... its run.json says so" grep -q '"scene_encoding": "escaped"' "$odd/out2/run.json"
+check "... in its contents too" grep -q '"scene_file_encoding": "escaped"' "$odd/out2/run.json"
+"$cli" run --from-record "$odd/out2/run.json" --out again >/dev/null 2>err
+check "--from-record refuses a record whose scene path was escaped" test $? -eq 2
+check "... saying why" grep -q "is a path that was not UTF-8, recorded escaped" err
 finish

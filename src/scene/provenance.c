@@ -62,12 +62,13 @@ int scene_contents_record(const im_scene *scene, json_t **record)
     int status = im_path_absolute(scene->path, absolute, sizeof absolute);
     if (status != IM_OK)
         return status;
-    if (im_path_utf8(absolute, text, sizeof text)) /* its bytes could not be found again from the record */
-        return im_fail(IM_EFORMAT, "%s: the scene file's path is not UTF-8: a record holds text", scene->path);
+    int escaped = im_path_utf8(absolute, text, sizeof text);
     json_t *sections = contents_sections(scene);
     if (!sections)
         return IM_EFORMAT;
     *record = json_pack("{s:s, s:s, s:o}", "scene_file", text, "given", GIVEN, "sections", sections);
+    if (*record && escaped) /* --from-record refuses it: its relative paths hang on the bytes escaped here */
+        json_object_set_new(*record, "scene_file_encoding", json_string("escaped"));
     return *record ? IM_OK : im_fail(IM_ENOMEM, "run.json: out of memory");
 }
 
@@ -166,6 +167,9 @@ static int recorded_scene(const char *record, json_t *root, char *text, size_t s
     if (!json_is_object(sections) || !*scene_file)
         return im_fail(IM_EFORMAT, "%s: no scene_contents with its sections and scene_file: expected the record of a "
                        "scene run by a version that keeps them (issue 31); run the scene file instead", record);
+    if (json_object_get(contents, "scene_file_encoding"))
+        return im_fail(IM_EFORMAT, "%s: scene_file %s is a path that was not UTF-8, recorded escaped: the scene's "
+                       "relative paths cannot be resolved from it; run the scene file instead", record, *scene_file);
     return contents_text(record, sections, text, size);
 }
 
