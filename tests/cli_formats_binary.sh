@@ -11,15 +11,6 @@ here=$(cd "$(dirname "$0")" && pwd)
 source "$here/lib.sh"
 shared=${IM_TEST_SURFACES:-$here/../../shared/test-data/surfaces}
 
-stats() { local file=$1; shift; "$cli" surface --stats "$file" --detrend none --window none "$@"; }
-# near FILE KEY VALUE [REL]: the --stats line KEY holds VALUE to REL (default 5e-6: six printed digits).
-near() {
-  awk -v key="$2" -v want="$3" -v rel="${4:-5e-6}" '
-    index($0, key) == 1 { split(substr($0, length(key) + 1), w, " "); got = w[1] + 0; found = 1
-      if ((got - want) ^ 2 > (rel * want) ^ 2) { print key ": " got ", expected: " want; exit 1 } }
-    END { if (!found) { print "no line " key; exit 1 } }' "$1"
-}
-
 check "formats lists .tmd, .h5 and .zip" bash -c "'$cli' formats | grep -q '^  .h5 ' && '$cli' formats | grep -q '^  .zip ' && '$cli' formats | grep -q '^  .tmd '"
 
 # ---- TrueMap .tmd: constructed files (Python writes the layout GelSight's writetmd documents) ----
@@ -37,9 +28,9 @@ PY
 tmd "$dir/rows.tmd" "Synthetic" 4 3 2.0 1.5
 stats "$dir/rows.tmd" >"$dir/rows" 2>&1
 check "tmd: grid and spacing in mm (length / columns)" grep -q 'grid             4 x 3, delta = 0.5 mm' "$dir/rows"
-check "tmd: rows are y, x fastest (heights 10 y + x: mean 11.5)" near "$dir/rows" mean 11.5
+check "tmd: rows are y, x fastest (heights 10 y + x: mean 11.5)" stated "$dir/rows" mean 11.5
 stats "$dir/rows.tmd" --crop 0,0,3,3 >"$dir/rows3" 2>&1
-check "... the first three columns: mean 11" near "$dir/rows3" mean 11
+check "... the first three columns: mean 11" stated "$dir/rows3" mean 11
 tmd "$dir/nocomment.tmd" "" 3 3 3.0 3.0 1 2 3 4 5 6 7 8 9
 check "tmd: an empty comment (writetmd's) is read" bash -c "'$cli' surface --stats '$dir/nocomment.tmd' | grep -q 'delta = 1 mm'"
 head -c 100 "$dir/rows.tmd" >"$dir/cut.tmd"
@@ -83,7 +74,7 @@ stats "$dir/c.zip" >"$dir/c" 2>&1
 check "container: the first map by default, spacing from meta.yml's size (8 um / 4)" \
   grep -q 'grid             4 x 4, delta = 2 µm' "$dir/c"
 rms=$(awk '/^h_rms/ { print $2 }' "$dir/bare")
-check "container: heights times height_scale 0.5 (the text alone: $rms)" near "$dir/c" h_rms "$(awk -v r="$rms" 'BEGIN { print r / 2 }')" 1e-5
+check "container: heights times height_scale 0.5 (the text alone: $rms)" stated "$dir/c" h_rms "$(awk -v r="$rms" 'BEGIN { print r / 2 }')" 1e-5
 check "container: the line scan asked for is refused as one" expect_exit 2 "topography 0 'profile' is a line scan" \
   "$cli" surface --stats "$dir/c.zip" --channel profile
 check "container: a topography not there lists them" expect_exit 2 "its topographies: 0 'profile' (line scan), 1 'map' (map)" \
@@ -119,8 +110,8 @@ read -r mean rms < <(python3 -c 'import struct, sys
 b = open(sys.argv[1], "rb").read(); nx, ny = struct.unpack("<II", b[56:64])
 h = struct.unpack("<%df" % (nx * ny), b[80:]); m = sum(h) / len(h)
 print(m, (sum((v - m) ** 2 for v in h) / len(h)) ** 0.5)' "$shared/tmd-1.tmd")
-check "tmd-1.tmd: mean as Python reads the bytes ($mean mm)" near "$dir/tmd1" mean "$mean"
-check "tmd-1.tmd: h_rms as Python reads the bytes ($rms mm)" near "$dir/tmd1" h_rms "$rms"
+check "tmd-1.tmd: mean as Python reads the bytes ($mean mm)" stated "$dir/tmd1" mean "$mean"
+check "tmd-1.tmd: h_rms as Python reads the bytes ($rms mm)" stated "$dir/tmd1" h_rms "$rms"
 
 h5=$shared/multiple_data_sets.h5
 stats "$h5" >"$dir/h5" 2>&1
@@ -135,9 +126,9 @@ if command -v h5dump >/dev/null; then
     d { sub(/^ *\([0-9]+,[0-9]+\): /, ""); gsub(/,/, " "); for (i = 1; i <= NF; ++i) { if (row < nx && i <= ny) { s += $i; n++ }; all += $i; q += $i * $i; m++ } row++ }
     END { printf "%.12g %.12g %.12g\n", all / m, sqrt(q / m - (all / m) ^ 2), s / n }'; }
   read -r mean rms block < <(dumped dataset1 16 4)
-  check "h5: mean as h5dump gives ($mean)" near "$dir/h5" mean "$mean"
-  check "h5: h_rms as h5dump gives ($rms)" near "$dir/h5" h_rms "$rms" 1e-5
-  check "h5: x is the first index (16 x 4 block's mean $block)" near <(stats "$h5" --crop 0,0,16,4) mean "$block"
+  check "h5: mean as h5dump gives ($mean)" stated "$dir/h5" mean "$mean"
+  check "h5: h_rms as h5dump gives ($rms)" stated "$dir/h5" h_rms "$rms" 1e-5
+  check "h5: x is the first index (16 x 4 block's mean $block)" stated <(stats "$h5" --crop 0,0,16,4) mean "$block"
 fi
 
 zip=$shared/container-2.zip

@@ -11,18 +11,6 @@ here=$(cd "$(dirname "$0")" && pwd)
 data=$here/data/instruments
 source "$here/lib.sh"
 
-# stats FILE [OPTIONS]: surface --stats without detrending or taper, as Gwyddion's rms is taken.
-stats() { local file=$1; shift; "$cli" surface --stats "$file" --detrend none --window none "$@"; }
-
-# stated FILE KEY VALUE [REL]: the --stats line KEY holds VALUE (to REL relative, default 5e-6: the
-# six digits printed).
-stated() {
-  awk -v key="$2" -v want="$3" -v rel="${4:-5e-6}" '
-    index($0, key) == 1 { split(substr($0, length(key) + 1), w, " "); got = w[1] + 0; found = 1
-      if ((got - want) ^ 2 > (rel * want) ^ 2) { print key ": " got ", Gwyddion: " want; exit 1 } }
-    END { if (!found) { print "no line " key; exit 1 } }' "$1"
-}
-
 # The text readers (no Gwyddion needed).
 stats "$data/matrix-4.txt" >"$dir/vision" 2>&1
 check "Vision export: grid and pixel size" grep -q 'grid             75 x 305, delta = 3.69862e-07 m' "$dir/vision"

@@ -10,6 +10,7 @@
 #include "indentmap/status.h"
 #include "io/container.h"
 #include "io/readers.h"
+#include "io/zip_entry.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -25,23 +26,12 @@ static const double SIZE_TOLERANCE = 1e-4; /* relative, as contact.engineering c
 
 static int read_meta(zip_t *archive, const char *path, container_meta *meta)
 {
-    zip_stat_t info;
-    zip_stat_init(&info);
-    if (zip_stat(archive, "meta.yml", 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
-        return im_fail(IM_EFORMAT, "%s: a zip archive without meta.yml: expected a contact.engineering container",
-                       path);
-    if (info.size > META_MAX_BYTES)
-        return im_fail(IM_EFORMAT, "%s: meta.yml is %llu bytes: expected at most %d", path,
-                       (unsigned long long)info.size, META_MAX_BYTES);
-    char *text = malloc((size_t)info.size + 1);
-    zip_file_t *file = text ? zip_fopen(archive, "meta.yml", 0) : NULL;
-    zip_int64_t got = file ? zip_fread(file, text, info.size) : -1;
-    if (file)
-        zip_fclose(file);
-    int status = got == (zip_int64_t)info.size
-                     ? container_meta_parse(path, text, (size_t)info.size, meta)
-                     : im_fail(IM_EFORMAT, "%s: meta.yml cannot be read from the archive: %s", path,
-                               zip_strerror(archive));
+    char *text;
+    size_t size;
+    int status = zip_entry_read(archive, path, "meta.yml", META_MAX_BYTES,
+                                "a zip archive without meta.yml: expected a contact.engineering container", &text, &size);
+    if (status == IM_OK)
+        status = container_meta_parse(path, text, size, meta);
     free(text);
     return status;
 }

@@ -5,6 +5,7 @@
 #include "indentmap/field.h"
 #include "indentmap/status.h"
 #include "io/readers.h"
+#include "io/zip_entry.h"
 
 #include <libxml/xmlreader.h>
 #include <stdio.h>
@@ -13,7 +14,7 @@
 #include <zip.h>
 
 enum { MAX_COLUMNS = 16384 }; /* Excel's XFD */
-static const zip_uint64_t MAX_PART_BYTES = 1u << 28;
+static const size_t MAX_PART_BYTES = (size_t)1 << 28;
 
 /* Numeric cells counted per column of one sheet. */
 typedef struct sheet_numbers {
@@ -30,34 +31,6 @@ int spreadsheet_is_one(const char *path)
     if (archive)
         zip_discard(archive);
     return found;
-}
-
-/* A part of the archive read whole into *text (NUL-terminated; the caller frees it). */
-static int read_part(zip_t *archive, const char *path, const char *name, char **text, size_t *size)
-{
-    zip_stat_t info;
-    zip_stat_init(&info);
-    if (zip_stat(archive, name, 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE) || info.size > MAX_PART_BYTES)
-        return im_fail(IM_EFORMAT, "%s: spreadsheet part %s has no size one can read (at most %llu bytes)", path, name,
-                       (unsigned long long)MAX_PART_BYTES);
-    char what[4200];
-    snprintf(what, sizeof what, "%s: spreadsheet part %s", path, name);
-    int status = im_memory_check((double)info.size + 1, what);
-    *text = status == IM_OK ? malloc((size_t)info.size + 1) : NULL;
-    if (status != IM_OK || !*text)
-        return status != IM_OK ? status : im_fail(IM_ENOMEM, "%s: allocation failed", what);
-    zip_file_t *file = zip_fopen(archive, name, 0);
-    zip_int64_t got = file ? zip_fread(file, *text, info.size) : -1;
-    if (file)
-        zip_fclose(file);
-    if (got != (zip_int64_t)info.size) {
-        free(*text);
-        *text = NULL;
-        return im_fail(IM_EFORMAT, "%s: cannot be read from the archive: %s", what, zip_strerror(archive));
-    }
-    (*text)[got] = '\0';
-    *size = (size_t)got;
-    return IM_OK;
 }
 
 /* The column (from 0) of a cell reference like "E12", or -1. */
@@ -106,7 +79,8 @@ static int count_sheet(zip_t *archive, const char *path, const char *name, sheet
 {
     char *text;
     size_t size;
-    int status = read_part(archive, path, name, &text, &size);
+    int status = zip_entry_read(archive, path, name, MAX_PART_BYTES, "a spreadsheet without the sheet it lists", &text,
+                                &size);
     if (status != IM_OK)
         return status;
     memset(numbers->per_column, 0, MAX_COLUMNS * sizeof *numbers->per_column);
@@ -142,7 +116,8 @@ static int is_surftest_export(zip_t *archive, const char *path)
     char *text = NULL;
     size_t size;
     int found = zip_name_locate(archive, "xl/sharedStrings.xml", 0) >= 0 &&
-                read_part(archive, path, "xl/sharedStrings.xml", &text, &size) == IM_OK &&
+                zip_entry_read(archive, path, "xl/sharedStrings.xml", MAX_PART_BYTES, "(no shared strings)", &text,
+                               &size) == IM_OK &&
                 strstr(text, "SurfTest") != NULL;
     free(text);
     return found;

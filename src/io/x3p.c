@@ -17,6 +17,7 @@
 #include "indentmap/status.h"
 #include "io/payload.h"
 #include "io/readers.h"
+#include "io/zip_entry.h"
 
 #include <errno.h>
 #include <libxml/parser.h>
@@ -80,16 +81,6 @@ static int check_md5(const char *path, const char *what, const char *stated, con
         strcasecmp(stated, hex) == 0)
         return IM_OK;
     return im_fail(IM_EFORMAT, "%s: %s: MD5 %s, but %s states %s: the file is damaged", path, what, hex, key, stated);
-}
-
-/* Reads one byte past an entry's end: libzip checks the entry's CRC-32 only on reaching its end. */
-static int check_entry_end(zip_file_t *file, const char *path, const char *entry)
-{
-    uint8_t extra;
-    zip_int64_t got = zip_fread(file, &extra, 1);
-    if (got == 0)
-        return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: %s: %s", path, entry, got < 0 ? zip_file_strerror(file) : "longer than its size");
 }
 
 /* The first child element of node named name (local name: namespaces ignored), or NULL. */
@@ -252,7 +243,7 @@ static int entry_size(zip_t *archive, const char *path, const char *name, const 
  * entry, a multiple of X3P_BLOCK. */
 typedef void (*entry_sink)(void *context, const uint8_t *bytes, size_t size, size_t offset);
 
-/* Reads the `size` bytes of entry `name` and one past them (check_entry_end), handing each block to
+/* Reads the `size` bytes of entry `name` and one past them (zip_entry_check_end), handing each block to
  * sink (when not NULL) and taking their MD5 into hex (when not NULL). */
 static int read_entry(zip_t *archive, const char *path, const char *name, size_t size, entry_sink sink,
                       void *context, char hex[MD5_HEX + 1])
@@ -275,7 +266,7 @@ static int read_entry(zip_t *archive, const char *path, const char *name, size_t
             sink(context, block, want, done);
     }
     if (status == IM_OK)
-        status = check_entry_end(file, path, name);
+        status = zip_entry_check_end(file, path, name);
     zip_fclose(file);
     if (status == IM_OK && hex)
         md5_finish_hex(&md5, 0, hex);
@@ -357,28 +348,17 @@ static int check_checksum_file(zip_t *archive, const char *path, const char *xml
 /* main.xml from the archive, parsed; IM_EFORMAT naming what is missing or malformed. */
 static int read_main_xml(zip_t *archive, const char *path, x3p_grid *g)
 {
-    zip_stat_t info;
-    zip_stat_init(&info);
-    if (zip_stat(archive, "main.xml", 0, &info) != 0 || !(info.valid & ZIP_STAT_SIZE))
-        return im_fail(IM_EFORMAT, "%s: the archive has no main.xml: not an x3p file", path);
-    if (info.size > X3P_MAX_XML)
-        return im_fail(IM_EFORMAT, "%s: main.xml is %llu bytes: expected at most %d", path,
-                       (unsigned long long)info.size, X3P_MAX_XML);
-    char *text = malloc((size_t)info.size + 1);
-    zip_file_t *file = text ? zip_fopen(archive, "main.xml", 0) : NULL;
-    zip_int64_t got = file ? zip_fread(file, text, info.size) : -1;
-    int status = got == (zip_int64_t)info.size
-                     ? check_entry_end(file, path, "main.xml")
-                     : im_fail(IM_EFORMAT, "%s: main.xml cannot be read from the archive: %s", path, zip_strerror(archive));
-    if (file)
-        zip_fclose(file);
+    char *text;
+    size_t size;
+    int status = zip_entry_read(archive, path, "main.xml", X3P_MAX_XML, "the archive has no main.xml: not an x3p file",
+                                &text, &size);
     if (status == IM_OK)
-        status = check_checksum_file(archive, path, text, (size_t)info.size);
+        status = check_checksum_file(archive, path, text, size);
     if (status != IM_OK) {
         free(text);
         return status;
     }
-    xmlDoc *doc = xmlReadMemory(text, (int)info.size, "main.xml", NULL, XML_PARSE_NONET | XML_PARSE_NOERROR |
+    xmlDoc *doc = xmlReadMemory(text, (int)size, "main.xml", NULL, XML_PARSE_NONET | XML_PARSE_NOERROR |
                                 XML_PARSE_NOWARNING);
     free(text);
     xmlNode *root = doc ? xmlDocGetRootElement(doc) : NULL;
