@@ -27,7 +27,8 @@ typedef struct data_sets {
     int line_count;               /* 1-D numeric: line scans */
 } data_sets;
 
-/* Rank and sizes of a numeric data set; 0 for anything else (text, compound, empty). */
+/* Rank and sizes of a numeric data set; 0 for anything else (text, compound, empty, or numbers wider
+ * than 16 bytes: a damaged type, whose conversion buffer libhdf5 would size by it). */
 static int numeric_rank(hid_t file, const char *name, hsize_t dims[2])
 {
     hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
@@ -36,7 +37,8 @@ static int numeric_rank(hid_t file, const char *name, hsize_t dims[2])
     hid_t type = H5Dget_type(set), space = H5Dget_space(set);
     H5T_class_t kind = type >= 0 ? H5Tget_class(type) : H5T_NO_CLASS;
     int rank = space >= 0 ? H5Sget_simple_extent_ndims(space) : -1;
-    if (rank < 1 || rank > 2 || (kind != H5T_INTEGER && kind != H5T_FLOAT) ||
+    size_t width = type >= 0 ? H5Tget_size(type) : 0;
+    if (rank < 1 || rank > 2 || (kind != H5T_INTEGER && kind != H5T_FLOAT) || width < 1 || width > 16 ||
         H5Sget_simple_extent_dims(space, dims, NULL) != rank || dims[0] < 1 || (rank == 2 && dims[1] < 1))
         rank = 0;
     if (space >= 0)
