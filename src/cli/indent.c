@@ -316,19 +316,18 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-/* Adhesion's options: both or neither, displacement control on the half-space without a hardness (a
- * negative approach is refused by the step list's parser without adhesion). 0, or -1 with the message
- * said. */
+/* Adhesion's options: both or neither, displacement control on the half-space or mean-gap control on a
+ * periodic cell, without a hardness (a negative approach is refused by the step list's parser without
+ * adhesion). 0, or -1 with the message said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
+    const enum im_control needed = o->solver.periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT;
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
-    else if (adhesion && o->control != IM_CONTROL_DISPLACEMENT)
-        fprintf(stderr, "indentmap: --adhesion-work takes --approach: under load control an adhesive contact jumps "
-                "where its force-distance curve turns (pull-off)\n");
-    else if (adhesion && o->solver.periodic)
-        fprintf(stderr, "indentmap: --adhesion-work with --periodic: the periodic mode has no adhesion yet\n");
+    else if (adhesion && o->control != needed)
+        fprintf(stderr, "indentmap: --adhesion-work takes %s: under load control an adhesive contact jumps where its "
+                "force-distance curve turns (pull-off)\n", o->solver.periodic ? "--mean-gap with --periodic" : "--approach");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
     else
@@ -933,7 +932,9 @@ static void write_adhesion_theory(const indent_options *o, const im_history_row 
     const im_theory_adhesion theory = {o->solver.e_star, o->solver.adhesion_work, o->solver.adhesion_range};
     const char *model = NULL;
     im_theory_adhesive_point pull_off;
-    int status = o->smooth ? adhesion_theory_pull_off(&o->punch, &theory, &model, &pull_off) : IM_OK;
+    /* (a periodic cell's flat is not a punch on a half-space: no theory) */
+    const int smooth_punch = o->smooth && !o->solver.periodic;
+    int status = smooth_punch ? adhesion_theory_pull_off(&o->punch, &theory, &model, &pull_off) : IM_OK;
     if (status == IM_OK && model)
         status = adhesion_theory_write(o->out, &o->punch, &theory, rows, done);
     if (status != IM_OK) {
@@ -1007,7 +1008,9 @@ static void write_history_figure(const indent_options *o, const im_theory_interf
                                  const im_history_row *rows, int done)
 {
     const int elastic = !(o->solver.hardness > 0) && !(o->solver.adhesion_work > 0);
-    const history_figure figure = {rows, done, &o->punch, o->solver.periodic ? o->cell_area : 0.0,
+    /* an adhesive cell's net load goes through 0: its force against the approach, as an adhesive punch's */
+    const int area_plot = o->solver.periodic && !(o->solver.adhesion_work > 0);
+    const history_figure figure = {rows, done, &o->punch, area_plot ? o->cell_area : 0.0,
                                    o->solver.periodic && !o->punch_given && elastic ? rough : NULL, elastic,
                                    o->length_unit, o->force_unit, o->e_star_unit};
     if (history_figure_write(o->out, &figure) != IM_OK)
@@ -1076,8 +1079,8 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         draw_frames(o, rows, done, context, &status, message, sizeof message);
     write_analysis(o, rows, done, record);
     write_history_figure(o, rough, rows, done);
-    /* eq. (2) is an elastic law for a rigid flat: no fit with a cap or a repeated punch */
-    if (o->solver.periodic && !o->punch_given && !(o->solver.hardness > 0))
+    /* eq. (2) is an elastic, repulsive law for a rigid flat: no fit with a cap, adhesion or a repeated punch */
+    if (o->solver.periodic && !o->punch_given && !(o->solver.hardness > 0) && !(o->solver.adhesion_work > 0))
         write_k_fit(o, rough, rows, done, record);
     if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
         im_fail(status, "%s", message);

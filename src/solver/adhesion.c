@@ -36,7 +36,7 @@
  * 196^2 window took 300). */
 enum { ADHESION_PASSES_MAX = 20000 };
 
-int adhesion_create(int nx, int ny, double work, double range, adhesion_state **out)
+int adhesion_create(int nx, int ny, int periodic, double work, double range, adhesion_state **out)
 {
     const size_t n = (size_t)nx * ny;
     adhesion_state *a = calloc(1, sizeof *a);
@@ -56,6 +56,7 @@ int adhesion_create(int nx, int ny, double work, double range, adhesion_state **
     a->range = range;
     a->nx = nx;
     a->ny = ny;
+    a->periodic = periodic;
     *out = a;
     return IM_OK;
 }
@@ -89,9 +90,14 @@ static void lifted_gap(adhesion_state *a, const double *gap0)
         a->gap0[i] += a->shift;
 }
 
-/* The gap at window patch (x, y), or NaN off the window or where the punch cannot reach. */
+/* The gap at window patch (x, y), or NaN off the window (a periodic cell's neighbours wrap around) or where
+ * the punch cannot reach. */
 static double gap_at(const adhesion_state *a, const double *gaps, int x, int y)
 {
+    if (a->periodic) {
+        x = (x + a->nx) % a->nx;
+        y = (y + a->ny) % a->ny;
+    }
     if (x < 0 || y < 0 || x >= a->nx || y >= a->ny)
         return NAN;
     double g = gaps[(size_t)y * a->nx + x];
@@ -249,6 +255,8 @@ void adhesion_split(adhesion_state *a, const double *pressure, double delta, dou
 
 int adhesion_zone_on_border(const adhesion_state *a, int *x, int *y)
 {
+    if (a->periodic)
+        return 0;
     for (int iy = 0; iy < a->ny; ++iy)
         for (int ix = 0; ix < a->nx; ix += (iy == 0 || iy == a->ny - 1) ? 1 : a->nx - 1) {
             if (a->share[(size_t)iy * a->nx + ix] > 0) {

@@ -12,6 +12,7 @@ typedef struct adhesion_state {
     double stress;           /* sigma0 */
     double range;            /* delta_c */
     int nx, ny;              /* the window */
+    int periodic;            /* the window is a periodic cell: its gaps wrap around at the edges */
     double *share;           /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
     double *gaps;            /* the last pass's gaps */
     double *proposal;        /* the shares they call for (between steps: adhesion_split's scratch) */
@@ -24,8 +25,8 @@ typedef struct adhesion_state {
     int stepped;             /* 0 before the first step */
 } adhesion_state;
 
-/* A state for an nx x ny window (IM_ENOMEM), with w and delta_c checked by the caller. */
-int adhesion_create(int nx, int ny, double work, double range, adhesion_state **out);
+/* A state for an nx x ny window, or a periodic cell (IM_ENOMEM), with w and delta_c checked by the caller. */
+int adhesion_create(int nx, int ny, int periodic, double work, double range, adhesion_state **out);
 void adhesion_free(adhesion_state *a);
 
 /* The step at approach w under displacement control: the repulsive pressure p_r and its
@@ -49,7 +50,8 @@ static inline double adhesion_net_displacement(const adhesion_state *a, size_t i
 void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile,
                     long *adhesive_patches, long *repulsive_patches);
 
-/* Whether Z reaches the window's outer row or column (*x, *y: the patch, window coordinates). */
+/* Whether Z reaches the window's outer row or column (*x, *y: the patch, window coordinates); never for a
+ * periodic cell, which has no edge. */
 int adhesion_zone_on_border(const adhesion_state *a, int *x, int *y);
 
 #endif

@@ -166,6 +166,22 @@ static const char *control_target(enum im_control control)
     return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean gap" : "approach";
 }
 
+/* Adhesion is solved under the control its passes hold fixed, the approach: displacement control on the
+ * half-space, mean-gap control on a periodic cell (mean u = 0 there, so a mean gap is an approach); under
+ * load control an adhesive contact jumps where its force-distance curve turns. No hardness beside it. */
+static int check_adhesion_control(enum im_control control, const im_solver_options *options)
+{
+    const enum im_control needed = options->periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT;
+    if (control != needed)
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected %s control %s (adhesion under %s control is not "
+                       "available)", options->adhesion_work, control_target(needed),
+                       options->periodic ? "on a periodic cell" : "on the half-space", control_target(control));
+    if (options->hardness > 0)
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected no hardness (adhesion under a hardness is not "
+                       "available)", options->adhesion_work);
+    return IM_OK;
+}
+
 static int check_create(const im_field *surface, const im_indenter *punch, enum im_control control,
                         double largest_target, const im_solver_options *options)
 {
@@ -178,16 +194,13 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
         return status;
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD && control != IM_CONTROL_MEAN_GAP)
         return im_fail(IM_EINVAL, "control %d: expected displacement, load or mean gap", (int)control);
-    if (options->adhesion_work > 0 && options->periodic)
-        return im_fail(IM_EINVAL, "adhesion work = %g on a periodic cell: the periodic mode has no adhesion yet",
-                       options->adhesion_work);
     if (control == IM_CONTROL_MEAN_GAP && !options->periodic)
         return im_fail(IM_EINVAL, "mean-gap control: expected a periodic cell (periodic = 1; the half-space has no "
                        "mean gap)");
-    if (options->adhesion_work > 0 && (control != IM_CONTROL_DISPLACEMENT || options->hardness > 0))
-        return im_fail(IM_EINVAL, "adhesion work = %g: expected displacement control on the half-space without a "
-                       "hardness (adhesion under %s is not available)", options->adhesion_work,
-                       control != IM_CONTROL_DISPLACEMENT ? "load control" : "a hardness");
+    if (options->adhesion_work > 0)
+        status = check_adhesion_control(control, options);
+    if (status != IM_OK)
+        return status;
     if (!(isfinite(largest_target) && largest_target >= 0))
         return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0", control_target(control),
                        largest_target);
@@ -220,7 +233,8 @@ static int allocate_window(im_indentation *run)
     repulsive.adhesion_work = repulsive.adhesion_range = 0;
     int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
-        status = adhesion_create(w.nx, w.ny, run->options.adhesion_work, run->options.adhesion_range, &run->adhesion);
+        status = adhesion_create(w.nx, w.ny, run->options.periodic, run->options.adhesion_work,
+                                 run->options.adhesion_range, &run->adhesion);
     return status;
 }
 
@@ -415,19 +429,20 @@ static double withdrawn_approach(const im_indentation *run)
  * overlap is its plastic flattening (accumulate_plastic_flow), so it counts 0. */
 typedef struct gap_terms {
     const double *gap0, *u;
+    const adhesion_state *adhesion; /* the zone's stress lifts the surface: u is the net displacement */
     double approach;
 } gap_terms;
 
 static double open_gap(size_t i, const void *context)
 {
     const gap_terms *t = context;
-    return fmax(t->gap0[i] - t->approach + t->u[i], 0.0);
+    return fmax(t->gap0[i] - t->approach + adhesion_net_displacement(t->adhesion, i, t->u[i]), 0.0);
 }
 
 static double mean_open_gap(const im_indentation *run, double approach)
 {
     const size_t n = (size_t)run->window.nx * run->window.ny;
-    const gap_terms terms = {run->window_gap0, run->displacement, approach};
+    const gap_terms terms = {run->window_gap0, run->displacement, run->adhesion, approach};
     return sum_terms(n, open_gap, &terms) / (double)n;
 }
 
@@ -435,11 +450,12 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
 {
     const double d2 = run->delta * run->delta;
     /* periodic: no smooth half-space contact to compare with; the area ratio is A / A0 of the cell */
-    double area = run->options.periodic ? (s->load > 0 ? (double)run->nx * run->ny * d2 : NAN)
+    double area = run->options.periodic ? (double)run->nx * run->ny * d2
                                         : im_indenter_area_for_load(&run->punch, run->options.e_star, s->load);
     *out = (im_step_result){.approach = s->approach, .load = s->load, .load_star = area / d2,
                             .contact_patches = s->contact_patches,
-                            .area_ratio = s->load > 0 ? s->contact_patches * d2 / area : NAN,
+                            .area_ratio = s->load > 0 || (run->options.periodic && s->contact_patches > 0)
+                                              ? s->contact_patches * d2 / area : NAN,
                             .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
                             .iterations = s->iterations, .convolutions = s->convolutions,
                             .residual = s->residual, .seconds = s->seconds,
@@ -601,6 +617,16 @@ static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result
     return status;
 }
 
+/* The approach adhesion's passes hold: the target, or on a periodic cell the approach of the mean gap
+ * target, mean g0 - target (mean u = 0: the zone's stress moves no mean either). */
+static double adhesive_approach(const im_indentation *run, double target)
+{
+    if (run->control != IM_CONTROL_MEAN_GAP)
+        return target;
+    const size_t n = (size_t)run->window.nx * run->window.ny;
+    return sum_doubles(run->window_gap0, n) / (double)n - target;
+}
+
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
@@ -623,8 +649,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     im_solve_result s;
     /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
     if (run->adhesion)
-        status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, target, run->pressure, run->displacement,
-                                &s);
+        status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, adhesive_approach(run, target),
+                                run->pressure, run->displacement, &s);
     else if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0 && !run->options.periodic)
         status = solve_at_load(run, target, &s);
     else if (run->control == IM_CONTROL_MEAN_GAP)
