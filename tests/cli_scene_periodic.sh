@@ -68,6 +68,55 @@ check "its history is indent's, plastic flow and all" \
 check "the history yields" awk -F, 'NR > 2 && $21 > 0 { y = 1 } END { exit !y }' "$dir/sphere/histories/member_00_0.csv"
 check "no k with a hardness" [ ! -e "$dir/sphere/k_fit.csv" ]
 
+# Contact panels and distributions of a periodic cell, loaded and unloaded with a hardness: every step's fields
+# are indent --fields' (plastic depth too) and its distributions indent --distributions', bit for bit; the drawn
+# maps are indent --frames' size; the patch histogram sums to the history's contact count.
+scene "$dir/maps.ini" cell.npy "" "steps = 0.002:0.03:3, 0.01" \
+    $'[material]\nhardness = 0.3\n[output]\ncontact_panels = yes\ndistributions = yes' maps
+check "a periodic scene with panels and distributions runs" "$cli" run --no-wisdom "$dir/maps.ini" > /dev/null 2>&1
+"$cli" indent "$dir/cell.npy" --periodic --hardness 0.3 --pressure 0.002:0.03:3,0.01 --fields --frames \
+    --distributions --out "$dir/indent_maps" > /dev/null 2>&1
+same_files() { # FOLDER PATTERN RENAME(sed): every indent file matching PATTERN equals the scene's
+    local n=0 f
+    for f in "$dir/indent_maps"/$2; do
+        cmp -s "$f" "$1/$(basename "$f" | sed "$3")" || return 1
+        n=$((n + 1))
+    done
+    [ "$n" -gt 0 ]
+}
+check "its fields are indent --fields', every step" same_files "$dir/maps/panels/family_00" "*_000[1-4].npy*" ""
+check "with the plastic depth" [ -s "$dir/maps/panels/family_00/plastic_0004.npy" ]
+check "its distributions are indent --distributions'" \
+    same_files "$dir/maps/distributions" "distributions_000[1-4]_*.csv" "s/^distributions_/family_00_/"
+png_size() { python3 -c "import struct, sys; print(*struct.unpack('>II', open(sys.argv[1], 'rb').read()[16:24]))" "$1"; }
+check "each step's contact map is drawn, indent --frames' size" bash -c "for i in 0 1 2 3; do
+    [ \"\$($(declare -f png_size); png_size '$dir/maps/panels/family_00/contact_000'\$i.png)\" = \
+      \"\$($(declare -f png_size); png_size '$dir/indent_maps/frames/contact_000'\$i.png)\" ] || exit 1; done"
+patch_sums() { python3 - "$dir/maps" <<'PY'
+import csv, sys
+rows = [line.split(",") for line in open(sys.argv[1] + "/histories/member_00_0.csv") if line[0].isdigit()]
+ok = len(rows) == 4
+for step, row in enumerate(rows, 1):
+    base = "%s/distributions/family_00_%04d" % (sys.argv[1], step)
+    bins = list(csv.DictReader(open(base + "_patches.csv")))
+    listed = list(csv.DictReader(open(base + "_patch_list.csv")))
+    gaps = sum(int(r["cells"]) for r in csv.DictReader(open(base + "_gaps.csv")))
+    ok &= sum(int(b["cells"]) for b in bins) == int(row[4]) == sum(int(p["cells"]) for p in listed)
+    ok &= sum(int(b["patches"]) for b in bins) == len(listed) == int(row[18])
+    ok &= gaps + int(row[4]) == 64 * 64
+sys.exit(not ok)
+PY
+}
+check "the distributions sum to each step's contact count and patches" patch_sums
+check "outputs.txt lists the maps" grep -qx "panels/family_00/contact_0003.png" "$dir/maps/outputs.txt"
+check "--resume solves the mapped surface again" expect_exit 0 "1 solved, 0 read back" \
+    "$cli" run --resume --no-wisdom "$dir/maps.ini"
+check "the same fields" same_files "$dir/maps/panels/family_00" "*_000[1-4].npy*" ""
+scene "$dir/maps.ini" cell.npy "" "steps = 0.002:0.03:3" $'[material]\nhardness = 0.3\n[output]\ncontact_panels = yes' maps
+check "fewer steps" "$cli" run --no-wisdom "$dir/maps.ini" > /dev/null 2>&1
+check "remove the maps and distributions no longer made" \
+    [ ! -e "$dir/maps/panels/family_00/force_0004.npy" -a ! -e "$dir/maps/distributions/family_00_0001_gaps.csv" ]
+
 # A ramp is not periodic: the warning of indent, naming the file.
 python3 -c "
 with open('$dir/ramp.txt', 'w') as f:
@@ -84,7 +133,8 @@ refuse() { # NAME PUNCH-LINES LOADING-LINES OTHER-LINES PHRASE
 refuse "load control" "" $'control = load\nsteps = 0.01' "" "bad.ini:10: [loading] control beside [punch] periodic"
 refuse "load_star" "" $'load_star = 100\nsteps = 0.01' "" "[loading] load_star beside [punch] periodic"
 refuse "the table" "" "steps = 0.01" $'[output]\ntable = yes' "[output] table beside [punch] periodic"
-refuse "frames" "" "steps = 0.01" $'[output]\ncontact_panels = no\nframes = yes' "[output] frames beside"
+refuse "frames" "" "steps = 0.01" $'[output]\ncontact_panels = no\nframes = yes' \
+    "[output] frames beside [punch] periodic: the frames are a history of their own up to load_star N*; a periodic scene draws the contact map of every step"
 refuse "Love's theory" "" "steps = 0.01" $'[output]\nplots = fig6' "plots = fig6 beside [punch] periodic"
 refuse "the smooth contact circle" "" "steps = 0.01" $'[output]\nplots = fig1' "plots = fig1 beside [punch] periodic"
 refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha beside periodic without shape"

@@ -144,8 +144,9 @@ typedef struct im_scene {
      * control = mean_gap mean gaps over the cell (solver.h, IM_CONTROL_MEAN_GAP; any other control is
      * refused, and mean_gap without periodic). IM_SCENE_PERIODIC_FLAT without [punch] shape: a rigid flat on the whole cell, as `indent
      * --periodic`; IM_SCENE_PERIODIC_PUNCH with one: that punch, repeated with the cell. 0: the half-space.
-     * What needs the smooth contact on a half-space (load_star, panels, frames, table, distributions,
-     * adhesion and the plots but fig3 and flat_k) is refused beside it, naming the key. Part of every
+     * What needs the smooth contact on a half-space (load_star, frames, table, adhesion and the plots
+     * but fig3 and flat_k) is refused beside it, naming the key; contact_panels and distributions are
+     * taken at every step of each family's first surface instead (see im_scene_run). Part of every
      * result's key. */
     int periodic;
     double modulus;                  /* composite modulus E* */
@@ -261,7 +262,12 @@ typedef struct im_scene_run_options {
  *     h_rms) and contact-patch size distributions of each family's first surface at load_star
  *     (measure.h: im_measure_write_distributions), solved for them each time (not kept for --resume).
  *   periodic: histories/member_FF_SEED.csv at the mean pressures of steps and, with the rigid flat and no
- *     hardness, k_fit.csv: k of eq. (2) fitted to each rough member's history (as `indent --periodic`).
+ *     hardness, k_fit.csv: k of eq. (2) fitted to each rough member's history (as `indent --periodic`);
+ *     with contact_panels, at every step of each family's first surface, its fields
+ *     panels/family_FF/{force,gap,displacement[,plastic]}_NNNN.npy and contact map
+ *     panels/family_FF/contact_MMMM.png (MMMM = step - 1), with distributions
+ *     distributions/family_FF_NNNN_{gaps,patches,patch_list}.csv: `indent --periodic --fields --frames
+ *     --distributions`' files; those surfaces are solved by every run (not read back on --resume).
  *   histories that unload (steps going down, with a hardness, not periodic): indentation/member_FF_SEED.csv,
  *     each member's indentation analysis (`indent`'s indentation.csv).
  * Nothing is solved twice within a run (but for the distributions): a load-controlled history's step at load_star takes the

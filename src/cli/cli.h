@@ -154,18 +154,6 @@ int cli_check_output_file(const char *option, const char *output);
 int cli_check_output_folder(const char *option, const char *dir, int (*writes)(const char *name, const void *state),
                             const void *state, const char *const *inputs, int count);
 
-/* indent --frames (indent_frames.c): DIR/frames/contact_NNNN.png (NNNN = step - 1) of steps 1..count,
- * drawn from DIR/force_NNNN.npy with one log force norm (magma, two decades) over all of them, the smooth
- * punch's contact circle where N* is finite, titled with the step and N* (else N in force_unit). */
-typedef struct indent_frames {
-    const char *dir;
-    const im_history_row *rows;
-    int count;
-    const im_indenter *punch;
-    const char *force_unit;
-} indent_frames;
-int indent_frames_write(im_render_context *context, const indent_frames *f);
-
 /* Prints "indentmap: MESSAGE" for the status's last error and returns the exit status that fits
  * it (2 for invalid input, 1 otherwise). */
 int cli_report(int status);

@@ -12,6 +12,7 @@
 #include "indentmap/viewer.h"
 #include "indentmap/surface.h"
 #include "indentmap/theory.h"
+#include "indentmap/version.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -422,11 +423,6 @@ static const char *slope_definition_name(int definition)
     return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
 }
 
-/* The fields --fields writes per step: the first three always, the plastic depth with a hardness. */
-static const char *const STEP_FIELDS[4] = {"force_", "gap_", "displacement_", "plastic_"};
-
-static int step_field_count(const indent_options *o) { return o->solver.hardness > 0 ? 4 : 3; }
-
 /* Whether `name` is one of the files written into the output folder: history.csv, run.json,
  * index.html, indentation.csv and,
  * with --fields, {force,gap,displacement[,plastic]}_NNNN.npy and their .npy.json sidecars for the steps
@@ -434,7 +430,7 @@ static int step_field_count(const indent_options *o) { return o->solver.hardness
 static int writes_into_folder(const char *name, const void *state)
 {
     const indent_options *o = state;
-    const char *const *FIELDS = STEP_FIELDS;
+    const char *const *FIELDS = STEP_FIELD_PREFIXES;
     if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0 ||
         is_analysis_file(name))
         return 1;
@@ -442,7 +438,7 @@ static int writes_into_folder(const char *name, const void *state)
         long step = strtol(name + strlen("distributions_"), NULL, 10);
         return step >= 1 && step <= o->target_count;
     }
-    for (int i = 0; o->fields && i < step_field_count(o); ++i) {
+    for (int i = 0; o->fields && i < step_field_count(o->solver.hardness); ++i) {
         size_t length = strlen(FIELDS[i]);
         if (strncmp(name, FIELDS[i], length) != 0)
             continue;
@@ -533,51 +529,20 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 
 /* ---- outputs ---- */
 
-/* The fields of a step on the full grid, each FILE.npy with FILE.npy.json stating its units: forces in
- * force_unit, gaps, displacements and plastic depths in the surface's length unit. */
+/* The fields of a step on the full grid (front.h: step_fields_write). */
 static int write_fields(const indent_options *o, im_indentation *run, int step)
 {
-    im_field *f[4] = {NULL, NULL, NULL, NULL};
-    static const char *const QUANTITIES[4] = {"force per patch", "gap", "surface displacement",
-                                              "plastic depth (the surface flattened down by yielding)"};
-    const int count = step_field_count(o);
-    int status = im_indentation_fields_full(run, &f[0], &f[1], &f[2]);
-    if (status == IM_OK && count == 4)
-        status = im_indentation_plastic(run, &f[3]);
-    for (int i = 0; i < count && status == IM_OK; ++i) {
-        char name[64], path[4096];
-        snprintf(name, sizeof name, "%s%04d.npy", STEP_FIELDS[i], step);
-        status = im_path_join(path, sizeof path, o->out, name);
-        if (status != IM_OK)
-            break;
-        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", o->length_unit);
-        if (i == 0)
-            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", o->force_unit);
-        int pair_lock = im_pair_writers_lock(path);
-        status = pair_lock < 0 ? IM_EIO : im_npy_write(path, f[i], IM_NPY_FLOAT64);
-        if (status == IM_OK)
-            status = im_field_sidecar_write(path, f[i], QUANTITIES[i]);
-        im_pair_writers_unlock(pair_lock);
-    }
-    for (int i = 0; i < 4; ++i)
-        im_field_free(f[i]);
-    return status;
+    const step_units units = {o->solver.hardness, o->length_unit, o->force_unit};
+    return step_fields_write(o->out, run, step, &units);
 }
 
-/* --distributions: the gap and patch-size distributions of a step (measure.h). */
+/* --distributions: the gap and patch-size distributions of a step (front.h: step_distributions_write). */
 static int write_distributions(const indent_options *o, im_indentation *run, int step)
 {
-    im_field *force = NULL, *gap = NULL;
     char name[32], prefix[4096];
     snprintf(name, sizeof name, "distributions_%04d", step);
     int status = im_path_join(prefix, sizeof prefix, o->out, name);
-    if (status == IM_OK)
-        status = im_indentation_fields_full(run, &force, &gap, NULL);
-    if (status == IM_OK)
-        status = im_measure_write_distributions(force, gap, o->gap_scale, 50, prefix);
-    im_field_free(force);
-    im_field_free(gap);
-    return status;
+    return status == IM_OK ? step_distributions_write(prefix, run, o->gap_scale) : status;
 }
 
 /* The generator block of SURFACE.json (written by `indentmap surface`), or NULL. */
@@ -787,11 +752,7 @@ static int load_surface(indent_options *o, im_field **surface)
 static void set_force_unit(indent_options *o, const im_field *surface)
 {
     memcpy(o->length_unit, surface->unit, sizeof o->length_unit);
-    if (strcmp(o->e_star_unit, "Pa") == 0 && strcmp(surface->unit, "m") == 0)
-        snprintf(o->force_unit, sizeof o->force_unit, "N");
-    else
-        snprintf(o->force_unit, sizeof o->force_unit, "%s %s\u00b2", o->e_star_unit[0] ? o->e_star_unit : "E*",
-                 surface->unit[0] ? surface->unit : "\u03b4");
+    step_force_unit(o->e_star_unit, surface->unit, o->force_unit, sizeof o->force_unit);
 }
 
 /* --x/--y must put the punch's axis on the surface (before: "the surface is too small"). */
@@ -1037,12 +998,19 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
                 o->surface_path ? o->surface_path : "the surface", edge, edge / inner, inner);
 }
 
-/* --frames of the steps done (cli.h: indent_frames_write): a failure is the run's error when it had none. */
+/* --frames of the steps done, DIR/frames/contact_NNNN.png (front.h: fields_frames_write): a failure is the
+ * run's error when it had none. */
 static void draw_frames(const indent_options *o, const im_history_row *rows, int done, im_render_context *context,
                         int *status, char *message, size_t size)
 {
-    const indent_frames frames = {o->out, rows, done, &o->punch, o->force_unit};
-    int drawn = indent_frames_write(context, &frames);
+    char folder[4096];
+    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}};
+    const fields_frames frames = {o->out, folder, rows, done, &o->punch, o->force_unit, texts, 1};
+    int drawn = im_path_join(folder, sizeof folder, o->out, "frames");
+    if (drawn == IM_OK)
+        drawn = fields_frames_write(context, &frames);
+    if (drawn != IM_OK)
+        im_fail_context(drawn, "--frames");
     if (drawn != IM_OK && *status == IM_OK) {
         *status = drawn;
         snprintf(message, size, "%s", im_last_error());
@@ -1139,8 +1107,8 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
     for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
         char path[4096];
         int field = is_analysis_file(entry->d_name); /* written again only if the history unloads */
-        for (int i = 0; i < 4; ++i)
-            field |= is_step_file(entry->d_name, STEP_FIELDS[i]);
+        for (int i = 0; i < STEP_FIELDS_MAX; ++i)
+            field |= is_step_file(entry->d_name, STEP_FIELD_PREFIXES[i]);
         field |= is_distribution_file(entry->d_name);
         if (!field)
             continue;

@@ -139,6 +139,52 @@ typedef struct periodic_k_fit {
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
                    periodic_k_fit *out);
 
+/* ---- the files of one solved step (step_files.c): `indent --fields/--distributions` and a periodic
+ * scene's contact panels and distributions ---- */
+
+/* The fields of a step, DIR/{force,gap,displacement[,plastic]}_NNNN.npy (NNNN = the step, from 1): the
+ * plastic depth only with a hardness. */
+enum { STEP_FIELDS_MAX = 4, STEP_GAP_BINS = 50 };
+extern const char *const STEP_FIELD_PREFIXES[STEP_FIELDS_MAX];
+/* How many of them a run writes: all with a hardness (> 0), the first three without. */
+int step_field_count(double hardness);
+
+/* The unit of loads and forces: N for Pa and m, else "E*-unit length-unit²" with E* and δ standing in
+ * for an empty unit. */
+void step_force_unit(const char *e_star_unit, const char *length_unit, char *out, size_t size);
+
+/* What the fields are in, stated in each FILE.npy.json sidecar. */
+typedef struct step_units {
+    double hardness;        /* > 0: the plastic depth is written too */
+    const char *length_unit; /* the surface's ("": delta) */
+    const char *force_unit;  /* step_force_unit's */
+} step_units;
+
+/* Writes the fields of the run's last step as DIR/PREFIXNNNN.npy with their .npy.json sidecars, each
+ * pair under the pair-writers lock (io.h). */
+int step_fields_write(const char *dir, im_indentation *run, int step, const step_units *units);
+
+/* Writes the gap (in gap_scale, STEP_GAP_BINS bins) and contact-patch size distributions of the run's last
+ * step: PREFIX_{gaps,patches,patch_list}.csv (measure.h: im_measure_write_distributions). */
+int step_distributions_write(const char *prefix, im_indentation *run, double gap_scale);
+
+/* Contact frames of steps 1..count drawn from DIR/force_NNNN.npy (as step_fields_write wrote them) into
+ * FRAMES/contact_MMMM.png (MMMM = step - 1, the viewer's numbering) with one log force norm (magma, two
+ * decades) over all of them, the smooth punch's contact circle where N* is finite (none for a periodic
+ * cell), titled with the step and N* (else N in force_unit), carrying texts as PNG text chunks. */
+typedef struct fields_frames {
+    const char *dir, *frames;
+    const im_history_row *rows;
+    int count;
+    const im_indenter *punch;
+    const char *force_unit;
+    const im_png_text *texts;
+    int text_count;
+} fields_frames;
+int fields_frames_write(im_render_context *context, const fields_frames *f);
+/* Their pixels per patch: enough for a map of about 384 pixels across (1 to 8; a 64 x 64 grid 6). */
+int fields_frames_pixels_per_patch(int nx, int ny);
+
 /* ---- frames of a history (frame.c): what a scene's frames and `indent --frames` draw alike ---- */
 
 /* The colour norm of local forces up to `largest` (<= 0: 1): map, linear from 0 or log over the two

@@ -132,8 +132,10 @@ void scene_members_free(scene_member *members, int count)
 void scene_reuse_free(scene_reuse *reuse)
 {
     scene_members_free(reuse->table, reuse->table_count);
-    for (int f = 0; f < IM_SCENE_MAX_FAMILIES; ++f)
+    for (int f = 0; f < IM_SCENE_MAX_FAMILIES; ++f) {
         im_field_free(reuse->force[f]);
+        free(reuse->rows[f]);
+    }
     *reuse = (scene_reuse){0};
 }
 

@@ -41,6 +41,9 @@ typedef struct scene_reuse {
     im_field *force[IM_SCENE_MAX_FAMILIES]; /* force at load_star of each family's first seed (owned),
                                                kept by the table or a load-controlled history */
     enum scene_result_kind force_kind[IM_SCENE_MAX_FAMILIES]; /* which of the two made it (key.h) */
+    struct im_history_row *rows[IM_SCENE_MAX_FAMILIES]; /* a periodic scene's panels: the history of each
+                                                           family's first seed (owned; periodic.h) */
+    int row_count[IM_SCENE_MAX_FAMILIES];
 } scene_reuse;
 void scene_reuse_free(scene_reuse *reuse);
 

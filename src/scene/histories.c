@@ -235,6 +235,8 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
                             "smaller steps)", i + 1, scene->step_count, step_name(scene), scene->steps[i]);
         if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
             status = im_history_measure(&punch, theory, from_table ? NULL : run, m->history, i);
+        if (status == IM_OK && scene_periodic_writes_steps(scene, m))
+            status = scene_periodic_step_files(scene, m, run, i + 1, surface);
         if (status == IM_OK)
             m->steps = i + 1;
     }
@@ -248,7 +250,7 @@ int scene_history_member(const im_scene *scene, const im_scene_run_options *opti
     int status = allocate_history(m, scene->step_count);
     if (status != IM_OK)
         return status;
-    if (options->resume && read_history(scene, options, m)) {
+    if (options->resume && !scene_periodic_writes_steps(scene, m) && read_history(scene, options, m)) {
         m->origin = SCENE_READ_BACK;
         return IM_OK;
     }
@@ -529,6 +531,8 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         report_histories(options, members, count);
     scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_HISTORY);
+    if (status == IM_OK)
+        scene_periodic_keep_rows(scene, reuse, members, count);
     if (status == IM_OK && histories_unload(scene))
         status = write_indentations(scene, options, members, count);
     if (status == IM_OK && scene->periodic)

@@ -2,6 +2,7 @@
  * outputs need against what the machine has, and outputs that would overwrite inputs. The
  * estimates are upper bounds of the largest terms, not exact accounts: each solve's FFT plan and
  * fields, the fields the frames keep, and the files at their uncompressed sizes. */
+#include "front/front.h"
 #include "indentmap/field.h"
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
@@ -222,7 +223,13 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
 {
     double cells = (double)g->nx * g->ny, members = ensemble_size(scene);
     disk_estimate d = {0.0, 0.0, ""};
-    if (scene->contact_panels) {
+    if (scene->contact_panels && scene->periodic) { /* every step's fields and contact map (periodic.h) */
+        int scale = fields_frames_pixels_per_patch(g->nx, g->ny);
+        double steps = (double)scene->family_count * scene->step_count;
+        add_files(&d, steps * step_field_count(scene->hardness), 8.0 * cells + 1024.0,
+                  "panels/family_FF/force_NNNN.npy");
+        add_files(&d, steps, 3.0 * scale * scale * cells + FRAME_TEXT_BYTES, "panels/family_FF/contact_NNNN.png");
+    } else if (scene->contact_panels) {
         add_files(&d, scene->family_count, 8.0 * cells + 128.0, "panels/force_NN.npy");
         add_files(&d, 2.0, scene->family_count * 3.0 * 4.0 * cells + PLOT_BYTES, "contact_panels.png");
     }

@@ -18,7 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 
-enum { WALK_DEPTH = 3 }; /* OUTPUT/point/frames/file: a sweep point's frames are the deepest */
+enum { WALK_DEPTH = 4 }; /* OUTPUT/point/panels/family_FF/file: a sweep point's periodic panels are the deepest */
 
 static const char MANIFEST[] = "outputs.txt";
 static const char MANIFEST_HEADER[] = "# indentmap outputs 1: the files the last run in this folder made; a later run "

@@ -691,7 +691,8 @@ static int check_punch_keys(parse_context *context)
 }
 
 /* What a periodic scene cannot take, each key with its section and why: all is solved at a mean pressure
- * on the whole cell, where there is no smooth contact on a half-space (its area N*, circle or theory). */
+ * on the whole cell, where there is no smooth contact on a half-space (its area N*, circle or theory).
+ * Its contact panels and distributions are taken at every step instead (periodic_maps.c). */
 static const struct {
     const char *section, *key;
     size_t flag; /* offsetof the yes/no it sets (refused when yes), 0: refused whenever given */
@@ -699,12 +700,10 @@ static const struct {
 } PERIODIC_REFUSED[] = {
     {"loading", "load_star", 0, "N* = A(N) / delta^2 is a smooth punch's contact area on a half-space, which the "
                              "periodic cell does not have"},
-    {"output", "contact_panels", FIELD(contact_panels),
-     "the panels are solved at load_star N* and drawn with the smooth contact circle"},
     {"output", "frames", FIELD(frames),
-     "the frames are solved up to load_star N* and drawn with the smooth contact circle"},
+     "the frames are a history of their own up to load_star N*; a periodic scene draws the contact map of "
+     "every step of its histories with contact_panels = yes"},
     {"output", "table", FIELD(table), "the table compares A/A_cone at load_star N* with eq. (12)"},
-    {"output", "distributions", FIELD(distributions), "the distributions are measured at load_star N*"},
 };
 
 /* The plots a periodic scene draws: the surfaces' own (fig3) and k's flat contacts (flat_k); the others

@@ -14,6 +14,7 @@
 #include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/panels.h"
+#include "scene/periodic.h"
 #include "scene/plans.h"
 #include "scene/plots.h"
 #include "scene/progress.h"
@@ -31,8 +32,9 @@
  * N* = A(N) / delta^2, which needs that area to find its load. */
 static int check_without_area(const im_scene *scene)
 {
-    const char *need = scene->contact_panels || scene->frames ? "[output] contact panels and frames are drawn"
-                       : scene->distributions                   ? "[output] distributions are measured"
+    const int at_n_star = !scene->periodic; /* a periodic scene's panels and distributions are at its steps */
+    const char *need = at_n_star && (scene->contact_panels || scene->frames) ? "[output] contact panels and frames are drawn"
+                       : at_n_star && scene->distributions                   ? "[output] distributions are measured"
                        : scene->control == IM_CONTROL_LOAD      ? "[loading] control = load takes steps"
                                                                 : NULL;
     if (!need)
@@ -43,7 +45,8 @@ static int check_without_area(const im_scene *scene)
 
 static int check_runnable(const im_scene *scene)
 {
-    if ((scene->contact_panels || scene->frames || scene->table || scene->distributions) && !(scene->load_star > 0.0))
+    if ((scene->contact_panels || scene->frames || scene->table || scene->distributions) && !scene->periodic &&
+        !(scene->load_star > 0.0))
         return im_fail(IM_EINVAL, "%s: contact panels, frames, tables and distributions need [loading] load_star > 0",
                        scene->path);
     if (scene->frames3d && !scene->frames)
@@ -82,7 +85,9 @@ static int run_rendered_stages(const im_scene *scene, const im_scene_run_options
     im_field *framed_force = NULL;
     if (scene->frames)
         status = scene_run_frames(scene, options, context, &framed_force);
-    if (status == IM_OK && scene->contact_panels)
+    if (status == IM_OK && scene->contact_panels && scene->periodic)
+        status = scene_periodic_draw_panels(scene, reuse, context);
+    else if (status == IM_OK && scene->contact_panels)
         status = scene_run_panels(scene, options, context, reuse, framed_force);
     im_field_free(framed_force);
     im_render_close(context);
@@ -99,7 +104,7 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
         status = scene_run_table(scene, options, &reuse);
     if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) && (status = check_stop(options, "the flat contacts")) == IM_OK)
         status = scene_run_flat_k(scene, options, &reuse);
-    if (status == IM_OK && scene->distributions && (status = check_stop(options, "the distributions")) == IM_OK)
+    if (status == IM_OK && scene->distributions && !scene->periodic && (status = check_stop(options, "the distributions")) == IM_OK)
         status = scene_run_distributions(scene, options);
     if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options, &reuse);

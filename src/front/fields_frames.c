@@ -1,13 +1,10 @@
-/* indent --frames: DIR/frames/contact_NNNN.png of every step solved (NNNN = step - 1, so that the viewer's
- * step k is the history's), drawn from the step's DIR/force_NNNN.npy with one force norm over all steps,
- * as a scene draws its frames (front.h, "frames of a history"). */
-#include "cli/cli.h"
+/* Contact frames of the fields a run wrote step by step (front.h: fields_frames_write): `indent --frames`
+ * and a periodic scene's contact panels, drawn as a scene draws its frames (frame.c). */
 #include "front/front.h"
 
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "indentmap/version.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -21,7 +18,7 @@ static int read_force(const char *dir, int step, im_field **force)
 }
 
 /* The largest force of any step: the top of the frames' one norm. */
-static int largest_force(const indent_frames *f, double *largest)
+static int largest_force(const fields_frames *f, double *largest)
 {
     *largest = 0.0;
     int status = IM_OK;
@@ -35,17 +32,16 @@ static int largest_force(const indent_frames *f, double *largest)
     return status;
 }
 
-/* Enough pixels per patch for a map of about 384 pixels across (1 to 8): a 64 x 64 grid is drawn 6 times. */
-static int pixels_per_patch(const im_field *force)
+int fields_frames_pixels_per_patch(int nx, int ny)
 {
-    const int side = force->nx > force->ny ? force->nx : force->ny;
+    const int side = nx > ny ? nx : ny;
     const int scale = (384 + side - 1) / side;
     return scale < 1 ? 1 : scale > 8 ? 8 : scale;
 }
 
 /* Step's frame: its contact map with the smooth punch's contact circle (none where N* is not finite: a
  * periodic cell, a 2-D profile), titled with N* (else N). */
-static int write_frame(im_render_context *context, const indent_frames *f, const im_colormap *norm,
+static int write_frame(im_render_context *context, const fields_frames *f, const im_colormap *norm,
                        const char *folder, int step)
 {
     const im_step_result *r = &f->rows[step - 1].result;
@@ -56,7 +52,7 @@ static int write_frame(im_render_context *context, const indent_frames *f, const
         return status;
     double axis_x, axis_y;
     im_indenter_axis(f->punch, force->nx, force->ny, force->delta, &axis_x, &axis_y);
-    const frame_contact contact = {force, norm, pixels_per_patch(force), sqrt(r->load_star / M_PI), axis_x / force->delta,
+    const frame_contact contact = {force, norm, fields_frames_pixels_per_patch(force->nx, force->ny), sqrt(r->load_star / M_PI), axis_x / force->delta,
                                    axis_y / force->delta};
     char title[96], label[96], path[4096];
     if (isfinite(r->load_star))
@@ -64,8 +60,7 @@ static int write_frame(im_render_context *context, const indent_frames *f, const
     else
         snprintf(title, sizeof title, "step %d: N = %.4g %s", step, r->load, f->force_unit);
     snprintf(label, sizeof label, "local force f (%s)", f->force_unit);
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}};
-    const frame_words words = {title, norm, label, texts, 1};
+    const frame_words words = {title, norm, label, f->texts, f->text_count};
     status = frame_contact_render(context, &contact, &image);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, "contact", step - 1);
@@ -76,17 +71,14 @@ static int write_frame(im_render_context *context, const indent_frames *f, const
     return status;
 }
 
-int indent_frames_write(im_render_context *context, const indent_frames *f)
+int fields_frames_write(im_render_context *context, const fields_frames *f)
 {
-    char folder[4096];
     double largest = 0.0;
-    int status = im_path_join(folder, sizeof folder, f->dir, "frames");
-    if (status == IM_OK)
-        status = im_make_directories(folder);
+    int status = im_make_directories(f->frames);
     if (status == IM_OK)
         status = largest_force(f, &largest);
     const im_colormap norm = frame_force_norm(IM_COLORMAP_MAGMA, 1, largest);
     for (int step = 1; step <= f->count && status == IM_OK; ++step)
-        status = write_frame(context, f, &norm, folder, step);
-    return status == IM_OK ? status : im_fail_context(status, "--frames");
+        status = write_frame(context, f, &norm, f->frames, step);
+    return status;
 }
