@@ -50,7 +50,8 @@ if [ "${IM_HAVE_GPU:-0}" = 1 ]; then
   check "scene on the gpu: the CPU's member history" bash -c \
     "diff <(tail -n +2 '$dir/sc/histories/member_00_1.csv' | cut -d, -f1,5) <(tail -n +2 '$dir/sg/histories/member_00_1.csv' | cut -d, -f1,5)"
 else
-  check "gpu refused without the engine" expect_exit 2 "no GPU engine" indent gpu --device gpu
+  # exit 1, not 2: the arguments are valid, this build cannot run them (IM_EUNSUPPORTED)
+  check "gpu refused without the engine" expect_exit 1 "no GPU engine" indent gpu --device gpu
   check "auto falls back to the cpu" grep -q ", device cpu$" "$dir/auto.txt"
 fi
 finish
