@@ -44,6 +44,17 @@ v3=("$cli" render view3d "$dir/s.npy" --displacement "$dir/rough/displacement_00
     --force "$dir/rough/force_0001.npy" --alpha 70)
 check "view3d figure" "${v3[@]}" --exaggeration 4 --width 400 --height 300 --out "$dir/v.png"
 check "exaggeration in the metadata" grep -qa "vertical exaggeration" "$dir/v.png"
+# The default norm is the contact frames' (magma, log, two decades below the largest force);
+# --linear the linear one up to the same force.
+norm_of() { grep -ao 'Norm.[a-z]* \[[^]]*\]' "$1" | cut -c6-; }
+"${v3[@]}" --width 320 --height 200 --out "$dir/default.png" >/dev/null 2>&1
+"${v3[@]}" --width 320 --height 200 --linear --out "$dir/linear.png" >/dev/null 2>&1
+read -r kind lo hi < <(norm_of "$dir/default.png" | tr -d '[],')
+check "view3d's default norm is logarithmic" test "$kind" = log
+check "it spans two decades" python3 -c "assert abs($lo * 100 / $hi - 1) < 1e-8"
+check "the colour map is magma" grep -qa "magma" "$dir/default.png"
+check "--linear: from 0 to the same largest force" test "$(norm_of "$dir/linear.png")" = "linear [0, $hi]"
+check "--log with --linear refused" expect_exit 2 "expected one norm" "${v3[@]}" --log --linear --out "$dir/x.png"
 check "view3d raw" "${v3[@]}" --width 320 --height 200 --raw --punch-mode cutaway --ortho --out "$dir/raw.png"
 check "raw image is 320 x 200" bash -c "head -c 24 '$dir/raw.png' | od -An -tx1 | tr -d ' \n' | grep -q '00000140000000c8\$'"
 check "view3d as PDF" "${v3[@]}" --width 320 --height 200 --out "$dir/v.pdf"

@@ -645,13 +645,9 @@ static void view_geometry_of(view_geometry *g, const im_field *h, const im_inden
         punch_geometry(g, h, punch, s);
 }
 
-int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,
-                           double *distance)
+static int fitted_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,
+                           double *fitted)
 {
-    ARG_REQUIRE(distance, "distance");
-    *distance = NAN;
-    ARG_VIEW(height, "height");
-    ARG_REQUIRE(s, "style");
     int status = check_inputs(height, NULL, punch);
     if (status == IM_OK)
         status = check_geometry_style(s);
@@ -665,8 +661,22 @@ int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, con
     corner_heights(&g, height, corners);
     wall_base(&g, s, corners);
     free(corners);
-    *distance = fit_distance(&g, &s->camera, (double)s->width / s->height) / fmax(g.nx, g.ny);
+    *fitted = fit_distance(&g, &s->camera, (double)s->width / s->height) / fmax(g.nx, g.ny);
     return IM_OK;
+}
+
+int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,
+                           double *distance)
+{
+    ARG_REQUIRE(distance, "distance");
+    int status = arg_view(__func__, "height", height);
+    if (status == IM_OK && !s)
+        status = arg_null(__func__, "style");
+    double fitted = NAN; /* written last: `distance` may be the style's own camera distance */
+    if (status == IM_OK)
+        status = fitted_distance(height, punch, s, &fitted);
+    *distance = fitted;
+    return status;
 }
 
 int im_render_view3d(im_render_context *c, const im_field *height, const im_field *force,
