@@ -170,8 +170,10 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
 
 /* ---- the units of the history's and the analysis' columns (units.c) ---- */
 
-/* {"COLUMN": "UNIT", ...} for every column of history.csv (history.h) and indentation.csv
- * (ANALYSIS_COLUMNS): "1" for numbers without a unit, "s" for seconds, else built from the run's length,
+/* {"COLUMN": "UNIT", ...} for every column of history.csv (history.h), indentation.csv
+ * (ANALYSIS_COLUMNS) and the tables a scene writes (results.csv, table1.csv, fig7.csv, sweep.csv,
+ * k_fit.csv, flat_k.csv, flat/flat_contact.csv): "1" for numbers without a unit, "s" for seconds, "°"
+ * for angles, else built from the run's length,
  * force and pressure units ("m²", "N / m", "N m"). run.json's "units" block holds it as "columns", from
  * which the viewer page heads its tables. NULL when out of memory. */
 json_t *column_units_record(const char *length, const char *force, const char *pressure);
