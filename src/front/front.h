@@ -195,6 +195,10 @@ typedef struct run_record_solver {
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver);
 
+/* Appends {"key": key, "path": the absolute path (escaped where not UTF-8), "sha256": the file's}
+ * to the record's inputs array; the error of a file that cannot be read, IM_ENOMEM. */
+int run_record_add_input(json_t *inputs, const char *key, const char *path);
+
 /* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
 int run_record_write(const char *dir, const json_t *record);
 
