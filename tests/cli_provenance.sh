@@ -78,4 +78,15 @@ check "a changed input refused, naming it" expect_exit 2 "s.npy: [surfaces] file
   "$cli" run --from-record "$dir/f/run.json" --out "$dir/h"
 check "nothing written for a refused record" test ! -e "$dir/h"
 
+# indent records its input files' SHA-256 as a scene does: the surface's and --profile's are sha256sum's.
+"$cli" surface --n 32 --slope 0.1 --seed 4 --out "$dir/s32.npy" >/dev/null
+printf '0 0\n20 3.5\n40 7\n' >"$dir/profile.txt"
+"$cli" indent "$dir/s32.npy" --punch profile --profile "$dir/profile.txt" --load 20 --out "$dir/ind" >/dev/null 2>&1
+check "indent runs with a surface and a profile" test -s "$dir/ind/run.json"
+check "indent's inputs: the surface's SHA-256" test "$(record_value "$dir/ind/run.json" \
+  '[i["sha256"] for i in d["inputs"] if i["key"] == "surface"][0]')" = "$(sha256sum "$dir/s32.npy" | cut -d' ' -f1)"
+check "indent's inputs: the profile's SHA-256" test "$(record_value "$dir/ind/run.json" \
+  '[i["sha256"] for i in d["inputs"] if i["key"] == "--profile"][0]')" = "$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)"
+check "indent's inputs: the surface's absolute path" test "$(record_value "$dir/ind/run.json" 'd["inputs"][0]["path"]')" = "$dir/s32.npy"
+
 finish

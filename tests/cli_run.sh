@@ -57,6 +57,18 @@ check "load_star is N*" awk -F, 'NR == 2 { exit !($5 > 599.99 && $5 < 600.01) }'
 check "rough family has less contact" awk -F, 'NR == 2 { s = $6 } NR == 3 { exit !($6 < s) }' "$dir/out/results.csv"
 check "png has the scene in a text chunk" grep -qa "small.ini" "$dir/out/contact_panels.png"
 
+# Every column of the scene's tables has its unit in run.json (the page heads its tables with them).
+check "run.json has a unit for every table column" /usr/bin/python3 -c "
+import csv, json, sys
+units = json.load(open('$dir/out/run.json'))['units']['columns']
+for table in ('results.csv', 'table1.csv', 'fig7.csv'):
+    header = next(csv.reader(open('$dir/out/' + table)))
+    missing = [c for c in header if c not in units]
+    if missing:
+        sys.exit(f'{table}: no unit for {missing}')
+assert units['load'] == 'E* δ²' and units['height_rms_mean'] == 'δ', units"
+check "the page heads results.csv's load with its unit" grep -q '<th>load<br><span class="unit">(E\* δ²)</span></th>' "$dir/out/index.html"
+
 # The table: the smooth family is solved once whatever the seeds, the rough one per seed.
 check "table has two families" awk -F, 'NR == 2 { exit !($2 == 1) } NR == 3 { exit !($2 == 2) }' "$dir/out/table1.csv"
 check "smooth solved once" test ! -e "$dir/out/table/member_00_6.csv"

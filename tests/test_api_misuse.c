@@ -435,6 +435,9 @@ REPORT(im_render_view3d, "force", im_render_view3d(CONTEXT, &good, &bad_views[2]
 REPORT(im_render_view3d, "style", im_render_view3d(CONTEXT, &good, &good, &cone, NULL, &image))
 REPORT(im_render_view3d, "image", im_render_view3d(CONTEXT, &good, &good, &cone, &view_style, NULL))
 SAFE_RESULT(im_view3d_exaggeration_text, "text", (im_view3d_exaggeration_text(1.0, NULL, 64), 1))
+REPORT_VIEW(im_view3d_fit_distance, "height", im_view3d_fit_distance(BAD, &cone, &view_style, &values[0]))
+REPORT(im_view3d_fit_distance, "style", im_view3d_fit_distance(&good, &cone, NULL, &values[0]))
+REPORT(im_view3d_fit_distance, "distance", im_view3d_fit_distance(&good, &cone, &view_style, NULL))
 
 /* ---- scene.h ---- */
 SAFE_RESULT(im_scene_plot_parse, "name", im_scene_plot_parse(NULL) == 0)

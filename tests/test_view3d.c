@@ -496,6 +496,50 @@ static void test_cpu_ray_cast_agrees(void **state)
     im_field_free(force);
 }
 
+/* Whether any pixel of the image's outermost rows and columns differs from the background. */
+static int touches_border(const im_image *image, const uint8_t background[3])
+{
+    for (int row = 0; row < image->height; ++row)
+        for (int column = 0; column < image->width; ++column) {
+            int border = row == 0 || column == 0 || row == image->height - 1 || column == image->width - 1;
+            if (border && memcmp(pixel(image, column, row), background, 3) != 0)
+                return 1;
+        }
+    return 0;
+}
+
+/* A wide block under a cone, seen from low to high: at the fitted distance background surrounds
+ * all that is drawn (the block's front edge included), 15 % nearer something is cut (a flat
+ * surface, so that the block's corners are drawn points). */
+static void test_fit_distance_frames_the_block(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *h = make_field(96, 64);
+    im_indenter cone = im_indenter_cone(70.0);
+    const double elevations[] = {15.0, 35.0, 80.0};
+    for (int k = 0; k < 3; ++k) {
+        im_view3d_style s = im_view3d_style_default(NULL);
+        s.width = 480;
+        s.height = 200;
+        s.exaggeration = 3.0;
+        s.camera.elevation = elevations[k];
+        double fitted;
+        assert_int_equal(im_view3d_fit_distance(h, &cone, &s, &fitted), IM_OK);
+        const double scales[] = {1.0, 0.85};
+        for (int near = 0; near < 2; ++near) {
+            s.camera.distance = scales[near] * fitted;
+            im_image image;
+            assert_int_equal(im_render_view3d(context, h, NULL, &cone, &s, &image), IM_OK);
+            if (touches_border(&image, s.background) != near)
+                fail_msg("elevation %g, distance %g (%s the fitted %g): %s", elevations[k], s.camera.distance,
+                         near ? "nearer than" : "at", fitted, near ? "nothing is cut" : "the view is cut");
+            im_image_release(&image);
+        }
+    }
+    im_field_free(h);
+}
+
 static void test_bad_input_refused(void **state)
 {
     (void)state;
@@ -532,6 +576,7 @@ int main(void)
         cmocka_unit_test(test_depth_ordering),
         cmocka_unit_test(test_same_image_on_repeated_runs),
         cmocka_unit_test(test_cpu_ray_cast_agrees),
+        cmocka_unit_test(test_fit_distance_frames_the_block),
         cmocka_unit_test(test_bad_input_refused),
     };
     int failed = cmocka_run_group_tests(tests, open_context, close_context);

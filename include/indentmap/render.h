@@ -267,6 +267,17 @@ im_view3d_style im_view3d_style_default(const im_field *force);
 int im_render_view3d(im_render_context *context, const im_field *height, const im_field *force,
                      const im_indenter *punch, const im_view3d_style *style, im_image *image);
 
+/* The perspective camera distance (as im_view3d_camera.distance, in units of max(nx, ny)) at which
+ * all that im_render_view3d draws for these inputs (the surface, the block under it, the punch
+ * unless punch_mode is none) lies inside the image with 3 % of its half-width and half-height to
+ * spare, seen from the style's camera direction, target and field of view at its image's aspect
+ * ratio; the projection and the distance set in the style are not read. The frames of a history
+ * take the largest over their steps for one camera that shows every step whole. Errors: IM_EINVAL
+ * for a bad height, punch or camera (as im_render_view3d), IM_ENUMERIC for a non-finite height,
+ * IM_ENOMEM; *distance is NaN then. */
+int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *style,
+                           double *distance);
+
 /* The statement of the vertical scale to print on a 3-D image: "true vertical scale" for an
  * exaggeration of 1, else "vertical exaggeration ×X" (UTF-8, X with up to 3 significant digits).
  * Writes at most size bytes. */

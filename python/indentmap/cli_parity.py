@@ -151,7 +151,7 @@ PARITY = {
     **{f"render view3d --{name}": NOT_YET for name in (
         "out", "raw", "force", "displacement", "punch", "alpha", "radius", "x", "y", "punch-mode", "azimuth",
         "elevation", "distance", "fov", "ortho", "ortho-height", "exaggeration", "width", "height", "samples",
-        "mesh-side", "colormap", "vmin", "vmax", "log", "title", "dpi")},
+        "mesh-side", "colormap", "vmin", "vmax", "log", "linear", "title", "dpi")},
     "render view3d --backend": BACKEND,
     # ---- run: scenes ----
     "run": Python("run_scene"),

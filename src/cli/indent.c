@@ -695,6 +695,23 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     return root;
 }
 
+/* run.json's "inputs": the surface and --profile files with their SHA-256, as a scene's record has
+ * them (an empty list for a smooth run without a profile). */
+static int add_inputs(const indent_options *o, json_t *record)
+{
+    json_t *inputs = json_array();
+    int status = inputs ? IM_OK : im_fail(IM_ENOMEM, "run.json: out of memory");
+    if (status == IM_OK && o->surface_path)
+        status = run_record_add_input(inputs, "surface", o->surface_path);
+    if (status == IM_OK && o->profile_path)
+        status = run_record_add_input(inputs, "--profile", o->profile_path);
+    if (status == IM_OK)
+        json_object_set_new(record, "inputs", inputs);
+    else
+        json_decref(inputs);
+    return status;
+}
+
 static int write_run_json(const char *dir, json_t *record, int steps_done, int status)
 {
     json_object_set_new(record, "steps_completed", json_integer(steps_done));
@@ -1231,7 +1248,9 @@ int cli_indent(int argc, char **argv)
                surface->ny, w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads(),
                im_solver_plan_device(im_indentation_plan(run)));
         record = run_record(&o, surface, run);
-        status = record ? history_start(o.out, &history) : im_fail(IM_ENOMEM, "run record");
+        status = record ? add_inputs(&o, record) : im_fail(IM_ENOMEM, "run record");
+        if (status == IM_OK)
+            status = history_start(o.out, &history);
         if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
             char message[1024];
             snprintf(message, sizeof message, "%s", im_last_error());

@@ -1,5 +1,6 @@
 /* indentmap render view3d: the deformed surface in 3-D, coloured by local force, with the punch. */
 #include "cli/cli.h"
+#include "front/front.h"
 
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
@@ -34,7 +35,8 @@ static void usage(FILE *stream)
             "  --punch-mode M        translucent (default), opaque, cutaway (near half removed)\n"
             "  --azimuth A           camera bearing in degrees (default 20; 0: from the map's bottom edge)\n"
             "  --elevation E         camera elevation in degrees, 1..90 (default 35)\n"
-            "  --distance D          camera distance in grid sides (default 2.1)\n"
+            "  --distance D          camera distance in grid sides (default: the nearest that shows\n"
+            "                        the whole block and punch)\n"
             "  --fov F               vertical field of view in degrees (default 30)\n"
             "  --ortho               orthographic projection (for figures)\n"
             "  --ortho-height H      orthographic: world height of the image in patches (default: fit)\n"
@@ -42,9 +44,12 @@ static void usage(FILE *stream)
             "  --width W --height H  image size in pixels (default 1920 x 1080)\n"
             "  --samples S           multisamples per pixel: 1, 2, 4 (default) or 8\n"
             "  --mesh-side N         level of detail: mesh cells along the longer side (default 384)\n"
-            "  --colormap NAME       viridis (default), cividis, magma, inferno or grey\n"
-            "  --vmin V, --vmax V    force norm range (default 0 .. largest force)\n"
-            "  --log                 logarithmic norm (default vmin: vmax / 1000)\n"
+            "  --colormap NAME       magma (default, as the contact frames), viridis, cividis, inferno\n"
+            "                        or grey\n"
+            "  --vmin V, --vmax V    force norm range (default: two decades below the largest force;\n"
+            "                        linear: from 0)\n"
+            "  --log                 logarithmic norm, the default (the contact frames' norm)\n"
+            "  --linear              linear norm\n"
             "  --title TEXT          panel title (the exaggeration is appended)\n"
             "  --dpi D               resolution (default 300)\n"
             "  --backend B           auto (default), egl or osmesa\n");
@@ -52,7 +57,7 @@ static void usage(FILE *stream)
 
 typedef struct view3d_options {
     const char *out, *force, *displacement, *title;
-    int raw, logarithmic, has_vmin, has_vmax, no_punch;
+    int raw, has_log, has_linear, has_vmin, has_vmax, has_distance, no_punch;
     double vmin, vmax, dpi;
     im_colormap_id map;
     im_indenter punch;
@@ -64,7 +69,7 @@ typedef struct view3d_options {
 enum { OPT_OUT = 256, OPT_RAW, OPT_FORCE, OPT_DISPLACEMENT, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y,
        OPT_MODE, OPT_AZIMUTH, OPT_ELEVATION, OPT_DISTANCE, OPT_FOV, OPT_ORTHO, OPT_ORTHO_HEIGHT,
        OPT_EXAGGERATION, OPT_WIDTH, OPT_HEIGHT, OPT_SAMPLES, OPT_MESH, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG,
-       OPT_TITLE, OPT_DPI, OPT_BACKEND, OPT_HELP };
+       OPT_LINEAR, OPT_TITLE, OPT_DPI, OPT_BACKEND, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
@@ -79,7 +84,7 @@ static const struct option LONG_OPTIONS[] = {
     {"height", required_argument, 0, OPT_HEIGHT}, {"samples", required_argument, 0, OPT_SAMPLES},
     {"mesh-side", required_argument, 0, OPT_MESH}, {"colormap", required_argument, 0, OPT_MAP},
     {"vmin", required_argument, 0, OPT_VMIN}, {"vmax", required_argument, 0, OPT_VMAX},
-    {"log", no_argument, 0, OPT_LOG}, {"title", required_argument, 0, OPT_TITLE},
+    {"log", no_argument, 0, OPT_LOG}, {"linear", no_argument, 0, OPT_LINEAR}, {"title", required_argument, 0, OPT_TITLE},
     {"dpi", required_argument, 0, OPT_DPI}, {"backend", required_argument, 0, OPT_BACKEND},
     {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
 
@@ -139,7 +144,7 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_AZIMUTH: return cli_parse_double("--azimuth", arg, -1e6, 1e6, &s->camera.azimuth);
     case OPT_ELEVATION: return cli_parse_double("--elevation", arg, 1, 90, &s->camera.elevation);
-    case OPT_DISTANCE: return cli_parse_double("--distance", arg, 1e-3, 1e5, &s->camera.distance);
+    case OPT_DISTANCE: o->has_distance = 1; return cli_parse_double("--distance", arg, 1e-3, 1e5, &s->camera.distance);
     case OPT_FOV: return cli_parse_double("--fov", arg, 1.001, 119.999, &s->camera.field_of_view);
     case OPT_ORTHO: s->camera.projection = IM_VIEW3D_ORTHOGRAPHIC; return 0;
     case OPT_ORTHO_HEIGHT: return cli_parse_double("--ortho-height", arg, 1e-6, 1e8, &s->camera.ortho_height);
@@ -151,7 +156,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_MAP: return named(im_colormap_from_name(arg, &o->map), "--colormap");
     case OPT_VMIN: o->has_vmin = 1; return cli_parse_double("--vmin", arg, -1e300, 1e300, &o->vmin);
     case OPT_VMAX: o->has_vmax = 1; return cli_parse_double("--vmax", arg, -1e300, 1e300, &o->vmax);
-    case OPT_LOG: o->logarithmic = 1; return 0;
+    case OPT_LOG: o->has_log = 1; return 0;
+    case OPT_LINEAR: o->has_linear = 1; return 0;
     case OPT_TITLE: o->title = arg; return 0;
     case OPT_DPI: return cli_parse_double("--dpi", arg, 1.0, 2400.0, &o->dpi);
     case OPT_BACKEND: return named(im_render_backend_from_name(arg, &o->backend), "--backend");
@@ -176,14 +182,23 @@ static int read_height(const char *path, const view3d_options *o, im_field **hei
     return status;
 }
 
+/* The contact frames' norm (frame_force_norm) unless --linear, with --vmin / --vmax put in. */
 static void apply_norm(const view3d_options *o, const im_field *force, im_colormap *c)
 {
-    im_colormap automatic = force ? im_contact_style_default(force).colormap : *c;
-    double lo = o->has_vmin ? o->vmin : automatic.lo, hi = o->has_vmax ? o->vmax : automatic.hi;
-    if (o->logarithmic && !o->has_vmin && hi > 0.0)
-        lo = hi * 1e-3;
-    *c = im_colormap_make(o->map, lo, hi);
-    c->logarithmic = o->logarithmic;
+    double largest = force ? im_contact_style_default(force).colormap.hi : 1.0;
+    *c = frame_force_norm(o->map, !o->has_linear, o->has_vmax ? o->vmax : largest);
+    if (o->has_vmax)
+        c->hi = o->vmax;
+    if (o->has_vmin)
+        c->lo = o->vmin;
+}
+
+/* Without --distance, the nearest perspective camera that shows all that is drawn. */
+static int apply_distance(const view3d_options *o, const im_field *height, im_view3d_style *s)
+{
+    if (o->has_distance || s->camera.projection != IM_VIEW3D_PERSPECTIVE)
+        return IM_OK;
+    return im_view3d_fit_distance(height, o->no_punch ? NULL : &o->punch, s, &s->camera.distance);
 }
 
 static int write_view(const view3d_options *o, const char *source, const im_image *image)
@@ -205,6 +220,7 @@ static int write_view(const view3d_options *o, const char *source, const im_imag
     figure.panels = &panel;
     figure.colormap = o->force ? norm : NULL;
     figure.colorbar_label = "local force f / (E* δ²)";
+    figure.extend_under = norm->logarithmic;
     figure.scale_bar = -1.0; /* a perspective view has no single scale */
     figure.dpi = o->dpi;
     figure.texts = texts;
@@ -223,8 +239,10 @@ static int run(view3d_options *o, const char *path)
     if (status == IM_OK) {
         apply_norm(o, force, &o->style.colormap);
         o->punch.centred = !(o->x_given || o->y_given);
-        status = cli_render_open(o->backend, &context);
+        status = apply_distance(o, height, &o->style);
     }
+    if (status == IM_OK)
+        status = cli_render_open(o->backend, &context);
     if (status == IM_OK)
         status = im_render_view3d(context, height, force, o->no_punch ? NULL : &o->punch, &o->style, &image);
     if (status == IM_OK)
@@ -238,7 +256,7 @@ static int run(view3d_options *o, const char *path)
 
 int cli_render_view3d(int argc, char **argv)
 {
-    view3d_options o = {.map = IM_COLORMAP_VIRIDIS, .dpi = 300.0, .backend = IM_RENDER_AUTO,
+    view3d_options o = {.map = IM_COLORMAP_MAGMA, .dpi = 300.0, .backend = IM_RENDER_AUTO,
                         .style = im_view3d_style_default(NULL)};
     o.punch = im_indenter_cone(80.0);
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &o);
@@ -246,6 +264,10 @@ int cli_render_view3d(int argc, char **argv)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     if (argc - optind != 1 || !o.out) {
         fprintf(stderr, "indentmap: render view3d: expected one HEIGHT file and --out FILE\n");
+        return CLI_EXIT_USAGE;
+    }
+    if (o.has_log && o.has_linear) {
+        fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
         return CLI_EXIT_USAGE;
     }
     if (o.raw && !strstr(o.out, ".png")) {

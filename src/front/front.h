@@ -216,8 +216,10 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
 
 /* ---- the units of the history's and the analysis' columns (units.c) ---- */
 
-/* {"COLUMN": "UNIT", ...} for every column of history.csv (history.h) and indentation.csv
- * (ANALYSIS_COLUMNS): "1" for numbers without a unit, "s" for seconds, else built from the run's length,
+/* {"COLUMN": "UNIT", ...} for every column of history.csv (history.h), indentation.csv
+ * (ANALYSIS_COLUMNS) and the tables a scene writes (results.csv, table1.csv, fig7.csv, sweep.csv,
+ * k_fit.csv, flat_k.csv, flat/flat_contact.csv): "1" for numbers without a unit, "s" for seconds, "°"
+ * for angles, else built from the run's length,
  * force and pressure units ("m²", "N / m", "N m"). run.json's "units" block holds it as "columns", from
  * which the viewer page heads its tables. NULL when out of memory. */
 json_t *column_units_record(const char *length, const char *force, const char *pressure);
@@ -238,6 +240,10 @@ typedef struct run_record_solver {
  * "surface", "smooth" or "scene"; input_path may be NULL. */
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver);
+
+/* Appends {"key": key, "path": the absolute path (escaped where not UTF-8), "sha256": the file's}
+ * to the record's inputs array; the error of a file that cannot be read, IM_ENOMEM. */
+int run_record_add_input(json_t *inputs, const char *key, const char *path);
 
 /* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
 int run_record_write(const char *dir, const json_t *record);

@@ -1,6 +1,7 @@
 /* The JSON run record of `indent` and of scenes (OUTPUT/run.json): one set of common fields, one
  * writer. */
 #include "front/front.h"
+#include "io/checksum.h"
 #include "io/json_file.h"
 
 #include "indentmap/io.h"
@@ -43,4 +44,18 @@ int run_record_write(const char *dir, const json_t *record)
     if (status != IM_OK)
         return status;
     return json_file_write(path, record);
+}
+
+int run_record_add_input(json_t *inputs, const char *key, const char *path)
+{
+    char hex[IM_SHA256_HEX + 1], absolute[PATH_MAX], text[4 * PATH_MAX + 1];
+    int status = im_file_sha256(path, hex);
+    if (status == IM_OK)
+        status = im_path_absolute(path, absolute, sizeof absolute);
+    if (status != IM_OK)
+        return status;
+    im_path_utf8(absolute, text, sizeof text);
+    return json_array_append_new(inputs, json_pack("{s:s, s:s, s:s}", "key", key, "path", text, "sha256", hex)) == 0
+               ? IM_OK
+               : im_fail(IM_ENOMEM, "run.json: out of memory");
 }

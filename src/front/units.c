@@ -1,10 +1,11 @@
-/* The unit of every column of history.csv and indentation.csv, for run.json (front.h). */
+/* The unit of every column of history.csv and indentation.csv, and of the tables a scene writes,
+ * for run.json (front.h). */
 #include "front/front.h"
 
 #include <stdio.h>
 
 /* What each column is, in the run's base units. */
-typedef enum column_kind { NUMBER, LENGTH, AREA, FORCE, PRESSURE, STIFFNESS, WORK, SECONDS } column_kind;
+typedef enum column_kind { NUMBER, LENGTH, AREA, FORCE, PRESSURE, STIFFNESS, WORK, SECONDS, DEGREES } column_kind;
 
 typedef struct column_unit {
     const char *name;
@@ -26,7 +27,19 @@ static const column_unit COLUMNS[] = {
     {"approach_max", LENGTH}, {"load_max", FORCE}, {"epsilon", NUMBER}, {"contact_depth", LENGTH},
     {"area_projected", AREA}, {"area_real", AREA}, {"hardness_it", PRESSURE}, {"modulus_reduced", PRESSURE},
     {"work_in", WORK}, {"work_out", WORK}, {"dissipated", WORK}, {"area_real_theory", AREA},
-    {"stiffness_smooth", STIFFNESS}};
+    {"stiffness_smooth", STIFFNESS},
+    /* a scene's results.csv, table1.csv, fig7.csv, sweep.csv, k_fit.csv, flat_k.csv and
+       flat/flat_contact.csv beside the names above */
+    {"family", NUMBER}, {"slope", NUMBER}, {"seed", NUMBER}, {"area_ratio_eq12", NUMBER}, {"surfaces", NUMBER},
+    {"height_rms_mean", LENGTH}, {"rho_c", NUMBER}, {"n_p_ref", NUMBER}, {"n_p_mean", NUMBER},
+    {"area_ratio_mean", NUMBER}, {"area_ratio_sd", NUMBER}, {"relative_error", NUMBER}, {"n_p_sd", NUMBER},
+    {"n_star", NUMBER}, {"alpha", DEGREES}, {"hurst", NUMBER}, {"lambda_s", LENGTH}, {"slope_rms", NUMBER},
+    {"points", NUMBER}, {"k", NUMBER}, {"k_error", NUMBER}, {"rms_residual", NUMBER}, {"k_linear", NUMBER},
+    {"linear_points", NUMBER}, {"pressure_ratio_min", NUMBER}, {"pressure_ratio_max", NUMBER},
+    {"area_fraction_min", NUMBER}, {"area_fraction_max", NUMBER}, {"k_surfaces_mean", NUMBER},
+    {"k_surfaces_sem", NUMBER}, {"k_linear_to_half", NUMBER}, {"rho_c_k2", NUMBER},
+    {"area_ratio_eq12_k2", NUMBER}, {"area_ratio_simulated", NUMBER}, {"pressure_ratio", NUMBER},
+    {"area_fraction", NUMBER}};
 
 json_t *column_units_record(const char *length, const char *force, const char *pressure)
 {
@@ -34,7 +47,7 @@ json_t *column_units_record(const char *length, const char *force, const char *p
     snprintf(area, sizeof area, "%s²", length);
     snprintf(stiffness, sizeof stiffness, "%s / %s", force, length);
     snprintf(work, sizeof work, "%s %s", force, length);
-    const char *const units[] = {"1", length, area, force, pressure, stiffness, work, "s"};
+    const char *const units[] = {"1", length, area, force, pressure, stiffness, work, "s", "°"};
     json_t *columns = json_object();
     for (size_t i = 0; columns && i < sizeof COLUMNS / sizeof *COLUMNS; ++i)
         if (json_object_set_new(columns, COLUMNS[i].name, json_string(units[COLUMNS[i].kind])) != 0) {

@@ -17,6 +17,9 @@ static const double SHAFT = 0.12, BASE_DEPTH = 0.04;
 /* The walls' colour: the surface colour darkened, as the cut face of a block. */
 static const double WALL_SHADE = 0.85;
 
+/* What im_view3d_fit_distance leaves free on each side, as a fraction of the half image. */
+static const double FIT_MARGIN = 0.03;
+
 enum { PROFILE_POINTS = 64, PUNCH_SEGMENTS = 128, SPHERE_RINGS = 40, MIN_IMAGE_SIDE = 16 };
 
 static double radians(double degrees) { return degrees * M_PI / 180.0; }
@@ -70,6 +73,25 @@ static int check_camera(const im_view3d_camera *k)
     return IM_OK;
 }
 
+/* The members that decide what is drawn where (no GL limit involved). */
+static int check_geometry_style(const im_view3d_style *s)
+{
+    if (s->mesh_side < 8)
+        return im_fail(IM_EINVAL, "3-D view: mesh_side = %d: expected at least 8", s->mesh_side);
+    if (!(s->exaggeration > 0.0 && s->exaggeration < 1e6))
+        return im_fail(IM_EINVAL, "3-D view: exaggeration = %g: expected (0, 1e6)", s->exaggeration);
+    if (s->punch_mode < IM_VIEW3D_PUNCH_TRANSLUCENT || s->punch_mode > IM_VIEW3D_PUNCH_NONE)
+        return im_fail(IM_EINVAL, "3-D view: punch_mode = %d: expected translucent, opaque, cutaway or none",
+                       (int)s->punch_mode);
+    if (!(s->punch_extent >= 0.0 && s->punch_extent < 1e9))
+        return im_fail(IM_EINVAL, "3-D view: punch_extent = %g: expected 0 (automatic) or a radius in patches",
+                       s->punch_extent);
+    if (s->width < MIN_IMAGE_SIDE || s->height < MIN_IMAGE_SIDE)
+        return im_fail(IM_EINVAL, "3-D view: image %d x %d pixels: expected at least %d per side", s->width,
+                       s->height, MIN_IMAGE_SIDE);
+    return check_camera(&s->camera);
+}
+
 static int check_style(const im_render_context *c, const im_view3d_style *s, const im_field *height)
 {
     if (height->nx > c->max_texture_size || height->ny > c->max_texture_size)
@@ -86,22 +108,14 @@ static int check_style(const im_render_context *c, const im_view3d_style *s, con
         return im_fail(IM_EINVAL, "3-D view: samples = %d: expected 1, 2, 4 or 8", s->samples);
     if (s->mesh_side < 8 || s->mesh_side > c->max_texture_size - 1)
         return im_fail(IM_EINVAL, "3-D view: mesh_side = %d: expected 8..%d", s->mesh_side, c->max_texture_size - 1);
-    if (!(s->exaggeration > 0.0 && s->exaggeration < 1e6))
-        return im_fail(IM_EINVAL, "3-D view: exaggeration = %g: expected (0, 1e6)", s->exaggeration);
     if (!(s->shading >= 0.0 && s->shading <= 1.0))
         return im_fail(IM_EINVAL, "3-D view: shading = %g: expected [0, 1]", s->shading);
     if (!(s->light_altitude > 0.0 && s->light_altitude <= 90.0) || !isfinite(s->light_azimuth))
         return im_fail(IM_EINVAL, "3-D view: light altitude %g, azimuth %g: expected altitude in (0, 90] "
                        "degrees and a finite azimuth", s->light_altitude, s->light_azimuth);
-    if (s->punch_mode < IM_VIEW3D_PUNCH_TRANSLUCENT || s->punch_mode > IM_VIEW3D_PUNCH_NONE)
-        return im_fail(IM_EINVAL, "3-D view: punch_mode = %d: expected translucent, opaque, cutaway or none",
-                       (int)s->punch_mode);
     if (s->punch_mode == IM_VIEW3D_PUNCH_TRANSLUCENT && !(s->punch_opacity > 0.0 && s->punch_opacity < 1.0))
         return im_fail(IM_EINVAL, "3-D view: punch_opacity = %g: expected (0, 1)", s->punch_opacity);
-    if (!(s->punch_extent >= 0.0 && s->punch_extent < 1e9))
-        return im_fail(IM_EINVAL, "3-D view: punch_extent = %g: expected 0 (automatic) or a radius in patches",
-                       s->punch_extent);
-    return check_camera(&s->camera);
+    return check_geometry_style(s);
 }
 
 static int check_inputs(const im_field *height, const im_field *force, const im_indenter *punch)
@@ -258,12 +272,56 @@ static void camera_axes(const im_view3d_camera *k, camera_frame *f)
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+static double drawn_top(const view_geometry *g) { return g->has_punch ? fmax(g->z_hi, g->punch_top) : g->z_hi; }
+
+static void camera_target(const view_geometry *g, const im_view3d_camera *k, double target[3])
+{
+    target[0] = 0.5 * g->nx;
+    target[1] = 0.5 * g->ny;
+    target[2] = isnan(k->target_z) ? 0.5 * (g->z_lo + g->z_hi) : k->target_z;
+}
+
+/* The least eye-target distance D at which `point` lies inside the image, FIT_MARGIN of its
+ * half-width and half-height to spare: at offset d from the target the point lies at depth
+ * D + d.forward, and fits when |d.right| <= (D + d.forward) tan_x and |d.up| <= (D + d.forward) tan_y. */
+static double fitting_distance(const camera_frame *f, const double target[3], const double point[3],
+                               double tan_x, double tan_y)
+{
+    double d[3] = {point[0] - target[0], point[1] - target[1], point[2] - target[2]};
+    return fmax(fabs(dot3(d, f->right)) / tan_x, fabs(dot3(d, f->up)) / tan_y) - dot3(d, f->forward);
+}
+
+/* The smallest eye-target distance (in patches) at which all that is drawn fits the image: the
+ * corners of the block (the grid from the base to the highest surface point) and the punch's
+ * rings (the vertices of its drawn polygons). The picture of the convex hull of these points
+ * holds the picture of the drawing. */
+static double fit_distance(const view_geometry *g, const im_view3d_camera *k, double aspect)
+{
+    camera_frame f;
+    camera_axes(k, &f);
+    double target[3], distance = 0.0;
+    camera_target(g, k, target);
+    double tan_y = (1.0 - FIT_MARGIN) * tan(0.5 * radians(k->field_of_view)), tan_x = aspect * tan_y;
+    double lo[3] = {0.0, 0.0, fmin(g->base, g->z_lo)}, hi[3] = {g->nx, g->ny, g->z_hi};
+    for (int corner = 0; corner < 8; ++corner) {
+        double point[3] = {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
+        distance = fmax(distance, fitting_distance(&f, target, point, tan_x, tan_y));
+    }
+    for (int i = 0; g->has_punch && i < g->profile_count; ++i)
+        for (int segment = 0; segment < PUNCH_SEGMENTS; ++segment) {
+            double angle = 2.0 * M_PI * segment / PUNCH_SEGMENTS, r = g->profile[i][0];
+            double point[3] = {g->axis[0] + r * cos(angle), g->axis[1] + r * sin(angle), g->profile[i][1]};
+            distance = fmax(distance, fitting_distance(&f, target, point, tan_x, tan_y));
+        }
+    return distance;
+}
+
 /* Eye, axes and the view-projection matrix for an image of the given aspect ratio. */
 static void camera_frame_of(const view_geometry *g, const im_view3d_camera *k, double aspect, camera_frame *f)
 {
     camera_axes(k, f);
-    double z_hi = g->has_punch ? fmax(g->z_hi, g->punch_top) : g->z_hi;
-    double target[3] = {0.5 * g->nx, 0.5 * g->ny, isnan(k->target_z) ? 0.5 * (g->z_lo + g->z_hi) : k->target_z};
+    double z_hi = drawn_top(g), target[3];
+    camera_target(g, k, target);
     double extent[3] = {0.5 * g->nx, 0.5 * g->ny, fmax(z_hi - target[2], target[2] - fmin(g->base, g->z_lo))};
     double radius = sqrt(dot3(extent, extent)) + 1.0, longer = g->nx > g->ny ? g->nx : g->ny;
     int perspective = k->projection == IM_VIEW3D_PERSPECTIVE;
@@ -580,6 +638,47 @@ static int allocate_view_image(const im_field *h, const im_view3d_style *s, im_i
     return IM_OK;
 }
 
+static void view_geometry_of(view_geometry *g, const im_field *h, const im_indenter *punch, const im_view3d_style *s)
+{
+    surface_geometry(g, h, s);
+    if (punch && s->punch_mode != IM_VIEW3D_PUNCH_NONE)
+        punch_geometry(g, h, punch, s);
+}
+
+static int fitted_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,
+                           double *fitted)
+{
+    int status = check_inputs(height, NULL, punch);
+    if (status == IM_OK)
+        status = check_geometry_style(s);
+    if (status != IM_OK)
+        return status;
+    view_geometry g = {0};
+    view_geometry_of(&g, height, punch, s);
+    float *corners = malloc((size_t)(g.cells_x + 1) * (g.cells_y + 1) * sizeof *corners);
+    if (!corners)
+        return im_fail(IM_ENOMEM, "3-D view %d x %d: out of memory", height->nx, height->ny);
+    corner_heights(&g, height, corners);
+    wall_base(&g, s, corners);
+    free(corners);
+    *fitted = fit_distance(&g, &s->camera, (double)s->width / s->height) / fmax(g.nx, g.ny);
+    return IM_OK;
+}
+
+int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,
+                           double *distance)
+{
+    ARG_REQUIRE(distance, "distance");
+    int status = arg_view(__func__, "height", height);
+    if (status == IM_OK && !s)
+        status = arg_null(__func__, "style");
+    double fitted = NAN; /* written last: `distance` may be the style's own camera distance */
+    if (status == IM_OK)
+        status = fitted_distance(height, punch, s, &fitted);
+    *distance = fitted;
+    return status;
+}
+
 int im_render_view3d(im_render_context *c, const im_field *height, const im_field *force,
                      const im_indenter *punch, const im_view3d_style *s, im_image *image)
 {
@@ -602,9 +701,7 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
     if (status != IM_OK)
         return status;
     view_geometry geometry = {0};
-    surface_geometry(&geometry, height, s);
-    if (punch && s->punch_mode != IM_VIEW3D_PUNCH_NONE)
-        punch_geometry(&geometry, height, punch, s);
+    view_geometry_of(&geometry, height, punch, s);
     surface_inputs inputs = {0};
     status = make_inputs(&geometry, height, force, s, &inputs);
     if (status == IM_OK)

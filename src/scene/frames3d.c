@@ -37,19 +37,34 @@ static void height_range(const im_field *h, double *lo, double *hi)
     }
 }
 
-/* One style for every frame (the punch cut away, the camera a little closer than the default):
+/* The camera's distance: the nearest at which every step is seen whole (the block's front edge
+ * included: the deepest step's block reaches lowest, the first step's punch highest). */
+static int fit_camera(im_field *const *deformed, int count, const im_indenter *punch, im_view3d_style *s)
+{
+    double farthest = 0.0;
+    for (int i = 0; i < count; ++i) {
+        double distance;
+        int status = im_view3d_fit_distance(deformed[i], punch, s, &distance);
+        if (status != IM_OK)
+            return status;
+        farthest = fmax(farthest, distance);
+    }
+    s->camera.distance = farthest;
+    return IM_OK;
+}
+
+/* One style for every frame (the punch cut away, the camera as near as shows every step whole):
  * the relief of the last (deepest) step exaggerated to about an eighth
  * of the grid's longer side (a 1-2-5 factor, never below true scale), the camera's target fixed at
  * the middle of all frames' heights. */
-static im_view3d_style frames_style(const im_scene *scene, im_field *const *deformed, int count,
-                                    const im_colormap *norm)
+static int frames_style(const im_scene *scene, im_field *const *deformed, int count, const im_indenter *punch,
+                        const im_colormap *norm, im_view3d_style *style)
 {
     im_view3d_style s = im_view3d_style_default(NULL);
     s.width = scene->frame3d_width;
     s.height = scene->frame3d_height;
     s.colormap = *norm;
     s.punch_mode = IM_VIEW3D_PUNCH_CUTAWAY; /* the contact under the punch stays in sight */
-    s.camera.distance = 1.75;
     double lo = INFINITY, hi = -INFINITY;
     height_range(deformed[count - 1], &lo, &hi);
     int longer = deformed[0]->nx > deformed[0]->ny ? deformed[0]->nx : deformed[0]->ny;
@@ -57,7 +72,8 @@ static im_view3d_style frames_style(const im_scene *scene, im_field *const *defo
     for (int i = 0; i < count; ++i)
         height_range(deformed[i], &lo, &hi);
     s.camera.target_z = s.exaggeration * 0.5 * (lo + hi);
-    return s;
+    *style = s;
+    return fit_camera(deformed, count, punch, style);
 }
 
 /* The annotated frame as frames/view3d_NNNN.png, its pixels in *frame when frame is not NULL. */
@@ -117,15 +133,17 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
 int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
                          const scene_frames3d_input *in)
 {
-    im_view3d_style style = frames_style(scene, in->deformed, in->count, in->norm);
+    im_view3d_style style;
     im_indenter punch = scene_punch(scene);
+    int status = frames_style(scene, in->deformed, in->count, &punch, in->norm, &style);
+    if (status != IM_OK)
+        return status;
     int gif = (scene->animation & IM_ANIMATION_GIF) != 0;
     im_image *frames = calloc((size_t)in->count, sizeof *frames);
     if (!frames)
         return im_fail(IM_ENOMEM, "3-D frames: allocation failed");
     scene_progress(options, "frames3d: %d 3-D views (%s, vertical exaggeration %g)", in->count,
                    im_render_gl_renderer(context), style.exaggeration);
-    int status = IM_OK;
     for (int i = 0; i < in->count && status == IM_OK; ++i) {
         im_image view = {0};
         status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &view);

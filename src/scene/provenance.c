@@ -2,6 +2,7 @@
  * can be made again from its record alone (im_scene_load_record; docs/scenes.md, "Provenance"). */
 #include "scene/provenance.h"
 #include "core/args.h"
+#include "front/front.h"
 
 #include "io/checksum.h"
 
@@ -90,20 +91,6 @@ static int scene_input(const im_scene *scene, int i, int profile_resolved, const
     return 1;
 }
 
-static int add_input(json_t *inputs, const char *key, const char *path)
-{
-    char hex[IM_SHA256_HEX + 1], absolute[PATH_MAX], text[4 * PATH_MAX + 1];
-    int status = im_file_sha256(path, hex);
-    if (status == IM_OK)
-        status = im_path_absolute(path, absolute, sizeof absolute);
-    if (status != IM_OK)
-        return status;
-    im_path_utf8(absolute, text, sizeof text);
-    return json_array_append_new(inputs, json_pack("{s:s, s:s, s:s}", "key", key, "path", text, "sha256", hex)) == 0
-               ? IM_OK
-               : im_fail(IM_ENOMEM, "run.json: out of memory");
-}
-
 int scene_inputs_record(const im_scene *scene, json_t **record)
 {
     json_t *inputs = json_array();
@@ -111,7 +98,7 @@ int scene_inputs_record(const im_scene *scene, json_t **record)
     char path[IM_SCENE_PATH];
     int status = inputs ? IM_OK : im_fail(IM_ENOMEM, "run.json: out of memory");
     for (int i = 0; status == IM_OK && scene_input(scene, i, 1, &key, path, sizeof path); ++i)
-        status = add_input(inputs, key, path);
+        status = run_record_add_input(inputs, key, path);
     if (status != IM_OK) {
         json_decref(inputs);
         inputs = NULL;

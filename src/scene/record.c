@@ -11,6 +11,7 @@
 #include "indentmap/status.h"
 
 #include <jansson.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -90,6 +91,17 @@ static json_t *periodic_record(const im_scene *scene)
     return record;
 }
 
+/* What the numbers of the scene's tables are in: lengths in the surfaces' unit (delta for generated
+ * ones), pressures in E*, forces in E* times a length squared. */
+static json_t *units_record(const im_scene *scene)
+{
+    const char *length = scene->file_unit[0] ? scene->file_unit : "δ";
+    char force[64];
+    snprintf(force, sizeof force, "E* %s\u00b2", length);
+    return json_pack("{s:s, s:s, s:s, s:o*}", "length", length, "force", force, "pressure", "E*", "columns",
+                     column_units_record(length, force, "E*"));
+}
+
 /* What makes the run again from its record (provenance.h): the scene's contents, its inputs' SHA-256
  * and the record it was itself rebuilt from (null for a scene file). */
 static int add_provenance(const im_scene *scene, json_t *root)
@@ -136,6 +148,7 @@ int scene_write_record(const im_scene *scene)
                                         scene->adhesion_work / scene->adhesion_range)
                             : json_null());
     json_object_set_new(root, "periodic", periodic_record(scene));
+    json_object_set_new(root, "units", units_record(scene));
     /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */
     json_object_set_new(root, "theory_slope_rms",
                         json_pack("{s:s, s:s}", "definition", scene->file_count > 0 ? "finite differences" : "spectral",
