@@ -69,7 +69,8 @@ typedef struct im_mpi_solver im_mpi_solver;
  * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop,
  * window_margin and cascade are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
  * options; IM_EUNSUPPORTED, naming it, for what the distributed solver does not do: adhesion
- * (adhesion_work > 0), periodic = 1, device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU);
+ * (adhesion_work > 0), device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU). periodic = 1 solves
+ * the periodic half-space on the unpadded nx x ny grid (its slabs are then the surface rows);
  * IM_ENOMEM when this rank's share (im_mpi_solver_bytes) does not fit or FFTW cannot plan. */
 int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_solver_options *options,
                          im_mpi_solver **out);
@@ -93,6 +94,27 @@ void im_mpi_convolve(im_mpi_solver *solver, const double *pressure, double *disp
  * every rank at the same iteration with IM_EINTERRUPTED, pressure holding a valid warm start. */
 int im_mpi_solver_solve(im_mpi_solver *solver, const double *gap0, enum im_control control, double target,
                         double *pressure, double *displacement, im_solve_result *result);
+
+/* ---- Nominally flat contact over ranks (solver.h, "Periodic mode") ----
+ * The periodic cell of im_flat_contact_* on a solver made with options.periodic = 1 (the circular
+ * convolution on the nx x ny grid, decomposed into FFTW-MPI's slabs of that grid), each rank holding
+ * its rows: the same answers as the serial functions (to the tolerance; iteration counts equal to
+ * the serial solve's with cascade = 0). */
+typedef struct im_mpi_flat_contact im_mpi_flat_contact;
+
+/* Prepares the contact of a rigid flat with the periodic surface whose rows [y0, y0 + rows)
+ * (im_mpi_solver_rows) this rank passes in heights (units of delta; not referenced after the call):
+ * g0 = max h - h over the whole cell. solver (periodic, not freed here) must outlive the run.
+ * IM_EINVAL for a half-space solver, IM_ENUMERIC naming a non-finite height, IM_ENOMEM. Collective. */
+int im_mpi_flat_contact_create(im_mpi_solver *solver, const double *heights, im_mpi_flat_contact **out);
+/* NULL is ignored. Not collective. */
+void im_mpi_flat_contact_free(im_mpi_flat_contact *run);
+/* As im_flat_contact_solve and im_flat_contact_solve_gap (warm-started from the last solve): out
+ * holds global values, the same on every rank. Collective. */
+int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im_flat_result *out);
+int im_mpi_flat_contact_solve_gap(im_mpi_flat_contact *run, double mean_gap, im_flat_result *out);
+/* This rank's rows of the pressure of the last solve (rows * nx values; owned by run). */
+const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's
  * rows of heights (in units of delta, not modified). IM_ENUMERIC for a non-finite height, IM_EINVAL

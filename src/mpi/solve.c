@@ -31,6 +31,8 @@ static int check_inputs(const im_mpi_solver *s, const double *gap0, enum im_cont
     if (bad[1] < LONG_MAX)
         return im_fail(IM_EINVAL, "warm-start pressure at patch (%ld, %ld): expected finite and >= 0",
                        bad[1] % s->nx, bad[1] / s->nx);
+    if (solver_periodic_approach_checked(&s->plan, control))
+        return solver_check_periodic_mean_gap(mpi_surface_mean(s, gap0), target);
     return IM_OK;
 }
 

@@ -87,4 +87,9 @@ void solver_add_point_loads(const im_solver_plan *plan, const long *index, const
  * its real-space values for direct sums (options.periodic). IM_OK or IM_ENOMEM. */
 int solver_periodic_kernel(im_solver_plan *plan);
 
+/* The periodic half-space's mode (kx, ky) of the plan's nx x ny grid (kx <= nx / 2, ky < ny, index
+ * ky > ny / 2 standing for ky - ny): K's spectrum 2 / (E* |q|) and the preconditioner's E* |q| / 2,
+ * both divided by nx ny, 0 on the mean mode. Shared by the serial plan and the MPI engine. */
+void solver_periodic_mode(const im_solver_plan *plan, int kx, int ky, double *spectrum, double *inverse);
+
 #endif

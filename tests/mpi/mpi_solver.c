@@ -1,10 +1,12 @@
 /* The distributed solver against the serial one, run under mpirun with 1, 2, 3 and 4 ranks
  * (tests/mpi/mpi_solver.sh): rank 0 solves the same problem (the undeformed gap the ranks made,
  * gathered) on the serial CPU engine and shares its answer, which every rank compares with its rows:
- * loads to 1e-10 relative, contact sets identical, iteration counts within a few (both run the one
- * iteration of solver/pk.c; the preconditioner's transforms round differently over ranks). Cases: a
- * rough cone and a rough sphere (preconditioned CG) and the rough cone under a hardness cap (plain
- * PK with a second bound), each under displacement and load control. Also: the
+ * loads to 1e-10 relative, contact sets identical, iteration counts equal (both run the one
+ * iteration of solver/pk.c). Cases: a rough cone and a rough sphere (preconditioned CG) and the rough
+ * cone under a hardness cap (plain PK with a second bound), each under displacement and load
+ * control; nominally flat contact of a periodic rough cell (im_mpi_flat_contact against
+ * im_flat_contact: approach, mean pressure and mean gap to 1e-10) under a mean pressure, a mean gap
+ * and a mean pressure with a cap, on odd and even sides. Also: the
  * distributed synthesis against im_surface_generate, the maps gathered on rank 0 (whole and 5 x 5),
  * and .npy rows through MPI-IO against the serial reader and writer. Prints one line per case with
  * the load and the map's total in hexadecimal, so the script can check that they are the same
@@ -134,26 +136,42 @@ static long capped_patches(const scenario *c, const im_field *force)
     return capped;
 }
 
-static void compare(const scenario *c, const im_solve_result *serial, const im_field *force, const im_solve_result *mpi,
-                    const double *pressure, int y0, int rows)
+/* value within 1e-10 relative of the serial solver's */
+static void check_close(const scenario *c, const char *what, double value, double serial)
 {
     char detail[256];
-    double relative = fabs(mpi->load - serial->load) / serial->load;
-    snprintf(detail, sizeof detail, "%s: load %.17g (serial %.17g), relative difference %.3g", c->name, mpi->load,
-             serial->load, relative);
-    check(relative <= 1e-10, "load as the serial solver's", detail);
-    snprintf(detail, sizeof detail, "%s: %d iterations (serial %d)", c->name, mpi->iterations, serial->iterations);
-    check(abs(mpi->iterations - serial->iterations) <= 2, "iterations as the serial solver's", detail);
+    double relative = fabs(value - serial) / fabs(serial);
+    snprintf(detail, sizeof detail, "%s: %s %.17g (serial %.17g), relative difference %.3g", c->name, what, value,
+             serial, relative);
+    check(relative <= 1e-10, what, detail);
+}
+
+/* The same iteration count as the serial solver (the one iteration of solver/pk.c on both), a cap
+ * that binds where there is one, and the serial contact set (force: the serial answer, whole). */
+static void check_solution(const scenario *c, const im_field *force, int iterations, int serial_iterations,
+                           long contact, long serial_contact, const double *pressure, int y0, int rows)
+{
+    char detail[256];
+    snprintf(detail, sizeof detail, "%s: %d iterations (serial %d)", c->name, iterations, serial_iterations);
+    check(iterations == serial_iterations, "iterations as the serial solver's", detail);
     snprintf(detail, sizeof detail, "%s: %ld patches at the cap %g", c->name, capped_patches(c, force), c->hardness);
     check((c->hardness > 0) == (capped_patches(c, force) > 0), "a cap that binds", detail);
     long differ = 0;
     for (size_t i = 0; i < (size_t)rows * c->nx; ++i)
         differ += (pressure[i] > 0) != (force->data[(size_t)y0 * c->nx + i] > 0);
     MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-    snprintf(detail, sizeof detail, "%s: %ld patches differ; %ld in contact (serial %ld)", c->name, differ,
-             mpi->contact_patches, serial->contact_patches);
-    check(differ == 0 && mpi->contact_patches == serial->contact_patches, "contact set as the serial solver's", detail);
-    check(serial->contact_patches > 20, "a contact of many patches", detail);
+    snprintf(detail, sizeof detail, "%s: %ld patches differ; %ld in contact (serial %ld)", c->name, differ, contact,
+             serial_contact);
+    check(differ == 0 && contact == serial_contact, "contact set as the serial solver's", detail);
+    check(serial_contact > 20, "a contact of many patches", detail);
+}
+
+static void compare(const scenario *c, const im_solve_result *serial, const im_field *force, const im_solve_result *mpi,
+                    const double *pressure, int y0, int rows)
+{
+    check_close(c, "load", mpi->load, serial->load);
+    check_solution(c, force, mpi->iterations, serial->iterations, mpi->contact_patches, serial->contact_patches,
+                   pressure, y0, rows);
 }
 
 /* Rank 0: the whole map (factor 1) is the distributed solution, whose contact set is the serial
@@ -239,6 +257,81 @@ static void run_scenario(const scenario *c)
     im_field_free(surface);
 }
 
+/* The mean of max h - h over the surface: the undeformed cell's mean gap. */
+static double undeformed_mean_gap(const im_field *surface)
+{
+    double highest = -INFINITY, sum = 0;
+    for (size_t i = 0; i < im_field_count(surface); ++i)
+        highest = fmax(highest, surface->data[i]);
+    for (size_t i = 0; i < im_field_count(surface); ++i)
+        sum += highest - surface->data[i];
+    return sum / (double)im_field_count(surface);
+}
+
+/* Nominally flat contact of the periodic cell c->surface: under load control c->approach is the mean
+ * pressure p_m, under displacement control the mean gap as a fraction of the undeformed cell's. */
+static int flat_solve(const scenario *c, const im_field *surface, void *run, int over_ranks, im_flat_result *out)
+{
+    if (c->control == IM_CONTROL_LOAD)
+        return over_ranks ? im_mpi_flat_contact_solve(run, c->approach, out) : im_flat_contact_solve(run, c->approach, out);
+    const double gap = c->approach * undeformed_mean_gap(surface);
+    return over_ranks ? im_mpi_flat_contact_solve_gap(run, gap, out) : im_flat_contact_solve_gap(run, gap, out);
+}
+
+/* The serial im_flat_contact's answer on rank 0, shared with every rank: its result and pressures. */
+static void serial_flat_solution(const scenario *c, const im_field *surface, im_flat_result *serial, im_field **force)
+{
+    check_status(im_field_create(c->nx, c->ny, 1.0, force), "force field");
+    if (rank == 0) {
+        im_solver_options o = options(c);
+        im_flat_contact *run;
+        check_status(im_flat_contact_create(surface, &o, &run), "serial flat contact");
+        check_status(flat_solve(c, surface, run, 0, serial), "serial flat solve");
+        memcpy((*force)->data, im_flat_contact_pressure(run), sizeof(double) * im_field_count(*force));
+        im_flat_contact_free(run);
+    }
+    MPI_Bcast(serial, sizeof *serial, MPI_BYTE, 0, MPI_COMM_WORLD);
+    MPI_Bcast((*force)->data, (int)im_field_count(*force), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
+/* The periodic cell over ranks (im_mpi_flat_contact) against the serial im_flat_contact. */
+static void run_periodic(const scenario *c)
+{
+    im_field *surface = rough_surface(c);
+    im_solver_options o = options(c);
+    o.periodic = 1;
+    im_mpi_solver *solver;
+    int y0, rows;
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "periodic distributed plan");
+    im_mpi_solver_rows(solver, &y0, &rows);
+    im_mpi_flat_contact *run;
+    check_status(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c->nx, &run), "distributed flat contact");
+    im_flat_result serial, result;
+    im_field *force;
+    serial_flat_solution(c, surface, &serial, &force);
+    check_status(flat_solve(c, surface, run, 1, &result), "distributed flat solve");
+    check_close(c, "approach", result.approach, serial.approach);
+    check_close(c, "mean pressure", result.mean_pressure, serial.mean_pressure);
+    check_close(c, "mean gap", result.mean_gap, serial.mean_gap);
+    const double *pressure = im_mpi_flat_contact_pressure(run);
+    check_solution(c, force, result.iterations, serial.iterations, result.contact_patches, serial.contact_patches,
+                   pressure, y0, rows);
+    im_field *whole, *coarse;
+    check_status(im_mpi_gather_map(solver, pressure, 1, &whole), "whole map");
+    check_status(im_mpi_gather_map(solver, pressure, 5, &coarse), "5 x 5 map");
+    if (rank == 0)
+        printf("%s approach %a contact %ld map %a iterations %d serial-iterations %d p_m %.6g A/A0 %.4g capped %ld\n",
+               c->name, result.approach, result.contact_patches, check_maps(c, force, whole, coarse),
+               result.iterations, serial.iterations, result.mean_pressure, result.area_fraction,
+               capped_patches(c, force));
+    im_field_free(whole);
+    im_field_free(coarse);
+    im_mpi_flat_contact_free(run);
+    im_mpi_solver_free(solver);
+    im_field_free(force);
+    im_field_free(surface);
+}
+
 /* The stop flag, set on the last rank only, stops every rank at the same iteration with
  * IM_EINTERRUPTED; cleared, the same solve goes on from the pressure it left to the serial answer. */
 static void check_stop(const scenario *c)
@@ -274,19 +367,62 @@ static void check_stop(const scenario *c)
 /* What the MPI engine cannot do is refused on every rank with IM_EUNSUPPORTED naming it, never ignored. */
 static void check_refusals(void)
 {
-    const char *names[] = {"adhesion", "periodic", "device = gpu"};
-    for (int k = 0; k < 3; ++k) {
+    const char *names[] = {"adhesion", "device = gpu"};
+    for (int k = 0; k < 2; ++k) {
         im_solver_options o = im_solver_options_default();
         if (k == 0)
             o.adhesion_work = o.adhesion_range = 0.1;
-        o.periodic = k == 1;
-        o.device = k == 2 ? IM_DEVICE_GPU : IM_DEVICE_CPU;
+        o.device = k == 1 ? IM_DEVICE_GPU : IM_DEVICE_CPU;
         im_mpi_solver *solver = NULL;
         int status = im_mpi_solver_create(MPI_COMM_WORLD, 32, 32, 1.0, &o, &solver);
         char detail[600];
         snprintf(detail, sizeof detail, "status %d: %s", status, im_last_error());
         check(status == IM_EUNSUPPORTED && solver == NULL && strstr(im_last_error(), names[k]), names[k], detail);
     }
+}
+
+static void check_refused(int status, int expected, const char *message, const char *what)
+{
+    char detail[600];
+    snprintf(detail, sizeof detail, "status %d: %s", status, im_last_error());
+    check(status == expected && strstr(im_last_error(), message), what, detail);
+}
+
+/* A flat contact needs a periodic solver; a periodic cell pressed to a mean gap <= 0 is refused over
+ * ranks as by the serial solver, on every rank. */
+static void check_periodic_refusals(void)
+{
+    scenario c = {.name = "periodic-refusals", .nx = 32, .ny = 24, .seed = 8};
+    im_field *surface = rough_surface(&c);
+    im_solver_options o = options(&c);
+    im_mpi_solver *solver;
+    int y0, rows;
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c.nx, c.ny, 1.0, &o, &solver), "half-space plan");
+    im_mpi_solver_rows(solver, &y0, &rows);
+    im_mpi_flat_contact *run = NULL;
+    check_refused(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c.nx, &run), IM_EINVAL, "half-space",
+                  "flat contact on a half-space");
+    check(run == NULL, "no flat contact on a half-space", c.name);
+    im_mpi_solver_free(solver);
+    o.periodic = 1;
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c.nx, c.ny, 1.0, &o, &solver), "periodic plan");
+    im_mpi_solver_rows(solver, &y0, &rows); /* the periodic grid's slabs: other rows */
+    check_status(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c.nx, &run), "flat contact");
+    im_flat_result result;
+    check_refused(im_mpi_flat_contact_solve_gap(run, 0, &result), IM_EINVAL, "expected 0 < mean gap", "mean gap 0");
+    /* gap0 = 1 everywhere: an approach of 1.5 leaves a mean gap of -0.5 */
+    const size_t n = (size_t)rows * c.nx + 1;
+    double *gap0 = malloc(sizeof(double) * n), *p = calloc(n, sizeof(double)), *u = malloc(sizeof(double) * n);
+    for (size_t i = 0; i < n; ++i)
+        gap0[i] = 1;
+    check_refused(im_mpi_solver_solve(solver, gap0, IM_CONTROL_DISPLACEMENT, 1.5, p, u, NULL), IM_EINVAL,
+                  "its mean gap would be -0.5", "a periodic approach past full contact");
+    free(gap0);
+    free(p);
+    free(u);
+    im_mpi_flat_contact_free(run);
+    im_mpi_solver_free(solver);
+    im_field_free(surface);
 }
 
 /* MPI-IO .npy: rows written by the ranks read back by the serial reader, and rows of a file the
@@ -340,8 +476,18 @@ int main(int argc, char **argv)
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k)
         run_scenario(&cases[k]);
+    const im_indenter flat = {0}; /* unused: a rigid flat */
+    const scenario periodic_cases[] = {
+        {"periodic-load-64x48", 64, 48, flat, IM_CONTROL_LOAD, 0.01, 5, 0},
+        {"periodic-load-47x53", 47, 53, flat, IM_CONTROL_LOAD, 0.02, 6, 0},
+        {"periodic-mean-gap-64x48", 64, 48, flat, IM_CONTROL_DISPLACEMENT, 0.5, 5, 0},
+        {"periodic-hardness-load-64x48", 64, 48, flat, IM_CONTROL_LOAD, 0.02, 5, 0.1},
+    };
+    for (size_t k = 0; k < sizeof periodic_cases / sizeof periodic_cases[0]; ++k)
+        run_periodic(&periodic_cases[k]);
     check_stop(&cases[1]);
     check_refusals();
+    check_periodic_refusals();
     check_npy(argc > 1 ? argv[1] : ".");
     im_mpi_cleanup();
     MPI_Finalize();
