@@ -15,8 +15,10 @@
  * spectrum transposed (FFTW_MPI_TRANSPOSED_OUT) and the c2r transform takes it so
  * (FFTW_MPI_TRANSPOSED_IN): two all-to-all exchanges per convolution. A rank owns the surface rows
  * [y0, y0 + rows) where its padded rows meet the surface's ny rows (rows may be 0: the upper
- * half of the padded grid is zeros). Every per-patch array passed to these functions holds this
- * rank's rows only: rows * nx values, row-major, x fastest, rows of the surface counted from y0.
+ * half of the padded grid is zeros). In the periodic mode (options.periodic) the transform grid
+ * is the unpadded nx x ny cell, and a rank's slab is its surface rows. Every per-patch array
+ * passed to these functions holds this rank's rows only: rows * nx values, row-major, x fastest,
+ * rows of the surface counted from y0.
  * Threads: each rank runs its loops and its FFTs with the OpenMP thread count in force (hybrid).
  *
  * ---- Same answer for any rank count ----
@@ -24,11 +26,14 @@
  * compensation, the row sums gathered (MPI_Allgatherv) and added in row order with compensation
  * on every rank: the result does not depend on the rank or thread count. Counts and maxima are
  * exact. The solver runs the serial solver's own iteration (solver.h: Polonsky-Keer, the
- * preconditioner, the hardness cap, residual <= tol on the exact displacement) on an MPI engine,
- * and takes as many iterations as the serial solver with cascade = 0. Where the serial solver adds
- * a few changed patches by direct summation, this one recomputes the convolution (exact, one more
- * convolution). Crop windows do not apply: the whole grid is solved (the serial solver with
- * crop = 0); nor does the cascade start (cold starts are the local guess).
+ * preconditioner, the hardness cap, the periodic mode, the cascade start, residual <= tol on the
+ * exact displacement) on an MPI engine, and takes as many iterations as the serial solver. The
+ * cascade's coarse levels (a quarter of the grid and less) are held whole by every rank and solved
+ * alike on one thread, from the coarse gap the serial plan restricts (the same bits), so the start
+ * is the same for any rank or thread count; only the restriction and the prolongation touch the
+ * ranks' rows (memory: im_mpi_solver_bytes). Where the serial solver adds a few changed patches by direct summation,
+ * this one recomputes the convolution (exact, one more convolution). Crop windows do not apply:
+ * the whole grid is solved (the serial solver with crop = 0).
  *
  * ---- Errors ----
  * All functions taking a communicator are collective: every rank of it must call them, and every
@@ -66,8 +71,8 @@ void im_mpi_cleanup(void);
 typedef struct im_mpi_solver im_mpi_solver;
 
 /* Plans an nx x ny problem of patch side delta over the ranks of comm (the communicator is
- * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop,
- * window_margin and cascade are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
+ * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop and
+ * window_margin are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
  * options; IM_EUNSUPPORTED, naming it, for what the distributed solver does not do: adhesion
  * (adhesion_work > 0), device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU). periodic = 1 solves
  * the periodic half-space on the unpadded nx x ny grid (its slabs are then the surface rows);
@@ -80,8 +85,10 @@ void im_mpi_solver_free(im_mpi_solver *solver);
 /* The surface rows this rank owns: [*y0, *y0 + *rows). */
 void im_mpi_solver_rows(const im_mpi_solver *solver, int *y0, int *rows);
 
-/* Memory, in bytes, of the largest rank's share of an nx x ny solver over `ranks` ranks (the
- * model docs/mpi.md checks against measured peak RSS; MPI's own buffers not included). */
+/* Memory, in bytes, of the largest rank's share of an nx x ny solver over `ranks` ranks with the
+ * default options (the model docs/mpi.md checks against measured peak RSS; MPI's own buffers not
+ * included): the half-space's slabs and, where the grid has a cascade level, that level's plan,
+ * which every rank holds whole (about 73 nx ny bytes; cascade = 0 saves it). */
 double im_mpi_solver_bytes(int nx, int ny, int ranks);
 
 /* u = K p on this rank's rows (rows * nx values each; may not alias). Collective. */

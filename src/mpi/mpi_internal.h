@@ -45,6 +45,11 @@ struct im_mpi_solver {
     const mpi_transform *precondition_with;
     double *inverse_spectrum;     /* precondition_with's columns x ny, transposed, divided by nx ny */
     double *preconditioned;       /* rows * nx: z = M g */
+    /* The cascade (cascade.c): its first coarse level, a serial CPU plan (with its own coarser levels)
+     * that every rank holds whole and solves alike (NULL: none), and that level's fields. */
+    im_solver_plan *coarse;
+    double *coarse_gap0, *coarse_pressure, *coarse_displacement;
+    double *coarse_sums;          /* 4 cx cy: the blocks' pair sums and counts, upper and lower rows */
 };
 
 #define MPI_SUMS_MAX 5
@@ -58,6 +63,14 @@ void mpi_convolve(im_mpi_solver *solver, const double *pressure, double *displac
  * rank's surface rows (rows * nx; may alias); the transform's other rows and columns are zeros. */
 void mpi_transform_apply(const im_mpi_solver *solver, const mpi_transform *t, const double *spectrum,
                          const double *in, double *out);
+
+/* The cascade start over ranks (cascade.c): the coarse level when the options and the grid have one,
+ * its start (as solver_cascade_start: the coarse iterations; pressure, this rank's rows, all zero when
+ * the coarse grids found no contact), and its release. */
+int mpi_cascade_create(im_mpi_solver *solver);
+int mpi_cascade_start(im_mpi_solver *solver, const double *gap0, enum im_control control, double target,
+                      double *pressure);
+void mpi_cascade_free(im_mpi_solver *solver);
 
 /* The mean over the surface of values (this rank's rows), summed in row order: the same bits on every
  * rank for any rank count. */

@@ -22,9 +22,19 @@ void im_mpi_cleanup(void) { fftw_mpi_cleanup(); }
  * block is ceil(n / ranks) rows (fftw_mpi_local_size's documented default distribution). */
 static ptrdiff_t block_of(ptrdiff_t n, int ranks) { return (n + ranks - 1) / ranks; }
 
-double im_mpi_solver_bytes(int nx, int ny, int ranks)
+/* The cascade's coarse levels, whole on every rank (cascade.c): the first level's serial plan (with
+ * its own coarser levels) and its gap, pressure, displacement and four pair-sum arrays. */
+static double cascade_bytes(int nx, int ny, int periodic)
 {
-    ARG_SIDES_OR(nx, ny, NAN);
+    int cx, cy;
+    if (!solver_cascade_sides(nx, ny, periodic, &cx, &cy))
+        return 0;
+    return im_solver_plan_bytes(cx, cy) + 7.0 * 8.0 * cx * cy;
+}
+
+/* Without the cascade's levels. */
+static double mpi_solver_bytes(int nx, int ny, int ranks)
+{
     const double rows0 = (double)block_of(2 * (ptrdiff_t)ny, ranks); /* rank 0's padded rows */
     const double rows = rows0 < ny ? rows0 : ny;                     /* its surface rows */
     const double columns = (double)block_of(nx + 1, ranks);          /* its spectrum columns */
@@ -36,6 +46,12 @@ double im_mpi_solver_bytes(int nx, int ny, int ranks)
     /* t, g, K t, z of the solver and the caller's g0, p, u; the row sums */
     const double vectors = 7.0 * 8.0 * rows * nx + 8.0 * MPI_SUMS_MAX * (rows + ny);
     return buffer + spectrum + precondition + vectors;
+}
+
+double im_mpi_solver_bytes(int nx, int ny, int ranks)
+{
+    ARG_SIDES_OR(nx, ny, NAN);
+    return mpi_solver_bytes(nx, ny, ranks) + cascade_bytes(nx, ny, 0);
 }
 
 void im_mpi_solver_rows(const im_mpi_solver *s, int *y0, int *rows)
@@ -251,23 +267,25 @@ static int make_transforms(im_mpi_solver *s)
 
 static int set_up(im_mpi_solver *s)
 {
-    char what[96];
-    snprintf(what, sizeof what, "rank %d's share of a %d x %d distributed solver", s->rank, s->nx, s->ny);
-    int status = im_memory_check(im_mpi_solver_bytes(s->nx, s->ny, s->ranks), what);
+    char what[192];
+    const double coarse = s->plan.options.cascade ? cascade_bytes(s->nx, s->ny, s->plan.options.periodic) : 0;
+    snprintf(what, sizeof what, "rank %d's share of a %d x %d distributed solver%s", s->rank, s->nx, s->ny,
+             coarse > 0 ? " (with the cascade's coarse levels, whole on every rank; cascade = 0 leaves them out)" : "");
+    int status = im_memory_check(mpi_solver_bytes(s->nx, s->ny, s->ranks) + coarse, what);
     status = mpi_collective_status(s->comm, status);
     if (status == IM_OK)
         status = make_transforms(s);
     if (status != IM_OK)
         return status;
     share_rows(s);
-    if (s->plan.options.periodic) {
+    if (s->plan.options.periodic)
         compute_periodic_spectra(s);
-        return IM_OK;
+    else {
+        compute_spectrum(s);
+        compute_preconditioner(s);
+        s->k0 = im_influence_square(0, 0, s->delta, s->plan.options.e_star);
     }
-    compute_spectrum(s);
-    compute_preconditioner(s);
-    s->k0 = im_influence_square(0, 0, s->delta, s->plan.options.e_star);
-    return IM_OK;
+    return mpi_cascade_create(s);
 }
 
 int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_solver_options *options,
@@ -288,9 +306,6 @@ int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_s
     }
     o.wisdom_path = NULL; /* not owned, and not used: FFTW-MPI plans are made without wisdom */
     solver_plan_options(&o);
-    /* No cascade start: its coarse levels would each need their own decomposition and FFTW-MPI plans
-     * (docs/mpi.md); cold starts are the local (Winkler) guess. */
-    o.cascade = 0;
     const int pad = o.periodic ? 1 : 2; /* periodic: the circular convolution on the grid itself */
     *s = (im_mpi_solver){.nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta};
     s->plan = (im_solver_plan){.engine = &solver_engine_mpi, .mpi = s, .nx = nx, .ny = ny, .px = pad * nx,
@@ -313,6 +328,7 @@ void im_mpi_solver_free(im_mpi_solver *s)
         return;
     free_transform(&s->convolution);
     free_transform(&s->unpadded);
+    mpi_cascade_free(s);
     fftw_free(s->inverse_spectrum);
     free(s->preconditioned);
     fftw_free(s->spectrum);

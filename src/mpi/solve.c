@@ -50,8 +50,11 @@ int im_mpi_solver_solve(im_mpi_solver *s, const double *gap0, enum im_control co
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * (size_t)s->rows * s->nx);
         memset(displacement, 0, sizeof(double) * (size_t)s->rows * s->nx);
-    } else
+    } else {
+        if (s->coarse && !s->plan.engine->any_positive(&r))
+            res.coarse_iterations = mpi_cascade_start(s, gap0, control, target, pressure);
         status = solver_pk_solve(&r, &res);
+    }
     res.convolutions = r.convolutions;
     res.seconds = MPI_Wtime() - start;
     if (result)

@@ -46,6 +46,8 @@ typedef struct scenario {
     double approach;  /* displacement control: w; load control: N = the smooth N(w) */
     unsigned seed;
     double hardness;  /* the pressure cap H_p (0: none) */
+    int cascade;      /* both solvers start from their coarse grids (0: from the local guess) */
+    int periodic;     /* a periodic cell under a rigid flat (g0 = max h - h; approach: see run_periodic) */
 } scenario;
 
 static im_field *rough_surface(const scenario *c)
@@ -79,22 +81,34 @@ static void check_synthesis(const scenario *c, const im_field *surface, int y0, 
     check(worst <= 1e-13 * largest, "synthesis equals im_surface_generate", detail);
 }
 
-/* Both solvers run with the defaults (the preconditioner on) at tol 1e-10 on the whole grid; the
- * serial one without its cascade start, which the distributed solver has not (docs/mpi.md), so that
- * both take the same path from the same Winkler start and their iteration counts compare. */
+/* Both solvers run with the defaults (the preconditioner on) at tol 1e-10 on the whole grid, both
+ * with or both without the cascade start: they take the same path and their iteration counts compare. */
 static im_solver_options options(const scenario *c)
 {
     im_solver_options o = im_solver_options_default();
     o.crop = 0;
     o.tol = 1e-10;
-    o.cascade = 0;
+    o.cascade = c->cascade;
+    o.periodic = c->periodic;
     o.hardness = c->hardness;
     return o;
 }
 
+/* Displacement control: w; load control: the smooth N(w), or on a periodic cell p_m nx ny. */
 static double target_of(const scenario *c)
 {
-    return c->control == IM_CONTROL_LOAD ? im_indenter_load(&c->punch, 1, c->approach) : c->approach;
+    if (c->control == IM_CONTROL_LOAD)
+        return c->periodic ? c->approach * c->nx * c->ny : im_indenter_load(&c->punch, 1, c->approach);
+    return c->approach;
+}
+
+/* The largest height of the surface. */
+static double highest_of(const im_field *surface)
+{
+    double highest = -INFINITY;
+    for (size_t i = 0; i < im_field_count(surface); ++i)
+        highest = fmax(highest, surface->data[i]);
+    return highest;
 }
 
 /* One distributed problem on the serial surface's rows: the solver, this rank's rows, its undeformed
@@ -170,6 +184,11 @@ static void compare(const scenario *c, const im_solve_result *serial, const im_f
                     const double *pressure, int y0, int rows)
 {
     check_close(c, "load", mpi->load, serial->load);
+    char detail[160];
+    snprintf(detail, sizeof detail, "%s: %d coarse iterations (serial %d)", c->name, mpi->coarse_iterations,
+             serial->coarse_iterations);
+    check(mpi->coarse_iterations == serial->coarse_iterations && (mpi->coarse_iterations > 0) == (c->cascade != 0),
+          "coarse iterations as the serial solver's", detail);
     check_solution(c, force, mpi->iterations, serial->iterations, mpi->contact_patches, serial->contact_patches,
                    pressure, y0, rows);
 }
@@ -213,8 +232,12 @@ static void distributed_run_create(const scenario *c, const im_field *surface, c
     d->gap0 = malloc(sizeof(double) * n);
     d->pressure = calloc(n, sizeof(double));
     d->displacement = malloc(sizeof(double) * n);
-    check_status(im_mpi_undeformed_gap(d->solver, surface->data + (size_t)d->y0 * c->nx, &c->punch, d->gap0),
-                 "distributed gap");
+    if (c->periodic) /* a rigid flat: max h - h */
+        for (size_t i = 0; i < (size_t)d->rows * c->nx; ++i)
+            d->gap0[i] = highest_of(surface) - surface->data[(size_t)d->y0 * c->nx + i];
+    else
+        check_status(im_mpi_undeformed_gap(d->solver, surface->data + (size_t)d->y0 * c->nx, &c->punch, d->gap0),
+                     "distributed gap");
 }
 
 static void distributed_run_free(distributed_run *d)
@@ -240,16 +263,18 @@ static void run_scenario(const scenario *c)
     im_solve_result result;
     check_status(im_mpi_solver_solve(d.solver, d.gap0, c->control, target_of(c), d.pressure, d.displacement, &result),
                  "distributed solve");
-    check_status(im_mpi_check_edge(d.solver, d.pressure), "distributed edge check");
+    if (!c->periodic) /* a periodic cell has no edge */
+        check_status(im_mpi_check_edge(d.solver, d.pressure), "distributed edge check");
     compare(c, &serial, force, &result, d.pressure, d.y0, d.rows);
     im_field *whole, *coarse;
     check_status(im_mpi_gather_map(d.solver, d.pressure, 1, &whole), "whole map");
     check_status(im_mpi_gather_map(d.solver, d.pressure, 5, &coarse), "5 x 5 map");
     check((rank == 0) == (whole != NULL && coarse != NULL), "maps on rank 0 only", c->name);
     if (rank == 0)
-        printf("%s load %a contact %ld map %a iterations %d serial-iterations %d load-vs-serial %.2g capped %ld\n",
-               c->name, result.load, result.contact_patches, check_maps(c, force, whole, coarse), result.iterations,
-               serial.iterations, fabs(result.load - serial.load) / serial.load, capped_patches(c, force));
+        printf("%s load %a contact %ld map %a iterations %d serial-iterations %d coarse %d load-vs-serial %.2g "
+               "capped %ld\n", c->name, result.load, result.contact_patches, check_maps(c, force, whole, coarse),
+               result.iterations, serial.iterations, result.coarse_iterations, fabs(result.load - serial.load) / serial.load,
+               capped_patches(c, force));
     im_field_free(whole);
     im_field_free(coarse);
     distributed_run_free(&d);
@@ -260,9 +285,8 @@ static void run_scenario(const scenario *c)
 /* The mean of max h - h over the surface: the undeformed cell's mean gap. */
 static double undeformed_mean_gap(const im_field *surface)
 {
-    double highest = -INFINITY, sum = 0;
-    for (size_t i = 0; i < im_field_count(surface); ++i)
-        highest = fmax(highest, surface->data[i]);
+    const double highest = highest_of(surface);
+    double sum = 0;
     for (size_t i = 0; i < im_field_count(surface); ++i)
         sum += highest - surface->data[i];
     return sum / (double)im_field_count(surface);
@@ -299,7 +323,6 @@ static void run_periodic(const scenario *c)
 {
     im_field *surface = rough_surface(c);
     im_solver_options o = options(c);
-    o.periodic = 1;
     im_mpi_solver *solver;
     int y0, rows;
     check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "periodic distributed plan");
@@ -467,21 +490,27 @@ int main(int argc, char **argv)
     im_mpi_init();
     const double w_cone = 3.0, w_sphere = 2.0;
     const scenario cases[] = {
-        {"cone-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0},
-        {"cone-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2, 0},
-        {"sphere-displacement-96x80", 96, 80, im_indenter_sphere(100), IM_CONTROL_DISPLACEMENT, w_sphere, 3, 0},
-        {"sphere-load-50x71", 50, 71, im_indenter_sphere(100), IM_CONTROL_LOAD, w_sphere, 4, 0},
-        {"cone-hardness-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0.12},
-        {"cone-hardness-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2, 0.2},
+        {"cone-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0, 0, 0},
+        {"cone-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2, 0, 0, 0},
+        {"sphere-displacement-96x80", 96, 80, im_indenter_sphere(100), IM_CONTROL_DISPLACEMENT, w_sphere, 3, 0, 0, 0},
+        {"sphere-load-50x71", 50, 71, im_indenter_sphere(100), IM_CONTROL_LOAD, w_sphere, 4, 0, 0, 0},
+        {"cone-hardness-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0.12, 0, 0},
+        {"cone-hardness-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2, 0.2, 0, 0},
+        /* the cascade's coarse grids have sides of at least 32 */
+        {"cone-cascade-displacement-128x96", 128, 96, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, 6, 7, 0, 1, 0},
+        {"sphere-cascade-load-131x100", 131, 100, im_indenter_sphere(200), IM_CONTROL_LOAD, 4, 8, 0, 1, 0},
+        {"periodic-cascade-load-128x96", 128, 96, im_indenter_cone(80), IM_CONTROL_LOAD, 0.01, 9, 0, 1, 1},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k)
         run_scenario(&cases[k]);
     const im_indenter flat = {0}; /* unused: a rigid flat */
     const scenario periodic_cases[] = {
-        {"periodic-load-64x48", 64, 48, flat, IM_CONTROL_LOAD, 0.01, 5, 0},
-        {"periodic-load-47x53", 47, 53, flat, IM_CONTROL_LOAD, 0.02, 6, 0},
-        {"periodic-mean-gap-64x48", 64, 48, flat, IM_CONTROL_DISPLACEMENT, 0.5, 5, 0},
-        {"periodic-hardness-load-64x48", 64, 48, flat, IM_CONTROL_LOAD, 0.02, 5, 0.1},
+        {"periodic-load-64x48", 64, 48, flat, IM_CONTROL_LOAD, 0.01, 5, 0, 0, 1},
+        {"periodic-load-47x53", 47, 53, flat, IM_CONTROL_LOAD, 0.02, 6, 0, 0, 1},
+        {"periodic-mean-gap-64x48", 64, 48, flat, IM_CONTROL_DISPLACEMENT, 0.5, 5, 0, 0, 1},
+        {"periodic-hardness-load-64x48", 64, 48, flat, IM_CONTROL_LOAD, 0.02, 5, 0.1, 0, 1},
+        {"periodic-cascade-load-128x128", 128, 128, flat, IM_CONTROL_LOAD, 0.005, 10, 0, 1, 1},
+        {"periodic-cascade-mean-gap-128x96", 128, 96, flat, IM_CONTROL_DISPLACEMENT, 0.5, 11, 0, 1, 1},
     };
     for (size_t k = 0; k < sizeof periodic_cases / sizeof periodic_cases[0]; ++k)
         run_periodic(&periodic_cases[k]);
