@@ -616,6 +616,13 @@ SAFE_RESULT(im_mpi_solver_rows, "solver", (mpi_rows[1] = 7, im_mpi_solver_rows(N
 SAFE_RESULT(im_mpi_solver_bytes, "nx", isnan(im_mpi_solver_bytes(-3, 8, 2)))
 SAFE_RESULT(im_mpi_convolve, "solver", (im_mpi_convolve(NULL, values, out_values), 1))
 REPORT(im_mpi_solver_solve, "solver", im_mpi_solver_solve(NULL, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
+static im_mpi_flat_contact *mpi_flat_out;
+REPORT(im_mpi_flat_contact_create, "out", im_mpi_flat_contact_create(NULL, values, NULL))
+REPORT(im_mpi_flat_contact_create, "solver", im_mpi_flat_contact_create(NULL, values, &mpi_flat_out))
+ACCEPT(im_mpi_flat_contact_free, (im_mpi_flat_contact_free(NULL), 1))
+REPORT(im_mpi_flat_contact_solve, "run", im_mpi_flat_contact_solve(NULL, 0.1, &flat_result))
+REPORT(im_mpi_flat_contact_solve_gap, "run", im_mpi_flat_contact_solve_gap(NULL, 0.1, &flat_result))
+SAFE_RESULT(im_mpi_flat_contact_pressure, "run", im_mpi_flat_contact_pressure(NULL) == NULL)
 REPORT(im_mpi_undeformed_gap, "solver", im_mpi_undeformed_gap(NULL, values, &cone, out_values))
 REPORT(im_mpi_check_edge, "solver", im_mpi_check_edge(NULL, values))
 REPORT(im_mpi_gather_map, "solver", im_mpi_gather_map(NULL, values, 1, &field_out))

@@ -15,8 +15,10 @@
  * spectrum transposed (FFTW_MPI_TRANSPOSED_OUT) and the c2r transform takes it so
  * (FFTW_MPI_TRANSPOSED_IN): two all-to-all exchanges per convolution. A rank owns the surface rows
  * [y0, y0 + rows) where its padded rows meet the surface's ny rows (rows may be 0: the upper
- * half of the padded grid is zeros). Every per-patch array passed to these functions holds this
- * rank's rows only: rows * nx values, row-major, x fastest, rows of the surface counted from y0.
+ * half of the padded grid is zeros). In the periodic mode (options.periodic) the transform grid
+ * is the unpadded nx x ny cell, and a rank's slab is its surface rows. Every per-patch array
+ * passed to these functions holds this rank's rows only: rows * nx values, row-major, x fastest,
+ * rows of the surface counted from y0.
  * Threads: each rank runs its loops and its FFTs with the OpenMP thread count in force (hybrid).
  *
  * ---- Same answer for any rank count ----
@@ -24,11 +26,14 @@
  * compensation, the row sums gathered (MPI_Allgatherv) and added in row order with compensation
  * on every rank: the result does not depend on the rank or thread count. Counts and maxima are
  * exact. The solver runs the serial solver's own iteration (solver.h: Polonsky-Keer, the
- * preconditioner, the hardness cap, residual <= tol on the exact displacement) on an MPI engine,
- * and takes as many iterations as the serial solver with cascade = 0. Where the serial solver adds
- * a few changed patches by direct summation, this one recomputes the convolution (exact, one more
- * convolution). Crop windows do not apply: the whole grid is solved (the serial solver with
- * crop = 0); nor does the cascade start (cold starts are the local guess).
+ * preconditioner, the hardness cap, the periodic mode, the cascade start, residual <= tol on the
+ * exact displacement) on an MPI engine, and takes as many iterations as the serial solver. The
+ * cascade's coarse levels (a quarter of the grid and less) are held whole by every rank and solved
+ * alike on one thread, from the coarse gap the serial plan restricts (the same bits), so the start
+ * is the same for any rank or thread count; only the restriction and the prolongation touch the
+ * ranks' rows (memory: im_mpi_solver_bytes). Where the serial solver adds a few changed patches by direct summation,
+ * this one recomputes the convolution (exact, one more convolution). Crop windows do not apply:
+ * the whole grid is solved (the serial solver with crop = 0).
  *
  * ---- Errors ----
  * All functions taking a communicator are collective: every rank of it must call them, and every
@@ -66,10 +71,11 @@ void im_mpi_cleanup(void);
 typedef struct im_mpi_solver im_mpi_solver;
 
 /* Plans an nx x ny problem of patch side delta over the ranks of comm (the communicator is
- * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop,
- * window_margin and cascade are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
+ * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop and
+ * window_margin are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
  * options; IM_EUNSUPPORTED, naming it, for what the distributed solver does not do: adhesion
- * (adhesion_work > 0), periodic = 1, device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU);
+ * (adhesion_work > 0), device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU). periodic = 1 solves
+ * the periodic half-space on the unpadded nx x ny grid (its slabs are then the surface rows);
  * IM_ENOMEM when this rank's share (im_mpi_solver_bytes) does not fit or FFTW cannot plan. */
 int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_solver_options *options,
                          im_mpi_solver **out);
@@ -79,8 +85,10 @@ void im_mpi_solver_free(im_mpi_solver *solver);
 /* The surface rows this rank owns: [*y0, *y0 + *rows). */
 void im_mpi_solver_rows(const im_mpi_solver *solver, int *y0, int *rows);
 
-/* Memory, in bytes, of the largest rank's share of an nx x ny solver over `ranks` ranks (the
- * model docs/mpi.md checks against measured peak RSS; MPI's own buffers not included). */
+/* Memory, in bytes, of the largest rank's share of an nx x ny solver over `ranks` ranks with the
+ * default options (the model docs/mpi.md checks against measured peak RSS; MPI's own buffers not
+ * included): the half-space's slabs and, where the grid has a cascade level, that level's plan,
+ * which every rank holds whole (about 73 nx ny bytes; cascade = 0 saves it). */
 double im_mpi_solver_bytes(int nx, int ny, int ranks);
 
 /* u = K p on this rank's rows (rows * nx values each; may not alias). Collective. */
@@ -93,6 +101,27 @@ void im_mpi_convolve(im_mpi_solver *solver, const double *pressure, double *disp
  * every rank at the same iteration with IM_EINTERRUPTED, pressure holding a valid warm start. */
 int im_mpi_solver_solve(im_mpi_solver *solver, const double *gap0, enum im_control control, double target,
                         double *pressure, double *displacement, im_solve_result *result);
+
+/* ---- Nominally flat contact over ranks (solver.h, "Periodic mode") ----
+ * The periodic cell of im_flat_contact_* on a solver made with options.periodic = 1 (the circular
+ * convolution on the nx x ny grid, decomposed into FFTW-MPI's slabs of that grid), each rank holding
+ * its rows: the same answers as the serial functions (to the tolerance; iteration counts equal to
+ * the serial solve's with cascade = 0). */
+typedef struct im_mpi_flat_contact im_mpi_flat_contact;
+
+/* Prepares the contact of a rigid flat with the periodic surface whose rows [y0, y0 + rows)
+ * (im_mpi_solver_rows) this rank passes in heights (units of delta; not referenced after the call):
+ * g0 = max h - h over the whole cell. solver (periodic, not freed here) must outlive the run.
+ * IM_EINVAL for a half-space solver, IM_ENUMERIC naming a non-finite height, IM_ENOMEM. Collective. */
+int im_mpi_flat_contact_create(im_mpi_solver *solver, const double *heights, im_mpi_flat_contact **out);
+/* NULL is ignored. Not collective. */
+void im_mpi_flat_contact_free(im_mpi_flat_contact *run);
+/* As im_flat_contact_solve and im_flat_contact_solve_gap (warm-started from the last solve): out
+ * holds global values, the same on every rank. Collective. */
+int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im_flat_result *out);
+int im_mpi_flat_contact_solve_gap(im_mpi_flat_contact *run, double mean_gap, im_flat_result *out);
+/* This rank's rows of the pressure of the last solve (rows * nx values; owned by run). */
+const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's
  * rows of heights (in units of delta, not modified). IM_ENUMERIC for a non-finite height, IM_EINVAL

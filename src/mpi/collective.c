@@ -22,6 +22,21 @@ void mpi_ordered_totals(const im_mpi_solver *s, int k, double *totals)
     }
 }
 
+double mpi_surface_mean(const im_mpi_solver *s, const double *values)
+{
+    const int nx = s->nx;
+#pragma omp parallel for schedule(static)
+    for (int row = 0; row < s->rows; ++row) {
+        compensated sum = {0, 0};
+        for (int ix = 0; ix < nx; ++ix)
+            compensated_add(&sum, values[(size_t)row * nx + ix]);
+        s->row_sums[row] = compensated_total(&sum);
+    }
+    double total;
+    mpi_ordered_totals(s, 1, &total);
+    return total / ((double)nx * s->ny);
+}
+
 int mpi_collective_status(MPI_Comm comm, int status)
 {
     int rank, ranks;

@@ -197,25 +197,14 @@ static void mpi_direction(pk_run *r, int preconditioned, double beta, double cap
         t[i] = solver_moving(p[i], g[i], cap) ? source[i] + beta * t[i] : 0;
 }
 
-/* z = M g on p > 0 through the unpadded transform pair (plan.c), in place on the rows' buffer. */
+/* z = M g on p > 0 through the preconditioner's pair (plan.c). */
 static void apply_preconditioner(im_mpi_solver *s, const double *p)
 {
-    const int nx = s->nx;
-    const size_t stride = 2 * ((size_t)nx / 2 + 1);
+    const size_t n = local_patches(s);
 #pragma omp parallel for schedule(static)
-    for (int row = 0; row < s->rows; ++row)
-        for (int ix = 0; ix < nx; ++ix) {
-            const size_t i = (size_t)row * nx + ix;
-            s->precondition_buffer[(size_t)row * stride + ix] = p[i] > 0 ? s->gap[i] : 0;
-        }
-    fftw_execute(s->precondition_forward);
-    solver_multiply_modes((fftw_complex *)s->precondition_buffer, s->inverse_spectrum,
-                          (size_t)s->precondition_columns * s->ny);
-    fftw_execute(s->precondition_backward);
-#pragma omp parallel for schedule(static)
-    for (int row = 0; row < s->rows; ++row)
-        memcpy(s->preconditioned + (size_t)row * nx, s->precondition_buffer + (size_t)row * stride,
-               sizeof(double) * nx);
+    for (size_t i = 0; i < n; ++i)
+        s->preconditioned[i] = p[i] > 0 ? s->gap[i] : 0;
+    mpi_transform_apply(s, s->precondition_with, s->inverse_spectrum, s->preconditioned, s->preconditioned);
 }
 
 static double mpi_precondition(pk_run *r, long *count)

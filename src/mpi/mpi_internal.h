@@ -11,6 +11,15 @@
 #include <math.h>
 #include <stddef.h>
 
+/* One FFTW-MPI r2c / c2r pair of an n1 x n0 real grid, in place, transposed between them: this rank
+ * has `rows` of its real rows (stride 2 (n1 / 2 + 1)) and `columns` x n0 of its spectrum. */
+typedef struct mpi_transform {
+    double *buffer;
+    fftw_plan forward, backward;
+    ptrdiff_t rows, columns, column_length;
+    size_t stride;
+} mpi_transform;
+
 /* The distributed solver is solver/pk.c's iteration over the MPI engine (engine_mpi.c): plan is
  * what pk.c reads (options, delta, K(0), no direct sums), and its engine's passes work on the fields
  * below. */
@@ -18,25 +27,29 @@ struct im_mpi_solver {
     im_solver_plan plan;          /* engine = &solver_engine_mpi, mpi = this solver */
     MPI_Comm comm;
     int rank, ranks;
-    int nx, ny, px, py;           /* surface grid; padded grid 2nx x 2ny */
+    int nx, ny, px, py;           /* surface grid; transform grid 2nx x 2ny (periodic: nx x ny) */
     double delta, k0;             /* patch side; K(0), the local (Winkler) stiffness (plan.kernel) */
-    ptrdiff_t local_n0, local_0_start; /* this rank's padded rows */
-    ptrdiff_t local_n1, local_1_start; /* its columns of the transposed spectrum */
-    int y0, rows;                 /* its surface rows: the padded rows that lie on the surface */
+    ptrdiff_t local_0_start;      /* this rank's first transform row */
+    ptrdiff_t local_1_start;      /* its first column of the transposed spectrum */
+    int y0, rows;                 /* its surface rows: the transform rows that lie on the surface */
     int *row_counts, *row_starts; /* every rank's rows and y0, for the ordered sums */
-    double *buffer;               /* local_n0 padded rows of stride px + 2 (in-place r2c/c2r) */
-    double *spectrum;             /* local_n1 x py: K's real spectrum divided by px py, transposed */
-    fftw_plan forward, backward;
+    mpi_transform convolution;    /* of the transform grid: u = K p */
+    double *spectrum;             /* its columns x py: K's real spectrum divided by px py, transposed */
     double *direction, *gap, *response; /* rows * nx work arrays of the iteration (t, g, K t) */
     double *row_sums, *all_row_sums;    /* rows * MPI_SUMS_MAX and ny * MPI_SUMS_MAX */
     /* The preconditioner (pk.c; off with a hardness): M = 1 / the spectrum of K wrapped on the unpadded
-     * nx x ny grid, by FFTW-MPI's r2c / c2r pair of that grid, its rows cut in blocks of the padded
-     * slabs' size so that each rank transforms its own surface rows (no moves). */
-    double *precondition_buffer;  /* rows padded rows of stride 2 (nx / 2 + 1) (in place) */
-    double *inverse_spectrum;     /* precondition_columns x ny, transposed, divided by nx ny */
-    ptrdiff_t precondition_columns;
-    fftw_plan precondition_forward, precondition_backward;
+     * nx x ny grid. On the half-space, by its own pair of that grid (unpadded), its rows cut in blocks
+     * of the padded slabs' size so that each rank transforms its own surface rows (no moves); in the
+     * periodic mode that grid is the convolution's and its pair serves (precondition_with). */
+    mpi_transform unpadded;
+    const mpi_transform *precondition_with;
+    double *inverse_spectrum;     /* precondition_with's columns x ny, transposed, divided by nx ny */
     double *preconditioned;       /* rows * nx: z = M g */
+    /* The cascade (cascade.c): its first coarse level, a serial CPU plan (with its own coarser levels)
+     * that every rank holds whole and solves alike (NULL: none), and that level's fields. */
+    im_solver_plan *coarse;
+    double *coarse_gap0, *coarse_pressure, *coarse_displacement;
+    double *coarse_sums;          /* 4 cx cy: the blocks' pair sums and counts, upper and lower rows */
 };
 
 #define MPI_SUMS_MAX 5
@@ -45,6 +58,23 @@ extern const solver_engine solver_engine_mpi;
 
 /* u = K p on this rank's rows (the engine's convolution; im_mpi_convolve). */
 void mpi_convolve(im_mpi_solver *solver, const double *pressure, double *displacement);
+
+/* out = the inverse transform of (spectrum x the transform of in) by the pair t, in and out this
+ * rank's surface rows (rows * nx; may alias); the transform's other rows and columns are zeros. */
+void mpi_transform_apply(const im_mpi_solver *solver, const mpi_transform *t, const double *spectrum,
+                         const double *in, double *out);
+
+/* The cascade start over ranks (cascade.c): the coarse level when the options and the grid have one,
+ * its start (as solver_cascade_start: the coarse iterations; pressure, this rank's rows, all zero when
+ * the coarse grids found no contact), and its release. */
+int mpi_cascade_create(im_mpi_solver *solver);
+int mpi_cascade_start(im_mpi_solver *solver, const double *gap0, enum im_control control, double target,
+                      double *pressure);
+void mpi_cascade_free(im_mpi_solver *solver);
+
+/* The mean over the surface of values (this rank's rows), summed in row order: the same bits on every
+ * rank for any rank count. */
+double mpi_surface_mean(const im_mpi_solver *solver, const double *values);
 
 /* totals[j] = sum over the surface rows, in row order and compensated, of the per-row sums this
  * rank left in solver->row_sums[r * k + j] (k <= MPI_SUMS_MAX quantities, r its local rows). */

@@ -31,6 +31,8 @@ static int check_inputs(const im_mpi_solver *s, const double *gap0, enum im_cont
     if (bad[1] < LONG_MAX)
         return im_fail(IM_EINVAL, "warm-start pressure at patch (%ld, %ld): expected finite and >= 0",
                        bad[1] % s->nx, bad[1] / s->nx);
+    if (solver_periodic_approach_checked(&s->plan, control))
+        return solver_check_periodic_mean_gap(mpi_surface_mean(s, gap0), target);
     return IM_OK;
 }
 
@@ -48,8 +50,11 @@ int im_mpi_solver_solve(im_mpi_solver *s, const double *gap0, enum im_control co
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * (size_t)s->rows * s->nx);
         memset(displacement, 0, sizeof(double) * (size_t)s->rows * s->nx);
-    } else
+    } else {
+        if (s->coarse && !s->plan.engine->any_positive(&r))
+            res.coarse_iterations = mpi_cascade_start(s, gap0, control, target, pressure);
         status = solver_pk_solve(&r, &res);
+    }
     res.convolutions = r.convolutions;
     res.seconds = MPI_Wtime() - start;
     if (result)

@@ -39,9 +39,15 @@ int solver_cascade_create(im_solver_plan *p)
     p->coarse_displacement = malloc(sizeof(double) * n);
     if (!p->coarse_gap0 || !p->coarse_pressure || !p->coarse_displacement)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: cascade level %d x %d", p->nx, p->ny, cx, cy);
-    im_solver_options o = p->options;
-    o.tol = fmax(o.tol, CASCADE_TOL);
+    im_solver_options o = solver_cascade_options(&p->options);
     return solver_plan_create_level(cx, cy, 2 * p->delta, &o, p, &p->coarse);
+}
+
+im_solver_options solver_cascade_options(const im_solver_options *fine)
+{
+    im_solver_options o = *fine;
+    o.tol = fmax(o.tol, CASCADE_TOL);
+    return o;
 }
 
 void solver_cascade_free(im_solver_plan *p)
@@ -52,6 +58,22 @@ void solver_cascade_free(im_solver_plan *p)
     free(p->coarse_displacement);
 }
 
+void solver_cascade_pair_sum(const double *row, int nx, int cx, double *sum, int *count)
+{
+    *sum = 0;
+    *count = 0;
+    for (int ix = 2 * cx; ix < 2 * cx + 2 && ix < nx; ++ix)
+        if (isfinite(row[ix])) {
+            *sum += row[ix];
+            ++*count;
+        }
+}
+
+double solver_cascade_block_mean(double upper, double lower, int count)
+{
+    return count ? (upper + lower) / count : INFINITY;
+}
+
 /* Coarse gap: the mean over each 2 x 2 block of the fine gaps that are finite (+inf if none is: a
  * flat punch cannot touch there). Blocks cut by an odd side hold fewer patches. */
 static void restrict_gap(const im_solver_plan *p, const double *gap0)
@@ -60,49 +82,59 @@ static void restrict_gap(const im_solver_plan *p, const double *gap0)
 #pragma omp parallel for schedule(static)
     for (int cy = 0; cy < c->ny; ++cy)
         for (int cx = 0; cx < c->nx; ++cx) {
-            double sum = 0;
-            int count = 0;
-            for (int iy = 2 * cy; iy < 2 * cy + 2 && iy < p->ny; ++iy)
-                for (int ix = 2 * cx; ix < 2 * cx + 2 && ix < p->nx; ++ix) {
-                    double g = gap0[(size_t)iy * p->nx + ix];
-                    if (isfinite(g)) {
-                        sum += g;
-                        ++count;
-                    }
-                }
-            p->coarse_gap0[(size_t)cy * c->nx + cx] = count ? sum / count : INFINITY;
+            double upper, lower = 0;
+            int upper_count, lower_count = 0;
+            solver_cascade_pair_sum(gap0 + (size_t)2 * cy * p->nx, p->nx, cx, &upper, &upper_count);
+            if (2 * cy + 1 < p->ny)
+                solver_cascade_pair_sum(gap0 + (size_t)(2 * cy + 1) * p->nx, p->nx, cx, &lower, &lower_count);
+            p->coarse_gap0[(size_t)cy * c->nx + cx] = solver_cascade_block_mean(upper, lower, upper_count + lower_count);
         }
 }
 
-/* Fine pressure = the coarse pressure of its block (the force per area, so the load is kept), except
- * where the fine gap is infinite. Returns whether any patch is loaded. */
+int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, int nx, double *pressure_row)
+{
+    int loaded = 0;
+    for (int ix = 0; ix < nx; ++ix) {
+        double v = isfinite(gap_row[ix]) ? coarse_row[ix / 2] : 0;
+        pressure_row[ix] = v;
+        loaded |= v > 0;
+    }
+    return loaded;
+}
+
+/* Fine pressure = the coarse pressure of its block, except where the fine gap is infinite. Returns
+ * whether any patch is loaded. */
 static int prolong_pressure(const im_solver_plan *p, const double *gap0, double *pressure)
 {
     const im_solver_plan *c = p->coarse;
     int loaded = 0;
 #pragma omp parallel for schedule(static) reduction(| : loaded)
     for (int iy = 0; iy < p->ny; ++iy)
-        for (int ix = 0; ix < p->nx; ++ix) {
-            size_t i = (size_t)iy * p->nx + ix;
-            double v = isfinite(gap0[i]) ? p->coarse_pressure[(size_t)(iy / 2) * c->nx + ix / 2] : 0;
-            pressure[i] = v;
-            loaded |= v > 0;
-        }
+        loaded |= solver_cascade_prolong_row(p->coarse_pressure + (size_t)(iy / 2) * c->nx, gap0 + (size_t)iy * p->nx,
+                                             p->nx, pressure + (size_t)iy * p->nx);
     return loaded;
+}
+
+int solver_cascade_solve(im_solver_plan *coarse, const double *coarse_gap0, enum im_control control, double target,
+                         double *coarse_pressure, double *coarse_displacement, int *usable)
+{
+    memset(coarse_pressure, 0, sizeof(double) * (size_t)coarse->nx * coarse->ny);
+    im_solve_result result = {0};
+    /* Only a start: a coarse solve that stops at its cap still gives one (p >= 0 whatever happens),
+     * and one that breaks down leaves the fine solve the local guess. */
+    int status = im_solver_solve(coarse, coarse_gap0, control, target, coarse_pressure, coarse_displacement, &result);
+    *usable = status != IM_ENUMERIC;
+    return result.iterations + result.coarse_iterations;
 }
 
 int solver_cascade_start(im_solver_plan *p, const double *gap0, enum im_control control, double target,
                          double *pressure)
 {
     restrict_gap(p, gap0);
-    memset(p->coarse_pressure, 0, sizeof(double) * (size_t)p->coarse->nx * p->coarse->ny);
-    im_solve_result coarse = {0};
-    /* Only a start: a coarse solve that stops at its cap still gives one (p >= 0 whatever happens),
-     * and one that breaks down leaves the fine solve the local guess. */
-    int status = im_solver_solve(p->coarse, p->coarse_gap0, control, target, p->coarse_pressure,
-                                 p->coarse_displacement, &coarse);
-    int iterations = coarse.iterations + coarse.coarse_iterations;
-    if (status == IM_ENUMERIC || !prolong_pressure(p, gap0, pressure))
+    int usable;
+    int iterations = solver_cascade_solve(p->coarse, p->coarse_gap0, control, target, p->coarse_pressure,
+                                          p->coarse_displacement, &usable);
+    if (!usable || !prolong_pressure(p, gap0, pressure))
         memset(pressure, 0, sizeof(double) * (size_t)p->nx * p->ny);
     return iterations;
 }

@@ -99,6 +99,13 @@ extern const solver_engine solver_engine_cpu;
  * engine, r filled by the caller (pk.c): no input checks, no cascade, target > 0. */
 int solver_pk_solve(pk_run *r, im_solve_result *res);
 
+/* A periodic cell under an imposed approach w (no cap): mean u = 0 (solver.h, "Periodic mode"), so
+ * the mean gap is mean g0 - w whatever the pressure, and it must stay positive: a cell pressed to a
+ * mean gap <= 0 is in full contact, which takes an infinite mean pressure. Whether the check applies,
+ * and the check (IM_EINVAL naming both means), given the mean of the undeformed gap. */
+int solver_periodic_approach_checked(const im_solver_plan *plan, enum im_control control);
+int solver_check_periodic_mean_gap(double mean_gap0, double target);
+
 /* Moves a plan made on the CPU (its spectra computed) onto the GPU engine: a new device for a top
  * plan (finer NULL), the finer level's device for a cascade level. engine_gpu.c, IM_GPU builds. */
 int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer);

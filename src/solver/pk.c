@@ -151,21 +151,28 @@ static int update_displacement(pk_run *r, long changes)
     return 0;
 }
 
-/* A periodic cell under an imposed approach w: mean u = 0 (solver.h, "Periodic mode"), so the mean gap
- * is mean g0 - w whatever the pressure. Without a cap it must stay positive: a cell pressed to a mean
- * gap <= 0 is in full contact, which takes an infinite mean pressure. */
-static int check_periodic_approach(const im_solver_plan *plan, const double *gap0, enum im_control control,
-                                   double target)
+int solver_periodic_approach_checked(const im_solver_plan *plan, enum im_control control)
 {
-    if (!plan->options.periodic || control != IM_CONTROL_DISPLACEMENT || plan->options.hardness > 0)
-        return IM_OK;
-    const size_t n = (size_t)plan->nx * plan->ny;
-    const double mean_gap = sum_doubles(gap0, n) / (double)n - target;
+    return plan->options.periodic && control == IM_CONTROL_DISPLACEMENT && !(plan->options.hardness > 0);
+}
+
+int solver_check_periodic_mean_gap(double mean_gap0, double target)
+{
+    const double mean_gap = mean_gap0 - target;
     if (mean_gap > 0)
         return IM_OK;
     return im_fail(IM_EINVAL, "approach %g on a periodic cell: its mean gap would be %g, expected > 0 (the mean "
                    "of the undeformed gap is %g; full contact needs an infinite mean pressure)", target, mean_gap,
-                   mean_gap + target);
+                   mean_gap0);
+}
+
+static int check_periodic_approach(const im_solver_plan *plan, const double *gap0, enum im_control control,
+                                   double target)
+{
+    if (!solver_periodic_approach_checked(plan, control))
+        return IM_OK;
+    const size_t n = (size_t)plan->nx * plan->ny;
+    return solver_check_periodic_mean_gap(sum_doubles(gap0, n) / (double)n, target);
 }
 
 static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control,

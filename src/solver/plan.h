@@ -72,6 +72,20 @@ void solver_cascade_free(im_solver_plan *plan);
 int solver_cascade_start(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                          double *pressure);
 
+/* The pieces of a cascade start that the distributed solver (mpi/cascade.c) shares, so that its
+ * coarse levels see the serial plan's numbers to the bit:
+ * the options of a coarse level (the fine level's, at a tolerance no tighter than the cascade's); */
+im_solver_options solver_cascade_options(const im_solver_options *fine);
+/* the sum and count of the finite values of the x pair (2 cx, 2 cx + 1) of a fine row of nx; */
+void solver_cascade_pair_sum(const double *row, int nx, int cx, double *sum, int *count);
+/* a coarse gap from its block's upper and lower pair sums and their count (+inf for none); */
+double solver_cascade_block_mean(double upper, double lower, int count);
+/* the coarse solve (from zero pressure), its iterations over all levels; *usable unless it broke down; */
+int solver_cascade_solve(struct im_solver_plan *coarse, const double *coarse_gap0, enum im_control control,
+                         double target, double *coarse_pressure, double *coarse_displacement, int *usable);
+/* a fine row of nx prolonged from its coarse row (0 where the fine gap is infinite); whether any > 0. */
+int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, int nx, double *pressure_row);
+
 /* modes[k] *= spectrum[k] (a real, even kernel's spectrum) for k < count. */
 void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t count);
 
@@ -86,5 +100,10 @@ void solver_add_point_loads(const im_solver_plan *plan, const long *index, const
 /* The periodic half-space's kernel (periodic.c): spectrum 2 / (E* |q|) with a zero mean mode, and
  * its real-space values for direct sums (options.periodic). IM_OK or IM_ENOMEM. */
 int solver_periodic_kernel(im_solver_plan *plan);
+
+/* The periodic half-space's mode (kx, ky) of the plan's nx x ny grid (kx <= nx / 2, ky < ny, index
+ * ky > ny / 2 standing for ky - ny): K's spectrum 2 / (E* |q|) and the preconditioner's E* |q| / 2,
+ * both divided by nx ny, 0 on the mean mode. Shared by the serial plan and the MPI engine. */
+void solver_periodic_mode(const im_solver_plan *plan, int kx, int ky, double *spectrum, double *inverse);
 
 #endif
