@@ -108,7 +108,8 @@ head -c 8 "$DIR/sticky/force_distance.png" | od -An -tx1 | grep -q '89 50 4e 47'
 grep -q "adhesion: pull-off force" "$DIR/sticky.log" || fail "the pull-off is not said"
 for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
            "--adhesion-work 0.1 --adhesion-range 1 --load 1|takes --approach" \
-           "--adhesion-work 0.1 --adhesion-range 1 --hardness 1 --approach 1|with --hardness"; do
+           "--adhesion-work 0.1 --adhesion-range 1 --hardness 1 --approach 1|with --hardness" \
+           "--periodic --adhesion-work 0.1 --adhesion-range 1 --pressure 0.01|takes --mean-gap with --periodic"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"
     [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
 done
@@ -123,6 +124,17 @@ awk -F, 'NR == 2 { p = 0.002 } NR == 3 { p = 0.01 } NR > 1 {
          if ($3 / (p * 4096) - 1 > 1e-12 || 1 - $3 / (p * 4096) > 1e-12 || $6 != $5 / 4096 || $4 != "nan" || $13 != "nan") exit 1 }
          END { if (NR != 3) exit 1 }' "$DIR/per/history.csv" || fail "--periodic history: $(cat "$DIR/per/history.csv")"
 grep -q '"periodic": true' "$DIR/per/run.json" || fail "run.json does not say periodic"
+# Adhesion on the periodic cell (mean-gap control): the history has tension, A/A0 = n_p / (nx ny) wherever
+# there is contact, no k fit and no theory beside it (eq. (2) and the punches' references are repulsive).
+"$BIN" indent "$DIR/cell.npy" --periodic --mean-gap 1.6:0.8:3,1:1.8:3 --adhesion-work 0.02 --adhesion-range 0.5 \
+    --out "$DIR/peradh" > "$DIR/peradh.log" 2>&1 || fail "--periodic with adhesion exited $?: $(cat "$DIR/peradh.log")"
+awk -F, 'NR > 1 && $5 > 0 && $6 != $5 / 4096 { exit 1 } NR > 1 && $3 < 0 { pulled = 1 } END { if (!pulled) exit 1 }' \
+    "$DIR/peradh/history.csv" || fail "periodic adhesive history: $(cat "$DIR/peradh/history.csv")"
+python3 - "$DIR/peradh/run.json" <<'PY' || fail "periodic adhesive run.json: $(grep -A12 '"adhesion"' "$DIR/peradh/run.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["adhesion"]["theory"] is None and "k_fit" not in r and r["adhesion"]["pull_off_force"] > 0
+PY
 # k of eq. (2) fitted to the steps (theory.h): recorded with its error, range and h'rms definition
 grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spectral"' "$DIR/per/run.json" \
     && grep -q '"k_error"' "$DIR/per/run.json" || fail "run.json has no k fit: $(cat "$DIR/per/run.json")"

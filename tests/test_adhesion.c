@@ -350,6 +350,97 @@ static void step_sums_are_the_fields(void **state)
     im_indentation_free(run);
 }
 
+/* ---- periodic cells (mean-gap control; mean u = 0) ---- */
+
+/* A flat cell is the law itself: at a mean gap g up to delta_c every patch carries -sigma0 (load
+ * -sigma0 A0, no repulsive contact), beyond it nothing, on approach and on retraction alike. */
+static void flat_cell_is_the_law(void **state)
+{
+    (void)state;
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(16, 12, 0.5, &surface), IM_OK);
+    im_indenter flat = im_indenter_flat(100);
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.adhesion_work = 0.02;
+    o.adhesion_range = 0.4;
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, 1.0, &o, &run), IM_OK);
+    const double stress = o.adhesion_work / o.adhesion_range, cell = 16 * 12 * 0.25;
+    const double gaps[] = {1.0, 0.6, 0.41, 0.39, 0.2, 0.39, 0.41, 0.8};
+    for (size_t k = 0; k < sizeof gaps / sizeof gaps[0]; ++k) {
+        im_step_result r;
+        assert_int_equal(im_indentation_step(run, gaps[k], &r), IM_OK);
+        const double expected = gaps[k] <= o.adhesion_range ? -stress * cell : 0;
+        if (!(fabs(r.load - expected) <= 1e-12 * stress * cell && r.contact_patches == 0 &&
+              fabs(r.mean_gap - gaps[k]) <= 1e-12))
+            fail_msg("mean gap %g: load %.17g (expected %.17g), %ld in contact, mean gap %.17g", gaps[k], r.load,
+                     expected, r.contact_patches, r.mean_gap);
+    }
+    im_indentation_free(run);
+    im_field_free(surface);
+}
+
+/* The least load of a retraction of a paraboloidal bump r^2 / (2R) (r from its centre) on a flat
+ * periodic cell n patches wide, under mean-gap control, from the mean gap of the approach D = L^2 / R
+ * until it comes off, in units of pi w R. */
+static double periodic_bump_pull_off(const sphere_case *c, int n, int centre)
+{
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(n, n, 1.0, &surface), IM_OK);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) { /* the nearest image of the bump at (centre, centre) */
+            const double dx = remainder(x - centre, n), dy = remainder(y - centre, n);
+            surface->data[(size_t)y * n + x] = -(dx * dx + dy * dy) / (2 * c->radius);
+        }
+    double mean_gap0 = 0; /* of g0 = max h - h = -h */
+    for (size_t i = 0; i < im_field_count(surface); ++i)
+        mean_gap0 -= surface->data[i] / (double)im_field_count(surface);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8;
+    o.periodic = 1;
+    o.adhesion_work = c->work;
+    o.adhesion_range = c->range;
+    im_indenter flat = im_indenter_flat(4.0 * n);
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, 2 * mean_gap0, &o, &run), IM_OK);
+    im_field_free(surface);
+    double loads[96];
+    int count = 0;
+    im_step_result r = {0};
+    for (int k = 0; k < 96 && (k <= 4 || r.contact_patches > 0); ++k) {
+        const double d = k <= 4 ? 0.25 * k : 1.0 - 0.1 * (k - 4);
+        if (im_indentation_step(run, mean_gap0 - d * c->approach_unit, &r) != IM_OK)
+            fail_msg("periodic bump n = %d, D = %g: %s", n, d, im_last_error());
+        if (k > 4 && r.contact_patches > 0)
+            loads[count++] = r.load / c->load_unit;
+    }
+    im_indentation_free(run);
+    assert_true(count >= 10 && r.contact_patches == 0); /* it came off */
+    return least_load(loads, count);
+}
+
+/* A bump on a periodic cell pulls off as the isolated sphere of Maugis-Dugdale as the cell grows: the
+ * periodic images' pull shrinks with their distance (lambda = 1, L = 6 patches, cells 32^2 and 64^2). A cell
+ * has no edge: the bump on its corner, its zone cut by the edges, pulls off as the bump in its middle. */
+static void periodic_bump_pulls_off_like_a_sphere(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(1.0, 6);
+    im_theory_adhesive_point pull_off;
+    assert_int_equal(im_theory_md_sphere_pull_off(&c.law, c.radius, &pull_off), IM_OK);
+    const double reference = pull_off.load / c.load_unit, half_space = sphere_retraction_errors(1.0, 6).pull_off;
+    const double middle = periodic_bump_pull_off(&c, 32, 16), corner = periodic_bump_pull_off(&c, 32, 0);
+    if (!(fabs(corner - middle) <= 1e-9 * fabs(middle)))
+        fail_msg("pull-off of the bump on the cell's corner %.17g, in its middle %.17g", corner, middle);
+    const double small = fabs(middle - reference), large = fabs(periodic_bump_pull_off(&c, 64, 32) - reference);
+    print_message("periodic bump: pull-off %.4f off Maugis-Dugdale's (pi w R) on a 32^2 cell, %.4f on 64^2; the "
+                  "half-space %.4f\n", small, large, half_space);
+    if (!(large < small && large <= half_space + 0.005))
+        fail_msg("pull-off errors %.4f (32^2), %.4f (64^2): expected the larger cell closer, within 0.005 of the "
+                 "half-space's %.4f", small, large, half_space);
+}
+
 /* The combinations the solver does not solve, and a zone that outgrows the surface, are refused. */
 static void refusals(void **state)
 {
@@ -430,6 +521,8 @@ int main(void)
         cmocka_unit_test(approach_and_retraction_differ),
         cmocka_unit_test(vanishing_work_is_repulsive),
         cmocka_unit_test(step_sums_are_the_fields),
+        cmocka_unit_test(flat_cell_is_the_law),
+        cmocka_unit_test(periodic_bump_pulls_off_like_a_sphere),
         cmocka_unit_test(refusals),
         cmocka_unit_test(zone_length_and_lambda),
         cmocka_unit_test(summary_of_a_loop),

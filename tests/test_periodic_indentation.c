@@ -241,7 +241,7 @@ static void mean_gap_refusals(void **state)
     o.adhesion_range = 0.1;
     /* adhesion on a cell holds its mean gap (test_adhesion: periodic cells), not an approach or a load */
     assert_int_equal(im_indentation_create(s, &flat, IM_CONTROL_DISPLACEMENT, 1.0, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "expected mean gap control on a periodic cell"));
+    assert_non_null(strstr(im_last_error(), "expected mean-gap control on a periodic cell"));
     assert_int_equal(im_indentation_create(s, &flat, IM_CONTROL_LOAD, 1.0, &o, &run), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "adhesion under load control"));
     run = mean_gap_run(s, 1.0, 0);

@@ -238,3 +238,23 @@ def test_instrument_file_orientation_matches_gwyddions_export(cli):
     assert off_plane(same) < 1e-5  # µm: the export's 6 digits
     for moved in (scan.heights[::-1], scan.heights[:, ::-1], scan.heights.T):
         assert off_plane(export.heights - moved * 1e6) > 0.1
+
+
+def test_periodic_adhesion_bit_for_bit(cli, rough64, tmp_path):
+    """Adhesion on a periodic cell (mean-gap control): indent --periodic --mean-gap --adhesion-work and
+    indent(..., periodic=True, mean_gaps=..., adhesion_work=...) give the same rows, under tension too, and the
+    cell's A/A0 whenever it has contact; mean-pressure control is refused naming the mean-gap control."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--mean-gap", "1.6:0.8:3,1:1.8:3", "--adhesion-work",
+            "0.02", "--adhesion-range", "0.5", "--out", tmp_path / "out")
+    gaps = np.r_[np.linspace(1.6, 0.8, 3), np.linspace(1, 1.8, 3)]
+    history = im.indent(rough64, None, mean_gaps=gaps, periodic=True, adhesion_work=0.02, adhesion_range=0.5)
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    assert (history["tensile_force"] > 0).any()
+    in_contact = history["contact_patches"] > 0
+    np.testing.assert_array_equal(history["area_ratio"][in_contact], history["contact_patches"][in_contact] / 64**2)
+    with pytest.raises(im.InvalidArgument, match="mean-gap control on a periodic cell"):
+        im.indent(rough64, None, pressures=[0.01], periodic=True, adhesion_work=0.02, adhesion_range=0.5)

@@ -171,11 +171,11 @@ static const char *control_target(enum im_control control)
  * load control an adhesive contact jumps where its force-distance curve turns. No hardness beside it. */
 static int check_adhesion_control(enum im_control control, const im_solver_options *options)
 {
-    const enum im_control needed = options->periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT;
-    if (control != needed)
-        return im_fail(IM_EINVAL, "adhesion work = %g: expected %s control %s (adhesion under %s control is not "
-                       "available)", options->adhesion_work, control_target(needed),
-                       options->periodic ? "on a periodic cell" : "on the half-space", control_target(control));
+    if (control != (options->periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT))
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected %s (adhesion under %s control is not available)",
+                       options->adhesion_work, options->periodic ? "mean-gap control on a periodic cell"
+                                                                 : "displacement control on the half-space",
+                       control_target(control));
     if (options->hardness > 0)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected no hardness (adhesion under a hardness is not "
                        "available)", options->adhesion_work);
