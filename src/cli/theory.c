@@ -50,10 +50,11 @@ static void usage(FILE *stream)
             "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
             "                         used in eqs. (6), (10) and (12) alike\n"
             "  --k K                  p_rough = h'rms E* / K, eq. (2), 1e-6 <= K <= 1e6 (default 2)\n"
-            "  --fit-k HISTORY        k of eq. (2) fitted to the history of `indent SURFACE --periodic`\n"
-            "                         (A/A0 against p_m / (h'rms E*)), with the cell, h'rms and E* of the\n"
-            "                         run.json beside it: the line that run printed, or with --format csv\n"
-            "                         slope_rms,points,k,k_error,... (17 digits; a scene's k_fit.csv columns)\n");
+            "  --fit-k HISTORY        k of eq. (2) fitted to the history of a periodic indent run under\n"
+            "                         the rigid flat (A/A0 against p_m / (h'rms E*)), with the cell, h'rms\n"
+            "                         and E* of the run.json beside it: the k line that run printed, or\n"
+            "                         with --format csv slope_rms,points,k,k_error,... (17 digits; the\n"
+            "                         columns of a scene's k_fit.csv)\n");
 }
 
 typedef struct theory_options {
