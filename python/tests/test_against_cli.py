@@ -183,6 +183,28 @@ def test_fit_k_history_bit_for_bit(cli, rough64, tmp_path):
         im.theory.fit_k_history(tmp_path / "out" / "history.csv")
 
 
+def test_write_analysis_files_are_the_cli_ones(cli, rough64, tmp_path):
+    """write_analysis of Python's history and of the CLI's history.csv: indent's indentation.csv and
+    load_displacement.png byte for byte, the PDF but for its creation date."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "1:3:3,2.5:1:3", "--out", tmp_path / "out")
+    history = im.indent(rough64, im.Cone(80), approaches=[1, 2, 3, 2.5, 1.75, 1])
+    assert im.write_analysis(history, tmp_path / "py") == 1
+    assert im.write_analysis(tmp_path / "out" / "history.csv", tmp_path / "csv", im.Cone(80)) == 1
+    def undated(path):
+        return b"".join(line for line in path.read_bytes().splitlines(True)
+                        if not line.lstrip().startswith(b"/CreationDate"))
+
+    for folder in ("py", "csv"):
+        for name in ("indentation.csv", "load_displacement.png"):
+            assert (tmp_path / folder / name).read_bytes() == (tmp_path / "out" / name).read_bytes(), (folder, name)
+        pdf = tmp_path / folder / "load_displacement.pdf"
+        assert undated(pdf) == undated(tmp_path / "out" / "load_displacement.pdf") != pdf.read_bytes(), folder
+    assert im.write_analysis(history[:3], tmp_path / "loading") == 0 and not any((tmp_path / "loading").iterdir())
+    with pytest.raises(ValueError, match="history.csv's columns"):
+        im.write_analysis(np.zeros(3), tmp_path / "bad")
+
+
 def test_periodic_mean_gap_bit_for_bit(cli, rough64, tmp_path):
     """indent --periodic --mean-gap and indent(..., periodic=True, mean_gaps=...): the same rows, with a
     hardness (the searched approach) and unloading; the mean gap reached is the one imposed."""
