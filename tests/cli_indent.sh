@@ -117,7 +117,7 @@ done
 # p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole
 # cell, no warning; a lone --pressure refused; a ramp (not periodic) warned about.
 "$BIN" surface --n 64 --slope 0.08 --seed 3 --out "$DIR/cell.npy" > /dev/null || fail "surface for --periodic"
-"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.002,0.01 --fields --out "$DIR/per" > /dev/null 2> "$DIR/per.err" \
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.002,0.01 --fields --out "$DIR/per" > "$DIR/per.out" 2> "$DIR/per.err" \
     || fail "--periodic exited $?: $(cat "$DIR/per.err")"
 [ ! -s "$DIR/per.err" ] || fail "--periodic on a periodic surface said: $(cat "$DIR/per.err")"
 awk -F, 'NR == 2 { p = 0.002 } NR == 3 { p = 0.01 } NR > 1 {
@@ -138,6 +138,24 @@ PY
 # k of eq. (2) fitted to the steps (theory.h): recorded with its error, range and h'rms definition
 grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spectral"' "$DIR/per/run.json" \
     && grep -q '"k_error"' "$DIR/per/run.json" || fail "run.json has no k fit: $(cat "$DIR/per/run.json")"
+# theory --fit-k over that history (and the cell, h'rms and E* of its run.json): the run's k line, and in CSV
+# (17 digits) every number of run.json's k_fit, bit for bit; a history of the half-space refused by its mean_gap
+"$BIN" theory --fit-k "$DIR/per/history.csv" > "$DIR/fitk.out" 2>&1 || fail "theory --fit-k: $(cat "$DIR/fitk.out")"
+grep '^k of eq. (2)' "$DIR/per.out" | cmp -s - "$DIR/fitk.out" || fail "theory --fit-k: $(cat "$DIR/fitk.out")"
+"$BIN" theory --fit-k "$DIR/per/history.csv" --format csv > "$DIR/fitk.csv" || fail "theory --fit-k --format csv"
+python3 - "$DIR/fitk.csv" "$DIR/per/run.json" <<'PY' || fail "theory --fit-k is not run.json's k_fit: $(cat "$DIR/fitk.csv")"
+import csv, json, math, sys
+row = next(csv.DictReader(open(sys.argv[1])))
+fit = json.load(open(sys.argv[2]))["k_fit"]
+same = lambda a, b: a == b or (math.isnan(a) and b is None)
+pairs = [(row[name], fit[name]) for name in ("k", "k_error", "rms_residual", "k_linear", "slope_rms", "points",
+                                             "linear_points")]
+for name in ("pressure_ratio", "area_fraction"):
+    pairs += [(row[name + "_min"], fit[name + "_range"][0]), (row[name + "_max"], fit[name + "_range"][1])]
+sys.exit(not all(same(float(a), b) for a, b in pairs))
+PY
+"$BIN" theory --fit-k "$DIR/ok/history.csv" > /dev/null 2> "$DIR/fitk.err"
+[ $? -eq 2 ] && grep -q 'row 1 (line 2) has no mean_gap' "$DIR/fitk.err" || fail "theory --fit-k of a half-space history: $(cat "$DIR/fitk.err")"
 [ -s "$DIR/per/force_0002.npy" ] || fail "--periodic --fields wrote no force_0002.npy"
 # --mean-gap (mean u = 0: the mean gap is mean g0 - w): at the mean gaps the pressures left, the same loads
 # to the solver's tolerance, the mean gaps reported as imposed to that tolerance (1e-6: a contact patch's gap is

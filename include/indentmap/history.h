@@ -2,7 +2,8 @@
  * histories/member_FF_SEED.csv and Python's history arrays: its columns, the measurement beside each
  * solved step, one row writer and one reader.
  *
- * Entry points: im_history_columns, im_history_measure, im_history_format, im_history_parse.
+ * Entry points: im_history_columns, im_history_measure, im_history_format, im_history_parse, and the
+ * indentation analysis `indent` writes beside a history, im_history_write_analysis.
  *
  * Columns, in order: step, the solver's results (approach, load, load_star, contact_patches,
  * area_ratio, mean_pressure, max_pressure, iterations, residual, seconds, convolutions), the theory
@@ -70,6 +71,18 @@ enum { IM_HISTORY_AREA_NONE = 0, IM_HISTORY_AREA_SMOOTH = 1, IM_HISTORY_AREA_CEL
  * the first fault (also for NULL arguments). */
 int im_history_parse(const char *text, int area, im_history_row *rows, int capacity, int *count, char *why,
                      size_t why_size);
+
+/* The indentation analysis of rows[0..count) as `indent` writes it beside its history (docs/solver.md,
+ * "Indentation analysis"): when the history holds an unloading branch for punch (measure.h:
+ * im_measure_unloading), DIR/indentation.csv (a row per branch) and the load-displacement figure
+ * DIR/load_displacement.{png,pdf} (N against w, loading and unloading segments in two colours, each
+ * branch's tangent at its top), atomically. delta: the grid's spacing (the real area n_p delta^2); e_star:
+ * E* (the smooth punch's stiffness beside each branch); length_unit and force_unit: the axes' units ("" for
+ * delta and E* delta^2). *branches says how many branches there are (0: nothing written, as for count < 2).
+ * IM_EINVAL for a NULL pointer or count < 0; the measurement's and the writers' errors otherwise. */
+int im_history_write_analysis(const char *dir, const im_indenter *punch, const im_history_row *rows, int count,
+                              double delta, double e_star, const char *length_unit, const char *force_unit,
+                              int *branches);
 
 #ifdef __cplusplus
 }

@@ -15,7 +15,8 @@ from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, Inv
 from . import theory
 from .render import Figure, Image, contact_map, height_map, renderer
 from .scene import run_scene, run_scene_from_record
-from .solver import Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, read_history, unloading
+from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, read_history, unloading,
+                     write_analysis)
 from .surface import Topography, generate, histogram, prepare, psd, read, statistics, write
 
 __version__ = _core.library_version
@@ -34,4 +35,4 @@ def memory_limit(limit=None):
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography",
            "Unsupported", "adhesion", "contact_map", "generate", "height_map", "histogram", "indent", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
-           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "write"]
+           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "write", "write_analysis"]

@@ -73,6 +73,7 @@ PARITY = {
     "theory --punch": Python("theory.sphere_area", note="the sphere; the flat punch's ratio is not yet in Python"),
     "theory --radius": Python("theory.sphere_area", "radius"),
     "theory --load": Python("theory.sphere_area", "load"),
+    "theory --fit-k": Python("theory.fit_k_history", "path"),
     # ---- indent ----
     "indent": Python("indent"),
     "indent --smooth": SMOOTH,

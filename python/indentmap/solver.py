@@ -1,4 +1,5 @@
 """Indentation of a rough surface by a rigid punch (the library's solver.h)."""
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -273,6 +274,36 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
                    stiffness_smooth=stiffness_smooth)
         table[i] = tuple(row[name] for name in UNLOADING_DTYPE.names)
     return table
+
+
+def _history_text(history):
+    """A history array as history.csv's text, 17 digits (read back: the same bits)."""
+    lines = [_core.history_columns]
+    for row in history:
+        lines.append(",".join(str(int(row[name])) if name in _INTEGER_COLUMNS else format(float(row[name]), ".17g")
+                              for name in history.dtype.names))
+    return "\n".join(lines) + "\n"
+
+
+def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_unit="", force_unit="E* δ²"):
+    """Writes the indentation analysis ``indentmap indent`` writes beside its history (history.h:
+    im_history_write_analysis), when the history holds an unloading branch: ``out``/indentation.csv (the rows
+    ``unloading`` returns) and the load-displacement figure ``out``/load_displacement.png and .pdf (N against w,
+    loading and unloading segments in two colours, each branch's tangent at its top), the folder ``out`` made
+    if it is missing. ``history``: the
+    array ``indent`` returns or a history.csv path; ``delta`` and ``e_star`` as the run's; the axes' units
+    as indent states them (defaults: a surface without units). Returns the number of unloading branches
+    (0: nothing written). The files are the program's for the same run, byte for byte."""
+    if isinstance(history, (str, bytes, os.PathLike)):
+        history = read_history(history)
+    history = np.asarray(history)
+    if history.dtype.names != tuple(_core.history_columns.split(",")):
+        raise ValueError("history: expected the array indent returns (history.csv's columns) or a history.csv path")
+    kind, alpha, radius, profile = _punch_arguments(punch)
+    os.makedirs(out, exist_ok=True)
+    return _core.write_analysis(os.fspath(out), kind, alpha, radius, profile, _history_text(history),
+                                _checks.real("delta", delta), _checks.real("e_star", e_star),
+                                _checks.text("length_unit", length_unit), _checks.text("force_unit", force_unit))
 
 
 def adhesion(history):

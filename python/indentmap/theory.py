@@ -4,9 +4,13 @@ Every function broadcasts its array arguments like a numpy ufunc and returns an 
 broadcast shape (scalars in, a numpy float64 scalar out). ``k`` is eq. (2)'s constant (default 2); ``normalisation`` is 'pr' (the paper's,
 Pastewka and Robbins) or 'mg' (Manners and Greenwood's).
 """
+import json
+import os
+
 import numpy as np
 
 from . import _core
+from .solver import read_history
 
 
 def _apply(name, a, b=0.0, **params):
@@ -84,3 +88,70 @@ def fit_k(pressure_ratio, area_fraction):
     x = np.ascontiguousarray(np.ravel(pressure_ratio), dtype=float)
     a = np.ascontiguousarray(np.ravel(area_fraction), dtype=float)
     return _core.fit_k(x, a)
+
+
+def _record_number(record, block, key, path):
+    """record[block][key] as a finite number, or ValueError naming it (as ``theory --fit-k``)."""
+    fields = record.get(block)
+    value = fields.get(key) if isinstance(fields, dict) else None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
+        raise ValueError(f"{path}: no number at {block}.{key}: expected the run.json of `indentmap indent --periodic` "
+                         "(the cell's nx, ny and delta, the h'rms and E* the fit needs)")
+    return value
+
+
+def _periodic_run(path):
+    """The cell's area, h'rms, E* and h'rms definition of a periodic run's record, checked as
+    ``theory --fit-k`` checks it: periodic, without hardness or adhesion."""
+    if not os.path.exists(path):
+        raise ValueError(f"{path}: no run.json beside the history: the fit needs the cell (surface.nx, ny, delta), "
+                         "the h'rms (theory_slope_rms.value) and E* (solver.e_star) that `indentmap indent "
+                         "--periodic` records there")
+    with open(path) as f:
+        record = json.load(f)
+    if record.get("periodic") is not True:
+        raise ValueError(f'{path}: not a periodic run ("periodic" is not true): k of eq. (2) is fitted to the '
+                         "history of `indentmap indent SURFACE --periodic`")
+    if _record_number(record, "solver", "hardness", path) > 0:
+        raise ValueError(f"{path}: the run capped the pressure at solver.hardness: eq. (2) is the elastic law")
+    if record.get("adhesion") is not None:
+        raise ValueError(f'{path}: the run was adhesive ("adhesion"): eq. (2) is the repulsive law')
+    nx, ny, delta = (_record_number(record, "surface", key, path) for key in ("nx", "ny", "delta"))
+    if not (nx >= 1 and ny >= 1 and nx == int(nx) and ny == int(ny) and delta > 0):
+        raise ValueError(f"{path}: surface.nx = {nx}, ny = {ny}, delta = {delta}: expected a grid")
+    slope = record.get("theory_slope_rms")
+    definition = slope.get("definition") if isinstance(slope, dict) else None
+    if not isinstance(definition, str):
+        raise ValueError(f"{path}: no text at theory_slope_rms.definition")
+    # the cell's area as periodic_cell_area computes it (front.h), operation for operation
+    return (float(nx) * ny * delta * delta, _record_number(record, "theory_slope_rms", "value", path),
+            _record_number(record, "solver", "e_star", path), definition)
+
+
+def fit_k_history(path):
+    """k of eq. (2) over a periodic history written earlier, as ``indentmap theory --fit-k`` and the end of
+    ``indent --periodic`` fit it: the history.csv at ``path`` (A/A0 = area_ratio against
+    x = load / (nx ny delta^2) / (h'rms E*) over the steps with a positive load) with the cell, h'rms and E*
+    of the run.json beside it. Returns run.json's ``k_fit`` block as a dict, bit for bit (k_linear NaN
+    where it is null): fit_k's keys with points, pressure_ratio_range, area_fraction_range, slope_rms and
+    slope_rms_definition. ValueError naming the row for a history whose mean_gap is not finite (the
+    half-space, a punch repeated with the cell), and naming what the run.json lacks or why its run is not
+    one eq. (2) describes (not periodic, a hardness, adhesion)."""
+    path = os.fspath(path)
+    history = read_history(path)
+    gapless = np.flatnonzero(~np.isfinite(history["mean_gap"]))
+    if gapless.size:
+        row = int(gapless[0]) + 1
+        raise ValueError(f"{path}: row {row} (line {row + 1}) has no mean_gap (not finite): not the history of a "
+                         "periodic cell under the rigid flat (`indentmap indent SURFACE --periodic` without --punch)")
+    cell_area, slope_rms, e_star, definition = _periodic_run(os.path.join(os.path.dirname(path), "run.json"))
+    loaded = history[history["load"] > 0]
+    if loaded.size == 0:
+        raise ValueError(f"{path}: k of eq. (2): no step with a positive load")
+    x = loaded["load"] / cell_area / (slope_rms * e_star)
+    area = loaded["area_ratio"]
+    fit = fit_k(x, area)
+    fit.update(points=int(loaded.size), pressure_ratio_range=[float(x.min()), float(x.max())],
+               area_fraction_range=[float(area.min()), float(area.max())], slope_rms=slope_rms,
+               slope_rms_definition=definition)
+    return fit

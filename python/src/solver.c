@@ -552,6 +552,55 @@ done:
     return result;
 }
 
+/* The rows of a history's text (history.h: im_history_parse, measured against punch's area) into *rows (the
+ * caller frees them); -1 with a Python error. */
+static int rows_from_text(const char *text, const im_indenter *punch, im_history_row **rows, int *count)
+{
+    int capacity = 1;
+    for (const char *p = text; *p; ++p)
+        capacity += *p == '\n';
+    *rows = malloc(sizeof **rows * (size_t)capacity);
+    if (!*rows) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    char why[256];
+    const int area = punch->kind == IM_PUNCH_PROFILE_2D ? IM_HISTORY_AREA_NONE : IM_HISTORY_AREA_SMOOTH;
+    if (im_history_parse(text, area, *rows, capacity, count, why, sizeof why))
+        return 0;
+    PyErr_Format(PyExc_ValueError, "history: %s", why);
+    return -1;
+}
+
+/* write_analysis(dir, punch, alpha, radius, profile, history_text, delta, e_star, length_unit, force_unit)
+ * -> branches (history.h: im_history_write_analysis) */
+static PyObject *write_analysis(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *kind, *text, *length_unit, *force_unit;
+    double alpha, radius, delta, e_star;
+    PyObject *dir, *profile_obj;
+    if (!PyArg_ParseTuple(args, "O&sddOsddss", PyUnicode_FSConverter, &dir, &kind, &alpha, &radius, &profile_obj,
+                          &text, &delta, &e_star, &length_unit, &force_unit))
+        return NULL;
+    im_profile *profile = NULL;
+    im_indenter punch;
+    im_history_row *rows = NULL;
+    int count = 0, branches = 0;
+    PyObject *result = NULL;
+    if ((profile_obj == Py_None || profile_from_array(profile_obj, delta, &profile) == 0) &&
+        punch_from_arguments(kind, alpha, radius, Py_None, Py_None, profile, &punch) == 0 &&
+        rows_from_text(text, &punch, &rows, &count) == 0) {
+        int status = im_history_write_analysis(PyBytes_AS_STRING(dir), &punch, rows, count, delta, e_star,
+                                               length_unit, force_unit, &branches);
+        result = status == IM_OK ? PyLong_FromLong(branches) : py_raise_status(status);
+    }
+    free(rows);
+    im_profile_free(profile);
+    Py_DECREF(dir);
+    return result;
+}
+
 /* adhesion(approach, load, contact) -> dict (measure.h: im_measure_adhesion); NaN where there is none */
 static PyObject *adhesion(PyObject *self, PyObject *args)
 {
@@ -603,6 +652,9 @@ static PyObject *quality_tolerance(PyObject *self, PyObject *args)
 PyMethodDef py_solver_methods[] = {
     {"quality_tolerance", quality_tolerance, METH_VARARGS,
      "quality_tolerance(name) -> the solver tolerance of a quality preset (draft, standard, publication)"},
+    {"write_analysis", write_analysis, METH_VARARGS,
+     "write_analysis(dir, punch, alpha, radius, profile, history_text, delta, e_star, length_unit, force_unit) -> "
+     "branches: indentation.csv and load_displacement.{png,pdf} in dir"},
     {"adhesion", adhesion, METH_VARARGS,
      "adhesion(approach, load, contact_patches) -> dict: pull-off force and approach, jumps, work lost"},
     {"unloading", unloading, METH_VARARGS,

@@ -1,6 +1,7 @@
 """The Python package and the command line run the same library: the same inputs give the same bits."""
 import csv
 import io
+import json
 
 import numpy as np
 import pytest
@@ -152,11 +153,56 @@ def test_periodic_bit_for_bit(cli, rough64, tmp_path):
         assert np.isnan(history[k]["load_star"]) and history[k]["area_ratio"] == history[k]["contact_patches"] / 64**2
         assert np.load(tmp_path / "out" / f"force_{k + 1:04d}.npy").tobytes() == fields[k]["force"].tobytes()
     # k of eq. (2): the CLI's run.json and theory.fit_k over the same history, h'rms spectral
-    import json
     record = json.load(open(tmp_path / "out" / "run.json"))["k_fit"]
     slope = im.statistics(rough64)["slope_rms_spectral"]
     fit = im.theory.fit_k(history["load"] / (64 * 64 * slope), history["area_ratio"])
     assert abs(fit["k"] - record["k"]) <= 1e-12 * record["k"] and abs(fit["k_error"] - record["k_error"]) <= 1e-9
+
+
+def test_fit_k_history_bit_for_bit(cli, rough64, tmp_path):
+    """theory.fit_k_history over a periodic run's history.csv and run.json: run.json's k_fit and `theory
+    --fit-k --format csv` (17 digits) to the bit; a half-space history refused naming mean_gap."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--pressure", "0.002,0.006,0.01", "--out",
+            tmp_path / "out")
+    ours = im.theory.fit_k_history(tmp_path / "out" / "history.csv")
+    record = json.loads((tmp_path / "out" / "run.json").read_text())["k_fit"]
+    assert ours.keys() == record.keys()
+    for name, value in record.items():
+        assert ours[name] == value or (value is None and np.isnan(ours[name])), name
+    printed = run_cli(cli, "theory", "--fit-k", tmp_path / "out" / "history.csv", "--format", "csv").stdout
+    row = next(csv.DictReader(io.StringIO(printed)))
+    for name in ("k", "k_error", "rms_residual", "k_linear", "slope_rms"):
+        assert float(row[name]) == ours[name], name
+    assert int(row["points"]) == ours["points"] == 3 and int(row["linear_points"]) == ours["linear_points"]
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "0.5,1", "--out", tmp_path / "half")
+    with pytest.raises(ValueError, match=r"row 1 \(line 2\) has no mean_gap"):
+        im.theory.fit_k_history(tmp_path / "half" / "history.csv")
+    (tmp_path / "out" / "run.json").unlink()
+    with pytest.raises(ValueError, match="no run.json beside the history"):
+        im.theory.fit_k_history(tmp_path / "out" / "history.csv")
+
+
+def test_write_analysis_files_are_the_cli_ones(cli, rough64, tmp_path):
+    """write_analysis of Python's history and of the CLI's history.csv: indent's indentation.csv and
+    load_displacement.png byte for byte, the PDF but for its creation date."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "1:3:3,2.5:1:3", "--out", tmp_path / "out")
+    history = im.indent(rough64, im.Cone(80), approaches=[1, 2, 3, 2.5, 1.75, 1])
+    assert im.write_analysis(history, tmp_path / "py") == 1
+    assert im.write_analysis(tmp_path / "out" / "history.csv", tmp_path / "csv", im.Cone(80)) == 1
+    def undated(path):
+        return b"".join(line for line in path.read_bytes().splitlines(True)
+                        if not line.lstrip().startswith(b"/CreationDate"))
+
+    for folder in ("py", "csv"):
+        for name in ("indentation.csv", "load_displacement.png"):
+            assert (tmp_path / folder / name).read_bytes() == (tmp_path / "out" / name).read_bytes(), (folder, name)
+        pdf = tmp_path / folder / "load_displacement.pdf"
+        assert undated(pdf) == undated(tmp_path / "out" / "load_displacement.pdf") != pdf.read_bytes(), folder
+    assert im.write_analysis(history[:3], tmp_path / "loading") == 0 and not any((tmp_path / "loading").iterdir())
+    with pytest.raises(ValueError, match="history.csv's columns"):
+        im.write_analysis(np.zeros(3), tmp_path / "bad")
 
 
 def test_periodic_mean_gap_bit_for_bit(cli, rough64, tmp_path):

@@ -23,6 +23,8 @@ int cli_render(int argc, char **argv);
 int cli_render_view3d(int argc, char **argv); /* render view3d (render_view3d.c) */
 int cli_indent(int argc, char **argv);
 int cli_theory(int argc, char **argv);
+/* theory --fit-k HISTORY (theory_fit_k.c): k of eq. (2) over a periodic history, as a line or (csv) a CSV row. */
+int cli_theory_fit_k(const char *history, int csv);
 int cli_run(int argc, char **argv);
 /* One grid over MPI ranks (mpi_indent.c); exists only where IM_HAVE_MPI (indentmap/mpi.h). */
 int cli_mpi_indent(int argc, char **argv);

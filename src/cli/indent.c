@@ -877,11 +877,8 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
         fprintf(stderr, "indentmap: %s\n", im_last_error());
         return;
     }
+    periodic_k_fit_print(&k, rough->slope_rms, slope_definition_name(o->slope_definition));
     const im_theory_k_fit *fit = &k.fit;
-    printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-           "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit->k, fit->k_error, k.points,
-           k.pressure_ratio[0], k.pressure_ratio[1], k.area_fraction[0], k.area_fraction[1], rough->slope_rms,
-           slope_definition_name(o->slope_definition), fit->k_linear, fit->linear_points);
     json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
                               fit->k_error, "rms_residual", fit->rms_residual, "points", k.points, "linear_points",
                               fit->linear_points, "pressure_ratio_range", k.pressure_ratio[0], k.pressure_ratio[1],

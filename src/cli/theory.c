@@ -1,5 +1,5 @@
 /* indentmap theory: the paper's contact-area theory for a cone, and its local density of contact
- * for a sphere or a flat punch, as a table or CSV. */
+ * for a sphere or a flat punch, as a table or CSV; k of eq. (2) over a periodic history (theory_fit_k.c). */
 #include "cli/cli.h"
 
 #include "indentmap/status.h"
@@ -24,7 +24,8 @@ static void usage(FILE *stream)
             "usage: indentmap theory --alpha DEG --slope S1,S2,... [OPTIONS]\n"
             "       indentmap theory --rho MIN:MAX:N [OPTIONS]\n"
             "       indentmap theory --punch sphere|flat --radius R --load N --slope S1,S2,... [OPTIONS]\n"
-            "       indentmap theory --punch sphere|flat --rho MIN:MAX:N [OPTIONS]\n\n"
+            "       indentmap theory --punch sphere|flat --rho MIN:MAX:N [OPTIONS]\n"
+            "       indentmap theory --fit-k DIR/history.csv [--format table|csv]\n\n"
             "The contact area of a rough elastic half-space under a cone (the paper's section 2.1):\n"
             "rho_c = k cot(alpha) / (2 h'rms) (eq. 7), the constant-density ratio A/A_cone of eq. (6)\n"
             "and the variable-density ratio of eq. (12), or with --gamma the local contact density\n"
@@ -48,15 +49,21 @@ static void usage(FILE *stream)
             "  --normalisation pr|mg  the erf law's pressure: pr (default) p_PR = 2 p_rough / sqrt(pi),\n"
             "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
             "                         used in eqs. (6), (10) and (12) alike\n"
-            "  --k K                  p_rough = h'rms E* / K, eq. (2), 1e-6 <= K <= 1e6 (default 2)\n");
+            "  --k K                  p_rough = h'rms E* / K, eq. (2), 1e-6 <= K <= 1e6 (default 2)\n"
+            "  --fit-k HISTORY        k of eq. (2) fitted to the history of a periodic indent run under\n"
+            "                         the rigid flat (A/A0 against p_m / (h'rms E*)), with the cell, h'rms\n"
+            "                         and E* of the run.json beside it: the k line that run printed, or\n"
+            "                         with --format csv slope_rms,points,k,k_error,... (17 digits; the\n"
+            "                         columns of a scene's k_fit.csv)\n");
 }
 
 typedef struct theory_options {
     enum im_punch_kind punch;
     double alpha, radius, load;
     int alpha_given, radius_given, load_given;
-    const char *slope_list, *rho_sweep;
+    const char *slope_list, *rho_sweep, *fit_k;
     int gamma, csv;
+    int others; /* options other than --fit-k and --format */
     double k;
     im_theory_normalisation normalisation;
 } theory_options;
@@ -69,7 +76,7 @@ typedef struct theory_columns {
 
 enum {
     OPT_ALPHA = 256, OPT_SLOPE, OPT_RHO, OPT_GAMMA, OPT_FORMAT, OPT_NORMALISATION, OPT_K, OPT_PUNCH, OPT_RADIUS,
-    OPT_LOAD, OPT_HELP
+    OPT_LOAD, OPT_FIT_K, OPT_HELP
 };
 
 static const struct option LONG_OPTIONS[] = {
@@ -78,7 +85,7 @@ static const struct option LONG_OPTIONS[] = {
     {"format", required_argument, 0, OPT_FORMAT}, {"normalisation", required_argument, 0, OPT_NORMALISATION},
     {"k", required_argument, 0, OPT_K}, {"punch", required_argument, 0, OPT_PUNCH},
     {"radius", required_argument, 0, OPT_RADIUS}, {"load", required_argument, 0, OPT_LOAD},
-    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+    {"fit-k", required_argument, 0, OPT_FIT_K}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
 
 static int parse_punch(const char *text, enum im_punch_kind *out)
 {
@@ -106,6 +113,7 @@ static int apply_option(int code, const char *arg, void *state)
 {
     theory_options *o = state;
     int choice;
+    o->others += code != OPT_FIT_K && code != OPT_FORMAT;
     switch (code) {
     case OPT_ALPHA:
         o->alpha_given = 1;
@@ -120,6 +128,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_RHO: o->rho_sweep = arg; return 0;
     case OPT_GAMMA: o->gamma = 1; return 0;
     case OPT_FORMAT: return parse_choice("--format", arg, "table", "csv", &o->csv);
+    case OPT_FIT_K: o->fit_k = arg; return 0;
     case OPT_NORMALISATION:
         if (parse_choice("--normalisation", arg, "pr", "mg", &choice) != 0)
             return -1;
@@ -172,7 +181,10 @@ static int parse_options(int argc, char **argv, theory_options *o)
         return -1;
     }
     const char *problem = NULL;
-    if (!o->slope_list == !o->rho_sweep)
+    if (o->fit_k)
+        problem = o->others ? "--fit-k takes no other option than --format (the run.json beside the history holds "
+                              "the rest)" : NULL;
+    else if (!o->slope_list == !o->rho_sweep)
         problem = "give either --slope (with --alpha, or --radius and --load) or --rho";
     else
         problem = o->punch == IM_PUNCH_CONE ? cone_problem(o) : round_punch_problem(o);
@@ -384,6 +396,8 @@ int cli_theory(int argc, char **argv)
     int parsed = parse_options(argc, argv, &o);
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (o.fit_k)
+        return cli_theory_fit_k(o.fit_k, o.csv);
     theory_columns columns = {0};
     int parsed_values = o.slope_list ? parse_slopes(o.slope_list, &columns) : parse_rho_sweep(o.rho_sweep, &columns);
     if (parsed_values != 0) {

@@ -1,7 +1,9 @@
 /* indentation.csv: the indentation analysis of the unloading branches of a history, written by every
- * front end that runs histories (front.h). */
+ * front end that runs histories (front.h), with its load-displacement figure; the library's entry point to
+ * both, im_history_write_analysis (history.h). */
 #include "front/front.h"
 
+#include "core/args.h"
 #include "indentmap/io.h"
 #include "indentmap/measure.h"
 #include "indentmap/plot.h"
@@ -237,6 +239,22 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
         status = write_figure(dir, found, *branches, rows, count, length_unit, force_unit);
     free(found);
     return status;
+}
+
+int im_history_write_analysis(const char *dir, const im_indenter *punch, const im_history_row *rows, int count,
+                              double delta, double e_star, const char *length_unit, const char *force_unit,
+                              int *branches)
+{
+    ARG_REQUIRE(dir, "dir");
+    ARG_REQUIRE(punch, "punch");
+    ARG_REQUIRE(rows, "rows");
+    ARG_REQUIRE(length_unit, "length_unit");
+    ARG_REQUIRE(force_unit, "force_unit");
+    ARG_REQUIRE(branches, "branches");
+    *branches = 0;
+    if (count < 0)
+        return im_fail(IM_EINVAL, "im_history_write_analysis: count = %d: expected >= 0", count);
+    return analysis_write(dir, punch, rows, count, delta, e_star, length_unit, force_unit, branches);
 }
 
 /* ---- adhesion: the summary and the force-distance figure ---- */

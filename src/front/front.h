@@ -15,6 +15,7 @@
 
 #include <jansson.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <sys/types.h>
 
 /* ---- step lists (steps.c) ---- */
@@ -138,6 +139,13 @@ typedef struct periodic_k_fit {
 } periodic_k_fit;
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
                    periodic_k_fit *out);
+
+/* The fit's outputs, the same wherever it is made: the line `indent --periodic` and `theory --fit-k` print
+ * (with the h'rms and its definition's name), and its columns in a CSV (a scene's k_fit.csv, `theory --fit-k
+ * --format csv`): PERIODIC_K_COLUMNS and one row of them, 17 digits, with its newline. */
+void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
+extern const char PERIODIC_K_COLUMNS[];
+void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k);
 
 /* ---- the files of one solved step (step_files.c): `indent --fields/--distributions` and a periodic
  * scene's contact panels and distributions ---- */

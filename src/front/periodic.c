@@ -1,10 +1,12 @@
 /* The periodic mode's pieces both front ends share (front.h): the cell, the rigid flat pressed on it,
- * the edge-mismatch test of a surface given as one period, and k of eq. (2) fitted to a history. */
+ * the edge-mismatch test of a surface given as one period, and k of eq. (2) fitted to a history, with its
+ * printed line and CSV row. */
 #include "front/front.h"
 
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 double periodic_cell_area(const im_field *surface)
@@ -68,4 +70,23 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
     free(x);
     free(area);
     return status;
+}
+
+void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char *slope_definition)
+{
+    const im_theory_k_fit *fit = &k->fit;
+    printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
+           "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit->k, fit->k_error, k->points,
+           k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0], k->area_fraction[1], slope_rms,
+           slope_definition, fit->k_linear, fit->linear_points);
+}
+
+const char PERIODIC_K_COLUMNS[] = "points,k,k_error,rms_residual,k_linear,linear_points,pressure_ratio_min,"
+                                  "pressure_ratio_max,area_fraction_min,area_fraction_max";
+
+void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k)
+{
+    fprintf(stream, "%d,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", k->points, k->fit.k, k->fit.k_error,
+            k->fit.rms_residual, k->fit.k_linear, k->fit.linear_points, k->pressure_ratio[0], k->pressure_ratio[1],
+            k->area_fraction[0], k->area_fraction[1]);
 }

@@ -44,10 +44,8 @@ static int write_k_row(const im_scene *scene, const scene_member *m, const im_fi
     if (status != IM_OK)
         return im_fail_context(status, "k of eq. (2) for family %d, seed %llu", m->family,
                                (unsigned long long)m->seed);
-    fprintf(stream, "%d,%.17g,%llu,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", m->family,
-            scene->slopes[m->family], (unsigned long long)m->seed, slope, k.points, k.fit.k, k.fit.k_error,
-            k.fit.rms_residual, k.fit.k_linear, k.fit.linear_points, k.pressure_ratio[0], k.pressure_ratio[1],
-            k.area_fraction[0], k.area_fraction[1]);
+    fprintf(stream, "%d,%.17g,%llu,%.17g,", m->family, scene->slopes[m->family], (unsigned long long)m->seed, slope);
+    periodic_k_fit_write_row(stream, &k);
     return IM_OK;
 }
 
@@ -76,8 +74,7 @@ int scene_periodic_results(const im_scene *scene, const im_scene_run_options *op
         return status;
     FILE *k_rows = fits ? file.stream : NULL;
     if (k_rows)
-        fprintf(k_rows, "family,slope,seed,slope_rms,points,k,k_error,rms_residual,k_linear,linear_points,"
-                        "pressure_ratio_min,pressure_ratio_max,area_fraction_min,area_fraction_max\n");
+        fprintf(k_rows, "family,slope,seed,slope_rms,%s\n", PERIODIC_K_COLUMNS);
     int rough = 0;
     for (int i = 0; i < count && status == IM_OK; ++i) {
         status = member_results(scene, options, &members[i], k_rows);
