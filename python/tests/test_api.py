@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import indentmap as im
-from conftest import run_cli
+from conftest import longest_pause_of_this_thread, run_cli
 
 
 def test_errors_carry_the_library_message(tmp_path):
@@ -85,27 +85,6 @@ def test_outputs_own_their_memory(rough64):
     assert force.shape == rough64.shape
 
 
-def longest_pause_of_this_thread(work):
-    """Runs work() in a thread while this one counts; the longest this thread went without running during
-    work(), and how long work() took."""
-    span = {}
-
-    def timed():
-        span["start"] = time.perf_counter()
-        work()
-        span["end"] = time.perf_counter()
-
-    thread = threading.Thread(target=timed)
-    ticks = []
-    thread.start()
-    while thread.is_alive():
-        ticks.append(time.perf_counter())
-    thread.join()
-    inside = [t for t in ticks if span["start"] <= t <= span["end"]]
-    edges = [span["start"]] + inside + [span["end"]]
-    return max(b - a for a, b in zip(edges, edges[1:])), span["end"] - span["start"]
-
-
 @pytest.mark.parametrize("call", ["create", "step", "fields", "plan"])
 def test_long_calls_release_the_gil(call):
     """Planning a history or a plan, a solve and the full-grid fields run without the GIL (issue 32: planning
@@ -152,7 +131,7 @@ def test_indentations_in_threads_equal_serial_ones():
 LEAK_PROBE = """
 import os, sys
 import indentmap as im
-from conftest import run_cli
+from conftest import longest_pause_of_this_thread, run_cli
 heights = im.generate(16, slope=0.05, lambda_s=2, seed=4)
 run = im.Indentation(heights, largest=1.0)
 
@@ -331,7 +310,7 @@ def test_prepare_aligns_scan_lines_as_the_cli(tmp_path):
 PAIR_WRITER = """
 import sys
 import indentmap as im
-from conftest import run_cli
+from conftest import longest_pause_of_this_thread, run_cli
 path, seed, delta = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 heights = im.generate(64, slope=0.1, seed=seed)
 for _ in range(10):
