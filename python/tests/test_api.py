@@ -131,7 +131,6 @@ def test_indentations_in_threads_equal_serial_ones():
 LEAK_PROBE = """
 import os, sys
 import indentmap as im
-from conftest import longest_pause_of_this_thread, run_cli
 heights = im.generate(16, slope=0.05, lambda_s=2, seed=4)
 run = im.Indentation(heights, largest=1.0)
 
@@ -310,7 +309,6 @@ def test_prepare_aligns_scan_lines_as_the_cli(tmp_path):
 PAIR_WRITER = """
 import sys
 import indentmap as im
-from conftest import longest_pause_of_this_thread, run_cli
 path, seed, delta = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 heights = im.generate(64, slope=0.1, seed=seed)
 for _ in range(10):
