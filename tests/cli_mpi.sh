@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # indentmap mpi-indent (MPI builds; skipped, exit 77, elsewhere): the same result and the same
 # field files to the byte on 1 and 3 ranks, a file surface read back, and clear errors; ranks
-# started with different commands, folders or scenes, or an error on one rank only, stop every rank
-# with one message (mpi-indent and run under mpirun), never a hang or MPI's own error.
+# started with different commands, folders or scenes, reading other bytes from a file the scene
+# names, or an error on one rank only, stop every rank with one message (mpi-indent and run under
+# mpirun), never a hang or MPI's own error.
 #   cli_mpi.sh PATH_TO_INDENTMAP
 set -uo pipefail
 cli=$1
@@ -127,4 +128,20 @@ refused one_rank 2 "rank 1: IM_FFTW_WISDOM $work: wisdom file $work: .* is not a
   -n 1 "$cli" run "$work/a.ini" : -n 1 -x IM_FFTW_WISDOM="$work" "$cli" run "$work/a.ini"
 "$mpiexec" -n 2 --oversubscribe "$cli" run "$work/a.ini" > /dev/null 2> "$work/alike.err" || fail "a scene on 2 ranks: $(cat "$work/alike.err")"
 [ -s "$work/out_a/table1.csv" ] || fail "a scene on 2 ranks wrote no table1.csv"
+
+# Files a scene names, the same path on every rank but other files on each (a node-local path): its
+# surface file surf.npy is a link to /proc/self/fd/8, which each rank opens on another surface. Rank 1
+# solves member 1 (surf.npy) from its own bytes: results of two surfaces under one name in run.json.
+for seed in 1 2 3; do "$cli" surface --n 32 --seed $seed --out "$work/h$seed.npy" > /dev/null || fail "surface $seed"; done
+ln -s /proc/self/fd/8 "$work/surf.npy"
+printf '[scene]\nname = f\noutput = %s\n[surfaces]\nfile = h3.npy, surf.npy\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
+  "$work/out_f" > "$work/f.ini"
+on_fd8() { echo "exec '$cli' run '$work/f.ini' 8< '$1'"; } # on_fd8 FILE: the rank's command, its fd 8 on FILE
+refused input_bytes 2 "$work/surf.npy (\[surfaces\] file): rank 1 reads other bytes from it than rank 0: every rank must read the same file" \
+  -n 1 bash -c "$(on_fd8 "$work/h1.npy")" : -n 1 bash -c "$(on_fd8 "$work/h2.npy")"
+[ ! -e "$work/out_f" ] || fail "surface files of other bytes: a rank wrote $(ls "$work/out_f")"
+refused input_missing 2 "rank 1: .*surf.npy" -n 1 bash -c "$(on_fd8 "$work/h1.npy")" : -n 1 "$cli" run "$work/f.ini"
+"$mpiexec" -n 2 --oversubscribe bash -c "$(on_fd8 "$work/h1.npy")" > /dev/null 2> "$work/alike_files.err" ||
+  fail "a scene of files alike on 2 ranks: $(cat "$work/alike_files.err")"
+[ -s "$work/out_f/table1.csv" ] || fail "a scene of files alike on 2 ranks wrote no table1.csv"
 echo "cli_mpi: ok"

@@ -31,6 +31,23 @@ finish() {
 # them) but for the solve times (column 11, seconds): what two runs of one scene must agree on.
 history_rows() { tail -n +2 "$1" | cut -d, -f1-10,12-; }
 
+# same_outputs A B: two output folders of one scene hold the same files, with the same bytes but for
+# what varies from run to run: the solve times of table members (column 10, and so the row's checksum,
+# 13) and of histories (column 11, and so the header's checksum), and the PDFs' creation dates. Names
+# the first difference.
+same_outputs() {
+  local a=$1 b=$2 f
+  diff <(cd "$a" && find . -type f ! -name .lock | sort) <(cd "$b" && find . -type f ! -name .lock | sort) || return 1
+  while read -r f; do
+    case $f in
+      ./table/member_*.csv) cmp -s <(cut -d, -f10,13 --complement "$a/$f") <(cut -d, -f10,13 --complement "$b/$f") ;;
+      ./histories/*.csv) cmp -s <(tail -n +2 "$a/$f" | cut -d, -f11 --complement) <(tail -n +2 "$b/$f" | cut -d, -f11 --complement) ;;
+      *.pdf) cmp -s <(grep -av CreationDate "$a/$f") <(grep -av CreationDate "$b/$f") ;;
+      *) cmp -s "$a/$f" "$b/$f" ;;
+    esac || { echo "$f differs between $a and $b"; return 1; }
+  done < <(cd "$a" && find . -type f ! -name .lock | sort)
+}
+
 # ensemble_scene FILE NAME OUTPUT [TOL]: the reduced ensemble that the concurrency, interrupt and
 # full-disk tests run: 128 x 128, two slopes x four seeds, the 80 deg cone under load control to
 # N* = 2400 in 12 steps, table1.csv and fig5's histories; TOL, when given, the solver's tolerance.

@@ -12,6 +12,7 @@
 #include "indentmap/render.h"
 #include "indentmap/status.h"
 
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -369,6 +370,80 @@ static void test_backends_agree(void **state)
     im_field_free(force);
 }
 
+/* The three pictures of one field: a contact map, a height map and a 3-D view. */
+typedef struct three_pictures {
+    im_render_context *context;
+    const im_field *field;
+    int status[3];
+    im_image image[3];
+    char error[512]; /* the drawing thread's last message */
+} three_pictures;
+
+static void *draw_three_pictures(void *argument)
+{
+    three_pictures *p = argument;
+    im_contact_style contact = im_contact_style_default(p->field);
+    im_height_style height = im_height_style_default(p->field);
+    im_view3d_style view = im_view3d_style_default(p->field);
+    view.width = view.height = 96;
+    p->status[0] = im_render_contact_map(p->context, p->field, &contact, &p->image[0]);
+    p->status[1] = im_render_height_map(p->context, p->field, &height, &p->image[1]);
+    p->status[2] = im_render_view3d(p->context, p->field, p->field, NULL, &view, &p->image[2]);
+    snprintf(p->error, sizeof p->error, "%s", im_last_error());
+    return NULL;
+}
+
+static void assert_same_pictures(const three_pictures *a, const three_pictures *b, const char *backend)
+{
+    for (int i = 0; i < 3; ++i) {
+        if (b->status[i] != IM_OK)
+            fail_msg("%s: picture %d drawn on another thread: %s", backend, i, b->error);
+        assert_int_equal(a->image[i].width, b->image[i].width);
+        assert_memory_equal(a->image[i].rgba, b->image[i].rgba, (size_t)a->image[i].width * a->image[i].height * 4);
+    }
+}
+
+/* A context opened on one thread draws on others, one call at a time, the same pixels (EGL refused a
+ * context still current on the thread that drew last, so Python could not draw without its GIL). */
+static void test_drawing_from_several_threads(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    im_field *force = make_field(24, 20);
+    for (int iy = 0; iy < force->ny; ++iy)
+        for (int ix = 0; ix < force->nx; ++ix)
+            force->data[iy * force->nx + ix] = 1.0 + sin(0.4 * ix) * cos(0.3 * iy);
+    const im_render_backend backends[2] = {IM_RENDER_EGL, IM_RENDER_OSMESA};
+    for (int i = 0; i < 2; ++i) {
+        im_render_context *own = NULL;
+        if (im_render_open(backends[i], &own) != IM_OK)
+            continue; /* test_backends_agree tells an unavailable backend from a broken one */
+        three_pictures here = {.context = own, .field = force}, there[2];
+        draw_three_pictures(&here);
+        for (int k = 0; k < 3; ++k)
+            if (here.status[k] != IM_OK)
+                fail_msg("%s: picture %d: %s", im_render_backend_name(own), k, here.error);
+        for (int t = 0; t < 2; ++t) {
+            pthread_t thread;
+            there[t] = (three_pictures){.context = own, .field = force};
+            assert_int_equal(pthread_create(&thread, NULL, draw_three_pictures, &there[t]), 0);
+            assert_int_equal(pthread_join(thread, NULL), 0);
+            assert_same_pictures(&here, &there[t], im_render_backend_name(own));
+        }
+        three_pictures again = {.context = own, .field = force};
+        draw_three_pictures(&again); /* and back on the thread that opened it */
+        assert_same_pictures(&here, &again, im_render_backend_name(own));
+        for (int k = 0; k < 3; ++k) {
+            im_image_release(&here.image[k]);
+            im_image_release(&again.image[k]);
+            for (int t = 0; t < 2; ++t)
+                im_image_release(&there[t].image[k]);
+        }
+        im_render_close(own);
+    }
+    im_field_free(force);
+}
+
 /* Only a missing context may be skipped: a shader or set-up failure after the context exists must
  * not look like one, and the device probe needs device enumeration named, not just pointers. */
 static void test_missing_context_is_told_apart(void **state)
@@ -623,6 +698,7 @@ int main(void)
         cmocka_unit_test(test_aliased_circle_exact_colours),
         cmocka_unit_test(test_repeated_runs_identical),
         cmocka_unit_test(test_backends_agree),
+        cmocka_unit_test(test_drawing_from_several_threads),
         cmocka_unit_test(test_empty_zero_and_nan_fields),
         cmocka_unit_test(test_bad_styles_refused),
         cmocka_unit_test(test_height_shading_of_a_plane),

@@ -166,7 +166,10 @@ int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y
  * soon as it is solved, as a single process does; then rank 0 alone runs the stages, reading those
  * members back exactly (their stage lines count them as solved), and writes every table and figure:
  * byte for byte those of a single process. Rank 0 takes the output folder's lock, removes the stale
- * temporaries and writes run.json before any rank starts. options as for im_scene_run on every
+ * temporaries and writes run.json before any rank starts. First every rank reads the files the scene
+ * names (surfaces, profile): IM_EINVAL on every rank, naming the file, its key and the ranks, when
+ * one reads other bytes from it than rank 0 (a path naming other files on other nodes) or cannot
+ * read it (that rank's message). options as for im_scene_run on every
  * rank (rank 0's progress lines only; the other ranks are quiet). With one rank, im_scene_run.
  * Collective; MPI initialised with at least MPI_THREAD_FUNNELED. Every rank returns a failure
  * when any rank fails: a rank's error (the lowest failing rank's) before an interruption; rank 0

@@ -60,8 +60,8 @@ typedef struct im_render_context im_render_context;
  * starting IM_RENDER_NO_CONTEXT and listing each attempt's reason. A context that is created but
  * cannot compile or link the shaders or set up its objects is a defect, not a missing feature:
  * IM_EUNSUPPORTED with a message naming the shader or GL error, which im_render_context_missing
- * tells apart. One context per thread at a time: it
- * is made current on the calling thread. */
+ * tells apart. A context serves one call at a time, from any thread: each call that draws makes it
+ * current on the calling thread and releases it before returning. */
 int im_render_open(im_render_backend backend, im_render_context **out);
 
 #define IM_RENDER_NO_CONTEXT "no OpenGL 3.3 core context"

@@ -1,6 +1,7 @@
 """Pictures: contact maps (the paper's Fig. 4) and height fields as RGBA arrays, and multi-panel
 figures as PNG, PDF or SVG (the library's render.h and figure.h). One off-screen OpenGL context
-(EGL, or OSMesa) is opened at the first picture; render from one thread."""
+(EGL, or OSMesa) is opened at the first picture; pictures are drawn without the GIL, from any thread,
+one at a time."""
 import os
 import tempfile
 

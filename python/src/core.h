@@ -54,6 +54,9 @@ int py_interrupt_init(void);
 void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag);
 int py_interrupt_disarm(py_interrupt *call, volatile sig_atomic_t *flag);
 
+/* Makes the lock that lets one drawing call at a time run without the GIL (render.c; module import). */
+int py_render_init(void);
+
 /* Module tables, defined per file. */
 extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[],
     py_solver_methods[];

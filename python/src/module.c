@@ -105,7 +105,7 @@ PyMODINIT_FUNC PyInit__core(void)
     PyObject *module = PyModule_Create(&module_definition);
     if (!module)
         return NULL;
-    if (py_interrupt_init() < 0 || add_errors(module) < 0 || add_methods(module, core_methods) < 0 ||
+    if (py_interrupt_init() < 0 || py_render_init() < 0 || add_errors(module) < 0 || add_methods(module, core_methods) < 0 ||
         add_methods(module, py_surface_methods) < 0 ||
         add_methods(module, py_theory_methods) < 0 || add_methods(module, py_render_methods) < 0 ||
         add_methods(module, py_scene_methods) < 0 || add_methods(module, py_solver_methods) < 0 ||

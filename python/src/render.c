@@ -1,6 +1,8 @@
 /* Rendering: contact maps and height fields as RGBA arrays, and multi-panel figures written as
- * PNG/PDF/SVG. One GL context per process, opened at first use and closed at exit; GL work keeps
- * the GIL (a context is bound to the thread that uses it). */
+ * PNG/PDF/SVG. One GL context per process, opened at first use (with the GIL) and closed at exit.
+ * Drawing and writing run without the GIL, one call at a time (a context serves one call at a time,
+ * from any thread: render.h), on C copies or views of what they read: no Python object is touched
+ * without the GIL. */
 #include "core.h"
 
 #include "indentmap/colormap.h"
@@ -10,11 +12,37 @@
 #include "indentmap/status.h"
 
 static im_render_context *context;
+static PyThread_type_lock drawing_lock; /* held by the call that draws or writes */
 
 static void close_context(void)
 {
+    PyThread_acquire_lock(drawing_lock, WAIT_LOCK); /* a daemon thread may still be drawing */
     im_render_close(context);
     context = NULL;
+    PyThread_release_lock(drawing_lock);
+}
+
+int py_render_init(void)
+{
+    drawing_lock = PyThread_allocate_lock();
+    if (!drawing_lock) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    return 0;
+}
+
+/* Runs work(job) without the GIL, once the drawing call before it has ended. work touches no Python
+ * object. */
+static int without_gil(int (*work)(void *job), void *job)
+{
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    PyThread_acquire_lock(drawing_lock, WAIT_LOCK);
+    status = work(job);
+    PyThread_release_lock(drawing_lock);
+    Py_END_ALLOW_THREADS
+    return status;
 }
 
 static int ensure_context(void)
@@ -56,39 +84,52 @@ typedef struct picture_request {
     PyObject *contact;         /* height fields: forces whose contact is outlined, or None */
 } picture_request;
 
+/* One picture's inputs, all C: the request's numbers, the norm made from it, and array views. */
+typedef struct picture_job {
+    const im_field *field;
+    const picture_request *request;
+    im_colormap norm;
+    const im_field *outline; /* height fields: the contact to outline, or NULL */
+    im_image *image;
+} picture_job;
+
+static int draw_picture(void *argument)
+{
+    const picture_job *job = argument;
+    const picture_request *r = job->request;
+    if (r->height_map) {
+        im_height_style style = im_height_style_default(job->field);
+        style.colormap = job->norm;
+        style.pixels_per_patch = r->scale;
+        style.contact = job->outline;
+        return im_render_height_map(context, job->field, &style, job->image);
+    }
+    im_contact_style style = im_contact_style_default(job->field);
+    style.colormap = job->norm;
+    style.pixels_per_patch = r->scale;
+    style.circle_radius = r->circle_radius;
+    if (r->circle_radius > 0 && !isnan(r->circle_x)) {
+        style.circle_x = r->circle_x;
+        style.circle_y = r->circle_y;
+    }
+    return im_render_contact_map(context, job->field, &style, job->image);
+}
+
 static int render_one(const im_field *field, const picture_request *r, im_image *image)
 {
-    im_colormap norm;
-    if (ensure_context() < 0 || make_norm(r->colormap, r->lo, r->hi, r->logarithmic, &norm) < 0)
+    picture_job job = {.field = field, .request = r, .image = image};
+    if (ensure_context() < 0 || make_norm(r->colormap, r->lo, r->hi, r->logarithmic, &job.norm) < 0)
         return -1;
-    int status;
-    if (!r->height_map) {
-        im_contact_style style = im_contact_style_default(field);
-        style.colormap = norm;
-        style.pixels_per_patch = r->scale;
-        style.circle_radius = r->circle_radius;
-        if (r->circle_radius > 0 && !isnan(r->circle_x)) {
-            style.circle_x = r->circle_x;
-            style.circle_y = r->circle_y;
-        }
-        status = im_render_contact_map(context, field, &style, image);
-    } else {
-        im_height_style style = im_height_style_default(field);
-        style.colormap = norm;
-        style.pixels_per_patch = r->scale;
-        PyArrayObject *contact = r->contact != Py_None ? py_heights_array(r->contact, "contact") : NULL;
-        if (r->contact != Py_None && !contact)
-            return -1;
-        im_field outline = contact ? py_field_view(contact, field->delta) : (im_field){0};
-        style.contact = contact ? &outline : NULL;
-        status = im_render_height_map(context, field, &style, image);
-        Py_XDECREF(contact);
-    }
-    if (status != IM_OK) {
+    PyArrayObject *contact = r->height_map && r->contact != Py_None ? py_heights_array(r->contact, "contact") : NULL;
+    if (r->height_map && r->contact != Py_None && !contact)
+        return -1;
+    im_field outline = contact ? py_field_view(contact, field->delta) : (im_field){0};
+    job.outline = contact ? &outline : NULL;
+    int status = without_gil(draw_picture, &job);
+    Py_XDECREF(contact);
+    if (status != IM_OK)
         py_raise_status(status);
-        return -1;
-    }
-    return 0;
+    return status == IM_OK ? 0 : -1;
 }
 
 static int parse_request(PyObject *kwargs, picture_request *r)
@@ -136,16 +177,28 @@ static PyObject *render(PyObject *self, PyObject *args, PyObject *kwargs)
 }
 
 typedef struct figure_layout {
-    PyObject *labels, *titles; /* lists of str or None, one per panel */
+    PyObject *labels, *titles; /* tuples of str or None, one per panel, or None */
     int columns;
     const char *colorbar_label;
     double dpi, scale_bar;
 } figure_layout;
 
-static const char *item_text(PyObject *list, Py_ssize_t i)
+/* Item i's text, kept alive by the tuple while the figure is written without the GIL. */
+static const char *item_text(PyObject *tuple, Py_ssize_t i)
 {
-    PyObject *item = list != Py_None && i < PyList_Size(list) ? PyList_GetItem(list, i) : NULL;
+    PyObject *item = tuple != Py_None && i < PyTuple_GET_SIZE(tuple) ? PyTuple_GET_ITEM(tuple, i) : NULL;
     return item && item != Py_None ? PyUnicode_AsUTF8(item) : NULL;
+}
+
+typedef struct figure_job {
+    const im_figure *figure;
+    const char *path;
+} figure_job;
+
+static int write_figure_file(void *argument)
+{
+    const figure_job *job = argument;
+    return im_figure_write(job->figure, job->path);
 }
 
 static int write_figure(const char *path, im_image *images, Py_ssize_t count, const figure_layout *layout,
@@ -170,7 +223,8 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
         figure.colorbar_label = layout->colorbar_label;
         figure.dpi = layout->dpi;
         figure.scale_bar = layout->scale_bar;
-        status = figure.rows * figure.columns == count ? im_figure_write(&figure, path)
+        figure_job job = {&figure, path};
+        status = figure.rows * figure.columns == count ? without_gil(write_figure_file, &job)
                                                        : im_fail(IM_EINVAL, "figure: %ld panels do not fill %d columns",
                                                                  (long)count, layout->columns);
         if (status != IM_OK)
@@ -180,16 +234,44 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
     return PyErr_Occurred() ? -1 : 0;
 }
 
+/* The panels' images and the figure written from them, the GIL released around each drawing call
+ * (the tuples cannot change meanwhile, as lists could). */
+static int draw_figure(const char *path, PyObject *fields, double delta, const figure_layout *layout,
+                       const picture_request *request)
+{
+    Py_ssize_t count = PyTuple_GET_SIZE(fields);
+    im_image *images = PyMem_Calloc((size_t)count, sizeof *images);
+    int failed = images ? 0 : (PyErr_NoMemory(), -1);
+    for (Py_ssize_t i = 0; i < count && !failed; ++i) {
+        PyArrayObject *array = py_heights_array(PyTuple_GET_ITEM(fields, i), "panel field");
+        im_field field = array ? py_field_view(array, delta) : (im_field){0};
+        failed = !array || render_one(&field, request, &images[i]) < 0;
+        Py_XDECREF(array);
+    }
+    if (!failed)
+        failed = write_figure(path, images, count, layout, request) < 0;
+    for (Py_ssize_t i = 0; images && i < count; ++i)
+        im_image_release(&images[i]);
+    PyMem_Free(images);
+    return failed;
+}
+
+/* A new reference: None as it is, a sequence as a tuple (NULL with TypeError for anything else). */
+static PyObject *frozen(PyObject *sequence)
+{
+    return sequence == Py_None ? Py_NewRef(Py_None) : PySequence_Tuple(sequence);
+}
+
 /* figure(path, fields, delta, labels, titles, columns, colorbar_label, dpi, scale_bar, **request) */
 static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    PyObject *path_bytes, *fields;
+    PyObject *path_bytes, *fields, *labels, *titles;
     double delta;
     figure_layout layout;
     picture_request request;
     if (!PyArg_ParseTuple(args, "O&O!dOOisdd", PyUnicode_FSConverter, &path_bytes, &PyList_Type, &fields, &delta,
-                          &layout.labels, &layout.titles, &layout.columns, &layout.colorbar_label, &layout.dpi,
+                          &labels, &titles, &layout.columns, &layout.colorbar_label, &layout.dpi,
                           &layout.scale_bar) || parse_request(kwargs, &request) < 0)
         return NULL;
     if (layout.columns < 1 || PyList_Size(fields) < 1) {
@@ -197,22 +279,29 @@ static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
         return PyErr_Format(PyExc_ValueError, "figure: %ld panels in %d columns: expected at least one of each",
                             (long)PyList_Size(fields), layout.columns);
     }
-    Py_ssize_t count = PyList_Size(fields);
-    im_image *images = PyMem_Calloc((size_t)(count ? count : 1), sizeof *images);
-    int failed = images ? 0 : (PyErr_NoMemory(), -1);
-    for (Py_ssize_t i = 0; i < count && !failed; ++i) {
-        PyArrayObject *array = py_heights_array(PyList_GetItem(fields, i), "panel field");
-        im_field field = array ? py_field_view(array, delta) : (im_field){0};
-        failed = !array || render_one(&field, &request, &images[i]) < 0;
-        Py_XDECREF(array);
-    }
-    if (!failed)
-        failed = write_figure(PyBytes_AS_STRING(path_bytes), images, count, &layout, &request) < 0;
-    for (Py_ssize_t i = 0; images && i < count; ++i)
-        im_image_release(&images[i]);
-    PyMem_Free(images);
+    PyObject *panels = PySequence_Tuple(fields);
+    layout.labels = frozen(labels);
+    layout.titles = frozen(titles);
+    int failed = !panels || !layout.labels || !layout.titles ||
+                 draw_figure(PyBytes_AS_STRING(path_bytes), panels, delta, &layout, &request);
+    Py_XDECREF(panels);
+    Py_XDECREF(layout.labels);
+    Py_XDECREF(layout.titles);
     Py_DECREF(path_bytes);
     return failed ? NULL : Py_NewRef(Py_None);
+}
+
+typedef struct png_job {
+    const char *path;
+    const uint8_t *rgba;
+    int width, height;
+} png_job;
+
+static int write_png_file(void *argument)
+{
+    const png_job *job = argument;
+    im_png_options options = {.compression = 6};
+    return im_png_write(job->path, job->rgba, job->width, job->height, 4, (size_t)job->width * 4, &options);
 }
 
 /* write_png(path, rgba): an (height, width, 4) uint8 array as a PNG file (atomic, level 6). */
@@ -230,10 +319,9 @@ static PyObject *write_png(PyObject *self, PyObject *args)
     }
     int status = IM_OK;
     if (rgba) {
-        int width = (int)PyArray_DIMS(rgba)[1], height = (int)PyArray_DIMS(rgba)[0];
-        im_png_options options = {.compression = 6};
-        status = im_png_write(PyBytes_AS_STRING(path_bytes), PyArray_DATA(rgba), width, height, 4,
-                              (size_t)width * 4, &options);
+        png_job job = {PyBytes_AS_STRING(path_bytes), PyArray_DATA(rgba), (int)PyArray_DIMS(rgba)[1],
+                       (int)PyArray_DIMS(rgba)[0]};
+        status = without_gil(write_png_file, &job);
     }
     Py_XDECREF(rgba);
     Py_DECREF(path_bytes);

@@ -245,6 +245,23 @@ static int has_suffix(const char *path, const char *suffix)
     return n >= m && strcmp(path + n - m, suffix) == 0;
 }
 
+/* A .npy states no units: its sidecar does, always written so that none from an earlier file stays. The
+ * pair is written under the lock the program's writers take (io.h), so that racing writers, from
+ * Python or the program, leave one writer's whole pair. Runs without the GIL. */
+static int write_surface_file(const char *path, const im_field *field)
+{
+    if (!has_suffix(path, ".npy"))
+        return im_surface_write(path, field);
+    int pair_lock = im_pair_writers_lock(path);
+    if (pair_lock < 0)
+        return IM_EIO;
+    int status = im_surface_write(path, field);
+    if (status == IM_OK)
+        status = im_field_sidecar_write(path, field, "height");
+    im_pair_writers_unlock(pair_lock);
+    return status;
+}
+
 static PyObject *write_surface(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -265,10 +282,7 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
     snprintf(field.unit, sizeof field.unit, "%s", unit);
     int status;
     Py_BEGIN_ALLOW_THREADS
-    status = im_surface_write(PyBytes_AS_STRING(path_bytes), &field);
-    /* A .npy states no units: its sidecar does, always written so that none from an earlier file stays */
-    if (status == IM_OK && has_suffix(PyBytes_AS_STRING(path_bytes), ".npy"))
-        status = im_field_sidecar_write(PyBytes_AS_STRING(path_bytes), &field, "height");
+    status = write_surface_file(PyBytes_AS_STRING(path_bytes), &field);
     Py_END_ALLOW_THREADS
     Py_DECREF(array);
     Py_DECREF(path_bytes);

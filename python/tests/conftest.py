@@ -1,5 +1,7 @@
 import os
 import subprocess
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -24,3 +26,29 @@ def run_cli(cli, *args, cwd=None):
 @pytest.fixture(scope="session")
 def rough64():
     return im.generate(64, slope=0.1, seed=2)
+
+
+def longest_pause_of_this_thread(work):
+    """Runs work() in a thread while this one counts; the longest this thread went without running during
+    work(), and how long work() took. What work() raised is raised here."""
+    span = {}
+
+    def timed():
+        span["start"] = time.perf_counter()
+        try:
+            work()
+        except Exception as error:
+            span["error"] = error
+        span["end"] = time.perf_counter()
+
+    thread = threading.Thread(target=timed)
+    ticks = []
+    thread.start()
+    while thread.is_alive():
+        ticks.append(time.perf_counter())
+    thread.join()
+    if "error" in span:
+        raise span["error"]
+    inside = [t for t in ticks if span["start"] <= t <= span["end"]]
+    edges = [span["start"]] + inside + [span["end"]]
+    return max(b - a for a, b in zip(edges, edges[1:])), span["end"] - span["start"]

@@ -1,8 +1,11 @@
 """Pictures from arrays: sizes, colours, figures, notebook display."""
+import threading
+
 import numpy as np
 import pytest
 
 import indentmap as im
+from conftest import longest_pause_of_this_thread
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -44,3 +47,34 @@ def test_figure_formats(tmp_path, rough64):
         im.Figure([first, second, first], columns=2).save(tmp_path / "g.png")
     with pytest.raises(im.InvalidArgument):
         im.contact_map(first, colormap="rainbow")
+
+
+@pytest.mark.parametrize("call", ["contact_map", "height_map", "figure", "save"])
+def test_drawing_releases_the_gil(call, tmp_path):
+    """Pictures, figures and PNG files are drawn and written without the GIL, on the thread that asks (issue
+    32: a render held the GIL throughout, and the context drew only on the thread that drew first)."""
+    heights = im.generate(1024, slope=0.1, seed=3)
+    force = np.maximum(heights, 0.0)
+    im.renderer()  # the context opens once, with the GIL
+    work = {"contact_map": lambda: im.contact_map(force, scale=2),
+            "height_map": lambda: im.height_map(heights, scale=2, contact=force),
+            "figure": lambda: im.Figure([force[:512, :512]] * 4, columns=2).save(tmp_path / "f.png"),
+            "save": lambda: im.Image(np.full((2048, 2048, 4), 7, np.uint8)).save(tmp_path / "i.png")}[call]
+    longest_pause, duration = longest_pause_of_this_thread(work)
+    # Held through the call, the GIL would stop this thread for the whole of it.
+    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s {call}"
+
+
+def test_pictures_from_threads_equal_those_of_one_thread(rough64):
+    """Threads drawing at once take turns on the one context and draw what one thread draws."""
+    force = np.maximum(rough64, 0.0)
+    draws = [lambda: im.contact_map(force, scale=3, circle_radius=9.0).rgba,
+             lambda: im.height_map(rough64, contact=force).rgba] * 4
+    expected = [draw() for draw in draws]
+    got = [None] * len(draws)
+    threads = [threading.Thread(target=lambda k=k: got.__setitem__(k, draws[k]())) for k in range(len(draws))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert all(g is not None and np.array_equal(g, e) for g, e in zip(got, expected))

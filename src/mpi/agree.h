@@ -3,6 +3,8 @@
 #ifndef INDENTMAP_MPI_AGREE_H
 #define INDENTMAP_MPI_AGREE_H
 
+#include "indentmap/scene.h"
+
 #include <mpi.h>
 
 /* The same status on every rank: the lowest failing rank's, with its message carried to the
@@ -15,5 +17,12 @@ int mpi_collective_status(MPI_Comm comm, int status);
  * differ and the first difference (the folder, the argument, or the file); a file that some rank
  * cannot read fails every rank with that rank's message, as mpi_collective_status. Collective. */
 int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file);
+
+/* Whether every rank of comm reads the same bytes (SHA-256) from each file the scene names, its
+ * surface files and profile (run.json's inputs): the same path may name other files on other nodes.
+ * IM_OK, or IM_EINVAL on every rank naming the first file that differs, its key and the ranks that
+ * read other bytes from it (or the ranks whose scene names another number of files); a file that
+ * some rank cannot read fails every rank with that rank's message. Collective. */
+int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene);
 
 #endif

@@ -4,7 +4,9 @@
  * stops them all with one message instead. */
 #include "mpi/agree.h"
 #include "indentmap/status.h"
+#include "io/checksum.h"
 #include "scene/key.h"
+#include "scene/provenance.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -84,12 +86,21 @@ static void describe(const char *mine, size_t mine_length, const char *theirs, s
         snprintf(text, size, "rank %d's argument %d is '%s', rank 0's '%s'", rank, word, theirs, mine);
 }
 
+/* Adds the count-th differing rank to list, "1, 3" (the first eight, then "..."). */
+static void list_rank(char *list, size_t size, int count, int rank)
+{
+    size_t used = strlen(list);
+    if (count <= 8 && used < size)
+        snprintf(list + used, size - used, "%s%d", count > 1 ? ", " : "", rank);
+    else if (count == 9 && used < size)
+        snprintf(list + used, size - used, ", ...");
+}
+
 /* "1, 3" (the first few): the ranks whose record differs from rank 0's in field (the words: in
  * hash or length); their count, and the first of them in *first. */
 static int differing_ranks(const uint64_t *records, int ranks, int field, char *list, size_t size, int *first)
 {
     int count = 0;
-    size_t used = 0;
     list[0] = '\0';
     for (int r = 1; r < ranks; ++r) {
         if (records[(size_t)r * RECORD + field] == records[field] &&
@@ -97,12 +108,18 @@ static int differing_ranks(const uint64_t *records, int ranks, int field, char *
             continue;
         if (count == 0)
             *first = r;
-        if (count++ < 8 && used < size)
-            used += (size_t)snprintf(list + used, size - used, "%s%d", count > 1 ? ", " : "", r);
-        else if (count == 9 && used < size)
-            used += (size_t)snprintf(list + used, size - used, ", ...");
+        list_rank(list, size, ++count, r);
     }
     return count;
+}
+
+/* The message for ranks that read other bytes than rank 0 from file (key: the scene key naming it,
+ * or NULL). */
+static int other_bytes(const char *file, const char *key, const char *list, int count)
+{
+    return im_fail(IM_EINVAL, "%s%s%s%s: rank%s %s read%s other bytes from it than rank 0: every rank must read the "
+                   "same file", file, key ? " (" : "", key ? key : "", key ? ")" : "", count > 1 ? "s" : "", list,
+                   count > 1 ? "" : "s");
 }
 
 /* Rank 0's message for words that differ: the ranks' words gathered on rank 0. */
@@ -153,10 +170,87 @@ int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file)
             status = words_differ(comm, records, ranks, words, list, differing, first);
         else if ((status = mpi_collective_status(comm, read)) == IM_OK &&
                  (differing = differing_ranks(records, ranks, FILE_HASH, list, sizeof list, &first)) > 0)
-            status = im_fail(IM_EINVAL, "%s: rank%s %s read%s other bytes from it than rank 0: every rank must read "
-                             "the same file", file, differing > 1 ? "s" : "", list, differing > 1 ? "" : "s");
+            status = other_bytes(file, NULL, list, differing);
     }
     free(words);
     free(records);
+    return status;
+}
+
+enum { DIGEST = IM_SHA256_HEX + 1 };
+
+/* The SHA-256 of each file the scene names, as text ended by '\0', one after another in *digests
+ * (caller frees); their count in *count. */
+static int input_digests(const im_scene *scene, char **digests, int *count)
+{
+    const char *key;
+    char path[IM_SCENE_PATH];
+    for (*count = 0; scene_input(scene, *count, 0, &key, path, sizeof path);)
+        ++*count;
+    *digests = malloc((size_t)*count * DIGEST + 1);
+    int status = *digests ? IM_OK : im_fail(IM_ENOMEM, "the SHA-256 of %d input files", *count);
+    for (int i = 0; status == IM_OK && i < *count; ++i) {
+        scene_input(scene, i, 0, &key, path, sizeof path);
+        status = im_file_sha256(path, *digests + (size_t)i * DIGEST);
+    }
+    return status;
+}
+
+/* The first input whose digest differs between rank 0 and another rank (all: every rank's count
+ * digests, rank after rank), named with the ranks that differ; IM_OK when none does. */
+static int first_differing_input(const im_scene *scene, const char *all, int count, int ranks)
+{
+    for (int i = 0; i < count; ++i) {
+        char list[128] = "";
+        int differing = 0;
+        for (int r = 1; r < ranks; ++r)
+            if (strcmp(all + ((size_t)r * count + i) * DIGEST, all + (size_t)i * DIGEST) != 0)
+                list_rank(list, sizeof list, ++differing, r);
+        const char *key;
+        char path[IM_SCENE_PATH];
+        if (differing > 0 && scene_input(scene, i, 0, &key, path, sizeof path))
+            return other_bytes(path, key, list, differing);
+    }
+    return IM_OK;
+}
+
+/* IM_EINVAL naming the ranks whose scene names another number of input files than rank 0's. */
+static int counts_differ(const int *counts, int ranks)
+{
+    char list[128] = "";
+    int differing = 0, first = 0;
+    for (int r = 1; r < ranks; ++r)
+        if (counts[r] != counts[0]) {
+            first = differing ? first : r;
+            list_rank(list, sizeof list, ++differing, r);
+        }
+    if (differing == 0)
+        return IM_OK;
+    return im_fail(IM_EINVAL, "the scene names %d input files on rank %d, %d on rank 0 (rank%s %s differ%s): every "
+                   "rank must read the same files", counts[first], first, counts[0], differing > 1 ? "s" : "", list,
+                   differing > 1 ? "" : "s");
+}
+
+int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene)
+{
+    int ranks, count = 0;
+    MPI_Comm_size(comm, &ranks);
+    char *digests = NULL, *all = NULL;
+    int *counts = malloc(sizeof *counts * (size_t)ranks);
+    int status = counts ? input_digests(scene, &digests, &count) : im_fail(IM_ENOMEM, "the ranks' input counts");
+    if ((status = mpi_collective_status(comm, status)) == IM_OK) {
+        MPI_Allgather(&count, 1, MPI_INT, counts, 1, MPI_INT, comm);
+        status = counts_differ(counts, ranks);
+    }
+    if (status == IM_OK && count > 0) {
+        all = malloc((size_t)ranks * count * DIGEST);
+        if ((status = mpi_collective_status(comm, all ? IM_OK : im_fail(IM_ENOMEM, "the ranks' SHA-256"))) == IM_OK)
+            MPI_Allgather(digests, count * DIGEST, MPI_CHAR, all, count * DIGEST, MPI_CHAR, comm);
+        if (status == IM_OK)
+            status = first_differing_input(scene, all, count, ranks);
+    }
+    free(all);
+    free(digests);
+    free(counts);
     return status;
 }

@@ -7,6 +7,7 @@
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "mpi/agree.h"
 #include "scene/ensemble.h"
 #include "scene/histories.h"
 #include "scene/outputs.h"
@@ -219,6 +220,27 @@ static int run_worker(ranks_state *st, const im_scene *scene, const im_scene_run
     return status != IM_OK ? status : outcome != IM_OK ? im_fail(outcome, "rank 0 failed") : IM_OK;
 }
 
+/* Rank 0 runs the scene, the other ranks their share of its members. */
+static int run_on_rank(ranks_state *st, const im_scene *scene, const im_scene_run_options *options)
+{
+    int status;
+    if (st->rank == 0) {
+        scene_ranks_run run = {rank0_solve_members, member_origin, st};
+        scene_set_ranks_run(&run);
+        status = im_scene_run(scene, options);
+        scene_set_ranks_run(NULL);
+        /* not started: rank 0 failed before the members (bad scene, folder in use), which the other
+         * ranks learn from the go; else they wait for the outcome */
+        broadcast_status(st, status);
+    } else {
+        scene_callbacks callbacks; /* as im_scene_run: a worker's warnings come one at a time */
+        im_scene_run_options run = scene_callbacks_begin(options, &callbacks);
+        status = run_worker(st, scene, &run);
+        scene_callbacks_end(&callbacks);
+    }
+    return status;
+}
+
 int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options)
 {
     ARG_REQUIRE(scene, "scene");
@@ -228,21 +250,10 @@ int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_
     MPI_Comm_size(comm, &st.ranks);
     if (st.ranks == 1)
         return im_scene_run(scene, options);
-    int status;
-    if (st.rank == 0) {
-        scene_ranks_run run = {rank0_solve_members, member_origin, &st};
-        scene_set_ranks_run(&run);
-        status = im_scene_run(scene, options);
-        scene_set_ranks_run(NULL);
-        /* not started: rank 0 failed before the members (bad scene, folder in use), which the other
-         * ranks learn from the go; else they wait for the outcome */
-        broadcast_status(&st, status);
-    } else {
-        scene_callbacks callbacks; /* as im_scene_run: a worker's warnings come one at a time */
-        im_scene_run_options run = scene_callbacks_begin(options, &callbacks);
-        status = run_worker(&st, scene, &run);
-        scene_callbacks_end(&callbacks);
-    }
+    /* a path may name other files on other nodes: every rank stops before anything is written */
+    int status = mpi_same_scene_inputs(comm, scene);
+    if (status == IM_OK)
+        status = run_on_rank(&st, scene, options);
     for (int s = 0; s < STAGES; ++s)
         free(st.origins[s]);
     return status;

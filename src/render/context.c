@@ -271,6 +271,14 @@ int render_make_current(im_render_context *c)
                                      im_render_backend_name(c));
 }
 
+void render_release_current(im_render_context *c)
+{
+    if (c->backend == IM_RENDER_OSMESA)
+        osmesa_library_release_current(&c->osmesa);
+    else
+        eglMakeCurrent(c->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
 void render_context_close(im_render_context *c)
 {
     release_backend(c);

@@ -21,6 +21,8 @@ typedef struct im_osmesa {
 int osmesa_library_open(im_osmesa *osmesa, char *reason, size_t reason_size);
 /* Makes the context current again on this thread; 1 on success. */
 int osmesa_library_make_current(im_osmesa *osmesa);
+/* Leaves this thread without a current context. */
+void osmesa_library_release_current(im_osmesa *osmesa);
 /* OSMesaGetProcAddress of the library opened last. */
 void (*osmesa_library_get_proc(const char *name))(void);
 void osmesa_library_close(im_osmesa *osmesa);
@@ -49,8 +51,11 @@ int egl_can_enumerate_devices(const char *client_extensions);
 int render_context_open(im_render_backend backend, im_render_context **out);
 void render_context_close(im_render_context *c);
 
-/* Makes the context current on the calling thread (another context may have been used since). */
+/* Makes the context current on the calling thread (another context may have been used since), for
+ * one drawing call; render_release_current ends it, so that the next call may come from another
+ * thread (EGL refuses a context still current on another thread). */
 int render_make_current(im_render_context *context);
+void render_release_current(im_render_context *context);
 
 /* Compiles the embedded shaders and creates the shared GL objects (draw.c). */
 int render_setup(im_render_context *context);

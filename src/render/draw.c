@@ -297,21 +297,10 @@ static int check_contact_style(const im_contact_style *s)
     return IM_OK;
 }
 
-int im_render_contact_map(im_render_context *c, const im_field *force, const im_contact_style *s,
-                          im_image *image)
+/* With the context current and the inputs checked. */
+static int draw_contact_map(const im_render_context *c, const im_field *force, const im_contact_style *s,
+                            im_image *image)
 {
-    ARG_REQUIRE(c, "context");
-    ARG_VIEW(force, "force");
-    ARG_REQUIRE(s, "style");
-    ARG_REQUIRE(image, "image");
-    memset(image, 0, sizeof *image);
-    int status = check_contact_style(s);
-    if (status == IM_OK)
-        status = render_make_current(c);
-    if (status == IM_OK)
-        status = check_layout(c, force, s->pixels_per_patch, s->boundary_px, "contact map");
-    if (status != IM_OK)
-        return status;
     size_t count = im_field_count(force);
     uint16_t *codes = malloc(count * sizeof *codes);
     if (!codes || allocate_image(force, s->pixels_per_patch, s->boundary_px, image) != IM_OK) {
@@ -341,8 +330,28 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
                   (float)(s->circle_y * scale), (float)(s->circle_radius * scale));
     gl->Uniform1f(gl->GetUniformLocation(program, "circle_width"), (float)s->circle_width_px);
     render_set_int(gl, program, "circle_aliased", s->circle_aliased != 0);
-    status = draw_and_read(c, image->width, image->height, image->rgba);
+    int status = draw_and_read(c, image->width, image->height, image->rgba);
     return finish(c, status, textures, 2, codes, image);
+}
+
+int im_render_contact_map(im_render_context *c, const im_field *force, const im_contact_style *s,
+                          im_image *image)
+{
+    ARG_REQUIRE(c, "context");
+    ARG_VIEW(force, "force");
+    ARG_REQUIRE(s, "style");
+    ARG_REQUIRE(image, "image");
+    memset(image, 0, sizeof *image);
+    int status = check_contact_style(s);
+    if (status == IM_OK)
+        status = check_layout(c, force, s->pixels_per_patch, s->boundary_px, "contact map");
+    if (status == IM_OK)
+        status = render_make_current(c);
+    if (status != IM_OK)
+        return status;
+    status = draw_contact_map(c, force, s, image);
+    render_release_current(c);
+    return status;
 }
 
 /* ---- height field ---- */
@@ -449,23 +458,10 @@ static void height_inputs(const im_field *h, const im_height_style *s, uint16_t 
     }
 }
 
-int im_render_height_map(im_render_context *c, const im_field *height, const im_height_style *s,
-                         im_image *image)
+/* With the context current and the inputs checked. */
+static int draw_height_map(const im_render_context *c, const im_field *height, const im_height_style *s,
+                           im_image *image)
 {
-    ARG_REQUIRE(c, "context");
-    ARG_VIEW(height, "height");
-    ARG_REQUIRE(s, "style");
-    ARG_REQUIRE(image, "image");
-    if (s->contact)
-        ARG_VIEW(s->contact, "style->contact");
-    memset(image, 0, sizeof *image);
-    int status = check_height_style(s, height);
-    if (status == IM_OK)
-        status = render_make_current(c);
-    if (status == IM_OK)
-        status = check_layout(c, height, s->pixels_per_patch, s->boundary_px, "height map");
-    if (status != IM_OK)
-        return status;
     size_t count = im_field_count(height);
     /* One block: codes (2 bytes), heights (4), contact flags (1) per patch. */
     uint16_t *codes = malloc(count * 7 + 4);
@@ -496,6 +492,28 @@ int im_render_height_map(im_render_context *c, const im_field *height, const im_
                   (float)(cos(altitude) * cos(azimuth)), (float)sin(altitude));
     gl->Uniform1f(gl->GetUniformLocation(program, "shading"), (float)s->shading);
     gl->Uniform1f(gl->GetUniformLocation(program, "exaggeration"), (float)s->exaggeration);
-    status = draw_and_read(c, image->width, image->height, image->rgba);
+    int status = draw_and_read(c, image->width, image->height, image->rgba);
     return finish(c, status, textures, 4, codes, image);
+}
+
+int im_render_height_map(im_render_context *c, const im_field *height, const im_height_style *s,
+                         im_image *image)
+{
+    ARG_REQUIRE(c, "context");
+    ARG_VIEW(height, "height");
+    ARG_REQUIRE(s, "style");
+    ARG_REQUIRE(image, "image");
+    if (s->contact)
+        ARG_VIEW(s->contact, "style->contact");
+    memset(image, 0, sizeof *image);
+    int status = check_height_style(s, height);
+    if (status == IM_OK)
+        status = check_layout(c, height, s->pixels_per_patch, s->boundary_px, "height map");
+    if (status == IM_OK)
+        status = render_make_current(c);
+    if (status != IM_OK)
+        return status;
+    status = draw_height_map(c, height, s, image);
+    render_release_current(c);
+    return status;
 }

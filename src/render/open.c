@@ -14,7 +14,9 @@ int im_render_open(im_render_backend backend, im_render_context **out)
     if (status != IM_OK)
         return status;
     status = render_setup(*out);
-    if (status != IM_OK) {
+    if (status == IM_OK) {
+        render_release_current(*out); /* each drawing call makes it current on its own thread */
+    } else {
         im_render_close(*out);
         *out = NULL;
     }

@@ -69,17 +69,22 @@ int osmesa_library_make_current(im_osmesa *osmesa)
     return make_current && make_current(osmesa->context, osmesa->buffer, GL_UNSIGNED_BYTE, 2, 2);
 }
 
+void osmesa_library_release_current(im_osmesa *osmesa)
+{
+    make_current_fn make_current;
+    *(void **)&make_current = symbol(osmesa->library, "OSMesaMakeCurrent");
+    if (make_current)
+        make_current(NULL, NULL, 0, 0, 0);
+}
+
 /* The library stays loaded (no dlclose): Mesa's LLVM back end is not safe to unload and load
  * again in one process, and a later context reuses it. */
 void osmesa_library_close(im_osmesa *osmesa)
 {
     if (osmesa->context) {
         destroy_fn destroy;
-        make_current_fn make_current;
         *(void **)&destroy = symbol(osmesa->library, "OSMesaDestroyContext");
-        *(void **)&make_current = symbol(osmesa->library, "OSMesaMakeCurrent");
-        if (make_current)
-            make_current(NULL, NULL, 0, 0, 0); /* releases the context's framebuffer */
+        osmesa_library_release_current(osmesa); /* releases the context's framebuffer */
         if (destroy)
             destroy(osmesa->context);
     }

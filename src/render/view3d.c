@@ -691,8 +691,6 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
     memset(image, 0, sizeof *image);
     int status = check_inputs(height, force, punch);
     if (status == IM_OK)
-        status = render_make_current(c);
-    if (status == IM_OK)
         status = check_style(c, s, height);
     if (status == IM_OK)
         status = im_memory_check(4.0 * (double)s->width * s->height * (2.0 * s->samples + 2.0) +
@@ -708,7 +706,11 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
         status = allocate_view_image(height, s, image);
     int samples = s->samples < c->max_samples ? s->samples : c->max_samples;
     if (status == IM_OK)
+        status = render_make_current(c);
+    if (status == IM_OK) {
         status = draw_view(c, &geometry, &inputs, s, samples > 1 ? samples : 0, image);
+        render_release_current(c);
+    }
     free_inputs(&inputs);
     if (status != IM_OK)
         im_image_release(image);

@@ -73,9 +73,7 @@ int scene_contents_record(const im_scene *scene, json_t **record)
     return *record ? IM_OK : im_fail(IM_ENOMEM, "run.json: out of memory");
 }
 
-/* Input i of a scene (its surface files, then its profile): its key and path; 0 past the last. A
- * profile path is resolved against the scene's folder unless the run has done it (profile_resolved). */
-static int scene_input(const im_scene *scene, int i, int profile_resolved, const char **key, char *path, size_t size)
+int scene_input(const im_scene *scene, int i, int profile_resolved, const char **key, char *path, size_t size)
 {
     if (i < scene->file_count) {
         *key = "[surfaces] file";

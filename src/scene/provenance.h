@@ -16,6 +16,11 @@ int scene_load_text(const char *text, const char *path, im_scene *scene);
  * UTF-8 (a record holds text), *record NULL on failure. */
 int scene_contents_record(const im_scene *scene, json_t **record);
 
+/* Input i of a scene (its surface files, then its profile): its key and path; 0 past the last. A
+ * profile path is resolved against the scene's folder unless the run has done it (profile_resolved).
+ * What run.json's "inputs" record, and what the ranks of an MPI run compare (src/mpi/inputs.c). */
+int scene_input(const im_scene *scene, int i, int profile_resolved, const char **key, char *path, size_t size);
+
 /* run.json's "inputs" into *record: each surface and profile file of the scene as it runs (its profile
  * path already resolved: scene_prepare) with its key, absolute path and SHA-256; the error of one
  * that cannot be read, *record NULL. */

@@ -15,6 +15,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAILED: $*" >&2; exit 1; }
+source "$(dirname "$0")/../lib.sh"
 
 # One scene file and one output folder for every run (run.json and the PNGs name the scene): each
 # run's folder is moved aside after it.
@@ -48,24 +49,8 @@ run() { # run NAME COMMAND...: runs the scene, keeps its folder as NAME and its 
   "$@" run "$work/ensemble.ini" 2> "$work/$name.log" > /dev/null || fail "$name: exit $?: $(cat "$work/$name.log")"
   mv "$work/out" "$work/$name"
 }
-# The files two runs must share: member files without their seconds column (10), PDFs without
-# their creation date; everything else as written.
-same_outputs() {
-  local a=$work/$1 b=$work/$2 f
-  (cd "$a" && find . -type f ! -name .lock | sort) > "$work/files_$1"
-  (cd "$b" && find . -type f ! -name .lock | sort) > "$work/files_$2"
-  cmp -s "$work/files_$1" "$work/files_$2" || fail "$1 and $2 wrote other files: $(diff "$work/files_$1" "$work/files_$2")"
-  while read -r f; do
-    case $f in
-      ./table/member_*.csv) # but for the solve time (column 10, seconds) and so the row's checksum (13)
-        cmp -s <(cut -d, -f10,13 --complement "$a/$f") <(cut -d, -f10,13 --complement "$b/$f") ;;
-      ./histories/*.csv) # but for the solve times (column 11, seconds), and so the header's checksum
-        cmp -s <(tail -n +2 "$a/$f" | cut -d, -f11 --complement) <(tail -n +2 "$b/$f" | cut -d, -f11 --complement) ;;
-      *.pdf) cmp -s <(grep -av CreationDate "$a/$f") <(grep -av CreationDate "$b/$f") ;;
-      *) cmp -s "$a/$f" "$b/$f" ;;
-    esac || fail "$f differs between $1 and $2"
-  done < "$work/files_$1"
-}
+# same_ranks_outputs A B: the runs kept as A and B wrote the same files (lib.sh's same_outputs).
+same_ranks_outputs() { same_outputs "$work/$1" "$work/$2" || fail "$1 and $2 wrote other outputs"; }
 
 run single "$cli"
 for f in table1.csv table1.md fig2.png fig5.png fig7.png histories/member_01_3.csv table/member_00_2.csv; do
@@ -73,7 +58,7 @@ for f in table1.csv table1.md fig2.png fig5.png fig7.png histories/member_01_3.c
 done
 for k in 2 4; do
   run ranks$k "$mpiexec" -n $k --oversubscribe "$cli"
-  same_outputs single ranks$k
+  same_ranks_outputs single ranks$k
   grep -q "ensembles over $k MPI ranks" "$work/ranks$k.log" || fail "$k ranks: $(cat "$work/ranks$k.log")"
   # the stage lines count the ranks' members as solved, as a single process counts its own
   grep -q "table: 6 surfaces: 6 solved, 0 read back" "$work/ranks$k.log" || fail "$k ranks: $(cat "$work/ranks$k.log")"
@@ -90,7 +75,7 @@ sed -e 's/^shape = cone/shape = profile\nprofile = tip.csv/' -e '/^alpha = /d' -
 cp "$work/ensemble.ini" "$work/plain.ini" && cp "$work/profile.ini" "$work/ensemble.ini"
 run profile_single "$cli"
 run profile_ranks2 "$mpiexec" -n 2 --oversubscribe "$cli"
-same_outputs profile_single profile_ranks2
+same_ranks_outputs profile_single profile_ranks2
 grep -q "ensembles over 2 MPI ranks" "$work/profile_ranks2.log" && grep -q "histories: 6 surfaces: 6 solved, 0 read back" "$work/profile_ranks2.log" ||
   fail "a profile on 2 ranks: $(cat "$work/profile_ranks2.log")"
 cp "$work/plain.ini" "$work/ensemble.ini"
@@ -107,7 +92,7 @@ if [[ ${ASAN_OPTIONS:-} == *fast_unwind_on_malloc=0* ]]; then
 elif "$cli" run "$work/ensemble.ini" > /dev/null 2> "$work/panels_single.log"; then
   mv "$work/out" "$work/panels_single"
   run panels_ranks3 "$mpiexec" -n 3 --oversubscribe "$cli"
-  same_outputs panels_single panels_ranks3
+  same_ranks_outputs panels_single panels_ranks3
   grep -q "panels: 2 surfaces: 0 solved, 0 read back, 2 reused" "$work/panels_ranks3.log" ||
     fail "panels on 3 ranks: $(cat "$work/panels_ranks3.log")"
   echo "3 ranks: the same contact panels"
@@ -125,7 +110,7 @@ cp -r "$work/ranks4" "$work/out"
 mv "$work/out" "$work/resume"
 grep -q "table: 6 surfaces: 0 solved, 6 read back" "$work/resume.log" || fail "--resume: $(cat "$work/resume.log")"
 grep -q "histories: 6 surfaces: 0 solved, 6 read back" "$work/resume.log" || fail "--resume: $(cat "$work/resume.log")"
-same_outputs single resume
+same_ranks_outputs single resume
 echo "--resume on 3 ranks: every member read back, the same files"
 
 # A member only rank 1 solves (family 0, seed 2: member 1) cannot be written: the run fails with
