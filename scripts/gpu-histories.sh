@@ -8,6 +8,8 @@
 #   plastic:  the paper's cone on a 1024^2 surface loaded to w = 48 and unloaded to 0, H = 0.05 E*
 #   adhesion: the paper's cone on a 1024^2 surface, Maugis-Dugdale w = 0.03 E* delta, range 1 delta,
 #             approached from w = -1 to 16 and retracted to -4 (bench/run_adhesion.sh's history, 4x the grid)
+#   periodic adhesion: the 1024^2 surface as a periodic cell under a rigid flat, w = 0.02, range 0.5, mean
+#             gaps from 2 down to 0.8 and back to 2
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-gpu-histories-out}
@@ -53,3 +55,4 @@ for device in gpu cpu; do
   python3 -c "import json,sys; a=json.load(open(sys.argv[1]))['adhesion']; print(sys.argv[2], {k: a[k] for k in ('pull_off_force','pull_off_approach','hysteresis_work')})" \
     "$out/adhesion_$device/run.json" "$device" 2>/dev/null || grep -A8 '"adhesion"' "$out/adhesion_$device/run.json"
 done
+history periodic_adhesion 3,5,25,28 --periodic --adhesion-work 0.02 --adhesion-range 0.5 --mean-gap 2:0.8:5,1.1:2:4
