@@ -78,7 +78,7 @@ def _history_array(text, source="history"):
 def read_history(path):
     """A history.csv (``indentmap indent``) or a scene's histories/member_FF_SEED.csv as the structured
     array ``indent`` returns: the same columns, names and values."""
-    with open(path) as f:
+    with open(path, encoding="utf-8") as f:
         return _history_array(f.read(), str(path))
 
 

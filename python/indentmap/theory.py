@@ -107,7 +107,7 @@ def _periodic_run(path):
         raise ValueError(f"{path}: no run.json beside the history: the fit needs the cell (surface.nx, ny, delta), "
                          "the h'rms (theory_slope_rms.value) and E* (solver.e_star) that `indentmap indent "
                          "--periodic` records there")
-    with open(path) as f:
+    with open(path, encoding="utf-8") as f:
         record = json.load(f)
     if record.get("periodic") is not True:
         raise ValueError(f'{path}: not a periodic run ("periodic" is not true): k of eq. (2) is fitted to the '

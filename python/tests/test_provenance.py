@@ -25,7 +25,7 @@ def test_from_record_remakes_the_table_and_refuses_a_changed_input(tmp_path):
     scene = tmp_path / "s.ini"
     scene.write_text(SCENE)
     first = im.run_scene(scene, quiet=True, out=tmp_path / "a")
-    record = json.loads((tmp_path / "a" / "run.json").read_text())
+    record = json.loads((tmp_path / "a" / "run.json").read_text(encoding="utf-8"))
     assert record["scene_contents"]["sections"]["loading"] == {"load_star": "580"}
     assert record["inputs"][0]["sha256"] == hashlib.sha256((tmp_path / "s.npy").read_bytes()).hexdigest()
 
