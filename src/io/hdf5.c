@@ -1,4 +1,5 @@
-/* Plain HDF5 files (libhdf5): every 2-D numeric data set, in the order libhdf5 visits them (by name,
+/* Plain HDF5 files read with libhdf5 in this process: what indentmap-hdf5-read runs (hdf5_child.c reads
+ * it from there) and what fuzz/fuzz_hdf5.c feeds. Every 2-D numeric data set, in the order libhdf5 visits them (by name,
  * groups included), is a channel; 1-D data sets are line scans and are not. As SurfaceTopography reads
  * them, the first index of a data set runs along x and the second along y, and the file states no
  * spacing or unit: a bare matrix. */
@@ -183,8 +184,8 @@ static int read_file(hid_t file, const char *path, const im_surface_read_options
     return status;
 }
 
-int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
-                  surface_stated *stated)
+int hdf5_read_in_process(const char *path, const im_surface_read_options *options, im_field **out,
+                         surface_stated *stated)
 {
     *out = NULL;
     FILE *stream;

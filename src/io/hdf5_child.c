@@ -1,0 +1,177 @@
+/* Plain HDF5 files read in a child process: libhdf5 1.10 crashes inside itself on some hostile files (a
+ * memcpy into a failed allocation of a size the file states), which the caller cannot guard against. The
+ * program indentmap-hdf5-read (src/io/hdf5/) reads the file with hdf5_read_in_process and writes this
+ * stream; the library starts it (io/child_reader.h) and parses the stream:
+ *   indentmap-hdf5-read 1
+ *   error STATUS MESSAGE                     a refusal: STATUS an IM_E* code, MESSAGE the reader's own
+ * or
+ *   field NX NY                              the chosen data set, rows of y
+ *   units DELTA_X DELTA_Y LATERAL HEIGHT     what the file states (0: no spacing, "-": no unit)
+ *   keys SPACING<TAB>LATERAL<TAB>HEIGHT      what stated them, for messages
+ *   conversion TEXT
+ *   NX*NY doubles (native byte order), row 0 first, and nothing after.
+ * Text from the file (data set names) is written with control bytes as '?': no file can break a line. */
+#include "indentmap/io.h"
+
+#include "indentmap/status.h"
+#include "io/child_reader.h"
+#include "io/readers.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const child_program HDF5_PROGRAM = {
+    .name = "indentmap-hdf5-read",
+    .environment = "INDENTMAP_HDF5_READER",
+#ifdef IM_HDF5_READER_INSTALLED
+    .installed = IM_HDF5_READER_INSTALLED,
+#endif
+    .reader = "the HDF5 reader (indentmap-hdf5-read)",
+    .parser = "the HDF5 library (libhdf5)",
+    .damage = "the file is damaged or hostile",
+};
+
+static const char *word_or_dash(const char *word)
+{
+    return word[0] ? word : "-";
+}
+
+int hdf5_child_write(FILE *stream, const char *path, const char *channel)
+{
+    im_surface_read_options options = {0};
+    snprintf(options.channel, sizeof options.channel, "%s", channel);
+    fprintf(stream, "indentmap-hdf5-read 1\n");
+    im_field *field = NULL;
+    surface_stated stated;
+    int status = hdf5_read_in_process(path, &options, &field, &stated);
+    if (status != IM_OK) {
+        char prefix[32];
+        snprintf(prefix, sizeof prefix, "error %d ", status);
+        child_stream_put_line(stream, prefix, im_last_error());
+        return fflush(stream) == 0 ? 2 : 1;
+    }
+    fprintf(stream, "field %d %d\nunits %.17g %.17g %s %s\nkeys %s\t%s\t%s\n", field->nx, field->ny,
+            stated.units.delta_x, stated.units.delta_y, word_or_dash(stated.units.lateral),
+            word_or_dash(stated.units.height), stated.spacing_keys, stated.lateral_key, stated.height_key);
+    child_stream_put_line(stream, "conversion ", stated.conversion);
+    size_t count = im_field_count(field);
+    int written = fwrite(field->data, sizeof(double), count, stream) == count;
+    im_field_free(field);
+    return written && fflush(stream) == 0 ? 0 : 1;
+}
+
+/* The parent's side: where the stream goes, and the keys it names (they outlive the read: surface_finish
+ * quotes them). */
+typedef struct hdf5_answer {
+    im_field **out;
+    surface_stated *stated;
+} hdf5_answer;
+
+static __thread char stated_keys[3][96];
+
+static int stream_error(const char *path, const char *what, const char *line)
+{
+    return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected %s", path, line,
+                   what);
+}
+
+/* "error STATUS MESSAGE": the reader's refusal, as it would have been made in this process. */
+static int take_error(const char *path, const char *line)
+{
+    int status = 0, consumed = 0;
+    if (sscanf(line, "error %d %n", &status, &consumed) != 1 || consumed == 0 || status <= IM_OK ||
+        status > IM_EINTERRUPTED)
+        return stream_error(path, "a refusal 'error STATUS MESSAGE'", line);
+    return im_fail(status, "%s", line + consumed);
+}
+
+static int take_units(const char *path, const char *line, surface_stated *stated)
+{
+    char lateral[32], height[32];
+    im_surface_units *units = &stated->units;
+    if (sscanf(line, "units %lf %lf %31s %31s", &units->delta_x, &units->delta_y, lateral, height) != 4 ||
+        !isfinite(units->delta_x) || !isfinite(units->delta_y) || units->delta_x < 0.0 || units->delta_y < 0.0 ||
+        strlen(lateral) >= sizeof units->lateral || strlen(height) >= sizeof units->height)
+        return stream_error(path, "'units DELTA_X DELTA_Y LATERAL HEIGHT'", line);
+    snprintf(units->lateral, sizeof units->lateral, "%s", strcmp(lateral, "-") ? lateral : "");
+    snprintf(units->height, sizeof units->height, "%s", strcmp(height, "-") ? height : "");
+    return IM_OK;
+}
+
+static int take_keys(const char *path, const char *line, surface_stated *stated)
+{
+    if (sscanf(line, "keys %95[^\t]\t%95[^\t]\t%95[^\t]", stated_keys[0], stated_keys[1], stated_keys[2]) != 3)
+        return stream_error(path, "'keys SPACING<TAB>LATERAL<TAB>HEIGHT'", line);
+    stated->spacing_keys = stated_keys[0];
+    stated->lateral_key = stated_keys[1];
+    stated->height_key = stated_keys[2];
+    return IM_OK;
+}
+
+/* The lines after "field": units, keys, conversion. */
+static int take_stated(FILE *stream, const char *path, surface_stated *stated)
+{
+    char line[CHILD_STREAM_LINE];
+    *stated = (surface_stated){0};
+    int status = child_stream_line(stream, line) ? take_units(path, line, stated) : stream_error(path, "units", "");
+    if (status == IM_OK)
+        status = child_stream_line(stream, line) ? take_keys(path, line, stated) : stream_error(path, "keys", "");
+    if (status == IM_OK && (!child_stream_line(stream, line) || strncmp(line, "conversion ", 11) != 0))
+        status = stream_error(path, "'conversion TEXT'", line);
+    if (status == IM_OK)
+        snprintf(stated->conversion, sizeof stated->conversion, "%.95s", line + 11);
+    return status;
+}
+
+static int take_values(FILE *stream, const char *path, im_field *field)
+{
+    size_t count = im_field_count(field);
+    if (fread(field->data, sizeof(double), count, stream) != count)
+        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) ended inside the heights (%zu "
+                       "expected)", path, count);
+    return fgetc(stream) == EOF ? IM_OK : im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote "
+                                                  "more than the field", path);
+}
+
+static int parse_stream(FILE *stream, const char *path, void *answer_, int *answered)
+{
+    hdf5_answer *answer = answer_;
+    char line[CHILD_STREAM_LINE];
+    if (!child_stream_line(stream, line) || strcmp(line, "indentmap-hdf5-read 1") != 0)
+        return stream_error(path, "'indentmap-hdf5-read 1' first", line);
+    if (!child_stream_line(stream, line))
+        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) ended before its answer", path);
+    *answered = 1;
+    if (strncmp(line, "error ", 6) == 0)
+        return take_error(path, line);
+    int nx = 0, ny = 0, consumed = 0;
+    if (sscanf(line, "field %d %d%n", &nx, &ny, &consumed) != 2 || line[consumed] || nx < 1 || ny < 1 ||
+        nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'field NX NY' "
+                       "with sides in [1, %d]", path, line, IM_FIELD_MAX_SIDE);
+    int status = take_stated(stream, path, answer->stated);
+    if (status == IM_OK)
+        status = im_field_create(nx, ny, 1.0, answer->out);
+    if (status == IM_OK)
+        status = take_values(stream, path, *answer->out);
+    return status;
+}
+
+int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                  surface_stated *stated)
+{
+    *out = NULL;
+    const char *program = child_program_path(&HDF5_PROGRAM);
+    if (!program)
+        return im_fail(IM_EFORMAT, "%s: HDF5 files are read by indentmap-hdf5-read, a program of this build not "
+                       "found beside this program%s%s: set INDENTMAP_HDF5_READER to its path", path,
+                       HDF5_PROGRAM.installed ? " nor at " : "", HDF5_PROGRAM.installed ? HDF5_PROGRAM.installed : "");
+    hdf5_answer answer = {.out = out, .stated = stated};
+    int status = child_read(&HDF5_PROGRAM, program, path, options ? options->channel : "", parse_stream, &answer);
+    if (status != IM_OK && *out) {
+        im_field_free(*out);
+        *out = NULL;
+    }
+    return status;
+}
