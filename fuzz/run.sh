@@ -2,8 +2,8 @@
 # Runs each libFuzzer harness for a bounded time, one after the other:
 #   fuzz/run.sh [SECONDS] [BUILD_DIR] [HARNESS...]     (defaults: 60, build-fuzz, all eleven)
 # Builds first (fuzz/build.sh). Each harness runs in one process, starts from the committed seeds
-# in fuzz/corpus/NAME and fuzz/regressions/NAME (read only) and adds what it discovers to
-# BUILD_DIR/corpus/NAME (kept between runs); crashing inputs are written to
+# in fuzz/corpus/NAME and fuzz/regressions/NAME (read only; not its libhdf5-crash-* inputs) and adds
+# what it discovers to BUILD_DIR/corpus/NAME (kept between runs); crashing inputs are written to
 # BUILD_DIR/artifacts/NAME/ and the log to BUILD_DIR/logs/NAME.log. Prints one line per harness
 # with libFuzzer's final stats; exits 1 if any harness found a crash, leak, timeout or OOM.
 set -uo pipefail
@@ -22,7 +22,15 @@ for name in "${harnesses[@]}"; do
   dict=()
   [ -f "fuzz/$name.dict" ] && dict=(-dict="fuzz/$name.dict")
   seeds=("fuzz/corpus/$name")
-  [ -d "fuzz/regressions/$name" ] && seeds+=("fuzz/regressions/$name")
+  if [ -d "fuzz/regressions/$name" ]; then
+    # Inputs that crash libhdf5 itself (libhdf5-crash-*) would end the in-process harness at its first seed:
+    # the library reads HDF5 in a child for that (src/io/hdf5_child.c), and fuzz_regressions reads them so.
+    # The other regressions are seeds, copied (libFuzzer takes folders) into BUILD_DIR/seeds/NAME.
+    replayed="$build_dir/seeds/$name"
+    rm -rf "$replayed" && mkdir -p "$replayed"
+    find "fuzz/regressions/$name" -maxdepth 1 -type f ! -name 'libhdf5-crash-*' -exec cp {} "$replayed/" \;
+    seeds+=("$replayed")
+  fi
   log="$build_dir/logs/$name.log"
   # libhdf5 mallocs the sizes a hostile header states and handles a NULL (CMakeLists.txt, fuzz_regressions),
   # and leaks what it read of a damaged object header (fuzz/hdf5_lsan.supp: full stacks to match it).

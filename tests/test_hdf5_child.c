@@ -1,0 +1,162 @@
+/* HDF5 files read in a child process (src/io/hdf5_child.c): the child gives the field, the units and the
+ * refusals the in-process reader gives, and what comes through its stream is checked as any file is. A
+ * constructed file (written here with libhdf5) is checked against the values written; stand-in programs
+ * (INDENTMAP_HDF5_READER) crash, hang or lie. The crash inputs themselves: test_fuzz_regressions.c. */
+#include "support.h"
+
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+#include "io/readers.h"
+
+#include <hdf5.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+enum { NX = 5, NY = 3 };
+
+/* A data set "heights" of int16 values 10 x + y, indexed [x, y], and a 1-D "profile" before it by name. */
+static const char *constructed_file(void)
+{
+    const char *path = test_path("constructed.h5");
+    short values[NX][NY];
+    for (int x = 0; x < NX; ++x)
+        for (int y = 0; y < NY; ++y)
+            values[x][y] = (short)(10 * x + y);
+    hid_t file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hsize_t dims[2] = {NX, NY}, line[1] = {7};
+    hid_t map = H5Screate_simple(2, dims, NULL), profile = H5Screate_simple(1, line, NULL);
+    hid_t heights = H5Dcreate2(file, "heights", H5T_STD_I16LE, map, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t scan = H5Dcreate2(file, "a_profile", H5T_IEEE_F64LE, profile, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    assert_true(H5Dwrite(heights, H5T_NATIVE_SHORT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) >= 0);
+    H5Dclose(scan);
+    H5Dclose(heights);
+    H5Sclose(profile);
+    H5Sclose(map);
+    H5Fclose(file);
+    return path;
+}
+
+static void the_child_reads_what_was_written(void **state)
+{
+    (void)state;
+    const char *path = constructed_file();
+    im_field *child = NULL, *here = NULL;
+    surface_stated through_child, in_process;
+    assert_int_equal(hdf5_read_raw(path, NULL, &child, &through_child), IM_OK);
+    assert_int_equal(child->nx, NX);
+    assert_int_equal(child->ny, NY);
+    for (int y = 0; y < NY; ++y)
+        for (int x = 0; x < NX; ++x)
+            assert_true(child->data[y * NX + x] == 10.0 * x + y); /* rows of y, x the first index */
+    assert_int_equal(hdf5_read_in_process(path, NULL, &here, &in_process), IM_OK);
+    assert_memory_equal(child->data, here->data, sizeof(double) * NX * NY);
+    assert_string_equal(through_child.conversion, in_process.conversion);
+    assert_string_equal(through_child.spacing_keys, in_process.spacing_keys);
+    assert_string_equal(through_child.lateral_key, in_process.lateral_key);
+    assert_string_equal(through_child.height_key, in_process.height_key);
+    assert_memory_equal(&through_child.units, &in_process.units, sizeof in_process.units);
+    im_field_free(child);
+    im_field_free(here);
+}
+
+/* A refusal made in the child reads as the same refusal made here. */
+static void the_child_refuses_as_the_reader_does(void **state)
+{
+    (void)state;
+    const char *path = constructed_file();
+    im_surface_read_options options = {.channel = "9"};
+    im_field *field = NULL;
+    surface_stated stated;
+    assert_int_equal(hdf5_read_in_process(path, &options, &field, &stated), IM_EFORMAT);
+    char in_process[1024];
+    snprintf(in_process, sizeof in_process, "%s", im_last_error());
+    assert_non_null(strstr(in_process, "no channel has the index or name '9'; its 2-D data sets: 0 'heights' (5 x 3)"));
+    assert_int_equal(hdf5_read_raw(path, &options, &field, &stated), IM_EFORMAT);
+    assert_string_equal(im_last_error(), in_process);
+    assert_null(field);
+}
+
+/* A stand-in for the program: a script that writes what `body` says. */
+static void fake_reader(const char *name, const char *body)
+{
+    const char *path = test_path(name);
+    char script[8192];
+    snprintf(script, sizeof script, "#!/bin/sh\n%s\n", body);
+    test_write_bytes(path, script, strlen(script));
+    chmod(path, 0700);
+    setenv("INDENTMAP_HDF5_READER", path, 1);
+}
+
+static void expect_refused(const char *phrase)
+{
+    im_field *field = NULL;
+    int status = im_surface_read(test_path("constructed.h5"), &field);
+    if (status != IM_EFORMAT || !strstr(im_last_error(), phrase))
+        fail_msg("status %d, '%s' (expected '%s')", status, im_last_error(), phrase);
+    assert_null(field);
+}
+
+/* A stream of a 2 x 1 field: the header, `values` doubles, then `extra` bytes. */
+static const char *stream_file(const char *name, int values, int extra)
+{
+    const char *text = "indentmap-hdf5-read 1\nfield 2 1\nunits 0 0 - -\nkeys --delta\t--unit\t--height-unit\n"
+                       "conversion HDF5 data set 'h', channel 0 of 1, indexed [x, y]\n";
+    char bytes[512] = {0};
+    size_t length = strlen(text);
+    memcpy(bytes, text, length);
+    const char *path = test_path(name);
+    test_write_bytes(path, bytes, length + sizeof(double) * (size_t)values + (size_t)extra);
+    return path;
+}
+
+static void fake_reader_of(const char *name, const char *stream)
+{
+    char body[4200];
+    snprintf(body, sizeof body, "cat '%s'", stream);
+    fake_reader(name, body);
+}
+
+/* What the program says is checked: a crash or a hang is a refusal naming the file; a stream that is
+ * short, long or not the program's is refused saying so. */
+static void what_comes_from_the_child_is_checked(void **state)
+{
+    (void)state;
+    constructed_file();
+    fake_reader("crash.sh", "printf 'indentmap-hdf5-read 1\\n'; kill -SEGV $$");
+    expect_refused("constructed.h5: the HDF5 library (libhdf5) crashed reading it (signal 11): the file is damaged "
+                   "or hostile");
+    fake_reader("hang.sh", "kill -ALRM $$"); /* what the program's own alarm does to a read that hangs */
+    expect_refused("constructed.h5: the HDF5 library (libhdf5) ran out of time reading it");
+    fake_reader("loader.sh", "echo 'libhdf5_serial.so.103: cannot open shared object file' >&2; exit 127");
+    expect_refused("the HDF5 reader (indentmap-hdf5-read) ended with status 127: libhdf5_serial.so.103: cannot "
+                   "open shared object file");
+    fake_reader_of("short.sh", stream_file("short.bin", 1, 0));
+    expect_refused("ended inside the heights (2 expected)");
+    fake_reader_of("long.sh", stream_file("long.bin", 2, 1));
+    expect_refused("wrote more than the field");
+    fake_reader_of("good.sh", stream_file("good.bin", 2, 0));
+    im_field *field = NULL;
+    assert_int_equal(im_surface_read(test_path("constructed.h5"), &field), IM_OK);
+    assert_int_equal(field->nx, 2);
+    im_field_free(field);
+    fake_reader("status.sh", "printf 'indentmap-hdf5-read 1\\nerror 0 fine\\n'");
+    expect_refused("wrote 'error 0 fine': expected a refusal 'error STATUS MESSAGE'");
+    fake_reader("huge.sh", "printf 'indentmap-hdf5-read 1\\nfield 70000 1\\n'");
+    expect_refused("expected 'field NX NY' with sides in [1, 65536]");
+    fake_reader("other.sh", "echo hello");
+    expect_refused("wrote 'hello': expected 'indentmap-hdf5-read 1' first");
+    setenv("INDENTMAP_HDF5_READER", test_path("constructed.h5"), 1); /* not executable: no program */
+    expect_refused("set INDENTMAP_HDF5_READER to its path");
+    unsetenv("INDENTMAP_HDF5_READER");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(the_child_reads_what_was_written),
+        cmocka_unit_test(the_child_refuses_as_the_reader_does),
+        cmocka_unit_test(what_comes_from_the_child_is_checked),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
