@@ -1,9 +1,10 @@
 /* A file read by a program of indentmap's own in a child process: finding it, starting it, its end. */
-#define _GNU_SOURCE /* pipe2, secure_getenv */
+#define _GNU_SOURCE /* pipe2, secure_getenv, dladdr */
 #include "io/child_reader.h"
 
 #include "indentmap/status.h"
 
+#include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -15,20 +16,37 @@
 
 extern char **environ;
 
+/* name in the folder of file (an absolute path), when it is an executable there. */
+static const char *beside(const char *file, const char *name)
+{
+    static __thread char path[4096];
+    const char *slash = strrchr(file, '/');
+    if (file[0] != '/' || !slash || (size_t)(slash - file) + strlen(name) + 2 > sizeof path)
+        return NULL;
+    snprintf(path, sizeof path, "%.*s/%s", (int)(slash - file), file, name);
+    return access(path, X_OK) == 0 ? path : NULL;
+}
+
 /* The program beside the running executable (a build tree's, or bin/ beside libexec/ when installed so). */
 static const char *beside_this_program(const char *name)
 {
-    static __thread char path[4096];
-    size_t room = strlen(name) + 2;
-    ssize_t length = readlink("/proc/self/exe", path, sizeof path - room);
+    char executable[4096];
+    ssize_t length = readlink("/proc/self/exe", executable, sizeof executable - 1);
     if (length <= 0)
         return NULL;
-    path[length] = '\0';
-    char *slash = strrchr(path, '/');
-    if (!slash)
+    executable[length] = '\0';
+    return beside(executable, name);
+}
+
+/* The program beside the shared object that holds this code, when that is not the executable: a build
+ * tree's libindentmap.so, or the Python package's extension module, beside which the build copies the
+ * programs (python3 is not beside them). A relative name (as the loader was given it) is not trusted. */
+static const char *beside_this_code(const char *name)
+{
+    Dl_info object;
+    if (!dladdr((void *)beside_this_code, &object) || !object.dli_fname)
         return NULL;
-    snprintf(slash + 1, room, "%s", name);
-    return access(path, X_OK) == 0 ? path : NULL;
+    return beside(object.dli_fname, name);
 }
 
 const char *child_program_path(const child_program *program)
@@ -36,9 +54,11 @@ const char *child_program_path(const child_program *program)
     const char *chosen = secure_getenv(program->environment);
     if (chosen && chosen[0])
         return access(chosen, X_OK) == 0 ? chosen : NULL;
-    const char *beside = beside_this_program(program->name);
-    if (beside)
-        return beside;
+    const char *found = beside_this_program(program->name);
+    if (!found)
+        found = beside_this_code(program->name);
+    if (found)
+        return found;
     if (program->installed && access(program->installed, X_OK) == 0)
         return program->installed;
     return NULL;
@@ -102,6 +122,7 @@ static int start_child(const child_program *program, const char *executable, con
     process->errors = tmpfile();
     if (!process->errors || pipe2(ends, O_CLOEXEC) != 0)
         return im_fail(IM_EIO, "%s: cannot start %s: %s", path, program->reader, strerror(errno));
+    fcntl(ends[0], F_SETPIPE_SZ, 1 << 20); /* fewer, larger hand-overs of the values; the default is kept if refused */
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);

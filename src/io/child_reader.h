@@ -27,8 +27,9 @@ typedef struct child_program {
 } child_program;
 
 /* The program to run: the one the environment variable names (read with secure_getenv; NULL when it is not
- * executable), else the one beside the running executable (found through /proc/self/exe, never a path fixed
- * at build time that someone else could create later), else the installed one; NULL when there is none. */
+ * executable), else the one beside the running executable (found through /proc/self/exe), else the one beside
+ * the shared object holding this code (dladdr: libindentmap.so, the Python extension), never a path fixed at
+ * build time that someone else could create later; else the installed one; NULL when there is none. */
 const char *child_program_path(const child_program *program);
 
 /* Parses the program's stream into result. *answered: whether the stream held the program's own answer
