@@ -9,6 +9,7 @@
 #include "indentmap/io.h"
 #include "indentmap/scene.h"
 #include "io/gwyddion.h"
+#include "io/hdf5.h"
 #include "io/readers.h"
 
 #include <dirent.h>

@@ -6,14 +6,14 @@
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "io/readers.h"
+#include "io/hdf5.h"
 
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-enum { NX = 5, NY = 3 };
+enum { NX = 150, NY = 3 }; /* three slabs of x-rows: 64, 64, 22 */
 
 /* A data set "heights" of int16 values 10 x + y, indexed [x, y], and a 1-D "profile" before it by name. */
 static const char *constructed_file(void)
@@ -71,7 +71,7 @@ static void the_child_refuses_as_the_reader_does(void **state)
     assert_int_equal(hdf5_read_in_process(path, &options, &field, &stated), IM_EFORMAT);
     char in_process[1024];
     snprintf(in_process, sizeof in_process, "%s", im_last_error());
-    assert_non_null(strstr(in_process, "no channel has the index or name '9'; its 2-D data sets: 0 'heights' (5 x 3)"));
+    assert_non_null(strstr(in_process, "no channel has the index or name '9'; its 2-D data sets: 0 'heights' (150 x 3)"));
     assert_int_equal(hdf5_read_raw(path, &options, &field, &stated), IM_EFORMAT);
     assert_string_equal(im_last_error(), in_process);
     assert_null(field);
@@ -97,16 +97,17 @@ static void expect_refused(const char *phrase)
     assert_null(field);
 }
 
-/* A stream of a 2 x 1 field: the header, `values` doubles, then `extra` bytes. */
-static const char *stream_file(const char *name, int values, int extra)
+/* A stream of a 2 x 1 field: the header, `slab` (a slab line), `values` doubles of 0, then `tail`. */
+static const char *stream_file(const char *name, const char *slab, int values, const char *tail)
 {
-    const char *text = "indentmap-hdf5-read 1\nfield 2 1\nunits 0 0 - -\nkeys --delta\t--unit\t--height-unit\n"
-                       "conversion HDF5 data set 'h', channel 0 of 1, indexed [x, y]\n";
     char bytes[512] = {0};
-    size_t length = strlen(text);
-    memcpy(bytes, text, length);
+    int length = snprintf(bytes, 400, "indentmap-hdf5-read 1\nfield 2 1\nunits 0 0 - -\n"
+                          "keys --delta\t--unit\t--height-unit\nconversion HDF5 data set 'h', channel 0 of 1, "
+                          "indexed [x, y]\n%s", slab);
+    length += (int)sizeof(double) * values;
+    length += snprintf(bytes + length, sizeof bytes - (size_t)length, "%s", tail);
     const char *path = test_path(name);
-    test_write_bytes(path, bytes, length + sizeof(double) * (size_t)values + (size_t)extra);
+    test_write_bytes(path, bytes, (size_t)length);
     return path;
 }
 
@@ -131,11 +132,17 @@ static void what_comes_from_the_child_is_checked(void **state)
     fake_reader("loader.sh", "echo 'libhdf5_serial.so.103: cannot open shared object file' >&2; exit 127");
     expect_refused("the HDF5 reader (indentmap-hdf5-read) ended with status 127: libhdf5_serial.so.103: cannot "
                    "open shared object file");
-    fake_reader_of("short.sh", stream_file("short.bin", 1, 0));
-    expect_refused("ended inside the heights (2 expected)");
-    fake_reader_of("long.sh", stream_file("long.bin", 2, 1));
+    fake_reader_of("short.sh", stream_file("short.bin", "slab 0 2\n", 1, ""));
+    expect_refused("ended inside x-rows 0 to 1");
+    fake_reader_of("long.sh", stream_file("long.bin", "slab 0 2\n", 2, "x"));
     expect_refused("wrote more than the field");
-    fake_reader_of("good.sh", stream_file("good.bin", 2, 0));
+    fake_reader_of("cut.sh", stream_file("cut.bin", "slab 0 1\n", 1, ""));
+    expect_refused("ended before x-row 1 of 2");
+    fake_reader_of("order.sh", stream_file("order.bin", "slab 1 1\n", 1, ""));
+    expect_refused("wrote 'slab 1 1': expected 'slab 0 ROWS' with ROWS in [1, 2]");
+    fake_reader_of("late.sh", stream_file("late.bin", "slab 0 1\n", 1, "error 3 late.h5: refused late\n"));
+    expect_refused("late.h5: refused late");
+    fake_reader_of("good.sh", stream_file("good.bin", "slab 0 2\n", 2, ""));
     im_field *field = NULL;
     assert_int_equal(im_surface_read(test_path("constructed.h5"), &field), IM_OK);
     assert_int_equal(field->nx, 2);

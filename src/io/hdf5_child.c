@@ -1,24 +1,27 @@
 /* Plain HDF5 files read in a child process: libhdf5 1.10 crashes inside itself on some hostile files (a
  * memcpy into a failed allocation of a size the file states), which the caller cannot guard against. The
- * program indentmap-hdf5-read (src/io/hdf5/) reads the file with hdf5_read_in_process and writes this
+ * program indentmap-hdf5-read (src/io/hdf5/) reads the file with hdf5_read_into (hdf5.c) and writes this
  * stream; the library starts it (io/child_reader.h) and parses the stream:
  *   indentmap-hdf5-read 1
- *   error STATUS MESSAGE                     a refusal: STATUS an IM_E* code, MESSAGE the reader's own
- * or
- *   field NX NY                              the chosen data set, rows of y
+ *   field NX NY                              the chosen data set
  *   units DELTA_X DELTA_Y LATERAL HEIGHT     what the file states (0: no spacing, "-": no unit)
  *   keys SPACING<TAB>LATERAL<TAB>HEIGHT      what stated them, for messages
  *   conversion TEXT
- *   NX*NY doubles (native byte order), row 0 first, and nothing after.
+ *   slab X0 ROWS                             then ROWS x NY doubles (native byte order) as HDF5 stores
+ *   ...                                      them ([x][y], y fastest), ROWS at most HDF5_SLAB_ROWS, the
+ *                                            slabs in order up to NX; nothing after the last
+ * where "error STATUS MESSAGE" (STATUS an IM_E* code, MESSAGE the reader's own refusal) may stand in place
+ * of the field line or of a slab line, and ends the stream. The program holds one slab, never the field.
  * Text from the file (data set names) is written with control bytes as '?': no file can break a line. */
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
 #include "io/child_reader.h"
-#include "io/readers.h"
+#include "io/hdf5.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const child_program HDF5_PROGRAM = {
@@ -37,28 +40,48 @@ static const char *word_or_dash(const char *word)
     return word[0] ? word : "-";
 }
 
+/* The program's sink: the stream, and the sides of the data set being written. */
+typedef struct stream_sink {
+    FILE *stream;
+    int ny;
+} stream_sink;
+
+static int stream_begin(void *context, const char *path, int nx, int ny, const surface_stated *stated)
+{
+    (void)path;
+    stream_sink *sink = context;
+    sink->ny = ny;
+    fprintf(sink->stream, "field %d %d\nunits %.17g %.17g %s %s\nkeys %s\t%s\t%s\n", nx, ny, stated->units.delta_x,
+            stated->units.delta_y, word_or_dash(stated->units.lateral), word_or_dash(stated->units.height),
+            stated->spacing_keys, stated->lateral_key, stated->height_key);
+    child_stream_put_line(sink->stream, "conversion ", stated->conversion);
+    return IM_OK;
+}
+
+/* A stream that cannot be written (the library closed it) ends the read; the exit status says so. */
+static int stream_slab(void *context, const double *values, int x0, int rows)
+{
+    stream_sink *sink = context;
+    size_t count = (size_t)rows * (size_t)sink->ny;
+    fprintf(sink->stream, "slab %d %d\n", x0, rows);
+    return fwrite(values, sizeof(double), count, sink->stream) == count ? IM_OK
+           : im_fail(IM_EIO, "the stream to the library cannot be written");
+}
+
 int hdf5_child_write(FILE *stream, const char *path, const char *channel)
 {
     im_surface_read_options options = {0};
     snprintf(options.channel, sizeof options.channel, "%s", channel);
     fprintf(stream, "indentmap-hdf5-read 1\n");
-    im_field *field = NULL;
-    surface_stated stated;
-    int status = hdf5_read_in_process(path, &options, &field, &stated);
+    stream_sink sink = {.stream = stream};
+    int status = hdf5_read_into(path, &options, &(hdf5_sink){.begin = stream_begin, .slab = stream_slab,
+                                                             .context = &sink});
     if (status != IM_OK) {
         char prefix[32];
         snprintf(prefix, sizeof prefix, "error %d ", status);
         child_stream_put_line(stream, prefix, im_last_error());
-        return fflush(stream) == 0 ? 2 : 1;
     }
-    fprintf(stream, "field %d %d\nunits %.17g %.17g %s %s\nkeys %s\t%s\t%s\n", field->nx, field->ny,
-            stated.units.delta_x, stated.units.delta_y, word_or_dash(stated.units.lateral),
-            word_or_dash(stated.units.height), stated.spacing_keys, stated.lateral_key, stated.height_key);
-    child_stream_put_line(stream, "conversion ", stated.conversion);
-    size_t count = im_field_count(field);
-    int written = fwrite(field->data, sizeof(double), count, stream) == count;
-    im_field_free(field);
-    return written && fflush(stream) == 0 ? 0 : 1;
+    return fflush(stream) != 0 || ferror(stream) ? 1 : status != IM_OK ? 2 : 0;
 }
 
 /* The parent's side: where the stream goes, and the keys it names (they outlive the read: surface_finish
@@ -124,12 +147,41 @@ static int take_stated(FILE *stream, const char *path, surface_stated *stated)
     return status;
 }
 
+/* "slab X0 ROWS" and its values into field (*rows of them), x0 the next expected, or the reader's refusal in
+ * its place. */
+static int take_slab(FILE *stream, const char *path, im_field *field, int x0, double *values, int *rows)
+{
+    char line[CHILD_STREAM_LINE];
+    if (!child_stream_line(stream, line))
+        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) ended before x-row %d of %d", path, x0,
+                       field->nx);
+    if (strncmp(line, "error ", 6) == 0)
+        return take_error(path, line);
+    int at = -1, consumed = 0;
+    int most = field->nx - x0 < HDF5_SLAB_ROWS ? field->nx - x0 : HDF5_SLAB_ROWS;
+    if (sscanf(line, "slab %d %d%n", &at, rows, &consumed) != 2 || line[consumed] || at != x0 || *rows < 1 ||
+        *rows > most)
+        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'slab %d ROWS' "
+                       "with ROWS in [1, %d]", path, line, x0, most);
+    size_t count = (size_t)*rows * (size_t)field->ny;
+    if (fread(values, sizeof(double), count, stream) != count)
+        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) ended inside x-rows %d to %d", path, x0,
+                       x0 + *rows - 1);
+    hdf5_scatter_slab(field, values, x0, *rows);
+    return IM_OK;
+}
+
 static int take_values(FILE *stream, const char *path, im_field *field)
 {
-    size_t count = im_field_count(field);
-    if (fread(field->data, sizeof(double), count, stream) != count)
-        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) ended inside the heights (%zu "
-                       "expected)", path, count);
+    double *values = malloc(sizeof *values * HDF5_SLAB_ROWS * (size_t)field->ny);
+    if (!values)
+        return im_fail(IM_ENOMEM, "%s: allocation of %d x-rows of %d values failed", path, HDF5_SLAB_ROWS, field->ny);
+    int status = IM_OK, rows = 0;
+    for (int x0 = 0; x0 < field->nx && status == IM_OK; x0 += rows)
+        status = take_slab(stream, path, field, x0, values, &rows);
+    free(values);
+    if (status != IM_OK)
+        return status;
     return fgetc(stream) == EOF ? IM_OK : im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote "
                                                   "more than the field", path);
 }
@@ -151,8 +203,8 @@ static int parse_stream(FILE *stream, const char *path, void *answer_, int *answ
         return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'field NX NY' "
                        "with sides in [1, %d]", path, line, IM_FIELD_MAX_SIDE);
     int status = take_stated(stream, path, answer->stated);
-    if (status == IM_OK)
-        status = im_field_create(nx, ny, 1.0, answer->out);
+    if (status == IM_OK && (status = im_field_create(nx, ny, 1.0, answer->out)) != IM_OK)
+        status = im_fail_context(status, "%s", path);
     if (status == IM_OK)
         status = take_values(stream, path, *answer->out);
     return status;

@@ -8,8 +8,6 @@
 
 #include "indentmap/io.h"
 
-#include <stdio.h>
-
 typedef struct surface_stated {
     im_surface_units units;  /* what the file states (zeros and "" where nothing) */
     const char *spacing_keys;/* e.g. "XReal / XRes and YReal / YRes", for messages */
@@ -50,13 +48,6 @@ int surface_read_channel_format(const char *path, surface_channel_reader read, c
  * IM_EFORMAT naming path, saying so, when it does, and when this build's program is not found. */
 int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
                   surface_stated *stated);
-/* The same read with libhdf5 in this process (hdf5.c): what the program runs, and what the fuzz harness feeds. */
-int hdf5_read_in_process(const char *path, const im_surface_read_options *options, im_field **out,
-                         surface_stated *stated);
-/* The program's side (indentmap-hdf5-read): reads path in this process and writes the stream hdf5_read_raw
- * parses on stream; 0 when it wrote the field, 2 when it wrote a refusal, 1 when the stream could not be
- * written. */
-int hdf5_child_write(FILE *stream, const char *path, const char *channel);
 /* A contact.engineering container (container.c): each topography of its meta.yml is a channel, by
  * default the first that is not a line scan. */
 int container_read_raw(const char *path, const im_surface_read_options *options, im_field **out,

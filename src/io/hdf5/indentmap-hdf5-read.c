@@ -9,7 +9,7 @@
  * Exit status 0 with the field written, 2 with a refusal written, 1 when the stream could not be written. A
  * read that runs longer than CHILD_READ_SECONDS is ended by SIGALRM. */
 #include "io/child_reader.h"
-#include "io/readers.h"
+#include "io/hdf5.h"
 
 #include <stdio.h>
 #include <string.h>
