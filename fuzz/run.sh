@@ -5,7 +5,8 @@
 # in fuzz/corpus/NAME and fuzz/regressions/NAME (read only; not its libhdf5-crash-* inputs) and adds
 # what it discovers to BUILD_DIR/corpus/NAME (kept between runs); crashing inputs are written to
 # BUILD_DIR/artifacts/NAME/ and the log to BUILD_DIR/logs/NAME.log. Prints one line per harness
-# with libFuzzer's final stats; exits 1 if any harness found a crash, leak, timeout or OOM.
+# with libFuzzer's final stats; exits 1 if any harness found a crash, leak, timeout or OOM (for hdf5:
+# other than a crash inside libhdf5 itself, see inside_libhdf5).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -15,6 +16,20 @@ harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(scene npy text gsf sdf netcdf x3p gwyddion tmd hdf5 container)
 
 fuzz/build.sh "$build_dir" >/dev/null || exit 1
+
+# libhdf5 1.10 crashes inside itself on some hostile files (a memcpy into a failed allocation of a size
+# the file states); the library reads HDF5 in a child (src/io/hdf5_child.c), where such a crash refuses
+# the file. fuzz_hdf5 reads in-process, as a fuzzer must to see coverage, so it runs in fork mode on past
+# crashes: a crash that replays as a SEGV whose innermost frame, past libc and the sanitizer's
+# interceptors, is in libhdf5 is counted as contained; every other artifact is a finding.
+inside_libhdf5() {
+  local report
+  report=$(ASAN_OPTIONS=$asan_options LSAN_OPTIONS=$lsan_options "$build_dir/fuzz_hdf5" "$1" 2>&1)
+  grep -q 'ERROR: AddressSanitizer: SEGV' <<<"$report" &&
+    grep -E '^ *#[0-9]+ ' <<<"$report" | grep -v -E 'sysdeps/|libc\.so|__interceptor_|__asan|__sanitizer' |
+    head -1 | grep -q libhdf5
+}
+
 failed=0
 printf '%-6s %8s %12s %10s %s\n' harness seconds execs exec/s result
 for name in "${harnesses[@]}"; do
@@ -34,21 +49,38 @@ for name in "${harnesses[@]}"; do
   log="$build_dir/logs/$name.log"
   # libhdf5 mallocs the sizes a hostile header states and handles a NULL (CMakeLists.txt, fuzz_regressions),
   # and leaks what it read of a damaged object header (fuzz/hdf5_lsan.supp: full stacks to match it).
-  asan_options=${ASAN_OPTIONS:-} lsan_options=${LSAN_OPTIONS:-}
+  asan_options=${ASAN_OPTIONS:-} lsan_options=${LSAN_OPTIONS:-} mode=()
   if [ "$name" = hdf5 ]; then
     asan_options=allocator_may_return_null=1:fast_unwind_on_malloc=0${asan_options:+:$asan_options}
     lsan_options=suppressions=$PWD/fuzz/hdf5_lsan.supp${lsan_options:+:$lsan_options}
+    mode=(-fork=1 -ignore_crashes=1)
   fi
+  started="$build_dir/logs/$name.started"
+  touch "$started"
   ASAN_OPTIONS=$asan_options LSAN_OPTIONS=$lsan_options "$build_dir/fuzz_$name" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build_dir/artifacts/$name/" \
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build_dir/artifacts/$name/" "${mode[@]}" \
     "${dict[@]}" "$build_dir/corpus/$name" "${seeds[@]}" >"$log" 2>&1
   status=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  if [ ${#mode[@]} -gt 0 ]; then # fork mode's progress lines: "#EXECS: cov: ... exec/s RATE ..."
+    execs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -1)
+    rate=$(sed -n 's/^#[0-9]*: cov:.* exec\/s \([0-9]*\).*/\1/p' "$log" | tail -1)
+  fi
+  contained=0 found=()
+  while IFS= read -r artifact; do
+    if [ "$name" = hdf5 ] && [[ $(basename "$artifact") == crash-* ]] && inside_libhdf5 "$artifact"; then
+      contained=$((contained + 1))
+    else
+      found+=("$(basename "$artifact")")
+    fi
+  done < <(find "$build_dir/artifacts/$name" -type f -newer "$started")
   result=ok
-  if [ $status -ne 0 ]; then
-    result="FOUND (exit $status): $(grep -m1 -E '^==[0-9]+==ERROR|runtime error|fuzz: ' "$log") -> $(ls "$build_dir/artifacts/$name" | tail -1)"
+  if [ $status -ne 0 ] || [ ${#found[@]} -gt 0 ]; then
+    result="FOUND (exit $status): $(grep -m1 -E '^==[0-9]+==ERROR|runtime error|fuzz: ' "$log") -> ${found[*]}"
     failed=1
+  elif [ $contained -gt 0 ]; then
+    result="ok; $contained inputs crashed libhdf5 itself (read in a child, refused), in $build_dir/artifacts/$name"
   fi
   printf '%-6s %8s %12s %10s %s\n' "$name" "$seconds" "${execs:-?}" "${rate:-?}" "$result"
 done
