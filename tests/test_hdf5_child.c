@@ -1,4 +1,4 @@
-/* HDF5 files read in a child process (src/io/hdf5_child.c): the child gives the field, the units and the
+/* HDF5 and NetCDF-4 files read in a child process (src/io/hdf5_child.c): the child gives the field, the units and the
  * refusals the in-process reader gives, and what comes through its stream is checked as any file is. A
  * constructed file (written here with libhdf5) is checked against the values written; stand-in programs
  * (INDENTMAP_HDF5_READER) crash, hang or lie. The crash inputs themselves: test_fuzz_regressions.c. */
@@ -9,6 +9,7 @@
 #include "io/hdf5.h"
 
 #include <hdf5.h>
+#include <netcdf.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -75,6 +76,60 @@ static void the_child_refuses_as_the_reader_does(void **state)
     assert_int_equal(hdf5_read_raw(path, &options, &field, &stated), IM_EFORMAT);
     assert_string_equal(im_last_error(), in_process);
     assert_null(field);
+}
+
+enum { NC_X = 6, NC_Y = 4 };
+
+/* Heights 10 x + y (nm) on a 3 x 2 µm grid in SurfaceTopography's NetCDF layout, as NetCDF-4 (HDF5
+ * underneath) or as classic (64-bit offset) NetCDF. */
+static const char *netcdf_file(const char *name, int format)
+{
+    const char *path = test_path(name);
+    double heights[NC_X][NC_Y], lengths[2] = {3.0, 2.0};
+    for (int x = 0; x < NC_X; ++x)
+        for (int y = 0; y < NC_Y; ++y)
+            heights[x][y] = 10.0 * x + y;
+    int ncid, dims[2], coordinates[2], var;
+    assert_int_equal(nc_create(path, format | NC_CLOBBER, &ncid), NC_NOERR);
+    nc_def_dim(ncid, "x", NC_X, &dims[0]);
+    nc_def_dim(ncid, "y", NC_Y, &dims[1]);
+    nc_def_var(ncid, "heights", NC_DOUBLE, 2, dims, &var);
+    nc_put_att_text(ncid, var, "unit", 2, "nm");
+    for (int k = 0; k < 2; ++k) {
+        nc_def_var(ncid, k ? "y" : "x", NC_DOUBLE, 1, &dims[k], &coordinates[k]);
+        nc_put_att_double(ncid, coordinates[k], "length", NC_DOUBLE, 1, &lengths[k]);
+        nc_put_att_text(ncid, coordinates[k], "unit", strlen("µm"), "µm");
+    }
+    assert_int_equal(nc_enddef(ncid), NC_NOERR);
+    assert_int_equal(nc_put_var_double(ncid, var, &heights[0][0]), NC_NOERR);
+    assert_int_equal(nc_close(ncid), NC_NOERR);
+    return path;
+}
+
+/* A NetCDF-4 file is read in the program (libhdf5 parses it), which must be there, and gives what the same
+ * file written as classic NetCDF, read in this process, gives. */
+static void netcdf4_is_read_in_the_child(void **state)
+{
+    (void)state;
+    im_field *four = NULL, *classic = NULL;
+    im_surface_read_info four_info, classic_info;
+    assert_int_equal(im_surface_read_with(netcdf_file("four.nc", NC_NETCDF4), NULL, &four, &four_info), IM_OK);
+    assert_int_equal(im_surface_read_with(netcdf_file("classic.nc", NC_64BIT_OFFSET), NULL, &classic, &classic_info),
+                     IM_OK);
+    assert_int_equal(four->nx, NC_X);
+    assert_int_equal(four->ny, NC_Y);
+    assert_close(four->delta, 0.5, 0.0);
+    assert_close(four->data[2 * NC_X + 5], (10.0 * 5 + 2) * 1e-3, 1e-15); /* x = 5, y = 2, nm in µm */
+    assert_memory_equal(four->data, classic->data, sizeof(double) * NC_X * NC_Y);
+    assert_string_equal(four->unit, classic->unit);
+    assert_memory_equal(&four_info.file, &classic_info.file, sizeof four_info.file);
+    im_field_free(four);
+    im_field_free(classic);
+    setenv("INDENTMAP_HDF5_READER", test_path("four.nc"), 1); /* not executable: no program */
+    im_field *field = NULL;
+    assert_int_equal(im_surface_read(test_path("four.nc"), &field), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "four.nc: NetCDF-4 (HDF5) files are read by indentmap-hdf5-read"));
+    unsetenv("INDENTMAP_HDF5_READER");
 }
 
 /* A stand-in for the program: a script that writes what `body` says. */
@@ -164,6 +219,7 @@ int main(void)
         cmocka_unit_test(the_child_reads_what_was_written),
         cmocka_unit_test(the_child_refuses_as_the_reader_does),
         cmocka_unit_test(what_comes_from_the_child_is_checked),
+        cmocka_unit_test(netcdf4_is_read_in_the_child),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -113,7 +113,7 @@ static void default_signals(posix_spawnattr_t *attributes)
     posix_spawnattr_setflags(attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
 }
 
-/* Starts the program on path ("--" first: a file may be named like an option), its stream on a pipe,
+/* Starts the program on path (after "--": a file may be named like an option), its stream on a pipe,
  * its errors (a library's warnings, a loader's message) into a temporary file quoted on failure. */
 static int start_child(const child_program *program, const char *executable, const char *path, const char *channel,
                        child_process *process)
@@ -130,7 +130,12 @@ static int start_child(const child_program *program, const char *executable, con
     posix_spawn_file_actions_adddup2(&actions, fileno(process->errors), 2);
     posix_spawnattr_t attributes;
     default_signals(&attributes);
-    char *arguments[] = {(char *)executable, "--", (char *)path, channel[0] ? (char *)channel : NULL, NULL};
+    char *arguments[6] = {(char *)executable}, **next = arguments + 1;
+    if (program->mode)
+        *next++ = (char *)program->mode;
+    *next++ = "--";
+    *next++ = (char *)path;
+    *next = channel[0] ? (char *)channel : NULL;
     int failed = posix_spawn(&process->child, executable, &actions, &attributes, arguments, environ);
     posix_spawn_file_actions_destroy(&actions);
     posix_spawnattr_destroy(&attributes);

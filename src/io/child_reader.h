@@ -19,6 +19,7 @@ enum { CHILD_STREAM_LINE = 4096 };
 
 typedef struct child_program {
     const char *name;         /* e.g. "indentmap-hdf5-read", looked for beside the running executable */
+    const char *mode;         /* an argument before the file's, choosing what the program reads, or NULL */
     const char *environment;  /* e.g. "INDENTMAP_HDF5_READER": names another program */
     const char *installed;    /* its installed path (libexec), or NULL */
     const char *reader;       /* the program in messages: "Gwyddion's reader" */
@@ -36,7 +37,7 @@ const char *child_program_path(const child_program *program);
  * (a refusal or the data), which then decides over its exit status. */
 typedef int (*child_stream_parser)(FILE *stream, const char *path, void *result, int *answered);
 
-/* Runs executable ("--", path, then channel unless it is "") with its stream on a pipe and its standard
+/* Runs executable (its mode when it has one, "--", path, then channel unless it is "") with its stream on a pipe and its standard
  * error kept, parses the stream, then waits for it: IM_EFORMAT naming path when it died by a signal (its
  * alarm: "ran out of time"; another: "crashed", naming the signal and quoting its last line of errors), or
  * when it ended with a non-zero status without answering (its last line of errors quoted); else the

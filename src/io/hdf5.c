@@ -120,6 +120,13 @@ void hdf5_scatter_slab(im_field *field, const double *values, int x0, int rows)
             field->data[(size_t)y * field->nx + x0 + x] = values[(size_t)x * field->ny + y];
 }
 
+void hdf5_gather_slab(const im_field *field, double *values, int x0, int rows)
+{
+    for (int x = 0; x < rows; ++x)
+        for (int y = 0; y < field->ny; ++y)
+            values[(size_t)x * field->ny + y] = field->data[(size_t)y * field->nx + x0 + x];
+}
+
 /* Reads data set [x, y] in slabs of HDF5_SLAB_ROWS x-rows, each handed to the sink as it is read. */
 static int read_slabs(hid_t file, const char *path, const data_set *chosen, const hdf5_sink *sink)
 {

@@ -25,14 +25,21 @@ int hdf5_read_into(const char *path, const im_surface_read_options *options, con
 
 /* Copies rows x-rows of field->ny values each ([x][y]), the first of them x0, into field's rows of y. */
 void hdf5_scatter_slab(im_field *field, const double *values, int x0, int rows);
+/* The reverse: field's x-rows x0 to x0 + rows - 1 into values ([x][y]). */
+void hdf5_gather_slab(const im_field *field, double *values, int x0, int rows);
 
 /* hdf5_read_raw's read in this process: what the program runs through hdf5_read_into, and what the fuzz
  * harness feeds. */
 int hdf5_read_in_process(const char *path, const im_surface_read_options *options, im_field **out,
                          surface_stated *stated);
 
-/* The program's side: reads path in this process and writes the stream hdf5_read_raw parses on stream;
- * 0 when it wrote the field, 2 when it wrote a refusal, 1 when the stream could not be written. */
-int hdf5_child_write(FILE *stream, const char *path, const char *channel);
+/* The program's side: reads path in this process, as a plain HDF5 file (channel chooses the data set) or when
+ * netcdf4 is 1 as a NetCDF-4 file, and writes the stream that hdf5_read_raw and netcdf4_read_raw parse on
+ * stream; 0 when it wrote the field, 2 when it wrote a refusal, 1 when the stream could not be written. */
+int hdf5_child_write(FILE *stream, const char *path, const char *channel, int netcdf4);
+
+/* A NetCDF-4 file (HDF5 underneath) read as netcdf_read_in_process reads it, in the program (readers.h's
+ * netcdf_read_raw hands such files here). */
+int netcdf4_read_raw(const char *path, im_field **out, surface_stated *stated);
 
 #endif

@@ -1,6 +1,7 @@
-/* Plain HDF5 files read in a child process: libhdf5 1.10 crashes inside itself on some hostile files (a
+/* Files libhdf5 parses, read in a child process: libhdf5 1.10 crashes inside itself on some hostile files (a
  * memcpy into a failed allocation of a size the file states), which the caller cannot guard against. The
- * program indentmap-hdf5-read (src/io/hdf5/) reads the file with hdf5_read_into (hdf5.c) and writes this
+ * program indentmap-hdf5-read (src/io/hdf5/) reads a plain HDF5 file with hdf5_read_into (hdf5.c), or with
+ * --netcdf a NetCDF-4 file (HDF5 underneath) with netcdf_read_in_process (netcdf.c), and writes this
  * stream; the library starts it (io/child_reader.h) and parses the stream:
  *   indentmap-hdf5-read 1
  *   field NX NY                              the chosen data set
@@ -11,7 +12,8 @@
  *   ...                                      them ([x][y], y fastest), ROWS at most HDF5_SLAB_ROWS, the
  *                                            slabs in order up to NX; nothing after the last
  * where "error STATUS MESSAGE" (STATUS an IM_E* code, MESSAGE the reader's own refusal) may stand in place
- * of the field line or of a slab line, and ends the stream. The program holds one slab, never the field.
+ * of the field line or of a slab line, and ends the stream. Reading HDF5, the program holds one slab, never
+ * the field (netCDF reads the whole field, sent in the same slabs).
  * Text from the file (data set names) is written with control bytes as '?': no file can break a line. */
 #include "indentmap/io.h"
 
@@ -32,6 +34,19 @@ static const child_program HDF5_PROGRAM = {
 #endif
     .reader = "the HDF5 reader (indentmap-hdf5-read)",
     .parser = "the HDF5 library (libhdf5)",
+    .damage = "the file is damaged or hostile",
+};
+
+/* NetCDF-4 files are HDF5 files, which netCDF reads with libhdf5: read by the same program. */
+static const child_program NETCDF4_PROGRAM = {
+    .name = "indentmap-hdf5-read",
+    .mode = "--netcdf",
+    .environment = "INDENTMAP_HDF5_READER",
+#ifdef IM_HDF5_READER_INSTALLED
+    .installed = IM_HDF5_READER_INSTALLED,
+#endif
+    .reader = "the HDF5 reader (indentmap-hdf5-read)",
+    .parser = "netCDF's HDF5 layer (libnetcdf, libhdf5)",
     .damage = "the file is damaged or hostile",
 };
 
@@ -68,14 +83,36 @@ static int stream_slab(void *context, const double *values, int x0, int rows)
            : im_fail(IM_EIO, "the stream to the library cannot be written");
 }
 
-int hdf5_child_write(FILE *stream, const char *path, const char *channel)
+/* A NetCDF-4 file read here (netcdf.c), its field written in [x][y] slabs as a data set's are. */
+static int write_netcdf4(stream_sink *sink, const char *path)
+{
+    im_field *field = NULL;
+    surface_stated stated;
+    int status = netcdf_read_in_process(path, &field, &stated);
+    if (status == IM_OK)
+        status = stream_begin(sink, path, field->nx, field->ny, &stated);
+    double *values = status == IM_OK ? malloc(sizeof *values * HDF5_SLAB_ROWS * (size_t)field->ny) : NULL;
+    if (status == IM_OK && !values)
+        status = im_fail(IM_ENOMEM, "%s: allocation of %d x-rows of %d values failed", path, HDF5_SLAB_ROWS, field->ny);
+    for (int x0 = 0, rows = 0; status == IM_OK && x0 < field->nx; x0 += rows) {
+        rows = field->nx - x0 < HDF5_SLAB_ROWS ? field->nx - x0 : HDF5_SLAB_ROWS;
+        hdf5_gather_slab(field, values, x0, rows);
+        status = stream_slab(sink, values, x0, rows);
+    }
+    free(values);
+    im_field_free(field);
+    return status;
+}
+
+int hdf5_child_write(FILE *stream, const char *path, const char *channel, int netcdf4)
 {
     im_surface_read_options options = {0};
     snprintf(options.channel, sizeof options.channel, "%s", channel);
     fprintf(stream, "indentmap-hdf5-read 1\n");
     stream_sink sink = {.stream = stream};
-    int status = hdf5_read_into(path, &options, &(hdf5_sink){.begin = stream_begin, .slab = stream_slab,
-                                                             .context = &sink});
+    int status = netcdf4 ? write_netcdf4(&sink, path)
+                         : hdf5_read_into(path, &options, &(hdf5_sink){.begin = stream_begin, .slab = stream_slab,
+                                                                       .context = &sink});
     if (status != IM_OK) {
         char prefix[32];
         snprintf(prefix, sizeof prefix, "error %d ", status);
@@ -210,20 +247,32 @@ static int parse_stream(FILE *stream, const char *path, void *answer_, int *answ
     return status;
 }
 
-int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
-                  surface_stated *stated)
+/* files: what the program reads, for the message when it is not found. */
+static int read_in_child(const child_program *program, const char *files, const char *path, const char *channel,
+                         im_field **out, surface_stated *stated)
 {
     *out = NULL;
-    const char *program = child_program_path(&HDF5_PROGRAM);
-    if (!program)
-        return im_fail(IM_EFORMAT, "%s: HDF5 files are read by indentmap-hdf5-read, a program of this build not "
-                       "found beside this program%s%s: set INDENTMAP_HDF5_READER to its path", path,
-                       HDF5_PROGRAM.installed ? " nor at " : "", HDF5_PROGRAM.installed ? HDF5_PROGRAM.installed : "");
+    const char *executable = child_program_path(program);
+    if (!executable)
+        return im_fail(IM_EFORMAT, "%s: %s are read by indentmap-hdf5-read, a program of this build not found beside "
+                       "this program%s%s: set INDENTMAP_HDF5_READER to its path", path, files,
+                       program->installed ? " nor at " : "", program->installed ? program->installed : "");
     hdf5_answer answer = {.out = out, .stated = stated};
-    int status = child_read(&HDF5_PROGRAM, program, path, options ? options->channel : "", parse_stream, &answer);
+    int status = child_read(program, executable, path, channel, parse_stream, &answer);
     if (status != IM_OK && *out) {
         im_field_free(*out);
         *out = NULL;
     }
     return status;
+}
+
+int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
+                  surface_stated *stated)
+{
+    return read_in_child(&HDF5_PROGRAM, "HDF5 files", path, options ? options->channel : "", out, stated);
+}
+
+int netcdf4_read_raw(const char *path, im_field **out, surface_stated *stated)
+{
+    return read_in_child(&NETCDF4_PROGRAM, "NetCDF-4 (HDF5) files", path, "", out, stated);
 }

@@ -31,7 +31,11 @@ int gsf_read_raw(const char *path, im_field **out, surface_stated *stated);
 int text_read_raw(const char *path, im_field **out, surface_stated *stated);
 int npy_read_raw(const char *path, im_field **out, surface_stated *stated);
 int sdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+/* NetCDF (netcdf.c): a classic file read in this process; NetCDF-4, which netCDF reads with libhdf5, in a child
+ * process (netcdf4_read_raw, hdf5.h), as HDF5 files are. */
 int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+/* Either kind read in this process: what the program runs for NetCDF-4. */
+int netcdf_read_in_process(const char *path, im_field **out, surface_stated *stated);
 int x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
 int tmd_read_raw(const char *path, im_field **out, surface_stated *stated);
 
