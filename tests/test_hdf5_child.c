@@ -132,6 +132,41 @@ static void netcdf4_is_read_in_the_child(void **state)
     unsetenv("INDENTMAP_HDF5_READER");
 }
 
+/* The same NetCDF-4 file named .h5 (a plain HDF5 file by its name) states its units in NetCDF's layout:
+ * read as NetCDF reads it, not as a bare matrix of its fill values and unit-less numbers; --unit does not
+ * relabel it, as it does not the classic file. */
+static void netcdf4_named_h5_is_read_with_its_units(void **state)
+{
+    (void)state;
+    test_copy_file(netcdf_file("four.nc", NC_NETCDF4), test_path("four.h5"));
+    im_field *four = NULL, *classic = NULL;
+    im_surface_read_info four_info, classic_info;
+    assert_int_equal(im_surface_read_with(test_path("four.h5"), NULL, &four, &four_info), IM_OK);
+    assert_int_equal(im_surface_read_with(netcdf_file("classic.nc", NC_64BIT_OFFSET), NULL, &classic, &classic_info),
+                     IM_OK);
+    assert_close(four->delta, 0.5, 0.0);
+    assert_memory_equal(four->data, classic->data, sizeof(double) * NC_X * NC_Y);
+    assert_memory_equal(&four_info.file, &classic_info.file, sizeof four_info.file);
+    im_field_free(four);
+    im_field_free(classic);
+    im_surface_read_options relabel = {.set = {.lateral = "nm"}};
+    int status = im_surface_read_with(test_path("classic.nc"), &relabel, &classic, NULL);
+    char classic_says[1024];
+    snprintf(classic_says, sizeof classic_says, "%s", status == IM_OK ? "" : strchr(im_last_error(), ':'));
+    assert_int_equal(im_surface_read_with(test_path("four.h5"), &relabel, &four, NULL), status);
+    if (status == IM_OK) {
+        assert_memory_equal(four->data, classic->data, sizeof(double) * NC_X * NC_Y);
+        assert_true(four->delta == classic->delta && strcmp(four->unit, classic->unit) == 0);
+    } else {
+        assert_string_equal(strchr(im_last_error(), ':'), classic_says);
+    }
+    im_field_free(four);
+    im_field_free(classic);
+    im_surface_read_options channel = {.channel = "heights"};
+    assert_int_equal(im_surface_read_with(test_path("four.h5"), &channel, &four, NULL), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "four.h5: channel 'heights' asked of a NetCDF-4 file"));
+}
+
 /* A stand-in for the program: a script that writes what `body` says. */
 static void fake_reader(const char *name, const char *body)
 {
@@ -220,6 +255,7 @@ int main(void)
         cmocka_unit_test(the_child_refuses_as_the_reader_does),
         cmocka_unit_test(what_comes_from_the_child_is_checked),
         cmocka_unit_test(netcdf4_is_read_in_the_child),
+        cmocka_unit_test(netcdf4_named_h5_is_read_with_its_units),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -191,27 +191,54 @@ static int read_file(hid_t file, const char *path, const im_surface_read_options
     return status;
 }
 
-int hdf5_read_into(const char *path, const im_surface_read_options *options, const hdf5_sink *sink)
+/* libhdf5's error stack, silenced while a file is open (it prints it otherwise: the messages say it). */
+typedef struct quiet_file {
+    hid_t file;
+    H5E_auto2_t report;
+    void *report_data;
+} quiet_file;
+
+static int open_quietly(const char *path, quiet_file *opened)
 {
     FILE *stream;
     int status = im_read_open(path, "rb", IM_READ_REGULAR, &stream, NULL);
     if (status != IM_OK)
         return status;
     fclose(stream);
-    H5E_auto2_t report;
-    void *report_data;
-    H5Eget_auto2(H5E_DEFAULT, &report, &report_data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* libhdf5 prints its error stack otherwise: the message says it */
-    hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (file < 0)
-        status = im_fail(IM_EFORMAT, "%s: libhdf5 cannot open it: expected an HDF5 file (magic 89 'HDF' 0D 0A 1A "
-                         "0A)", path);
-    else {
-        status = read_file(file, path, options, sink);
-        H5Fclose(file);
-    }
-    H5Eset_auto2(H5E_DEFAULT, report, report_data);
+    H5Eget_auto2(H5E_DEFAULT, &opened->report, &opened->report_data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    opened->file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (opened->file >= 0)
+        return IM_OK;
+    H5Eset_auto2(H5E_DEFAULT, opened->report, opened->report_data);
+    return im_fail(IM_EFORMAT, "%s: libhdf5 cannot open it: expected an HDF5 file (magic 89 'HDF' 0D 0A 1A 0A)", path);
+}
+
+static void close_quietly(quiet_file *opened)
+{
+    H5Fclose(opened->file);
+    H5Eset_auto2(H5E_DEFAULT, opened->report, opened->report_data);
+}
+
+int hdf5_read_into(const char *path, const im_surface_read_options *options, const hdf5_sink *sink)
+{
+    quiet_file opened;
+    int status = open_quietly(path, &opened);
+    if (status != IM_OK)
+        return status;
+    status = read_file(opened.file, path, options, sink);
+    close_quietly(&opened);
     return status;
+}
+
+int hdf5_is_netcdf4(const char *path)
+{
+    quiet_file opened;
+    if (open_quietly(path, &opened) != IM_OK)
+        return 0;
+    int netcdf4 = H5Aexists(opened.file, "_NCProperties") > 0;
+    close_quietly(&opened);
+    return netcdf4;
 }
 
 /* The in-process sink: the field, and what the file states. */

@@ -23,6 +23,10 @@ typedef struct hdf5_sink {
  * naming path for what hdf5_read_raw refuses. */
 int hdf5_read_into(const char *path, const im_surface_read_options *options, const hdf5_sink *sink);
 
+/* 1 when path is an HDF5 file that netCDF-4 wrote (its root has netCDF's _NCProperties attribute): the layout
+ * and attributes of its variables are NetCDF's, which netcdf.c reads (units, fill values, dimension order). */
+int hdf5_is_netcdf4(const char *path);
+
 /* Copies rows x-rows of field->ny values each ([x][y]), the first of them x0, into field's rows of y. */
 void hdf5_scatter_slab(im_field *field, const double *values, int x0, int rows);
 /* The reverse: field's x-rows x0 to x0 + rows - 1 into values ([x][y]). */
@@ -34,7 +38,7 @@ int hdf5_read_in_process(const char *path, const im_surface_read_options *option
                          surface_stated *stated);
 
 /* The program's side: reads path in this process, as a plain HDF5 file (channel chooses the data set) or when
- * netcdf4 is 1 as a NetCDF-4 file, and writes the stream that hdf5_read_raw and netcdf4_read_raw parse on
+ * netcdf4 is 1 or the file is one (hdf5_is_netcdf4; a channel is then refused) as a NetCDF-4 file, and writes the stream that hdf5_read_raw and netcdf4_read_raw parse on
  * stream; 0 when it wrote the field, 2 when it wrote a refusal, 1 when the stream could not be written. */
 int hdf5_child_write(FILE *stream, const char *path, const char *channel, int netcdf4);
 

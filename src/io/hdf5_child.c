@@ -110,7 +110,15 @@ int hdf5_child_write(FILE *stream, const char *path, const char *channel, int ne
     snprintf(options.channel, sizeof options.channel, "%s", channel);
     fprintf(stream, "indentmap-hdf5-read 1\n");
     stream_sink sink = {.stream = stream};
-    int status = netcdf4 ? write_netcdf4(&sink, path)
+    int status = IM_OK;
+    if (!netcdf4 && hdf5_is_netcdf4(path)) {
+        netcdf4 = 1;
+        if (channel[0])
+            status = im_fail(IM_EINVAL, "%s: channel '%.63s' asked of a NetCDF-4 file, read in NetCDF's layout (one "
+                             "surface, heights(x, y))", path, channel);
+    }
+    if (status == IM_OK)
+        status = netcdf4 ? write_netcdf4(&sink, path)
                          : hdf5_read_into(path, &options, &(hdf5_sink){.begin = stream_begin, .slab = stream_slab,
                                                                        .context = &sink});
     if (status != IM_OK) {
