@@ -5,7 +5,9 @@
  * stream; the library starts it (io/child_reader.h) and parses the stream:
  *   indentmap-hdf5-read 1
  *   field NX NY                              the chosen data set
- *   units DELTA_X DELTA_Y LATERAL HEIGHT     what the file states (0: no spacing, "-": no unit)
+ *   units DELTA_X DELTA_Y                    the spacing the file states (0: none)
+ *   lateral UNIT                             the units it states ("": none)
+ *   height UNIT
  *   keys SPACING<TAB>LATERAL<TAB>HEIGHT      what stated them, for messages
  *   conversion TEXT
  *   slab X0 ROWS                             then ROWS x NY doubles (native byte order) as HDF5 stores
@@ -14,7 +16,7 @@
  * where "error STATUS MESSAGE" (STATUS an IM_E* code, MESSAGE the reader's own refusal) may stand in place
  * of the field line or of a slab line, and ends the stream. Reading HDF5, the program holds one slab, never
  * the field (netCDF reads the whole field, sent in the same slabs).
- * Text from the file (data set names) is written with control bytes as '?': no file can break a line. */
+ * Text from the file (data set names, units) is written with control bytes as '?': no file can break a line. */
 #include "indentmap/io.h"
 
 #include "indentmap/status.h"
@@ -26,34 +28,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const child_program HDF5_PROGRAM = {
-    .name = "indentmap-hdf5-read",
-    .environment = "INDENTMAP_HDF5_READER",
 #ifdef IM_HDF5_READER_INSTALLED
-    .installed = IM_HDF5_READER_INSTALLED,
+#define HDF5_READER_INSTALLED IM_HDF5_READER_INSTALLED
+#else
+#define HDF5_READER_INSTALLED NULL
 #endif
-    .reader = "the HDF5 reader (indentmap-hdf5-read)",
-    .parser = "the HDF5 library (libhdf5)",
-    .damage = "the file is damaged or hostile",
-};
 
-/* NetCDF-4 files are HDF5 files, which netCDF reads with libhdf5: read by the same program. */
-static const child_program NETCDF4_PROGRAM = {
-    .name = "indentmap-hdf5-read",
-    .mode = "--netcdf",
-    .environment = "INDENTMAP_HDF5_READER",
-#ifdef IM_HDF5_READER_INSTALLED
-    .installed = IM_HDF5_READER_INSTALLED,
-#endif
-    .reader = "the HDF5 reader (indentmap-hdf5-read)",
-    .parser = "netCDF's HDF5 layer (libnetcdf, libhdf5)",
-    .damage = "the file is damaged or hostile",
-};
+/* The program, reading a file of HDF5 underneath in mode (NULL: plain HDF5) with parser. */
+#define HDF5_READER(mode_, parser_)                                                                         \
+    {.name = "indentmap-hdf5-read", .mode = mode_, .environment = "INDENTMAP_HDF5_READER",                  \
+     .installed = HDF5_READER_INSTALLED, .reader = "the HDF5 reader (indentmap-hdf5-read)", .parser = parser_, \
+     .damage = "the file is damaged or hostile"}
 
-static const char *word_or_dash(const char *word)
-{
-    return word[0] ? word : "-";
-}
+static const child_program HDF5_PROGRAM = HDF5_READER(NULL, "the HDF5 library (libhdf5)");
+/* NetCDF-4 files are HDF5 files, which netCDF reads with libhdf5. */
+static const child_program NETCDF4_PROGRAM = HDF5_READER("--netcdf", "netCDF's HDF5 layer (libnetcdf, libhdf5)");
 
 /* The program's sink: the stream, and the sides of the data set being written. */
 typedef struct stream_sink {
@@ -66,9 +55,10 @@ static int stream_begin(void *context, const char *path, int nx, int ny, const s
     (void)path;
     stream_sink *sink = context;
     sink->ny = ny;
-    fprintf(sink->stream, "field %d %d\nunits %.17g %.17g %s %s\nkeys %s\t%s\t%s\n", nx, ny, stated->units.delta_x,
-            stated->units.delta_y, word_or_dash(stated->units.lateral), word_or_dash(stated->units.height),
-            stated->spacing_keys, stated->lateral_key, stated->height_key);
+    fprintf(sink->stream, "field %d %d\nunits %.17g %.17g\n", nx, ny, stated->units.delta_x, stated->units.delta_y);
+    child_stream_put_line(sink->stream, "lateral ", stated->units.lateral);
+    child_stream_put_line(sink->stream, "height ", stated->units.height);
+    fprintf(sink->stream, "keys %s\t%s\t%s\n", stated->spacing_keys, stated->lateral_key, stated->height_key);
     child_stream_put_line(sink->stream, "conversion ", stated->conversion);
     return IM_OK;
 }
@@ -156,14 +146,26 @@ static int take_error(const char *path, const char *line)
 
 static int take_units(const char *path, const char *line, surface_stated *stated)
 {
-    char lateral[32], height[32];
     im_surface_units *units = &stated->units;
-    if (sscanf(line, "units %lf %lf %31s %31s", &units->delta_x, &units->delta_y, lateral, height) != 4 ||
-        !isfinite(units->delta_x) || !isfinite(units->delta_y) || units->delta_x < 0.0 || units->delta_y < 0.0 ||
-        strlen(lateral) >= sizeof units->lateral || strlen(height) >= sizeof units->height)
-        return stream_error(path, "'units DELTA_X DELTA_Y LATERAL HEIGHT'", line);
-    snprintf(units->lateral, sizeof units->lateral, "%s", strcmp(lateral, "-") ? lateral : "");
-    snprintf(units->height, sizeof units->height, "%s", strcmp(height, "-") ? height : "");
+    int consumed = 0;
+    if (sscanf(line, "units %lf %lf%n", &units->delta_x, &units->delta_y, &consumed) != 2 || line[consumed] ||
+        !isfinite(units->delta_x) || !isfinite(units->delta_y) || units->delta_x < 0.0 || units->delta_y < 0.0)
+        return stream_error(path, "'units DELTA_X DELTA_Y', finite and >= 0", line);
+    return IM_OK;
+}
+
+/* The next line, "PREFIX TEXT", its text (shorter than size) into text. */
+static int take_text(FILE *stream, const char *path, const char *prefix, char *text, size_t size)
+{
+    char line[CHILD_STREAM_LINE];
+    size_t length = strlen(prefix);
+    int read = child_stream_line(stream, line);
+    if (!read || strncmp(line, prefix, length) != 0 || strlen(line + length) >= size) {
+        char expected[64];
+        snprintf(expected, sizeof expected, "'%sTEXT' of at most %zu bytes", prefix, size - 1);
+        return stream_error(path, expected, line);
+    }
+    memcpy(text, line + length, strlen(line + length) + 1);
     return IM_OK;
 }
 
@@ -177,18 +179,20 @@ static int take_keys(const char *path, const char *line, surface_stated *stated)
     return IM_OK;
 }
 
-/* The lines after "field": units, keys, conversion. */
+/* The lines after "field": units, lateral, height, keys, conversion. */
 static int take_stated(FILE *stream, const char *path, surface_stated *stated)
 {
     char line[CHILD_STREAM_LINE];
     *stated = (surface_stated){0};
     int status = child_stream_line(stream, line) ? take_units(path, line, stated) : stream_error(path, "units", "");
     if (status == IM_OK)
-        status = child_stream_line(stream, line) ? take_keys(path, line, stated) : stream_error(path, "keys", "");
-    if (status == IM_OK && (!child_stream_line(stream, line) || strncmp(line, "conversion ", 11) != 0))
-        status = stream_error(path, "'conversion TEXT'", line);
+        status = take_text(stream, path, "lateral ", stated->units.lateral, sizeof stated->units.lateral);
     if (status == IM_OK)
-        snprintf(stated->conversion, sizeof stated->conversion, "%.95s", line + 11);
+        status = take_text(stream, path, "height ", stated->units.height, sizeof stated->units.height);
+    if (status == IM_OK)
+        status = child_stream_line(stream, line) ? take_keys(path, line, stated) : stream_error(path, "keys", "");
+    if (status == IM_OK)
+        status = take_text(stream, path, "conversion ", stated->conversion, sizeof stated->conversion);
     return status;
 }
 
