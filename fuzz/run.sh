@@ -6,7 +6,7 @@
 # what it discovers to BUILD_DIR/corpus/NAME (kept between runs); crashing inputs are written to
 # BUILD_DIR/artifacts/NAME/ and the log to BUILD_DIR/logs/NAME.log. Prints one line per harness
 # with libFuzzer's final stats; exits 1 if any harness found a crash, leak, timeout or OOM (for hdf5:
-# other than a crash inside libhdf5 itself, see inside_libhdf5).
+# other than a crash or allocation inside libhdf5 itself, see inside_libhdf5).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -18,16 +18,24 @@ harnesses=("$@")
 fuzz/build.sh "$build_dir" >/dev/null || exit 1
 
 # libhdf5 1.10 crashes inside itself on some hostile files (a memcpy into a failed allocation of a size
-# the file states); the library reads HDF5 in a child (src/io/hdf5_child.c), where such a crash refuses
-# the file. fuzz_hdf5 reads in-process, as a fuzzer must to see coverage, so it runs in fork mode on past
-# crashes: a crash that replays as a SEGV whose innermost frame, past libc and the sanitizer's
-# interceptors, is in libhdf5 is counted as contained; every other artifact is a finding.
+# the file states) and allocates the sizes they state; the library reads HDF5 in a child
+# (src/io/hdf5_child.c), where such a crash or allocation refuses the file. fuzz_hdf5 reads in-process,
+# as a fuzzer must to see coverage, so it runs in fork mode on past crashes, and each new crash or OOM is
+# replayed: a SEGV whose innermost frame, past libc and the sanitizer's interceptors, is in libhdf5, or a
+# malloc beyond the limit that libhdf5 itself made, is counted as contained; every other artifact (a
+# crash or allocation in indentmap's code, a leak, a timeout, an RSS overrun) is a finding.
 inside_libhdf5() {
-  local report
-  report=$(ASAN_OPTIONS=$asan_options LSAN_OPTIONS=$lsan_options "$build_dir/fuzz_hdf5" "$1" 2>&1)
-  grep -q 'ERROR: AddressSanitizer: SEGV' <<<"$report" &&
-    grep -E '^ *#[0-9]+ ' <<<"$report" | grep -v -E 'sysdeps/|libc\.so|__interceptor_|__asan|__sanitizer' |
-    head -1 | grep -q libhdf5
+  local report frames='^ *#[0-9]+ '
+  report=$(ASAN_OPTIONS=$asan_options LSAN_OPTIONS=$lsan_options "$build_dir/fuzz_hdf5" -rss_limit_mb=2048 "$1" 2>&1)
+  if grep -q 'ERROR: AddressSanitizer: SEGV' <<<"$report"; then
+    grep -E "$frames" <<<"$report" | grep -v -E 'sysdeps/|libc\.so|__interceptor_|__asan|__sanitizer' |
+      head -1 | grep -q libhdf5
+  elif grep -q 'ERROR: libFuzzer: out-of-memory (malloc(' <<<"$report"; then
+    grep -E "$frames" <<<"$report" | grep -v -E 'fuzzer::|__sanitizer|__asan| in (malloc|calloc|realloc) ' |
+      head -1 | grep -q libhdf5
+  else
+    return 1
+  fi
 }
 
 failed=0
@@ -69,7 +77,7 @@ for name in "${harnesses[@]}"; do
   fi
   contained=0 found=()
   while IFS= read -r artifact; do
-    if [ "$name" = hdf5 ] && [[ $(basename "$artifact") == crash-* ]] && inside_libhdf5 "$artifact"; then
+    if [ "$name" = hdf5 ] && [[ $(basename "$artifact") == @(crash|oom)-* ]] && inside_libhdf5 "$artifact"; then
       contained=$((contained + 1))
     else
       found+=("$(basename "$artifact")")
@@ -80,7 +88,7 @@ for name in "${harnesses[@]}"; do
     result="FOUND (exit $status): $(grep -m1 -E '^==[0-9]+==ERROR|runtime error|fuzz: ' "$log") -> ${found[*]}"
     failed=1
   elif [ $contained -gt 0 ]; then
-    result="ok; $contained inputs crashed libhdf5 itself (read in a child, refused), in $build_dir/artifacts/$name"
+    result="ok; $contained inputs crashed libhdf5 or made it allocate beyond the limit (contained: read in a child), in $build_dir/artifacts/$name"
   fi
   printf '%-6s %8s %12s %10s %s\n' "$name" "$seconds" "${execs:-?}" "${rate:-?}" "$result"
 done
