@@ -97,6 +97,16 @@ TMPDIR=$dir/tmp "$cli" surface --stats "$dir/c.zip" >/dev/null 2>&1
 TMPDIR=$dir/tmp "$cli" surface --stats "$dir/lying.zip" >/dev/null 2>&1
 check "container: the topography's temporary copy is removed, read or refused" test -z "$(ls -A "$dir/tmp")"
 
+# ---- HDF5 read in a child: a file that crashes libhdf5 itself (fuzz_hdf5's input) is refused, not fatal ----
+crash=$here/../fuzz/regressions/hdf5/libhdf5-crash-segv-reading-group-btree.h5
+check "h5: a file that crashes libhdf5 is refused naming it (exit 2, was 139)" expect_exit 2 \
+  "libhdf5-crash-segv-reading-group-btree.h5: the HDF5 library (libhdf5) crashed reading it (signal 11): the file is damaged or hostile" \
+  "$cli" surface --stats "$crash"
+cp "$crash" "$dir/hostile.nc" # NetCDF-4 is HDF5: netCDF parsed it with libhdf5 in-process
+check "nc: the same file as NetCDF-4 is refused naming it (exit 2, was 139)" expect_exit 2 \
+  "hostile.nc: netCDF's HDF5 layer (libnetcdf, libhdf5) crashed reading it (signal 11): the file is damaged or hostile" \
+  "$cli" surface --stats "$dir/hostile.nc"
+
 if [ ! -d "$shared" ]; then
   echo "no $shared: the shared tmd, h5 and zip files are not checked"
   finish

@@ -49,6 +49,22 @@ void test_write_bytes(const char *path, const void *data, size_t size)
     assert_int_equal(fclose(stream), 0);
 }
 
+void test_copy_file(const char *from, const char *to)
+{
+    FILE *source = fopen(from, "rb");
+    assert_non_null(source);
+    assert_int_equal(fseek(source, 0, SEEK_END), 0);
+    long size = ftell(source);
+    assert_true(size >= 0);
+    char *bytes = malloc((size_t)size + 1);
+    assert_non_null(bytes);
+    rewind(source);
+    assert_int_equal(fread(bytes, 1, (size_t)size, source), (size_t)size);
+    fclose(source);
+    test_write_bytes(to, bytes, (size_t)size);
+    free(bytes);
+}
+
 double test_relative_difference(double a, double b)
 {
     double scale = fmax(fmax(fabs(a), fabs(b)), 1e-300);

@@ -18,6 +18,9 @@ const char *test_path(const char *name);
 /* Writes bytes to a file; fails the test if it cannot. */
 void test_write_bytes(const char *path, const void *data, size_t size);
 
+/* Copies a file's bytes to another; fails the test if it cannot. */
+void test_copy_file(const char *from, const char *to);
+
 /* A generated rough surface n x n (H 0.8, lambda_s 4, lambda_r n, h'rms slope, the seed); the test
  * fails if it cannot be made. Caller frees (im_field_free). */
 struct im_field;

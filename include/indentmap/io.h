@@ -394,8 +394,10 @@ int im_surface_read(const char *path, im_field **out);
 
 /* The path of indentmap-gwyddion-read, the program that runs Gwyddion's file modules (GPL-2.0+, kept
  * out of this library: see README's License), or NULL when this build has none. The environment
- * variable INDENTMAP_GWYDDION_READER chooses another; otherwise the build tree's, then the installed
- * one. */
+ * variable INDENTMAP_GWYDDION_READER chooses another; otherwise the one beside the running executable,
+ * then the one beside the shared object holding this library (a build tree's, or the Python extension,
+ * beside which the build copies it), then the installed one. HDF5 and NetCDF-4 files are read the same
+ * way by indentmap-hdf5-read (INDENTMAP_HDF5_READER). */
 const char *im_gwyddion_reader(void);
 /* Writes a surface by extension: .npy (float64), .gsf, .sdf (binary, metres), .nc, .x3p, else a text
  * matrix. A NaN or Inf height is refused before anything is written (IM_EINVAL naming the path and

@@ -35,6 +35,16 @@ def test_errors_carry_the_library_message(tmp_path):
     assert (tmp_path / "fifo").is_fifo()
 
 
+def test_a_file_that_crashes_libhdf5_is_a_format_error():
+    """libhdf5 crashes inside itself on fuzz_hdf5's input, which ended this interpreter with it; read in a
+    child (indentmap-hdf5-read, which the build puts beside the extension module), the file is refused
+    and Python goes on."""
+    crash = os.path.join(os.environ.get("IM_SOURCE_DIR", ""), "fuzz", "regressions", "hdf5",
+                         "libhdf5-crash-segv-reading-group-btree.h5")
+    with pytest.raises(im.FormatError, match=r"h5: the HDF5 library \(libhdf5\) crashed reading it \(signal 11\)"):
+        im.read(crash)
+
+
 def test_plan_solves_complementarity_and_warm_starts(rough64):
     n = 48
     y, x = np.mgrid[0:n, 0:n] + 0.5

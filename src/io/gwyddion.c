@@ -1,75 +1,33 @@
 /* Instrument formats through Gwyddion's file modules: the program that runs them, and its stream. */
-#define _GNU_SOURCE /* pipe2 */
 #include "io/gwyddion.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "io/child_reader.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
-#include <signal.h>
-#include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-extern char **environ;
-
-/* The program beside the running executable (a build tree's, or bin/ beside libexec/ when installed
- * so): found through /proc/self/exe, the program's own folder, never a path fixed at build time
- * that someone else could create later. */
-static const char *reader_beside_this_program(void)
-{
-    static __thread char path[4096];
-    ssize_t length = readlink("/proc/self/exe", path, sizeof path - 64);
-    if (length <= 0)
-        return NULL;
-    path[length] = '\0';
-    char *slash = strrchr(path, '/');
-    if (!slash)
-        return NULL;
-    snprintf(slash + 1, 64, "indentmap-gwyddion-read");
-    return access(path, X_OK) == 0 ? path : NULL;
-}
+static const child_program GWYDDION_PROGRAM = {
+    .name = "indentmap-gwyddion-read",
+    .environment = "INDENTMAP_GWYDDION_READER",
+#ifdef IM_GWYDDION_READER_INSTALLED
+    .installed = IM_GWYDDION_READER_INSTALLED,
+#endif
+    .reader = "Gwyddion's reader",
+    .parser = "Gwyddion's file module",
+    .damage = "a damaged file?",
+};
 
 const char *im_gwyddion_reader(void)
 {
-    const char *chosen = secure_getenv("INDENTMAP_GWYDDION_READER");
-    if (chosen && chosen[0])
-        return access(chosen, X_OK) == 0 ? chosen : NULL;
-    const char *beside = reader_beside_this_program();
-    if (beside)
-        return beside;
-#ifdef IM_GWYDDION_READER_INSTALLED
-    if (access(IM_GWYDDION_READER_INSTALLED, X_OK) == 0)
-        return IM_GWYDDION_READER_INSTALLED;
-#endif
-    return NULL;
+    return child_program_path(&GWYDDION_PROGRAM);
 }
 
-enum { STREAM_LINE = 4096, MAX_LISTED = 8 };
-
-/* One text line of the stream, without its newline, control bytes shown as '?' (titles come from
- * the files); 0 at the end of the stream. */
-static int stream_line(FILE *stream, char *line)
-{
-    if (!fgets(line, STREAM_LINE, stream)) {
-        line[0] = '\0';
-        return 0;
-    }
-    size_t length = strcspn(line, "\n");
-    if (line[length] != '\n')
-        for (int c = fgetc(stream); c != EOF && c != '\n'; c = fgetc(stream))
-            ; /* a longer line is cut */
-    line[length] = '\0';
-    for (char *at = line; *at; ++at)
-        if ((unsigned char)*at < 0x20 && *at != '\t')
-            *at = '?';
-    return 1;
-}
+enum { MAX_LISTED = 8 };
 
 typedef struct stream_header {
     char module[64];
@@ -116,11 +74,11 @@ static int take_field_line(const char *path, const char *line, stream_header *he
 
 static int read_stream_header(FILE *stream, const char *path, stream_header *header, int *answered)
 {
-    char line[STREAM_LINE];
-    if (!stream_line(stream, line) || strcmp(line, "indentmap-gwyddion-read 1") != 0)
+    char line[CHILD_STREAM_LINE];
+    if (!child_stream_line(stream, line) || strcmp(line, "indentmap-gwyddion-read 1") != 0)
         return im_fail(IM_EFORMAT, "%s: Gwyddion's reader gave no answer one can read (first line '%.40s')", path,
                        line);
-    while (stream_line(stream, line)) {
+    while (child_stream_line(stream, line)) {
         *answered = strncmp(line, "error ", 6) == 0 || strncmp(line, "field ", 6) == 0;
         if (strncmp(line, "error unknown-format ", 21) == 0)
             return im_fail(IM_EFORMAT, "%s: " GWYDDION_UNKNOWN_FORMAT ": %.200s", path, line + 21);
@@ -233,97 +191,6 @@ int gwyddion_stream_file_read(const char *path, im_field **out)
     return status;
 }
 
-/* The program's environment for one read: a pipe for its stream, a temporary file for its errors. */
-typedef struct reader_process {
-    pid_t child;
-    FILE *from, *errors;
-    int started;
-    int answered; /* the stream held an error line or a field: its words are the refusal */
-} reader_process;
-
-/* Spawn attributes: no signal blocked and the default actions for those a caller may have changed
- * (Python ignores SIGPIPE; the alarm that bounds a module's time must end it). */
-static void default_signals(posix_spawnattr_t *attributes)
-{
-    sigset_t none, defaults;
-    sigemptyset(&none);
-    sigemptyset(&defaults);
-    int reset[] = {SIGPIPE, SIGINT, SIGTERM, SIGALRM, SIGCHLD};
-    for (size_t k = 0; k < sizeof reset / sizeof *reset; ++k)
-        sigaddset(&defaults, reset[k]);
-    posix_spawnattr_init(attributes);
-    posix_spawnattr_setsigmask(attributes, &none);
-    posix_spawnattr_setsigdefault(attributes, &defaults);
-    posix_spawnattr_setflags(attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-}
-
-/* Starts the program on path ("--" first: a file may be named like an option), its stream on a pipe,
- * its errors (Gwyddion's warnings, a loader's message) into a temporary file quoted on failure. */
-static int start_reader(const char *program, const char *path, const char *channel, reader_process *reader)
-{
-    int ends[2];
-    reader->errors = tmpfile();
-    if (!reader->errors || pipe2(ends, O_CLOEXEC) != 0)
-        return im_fail(IM_EIO, "%s: cannot start Gwyddion's reader: %s", path, strerror(errno));
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_adddup2(&actions, ends[1], 1);
-    posix_spawn_file_actions_adddup2(&actions, fileno(reader->errors), 2);
-    posix_spawnattr_t attributes;
-    default_signals(&attributes);
-    char *arguments[] = {(char *)program, "--", (char *)path, channel[0] ? (char *)channel : NULL, NULL};
-    int failed = posix_spawn(&reader->child, program, &actions, &attributes, arguments, environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attributes);
-    close(ends[1]);
-    if (failed) {
-        close(ends[0]);
-        return im_fail(IM_EIO, "%s: cannot start Gwyddion's reader %s: %s", path, program, strerror(failed));
-    }
-    reader->started = 1;
-    reader->from = fdopen(ends[0], "rb");
-    if (reader->from)
-        return IM_OK;
-    close(ends[0]); /* the reader's next write fails and ends it */
-    return im_fail(IM_ENOMEM, "%s: cannot read Gwyddion's reader: %s", path, strerror(errno));
-}
-
-/* The last line the program wrote on its standard error, or "". */
-static void last_error_line(FILE *errors, char *line, size_t size)
-{
-    char text[STREAM_LINE];
-    line[0] = '\0';
-    rewind(errors);
-    while (fgets(text, sizeof text, errors))
-        if (text[strspn(text, " \t\r\n")])
-            snprintf(line, size, "%.*s", (int)strcspn(text, "\r\n"), text);
-}
-
-/* The program's end: a crash or a hang in a vendor parser is a refusal of the file, not of the caller.
- * When another part of the process reaps children (SIGCHLD ignored, a watcher), the status is gone:
- * the stream alone then decides. */
-static int finish_reader(const char *path, const reader_process *reader, int parsed)
-{
-    int how = 0;
-    pid_t ended;
-    while ((ended = waitpid(reader->child, &how, 0)) < 0 && errno == EINTR)
-        ;
-    if (ended < 0)
-        return parsed;
-    char said[200];
-    last_error_line(reader->errors, said, sizeof said);
-    if (WIFSIGNALED(how) && WTERMSIG(how) == SIGALRM)
-        return im_fail(IM_EFORMAT, "%s: Gwyddion's file module ran out of time reading it (a damaged file?)", path);
-    if (WIFSIGNALED(how) && WTERMSIG(how) != SIGPIPE)
-        return im_fail(IM_EFORMAT, "%s: Gwyddion's file module crashed reading it (signal %d): a damaged file?%s%s",
-                       path, WTERMSIG(how), said[0] ? " It said: " : "", said);
-    if (parsed != IM_OK && !reader->answered && WIFEXITED(how) && WEXITSTATUS(how) != 0)
-        return im_fail(IM_EFORMAT, "%s: Gwyddion's reader ended with status %d%s%s", path, WEXITSTATUS(how),
-                       said[0] ? ": " : "", said);
-    return parsed;
-}
-
 /* Values without a unit beside lateral sizes in a unit are counts or volts as often as lengths: their
  * unit is not guessed (a file with no units at all is read as a bare matrix). */
 static int check_height_unit(const char *path, const surface_stated *stated, const im_surface_read_options *options)
@@ -334,6 +201,18 @@ static int check_height_unit(const char *path, const surface_stated *stated, con
                    "(--height-unit) if they are heights", path, stated->conversion, stated->units.lateral);
 }
 
+/* Where the program's stream goes: child_read hands the parser one pointer. */
+typedef struct stream_result {
+    im_field **out;
+    surface_stated *stated;
+} stream_result;
+
+static int parse_from_program(FILE *stream, const char *path, void *result_, int *answered)
+{
+    stream_result *result = result_;
+    return stream_parse(stream, path, result->out, result->stated, answered);
+}
+
 int gwyddion_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
                       surface_stated *stated)
 {
@@ -342,16 +221,9 @@ int gwyddion_read_raw(const char *path, const im_surface_read_options *options, 
     if (!program)
         return im_fail(IM_EFORMAT, "%s: a format read through Gwyddion's file modules, which this build lacks "
                        "(install libgwyddion20-dev and gwyddion, then rebuild)", path);
-    reader_process reader = {0};
-    int status = start_reader(program, path, options ? options->channel : "", &reader);
-    if (status == IM_OK)
-        status = stream_parse(reader.from, path, out, stated, &reader.answered);
-    if (reader.from)
-        fclose(reader.from); /* before the wait: a reader still writing ends on the closed pipe */
-    if (reader.started)
-        status = finish_reader(path, &reader, status);
-    if (reader.errors)
-        fclose(reader.errors);
+    stream_result result = {.out = out, .stated = stated};
+    int status = child_read(&GWYDDION_PROGRAM, program, path, options ? options->channel : "", parse_from_program,
+                            &result);
     if (status == IM_OK)
         status = check_height_unit(path, stated, options);
     if (status != IM_OK && *out) {

@@ -8,6 +8,7 @@
 
 #include "indentmap/status.h"
 #include "io/payload.h"
+#include "io/hdf5.h"
 #include "io/readers.h"
 
 #include <errno.h>
@@ -344,6 +345,13 @@ static int check_classic_header(const char *path, const unsigned char *bytes, si
     return IM_OK;
 }
 
+/* 1 when the stream starts as a classic file does ("CDF" and a version byte). */
+static int starts_classic(FILE *stream)
+{
+    unsigned char magic[4] = {0};
+    return fread(magic, 1, 4, stream) == 4 && memcmp(magic, "CDF", 3) == 0;
+}
+
 /* Opens the dataset. A classic file (CDF1, CDF2, CDF5) is mapped into memory and opened from there:
  * netCDF then refuses to read past its end, where reading the file directly would return zeros for
  * the values of a truncated file. NetCDF-4 (HDF5) files are opened directly (HDF5 checks its own
@@ -356,8 +364,7 @@ static int open_dataset(const char *path, mapped_file *file, int *ncid)
     int error, status = im_read_open(path, "rb", IM_READ_REGULAR, &stream, &size); /* never a FIFO or device */
     if (status != IM_OK)
         return status;
-    unsigned char magic[4] = {0};
-    int classic = fread(magic, 1, 4, stream) == 4 && memcmp(magic, "CDF", 3) == 0;
+    int classic = starts_classic(stream);
     if (classic) {
         file->size = (size_t)size;
         file->bytes = mmap(NULL, file->size, PROT_READ, MAP_PRIVATE, fileno(stream), 0);
@@ -380,7 +387,7 @@ static int open_dataset(const char *path, mapped_file *file, int *ncid)
     return IM_OK;
 }
 
-int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
+int netcdf_read_in_process(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
     *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y", .lateral_key = "x:unit",
@@ -394,6 +401,20 @@ int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
     if (file.bytes)
         munmap(file.bytes, file.size);
     return status;
+}
+
+/* Anything not classic goes to netCDF's HDF5 layer (libhdf5, which crashes inside itself on some hostile
+ * files): read in a child. */
+int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated)
+{
+    *out = NULL;
+    FILE *stream;
+    int status = im_read_open(path, "rb", IM_READ_REGULAR, &stream, NULL);
+    if (status != IM_OK)
+        return status;
+    int classic = starts_classic(stream);
+    fclose(stream);
+    return classic ? netcdf_read_in_process(path, out, stated) : netcdf4_read_raw(path, out, stated);
 }
 
 int im_netcdf_read(const char *path, im_field **out)

@@ -31,7 +31,11 @@ int gsf_read_raw(const char *path, im_field **out, surface_stated *stated);
 int text_read_raw(const char *path, im_field **out, surface_stated *stated);
 int npy_read_raw(const char *path, im_field **out, surface_stated *stated);
 int sdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+/* NetCDF (netcdf.c): a classic file read in this process; NetCDF-4, which netCDF reads with libhdf5, in a child
+ * process (netcdf4_read_raw, hdf5.h), as HDF5 files are. */
 int netcdf_read_raw(const char *path, im_field **out, surface_stated *stated);
+/* Either kind read in this process: what the program runs for NetCDF-4. */
+int netcdf_read_in_process(const char *path, im_field **out, surface_stated *stated);
 int x3p_read_raw(const char *path, im_field **out, surface_stated *stated);
 int tmd_read_raw(const char *path, im_field **out, surface_stated *stated);
 
@@ -43,7 +47,9 @@ typedef int (*surface_channel_reader)(const char *path, const im_surface_read_op
 int surface_read_channel_format(const char *path, surface_channel_reader read, const im_surface_read_options *options,
                                 im_field **out, im_surface_read_info *info);
 
-/* Plain HDF5 (hdf5.c): each 2-D numeric data set is a channel, by default the first; a bare matrix. */
+/* Plain HDF5: each 2-D numeric data set is a channel, by default the first; a bare matrix. Read in a child
+ * process, indentmap-hdf5-read (hdf5_child.c), since libhdf5 crashes inside itself on some hostile files:
+ * IM_EFORMAT naming path, saying so, when it does, and when this build's program is not found. */
 int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
                   surface_stated *stated);
 /* A contact.engineering container (container.c): each topography of its meta.yml is a channel, by

@@ -20,7 +20,9 @@
  * reads the file; line-scan when the file holds no image but curves, a profile's graph, MESSAGE then
  * saying how many; else failed) and exit status 2. Titles and units come from the file: control bytes
  * are written as '?' and blanks in units as '_', so that no file can break a line. A module that
- * runs longer than READ_SECONDS is ended by SIGALRM (a parser looping on a damaged file). */
+ * runs longer than CHILD_READ_SECONDS is ended by SIGALRM (a parser looping on a damaged file). */
+#include "io/child_reader.h"
+
 #include <libgwyddion/gwyddion.h>
 #include <libgwymodule/gwymodule-file.h>
 #include <libgwymodule/gwymoduleloader.h>
@@ -43,8 +45,6 @@ typedef struct _GwyGraphCurveModel GwyGraphCurveModel;
 gint gwy_graph_model_get_n_curves(GwyGraphModel *gmodel);
 GwyGraphCurveModel *gwy_graph_model_get_curve(GwyGraphModel *gmodel, gint cindex);
 gint gwy_graph_curve_model_get_ndata(GwyGraphCurveModel *gcmodel);
-
-enum { READ_SECONDS = 300 };
 
 typedef struct channel {
     int id;
@@ -276,7 +276,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: %s [--] FILE [CHANNEL] | --formats\n", argv[0]);
         return 2;
     }
-    alarm(READ_SECONDS);
+    alarm(CHILD_READ_SECONDS);
     gwy_app_init_nongui(NULL);
     if (first == 1 && strcmp(argv[1], "--formats") == 0)
         return list_formats();
