@@ -41,8 +41,8 @@ history() {
       > "$run.txt" 2>&1
     echo "$name $device: exit $?, $(head -1 "$run.txt")"
     # the solves' own seconds and iterations, summed over the steps (the machine has no bc)
-    awk -v d="$name $device" '/^step/ { for (i = 1; i <= NF; ++i) { if ($i == "s") t += $(i - 1); if ($i == "iterations") n += $(i + 1) } }
-                        END { printf "%s: %d steps solved in %.3f s, %d iterations\n", d, NR, t, n }' "$run.txt"
+    awk -v d="$name $device" '/^step/ { ++k; for (i = 1; i <= NF; ++i) { if ($i == "s") t += $(i - 1); if ($i == "iterations") n += $(i + 1) } }
+                        END { printf "%s: %d steps solved in %.3f s, %d iterations\n", d, k, t, n }' "$run.txt"
   done
   paste -d' ' <(cut -d, -f"$columns" "$out/${name}_gpu/history.csv") <(cut -d, -f"$columns" "$out/${name}_cpu/history.csv") |
     head -40
