@@ -588,10 +588,17 @@ static double negative_mean_gap(const im_indentation *run, const im_solve_result
  * (one solve) unless patches yield; with a hardness their overlap opens no gap, so the approach is
  * searched from there upwards (the mean gap falls as w grows, to 0 once every patch has yielded). A
  * target above mean g0 leaves the flat clear of the surface: no contact, at a negative approach. */
-static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
+/* The approach of a periodic cell's mean gap: mean g0 - target (mean u = 0, with or without an adhesive zone,
+ * whose stress moves no mean either). */
+static double mean_gap_approach(const im_indentation *run, double target)
 {
     const size_t n = (size_t)run->window.nx * run->window.ny;
-    const double w = sum_doubles(run->window_gap0, n) / (double)n - target;
+    return sum_doubles(run->window_gap0, n) / (double)n - target;
+}
+
+static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
+{
+    const double w = mean_gap_approach(run, target);
     approach_search search = {.run = run, .target = -target, .measure = negative_mean_gap};
     double e_lo, e_hi;
     int status = trial(&search, fmax(w, 0.0), &e_lo);
@@ -617,14 +624,10 @@ static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result
     return status;
 }
 
-/* The approach adhesion's passes hold: the target, or on a periodic cell the approach of the mean gap
- * target, mean g0 - target (mean u = 0: the zone's stress moves no mean either). */
+/* The approach adhesion's passes hold: the target, or on a periodic cell its mean gap's. */
 static double adhesive_approach(const im_indentation *run, double target)
 {
-    if (run->control != IM_CONTROL_MEAN_GAP)
-        return target;
-    const size_t n = (size_t)run->window.nx * run->window.ny;
-    return sum_doubles(run->window_gap0, n) / (double)n - target;
+    return run->control == IM_CONTROL_MEAN_GAP ? mean_gap_approach(run, target) : target;
 }
 
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
