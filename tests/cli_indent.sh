@@ -106,8 +106,33 @@ awk -F, 'NR > 1 && $3 < 0 && $25 > 0 && $26 > 0 { pulled = 1 } END { exit !pulle
 head -c 8 "$DIR/sticky/force_distance.png" | od -An -tx1 | grep -q '89 50 4e 47' && [ ! -e "$DIR/sticky/indentation.csv" ] \
     || fail "no force-distance figure, or an Oliver-Pharr table of an adhesive history"
 grep -q "adhesion: pull-off force" "$DIR/sticky.log" || fail "the pull-off is not said"
+# ... under load control (--load): the same sphere through the loads of sticky's retraction while they fall to
+# 95% of its least, at sticky's approaches (to the solver's tolerance in the load or the approach); then a load
+# 2% beyond the least is refused naming the pull-off, exit 2, the history kept up to it.
+loads=$(awk -F, 'NR > 1 { n[NR] = $3; w[NR] = $2 } END { top = 0; for (i = 2; i <= NR; ++i) if (n[i] > n[top] || !top) top = i;
+    least = 0; for (i = top; i <= NR; ++i) if (n[i] < least) least = n[i];
+    for (i = top; i <= NR && n[i] >= 0.95 * least; ++i) printf "%s%.17g", (i > top ? "," : ""), n[i];
+    printf " %.17g\n", 1.02 * least }' "$DIR/sticky/history.csv")
+"$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+    --load "${loads% *}" --out "$DIR/sticky-load" > /dev/null || fail "adhesion under load control exited $?"
+python3 - "$DIR/sticky/history.csv" "$DIR/sticky-load/history.csv" <<'PY' || fail "load control off displacement control's"
+import csv, sys
+dc = [r for r in csv.DictReader(open(sys.argv[1]))]
+lc = [r for r in csv.DictReader(open(sys.argv[2]))]
+top = max(range(len(dc)), key=lambda i: float(dc[i]["load"]))
+assert len(lc) >= 10, len(lc)
+for k, row in enumerate(lc):
+    ref = dc[top + k]
+    dn, dw = abs(float(row["load"]) - float(ref["load"])), abs(float(row["approach"]) - float(ref["approach"]))
+    assert dn <= 2e-6 * 17 or dw <= 5e-6 * max(abs(float(ref["approach"])), 0.6366), (k, row, ref)
+    assert row["contact_patches"] == ref["contact_patches"], (k, row["contact_patches"], ref["contact_patches"])
+PY
+"$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+    --load "${loads% *},${loads#* }" --out "$DIR/sticky-off" > /dev/null 2> "$DIR/sticky-off.err"
+[ $? -eq 2 ] && grep -q "pull-off force under load control" "$DIR/sticky-off.err" \
+    && [ "$(($(wc -l < "$DIR/sticky-off/history.csv") - 1))" -eq "$(($(wc -l < "$DIR/sticky-load/history.csv") - 1))" ] \
+    || fail "a load beyond the pull-off under load control: $(cat "$DIR/sticky-off.err")"
 for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
-           "--adhesion-work 0.1 --adhesion-range 1 --load 1|takes --approach" \
            "--adhesion-work 0.1 --adhesion-range 1 --hardness 1 --approach 1|with --hardness" \
            "--periodic --adhesion-work 0.1 --adhesion-range 1 --pressure 0.01|takes --mean-gap with --periodic"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"

@@ -34,7 +34,7 @@ static sphere_case sphere_case_make(double lambda, double scale)
                          M_PI * work * radius, {1.0, work, work / stress}};
 }
 
-static im_indentation *sphere_run(const sphere_case *c, double largest)
+static im_indentation *sphere_run_under(const sphere_case *c, enum im_control control, double largest)
 {
     const int n = (int)(8 * c->scale);
     im_field *surface = NULL;
@@ -45,10 +45,15 @@ static im_indentation *sphere_run(const sphere_case *c, double largest)
     o.adhesion_range = c->range;
     im_indenter sphere = im_indenter_sphere(c->radius);
     im_indentation *run = NULL;
-    if (im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, largest * c->approach_unit, &o, &run) != IM_OK)
+    if (im_indentation_create(surface, &sphere, control, largest, &o, &run) != IM_OK)
         fail_msg("im_indentation_create: %s", im_last_error());
     im_field_free(surface);
     return run;
+}
+
+static im_indentation *sphere_run(const sphere_case *c, double largest)
+{
+    return sphere_run_under(c, IM_CONTROL_DISPLACEMENT, largest * c->approach_unit);
 }
 
 static im_step_result sphere_step(im_indentation *run, const sphere_case *c, double d)
@@ -279,6 +284,97 @@ static void approach_and_retraction_differ(void **state)
     assert_true(loop > 0); /* the retraction pulls where the approach did not: work lost in the jumps */
 }
 
+/* ---- load control: the stable branches of the force-distance curve ---- */
+
+/* A displacement-controlled approach to D = 1.5 and retraction to the least load, as the load-controlled runs
+ * below take it: the loads, approaches and contacts of its steps on the stable branches (N rising on approach
+ * once positive, N falling on retraction), in order. */
+typedef struct stable_path {
+    double load[40], approach[40];
+    long contact[40];
+    int count;
+    double least_load; /* the retraction's least sampled load */
+} stable_path;
+
+static stable_path sphere_stable_path(const sphere_case *c)
+{
+    im_indentation *run = sphere_run(c, 2.0);
+    stable_path path = {.count = 0, .least_load = INFINITY};
+    for (int k = 0; k <= 35; ++k) {
+        const double d = k <= 15 ? 0.1 * k : 1.5 - 0.1 * (k - 15);
+        const im_step_result r = sphere_step(run, c, d);
+        const int falling = k > 15 && r.load < path.least_load;
+        if ((k <= 15 && r.load > 0) || falling) {
+            path.load[path.count] = r.load;
+            path.approach[path.count] = r.approach;
+            path.contact[path.count++] = r.contact_patches;
+        }
+        if (k > 15)
+            path.least_load = fmin(path.least_load, r.load);
+    }
+    im_indentation_free(run);
+    return path;
+}
+
+/* Under load control the sphere holds the loads displacement control found on the stable branches, at the same
+ * approaches (to the load tolerance over the contact stiffness) and with the same contact: the search moves
+ * forward from each step's state as the approach did, so the hysteresis (the retraction's larger zone) is the
+ * same. The loads within 5% of the least are left out: there the retraction's load has small rises where a ring
+ * of patches lets go, between the samples, and load control meets such a load first at another approach. */
+static void load_control_holds_the_stable_branches(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(1.0, 8);
+    const stable_path path = sphere_stable_path(&c);
+    assert_true(path.count >= 15);
+    double largest = 0;
+    for (int i = 0; i < path.count; ++i)
+        largest = fmax(largest, fabs(path.load[i]));
+    im_indentation *run = sphere_run_under(&c, IM_CONTROL_LOAD, largest);
+    double worst = 0;
+    int held = 0;
+    for (int i = 0; i < path.count && path.load[i] >= 0.95 * path.least_load; ++i, ++held) {
+        im_step_result r;
+        if (im_indentation_step(run, path.load[i], &r) != IM_OK)
+            fail_msg("load %g (step %d): %s", path.load[i], i, im_last_error());
+        worst = fmax(worst, fabs(r.approach - path.approach[i]) / c.approach_unit);
+        /* the search ends within tol of the load, or where tol of the approach (or of delta_c, near 0) no longer
+         * resolves it; each displacement-controlled solve is exact to tol: a few tol apart in one or the other */
+        assert_true(fabs(r.load - path.load[i]) <= 2e-8 * largest ||
+                    fabs(r.approach - path.approach[i]) <= 5e-8 * fmax(fabs(path.approach[i]), c.range));
+        assert_int_equal(r.contact_patches, path.contact[i]);
+    }
+    im_indentation_free(run);
+    print_message("load control: %d steps, approaches within %.2g L^2/R of displacement control's\n", held, worst);
+    assert_true(held >= 15);
+}
+
+/* Unloading under load control holds down to the least load of the retraction curve (the pull-off force under
+ * load control) and no further: a target 1% beyond displacement control's least sampled load is refused naming
+ * the pull-off and leaves the state as it was (the last step's load and approach); 1% short of it is then held. */
+static void load_control_stops_at_pull_off(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(1.0, 8);
+    const stable_path path = sphere_stable_path(&c);
+    double top = 0;
+    for (int i = 0; i < path.count; ++i)
+        top = fmax(top, path.load[i]);
+    const double least = path.least_load;
+    assert_true(least < 0 && top > 0);
+    im_indentation *run = sphere_run_under(&c, IM_CONTROL_LOAD, fmax(top, -1.1 * least));
+    im_step_result r, held;
+    assert_int_equal(im_indentation_step(run, top, &r), IM_OK);
+    assert_int_equal(im_indentation_step(run, 0.5 * least, &held), IM_OK);
+    assert_int_equal(im_indentation_step(run, 1.01 * least, &r), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "pull-off force under load control"));
+    assert_close(r.load, held.load, 0);
+    assert_close(r.approach, held.approach, 0);
+    assert_int_equal(im_indentation_step(run, 0.99 * least, &r), IM_OK);
+    assert_close(r.load, 0.99 * least, 1e-7);
+    im_indentation_free(run);
+}
+
 /* A vanishing work of adhesion gives the repulsive answers: the same loads to 1e-8 and the same contact
  * on a rough surface under a cone. */
 static void vanishing_work_is_repulsive(void **state)
@@ -455,8 +551,10 @@ static void refusals(void **state)
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "adhesion work"));
     o.adhesion_range = 0.5;
+    o.periodic = 1;
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_LOAD, 1, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "load control"));
+    assert_non_null(strstr(im_last_error(), "mean-gap control on a periodic cell"));
+    o.periodic = 0;
     o.hardness = 0.1;
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "adhesion under a hardness"));
@@ -518,6 +616,8 @@ int main(void)
         cmocka_unit_test(sphere_follows_maugis_dugdale),
         cmocka_unit_test(flat_punch_follows_kendall),
         cmocka_unit_test(cone_follows_jkr),
+        cmocka_unit_test(load_control_holds_the_stable_branches),
+        cmocka_unit_test(load_control_stops_at_pull_off),
         cmocka_unit_test(approach_and_retraction_differ),
         cmocka_unit_test(vanishing_work_is_repulsive),
         cmocka_unit_test(step_sums_are_the_fields),

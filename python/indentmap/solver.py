@@ -114,8 +114,10 @@ class Indentation:
 
     ``adhesion_work`` w and ``adhesion_range`` delta_c (both > 0) make the surfaces attract (the
     Maugis-Dugdale law, ``indentmap indent --adhesion-work --adhesion-range``; docs/solver.md, "Adhesion"):
-    displacement control on the half-space only; approaches may then be negative down to -largest (the
-    punch pulled away), loads negative under tension; ``adhesion(history)`` gives the pull-off.
+    displacement or load control on the half-space, mean-gap control on a periodic cell; approaches and loads
+    may then be negative down to -largest (the punch pulled away, the contact under tension); under load
+    control a load beyond the pull-off force is refused (InvalidArgument naming it: the contact jumps out);
+    ``adhesion(history)`` gives the pull-off.
 
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a

@@ -136,8 +136,25 @@ def test_adhesion_bit_for_bit(cli, rough64, tmp_path):
     summary = im.adhesion(history)
     for name, value in summary.items():
         assert value == record[name] or (np.isnan(value) and record[name] is None), name
-    with pytest.raises(im.InvalidArgument, match="displacement control"):
-        im.Indentation(rough64, im.Sphere(40), control="load", largest=1.0, adhesion_work=0.02, adhesion_range=0.5)
+
+
+def test_adhesion_under_load_control_bit_for_bit(cli, rough64, tmp_path):
+    """Adhesion under load control (indent --load with negative loads): the same history as the program's, and a
+    load beyond the pull-off refused by both, naming it."""
+    im.write(tmp_path / "s.npy", rough64)
+    options = dict(adhesion_work=0.02, adhesion_range=0.5)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--punch", "sphere", "--radius", "40", "--adhesion-work", "0.02",
+            "--adhesion-range", "0.5", "--load", "1,0,-0.3", "--out", tmp_path / "out")
+    history = im.indent(rough64, im.Sphere(40), loads=[1.0, 0.0, -0.3], **options)
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    assert history["load"][-1] == pytest.approx(-0.3, rel=1e-5) and history["tensile_force"][-1] > 0
+    with pytest.raises(im.InvalidArgument, match="pull-off force under load control"):
+        im.indent(rough64, im.Sphere(40), loads=[1.0, -100.0], **options)
+    with pytest.raises(im.InvalidArgument, match="mean-gap control on a periodic cell"):
+        im.Indentation(rough64, None, control="load", largest=1.0, periodic=True, **options)
 
 
 def test_periodic_bit_for_bit(cli, rough64, tmp_path):

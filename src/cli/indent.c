@@ -90,8 +90,9 @@ static void usage(FILE *stream)
             "                      stress); default none\n"
             "  --adhesion-work W   adhesion (Maugis-Dugdale): the work of adhesion W (E*'s stress times\n"
             "                      the length unit), with --adhesion-range: the stress W / D pulls every\n"
-            "                      patch whose gap is at most D. Under --approach only, whose values may\n"
-            "                      then be negative (the punch pulled away): the force-distance curve\n"
+            "                      patch whose gap is at most D. Under --approach or --load, whose values\n"
+            "                      may then be negative (the punch pulled away; a load beyond the pull-off\n"
+            "                      force is refused: the contact jumps out): the force-distance curve\n"
             "                      with its jumps, pull-off and lost work (run.json \"adhesion\",\n"
             "                      force_distance.png and .pdf; docs/solver.md, \"Adhesion\")\n"
             "  --adhesion-range D  the range of the adhesive stress (length unit); with --adhesion-work\n"
@@ -229,12 +230,12 @@ static const char *target_name(enum im_control control)
 
 /* --approach, --load, --pressure or --mean-gap, once all options are read: a step list (front.h:
  * steps_parse, as a scene's [loading] steps, with its messages); approaches may be negative with
- * adhesion. */
+ * adhesion (approaches and loads: the punch pulled away, the contact under tension). */
 static int parse_targets(indent_options *o)
 {
     char error[512];
     const char *option = target_option(o);
-    const int negative = o->control == IM_CONTROL_DISPLACEMENT && o->solver.adhesion_work > 0;
+    const int negative = o->control != IM_CONTROL_MEAN_GAP && o->solver.adhesion_work > 0;
     if (!(o->targets = malloc(sizeof(double) * STEPS_MAX)))
         return -1;
     if (steps_parse_signed(option, o->targets_text, negative, o->targets, &o->target_count, error, sizeof error) == 0)
@@ -317,18 +318,19 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-/* Adhesion's options: both or neither, displacement control on the half-space or mean-gap control on a
- * periodic cell, without a hardness (a negative approach is refused by the step list's parser without
+/* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap control on
+ * a periodic cell, without a hardness (a negative target is refused by the step list's parser without
  * adhesion). 0, or -1 with the message said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
-    const enum im_control needed = o->solver.periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT;
+    const int held = o->solver.periodic ? o->control == IM_CONTROL_MEAN_GAP : o->control != IM_CONTROL_MEAN_GAP;
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
-    else if (adhesion && o->control != needed)
-        fprintf(stderr, "indentmap: --adhesion-work takes %s: under load control an adhesive contact jumps where its "
-                "force-distance curve turns (pull-off)\n", o->solver.periodic ? "--mean-gap with --periodic" : "--approach");
+    else if (adhesion && !held)
+        fprintf(stderr, "indentmap: --adhesion-work takes %s\n",
+                o->solver.periodic ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
+                                   : "--approach or --load");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
     else

@@ -61,10 +61,27 @@ int adhesion_create(int nx, int ny, int periodic, double work, double range, adh
     return IM_OK;
 }
 
+struct adhesion_mark {
+    double *share, *lift;
+    double approach, zone_area;
+    long zone_patches;
+    int stepped;
+};
+
+static void free_mark(struct adhesion_mark *m)
+{
+    if (m) {
+        free(m->share);
+        free(m->lift);
+        free(m);
+    }
+}
+
 void adhesion_free(adhesion_state *a)
 {
     if (!a)
         return;
+    free_mark(a->mark);
     free(a->share);
     free(a->gaps);
     free(a->proposal);
@@ -292,4 +309,39 @@ double im_adhesion_maugis_lambda(const im_solver_options *options, double radius
         return NAN;
     const double k = 4.0 / 3.0 * options->e_star, w = options->adhesion_work;
     return 2 * (w / options->adhesion_range) * cbrt(radius / (M_PI * w * k * k));
+}
+
+int adhesion_set_mark(adhesion_state *a)
+{
+    const size_t n = (size_t)a->nx * a->ny;
+    if (!a->mark) {
+        struct adhesion_mark *m = calloc(1, sizeof *m);
+        if (m && (!(m->share = malloc(n * sizeof(double))) || !(m->lift = malloc(n * sizeof(double))))) {
+            free_mark(m);
+            m = NULL;
+        }
+        if (!m)
+            return im_fail(IM_ENOMEM, "adhesion: the state of a %d x %d window for a load search", a->nx, a->ny);
+        a->mark = m;
+    }
+    struct adhesion_mark *m = a->mark;
+    memcpy(m->share, a->share, n * sizeof(double));
+    memcpy(m->lift, a->lift, n * sizeof(double));
+    m->approach = a->approach;
+    m->zone_area = a->zone_area;
+    m->zone_patches = a->zone_patches;
+    m->stepped = a->stepped;
+    return IM_OK;
+}
+
+void adhesion_rewind(adhesion_state *a)
+{
+    const size_t n = (size_t)a->nx * a->ny;
+    const struct adhesion_mark *m = a->mark;
+    memcpy(a->share, m->share, n * sizeof(double));
+    memcpy(a->lift, m->lift, n * sizeof(double));
+    a->approach = m->approach;
+    a->zone_area = m->zone_area;
+    a->zone_patches = m->zone_patches;
+    a->stepped = m->stepped;
 }

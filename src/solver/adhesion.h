@@ -23,6 +23,7 @@ typedef struct adhesion_state {
     double zone_area;        /* the sum of the shares (patches) */
     double approach;         /* the last step's (retraction shrinks Z, approach grows it) */
     int stepped;             /* 0 before the first step */
+    struct adhesion_mark *mark; /* the state adhesion_rewind returns to (adhesion_set_mark), or NULL */
 } adhesion_state;
 
 /* A state for an nx x ny window, or a periodic cell (IM_ENOMEM), with w and delta_c checked by the caller. */
@@ -34,6 +35,11 @@ void adhesion_free(adhesion_state *a);
  * result: the repulsive solve's counts summed over the passes, with the NET load and approach w. */
 int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, double w, double *pressure,
                    double *displacement, im_solve_result *result);
+
+/* A search that tries several approaches from one step's state (load control) marks the state once and
+ * rewinds to it before each try: every try then moves from the same history (IM_ENOMEM). */
+int adhesion_set_mark(adhesion_state *a);
+void adhesion_rewind(adhesion_state *a);
 
 /* The net pressure and displacement of window patch i from the repulsive ones. */
 static inline double adhesion_net_pressure(const adhesion_state *a, size_t i, double repulsive)

@@ -28,7 +28,9 @@ struct im_indentation {
     im_solver_plan *plan;
     im_solver_plan *full_plan; /* made at the first im_indentation_fields_full: the whole grid's u */
     double approach;         /* last step's */
+    double load;             /* last step's (net, with adhesion) */
     adhesion_state *adhesion; /* with a work of adhesion (adhesion.h); the plan's options have none */
+    double *marked_pressure, *marked_displacement; /* adhesion under load control: the last step's solution */
 };
 
 /* g0 = z(r) - h - min(z - h) over the full grid. */
@@ -158,7 +160,8 @@ static double approach_bound(const im_field *surface, const im_indenter *punch, 
     double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
     if (o->hardness > 0)
         smooth = fmax(smooth, im_indenter_profile(punch, sqrt(largest_target / (M_PI * o->hardness))));
-    return isfinite(smooth) ? 1.1 * smooth + height_range(surface) : INFINITY;
+    /* with adhesion the zone's reach too (a deeper adhesive approach is caught by the zone's check) */
+    return isfinite(smooth) ? 1.1 * smooth + height_range(surface) + 2 * o->adhesion_range : INFINITY;
 }
 
 static const char *control_target(enum im_control control)
@@ -166,15 +169,17 @@ static const char *control_target(enum im_control control)
     return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean gap" : "approach";
 }
 
-/* Adhesion is solved under the control its passes hold fixed, the approach: displacement control on the
- * half-space, mean-gap control on a periodic cell (mean u = 0 there, so a mean gap is an approach); under
- * load control an adhesive contact jumps where its force-distance curve turns. No hardness beside it. */
+/* Adhesion's passes hold the approach fixed: displacement control on the half-space, mean-gap control on a
+ * periodic cell (mean u = 0 there, so a mean gap is an approach), and load control on the half-space by a
+ * search over the approach (solve_adhesive_at_load). No hardness beside it. */
 static int check_adhesion_control(enum im_control control, const im_solver_options *options)
 {
-    if (control != (options->periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT))
+    const int held = options->periodic ? control == IM_CONTROL_MEAN_GAP
+                                       : control == IM_CONTROL_DISPLACEMENT || control == IM_CONTROL_LOAD;
+    if (!held)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected %s (adhesion under %s control is not available)",
                        options->adhesion_work, options->periodic ? "mean-gap control on a periodic cell"
-                                                                 : "displacement control on the half-space",
+                                                                 : "displacement or load control on the half-space",
                        control_target(control));
     if (options->hardness > 0)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected no hardness (adhesion under a hardness is not "
@@ -287,6 +292,8 @@ void im_indentation_free(im_indentation *run)
     free(run->displacement);
     free(run->plastic);
     adhesion_free(run->adhesion);
+    free(run->marked_pressure);
+    free(run->marked_displacement);
     free(run);
 }
 
@@ -353,7 +360,7 @@ static int check_reachable(const im_indentation *run, double load)
     /* a flat punch's contact radius is its own; a 2-D profile has no smooth-contact estimate; a
      * periodic cell has no edge */
     if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT || run->punch.kind == IM_PUNCH_PROFILE_2D ||
-        load == 0 || run->options.periodic)
+        load <= 0 || run->options.periodic) /* (under tension, with adhesion: no smooth contact either) */
         return IM_OK;
     double ax, ay;
     im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
@@ -483,9 +490,18 @@ typedef struct approach_search {
     double target;
     /* what the search matches to target: non-decreasing in the approach */
     double (*measure)(const im_indentation *run, const im_solve_result *s);
+    /* one displacement-controlled solve at approach w */
+    int (*solve)(im_indentation *run, double w, im_solve_result *s);
+    double length;         /* the approaches' scale where they pass 0 (adhesion's range; else 0) */
     im_solve_result last;  /* the last trial's, with iterations, convolutions and seconds summed */
     int trials;
 } approach_search;
+
+static int repulsive_solve(im_indentation *run, double w, im_solve_result *s)
+{
+    return im_solver_solve(run->plan, run->window_gap0, IM_CONTROL_DISPLACEMENT, w, run->pressure, run->displacement,
+                           s);
+}
 
 static double solved_load(const im_indentation *run, const im_solve_result *s)
 {
@@ -498,8 +514,7 @@ static int trial(approach_search *search, double w, double *excess)
 {
     im_indentation *run = search->run;
     im_solve_result s;
-    int status = im_solver_solve(run->plan, run->window_gap0, IM_CONTROL_DISPLACEMENT, w, run->pressure,
-                                 run->displacement, &s);
+    int status = search->solve(run, w, &s);
     s.iterations += search->last.iterations;
     s.convolutions += search->last.convolutions;
     s.coarse_iterations += search->last.coarse_iterations;
@@ -546,7 +561,7 @@ static int refine(approach_search *search, double lo, double e_lo, double hi, do
 {
     const double tol = search->run->options.tol;
     int status = IM_OK, side = 0;
-    while (fabs(e) > tol * scale && hi - lo > tol * hi) {
+    while (fabs(e) > tol * scale && hi - lo > tol * fmax(fabs(hi), search->length)) {
         if (search->trials >= SEARCH_MAX)
             return im_fail(IM_ENOCONV, "target %g: no approach in [%.17g, %.17g] reaches it to tol %g after %d "
                            "solves", search->target, lo, hi, tol, search->trials);
@@ -570,7 +585,7 @@ static int refine(approach_search *search, double lo, double e_lo, double hi, do
 /* The approach that carries target (see above). */
 static int solve_at_load(im_indentation *run, double target, im_solve_result *out)
 {
-    approach_search search = {.run = run, .target = target, .measure = solved_load};
+    approach_search search = {.run = run, .target = target, .measure = solved_load, .solve = repulsive_solve};
     double lo, e_lo, hi, e_hi;
     int status = bracket_load(&search, &lo, &e_lo, &hi, &e_hi);
     if (status == IM_OK)
@@ -599,7 +614,7 @@ static double mean_gap_approach(const im_indentation *run, double target)
 static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
 {
     const double w = mean_gap_approach(run, target);
-    approach_search search = {.run = run, .target = -target, .measure = negative_mean_gap};
+    approach_search search = {.run = run, .target = -target, .measure = negative_mean_gap, .solve = repulsive_solve};
     double e_lo, e_hi;
     int status = trial(&search, fmax(w, 0.0), &e_lo);
     search.last.approach = w;
@@ -621,6 +636,156 @@ static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result
     if (status == IM_OK)
         status = refine(&search, lo, e_lo, hi, e_hi, e_hi, target);
     *out = search.last;
+    return status;
+}
+
+/* ---- load control with adhesion ----
+ * An adhesive contact's state depends on its history (adhesion.c: the zone grows on approach, shrinks on
+ * retraction), so the search for the approach that carries a load only ever moves forward, as a quasi-static
+ * loading would: from the last state it accepted (marked), each try goes on towards the target's side (larger
+ * approaches for a larger load, smaller ones for a smaller load); a try that falls short becomes the new mark,
+ * a try that passes the target is undone (rewound to the mark) and the next try goes less far. So the load found
+ * is the first one met on the way, on the stable branch. Loading holds any load (a jump-in on the way only dips
+ * the force). Unloading holds down to the least load met on the way, the pull-off force under load control: a
+ * smaller target has no equilibrium (the contact jumps out), which the search says once its steps are tol short. */
+static int mark_adhesive_state(im_indentation *run)
+{
+    const size_t bytes = (size_t)run->window.nx * run->window.ny * sizeof(double);
+    if (!run->marked_pressure)
+        run->marked_pressure = malloc(bytes);
+    if (!run->marked_displacement)
+        run->marked_displacement = malloc(bytes);
+    if (!run->marked_pressure || !run->marked_displacement)
+        return im_fail(IM_ENOMEM, "adhesion under load control: the last step's state (2 x %.1f MiB)",
+                       bytes / 1048576.0);
+    memcpy(run->marked_pressure, run->pressure, bytes);
+    memcpy(run->marked_displacement, run->displacement, bytes);
+    return adhesion_set_mark(run->adhesion);
+}
+
+static void rewind_adhesive_state(im_indentation *run)
+{
+    const size_t bytes = (size_t)run->window.nx * run->window.ny * sizeof(double);
+    memcpy(run->pressure, run->marked_pressure, bytes);
+    memcpy(run->displacement, run->marked_displacement, bytes);
+    adhesion_rewind(run->adhesion);
+}
+
+static int adhesive_solve(im_indentation *run, double w, im_solve_result *s)
+{
+    rewind_adhesive_state(run);
+    return adhesion_solve(run->adhesion, run->plan, run->window_gap0, w, run->pressure, run->displacement, s);
+}
+
+/* The walk's state: the last accepted approach (the mark) and the try beyond it. */
+typedef struct forward_walk {
+    approach_search search;
+    double direction;    /* +1: towards larger approaches (a larger load), -1: smaller */
+    double near, e_near; /* the mark's approach and excess N - target (its sign: not yet passed) */
+    double scale;        /* |N - target| <= tol scale ends the search */
+} forward_walk;
+
+enum forward_try { TRY_FAILED = -1, TRY_MARKED, TRY_PASSED };
+
+/* One try at w from the mark: TRY_PASSED when its load passed the target (to be undone), else it becomes the
+ * new mark (TRY_MARKED); TRY_FAILED with *status on an error. */
+static enum forward_try try_forward(forward_walk *walk, double w, double *e, int *status)
+{
+    *status = trial(&walk->search, w, e);
+    if (*status != IM_OK)
+        return TRY_FAILED;
+    if (walk->direction * *e >= 0)
+        return TRY_PASSED;
+    walk->near = w, walk->e_near = *e;
+    *status = mark_adhesive_state(walk->search.run);
+    return *status == IM_OK ? TRY_MARKED : TRY_FAILED;
+}
+
+/* From a passing try at far (excess e_far, the state now), the Illinois regula falsi between the mark and far,
+ * the mark moving forward; ends on a try within tol scale of the target (or tol apart in the approach), its
+ * state kept. */
+static int narrow_forward(forward_walk *walk, double far, double e_far)
+{
+    const double tol = walk->search.run->options.tol, length = walk->search.length;
+    int status = IM_OK, side = 0;
+    double e = e_far;
+    while (fabs(e) > tol * walk->scale && fabs(far - walk->near) > tol * fmax(fabs(far), length)) {
+        if (walk->search.trials >= SEARCH_MAX)
+            return im_fail(IM_ENOCONV, "load %g: no approach between %.17g and %.17g reaches it to tol %g after %d "
+                           "solves", walk->search.target, walk->near, far, tol, walk->search.trials);
+        const double w = (walk->near * e_far - far * walk->e_near) / (e_far - walk->e_near);
+        const enum forward_try t = try_forward(walk, w, &e, &status);
+        if (t == TRY_FAILED)
+            return status;
+        if (t == TRY_PASSED) { /* Illinois: the end kept twice running has its excess halved */
+            far = w, e_far = e;
+            walk->e_near *= side == 1 ? 0.5 : 1;
+            side = 1;
+        } else {
+            e_far *= side == -1 ? 0.5 : 1;
+            side = -1;
+        }
+    }
+    return status;
+}
+
+/* Steps from the mark towards the target until a try passes it; then narrow_forward. Steps of delta_c / 8, on
+ * approach doubling up to delta_c: a retraction's state depends on the steps it took (the zone's edge lets go
+ * patch by patch, and a long step skips states a slow pull passes through: its pull-off comes out weaker), so
+ * it keeps to short ones, through the small rises of the load where a ring of patches lets go (a
+ * load-controlled contact snaps on to the next state there), until the surfaces have let go of each other:
+ * then no approach held the target, and the least load met is the pull-off force under load control. */
+static int walk_to_load(forward_walk *walk)
+{
+    im_indentation *run = walk->search.run;
+    const double range = run->options.adhesion_range;
+    double step = range / 8, least = walk->search.target + walk->e_near, least_at = walk->near;
+    for (;;) {
+        const double far = fmin(walk->near + walk->direction * step, run->approach_bound);
+        if (!(far != walk->near))
+            return im_fail(IM_EEDGE, "load %g cannot be reached: at the window's bound, approach %g, the contact "
+                           "carries %g", walk->search.target, walk->near, walk->search.target + walk->e_near);
+        if (walk->search.trials >= SEARCH_MAX)
+            return im_fail(IM_ENOCONV, "load %g: not passed after %d adhesive solves (last approach %g)",
+                           walk->search.target, walk->search.trials, walk->near);
+        double e;
+        int status;
+        const enum forward_try t = try_forward(walk, far, &e, &status);
+        if (t == TRY_FAILED)
+            return status;
+        if (t == TRY_PASSED)
+            return narrow_forward(walk, far, e);
+        if (walk->search.target + e < least)
+            least = walk->search.target + e, least_at = far;
+        if (walk->direction < 0 && walk->search.last.load == 0) /* no contact, no zone: let go */
+            return im_fail(IM_EINVAL, "load %g: below the least load the contact held on retraction, %.9g at "
+                           "approach %.9g (the pull-off force under load control: the contact jumps out)",
+                           walk->search.target, least, least_at);
+        if (walk->direction > 0)
+            step = fmin(2 * step, range);
+    }
+}
+
+static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_result *out)
+{
+    const int stepped = run->adhesion->stepped;
+    const double w0 = stepped ? run->approach : -2 * run->options.adhesion_range; /* clear of the zone: no load */
+    const double n0 = stepped ? run->load : 0;
+    forward_walk walk = {.search = {.run = run, .target = target, .measure = solved_load, .solve = adhesive_solve,
+                                    .length = run->options.adhesion_range},
+                         .direction = n0 - target <= 0 ? 1 : -1, .near = w0, .e_near = n0 - target,
+                         .scale = fmax(fabs(target), fabs(n0))};
+    int status = mark_adhesive_state(run);
+    if (status == IM_OK) {
+        double e;
+        status = n0 == target ? trial(&walk.search, w0, &e) : walk_to_load(&walk);
+    }
+    *out = walk.search.last;
+    if (status != IM_OK) { /* the history stays the last step's */
+        rewind_adhesive_state(run);
+        out->approach = w0;
+        out->load = n0;
+    }
     return status;
 }
 
@@ -651,7 +816,9 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
                        run->options.hardness, cell_capacity);
     im_solve_result s;
     /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
-    if (run->adhesion)
+    if (run->adhesion && run->control == IM_CONTROL_LOAD)
+        status = solve_adhesive_at_load(run, target, &s);
+    else if (run->adhesion)
         status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, adhesive_approach(run, target),
                                 run->pressure, run->displacement, &s);
     else if (run->control == IM_CONTROL_LOAD && run->options.hardness > 0 && target > 0 && !run->options.periodic)
@@ -661,9 +828,10 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     else
         status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
                                  run->displacement, &s);
-    if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0)
+    if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0 && !run->adhesion)
         s.approach = withdrawn_approach(run); /* N = 0 holds at any approach up to it */
     run->approach = s.approach;
+    run->load = s.load;
     if (status == IM_OK && !run->options.periodic) /* a periodic cell has no edge */
         status = check_edge(run);
     if (status == IM_OK && run->adhesion)
