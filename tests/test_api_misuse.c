@@ -423,6 +423,7 @@ SAFE_RESULT(im_render_gl_renderer, "context", im_render_gl_renderer(NULL) == NUL
 SAFE_RESULT(im_render_gl_version, "context", im_render_gl_version(NULL) == NULL)
 ACCEPT(im_image_release, (im_image_release(NULL), 1))
 SAFE_VIEW(im_contact_style_default, "force", im_contact_style_default(BAD).colormap.hi == 1.0)
+SAFE_VIEW(im_contact_largest_tension, "force", im_contact_largest_tension(BAD) == 0.0)
 REPORT(im_render_contact_map, "context", im_render_contact_map(NULL, &good, &contact_style, &image))
 REPORT_VIEW(im_render_contact_map, "force", im_render_contact_map(CONTEXT, BAD, &contact_style, &image))
 REPORT(im_render_contact_map, "style", im_render_contact_map(CONTEXT, &good, NULL, &image))
@@ -723,7 +724,7 @@ REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, 
  * module's format strings): nothing to misuse here. A new function belongs either here or in a case
  * above. */
 static const char *const no_pointer_arguments[] = {
-    "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_memory_available",
+    "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_contact_tension_norm", "im_memory_available",
     "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gif_options_default", "im_gwyddion_reader",
     "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",

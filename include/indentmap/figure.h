@@ -1,5 +1,6 @@
 /* indentmap/figure.h: publication figures around rendered images (render.h): panel grids with
- * panel labels and titles, one shared colour bar with ticks and the quantity's name, a scale bar,
+ * panel labels and titles, one shared colour bar with ticks and the quantity's name (and a second
+ * one for the tension of patches under tension, where there is any), a scale bar,
  * and output as PNG (with the run's parameters in tEXt chunks and the resolution in pHYs), PDF or
  * SVG; frames of an indentation run and animations (GIF, MP4).
  *
@@ -48,6 +49,10 @@ typedef struct im_figure {
     const char *colorbar_label;      /* the quantity, e.g. "local force f / (E* δ²)" */
     int extend_under, extend_over;   /* 1: triangles in the under / over colour beyond the bar's
                                         ends, saying that some values lie outside the norm */
+    const im_colormap *tension_colormap; /* a second bar right of the first: the norm of the tension
+                                        of patches under tension (render.h: im_contact_style.tension);
+                                        NULL (the default): none */
+    const char *tension_label;       /* its quantity, e.g. "tensile force −f / (E* δ²)" */
     double scale_bar;                /* length in the images' units (delta, or their unit);
                                         0: automatic (a 1-2-5 length near a fifth of a panel);
                                         < 0: none */

@@ -22,10 +22,12 @@ static void usage(FILE *stream)
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
             "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
             "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
-            "contact: local compressive forces, patches under tension (adhesion) light blue, none grey\n"
-            "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
-            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg) of those\n"
-            "same annotated frames (the GIF with one 256-colour palette built from all of them).\n"
+            "contact: local compressive forces, none grey (the paper's Fig. 4), patches under tension\n"
+            "(adhesion) on a blue ramp of their tension -f with a second colour bar beside the force's,\n"
+            "from 0 to the largest tension of all the files; height: heights with hill-shading;\n"
+            "animate: one contact map per FORCE file, written as DIR/contact_NNNN.png, then a GIF or\n"
+            "an MP4 (ffmpeg) of those same annotated frames (the GIF with one 256-colour palette built\n"
+            "from all of them).\n"
             "Several files make one figure of panels (a), (b), ... with one shared norm and colour\n"
             "bar, e.g. the paper's Fig. 4: six force files --columns 3 --circle A.\n"
             "Output format from the extension: .png, .pdf or .svg.\n\n"
@@ -57,6 +59,7 @@ typedef struct render_options {
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
+    double shared_tension;       /* the largest tension -f of all the fields: the tension bar's top */
     char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
@@ -143,6 +146,7 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
     note_extremes(o, force, &style.colormap, 1);
+    style.tension = im_contact_tension_norm(o->shared_tension);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
     if (o->has_circle_x)
@@ -220,10 +224,11 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     for (int i = 0; i < count; ++i)
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
-    char height_name[64], force_name[80];
+    char height_name[64], force_name[80], tension_name[96];
     snprintf(height_name, sizeof height_name, "%s / %s", contact ? "" : height_quantity(inputs[0]),
              images[0].unit[0] ? images[0].unit : "δ");
     snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
+    snprintf(tension_name, sizeof tension_name, "tensile force −f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
     const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
@@ -252,6 +257,11 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     figure.colorbar_label = quantity;
     figure.extend_under = o->extend_under;
     figure.extend_over = o->extend_over;
+    const im_colormap tension = im_contact_tension_norm(o->shared_tension);
+    if (contact && o->shared_tension > 0.0) {
+        figure.tension_colormap = &tension;
+        figure.tension_label = tension_name;
+    }
     figure.dpi = o->dpi;
     figure.texts = texts;
     figure.text_count = 6;
@@ -280,6 +290,9 @@ static void set_shared_range(render_options *o, im_field **fields, int count)
     }
     o->shared_lo = lo;
     o->shared_hi = hi;
+    o->shared_tension = 0.0;
+    for (int i = 0; !height && i < count; ++i)
+        o->shared_tension = fmax(o->shared_tension, im_contact_largest_tension(fields[i]));
 }
 
 /* Reads the fields and sets the default norm. */

@@ -178,7 +178,8 @@ int step_distributions_write(const char *prefix, im_indentation *run, double gap
 
 /* Contact frames of steps 1..count drawn from DIR/force_NNNN.npy (as step_fields_write wrote them) into
  * FRAMES/contact_MMMM.png (MMMM = step - 1, the viewer's numbering) with one log force norm (magma, two
- * decades) over all of them, the smooth punch's contact circle where N* is finite (none for a periodic
+ * decades) over all of them and, where any step has tension, one tension norm and its bar (frame.c), the
+ * smooth punch's contact circle where N* is finite (none for a periodic
  * cell), titled with the step and N* (else N in force_unit), carrying texts as PNG text chunks. */
 typedef struct fields_frames {
     const char *dir, *frames;
@@ -199,21 +200,30 @@ int fields_frames_pixels_per_patch(int nx, int ny);
  * decades below `largest`. */
 im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest);
 
-/* A step's contact map: its force field through norm at pixels_per_patch, with the smooth contact
- * circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y) in patches. */
+/* The largest tension -f over the fields (im_contact_largest_tension): the top of the tension norm
+ * the frames share, as they share the force norm; 0 when none pulls. */
+double frame_largest_tension(im_field *const *fields, int count);
+
+/* A step's contact map: its force field through norm (tension: through tension) at pixels_per_patch,
+ * with the smooth contact circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y)
+ * in patches. */
 typedef struct frame_contact {
     const im_field *force;
-    const im_colormap *norm;
+    const im_colormap *norm, *tension;
     int pixels_per_patch;
     double circle_radius, circle_x, circle_y;
 } frame_contact;
 int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image);
 
-/* What a frame's figure says: its title (e.g. "N* = 400") and its colour bar's norm and label. */
+/* What a frame's figure says: its title (e.g. "N* = 400") and its colour bar's norm and label, and the
+ * tension's bar beside it (NULL: none; every frame of a history has it where any step has tension, so
+ * that the frames keep one size). */
 typedef struct frame_words {
     const char *title;
     const im_colormap *norm;
     const char *colorbar_label;
+    const im_colormap *tension;
+    const char *tension_label;
     const im_png_text *texts;       /* PNG text chunks (e.g. the scene's contents); NULL: none */
     int text_count;
 } frame_words;

@@ -110,6 +110,7 @@ typedef struct paper_contact_panels {
     const im_image *images;     /* count maps (borrowed) */
     const char *const *titles;  /* count titles */
     const im_colormap *norm;
+    const im_colormap *tension; /* the tension's norm and bar; NULL: none (no map has tension) */
     int extend_under;
     const char *source;
     const char *contents;

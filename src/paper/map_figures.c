@@ -35,6 +35,8 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const char *path
     figure.colormap = in->norm;
     figure.colorbar_label = "local force f / (E* δ²)";
     figure.extend_under = in->extend_under;
+    figure.tension_colormap = in->tension;
+    figure.tension_label = "tensile force −f / (E* δ²)";
     figure.texts = texts;
     figure.text_count = in->contents && in->contents[0] ? 4 : 3;
     figure.note = load_text;
