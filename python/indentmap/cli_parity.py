@@ -149,11 +149,19 @@ PARITY = {
     "render --frames": NOT_YET,
     "render --backend": BACKEND,
     # ---- render view3d: the 3-D view ----
-    "render view3d": NOT_YET,
-    **{f"render view3d --{name}": NOT_YET for name in (
-        "out", "raw", "force", "displacement", "punch", "alpha", "radius", "x", "y", "punch-mode", "azimuth",
-        "elevation", "distance", "fov", "ortho", "ortho-height", "exaggeration", "width", "height", "samples",
-        "mesh-side", "colormap", "vmin", "vmax", "log", "linear", "title", "dpi")},
+    "render view3d": Python("view3d"),
+    **{f"render view3d --{name}": Python("view3d", name.replace("-", "_")) for name in (
+        "force", "displacement", "punch", "punch-mode", "azimuth", "elevation", "distance", "fov", "ortho",
+        "ortho-height", "exaggeration", "width", "height", "samples", "mesh-side", "colormap", "vmin", "vmax",
+        "log")},
+    "render view3d --raw": Python("view3d", note="view3d returns the data image; Image.save writes it"),
+    "render view3d --alpha": Python("Cone", "alpha"),
+    "render view3d --radius": Python("Sphere", "radius", "Flat(radius) for the flat punch"),
+    "render view3d --x": Python("view3d", "axis"),
+    "render view3d --y": Python("view3d", "axis"),
+    "render view3d --linear": Python("view3d", "log", "log=False"),
+    # the figure around the 3-D image (colour bar, title, exaggeration stated): not yet in Python
+    **{f"render view3d --{name}": NOT_YET for name in ("out", "title", "dpi")},
     "render view3d --backend": BACKEND,
     # ---- run: scenes ----
     "run": Python("run_scene"),

@@ -117,3 +117,40 @@ def test_run_scene_wisdom(tmp_path):
     (tmp_path / "notes").write_text("not wisdom\n")
     with pytest.raises(im.Error, match="notes"):
         im.run_scene(tmp_path / "s.ini", quiet=True, out=tmp_path / "c", wisdom=tmp_path / "notes")
+
+
+VIEW3D_SIZE = ["--width", "160", "--height", "96", "--samples", "1", "--mesh-side", "48"]
+
+
+@pytest.mark.parametrize("options, keywords", [
+    ([], {}),
+    (["--punch", "sphere", "--radius", "20", "--linear", "--colormap", "viridis", "--azimuth", "60",
+      "--exaggeration", "3", "--punch-mode", "opaque", "--x", "30", "--y", "20"],
+     dict(punch=im.Sphere(20), log=False, colormap="viridis", azimuth=60, exaggeration=3, punch_mode="opaque",
+          axis=(30, 20))),
+    (["--punch", "none", "--ortho", "--elevation", "80", "--vmax", "0.05", "--distance", "3"],
+     dict(punch=None, ortho=True, elevation=80, vmax=0.05, distance=3)),
+])
+def test_view3d_is_the_programs_image(cli, rough64, tmp_path, options, keywords):
+    """view3d(...) has the pixels of render view3d --raw for the same heights, forces, displacement and options."""
+    history, fields = im.indent(rough64, approaches=[2.0], fields=True)
+    im.write(tmp_path / "s.npy", rough64)
+    for name in ("force", "displacement"):
+        np.save(tmp_path / f"{name}.npy", fields[0][name])
+    run_cli(cli, "render", "view3d", tmp_path / "s.npy", "--force", tmp_path / "force.npy", "--displacement",
+            tmp_path / "displacement.npy", "--raw", "--out", tmp_path / "v.png", *VIEW3D_SIZE, *options)
+    ours = im.view3d(rough64, force=fields[0]["force"], displacement=fields[0]["displacement"], width=160,
+                     height=96, samples=1, mesh_side=48, **keywords)
+    theirs = im.Image.read(tmp_path / "v.png")
+    assert ours.rgba.shape == (96, 160, 4)
+    assert ours.rgba.tobytes() == theirs.rgba.tobytes()
+    assert len(np.unique(ours.rgba.reshape(-1, 4), axis=0)) > 20  # a picture, not a blank
+
+
+def test_view3d_refuses_what_the_program_refuses(rough64):
+    with pytest.raises(ValueError, match="punch_mode 'glass'"):
+        im.view3d(rough64, punch_mode="glass")
+    with pytest.raises(im.InvalidArgument, match="elevation"):
+        im.view3d(rough64, elevation=0.0, width=32, height=32)
+    with pytest.raises(ValueError, match="displacement: shape"):
+        im.view3d(rough64, displacement=np.zeros((3, 3)))
