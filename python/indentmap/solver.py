@@ -173,8 +173,9 @@ class Indentation:
                                       adhesion_range=_checks.real("adhesion_range", adhesion_range),
                                       plain_pk=_checks.flag("plain_pk", plain_pk),
                                       measure=_checks.flag("measure", measure),
-                                      wisdom="" if wisdom is None else os.fspath(wisdom))
-        self.units = json.loads(_core.units_record(_checks.text("length_unit", length_unit),
+                                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom))
+        self.units = json.loads(_core.units_record(_core.length_unit("length_unit", _checks.text("length_unit",
+                                                                                               length_unit)),
                                                    _checks.text("e_star_unit", e_star_unit),
                                                    _checks.flag("periodic", periodic)))
 

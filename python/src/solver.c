@@ -153,7 +153,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
                                      &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range, &plain_pk,
                                      &o.fft_measure, PyUnicode_FSConverter, &wisdom))
         return -1;
-    int wisdom_ok = set_wisdom(self, wisdom, &o);
+    int wisdom_ok = check_idle(self) < 0 ? -1 : set_wisdom(self, wisdom, &o); /* a running step reads it */
     Py_XDECREF(wisdom);
     if (wisdom_ok < 0)
         return -1;

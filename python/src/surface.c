@@ -225,6 +225,17 @@ static int length_unit_argument(const char *parameter, const char *text, char ou
     return 0;
 }
 
+/* length_unit(parameter, text) -> text's canonical spelling ("" stays ""); ValueError naming the parameter */
+static PyObject *length_unit(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *parameter, *text;
+    char canonical[16];
+    if (!PyArg_ParseTuple(args, "ss", &parameter, &text) || length_unit_argument(parameter, text, canonical) < 0)
+        return NULL;
+    return PyUnicode_FromString(canonical);
+}
+
 /* read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit)
  * -> (heights, delta, unit); npy_order is an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy); the
  * units as `indent --unit --height-unit --length-unit` ("": the file's) */
@@ -324,4 +335,5 @@ PyMethodDef py_surface_methods[] = {
      "read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit) -> "
      "(heights, delta, unit)"},
     {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
+    {"length_unit", length_unit, METH_VARARGS, "length_unit(parameter, text) -> the unit's canonical spelling"},
     {NULL, NULL, 0, NULL}};
