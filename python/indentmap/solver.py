@@ -134,7 +134,9 @@ class Indentation:
     (slower planning, faster steps); ``wisdom`` (``--wisdom FILE``, a path) is an FFTW wisdom file read
     before planning and updated after it, which implies ``measure``. Python reads no wisdom file
     unless given one (the program's default cache and ``IM_FFTW_WISDOM`` are its own); a file that is
-    not FFTW wisdom, or cannot be replaced, raises ``InvalidArgument`` or ``FileError`` naming it.
+    not FFTW wisdom, or cannot be replaced, raises ``InvalidArgument`` or ``FileError`` naming it. FFTW
+    keeps what a measured plan learnt for the whole process: later plans in it may use it (the same
+    answers to the tolerance, other last bits than an estimated run of the program).
 
     Example::
 

@@ -3,6 +3,8 @@ inputs Python's results equal the program's files, and units given to Python com
 writes them."""
 import json
 import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -76,20 +78,30 @@ def test_plain_pk_is_the_programs(cli, rough64, tmp_path):
     np.testing.assert_allclose(cascaded["load"], ours["load"], rtol=1e-5)
 
 
-def test_measure_and_wisdom(rough64, tmp_path):
+def in_a_child(code, cwd):
+    """Runs code in a fresh interpreter: FFTW's wisdom is the process's, and a measured plan's would reach the
+    later estimated plans of this one (other last bits than the program's)."""
+    result = subprocess.run([sys.executable, "-c", "import numpy as np, json, pytest, indentmap as im\n" + code],
+                            cwd=cwd, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+
+
+def test_measure_and_wisdom(tmp_path):
     """measure=True and wisdom=FILE plan with FFTW_MEASURE (the same answers to the tolerance); the wisdom file
     is written, then read by the next plan; a file that is not wisdom is refused, naming it."""
-    estimated = im.indent(rough64, approaches=[1.5])
-    measured = im.indent(rough64, approaches=[1.5], measure=True)
-    np.testing.assert_allclose(measured["load"], estimated["load"], rtol=1e-5)
-    wisdom = tmp_path / "wisdom"
-    im.indent(rough64, approaches=[1.5], wisdom=wisdom)
-    assert wisdom.read_text().startswith("(fftw-")
-    again = im.indent(rough64, approaches=[1.5], wisdom=wisdom)
-    np.testing.assert_allclose(again["load"], estimated["load"], rtol=1e-5)
-    (tmp_path / "notes").write_text("not wisdom\n")
-    with pytest.raises(im.Error, match="notes"):
-        im.indent(rough64, approaches=[1.5], wisdom=tmp_path / "notes")
+    in_a_child("""
+s = im.generate(64, slope=0.1, seed=2)
+estimated = im.indent(s, approaches=[1.5])
+measured = im.indent(s, approaches=[1.5], measure=True)
+np.testing.assert_allclose(measured["load"], estimated["load"], rtol=1e-5)
+im.indent(s, approaches=[1.5], wisdom="wisdom")
+assert open("wisdom").read().startswith("(fftw-")
+again = im.indent(s, approaches=[1.5], wisdom="wisdom")
+np.testing.assert_allclose(again["load"], estimated["load"], rtol=1e-5)
+open("notes", "w").write("not wisdom\\n")
+with pytest.raises(im.Error, match="notes"):
+    im.indent(s, approaches=[1.5], wisdom="notes")
+""", tmp_path)
 
 
 SCENE = """[scene]
@@ -102,21 +114,22 @@ periodic = yes
 steps = 0.002:0.004:2
 """
 
+
 def test_run_scene_wisdom(tmp_path):
     """run_scene(wisdom=FILE) is run --wisdom FILE: the file is written and the record says wisdom was
     used; without it (run --no-wisdom) none is."""
     np.save(tmp_path / "s.npy", np.random.default_rng(4).normal(scale=0.5, size=(64, 64)))
     (tmp_path / "s.ini").write_text(SCENE)
-    wisdom = tmp_path / "wisdom"
-    im.run_scene(tmp_path / "s.ini", quiet=True, out=tmp_path / "a", wisdom=wisdom)
-    im.run_scene(tmp_path / "s.ini", quiet=True, out=tmp_path / "b")
-    assert wisdom.read_text().startswith("(fftw-")
-    measured = json.loads((tmp_path / "a" / "run.json").read_text(encoding="utf-8"))["solver"]
-    estimated = json.loads((tmp_path / "b" / "run.json").read_text(encoding="utf-8"))["solver"]
-    assert measured["fftw_wisdom"] is True and estimated["fftw_wisdom"] is False
-    (tmp_path / "notes").write_text("not wisdom\n")
-    with pytest.raises(im.Error, match="notes"):
-        im.run_scene(tmp_path / "s.ini", quiet=True, out=tmp_path / "c", wisdom=tmp_path / "notes")
+    in_a_child("""
+im.run_scene("s.ini", quiet=True, out="a", wisdom="wisdom")
+im.run_scene("s.ini", quiet=True, out="b")
+assert open("wisdom").read().startswith("(fftw-")
+assert json.load(open("a/run.json", encoding="utf-8"))["solver"]["fftw_wisdom"] is True
+assert json.load(open("b/run.json", encoding="utf-8"))["solver"]["fftw_wisdom"] is False
+open("notes", "w").write("not wisdom\\n")
+with pytest.raises(im.Error, match="notes"):
+    im.run_scene("s.ini", quiet=True, out="c", wisdom="notes")
+""", tmp_path)
 
 
 VIEW3D_SIZE = ["--width", "160", "--height", "96", "--samples", "1", "--mesh-side", "48"]
