@@ -13,7 +13,7 @@ from . import _core
 from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, InvalidArgument, NotConverged,
                     NumericError, OutOfMemory, Unsupported)
 from . import theory
-from .render import Figure, Image, contact_map, height_map, renderer
+from .render import Figure, Image, contact_map, height_map, renderer, view3d
 from .scene import run_scene, run_scene_from_record
 from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, read_history, unloading,
                      write_analysis)
@@ -35,4 +35,4 @@ def memory_limit(limit=None):
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography",
            "Unsupported", "adhesion", "contact_map", "generate", "height_map", "histogram", "indent", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
-           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "write", "write_analysis"]
+           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "view3d", "write", "write_analysis"]

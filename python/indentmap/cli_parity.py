@@ -29,6 +29,7 @@ CROP = Reason("slice the array: heights[y0:y0 + ny, x0:x0 + nx]")
 SMOOTH = Reason("a flat surface is np.zeros((m, n))")
 # The program picks its OpenGL backend (--backend, IM_RENDER_BACKEND); Python always opens auto: not yet.
 BACKEND = NOT_YET
+NO_WISDOM = Reason("Python reads no FFTW wisdom file unless given one (wisdom=; None, the default, reads none)")
 MPI = Reason("MPI runs are the program's (mpirun -n K indentmap mpi-indent); Python runs in one process")
 PRINT = Reason("Python returns arrays; print or format them with numpy")
 
@@ -39,7 +40,7 @@ PARITY = {
     "surface --m": Python("generate", "m"),
     "surface --delta": Python("generate", "delta"),
     "surface --unit": Python("write", "unit", "the unit is written with the file; no conversion on reading"),
-    "surface --height-unit": NOT_YET,
+    "surface --height-unit": Python("read", "height_unit"),
     "surface --channel": Python("read", "channel"),
     "surface --fill": Python("read", "fill"),
     "surface --resample-square": Python("read", "resample_square"),
@@ -80,11 +81,11 @@ PARITY = {
     "indent --n": SMOOTH,
     "indent --m": SMOOTH,
     "indent --delta": Python("Indentation", "delta"),
-    "indent --unit": NOT_YET,
-    "indent --height-unit": NOT_YET,
+    "indent --unit": Python("read", "unit"),
+    "indent --height-unit": Python("read", "height_unit"),
     "indent --channel": Python("read", "channel"),
-    "indent --length-unit": NOT_YET,
-    "indent --e-star-unit": NOT_YET,
+    "indent --length-unit": Python("read", "length_unit", "then Indentation(length_unit=t.unit) for the records"),
+    "indent --e-star-unit": Python("Indentation", "e_star_unit", "Indentation.units: run.json's units block"),
     "indent --fill": Python("read", "fill"),
     "indent --npy-order": Python("read", "npy_order"),
     "indent --resample-square": Python("read", "resample_square"),
@@ -111,17 +112,17 @@ PARITY = {
     "indent --tol": Python("Indentation", "tol"),
     "indent --max-iter": Python("Indentation", "max_iterations"),
     "indent --full": Python("Indentation", "crop", "crop=False solves on the whole surface"),
-    "indent --plain-pk": NOT_YET,
+    "indent --plain-pk": Python("Indentation", "plain_pk"),
     "indent --device": Python("Indentation", "device"),
-    "indent --measure": NOT_YET,
-    "indent --wisdom": NOT_YET,
-    "indent --no-wisdom": Reason("Python plans with FFTW_ESTIMATE and reads no wisdom file"),
+    "indent --measure": Python("Indentation", "measure"),
+    "indent --wisdom": Python("Indentation", "wisdom"),
+    "indent --no-wisdom": NO_WISDOM,
     "indent --out": OUT,
     "indent --fields": Python("indent", "fields"),
     "indent --frames": Reason("Python returns the fields (fields=True); draw contact maps with the program's "
                               "render contact or a scene's frames = yes"),
     "indent --page-embed": OUT,
-    "indent --distributions": NOT_YET,
+    "indent --distributions": Python("indent", "distributions", "Indentation.write_distributions for one step"),
     # ---- render ----
     "render": Python("Figure"),
     "render contact": Python("contact_map"),
@@ -148,19 +149,27 @@ PARITY = {
     "render --frames": NOT_YET,
     "render --backend": BACKEND,
     # ---- render view3d: the 3-D view ----
-    "render view3d": NOT_YET,
-    **{f"render view3d --{name}": NOT_YET for name in (
-        "out", "raw", "force", "displacement", "punch", "alpha", "radius", "x", "y", "punch-mode", "azimuth",
-        "elevation", "distance", "fov", "ortho", "ortho-height", "exaggeration", "width", "height", "samples",
-        "mesh-side", "colormap", "vmin", "vmax", "log", "linear", "title", "dpi")},
+    "render view3d": Python("view3d"),
+    **{f"render view3d --{name}": Python("view3d", name.replace("-", "_")) for name in (
+        "force", "displacement", "punch", "punch-mode", "azimuth", "elevation", "distance", "fov", "ortho",
+        "ortho-height", "exaggeration", "width", "height", "samples", "mesh-side", "colormap", "vmin", "vmax",
+        "log")},
+    "render view3d --raw": Python("view3d", note="view3d returns the data image; Image.save writes it"),
+    "render view3d --alpha": Python("Cone", "alpha"),
+    "render view3d --radius": Python("Sphere", "radius", "Flat(radius) for the flat punch"),
+    "render view3d --x": Python("view3d", "axis"),
+    "render view3d --y": Python("view3d", "axis"),
+    "render view3d --linear": Python("view3d", "log", "log=False"),
+    # the figure around the 3-D image (colour bar, title, exaggeration stated): not yet in Python
+    **{f"render view3d --{name}": NOT_YET for name in ("out", "title", "dpi")},
     "render view3d --backend": BACKEND,
     # ---- run: scenes ----
     "run": Python("run_scene"),
     "run --resume": Python("run_scene", "resume"),
     "run --quiet": Python("run_scene", "quiet"),
     "run --backend": BACKEND,
-    "run --wisdom": NOT_YET,
-    "run --no-wisdom": NOT_YET,
+    "run --wisdom": Python("run_scene", "wisdom"),
+    "run --no-wisdom": NO_WISDOM,
     "run --from-record": Python("run_scene_from_record"),
     "run --out": Python("run_scene", "out"),
     # ---- formats, info ----

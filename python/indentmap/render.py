@@ -8,6 +8,7 @@ import tempfile
 import numpy as np
 
 from . import _core
+from .solver import Cone, Flat, Sphere
 
 
 def renderer():
@@ -29,6 +30,12 @@ class Image:
     def __init__(self, rgba):
         self.rgba = rgba
 
+    @classmethod
+    def read(cls, path):
+        """An 8-bit RGB or RGBA PNG file as an Image (RGB made opaque): the program's pictures and frames
+        as arrays. ``FileError`` or ``FormatError`` naming the file."""
+        return cls(_core.read_png(path))
+
     def save(self, path):
         """Writes a PNG (atomically)."""
         _core.write_png(path, self.rgba)
@@ -37,10 +44,11 @@ class Image:
         return _png_bytes(self.save)
 
 
-def _contact_norm(force, vmin, vmax, log):
+def _contact_norm(force, vmin, vmax, log, log_span=1000.0):
+    """(vmin, vmax) of a force norm: 0 .. the largest force (1 without any), a log norm from vmax / log_span."""
     largest = float(np.max(force)) if np.size(force) else 0.0
     vmax = vmax if vmax is not None else (largest if largest > 0 else 1.0)
-    vmin = vmin if vmin is not None else (vmax / 1000.0 if log else 0.0)
+    vmin = vmin if vmin is not None else (vmax / log_span if log else 0.0)
     return vmin, vmax
 
 
@@ -97,3 +105,59 @@ class Figure:
 
     def _repr_png_(self):
         return _png_bytes(self.save)
+
+
+_PUNCH_MODES = {"translucent": 0, "opaque": 1, "cutaway": 2, "none": 3}
+
+
+def _view3d_punch(punch):
+    """(kind, alpha, radius) of view3d's punch: a Cone, Sphere or Flat of the solver, or None."""
+    if punch is None:
+        return "none", 80.0, 1.0
+    kinds = {Cone: "cone", Sphere: "sphere", Flat: "flat"}
+    if type(punch) not in kinds:
+        raise TypeError(f"punch: expected Cone(), Sphere(R), Flat(a) or None, got {punch!r}")
+    return kinds[type(punch)], getattr(punch, "alpha", 80.0), getattr(punch, "radius", 1.0)
+
+
+def view3d(heights, *, force=None, displacement=None, delta=1.0, punch=Cone(), axis=None,
+           punch_mode="translucent", azimuth=20.0, elevation=35.0, distance=None, fov=30.0, ortho=False,
+           ortho_height=0.0, exaggeration=1.0, width=1920, height=1080, samples=4, mesh_side=384,
+           colormap="magma", vmin=None, vmax=None, log=True):
+    """The deformed surface in 3-D, as ``indentmap render view3d --raw`` draws it: an Image (a notebook
+    shows it; ``Image.save`` writes the PNG), the same pixels as the program's for the same inputs.
+
+    ``heights`` (ny, nx), in the units of ``delta``, minus ``displacement`` u when given (``indent``'s
+    fields, positive into the half-space): the drawn surface is heights - u. Patches with ``force`` > 0
+    are coloured by it through the norm, the others light grey (tensile ones light blue). ``punch``:
+    Cone(alpha), Sphere(R), Flat(a) (lengths in the units of delta) or None, resting on the drawn heights,
+    its axis at ``axis`` (x, y) (default: the centre of patch (nx/2, ny/2)), drawn ``punch_mode``
+    'translucent', 'opaque', 'cutaway' or 'none'. Camera: ``azimuth`` (degrees; 0 looks from the map's
+    bottom edge), ``elevation`` (1..90 degrees), ``distance`` in grid sides (None: the nearest that shows
+    it all), ``fov`` (degrees), or ``ortho=True`` with ``ortho_height`` (patches; 0: fit).
+    ``exaggeration`` scales heights; ``width`` x ``height`` pixels, ``samples`` (1, 2, 4 or 8) per pixel,
+    ``mesh_side`` cells along the longer side. Norm: ``colormap`` (magma, viridis, cividis, inferno,
+    grey), ``log=True`` from ``vmax`` / 100 (``--log``, the default) or linear from 0 (``--linear``),
+    ``vmax`` the largest force by default. Values out of range raise ``InvalidArgument`` naming them;
+    a machine without OpenGL 3.3 raises ``Unsupported``.
+
+    Example: ``h, f = im.indent(s, approaches=[3.0], fields=True); im.view3d(s, force=f[0]["force"],
+    displacement=f[0]["displacement"], exaggeration=4)``."""
+    drawn = np.asarray(heights, dtype=float)
+    if displacement is not None:
+        u = np.asarray(displacement, dtype=float)
+        if u.shape != drawn.shape:
+            raise ValueError(f"displacement: shape {u.shape}, expected the heights' {drawn.shape}")
+        drawn = drawn - u
+    if punch_mode not in _PUNCH_MODES:
+        raise ValueError(f"punch_mode {punch_mode!r}: expected one of {list(_PUNCH_MODES)}")
+    lo, hi = _contact_norm(np.zeros(0) if force is None else force, vmin, vmax, log, log_span=100.0)
+    kind, alpha, radius = _view3d_punch(punch)
+    return Image(_core.view3d(drawn, float(delta), force, kind, float(alpha), float(radius),
+                              None if axis is None else tuple(axis), punch_mode=_PUNCH_MODES[punch_mode],
+                              azimuth=float(azimuth), elevation=float(elevation),
+                              distance=None if distance is None else float(distance), fov=float(fov),
+                              ortho=bool(ortho), ortho_height=float(ortho_height), exaggeration=float(exaggeration),
+                              width=int(width), pixels_high=int(height), samples=int(samples),
+                              mesh_side=int(mesh_side), colormap=colormap, vmin=float(lo), vmax=float(hi),
+                              log=bool(log)))

@@ -1,4 +1,5 @@
 """Indentation of a rough surface by a rigid punch (the library's solver.h)."""
+import json
 import os
 from dataclasses import dataclass
 
@@ -120,12 +121,36 @@ class Indentation:
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
     measured surface's edges would count in its spectrum), as ``indentmap indent`` for a file.
+
+    Units (``indentmap indent --length-unit --e-star-unit``): ``length_unit`` is the unit of ``delta``,
+    the heights and every length (``read(path).unit``; "" for units of delta) and ``e_star_unit`` that
+    of ``e_star`` ("" when unstated; "Pa" with "m" puts forces in N). They change no number: ``units``
+    states them as ``indentmap indent``'s run.json does, and they label what is drawn or written from
+    the history (``write_analysis(..., length_unit=run.units["length"], force_unit=run.units["force"])``).
+
+    Solver options of ``indentmap indent``: ``plain_pk=True`` (``--plain-pk``) solves with plain
+    Polonsky-Keer CG from the local guess, without the cascade start and the preconditioner (the same
+    answers to the tolerance, slower); ``measure=True`` (``--measure``) plans the FFTs with FFTW_MEASURE
+    (slower planning, faster steps); ``wisdom`` (``--wisdom FILE``, a path) is an FFTW wisdom file read
+    before planning and updated after it, which implies ``measure``. Python reads no wisdom file
+    unless given one (the program's default cache and ``IM_FFTW_WISDOM`` are its own); a file that is
+    not FFTW wisdom, or cannot be replaced, raises ``InvalidArgument`` or ``FileError`` naming it. FFTW
+    keeps what a measured plan learnt for the whole process: later plans in it may use it (the same
+    answers to the tolerance, other last bits than an estimated run of the program).
+
+    Example::
+
+        t = im.read("scan.x3p", length_unit="m")
+        run = im.Indentation(t.heights, im.Sphere(50e-6), control="load", largest=1e-3, delta=t.delta,
+                             e_star=70e9, length_unit=t.unit, e_star_unit="Pa")
+        run.step(1e-3)
+        run.units["load"]  # 'N'
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=None, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
-                 quality=None):
+                 quality=None, length_unit="", e_star_unit="", plain_pk=False, measure=False, wisdom=None):
         if tol is None:
             tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
         if punch is None:
@@ -147,7 +172,14 @@ class Indentation:
                                       periodic=_checks.flag("periodic", periodic),
                                       slope_definition=_checks.text("slope_definition", slope_definition or ""),
                                       adhesion_work=_checks.real("adhesion_work", adhesion_work),
-                                      adhesion_range=_checks.real("adhesion_range", adhesion_range))
+                                      adhesion_range=_checks.real("adhesion_range", adhesion_range),
+                                      plain_pk=_checks.flag("plain_pk", plain_pk),
+                                      measure=_checks.flag("measure", measure),
+                                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom))
+        self.units = json.loads(_core.units_record(_core.length_unit("length_unit", _checks.text("length_unit",
+                                                                                               length_unit)),
+                                                   _checks.text("e_star_unit", e_star_unit),
+                                                   _checks.flag("periodic", periodic)))
 
     def step(self, target):
         """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict."""
@@ -163,6 +195,18 @@ class Indentation:
         the solver's results, the theory beside them, the stiffness, the contact patches and the plastic
         memory, measured as ``indentmap indent`` measures them."""
         return _history_array(self._run.history_text())
+
+    def write_distributions(self, prefix):
+        """Writes the last step's gap and contact-patch size distributions as ``indentmap indent
+        --distributions`` writes each step's: ``prefix``_gaps.csv (the gap outside contact in units of the
+        surface's h_rms, delta for a flat surface, in 50 bins), ``prefix``_patches.csv (patch sizes by octave)
+        and ``prefix``_patch_list.csv (each patch's cells, area and perimeter in the length unit), atomically
+        (docs/theory.md, "Gap and patch-size distributions"). ``InvalidArgument`` before the first step,
+        ``FileError`` naming a file that cannot be written. The files are the program's for the same
+        step, byte for byte.
+
+        Example: ``run.step(2.0); run.write_distributions("out/distributions_0001")``."""
+        self._run.write_distributions(os.fspath(prefix))
 
     def plastic(self):
         """The plastic depth accumulated so far on the full grid (units of delta; 0 without a hardness):
@@ -196,7 +240,7 @@ class Plan:
 
 
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, fields=False,
-           **options):
+           distributions=None, **options):
     """Solves a history of approaches (displacement control), loads (load control) or mean gaps.
 
     Returns a structured array with one row per step and history.csv's columns (``read_history`` reads a
@@ -206,6 +250,14 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     unloads): ``unloading(history, punch)`` then gives the indentation analysis. ``pressures`` (with
     ``periodic=True``): mean pressures over the cell instead of loads, as ``indent --pressure``;
     ``mean_gaps`` (with ``periodic=True``): mean gaps over the cell, as ``indent --mean-gap``.
+    ``distributions``, a folder (made if missing): each step's distributions written there as
+    ``indent --distributions`` writes them, distributions_NNNN_{gaps,patches,patch_list}.csv
+    (``Indentation.write_distributions``). The units of the history's columns are
+    ``Indentation(...).units`` for the same ``length_unit`` and ``e_star_unit`` options.
+
+    Example: ``h = im.indent(im.generate(128, seed=3), approaches=np.linspace(0.5, 4, 8))``, then
+    ``h["load"]`` and ``h["area_ratio"]``; errors are those of ``Indentation`` and its steps
+    (``NotConverged``, ``EdgeContact``).
     """
     if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
         raise ValueError("give one of approaches, loads, pressures and mean_gaps")
@@ -223,9 +275,13 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
         raise ValueError("no steps")
     run = Indentation(heights, punch, control=control,
                       largest=float(np.abs(targets).max()), **options)
+    if distributions is not None:
+        os.makedirs(distributions, exist_ok=True)
     per_step = []
-    for target in targets:
+    for step, target in enumerate(targets, start=1):
         run.step(target)
+        if distributions is not None:
+            run.write_distributions(os.path.join(distributions, f"distributions_{step:04d}"))
         if fields:
             step_fields = dict(zip(("force", "gap", "displacement"), run.fields()))
             if options.get("hardness", 0) > 0:

@@ -76,7 +76,8 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
 _NPY_ORDERS = {None: 0, "yx": 1, "xy": 2}
 
 
-def read(path, channel=None, fill=False, resample_square=False, npy_order=None):
+def read(path, channel=None, fill=False, resample_square=False, npy_order=None, *, unit="", height_unit="",
+         length_unit=""):
     """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p, text, or an instrument's file
     through Gwyddion's file modules when the build has them: ``indentmap formats`` lists them): a
     Topography (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives
@@ -93,11 +94,24 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None):
     float32 storage explains) are read as square, of their mean spacing. Beyond that a FormatError names
     both spacings, unless ``resample_square=True``: then the heights are resampled bilinearly onto
     square pixels of the finer spacing, within the stored extent (more rows or columns; ``delta`` is
-    that spacing)."""
+    that spacing).
+
+    Units, as ``indentmap indent --unit --height-unit --length-unit`` (and ``surface --stats --height-unit``)
+    take them: length units m, cm, mm, µm (or um), nm, pm or Å; "" (default) keeps the file's.
+    ``unit`` is the unit of the spacing, overriding the file's; ``height_unit`` the unit of the heights
+    (default: the spacing's), converted into the spacing's; ``length_unit`` converts spacing and heights
+    into it (the file's unit must be known: ``FormatError`` otherwise). A name that is no length unit
+    raises ValueError naming the parameter. The Topography's ``unit`` is the one the heights are in.
+
+    Example: ``t = im.read("scan.npy", unit="um", length_unit="m")`` gives heights and ``t.delta`` in
+    metres, ``t.unit == "m"``; ``im.indent(t.heights, delta=t.delta, length_unit=t.unit, e_star=1e9,
+    e_star_unit="Pa", loads=[1e-6])`` then records loads in N."""
     if npy_order not in _NPY_ORDERS:
         raise ValueError(f"npy_order {npy_order!r}: expected 'yx', 'xy' or None (the sidecar's order, else yx)")
     return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill),
-                                          bool(resample_square), _NPY_ORDERS[npy_order]))
+                                          bool(resample_square), _NPY_ORDERS[npy_order],
+                                          _checks.text("unit", unit), _checks.text("height_unit", height_unit),
+                                          _checks.text("length_unit", length_unit)))
 
 
 def write(path, heights, delta=1.0, unit=""):

@@ -330,6 +330,121 @@ static PyObject *write_png(PyObject *self, PyObject *args)
     return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
 }
 
+typedef struct view3d_job {
+    const im_field *height, *force; /* force: NULL for no contact colours */
+    const im_indenter *punch;       /* NULL: none */
+    im_view3d_style style;
+    int fit_distance;               /* the nearest perspective camera that shows it all */
+    im_image *image;
+} view3d_job;
+
+static int draw_view3d(void *argument)
+{
+    view3d_job *job = argument;
+    int status = job->fit_distance ? im_view3d_fit_distance(job->height, job->punch, &job->style,
+                                                            &job->style.camera.distance)
+                                   : IM_OK;
+    return status == IM_OK ? im_render_view3d(context, job->height, job->force, job->punch, &job->style, job->image)
+                           : status;
+}
+
+/* The punch of a 3-D view (as `render view3d --punch --alpha --radius --x --y`): kind "none" is NULL. */
+static int view3d_punch(const char *kind, double alpha, double radius, PyObject *axis, im_indenter *punch,
+                        const im_indenter **drawn)
+{
+    *drawn = punch;
+    if (strcmp(kind, "cone") == 0)
+        *punch = im_indenter_cone(alpha);
+    else if (strcmp(kind, "sphere") == 0)
+        *punch = im_indenter_sphere(radius);
+    else if (strcmp(kind, "flat") == 0)
+        *punch = im_indenter_flat(radius);
+    else if (strcmp(kind, "none") == 0)
+        *drawn = NULL;
+    else {
+        PyErr_Format(PyExc_ValueError, "punch '%s': expected 'cone', 'sphere', 'flat' or 'none'", kind);
+        return -1;
+    }
+    punch->centred = axis == Py_None;
+    return axis == Py_None || PyArg_ParseTuple(axis, "dd", &punch->x0, &punch->y0) ? 0 : -1;
+}
+
+/* view3d(height, delta, force, punch, alpha, radius, axis, **style) -> (height, width, 4) uint8 array:
+ * render.h's im_render_view3d, with render view3d's options */
+static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *keywords[] = {"height", "delta", "force", "punch", "alpha", "radius", "axis", "punch_mode",
+                               "azimuth", "elevation", "distance", "fov", "ortho", "ortho_height", "exaggeration",
+                               "width", "pixels_high", "samples", "mesh_side", "colormap", "vmin", "vmax", "log",
+                               NULL};
+    PyObject *height_obj, *force_obj, *axis, *distance;
+    double delta, alpha, radius, lo, hi;
+    const char *kind, *colormap;
+    int ortho, logarithmic, punch_mode;
+    im_view3d_style style = im_view3d_style_default(NULL);
+    im_view3d_camera *camera = &style.camera;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OdOsddOiddOdpdd" "iiiisddp", keywords, &height_obj, &delta,
+                                     &force_obj, &kind, &alpha, &radius, &axis, &punch_mode, &camera->azimuth,
+                                     &camera->elevation, &distance, &camera->field_of_view, &ortho,
+                                     &camera->ortho_height, &style.exaggeration, &style.width, &style.height,
+                                     &style.samples, &style.mesh_side, &colormap, &lo, &hi, &logarithmic))
+        return NULL;
+    camera->projection = ortho ? IM_VIEW3D_ORTHOGRAPHIC : IM_VIEW3D_PERSPECTIVE;
+    style.punch_mode = (im_view3d_punch)punch_mode; /* checked by im_render_view3d */
+    if (distance != Py_None && (camera->distance = PyFloat_AsDouble(distance), PyErr_Occurred()))
+        return NULL;
+    im_indenter punch;
+    view3d_job job = {.fit_distance = distance == Py_None && !ortho};
+    if (view3d_punch(kind, alpha, radius, axis, &punch, &job.punch) < 0 ||
+        make_norm(colormap, lo, hi, logarithmic, &style.colormap) < 0 || ensure_context() < 0)
+        return NULL;
+    PyArrayObject *height = py_heights_array(height_obj, "height");
+    PyArrayObject *force = height && force_obj != Py_None ? py_heights_array(force_obj, "force") : NULL;
+    PyObject *out = NULL;
+    if (height && (force || force_obj == Py_None)) {
+        im_field height_view = py_field_view(height, delta), force_view = force ? py_field_view(force, delta)
+                                                                                : (im_field){0};
+        im_image image = {0};
+        job.height = &height_view;
+        job.force = force ? &force_view : NULL;
+        job.style = style;
+        job.image = &image;
+        int status = without_gil(draw_view3d, &job);
+        out = status == IM_OK ? array_from_image(&image) : py_raise_status(status);
+        im_image_release(&image);
+    }
+    Py_XDECREF(height);
+    Py_XDECREF(force);
+    return out;
+}
+
+/* read_png(path) -> (height, width, 4) uint8 array of an 8-bit RGB or RGBA PNG (io.h: im_png_read; RGB
+ * made opaque RGBA) */
+static PyObject *read_png(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_bytes;
+    if (!PyArg_ParseTuple(args, "O&", PyUnicode_FSConverter, &path_bytes))
+        return NULL;
+    uint8_t *pixels = NULL;
+    int width = 0, height = 0, channels = 0, status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_png_read(PyBytes_AS_STRING(path_bytes), &pixels, &width, &height, &channels);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(path_bytes);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    npy_intp shape[3] = {height, width, 4};
+    PyObject *out = PyArray_SimpleNew(3, shape, NPY_UINT8);
+    uint8_t *rgba = out ? PyArray_DATA((PyArrayObject *)out) : NULL;
+    for (size_t i = 0; rgba && i < (size_t)width * (size_t)height; ++i)
+        for (int c = 0; c < 4; ++c)
+            rgba[4 * i + (size_t)c] = c < channels ? pixels[(size_t)channels * i + (size_t)c] : 255;
+    free(pixels);
+    return out;
+}
+
 static PyObject *renderer(PyObject *self, PyObject *unused)
 {
     (void)self, (void)unused;
@@ -343,5 +458,8 @@ PyMethodDef py_render_methods[] = {
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
     {"write_png", write_png, METH_VARARGS, "write_png(path, rgba)"},
+    {"read_png", read_png, METH_VARARGS, "read_png(path) -> (height, width, 4) uint8 RGBA"},
+    {"view3d", (PyCFunction)(void (*)(void))view3d, METH_VARARGS | METH_KEYWORDS,
+     "view3d(height, delta, force, punch, alpha, radius, axis, **style) -> RGBA: the deformed surface in 3-D"},
     {"renderer", renderer, METH_NOARGS, "the GL backend and renderer in use"},
     {NULL, NULL, 0, NULL}};

@@ -559,23 +559,6 @@ static json_t *surface_sidecar_generator(const char *surface_path)
     return generator;
 }
 
-/* What the numbers of history.csv and the fields are in. */
-static json_t *units_record(const indent_options *o, const im_field *s)
-{
-    const char *length = s->unit[0] ? s->unit : "delta";
-    const char *stress = o->e_star_unit[0] ? o->e_star_unit : "the unit of --e-star";
-    char stiffness[64], work[64];
-    snprintf(stiffness, sizeof stiffness, "(%s) / %s", o->force_unit, length);
-    snprintf(work, sizeof work, "(%s) %s", o->force_unit, length);
-    const char *pressure = o->e_star_unit[0] ? o->e_star_unit : "E*";
-    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:o*}", "length", length, "approach", length,
-                     "e_star", o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "pressure", stress,
-                     "stiffness", stiffness, "work", work, "load", o->force_unit, "force", o->force_unit, "load_star",
-                     o->solver.periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
-                     "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)", "columns",
-                     column_units_record(s->unit[0] ? s->unit : "δ", o->force_unit, pressure));
-}
-
 /* SURFACE's pixels as read: its spacings along x and y (in the surface's unit), their relative
  * difference, and the resampling onto square pixels (method, spacing and the stored grid), or null. */
 static json_t *pixels_record(const im_surface_read_info *info)
@@ -690,7 +673,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     }
     json_decref(generator);
     drop_meaningless_punch_fields(json_object_get(root, "punch"), o->punch.kind);
-    json_object_set_new(root, "units", units_record(o, s));
+    json_object_set_new(root, "units", indent_units_record(s->unit, o->e_star_unit, o->solver.periodic));
     json_object_set_new(root, "adhesion", o->solver.adhesion_work > 0 ? adhesion_law_record(o) : json_null());
     return root;
 }

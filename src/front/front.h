@@ -152,7 +152,7 @@ void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k);
 
 /* The fields of a step, DIR/{force,gap,displacement[,plastic]}_NNNN.npy (NNNN = the step, from 1): the
  * plastic depth only with a hardness. */
-enum { STEP_FIELDS_MAX = 4, STEP_GAP_BINS = 50 };
+enum { STEP_FIELDS_MAX = 4 };
 extern const char *const STEP_FIELD_PREFIXES[STEP_FIELDS_MAX];
 /* How many of them a run writes: all with a hardness (> 0), the first three without. */
 int step_field_count(double hardness);
@@ -172,7 +172,7 @@ typedef struct step_units {
  * pair under the pair-writers lock (io.h). */
 int step_fields_write(const char *dir, im_indentation *run, int step, const step_units *units);
 
-/* Writes the gap (in gap_scale, STEP_GAP_BINS bins) and contact-patch size distributions of the run's last
+/* Writes the gap (in gap_scale, IM_MEASURE_GAP_BINS bins) and contact-patch size distributions of the run's last
  * step: PREFIX_{gaps,patches,patch_list}.csv (measure.h: im_measure_write_distributions). */
 int step_distributions_write(const char *prefix, im_indentation *run, double gap_scale);
 
@@ -241,6 +241,12 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
  * force and pressure units ("m²", "N / m", "N m"). run.json's "units" block holds it as "columns", from
  * which the viewer page heads its tables. NULL when out of memory. */
 json_t *column_units_record(const char *length, const char *force, const char *pressure);
+
+/* run.json's "units" block of an indentation history (`indent`; history.h: im_history_units_json): what
+ * the numbers of history.csv and the fields are in, for the surface's length unit ("": units of delta)
+ * and E*'s unit ("": as given), forces in step_force_unit's, with column_units_record as "columns". NULL
+ * when out of memory. */
+json_t *indent_units_record(const char *length_unit, const char *e_star_unit, int periodic);
 
 /* ---- the JSON run record (record.c) ---- */
 
