@@ -2,8 +2,8 @@
 # indentmap mpi-indent (MPI builds; skipped, exit 77, elsewhere): the same result and the same
 # field files to the byte on 1 and 3 ranks, a file surface read back, and clear errors; ranks
 # started with different commands, folders or scenes, reading other bytes from a file the scene
-# names, or an error on one rank only, stop every rank with one message (mpi-indent and run under
-# mpirun), never a hang or MPI's own error.
+# names or from mpi-indent's --surface, or an error on one rank only, stop every rank with one
+# message (mpi-indent and run under mpirun), never a hang or MPI's own error.
 #   cli_mpi.sh PATH_TO_INDENTMAP
 set -uo pipefail
 cli=$1
@@ -141,6 +141,11 @@ refused input_bytes 2 "$work/surf.npy (\[surfaces\] file): rank 1 reads other by
   -n 1 bash -c "$(on_fd8 "$work/h1.npy")" : -n 1 bash -c "$(on_fd8 "$work/h2.npy")"
 [ ! -e "$work/out_f" ] || fail "surface files of other bytes: a rank wrote $(ls "$work/out_f")"
 refused input_missing 2 "rank 1: .*surf.npy" -n 1 bash -c "$(on_fd8 "$work/h1.npy")" : -n 1 "$cli" run "$work/f.ini"
+# mpi-indent's --surface, the same link on both ranks onto other surfaces: refused naming it, nothing written.
+indent_fd8() { echo "exec '$cli' mpi-indent --surface '$work/surf.npy' --approach 1 --out '$work/out_s' 8< '$1'"; }
+refused surface_bytes 2 "$work/surf.npy (--surface): rank 1 reads other bytes from it than rank 0: every rank must read the same file" \
+  -n 1 bash -c "$(indent_fd8 "$work/h1.npy")" : -n 1 bash -c "$(indent_fd8 "$work/h2.npy")"
+[ ! -e "$work/out_s" ] || fail "a --surface of other bytes: a rank wrote $(ls "$work/out_s")"
 "$mpiexec" -n 2 --oversubscribe bash -c "$(on_fd8 "$work/h1.npy")" > /dev/null 2> "$work/alike_files.err" ||
   fail "a scene of files alike on 2 ranks: $(cat "$work/alike_files.err")"
 [ -s "$work/out_f/table1.csv" ] || fail "a scene of files alike on 2 ranks wrote no table1.csv"

@@ -150,12 +150,16 @@ static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver
     return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
 }
 
-/* The grid: the file's shape, or the synthesis's. */
+/* The grid: the file's shape, or the synthesis's. Every rank must read the same bytes from the file
+ * (agree.h: a path may name other files on other nodes). */
 static int grid_of(mpi_indent_options *o)
 {
     if (!o->surface_file)
         return IM_OK;
-    return im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny);
+    const char *key = "--surface";
+    int status = mpi_same_files(MPI_COMM_WORLD, "the command", 1, &o->surface_file, &key);
+    return status == IM_OK ? im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny)
+                           : status;
 }
 
 /* Plans, fills the gap, solves and writes; *result on success. */
