@@ -559,23 +559,6 @@ static json_t *surface_sidecar_generator(const char *surface_path)
     return generator;
 }
 
-/* What the numbers of history.csv and the fields are in. */
-static json_t *units_record(const indent_options *o, const im_field *s)
-{
-    const char *length = s->unit[0] ? s->unit : "delta";
-    const char *stress = o->e_star_unit[0] ? o->e_star_unit : "the unit of --e-star";
-    char stiffness[64], work[64];
-    snprintf(stiffness, sizeof stiffness, "(%s) / %s", o->force_unit, length);
-    snprintf(work, sizeof work, "(%s) %s", o->force_unit, length);
-    const char *pressure = o->e_star_unit[0] ? o->e_star_unit : "E*";
-    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:o*}", "length", length, "approach", length,
-                     "e_star", o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "pressure", stress,
-                     "stiffness", stiffness, "work", work, "load", o->force_unit, "force", o->force_unit, "load_star",
-                     o->solver.periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
-                     "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)", "columns",
-                     column_units_record(s->unit[0] ? s->unit : "δ", o->force_unit, pressure));
-}
-
 /* SURFACE's pixels as read: its spacings along x and y (in the surface's unit), their relative
  * difference, and the resampling onto square pixels (method, spacing and the stored grid), or null. */
 static json_t *pixels_record(const im_surface_read_info *info)
@@ -690,7 +673,7 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     }
     json_decref(generator);
     drop_meaningless_punch_fields(json_object_get(root, "punch"), o->punch.kind);
-    json_object_set_new(root, "units", units_record(o, s));
+    json_object_set_new(root, "units", run_record_units(s->unit, o->e_star_unit, o->force_unit, o->solver.periodic));
     json_object_set_new(root, "adhesion", o->solver.adhesion_work > 0 ? adhesion_law_record(o) : json_null());
     return root;
 }
@@ -710,16 +693,6 @@ static int add_inputs(const indent_options *o, json_t *record)
     else
         json_decref(inputs);
     return status;
-}
-
-static int write_run_json(const char *dir, json_t *record, int steps_done, int status)
-{
-    json_object_set_new(record, "steps_completed", json_integer(steps_done));
-    json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
-    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
-    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
-    json_object_set_new(record, "error", json_string(error));
-    return run_record_write(dir, record);
 }
 
 /* ---- the run ---- */
@@ -878,14 +851,8 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
         return;
     }
     periodic_k_fit_print(&k, rough->slope_rms, slope_definition_name(o->slope_definition));
-    const im_theory_k_fit *fit = &k.fit;
-    json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
-                              fit->k_error, "rms_residual", fit->rms_residual, "points", k.points, "linear_points",
-                              fit->linear_points, "pressure_ratio_range", k.pressure_ratio[0], k.pressure_ratio[1],
-                              "area_fraction_range", k.area_fraction[0], k.area_fraction[1], "slope_rms",
-                              rough->slope_rms, "slope_rms_definition", slope_definition_name(o->slope_definition));
-    json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
-    json_object_set_new(record, "k_fit", block);
+    json_object_set_new(record, "k_fit",
+                        periodic_k_fit_record(&k, rough->slope_rms, slope_definition_name(o->slope_definition)));
 }
 
 /* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
@@ -1004,12 +971,7 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
         o->punch = periodic_rigid_flat(surface);
     for (int i = 0; o->pressures && i < o->target_count; ++i)
         o->targets[i] *= o->cell_area;
-    double edge, inner;
-    if (periodic_edge_mismatch(surface, &edge, &inner))
-        fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
-                "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
-                "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
-                o->surface_path ? o->surface_path : "the surface", edge, edge / inner, inner);
+    periodic_warn_if_not_periodic(surface, o->surface_path ? o->surface_path : "the surface");
 }
 
 /* --frames of the steps done, DIR/frames/contact_NNNN.png (front.h: fields_frames_write): a failure is the
@@ -1066,7 +1028,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         write_k_fit(o, rough, rows, done, record);
     if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
         im_fail(status, "%s", message);
-    int recorded = write_run_json(o->out, record, done, status);
+    int recorded = run_record_finish(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
     else
@@ -1251,7 +1213,7 @@ int cli_indent(int argc, char **argv)
         if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
             char message[1024];
             snprintf(message, sizeof message, "%s", im_last_error());
-            write_run_json(o.out, record, 0, status);
+            run_record_finish(o.out, record, 0, status);
             im_fail(status, "%s", message);
         }
     }

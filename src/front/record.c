@@ -8,6 +8,7 @@
 #include "indentmap/status.h"
 
 #include <limits.h>
+#include <stdio.h>
 
 /* The solver options a run was made with. The accelerations of issue 15 are on unless switched
  * off, and off with a hardness (solver.h). */
@@ -58,4 +59,30 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path)
     return json_array_append_new(inputs, json_pack("{s:s, s:s, s:s}", "key", key, "path", text, "sha256", hex)) == 0
                ? IM_OK
                : im_fail(IM_ENOMEM, "run.json: out of memory");
+}
+
+int run_record_finish(const char *dir, json_t *record, int steps_done, int status)
+{
+    json_object_set_new(record, "steps_completed", json_integer(steps_done));
+    json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
+    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
+    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
+    json_object_set_new(record, "error", json_string(error));
+    return run_record_write(dir, record);
+}
+
+json_t *run_record_units(const char *length_unit, const char *e_star_unit, const char *force_unit, int periodic)
+{
+    const char *length = length_unit[0] ? length_unit : "delta";
+    const char *stress = e_star_unit[0] ? e_star_unit : "the unit of --e-star";
+    char stiffness[64], work[64];
+    snprintf(stiffness, sizeof stiffness, "(%s) / %s", force_unit, length);
+    snprintf(work, sizeof work, "(%s) %s", force_unit, length);
+    const char *pressure = e_star_unit[0] ? e_star_unit : "E*";
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:o*}", "length", length, "approach", length,
+                     "e_star", e_star_unit[0] ? e_star_unit : "as given (--e-star)", "pressure", stress,
+                     "stiffness", stiffness, "work", work, "load", force_unit, "force", force_unit, "load_star",
+                     periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
+                     "area_ratio", periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)", "columns",
+                     column_units_record(length_unit[0] ? length_unit : "δ", force_unit, pressure));
 }
