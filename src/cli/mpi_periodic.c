@@ -5,7 +5,6 @@
 
 #if IM_HAVE_MPI
 
-#include "cli/cli.h"
 #include "front/front.h"
 #include "mpi/agree.h"
 
