@@ -180,7 +180,7 @@ PARITY = {
     "mpi-indent": MPI,
     **{f"mpi-indent --{name}": MPI for name in (
         "surface", "n", "m", "seed", "slope", "punch", "alpha", "radius", "approach", "load", "hardness", "tol",
-        "max-iter", "out", "map")},
+        "max-iter", "out", "map", "periodic", "pressure", "mean-gap")},
 }
 
 # Subcommands only some builds have: their entries may name what this build's program lacks.

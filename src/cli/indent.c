@@ -695,16 +695,6 @@ static int add_inputs(const indent_options *o, json_t *record)
     return status;
 }
 
-static int write_run_json(const char *dir, json_t *record, int steps_done, int status)
-{
-    json_object_set_new(record, "steps_completed", json_integer(steps_done));
-    json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
-    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
-    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
-    json_object_set_new(record, "error", json_string(error));
-    return run_record_write(dir, record);
-}
-
 /* ---- the run ---- */
 
 /* Small-slope (linear) elasticity assumes the surface slopes are small; a steep cone's flank,
@@ -861,14 +851,8 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
         return;
     }
     periodic_k_fit_print(&k, rough->slope_rms, slope_definition_name(o->slope_definition));
-    const im_theory_k_fit *fit = &k.fit;
-    json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
-                              fit->k_error, "rms_residual", fit->rms_residual, "points", k.points, "linear_points",
-                              fit->linear_points, "pressure_ratio_range", k.pressure_ratio[0], k.pressure_ratio[1],
-                              "area_fraction_range", k.area_fraction[0], k.area_fraction[1], "slope_rms",
-                              rough->slope_rms, "slope_rms_definition", slope_definition_name(o->slope_definition));
-    json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
-    json_object_set_new(record, "k_fit", block);
+    json_object_set_new(record, "k_fit",
+                        periodic_k_fit_record(&k, rough->slope_rms, slope_definition_name(o->slope_definition)));
 }
 
 /* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
@@ -987,12 +971,7 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
         o->punch = periodic_rigid_flat(surface);
     for (int i = 0; o->pressures && i < o->target_count; ++i)
         o->targets[i] *= o->cell_area;
-    double edge, inner;
-    if (periodic_edge_mismatch(surface, &edge, &inner))
-        fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
-                "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
-                "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
-                o->surface_path ? o->surface_path : "the surface", edge, edge / inner, inner);
+    periodic_warn_if_not_periodic(surface, o->surface_path ? o->surface_path : "the surface");
 }
 
 /* --frames of the steps done, DIR/frames/contact_NNNN.png (front.h: fields_frames_write): a failure is the
@@ -1049,7 +1028,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         write_k_fit(o, rough, rows, done, record);
     if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
         im_fail(status, "%s", message);
-    int recorded = write_run_json(o->out, record, done, status);
+    int recorded = run_record_finish(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
     else
@@ -1234,7 +1213,7 @@ int cli_indent(int argc, char **argv)
         if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
             char message[1024];
             snprintf(message, sizeof message, "%s", im_last_error());
-            write_run_json(o.out, record, 0, status);
+            run_record_finish(o.out, record, 0, status);
             im_fail(status, "%s", message);
         }
     }

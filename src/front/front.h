@@ -129,6 +129,9 @@ im_indenter periodic_rigid_flat(const im_field *surface);
 
 /* Those two rms into *edge_rms and *inner_rms; 1 when the surface is not periodic by that rule. */
 int periodic_edge_mismatch(const im_field *surface, double *edge_rms, double *inner_rms);
+/* The warning on stderr, naming the surface (name), when it is not periodic by that rule: the solver joins its
+ * edges as if they met (as ContactMechanics warns). */
+void periodic_warn_if_not_periodic(const im_field *surface, const char *name);
 
 /* k of eq. (2) fitted to a periodic history under a rigid flat (theory.h: im_theory_fit_k) over its steps
  * with a positive load, x = p_m / (h'rms E*), with the ranges of x and of A/A0 it spans. */
@@ -146,6 +149,9 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
 void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
 extern const char PERIODIC_K_COLUMNS[];
 void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k);
+/* Its block in run.json ("k_fit": k, k_error, rms_residual, points, the ranges, the h'rms and its definition,
+ * k_linear or null); NULL when out of memory. */
+json_t *periodic_k_fit_record(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
 
 /* ---- the files of one solved step (step_files.c): `indent --fields/--distributions` and a periodic
  * scene's contact panels and distributions ---- */
@@ -271,5 +277,9 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path);
 
 /* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
 int run_record_write(const char *dir, const json_t *record);
+
+/* The record's end: "steps_completed", "status" ("ok" or the status's name) and "error" (the message of
+ * a failed run, "" else), then run_record_write. */
+int run_record_finish(const char *dir, json_t *record, int steps_done, int status);
 
 #endif

@@ -8,6 +8,7 @@
 #include "indentmap/status.h"
 
 #include <limits.h>
+#include <stdio.h>
 
 /* The solver options a run was made with. The accelerations of issue 15 are on unless switched
  * off, and off with a hardness (solver.h). */
@@ -58,4 +59,14 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path)
     return json_array_append_new(inputs, json_pack("{s:s, s:s, s:s}", "key", key, "path", text, "sha256", hex)) == 0
                ? IM_OK
                : im_fail(IM_ENOMEM, "run.json: out of memory");
+}
+
+int run_record_finish(const char *dir, json_t *record, int steps_done, int status)
+{
+    json_object_set_new(record, "steps_completed", json_integer(steps_done));
+    json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
+    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
+    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
+    json_object_set_new(record, "error", json_string(error));
+    return run_record_write(dir, record);
 }
