@@ -89,4 +89,36 @@ check "indent's inputs: the profile's SHA-256" test "$(record_value "$dir/ind/ru
   '[i["sha256"] for i in d["inputs"] if i["key"] == "--profile"][0]')" = "$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)"
 check "indent's inputs: the surface's absolute path" test "$(record_value "$dir/ind/run.json" 'd["inputs"][0]["path"]')" = "$dir/s32.npy"
 
+# indent --from-record: the run made again from its record's arguments (paths absolute, --out apart), the
+# tables byte for byte but for the solve times (history.csv's column 11, seconds), the fields too.
+"$cli" indent "$dir/s32.npy" --punch profile --profile "$dir/profile.txt" --load 5:20:4 --fields --distributions \
+  --out "$dir/ind2" >/dev/null 2>&1
+check "indent records its arguments" test "$(record_value "$dir/ind2/run.json" '" ".join(d["arguments"])')" = \
+  "--punch profile --profile $dir/profile.txt --load 5:20:4 --fields --distributions $dir/s32.npy"
+(cd "$dir" && "$cli" indent --from-record ind2/run.json --out again >/dev/null 2>&1)
+check "indent --from-record runs" test $? -eq 0 -a -s "$dir/again/history.csv"
+check "indent --from-record remakes history.csv but its solve times" \
+  cmp <(cut -d, -f11 --complement "$dir/ind2/history.csv") <(cut -d, -f11 --complement "$dir/again/history.csv")
+check "indent --from-record remakes the distribution tables" \
+  bash -c "for f in '$dir'/ind2/distributions_*.csv; do cmp \"\$f\" '$dir/again/'\"\${f##*/}\" || exit 1; done"
+check "indent --from-record remakes the fields" cmp "$dir/ind2/force_0004.npy" "$dir/again/force_0004.npy"
+check "indent's new record names the one it came from" \
+  test "$(record_value "$dir/again/run.json" 'd["from_record"]')" = ind2/run.json
+check "indent's new record has the same arguments" \
+  test "$(record_value "$dir/again/run.json" 'd["arguments"]')" = "$(record_value "$dir/ind2/run.json" 'd["arguments"]')"
+check "indent --from-record takes no other options" expect_exit 2 "give only --out, --wisdom or --no-wisdom" \
+  "$cli" indent --from-record "$dir/ind2/run.json" --load 3 --out "$dir/i3"
+check "indent --from-record refuses a scene's record" expect_exit 2 "expected the record of an indent run" \
+  "$cli" indent --from-record "$dir/a/run.json" --out "$dir/i3"
+sed 's/"version": "[^"]*"/"version": "0.0.9"/' "$dir/ind2/run.json" >"$dir/indent_old.json"
+check "indent --from-record refuses another version" expect_exit 2 "indent_old.json: made by indentmap 0.0.9" \
+  "$cli" indent --from-record "$dir/indent_old.json" --out "$dir/i3"
+old_sum=$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)
+printf '0 0\n20 3.5\n40 7.5\n' >"$dir/profile.txt"
+new_sum=$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)
+check "indent --from-record refuses a changed input, naming it and both checksums" expect_exit 2 \
+  "$dir/profile.txt: --profile has changed since the run: its SHA-256 is $new_sum, the record $dir/ind2/run.json says $old_sum" \
+  "$cli" indent --from-record "$dir/ind2/run.json" --out "$dir/i3"
+check "nothing written for a refused indent record" test ! -e "$dir/i3"
+
 finish

@@ -122,6 +122,8 @@ PARITY = {
                               "render contact or a scene's frames = yes"),
     "indent --page-embed": OUT,
     "indent --distributions": NOT_YET,
+    "indent --from-record": Reason("a Python indentation writes no run.json to make it from again: the script that "
+                                   "made it is its record (run it again); scenes have run_scene_from_record"),
     # ---- render ----
     "render": Python("Figure"),
     "render contact": Python("contact_map"),

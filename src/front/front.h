@@ -256,4 +256,20 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path);
 /* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
 int run_record_write(const char *dir, const json_t *record);
 
+/* ---- a run made again from its record (`run --from-record`, `indent --from-record`) ---- */
+
+/* Reads the record file into *root (the caller's reference): IM_EFORMAT naming the file (and the line)
+ * when it is not JSON. */
+int run_record_load(const char *record, json_t **root);
+
+/* The record root (read from the file `record`) is one of `program` ("indentmap run", "indentmap
+ * indent"; `kind` names it in the message) and of this version (another may solve differently in the
+ * last bits): IM_EFORMAT for another program, IM_EINVAL for another version, each naming the file. */
+int run_record_check_origin(const char *record, const json_t *root, const char *program, const char *kind);
+
+/* The input `path` (under `key`) still has the SHA-256 `recorded` (hex) that `record` states:
+ * IM_EINVAL naming the file and both checksums when it has changed, the read's error when it cannot be
+ * read. */
+int run_record_check_input(const char *record, const char *key, const char *path, const char *recorded);
+
 #endif
