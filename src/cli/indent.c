@@ -176,6 +176,8 @@ typedef struct indent_options {
     im_solver_options solver;
     indent_arguments arguments; /* as run.json records them (indent_record.h) */
     const char *from_record;    /* --from-record: the record of the run made again */
+    char *command;              /* the arguments as a command line, for the figures */
+    run_figure_texts figure_texts; /* what every figure carries: the version, the command, the inputs */
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL, OPT_RESAMPLE,
@@ -779,6 +781,17 @@ static int add_inputs(const indent_options *o, json_t *record)
     return status;
 }
 
+/* What every figure of the run carries (front.h: run_figure_texts): the version, the command that makes
+ * it and its inputs' SHA-256. */
+static int make_figure_texts(indent_options *o, const json_t *record)
+{
+    o->command = indent_arguments_command(&o->arguments);
+    if (!o->command)
+        return im_fail(IM_ENOMEM, "figure texts: out of memory");
+    const im_png_text command = {"Command", o->command};
+    return run_figure_texts_make(&command, 1, json_object_get(record, "inputs"), &o->figure_texts);
+}
+
 static int write_run_json(const char *dir, json_t *record, int steps_done, int status)
 {
     json_object_set_new(record, "steps_completed", json_integer(steps_done));
@@ -1001,7 +1014,8 @@ static void write_adhesion(const indent_options *o, const im_history_row *rows, 
 {
     im_adhesion_summary summary = {.hysteresis_work = NAN}; /* NaN: not summarised */
     json_t *law = json_object_get(record, "adhesion");
-    if (done >= 1 && analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &summary) != IM_OK)
+    if (done >= 1 && analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &o->figure_texts,
+                                             &summary) != IM_OK)
         fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
     if (isnan(summary.hysteresis_work))
         return;
@@ -1032,7 +1046,7 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
         return;
     }
     int status = analysis_write(o->out, &o->punch, rows, done, o->surface_delta, o->solver.e_star, o->length_unit,
-                                o->force_unit, &branches);
+                                o->force_unit, &o->figure_texts, &branches);
     if (status != IM_OK) {
         fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
         return;
@@ -1054,7 +1068,7 @@ static void write_history_figure(const indent_options *o, const im_theory_interf
     const int area_plot = o->solver.periodic && !(o->solver.adhesion_work > 0);
     const history_figure figure = {rows, done, &o->punch, area_plot ? o->cell_area : 0.0,
                                    o->solver.periodic && !o->punch_given && elastic ? rough : NULL, elastic,
-                                   o->length_unit, o->force_unit, o->e_star_unit};
+                                   o->length_unit, o->force_unit, o->e_star_unit, &o->figure_texts};
     if (history_figure_write(o->out, &figure) != IM_OK)
         fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
 }
@@ -1085,8 +1099,8 @@ static void draw_frames(const indent_options *o, const im_history_row *rows, int
                         int *status, char *message, size_t size)
 {
     char folder[4096];
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}};
-    const fields_frames frames = {o->out, folder, rows, done, &o->punch, o->force_unit, texts, 1};
+    const fields_frames frames = {o->out, folder, rows, done, &o->punch, o->force_unit, o->figure_texts.texts,
+                                  o->figure_texts.count};
     int drawn = im_path_join(folder, sizeof folder, o->out, "frames");
     if (drawn == IM_OK)
         drawn = fields_frames_write(context, &frames);
@@ -1338,6 +1352,8 @@ int cli_indent(int argc, char **argv)
         record = run_record(&o, surface, run);
         status = record ? add_inputs(&o, record) : im_fail(IM_ENOMEM, "run record");
         if (status == IM_OK)
+            status = make_figure_texts(&o, record);
+        if (status == IM_OK)
             status = history_start(o.out, &history);
         if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
             char message[1024];
@@ -1359,6 +1375,8 @@ int cli_indent(int argc, char **argv)
     im_field_free(surface);
     free(o.targets);
     json_decref(o.arguments.list);
+    free(o.command);
+    run_figure_texts_free(&o.figure_texts);
     indent_replay_free(&replay);
     if (status == IM_EINTERRUPTED) {
         fprintf(stderr, "indentmap: %s\n", im_last_error());

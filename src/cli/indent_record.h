@@ -14,8 +14,13 @@ typedef struct indent_arguments {
 } indent_arguments;
 
 /* Appends the long option named option ("load" for --load) with value (NULL for a flag; a path made
- * absolute when is_path) or, when option is NULL, the operand value. IM_ENOMEM, or the error of a path that cannot be made absolute. */
+ * absolute when is_path) or, when option is NULL, the operand value. IM_ENOMEM, or the error of a path
+ * that cannot be made absolute. */
 int indent_arguments_add(indent_arguments *arguments, const char *option, const char *value, int is_path);
+
+/* "indentmap indent ARGUMENTS", each argument quoted for a POSIX shell where it needs it (a path with a
+ * space); NULL when out of memory. The caller frees it. */
+char *indent_arguments_command(const indent_arguments *arguments);
 
 /* What `indent --from-record` was given beside the record. */
 typedef struct indent_replay_options {

@@ -8,6 +8,8 @@
 #include "indentmap/status.h"
 
 #include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The solver options a run was made with. The accelerations of issue 15 are on unless switched
@@ -96,4 +98,39 @@ int run_record_check_input(const char *record, const char *key, const char *path
         return im_fail(IM_EINVAL, "%s: %s has changed since the run: its SHA-256 is %s, the record %s says %s", path,
                        key, hex, record, recorded);
     return IM_OK;
+}
+
+/* The inputs as sha256sum lines, "none" without. */
+static char *inputs_text(const json_t *inputs)
+{
+    size_t size = sizeof "none", used = 0, i;
+    json_t *input;
+    json_array_foreach(inputs, i, input)
+        size += strlen(json_string_value(json_object_get(input, "path"))) + IM_SHA256_HEX + 3;
+    char *text = malloc(size);
+    if (!text)
+        return NULL;
+    snprintf(text, size, "none");
+    json_array_foreach(inputs, i, input)
+        used += (size_t)snprintf(text + used, size - used, "%s  %s\n", json_string_value(json_object_get(input,
+                                 "sha256")), json_string_value(json_object_get(input, "path")));
+    return text;
+}
+
+int run_figure_texts_make(const im_png_text *given, int given_count, const json_t *inputs, run_figure_texts *out)
+{
+    *out = (run_figure_texts){.inputs = inputs_text(inputs)};
+    if (!out->inputs)
+        return im_fail(IM_ENOMEM, "figure texts: out of memory");
+    out->texts[out->count++] = (im_png_text){"Software", "indentmap " IM_VERSION};
+    for (int i = 0; i < given_count && out->count < RUN_FIGURE_TEXTS_MAX - 1; ++i)
+        out->texts[out->count++] = given[i];
+    out->texts[out->count++] = (im_png_text){"Inputs", out->inputs};
+    return IM_OK;
+}
+
+void run_figure_texts_free(run_figure_texts *texts)
+{
+    free(texts->inputs);
+    texts->inputs = NULL;
 }

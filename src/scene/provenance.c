@@ -3,6 +3,7 @@
 #include "scene/provenance.h"
 #include "core/args.h"
 #include "front/front.h"
+#include "paper/figures.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -100,6 +101,26 @@ int scene_inputs_record(const im_scene *scene, json_t **record)
         inputs = NULL;
     }
     *record = inputs;
+    return status;
+}
+
+int scene_figure_texts(const im_scene *scene, const im_png_text *own, int own_count, run_figure_texts *texts)
+{
+    json_t *inputs;
+    *texts = (run_figure_texts){0};
+    if (own_count > 4)
+        return im_fail(IM_EINVAL, "scene_figure_texts: %d texts of the figure's own: expected at most 4", own_count);
+    int status = scene_inputs_record(scene, &inputs);
+    if (status != IM_OK)
+        return status;
+    im_png_text given[6] = {{"Source", scene->path}};
+    int count = 1;
+    if (scene->contents[0])
+        given[count++] = (im_png_text){PAPER_SCENE_CONTENTS, scene->contents};
+    for (int i = 0; i < own_count; ++i)
+        given[count++] = own[i];
+    status = run_figure_texts_make(given, count, inputs, texts);
+    json_decref(inputs);
     return status;
 }
 
