@@ -1,8 +1,8 @@
 """Checks that every figure under a folder carries a run's provenance (issue 31).
 
-usage: python3 figure_texts.py DIR KEY=TEXT [KEY=TEXT ...]
+usage: python3 figure_texts.py DIR|FIGURE KEY=TEXT [KEY=TEXT ...]
 
-Walks every .png and .pdf under DIR and reads, independently of indentmap's writer, a PNG's text chunks
+Walks every .png and .pdf under DIR (or reads the one FIGURE), independently of indentmap's writer, a PNG's text chunks
 (tEXt, zTXt, iTXt) and a PDF's information dictionary (its Subject, "key:\\nvalue" blocks, and its
 Keywords, "key=value; ..."). Each KEY's value must contain TEXT. Prints one line per figure that lacks
 one and exits 1 when any does, 2 when DIR holds no figure.
@@ -59,8 +59,9 @@ def pdf_texts(path):
 
 
 def main(folder, wanted):
-    figures = sorted(os.path.join(root, name) for root, _, names in os.walk(folder) for name in names
-                     if name.endswith((".png", ".pdf")))
+    figures = [folder] if os.path.isfile(folder) else sorted(
+        os.path.join(root, name) for root, _, names in os.walk(folder) for name in names
+        if name.endswith((".png", ".pdf")))
     if not figures:
         print(f"{folder}: no figure")
         return 2

@@ -135,6 +135,7 @@ PARITY = {
     "render --vmin": Python("contact_map", "vmin"),
     "render --vmax": Python("contact_map", "vmax"),
     "render --log": Python("contact_map", "log"),
+    "render --linear": Python("contact_map", "log", "log=False"),
     "render --scale": Python("contact_map", "scale"),
     "render --circle": Python("contact_map", "circle_radius"),
     "render --circle-x": Python("contact_map", "circle_centre"),

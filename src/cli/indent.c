@@ -121,7 +121,7 @@ static void usage(FILE *stream)
             "                      (run.json \"arguments\"), into --out (default: R's folder); refused when\n"
             "                      an input file's SHA-256 is no longer the recorded one or R was made by\n"
             "                      another version; its FFTW plans estimated as recorded unless --wisdom\n"
-            "                      is given (docs/solver.md, \"Provenance\")\n"
+            "                      is given (docs/scenes.md, \"Provenance\")\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n"
             "  --frames            also draw DIR/frames/contact_NNNN.png for every step (the step's contact\n"
             "                      map, one log force norm over all steps; implies --fields, needs OpenGL),\n"
