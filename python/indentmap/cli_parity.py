@@ -123,6 +123,8 @@ PARITY = {
                               "render contact or a scene's frames = yes"),
     "indent --page-embed": OUT,
     "indent --distributions": Python("indent", "distributions", "Indentation.write_distributions for one step"),
+    "indent --from-record": Reason("a Python indentation writes no run.json to make it from again: the script that "
+                                   "made it is its record (run it again); scenes have run_scene_from_record"),
     # ---- render ----
     "render": Python("Figure"),
     "render contact": Python("contact_map"),
@@ -134,6 +136,7 @@ PARITY = {
     "render --vmin": Python("contact_map", "vmin"),
     "render --vmax": Python("contact_map", "vmax"),
     "render --log": Python("contact_map", "log"),
+    "render --linear": Python("contact_map", "log", "log=False"),
     "render --scale": Python("contact_map", "scale"),
     "render --circle": Python("contact_map", "circle_radius"),
     "render --circle-x": Python("contact_map", "circle_centre"),

@@ -44,19 +44,21 @@ class Image:
         return _png_bytes(self.save)
 
 
-def _contact_norm(force, vmin, vmax, log, log_span=1000.0):
-    """(vmin, vmax) of a force norm: 0 .. the largest force (1 without any), a log norm from vmax / log_span."""
+def _contact_norm(force, vmin, vmax, log):
+    """(vmin, vmax) of a force norm: 0 .. the largest force (1 without any), a log norm over the two decades
+    below it, as the frames'."""
     largest = float(np.max(force)) if np.size(force) else 0.0
     vmax = vmax if vmax is not None else (largest if largest > 0 else 1.0)
-    vmin = vmin if vmin is not None else (vmax / log_span if log else 0.0)
+    vmin = vmin if vmin is not None else (vmax / 100.0 if log else 0.0)
     return vmin, vmax
 
 
-def contact_map(force, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, log=False, scale=2,
+def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log=True, scale=2,
                 circle_radius=0.0, circle_centre=None):
     """Patches in contact (force > 0) coloured by their force, the others grey; optionally the smooth
-    contact circle (radius and centre in patches). Norm defaults: 0 .. largest force (log: a thousandth
-    of it .. largest)."""
+    contact circle (radius and centre in patches). The defaults are every front end's for forces (``indentmap
+    render contact``, scenes, ``indent --frames``): magma on a log norm from a hundredth of the largest force
+    to it; ``log=False``: linear from 0."""
     lo, hi = _contact_norm(force, vmin, vmax, log)
     cx, cy = (float("nan"), float("nan")) if circle_centre is None else circle_centre
     return Image(_core.render(force, float(delta), height_map=False, colormap=colormap, vmin=lo, vmax=hi, log=log,
@@ -78,11 +80,11 @@ class Figure:
     """Panels of force fields with one shared norm and colour bar, like the paper's Fig. 4.
 
     ``Figure(fields, columns=3, labels=['(a)', ...], titles=[...])``; ``save('fig.pdf')`` writes PNG,
-    PDF or SVG by extension; a notebook shows it as PNG.
+    PDF or SVG by extension; a notebook shows it as PNG. Norm defaults as ``contact_map``'s (magma, log).
     """
 
-    def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="viridis", vmin=None,
-                 vmax=None, log=False, scale=2, circle_radius=0.0, colorbar_label="local force f / (E* δ²)",
+    def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="magma", vmin=None,
+                 vmax=None, log=True, scale=2, circle_radius=0.0, colorbar_label="local force f / (E* δ²)",
                  dpi=300.0, scale_bar=0.0):
         self.fields = [np.asarray(f, dtype=float) for f in fields]
         if not self.fields:
@@ -151,7 +153,7 @@ def view3d(heights, *, force=None, displacement=None, delta=1.0, punch=Cone(), a
         drawn = drawn - u
     if punch_mode not in _PUNCH_MODES:
         raise ValueError(f"punch_mode {punch_mode!r}: expected one of {list(_PUNCH_MODES)}")
-    lo, hi = _contact_norm(np.zeros(0) if force is None else force, vmin, vmax, log, log_span=100.0)
+    lo, hi = _contact_norm(np.zeros(0) if force is None else force, vmin, vmax, log)
     kind, alpha, radius = _view3d_punch(punch)
     return Image(_core.view3d(drawn, float(delta), force, kind, float(alpha), float(radius),
                               None if axis is None else tuple(axis), punch_mode=_PUNCH_MODES[punch_mode],

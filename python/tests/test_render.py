@@ -39,6 +39,20 @@ def test_contact_map_tension_on_the_blue_ramp():
     assert tuple(rgba[len(tensions)]) == tuple(darkest)
 
 
+def test_contact_map_defaults_to_the_frames_norm(rough64):
+    """Forces default to every front end's map and norm (render contact, scenes, indent --frames): magma on a
+    log norm over the two decades below the largest force; log=False is linear from 0."""
+    force = np.clip(rough64 - np.median(rough64), 0.0, None)
+    frames = im.contact_map(force, colormap="magma", log=True, vmin=force.max() / 100, vmax=force.max()).rgba
+    assert (im.contact_map(force).rgba == frames).all()
+    linear = im.contact_map(force, log=False, colormap="viridis").rgba
+    assert (linear == im.contact_map(force, log=False, colormap="viridis", vmin=0.0, vmax=force.max()).rgba).all()
+    assert not (linear == frames).all()
+    figure = im.Figure([force])
+    assert figure.norm == (force.max() / 100, force.max())
+    assert figure.style["colormap"] == "magma" and figure.style["log"]
+
+
 def test_height_map_and_png(tmp_path, rough64):
     picture = im.height_map(rough64, scale=1)
     assert picture.rgba.shape[:2] == (64 + 4, 64 + 4)

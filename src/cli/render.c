@@ -33,9 +33,14 @@ static void usage(FILE *stream)
             "Output format from the extension: .png, .pdf or .svg.\n\n"
             "  --out FILE          the figure (or the animation for 'animate')\n"
             "  --raw               PNG of the data image only, without annotations\n"
-            "  --colormap NAME     viridis (default), cividis, magma, inferno or grey\n"
-            "  --vmin V, --vmax V  norm range (default: 0 .. largest force; min .. max height)\n"
-            "  --log               logarithmic norm (vmin > 0; default vmin: vmax / 1000)\n"
+            "  --colormap NAME     magma (default for forces: contact, animate, as scenes, indent --frames\n"
+            "                      and render view3d), viridis (default for heights), cividis, inferno\n"
+            "                      or grey\n"
+            "  --vmin V, --vmax V  norm range (default: the two decades below the largest force, log; 0 ..\n"
+            "                      largest force with --linear; min .. max height)\n"
+            "  --log               logarithmic norm (vmin > 0; default vmin: vmax / 100): the default for\n"
+            "                      forces (contact, animate)\n"
+            "  --linear            linear norm of forces (contact, animate; heights are linear)\n"
             "  --scale N           pixels per patch (default 2)\n"
             "  --circle R          contact circle of radius R patches (contact, animate)\n"
             "  --circle-x X, --circle-y Y   its centre in patches (default: the grid's middle)\n"
@@ -58,6 +63,7 @@ typedef struct render_options {
     im_colormap_id map;
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
+    int map_given, linear;        /* --colormap, --linear: else forces take the frames' magma, log */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
     double shared_tension;       /* the largest tension -f of all the fields: the tension bar's top */
     char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
@@ -67,12 +73,13 @@ typedef struct render_options {
 
 enum { OPT_OUT = 256, OPT_RAW, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG, OPT_SCALE, OPT_CIRCLE, OPT_CX,
        OPT_CY, OPT_CONTACT, OPT_LABEL, OPT_TITLE, OPT_QUANTITY, OPT_DPI, OPT_FPS, OPT_FRAMES,
-       OPT_BACKEND, OPT_TITLES, OPT_COLUMNS, OPT_HELP };
+       OPT_BACKEND, OPT_TITLES, OPT_COLUMNS, OPT_LINEAR, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
     {"colormap", required_argument, 0, OPT_MAP}, {"vmin", required_argument, 0, OPT_VMIN},
     {"vmax", required_argument, 0, OPT_VMAX}, {"log", no_argument, 0, OPT_LOG},
+    {"linear", no_argument, 0, OPT_LINEAR},
     {"scale", required_argument, 0, OPT_SCALE}, {"circle", required_argument, 0, OPT_CIRCLE},
     {"circle-x", required_argument, 0, OPT_CX}, {"circle-y", required_argument, 0, OPT_CY},
     {"contact", required_argument, 0, OPT_CONTACT}, {"label", required_argument, 0, OPT_LABEL},
@@ -95,10 +102,11 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_RAW: o->raw = 1; return 0;
-    case OPT_MAP: return named(im_colormap_from_name(arg, &o->map), "--colormap");
+    case OPT_MAP: o->map_given = 1; return named(im_colormap_from_name(arg, &o->map), "--colormap");
     case OPT_VMIN: o->has_vmin = 1; return cli_parse_double("--vmin", arg, -1e300, 1e300, &o->vmin);
     case OPT_VMAX: o->has_vmax = 1; return cli_parse_double("--vmax", arg, -1e300, 1e300, &o->vmax);
     case OPT_LOG: o->logarithmic = 1; return 0;
+    case OPT_LINEAR: o->linear = 1; return 0;
     case OPT_SCALE: return cli_parse_int("--scale", arg, 1, 64, &o->scale);
     case OPT_CIRCLE: return cli_parse_double("--circle", arg, 0.0, 1e9, &o->circle);
     case OPT_CX: o->has_circle_x = 1; return cli_parse_double("--circle-x", arg, -1e9, 1e9, &o->circle_x);
@@ -122,7 +130,7 @@ static void apply_norm(const render_options *o, im_colormap *c)
 {
     double lo = o->has_vmin ? o->vmin : o->shared_lo, hi = o->has_vmax ? o->vmax : o->shared_hi;
     if (o->logarithmic && !o->has_vmin && hi > 0.0)
-        lo = hi * 1e-3;
+        lo = hi * 1e-2; /* two decades, as the frames' (front.h: frame_force_norm) */
     *c = im_colormap_make(o->map, lo, hi);
     c->logarithmic = o->logarithmic;
 }
@@ -404,6 +412,10 @@ static int check_usage(const render_options *o, int inputs)
         fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
     else if (o->raw && !animation && strstr(o->out, ".png") == NULL)
         fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
+    else if (o->logarithmic && o->linear)
+        fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
+    else if (o->linear && strcmp(o->mode, "height") == 0)
+        fprintf(stderr, "indentmap: --linear is for forces (contact, animate): heights are drawn linear\n");
     else
         return 0;
     return -1;
@@ -447,6 +459,18 @@ static int run(render_options *o, char **inputs, int count)
     return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
 }
 
+/* Forces (contact, animate) default to the colour map and norm of every other front end's force maps:
+ * magma on a log norm over two decades (scenes, indent --frames, render view3d). */
+static void apply_force_defaults(render_options *o)
+{
+    if (strcmp(o->mode, "height") == 0)
+        return;
+    if (!o->map_given)
+        o->map = IM_COLORMAP_MAGMA;
+    if (!o->linear)
+        o->logarithmic = 1;
+}
+
 int cli_render(int argc, char **argv)
 {
     if (argc > 1 && strcmp(argv[1], "view3d") == 0)
@@ -465,5 +489,6 @@ int cli_render(int argc, char **argv)
         return CLI_EXIT_USAGE;
     if (cli_interrupt_install_cleanup() != 0)
         return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
+    apply_force_defaults(&o);
     return run(&o, argv + optind + 1, argc - optind - 1);
 }

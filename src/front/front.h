@@ -18,6 +18,21 @@
 #include <stdio.h>
 #include <sys/types.h>
 
+/* The texts a run's figures carry as PNG text chunks and PDF metadata: "Software" (the version), the
+ * given texts (what makes the run again: a scene's path and contents, indent's command), and "Inputs",
+ * the record's inputs (run_record_add_input) as sha256sum writes them, one "SHA256  PATH\n" line each
+ * ("none" without). */
+enum { RUN_FIGURE_TEXTS_MAX = 10 };
+typedef struct run_figure_texts {
+    im_png_text texts[RUN_FIGURE_TEXTS_MAX];
+    int count;
+    char *inputs; /* the Inputs text (owned) */
+} run_figure_texts;
+
+/* At most RUN_FIGURE_TEXTS_MAX - 2 given texts (borrowed); IM_ENOMEM. Free with run_figure_texts_free. */
+int run_figure_texts_make(const im_png_text *given, int given_count, const json_t *inputs, run_figure_texts *out);
+void run_figure_texts_free(run_figure_texts *texts);
+
 /* ---- step lists (steps.c) ---- */
 
 /* The most steps of one history. A scene holds its steps inline (im_scene.steps, 32 KiB for
@@ -64,9 +79,11 @@ extern const char ANALYSIS_COLUMNS[];
  * DIR/indentation.csv and DIR/load_displacement.{png,pdf} atomically: the history's N(w), loading and
  * unloading segments in two colours, with each branch's tangent at its top (slope S, to N = 0:
  * Oliver-Pharr's construction), its axes in length_unit and force_unit ("" for delta and
- * E* delta^2). *branches says how many branches (0: nothing written). */
+ * E* delta^2), the figure carrying texts (NULL: none). *branches says how many branches (0: nothing
+ * written). */
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   double e_star, const char *length_unit, const char *force_unit, int *branches);
+                   double e_star, const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                   int *branches);
 
 /* The same table alone at path (a scene's per-member file), atomically, when rows[0..count) hold an
  * unloading branch; *branches says how many (0: nothing written). */
@@ -75,9 +92,10 @@ int analysis_write_table(const char *path, const im_indenter *punch, const im_hi
 
 /* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
- * pull-off marked. IM_EINVAL for count < 1; a figure that cannot be written leaves the summary set. */
+ * pull-off marked, carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be written
+ * leaves the summary set. */
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
-                            const char *force_unit, im_adhesion_summary *summary);
+                            const char *force_unit, const run_figure_texts *texts, im_adhesion_summary *summary);
 
 /* The smooth adhesive theory of punch under law (theory.h, "Adhesion"; adhesion_theory.c): "Maugis-Dugdale
  * sphere" or "Kendall flat punch" into *model and the pull-off point into *pull_off; NULL *model (IM_OK)
@@ -109,6 +127,7 @@ typedef struct history_figure {
     const im_theory_interface *flat_theory;
     int theory;
     const char *length_unit, *force_unit, *pressure_unit;
+    const run_figure_texts *texts; /* what the figure carries (NULL: none) */
 } history_figure;
 int history_figure_write(const char *dir, const history_figure *h);
 
@@ -281,5 +300,21 @@ int run_record_write(const char *dir, const json_t *record);
 /* The record's end: "steps_completed", "status" ("ok" or the status's name) and "error" (the message of
  * a failed run, "" else), then run_record_write. */
 int run_record_finish(const char *dir, json_t *record, int steps_done, int status);
+
+/* ---- a run made again from its record (`run --from-record`, `indent --from-record`) ---- */
+
+/* Reads the record file into *root (the caller's reference): IM_EFORMAT naming the file (and the line)
+ * when it is not JSON. */
+int run_record_load(const char *record, json_t **root);
+
+/* The record root (read from the file `record`) is one of `program` ("indentmap run", "indentmap
+ * indent"; `kind` names it in the message) and of this version (another may solve differently in the
+ * last bits): IM_EFORMAT for another program, IM_EINVAL for another version, each naming the file. */
+int run_record_check_origin(const char *record, const json_t *root, const char *program, const char *kind);
+
+/* The input `path` (under `key`) still has the SHA-256 `recorded` (hex) that `record` states:
+ * IM_EINVAL naming the file and both checksums when it has changed, the read's error when it cannot be
+ * read. */
+int run_record_check_input(const char *record, const char *key, const char *path, const char *recorded);
 
 #endif

@@ -9,6 +9,7 @@
 #include "scene/labels.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
+#include "scene/provenance.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
 #include "scene/surfaces.h"
@@ -146,11 +147,14 @@ static int write_frame(const im_scene *scene, frame_figure *f)
         return status;
     scene_outputs_note(scene, path);
     snprintf(title, sizeof title, "N* = %.0f", f->load_star);
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path},
-                                 {PAPER_SCENE_CONTENTS, scene->contents}};
-    const frame_words words = {title, f->norm, f->label, f->tension, "tensile force −f / (E* δ²)", texts,
-                               scene->contents[0] ? 3 : 2};
-    return frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
+    run_figure_texts texts;
+    status = scene_figure_texts(scene, NULL, 0, &texts);
+    const frame_words words = {title, f->norm, f->label, f->tension, "tensile force −f / (E* δ²)", texts.texts,
+                               texts.count};
+    if (status == IM_OK)
+        status = frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
+    run_figure_texts_free(&texts);
+    return status;
 }
 
 static void write_frame_figure(const im_scene *scene, frame_figure *f)

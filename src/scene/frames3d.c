@@ -8,6 +8,7 @@
 #include "scene/frames3d.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
+#include "scene/provenance.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
 
@@ -96,12 +97,15 @@ static int write_frame(const im_scene *scene, const scene_frames3d_input *in, co
     snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),
              s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
     im_figure_panel panel = {image, NULL, title};
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path}, {"Title", title},
-                                 {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm},
-                                 {PAPER_SCENE_CONTENTS, scene->contents}};
+    const im_png_text own[] = {{"Title", title}, {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm}};
+    run_figure_texts texts;
+    if (status == IM_OK)
+        status = scene_figure_texts(scene, own, 3, &texts);
+    if (status != IM_OK)
+        return status;
     im_figure figure = im_figure_default();
-    figure.texts = texts;
-    figure.text_count = scene->contents[0] ? 6 : 5;
+    figure.texts = texts.texts;
+    figure.text_count = texts.count;
     figure.panels = &panel;
     figure.colormap = &s->colormap;
     figure.colorbar_label = "local force f / (E* δ²)";
@@ -112,9 +116,9 @@ static int write_frame(const im_scene *scene, const scene_frames3d_input *in, co
     }
     figure.scale_bar = -1.0; /* a perspective view has no single scale */
     figure.dpi = 150;
-    if (status != IM_OK)
-        return status;
-    return frame ? im_figure_write_frame(&figure, path, frame) : im_figure_write(&figure, path);
+    status = frame ? im_figure_write_frame(&figure, path, frame) : im_figure_write(&figure, path);
+    run_figure_texts_free(&texts);
+    return status;
 }
 
 static int write_animations(const im_scene *scene, const im_scene_run_options *options, const im_image *frames,

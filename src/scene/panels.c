@@ -277,10 +277,10 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
     return status;
 }
 
-static int draw_figure(const im_scene *scene, const void *panels, const char *path)
+static int draw_figure(const im_scene *scene, const void *panels, const paper_file *file)
 {
     (void)scene;
-    return paper_figure_contact_panels(panels, path);
+    return paper_figure_contact_panels(panels, file);
 }
 
 /* tension: the tension's norm, NULL where no panel has tension. */
@@ -295,7 +295,7 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
     }
     paper_contact_panels panels = {.count = scene->family_count, .images = images, .titles = title_of,
                                    .norm = norm, .tension = tension, .extend_under = scene->log_norm, .source = scene->path,
-                                   .contents = scene->contents, .load_star = scene->load_star};
+                                   .load_star = scene->load_star};
     return scene_write_png_pdf(scene, "contact_panels", draw_figure, &panels);
 }
 
