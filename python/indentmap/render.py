@@ -25,10 +25,16 @@ def _png_bytes(write):
 
 
 class Image:
-    """A rendered picture: ``rgba`` is (height, width, 4) uint8, row 0 at the top. A notebook shows it."""
+    """A rendered picture: ``rgba`` is (height, width, 4) uint8, row 0 at the top. A notebook shows it.
 
-    def __init__(self, rgba):
+    ``texts`` ({key: value} of str) are what the picture shows, written as the PNG's text chunks as
+    ``indentmap render --raw`` writes them: ``contact_map`` and ``height_map`` set 'Software', 'Quantity'
+    (the colour bar's label in the field's units, e.g. 'local force f / N'), 'Colormap', 'Norm' and
+    'Pixels per patch'."""
+
+    def __init__(self, rgba, texts=None):
         self.rgba = rgba
+        self.texts = dict(texts or {})
 
     @classmethod
     def read(cls, path):
@@ -37,8 +43,8 @@ class Image:
         return cls(_core.read_png(path))
 
     def save(self, path):
-        """Writes a PNG (atomically)."""
-        _core.write_png(path, self.rgba)
+        """Writes a PNG (atomically), with ``texts`` as its text chunks."""
+        _core.write_png(path, self.rgba, tuple(self.texts.items()))
 
     def _repr_png_(self):
         return _png_bytes(self.save)
@@ -52,38 +58,58 @@ def _contact_norm(force, vmin, vmax, log, log_span=1000.0):
     return vmin, vmax
 
 
+def _picture_texts(quantity, unit, colormap, norm, log, scale):
+    """The text chunks of a picture, as ``indentmap render --raw`` writes them (but its 'Source')."""
+    return {"Software": f"indentmap {_core.library_version}", "Quantity": _core.colorbar_label(quantity, unit),
+            "Colormap": colormap, "Norm": f"{'log' if log else 'linear'} [{norm[0]:.9g}, {norm[1]:.9g}]",
+            "Pixels per patch": str(int(scale))}
+
+
 def contact_map(force, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, log=False, scale=2,
-                circle_radius=0.0, circle_centre=None):
+                circle_radius=0.0, circle_centre=None, unit="", force_unit=""):
     """Patches in contact (force > 0) coloured by their force, the others grey; optionally the smooth
     contact circle (radius and centre in patches). Norm defaults: 0 .. largest force (log: a thousandth
-    of it .. largest)."""
+    of it .. largest). ``unit`` is the length unit of ``delta`` and ``force_unit`` that of the forces
+    (``read(path).unit`` and ``Indentation(...).units["force"]``; "" for units of delta and E* δ²): the
+    Image's 'Quantity' text then says 'local force f / N' as the program's pictures do."""
     lo, hi = _contact_norm(force, vmin, vmax, log)
     cx, cy = (float("nan"), float("nan")) if circle_centre is None else circle_centre
     return Image(_core.render(force, float(delta), height_map=False, colormap=colormap, vmin=lo, vmax=hi, log=log,
                               scale=int(scale), circle_radius=float(circle_radius), circle_x=cx, circle_y=cy,
-                              contact=None))
+                              contact=None, unit=_core.length_unit("unit", unit)),
+                 _picture_texts("force", force_unit, colormap, (lo, hi), log, scale))
 
 
-def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, scale=2, contact=None):
-    """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact."""
+def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, scale=2, contact=None, unit="",
+               quantity="height"):
+    """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact. ``unit`` is
+    the length unit of ``delta`` and the heights ("" for units of delta); ``quantity`` what they are:
+    'height', or a field of ``indent``: 'gap', 'displacement' or 'plastic' (the Image's 'Quantity' text,
+    e.g. 'gap g / µm')."""
     lo = float(np.min(heights)) if vmin is None else vmin
     hi = float(np.max(heights)) if vmax is None else vmax
     if not hi > lo:
         hi = lo + 1.0
+    unit = _core.length_unit("unit", unit)
     return Image(_core.render(heights, float(delta), height_map=True, colormap=colormap, vmin=lo, vmax=hi, log=False,
-                              scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact))
+                              scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact,
+                              unit=unit),
+                 _picture_texts(quantity, unit, colormap, (lo, hi), False, scale))
 
 
 class Figure:
     """Panels of force fields with one shared norm and colour bar, like the paper's Fig. 4.
 
     ``Figure(fields, columns=3, labels=['(a)', ...], titles=[...])``; ``save('fig.pdf')`` writes PNG,
-    PDF or SVG by extension; a notebook shows it as PNG.
+    PDF or SVG by extension; a notebook shows it as PNG. ``unit`` (the length unit of ``delta``) and
+    ``force_unit`` label the scale bar ('10 µm') and the colour bar ('local force f / N') as
+    ``indentmap render contact`` labels a force file of that run; ``colorbar_label`` overrides the
+    colour bar's.
     """
 
     def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="viridis", vmin=None,
-                 vmax=None, log=False, scale=2, circle_radius=0.0, colorbar_label="local force f / (E* δ²)",
-                 dpi=300.0, scale_bar=0.0):
+                 vmax=None, log=False, scale=2, circle_radius=0.0, colorbar_label=None,
+                 dpi=300.0, scale_bar=0.0, unit="", force_unit=""):
         self.fields = [np.asarray(f, dtype=float) for f in fields]
         if not self.fields:
             raise ValueError("Figure: no fields")
@@ -93,7 +119,9 @@ class Figure:
         self.labels, self.titles = labels, titles
         self.style = dict(height_map=False, colormap=colormap, log=log, scale=int(scale),
                           circle_radius=float(circle_radius), circle_x=float("nan"), circle_y=float("nan"),
-                          contact=None)
+                          contact=None, unit=_core.length_unit("unit", unit))
+        if colorbar_label is None:
+            colorbar_label = _core.colorbar_label("force", force_unit)
         self.delta, self.colorbar_label, self.dpi, self.scale_bar = float(delta), colorbar_label, dpi, scale_bar
 
     def save(self, path):
