@@ -173,9 +173,9 @@ PARITY = {
     "run --from-record": Python("run_scene_from_record"),
     "run --out": Python("run_scene", "out"),
     # ---- formats, info ----
-    "formats": NOT_YET,
-    "info": NOT_YET,
-    "info --backend": BACKEND,
+    "formats": Python("formats"),
+    "info": Python("info"),
+    "info --backend": Python("info", "backend"),
     # ---- mpi-indent (in builds with MPI) ----
     "mpi-indent": MPI,
     **{f"mpi-indent --{name}": MPI for name in (

@@ -4,6 +4,7 @@
 
 #include "indentmap/field.h"
 #include "indentmap/history.h"
+#include "indentmap/info.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/version.h"
@@ -90,8 +91,51 @@ static PyObject *memory_limit(PyObject *self, PyObject *args)
     return PyLong_FromSize_t(im_memory_limit());
 }
 
+/* The text of a build report (info.h), made without the GIL; raises the library's error where the program
+ * exits 1. */
+static PyObject *report_text(int (*make)(void *argument, char **text), void *argument)
+{
+    char *text = NULL;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = make(argument, &text);
+    Py_END_ALLOW_THREADS
+    PyObject *out = status == IM_OK ? PyUnicode_FromString(text) : py_raise_status(status);
+    free(text);
+    return out;
+}
+
+static int make_info(void *backend, char **text) { return im_info_text(*(im_render_backend *)backend, text); }
+
+static int make_formats(void *unused, char **text)
+{
+    (void)unused;
+    return im_formats_text(text);
+}
+
+/* info_text(backend) -> `indentmap info`'s text for backend "auto", "egl" or "osmesa" */
+static PyObject *info_text(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *name;
+    im_render_backend backend;
+    if (!PyArg_ParseTuple(args, "s", &name))
+        return NULL;
+    int status = im_render_backend_from_name(name, &backend);
+    return status == IM_OK ? report_text(make_info, &backend) : py_raise_status(status);
+}
+
+/* formats_text() -> `indentmap formats`' text */
+static PyObject *formats_text(PyObject *self, PyObject *unused)
+{
+    (void)self, (void)unused;
+    return report_text(make_formats, NULL);
+}
+
 static PyMethodDef core_methods[] = {
     {"memory_limit", memory_limit, METH_VARARGS, "memory_limit([bytes]) -> the cap in bytes (0: none)"},
+    {"info_text", info_text, METH_VARARGS, "info_text(backend) -> indentmap info's text"},
+    {"formats_text", formats_text, METH_NOARGS, "formats_text() -> indentmap formats' text"},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module_definition = {
