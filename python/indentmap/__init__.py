@@ -28,6 +28,8 @@ def memory_limit(limit=None):
     With ``limit`` (bytes; 0 removes the cap) sets it first, for the whole process, like the ``indentmap``
     program's ``IM_MEMORY_LIMIT_MIB``: work that would need more than the cap (or than the machine has)
     is refused up front with ``OutOfMemory`` naming what and how much, instead of starting to swap.
+
+    Example: ``im.memory_limit(8 << 30)`` caps the library at 8 GiB; ``im.memory_limit()`` reads it.
     """
     return _core.memory_limit() if limit is None else _core.memory_limit(int(limit))
 

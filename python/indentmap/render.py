@@ -12,7 +12,11 @@ from .solver import Cone, Flat, Sphere
 
 
 def renderer():
-    """The OpenGL backend and renderer in use: {'backend', 'gl_renderer', 'gl_version'}."""
+    """The OpenGL backend and renderer in use: {'backend', 'gl_renderer', 'gl_version'}.
+
+    ``Unsupported`` on a machine without an OpenGL 3.3 context.
+
+    Example: ``im.renderer()["backend"]`` is 'egl' or 'osmesa'."""
     return _core.renderer()
 
 
@@ -30,7 +34,9 @@ class Image:
     ``texts`` ({key: value} of str) are what the picture shows, written as the PNG's text chunks as
     ``indentmap render --raw`` writes them: ``contact_map`` and ``height_map`` set 'Software', 'Quantity'
     (the colour bar's label in the field's units, e.g. 'local force f / N'), 'Colormap', 'Norm' and
-    'Pixels per patch'."""
+    'Pixels per patch'.
+
+    Example: ``im.contact_map(force).save("contact.png")``; ``image.rgba[0, 0]`` is the top-left pixel."""
 
     def __init__(self, rgba, texts=None):
         self.rgba = rgba
@@ -39,11 +45,17 @@ class Image:
     @classmethod
     def read(cls, path):
         """An 8-bit RGB or RGBA PNG file as an Image (RGB made opaque): the program's pictures and frames
-        as arrays. ``FileError`` or ``FormatError`` naming the file."""
+        as arrays. ``FileError`` or ``FormatError`` naming the file.
+
+        Example: ``im.Image.read("output/indent/frames/contact_0001.png").rgba.shape``."""
         return cls(_core.read_png(path))
 
     def save(self, path):
-        """Writes a PNG (atomically), with ``texts`` as its text chunks."""
+        """Writes a PNG (atomically), with ``texts`` as its text chunks.
+
+        ``FileError`` naming the path when it cannot be written.
+
+        Example: ``im.height_map(h).save("heights.png")``."""
         _core.write_png(path, self.rgba, tuple(self.texts.items()))
 
     def _repr_png_(self):
@@ -71,7 +83,13 @@ def contact_map(force, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, l
     contact circle (radius and centre in patches). Norm defaults: 0 .. largest force (log: a thousandth
     of it .. largest). ``unit`` is the length unit of ``delta`` and ``force_unit`` that of the forces
     (``read(path).unit`` and ``Indentation(...).units["force"]``; "" for units of delta and E* δ²): the
-    Image's 'Quantity' text then says 'local force f / N' as the program's pictures do."""
+    Image's 'Quantity' text then says 'local force f / N' as the program's pictures do.
+
+    Returns an Image; ``InvalidArgument`` for a bad colour map or norm, ``Unsupported`` without
+    OpenGL.
+
+    Example: ``im.contact_map(force, delta=t.delta, unit=t.unit, force_unit=run.units["force"],
+    log=True).texts["Quantity"]`` is 'local force f / N' for a run in m and Pa."""
     lo, hi = _contact_norm(force, vmin, vmax, log)
     cx, cy = (float("nan"), float("nan")) if circle_centre is None else circle_centre
     return Image(_core.render(force, float(delta), height_map=False, colormap=colormap, vmin=lo, vmax=hi, log=log,
@@ -85,7 +103,11 @@ def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, 
     """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact. ``unit`` is
     the length unit of ``delta`` and the heights ("" for units of delta); ``quantity`` what they are:
     'height', or a field of ``indent``: 'gap', 'displacement' or 'plastic' (the Image's 'Quantity' text,
-    e.g. 'gap g / µm')."""
+    e.g. 'gap g / µm').
+
+    Returns an Image; errors as ``contact_map``'s.
+
+    Example: ``im.height_map(t.heights, delta=t.delta, unit=t.unit, contact=force).save("h.png")``."""
     lo = float(np.min(heights)) if vmin is None else vmin
     hi = float(np.max(heights)) if vmax is None else vmax
     if not hi > lo:
@@ -105,6 +127,9 @@ class Figure:
     ``force_unit`` label the scale bar ('10 µm') and the colour bar ('local force f / N') as
     ``indentmap render contact`` labels a force file of that run; ``colorbar_label`` overrides the
     colour bar's.
+
+    Example: ``im.Figure([f1, f2], columns=2, labels=["(a)", "(b)"], delta=t.delta, unit=t.unit,
+    force_unit="N").save("fig4.pdf")``.
     """
 
     def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="viridis", vmin=None,
@@ -125,7 +150,11 @@ class Figure:
         self.delta, self.colorbar_label, self.dpi, self.scale_bar = float(delta), colorbar_label, dpi, scale_bar
 
     def save(self, path):
-        """Writes the figure (atomically); the format follows the extension: .png, .pdf or .svg."""
+        """Writes the figure (atomically); the format follows the extension: .png, .pdf or .svg.
+        ``InvalidArgument`` for another extension or panels that do not fill whole rows, ``FileError`` naming
+        a path that cannot be written.
+
+        Example: ``im.Figure([force], delta=t.delta, unit=t.unit, force_unit="N").save("contact.svg")``."""
         labels = None if self.labels is None else list(self.labels)
         titles = None if self.titles is None else list(self.titles)
         _core.figure(path, self.fields, self.delta, labels, titles, self.columns, self.colorbar_label,
