@@ -22,6 +22,7 @@
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/history.h"
+#include "indentmap/info.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
 #include "indentmap/plot.h"
@@ -227,6 +228,14 @@ REPORT(im_figure_write, "figure", im_figure_write(NULL, path_text))
 REPORT(im_figure_write, "path", im_figure_write(&figure, NULL))
 SAFE_RESULT(im_figure_ticks, "colormap", im_figure_ticks(NULL, out_values, 8) == 0)
 SAFE_RESULT(im_figure_ticks, "ticks", im_figure_ticks(&colormap, NULL, 8) == 0)
+/* ---- info.h ---- */
+REPORT(im_info_text, "text", im_info_text(IM_RENDER_AUTO, NULL))
+REPORT(im_formats_text, "text", im_formats_text(NULL))
+REPORT(im_figure_colorbar_label, "quantity", im_figure_colorbar_label(NULL, "N", text, sizeof text))
+REPORT(im_figure_colorbar_label, "unit", im_figure_colorbar_label("force", NULL, text, sizeof text))
+REPORT(im_figure_colorbar_label, "text", im_figure_colorbar_label("force", "N", NULL, sizeof text))
+REPORT(im_figure_colorbar_label, "size", im_figure_colorbar_label("force", "N", text, 8))
+REPORT(im_figure_colorbar_label, "quantity 'pressure'", im_figure_colorbar_label("pressure", "", text, sizeof text))
 REPORT(im_frame_path, "buffer", im_frame_path(NULL, 64, "d", "p", 0))
 REPORT(im_frame_path, "directory", im_frame_path(text, sizeof text, NULL, "p", 0))
 REPORT(im_frame_path, "prefix", im_frame_path(text, sizeof text, "d", NULL, 0))

@@ -648,6 +648,26 @@ static void test_frame_paths(void **state)
     assert_int_equal(im_frame_path(path, sizeof path, "run", "contact", -1), IM_EINVAL);
 }
 
+/* The colour bar's labels in the fields' units, as issue 29 states them; a quantity of no field is refused. */
+static void test_colorbar_labels(void **state)
+{
+    (void)state;
+    static const char *const EXPECTED[][3] = {
+        {"force", "N", "local force f / N"},    {"force", "", "local force f / (E* δ²)"},
+        {"height", "µm", "height h / µm"},      {"height", "", "height h / δ"},
+        {"gap", "m", "gap g / m"},              {"displacement", "nm", "displacement u / nm"},
+        {"plastic", "", "plastic depth d / δ"}};
+    char text[64];
+    for (size_t i = 0; i < sizeof EXPECTED / sizeof *EXPECTED; ++i) {
+        assert_int_equal(im_figure_colorbar_label(EXPECTED[i][0], EXPECTED[i][1], text, sizeof text), IM_OK);
+        assert_string_equal(text, EXPECTED[i][2]);
+    }
+    assert_int_equal(im_figure_colorbar_label("pressure", "Pa", text, sizeof text), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "quantity 'pressure': expected force, height"));
+    assert_int_equal(im_figure_colorbar_label("force", "N", text, strlen("local force f / N")), IM_EINVAL);
+    assert_int_equal(im_figure_colorbar_label("force", "N", text, strlen("local force f / N") + 1), IM_OK);
+}
+
 /* Frames with at most 256 colours between them come back from the GIF pixel for pixel, with one global
  * palette, the frame count and the delay asked for. */
 static void test_gif_round_trip(void **state)
@@ -925,6 +945,7 @@ int main(void)
         cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),
         cmocka_unit_test(test_frame_paths),
+        cmocka_unit_test(test_colorbar_labels),
         cmocka_unit_test(test_gif_round_trip),
         cmocka_unit_test(test_gif_quantises),
         cmocka_unit_test(test_gif_options_refused),

@@ -85,6 +85,14 @@ int im_figure_write(const im_figure *figure, const char *path);
  * values in increasing order; returns how many. Exposed for tests. */
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity);
 
+/* The colour bar's label `indentmap render` gives a field, in its units: quantity "force" gives
+ * "local force f / UNIT", unit the forces' (field.h's value_unit: "N", "Pa µm²"; "" gives "(E* δ²)");
+ * "height", "gap", "displacement" and "plastic" (the fields of an indentation step) give "height h /
+ * UNIT", "gap g / UNIT", "displacement u / UNIT" and "plastic depth d / UNIT", unit the field's length
+ * unit ("" gives "δ"). Writes the UTF-8 label into text (size bytes). IM_EINVAL for a NULL argument,
+ * another quantity (naming the known ones) or a label that does not fit (text is then truncated). */
+int im_figure_colorbar_label(const char *quantity, const char *unit, char *text, size_t size);
+
 /* ---- frames and animations ---- */
 
 /* "DIRECTORY/PREFIX_NNNN.png" (4 digits, more when index >= 10000) into buffer; IM_EINVAL when it

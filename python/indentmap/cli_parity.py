@@ -32,6 +32,11 @@ BACKEND = NOT_YET
 NO_WISDOM = Reason("Python reads no FFTW wisdom file unless given one (wisdom=; None, the default, reads none)")
 MPI = Reason("MPI runs are the program's (mpirun -n K indentmap mpi-indent); Python runs in one process")
 PRINT = Reason("Python returns arrays; print or format them with numpy")
+# render animate's frames are composed in src/cli/render.c from render's own option struct (its shared norm,
+# the colour bar's extension triangles, the PNG texts) by the code that also writes render's figures; the
+# library has the pieces (figure.h: im_figure_write_frame, im_animation_gif, im_animation_mp4), not the frames.
+ANIMATE = Reason("draw each step with Figure([force], ...).save(path) (one shared vmax), or run the program's "
+                 "render animate; its frame composition lives in src/cli/render.c, not yet in the library")
 
 PARITY = {
     # ---- surface: generate or measure ----
@@ -129,7 +134,7 @@ PARITY = {
     "render": Python("Figure"),
     "render contact": Python("contact_map"),
     "render height": Python("height_map"),
-    "render animate": NOT_YET,
+    "render animate": ANIMATE,
     "render --out": Python("Figure.save", note="Image.save for one picture"),
     "render --raw": Python("contact_map", note="contact_map and height_map give the data image"),
     "render --colormap": Python("contact_map", "colormap"),
@@ -148,8 +153,8 @@ PARITY = {
     "render --columns": Python("Figure", "columns"),
     "render --quantity": Python("Figure", "colorbar_label"),
     "render --dpi": Python("Figure", "dpi"),
-    "render --fps": NOT_YET,
-    "render --frames": NOT_YET,
+    "render --fps": ANIMATE,
+    "render --frames": ANIMATE,
     "render --backend": BACKEND,
     # ---- render view3d: the 3-D view ----
     "render view3d": Python("view3d"),
@@ -176,9 +181,9 @@ PARITY = {
     "run --from-record": Python("run_scene_from_record"),
     "run --out": Python("run_scene", "out"),
     # ---- formats, info ----
-    "formats": NOT_YET,
-    "info": NOT_YET,
-    "info --backend": BACKEND,
+    "formats": Python("formats"),
+    "info": Python("info"),
+    "info --backend": Python("info", "backend"),
     # ---- mpi-indent (in builds with MPI) ----
     "mpi-indent": MPI,
     **{f"mpi-indent --{name}": MPI for name in (

@@ -40,6 +40,8 @@ def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=
     longer the recorded one or the record is of another version, ``FormatError`` for a file that is not a
     scene run's record with its contents (docs/scenes.md, "Provenance"). Python
     runs plan FFTW without wisdom (estimated plans) unless given ``wisdom``: a run whose plans were measured
-    is made again to its last bits only with the same wisdom file. The other arguments are ``run_scene``'s."""
+    is made again to its last bits only with the same wisdom file. The other arguments are ``run_scene``'s.
+
+    Example: ``im.run_scene_from_record("output/fig4/run.json", out="again")``."""
     return _core.run_scene(record, resume=resume, quiet=quiet, progress=progress,
                            log=logger.log if log is None else log, out=out, from_record=True, wisdom=wisdom)

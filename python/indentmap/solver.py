@@ -10,19 +10,25 @@ from . import _checks, _core
 
 @dataclass(frozen=True)
 class Cone:
-    """A cone of semi-opening angle ``alpha`` degrees (the paper: 80)."""
+    """A cone of semi-opening angle ``alpha`` degrees (the paper: 80).
+
+    Example: ``im.indent(h, im.Cone(70), approaches=[1.0])`` indents with a 70° cone."""
     alpha: float = 80.0
 
 
 @dataclass(frozen=True)
 class Sphere:
-    """A sphere of radius ``radius`` (in the units of delta)."""
+    """A sphere of radius ``radius`` (in the units of delta).
+
+    Example: ``im.indent(h, im.Sphere(200), loads=[5.0])``; lengths in the units of delta."""
     radius: float
 
 
 @dataclass(frozen=True)
 class Flat:
-    """A flat cylindrical punch of radius ``radius``."""
+    """A flat cylindrical punch of radius ``radius``.
+
+    Example: ``im.indent(h, im.Flat(20), approaches=[0.5])``; the radius in the units of delta."""
     radius: float
 
 
@@ -78,7 +84,12 @@ def _history_array(text, source="history"):
 
 def read_history(path):
     """A history.csv (``indentmap indent``) or a scene's histories/member_FF_SEED.csv as the structured
-    array ``indent`` returns: the same columns, names and values."""
+    array ``indent`` returns: the same columns, names and values.
+
+    Raises ``ValueError`` naming the file for other columns (another version's history) or a
+    line with too few values, ``OSError`` for a file that cannot be read.
+
+    Example: ``h = im.read_history("out/history.csv"); h["load"]``."""
     with open(path, encoding="utf-8") as f:
         return _history_array(f.read(), str(path))
 
@@ -182,18 +193,29 @@ class Indentation:
                                                    _checks.flag("periodic", periodic)))
 
     def step(self, target):
-        """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict."""
+        """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict.
+
+        The dict holds the step's results (``approach``, ``load``, ``load_star``, ``contact_patches``,
+        ``area_ratio``, ``mean_pressure``, ``max_pressure``, ``iterations``, ``residual``, ...), lengths in
+        the units of delta and stresses in those of E*. ``NotConverged`` or ``EdgeContact`` when the step
+        fails; the history keeps the steps before it.
+
+        Example: ``run = im.Indentation(h, largest=2.0); run.step(1.0)["load"]``."""
         return self._run.step(float(target))
 
     def fields(self):
         """(force, gap, displacement) of the last step on the full grid, as new arrays: the displacement is
-        computed on the whole grid (one convolution), not only in the solve window."""
+        computed on the whole grid (one convolution), not only in the solve window.
+
+        Example: ``force, gap, displacement = run.fields()``; ``force.sum()`` is the step's load."""
         return self._run.fields()
 
     def history(self):
         """The steps solved so far as a structured array with history.csv's columns (docs/solver.md):
         the solver's results, the theory beside them, the stiffness, the contact patches and the plastic
-        memory, measured as ``indentmap indent`` measures them."""
+        memory, measured as ``indentmap indent`` measures them.
+
+        Example: ``run.step(1.0); run.step(2.0); run.history()["area_ratio"]``."""
         return _history_array(self._run.history_text())
 
     def write_distributions(self, prefix):
@@ -210,12 +232,17 @@ class Indentation:
 
     def plastic(self):
         """The plastic depth accumulated so far on the full grid (units of delta; 0 without a hardness):
-        the residual impression once the punch is withdrawn."""
+        the residual impression once the punch is withdrawn.
+
+        Example: ``run = im.Indentation(h, largest=2.0, hardness=0.1); run.step(2.0); run.step(0.0);
+        run.plastic().max()``."""
         return self._run.plastic()
 
     @property
     def window(self):
-        """(x0, y0, nx, ny): the sub-grid that is solved."""
+        """(x0, y0, nx, ny): the sub-grid that is solved.
+
+        Example: ``x0, y0, nx, ny = run.window``; ``crop=False`` solves on the whole grid."""
         return self._run.window
 
 
@@ -228,6 +255,12 @@ class Plan:
     warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
     without the GIL; creating a plan holds it (FFTW's planner is not thread-safe). Ctrl-C during a solve
     on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
+
+    Example::
+
+        plan = im.Plan(64)
+        r = np.hypot(*np.meshgrid(np.arange(64) - 32.0, np.arange(64) - 32.0))
+        pressure, displacement, result = plan.solve(r * np.tan(np.radians(10)), 2.0)
     """
 
     def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000,
@@ -236,6 +269,13 @@ class Plan:
                                 int(max_iterations), str(device))
 
     def solve(self, gap0, target, control="displacement", pressure=None):
+        """Solves the contact of the undeformed gap ``gap0`` ((ny, nx), >= 0 in the units of delta; +inf
+        where the punch never touches) at approach ``target`` (``control='displacement'``) or load
+        ``target`` ('load', in E* delta^2), from the warm start ``pressure`` when given. Returns
+        (pressure, displacement, result dict) as new arrays, pressures in units of E*. ``NotConverged`` when
+        the tolerance is not reached, ``InvalidArgument`` for a gap of another grid or a negative one.
+
+        Example: ``pressure, displacement, result = plan.solve(gap0, 2.0); result["load"]``."""
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
 
 
@@ -314,7 +354,12 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
     A_p, H_IT and E_r with the punch's own area function, the real area n_p delta^2 at the top, the residual
     approach, the works in and out and the dissipation, then the theory beside them at an elastic top: eq.
     (12)'s real area and the smooth punch's stiffness (``e_star``: the history's E*). ``history`` is what
-    ``indent`` returns."""
+    ``indent`` returns.
+
+    Returns a structured array (one row per branch; none without an unloading branch).
+
+    Example: ``h = im.indent(s, approaches=np.r_[1:4:4j, 3.5:0:8j], hardness=0.1);
+    im.unloading(h)["hardness_it"]``."""
     kind, alpha, radius, profile = _punch_arguments(punch)
     history = np.asarray(history)
     branches = _core.unloading(kind, alpha, radius, np.ascontiguousarray(history["approach"], dtype=float),
@@ -349,7 +394,9 @@ def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_
     if it is missing. ``history``: the
     array ``indent`` returns or a history.csv path; ``delta`` and ``e_star`` as the run's; the axes' units
     as indent states them (defaults: a surface without units). Returns the number of unloading branches
-    (0: nothing written). The files are the program's for the same run, byte for byte."""
+    (0: nothing written). The files are the program's for the same run, byte for byte.
+
+    Example: ``im.write_analysis("out/history.csv", "analysis", im.Cone(80))``."""
     if isinstance(history, (str, bytes, os.PathLike)):
         history = read_history(history)
     history = np.asarray(history)
@@ -367,7 +414,10 @@ def adhesion(history):
     ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``pull_off_force`` (the most
     tensile load, positive; NaN when nothing pulls) and its ``pull_off_approach``, ``jump_in_approach`` (first
     contact on approach after none), ``jump_out_approach`` (last contact retracting before none) and
-    ``hysteresis_work`` (sum of N dw: the work lost over a closed history)."""
+    ``hysteresis_work`` (sum of N dw: the work lost over a closed history).
+
+    Example: ``h = im.indent(s, im.Sphere(40), approaches=[1, 0, -1], adhesion_work=0.02,
+    adhesion_range=0.5); im.adhesion(h)["pull_off_force"]``."""
     history = np.asarray(history)
     return _core.adhesion(np.ascontiguousarray(history["approach"], dtype=float),
                           np.ascontiguousarray(history["load"], dtype=float),

@@ -202,23 +202,23 @@ static void list_item(const char *list, int i, char *buffer, size_t size)
         snprintf(buffer, size, "%.*s", (int)strcspn(list, ","), list);
 }
 
-/* The colour bar's default name of a height-mode field: what its sidecar FILE.json says it is
- * (indent --fields writes gaps, displacements and plastic depths beside the forces), "height h" for a
- * surface or a file without one. */
+/* The quantity of a height-mode field for its colour bar (figure.h: im_figure_colorbar_label): what its
+ * sidecar FILE.json says it is (indent --fields writes gaps, displacements and plastic depths beside the
+ * forces), "height" for a surface or a file without one. */
 static const char *height_quantity(const char *path)
 {
-    static const char *const KNOWN[][2] = {{"gap", "gap g"},
-                                           {"surface displacement", "displacement u"},
-                                           {"plastic depth", "plastic depth d"}};
+    static const char *const KNOWN[][2] = {{"gap", "gap"},
+                                           {"surface displacement", "displacement"},
+                                           {"plastic depth", "plastic"}};
     char sidecar[4096];
     snprintf(sidecar, sizeof sidecar, "%s.json", path);
     json_t *record = json_load_file(sidecar, 0, NULL);
-    const char *stated = json_string_value(json_object_get(record, "quantity")), *name = "height h";
+    const char *stated = json_string_value(json_object_get(record, "quantity")), *quantity = "height";
     for (size_t i = 0; stated && i < sizeof KNOWN / sizeof *KNOWN; ++i)
         if (strncmp(stated, KNOWN[i][0], strlen(KNOWN[i][0])) == 0)
-            name = KNOWN[i][1];
+            quantity = KNOWN[i][1];
     json_decref(record);
-    return name;
+    return quantity;
 }
 
 /* The figure (or, with --raw, the data image of a single panel), the run's settings as text; when frame is
@@ -232,12 +232,13 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     for (int i = 0; i < count; ++i)
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
-    char height_name[64], force_name[80], tension_name[96];
-    snprintf(height_name, sizeof height_name, "%s / %s", contact ? "" : height_quantity(inputs[0]),
-             images[0].unit[0] ? images[0].unit : "δ");
-    snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
+    char label[96], tension_name[96];
     snprintf(tension_name, sizeof tension_name, "tensile force −f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
-    const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
+    int status = im_figure_colorbar_label(contact ? "force" : height_quantity(inputs[0]),
+                                          contact ? o->value_unit : images[0].unit, label, sizeof label);
+    if (status != IM_OK)
+        return status;
+    const char *quantity = o->quantity ? o->quantity : label;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
                                  {"Norm", norm_text}, {"Pixels per patch", scale_text}};
