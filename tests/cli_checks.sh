@@ -62,7 +62,7 @@ check "displacement positive outside the window (smallest $smallest)" awk -v u="
 window=$(grep -o "window \[[0-9]*, [0-9]*)" "$dir/f.log" | head -1)
 check "the window is smaller than the grid ($window)" test -n "$window" -a "$window" != "window [0, 64)"
 largest=$(for f in "$dir"/f/force_000[234].npy; do "$cli" surface --stats "$f" --detrend none | awk '$1 == "height" { sub(/\]/, "", $4); print $4 }'; done | sort -g | tail -1)
-norm=$(grep -a -o "linear \[0, [0-9.e+-]*\]" "$dir/frames/contact_0000.png")
+norm=$(grep -a -o "log \[[0-9.e+-]*, [0-9.e+-]*\]" "$dir/frames/contact_0000.png") # the default force norm
 check "zero field: norm up to the largest force ($largest), not 1 ($norm)" \
   awk -v n="$norm" -v m="$largest" 'BEGIN { sub(/.*, /, "", n); sub(/\]/, "", n); exit !(m > 0 && (n - m) ^ 2 < 1e-10 * m * m) }'
 

@@ -2,8 +2,8 @@
 # indentmap mpi-indent (MPI builds; skipped, exit 77, elsewhere): the same result and the same
 # field files to the byte on 1 and 3 ranks, a file surface read back, and clear errors; ranks
 # started with different commands, folders or scenes, reading other bytes from a file the scene
-# names, or an error on one rank only, stop every rank with one message (mpi-indent and run under
-# mpirun), never a hang or MPI's own error.
+# names or from mpi-indent's --surface, or an error on one rank only, stop every rank with one
+# message (mpi-indent and run under mpirun), never a hang or MPI's own error.
 #   cli_mpi.sh PATH_TO_INDENTMAP
 set -uo pipefail
 cli=$1
@@ -89,6 +89,62 @@ refused() {
 refused tiny_grid 2 "mpi-indent: --n 2 --m 512: the shorter side .* must exceed lambda_s = 4: expected --n and --m > 4" \
   -n 3 "$cli" mpi-indent --n 2 --approach 1
 
+# --periodic: indent --periodic's history of a rigid flat on the cell (mean pressures, mean gaps, and mean
+# pressures under a cap with plastic memory, unloading at step 3): the same iterations and the same values
+# to the tolerance (residuals to 1e-3 of theirs; seconds and convolutions, which the MPI solver spends
+# otherwise, aside), and the same bytes on 1, 2 and 3 ranks but for the seconds.
+"$cli" surface --n 64 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface for --periodic"
+same_history() { # same_history SERIAL MPI: columns by name (history.h), 0 when they agree
+  awk -F, 'NR == FNR { for (c = 1; c <= NF; ++c) serial[FNR, c] = $c; rows = FNR; next }
+    FNR == 1 { for (c = 1; c <= NF; ++c) name[c] = $c; next }
+    { for (c = 1; c <= NF; ++c) {
+        a = serial[FNR, c]; b = $c
+        if (name[c] == "seconds" || name[c] == "convolutions" || a == b) continue
+        tol = name[c] == "residual" ? 1e-3 : 1e-8
+        d = a - b; if (d < 0) d = -d; s = a < 0 ? -a : a
+        if (a == "nan" || b == "nan" || name[c] ~ /^(step|contact_patches|iterations|patches|yielding_patches)$/ ||
+            d > tol * s + 1e-12) { print "row " FNR - 1 ", " name[c] ": indent " a ", mpi-indent " b; bad = 1 }
+      } }
+    END { exit bad || FNR != rows }' "$1" "$2"
+}
+periodic_case() { # periodic_case NAME ARGUMENTS...: indent --periodic against mpi-indent on 1, 2 and 3 ranks
+  local name=$1
+  shift
+  "$cli" indent "$work/p.npy" --periodic --tol 1e-8 "$@" --out "$work/ser_$name" > /dev/null 2>&1 ||
+    fail "indent --periodic $*"
+  for k in 1 2 3; do
+    timeout 60 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --periodic --surface "$work/p.npy" --tol 1e-8 "$@" \
+      --out "$work/mpi_${name}_$k" > "$work/mpi_$name$k.csv" 2> "$work/mpi_$name.err" ||
+      fail "mpi-indent --periodic $* on $k ranks: $(cat "$work/mpi_$name.err")"
+    cut -d, -f1-10,12- "$work/mpi_$name$k.csv" > "$work/mpi_$name$k.cut"
+  done
+  same_history "$work/ser_$name/history.csv" "$work/mpi_${name}1.csv" > "$work/diff_$name" ||
+    fail "mpi-indent --periodic $* is not indent's history: $(head -5 "$work/diff_$name")"
+  cmp -s "$work/mpi_${name}1.cut" "$work/mpi_${name}2.cut" && cmp -s "$work/mpi_${name}1.cut" "$work/mpi_${name}3.cut" ||
+    fail "mpi-indent --periodic $*: 1, 2 and 3 ranks differ"
+  cmp -s "$work/mpi_${name}2.csv" "$work/mpi_${name}_2/history.csv" || fail "--periodic $*: history.csv is not stdout"
+  grep -q '"periodic": true' "$work/mpi_${name}_2/run.json" || fail "--periodic $*: run.json: $(cat "$work/mpi_${name}_2/run.json")"
+}
+periodic_case pressure --pressure 0.01:0.05:3
+periodic_case gap --mean-gap 0.3,0.1,0.05
+periodic_case cap --pressure 0.02,0.05,0.03,0.06 --hardness 0.1
+k_of() { grep -A1 '"k_fit"' "$1" | awk '$1 == "\"k\":" { sub(/,$/, "", $2); print $2 }'; }
+serial_k=$(k_of "$work/ser_pressure/run.json") mpi_k=$(k_of "$work/mpi_pressure_2/run.json")
+awk -v a="$serial_k" -v b="$mpi_k" 'BEGIN { d = a - b; exit !(a > 1 && d < 1e-9 * a && -d < 1e-9 * a) }' ||
+  fail "k of eq. (2): indent's '$serial_k', mpi-indent's '$mpi_k'"
+# what --periodic does not take
+refused periodic_approach 2 "mpi-indent --periodic takes mean pressures (--pressure LIST) or mean gaps (--mean-gap LIST), not --approach or --load" \
+  -n 2 "$cli" mpi-indent --periodic --n 64 --approach 1
+refused periodic_punch 2 "mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha and --radius are the half-space's" \
+  -n 2 "$cli" mpi-indent --periodic --n 64 --pressure 0.01 --alpha 70
+refused periodic_targets 2 "mpi-indent --periodic: give --pressure LIST or --mean-gap LIST" -n 2 "$cli" mpi-indent --periodic --n 64
+refused pressure_alone 2 "mpi-indent: --pressure (over a periodic cell) needs --periodic" -n 2 "$cli" mpi-indent --n 64 --pressure 0.01
+refused periodic_gap_cap 2 "mpi-indent --periodic --mean-gap with --hardness: .* give --pressure LIST" \
+  -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --hardness 0.1
+refused periodic_list 2 "--pressure 'x': 'x' is not a number >= 0" -n 2 "$cli" mpi-indent --periodic --n 64 --pressure x
+refused periodic_capacity 2 "step 1 of 1 (--pressure 0.2): load 819.2: a periodic cell at hardness 0.1 carries less than H_p A0 = 409.6" \
+  -n 2 "$cli" mpi-indent --periodic --n 64 --m 64 --pressure 0.2 --hardness 0.1
+
 # Ranks given different commands (MPMD launches, A : B) stop together with rank 0's message.
 start="the MPI ranks were not started alike"
 same="start every rank with the same command in the same folder"
@@ -141,6 +197,11 @@ refused input_bytes 2 "$work/surf.npy (\[surfaces\] file): rank 1 reads other by
   -n 1 bash -c "$(on_fd8 "$work/h1.npy")" : -n 1 bash -c "$(on_fd8 "$work/h2.npy")"
 [ ! -e "$work/out_f" ] || fail "surface files of other bytes: a rank wrote $(ls "$work/out_f")"
 refused input_missing 2 "rank 1: .*surf.npy" -n 1 bash -c "$(on_fd8 "$work/h1.npy")" : -n 1 "$cli" run "$work/f.ini"
+# mpi-indent's --surface, the same link on both ranks onto other surfaces: refused naming it, nothing written.
+indent_fd8() { echo "exec '$cli' mpi-indent --surface '$work/surf.npy' --approach 1 --out '$work/out_s' 8< '$1'"; }
+refused surface_bytes 2 "$work/surf.npy (--surface): rank 1 reads other bytes from it than rank 0: every rank must read the same file" \
+  -n 1 bash -c "$(indent_fd8 "$work/h1.npy")" : -n 1 bash -c "$(indent_fd8 "$work/h2.npy")"
+[ ! -e "$work/out_s" ] || fail "a --surface of other bytes: a rank wrote $(ls "$work/out_s")"
 "$mpiexec" -n 2 --oversubscribe bash -c "$(on_fd8 "$work/h1.npy")" > /dev/null 2> "$work/alike_files.err" ||
   fail "a scene of files alike on 2 ranks: $(cat "$work/alike_files.err")"
 [ -s "$work/out_f/table1.csv" ] || fail "a scene of files alike on 2 ranks wrote no table1.csv"

@@ -39,6 +39,42 @@ hexes = re.search(rb"/Subject <FEFF([0-9A-F]*)>", open(sys.argv[1], "rb").read()
 print(bytes.fromhex(hexes.decode()).decode("utf-16-be"))' "$1"; }
 check "panels PDF holds the contents" bash -c "$(declare -f pdf_subject); pdf_subject '$dir/a/contact_panels.pdf' | grep -x 'alpha = 80' >/dev/null"
 
+# Every figure a scene writes carries the record: fig1, fig2, fig3, fig5-7, the panels, the contact
+# density, the distributions and every frame (contact, height, 3-D), PNG and PDF alike (figure_texts.py
+# reads their text chunks and information dictionaries).
+version=$("$cli" --version | cut -d' ' -f2)
+cat >"$dir/every.ini" <<'INI'
+[scene]
+name = every
+[surfaces]
+n = 64
+hurst = 0.8
+lambda_s = 4
+lambda_r = 64
+slopes = 0, 0.08
+seeds = 1, 2
+[punch]
+alpha = 80
+[loading]
+control = load
+load_star = 580
+steps = 100:580:4
+[output]
+table = yes
+contact_panels = yes
+frames = yes
+frames3d = yes
+frame3d_width = 320
+frame3d_height = 180
+frame_count = 2
+distributions = yes
+plots = fig1, fig2, fig3, fig5, fig6, fig7, density
+INI
+"$cli" run --quiet --no-wisdom "$dir/every.ini" --out "$dir/every" >/dev/null 2>&1
+check "every figure of a scene carries its contents, version and inputs" python3 "$(dirname "$0")/figure_texts.py" \
+  "$dir/every" "Scene contents=alpha = 80" "Scene contents=plots = fig1, fig2, fig3, fig5, fig6, fig7, density" \
+  "Software=indentmap $version" "Source=$dir/every.ini" "Inputs=none"
+
 # Edited afterwards, the scene file solves something else; its record still makes the same results.
 sed -i 's/^alpha = 80/alpha = 70/' "$dir/fig4.ini"
 "$cli" run --quiet --no-wisdom "$dir/fig4.ini" --out "$dir/edited" >/dev/null 2>&1
@@ -66,13 +102,15 @@ check "a record and a scene refused together" expect_exit 2 "usage" \
 
 # A scene over a surface file: its SHA-256 is recorded and checked.
 "$cli" surface --n 64 --slope 0.16 --seed 2 --out "$dir/s.npy" >/dev/null
-printf '[scene]\nname = files\n[surfaces]\nfile = s.npy\n[loading]\nload_star = 580\n[output]\ntable = yes\n' \
+printf '[scene]\nname = files\n[surfaces]\nfile = s.npy\n[loading]\nload_star = 580\n[output]\ntable = yes\nplots = fig2\n' \
   >"$dir/files.ini"
 "$cli" run --quiet --no-wisdom "$dir/files.ini" --out "$dir/f" >/dev/null 2>&1
 check "the surface file's SHA-256 is recorded" \
   test "$(record_value "$dir/f/run.json" 'd["inputs"][0]["sha256"]')" = "$(sha256sum "$dir/s.npy" | cut -d' ' -f1)"
 "$cli" run --quiet --from-record "$dir/f/run.json" --out "$dir/g" >/dev/null 2>&1
 check "a scene over a file is made again" cmp "$dir/f/table1.csv" "$dir/g/table1.csv"
+check "a scene's figures carry its input's SHA-256" python3 "$(dirname "$0")/figure_texts.py" "$dir/f" \
+  "Inputs=$(sha256sum "$dir/s.npy" | cut -d' ' -f1)  $dir/s.npy"
 "$cli" surface --n 64 --slope 0.16 --seed 3 --out "$dir/s.npy" >/dev/null
 check "a changed input refused, naming it" expect_exit 2 "s.npy: [surfaces] file has changed since the run" \
   "$cli" run --from-record "$dir/f/run.json" --out "$dir/h"
@@ -88,5 +126,45 @@ check "indent's inputs: the surface's SHA-256" test "$(record_value "$dir/ind/ru
 check "indent's inputs: the profile's SHA-256" test "$(record_value "$dir/ind/run.json" \
   '[i["sha256"] for i in d["inputs"] if i["key"] == "--profile"][0]')" = "$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)"
 check "indent's inputs: the surface's absolute path" test "$(record_value "$dir/ind/run.json" 'd["inputs"][0]["path"]')" = "$dir/s32.npy"
+
+# indent --from-record: the run made again from its record's arguments (paths absolute, --out apart), the
+# tables byte for byte but for the solve times (history.csv's column 11, seconds), the fields too.
+"$cli" indent "$dir/s32.npy" --punch profile --profile "$dir/profile.txt" --load 5:20:4 --fields --distributions \
+  --out "$dir/ind2" >/dev/null 2>&1
+check "indent records its arguments" test "$(record_value "$dir/ind2/run.json" '" ".join(d["arguments"])')" = \
+  "--punch profile --profile $dir/profile.txt --load 5:20:4 --fields --distributions $dir/s32.npy"
+(cd "$dir" && "$cli" indent --from-record ind2/run.json --out again >/dev/null 2>&1)
+# indent's figures (the history, the unloading analysis, the frames) carry its command line
+"$cli" indent "$dir/s32.npy" --approach 0.5,1,1.5,1,0.5 --frames --punch profile --profile "$dir/profile.txt" \
+  --out "$dir/ind3" >/dev/null 2>&1
+check "indent draws its history, analysis and frames" \
+  test -s "$dir/ind3/history.pdf" -a -s "$dir/ind3/load_displacement.png" -a -s "$dir/ind3/frames/contact_0004.png"
+check "indent --from-record runs" test $? -eq 0 -a -s "$dir/again/history.csv"
+check "indent --from-record remakes history.csv but its solve times" \
+  cmp <(cut -d, -f11 --complement "$dir/ind2/history.csv") <(cut -d, -f11 --complement "$dir/again/history.csv")
+check "indent --from-record remakes the distribution tables" \
+  bash -c "for f in '$dir'/ind2/distributions_*.csv; do cmp \"\$f\" '$dir/again/'\"\${f##*/}\" || exit 1; done"
+check "indent --from-record remakes the fields" cmp "$dir/ind2/force_0004.npy" "$dir/again/force_0004.npy"
+check "indent's new record names the one it came from" \
+  test "$(record_value "$dir/again/run.json" 'd["from_record"]')" = ind2/run.json
+check "every figure of indent carries its command, version and inputs" python3 "$(dirname "$0")/figure_texts.py" \
+  "$dir/ind3" "Command=indentmap indent --approach 0.5,1,1.5,1,0.5 --frames --punch profile --profile $dir/profile.txt" \
+  "Software=indentmap $version" "Inputs=$(sha256sum "$dir/s32.npy" | cut -d' ' -f1)  $dir/s32.npy"
+check "indent's new record has the same arguments" \
+  test "$(record_value "$dir/again/run.json" 'd["arguments"]')" = "$(record_value "$dir/ind2/run.json" 'd["arguments"]')"
+check "indent --from-record takes no other options" expect_exit 2 "give only --out, --wisdom or --no-wisdom" \
+  "$cli" indent --from-record "$dir/ind2/run.json" --load 3 --out "$dir/i3"
+check "indent --from-record refuses a scene's record" expect_exit 2 "expected the record of an indent run" \
+  "$cli" indent --from-record "$dir/a/run.json" --out "$dir/i3"
+sed 's/"version": "[^"]*"/"version": "0.0.9"/' "$dir/ind2/run.json" >"$dir/indent_old.json"
+check "indent --from-record refuses another version" expect_exit 2 "indent_old.json: made by indentmap 0.0.9" \
+  "$cli" indent --from-record "$dir/indent_old.json" --out "$dir/i3"
+old_sum=$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)
+printf '0 0\n20 3.5\n40 7.5\n' >"$dir/profile.txt"
+new_sum=$(sha256sum "$dir/profile.txt" | cut -d' ' -f1)
+check "indent --from-record refuses a changed input, naming it and both checksums" expect_exit 2 \
+  "$dir/profile.txt: --profile has changed since the run: its SHA-256 is $new_sum, the record $dir/ind2/run.json says $old_sum" \
+  "$cli" indent --from-record "$dir/ind2/run.json" --out "$dir/i3"
+check "nothing written for a refused indent record" test ! -e "$dir/i3"
 
 finish

@@ -37,6 +37,30 @@ check "SVG embeds the raster" grep -q "<image" "$dir/h.svg"
 check "osmesa backend" "$cli" render contact "$dir/f.npy" --backend osmesa --raw --out "$dir/o.png"
 check "osmesa = egl pixels" bash -c "'$cli' render contact '$dir/f.npy' --backend egl --raw --out '$dir/e.png' && cmp -s '$dir/e.png' '$dir/o.png'"
 
+# Forces default to the frames' colour map and norm (scenes, indent --frames, render view3d): magma, log
+# over the two decades below the largest force (read from the file); heights stay viridis, linear.
+figure_texts=$(realpath "$(dirname "$0")/figure_texts.py")
+png_text() { python3 "$figure_texts" "$1" "$2=$3" >/dev/null; }
+largest=$(python3 -c 'import array, ast, sys  # the largest of a little-endian float64 .npy, without numpy
+data = open(sys.argv[1], "rb").read(); length = int.from_bytes(data[8:10], "little")
+assert ast.literal_eval(data[10:10 + length].decode())["descr"] == "<f8"
+print("%.9g" % max(array.array("d", data[10 + length:])))' "$dir/f.npy")
+tenth=$(python3 -c 'import sys; print("%.9g" % (float(sys.argv[1]) / 100))' "$largest")
+mkdir -p "$dir/norms"
+"$cli" render contact "$dir/f.npy" --out "$dir/norms/default.png"
+check "contact: magma by default" png_text "$dir/norms/default.png" Colormap magma
+check "contact: log over two decades by default" png_text "$dir/norms/default.png" Norm "log [$tenth, $largest]"
+"$cli" render contact "$dir/f.npy" --linear --colormap viridis --out "$dir/norms/linear.png"
+check "contact --linear --colormap viridis" png_text "$dir/norms/linear.png" Norm "linear [0, $largest]"
+check "contact --colormap viridis kept" png_text "$dir/norms/linear.png" Colormap viridis
+"$cli" render height "$dir/f.npy" --out "$dir/norms/height.png"
+check "height: viridis, linear" bash -c "figure_texts='$figure_texts'; $(declare -f png_text); png_text '$dir/norms/height.png' Colormap viridis &&
+  png_text '$dir/norms/height.png' Norm linear"
+check "--log with --linear refused" expect_exit 2 "expected one norm" \
+  "$cli" render contact "$dir/f.npy" --log --linear --out "$dir/x.png"
+check "--linear on heights refused" expect_exit 2 "heights are drawn linear" \
+  "$cli" render height "$dir/f.npy" --linear --out "$dir/x.png"
+
 check "missing --out" expect_exit 2 "--out is required" "$cli" render contact "$dir/f.npy"
 check "unknown mode" expect_exit 2 "expected contact, height or animate" "$cli" render map "$dir/f.npy"
 check "bad colour map" expect_exit 2 "expected viridis" "$cli" render contact "$dir/f.npy" --colormap jet --out "$dir/x.png"

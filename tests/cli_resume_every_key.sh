@@ -54,8 +54,8 @@ output.page_embed|ensemble|page_embed = yes
 output.table|ensemble|table = no
 output.distributions|ensemble|distributions = yes
 output.animation|ensemble|animation = gif
-output.colormap|ensemble|colormap = magma
-output.log_norm|ensemble|log_norm = yes
+output.colormap|ensemble|colormap = viridis
+output.log_norm|ensemble|log_norm = no
 output.frames_slope|ensemble|frames_slope = 0.04
 output.frame_count|ensemble|frame_count = 4
 output.frame_rate|ensemble|animation = gif;frame_rate = 2

@@ -96,7 +96,7 @@ check "page has the contact frames" grep -q 'id="frame-contact"' "$dir/scene/ind
 check "frame title states the scale" grep -qa "N\* = 400" "$dir/scene/frames/view3d_0002.png"
 # One colour scale for all frames: every 3-D frame's Norm text is the same, and is the first
 # frame's (where the forces are smallest, so a per-frame norm would differ).
-norms=$(for f in "$dir"/scene/frames/view3d_000[0-2].png; do grep -ao 'viridis linear \[[^]]*\]' "$f"; done | sort -u | wc -l)
+norms=$(for f in "$dir"/scene/frames/view3d_000[0-2].png; do grep -ao 'magma log \[[^]]*\]' "$f"; done | sort -u | wc -l)
 check "one norm across the 3-D frames" test "$norms" -eq 1
 # The real page in headless Chromium (when installed): no console message, the script ran.
 if command -v chromium >/dev/null; then

@@ -22,6 +22,7 @@
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/history.h"
+#include "indentmap/info.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
 #include "indentmap/plot.h"
@@ -227,6 +228,14 @@ REPORT(im_figure_write, "figure", im_figure_write(NULL, path_text))
 REPORT(im_figure_write, "path", im_figure_write(&figure, NULL))
 SAFE_RESULT(im_figure_ticks, "colormap", im_figure_ticks(NULL, out_values, 8) == 0)
 SAFE_RESULT(im_figure_ticks, "ticks", im_figure_ticks(&colormap, NULL, 8) == 0)
+/* ---- info.h ---- */
+REPORT(im_info_text, "text", im_info_text(IM_RENDER_AUTO, NULL))
+REPORT(im_formats_text, "text", im_formats_text(NULL))
+REPORT(im_figure_colorbar_label, "quantity", im_figure_colorbar_label(NULL, "N", text, sizeof text))
+REPORT(im_figure_colorbar_label, "unit", im_figure_colorbar_label("force", NULL, text, sizeof text))
+REPORT(im_figure_colorbar_label, "text", im_figure_colorbar_label("force", "N", NULL, sizeof text))
+REPORT(im_figure_colorbar_label, "size", im_figure_colorbar_label("force", "N", text, 8))
+REPORT(im_figure_colorbar_label, "quantity 'pressure'", im_figure_colorbar_label("pressure", "", text, sizeof text))
 REPORT(im_frame_path, "buffer", im_frame_path(NULL, 64, "d", "p", 0))
 REPORT(im_frame_path, "directory", im_frame_path(text, sizeof text, NULL, "p", 0))
 REPORT(im_frame_path, "prefix", im_frame_path(text, sizeof text, "d", NULL, 0))
@@ -369,6 +378,10 @@ REPORT(im_history_write_analysis, "length_unit", im_history_write_analysis(".", 
 REPORT(im_history_write_analysis, "force_unit", im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, "", NULL, &count_out))
 REPORT(im_history_write_analysis, "branches", im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, "", "", NULL))
 REPORT(im_history_write_analysis, "count", im_history_write_analysis(".", &cone, &history_row_out, -3, 1, 1, "", "", &count_out))
+REPORT(im_history_units_json, "length_unit", im_history_units_json(NULL, "", 0, big_text, sizeof big_text))
+REPORT(im_history_units_json, "e_star_unit", im_history_units_json("m", NULL, 0, big_text, sizeof big_text))
+REPORT(im_history_units_json, "text", im_history_units_json("m", "Pa", 0, NULL, sizeof big_text))
+REPORT(im_history_units_json, "size", im_history_units_json("m", "Pa", 0, big_text, 8))
 SAFE_RESULT(im_history_parse, "text", im_history_parse(NULL, 1, &history_row_out, 1, &count_out, big_text, 64) == 0)
 SAFE_RESULT(im_history_parse, "rows", im_history_parse("x", 1, NULL, 1, &count_out, big_text, 64) == 0)
 SAFE_RESULT(im_history_parse, "count", im_history_parse("x", 1, &history_row_out, 1, NULL, big_text, 64) == 0)
@@ -423,6 +436,7 @@ SAFE_RESULT(im_render_gl_renderer, "context", im_render_gl_renderer(NULL) == NUL
 SAFE_RESULT(im_render_gl_version, "context", im_render_gl_version(NULL) == NULL)
 ACCEPT(im_image_release, (im_image_release(NULL), 1))
 SAFE_VIEW(im_contact_style_default, "force", im_contact_style_default(BAD).colormap.hi == 1.0)
+SAFE_VIEW(im_contact_largest_tension, "force", im_contact_largest_tension(BAD) == 0.0)
 REPORT(im_render_contact_map, "context", im_render_contact_map(NULL, &good, &contact_style, &image))
 REPORT_VIEW(im_render_contact_map, "force", im_render_contact_map(CONTEXT, BAD, &contact_style, &image))
 REPORT(im_render_contact_map, "style", im_render_contact_map(CONTEXT, &good, NULL, &image))
@@ -630,6 +644,8 @@ ACCEPT(im_mpi_flat_contact_free, (im_mpi_flat_contact_free(NULL), 1))
 REPORT(im_mpi_flat_contact_solve, "run", im_mpi_flat_contact_solve(NULL, 0.1, &flat_result))
 REPORT(im_mpi_flat_contact_solve_gap, "run", im_mpi_flat_contact_solve_gap(NULL, 0.1, &flat_result))
 SAFE_RESULT(im_mpi_flat_contact_pressure, "run", im_mpi_flat_contact_pressure(NULL) == NULL)
+REPORT(im_mpi_flat_contact_gap, "run", im_mpi_flat_contact_gap(NULL, out_values))
+REPORT(im_mpi_flat_contact_step, "run", im_mpi_flat_contact_step(NULL, IM_CONTROL_LOAD, 0.1, &step_result))
 REPORT(im_mpi_undeformed_gap, "solver", im_mpi_undeformed_gap(NULL, values, &cone, out_values))
 REPORT(im_mpi_check_edge, "solver", im_mpi_check_edge(NULL, values))
 REPORT(im_mpi_gather_map, "solver", im_mpi_gather_map(NULL, values, 1, &field_out))
@@ -723,7 +739,7 @@ REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, 
  * module's format strings): nothing to misuse here. A new function belongs either here or in a case
  * above. */
 static const char *const no_pointer_arguments[] = {
-    "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_memory_available",
+    "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_contact_tension_norm", "im_memory_available",
     "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gif_options_default", "im_gwyddion_reader",
     "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",

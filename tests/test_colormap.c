@@ -77,6 +77,52 @@ static void test_colours_are_table_entries(void **state)
     }
 }
 
+/* CIELAB (D65) of an 8-bit sRGB colour, from the sRGB standard's transfer curve and matrix. */
+static void srgb_to_lab(const uint8_t rgb[3], double lab[3])
+{
+    double linear[3];
+    for (int k = 0; k < 3; ++k) {
+        double c = rgb[k] / 255.0;
+        linear[k] = c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+    }
+    double x = (0.4124 * linear[0] + 0.3576 * linear[1] + 0.1805 * linear[2]) / 0.95047;
+    double y = 0.2126 * linear[0] + 0.7152 * linear[1] + 0.0722 * linear[2];
+    double z = (0.0193 * linear[0] + 0.1192 * linear[1] + 0.9505 * linear[2]) / 1.08883;
+    double f[3] = {x, y, z};
+    for (int k = 0; k < 3; ++k)
+        f[k] = f[k] > 216.0 / 24389.0 ? cbrt(f[k]) : f[k] * 24389.0 / 27.0 / 116.0 + 16.0 / 116.0;
+    lab[0] = 116.0 * f[1] - 16.0;
+    lab[1] = 500.0 * (f[0] - f[1]);
+    lab[2] = 200.0 * (f[1] - f[2]);
+}
+
+/* The tension ramp is ordered: CIELAB lightness never rises from one entry to the next and falls over
+ * every four, by more than 50 over the table; every entry is a blue (hue 240 to 285 degrees, chroma
+ * over 15) far from the no-contact grey (230); and it is no map a user chooses for the forces. */
+static void test_tension_ramp_is_an_ordered_blue(void **state)
+{
+    (void)state;
+    const uint8_t(*table)[3] = im_colormap_table(IM_COLORMAP_TENSION);
+    const uint8_t grey[3] = {230, 230, 230};
+    double lab[256][3], background[3];
+    srgb_to_lab(grey, background);
+    for (int k = 0; k < 256; ++k) {
+        srgb_to_lab(table[k], lab[k]);
+        double hue = atan2(lab[k][2], lab[k][1]) * 180.0 / M_PI + 360.0;
+        double distance = sqrt(pow(lab[k][0] - background[0], 2) + pow(lab[k][1], 2) + pow(lab[k][2], 2));
+        if (!(hue > 240.0 && hue < 285.0 && hypot(lab[k][1], lab[k][2]) > 15.0 && distance > 20.0))
+            fail_msg("entry %d (%d, %d, %d): hue %.1f, chroma %.1f, %.1f from the grey", k, table[k][0],
+                     table[k][1], table[k][2], hue, hypot(lab[k][1], lab[k][2]), distance);
+        if (k >= 1 && lab[k][0] > lab[k - 1][0])
+            fail_msg("lightness rises from entry %d (%.2f) to %d (%.2f)", k - 1, lab[k - 1][0], k, lab[k][0]);
+        if (k >= 4 && !(lab[k][0] < lab[k - 4][0]))
+            fail_msg("lightness does not fall from entry %d to %d", k - 4, k);
+    }
+    assert_true(lab[0][0] - lab[255][0] > 50.0);
+    im_colormap_id map;
+    assert_int_equal(im_colormap_from_name(im_colormap_name(IM_COLORMAP_TENSION), &map), IM_EINVAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -84,6 +130,7 @@ int main(void)
         cmocka_unit_test(test_log_bins_are_equal_and_complete),
         cmocka_unit_test(test_outside_the_norm),
         cmocka_unit_test(test_colours_are_table_entries),
+        cmocka_unit_test(test_tension_ramp_is_an_ordered_blue),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -402,6 +402,85 @@ static void test_colorbar_extensions(void **state)
     im_image_release(&image);
 }
 
+/* The index of a tension ramp entry with this colour, -1 if none. */
+static int ramp_index(const uint8_t *rgb)
+{
+    const uint8_t(*ramp)[3] = im_colormap_table(IM_COLORMAP_TENSION);
+    for (int k = 0; k < 256; ++k)
+        if (memcmp(ramp[k], rgb, 3) == 0)
+            return k;
+    return -1;
+}
+
+/* The column holding the most pixels of the tension ramp, and how many; -1 and 0 when none does. */
+static int ramp_column(const uint8_t *rgb, int width, int height, int *most)
+{
+    int best = -1;
+    *most = 0;
+    for (int x = 0; x < width; ++x) {
+        int count = 0;
+        for (int row = 0; row < height; ++row)
+            count += ramp_index(rgb + ((size_t)row * width + x) * 3) >= 0;
+        if (count > *most)
+            *most = count, best = x;
+    }
+    return best;
+}
+
+/* The tension's bar: right of the force's (grey) bar, a column of ramp colours from the last entry at
+ * the top down to the first, each pixel's entry no higher than the one above it; a figure without a
+ * tension norm has no ramp colour anywhere. */
+static void test_tension_colorbar(void **state)
+{
+    (void)state;
+    im_image image = make_image(60, 200, 5);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
+    im_colormap tension = im_contact_tension_norm(0.3);
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = &norm;
+    figure.colorbar_label = "local force f / N";
+    figure.dpi = 150;
+    const char *path = test_path("tension.png");
+    int width, height, x, y, most;
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    assert_int_equal(ramp_column(rgb, width, height, &most), -1);
+    free(rgb);
+    int width_without = width;
+    figure.tension_colormap = &tension;
+    figure.tension_label = "tensile force −f / N";
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    rgb = read_rgb(path, &width, &height);
+    find_image(rgb, width, height, &image, &x, &y);
+    int column = ramp_column(rgb, width, height, &most), grey_bar = 0;
+    assert_true(width > width_without && most > 150);
+    for (int c = x + image.width; c < column; ++c) { /* the force's bar: its middle, left of the ramp */
+        const uint8_t *p = rgb + ((size_t)(y + 100) * width + c) * 3;
+        grey_bar |= p[0] == p[1] && p[1] == p[2] && abs(p[0] - 128) < 8;
+    }
+    assert_true(grey_bar);
+    int first = -1, last = -1;
+    for (int row = 0; row < height; ++row) {
+        int k = ramp_index(rgb + ((size_t)row * width + column) * 3);
+        if (k < 0)
+            continue;
+        if (last >= 0 && k > last)
+            fail_msg("row %d: ramp entry %d below entry %d", row, k, last);
+        first = first < 0 ? k : first;
+        last = k;
+    }
+    if (!(first >= 250 && last <= 5)) /* the ends: less the outline and nearest sampling's rounding */
+        fail_msg("ramp entries %d (top) to %d (bottom)", first, last);
+    figure.tension_label = NULL;
+    tension.hi = tension.lo; /* no bar for a bad norm: an error naming it */
+    assert_int_equal(im_figure_write(&figure, path), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "tension colour bar"));
+    free(rgb);
+    im_image_release(&image);
+}
+
 /* Finds a PNG chunk of the given type whose data starts with prefix; returns its data or NULL. */
 static const uint8_t *find_chunk(const uint8_t *png, size_t size, const char *type, const char *prefix,
                                  size_t prefix_length)
@@ -567,6 +646,26 @@ static void test_frame_paths(void **state)
     assert_string_equal(path, "run/height_12345.png");
     assert_int_equal(im_frame_path(path, 10, "run", "contact", 1), IM_EINVAL);
     assert_int_equal(im_frame_path(path, sizeof path, "run", "contact", -1), IM_EINVAL);
+}
+
+/* The colour bar's labels in the fields' units, as issue 29 states them; a quantity of no field is refused. */
+static void test_colorbar_labels(void **state)
+{
+    (void)state;
+    static const char *const EXPECTED[][3] = {
+        {"force", "N", "local force f / N"},    {"force", "", "local force f / (E* δ²)"},
+        {"height", "µm", "height h / µm"},      {"height", "", "height h / δ"},
+        {"gap", "m", "gap g / m"},              {"displacement", "nm", "displacement u / nm"},
+        {"plastic", "", "plastic depth d / δ"}};
+    char text[64];
+    for (size_t i = 0; i < sizeof EXPECTED / sizeof *EXPECTED; ++i) {
+        assert_int_equal(im_figure_colorbar_label(EXPECTED[i][0], EXPECTED[i][1], text, sizeof text), IM_OK);
+        assert_string_equal(text, EXPECTED[i][2]);
+    }
+    assert_int_equal(im_figure_colorbar_label("pressure", "Pa", text, sizeof text), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "quantity 'pressure': expected force, height"));
+    assert_int_equal(im_figure_colorbar_label("force", "N", text, strlen("local force f / N")), IM_EINVAL);
+    assert_int_equal(im_figure_colorbar_label("force", "N", text, strlen("local force f / N") + 1), IM_OK);
 }
 
 /* Frames with at most 256 colours between them come back from the GIF pixel for pixel, with one global
@@ -841,10 +940,12 @@ int main(void)
         cmocka_unit_test(test_short_colorbar_labels_apart),
         cmocka_unit_test(test_panel_grid_and_colorbar),
         cmocka_unit_test(test_colorbar_extensions),
+        cmocka_unit_test(test_tension_colorbar),
         cmocka_unit_test(test_png_metadata_pdf_svg),
         cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),
         cmocka_unit_test(test_frame_paths),
+        cmocka_unit_test(test_colorbar_labels),
         cmocka_unit_test(test_gif_round_trip),
         cmocka_unit_test(test_gif_quantises),
         cmocka_unit_test(test_gif_options_refused),

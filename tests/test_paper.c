@@ -121,12 +121,13 @@ static int build(const made_histories *m, int variant, int round, const char *di
     const char *names[FIGURES] = {"fig7", "fig5", "sweep", "distributions"};
     for (int i = 0; i < FIGURES; ++i)
         snprintf(paths[i], 512, "%s/%s_%d_%d.png", dir, names[i], variant, round);
-    int status = paper_figure_area_ratio_against_load(&m->h, paths[0]);
+    int status = paper_figure_area_ratio_against_load(&m->h, &(paper_file){.path = paths[0]});
     if (status == IM_OK)
-        status = paper_figure_against_approach(&m->h, 0, paths[1]);
+        status = paper_figure_against_approach(&m->h, 0, &(paper_file){.path = paths[1]});
     if (status == IM_OK)
-        status = paper_figure_sweep(m->sweep.groups, FAMILIES, "test.ini", paths[2]);
-    return status == IM_OK ? paper_figure_distributions(m->distributions.families, FAMILIES, "test.ini", paths[3])
+        status = paper_figure_sweep(m->sweep.groups, FAMILIES, "test.ini", &(paper_file){.path = paths[2]});
+    return status == IM_OK ? paper_figure_distributions(m->distributions.families, FAMILIES, "test.ini",
+                                                        &(paper_file){.path = paths[3]})
                            : status;
 }
 
@@ -190,7 +191,7 @@ static void test_fig7_needs_a_common_range(void **state)
         for (int k = 0; k < STEPS; ++k)
             data.load_star[i][k] += 1000.0 * i;
     const char *path = test_path("fig7_none.png");
-    assert_int_equal(paper_figure_area_ratio_against_load(&data.h, path), IM_EINVAL);
+    assert_int_equal(paper_figure_area_ratio_against_load(&data.h, &(paper_file){.path = path}), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "test.ini: fig7 needs a rough family"));
     assert_int_equal(access(path, F_OK), -1);
 }
@@ -246,7 +247,7 @@ static void test_first_resolved_step(void **state)
 /* Draws made_histories' sweep with `groups` groups into name; returns the builder's status. */
 static int sweep_into(const made_sweep *m, int groups, const char *name)
 {
-    return paper_figure_sweep(m->groups, groups, "sweep.ini", test_path(name));
+    return paper_figure_sweep(m->groups, groups, "sweep.ini", &(paper_file){.path = test_path(name)});
 }
 
 /* The sweep's fig2 draws what it is given: its groups' points (a figure without them differs), on
@@ -272,7 +273,8 @@ static void test_sweep_figure(void **state)
     paper_sweep_group many[PAPER_MAX_SWEEP_GROUPS + 1];
     for (int k = 0; k <= PAPER_MAX_SWEEP_GROUPS; ++k)
         many[k] = data.sweep.groups[k % FAMILIES];
-    assert_int_equal(paper_figure_sweep(many, PAPER_MAX_SWEEP_GROUPS + 1, "sweep.ini", test_path("sweep_many.png")),
+    assert_int_equal(paper_figure_sweep(many, PAPER_MAX_SWEEP_GROUPS + 1, "sweep.ini",
+                                        &(paper_file){.path = test_path("sweep_many.png")}),
                      IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "sweep.ini: fig2 of a sweep draws at most 8 roughnesses"));
     assert_int_equal(access(test_path("sweep_many.png"), F_OK), -1);
@@ -290,15 +292,15 @@ static void test_distribution_figure(void **state)
     make_histories(0, &data);
     paper_distribution_family *families = data.distributions.families;
     const char *both = test_path("distributions_both.png"), *smooth = test_path("distributions_smooth.png");
-    assert_int_equal(paper_figure_distributions(families, FAMILIES, "d.ini", both), IM_OK);
-    assert_int_equal(paper_figure_distributions(families, 1, "d.ini", smooth), IM_OK);
+    assert_int_equal(paper_figure_distributions(families, FAMILIES, "d.ini", &(paper_file){.path = both}), IM_OK);
+    assert_int_equal(paper_figure_distributions(families, 1, "d.ini", &(paper_file){.path = smooth}), IM_OK);
     assert_false(same_file(both, smooth));
 
     const char *none = test_path("distributions_none.png");
-    assert_int_equal(paper_figure_distributions(families, 0, "d.ini", none), IM_EINVAL);
+    assert_int_equal(paper_figure_distributions(families, 0, "d.ini", &(paper_file){.path = none}), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "d.ini: distributions of 0 families: expected 1 to 64"));
     families[1].gap_density = NULL;
-    assert_int_equal(paper_figure_distributions(families, FAMILIES, "d.ini", none), IM_EINVAL);
+    assert_int_equal(paper_figure_distributions(families, FAMILIES, "d.ini", &(paper_file){.path = none}), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "d.ini: distributions: family 1's bins come without their arrays"));
     assert_int_equal(access(none, F_OK), -1);
 }

@@ -92,8 +92,9 @@ static void assert_pixel(const im_image *image, int column, int row, const uint8
     assert_int_equal(p[3], 255);
 }
 
-/* Every pixel of a contact map against im_colormap_field_image (rows top first), with the tensile
- * colour where force < 0, the background where it is 0 and the boundary frame in the line colour. */
+/* Every pixel of a contact map against im_colormap_field_image (rows top first), with the tension -f
+ * through the tension norm where force < 0, the background where it is 0 and the boundary frame in
+ * the line colour. */
 static void compare_with_reference(const im_field *force, const im_contact_style *style)
 {
     im_image image;
@@ -114,7 +115,7 @@ static void compare_with_reference(const im_field *force, const im_contact_style
             uint8_t expected[3];
             memcpy(expected, reference + ((size_t)r * force->nx + ix) * 3, 3);
             if (f < 0.0) /* under tension (adhesion) */
-                memcpy(expected, style->tensile, 3);
+                im_colormap_rgb(&style->tension, -f, expected);
             else if (!isnan(f) && !(f > 0.0))
                 memcpy(expected, style->background, 3);
             assert_pixel(&image, column, row, expected, 1);
@@ -144,6 +145,10 @@ static void test_colours_match_cpu_reference(void **state)
         style.colormap = im_colormap_make((im_colormap_id)map, 0.05, 1.1);
         style.colormap.under[0] = 250, style.colormap.under[1] = 10, style.colormap.under[2] = 20;
         style.colormap.over[0] = 5, style.colormap.over[1] = 250, style.colormap.over[2] = 30;
+        style.tension = im_contact_tension_norm(0.14); /* the tensions, 0.1 to 0.15: some over it */
+        style.tension.lo = 0.11;                        /* and some under */
+        style.tension.under[0] = 240, style.tension.under[1] = 200, style.tension.under[2] = 0;
+        style.tension.over[0] = 0, style.tension.over[1] = 0, style.tension.over[2] = 0;
         style.pixels_per_patch = 1;
         style.boundary_px = 0;
         compare_with_reference(force, &style);
@@ -548,6 +553,57 @@ static void test_bad_styles_refused(void **state)
     style = im_contact_style_default(f);
     style.circle_radius = NAN;
     assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    style = im_contact_style_default(f);
+    style.tension.hi = NAN;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "contact map: tension"));
+    im_field_free(f);
+}
+
+/* The relative luminance of an 8-bit sRGB colour (the sRGB transfer curve and weights). */
+static double luminance(const uint8_t rgb[3])
+{
+    const double weights[3] = {0.2126, 0.7152, 0.0722};
+    double y = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double c = rgb[k] / 255.0;
+        y += weights[k] * (c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4));
+    }
+    return y;
+}
+
+/* Patches under tension of several magnitudes in one row, with a compressed and a free patch: with the
+ * default style each takes its tension's entry of the blue ramp (the largest the last), darker as the
+ * tension grows, bluer than it is red or green, and none is the no-contact grey. The starting code drew
+ * them all in one flat colour. */
+static void test_tension_follows_the_ramp(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    const double forces[] = {0.0, -0.02, -0.1, -0.25, -0.45, -0.7, -1.0, 0.5};
+    const int count = (int)(sizeof forces / sizeof *forces);
+    im_field *f = make_field(count, 1);
+    memcpy(f->data, forces, sizeof forces);
+    im_contact_style style = im_contact_style_default(f);
+    assert_true(style.tension.map == IM_COLORMAP_TENSION && style.tension.lo == 0.0 && style.tension.hi == 1.0);
+    style.boundary_px = 0;
+    im_image image;
+    assert_int_equal(im_render_contact_map(context, f, &style, &image), IM_OK);
+    const uint8_t(*ramp)[3] = im_colormap_table(IM_COLORMAP_TENSION);
+    double previous = INFINITY;
+    for (int i = 1; i < count - 1; ++i) {
+        const uint8_t *p = pixel(&image, 2 * i, 0);
+        uint8_t expected[3];
+        im_colormap_rgb(&style.tension, -forces[i], expected);
+        assert_pixel(&image, 2 * i, 0, expected, 0);
+        double y = luminance(p);
+        if (!(y < previous) || !(p[2] > p[0] && p[2] > p[1]) || memcmp(p, style.background, 3) == 0)
+            fail_msg("tension %g: (%d, %d, %d), luminance %.4f after %.4f", -forces[i], p[0], p[1], p[2], y, previous);
+        previous = y;
+    }
+    assert_pixel(&image, 2 * (count - 2), 0, ramp[255], 0);
+    assert_pixel(&image, 0, 0, style.background, 0);
+    im_image_release(&image);
     im_field_free(f);
 }
 
@@ -701,6 +757,7 @@ int main(void)
         cmocka_unit_test(test_drawing_from_several_threads),
         cmocka_unit_test(test_empty_zero_and_nan_fields),
         cmocka_unit_test(test_bad_styles_refused),
+        cmocka_unit_test(test_tension_follows_the_ramp),
         cmocka_unit_test(test_height_shading_of_a_plane),
         cmocka_unit_test(test_height_flat_matches_reference_and_nan),
         cmocka_unit_test(test_contact_outline),

@@ -217,7 +217,7 @@ static void test_flat_top_view_is_the_contact_map(void **state)
         im_view3d_style s = plain_style(nx * scale, ny * scale);
         s.colormap = map_style.colormap;
         memcpy(s.surface, map_style.background, 3);
-        memcpy(s.tensile, map_style.tensile, 3);
+        s.tension = map_style.tension;
         s.mesh_side = meshes[k];
         s.camera.projection = IM_VIEW3D_ORTHOGRAPHIC;
         s.camera.elevation = 90.0;
@@ -422,8 +422,10 @@ static void shaded_colour(const scene *sc, int x, int y, double rgb[3])
     uint8_t base[3];
     if (f > 0.0)
         im_colormap_rgb(&s->colormap, f, base);
+    else if (f < 0.0) /* under tension (adhesion) */
+        im_colormap_rgb(&s->tension, -f, base);
     else
-        memcpy(base, f < 0.0 ? s->tensile : s->surface, 3); /* under tension (adhesion), or out of contact */
+        memcpy(base, s->surface, 3);
     int left = x > 0 ? x - 1 : 0, right = x < h->nx - 1 ? x + 1 : x;
     int down = y > 0 ? y - 1 : 0, up = y < h->ny - 1 ? y + 1 : y;
     double sx = s->exaggeration * (patch_height(h, right, y) - patch_height(h, left, y)) / (right - left);
@@ -448,6 +450,8 @@ static void test_cpu_ray_cast_agrees(void **state)
         force->data[i] = isnan(force->data[i]) ? 0.0 : force->data[i];
     im_view3d_style s = plain_style(640, 480);
     s.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.2);
+    s.tension = im_contact_tension_norm(0.25); /* the tensions, 0.2 to 0.25: the ramp's upper fifth */
+    s.tension.lo = 0.19;
     s.exaggeration = 1.7;
     s.camera.azimuth = 35.0;
     s.camera.elevation = 40.0;

@@ -83,6 +83,10 @@ static void test_page_structure(void **state)
     char *contact = strstr(page, "id=\"frame-contact\""), *height = strstr(page, "id=\"frame-height\""),
          *view = strstr(page, "id=\"frame-view3d\"");
     assert_true(contact && height && view && contact < height && height < view);
+    /* each panel's share of the row is its aspect ratio, its width capped at the panels' least height
+     * (100 pixels): none is blown up beyond its image */
+    assert_non_null(strstr(page, "<figure style=\"flex:1000 1 0;max-width:100px\"><img id=\"frame-contact\""));
+    assert_non_null(strstr(page, "<figure style=\"flex:1777 1 0;max-width:177px\"><img id=\"frame-view3d\""));
     assert_non_null(strstr(page, "max=\"3\""));
     assert_non_null(strstr(page, "\"frames/view3d_0002.png\",null]"));
     /* tables and record escaped, the quoted field whole */
@@ -396,10 +400,13 @@ static void test_indent_page_in_chromium(void **state)
     snprintf(out, sizeof out, "%s/indent_dom.html", test_temp_dir());
     snprintf(chrome_log, sizeof chrome_log, "%s/indent_harness.log", test_temp_dir());
     const char text[] =
-        "<!DOCTYPE html><body><iframe id=\"f\" src=\"ind/index.html\"></iframe><script>\n"
+        "<!DOCTYPE html><body><iframe id=\"f\" src=\"ind/index.html\" style=\"width:1600px;height:900px\"></iframe>\n"
+        "<script>\n"
         "var f=document.getElementById('f');f.onload=function(){var d=f.contentDocument;\n"
         "var h=d.querySelector('img[alt=\"history.png\"]');var s=d.getElementById('frame-slider');var r=[];\n"
         "r.push(h&&h.complete&&h.naturalWidth>0?'history loaded':'no history');\n"
+        "var c0=d.getElementById('frame-contact');var w=c0.clientWidth;\n" /* its pixels, without the border */
+        "r.push(w>0&&w<=c0.naturalWidth?'panel at most its width':'panel '+w+' px wide, its image '+c0.naturalWidth);\n"
         "function look(){var c=d.getElementById('frame-contact');r.push(c.getAttribute('src')+' '+\n"
         " (c.complete&&c.naturalWidth>0?'loaded':'not loaded')+' '+d.getElementById('frame-label').textContent);}\n"
         "look();s.value=2;s.dispatchEvent(new Event('input'));\n"
@@ -409,7 +416,7 @@ static void test_indent_page_in_chromium(void **state)
     test_write_bytes(harness, text, strlen(text));
     run_chromium("--dump-dom --virtual-time-budget=5000", harness, out, chrome_log);
     char *dom = slurp(out);
-    const char *expected = "history loaded|frames/contact_0000.png loaded step 1 of 3|"
+    const char *expected = "history loaded|panel at most its width|frames/contact_0000.png loaded step 1 of 3|"
                            "frames/contact_0002.png loaded step 3 of 3";
     if (!strstr(dom, expected))
         fail_msg("the indent page's history figure or slider did not work as expected:\n%s", dom);

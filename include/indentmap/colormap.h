@@ -28,6 +28,8 @@ typedef enum im_colormap_id {
     IM_COLORMAP_MAGMA,
     IM_COLORMAP_INFERNO,
     IM_COLORMAP_GREY,
+    IM_COLORMAP_TENSION, /* the blue ramp of patches under tension (render.h), light to dark as the
+                            tension grows, ordered in CIELAB lightness; not chosen by name */
     IM_COLORMAP_COUNT
 } im_colormap_id;
 

@@ -1,5 +1,6 @@
 /* indentmap/figure.h: publication figures around rendered images (render.h): panel grids with
- * panel labels and titles, one shared colour bar with ticks and the quantity's name, a scale bar,
+ * panel labels and titles, one shared colour bar with ticks and the quantity's name (and a second
+ * one for the tension of patches under tension, where there is any), a scale bar,
  * and output as PNG (with the run's parameters in tEXt chunks and the resolution in pHYs), PDF or
  * SVG; frames of an indentation run and animations (GIF, MP4).
  *
@@ -48,6 +49,10 @@ typedef struct im_figure {
     const char *colorbar_label;      /* the quantity, e.g. "local force f / (E* δ²)" */
     int extend_under, extend_over;   /* 1: triangles in the under / over colour beyond the bar's
                                         ends, saying that some values lie outside the norm */
+    const im_colormap *tension_colormap; /* a second bar right of the first: the norm of the tension
+                                        of patches under tension (render.h: im_contact_style.tension);
+                                        NULL (the default): none */
+    const char *tension_label;       /* its quantity, e.g. "tensile force −f / (E* δ²)" */
     double scale_bar;                /* length in the images' units (delta, or their unit);
                                         0: automatic (a 1-2-5 length near a fifth of a panel);
                                         < 0: none */
@@ -79,6 +84,14 @@ int im_figure_write(const im_figure *figure, const char *path);
  * decades inside, or 1-2-5 multiples when fewer than three decades fit). Writes at most capacity
  * values in increasing order; returns how many. Exposed for tests. */
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity);
+
+/* The colour bar's label `indentmap render` gives a field, in its units: quantity "force" gives
+ * "local force f / UNIT", unit the forces' (field.h's value_unit: "N", "Pa µm²"; "" gives "(E* δ²)");
+ * "height", "gap", "displacement" and "plastic" (the fields of an indentation step) give "height h /
+ * UNIT", "gap g / UNIT", "displacement u / UNIT" and "plastic depth d / UNIT", unit the field's length
+ * unit ("" gives "δ"). Writes the UTF-8 label into text (size bytes). IM_EINVAL for a NULL argument,
+ * another quantity (naming the known ones) or a label that does not fit (text is then truncated). */
+int im_figure_colorbar_label(const char *quantity, const char *unit, char *text, size_t size);
 
 /* ---- frames and animations ---- */
 

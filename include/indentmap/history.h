@@ -84,6 +84,14 @@ int im_history_write_analysis(const char *dir, const im_indenter *punch, const i
                               double delta, double e_star, const char *length_unit, const char *force_unit,
                               int *branches);
 
+/* The units of a history's numbers as `indent` states them in run.json's "units" block: JSON text (keys
+ * sorted) with "length", "approach", "e_star", "pressure", "stiffness", "work", "load", "force",
+ * "load_star", "area_ratio" and "columns" (each column of history.csv and indentation.csv with its unit),
+ * for the surface's length_unit ("": units of delta) and e_star_unit ("": E* as given; "Pa" with "m"
+ * gives forces in N), periodic or not. IM_EINVAL for NULL pointers or a text of fewer than size bytes;
+ * IM_ENOMEM. */
+int im_history_units_json(const char *length_unit, const char *e_star_unit, int periodic, char *text, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

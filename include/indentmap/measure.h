@@ -126,6 +126,10 @@ int im_measure_patch_histogram(const im_patch *list, long count, long *patches, 
 int im_measure_gap_distribution(const im_field *gap, const im_field *force, double scale, int bins, long *counts,
                                 double *bin_width, long *infinite);
 
+/* The gap bins of the distributions `indentmap indent --distributions`, periodic scenes and Python's
+ * Indentation.write_distributions write. */
+enum { IM_MEASURE_GAP_BINS = 50 };
+
 /* Writes the distributions of one state as CSV files (atomically): PREFIX_gaps.csv, the gap outside
  * contact normalised by height_rms (> 0; the caller passes delta for a smooth surface) in `bins`
  * bins, columns gap_low,gap_high,cells,density (density per unit gap / height_rms, over all cells:

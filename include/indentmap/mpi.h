@@ -122,6 +122,20 @@ int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im
 int im_mpi_flat_contact_solve_gap(im_mpi_flat_contact *run, double mean_gap, im_flat_result *out);
 /* This rank's rows of the pressure of the last solve (rows * nx values; owned by run). */
 const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run);
+/* This rank's rows of the gap g = g0 - w + u of the last solve or step (rows * nx values into gap; g0
+ * includes the plastic depth). IM_EINVAL for NULL. Not collective. */
+int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap);
+
+/* One step of a periodic history, as im_indentation_step takes it on a periodic cell under a rigid
+ * flat (`indent --periodic`), warm-started from the last step: control IM_CONTROL_LOAD (target: the
+ * load N = p_m nx ny delta^2, >= 0) or IM_CONTROL_MEAN_GAP (target: the mean gap, > 0; an approach
+ * below 0 leaves the flat clear). With the solver's hardness, plastic memory: the overlap of the patches
+ * at the cap is added to their plastic depth and their undeformed gap after each step, and a load of
+ * H_p A0 or more is refused (IM_EINVAL); mean-gap control with a hardness, which im_indentation_step
+ * searches, gives IM_EUNSUPPORTED. *out as im_indentation_step's: N* NaN, area_ratio A / A0, the mean
+ * gap max(g, 0) over the cell, the plastic values; the same on every rank for any rank count (ordered
+ * sums), equal to the serial step's to the tolerance with the same iterations. Collective. */
+int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's
  * rows of heights (in units of delta, not modified). IM_ENUMERIC for a non-finite height, IM_EINVAL

@@ -103,7 +103,7 @@ typedef struct im_contact_style {
     int pixels_per_patch;      /* integer upscaling, 1..64 */
     int boundary_px;           /* width of the boundary square around the data, 0..64 */
     uint8_t background[3];     /* patches not in contact (force = 0) */
-    uint8_t tensile[3];        /* patches under tension (force < 0: adhesion, solver.h), whatever the norm */
+    im_colormap tension;       /* norm on the tension -f of patches with force < 0 (adhesion, solver.h) */
     uint8_t line[3];           /* boundary square and circle */
     double circle_radius;      /* smooth-surface contact radius, in patches; <= 0: no circle */
     double circle_x, circle_y; /* its centre in patches: field coordinates, x right, y up; patch
@@ -115,14 +115,25 @@ typedef struct im_contact_style {
 } im_contact_style;
 
 /* Defaults for a force field: viridis, linear norm on [0, largest force] (or [0, 1] when no
- * patch is in contact), 2 pixels per patch, 2-pixel black boundary, light grey (230) background,
- * tensile patches light blue (150, 190, 235: no viridis or magma colour is near it),
+ * patch is in contact), the tension norm im_contact_tension_norm(im_contact_largest_tension(force)),
+ * 2 pixels per patch, 2-pixel black boundary, light grey (230) background,
  * no circle (centre preset to the middle of the grid), circle width 2 px, anti-aliased. */
 im_contact_style im_contact_style_default(const im_field *force);
 
+/* The norm of the tension -f of patches under tension: the blue ramp IM_COLORMAP_TENSION (light for
+ * the least tension, dark for the most), linear on [0, largest] ([0, 1] unless largest > 0 and
+ * finite). Frames of a history share one, as they share the force norm. */
+im_colormap im_contact_tension_norm(double largest);
+
+/* The largest tension -f over the finite patches with force f < 0; 0 when none (nor for an invalid
+ * view, whose message is recorded). A figure draws the tension's colour bar only where it is > 0, so
+ * a field without tension is drawn as before there was one. */
+double im_contact_largest_tension(const im_field *force);
+
 /* Draws a contact map: each patch with force > 0 in the colour of its force through the norm
- * (under / over colours outside the norm's range), patches with force < 0 (tension) in the tensile
- * colour, patches with force 0 in the background colour, NaN patches in the colour map's bad colour. A field with no patch in contact
+ * (under / over colours outside the norm's range), patches with force < 0 in the colour of their
+ * tension -f through the tension norm (its under / over colours outside its range), patches with
+ * force 0 in the background colour, NaN patches in the colour map's bad colour. A field with no patch in contact
  * is drawn as background only (a valid picture, not an error). The circle is anti-aliased with
  * its exact coverage of each pixel across the line (box filter), or aliased at half coverage. Errors: IM_EINVAL for a bad
  * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
@@ -172,9 +183,10 @@ int im_render_height_map(im_render_context *context, const im_field *height,
  * vertex per patch corner, its height the mean of the (up to four) patches that share the
  * corner, each square split along its diagonal from (ix, iy) to (ix + 1, iy + 1). A fragment
  * takes the colour and the normal of the patch it lies in: colour from the force through the
- * norm (as im_render_contact_map, so contact patches have the exact colours of the 2-D map) or
- * the surface colour where force <= 0; normal from central differences of the patch heights
- * (one-sided at the edges), like the 2-D height map. Shading is Lambert's law relative to level
+ * norm (as im_render_contact_map, so contact patches have the exact colours of the 2-D map), from
+ * the tension -f through the tension norm where force < 0, or the surface colour where force = 0;
+ * normal from central differences of the patch heights (one-sided at the edges), like the 2-D
+ * height map. Shading is Lambert's law relative to level
  * ground: a level patch keeps its exact colour (shade 1) whatever the light, so a flat surface
  * seen from straight above reproduces the 2-D contact map; shade = 1 + shading * (max(n.l, 0) /
  * l_z - 1), then the colour times shade, clamped to [0, 1].
@@ -238,7 +250,7 @@ typedef struct im_view3d_style {
     double light_azimuth;      /* degrees, clockwise from +y, as the 2-D height map */
     double light_altitude;     /* degrees above the horizon, (0, 90] */
     uint8_t surface[3];        /* patches not in contact (force = 0, or no force field) */
-    uint8_t tensile[3];        /* patches under tension (force < 0: adhesion), as the contact map's */
+    im_colormap tension;       /* norm on the tension -f of patches with force < 0, as the contact map's */
     uint8_t background[3];
     uint8_t punch_colour[3];
     im_view3d_punch punch_mode;
@@ -248,9 +260,9 @@ typedef struct im_view3d_style {
     im_view3d_camera camera;
 } im_view3d_style;
 
-/* Defaults for a force field (may be NULL): the contact map's norm (im_contact_style_default),
+/* Defaults for a force field (may be NULL): the contact map's norms (im_contact_style_default),
  * 1920 x 1080 pixels, 4 samples, mesh_side 384, true scale (exaggeration 1), shading 0.7, light
- * from 315 degrees at 45 degrees, surface light grey (230), tensile patches light blue (150, 190, 235),
+ * from 315 degrees at 45 degrees, surface light grey (230),
  * white background, a steel-grey (150,
  * 160, 175) translucent punch of opacity 0.35, perspective from azimuth 20, elevation 35,
  * distance 2.1, field of view 30 degrees, automatic target height (NAN). */

@@ -177,9 +177,9 @@ typedef struct im_scene {
                                         family's first surface (distributions/, docs/scenes.md) */
     int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
     int page_embed;                  /* 1: index.html carries its images as data URIs (viewer.h) */
-    im_colormap_id colormap;         /* default viridis */
-    int log_norm;                    /* 1: forces on a log norm spanning two decades below the
-                                        largest, smaller forces in the under colour */
+    im_colormap_id colormap;         /* default magma, as render, indent --frames and Python */
+    int log_norm;                    /* 1 (default): forces on a log norm spanning two decades below the
+                                        largest, smaller forces in the under colour; 0: linear from 0 */
     double frames_slope;             /* the family whose history is framed; < 0: the roughest */
     int frame_count;                 /* steps of the framed history (default 24) */
     double frame_rate;               /* frames per second of contact/view3d .gif and .mp4 (default 4) */

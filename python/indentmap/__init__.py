@@ -13,7 +13,7 @@ from . import _core
 from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, InvalidArgument, NotConverged,
                     NumericError, OutOfMemory, Unsupported)
 from . import theory
-from .render import Figure, Image, contact_map, height_map, renderer
+from .render import Figure, Image, contact_map, height_map, renderer, view3d
 from .scene import run_scene, run_scene_from_record
 from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, read_history, unloading,
                      write_analysis)
@@ -28,11 +28,36 @@ def memory_limit(limit=None):
     With ``limit`` (bytes; 0 removes the cap) sets it first, for the whole process, like the ``indentmap``
     program's ``IM_MEMORY_LIMIT_MIB``: work that would need more than the cap (or than the machine has)
     is refused up front with ``OutOfMemory`` naming what and how much, instead of starting to swap.
+
+    Example: ``im.memory_limit(8 << 30)`` caps the library at 8 GiB; ``im.memory_limit()`` reads it.
     """
     return _core.memory_limit() if limit is None else _core.memory_limit(int(limit))
 
 
+def info(backend="auto"):
+    """The text ``indentmap info`` prints, byte for byte: the version, the libraries in use (FFTW, GSL,
+    libpng), the OpenMP thread count, the OpenGL renderer of ``backend`` ('auto', 'egl' or 'osmesa'; the
+    program's IM_RENDER_BACKEND is its own) and the Vulkan devices the GPU engine could use.
+
+    A machine without OpenGL says 'render backend: unavailable (...)'; a renderer that opens a context
+    and then fails raises ``Unsupported`` (where the program exits 1), a backend of another name
+    ``InvalidArgument``.
+
+    Example: ``print(im.info(), end="")``."""
+    return _core.info_text(backend)
+
+
+def formats():
+    """The text ``indentmap formats`` prints, byte for byte: the surface formats ``read`` reads, its own
+    readers, then each of Gwyddion's file modules where the build has them (found as ``read`` finds
+    indentmap-gwyddion-read: set INDENTMAP_GWYDDION_READER to choose it). ``FileError`` where that
+    program cannot be run or lists nothing.
+
+    Example: ``".x3p" in im.formats()``."""
+    return _core.formats_text()
+
+
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography",
-           "Unsupported", "adhesion", "contact_map", "generate", "height_map", "histogram", "indent", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
-           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "write", "write_analysis"]
+           "Unsupported", "adhesion", "contact_map", "formats", "generate", "height_map", "histogram", "indent", "info", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
+           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "view3d", "write", "write_analysis"]

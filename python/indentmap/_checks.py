@@ -2,6 +2,7 @@
 parameter in its message. A conversion such as ``int(2.5)`` or ``bool("no")`` would pass a value the caller
 never meant without a word, and ``float("x")`` would fail without naming the parameter."""
 import numbers
+import os
 
 import numpy as np
 
@@ -35,6 +36,14 @@ def seed(value):
     if not 0 <= value < SEED_LIMIT:
         raise ValueError(f"seed = {value}: expected an integer in [0, 2^64 - 1]")
     return value
+
+
+def path(name, value):
+    """value as a path (str or bytes, as os.fspath gives it): a str, bytes or os.PathLike."""
+    try:
+        return os.fspath(value)
+    except TypeError:
+        raise TypeError(f"{name}: expected a path (str, bytes or os.PathLike), got {value!r}") from None
 
 
 def text(name, value):

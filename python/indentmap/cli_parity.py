@@ -29,8 +29,14 @@ CROP = Reason("slice the array: heights[y0:y0 + ny, x0:x0 + nx]")
 SMOOTH = Reason("a flat surface is np.zeros((m, n))")
 # The program picks its OpenGL backend (--backend, IM_RENDER_BACKEND); Python always opens auto: not yet.
 BACKEND = NOT_YET
+NO_WISDOM = Reason("Python reads no FFTW wisdom file unless given one (wisdom=; None, the default, reads none)")
 MPI = Reason("MPI runs are the program's (mpirun -n K indentmap mpi-indent); Python runs in one process")
 PRINT = Reason("Python returns arrays; print or format them with numpy")
+# render animate's frames are composed in src/cli/render.c from render's own option struct (its shared norm,
+# the colour bar's extension triangles, the PNG texts) by the code that also writes render's figures; the
+# library has the pieces (figure.h: im_figure_write_frame, im_animation_gif, im_animation_mp4), not the frames.
+ANIMATE = Reason("draw each step with Figure([force], ...).save(path) (one shared vmax), or run the program's "
+                 "render animate; its frame composition lives in src/cli/render.c, not yet in the library")
 
 PARITY = {
     # ---- surface: generate or measure ----
@@ -39,7 +45,7 @@ PARITY = {
     "surface --m": Python("generate", "m"),
     "surface --delta": Python("generate", "delta"),
     "surface --unit": Python("write", "unit", "the unit is written with the file; no conversion on reading"),
-    "surface --height-unit": NOT_YET,
+    "surface --height-unit": Python("read", "height_unit"),
     "surface --channel": Python("read", "channel"),
     "surface --fill": Python("read", "fill"),
     "surface --resample-square": Python("read", "resample_square"),
@@ -80,11 +86,11 @@ PARITY = {
     "indent --n": SMOOTH,
     "indent --m": SMOOTH,
     "indent --delta": Python("Indentation", "delta"),
-    "indent --unit": NOT_YET,
-    "indent --height-unit": NOT_YET,
+    "indent --unit": Python("read", "unit"),
+    "indent --height-unit": Python("read", "height_unit"),
     "indent --channel": Python("read", "channel"),
-    "indent --length-unit": NOT_YET,
-    "indent --e-star-unit": NOT_YET,
+    "indent --length-unit": Python("read", "length_unit", "then Indentation(length_unit=t.unit) for the records"),
+    "indent --e-star-unit": Python("Indentation", "e_star_unit", "Indentation.units: run.json's units block"),
     "indent --fill": Python("read", "fill"),
     "indent --npy-order": Python("read", "npy_order"),
     "indent --resample-square": Python("read", "resample_square"),
@@ -111,28 +117,31 @@ PARITY = {
     "indent --tol": Python("Indentation", "tol"),
     "indent --max-iter": Python("Indentation", "max_iterations"),
     "indent --full": Python("Indentation", "crop", "crop=False solves on the whole surface"),
-    "indent --plain-pk": NOT_YET,
+    "indent --plain-pk": Python("Indentation", "plain_pk"),
     "indent --device": Python("Indentation", "device"),
-    "indent --measure": NOT_YET,
-    "indent --wisdom": NOT_YET,
-    "indent --no-wisdom": Reason("Python plans with FFTW_ESTIMATE and reads no wisdom file"),
+    "indent --measure": Python("Indentation", "measure"),
+    "indent --wisdom": Python("Indentation", "wisdom"),
+    "indent --no-wisdom": NO_WISDOM,
     "indent --out": OUT,
     "indent --fields": Python("indent", "fields"),
     "indent --frames": Reason("Python returns the fields (fields=True); draw contact maps with the program's "
                               "render contact or a scene's frames = yes"),
     "indent --page-embed": OUT,
-    "indent --distributions": NOT_YET,
+    "indent --distributions": Python("indent", "distributions", "Indentation.write_distributions for one step"),
+    "indent --from-record": Reason("a Python indentation writes no run.json to make it from again: the script that "
+                                   "made it is its record (run it again); scenes have run_scene_from_record"),
     # ---- render ----
     "render": Python("Figure"),
     "render contact": Python("contact_map"),
     "render height": Python("height_map"),
-    "render animate": NOT_YET,
+    "render animate": ANIMATE,
     "render --out": Python("Figure.save", note="Image.save for one picture"),
     "render --raw": Python("contact_map", note="contact_map and height_map give the data image"),
     "render --colormap": Python("contact_map", "colormap"),
     "render --vmin": Python("contact_map", "vmin"),
     "render --vmax": Python("contact_map", "vmax"),
     "render --log": Python("contact_map", "log"),
+    "render --linear": Python("contact_map", "log", "log=False"),
     "render --scale": Python("contact_map", "scale"),
     "render --circle": Python("contact_map", "circle_radius"),
     "render --circle-x": Python("contact_map", "circle_centre"),
@@ -144,34 +153,42 @@ PARITY = {
     "render --columns": Python("Figure", "columns"),
     "render --quantity": Python("Figure", "colorbar_label"),
     "render --dpi": Python("Figure", "dpi"),
-    "render --fps": NOT_YET,
-    "render --frames": NOT_YET,
+    "render --fps": ANIMATE,
+    "render --frames": ANIMATE,
     "render --backend": BACKEND,
     # ---- render view3d: the 3-D view ----
-    "render view3d": NOT_YET,
-    **{f"render view3d --{name}": NOT_YET for name in (
-        "out", "raw", "force", "displacement", "punch", "alpha", "radius", "x", "y", "punch-mode", "azimuth",
-        "elevation", "distance", "fov", "ortho", "ortho-height", "exaggeration", "width", "height", "samples",
-        "mesh-side", "colormap", "vmin", "vmax", "log", "linear", "title", "dpi")},
+    "render view3d": Python("view3d"),
+    **{f"render view3d --{name}": Python("view3d", name.replace("-", "_")) for name in (
+        "force", "displacement", "punch", "punch-mode", "azimuth", "elevation", "distance", "fov", "ortho",
+        "ortho-height", "exaggeration", "width", "height", "samples", "mesh-side", "colormap", "vmin", "vmax",
+        "log")},
+    "render view3d --raw": Python("view3d", note="view3d returns the data image; Image.save writes it"),
+    "render view3d --alpha": Python("Cone", "alpha"),
+    "render view3d --radius": Python("Sphere", "radius", "Flat(radius) for the flat punch"),
+    "render view3d --x": Python("view3d", "axis"),
+    "render view3d --y": Python("view3d", "axis"),
+    "render view3d --linear": Python("view3d", "log", "log=False"),
+    # the figure around the 3-D image (colour bar, title, exaggeration stated): not yet in Python
+    **{f"render view3d --{name}": NOT_YET for name in ("out", "title", "dpi")},
     "render view3d --backend": BACKEND,
     # ---- run: scenes ----
     "run": Python("run_scene"),
     "run --resume": Python("run_scene", "resume"),
     "run --quiet": Python("run_scene", "quiet"),
     "run --backend": BACKEND,
-    "run --wisdom": NOT_YET,
-    "run --no-wisdom": NOT_YET,
+    "run --wisdom": Python("run_scene", "wisdom"),
+    "run --no-wisdom": NO_WISDOM,
     "run --from-record": Python("run_scene_from_record"),
     "run --out": Python("run_scene", "out"),
     # ---- formats, info ----
-    "formats": NOT_YET,
-    "info": NOT_YET,
-    "info --backend": BACKEND,
+    "formats": Python("formats"),
+    "info": Python("info"),
+    "info --backend": Python("info", "backend"),
     # ---- mpi-indent (in builds with MPI) ----
     "mpi-indent": MPI,
     **{f"mpi-indent --{name}": MPI for name in (
         "surface", "n", "m", "seed", "slope", "punch", "alpha", "radius", "approach", "load", "hardness", "tol",
-        "max-iter", "out", "map")},
+        "max-iter", "out", "map", "periodic", "pressure", "mean-gap")},
 }
 
 # Subcommands only some builds have: their entries may name what this build's program lacks.

@@ -8,10 +8,15 @@ import tempfile
 import numpy as np
 
 from . import _core
+from .solver import Cone, Flat, Sphere
 
 
 def renderer():
-    """The OpenGL backend and renderer in use: {'backend', 'gl_renderer', 'gl_version'}."""
+    """The OpenGL backend and renderer in use: {'backend', 'gl_renderer', 'gl_version'}.
+
+    ``Unsupported`` on a machine without an OpenGL 3.3 context.
+
+    Example: ``im.renderer()["backend"]`` is 'egl' or 'osmesa'."""
     return _core.renderer()
 
 
@@ -24,58 +29,114 @@ def _png_bytes(write):
 
 
 class Image:
-    """A rendered picture: ``rgba`` is (height, width, 4) uint8, row 0 at the top. A notebook shows it."""
+    """A rendered picture: ``rgba`` is (height, width, 4) uint8, row 0 at the top. A notebook shows it.
 
-    def __init__(self, rgba):
+    ``texts`` ({key: value} of str) are what the picture shows, written as the PNG's text chunks as
+    ``indentmap render --raw`` writes them: ``contact_map`` and ``height_map`` set 'Software', 'Quantity'
+    (the colour bar's label in the field's units, e.g. 'local force f / N'), 'Colormap', 'Norm' and
+    'Pixels per patch'.
+
+    Example: ``im.contact_map(force).save("contact.png")``; ``image.rgba[0, 0]`` is the top-left pixel."""
+
+    def __init__(self, rgba, texts=None):
         self.rgba = rgba
+        self.texts = dict(texts or {})
+
+    @classmethod
+    def read(cls, path):
+        """An 8-bit RGB or RGBA PNG file as an Image (RGB made opaque): the program's pictures and frames
+        as arrays. ``FileError`` or ``FormatError`` naming the file.
+
+        Example: ``im.Image.read("output/indent/frames/contact_0001.png").rgba.shape``."""
+        return cls(_core.read_png(path))
 
     def save(self, path):
-        """Writes a PNG (atomically)."""
-        _core.write_png(path, self.rgba)
+        """Writes a PNG (atomically), with ``texts`` as its text chunks.
+
+        ``FileError`` naming the path when it cannot be written.
+
+        Example: ``im.height_map(h).save("heights.png")``."""
+        _core.write_png(path, self.rgba, tuple(self.texts.items()))
 
     def _repr_png_(self):
         return _png_bytes(self.save)
 
 
 def _contact_norm(force, vmin, vmax, log):
+    """(vmin, vmax) of a force norm: 0 .. the largest force (1 without any), a log norm over the two decades
+    below it, as the frames'."""
     largest = float(np.max(force)) if np.size(force) else 0.0
     vmax = vmax if vmax is not None else (largest if largest > 0 else 1.0)
-    vmin = vmin if vmin is not None else (vmax / 1000.0 if log else 0.0)
+    vmin = vmin if vmin is not None else (vmax / 100.0 if log else 0.0)
     return vmin, vmax
 
 
-def contact_map(force, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, log=False, scale=2,
-                circle_radius=0.0, circle_centre=None):
+def _picture_texts(quantity, unit, colormap, norm, log, scale):
+    """The text chunks of a picture, as ``indentmap render --raw`` writes them (but its 'Source')."""
+    return {"Software": f"indentmap {_core.library_version}", "Quantity": _core.colorbar_label(quantity, unit),
+            "Colormap": colormap, "Norm": f"{'log' if log else 'linear'} [{norm[0]:.9g}, {norm[1]:.9g}]",
+            "Pixels per patch": str(int(scale))}
+
+
+def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log=True, scale=2,
+                circle_radius=0.0, circle_centre=None, unit="", force_unit=""):
     """Patches in contact (force > 0) coloured by their force, the others grey; optionally the smooth
-    contact circle (radius and centre in patches). Norm defaults: 0 .. largest force (log: a thousandth
-    of it .. largest)."""
+    contact circle (radius and centre in patches). The defaults are every front end's for forces (``indentmap
+    render contact``, scenes, ``indent --frames``): magma on a log norm from a hundredth of the largest force
+    to it; ``log=False``: linear from 0. ``unit`` is the length unit of ``delta`` and ``force_unit`` that of the forces
+    (``read(path).unit`` and ``Indentation(...).units["force"]``; "" for units of delta and E* δ²): the
+    Image's 'Quantity' text then says 'local force f / N' as the program's pictures do.
+
+    Returns an Image; ``InvalidArgument`` for a bad colour map or norm, ``Unsupported`` without
+    OpenGL.
+
+    Example: ``im.contact_map(force, delta=t.delta, unit=t.unit, force_unit=run.units["force"],
+    log=True).texts["Quantity"]`` is 'local force f / N' for a run in m and Pa."""
     lo, hi = _contact_norm(force, vmin, vmax, log)
     cx, cy = (float("nan"), float("nan")) if circle_centre is None else circle_centre
     return Image(_core.render(force, float(delta), height_map=False, colormap=colormap, vmin=lo, vmax=hi, log=log,
                               scale=int(scale), circle_radius=float(circle_radius), circle_x=cx, circle_y=cy,
-                              contact=None))
+                              contact=None, unit=_core.length_unit("unit", unit)),
+                 _picture_texts("force", force_unit, colormap, (lo, hi), log, scale))
 
 
-def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, scale=2, contact=None):
-    """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact."""
+def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, scale=2, contact=None, unit="",
+               quantity="height"):
+    """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact. ``unit`` is
+    the length unit of ``delta`` and the heights ("" for units of delta); ``quantity`` what they are:
+    'height', or a field of ``indent``: 'gap', 'displacement' or 'plastic' (the Image's 'Quantity' text,
+    e.g. 'gap g / µm').
+
+    Returns an Image; errors as ``contact_map``'s.
+
+    Example: ``im.height_map(t.heights, delta=t.delta, unit=t.unit, contact=force).save("h.png")``."""
     lo = float(np.min(heights)) if vmin is None else vmin
     hi = float(np.max(heights)) if vmax is None else vmax
     if not hi > lo:
         hi = lo + 1.0
+    unit = _core.length_unit("unit", unit)
     return Image(_core.render(heights, float(delta), height_map=True, colormap=colormap, vmin=lo, vmax=hi, log=False,
-                              scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact))
+                              scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact,
+                              unit=unit),
+                 _picture_texts(quantity, unit, colormap, (lo, hi), False, scale))
 
 
 class Figure:
     """Panels of force fields with one shared norm and colour bar, like the paper's Fig. 4.
 
     ``Figure(fields, columns=3, labels=['(a)', ...], titles=[...])``; ``save('fig.pdf')`` writes PNG,
-    PDF or SVG by extension; a notebook shows it as PNG.
+    PDF or SVG by extension; a notebook shows it as PNG. Norm defaults as ``contact_map``'s (magma, log). ``unit`` (the length unit of ``delta``) and
+    ``force_unit`` label the scale bar ('10 µm') and the colour bar ('local force f / N') as
+    ``indentmap render contact`` labels a force file of that run; ``colorbar_label`` overrides the
+    colour bar's.
+
+    Example: ``im.Figure([f1, f2], columns=2, labels=["(a)", "(b)"], delta=t.delta, unit=t.unit,
+    force_unit="N").save("fig4.pdf")``.
     """
 
-    def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="viridis", vmin=None,
-                 vmax=None, log=False, scale=2, circle_radius=0.0, colorbar_label="local force f / (E* δ²)",
-                 dpi=300.0, scale_bar=0.0):
+    def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="magma", vmin=None,
+                 vmax=None, log=True, scale=2, circle_radius=0.0, colorbar_label=None,
+                 dpi=300.0, scale_bar=0.0, unit="", force_unit=""):
         self.fields = [np.asarray(f, dtype=float) for f in fields]
         if not self.fields:
             raise ValueError("Figure: no fields")
@@ -85,11 +146,17 @@ class Figure:
         self.labels, self.titles = labels, titles
         self.style = dict(height_map=False, colormap=colormap, log=log, scale=int(scale),
                           circle_radius=float(circle_radius), circle_x=float("nan"), circle_y=float("nan"),
-                          contact=None)
+                          contact=None, unit=_core.length_unit("unit", unit))
+        if colorbar_label is None:
+            colorbar_label = _core.colorbar_label("force", force_unit)
         self.delta, self.colorbar_label, self.dpi, self.scale_bar = float(delta), colorbar_label, dpi, scale_bar
 
     def save(self, path):
-        """Writes the figure (atomically); the format follows the extension: .png, .pdf or .svg."""
+        """Writes the figure (atomically); the format follows the extension: .png, .pdf or .svg.
+        ``InvalidArgument`` for another extension or panels that do not fill whole rows, ``FileError`` naming
+        a path that cannot be written.
+
+        Example: ``im.Figure([force], delta=t.delta, unit=t.unit, force_unit="N").save("contact.svg")``."""
         labels = None if self.labels is None else list(self.labels)
         titles = None if self.titles is None else list(self.titles)
         _core.figure(path, self.fields, self.delta, labels, titles, self.columns, self.colorbar_label,
@@ -97,3 +164,59 @@ class Figure:
 
     def _repr_png_(self):
         return _png_bytes(self.save)
+
+
+_PUNCH_MODES = {"translucent": 0, "opaque": 1, "cutaway": 2, "none": 3}
+
+
+def _view3d_punch(punch):
+    """(kind, alpha, radius) of view3d's punch: a Cone, Sphere or Flat of the solver, or None."""
+    if punch is None:
+        return "none", 80.0, 1.0
+    kinds = {Cone: "cone", Sphere: "sphere", Flat: "flat"}
+    if type(punch) not in kinds:
+        raise TypeError(f"punch: expected Cone(), Sphere(R), Flat(a) or None, got {punch!r}")
+    return kinds[type(punch)], getattr(punch, "alpha", 80.0), getattr(punch, "radius", 1.0)
+
+
+def view3d(heights, *, force=None, displacement=None, delta=1.0, punch=Cone(), axis=None,
+           punch_mode="translucent", azimuth=20.0, elevation=35.0, distance=None, fov=30.0, ortho=False,
+           ortho_height=0.0, exaggeration=1.0, width=1920, height=1080, samples=4, mesh_side=384,
+           colormap="magma", vmin=None, vmax=None, log=True):
+    """The deformed surface in 3-D, as ``indentmap render view3d --raw`` draws it: an Image (a notebook
+    shows it; ``Image.save`` writes the PNG), the same pixels as the program's for the same inputs.
+
+    ``heights`` (ny, nx), in the units of ``delta``, minus ``displacement`` u when given (``indent``'s
+    fields, positive into the half-space): the drawn surface is heights - u. Patches with ``force`` > 0
+    are coloured by it through the norm, the others light grey (tensile ones light blue). ``punch``:
+    Cone(alpha), Sphere(R), Flat(a) (lengths in the units of delta) or None, resting on the drawn heights,
+    its axis at ``axis`` (x, y) (default: the centre of patch (nx/2, ny/2)), drawn ``punch_mode``
+    'translucent', 'opaque', 'cutaway' or 'none'. Camera: ``azimuth`` (degrees; 0 looks from the map's
+    bottom edge), ``elevation`` (1..90 degrees), ``distance`` in grid sides (None: the nearest that shows
+    it all), ``fov`` (degrees), or ``ortho=True`` with ``ortho_height`` (patches; 0: fit).
+    ``exaggeration`` scales heights; ``width`` x ``height`` pixels, ``samples`` (1, 2, 4 or 8) per pixel,
+    ``mesh_side`` cells along the longer side. Norm: ``colormap`` (magma, viridis, cividis, inferno,
+    grey), ``log=True`` from ``vmax`` / 100 (``--log``, the default) or linear from 0 (``--linear``),
+    ``vmax`` the largest force by default. Values out of range raise ``InvalidArgument`` naming them;
+    a machine without OpenGL 3.3 raises ``Unsupported``.
+
+    Example: ``h, f = im.indent(s, approaches=[3.0], fields=True); im.view3d(s, force=f[0]["force"],
+    displacement=f[0]["displacement"], exaggeration=4)``."""
+    drawn = np.asarray(heights, dtype=float)
+    if displacement is not None:
+        u = np.asarray(displacement, dtype=float)
+        if u.shape != drawn.shape:
+            raise ValueError(f"displacement: shape {u.shape}, expected the heights' {drawn.shape}")
+        drawn = drawn - u
+    if punch_mode not in _PUNCH_MODES:
+        raise ValueError(f"punch_mode {punch_mode!r}: expected one of {list(_PUNCH_MODES)}")
+    lo, hi = _contact_norm(np.zeros(0) if force is None else force, vmin, vmax, log)
+    kind, alpha, radius = _view3d_punch(punch)
+    return Image(_core.view3d(drawn, float(delta), force, kind, float(alpha), float(radius),
+                              None if axis is None else tuple(axis), punch_mode=_PUNCH_MODES[punch_mode],
+                              azimuth=float(azimuth), elevation=float(elevation),
+                              distance=None if distance is None else float(distance), fov=float(fov),
+                              ortho=bool(ortho), ortho_height=float(ortho_height), exaggeration=float(exaggeration),
+                              width=int(width), pixels_high=int(height), samples=int(samples),
+                              mesh_side=int(mesh_side), colormap=colormap, vmin=float(lo), vmax=float(hi),
+                              log=bool(log)))

@@ -6,7 +6,7 @@ from . import _core
 logger = logging.getLogger("indentmap")
 
 
-def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None):
+def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, wisdom=None):
     """Runs a scene file as ``indentmap run`` does (without the GIL) and returns its output folder.
 
     Nothing is printed. The run's log lines go to ``log(level, message)``, by default the ``indentmap``
@@ -19,12 +19,19 @@ def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None
     that raises stops the run at its next check and its exception is raised here; one may call the library,
     another ``run_scene`` included. ``resume`` reuses results kept on disk. Ctrl-C raises KeyboardInterrupt
     once the run reaches its next check (between solver steps and surfaces), keeping every finished result
-    for ``resume``. ``out``, if given, is the output folder instead of the scene's (``run --out``)."""
+    for ``resume``. ``out``, if given, is the output folder instead of the scene's (``run --out``).
+
+    ``wisdom``, a path, is the FFTW wisdom file of the run's solves (``run --wisdom FILE``): read before
+    planning, updated after it, plans measured (FFTW_MEASURE). None (default) is ``run --no-wisdom``:
+    estimated plans and no file, whatever ``IM_FFTW_WISDOM`` says (the program's default cache is its
+    own). A wisdom file that cannot be read or replaced raises ``FileError`` naming it.
+
+    Example: ``im.run_scene("scenes/paper.ini", out="paper", wisdom="fftw-wisdom")``."""
     return _core.run_scene(path, resume=resume, quiet=quiet, progress=progress,
-                           log=logger.log if log is None else log, out=out)
+                           log=logger.log if log is None else log, out=out, wisdom=wisdom)
 
 
-def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=None, log=None):
+def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=None, log=None, wisdom=None):
     """Runs again the scene a run recorded in its ``run.json`` (``indentmap run --from-record``), under
     ``out`` or the scene's output folder, and returns that folder.
 
@@ -32,8 +39,9 @@ def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=
     edit of the scene file since does not matter. ``InvalidArgument`` when an input file's SHA-256 is no
     longer the recorded one or the record is of another version, ``FormatError`` for a file that is not a
     scene run's record with its contents (docs/scenes.md, "Provenance"). Python
-    runs plan FFTW without wisdom (estimated plans): a run whose plans were measured is made again to
-    its last bits only by ``indentmap run --from-record`` with the same wisdom file. The other
-    arguments are ``run_scene``'s."""
+    runs plan FFTW without wisdom (estimated plans) unless given ``wisdom``: a run whose plans were measured
+    is made again to its last bits only with the same wisdom file. The other arguments are ``run_scene``'s.
+
+    Example: ``im.run_scene_from_record("output/fig4/run.json", out="again")``."""
     return _core.run_scene(record, resume=resume, quiet=quiet, progress=progress,
-                           log=logger.log if log is None else log, out=out, from_record=True)
+                           log=logger.log if log is None else log, out=out, from_record=True, wisdom=wisdom)

@@ -1,4 +1,5 @@
 """Indentation of a rough surface by a rigid punch (the library's solver.h)."""
+import json
 import os
 from dataclasses import dataclass
 
@@ -9,19 +10,25 @@ from . import _checks, _core
 
 @dataclass(frozen=True)
 class Cone:
-    """A cone of semi-opening angle ``alpha`` degrees (the paper: 80)."""
+    """A cone of semi-opening angle ``alpha`` degrees (the paper: 80).
+
+    Example: ``im.indent(h, im.Cone(70), approaches=[1.0])`` indents with a 70° cone."""
     alpha: float = 80.0
 
 
 @dataclass(frozen=True)
 class Sphere:
-    """A sphere of radius ``radius`` (in the units of delta)."""
+    """A sphere of radius ``radius`` (in the units of delta).
+
+    Example: ``im.indent(h, im.Sphere(200), loads=[5.0])``; lengths in the units of delta."""
     radius: float
 
 
 @dataclass(frozen=True)
 class Flat:
-    """A flat cylindrical punch of radius ``radius``."""
+    """A flat cylindrical punch of radius ``radius``.
+
+    Example: ``im.indent(h, im.Flat(20), approaches=[0.5])``; the radius in the units of delta."""
     radius: float
 
 
@@ -77,7 +84,12 @@ def _history_array(text, source="history"):
 
 def read_history(path):
     """A history.csv (``indentmap indent``) or a scene's histories/member_FF_SEED.csv as the structured
-    array ``indent`` returns: the same columns, names and values."""
+    array ``indent`` returns: the same columns, names and values.
+
+    Raises ``ValueError`` naming the file for other columns (another version's history) or a
+    line with too few values, ``OSError`` for a file that cannot be read.
+
+    Example: ``h = im.read_history("out/history.csv"); h["load"]``."""
     with open(path, encoding="utf-8") as f:
         return _history_array(f.read(), str(path))
 
@@ -122,12 +134,36 @@ class Indentation:
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
     measured surface's edges would count in its spectrum), as ``indentmap indent`` for a file.
+
+    Units (``indentmap indent --length-unit --e-star-unit``): ``length_unit`` is the unit of ``delta``,
+    the heights and every length (``read(path).unit``; "" for units of delta) and ``e_star_unit`` that
+    of ``e_star`` ("" when unstated; "Pa" with "m" puts forces in N). They change no number: ``units``
+    states them as ``indentmap indent``'s run.json does, and they label what is drawn or written from
+    the history (``write_analysis(..., length_unit=run.units["length"], force_unit=run.units["force"])``).
+
+    Solver options of ``indentmap indent``: ``plain_pk=True`` (``--plain-pk``) solves with plain
+    Polonsky-Keer CG from the local guess, without the cascade start and the preconditioner (the same
+    answers to the tolerance, slower); ``measure=True`` (``--measure``) plans the FFTs with FFTW_MEASURE
+    (slower planning, faster steps); ``wisdom`` (``--wisdom FILE``, a path) is an FFTW wisdom file read
+    before planning and updated after it, which implies ``measure``. Python reads no wisdom file
+    unless given one (the program's default cache and ``IM_FFTW_WISDOM`` are its own); a file that is
+    not FFTW wisdom, or cannot be replaced, raises ``InvalidArgument`` or ``FileError`` naming it. FFTW
+    keeps what a measured plan learnt for the whole process: later plans in it may use it (the same
+    answers to the tolerance, other last bits than an estimated run of the program).
+
+    Example::
+
+        t = im.read("scan.x3p", length_unit="m")
+        run = im.Indentation(t.heights, im.Sphere(50e-6), control="load", largest=1e-3, delta=t.delta,
+                             e_star=70e9, length_unit=t.unit, e_star_unit="Pa")
+        run.step(1e-3)
+        run.units["load"]  # 'N'
     """
 
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=None, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
-                 quality=None):
+                 quality=None, length_unit="", e_star_unit="", plain_pk=False, measure=False, wisdom=None):
         if tol is None:
             tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
         if punch is None:
@@ -149,31 +185,66 @@ class Indentation:
                                       periodic=_checks.flag("periodic", periodic),
                                       slope_definition=_checks.text("slope_definition", slope_definition or ""),
                                       adhesion_work=_checks.real("adhesion_work", adhesion_work),
-                                      adhesion_range=_checks.real("adhesion_range", adhesion_range))
+                                      adhesion_range=_checks.real("adhesion_range", adhesion_range),
+                                      plain_pk=_checks.flag("plain_pk", plain_pk),
+                                      measure=_checks.flag("measure", measure),
+                                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom))
+        self.units = json.loads(_core.units_record(_core.length_unit("length_unit", _checks.text("length_unit",
+                                                                                               length_unit)),
+                                                   _checks.text("e_star_unit", e_star_unit),
+                                                   _checks.flag("periodic", periodic)))
 
     def step(self, target):
-        """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict."""
+        """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict.
+
+        The dict holds the step's results (``approach``, ``load``, ``load_star``, ``contact_patches``,
+        ``area_ratio``, ``mean_pressure``, ``max_pressure``, ``iterations``, ``residual``, ...), lengths in
+        the units of delta and stresses in those of E*. ``NotConverged`` or ``EdgeContact`` when the step
+        fails; the history keeps the steps before it.
+
+        Example: ``run = im.Indentation(h, largest=2.0); run.step(1.0)["load"]``."""
         return self._run.step(float(target))
 
     def fields(self):
         """(force, gap, displacement) of the last step on the full grid, as new arrays: the displacement is
-        computed on the whole grid (one convolution), not only in the solve window."""
+        computed on the whole grid (one convolution), not only in the solve window.
+
+        Example: ``force, gap, displacement = run.fields()``; ``force.sum()`` is the step's load."""
         return self._run.fields()
 
     def history(self):
         """The steps solved so far as a structured array with history.csv's columns (docs/solver.md):
         the solver's results, the theory beside them, the stiffness, the contact patches and the plastic
-        memory, measured as ``indentmap indent`` measures them."""
+        memory, measured as ``indentmap indent`` measures them.
+
+        Example: ``run.step(1.0); run.step(2.0); run.history()["area_ratio"]``."""
         return _history_array(self._run.history_text())
+
+    def write_distributions(self, prefix):
+        """Writes the last step's gap and contact-patch size distributions as ``indentmap indent
+        --distributions`` writes each step's: ``prefix``_gaps.csv (the gap outside contact in units of the
+        surface's h_rms, delta for a flat surface, in 50 bins), ``prefix``_patches.csv (patch sizes by octave)
+        and ``prefix``_patch_list.csv (each patch's cells, area and perimeter in the length unit), atomically
+        (docs/theory.md, "Gap and patch-size distributions"). ``InvalidArgument`` before the first step,
+        ``FileError`` naming a file that cannot be written. The files are the program's for the same
+        step, byte for byte.
+
+        Example: ``run.step(2.0); run.write_distributions("out/distributions_0001")``."""
+        self._run.write_distributions(os.fspath(prefix))
 
     def plastic(self):
         """The plastic depth accumulated so far on the full grid (units of delta; 0 without a hardness):
-        the residual impression once the punch is withdrawn."""
+        the residual impression once the punch is withdrawn.
+
+        Example: ``run = im.Indentation(h, largest=2.0, hardness=0.1); run.step(2.0); run.step(0.0);
+        run.plastic().max()``."""
         return self._run.plastic()
 
     @property
     def window(self):
-        """(x0, y0, nx, ny): the sub-grid that is solved."""
+        """(x0, y0, nx, ny): the sub-grid that is solved.
+
+        Example: ``x0, y0, nx, ny = run.window``; ``crop=False`` solves on the whole grid."""
         return self._run.window
 
 
@@ -186,6 +257,12 @@ class Plan:
     warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
     without the GIL; creating a plan holds it (FFTW's planner is not thread-safe). Ctrl-C during a solve
     on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
+
+    Example::
+
+        plan = im.Plan(64)
+        r = np.hypot(*np.meshgrid(np.arange(64) - 32.0, np.arange(64) - 32.0))
+        pressure, displacement, result = plan.solve(r * np.tan(np.radians(10)), 2.0)
     """
 
     def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000,
@@ -194,11 +271,18 @@ class Plan:
                                 int(max_iterations), str(device))
 
     def solve(self, gap0, target, control="displacement", pressure=None):
+        """Solves the contact of the undeformed gap ``gap0`` ((ny, nx), >= 0 in the units of delta; +inf
+        where the punch never touches) at approach ``target`` (``control='displacement'``) or load
+        ``target`` ('load', in E* delta^2), from the warm start ``pressure`` when given. Returns
+        (pressure, displacement, result dict) as new arrays, pressures in units of E*. ``NotConverged`` when
+        the tolerance is not reached, ``InvalidArgument`` for a gap of another grid or a negative one.
+
+        Example: ``pressure, displacement, result = plan.solve(gap0, 2.0); result["load"]``."""
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
 
 
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, fields=False,
-           **options):
+           distributions=None, **options):
     """Solves a history of approaches (displacement control), loads (load control) or mean gaps.
 
     Returns a structured array with one row per step and history.csv's columns (``read_history`` reads a
@@ -208,6 +292,14 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     unloads): ``unloading(history, punch)`` then gives the indentation analysis. ``pressures`` (with
     ``periodic=True``): mean pressures over the cell instead of loads, as ``indent --pressure``;
     ``mean_gaps`` (with ``periodic=True``): mean gaps over the cell, as ``indent --mean-gap``.
+    ``distributions``, a folder (made if missing): each step's distributions written there as
+    ``indent --distributions`` writes them, distributions_NNNN_{gaps,patches,patch_list}.csv
+    (``Indentation.write_distributions``). The units of the history's columns are
+    ``Indentation(...).units`` for the same ``length_unit`` and ``e_star_unit`` options.
+
+    Example: ``h = im.indent(im.generate(128, seed=3), approaches=np.linspace(0.5, 4, 8))``, then
+    ``h["load"]`` and ``h["area_ratio"]``; errors are those of ``Indentation`` and its steps
+    (``NotConverged``, ``EdgeContact``).
     """
     if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
         raise ValueError("give one of approaches, loads, pressures and mean_gaps")
@@ -225,9 +317,13 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
         raise ValueError("no steps")
     run = Indentation(heights, punch, control=control,
                       largest=float(np.abs(targets).max()), **options)
+    if distributions is not None:
+        os.makedirs(distributions, exist_ok=True)
     per_step = []
-    for target in targets:
+    for step, target in enumerate(targets, start=1):
         run.step(target)
+        if distributions is not None:
+            run.write_distributions(os.path.join(distributions, f"distributions_{step:04d}"))
         if fields:
             step_fields = dict(zip(("force", "gap", "displacement"), run.fields()))
             if options.get("hardness", 0) > 0:
@@ -260,7 +356,12 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
     A_p, H_IT and E_r with the punch's own area function, the real area n_p delta^2 at the top, the residual
     approach, the works in and out and the dissipation, then the theory beside them at an elastic top: eq.
     (12)'s real area and the smooth punch's stiffness (``e_star``: the history's E*). ``history`` is what
-    ``indent`` returns."""
+    ``indent`` returns.
+
+    Returns a structured array (one row per branch; none without an unloading branch).
+
+    Example: ``h = im.indent(s, approaches=np.r_[1:4:4j, 3.5:0:8j], hardness=0.1);
+    im.unloading(h)["hardness_it"]``."""
     kind, alpha, radius, profile = _punch_arguments(punch)
     history = np.asarray(history)
     branches = _core.unloading(kind, alpha, radius, np.ascontiguousarray(history["approach"], dtype=float),
@@ -295,7 +396,9 @@ def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_
     if it is missing. ``history``: the
     array ``indent`` returns or a history.csv path; ``delta`` and ``e_star`` as the run's; the axes' units
     as indent states them (defaults: a surface without units). Returns the number of unloading branches
-    (0: nothing written). The files are the program's for the same run, byte for byte."""
+    (0: nothing written). The files are the program's for the same run, byte for byte.
+
+    Example: ``im.write_analysis("out/history.csv", "analysis", im.Cone(80))``."""
     if isinstance(history, (str, bytes, os.PathLike)):
         history = read_history(history)
     history = np.asarray(history)
@@ -313,7 +416,10 @@ def adhesion(history):
     ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``pull_off_force`` (the most
     tensile load, positive; NaN when nothing pulls) and its ``pull_off_approach``, ``jump_in_approach`` (first
     contact on approach after none), ``jump_out_approach`` (last contact retracting before none) and
-    ``hysteresis_work`` (sum of N dw: the work lost over a closed history)."""
+    ``hysteresis_work`` (sum of N dw: the work lost over a closed history).
+
+    Example: ``h = im.indent(s, im.Sphere(40), approaches=[1, 0, -1], adhesion_work=0.02,
+    adhesion_range=0.5); im.adhesion(h)["pull_off_force"]``."""
     history = np.asarray(history)
     return _core.adhesion(np.ascontiguousarray(history["approach"], dtype=float),
                           np.ascontiguousarray(history["load"], dtype=float),

@@ -7,7 +7,9 @@ from . import _checks, _core
 
 
 class Topography(NamedTuple):
-    """Heights read from a file: ``heights[y, x]``, the grid spacing and its unit ("" if none)."""
+    """Heights read from a file: ``heights[y, x]``, the grid spacing and its unit ("" if none).
+
+    Example: ``t = im.read("scan.x3p"); t.heights.shape, t.delta, t.unit``."""
     heights: np.ndarray
     delta: float
     unit: str
@@ -22,6 +24,10 @@ def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None
     ``lambda_r`` defaults to n; ``lambda_0 > lambda_r`` adds a roll-off plateau. ``seed`` is an integer in
     [0, 2^64 - 1]. An argument of the wrong kind raises TypeError, a value out of its range ValueError
     (``InvalidArgument`` from the library), naming the parameter and what was expected.
+
+    Returns a new (m, n) float64 array of heights in units of delta.
+
+    Example: ``h = im.generate(256, hurst=0.8, slope=0.1, seed=7)``.
     """
     n = _checks.integer("n", n)
     m = n if m is None else _checks.integer("m", m)
@@ -43,7 +49,12 @@ def statistics(heights, delta=1.0, window="none", alpha=0.5):
     ``window`` ('none', 'hann' or 'tukey' with the tapered fraction ``alpha``) takes the spectral quantities
     from a windowed copy: use it, after ``prepare``, for measured (non-periodic) data, whose plain spectral
     h'rms is dominated by the step at the edges of the periodic box. Synthesised surfaces are periodic:
-    no window."""
+    no window.
+
+    Returns a dict of these numbers (lengths in the units of ``delta``); ``NumericError`` for a
+    NaN or infinite height.
+
+    Example: ``im.statistics(im.generate(128))["slope_rms_spectral"]`` is 0.08."""
     return _core.statistics(heights, float(delta), window, float(alpha))
 
 
@@ -53,12 +64,23 @@ def prepare(heights, detrend="plane", fill=False, align="none"):
     aligned (``align='median'``, 'mean' or 'line': each row's offset or tilt removed, as ``--align``
     does); then the least-squares plane (``detrend='plane'``: mean and tilt) or quadric ('curvature':
     also the bow) removed ('none': kept). Crop with numpy slicing. Returns (heights, number of points
-    filled)."""
+    filled).
+
+    ``InvalidArgument`` names the first missing point without ``fill`` and an unknown ``detrend`` or
+    ``align``.
+
+    Example: ``heights, filled = im.prepare(im.read("scan.x3p", fill=True).heights, align="median")``."""
     return _core.prepare(heights, detrend, bool(fill), align)
 
 
 def psd(heights, delta=1.0, bins=64):
-    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays."""
+    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays.
+
+    q = 2 pi / wavelength in inverse units of ``delta``, C_iso = |h~(q)|^2 / A in length^4 (Jacobs, Junge and
+    Pastewka 2017), in ``bins`` logarithmic shells; an empty shell's q and C are NaN.
+
+    Example: ``q, c = im.psd(im.generate(256), bins=32); ok = np.isfinite(c)``, then
+    ``np.polyfit(np.log(q[ok]), np.log(c[ok]), 1)[0]`` is about -2(1 + H)."""
     return _core.psd(heights, float(delta), int(bins))
 
 
@@ -67,7 +89,9 @@ _QUANTITIES = {"height": 0, "slope": 1, "curvature": 2}
 
 def histogram(heights, quantity="height", bins=64, delta=1.0):
     """Probability density of heights (about the mean), slopes (both components) or curvatures:
-    (bin centres, density)."""
+    (bin centres, density).
+
+    Example: ``x, density = im.histogram(h, "slope", bins=50)``; ``np.trapz(density, x)`` is about 1."""
     if quantity not in _QUANTITIES:
         raise ValueError(f"quantity {quantity!r}: expected one of {sorted(_QUANTITIES)}")
     return _core.histogram(heights, float(delta), _QUANTITIES[quantity], int(bins))
@@ -76,7 +100,8 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
 _NPY_ORDERS = {None: 0, "yx": 1, "xy": 2}
 
 
-def read(path, channel=None, fill=False, resample_square=False, npy_order=None):
+def read(path, channel=None, fill=False, resample_square=False, npy_order=None, *, unit="", height_unit="",
+         length_unit=""):
     """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p, text, or an instrument's file
     through Gwyddion's file modules when the build has them: ``indentmap formats`` lists them): a
     Topography (heights, delta, unit), heights and spacing both in ``unit`` ("" when the file gives
@@ -93,15 +118,33 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None):
     float32 storage explains) are read as square, of their mean spacing. Beyond that a FormatError names
     both spacings, unless ``resample_square=True``: then the heights are resampled bilinearly onto
     square pixels of the finer spacing, within the stored extent (more rows or columns; ``delta`` is
-    that spacing)."""
+    that spacing).
+
+    Units, as ``indentmap indent --unit --height-unit --length-unit`` (and ``surface --stats --height-unit``)
+    take them: length units m, cm, mm, µm (or um), nm, pm or Å; "" (default) keeps the file's.
+    ``unit`` is the unit of the spacing, overriding the file's; ``height_unit`` the unit of the heights
+    (default: the spacing's), converted into the spacing's; ``length_unit`` converts spacing and heights
+    into it (the file's unit must be known: ``FormatError`` otherwise). A name that is no length unit
+    raises ValueError naming the parameter. The Topography's ``unit`` is the one the heights are in.
+
+    Example: ``t = im.read("scan.npy", unit="um", length_unit="m")`` gives heights and ``t.delta`` in
+    metres, ``t.unit == "m"``; ``im.indent(t.heights, delta=t.delta, length_unit=t.unit, e_star=1e9,
+    e_star_unit="Pa", loads=[1e-6])`` then records loads in N."""
     if npy_order not in _NPY_ORDERS:
         raise ValueError(f"npy_order {npy_order!r}: expected 'yx', 'xy' or None (the sidecar's order, else yx)")
     return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill),
-                                          bool(resample_square), _NPY_ORDERS[npy_order]))
+                                          bool(resample_square), _NPY_ORDERS[npy_order],
+                                          _checks.text("unit", unit), _checks.text("height_unit", height_unit),
+                                          _checks.text("length_unit", length_unit)))
 
 
 def write(path, heights, delta=1.0, unit=""):
     """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
     matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
-    PATH.json)."""
+    PATH.json).
+
+    ``FileError`` when the file cannot be written (nothing is left), ``InvalidArgument`` for an
+    unknown extension.
+
+    Example: ``im.write("surface.x3p", h, delta=0.5, unit="µm")``."""
     _core.write_surface(path, heights, float(delta), unit)

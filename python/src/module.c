@@ -4,6 +4,7 @@
 
 #include "indentmap/field.h"
 #include "indentmap/history.h"
+#include "indentmap/info.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/version.h"
@@ -16,18 +17,38 @@ typedef struct error_kind {
     int status;
     const char *name;     /* indentmap.NAME */
     PyObject **builtin;   /* the built-in exception it also derives from, or NULL */
+    const char *doc;      /* what it means, for help() and docs/python-reference.md */
 } error_kind;
 
 static const error_kind error_kinds[] = {
-    {IM_EINVAL, "InvalidArgument", &PyExc_ValueError},
-    {IM_EIO, "FileError", &PyExc_OSError},
-    {IM_EFORMAT, "FormatError", &PyExc_ValueError},
-    {IM_ENOMEM, "OutOfMemory", &PyExc_MemoryError},
-    {IM_ENUMERIC, "NumericError", &PyExc_ArithmeticError},
-    {IM_ENOCONV, "NotConverged", NULL},
-    {IM_EEDGE, "EdgeContact", NULL},
-    {IM_EUNSUPPORTED, "Unsupported", NULL},
-    {IM_EINTERRUPTED, "Interrupted", NULL},
+    {IM_EINVAL, "InvalidArgument", &PyExc_ValueError,
+     "An argument out of its range or of the wrong kind, named in the message (also a ValueError).\n\n"
+     "Example: ``im.generate(0)`` raises it: 'n = 0: expected ...'."},
+    {IM_EIO, "FileError", &PyExc_OSError,
+     "A file that cannot be read or written, named in the message (also an OSError); nothing is left half "
+     "written.\n\nExample: ``im.read('missing.npy')`` raises it."},
+    {IM_EFORMAT, "FormatError", &PyExc_ValueError,
+     "A file whose contents are not what its format says, with the file and the place (also a ValueError)."
+     "\n\nExample: ``im.read('notes.txt')`` on a file that is no surface raises it."},
+    {IM_ENOMEM, "OutOfMemory", &PyExc_MemoryError,
+     "Work that would not fit in the memory available or the cap (``memory_limit``), refused before it starts, "
+     "naming what and how much (also a MemoryError).\n\nExample: ``im.memory_limit(1 << 20); "
+     "im.generate(4096)`` raises it."},
+    {IM_ENUMERIC, "NumericError", &PyExc_ArithmeticError,
+     "A value that is NaN or infinite where a finite one is needed, naming the first (also an ArithmeticError)."
+     "\n\nExample: ``im.statistics(np.full((8, 8), np.nan))`` raises it."},
+    {IM_ENOCONV, "NotConverged", NULL,
+     "The solver did not reach its tolerance within ``max_iterations``; the message gives the residual.\n\n"
+     "Example: ``im.indent(h, approaches=[2.0], max_iterations=1)`` raises it."},
+    {IM_EEDGE, "EdgeContact", NULL,
+     "The contact reached the edge of the grid: the surface is too small for the target (a larger surface or "
+     "a smaller load).\n\nExample: ``im.indent(im.generate(32), approaches=[50.0])`` raises it."},
+    {IM_EUNSUPPORTED, "Unsupported", NULL,
+     "What this build or machine cannot do (no OpenGL 3.3 context, no GPU engine), with the reason.\n\n"
+     "Example: ``im.indent(h, approaches=[1.0], device='gpu')`` raises it in a build without the GPU engine."},
+    {IM_EINTERRUPTED, "Interrupted", NULL,
+     "A call stopped by its stop flag or a callback; Ctrl-C raises KeyboardInterrupt instead.\n\n"
+     "Example: a ``progress`` callback of ``run_scene`` that raises stops the run with its own exception."},
 };
 
 PyObject *py_raise_status(int status)
@@ -49,7 +70,9 @@ PyObject *py_raise_status(int status)
 static int add_errors(PyObject *module)
 {
     base_error = PyErr_NewExceptionWithDoc("indentmap.Error",
-                                           "An error reported by libindentmap: str() is its message, .status the library's status code.", NULL, NULL);
+                                           "An error reported by libindentmap: str() is its message, .status the library's status code.\n\n"
+                                           "Example: ``try: im.read(path) except im.Error as e: print(e.status, e)``.",
+                                           NULL, NULL);
     if (!base_error || PyModule_AddObjectRef(module, "Error", base_error) < 0)
         return -1;
     for (size_t i = 0; i < sizeof error_kinds / sizeof *error_kinds; ++i) {
@@ -59,7 +82,7 @@ static int add_errors(PyObject *module)
         PyObject *bases = kind->builtin ? PyTuple_Pack(2, base_error, *kind->builtin) : PyTuple_Pack(1, base_error);
         if (!bases)
             return -1;
-        PyObject *type = PyErr_NewException(qualified, bases, NULL);
+        PyObject *type = PyErr_NewExceptionWithDoc(qualified, kind->doc, bases, NULL);
         Py_DECREF(bases);
         if (!type || PyModule_AddObjectRef(module, kind->name, type) < 0)
             return -1;
@@ -90,8 +113,51 @@ static PyObject *memory_limit(PyObject *self, PyObject *args)
     return PyLong_FromSize_t(im_memory_limit());
 }
 
+/* The text of a build report (info.h), made without the GIL; raises the library's error where the program
+ * exits 1. */
+static PyObject *report_text(int (*make)(void *argument, char **text), void *argument)
+{
+    char *text = NULL;
+    int status;
+    Py_BEGIN_ALLOW_THREADS
+    status = make(argument, &text);
+    Py_END_ALLOW_THREADS
+    PyObject *out = status == IM_OK ? PyUnicode_FromString(text) : py_raise_status(status);
+    free(text);
+    return out;
+}
+
+static int make_info(void *backend, char **text) { return im_info_text(*(im_render_backend *)backend, text); }
+
+static int make_formats(void *unused, char **text)
+{
+    (void)unused;
+    return im_formats_text(text);
+}
+
+/* info_text(backend) -> `indentmap info`'s text for backend "auto", "egl" or "osmesa" */
+static PyObject *info_text(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *name;
+    im_render_backend backend;
+    if (!PyArg_ParseTuple(args, "s", &name))
+        return NULL;
+    int status = im_render_backend_from_name(name, &backend);
+    return status == IM_OK ? report_text(make_info, &backend) : py_raise_status(status);
+}
+
+/* formats_text() -> `indentmap formats`' text */
+static PyObject *formats_text(PyObject *self, PyObject *unused)
+{
+    (void)self, (void)unused;
+    return report_text(make_formats, NULL);
+}
+
 static PyMethodDef core_methods[] = {
     {"memory_limit", memory_limit, METH_VARARGS, "memory_limit([bytes]) -> the cap in bytes (0: none)"},
+    {"info_text", info_text, METH_VARARGS, "info_text(backend) -> indentmap info's text"},
+    {"formats_text", formats_text, METH_NOARGS, "formats_text() -> indentmap formats' text"},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module_definition = {

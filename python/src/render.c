@@ -82,6 +82,7 @@ typedef struct picture_request {
     int logarithmic, scale;
     double circle_radius, circle_x, circle_y; /* contact maps; radius <= 0: none */
     PyObject *contact;         /* height fields: forces whose contact is outlined, or None */
+    const char *unit;          /* the length unit of delta ("": units of delta), for the scale bar */
 } picture_request;
 
 /* One picture's inputs, all C: the request's numbers, the norm made from it, and array views. */
@@ -115,6 +116,14 @@ static int draw_picture(void *argument)
     return im_render_contact_map(context, job->field, &style, job->image);
 }
 
+/* The picture's field: a view of array, of spacing delta in the request's unit. */
+static im_field picture_field(PyArrayObject *array, double delta, const picture_request *r)
+{
+    im_field field = py_field_view(array, delta);
+    snprintf(field.unit, sizeof field.unit, "%s", r->unit);
+    return field;
+}
+
 static int render_one(const im_field *field, const picture_request *r, im_image *image)
 {
     picture_job job = {.field = field, .request = r, .image = image};
@@ -135,14 +144,15 @@ static int render_one(const im_field *field, const picture_request *r, im_image 
 static int parse_request(PyObject *kwargs, picture_request *r)
 {
     static char *keywords[] = {"height_map", "colormap", "vmin", "vmax", "log", "scale", "circle_radius",
-                               "circle_x", "circle_y", "contact", NULL};
-    *r = (picture_request){.colormap = "viridis", .scale = 2, .circle_x = NAN, .circle_y = NAN, .contact = Py_None};
+                               "circle_x", "circle_y", "contact", "unit", NULL};
+    *r = (picture_request){.colormap = "viridis", .scale = 2, .circle_x = NAN, .circle_y = NAN, .contact = Py_None,
+                           .unit = ""};
     PyObject *empty = PyTuple_New(0);
     if (!empty)
         return -1;
-    int ok = PyArg_ParseTupleAndKeywords(empty, kwargs, "psddpidddO", keywords, &r->height_map, &r->colormap, &r->lo,
+    int ok = PyArg_ParseTupleAndKeywords(empty, kwargs, "psddpidddOs", keywords, &r->height_map, &r->colormap, &r->lo,
                                          &r->hi, &r->logarithmic, &r->scale, &r->circle_radius, &r->circle_x,
-                                         &r->circle_y, &r->contact);
+                                         &r->circle_y, &r->contact, &r->unit);
     Py_DECREF(empty);
     return ok ? 0 : -1;
 }
@@ -168,7 +178,7 @@ static PyObject *render(PyObject *self, PyObject *args, PyObject *kwargs)
     PyArrayObject *array = py_heights_array(obj, "field");
     if (!array)
         return NULL;
-    im_field field = py_field_view(array, delta);
+    im_field field = picture_field(array, delta, &request);
     im_image image = {0};
     PyObject *out = render_one(&field, &request, &image) == 0 ? array_from_image(&image) : NULL;
     im_image_release(&image);
@@ -244,7 +254,7 @@ static int draw_figure(const char *path, PyObject *fields, double delta, const f
     int failed = images ? 0 : (PyErr_NoMemory(), -1);
     for (Py_ssize_t i = 0; i < count && !failed; ++i) {
         PyArrayObject *array = py_heights_array(PyTuple_GET_ITEM(fields, i), "panel field");
-        im_field field = array ? py_field_view(array, delta) : (im_field){0};
+        im_field field = array ? picture_field(array, delta, request) : (im_field){0};
         failed = !array || render_one(&field, request, &images[i]) < 0;
         Py_XDECREF(array);
     }
@@ -295,22 +305,49 @@ typedef struct png_job {
     const char *path;
     const uint8_t *rgba;
     int width, height;
+    const im_png_text *texts;
+    int text_count;
 } png_job;
 
 static int write_png_file(void *argument)
 {
     const png_job *job = argument;
-    im_png_options options = {.compression = 6};
+    im_png_options options = {.texts = job->texts, .text_count = job->text_count, .compression = 6};
     return im_png_write(job->path, job->rgba, job->width, job->height, 4, (size_t)job->width * 4, &options);
 }
 
-/* write_png(path, rgba): an (height, width, 4) uint8 array as a PNG file (atomic, level 6). */
+/* The (key, value) pairs of a tuple as PNG text chunks, kept alive by the tuple; NULL with an exception
+ * set for an item that is not a pair of str. */
+static im_png_text *png_texts(PyObject *pairs)
+{
+    Py_ssize_t count = PyTuple_GET_SIZE(pairs);
+    im_png_text *texts = PyMem_Calloc((size_t)count + 1, sizeof *texts);
+    if (!texts) {
+        PyErr_NoMemory();
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < count; ++i)
+        if (!PyArg_ParseTuple(PyTuple_GET_ITEM(pairs, i), "ss;write_png: texts: expected (key, value) pairs of str",
+                              &texts[i].key, &texts[i].value)) {
+            PyMem_Free(texts);
+            return NULL;
+        }
+    return texts;
+}
+
+/* write_png(path, rgba, texts): an (height, width, 4) uint8 array as a PNG file (atomic, level 6) with the
+ * (key, value) pairs of the tuple texts as tEXt chunks. */
 static PyObject *write_png(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *path_bytes, *obj;
-    if (!PyArg_ParseTuple(args, "O&O", PyUnicode_FSConverter, &path_bytes, &obj))
+    PyObject *path_bytes, *obj, *pairs;
+    if (!PyArg_ParseTuple(args, "O&OO!", PyUnicode_FSConverter, &path_bytes, &obj, &PyTuple_Type, &pairs))
         return NULL;
+    im_png_text *texts = png_texts(pairs);
+    if (!texts) {
+        Py_DECREF(path_bytes);
+        return NULL;
+    }
     PyArrayObject *rgba = (PyArrayObject *)PyArray_FromAny(obj, PyArray_DescrFromType(NPY_UINT8), 3, 3,
                                                            NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED, NULL);
     if (rgba && PyArray_DIMS(rgba)[2] != 4) {
@@ -320,14 +357,142 @@ static PyObject *write_png(PyObject *self, PyObject *args)
     int status = IM_OK;
     if (rgba) {
         png_job job = {PyBytes_AS_STRING(path_bytes), PyArray_DATA(rgba), (int)PyArray_DIMS(rgba)[1],
-                       (int)PyArray_DIMS(rgba)[0]};
+                       (int)PyArray_DIMS(rgba)[0], texts, (int)PyTuple_GET_SIZE(pairs)};
         status = without_gil(write_png_file, &job);
     }
+    PyMem_Free(texts);
     Py_XDECREF(rgba);
     Py_DECREF(path_bytes);
     if (PyErr_Occurred())
         return NULL;
     return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
+}
+
+typedef struct view3d_job {
+    const im_field *height, *force; /* force: NULL for no contact colours */
+    const im_indenter *punch;       /* NULL: none */
+    im_view3d_style style;
+    int fit_distance;               /* the nearest perspective camera that shows it all */
+    im_image *image;
+} view3d_job;
+
+static int draw_view3d(void *argument)
+{
+    view3d_job *job = argument;
+    int status = job->fit_distance ? im_view3d_fit_distance(job->height, job->punch, &job->style,
+                                                            &job->style.camera.distance)
+                                   : IM_OK;
+    return status == IM_OK ? im_render_view3d(context, job->height, job->force, job->punch, &job->style, job->image)
+                           : status;
+}
+
+/* The punch of a 3-D view (as `render view3d --punch --alpha --radius --x --y`): kind "none" is NULL. */
+static int view3d_punch(const char *kind, double alpha, double radius, PyObject *axis, im_indenter *punch,
+                        const im_indenter **drawn)
+{
+    *drawn = punch;
+    if (strcmp(kind, "cone") == 0)
+        *punch = im_indenter_cone(alpha);
+    else if (strcmp(kind, "sphere") == 0)
+        *punch = im_indenter_sphere(radius);
+    else if (strcmp(kind, "flat") == 0)
+        *punch = im_indenter_flat(radius);
+    else if (strcmp(kind, "none") == 0)
+        *drawn = NULL;
+    else {
+        PyErr_Format(PyExc_ValueError, "punch '%s': expected 'cone', 'sphere', 'flat' or 'none'", kind);
+        return -1;
+    }
+    punch->centred = axis == Py_None;
+    return axis == Py_None || PyArg_ParseTuple(axis, "dd", &punch->x0, &punch->y0) ? 0 : -1;
+}
+
+/* view3d(height, delta, force, punch, alpha, radius, axis, **style) -> (height, width, 4) uint8 array:
+ * render.h's im_render_view3d, with render view3d's options */
+static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *keywords[] = {"height", "delta", "force", "punch", "alpha", "radius", "axis", "punch_mode",
+                               "azimuth", "elevation", "distance", "fov", "ortho", "ortho_height", "exaggeration",
+                               "width", "pixels_high", "samples", "mesh_side", "colormap", "vmin", "vmax", "log",
+                               NULL};
+    PyObject *height_obj, *force_obj, *axis, *distance;
+    double delta, alpha, radius, lo, hi;
+    const char *kind, *colormap;
+    int ortho, logarithmic, punch_mode;
+    im_view3d_style style = im_view3d_style_default(NULL);
+    im_view3d_camera *camera = &style.camera;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OdOsddOiddOdpdd" "iiiisddp", keywords, &height_obj, &delta,
+                                     &force_obj, &kind, &alpha, &radius, &axis, &punch_mode, &camera->azimuth,
+                                     &camera->elevation, &distance, &camera->field_of_view, &ortho,
+                                     &camera->ortho_height, &style.exaggeration, &style.width, &style.height,
+                                     &style.samples, &style.mesh_side, &colormap, &lo, &hi, &logarithmic))
+        return NULL;
+    camera->projection = ortho ? IM_VIEW3D_ORTHOGRAPHIC : IM_VIEW3D_PERSPECTIVE;
+    style.punch_mode = (im_view3d_punch)punch_mode; /* checked by im_render_view3d */
+    if (distance != Py_None && (camera->distance = PyFloat_AsDouble(distance), PyErr_Occurred()))
+        return NULL;
+    im_indenter punch;
+    view3d_job job = {.fit_distance = distance == Py_None && !ortho};
+    if (view3d_punch(kind, alpha, radius, axis, &punch, &job.punch) < 0 ||
+        make_norm(colormap, lo, hi, logarithmic, &style.colormap) < 0 || ensure_context() < 0)
+        return NULL;
+    PyArrayObject *height = py_heights_array(height_obj, "height");
+    PyArrayObject *force = height && force_obj != Py_None ? py_heights_array(force_obj, "force") : NULL;
+    PyObject *out = NULL;
+    if (height && (force || force_obj == Py_None)) {
+        im_field height_view = py_field_view(height, delta), force_view = force ? py_field_view(force, delta)
+                                                                                : (im_field){0};
+        im_image image = {0};
+        job.height = &height_view;
+        job.force = force ? &force_view : NULL;
+        job.style = style;
+        job.image = &image;
+        int status = without_gil(draw_view3d, &job);
+        out = status == IM_OK ? array_from_image(&image) : py_raise_status(status);
+        im_image_release(&image);
+    }
+    Py_XDECREF(height);
+    Py_XDECREF(force);
+    return out;
+}
+
+/* read_png(path) -> (height, width, 4) uint8 array of an 8-bit RGB or RGBA PNG (io.h: im_png_read; RGB
+ * made opaque RGBA) */
+static PyObject *read_png(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_bytes;
+    if (!PyArg_ParseTuple(args, "O&", PyUnicode_FSConverter, &path_bytes))
+        return NULL;
+    uint8_t *pixels = NULL;
+    int width = 0, height = 0, channels = 0, status;
+    Py_BEGIN_ALLOW_THREADS
+    status = im_png_read(PyBytes_AS_STRING(path_bytes), &pixels, &width, &height, &channels);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(path_bytes);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    npy_intp shape[3] = {height, width, 4};
+    PyObject *out = PyArray_SimpleNew(3, shape, NPY_UINT8);
+    uint8_t *rgba = out ? PyArray_DATA((PyArrayObject *)out) : NULL;
+    for (size_t i = 0; rgba && i < (size_t)width * (size_t)height; ++i)
+        for (int c = 0; c < 4; ++c)
+            rgba[4 * i + (size_t)c] = c < channels ? pixels[(size_t)channels * i + (size_t)c] : 255;
+    free(pixels);
+    return out;
+}
+
+/* colorbar_label(quantity, unit) -> the colour bar's label of a field in its units (figure.h) */
+static PyObject *colorbar_label(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *quantity, *unit;
+    char text[128];
+    if (!PyArg_ParseTuple(args, "ss", &quantity, &unit))
+        return NULL;
+    int status = im_figure_colorbar_label(quantity, unit, text, sizeof text);
+    return status == IM_OK ? PyUnicode_FromString(text) : py_raise_status(status);
 }
 
 static PyObject *renderer(PyObject *self, PyObject *unused)
@@ -342,6 +507,10 @@ static PyObject *renderer(PyObject *self, PyObject *unused)
 PyMethodDef py_render_methods[] = {
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
-    {"write_png", write_png, METH_VARARGS, "write_png(path, rgba)"},
+    {"write_png", write_png, METH_VARARGS, "write_png(path, rgba, texts)"},
+    {"colorbar_label", colorbar_label, METH_VARARGS, "colorbar_label(quantity, unit) -> the colour bar's label"},
+    {"read_png", read_png, METH_VARARGS, "read_png(path) -> (height, width, 4) uint8 RGBA"},
+    {"view3d", (PyCFunction)(void (*)(void))view3d, METH_VARARGS | METH_KEYWORDS,
+     "view3d(height, delta, force, punch, alpha, radius, axis, **style) -> RGBA: the deformed surface in 3-D"},
     {"renderer", renderer, METH_NOARGS, "the GL backend and renderer in use"},
     {NULL, NULL, 0, NULL}};

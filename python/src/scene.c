@@ -3,6 +3,7 @@
 #include "core.h"
 
 #include "indentmap/scene.h"
+#include "indentmap/solver.h"
 #include "indentmap/status.h"
 
 #include <signal.h>
@@ -59,12 +60,20 @@ static void call_log(void *user, im_log_level level, const char *message)
 typedef struct scene_source {
     const char *path, *out;
     int from_record;
+    const char *wisdom; /* the FFTW wisdom file of its solves, NULL for none */
 } scene_source;
 
 /* The scene of a file or a record; out replaces its output folder. */
 static int load_scene(const scene_source *source, im_scene *scene)
 {
     int status = source->from_record ? im_scene_load_record(source->path, scene) : im_scene_load(source->path, scene);
+    if (status == IM_OK && source->wisdom) {
+        scene->wisdom_path = source->wisdom;
+        im_solver_options check = {.wisdom_path = source->wisdom};
+        status = im_solver_wisdom_check(&check);
+        if (status != IM_OK)
+            im_fail_context(status, "wisdom");
+    }
     if (status != IM_OK || !source->out)
         return status;
     if (strlen(source->out) >= sizeof scene->output_dir)
@@ -99,16 +108,18 @@ static int optional_path(PyObject *object, void *out)
 static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"path", "resume", "quiet", "progress", "log", "out", "from_record", NULL};
-    PyObject *path_bytes, *progress = Py_None, *log = Py_None, *out_bytes = NULL;
+    static char *keywords[] = {"path", "resume", "quiet", "progress", "log", "out", "from_record", "wisdom", NULL};
+    PyObject *path_bytes, *progress = Py_None, *log = Py_None, *out_bytes = NULL, *wisdom_bytes = NULL;
     int resume = 0, quiet = 0, from_record = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|ppOOO&p", keywords, PyUnicode_FSConverter, &path_bytes,
-                                     &resume, &quiet, &progress, &log, optional_path, &out_bytes, &from_record))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|ppOOO&pO&", keywords, PyUnicode_FSConverter, &path_bytes,
+                                     &resume, &quiet, &progress, &log, optional_path, &out_bytes, &from_record,
+                                     optional_path, &wisdom_bytes))
         return NULL;
     im_scene *scene = PyMem_Calloc(1, sizeof *scene);
     if (!scene) {
         Py_DECREF(path_bytes);
         Py_XDECREF(out_bytes);
+        Py_XDECREF(wisdom_bytes);
         return PyErr_NoMemory();
     }
     volatile sig_atomic_t stop = 0;
@@ -117,10 +128,12 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
                                      .progress = progress != Py_None ? call_progress : NULL,
                                      .log = log != Py_None ? call_log : NULL};
     py_interrupt call;
-    scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL, from_record};
+    scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL, from_record,
+                           wisdom_bytes ? PyBytes_AS_STRING(wisdom_bytes) : NULL};
     int status = load_and_run(&source, scene, &options, &stop, &call);
     Py_DECREF(path_bytes);
     Py_XDECREF(out_bytes);
+    Py_XDECREF(wisdom_bytes);
     int interrupted = py_interrupt_disarm(&call, &stop) < 0; /* KeyboardInterrupt is set */
     if (callbacks.error_type && !interrupted)
         PyErr_Restore(callbacks.error_type, callbacks.error_value, callbacks.error_traceback);
@@ -138,6 +151,6 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 
 PyMethodDef py_scene_methods[] = {
     {"run_scene", (PyCFunction)(void (*)(void))run_scene, METH_VARARGS | METH_KEYWORDS,
-     "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, from_record=False) -> output "
-     "folder"},
+     "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, from_record=False, "
+     "wisdom=None) -> output folder"},
     {NULL, NULL, 0, NULL}};

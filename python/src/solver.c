@@ -18,6 +18,8 @@ typedef struct py_indentation {
     im_indenter punch;
     im_theory_interface rough; /* the surface's spectral h'rms and E*, as `indent`'s theory columns */
     int periodic;              /* no half-space theory beside a periodic cell */
+    double gap_scale;          /* the distributions' gap unit: the surface's h_rms (delta when flat) */
+    char wisdom[4096];         /* the FFTW wisdom file the plan reads and updates ("": none) */
     im_history_row *rows;
     int row_count, row_capacity;
     int busy; /* a call (creation, step, fields) runs without the GIL: no second thread may enter it */
@@ -104,20 +106,58 @@ static int control_from_name(const char *name, enum im_control *control)
 
 static int check_idle(py_indentation *self);
 
+/* The wisdom file (bytes, or NULL for none) into self->wisdom and options, checked as `indent --wisdom`
+ * checks it before planning (solver.h: im_solver_wisdom_check); -1 with the error set. */
+static int set_wisdom(py_indentation *self, PyObject *wisdom, im_solver_options *o)
+{
+    const char *path = wisdom ? PyBytes_AS_STRING(wisdom) : "";
+    if (strlen(path) >= sizeof self->wisdom) {
+        PyErr_Format(PyExc_ValueError, "wisdom: a path of %zu bytes, expected fewer than %zu", strlen(path),
+                     sizeof self->wisdom);
+        return -1;
+    }
+    snprintf(self->wisdom, sizeof self->wisdom, "%s", path);
+    o->wisdom_path = self->wisdom[0] ? self->wisdom : NULL;
+    int status = im_solver_wisdom_check(o);
+    if (status != IM_OK) {
+        py_raise_status(im_fail_context(status, "wisdom %s", path));
+        return -1;
+    }
+    return 0;
+}
+
+/* The surface's h_rms, the unit of `indent --distributions`' gaps (its delta when the surface is flat). */
+static int gap_scale(const im_field *surface, double *scale)
+{
+    im_surface_stats stats;
+    int status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK)
+        *scale = stats.height_rms > 0.0 ? stats.height_rms : surface->delta;
+    return status;
+}
+
 static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
 {
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
                                "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
-                               "hardness", "periodic", "slope_definition", "adhesion_work", "adhesion_range", NULL};
-    PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
+                               "hardness", "periodic", "slope_definition", "adhesion_work", "adhesion_range",
+                               "plain_pk", "measure", "wisdom", NULL};
+    PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None, *wisdom = NULL;
+    int plain_pk = 0;
     double delta, alpha, radius, largest;
     const char *kind, *control_name, *device = "cpu", *slope_name = "";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsdd", keywords, &obj, &delta, &kind, &alpha,
-                                     &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&", keywords, &obj, &delta, &kind,
+                                     &alpha, &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
                                      &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
-                                     &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range))
+                                     &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range, &plain_pk,
+                                     &o.fft_measure, PyUnicode_FSConverter, &wisdom))
         return -1;
+    int wisdom_ok = check_idle(self) < 0 ? -1 : set_wisdom(self, wisdom, &o); /* a running step reads it */
+    Py_XDECREF(wisdom);
+    if (wisdom_ok < 0)
+        return -1;
+    o.cascade = o.precondition = !plain_pk; /* indent --plain-pk */
     /* the theory's h'rms (as indent --slope-definition): spectral for a periodic cell, else forward
      * differences (an array may be measured: its edges would count in the spectrum) */
     enum im_slope_definition slope_definition = o.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
@@ -164,6 +204,8 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
     if (status == IM_OK)
         status = im_surface_slope_rms(&surface, slope_definition, &slope);
+    if (status == IM_OK)
+        status = gap_scale(&surface, &self->gap_scale);
     Py_END_ALLOW_THREADS
     self->busy = 0;
     if (status == IM_OK) {
@@ -304,6 +346,39 @@ static PyObject *indentation_plastic(py_indentation *self, PyObject *unused)
     return status == IM_OK ? py_array_from_field(plastic) : py_raise_status(status);
 }
 
+/* The last step's distributions, as `indent --distributions` writes them (measure.h). */
+static int write_distributions(py_indentation *self, const char *prefix)
+{
+    im_field *force = NULL, *gap = NULL;
+    int status = im_indentation_fields_full(self->run, &force, &gap, NULL);
+    if (status == IM_OK)
+        status = im_measure_write_distributions(force, gap, self->gap_scale, IM_MEASURE_GAP_BINS, prefix);
+    im_field_free(force);
+    im_field_free(gap);
+    return status;
+}
+
+/* write_distributions(prefix): the last step's gap and patch-size distributions into
+ * PREFIX_{gaps,patches,patch_list}.csv */
+static PyObject *indentation_write_distributions(py_indentation *self, PyObject *arg)
+{
+    if (check_ready(self) < 0)
+        return NULL;
+    if (self->row_count == 0)
+        return py_raise_status(im_fail(IM_EINVAL, "write_distributions: no step solved yet"));
+    PyObject *prefix = NULL;
+    if (!PyUnicode_FSConverter(arg, &prefix))
+        return NULL;
+    int status;
+    self->busy = 1;
+    Py_BEGIN_ALLOW_THREADS /* the full grid's fields: one convolution */
+    status = write_distributions(self, PyBytes_AS_STRING(prefix));
+    Py_END_ALLOW_THREADS
+    self->busy = 0;
+    Py_DECREF(prefix);
+    return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
+}
+
 static PyObject *indentation_window(py_indentation *self, void *closure)
 {
     (void)closure;
@@ -321,6 +396,8 @@ static PyMethodDef indentation_methods[] = {
      "plastic() -> the plastic depth accumulated so far on the full grid"},
     {"history_text", (PyCFunction)indentation_history_text, METH_NOARGS,
      "history_text() -> the steps solved as the text of a history.csv"},
+    {"write_distributions", (PyCFunction)indentation_write_distributions, METH_O,
+     "write_distributions(prefix): the last step's PREFIX_{gaps,patches,patch_list}.csv"},
     {NULL, NULL, 0, NULL}};
 
 static PyGetSetDef indentation_getset[] = {
@@ -637,6 +714,19 @@ done:
     return result;
 }
 
+/* units_record(length_unit, e_star_unit, periodic) -> JSON text of run.json's "units" block (history.h) */
+static PyObject *units_record(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *length_unit, *e_star_unit;
+    int periodic;
+    if (!PyArg_ParseTuple(args, "ssp", &length_unit, &e_star_unit, &periodic))
+        return NULL;
+    char text[16384];
+    int status = im_history_units_json(length_unit, e_star_unit, periodic, text, sizeof text);
+    return status == IM_OK ? PyUnicode_FromString(text) : py_raise_status(status);
+}
+
 /* quality_tolerance(name) -> tol (solver.h: im_quality_tolerance): draft, standard or publication */
 static PyObject *quality_tolerance(PyObject *self, PyObject *args)
 {
@@ -650,6 +740,8 @@ static PyObject *quality_tolerance(PyObject *self, PyObject *args)
 }
 
 PyMethodDef py_solver_methods[] = {
+    {"units_record", units_record, METH_VARARGS,
+     "units_record(length_unit, e_star_unit, periodic) -> run.json's \"units\" block as JSON text"},
     {"quality_tolerance", quality_tolerance, METH_VARARGS,
      "quality_tolerance(name) -> the solver tolerance of a quality preset (draft, standard, publication)"},
     {"write_analysis", write_analysis, METH_VARARGS,

@@ -207,19 +207,55 @@ static PyObject *prepare(PyObject *self, PyObject *args)
     return Py_BuildValue("(Nl)", py_array_from_field(copy), filled);
 }
 
-/* read_surface(path, channel, fill, resample_square, npy_order) -> (heights, delta, unit); npy_order is
- * an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy) */
+/* A length unit the caller named for `parameter` in its canonical spelling (io.h: im_length_unit_metres), or
+ * "" for none; -1 with ValueError naming the parameter otherwise. */
+static int length_unit_argument(const char *parameter, const char *text, char out[16])
+{
+    const char *canonical = text;
+    out[0] = '\0';
+    if (!text[0])
+        return 0;
+    if (strlen(text) >= 16 || im_length_unit_metres(text, &canonical) == 0.0) {
+        /* the units as an argument: PyErr_Format's format must be ASCII */
+        PyErr_Format(PyExc_ValueError, "%s '%.40s': expected a length unit (%s)", parameter, text,
+                     "m, cm, mm, \u00b5m or um, nm, pm, \u00c5");
+        return -1;
+    }
+    snprintf(out, 16, "%s", canonical);
+    return 0;
+}
+
+/* length_unit(parameter, text) -> text's canonical spelling ("" stays ""); ValueError naming the parameter */
+static PyObject *length_unit(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *parameter, *text;
+    char canonical[16];
+    if (!PyArg_ParseTuple(args, "ss", &parameter, &text) || length_unit_argument(parameter, text, canonical) < 0)
+        return NULL;
+    return PyUnicode_FromString(canonical);
+}
+
+/* read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit)
+ * -> (heights, delta, unit); npy_order is an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy); the
+ * units as `indent --unit --height-unit --length-unit` ("": the file's) */
 static PyObject *read_surface(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_bytes;
-    const char *channel;
+    const char *channel, *unit, *height_unit, *length_unit;
     int fill, resample_square, npy_order;
-    if (!PyArg_ParseTuple(args, "O&sppi", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square,
-                          &npy_order))
+    if (!PyArg_ParseTuple(args, "O&sppisss", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square,
+                          &npy_order, &unit, &height_unit, &length_unit))
         return NULL;
     im_surface_read_options options = {.fill = fill, .resample_square = resample_square,
                                        .npy_order = (enum im_npy_order)npy_order};
+    if (length_unit_argument("unit", unit, options.set.lateral) < 0 ||
+        length_unit_argument("height_unit", height_unit, options.set.height) < 0 ||
+        length_unit_argument("length_unit", length_unit, options.express_in) < 0) {
+        Py_DECREF(path_bytes);
+        return NULL;
+    }
     if (strlen(channel) >= sizeof options.channel) {
         Py_DECREF(path_bytes);
         return py_raise_status(im_fail(IM_EINVAL, "channel '%.70s': expected an index or title of at most %zu bytes",
@@ -235,8 +271,8 @@ static PyObject *read_surface(PyObject *self, PyObject *args)
     if (status != IM_OK)
         return py_raise_status(status);
     double delta = field->delta;
-    PyObject *unit = PyUnicode_DecodeUTF8(field->unit, (Py_ssize_t)strlen(field->unit), "replace");
-    return Py_BuildValue("(NdN)", py_array_from_field(field), delta, unit);
+    PyObject *unit_text = PyUnicode_DecodeUTF8(field->unit, (Py_ssize_t)strlen(field->unit), "replace");
+    return Py_BuildValue("(NdN)", py_array_from_field(field), delta, unit_text);
 }
 
 static int has_suffix(const char *path, const char *suffix)
@@ -296,6 +332,8 @@ PyMethodDef py_surface_methods[] = {
     {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
     {"read_surface", read_surface, METH_VARARGS,
-     "read_surface(path, channel, fill, resample_square, npy_order) -> (heights, delta, unit)"},
+     "read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit) -> "
+     "(heights, delta, unit)"},
     {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
+    {"length_unit", length_unit, METH_VARARGS, "length_unit(parameter, text) -> the unit's canonical spelling"},
     {NULL, NULL, 0, NULL}};

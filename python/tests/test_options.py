@@ -53,6 +53,13 @@ INDENTATION = [
     ("adhesion_range", INF, ValueError, r"adhesion range = inf: expected a finite gap delta_c > 0"),
     ("quality", "best", ValueError, r"quality = 'best': expected draft, standard or publication"),
     ("quality", 3, TypeError, r"quality: expected a string, got 3"),
+    ("length_unit", "furlong", ValueError, r"length_unit 'furlong': expected a length unit"),
+    ("length_unit", 1, TypeError, r"length_unit: expected a string, got 1"),
+    ("e_star_unit", None, TypeError, r"e_star_unit: expected a string, got None"),
+    ("plain_pk", "yes", TypeError, r"plain_pk: expected True or False, got 'yes'"),
+    ("measure", 1, TypeError, r"measure: expected True or False, got 1"),
+    ("wisdom", 5, TypeError, r"wisdom: expected a path \(str, bytes or os.PathLike\), got 5"),
+    ("wisdom", "/proc/no such folder/wisdom", im.FileError, r"wisdom /proc/no such folder/wisdom"),
     ("colour", "red", TypeError, r"unexpected keyword argument 'colour'"),
 ]
 

@@ -23,6 +23,36 @@ def test_contact_map_pixels():
     assert tuple(background) == (230, 230, 230)
 
 
+def test_contact_map_tension_on_the_blue_ramp():
+    """Patches under tension (adhesion) take the C renderer's blue ramp: darker as the tension grows, blue
+    over red and green, never the no-contact grey; the largest takes the ramp's darkest colour."""
+    tensions = [0.05, 0.2, 0.4, 0.7, 1.0]
+    force = np.array([[0.0] + [-t for t in tensions] + [0.5]])
+    rgba = im.contact_map(force, scale=1).rgba[2, 2:-2, :3].astype(int)  # the one row of patches
+    linear = np.where(rgba / 255 <= 0.04045, rgba / 255 / 12.92, ((rgba / 255 + 0.055) / 1.055) ** 2.4)
+    luminance = linear @ np.array([0.2126, 0.7152, 0.0722])
+    pulled = slice(1, 1 + len(tensions))
+    assert (np.diff(luminance[pulled]) < 0).all()
+    assert (rgba[pulled, 2] > rgba[pulled, 0]).all() and (rgba[pulled, 2] > rgba[pulled, 1]).all()
+    assert not (rgba[pulled] == (230, 230, 230)).all(axis=1).any() and tuple(rgba[0]) == (230, 230, 230)
+    darkest = im.contact_map(np.array([[-3.0]]), scale=1).rgba[2, 2, :3]
+    assert tuple(rgba[len(tensions)]) == tuple(darkest)
+
+
+def test_contact_map_defaults_to_the_frames_norm(rough64):
+    """Forces default to every front end's map and norm (render contact, scenes, indent --frames): magma on a
+    log norm over the two decades below the largest force; log=False is linear from 0."""
+    force = np.clip(rough64 - np.median(rough64), 0.0, None)
+    frames = im.contact_map(force, colormap="magma", log=True, vmin=force.max() / 100, vmax=force.max()).rgba
+    assert (im.contact_map(force).rgba == frames).all()
+    linear = im.contact_map(force, log=False, colormap="viridis").rgba
+    assert (linear == im.contact_map(force, log=False, colormap="viridis", vmin=0.0, vmax=force.max()).rgba).all()
+    assert not (linear == frames).all()
+    figure = im.Figure([force])
+    assert figure.norm == (force.max() / 100, force.max())
+    assert figure.style["colormap"] == "magma" and figure.style["log"]
+
+
 def test_height_map_and_png(tmp_path, rough64):
     picture = im.height_map(rough64, scale=1)
     assert picture.rgba.shape[:2] == (64 + 4, 64 + 4)

@@ -1,6 +1,7 @@
 /* indentmap indent: an indentation history of a surface by a punch, under displacement or load
  * control, written step by step to DIR/history.csv, with DIR/run.json and optional fields. */
 #include "cli/cli.h"
+#include "cli/indent_record.h"
 #include "front/front.h"
 
 #include "indentmap/field.h"
@@ -29,7 +30,8 @@
 static void usage(FILE *stream)
 {
     fprintf(stream,
-            "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n\n"
+            "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n"
+            "       indentmap indent --from-record DIR/run.json [--out NEWDIR] [--wisdom FILE | --no-wisdom]\n\n"
             "Indents SURFACE (.npy, .gsf, .sdf, .nc, .x3p or text) with a rigid punch and solves each\n"
             "step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last. Units: lengths\n"
             "in the surface's unit (its spacing delta when it states none), stresses in E* (settable).\n"
@@ -116,6 +118,11 @@ static void usage(FILE *stream)
             "                      the user's cache ($XDG_CACHE_HOME or ~/.cache)/indentmap/fftw-wisdom\n"
             "  --no-wisdom         no wisdom file (also IM_FFTW_WISDOM=\"\"): FFTW_ESTIMATE plans\n"
             "  --out DIR           output folder (default output/indent)\n"
+            "  --from-record R     the run recorded in its run.json R made again: its options as recorded\n"
+            "                      (run.json \"arguments\"), into --out (default: R's folder); refused when\n"
+            "                      an input file's SHA-256 is no longer the recorded one or R was made by\n"
+            "                      another version; its FFTW plans estimated as recorded unless --wisdom\n"
+            "                      is given (docs/scenes.md, \"Provenance\")\n"
             "  --fields            also write DIR/{force,gap,displacement}_NNNN.npy for every step\n"
             "  --frames            also draw DIR/frames/contact_NNNN.png for every step (the step's contact\n"
             "                      map, one log force norm over all steps; implies --fields, needs OpenGL),\n"
@@ -168,6 +175,10 @@ typedef struct indent_options {
     double *targets;
     int target_count;
     im_solver_options solver;
+    indent_arguments arguments; /* as run.json records them (indent_record.h) */
+    const char *from_record;    /* --from-record: the record of the run made again */
+    char *command;              /* the arguments as a command line, for the figures */
+    run_figure_texts figure_texts; /* what every figure carries: the version, the command, the inputs */
 } indent_options;
 
 enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL, OPT_RESAMPLE,
@@ -175,7 +186,7 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
        OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER, OPT_MEAN_GAP,
-       OPT_FRAMES, OPT_PAGE_EMBED };
+       OPT_FRAMES, OPT_PAGE_EMBED, OPT_FROM_RECORD };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -203,7 +214,8 @@ static const struct option LONG_OPTIONS[] = {
     {"mean-gap", required_argument, 0, OPT_MEAN_GAP},
     {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION},
     {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
-    {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE}, {0, 0, 0, 0}};
+    {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
+    {"from-record", required_argument, 0, OPT_FROM_RECORD}, {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -244,9 +256,8 @@ static int parse_targets(indent_options *o)
     return -1;
 }
 
-static int apply_option(int code, const char *arg, void *state)
+static int apply_one_option(int code, const char *arg, indent_options *o)
 {
-    indent_options *o = state;
     switch (code) {
     case OPT_SMOOTH: o->smooth = 1; return 0;
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->nx);
@@ -314,8 +325,32 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_FRAMES: o->frames = o->fields = 1; return 0; /* drawn from the force fields */
     case OPT_PAGE_EMBED: o->page_embed = 1; return 0;
     case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
+    case OPT_FROM_RECORD: return cli_parse_path("--from-record", arg, &o->from_record);
     default: return -1;
     }
+}
+
+static const char *option_name(int code)
+{
+    for (const struct option *option = LONG_OPTIONS; option->name; ++option)
+        if (option->val == code)
+            return option->name;
+    return NULL;
+}
+
+/* Applies an option and notes it in the run's arguments, but for where the run writes and plans (a run
+ * made again from its record writes and plans where it is told). */
+static int apply_option(int code, const char *arg, void *state)
+{
+    indent_options *o = state;
+    if (apply_one_option(code, arg, o) != 0)
+        return -1;
+    if (code == OPT_OUT || code == OPT_WISDOM || code == OPT_NO_WISDOM || code == OPT_FROM_RECORD)
+        return 0;
+    if (indent_arguments_add(&o->arguments, option_name(code), arg, code == OPT_PROFILE) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: --%s: %s\n", option_name(code), im_last_error());
+    return -1;
 }
 
 /* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap control on
@@ -498,19 +533,40 @@ static const char *tolerance_source(const indent_options *o)
     return o->tol_given ? "--tol" : o->quality ? "--quality" : "default";
 }
 
-static int parse_arguments(int argc, char **argv, indent_options *o)
+/* The operand SURFACE, noted in the arguments; with --from-record none may be given beside it. */
+static int parse_operands(int argc, char **argv, indent_options *o)
 {
-    *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .out = "output/indent", .slope_definition = -1,
-                          .punch = im_indenter_cone(80), .solver = im_solver_options_default()};
-    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
-    if (parsed != 0)
-        return parsed;
     if (optind < argc)
         o->surface_path = argv[optind++];
     if (optind < argc) {
         fprintf(stderr, "indentmap: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
+    if (o->from_record && (o->surface_path || o->arguments.list)) {
+        fprintf(stderr, "indentmap: --from-record runs the recorded options: give only --out, --wisdom or "
+                "--no-wisdom beside it\n");
+        return -1;
+    }
+    if (o->surface_path && indent_arguments_add(&o->arguments, NULL, o->surface_path, 1) != IM_OK) {
+        fprintf(stderr, "indentmap: SURFACE: %s\n", im_last_error());
+        return -1;
+    }
+    return 0;
+}
+
+static int parse_arguments(int argc, char **argv, indent_options *o)
+{
+    *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .slope_definition = -1,
+                          .punch = im_indenter_cone(80), .solver = im_solver_options_default()};
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
+    if (parsed != 0)
+        return parsed;
+    if (parse_operands(argc, argv, o) != 0)
+        return -1;
+    if (o->from_record) /* the record's options are parsed next (parse_command) */
+        return 0;
+    if (!o->out)
+        o->out = "output/indent";
     if (!o->m_given)
         o->ny = o->nx;
     o->punch.centred = !o->x_given;
@@ -559,23 +615,6 @@ static json_t *surface_sidecar_generator(const char *surface_path)
     json_t *generator = root ? json_incref(json_object_get(root, "generator")) : NULL;
     json_decref(root);
     return generator;
-}
-
-/* What the numbers of history.csv and the fields are in. */
-static json_t *units_record(const indent_options *o, const im_field *s)
-{
-    const char *length = s->unit[0] ? s->unit : "delta";
-    const char *stress = o->e_star_unit[0] ? o->e_star_unit : "the unit of --e-star";
-    char stiffness[64], work[64];
-    snprintf(stiffness, sizeof stiffness, "(%s) / %s", o->force_unit, length);
-    snprintf(work, sizeof work, "(%s) %s", o->force_unit, length);
-    const char *pressure = o->e_star_unit[0] ? o->e_star_unit : "E*";
-    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:o*}", "length", length, "approach", length,
-                     "e_star", o->e_star_unit[0] ? o->e_star_unit : "as given (--e-star)", "pressure", stress,
-                     "stiffness", stiffness, "work", work, "load", o->force_unit, "force", o->force_unit, "load_star",
-                     o->solver.periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
-                     "area_ratio", o->solver.periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)", "columns",
-                     column_units_record(s->unit[0] ? s->unit : "δ", o->force_unit, pressure));
 }
 
 /* SURFACE's pixels as read: its spacings along x and y (in the surface's unit), their relative
@@ -658,6 +697,18 @@ static json_t *adhesion_law_record(const indent_options *o)
     return law;
 }
 
+/* The arguments the run is made again from (indent --from-record), and the record it was itself made
+ * from (null for a command line). */
+static void add_arguments(const indent_options *o, json_t *root)
+{
+    char from[4 * 4096 + 1];
+    im_path_utf8(o->from_record ? o->from_record : "", from, sizeof from);
+    json_object_set_new(root, "arguments", o->arguments.list ? json_incref(o->arguments.list) : json_array());
+    if (o->arguments.escaped)
+        json_object_set_new(root, "arguments_encoding", json_string("escaped"));
+    json_object_set_new(root, "from_record", o->from_record ? json_string(from) : json_null());
+}
+
 /* run.json: the common record (front.h) with the surface (and the generator of its sidecar), the
  * punch, the targets, the window, the FFT plan and the units. */
 static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
@@ -692,8 +743,9 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     }
     json_decref(generator);
     drop_meaningless_punch_fields(json_object_get(root, "punch"), o->punch.kind);
-    json_object_set_new(root, "units", units_record(o, s));
+    json_object_set_new(root, "units", indent_units_record(s->unit, o->e_star_unit, o->solver.periodic));
     json_object_set_new(root, "adhesion", o->solver.adhesion_work > 0 ? adhesion_law_record(o) : json_null());
+    add_arguments(o, root);
     return root;
 }
 
@@ -714,14 +766,15 @@ static int add_inputs(const indent_options *o, json_t *record)
     return status;
 }
 
-static int write_run_json(const char *dir, json_t *record, int steps_done, int status)
+/* What every figure of the run carries (front.h: run_figure_texts): the version, the command that makes
+ * it and its inputs' SHA-256. */
+static int make_figure_texts(indent_options *o, const json_t *record)
 {
-    json_object_set_new(record, "steps_completed", json_integer(steps_done));
-    json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
-    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
-    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
-    json_object_set_new(record, "error", json_string(error));
-    return run_record_write(dir, record);
+    o->command = indent_arguments_command(&o->arguments);
+    if (!o->command)
+        return im_fail(IM_ENOMEM, "figure texts: out of memory");
+    const im_png_text command = {"Command", o->command};
+    return run_figure_texts_make(&command, 1, json_object_get(record, "inputs"), &o->figure_texts);
 }
 
 /* ---- the run ---- */
@@ -880,14 +933,8 @@ static void write_k_fit(const indent_options *o, const im_theory_interface *roug
         return;
     }
     periodic_k_fit_print(&k, rough->slope_rms, slope_definition_name(o->slope_definition));
-    const im_theory_k_fit *fit = &k.fit;
-    json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
-                              fit->k_error, "rms_residual", fit->rms_residual, "points", k.points, "linear_points",
-                              fit->linear_points, "pressure_ratio_range", k.pressure_ratio[0], k.pressure_ratio[1],
-                              "area_fraction_range", k.area_fraction[0], k.area_fraction[1], "slope_rms",
-                              rough->slope_rms, "slope_rms_definition", slope_definition_name(o->slope_definition));
-    json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
-    json_object_set_new(record, "k_fit", block);
+    json_object_set_new(record, "k_fit",
+                        periodic_k_fit_record(&k, rough->slope_rms, slope_definition_name(o->slope_definition)));
 }
 
 /* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
@@ -936,7 +983,8 @@ static void write_adhesion(const indent_options *o, const im_history_row *rows, 
 {
     im_adhesion_summary summary = {.hysteresis_work = NAN}; /* NaN: not summarised */
     json_t *law = json_object_get(record, "adhesion");
-    if (done >= 1 && analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &summary) != IM_OK)
+    if (done >= 1 && analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &o->figure_texts,
+                                             &summary) != IM_OK)
         fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
     if (isnan(summary.hysteresis_work))
         return;
@@ -967,7 +1015,7 @@ static void write_analysis(const indent_options *o, const im_history_row *rows, 
         return;
     }
     int status = analysis_write(o->out, &o->punch, rows, done, o->surface_delta, o->solver.e_star, o->length_unit,
-                                o->force_unit, &branches);
+                                o->force_unit, &o->figure_texts, &branches);
     if (status != IM_OK) {
         fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
         return;
@@ -989,7 +1037,7 @@ static void write_history_figure(const indent_options *o, const im_theory_interf
     const int area_plot = o->solver.periodic && !(o->solver.adhesion_work > 0);
     const history_figure figure = {rows, done, &o->punch, area_plot ? o->cell_area : 0.0,
                                    o->solver.periodic && !o->punch_given && elastic ? rough : NULL, elastic,
-                                   o->length_unit, o->force_unit, o->e_star_unit};
+                                   o->length_unit, o->force_unit, o->e_star_unit, &o->figure_texts};
     if (history_figure_write(o->out, &figure) != IM_OK)
         fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
 }
@@ -1006,12 +1054,7 @@ static void prepare_periodic(indent_options *o, const im_field *surface)
         o->punch = periodic_rigid_flat(surface);
     for (int i = 0; o->pressures && i < o->target_count; ++i)
         o->targets[i] *= o->cell_area;
-    double edge, inner;
-    if (periodic_edge_mismatch(surface, &edge, &inner))
-        fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
-                "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
-                "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
-                o->surface_path ? o->surface_path : "the surface", edge, edge / inner, inner);
+    periodic_warn_if_not_periodic(surface, o->surface_path ? o->surface_path : "the surface");
 }
 
 /* --frames of the steps done, DIR/frames/contact_NNNN.png (front.h: fields_frames_write): a failure is the
@@ -1020,8 +1063,8 @@ static void draw_frames(const indent_options *o, const im_history_row *rows, int
                         int *status, char *message, size_t size)
 {
     char folder[4096];
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}};
-    const fields_frames frames = {o->out, folder, rows, done, &o->punch, o->force_unit, texts, 1};
+    const fields_frames frames = {o->out, folder, rows, done, &o->punch, o->force_unit, o->figure_texts.texts,
+                                  o->figure_texts.count};
     int drawn = im_path_join(folder, sizeof folder, o->out, "frames");
     if (drawn == IM_OK)
         drawn = fields_frames_write(context, &frames);
@@ -1068,7 +1111,7 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         write_k_fit(o, rough, rows, done, record);
     if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
         im_fail(status, "%s", message);
-    int recorded = write_run_json(o->out, record, done, status);
+    int recorded = run_record_finish(o->out, record, done, status);
     if (status != IM_OK)
         im_fail(status, "%s", message);
     else
@@ -1189,14 +1232,38 @@ static int set_gap_scale(indent_options *o, const im_field *surface)
     return status;
 }
 
+/* What parse_command returns for a record it refuses (its message said): no hint at the options. */
+enum { REFUSED_RECORD = -2 };
+
+/* The command line's options or, with --from-record, those of the run the record names, with --out and
+ * the wisdom options of the command line (indent_record.h). */
+static int parse_command(int argc, char **argv, indent_options *o, indent_replay *replay)
+{
+    int parsed = parse_arguments(argc, argv, o);
+    if (parsed != 0 || !o->from_record)
+        return parsed;
+    const char *record = o->from_record;
+    const indent_replay_options given = {o->out, o->wisdom, o->no_wisdom};
+    if (indent_replay_load(record, &given, replay) != IM_OK) {
+        fprintf(stderr, "indentmap: --from-record: %s\n", im_last_error());
+        return REFUSED_RECORD;
+    }
+    parsed = parse_arguments(replay->argc, replay->argv, o);
+    o->from_record = record;
+    return parsed;
+}
+
 int cli_indent(int argc, char **argv)
 {
     indent_options o;
-    int parsed = parse_arguments(argc, argv, &o);
+    indent_replay replay = {0};
+    int parsed = parse_command(argc, argv, &o, &replay);
     if (parsed != 0) {
-        if (parsed < 0)
+        if (parsed == -1)
             fprintf(stderr, "(indentmap indent --help lists the options)\n");
         free(o.targets);
+        json_decref(o.arguments.list);
+        indent_replay_free(&replay);
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     }
     im_field *surface = NULL;
@@ -1249,11 +1316,13 @@ int cli_indent(int argc, char **argv)
         record = run_record(&o, surface, run);
         status = record ? add_inputs(&o, record) : im_fail(IM_ENOMEM, "run record");
         if (status == IM_OK)
+            status = make_figure_texts(&o, record);
+        if (status == IM_OK)
             status = history_start(o.out, &history);
         if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
             char message[1024];
             snprintf(message, sizeof message, "%s", im_last_error());
-            write_run_json(o.out, record, 0, status);
+            run_record_finish(o.out, record, 0, status);
             im_fail(status, "%s", message);
         }
     }
@@ -1269,6 +1338,10 @@ int cli_indent(int argc, char **argv)
     im_profile_free(o.profile); /* after the run that borrowed it */
     im_field_free(surface);
     free(o.targets);
+    json_decref(o.arguments.list);
+    free(o.command);
+    run_figure_texts_free(&o.figure_texts);
+    indent_replay_free(&replay);
     if (status == IM_EINTERRUPTED) {
         fprintf(stderr, "indentmap: %s\n", im_last_error());
         return cli_interrupt_exit_status();

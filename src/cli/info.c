@@ -1,19 +1,12 @@
 #include "cli/cli.h"
 
-#include "indentmap/gpu_config.h"
+#include "indentmap/info.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
-#if IM_HAVE_GPU
-#include "gpu/vulkan.h"
-#endif
 
-#include <fftw3.h>
 #include <getopt.h>
-#include <gsl/gsl_version.h>
-#include <omp.h>
-#include <png.h>
 #include <stdio.h>
-#include <string.h>
+#include <stdlib.h>
 
 static void usage(FILE *stream)
 {
@@ -25,45 +18,6 @@ static void usage(FILE *stream)
                     "and exits 1.\n"
                     "Then the Vulkan devices the GPU engine could use, one per line ('none: REASON' without\n"
                     "any, 'not built (IM_GPU off)' in a build without the engine).\n");
-}
-
-/* The render backend and GL strings; a machine without GL is reported, not an error, but a
- * renderer that opens a context and then fails is. */
-static int print_renderer(im_render_backend backend)
-{
-    im_render_context *context = NULL;
-    int status = cli_render_open(backend, &context);
-    if (status == IM_EINVAL) /* a bad IM_RENDER_BACKEND: bad input, exit 2 as for render */
-        return cli_report(status);
-    if (status != IM_OK) {
-        int missing = im_render_context_missing(status, im_last_error());
-        printf("render backend: %s (%s)\n", missing ? "unavailable" : "failed", im_last_error());
-        return missing ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
-    }
-    printf("render backend: %s, %s\n", im_render_backend_name(context), im_render_display_name(context));
-    printf("GL_RENDERER: %s\n", im_render_gl_renderer(context));
-    printf("GL_VERSION: %s\n", im_render_gl_version(context));
-    im_render_close(context);
-    return CLI_EXIT_OK;
-}
-
-/* The Vulkan devices, one line each; none is not an error (the CPU solver needs no GPU). */
-static void print_vulkan_devices(void)
-{
-    printf("Vulkan devices:");
-#if IM_HAVE_GPU
-    char text[4096];
-    if (gpu_devices_describe(text, sizeof text) != IM_OK) {
-        printf(" none: %s\n", im_last_error());
-        return;
-    }
-    printf("\n");
-    char *rest = NULL;
-    for (char *line = strtok_r(text, "\n", &rest); line; line = strtok_r(NULL, "\n", &rest))
-        printf("  %s\n", line);
-#else
-    printf(" not built (IM_GPU off)\n");
-#endif
 }
 
 enum { OPT_BACKEND = 256, OPT_HELP };
@@ -91,13 +45,14 @@ int cli_info(int argc, char **argv)
         usage(stderr);
         return CLI_EXIT_USAGE;
     }
-    printf("indentmap %s\n", IM_VERSION);
-    printf("fftw: %s\n", fftw_version);
-    printf("gsl: %s\n", gsl_version);
-    printf("libpng: %s\n", png_libpng_ver);
-    printf("openmp threads: %d (of %d processors)\n", omp_get_max_threads(), omp_get_num_procs());
-    int status = print_renderer(backend);
-    if (status != CLI_EXIT_USAGE)
-        print_vulkan_devices();
-    return status;
+    int status = cli_render_backend(&backend);
+    if (status != IM_OK) /* a bad IM_RENDER_BACKEND: bad input, exit 2 as for render */
+        return cli_report(status);
+    char *text = NULL;
+    status = im_info_text(backend, &text);
+    const int printed = text != NULL; /* a renderer that failed is named in the text: exit 1 */
+    if (printed)
+        fputs(text, stdout);
+    free(text);
+    return status == IM_OK ? CLI_EXIT_OK : printed ? CLI_EXIT_FAILURE : cli_report(status);
 }

@@ -5,6 +5,8 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "cli/mpi_indent.h"
+#include "front/front.h"
 #include "mpi/agree.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -16,19 +18,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-typedef struct mpi_indent_options {
-    im_surface_params surface;  /* synthesised when no file is given */
-    const char *surface_file;   /* float64 .npy heights in units of delta, or NULL */
-    im_indenter punch;
-    enum im_control control;
-    double target;              /* w or N; NaN until given */
-    im_solver_options solver;
-    const char *out;            /* folder for force.npy and gap.npy, or NULL */
-    int map_factor;             /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */
-} mpi_indent_options;
-
 enum { OPT_SURFACE = 256, OPT_N, OPT_M, OPT_SEED, OPT_SLOPE, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_APPROACH,
-       OPT_LOAD, OPT_HARDNESS, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP };
+       OPT_LOAD, OPT_HARDNESS, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP, OPT_PERIODIC, OPT_PRESSURE,
+       OPT_MEAN_GAP };
 
 static const struct option LONG_OPTIONS[] = {
     {"surface", required_argument, 0, OPT_SURFACE}, {"n", required_argument, 0, OPT_N},
@@ -37,12 +29,15 @@ static const struct option LONG_OPTIONS[] = {
     {"alpha", required_argument, 0, OPT_ALPHA}, {"radius", required_argument, 0, OPT_RADIUS},
     {"approach", required_argument, 0, OPT_APPROACH}, {"load", required_argument, 0, OPT_LOAD},
     {"hardness", required_argument, 0, OPT_HARDNESS}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
-    {"out", required_argument, 0, OPT_OUT}, {"map", required_argument, 0, OPT_MAP}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+    {"out", required_argument, 0, OPT_OUT}, {"map", required_argument, 0, OPT_MAP}, {"help", no_argument, 0, OPT_HELP},
+    {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE},
+    {"mean-gap", required_argument, 0, OPT_MEAN_GAP}, {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
 {
     fprintf(stream,
-            "usage: mpirun -n K indentmap mpi-indent (--approach W | --load N) [options]\n\n"
+            "usage: mpirun -n K indentmap mpi-indent (--approach W | --load N) [options]\n"
+            "       mpirun -n K indentmap mpi-indent --periodic (--pressure LIST | --mean-gap LIST) [options]\n\n"
             "One indentation of one surface over K MPI ranks (each with its OpenMP threads): the whole\n"
             "grid is solved (no crop window), the result is the same to the bit for any K.\n"
             "Prints on rank 0: approach,load,contact_patches,iterations,residual,seconds (CSV with header).\n\n"
@@ -59,7 +54,31 @@ static void usage(FILE *stream)
             "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
             "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
             "                  .npy keeps no patch side), gathered on rank 0 (to draw with\n"
-            "                  'indentmap render contact' grids too large to draw whole)\n");
+            "                  'indentmap render contact' grids too large to draw whole)\n\n"
+            "  --periodic      the surface is one period of a periodic surface, pressed by a rigid flat\n"
+            "                  on the whole cell (indent --periodic): a history of the steps of\n"
+            "  --pressure LIST mean pressures p_m (units of E*; N = p_m nx ny), or\n"
+            "  --mean-gap LIST mean gaps over the cell (delta), each > 0; LIST as indent's:\n"
+            "                  'v1,v2,...' or 'first:last:count'. With --hardness: plastic memory from\n"
+            "                  step to step, under --pressure only (indent searches the approach of a\n"
+            "                  yielding cell's mean gap serially). Prints on rank 0 the history, indent's\n"
+            "                  history.csv columns; with --out DIR also DIR/history.csv (appended step by\n"
+            "                  step), DIR/run.json and the last step's fields. Rank 0 gathers the heights\n"
+            "                  once (h'rms, k of eq. (2)) and each step's forces (contact patches)\n");
+}
+
+/* --pressure or --mean-gap: a step list (front.h: steps_parse, as indent's and a scene's). */
+static int steps_parse_list(mpi_indent_options *o, const char *text)
+{
+    char error[512];
+    if (!o->targets && !(o->targets = malloc(sizeof(double) * STEPS_MAX))) {
+        fprintf(stderr, "indentmap: mpi-indent: %s: out of memory\n", o->targets_option);
+        return -1;
+    }
+    if (steps_parse(o->targets_option, text, o->targets, &o->target_count, error, sizeof error) == 0)
+        return 0;
+    fprintf(stderr, "indentmap: %s\n", error);
+    return -1;
 }
 
 static int apply_option(int code, const char *arg, void *state)
@@ -71,7 +90,18 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_M: return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.ny);
     case OPT_SEED: return cli_parse_u64("--seed", arg, &o->surface.seed);
     case OPT_SLOPE: return cli_parse_double("--slope", arg, 0, 1e6, &o->surface.slope_rms);
+    case OPT_PERIODIC: o->periodic = 1; return 0;
+    case OPT_PRESSURE:
+    case OPT_MEAN_GAP:
+        if (o->targets_option) {
+            fprintf(stderr, "indentmap: mpi-indent: give one of --pressure and --mean-gap, once\n");
+            return -1;
+        }
+        o->targets_option = code == OPT_PRESSURE ? "--pressure" : "--mean-gap";
+        o->control = code == OPT_PRESSURE ? IM_CONTROL_LOAD : IM_CONTROL_MEAN_GAP;
+        return steps_parse_list(o, arg);
     case OPT_PUNCH: /* the names of `indent --punch` (indenter.h); a flat punch is not solved over ranks */
+        o->punch_given = 1;
         if (im_punch_parse(arg, &o->punch.kind) != IM_OK) {
             fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
             return -1;
@@ -81,14 +111,14 @@ static int apply_option(int code, const char *arg, void *state)
             return -1;
         }
         return 0;
-    case OPT_ALPHA: return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
-    case OPT_RADIUS: return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
+    case OPT_ALPHA: o->punch_given = 1; return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
+    case OPT_RADIUS: o->punch_given = 1; return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
     case OPT_APPROACH:
     case OPT_LOAD:
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         return cli_parse_double(code == OPT_LOAD ? "--load" : "--approach", arg, 0, 1e300, &o->target);
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
-    case OPT_TOL: return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
+    case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);
@@ -125,9 +155,8 @@ static int write_map(const mpi_indent_options *o, const im_mpi_solver *solver, c
     return shared == IM_OK || rank == 0 ? shared : im_fail(shared, "rank 0 could not write the map");
 }
 
-/* force.npy (p delta^2, delta = 1) and gap.npy (g = g0 - w + u) of this rank's rows. */
-static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver, double approach, double *pressure,
-                        double *gap0, const double *displacement)
+int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *solver, const double *pressure,
+                            const double *gap)
 {
     int y0, rows, nx = o->surface.nx, ny = o->surface.ny, rank, made = 1;
     im_mpi_solver_rows(solver, &y0, &rows);
@@ -137,8 +166,6 @@ static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver
     MPI_Bcast(&made, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (!made)
         return im_fail(IM_EIO, "--out %s: cannot create the folder", o->out);
-    for (size_t i = 0; i < (size_t)rows * nx; ++i)
-        gap0[i] += displacement[i] - approach;
     char path[4096];
     int status = im_path_join(path, sizeof path, o->out, "force.npy"); /* the same on every rank */
     if (status == IM_OK)
@@ -146,19 +173,59 @@ static int write_fields(const mpi_indent_options *o, const im_mpi_solver *solver
     if (status == IM_OK)
         status = im_path_join(path, sizeof path, o->out, "gap.npy");
     if (status == IM_OK)
-        status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, gap0);
+        status = im_mpi_npy_write_rows(MPI_COMM_WORLD, path, nx, ny, y0, rows, gap);
     return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
 }
 
-/* The grid: the file's shape, or the synthesis's. */
+/* The grid: the file's shape, or the synthesis's. Every rank must read the same bytes from the file
+ * (agree.h: a path may name other files on other nodes). */
 static int grid_of(mpi_indent_options *o)
 {
     if (!o->surface_file)
         return IM_OK;
-    return im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny);
+    const char *key = "--surface";
+    int status = mpi_same_files(MPI_COMM_WORLD, "the command", 1, &o->surface_file, &key);
+    return status == IM_OK ? im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny)
+                           : status;
 }
 
-/* Plans, fills the gap, solves and writes; *result on success. */
+/* Fails every rank (IM_ENOMEM naming the fields) when some rank's allocation failed (have 0). */
+static int all_allocated(int have, const char *fields, int rows)
+{
+    int all;
+    MPI_Allreduce(&have, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+    return all ? IM_OK : im_fail(IM_ENOMEM, "mpi-indent: the %s of some rank's %d rows", fields, rows);
+}
+
+/* One step on the half-space from this rank's heights: fills the gap, solves and writes; *result on
+ * success. */
+static int solve_half_space(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights,
+                            im_solve_result *result)
+{
+    int y0, rows;
+    im_mpi_solver_rows(solver, &y0, &rows);
+    size_t n = (size_t)rows * o->surface.nx + 1;
+    double *gap0 = malloc(sizeof(double) * n), *pressure = calloc(n, sizeof(double));
+    double *displacement = malloc(sizeof(double) * n);
+    int status = all_allocated(gap0 && pressure && displacement, "fields", rows);
+    if (status == IM_OK)
+        status = im_mpi_undeformed_gap(solver, heights, &o->punch, gap0);
+    if (status == IM_OK)
+        status = im_mpi_solver_solve(solver, gap0, o->control, o->target, pressure, displacement, result);
+    if (status == IM_OK)
+        status = im_mpi_check_edge(solver, pressure);
+    if (status == IM_OK && o->out) {
+        for (size_t i = 0; i + 1 < n; ++i) /* the gap g = g0 - w + u */
+            gap0[i] += displacement[i] - result->approach;
+        status = mpi_indent_write_fields(o, solver, pressure, gap0);
+    }
+    free(gap0);
+    free(pressure);
+    free(displacement);
+    return status;
+}
+
+/* Plans, reads or synthesises the heights, and solves the step (*result) or, --periodic, the history. */
 static int solve(mpi_indent_options *o, im_solve_result *result)
 {
     int status = grid_of(o);
@@ -171,28 +238,37 @@ static int solve(mpi_indent_options *o, im_solve_result *result)
         return status;
     int y0, rows;
     im_mpi_solver_rows(solver, &y0, &rows);
-    size_t n = (size_t)rows * o->surface.nx + 1;
-    double *heights = malloc(sizeof(double) * n), *gap0 = malloc(sizeof(double) * n);
-    double *pressure = calloc(n, sizeof(double)), *displacement = malloc(sizeof(double) * n);
-    int have = heights && gap0 && pressure && displacement, all;
-    MPI_Allreduce(&have, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
-    status = all ? IM_OK : im_fail(IM_ENOMEM, "mpi-indent: the fields of some rank's %d rows", rows);
+    double *heights = malloc(sizeof(double) * ((size_t)rows * o->surface.nx + 1));
+    status = all_allocated(heights != NULL, "heights", rows);
     if (status == IM_OK)
         status = load_heights(o, y0, rows, heights);
     if (status == IM_OK)
-        status = im_mpi_undeformed_gap(solver, heights, &o->punch, gap0);
-    if (status == IM_OK)
-        status = im_mpi_solver_solve(solver, gap0, o->control, o->target, pressure, displacement, result);
-    if (status == IM_OK)
-        status = im_mpi_check_edge(solver, pressure);
-    if (status == IM_OK && o->out)
-        status = write_fields(o, solver, result->approach, pressure, gap0, displacement);
+        status = o->periodic ? mpi_indent_periodic(o, solver, heights) : solve_half_space(o, solver, heights, result);
     im_mpi_solver_free(solver);
     free(heights);
-    free(gap0);
-    free(pressure);
-    free(displacement);
     return status;
+}
+
+/* What --periodic takes and what it does not: 0, or -1 with the message said. */
+static int check_periodic_options(mpi_indent_options *o)
+{
+    if (o->targets_option && !o->periodic)
+        fprintf(stderr, "indentmap: mpi-indent: %s (over a periodic cell) needs --periodic; the half-space takes "
+                "--approach W or --load N\n", o->targets_option);
+    else if (o->periodic && !isnan(o->target))
+        fprintf(stderr, "indentmap: mpi-indent --periodic takes mean pressures (--pressure LIST) or mean gaps "
+                "(--mean-gap LIST), not --approach or --load\n");
+    else if (o->periodic && !o->targets_option)
+        fprintf(stderr, "indentmap: mpi-indent --periodic: give --pressure LIST or --mean-gap LIST\n");
+    else if (o->periodic && o->punch_given)
+        fprintf(stderr, "indentmap: mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha "
+                "and --radius are the half-space's\n");
+    else if (o->periodic && o->solver.hardness > 0 && strcmp(o->targets_option, "--mean-gap") == 0)
+        fprintf(stderr, "indentmap: mpi-indent --periodic --mean-gap with --hardness: the approach of a yielding "
+                "cell's mean gap is searched, which only indent does (serially); give --pressure LIST\n");
+    else
+        return 0;
+    return -1;
 }
 
 static int parse(int argc, char **argv, mpi_indent_options *o)
@@ -207,10 +283,13 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
         return -1;
     }
-    if (isnan(o->target)) {
+    if (check_periodic_options(o) != 0)
+        return -1;
+    if (isnan(o->target) && !o->periodic) {
         fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");
         return -1;
     }
+    o->solver.periodic = o->periodic;
     if (optind < argc) {
         fprintf(stderr, "indentmap: mpi-indent: unexpected argument '%s'\n", argv[optind]);
         return -1;
@@ -231,7 +310,7 @@ int cli_mpi_indent(int argc, char **argv)
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     im_mpi_init();
-    mpi_indent_options o;
+    mpi_indent_options o = {.targets = NULL};
     int code = CLI_EXIT_OK;
     if (rank != 0) /* every rank parses the same arguments (checked first): rank 0 speaks for them */
         (void)freopen("/dev/null", "w", stderr);
@@ -244,10 +323,11 @@ int cli_mpi_indent(int argc, char **argv)
         status = solve(&o, &result);
     if (status != IM_OK)
         code = cli_report(status);
-    else if (parsed == 0 && rank == 0)
+    else if (parsed == 0 && rank == 0 && !o.periodic)
         printf("approach,load,contact_patches,iterations,residual,seconds\n%.17g,%.17g,%ld,%d,%.3g,%.3f\n",
                result.approach, result.load, result.contact_patches, result.iterations, result.residual,
                result.seconds);
+    free(o.targets);
     im_mpi_cleanup();
     MPI_Finalize();
     return code;

@@ -22,18 +22,25 @@ static void usage(FILE *stream)
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
             "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
             "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
-            "contact: local compressive forces, patches under tension (adhesion) light blue, none grey\n"
-            "(the paper's Fig. 4); height: heights with hill-shading; animate: one contact map\n"
-            "per FORCE file, written as DIR/contact_NNNN.png, then a GIF or an MP4 (ffmpeg) of those\n"
-            "same annotated frames (the GIF with one 256-colour palette built from all of them).\n"
+            "contact: local compressive forces, none grey (the paper's Fig. 4), patches under tension\n"
+            "(adhesion) on a blue ramp of their tension -f with a second colour bar beside the force's,\n"
+            "from 0 to the largest tension of all the files; height: heights with hill-shading;\n"
+            "animate: one contact map per FORCE file, written as DIR/contact_NNNN.png, then a GIF or\n"
+            "an MP4 (ffmpeg) of those same annotated frames (the GIF with one 256-colour palette built\n"
+            "from all of them).\n"
             "Several files make one figure of panels (a), (b), ... with one shared norm and colour\n"
             "bar, e.g. the paper's Fig. 4: six force files --columns 3 --circle A.\n"
             "Output format from the extension: .png, .pdf or .svg.\n\n"
             "  --out FILE          the figure (or the animation for 'animate')\n"
             "  --raw               PNG of the data image only, without annotations\n"
-            "  --colormap NAME     viridis (default), cividis, magma, inferno or grey\n"
-            "  --vmin V, --vmax V  norm range (default: 0 .. largest force; min .. max height)\n"
-            "  --log               logarithmic norm (vmin > 0; default vmin: vmax / 1000)\n"
+            "  --colormap NAME     magma (default for forces: contact, animate, as scenes, indent --frames\n"
+            "                      and render view3d), viridis (default for heights), cividis, inferno\n"
+            "                      or grey\n"
+            "  --vmin V, --vmax V  norm range (default: the two decades below the largest force, log; 0 ..\n"
+            "                      largest force with --linear; min .. max height)\n"
+            "  --log               logarithmic norm (vmin > 0; default vmin: vmax / 100): the default for\n"
+            "                      forces (contact, animate)\n"
+            "  --linear            linear norm of forces (contact, animate; heights are linear)\n"
             "  --scale N           pixels per patch (default 2)\n"
             "  --circle R          contact circle of radius R patches (contact, animate)\n"
             "  --circle-x X, --circle-y Y   its centre in patches (default: the grid's middle)\n"
@@ -56,7 +63,9 @@ typedef struct render_options {
     im_colormap_id map;
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
+    int map_given, linear;        /* --colormap, --linear: else forces take the frames' magma, log */
     double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
+    double shared_tension;       /* the largest tension -f of all the fields: the tension bar's top */
     char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
@@ -64,12 +73,13 @@ typedef struct render_options {
 
 enum { OPT_OUT = 256, OPT_RAW, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG, OPT_SCALE, OPT_CIRCLE, OPT_CX,
        OPT_CY, OPT_CONTACT, OPT_LABEL, OPT_TITLE, OPT_QUANTITY, OPT_DPI, OPT_FPS, OPT_FRAMES,
-       OPT_BACKEND, OPT_TITLES, OPT_COLUMNS, OPT_HELP };
+       OPT_BACKEND, OPT_TITLES, OPT_COLUMNS, OPT_LINEAR, OPT_HELP };
 
 static const struct option LONG_OPTIONS[] = {
     {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
     {"colormap", required_argument, 0, OPT_MAP}, {"vmin", required_argument, 0, OPT_VMIN},
     {"vmax", required_argument, 0, OPT_VMAX}, {"log", no_argument, 0, OPT_LOG},
+    {"linear", no_argument, 0, OPT_LINEAR},
     {"scale", required_argument, 0, OPT_SCALE}, {"circle", required_argument, 0, OPT_CIRCLE},
     {"circle-x", required_argument, 0, OPT_CX}, {"circle-y", required_argument, 0, OPT_CY},
     {"contact", required_argument, 0, OPT_CONTACT}, {"label", required_argument, 0, OPT_LABEL},
@@ -92,10 +102,11 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_RAW: o->raw = 1; return 0;
-    case OPT_MAP: return named(im_colormap_from_name(arg, &o->map), "--colormap");
+    case OPT_MAP: o->map_given = 1; return named(im_colormap_from_name(arg, &o->map), "--colormap");
     case OPT_VMIN: o->has_vmin = 1; return cli_parse_double("--vmin", arg, -1e300, 1e300, &o->vmin);
     case OPT_VMAX: o->has_vmax = 1; return cli_parse_double("--vmax", arg, -1e300, 1e300, &o->vmax);
     case OPT_LOG: o->logarithmic = 1; return 0;
+    case OPT_LINEAR: o->linear = 1; return 0;
     case OPT_SCALE: return cli_parse_int("--scale", arg, 1, 64, &o->scale);
     case OPT_CIRCLE: return cli_parse_double("--circle", arg, 0.0, 1e9, &o->circle);
     case OPT_CX: o->has_circle_x = 1; return cli_parse_double("--circle-x", arg, -1e9, 1e9, &o->circle_x);
@@ -119,7 +130,7 @@ static void apply_norm(const render_options *o, im_colormap *c)
 {
     double lo = o->has_vmin ? o->vmin : o->shared_lo, hi = o->has_vmax ? o->vmax : o->shared_hi;
     if (o->logarithmic && !o->has_vmin && hi > 0.0)
-        lo = hi * 1e-3;
+        lo = hi * 1e-2; /* two decades, as the frames' (front.h: frame_force_norm) */
     *c = im_colormap_make(o->map, lo, hi);
     c->logarithmic = o->logarithmic;
 }
@@ -143,6 +154,7 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
     note_extremes(o, force, &style.colormap, 1);
+    style.tension = im_contact_tension_norm(o->shared_tension);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
     if (o->has_circle_x)
@@ -190,23 +202,23 @@ static void list_item(const char *list, int i, char *buffer, size_t size)
         snprintf(buffer, size, "%.*s", (int)strcspn(list, ","), list);
 }
 
-/* The colour bar's default name of a height-mode field: what its sidecar FILE.json says it is
- * (indent --fields writes gaps, displacements and plastic depths beside the forces), "height h" for a
- * surface or a file without one. */
+/* The quantity of a height-mode field for its colour bar (figure.h: im_figure_colorbar_label): what its
+ * sidecar FILE.json says it is (indent --fields writes gaps, displacements and plastic depths beside the
+ * forces), "height" for a surface or a file without one. */
 static const char *height_quantity(const char *path)
 {
-    static const char *const KNOWN[][2] = {{"gap", "gap g"},
-                                           {"surface displacement", "displacement u"},
-                                           {"plastic depth", "plastic depth d"}};
+    static const char *const KNOWN[][2] = {{"gap", "gap"},
+                                           {"surface displacement", "displacement"},
+                                           {"plastic depth", "plastic"}};
     char sidecar[4096];
     snprintf(sidecar, sizeof sidecar, "%s.json", path);
     json_t *record = json_load_file(sidecar, 0, NULL);
-    const char *stated = json_string_value(json_object_get(record, "quantity")), *name = "height h";
+    const char *stated = json_string_value(json_object_get(record, "quantity")), *quantity = "height";
     for (size_t i = 0; stated && i < sizeof KNOWN / sizeof *KNOWN; ++i)
         if (strncmp(stated, KNOWN[i][0], strlen(KNOWN[i][0])) == 0)
-            name = KNOWN[i][1];
+            quantity = KNOWN[i][1];
     json_decref(record);
-    return name;
+    return quantity;
 }
 
 /* The figure (or, with --raw, the data image of a single panel), the run's settings as text; when frame is
@@ -220,11 +232,13 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     for (int i = 0; i < count; ++i)
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
-    char height_name[64], force_name[80];
-    snprintf(height_name, sizeof height_name, "%s / %s", contact ? "" : height_quantity(inputs[0]),
-             images[0].unit[0] ? images[0].unit : "δ");
-    snprintf(force_name, sizeof force_name, "local force f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
-    const char *quantity = o->quantity ? o->quantity : contact ? force_name : height_name;
+    char label[96], tension_name[96];
+    snprintf(tension_name, sizeof tension_name, "tensile force −f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
+    int status = im_figure_colorbar_label(contact ? "force" : height_quantity(inputs[0]),
+                                          contact ? o->value_unit : images[0].unit, label, sizeof label);
+    if (status != IM_OK)
+        return status;
+    const char *quantity = o->quantity ? o->quantity : label;
     const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
                                  {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
                                  {"Norm", norm_text}, {"Pixels per patch", scale_text}};
@@ -252,6 +266,11 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     figure.colorbar_label = quantity;
     figure.extend_under = o->extend_under;
     figure.extend_over = o->extend_over;
+    const im_colormap tension = im_contact_tension_norm(o->shared_tension);
+    if (contact && o->shared_tension > 0.0) {
+        figure.tension_colormap = &tension;
+        figure.tension_label = tension_name;
+    }
     figure.dpi = o->dpi;
     figure.texts = texts;
     figure.text_count = 6;
@@ -280,6 +299,9 @@ static void set_shared_range(render_options *o, im_field **fields, int count)
     }
     o->shared_lo = lo;
     o->shared_hi = hi;
+    o->shared_tension = 0.0;
+    for (int i = 0; !height && i < count; ++i)
+        o->shared_tension = fmax(o->shared_tension, im_contact_largest_tension(fields[i]));
 }
 
 /* Reads the fields and sets the default norm. */
@@ -391,6 +413,10 @@ static int check_usage(const render_options *o, int inputs)
         fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
     else if (o->raw && !animation && strstr(o->out, ".png") == NULL)
         fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
+    else if (o->logarithmic && o->linear)
+        fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
+    else if (o->linear && strcmp(o->mode, "height") == 0)
+        fprintf(stderr, "indentmap: --linear is for forces (contact, animate): heights are drawn linear\n");
     else
         return 0;
     return -1;
@@ -434,6 +460,18 @@ static int run(render_options *o, char **inputs, int count)
     return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
 }
 
+/* Forces (contact, animate) default to the colour map and norm of every other front end's force maps:
+ * magma on a log norm over two decades (scenes, indent --frames, render view3d). */
+static void apply_force_defaults(render_options *o)
+{
+    if (strcmp(o->mode, "height") == 0)
+        return;
+    if (!o->map_given)
+        o->map = IM_COLORMAP_MAGMA;
+    if (!o->linear)
+        o->logarithmic = 1;
+}
+
 int cli_render(int argc, char **argv)
 {
     if (argc > 1 && strcmp(argv[1], "view3d") == 0)
@@ -452,5 +490,6 @@ int cli_render(int argc, char **argv)
         return CLI_EXIT_USAGE;
     if (cli_interrupt_install_cleanup() != 0)
         return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
+    apply_force_defaults(&o);
     return run(&o, argv + optind + 1, argc - optind - 1);
 }

@@ -21,7 +21,9 @@ static void usage(FILE *stream)
             "Draws HEIGHT (a surface or deformed surface file: .npy, .gsf or text) as a lit 3-D mesh with\n"
             "the off-screen OpenGL renderer; with --displacement the drawn surface is HEIGHT - u (u from\n"
             "`indentmap indent --fields`, positive into the half-space). Patches with force > 0 in\n"
-            "--force are coloured by it through the norm (as `render contact`), the others light grey.\n"
+            "--force are coloured by it through the norm (as `render contact`), patches under tension\n"
+            "(force < 0: adhesion) by their tension on the blue ramp of a second colour bar, the others\n"
+            "light grey.\n"
             "The punch rests on the drawn heights. Output: a figure (.png, .pdf, .svg) with the colour\n"
             "bar and the vertical exaggeration stated, or with --raw the image only (PNG).\n\n"
             "  --out FILE            the figure\n"
@@ -59,6 +61,7 @@ typedef struct view3d_options {
     const char *out, *force, *displacement, *title;
     int raw, has_log, has_linear, has_vmin, has_vmax, has_distance, no_punch;
     double vmin, vmax, dpi;
+    double largest_tension; /* of --force: > 0 draws the tension's colour bar */
     im_colormap_id map;
     im_indenter punch;
     int x_given, y_given, radius_given;
@@ -221,6 +224,10 @@ static int write_view(const view3d_options *o, const char *source, const im_imag
     figure.colormap = o->force ? norm : NULL;
     figure.colorbar_label = "local force f / (E* δ²)";
     figure.extend_under = norm->logarithmic;
+    if (o->largest_tension > 0.0) {
+        figure.tension_colormap = &o->style.tension;
+        figure.tension_label = "tensile force −f / (E* δ²)";
+    }
     figure.scale_bar = -1.0; /* a perspective view has no single scale */
     figure.dpi = o->dpi;
     figure.texts = texts;
@@ -238,6 +245,8 @@ static int run(view3d_options *o, const char *path)
         status = im_surface_read(o->force, &force);
     if (status == IM_OK) {
         apply_norm(o, force, &o->style.colormap);
+        o->largest_tension = force ? im_contact_largest_tension(force) : 0.0;
+        o->style.tension = im_contact_tension_norm(o->largest_tension);
         o->punch.centred = !(o->x_given || o->y_given);
         status = apply_distance(o, height, &o->style);
     }

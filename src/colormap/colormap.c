@@ -7,7 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const MAP_NAMES[IM_COLORMAP_COUNT] = {"viridis", "cividis", "magma", "inferno", "grey"};
+static const char *const MAP_NAMES[IM_COLORMAP_COUNT] = {"viridis", "cividis", "magma", "inferno", "grey",
+                                                              "tension"};
 
 const uint8_t (*im_colormap_table(im_colormap_id map))[3]
 {
@@ -16,6 +17,7 @@ const uint8_t (*im_colormap_table(im_colormap_id map))[3]
     case IM_COLORMAP_MAGMA: return im_colormap_table_magma;
     case IM_COLORMAP_INFERNO: return im_colormap_table_inferno;
     case IM_COLORMAP_GREY: return im_colormap_table_grey;
+    case IM_COLORMAP_TENSION: return im_colormap_table_tension;
     default: return im_colormap_table_viridis;
     }
 }
@@ -34,7 +36,7 @@ int im_colormap_from_name(const char *name, im_colormap_id *map)
 {
     ARG_REQUIRE(name, "name");
     ARG_REQUIRE(map, "map");
-    for (int i = 0; i < IM_COLORMAP_COUNT; ++i) {
+    for (int i = 0; i < IM_COLORMAP_TENSION; ++i) { /* the maps a user may choose */
         if (strcmp(name, MAP_NAMES[i]) == 0 || (i == IM_COLORMAP_GREY && strcmp(name, "gray") == 0)) {
             *map = (im_colormap_id)i;
             return IM_OK;

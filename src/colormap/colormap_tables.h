@@ -9,5 +9,6 @@ extern const uint8_t im_colormap_table_cividis[256][3];
 extern const uint8_t im_colormap_table_magma[256][3];
 extern const uint8_t im_colormap_table_inferno[256][3];
 extern const uint8_t im_colormap_table_grey[256][3];
+extern const uint8_t im_colormap_table_tension[256][3]; /* colormap_tension.c */
 
 #endif

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <strings.h>
 
-enum { MAX_TICKS = 32, MAX_PANELS = 64 };
+enum { MAX_TICKS = 32, MAX_PANELS = 64, MAX_BARS = 2 };
 
 im_figure im_figure_default(void)
 {
@@ -41,6 +41,17 @@ int im_figure_format_of(const char *path, im_figure_format *format)
 
 /* ---- layout, in pixels at the figure's dpi ---- */
 
+/* A colour bar: the force's, then the tension's beside it. */
+typedef struct colorbar {
+    const im_colormap *colormap;
+    const char *label;
+    int extend_under, extend_over;
+    double x, y, height;         /* left edge, top and length of the bar itself */
+    double ticks[MAX_TICKS];     /* the labelled ticks, thinned to fit */
+    int tick_count;
+    double tick_label_width;
+} colorbar;
+
 typedef struct layout {
     double font;                 /* text size in pixels */
     double line;                 /* thin line width (0.6 pt) in pixels */
@@ -48,9 +59,9 @@ typedef struct layout {
     double title_height;         /* row above each panel for labels and titles (0: none) */
     int cell_width, cell_height; /* largest image */
     int grid_x, grid_y;          /* top left of the first panel's title row */
-    double bar_x, bar_y, bar_width, bar_height, tick_length, tick_label_width;
-    double ticks[MAX_TICKS];     /* the colour bar's labelled ticks, thinned to fit */
-    int tick_count;
+    double bar_width, tick_length;
+    colorbar bars[MAX_BARS];
+    int bar_count;
     double scale_height;         /* strip below the grid for the scale bar and the note */
     double note_x;               /* where the note starts */
     int width, height;
@@ -104,39 +115,39 @@ static double panel_width(const im_figure_panel *p, const measure *m, double fon
     return fmax(p->image->width, ceil(row));
 }
 
-static double tick_position(const im_colormap *c, const layout *l, double v)
+static double tick_position(const colorbar *b, double v)
 {
+    const im_colormap *c = b->colormap;
     double t = c->logarithmic ? log(v / c->lo) / log(c->hi / c->lo) : (v - c->lo) / (c->hi - c->lo);
-    return l->bar_y + (1.0 - t) * l->bar_height;
+    return b->y + (1.0 - t) * b->height;
 }
 
 /* The ticks to label: every k-th of im_figure_ticks, with the smallest k that puts labels at least
  * 1.2 em apart along the bar. */
-static void choose_ticks(const im_figure *f, layout *l)
+static void choose_ticks(colorbar *b, double font)
 {
     double all[MAX_TICKS];
-    int count = im_figure_ticks(f->colormap, all, MAX_TICKS), stride = 1;
+    int count = im_figure_ticks(b->colormap, all, MAX_TICKS), stride = 1;
     for (; stride < count; ++stride) {
         int fits = 1;
         for (int i = stride; i < count && fits; i += stride)
-            fits = tick_position(f->colormap, l, all[i - stride]) - tick_position(f->colormap, l, all[i]) >=
-                   1.2 * l->font;
+            fits = tick_position(b, all[i - stride]) - tick_position(b, all[i]) >= 1.2 * font;
         if (fits)
             break;
     }
-    l->tick_count = 0;
+    b->tick_count = 0;
     for (int i = 0; i < count; i += stride)
-        l->ticks[l->tick_count++] = all[i];
+        b->ticks[b->tick_count++] = all[i];
 }
 
-static void measure_colorbar(const im_figure *f, const measure *m, layout *l)
+static void measure_colorbar(const measure *m, double font, colorbar *b)
 {
-    choose_ticks(f, l);
-    l->tick_label_width = 0.0;
-    for (int i = 0; i < l->tick_count; ++i) {
+    choose_ticks(b, font);
+    b->tick_label_width = 0.0;
+    for (int i = 0; i < b->tick_count; ++i) {
         char text[64];
-        figure_tick_label(f->colormap->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
-        l->tick_label_width = fmax(l->tick_label_width, text_width(m, m->regular, l->font, text));
+        figure_tick_label(b->colormap->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
+        b->tick_label_width = fmax(b->tick_label_width, text_width(m, m->regular, font, text));
     }
 }
 
@@ -149,15 +160,36 @@ static void scale_bar(const im_figure *f, char *text, size_t size, double *pixel
     figure_length_label(length, image->unit, text, size);
 }
 
-/* Moves the grid down (and grows the page) so that the colour bar's rotated label, centred on
- * the bar, stays inside the margins. */
-static void fit_colorbar_label(const im_figure *f, const measure *m, layout *l, double *bottom)
+/* Moves the grid and the bars placed so far down (and grows the page) so that the last bar's
+ * rotated label, centred on the bar, stays inside the margins. */
+static void fit_colorbar_label(const measure *m, layout *l, double *bottom)
 {
-    double half = 0.5 * text_width(m, m->regular, l->font, f->colorbar_label);
-    double centre = l->bar_y + 0.5 * l->bar_height, shift = ceil(fmax(0.0, l->margin - (centre - half)));
+    const colorbar *b = &l->bars[l->bar_count - 1];
+    double half = 0.5 * text_width(m, m->regular, l->font, b->label);
+    double centre = b->y + 0.5 * b->height, shift = ceil(fmax(0.0, l->margin - (centre - half)));
     l->grid_y += (int)shift;
-    l->bar_y += shift;
+    for (int i = 0; i < l->bar_count; ++i)
+        l->bars[i].y += shift;
     *bottom = fmax(*bottom, centre + shift + half);
+}
+
+/* Places a colour bar right of `left` along the panels' height (less its extension triangles); the
+ * right edge of its labels. */
+static double place_colorbar(const measure *m, layout *l, colorbar bar, double left, double grid_height,
+                             double *bottom)
+{
+    colorbar *b = &l->bars[l->bar_count++];
+    *b = bar;
+    b->x = round(left + 1.2 * l->font);
+    /* Extension triangles for values beyond the norm sit inside the panels' height. */
+    double triangle = round(1.2 * l->bar_width);
+    b->y = l->grid_y + l->title_height + (b->extend_over ? triangle : 0.0);
+    b->height = grid_height - l->title_height - (b->extend_over + b->extend_under) * triangle;
+    measure_colorbar(m, l->font, b);
+    if (b->label)
+        fit_colorbar_label(m, l, bottom);
+    return b->x + l->bar_width + l->tick_length + 0.3 * l->font + b->tick_label_width +
+           (b->label ? 1.6 * l->font : 0.0);
 }
 
 static void make_layout(const im_figure *f, const measure *m, layout *l)
@@ -194,20 +226,18 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
         l->note_x = fmax(l->grid_x + grid_width - width, f->scale_bar >= 0.0 ? scale_end + l->font : l->grid_x);
         right = fmax(right, l->note_x + width);
     }
-    if (f->colormap) {
-        l->bar_x = round(l->grid_x + grid_width + 1.2 * l->font);
-        l->bar_width = round(1.1 * l->font);
-        /* Extension triangles for values beyond the norm sit inside the panels' height. */
-        double triangle = round(1.2 * l->bar_width);
-        l->bar_y = l->grid_y + l->title_height + (f->extend_over ? triangle : 0.0);
-        l->bar_height = grid_height - l->title_height - (f->extend_over + f->extend_under) * triangle;
-        l->tick_length = round(0.4 * l->font);
-        measure_colorbar(f, m, l);
-        if (f->colorbar_label)
-            fit_colorbar_label(f, m, l, &bottom);
-        right = fmax(right, l->bar_x + l->bar_width + l->tick_length + 0.3 * l->font + l->tick_label_width +
-                                (f->colorbar_label ? 1.6 * l->font : 0.0));
-    }
+    l->bar_width = round(1.1 * l->font);
+    l->tick_length = round(0.4 * l->font);
+    double bars_end = l->grid_x + grid_width;
+    if (f->colormap)
+        bars_end = place_colorbar(m, l, (colorbar){.colormap = f->colormap, .label = f->colorbar_label,
+                                             .extend_under = f->extend_under, .extend_over = f->extend_over},
+                                  bars_end, grid_height, &bottom);
+    if (f->tension_colormap)
+        bars_end = place_colorbar(m, l, (colorbar){.colormap = f->tension_colormap, .label = f->tension_label},
+                                  bars_end, grid_height, &bottom);
+    if (l->bar_count)
+        right = fmax(right, bars_end);
     l->width = (int)ceil(right + l->margin);
     l->height = (int)ceil(fmax(l->grid_y + grid_height + l->scale_height, bottom) + l->margin);
 }
@@ -313,15 +343,16 @@ static void draw_note(const im_figure *f, const layout *l, cairo_t *cr, cairo_fo
 }
 
 /* Unlabelled ticks at 2..9 times each decade of a logarithmic bar, half as long. */
-static void draw_minor_ticks(const im_colormap *c, const layout *l, cairo_t *cr)
+static void draw_minor_ticks(const colorbar *b, const layout *l, cairo_t *cr)
 {
-    double right = l->bar_x + l->bar_width;
+    const im_colormap *c = b->colormap;
+    double right = b->x + l->bar_width;
     for (double decade = pow(10.0, floor(log10(c->lo))); decade <= c->hi; decade *= 10.0)
         for (int m = 2; m <= 9; ++m) {
             double v = m * decade;
             if (v < c->lo || v > c->hi)
                 continue;
-            double y = l->bar_y + (1.0 - log(v / c->lo) / log(c->hi / c->lo)) * l->bar_height;
+            double y = tick_position(b, v);
             cairo_move_to(cr, right, y);
             cairo_line_to(cr, right + 0.5 * l->tick_length, y);
             cairo_stroke(cr);
@@ -329,12 +360,13 @@ static void draw_minor_ticks(const im_colormap *c, const layout *l, cairo_t *cr)
 }
 
 /* A triangle beyond one end of the bar (direction -1 up, +1 down) in the under or over colour. */
-static void draw_extension(const layout *l, cairo_t *cr, double base_y, double direction, const uint8_t rgb[3])
+static void draw_extension(const colorbar *b, const layout *l, cairo_t *cr, double base_y, double direction,
+                           const uint8_t rgb[3])
 {
     double triangle = round(1.2 * l->bar_width);
-    cairo_move_to(cr, l->bar_x, base_y);
-    cairo_line_to(cr, l->bar_x + 0.5 * l->bar_width, base_y + direction * triangle);
-    cairo_line_to(cr, l->bar_x + l->bar_width, base_y);
+    cairo_move_to(cr, b->x, base_y);
+    cairo_line_to(cr, b->x + 0.5 * l->bar_width, base_y + direction * triangle);
+    cairo_line_to(cr, b->x + l->bar_width, base_y);
     cairo_close_path(cr);
     cairo_set_source_rgb(cr, rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
     cairo_fill_preserve(cr);
@@ -343,44 +375,44 @@ static void draw_extension(const layout *l, cairo_t *cr, double base_y, double d
     cairo_stroke(cr);
 }
 
-static int draw_colorbar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
+static int draw_colorbar(const colorbar *b, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
     /* The table as a 1 x 256 image, top row = last entry, stretched without interpolation. */
-    const uint8_t(*table)[3] = im_colormap_table(f->colormap->map);
+    const im_colormap *c = b->colormap;
+    const uint8_t(*table)[3] = im_colormap_table(c->map);
     uint8_t column[256][3];
     for (int i = 0; i < 256; ++i)
         memcpy(column[i], table[255 - i], 3);
-    int status = paint_surface(cr, image_surface(&column[0][0], 1, 256, 3, 3), l->bar_x, l->bar_y,
-                               l->bar_width, l->bar_height / 256.0);
+    int status = paint_surface(cr, image_surface(&column[0][0], 1, 256, 3, 3), b->x, b->y, l->bar_width,
+                               b->height / 256.0);
     if (status != IM_OK)
         return status;
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, l->line);
-    cairo_rectangle(cr, l->bar_x, l->bar_y, l->bar_width, l->bar_height);
+    cairo_rectangle(cr, b->x, b->y, l->bar_width, b->height);
     cairo_stroke(cr);
-    if (f->extend_over)
-        draw_extension(l, cr, l->bar_y, -1.0, f->colormap->over);
-    if (f->extend_under)
-        draw_extension(l, cr, l->bar_y + l->bar_height, 1.0, f->colormap->under);
-    const im_colormap *c = f->colormap;
-    double right = l->bar_x + l->bar_width;
-    for (int i = 0; i < l->tick_count; ++i) {
-        double y = tick_position(c, l, l->ticks[i]);
+    if (b->extend_over)
+        draw_extension(b, l, cr, b->y, -1.0, c->over);
+    if (b->extend_under)
+        draw_extension(b, l, cr, b->y + b->height, 1.0, c->under);
+    double right = b->x + l->bar_width;
+    for (int i = 0; i < b->tick_count; ++i) {
+        double y = tick_position(b, b->ticks[i]);
         cairo_move_to(cr, right, y);
         cairo_line_to(cr, right + l->tick_length, y);
         cairo_stroke(cr);
         char text[64];
-        figure_tick_label(c->logarithmic, l->ticks, l->tick_count, i, text, sizeof text);
+        figure_tick_label(c->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
         figure_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
     }
     if (c->logarithmic)
-        draw_minor_ticks(c, l, cr);
-    if (f->colorbar_label) {
+        draw_minor_ticks(b, l, cr);
+    if (b->label) {
         cairo_save(cr);
-        cairo_translate(cr, right + l->tick_length + 0.3 * l->font + l->tick_label_width + 1.2 * l->font,
-                        l->bar_y + 0.5 * l->bar_height);
+        cairo_translate(cr, right + l->tick_length + 0.3 * l->font + b->tick_label_width + 1.2 * l->font,
+                        b->y + 0.5 * b->height);
         cairo_rotate(cr, -M_PI / 2.0);
-        figure_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, f->colorbar_label);
+        figure_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, b->label);
         cairo_restore(cr);
     }
     return IM_OK;
@@ -399,8 +431,8 @@ static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
         draw_scale_bar(f, l, cr, regular);
     if (status == IM_OK && f->note)
         draw_note(f, l, cr, regular);
-    if (status == IM_OK && f->colormap)
-        status = draw_colorbar(f, l, cr, regular);
+    for (int i = 0; i < l->bar_count && status == IM_OK; ++i)
+        status = draw_colorbar(&l->bars[i], l, cr, regular);
     return status;
 }
 
@@ -432,9 +464,10 @@ static int check_figure(const im_figure *f)
         return im_fail(IM_EINVAL, "figure: scale bar %g: expected a finite length", f->scale_bar);
     if (f->png_compression < 0 || f->png_compression > 9)
         return im_fail(IM_EINVAL, "figure: PNG compression %d: expected 0-9", f->png_compression);
-    if (f->colormap)
-        return im_colormap_check(f->colormap);
-    return IM_OK;
+    int status = f->colormap ? im_colormap_check(f->colormap) : IM_OK;
+    if (status == IM_OK && f->tension_colormap && (status = im_colormap_check(f->tension_colormap)) != IM_OK)
+        return im_fail_context(status, "figure: tension colour bar");
+    return status;
 }
 
 /* Checks the figure and lays it out. */

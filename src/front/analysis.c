@@ -132,8 +132,21 @@ static const figure_words LOAD_DISPLACEMENT = {"load_displacement", "loading", "
 static const figure_words FORCE_DISTANCE = {"force_distance", "approach", "retraction", "pull-off",
                                             IM_PLOT_LEGEND_UPPER_LEFT};
 
+/* A figure's axis labels in the run's units and the texts it carries (NULL: none). */
+typedef struct figure_axes {
+    char x_label[64], y_label[64];
+    const run_figure_texts *texts;
+} figure_axes;
+
+static figure_axes axes_of(const char *length_unit, const char *force_unit, const run_figure_texts *texts)
+{
+    figure_axes axes = {.texts = texts};
+    history_axis_labels(length_unit, force_unit, axes.x_label, axes.y_label, sizeof axes.x_label);
+    return axes;
+}
+
 static int draw_figure(const char *dir, const figure_words *words, const segments *up, const segments *down,
-                       const segments *construction, const char *x_label, const char *y_label)
+                       const segments *construction, const figure_axes *axes)
 {
     im_plot_series series[3];
     int n = 0;
@@ -148,9 +161,11 @@ static int draw_figure(const char *dir, const figure_words *words, const segment
         series[n].color[0] = series[n].color[1] = series[n].color[2] = 70; /* dark grey: a construction */
         ++n;
     }
-    im_plot_panel panel = {.x = {.label = x_label}, .y = {.label = y_label}, .series = series, .series_count = n,
-                           .legend = words->legend};
+    im_plot_panel panel = {.x = {.label = axes->x_label}, .y = {.label = axes->y_label}, .series = series,
+                           .series_count = n, .legend = words->legend};
     im_plot plot = im_plot_default();
+    plot.texts = axes->texts ? axes->texts->texts : NULL;
+    plot.text_count = axes->texts ? axes->texts->count : 0;
     plot.panels = &panel;
     plot.panel_width = 220;
     plot.panel_height = 160;
@@ -167,7 +182,7 @@ static int draw_figure(const char *dir, const figure_words *words, const segment
 }
 
 static int write_figure(const char *dir, const im_unloading_branch *b, int found, const im_history_row *rows,
-                        int count, const char *length_unit, const char *force_unit)
+                        int count, const figure_axes *axes)
 {
     segments up = {0}, down = {0}, tangent = {0};
     const size_t room = 3 * (size_t)count + 3;
@@ -178,9 +193,7 @@ static int write_figure(const char *dir, const im_unloading_branch *b, int found
     tangent.x = up.x + 4 * room, tangent.y = up.x + 5 * room;
     split_segments(rows, count, 1, &up, &down);
     tangents(b, found, &tangent);
-    char x_label[64], y_label[64];
-    history_axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
-    int status = draw_figure(dir, &LOAD_DISPLACEMENT, &up, &down, &tangent, x_label, y_label);
+    int status = draw_figure(dir, &LOAD_DISPLACEMENT, &up, &down, &tangent, axes);
     free(up.x);
     return status;
 }
@@ -223,8 +236,10 @@ int analysis_write_table(const char *path, const im_indenter *punch, const im_hi
 }
 
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   double e_star, const char *length_unit, const char *force_unit, int *branches)
+                   double e_star, const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                   int *branches)
 {
+    const figure_axes axes = axes_of(length_unit, force_unit, texts);
     *branches = 0;
     if (count < 2)
         return IM_OK;
@@ -236,7 +251,7 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
     if (status == IM_OK && *branches > 0)
         status = write_branches(path, found, *branches, rows, delta, e_star);
     if (status == IM_OK && *branches > 0)
-        status = write_figure(dir, found, *branches, rows, count, length_unit, force_unit);
+        status = write_figure(dir, found, *branches, rows, count, &axes);
     free(found);
     return status;
 }
@@ -254,13 +269,13 @@ int im_history_write_analysis(const char *dir, const im_indenter *punch, const i
     *branches = 0;
     if (count < 0)
         return im_fail(IM_EINVAL, "im_history_write_analysis: count = %d: expected >= 0", count);
-    return analysis_write(dir, punch, rows, count, delta, e_star, length_unit, force_unit, branches);
+    return analysis_write(dir, punch, rows, count, delta, e_star, length_unit, force_unit, NULL, branches);
 }
 
 /* ---- adhesion: the summary and the force-distance figure ---- */
 
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
-                            const char *force_unit, im_adhesion_summary *summary)
+                            const char *force_unit, const run_figure_texts *texts, im_adhesion_summary *summary)
 {
     if (count < 1)
         return im_fail(IM_EINVAL, "adhesion summary: no step solved");
@@ -288,9 +303,8 @@ int analysis_write_adhesion(const char *dir, const im_history_row *rows, int cou
     }
     if (status == IM_OK) {
         split_segments(rows, count, 0, &up, &down);
-        char x_label[64], y_label[64];
-        history_axis_labels(length_unit, force_unit, x_label, y_label, sizeof x_label);
-        status = draw_figure(dir, &FORCE_DISTANCE, &up, &down, &marker, x_label, y_label);
+        const figure_axes axes = axes_of(length_unit, force_unit, texts);
+        status = draw_figure(dir, &FORCE_DISTANCE, &up, &down, &marker, &axes);
     }
     free(columns);
     free(contact);

@@ -17,16 +17,19 @@ static int read_force(const char *dir, int step, im_field **force)
     return status == IM_OK ? im_npy_read(path, force) : status;
 }
 
-/* The largest force of any step: the top of the frames' one norm. */
-static int largest_force(const fields_frames *f, double *largest)
+/* The largest force and the largest tension of any step: the tops of the frames' one force norm and
+ * one tension norm. */
+static int largest_force(const fields_frames *f, double *largest, double *largest_tension)
 {
-    *largest = 0.0;
+    *largest = *largest_tension = 0.0;
     int status = IM_OK;
     for (int step = 1; step <= f->count && status == IM_OK; ++step) {
         im_field *force = NULL;
         status = read_force(f->dir, step, &force);
         for (size_t i = 0; status == IM_OK && i < im_field_count(force); ++i)
             *largest = fmax(*largest, force->data[i]);
+        if (status == IM_OK)
+            *largest_tension = fmax(*largest_tension, im_contact_largest_tension(force));
         im_field_free(force);
     }
     return status;
@@ -41,8 +44,8 @@ int fields_frames_pixels_per_patch(int nx, int ny)
 
 /* Step's frame: its contact map with the smooth punch's contact circle (none where N* is not finite: a
  * periodic cell, a 2-D profile), titled with N* (else N). */
-static int write_frame(im_render_context *context, const fields_frames *f, const im_colormap *norm,
-                       const char *folder, int step)
+static int write_frame(im_render_context *context, const fields_frames *f, const im_colormap *norms,
+                       int tension_bar, int step)
 {
     const im_step_result *r = &f->rows[step - 1].result;
     im_field *force = NULL;
@@ -52,18 +55,20 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
         return status;
     double axis_x, axis_y;
     im_indenter_axis(f->punch, force->nx, force->ny, force->delta, &axis_x, &axis_y);
-    const frame_contact contact = {force, norm, fields_frames_pixels_per_patch(force->nx, force->ny), sqrt(r->load_star / M_PI), axis_x / force->delta,
-                                   axis_y / force->delta};
-    char title[96], label[96], path[4096];
+    const frame_contact contact = {force, &norms[0], &norms[1], fields_frames_pixels_per_patch(force->nx, force->ny),
+                                   sqrt(r->load_star / M_PI), axis_x / force->delta, axis_y / force->delta};
+    char title[96], label[96], tension_label[96], path[4096];
     if (isfinite(r->load_star))
         snprintf(title, sizeof title, "step %d: N* = %.4g", step, r->load_star);
     else
         snprintf(title, sizeof title, "step %d: N = %.4g %s", step, r->load, f->force_unit);
     snprintf(label, sizeof label, "local force f (%s)", f->force_unit);
-    const frame_words words = {title, norm, label, f->texts, f->text_count};
+    snprintf(tension_label, sizeof tension_label, "tensile force −f (%s)", f->force_unit);
+    const frame_words words = {title, &norms[0], label, tension_bar ? &norms[1] : NULL, tension_label, f->texts,
+                               f->text_count};
     status = frame_contact_render(context, &contact, &image);
     if (status == IM_OK)
-        status = im_frame_path(path, sizeof path, folder, "contact", step - 1);
+        status = im_frame_path(path, sizeof path, f->frames, "contact", step - 1);
     if (status == IM_OK)
         status = frame_figure_write(&image, &words, path, NULL);
     im_image_release(&image);
@@ -73,12 +78,13 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
 
 int fields_frames_write(im_render_context *context, const fields_frames *f)
 {
-    double largest = 0.0;
+    double largest = 0.0, largest_tension = 0.0;
     int status = im_make_directories(f->frames);
     if (status == IM_OK)
-        status = largest_force(f, &largest);
-    const im_colormap norm = frame_force_norm(IM_COLORMAP_MAGMA, 1, largest);
+        status = largest_force(f, &largest, &largest_tension);
+    const im_colormap norms[2] = {frame_force_norm(IM_COLORMAP_MAGMA, 1, largest),
+                                  im_contact_tension_norm(largest_tension)};
     for (int step = 1; step <= f->count && status == IM_OK; ++step)
-        status = write_frame(context, f, &norm, f->frames, step);
+        status = write_frame(context, f, norms, largest_tension > 0.0, step);
     return status;
 }

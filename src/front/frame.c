@@ -5,6 +5,8 @@
 #include "indentmap/figure.h"
 #include "indentmap/status.h"
 
+#include <math.h>
+
 im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest)
 {
     double hi = largest > 0.0 ? largest : 1.0;
@@ -13,10 +15,19 @@ im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest
     return norm;
 }
 
+double frame_largest_tension(im_field *const *fields, int count)
+{
+    double largest = 0.0;
+    for (int i = 0; i < count; ++i)
+        largest = fmax(largest, im_contact_largest_tension(fields[i]));
+    return largest;
+}
+
 int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image)
 {
     im_contact_style style = im_contact_style_default(contact->force);
     style.colormap = *contact->norm;
+    style.tension = *contact->tension;
     style.pixels_per_patch = contact->pixels_per_patch;
     if (contact->circle_radius > 0.0) { /* NaN or 0: no smooth contact to outline */
         style.circle_radius = contact->circle_radius;
@@ -33,6 +44,8 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
     figure.panels = &panel;
     figure.colormap = words->norm;
     figure.colorbar_label = words->colorbar_label;
+    figure.tension_colormap = words->tension;
+    figure.tension_label = words->tension_label;
     figure.dpi = 150;
     figure.extend_under = words->norm->logarithmic;
     figure.texts = words->texts;

@@ -18,6 +18,21 @@
 #include <stdio.h>
 #include <sys/types.h>
 
+/* The texts a run's figures carry as PNG text chunks and PDF metadata: "Software" (the version), the
+ * given texts (what makes the run again: a scene's path and contents, indent's command), and "Inputs",
+ * the record's inputs (run_record_add_input) as sha256sum writes them, one "SHA256  PATH\n" line each
+ * ("none" without). */
+enum { RUN_FIGURE_TEXTS_MAX = 10 };
+typedef struct run_figure_texts {
+    im_png_text texts[RUN_FIGURE_TEXTS_MAX];
+    int count;
+    char *inputs; /* the Inputs text (owned) */
+} run_figure_texts;
+
+/* At most RUN_FIGURE_TEXTS_MAX - 2 given texts (borrowed); IM_ENOMEM. Free with run_figure_texts_free. */
+int run_figure_texts_make(const im_png_text *given, int given_count, const json_t *inputs, run_figure_texts *out);
+void run_figure_texts_free(run_figure_texts *texts);
+
 /* ---- step lists (steps.c) ---- */
 
 /* The most steps of one history. A scene holds its steps inline (im_scene.steps, 32 KiB for
@@ -64,9 +79,11 @@ extern const char ANALYSIS_COLUMNS[];
  * DIR/indentation.csv and DIR/load_displacement.{png,pdf} atomically: the history's N(w), loading and
  * unloading segments in two colours, with each branch's tangent at its top (slope S, to N = 0:
  * Oliver-Pharr's construction), its axes in length_unit and force_unit ("" for delta and
- * E* delta^2). *branches says how many branches (0: nothing written). */
+ * E* delta^2), the figure carrying texts (NULL: none). *branches says how many branches (0: nothing
+ * written). */
 int analysis_write(const char *dir, const im_indenter *punch, const im_history_row *rows, int count, double delta,
-                   double e_star, const char *length_unit, const char *force_unit, int *branches);
+                   double e_star, const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                   int *branches);
 
 /* The same table alone at path (a scene's per-member file), atomically, when rows[0..count) hold an
  * unloading branch; *branches says how many (0: nothing written). */
@@ -75,9 +92,10 @@ int analysis_write_table(const char *path, const im_indenter *punch, const im_hi
 
 /* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
- * pull-off marked. IM_EINVAL for count < 1; a figure that cannot be written leaves the summary set. */
+ * pull-off marked, carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be written
+ * leaves the summary set. */
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
-                            const char *force_unit, im_adhesion_summary *summary);
+                            const char *force_unit, const run_figure_texts *texts, im_adhesion_summary *summary);
 
 /* The smooth adhesive theory of punch under law (theory.h, "Adhesion"; adhesion_theory.c): "Maugis-Dugdale
  * sphere" or "Kendall flat punch" into *model and the pull-off point into *pull_off; NULL *model (IM_OK)
@@ -109,6 +127,7 @@ typedef struct history_figure {
     const im_theory_interface *flat_theory;
     int theory;
     const char *length_unit, *force_unit, *pressure_unit;
+    const run_figure_texts *texts; /* what the figure carries (NULL: none) */
 } history_figure;
 int history_figure_write(const char *dir, const history_figure *h);
 
@@ -129,6 +148,9 @@ im_indenter periodic_rigid_flat(const im_field *surface);
 
 /* Those two rms into *edge_rms and *inner_rms; 1 when the surface is not periodic by that rule. */
 int periodic_edge_mismatch(const im_field *surface, double *edge_rms, double *inner_rms);
+/* The warning on stderr, naming the surface (name), when it is not periodic by that rule: the solver joins its
+ * edges as if they met (as ContactMechanics warns). */
+void periodic_warn_if_not_periodic(const im_field *surface, const char *name);
 
 /* k of eq. (2) fitted to a periodic history under a rigid flat (theory.h: im_theory_fit_k) over its steps
  * with a positive load, x = p_m / (h'rms E*), with the ranges of x and of A/A0 it spans. */
@@ -146,13 +168,16 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
 void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
 extern const char PERIODIC_K_COLUMNS[];
 void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k);
+/* Its block in run.json ("k_fit": k, k_error, rms_residual, points, the ranges, the h'rms and its definition,
+ * k_linear or null); NULL when out of memory. */
+json_t *periodic_k_fit_record(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
 
 /* ---- the files of one solved step (step_files.c): `indent --fields/--distributions` and a periodic
  * scene's contact panels and distributions ---- */
 
 /* The fields of a step, DIR/{force,gap,displacement[,plastic]}_NNNN.npy (NNNN = the step, from 1): the
  * plastic depth only with a hardness. */
-enum { STEP_FIELDS_MAX = 4, STEP_GAP_BINS = 50 };
+enum { STEP_FIELDS_MAX = 4 };
 extern const char *const STEP_FIELD_PREFIXES[STEP_FIELDS_MAX];
 /* How many of them a run writes: all with a hardness (> 0), the first three without. */
 int step_field_count(double hardness);
@@ -172,13 +197,14 @@ typedef struct step_units {
  * pair under the pair-writers lock (io.h). */
 int step_fields_write(const char *dir, im_indentation *run, int step, const step_units *units);
 
-/* Writes the gap (in gap_scale, STEP_GAP_BINS bins) and contact-patch size distributions of the run's last
+/* Writes the gap (in gap_scale, IM_MEASURE_GAP_BINS bins) and contact-patch size distributions of the run's last
  * step: PREFIX_{gaps,patches,patch_list}.csv (measure.h: im_measure_write_distributions). */
 int step_distributions_write(const char *prefix, im_indentation *run, double gap_scale);
 
 /* Contact frames of steps 1..count drawn from DIR/force_NNNN.npy (as step_fields_write wrote them) into
  * FRAMES/contact_MMMM.png (MMMM = step - 1, the viewer's numbering) with one log force norm (magma, two
- * decades) over all of them, the smooth punch's contact circle where N* is finite (none for a periodic
+ * decades) over all of them and, where any step has tension, one tension norm and its bar (frame.c), the
+ * smooth punch's contact circle where N* is finite (none for a periodic
  * cell), titled with the step and N* (else N in force_unit), carrying texts as PNG text chunks. */
 typedef struct fields_frames {
     const char *dir, *frames;
@@ -199,21 +225,30 @@ int fields_frames_pixels_per_patch(int nx, int ny);
  * decades below `largest`. */
 im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest);
 
-/* A step's contact map: its force field through norm at pixels_per_patch, with the smooth contact
- * circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y) in patches. */
+/* The largest tension -f over the fields (im_contact_largest_tension): the top of the tension norm
+ * the frames share, as they share the force norm; 0 when none pulls. */
+double frame_largest_tension(im_field *const *fields, int count);
+
+/* A step's contact map: its force field through norm (tension: through tension) at pixels_per_patch,
+ * with the smooth contact circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y)
+ * in patches. */
 typedef struct frame_contact {
     const im_field *force;
-    const im_colormap *norm;
+    const im_colormap *norm, *tension;
     int pixels_per_patch;
     double circle_radius, circle_x, circle_y;
 } frame_contact;
 int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image);
 
-/* What a frame's figure says: its title (e.g. "N* = 400") and its colour bar's norm and label. */
+/* What a frame's figure says: its title (e.g. "N* = 400") and its colour bar's norm and label, and the
+ * tension's bar beside it (NULL: none; every frame of a history has it where any step has tension, so
+ * that the frames keep one size). */
 typedef struct frame_words {
     const char *title;
     const im_colormap *norm;
     const char *colorbar_label;
+    const im_colormap *tension;
+    const char *tension_label;
     const im_png_text *texts;       /* PNG text chunks (e.g. the scene's contents); NULL: none */
     int text_count;
 } frame_words;
@@ -231,6 +266,12 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
  * force and pressure units ("m²", "N / m", "N m"). run.json's "units" block holds it as "columns", from
  * which the viewer page heads its tables. NULL when out of memory. */
 json_t *column_units_record(const char *length, const char *force, const char *pressure);
+
+/* run.json's "units" block of an indentation history (`indent`; history.h: im_history_units_json): what
+ * the numbers of history.csv and the fields are in, for the surface's length unit ("": units of delta)
+ * and E*'s unit ("": as given), forces in step_force_unit's, with column_units_record as "columns". NULL
+ * when out of memory. */
+json_t *indent_units_record(const char *length_unit, const char *e_star_unit, int periodic);
 
 /* ---- the JSON run record (record.c) ---- */
 
@@ -255,5 +296,25 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path);
 
 /* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
 int run_record_write(const char *dir, const json_t *record);
+
+/* The record's end: "steps_completed", "status" ("ok" or the status's name) and "error" (the message of
+ * a failed run, "" else), then run_record_write. */
+int run_record_finish(const char *dir, json_t *record, int steps_done, int status);
+
+/* ---- a run made again from its record (`run --from-record`, `indent --from-record`) ---- */
+
+/* Reads the record file into *root (the caller's reference): IM_EFORMAT naming the file (and the line)
+ * when it is not JSON. */
+int run_record_load(const char *record, json_t **root);
+
+/* The record root (read from the file `record`) is one of `program` ("indentmap run", "indentmap
+ * indent"; `kind` names it in the message) and of this version (another may solve differently in the
+ * last bits): IM_EFORMAT for another program, IM_EINVAL for another version, each naming the file. */
+int run_record_check_origin(const char *record, const json_t *root, const char *program, const char *kind);
+
+/* The input `path` (under `key`) still has the SHA-256 `recorded` (hex) that `record` states:
+ * IM_EINVAL naming the file and both checksums when it has changed, the read's error when it cannot be
+ * read. */
+int run_record_check_input(const char *record, const char *key, const char *path, const char *recorded);
 
 #endif

@@ -118,7 +118,7 @@ static int choose_plot(const history_figure *h, history_plot *p)
     return IM_OK;
 }
 
-static int draw(const char *dir, const history_plot *p)
+static int draw(const char *dir, const history_plot *p, const run_figure_texts *texts)
 {
     im_plot_series series[3] = {{.x = p->x, .y = p->y, .n = p->points, .line_width = 1.0,
                                  .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 3.5, .label = "this run"}};
@@ -136,6 +136,8 @@ static int draw(const char *dir, const history_plot *p)
     plot.panels = &panel;
     plot.panel_width = 220;
     plot.panel_height = 160;
+    plot.texts = texts ? texts->texts : NULL;
+    plot.text_count = texts ? texts->count : 0;
     static const char *const NAMES[2] = {"history.png", "history.pdf"};
     int status = IM_OK;
     for (int k = 0; k < 2 && status == IM_OK; ++k) {
@@ -158,7 +160,7 @@ int history_figure_write(const char *dir, const history_figure *h)
     p.y = p.x + room, p.theory_x = p.x + 2 * room, p.theory[0] = p.x + 3 * room, p.theory[1] = p.x + 4 * room;
     int status = choose_plot(h, &p);
     if (status == IM_OK)
-        status = draw(dir, &p);
+        status = draw(dir, &p, h->texts);
     free(p.x);
     return status;
 }

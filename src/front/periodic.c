@@ -43,6 +43,16 @@ int periodic_edge_mismatch(const im_field *s, double *edge_rms, double *inner_rm
     return *edge_rms > PERIODIC_EDGE_RATIO * *inner_rms;
 }
 
+void periodic_warn_if_not_periodic(const im_field *surface, const char *name)
+{
+    double edge, inner;
+    if (periodic_edge_mismatch(surface, &edge, &inner))
+        fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
+                "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
+                "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
+                name, edge, edge / inner, inner);
+}
+
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
                    periodic_k_fit *out)
 {
@@ -89,4 +99,17 @@ void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k)
     fprintf(stream, "%d,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", k->points, k->fit.k, k->fit.k_error,
             k->fit.rms_residual, k->fit.k_linear, k->fit.linear_points, k->pressure_ratio[0], k->pressure_ratio[1],
             k->area_fraction[0], k->area_fraction[1]);
+}
+
+json_t *periodic_k_fit_record(const periodic_k_fit *k, double slope_rms, const char *slope_definition)
+{
+    const im_theory_k_fit *fit = &k->fit;
+    json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
+                              fit->k_error, "rms_residual", fit->rms_residual, "points", k->points, "linear_points",
+                              fit->linear_points, "pressure_ratio_range", k->pressure_ratio[0], k->pressure_ratio[1],
+                              "area_fraction_range", k->area_fraction[0], k->area_fraction[1], "slope_rms",
+                              slope_rms, "slope_rms_definition", slope_definition);
+    if (block)
+        json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
+    return block;
 }

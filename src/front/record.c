@@ -8,6 +8,9 @@
 #include "indentmap/status.h"
 
 #include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 /* The solver options a run was made with. The accelerations of issue 15 are on unless switched
  * off, and off with a hardness (solver.h). */
@@ -58,4 +61,86 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path)
     return json_array_append_new(inputs, json_pack("{s:s, s:s, s:s}", "key", key, "path", text, "sha256", hex)) == 0
                ? IM_OK
                : im_fail(IM_ENOMEM, "run.json: out of memory");
+}
+
+int run_record_finish(const char *dir, json_t *record, int steps_done, int status)
+{
+    json_object_set_new(record, "steps_completed", json_integer(steps_done));
+    json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
+    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
+    im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
+    json_object_set_new(record, "error", json_string(error));
+    return run_record_write(dir, record);
+}
+
+int run_record_load(const char *record, json_t **root)
+{
+    json_error_t error;
+    *root = json_load_file(record, JSON_REJECT_DUPLICATES, &error);
+    if (!*root && error.line > 0)
+        return im_fail(IM_EFORMAT, "%s:%d: %s: expected a run record (run.json)", record, error.line, error.text);
+    if (!*root)
+        return im_fail(IM_EFORMAT, "%s: %s: expected a run record (run.json)", record, error.text);
+    return IM_OK;
+}
+
+int run_record_check_origin(const char *record, const json_t *root, const char *program, const char *kind)
+{
+    const char *recorded = json_string_value(json_object_get(root, "program"));
+    const char *version = json_string_value(json_object_get(root, "version"));
+    if (!recorded || strcmp(recorded, program) != 0)
+        return im_fail(IM_EFORMAT, "%s: program '%s': expected the record of %s ('%s')", record,
+                       recorded ? recorded : "(none)", kind, program);
+    if (!version || strcmp(version, IM_VERSION) != 0)
+        return im_fail(IM_EINVAL, "%s: made by indentmap %s, this is %s: another version may solve differently in the "
+                       "last bits; run it with indentmap %s", record, version ? version : "(none)", IM_VERSION,
+                       version ? version : "(the record's)");
+    return IM_OK;
+}
+
+int run_record_check_input(const char *record, const char *key, const char *path, const char *recorded)
+{
+    char hex[IM_SHA256_HEX + 1];
+    int status = im_file_sha256(path, hex);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s: the recorded input", record);
+    if (strcmp(hex, recorded) != 0)
+        return im_fail(IM_EINVAL, "%s: %s has changed since the run: its SHA-256 is %s, the record %s says %s", path,
+                       key, hex, record, recorded);
+    return IM_OK;
+}
+
+/* The inputs as sha256sum lines, "none" without. */
+static char *inputs_text(const json_t *inputs)
+{
+    size_t size = sizeof "none", used = 0, i;
+    json_t *input;
+    json_array_foreach(inputs, i, input)
+        size += strlen(json_string_value(json_object_get(input, "path"))) + IM_SHA256_HEX + 3;
+    char *text = malloc(size);
+    if (!text)
+        return NULL;
+    snprintf(text, size, "none");
+    json_array_foreach(inputs, i, input)
+        used += (size_t)snprintf(text + used, size - used, "%s  %s\n", json_string_value(json_object_get(input,
+                                 "sha256")), json_string_value(json_object_get(input, "path")));
+    return text;
+}
+
+int run_figure_texts_make(const im_png_text *given, int given_count, const json_t *inputs, run_figure_texts *out)
+{
+    *out = (run_figure_texts){.inputs = inputs_text(inputs)};
+    if (!out->inputs)
+        return im_fail(IM_ENOMEM, "figure texts: out of memory");
+    out->texts[out->count++] = (im_png_text){"Software", "indentmap " IM_VERSION};
+    for (int i = 0; i < given_count && out->count < RUN_FIGURE_TEXTS_MAX - 1; ++i)
+        out->texts[out->count++] = given[i];
+    out->texts[out->count++] = (im_png_text){"Inputs", out->inputs};
+    return IM_OK;
+}
+
+void run_figure_texts_free(run_figure_texts *texts)
+{
+    free(texts->inputs);
+    texts->inputs = NULL;
 }

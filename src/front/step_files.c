@@ -63,7 +63,7 @@ int step_distributions_write(const char *prefix, im_indentation *run, double gap
     im_field *force = NULL, *gap = NULL;
     int status = im_indentation_fields_full(run, &force, &gap, NULL);
     if (status == IM_OK)
-        status = im_measure_write_distributions(force, gap, gap_scale, STEP_GAP_BINS, prefix);
+        status = im_measure_write_distributions(force, gap, gap_scale, IM_MEASURE_GAP_BINS, prefix);
     im_field_free(force);
     im_field_free(gap);
     return status;

@@ -2,6 +2,12 @@
  * for run.json (front.h). */
 #include "front/front.h"
 
+#include "indentmap/history.h"
+#include "indentmap/status.h"
+
+#include <stdlib.h>
+#include <string.h>
+
 #include <stdio.h>
 
 /* What each column is, in the run's base units. */
@@ -55,4 +61,41 @@ json_t *column_units_record(const char *length, const char *force, const char *p
             return NULL;
         }
     return columns;
+}
+
+json_t *indent_units_record(const char *length_unit, const char *e_star_unit, int periodic)
+{
+    char force[40], stiffness[64], work[64];
+    step_force_unit(e_star_unit, length_unit, force, sizeof force);
+    const char *length = length_unit[0] ? length_unit : "delta";
+    const char *stress = e_star_unit[0] ? e_star_unit : "the unit of --e-star";
+    snprintf(stiffness, sizeof stiffness, "(%s) / %s", force, length);
+    snprintf(work, sizeof work, "(%s) %s", force, length);
+    const char *pressure = e_star_unit[0] ? e_star_unit : "E*";
+    return json_pack("{s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:s, s:o*}", "length", length, "approach", length,
+                     "e_star", e_star_unit[0] ? e_star_unit : "as given (--e-star)", "pressure", stress,
+                     "stiffness", stiffness, "work", work, "load", force, "force", force, "load_star",
+                     periodic ? "none (nan): periodic" : "contact area A(N) / delta^2 (dimensionless)",
+                     "area_ratio", periodic ? "A / A0 of the cell" : "n_p delta^2 / A(N)", "columns",
+                     column_units_record(length_unit[0] ? length_unit : "δ", force, pressure));
+}
+
+int im_history_units_json(const char *length_unit, const char *e_star_unit, int periodic, char *text, size_t size)
+{
+    if (!length_unit || !e_star_unit || !text)
+        return im_fail(IM_EINVAL, "im_history_units_json: %s is NULL",
+                       !length_unit ? "length_unit" : !e_star_unit ? "e_star_unit" : "text");
+    json_t *record = indent_units_record(length_unit, e_star_unit, periodic);
+    char *json = record ? json_dumps(record, JSON_SORT_KEYS) : NULL;
+    json_decref(record);
+    if (!json)
+        return im_fail(IM_ENOMEM, "im_history_units_json: out of memory");
+    const size_t length = strlen(json);
+    int status = length < size ? IM_OK
+                               : im_fail(IM_EINVAL, "im_history_units_json: the text needs %zu bytes, size is %zu",
+                                         length + 1, size);
+    if (status == IM_OK)
+        memcpy(text, json, length + 1);
+    free(json);
+    return status;
 }

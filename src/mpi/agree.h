@@ -18,11 +18,16 @@ int mpi_collective_status(MPI_Comm comm, int status);
  * cannot read fails every rank with that rank's message, as mpi_collective_status. Collective. */
 int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file);
 
-/* Whether every rank of comm reads the same bytes (SHA-256) from each file the scene names, its
- * surface files and profile (run.json's inputs): the same path may name other files on other nodes.
- * IM_OK, or IM_EINVAL on every rank naming the first file that differs, its key and the ranks that
- * read other bytes from it (or the ranks whose scene names another number of files); a file that
- * some rank cannot read fails every rank with that rank's message. Collective. */
+/* Whether every rank of comm reads the same bytes (SHA-256) from each of the count files paths: the
+ * same path may name other files on other nodes. keys[i] names what gave paths[i] in messages (a
+ * scene key, a command's option; NULL: nothing). IM_OK, or IM_EINVAL on every rank naming the first
+ * file that differs, its key and the ranks that read other bytes from it (or, source being what names
+ * the files, "the scene", the ranks whose source names another number of files); a file that some
+ * rank cannot read fails every rank with that rank's message. Collective. */
+int mpi_same_files(MPI_Comm comm, const char *source, int count, const char *const *paths, const char *const *keys);
+
+/* mpi_same_files over each file the scene names, its surface files and profile (run.json's inputs),
+ * each named with its scene key. Collective. */
 int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene);
 
 #endif

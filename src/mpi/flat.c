@@ -1,5 +1,6 @@
 /* Nominally flat contact of a periodic cell over ranks: solver/flat.h's cell on a periodic
- * distributed solver, each rank holding its rows. */
+ * distributed solver, each rank holding its rows; and its history steps with plastic memory, as
+ * im_indentation_step takes them on a periodic cell under a rigid flat (indentation.c). */
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
 #include "solver/flat.h"
@@ -11,7 +12,10 @@
 
 struct im_mpi_flat_contact {
     im_mpi_solver *solver; /* the caller's */
-    flat_cell cell;
+    flat_cell cell;        /* its gap0 includes the plastic depth */
+    double *plastic;       /* this rank's rows: the plastic depth accumulated over the steps */
+    double *terms;         /* this rank's rows: the per-patch terms of an ordered sum */
+    double plastic_work;   /* H_p delta^2 times the sum of the depth increments */
 };
 
 static int solve_over_ranks(void *solver, const double *gap0, enum im_control control, double target,
@@ -44,6 +48,8 @@ void im_mpi_flat_contact_free(im_mpi_flat_contact *run)
     if (!run)
         return;
     flat_cell_free(&run->cell);
+    free(run->plastic);
+    free(run->terms);
     free(run);
 }
 
@@ -58,7 +64,8 @@ int im_mpi_flat_contact_create(im_mpi_solver *s, const double *heights, im_mpi_f
                        "with periodic = 1 (a periodic cell)");
     im_mpi_flat_contact *run = calloc(1, sizeof *run);
     const size_t n = (size_t)s->rows * s->nx;
-    int status = run && flat_cell_allocate(&run->cell, n) == IM_OK
+    int status = run && flat_cell_allocate(&run->cell, n) == IM_OK &&
+                         (run->plastic = calloc(n + 1, sizeof(double))) && (run->terms = malloc(sizeof(double) * (n + 1)))
                      ? IM_OK
                      : im_fail(IM_ENOMEM, "distributed flat contact %d x %d: rank %d's rows", s->nx, s->ny, s->rank);
     double highest;
@@ -98,4 +105,125 @@ const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run)
 {
     ARG_REQUIRE_OR(run, "run", NULL);
     return run->cell.pressure;
+}
+
+int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap)
+{
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(gap, "gap");
+    const flat_cell *c = &run->cell;
+    const size_t n = (size_t)run->solver->rows * run->solver->nx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        gap[i] = c->gap0[i] - c->approach + c->displacement[i];
+    return IM_OK;
+}
+
+/* The sum over the cell of run->terms, in row order: the same bits for any rank count. */
+static double ordered_sum(const im_mpi_flat_contact *run)
+{
+    const im_mpi_solver *s = run->solver;
+    return mpi_surface_mean(s, run->terms) * ((double)s->nx * s->ny);
+}
+
+/* Plastic memory (indentation.c: accumulate_plastic_flow): the overlap of every patch at the cap is
+ * added to its plastic depth and its undeformed gap; returns the patches at the cap. */
+static long plastic_flow(im_mpi_flat_contact *run)
+{
+    flat_cell *c = &run->cell;
+    const double cap = run->solver->plan.options.hardness;
+    const size_t n = (size_t)run->solver->rows * run->solver->nx;
+    long yielding = 0;
+#pragma omp parallel for schedule(static) reduction(+ : yielding)
+    for (size_t i = 0; i < n; ++i) {
+        const double flow = c->pressure[i] >= cap ? -(c->gap0[i] - c->approach + c->displacement[i]) : 0.0;
+        yielding += c->pressure[i] >= cap;
+        run->terms[i] = flow > 0 ? flow : 0.0;
+        run->plastic[i] += run->terms[i];
+        c->gap0[i] += run->terms[i];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &yielding, 1, MPI_LONG, MPI_SUM, run->solver->comm);
+    const double d = run->solver->delta;
+    run->plastic_work += cap * d * d * ordered_sum(run);
+    c->mean_gap0 = mpi_surface_mean(run->solver, c->gap0);
+    return yielding;
+}
+
+/* The largest plastic depth and the least undeformed gap over the cell (where the flat, withdrawn, touches). */
+static void plastic_extremes(const im_mpi_flat_contact *run, double *deepest, double *touch)
+{
+    const size_t n = (size_t)run->solver->rows * run->solver->nx;
+    double extremes[2] = {0, INFINITY};
+    for (size_t i = 0; i < n; ++i) {
+        extremes[0] = fmax(extremes[0], run->plastic[i]);
+        extremes[1] = fmin(extremes[1], run->cell.gap0[i]);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &extremes[0], 1, MPI_DOUBLE, MPI_MAX, run->solver->comm);
+    MPI_Allreduce(MPI_IN_PLACE, &extremes[1], 1, MPI_DOUBLE, MPI_MIN, run->solver->comm);
+    *deepest = extremes[0];
+    *touch = extremes[1];
+}
+
+/* Persson's u-bar: the mean over the cell of max(g0 - w + u, 0). */
+static double mean_open_gap(im_mpi_flat_contact *run)
+{
+    const flat_cell *c = &run->cell;
+    const size_t n = (size_t)run->solver->rows * run->solver->nx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        run->terms[i] = fmax(c->gap0[i] - c->approach + c->displacement[i], 0.0);
+    return mpi_surface_mean(run->solver, run->terms);
+}
+
+/* IM_EINVAL or IM_EUNSUPPORTED, as im_indentation_step, for a target this cell's steps do not take. */
+static int check_step(const im_mpi_flat_contact *run, enum im_control control, double target)
+{
+    const im_mpi_solver *s = run->solver;
+    const double cap = s->plan.options.hardness;
+    if (control != IM_CONTROL_LOAD && control != IM_CONTROL_MEAN_GAP)
+        return im_fail(IM_EINVAL, "periodic step: control %d: expected IM_CONTROL_LOAD or IM_CONTROL_MEAN_GAP",
+                       (int)control);
+    if (!(isfinite(target) && (control == IM_CONTROL_LOAD ? target >= 0 : target > 0)))
+        return im_fail(IM_EINVAL, "%s = %g: expected a finite value %s", control == IM_CONTROL_LOAD ? "load" : "mean gap",
+                       target, control == IM_CONTROL_LOAD ? ">= 0" : "> 0 (at 0 the cell is in full contact)");
+    if (control == IM_CONTROL_MEAN_GAP && cap > 0)
+        return im_fail(IM_EUNSUPPORTED, "mean gap %g with a hardness: the approach of a yielding cell's mean gap is "
+                       "searched (im_indentation_step), which the distributed cell does not do; give mean "
+                       "pressures (load control)", target);
+    const double capacity = cap * s->nx * s->ny * s->delta * s->delta;
+    if (cap > 0 && target >= capacity)
+        return im_fail(IM_EINVAL, "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
+                       "load every patch would have yielded: full contact, no approach to find)", target, cap,
+                       capacity);
+    return IM_OK;
+}
+
+int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out)
+{
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(out, "out");
+    int status = check_step(run, control, target);
+    if (status != IM_OK)
+        return status;
+    flat_cell *c = &run->cell;
+    im_solve_result solve = {0};
+    /* mean u = 0: the approach mean g0 - target gives the mean gap; above mean g0 the flat is clear */
+    const double w = control == IM_CONTROL_MEAN_GAP ? c->mean_gap0 - target : target;
+    status = c->solve(c->solver, c->gap0, control == IM_CONTROL_MEAN_GAP ? IM_CONTROL_DISPLACEMENT : IM_CONTROL_LOAD,
+                      control == IM_CONTROL_MEAN_GAP ? fmax(w, 0.0) : target, c->pressure, c->displacement, &solve);
+    double deepest;
+    if (control == IM_CONTROL_MEAN_GAP)
+        solve.approach = w;
+    else if (status == IM_OK && target == 0) /* N = 0 holds at any approach up to where the flat touches */
+        plastic_extremes(run, &deepest, &solve.approach);
+    c->approach = solve.approach;
+    const im_mpi_solver *s = run->solver;
+    long yielding = status == IM_OK && s->plan.options.hardness > 0 ? plastic_flow(run) : 0;
+    const double d2 = s->delta * s->delta;
+    step_result_from_solve(&solve, (double)s->nx * s->ny * d2, d2, 1, out);
+    out->plastic_work = run->plastic_work;
+    out->mean_gap = mean_open_gap(run);
+    plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
+    out->yielding_patches = yielding;
+    return status;
 }

@@ -179,26 +179,21 @@ int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file)
 
 enum { DIGEST = IM_SHA256_HEX + 1 };
 
-/* The SHA-256 of each file the scene names, as text ended by '\0', one after another in *digests
- * (caller frees); their count in *count. */
-static int input_digests(const im_scene *scene, char **digests, int *count)
+/* The SHA-256 of each of the count files, as text ended by '\0', one after another in *digests
+ * (caller frees). */
+static int input_digests(int count, const char *const *paths, char **digests)
 {
-    const char *key;
-    char path[IM_SCENE_PATH];
-    for (*count = 0; scene_input(scene, *count, 0, &key, path, sizeof path);)
-        ++*count;
-    *digests = malloc((size_t)*count * DIGEST + 1);
-    int status = *digests ? IM_OK : im_fail(IM_ENOMEM, "the SHA-256 of %d input files", *count);
-    for (int i = 0; status == IM_OK && i < *count; ++i) {
-        scene_input(scene, i, 0, &key, path, sizeof path);
-        status = im_file_sha256(path, *digests + (size_t)i * DIGEST);
-    }
+    *digests = malloc((size_t)count * DIGEST + 1);
+    int status = *digests ? IM_OK : im_fail(IM_ENOMEM, "the SHA-256 of %d input files", count);
+    for (int i = 0; status == IM_OK && i < count; ++i)
+        status = im_file_sha256(paths[i], *digests + (size_t)i * DIGEST);
     return status;
 }
 
 /* The first input whose digest differs between rank 0 and another rank (all: every rank's count
- * digests, rank after rank), named with the ranks that differ; IM_OK when none does. */
-static int first_differing_input(const im_scene *scene, const char *all, int count, int ranks)
+ * digests, rank after rank), named with its key and the ranks that differ; IM_OK when none does. */
+static int first_differing_input(int count, const char *const *paths, const char *const *keys, const char *all,
+                                 int ranks)
 {
     for (int i = 0; i < count; ++i) {
         char list[128] = "";
@@ -206,16 +201,14 @@ static int first_differing_input(const im_scene *scene, const char *all, int cou
         for (int r = 1; r < ranks; ++r)
             if (strcmp(all + ((size_t)r * count + i) * DIGEST, all + (size_t)i * DIGEST) != 0)
                 list_rank(list, sizeof list, ++differing, r);
-        const char *key;
-        char path[IM_SCENE_PATH];
-        if (differing > 0 && scene_input(scene, i, 0, &key, path, sizeof path))
-            return other_bytes(path, key, list, differing);
+        if (differing > 0)
+            return other_bytes(paths[i], keys[i], list, differing);
     }
     return IM_OK;
 }
 
-/* IM_EINVAL naming the ranks whose scene names another number of input files than rank 0's. */
-static int counts_differ(const int *counts, int ranks)
+/* IM_EINVAL naming the ranks whose source names another number of input files than rank 0's. */
+static int counts_differ(const char *source, const int *counts, int ranks)
 {
     char list[128] = "";
     int differing = 0, first = 0;
@@ -226,31 +219,53 @@ static int counts_differ(const int *counts, int ranks)
         }
     if (differing == 0)
         return IM_OK;
-    return im_fail(IM_EINVAL, "the scene names %d input files on rank %d, %d on rank 0 (rank%s %s differ%s): every "
-                   "rank must read the same files", counts[first], first, counts[0], differing > 1 ? "s" : "", list,
-                   differing > 1 ? "" : "s");
+    return im_fail(IM_EINVAL, "%s names %d input files on rank %d, %d on rank 0 (rank%s %s differ%s): every "
+                   "rank must read the same files", source, counts[first], first, counts[0], differing > 1 ? "s" : "",
+                   list, differing > 1 ? "" : "s");
 }
 
-int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene)
+int mpi_same_files(MPI_Comm comm, const char *source, int count, const char *const *paths, const char *const *keys)
 {
-    int ranks, count = 0;
+    int ranks;
     MPI_Comm_size(comm, &ranks);
     char *digests = NULL, *all = NULL;
     int *counts = malloc(sizeof *counts * (size_t)ranks);
-    int status = counts ? input_digests(scene, &digests, &count) : im_fail(IM_ENOMEM, "the ranks' input counts");
+    int status = counts ? input_digests(count, paths, &digests) : im_fail(IM_ENOMEM, "the ranks' input counts");
     if ((status = mpi_collective_status(comm, status)) == IM_OK) {
         MPI_Allgather(&count, 1, MPI_INT, counts, 1, MPI_INT, comm);
-        status = counts_differ(counts, ranks);
+        status = counts_differ(source, counts, ranks);
     }
     if (status == IM_OK && count > 0) {
         all = malloc((size_t)ranks * count * DIGEST);
         if ((status = mpi_collective_status(comm, all ? IM_OK : im_fail(IM_ENOMEM, "the ranks' SHA-256"))) == IM_OK)
             MPI_Allgather(digests, count * DIGEST, MPI_CHAR, all, count * DIGEST, MPI_CHAR, comm);
         if (status == IM_OK)
-            status = first_differing_input(scene, all, count, ranks);
+            status = first_differing_input(count, paths, keys, all, ranks);
     }
     free(all);
     free(digests);
     free(counts);
+    return status;
+}
+
+int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene)
+{
+    int count = 0;
+    const char *key;
+    char path[IM_SCENE_PATH];
+    while (scene_input(scene, count, 0, &key, path, sizeof path))
+        ++count;
+    char *copies = malloc((size_t)count * IM_SCENE_PATH + 1);
+    const char **paths = malloc(sizeof *paths * (size_t)(count + 1)), **keys = malloc(sizeof *keys * (size_t)(count + 1));
+    int status = copies && paths && keys ? IM_OK : im_fail(IM_ENOMEM, "the paths of %d input files", count);
+    for (int i = 0; status == IM_OK && i < count; ++i) {
+        paths[i] = copies + (size_t)i * IM_SCENE_PATH;
+        scene_input(scene, i, 0, &keys[i], copies + (size_t)i * IM_SCENE_PATH, IM_SCENE_PATH);
+    }
+    if ((status = mpi_collective_status(comm, status)) == IM_OK)
+        status = mpi_same_files(comm, "the scene", count, paths, keys);
+    free(copies);
+    free(paths);
+    free(keys);
     return status;
 }

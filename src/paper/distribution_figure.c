@@ -52,7 +52,7 @@ static int distribution_series(const paper_distribution_family *families, int co
 }
 
 int paper_figure_distributions(const paper_distribution_family *families, int count, const char *source,
-                               const char *path)
+                               const paper_file *file)
 {
     int status = check_families(families, count, source);
     if (status != IM_OK)
@@ -71,7 +71,7 @@ int paper_figure_distributions(const paper_distribution_family *families, int co
     im_plot plot = im_plot_default();
     plot.columns = rough > 0 ? 2 : 1; /* without a rough family, (b) alone */
     plot.panels = rough > 0 ? panels : panels + 1;
-    status = im_plot_write(&plot, path);
+    status = paper_plot_write(&plot, file);
     free(series);
     return status;
 }

@@ -2,7 +2,8 @@
  * scene measured, or what a test makes up) and one path, lays the figure out with plot/ (line
  * plots) or figure/ (contact maps) and writes it: PNG, PDF or SVG by the path's extension,
  * atomically (nothing is left at the path on an error). Builders know nothing of scenes; scene/
- * gathers the data and calls them once per file (NAME.png, NAME.pdf).
+ * gathers the data and calls them once per file (NAME.png, NAME.pdf), each a paper_file: its path and
+ * what it carries beside the drawing (the run's provenance as PNG text chunks and PDF metadata).
  *
  * Builders are re-entrant: they keep nothing between calls (their working memory is allocated per
  * call), so two threads may build figures at once.
@@ -22,12 +23,28 @@
 
 #include "indentmap/colormap.h"
 #include "indentmap/field.h"
+#include "indentmap/io.h"
+#include "indentmap/plot.h"
 #include "indentmap/render.h"
 
 #include <stdio.h>
 
 /* At most this many panels in a figure, and this many surfaces drawn per panel (the first ones). */
 enum { PAPER_MAX_PANELS = 64, PAPER_MAX_SURFACE_LINES = 64 };
+/* At most this many texts in a file, the builder's own among them. */
+enum { PAPER_MAX_TEXTS = 16 };
+
+/* Where a builder writes, and the texts the file carries (NULL: none). */
+typedef struct paper_file {
+    const char *path;
+    const im_png_text *texts;
+    int text_count;
+} paper_file;
+
+/* Writes plot to the file, with its texts. */
+int paper_plot_write(im_plot *plot, const paper_file *file);
+/* The default plot settings with the file's texts: the style of plot.h's figure builders. */
+im_plot paper_file_style(const paper_file *file);
 
 /* Columns of a grid of count panels: three when they fill whole rows (Fig. 4's 2 x 3), else two,
  * else a single row. */
@@ -61,12 +78,12 @@ typedef struct paper_histories {
 /* Fig. 5 (load = 0: A / delta^2) or Fig. 6 (load = 1: N / (E* delta^2)) against w, a panel per
  * family: every surface thin, the smooth cone's closed form (Love) thick, and for Fig. 5 eq. (12)
  * dashed on rough families. */
-int paper_figure_against_approach(const paper_histories *h, int load, const char *path);
+int paper_figure_against_approach(const paper_histories *h, int load, const paper_file *file);
 
 /* Fig. 7: A / A_cone against N* for each rough family: the mean over its surfaces (solid) and
  * +- one standard deviation (dotted), on the N* range every surface reached. IM_EINVAL when no
  * rough family's surfaces share a range. */
-int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path);
+int paper_figure_area_ratio_against_load(const paper_histories *h, const paper_file *file);
 /* The numbers Fig. 7 plots, as CSV on out: a header, then per rough family and N* point the slope,
  * N*, the mean and standard deviation of A / A_cone, the surfaces averaged and eq. (12)'s ratio
  * (nan where the family has none). Same errors as the figure, and nothing written on any. */
@@ -92,30 +109,29 @@ typedef struct paper_sphere_family {
  * family (count >= 1): every surface thin from its first resolved step (below), eq. (3) thick and
  * the gamma integral dashed in a second colour on top of it (the two nearly coincide). */
 int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_family *families, int count,
-                                const char *path);
+                                const paper_file *file);
 
 /* ---- contact maps (map_figures.c) ---- */
 
 /* The key of the text chunk (PNG) and metadata entry (PDF) holding a scene's contents as parsed
- * (im_scene.contents), beside its "Software" and "Source" or "Scene" (the path). */
+ * (im_scene.contents), beside its "Software" and "Source" (the path). */
 #define PAPER_SCENE_CONTENTS "Scene contents"
 
 /* Fig. 4: the rendered contact maps of count families (1 to PAPER_MAX_PANELS) in a grid, labelled
  * (a), (b), ... and titled, with one colour bar of the shared norm (extended below it when
- * extend_under) and the load N* stated under the panels. The PNG's texts name the software,
- * `source` and the load N*, and hold `contents` (the scene as parsed, under PAPER_SCENE_CONTENTS)
- * unless it is NULL or "". */
+ * extend_under) and the load N* stated under the panels. The file carries its texts and the load
+ * ("Load": "N* = ..."); `source` is named in error messages. */
 typedef struct paper_contact_panels {
     int count;
     const im_image *images;     /* count maps (borrowed) */
     const char *const *titles;  /* count titles */
     const im_colormap *norm;
+    const im_colormap *tension; /* the tension's norm and bar; NULL: none (no map has tension) */
     int extend_under;
     const char *source;
-    const char *contents;
     double load_star;
 } paper_contact_panels;
-int paper_figure_contact_panels(const paper_contact_panels *in, const char *path);
+int paper_figure_contact_panels(const paper_contact_panels *in, const paper_file *file);
 
 /* The local contact density seen directly: the contact fraction of each map averaged over rings
  * of width 0.05 a around the punch axis, out to 1.3 a, beside gamma(r/a) of eq. (10) for a cone. */
@@ -126,7 +142,8 @@ typedef struct paper_density_map {
     double slope;               /* h'rms (> 0), for gamma and the title */
     double load_star;           /* N* of the map, stated in its title */
 } paper_density_map;
-int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count, const char *path);
+int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count,
+                                 const paper_file *file);
 
 /* ---- eq. (2)'s k (flat_k_figure.c) ---- */
 
@@ -139,7 +156,7 @@ typedef struct paper_flat_family {
 } paper_flat_family;
 
 /* A panel per family: the points, erf with the fitted k and erf with k = 2, over x in [0, x_max]. */
-int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const char *path);
+int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const paper_file *file);
 
 /* ---- Fig. 2 over a sweep (sweep_figure.c) ---- */
 
@@ -164,7 +181,7 @@ int paper_area_ratio_curves(double lo, double hi, int points, double *rho, doubl
  * points: eq. (12) solid and eq. (6) dotted in black, and each group (0 to PAPER_MAX_SWEEP_GROUPS)
  * as markers with error bars of its own colour and shape. IM_EINVAL (naming `source`) for too
  * many groups, a group without arrays or a rho_c that is not positive and finite. */
-int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *source, const char *path);
+int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *source, const paper_file *file);
 
 /* ---- gap and contact-patch size distributions (distribution_figure.c) ---- */
 
@@ -185,6 +202,6 @@ typedef struct paper_distribution_family {
  * is rough. IM_EINVAL (naming `source`) for count outside 1 to PAPER_MAX_PANELS or a family
  * without its arrays. */
 int paper_figure_distributions(const paper_distribution_family *families, int count, const char *source,
-                               const char *path);
+                               const paper_file *file);
 
 #endif

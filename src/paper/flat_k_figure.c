@@ -35,7 +35,7 @@ static void flat_k_panel(const paper_flat_family *f, flat_k_figure *d, int i)
                                    .series_count = 3, .title = d->titles[i], .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
 }
 
-int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const char *path)
+int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const paper_file *file)
 {
     if (count < 1 || count > PAPER_MAX_PANELS)
         return im_fail(IM_EINVAL, "flat_k: %d families: expected 1 to %d", count, PAPER_MAX_PANELS);
@@ -52,7 +52,7 @@ int paper_figure_flat_k(const paper_flat_family *families, int count, double x_m
     plot.columns = paper_panel_columns(count);
     plot.rows = count / plot.columns;
     plot.panels = d->panels;
-    int status = im_plot_write(&plot, path);
+    int status = paper_plot_write(&plot, file);
     free(d);
     return status;
 }

@@ -23,13 +23,28 @@ int paper_panel_columns(int count)
     return count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
 }
 
-static int write_grid(const im_plot_panel *panels, int count, const char *path)
+im_plot paper_file_style(const paper_file *file)
+{
+    im_plot style = im_plot_default();
+    style.texts = file->texts;
+    style.text_count = file->text_count;
+    return style;
+}
+
+int paper_plot_write(im_plot *plot, const paper_file *file)
+{
+    plot->texts = file->texts;
+    plot->text_count = file->text_count;
+    return im_plot_write(plot, file->path);
+}
+
+static int write_grid(const im_plot_panel *panels, int count, const paper_file *file)
 {
     im_plot plot = im_plot_default();
     plot.columns = paper_panel_columns(count);
     plot.rows = count / plot.columns;
     plot.panels = panels;
-    return im_plot_write(&plot, path);
+    return paper_plot_write(&plot, file);
 }
 
 static int check_families(const paper_histories *h, const char *figure)
@@ -120,7 +135,7 @@ static void approach_panel(const paper_histories *h, int load, int f, double *sc
                                                                            : IM_PLOT_LEGEND_HIDDEN};
 }
 
-int paper_figure_against_approach(const paper_histories *h, int load, const char *path)
+int paper_figure_against_approach(const paper_histories *h, int load, const paper_file *file)
 {
     int status = check_families(h, load ? "fig6" : "fig5");
     if (status != IM_OK)
@@ -136,7 +151,7 @@ int paper_figure_against_approach(const paper_histories *h, int load, const char
     fill_theory(h, largest_approach(h), load, d->theory_w, d->theory_smooth);
     for (int f = 0; f < h->family_count; ++f)
         approach_panel(h, load, f, scaled, row, d);
-    status = write_grid(d->grid.panels, h->family_count, path);
+    status = write_grid(d->grid.panels, h->family_count, file);
     free(scaled);
     free(d);
     return status;
@@ -252,14 +267,14 @@ static int load_statistics(const paper_histories *h, load_figure **d)
     return status;
 }
 
-int paper_figure_area_ratio_against_load(const paper_histories *h, const char *path)
+int paper_figure_area_ratio_against_load(const paper_histories *h, const paper_file *file)
 {
     load_figure *d;
     int status = load_statistics(h, &d);
     for (int p = 0; status == IM_OK && p < d->panels; ++p)
         load_panel(h, d, p);
     if (status == IM_OK)
-        status = write_grid(d->grid.panels, d->panels, path);
+        status = write_grid(d->grid.panels, d->panels, file);
     free(d);
     return status;
 }
@@ -319,7 +334,7 @@ static void sphere_panel(const paper_histories *h, const paper_sphere_family *s,
 }
 
 int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_family *families, int count,
-                                const char *path)
+                                const paper_file *file)
 {
     int status = check_families(h, "sphere");
     if (status == IM_OK && (count < 1 || count > PAPER_MAX_PANELS))
@@ -333,7 +348,7 @@ int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_fam
     if (grid && scaled) {
         for (int p = 0; p < count; ++p)
             sphere_panel(h, &families[p], scaled, row, grid, p);
-        status = write_grid(grid->panels, count, path);
+        status = write_grid(grid->panels, count, file);
     } else {
         status = im_fail(IM_ENOMEM, "sphere figure: allocation failed");
     }

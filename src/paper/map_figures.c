@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-int paper_figure_contact_panels(const paper_contact_panels *in, const char *path)
+int paper_figure_contact_panels(const paper_contact_panels *in, const paper_file *file)
 {
     if (in->count < 1 || in->count > PAPER_MAX_PANELS)
         return im_fail(IM_EINVAL, "%s: contact panels: %d maps: expected 1 to %d", in->source, in->count,
@@ -26,8 +26,13 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const char *path
     }
     char load_text[64];
     snprintf(load_text, sizeof load_text, "N* = %g", in->load_star);
-    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Scene", in->source}, {"Load", load_text},
-                           {PAPER_SCENE_CONTENTS, in->contents}};
+    if (file->text_count >= PAPER_MAX_TEXTS)
+        return im_fail(IM_EINVAL, "%s: contact panels: %d texts: expected fewer than %d", in->source,
+                       file->text_count, PAPER_MAX_TEXTS);
+    im_png_text texts[PAPER_MAX_TEXTS];
+    for (int i = 0; i < file->text_count; ++i)
+        texts[i] = file->texts[i];
+    texts[file->text_count] = (im_png_text){"Load", load_text};
     im_figure figure = im_figure_default();
     figure.rows = in->count / columns;
     figure.columns = columns;
@@ -35,10 +40,12 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const char *path
     figure.colormap = in->norm;
     figure.colorbar_label = "local force f / (E* δ²)";
     figure.extend_under = in->extend_under;
+    figure.tension_colormap = in->tension;
+    figure.tension_label = "tensile force −f / (E* δ²)";
     figure.texts = texts;
-    figure.text_count = in->contents && in->contents[0] ? 4 : 3;
+    figure.text_count = file->text_count + 1;
     figure.note = load_text;
-    return im_figure_write(&figure, path);
+    return im_figure_write(&figure, file->path);
 }
 
 enum { RINGS = 26, DENSITY_THEORY_POINTS = 261 }; /* rings of width 0.05 a out to 1.3 a */
@@ -109,7 +116,7 @@ static int density_panel(double alpha_degrees, const paper_density_map *map, den
     return status;
 }
 
-int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count, const char *path)
+int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count, const paper_file *file)
 {
     if (count < 1 || count > PAPER_MAX_PANELS)
         return im_fail(IM_EINVAL, "contact density: %d maps: expected 1 to %d", count, PAPER_MAX_PANELS);
@@ -124,7 +131,7 @@ int paper_figure_contact_density(double alpha_degrees, const paper_density_map *
         plot.columns = paper_panel_columns(count);
         plot.rows = count / plot.columns;
         plot.panels = d->panels;
-        status = im_plot_write(&plot, path);
+        status = paper_plot_write(&plot, file);
     }
     free(d);
     return status;

@@ -66,7 +66,7 @@ static void group_series(const paper_sweep_group *groups, int count, sweep_figur
     }
 }
 
-int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *source, const char *path)
+int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *source, const paper_file *file)
 {
     int status = check_groups(groups, count, source);
     if (status != IM_OK)
@@ -86,7 +86,7 @@ int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *s
     im_plot plot = im_plot_default();
     plot.panels = &panel;
     if (status == IM_OK)
-        status = im_plot_write(&plot, path);
+        status = paper_plot_write(&plot, file);
     free(d);
     return status;
 }

@@ -63,11 +63,19 @@ void render_teardown(im_render_context *context);
 
 /* ---- shared by the 2-D maps (draw.c) and the 3-D view (view3d.c) ---- */
 
-/* Patch codes sent to the shaders besides the table indices 0..255 (shaders/patch_colour.glsl). */
-enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259, IM_CODE_TENSILE = 260 };
+/* Patch codes sent to the shaders besides the table indices 0..255 (shaders/patch_colour.glsl); a
+ * patch under tension has IM_CODE_TENSION plus its tension's code through the tension norm. */
+enum { IM_CODE_UNDER = 256, IM_CODE_OVER = 257, IM_CODE_BAD = 258, IM_CODE_BACKGROUND = 259, IM_CODE_TENSION = 512 };
 
 /* The code of a value through the norm: its table index, or under / over / bad. */
 int render_patch_code(const im_colormap *colormap, double value);
+
+/* The code of a local force: bad for NaN, through `compression` for f > 0, IM_CODE_TENSION plus the
+ * code of -f through `tension` for f < 0, background for 0. */
+int render_force_code(const im_colormap *compression, const im_colormap *tension, double force);
+
+/* Binds the tension norm's table on `unit` and sets its under / over colours in the program. */
+GLuint render_tension_texture(const im_gl *gl, GLuint program, int unit, const im_colormap *tension);
 
 /* Compiles and links a program from embedded sources (render/shaders.h), each after the #version
  * line; the fragment shader also after fragment_prelude (im_shader_patch_colour for those that colour

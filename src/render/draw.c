@@ -255,6 +255,22 @@ int render_patch_code(const im_colormap *colormap, double value)
     return index == -2 ? IM_CODE_BAD : index == -1 ? IM_CODE_UNDER : index == 256 ? IM_CODE_OVER : index;
 }
 
+int render_force_code(const im_colormap *compression, const im_colormap *tension, double force)
+{
+    return isnan(force)    ? IM_CODE_BAD
+           : force > 0.0 ? render_patch_code(compression, force)
+           : force < 0.0 ? IM_CODE_TENSION + render_patch_code(tension, -force)
+                         : IM_CODE_BACKGROUND;
+}
+
+GLuint render_tension_texture(const im_gl *gl, GLuint program, int unit, const im_colormap *tension)
+{
+    render_set_int(gl, program, "tension_table", unit);
+    render_set_colour(gl, program, "tension_under", tension->under);
+    render_set_colour(gl, program, "tension_over", tension->over);
+    return render_table_texture(gl, unit, tension->map);
+}
+
 static int finish(const im_render_context *c, int status, GLuint *textures, int texture_count,
                   uint16_t *codes, im_image *image)
 {
@@ -267,17 +283,34 @@ static int finish(const im_render_context *c, int status, GLuint *textures, int 
 
 /* ---- contact map ---- */
 
+im_colormap im_contact_tension_norm(double largest)
+{
+    return im_colormap_make(IM_COLORMAP_TENSION, 0.0, largest > 0.0 && isfinite(largest) ? largest : 1.0);
+}
+
+double im_contact_largest_tension(const im_field *force)
+{
+    double largest = 0.0;
+    size_t count = arg_view(__func__, "force", force) == IM_OK ? im_field_count(force) : 0;
+    for (size_t i = 0; i < count; ++i)
+        if (isfinite(force->data[i]) && -force->data[i] > largest)
+            largest = -force->data[i];
+    return largest;
+}
+
 im_contact_style im_contact_style_default(const im_field *force)
 {
     double largest = 0.0;
-    size_t count = arg_view(__func__, "force", force) == IM_OK ? im_field_count(force) : 0; /* invalid: empty */
+    int valid = arg_view(__func__, "force", force) == IM_OK;
+    size_t count = valid ? im_field_count(force) : 0; /* invalid: empty */
     for (size_t i = 0; i < count; ++i)
         if (isfinite(force->data[i]) && force->data[i] > largest)
             largest = force->data[i];
     im_contact_style style = {
         .colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest > 0.0 ? largest : 1.0),
+        .tension = im_contact_tension_norm(valid ? im_contact_largest_tension(force) : 0.0),
         .pixels_per_patch = 2, .boundary_px = 2,
-        .background = {230, 230, 230}, .tensile = {150, 190, 235}, .line = {0, 0, 0},
+        .background = {230, 230, 230}, .line = {0, 0, 0},
         .circle_radius = 0.0, .circle_x = count ? 0.5 * force->nx : 0.0,
         .circle_y = count ? 0.5 * force->ny : 0.0,
         .circle_width_px = 2.0};
@@ -289,6 +322,9 @@ static int check_contact_style(const im_contact_style *s)
     int status = im_colormap_check(&s->colormap);
     if (status != IM_OK)
         return im_fail_context(status, "contact map");
+    status = im_colormap_check(&s->tension);
+    if (status != IM_OK)
+        return im_fail_context(status, "contact map: tension");
     if (!isfinite(s->circle_radius) || !isfinite(s->circle_x) || !isfinite(s->circle_y))
         return im_fail(IM_EINVAL, "contact map: circle (%g, %g) radius %g: expected finite values",
                        s->circle_x, s->circle_y, s->circle_radius);
@@ -308,30 +344,25 @@ static int draw_contact_map(const im_render_context *c, const im_field *force, c
         im_image_release(image);
         return im_fail(IM_ENOMEM, "contact map %d x %d: out of memory", force->nx, force->ny);
     }
-    for (size_t i = 0; i < count; ++i) {
-        double f = force->data[i];
-        codes[i] = (uint16_t)(isnan(f)    ? IM_CODE_BAD
-                              : f > 0.0 ? render_patch_code(&s->colormap, f)
-                              : f < 0.0 ? IM_CODE_TENSILE
-                                        : IM_CODE_BACKGROUND);
-    }
+    for (size_t i = 0; i < count; ++i)
+        codes[i] = (uint16_t)render_force_code(&s->colormap, &s->tension, force->data[i]);
     const im_gl *gl = &c->gl;
-    GLuint program = c->contact_program, textures[2];
+    GLuint program = c->contact_program, textures[3];
     gl->UseProgram(program);
     textures[0] = render_texture(gl, 0, GL_R16UI, force->nx, force->ny, GL_RED_INTEGER, GL_UNSIGNED_SHORT, codes);
     textures[1] = render_table_texture(gl, 1, s->colormap.map);
+    textures[2] = render_tension_texture(gl, program, 2, &s->tension);
     render_set_int(gl, program, "codes", 0);
     render_set_int(gl, program, "table", 1);
     set_common(gl, program, &s->colormap, force, s->pixels_per_patch, s->boundary_px, s->line);
     render_set_colour(gl, program, "background", s->background);
-    render_set_colour(gl, program, "tensile_colour", s->tensile);
     double scale = s->pixels_per_patch;
     gl->Uniform3f(gl->GetUniformLocation(program, "circle"), (float)(s->circle_x * scale),
                   (float)(s->circle_y * scale), (float)(s->circle_radius * scale));
     gl->Uniform1f(gl->GetUniformLocation(program, "circle_width"), (float)s->circle_width_px);
     render_set_int(gl, program, "circle_aliased", s->circle_aliased != 0);
     int status = draw_and_read(c, image->width, image->height, image->rgba);
-    return finish(c, status, textures, 2, codes, image);
+    return finish(c, status, textures, 3, codes, image);
 }
 
 int im_render_contact_map(im_render_context *c, const im_field *force, const im_contact_style *s,
@@ -484,6 +515,7 @@ static int draw_height_map(const im_render_context *c, const im_field *height, c
     render_set_int(gl, program, "heights", 1);
     render_set_int(gl, program, "contact", 2);
     render_set_int(gl, program, "table", 3);
+    render_set_int(gl, program, "tension_table", 3); /* no tension codes: any sampler2D unit, not the codes' */
     set_common(gl, program, &s->colormap, height, s->pixels_per_patch, s->boundary_px, s->line);
     render_set_colour(gl, program, "outline_colour", s->outline);
     render_set_int(gl, program, "outline_width", im_height_outline_width(s));

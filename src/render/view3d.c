@@ -22,6 +22,9 @@ static const double FIT_MARGIN = 0.03;
 
 enum { PROFILE_POINTS = 64, PUNCH_SEGMENTS = 128, SPHERE_RINGS = 40, MIN_IMAGE_SIDE = 16 };
 
+/* The surface's textures: codes, heights, corners, the colour map's table, the tension ramp's. */
+enum { SURFACE_TEXTURES = 5 };
+
 static double radians(double degrees) { return degrees * M_PI / 180.0; }
 
 int render_view3d_setup(im_render_context *c)
@@ -44,9 +47,10 @@ im_view3d_style im_view3d_style_default(const im_field *force)
     im_view3d_style style = {
         .colormap = force ? im_contact_style_default(force).colormap
                           : im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0),
+        .tension = im_contact_tension_norm(force ? im_contact_largest_tension(force) : 0.0),
         .width = 1920, .height = 1080, .samples = 4, .mesh_side = 384, .exaggeration = 1.0,
         .shading = 0.7, .light_azimuth = 315.0, .light_altitude = 45.0,
-        .surface = {230, 230, 230}, .tensile = {150, 190, 235}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
+        .surface = {230, 230, 230}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
         .punch_mode = IM_VIEW3D_PUNCH_TRANSLUCENT, .punch_opacity = 0.35, .punch_extent = 0.0,
         .camera = {.azimuth = 20.0, .elevation = 35.0, .distance = 2.1, .field_of_view = 30.0,
                    .projection = IM_VIEW3D_PERSPECTIVE, .ortho_height = 0.0, .target_z = NAN}};
@@ -100,6 +104,9 @@ static int check_style(const im_render_context *c, const im_view3d_style *s, con
     int status = im_colormap_check(&s->colormap);
     if (status != IM_OK)
         return im_fail_context(status, "3-D view");
+    status = im_colormap_check(&s->tension);
+    if (status != IM_OK)
+        return im_fail_context(status, "3-D view: tension");
     long limit = render_image_limit(c);
     if (s->width < MIN_IMAGE_SIDE || s->height < MIN_IMAGE_SIDE || s->width > limit || s->height > limit)
         return im_fail(IM_EINVAL, "3-D view: image %d x %d pixels: expected %d..%ld per side (GL limits of %s)",
@@ -471,11 +478,7 @@ static int make_inputs(view_geometry *g, const im_field *h, const im_field *forc
         return im_fail(IM_ENOMEM, "3-D view %d x %d: out of memory", h->nx, h->ny);
     }
     for (size_t i = 0; i < count; ++i) {
-        double f = force ? force->data[i] : 0.0;
-        in->codes[i] = (uint16_t)(isnan(f)    ? IM_CODE_BAD
-                                  : f > 0.0 ? render_patch_code(&s->colormap, f)
-                                  : f < 0.0 ? IM_CODE_TENSILE
-                                            : IM_CODE_BACKGROUND);
+        in->codes[i] = (uint16_t)render_force_code(&s->colormap, &s->tension, force ? force->data[i] : 0.0);
         in->heights[i] = (float)(h->data[i] / h->delta);
     }
     corner_heights(g, h, in->corners);
@@ -485,7 +488,7 @@ static int make_inputs(view_geometry *g, const im_field *h, const im_field *forc
 }
 
 static void draw_surface(const im_render_context *c, const view_geometry *g, const surface_inputs *in,
-                         const im_view3d_style *s, const camera_frame *f, GLuint textures[4])
+                         const im_view3d_style *s, const camera_frame *f, GLuint textures[SURFACE_TEXTURES])
 {
     const im_gl *gl = &c->gl;
     GLuint program = c->surface_program;
@@ -502,7 +505,7 @@ static void draw_surface(const im_render_context *c, const view_geometry *g, con
     render_set_colour(gl, program, "over_colour", s->colormap.over);
     render_set_colour(gl, program, "bad_colour", s->colormap.bad);
     render_set_colour(gl, program, "surface_colour", s->surface);
-    render_set_colour(gl, program, "tensile_colour", s->tensile);
+    textures[4] = render_tension_texture(gl, program, 4, &s->tension);
     gl->Uniform2i(gl->GetUniformLocation(program, "grid"), g->nx, g->ny);
     gl->Uniform2i(gl->GetUniformLocation(program, "cells"), g->cells_x, g->cells_y);
     render_set_int(gl, program, "stride", g->stride);
@@ -594,7 +597,7 @@ static int draw_view(const im_render_context *c, const view_geometry *g, const s
 {
     const im_gl *gl = &c->gl;
     view_targets targets = {0};
-    GLuint textures[4] = {0};
+    GLuint textures[SURFACE_TEXTURES] = {0};
     int status = make_targets(c, s->width, s->height, samples, &targets);
     if (status == IM_OK) {
         camera_frame frame;
@@ -619,7 +622,7 @@ static int draw_view(const im_render_context *c, const view_geometry *g, const s
         if (error != GL_NO_ERROR)
             status = im_fail(IM_EUNSUPPORTED, "3-D view %d x %d: GL error 0x%x", s->width, s->height, error);
     }
-    gl->DeleteTextures(4, textures);
+    gl->DeleteTextures(SURFACE_TEXTURES, textures);
     release_targets(gl, &targets);
     return status == IM_OK ? render_flip_rows(image->rgba, s->width, s->height) : status;
 }

@@ -13,10 +13,10 @@ typedef struct density_maps {
     int count;
 } density_maps;
 
-static int draw_density(const im_scene *scene, const void *data, const char *path)
+static int draw_density(const im_scene *scene, const void *data, const paper_file *file)
 {
     const density_maps *d = data;
-    return paper_figure_contact_density(scene->alpha_degrees, d->maps, d->count, path);
+    return paper_figure_contact_density(scene->alpha_degrees, d->maps, d->count, file);
 }
 
 int scene_plot_contact_density(const im_scene *scene, const im_field *const *forces, const double *load_star)

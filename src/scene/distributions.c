@@ -120,9 +120,9 @@ static int family_distributions(const im_scene *scene, const im_scene_run_option
     return status;
 }
 
-static int draw_distributions(const im_scene *scene, const void *families, const char *path)
+static int draw_distributions(const im_scene *scene, const void *families, const paper_file *file)
 {
-    return paper_figure_distributions(families, scene->family_count, scene->path, path);
+    return paper_figure_distributions(families, scene->family_count, scene->path, file);
 }
 
 /* (a) the gap density against g / h_rms of the rough families, (b) patches per octave of size of

@@ -149,11 +149,11 @@ typedef struct flat_k_plot {
     int count;
 } flat_k_plot;
 
-static int draw_k(const im_scene *scene, const void *data, const char *path)
+static int draw_k(const im_scene *scene, const void *data, const paper_file *file)
 {
     (void)scene;
     const flat_k_plot *plot = data;
-    return paper_figure_flat_k(plot->families, plot->count, FLAT_STEP * FLAT_POINTS, path);
+    return paper_figure_flat_k(plot->families, plot->count, FLAT_STEP * FLAT_POINTS, file);
 }
 
 /* A/A0 against x per family (paper/flat_k_figure.c): the surfaces' points, erf with the fitted k,

@@ -9,6 +9,7 @@
 #include "scene/labels.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
+#include "scene/provenance.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
 #include "scene/surfaces.h"
@@ -117,11 +118,18 @@ static void field_range(im_field *const *fields, int count, int positive_only, d
     }
 }
 
+/* The norms every step's frames share; has_tension: some step has patches under tension, and every
+ * contact frame draws the tension's bar. */
+typedef struct frame_norms {
+    im_colormap force, tension, height;
+    int has_tension;
+} frame_norms;
+
 /* One frame's figure, written as PNG by whichever thread takes it, with the status and message of that
  * write (another thread's last error is its own) and the frame's pixels, which the GIF reuses. */
 typedef struct frame_figure {
     im_image image, frame;
-    const im_colormap *norm;
+    const im_colormap *norm, *tension; /* tension: the tension's bar, NULL for none */
     const char *label, *prefix;
     int index, keep; /* keep: the frame's pixels are wanted (the contact GIF's) */
     double load_star;
@@ -139,10 +147,14 @@ static int write_frame(const im_scene *scene, frame_figure *f)
         return status;
     scene_outputs_note(scene, path);
     snprintf(title, sizeof title, "N* = %.0f", f->load_star);
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path},
-                                 {PAPER_SCENE_CONTENTS, scene->contents}};
-    const frame_words words = {title, f->norm, f->label, texts, scene->contents[0] ? 3 : 2};
-    return frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
+    run_figure_texts texts;
+    status = scene_figure_texts(scene, NULL, 0, &texts);
+    const frame_words words = {title, f->norm, f->label, f->tension, "tensile force −f / (E* δ²)", texts.texts,
+                               texts.count};
+    if (status == IM_OK)
+        status = frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
+    run_figure_texts_free(&texts);
+    return status;
 }
 
 static void write_frame_figure(const im_scene *scene, frame_figure *f)
@@ -153,25 +165,26 @@ static void write_frame_figure(const im_scene *scene, frame_figure *f)
 }
 
 static int render_contact_frame(im_render_context *context, const framed_history *h, int i,
-                                const im_colormap *norm, int pixels_per_patch, im_image *image)
+                                const frame_norms *norms, int pixels_per_patch, im_image *image)
 {
-    const frame_contact contact = {h->force[i], norm, pixels_per_patch, sqrt(h->load_star[i] / M_PI),
+    const frame_contact contact = {h->force[i], &norms->force, &norms->tension, pixels_per_patch, sqrt(h->load_star[i] / M_PI),
                                    0.5 * h->force[i]->nx, 0.5 * h->force[i]->ny};
     return frame_contact_render(context, &contact, image);
 }
 
 /* Step i's contact and height images (figures[0], figures[1]). */
 static int render_step(im_render_context *context, const im_scene *scene, const framed_history *h, int i,
-                       const im_colormap *force_norm, const im_colormap *height_norm, frame_figure *figures)
+                       const frame_norms *norms, frame_figure *figures)
 {
-    figures[0] = (frame_figure){.norm = force_norm, .label = "local force f / (E* δ²)", .prefix = "contact",
+    figures[0] = (frame_figure){.norm = &norms->force, .tension = norms->has_tension ? &norms->tension : NULL,
+                                .label = "local force f / (E* δ²)", .prefix = "contact",
                                 .index = i, .keep = (scene->animation & IM_ANIMATION_GIF) != 0,
                                 .load_star = h->load_star[i]};
-    figures[1] = (frame_figure){.norm = height_norm, .label = "deformed height (h − u) / δ", .prefix = "height",
+    figures[1] = (frame_figure){.norm = &norms->height, .label = "deformed height (h − u) / δ", .prefix = "height",
                                 .index = i, .load_star = h->load_star[i]};
-    int status = render_contact_frame(context, h, i, force_norm, scene->frame_scale, &figures[0].image);
+    int status = render_contact_frame(context, h, i, norms, scene->frame_scale, &figures[0].image);
     im_height_style style = im_height_style_default(h->deformed[i]);
-    style.colormap = *height_norm;
+    style.colormap = norms->height;
     style.pixels_per_patch = scene->frame_scale;
     style.contact = h->force[i];
     if (status == IM_OK)
@@ -183,19 +196,20 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
  * (cairo layout and PNG encoding: a sixth of fig4's CPU time at one thread); the contact frames' pixels
  * go to gif_frames. */
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
-                        im_image *gif_frames, im_colormap *norm)
+                        im_image *gif_frames, frame_norms *norms)
 {
-    double lo, hi;
+    double lo, hi, largest_tension = frame_largest_tension(h->force, h->count);
     field_range(h->force, h->count, 1, &lo, &hi);
-    im_colormap force_norm = scene_force_norm(scene, hi);
-    *norm = force_norm;
+    norms->force = scene_force_norm(scene, hi);
+    norms->tension = im_contact_tension_norm(largest_tension);
+    norms->has_tension = largest_tension > 0.0;
     field_range(h->deformed, h->count, 0, &lo, &hi);
-    im_colormap height_norm = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi);
+    norms->height = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi);
     int count = 2 * h->count;
     frame_figure *figures = calloc((size_t)count, sizeof *figures);
     int status = figures ? IM_OK : im_fail(IM_ENOMEM, "frames: allocation failed");
     for (int i = 0; i < h->count && status == IM_OK; ++i)
-        status = render_step(context, scene, h, i, &force_norm, &height_norm, &figures[2 * i]);
+        status = render_step(context, scene, h, i, norms, &figures[2 * i]);
     if (status == IM_OK) {
 #pragma omp parallel for schedule(dynamic, 1)
         for (int k = 0; k < count; ++k)
@@ -252,13 +266,14 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
     im_image *gif_frames = calloc((size_t)scene->frame_count, sizeof *gif_frames);
     if (status == IM_OK && !gif_frames)
         status = im_fail(IM_ENOMEM, "frames: allocation failed");
-    im_colormap force_norm;
+    frame_norms norms;
     if (status == IM_OK)
-        status = write_frames(scene, context, &history, gif_frames, &force_norm);
+        status = write_frames(scene, context, &history, gif_frames, &norms);
     if (status == IM_OK)
         status = write_animations(scene, options, gif_frames, history.count);
     if (status == IM_OK && scene->frames3d) {
-        scene_frames3d_input in = {history.count, history.deformed, history.force, history.load_star, &force_norm};
+        scene_frames3d_input in = {history.count, history.deformed, history.force, history.load_star, &norms.force,
+                                   norms.has_tension ? &norms.tension : NULL};
         status = scene_write_frames3d(scene, options, context, &in);
     }
     if (status == IM_OK)

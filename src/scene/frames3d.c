@@ -8,6 +8,7 @@
 #include "scene/frames3d.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
+#include "scene/provenance.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
 
@@ -57,13 +58,17 @@ static int fit_camera(im_field *const *deformed, int count, const im_indenter *p
  * the relief of the last (deepest) step exaggerated to about an eighth
  * of the grid's longer side (a 1-2-5 factor, never below true scale), the camera's target fixed at
  * the middle of all frames' heights. */
-static int frames_style(const im_scene *scene, im_field *const *deformed, int count, const im_indenter *punch,
-                        const im_colormap *norm, im_view3d_style *style)
+static int frames_style(const im_scene *scene, const scene_frames3d_input *in, const im_indenter *punch,
+                        im_view3d_style *style)
 {
+    im_field *const *deformed = in->deformed;
+    const int count = in->count;
     im_view3d_style s = im_view3d_style_default(NULL);
     s.width = scene->frame3d_width;
     s.height = scene->frame3d_height;
-    s.colormap = *norm;
+    s.colormap = *in->norm;
+    if (in->tension)
+        s.tension = *in->tension;
     s.punch_mode = IM_VIEW3D_PUNCH_CUTAWAY; /* the contact under the punch stays in sight */
     double lo = INFINITY, hi = -INFINITY;
     height_range(deformed[count - 1], &lo, &hi);
@@ -76,10 +81,11 @@ static int frames_style(const im_scene *scene, im_field *const *deformed, int co
     return fit_camera(deformed, count, punch, style);
 }
 
-/* The annotated frame as frames/view3d_NNNN.png, its pixels in *frame when frame is not NULL. */
-static int write_frame(const im_scene *scene, const im_image *image, const im_view3d_style *s, int index,
-                       double load_star, im_image *frame)
+/* Step index's annotated frame as frames/view3d_NNNN.png, its pixels in *frame when frame is not NULL. */
+static int write_frame(const im_scene *scene, const scene_frames3d_input *in, const im_image *image,
+                       const im_view3d_style *s, int index, im_image *frame)
 {
+    const double load_star = in->load_star[index];
     char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[160], scale[96], norm[128];
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
@@ -91,21 +97,28 @@ static int write_frame(const im_scene *scene, const im_image *image, const im_vi
     snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),
              s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
     im_figure_panel panel = {image, NULL, title};
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path}, {"Title", title},
-                                 {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm},
-                                 {PAPER_SCENE_CONTENTS, scene->contents}};
+    const im_png_text own[] = {{"Title", title}, {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm}};
+    run_figure_texts texts;
+    if (status == IM_OK)
+        status = scene_figure_texts(scene, own, 3, &texts);
+    if (status != IM_OK)
+        return status;
     im_figure figure = im_figure_default();
-    figure.texts = texts;
-    figure.text_count = scene->contents[0] ? 6 : 5;
+    figure.texts = texts.texts;
+    figure.text_count = texts.count;
     figure.panels = &panel;
     figure.colormap = &s->colormap;
     figure.colorbar_label = "local force f / (E* δ²)";
     figure.extend_under = s->colormap.logarithmic;
+    if (in->tension) {
+        figure.tension_colormap = &s->tension;
+        figure.tension_label = "tensile force −f / (E* δ²)";
+    }
     figure.scale_bar = -1.0; /* a perspective view has no single scale */
     figure.dpi = 150;
-    if (status != IM_OK)
-        return status;
-    return frame ? im_figure_write_frame(&figure, path, frame) : im_figure_write(&figure, path);
+    status = frame ? im_figure_write_frame(&figure, path, frame) : im_figure_write(&figure, path);
+    run_figure_texts_free(&texts);
+    return status;
 }
 
 static int write_animations(const im_scene *scene, const im_scene_run_options *options, const im_image *frames,
@@ -135,7 +148,7 @@ int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *opti
 {
     im_view3d_style style;
     im_indenter punch = scene_punch(scene);
-    int status = frames_style(scene, in->deformed, in->count, &punch, in->norm, &style);
+    int status = frames_style(scene, in, &punch, &style);
     if (status != IM_OK)
         return status;
     int gif = (scene->animation & IM_ANIMATION_GIF) != 0;
@@ -148,7 +161,7 @@ int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *opti
         im_image view = {0};
         status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &view);
         if (status == IM_OK)
-            status = write_frame(scene, &view, &style, i, in->load_star[i], gif ? &frames[i] : NULL);
+            status = write_frame(scene, in, &view, &style, i, gif ? &frames[i] : NULL);
         im_image_release(&view);
     }
     if (status == IM_OK)

@@ -316,22 +316,22 @@ static void free_gathered(gathered_histories *g)
     free(g);
 }
 
-static int draw_against_approach(const im_scene *scene, const void *h, const char *path)
+static int draw_against_approach(const im_scene *scene, const void *h, const paper_file *file)
 {
     (void)scene;
-    return paper_figure_against_approach(h, 0, path);
+    return paper_figure_against_approach(h, 0, file);
 }
 
-static int draw_load_against_approach(const im_scene *scene, const void *h, const char *path)
+static int draw_load_against_approach(const im_scene *scene, const void *h, const paper_file *file)
 {
     (void)scene;
-    return paper_figure_against_approach(h, 1, path);
+    return paper_figure_against_approach(h, 1, file);
 }
 
-static int draw_area_ratio_against_load(const im_scene *scene, const void *h, const char *path)
+static int draw_area_ratio_against_load(const im_scene *scene, const void *h, const paper_file *file)
 {
     (void)scene;
-    return paper_figure_area_ratio_against_load(h, path);
+    return paper_figure_area_ratio_against_load(h, file);
 }
 
 /* Fig. 5 (load = 0) or Fig. 6 (load = 1). */
@@ -409,11 +409,11 @@ static int sphere_family(const im_scene *scene, const paper_histories *h, int f,
     return status;
 }
 
-static int draw_sphere_regimes(const im_scene *scene, const void *data, const char *path)
+static int draw_sphere_regimes(const im_scene *scene, const void *data, const paper_file *file)
 {
     (void)scene;
     const sphere_theory *t = data;
-    return paper_figure_sphere_regimes(t->h, t->families, t->count, path);
+    return paper_figure_sphere_regimes(t->h, t->families, t->count, file);
 }
 
 /* Pastewka and Robbins' three regimes for a sphere: A / A_Hertz against N / N_c for each rough

@@ -5,6 +5,7 @@
 #include "scene/manifest.h"
 #include "scene/outputs.h"
 #include "scene/progress.h"
+#include "scene/provenance.h"
 
 #include <stdio.h>
 
@@ -16,24 +17,21 @@ int scene_open_output(const im_scene *scene, const char *relative, im_atomic_fil
 }
 
 int scene_write_png_pdf(const im_scene *scene, const char *name,
-                        int (*draw)(const im_scene *, const void *, const char *), const void *data)
+                        int (*draw)(const im_scene *, const void *, const paper_file *), const void *data)
 {
-    int status = IM_OK;
+    run_figure_texts texts;
+    int status = scene_figure_texts(scene, NULL, 0, &texts);
     const char *extensions[] = {"png", "pdf"};
     for (int i = 0; i < 2 && status == IM_OK; ++i) {
         char relative[128], path[IM_SCENE_PATH];
         snprintf(relative, sizeof relative, "%s.%s", name, extensions[i]);
         status = scene_output_path(scene, relative, path, sizeof path);
+        const paper_file file = {path, texts.texts, texts.count};
         if (status == IM_OK)
-            status = draw(scene, data, path);
+            status = draw(scene, data, &file);
     }
+    run_figure_texts_free(&texts);
     return status;
-}
-
-int scene_draw_plot(const im_scene *scene, const void *plot, const char *path)
-{
-    (void)scene;
-    return im_plot_write(plot, path);
 }
 
 int scene_output_path(const im_scene *scene, const char *relative, char *buffer, size_t size)

@@ -4,6 +4,7 @@
 
 #include "indentmap/io.h"
 #include "indentmap/scene.h"
+#include "paper/figures.h"
 
 #include <stddef.h>
 
@@ -14,11 +15,10 @@ int scene_output_path(const im_scene *scene, const char *relative, char *buffer,
 /* Opens output_dir/relative for writing through io.h's im_atomic_open (commit or abort it). */
 int scene_open_output(const im_scene *scene, const char *relative, im_atomic_file *file);
 
-/* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, path). */
+/* Writes NAME.png and NAME.pdf under the output folder with draw(scene, data, file), each file carrying
+ * the scene's provenance (provenance.h: scene_figure_texts). */
 int scene_write_png_pdf(const im_scene *scene, const char *name,
-                        int (*draw)(const im_scene *, const void *, const char *), const void *data);
-/* A draw function for scene_write_png_pdf whose data is an im_plot. */
-int scene_draw_plot(const im_scene *scene, const void *plot, const char *path);
+                        int (*draw)(const im_scene *, const void *, const paper_file *), const void *data);
 
 /* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
 typedef im_folder_lock scene_lock;

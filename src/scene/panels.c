@@ -249,16 +249,27 @@ static double largest_force(const panel_result *results, int count)
     return largest > 0.0 ? largest : 1.0;
 }
 
-/* Renders every panel with one shared norm and the smooth contact circle. */
+static double largest_tension(const panel_result *results, int count)
+{
+    double largest = 0.0;
+    for (int i = 0; i < count; ++i)
+        largest = fmax(largest, im_contact_largest_tension(results[i].force));
+    return largest;
+}
+
+/* Renders every panel with one shared force norm and one tension norm (norms[0], norms[1]) and the smooth
+ * contact circle. */
 static int render_panels(const im_scene *scene, im_render_context *context, const panel_result *results,
-                         im_image *images, im_colormap *norm)
+                         im_image *images, im_colormap norms[2])
 {
     int status = IM_OK;
-    *norm = scene_force_norm(scene, largest_force(results, scene->family_count));
+    norms[0] = scene_force_norm(scene, largest_force(results, scene->family_count));
+    norms[1] = im_contact_tension_norm(largest_tension(results, scene->family_count));
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
         const im_field *f = results[i].force;
         im_contact_style style = im_contact_style_default(f);
-        style.colormap = *norm;
+        style.colormap = norms[0];
+        style.tension = norms[1];
         style.pixels_per_patch = f->nx <= 256 ? 2 : 1;
         style.circle_radius = sqrt(results[i].load_star / M_PI); /* A_smooth = N* delta^2 */
         status = im_render_contact_map(context, f, &style, &images[i]);
@@ -266,13 +277,15 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
     return status;
 }
 
-static int draw_figure(const im_scene *scene, const void *panels, const char *path)
+static int draw_figure(const im_scene *scene, const void *panels, const paper_file *file)
 {
     (void)scene;
-    return paper_figure_contact_panels(panels, path);
+    return paper_figure_contact_panels(panels, file);
 }
 
-static int write_panel_figure(const im_scene *scene, const im_image *images, const im_colormap *norm)
+/* tension: the tension's norm, NULL where no panel has tension. */
+static int write_panel_figure(const im_scene *scene, const im_image *images, const im_colormap *norm,
+                              const im_colormap *tension)
 {
     char titles[IM_SCENE_MAX_FAMILIES][64];
     const char *title_of[IM_SCENE_MAX_FAMILIES];
@@ -281,8 +294,8 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
         title_of[i] = titles[i];
     }
     paper_contact_panels panels = {.count = scene->family_count, .images = images, .titles = title_of,
-                                   .norm = norm, .extend_under = scene->log_norm, .source = scene->path,
-                                   .contents = scene->contents, .load_star = scene->load_star};
+                                   .norm = norm, .tension = tension, .extend_under = scene->log_norm, .source = scene->path,
+                                   .load_star = scene->load_star};
     return scene_write_png_pdf(scene, "contact_panels", draw_figure, &panels);
 }
 
@@ -300,14 +313,14 @@ static int plot_density(const im_scene *scene, const panel_result *results)
 /* The panels' figure and the density plot, side by side (each is CPU work for one thread: layout, PNG
  * and PDF encoding); their errors are kept per output, as either may run on another thread. */
 static int write_panel_outputs(const im_scene *scene, const panel_result *results, const im_image *images,
-                               const im_colormap *norm)
+                               const im_colormap *norm, const im_colormap *tension)
 {
     int statuses[2] = {IM_OK, IM_OK};
     char errors[2][256] = {"", ""};
 #pragma omp parallel for schedule(dynamic, 1)
     for (int k = 0; k < 2; ++k) {
         if (k == 0)
-            statuses[k] = write_panel_figure(scene, images, norm);
+            statuses[k] = write_panel_figure(scene, images, norm, tension);
         else if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY))
             statuses[k] = plot_density(scene, results);
         if (statuses[k] != IM_OK)
@@ -349,11 +362,12 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
         report_panels(options, results, scene->family_count);
     if (status == IM_OK)
         status = write_results_csv(scene, results);
-    im_colormap norm;
+    im_colormap norms[2];
     if (status == IM_OK)
-        status = render_panels(scene, context, results, images, &norm);
+        status = render_panels(scene, context, results, images, norms);
+    int has_tension = status == IM_OK && largest_tension(results, scene->family_count) > 0.0;
     if (status == IM_OK)
-        status = write_panel_outputs(scene, results, images, &norm);
+        status = write_panel_outputs(scene, results, images, &norms[0], has_tension ? &norms[1] : NULL);
     for (int i = 0; i < scene->family_count; ++i) {
         im_field_free(results[i].force);
         im_image_release(&images[i]);

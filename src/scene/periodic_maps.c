@@ -12,6 +12,7 @@
 #include "paper/figures.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
+#include "scene/provenance.h"
 #include "scene/punch.h"
 #include "scene/surfaces.h"
 
@@ -119,11 +120,13 @@ static int draw_family(const im_scene *scene, const scene_reuse *reuse, im_rende
         return status;
     step_force_unit("", surface->unit, force_unit, sizeof force_unit);
     const im_indenter punch = scene_member_punch(scene, surface);
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", scene->path},
-                                 {PAPER_SCENE_CONTENTS, scene->contents}};
+    run_figure_texts texts;
+    status = scene_figure_texts(scene, NULL, 0, &texts);
     const fields_frames frames = {folder, folder, reuse->rows[family], reuse->row_count[family], &punch, force_unit,
-                                  texts, scene->contents[0] ? 3 : 2};
-    status = fields_frames_write(context, &frames);
+                                  texts.texts, texts.count};
+    if (status == IM_OK)
+        status = fields_frames_write(context, &frames);
+    run_figure_texts_free(&texts);
     im_field_free(surface);
     return status;
 }

@@ -54,7 +54,7 @@ int scene_check_plots(const im_scene *scene)
     return IM_OK;
 }
 
-static int draw_fig1(const im_scene *scene, const void *data, const char *path)
+static int draw_fig1(const im_scene *scene, const void *data, const paper_file *file)
 {
     (void)data;
     double slopes[IM_SCENE_MAX_FAMILIES];
@@ -62,18 +62,21 @@ static int draw_fig1(const im_scene *scene, const void *data, const char *path)
     for (int i = 0; i < scene->family_count; ++i)
         if (scene->slopes[i] > 0.0)
             slopes[count++] = scene->slopes[i];
-    return im_plot_figure_contact_density(scene->alpha_degrees, slopes, count, NULL, path);
+    const im_plot style = paper_file_style(file);
+    return im_plot_figure_contact_density(scene->alpha_degrees, slopes, count, &style, file->path);
 }
 
-static int draw_fig2(const im_scene *scene, const void *data, const char *path)
+static int draw_fig2(const im_scene *scene, const void *data, const paper_file *file)
 {
     (void)scene;
-    return im_plot_figure_area_ratio(data, NULL, path);
+    const im_plot style = paper_file_style(file);
+    return im_plot_figure_area_ratio(data, &style, file->path);
 }
 
-static int draw_fig3(const im_scene *scene, const void *data, const char *path)
+static int draw_fig3(const im_scene *scene, const void *data, const paper_file *file)
 {
-    return im_plot_figure_surface(data, &scene->surface, 101, NULL, path);
+    const im_plot style = paper_file_style(file);
+    return im_plot_figure_surface(data, &scene->surface, 101, &style, file->path);
 }
 
 int scene_plot_area_ratio(const im_scene *scene, const im_plot_points *points)

@@ -3,8 +3,7 @@
 #include "scene/provenance.h"
 #include "core/args.h"
 #include "front/front.h"
-
-#include "io/checksum.h"
+#include "paper/figures.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -105,22 +104,27 @@ int scene_inputs_record(const im_scene *scene, json_t **record)
     return status;
 }
 
-/* ---- the scene rebuilt from a record ---- */
-
-/* A record of this version's scene runs: another version may solve differently in the last bits. */
-static int check_origin(const char *record, json_t *root)
+int scene_figure_texts(const im_scene *scene, const im_png_text *own, int own_count, run_figure_texts *texts)
 {
-    const char *program = json_string_value(json_object_get(root, "program"));
-    const char *version = json_string_value(json_object_get(root, "version"));
-    if (!program || strcmp(program, "indentmap run") != 0)
-        return im_fail(IM_EFORMAT, "%s: program '%s': expected the record of a scene run ('indentmap run')", record,
-                       program ? program : "(none)");
-    if (!version || strcmp(version, IM_VERSION) != 0)
-        return im_fail(IM_EINVAL, "%s: made by indentmap %s, this is %s: another version may solve differently in the "
-                       "last bits; run it with indentmap %s", record, version ? version : "(none)", IM_VERSION,
-                       version ? version : "(the record's)");
-    return IM_OK;
+    json_t *inputs;
+    *texts = (run_figure_texts){0};
+    if (own_count > 4)
+        return im_fail(IM_EINVAL, "scene_figure_texts: %d texts of the figure's own: expected at most 4", own_count);
+    int status = scene_inputs_record(scene, &inputs);
+    if (status != IM_OK)
+        return status;
+    im_png_text given[6] = {{"Source", scene->path}};
+    int count = 1;
+    if (scene->contents[0])
+        given[count++] = (im_png_text){PAPER_SCENE_CONTENTS, scene->contents};
+    for (int i = 0; i < own_count; ++i)
+        given[count++] = own[i];
+    status = run_figure_texts_make(given, count, inputs, texts);
+    json_decref(inputs);
+    return status;
 }
+
+/* ---- the scene rebuilt from a record ---- */
 
 /* The recorded sections as scene text, "[section]\nkey = value\n..." (im_scene.contents). */
 static int contents_text(const char *record, json_t *sections, char *text, size_t size)
@@ -163,19 +167,16 @@ static int check_inputs(const char *record, json_t *root, const im_scene *scene)
 {
     json_t *inputs = json_object_get(root, "inputs");
     const char *key;
-    char path[IM_SCENE_PATH], hex[IM_SHA256_HEX + 1];
+    char path[IM_SCENE_PATH];
     size_t count = 0;
     for (; scene_input(scene, (int)count, 0, &key, path, sizeof path); ++count) {
         const char *recorded = json_string_value(json_object_get(json_array_get(inputs, count), "sha256"));
         if (!recorded)
             return im_fail(IM_EFORMAT, "%s: inputs: no SHA-256 of %s %s: expected one for each input", record, key,
                            path);
-        int status = im_file_sha256(path, hex);
+        int status = run_record_check_input(record, key, path, recorded);
         if (status != IM_OK)
-            return im_fail_context(status, "%s: the recorded input", record);
-        if (strcmp(hex, recorded) != 0)
-            return im_fail(IM_EINVAL, "%s: %s has changed since the run: its SHA-256 is %s, the record %s says %s",
-                           path, key, hex, record, recorded);
+            return status;
     }
     if (count != json_array_size(inputs))
         return im_fail(IM_EFORMAT, "%s: inputs: %zu recorded, the scene has %zu: expected one for each input", record,
@@ -187,7 +188,7 @@ static int rebuild(const char *record, json_t *root, im_scene *scene)
 {
     char text[IM_SCENE_CONTENTS];
     const char *scene_file;
-    int status = check_origin(record, root);
+    int status = run_record_check_origin(record, root, "indentmap run", "a scene run");
     if (status == IM_OK)
         status = recorded_scene(record, root, text, sizeof text, &scene_file);
     if (status == IM_OK && (status = scene_load_text(text, scene_file, scene)) != IM_OK)
@@ -205,13 +206,11 @@ int im_scene_load_record(const char *record, im_scene *scene)
 {
     ARG_REQUIRE(record, "record");
     ARG_REQUIRE(scene, "scene");
-    json_error_t error;
-    json_t *root = json_load_file(record, JSON_REJECT_DUPLICATES, &error);
-    if (!root && error.line > 0)
-        return im_fail(IM_EFORMAT, "%s:%d: %s: expected a run record (run.json)", record, error.line, error.text);
-    if (!root)
-        return im_fail(IM_EFORMAT, "%s: %s: expected a run record (run.json)", record, error.text);
-    int status = rebuild(record, root, scene);
+    json_t *root;
+    int status = run_record_load(record, &root);
+    if (status != IM_OK)
+        return status;
+    status = rebuild(record, root, scene);
     json_decref(root);
     return status;
 }

@@ -3,6 +3,7 @@
 #ifndef INDENTMAP_SCENE_PROVENANCE_H
 #define INDENTMAP_SCENE_PROVENANCE_H
 
+#include "front/front.h"
 #include "indentmap/scene.h"
 
 #include <jansson.h>
@@ -25,5 +26,10 @@ int scene_input(const im_scene *scene, int i, int profile_resolved, const char *
  * path already resolved: scene_prepare) with its key, absolute path and SHA-256; the error of one
  * that cannot be read, *record NULL. */
 int scene_inputs_record(const im_scene *scene, json_t **record);
+
+/* The texts every figure of a scene run carries (front.h: run_figure_texts): the version, the scene's
+ * path ("Source") and contents (PAPER_SCENE_CONTENTS, when it has any), the figure's own (at most
+ * four, borrowed) and the scene's inputs' SHA-256; the error of an input that cannot be read. */
+int scene_figure_texts(const im_scene *scene, const im_png_text *own, int own_count, run_figure_texts *texts);
 
 #endif

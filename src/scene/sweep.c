@@ -147,10 +147,10 @@ static int group_rows(const im_scene *scene, const sweep_row *rows, int count, s
     return IM_OK;
 }
 
-static int draw_sweep(const im_scene *scene, const void *data, const char *path)
+static int draw_sweep(const im_scene *scene, const void *data, const paper_file *file)
 {
     const sweep_groups *g = data;
-    return paper_figure_sweep(g->groups, g->count, scene->path, path);
+    return paper_figure_sweep(g->groups, g->count, scene->path, file);
 }
 
 /* Fig. 2 over the whole sweep (paper/sweep_figure.c): each roughness's points (its angles) as a

@@ -42,6 +42,7 @@ static int flat_solve(flat_cell *cell, enum im_control control, double target, i
 {
     im_solve_result solve = {0};
     int status = cell->solve(cell->solver, cell->gap0, control, target, cell->pressure, cell->displacement, &solve);
+    cell->approach = solve.approach;
     flat_result(cell, &solve, out);
     return status;
 }
@@ -64,4 +65,18 @@ int flat_solve_gap(flat_cell *cell, double mean_gap, im_flat_result *out)
     int status = flat_solve(cell, IM_CONTROL_DISPLACEMENT, cell->mean_gap0 - mean_gap, out);
     out->mean_gap = mean_gap; /* the imposed one */
     return status;
+}
+
+void step_result_from_solve(const im_solve_result *s, double area, double delta2, int cell, im_step_result *out)
+{
+    *out = (im_step_result){.approach = s->approach, .load = s->load, .load_star = area / delta2,
+                            .contact_patches = s->contact_patches,
+                            .area_ratio = s->load > 0 || (cell && s->contact_patches > 0)
+                                              ? s->contact_patches * delta2 / area : NAN,
+                            .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
+                            .iterations = s->iterations, .convolutions = s->convolutions,
+                            .residual = s->residual, .seconds = s->seconds,
+                            .coarse_iterations = s->coarse_iterations};
+    if (cell || s->load < 0)
+        out->load_star = NAN;
 }

@@ -20,6 +20,7 @@ typedef struct flat_cell {
     double patches;         /* nx ny, of the whole cell */
     double cell_area;       /* nx ny delta^2: the load per unit mean pressure */
     double mean_gap0;       /* the mean of gap0 over the cell: the mean gap at approach 0 (mean u = 0 always) */
+    double approach;        /* the last solve's */
 } flat_cell;
 
 /* The cell's fields for n patches (gap0 uninitialised, pressure and displacement zero); IM_ENOMEM. */
@@ -33,5 +34,11 @@ void flat_gap(const double *heights, size_t n, double highest, double *gap0);
 /* im_flat_contact_solve and _solve_gap on a cell whose gap0, totals and solver are set. */
 int flat_solve_pressure(flat_cell *cell, double mean_pressure, im_flat_result *out);
 int flat_solve_gap(flat_cell *cell, double mean_gap, im_flat_result *out);
+
+/* A step's result from its solve s (indentation.c's steps, mpi/flat.c's periodic steps): the solve's values,
+ * area_ratio n_p delta2 / area where the load is positive (on a cell, also where there is contact) and NaN
+ * elsewhere, load_star area / delta2 (NaN on a cell, which has no smooth contact, and under tension). The
+ * mean gap, plastic and adhesive values are zero: the caller's. */
+void step_result_from_solve(const im_solve_result *s, double area, double delta2, int cell, im_step_result *out);
 
 #endif

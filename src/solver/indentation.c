@@ -4,6 +4,7 @@
 #include "core/args.h"
 #include "core/summation.h"
 #include "solver/adhesion.h"
+#include "solver/flat.h"
 
 #include "indentmap/status.h"
 
@@ -459,16 +460,8 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
     /* periodic: no smooth half-space contact to compare with; the area ratio is A / A0 of the cell */
     double area = run->options.periodic ? (double)run->nx * run->ny * d2
                                         : im_indenter_area_for_load(&run->punch, run->options.e_star, s->load);
-    *out = (im_step_result){.approach = s->approach, .load = s->load, .load_star = area / d2,
-                            .contact_patches = s->contact_patches,
-                            .area_ratio = s->load > 0 || (run->options.periodic && s->contact_patches > 0)
-                                              ? s->contact_patches * d2 / area : NAN,
-                            .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
-                            .iterations = s->iterations, .convolutions = s->convolutions,
-                            .residual = s->residual, .seconds = s->seconds,
-                            .coarse_iterations = s->coarse_iterations, .plastic_work = run->plastic_work};
-    if (run->options.periodic || s->load < 0) /* under tension: no smooth contact of that load */
-        out->load_star = NAN;
+    step_result_from_solve(s, area, d2, run->options.periodic, out);
+    out->plastic_work = run->plastic_work;
     out->mean_gap = run->options.periodic ? mean_open_gap(run, s->approach) : NAN;
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
     if (run->adhesion)

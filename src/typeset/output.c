@@ -1,6 +1,7 @@
 /* A cairo drawing written as PNG, PDF or SVG, atomically. */
 #include "typeset/output.h"
 
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 
 #include <cairo-pdf.h>
@@ -81,33 +82,53 @@ static cairo_status_t write_stream(void *closure, const unsigned char *data, uns
     return fwrite(data, 1, length, (FILE *)closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
 }
 
-/* A text of several lines (a scene's contents) as the document's Subject, "key:\nvalue" (cairo
- * before 1.18 writes no other entries of the information dictionary). */
-static void set_pdf_subject(const im_png_text *text, cairo_surface_t *surface)
+/* text as UTF-8, the text of PDF metadata (a path that is not UTF-8 is escaped, io.h: im_path_utf8);
+ * NULL when out of memory. The caller frees it. */
+static char *utf8_copy(const char *text)
 {
-    size_t size = strlen(text->key) + strlen(text->value) + 3;
-    char *subject = malloc(size);
+    size_t size = 4 * strlen(text) + 1;
+    char *copy = malloc(size);
+    if (copy)
+        im_path_utf8(text, copy, size);
+    return copy;
+}
+
+/* The texts of several lines (a scene's contents, the inputs' checksums) as the document's Subject,
+ * "key:\nvalue", blank-line separated (cairo before 1.18 writes no other entries of the information
+ * dictionary). */
+static void set_pdf_subject(const im_figure_canvas *c, cairo_surface_t *surface)
+{
+    size_t size = 1, used = 0;
+    for (int i = 0; i < c->text_count; ++i)
+        size += strlen(c->texts[i].key) + strlen(c->texts[i].value) + 4;
+    char *subject = malloc(size), *text = NULL;
     if (!subject)
         return; /* metadata only: the figure itself is written */
-    snprintf(subject, size, "%s:\n%s", text->key, text->value);
-    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, subject);
+    subject[0] = '\0';
+    for (int i = 0; i < c->text_count; ++i)
+        if (strchr(c->texts[i].value, '\n'))
+            used += (size_t)snprintf(subject + used, size - used, "%s%s:\n%s", used ? "\n\n" : "", c->texts[i].key,
+                                     c->texts[i].value);
+    if (used > 0 && (text = utf8_copy(subject)) != NULL)
+        cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, text);
+    free(text);
     free(subject);
 }
 
-/* The texts as PDF metadata: one-line ones as keywords ("key=value; ..."), one of several lines as
+/* The texts as PDF metadata: one-line ones as keywords ("key=value; ..."), those of several lines as
  * the Subject. */
 static void set_pdf_metadata(const im_figure_canvas *c, cairo_surface_t *surface)
 {
     char keywords[2048] = "";
     size_t used = 0;
-    for (int i = 0; i < c->text_count && used < sizeof keywords; ++i) {
-        if (strchr(c->texts[i].value, '\n'))
-            set_pdf_subject(&c->texts[i], surface);
-        else
+    for (int i = 0; i < c->text_count && used < sizeof keywords; ++i)
+        if (!strchr(c->texts[i].value, '\n'))
             used += (size_t)snprintf(keywords + used, sizeof keywords - used, "%s%s=%s", used ? "; " : "",
                                      c->texts[i].key, c->texts[i].value);
-    }
-    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords);
+    set_pdf_subject(c, surface);
+    char *text = utf8_copy(keywords);
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, text ? text : "");
+    free(text);
     cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "indentmap " IM_VERSION);
 }
 

@@ -345,35 +345,65 @@ static const char SCRIPT[] =
     "if(e.key==='ArrowRight'&&i<steps-1)show(i+1);else if(e.key==='ArrowLeft'&&i>0)show(i-1);});"
     "show(0);})();\n";
 
-/* A PNG's aspect ratio (width / height) from its IHDR chunk, times 1000; 1000 when unreadable. */
-static long png_aspect(const char *path)
+/* At most this many kinds of frames (contact, height, view3d, ...) side by side. */
+enum { FRAME_GROUPS_MAX = 8 };
+
+/* A PNG's width and height in pixels from its IHDR chunk; 0 when unreadable. */
+static void png_size(const char *path, long *width, long *height)
 {
     unsigned char header[24];
     FILE *f = fopen(path, "rb");
     size_t got = f ? fread(header, 1, sizeof header, f) : 0;
     if (f)
         fclose(f);
+    *width = *height = 0;
     if (got != sizeof header || memcmp(header + 12, "IHDR", 4) != 0)
-        return 1000;
-    long width = (long)header[16] << 24 | (long)header[17] << 16 | (long)header[18] << 8 | header[19];
-    long height = (long)header[20] << 24 | (long)header[21] << 16 | (long)header[22] << 8 | header[23];
-    return height > 0 && width > 0 && width < (1L << 20) ? 1000 * width / height : 1000;
+        return;
+    long w = (long)header[16] << 24 | (long)header[17] << 16 | (long)header[18] << 8 | header[19];
+    long h = (long)header[20] << 24 | (long)header[21] << 16 | (long)header[22] << 8 | header[23];
+    if (h > 0 && w > 0 && w < (1L << 20) && h < (1L << 20))
+        *width = w, *height = h;
+}
+
+/* The size of a panel's first frame (0 x 0 when unreadable: a path that does not fit is "" too). */
+typedef struct panel_size {
+    long width, height;
+} panel_size;
+
+/* A frame panel's style: its share of the row is its image's aspect ratio, so that all are drawn at one
+ * height, and its width is capped at the one it has at common_height, the least natural height of the
+ * panels: no panel is blown up beyond its image (a lone 256-pixel frame would fill the window), and the
+ * panels stay at one height. An unreadable image takes a square's share, uncapped. */
+static void write_panel_style(FILE *out, panel_size size, long common_height)
+{
+    if (size.width == 0) {
+        fputs("flex:1000 1 0", out);
+        return;
+    }
+    fprintf(out, "flex:%ld 1 0;max-width:%ldpx", 1000 * size.width / size.height,
+            size.width * common_height / size.height);
 }
 
 /* The frame panels side by side, each showing its prefix's first frame until the script takes over. */
 static int write_frame_panels(const page *p, const char *folder, const name_list *list, const frame_group *groups,
                               int count)
 {
+    panel_size sizes[FRAME_GROUPS_MAX];
+    long common_height = 0;
+    for (int g = 0; g < count; ++g) {
+        char path[PATH_SIZE + 64];
+        im_path_join(path, sizeof path, folder, list->names[groups[g].first]);
+        png_size(path, &sizes[g].width, &sizes[g].height);
+        if (sizes[g].height > 0 && (common_height == 0 || sizes[g].height < common_height))
+            common_height = sizes[g].height;
+    }
     int status = IM_OK;
     fputs("<div class=\"frames\">\n", p->out);
     for (int g = 0; g < count && status == IM_OK; ++g) {
-        /* Each panel's share of the row is its image's aspect ratio, so all are drawn at one height. */
-        char path[PATH_SIZE + 64];
-        /* a path that does not fit is "": png_aspect's default, as for an unreadable image */
-        im_path_join(path, sizeof path, folder, list->names[groups[g].first]);
         const char *caption = caption_of(groups[g].prefix, strlen(groups[g].prefix));
-        fprintf(p->out, "<figure style=\"flex:%ld 1 0\"><img id=\"frame-%s\" src=\"", png_aspect(path),
-                groups[g].prefix);
+        fputs("<figure style=\"", p->out);
+        write_panel_style(p->out, sizes[g], common_height);
+        fprintf(p->out, "\"><img id=\"frame-%s\" src=\"", groups[g].prefix);
         status = write_frame_source(p, list->names[groups[g].first]);
         fprintf(p->out, "\" alt=\"%s\"><figcaption>%s</figcaption></figure>\n", groups[g].prefix,
                 caption ? caption : groups[g].prefix);
@@ -391,8 +421,8 @@ static int write_frames(const page *p)
         return IM_OK; /* no frames can be listed there: the page goes without them */
     name_list list;
     int status = list_folder(folder, pngs, &list), steps;
-    frame_group groups[8];
-    int count = status == IM_OK ? frame_groups(&list, groups, 8, &steps) : 0;
+    frame_group groups[FRAME_GROUPS_MAX];
+    int count = status == IM_OK ? frame_groups(&list, groups, FRAME_GROUPS_MAX, &steps) : 0;
     if (count > 0) {
         fputs("<h2>Frames</h2>\n<div class=\"slider\"><input type=\"range\" id=\"frame-slider\" min=\"0\" max=\"", out);
         fprintf(out, "%d\" value=\"0\" step=\"1\" aria-label=\"step\"><span id=\"frame-label\">step 1 of %d</span></div>\n",

@@ -1,0 +1,91 @@
+"""Units carried into pictures (issue 29): a run in metres and pascals draws, in Python, the contact figure
+that ``indentmap render contact`` draws from the run's force file, with the colour bar 'local force f / N'
+and a scale bar in µm; a contact map's PNG carries the program's text chunks."""
+import struct
+import zlib
+
+import numpy as np
+import pytest
+
+import indentmap as im
+from conftest import run_cli
+
+APPROACH = 2e-7  # metres
+
+
+def png_texts(path):
+    """The tEXt and (uncompressed) iTXt chunks of a PNG file as {key: value}, read here byte by byte."""
+    data, texts, at = path.read_bytes(), {}, 8
+    while at < len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        body = data[at + 8:at + 8 + length]
+        if kind == b"tEXt":
+            key, value = body.split(b"\0", 1)
+            texts[key.decode("latin-1")] = value.decode("latin-1")
+        elif kind == b"iTXt":
+            key, rest = body.split(b"\0", 1)
+            compressed, rest = rest[0], rest[2:]
+            _language, _translated, value = rest.split(b"\0", 2)
+            texts[key.decode("latin-1")] = (zlib.decompress(value) if compressed else value).decode("utf-8")
+        at += 12 + length
+    return texts
+
+
+@pytest.fixture
+def run_in_metres(cli, rough64, tmp_path):
+    """The CLI's run on a surface of 0.1 µm patches read in metres with E* in Pa, and Python's force field
+    and units of the same run."""
+    im.write(tmp_path / "s.npy", 0.1 * rough64, delta=0.1, unit="µm")
+    run_cli(cli, "indent", tmp_path / "s.npy", "--length-unit", "m", "--e-star", "1e9", "--e-star-unit", "Pa",
+            "--approach", APPROACH, "--fields", "--out", tmp_path / "out")
+    t = im.read(tmp_path / "s.npy", length_unit="m")
+    run = im.Indentation(t.heights, im.Cone(80), largest=APPROACH, delta=t.delta, e_star=1e9, length_unit=t.unit,
+                         e_star_unit="Pa")
+    run.step(APPROACH)
+    force = run.fields()[0]
+    assert force.tobytes() == np.load(tmp_path / "out" / "force_0001.npy").tobytes()
+    return t, run.units, force, tmp_path / "out" / "force_0001.npy"
+
+
+def test_contact_figure_in_units_is_the_programs(cli, run_in_metres, tmp_path):
+    t, units, force, force_file = run_in_metres
+    assert (t.unit, units["force"]) == ("m", "N")
+    run_cli(cli, "render", "contact", force_file, "--out", tmp_path / "cli.png")
+    im.Figure([force], delta=t.delta, unit=t.unit, force_unit=units["force"]).save(tmp_path / "python.png")
+    ours, theirs = im.Image.read(tmp_path / "python.png").rgba, im.Image.read(tmp_path / "cli.png").rgba
+    assert ours.shape == theirs.shape and np.array_equal(ours, theirs)
+    # the units are what makes them equal: the same field without them is labelled in E* δ² and δ
+    im.Figure([force], delta=t.delta).save(tmp_path / "plain.png")
+    plain = im.Image.read(tmp_path / "plain.png").rgba
+    assert plain.shape != theirs.shape or not np.array_equal(plain, theirs)
+    assert png_texts(tmp_path / "cli.png")["Quantity"] == "local force f / N"
+
+
+def test_contact_map_texts_are_the_programs(cli, run_in_metres, tmp_path):
+    t, units, force, force_file = run_in_metres
+    run_cli(cli, "render", "contact", force_file, "--raw", "--out", tmp_path / "cli.png")
+    image = im.contact_map(force, delta=t.delta, unit=t.unit, force_unit=units["force"])
+    image.save(tmp_path / "python.png")
+    theirs = png_texts(tmp_path / "cli.png")
+    del theirs["Source"]  # the program's input path; Python draws an array
+    assert image.texts == theirs == png_texts(tmp_path / "python.png")
+    assert theirs["Quantity"] == "local force f / N"
+    assert np.array_equal(image.rgba, im.Image.read(tmp_path / "cli.png").rgba)
+
+
+def test_height_map_quantity_in_its_unit(cli, run_in_metres, tmp_path):
+    """A gap field of the run: the program names it from its sidecar, Python from quantity=."""
+    t, _units, _force, force_file = run_in_metres
+    gap_file = force_file.with_name("gap_0001.npy")
+    run_cli(cli, "render", "height", gap_file, "--raw", "--out", tmp_path / "cli.png")
+    gap = im.read(gap_file)
+    image = im.height_map(gap.heights, delta=gap.delta, unit=gap.unit, quantity="gap")
+    assert image.texts["Quantity"] == png_texts(tmp_path / "cli.png")["Quantity"] == "gap g / m"
+    assert im.height_map(t.heights, delta=t.delta).texts["Quantity"] == "height h / δ"
+
+
+def test_unknown_quantity_and_unit_are_named():
+    with pytest.raises(im.InvalidArgument, match="quantity 'pressure': expected force, height, gap"):
+        im.height_map(np.zeros((4, 4)), quantity="pressure")
+    with pytest.raises(ValueError, match="unit 'furlong': expected a length unit"):
+        im.contact_map(np.zeros((4, 4)), unit="furlong")

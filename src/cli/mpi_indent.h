@@ -1,0 +1,40 @@
+/* Internal to `indentmap mpi-indent` (mpi_indent.c): its options, and its periodic mode
+ * (mpi_periodic.c). Built only with MPI (IM_HAVE_MPI). */
+#ifndef INDENTMAP_CLI_MPI_INDENT_H
+#define INDENTMAP_CLI_MPI_INDENT_H
+
+#include "indentmap/mpi.h"
+
+#if IM_HAVE_MPI
+
+typedef struct mpi_indent_options {
+    im_surface_params surface;  /* synthesised when no file is given */
+    const char *surface_file;   /* float64 .npy heights in units of delta, or NULL */
+    im_indenter punch;
+    int punch_given;            /* --punch, --alpha or --radius */
+    enum im_control control;    /* --approach, --load; --periodic: --pressure (load), --mean-gap */
+    double target;              /* w or N; NaN until given */
+    int periodic;               /* --periodic: a rigid flat on the periodic cell, a history of targets */
+    const char *targets_option; /* --pressure or --mean-gap, NULL until given */
+    double *targets;            /* its step list (mean pressures or mean gaps) */
+    int target_count;
+    im_solver_options solver;
+    int tol_given;              /* --tol (run.json: no quality preset) */
+    const char *out;            /* folder for force.npy and gap.npy, or NULL */
+    int map_factor;             /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */
+} mpi_indent_options;
+
+/* DIR/force.npy and DIR/gap.npy of this rank's rows (and DIR/force_map.npy with --map): rank 0 makes
+ * the folder. Collective. */
+int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *solver, const double *pressure,
+                            const double *gap);
+
+/* --periodic: the history of o's targets on the cell of heights (this rank's rows) under a rigid flat,
+ * on a periodic solver: on rank 0 the history CSV on stdout and, with --out DIR, DIR/history.csv
+ * appended step by step and DIR/run.json (indent --periodic's schema); the last step's fields in DIR.
+ * Collective. */
+int mpi_indent_periodic(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights);
+
+#endif
+
+#endif
