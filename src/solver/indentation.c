@@ -151,8 +151,8 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
 static double approach_bound(const im_field *surface, const im_indenter *punch, enum im_control control,
                              double largest_target, const im_solver_options *o)
 {
-    if (control == IM_CONTROL_DISPLACEMENT) /* with adhesion, also the zone a gap delta_c beyond contact */
-        return largest_target + 2 * o->adhesion_range;
+    if (control == IM_CONTROL_DISPLACEMENT) /* with adhesion, also its zone, and a range for its lift */
+        return largest_target + adhesion_reach(o) + o->adhesion_range;
     if (o->periodic) /* no window to bound */
         return INFINITY;
     double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
@@ -233,8 +233,7 @@ static int allocate_window(im_indentation *run)
     repulsive.adhesion_work = repulsive.adhesion_range = 0;
     int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
-        status = adhesion_create(w.nx, w.ny, run->options.periodic, run->options.adhesion_work,
-                                 run->options.adhesion_range, &run->adhesion);
+        status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
     return status;
 }
 
