@@ -116,6 +116,8 @@ class Indentation:
     Maugis-Dugdale law, ``indentmap indent --adhesion-work --adhesion-range``; docs/solver.md, "Adhesion"):
     displacement control on the half-space only; approaches may then be negative down to -largest (the
     punch pulled away), loads negative under tension; ``adhesion(history)`` gives the pull-off.
+    ``adhesion_law='exponential'`` (``indent --adhesion-law exponential``) takes the smooth law instead: the
+    tension (w / rho) exp(-g / rho) at a gap g, rho = ``adhesion_range``, w / rho in contact.
 
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
@@ -125,7 +127,7 @@ class Indentation:
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=None, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
-                 quality=None):
+                 quality=None, adhesion_law="maugis-dugdale"):
         if tol is None:
             tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
         if punch is None:
@@ -147,7 +149,8 @@ class Indentation:
                                       periodic=_checks.flag("periodic", periodic),
                                       slope_definition=_checks.text("slope_definition", slope_definition or ""),
                                       adhesion_work=_checks.real("adhesion_work", adhesion_work),
-                                      adhesion_range=_checks.real("adhesion_range", adhesion_range))
+                                      adhesion_range=_checks.real("adhesion_range", adhesion_range),
+                                      adhesion_law=_checks.text("adhesion_law", adhesion_law))
 
     def step(self, target):
         """Solves the next step at approach, load or mean gap ``target``; returns its results as a dict."""
