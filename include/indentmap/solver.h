@@ -416,8 +416,8 @@ typedef struct im_indentation im_indentation;
  * will impose: it fixes the solve window, the bounding box of the patches whose undeformed gap is
  * at most the largest approach, plus options->window_margin, grown to an FFT-friendly size
  * (2^a 3^b 5^c 7^d) within the surface. Exact, because u >= 0 under compression: no patch with
- * g0 > w can touch (with adhesion the surface is pulled up: the bound adds 2 delta_c, a margin that a
- * step checks, "Adhesion" above). Under load control the largest approach is bounded by
+ * g0 > w can touch (with adhesion the surface is pulled up: the bound adds 2 delta_c, or 36 rho under
+ * the exponential law, a margin that a step checks, "Adhesion" above). Under load control the largest approach is bounded by
  * 1.1 w_smooth(N) + (max h - min h) (a rough surface is everywhere below the smooth one shifted up
  * by its height range, and the smooth discrete solution is within 1% of the closed form); each
  * step checks that its approach stays below that bound. The plan is made here (serial code).
