@@ -160,6 +160,36 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["adhesion"]["theory"] is None and "k_fit" not in r and r["adhesion"]["pull_off_force"] > 0
 PY
+# The exponential law (--adhesion-law exponential): a flat cell is the law itself, its load at mean gap g
+# -(w / rho) exp(-g / rho) A0, approaching and retracting; a sphere's run.json names the law with its Tabor
+# mu = (R w^2 / (E*^2 rho^3))^(1/3) and no Maugis-Dugdale theory beside it; an unknown law and the law alone
+# are refused, naming the option.
+"$BIN" indent --smooth --n 16 --periodic --mean-gap 2,0.2,1 --adhesion-work 0.02 --adhesion-range 0.4 \
+    --adhesion-law exponential --out "$DIR/expcell" > "$DIR/expcell.log" 2>&1 || fail "exponential cell exited $?"
+python3 - "$DIR/expcell/history.csv" "$DIR/expcell/run.json" <<'PY' || fail "exponential cell: $(cat "$DIR/expcell/history.csv")"
+import csv, json, math, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
+assert [float(r["mean_gap"]) for r in rows] == [2, 0.2, 1], rows
+for r in rows:
+    expected = -0.05 * math.exp(-float(r["mean_gap"]) / 0.4) * 256
+    assert abs(float(r["load"]) - expected) <= 1e-12 * 0.05 * 256 and r["contact_patches"] == "0", (r, expected)
+assert json.load(open(sys.argv[2]))["adhesion"]["law"] == "exponential"
+PY
+"$BIN" indent --smooth --n 64 --punch sphere --radius 16 --adhesion-work 0.01 --adhesion-range 0.2 \
+    --adhesion-law exponential --approach 0.5,-0.5 --out "$DIR/expsphere" > "$DIR/expsphere.log" 2>&1 \
+    || fail "exponential sphere exited $?: $(cat "$DIR/expsphere.log")"
+python3 - "$DIR/expsphere/run.json" <<'PY' || fail "exponential run.json: $(grep -A16 '"adhesion"' "$DIR/expsphere/run.json")"
+import json, sys
+a = json.load(open(sys.argv[1]))["adhesion"]
+assert a["law"] == "exponential" and a["work"] == 0.01 and a["range"] == 0.2 and a["theory"] is None, a
+assert abs(a["tabor_mu"] / (16 * 0.01**2 / 0.2**3) ** (1 / 3) - 1) < 1e-12, a
+assert abs(a["maugis_lambda"] / a["tabor_mu"] - 2 * (9 / (16 * 3.141592653589793)) ** (1 / 3)) < 1e-12, a
+PY
+for bad in "--adhesion-law lennard-jones --adhesion-work 0.1 --adhesion-range 1 --approach 1|--adhesion-law: adhesion law 'lennard-jones': expected maugis-dugdale or exponential" \
+           "--adhesion-law exponential --approach 1|--adhesion-law goes with --adhesion-work and --adhesion-range"; do
+    "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badlaw" > /dev/null 2> "$DIR/badlaw.err"
+    [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badlaw.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badlaw.err")"
+done
 # k of eq. (2) fitted to the steps (theory.h): recorded with its error, range and h'rms definition
 grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spectral"' "$DIR/per/run.json" \
     && grep -q '"k_error"' "$DIR/per/run.json" || fail "run.json has no k fit: $(cat "$DIR/per/run.json")"

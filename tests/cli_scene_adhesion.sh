@@ -3,8 +3,8 @@
 # delta_c = 0.6366, the reduced radius 8 patches, as cli_indent's) approached from w = -1 and pulled back to
 # -1.5: its history pulls, its least load is within 3% of Maugis-Dugdale's 1.6007 pi w R = 17.07
 # (theory.h, im_theory_md_sphere_pull_off; test_theory_adhesion), and it equals `indent`'s of the same
-# settings. --resume reads it back; another work of adhesion, or none, is solved again (the key). The
-# refusals name the key and what is expected.
+# settings. --resume reads it back; another work of adhesion, or none, is solved again (the key). law =
+# exponential is solved with that law, which is part of the key. The refusals name the key and what is expected.
 set -u
 cli=$1
 dir=$(mktemp -d)
@@ -49,13 +49,35 @@ scene "$dir/plain.ini" "" "" "0.1:2:16" plain
 scene "$dir/pulling.ini" "$sticky" "" "0.1:2:16" plain
 check "adhesion is not reused from a plain scene" expect_exit 0 "made from other inputs" \
     "$cli" run --resume "$dir/pulling.ini"
+# law = exponential: solved with it (run.json names it, as `indent --adhesion-law exponential`'s history), and
+# part of the key: the Maugis-Dugdale law of the same work and range is solved again.
+exponential='[adhesion]
+work = 0.05305
+range = 0.2
+law = exponential'
+scene "$dir/exp.ini" "$exponential" "" "-0.5:1:4, 0.5:-0.5:3" exp
+check "the exponential scene runs" "$cli" run "$dir/exp.ini" 2> "$dir/exp.err" > /dev/null
+check "run.json states the exponential law" python3 -c "import json, sys; a = json.load(open(sys.argv[1]))['adhesion']; \
+sys.exit(not (a['law'] == 'exponential' and a['range'] == 0.2))" "$dir/exp/run.json"
+"$cli" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.2 \
+    --adhesion-law exponential --approach -0.5:1:4,0.5:-0.5:3 --out "$dir/expindent" > /dev/null 2>&1
+check "the exponential scene's history is indent's" python3 - "$dir/exp/histories/member_00_1.csv" \
+    "$dir/expindent/history.csv" <<'PY'
+import csv, sys
+def loads(path):
+    return [float(r["load"]) for r in csv.DictReader(l for l in open(path) if not l.startswith("#"))]
+a, b = loads(sys.argv[1]), loads(sys.argv[2])
+sys.exit(not (len(a) == len(b) == 7 and min(b) < 0 and max(abs(x - y) for x, y in zip(a, b)) <= 1e-9 * max(map(abs, b))))
+PY
+scene "$dir/expmd.ini" "${exponential/exponential/maugis-dugdale}" "" "-0.5:1:4, 0.5:-0.5:3" exp
+check "another law is solved again" expect_exit 0 "made from other inputs" "$cli" run --resume "$dir/expmd.ini"
 
 # The refusals, each naming the key at fault and what is expected.
 refuse() { # NAME ADHESION-LINES EXTRA-LINES PHRASE
     scene "$dir/bad.ini" "$2" "$3"
     check "$1" expect_exit 2 "$4" "$cli" run "$dir/bad.ini"
 }
-refuse "another law" "${sticky/maugis-dugdale/lennard-jones}" "" "law = 'lennard-jones': expected maugis-dugdale"
+refuse "another law" "${sticky/maugis-dugdale/lennard-jones}" "" "law = 'lennard-jones': expected maugis-dugdale (a constant stress w / range up to the gap range) or exponential"
 refuse "work without range" '[adhesion]
 work = 0.1' "" "[adhesion] work and range go together"
 refuse "range without work" '[adhesion]

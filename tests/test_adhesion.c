@@ -24,6 +24,7 @@ typedef struct sphere_case {
     double lambda, scale;
     double radius, work, stress, range, approach_unit, load_unit;
     im_theory_adhesion law;
+    int adhesion_law; /* the solver's: Maugis-Dugdale, or the exponential law of the same work and peak stress */
 } sphere_case;
 
 static sphere_case sphere_case_make(double lambda, double scale)
@@ -31,18 +32,41 @@ static sphere_case sphere_case_make(double lambda, double scale)
     const double k = 4.0 / 3.0, radius = 8 * scale, work = k * pow(scale, 3) / (M_PI * radius * radius);
     const double stress = lambda / 2 * cbrt(M_PI * work * k * k / radius);
     return (sphere_case){lambda, scale, radius, work, stress, work / stress, scale * scale / radius,
-                         M_PI * work * radius, {1.0, work, work / stress}};
+                         M_PI * work * radius, {1.0, work, work / stress}, IM_ADHESION_MAUGIS_DUGDALE};
+}
+
+/* The exponential law matched to Maugis-Dugdale's lambda (Johnson & Greenwood 1997): the same work and peak
+ * stress, so rho = delta_c. */
+static sphere_case sphere_case_exponential(double lambda, double scale)
+{
+    sphere_case c = sphere_case_make(lambda, scale);
+    c.adhesion_law = IM_ADHESION_EXPONENTIAL;
+    return c;
+}
+
+/* The exponential law's cut (solver.h, "Adhesion"), in ranges rho. */
+static const double EXPONENTIAL_CUT = 35;
+
+/* The side of a flat surface holding a sphere's window up to approach `largest`: g0 <= largest + the law's
+ * reach + a range, within r^2 = 2 R g0, and the margin of 4 patches with some to spare. */
+static int sphere_side(double radius, double largest, double reach)
+{
+    return 2 * (int)ceil(sqrt(2 * radius * (largest + reach))) + 12;
 }
 
 static im_indentation *sphere_run_under(const sphere_case *c, enum im_control control, double largest)
 {
-    const int n = (int)(8 * c->scale);
+    const int exponential = c->adhesion_law == IM_ADHESION_EXPONENTIAL;
+    const int n = exponential ? (int)fmax(8 * c->scale, sphere_side(c->radius, largest,
+                                                                     (EXPONENTIAL_CUT + 1) * c->range))
+                              : (int)(8 * c->scale);
     im_field *surface = NULL;
     assert_int_equal(im_field_create(n, n, 1.0, &surface), IM_OK);
     im_solver_options o = im_solver_options_default();
     o.tol = 1e-8;
     o.adhesion_work = c->work;
     o.adhesion_range = c->range;
+    o.adhesion_law = c->adhesion_law;
     im_indenter sphere = im_indenter_sphere(c->radius);
     im_indentation *run = NULL;
     if (im_indentation_create(surface, &sphere, control, largest, &o, &run) != IM_OK)
@@ -375,17 +399,107 @@ static void load_control_stops_at_pull_off(void **state)
     im_indentation_free(run);
 }
 
-/* A vanishing work of adhesion gives the repulsive answers: the same loads to 1e-8 and the same contact
- * on a rough surface under a cone. */
-static void vanishing_work_is_repulsive(void **state)
+/* ---- the exponential law on a sphere ---- */
+
+/* The DMT side: a sphere of radius R = s^2 rho on a grid of patches of side 1 = rho (sqrt(R rho) = s patches),
+ * the work w from Tabor's mu = (R w^2 / (E*^2 rho^3))^(1/3). The signed relative error against 2 pi w R of the
+ * least load of a retraction through first touch (D = 0, where the stiff sphere's tension peaks: its error
+ * there is of order mu^3 and the elastic lift's mu^(3/2), far below the grid's). */
+static double dmt_pull_off_error(double mu, double s)
+{
+    const double radius = s * s, work = pow(mu, 1.5) / s, largest = 1.0;
+    const int n = sphere_side(radius, largest, EXPONENTIAL_CUT + 1);
+    im_field *surface = NULL;
+    assert_int_equal(im_field_create(n, n, 1.0, &surface), IM_OK);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-8;
+    o.adhesion_work = work;
+    o.adhesion_range = 1.0;
+    o.adhesion_law = IM_ADHESION_EXPONENTIAL;
+    assert_close(im_adhesion_tabor_mu(&o, radius), mu, 1e-12 * mu);
+    im_indenter sphere = im_indenter_sphere(radius);
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, largest, &o, &run), IM_OK);
+    im_field_free(surface);
+    double least = 0;
+    for (int k = -2; k <= 20; ++k) { /* from 0.5, then by 1e-4 rho from first touch (the curve's slope: 1 / rho) */
+        const double d = k < 0 ? -0.25 * k : -1e-4 * k;
+        im_step_result r;
+        if (im_indentation_step(run, d, &r) != IM_OK)
+            fail_msg("mu %g, s %g: step w = %g: %s", mu, s, d, im_last_error());
+        least = fmin(least, r.load);
+    }
+    im_indentation_free(run);
+    return least / (-2 * M_PI * work * radius) - 1;
+}
+
+/* In the DMT limit (mu = 0.003) the pull-off is 2 pi w R: the error is the grid's (the patch's mean of the
+ * law over a gap taken linear across it, and the discrete apex, both of order 1 / s^2: +0.5% at s = 4, +0.1% at
+ * 8), and it shrinks as the grid is refined, about 4 times per halving. */
+static void exponential_sphere_dmt_limit(void **state)
 {
     (void)state;
+    const double mu = 0.003, coarse = dmt_pull_off_error(mu, 4), fine = dmt_pull_off_error(mu, 8);
+    print_message("exponential law, mu = %g: pull-off %+.2e off 2 pi w R at sqrt(R rho) = 4 patches, %+.2e at 8\n", mu,
+                  coarse, fine);
+    if (!(fabs(fine) < 0.35 * fabs(coarse) && fabs(fine) <= 2e-3))
+        fail_msg("pull-off errors %.3e (4 patches), %.3e (8): expected the finer below 0.35 times the coarser (second "
+                 "order) and below 2e-3", coarse, fine);
+}
+
+/* The least load of a sphere's retraction from D = 1.5 by 0.1 until its contact is lost, in units of pi w R,
+ * refined by the parabola; *iterations: the most repulsive iterations of a step along it. */
+static double retraction_pull_off(const sphere_case *c, int *iterations)
+{
+    im_indentation *run = sphere_run(c, 2.0);
+    for (double d = 0.25; d <= 1.5; d += 0.25)
+        sphere_step(run, c, d);
+    double loads[64];
+    int count = 0;
+    *iterations = 0;
+    for (im_step_result r = {.contact_patches = 1}; r.contact_patches > 0 && count < 64;) {
+        r = sphere_step(run, c, 1.5 - 0.1 * count);
+        *iterations = r.iterations > *iterations ? r.iterations : *iterations;
+        loads[count++] = r.load / c->load_unit;
+    }
+    im_indentation_free(run);
+    assert_true(count >= 10 && count < 64);
+    return least_load(loads, count);
+}
+
+/* Towards JKR: lambda = 1, Maugis's parameter of the Maugis-Dugdale law of the same work and peak stress (Johnson &
+ * Greenwood 1997's matching; the exponential law's Tabor mu = lambda / 1.127), L = 6 patches. The exponential
+ * law's pull-off lies between JKR's 1.5 and DMT's 2 pi w R, and within 8% of that Maugis-Dugdale law's 1.6007:
+ * measured +5.9%, of which the grid's share is about the Maugis-Dugdale solve's own +1.4% at this L (the rest
+ * the laws': the exponential tail pulls from further out). At lambda = 3 (L = 10) the difference measured
+ * +8.4%, the grid's part there about +4.7% (docs/solver.md). */
+static void exponential_sphere_towards_jkr(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_exponential(1.0, 6);
+    im_theory_adhesive_point md;
+    assert_int_equal(im_theory_md_sphere_pull_off(&c.law, c.radius, &md), IM_OK);
+    int iterations;
+    const double pull_off = -retraction_pull_off(&c, &iterations), reference = -md.load / c.load_unit;
+    print_message("lambda %g, L = %g patches: exponential pull-off %.4f pi w R, Maugis-Dugdale's %.4f (%+.4f); at "
+                  "most %d iterations a step\n", c.lambda, c.scale, pull_off, reference, pull_off / reference - 1,
+                  iterations);
+    if (!(pull_off > 1.5 && pull_off < 2 && fabs(pull_off / reference - 1) <= 0.08))
+        fail_msg("lambda %g, L = %g: pull-off %.4f pi w R: expected between 1.5 and 2, within 8%% of "
+                 "Maugis-Dugdale's %.4f", c.lambda, c.scale, pull_off, reference);
+}
+
+/* A vanishing work of adhesion gives the repulsive answers: the same loads to 1e-8 and the same contact
+ * on a rough surface under a cone. */
+static void vanishing_work_is_repulsive_under(int law)
+{
     im_field *surface = test_rough_surface(64, 0.08, 3);
     im_indenter cone = im_indenter_cone(80.0);
     im_solver_options plain = im_solver_options_default(), sticky = plain;
     plain.tol = sticky.tol = 1e-10;
     sticky.adhesion_work = 1e-16;
     sticky.adhesion_range = 1e-6;
+    sticky.adhesion_law = law;
     im_indentation *a = NULL, *b = NULL;
     assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 4, &plain, &a), IM_OK);
     assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 4, &sticky, &b), IM_OK);
@@ -394,8 +508,8 @@ static void vanishing_work_is_repulsive(void **state)
         assert_int_equal(im_indentation_step(a, w, &ra), IM_OK);
         assert_int_equal(im_indentation_step(b, w, &rb), IM_OK);
         if (!(test_relative_difference(ra.load, rb.load) <= 1e-8 && ra.contact_patches == rb.contact_patches))
-            fail_msg("w = %g: load %.17g against %.17g, contact %ld against %ld", w, rb.load, ra.load,
-                     rb.contact_patches, ra.contact_patches);
+            fail_msg("%s, w = %g: load %.17g against %.17g, contact %ld against %ld", im_adhesion_law_name(law), w,
+                     rb.load, ra.load, rb.contact_patches, ra.contact_patches);
         /* the zone pulls, with at most sigma0 on each patch under tension */
         const double stress = sticky.adhesion_work / sticky.adhesion_range;
         assert_true(rb.tensile_force > 0 && rb.tensile_force <= stress * (double)rb.adhesive_patches * (1 + 1e-12));
@@ -403,6 +517,13 @@ static void vanishing_work_is_repulsive(void **state)
     im_indentation_free(a);
     im_indentation_free(b);
     im_field_free(surface);
+}
+
+static void vanishing_work_is_repulsive(void **state)
+{
+    (void)state;
+    vanishing_work_is_repulsive_under(IM_ADHESION_MAUGIS_DUGDALE);
+    vanishing_work_is_repulsive_under(IM_ADHESION_EXPONENTIAL);
 }
 
 /* The step's sums are the net force field's: load = sum f, tensile force = -sum of the negative f,
@@ -450,18 +571,29 @@ static void step_sums_are_the_fields(void **state)
 
 /* A flat cell is the law itself: at a mean gap g up to delta_c every patch carries -sigma0 (load
  * -sigma0 A0, no repulsive contact), beyond it nothing, on approach and on retraction alike. */
-static void flat_cell_is_the_law(void **state)
+/* A flat 16 x 12 cell of patches of side 0.5 (area 48) under the law, w = 0.02 and range 0.4, pulled by a
+ * rigid flat to mean gaps up to largest. */
+static im_indentation *flat_cell_run(im_solver_options *o, int law, double largest)
 {
-    (void)state;
     im_field *surface = NULL;
     assert_int_equal(im_field_create(16, 12, 0.5, &surface), IM_OK);
     im_indenter flat = im_indenter_flat(100);
-    im_solver_options o = im_solver_options_default();
-    o.periodic = 1;
-    o.adhesion_work = 0.02;
-    o.adhesion_range = 0.4;
+    *o = im_solver_options_default();
+    o->periodic = 1;
+    o->adhesion_work = 0.02;
+    o->adhesion_range = 0.4;
+    o->adhesion_law = law;
     im_indentation *run = NULL;
-    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, 1.0, &o, &run), IM_OK);
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, largest, o, &run), IM_OK);
+    im_field_free(surface);
+    return run;
+}
+
+static void flat_cell_is_the_law(void **state)
+{
+    (void)state;
+    im_solver_options o;
+    im_indentation *run = flat_cell_run(&o, IM_ADHESION_MAUGIS_DUGDALE, 1.0);
     const double stress = o.adhesion_work / o.adhesion_range, cell = 16 * 12 * 0.25;
     const double gaps[] = {1.0, 0.6, 0.41, 0.39, 0.2, 0.39, 0.41, 0.8};
     for (size_t k = 0; k < sizeof gaps / sizeof gaps[0]; ++k) {
@@ -474,7 +606,27 @@ static void flat_cell_is_the_law(void **state)
                      expected, r.contact_patches, r.mean_gap);
     }
     im_indentation_free(run);
-    im_field_free(surface);
+}
+
+/* Under the exponential law a flat cell at mean gap g carries -(w / rho) exp(-g / rho) A0 to 1e-12 of its peak
+ * (w / rho) A0, on approach and on retraction, and nothing beyond the cut 35 rho = 14. */
+static void flat_cell_is_the_exponential_law(void **state)
+{
+    (void)state;
+    im_solver_options o;
+    im_indentation *run = flat_cell_run(&o, IM_ADHESION_EXPONENTIAL, 16.0);
+    const double rho = o.adhesion_range, peak = o.adhesion_work / rho, cell = 16 * 12 * 0.25;
+    const double gaps[] = {16.0, 14.1, 13.9, 2.0, 0.6, 0.2, 0.01, 0.2, 1.0, 13.9, 14.1};
+    for (size_t k = 0; k < sizeof gaps / sizeof gaps[0]; ++k) {
+        im_step_result r;
+        assert_int_equal(im_indentation_step(run, gaps[k], &r), IM_OK);
+        const double expected = gaps[k] <= EXPONENTIAL_CUT * rho ? -peak * exp(-gaps[k] / rho) * cell : 0;
+        if (!(fabs(r.load - expected) <= 1e-12 * peak * cell && r.contact_patches == 0 &&
+              fabs(r.mean_gap - gaps[k]) <= 1e-12 * gaps[k]))
+            fail_msg("mean gap %g: load %.17g (expected %.17g), %ld in contact, mean gap %.17g", gaps[k], r.load,
+                     expected, r.contact_patches, r.mean_gap);
+    }
+    im_indentation_free(run);
 }
 
 /* The least load of a retraction of a paraboloidal bump r^2 / (2R) (r from its centre) on a flat
@@ -622,6 +774,9 @@ int main(void)
         cmocka_unit_test(vanishing_work_is_repulsive),
         cmocka_unit_test(step_sums_are_the_fields),
         cmocka_unit_test(flat_cell_is_the_law),
+        cmocka_unit_test(flat_cell_is_the_exponential_law),
+        cmocka_unit_test(exponential_sphere_dmt_limit),
+        cmocka_unit_test(exponential_sphere_towards_jkr),
         cmocka_unit_test(periodic_bump_pulls_off_like_a_sphere),
         cmocka_unit_test(refusals),
         cmocka_unit_test(zone_length_and_lambda),

@@ -153,7 +153,7 @@ typedef struct im_scene {
     double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
     /* [adhesion] (docs/scenes.md, "Adhesion"; solver.h, "Adhesion"): work w > 0 and range delta_c > 0
-     * together, 0 for none; law 0 is maugis-dugdale, the only one. Every history is then solved with it
+     * together, 0 for none; law: enum im_adhesion_law (maugis-dugdale, exponential). Every history is then solved with it
      * (displacement control; steps may go down and below 0, pulling the punch away); what is solved
      * under load control or in the periodic mode (panels, frames, table, distributions, flat_k) is
      * refused beside it. Part of every result's key. */

@@ -139,7 +139,12 @@
  * chosen for g0 <= largest + 2 delta_c; a step whose zone reaches the window's outer row or column
  * fails with IM_EEDGE (solve the whole surface: crop = 0). Step results give the net load (negative
  * under tension), the tensile force and the patches under tension and under compression;
- * contact_patches are those with p_r > 0 (g = 0). Fields report the net force and displacement. */
+ * contact_patches are those with p_r > 0 (g = 0). Fields report the net force and displacement.
+ * The exponential law (adhesion_law = IM_ADHESION_EXPONENTIAL, adhesion_range = rho): the tension
+ * sigma(g) = (w / rho) exp(-g / rho) at a gap g >= 0, w / rho in repulsive contact (the work of separation
+ * is w), cut to 0 beyond g = 35 rho (below 1e-15 of its peak). The same passes, each patch carrying the
+ * mean of sigma over it (the gap linear across it) as its share of the peak w / rho; the window is chosen
+ * for g0 <= largest + 36 rho. Near the jumps its passes slow down as the zone's do (docs/solver.md). */
 #ifndef INDENTMAP_SOLVER_H
 #define INDENTMAP_SOLVER_H
 
@@ -194,8 +199,18 @@ typedef struct im_solver_options {
     /* Adhesion (see "Adhesion" above; 0, the default: none). It acts in an indentation only: a plan
      * made with adhesion_work > 0 is refused (a single solve is the repulsive problem). */
     double adhesion_work;   /* work of adhesion w (E*'s stress times length), the Maugis-Dugdale law's */
-    double adhesion_range;  /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls */
+    double adhesion_range;  /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls;
+                               the exponential law's decay length rho */
+    int adhesion_law;       /* enum im_adhesion_law (default IM_ADHESION_MAUGIS_DUGDALE) */
 } im_solver_options;
+
+/* The cohesive laws of "Adhesion" above. */
+enum im_adhesion_law { IM_ADHESION_MAUGIS_DUGDALE = 0, IM_ADHESION_EXPONENTIAL = 1 };
+
+/* "maugis-dugdale", "exponential" -> IM_ADHESION_*; IM_EINVAL naming the word otherwise. */
+int im_adhesion_law_parse(const char *word, int *law);
+/* The law's name as run.json states it ("Maugis-Dugdale", "exponential"); NULL for another value. */
+const char *im_adhesion_law_name(int law);
 
 enum im_device { IM_DEVICE_CPU = 0, IM_DEVICE_GPU = 1, IM_DEVICE_AUTO = 2 };
 
@@ -382,9 +397,16 @@ double im_adhesion_zone_length(const im_solver_options *options);
 
 /* Maugis's transition parameter of a sphere (paraboloid) of radius R under options' adhesion:
  * lambda = 2 sigma0 (R / (pi w K^2))^(1/3), K = 4 E* / 3 (lambda > 5: JKR, lambda < 0.1: DMT; Tabor's
- * mu = lambda / 1.157 for a Lennard-Jones law of the same work and peak stress). NaN without adhesion,
+ * mu = lambda / 1.157 for a Lennard-Jones law of the same work and peak stress; sigma0 is the law's peak
+ * stress w / adhesion_range, the exponential law's too). NaN without adhesion,
  * for R <= 0 or NULL or invalid options. */
 double im_adhesion_maugis_lambda(const im_solver_options *options, double radius);
+
+/* Tabor's parameter of that sphere: the Maugis-Dugdale law's lambda / 1.157 (the Lennard-Jones law of the
+ * same work and peak stress), the exponential law's own (R w^2 / (E*^2 rho^3))^(1/3) = lambda / 1.127
+ * (lambda: the Maugis-Dugdale law of its work and peak stress w / rho, Johnson & Greenwood's matching).
+ * NaN as im_adhesion_maugis_lambda. */
+double im_adhesion_tabor_mu(const im_solver_options *options, double radius);
 
 typedef struct im_indentation im_indentation;
 
@@ -394,8 +416,8 @@ typedef struct im_indentation im_indentation;
  * will impose: it fixes the solve window, the bounding box of the patches whose undeformed gap is
  * at most the largest approach, plus options->window_margin, grown to an FFT-friendly size
  * (2^a 3^b 5^c 7^d) within the surface. Exact, because u >= 0 under compression: no patch with
- * g0 > w can touch (with adhesion the surface is pulled up: the bound adds 2 delta_c, a margin that a
- * step checks, "Adhesion" above). Under load control the largest approach is bounded by
+ * g0 > w can touch (with adhesion the surface is pulled up: the bound adds 2 delta_c, or 36 rho under
+ * the exponential law, a margin that a step checks, "Adhesion" above). Under load control the largest approach is bounded by
  * 1.1 w_smooth(N) + (max h - min h) (a rough surface is everywhere below the smooth one shifted up
  * by its height range, and the smooth discrete solution is within 1% of the closed form); each
  * step checks that its approach stays below that bound. The plan is made here (serial code).

@@ -130,6 +130,8 @@ class Indentation:
     may then be negative down to -largest (the punch pulled away, the contact under tension); under load
     control a load beyond the pull-off force is refused (InvalidArgument naming it: the contact jumps out);
     ``adhesion(history)`` gives the pull-off.
+    ``adhesion_law='exponential'`` (``indent --adhesion-law exponential``) takes the smooth law instead: the
+    tension (w / rho) exp(-g / rho) at a gap g, rho = ``adhesion_range``, w / rho in contact.
 
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
@@ -163,7 +165,8 @@ class Indentation:
     def __init__(self, heights, punch=Cone(), *, control="displacement", largest, delta=1.0, e_star=1.0,
                  tol=None, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
-                 quality=None, length_unit="", e_star_unit="", plain_pk=False, measure=False, wisdom=None):
+                 quality=None, length_unit="", e_star_unit="", plain_pk=False, measure=False, wisdom=None,
+                 adhesion_law="maugis-dugdale"):
         if tol is None:
             tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
         if punch is None:
@@ -188,7 +191,8 @@ class Indentation:
                                       adhesion_range=_checks.real("adhesion_range", adhesion_range),
                                       plain_pk=_checks.flag("plain_pk", plain_pk),
                                       measure=_checks.flag("measure", measure),
-                                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom))
+                                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom),
+                                      adhesion_law=_checks.text("adhesion_law", adhesion_law))
         self.units = json.loads(_core.units_record(_core.length_unit("length_unit", _checks.text("length_unit",
                                                                                                length_unit)),
                                                    _checks.text("e_star_unit", e_star_unit),

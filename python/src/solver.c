@@ -141,23 +141,27 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
                                "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
                                "hardness", "periodic", "slope_definition", "adhesion_work", "adhesion_range",
-                               "plain_pk", "measure", "wisdom", NULL};
+                               "plain_pk", "measure", "wisdom", "adhesion_law", NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None, *wisdom = NULL;
     int plain_pk = 0;
     double delta, alpha, radius, largest;
-    const char *kind, *control_name, *device = "cpu", *slope_name = "";
+    const char *kind, *control_name, *device = "cpu", *slope_name = "", *law = "maugis-dugdale";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&", keywords, &obj, &delta, &kind,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&s", keywords, &obj, &delta, &kind,
                                      &alpha, &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
                                      &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
                                      &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range, &plain_pk,
-                                     &o.fft_measure, PyUnicode_FSConverter, &wisdom))
+                                     &o.fft_measure, PyUnicode_FSConverter, &wisdom, &law))
         return -1;
     int wisdom_ok = check_idle(self) < 0 ? -1 : set_wisdom(self, wisdom, &o); /* a running step reads it */
     Py_XDECREF(wisdom);
     if (wisdom_ok < 0)
         return -1;
     o.cascade = o.precondition = !plain_pk; /* indent --plain-pk */
+    if (im_adhesion_law_parse(law, &o.adhesion_law) != IM_OK) {
+        PyErr_Format(PyExc_ValueError, "adhesion_law '%s': expected 'maugis-dugdale' or 'exponential'", law);
+        return -1;
+    }
     /* the theory's h'rms (as indent --slope-definition): spectral for a periodic cell, else forward
      * differences (an array may be measured: its edges would count in the spectrum) */
     enum im_slope_definition slope_definition = o.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;

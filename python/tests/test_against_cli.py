@@ -157,6 +157,25 @@ def test_adhesion_under_load_control_bit_for_bit(cli, rough64, tmp_path):
         im.Indentation(rough64, None, control="load", largest=1.0, periodic=True, **options)
 
 
+def test_exponential_adhesion_bit_for_bit(cli, rough64, tmp_path):
+    """The exponential law on the periodic cell under mean-gap control, approached and pulled back: Python's
+    history is the CLI's (--adhesion-law exponential) bit for bit, with tension, and run.json names the law."""
+    import json
+    im.write(tmp_path / "s.npy", rough64)
+    gaps = [float(g) for g in np.std(rough64) * np.array([1.5, 0.5, 1.0, 2.0])]
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--mean-gap", ",".join(repr(g) for g in gaps),
+            "--adhesion-work", "0.02", "--adhesion-range", "0.5", "--adhesion-law", "exponential", "--out",
+            tmp_path / "out")
+    history = im.indent(rough64, None, mean_gaps=gaps, periodic=True, adhesion_work=0.02, adhesion_range=0.5,
+                        adhesion_law="exponential")
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    assert (history["tensile_force"] > 0).all() and (history["contact_patches"][1] > 0)
+    assert json.loads((tmp_path / "out" / "run.json").read_text())["adhesion"]["law"] == "exponential"
+
+
 def test_periodic_bit_for_bit(cli, rough64, tmp_path):
     """indent --periodic --pressure and indent(..., periodic=True, pressures=...): the same rows and forces."""
     im.write(tmp_path / "s.npy", rough64)

@@ -51,6 +51,8 @@ INDENTATION = [
     ("slope_definition", "x", ValueError, r"slope_definition 'x': expected 'spectral' or 'fd'"),
     ("adhesion_work", -1, ValueError, r"adhesion work = -1: expected a finite work of adhesion w >= 0"),
     ("adhesion_range", INF, ValueError, r"adhesion range = inf: expected a finite gap delta_c > 0"),
+    ("adhesion_law", "lennard-jones", ValueError, r"adhesion_law 'lennard-jones': expected 'maugis-dugdale' or 'exponential'"),
+    ("adhesion_law", 3, TypeError, r"adhesion_law: expected a string, got 3"),
     ("quality", "best", ValueError, r"quality = 'best': expected draft, standard or publication"),
     ("quality", 3, TypeError, r"quality: expected a string, got 3"),
     ("length_unit", "furlong", ValueError, r"length_unit 'furlong': expected a length unit"),

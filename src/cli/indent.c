@@ -98,6 +98,9 @@ static void usage(FILE *stream)
             "                      with its jumps, pull-off and lost work (run.json \"adhesion\",\n"
             "                      force_distance.png and .pdf; docs/solver.md, \"Adhesion\")\n"
             "  --adhesion-range D  the range of the adhesive stress (length unit); with --adhesion-work\n"
+            "  --adhesion-law L    maugis-dugdale (default: the stress W / D up to the gap D) or\n"
+            "                      exponential (the tension (W / D) exp(-g / D) at a gap g, W / D in\n"
+            "                      contact, cut beyond g = 35 D); with --adhesion-work\n"
             "  --quality Q         draft (tol 1e-5), standard (1e-6, the default, as for scenes) or\n"
             "                      publication (1e-9): the solver tolerance of a speed/accuracy preset\n"
             "                      (errors measured in solver.h)\n"
@@ -172,6 +175,7 @@ typedef struct indent_options {
     const char *targets_text;
     const char *quality; /* preset name, NULL if none given */
     int tol_given;
+    int adhesion_law_given;   /* --adhesion-law */
     double *targets;
     int target_count;
     im_solver_options solver;
@@ -186,7 +190,7 @@ enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT
        OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
        OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
        OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER, OPT_MEAN_GAP,
-       OPT_FRAMES, OPT_PAGE_EMBED, OPT_FROM_RECORD };
+       OPT_FRAMES, OPT_PAGE_EMBED, OPT_FROM_RECORD, OPT_ADHESION_LAW };
 
 static const struct option LONG_OPTIONS[] = {
     {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
@@ -215,7 +219,8 @@ static const struct option LONG_OPTIONS[] = {
     {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION},
     {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
     {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
-    {"from-record", required_argument, 0, OPT_FROM_RECORD}, {0, 0, 0, 0}};
+    {"from-record", required_argument, 0, OPT_FROM_RECORD},
+    {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW}, {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -223,6 +228,15 @@ static int parse_punch(const char *text, enum im_punch_kind *kind)
     if (im_punch_parse(text, kind) == IM_OK)
         return 0;
     fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
+    return -1;
+}
+
+/* --adhesion-law (solver.h: im_adhesion_law_parse). */
+static int parse_adhesion_law(const char *text, int *law)
+{
+    if (im_adhesion_law_parse(text, law) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: --adhesion-law: %s\n", im_last_error());
     return -1;
 }
 
@@ -311,6 +325,7 @@ static int apply_one_option(int code, const char *arg, indent_options *o)
     case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->solver.adhesion_work);
     case OPT_ADHESION_RANGE:
         return cli_parse_double("--adhesion-range", arg, 1e-300, 1e300, &o->solver.adhesion_range);
+    case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return parse_adhesion_law(arg, &o->solver.adhesion_law);
     case OPT_QUALITY: o->quality = arg; return 0;
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
@@ -362,6 +377,9 @@ static int check_adhesion_options(const indent_options *o)
     const int held = o->solver.periodic ? o->control == IM_CONTROL_MEAN_GAP : o->control != IM_CONTROL_MEAN_GAP;
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
+    else if (o->adhesion_law_given && !adhesion)
+        fprintf(stderr, "indentmap: --adhesion-law goes with --adhesion-work and --adhesion-range (the law's work and "
+                "range): expected both\n");
     else if (adhesion && !held)
         fprintf(stderr, "indentmap: --adhesion-work takes %s\n",
                 o->solver.periodic ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
@@ -681,19 +699,20 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
 /* A number for JSON: null for NaN. */
 static json_t *json_number(double value) { return isfinite(value) ? json_real(value) : json_null(); }
 
-/* The adhesive law as run.json states it: work, range, stress, the Dugdale zone's length (in the length
- * unit and in patches) and, for a sphere, Maugis's lambda and Tabor's mu. */
+/* The adhesive law as run.json states it: its name, work, range, (peak) stress, the Dugdale zone's length (in
+ * the length unit and in patches) and, for a sphere, Maugis's lambda and the law's Tabor mu. */
 static json_t *adhesion_law_record(const indent_options *o)
 {
     const double length = im_adhesion_zone_length(&o->solver), lambda = im_adhesion_maugis_lambda(&o->solver,
                                                                                                   o->punch.radius);
-    json_t *law = json_pack("{s:s, s:f, s:f, s:f, s:f, s:f}", "law", "Maugis-Dugdale", "work", o->solver.adhesion_work,
-                            "range", o->solver.adhesion_range, "stress",
+    json_t *law = json_pack("{s:s, s:f, s:f, s:f, s:f, s:f}", "law", im_adhesion_law_name(o->solver.adhesion_law),
+                            "work", o->solver.adhesion_work, "range", o->solver.adhesion_range, "stress",
                             o->solver.adhesion_work / o->solver.adhesion_range, "zone_length", length,
                             "zone_length_patches", length / o->surface_delta);
     const int sphere = o->punch.kind == IM_PUNCH_SPHERE;
     json_object_set_new(law, "maugis_lambda", sphere ? json_number(lambda) : json_null());
-    json_object_set_new(law, "tabor_mu", sphere ? json_number(lambda / 1.157) : json_null());
+    json_object_set_new(law, "tabor_mu", sphere ? json_number(im_adhesion_tabor_mu(&o->solver, o->punch.radius))
+                                                : json_null());
     return law;
 }
 
@@ -956,8 +975,8 @@ static void write_adhesion_theory(const indent_options *o, const im_history_row 
     const im_theory_adhesion theory = {o->solver.e_star, o->solver.adhesion_work, o->solver.adhesion_range};
     const char *model = NULL;
     im_theory_adhesive_point pull_off;
-    /* (a periodic cell's flat is not a punch on a half-space: no theory) */
-    const int smooth_punch = o->smooth && !o->solver.periodic;
+    /* (a periodic cell's flat is not a punch on a half-space, and the theories are the Maugis-Dugdale law's) */
+    const int smooth_punch = o->smooth && !o->solver.periodic && o->solver.adhesion_law == IM_ADHESION_MAUGIS_DUGDALE;
     int status = smooth_punch ? adhesion_theory_pull_off(&o->punch, &theory, &model, &pull_off) : IM_OK;
     if (status == IM_OK && model)
         status = adhesion_theory_write(o->out, &o->punch, &theory, rows, done);

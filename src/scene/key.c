@@ -102,8 +102,10 @@ static void add_contact(key_hash *hash, const im_scene *scene)
         key_add(hash, "hardness %.17g; memory;", o.hardness);
     if (scene->periodic) /* likewise */
         key_add(hash, "periodic %d;", scene->periodic);
-    if (o.adhesion_work > 0) /* likewise: only then */
-        key_add(hash, "adhesion maugis-dugdale %.17g %.17g;", o.adhesion_work, o.adhesion_range);
+    if (o.adhesion_work > 0) /* likewise: only then; the Maugis-Dugdale law's keys as before the law was a choice */
+        key_add(hash, "adhesion %s %.17g %.17g;",
+                o.adhesion_law == IM_ADHESION_EXPONENTIAL ? "exponential" : "maugis-dugdale", o.adhesion_work,
+                o.adhesion_range);
 }
 
 uint64_t scene_checksum(const char *bytes, size_t length)

@@ -285,16 +285,14 @@ static int parse_steps(const key_spec *spec, const char *value, im_scene *scene,
     return 0; /* kept by handle_key, parsed once every key is known (parse_kept_steps) */
 }
 
-/* [adhesion] law: the solver has the Maugis-Dugdale law only. */
+/* [adhesion] law: `indent --adhesion-law`'s names (solver.h: im_adhesion_law_parse). */
 static int parse_adhesion_law(const key_spec *spec, const char *value, im_scene *scene, char *error, size_t size)
 {
-    if (choice_index(spec->choices, value) != 0) {
-        snprintf(error, size, "law = '%s': expected maugis-dugdale (the only adhesive law of the solver: a constant "
-                 "stress w / range up to the gap range)", value);
-        return -1;
-    }
-    *(int *)destination(spec, scene) = 0;
-    return 0;
+    if (im_adhesion_law_parse(value, (int *)destination(spec, scene)) == IM_OK)
+        return 0;
+    snprintf(error, size, "law = '%s': expected maugis-dugdale (a constant stress w / range up to the gap range) or "
+             "exponential (the tension (w / range) exp(-gap / range))", value);
+    return -1;
 }
 
 /* [punch] shape: the punch names of `indent --punch` (indenter.h: im_punch_parse). */
@@ -410,7 +408,7 @@ static const key_spec KEYS[] = {
     {"output", "frame3d_height", parse_int, FIELD(frame3d_height), 64, 4320, NULL, 0, 0},
     {"adhesion", "work", parse_double, FIELD(adhesion_work), 1e-300, 1e300, NULL, 0, 0},
     {"adhesion", "range", parse_double, FIELD(adhesion_range), 1e-300, 1e300, NULL, 0, 0},
-    {"adhesion", "law", parse_adhesion_law, FIELD(adhesion_law), 0, 0, "maugis-dugdale", 0, 0},
+    {"adhesion", "law", parse_adhesion_law, FIELD(adhesion_law), 0, 0, "maugis-dugdale|exponential", 0, 0},
     {"solver", "tol", parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
     {"solver", "device", parse_choice, FIELD(device), 0, 0, "cpu|gpu|auto", 0, 0},
     {"output", "plots", parse_plots, FIELD(plots), 0, 0, NULL, 0, 0},

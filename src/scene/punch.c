@@ -55,6 +55,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     options.hardness = scene->hardness;
     options.adhesion_work = scene->adhesion_work;
     options.adhesion_range = scene->adhesion_range;
+    options.adhesion_law = scene->adhesion_law;
     options.device = scene->device;
     options.wisdom_path = scene->wisdom_path;
     options.periodic = scene->periodic != 0;

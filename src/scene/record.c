@@ -143,7 +143,8 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(root, "sweep", sweep_record(scene));
     json_object_set_new(root, "adhesion",
                         scene->adhesion_work > 0
-                            ? json_pack("{s:s, s:f, s:f, s:f}", "law", "Maugis-Dugdale", "work", scene->adhesion_work,
+                            ? json_pack("{s:s, s:f, s:f, s:f}", "law", im_adhesion_law_name(scene->adhesion_law),
+                                        "work", scene->adhesion_work,
                                         "range", scene->adhesion_range, "stress",
                                         scene->adhesion_work / scene->adhesion_range)
                             : json_null());

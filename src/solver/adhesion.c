@@ -20,7 +20,17 @@
  * patch in repulsive contact is whole in the zone either way). The passes end when no share would
  * move by more than tol / 100, on the state the history leads to:
  * the least zone on approach, the largest on retraction. That is the hysteresis of adhesive contact
- * (jump-in late on approach, pull-off late on retraction) without a rule of its own. */
+ * (jump-in late on approach, pull-off late on retraction) without a rule of its own.
+ *
+ * The exponential law. The tension sigma(g) = (w / rho) exp(-g / rho) depends on the gap everywhere: a
+ * patch's share is the mean of sigma / sigma0 over it (sigma0 = w / rho, the gap linear across it as above,
+ * sigma0 where that gap is below 0), and the passes are the same fixed point on the shares. Its map is
+ * monotone too (more tension, lower gaps, more tension), and its Jacobian D K' (D = diag(sigma / rho),
+ * K' the compliance of the patches out of contact) has real eigenvalues >= 0, below 1 exactly where the
+ * state is stable (the energy's Hessian K'^-1 - D positive definite): so the plain pass, undamped,
+ * converges wherever the state is stable, at the rate of the largest eigenvalue, which tends to 1 at the
+ * jumps. A damped pass would only be slower (the eigenvalues are not negative); an over-relaxed one would
+ * lose the monotone passes that choose the branch. */
 #include "solver/adhesion.h"
 #include "solver/plan.h"
 
@@ -36,7 +46,16 @@
  * 196^2 window took 300). */
 enum { ADHESION_PASSES_MAX = 20000 };
 
-int adhesion_create(int nx, int ny, int periodic, double work, double range, adhesion_state **out)
+/* The exponential law's tension is cut to 0 beyond this many ranges rho: exp(-35) < 1e-15 of its peak. */
+static const double EXPONENTIAL_CUT = 35;
+
+double adhesion_reach(const im_solver_options *options)
+{
+    const double range = options->adhesion_range;
+    return options->adhesion_law == IM_ADHESION_EXPONENTIAL ? EXPONENTIAL_CUT * range : range;
+}
+
+int adhesion_create(int nx, int ny, int periodic, const im_solver_options *options, adhesion_state **out)
 {
     const size_t n = (size_t)nx * ny;
     adhesion_state *a = calloc(1, sizeof *a);
@@ -52,8 +71,9 @@ int adhesion_create(int nx, int ny, int periodic, double work, double range, adh
         adhesion_free(a);
         return im_fail(IM_ENOMEM, "adhesion on a %d x %d window", nx, ny);
     }
-    a->stress = work / range;
-    a->range = range;
+    a->law = options->adhesion_law;
+    a->stress = options->adhesion_work / options->adhesion_range;
+    a->range = options->adhesion_range;
     a->nx = nx;
     a->ny = ny;
     a->periodic = periodic;
@@ -134,20 +154,43 @@ static double patch_change(const adhesion_state *a, const double *gaps, int x, i
     return isnan(before) ? 0 : here - before;
 }
 
-/* The share of patch (x, y) whose gap is at most delta_c, the gap taken linear across the patch: the
- * zone's edge cuts patches, and a share rather than all or nothing keeps the discrete problem from
- * holding the edge at a patch boundary (lattice trapping: approach and retraction would stop at
- * different edges, and the pull-off would be overestimated by the edge's pinning). */
+/* The share of a patch whose gap is at most delta_c, the gap running linearly from g - change / 2 to
+ * g + change / 2 across it: the zone's edge cuts patches, and a share rather than all or nothing keeps the
+ * discrete problem from holding the edge at a patch boundary (lattice trapping: approach and retraction
+ * would stop at different edges, and the pull-off would be overestimated by the edge's pinning). */
+static double dugdale_share(double range, double g, double change)
+{
+    if (!(change > 0))
+        return g <= range;
+    return fmin(1, fmax(0, 0.5 + (range - g) / change));
+}
+
+/* The mean over such a patch of exp(-max(gap, 0) / rho): the exponential law's tension in units of its
+ * peak, 0 where the whole patch lies beyond the cut. */
+static double exponential_share(double rho, double g, double change)
+{
+    const double lowest = g - 0.5 * change, highest = g + 0.5 * change;
+    if (lowest >= EXPONENTIAL_CUT * rho)
+        return 0;
+    if (highest <= 0)
+        return 1;
+    if (lowest < 0) /* the part below 0 pulls at the peak */
+        return (-lowest - rho * expm1(-highest / rho)) / change;
+    const double half = 0.5 * change / rho; /* the mean is exp(-g / rho) sinh(half) / half */
+    if (half < 1)
+        return half > 0 ? exp(-g / rho) * sinh(half) / half : exp(-g / rho);
+    return rho * (exp(-lowest / rho) - exp(-highest / rho)) / change;
+}
+
+/* The share of patch (x, y) the law calls for, the gap taken linear across the patch. */
 static double zone_share(const adhesion_state *a, const double *gaps, int x, int y)
 {
     const double g = gaps[(size_t)y * a->nx + x];
     if (!isfinite(g))
         return 0;
-    /* the gap runs linearly from g - change / 2 to g + change / 2 across the patch */
     const double change = hypot(patch_change(a, gaps, x, y, 1, 0), patch_change(a, gaps, x, y, 0, 1));
-    if (!(change > 0))
-        return g <= a->range;
-    return fmin(1, fmax(0, 0.5 + (a->range - g) / change));
+    return a->law == IM_ADHESION_EXPONENTIAL ? exponential_share(a->range, g, change)
+                                             : dugdale_share(a->range, g, change);
 }
 
 /* The shares the gaps of the repulsive solution at approach w_lifted call for, into a->proposal (grow: only
@@ -287,11 +330,30 @@ int adhesion_zone_on_border(const adhesion_state *a, int *x, int *y)
     return 0;
 }
 
+int im_adhesion_law_parse(const char *word, int *law)
+{
+    ARG_REQUIRE(word, "word");
+    ARG_REQUIRE(law, "law");
+    static const char *const words[] = {[IM_ADHESION_MAUGIS_DUGDALE] = "maugis-dugdale",
+                                        [IM_ADHESION_EXPONENTIAL] = "exponential"};
+    for (int k = 0; k < 2; ++k)
+        if (strcmp(word, words[k]) == 0) {
+            *law = k;
+            return IM_OK;
+        }
+    return im_fail(IM_EINVAL, "adhesion law '%s': expected maugis-dugdale or exponential", word);
+}
+
+const char *im_adhesion_law_name(int law)
+{
+    return law == IM_ADHESION_MAUGIS_DUGDALE ? "Maugis-Dugdale" : law == IM_ADHESION_EXPONENTIAL ? "exponential" : NULL;
+}
+
 /* Whether the options hold a valid adhesion (no message left: the getters' misuse is a NaN). */
 static int has_adhesion(const im_solver_options *o)
 {
     return o && o->adhesion_work > 0 && o->adhesion_range > 0 && isfinite(o->adhesion_work) &&
-           isfinite(o->adhesion_range) && isfinite(o->e_star) && o->e_star > 0;
+           isfinite(o->adhesion_range) && isfinite(o->e_star) && o->e_star > 0 && im_adhesion_law_name(o->adhesion_law);
 }
 
 double im_adhesion_zone_length(const im_solver_options *options)
@@ -344,4 +406,13 @@ void adhesion_rewind(adhesion_state *a)
     a->zone_area = m->zone_area;
     a->zone_patches = m->zone_patches;
     a->stepped = m->stepped;
+
+double im_adhesion_tabor_mu(const im_solver_options *options, double radius)
+{
+    ARG_REQUIRE_OR(options, "options", NAN);
+    const double lambda = im_adhesion_maugis_lambda(options, radius);
+    if (isnan(lambda) || options->adhesion_law == IM_ADHESION_MAUGIS_DUGDALE)
+        return lambda / 1.157;
+    const double e = options->e_star, rho = options->adhesion_range;
+    return cbrt(radius * options->adhesion_work * options->adhesion_work / (e * e * rho * rho * rho));
 }

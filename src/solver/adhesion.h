@@ -7,10 +7,12 @@
 #include "indentmap/solver.h"
 
 /* The adhesive zone Z (patches where the stress sigma0 = w / delta_c pulls the surface up: repulsive
- * contact, or a gap of at most delta_c) and what it does to the surface, on the solve window. */
+ * contact, or a gap of at most delta_c) and what it does to the surface, on the solve window. Under the
+ * exponential law sigma0 is the peak w / rho and a patch's share the mean of sigma / sigma0 over it. */
 typedef struct adhesion_state {
+    int law;                 /* enum im_adhesion_law */
     double stress;           /* sigma0 */
-    double range;            /* delta_c */
+    double range;            /* delta_c, or rho */
     int nx, ny;              /* the window */
     int periodic;            /* the window is a periodic cell: its gaps wrap around at the edges */
     double *share;           /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
@@ -26,8 +28,11 @@ typedef struct adhesion_state {
     struct adhesion_mark *mark; /* the state adhesion_rewind returns to (adhesion_set_mark), or NULL */
 } adhesion_state;
 
-/* A state for an nx x ny window, or a periodic cell (IM_ENOMEM), with w and delta_c checked by the caller. */
-int adhesion_create(int nx, int ny, int periodic, double work, double range, adhesion_state **out);
+/* A state for an nx x ny window, or a periodic cell (IM_ENOMEM), with the options' law checked by the caller. */
+int adhesion_create(int nx, int ny, int periodic, const im_solver_options *options, adhesion_state **out);
+
+/* The largest gap at which the options' law pulls: delta_c, or the exponential law's cut 35 rho. */
+double adhesion_reach(const im_solver_options *options);
 void adhesion_free(adhesion_state *a);
 
 /* The step at approach w under displacement control: the repulsive pressure p_r and its

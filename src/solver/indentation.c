@@ -154,15 +154,15 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
 static double approach_bound(const im_field *surface, const im_indenter *punch, enum im_control control,
                              double largest_target, const im_solver_options *o)
 {
-    if (control == IM_CONTROL_DISPLACEMENT) /* with adhesion, also the zone a gap delta_c beyond contact */
-        return largest_target + 2 * o->adhesion_range;
+    if (control == IM_CONTROL_DISPLACEMENT) /* with adhesion, also its zone, and a range for its lift */
+        return largest_target + adhesion_reach(o) + o->adhesion_range;
     if (o->periodic) /* no window to bound */
         return INFINITY;
     double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
     if (o->hardness > 0)
         smooth = fmax(smooth, im_indenter_profile(punch, sqrt(largest_target / (M_PI * o->hardness))));
     /* with adhesion the zone's reach too (a deeper adhesive approach is caught by the zone's check) */
-    return isfinite(smooth) ? 1.1 * smooth + height_range(surface) + 2 * o->adhesion_range : INFINITY;
+    return isfinite(smooth) ? 1.1 * smooth + height_range(surface) + adhesion_reach(o) + o->adhesion_range : INFINITY;
 }
 
 static const char *control_target(enum im_control control)
@@ -239,8 +239,7 @@ static int allocate_window(im_indentation *run)
     repulsive.adhesion_work = repulsive.adhesion_range = 0;
     int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
-        status = adhesion_create(w.nx, w.ny, run->options.periodic, run->options.adhesion_work,
-                                 run->options.adhesion_range, &run->adhesion);
+        status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
     return status;
 }
 
@@ -750,7 +749,7 @@ static int walk_to_load(forward_walk *walk)
             return narrow_forward(walk, far, e);
         if (walk->search.target + e < least)
             least = walk->search.target + e, least_at = far;
-        if (walk->direction < 0 && walk->search.last.load == 0) /* no contact, no zone: let go */
+        if (walk->direction < 0 && walk->search.last.contact_patches == 0) /* let go: the tension only fades now */
             return im_fail(IM_EINVAL, "load %g: below the least load the contact held on retraction, %.9g at "
                            "approach %.9g (the pull-off force under load control: the contact jumps out)",
                            walk->search.target, least, least_at);
@@ -762,7 +761,8 @@ static int walk_to_load(forward_walk *walk)
 static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_result *out)
 {
     const int stepped = run->adhesion->stepped;
-    const double w0 = stepped ? run->approach : -2 * run->options.adhesion_range; /* clear of the zone: no load */
+    /* unstepped: clear of the law's reach, no load */
+    const double w0 = stepped ? run->approach : -(adhesion_reach(&run->options) + run->options.adhesion_range);
     const double n0 = stepped ? run->load : 0;
     forward_walk walk = {.search = {.run = run, .target = target, .measure = solved_load, .solve = adhesive_solve,
                                     .length = run->options.adhesion_range},

@@ -31,6 +31,9 @@ static int check_adhesion(const im_solver_options *o)
     if ((o->adhesion_work > 0) != (o->adhesion_range > 0))
         return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: expected both > 0 (adhesion) or both 0 (none)",
                        o->adhesion_work, o->adhesion_range);
+    if (!im_adhesion_law_name(o->adhesion_law))
+        return im_fail(IM_EINVAL, "adhesion law = %d: expected IM_ADHESION_MAUGIS_DUGDALE or IM_ADHESION_EXPONENTIAL",
+                       o->adhesion_law);
     if (o->adhesion_work > 0 && !(isfinite(o->adhesion_work / o->adhesion_range)))
         return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: the stress w / delta_c is not finite",
                        o->adhesion_work, o->adhesion_range);
