@@ -406,6 +406,7 @@ void adhesion_rewind(adhesion_state *a)
     a->zone_area = m->zone_area;
     a->zone_patches = m->zone_patches;
     a->stepped = m->stepped;
+}
 
 double im_adhesion_tabor_mu(const im_solver_options *options, double radius)
 {
