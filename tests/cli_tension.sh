@@ -32,10 +32,11 @@ sys.exit(0 if pixels(sys.argv[1]) == pixels(sys.argv[2]) else 1)
 PY
 }
 
-# Without tension: the starting code's pixels, figure and raw map.
-check "repulsive figure: the pixels drawn before" bash -c "'$cli' render contact '$data/repulsive.txt' --circle 7 --scale 6 \
+# Without tension: the pixels the code before the tension ramp drew (its default map then: viridis, linear),
+# figure and raw map.
+check "repulsive figure: the pixels drawn before" bash -c "'$cli' render contact '$data/repulsive.txt' --colormap viridis --linear --circle 7 --scale 6 \
   --dpi 150 --out '$dir/fig.png' && $(declare -f same_pixels); same_pixels '$dir/fig.png' '$data/repulsive_figure.png'"
-check "repulsive raw map: the pixels drawn before" bash -c "'$cli' render contact '$data/repulsive.txt' --raw --scale 3 \
+check "repulsive raw map: the pixels drawn before" bash -c "'$cli' render contact '$data/repulsive.txt' --colormap viridis --linear --raw --scale 3 \
   --out '$dir/raw.png' && $(declare -f same_pixels); same_pixels '$dir/raw.png' '$data/repulsive_raw.png'"
 
 # The same field with a ring of patches under tension around its contact.
