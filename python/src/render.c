@@ -191,7 +191,18 @@ typedef struct figure_layout {
     int columns;
     const char *colorbar_label;
     double dpi, scale_bar;
+    int extend_under, extend_over; /* some force in contact lies below / above the norm (render's triangles) */
 } figure_layout;
+
+/* Notes the forces in contact (> 0) outside the norm [lo, hi], as `indentmap render` does for its colour bar. */
+static void note_extremes(const im_field *field, const picture_request *r, figure_layout *layout)
+{
+    for (size_t i = 0; i < im_field_count(field); ++i) {
+        const double f = field->data[i];
+        layout->extend_under |= f > 0 && f < r->lo;
+        layout->extend_over |= f > r->hi;
+    }
+}
 
 /* Item i's text, kept alive by the tuple while the figure is written without the GIL. */
 static const char *item_text(PyObject *tuple, Py_ssize_t i)
@@ -233,6 +244,8 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
         figure.colorbar_label = layout->colorbar_label;
         figure.dpi = layout->dpi;
         figure.scale_bar = layout->scale_bar;
+        figure.extend_under = layout->extend_under;
+        figure.extend_over = layout->extend_over;
         figure_job job = {&figure, path};
         status = figure.rows * figure.columns == count ? without_gil(write_figure_file, &job)
                                                        : im_fail(IM_EINVAL, "figure: %ld panels do not fill %d columns",
@@ -246,7 +259,7 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
 
 /* The panels' images and the figure written from them, the GIL released around each drawing call
  * (the tuples cannot change meanwhile, as lists could). */
-static int draw_figure(const char *path, PyObject *fields, double delta, const figure_layout *layout,
+static int draw_figure(const char *path, PyObject *fields, double delta, figure_layout *layout,
                        const picture_request *request)
 {
     Py_ssize_t count = PyTuple_GET_SIZE(fields);
@@ -256,6 +269,8 @@ static int draw_figure(const char *path, PyObject *fields, double delta, const f
         PyArrayObject *array = py_heights_array(PyTuple_GET_ITEM(fields, i), "panel field");
         im_field field = array ? picture_field(array, delta, request) : (im_field){0};
         failed = !array || render_one(&field, request, &images[i]) < 0;
+        if (!failed)
+            note_extremes(&field, request, layout);
         Py_XDECREF(array);
     }
     if (!failed)
@@ -278,7 +293,7 @@ static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     PyObject *path_bytes, *fields, *labels, *titles;
     double delta;
-    figure_layout layout;
+    figure_layout layout = {0};
     picture_request request;
     if (!PyArg_ParseTuple(args, "O&O!dOOisdd", PyUnicode_FSConverter, &path_bytes, &PyList_Type, &fields, &delta,
                           &labels, &titles, &layout.columns, &layout.colorbar_label, &layout.dpi,
