@@ -26,6 +26,10 @@ for step in 1 2; do
   check "step $step: perimeters agree" test "$(column_sum "${p}_patches.csv" 6)" = "$(column_sum "${p}_patch_list.csv" 4)"
   check "step $step: no infinite gap under a cone" grep -qx 'inf,inf,0,0' "${p}_gaps.csv"
 done
+# A step without contact (load 0) has distributions too: all gaps, no patch (it failed: "list is NULL").
+"$cli" indent "$dir/s.npy" --load 0,50 --distributions --out "$dir/zero" >/dev/null 2>&1
+check "a step at load 0: its distributions" test $? -eq 0 -a -s "$dir/zero/distributions_0001_gaps.csv"
+check "a step at load 0: no patch" test "$(wc -l <"$dir/zero/distributions_0001_patch_list.csv")" -eq 1
 check "several patches" test "$(wc -l <"$dir/ind/distributions_0002_patch_list.csv")" -gt 3
 
 cat >"$dir/d.ini" <<INI

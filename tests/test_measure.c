@@ -171,6 +171,9 @@ static void planted_discs_are_measured_exactly(void **state)
     assert_int_equal(disc_cells(2.0), 13);
     /* the histogram: 5 cells (bin 2), 13 and 15 (bin 3), 37 (bin 5), 113 (bin 6) */
     long patches[IM_PATCH_BINS], cells[IM_PATCH_BINS], edges[IM_PATCH_BINS];
+    /* no contact: no list (im_measure_patch_list's NULL), an empty histogram (a step at load 0 failed here) */
+    assert_int_equal(im_measure_patch_histogram(NULL, 0, patches, cells, edges), IM_OK);
+    assert_int_equal(patches[0] + cells[IM_PATCH_BINS - 1] + edges[2], 0);
     assert_int_equal(im_measure_patch_histogram(list, count, patches, cells, edges), IM_OK);
     assert_int_equal(disc_cells(3.5), 37);
     assert_int_equal(disc_cells(6.0), 113);

@@ -100,8 +100,10 @@ int im_measure_patch_list(const im_field *force, im_patch **patches, long *count
 
 int im_measure_patch_histogram(const im_patch *list, long count, long *patches, long *cells, long *edges)
 {
-    ARG_REQUIRE(list, "list");
-    if (count > 0 && (!list || !patches || !cells || !edges))
+    if (count > 0 && !list) /* (no contact: no list, count 0) */
+        return im_fail(IM_EINVAL, "im_measure_patch_histogram: list is NULL for %ld patches: expected a pointer",
+                       count);
+    if (count > 0 && (!patches || !cells || !edges))
         return im_fail(IM_EINVAL, "patch histogram: NULL arrays for %ld patches", count);
     if (patches && cells && edges) {
         memset(patches, 0, sizeof *patches * IM_PATCH_BINS);
