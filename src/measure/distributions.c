@@ -100,6 +100,8 @@ int im_measure_patch_list(const im_field *force, im_patch **patches, long *count
 
 int im_measure_patch_histogram(const im_patch *list, long count, long *patches, long *cells, long *edges)
 {
+    if (count < 0)
+        return im_fail(IM_EINVAL, "im_measure_patch_histogram: count = %ld: expected >= 0", count);
     if (count > 0 && !list) /* (no contact: no list, count 0) */
         return im_fail(IM_EINVAL, "im_measure_patch_histogram: list is NULL for %ld patches: expected a pointer",
                        count);
