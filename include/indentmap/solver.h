@@ -115,7 +115,7 @@
  * With mean u = 0 an approach w also fixes the mean gap over the cell, mean g0 - w, whatever the
  * pressure: displacement control is mean-gap control (Persson's u-bar). Without a hardness it needs
  * w < mean g0 (IM_EINVAL otherwise): a mean gap <= 0 is full contact at an infinite pressure. */
-/* ---- Adhesion (the Maugis-Dugdale law) ----
+/* ---- Adhesion (the Maugis-Dugdale law, and an exponential one) ----
  * With options.adhesion_work = w > 0 and adhesion_range = delta_c the surfaces attract: a constant
  * tensile stress sigma0 = w / delta_c acts on every patch whose gap is at most delta_c, and on the
  * patches in contact (Maugis 1992; Johnson & Greenwood 1997). The net pressure is
@@ -133,9 +133,12 @@
  * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 0.6% of Maugis-Dugdale's at
  * l = 3 patches, 8% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
  * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length).
- * Displacement control only (under load control the force-distance curve's unstable branches are
- * jumps), the half-space only (not periodic), and no hardness with it: IM_EINVAL. Approaches may be
- * negative (the punch pulled away): im_indentation_step takes w in [-largest, largest]. The window is
+ * Controls: displacement or load on the half-space, mean gap on a periodic cell; no hardness with it
+ * (IM_EINVAL). Approaches and loads may be negative (the punch pulled away, the contact under tension):
+ * im_indentation_step takes targets in [-largest, largest]. Under load control a step walks forward over
+ * the approach from the last step's state (the first approach met that carries the load, on the stable
+ * branch) and refuses a load beyond the pull-off force with IM_EINVAL naming the least load the
+ * retraction held (the contact jumps out there), leaving the state as it was. The window is
  * chosen for g0 <= largest + 2 delta_c; a step whose zone reaches the window's outer row or column
  * fails with IM_EEDGE (solve the whole surface: crop = 0). Step results give the net load (negative
  * under tension), the tensile force and the patches under tension and under compression;
@@ -417,8 +420,8 @@ typedef struct im_indentation im_indentation;
  * at most the largest approach, plus options->window_margin, grown to an FFT-friendly size
  * (2^a 3^b 5^c 7^d) within the surface. Exact, because u >= 0 under compression: no patch with
  * g0 > w can touch (with adhesion the surface is pulled up: the bound adds 2 delta_c, or 36 rho under
- * the exponential law, a margin that a step checks, "Adhesion" above). Under load control the largest approach is bounded by
- * 1.1 w_smooth(N) + (max h - min h) (a rough surface is everywhere below the smooth one shifted up
+ * the exponential law, a margin that a step checks, "Adhesion" above). Under load control the largest
+ * approach is bounded by 1.1 w_smooth(N) + (max h - min h) (with adhesion plus that margin) (a rough surface is everywhere below the smooth one shifted up
  * by its height range, and the smooth discrete solution is within 1% of the closed form); each
  * step checks that its approach stays below that bound. The plan is made here (serial code).
  * Errors: IM_ENUMERIC for NaN/Inf heights, IM_EINVAL for bad punch/options/target. */

@@ -1,6 +1,6 @@
-/* Internal: adhesion of the Maugis-Dugdale kind in an indentation (solver.h, "Adhesion"), written
- * above the engines: the adhesive stress enters each solve as a displacement added to the
- * undeformed gap, and the repulsive problem is im_solver_solve's, on whatever engine the plan has. */
+/* Internal: adhesion (the Maugis-Dugdale law, or the exponential one) in an indentation (solver.h,
+ * "Adhesion"), written above the engines: the adhesive stress enters each solve as a displacement added to
+ * the undeformed gap, and the repulsive problem is im_solver_solve's, on whatever engine the plan has. */
 #ifndef INDENTMAP_SOLVER_ADHESION_H
 #define INDENTMAP_SOLVER_ADHESION_H
 
