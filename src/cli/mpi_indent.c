@@ -328,6 +328,7 @@ int cli_mpi_indent(int argc, char **argv)
                result.approach, result.load, result.contact_patches, result.iterations, result.residual,
                result.seconds);
     free(o.targets);
+    code = mpi_exit_code(MPI_COMM_WORLD, code);
     im_mpi_cleanup();
     MPI_Finalize();
     return code;

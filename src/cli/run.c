@@ -162,7 +162,9 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
     }
     if (status == IM_OK)
         status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, &options);
-    int code = finish(status, &scene, rank == 0);
+    int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, &scene, rank == 0));
+    if (rank != 0) /* rank 0 has spoken for all: nothing more (mpirun may signal a rank still finishing) */
+        (void)freopen("/dev/null", "w", stderr);
     MPI_Finalize();
     return code;
 }

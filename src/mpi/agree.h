@@ -11,6 +11,11 @@
  * others as "rank K: ...". */
 int mpi_collective_status(MPI_Comm comm, int status);
 
+/* The exit code of a command under mpirun: on rank 0 the worst (largest) of every rank's code, on the
+ * others 0. Rank 0 speaks for all ranks; a non-zero exit of another rank made mpirun stop rank 0 with a
+ * signal while it was still reporting, whose notice then joined the message. Collective. */
+int mpi_exit_code(MPI_Comm comm, int code);
+
 /* Whether every rank of comm was started alike: the same working folder, the same count arguments
  * args (a command's, after the program's name) and, when file is not NULL, the same bytes in that
  * file (a scene). IM_OK, or IM_EINVAL on every rank with rank 0's message naming the ranks that

@@ -37,6 +37,14 @@ double mpi_surface_mean(const im_mpi_solver *s, const double *values)
     return total / ((double)nx * s->ny);
 }
 
+int mpi_exit_code(MPI_Comm comm, int code)
+{
+    int rank, worst;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, comm);
+    return rank == 0 ? worst : 0;
+}
+
 int mpi_collective_status(MPI_Comm comm, int status)
 {
     int rank, ranks;
