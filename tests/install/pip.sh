@@ -13,8 +13,7 @@ git -C "$source" ls-files -z --cached --others --exclude-standard |
   tar -C "$source" --null --files-from=- --ignore-failed-read -cf - | tar -C "$scratch/source" -xf -
 "$python" -m venv --system-site-packages "$scratch/venv"
 start=$SECONDS
-"$scratch/venv/bin/python" -m pip install --quiet --no-build-isolation --no-deps --no-index "$scratch/source" 2>&1 |
-  grep -v "Running pip as the 'root' user" || true
+"$scratch/venv/bin/python" -m pip install --quiet --no-build-isolation --no-deps --no-index "$scratch/source"
 echo "pip: installed in $((SECONDS - start)) s"
 cd "$scratch"  # not the source tree: the package must be the venv's
 env -u PYTHONPATH -u INDENTMAP_HDF5_READER -u INDENTMAP_GWYDDION_READER "$scratch/venv/bin/python" - \
