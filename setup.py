@@ -1,7 +1,8 @@
 """`pip install --no-build-isolation .`: CMake builds the static library, the extension module over it and
 the programs the library starts to read files (indentmap-hdf5-read; indentmap-gwyddion-read where Gwyddion is
 installed) in build-pip/ (kept: a second install rebuilds only what changed); they go into the package beside the
-extension module, where the library looks for them. No library is installed. CMAKE_ARGS passes options to CMake ("-DIM_GPU=OFF")."""
+extension module, where the library looks for them. No library is installed.
+CMAKE_ARGS passes options to CMake ("-DIM_GPU=OFF")."""
 import os
 import re
 import shlex
