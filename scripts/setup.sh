@@ -19,7 +19,7 @@ PACKAGES=(
   fonts-dejavu-core                        # the font figures are set in
   libgif-dev                               # animated GIFs
   python3-dev python3-numpy                # the Python package (python/): CPython and numpy C APIs
-  python3-setuptools python3-wheel python3-pip python3-pytest  # its pip build and its tests
+  python3-setuptools python3-wheel python3-pip python3-pytest python3-venv  # its pip build, its tests (a venv for pip install .)
   chromium                                 # tests only: the viewer page (index.html) in headless Chromium
   libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
   libzip-dev libxml2-dev nettle-dev        # ISO 25178-72 .x3p surfaces: zip archive around XML, MD5 checksums
