@@ -43,6 +43,9 @@ history_scene cone_w 32 cone displacement "1, 2, 60" fig5
 refused_before_work cone_w "cone_w.ini: [loading] steps (largest approach) = 60: the smooth contact radius a(w) of the punch"
 history_scene sphere_w 32 sphere displacement "0.1, 0.2, 0.6" fig6
 refused_before_work sphere_w "sphere_w.ini: [loading] steps (largest approach) = 0.6: the smooth contact radius a(w) of the punch = 17.3 patches"
+# Fig. 7 over one step (before: the solve ran, then the figure failed with "x[1] = inf").
+history_scene one_step 32 cone load "300" fig7
+refused_before_work one_step "one_step.ini:15: plots = fig7 needs at least two [loading] steps (1 given)"
 # Steps that pass the smooth check but whose rough contact reaches the edge: the run fails and says
 # which step, instead of drawing the histories cut short.
 history_scene edge 32 cone load "100:780:4" fig7 0.5

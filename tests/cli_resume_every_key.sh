@@ -15,8 +15,20 @@ source "$(dirname "$0")/lib.sh"
 require_renderer "$cli"
 parser=$(dirname "$0")/../src/scene/parse.c
 
+# device = gpu where the build has the GPU engine and Vulkan opens a device (`indentmap info` lists it
+# under "Vulkan devices:"), else why not.
+device_rule() {
+  if "$cli" info | grep -A1 '^Vulkan devices:$' | grep -q '^  '; then
+    echo 'solver.device|ensemble|device = gpu'
+  else
+    echo 'solver.device|-|cpu is the only device here; cpu and auto solve alike on a machine without a GPU (cli_device)'
+  fi
+}
+
 # RULES: KEY|BASE|EDIT, EDIT being "key = value" lines of the key's section separated by ';', or
-# KEY|-|WHY for a key without a resume of its own to check.
+# KEY|-|WHY for a key without a resume of its own to check. resample_square alone changes no result
+# (square pixels are read as they are; without it non-square ones are refused), so its edit turns it
+# on with a file of the same heights on pixels 1 x 2 um.
 RULES='
 scene.name|ensemble|name = other
 scene.output|-|another output folder is another run: nothing of the old folder is resumed
@@ -35,8 +47,8 @@ surfaces.detrend|files|detrend = plane
 surfaces.align|files|align = median
 surfaces.fill|files|fill = yes
 surfaces.npy_order|files|npy_order = xy
-surfaces.channel|-|a channel of a multi-channel instrument file: the .npy files here have one (cli_scene_files)
-surfaces.resample_square|-|resampling non-square pixels: the files here are square (cli_scene_files)
+surfaces.channel|instrument|channel = Height
+surfaces.resample_square|pixels|file = rect.txt;resample_square = yes
 punch.shape|sphere|shape = flat;radius = 20
 punch.profile|profile|profile = wide.csv
 punch.alpha|ensemble|alpha = 75
@@ -67,8 +79,7 @@ adhesion.work|sticky|work = 0.06
 adhesion.range|sticky|range = 0.7
 adhesion.law|-|one law (maugis-dugdale): nothing to edit it to
 solver.tol|ensemble|tol = 1e-9
-solver.device|-|cpu is the only device here; cpu and auto solve alike on a machine without a GPU (cli_device)
-'
+'$(device_rule)
 
 # The keys of the parser's table, "section.key" each.
 known_keys() {
@@ -84,13 +95,15 @@ base() {
     sphere) printf '[scene]\nname = sphere\n[surfaces]\nn = 64\nslopes = 0.04\nseeds = 1:2\n[punch]\nshape = sphere\nradius = 100\n[loading]\nload_star = 200\ncontrol = load\nsteps = 50:200:4\n[output]\nplots = fig5\n' ;;
     profile) printf '[scene]\nname = profile\n[surfaces]\nn = 64\nslopes = 0.04\nseeds = 1:2\n[punch]\nshape = profile\nprofile = narrow.csv\n[loading]\nload_star = 200\ncontrol = load\nsteps = 50:200:4\n[output]\nplots = fig5\ncontact_panels = yes\n' ;;
     periodic) printf '[scene]\nname = periodic\n[surfaces]\nn = 64\nslopes = 0.04\nseeds = 1:2\n[punch]\nperiodic = yes\n[loading]\nsteps = 0.004:0.016:4\n[output]\n' ;;
+    instrument) printf '[scene]\nname = instrument\n[surfaces]\nfile = di-3.di\nchannel = ZSensor\n[punch]\nshape = cone\nalpha = 80\n[loading]\nload_star = 300\n[output]\ntable = yes\ncontact_panels = yes\n' ;;
+    pixels) printf '[scene]\nname = pixels\n[surfaces]\nfile = square.txt\n[punch]\nshape = cone\nalpha = 80\n[loading]\nload_star = 300\n[output]\ntable = yes\ncontact_panels = yes\n' ;;
     sticky) printf '[scene]\nname = sticky\n[surfaces]\nn = 64\nslopes = 0\nseeds = 1\n[punch]\nshape = sphere\nradius = 48\n[adhesion]\nwork = 0.05\nrange = 0.6\nlaw = maugis-dugdale\n[loading]\ncontrol = displacement\nsteps = -1:1.5:8\n[output]\nplots = fig5\n' ;;
   esac
 }
 
 # edited FILE SECTION EDITS: FILE with each "key = value" of EDITS (';' between) set in [SECTION].
 edited() {
-  local file=$1 section=$2 edit
+  local file=$1 section=$2 edit edits
   IFS=';' read -ra edits <<<"$3"
   for edit in "${edits[@]}"; do
     awk -v section="[$section]" -v key="${edit%% =*}" -v line="$edit" '
@@ -119,6 +132,14 @@ for name in narrow wide; do
   cone=$([ $name = narrow ] && echo 80 || echo 70)
   python3 -c "import math, sys; a = math.tan(math.radians(float(sys.argv[1])))
 for k in range(41): print(k * 1.0, ',', k / a)" $cone | tr -d ' ' >"$dir/$name.csv"
+done
+
+# di-3.di: channels 0 'ZSensor' and 3 'Height' of 256 x 256 (tests/data/instruments/README.md).
+cp "$(dirname "$0")/data/instruments/di-3.di" "$dir/"
+# One surface as a Gwyddion text export on square pixels (1 x 1 um) and on pixels 1 x 2 um.
+"$cli" surface --n 64 --slope 0.05 --seed 4 --out "$dir/heights.txt" >/dev/null
+for pixels in square:64 rect:128; do
+  (printf '# Width: 64 um\n# Height: %s um\n' "${pixels#*:}"; grep -v '^#' "$dir/heights.txt") >"$dir/${pixels%:*}.txt"
 done
 
 # The table covers the parser's keys, no more, no less.

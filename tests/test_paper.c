@@ -180,6 +180,15 @@ static void test_builders_are_reentrant(void **state)
     assert_int_equal(threads[1].failures, 0);
 }
 
+/* Fig. 7 of data refused for want of a common range of N*, nothing written to NAME. */
+static void assert_no_fig7(const made_histories *data, const char *name)
+{
+    const char *path = test_path(name);
+    assert_int_equal(paper_figure_area_ratio_against_load(&data->h, &(paper_file){.path = path}), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "test.ini: fig7 needs a rough family"));
+    assert_int_equal(access(path, F_OK), -1);
+}
+
 /* Fig. 7 draws the N* range all of a family's surfaces reached: surfaces whose ranges do not
  * overlap share none, and nothing is written. */
 static void test_fig7_needs_a_common_range(void **state)
@@ -190,10 +199,18 @@ static void test_fig7_needs_a_common_range(void **state)
     for (int i = 0; i < MEMBERS; ++i)
         for (int k = 0; k < STEPS; ++k)
             data.load_star[i][k] += 1000.0 * i;
-    const char *path = test_path("fig7_none.png");
-    assert_int_equal(paper_figure_area_ratio_against_load(&data.h, &(paper_file){.path = path}), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "test.ini: fig7 needs a rough family"));
-    assert_int_equal(access(path, F_OK), -1);
+    assert_no_fig7(&data, "fig7_none.png");
+}
+
+/* Histories of one step each are no range of N* (the range's ends were 0 and inf: "x[1] = inf"). */
+static void test_fig7_needs_two_steps(void **state)
+{
+    (void)state;
+    static made_histories data;
+    make_histories(0, &data);
+    for (int i = 0; i < MEMBERS; ++i)
+        data.members[i].steps = 1;
+    assert_no_fig7(&data, "fig7_one_step.png");
 }
 
 /* fig7.csv holds what Fig. 7 plots: made_histories' rough family has A / A_cone = 0.948 + 2e-5 N*
@@ -318,6 +335,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_builders_are_reentrant),
         cmocka_unit_test(test_fig7_needs_a_common_range),
+        cmocka_unit_test(test_fig7_needs_two_steps),
         cmocka_unit_test(test_fig7_statistics),
         cmocka_unit_test(test_first_resolved_step),
         cmocka_unit_test(test_sweep_figure),

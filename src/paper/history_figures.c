@@ -177,16 +177,19 @@ typedef struct load_figure {
     double eq12_x[PAPER_MAX_PANELS][2], eq12_y[PAPER_MAX_PANELS][2];
 } load_figure;
 
-/* The N* range every surface of family f reached: 0 when they share none. */
+/* The N* range every surface of family f with two steps or more reached: 0 when they share none
+ * (or none has two steps: one step is no range). */
 static int common_range(const paper_histories *h, int f, double *start, double *end)
 {
     *start = 0.0, *end = INFINITY;
+    int ranges = 0;
     for (int i = 0; i < h->count; ++i)
         if (h->members[i].family == f && h->members[i].steps > 1) {
             *start = fmax(*start, h->members[i].load_star[0]);
             *end = fmin(*end, h->members[i].load_star[h->members[i].steps - 1]);
+            ++ranges;
         }
-    return *end > *start;
+    return ranges > 0 && *end > *start;
 }
 
 /* Mean and standard deviation of family f's A / A_cone at COMMON_POINTS N* on [start, end]. */

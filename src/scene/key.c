@@ -102,6 +102,10 @@ static void add_contact(key_hash *hash, const im_scene *scene)
         key_add(hash, "hardness %.17g; memory;", o.hardness);
     if (scene->periodic) /* likewise */
         key_add(hash, "periodic %d;", scene->periodic);
+    /* likewise: the GPU engine's results differ from the CPU's in the last bits (and in iterations), so
+     * --resume after [solver] device is edited must not keep the other engine's */
+    if (o.device != IM_DEVICE_CPU)
+        key_add(hash, "device %s;", o.device == IM_DEVICE_GPU ? "gpu" : "auto");
     if (o.adhesion_work > 0) /* likewise: only then; the Maugis-Dugdale law's keys as before the law was a choice */
         key_add(hash, "adhesion %s %.17g %.17g;",
                 o.adhesion_law == IM_ADHESION_EXPONENTIAL ? "exponential" : "maugis-dugdale", o.adhesion_work,

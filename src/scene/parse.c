@@ -873,6 +873,18 @@ static int parse_kept_steps(parse_context *context)
     return 0;
 }
 
+/* Fig. 7 draws A / A_cone against N* over the range a family's surfaces share, which one step is
+ * not. Returns the line of plots at fault, 0 if none. */
+static int check_fig7_steps(parse_context *context)
+{
+    const im_scene *scene = context->scene;
+    if (!(scene->plots & IM_SCENE_PLOT_FIG7) || scene->step_count >= 2)
+        return 0;
+    snprintf(context->error, sizeof context->error, "plots = fig7 needs at least two [loading] steps (%d given): it "
+             "draws A / A_cone against N* over the range of N* the surfaces share", scene->step_count);
+    return key_line(context, "output", "plots");
+}
+
 /* Settings that contradict each other: a message citing the line of the key at fault (the later
  * of two), in context->error; returns that line (1 if no key was given), 0 if consistent. */
 static int check_consistency(parse_context *context)
@@ -893,6 +905,9 @@ static int check_consistency(parse_context *context)
     int punch_line = check_punch_keys(context);
     if (punch_line)
         return punch_line;
+    int fig7_line = check_fig7_steps(context);
+    if (fig7_line)
+        return fig7_line;
     if (scene->surface.lambda_r <= largest_lambda_s(scene)) {
         int r = key_line(context, "surfaces", "lambda_r"), s = key_line(context, "surfaces", "lambda_s");
         int n = key_line(context, "surfaces", "n"), m = key_line(context, "surfaces", "m");
