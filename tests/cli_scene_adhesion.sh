@@ -93,6 +93,32 @@ hardness = 1' "[adhesion] with [material] hardness"
 scene "$dir/bad.ini" "" ""
 check "negative steps without adhesion (indent's message)" expect_exit 2 "'-1:2:16' is not a range first:last:count (three numbers >= 0)" \
     "$cli" run "$dir/bad.ini"
-sed 's/control = displacement/control = load/' "$dir/sticky.ini" > "$dir/bad.ini"
-check "load control" expect_exit 2 "[adhesion] takes [loading] control = displacement" "$cli" run "$dir/bad.ini"
+
+# Load control: the steps are loads (indent --load's; a pulled contact has no N*), the history indent's. A
+# load below the pull-off force under load control (the smooth sphere's -17.13, the rough one's -15.90) ends
+# its member with the library's message and the step; the other members' histories are kept, as for a
+# member whose contact reached the edge.
+loads="0:40:5, 30:-15:4"
+scene "$dir/load.ini" "$sticky" "" "$loads" load
+sed -i 's/control = displacement/control = load/' "$dir/load.ini"
+check "the load-controlled scene runs" "$cli" run "$dir/load.ini" > /dev/null 2> "$dir/load.err"
+"$cli" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+    --load "${loads// /}" --out "$dir/loadindent" > /dev/null 2>&1
+check "the load-controlled scene's history is indent --load's, pulled below 0" python3 - \
+    "$dir/load/histories/member_00_1.csv" "$dir/loadindent/history.csv" <<'PY'
+import csv, sys
+def rows(path):
+    return [(float(r["approach"]), float(r["load"]))
+            for r in csv.DictReader(l for l in open(path) if not l.startswith("#"))]
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
+close = all(abs(x - y) <= 1e-9 * max(abs(y), 1) for p, q in zip(a, b) for x, y in zip(p, q))
+sys.exit(not (len(a) == len(b) == 9 and close and abs(b[-1][1] + 15) < 1e-4))
+PY
+sed 's/slopes = 0$/slopes = 0, 0.05/; s/-15:4$/-15:4, -16.5/; s|/load$|/beyond|' "$dir/load.ini" > "$dir/beyond.ini"
+check "a load beyond the pull-off ends its member with the library's message and the step" expect_exit 2 \
+    "family 1, seed 1: step 10 of 10 (load -16.5): load -16.5: below the least load the contact held on retraction" \
+    "$cli" run "$dir/beyond.ini"
+check "the member that held every load is kept, the other is not written" python3 -c "import os, sys; \
+sys.exit(not (os.path.exists(sys.argv[1] + '/member_00_1.csv') and not os.path.exists(sys.argv[1] + '/member_01_1.csv')))" \
+    "$dir/beyond/histories"
 finish

@@ -154,9 +154,9 @@ typedef struct im_scene {
 
     /* [adhesion] (docs/scenes.md, "Adhesion"; solver.h, "Adhesion"): work w > 0 and range delta_c > 0
      * together, 0 for none; law: enum im_adhesion_law (maugis-dugdale, exponential). Every history is then solved with it
-     * (displacement control; steps may go down and below 0, pulling the punch away); what is solved
-     * under load control or in the periodic mode (panels, frames, table, distributions, flat_k) is
-     * refused beside it. Part of every result's key. */
+     * (steps may go down and below 0, pulling the punch away; under load control they are loads N, as
+     * `indent --load`'s, not N*); what is solved at load_star or in the periodic mode (panels, frames,
+     * table, distributions, flat_k) is refused beside it. Part of every result's key. */
     double adhesion_work, adhesion_range;
     int adhesion_law;
 

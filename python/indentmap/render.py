@@ -128,7 +128,9 @@ class Figure:
     PDF or SVG by extension; a notebook shows it as PNG. Norm defaults as ``contact_map``'s (magma, log). ``unit`` (the length unit of ``delta``) and
     ``force_unit`` label the scale bar ('10 µm') and the colour bar ('local force f / N') as
     ``indentmap render contact`` labels a force file of that run; ``colorbar_label`` overrides the
-    colour bar's.
+    colour bar's. Patches under tension (force < 0, adhesion) are drawn on the tension ramp, its range 0 to the
+    largest tension of all the panels, with a second bar ('tensile force −f / N') when any panel has tension,
+    as ``render contact`` draws them.
 
     Example: ``im.Figure([f1, f2], columns=2, labels=["(a)", "(b)"], delta=t.delta, unit=t.unit,
     force_unit="N").save("fig4.pdf")``.
@@ -149,6 +151,7 @@ class Figure:
                           contact=None, unit=_core.length_unit("unit", unit))
         if colorbar_label is None:
             colorbar_label = _core.colorbar_label("force", force_unit)
+        self.tension_label = _core.colorbar_label("tension", force_unit)
         self.delta, self.colorbar_label, self.dpi, self.scale_bar = float(delta), colorbar_label, dpi, scale_bar
 
     def save(self, path):
@@ -160,7 +163,7 @@ class Figure:
         labels = None if self.labels is None else list(self.labels)
         titles = None if self.titles is None else list(self.titles)
         _core.figure(path, self.fields, self.delta, labels, titles, self.columns, self.colorbar_label,
-                     float(self.dpi), float(self.scale_bar), vmin=self.norm[0], vmax=self.norm[1], **self.style)
+                     self.tension_label, float(self.dpi), float(self.scale_bar), vmin=self.norm[0], vmax=self.norm[1], **self.style)
 
     def _repr_png_(self):
         return _png_bytes(self.save)

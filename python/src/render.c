@@ -83,6 +83,8 @@ typedef struct picture_request {
     double circle_radius, circle_x, circle_y; /* contact maps; radius <= 0: none */
     PyObject *contact;         /* height fields: forces whose contact is outlined, or None */
     const char *unit;          /* the length unit of delta ("": units of delta), for the scale bar */
+    double tension;            /* contact maps: the top of the tension norm shared by a figure's panels; NaN:
+                                  each map's own largest tension */
 } picture_request;
 
 /* One picture's inputs, all C: the request's numbers, the norm made from it, and array views. */
@@ -109,6 +111,8 @@ static int draw_picture(void *argument)
     style.colormap = job->norm;
     style.pixels_per_patch = r->scale;
     style.circle_radius = r->circle_radius;
+    if (!isnan(r->tension))
+        style.tension = im_contact_tension_norm(r->tension);
     if (r->circle_radius > 0 && !isnan(r->circle_x)) {
         style.circle_x = r->circle_x;
         style.circle_y = r->circle_y;
@@ -146,7 +150,7 @@ static int parse_request(PyObject *kwargs, picture_request *r)
     static char *keywords[] = {"height_map", "colormap", "vmin", "vmax", "log", "scale", "circle_radius",
                                "circle_x", "circle_y", "contact", "unit", NULL};
     *r = (picture_request){.colormap = "viridis", .scale = 2, .circle_x = NAN, .circle_y = NAN, .contact = Py_None,
-                           .unit = ""};
+                           .unit = "", .tension = NAN};
     PyObject *empty = PyTuple_New(0);
     if (!empty)
         return -1;
@@ -189,7 +193,7 @@ static PyObject *render(PyObject *self, PyObject *args, PyObject *kwargs)
 typedef struct figure_layout {
     PyObject *labels, *titles; /* tuples of str or None, one per panel, or None */
     int columns;
-    const char *colorbar_label;
+    const char *colorbar_label, *tension_label; /* the force's bar, the tension's (drawn when there is any) */
     double dpi, scale_bar;
     int extend_under, extend_over; /* some force in contact lies below / above the norm (render's triangles) */
 } figure_layout;
@@ -246,6 +250,11 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
         figure.scale_bar = layout->scale_bar;
         figure.extend_under = layout->extend_under;
         figure.extend_over = layout->extend_over;
+        const im_colormap tension = im_contact_tension_norm(request->tension);
+        if (request->tension > 0) {
+            figure.tension_colormap = &tension;
+            figure.tension_label = layout->tension_label;
+        }
         figure_job job = {&figure, path};
         status = figure.rows * figure.columns == count ? without_gil(write_figure_file, &job)
                                                        : im_fail(IM_EINVAL, "figure: %ld panels do not fill %d columns",
@@ -257,12 +266,31 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
     return PyErr_Occurred() ? -1 : 0;
 }
 
+/* The largest tension of the panels' fields, shared by their maps and the tension bar as `indentmap render
+ * contact` shares it; -1 with an exception set if a field is not an array of heights. */
+static double shared_tension(PyObject *fields, double delta, const picture_request *request)
+{
+    double largest = 0;
+    for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(fields); ++i) {
+        PyArrayObject *array = py_heights_array(PyTuple_GET_ITEM(fields, i), "panel field");
+        if (!array)
+            return -1;
+        im_field field = picture_field(array, delta, request);
+        largest = fmax(largest, im_contact_largest_tension(&field));
+        Py_DECREF(array);
+    }
+    return largest;
+}
+
 /* The panels' images and the figure written from them, the GIL released around each drawing call
  * (the tuples cannot change meanwhile, as lists could). */
 static int draw_figure(const char *path, PyObject *fields, double delta, figure_layout *layout,
-                       const picture_request *request)
+                       picture_request *request)
 {
     Py_ssize_t count = PyTuple_GET_SIZE(fields);
+    request->tension = shared_tension(fields, delta, request);
+    if (request->tension < 0)
+        return -1;
     im_image *images = PyMem_Calloc((size_t)count, sizeof *images);
     int failed = images ? 0 : (PyErr_NoMemory(), -1);
     for (Py_ssize_t i = 0; i < count && !failed; ++i) {
@@ -287,7 +315,7 @@ static PyObject *frozen(PyObject *sequence)
     return sequence == Py_None ? Py_NewRef(Py_None) : PySequence_Tuple(sequence);
 }
 
-/* figure(path, fields, delta, labels, titles, columns, colorbar_label, dpi, scale_bar, **request) */
+/* figure(path, fields, delta, labels, titles, columns, colorbar_label, tension_label, dpi, scale_bar, **request) */
 static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
@@ -295,9 +323,9 @@ static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
     double delta;
     figure_layout layout = {0};
     picture_request request;
-    if (!PyArg_ParseTuple(args, "O&O!dOOisdd", PyUnicode_FSConverter, &path_bytes, &PyList_Type, &fields, &delta,
-                          &labels, &titles, &layout.columns, &layout.colorbar_label, &layout.dpi,
-                          &layout.scale_bar) || parse_request(kwargs, &request) < 0)
+    if (!PyArg_ParseTuple(args, "O&O!dOOissdd", PyUnicode_FSConverter, &path_bytes, &PyList_Type, &fields, &delta,
+                          &labels, &titles, &layout.columns, &layout.colorbar_label, &layout.tension_label,
+                          &layout.dpi, &layout.scale_bar) || parse_request(kwargs, &request) < 0)
         return NULL;
     if (layout.columns < 1 || PyList_Size(fields) < 1) {
         Py_DECREF(path_bytes);

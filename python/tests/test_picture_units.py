@@ -89,3 +89,25 @@ def test_unknown_quantity_and_unit_are_named():
         im.height_map(np.zeros((4, 4)), quantity="pressure")
     with pytest.raises(ValueError, match="unit 'furlong': expected a length unit"):
         im.contact_map(np.zeros((4, 4)), unit="furlong")
+
+
+def test_adhesive_figure_is_the_programs(cli, rough64, tmp_path):
+    """Forces under tension (adhesion) in two panels, the second's tension half the first's: the Figure draws
+    them on one tension range, 0 to the largest tension of both, with the second bar 'tensile force −f / N',
+    pixel for pixel as ``render contact`` draws the two force files."""
+    im.write(tmp_path / "s.npy", 0.1 * rough64, delta=0.1, unit="µm")
+    run_cli(cli, "indent", tmp_path / "s.npy", "--length-unit", "m", "--e-star", "1e9", "--e-star-unit", "Pa",
+            "--adhesion-work", "5", "--adhesion-range", "6e-8", "--approach", f"{APPROACH},0", "--fields",
+            "--out", tmp_path / "out")
+    first = np.load(tmp_path / "out" / "force_0001.npy")
+    halved = 0.5 * np.load(tmp_path / "out" / "force_0002.npy")
+    np.save(tmp_path / "halved.npy", halved)
+    (tmp_path / "halved.npy.json").write_bytes((tmp_path / "out" / "force_0002.npy.json").read_bytes())
+    assert first.min() < 0 and 0 > halved.min() > first.min()
+    run_cli(cli, "render", "contact", tmp_path / "out" / "force_0001.npy", tmp_path / "halved.npy",
+            "--out", tmp_path / "cli.png")
+    t = im.read(tmp_path / "s.npy", length_unit="m")
+    im.Figure([first, halved], delta=t.delta, unit=t.unit, force_unit="N", labels=["(a)", "(b)"]).save(
+        tmp_path / "python.png")
+    ours, theirs = im.Image.read(tmp_path / "python.png").rgba, im.Image.read(tmp_path / "cli.png").rgba
+    assert ours.shape == theirs.shape and np.array_equal(ours, theirs)

@@ -233,8 +233,9 @@ static int write_output(const render_options *o, char **inputs, const im_image *
         snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
     int contact = strcmp(o->mode, "height") != 0;
     char label[96], tension_name[96];
-    snprintf(tension_name, sizeof tension_name, "tensile force −f / %s", o->value_unit[0] ? o->value_unit : "(E* δ²)");
-    int status = im_figure_colorbar_label(contact ? "force" : height_quantity(inputs[0]),
+    int status = im_figure_colorbar_label("tension", o->value_unit, tension_name, sizeof tension_name);
+    if (status == IM_OK)
+        status = im_figure_colorbar_label(contact ? "force" : height_quantity(inputs[0]),
                                           contact ? o->value_unit : images[0].unit, label, sizeof label);
     if (status != IM_OK)
         return status;

@@ -12,7 +12,8 @@ typedef struct quantity_name {
 
 static const quantity_name QUANTITIES[] = {
     {"force", "local force f", "(E* δ²)"}, {"height", "height h", "δ"}, {"gap", "gap g", "δ"},
-    {"displacement", "displacement u", "δ"}, {"plastic", "plastic depth d", "δ"}};
+    {"displacement", "displacement u", "δ"}, {"plastic", "plastic depth d", "δ"},
+    {"tension", "tensile force −f", "(E* δ²)"}};
 
 int im_figure_colorbar_label(const char *quantity, const char *unit, char *text, size_t size)
 {
@@ -28,6 +29,6 @@ int im_figure_colorbar_label(const char *quantity, const char *unit, char *text,
                            length + 1);
         return IM_OK;
     }
-    return im_fail(IM_EINVAL, "im_figure_colorbar_label: quantity '%s': expected force, height, gap, displacement "
-                              "or plastic", quantity);
+    return im_fail(IM_EINVAL, "im_figure_colorbar_label: quantity '%s': expected force, height, gap, displacement, "
+                              "plastic or tension", quantity);
 }

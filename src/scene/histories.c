@@ -163,11 +163,12 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
     return scene_key_matches(options, path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY));
 }
 
-/* The target of step i: an approach, the load at N* = steps[i], or in the periodic mode the load of the
- * mean pressure steps[i] over the cell (as `indent --periodic --pressure`) or the mean gap steps[i]. */
+/* The target of step i: an approach, the load at N* = steps[i] (the load steps[i] itself with adhesion), or
+ * in the periodic mode the load of the mean pressure steps[i] over the cell (as `indent --periodic
+ * --pressure`) or the mean gap steps[i]. */
 static double step_target(const im_scene *scene, int i, const im_field *surface)
 {
-    if (scene->control == IM_CONTROL_MEAN_GAP)
+    if (scene->control == IM_CONTROL_MEAN_GAP || scene_steps_are_loads(scene))
         return scene->steps[i];
     if (scene->periodic)
         return scene->steps[i] * periodic_cell_area(surface);
@@ -180,6 +181,8 @@ static const char *step_name(const im_scene *scene)
 {
     if (scene->periodic)
         return scene->control == IM_CONTROL_MEAN_GAP ? "mean gap" : "mean pressure";
+    if (scene_steps_are_loads(scene))
+        return "load";
     return scene->control == IM_CONTROL_LOAD ? "N*" : "approach";
 }
 
@@ -233,6 +236,8 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
         if (status == IM_EEDGE) /* a history short of the scene's steps would be drawn as if whole */
             im_fail_context(status, "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
                             "smaller steps)", i + 1, scene->step_count, step_name(scene), scene->steps[i]);
+        else if (status != IM_OK && status != IM_EINTERRUPTED && scene_steps_are_loads(scene)) /* past the pull-off: which step of the list */
+            im_fail_context(status, "step %d of %d (load %g)", i + 1, scene->step_count, scene->steps[i]);
         if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
             status = im_history_measure(&punch, theory, from_table ? NULL : run, m->history, i);
         if (status == IM_OK && scene_periodic_writes_steps(scene, m))

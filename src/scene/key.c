@@ -127,7 +127,8 @@ int scene_kept_damaged(const im_scene_run_options *options, const char *path, co
 
 int scene_load_star_step(const im_scene *scene)
 {
-    for (int i = 0; scene->control == IM_CONTROL_LOAD && !scene->periodic && i < scene->step_count; ++i)
+    const int at_n_star = scene->control == IM_CONTROL_LOAD && !scene->periodic && !scene_steps_are_loads(scene);
+    for (int i = 0; at_n_star && i < scene->step_count; ++i)
         if (fabs(scene->steps[i] - scene->load_star) <= 1e-12 * scene->load_star)
             return i;
     return -1;

@@ -81,6 +81,19 @@ static int check_contact_fits(const im_scene *scene, const grid *g, const char *
     return check_radius_fits(scene, g, key, n_star, sqrt(n_star / M_PI), "sqrt(N*/pi)");
 }
 
+/* The largest of loads given as loads (with [adhesion]): its smooth (repulsive) contact, a disc of area A(N).
+ * Nothing to check when no load presses, or for a 2-D profile (no smooth-contact area: the solver's edge
+ * check stops it). */
+static int check_load_fits(const im_scene *scene, const grid *g, double largest)
+{
+    im_indenter punch = scene_punch(scene);
+    const double area = largest > 0 ? im_indenter_area_for_load(&punch, scene->modulus, largest) : NAN;
+    if (!isfinite(area))
+        return IM_OK;
+    return check_radius_fits(scene, g, "[loading] steps (largest load)", largest, sqrt(area / M_PI) / g->delta,
+                             "sqrt(A(N)/pi)");
+}
+
 /* Every history (any punch, load or displacement control) must reach its last step: refused here,
  * before any work, when even the smooth contact of that step leaves the surface. */
 static int check_histories_fit(const im_scene *scene, const grid *g)
@@ -90,6 +103,8 @@ static int check_histories_fit(const im_scene *scene, const grid *g)
     double last = scene->steps[0]; /* the largest step (a history with a hardness may go down) */
     for (int i = 1; i < scene->step_count; ++i)
         last = fmax(last, scene->steps[i]);
+    if (scene_steps_are_loads(scene))
+        return check_load_fits(scene, g, last);
     if (scene->control == IM_CONTROL_LOAD)
         return check_contact_fits(scene, g, "[loading] steps (largest)", last);
     im_indenter punch = scene_punch(scene);

@@ -826,9 +826,6 @@ static const char *adhesion_conflict(const im_scene *scene)
         return NULL;
     if (!(scene->adhesion_range > 0))
         return "[adhesion] work and range go together: expected both";
-    if (scene->control != IM_CONTROL_DISPLACEMENT)
-        return "[adhesion] takes [loading] control = displacement: under load control an adhesive contact jumps "
-               "where its force-distance curve turns (pull-off)";
     if (scene->hardness > 0)
         return "[adhesion] with [material] hardness: adhesion with plasticity is not available";
     if (scene->contact_panels || scene->frames || scene->table || scene->distributions)

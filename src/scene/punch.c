@@ -47,6 +47,11 @@ double scene_load_for_n_star(const im_scene *scene, double n_star, double delta)
     return hi;
 }
 
+int scene_steps_are_loads(const im_scene *scene)
+{
+    return scene->control == IM_CONTROL_LOAD && scene->adhesion_work > 0 && !scene->periodic;
+}
+
 im_solver_options scene_solver_options(const im_scene *scene)
 {
     im_solver_options options = im_solver_options_default();

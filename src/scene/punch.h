@@ -20,6 +20,10 @@ double scene_load_for_load_star(const im_scene *scene, double delta);
  * area (a 2-D profile: run.c refuses what would ask, and the solver refuses a NaN target). */
 double scene_load_for_n_star(const im_scene *scene, double n_star, double delta);
 
+/* Whether the scene's [loading] steps are loads N (`indent --load`'s), not N*: under load control with
+ * [adhesion], whose pulled (negative) loads have no smooth-contact area to give an N*. */
+int scene_steps_are_loads(const im_scene *scene);
+
 /* Solver options of a scene (its tolerance; everything else default). */
 im_solver_options scene_solver_options(const im_scene *scene);
 

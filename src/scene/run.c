@@ -33,10 +33,11 @@
 static int check_without_area(const im_scene *scene)
 {
     const int at_n_star = !scene->periodic; /* a periodic scene's panels and distributions are at its steps */
+    const int steps_at_n_star = scene->control == IM_CONTROL_LOAD && !scene_steps_are_loads(scene);
     const char *need = at_n_star && (scene->contact_panels || scene->frames) ? "[output] contact panels and frames are drawn"
                        : at_n_star && scene->distributions                   ? "[output] distributions are measured"
-                       : scene->control == IM_CONTROL_LOAD      ? "[loading] control = load takes steps"
-                                                                : NULL;
+                       : steps_at_n_star                                     ? "[loading] control = load takes steps"
+                                                                             : NULL;
     if (!need)
         return IM_OK;
     return im_fail(IM_EINVAL, "%s: %s at N* = A(N) / delta^2, which a 2-D profile does not define (no "
