@@ -6,7 +6,7 @@
 # steps of 1 and retracts to -4 in steps of 0.5. Prints the pull-off force and approach, the jumps, the
 # work lost, and the solver's iterations and seconds per step against the repulsive solve of the same
 # steps (w >= 0, no adhesion); draws the contact maps at the largest load and at the last step in contact
-# (patches under tension light blue) and the force-distance curves.
+# (patches under tension on the blue ramp of their tension, its own colour bar) and the force-distance curves.
 # usage: bench/run_adhesion.sh BUILD_DIR [OUT_DIR]
 set -eu
 build=$1
