@@ -21,7 +21,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "$1" && pwd)
 out=${2:-$root/docs/images}
 cli="$build/indentmap"
-export IM_FFTW_WISDOM= OMP_WAIT_POLICY=passive
+export IM_FFTW_WISDOM='' OMP_WAIT_POLICY=passive
 work=${IM_DOCS_WORK:-}
 if [ -z "$work" ]; then
   work=$(mktemp -d)
