@@ -47,7 +47,7 @@ paper_scenes() {
   scene "$root/scenes/angle_sweep.ini" angle_sweep
   keep "$work/angle_sweep/fig2.png" angle_sweep.png
   scene "$root/scenes/sphere.ini" sphere
-  keep "$work/sphere/sphere.png" sphere_regimes.png
+  keep "$work/sphere/sphere_regimes.png" sphere_regimes.png
   # fig5 and fig6 share their 51 histories: one scene draws both
   sed -e 's/^name = fig5$/name = fig5_fig6/' -e 's/^plots = fig5$/plots = fig5, fig6/' "$root/scenes/fig5.ini" \
     > "$work/fig5_fig6.ini"
