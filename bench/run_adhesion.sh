@@ -6,7 +6,7 @@
 # steps of 1 and retracts to -4 in steps of 0.5. Prints the pull-off force and approach, the jumps, the
 # work lost, and the solver's iterations and seconds per step against the repulsive solve of the same
 # steps (w >= 0, no adhesion); draws the contact maps at the largest load and at the last step in contact
-# (patches under tension light blue) and the force-distance curves.
+# (patches under tension on the blue ramp of their tension, its own colour bar) and the force-distance curves.
 # usage: bench/run_adhesion.sh BUILD_DIR [OUT_DIR]
 set -eu
 build=$1
@@ -43,6 +43,6 @@ last_in_contact() { awk -F, 'NR > 11 && $5 > 0 { k = $1 } END { printf "%04d", k
 cone_last=$(last_in_contact "$out/cone_0.1")
 sphere_last=$(last_in_contact "$out/sphere_0.1")
 "$cli" render contact "$out"/cone_0.1/force_0010.npy "$out/cone_0.1/force_$cone_last.npy" \
-  "$out"/sphere_0.1/force_0010.npy "$out/sphere_0.1/force_$sphere_last.npy" --columns 4 --dpi 150 \
+  "$out"/sphere_0.1/force_0010.npy "$out/sphere_0.1/force_$sphere_last.npy" --columns 4 \
   --titles "cone w = 8,cone last contact,sphere w = 8,sphere last contact" --out "$out/adhesion_maps.png" > /dev/null
 echo "cone's last contact at step $cone_last, sphere's at $sphere_last; runs and figures in $out"

@@ -26,6 +26,6 @@ for h in 0.05 0.1 0.2; do
   done
 done
 "$cli" render height "$out"/rough_0.05/plastic_0018.npy "$out"/rough_0.1/plastic_0018.npy "$out"/rough_0.2/plastic_0018.npy \
-  --titles "H = 0.05 E*,H = 0.1 E*,H = 0.2 E*" --columns 3 --quantity "plastic depth d / δ" --dpi 150 \
+  --titles "H = 0.05 E*,H = 0.1 E*,H = 0.2 E*" --columns 3 --quantity "plastic depth d / δ" \
   --out "$out/plastic_impressions.png"
 echo "runs, impressions and figures in $out"
