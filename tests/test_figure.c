@@ -657,7 +657,8 @@ static void test_colorbar_labels(void **state)
         {"height", "µm", "height h / µm"},      {"height", "", "height h / δ"},
         {"gap", "m", "gap g / m"},              {"displacement", "nm", "displacement u / nm"},
         {"plastic", "", "plastic depth d / δ"}, {"tension", "N", "tensile force −f / N"},
-        {"tension", "", "tensile force −f / (E* δ²)"}};
+        {"tension", "", "tensile force −f / (E* δ²)"}, {"force", "E* δ²", "local force f / (E* δ²)"},
+        {"force", "Pa µm²", "local force f / (Pa µm²)"}};
     char text[64];
     for (size_t i = 0; i < sizeof EXPECTED / sizeof *EXPECTED; ++i) {
         assert_int_equal(im_figure_colorbar_label(EXPECTED[i][0], EXPECTED[i][1], text, sizeof text), IM_OK);

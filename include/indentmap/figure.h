@@ -86,7 +86,8 @@ int im_figure_write(const im_figure *figure, const char *path);
 int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity);
 
 /* The colour bar's label `indentmap render` gives a field, in its units: quantity "force" gives
- * "local force f / UNIT", unit the forces' (field.h's value_unit: "N", "Pa µm²"; "" gives "(E* δ²)"),
+ * "local force f / UNIT", unit the forces' (field.h's value_unit: "N", "Pa µm²"; "" gives "(E* δ²)"; a unit
+ * of several factors is put in parentheses: "Pa µm²" and "E* δ²" as "(Pa µm²)", "(E* δ²)"),
  * and "tension" the tension bar's "tensile force −f / UNIT" in the same unit;
  * "height", "gap", "displacement" and "plastic" (the fields of an indentation step) give "height h /
  * UNIT", "gap g / UNIT", "displacement u / UNIT" and "plastic depth d / UNIT", unit the field's length

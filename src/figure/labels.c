@@ -23,7 +23,10 @@ int im_figure_colorbar_label(const char *quantity, const char *unit, char *text,
         const quantity_name *q = &QUANTITIES[i];
         if (strcmp(quantity, q->quantity) != 0)
             continue;
-        int length = snprintf(text, size, "%s / %s", q->name, unit[0] ? unit : q->without_unit);
+        /* a unit of several factors in parentheses ("Pa µm²" and "E* δ²" as "(E* δ²)"), one alone bare */
+        const char *shown = unit[0] ? unit : q->without_unit;
+        const int compound = shown[0] != '(' && strchr(shown, ' ');
+        int length = snprintf(text, size, compound ? "%s / (%s)" : "%s / %s", q->name, shown);
         if (length < 0 || (size_t)length >= size)
             return im_fail(IM_EINVAL, "im_figure_colorbar_label: size %zu: the label needs %d bytes", size,
                            length + 1);
