@@ -108,7 +108,7 @@ static int density_panel(double alpha_degrees, const paper_density_map *map, den
     im_plot_palette(6, theory.color);
     d->series[i][0] = theory;
     d->series[i][1] = measured;
-    snprintf(d->titles[i], sizeof d->titles[i], "h′_{rms} = %g, N* = %.4g", map->slope, map->load_star);
+    snprintf(d->titles[i], sizeof d->titles[i], "h′_{rms} = %g, N* = %g", map->slope, map->load_star);
     d->panels[i] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0.0, 1.3, "r / a"},
                                    .y = {IM_PLOT_LINEAR, 0.0, 1.05, "contact density"},
                                    .series = d->series[i], .series_count = 2, .title = d->titles[i],
