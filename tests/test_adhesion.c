@@ -394,6 +394,11 @@ static void load_control_stops_at_pull_off(void **state)
     assert_non_null(strstr(im_last_error(), "pull-off force under load control"));
     assert_close(r.load, held.load, 0);
     assert_close(r.approach, held.approach, 0);
+    /* the state too: the held load again is the held step's solution, not a state the search walked on to */
+    assert_int_equal(im_indentation_step(run, held.load, &r), IM_OK);
+    assert_close(r.approach, held.approach, 0);
+    assert_close(r.load, held.load, 1e-9 * fabs(held.load));
+    assert_int_equal(r.contact_patches, held.contact_patches);
     assert_int_equal(im_indentation_step(run, 0.99 * least, &r), IM_OK);
     assert_close(r.load, 0.99 * least, 1e-7);
     im_indentation_free(run);

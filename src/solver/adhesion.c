@@ -101,7 +101,8 @@ void adhesion_free(adhesion_state *a)
 {
     if (!a)
         return;
-    free_mark(a->mark);
+    free_mark(a->marks[ADHESION_MARK_TRY]);
+    free_mark(a->marks[ADHESION_MARK_STEP]);
     free(a->share);
     free(a->gaps);
     free(a->proposal);
@@ -373,10 +374,10 @@ double im_adhesion_maugis_lambda(const im_solver_options *options, double radius
     return 2 * (w / options->adhesion_range) * cbrt(radius / (M_PI * w * k * k));
 }
 
-int adhesion_set_mark(adhesion_state *a)
+int adhesion_set_mark(adhesion_state *a, enum adhesion_mark_slot slot)
 {
     const size_t n = (size_t)a->nx * a->ny;
-    if (!a->mark) {
+    if (!a->marks[slot]) {
         struct adhesion_mark *m = calloc(1, sizeof *m);
         if (m && (!(m->share = malloc(n * sizeof(double))) || !(m->lift = malloc(n * sizeof(double))))) {
             free_mark(m);
@@ -384,9 +385,9 @@ int adhesion_set_mark(adhesion_state *a)
         }
         if (!m)
             return im_fail(IM_ENOMEM, "adhesion: the state of a %d x %d window for a load search", a->nx, a->ny);
-        a->mark = m;
+        a->marks[slot] = m;
     }
-    struct adhesion_mark *m = a->mark;
+    struct adhesion_mark *m = a->marks[slot];
     memcpy(m->share, a->share, n * sizeof(double));
     memcpy(m->lift, a->lift, n * sizeof(double));
     m->approach = a->approach;
@@ -396,10 +397,10 @@ int adhesion_set_mark(adhesion_state *a)
     return IM_OK;
 }
 
-void adhesion_rewind(adhesion_state *a)
+void adhesion_rewind(adhesion_state *a, enum adhesion_mark_slot slot)
 {
     const size_t n = (size_t)a->nx * a->ny;
-    const struct adhesion_mark *m = a->mark;
+    const struct adhesion_mark *m = a->marks[slot];
     memcpy(a->share, m->share, n * sizeof(double));
     memcpy(a->lift, m->lift, n * sizeof(double));
     a->approach = m->approach;

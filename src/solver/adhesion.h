@@ -25,7 +25,7 @@ typedef struct adhesion_state {
     double zone_area;        /* the sum of the shares (patches) */
     double approach;         /* the last step's (retraction shrinks Z, approach grows it) */
     int stepped;             /* 0 before the first step */
-    struct adhesion_mark *mark; /* the state adhesion_rewind returns to (adhesion_set_mark), or NULL */
+    struct adhesion_mark *marks[2]; /* the states adhesion_rewind returns to (adhesion_set_mark), or NULL */
 } adhesion_state;
 
 /* A state for an nx x ny window, or a periodic cell (IM_ENOMEM), with the options' law checked by the caller. */
@@ -41,10 +41,12 @@ void adhesion_free(adhesion_state *a);
 int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, double w, double *pressure,
                    double *displacement, im_solve_result *result);
 
-/* A search that tries several approaches from one step's state (load control) marks the state once and
- * rewinds to it before each try: every try then moves from the same history (IM_ENOMEM). */
-int adhesion_set_mark(adhesion_state *a);
-void adhesion_rewind(adhesion_state *a);
+/* A search that tries several approaches (load control) marks a state and rewinds to it before a try, so
+ * that the try moves from that history: the last accepted try's (ADHESION_MARK_TRY), and the step's start,
+ * which a failed step returns to (ADHESION_MARK_STEP). adhesion_set_mark: IM_ENOMEM. */
+enum adhesion_mark_slot { ADHESION_MARK_TRY, ADHESION_MARK_STEP };
+int adhesion_set_mark(adhesion_state *a, enum adhesion_mark_slot slot);
+void adhesion_rewind(adhesion_state *a, enum adhesion_mark_slot slot);
 
 /* The net pressure and displacement of window patch i from the repulsive ones. */
 static inline double adhesion_net_pressure(const adhesion_state *a, size_t i, double repulsive)

@@ -31,7 +31,8 @@ struct im_indentation {
     double approach;         /* last step's */
     double load;             /* last step's (net, with adhesion) */
     adhesion_state *adhesion; /* with a work of adhesion (adhesion.h); the plan's options have none */
-    double *marked_pressure, *marked_displacement; /* adhesion under load control: the last step's solution */
+    /* adhesion under load control: the solution of the last accepted try and of the step's start (adhesion.h) */
+    double *marked_pressure[2], *marked_displacement[2];
 };
 
 /* g0 = z(r) - h - min(z - h) over the full grid. */
@@ -292,8 +293,10 @@ void im_indentation_free(im_indentation *run)
     free(run->displacement);
     free(run->plastic);
     adhesion_free(run->adhesion);
-    free(run->marked_pressure);
-    free(run->marked_displacement);
+    for (int slot = 0; slot < 2; ++slot) {
+        free(run->marked_pressure[slot]);
+        free(run->marked_displacement[slot]);
+    }
     free(run);
 }
 
@@ -640,32 +643,31 @@ static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result
  * is the first one met on the way, on the stable branch. Loading holds any load (a jump-in on the way only dips
  * the force). Unloading holds down to the least load met on the way, the pull-off force under load control: a
  * smaller target has no equilibrium (the contact jumps out), which the search says once its steps are tol short. */
-static int mark_adhesive_state(im_indentation *run)
+static int mark_adhesive_state(im_indentation *run, enum adhesion_mark_slot slot)
 {
     const size_t bytes = (size_t)run->window.nx * run->window.ny * sizeof(double);
-    if (!run->marked_pressure)
-        run->marked_pressure = malloc(bytes);
-    if (!run->marked_displacement)
-        run->marked_displacement = malloc(bytes);
-    if (!run->marked_pressure || !run->marked_displacement)
-        return im_fail(IM_ENOMEM, "adhesion under load control: the last step's state (2 x %.1f MiB)",
-                       bytes / 1048576.0);
-    memcpy(run->marked_pressure, run->pressure, bytes);
-    memcpy(run->marked_displacement, run->displacement, bytes);
-    return adhesion_set_mark(run->adhesion);
+    if (!run->marked_pressure[slot])
+        run->marked_pressure[slot] = malloc(bytes);
+    if (!run->marked_displacement[slot])
+        run->marked_displacement[slot] = malloc(bytes);
+    if (!run->marked_pressure[slot] || !run->marked_displacement[slot])
+        return im_fail(IM_ENOMEM, "adhesion under load control: a marked state (2 x %.1f MiB)", bytes / 1048576.0);
+    memcpy(run->marked_pressure[slot], run->pressure, bytes);
+    memcpy(run->marked_displacement[slot], run->displacement, bytes);
+    return adhesion_set_mark(run->adhesion, slot);
 }
 
-static void rewind_adhesive_state(im_indentation *run)
+static void rewind_adhesive_state(im_indentation *run, enum adhesion_mark_slot slot)
 {
     const size_t bytes = (size_t)run->window.nx * run->window.ny * sizeof(double);
-    memcpy(run->pressure, run->marked_pressure, bytes);
-    memcpy(run->displacement, run->marked_displacement, bytes);
-    adhesion_rewind(run->adhesion);
+    memcpy(run->pressure, run->marked_pressure[slot], bytes);
+    memcpy(run->displacement, run->marked_displacement[slot], bytes);
+    adhesion_rewind(run->adhesion, slot);
 }
 
 static int adhesive_solve(im_indentation *run, double w, im_solve_result *s)
 {
-    rewind_adhesive_state(run);
+    rewind_adhesive_state(run, ADHESION_MARK_TRY);
     return adhesion_solve(run->adhesion, run->plan, run->window_gap0, w, run->pressure, run->displacement, s);
 }
 
@@ -689,7 +691,7 @@ static enum forward_try try_forward(forward_walk *walk, double w, double *e, int
     if (walk->direction * *e >= 0)
         return TRY_PASSED;
     walk->near = w, walk->e_near = *e;
-    *status = mark_adhesive_state(walk->search.run);
+    *status = mark_adhesive_state(walk->search.run, ADHESION_MARK_TRY);
     return *status == IM_OK ? TRY_MARKED : TRY_FAILED;
 }
 
@@ -768,14 +770,16 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
                                     .length = run->options.adhesion_range},
                          .direction = n0 - target <= 0 ? 1 : -1, .near = w0, .e_near = n0 - target,
                          .scale = fmax(fabs(target), fabs(n0))};
-    int status = mark_adhesive_state(run);
+    int status = mark_adhesive_state(run, ADHESION_MARK_STEP);
+    if (status == IM_OK)
+        status = mark_adhesive_state(run, ADHESION_MARK_TRY);
     if (status == IM_OK) {
         double e;
         status = n0 == target ? trial(&walk.search, w0, &e) : walk_to_load(&walk);
     }
     *out = walk.search.last;
-    if (status != IM_OK) { /* the history stays the last step's */
-        rewind_adhesive_state(run);
+    if (status != IM_OK && run->marked_pressure[ADHESION_MARK_STEP]) { /* the history stays the last step's */
+        rewind_adhesive_state(run, ADHESION_MARK_STEP);
         out->approach = w0;
         out->load = n0;
     }
