@@ -1,8 +1,8 @@
 """Units carried into pictures (issue 29): a run in metres and pascals draws, in Python, the contact figure
 that ``indentmap render contact`` draws from the run's force file, with the colour bar 'local force f / N'
 and a scale bar in µm; a contact map's PNG carries the program's text chunks."""
-import struct
-import zlib
+import os
+import sys
 
 import numpy as np
 import pytest
@@ -10,25 +10,10 @@ import pytest
 import indentmap as im
 from conftest import run_cli
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests"))
+from figure_texts import png_texts  # noqa: E402  (the PNG text chunks, read independently of indentmap)
+
 APPROACH = 2e-7  # metres
-
-
-def png_texts(path):
-    """The tEXt and (uncompressed) iTXt chunks of a PNG file as {key: value}, read here byte by byte."""
-    data, texts, at = path.read_bytes(), {}, 8
-    while at < len(data):
-        length, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + length]
-        if kind == b"tEXt":
-            key, value = body.split(b"\0", 1)
-            texts[key.decode("latin-1")] = value.decode("latin-1")
-        elif kind == b"iTXt":
-            key, rest = body.split(b"\0", 1)
-            compressed, rest = rest[0], rest[2:]
-            _language, _translated, value = rest.split(b"\0", 2)
-            texts[key.decode("latin-1")] = (zlib.decompress(value) if compressed else value).decode("utf-8")
-        at += 12 + length
-    return texts
 
 
 @pytest.fixture
