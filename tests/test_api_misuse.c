@@ -28,6 +28,7 @@
 #include "indentmap/plot.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
+#include "indentmap/scene_ranks.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"

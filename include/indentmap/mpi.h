@@ -52,7 +52,6 @@
 #if IM_HAVE_MPI
 
 #include "indentmap/indenter.h"
-#include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/surface.h"
 
@@ -172,24 +171,6 @@ int im_mpi_npy_read_rows(MPI_Comm comm, const char *path, int y0, int rows, doub
  * MPI-IO into a temporary file beside path, renamed over path once complete: a failed write
  * leaves an existing file untouched. IM_EIO naming the file. Collective. */
 int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y0, int rows, const double *data);
-
-/* ---- Ensembles over ranks (docs/mpi.md, "Ensembles over ranks") ----
- * Runs a scene as im_scene_run (scene.h) does, with the members of its ensembles (the table's and
- * the histories' surfaces) shared out over the ranks of comm: rank r solves the members r, r + K,
- * r + 2K, ... (K ranks, each with its OpenMP threads) and writes each under the output folder as
- * soon as it is solved, as a single process does; then rank 0 alone runs the stages, reading those
- * members back exactly (their stage lines count them as solved), and writes every table and figure:
- * byte for byte those of a single process. Rank 0 takes the output folder's lock, removes the stale
- * temporaries and writes run.json before any rank starts. First every rank reads the files the scene
- * names (surfaces, profile): IM_EINVAL on every rank, naming the file, its key and the ranks, when
- * one reads other bytes from it than rank 0 (a path naming other files on other nodes) or cannot
- * read it (that rank's message). options as for im_scene_run on every
- * rank (rank 0's progress lines only; the other ranks are quiet). With one rank, im_scene_run.
- * Collective; MPI initialised with at least MPI_THREAD_FUNNELED. Every rank returns a failure
- * when any rank fails: a rank's error (the lowest failing rank's) before an interruption; rank 0
- * and the failing rank carry its message, the others "rank K: <message>". Rank 0's status is the
- * run's (its outputs, its message). */
-int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options);
 
 #ifdef __cplusplus
 }

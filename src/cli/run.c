@@ -4,6 +4,7 @@
 #include "indentmap/mpi.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
+#include "indentmap/scene_ranks.h"
 #include "indentmap/status.h"
 #if IM_HAVE_MPI
 #include "mpi/agree.h"

@@ -1,9 +1,7 @@
 /* Internal: what the ranks of an MPI run agree on before they work together (collective.c,
- * inputs.c), also used by the command line under mpirun. */
+ * inputs.c), also used by the command line under mpirun and by scenes over ranks (scene/ranks.c). */
 #ifndef INDENTMAP_MPI_AGREE_H
 #define INDENTMAP_MPI_AGREE_H
-
-#include "indentmap/scene.h"
 
 #include <mpi.h>
 
@@ -30,9 +28,5 @@ int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file);
  * the files, "the scene", the ranks whose source names another number of files); a file that some
  * rank cannot read fails every rank with that rank's message. Collective. */
 int mpi_same_files(MPI_Comm comm, const char *source, int count, const char *const *paths, const char *const *keys);
-
-/* mpi_same_files over each file the scene names, its surface files and profile (run.json's inputs),
- * each named with its scene key. Collective. */
-int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene);
 
 #endif

@@ -3,10 +3,9 @@
  * outside the folder rank 0 locked: a hash of what each rank was given, gathered at the start,
  * stops them all with one message instead. */
 #include "mpi/agree.h"
+#include "core/fnv1a.h"
 #include "indentmap/status.h"
 #include "io/checksum.h"
-#include "scene/key.h"
-#include "scene/provenance.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -57,7 +56,7 @@ static int file_hash(const char *path, uint64_t *hash)
     }
     fclose(stream);
     if (status == IM_OK)
-        *hash = scene_checksum(bytes, length);
+        *hash = fnv1a_add(FNV1A_START, bytes, length);
     free(bytes);
     return status;
 }
@@ -161,7 +160,7 @@ int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file)
     if ((status = mpi_collective_status(comm, status)) == IM_OK) {
         /* a file that a rank cannot read is reported after the arguments, which may explain it */
         int read = file ? file_hash(file, &mine[FILE_HASH]) : IM_OK;
-        mine[WORDS_HASH] = scene_checksum(words, length);
+        mine[WORDS_HASH] = fnv1a_add(FNV1A_START, words, length);
         mine[WORDS_LENGTH] = length;
         MPI_Allgather(mine, RECORD, MPI_UINT64_T, records, RECORD, MPI_UINT64_T, comm);
         char list[128];
@@ -245,27 +244,5 @@ int mpi_same_files(MPI_Comm comm, const char *source, int count, const char *con
     free(all);
     free(digests);
     free(counts);
-    return status;
-}
-
-int mpi_same_scene_inputs(MPI_Comm comm, const im_scene *scene)
-{
-    int count = 0;
-    const char *key;
-    char path[IM_SCENE_PATH];
-    while (scene_input(scene, count, 0, &key, path, sizeof path))
-        ++count;
-    char *copies = malloc((size_t)count * IM_SCENE_PATH + 1);
-    const char **paths = malloc(sizeof *paths * (size_t)(count + 1)), **keys = malloc(sizeof *keys * (size_t)(count + 1));
-    int status = copies && paths && keys ? IM_OK : im_fail(IM_ENOMEM, "the paths of %d input files", count);
-    for (int i = 0; status == IM_OK && i < count; ++i) {
-        paths[i] = copies + (size_t)i * IM_SCENE_PATH;
-        scene_input(scene, i, 0, &keys[i], copies + (size_t)i * IM_SCENE_PATH, IM_SCENE_PATH);
-    }
-    if ((status = mpi_collective_status(comm, status)) == IM_OK)
-        status = mpi_same_files(comm, "the scene", count, paths, keys);
-    free(copies);
-    free(paths);
-    free(keys);
     return status;
 }

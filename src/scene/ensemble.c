@@ -3,7 +3,6 @@
 #include "indentmap/status.h"
 #include "scene/ensemble.h"
 #include "scene/outputs.h"
-#include "scene/panels.h"
 #include "scene/progress.h"
 
 #include <stdio.h>
@@ -56,37 +55,17 @@ static int report_interrupted(const im_scene_run_options *options, const scene_m
     return scene_interrupted(options, where);
 }
 
-/* The MPI run in progress, if any (ensemble.h: scene_ranks_run). */
-static const scene_ranks_run *ranks_run;
-
-void scene_set_ranks_run(const scene_ranks_run *run)
+/* Member i: solved here, or read back from what the ranks of an MPI run solved. */
+static int solve_member(const im_scene *scene, const im_scene_run_options *options, scene_member *members, int i,
+                        scene_member_solver solve, const scene_ranks_run *ranks)
 {
-    ranks_run = run;
-}
-
-const scene_ranks_run *scene_get_ranks_run(void)
-{
-    return ranks_run;
-}
-
-/* A member the ranks of an MPI run solved: read back from the file its rank wrote (as --resume
- * would), counted with the origin its rank gave it, with the force its rank kept for the panels. */
-static int read_ranks_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m,
-                             scene_member_solver solve, int origin)
-{
-    im_scene_run_options read_back = *options;
-    read_back.resume = 1;
-    int status = solve(scene, &read_back, m);
-    m->origin = (enum scene_origin)(origin & 3);
-    m->step_reused = (origin >> 2) & 1;
-    if (status == IM_OK && (origin & 8) && !m->force)
-        status = scene_read_panel_force(scene, m->family, &m->force);
-    return status;
+    if (ranks && ranks->solved(ranks->data, solve, i))
+        return ranks->read_back(ranks->data, scene, options, solve, i, &members[i]);
+    return solve(scene, options, &members[i]);
 }
 
 int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, const char *stage,
-                       scene_member *members, int count,
-                       int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *))
+                       scene_member *members, int count, scene_member_solver solve, const scene_ranks_run *ranks)
 {
     int done = 0;
     omp_lock_t counting; /* done counts up in the order of the calls; this ensemble's own lock (progress.h) */
@@ -94,10 +73,8 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
 #pragma omp parallel for schedule(dynamic, 1)
     for (int i = 0; i < count; ++i) {
         /* Once a signal has asked to stop, the remaining members are skipped, not started. */
-        int origin = ranks_run ? ranks_run->origin(ranks_run->data, solve, i) : -1;
         members[i].status = scene_stop_signal(options) ? IM_EINTERRUPTED
-                            : origin >= 0                ? read_ranks_member(scene, options, &members[i], solve, origin)
-                                                         : solve(scene, options, &members[i]);
+                                                       : solve_member(scene, options, members, i, solve, ranks);
         if (members[i].status != IM_OK)
             snprintf(members[i].error, sizeof members[i].error, "%s", im_last_error());
         omp_set_lock(&counting);

@@ -34,6 +34,23 @@ typedef struct scene_member {
     long *history_patches;
 } scene_member;
 
+/* ---- ensembles over MPI ranks (ranks.c; docs/mpi.md) ----
+ * im_scene_run_ranks runs rank 0's scene with one of these (run.c: scene_run): after the lock, the
+ * stale temporaries and run.json, solve_members has every rank solve its share of the members and
+ * write them (IM_OK or the status the ranks agreed on); the stages then read those members back
+ * (scene_ensemble_run), counting each as its rank did. Passed down in scene_reuse. */
+typedef int (*scene_member_solver)(const im_scene *, const im_scene_run_options *, scene_member *);
+typedef struct scene_ranks_run {
+    int (*solve_members)(const im_scene *scene, const im_scene_run_options *options, void *data);
+    /* whether the ranks solved member index of solve's stage */
+    int (*solved)(void *data, scene_member_solver solve, int index);
+    /* such a member, read back from the files its rank wrote (as --resume would) and counted as its
+     * rank counted it, with the force its rank kept for the panels */
+    int (*read_back)(void *data, const im_scene *scene, const im_scene_run_options *options,
+                     scene_member_solver solve, int index, scene_member *m);
+    void *data;
+} scene_ranks_run;
+
 /* What earlier stages of a run solved, for later stages to reuse: nothing is solved twice. */
 typedef struct scene_reuse {
     scene_member *table;     /* the table's members (owned; NULL without a table) */
@@ -44,6 +61,7 @@ typedef struct scene_reuse {
     struct im_history_row *rows[IM_SCENE_MAX_FAMILIES]; /* a periodic scene's panels: the history of each
                                                            family's first seed (owned; periodic.h) */
     int row_count[IM_SCENE_MAX_FAMILIES];
+    const scene_ranks_run *ranks; /* an MPI run's members, solved by its ranks (not owned; NULL: solved here) */
 } scene_reuse;
 void scene_reuse_free(scene_reuse *reuse);
 
@@ -68,26 +86,13 @@ int scene_ensemble_prepare(const im_scene *scene, const char *folder, scene_memb
 
 /* Runs solve on every member, in parallel over the available cores (each solve then runs on one
  * thread), reporting each finished member to options->progress under the name stage ("table",
- * "histories"). IM_OK, or the first failed member's status with its family, seed and message. */
+ * "histories"); a member that ranks (may be NULL) solved is read back instead. IM_OK, or the first
+ * failed member's status with its family, seed and message. */
 int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *options, const char *stage,
-                       scene_member *members, int count,
-                       int (*solve)(const im_scene *, const im_scene_run_options *, scene_member *));
+                       scene_member *members, int count, scene_member_solver solve, const scene_ranks_run *ranks);
 
-/* ---- ensembles over MPI ranks (src/mpi/scene_ranks.c; docs/mpi.md) ----
- * im_scene_run_ranks installs this for the length of one run on rank 0: after the lock, the stale
- * temporaries and run.json, run.c calls solve_members (every rank solves its share of the members
- * and writes them; IM_OK or the status the ranks agreed on); the stages then read those members
- * back (scene_ensemble_run), counting each with the origin its rank gave it. */
-typedef int (*scene_member_solver)(const im_scene *, const im_scene_run_options *, scene_member *);
-typedef struct scene_ranks_run {
-    int (*solve_members)(const im_scene *scene, const im_scene_run_options *options, void *data);
-    /* member index's origin in solve's stage (enum scene_origin, plus 4 when a history took its
-     * step at load_star from the table, plus 8 when its rank kept its force for the panels and
-     * wrote it to panels/), or -1 when the ranks did not solve it */
-    int (*origin)(void *data, scene_member_solver solve, int index);
-    void *data;
-} scene_ranks_run;
-void scene_set_ranks_run(const scene_ranks_run *run); /* NULL (the default): a single process */
+/* im_scene_run, with the members of its ensembles from ranks (NULL: a single process solves them). */
+int scene_run(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
 
 /* The copy of a scene that runs, made alike by im_scene_run and by every MPI rank (run.c): its
  * surface files measured (im_scene_measure_files), its [punch] profile resolved against the
@@ -96,6 +101,5 @@ void scene_set_ranks_run(const scene_ranks_run *run); /* NULL (the default): a s
  * (im_profile_free; NULL without a profile); on an error (IM_ENOMEM, IM_EINVAL naming the key,
  * the file's IM_EIO / IM_EINVAL / IM_EFORMAT) both are NULL. */
 int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profile);
-const scene_ranks_run *scene_get_ranks_run(void);
 
 #endif

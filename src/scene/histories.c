@@ -531,7 +531,8 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK) {
         scene_link_table(scene, reuse, members, count);
         scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
-        status = scene_ensemble_run(scene, options, "histories", members, count, scene_history_member);
+        status = scene_ensemble_run(scene, options, "histories", members, count, scene_history_member,
+                                    reuse->ranks);
     }
     if (status == IM_OK)
         report_histories(options, members, count);

@@ -1,5 +1,6 @@
 /* Keys of kept results: a hash of every input that determines a member's result, written with
  * the result, so that --resume solves again what an edited scene would compute differently. */
+#include "core/fnv1a.h"
 #include "indentmap/status.h"
 #include "scene/key.h"
 #include "scene/progress.h"
@@ -19,10 +20,7 @@ typedef struct key_hash {
 
 static void key_add_bytes(key_hash *hash, const char *bytes, size_t length)
 {
-    for (size_t i = 0; i < length; ++i) {
-        hash->value ^= (unsigned char)bytes[i];
-        hash->value *= UINT64_C(0x100000001b3);
-    }
+    hash->value = fnv1a_add(hash->value, bytes, length);
 }
 
 /* Numbers and short words through a buffer; paths, which may be long, go to key_add_bytes. */
@@ -114,7 +112,7 @@ static void add_contact(key_hash *hash, const im_scene *scene)
 
 uint64_t scene_checksum(const char *bytes, size_t length)
 {
-    key_hash hash = {UINT64_C(0xcbf29ce484222325)};
+    key_hash hash = {FNV1A_START};
     key_add_bytes(&hash, bytes, length);
     return hash.value;
 }
@@ -136,7 +134,7 @@ int scene_load_star_step(const im_scene *scene)
 
 uint64_t scene_result_key(const im_scene *scene, int family, uint64_t seed, enum scene_result_kind kind)
 {
-    key_hash hash = {UINT64_C(0xcbf29ce484222325)};
+    key_hash hash = {FNV1A_START};
     key_add(&hash, "indentmap result 1;");
     add_surface(&hash, scene, family, seed);
     add_contact(&hash, scene);

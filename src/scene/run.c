@@ -99,7 +99,7 @@ static int run_rendered_stages(const im_scene *scene, const im_scene_run_options
  * What they solved is left in *reuse for a sweep (sweep.c); the caller frees it. */
 static int run_stages(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse_out)
 {
-    scene_reuse reuse = {0};
+    scene_reuse reuse = {.ranks = reuse_out->ranks};
     int status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options, &reuse);
@@ -115,12 +115,12 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     return status;
 }
 
-/* The stages of a scene, or of each of its sweep points. */
-static int run_scene_stages(const im_scene *scene, const im_scene_run_options *options)
+/* The stages of a scene, or of each of its sweep points (a single process: refused with ranks). */
+static int run_scene_stages(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
 {
     if (scene_sweep_count(scene) > 1)
         return scene_run_sweep(scene, options, run_stages);
-    scene_reuse reuse = {0};
+    scene_reuse reuse = {.ranks = ranks};
     int status = run_stages(scene, options, &reuse);
     scene_reuse_free(&reuse);
     return status;
@@ -179,7 +179,7 @@ static int write_viewer_page(const im_scene *scene, const im_scene_run_options *
     return status;
 }
 
-static int run_measured(im_scene *scene, const im_scene_run_options *options);
+static int run_measured(im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
 
 /* OUTPUT/run.json (a damaged one removed first), then the noting of the run's outputs from its time. */
 static int write_record(im_scene *scene, const im_scene_run_options *options)
@@ -247,13 +247,16 @@ int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profi
     return IM_OK;
 }
 
-static int run_measured(im_scene *scene, const im_scene_run_options *options);
-
-/* Run on the prepared copy: the caller's scene stays as parsed. */
-int im_scene_run(const im_scene *scene, const im_scene_run_options *given)
+int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
 {
     ARG_REQUIRE(scene, "scene");
-    ARG_REQUIRE(given, "options");
+    ARG_REQUIRE(options, "options");
+    return scene_run(scene, options, NULL);
+}
+
+/* Run on the prepared copy: the caller's scene stays as parsed. */
+int scene_run(const im_scene *scene, const im_scene_run_options *given, const scene_ranks_run *ranks)
+{
     scene_callbacks callbacks;
     im_scene_run_options run = scene_callbacks_begin(given, &callbacks);
     const im_scene_run_options *options = &run;
@@ -264,14 +267,14 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *given)
         scene_progress(options, "surface files: h'rms = %.6g (forward differences of the surfaces as solved%s)",
                        measured->slopes[0], measured->file_count > 1 ? ", root mean square over the files" : "");
     if (status == IM_OK)
-        status = run_measured(measured, options);
+        status = run_measured(measured, options, ranks);
     free(measured);
     im_profile_free(profile); /* after the run that borrowed it */
     scene_callbacks_end(&callbacks);
     return status;
 }
 
-static int run_measured(im_scene *scene, const im_scene_run_options *options)
+static int run_measured(im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
 {
     int status = check_runnable(scene);
     if (status == IM_OK)
@@ -293,15 +296,14 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options)
     options = &checked;
     if (status == IM_OK)
         status = write_record(scene, options);
-    const scene_ranks_run *ranks = scene_get_ranks_run(); /* an MPI run: the ranks solve the members first */
     if (status == IM_OK && ranks && scene_sweep_count(scene) > 1)
         status = im_fail(IM_EINVAL, "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
                          "run it without mpirun", scene->path);
     if (status == IM_OK) {
-        if (ranks)
+        if (ranks) /* an MPI run: the ranks solve the members first */
             status = ranks->solve_members(scene, options, ranks->data);
         if (status == IM_OK)
-            status = run_scene_stages(scene, options);
+            status = run_scene_stages(scene, options, ranks);
         int recorded = scene_plans_record(scene); /* also after an interruption: what was solved is kept */
         status = scene_outputs_close(scene, status == IM_OK ? recorded : status);
         status = write_viewer_page(scene, options, status);

@@ -276,7 +276,7 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
     if (status == IM_OK) {
         scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
                        scene->load_star);
-        status = scene_ensemble_run(scene, options, "table", members, count, scene_table_member);
+        status = scene_ensemble_run(scene, options, "table", members, count, scene_table_member, reuse->ranks);
     }
     if (status == IM_OK)
         scene_report_origins(options, "table", members, count);

@@ -1,8 +1,8 @@
-/* Ensembles over MPI ranks (mpi.h: im_scene_run_ranks; docs/mpi.md, "Ensembles over ranks").
+/* Ensembles over MPI ranks (scene_ranks.h: im_scene_run_ranks; docs/mpi.md, "Ensembles over ranks").
  * Each rank solves its share of the table's and the histories' members into the shared output
  * folder, with the scene code's own member solvers (which write every member as soon as it is
  * solved, keyed by its inputs); rank 0 then runs the stages alone and reads them back exactly. */
-#include "indentmap/mpi.h"
+#include "indentmap/scene_ranks.h"
 #include "core/args.h"
 
 #include "indentmap/io.h"
@@ -14,6 +14,7 @@
 #include "scene/panels.h"
 #include "scene/plots.h"
 #include "scene/progress.h"
+#include "scene/provenance.h"
 #include "scene/table.h"
 
 #include <limits.h>
@@ -30,7 +31,7 @@ typedef struct ranks_state {
     MPI_Comm comm;
     int rank, ranks;
     int started;           /* rank 0: the other ranks were told to start solving */
-    int *origins[STAGES];  /* per member of a stage: scene_ranks_run.origin's value, or NULL */
+    int *origins[STAGES];  /* per member of a stage: its origin_code, -1 where no rank solved it */
     int counts[STAGES];
 } ranks_state;
 
@@ -76,10 +77,13 @@ static int agree(const ranks_state *st, int status)
     return st->rank == owner ? status : im_fail(shared, "rank %d: %s", owner, message);
 }
 
-/* What rank 0's stages need of a member this rank solved (scene_ranks_run.origin). */
+/* What rank 0's stages need of a member another rank solved, packed in one int for the ranks' MPI_MAX
+ * reduction: its enum scene_origin, and the flags below. */
+enum { ORIGIN_BITS = 3, STEP_REUSED = 4, KEPT_FORCE = 8 };
+
 static int origin_code(const scene_member *m)
 {
-    return (int)m->origin | (m->step_reused ? 4 : 0) | (m->force ? 8 : 0);
+    return (int)m->origin | (m->step_reused ? STEP_REUSED : 0) | (m->force ? KEPT_FORCE : 0);
 }
 
 /* Every rank's origins of a stage's members, on every rank. */
@@ -147,7 +151,7 @@ static int solve_stage(const im_scene *scene, const im_scene_run_options *option
         if (stage == STAGE_HISTORIES)
             scene_link_table(scene, table, mine, n);
         if (n > 0)
-            status = scene_ensemble_run(scene, options, STAGE_FOLDERS[stage], mine, n, STAGE_SOLVERS[stage]);
+            status = scene_ensemble_run(scene, options, STAGE_FOLDERS[stage], mine, n, STAGE_SOLVERS[stage], NULL);
         if (status == IM_OK)
             status = write_kept_forces(scene, mine, n);
         status = agree(st, status);
@@ -194,13 +198,32 @@ static int rank0_solve_members(const im_scene *scene, const im_scene_run_options
     return status;
 }
 
-static int member_origin(void *data, scene_member_solver solve, int index)
+/* Member index's origin_code in solve's stage, or -1 when no rank solved it. */
+static int member_origin(const ranks_state *st, scene_member_solver solve, int index)
 {
-    const ranks_state *st = data;
     for (int s = 0; s < STAGES; ++s)
         if (solve == STAGE_SOLVERS[s] && st->origins[s] && index < st->counts[s])
             return st->origins[s][index];
     return -1;
+}
+
+static int member_solved(void *data, scene_member_solver solve, int index)
+{
+    return member_origin(data, solve, index) >= 0;
+}
+
+static int read_member_back(void *data, const im_scene *scene, const im_scene_run_options *options,
+                            scene_member_solver solve, int index, scene_member *m)
+{
+    int origin = member_origin(data, solve, index);
+    im_scene_run_options read_back = *options;
+    read_back.resume = 1;
+    int status = solve(scene, &read_back, m);
+    m->origin = (enum scene_origin)(origin & ORIGIN_BITS);
+    m->step_reused = (origin & STEP_REUSED) != 0;
+    if (status == IM_OK && (origin & KEPT_FORCE) && !m->force)
+        status = scene_read_panel_force(scene, m->family, &m->force);
+    return status;
 }
 
 /* Ranks 1..K-1: wait for rank 0's go, solve their share, wait for rank 0's outcome. */
@@ -220,15 +243,37 @@ static int run_worker(ranks_state *st, const im_scene *scene, const im_scene_run
     return status != IM_OK ? status : outcome != IM_OK ? im_fail(outcome, "rank 0 failed") : IM_OK;
 }
 
+/* mpi_same_files (agree.h) over each file the scene names, its surface files and profile (run.json's
+ * inputs), each named with its scene key. Collective. */
+static int same_scene_inputs(MPI_Comm comm, const im_scene *scene)
+{
+    int count = 0;
+    const char *key;
+    char path[IM_SCENE_PATH];
+    while (scene_input(scene, count, 0, &key, path, sizeof path))
+        ++count;
+    char *copies = malloc((size_t)count * IM_SCENE_PATH + 1);
+    const char **paths = malloc(sizeof *paths * (size_t)(count + 1)), **keys = malloc(sizeof *keys * (size_t)(count + 1));
+    int status = copies && paths && keys ? IM_OK : im_fail(IM_ENOMEM, "the paths of %d input files", count);
+    for (int i = 0; status == IM_OK && i < count; ++i) {
+        paths[i] = copies + (size_t)i * IM_SCENE_PATH;
+        scene_input(scene, i, 0, &keys[i], copies + (size_t)i * IM_SCENE_PATH, IM_SCENE_PATH);
+    }
+    if ((status = mpi_collective_status(comm, status)) == IM_OK)
+        status = mpi_same_files(comm, "the scene", count, paths, keys);
+    free(copies);
+    free(paths);
+    free(keys);
+    return status;
+}
+
 /* Rank 0 runs the scene, the other ranks their share of its members. */
 static int run_on_rank(ranks_state *st, const im_scene *scene, const im_scene_run_options *options)
 {
     int status;
     if (st->rank == 0) {
-        scene_ranks_run run = {rank0_solve_members, member_origin, st};
-        scene_set_ranks_run(&run);
-        status = im_scene_run(scene, options);
-        scene_set_ranks_run(NULL);
+        const scene_ranks_run run = {rank0_solve_members, member_solved, read_member_back, st};
+        status = scene_run(scene, options, &run);
         /* not started: rank 0 failed before the members (bad scene, folder in use), which the other
          * ranks learn from the go; else they wait for the outcome */
         broadcast_status(st, status);
@@ -251,7 +296,7 @@ int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_
     if (st.ranks == 1)
         return im_scene_run(scene, options);
     /* a path may name other files on other nodes: every rank stops before anything is written */
-    int status = mpi_same_scene_inputs(comm, scene);
+    int status = same_scene_inputs(comm, scene);
     if (status == IM_OK)
         status = run_on_rank(&st, scene, options);
     for (int s = 0; s < STAGES; ++s)
