@@ -3,7 +3,7 @@
 # before the edit: the folder left behind is the one a fresh run of the edited scene writes (byte for
 # byte, but for the solve times in members and histories and the PDFs' creation dates), so that no
 # key's edit lets a stale result through (issue 32). Table-driven: RULES names, for each key of the
-# parser's table (src/scene/parse.c, KEYS), the scene it is edited in and its edit, or why it has no
+# parser's table (src/scene/keys.c, KEYS), the scene it is edited in and its edit, or why it has no
 # resume to check; a key the table lacks (a new key) fails the test. --no-wisdom: estimated FFTW
 # plans, so that two runs agree to the bit. Exit 77 (skipped) without an OpenGL context.
 #   cli_resume_every_key.sh PATH_TO_INDENTMAP
@@ -13,7 +13,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 source "$(dirname "$0")/lib.sh"
 require_renderer "$cli"
-parser=$(dirname "$0")/../src/scene/parse.c
+parser=$(dirname "$0")/../src/scene/keys.c
 
 # device = gpu where the build has the GPU engine and Vulkan opens a device (`indentmap info` lists it
 # under "Vulkan devices:"), else why not.

@@ -1,6 +1,5 @@
 /* The paper's line figures that a scene asks for in [output] plots. */
 #include "indentmap/plot.h"
-#include "core/args.h"
 #include "indentmap/status.h"
 #include "scene/frames.h"
 #include "scene/outputs.h"
@@ -9,28 +8,6 @@
 #include "scene/surfaces.h"
 
 #include <stdio.h>
-#include <string.h>
-
-static const char *const PLOT_NAMES[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere",
-                                         "flat_k"}; /* of the bits 1 << 0, 1 << 1, ... */
-enum { PLOT_COUNT = sizeof PLOT_NAMES / sizeof PLOT_NAMES[0] };
-
-const char *im_scene_plot_name(enum im_scene_plot plot)
-{
-    for (int i = 0; i < PLOT_COUNT; ++i)
-        if ((unsigned)plot == 1u << i)
-            return PLOT_NAMES[i];
-    return NULL;
-}
-
-enum im_scene_plot im_scene_plot_parse(const char *name)
-{
-    ARG_REQUIRE_OR(name, "name", 0);
-    for (int i = 0; i < PLOT_COUNT; ++i)
-        if (strcmp(name, PLOT_NAMES[i]) == 0)
-            return (enum im_scene_plot)(1u << i);
-    return (enum im_scene_plot)0;
-}
 
 int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot) { return (scene->plots & plot) != 0; }
 
