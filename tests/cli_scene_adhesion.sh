@@ -86,7 +86,7 @@ refuse "a negative work" '[adhesion]
 work = -1
 range = 1' "" "work = '-1': expected a number in"
 refuse "panels under load control" "$sticky" "contact_panels = yes" "contact_panels, frames, table or distributions"
-refuse "periodic flat panels" "$sticky" "plots = flat_k" "plots = flat_k: its flat panels are solved in the periodic"
+refuse "periodic flat panels" "$sticky" "plots = flat_k" "plots = flat_k: its flat panels are solved at mean pressures, which an adhesive cell does not take"
 refuse "log-axis figures" "$sticky" "plots = fig7" "plots = fig7 or sphere"
 refuse "a hardness" "$sticky" '[material]
 hardness = 1' "[adhesion] with [material] hardness"

@@ -57,6 +57,22 @@ check "its history is indent --mean-gap's" \
 check "the mean gaps are the steps" awk -F, '/^#/ || /^step/ { next } { split("0.4 0.3 0.2 0.3", g, " "); d = $28 / g[++k] - 1
     if (d > 1e-6 || -d > 1e-6) bad = 1 } END { exit bad || k != 4 }' "$dir/gap/histories/member_00_0.csv"
 
+# An adhesive cell (issue 27) under mean gaps falling and rising: indent --periodic --mean-gap --adhesion-work's
+# history, pulling where the cell is out of contact; each step's contact map drawn (tension on its own colour
+# bar); no k (eq. (2) is the repulsive flat's).
+sticky=$'[adhesion]\nwork = 0.001\nrange = 0.5'
+scene "$dir/sticky.ini" cell.npy "" $'control = mean_gap\nsteps = 1.5, 1, 0.5, 1, 1.5' \
+    "$sticky"$'\n[output]\ncontact_panels = yes' sticky
+check "an adhesive cell's scene runs" "$cli" run "$dir/sticky.ini" > /dev/null 2>&1
+"$cli" indent "$dir/cell.npy" --periodic --mean-gap 1.5,1,0.5,1,1.5 --adhesion-work 0.001 --adhesion-range 0.5 \
+    --out "$dir/indent_sticky" > /dev/null
+check "its history is indent --periodic --mean-gap --adhesion-work's" \
+    cmp <(rows "$dir/sticky/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_sticky/history.csv")
+check "the cell pulls out of contact" awk -F, '/^[0-9]/ && $3 < 0 && $5 == 0 { pulled = 1 } END { exit !pulled }' \
+    "$dir/sticky/histories/member_00_0.csv"
+check "each step's contact map is drawn" [ -s "$dir/sticky/panels/family_00/contact_0004.png" ]
+check "no k for an adhesive cell" [ ! -e "$dir/sticky/k_fit.csv" ]
+
 # A sphere repeated with the cell, with a hardness, loaded and unloaded: indent's history; no k (a cap).
 scene "$dir/sphere.ini" cell.npy $'shape = sphere\nradius = 20' "steps = 0.01:0.05:3, 0.03:0.01:2" \
     $'[material]\nhardness = 0.4' sphere
@@ -138,6 +154,8 @@ refuse "frames" "" "steps = 0.01" $'[output]\ncontact_panels = no\nframes = yes'
 refuse "Love's theory" "" "steps = 0.01" $'[output]\nplots = fig6' "plots = fig6 beside [punch] periodic"
 refuse "the smooth contact circle" "" "steps = 0.01" $'[output]\nplots = fig1' "plots = fig1 beside [punch] periodic"
 refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha beside periodic without shape"
+refuse "adhesion at mean pressures" "" "steps = 0.01" "$sticky" \
+    "bad.ini:12: [adhesion] with [punch] periodic takes [loading] control = mean_gap: a mean pressure on an adhesive cell is not available"
 refuse "adhesion" "" "steps = 0.01" $'[adhesion]\nwork = 0.1\nrange = 1' "[adhesion] with [punch] periodic"
 refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
 refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"

@@ -204,6 +204,14 @@ static const char *adhesion_conflict(const im_scene *scene)
         return "[adhesion] work and range go together: expected both";
     if (scene->hardness > 0)
         return "[adhesion] with [material] hardness: adhesion with plasticity is not available";
+    if (scene->plots & IM_SCENE_PLOT_FLAT_K)
+        return "[adhesion] with plots = flat_k: its flat panels are solved at mean pressures, which an adhesive "
+               "cell does not take";
+    if (scene->periodic) /* as indent --periodic: mean gaps; its panels and distributions are taken at every step */
+        return scene->control == IM_CONTROL_MEAN_GAP
+                   ? NULL
+                   : "[adhesion] with [punch] periodic takes [loading] control = mean_gap: a mean pressure on an "
+                     "adhesive cell is not available";
     if (scene->contact_panels || scene->frames || scene->table || scene->distributions)
         return "[adhesion] with [output] contact_panels, frames, table or distributions: those are solved under "
                "load control at load_star, which an adhesive contact does not take (its histories, plots = fig5, "
@@ -211,11 +219,6 @@ static const char *adhesion_conflict(const im_scene *scene)
     if (scene->plots & (IM_SCENE_PLOT_FIG7 | IM_SCENE_PLOT_SPHERE))
         return "[adhesion] with plots = fig7 or sphere: they set repulsive contact against N* on log axes, which a "
                "pulled (negative) load leaves (fig5 and fig6 draw adhesive histories)";
-    if (scene->periodic)
-        return "[adhesion] with [punch] periodic: the periodic half-space has no adhesion";
-    if (scene->plots & IM_SCENE_PLOT_FLAT_K)
-        return "[adhesion] with plots = flat_k: its flat panels are solved in the periodic half-space, which has "
-               "no adhesion";
     return NULL;
 }
 

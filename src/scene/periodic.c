@@ -15,7 +15,8 @@
 
 int scene_periodic_fits_k(const im_scene *scene)
 {
-    return scene->periodic == IM_SCENE_PERIODIC_FLAT && !(scene->hardness > 0);
+    /* as indent --periodic: eq. (2) is the elastic, repulsive flat's */
+    return scene->periodic == IM_SCENE_PERIODIC_FLAT && !(scene->hardness > 0) && !(scene->adhesion_work > 0);
 }
 
 static void warn_if_not_periodic(const im_scene *scene, const im_scene_run_options *options, const scene_member *m,
