@@ -1,6 +1,7 @@
 /* Benchmark of the speed/accuracy trade (issue 7; not a test).
  *
  *   bench_tradeoff CSV_PATH PNG_PATH
+ *   bench_tradeoff --plot CSV_PATH PNG_PATH   (the figure drawn again from a CSV this wrote, nothing measured)
  *
  * One physical problem: a 128 x 128 base box of the paper's surface family scaled down (H = 0.8,
  * lambda_s = 4 base cells, lambda_r = 128, h'rms = 0.08, seed 1), and the same box smooth (h = 0);
@@ -523,6 +524,81 @@ static int write_plot(const char *path, const measured *smooth, int ns, const me
     return im_plot_write(&plot, path);
 }
 
+/* ---- the figure drawn again from a CSV (--plot) ---- */
+
+/* The index of column name in the CSV's header line, -1 if absent. */
+static int column_of(const char *header, const char *name)
+{
+    int index = 0;
+    for (const char *at = header; at; at = strchr(at, ','), at = at ? at + 1 : NULL, ++index)
+        if (strncmp(at, name, strlen(name)) == 0 && strchr(",\n", at[strlen(name)]))
+            return index;
+    return -1;
+}
+
+/* Field i of a CSV line (no quoting: this program's rows have none), copied into out. */
+static void field_of(const char *line, int i, char *out, size_t size)
+{
+    for (; i > 0 && line; --i)
+        line = strchr(line, ',') ? strchr(line, ',') + 1 : NULL;
+    snprintf(out, size, "%.*s", line ? (int)strcspn(line, ",\n") : 0, line ? line : "");
+}
+
+/* A family's name as the plot matches it (families[]), NULL for the reference or an unknown one. */
+static const char *known_family(const char *name)
+{
+    for (int f = 0; f < FAMILIES; ++f)
+        if (strcmp(name, families[f]) == 0)
+            return families[f];
+    return NULL;
+}
+
+enum { CSV_PROBLEM, CSV_FAMILY, CSV_STATUS, CSV_ERROR, CSV_CPU, CSV_FRONTIER, CSV_COLUMNS };
+
+/* One row into the smooth or rough list (the reference row left out): what the plot draws. */
+static void read_row(const char *line, const int *columns, measured *smooth, int *ns, measured *rough, int *nr)
+{
+    char text[CSV_COLUMNS][64];
+    for (int c = 0; c < CSV_COLUMNS; ++c)
+        field_of(line, columns[c], text[c], sizeof text[c]);
+    const char *family = known_family(text[CSV_FAMILY]);
+    int is_rough = strcmp(text[CSV_PROBLEM], "rough") == 0;
+    int *n = is_rough ? nr : ns;
+    if (!family || *n >= MAX_CONFIGS)
+        return;
+    measured *m = is_rough ? &rough[(*n)++] : &smooth[(*n)++];
+    *m = (measured){.config = {.family = family, .problem = is_rough ? ROUGH : SMOOTH},
+                    .outcome = {.status = atoi(text[CSV_STATUS]), .error = atof(text[CSV_ERROR]),
+                                .cpu_seconds = atof(text[CSV_CPU])},
+                    .on_frontier = atoi(text[CSV_FRONTIER])};
+}
+
+static int plot_from_csv(const char *csv, const char *png)
+{
+    static const char *const names[CSV_COLUMNS] = {"problem", "family", "status", "error", "cpu_s", "frontier"};
+    static measured smooth[MAX_CONFIGS], rough[MAX_CONFIGS];
+    int columns[CSV_COLUMNS], ns = 0, nr = 0, header = 0;
+    char line[1024];
+    FILE *f = fopen(csv, "r");
+    if (!f)
+        return im_fail(IM_EIO, "%s: %s", csv, strerror(errno));
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#')
+            continue;
+        for (int c = 0; !header && c < CSV_COLUMNS; ++c)
+            if ((columns[c] = column_of(line, names[c])) < 0) {
+                fclose(f);
+                return im_fail(IM_EFORMAT, "%s: no column %s: expected a CSV bench_tradeoff wrote", csv, names[c]);
+            }
+        if (header++)
+            read_row(line, columns, smooth, &ns, rough, &nr);
+    }
+    fclose(f);
+    if (ns == 0 || nr == 0)
+        return im_fail(IM_EFORMAT, "%s: %d smooth and %d rough rows: expected both", csv, ns, nr);
+    return write_plot(png, smooth, ns, rough, nr);
+}
+
 static void report(const config *c, const outcome *o, int status)
 {
     fprintf(stderr, "%s %-10s %dx tol %.0e margin %2d crop %d threads %d: %.4f s (CPU %.4f s), error %.3e (N %.2e, A %.2e), "
@@ -557,8 +633,14 @@ static int run_problem(enum problem p, const truth *t, measured *m)
 }
 int main(int argc, char **argv)
 {
+    if (argc == 4 && strcmp(argv[1], "--plot") == 0) {
+        int status = plot_from_csv(argv[2], argv[3]);
+        if (status != IM_OK)
+            fprintf(stderr, "bench_tradeoff: %s\n", im_last_error());
+        return status == IM_OK ? 0 : 1;
+    }
     if (argc != 3) {
-        fprintf(stderr, "usage: bench_tradeoff CSV_PATH PNG_PATH\n");
+        fprintf(stderr, "usage: bench_tradeoff CSV_PATH PNG_PATH\n       bench_tradeoff --plot CSV_PATH PNG_PATH\n");
         return 2;
     }
     double start = bench_now();

@@ -8,14 +8,16 @@
 # given). Scenes run with --resume, so a second call with the same IM_DOCS_WORK reuses what the first
 # finished. FFTW wisdom is off (IM_FFTW_WISDOM empty), so no wisdom file is read or written.
 #
-# Not made here: tradeoff.png (bench/bench_tradeoff measures timings and writes docs/tradeoff.csv with
-# it; docs/benchmarks.md, "Speed against accuracy").
+# tradeoff.png is drawn again from docs/tradeoff.csv (`bench_tradeoff --plot`, built here): measuring
+# it anew is `bench_tradeoff CSV PNG` (docs/benchmarks.md, "Speed against accuracy"), whose numbers
+# the docs quote.
 #
 # Sizes: the bundled scenes' own figures are copied as they are written. Three show 512 x 512 patches
-# of rough detail that no option draws smaller: fig4's contact panels and height frame at one pixel per
-# patch (about 420 and 480 KB; a scene has no figure size) and the height field (670 KB). fig5 and fig6
-# are the full scene (51 histories of 25 approaches, about 4 minutes on 2 quiet cores, 15 or more on a
-# busy one). The images over 300 KB are listed at the end.
+# of rough detail at one pixel per patch, which no option draws smaller: fig4's contact panels and
+# height frame (about 420 and 480 KB; a scene has no figure size) and the height field (505 KB; it was
+# 670 KB at two pixels per patch). fig5 and fig6 are the full scene (51 histories of 25 approaches,
+# about 4 minutes on 2 quiet cores, 15 or more on a busy one). The images over 300 KB are listed at
+# the end.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "$1" && pwd)
@@ -90,8 +92,8 @@ INI
 }
 
 # docs/rendering.md: one rough cone's force field (N = 2770 E* delta^2: the smooth contact radius is
-# 100 patches) as a contact map and on its hill-shaded surface (670 KB: 2 pixels per patch; at 1 the
-# colour bar stands off the panel and the title overruns it)
+# 100 patches) as a contact map and on its hill-shaded surface (at one pixel per patch: every patch
+# of the relief is still a pixel of its own)
 render_maps() {
   local dir="$work/maps"
   mkdir -p "$dir"
@@ -100,7 +102,7 @@ render_maps() {
   "$cli" render contact "$dir/r0.08/force_0001.npy" --circle 100 --label "(e)" \
     --title "α = 80°, h′_{rms} = 0.08, N = 2770 E* δ²" --out "$dir/contact_map.png" > /dev/null
   keep "$dir/contact_map.png" contact_map_log_magma.png
-  "$cli" render height "$dir/s0.08.npy" --contact "$dir/r0.08/force_0001.npy" \
+  "$cli" render height "$dir/s0.08.npy" --contact "$dir/r0.08/force_0001.npy" --scale 1 \
     --title "h′_{rms} = 0.08, contact at N = 2770 E* δ² outlined" --out "$dir/height_field.png" > /dev/null
   keep "$dir/height_field.png" height_field.png
 }
@@ -130,7 +132,15 @@ benchmark_figures() {
   keep "$work/sticky/force_distance.png" adhesion_force_distance.png
 }
 
+# docs/benchmarks.md: the speed/accuracy trade, drawn from the committed measurement
+tradeoff_figure() {
+  cmake --build "$build" --target bench_tradeoff >/dev/null
+  "$build/bench_tradeoff" --plot "$root/docs/tradeoff.csv" "$work/tradeoff.png"
+  keep "$work/tradeoff.png" tradeoff.png
+}
+
 fig4_scene
+tradeoff_figure
 render_maps
 render_view3d
 distributions_scene

@@ -167,4 +167,44 @@ check "indent --from-record refuses a changed input, naming it and both checksum
   "$cli" indent --from-record "$dir/ind2/run.json" --out "$dir/i3"
 check "nothing written for a refused indent record" test ! -e "$dir/i3"
 
+
+# render's figures carry the command line as given, where it ran and their inputs' SHA-256 (they carried
+# the input's path only): contact panels (PNG, PDF), a height map with --contact, the animation's frames
+# and the 3-D view; the recorded command, run again where it ran, remakes the figure byte for byte.
+here=$(cd "$dir" && pwd -P)
+sum_of() { echo "$(sha256sum "$1" | cut -d' ' -f1)  $here/$2"; }
+mkdir -p "$dir/r"
+(cd "$dir" && "$cli" render contact ind2/force_0004.npy ind2/force_0002.npy --titles "N = 20,N = 10" \
+  --out "r/contact map.png" && "$cli" render contact ind2/force_0004.npy --out r/contact.pdf &&
+  "$cli" render height s32.npy --contact ind2/force_0004.npy --out r/height.png &&
+  "$cli" render animate ind2/force_0002.npy ind2/force_0004.npy --frames r/frames &&
+  "$cli" render view3d s32.npy --force ind2/force_0004.npy --width 160 --height 120 --out r/view3d.png) \
+  >"$dir/render.log" 2>&1
+check "render draws contact, height, animation frames and the 3-D view" test $? -eq 0
+texts() { python3 "$(dirname "$0")/figure_texts.py" "$@"; }
+check "render contact records its command, where it ran and both inputs" texts "$dir/r/contact map.png" \
+  "Command=indentmap render contact ind2/force_0004.npy ind2/force_0002.npy --titles 'N = 20,N = 10' --out 'r/contact map.png'" \
+  "Directory=$here" "Software=indentmap $version" "Inputs=$(sum_of "$dir/ind2/force_0004.npy" ind2/force_0004.npy)" \
+  "Inputs=$(sum_of "$dir/ind2/force_0002.npy" ind2/force_0002.npy)"
+check "as PDF" texts "$dir/r/contact.pdf" "Command=indentmap render contact ind2/force_0004.npy --out r/contact.pdf" \
+  "Directory=$here" "Inputs=$(sum_of "$dir/ind2/force_0004.npy" ind2/force_0004.npy)"
+check "render height records the surface and --contact" texts "$dir/r/height.png" \
+  "Command=indentmap render height s32.npy --contact ind2/force_0004.npy --out r/height.png" \
+  "Inputs=$(sum_of "$dir/s32.npy" s32.npy)" "Inputs=$(sum_of "$dir/ind2/force_0004.npy" ind2/force_0004.npy)"
+check "every frame of render animate records the command and every input" texts "$dir/r/frames" \
+  "Command=indentmap render animate ind2/force_0002.npy ind2/force_0004.npy --frames r/frames" \
+  "Inputs=$(sum_of "$dir/ind2/force_0002.npy" ind2/force_0002.npy)" \
+  "Inputs=$(sum_of "$dir/ind2/force_0004.npy" ind2/force_0004.npy)"
+check "render view3d records its command and inputs" texts "$dir/r/view3d.png" \
+  "Command=indentmap render view3d s32.npy --force ind2/force_0004.npy --width 160 --height 120 --out r/view3d.png" \
+  "Directory=$here" "Inputs=$(sum_of "$dir/s32.npy" s32.npy)"
+remake() { python3 -c 'import sys; sys.path.insert(0, sys.argv[1]); from figure_texts import png_texts
+t = png_texts(sys.argv[2]); print(t["Directory"]); print(t["Command"])' "$(dirname "$0")" "$1"; }
+for figure in "contact map.png" view3d.png; do
+  { read -r where; read -r command; } < <(remake "$dir/r/$figure")
+  mv "$dir/r/$figure" "$dir/first.png"
+  check "$figure made again from its record" bash -c "cd '$where' && eval '\"$cli\"'\"\${1#indentmap}\" >/dev/null 2>&1 &&
+    cmp '$dir/first.png' 'r/$figure'" _ "$command"
+done
+
 finish

@@ -24,6 +24,10 @@ check "the surface read back in m" bash -c "'$cli' surface --stats '$dir/si/gap_
 status=$?
 if [ $status -eq 0 ]; then
   check "render labels the force in N" grep -aq "local force f / N" "$dir/f.png"
+  # view3d's colour bar by the maps' rule (figure.h: im_figure_colorbar_label); it said E* δ² whatever the unit
+  "$cli" render view3d "$dir/s.gsf" --displacement "$dir/si/displacement_0002.npy" --force "$dir/si/force_0002.npy" \
+    --width 160 --height 120 --out "$dir/v.png" >/dev/null 2>&1
+  check "view3d labels the force in N" python3 "$(dirname "$0")/figure_texts.py" "$dir/v.png" "Quantity=local force f / N"
 fi
 "$cli" surface --n 32 --delta 0.2 --unit um --slope 0.1 --out "$dir/s.npy" >/dev/null
 "$cli" indent "$dir/s.npy" --e-star 2 --approach 0.02 --fields --out "$dir/um" >/dev/null 2>&1

@@ -210,6 +210,41 @@ static void test_small_panel_text_fits(void **state)
     im_image_release(&image);
 }
 
+/* The colour bar's gap from the image (its first ink right of it, in the image's rows) in a figure of
+ * one panel with the given title. */
+static int colorbar_gap(im_image *image, const char *title)
+{
+    im_figure_panel panel = {image, NULL, title};
+    im_colormap norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = &norm;
+    figure.colorbar_label = "height h / δ";
+    figure.dpi = 150;
+    const char *path = test_path("titled.png");
+    int width, height, x, y;
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    assert_clear_edges(rgb, width, height);
+    find_image(rgb, width, height, image, &x, &y);
+    int gap = first_ink_column(rgb, width, y, y + image->height, x + image->width) - (x + image->width);
+    free(rgb);
+    return gap;
+}
+
+/* A title wider than its image (`render height --scale 1` of a 512^2 field) runs on above the colour
+ * bar: the bar stays beside the image, as without a title (it stood the title's overhang off). */
+static void test_colorbar_beside_an_image_under_a_wide_title(void **state)
+{
+    (void)state;
+    im_image image = make_image(200, 240, 3);
+    int plain = colorbar_gap(&image, NULL);
+    assert_true(plain > 0 && plain < 40);
+    assert_int_equal(colorbar_gap(&image, "a title far wider than the image it stands over, as at one pixel per patch"),
+                     plain);
+    im_image_release(&image);
+}
+
 /* The note (e.g. "N* = 37000") sits under the panels and ends at the grid's right edge, clear of
  * the scale bar's text; a note longer than the grid widens the figure instead of being clipped. */
 static void test_note_under_the_panels(void **state)
@@ -938,6 +973,7 @@ int main(void)
         cmocka_unit_test(test_tick_labels),
         cmocka_unit_test(test_length_labels),
         cmocka_unit_test(test_small_panel_text_fits),
+        cmocka_unit_test(test_colorbar_beside_an_image_under_a_wide_title),
         cmocka_unit_test(test_note_under_the_panels),
         cmocka_unit_test(test_short_colorbar_labels_apart),
         cmocka_unit_test(test_panel_grid_and_colorbar),

@@ -330,6 +330,49 @@ static void test_panel_columns(void **state)
         assert_int_equal(paper_panel_columns(counts[i]), columns[i]);
 }
 
+/* PNG width and height from its IHDR. */
+static void png_size(const char *path, int *width, int *height)
+{
+    unsigned char header[24];
+    FILE *file = fopen(path, "rb");
+    assert_non_null(file);
+    assert_int_equal(fread(header, 1, sizeof header, file), sizeof header);
+    fclose(file);
+    *width = header[16] << 24 | header[17] << 16 | header[18] << 8 | header[19];
+    *height = header[20] << 24 | header[21] << 16 | header[22] << 8 | header[23];
+}
+
+/* The contact density of count maps (a disc of contact on 32^2 patches each) as PNG: its size. */
+static void density_figure_size(int count, int *width, int *height)
+{
+    im_field *force;
+    assert_int_equal(im_field_create(32, 32, 1.0, &force), IM_OK);
+    for (int i = 0; i < 32 * 32; ++i)
+        force->data[i] = hypot(i % 32 + 0.5 - 16, i / 32 + 0.5 - 16) < 10 ? 1.0 : 0.0;
+    paper_density_map maps[6];
+    for (int i = 0; i < count; ++i)
+        maps[i] = (paper_density_map){force, 16, 16, 10, 0.01 * (i + 1), 314};
+    const char *path = test_path("density.png");
+    assert_int_equal(paper_figure_contact_density(80.0, maps, count, &(paper_file){.path = path}), IM_OK);
+    png_size(path, width, height);
+    im_field_free(force);
+}
+
+/* Five maps lie in rows of three, as six do (one row of five stood 4633 px wide at 300 dpi): the
+ * figure is no wider than three maps' (the legend, outside their last frame, sits in the sixth cell),
+ * as high as six maps'. */
+static void test_density_rows_of_three(void **state)
+{
+    (void)state;
+    int width3, height3, width5, height5, width6, height6;
+    density_figure_size(3, &width3, &height3);
+    density_figure_size(5, &width5, &height5);
+    density_figure_size(6, &width6, &height6);
+    assert_true(width5 <= width3 && width6 == width3);
+    assert_int_equal(height5, height6);
+    assert_true(height5 > 3 * height3 / 2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -341,6 +384,7 @@ int main(void)
         cmocka_unit_test(test_sweep_figure),
         cmocka_unit_test(test_distribution_figure),
         cmocka_unit_test(test_panel_columns),
+        cmocka_unit_test(test_density_rows_of_three),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -547,6 +547,34 @@ static void refused(const im_plot *plot, int status, const char *text)
     assert_int_equal(directory_entries(test_temp_dir()), before);
 }
 
+/* Five panels in rows of three: the last row's third cell stays empty, the grid as six panels'. */
+static void test_partial_last_row(void **state)
+{
+    (void)state;
+    double x[] = {1.0, 2.0}, y[] = {1.0, 2.0};
+    im_plot_series s = {.x = x, .y = y, .n = 2};
+    im_plot_panel panels[6];
+    for (int i = 0; i < 6; ++i)
+        panels[i] = (im_plot_panel){.series = &s, .series_count = 1, .label = "(a)"};
+    im_plot plot = small_plot(panels);
+    plot.rows = 2, plot.columns = 3;
+    im_plot_geometry six[6], five[5];
+    for (int i = 0; i < 6; ++i)
+        assert_int_equal(im_plot_geometry_of(&plot, i, &six[i]), IM_OK);
+    plot.panel_count = 5;
+    for (int i = 0; i < 5; ++i) {
+        assert_int_equal(im_plot_geometry_of(&plot, i, &five[i]), IM_OK);
+        assert_memory_equal(&five[i], &six[i], sizeof five[i]);
+    }
+    assert_int_equal(im_plot_geometry_of(&plot, 5, &five[0]), IM_EINVAL);
+    assert_true(five[3].box_x == five[0].box_x && five[3].box_y > five[0].box_y + five[0].box_height);
+    assert_int_equal(im_plot_write(&plot, test_path("five.png")), IM_OK);
+    plot.panel_count = 3;
+    refused(&plot, IM_EINVAL, "plot: 3 panels in 2 x 3 cells: expected 4 to 6 (0: every cell)");
+    plot.panel_count = 7;
+    refused(&plot, IM_EINVAL, "plot: 7 panels in 2 x 3 cells");
+}
+
 static void test_bad_input_refused(void **state)
 {
     (void)state;
@@ -725,6 +753,7 @@ int main(void)
         cmocka_unit_test(test_legend_keeps_clear_of_lines),
         cmocka_unit_test(test_png_pdf_svg),
         cmocka_unit_test(test_bad_input_refused),
+        cmocka_unit_test(test_partial_last_row),
         cmocka_unit_test(test_palette),
         cmocka_unit_test(test_figure_contact_density),
         cmocka_unit_test(test_figure_area_ratio),

@@ -109,7 +109,9 @@ typedef struct im_plot_panel {
 
 typedef struct im_plot {
     int rows, columns;          /* >= 1 each, at most 64 panels */
-    const im_plot_panel *panels; /* rows * columns panels, row by row from the top */
+    const im_plot_panel *panels; /* panel_count panels, row by row from the top */
+    int panel_count;            /* 0: rows * columns; else more than (rows - 1) * columns and at most
+                                   rows * columns: the last row's other cells stay empty */
     double panel_width, panel_height; /* size of each axes frame in points, (0, 2000] */
     double dpi;                 /* (0, 2400] */
     double font_size;           /* points, (0, 72] */

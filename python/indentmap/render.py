@@ -72,7 +72,8 @@ def _contact_norm(force, vmin, vmax, log):
 
 
 def _picture_texts(quantity, unit, colormap, norm, log, scale):
-    """The text chunks of a picture, as ``indentmap render --raw`` writes them (but its 'Source')."""
+    """The text chunks of a picture, as ``indentmap render --raw`` writes them (but its record of the command:
+    'Command', 'Directory' and 'Inputs')."""
     return {"Software": f"indentmap {_core.library_version}", "Quantity": _core.colorbar_label(quantity, unit),
             "Colormap": colormap, "Norm": f"{'log' if log else 'linear'} [{norm[0]:.9g}, {norm[1]:.9g}]",
             "Pixels per patch": str(int(scale))}

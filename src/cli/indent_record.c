@@ -1,5 +1,6 @@
 /* indent's arguments in its run record, and the run made again from them (`indent --from-record`). */
 #include "cli/indent_record.h"
+#include "cli/figure_provenance.h"
 #include "front/front.h"
 
 #include "indentmap/io.h"
@@ -33,35 +34,19 @@ int indent_arguments_add(indent_arguments *arguments, const char *option, const 
     return status;
 }
 
-/* Whether text can stand unquoted in a POSIX shell's command line. */
-static int shell_plain(const char *text)
-{
-    return text[0] && strspn(text, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-+=.,:/@%") ==
-                          strlen(text);
-}
-
 char *indent_arguments_command(const indent_arguments *arguments)
 {
     static const char PROGRAM[] = "indentmap indent";
     size_t size = sizeof PROGRAM, i;
     json_t *argument;
     json_array_foreach(arguments->list, i, argument)
-        size += 4 * strlen(json_string_value(argument)) + 3; /* each ' written '\'' */
+        size += cli_shell_word_room(json_string_value(argument));
     char *text = malloc(size);
     if (!text)
         return NULL;
     size_t used = (size_t)snprintf(text, size, "%s", PROGRAM);
-    json_array_foreach(arguments->list, i, argument) {
-        const char *value = json_string_value(argument);
-        if (shell_plain(value)) {
-            used += (size_t)snprintf(text + used, size - used, " %s", value);
-            continue;
-        }
-        used += (size_t)snprintf(text + used, size - used, " '");
-        for (const char *c = value; *c; ++c)
-            used += (size_t)snprintf(text + used, size - used, *c == '\'' ? "'\\''" : "%c", *c);
-        used += (size_t)snprintf(text + used, size - used, "'");
-    }
+    json_array_foreach(arguments->list, i, argument)
+        used = cli_shell_append(text, size, used, json_string_value(argument));
     return text;
 }
 

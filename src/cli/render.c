@@ -1,5 +1,6 @@
 /* indentmap render: draw a field file as a contact map or a height field, or animate frames. */
 #include "cli/cli.h"
+#include "cli/figure_provenance.h"
 
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
@@ -69,6 +70,7 @@ typedef struct render_options {
     char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
+    cli_provenance provenance;     /* the command line, where it ran and the inputs: every figure's record */
 } render_options;
 
 enum { OPT_OUT = 256, OPT_RAW, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG, OPT_SCALE, OPT_CIRCLE, OPT_CX,
@@ -221,30 +223,14 @@ static const char *height_quantity(const char *path)
     return quantity;
 }
 
-/* The figure (or, with --raw, the data image of a single panel), the run's settings as text; when frame is
- * not NULL, the figure's pixels too (im_figure_write_frame). */
-static int write_output(const render_options *o, char **inputs, const im_image *images, int count,
-                        const im_colormap *norm, im_image *frame)
+/* The figure (or, with --raw, the data image of a single panel) with the texts; when frame is not NULL, the
+ * figure's pixels too (im_figure_write_frame). */
+static int write_figure(const render_options *o, const im_image *images, int count, const im_colormap *norm,
+                        const char *quantity, const char *tension_name, const run_figure_texts *texts,
+                        im_image *frame)
 {
-    char norm_text[128], scale_text[16], sources[2048] = "";
-    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
-    snprintf(scale_text, sizeof scale_text, "%d", o->scale);
-    for (int i = 0; i < count; ++i)
-        snprintf(sources + strlen(sources), sizeof sources - strlen(sources), "%s%s", i ? ", " : "", inputs[i]);
-    int contact = strcmp(o->mode, "height") != 0;
-    char label[96], tension_name[96];
-    int status = im_figure_colorbar_label("tension", o->value_unit, tension_name, sizeof tension_name);
-    if (status == IM_OK)
-        status = im_figure_colorbar_label(contact ? "force" : height_quantity(inputs[0]),
-                                          contact ? o->value_unit : images[0].unit, label, sizeof label);
-    if (status != IM_OK)
-        return status;
-    const char *quantity = o->quantity ? o->quantity : label;
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", sources},
-                                 {"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
-                                 {"Norm", norm_text}, {"Pixels per patch", scale_text}};
     if (o->raw) {
-        im_png_options options = {texts, 6, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
+        im_png_options options = {texts->texts, texts->count, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
         return im_png_write(o->out, images[0].rgba, images[0].width, images[0].height, 4,
                             (size_t)images[0].width * 4, &options);
     }
@@ -268,14 +254,41 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     figure.extend_under = o->extend_under;
     figure.extend_over = o->extend_over;
     const im_colormap tension = im_contact_tension_norm(o->shared_tension);
-    if (contact && o->shared_tension > 0.0) {
+    if (strcmp(o->mode, "height") != 0 && o->shared_tension > 0.0) {
         figure.tension_colormap = &tension;
         figure.tension_label = tension_name;
     }
     figure.dpi = o->dpi;
-    figure.texts = texts;
-    figure.text_count = 6;
+    figure.texts = texts->texts;
+    figure.text_count = texts->count;
     return frame ? im_figure_write_frame(&figure, o->out, frame) : im_figure_write(&figure, o->out);
+}
+
+/* The figure (write_figure) with its texts: the record of the command (figure_provenance.h) and the
+ * drawing's settings. */
+static int write_output(const render_options *o, char **inputs, const im_image *images, int count,
+                        const im_colormap *norm, im_image *frame)
+{
+    char norm_text[128], scale_text[16];
+    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
+    snprintf(scale_text, sizeof scale_text, "%d", o->scale);
+    int contact = strcmp(o->mode, "height") != 0;
+    char label[96], tension_name[96];
+    int status = im_figure_colorbar_label("tension", o->value_unit, tension_name, sizeof tension_name);
+    if (status == IM_OK)
+        status = im_figure_colorbar_label(contact ? "force" : height_quantity(inputs[0]),
+                                          contact ? o->value_unit : images[0].unit, label, sizeof label);
+    if (status != IM_OK)
+        return status;
+    const char *quantity = o->quantity ? o->quantity : label;
+    const im_png_text given[] = {{"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
+                                 {"Norm", norm_text}, {"Pixels per patch", scale_text}};
+    run_figure_texts texts;
+    status = cli_provenance_texts(&o->provenance, given, 4, &texts);
+    if (status == IM_OK)
+        status = write_figure(o, images, count, norm, quantity, tension_name, &texts, frame);
+    run_figure_texts_free(&texts);
+    return status;
 }
 
 /* The default norm of several fields: the union of their finite values (forces: 0 .. the largest;
@@ -442,10 +455,21 @@ static int check_outputs_apart(const render_options *o, char **inputs, int count
     return 0;
 }
 
+/* The files the figures are drawn from, with their SHA-256, for the figures' record. */
+static int record_inputs(render_options *o, char **inputs, int count)
+{
+    int status = cli_provenance_add_input(&o->provenance, "--contact", o->contact);
+    for (int i = 0; status == IM_OK && i < count; ++i)
+        status = cli_provenance_add_input(&o->provenance, "input", inputs[i]);
+    return status;
+}
+
 static int run(render_options *o, char **inputs, int count)
 {
     im_render_context *context = NULL;
-    int status = cli_render_open(o->backend, &context);
+    int status = record_inputs(o, inputs, count);
+    if (status == IM_OK)
+        status = cli_render_open(o->backend, &context);
     if (status != IM_OK)
         return cli_report(status);
     if (strcmp(o->mode, "animate") == 0) {
@@ -473,24 +497,32 @@ static void apply_force_defaults(render_options *o)
         o->logarithmic = 1;
 }
 
-int cli_render(int argc, char **argv)
+static int render(render_options *o, int argc, char **argv)
 {
-    if (argc > 1 && strcmp(argv[1], "view3d") == 0)
-        return cli_render_view3d(argc - 1, argv + 1);
-    render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
-                        .backend = IM_RENDER_AUTO};
-    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &o);
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     if (optind >= argc) {
         usage(stderr);
         return CLI_EXIT_USAGE;
     }
-    o.mode = argv[optind];
-    if (check_usage(&o, argc - optind - 1) != 0 || check_outputs_apart(&o, argv + optind + 1, argc - optind - 1) != 0)
+    o->mode = argv[optind];
+    if (check_usage(o, argc - optind - 1) != 0 || check_outputs_apart(o, argv + optind + 1, argc - optind - 1) != 0)
         return CLI_EXIT_USAGE;
     if (cli_interrupt_install_cleanup() != 0)
         return cli_report(im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers"));
-    apply_force_defaults(&o);
-    return run(&o, argv + optind + 1, argc - optind - 1);
+    apply_force_defaults(o);
+    return run(o, argv + optind + 1, argc - optind - 1);
+}
+
+int cli_render(int argc, char **argv)
+{
+    if (argc > 1 && strcmp(argv[1], "view3d") == 0)
+        return cli_render_view3d(argc - 1, argv + 1);
+    render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
+                        .backend = IM_RENDER_AUTO};
+    int status = cli_provenance_start("indentmap", argc, argv, &o.provenance);
+    int code = status == IM_OK ? render(&o, argc, argv) : cli_report(status);
+    cli_provenance_free(&o.provenance);
+    return code;
 }

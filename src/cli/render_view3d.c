@@ -1,5 +1,6 @@
 /* indentmap render view3d: the deformed surface in 3-D, coloured by local force, with the punch. */
 #include "cli/cli.h"
+#include "cli/figure_provenance.h"
 #include "front/front.h"
 
 #include "indentmap/colormap.h"
@@ -67,6 +68,8 @@ typedef struct view3d_options {
     int x_given, y_given, radius_given;
     im_view3d_style style;
     im_render_backend backend;
+    char force_unit[40];           /* of --force (its sidecar), "" for E* δ² */
+    cli_provenance provenance;     /* the command line, where it ran and the inputs: the figure's record */
 } view3d_options;
 
 enum { OPT_OUT = 256, OPT_RAW, OPT_FORCE, OPT_DISPLACEMENT, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y,
@@ -204,35 +207,70 @@ static int apply_distance(const view3d_options *o, const im_field *height, im_vi
     return im_view3d_fit_distance(height, o->no_punch ? NULL : &o->punch, s, &s->camera.distance);
 }
 
-static int write_view(const view3d_options *o, const char *source, const im_image *image)
+/* The colour bars' labels in --force's unit (figure.h: im_figure_colorbar_label, as the maps'). */
+typedef struct view_labels {
+    char force[96], tension[96], exaggeration[96];
+} view_labels;
+
+static int write_figure(const view3d_options *o, const im_image *image, const view_labels *labels,
+                        const run_figure_texts *texts)
 {
-    char exaggeration[96], title[256], norm_text[128];
-    im_view3d_exaggeration_text(o->style.exaggeration, exaggeration, sizeof exaggeration);
-    snprintf(title, sizeof title, "%s%s%s", o->title ? o->title : "", o->title ? ", " : "", exaggeration);
-    const im_colormap *norm = &o->style.colormap;
-    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
-    const im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Source", source},
-                                 {"Quantity", "local force f / (E* δ²)"}, {"Colormap", im_colormap_name(norm->map)},
-                                 {"Norm", norm_text}, {"Vertical exaggeration", exaggeration}};
     if (o->raw) {
-        im_png_options options = {texts, 6, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
+        im_png_options options = {texts->texts, texts->count, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
         return im_png_write(o->out, image->rgba, image->width, image->height, 4, (size_t)image->width * 4, &options);
     }
+    char title[256];
+    snprintf(title, sizeof title, "%s%s%s", o->title ? o->title : "", o->title ? ", " : "", labels->exaggeration);
     im_figure_panel panel = {image, NULL, title};
     im_figure figure = im_figure_default();
     figure.panels = &panel;
-    figure.colormap = o->force ? norm : NULL;
-    figure.colorbar_label = "local force f / (E* δ²)";
-    figure.extend_under = norm->logarithmic;
+    figure.colormap = o->force ? &o->style.colormap : NULL;
+    figure.colorbar_label = labels->force;
+    figure.extend_under = o->style.colormap.logarithmic;
     if (o->largest_tension > 0.0) {
         figure.tension_colormap = &o->style.tension;
-        figure.tension_label = "tensile force −f / (E* δ²)";
+        figure.tension_label = labels->tension;
     }
     figure.scale_bar = -1.0; /* a perspective view has no single scale */
     figure.dpi = o->dpi;
-    figure.texts = texts;
-    figure.text_count = 6;
+    figure.texts = texts->texts;
+    figure.text_count = texts->count;
     return im_figure_write(&figure, o->out);
+}
+
+/* The figure (write_figure) with its texts: the record of the command (figure_provenance.h) and the
+ * drawing's settings. */
+static int write_view(const view3d_options *o, const im_image *image)
+{
+    view_labels labels;
+    char norm_text[128];
+    im_view3d_exaggeration_text(o->style.exaggeration, labels.exaggeration, sizeof labels.exaggeration);
+    const im_colormap *norm = &o->style.colormap;
+    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
+    int status = im_figure_colorbar_label("force", o->force_unit, labels.force, sizeof labels.force);
+    if (status == IM_OK)
+        status = im_figure_colorbar_label("tension", o->force_unit, labels.tension, sizeof labels.tension);
+    if (status != IM_OK)
+        return status;
+    const im_png_text given[] = {{"Quantity", labels.force}, {"Colormap", im_colormap_name(norm->map)},
+                                 {"Norm", norm_text}, {"Vertical exaggeration", labels.exaggeration}};
+    run_figure_texts texts;
+    status = cli_provenance_texts(&o->provenance, given, 4, &texts);
+    if (status == IM_OK)
+        status = write_figure(o, image, &labels, &texts);
+    run_figure_texts_free(&texts);
+    return status;
+}
+
+/* The files the view is drawn from, with their SHA-256, for the figure's record. */
+static int record_inputs(view3d_options *o, const char *path)
+{
+    int status = cli_provenance_add_input(&o->provenance, "HEIGHT", path);
+    if (status == IM_OK)
+        status = cli_provenance_add_input(&o->provenance, "--displacement", o->displacement);
+    if (status == IM_OK)
+        status = cli_provenance_add_input(&o->provenance, "--force", o->force);
+    return status;
 }
 
 static int run(view3d_options *o, const char *path)
@@ -240,9 +278,13 @@ static int run(view3d_options *o, const char *path)
     im_field *height = NULL, *force = NULL;
     im_render_context *context = NULL;
     im_image image = {0};
-    int status = read_height(path, o, &height);
+    int status = record_inputs(o, path);
+    if (status == IM_OK)
+        status = read_height(path, o, &height);
     if (status == IM_OK && o->force)
         status = im_surface_read(o->force, &force);
+    if (status == IM_OK && force)
+        memcpy(o->force_unit, force->value_unit, sizeof o->force_unit);
     if (status == IM_OK) {
         apply_norm(o, force, &o->style.colormap);
         o->largest_tension = force ? im_contact_largest_tension(force) : 0.0;
@@ -255,7 +297,7 @@ static int run(view3d_options *o, const char *path)
     if (status == IM_OK)
         status = im_render_view3d(context, height, force, o->no_punch ? NULL : &o->punch, &o->style, &image);
     if (status == IM_OK)
-        status = write_view(o, path, &image);
+        status = write_view(o, &image);
     im_image_release(&image);
     im_render_close(context);
     im_field_free(force);
@@ -263,32 +305,40 @@ static int run(view3d_options *o, const char *path)
     return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
 }
 
+static int view3d(view3d_options *o, int argc, char **argv)
+{
+    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
+    if (parsed != 0)
+        return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
+    if (argc - optind != 1 || !o->out) {
+        fprintf(stderr, "indentmap: render view3d: expected one HEIGHT file and --out FILE\n");
+        return CLI_EXIT_USAGE;
+    }
+    if (o->has_log && o->has_linear) {
+        fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
+        return CLI_EXIT_USAGE;
+    }
+    if (o->raw && !strstr(o->out, ".png")) {
+        fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
+        return CLI_EXIT_USAGE;
+    }
+    if ((o->punch.kind == IM_PUNCH_SPHERE || o->punch.kind == IM_PUNCH_FLAT) && !o->radius_given && !o->no_punch) {
+        fprintf(stderr, "indentmap: --punch %s needs --radius R\n", im_punch_name(o->punch.kind));
+        return CLI_EXIT_USAGE;
+    }
+    const char *inputs[3] = {argv[optind], o->force, o->displacement};
+    if (cli_protect_inputs(inputs, 3) != 0 || cli_check_output_file("--out", o->out) != 0)
+        return CLI_EXIT_USAGE;
+    return run(o, argv[optind]);
+}
+
 int cli_render_view3d(int argc, char **argv)
 {
     view3d_options o = {.map = IM_COLORMAP_MAGMA, .dpi = 300.0, .backend = IM_RENDER_AUTO,
                         .style = im_view3d_style_default(NULL)};
     o.punch = im_indenter_cone(80.0);
-    int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, &o);
-    if (parsed != 0)
-        return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
-    if (argc - optind != 1 || !o.out) {
-        fprintf(stderr, "indentmap: render view3d: expected one HEIGHT file and --out FILE\n");
-        return CLI_EXIT_USAGE;
-    }
-    if (o.has_log && o.has_linear) {
-        fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
-        return CLI_EXIT_USAGE;
-    }
-    if (o.raw && !strstr(o.out, ".png")) {
-        fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
-        return CLI_EXIT_USAGE;
-    }
-    if ((o.punch.kind == IM_PUNCH_SPHERE || o.punch.kind == IM_PUNCH_FLAT) && !o.radius_given && !o.no_punch) {
-        fprintf(stderr, "indentmap: --punch %s needs --radius R\n", im_punch_name(o.punch.kind));
-        return CLI_EXIT_USAGE;
-    }
-    const char *inputs[3] = {argv[optind], o.force, o.displacement};
-    if (cli_protect_inputs(inputs, 3) != 0 || cli_check_output_file("--out", o.out) != 0)
-        return CLI_EXIT_USAGE;
-    return run(&o, argv[optind]);
+    int status = cli_provenance_start("indentmap render", argc, argv, &o.provenance);
+    int code = status == IM_OK ? view3d(&o, argc, argv) : cli_report(status);
+    cli_provenance_free(&o.provenance);
+    return code;
 }

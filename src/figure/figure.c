@@ -173,18 +173,33 @@ static void fit_colorbar_label(const measure *m, layout *l, double *bottom)
     *bottom = fmax(*bottom, centre + shift + half);
 }
 
-/* Places a colour bar right of `left` along the panels' height (less its extension triangles); the
- * right edge of its labels. */
-static double place_colorbar(const measure *m, layout *l, colorbar bar, double left, double grid_height,
-                             double *bottom)
+/* The right edge of the last column's widest image: a title wider than its image widens the cells, but
+ * the colour bars belong beside the images. */
+static double images_right(const im_figure *f, const layout *l)
+{
+    int widest = 0;
+    for (int row = 0; row < f->rows; ++row) {
+        const im_image *image = f->panels[row * f->columns + f->columns - 1].image;
+        widest = widest > image->width ? widest : image->width;
+    }
+    return l->grid_x + (f->columns - 1) * (l->cell_width + l->gap) + widest;
+}
+
+/* Places a colour bar along the panels' height (less its extension triangles) right of `left`, or of
+ * `cells_right` (the cells' edge, which titles wider than their images push out) when its rotated
+ * label, longer than the bar, would reach up into the title row; the right edge of its labels. */
+static double place_colorbar(const measure *m, layout *l, colorbar bar, double left, double cells_right,
+                             double grid_height, double *bottom)
 {
     colorbar *b = &l->bars[l->bar_count++];
     *b = bar;
-    b->x = round(left + 1.2 * l->font);
     /* Extension triangles for values beyond the norm sit inside the panels' height. */
     double triangle = round(1.2 * l->bar_width);
     b->y = l->grid_y + l->title_height + (b->extend_over ? triangle : 0.0);
     b->height = grid_height - l->title_height - (b->extend_over + b->extend_under) * triangle;
+    if (text_width(m, m->regular, l->font, b->label) > b->height)
+        left = fmax(left, cells_right);
+    b->x = round(left + 1.2 * l->font);
     measure_colorbar(m, l->font, b);
     if (b->label)
         fit_colorbar_label(m, l, bottom);
@@ -228,14 +243,14 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
     }
     l->bar_width = round(1.1 * l->font);
     l->tick_length = round(0.4 * l->font);
-    double bars_end = l->grid_x + grid_width;
+    double cells_right = l->grid_x + grid_width, bars_end = images_right(f, l);
     if (f->colormap)
         bars_end = place_colorbar(m, l, (colorbar){.colormap = f->colormap, .label = f->colorbar_label,
                                              .extend_under = f->extend_under, .extend_over = f->extend_over},
-                                  bars_end, grid_height, &bottom);
+                                  bars_end, cells_right, grid_height, &bottom);
     if (f->tension_colormap)
         bars_end = place_colorbar(m, l, (colorbar){.colormap = f->tension_colormap, .label = f->tension_label},
-                                  bars_end, grid_height, &bottom);
+                                  bars_end, cells_right, grid_height, &bottom);
     if (l->bar_count)
         right = fmax(right, bars_end);
     l->width = (int)ceil(right + l->margin);

@@ -49,6 +49,9 @@ im_plot paper_file_style(const paper_file *file);
 /* Columns of a grid of count panels: three when they fill whole rows (Fig. 4's 2 x 3), else two,
  * else a single row. */
 int paper_panel_columns(int count);
+/* A plot's grid of count panels (plot.h): paper_panel_columns' when it has at most three columns, else
+ * rows of three, the last one part empty (a row of five stood 4633 px wide at 300 dpi). */
+void paper_plot_grid(im_plot *plot, const im_plot_panel *panels, int count);
 
 /* ---- histories (history_figures.c) ---- */
 

@@ -49,9 +49,7 @@ int paper_figure_flat_k(const paper_flat_family *families, int count, double x_m
     for (int i = 0; i < count; ++i)
         flat_k_panel(&families[i], d, i);
     im_plot plot = im_plot_default();
-    plot.columns = paper_panel_columns(count);
-    plot.rows = count / plot.columns;
-    plot.panels = d->panels;
+    paper_plot_grid(&plot, d->panels, count);
     int status = paper_plot_write(&plot, file);
     free(d);
     return status;

@@ -23,6 +23,15 @@ int paper_panel_columns(int count)
     return count > 3 && count % 3 == 0 ? 3 : count > 3 && count % 2 == 0 ? 2 : count;
 }
 
+void paper_plot_grid(im_plot *plot, const im_plot_panel *panels, int count)
+{
+    int columns = paper_panel_columns(count);
+    plot->columns = columns <= 3 ? columns : 3;
+    plot->rows = (count + plot->columns - 1) / plot->columns;
+    plot->panels = panels;
+    plot->panel_count = count;
+}
+
 im_plot paper_file_style(const paper_file *file)
 {
     im_plot style = im_plot_default();
@@ -41,9 +50,7 @@ int paper_plot_write(im_plot *plot, const paper_file *file)
 static int write_grid(const im_plot_panel *panels, int count, const paper_file *file)
 {
     im_plot plot = im_plot_default();
-    plot.columns = paper_panel_columns(count);
-    plot.rows = count / plot.columns;
-    plot.panels = panels;
+    paper_plot_grid(&plot, panels, count);
     return paper_plot_write(&plot, file);
 }
 

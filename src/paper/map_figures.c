@@ -128,9 +128,7 @@ int paper_figure_contact_density(double alpha_degrees, const paper_density_map *
         status = density_panel(alpha_degrees, &maps[i], d, i, count);
     if (status == IM_OK) {
         im_plot plot = im_plot_default();
-        plot.columns = paper_panel_columns(count);
-        plot.rows = count / plot.columns;
-        plot.panels = d->panels;
+        paper_plot_grid(&plot, d->panels, count);
         status = paper_plot_write(&plot, file);
     }
     free(d);

@@ -21,6 +21,9 @@ static int check_plot(const im_plot *p)
     if (p->rows < 1 || p->columns < 1 || p->rows * p->columns > PLOT_MAX_PANELS || !p->panels)
         return im_fail(IM_EINVAL, "plot: %d x %d panels: expected 1 to %d panels", p->rows, p->columns,
                        PLOT_MAX_PANELS);
+    if (p->panel_count != 0 && (p->panel_count <= (p->rows - 1) * p->columns || p->panel_count > p->rows * p->columns))
+        return im_fail(IM_EINVAL, "plot: %d panels in %d x %d cells: expected %d to %d (0: every cell)", p->panel_count,
+                       p->rows, p->columns, (p->rows - 1) * p->columns + 1, p->rows * p->columns);
     if (!(p->panel_width > 0.0 && p->panel_width <= 2000.0 && p->panel_height > 0.0 && p->panel_height <= 2000.0))
         return im_fail(IM_EINVAL, "plot: panel %g x %g pt: expected (0, 2000] each", p->panel_width, p->panel_height);
     if (!(p->dpi > 0.0 && p->dpi <= 2400.0))
@@ -347,7 +350,8 @@ static int place_legend(const im_plot_panel *p, const plot_layout *l, plot_panel
 
 /* The room right of the frames that legends placed outside need: `inner` for a panel of any column
  * but the last (it pushes the next column over), `last` for one of the last column (it widens the
- * figure only). A frame at the origin is enough to choose, since only the frame's size matters. */
+ * figure only); none for the last panel of a row left part empty when the empty cells' frames hold it.
+ * A frame at the origin is enough to choose, since only the frame's size matters. */
 static void outside_legend_room(cairo_t *cr, const im_plot *plot, plot_layout *l, double box_w, double box_h,
                                 double *inner, double *last)
 {
@@ -356,16 +360,17 @@ static void outside_legend_room(cairo_t *cr, const im_plot *plot, plot_layout *l
         plot_panel_layout *pl = &l->panels[i];
         pl->box_x = pl->box_y = 0.0, pl->box_width = box_w, pl->box_height = box_h;
         size_legend(cr, &plot->panels[i], l, pl);
-        if (!place_legend(&plot->panels[i], l, pl))
+        int empty_cells = i == l->panel_count - 1 ? plot->rows * plot->columns - l->panel_count : 0;
+        if (!place_legend(&plot->panels[i], l, pl) || pl->legend_width + round(0.5 * l->font) <= empty_cells * box_w)
             continue;
         double *room = i % plot->columns == plot->columns - 1 ? last : inner;
         *room = fmax(*room, pl->legend_width + 2 * round(0.5 * l->font));
     }
 }
 
-static int has_heading(const im_plot *plot)
+static int has_heading(const im_plot *plot, int panel_count)
 {
-    for (int i = 0; i < plot->rows * plot->columns; ++i)
+    for (int i = 0; i < panel_count; ++i)
         if (plot->panels[i].label || plot->panels[i].title)
             return 1;
     return 0;
@@ -379,7 +384,7 @@ int plot_make_layout(const im_plot *plot, cairo_t *cr, plot_layout *l)
     memset(l, 0, sizeof *l);
     l->points = plot->dpi / 72.0;
     l->font = plot->font_size * l->points;
-    l->panel_count = plot->rows * plot->columns;
+    l->panel_count = plot->panel_count ? plot->panel_count : plot->rows * plot->columns;
     double y_labels = 0.0, x_overhang = 0.0;
     int any_x_label = 0, any_y_label = 0;
     for (int i = 0; i < l->panel_count; ++i) {
@@ -406,7 +411,7 @@ int plot_make_layout(const im_plot *plot, cairo_t *cr, plot_layout *l)
     double f = l->font, margin = round(0.4 * f);
     double left = ceil(0.4 * f + y_labels + (any_y_label ? 1.5 * f : 0.0));
     double bottom = ceil(1.4 * f + (any_x_label ? 1.7 * f : 0.0));
-    double top = has_heading(plot) ? round(1.5 * f) : round(0.6 * f);
+    double top = has_heading(plot, l->panel_count) ? round(1.5 * f) : round(0.6 * f);
     double box_w = round(plot->panel_width * l->points), box_h = round(plot->panel_height * l->points);
     double inner_room, last_room;
     outside_legend_room(cr, plot, l, box_w, box_h, &inner_room, &last_room);
