@@ -73,15 +73,20 @@ def prepare(heights, detrend="plane", fill=False, align="none"):
     return _core.prepare(heights, detrend, bool(fill), align)
 
 
-def psd(heights, delta=1.0, bins=64):
-    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays.
+def psd(heights, delta=1.0, bins=64, counts=False):
+    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays, and with ``counts=True``
+    a third, the number of wavevectors averaged in each shell (int64; they sum to the grid's points less
+    one, the mean's).
 
-    q = 2 pi / wavelength in inverse units of ``delta``, C_iso = |h~(q)|^2 / A in length^4 (Jacobs, Junge and
-    Pastewka 2017), in ``bins`` logarithmic shells; an empty shell's q and C are NaN.
+    q = 2 pi / wavelength in inverse units of ``delta`` (each shell's mean |q|), C_iso = |h~(q)|^2 / A in
+    length^4 (Jacobs, Junge and Pastewka 2017), in ``bins`` shells of equal width in log q from the
+    grid's lowest q to its highest. A shell that no wavevector of the grid falls in (count 0: at the
+    low end, where the grid's q are sparse on a log scale) has q and C NaN.
 
     Example: ``q, c = im.psd(im.generate(256), bins=32); ok = np.isfinite(c)``, then
     ``np.polyfit(np.log(q[ok]), np.log(c[ok]), 1)[0]`` is about -2(1 + H)."""
-    return _core.psd(heights, float(delta), int(bins))
+    q, c, shell_counts = _core.psd(heights, float(delta), int(bins))
+    return (q, c, shell_counts) if counts else (q, c)
 
 
 _QUANTITIES = {"height": 0, "slope": 1, "curvature": 2}
