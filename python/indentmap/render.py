@@ -7,7 +7,7 @@ import tempfile
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 from .solver import Cone, Flat, Sphere
 
 
@@ -18,6 +18,19 @@ def renderer():
 
     Example: ``im.renderer()["backend"]`` is 'egl' or 'osmesa'."""
     return _core.renderer()
+
+
+def use_backend(backend):
+    """Opens the OpenGL backend the pictures are drawn with from now on, as the program's ``--backend``:
+    'auto' (EGL, else OSMesa: what the first picture opens without this call), 'egl' or 'osmesa' (the
+    program's IM_RENDER_BACKEND is its own; Python does not read it). The context in use before is closed
+    once no picture is being drawn with it. Returns ``renderer()``'s dict for the new one.
+
+    ``InvalidArgument`` for another name; ``Unsupported`` when that backend opens no OpenGL 3.3 context
+    (the one in use before stays).
+
+    Example: ``im.use_backend("osmesa")["backend"]`` is 'osmesa'."""
+    return _core.use_backend(_checks.text("backend", backend))
 
 
 def _png_bytes(write):

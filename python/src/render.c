@@ -45,17 +45,30 @@ static int without_gil(int (*work)(void *job), void *job)
     return status;
 }
 
-static int ensure_context(void)
+/* Opens a context of `backend` and makes it the one pictures use, closing the one before (once no call
+ * draws with it); on failure the one before stays. */
+static int open_context(im_render_backend backend)
 {
-    if (context)
-        return 0;
-    int status = im_render_open(IM_RENDER_AUTO, &context);
+    im_render_context *opened = NULL;
+    int status = im_render_open(backend, &opened);
     if (status != IM_OK) {
         py_raise_status(status);
         return -1;
     }
-    Py_AtExit(close_context);
+    PyThread_acquire_lock(drawing_lock, WAIT_LOCK);
+    im_render_context *before = context;
+    context = opened;
+    PyThread_release_lock(drawing_lock);
+    if (before)
+        im_render_close(before);
+    else
+        Py_AtExit(close_context);
     return 0;
+}
+
+static int ensure_context(void)
+{
+    return context ? 0 : open_context(IM_RENDER_AUTO);
 }
 
 /* The norm of both kinds of picture: colour map by name, range, linear or logarithmic. */
@@ -547,6 +560,18 @@ static PyObject *renderer(PyObject *self, PyObject *unused)
                          im_render_gl_renderer(context), "gl_version", im_render_gl_version(context));
 }
 
+static PyObject *use_backend(PyObject *self, PyObject *args)
+{
+    const char *name;
+    im_render_backend backend;
+    if (!PyArg_ParseTuple(args, "s", &name))
+        return NULL;
+    int status = im_render_backend_from_name(name, &backend);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    return open_context(backend) < 0 ? NULL : renderer(self, NULL);
+}
+
 PyMethodDef py_render_methods[] = {
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
@@ -556,4 +581,5 @@ PyMethodDef py_render_methods[] = {
     {"view3d", (PyCFunction)(void (*)(void))view3d, METH_VARARGS | METH_KEYWORDS,
      "view3d(height, delta, force, punch, alpha, radius, axis, **style) -> RGBA: the deformed surface in 3-D"},
     {"renderer", renderer, METH_NOARGS, "the GL backend and renderer in use"},
+    {"use_backend", use_backend, METH_VARARGS, "use_backend(name) -> renderer(): opens that backend for pictures"},
     {NULL, NULL, 0, NULL}};
