@@ -503,6 +503,8 @@ static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
         job.height = &height_view;
         job.force = force ? &force_view : NULL;
         job.style = style;
+        if (force) /* as render view3d: the tension ramp over 0 .. the largest tension */
+            job.style.tension = im_contact_tension_norm(im_contact_largest_tension(&force_view));
         job.image = &image;
         int status = without_gil(draw_view3d, &job);
         out = status == IM_OK ? array_from_image(&image) : py_raise_status(status);
