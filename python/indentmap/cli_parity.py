@@ -169,8 +169,10 @@ PARITY = {
     "render view3d --x": Python("view3d", "axis"),
     "render view3d --y": Python("view3d", "axis"),
     "render view3d --linear": Python("view3d", "log", "log=False"),
-    # the figure around the 3-D image (colour bar, title, exaggeration stated): not yet in Python
-    **{f"render view3d --{name}": NOT_YET for name in ("out", "title", "dpi")},
+    # the figure around the 3-D image (colour bar, title, exaggeration stated)
+    "render view3d --out": Python("View3DFigure", note="View3DFigure(...).save(path); view3d alone is --raw"),
+    "render view3d --title": Python("View3DFigure", "title"),
+    "render view3d --dpi": Python("View3DFigure", "dpi"),
     "render view3d --backend": BACKEND,
     # ---- run: scenes ----
     "run": Python("run_scene"),
