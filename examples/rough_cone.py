@@ -18,8 +18,11 @@ heights = im.generate(256, hurst=0.8, slope=0.16, seed=7)
 stats = im.statistics(heights)
 print(f"h_rms = {stats['height_rms']:.3f} delta, h'rms = {stats['slope_rms_spectral']:.3f} (spectral), "
       f"{stats['slope_rms_fd']:.3f} (forward differences), Nayak {stats['nayak']:.1f}")
-q, c = im.psd(heights, bins=32)
-slope_fit = np.polyfit(np.log(q[c > 0][2:-4]), np.log(c[c > 0][2:-4]), 1)[0]
+q, c, counts = im.psd(heights, bins=32, counts=True)
+# the self-affine range below q_s = 2 pi / lambda_s (no power above), in shells of at least 8 wavevectors
+# (the few in the lowest shells scatter; an empty shell's C is NaN)
+fitted = (q < 2 * np.pi / 4.0) & (counts >= 8)
+slope_fit = np.polyfit(np.log(q[fitted]), np.log(c[fitted]), 1)[0]
 print(f"PSD exponent {slope_fit:.2f} (self-affine: -2(1 + H) = -3.6)")
 
 # %% An 80 degree cone, load control: ten loads up to N* = 3000.

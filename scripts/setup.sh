@@ -20,6 +20,8 @@ PACKAGES=(
   libgif-dev                               # animated GIFs
   python3-dev python3-numpy                # the Python package (python/): CPython and numpy C APIs
   python3-setuptools python3-wheel python3-pip python3-pytest python3-venv  # its pip build, its tests (a venv for pip install .)
+  jupyter-nbconvert python3-ipykernel python3-matplotlib  # tests only: the notebooks (python/notebooks) executed, their plots
+  python3-build                            # tests only: the wheel built by python3 -m build
   chromium                                 # tests only: the viewer page (index.html) in headless Chromium
   libnetcdf-dev                            # NetCDF surfaces (ContactMechanics/SurfaceTopography layout)
   libzip-dev libxml2-dev nettle-dev        # ISO 25178-72 .x3p surfaces: zip archive around XML, MD5 checksums

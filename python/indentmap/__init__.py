@@ -13,7 +13,7 @@ from . import _core
 from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, InvalidArgument, NotConverged,
                     NumericError, OutOfMemory, Unsupported)
 from . import theory
-from .render import Figure, Image, contact_map, height_map, renderer, view3d
+from .render import Figure, Image, View3DFigure, contact_map, height_map, renderer, use_backend, view3d
 from .scene import run_scene, run_scene_from_record
 from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, read_history, unloading,
                      write_analysis)
@@ -58,6 +58,6 @@ def formats():
 
 
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
-           "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography",
+           "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography", "View3DFigure",
            "Unsupported", "adhesion", "contact_map", "formats", "generate", "height_map", "histogram", "indent", "info", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
-           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "view3d", "write", "write_analysis"]
+           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "use_backend", "view3d", "write", "write_analysis"]

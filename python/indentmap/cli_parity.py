@@ -27,8 +27,8 @@ NOT_YET = Reason("not yet in Python (issue 29)")
 OUT = Reason("Python returns arrays and objects instead of writing files: save them with numpy or im.write")
 CROP = Reason("slice the array: heights[y0:y0 + ny, x0:x0 + nx]")
 SMOOTH = Reason("a flat surface is np.zeros((m, n))")
-# The program picks its OpenGL backend (--backend, IM_RENDER_BACKEND); Python always opens auto: not yet.
-BACKEND = NOT_YET
+# The program's IM_RENDER_BACKEND is its own: Python opens 'auto' unless told.
+BACKEND = Python("use_backend", note="once, for the pictures that follow")
 NO_WISDOM = Reason("Python reads no FFTW wisdom file unless given one (wisdom=; None, the default, reads none)")
 MPI = Reason("MPI runs are the program's (mpirun -n K indentmap mpi-indent); Python runs in one process")
 PRINT = Reason("Python returns arrays; print or format them with numpy")
@@ -169,14 +169,16 @@ PARITY = {
     "render view3d --x": Python("view3d", "axis"),
     "render view3d --y": Python("view3d", "axis"),
     "render view3d --linear": Python("view3d", "log", "log=False"),
-    # the figure around the 3-D image (colour bar, title, exaggeration stated): not yet in Python
-    **{f"render view3d --{name}": NOT_YET for name in ("out", "title", "dpi")},
+    # the figure around the 3-D image (colour bar, title, exaggeration stated)
+    "render view3d --out": Python("View3DFigure", note="View3DFigure(...).save(path); view3d alone is --raw"),
+    "render view3d --title": Python("View3DFigure", "title"),
+    "render view3d --dpi": Python("View3DFigure", "dpi"),
     "render view3d --backend": BACKEND,
     # ---- run: scenes ----
     "run": Python("run_scene"),
     "run --resume": Python("run_scene", "resume"),
     "run --quiet": Python("run_scene", "quiet"),
-    "run --backend": BACKEND,
+    "run --backend": Python("run_scene", "backend"),
     "run --wisdom": Python("run_scene", "wisdom"),
     "run --no-wisdom": NO_WISDOM,
     "run --from-record": Python("run_scene_from_record"),

@@ -2,12 +2,13 @@
 figures as PNG, PDF or SVG (the library's render.h and figure.h). One off-screen OpenGL context
 (EGL, or OSMesa) is opened at the first picture; pictures are drawn without the GIL, from any thread,
 one at a time."""
+import inspect
 import os
 import tempfile
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 from .solver import Cone, Flat, Sphere
 
 
@@ -18,6 +19,19 @@ def renderer():
 
     Example: ``im.renderer()["backend"]`` is 'egl' or 'osmesa'."""
     return _core.renderer()
+
+
+def use_backend(backend):
+    """Opens the OpenGL backend the pictures are drawn with from now on, as the program's ``--backend``:
+    'auto' (EGL, else OSMesa: what the first picture opens without this call), 'egl' or 'osmesa' (the
+    program's IM_RENDER_BACKEND is its own; Python does not read it). The context in use before is closed
+    once no picture is being drawn with it. Returns ``renderer()``'s dict for the new one.
+
+    ``InvalidArgument`` for another name; ``Unsupported`` when that backend opens no OpenGL 3.3 context
+    (the one in use before stays).
+
+    Example: ``im.use_backend("osmesa")["backend"]`` is 'osmesa'."""
+    return _core.use_backend(_checks.text("backend", backend))
 
 
 def _png_bytes(write):
@@ -71,12 +85,14 @@ def _contact_norm(force, vmin, vmax, log):
     return vmin, vmax
 
 
-def _picture_texts(quantity, unit, colormap, norm, log, scale):
+def _picture_texts(quantity, unit, colormap, norm, log, scale=None):
     """The text chunks of a picture, as ``indentmap render --raw`` writes them (but its record of the command:
-    'Command', 'Directory' and 'Inputs')."""
-    return {"Software": f"indentmap {_core.library_version}", "Quantity": _core.colorbar_label(quantity, unit),
-            "Colormap": colormap, "Norm": f"{'log' if log else 'linear'} [{norm[0]:.9g}, {norm[1]:.9g}]",
-            "Pixels per patch": str(int(scale))}
+    'Command', 'Directory' and 'Inputs'); a 3-D view (``scale`` None) has no pixels per patch."""
+    texts = {"Software": f"indentmap {_core.library_version}", "Quantity": _core.colorbar_label(quantity, unit),
+             "Colormap": colormap, "Norm": f"{'log' if log else 'linear'} [{norm[0]:.9g}, {norm[1]:.9g}]"}
+    if scale is not None:
+        texts["Pixels per patch"] = str(int(scale))
+    return texts
 
 
 def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log=True, scale=2,
@@ -224,3 +240,41 @@ def view3d(heights, *, force=None, displacement=None, delta=1.0, punch=Cone(), a
                               width=int(width), pixels_high=int(height), samples=int(samples),
                               mesh_side=int(mesh_side), colormap=colormap, vmin=float(lo), vmax=float(hi),
                               log=bool(log)))
+
+
+class View3DFigure:
+    """The 3-D view in the figure ``indentmap render view3d --out`` draws (without ``--raw``): ``view3d``'s
+    image under its title (``title``, then the vertical exaggeration: 'indented, heights × 4'), beside the
+    force's colour bar (and the tension's where the force has any) labelled in ``force_unit``
+    (``Indentation(...).units["force"]``; "" for E* δ², the program's label), at ``dpi``. ``options`` are
+    ``view3d``'s (heights, force, camera, punch, norm, size). ``save(path)`` writes PNG, PDF or SVG by
+    extension; a notebook shows it as PNG. ``image`` is the 3-D view itself (an Image).
+
+    Errors as ``view3d``'s; ``save`` raises ``InvalidArgument`` for another extension or a ``dpi`` outside
+    (0, 2400], ``FileError`` naming a path that cannot be written.
+
+    Example: ``im.View3DFigure(s, force=f[0]["force"], displacement=f[0]["displacement"], exaggeration=4,
+    title="indented", dpi=150).save("view.pdf")``."""
+
+    def __init__(self, heights, *, title=None, dpi=300.0, force_unit="", **options):
+        bound = inspect.signature(view3d).bind(heights, **options)
+        bound.apply_defaults()
+        view = bound.arguments
+        self.image = view3d(heights, **options)
+        self.force = view["force"]
+        self.norm = _contact_norm(np.zeros(0) if self.force is None else self.force, view["vmin"], view["vmax"],
+                                  view["log"])
+        self.texts = _picture_texts("force", force_unit, view["colormap"], self.norm, view["log"])
+        self.style = dict(title=_checks.text("title", title or ""), exaggeration=float(view["exaggeration"]),
+                          colormap=view["colormap"], log=bool(view["log"]), dpi=float(dpi),
+                          unit=_checks.text("force_unit", force_unit))
+
+    def save(self, path):
+        """Writes the figure (atomically); PNG, PDF or SVG by the extension.
+
+        Example: ``figure.save("view.png")``."""
+        _core.view3d_figure(path, self.image.rgba, self.force, tuple(self.texts.items()), vmin=float(self.norm[0]),
+                            vmax=float(self.norm[1]), **self.style)
+
+    def _repr_png_(self):
+        return _png_bytes(self.save)

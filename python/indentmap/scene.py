@@ -6,7 +6,7 @@ from . import _core
 logger = logging.getLogger("indentmap")
 
 
-def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, wisdom=None):
+def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, wisdom=None, backend="auto"):
     """Runs a scene file as ``indentmap run`` does (without the GIL) and returns its output folder.
 
     Nothing is printed. The run's log lines go to ``log(level, message)``, by default the ``indentmap``
@@ -26,12 +26,16 @@ def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None
     estimated plans and no file, whatever ``IM_FFTW_WISDOM`` says (the program's default cache is its
     own). A wisdom file that cannot be read or replaced raises ``FileError`` naming it.
 
+    ``backend`` is the OpenGL backend of the scene's frames and panels (``run --backend``): 'auto' (EGL,
+    else OSMesa), 'egl' or 'osmesa'; another name raises ``InvalidArgument`` before anything runs.
+
     Example: ``im.run_scene("scenes/paper.ini", out="paper", wisdom="fftw-wisdom")``."""
     return _core.run_scene(path, resume=resume, quiet=quiet, progress=progress,
-                           log=logger.log if log is None else log, out=out, wisdom=wisdom)
+                           log=logger.log if log is None else log, out=out, wisdom=wisdom, backend=backend)
 
 
-def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=None, log=None, wisdom=None):
+def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=None, log=None, wisdom=None,
+                          backend="auto"):
     """Runs again the scene a run recorded in its ``run.json`` (``indentmap run --from-record``), under
     ``out`` or the scene's output folder, and returns that folder.
 
@@ -44,4 +48,5 @@ def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=
 
     Example: ``im.run_scene_from_record("output/fig4/run.json", out="again")``."""
     return _core.run_scene(record, resume=resume, quiet=quiet, progress=progress,
-                           log=logger.log if log is None else log, out=out, from_record=True, wisdom=wisdom)
+                           log=logger.log if log is None else log, out=out, from_record=True, wisdom=wisdom,
+                           backend=backend)

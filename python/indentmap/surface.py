@@ -73,15 +73,20 @@ def prepare(heights, detrend="plane", fill=False, align="none"):
     return _core.prepare(heights, detrend, bool(fill), align)
 
 
-def psd(heights, delta=1.0, bins=64):
-    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays.
+def psd(heights, delta=1.0, bins=64, counts=False):
+    """The radially averaged power spectral density: (q, C_iso(q)) as two arrays, and with ``counts=True``
+    a third, the number of wavevectors averaged in each shell (int64; they sum to the grid's points less
+    one, the mean's).
 
-    q = 2 pi / wavelength in inverse units of ``delta``, C_iso = |h~(q)|^2 / A in length^4 (Jacobs, Junge and
-    Pastewka 2017), in ``bins`` logarithmic shells; an empty shell's q and C are NaN.
+    q = 2 pi / wavelength in inverse units of ``delta`` (each shell's mean |q|), C_iso = |h~(q)|^2 / A in
+    length^4 (Jacobs, Junge and Pastewka 2017), in ``bins`` shells of equal width in log q from the
+    grid's lowest q to its highest. A shell that no wavevector of the grid falls in (count 0: at the
+    low end, where the grid's q are sparse on a log scale) has q and C NaN.
 
     Example: ``q, c = im.psd(im.generate(256), bins=32); ok = np.isfinite(c)``, then
     ``np.polyfit(np.log(q[ok]), np.log(c[ok]), 1)[0]`` is about -2(1 + H)."""
-    return _core.psd(heights, float(delta), int(bins))
+    q, c, shell_counts = _core.psd(heights, float(delta), int(bins))
+    return (q, c, shell_counts) if counts else (q, c)
 
 
 _QUANTITIES = {"height": 0, "slope": 1, "curvature": 2}
@@ -141,10 +146,11 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None, 
 def write(path, heights, delta=1.0, unit=""):
     """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
     matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
-    PATH.json).
+    PATH.json). NaN heights (missing points) are kept by .npy, .sdf, .nc and text, which ``read`` takes
+    back as missing (refused, or filled with ``fill=True``).
 
-    ``FileError`` when the file cannot be written (nothing is left), ``InvalidArgument`` for an
-    unknown extension.
+    ``FileError`` when the file cannot be written (nothing is left); ``InvalidArgument`` for an
+    unknown extension, an infinite height, or NaN in a .gsf or .x3p (naming the first one's x, y).
 
     Example: ``im.write("surface.x3p", h, delta=0.5, unit="µm")``."""
     _core.write_surface(path, heights, float(delta), unit)

@@ -22,10 +22,10 @@ def _apply(name, a, b=0.0, **params):
 def rho_c(slope, alpha=80.0, k=2.0):
     """Eq. (7): rho_c = k cot(alpha) / (2 h'rms) (inf for a smooth surface).
 
-    ``slope`` h'rms (dimensionless), ``alpha`` the cone's semi-opening angle in degrees.
+    ``slope`` h'rms (dimensionless), ``alpha`` the cone's semi-opening angle in degrees; both broadcast.
 
     Example: ``im.theory.rho_c(0.08)`` is 2.204 (alpha 80°, k 2)."""
-    return _apply("rho_c", slope, alpha=float(alpha), k=float(k))
+    return _apply("rho_c", slope, alpha, k=float(k))
 
 
 def beta(rho, normalisation="pr", k=2.0):

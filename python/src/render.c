@@ -45,17 +45,30 @@ static int without_gil(int (*work)(void *job), void *job)
     return status;
 }
 
-static int ensure_context(void)
+/* Opens a context of `backend` and makes it the one pictures use, closing the one before (once no call
+ * draws with it); on failure the one before stays. */
+static int open_context(im_render_backend backend)
 {
-    if (context)
-        return 0;
-    int status = im_render_open(IM_RENDER_AUTO, &context);
+    im_render_context *opened = NULL;
+    int status = im_render_open(backend, &opened);
     if (status != IM_OK) {
         py_raise_status(status);
         return -1;
     }
-    Py_AtExit(close_context);
+    PyThread_acquire_lock(drawing_lock, WAIT_LOCK);
+    im_render_context *before = context;
+    context = opened;
+    PyThread_release_lock(drawing_lock);
+    if (before)
+        im_render_close(before);
+    else
+        Py_AtExit(close_context);
     return 0;
+}
+
+static int ensure_context(void)
+{
+    return context ? 0 : open_context(IM_RENDER_AUTO);
 }
 
 /* The norm of both kinds of picture: colour map by name, range, linear or logarithmic. */
@@ -359,12 +372,12 @@ static int write_png_file(void *argument)
     return im_png_write(job->path, job->rgba, job->width, job->height, 4, (size_t)job->width * 4, &options);
 }
 
-/* The (key, value) pairs of a tuple as PNG text chunks, kept alive by the tuple; NULL with an exception
- * set for an item that is not a pair of str. */
-static im_png_text *png_texts(PyObject *pairs)
+/* The (key, value) pairs of a tuple as PNG text chunks, kept alive by the tuple, with `spare` more slots
+ * after them; NULL with an exception set for an item that is not a pair of str. */
+static im_png_text *png_texts(PyObject *pairs, int spare)
 {
     Py_ssize_t count = PyTuple_GET_SIZE(pairs);
-    im_png_text *texts = PyMem_Calloc((size_t)count + 1, sizeof *texts);
+    im_png_text *texts = PyMem_Calloc((size_t)count + (size_t)spare + 1, sizeof *texts);
     if (!texts) {
         PyErr_NoMemory();
         return NULL;
@@ -378,6 +391,18 @@ static im_png_text *png_texts(PyObject *pairs)
     return texts;
 }
 
+/* obj as a C-contiguous (height, width, 4) uint8 array; NULL with an exception set otherwise. */
+static PyArrayObject *rgba_array(PyObject *obj)
+{
+    PyArrayObject *rgba = (PyArrayObject *)PyArray_FromAny(obj, PyArray_DescrFromType(NPY_UINT8), 3, 3,
+                                                           NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED, NULL);
+    if (rgba && PyArray_DIMS(rgba)[2] != 4) {
+        PyErr_SetString(PyExc_ValueError, "expected an (height, width, 4) RGBA array");
+        Py_CLEAR(rgba);
+    }
+    return rgba;
+}
+
 /* write_png(path, rgba, texts): an (height, width, 4) uint8 array as a PNG file (atomic, level 6) with the
  * (key, value) pairs of the tuple texts as tEXt chunks. */
 static PyObject *write_png(PyObject *self, PyObject *args)
@@ -386,17 +411,12 @@ static PyObject *write_png(PyObject *self, PyObject *args)
     PyObject *path_bytes, *obj, *pairs;
     if (!PyArg_ParseTuple(args, "O&OO!", PyUnicode_FSConverter, &path_bytes, &obj, &PyTuple_Type, &pairs))
         return NULL;
-    im_png_text *texts = png_texts(pairs);
+    im_png_text *texts = png_texts(pairs, 0);
     if (!texts) {
         Py_DECREF(path_bytes);
         return NULL;
     }
-    PyArrayObject *rgba = (PyArrayObject *)PyArray_FromAny(obj, PyArray_DescrFromType(NPY_UINT8), 3, 3,
-                                                           NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED, NULL);
-    if (rgba && PyArray_DIMS(rgba)[2] != 4) {
-        PyErr_SetString(PyExc_ValueError, "write_png: expected an (height, width, 4) RGBA array");
-        Py_CLEAR(rgba);
-    }
+    PyArrayObject *rgba = rgba_array(obj);
     int status = IM_OK;
     if (rgba) {
         png_job job = {PyBytes_AS_STRING(path_bytes), PyArray_DATA(rgba), (int)PyArray_DIMS(rgba)[1],
@@ -490,6 +510,8 @@ static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
         job.height = &height_view;
         job.force = force ? &force_view : NULL;
         job.style = style;
+        if (force) /* as render view3d: the tension ramp over 0 .. the largest tension */
+            job.style.tension = im_contact_tension_norm(im_contact_largest_tension(&force_view));
         job.image = &image;
         int status = without_gil(draw_view3d, &job);
         out = status == IM_OK ? array_from_image(&image) : py_raise_status(status);
@@ -498,6 +520,79 @@ static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
     Py_XDECREF(height);
     Py_XDECREF(force);
     return out;
+}
+
+typedef struct view3d_figure_request {
+    const char *title, *colormap, *unit;
+    double exaggeration, lo, hi, dpi;
+    int logarithmic;
+} view3d_figure_request;
+
+/* The figure render view3d writes around its image (without --raw): the title with the exaggeration,
+ * the force's colour bar (and the tension's where the force has tension) in the unit, no scale bar. */
+static int write_view3d_figure(const char *path, const im_image *image, const im_field *force,
+                               const view3d_figure_request *r, im_png_text *texts, int text_count)
+{
+    char exaggeration[96], title[256], label[128], tension_label[128];
+    im_view3d_exaggeration_text(r->exaggeration, exaggeration, sizeof exaggeration);
+    snprintf(title, sizeof title, "%s%s%s", r->title, *r->title ? ", " : "", exaggeration);
+    texts[text_count++] = (im_png_text){"Vertical exaggeration", exaggeration};
+    im_colormap norm;
+    if (make_norm(r->colormap, r->lo, r->hi, r->logarithmic, &norm) < 0)
+        return -1;
+    int status = im_figure_colorbar_label("force", r->unit, label, sizeof label);
+    if (status == IM_OK)
+        status = im_figure_colorbar_label("tension", r->unit, tension_label, sizeof tension_label);
+    double largest_tension = force ? im_contact_largest_tension(force) : 0.0;
+    const im_colormap tension = im_contact_tension_norm(largest_tension);
+    im_figure_panel panel = {image, NULL, title};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = force ? &norm : NULL;
+    figure.colorbar_label = label;
+    figure.extend_under = norm.logarithmic;
+    if (largest_tension > 0.0) {
+        figure.tension_colormap = &tension;
+        figure.tension_label = tension_label;
+    }
+    figure.scale_bar = -1.0; /* a perspective view has no single scale */
+    figure.dpi = r->dpi;
+    figure.texts = texts;
+    figure.text_count = text_count;
+    figure_job job = {&figure, path};
+    if (status == IM_OK)
+        status = without_gil(write_figure_file, &job);
+    return status == IM_OK ? 0 : (py_raise_status(status), -1);
+}
+
+/* view3d_figure(path, rgba, force, texts, **request): view3d's image in render view3d's figure. */
+static PyObject *view3d_figure(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *keywords[] = {"path", "rgba", "force", "texts", "title", "exaggeration", "colormap",
+                               "vmin", "vmax", "log", "dpi", "unit", NULL};
+    PyObject *path_bytes, *rgba_obj, *force_obj, *pairs;
+    view3d_figure_request r;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&OOO!sdsddpds", keywords, PyUnicode_FSConverter, &path_bytes,
+                                     &rgba_obj, &force_obj, &PyTuple_Type, &pairs, &r.title, &r.exaggeration,
+                                     &r.colormap, &r.lo, &r.hi, &r.logarithmic, &r.dpi, &r.unit))
+        return NULL;
+    im_png_text *texts = png_texts(pairs, 1);
+    PyArrayObject *rgba = texts ? rgba_array(rgba_obj) : NULL;
+    PyArrayObject *force = rgba && force_obj != Py_None ? py_heights_array(force_obj, "force") : NULL;
+    int failed = !rgba || (force_obj != Py_None && !force);
+    if (!failed) {
+        npy_intp *shape = PyArray_DIMS(rgba);
+        im_image image = {.width = (int)shape[1], .height = (int)shape[0], .rgba = PyArray_DATA(rgba)};
+        im_field force_view = force ? py_field_view(force, 1.0) : (im_field){0};
+        failed = write_view3d_figure(PyBytes_AS_STRING(path_bytes), &image, force ? &force_view : NULL, &r, texts,
+                                     (int)PyTuple_GET_SIZE(pairs)) < 0;
+    }
+    Py_XDECREF(force);
+    Py_XDECREF(rgba);
+    PyMem_Free(texts);
+    Py_DECREF(path_bytes);
+    return failed ? NULL : Py_NewRef(Py_None);
 }
 
 /* read_png(path) -> (height, width, 4) uint8 array of an 8-bit RGB or RGBA PNG (io.h: im_png_read; RGB
@@ -547,6 +642,18 @@ static PyObject *renderer(PyObject *self, PyObject *unused)
                          im_render_gl_renderer(context), "gl_version", im_render_gl_version(context));
 }
 
+static PyObject *use_backend(PyObject *self, PyObject *args)
+{
+    const char *name;
+    im_render_backend backend;
+    if (!PyArg_ParseTuple(args, "s", &name))
+        return NULL;
+    int status = im_render_backend_from_name(name, &backend);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    return open_context(backend) < 0 ? NULL : renderer(self, NULL);
+}
+
 PyMethodDef py_render_methods[] = {
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
@@ -555,5 +662,8 @@ PyMethodDef py_render_methods[] = {
     {"read_png", read_png, METH_VARARGS, "read_png(path) -> (height, width, 4) uint8 RGBA"},
     {"view3d", (PyCFunction)(void (*)(void))view3d, METH_VARARGS | METH_KEYWORDS,
      "view3d(height, delta, force, punch, alpha, radius, axis, **style) -> RGBA: the deformed surface in 3-D"},
+    {"view3d_figure", (PyCFunction)(void (*)(void))view3d_figure, METH_VARARGS | METH_KEYWORDS,
+     "view3d_figure(path, rgba, force, texts, **request): render view3d's figure around view3d's image"},
     {"renderer", renderer, METH_NOARGS, "the GL backend and renderer in use"},
+    {"use_backend", use_backend, METH_VARARGS, "use_backend(name) -> renderer(): opens that backend for pictures"},
     {NULL, NULL, 0, NULL}};

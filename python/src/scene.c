@@ -2,6 +2,7 @@
  * Python callables, called with the GIL taken back for each call. */
 #include "core.h"
 
+#include "indentmap/render.h"
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
@@ -108,13 +109,22 @@ static int optional_path(PyObject *object, void *out)
 static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"path", "resume", "quiet", "progress", "log", "out", "from_record", "wisdom", NULL};
+    static char *keywords[] = {"path",        "resume", "quiet",   "progress", "log", "out",
+                               "from_record", "wisdom", "backend", NULL};
     PyObject *path_bytes, *progress = Py_None, *log = Py_None, *out_bytes = NULL, *wisdom_bytes = NULL;
     int resume = 0, quiet = 0, from_record = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|ppOOO&pO&", keywords, PyUnicode_FSConverter, &path_bytes,
+    const char *backend_name = "auto";
+    im_render_backend backend;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|ppOOO&pO&s", keywords, PyUnicode_FSConverter, &path_bytes,
                                      &resume, &quiet, &progress, &log, optional_path, &out_bytes, &from_record,
-                                     optional_path, &wisdom_bytes))
+                                     optional_path, &wisdom_bytes, &backend_name))
         return NULL;
+    if (im_render_backend_from_name(backend_name, &backend) != IM_OK) {
+        Py_DECREF(path_bytes);
+        Py_XDECREF(out_bytes);
+        Py_XDECREF(wisdom_bytes);
+        return py_raise_status(IM_EINVAL);
+    }
     im_scene *scene = PyMem_Calloc(1, sizeof *scene);
     if (!scene) {
         Py_DECREF(path_bytes);
@@ -126,7 +136,7 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
     scene_callbacks callbacks = {.progress = progress, .log = log, .stop = &stop};
     im_scene_run_options options = {.resume = resume, .quiet = quiet, .stop = &stop, .user = &callbacks,
                                      .progress = progress != Py_None ? call_progress : NULL,
-                                     .log = log != Py_None ? call_log : NULL};
+                                     .log = log != Py_None ? call_log : NULL, .backend = (int)backend};
     py_interrupt call;
     scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL, from_record,
                            wisdom_bytes ? PyBytes_AS_STRING(wisdom_bytes) : NULL};
@@ -152,5 +162,5 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 PyMethodDef py_scene_methods[] = {
     {"run_scene", (PyCFunction)(void (*)(void))run_scene, METH_VARARGS | METH_KEYWORDS,
      "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, from_record=False, "
-     "wisdom=None) -> output folder"},
+     "wisdom=None, backend='auto') -> output folder"},
     {NULL, NULL, 0, NULL}};

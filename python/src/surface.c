@@ -94,6 +94,17 @@ static PyObject *statistics(PyObject *self, PyObject *args)
     return status == IM_OK ? stats_dict(&stats) : py_raise_status(status);
 }
 
+/* The number of wavevectors averaged in each shell of a PSD, as int64. */
+static PyObject *shell_counts(const im_psd *psd)
+{
+    npy_intp n = psd->bins;
+    PyObject *array = PyArray_SimpleNew(1, &n, NPY_INT64);
+    if (array)
+        for (npy_intp i = 0; i < n; ++i)
+            ((npy_int64 *)PyArray_DATA((PyArrayObject *)array))[i] = psd->counts[i];
+    return array;
+}
+
 static PyObject *psd(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -114,8 +125,8 @@ static PyObject *psd(PyObject *self, PyObject *args)
     Py_DECREF(array);
     if (status != IM_OK)
         return py_raise_status(status);
-    PyObject *out = Py_BuildValue("(NN)", py_array_from_doubles(result->q, result->bins),
-                                  py_array_from_doubles(result->c, result->bins));
+    PyObject *out = Py_BuildValue("(NNN)", py_array_from_doubles(result->q, result->bins),
+                                  py_array_from_doubles(result->c, result->bins), shell_counts(result));
     im_psd_free(result);
     return out;
 }
@@ -329,7 +340,7 @@ PyMethodDef py_surface_methods[] = {
     {"generate", (PyCFunction)(void (*)(void))generate, METH_VARARGS | METH_KEYWORDS, "Spectral synthesis."},
     {"statistics", statistics, METH_VARARGS, "statistics(heights, delta, window, alpha) -> dict"},
     {"prepare", prepare, METH_VARARGS, "prepare(heights, detrend, fill, align) -> (heights, filled)"},
-    {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C)"},
+    {"psd", psd, METH_VARARGS, "psd(heights, delta, bins) -> (q, C, counts)"},
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
     {"read_surface", read_surface, METH_VARARGS,
      "read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit) -> "

@@ -14,12 +14,11 @@ typedef struct theory_params {
 
 typedef int (*theory_function)(const theory_params *p, double a, double b, double *out);
 
-static int rho_c(const theory_params *p, double slope, double unused, double *out)
+static int rho_c(const theory_params *p, double slope, double alpha, double *out)
 {
-    (void)unused;
     im_theory_interface rough = p->rough;
     rough.slope_rms = slope;
-    return im_theory_cone_rho(&rough, p->alpha, out);
+    return im_theory_cone_rho(&rough, alpha, out);
 }
 static int beta(const theory_params *p, double rho, double unused, double *out)
 {

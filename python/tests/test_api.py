@@ -1,6 +1,7 @@
 """Arrays in and out, errors, threads and reference counts."""
 import json
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -179,6 +180,10 @@ def test_example_runs(tmp_path):
                             capture_output=True, text=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
     assert result.returncode == 0, result.stderr
     assert "eq. (12)" in result.stdout
+    # its self-check: the PSD's slope in the self-affine range is -2(1 + H) = -3.6 (it printed -11.78, the
+    # fit reaching beyond q_s)
+    exponent = float(re.search(r"PSD exponent (\S+) ", result.stdout).group(1))
+    assert abs(exponent + 3.6) < 0.1, result.stdout
     for name in ("contact.png", "deformed.png", "panels.pdf"):
         assert (tmp_path / name).stat().st_size > 1000
 

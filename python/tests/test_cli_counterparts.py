@@ -160,6 +160,20 @@ def test_view3d_is_the_programs_image(cli, rough64, tmp_path, options, keywords)
     assert len(np.unique(ours.rgba.reshape(-1, 4), axis=0)) > 20  # a picture, not a blank
 
 
+def test_view3d_draws_tension_as_the_program(cli, rough64, tmp_path):
+    """Patches under tension on the tension ramp over 0 .. the largest tension, as render view3d --raw
+    (they were drawn on a ramp over 0 .. 1: 29 pixels differed here)."""
+    force = np.zeros_like(rough64)
+    force[20:40, 20:40] = 0.01
+    force[25:30, 25:30] = -0.02
+    im.write(tmp_path / "s.npy", rough64)
+    np.save(tmp_path / "force.npy", force)
+    run_cli(cli, "render", "view3d", tmp_path / "s.npy", "--force", tmp_path / "force.npy", "--raw", "--out",
+            tmp_path / "v.png", "--elevation", "80", *VIEW3D_SIZE)
+    ours = im.view3d(rough64, force=force, elevation=80, width=160, height=96, samples=1, mesh_side=48)
+    assert ours.rgba.tobytes() == im.Image.read(tmp_path / "v.png").rgba.tobytes()
+
+
 def test_view3d_refuses_what_the_program_refuses(rough64):
     with pytest.raises(ValueError, match="punch_mode 'glass'"):
         im.view3d(rough64, punch_mode="glass")

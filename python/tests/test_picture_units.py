@@ -9,6 +9,7 @@ import pytest
 
 import indentmap as im
 from conftest import run_cli
+from test_cli_counterparts import VIEW3D_SIZE
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests"))
 from figure_texts import png_texts  # noqa: E402  (the PNG text chunks, read independently of indentmap)
@@ -97,3 +98,34 @@ def test_adhesive_figure_is_the_programs(cli, rough64, tmp_path):
         tmp_path / "python.png")
     ours, theirs = im.Image.read(tmp_path / "python.png").rgba, im.Image.read(tmp_path / "cli.png").rgba
     assert ours.shape == theirs.shape and np.array_equal(ours, theirs)
+
+
+@pytest.mark.parametrize("tension", [False, True])
+def test_view3d_figure_is_the_programs(cli, rough64, tmp_path, tension):
+    """View3DFigure(...).save has the pixels of render view3d --out (title, dpi, exaggeration, colour bars)."""
+    history, fields = im.indent(rough64, approaches=[2.0], fields=True)
+    force = fields[0]["force"].copy()
+    if tension:
+        force[30:34, 30:34] = -force.max() / 3
+    im.write(tmp_path / "s.npy", rough64)
+    np.save(tmp_path / "force.npy", force)
+    run_cli(cli, "render", "view3d", tmp_path / "s.npy", "--force", tmp_path / "force.npy", "--out",
+            tmp_path / "v.png", "--title", "indented", "--dpi", "150", "--exaggeration", "2", *VIEW3D_SIZE)
+    figure = im.View3DFigure(rough64, force=force, exaggeration=2, title="indented", dpi=150, width=160, height=96,
+                             samples=1, mesh_side=48)
+    figure.save(tmp_path / "p.png")
+    ours, theirs = im.Image.read(tmp_path / "p.png").rgba, im.Image.read(tmp_path / "v.png").rgba
+    assert ours.shape == theirs.shape and ours.shape[1] > 160  # a figure around the 96 x 160 image
+    assert ours.tobytes() == theirs.tobytes()
+    texts = png_texts(tmp_path / "p.png")
+    assert texts["Vertical exaggeration"] == png_texts(tmp_path / "v.png")["Vertical exaggeration"]
+    assert texts["Quantity"] == "local force f / (E* δ²)"
+    assert figure._repr_png_().startswith(b"\x89PNG")
+
+
+def test_view3d_figure_in_units(rough64, tmp_path):
+    im.View3DFigure(rough64, force=np.maximum(rough64, 0), force_unit="N", width=64, height=48, samples=1,
+                    mesh_side=32).save(tmp_path / "n.png")
+    assert png_texts(tmp_path / "n.png")["Quantity"] == "local force f / N"
+    with pytest.raises(im.InvalidArgument, match="dpi"):
+        im.View3DFigure(rough64, dpi=0, width=64, height=48).save(tmp_path / "z.png")

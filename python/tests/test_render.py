@@ -108,3 +108,50 @@ def test_pictures_from_threads_equal_those_of_one_thread(rough64):
     for thread in threads:
         thread.join()
     assert all(g is not None and np.array_equal(g, e) for g, e in zip(got, expected))
+
+
+@pytest.fixture
+def restores_auto():
+    yield
+    im.use_backend("auto")
+
+
+def test_use_backend_opens_the_one_named(restores_auto, rough64):
+    assert im.use_backend("osmesa")["backend"] == "osmesa"
+    assert im.renderer()["backend"] == "osmesa"
+    assert im.contact_map(np.maximum(rough64, 0)).rgba.shape == (64 * 2 + 4, 64 * 2 + 4, 4)
+    with pytest.raises(im.InvalidArgument, match="render backend 'vulkan': expected auto, egl or osmesa"):
+        im.use_backend("vulkan")
+    assert im.renderer()["backend"] == "osmesa"  # a refused name leaves the one in use
+
+
+FRAMED_SCENE = """[scene]
+name = framed
+output = {output}
+[surfaces]
+n = 32
+hurst = 0.8
+lambda_s = 4
+slopes = 0.08
+seeds = 1
+[punch]
+shape = cone
+alpha = 80
+[loading]
+control = load
+load_star = 200
+[output]
+frames = yes
+frame_count = 2
+"""
+
+
+def test_run_scene_renders_with_the_backend_named(tmp_path):
+    scene = tmp_path / "framed.ini"
+    scene.write_text(FRAMED_SCENE.format(output=tmp_path / "out"))
+    lines = []
+    im.run_scene(scene, backend="osmesa", log=lambda level, message: lines.append(message))
+    assert any(line.startswith("rendering with osmesa") for line in lines), lines
+    with pytest.raises(im.InvalidArgument, match="render backend 'vulkan': expected auto, egl or osmesa"):
+        im.run_scene(scene, out=tmp_path / "never", backend="vulkan")
+    assert not (tmp_path / "never").exists()

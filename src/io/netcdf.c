@@ -502,7 +502,7 @@ int im_netcdf_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
-    int writable = io_check_heights_writable(field, path);
+    int writable = io_check_heights_or_missing_writable(field, path);
     if (writable != IM_OK)
         return writable;
     int ncid; /* an initial size of 0 lets the buffer grow to the dataset's exact size (no padding) */

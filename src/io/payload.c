@@ -3,6 +3,7 @@
 #include "indentmap/field.h"
 #include "indentmap/status.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <sys/stat.h>
 
@@ -51,6 +52,19 @@ int io_check_heights_writable(const im_field *field, const char *path)
         return IM_OK;
     char message[4400];
     snprintf(message, sizeof message, "%s", im_last_error());
-    return im_fail(IM_EINVAL, "%s; not written: a surface file holds finite heights only (no reader would "
-                   "take it back)", message);
+    return im_fail(IM_EINVAL, "%s; not written: this format is written without missing points (.npy, .sdf, .nc "
+                   "and text files keep NaN as a missing point)", message);
+}
+
+int io_check_heights_or_missing_writable(const im_field *field, const char *path)
+{
+    int status = im_field_check_view(field, path);
+    if (status != IM_OK)
+        return status;
+    size_t count = im_field_count(field);
+    for (size_t i = 0; i < count; ++i)
+        if (isinf(field->data[i]))
+            return im_fail(IM_EINVAL, "%s: value %g at (x=%zu, y=%zu); not written: expected finite heights or NaN "
+                           "(a missing point)", path, field->data[i], i % (size_t)field->nx, i / (size_t)field->nx);
+    return IM_OK;
 }

@@ -23,8 +23,12 @@ int io_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned ite
  * failure while running, exit 1, rather than as bad input, exit 2). */
 int io_check_finite(const im_field *field, const char *path);
 
-/* The writers' side of the same rule: IM_EINVAL naming path and the first NaN or Inf, before
- * anything is written, since no reader would take such a surface file back. */
+/* The writers' side: IM_EINVAL naming path and the first NaN or Inf, before anything is written, for the
+ * formats written without missing points (.gsf, .x3p: its validity mask is not written). */
 int io_check_heights_writable(const im_field *field, const char *path);
+
+/* The same for the formats whose readers take NaN back as a missing point (.npy, .sdf, .nc, text): only
+ * an infinite value is refused. */
+int io_check_heights_or_missing_writable(const im_field *field, const char *path);
 
 #endif

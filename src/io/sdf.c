@@ -292,7 +292,7 @@ int im_sdf_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
-    int writable = io_check_heights_writable(field, path);
+    int writable = io_check_heights_or_missing_writable(field, path);
     if (writable != IM_OK)
         return writable;
     double metres = im_length_unit_metres(field->unit, NULL);

@@ -217,7 +217,7 @@ int im_surface_write(const char *path, const im_field *field)
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
     if (has_extension(path, ".npy")) { /* .npy holds any field; as a surface it must be one */
-        int writable = io_check_heights_writable(field, path);
+        int writable = io_check_heights_or_missing_writable(field, path);
         return writable == IM_OK ? im_npy_write(path, field, IM_NPY_FLOAT64) : writable;
     }
     if (has_extension(path, ".gsf"))

@@ -21,7 +21,7 @@ int im_text_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
-    int writable = io_check_heights_writable(field, path);
+    int writable = io_check_heights_or_missing_writable(field, path);
     if (writable != IM_OK)
         return writable;
     im_atomic_file file;
