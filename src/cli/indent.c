@@ -3,6 +3,7 @@
 #include "cli/cli.h"
 #include "cli/indent_record.h"
 #include "front/front.h"
+#include "front/run_folder.h"
 
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
@@ -10,7 +11,6 @@
 #include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
-#include "indentmap/viewer.h"
 #include "indentmap/surface.h"
 #include "indentmap/theory.h"
 #include "indentmap/version.h"
@@ -507,42 +507,25 @@ static int writes_into_folder(const char *name, const void *state)
     return 0;
 }
 
-/* The wisdom file may be neither an input (checked with the inputs) nor one of the files the run
- * writes into --out: each would replace the other. */
-static int check_wisdom(const indent_options *o)
+/* What the run writes into --out: the names writes_into_folder claims (run_folder.h). */
+static run_folder_rules folder_rules(const indent_options *o)
 {
-    if (im_solver_wisdom_check(&o->solver) != IM_OK) {
-        fprintf(stderr, "indentmap: %s\n", im_last_error());
-        return -1;
-    }
-    const char *wisdom = im_solver_wisdom_file(&o->solver);
-    char file[4096], folder[4096];
-    if (!wisdom || im_path_absolute(wisdom, file, sizeof file) != IM_OK ||
-        im_path_absolute(o->out, folder, sizeof folder) != IM_OK)
-        return 0;
-    size_t length = strlen(folder);
-    if (strncmp(file, folder, length) != 0 || file[length] != '/' || !writes_into_folder(file + length + 1, o))
-        return 0;
-    fprintf(stderr, "indentmap: the FFTW wisdom file %s would be one of the run's outputs, %s/%s: give another "
-            "--wisdom (or IM_FFTW_WISDOM) or another --out\n", wisdom, o->out, file + length + 1);
-    return -1;
+    return (run_folder_rules){.dir = o->out, .option = "--out", .lock_advice = "give this run another --out",
+                              .wisdom_advice = "give another --wisdom (or IM_FFTW_WISDOM) or another --out",
+                              .claims = writes_into_folder, .state = o};
 }
 
-/* Refuses, before any work, an output folder whose outputs would replace the surface file or its
- * sidecar, and a wisdom file that is an input or an output. Every write is checked again when it
- * is opened (io.h: the output guard). */
+/* Refuses, before any work, an output folder whose outputs would replace the surface file, its
+ * sidecar or the profile, and a wisdom file that is an input or an output. Every write is checked
+ * again when it is opened (io.h: the output guard). */
 static int check_outputs_apart(const indent_options *o)
 {
-    char sidecar[4096] = "";
-    if (o->surface_path && im_path_suffix(sidecar, sizeof sidecar, o->surface_path, ".json") != IM_OK) {
-        fprintf(stderr, "indentmap: SURFACE: %s\n", im_last_error());
-        return -1;
-    }
-    const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL, o->profile_path};
-    if (cli_protect_inputs(inputs, 1) != 0 || cli_protect_inputs(inputs + 2, 1) != 0 ||
-        cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 3) != 0)
-        return -1;
-    return check_wisdom(o);
+    const char *const inputs[] = {o->surface_path, o->profile_path};
+    const run_folder_rules rules = folder_rules(o);
+    if (run_folder_check(&rules, inputs, 2, &o->solver) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: %s\n", im_last_error());
+    return -1;
 }
 
 /* Where the tolerance came from, for run.json. */
@@ -1099,7 +1082,7 @@ static void draw_frames(const indent_options *o, const im_history_row *rows, int
 
 /* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
 static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
-                     history_file *history, im_render_context *context, json_t *record)
+                     history_file *history, im_render_context *context, const run_folder *folder, json_t *record)
 {
     im_history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
     if (!rows)
@@ -1130,13 +1113,8 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         write_k_fit(o, rough, rows, done, record);
     if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
         im_fail(status, "%s", message);
-    int recorded = run_record_finish(o->out, record, done, status);
-    if (status != IM_OK)
-        im_fail(status, "%s", message);
-    else
-        status = recorded; /* a run whose record could not be written did not finish */
     free(rows);
-    return status;
+    return run_folder_record(folder, record, done, status);
 }
 
 /* Whether name is contact_NNNN.png (four or more digits), a frame of --frames. */
@@ -1169,16 +1147,16 @@ static int remove_earlier_frames(const indent_options *o)
     return status;
 }
 
-/* Takes DIR's lock, then removes what an earlier run left there that this one would not replace:
- * temporary files of a killed run, and field files (this run writes its own, or none). Inputs are
- * kept (the output guard names them). */
-static int prepare_folder(const indent_options *o, im_folder_lock *lock)
+/* Makes and locks DIR (a stale lock taken over is a warning), then removes what an earlier run left
+ * there that this one would not replace: temporary files of a killed run, and field files (this run
+ * writes its own, or none). Inputs are kept (the output guard names them). */
+static int prepare_folder(const indent_options *o, run_folder *folder)
 {
-    int status = im_folder_lock_acquire(o->out, "give this run another --out", lock);
+    const run_folder_rules rules = folder_rules(o);
+    int status = run_folder_open(&rules, 0, folder); /* --out may be any folder: not its subfolders */
     if (status != IM_OK)
         return status;
-    cli_warn_stale_lock(lock);
-    im_folder_remove_temporaries(o->out, 0); /* --out may be any folder: not its subfolders */
+    cli_warn_stale_lock(&folder->lock);
     DIR *listing = opendir(o->out);
     if (!listing)
         return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
@@ -1200,19 +1178,13 @@ static int prepare_folder(const indent_options *o, im_folder_lock *lock)
     return status == IM_OK ? remove_earlier_frames(o) : status;
 }
 
-/* DIR/index.html over what the run left (viewer.h), even after a failure; the run's own error,
- * if any, stays the one reported. */
-static int write_viewer_page(const indent_options *o, int status)
+/* DIR/index.html over what the run left, even after a failure; the run's own error, if any, stays the
+ * one reported. */
+static int write_viewer_page(const indent_options *o, const run_folder *folder, int status)
 {
-    char message[1024], title[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    char title[1024];
     snprintf(title, sizeof title, "indentmap indent: %s", o->smooth ? "smooth surface" : o->surface_path);
-    const im_viewer_options options = {.embed_images = o->page_embed};
-    int written = im_viewer_write_with(o->out, title, &options);
-    if (status == IM_OK)
-        return written;
-    im_fail(status, "%s", message);
-    return status;
+    return run_folder_page(folder, title, o->page_embed, status);
 }
 
 /* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
@@ -1321,12 +1293,10 @@ int cli_indent(int argc, char **argv)
                                        &run);
     if (status == IM_OK && o.solver.adhesion_work > 0)
         warn_if_zone_unresolved(&o);
-    if (status == IM_OK)
-        status = im_make_directories(o.out);
-    im_folder_lock lock = {.fd = -1};
+    run_folder folder = {.lock = {.fd = -1}};
     history_file history = {.fd = -1};
     if (status == IM_OK)
-        status = prepare_folder(&o, &lock);
+        status = prepare_folder(&o, &folder);
     if (status == IM_OK) {
         im_window w = im_indentation_window(run);
         printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads, device %s\n", surface->nx,
@@ -1338,19 +1308,15 @@ int cli_indent(int argc, char **argv)
             status = make_figure_texts(&o, record);
         if (status == IM_OK)
             status = history_start(o.out, &history);
-        if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
-            char message[1024];
-            snprintf(message, sizeof message, "%s", im_last_error());
-            run_record_finish(o.out, record, 0, status);
-            im_fail(status, "%s", message);
-        }
+        if (record && status != IM_OK) /* no step solved: the record says why, not an earlier run's */
+            run_folder_record(&folder, record, 0, status);
     }
     if (status == IM_OK)
-        status = run_steps(&o, &rough, run, &history, context, record);
+        status = run_steps(&o, &rough, run, &history, context, &folder, record);
     history_close(&history);
     if (record)
-        status = write_viewer_page(&o, status);
-    im_folder_lock_release(&lock);
+        status = write_viewer_page(&o, &folder, status);
+    run_folder_close(&folder);
     im_render_close(context);
     json_decref(record);
     im_indentation_free(run);
