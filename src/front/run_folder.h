@@ -54,7 +54,8 @@ int run_folder_open(const run_folder_rules *rules, int depth, run_folder *folder
  * the record was written (a run without its record did not finish). */
 int run_folder_record(const run_folder *folder, json_t *record, int steps_done, int status);
 
-/* Writes index.html (repaired first, if rules.repair) over what the folder holds (viewer.h), also after a failure or an interruption.
+/* Writes index.html (repaired first, if rules.repair) over what the folder holds (viewer.h), also after
+ * a failure or an interruption.
  * Returns status, the run's error still the last one, or, for a run that succeeded, whether the page
  * was written. */
 int run_folder_page(const run_folder *folder, const char *title, int embed_images, int status);
