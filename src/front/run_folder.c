@@ -124,20 +124,28 @@ static int keep_run_error(int status, const char *message, int written)
     return status;
 }
 
+/* rules.repair on the folder's file name, if the rules have one. */
+static void repair(const run_folder *folder, const char *name)
+{
+    char path[PATH_MAX];
+    if (folder->rules.repair && im_path_join(path, sizeof path, folder->rules.dir, name) == IM_OK)
+        folder->rules.repair(path, folder->rules.repair_state);
+}
+
 int run_folder_record(const run_folder *folder, json_t *record, int steps_done, int status)
 {
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
+    repair(folder, "run.json");
     int written = run_record_finish(folder->rules.dir, record, steps_done, status);
     return keep_run_error(status, message, written);
 }
 
 int run_folder_page(const run_folder *folder, const char *title, int embed_images, int status)
 {
-    char message[1024], page[PATH_MAX];
+    char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
-    if (folder->rules.repair && im_path_join(page, sizeof page, folder->rules.dir, "index.html") == IM_OK)
-        folder->rules.repair(page, folder->rules.repair_state);
+    repair(folder, "index.html");
     const im_viewer_options options = {.embed_images = embed_images};
     int written = im_viewer_write_with(folder->rules.dir, title, &options);
     return keep_run_error(status, message, written);
