@@ -747,7 +747,7 @@ static const char *const no_pointer_arguments[] = {
     "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gif_options_default", "im_gwyddion_reader",
     "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",
-    "im_measure_sneddon_modulus", "im_history_columns", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
+    "im_measure_sneddon_modulus", "im_history_columns", "im_history_integer_columns", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
     "im_scene_plot_name", "im_solver_options_default", "im_quality_default_tolerance",
     "im_influence_square", "im_strstatus", "im_last_error", "im_fail", "im_fail_context",
     "im_set_stop_flag", "im_stop_requested", "im_surface_params_default",
