@@ -1,8 +1,9 @@
 /* The output folder of a run (src/front/run_folder.h), which scenes and `indent` share: inputs
  * written over, the wisdom rule, the lock, a killed run's temporary files, and the run's error kept
- * in run.json and through index.html. */
+ * in run.json and through index.html; then the names `indent` writes there (src/front/indent_run.h). */
 #include "support.h"
 
+#include "front/indent_run.h"
 #include "front/run_folder.h"
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
@@ -149,19 +150,92 @@ static void run_error_kept(void **state)
     run_folder_close(&folder);
 }
 
-/* A run that succeeded but whose page cannot be written did not finish. */
-static void page_failure_reported(void **state)
+/* Where run.json and index.html cannot be written (folders hold their names): a run that succeeded did
+ * not finish, and a run that failed keeps its own status and message, not the writes'. */
+static void write_failures_reported(void **state)
 {
     (void)state;
-    const char *dir = fresh_folder("pageless");
-    char page[4096];
-    snprintf(page, sizeof page, "%s/index.html", dir);
-    assert_int_equal(mkdir(page, 0755), 0); /* a folder where the page goes */
+    const char *dir = fresh_folder("unwritable");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    assert_int_equal(mkdir(path, 0755), 0);
+    snprintf(path, sizeof path, "%s/run.json", dir);
+    assert_int_equal(mkdir(path, 0755), 0);
     const run_folder_rules rules = claiming_rules(dir);
     run_folder folder;
     assert_int_equal(run_folder_open(&rules, 0, &folder), IM_OK);
+    json_t *record = json_object();
+    assert_int_not_equal(run_folder_record(&folder, record, 1, IM_OK), IM_OK);
     assert_int_not_equal(run_folder_page(&folder, "a run", 0, IM_OK), IM_OK);
+    im_fail(IM_EINTERRUPTED, "interrupted by signal 2");
+    assert_int_equal(run_folder_record(&folder, record, 1, IM_EINTERRUPTED), IM_EINTERRUPTED);
+    assert_string_equal(im_last_error(), "interrupted by signal 2");
+    assert_int_equal(run_folder_page(&folder, "a run", 0, IM_EINTERRUPTED), IM_EINTERRUPTED);
+    assert_string_equal(im_last_error(), "interrupted by signal 2");
+    json_decref(record);
     run_folder_close(&folder);
+}
+
+/* ---- indent's files (indent_run.h) ---- */
+
+static void indent_names_claimed(void **state)
+{
+    (void)state;
+    const indent_files elastic = {.fields = 1, .steps = 12};
+    const indent_files plastic = {.fields = 1, .hardness = 0.1, .distributions = 1, .steps = 12};
+    const indent_files history_only = {.steps = 12};
+    const char *const always[] = {"history.csv", "run.json", "index.html", "history.png", "indentation.csv",
+                                  "force_distance.pdf"};
+    for (size_t i = 0; i < sizeof always / sizeof *always; ++i)
+        assert_true(indent_files_claims(always[i], &history_only));
+    assert_true(indent_files_claims("force_0001.npy", &elastic));
+    assert_true(indent_files_claims("displacement_0012.npy.json", &elastic));
+    assert_false(indent_files_claims("force_0013.npy", &elastic));    /* beyond the steps */
+    assert_false(indent_files_claims("force_0000.npy", &elastic));    /* steps count from 1 */
+    assert_false(indent_files_claims("force_00001.npy", &elastic));   /* the run writes four digits */
+    assert_false(indent_files_claims("plastic_0001.npy", &elastic));  /* only with a hardness */
+    assert_true(indent_files_claims("plastic_0001.npy", &plastic));
+    assert_false(indent_files_claims("force_0001.npy", &history_only)); /* no --fields */
+    assert_true(indent_files_claims("distributions_0012_patch_list.csv", &plastic));
+    assert_false(indent_files_claims("distributions_0001_gaps.csv", &elastic));
+    assert_false(indent_files_claims("distributions_0001_other.csv", &plastic));
+    assert_false(indent_files_claims("notes.txt", &plastic));
+}
+
+/* What an earlier run left is removed, whatever its steps; other files and inputs stay. */
+static void earlier_run_cleared(void **state)
+{
+    (void)state;
+    const char *dir = fresh_folder("earlier");
+    char frames[4096], path[8192], input[8192];
+    snprintf(frames, sizeof frames, "%s/frames", dir);
+    assert_int_equal(mkdir(frames, 0755), 0);
+    const char *const removed[] = {"force_0007.npy", "plastic_12345.npy.json", "distributions_0002_gaps.csv",
+                                   "history.png", "load_displacement.pdf", "frames/contact_0003.png"};
+    const char *const kept[] = {"history.csv", "notes.txt", "force_07.npy", "frames/height_0003.png",
+                                "gap_0001.npy"};
+    for (size_t i = 0; i < sizeof removed / sizeof *removed; ++i) {
+        snprintf(path, sizeof path, "%s/%s", dir, removed[i]);
+        test_write_bytes(path, "x", 1);
+    }
+    for (size_t i = 0; i < sizeof kept / sizeof *kept; ++i) {
+        snprintf(path, sizeof path, "%s/%s", dir, kept[i]);
+        test_write_bytes(path, "x", 1);
+    }
+    snprintf(input, sizeof input, "%s/gap_0001.npy", dir);
+    assert_int_equal(im_output_protect(input), IM_OK); /* an input named like a field file */
+    assert_int_equal(indent_files_clear(dir), IM_OK);
+    struct stat info;
+    for (size_t i = 0; i < sizeof removed / sizeof *removed; ++i) {
+        snprintf(path, sizeof path, "%s/%s", dir, removed[i]);
+        if (stat(path, &info) == 0)
+            fail_msg("%s was left", removed[i]);
+    }
+    for (size_t i = 0; i < sizeof kept / sizeof *kept; ++i) {
+        snprintf(path, sizeof path, "%s/%s", dir, kept[i]);
+        if (stat(path, &info) != 0)
+            fail_msg("%s was removed", kept[i]);
+    }
 }
 
 int main(void)
@@ -169,7 +243,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(claimed_inputs_refused), cmocka_unit_test(wisdom_rule),
         cmocka_unit_test(folder_locked_and_cleared), cmocka_unit_test(run_error_kept),
-        cmocka_unit_test(page_failure_reported),
+        cmocka_unit_test(write_failures_reported), cmocka_unit_test(indent_names_claimed),
+        cmocka_unit_test(earlier_run_cleared),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
