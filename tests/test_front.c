@@ -294,6 +294,34 @@ static void path_join_refuses_what_does_not_fit(void **state)
     assert_string_equal(out, "s.npy.json");
 }
 
+/* im_history_integer_columns names exactly the columns im_history_format writes as integers: a row
+ * whose counts are 7 and whose every other value is 0.5 prints "7" in those columns only. */
+static void integer_columns_as_written(void **state)
+{
+    (void)state;
+    const double half = 0.5;
+    const im_step_result result = {
+        .approach = half, .load = half, .load_star = half, .contact_patches = 7, .area_ratio = half,
+        .mean_pressure = half, .max_pressure = half, .iterations = 7, .convolutions = 7, .residual = half,
+        .seconds = half, .yielding_patches = 7, .plastic_depth = half, .plastic_work = half,
+        .residual_approach = half, .tensile_force = half, .adhesive_patches = 7, .repulsive_patches = 7,
+        .mean_gap = half};
+    const im_history_row row = {.step = 7, .result = result, .theory = {half, half, half, half},
+                                .stiffness = half, .e_star_sneddon = half, .patches = 7, .perimeter = half};
+    char line[IM_HISTORY_LINE_MAX], names[IM_HISTORY_LINE_MAX], integers[IM_HISTORY_LINE_MAX] = "";
+    assert_true(im_history_format(&row, line, sizeof line) > 0);
+    snprintf(names, sizeof names, "%s", im_history_columns());
+    char *name_rest = NULL, *value_rest = NULL;
+    char *name = strtok_r(names, ",", &name_rest), *value = strtok_r(line, ",\n", &value_rest);
+    for (; name && value; name = strtok_r(NULL, ",", &name_rest), value = strtok_r(NULL, ",\n", &value_rest))
+        if (strcmp(value, "7") == 0)
+            snprintf(integers + strlen(integers), sizeof integers - strlen(integers), "%s%s", integers[0] ? "," : "",
+                     name);
+    assert_null(name);
+    assert_null(value);
+    assert_string_equal(im_history_integer_columns(), integers);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -303,6 +331,7 @@ int main(void)
         cmocka_unit_test(histories_without_smooth_area),
         cmocka_unit_test(histories_of_a_periodic_cell),
         cmocka_unit_test(path_join_refuses_what_does_not_fit),
+        cmocka_unit_test(integer_columns_as_written),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

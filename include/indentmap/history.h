@@ -2,7 +2,7 @@
  * histories/member_FF_SEED.csv and Python's history arrays: its columns, the measurement beside each
  * solved step, one row writer and one reader.
  *
- * Entry points: im_history_columns, im_history_measure, im_history_format, im_history_parse, and the
+ * Entry points: im_history_columns, im_history_integer_columns, im_history_measure, im_history_format, im_history_parse, and the
  * indentation analysis `indent` writes beside a history, im_history_write_analysis.
  *
  * Columns, in order: step, the solver's results (approach, load, load_star, contact_patches,
@@ -44,6 +44,9 @@ typedef struct im_history_row {
 
 /* The column line (without its newline), the same for every history this version writes. */
 const char *im_history_columns(void);
+/* The columns written as integers (the others are floating point), in the same order and form: what
+ * a reader needs to type the columns (Python's history arrays: int64 and float64). */
+const char *im_history_integer_columns(void);
 
 /* Fills rows[i] (rows[0..i) filled before; rows[i].result set by the caller, e.g. by
  * im_indentation_step): its step number, the theory for punch on the interface rough at its approach

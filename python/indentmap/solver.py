@@ -59,9 +59,8 @@ def _axis_on_surface(axis, shape, delta):
     return x, y
 
 
-# The integer columns of a history (history.h); every other column is float64.
-_INTEGER_COLUMNS = {"step", "contact_patches", "iterations", "convolutions", "patches", "yielding_patches",
-                    "adhesive_patches", "repulsive_patches"}
+# The integer columns of a history (history.h: im_history_integer_columns); every other column is float64.
+_INTEGER_COLUMNS = frozenset(_core.history_integer_columns.split(","))
 
 
 def _history_array(text, source="history"):

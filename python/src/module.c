@@ -180,6 +180,7 @@ PyMODINIT_FUNC PyInit__core(void)
         PyType_Ready(&py_plan_type) < 0 || PyModule_AddObjectRef(module, "Plan", (PyObject *)&py_plan_type) < 0 ||
         PyModule_AddStringConstant(module, "library_version", im_version()) < 0 ||
         PyModule_AddStringConstant(module, "history_columns", im_history_columns()) < 0 ||
+        PyModule_AddStringConstant(module, "history_integer_columns", im_history_integer_columns()) < 0 ||
         PyModule_AddStringConstant(module, "header_version", IM_VERSION_STRING) < 0 ||
         /* the one default tolerance of the library and its front ends (solver.h) */
         PyModule_AddObject(module, "default_tol", PyFloat_FromDouble(im_quality_default_tolerance())) < 0) {

@@ -147,14 +147,10 @@ int cli_parse_options(int argc, char **argv, const struct option *options, int h
  * sidecars; 0, or -1 after printing why not.
  * cli_check_output_file: 0 when the file `output` (of option `option`; NULL: nothing) is none of
  * the registered inputs nor their sidecars; otherwise prints "indentmap: OPTION OUTPUT would
- * overwrite the input file INPUT (REALPATH); ..." and returns -1 (exit CLI_EXIT_USAGE).
- * cli_check_output_folder: the same for a folder `dir` into which a command writes the files whose
- * names writes(name, state) accepts: -1, naming DIR/NAME and the input, when one of inputs lies
- * directly in dir under such a name (paths compared by realpath, and for a symlink by its name). */
+ * overwrite the input file INPUT (REALPATH); ..." and returns -1 (exit CLI_EXIT_USAGE). An output
+ * folder's inputs: front/run_folder.h. */
 int cli_protect_inputs(const char *const *inputs, int count);
 int cli_check_output_file(const char *option, const char *output);
-int cli_check_output_folder(const char *option, const char *dir, int (*writes)(const char *name, const void *state),
-                            const void *state, const char *const *inputs, int count);
 
 /* Prints "indentmap: MESSAGE" for the status's last error and returns the exit status that fits
  * it (2 for invalid input, 1 otherwise). */

@@ -3,6 +3,8 @@
 #include "cli/cli.h"
 #include "cli/indent_record.h"
 #include "front/front.h"
+#include "front/indent_run.h"
+#include "front/run_folder.h"
 
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
@@ -10,14 +12,10 @@
 #include "indentmap/measure.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
-#include "indentmap/viewer.h"
 #include "indentmap/surface.h"
 #include "indentmap/theory.h"
 #include "indentmap/version.h"
 
-#include <dirent.h>
-#include <errno.h>
-#include <fcntl.h>
 #include <getopt.h>
 #include <jansson.h>
 #include <math.h>
@@ -25,7 +23,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 static void usage(FILE *stream)
 {
@@ -152,6 +149,7 @@ typedef struct indent_options {
     int frames;                   /* --frames (sets fields) */
     int page_embed;               /* --page-embed */
     int distributions;            /* --distributions */
+    indent_files files;           /* what the run writes into --out (indent_run.h) */
     double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
     double surface_delta;         /* the patch side as solved (the surface's, after --delta) */
@@ -434,115 +432,30 @@ static int apply_quality(indent_options *o)
     return 0;
 }
 
-/* Whether name is PREFIX followed by four or more digits and ".npy" (a field file of a step) or
- * ".npy.json" (its units sidecar). */
-static int is_step_file(const char *name, const char *prefix)
-{
-    size_t length = strlen(prefix), digits = 0;
-    if (strncmp(name, prefix, length) != 0)
-        return 0;
-    while (name[length + digits] >= '0' && name[length + digits] <= '9')
-        ++digits;
-    const char *suffix = name + length + digits;
-    return digits >= 4 && (strcmp(suffix, ".npy") == 0 || strcmp(suffix, ".npy.json") == 0);
-}
-
-/* Whether name is distributions_NNNN_{gaps,patches,patch_list}.csv (four or more digits). */
-static int is_distribution_file(const char *name)
-{
-    static const char *const SUFFIXES[3] = {"_gaps.csv", "_patches.csv", "_patch_list.csv"};
-    const char *prefix = "distributions_";
-    size_t length = strlen(prefix), digits = 0;
-    if (strncmp(name, prefix, length) != 0)
-        return 0;
-    while (name[length + digits] >= '0' && name[length + digits] <= '9')
-        ++digits;
-    for (int i = 0; digits >= 4 && i < 3; ++i)
-        if (strcmp(name + length + digits, SUFFIXES[i]) == 0)
-            return 1;
-    return 0;
-}
-
-/* The files written after the steps: the history figure, the indentation analysis (only when the
- * history unloads) and adhesion's. */
-static int is_analysis_file(const char *name)
-{
-    return strcmp(name, "history.png") == 0 || strcmp(name, "history.pdf") == 0 ||
-           strcmp(name, "indentation.csv") == 0 || strcmp(name, "load_displacement.png") == 0 ||
-           strcmp(name, "load_displacement.pdf") == 0 || strcmp(name, "force_distance.png") == 0 ||
-           strcmp(name, "force_distance.pdf") == 0;
-}
-
 static const char *slope_definition_name(int definition)
 {
     return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
 }
 
-/* Whether `name` is one of the files written into the output folder: history.csv, run.json,
- * index.html, indentation.csv and,
- * with --fields, {force,gap,displacement[,plastic]}_NNNN.npy and their .npy.json sidecars for the steps
- * 1..count. */
-static int writes_into_folder(const char *name, const void *state)
+/* What the run writes into --out (indent_run.h: the names indent_files_claims claims). */
+static run_folder_rules folder_rules(const indent_options *o)
 {
-    const indent_options *o = state;
-    const char *const *FIELDS = STEP_FIELD_PREFIXES;
-    if (strcmp(name, "history.csv") == 0 || strcmp(name, "run.json") == 0 || strcmp(name, "index.html") == 0 ||
-        is_analysis_file(name))
-        return 1;
-    if (o->distributions && is_distribution_file(name)) {
-        long step = strtol(name + strlen("distributions_"), NULL, 10);
-        return step >= 1 && step <= o->target_count;
-    }
-    for (int i = 0; o->fields && i < step_field_count(o->solver.hardness); ++i) {
-        size_t length = strlen(FIELDS[i]);
-        if (strncmp(name, FIELDS[i], length) != 0)
-            continue;
-        long step = strtol(name + length, NULL, 10);
-        char field[64], sidecar[80];
-        snprintf(field, sizeof field, "%s%04ld.npy", FIELDS[i], step);
-        snprintf(sidecar, sizeof sidecar, "%s.json", field);
-        if (step >= 1 && step <= o->target_count && (strcmp(name, field) == 0 || strcmp(name, sidecar) == 0))
-            return 1;
-    }
-    return 0;
+    return (run_folder_rules){.dir = o->out, .option = "--out", .lock_advice = "give this run another --out",
+                              .wisdom_advice = "give another --wisdom (or IM_FFTW_WISDOM) or another --out",
+                              .claims = indent_files_claims, .state = &o->files};
 }
 
-/* The wisdom file may be neither an input (checked with the inputs) nor one of the files the run
- * writes into --out: each would replace the other. */
-static int check_wisdom(const indent_options *o)
-{
-    if (im_solver_wisdom_check(&o->solver) != IM_OK) {
-        fprintf(stderr, "indentmap: %s\n", im_last_error());
-        return -1;
-    }
-    const char *wisdom = im_solver_wisdom_file(&o->solver);
-    char file[4096], folder[4096];
-    if (!wisdom || im_path_absolute(wisdom, file, sizeof file) != IM_OK ||
-        im_path_absolute(o->out, folder, sizeof folder) != IM_OK)
-        return 0;
-    size_t length = strlen(folder);
-    if (strncmp(file, folder, length) != 0 || file[length] != '/' || !writes_into_folder(file + length + 1, o))
-        return 0;
-    fprintf(stderr, "indentmap: the FFTW wisdom file %s would be one of the run's outputs, %s/%s: give another "
-            "--wisdom (or IM_FFTW_WISDOM) or another --out\n", wisdom, o->out, file + length + 1);
-    return -1;
-}
-
-/* Refuses, before any work, an output folder whose outputs would replace the surface file or its
- * sidecar, and a wisdom file that is an input or an output. Every write is checked again when it
- * is opened (io.h: the output guard). */
+/* Refuses, before any work, an output folder whose outputs would replace the surface file, its
+ * sidecar or the profile, and a wisdom file that is an input or an output. Every write is checked
+ * again when it is opened (io.h: the output guard). */
 static int check_outputs_apart(const indent_options *o)
 {
-    char sidecar[4096] = "";
-    if (o->surface_path && im_path_suffix(sidecar, sizeof sidecar, o->surface_path, ".json") != IM_OK) {
-        fprintf(stderr, "indentmap: SURFACE: %s\n", im_last_error());
-        return -1;
-    }
-    const char *const inputs[] = {o->surface_path, o->surface_path ? sidecar : NULL, o->profile_path};
-    if (cli_protect_inputs(inputs, 1) != 0 || cli_protect_inputs(inputs + 2, 1) != 0 ||
-        cli_check_output_folder("--out", o->out, writes_into_folder, o, inputs, 3) != 0)
-        return -1;
-    return check_wisdom(o);
+    const char *const inputs[] = {o->surface_path, o->profile_path};
+    const run_folder_rules rules = folder_rules(o);
+    if (run_folder_check(&rules, inputs, 2, &o->solver) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: %s\n", im_last_error());
+    return -1;
 }
 
 /* Where the tolerance came from, for run.json. */
@@ -590,6 +503,7 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
     o->punch.centred = !o->x_given;
     if (check_options(o) != 0 || parse_targets(o) != 0)
         return -1;
+    o->files = (indent_files){o->fields, o->solver.hardness, o->distributions, o->target_count};
     /* The cache only for histories: measuring pays within a 25-step history's first run, while a cold
      * solve needs ~15 later runs to win its planning back (docs/solver.md, "FFTW wisdom"). */
     int use_cache = o->target_count >= CACHED_WISDOM_STEPS;
@@ -604,22 +518,6 @@ static int parse_arguments(int argc, char **argv, indent_options *o)
 }
 
 /* ---- outputs ---- */
-
-/* The fields of a step on the full grid (front.h: step_fields_write). */
-static int write_fields(const indent_options *o, im_indentation *run, int step)
-{
-    const step_units units = {o->solver.hardness, o->length_unit, o->force_unit};
-    return step_fields_write(o->out, run, step, &units);
-}
-
-/* --distributions: the gap and patch-size distributions of a step (front.h: step_distributions_write). */
-static int write_distributions(const indent_options *o, im_indentation *run, int step)
-{
-    char name[32], prefix[4096];
-    snprintf(name, sizeof name, "distributions_%04d", step);
-    int status = im_path_join(prefix, sizeof prefix, o->out, name);
-    return status == IM_OK ? step_distributions_write(prefix, run, o->gap_scale) : status;
-}
 
 /* The generator block of SURFACE.json (written by `indentmap surface`), or NULL. */
 static json_t *surface_sidecar_generator(const char *surface_path)
@@ -911,35 +809,6 @@ static const char *area_ratio_name(const indent_options *o)
     }
 }
 
-/* Solves step i (0-based; rows[0..i) solved before), measures it (history.h: im_history_measure), and
- * writes its fields and its history line. */
-static int run_step(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
-                    history_file *history, im_history_row *rows, int i)
-{
-    int status = im_indentation_step(run, o->targets[i], &rows[i].result);
-    if (status == IM_OK)
-        status = im_history_measure(&o->punch, o->solver.periodic ? NULL : rough, run, rows, i);
-    if (status == IM_OK && o->fields) /* first: history.csv lists only steps whose fields are written */
-        status = write_fields(o, run, i + 1);
-    if (status == IM_OK && o->distributions)
-        status = write_distributions(o, run, i + 1);
-    if (status == IM_OK)
-        status = history_append(history, &rows[i]);
-    if (status == IM_OK)
-        warn_if_unresolved(rows, i);
-    if (status == IM_OK) {
-        const im_step_result *r = &rows[i].result;
-        char gap[48] = "";
-        if (o->solver.periodic)
-            snprintf(gap, sizeof gap, "  mean gap = %.6g", r->mean_gap);
-        printf("step %d: w = %.6g%s  N = %.6g  n_p = %ld  %s = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
-               r->approach, gap, r->load, r->contact_patches, area_ratio_name(o), r->area_ratio, r->iterations,
-               r->residual, r->seconds);
-        fflush(stdout);
-    }
-    return status;
-}
-
 /* --periodic under a rigid flat without a hardness: k of eq. (2) fitted to the steps done (front.h:
  * periodic_fit_k, with the surface's h'rms of --slope-definition), printed and recorded in run.json
  * with its range. */
@@ -1097,28 +966,44 @@ static void draw_frames(const indent_options *o, const im_history_row *rows, int
     }
 }
 
-/* rough: the surface's measured h'rms and the solver's E*, for the theory columns. */
+/* The step just solved (indent_run.h's stepped): a warning for a contact too small, and its line. */
+static void report_step(const im_history_row *rows, int i, const void *state)
+{
+    const indent_options *o = state;
+    warn_if_unresolved(rows, i);
+    const im_step_result *r = &rows[i].result;
+    char gap[48] = "";
+    if (o->solver.periodic)
+        snprintf(gap, sizeof gap, "  mean gap = %.6g", r->mean_gap);
+    printf("step %d: w = %.6g%s  N = %.6g  n_p = %ld  %s = %.4f  iterations %d  residual %.2e  %.3f s\n", i + 1,
+           r->approach, gap, r->load, r->contact_patches, area_ratio_name(o), r->area_ratio, r->iterations,
+           r->residual, r->seconds);
+    fflush(stdout);
+}
+
+/* The signal that asked to stop, or 0 (indent_run.h's stop). */
+static int stop_signal(const void *state)
+{
+    (void)state;
+    return (int)cli_stop_signal;
+}
+
+/* The steps (indent_run.h: indent_run_steps), then what is drawn and analysed of those done, also
+ * after a failure; run.json finished. rough: the surface's measured h'rms and the solver's E*, for
+ * the theory columns. */
 static int run_steps(const indent_options *o, const im_theory_interface *rough, im_indentation *run,
-                     history_file *history, im_render_context *context, json_t *record)
+                     history_file *history, im_render_context *context, const run_folder *folder, json_t *record)
 {
     im_history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
     if (!rows)
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
-    int status = IM_OK, done = 0;
-    for (; done < o->target_count; ++done) {
-        if (cli_stop_signal) { /* checked between steps: a solve is never cut short */
-            status = im_fail(IM_EINTERRUPTED, "interrupted by signal %d", (int)cli_stop_signal);
-            break;
-        }
-        status = run_step(o, rough, run, history, rows, done);
-        if (status != IM_OK)
-            break;
-    }
-    /* done counts the steps whose fields and history line are all written (< target_count here) */
-    if (status != IM_OK)
-        im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", done + 1,
-                        o->target_count, target_name(o->control), o->targets[done],
-                        done, o->out);
+    const indent_run_plan plan = {
+        .dir = o->out, .punch = &o->punch, .rough = o->solver.periodic ? NULL : rough, .targets = o->targets,
+        .count = o->target_count, .target_name = target_name(o->control), .files = o->files,
+        .units = {o->solver.hardness, o->length_unit, o->force_unit}, .gap_scale = o->gap_scale,
+        .stop = stop_signal, .stepped = report_step, .state = o};
+    int done = 0;
+    int status = indent_run_steps(&plan, run, history, rows, &done);
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     if (o->frames) /* of the steps done, also when a later step failed */
@@ -1130,89 +1015,29 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
         write_k_fit(o, rough, rows, done, record);
     if (status != IM_OK) /* what the analysis or the fit reported is not the run's error */
         im_fail(status, "%s", message);
-    int recorded = run_record_finish(o->out, record, done, status);
-    if (status != IM_OK)
-        im_fail(status, "%s", message);
-    else
-        status = recorded; /* a run whose record could not be written did not finish */
     free(rows);
-    return status;
+    return run_folder_record(folder, record, done, status);
 }
 
-/* Whether name is contact_NNNN.png (four or more digits), a frame of --frames. */
-static int is_frame_file(const char *name)
+/* Makes and locks DIR (a stale lock taken over is a warning), then removes what an earlier run left
+ * there that this one would not replace (indent_run.h: indent_files_clear). */
+static int prepare_folder(const indent_options *o, run_folder *folder)
 {
-    const char *prefix = "contact_";
-    if (strncmp(name, prefix, strlen(prefix)) != 0)
-        return 0;
-    size_t digits = strspn(name + strlen(prefix), "0123456789");
-    return digits >= 4 && strcmp(name + strlen(prefix) + digits, ".png") == 0;
-}
-
-/* An earlier run's DIR/frames/contact_NNNN.png: the viewer page would show them beside this run's. */
-static int remove_earlier_frames(const indent_options *o)
-{
-    char folder[4096];
-    DIR *listing = im_path_join(folder, sizeof folder, o->out, "frames") == IM_OK ? opendir(folder) : NULL;
-    if (!listing)
-        return IM_OK; /* none there */
-    int status = IM_OK;
-    for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
-        char path[4096 + 256];
-        if (!is_frame_file(entry->d_name))
-            continue;
-        snprintf(path, sizeof path, "%s/%s", folder, entry->d_name);
-        if (im_output_check(path) == IM_OK && unlink(path) != 0 && errno != ENOENT)
-            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's frame: %s", path, strerror(errno));
-    }
-    closedir(listing);
-    return status;
-}
-
-/* Takes DIR's lock, then removes what an earlier run left there that this one would not replace:
- * temporary files of a killed run, and field files (this run writes its own, or none). Inputs are
- * kept (the output guard names them). */
-static int prepare_folder(const indent_options *o, im_folder_lock *lock)
-{
-    int status = im_folder_lock_acquire(o->out, "give this run another --out", lock);
+    const run_folder_rules rules = folder_rules(o);
+    int status = run_folder_open(&rules, 0, folder); /* --out may be any folder: not its subfolders */
     if (status != IM_OK)
         return status;
-    cli_warn_stale_lock(lock);
-    im_folder_remove_temporaries(o->out, 0); /* --out may be any folder: not its subfolders */
-    DIR *listing = opendir(o->out);
-    if (!listing)
-        return im_fail(IM_EIO, "%s: cannot list: %s", o->out, strerror(errno));
-    for (struct dirent *entry; status == IM_OK && (entry = readdir(listing)) != NULL;) {
-        char path[4096];
-        int field = is_analysis_file(entry->d_name); /* written again only if the history unloads */
-        for (int i = 0; i < STEP_FIELDS_MAX; ++i)
-            field |= is_step_file(entry->d_name, STEP_FIELD_PREFIXES[i]);
-        field |= is_distribution_file(entry->d_name);
-        if (!field)
-            continue;
-        status = im_path_join(path, sizeof path, o->out, entry->d_name);
-        if (status != IM_OK || im_output_check(path) != IM_OK)
-            continue;
-        if (unlink(path) != 0 && errno != ENOENT)
-            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field file: %s", path, strerror(errno));
-    }
-    closedir(listing);
-    return status == IM_OK ? remove_earlier_frames(o) : status;
+    cli_warn_stale_lock(&folder->lock);
+    return indent_files_clear(o->out);
 }
 
-/* DIR/index.html over what the run left (viewer.h), even after a failure; the run's own error,
- * if any, stays the one reported. */
-static int write_viewer_page(const indent_options *o, int status)
+/* DIR/index.html over what the run left, even after a failure; the run's own error, if any, stays the
+ * one reported. */
+static int write_viewer_page(const indent_options *o, const run_folder *folder, int status)
 {
-    char message[1024], title[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    char title[1024];
     snprintf(title, sizeof title, "indentmap indent: %s", o->smooth ? "smooth surface" : o->surface_path);
-    const im_viewer_options options = {.embed_images = o->page_embed};
-    int written = im_viewer_write_with(o->out, title, &options);
-    if (status == IM_OK)
-        return written;
-    im_fail(status, "%s", message);
-    return status;
+    return run_folder_page(folder, title, o->page_embed, status);
 }
 
 /* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
@@ -1321,12 +1146,10 @@ int cli_indent(int argc, char **argv)
                                        &run);
     if (status == IM_OK && o.solver.adhesion_work > 0)
         warn_if_zone_unresolved(&o);
-    if (status == IM_OK)
-        status = im_make_directories(o.out);
-    im_folder_lock lock = {.fd = -1};
+    run_folder folder = {.lock = {.fd = -1}};
     history_file history = {.fd = -1};
     if (status == IM_OK)
-        status = prepare_folder(&o, &lock);
+        status = prepare_folder(&o, &folder);
     if (status == IM_OK) {
         im_window w = im_indentation_window(run);
         printf("surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads, device %s\n", surface->nx,
@@ -1338,19 +1161,15 @@ int cli_indent(int argc, char **argv)
             status = make_figure_texts(&o, record);
         if (status == IM_OK)
             status = history_start(o.out, &history);
-        if (record && status != IM_OK) { /* no step solved: the record says why, not an earlier run's */
-            char message[1024];
-            snprintf(message, sizeof message, "%s", im_last_error());
-            run_record_finish(o.out, record, 0, status);
-            im_fail(status, "%s", message);
-        }
+        if (record && status != IM_OK) /* no step solved: the record says why, not an earlier run's */
+            run_folder_record(&folder, record, 0, status);
     }
     if (status == IM_OK)
-        status = run_steps(&o, &rough, run, &history, context, record);
+        status = run_steps(&o, &rough, run, &history, context, &folder, record);
     history_close(&history);
     if (record)
-        status = write_viewer_page(&o, status);
-    im_folder_lock_release(&lock);
+        status = write_viewer_page(&o, &folder, status);
+    run_folder_close(&folder);
     im_render_close(context);
     json_decref(record);
     im_indentation_free(run);

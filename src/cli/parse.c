@@ -137,31 +137,6 @@ int cli_parse_options(int argc, char **argv, const struct option *options, int h
 
 /* ---- outputs never overwrite inputs ---- */
 
-/* Two canonical forms of an existing path: with every symlink resolved (realpath), and with only
- * its folder resolved (a symlink named as the input is itself replaced by a rename onto its name).
- * A form that cannot be resolved (the path does not exist) is left empty. */
-typedef struct path_forms {
-    char full[PATH_MAX], named[PATH_MAX];
-} path_forms;
-
-static void locate(const char *path, path_forms *forms)
-{
-    forms->full[0] = forms->named[0] = '\0';
-    if (!path || !realpath(path, forms->full))
-        forms->full[0] = '\0';
-    char folder[PATH_MAX], resolved[PATH_MAX];
-    const char *slash = strrchr(path ? path : "", '/');
-    snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - path) + 1 : 1, slash ? path : ".");
-    if (path && realpath(folder, resolved)) {
-        int length = snprintf(forms->named, sizeof forms->named, "%s/%s", strcmp(resolved, "/") ? resolved : "",
-                              slash ? slash + 1 : path);
-        if (length < 0 || (size_t)length >= sizeof forms->named)
-            forms->named[0] = '\0';
-    }
-    if (!forms->full[0])
-        forms->named[0] = '\0'; /* a path that does not exist is no input and overwrites none */
-}
-
 int cli_protect_inputs(const char *const *inputs, int count)
 {
     for (int i = 0; i < count; ++i)
@@ -178,36 +153,4 @@ int cli_check_output_file(const char *option, const char *output)
         return 0;
     fprintf(stderr, "indentmap: %s %s\n", option, im_last_error());
     return -1;
-}
-
-/* Whether the resolved path `form` lies directly in folder `dir` under a name that writes() claims. */
-static int folder_claims(const char *dir, const char *form, int (*writes)(const char *name, const void *state),
-                         const void *state)
-{
-    const char *slash = strrchr(form, '/');
-    if (!form[0] || !slash)
-        return 0;
-    size_t length = (size_t)(slash - form);
-    int in_dir = length ? strlen(dir) == length && strncmp(dir, form, length) == 0 : strcmp(dir, "/") == 0;
-    return in_dir && writes(slash + 1, state);
-}
-
-int cli_check_output_folder(const char *option, const char *dir, int (*writes)(const char *name, const void *state),
-                            const void *state, const char *const *inputs, int count)
-{
-    char resolved[PATH_MAX];
-    if (!dir || !realpath(dir, resolved))
-        return 0; /* a folder that does not exist yet holds no input */
-    for (int i = 0; i < count; ++i) {
-        path_forms in;
-        locate(inputs[i], &in);
-        const char *hit = folder_claims(resolved, in.named, writes, state) ? in.named
-                        : folder_claims(resolved, in.full, writes, state)  ? in.full : NULL;
-        if (hit) {
-            fprintf(stderr, "indentmap: %s %s would write %s/%s over the input file %s (%s); give another "
-                    "output folder\n", option, dir, dir, strrchr(hit, '/') + 1, inputs[i], in.full);
-            return -1;
-        }
-    }
-    return 0;
 }

@@ -21,7 +21,13 @@ static const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patc
 
 enum { HISTORY_VALUES = 28 }; /* the columns above */
 
+/* Those im_history_format writes with %d or %ld. */
+static const char HISTORY_INTEGER_COLUMNS[] = "step,contact_patches,iterations,convolutions,patches,yielding_patches,"
+                                              "adhesive_patches,repulsive_patches";
+
 const char *im_history_columns(void) { return HISTORY_COLUMNS; }
+
+const char *im_history_integer_columns(void) { return HISTORY_INTEGER_COLUMNS; }
 
 /* Contact patches of the run's current state. */
 static int measure_patches(const im_indentation *run, im_history_row *row)

@@ -1,10 +1,9 @@
-/* Where a scene's outputs go: paths under its output folder, figures as PNG and PDF, the folder's
- * lock. */
+/* Where a scene's outputs go: paths under its output folder, figures as PNG and PDF (the folder itself:
+ * front/run_folder.h). */
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
-#include "scene/progress.h"
 #include "scene/provenance.h"
 
 #include <stdio.h>
@@ -40,18 +39,4 @@ int scene_output_path(const im_scene *scene, const char *relative, char *buffer,
     if (status == IM_OK)
         scene_outputs_note(scene, buffer);
     return status;
-}
-
-int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock)
-{
-    int status = im_folder_lock_acquire(scene->output_dir, "give this scene another [scene] output", lock);
-    if (status == IM_OK && lock->stale_pid > 0)
-        scene_warn(options, "taking over the stale lock %s of pid %ld, which no longer runs", lock->path,
-                   lock->stale_pid);
-    return status;
-}
-
-void scene_lock_release(scene_lock *lock)
-{
-    im_folder_lock_release(lock);
 }

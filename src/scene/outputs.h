@@ -20,9 +20,4 @@ int scene_open_output(const im_scene *scene, const char *relative, im_atomic_fil
 int scene_write_png_pdf(const im_scene *scene, const char *name,
                         int (*draw)(const im_scene *, const void *, const paper_file *), const void *data);
 
-/* The output folder's lock (io.h: im_folder_lock), with this advice for a folder in use. */
-typedef im_folder_lock scene_lock;
-int scene_lock_acquire(const im_scene *scene, const im_scene_run_options *options, scene_lock *lock);
-void scene_lock_release(scene_lock *lock);
-
 #endif

@@ -1,10 +1,10 @@
 /* A scene run: checks before any work, then the stages in order (the headers beside it have the pieces). */
 #include "indentmap/scene.h"
 #include "core/args.h"
+#include "front/run_folder.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
-#include "indentmap/viewer.h"
 #include "scene/distributions.h"
 #include "scene/ensemble.h"
 #include "scene/flat_k.h"
@@ -126,57 +126,67 @@ static int run_scene_stages(const im_scene *scene, const im_scene_run_options *o
     return status;
 }
 
-/* The scene file and its surface files become inputs no write may replace (io.h: the output
- * guard), and the FFTW wisdom file (scene->wisdom_path) may be neither one of them, nor in the output
- * folder, nor anything but wisdom. */
-static int protect_inputs(const im_scene *scene)
+/* scene_output_repair for run_folder.h's repair (state: the run options). */
+static void repair_output(const char *path, const void *options)
 {
-    int status = im_output_protect(scene->path);
-    char surface[IM_SCENE_PATH];
+    scene_output_repair(options, path);
+}
+
+/* What a scene writes into its output folder: anything under it (a sweep's points are subfolders). */
+static run_folder_rules folder_rules(const im_scene *scene, const im_scene_run_options *options)
+{
+    return (run_folder_rules){.dir = scene->output_dir, .lock_advice = "give this scene another [scene] output",
+                              .wisdom_advice = "keep it elsewhere", .repair = repair_output, .repair_state = options};
+}
+
+/* The scene file, its surface files and its profile (resolved by scene_prepare) become inputs no write
+ * may replace, and the FFTW wisdom file may be neither one of them, nor in the output folder, nor
+ * anything but wisdom (run_folder.h). */
+static int check_folder(const im_scene *scene, const im_scene_run_options *options)
+{
+    const char **inputs = calloc((size_t)scene->file_count + 2, sizeof *inputs);
+    char(*surfaces)[IM_SCENE_PATH] = malloc(sizeof *surfaces * (size_t)(scene->file_count + 1));
+    int status = inputs && surfaces ? IM_OK : im_fail(IM_ENOMEM, "%s: allocation of the inputs failed", scene->path);
     for (int i = 0; i < scene->file_count && status == IM_OK; ++i) {
-        status = im_scene_file_path(scene, i, surface, sizeof surface);
-        if (status == IM_OK)
-            status = im_output_protect(surface);
+        status = im_scene_file_path(scene, i, surfaces[i], sizeof surfaces[i]);
+        inputs[i + 2] = surfaces[i];
     }
     im_solver_options solver = scene_solver_options(scene);
-    if (status == IM_OK)
-        status = im_solver_wisdom_check(&solver);
-    const char *wisdom = im_solver_wisdom_file(&solver);
-    char folder[PATH_MAX], file[PATH_MAX];
-    int resolved = wisdom && im_path_absolute(scene->output_dir, folder, sizeof folder) == IM_OK &&
-                   im_path_absolute(wisdom, file, sizeof file) == IM_OK;
-    size_t length = resolved ? strlen(folder) : 0;
-    if (status == IM_OK && resolved && strncmp(file, folder, length) == 0 && file[length] == '/')
-        status = im_fail(IM_EINVAL, "the FFTW wisdom file %s lies in the output folder %s, where this run writes: "
-                         "keep it elsewhere", wisdom, scene->output_dir);
+    const run_folder_rules rules = folder_rules(scene, options);
+    if (status == IM_OK) {
+        inputs[0] = scene->path;
+        inputs[1] = scene->profile_file[0] ? scene->profile_file : NULL;
+        status = run_folder_check(&rules, inputs, scene->file_count + 2, &solver);
+    }
+    free(surfaces);
+    free(inputs);
     return status;
 }
 
-/* Temporary files a killed run left in the (locked) output folder. */
-static void remove_stale_temporaries(const im_scene *scene, const im_scene_run_options *options)
+/* Locks the output folder (a stale lock taken over is a warning) and removes the temporary files a
+ * killed run left in it. */
+static int open_folder(const im_scene *scene, const im_scene_run_options *options, run_folder *folder)
 {
+    const run_folder_rules rules = folder_rules(scene, options);
     /* table/, histories/, ...; a sweep's are one level further down, in its points' folders */
-    int removed = im_folder_remove_temporaries(scene->output_dir, scene_sweep_count(scene) > 1 ? 2 : 1);
+    int status = run_folder_open(&rules, scene_sweep_count(scene) > 1 ? 2 : 1, folder);
+    if (folder->lock.stale_pid > 0)
+        scene_warn(options, "taking over the stale lock %s of pid %ld, which no longer runs", folder->lock.path,
+                   folder->lock.stale_pid);
+    int removed = folder->temporaries_removed;
     if (removed > 0)
         scene_progress(options, "removed %d temporary file%s an interrupted run left in %s", removed,
                        removed == 1 ? "" : "s", scene->output_dir);
+    return status;
 }
 
-/* OUTPUT/index.html over what the run left (viewer.h), even after a failure or an interruption;
- * the run's own error, if any, stays the one returned. */
-static int write_viewer_page(const im_scene *scene, const im_scene_run_options *options, int status)
+/* OUTPUT/index.html over what the run left, even after a failure or an interruption; the run's own
+ * error, if any, stays the one returned. */
+static int write_viewer_page(const im_scene *scene, const run_folder *folder, int status)
 {
-    char message[1024], title[IM_SCENE_PATH + 96], page[IM_SCENE_PATH];
-    snprintf(message, sizeof message, "%s", im_last_error());
-    if (im_path_join(page, sizeof page, scene->output_dir, "index.html") == IM_OK)
-        scene_output_repair(options, page);
+    char title[IM_SCENE_PATH + 96];
     snprintf(title, sizeof title, "indentmap run: %s (%s)", scene->name, scene->path);
-    const im_viewer_options page_options = {.embed_images = scene->page_embed};
-    int written = im_viewer_write_with(scene->output_dir, title, &page_options);
-    if (status == IM_OK)
-        return written;
-    im_fail(status, "%s", message);
-    return status;
+    return run_folder_page(folder, title, scene->page_embed, status);
 }
 
 static int run_measured(im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
@@ -278,18 +288,12 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options, co
 {
     int status = check_runnable(scene);
     if (status == IM_OK)
-        status = protect_inputs(scene);
-    if (status == IM_OK && scene->profile_file[0]) /* resolved by scene_prepare */
-        status = im_output_protect(scene->profile_file);
+        status = check_folder(scene, options);
     if (status == IM_OK)
         status = scene_check_limits(scene, options);
+    run_folder folder = {.lock = {.fd = -1}};
     if (status == IM_OK)
-        status = im_make_directories(scene->output_dir);
-    scene_lock lock = {.fd = -1};
-    if (status == IM_OK)
-        status = scene_lock_acquire(scene, options, &lock);
-    if (status == IM_OK)
-        remove_stale_temporaries(scene, options);
+        status = open_folder(scene, options, &folder);
     im_scene_run_options checked = *options;
     if (status == IM_OK && checked.resume && scene_plans_changed(scene, options))
         checked.resume = 0; /* the kept results' last bits are not this run's: a fresh run */
@@ -306,8 +310,8 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options, co
             status = run_scene_stages(scene, options, ranks);
         int recorded = scene_plans_record(scene); /* also after an interruption: what was solved is kept */
         status = scene_outputs_close(scene, status == IM_OK ? recorded : status);
-        status = write_viewer_page(scene, options, status);
+        status = write_viewer_page(scene, &folder, status);
     }
-    scene_lock_release(&lock);
+    run_folder_close(&folder);
     return status;
 }
