@@ -25,6 +25,7 @@
 #include "indentmap/info.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
+#include "indentmap/paper.h"
 #include "indentmap/plot.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
@@ -417,12 +418,14 @@ REPORT(im_plot_geometry_of, "plot", im_plot_geometry_of(NULL, 0, &geometry))
 REPORT(im_plot_geometry_of, "geometry", im_plot_geometry_of(&plot, 0, NULL))
 SAFE_RESULT(im_plot_palette, "rgb", (im_plot_palette(0, NULL), 1))
 SAFE_RESULT(im_plot_family_color, "rgb", (im_plot_family_color(0, 2, NULL), 1))
-REPORT(im_plot_figure_contact_density, "slope_rms", im_plot_figure_contact_density(80.0, NULL, 2, NULL, path_text))
-REPORT(im_plot_figure_contact_density, "path", im_plot_figure_contact_density(80.0, values, 2, NULL, NULL))
-REPORT(im_plot_figure_area_ratio, "path", im_plot_figure_area_ratio(NULL, NULL, NULL))
-REPORT_VIEW(im_plot_figure_surface, "surface", im_plot_figure_surface(BAD, &params, 20, NULL, path_text))
-REPORT(im_plot_figure_surface, "params", im_plot_figure_surface(&good, NULL, 20, NULL, path_text))
-REPORT(im_plot_figure_surface, "path", im_plot_figure_surface(&good, &params, 20, NULL, NULL))
+
+/* ---- paper.h ---- */
+REPORT(im_paper_fig1_contact_density, "slope_rms", im_paper_fig1_contact_density(80.0, NULL, 2, NULL, path_text))
+REPORT(im_paper_fig1_contact_density, "path", im_paper_fig1_contact_density(80.0, values, 2, NULL, NULL))
+REPORT(im_paper_fig2_area_ratio, "path", im_paper_fig2_area_ratio(NULL, NULL, NULL))
+REPORT_VIEW(im_paper_fig3_surface, "surface", im_paper_fig3_surface(BAD, &params, 20, NULL, path_text))
+REPORT(im_paper_fig3_surface, "params", im_paper_fig3_surface(&good, NULL, 20, NULL, path_text))
+REPORT(im_paper_fig3_surface, "path", im_paper_fig3_surface(&good, &params, 20, NULL, NULL))
 
 /* ---- render.h (CONTEXT is never touched: the checks come first) ---- */
 REPORT(im_render_backend_from_name, "name", im_render_backend_from_name(NULL, &backend))
@@ -691,8 +694,8 @@ REPORT_AS_BEFORE(im_path_suffix, im_path_suffix(text, 0, "p", ".json"))
 REPORT_AS_BEFORE(im_path_absolute, im_path_absolute("a", text, 0))
 REPORT_AS_BEFORE(im_scene_file_path, im_scene_file_path(&scene, -3, text, sizeof text))
 REPORT_AS_BEFORE(im_plot_geometry_of, im_plot_geometry_of(&plot, -3, &geometry))
-REPORT_AS_BEFORE(im_plot_figure_contact_density, im_plot_figure_contact_density(80.0, values, -3, NULL, path_text))
-REPORT_AS_BEFORE(im_plot_figure_surface, im_plot_figure_surface(&good, &params, -3, NULL, path_text))
+REPORT_AS_BEFORE(im_paper_fig1_contact_density, im_paper_fig1_contact_density(80.0, values, -3, NULL, path_text))
+REPORT_AS_BEFORE(im_paper_fig3_surface, im_paper_fig3_surface(&good, &params, -3, NULL, path_text))
 REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 5, 20, NULL))
 REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 3, 2, NULL))
 REPORT_AS_BEFORE(im_solver_solve, im_solver_solve(plan, values, (enum im_control)99, 0.1, out_values, big_values, NULL))
@@ -715,7 +718,7 @@ static im_plot plot_of(const im_plot_panel *panels) { im_plot p = im_plot_defaul
 static im_plot_series series_xy(const double *xs, const double *ys) { return (im_plot_series){.x = xs, .y = ys, .n = 3}; }
 static im_plot_panel panel_of(const im_plot_series *series) { return (im_plot_panel){.series = series, .series_count = 1}; }
 static im_plot_series series;
-static im_plot_points points;
+static im_paper_points points;
 REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(NULL), im_plot_write(&plot, path_text)))
 REPORT_AS_BEFORE(im_plot_write, (series = series_xy(NULL, values), plot_panel = panel_of(&series), plot = plot_of(&plot_panel),
                                  im_plot_write(&plot, path_text)))
@@ -724,8 +727,8 @@ REPORT_AS_BEFORE(im_plot_write, (series = series_xy(values, NULL), plot_panel = 
 REPORT_AS_BEFORE(im_plot_write, (plot_panel = (im_plot_panel){.series = NULL, .series_count = 2}, plot = plot_of(&plot_panel),
                                  im_plot_write(&plot, path_text)))
 REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(&plot_panel), plot.texts = NULL, plot.text_count = 3, im_plot_write(&plot, path_text)))
-REPORT_AS_BEFORE(im_plot_figure_area_ratio, (points = (im_plot_points){.x = NULL, .y = values, .count = 3},
-                                             im_plot_figure_area_ratio(&points, NULL, path_text)))
+REPORT_AS_BEFORE(im_paper_fig2_area_ratio, (points = (im_paper_points){.x = NULL, .y = values, .count = 3},
+                                            im_paper_fig2_area_ratio(&points, NULL, path_text)))
 REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = NULL, im_figure_write(&figure, path_text)))
 REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = &(im_figure_panel){.image = NULL},
                                    im_figure_write(&figure, path_text)))
