@@ -201,6 +201,11 @@ static void make_fixtures(void)
     path_text = strdup(test_path("misuse.npy"));
 }
 
+/* ---- status.h (the format through a variable: a literal NULL is refused by the compiler) ---- */
+static const char *no_format;
+REPORT(im_fail, "fmt", im_fail(IM_EIO, no_format))
+REPORT(im_fail_context, "fmt", im_fail_context(IM_EIO, no_format))
+
 /* ---- field.h ---- */
 REPORT(im_field_create, "out", im_field_create(4, 4, 1.0, NULL))
 REPORT_VIEW(im_field_clone, "src", im_field_clone(BAD, &field_out))
@@ -742,8 +747,8 @@ REPORT_AS_BEFORE(im_indentation_create, (punch = im_indenter_cone(80.0), punch.k
 REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, .rgba = NULL},
                                     im_animation_gif(&image, 1, 0.1, path_text)))
 
-/* Public functions of scalars only (or of a value they document as never NULL, such as the status
- * module's format strings): nothing to misuse here. A new function belongs either here or in a case
+/* Public functions of scalars only (or of a pointer they document as accepting NULL, such as
+ * im_set_stop_flag's): nothing to misuse here. A new function belongs either here or in a case
  * above. */
 static const char *const no_pointer_arguments[] = {
     "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_contact_tension_norm", "im_memory_available",
@@ -752,8 +757,8 @@ static const char *const no_pointer_arguments[] = {
     "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",
     "im_measure_sneddon_modulus", "im_history_columns", "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
     "im_scene_plot_name", "im_solver_options_default", "im_quality_default_tolerance",
-    "im_influence_square", "im_strstatus", "im_last_error", "im_fail", "im_fail_context",
-    "im_set_stop_flag", "im_stop_requested", "im_surface_params_default",
+    "im_influence_square", "im_strstatus", "im_last_error", "im_set_stop_flag", "im_stop_requested",
+    "im_surface_params_default",
     "im_theory_interface_default", "im_theory_wavy1d_area_fraction",
     "im_theory_wavy2d_light_area_fraction", "im_theory_wavy2d_near_full_area_fraction",
     "im_theory_moment", "im_theory_height_rms_moments", "im_theory_height_rms_eq15",
