@@ -1,6 +1,11 @@
 /* indentmap/plot.h: publication line and scatter plots drawn with cairo (the paper's Figs. 1-3
  * built on them are in paper.h).
  *
+ * Entry points:
+ *   im_plot_default, im_plot_write        a grid of panels of series, written as PNG, PDF or SVG
+ *   im_plot_geometry_of                   where a panel lands in the picture
+ *   im_plot_palette, im_plot_family_color the series' colours
+ *
  * A plot is a grid of axes panels (rows x columns, e.g. Fig. 5's 2 x 3). Each panel has a linear
  * or logarithmic x and y axis with nice ticks (1-2-5 steps, or decades: im_figure_ticks), tick
  * labels, axis labels, an optional bold panel label "(a)" and a title above it, a frame with
@@ -33,6 +38,8 @@
  *
  * Misuse (status.h): IM_EINVAL for a NULL plot, path, output or series array and for an invalid
  * field view; im_plot_palette and im_plot_family_color do nothing for a NULL rgb.
+ * Threads: thread-safe; two threads may write plots at once (to different paths). The fonts are
+ * loaded once per process, under a lock.
  */
 #ifndef INDENTMAP_PLOT_H
 #define INDENTMAP_PLOT_H
