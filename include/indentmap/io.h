@@ -438,6 +438,9 @@ typedef struct im_png_options {
     int compression;
 } im_png_options;
 
+/* im_png_write: options may be NULL (no texts, no pHYs, zlib level 6). IM_EINVAL for a
+ * size, channel count, stride or text it cannot write, the errors of an atomic write (IM_EIO,
+ * nothing left at path). */
 int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
                  size_t stride, const im_png_options *options);
 

@@ -235,6 +235,9 @@ enum im_device { IM_DEVICE_CPU = 0, IM_DEVICE_GPU = 1, IM_DEVICE_AUTO = 2 };
 /* "cpu", "gpu", "auto" -> IM_DEVICE_*; IM_EINVAL naming the word otherwise. */
 int im_device_parse(const char *word, int *device);
 
+/* The defaults: E* = 1, tol im_quality_default_tolerance(), at most 10000 iterations, FFTW_ESTIMATE
+ * without wisdom, crop windows (margin 4), the cascade start and the preconditioner, no hardness,
+ * adhesion or periodic mode, the CPU engine. */
 im_solver_options im_solver_options_default(void);
 /* IM_EINVAL naming the first option out of range. */
 int im_solver_options_check(const im_solver_options *options);
@@ -460,6 +463,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
  * hardness): the residual impression once the punch is withdrawn. */
 int im_indentation_plastic(const im_indentation *run, im_field **plastic);
 
+/* The sub-grid the run solves (all zero for a NULL run), and the plan it solves on (NULL for a NULL
+ * run; owned by the run). */
 im_window im_indentation_window(const im_indentation *run);
 const im_solver_plan *im_indentation_plan(const im_indentation *run);
 
