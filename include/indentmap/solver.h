@@ -86,8 +86,8 @@
  * may be made and solved in different threads at once on the CPU engine (scenes' ensembles do).
  * The library holds one lock around FFTW's planner and wisdom for all its own calls; an application
  * that calls FFTW's planner itself meanwhile races with it (FFTW's planner is not thread-safe). Each
- * solve runs on the OpenMP thread count in force; its results do not depend on it. GPU plans
- * (options.device) are made and used from one thread.
+ * solve runs on the OpenMP thread count in force (sums compensated: loads agree to a few ulp
+ * whatever the count). GPU plans (options.device) are made and used from one thread.
  */
 /* ---- Hardness (perfect plasticity at a pressure cap) ----
  * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure
