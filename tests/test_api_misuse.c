@@ -25,6 +25,7 @@
 #include "indentmap/info.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
+#include "indentmap/paper.h"
 #include "indentmap/plot.h"
 #include "indentmap/render.h"
 #include "indentmap/scene.h"
@@ -200,6 +201,11 @@ static void make_fixtures(void)
     assert_int_equal(im_surface_psd(&good, 4, &psd), IM_OK);
     path_text = strdup(test_path("misuse.npy"));
 }
+
+/* ---- status.h (the format through a variable: a literal NULL is refused by the compiler) ---- */
+static const char *no_format;
+REPORT(im_fail, "fmt", im_fail(IM_EIO, no_format))
+REPORT(im_fail_context, "fmt", im_fail_context(IM_EIO, no_format))
 
 /* ---- field.h ---- */
 REPORT(im_field_create, "out", im_field_create(4, 4, 1.0, NULL))
@@ -418,12 +424,14 @@ REPORT(im_plot_geometry_of, "plot", im_plot_geometry_of(NULL, 0, &geometry))
 REPORT(im_plot_geometry_of, "geometry", im_plot_geometry_of(&plot, 0, NULL))
 SAFE_RESULT(im_plot_palette, "rgb", (im_plot_palette(0, NULL), 1))
 SAFE_RESULT(im_plot_family_color, "rgb", (im_plot_family_color(0, 2, NULL), 1))
-REPORT(im_plot_figure_contact_density, "slope_rms", im_plot_figure_contact_density(80.0, NULL, 2, NULL, path_text))
-REPORT(im_plot_figure_contact_density, "path", im_plot_figure_contact_density(80.0, values, 2, NULL, NULL))
-REPORT(im_plot_figure_area_ratio, "path", im_plot_figure_area_ratio(NULL, NULL, NULL))
-REPORT_VIEW(im_plot_figure_surface, "surface", im_plot_figure_surface(BAD, &params, 20, NULL, path_text))
-REPORT(im_plot_figure_surface, "params", im_plot_figure_surface(&good, NULL, 20, NULL, path_text))
-REPORT(im_plot_figure_surface, "path", im_plot_figure_surface(&good, &params, 20, NULL, NULL))
+
+/* ---- paper.h ---- */
+REPORT(im_paper_fig1_contact_density, "slope_rms", im_paper_fig1_contact_density(80.0, NULL, 2, NULL, path_text))
+REPORT(im_paper_fig1_contact_density, "path", im_paper_fig1_contact_density(80.0, values, 2, NULL, NULL))
+REPORT(im_paper_fig2_area_ratio, "path", im_paper_fig2_area_ratio(NULL, NULL, NULL))
+REPORT_VIEW(im_paper_fig3_surface, "surface", im_paper_fig3_surface(BAD, &params, 20, NULL, path_text))
+REPORT(im_paper_fig3_surface, "params", im_paper_fig3_surface(&good, NULL, 20, NULL, path_text))
+REPORT(im_paper_fig3_surface, "path", im_paper_fig3_surface(&good, &params, 20, NULL, NULL))
 
 /* ---- render.h (CONTEXT is never touched: the checks come first) ---- */
 REPORT(im_render_backend_from_name, "name", im_render_backend_from_name(NULL, &backend))
@@ -692,8 +700,8 @@ REPORT_AS_BEFORE(im_path_suffix, im_path_suffix(text, 0, "p", ".json"))
 REPORT_AS_BEFORE(im_path_absolute, im_path_absolute("a", text, 0))
 REPORT_AS_BEFORE(im_scene_file_path, im_scene_file_path(&scene, -3, text, sizeof text))
 REPORT_AS_BEFORE(im_plot_geometry_of, im_plot_geometry_of(&plot, -3, &geometry))
-REPORT_AS_BEFORE(im_plot_figure_contact_density, im_plot_figure_contact_density(80.0, values, -3, NULL, path_text))
-REPORT_AS_BEFORE(im_plot_figure_surface, im_plot_figure_surface(&good, &params, -3, NULL, path_text))
+REPORT_AS_BEFORE(im_paper_fig1_contact_density, im_paper_fig1_contact_density(80.0, values, -3, NULL, path_text))
+REPORT_AS_BEFORE(im_paper_fig3_surface, im_paper_fig3_surface(&good, &params, -3, NULL, path_text))
 REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 5, 20, NULL))
 REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 3, 2, NULL))
 REPORT_AS_BEFORE(im_solver_solve, im_solver_solve(plan, values, (enum im_control)99, 0.1, out_values, big_values, NULL))
@@ -716,7 +724,7 @@ static im_plot plot_of(const im_plot_panel *panels) { im_plot p = im_plot_defaul
 static im_plot_series series_xy(const double *xs, const double *ys) { return (im_plot_series){.x = xs, .y = ys, .n = 3}; }
 static im_plot_panel panel_of(const im_plot_series *series) { return (im_plot_panel){.series = series, .series_count = 1}; }
 static im_plot_series series;
-static im_plot_points points;
+static im_paper_points points;
 REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(NULL), im_plot_write(&plot, path_text)))
 REPORT_AS_BEFORE(im_plot_write, (series = series_xy(NULL, values), plot_panel = panel_of(&series), plot = plot_of(&plot_panel),
                                  im_plot_write(&plot, path_text)))
@@ -725,8 +733,8 @@ REPORT_AS_BEFORE(im_plot_write, (series = series_xy(values, NULL), plot_panel = 
 REPORT_AS_BEFORE(im_plot_write, (plot_panel = (im_plot_panel){.series = NULL, .series_count = 2}, plot = plot_of(&plot_panel),
                                  im_plot_write(&plot, path_text)))
 REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(&plot_panel), plot.texts = NULL, plot.text_count = 3, im_plot_write(&plot, path_text)))
-REPORT_AS_BEFORE(im_plot_figure_area_ratio, (points = (im_plot_points){.x = NULL, .y = values, .count = 3},
-                                             im_plot_figure_area_ratio(&points, NULL, path_text)))
+REPORT_AS_BEFORE(im_paper_fig2_area_ratio, (points = (im_paper_points){.x = NULL, .y = values, .count = 3},
+                                            im_paper_fig2_area_ratio(&points, NULL, path_text)))
 REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = NULL, im_figure_write(&figure, path_text)))
 REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = &(im_figure_panel){.image = NULL},
                                    im_figure_write(&figure, path_text)))
@@ -740,8 +748,8 @@ REPORT_AS_BEFORE(im_indentation_create, (punch = im_indenter_cone(80.0), punch.k
 REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, .rgba = NULL},
                                     im_animation_gif(&image, 1, 0.1, path_text)))
 
-/* Public functions of scalars only (or of a value they document as never NULL, such as the status
- * module's format strings): nothing to misuse here. A new function belongs either here or in a case
+/* Public functions of scalars only (or of a pointer they document as accepting NULL, such as
+ * im_set_stop_flag's): nothing to misuse here. A new function belongs either here or in a case
  * above. */
 static const char *const no_pointer_arguments[] = {
     "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_contact_tension_norm", "im_memory_available",
@@ -751,8 +759,8 @@ static const char *const no_pointer_arguments[] = {
     "im_measure_sneddon_modulus", "im_history_columns", "im_history_integer_columns",
     "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
     "im_scene_plot_name", "im_solver_options_default", "im_quality_default_tolerance",
-    "im_influence_square", "im_strstatus", "im_last_error", "im_fail", "im_fail_context",
-    "im_set_stop_flag", "im_stop_requested", "im_surface_params_default",
+    "im_influence_square", "im_strstatus", "im_last_error", "im_set_stop_flag", "im_stop_requested",
+    "im_surface_params_default",
     "im_theory_interface_default", "im_theory_wavy1d_area_fraction",
     "im_theory_wavy2d_light_area_fraction", "im_theory_wavy2d_near_full_area_fraction",
     "im_theory_moment", "im_theory_height_rms_moments", "im_theory_height_rms_eq15",

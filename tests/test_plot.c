@@ -6,6 +6,7 @@
 #include "support.h"
 
 #include "indentmap/io.h"
+#include "indentmap/paper.h"
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
@@ -664,7 +665,7 @@ static void test_figure_contact_density(void **state)
     (void)state;
     double slope[] = {0.16};
     const char *path = test_path("fig1.png");
-    assert_int_equal(im_plot_figure_contact_density(80.0, slope, 1, NULL, path), IM_OK);
+    assert_int_equal(im_paper_fig1_contact_density(80.0, slope, 1, NULL, path), IM_OK);
     picture p = read_picture(path);
     im_plot_geometry g = figure_geometry((im_plot_axis){IM_PLOT_LINEAR, 0.0, 1.0, "r / a"},
                                          (im_plot_axis){IM_PLOT_LINEAR, 0.0, 1.05, "γ(r)"}, "t");
@@ -679,9 +680,9 @@ static void test_figure_contact_density(void **state)
     }
     free(p.rgb);
     double bad[] = {0.08, -0.01};
-    assert_int_equal(im_plot_figure_contact_density(80.0, bad, 2, NULL, path), IM_EINVAL);
-    assert_int_equal(im_plot_figure_contact_density(95.0, slope, 1, NULL, path), IM_EINVAL);
-    assert_int_equal(im_plot_figure_contact_density(80.0, slope, 0, NULL, path), IM_EINVAL);
+    assert_int_equal(im_paper_fig1_contact_density(80.0, bad, 2, NULL, path), IM_EINVAL);
+    assert_int_equal(im_paper_fig1_contact_density(95.0, slope, 1, NULL, path), IM_EINVAL);
+    assert_int_equal(im_paper_fig1_contact_density(80.0, slope, 0, NULL, path), IM_EINVAL);
 }
 
 static void test_figure_area_ratio(void **state)
@@ -690,9 +691,9 @@ static void test_figure_area_ratio(void **state)
     /* Table 1: rho_c, the simulations' A/A_cone and sd, and eq. (12)'s values. */
     double rho[] = {17.63, 8.82, 4.41, 2.20, 1.10}, mean[] = {1.002, 1.001, 0.985, 0.909, 0.724};
     double sd[] = {0.009, 0.017, 0.031, 0.045, 0.044}, eq12[] = {0.998, 0.992, 0.969, 0.894, 0.719};
-    im_plot_points points = {rho, mean, sd, 5, NULL};
+    im_paper_points points = {rho, mean, sd, 5, NULL};
     const char *path = test_path("fig2.png");
-    assert_int_equal(im_plot_figure_area_ratio(&points, NULL, path), IM_OK);
+    assert_int_equal(im_paper_fig2_area_ratio(&points, NULL, path), IM_OK);
     picture p = read_picture(path);
     im_plot_geometry g = figure_geometry((im_plot_axis){IM_PLOT_LOG, 0.1, 100.0, "ρ_{c} = cot α / h′_{rms}"},
                                          (im_plot_axis){IM_PLOT_LINEAR, 0.0, 1.05, "A / A_{cone}"}, NULL);
@@ -703,7 +704,7 @@ static void test_figure_area_ratio(void **state)
     free(p.rgb);
     /* Without points the curves are bare: eq. (12) through Table 1's values (where eq. (6) is at
      * least 0.03 away), eq. (6), dotted, through erf(sqrt(pi)/2 rho_c), within a dot's spacing. */
-    assert_int_equal(im_plot_figure_area_ratio(NULL, NULL, path), IM_OK);
+    assert_int_equal(im_paper_fig2_area_ratio(NULL, NULL, path), IM_OK);
     p = read_picture(path);
     const uint8_t black[3] = {0, 0, 0};
     for (int i = 2; i < 5; ++i)
@@ -716,7 +717,7 @@ static void test_figure_area_ratio(void **state)
     }
     free(p.rgb);
     rho[0] = 0.0;
-    assert_int_equal(im_plot_figure_area_ratio(&points, NULL, path), IM_EINVAL);
+    assert_int_equal(im_paper_fig2_area_ratio(&points, NULL, path), IM_EINVAL);
 }
 
 static void test_figure_surface(void **state)
@@ -727,14 +728,14 @@ static void test_figure_surface(void **state)
     im_field *surface;
     assert_int_equal(im_surface_generate(&params, &surface), IM_OK);
     const char *path = test_path("fig3.png");
-    assert_int_equal(im_plot_figure_surface(surface, &params, 40, NULL, path), IM_OK);
+    assert_int_equal(im_paper_fig3_surface(surface, &params, 40, NULL, path), IM_OK);
     picture p = read_picture(path);
     assert_true(p.width > 2 * 667 && p.height > 2 * 500); /* 2 x 2 frames of 160 x 120 pt at 300 dpi */
     free(p.rgb);
-    assert_int_equal(im_plot_figure_surface(surface, &params, 40, NULL, test_path("fig3.pdf")), IM_OK);
-    assert_int_equal(im_plot_figure_surface(surface, &params, 5, NULL, path), IM_EINVAL);
+    assert_int_equal(im_paper_fig3_surface(surface, &params, 40, NULL, test_path("fig3.pdf")), IM_OK);
+    assert_int_equal(im_paper_fig3_surface(surface, &params, 5, NULL, path), IM_EINVAL);
     params.hurst = 1.5;
-    assert_int_equal(im_plot_figure_surface(surface, &params, 40, NULL, path), IM_EINVAL);
+    assert_int_equal(im_paper_fig3_surface(surface, &params, 40, NULL, path), IM_EINVAL);
     im_field_free(surface);
 }
 

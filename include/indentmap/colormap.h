@@ -2,6 +2,13 @@
  * colour. The GL renderer uploads the same tables and must reproduce im_colormap_rgb exactly (to
  * one 8-bit level); its tests compare against this module.
  *
+ * Entry points:
+ *   im_colormap_make, im_colormap_check         a map with its norm; is the norm usable
+ *   im_colormap_from_name, im_colormap_name     "viridis" <-> IM_COLORMAP_VIRIDIS
+ *   im_colormap_index, im_colormap_rgb          one value's table entry and colour
+ *   im_colormap_field_image                     a field as an RGB image
+ *   im_colormap_table                           a map's 256 colours
+ *
  * A norm maps [lo, hi] linearly (or logarithmically, lo > 0) onto the 256 table entries:
  * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
  * lo take the `under` colour, above hi the `over` colour, NaN the `bad` colour. Several panels
@@ -10,6 +17,7 @@
  * Misuse (status.h): IM_EINVAL for a NULL argument; im_colormap_index gives -2 (as for NaN) for a
  * NULL colormap, and im_colormap_rgb and im_colormap_field_image do nothing for a NULL argument or
  * an invalid field view (both record the message).
+ * Threads: every function is thread-safe (the tables are constant; nothing else is shared).
  */
 #ifndef INDENTMAP_COLORMAP_H
 #define INDENTMAP_COLORMAP_H
@@ -40,14 +48,16 @@ typedef struct im_colormap {
     uint8_t under[3], over[3], bad[3];
 } im_colormap;
 
-/* A colour map with a linear norm on [lo, hi]; under and over take the end colours, bad grey. */
+/* A colour map with a linear norm on [lo, hi]; under and over take the end colours, bad grey. Checks
+ * nothing (im_colormap_check does); an unknown map takes viridis's colours. */
 im_colormap im_colormap_make(im_colormap_id map, double lo, double hi);
 
 /* IM_EINVAL, listing the valid names, for an unknown name. */
 int im_colormap_from_name(const char *name, im_colormap_id *map);
+/* The name of a map ("viridis"), "unknown" for an id out of range; never NULL. */
 const char *im_colormap_name(im_colormap_id map);
 
-/* The 256 x 3 table of a map. */
+/* The 256 x 3 table of a map (static storage; viridis's for an id out of range); never NULL. */
 const uint8_t (*im_colormap_table(im_colormap_id map))[3];
 
 /* IM_EINVAL if the norm is unusable (hi <= lo, non-finite, log with lo <= 0). */

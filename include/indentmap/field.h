@@ -1,5 +1,11 @@
 /* indentmap/field.h: a scalar field on a regular grid (heights, forces, gaps, ...).
  *
+ * Entry points:
+ *   im_field_create, im_field_clone, im_field_free   a field of the caller's (im_field_count: its size)
+ *   im_field_check_view, im_field_check_finite       whether a field can be used
+ *   im_memory_check, im_memory_available             the memory test every large allocation passes
+ *   im_memory_set_limit, im_memory_limit             a cap below what the machine has
+ *
  * Layout: row-major, value (ix, iy) at data[iy * nx + ix], ix along x in [0, nx), iy along y in
  * [0, ny). Row 0 is y = 0: images put it at the bottom, as a plot's axes would. The grid spacing
  * delta is the side of one square patch; lengths are in units of delta unless the field carries a
@@ -7,6 +13,8 @@
  *
  * Misuse (status.h): every function returns IM_EINVAL for a NULL output or an invalid view
  * (im_field_check_view) and does not crash; im_field_free accepts NULL.
+ * Threads: thread-safe on distinct fields (one field may be read by several threads). The memory
+ * cap is one process-wide value (atomic): set it before work starts.
  */
 #ifndef INDENTMAP_FIELD_H
 #define INDENTMAP_FIELD_H
@@ -34,7 +42,8 @@ typedef struct im_field {
  * Returns IM_OK and sets *out, or an error status. */
 int im_field_create(int nx, int ny, double delta, im_field **out);
 
-/* Deep copy of a field. */
+/* Deep copy of a field into a new *out; the same errors as im_field_create, IM_EINVAL for an
+ * invalid src view. */
 int im_field_clone(const im_field *src, im_field **out);
 
 /* Frees a field; accepts NULL. */

@@ -4,6 +4,12 @@
  * and output as PNG (with the run's parameters in tEXt chunks and the resolution in pHYs), PDF or
  * SVG; frames of an indentation run and animations (GIF, MP4).
  *
+ * Entry points:
+ *   im_figure_default, im_figure_write           a figure of panels, written as PNG, PDF or SVG
+ *   im_figure_colorbar_label                     the colour bar's label of a quantity
+ *   im_figure_write_frame, im_frame_path         one frame of a run, and where frames go
+ *   im_animation_gif, im_animation_mp4           frames as an animation
+ *
  * GL draws the data, cairo the annotations. Text uses FreeType on the DejaVu Sans files
  * (IM_FIGURE_FONT, IM_FIGURE_FONT_BOLD) loaded directly, so output does not depend on fontconfig.
  * Every file is written atomically (io.h): an unwritable path gives IM_EIO and leaves nothing.
@@ -18,6 +24,8 @@
  *
  * Misuse (status.h): IM_EINVAL for a NULL figure, frame list, path or output; im_figure_ticks
  * gives 0 ticks for a NULL colormap or array.
+ * Threads: thread-safe; two threads may write figures at once (to different paths). The fonts are
+ * loaded once per process, under a lock; im_animation_mp4 runs ffmpeg as a child process.
  */
 #ifndef INDENTMAP_FIGURE_H
 #define INDENTMAP_FIGURE_H
@@ -132,10 +140,10 @@ im_gif_options im_gif_options_default(void);
 int im_animation_gif_with(const im_image *frames, int count, const im_gif_options *options,
                           const char *path);
 
-/* im_animation_gif_with with the default options but seconds_per_frame. */
+/* im_animation_gif_with with the default options but seconds_per_frame; its errors. */
 int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path);
 
-/* Whether the ffmpeg command is on PATH (as `command -v ffmpeg`). */
+/* 1 when the ffmpeg command is on PATH (as `command -v ffmpeg`), 0 otherwise; never fails. */
 int im_ffmpeg_available(void);
 
 /* Encodes DIRECTORY/PREFIX_%04d.png, frames 0 to count - 1 (later ones in the folder, such as a

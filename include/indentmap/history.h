@@ -2,8 +2,13 @@
  * histories/member_FF_SEED.csv and Python's history arrays: its columns, the measurement beside each
  * solved step, one row writer and one reader.
  *
- * Entry points: im_history_columns, im_history_integer_columns, im_history_measure, im_history_format, im_history_parse, and the
- * indentation analysis `indent` writes beside a history, im_history_write_analysis.
+ * Entry points:
+ *   im_history_columns                     the schema: its column names, in order
+ *   im_history_integer_columns             those of its columns that hold integers
+ *   im_history_measure                     a solved step's row (the theory and measures beside it)
+ *   im_history_format, im_history_parse    a row as CSV text and back
+ *   im_history_write_analysis              the indentation analysis `indent` writes beside a history
+ *   im_history_units_json                  run.json's "units" block
  *
  * Columns, in order: step, the solver's results (approach, load, load_star, contact_patches,
  * area_ratio, mean_pressure, max_pressure, iterations, residual, seconds, convolutions), the theory
@@ -16,7 +21,7 @@
  * written.
  *
  * Misuse (status.h): NULL arrays or outputs give IM_EINVAL naming the function and the argument.
- * Thread-safe on distinct rows. */
+ * Threads: thread-safe on distinct rows and files. */
 #ifndef INDENTMAP_HISTORY_H
 #define INDENTMAP_HISTORY_H
 

@@ -1,5 +1,13 @@
 /* indentmap/indenter.h: rigid axisymmetric punches and their smooth-contact closed forms.
  *
+ * Entry points:
+ *   im_indenter_cone, im_indenter_sphere, im_indenter_flat, im_indenter_from_profile   a punch
+ *   im_punch_parse, im_punch_name, im_indenter_check    punches by name, and checked
+ *   im_indenter_height, im_indenter_profile, im_indenter_axis   its face over the grid
+ *   im_indenter_load, im_indenter_contact_radius, im_indenter_pressure,
+ *   im_indenter_approach_for_load, im_indenter_area_for_load    the smooth contact's closed forms
+ *   im_profile_read, im_profile_axisymmetric, im_profile_field, im_profile_free   user-given profiles
+ *
  * A punch is a rigid body of revolution whose axis is vertical and passes through the point
  * (x0, y0) of the surface plane. Its profile z(r) is the height of the punch face above its
  * lowest point at distance r from the axis (so z(0) = 0 and z >= 0):
@@ -29,6 +37,8 @@
  * Misuse (status.h): IM_EINVAL for a NULL argument or an invalid field view; the value functions
  * of a NULL punch or profile give NaN (im_profile_kind: -1), im_indenter_axis and
  * im_profile_samples set their outputs to NaN, or NULL and 0; im_profile_free accepts NULL.
+ * Threads: thread-safe: a punch is a value and a profile immutable once made (one profile may
+ * serve several threads at once).
  */
 #ifndef INDENTMAP_INDENTER_H
 #define INDENTMAP_INDENTER_H

@@ -2,8 +2,14 @@
  * formats` print, so that every front end (the program, Python's im.info() and im.formats()) says the
  * same bytes.
  *
+ * Entry points:
+ *   im_info_text      the build: version, libraries, threads, render backend, GPU devices
+ *   im_formats_text   the surface formats im_surface_read reads
+ *
  * Both functions write into a new buffer (*text, UTF-8, lines ending in '\n'; release it with free()).
  * Misuse (status.h): IM_EINVAL for a NULL text.
+ * Threads: thread-safe; im_info_text opens and closes a render context of its own (render.h) and
+ * probes the Vulkan devices, im_formats_text runs the Gwyddion reader as a child process.
  */
 #ifndef INDENTMAP_INFO_H
 #define INDENTMAP_INFO_H

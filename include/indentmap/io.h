@@ -1,6 +1,16 @@
 /* indentmap/io.h: files in and out: surfaces (.npy, text matrix, Gwyddion .gsf), PNG images,
  * and the atomic-write discipline every writer follows.
  *
+ * Entry points:
+ *   im_surface_read, im_surface_read_with, im_surface_write   a surface, its format by name or content
+ *   im_npy_*, im_text_*, im_gsf_*, im_sdf_*, im_netcdf_*, im_x3p_*   one format each (_read, _write)
+ *   im_png_write, im_png_read                                 images
+ *   im_atomic_open, im_atomic_commit, im_atomic_abort, im_write_file_atomic   atomic writes
+ *   im_output_protect, im_output_check                        the inputs no write may replace
+ *   im_folder_lock_acquire, im_folder_lock_release            an output folder's lock
+ *   im_read_open, im_read_line, im_read_text_file             bounded reading
+ *   im_path_join, im_path_absolute, im_make_directories       paths
+ *
  * Atomic writes: every file is written to a temporary file with a short unique name beside its
  * destination, ".im.tmp.PID.N" (N counts the files this process opened, across threads), and
  * renamed over it only when complete, so an interrupted run never leaves a half-written file and
@@ -21,6 +31,11 @@
  * view. For NULL, im_file_kind_of_bytes gives IM_KIND_NONE, im_atomic_is_temporary_name and
  * im_folder_remove_temporaries 0, im_length_unit_metres 0, im_path_utf8 "" (returns 0);
  * im_atomic_abort and im_folder_lock_release accept NULL; im_pair_writers_lock(NULL) is -1.
+ * Threads: thread-safe on distinct files and handles (an im_atomic_file or a stream is one
+ * thread's; the temporary names' counter and the guard's list are shared under locks), with one
+ * exception: libnetcdf is not thread-safe, so im_netcdf_read and im_netcdf_write (and
+ * im_surface_read or _write of a NetCDF file) run in one thread at a time. Folder locks are
+ * flock(2)s: two threads of one process asking for one folder's lock are refused as two processes.
  */
 #ifndef INDENTMAP_IO_H
 #define INDENTMAP_IO_H
@@ -104,10 +119,14 @@ void im_atomic_remove_temporaries(void);
  * or "NAME.tmp.PID" / "NAME.tmp.PID.mp4" as earlier versions named them. */
 int im_atomic_is_temporary_name(const char *name);
 
-/* Writes a whole text (or binary) buffer atomically. */
+/* Writes a whole text (or binary) buffer atomically (data may be NULL when size is 0). The errors of
+ * im_atomic_open and im_atomic_commit, and IM_EIO when the write fails; nothing is left at path
+ * on an error. */
 int im_write_file_atomic(const char *path, const void *data, size_t size);
 
-/* Creates a directory and its parents (mkdir -p); IM_OK if it already exists. */
+/* Creates a directory and its parents (mkdir -p); IM_OK if it already exists. IM_EIO naming the
+ * folder that cannot be made or that exists as another kind of file; IM_EINVAL for a path of 4096
+ * bytes or more. */
 int im_make_directories(const char *path);
 
 /* A path as UTF-8 text for records (JSON, PNG text chunks): itself when it is valid UTF-8 (returns
@@ -419,6 +438,9 @@ typedef struct im_png_options {
     int compression;
 } im_png_options;
 
+/* im_png_write: options may be NULL (no texts, no pHYs, zlib level 6). IM_EINVAL for a
+ * size, channel count, stride or text it cannot write, the errors of an atomic write (IM_EIO,
+ * nothing left at path). */
 int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
                  size_t stride, const im_png_options *options);
 

@@ -3,6 +3,13 @@
  * it (the Oliver-Pharr analysis), the contact patches (number, sizes, perimeter) and the gap
  * distribution.
  *
+ * Entry points:
+ *   im_measure_stiffness, im_measure_sneddon_modulus       S = dN/dw and the modulus it gives
+ *   im_measure_unloading, im_measure_epsilon, im_measure_projected_area   Oliver-Pharr's analysis
+ *   im_measure_contact_patches, im_measure_patch_list, im_measure_patch_histogram   contact patches
+ *   im_measure_gap_histogram, im_measure_gap_distribution, im_measure_write_distributions   gaps
+ *   im_measure_adhesion                                     pull-off and hysteresis of a history
+ *
  * Sneddon: for any axisymmetric punch in elastic contact, S = dN/dw = 2 E* a with a the contact
  * radius, so an experiment that knows the projected area A = pi a^2 infers
  *     E*_eff = (sqrt(pi) / 2) S / sqrt(A),
@@ -11,6 +18,7 @@
  * Errors: IM_EINVAL naming the argument; IM_ENOMEM. Outputs are written only on success.
  * Misuse (status.h): NULL arrays, outputs or invalid field views give IM_EINVAL naming the function
  * and the argument.
+ * Threads: thread-safe: each call reads its inputs, writes its outputs and keeps nothing.
  */
 #ifndef INDENTMAP_MEASURE_H
 #define INDENTMAP_MEASURE_H

@@ -1,5 +1,10 @@
-/* indentmap/plot.h: publication line and scatter plots drawn with cairo, and the paper's figures
- * that need no contact solution (Figs. 1, 2 and 3).
+/* indentmap/plot.h: publication line and scatter plots drawn with cairo (the paper's Figs. 1-3
+ * built on them are in paper.h).
+ *
+ * Entry points:
+ *   im_plot_default, im_plot_write        a grid of panels of series, written as PNG, PDF or SVG
+ *   im_plot_geometry_of                   where a panel lands in the picture
+ *   im_plot_palette, im_plot_family_color the series' colours
  *
  * A plot is a grid of axes panels (rows x columns, e.g. Fig. 5's 2 x 3). Each panel has a linear
  * or logarithmic x and y axis with nice ticks (1-2-5 steps, or decades: im_figure_ticks), tick
@@ -33,13 +38,13 @@
  *
  * Misuse (status.h): IM_EINVAL for a NULL plot, path, output or series array and for an invalid
  * field view; im_plot_palette and im_plot_family_color do nothing for a NULL rgb.
+ * Threads: thread-safe; two threads may write plots at once (to different paths). The fonts are
+ * loaded once per process, under a lock.
  */
 #ifndef INDENTMAP_PLOT_H
 #define INDENTMAP_PLOT_H
 
-#include "indentmap/field.h"
 #include "indentmap/io.h"
-#include "indentmap/surface.h"
 
 #include <stdint.h>
 
@@ -152,42 +157,6 @@ void im_plot_palette(int i, uint8_t rgb[3]);
 /* Member i of a family of count curves (e.g. increasing roughness) from the viridis table, from
  * its dark end to 85 % of the way (the last 15 %, pale yellow, reads badly on white). */
 void im_plot_family_color(int i, int count, uint8_t rgb[3]);
-
-/* ---- the paper's figures ----
- * Each takes the output settings (dpi, font size, frame size, texts, compression) from style
- * (NULL: im_plot_default(); its rows, columns and panels are ignored) and writes path as
- * im_plot_write does. The theory is the paper's: the PR normalisation with k = 2. */
-
-/* Fig. 1: the local contact density gamma(r/a) = erf(sqrt(pi)/2 rho_c acosh(a/r)) (eqs. 10-11) on
- * 0 <= r/a <= 1 for a cone of semi-opening alpha_deg (0 < alpha < 90; the paper: 80) and each of
- * count roughnesses slope_rms[i] >= 0 (the paper: 0.01, 0.02, 0.04, 0.08, 0.16; 0 is the smooth
- * surface, gamma = 1), coloured as a viridis family, with h'rms and rho_c (eq. 7) in the legend. */
-int im_plot_figure_contact_density(double alpha_deg, const double *slope_rms, int count,
-                                   const im_plot *style, const char *path);
-
-/* Measured points with error bars for Fig. 2, e.g. the ensemble means +- standard deviations of
- * A/A_cone at each rho_c. sigma may be NULL (no bars). */
-typedef struct im_plot_points {
-    const double *x, *y, *sigma;
-    int count;                  /* 0: no points */
-    const char *label;          /* legend entry; NULL: "simulations (mean ± sd)" */
-} im_plot_points;
-
-/* Fig. 2: A/A_cone against rho_c on a log axis from 0.1 to 100 (widened to whole decades around
- * the points): eq. (12) (variable density, solid) and eq. (6) (constant density, dotted), with
- * the points (NULL or count 0: none), which follow the data rules above (rho_c > 0). */
-int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style, const char *path);
-
-/* Fig. 3, a 2 x 2 figure of a surface: the distributions of (a) slope (both forward-difference
- * components), (b) height h - mean and (c) mean curvature (im_surface_histogram, `bins` bins,
- * 10 to 10000), each with the Gaussian of the same mean and standard deviation dashed, and (d)
- * the isotropic PSD C_iso(q) (im_surface_psd, log-log) with the power law q^(-2(1+H)) of
- * params->hurst drawn dashed beside it over params' band 2 pi / lambda_r <= q <= 2 pi / lambda_s
- * (a factor 4 above the spectrum's geometric mean there). Lengths are normalised by the grid
- * spacing delta: h / delta, curvature x delta, q delta, C / delta^4. params: those the surface was
- * generated with (only hurst, lambda_s and lambda_r are read). */
-int im_plot_figure_surface(const im_field *surface, const im_surface_params *params, int bins,
-                           const im_plot *style, const char *path);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,13 @@
 /* indentmap/render.h: the off-screen OpenGL renderer: draws fields (local contact forces, heights)
  * into pixel buffers. Annotations (colour bars, labels, layout) are figure.h's job.
  *
+ * Entry points:
+ *   im_render_open, im_render_close                       a GL context (EGL or OSMesa)
+ *   im_render_contact_map, im_contact_style_default       forces as the paper's Fig. 4 draws them
+ *   im_render_height_map, im_height_style_default         heights, with the contact outline
+ *   im_render_view3d, im_view3d_style_default             the deformed surface in 3-D
+ *   im_image_release                                      a rendered picture's pixels
+ *
  * Context: OpenGL 3.3 core, no window system. Backends, in the order `auto` tries them:
  *   1. EGL on a device (EGL_EXT_device_enumeration + EGL_EXT_platform_device): hardware devices
  *      (e.g. NVIDIA) first, then Mesa's software device (llvmpipe);
@@ -30,6 +37,9 @@
  * im_height_outline_width(NULL) is 0, im_render_context_missing(status, NULL) 0, and
  * im_view3d_exaggeration_text does nothing for NULL text; im_render_close and im_image_release
  * accept NULL.
+ * Threads: a context serves one call at a time, from any thread (im_render_open says how). The
+ * library's own runs draw with one context from one thread at a time; several contexts drawing in
+ * several threads at once are not tested. The style functions are thread-safe.
  */
 #ifndef INDENTMAP_RENDER_H
 #define INDENTMAP_RENDER_H

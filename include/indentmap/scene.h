@@ -1,5 +1,11 @@
 /* indentmap/scene.h: scene files, what a user wants to see, in INI (parsed with inih).
  *
+ * Entry points:
+ *   im_scene_load, im_scene_load_record, im_scene_defaults   a scene from its file or a run's record
+ *   im_scene_run, im_scene_run_options                        everything the scene asks for, on disk
+ *   im_scene_plot_parse, im_scene_plot_name                   [output] plots' names
+ *   im_scene_file_path, im_scene_resolve_path                 paths written in a scene
+ *
  * A scene names surfaces (generated families with seeds, or a file), the punch and material, the
  * loading, and the outputs. Example (scenes/ has the paper's):
  *
@@ -27,6 +33,10 @@
  * Misuse (status.h): IM_EINVAL for a NULL scene, path, record or output; im_scene_defaults(NULL) does
  * nothing, im_scene_resolve_path writes "" for a NULL scene or relative path, im_scene_plot_parse
  * (NULL) is 0 and im_scene_suggest_key(section, NULL) NULL.
+ * Threads: the functions of a scene are thread-safe on distinct scenes. im_scene_run starts OpenMP
+ * workers of its own and calls its callbacks one at a time (im_scene_run_options); two runs at
+ * once in different threads of one process are not supported (run them one after the other, or
+ * in separate processes: the output folder's lock keeps two runs out of one folder).
  */
 #ifndef INDENTMAP_SCENE_H
 #define INDENTMAP_SCENE_H

@@ -1,6 +1,14 @@
 /* indentmap/solver.h: frictionless normal contact of a rigid punch with a rough elastic half-space,
  * by FFT boundary elements and Polonsky-Keer constrained conjugate gradients.
  *
+ * Entry points:
+ *   im_solver_options_default, im_solver_options_check   what a solve does (tolerance, engine, ...)
+ *   im_indentation_create, im_indentation_step, im_indentation_free   a history of steps on one surface
+ *   im_indentation_fields, im_indentation_fields_full    a step's force, gap and displacement
+ *   im_flat_contact_create, im_flat_contact_solve, im_flat_contact_free   a periodic cell under a flat
+ *   im_solver_plan_create, im_solver_solve, im_solver_plan_free   one solve on a planned grid
+ *   im_displacement_full                                 a force field's displacement
+ *
  * ---- Model and conventions ----
  * The surface is an nx x ny grid of square patches of side delta (field.h layout), heights h up;
  * the punch comes from above. Each patch carries a uniform pressure p >= 0; its force is
@@ -73,6 +81,13 @@
  * an all-zero window, im_solver_convolve does nothing, im_solver_plan_bytes is NaN for such sides.
  * NULL options mean the defaults (plans, indentations, flat contact, im_displacement_*) and no
  * wisdom file (im_solver_wisdom_file); the *_free functions accept NULL.
+ *
+ * Threads: a plan, an indentation or a flat contact is used by one thread at a time; distinct ones
+ * may be made and solved in different threads at once on the CPU engine (scenes' ensembles do).
+ * The library holds one lock around FFTW's planner and wisdom for all its own calls; an application
+ * that calls FFTW's planner itself meanwhile races with it (FFTW's planner is not thread-safe). Each
+ * solve runs on the OpenMP thread count in force (sums compensated: loads agree to a few ulp
+ * whatever the count). GPU plans (options.device) are made and used from one thread.
  */
 /* ---- Hardness (perfect plasticity at a pressure cap) ----
  * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure
@@ -220,6 +235,9 @@ enum im_device { IM_DEVICE_CPU = 0, IM_DEVICE_GPU = 1, IM_DEVICE_AUTO = 2 };
 /* "cpu", "gpu", "auto" -> IM_DEVICE_*; IM_EINVAL naming the word otherwise. */
 int im_device_parse(const char *word, int *device);
 
+/* The defaults: E* = 1, tol im_quality_default_tolerance(), at most 10000 iterations, FFTW_ESTIMATE
+ * without wisdom, crop windows (margin 4), the cascade start and the preconditioner, no hardness,
+ * adhesion or periodic mode, the CPU engine. */
 im_solver_options im_solver_options_default(void);
 /* IM_EINVAL naming the first option out of range. */
 int im_solver_options_check(const im_solver_options *options);
@@ -262,8 +280,8 @@ double im_influence_square(double x, double y, double delta, double e_star);
 typedef struct im_solver_plan im_solver_plan;
 
 /* Plans an nx x ny problem (FFTW plans on the 2nx x 2ny padded grid, the kernel and its spectrum,
- * work buffers) with the OpenMP thread count in force. Serial code only (FFTW's planner is not
- * thread-safe). IM_ENOMEM when im_solver_plan_bytes exceeds the memory available. */
+ * work buffers) with the OpenMP thread count in force. Thread-safe (the planner lock above).
+ * IM_ENOMEM when im_solver_plan_bytes exceeds the memory available. */
 int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
                           im_solver_plan **out);
 void im_solver_plan_free(im_solver_plan *plan);
@@ -445,6 +463,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
  * hardness): the residual impression once the punch is withdrawn. */
 int im_indentation_plastic(const im_indentation *run, im_field **plastic);
 
+/* The sub-grid the run solves (all zero for a NULL run), and the plan it solves on (NULL for a NULL
+ * run; owned by the run). */
 im_window im_indentation_window(const im_indentation *run);
 const im_solver_plan *im_indentation_plan(const im_indentation *run);
 

@@ -1,5 +1,10 @@
 /* indentmap/status.h: status codes and error messages shared by every module.
  *
+ * Entry points:
+ *   im_last_error, im_strstatus        the last failure's message on this thread; a status's name
+ *   im_fail, im_fail_context           record a failure (returns its status)
+ *   im_set_stop_flag, im_stop_requested  the flag that interrupts long reads
+ *
  * Every fallible function returns an int status (IM_OK on success), GSL style. On failure the
  * function also records a message naming the file, line or parameter and what was expected;
  * im_last_error() returns it. The message is per thread, so OpenMP workers do not clobber each
@@ -13,6 +18,9 @@
  * return their safe result (NULL for a pointer, NaN for a number, 0 for a count or flag; each
  * header says which); *_free, *_release, *_close and *_abort accept NULL silently.
  * tests/test_api_misuse.c holds every public function to this.
+ *
+ * Threads: the message is per thread (each thread reads its own failures only); every function here
+ * is thread-safe, but im_set_stop_flag sets one process-wide pointer: set it before work starts.
  */
 #ifndef INDENTMAP_STATUS_H
 #define INDENTMAP_STATUS_H
@@ -43,10 +51,12 @@ const char *im_strstatus(int status);
 const char *im_last_error(void);
 
 /* Records a printf-style message for this thread and returns status, so that callers can write
- * `return im_fail(IM_EINVAL, "n = %d: expected n >= 2", n);`. */
+ * `return im_fail(IM_EINVAL, "n = %d: expected n >= 2", n);`. Messages longer than 1023 bytes are
+ * cut. A NULL fmt is a misuse: IM_EINVAL naming it. */
 int im_fail(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Prefixes the current message with context ("reading s.npy: ...") and returns status. */
+/* Prefixes the current message with context ("reading s.npy: ...") and returns status; a NULL fmt
+ * as im_fail's. */
 int im_fail_context(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Interruption of long operations that take no stop flag of their own (file reads): the program

@@ -1,5 +1,13 @@
 /* indentmap/surface.h: self-affine rough surfaces: spectral synthesis and statistics.
  *
+ * Entry points:
+ *   im_surface_params_default, im_surface_generate    a surface from its spectrum's parameters
+ *   im_surface_statistics, im_surface_slope_rms       heights' and slopes' moments
+ *   im_surface_psd, im_psd_fit_exponent               the isotropic spectrum and its power law
+ *   im_surface_histogram                              distributions of height, slope, curvature
+ *   im_surface_detrend, im_surface_align_rows, im_surface_fill_missing, im_surface_crop,
+ *   im_surface_resample_square, im_surface_tapered    preparing a measured surface
+ *
  * Synthesis (the paper's section 2.2): an isotropic Gaussian surface on an nx x ny grid of spacing
  * delta whose power spectral density is
  *     C(q) = C0 |q|^(-2(1+H))   for q_r <= |q| <= q_s,
@@ -21,6 +29,9 @@
  * Misuse (status.h): IM_EINVAL for NULL parameters or outputs and invalid field views; the value
  * functions of NULL parameters give NaN, and so does im_surface_generate_bytes for a side outside
  * [1, IM_FIELD_MAX_SIDE]; im_psd_free and im_histogram_free accept NULL.
+ * Threads: thread-safe on distinct outputs (a surface changed in place is one thread's). The
+ * transforms plan under the library's FFTW lock (solver.h) and run on the OpenMP thread count in
+ * force; a generated surface does not depend on it.
  */
 #ifndef INDENTMAP_SURFACE_H
 #define INDENTMAP_SURFACE_H
@@ -65,7 +76,8 @@ int im_surface_generate(const im_surface_params *params, im_field **out);
 /* Memory, in bytes, that im_surface_generate needs at its peak for this size. */
 double im_surface_generate_bytes(int nx, int ny);
 
-/* Slope of a surface by either definition (see the top of this header). */
+/* Slope of a surface by either definition (see the top of this header). IM_EINVAL for another
+ * definition. */
 int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition,
                          double *slope_rms);
 
@@ -89,7 +101,8 @@ int im_surface_statistics(const im_field *surface, im_surface_stats *stats);
  * C(q) = |h~(q)|^2 / A with h~ the discrete Fourier transform scaled by delta^2 and A = L_x L_y,
  * averaged over the modes in each of `bins` logarithmically spaced shells between the smallest
  * non-zero |q| and the largest |q| on the grid. q and the average C are written for each bin;
- * counts[i] is the number of modes in bin i (0 for an empty bin, whose q and C are NaN). */
+ * counts[i] is the number of modes in bin i (0 for an empty bin, whose q and C are NaN).
+ * im_surface_psd: a new *out (im_psd_free); IM_EINVAL for bins outside [1, 100000], IM_ENOMEM. */
 typedef struct im_psd {
     int bins;
     double *q, *c;
@@ -117,7 +130,8 @@ enum im_histogram_quantity {
     IM_HIST_CURVATURE    /* five-point mean curvature (h_xx + h_yy) / 2 at interior points */
 };
 
-/* Histogram of a quantity over [mean - 5 sd, mean + 5 sd] of that quantity. */
+/* Histogram of a quantity over [mean - 5 sd, mean + 5 sd] of that quantity: a new *out
+ * (im_histogram_free). IM_EINVAL for bins outside [1, 1000000] or an unknown quantity, IM_ENOMEM. */
 int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins,
                          im_histogram **out);
 void im_histogram_free(im_histogram *histogram);

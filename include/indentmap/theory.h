@@ -1,5 +1,13 @@
 /* indentmap/theory.h: the paper's theory.
  *
+ * Entry points:
+ *   im_theory_cone_*, im_theory_sphere_*, im_theory_flat_area_ratio, im_theory_punch_*
+ *                                           contact area and pressure of rough punches (eqs. 1-12)
+ *   im_theory_interface_default, im_theory_erf_scale, im_theory_fit_k   the rough interface's law
+ *   im_theory_moment, im_theory_height_rms_*   roughness relations (eqs. 13-15)
+ *   im_theory_md_sphere*, im_theory_jkr_cone*, im_theory_kendall_*   adhesive contacts
+ *   im_theory_wavy*                         wavy surfaces' closed forms (tests' references)
+ *
  * Contact area (eqs. 1-12 and the Appendix's eq. 19): the erf law of a nominally flat rough
  * contact, the sphere of Pastewka and Robbins, and the cone with a constant (eq. 6) or a
  * variable (eq. 12) local density of contact. Units: stresses in units of E* when E* = 1 (every
@@ -22,6 +30,7 @@
  *
  * Misuse (status.h): the int functions return IM_EINVAL for a NULL interface, punch, array or
  * output, naming the function and the argument.
+ * Threads: thread-safe (each call keeps nothing); the GSL handler is switched as said above.
  */
 #ifndef INDENTMAP_THEORY_H
 #define INDENTMAP_THEORY_H

@@ -1,6 +1,9 @@
 /* indentmap/viewer.h: a run's viewer page, DIR/index.html, written by every scene run and every
  * `indentmap indent` run over what the run left in its output folder.
  *
+ * Entry points:
+ *   im_viewer_write, im_viewer_write_with   DIR/index.html over the files now in DIR
+ *
  * The page is self-contained: one HTML file with its style sheet and script inline, images
  * referenced by relative paths, nothing loaded from the network, so it opens from file:// (and
  * keeps working when the folder is moved or copied whole). It shows, in this order, the parts
@@ -21,6 +24,8 @@
  * and run.json it would link to are named, not linked.
  *
  * Misuse (status.h): IM_EINVAL for a NULL folder, title or options.
+ * Threads: thread-safe on distinct folders; the page reflects the files there when it is written
+ * (write it after the run's other files).
  */
 #ifndef INDENTMAP_VIEWER_H
 #define INDENTMAP_VIEWER_H

@@ -1,4 +1,5 @@
 #include "indentmap/status.h"
+#include "core/args.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -28,6 +29,7 @@ const char *im_last_error(void) { return last_message; }
 
 int im_fail(int status, const char *fmt, ...)
 {
+    ARG_REQUIRE(fmt, "fmt");
     va_list args;
     va_start(args, fmt);
     vsnprintf(last_message, sizeof last_message, fmt, args);
@@ -37,6 +39,7 @@ int im_fail(int status, const char *fmt, ...)
 
 int im_fail_context(int status, const char *fmt, ...)
 {
+    ARG_REQUIRE(fmt, "fmt");
     char previous[MESSAGE_CAPACITY];
     memcpy(previous, last_message, sizeof previous);
     va_list args;

@@ -8,7 +8,7 @@
  * Builders are re-entrant: they keep nothing between calls (their working memory is allocated per
  * call), so two threads may build figures at once.
  *
- * Figs. 1, 2 and 3, which need no contact solution, are public (plot.h: im_plot_figure_*,
+ * Figs. 1, 2 and 3, which need no contact solution, are public (paper.h: im_paper_fig*,
  * theory_figures.c); the figures drawn from solutions are here (history_figures.c: Figs. 5, 6, 7
  * and the sphere's regimes; map_figures.c: Fig. 4's contact panels and the contact density;
  * flat_k_figure.c: eq. (2)'s k measured; sweep_figure.c: Fig. 2 over a sweep's roughnesses;
@@ -43,7 +43,7 @@ typedef struct paper_file {
 
 /* Writes plot to the file, with its texts. */
 int paper_plot_write(im_plot *plot, const paper_file *file);
-/* The default plot settings with the file's texts: the style of plot.h's figure builders. */
+/* The default plot settings with the file's texts: the style of paper.h's figure builders. */
 im_plot paper_file_style(const paper_file *file);
 
 /* Columns of a grid of count panels: three when they fill whole rows (Fig. 4's 2 x 3), else two,

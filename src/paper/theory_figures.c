@@ -1,6 +1,6 @@
 /* The paper's figures that need no contact solution: Fig. 1 (local contact density of the cone),
  * Fig. 2 (area ratio against rho_c, eqs. 6 and 12) and Fig. 3 (statistics of a surface). */
-#include "indentmap/plot.h"
+#include "indentmap/paper.h"
 #include "core/args.h"
 #include "paper/figures.h"
 
@@ -44,8 +44,8 @@ static int density_label(double slope_rms, double rho, char *text, size_t size)
     return snprintf(text, size, "%g  (%.2f)", slope_rms, rho);
 }
 
-int im_plot_figure_contact_density(double alpha_deg, const double *slope_rms, int count,
-                                   const im_plot *style, const char *path)
+int im_paper_fig1_contact_density(double alpha_deg, const double *slope_rms, int count,
+                                  const im_plot *style, const char *path)
 {
     ARG_REQUIRE(slope_rms, "slope_rms");
     ARG_REQUIRE(path, "path");
@@ -105,7 +105,7 @@ int paper_area_ratio_curves(double rho_lo, double rho_hi, int points, double *rh
 }
 
 /* [0.1, 100] widened to whole decades around the points' positive finite x. */
-static void rho_range(const im_plot_points *points, double *lo, double *hi)
+static void rho_range(const im_paper_points *points, double *lo, double *hi)
 {
     *lo = 0.1, *hi = 100.0;
     for (int i = 0; points && i < points->count; ++i)
@@ -115,7 +115,7 @@ static void rho_range(const im_plot_points *points, double *lo, double *hi)
         }
 }
 
-int im_plot_figure_area_ratio(const im_plot_points *points, const im_plot *style, const char *path)
+int im_paper_fig2_area_ratio(const im_paper_points *points, const im_plot *style, const char *path)
 {
     ARG_REQUIRE(path, "path");
     int has_points = points && points->count > 0;
@@ -276,8 +276,8 @@ static void layout_surface_figure(surface_figure *f, int bins)
                                    .label = "(d)", .legend = IM_PLOT_LEGEND_LOWER_LEFT};
 }
 
-int im_plot_figure_surface(const im_field *surface, const im_surface_params *params, int bins,
-                           const im_plot *style, const char *path)
+int im_paper_fig3_surface(const im_field *surface, const im_surface_params *params, int bins,
+                          const im_plot *style, const char *path)
 {
     ARG_VIEW(surface, "surface");
     ARG_REQUIRE(params, "params");

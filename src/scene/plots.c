@@ -1,5 +1,5 @@
 /* The paper's line figures that a scene asks for in [output] plots. */
-#include "indentmap/plot.h"
+#include "indentmap/paper.h"
 #include "indentmap/status.h"
 #include "scene/frames.h"
 #include "scene/outputs.h"
@@ -40,23 +40,23 @@ static int draw_fig1(const im_scene *scene, const void *data, const paper_file *
         if (scene->slopes[i] > 0.0)
             slopes[count++] = scene->slopes[i];
     const im_plot style = paper_file_style(file);
-    return im_plot_figure_contact_density(scene->alpha_degrees, slopes, count, &style, file->path);
+    return im_paper_fig1_contact_density(scene->alpha_degrees, slopes, count, &style, file->path);
 }
 
 static int draw_fig2(const im_scene *scene, const void *data, const paper_file *file)
 {
     (void)scene;
     const im_plot style = paper_file_style(file);
-    return im_plot_figure_area_ratio(data, &style, file->path);
+    return im_paper_fig2_area_ratio(data, &style, file->path);
 }
 
 static int draw_fig3(const im_scene *scene, const void *data, const paper_file *file)
 {
     const im_plot style = paper_file_style(file);
-    return im_plot_figure_surface(data, &scene->surface, 101, &style, file->path);
+    return im_paper_fig3_surface(data, &scene->surface, 101, &style, file->path);
 }
 
-int scene_plot_area_ratio(const im_scene *scene, const im_plot_points *points)
+int scene_plot_area_ratio(const im_scene *scene, const im_paper_points *points)
 {
     return scene_write_png_pdf(scene, "fig2", draw_fig2, points);
 }

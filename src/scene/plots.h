@@ -16,7 +16,7 @@ int scene_wants_histories(const im_scene *scene);
 int scene_run_theory_plots(const im_scene *scene, const im_scene_run_options *options);
 
 /* fig2: A/A_cone against rho_c from theory, with the ensemble's points. */
-struct im_plot_points;
-int scene_plot_area_ratio(const im_scene *scene, const struct im_plot_points *points);
+struct im_paper_points;
+int scene_plot_area_ratio(const im_scene *scene, const struct im_paper_points *points);
 
 #endif

@@ -1,7 +1,7 @@
 /* The ensemble table (the paper's Table 1): every seed of every family solved at one load, in
  * parallel over surfaces; per family the mean and spread of A/A_cone beside eq. (12). */
 #include "indentmap/io.h"
-#include "indentmap/plot.h"
+#include "indentmap/paper.h"
 #include "indentmap/status.h"
 #include "scene/ensemble.h"
 #include "scene/key.h"
@@ -264,7 +264,7 @@ static int plot_area_ratio(const im_scene *scene, const family_summary *rows)
         y[count] = rows[f].area_ratio;
         sigma[count++] = rows[f].sd;
     }
-    im_plot_points points = {x, y, sigma, count, NULL};
+    im_paper_points points = {x, y, sigma, count, NULL};
     return scene_plot_area_ratio(scene, &points);
 }
 
