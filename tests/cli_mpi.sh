@@ -80,7 +80,7 @@ cmp -s "$work/small1" "$work/small7" && cmp -s "$work/fields1/force.npy" "$work/
 refused() {
   local name=$1 expected=$2 pattern=$3
   shift 3
-  timeout 60 "$mpiexec" --oversubscribe "$@" > /dev/null 2> "$work/$name.err"
+  timeout 300 "$mpiexec" --oversubscribe "$@" > /dev/null 2> "$work/$name.err"
   local status=$?
   [ $status -eq "$expected" ] || fail "$name: exit $status, expected $expected: $(cat "$work/$name.err")"
   grep -q -- "$pattern" "$work/$name.err" || fail "$name: expected '$pattern': $(cat "$work/$name.err")"
@@ -113,9 +113,9 @@ periodic_case() { # periodic_case NAME ARGUMENTS...: indent --periodic against m
   "$cli" indent "$work/p.npy" --periodic --tol 1e-8 "$@" --out "$work/ser_$name" > /dev/null 2>&1 ||
     fail "indent --periodic $*"
   for k in 1 2 3; do
-    timeout 60 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --periodic --surface "$work/p.npy" --tol 1e-8 "$@" \
+    timeout 300 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --periodic --surface "$work/p.npy" --tol 1e-8 "$@" \
       --out "$work/mpi_${name}_$k" > "$work/mpi_$name$k.csv" 2> "$work/mpi_$name.err" ||
-      fail "mpi-indent --periodic $* on $k ranks: $(cat "$work/mpi_$name.err")"
+      fail "mpi-indent --periodic $* on $k ranks (exit $?, 124: timed out): $(cat "$work/mpi_$name.err")"
     cut -d, -f1-10,12- "$work/mpi_$name$k.csv" > "$work/mpi_$name$k.cut"
   done
   same_history "$work/ser_$name/history.csv" "$work/mpi_${name}1.csv" > "$work/diff_$name" ||
