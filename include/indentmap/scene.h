@@ -32,6 +32,7 @@
 #define INDENTMAP_SCENE_H
 
 #include "indentmap/colormap.h"
+#include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
@@ -45,7 +46,7 @@
 extern "C" {
 #endif
 
-enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
+enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = IM_HISTORY_MAX_STEPS, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
        IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */,
        IM_SCENE_CONTENTS = 16384 /* im_scene.contents: every key at most once, each line < 200 bytes */ };
 
