@@ -32,6 +32,7 @@
 #define INDENTMAP_SCENE_H
 
 #include "indentmap/colormap.h"
+#include "indentmap/formats.h"
 #include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
@@ -103,8 +104,8 @@ typedef struct im_scene {
     char channel[64];                /* the files' channel (instrument files read through Gwyddion: an
                                         index or a title); "": the first holding heights */
     int resample_square;             /* 1: resample files whose pixels are not square onto square ones
-                                        (io.h: im_surface_read_options.resample_square); 0: refuse them */
-    enum im_npy_order npy_order;     /* `npy_order`: which index of the .npy files is x (io.h; sidecar, the
+                                        (formats.h: im_surface_read_options.resample_square); 0: refuse them */
+    enum im_npy_order npy_order;     /* `npy_order`: which index of the .npy files is x (formats.h; sidecar, the
                                         default: as each file's sidecar states, else yx) */
     char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
     double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the

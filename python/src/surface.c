@@ -2,6 +2,7 @@
 #include "core.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 

@@ -3,6 +3,7 @@
 #define INDENTMAP_CLI_H
 
 #include "indentmap/history.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
@@ -95,7 +96,7 @@ int cli_parse_length_unit(const char *option, const char *text, char *out);
  * copied into out (64 bytes); 0, or -1 after saying what was expected. */
 int cli_parse_channel(const char *text, char *out);
 
-/* --npy-order yx|xy: which index of a .npy array is x (io.h: enum im_npy_order). 0, or -1 after saying
+/* --npy-order yx|xy: which index of a .npy array is x (formats.h: enum im_npy_order). 0, or -1 after saying
  * what was expected. */
 int cli_parse_npy_order(const char *text, enum im_npy_order *out);
 

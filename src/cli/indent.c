@@ -5,6 +5,7 @@
 #include "front/front.h"
 
 #include "indentmap/field.h"
+#include "indentmap/formats.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/measure.h"

@@ -2,6 +2,7 @@
 #include "indentmap/scene.h"
 #include "core/args.h"
 
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/viewer.h"
