@@ -89,7 +89,7 @@ def nm_symbols(objects):
 
 
 def object_name(obj):
-    """src/io/units.c for .../im_io.dir/src/io/units.c.o."""
+    """src/formats/units.c for .../im_formats.dir/src/formats/units.c.o."""
     marker = obj.find(".dir/")
     name = obj[marker + 5:] if marker >= 0 else os.path.basename(obj)
     return name[:-2] if name.endswith(".o") else name

@@ -112,7 +112,7 @@ typedef struct im_scene {
                                         surface as solved; measured by im_scene_run, which sets
                                         slopes[0] to their root mean square (NaN until then) */
     double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* each file's |delta_x - delta_y| / their
-                                        mean as read (io.h: spacing_difference), measured with them */
+                                        mean as read (formats.h: spacing_difference), measured with them */
     int file_resampled[IM_SCENE_MAX_FAMILIES]; /* 1 where that file was resampled onto square pixels */
     double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
     int family_count;

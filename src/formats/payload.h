@@ -18,7 +18,7 @@
  * streams (pipes) pass the size check; the readers' own end-of-data checks still apply. */
 int formats_check_grid(FILE *stream, const char *path, long nx, long ny, unsigned item_size, const char *claim);
 
-/* IM_EFORMAT naming path and the first NaN or Inf value with its (x, y), as io.h promises for every
+/* IM_EFORMAT naming path and the first NaN or Inf value with its (x, y), as formats.h promises for every
  * reader (im_field_check_finite alone would give IM_ENUMERIC, which the command line reports as a
  * failure while running, exit 1, rather than as bad input, exit 2). */
 int formats_check_finite(const im_field *field, const char *path);

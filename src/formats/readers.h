@@ -1,4 +1,4 @@
-/* formats/readers.h: the surface readers' parsing step, shared by the public readers of io.h.
+/* formats/readers.h: the surface readers' parsing step, shared by the public readers of formats.h.
  *
  * A raw reader parses one format into a field of spacing 1 with no unit, heights exactly as stored
  * (NaN and Inf included), and reports what the file states about its units, with the header keys
