@@ -5,14 +5,12 @@
 # declarations: a symbol or a header of an undeclared module, a cycle, a declared module left unused.
 # docs/architecture.md shows the graph (python3 tests/module_graph.py --layers BUILD/modules.json).
 #
-# Every module compiles with indentmap_dependencies: the external libraries, include paths and
-# definitions of the library.
+# Every module compiles with indentmap_dependencies: the external libraries and the public include
+# paths of the library, which its users get too; src/ and the generated sources are the modules' own.
 
 add_library(indentmap_dependencies INTERFACE)
-target_compile_definitions(indentmap_dependencies INTERFACE IM_FONT_DIR="${IM_FONT_DIR}")
 target_include_directories(indentmap_dependencies INTERFACE
-  $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>
-  $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src> $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>)
+  $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>)
 
 set(IM_MODULES "")
 function(im_module name)
@@ -26,6 +24,7 @@ function(im_module name)
   endif()
   add_library(im_${name} OBJECT ${sources})
   set_target_properties(im_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(im_${name} PRIVATE ${PROJECT_SOURCE_DIR}/src ${PROJECT_BINARY_DIR}/generated)
   target_link_libraries(im_${name} PUBLIC indentmap_dependencies)
   foreach(used ${MODULE_USES})
     target_link_libraries(im_${name} PUBLIC im_${used})
@@ -84,6 +83,7 @@ im_module(surface USES core io theory)
 im_module(formats USES core indenter io surface)
 im_module(render USES colormap core indenter)
 im_module(typeset USES core io render)
+target_compile_definitions(im_typeset PRIVATE IM_FONT_DIR="${IM_FONT_DIR}")
 im_module(figure USES colormap core io render typeset)
 im_module(solver USES core ${IM_GPU_MODULE} indenter io)
 im_module(measure USES core indenter io)
