@@ -157,7 +157,7 @@ def layers(graph):
 
     def level(component):
         if component not in depth:
-            depth[component] = -1  # a cycle is one node: edges inside it do not count
+            # the components form an acyclic graph: edges inside a cycle do not count
             below = {component_of[s] for n in component for s in graph[n]} - {component}
             depth[component] = 1 + max((level(c) for c in below), default=-1)
         return depth[component]
