@@ -7,6 +7,7 @@
 #include "bench_common.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
 
 #include <math.h>

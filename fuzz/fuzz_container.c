@@ -3,7 +3,7 @@
 #include "fuzz_checks.h"
 #include "fuzz_file.h"
 
-#include "io/readers.h"
+#include "formats/readers.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* libFuzzer harness: the stream indentmap-gwyddion-read writes (src/io/gwyddion.h), parsed and
+/* libFuzzer harness: the stream indentmap-gwyddion-read writes (src/formats/gwyddion.h), parsed and
  * finished as a read through Gwyddion is, on arbitrary bytes: it must return a status, never crash,
  * leak or trip a sanitizer, and what it accepts must be a well-formed, finite field. The stream comes
  * from vendor files through Gwyddion's modules, so a hostile file can shape it: header lines that lie
@@ -6,7 +6,7 @@
 #include "fuzz_checks.h"
 #include "fuzz_file.h"
 
-#include "io/gwyddion.h"
+#include "formats/gwyddion.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -3,7 +3,7 @@
 #include "fuzz_checks.h"
 #include "fuzz_file.h"
 
-#include "io/hdf5.h"
+#include "formats/hdf5.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -4,6 +4,7 @@
 #include "fuzz_file.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -19,7 +19,7 @@ fuzz/build.sh "$build_dir" >/dev/null || exit 1
 
 # libhdf5 1.10 crashes inside itself on some hostile files (a memcpy into a failed allocation of a size
 # the file states) and allocates the sizes they state; the library reads HDF5 in a child
-# (src/io/hdf5_child.c), where such a crash or allocation refuses the file. fuzz_hdf5 reads in-process,
+# (src/formats/hdf5_child.c), where such a crash or allocation refuses the file. fuzz_hdf5 reads in-process,
 # as a fuzzer must to see coverage, so it runs in fork mode on past crashes, and each new crash or OOM is
 # replayed: a SEGV whose innermost frame, past libc and the sanitizer's interceptors, is in libhdf5, or a
 # malloc beyond the limit that libhdf5 itself made, is counted as contained; every other artifact (a
@@ -49,7 +49,7 @@ for name in "${harnesses[@]}"; do
   seeds=("fuzz/corpus/$name")
   if [ -d "fuzz/regressions/$name" ]; then
     # Inputs that crash libhdf5 itself (libhdf5-crash-*) would end the in-process harness at its first seed:
-    # the library reads HDF5 in a child for that (src/io/hdf5_child.c), and fuzz_regressions reads them so.
+    # the library reads HDF5 in a child for that (src/formats/hdf5_child.c), and fuzz_regressions reads them so.
     # The other regressions are seeds, copied (libFuzzer takes folders) into BUILD_DIR/seeds/NAME.
     replayed="$build_dir/seeds/$name"
     rm -rf "$replayed" && mkdir -p "$replayed"

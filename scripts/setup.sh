@@ -30,7 +30,7 @@ PACKAGES=(
   openmpi-bin libopenmpi-dev libfftw3-mpi-dev  # one grid over MPI ranks (src/mpi/, optional: IM_MPI)
   libvulkan-dev libvkfft-dev glslang-dev glslang-tools spirv-tools  # the GPU solver engine (src/gpu/, optional: IM_GPU)
   mesa-vulkan-drivers vulkan-validationlayers  # lavapipe and the validation layers for its tests
-  libgwyddion20-dev gwyddion               # instrument formats through Gwyddion's file modules (src/io/gwyddion/, optional: IM_GWYDDION)
+  libgwyddion20-dev gwyddion               # instrument formats through Gwyddion's file modules (src/formats/gwyddion/, optional: IM_GWYDDION)
 )
 
 missing=()

@@ -19,6 +19,7 @@
 #include "indentmap/colormap.h"
 #include "indentmap/field.h"
 #include "indentmap/figure.h"
+#include "indentmap/formats.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/history.h"

@@ -100,28 +100,28 @@ static void test_tick_labels(void **state)
     assert_int_equal(count, 5); /* 0.01 0.02 0.05 0.1 0.2 */
     const char *expected[] = {"0.01", "0.02", "0.05", "0.1", "0.2"};
     for (int i = 0; i < count; ++i) {
-        figure_tick_label(1, t, count, i, text, sizeof text);
+        typeset_tick_label(1, t, count, i, text, sizeof text);
         assert_string_equal(text, expected[i]);
     }
     c = im_colormap_make(IM_COLORMAP_MAGMA, 1e-3, 1.0);
     c.logarithmic = 1;
     count = im_figure_ticks(&c, t, 32);
-    figure_tick_label(1, t, count, 0, text, sizeof text);
+    typeset_tick_label(1, t, count, 0, text, sizeof text);
     assert_string_equal(text, "10⁻³");
     const double thinned[] = {1e-3, 1e-1};
-    figure_tick_label(1, thinned, 2, 1, text, sizeof text);
+    typeset_tick_label(1, thinned, 2, 1, text, sizeof text);
     assert_string_equal(text, "10⁻¹");
     const double log_small[] = {2e-7, 5e-7};
-    figure_tick_label(1, log_small, 2, 1, text, sizeof text);
+    typeset_tick_label(1, log_small, 2, 1, text, sizeof text);
     assert_string_equal(text, "5×10⁻⁷");
     const double metres[] = {0.0, 5e-7, 1e-6, 1.5e-6};
     const char *metre_labels[] = {"0", "0.5×10⁻⁶", "1.0×10⁻⁶", "1.5×10⁻⁶"};
     for (int i = 0; i < 4; ++i) {
-        figure_tick_label(0, metres, 4, i, text, sizeof text);
+        typeset_tick_label(0, metres, 4, i, text, sizeof text);
         assert_string_equal(text, metre_labels[i]);
     }
     const double plain[] = {-0.2, 0.0, 0.2};
-    figure_tick_label(0, plain, 3, 0, text, sizeof text);
+    typeset_tick_label(0, plain, 3, 0, text, sizeof text);
     assert_string_equal(text, "−0.2");
 }
 
@@ -133,12 +133,12 @@ static void test_length_labels(void **state)
     const double lengths[] = {5e-6, 2e-9, 0.002, 0.5, 1.0, 2000.0, 1e-6};
     const char *labels[] = {"5 µm", "2 nm", "2 mm", "500 mm", "1 m", "2 km", "1 µm"};
     for (int i = 0; i < 7; ++i) {
-        figure_length_label(lengths[i], "m", text, sizeof text);
+        typeset_length_label(lengths[i], "m", text, sizeof text);
         assert_string_equal(text, labels[i]);
     }
-    figure_length_label(100.0, "", text, sizeof text);
+    typeset_length_label(100.0, "", text, sizeof text);
     assert_string_equal(text, "100 δ");
-    figure_length_label(20.0, "px", text, sizeof text);
+    typeset_length_label(20.0, "px", text, sizeof text);
     assert_string_equal(text, "20 px");
 }
 

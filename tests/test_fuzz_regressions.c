@@ -7,10 +7,11 @@
 
 #include "../fuzz/fuzz_checks.h"
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/scene.h"
-#include "io/gwyddion.h"
-#include "io/hdf5.h"
-#include "io/readers.h"
+#include "formats/gwyddion.h"
+#include "formats/hdf5.h"
+#include "formats/readers.h"
 
 #include <dirent.h>
 #include <signal.h>

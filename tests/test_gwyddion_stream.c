@@ -1,11 +1,12 @@
-/* The stream indentmap-gwyddion-read hands the library (src/io/gwyddion.h): what it accepts and what
+/* The stream indentmap-gwyddion-read hands the library (src/formats/gwyddion.h): what it accepts and what
  * it refuses, naming why, whatever the vendor file behind it put into the header; and the choice of
  * the program. The program itself is run on real files by tests/cli_instrument_files.sh. */
 #include "support.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
-#include "io/gwyddion.h"
+#include "formats/gwyddion.h"
 
 #include <math.h>
 #include <signal.h>

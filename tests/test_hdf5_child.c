@@ -1,12 +1,13 @@
-/* HDF5 and NetCDF-4 files read in a child process (src/io/hdf5_child.c): the child gives the field, the units and the
+/* HDF5 and NetCDF-4 files read in a child process (src/formats/hdf5_child.c): the child gives the field, the units and the
  * refusals the in-process reader gives, and what comes through its stream is checked as any file is. A
  * constructed file (written here with libhdf5) is checked against the values written; stand-in programs
  * (INDENTMAP_HDF5_READER) crash, hang or lie. The crash inputs themselves: test_fuzz_regressions.c. */
 #include "support.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
-#include "io/hdf5.h"
+#include "formats/hdf5.h"
 
 #include <hdf5.h>
 #include <netcdf.h>

@@ -1,6 +1,7 @@
 /* Tests of the file formats: exact round trips and clear refusals of bad files. */
 #include "support.h"
 
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"

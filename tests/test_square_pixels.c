@@ -5,6 +5,7 @@
 #include "support.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 

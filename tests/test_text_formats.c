@@ -4,6 +4,7 @@
 #include "support.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
 
 #include <math.h>

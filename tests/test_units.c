@@ -5,6 +5,7 @@
 #include "support.h"
 
 #include "indentmap/indenter.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"

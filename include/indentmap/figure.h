@@ -11,7 +11,7 @@
  *   im_animation_gif, im_animation_mp4           frames as an animation
  *
  * GL draws the data, cairo the annotations. Text uses FreeType on the DejaVu Sans files
- * (IM_FIGURE_FONT, IM_FIGURE_FONT_BOLD) loaded directly, so output does not depend on fontconfig.
+ * (in the folder the build names, cmake -DIM_FONT_DIR=...) loaded directly, so output does not depend on fontconfig.
  * Every file is written atomically (io.h): an unwritable path gives IM_EIO and leaves nothing.
  *
  * Text (labels, titles, the colour bar's quantity) is UTF-8 and may contain _{subscript} and
@@ -37,12 +37,6 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-#ifndef IM_FONT_DIR /* the folder is a build setting: cmake -DIM_FONT_DIR=... */
-#define IM_FONT_DIR "/usr/share/fonts/truetype/dejavu"
-#endif
-#define IM_FIGURE_FONT IM_FONT_DIR "/DejaVuSans.ttf"
-#define IM_FIGURE_FONT_BOLD IM_FONT_DIR "/DejaVuSans-Bold.ttf"
 
 typedef struct im_figure_panel {
     const im_image *image;  /* the data, from im_render_*; required */

@@ -60,6 +60,9 @@ const char *im_history_integer_columns(void);
 int im_history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
                        im_history_row *rows, int i);
 
+/* The most steps of one history (IM_SCENE_MAX_STEPS of a scene, and indent's). */
+enum { IM_HISTORY_MAX_STEPS = 4096 };
+
 /* The row as one CSV line with its newline, into line (IM_HISTORY_LINE_MAX bytes suffice). Returns its
  * length; -1 (IM_EINVAL) for a NULL row or line. */
 enum { IM_HISTORY_LINE_MAX = 1024 };

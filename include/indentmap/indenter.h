@@ -141,16 +141,6 @@ double im_profile_extent(const im_profile *profile);
 void im_profile_samples(const im_profile *profile, const double **r, const double **z, int *count,
                         const im_field **field);
 
-/* Reads a profile file. A .npy file (any case) is a 2-D profile: its heights in the surface's
- * length unit, its delta set to `delta` (the surface's spacing: the field is on the surface's
- * grid). Any other file is an axisymmetric table: one sample "r z" or "r,z" per line (spaces,
- * tabs or one comma between them), r and z in the surface's length unit; blank lines and lines
- * starting with '#' are skipped, and so is a first line that holds no number (a header such as
- * "r,z"). IM_EIO naming the file when it cannot be read; IM_EINVAL naming the file and line of
- * a line that is not two numbers, or the file and the sample's line for a profile that
- * im_profile_axisymmetric refuses. */
-int im_profile_read(const char *path, double delta, im_profile **out);
-
 /* Name of a kind: "cone", "sphere", "flat", "profile", "profile-2d". */
 const char *im_punch_name(enum im_punch_kind kind);
 

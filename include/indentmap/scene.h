@@ -42,6 +42,8 @@
 #define INDENTMAP_SCENE_H
 
 #include "indentmap/colormap.h"
+#include "indentmap/formats.h"
+#include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/solver.h"
@@ -55,7 +57,7 @@
 extern "C" {
 #endif
 
-enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = 4096, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
+enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = IM_HISTORY_MAX_STEPS, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
        IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */,
        IM_SCENE_CONTENTS = 16384 /* im_scene.contents: every key at most once, each line < 200 bytes */ };
 
@@ -112,15 +114,15 @@ typedef struct im_scene {
     char channel[64];                /* the files' channel (instrument files read through Gwyddion: an
                                         index or a title); "": the first holding heights */
     int resample_square;             /* 1: resample files whose pixels are not square onto square ones
-                                        (io.h: im_surface_read_options.resample_square); 0: refuse them */
-    enum im_npy_order npy_order;     /* `npy_order`: which index of the .npy files is x (io.h; sidecar, the
+                                        (formats.h: im_surface_read_options.resample_square); 0: refuse them */
+    enum im_npy_order npy_order;     /* `npy_order`: which index of the .npy files is x (formats.h; sidecar, the
                                         default: as each file's sidecar states, else yx) */
     char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
     double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
                                         surface as solved; measured by im_scene_run, which sets
                                         slopes[0] to their root mean square (NaN until then) */
     double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* each file's |delta_x - delta_y| / their
-                                        mean as read (io.h: spacing_difference), measured with them */
+                                        mean as read (formats.h: spacing_difference), measured with them */
     int file_resampled[IM_SCENE_MAX_FAMILIES]; /* 1 where that file was resampled onto square pixels */
     double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
     int family_count;

@@ -1,4 +1,4 @@
-"""Rough surfaces: synthesis, statistics, spectra and files (the library's surface.h and io.h)."""
+"""Rough surfaces: synthesis, statistics, spectra and files (the library's surface.h and formats.h)."""
 from typing import NamedTuple
 
 import numpy as np

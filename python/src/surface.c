@@ -2,6 +2,7 @@
 #include "core.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 
@@ -218,7 +219,7 @@ static PyObject *prepare(PyObject *self, PyObject *args)
     return Py_BuildValue("(Nl)", py_array_from_field(copy), filled);
 }
 
-/* A length unit the caller named for `parameter` in its canonical spelling (io.h: im_length_unit_metres), or
+/* A length unit the caller named for `parameter` in its canonical spelling (formats.h: im_length_unit_metres), or
  * "" for none; -1 with ValueError naming the parameter otherwise. */
 static int length_unit_argument(const char *parameter, const char *text, char out[16])
 {

@@ -3,6 +3,7 @@
 #define INDENTMAP_CLI_H
 
 #include "indentmap/history.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
@@ -87,15 +88,15 @@ int cli_parse_int(const char *option, const char *text, long min, long max, int 
 int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
 
-/* A length unit for --unit or --height-unit (io.h: m, mm, µm or um, nm, ...), copied into out
+/* A length unit for --unit or --height-unit (formats.h: m, mm, µm or um, nm, ...), copied into out
  * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
 int cli_parse_length_unit(const char *option, const char *text, char *out);
 
-/* --channel of an instrument file (io.h: an index or a title, read through Gwyddion): 1 to 63 bytes,
+/* --channel of an instrument file (formats.h: an index or a title, read through Gwyddion): 1 to 63 bytes,
  * copied into out (64 bytes); 0, or -1 after saying what was expected. */
 int cli_parse_channel(const char *text, char *out);
 
-/* --npy-order yx|xy: which index of a .npy array is x (io.h: enum im_npy_order). 0, or -1 after saying
+/* --npy-order yx|xy: which index of a .npy array is x (formats.h: enum im_npy_order). 0, or -1 after saying
  * what was expected. */
 int cli_parse_npy_order(const char *text, enum im_npy_order *out);
 

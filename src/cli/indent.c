@@ -7,6 +7,7 @@
 #include "front/run_folder.h"
 
 #include "indentmap/field.h"
+#include "indentmap/formats.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/measure.h"

@@ -8,6 +8,7 @@
 #include "cli/mpi_indent.h"
 #include "front/front.h"
 #include "mpi/agree.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 

@@ -1,6 +1,7 @@
 #include "cli/cli.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/status.h"
 
 #include <errno.h>

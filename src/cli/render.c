@@ -4,6 +4,7 @@
 
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"

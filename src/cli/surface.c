@@ -2,6 +2,7 @@
 #include "cli/cli.h"
 
 #include "indentmap/colormap.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"

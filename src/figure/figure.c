@@ -5,6 +5,7 @@
 #include "typeset/fonts.h"
 #include "typeset/output.h"
 #include "typeset/text.h"
+#include "typeset/ticks.h"
 #include "indentmap/status.h"
 
 #include <cairo.h>
@@ -12,7 +13,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 enum { MAX_TICKS = 32, MAX_PANELS = 64, MAX_BARS = 2 };
 
@@ -23,20 +23,19 @@ im_figure im_figure_default(void)
     return figure;
 }
 
+_Static_assert((int)IM_FIGURE_PNG == (int)TYPESET_PNG && (int)IM_FIGURE_PDF == (int)TYPESET_PDF &&
+                   (int)IM_FIGURE_SVG == (int)TYPESET_SVG,
+               "im_figure_format is typeset_format");
+
 int im_figure_format_of(const char *path, im_figure_format *format)
 {
     ARG_REQUIRE(path, "path");
     ARG_REQUIRE(format, "format");
-    const char *dot = strrchr(path, '.');
-    if (dot && strcasecmp(dot, ".png") == 0)
-        *format = IM_FIGURE_PNG;
-    else if (dot && strcasecmp(dot, ".pdf") == 0)
-        *format = IM_FIGURE_PDF;
-    else if (dot && strcasecmp(dot, ".svg") == 0)
-        *format = IM_FIGURE_SVG;
-    else
-        return im_fail(IM_EINVAL, "%s: unknown figure format: expected .png, .pdf or .svg", path);
-    return IM_OK;
+    typeset_format found;
+    int status = typeset_format_of(path, &found);
+    if (status == IM_OK)
+        *format = (im_figure_format)found;
+    return status;
 }
 
 /* ---- layout, in pixels at the figure's dpi ---- */
@@ -75,7 +74,7 @@ typedef struct measure {
 
 static double text_width(const measure *m, cairo_font_face_t *face, double size, const char *text)
 {
-    return text ? figure_rich_text(m->cr, face, size, 0.0, 0.0, text, 0) : 0.0;
+    return text ? typeset_rich_text(m->cr, face, size, 0.0, 0.0, text, 0) : 0.0;
 }
 
 static int has_panel_text(const im_figure *f)
@@ -122,6 +121,13 @@ static double tick_position(const colorbar *b, double v)
     return b->y + (1.0 - t) * b->height;
 }
 
+int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity)
+{
+    ARG_REQUIRE_OR(colormap, "colormap", 0);
+    ARG_REQUIRE_OR(ticks, "ticks", 0);
+    return typeset_colour_bar_ticks(colormap->lo, colormap->hi, colormap->logarithmic, ticks, capacity);
+}
+
 /* The ticks to label: every k-th of im_figure_ticks, with the smallest k that puts labels at least
  * 1.2 em apart along the bar. */
 static void choose_ticks(colorbar *b, double font)
@@ -146,7 +152,7 @@ static void measure_colorbar(const measure *m, double font, colorbar *b)
     b->tick_label_width = 0.0;
     for (int i = 0; i < b->tick_count; ++i) {
         char text[64];
-        figure_tick_label(b->colormap->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
+        typeset_tick_label(b->colormap->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
         b->tick_label_width = fmax(b->tick_label_width, text_width(m, m->regular, font, text));
     }
 }
@@ -157,7 +163,7 @@ static void scale_bar(const im_figure *f, char *text, size_t size, double *pixel
     const im_image *image = f->panels[(f->rows - 1) * f->columns].image;
     double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
     *pixels = (image->unit[0] ? length / image->delta : length) * image->pixels_per_patch;
-    figure_length_label(length, image->unit, text, size);
+    typeset_length_label(length, image->unit, text, size);
 }
 
 /* Moves the grid and the bars placed so far down (and grows the page) so that the last bar's
@@ -317,13 +323,13 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
             return status;
         cairo_set_source_rgb(cr, 0, 0, 0);
         double baseline = y - 0.45 * l->font;
-        double label_width = p->label ? figure_rich_text(cr, bold, l->font, 0, 0, p->label, 0) : 0.0;
+        double label_width = p->label ? typeset_rich_text(cr, bold, l->font, 0, 0, p->label, 0) : 0.0;
         if (p->label)
-            figure_show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
+            typeset_show_text(cr, bold, l->font, x, baseline, 0.0, p->label);
         if (p->title) {
-            double width = figure_rich_text(cr, regular, l->font, 0, 0, p->title, 0);
-            figure_show_text(cr, regular, l->font, title_left(l->font, x, p->image->width, label_width, width),
-                                baseline, 0.0, p->title);
+            double width = typeset_rich_text(cr, regular, l->font, 0, 0, p->title, 0);
+            typeset_show_text(cr, regular, l->font, title_left(l->font, x, p->image->width, label_width, width),
+                              baseline, 0.0, p->title);
         }
     }
     return IM_OK;
@@ -343,9 +349,9 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, pixels, round(0.3 * l->font));
     cairo_fill(cr);
-    double width = figure_rich_text(cr, regular, l->font, 0, 0, text, 0);
-    figure_show_text(cr, regular, l->font, fmax(x, left + 0.5 * (pixels - width)),
-                        top + 0.3 * l->font + 1.1 * l->font, 0.0, text);
+    double width = typeset_rich_text(cr, regular, l->font, 0, 0, text, 0);
+    typeset_show_text(cr, regular, l->font, fmax(x, left + 0.5 * (pixels - width)),
+                      top + 0.3 * l->font + 1.1 * l->font, 0.0, text);
 }
 
 /* The note under the grid, on the scale bar's text line. */
@@ -354,7 +360,7 @@ static void draw_note(const im_figure *f, const layout *l, cairo_t *cr, cairo_fo
     double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
     double top = l->grid_y + grid_height + 0.5 * l->font;
     cairo_set_source_rgb(cr, 0, 0, 0);
-    figure_show_text(cr, regular, l->font, l->note_x, top + 0.3 * l->font + 1.1 * l->font, 0.0, f->note);
+    typeset_show_text(cr, regular, l->font, l->note_x, top + 0.3 * l->font + 1.1 * l->font, 0.0, f->note);
 }
 
 /* Unlabelled ticks at 2..9 times each decade of a logarithmic bar, half as long. */
@@ -417,8 +423,8 @@ static int draw_colorbar(const colorbar *b, const layout *l, cairo_t *cr, cairo_
         cairo_line_to(cr, right + l->tick_length, y);
         cairo_stroke(cr);
         char text[64];
-        figure_tick_label(c->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
-        figure_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
+        typeset_tick_label(c->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
+        typeset_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
     }
     if (c->logarithmic)
         draw_minor_ticks(b, l, cr);
@@ -427,7 +433,7 @@ static int draw_colorbar(const colorbar *b, const layout *l, cairo_t *cr, cairo_
         cairo_translate(cr, right + l->tick_length + 0.3 * l->font + b->tick_label_width + 1.2 * l->font,
                         b->y + 0.5 * b->height);
         cairo_rotate(cr, -M_PI / 2.0);
-        figure_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, b->label);
+        typeset_show_text(cr, regular, l->font, 0.0, 0.0, 0.5, b->label);
         cairo_restore(cr);
     }
     return IM_OK;
@@ -436,7 +442,7 @@ static int draw_colorbar(const colorbar *b, const layout *l, cairo_t *cr, cairo_
 static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
 {
     cairo_font_face_t *regular, *bold;
-    int status = figure_fonts(&regular, &bold);
+    int status = typeset_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_set_source_rgb(cr, 1, 1, 1);
@@ -491,7 +497,7 @@ static int prepare(const im_figure *f, layout *l)
     int status = check_figure(f);
     cairo_font_face_t *regular, *bold;
     if (status == IM_OK)
-        status = figure_fonts(&regular, &bold);
+        status = typeset_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
@@ -506,24 +512,24 @@ static int prepare(const im_figure *f, layout *l)
 }
 
 /* Writes the figure as path in format; a PNG's pixels also in *frame when frame is not NULL. */
-static int output(const im_figure *f, const char *path, im_figure_format format, im_image *frame)
+static int output(const im_figure *f, const char *path, typeset_format format, im_image *frame)
 {
     layout l;
     int status = prepare(f, &l);
     if (status != IM_OK)
         return status;
-    im_figure_canvas canvas = {l.width, l.height, f->dpi, f->texts, f->text_count, f->png_compression};
+    typeset_canvas canvas = {l.width, l.height, f->dpi, f->texts, f->text_count, f->png_compression};
     figure_drawing drawing = {f, &l};
-    return format == IM_FIGURE_PNG ? figure_output_frame(path, &canvas, paint_figure, &drawing, frame)
-                                   : figure_output(path, format, &canvas, paint_figure, &drawing);
+    return format == TYPESET_PNG ? typeset_output_frame(path, &canvas, paint_figure, &drawing, frame)
+                                 : typeset_output(path, format, &canvas, paint_figure, &drawing);
 }
 
 int im_figure_write(const im_figure *f, const char *path)
 {
     ARG_REQUIRE(f, "figure");
     ARG_REQUIRE(path, "path");
-    im_figure_format format = IM_FIGURE_PNG;
-    int status = im_figure_format_of(path, &format);
+    typeset_format format = TYPESET_PNG;
+    int status = typeset_format_of(path, &format);
     return status == IM_OK ? output(f, path, format, NULL) : status;
 }
 
@@ -533,9 +539,9 @@ int im_figure_write_frame(const im_figure *f, const char *path, im_image *frame)
     ARG_REQUIRE(path, "path");
     ARG_REQUIRE(frame, "frame");
     *frame = (im_image){0};
-    im_figure_format format = IM_FIGURE_PNG;
-    int status = im_figure_format_of(path, &format);
-    if (status == IM_OK && format != IM_FIGURE_PNG)
+    typeset_format format = TYPESET_PNG;
+    int status = typeset_format_of(path, &format);
+    if (status == IM_OK && format != TYPESET_PNG)
         status = im_fail(IM_EINVAL, "%s: a frame is a PNG: expected a path ending in .png", path);
     return status == IM_OK ? output(f, path, format, frame) : status;
 }

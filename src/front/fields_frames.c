@@ -3,6 +3,7 @@
 #include "front/front.h"
 
 #include "indentmap/figure.h"
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 

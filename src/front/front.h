@@ -7,9 +7,9 @@
 
 #include "indentmap/history.h"
 #include "indentmap/indenter.h"
+#include "indentmap/io.h"
 #include "indentmap/measure.h"
 #include "indentmap/render.h"
-#include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/theory.h"
 
@@ -39,7 +39,7 @@ void run_figure_texts_free(run_figure_texts *texts);
  * 4096 doubles, copied by value) and a run keeps a row of about 200 bytes per step; at the
  * 0.05-1 s a step of a 512 x 512 solve takes, 4096 steps are already minutes to an hour. The
  * field files of `indent --fields` are numbered with four digits, which 4096 keeps. */
-enum { STEPS_MAX = IM_SCENE_MAX_STEPS };
+enum { STEPS_MAX = IM_HISTORY_MAX_STEPS };
 
 /* Parses a step list: items separated by commas (blanks around them allowed), each a value or a range
  * "first:last:count" (count values evenly spaced from first to last, both included; last may be below

@@ -1,6 +1,7 @@
 /* The text of `indentmap info` and `indentmap formats` (info.h), written once for every front end. */
 #include "indentmap/info.h"
 
+#include "indentmap/formats.h"
 #include "indentmap/gpu_config.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"

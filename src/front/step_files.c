@@ -3,6 +3,7 @@
 #include "front/front.h"
 
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/measure.h"
 #include "indentmap/status.h"
 

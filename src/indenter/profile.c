@@ -5,7 +5,7 @@
 #include "core/args.h"
 
 #include "indentmap/status.h"
-#include "theory/quadrature.h"
+#include "core/gsl_handler.h"
 
 #include <gsl/gsl_interp.h>
 #include <math.h>
@@ -115,9 +115,9 @@ int im_profile_axisymmetric(const double *r, const double *z, int n, im_profile 
     if (p) {
         p->r = malloc(sizeof(double) * (size_t)n);
         p->z = malloc(sizeof(double) * (size_t)n);
-        theory_gsl_handler_off(); /* a failed allocation is IM_ENOMEM, not GSL's abort */
+        core_gsl_handler_off(); /* a failed allocation is IM_ENOMEM, not GSL's abort */
         p->interp = gsl_interp_alloc(gsl_interp_steffen, (size_t)n);
-        theory_gsl_handler_restore();
+        core_gsl_handler_restore();
     }
     if (!p || !p->r || !p->z || !p->interp) {
         im_profile_free(p);

@@ -307,11 +307,11 @@ static void draw_axis(cairo_t *cr, cairo_font_face_t *face, const plot_layout *l
         if (i % a->label_every)
             continue;
         char text[64];
-        figure_tick_label(a->scale == IM_PLOT_LOG, a->ticks, a->tick_count, i, text, sizeof text);
+        typeset_tick_label(a->scale == IM_PLOT_LOG, a->ticks, a->tick_count, i, text, sizeof text);
         if (vertical_axis)
-            figure_show_text(cr, face, f, pl->box_x - 0.35 * f, position + 0.36 * f, 1.0, text);
+            typeset_show_text(cr, face, f, pl->box_x - 0.35 * f, position + 0.36 * f, 1.0, text);
         else
-            figure_show_text(cr, face, f, position, pl->box_y + pl->box_height + 1.15 * f, 0.5, text);
+            typeset_show_text(cr, face, f, position, pl->box_y + pl->box_height + 1.15 * f, 0.5, text);
     }
     if (a->scale == IM_PLOT_LOG)
         minor_ticks(cr, pl, a, vertical_axis, MINOR_TICK * l->points);
@@ -323,13 +323,13 @@ static void draw_axis_labels(cairo_t *cr, cairo_font_face_t *face, const plot_la
 {
     double f = l->font;
     if (p->x.label)
-        figure_show_text(cr, face, f, pl->box_x + 0.5 * pl->box_width, pl->box_y + pl->box_height + 2.55 * f,
-                            0.5, p->x.label);
+        typeset_show_text(cr, face, f, pl->box_x + 0.5 * pl->box_width, pl->box_y + pl->box_height + 2.55 * f,
+                          0.5, p->x.label);
     if (p->y.label) {
         cairo_save(cr);
         cairo_translate(cr, y_label_left + 0.8 * f, pl->box_y + 0.5 * pl->box_height);
         cairo_rotate(cr, -M_PI / 2.0);
-        figure_show_text(cr, face, f, 0.0, 0.0, 0.5, p->y.label);
+        typeset_show_text(cr, face, f, 0.0, 0.0, 0.5, p->y.label);
         cairo_restore(cr);
     }
 }
@@ -350,7 +350,7 @@ static void draw_legend(cairo_t *cr, cairo_font_face_t *face, const plot_layout 
     double y = pl->legend_y + pad + 0.5 * row, x = pl->legend_x + pad;
     if (p->legend_title) {
         cairo_set_source_rgb(cr, 0, 0, 0);
-        figure_show_text(cr, face, l->font, x, y + 0.36 * l->font, 0.0, p->legend_title);
+        typeset_show_text(cr, face, l->font, x, y + 0.36 * l->font, 0.0, p->legend_title);
         y += row;
     }
     for (int i = 0; i < p->series_count; ++i) {
@@ -379,7 +379,7 @@ static void draw_legend(cairo_t *cr, cairo_font_face_t *face, const plot_layout 
         }
         plot_draw_marker(cr, s, l->points, x + 0.5 * sample, y);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        figure_show_text(cr, face, l->font, x + sample + 0.5 * l->font, y + 0.36 * l->font, 0.0, s->label);
+        typeset_show_text(cr, face, l->font, x + sample + 0.5 * l->font, y + 0.36 * l->font, 0.0, s->label);
         y += row;
     }
 }
@@ -399,9 +399,9 @@ static int draw_panel(cairo_t *cr, cairo_font_face_t *regular, cairo_font_face_t
     draw_axis_labels(cr, regular, l, p, pl, y_label_left);
     double baseline = pl->box_y - 0.45 * l->font;
     if (p->label)
-        figure_show_text(cr, bold, l->font, pl->box_x, baseline, 0.0, p->label);
+        typeset_show_text(cr, bold, l->font, pl->box_x, baseline, 0.0, p->label);
     if (p->title)
-        figure_show_text(cr, regular, l->font, pl->box_x + 0.5 * pl->box_width, baseline, 0.5, p->title);
+        typeset_show_text(cr, regular, l->font, pl->box_x + 0.5 * pl->box_width, baseline, 0.5, p->title);
     draw_legend(cr, regular, l, p, pl);
     return status;
 }
@@ -409,7 +409,7 @@ static int draw_panel(cairo_t *cr, cairo_font_face_t *regular, cairo_font_face_t
 int plot_draw(const im_plot *plot, const plot_layout *l, cairo_t *cr)
 {
     cairo_font_face_t *regular, *bold;
-    int status = figure_fonts(&regular, &bold);
+    int status = typeset_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_set_source_rgb(cr, 1, 1, 1);

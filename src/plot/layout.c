@@ -155,7 +155,7 @@ static void data_ranges(const im_plot_panel *p, range *x, range *y)
 
 static int tick_values(plot_axis_layout *a)
 {
-    return figure_ticks_between(a->lo, a->hi, a->scale == IM_PLOT_LOG, TICK_TARGET, a->ticks, PLOT_MAX_TICKS);
+    return typeset_ticks_between(a->lo, a->hi, a->scale == IM_PLOT_LOG, TICK_TARGET, a->ticks, PLOT_MAX_TICKS);
 }
 
 /* The largest (down) or smallest (up) of 1, 2, 5 x 10^k at or beyond v > 0. */
@@ -231,7 +231,7 @@ double plot_legend_padding(const plot_layout *l) { return round(0.45 * l->font);
 
 static double text_width(cairo_t *cr, const plot_layout *l, const char *text)
 {
-    return figure_rich_text(cr, cairo_get_font_face(cr), l->font, 0.0, 0.0, text, 0);
+    return typeset_rich_text(cr, cairo_get_font_face(cr), l->font, 0.0, 0.0, text, 0);
 }
 
 /* Widest labelled tick of an axis, and half the width of its last label. */
@@ -243,7 +243,7 @@ static void tick_label_widths(cairo_t *cr, const plot_layout *l, const plot_axis
         if (i % a->label_every)
             continue;
         char text[64];
-        figure_tick_label(a->scale == IM_PLOT_LOG, a->ticks, a->tick_count, i, text, sizeof text);
+        typeset_tick_label(a->scale == IM_PLOT_LOG, a->ticks, a->tick_count, i, text, sizeof text);
         double w = text_width(cr, l, text);
         *widest = fmax(*widest, w);
         *last_half = 0.5 * w;

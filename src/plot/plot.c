@@ -49,7 +49,7 @@ void im_plot_family_color(int i, int count, uint8_t rgb[3])
 static int layout_plot(const im_plot *plot, plot_layout *layout)
 {
     cairo_font_face_t *regular, *bold;
-    int status = figure_fonts(&regular, &bold);
+    int status = typeset_fonts(&regular, &bold);
     if (status != IM_OK)
         return status;
     cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
@@ -96,8 +96,8 @@ int im_plot_write(const im_plot *plot, const char *path)
 {
     ARG_REQUIRE(plot, "plot");
     ARG_REQUIRE(path, "path");
-    im_figure_format format;
-    int status = im_figure_format_of(path, &format);
+    typeset_format format;
+    int status = typeset_format_of(path, &format);
     if (status != IM_OK)
         return status;
     plot_layout *l = malloc(sizeof *l);
@@ -105,10 +105,10 @@ int im_plot_write(const im_plot *plot, const char *path)
         return im_fail(IM_ENOMEM, "plot layout: out of memory");
     status = layout_plot(plot, l);
     if (status == IM_OK) {
-        im_figure_canvas canvas = {l->width, l->height, plot->dpi, plot->texts, plot->text_count,
+        typeset_canvas canvas = {l->width, l->height, plot->dpi, plot->texts, plot->text_count,
                                    plot->png_compression};
         plot_drawing drawing = {plot, l};
-        status = figure_output(path, format, &canvas, paint_plot, &drawing);
+        status = typeset_output(path, format, &canvas, paint_plot, &drawing);
     }
     free(l);
     return status;

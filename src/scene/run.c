@@ -3,6 +3,7 @@
 #include "core/args.h"
 #include "front/run_folder.h"
 
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "scene/distributions.h"

@@ -3,6 +3,7 @@
 #include "indentmap/scene.h"
 #include "core/args.h"
 
+#include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "scene/surfaces.h"

@@ -3,7 +3,7 @@
 #include "indentmap/status.h"
 #include "core/args.h"
 #include "indentmap/theory.h"
-#include "theory/quadrature.h"
+#include "core/gsl_handler.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
@@ -67,7 +67,7 @@ static int brent_root(double (*f)(double, void *), void *params, double lo, doub
     gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (!solver)
         return im_fail(IM_ENOMEM, "Maugis-Dugdale: GSL root solver allocation failed");
-    theory_gsl_handler_off();
+    core_gsl_handler_off();
     int status = gsl_root_fsolver_set(solver, &fn, lo, hi), settled = 0;
     for (int i = 0; i < 500 && status == GSL_SUCCESS && !settled; ++i) {
         status = gsl_root_fsolver_iterate(solver);
@@ -75,7 +75,7 @@ static int brent_root(double (*f)(double, void *), void *params, double lo, doub
                                          1e-14) == GSL_SUCCESS;
     }
     *root = gsl_root_fsolver_root(solver);
-    theory_gsl_handler_restore();
+    core_gsl_handler_restore();
     gsl_root_fsolver_free(solver);
     if (!settled)
         return im_fail(IM_ENOCONV, "Maugis-Dugdale: root in [%g, %g] not found: %s", lo, hi, gsl_strerror(status));

@@ -1,14 +1,8 @@
 /* Internal: GSL adaptive quadrature for the theory module, with GSL's error handler switched off
- * during each call (and the application's put back after it) and GSL's status codes turned into
+ * during each call (core/gsl_handler.h) and GSL's status codes turned into
  * the project's. */
 #ifndef INDENTMAP_THEORY_QUADRATURE_H
 #define INDENTMAP_THEORY_QUADRATURE_H
-
-/* GSL's error handler switched off (its default aborts; the library returns statuses) for the
- * length of a GSL call, and the application's put back once no such call of the library runs (a
- * count under a lock: callers on several threads at once). Every off is paired with a restore. */
-void theory_gsl_handler_off(void);
-void theory_gsl_handler_restore(void);
 
 /* Relative accuracy asked of every theory quadrature. */
 #define THEORY_QUADRATURE_EPSREL 1e-12

@@ -1,6 +1,5 @@
 #include "typeset/fonts.h"
 
-#include "indentmap/figure.h"
 #include "indentmap/status.h"
 
 #include <cairo-ft.h>
@@ -39,11 +38,11 @@ static void load_fonts(void)
         failed_error = error;
         return;
     }
-    faces[0] = load(IM_FIGURE_FONT);
-    faces[1] = faces[0] ? load(IM_FIGURE_FONT_BOLD) : NULL;
+    faces[0] = load(TYPESET_FONT);
+    faces[1] = faces[0] ? load(TYPESET_FONT_BOLD) : NULL;
 }
 
-int figure_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold)
+int typeset_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold)
 {
     pthread_once(&once, load_fonts);
     if (!faces[0] || !faces[1])

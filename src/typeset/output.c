@@ -9,8 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
-static int check_canvas(const im_figure_canvas *c)
+static int check_canvas(const typeset_canvas *c)
 {
     if (c->width < 1 || c->height < 1 || c->width > 32768 || c->height > 32768)
         return im_fail(IM_EINVAL, "figure %d x %d pixels: expected 1 to 32768 per side; lower the dpi "
@@ -19,7 +20,7 @@ static int check_canvas(const im_figure_canvas *c)
 }
 
 /* Paints the canvas into an RGBA image (alpha 255), the pixels a PNG of it holds. */
-static int raster(const im_figure_canvas *c, im_figure_painter paint, const void *context, im_image *image)
+static int raster(const typeset_canvas *c, typeset_painter paint, const void *context, im_image *image)
 {
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, c->width, c->height);
     cairo_t *cr = cairo_create(surface);
@@ -47,7 +48,7 @@ static int raster(const im_figure_canvas *c, im_figure_painter paint, const void
 }
 
 /* The image as an RGB PNG with the canvas's texts and resolution. */
-static int write_image_png(const char *path, const im_figure_canvas *c, const im_image *image)
+static int write_image_png(const char *path, const typeset_canvas *c, const im_image *image)
 {
     size_t pixels = (size_t)image->width * image->height;
     uint8_t *rgb = malloc(pixels * 3);
@@ -61,8 +62,8 @@ static int write_image_png(const char *path, const im_figure_canvas *c, const im
     return status;
 }
 
-int figure_output_frame(const char *path, const im_figure_canvas *canvas, im_figure_painter paint,
-                        const void *context, im_image *frame)
+int typeset_output_frame(const char *path, const typeset_canvas *canvas, typeset_painter paint,
+                         const void *context, im_image *frame)
 {
     int status = check_canvas(canvas);
     im_image image = {0};
@@ -96,7 +97,7 @@ static char *utf8_copy(const char *text)
 /* The texts of several lines (a scene's contents, the inputs' checksums) as the document's Subject,
  * "key:\nvalue", blank-line separated (cairo before 1.18 writes no other entries of the information
  * dictionary). */
-static void set_pdf_subject(const im_figure_canvas *c, cairo_surface_t *surface)
+static void set_pdf_subject(const typeset_canvas *c, cairo_surface_t *surface)
 {
     size_t size = 1, used = 0;
     for (int i = 0; i < c->text_count; ++i)
@@ -117,7 +118,7 @@ static void set_pdf_subject(const im_figure_canvas *c, cairo_surface_t *surface)
 
 /* The texts as PDF metadata: one-line ones as keywords ("key=value; ..."), those of several lines as
  * the Subject. */
-static void set_pdf_metadata(const im_figure_canvas *c, cairo_surface_t *surface)
+static void set_pdf_metadata(const typeset_canvas *c, cairo_surface_t *surface)
 {
     char keywords[2048] = "";
     size_t used = 0;
@@ -132,8 +133,8 @@ static void set_pdf_metadata(const im_figure_canvas *c, cairo_surface_t *surface
     cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "indentmap " IM_VERSION);
 }
 
-static int write_vector(const char *path, im_figure_format format, const im_figure_canvas *c,
-                        im_figure_painter paint, const void *context)
+static int write_vector(const char *path, typeset_format format, const typeset_canvas *c,
+                        typeset_painter paint, const void *context)
 {
     im_atomic_file file;
     int status = im_atomic_open(&file, path);
@@ -141,10 +142,10 @@ static int write_vector(const char *path, im_figure_format format, const im_figu
         return status;
     double points = 72.0 / c->dpi;
     cairo_surface_t *surface =
-        format == IM_FIGURE_PDF
+        format == TYPESET_PDF
             ? cairo_pdf_surface_create_for_stream(write_stream, file.stream, c->width * points, c->height * points)
             : cairo_svg_surface_create_for_stream(write_stream, file.stream, c->width * points, c->height * points);
-    if (format == IM_FIGURE_PDF)
+    if (format == TYPESET_PDF)
         set_pdf_metadata(c, surface);
     cairo_t *cr = cairo_create(surface);
     cairo_scale(cr, points, points);
@@ -164,11 +165,25 @@ static int write_vector(const char *path, im_figure_format format, const im_figu
     return im_atomic_commit(&file);
 }
 
-int figure_output(const char *path, im_figure_format format, const im_figure_canvas *canvas,
-                     im_figure_painter paint, const void *context)
+int typeset_format_of(const char *path, typeset_format *format)
 {
-    if (format == IM_FIGURE_PNG)
-        return figure_output_frame(path, canvas, paint, context, NULL);
+    const char *dot = strrchr(path, '.');
+    if (dot && strcasecmp(dot, ".png") == 0)
+        *format = TYPESET_PNG;
+    else if (dot && strcasecmp(dot, ".pdf") == 0)
+        *format = TYPESET_PDF;
+    else if (dot && strcasecmp(dot, ".svg") == 0)
+        *format = TYPESET_SVG;
+    else
+        return im_fail(IM_EINVAL, "%s: unknown figure format: expected .png, .pdf or .svg", path);
+    return IM_OK;
+}
+
+int typeset_output(const char *path, typeset_format format, const typeset_canvas *canvas,
+                   typeset_painter paint, const void *context)
+{
+    if (format == TYPESET_PNG)
+        return typeset_output_frame(path, canvas, paint, context, NULL);
     int status = check_canvas(canvas);
     return status == IM_OK ? write_vector(path, format, canvas, paint, context) : status;
 }

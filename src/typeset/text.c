@@ -61,7 +61,7 @@ static void linear_label(const double *ticks, int count, int i, char *text, size
     snprintf(text, size, "%s%.*f", v < 0 ? "−" : "", decimals, fabs(v));
 }
 
-void figure_tick_label(int logarithmic, const double *ticks, int count, int i, char *text, size_t size)
+void typeset_tick_label(int logarithmic, const double *ticks, int count, int i, char *text, size_t size)
 {
     double v = ticks[i];
     if (!logarithmic) {
@@ -77,7 +77,7 @@ void figure_tick_label(int logarithmic, const double *ticks, int count, int i, c
     }
 }
 
-void figure_length_label(double length, const char *unit, char *text, size_t size)
+void typeset_length_label(double length, const char *unit, char *text, size_t size)
 {
     static const char *const prefixes[] = {"n", "µ", "m", "", "k"};
     if (!unit || !unit[0]) {
@@ -109,8 +109,8 @@ static size_t plain_run(const char *text)
     return n;
 }
 
-double figure_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                           const char *text, int draw)
+double typeset_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
+                         const char *text, int draw)
 {
     double advance = 0.0;
     cairo_set_font_face(cr, face);
@@ -139,9 +139,9 @@ double figure_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, doubl
     return advance;
 }
 
-void figure_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                         double align, const char *text)
+void typeset_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
+                       double align, const char *text)
 {
-    double width = figure_rich_text(cr, face, size, 0.0, 0.0, text, 0);
-    figure_rich_text(cr, face, size, x - align * width, y, text, 1);
+    double width = typeset_rich_text(cr, face, size, 0.0, 0.0, text, 0);
+    typeset_rich_text(cr, face, size, x - align * width, y, text, 1);
 }

@@ -1,8 +1,5 @@
 /* Tick values of colour bars and plot axes. */
 #include "typeset/ticks.h"
-#include "core/args.h"
-
-#include "indentmap/figure.h"
 
 #include <math.h>
 
@@ -47,20 +44,17 @@ static int log_ticks(double lo, double hi, int min_decades, double *ticks, int c
     return count;
 }
 
-int figure_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity)
+int typeset_ticks_between(double lo, double hi, int logarithmic, double target, double *ticks, int capacity)
 {
     if (capacity < 1 || !(hi > lo) || (logarithmic && !(lo > 0.0)))
         return 0;
     return logarithmic ? log_ticks(lo, hi, 2, ticks, capacity) : linear_ticks(lo, hi, target, ticks, capacity);
 }
 
-int im_figure_ticks(const im_colormap *colormap, double *ticks, int capacity)
+int typeset_colour_bar_ticks(double lo, double hi, int logarithmic, double *ticks, int capacity)
 {
-    ARG_REQUIRE_OR(colormap, "colormap", 0);
-    ARG_REQUIRE_OR(ticks, "ticks", 0);
-    const double lo = colormap->lo, hi = colormap->hi;
-    if (!colormap->logarithmic || capacity < 1 || !(hi > lo) || !(lo > 0.0))
-        return figure_ticks_between(lo, hi, colormap->logarithmic, 5.0, ticks, capacity);
+    if (!logarithmic || capacity < 1 || !(hi > lo) || !(lo > 0.0))
+        return typeset_ticks_between(lo, hi, logarithmic, 5.0, ticks, capacity);
     /* A colour bar over under three decades would show one or two labels: 1-2-5 there (a plot axis
      * has its minor ticks and keeps decades from two on). */
     return log_ticks(lo, hi, 3, ticks, capacity);

@@ -14,7 +14,7 @@ lib=$(find "$prefix" -name 'libindentmap.so' -printf '%h\n' | head -1)
 soname=$(objdump -p "$lib/libindentmap.so" | awk '/SONAME/ {print $2}')
 case "$soname" in libindentmap.so.[0-9]*) ;; *) echo "install: SONAME '$soname'" >&2; exit 1 ;; esac
 [ -f "$lib/libindentmap.a" ] || { echo "install: no static library" >&2; exit 1; }
-# HDF5 files are read by a program of the build that the library starts (src/io/hdf5_child.c).
+# HDF5 files are read by a program of the build that the library starts (src/formats/hdf5_child.c).
 [ -x "$prefix/libexec/indentmap-hdf5-read" ] || { echo "install: no libexec/indentmap-hdf5-read" >&2; exit 1; }
 
 export PKG_CONFIG_PATH="$lib/pkgconfig"

@@ -12,6 +12,7 @@
  * the load and the map's total in hexadecimal, so the script can check that they are the same
  * bits for every rank count. A failed check aborts all ranks. */
 #include "indentmap/io.h"
+#include "indentmap/formats.h"
 #include "indentmap/mpi.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
