@@ -133,7 +133,8 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--measure") == 0)
             measure = 1;
         else {
-            fprintf(stderr, "usage: bench_cold [--n N] [--threads T] [--repeats R] [--tol T] [--no-cascade] [--no-precondition] [--compare] [--measure]\n");
+            fprintf(stderr, "usage: bench_cold [--n N] [--threads T] [--repeats R] [--tol T] [--no-cascade] "
+                            "[--no-precondition] [--compare] [--measure]\n");
             return 2;
         }
     }
@@ -170,9 +171,9 @@ int main(int argc, char **argv)
         plain.cascade = plain.precondition = 0;
         cold_solve reference = solve_cold(surface, approach, &plain, 1);
         printf("against the plain PK solve (%d iterations): load rel. difference %.2e, contact patches "
-               "differing %ld (n_p %ld vs %ld)\n", reference.step.iterations,
-               fabs(c.step.load / reference.step.load - 1), contact_differences(c.force, reference.force),
-               c.step.contact_patches, reference.step.contact_patches);
+               "differing %ld (n_p %ld vs %ld)\n",
+               reference.step.iterations, fabs(c.step.load / reference.step.load - 1),
+               contact_differences(c.force, reference.force), c.step.contact_patches, reference.step.contact_patches);
         im_field_free(reference.force);
         im_field_free(c.force);
     }
@@ -184,8 +185,9 @@ int main(int argc, char **argv)
     const pair_time pair = fft_pair_time(2 * c.window.nx, 2 * c.window.ny);
     const double floor = pair.cpu;
     const double cpu_median = bench_median(cpu, repeats);
-    printf("n %d, threads %d, tol %g, cascade %d, precondition %d: window %d x %d, w %.4f, n_p %ld, N %.10g\n", n, threads, tol,
-           o.cascade, o.precondition, c.window.nx, c.window.ny, approach, c.step.contact_patches, c.step.load);
+    printf("n %d, threads %d, tol %g, cascade %d, precondition %d: window %d x %d, w %.4f, n_p %ld, N %.10g\n", n,
+           threads, tol, o.cascade, o.precondition, c.window.nx, c.window.ny, approach, c.step.contact_patches,
+           c.step.load);
     printf("  fine iterations %d (convolutions %d), coarse iterations %d, wall %.3f s, CPU %.3f s (median of %d), "
            "CPU %.1f FFT pairs (%.2f per fine iteration; pair %.2f ms), peak RSS %.1f MiB\n",
            c.step.iterations, c.step.convolutions, c.coarse_iterations, bench_median(wall, repeats), cpu_median,

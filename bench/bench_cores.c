@@ -98,15 +98,15 @@ static void record(kernel_times *k, int repeat, run_time one, run_time many)
     k->gain[repeat] = one.wall / many.wall;
     k->cpu_ratio[repeat] = many.cpu / one.cpu;
     k->estimate[repeat] = k->gain[repeat] * k->cpu_ratio[repeat];
-    printf("%s,%d,%.2f,%.2f,%.3f,%.3f,%.3f\n", k->name, repeat + 1, 1e3 * one.wall, 1e3 * many.wall,
-           k->gain[repeat], k->cpu_ratio[repeat], k->estimate[repeat]);
+    printf("%s,%d,%.2f,%.2f,%.3f,%.3f,%.3f\n", k->name, repeat + 1, 1e3 * one.wall, 1e3 * many.wall, k->gain[repeat],
+           k->cpu_ratio[repeat], k->estimate[repeat]);
 }
 
 static void print_medians(kernel_times *k, int repeats)
 {
     printf("%s,median,%.2f,%.2f,%.3f,%.3f,%.3f\n", k->name, 1e3 * bench_median(k->one, repeats),
-           1e3 * bench_median(k->many, repeats), bench_median(k->gain, repeats),
-           bench_median(k->cpu_ratio, repeats), bench_median(k->estimate, repeats));
+           1e3 * bench_median(k->many, repeats), bench_median(k->gain, repeats), bench_median(k->cpu_ratio, repeats),
+           bench_median(k->estimate, repeats));
 }
 
 static int parse_args(int argc, char **argv, int *threads, int *repeats, double *mib)
@@ -146,8 +146,8 @@ int main(int argc, char **argv)
     double per_sweep = time_stream(&s, 1, 1).wall;
     int sweeps = per_sweep > 0.0 && per_sweep < 0.5 ? (int)(0.5 / per_sweep) + 1 : 1;
 
-    printf("# bench_cores: %d threads against 1, %d repeats; stream: 3 x %.1f MiB, %d sweeps\n", threads,
-           repeats, mib, sweeps);
+    printf("# bench_cores: %d threads against 1, %d repeats; stream: 3 x %.1f MiB, %d sweeps\n", threads, repeats,
+           mib, sweeps);
     printf("kernel,repeat,one_thread_ms,threads_ms,gain,cpu_ratio,gain_x_cpu_ratio\n");
     kernel_times registers = {.name = "registers"}, stream = {.name = "stream"};
     for (int r = 0; r < repeats; r++) {

@@ -241,8 +241,8 @@ static int take_state(const im_indentation *run, double w, state *s)
         return status;
     im_window win = im_indentation_window(run);
     const size_t n = (size_t)win.nx * win.ny;
-    *s = (state){win.nx, win.ny, w, malloc(n * sizeof(double)), malloc(n * sizeof(double)),
-                 malloc(n * sizeof(double))};
+    *s = (state){
+        win.nx, win.ny, w, malloc(n * sizeof(double)), malloc(n * sizeof(double)), malloc(n * sizeof(double))};
     const double d2 = force->delta * force->delta;
     for (int j = 0; j < win.ny; ++j)
         for (int i = 0; i < win.nx; ++i) {

@@ -24,7 +24,8 @@ static int write_all(int n, const char *dir)
     strcpy(f->unit, "m");
     for (int iy = 0; iy < n; ++iy)
         for (int ix = 0; ix < n; ++ix)
-            f->data[(size_t)iy * n + ix] = 1e-8 * (sin(0.013 * ix) * cos(0.007 * iy) + 1e-3 * ((ix * 7919 + iy) % 101));
+            f->data[(size_t)iy * n + ix] = 1e-8 *
+                                           (sin(0.013 * ix) * cos(0.007 * iy) + 1e-3 * ((ix * 7919 + iy) % 101));
     int status = IM_OK;
     for (int i = 0; i < 5 && status == IM_OK; ++i) {
         char path[4096];

@@ -110,8 +110,13 @@ int main(int argc, char **argv)
     }
     snprintf(path, sizeof path, "%s_0.gif", out);
     measure("cube 216 ordered", cube, frames, count, &o, path);
-    const struct { const char *name; int colours, dither; } ways[] = {
-        {"64 nearest", 64, 0}, {"64 Floyd-Steinberg", 64, 1}, {"256 nearest", 256, 0}, {"256 Floyd-Steinberg", 256, 1}};
+    const struct {
+        const char *name;
+        int colours, dither;
+    } ways[] = {{"64 nearest", 64, 0},
+                {"64 Floyd-Steinberg", 64, 1},
+                {"256 nearest", 256, 0},
+                {"256 Floyd-Steinberg", 256, 1}};
     for (size_t w = 0; w < sizeof ways / sizeof *ways; ++w) {
         o.colours = ways[w].colours;
         o.dither = ways[w].dither;

@@ -145,8 +145,11 @@ static cold_result cold_solves(int n, const double *g0, double approach, int dev
         if ((status = im_solver_solve(plan, g0, IM_CONTROL_DISPLACEMENT, approach, r.pressure, u, &s)) != IM_OK)
             die(status, "cold solve");
         times[k] = s.seconds;
-        r = (cold_result){.plan_seconds = r.plan_seconds, .load = s.load, .iterations = s.iterations,
-                          .coarse_iterations = s.coarse_iterations, .convolutions = s.convolutions,
+        r = (cold_result){.plan_seconds = r.plan_seconds,
+                          .load = s.load,
+                          .iterations = s.iterations,
+                          .coarse_iterations = s.coarse_iterations,
+                          .convolutions = s.convolutions,
                           .pressure = r.pressure};
     }
     r.seconds = bench_median(times, repeats);
@@ -214,15 +217,15 @@ static void bench_periodic(int n, int cpu_limit)
     flat_solve(s, IM_DEVICE_GPU, &gpu_seconds, &gpu);
     double pair = vkfft_pair_seconds(n, n);
     printf("periodic %5d^2 gpu: %.3f s, %d iterations (residual %.2g), %.3f ms per iteration = %.2f VkFFT pairs "
-           "of %d^2 (%.3f ms), contact %.4f\n", n, gpu_seconds, gpu.iterations, gpu.residual,
-           1e3 * gpu_seconds / gpu.iterations, gpu_seconds / gpu.iterations / pair, n, 1e3 * pair,
-           gpu.area_fraction);
+           "of %d^2 (%.3f ms), contact %.4f\n",
+           n, gpu_seconds, gpu.iterations, gpu.residual, 1e3 * gpu_seconds / gpu.iterations,
+           gpu_seconds / gpu.iterations / pair, n, 1e3 * pair, gpu.area_fraction);
     if (n <= cpu_limit) {
         flat_solve(s, IM_DEVICE_CPU, &cpu_seconds, &cpu);
         printf("periodic %5d^2 cpu: %.3f s (%d threads), %d iterations; gpu speed-up %.2fx; |dw|/w = %.2e, "
-               "contact patches %ld vs %ld\n", n, cpu_seconds, omp_get_max_threads(), cpu.iterations,
-               cpu_seconds / gpu_seconds, fabs(cpu.approach - gpu.approach) / fabs(cpu.approach),
-               cpu.contact_patches, gpu.contact_patches);
+               "contact patches %ld vs %ld\n",
+               n, cpu_seconds, omp_get_max_threads(), cpu.iterations, cpu_seconds / gpu_seconds,
+               fabs(cpu.approach - gpu.approach) / fabs(cpu.approach), cpu.contact_patches, gpu.contact_patches);
     }
     fflush(stdout);
     im_field_free(s);
@@ -256,9 +259,11 @@ static double history_seconds(int device, int *iterations)
 static void bench_history(void)
 {
     int gpu_iterations, cpu_iterations;
-    double gpu = history_seconds(IM_DEVICE_GPU, &gpu_iterations), cpu = history_seconds(IM_DEVICE_CPU, &cpu_iterations);
+    double gpu = history_seconds(IM_DEVICE_GPU, &gpu_iterations),
+           cpu = history_seconds(IM_DEVICE_CPU, &cpu_iterations);
     printf("paper history 512^2, 25 steps: gpu %.3f s (%d iterations), cpu %.3f s (%d iterations, %d threads): "
-           "gpu speed-up %.2fx\n", gpu, gpu_iterations, cpu, cpu_iterations, omp_get_max_threads(), cpu / gpu);
+           "gpu speed-up %.2fx\n",
+           gpu, gpu_iterations, cpu, cpu_iterations, omp_get_max_threads(), cpu / gpu);
 }
 
 int main(int argc, char **argv)

@@ -92,7 +92,7 @@ static double time_convolution(im_mpi_solver *solver, const double *p, double *u
 static double time_alltoall(int nx, int ny, int ranks, int repeats)
 {
     size_t total = 2 * ((size_t)nx + 1) * 2 * (size_t)ny; /* doubles */
-    size_t block = total / ((size_t)ranks * ranks) + 1;    /* per pair of ranks */
+    size_t block = total / ((size_t)ranks * ranks) + 1;   /* per pair of ranks */
     double *send = calloc(block * ranks, sizeof(double)), *recv = calloc(block * ranks, sizeof(double));
     double t[MAX_REPEATS];
     for (int k = 0; k < repeats; ++k) {
@@ -173,11 +173,12 @@ static void run(int nx, int ny, int repeats)
     double alltoall = time_alltoall(nx, ny, ranks, repeats), fft = time_local_fft(nx, ny, ranks, repeats, &fft_cpu);
     if (rank == 0)
         printf("ranks=%d threads=%d nx=%d ny=%d model_mib=%.1f rss_mib=%.1f rss_total_mib=%.1f convolution_s=%.4g "
-               "convolution_cpu_s=%.4g alltoall_s=%.4g fft_s=%.4g fft_cpu_s=%.4g iterations=%d convolutions=%d solve_wall_s=%.4g solve_cpu_s=%.4g "
+               "convolution_cpu_s=%.4g alltoall_s=%.4g fft_s=%.4g fft_cpu_s=%.4g iterations=%d convolutions=%d "
+               "solve_wall_s=%.4g solve_cpu_s=%.4g "
                "load=%.10g contact=%ld\n",
                ranks, omp_get_max_threads(), nx, ny, im_mpi_solver_bytes(nx, ny, ranks) / 1048576.0, rss_growth,
-               rss_peak, convolution, convolution_cpu, alltoall, fft, fft_cpu, result.iterations, result.convolutions, result.seconds, cpu,
-               result.load, result.contact_patches);
+               rss_peak, convolution, convolution_cpu, alltoall, fft, fft_cpu, result.iterations, result.convolutions,
+               result.seconds, cpu, result.load, result.contact_patches);
     im_mpi_solver_free(solver);
     free(heights);
     free(gap0);

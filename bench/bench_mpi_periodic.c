@@ -30,8 +30,9 @@ static void report(const char *engine, int ranks, int n, const im_solver_options
                    double seconds)
 {
     printf("engine=%s ranks=%d threads=%d n=%d cascade=%d iterations=%d wall_s=%.4g approach=%.12g "
-           "area_fraction=%.6g\n", engine, ranks, omp_get_max_threads(), n, o->cascade, r->iterations, seconds,
-           r->approach, r->area_fraction);
+           "area_fraction=%.6g\n",
+           engine, ranks, omp_get_max_threads(), n, o->cascade, r->iterations, seconds, r->approach,
+           r->area_fraction);
 }
 
 /* The serial solve of the whole cell (one rank: its rows are the cell). */

@@ -183,7 +183,8 @@ static void run_size(im_render_context *c, int side, int repeats)
     printf("| step | median time (ms) |\n|---|---:|\n");
     printf("| GL contact map: upload + draw + read back | %.2f |\n", 1e3 * gl);
     printf("| GL height field (hill-shaded): upload + draw + read back | %.2f |\n", 1e3 * gl_height);
-    printf("| CPU colour mapping, 1 px per patch (reference, %d threads) | %.2f |\n", omp_get_max_threads(), 1e3 * cpu);
+    printf("| CPU colour mapping, 1 px per patch (reference, %d threads) | %.2f |\n", omp_get_max_threads(),
+           1e3 * cpu);
     printf("\n| PNG level | encode (ms) | size (KiB) | frame = GL + encode (ms) |\n|---:|---:|---:|---:|\n");
     const int levels[] = {1, 3, 6, 9};
     for (int i = 0; i < 4; ++i) {

@@ -198,7 +198,8 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
     const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
     printf("FFTW planning: %s (the floor uses the same)\n", measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE");
     printf("== paper configuration: 512 x 512, H 0.8, lambda_s 4, lambda_r 512, h'rms 0.08, seed 1, "
-           "alpha 80, %d approaches to w = 31.5, tol %g ==\n", steps, o.tol);
+           "alpha 80, %d approaches to w = 31.5, tol %g ==\n",
+           steps, o.tol);
     for (int threads = 1; threads <= 2; ++threads) {
         if (only_threads && threads != only_threads)
             continue;
@@ -226,8 +227,9 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
         printf("threads %d: window %d x %d (padded %d x %d), final n_p %ld\n", threads, h.window.nx, h.window.ny,
                2 * h.window.nx, 2 * h.window.ny, h.final_contacts);
         printf("  total %.3f s (median of %d), per step %.4f s, iterations %ld (%.1f per step), "
-               "convolutions per iteration %.3f\n", total, repeats, total / steps, h.iterations,
-               (double)h.iterations / steps, (double)h.convolutions / h.iterations);
+               "convolutions per iteration %.3f\n",
+               total, repeats, total / steps, h.iterations, (double)h.iterations / steps,
+               (double)h.convolutions / h.iterations);
         printf("  per iteration %.3f ms, FFT pair floor %.3f ms, median ratio %.3f, peak RSS so far %.1f MiB\n",
                1e3 * t_it, 1e3 * floor, ratio, peak_memory_mib());
     }
@@ -239,8 +241,8 @@ static void paper_configuration(int repeats, int steps, int only_threads, int ex
     history_stats hl = run_history(s, &cone, IM_CONTROL_LOAD, loads, steps, &o, 0);
     history_stats hd = run_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, steps, &o, 0);
     printf("load control (same loads, 2 threads): iterations %ld vs %ld under displacement control, "
-           "time %.3f s vs %.3f s, window %d x %d\n", hl.iterations, hd.iterations, hl.total_seconds,
-           hd.total_seconds, hl.window.nx, hl.window.ny);
+           "time %.3f s vs %.3f s, window %d x %d\n",
+           hl.iterations, hd.iterations, hl.total_seconds, hd.total_seconds, hl.window.nx, hl.window.ny);
     int solves;
     long secant = secant_history(s, &cone, loads, steps, 1.05 * approaches[steps - 1], &solves);
     printf("load control by a secant loop on w: %ld iterations in %d displacement solves\n", secant, solves);
@@ -304,9 +306,9 @@ static void big_cone(void)
     history_stats h = run_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, 6, &o, 1);
     double floor = fft_pair_seconds(2 * h.window.nx, 2 * h.window.ny, FFTW_ESTIMATE, 0);
     printf("window %d x %d: total %.1f s (planning %.2f s), iterations %ld, per iteration %.1f ms, floor %.1f ms "
-           "(ratio %.2f), final n_p %ld, peak RSS %.0f MiB\n", h.window.nx, h.window.ny, h.total_seconds,
-           h.plan_seconds, h.iterations, 1e3 * h.seconds_per_iteration, 1e3 * floor,
-           h.seconds_per_iteration / floor, h.final_contacts, peak_memory_mib());
+           "(ratio %.2f), final n_p %ld, peak RSS %.0f MiB\n",
+           h.window.nx, h.window.ny, h.total_seconds, h.plan_seconds, h.iterations, 1e3 * h.seconds_per_iteration,
+           1e3 * floor, h.seconds_per_iteration / floor, h.final_contacts, peak_memory_mib());
     im_field_free(s);
 }
 
@@ -329,7 +331,8 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--plain") == 0)
             plain_solver = 1;
         else {
-            fprintf(stderr, "usage: bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] [--plain] [--big]\n");
+            fprintf(stderr, "usage: bench_solver [--repeats R] [--steps S] [--threads 1|2] [--no-extras] [--measure] "
+                            "[--plain] [--big]\n");
             return 2;
         }
     }

@@ -52,11 +52,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#define BASE 128              /* base grid side */
-#define AREA_CONE 3000.0      /* smooth contact area at the imposed load, base cells */
+#define BASE 128         /* base grid side */
+#define AREA_CONE 3000.0 /* smooth contact area at the imposed load, base cells */
 #define ALPHA 80.0
 #define REPEATS 3
-#define ROUNDS 3              /* the whole sweep, round after round */
+#define ROUNDS 3 /* the whole sweep, round after round */
 #define MAX_CONFIGS 64
 
 enum problem { SMOOTH = 0, ROUGH = 1 };
@@ -71,20 +71,20 @@ typedef struct config {
 
 typedef struct outcome {
     int status;
-    double seconds, cpu_seconds, rss_mib, plan_bytes;  /* wall and CPU (all threads) per solve */
+    double seconds, cpu_seconds, rss_mib, plan_bytes; /* wall and CPU (all threads) per solve */
     int iterations, window_nx, window_ny;
-    double approach, load, area_ratio;  /* of the load step */
+    double approach, load, area_ratio; /* of the load step */
     long contact_patches;
-    double load_at_w;                   /* N of the displacement step at the reference approach */
+    double load_at_w; /* N of the displacement step at the reference approach */
     double error_load, error_area, error;
-    double error_p_rms, error_p_max;    /* smooth: p(r) against the closed form; NaN for rough */
-    long symmetric_difference;          /* base patches */
+    double error_p_rms, error_p_max; /* smooth: p(r) against the closed form; NaN for rough */
+    long symmetric_difference;       /* base patches */
 } outcome;
 
 /* What the errors are measured against (closed forms, or the reference run). */
 typedef struct truth {
     double load, approach, area_ratio;
-    unsigned char map[BASE * BASE];     /* contact on the base grid */
+    unsigned char map[BASE * BASE]; /* contact on the base grid */
 } truth;
 
 static double imposed_load(void)
@@ -142,8 +142,7 @@ static void pressure_error(const im_field *force, double w, double *rms, double 
 
 /* The base contact map of the run's last step and, for the smooth cone (approach w of the closed
  * form), the pressure errors. */
-static int inspect_fields(const im_indentation *run, const config *c, double w, unsigned char *map,
-                          outcome *o)
+static int inspect_fields(const im_indentation *run, const config *c, double w, unsigned char *map, outcome *o)
 {
     im_field *force = NULL;
     int status = im_indentation_fields(run, &force, NULL, NULL);
@@ -200,10 +199,7 @@ static double cpu_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static double relative(double value, double reference)
-{
-    return fabs(value - reference) / fabs(reference);
-}
+static double relative(double value, double reference) { return fabs(value - reference) / fabs(reference); }
 
 /* Runs one configuration (in the child process): timing, errors against truth, and the run's
  * base contact map in map_out (may be NULL). */
@@ -273,8 +269,7 @@ static int measure_in_child(const config *c, const truth *t, outcome *o, unsigne
         unsigned char map[BASE * BASE];
         mine.status = measure(c, t, &mine, map);
         if (mine.status != IM_OK)
-            fprintf(stderr, "bench_tradeoff: %s %s: %s\n", problem_names[c->problem], c->family,
-                    im_last_error());
+            fprintf(stderr, "bench_tradeoff: %s %s: %s\n", problem_names[c->problem], c->family, im_last_error());
         int ok = write(fds[1], &mine, sizeof mine) == (ssize_t)sizeof mine &&
                  write(fds[1], map, sizeof map) == (ssize_t)sizeof map;
         _exit(ok ? 0 : 1);
@@ -314,7 +309,7 @@ static int rough_truth(truth *t, outcome *reference)
 {
     config c = rough_reference;
     truth none;
-    smooth_truth(&none);  /* placeholder approach for the child's displacement step */
+    smooth_truth(&none); /* placeholder approach for the child's displacement step */
     int status = measure_in_child(&c, &none, reference, t->map);
     t->load = imposed_load();
     t->approach = reference->approach;
@@ -322,8 +317,8 @@ static int rough_truth(truth *t, outcome *reference)
     return status;
 }
 
-static int add(config *list, int n, const char *family, enum problem p, int refine, double tol,
-               int margin, int crop, int threads)
+static int add(config *list, int n, const char *family, enum problem p, int refine, double tol, int margin, int crop,
+               int threads)
 {
     list[n] = (config){family, p, refine, margin, crop, threads, tol};
     return n + 1;
@@ -388,14 +383,13 @@ static void csv_row(FILE *f, const measured *m)
 {
     const config *c = &m->config;
     const outcome *o = &m->outcome;
-    fprintf(f, "%s,%s,%d,%.0e,%d,%d,%d,%d,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.3e,%.3e,%.3e,%.3e,%.3e,%ld,%d,%dx%d,"
-               "%.6f,%.6f,%.1f,%.3f,%d\n",
-            problem_names[c->problem], c->family, c->refine, c->tol, c->margin, c->crop, c->threads,
-            o->status, o->approach, o->load, o->area_ratio, o->contact_patches, o->load_at_w,
-            o->area_ratio, o->error_load, o->error_area, o->error, o->error_p_rms, o->error_p_max,
-            o->symmetric_difference,
-            o->iterations, o->window_nx, o->window_ny, o->seconds, o->cpu_seconds, o->rss_mib,
-            o->plan_bytes / 1048576.0,
+    fprintf(f,
+            "%s,%s,%d,%.0e,%d,%d,%d,%d,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.3e,%.3e,%.3e,%.3e,%.3e,%ld,%d,%dx%d,"
+            "%.6f,%.6f,%.1f,%.3f,%d\n",
+            problem_names[c->problem], c->family, c->refine, c->tol, c->margin, c->crop, c->threads, o->status,
+            o->approach, o->load, o->area_ratio, o->contact_patches, o->load_at_w, o->area_ratio, o->error_load,
+            o->error_area, o->error, o->error_p_rms, o->error_p_max, o->symmetric_difference, o->iterations,
+            o->window_nx, o->window_ny, o->seconds, o->cpu_seconds, o->rss_mib, o->plan_bytes / 1048576.0,
             m->on_frontier);
 }
 
@@ -422,19 +416,25 @@ static int write_csv(const char *path, const measured *m, int n)
         return im_fail(IM_ENOMEM, "open_memstream for %s", path);
     struct utsname u;
     uname(&u);
-    fprintf(f, "# bench_tradeoff: %s %s %s, %ld online cores; threads per row in column threads\n",
-            u.sysname, u.release, u.machine, sysconf(_SC_NPROCESSORS_ONLN));
+    fprintf(f, "# bench_tradeoff: %s %s %s, %ld online cores; threads per row in column threads\n", u.sysname,
+            u.release, u.machine, sysconf(_SC_NPROCESSORS_ONLN));
     const char *wait = getenv("OMP_WAIT_POLICY");
     fprintf(f, "# OMP_WAIT_POLICY=%s; load average (1 min) %.2f at the start, %.2f at the end\n",
             wait ? wait : "(unset)", load_at_start, load_average());
-    fprintf(f, "# base %d x %d box, H 0.8, lambda_s 4 base cells, h'rms 0.08, seed 1; cone %g deg; load N0 = %.6g "
-               "(A_cone = %g base cells), E* = 1\n", BASE, BASE, ALPHA, imposed_load(), AREA_CONE);
-    fprintf(f, "# wall: median over %d rounds of the median of %d repeats of create + load step (planning included); rss: ru_maxrss of the "
-               "forked process per row; error = max(error_N, error_A); symdiff in base patches\n", ROUNDS, REPEATS);
+    fprintf(f,
+            "# base %d x %d box, H 0.8, lambda_s 4 base cells, h'rms 0.08, seed 1; cone %g deg; load N0 = %.6g "
+            "(A_cone = %g base cells), E* = 1\n",
+            BASE, BASE, ALPHA, imposed_load(), AREA_CONE);
+    fprintf(f,
+            "# wall: median over %d rounds of the median of %d repeats of create + load step (planning included); "
+            "rss: ru_maxrss of the "
+            "forked process per row; error = max(error_N, error_A); symdiff in base patches\n",
+            ROUNDS, REPEATS);
     fprintf(f, "# error_p_rms/max: smooth cone, relative error of p(r) against (E* cot alpha / 2) acosh(a/r) over "
                "0.2a < r < 0.8a (nan for rough); rough reference: 4x, tol 1e-11, crop off\n");
     fprintf(f, "problem,family,refine,tol,margin,crop,threads,status,approach,load,area_ratio,contact_patches,"
-               "load_at_w_ref,A_over_Acone,error_N,error_A,error,error_p_rms,error_p_max,symdiff,iterations,window,wall_s,cpu_s,rss_mib,"
+               "load_at_w_ref,A_over_Acone,error_N,error_A,error,error_p_rms,error_p_max,symdiff,iterations,window,"
+               "wall_s,cpu_s,rss_mib,"
                "plan_mib,frontier\n");
     for (int i = 0; i < n; ++i)
         csv_row(f, &m[i]);
@@ -445,8 +445,8 @@ static int write_csv(const char *path, const measured *m, int n)
 }
 
 static const char *const families[] = {"tolerance", "refinement", "refinement-tol-1e-4", "window", "threads"};
-static const char *const legend_labels[] = {"tolerance (1x)", "refinement (1x, 2x, 4x)",
-                                            "refinement, tol 10^{-4}", "window margin, crop", "2 threads (1x, 2x, 4x)"};
+static const char *const legend_labels[] = {"tolerance (1x)", "refinement (1x, 2x, 4x)", "refinement, tol 10^{-4}",
+                                            "window margin, crop", "2 threads (1x, 2x, 4x)"};
 #define FAMILIES 5
 
 /* One panel's series: one marker series per knob family, the frontier as a line. */
@@ -455,10 +455,7 @@ typedef struct panel_data {
     im_plot_series series[FAMILIES + 1];
 } panel_data;
 
-static double plotted_error(const outcome *o)
-{
-    return o->status == IM_OK && o->error > 0 ? o->error : NAN;
-}
+static double plotted_error(const outcome *o) { return o->status == IM_OK && o->error > 0 ? o->error : NAN; }
 
 static int by_time(const void *a, const void *b)
 {
@@ -478,8 +475,13 @@ static void fill_panel(panel_data *d, const measured *m, int n)
                 d->y[f][k++] = plotted_error(&m[i].outcome);
             }
         im_plot_series *s = &d->series[f];
-        *s = (im_plot_series){.x = d->x[f], .y = d->y[f], .n = k, .line = IM_PLOT_NO_LINE,
-                              .marker = markers[f], .marker_size = f == 2 ? 4 : 5, .label = legend_labels[f]};
+        *s = (im_plot_series){.x = d->x[f],
+                              .y = d->y[f],
+                              .n = k,
+                              .line = IM_PLOT_NO_LINE,
+                              .marker = markers[f],
+                              .marker_size = f == 2 ? 4 : 5,
+                              .label = legend_labels[f]};
         im_plot_palette(f, s->color);
     }
     double pairs[MAX_CONFIGS][2];
@@ -494,8 +496,11 @@ static void fill_panel(panel_data *d, const measured *m, int n)
         d->x[FAMILIES][i] = pairs[i][0];
         d->y[FAMILIES][i] = pairs[i][1];
     }
-    d->series[FAMILIES] = (im_plot_series){.x = d->x[FAMILIES], .y = d->y[FAMILIES], .n = k,
-                                           .line = IM_PLOT_SOLID, .label = "Pareto frontier"};
+    d->series[FAMILIES] = (im_plot_series){.x = d->x[FAMILIES],
+                                           .y = d->y[FAMILIES],
+                                           .n = k,
+                                           .line = IM_PLOT_SOLID,
+                                           .label = "Pareto frontier"};
 }
 
 static int write_plot(const char *path, const measured *smooth, int ns, const measured *rough, int nr)
@@ -507,14 +512,16 @@ static int write_plot(const char *path, const measured *smooth, int ns, const me
     const char *titles[] = {"smooth cone vs closed form", "rough (h'_{rms} = 0.08) vs 4x, tol 10^{-11}"};
     const char *labels[] = {"(a)", "(b)"};
     for (int p = 0; p < 2; ++p)
-        panels[p] = (im_plot_panel){
-            .x = {IM_PLOT_LOG, 0.01, 3, "CPU time per solve (s, all threads)"},
-            .y = {IM_PLOT_LOG, 1e-7, 1, "relative error, max(N, A/A_{cone})"},
-            .series = data[p].series, .series_count = FAMILIES + 1,
-            .label = labels[p], .title = titles[p],
-            /* one legend for both panels, in the empty lower left of (a) (no point below 1e-4) */
-            .legend = p == 0 ? IM_PLOT_LEGEND_LOWER_LEFT : IM_PLOT_LEGEND_HIDDEN,
-            .legend_title = "knob varied (else 1x, tol 10^{-6}, 1 thread)"};
+        panels[p] =
+            (im_plot_panel){.x = {IM_PLOT_LOG, 0.01, 3, "CPU time per solve (s, all threads)"},
+                            .y = {IM_PLOT_LOG, 1e-7, 1, "relative error, max(N, A/A_{cone})"},
+                            .series = data[p].series,
+                            .series_count = FAMILIES + 1,
+                            .label = labels[p],
+                            .title = titles[p],
+                            /* one legend for both panels, in the empty lower left of (a) (no point below 1e-4) */
+                            .legend = p == 0 ? IM_PLOT_LEGEND_LOWER_LEFT : IM_PLOT_LEGEND_HIDDEN,
+                            .legend_title = "knob varied (else 1x, tol 10^{-6}, 1 thread)"};
     im_plot plot = im_plot_default();
     plot.columns = 2;
     plot.panels = panels;
@@ -568,7 +575,8 @@ static void read_row(const char *line, const int *columns, measured *smooth, int
         return;
     measured *m = is_rough ? &rough[(*n)++] : &smooth[(*n)++];
     *m = (measured){.config = {.family = family, .problem = is_rough ? ROUGH : SMOOTH},
-                    .outcome = {.status = atoi(text[CSV_STATUS]), .error = atof(text[CSV_ERROR]),
+                    .outcome = {.status = atoi(text[CSV_STATUS]),
+                                .error = atof(text[CSV_ERROR]),
                                 .cpu_seconds = atof(text[CSV_CPU])},
                     .on_frontier = atoi(text[CSV_FRONTIER])};
 }
@@ -601,11 +609,12 @@ static int plot_from_csv(const char *csv, const char *png)
 
 static void report(const config *c, const outcome *o, int status)
 {
-    fprintf(stderr, "%s %-10s %dx tol %.0e margin %2d crop %d threads %d: %.4f s (CPU %.4f s), error %.3e (N %.2e, A %.2e), "
-                    "p %.2e, symdiff %ld, %d it, rss %.1f MiB%s\n",
+    fprintf(stderr,
+            "%s %-10s %dx tol %.0e margin %2d crop %d threads %d: %.4f s (CPU %.4f s), error %.3e (N %.2e, A %.2e), "
+            "p %.2e, symdiff %ld, %d it, rss %.1f MiB%s\n",
             problem_names[c->problem], c->family, c->refine, c->tol, c->margin, c->crop, c->threads, o->seconds,
-            o->cpu_seconds, o->error, o->error_load, o->error_area, o->error_p_rms, o->symmetric_difference, o->iterations,
-            o->rss_mib, status == IM_OK ? "" : " FAILED");
+            o->cpu_seconds, o->error, o->error_load, o->error_area, o->error_p_rms, o->symmetric_difference,
+            o->iterations, o->rss_mib, status == IM_OK ? "" : " FAILED");
 }
 
 /* Measures every configuration ROUNDS times, round by round (so that a burst of load on the shared

@@ -32,8 +32,8 @@ static double cpu_seconds(void)
 {
     struct rusage usage;
     getrusage(RUSAGE_SELF, &usage);
-    return (double)usage.ru_utime.tv_sec + 1e-6 * (double)usage.ru_utime.tv_usec +
-           (double)usage.ru_stime.tv_sec + 1e-6 * (double)usage.ru_stime.tv_usec;
+    return (double)usage.ru_utime.tv_sec + 1e-6 * (double)usage.ru_utime.tv_usec + (double)usage.ru_stime.tv_sec +
+           1e-6 * (double)usage.ru_stime.tv_usec;
 }
 
 static void print_load(const char *when)
@@ -94,8 +94,8 @@ static void time_view(im_render_context *c, int n, int mesh_side, int repeats)
         }
         im_image_release(&image);
     }
-    printf("%5d^2 patches  mesh_side %5d  1920x1080, 4 samples: median %.3f s wall, %.3f s CPU (%d repeats)\n",
-           n, s.mesh_side, bench_median(wall, repeats), bench_median(cpu, repeats), repeats);
+    printf("%5d^2 patches  mesh_side %5d  1920x1080, 4 samples: median %.3f s wall, %.3f s CPU (%d repeats)\n", n,
+           s.mesh_side, bench_median(wall, repeats), bench_median(cpu, repeats), repeats);
     fflush(stdout);
     im_field_free(height);
     im_field_free(force);
@@ -114,7 +114,8 @@ int main(int argc, char **argv)
     int status = im_render_open(IM_RENDER_AUTO, &c);
     if (status != IM_OK)
         die(status, "render context");
-    printf("GL_RENDERER %s; %s, %s\n", im_render_gl_renderer(c), im_render_backend_name(c), im_render_display_name(c));
+    printf("GL_RENDERER %s; %s, %s\n", im_render_gl_renderer(c), im_render_backend_name(c),
+           im_render_display_name(c));
     print_load("before");
     time_view(c, 512, 0, repeats);
     time_view(c, 512, 512, repeats);

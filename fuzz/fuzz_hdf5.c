@@ -11,8 +11,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     im_field *field = NULL;
-    int status = surface_read_channel_format(fuzz_write_input(data, size), hdf5_read_in_process, NULL, &field,
-                                             NULL);
+    int status = surface_read_channel_format(fuzz_write_input(data, size), hdf5_read_in_process, NULL, &field, NULL);
     const char *problem = fuzz_field_problem(status, field);
     if (problem) {
         fprintf(stderr, "fuzz_hdf5: %s (status %d: %s)\n", problem, status, im_last_error());

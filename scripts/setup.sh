@@ -31,6 +31,7 @@ PACKAGES=(
   libvulkan-dev libvkfft-dev glslang-dev glslang-tools spirv-tools  # the GPU solver engine (src/gpu/, optional: IM_GPU)
   mesa-vulkan-drivers vulkan-validationlayers  # lavapipe and the validation layers for its tests
   libgwyddion20-dev gwyddion               # instrument formats through Gwyddion's file modules (src/formats/gwyddion/, optional: IM_GWYDDION)
+  clang-format-14                          # tests only: the C sources' style (.clang-format, ctest style)
 )
 
 missing=()

@@ -12,9 +12,9 @@
 
 typedef struct gif_readback {
     int count, width, height;
-    int palette_size;  /* entries of the global colour table (0: none) */
-    int delays[64];    /* centiseconds, the first 64 frames */
-    uint8_t *rgba;     /* count frames of width * height RGBA pixels */
+    int palette_size; /* entries of the global colour table (0: none) */
+    int delays[64];   /* centiseconds, the first 64 frames */
+    uint8_t *rgba;    /* count frames of width * height RGBA pixels */
 } gif_readback;
 
 /* Reads every frame of path (frames that cover the screen, as im_animation_gif writes); 0 on success. */
@@ -28,8 +28,12 @@ static inline int gif_read(const char *path, gif_readback *g)
             DGifCloseFile(gif, &error);
         return -1;
     }
-    *g = (gif_readback){gif->ImageCount, gif->SWidth, gif->SHeight, gif->SColorMap ? gif->SColorMap->ColorCount : 0,
-                        {0}, malloc((size_t)gif->ImageCount * gif->SWidth * gif->SHeight * 4)};
+    *g = (gif_readback){gif->ImageCount,
+                        gif->SWidth,
+                        gif->SHeight,
+                        gif->SColorMap ? gif->SColorMap->ColorCount : 0,
+                        {0},
+                        malloc((size_t)gif->ImageCount * gif->SWidth * gif->SHeight * 4)};
     for (int k = 0; g->rgba && k < g->count; ++k) {
         const SavedImage *image = &gif->SavedImages[k];
         const ColorMapObject *map = image->ImageDesc.ColorMap ? image->ImageDesc.ColorMap : gif->SColorMap;
@@ -53,10 +57,7 @@ static inline double srgb_linear(double c)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-static inline double lab_f(double t)
-{
-    return t > 216.0 / 24389.0 ? cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0;
-}
+static inline double lab_f(double t) { return t > 216.0 / 24389.0 ? cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; }
 
 static inline void rgb_to_lab(const double rgb[3], double lab[3])
 {

@@ -30,11 +30,11 @@ struct im_field *test_rough_surface(int n, double slope, uint64_t seed);
 double test_relative_difference(double a, double b);
 
 /* Asserts |actual - expected| <= tolerance with a message naming the values. */
-#define assert_close(actual, expected, tolerance)                                                 \
-    do {                                                                                          \
-        double a_ = (actual), e_ = (expected), t_ = (tolerance);                                  \
-        if (!(fabs(a_ - e_) <= t_))                                                               \
-            fail_msg("%s = %.17g, expected %.17g within %g", #actual, a_, e_, t_);                \
+#define assert_close(actual, expected, tolerance)                                                                    \
+    do {                                                                                                             \
+        double a_ = (actual), e_ = (expected), t_ = (tolerance);                                                     \
+        if (!(fabs(a_ - e_) <= t_))                                                                                  \
+            fail_msg("%s = %.17g, expected %.17g within %g", #actual, a_, e_, t_);                                   \
     } while (0)
 
 #endif

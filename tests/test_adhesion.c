@@ -34,8 +34,16 @@ static sphere_case sphere_case_make(double lambda, double scale)
 {
     const double k = 4.0 / 3.0, radius = 8 * scale, work = k * pow(scale, 3) / (M_PI * radius * radius);
     const double stress = lambda / 2 * cbrt(M_PI * work * k * k / radius);
-    return (sphere_case){lambda, scale, radius, work, stress, work / stress, scale * scale / radius,
-                         M_PI * work * radius, {1.0, work, work / stress}, IM_ADHESION_MAUGIS_DUGDALE};
+    return (sphere_case){lambda,
+                         scale,
+                         radius,
+                         work,
+                         stress,
+                         work / stress,
+                         scale * scale / radius,
+                         M_PI * work * radius,
+                         {1.0, work, work / stress},
+                         IM_ADHESION_MAUGIS_DUGDALE};
 }
 
 /* The exponential law matched to Maugis-Dugdale's lambda (Johnson & Greenwood 1997): the same work and peak
@@ -146,7 +154,7 @@ static sphere_errors sphere_retraction_errors(double lambda, double scale)
     double loads[64], expected;
     sphere_errors e = {0, 0, 0};
     int count = 0;
-    for (double d = 1.5; d > pull_off_at - 0.1 && count < 64; d -= d > pull_off_at + 0.2 ? 0.1 : 0.05) {
+    for (double d = 1.5; d > pull_off_at - 0.1 && count<64; d -= d> pull_off_at + 0.2 ? 0.1 : 0.05) {
         const im_step_result r = sphere_step(run, &c, d);
         loads[count] = r.load / c.load_unit;
         if (d > separation + 0.05) {
@@ -183,8 +191,9 @@ static void errors_shrink_with_the_grid(const sphere_grids *g)
     for (int k = 0; k < g->count; ++k) {
         e[k] = sphere_retraction_errors(g->lambda, g->scales[k]);
         print_message("lambda %g (Tabor mu %.3g), L = %g patches: largest |P - P_MD| / (pi w R) %.5f, pull-off "
-                      "error %.5f, load-area %.5f", g->lambda, g->lambda / MAUGIS_PER_TABOR, g->scales[k], e[k].curve,
-                      e[k].pull_off, e[k].load_area);
+                      "error %.5f, load-area %.5f",
+                      g->lambda, g->lambda / MAUGIS_PER_TABOR, g->scales[k], e[k].curve, e[k].pull_off,
+                      e[k].load_area);
         if (k > 0) {
             const double refined = log(g->scales[k] / g->scales[k - 1]);
             print_message(" (orders %.2f, %.2f, %.2f)", observed_order(e[k - 1].curve, e[k].curve, refined),
@@ -193,17 +202,18 @@ static void errors_shrink_with_the_grid(const sphere_grids *g)
             if (!(e[k].curve < e[k - 1].curve && e[k].pull_off < e[k - 1].pull_off &&
                   e[k].load_area < e[k - 1].load_area))
                 fail_msg("lambda %g: errors %.5f, %.5f, %.5f (curve, pull-off, load-area) at L = %g and %.5f, %.5f, "
-                         "%.5f at L = %g: expected the finer grid's below the coarser's", g->lambda, e[k - 1].curve,
-                         e[k - 1].pull_off, e[k - 1].load_area, g->scales[k - 1], e[k].curve, e[k].pull_off,
-                         e[k].load_area, g->scales[k]);
+                         "%.5f at L = %g: expected the finer grid's below the coarser's",
+                         g->lambda, e[k - 1].curve, e[k - 1].pull_off, e[k - 1].load_area, g->scales[k - 1],
+                         e[k].curve, e[k].pull_off, e[k].load_area, g->scales[k]);
         }
         print_message("\n");
     }
     const sphere_errors *finest = &e[g->count - 1];
     if (!(finest->curve <= g->bound && finest->pull_off <= g->bound && finest->load_area <= g->area_bound))
         fail_msg("lambda %g, L = %g: errors %.5f, %.5f, %.5f (curve, pull-off, load-area): expected at most %g, %g "
-                 "and %g", g->lambda, g->scales[g->count - 1], finest->curve, finest->pull_off, finest->load_area,
-                 g->bound, g->bound, g->area_bound);
+                 "and %g",
+                 g->lambda, g->scales[g->count - 1], finest->curve, finest->pull_off, finest->load_area, g->bound,
+                 g->bound, g->area_bound);
 }
 
 /* Along the retraction the simulated force follows Maugis-Dugdale's, the least of it is the pull-off, and
@@ -292,7 +302,8 @@ static void flat_punch_follows_kendall(void **state)
     for (int k = 0; k < 3; ++k) {
         e[k] = flat_errors_at(radii[k]);
         print_message("flat punch a = %g patches (a / l = %g): pull-off %+.4f off Kendall's, stiffness %.4f off "
-                      "2 E* a\n", radii[k], radii[k] / 2, e[k].pull_off, e[k].stiffness);
+                      "2 E* a\n",
+                      radii[k], radii[k] / 2, e[k].pull_off, e[k].stiffness);
     }
     print_message("extrapolated pull-off error %+.4f\n", 2 * e[2].pull_off - e[1].pull_off);
     for (int k = 0; k < 2; ++k)
@@ -343,8 +354,8 @@ static void cone_follows_jkr(void **state)
 {
     (void)state;
     const double coarse = cone_pull_off_error(8), fine = cone_pull_off_error(16);
-    print_message("cone: pull-off %+.4f off JKR's at a_c = 8 patches, %+.4f at 16; extrapolated %+.4f\n", coarse, fine,
-                  2 * fine - coarse);
+    print_message("cone: pull-off %+.4f off JKR's at a_c = 8 patches, %+.4f at 16; extrapolated %+.4f\n", coarse,
+                  fine, 2 * fine - coarse);
     assert_true(fabs(fine) < 0.6 * fabs(coarse) && fabs(fine) < 0.12);
     assert_true(fabs(2 * fine - coarse) < 0.03);
 }
@@ -373,9 +384,10 @@ static void approach_and_retraction_differ(void **state)
     im_indentation_free(run);
     const double separation = md_separation(&c);
     print_message("jump-in at D = %.2f, last contact on retraction at D = %.2f (Maugis-Dugdale separates at %.3f); "
-                  "loop work %.4g\n", jump_in, jump_out, separation, loop);
-    assert_true(jump_in < 0);                    /* the surface reaches up to the punch */
-    assert_true(jump_in > jump_out + 0.3);       /* and lets go much later */
+                  "loop work %.4g\n",
+                  jump_in, jump_out, separation, loop);
+    assert_true(jump_in < 0);                               /* the surface reaches up to the punch */
+    assert_true(jump_in > jump_out + 0.3);                  /* and lets go much later */
     assert_true(fabs(jump_out - separation) <= 0.1 + 1e-9); /* within a step of the reference's separation */
     assert_true(loop > 0); /* the retraction pulls where the approach did not: work lost in the jumps */
 }
@@ -517,11 +529,13 @@ static void exponential_sphere_dmt_limit(void **state)
 {
     (void)state;
     const double mu = 0.003, coarse = dmt_pull_off_error(mu, 4), fine = dmt_pull_off_error(mu, 8);
-    print_message("exponential law, mu = %g: pull-off %+.2e off 2 pi w R at sqrt(R rho) = 4 patches, %+.2e at 8\n", mu,
-                  coarse, fine);
+    print_message("exponential law, mu = %g: pull-off %+.2e off 2 pi w R at sqrt(R rho) = 4 patches, %+.2e at 8\n",
+                  mu, coarse, fine);
     if (!(fabs(fine) < 0.35 * fabs(coarse) && fabs(fine) <= 2e-3))
-        fail_msg("pull-off errors %.3e (4 patches), %.3e (8): expected the finer below 0.35 times the coarser (second "
-                 "order) and below 2e-3", coarse, fine);
+        fail_msg("pull-off errors %.3e (4 patches), %.3e (8): expected the finer below 0.35 times the coarser "
+                 "(second "
+                 "order) and below 2e-3",
+                 coarse, fine);
 }
 
 /* The least load of a sphere's retraction from D = 1.5 by 0.1 until its contact is lost, in units of pi w R,
@@ -559,11 +573,12 @@ static void exponential_sphere_towards_jkr(void **state)
     int iterations;
     const double pull_off = -retraction_pull_off(&c, &iterations), reference = -md.load / c.load_unit;
     print_message("lambda %g, L = %g patches: exponential pull-off %.4f pi w R, Maugis-Dugdale's %.4f (%+.4f); at "
-                  "most %d iterations a step\n", c.lambda, c.scale, pull_off, reference, pull_off / reference - 1,
-                  iterations);
+                  "most %d iterations a step\n",
+                  c.lambda, c.scale, pull_off, reference, pull_off / reference - 1, iterations);
     if (!(pull_off > 1.5 && pull_off < 2 && fabs(pull_off / reference - 1) <= 0.08))
         fail_msg("lambda %g, L = %g: pull-off %.4f pi w R: expected between 1.5 and 2, within 8%% of "
-                 "Maugis-Dugdale's %.4f", c.lambda, c.scale, pull_off, reference);
+                 "Maugis-Dugdale's %.4f",
+                 c.lambda, c.scale, pull_off, reference);
 }
 
 /* A vanishing work of adhesion gives the repulsive answers: the same loads to 1e-8 and the same contact
@@ -760,10 +775,12 @@ static void periodic_bump_pulls_off_like_a_sphere(void **state)
         fail_msg("pull-off of the bump on the cell's corner %.17g, in its middle %.17g", corner, middle);
     const double small = fabs(middle - reference), large = fabs(periodic_bump_pull_off(&c, 64, 32) - reference);
     print_message("periodic bump: pull-off %.4f off Maugis-Dugdale's (pi w R) on a 32^2 cell, %.4f on 64^2; the "
-                  "half-space %.4f\n", small, large, half_space);
+                  "half-space %.4f\n",
+                  small, large, half_space);
     if (!(large < small && large <= half_space + 0.005))
         fail_msg("pull-off errors %.4f (32^2), %.4f (64^2): expected the larger cell closer, within 0.005 of the "
-                 "half-space's %.4f", small, large, half_space);
+                 "half-space's %.4f",
+                 small, large, half_space);
 }
 
 /* The combinations the solver does not solve, and a zone that outgrows the surface, are refused. */

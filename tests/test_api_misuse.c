@@ -50,11 +50,11 @@
 /* ---- the cases ---- */
 
 enum case_kind {
-    REPORTED, /* returns IM_EINVAL naming function and argument */
+    REPORTED,           /* returns IM_EINVAL naming function and argument */
     REPORTED_AS_BEFORE, /* returns IM_EINVAL with the message it gave before (a size it always checked) */
-    SAFE,     /* void or value: the expression is true for the documented safe result, and the
+    SAFE,               /* void or value: the expression is true for the documented safe result, and the
                  message names function and argument */
-    ACCEPTED  /* NULL is documented as accepted: the expression is true, nothing else is asked */
+    ACCEPTED            /* NULL is documented as accepted: the expression is true, nothing else is asked */
 };
 
 typedef struct misuse_case {
@@ -76,11 +76,11 @@ static void add_case(const char *function, const char *argument, const char *cal
 }
 
 /* Each case is one line; it registers itself before main. */
-#define CASE_AT2(line, kind, views, function, argument, expr)                                        \
-    static int misuse_##line(void) { return (int)(expr); }                                          \
-    __attribute__((constructor)) static void register_##line(void)                                  \
-    {                                                                                                \
-        add_case(#function, argument, #expr, kind, views, misuse_##line);                            \
+#define CASE_AT2(line, kind, views, function, argument, expr)                                                        \
+    static int misuse_##line(void) { return (int)(expr); }                                                           \
+    __attribute__((constructor)) static void register_##line(void)                                                   \
+    {                                                                                                                \
+        add_case(#function, argument, #expr, kind, views, misuse_##line);                                            \
     }
 #define CASE_AT(line, kind, views, function, argument, expr) CASE_AT2(line, kind, views, function, argument, expr)
 /* A call that must return IM_EINVAL naming function and argument. */
@@ -89,7 +89,8 @@ static void add_case(const char *function, const char *argument, const char *cal
 /* The same, once for every invalid field view BAD. */
 #define REPORT_VIEW(function, argument, expr) CASE_AT(__LINE__, REPORTED, 1, function, argument, expr)
 /* A void or value call: expr is true when the result is the documented safe one. */
-#define SAFE_RESULT(function, argument, expr) CASE_AT(__LINE__, SAFE, 0, function, argument, (expr) ? IM_EINVAL : IM_OK)
+#define SAFE_RESULT(function, argument, expr)                                                                        \
+    CASE_AT(__LINE__, SAFE, 0, function, argument, (expr) ? IM_EINVAL : IM_OK)
 #define SAFE_VIEW(function, argument, expr) CASE_AT(__LINE__, SAFE, 1, function, argument, (expr) ? IM_EINVAL : IM_OK)
 #define ACCEPT(function, expr) CASE_AT(__LINE__, ACCEPTED, 0, function, "", (expr) ? IM_EINVAL : IM_OK)
 
@@ -98,8 +99,9 @@ static void add_case(const char *function, const char *argument, const char *cal
 static double values[64], out_values[64], big_values[4096];
 static im_field good = {8, 8, 1.0, "", values, ""};
 static im_field bad_views[5];
-static const char *bad_view_names[5] = {"NULL", "data NULL", "nx = -3", "ny = 0", "nx = ny = 2^20 (nx * ny overflows)"};
-static const im_field *BAD;   /* the invalid view of the case running */
+static const char *bad_view_names[5] = {"NULL", "data NULL", "nx = -3", "ny = 0",
+                                        "nx = ny = 2^20 (nx * ny overflows)"};
+static const im_field *BAD; /* the invalid view of the case running */
 static im_solver_plan *plan;
 static im_indentation *run;
 static im_flat_contact *flat;
@@ -357,7 +359,8 @@ SAFE_RESULT(im_length_unit_metres, "name", im_length_unit_metres(NULL, NULL) == 
 REPORT(im_surface_read_with, "path", im_surface_read_with(NULL, NULL, &field_out, NULL))
 REPORT(im_surface_read_with, "out", im_surface_read_with(path_text, NULL, NULL, NULL))
 REPORT(im_surface_read_with, "npy_order",
-       im_surface_read_with(path_text, &(im_surface_read_options){.npy_order = (enum im_npy_order)7}, &field_out, NULL))
+       im_surface_read_with(path_text, &(im_surface_read_options){.npy_order = (enum im_npy_order)7}, &field_out,
+                            NULL))
 REPORT(im_surface_read, "path", im_surface_read(NULL, &field_out))
 REPORT(im_surface_read, "out", im_surface_read(path_text, NULL))
 REPORT_VIEW(im_surface_write, "field", im_surface_write(path_text, BAD))
@@ -379,13 +382,19 @@ REPORT(im_history_measure, "punch", im_history_measure(NULL, NULL, NULL, &histor
 REPORT(im_history_measure, "rows", im_history_measure(&cone, NULL, NULL, NULL, 0))
 SAFE_RESULT(im_history_format, "row", im_history_format(NULL, big_text, sizeof big_text) == -1)
 SAFE_RESULT(im_history_format, "line", im_history_format(&history_row_out, NULL, 0) == -1)
-REPORT(im_history_write_analysis, "dir", im_history_write_analysis(NULL, &cone, &history_row_out, 1, 1, 1, "", "", &count_out))
-REPORT(im_history_write_analysis, "punch", im_history_write_analysis(".", NULL, &history_row_out, 1, 1, 1, "", "", &count_out))
+REPORT(im_history_write_analysis, "dir",
+       im_history_write_analysis(NULL, &cone, &history_row_out, 1, 1, 1, "", "", &count_out))
+REPORT(im_history_write_analysis, "punch",
+       im_history_write_analysis(".", NULL, &history_row_out, 1, 1, 1, "", "", &count_out))
 REPORT(im_history_write_analysis, "rows", im_history_write_analysis(".", &cone, NULL, 1, 1, 1, "", "", &count_out))
-REPORT(im_history_write_analysis, "length_unit", im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, NULL, "", &count_out))
-REPORT(im_history_write_analysis, "force_unit", im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, "", NULL, &count_out))
-REPORT(im_history_write_analysis, "branches", im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, "", "", NULL))
-REPORT(im_history_write_analysis, "count", im_history_write_analysis(".", &cone, &history_row_out, -3, 1, 1, "", "", &count_out))
+REPORT(im_history_write_analysis, "length_unit",
+       im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, NULL, "", &count_out))
+REPORT(im_history_write_analysis, "force_unit",
+       im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, "", NULL, &count_out))
+REPORT(im_history_write_analysis, "branches",
+       im_history_write_analysis(".", &cone, &history_row_out, 1, 1, 1, "", "", NULL))
+REPORT(im_history_write_analysis, "count",
+       im_history_write_analysis(".", &cone, &history_row_out, -3, 1, 1, "", "", &count_out))
 REPORT(im_history_units_json, "length_unit", im_history_units_json(NULL, "", 0, big_text, sizeof big_text))
 REPORT(im_history_units_json, "e_star_unit", im_history_units_json("m", NULL, 0, big_text, sizeof big_text))
 REPORT(im_history_units_json, "text", im_history_units_json("m", "Pa", 0, NULL, sizeof big_text))
@@ -456,7 +465,8 @@ SAFE_RESULT(im_height_outline_width, "style", im_height_outline_width(NULL) == 0
 REPORT(im_render_height_map, "context", im_render_height_map(NULL, &good, &height_style, &image))
 REPORT_VIEW(im_render_height_map, "height", im_render_height_map(CONTEXT, BAD, &height_style, &image))
 REPORT_VIEW(im_render_height_map, "contact",
-            (height_style.contact = BAD ? BAD : &bad_views[1], im_render_height_map(CONTEXT, &good, &height_style, &image)))
+            (height_style.contact = BAD ? BAD : &bad_views[1],
+             im_render_height_map(CONTEXT, &good, &height_style, &image)))
 REPORT(im_render_height_map, "style", im_render_height_map(CONTEXT, &good, NULL, &image))
 REPORT(im_render_height_map, "image", im_render_height_map(CONTEXT, &good, &height_style, NULL))
 SAFE_RESULT(im_view3d_style_default, "force", im_view3d_style_default(&bad_views[2]).width == 1920)
@@ -482,8 +492,10 @@ REPORT(im_scene_run, "options", im_scene_run(&scene, NULL))
 REPORT(im_scene_measure_files, "scene", im_scene_measure_files(NULL))
 REPORT(im_scene_file_path, "scene", im_scene_file_path(NULL, 0, text, sizeof text))
 REPORT(im_scene_file_path, "out", im_scene_file_path(&scene, 0, NULL, 64))
-SAFE_RESULT(im_scene_resolve_path, "scene", (text[0] = 'x', im_scene_resolve_path(NULL, "a", text, sizeof text), text[0] == '\0'))
-SAFE_RESULT(im_scene_resolve_path, "relative", (text[0] = 'x', im_scene_resolve_path(&scene, NULL, text, sizeof text), text[0] == '\0'))
+SAFE_RESULT(im_scene_resolve_path, "scene",
+            (text[0] = 'x', im_scene_resolve_path(NULL, "a", text, sizeof text), text[0] == '\0'))
+SAFE_RESULT(im_scene_resolve_path, "relative",
+            (text[0] = 'x', im_scene_resolve_path(&scene, NULL, text, sizeof text), text[0] == '\0'))
 SAFE_RESULT(im_scene_resolve_path, "out", (im_scene_resolve_path(&scene, "a", NULL, 64), 1))
 SAFE_RESULT(im_scene_suggest_key, "word", im_scene_suggest_key(NULL, NULL) == NULL)
 
@@ -522,10 +534,14 @@ REPORT(im_displacement_plan_create, "nx", im_displacement_plan_create(-3, 8, 1.0
 REPORT(im_displacement_full_with, "plan", im_displacement_full_with(NULL, &good, &field_out))
 REPORT_VIEW(im_displacement_full_with, "force", im_displacement_full_with(plan, BAD, &field_out))
 REPORT(im_displacement_full_with, "displacement", im_displacement_full_with(plan, &good, NULL))
-REPORT(im_solver_solve, "plan", im_solver_solve(NULL, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
-REPORT(im_solver_solve, "gap0", im_solver_solve(plan, NULL, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
-REPORT(im_solver_solve, "pressure", im_solver_solve(plan, values, IM_CONTROL_DISPLACEMENT, 0.1, NULL, big_values, NULL))
-REPORT(im_solver_solve, "displacement", im_solver_solve(plan, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, NULL, NULL))
+REPORT(im_solver_solve, "plan",
+       im_solver_solve(NULL, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
+REPORT(im_solver_solve, "gap0",
+       im_solver_solve(plan, NULL, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
+REPORT(im_solver_solve, "pressure",
+       im_solver_solve(plan, values, IM_CONTROL_DISPLACEMENT, 0.1, NULL, big_values, NULL))
+REPORT(im_solver_solve, "displacement",
+       im_solver_solve(plan, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, NULL, NULL))
 REPORT_VIEW(im_flat_contact_create, "surface", im_flat_contact_create(BAD, NULL, &flat_out))
 REPORT(im_flat_contact_create, "out", im_flat_contact_create(&good, NULL, NULL))
 ACCEPT(im_flat_contact_free, (im_flat_contact_free(NULL), 1))
@@ -534,9 +550,12 @@ REPORT(im_flat_contact_solve, "out", im_flat_contact_solve(flat, 0.1, NULL))
 REPORT(im_flat_contact_solve_gap, "run", im_flat_contact_solve_gap(NULL, 0.1, &flat_result))
 REPORT(im_flat_contact_solve_gap, "out", im_flat_contact_solve_gap(flat, 0.1, NULL))
 SAFE_RESULT(im_flat_contact_pressure, "run", im_flat_contact_pressure(NULL) == NULL)
-REPORT_VIEW(im_indentation_create, "surface", im_indentation_create(BAD, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out))
-REPORT(im_indentation_create, "punch", im_indentation_create(&good, NULL, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out))
-REPORT(im_indentation_create, "out", im_indentation_create(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, NULL))
+REPORT_VIEW(im_indentation_create, "surface",
+            im_indentation_create(BAD, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out))
+REPORT(im_indentation_create, "punch",
+       im_indentation_create(&good, NULL, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out))
+REPORT(im_indentation_create, "out",
+       im_indentation_create(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, NULL))
 ACCEPT(im_indentation_free, (im_indentation_free(NULL), 1))
 REPORT(im_indentation_step, "run", im_indentation_step(NULL, 0.1, &step_result))
 REPORT(im_indentation_step, "out", im_indentation_step(run, 0.1, NULL))
@@ -617,7 +636,8 @@ REPORT(im_theory_md_sphere_pull_off, "out", im_theory_md_sphere_pull_off(&adhesi
 REPORT(im_theory_md_sphere_separation, "law", im_theory_md_sphere_separation(NULL, 10.0, &adhesive_point))
 REPORT(im_theory_md_sphere_separation, "out", im_theory_md_sphere_separation(&adhesion_law, 10.0, NULL))
 REPORT(im_theory_md_sphere_load_at_approach, "law", im_theory_md_sphere_load_at_approach(NULL, 10.0, 1.0, &d))
-REPORT(im_theory_md_sphere_load_at_approach, "load", im_theory_md_sphere_load_at_approach(&adhesion_law, 10.0, 1.0, NULL))
+REPORT(im_theory_md_sphere_load_at_approach, "load",
+       im_theory_md_sphere_load_at_approach(&adhesion_law, 10.0, 1.0, NULL))
 REPORT(im_theory_kendall_pull_off, "law", im_theory_kendall_pull_off(NULL, 10.0, &adhesive_point))
 REPORT(im_theory_kendall_pull_off, "out", im_theory_kendall_pull_off(&adhesion_law, 10.0, NULL))
 REPORT(im_theory_kendall_load_at_approach, "law", im_theory_kendall_load_at_approach(NULL, 10.0, 1.0, &d))
@@ -646,10 +666,12 @@ REPORT(im_viewer_write_with, "options", im_viewer_write_with(test_temp_dir(), "t
 static int mpi_rows[2];
 REPORT(im_mpi_solver_create, "out", im_mpi_solver_create(MPI_COMM_WORLD, 8, 8, 1.0, &options, NULL))
 ACCEPT(im_mpi_solver_free, (im_mpi_solver_free(NULL), 1))
-SAFE_RESULT(im_mpi_solver_rows, "solver", (mpi_rows[1] = 7, im_mpi_solver_rows(NULL, &mpi_rows[0], &mpi_rows[1]), mpi_rows[1] == 0))
+SAFE_RESULT(im_mpi_solver_rows, "solver",
+            (mpi_rows[1] = 7, im_mpi_solver_rows(NULL, &mpi_rows[0], &mpi_rows[1]), mpi_rows[1] == 0))
 SAFE_RESULT(im_mpi_solver_bytes, "nx", isnan(im_mpi_solver_bytes(-3, 8, 2)))
 SAFE_RESULT(im_mpi_convolve, "solver", (im_mpi_convolve(NULL, values, out_values), 1))
-REPORT(im_mpi_solver_solve, "solver", im_mpi_solver_solve(NULL, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
+REPORT(im_mpi_solver_solve, "solver",
+       im_mpi_solver_solve(NULL, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
 static im_mpi_flat_contact *mpi_flat_out;
 REPORT(im_mpi_flat_contact_create, "out", im_mpi_flat_contact_create(NULL, values, NULL))
 REPORT(im_mpi_flat_contact_create, "solver", im_mpi_flat_contact_create(NULL, values, &mpi_flat_out))
@@ -705,8 +727,10 @@ REPORT_AS_BEFORE(im_paper_fig1_contact_density, im_paper_fig1_contact_density(80
 REPORT_AS_BEFORE(im_paper_fig3_surface, im_paper_fig3_surface(&good, &params, -3, NULL, path_text))
 REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 5, 20, NULL))
 REPORT_AS_BEFORE(im_png_write, im_png_write(path_text, pixels, 4, 4, 3, 2, NULL))
-REPORT_AS_BEFORE(im_solver_solve, im_solver_solve(plan, values, (enum im_control)99, 0.1, out_values, big_values, NULL))
-REPORT_AS_BEFORE(im_indentation_create, im_indentation_create(&good, &cone, (enum im_control)99, 0.5, &options, &run_out))
+REPORT_AS_BEFORE(im_solver_solve,
+                 im_solver_solve(plan, values, (enum im_control)99, 0.1, out_values, big_values, NULL))
+REPORT_AS_BEFORE(im_indentation_create,
+                 im_indentation_create(&good, &cone, (enum im_control)99, 0.5, &options, &run_out))
 ACCEPT(im_figure_ticks, im_figure_ticks(&colormap, out_values, -3) == 0)
 ACCEPT(im_path_utf8, im_path_utf8("a", text, 0) == 0)
 ACCEPT(im_view3d_exaggeration_text, (im_view3d_exaggeration_text(1.0, text, 0), 1))
@@ -721,31 +745,47 @@ ACCEPT(im_strstatus, im_strstatus(99) != NULL && im_strstatus(-1) != NULL)
 ACCEPT(im_scene_plot_name, im_scene_plot_name((enum im_scene_plot)(1u << 30)) == NULL)
 
 /* ---- pointers inside the structures passed ---- */
-static im_plot plot_of(const im_plot_panel *panels) { im_plot p = im_plot_default(); p.panels = panels; return p; }
-static im_plot_series series_xy(const double *xs, const double *ys) { return (im_plot_series){.x = xs, .y = ys, .n = 3}; }
-static im_plot_panel panel_of(const im_plot_series *series) { return (im_plot_panel){.series = series, .series_count = 1}; }
+static im_plot plot_of(const im_plot_panel *panels)
+{
+    im_plot p = im_plot_default();
+    p.panels = panels;
+    return p;
+}
+static im_plot_series series_xy(const double *xs, const double *ys)
+{
+    return (im_plot_series){.x = xs, .y = ys, .n = 3};
+}
+static im_plot_panel panel_of(const im_plot_series *series)
+{
+    return (im_plot_panel){.series = series, .series_count = 1};
+}
 static im_plot_series series;
 static im_paper_points points;
 REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(NULL), im_plot_write(&plot, path_text)))
-REPORT_AS_BEFORE(im_plot_write, (series = series_xy(NULL, values), plot_panel = panel_of(&series), plot = plot_of(&plot_panel),
+REPORT_AS_BEFORE(im_plot_write, (series = series_xy(NULL, values), plot_panel = panel_of(&series),
+                                 plot = plot_of(&plot_panel), im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (series = series_xy(values, NULL), plot_panel = panel_of(&series),
+                                 plot = plot_of(&plot_panel), im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (plot_panel = (im_plot_panel){.series = NULL, .series_count = 2},
+                                 plot = plot_of(&plot_panel), im_plot_write(&plot, path_text)))
+REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(&plot_panel), plot.texts = NULL, plot.text_count = 3,
                                  im_plot_write(&plot, path_text)))
-REPORT_AS_BEFORE(im_plot_write, (series = series_xy(values, NULL), plot_panel = panel_of(&series), plot = plot_of(&plot_panel),
-                                 im_plot_write(&plot, path_text)))
-REPORT_AS_BEFORE(im_plot_write, (plot_panel = (im_plot_panel){.series = NULL, .series_count = 2}, plot = plot_of(&plot_panel),
-                                 im_plot_write(&plot, path_text)))
-REPORT_AS_BEFORE(im_plot_write, (plot = plot_of(&plot_panel), plot.texts = NULL, plot.text_count = 3, im_plot_write(&plot, path_text)))
 REPORT_AS_BEFORE(im_paper_fig2_area_ratio, (points = (im_paper_points){.x = NULL, .y = values, .count = 3},
                                             im_paper_fig2_area_ratio(&points, NULL, path_text)))
-REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = NULL, im_figure_write(&figure, path_text)))
+REPORT_AS_BEFORE(im_figure_write,
+                 (figure = im_figure_default(), figure.panels = NULL, im_figure_write(&figure, path_text)))
 REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = &(im_figure_panel){.image = NULL},
                                    im_figure_write(&figure, path_text)))
 REPORT_AS_BEFORE(im_figure_write, (figure = im_figure_default(), figure.panels = &(im_figure_panel){.image = &image},
                                    figure.texts = NULL, figure.text_count = 2, im_figure_write(&figure, path_text)))
-REPORT(im_png_write, "texts", im_png_write(path_text, pixels, 4, 4, 3, 12, &(im_png_options){.texts = NULL, .text_count = 2}))
-REPORT(im_png_write, "texts", im_png_write(path_text, pixels, 4, 4, 3, 12,
-                                           &(im_png_options){.texts = &(im_png_text){"k", NULL}, .text_count = 1}))
-REPORT_AS_BEFORE(im_indentation_create, (punch = im_indenter_cone(80.0), punch.kind = IM_PUNCH_PROFILE, punch.profile = NULL,
-                                         im_indentation_create(&good, &punch, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out)))
+REPORT(im_png_write, "texts",
+       im_png_write(path_text, pixels, 4, 4, 3, 12, &(im_png_options){.texts = NULL, .text_count = 2}))
+REPORT(im_png_write, "texts",
+       im_png_write(path_text, pixels, 4, 4, 3, 12,
+                    &(im_png_options){.texts = &(im_png_text){"k", NULL}, .text_count = 1}))
+REPORT_AS_BEFORE(im_indentation_create,
+                 (punch = im_indenter_cone(80.0), punch.kind = IM_PUNCH_PROFILE, punch.profile = NULL,
+                  im_indentation_create(&good, &punch, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out)))
 REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, .rgba = NULL},
                                     im_animation_gif(&image, 1, 0.1, path_text)))
 
@@ -753,25 +793,54 @@ REPORT_AS_BEFORE(im_animation_gif, (image = (im_image){.width = 4, .height = 4, 
  * im_set_stop_flag's): nothing to misuse here. A new function belongs either here or in a case
  * above. */
 static const char *const no_pointer_arguments[] = {
-    "im_colormap_make", "im_colormap_name", "im_colormap_table", "im_contact_tension_norm", "im_memory_available",
-    "im_memory_set_limit", "im_memory_limit", "im_address_space_available", "im_figure_default", "im_gif_options_default", "im_gwyddion_reader",
-    "im_ffmpeg_available", "im_indenter_cone", "im_indenter_sphere", "im_indenter_flat",
-    "im_punch_name", "im_output_protect_reset", "im_file_kind_name", "im_atomic_remove_temporaries",
-    "im_measure_sneddon_modulus", "im_history_columns", "im_history_integer_columns",
-    "im_mpi_init", "im_mpi_cleanup", "im_plot_default",
-    "im_scene_plot_name", "im_solver_options_default", "im_quality_default_tolerance",
-    "im_influence_square", "im_strstatus", "im_last_error", "im_set_stop_flag", "im_stop_requested",
+    "im_colormap_make",
+    "im_colormap_name",
+    "im_colormap_table",
+    "im_contact_tension_norm",
+    "im_memory_available",
+    "im_memory_set_limit",
+    "im_memory_limit",
+    "im_address_space_available",
+    "im_figure_default",
+    "im_gif_options_default",
+    "im_gwyddion_reader",
+    "im_ffmpeg_available",
+    "im_indenter_cone",
+    "im_indenter_sphere",
+    "im_indenter_flat",
+    "im_punch_name",
+    "im_output_protect_reset",
+    "im_file_kind_name",
+    "im_atomic_remove_temporaries",
+    "im_measure_sneddon_modulus",
+    "im_history_columns",
+    "im_history_integer_columns",
+    "im_mpi_init",
+    "im_mpi_cleanup",
+    "im_plot_default",
+    "im_scene_plot_name",
+    "im_solver_options_default",
+    "im_quality_default_tolerance",
+    "im_influence_square",
+    "im_strstatus",
+    "im_last_error",
+    "im_set_stop_flag",
+    "im_stop_requested",
     "im_surface_params_default",
-    "im_theory_interface_default", "im_theory_wavy1d_area_fraction",
-    "im_theory_wavy2d_light_area_fraction", "im_theory_wavy2d_near_full_area_fraction",
-    "im_theory_moment", "im_theory_height_rms_moments", "im_theory_height_rms_eq15",
+    "im_theory_interface_default",
+    "im_theory_wavy1d_area_fraction",
+    "im_theory_wavy2d_light_area_fraction",
+    "im_theory_wavy2d_near_full_area_fraction",
+    "im_theory_moment",
+    "im_theory_height_rms_moments",
+    "im_theory_height_rms_eq15",
 };
 
 /* ---- running the cases ---- */
 
 typedef struct outcome {
-    int signal;      /* the signal that ended the child, 0 if none */
-    int status;      /* the call's return value */
+    int signal; /* the signal that ended the child, 0 if none */
+    int status; /* the call's return value */
     char message[400];
 } outcome;
 
@@ -941,7 +1010,8 @@ static void every_public_function_is_covered(void **state)
             if (!covered(name)) {
                 ++missing;
                 printf("%s (%s): neither called with misuse in test_api_misuse.c nor listed in "
-                       "no_pointer_arguments\n", name, entry->d_name);
+                       "no_pointer_arguments\n",
+                       name, entry->d_name);
             }
         }
         free(text_h);

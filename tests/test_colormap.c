@@ -111,8 +111,8 @@ static void test_tension_ramp_is_an_ordered_blue(void **state)
         double hue = atan2(lab[k][2], lab[k][1]) * 180.0 / M_PI + 360.0;
         double distance = sqrt(pow(lab[k][0] - background[0], 2) + pow(lab[k][1], 2) + pow(lab[k][2], 2));
         if (!(hue > 240.0 && hue < 285.0 && hypot(lab[k][1], lab[k][2]) > 15.0 && distance > 20.0))
-            fail_msg("entry %d (%d, %d, %d): hue %.1f, chroma %.1f, %.1f from the grey", k, table[k][0],
-                     table[k][1], table[k][2], hue, hypot(lab[k][1], lab[k][2]), distance);
+            fail_msg("entry %d (%d, %d, %d): hue %.1f, chroma %.1f, %.1f from the grey", k, table[k][0], table[k][1],
+                     table[k][2], hue, hypot(lab[k][1], lab[k][2]), distance);
         if (k >= 1 && lab[k][0] > lab[k - 1][0])
             fail_msg("lightness rises from entry %d (%.2f) to %d (%.2f)", k - 1, lab[k - 1][0], k, lab[k][0]);
         if (k >= 4 && !(lab[k][0] < lab[k - 4][0]))

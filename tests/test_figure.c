@@ -21,8 +21,14 @@
 /* A panel image whose pixel (x, y) is (8 x, 9 y, tag): each pixel identifies its position. */
 static im_image make_image(int width, int height, int tag)
 {
-    im_image image = {.width = width, .height = height, .data_x = 2, .data_y = 2,
-                      .pixels_per_patch = 2, .nx = (width - 4) / 2, .ny = (height - 4) / 2, .delta = 1.0};
+    im_image image = {.width = width,
+                      .height = height,
+                      .data_x = 2,
+                      .data_y = 2,
+                      .pixels_per_patch = 2,
+                      .nx = (width - 4) / 2,
+                      .ny = (height - 4) / 2,
+                      .delta = 1.0};
     image.rgba = malloc((size_t)width * height * 4);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -240,8 +246,8 @@ static void test_colorbar_beside_an_image_under_a_wide_title(void **state)
     im_image image = make_image(200, 240, 3);
     int plain = colorbar_gap(&image, NULL);
     assert_true(plain > 0 && plain < 40);
-    assert_int_equal(colorbar_gap(&image, "a title far wider than the image it stands over, as at one pixel per patch"),
-                     plain);
+    assert_int_equal(
+        colorbar_gap(&image, "a title far wider than the image it stands over, as at one pixel per patch"), plain);
     im_image_release(&image);
 }
 
@@ -687,13 +693,17 @@ static void test_frame_paths(void **state)
 static void test_colorbar_labels(void **state)
 {
     (void)state;
-    static const char *const EXPECTED[][3] = {
-        {"force", "N", "local force f / N"},    {"force", "", "local force f / (E* δ²)"},
-        {"height", "µm", "height h / µm"},      {"height", "", "height h / δ"},
-        {"gap", "m", "gap g / m"},              {"displacement", "nm", "displacement u / nm"},
-        {"plastic", "", "plastic depth d / δ"}, {"tension", "N", "tensile force −f / N"},
-        {"tension", "", "tensile force −f / (E* δ²)"}, {"force", "E* δ²", "local force f / (E* δ²)"},
-        {"force", "Pa µm²", "local force f / (Pa µm²)"}};
+    static const char *const EXPECTED[][3] = {{"force", "N", "local force f / N"},
+                                              {"force", "", "local force f / (E* δ²)"},
+                                              {"height", "µm", "height h / µm"},
+                                              {"height", "", "height h / δ"},
+                                              {"gap", "m", "gap g / m"},
+                                              {"displacement", "nm", "displacement u / nm"},
+                                              {"plastic", "", "plastic depth d / δ"},
+                                              {"tension", "N", "tensile force −f / N"},
+                                              {"tension", "", "tensile force −f / (E* δ²)"},
+                                              {"force", "E* δ²", "local force f / (E* δ²)"},
+                                              {"force", "Pa µm²", "local force f / (Pa µm²)"}};
     char text[64];
     for (size_t i = 0; i < sizeof EXPECTED / sizeof *EXPECTED; ++i) {
         assert_int_equal(im_figure_colorbar_label(EXPECTED[i][0], EXPECTED[i][1], text, sizeof text), IM_OK);
@@ -776,11 +786,13 @@ static void test_gif_options_refused(void **state)
     (void)state;
     im_image frame = make_image(8, 8, 1);
     const char *path = test_path("refused.gif");
-    const struct { im_gif_options options; const char *says; } cases[] = {
-        {{0.001, 256, 0}, "s per frame: expected [0.01, 600]"},
-        {{0.1, 1, 0}, "1 colours: expected 2 to 256"},
-        {{0.1, 257, 0}, "257 colours: expected 2 to 256"},
-        {{0.1, 256, 2}, "dither = 2: expected 0 or 1"}};
+    const struct {
+        im_gif_options options;
+        const char *says;
+    } cases[] = {{{0.001, 256, 0}, "s per frame: expected [0.01, 600]"},
+                 {{0.1, 1, 0}, "1 colours: expected 2 to 256"},
+                 {{0.1, 257, 0}, "257 colours: expected 2 to 256"},
+                 {{0.1, 256, 2}, "dither = 2: expected 0 or 1"}};
     for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
         assert_int_equal(im_animation_gif_with(&frame, 1, &cases[i].options, path), IM_EINVAL);
         assert_non_null(strstr(im_last_error(), cases[i].says));
@@ -904,8 +916,8 @@ static void test_gif_annotated_like_png(void **state)
         int also = 0, dark = dark_pixels(pngs[k].rgba, shown, pixels, &also);
         colour_error e = image_delta_e(shown, pngs[k].rgba, g.width, g.height, 0);
         print_message("frame %d: %d x %d, %d palette entries, colour bar at x = %d, %d dark pixels (%d in the "
-                      "GIF), mean ΔE %.3f, p99 %.2f, largest %.1f\n", k, g.width, g.height, g.palette_size, bar,
-                      dark, also, e.mean, e.p99, e.max);
+                      "GIF), mean ΔE %.3f, p99 %.2f, largest %.1f\n",
+                      k, g.width, g.height, g.palette_size, bar, dark, also, e.mean, e.p99, e.max);
         assert_true(dark > 100);
         assert_true(also >= 0.99 * dark);
         assert_true(e.mean < 0.5 && e.p99 < 2.0 && e.max < 6.0);

@@ -195,9 +195,18 @@ static void other_histories_refused(void **state)
     char why[160], text[2048];
     assert_false(im_history_parse(OLD, 1, rows, 4, &count, why, sizeof why));
     assert_non_null(strstr(why, "older version"));
-    im_history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = 3, .contact_patches = 4,
-                                             .area_ratio = 1, .iterations = 5, .residual = 1e-7},
-                       .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
+    im_history_row row = {.step = 1,
+                          .result = {.approach = 1,
+                                     .load = 2,
+                                     .load_star = 3,
+                                     .contact_patches = 4,
+                                     .area_ratio = 1,
+                                     .iterations = 5,
+                                     .residual = 1e-7},
+                          .stiffness = NAN,
+                          .e_star_sneddon = NAN,
+                          .patches = 1,
+                          .perimeter = 8};
     char line[IM_HISTORY_LINE_MAX];
     im_history_format(&row, line, sizeof line);
     snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
@@ -228,9 +237,18 @@ static void histories_without_smooth_area(void **state)
     im_history_row rows[2];
     int count;
     char why[160], text[2048], line[IM_HISTORY_LINE_MAX];
-    im_history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = NAN, .contact_patches = 4,
-                                             .area_ratio = NAN, .iterations = 5, .residual = 1e-7},
-                       .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
+    im_history_row row = {.step = 1,
+                          .result = {.approach = 1,
+                                     .load = 2,
+                                     .load_star = NAN,
+                                     .contact_patches = 4,
+                                     .area_ratio = NAN,
+                                     .iterations = 5,
+                                     .residual = 1e-7},
+                          .stiffness = NAN,
+                          .e_star_sneddon = NAN,
+                          .patches = 1,
+                          .perimeter = 8};
     im_history_format(&row, line, sizeof line);
     snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
     assert_true(im_history_parse(text, 0, rows, 2, &count, why, sizeof why));
@@ -256,9 +274,18 @@ static void histories_of_a_periodic_cell(void **state)
     im_history_row rows[2];
     int count;
     char why[160], text[2048], line[IM_HISTORY_LINE_MAX];
-    im_history_row row = {.step = 1, .result = {.approach = 1, .load = 2, .load_star = NAN, .contact_patches = 4,
-                                             .area_ratio = 0.25, .iterations = 5, .residual = 1e-7},
-                       .stiffness = NAN, .e_star_sneddon = NAN, .patches = 1, .perimeter = 8};
+    im_history_row row = {.step = 1,
+                          .result = {.approach = 1,
+                                     .load = 2,
+                                     .load_star = NAN,
+                                     .contact_patches = 4,
+                                     .area_ratio = 0.25,
+                                     .iterations = 5,
+                                     .residual = 1e-7},
+                          .stiffness = NAN,
+                          .e_star_sneddon = NAN,
+                          .patches = 1,
+                          .perimeter = 8};
     im_history_format(&row, line, sizeof line);
     snprintf(text, sizeof text, "%s\n%s", im_history_columns(), line);
     assert_true(im_history_parse(text, IM_HISTORY_AREA_CELL, rows, 2, &count, why, sizeof why));
@@ -300,14 +327,32 @@ static void integer_columns_as_written(void **state)
 {
     (void)state;
     const double half = 0.5;
-    const im_step_result result = {
-        .approach = half, .load = half, .load_star = half, .contact_patches = 7, .area_ratio = half,
-        .mean_pressure = half, .max_pressure = half, .iterations = 7, .convolutions = 7, .residual = half,
-        .seconds = half, .yielding_patches = 7, .plastic_depth = half, .plastic_work = half,
-        .residual_approach = half, .tensile_force = half, .adhesive_patches = 7, .repulsive_patches = 7,
-        .mean_gap = half};
-    const im_history_row row = {.step = 7, .result = result, .theory = {half, half, half, half},
-                                .stiffness = half, .e_star_sneddon = half, .patches = 7, .perimeter = half};
+    const im_step_result result = {.approach = half,
+                                   .load = half,
+                                   .load_star = half,
+                                   .contact_patches = 7,
+                                   .area_ratio = half,
+                                   .mean_pressure = half,
+                                   .max_pressure = half,
+                                   .iterations = 7,
+                                   .convolutions = 7,
+                                   .residual = half,
+                                   .seconds = half,
+                                   .yielding_patches = 7,
+                                   .plastic_depth = half,
+                                   .plastic_work = half,
+                                   .residual_approach = half,
+                                   .tensile_force = half,
+                                   .adhesive_patches = 7,
+                                   .repulsive_patches = 7,
+                                   .mean_gap = half};
+    const im_history_row row = {.step = 7,
+                                .result = result,
+                                .theory = {half, half, half, half},
+                                .stiffness = half,
+                                .e_star_sneddon = half,
+                                .patches = 7,
+                                .perimeter = half};
     char line[IM_HISTORY_LINE_MAX], names[IM_HISTORY_LINE_MAX], integers[IM_HISTORY_LINE_MAX] = "";
     assert_true(im_history_format(&row, line, sizeof line) > 0);
     snprintf(names, sizeof names, "%s", im_history_columns());
@@ -325,9 +370,12 @@ static void integer_columns_as_written(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(step_lists_one_limit),        cmocka_unit_test(step_lists_same_messages),
-        cmocka_unit_test(punch_names_one_parser),      cmocka_unit_test(one_default_tolerance),
-        cmocka_unit_test(both_histories_one_reader),   cmocka_unit_test(other_histories_refused),
+        cmocka_unit_test(step_lists_one_limit),
+        cmocka_unit_test(step_lists_same_messages),
+        cmocka_unit_test(punch_names_one_parser),
+        cmocka_unit_test(one_default_tolerance),
+        cmocka_unit_test(both_histories_one_reader),
+        cmocka_unit_test(other_histories_refused),
         cmocka_unit_test(histories_without_smooth_area),
         cmocka_unit_test(histories_of_a_periodic_cell),
         cmocka_unit_test(path_join_refuses_what_does_not_fit),

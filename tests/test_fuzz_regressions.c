@@ -22,7 +22,10 @@
 typedef int (*surface_reader)(const char *path, im_field **out);
 
 /* The readers the harnesses fuzz_tmd, fuzz_hdf5 and fuzz_container call, as those call them. */
-static int tmd_read(const char *path, im_field **out) { return surface_read_format(path, tmd_read_raw, NULL, out, NULL); }
+static int tmd_read(const char *path, im_field **out)
+{
+    return surface_read_format(path, tmd_read_raw, NULL, out, NULL);
+}
 static int hdf5_read(const char *path, im_field **out)
 {
     return surface_read_channel_format(path, hdf5_read_in_process, NULL, out, NULL);
@@ -45,15 +48,16 @@ static const char *read_like_harness(const char *harness, const char *path, int 
         *status = im_scene_load(path, &scene);
         return fuzz_scene_problem(*status, &scene);
     }
-    surface_reader read = strcmp(harness, "npy") == 0 ? im_npy_read
-                        : strcmp(harness, "gsf") == 0 ? im_gsf_read
-                        : strcmp(harness, "sdf") == 0 ? im_sdf_read
-                        : strcmp(harness, "netcdf") == 0 ? im_netcdf_read
-                        : strcmp(harness, "x3p") == 0 ? im_x3p_read
-                        : strcmp(harness, "tmd") == 0 ? tmd_read
-                        : strcmp(harness, "hdf5") == 0 ? hdf5_read
-                        : strcmp(harness, "container") == 0 ? container_read
-                        : strcmp(harness, "gwyddion") == 0 ? gwyddion_stream_file_read : im_text_read;
+    surface_reader read = strcmp(harness, "npy") == 0         ? im_npy_read
+                          : strcmp(harness, "gsf") == 0       ? im_gsf_read
+                          : strcmp(harness, "sdf") == 0       ? im_sdf_read
+                          : strcmp(harness, "netcdf") == 0    ? im_netcdf_read
+                          : strcmp(harness, "x3p") == 0       ? im_x3p_read
+                          : strcmp(harness, "tmd") == 0       ? tmd_read
+                          : strcmp(harness, "hdf5") == 0      ? hdf5_read
+                          : strcmp(harness, "container") == 0 ? container_read
+                          : strcmp(harness, "gwyddion") == 0  ? gwyddion_stream_file_read
+                                                              : im_text_read;
     im_field *field = NULL;
     *status = read(path, &field);
     const char *problem = fuzz_field_problem(*status, field);
@@ -94,17 +98,61 @@ static void feed_harness(const char *harness)
     feed_folder("regressions", harness);
 }
 
-static void scene_inputs(void **state) { (void)state; feed_harness("scene"); }
-static void npy_inputs(void **state) { (void)state; feed_harness("npy"); }
-static void text_inputs(void **state) { (void)state; feed_harness("text"); }
-static void gsf_inputs(void **state) { (void)state; feed_harness("gsf"); }
-static void sdf_inputs(void **state) { (void)state; feed_harness("sdf"); }
-static void netcdf_inputs(void **state) { (void)state; feed_harness("netcdf"); }
-static void x3p_inputs(void **state) { (void)state; feed_harness("x3p"); }
-static void tmd_inputs(void **state) { (void)state; feed_harness("tmd"); }
-static void hdf5_inputs(void **state) { (void)state; feed_harness("hdf5"); }
-static void container_inputs(void **state) { (void)state; feed_harness("container"); }
-static void gwyddion_inputs(void **state) { (void)state; feed_harness("gwyddion"); }
+static void scene_inputs(void **state)
+{
+    (void)state;
+    feed_harness("scene");
+}
+static void npy_inputs(void **state)
+{
+    (void)state;
+    feed_harness("npy");
+}
+static void text_inputs(void **state)
+{
+    (void)state;
+    feed_harness("text");
+}
+static void gsf_inputs(void **state)
+{
+    (void)state;
+    feed_harness("gsf");
+}
+static void sdf_inputs(void **state)
+{
+    (void)state;
+    feed_harness("sdf");
+}
+static void netcdf_inputs(void **state)
+{
+    (void)state;
+    feed_harness("netcdf");
+}
+static void x3p_inputs(void **state)
+{
+    (void)state;
+    feed_harness("x3p");
+}
+static void tmd_inputs(void **state)
+{
+    (void)state;
+    feed_harness("tmd");
+}
+static void hdf5_inputs(void **state)
+{
+    (void)state;
+    feed_harness("hdf5");
+}
+static void container_inputs(void **state)
+{
+    (void)state;
+    feed_harness("container");
+}
+static void gwyddion_inputs(void **state)
+{
+    (void)state;
+    feed_harness("gwyddion");
+}
 
 /* fuzz_npy's out-of-memory input (and its .gsf twin): a header claiming 30000 x 30000 values over
  * no data made the reader allocate 7.2 GB before finding the data missing. The refusal must now
@@ -125,8 +173,8 @@ static void oversized_headers_are_refused_before_allocation(void **state)
         if (status == IM_ENOMEM && strstr(im_last_error(), "MiB are available"))
             continue; /* a machine with less than the 7.2 GB free refuses it earlier still */
         if (status != IM_EFORMAT || !strstr(im_last_error(), needs[i]))
-            fail_msg("%s: status %d '%s', expected the early size check ('%s')", files[i], status,
-                     im_last_error(), needs[i]);
+            fail_msg("%s: status %d '%s', expected the early size check ('%s')", files[i], status, im_last_error(),
+                     needs[i]);
     }
 }
 
@@ -150,8 +198,8 @@ static void assert_netcdf_refused(const char *file, const char *message)
 static void netcdf_dimensions_beyond_the_file_are_refused_before_allocation(void **state)
 {
     (void)state;
-    assert_netcdf_refused("oom_dims_63555x14082.nc",
-                          "truncated: heights (63555 x 14082 values of 8 bytes) needs 7159852080 bytes, the file has 3176");
+    assert_netcdf_refused("oom_dims_63555x14082.nc", "truncated: heights (63555 x 14082 values of 8 bytes) needs "
+                                                     "7159852080 bytes, the file has 3176");
 }
 
 /* fuzz_netcdf's out-of-memory input: an 88-byte classic header whose name length made netCDF allocate

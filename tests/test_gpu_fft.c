@@ -55,14 +55,14 @@ static int close_context(void **state)
     return 0;
 }
 
-#define REQUIRE_CONTEXT()                                                                         \
-    do {                                                                                          \
-        if (!context && skip_all) {                                                               \
-            print_message("SKIPPED (no Vulkan device): %s\n", open_error);                        \
-            skip();                                                                               \
-        }                                                                                         \
-        if (!context)                                                                             \
-            fail_msg("the GPU context does not open: %s", open_error);                            \
+#define REQUIRE_CONTEXT()                                                                                            \
+    do {                                                                                                             \
+        if (!context && skip_all) {                                                                                  \
+            print_message("SKIPPED (no Vulkan device): %s\n", open_error);                                           \
+            skip();                                                                                                  \
+        }                                                                                                            \
+        if (!context)                                                                                                \
+            fail_msg("the GPU context does not open: %s", open_error);                                               \
     } while (0)
 
 /* Every case ends with a silent validation layer (the count is over the whole program). */
@@ -166,8 +166,7 @@ static void check_fft(int px, int py, uint64_t seed)
     if (!(modes_error <= 1e-12))
         fail_msg("%d x %d: modes differ from FFTW's by %.3g of the largest", px, py, modes_error);
     if (!(round_trip_error <= 1e-12))
-        fail_msg("%d x %d: forward then inverse differs from px * py * input by %.3g", px, py,
-                 round_trip_error);
+        fail_msg("%d x %d: forward then inverse differs from px * py * input by %.3g", px, py, round_trip_error);
     if (tail_changed)
         fail_msg("%d x %d: the inverse wrote %zu reals past px * py", px, py, tail_changed);
 }
@@ -225,8 +224,7 @@ struct scale_push {
 };
 
 /* data *= factor by scale.comp over fewer workgroups than the data needs (the grid-stride loop). */
-static void scale_on_gpu(const gpu_pipeline *pipeline, const gpu_buffer *buffer, uint32_t count,
-                         double factor)
+static void scale_on_gpu(const gpu_pipeline *pipeline, const gpu_buffer *buffer, uint32_t count, double factor)
 {
     struct scale_push push = {.factor = factor, .count = count};
     const gpu_buffer *buffers[] = {buffer};
@@ -261,10 +259,8 @@ static void test_scale_pipeline(void **state)
                 fail_msg("memory %d: element %d = %.17g, expected %.17g", (int)memory, i, back[i],
                          (i < N ? 4.0 : 1.0) * data[i]);
         /* Part of a buffer at an offset, both ways. */
-        ok(gpu_buffer_upload(context, &buffer, 8 * sizeof(double), data, 3 * sizeof(double)),
-           "upload at offset");
-        ok(gpu_buffer_download(context, &buffer, 7 * sizeof(double), back, 5 * sizeof(double)),
-           "download at offset");
+        ok(gpu_buffer_upload(context, &buffer, 8 * sizeof(double), data, 3 * sizeof(double)), "upload at offset");
+        ok(gpu_buffer_download(context, &buffer, 7 * sizeof(double), back, 5 * sizeof(double)), "download at offset");
         assert_true(back[0] == 4.0 * data[7] && back[1] == data[0] && back[3] == data[2] &&
                     back[4] == 4.0 * data[11]);
         assert_int_equal(gpu_buffer_download(context, &buffer, sizeof data - 8, back, 16), IM_EINVAL);
@@ -345,12 +341,9 @@ int main(void)
 {
     keep_vulkan_libraries_loaded();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_devices),
-        cmocka_unit_test(test_scale_pipeline),
-        cmocka_unit_test(test_large_transfers),
-        cmocka_unit_test(test_fft_small),
-        cmocka_unit_test(test_fft_sides),
-        cmocka_unit_test(test_fft_large),
+        cmocka_unit_test(test_devices),         cmocka_unit_test(test_scale_pipeline),
+        cmocka_unit_test(test_large_transfers), cmocka_unit_test(test_fft_small),
+        cmocka_unit_test(test_fft_sides),       cmocka_unit_test(test_fft_large),
     };
     int failed = cmocka_run_group_tests(tests, open_context, close_context);
     if (skip_all)

@@ -31,8 +31,8 @@ static im_solver_options engine_options(int device)
     return o;
 }
 
-static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control,
-                               double largest, const im_solver_options *o)
+static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control, double largest,
+                               const im_solver_options *o)
 {
     im_indentation *run = NULL;
     if (im_indentation_create(s, punch, control, largest, o, &run) != IM_OK)

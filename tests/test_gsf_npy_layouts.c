@@ -113,8 +113,8 @@ static int gwyddion_extents(const char *path, double *xreal, double *yreal, char
         ;
     pclose(out);
     int index, nx, ny;
-    assert_int_equal(sscanf(line, "field %d %d %d %lf %lf %15s %15s", &index, &nx, &ny, xreal, yreal, xy_unit,
-                            z_unit), 7);
+    assert_int_equal(
+        sscanf(line, "field %d %d %d %lf %lf %15s %15s", &index, &nx, &ny, xreal, yreal, xy_unit, z_unit), 7);
     return 1;
 }
 
@@ -188,10 +188,12 @@ static void gsf_absent_extents_are_named(void **state)
 {
     (void)state;
     const char *x_only = write_gsf("x_only.gsf", "XRes = 4\nYRes = 2\nXReal = 4e-6\nXYUnits = m\nZUnits = m\n", 4, 2);
-    expect_read_refused(x_only, NULL, "(no YReal: 1.0, the GSF default): non-square pixels, x spacing 1e-06 and y "
+    expect_read_refused(x_only, NULL,
+                        "(no YReal: 1.0, the GSF default): non-square pixels, x spacing 1e-06 and y "
                         "spacing 0.5 m");
     const char *bare = write_gsf("bare_4x2.gsf", "XRes = 4\nYRes = 2\n", 4, 2);
-    expect_read_refused(bare, NULL, "(no XReal, no YReal: 1.0 each, the GSF default): non-square pixels, x spacing "
+    expect_read_refused(bare, NULL,
+                        "(no XReal, no YReal: 1.0 each, the GSF default): non-square pixels, x spacing "
                         "0.25 and y spacing 0.5 differ");
     im_surface_read_options options = {.set = {.delta_x = 2.0}};
     im_field *f = NULL;
@@ -205,9 +207,9 @@ static void gsf_absent_extents_are_named(void **state)
 static void gsf_without_z_units_is_refused(void **state)
 {
     (void)state;
-    const char *path = write_gsf("no_z.gsf", "XRes = 4\nYRes = 4\nXReal = 4e-6\nYReal = 4e-6\nXYUnits = m\n",
-                                 4, 4);
-    expect_read_refused(path, NULL, "no ZUnits: the heights' unit is not stated, and is not assumed to be the "
+    const char *path = write_gsf("no_z.gsf", "XRes = 4\nYRes = 4\nXReal = 4e-6\nYReal = 4e-6\nXYUnits = m\n", 4, 4);
+    expect_read_refused(path, NULL,
+                        "no ZUnits: the heights' unit is not stated, and is not assumed to be the "
                         "lateral unit (m)");
     im_surface_read_options options = {.set = {.height = "nm"}};
     im_field *f = NULL;
@@ -289,10 +291,7 @@ static im_field *read_npy(const char *path, enum im_npy_order order, im_surface_
     return f;
 }
 
-static void write_text(const char *path, const char *text)
-{
-    test_write_bytes(path, text, strlen(text));
-}
+static void write_text(const char *path, const char *text) { test_write_bytes(path, text, strlen(text)); }
 
 /* npy_order = IM_NPY_ORDER_XY transposes, and says so; the default and yx keep the stored rows. */
 static void npy_order_xy_transposes(void **state)

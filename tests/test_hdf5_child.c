@@ -73,7 +73,8 @@ static void the_child_refuses_as_the_reader_does(void **state)
     assert_int_equal(hdf5_read_in_process(path, &options, &field, &stated), IM_EFORMAT);
     char in_process[1024];
     snprintf(in_process, sizeof in_process, "%s", im_last_error());
-    assert_non_null(strstr(in_process, "no channel has the index or name '9'; its 2-D data sets: 0 'heights' (150 x 3)"));
+    assert_non_null(
+        strstr(in_process, "no channel has the index or name '9'; its 2-D data sets: 0 'heights' (150 x 3)"));
     assert_int_equal(hdf5_read_raw(path, &options, &field, &stated), IM_EFORMAT);
     assert_string_equal(im_last_error(), in_process);
     assert_null(field);
@@ -192,9 +193,11 @@ static void expect_refused(const char *phrase)
 static const char *stream_file(const char *name, const char *slab, int values, const char *tail)
 {
     char bytes[512] = {0};
-    int length = snprintf(bytes, 400, "indentmap-hdf5-read 1\nfield 2 1\nunits 0 0\nlateral \nheight \n"
+    int length = snprintf(bytes, 400,
+                          "indentmap-hdf5-read 1\nfield 2 1\nunits 0 0\nlateral \nheight \n"
                           "keys --delta\t--unit\t--height-unit\nconversion HDF5 data set 'h', channel 0 of 1, "
-                          "indexed [x, y]\n%s", slab);
+                          "indexed [x, y]\n%s",
+                          slab);
     length += (int)sizeof(double) * values;
     length += snprintf(bytes + length, sizeof bytes - (size_t)length, "%s", tail);
     const char *path = test_path(name);
@@ -238,7 +241,8 @@ static void what_comes_from_the_child_is_checked(void **state)
     assert_int_equal(im_surface_read(test_path("constructed.h5"), &field), IM_OK);
     assert_int_equal(field->nx, 2);
     im_field_free(field);
-    fake_reader("unit.sh", "printf 'indentmap-hdf5-read 1\\nfield 2 1\\nunits 0.5 0.5\\nlateral micrometres of it\\n'");
+    fake_reader("unit.sh",
+                "printf 'indentmap-hdf5-read 1\\nfield 2 1\\nunits 0.5 0.5\\nlateral micrometres of it\\n'");
     expect_refused("wrote 'lateral micrometres of it': expected 'lateral TEXT' of at most 15 bytes");
     fake_reader("status.sh", "printf 'indentmap-hdf5-read 1\\nerror 0 fine\\n'");
     expect_refused("wrote 'error 0 fine': expected a refusal 'error STATUS MESSAGE'");

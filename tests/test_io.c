@@ -91,8 +91,8 @@ static void text_and_gsf_round_trips(void **state)
 static void non_finite_heights_are_not_written(void **state)
 {
     (void)state;
-    const char *names[] = {"nonfinite.txt", "nonfinite.gsf", "nonfinite.sdf", "nonfinite.nc", "nonfinite.x3p",
-                           "nonfinite.npy"};
+    const char *names[] = {"nonfinite.txt", "nonfinite.gsf", "nonfinite.sdf",
+                           "nonfinite.nc",  "nonfinite.x3p", "nonfinite.npy"};
     im_field *f = sample_field(5, 4);
     strcpy(f->unit, "um");
     for (int k = 0; k < 3; ++k) {
@@ -178,14 +178,13 @@ static void write_npy(const char *path, const char *dict, size_t values, double 
     free(bytes);
 }
 
-static void expect_refusal(int (*reader)(const char *, im_field **), const char *path, int status,
-                           const char *phrase)
+static void expect_refusal(int (*reader)(const char *, im_field **), const char *path, int status, const char *phrase)
 {
     im_field *f = NULL;
     int got = reader(path, &f);
     if (got != status || !strstr(im_last_error(), phrase))
-        fail_msg("%s: status %d (expected %d), message '%s' (expected to contain '%s')", path, got,
-                 status, im_last_error(), phrase);
+        fail_msg("%s: status %d (expected %d), message '%s' (expected to contain '%s')", path, got, status,
+                 im_last_error(), phrase);
     assert_null(f);
     assert_non_null(strstr(im_last_error(), path));
 }
@@ -265,8 +264,8 @@ static void npy_of_any_type_is_converted(void **state)
         {"'|i1'", {0xff, 0x7f}, 2, "'|i1' (int8) converted"},
         {"'<i8'", {0xfe, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 9, 0, 0, 0, 0, 0, 0, 0}, 16, "'<i8' (int64)"},
     };
-    static const double expected[][2] = {{1.5, -2.25}, {1.5, -2.5}, {5, -3}, {256, -2}, {65535, 7}, {200, 3},
-                                         {-1, 127}, {-2, 9}};
+    static const double expected[][2] = {{1.5, -2.25}, {1.5, -2.5}, {5, -3},   {256, -2},
+                                         {65535, 7},   {200, 3},    {-1, 127}, {-2, 9}};
     for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
         char dict[128];
         snprintf(dict, sizeof dict, "{'descr': %s, 'fortran_order': False, 'shape': (1, 2), }", cases[i].descr);
@@ -472,7 +471,8 @@ static void netcdf_round_trip_and_refusals(void **state)
     test_write_bytes(test_path("cut.nc"), bytes, size - 40);
     expect_refusal(im_netcdf_read, test_path("cut.nc"), IM_EFORMAT, "cut.nc: truncated: a variable's data lies past");
     test_write_bytes(test_path("junk.nc"), "CDF\x01 not really", 15);
-    expect_refusal(im_netcdf_read, test_path("junk.nc"), IM_EFORMAT, "junk.nc: netCDF header: a count or name runs past");
+    expect_refusal(im_netcdf_read, test_path("junk.nc"), IM_EFORMAT,
+                   "junk.nc: netCDF header: a count or name runs past");
     test_write_bytes(test_path("hdf.nc"), "\x89HDF\r\n\x1a\n not really", 19);
     expect_refusal(im_netcdf_read, test_path("hdf.nc"), IM_EFORMAT, "cannot open as NetCDF");
     expect_refusal(im_netcdf_read, write_nc("none.nc", no_heights), IM_EFORMAT, "variable 'heights'");
@@ -506,14 +506,16 @@ static const char *write_x3p(const char *name, const char *xml, const void *data
 static void x3p_xml(char *out, size_t size, const char *cx_type, const char *z_type, const char *increment,
                     const char *size_x)
 {
-    snprintf(out, size, "<?xml version=\"1.0\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">"
+    snprintf(out, size,
+             "<?xml version=\"1.0\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">"
              "<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>"
              "<CX><AxisType>%s</AxisType><DataType>D</DataType><Increment>%s</Increment><Offset>0</Offset></CX>"
              "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CY>"
              "<CZ><AxisType>A</AxisType><DataType>%s</DataType><Increment>1e-9</Increment><Offset>2e-9</Offset></CZ>"
              "</Axes></Record1><Record3><MatrixDimension><SizeX>%s</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ>"
              "</MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3>"
-             "</p:ISO5436_2>\n", cx_type, increment, z_type, size_x);
+             "</p:ISO5436_2>\n",
+             cx_type, increment, z_type, size_x);
 }
 
 /* ISO 25178-72 .x3p: a round trip keeps heights, spacing and unit (metres); an archive written by
@@ -562,8 +564,12 @@ static void x3p_round_trip_and_refusals(void **state)
     expect_refusal(im_x3p_read, write_x3p("noxml.x3p", NULL, values, 12), IM_EFORMAT, "no main.xml: not an x3p");
     expect_refusal(im_x3p_read, write_x3p("broken.x3p", "<p:ISO5436_2><Record1>", values, 12), IM_EFORMAT,
                    "not well-formed ISO 5436-2 XML");
-    expect_refusal(im_x3p_read, write_x3p("dtd.x3p", "<?xml version=\"1.0\"?><!DOCTYPE ISO5436_2 [<!ENTITY a "
-                   "\"aaaaaaaaaa\"><!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\">]><ISO5436_2>&b;</ISO5436_2>", values, 12),
+    expect_refusal(im_x3p_read,
+                   write_x3p("dtd.x3p",
+                             "<?xml version=\"1.0\"?><!DOCTYPE ISO5436_2 [<!ENTITY a "
+                             "\"aaaaaaaaaa\"><!ENTITY b "
+                             "\"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\">]><ISO5436_2>&b;</ISO5436_2>",
+                             values, 12),
                    IM_EFORMAT, "declares a DTD");
     static const char not_zip[] = "PK\x03\x04 not a zip";
     test_write_bytes(test_path("plain.x3p"), not_zip, sizeof not_zip - 1);
@@ -577,7 +583,8 @@ static void add_to_archive(const char *path, const char *entry, const char *text
     int error;
     zip_t *archive = zip_open(path, 0, &error);
     assert_non_null(archive);
-    assert_true(zip_file_add(archive, entry, zip_source_buffer(archive, text, strlen(text), 0), ZIP_FL_OVERWRITE) >= 0);
+    assert_true(zip_file_add(archive, entry, zip_source_buffer(archive, text, strlen(text), 0), ZIP_FL_OVERWRITE) >=
+                0);
     assert_int_equal(zip_close(archive), 0);
 }
 
@@ -595,7 +602,8 @@ static const char *write_stored_x3p(const char *name, const char *link, const sh
     int error;
     zip_t *archive = zip_open(path, 0, &error);
     assert_non_null(archive);
-    assert_int_equal(zip_set_file_compression(archive, zip_name_locate(archive, "bindata/data.bin", 0), ZIP_CM_STORE, 0), 0);
+    assert_int_equal(
+        zip_set_file_compression(archive, zip_name_locate(archive, "bindata/data.bin", 0), ZIP_CM_STORE, 0), 0);
     assert_int_equal(zip_close(archive), 0);
     return path;
 }
@@ -616,7 +624,8 @@ static void x3p_checksums_are_checked(void **state)
     assert_close(g->data[5], 2e-9 + 32767e-9, 1e-21);
     im_field_free(g);
     expect_refusal(im_x3p_read, write_stored_x3p("md5_wrong.x3p", wrong, values), IM_EFORMAT,
-                   "bindata/data.bin: MD5 9521f8950f326bfce7c2be74ef2e1034, but Record3/DataLink/MD5ChecksumPointData "
+                   "bindata/data.bin: MD5 9521f8950f326bfce7c2be74ef2e1034, but "
+                   "Record3/DataLink/MD5ChecksumPointData "
                    "states 9521F8950F326BFCE7C2BE74EF2E1035: the file is damaged");
 
     const char *path = write_stored_x3p("main_md5.x3p", right, values);
@@ -634,7 +643,7 @@ static void x3p_checksums_are_checked(void **state)
     while (at + sizeof values <= size && memcmp(bytes + at, values, sizeof values) != 0)
         ++at;
     assert_true(at + sizeof values <= size); /* the stored values are in the file */
-    bytes[at + 2] ^= 0x01; /* -2 becomes -1 */
+    bytes[at + 2] ^= 0x01;                   /* -2 becomes -1 */
     rewind(file);
     assert_int_equal(fwrite(bytes, 1, size, file), size);
     fclose(file);
@@ -722,8 +731,9 @@ static void text_matrix_must_match_its_header(void **state)
     write_lines("cut.txt", text, 3 + 11, ""); /* 3 header lines, then 11 of the 16 rows */
     expect_refusal(im_text_read, test_path("cut.txt"), IM_EFORMAT,
                    "cut.txt:1: the header states 16 columns x 16 rows, but the file has 16 columns x 11 rows");
-    write_lines("more.txt", text, 3 + 16, "1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16\n"
-                                          "1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16\n");
+    write_lines("more.txt", text, 3 + 16,
+                "1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16\n"
+                "1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16\n");
     expect_refusal(im_text_read, test_path("more.txt"), IM_EFORMAT,
                    "more.txt:1: the header states 16 columns x 16 rows, but the file has 16 columns x 18 rows");
     const char *narrow = "# Channel: Height\n# grid: 3 columns x 2 rows\n1 2\n3 4\n";
@@ -854,7 +864,9 @@ static void gsf_header_values_are_strict(void **state)
         expect_refusal(im_gsf_read, write_gsf_header("strict.gsf", cases[i].lines), IM_EFORMAT, cases[i].phrase);
     im_field *g = NULL;
     assert_int_equal(im_gsf_read(write_gsf_header("nm.gsf", "XRes = 4\nYRes = 4\nXReal = 2\nYReal = 2\n"
-                                                  "XYUnits = um\nZUnits = nm\n"), &g), IM_OK);
+                                                            "XYUnits = um\nZUnits = nm\n"),
+                                 &g),
+                     IM_OK);
     assert_close(g->delta, 0.5, 1e-15);
     assert_string_equal(g->unit, "\u00b5m");
     assert_close(g->data[15], 15e-3, 1e-15); /* nm converted to the lateral µm */

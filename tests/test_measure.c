@@ -283,12 +283,9 @@ static void gap_distribution_by_hand(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(stiffness_of_closed_forms),
-        cmocka_unit_test(sneddon_modulus_of_a_smooth_cone),
-        cmocka_unit_test(contact_patches_by_hand),
-        cmocka_unit_test(planted_discs_are_measured_exactly),
-        cmocka_unit_test(distributions_add_up),
-        cmocka_unit_test(gap_distribution_by_hand),
+        cmocka_unit_test(stiffness_of_closed_forms), cmocka_unit_test(sneddon_modulus_of_a_smooth_cone),
+        cmocka_unit_test(contact_patches_by_hand),   cmocka_unit_test(planted_discs_are_measured_exactly),
+        cmocka_unit_test(distributions_add_up),      cmocka_unit_test(gap_distribution_by_hand),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

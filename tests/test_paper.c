@@ -61,8 +61,8 @@ static void make_distributions(int variant, const char *const *labels, made_dist
             m->area[f][b] = (double)(1L << b);
             m->patches[f][b] = b < 7 ? (double)(64 >> b) + variant : NAN; /* NaN: empty bins */
         }
-        m->families[f] = (paper_distribution_family){labels[f], f == 1, BINS, m->gap[f], m->density[f],
-                                                     BINS, m->area[f], m->patches[f]};
+        m->families[f] = (paper_distribution_family){labels[f],     f == 1, BINS,       m->gap[f],
+                                                     m->density[f], BINS,   m->area[f], m->patches[f]};
     }
 }
 
@@ -78,15 +78,22 @@ static void make_histories(int variant, made_histories *m)
             m->ratio[i][k] = 1.0 - 0.05 * family * (1.0 + variant) - 0.01 * seed + 0.002 * k;
             m->patches[i][k] = (long)(40 * w * w) + seed;
         }
-        m->members[i] = (paper_history){family, STEPS, m->approach[i], m->load[i], m->load_star[i], m->ratio[i],
-                                        m->patches[i]};
+        m->members[i] = (paper_history){family,          STEPS,       m->approach[i], m->load[i],
+                                        m->load_star[i], m->ratio[i], m->patches[i]};
     }
     m->slopes[0] = 0.0, m->slopes[1] = 0.08;
     m->eq12[0] = NAN, m->eq12[1] = 0.9;
     m->titles[0] = "smooth", m->titles[1] = variant ? "variant B" : "variant A";
-    m->h = (paper_histories){.source = "test.ini", .family_count = FAMILIES, .slopes = m->slopes,
-                             .titles = m->titles, .eq12 = m->eq12, .members = m->members, .count = MEMBERS,
-                             .delta = 1.0, .e_star = 1.0, .cot_alpha = 0.176};
+    m->h = (paper_histories){.source = "test.ini",
+                             .family_count = FAMILIES,
+                             .slopes = m->slopes,
+                             .titles = m->titles,
+                             .eq12 = m->eq12,
+                             .members = m->members,
+                             .count = MEMBERS,
+                             .delta = 1.0,
+                             .e_star = 1.0,
+                             .cot_alpha = 0.176};
     make_sweep(variant, m->titles, &m->sweep);
     make_distributions(variant, m->titles, &m->distributions);
 }
@@ -376,14 +383,10 @@ static void test_density_rows_of_three(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_builders_are_reentrant),
-        cmocka_unit_test(test_fig7_needs_a_common_range),
-        cmocka_unit_test(test_fig7_needs_two_steps),
-        cmocka_unit_test(test_fig7_statistics),
-        cmocka_unit_test(test_first_resolved_step),
-        cmocka_unit_test(test_sweep_figure),
-        cmocka_unit_test(test_distribution_figure),
-        cmocka_unit_test(test_panel_columns),
+        cmocka_unit_test(test_builders_are_reentrant), cmocka_unit_test(test_fig7_needs_a_common_range),
+        cmocka_unit_test(test_fig7_needs_two_steps),   cmocka_unit_test(test_fig7_statistics),
+        cmocka_unit_test(test_first_resolved_step),    cmocka_unit_test(test_sweep_figure),
+        cmocka_unit_test(test_distribution_figure),    cmocka_unit_test(test_panel_columns),
         cmocka_unit_test(test_density_rows_of_three),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

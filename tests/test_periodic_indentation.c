@@ -115,8 +115,8 @@ static void periodic_memory(void **state)
     im_step_result down = step(run, 0.01 * cell);
     assert_true(down.plastic_work == top.plastic_work && down.yielding_patches == 0);
     im_step_result again = step(run, 0.02 * cell);
-    assert_true(again.plastic_work == top.plastic_work || test_relative_difference(again.plastic_work,
-                                                                                   top.plastic_work) < 1e-9);
+    assert_true(again.plastic_work == top.plastic_work ||
+                test_relative_difference(again.plastic_work, top.plastic_work) < 1e-9);
     if (test_relative_difference(again.approach, top.approach) > 1e-8)
         fail_msg("reload to the top: w = %.12g, loading gave %.12g", again.approach, top.approach);
     im_indentation_free(run);

@@ -110,8 +110,10 @@ static void test_frame_and_line_pixels(void **state)
     double x[] = {0.0, 1.0}, y[] = {0.0, 1.0};
     im_plot_series line = {.x = x, .y = y, .n = 2, .line_width = 2.0};
     memcpy(line.color, BLUE, 3);
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, "x"}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, "y"},
-                           .series = &line, .series_count = 1};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, "x"},
+                           .y = {IM_PLOT_LINEAR, 0.0, 1.0, "y"},
+                           .series = &line,
+                           .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "line.png", &g);
@@ -136,11 +138,13 @@ static void test_marker_centre(void **state)
 {
     (void)state;
     double x[] = {0.3}, y[] = {0.7};
-    im_plot_series point = {.x = x, .y = y, .n = 1, .line = IM_PLOT_NO_LINE, .marker = IM_PLOT_MARKER_CIRCLE,
-                            .marker_size = 8.0};
+    im_plot_series point =
+        {.x = x, .y = y, .n = 1, .line = IM_PLOT_NO_LINE, .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 8.0};
     memcpy(point.color, VERMILLION, 3);
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 2.0, NULL}, .y = {IM_PLOT_LINEAR, -1.0, 1.0, NULL},
-                           .series = &point, .series_count = 1};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 2.0, NULL},
+                           .y = {IM_PLOT_LINEAR, -1.0, 1.0, NULL},
+                           .series = &point,
+                           .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "marker.png", &g);
@@ -179,8 +183,10 @@ static void test_log_ticks_by_decade(void **state)
     (void)state;
     double x[] = {0.05, 30.0}, y[] = {1.0, 2.0};
     im_plot_series s = {.x = x, .y = y, .n = 2, .line = IM_PLOT_NO_LINE};
-    im_plot_panel panel = {.x = {IM_PLOT_LOG, 0.01, 100.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 3.0, NULL},
-                           .series = &s, .series_count = 1};
+    im_plot_panel panel = {.x = {IM_PLOT_LOG, 0.01, 100.0, NULL},
+                           .y = {IM_PLOT_LINEAR, 0.0, 3.0, NULL},
+                           .series = &s,
+                           .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "log.png", &g);
@@ -202,14 +208,16 @@ static void test_automatic_limits(void **state)
     (void)state;
     double x[] = {0.03, 1.0, 40.0}, y[] = {0.13, 0.5, 0.87}, sigma[] = {0.0, 0.0, 0.2};
     im_plot_series s = {.x = x, .y = y, .n = 3};
-    im_plot_panel panel = {.x = {.scale = IM_PLOT_LOG}, .y = {.scale = IM_PLOT_LINEAR}, .series = &s,
+    im_plot_panel panel = {.x = {.scale = IM_PLOT_LOG},
+                           .y = {.scale = IM_PLOT_LINEAR},
+                           .series = &s,
                            .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
     assert_close(g.x_lo, 0.02, 1e-15); /* 1-2-5 bounds around 0.03 and 40 */
     assert_close(g.x_hi, 50.0, 1e-12);
-    assert_close(g.y_lo, 0.0, 1e-15);  /* span 0.74: step 0.2 (about six intervals) */
+    assert_close(g.y_lo, 0.0, 1e-15); /* span 0.74: step 0.2 (about six intervals) */
     assert_close(g.y_hi, 1.0, 1e-12);
     s.sigma = sigma; /* the error bar reaches 1.07: one more step */
     assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
@@ -243,8 +251,10 @@ static void test_error_bars(void **state)
     double x[] = {0.25, 0.75}, y[] = {0.5, 0.4}, sigma[] = {0.2, 0.05};
     im_plot_series s = {.x = x, .y = y, .sigma = sigma, .n = 2, .line = IM_PLOT_NO_LINE};
     memcpy(s.color, BLUE, 3);
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
-                           .series = &s, .series_count = 1};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = &s,
+                           .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "bars.png", &g);
@@ -279,8 +289,10 @@ static void test_nan_gap_and_far_points(void **state)
                            {.x = fx, .y = fy, .n = 2, .line_width = 2.0}};
     memcpy(s[0].color, BLUE, 3);
     memcpy(s[1].color, VERMILLION, 3);
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
-                           .series = s, .series_count = 2};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = s,
+                           .series_count = 2};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "gap.png", &g);
@@ -302,8 +314,10 @@ static void test_band(void **state)
     double lo[] = {0.2, 0.2, NAN, 0.2, 0.2}, hi[] = {0.4, 0.4, 0.4, 0.4, 0.4};
     im_plot_series s = {.x = x, .y = y, .n = 5, .band_lo = lo, .band_hi = hi, .line = IM_PLOT_NO_LINE};
     memcpy(s.color, BLUE, 3);
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
-                           .series = &s, .series_count = 1};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = &s,
+                           .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "band.png", &g);
@@ -372,8 +386,10 @@ static void test_legend(void **state)
                            {.x = x, .y = y, .n = 2, .marker = IM_PLOT_MARKER_SQUARE, .line = IM_PLOT_NO_LINE}};
     memcpy(s[0].color, BLUE, 3);
     memcpy(s[1].color, VERMILLION, 3);
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
-                           .series = s, .series_count = 3};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = s,
+                           .series_count = 3};
     im_plot plot = small_plot(&panel);
     im_plot_geometry g;
     picture p = draw(&plot, "legend.png", &g);
@@ -400,7 +416,8 @@ static void test_legend(void **state)
     p = draw(&plot, "nolegend.png", &g);
     assert_close(g.legend_width, 0.0, 0.0);
     assert_int_equal(count_color(&p, shown.legend_x + 2, shown.legend_y + 2, shown.legend_width - 4,
-                                 shown.legend_height - 4, NULL, 1), 0);
+                                 shown.legend_height - 4, NULL, 1),
+                     0);
     free(p.rgb);
 }
 
@@ -418,8 +435,10 @@ static void test_legend_keeps_clear_of_lines(void **state)
     (void)state;
     double x[] = {0.0, 1.0}, y[] = {0.0, 0.0};
     im_plot_series s = {.x = x, .y = y, .n = 2, .label = "a line"};
-    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL}, .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
-                           .series = &s, .series_count = 1};
+    im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .y = {IM_PLOT_LINEAR, 0.0, 1.0, NULL},
+                           .series = &s,
+                           .series_count = 1};
     im_plot plot = small_plot(&panel);
     im_plot_geometry free_corner, g;
     assert_int_equal(im_plot_geometry_of(&plot, 0, &free_corner), IM_OK);
@@ -431,8 +450,8 @@ static void test_legend_keeps_clear_of_lines(void **state)
     /* Lines along the top and the bottom rows of legends: no corner is clear. */
     double xs[] = {0.0, 1.0, NAN, 0.0, 1.0};
     double ys[] = {y[0], y[0], NAN, 0.0, 0.0};
-    ys[3] = ys[4] = data_y(&free_corner, free_corner.box_y + free_corner.box_height - free_corner.legend_height - 2.0 -
-                                             (free_corner.legend_y - free_corner.box_y));
+    ys[3] = ys[4] = data_y(&free_corner, free_corner.box_y + free_corner.box_height - free_corner.legend_height -
+                                             2.0 - (free_corner.legend_y - free_corner.box_y));
     s = (im_plot_series){.x = xs, .y = ys, .n = 5, .label = "two lines"};
     assert_int_equal(im_plot_geometry_of(&plot, 0, &g), IM_OK);
     assert_true(g.legend_x >= g.box_x + g.box_width);
@@ -478,10 +497,14 @@ static void test_png_pdf_svg(void **state)
     (void)state;
     double x[] = {1.0, 2.0, 3.0}, y[] = {1.0, 4.0, 9.0};
     im_plot_series s = {.x = x, .y = y, .n = 3, .marker = IM_PLOT_MARKER_TRIANGLE, .label = "squares"};
-    im_plot_panel panels[2] = {{.x = {.label = "n"}, .y = {.label = "n^{2}"}, .series = &s, .series_count = 1,
-                                .label = "(a)", .title = "linear"},
-                               {.x = {.scale = IM_PLOT_LOG}, .y = {.scale = IM_PLOT_LOG}, .series = &s,
-                                .series_count = 1, .label = "(b)"}};
+    im_plot_panel panels[2] = {
+        {.x = {.label = "n"},
+         .y = {.label = "n^{2}"},
+         .series = &s,
+         .series_count = 1,
+         .label = "(a)",
+         .title = "linear"},
+        {.x = {.scale = IM_PLOT_LOG}, .y = {.scale = IM_PLOT_LOG}, .series = &s, .series_count = 1, .label = "(b)"}};
     im_png_text texts[] = {{"Figure", "test plot"}};
     im_plot plot = im_plot_default();
     plot.rows = 1, plot.columns = 2, plot.panels = panels, plot.texts = texts, plot.text_count = 1;
@@ -521,7 +544,7 @@ static void test_png_pdf_svg(void **state)
     assert_non_null(end);
     for (end += 6; *end == '\n'; ++end)
         ;
-    assert_int_equal(*end, '\0'); /* complete: nothing after the closing tag */
+    assert_int_equal(*end, '\0');              /* complete: nothing after the closing tag */
     assert_non_null(strstr(text, "width=\"")); /* 72 / 300 points per pixel */
     free(data);
 }

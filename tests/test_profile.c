@@ -172,7 +172,7 @@ static void test_field_profile(void **state)
     im_indenter punch = im_indenter_from_profile(p);
     assert_int_equal(punch.kind, IM_PUNCH_PROFILE_2D);
     assert_int_equal(im_indenter_check(&punch), IM_OK);
-    f->data[0] = 99; /* copied: the caller's array may change */
+    f->data[0] = 99;               /* copied: the caller's array may change */
     for (int iy = 0; iy < 5; ++iy) /* the centre patch (4, 2) on the axis; samples read exactly */
         for (int ix = 0; ix < 8; ++ix)
             if (ix + iy > 0)
@@ -255,8 +255,8 @@ static im_step_result solve_one(const im_field *s, const im_indenter *punch, enu
     options.tol = 1e-8; /* the bars below (1e-7, 1e-8) were set at this tolerance */
     if (im_indentation_create(s, punch, control, target, &options, &run) != IM_OK ||
         im_indentation_step(run, target, &r) != IM_OK)
-        fail_msg("%s %s %g: %s", im_punch_name(punch->kind), control == IM_CONTROL_LOAD ? "load" : "approach",
-                 target, im_last_error());
+        fail_msg("%s %s %g: %s", im_punch_name(punch->kind), control == IM_CONTROL_LOAD ? "load" : "approach", target,
+                 im_last_error());
     im_indentation_free(run);
     return r;
 }
@@ -278,7 +278,8 @@ static void test_solver_cone_table(void **state)
     im_profile *p = sampled(cone_shape, 80, 60, 6);
     im_indenter table = im_indenter_from_profile(p), cone = im_indenter_cone(80);
     for (double w = 1; w <= 4; w += 1.5) {
-        im_step_result a = solve_one(s, &table, IM_CONTROL_DISPLACEMENT, w), b = solve_one(s, &cone, IM_CONTROL_DISPLACEMENT, w);
+        im_step_result a = solve_one(s, &table, IM_CONTROL_DISPLACEMENT, w),
+                       b = solve_one(s, &cone, IM_CONTROL_DISPLACEMENT, w);
         assert_same_answer(&a, &b, 1e-7);
         assert_close(a.area_ratio / b.area_ratio, 1, 1e-6); /* Sneddon's A(N) against A_cone */
     }
@@ -302,7 +303,8 @@ static void test_solver_cone_field(void **state)
     im_profile *p = NULL;
     assert_int_equal(im_profile_field(f, &p), IM_OK);
     im_indenter field = im_indenter_from_profile(p);
-    im_step_result a = solve_one(s, &field, IM_CONTROL_DISPLACEMENT, 3), b = solve_one(s, &cone, IM_CONTROL_DISPLACEMENT, 3);
+    im_step_result a = solve_one(s, &field, IM_CONTROL_DISPLACEMENT, 3),
+                   b = solve_one(s, &cone, IM_CONTROL_DISPLACEMENT, 3);
     assert_same_answer(&a, &b, 1e-8);
     assert_true(isnan(a.area_ratio) && isnan(a.load_star)); /* no smooth-contact A(N) for a 2-D profile */
     a = solve_one(s, &field, IM_CONTROL_LOAD, 30);
@@ -338,7 +340,8 @@ static void test_solver_paraboloid_is_hertz(void **state)
         im_step_result r = solve_one(s, &table, IM_CONTROL_DISPLACEMENT, w);
         double error = test_relative_difference(r.load, built_in.load);
         if (!(error < previous || error < 1e-8))
-            fail_msg("%d samples: load differs from the built-in sphere's by %g, not less than %g", n, error, previous);
+            fail_msg("%d samples: load differs from the built-in sphere's by %g, not less than %g", n, error,
+                     previous);
         previous = error;
         if (n == 17) {
             assert_close(r.load / im_indenter_load(&sphere, 1, w), 1, 1e-3); /* Hertz, as test_sphere_hertz */

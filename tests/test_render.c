@@ -37,8 +37,7 @@ static int open_context(void **state)
         context = NULL;
     } else {
         print_message("renderer: %s, %s; GL_RENDERER %s; GL_VERSION %s\n", im_render_backend_name(context),
-                      im_render_display_name(context), im_render_gl_renderer(context),
-                      im_render_gl_version(context));
+                      im_render_display_name(context), im_render_gl_renderer(context), im_render_gl_version(context));
     }
     return 0;
 }
@@ -52,15 +51,14 @@ static int close_context(void **state)
 
 /* Skips only when no OpenGL 3.3 core context exists at all (and IM_REQUIRE_GL is not 1); a
  * context that opens but fails later (shaders, set-up) is a failure. */
-#define REQUIRE_CONTEXT()                                                                         \
-    do {                                                                                          \
-        if (!context && skip_all) {                                                               \
-            print_message("SKIPPED (no GL context): %s\n", open_error);                          \
-            skip();                                                                               \
-        }                                                                                         \
-        if (!context)                                                                             \
-            fail_msg("the renderer does not open%s: %s",                                          \
-                     gl_required() ? " (IM_REQUIRE_GL=1)" : "", open_error);                      \
+#define REQUIRE_CONTEXT()                                                                                            \
+    do {                                                                                                             \
+        if (!context && skip_all) {                                                                                  \
+            print_message("SKIPPED (no GL context): %s\n", open_error);                                              \
+            skip();                                                                                                  \
+        }                                                                                                            \
+        if (!context)                                                                                                \
+            fail_msg("the renderer does not open%s: %s", gl_required() ? " (IM_REQUIRE_GL=1)" : "", open_error);     \
     } while (0)
 
 /* Deterministic pseudo-random numbers in [0, 1). */
@@ -87,8 +85,8 @@ static void assert_pixel(const im_image *image, int column, int row, const uint8
     const uint8_t *p = pixel(image, column, row);
     for (int k = 0; k < 3; ++k)
         if (abs((int)p[k] - (int)expected[k]) > tolerance)
-            fail_msg("pixel (%d, %d) = (%d, %d, %d), expected (%d, %d, %d) within %d", column, row, p[0],
-                     p[1], p[2], expected[0], expected[1], expected[2], tolerance);
+            fail_msg("pixel (%d, %d) = (%d, %d, %d), expected (%d, %d, %d) within %d", column, row, p[0], p[1], p[2],
+                     expected[0], expected[1], expected[2], tolerance);
     assert_int_equal(p[3], 255);
 }
 
@@ -146,7 +144,7 @@ static void test_colours_match_cpu_reference(void **state)
         style.colormap.under[0] = 250, style.colormap.under[1] = 10, style.colormap.under[2] = 20;
         style.colormap.over[0] = 5, style.colormap.over[1] = 250, style.colormap.over[2] = 30;
         style.tension = im_contact_tension_norm(0.14); /* the tensions, 0.1 to 0.15: some over it */
-        style.tension.lo = 0.11;                        /* and some under */
+        style.tension.lo = 0.11;                       /* and some under */
         style.tension.under[0] = 240, style.tension.under[1] = 200, style.tension.under[2] = 0;
         style.tension.over[0] = 0, style.tension.over[1] = 0, style.tension.over[2] = 0;
         style.pixels_per_patch = 1;
@@ -304,8 +302,8 @@ static void test_aliased_circle_exact_colours(void **state)
             const uint8_t *a = pixel(&aliased, column, row), *p = pixel(&plain, column, row);
             int is_line = memcmp(a, style.line, 3) == 0;
             if (!is_line && memcmp(a, p, 3) != 0)
-                fail_msg("pixel (%d, %d) = (%d, %d, %d): neither the line colour nor the map's", column, row,
-                         a[0], a[1], a[2]);
+                fail_msg("pixel (%d, %d) = (%d, %d, %d): neither the line colour nor the map's", column, row, a[0],
+                         a[1], a[2]);
             on_line += is_line && memcmp(p, style.line, 3) != 0;
         }
     double expected = 2.0 * M_PI * style.circle_radius * style.pixels_per_patch * style.circle_width_px;
@@ -459,7 +457,8 @@ static void test_missing_context_is_told_apart(void **state)
     assert_false(im_render_context_missing(IM_EUNSUPPORTED, "GL setup failed: error 0x502"));
     assert_false(im_render_context_missing(IM_EINVAL, IM_RENDER_NO_CONTEXT ": but the wrong status"));
     assert_false(im_render_context_missing(IM_OK, ""));
-    assert_true(egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_device_enumeration EGL_EXT_platform_device"));
+    assert_true(
+        egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_device_enumeration EGL_EXT_platform_device"));
     assert_true(egl_can_enumerate_devices("EGL_EXT_device_base EGL_EXT_platform_device"));
     assert_false(egl_can_enumerate_devices("EGL_EXT_platform_base EGL_EXT_platform_device"));
     assert_false(egl_can_enumerate_devices("EGL_EXT_device_enumeration_extra EGL_EXT_platform_device"));
@@ -598,7 +597,8 @@ static void test_tension_follows_the_ramp(void **state)
         assert_pixel(&image, 2 * i, 0, expected, 0);
         double y = luminance(p);
         if (!(y < previous) || !(p[2] > p[0] && p[2] > p[1]) || memcmp(p, style.background, 3) == 0)
-            fail_msg("tension %g: (%d, %d, %d), luminance %.4f after %.4f", -forces[i], p[0], p[1], p[2], y, previous);
+            fail_msg("tension %g: (%d, %d, %d), luminance %.4f after %.4f", -forces[i], p[0], p[1], p[2], y,
+                     previous);
         previous = y;
     }
     assert_pixel(&image, 2 * (count - 2), 0, ramp[255], 0);
@@ -646,7 +646,7 @@ static void test_height_shading_of_a_plane(void **state)
     REQUIRE_CONTEXT();
     check_plane_shading(270.0, 1.5 / sqrt(1.25)); /* light from -x: the slope faces it */
     check_plane_shading(90.0, 0.5 / sqrt(1.25));
-    check_plane_shading(0.0, 1.0 / sqrt(1.25));   /* light from +y: only the tilt counts */
+    check_plane_shading(0.0, 1.0 / sqrt(1.25)); /* light from +y: only the tilt counts */
 }
 
 static void test_height_flat_matches_reference_and_nan(void **state)

@@ -31,8 +31,11 @@ static const char *fresh_folder(const char *name)
 
 static run_folder_rules claiming_rules(const char *dir)
 {
-    return (run_folder_rules){.dir = dir, .option = "--out", .lock_advice = "give another --out",
-                              .wisdom_advice = "move it", .claims = claims_history};
+    return (run_folder_rules){.dir = dir,
+                              .option = "--out",
+                              .lock_advice = "give another --out",
+                              .wisdom_advice = "move it",
+                              .claims = claims_history};
 }
 
 static void claimed_inputs_refused(void **state)
@@ -55,7 +58,8 @@ static void claimed_inputs_refused(void **state)
     char expected[8192];
     const char *claimed[] = {apart, input};
     assert_int_equal(run_folder_check(&rules, claimed, 2, &solver), IM_EINVAL);
-    snprintf(expected, sizeof expected, "--out %s would write %s/history.csv over the input file %s", dir, dir, input);
+    snprintf(expected, sizeof expected, "--out %s would write %s/history.csv over the input file %s", dir, dir,
+             input);
     assert_non_null(strstr(im_last_error(), expected));
     const char *by_sidecar[] = {sidecar_of};
     assert_int_equal(run_folder_check(&rules, by_sidecar, 1, &solver), IM_EINVAL);
@@ -87,7 +91,8 @@ static void wisdom_rule(void **state)
     assert_non_null(strstr(im_last_error(), expected));
     const run_folder_rules anything = {.dir = dir, .wisdom_advice = "keep it elsewhere"};
     assert_int_equal(wisdom_status(&anything, "fftw.wisdom"), IM_EINVAL);
-    snprintf(expected, sizeof expected, "lies in the output folder %s, where this run writes: keep it elsewhere", dir);
+    snprintf(expected, sizeof expected, "lies in the output folder %s, where this run writes: keep it elsewhere",
+             dir);
     assert_non_null(strstr(im_last_error(), expected));
     assert_int_equal(wisdom_status(&anything, "../fftw.wisdom"), IM_OK); /* beside the folder, not in it */
 }
@@ -184,16 +189,16 @@ static void indent_names_claimed(void **state)
     const indent_files elastic = {.fields = 1, .steps = 12};
     const indent_files plastic = {.fields = 1, .hardness = 0.1, .distributions = 1, .steps = 12};
     const indent_files history_only = {.steps = 12};
-    const char *const always[] = {"history.csv", "run.json", "index.html", "history.png", "indentation.csv",
-                                  "force_distance.pdf"};
+    const char *const always[] = {"history.csv", "run.json",        "index.html",
+                                  "history.png", "indentation.csv", "force_distance.pdf"};
     for (size_t i = 0; i < sizeof always / sizeof *always; ++i)
         assert_true(indent_files_claims(always[i], &history_only));
     assert_true(indent_files_claims("force_0001.npy", &elastic));
     assert_true(indent_files_claims("displacement_0012.npy.json", &elastic));
-    assert_false(indent_files_claims("force_0013.npy", &elastic));    /* beyond the steps */
-    assert_false(indent_files_claims("force_0000.npy", &elastic));    /* steps count from 1 */
-    assert_false(indent_files_claims("force_00001.npy", &elastic));   /* the run writes four digits */
-    assert_false(indent_files_claims("plastic_0001.npy", &elastic));  /* only with a hardness */
+    assert_false(indent_files_claims("force_0013.npy", &elastic));   /* beyond the steps */
+    assert_false(indent_files_claims("force_0000.npy", &elastic));   /* steps count from 1 */
+    assert_false(indent_files_claims("force_00001.npy", &elastic));  /* the run writes four digits */
+    assert_false(indent_files_claims("plastic_0001.npy", &elastic)); /* only with a hardness */
     assert_true(indent_files_claims("plastic_0001.npy", &plastic));
     assert_false(indent_files_claims("force_0001.npy", &history_only)); /* no --fields */
     assert_true(indent_files_claims("distributions_0012_patch_list.csv", &plastic));
@@ -211,9 +216,8 @@ static void earlier_run_cleared(void **state)
     snprintf(frames, sizeof frames, "%s/frames", dir);
     assert_int_equal(mkdir(frames, 0755), 0);
     const char *const removed[] = {"force_0007.npy", "plastic_12345.npy.json", "distributions_0002_gaps.csv",
-                                   "history.png", "load_displacement.pdf", "frames/contact_0003.png"};
-    const char *const kept[] = {"history.csv", "notes.txt", "force_07.npy", "frames/height_0003.png",
-                                "gap_0001.npy"};
+                                   "history.png",    "load_displacement.pdf",  "frames/contact_0003.png"};
+    const char *const kept[] = {"history.csv", "notes.txt", "force_07.npy", "frames/height_0003.png", "gap_0001.npy"};
     for (size_t i = 0; i < sizeof removed / sizeof *removed; ++i) {
         snprintf(path, sizeof path, "%s/%s", dir, removed[i]);
         test_write_bytes(path, "x", 1);
@@ -241,9 +245,9 @@ static void earlier_run_cleared(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(claimed_inputs_refused), cmocka_unit_test(wisdom_rule),
+        cmocka_unit_test(claimed_inputs_refused),    cmocka_unit_test(wisdom_rule),
         cmocka_unit_test(folder_locked_and_cleared), cmocka_unit_test(run_error_kept),
-        cmocka_unit_test(write_failures_reported), cmocka_unit_test(indent_names_claimed),
+        cmocka_unit_test(write_failures_reported),   cmocka_unit_test(indent_names_claimed),
         cmocka_unit_test(earlier_run_cleared),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

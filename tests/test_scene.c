@@ -81,11 +81,13 @@ static void sweep_lists_are_refused_at_their_line(void **state)
     (void)state;
     expect_error("sweep_twice.ini", "[scene]\nname = s\n[punch]\nalpha = 80, 70, 80\n",
                  ":4: alpha = '80, 70, 80': 80 is given twice");
-    expect_error("sweep_range.ini", "[surfaces]\nhurst = 0.8, 1.2\n", ":2: hurst = '0.8, 1.2': 1.2 is outside [0.01, 0.99]");
+    expect_error("sweep_range.ini", "[surfaces]\nhurst = 0.8, 1.2\n",
+                 ":2: hurst = '0.8, 1.2': 1.2 is outside [0.01, 0.99]");
     /* the lists take the step lists' parser: no trailing text after a range, no repeated family */
     expect_error("cone_radius.ini", "[punch]\nshape = cone\nradius = 5\n",
                  ":3: radius applies to shape = sphere or flat; a cone's shape is its alpha");
-    expect_error("sweep_tail.ini", "[punch]\nalpha = 70:85:4x\n", ":2: alpha = '70:85:4x': '70:85:4x' is not a range first:last:count");
+    expect_error("sweep_tail.ini", "[punch]\nalpha = 70:85:4x\n",
+                 ":2: alpha = '70:85:4x': '70:85:4x' is not a range first:last:count");
     expect_error("slopes_twice.ini", "[surfaces]\nslopes = 0.08, 0.04, 0.080\n",
                  ":2: slopes = '0.08, 0.04, 0.080': 0.08 is given twice");
     expect_error("sweep_empty.ini", "[surfaces]\nlambda_s = 4,,8\n", ":2: lambda_s = '4,,8': an empty item");
@@ -128,24 +130,32 @@ static void files_form_the_ensemble(void **state)
 static void errors_name_the_line(void **state)
 {
     (void)state;
-    expect_error("key.ini", "[surfaces]\nn = 64\n\nhurts = 0.8\n", ":4: unknown key 'hurts' in [surfaces]; did you mean 'hurst'?");
-    expect_error("section.ini", "; comment\n[surface]\nn = 64\n", ":3: unknown section [surface]; did you mean [surfaces]?");
+    expect_error("key.ini", "[surfaces]\nn = 64\n\nhurts = 0.8\n",
+                 ":4: unknown key 'hurts' in [surfaces]; did you mean 'hurst'?");
+    expect_error("section.ini", "; comment\n[surface]\nn = 64\n",
+                 ":3: unknown section [surface]; did you mean [surfaces]?");
     expect_error("range.ini", "[punch]\nalpha = 95\n", ":2: alpha = '95': expected a number in");
     expect_error("number.ini", "[surfaces]\nn = 64x\n", ":2: n = '64x': expected an integer");
-    expect_error("choice.ini", "[punch]\nshape = pyramid\n", ":2: shape = 'pyramid': expected cone, sphere, flat or profile");
-    expect_error("malformed.ini", "[punch]\nshape = cone\nthis line has no equals sign\n[material]\nmodulus = -1\n", ":3: malformed line");
+    expect_error("choice.ini", "[punch]\nshape = pyramid\n",
+                 ":2: shape = 'pyramid': expected cone, sphere, flat or profile");
+    expect_error("malformed.ini", "[punch]\nshape = cone\nthis line has no equals sign\n[material]\nmodulus = -1\n",
+                 ":3: malformed line");
     expect_error("first.ini", "[punch]\nalpha = 100\nshape = pyramid\n", ":2: alpha");
     expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes = '0.01, abc': ' abc' is not a number");
     expect_error("order.ini", "[loading]\ncontrol = load\n\nsteps = 3, 2\n", ":4: steps must increase");
     /* with a hardness a history may unload (the cap remembers): the same list is read */
     im_scene unloading;
     assert_int_equal(im_scene_load(write_scene("unload.ini", "[material]\nhardness = 0.1\n[loading]\ncontrol = "
-                                                             "load\nsteps = 1:3:3, 2\n"), &unloading), IM_OK);
+                                                             "load\nsteps = 1:3:3, 2\n"),
+                                   &unloading),
+                     IM_OK);
     assert_int_equal(unloading.step_count, 4);
     assert_true(unloading.steps[3] == 2.0);
-    expect_error("lambda.ini", "[surfaces]\nlambda_r = 8\nhurst = 0.8\nlambda_s = 16\n", ":4: lambda_r = 8 must exceed");
+    expect_error("lambda.ini", "[surfaces]\nlambda_r = 8\nhurst = 0.8\nlambda_s = 16\n",
+                 ":4: lambda_r = 8 must exceed");
     expect_error("lambda_r.ini", "[surfaces]\nlambda_s = 16\nlambda_r = 8\n", ":3: lambda_r = 8 must exceed");
-    expect_error("box.ini", "[surfaces]\nlambda_s = 16\n\nn = 16\n", ":4: lambda_r = 16 must exceed lambda_s = 16 "
+    expect_error("box.ini", "[surfaces]\nlambda_s = 16\n\nn = 16\n",
+                 ":4: lambda_r = 16 must exceed lambda_s = 16 "
                  "(lambda_r defaults to the box's side)");
 }
 
@@ -165,8 +175,8 @@ static int slopes_line(char *out, size_t length)
     int count = 1;
     while (used + 7 <= length) /* ", 0.0NN" */
         used += (size_t)snprintf(out + used, length + 1 - used, ", 0.%03d", ++count);
-    memmove(out + length - 5, out + used - 5, 5);      /* keep the last value at the end ... */
-    memset(out + used - 5, ' ', length - used);         /* ... after blanks that a token may have */
+    memmove(out + length - 5, out + used - 5, 5); /* keep the last value at the end ... */
+    memset(out + used - 5, ' ', length - used);   /* ... after blanks that a token may have */
     out[length] = '\0';
     return count;
 }

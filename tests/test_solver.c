@@ -21,8 +21,8 @@ static im_field *smooth_surface(int n)
     return s;
 }
 
-static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control,
-                               double largest, const im_solver_options *o)
+static im_indentation *prepare(const im_field *s, const im_indenter *punch, enum im_control control, double largest,
+                               const im_solver_options *o)
 {
     im_indentation *run = NULL;
     im_solver_options tight = im_solver_options_default();
@@ -229,8 +229,7 @@ static void test_load_matches_displacement_control(void **state)
     im_field_free(s);
 }
 
-static im_step_result run_with_threads(const im_field *s, int threads, int crop, im_field **force,
-                                       im_window *window)
+static im_step_result run_with_threads(const im_field *s, int threads, int crop, im_field **force, im_window *window)
 {
     int saved = omp_get_max_threads();
     omp_set_num_threads(threads);
@@ -261,8 +260,8 @@ static void assert_same_solution(im_step_result a, const im_field *fa, im_step_r
     if (worst > 1e-6 * peak)
         fail_msg("forces differ by %g (peak %g)", worst, peak);
     if (differing > 0) /* only patches whose force is at round-off level could flip */
-        fail_msg("%ld patches in contact in one solution only (n_p %ld vs %ld)", differing,
-                 a.contact_patches, b.contact_patches);
+        fail_msg("%ld patches in contact in one solution only (n_p %ld vs %ld)", differing, a.contact_patches,
+                 b.contact_patches);
 }
 
 static void test_thread_count_independence(void **state)
@@ -464,7 +463,8 @@ static double *cone_gap(int n, double alpha_degrees)
     assert_non_null(gap);
     for (int iy = 0; iy < n; ++iy)
         for (int ix = 0; ix < n; ++ix)
-            gap[(size_t)iy * n + ix] = hypot(ix - 0.5 * (n - 1), iy - 0.5 * (n - 1)) / tan(alpha_degrees * M_PI / 180);
+            gap[(size_t)iy * n + ix] = hypot(ix - 0.5 * (n - 1), iy - 0.5 * (n - 1)) /
+                                       tan(alpha_degrees * M_PI / 180);
     return gap;
 }
 

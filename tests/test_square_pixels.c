@@ -42,8 +42,8 @@ static double largest_error(const im_field *square, surface_function f)
     double largest = 0.0;
     for (int j = 0; j < square->ny; ++j)
         for (int i = 0; i < square->nx; ++i)
-            largest = fmax(largest, fabs(square->data[(size_t)j * square->nx + i] -
-                                         f(i * square->delta, j * square->delta)));
+            largest = fmax(largest,
+                           fabs(square->data[(size_t)j * square->nx + i] - f(i * square->delta, j * square->delta)));
     return largest;
 }
 
@@ -98,7 +98,8 @@ static void a_sine_is_within_the_interpolation_bound(void **state)
     im_field *square = resampled(field, dx, dy);
     assert_int_equal(square->ny, 119 * 5 / 2 + 1);
     double bound = dy * dy / 8.0 * AMPLITUDE * WAVE_Y * WAVE_Y, error = largest_error(square, sine);
-    print_message("sine: largest error %.6g, bound (h^2/8) max|f_yy| %.6g: %.3f of it\n", error, bound, error / bound);
+    print_message("sine: largest error %.6g, bound (h^2/8) max|f_yy| %.6g: %.3f of it\n", error, bound,
+                  error / bound);
     assert_true(error <= bound);
     assert_true(error >= 0.9 * bound);
     im_field_free(square);
@@ -175,7 +176,8 @@ static void spacings_within_rounding_are_square(void **state)
     assert_null(f);
     const char *message = im_last_error();
     static const char *const phrases[] = {"beyond.txt: Width / columns and Height / rows: non-square pixels",
-                                          "x spacing 1 and y spacing 1.00001678 um", "differ by 1.68e-05 of their mean",
+                                          "x spacing 1 and y spacing 1.00001678 um",
+                                          "differ by 1.68e-05 of their mean",
                                           "beyond the 1.53e-05 (2^-16) that rounding explains", "--resample-square"};
     for (size_t i = 0; i < sizeof phrases / sizeof *phrases; ++i)
         if (!strstr(message, phrases[i]))
@@ -234,7 +236,8 @@ static void an_instrument_file_with_tall_pixels(void **state)
     im_field *stored = NULL, *square = NULL;
     im_surface_read_options options = {0};
     assert_int_equal(im_surface_read_with(path, &options, &square, NULL), IM_EFORMAT);
-    assert_non_null(strstr(im_last_error(), "x spacing 1.2765651e-07 and y spacing 3.14582114e-07 m differ by 0.845"));
+    assert_non_null(
+        strstr(im_last_error(), "x spacing 1.2765651e-07 and y spacing 3.14582114e-07 m differ by 0.845"));
     options.resample_square = 1;
     im_surface_read_info info;
     if (im_surface_read_with(path, &options, &square, &info) != IM_OK)

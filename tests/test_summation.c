@@ -11,10 +11,7 @@
 #define SIDE 4096
 #define COUNT ((size_t)SIDE * SIDE)
 
-static double relative_error(double value, __float128 exact)
-{
-    return (double)(((__float128)value - exact) / exact);
-}
+static double relative_error(double value, __float128 exact) { return (double)(((__float128)value - exact) / exact); }
 
 /* Forces of a loaded cone: p_m acosh(a/r) inside r < a (from 10 to ~1e-7 near the rim), plus
  * patches outside carrying forces 12 decades smaller, so that the magnitudes span 19 decades. */

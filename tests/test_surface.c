@@ -125,8 +125,7 @@ static void refined_surface_keeps_its_modes(void **state)
             max_height = fmax(max_height, fabs(a->data[y * 64 + x]));
         }
     if (max_difference > 1e-10 * max_height)
-        fail_msg("refined surface differs at coarse points by %g (heights up to %g)", max_difference,
-                 max_height);
+        fail_msg("refined surface differs at coarse points by %g (heights up to %g)", max_difference, max_height);
     im_field_free(a);
     im_field_free(b);
 }

@@ -173,10 +173,28 @@ static void broken_utf16_is_refused_by_offset(void **state)
         size_t length;
         const char *phrase;
     } CASES[] = {
-        {"high.txt", "\xff\xfe" "1\0" "\x00\xd8" " \0", 8, "a lone high surrogate 0xD800 at byte 4"},
-        {"low.txt", "\xfe\xff" "\0" "1" "\xdc\x00", 6, "a lone low surrogate 0xDC00 at byte 4"},
-        {"nul.txt", "\xff\xfe" "1\0" "\0\0", 6, "a NUL character (U+0000) at byte 4"},
-        {"odd.txt", "\xff\xfe" "1\0" "2", 5, "UTF-16 text of 5 bytes, an odd number"},
+        {"high.txt",
+         "\xff\xfe"
+         "1\0"
+         "\x00\xd8"
+         " \0",
+         8, "a lone high surrogate 0xD800 at byte 4"},
+        {"low.txt",
+         "\xfe\xff"
+         "\0"
+         "1"
+         "\xdc\x00",
+         6, "a lone low surrogate 0xDC00 at byte 4"},
+        {"nul.txt",
+         "\xff\xfe"
+         "1\0"
+         "\0\0",
+         6, "a NUL character (U+0000) at byte 4"},
+        {"odd.txt",
+         "\xff\xfe"
+         "1\0"
+         "2",
+         5, "UTF-16 text of 5 bytes, an odd number"},
     };
     for (size_t k = 0; k < sizeof CASES / sizeof CASES[0]; ++k) {
         test_write_bytes(test_path(CASES[k].name), CASES[k].bytes, CASES[k].length);
@@ -196,26 +214,35 @@ static void text_above_a_line_scan_names_it(void **state)
 {
     (void)state;
     expect_text_refused("names.csv", "X_(microns),y1\n0.0386,2.10425\n0.0772,2.08494\n0.1158,2.06564\n",
-                        "3 rows of numbers under the header row 'X_(microns),y1' (line 1): a line scan (a 1-D profile)");
-    expect_text_refused("index.csv", "index,x in \xc2\xb5m,y in \xc2\xb5m\n0,-1,2\n1,0,3\n2,1,4\n",
-                        "3 columns x 3 rows of numbers under the header row 'index,x in \xc2\xb5m,y in \xc2\xb5m' (line 1): "
-                        "a line scan (a 1-D profile), not a map (positions and heights, beside an index column 'index')");
+                        "3 rows of numbers under the header row 'X_(microns),y1' (line 1): a line scan (a 1-D "
+                        "profile)");
+    expect_text_refused(
+        "index.csv", "index,x in \xc2\xb5m,y in \xc2\xb5m\n0,-1,2\n1,0,3\n2,1,4\n",
+        "3 columns x 3 rows of numbers under the header row 'index,x in \xc2\xb5m,y in \xc2\xb5m' (line 1): "
+        "a line scan (a 1-D profile), not a map (positions and heights, beside an index column 'index')");
     expect_text_refused("valid.hfm", "X;Y;valid\r\n[mm];[mm];[1/0]\r\n8.6722;106.6;1\r\n8.6727;106.7;1\r\n",
-                        "a row of units '[mm];[mm];[1/0]' (line 2): a line scan (a 1-D profile), not a map (positions and "
+                        "a row of units '[mm];[mm];[1/0]' (line 2): a line scan (a 1-D profile), not a map "
+                        "(positions and "
                         "heights, beside a validity column 'valid')");
     expect_text_refused("units.txt", "\xc2\xb5m \xc2\xb5m\n3\n 1.5,  2.5\n 2.5,  3.5\n 3.5,  4.5\n",
-                        "2 columns x 3 rows of numbers under a row of units '\xc2\xb5m \xc2\xb5m' (line 1), a lone number, 3 "
+                        "2 columns x 3 rows of numbers under a row of units '\xc2\xb5m \xc2\xb5m' (line 1), a lone "
+                        "number, 3 "
                         "(line 2): a line scan");
     expect_text_refused("commas.csv", "x;h\n0,5;1,25\n1,0;2,5\n1,5;3,75\n", "2 columns x 3 rows of numbers under");
-    expect_text_refused("dektak.csv", "Scan Parameters\nScan Type,Standard Scan\n\nScan Data\nLateral um,Raw Micrometer,\n"
-                        "0.0,-0.00933,,\n0.2,-0.00760,,\n", "under a Bruker Dektak profilometer's CSV export of a stylus "
-                        "profile ('Scan Parameters', line 1), the header row 'Lateral um,Raw Micrometer,' (line 5): a line scan");
+    expect_text_refused("dektak.csv",
+                        "Scan Parameters\nScan Type,Standard Scan\n\nScan Data\nLateral um,Raw Micrometer,\n"
+                        "0.0,-0.00933,,\n0.2,-0.00760,,\n",
+                        "under a Bruker Dektak profilometer's CSV export of a stylus "
+                        "profile ('Scan Parameters', line 1), the header row 'Lateral um,Raw Micrometer,' (line 5): "
+                        "a line scan");
     expect_text_refused("above_matrix.txt", "[nm]\n1 2 3\n4 5 6\n7 8 9\n",
                         "above_matrix.txt:1: '[nm]' is text above 3 columns of numbers");
     expect_text_refused("names_matrix.txt", "some words\n1 2 3\n4 5 6\n7 8 9\n",
                         "names_matrix.txt:1: header row 'some words' of 2 column names");
-    expect_text_refused("count_matrix.txt", "3\n1 2 3\n4 5 6\n7 8 9\n", ":1: a lone number, 3, above rows of 3 values");
-    expect_text_refused("nonsense.txt", "This is nonsense.\n", "no numbers: 1 line of text (line 1: 'This is nonsense.')");
+    expect_text_refused("count_matrix.txt", "3\n1 2 3\n4 5 6\n7 8 9\n",
+                        ":1: a lone number, 3, above rows of 3 values");
+    expect_text_refused("nonsense.txt", "This is nonsense.\n",
+                        "no numbers: 1 line of text (line 1: 'This is nonsense.')");
 }
 
 /* gzip-compressed text reads as the text it holds (matrix-4.txt.gz); cut short, it is refused. */
@@ -273,8 +300,8 @@ static void unit_converts_a_stated_unit(void **state)
 /* The points of xyz_points_on_a_grid_are_a_map, as rows under a header row (sep between values). */
 static void write_points(const char *name, const char *header_row, const char *sep)
 {
-    static const double xyz[9][3] = {{0.5, 0, 3}, {0, 0, 1}, {1, 0, 5}, {0, 0.5, 2}, {0.5, 0.5, 4}, {1, 0.5, 6},
-                                     {0, 1, 7}, {1, 1, 9}, {0.5, 1, 8}};
+    static const double xyz[9][3] = {{0.5, 0, 3}, {0, 0, 1}, {1, 0, 5}, {0, 0.5, 2}, {0.5, 0.5, 4},
+                                     {1, 0.5, 6}, {0, 1, 7}, {1, 1, 9}, {0.5, 1, 8}};
     char text[1024];
     size_t used = (size_t)snprintf(text, sizeof text, "%s", header_row);
     for (int k = 0; k < 9; ++k)
@@ -322,7 +349,8 @@ static void header_rows_of_column_names_state_units(void **state)
     for (size_t c = 0; c < sizeof cases / sizeof *cases; ++c) {
         write_points(cases[c].name, cases[c].row, cases[c].sep);
         write_points("bare.txt", "", cases[c].sep);
-        im_field *headed = cases[c].lateral[0] ? read_in_metres(cases[c].name, "", "") : read_text_file(cases[c].name, NULL);
+        im_field *headed = cases[c].lateral[0] ? read_in_metres(cases[c].name, "", "")
+                                               : read_text_file(cases[c].name, NULL);
         im_field *bare = cases[c].lateral[0] ? read_in_metres("bare.txt", cases[c].lateral, cases[c].height)
                                              : read_text_file("bare.txt", NULL);
         expect_same_field(headed, bare);
@@ -333,8 +361,8 @@ static void header_rows_of_column_names_state_units(void **state)
     write_points("z_in_nm.txt", "x[um] y[um] z[nm]\n", " ");
     im_field *f = read_text_file("z_in_nm.txt", &info);
     assert_string_equal(f->unit, "\u00b5m");
-    assert_close(f->delta, 0.5, 1e-15);        /* x and y as stated */
-    assert_close(f->data[8], 9e-3, 1e-17);     /* 9 nm in µm */
+    assert_close(f->delta, 0.5, 1e-15);    /* x and y as stated */
+    assert_close(f->data[8], 9e-3, 1e-17); /* 9 nm in µm */
     assert_close(info.height_factor, 1e-3, 1e-18);
     im_field_free(f);
 }
@@ -345,18 +373,22 @@ static void bad_header_rows_are_refused_by_line(void **state)
     static const struct {
         const char *name, *text, *phrase;
     } cases[] = {
-        {"names_abc.txt", "# points\nx y w\n0 0 1\n", ":2: header row names its columns 'x', 'y', 'w': expected three"},
+        {"names_abc.txt", "# points\nx y w\n0 0 1\n",
+         ":2: header row names its columns 'x', 'y', 'w': expected three"},
         {"names_order.txt", "y x z\n0 0 1\n", ":1: header row names its columns 'y', 'x', 'z'"},
-        {"names_furlong.txt", "x[furlong] y[furlong] z[nm]\n0 0 1\n", ":1: header row: column 'x' in 'furlong': "
-                                                                     "expected a length unit"},
+        {"names_furlong.txt", "x[furlong] y[furlong] z[nm]\n0 0 1\n",
+         ":1: header row: column 'x' in 'furlong': "
+         "expected a length unit"},
         {"names_partial.txt", "x y z[nm]\n0 0 1\n", ":1: header row states units for 1 of its 3 columns"},
         {"names_xy.txt", "x[um] y[nm] z[nm]\n0 0 1\n", ":1: header row states x in 'um' but y in 'nm'"},
         {"names_open.txt", "x[um y[um] z[nm]\n0 0 1\n", ":1: header row 'x[um y[um] z[nm]': column 1 is not a name"},
         {"names_four.txt", "x y z w\n0 0 1 2\n", ":1: header row 'x y z w' of at least 4 column names"},
-        {"names_matrix.txt", "x y z\n1 2 3 4\n5 6 7 8\n9 10 11 12\n", ":1: a header row of x, y and height names "
-                                                                      "above rows of another number of values"},
-        {"names_value.txt", "# Value units: um\nx[um] y[um] z[nm]\n0 0 1\n", ":2: header row states the height in "
-                                                                              "'nm' but '# Value units:' in 'um'"},
+        {"names_matrix.txt", "x y z\n1 2 3 4\n5 6 7 8\n9 10 11 12\n",
+         ":1: a header row of x, y and height names "
+         "above rows of another number of values"},
+        {"names_value.txt", "# Value units: um\nx[um] y[um] z[nm]\n0 0 1\n",
+         ":2: header row states the height in "
+         "'nm' but '# Value units:' in 'um'"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof *cases; ++c)
         expect_text_refused(cases[c].name, cases[c].text, cases[c].phrase);

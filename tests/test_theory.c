@@ -295,10 +295,7 @@ static double gamma_library(const physical_cone *c, double r)
     return gamma;
 }
 
-static double disc_weighted_gamma(double r, void *params)
-{
-    return 2.0 * M_PI * r * gamma_definition(r, params);
-}
+static double disc_weighted_gamma(double r, void *params) { return 2.0 * M_PI * r * gamma_definition(r, params); }
 
 static void gamma_matches_definition(void **state)
 {
@@ -391,7 +388,8 @@ static void sphere(void **state)
     im_theory_interface rough = {slope, e_star, 2.0, IM_THEORY_NORMALISATION_PR};
     double n_c, hertz, area;
     assert_int_equal(im_theory_sphere_crossover_load(&rough, radius, &n_c), IM_OK);
-    assert_true(test_relative_difference(n_c, pow(M_PI, 3) * 9.0 / 16.0 * pow(slope / 2.0, 3) * e_star * radius * radius) < 1e-14);
+    assert_true(test_relative_difference(n_c, pow(M_PI, 3) * 9.0 / 16.0 * pow(slope / 2.0, 3) * e_star * radius *
+                                                  radius) < 1e-14);
     /* At N_c the Hertzian mean pressure equals p_rough, so A / A_Hertz = erf(sqrt(pi) / 2). */
     assert_int_equal(im_theory_hertz_area(n_c, radius, e_star, &hertz), IM_OK);
     assert_true(test_relative_difference(n_c / hertz, slope * e_star / 2.0) < 1e-13);
@@ -560,8 +558,7 @@ static void boussinesq_gamma_integral_matches_own_quadrature(void **state)
         if (test_relative_difference(library, ours) > 1e-12)
             fail_msg("flat beta = %g: library %.17g, own quadrature %.17g", beta, library, ours);
         if (test_relative_difference(library, boussinesq_closed_form(beta)) > 1e-12)
-            fail_msg("flat beta = %g: library %.17g, closed form %.17g", beta, library,
-                     boussinesq_closed_form(beta));
+            fail_msg("flat beta = %g: library %.17g, closed form %.17g", beta, library, boussinesq_closed_form(beta));
     }
 }
 
@@ -584,7 +581,8 @@ static void flat_punch_limits(void **state)
         double asymptote = 8.0 * exp(-c * c) / (beta * beta * beta * sqrt(M_PI));
         if (fabs(missing - expected) > 1e-12 * expected + 4.0 * DBL_EPSILON)
             fail_msg("flat beta = %g: 1 - ratio %.6g, closed form %.6g", beta, missing, expected);
-        assert_true(test_relative_difference(expected, asymptote * (1.0 - 12.0 / (beta * beta))) < 200.0 / pow(beta, 4));
+        assert_true(test_relative_difference(expected, asymptote * (1.0 - 12.0 / (beta * beta))) <
+                    200.0 / pow(beta, 4));
     }
     for (double beta = 20.0; beta <= 50.0; beta += 10.0) {
         double sphere_missing = 1.0 - punch_ratio(IM_PUNCH_SPHERE, beta);
@@ -738,8 +736,7 @@ static void bad_input_is_refused(void **state)
     assert_failure_names(im_theory_cone_pressure(-0.1, &out), IM_EINVAL, "r/a");
     assert_failure_names(im_theory_erf_scale(-2.0, IM_THEORY_NORMALISATION_PR, 2.0, &out), IM_EINVAL, "rho_c");
     assert_failure_names(im_theory_erf_scale(2.0, IM_THEORY_NORMALISATION_MG, 0.0, &out), IM_EINVAL, "k");
-    assert_failure_names(im_theory_erf_scale(2.0, (im_theory_normalisation)7, 2.0, &out), IM_EINVAL,
-                         "normalisation");
+    assert_failure_names(im_theory_erf_scale(2.0, (im_theory_normalisation)7, 2.0, &out), IM_EINVAL, "normalisation");
     const double bad_alpha[] = {0.0, 90.0, -5.0, 120.0, NAN};
     im_theory_interface rough = im_theory_interface_default(0.1);
     for (int i = 0; i < 5; ++i) {

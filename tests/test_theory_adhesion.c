@@ -205,10 +205,14 @@ static void refusals(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(lambda_is_maugis),        cmocka_unit_test(sphere_reaches_jkr),
-        cmocka_unit_test(sphere_reaches_dmt),      cmocka_unit_test(pull_off_between),
-        cmocka_unit_test(load_at_approach_inverts), cmocka_unit_test(kendall_flat_punch),
-        cmocka_unit_test(jkr_cone),                cmocka_unit_test(refusals),
+        cmocka_unit_test(lambda_is_maugis),
+        cmocka_unit_test(sphere_reaches_jkr),
+        cmocka_unit_test(sphere_reaches_dmt),
+        cmocka_unit_test(pull_off_between),
+        cmocka_unit_test(load_at_approach_inverts),
+        cmocka_unit_test(kendall_flat_punch),
+        cmocka_unit_test(jkr_cone),
+        cmocka_unit_test(refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

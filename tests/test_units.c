@@ -43,8 +43,8 @@ static void indent(const im_field *surface, double e_star, const double *approac
     options.e_star = e_star;
     options.tol = 1e-13;
     im_indentation *run = NULL;
-    assert_int_equal(im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, approaches[STEPS - 1], &options,
-                                           &run), IM_OK);
+    assert_int_equal(
+        im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, approaches[STEPS - 1], &options, &run), IM_OK);
     for (int i = 0; i < STEPS; ++i)
         if (im_indentation_step(run, approaches[i], &out->steps[i]) != IM_OK)
             fail_msg("step %d: %s", i, im_last_error());
@@ -97,7 +97,8 @@ static void si_run_is_the_dimensionless_run_scaled(void **state)
         assert_close(a.steps[i].load / force_scale, b.steps[i].load, 1e-12 * b.steps[i].load);
         assert_close(a.steps[i].load_star, b.steps[i].load_star, 1e-12 * b.steps[i].load_star);
         assert_close(a.steps[i].area_ratio, b.steps[i].area_ratio, 1e-12 * b.steps[i].area_ratio);
-        assert_close(a.steps[i].mean_pressure / E_STAR_PA, b.steps[i].mean_pressure, 1e-12 * b.steps[i].mean_pressure);
+        assert_close(a.steps[i].mean_pressure / E_STAR_PA, b.steps[i].mean_pressure,
+                     1e-12 * b.steps[i].mean_pressure);
     }
     assert_scaled(a.force, b.force, force_scale, "force");
     assert_scaled(a.displacement, b.displacement, delta, "displacement");

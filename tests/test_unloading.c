@@ -186,8 +186,8 @@ static void plastic_loop_area_is_the_dissipation(void **state)
     double coarse = loop_against_dissipation(12, &h_r[0]);
     double fine = loop_against_dissipation(24, &h_r[1]);
     double finer = loop_against_dissipation(48, &h_r[2]);
-    print_message("|W_in - W_out - W_p| / W_p: 12 steps %.3e, 24 %.3e, 48 %.3e; h_r %.6f %.6f %.6f\n", coarse,
-                  fine, finer, h_r[0], h_r[1], h_r[2]);
+    print_message("|W_in - W_out - W_p| / W_p: 12 steps %.3e, 24 %.3e, 48 %.3e; h_r %.6f %.6f %.6f\n", coarse, fine,
+                  finer, h_r[0], h_r[1], h_r[2]);
     if (!(fine < 0.625 * coarse && finer < 0.625 * fine))
         fail_msg("the loop's area does not converge to the dissipation: %.3e, %.3e, %.3e", coarse, fine, finer);
 }

@@ -203,8 +203,9 @@ static void checksum_lines_are_checked_against_their_entries(void **state)
 
     snprintf(text, sizeof text, "%s *main.xml\n0123456789abcdef0123456789abcdef *bindata/data.bin\n", ST_MAIN_MD5);
     replace_text_entry(path, "md5checksum.hex", text);
-    expect_refusal(im_x3p_read, path, "bindata/data.bin: MD5 bc50becedf300696c0acbbb7fcb4534a, but md5checksum.hex "
-                                      "states 0123456789abcdef0123456789abcdef");
+    expect_refusal(im_x3p_read, path,
+                   "bindata/data.bin: MD5 bc50becedf300696c0acbbb7fcb4534a, but md5checksum.hex "
+                   "states 0123456789abcdef0123456789abcdef");
     replace_text_entry(path, "md5checksum.hex", "0123456789abcdef0123456789abcdef\n");
     expect_refusal(im_x3p_read, path, "main.xml: MD5 8ca9a93db8a155e03a00badd8db72697, but md5checksum.hex");
     snprintf(text, sizeof text, "%s *bindata/other.bin\n", ST_DATA_MD5);
@@ -275,13 +276,15 @@ static void damaged_valid_points_are_refused(void **state)
     uint8_t *bits = entry_bytes(path, "bindata/valid.bin", &size);
     assert_int_equal(size, 5000);
     replace_entry(path, "bindata/valid.bin", bits, size - 1);
-    expect_refusal(im_x3p_read, path, "bindata/valid.bin holds 4999 bytes, SizeX x SizeY = 200 x 200 points of a "
-                                      "bit each need 5000");
+    expect_refusal(im_x3p_read, path,
+                   "bindata/valid.bin holds 4999 bytes, SizeX x SizeY = 200 x 200 points of a "
+                   "bit each need 5000");
     bits[0] ^= 0x01;
     replace_entry(path, "bindata/valid.bin", bits, size);
     expect_refusal(im_x3p_read, path, "bindata/valid.bin: MD5 ");
-    expect_refusal(im_x3p_read, path, "but Record3/DataLink/MD5ChecksumValidPoints states "
-                                      "5C4E6385CAC7F188CBF4D7E00B1C4C19: the file is damaged");
+    expect_refusal(im_x3p_read, path,
+                   "but Record3/DataLink/MD5ChecksumValidPoints states "
+                   "5C4E6385CAC7F188CBF4D7E00B1C4C19: the file is damaged");
     free(bits);
     int error;
     zip_t *archive = zip_open(path, 0, &error);

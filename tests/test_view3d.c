@@ -41,12 +41,12 @@ static int close_context(void **state)
     return 0;
 }
 
-#define REQUIRE_CONTEXT()                                                                         \
-    do {                                                                                          \
-        if (!context && skip_all)                                                                 \
-            skip();                                                                               \
-        if (!context)                                                                             \
-            fail_msg("the renderer does not open: %s", open_error);                              \
+#define REQUIRE_CONTEXT()                                                                                            \
+    do {                                                                                                             \
+        if (!context && skip_all)                                                                                    \
+            skip();                                                                                                  \
+        if (!context)                                                                                                \
+            fail_msg("the renderer does not open: %s", open_error);                                                  \
     } while (0)
 
 static double uniform(uint64_t *state)
@@ -76,7 +76,7 @@ static int same_pixel(const im_image *a, const im_image *b, int column, int row)
 
 typedef struct camera {
     double eye[3], right[3], up[3], forward[3];
-    double tan_half, aspect, ortho_half;  /* ortho_half > 0: orthographic */
+    double tan_half, aspect, ortho_half; /* ortho_half > 0: orthographic */
     int width, height;
 } camera;
 
@@ -180,7 +180,8 @@ static void test_apex_projects_to_predicted_pixel(void **state)
         /* The first row whose pixel centres lie below the apex, the apex's column within the
          * silhouette's width there. */
         if (abs(top - (int)floor(y)) > 1 || fabs(column + 0.5 - x) > 3.0)
-            fail_msg("azimuth %g: apex drawn at pixel (%d, %d), predicted (%.2f, %.2f)", azimuths[k], column, top, x, y);
+            fail_msg("azimuth %g: apex drawn at pixel (%d, %d), predicted (%.2f, %.2f)", azimuths[k], column, top, x,
+                     y);
         im_image_release(&image);
     }
     im_field_free(h);
@@ -271,8 +272,8 @@ static void test_depth_ordering(void **state)
     }
     int column = (int)x, row = (int)y, ridge_column = (int)rx, ridge_row = (int)ry + 2;
     const uint8_t *patch = pixel(&images[0], column, row);
-    assert_true(patch[0] == 253 && patch[1] == 231 && patch[2] == 37); /* viridis(1.0), level ground */
-    assert_false(same_pixel(&images[0], &images[1], column, row));     /* hidden by the punch */
+    assert_true(patch[0] == 253 && patch[1] == 231 && patch[2] == 37);         /* viridis(1.0), level ground */
+    assert_false(same_pixel(&images[0], &images[1], column, row));             /* hidden by the punch */
     assert_false(same_pixel(&images[2], &images[3], ridge_column, ridge_row)); /* the punch is there */
     assert_true(same_pixel(&images[0], &images[1], ridge_column, ridge_row));  /* the ridge hides it */
     for (int k = 0; k < 4; ++k)
@@ -338,7 +339,8 @@ static double corner_height(const im_field *h, int x, int y)
 }
 
 /* Distance along the ray to triangle (a, b, c), or INFINITY (Moller-Trumbore). */
-static double hit_triangle(const double o[3], const double d[3], const double a[3], const double b[3], const double c[3])
+static double hit_triangle(const double o[3], const double d[3], const double a[3], const double b[3],
+                           const double c[3])
 {
     double e1[3], e2[3], p[3], q[3], t[3];
     for (int i = 0; i < 3; ++i) {
@@ -370,10 +372,27 @@ static double hit_walls(const scene *sc, const double o[3], const double d[3])
         for (int j = 0; j < count; ++j) {
             /* the wall quad under edge segment j of this side */
             int a[2], b[2];
-            if (side == 0) { a[0] = j; a[1] = 0; b[0] = j + 1; b[1] = 0; }
-            else if (side == 1) { a[0] = nx; a[1] = j; b[0] = nx; b[1] = j + 1; }
-            else if (side == 2) { a[0] = j; a[1] = ny; b[0] = j + 1; b[1] = ny; }
-            else { a[0] = 0; a[1] = j; b[0] = 0; b[1] = j + 1; }
+            if (side == 0) {
+                a[0] = j;
+                a[1] = 0;
+                b[0] = j + 1;
+                b[1] = 0;
+            } else if (side == 1) {
+                a[0] = nx;
+                a[1] = j;
+                b[0] = nx;
+                b[1] = j + 1;
+            } else if (side == 2) {
+                a[0] = j;
+                a[1] = ny;
+                b[0] = j + 1;
+                b[1] = ny;
+            } else {
+                a[0] = 0;
+                a[1] = j;
+                b[0] = 0;
+                b[1] = j + 1;
+            }
             double top_a = sc->corners[a[1] * (nx + 1) + a[0]], top_b = sc->corners[b[1] * (nx + 1) + b[0]];
             double p0[3] = {a[0], a[1], base}, p1[3] = {b[0], b[1], base}, p2[3] = {b[0], b[1], top_b},
                    p3[3] = {a[0], a[1], top_a};

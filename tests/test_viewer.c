@@ -229,15 +229,15 @@ static const char *chromium(void)
     return NULL;
 }
 
-#define REQUIRE_CHROMIUM()                                                                        \
-    do {                                                                                          \
-        if (!chromium()) {                                                                        \
-            const char *required = getenv("IM_REQUIRE_CHROMIUM");                                 \
-            if (required && strcmp(required, "1") == 0)                                           \
-                fail_msg("no chromium (IM_REQUIRE_CHROMIUM=1)");                                  \
-            skipped = 1;                                                                          \
-            skip();                                                                               \
-        }                                                                                         \
+#define REQUIRE_CHROMIUM()                                                                                           \
+    do {                                                                                                             \
+        if (!chromium()) {                                                                                           \
+            const char *required = getenv("IM_REQUIRE_CHROMIUM");                                                    \
+            if (required && strcmp(required, "1") == 0)                                                              \
+                fail_msg("no chromium (IM_REQUIRE_CHROMIUM=1)");                                                     \
+            skipped = 1;                                                                                             \
+            skip();                                                                                                  \
+        }                                                                                                            \
     } while (0)
 
 /* Runs headless Chromium on a file with the arguments `what` (e.g. --dump-dom), stdout to out and
@@ -304,10 +304,12 @@ static void test_slider_changes_the_frame(void **state)
         "var f=document.getElementById('f');f.onload=function(){var d=f.contentDocument;\n"
         "var s=d.getElementById('frame-slider');var r=[];\n"
         "function look(){r.push(d.getElementById('frame-contact').getAttribute('src')+' '+\n"
-        " d.getElementById('frame-view3d').getAttribute('src')+' '+d.getElementById('frame-view3d').style.visibility+' '+\n"
+        " d.getElementById('frame-view3d').getAttribute('src')+' "
+        "'+d.getElementById('frame-view3d').style.visibility+' '+\n"
         " d.getElementById('frame-label').textContent);}\n"
         "look();[2,3].forEach(function(i){s.value=i;s.dispatchEvent(new Event('input'));look();});\n"
-        "var p=document.createElement('pre');p.id='result';p.textContent=r.join('|');document.body.appendChild(p);};\n"
+        "var "
+        "p=document.createElement('pre');p.id='result';p.textContent=r.join('|');document.body.appendChild(p);};\n"
         "</script></body>\n";
     test_write_bytes(harness, text, strlen(text));
     run_chromium("--dump-dom --virtual-time-budget=5000", harness, out, log);
@@ -384,8 +386,9 @@ static void test_indent_page_in_chromium(void **state)
         fail_msg("IM_CLI names no program");
     char command[2048], log[700], harness[700], out[700], chrome_log[700];
     snprintf(log, sizeof log, "%s/indent.log", test_temp_dir());
-    snprintf(command, sizeof command, "'%s' indent --smooth --n 64 --alpha 70 --load 40:160:3 --frames --out '%s/ind' >'%s' 2>&1",
-             cli, test_temp_dir(), log);
+    snprintf(command, sizeof command,
+             "'%s' indent --smooth --n 64 --alpha 70 --load 40:160:3 --frames --out '%s/ind' >'%s' 2>&1", cli,
+             test_temp_dir(), log);
     if (system(command) != 0) {
         char *text = slurp(log);
         const char *required = getenv("IM_REQUIRE_GL");
@@ -406,7 +409,8 @@ static void test_indent_page_in_chromium(void **state)
         "var h=d.querySelector('img[alt=\"history.png\"]');var s=d.getElementById('frame-slider');var r=[];\n"
         "r.push(h&&h.complete&&h.naturalWidth>0?'history loaded':'no history');\n"
         "var c0=d.getElementById('frame-contact');var w=c0.clientWidth;\n" /* its pixels, without the border */
-        "r.push(w>0&&w<=c0.naturalWidth?'panel at most its width':'panel '+w+' px wide, its image '+c0.naturalWidth);\n"
+        "r.push(w>0&&w<=c0.naturalWidth?'panel at most its width':'panel '+w+' px wide, its image "
+        "'+c0.naturalWidth);\n"
         "function look(){var c=d.getElementById('frame-contact');r.push(c.getAttribute('src')+' '+\n"
         " (c.complete&&c.naturalWidth>0?'loaded':'not loaded')+' '+d.getElementById('frame-label').textContent);}\n"
         "look();s.value=2;s.dispatchEvent(new Event('input'));\n"

@@ -55,7 +55,7 @@ static void forget_wisdom(void)
 /* FFTW's description of each of the plan's six transforms, concatenated. */
 static char *describe(const im_solver_plan *p)
 {
-    const fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,       p->columns_backward,
+    const fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,      p->columns_backward,
                                 p->rows_backward, p->precondition_forward, p->precondition_backward};
     size_t size = 1;
     char *parts[6];

@@ -43,8 +43,8 @@ typedef enum im_colormap_id {
 
 typedef struct im_colormap {
     im_colormap_id map;
-    double lo, hi;        /* norm range; hi > lo */
-    int logarithmic;      /* 1: norm in log(value), requires lo > 0 */
+    double lo, hi;   /* norm range; hi > lo */
+    int logarithmic; /* 1: norm in log(value), requires lo > 0 */
     uint8_t under[3], over[3], bad[3];
 } im_colormap;
 

@@ -26,10 +26,10 @@ extern "C" {
 #endif
 
 typedef struct im_field {
-    int nx, ny;      /* grid size, >= 1 each */
-    double delta;    /* patch side in physical units (1 when dimensionless) */
-    char unit[16];   /* physical unit of delta and heights, "" when dimensionless */
-    double *data;    /* nx * ny values, row-major, owned by the field */
+    int nx, ny;          /* grid size, >= 1 each */
+    double delta;        /* patch side in physical units (1 when dimensionless) */
+    char unit[16];       /* physical unit of delta and heights, "" when dimensionless */
+    double *data;        /* nx * ny values, row-major, owned by the field */
     char value_unit[40]; /* unit of the values when they are not lengths in `unit` (a force field:
                             "N", "Pa·µm²", "E* δ²"); "" for heights and other lengths */
 } im_field;

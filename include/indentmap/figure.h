@@ -39,31 +39,31 @@ extern "C" {
 #endif
 
 typedef struct im_figure_panel {
-    const im_image *image;  /* the data, from im_render_*; required */
-    const char *label;      /* "(a)", bold, above the panel's left edge; NULL: none */
-    const char *title;      /* above the panel, centred (UTF-8); NULL: none */
+    const im_image *image; /* the data, from im_render_*; required */
+    const char *label;     /* "(a)", bold, above the panel's left edge; NULL: none */
+    const char *title;     /* above the panel, centred (UTF-8); NULL: none */
 } im_figure_panel;
 
 typedef struct im_figure {
-    int rows, columns;               /* the panel grid, >= 1 each */
-    const im_figure_panel *panels;   /* rows * columns panels, row by row from the top */
-    const im_colormap *colormap;     /* norm of the one shared colour bar; NULL: no colour bar */
-    const char *colorbar_label;      /* the quantity, e.g. "local force f / (E* δ²)" */
-    int extend_under, extend_over;   /* 1: triangles in the under / over colour beyond the bar's
+    int rows, columns;                   /* the panel grid, >= 1 each */
+    const im_figure_panel *panels;       /* rows * columns panels, row by row from the top */
+    const im_colormap *colormap;         /* norm of the one shared colour bar; NULL: no colour bar */
+    const char *colorbar_label;          /* the quantity, e.g. "local force f / (E* δ²)" */
+    int extend_under, extend_over;       /* 1: triangles in the under / over colour beyond the bar's
                                         ends, saying that some values lie outside the norm */
     const im_colormap *tension_colormap; /* a second bar right of the first: the norm of the tension
                                         of patches under tension (render.h: im_contact_style.tension);
                                         NULL (the default): none */
-    const char *tension_label;       /* its quantity, e.g. "tensile force −f / (E* δ²)" */
-    double scale_bar;                /* length in the images' units (delta, or their unit);
+    const char *tension_label;           /* its quantity, e.g. "tensile force −f / (E* δ²)" */
+    double scale_bar;                    /* length in the images' units (delta, or their unit);
                                         0: automatic (a 1-2-5 length near a fifth of a panel);
                                         < 0: none */
-    double dpi;                      /* pixels per inch of the PNG, (0, 2400] */
-    double font_size;                /* points, (0, 72] */
-    const im_png_text *texts;        /* run parameters: PNG tEXt chunks, PDF keywords */
+    double dpi;                          /* pixels per inch of the PNG, (0, 2400] */
+    double font_size;                    /* points, (0, 72] */
+    const im_png_text *texts;            /* run parameters: PNG tEXt chunks, PDF keywords */
     int text_count;
-    int png_compression;             /* zlib level 0-9 for PNG output */
-    const char *note;                /* one line under the panels, ending at the grid's right edge
+    int png_compression; /* zlib level 0-9 for PNG output */
+    const char *note;    /* one line under the panels, ending at the grid's right edge
                                         (e.g. the punch and the load, "N* = 37000"); NULL: none */
 } im_figure;
 
@@ -131,8 +131,7 @@ im_gif_options im_gif_options_default(void);
 /* Writes frames[0..count) as a looping animated GIF (giflib) with one global palette as above.
  * Frames must share one size (at most 65535 per side). IM_EINVAL naming the option or the frame for
  * a bad one, IM_EIO (nothing left behind), IM_ENOMEM. */
-int im_animation_gif_with(const im_image *frames, int count, const im_gif_options *options,
-                          const char *path);
+int im_animation_gif_with(const im_image *frames, int count, const im_gif_options *options, const char *path);
 
 /* im_animation_gif_with with the default options but seconds_per_frame; its errors. */
 int im_animation_gif(const im_image *frames, int count, double seconds_per_frame, const char *path);

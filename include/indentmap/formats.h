@@ -161,18 +161,18 @@ enum im_npy_order {
 
 /* How a surface file is read. Zero-initialised means: as the file states. */
 typedef struct im_surface_read_options {
-    im_surface_units set;    /* each stated member (non-zero, non-empty) overrides the file's; a
+    im_surface_units set;        /* each stated member (non-zero, non-empty) overrides the file's; a
                                 delta_x without delta_y sets both */
-    int fill;                /* 1: fill missing points (NaN) with im_surface_fill_missing (surface.h);
+    int fill;                    /* 1: fill missing points (NaN) with im_surface_fill_missing (surface.h);
                                 0: refuse them, naming the first one's (x, y) */
-    char express_in[16];     /* a length unit ("m" for SI): spacing and heights are converted into it
+    char express_in[16];         /* a length unit ("m" for SI): spacing and heights are converted into it
                                 from the surface's unit, which must then be known; "": kept */
-    int field_values;        /* 1: the file holds a field to draw (forces, gaps, displacements), not
+    int field_values;            /* 1: the file holds a field to draw (forces, gaps, displacements), not
                                 heights to solve on: NaN and Inf are kept (a flat punch's gap is +Inf
                                 where it can never touch); fill is then ignored */
-    char channel[64];        /* of a multi-channel instrument file read through Gwyddion: an index or
+    char channel[64];            /* of a multi-channel instrument file read through Gwyddion: an index or
                                 a title (case ignored); "": the first channel holding lengths */
-    int resample_square;     /* 1: pixels whose spacings differ beyond IM_SQUARE_PIXEL_TOLERANCE are
+    int resample_square;         /* 1: pixels whose spacings differ beyond IM_SQUARE_PIXEL_TOLERANCE are
                                 resampled onto square pixels of the finer spacing after the heights are
                                 converted and their missing points refused or filled
                                 (im_surface_resample_square, surface.h: bilinear, within the stored
@@ -183,22 +183,22 @@ typedef struct im_surface_read_options {
 
 /* What the reader found and did, for reports and run records. */
 typedef struct im_surface_read_info {
-    im_surface_units file;   /* as the file stated them (zeros and "" where it stated nothing) */
-    im_surface_units used;   /* after overrides (delta_y = delta_x when only delta_x is set), in the unit
+    im_surface_units file;     /* as the file stated them (zeros and "" where it stated nothing) */
+    im_surface_units used;     /* after overrides (delta_y = delta_x when only delta_x is set), in the unit
                                 of the field read (used.lateral: after express_in); field->delta is
                                 delta_x when they are equal, their mean when they differ within
                                 IM_SQUARE_PIXEL_TOLERANCE, the finer when the grid was resampled */
-    double height_factor;    /* the heights were multiplied by this to bring them into `used.lateral` */
-    long filled;             /* missing points filled (options->fill) */
-    char conversion[96];     /* how the stored values were converted, e.g. "'>i2' (int16) converted to
+    double height_factor;      /* the heights were multiplied by this to bring them into `used.lateral` */
+    long filled;               /* missing points filled (options->fill) */
+    char conversion[96];       /* how the stored values were converted, e.g. "'>i2' (int16) converted to
                                 float64; Fortran order transposed to C order"; "" when none */
     double spacing_difference; /* |used.delta_x - used.delta_y| / their mean: 0 for square pixels */
-    char resampled[16];      /* how the grid was brought to square pixels: "bilinear" (resample_square,
+    char resampled[16];        /* how the grid was brought to square pixels: "bilinear" (resample_square,
                                 spacing_difference beyond IM_SQUARE_PIXEL_TOLERANCE), or "" when it
                                 was not resampled */
-    double resampled_delta;  /* the square pixels' spacing when resampled (field->delta, in its unit);
+    double resampled_delta;    /* the square pixels' spacing when resampled (field->delta, in its unit);
                                 0 otherwise */
-    int stored_nx, stored_ny; /* the grid as the file stores it (before resampling) */
+    int stored_nx, stored_ny;  /* the grid as the file stores it (before resampling) */
 } im_surface_read_info;
 
 /* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p), else as text (see im_text_read) when the

@@ -38,13 +38,13 @@ extern "C" {
 /* One step of a history. A value the writer did not have (a scene's step taken from its table) is -1
  * for the counts (iterations, convolutions, patches) and NaN for the others. */
 typedef struct im_history_row {
-    int step;               /* 1-based */
+    int step; /* 1-based */
     im_step_result result;
     im_theory_step theory;
-    double stiffness;       /* dN/dw from this step and the two before on one branch; NaN otherwise */
-    double e_star_sneddon;  /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
-    long patches;           /* connected contact patches */
-    double perimeter;       /* their perimeter */
+    double stiffness;      /* dN/dw from this step and the two before on one branch; NaN otherwise */
+    double e_star_sneddon; /* (sqrt(pi) / 2) S / sqrt(A_smooth(N)) */
+    long patches;          /* connected contact patches */
+    double perimeter;      /* their perimeter */
 } im_history_row;
 
 /* The column line (without its newline), the same for every history this version writes. */

@@ -53,8 +53,8 @@ enum im_punch_kind {
     IM_PUNCH_CONE = 0,
     IM_PUNCH_SPHERE = 1,
     IM_PUNCH_FLAT = 2,
-    IM_PUNCH_PROFILE = 3,    /* axisymmetric profile table (im_profile_axisymmetric) */
-    IM_PUNCH_PROFILE_2D = 4  /* height field around the axis (im_profile_field) */
+    IM_PUNCH_PROFILE = 3,   /* axisymmetric profile table (im_profile_axisymmetric) */
+    IM_PUNCH_PROFILE_2D = 4 /* height field around the axis (im_profile_field) */
 };
 
 /* ---- User-given profiles ----
@@ -104,11 +104,11 @@ typedef struct im_profile im_profile;
 
 typedef struct im_indenter {
     enum im_punch_kind kind;
-    double alpha_degrees;  /* cone: semi-opening angle, 0 < alpha < 90 (the paper: 80) */
-    double radius;         /* sphere: R; flat punch: a (> 0, same units as delta) */
-    double x0, y0;         /* axis position in the surface plane (same units as delta) */
+    double alpha_degrees;      /* cone: semi-opening angle, 0 < alpha < 90 (the paper: 80) */
+    double radius;             /* sphere: R; flat punch: a (> 0, same units as delta) */
+    double x0, y0;             /* axis position in the surface plane (same units as delta) */
     const im_profile *profile; /* profile kinds: the shape, BORROWED (see above); NULL otherwise */
-    int centred;           /* 1: ignore x0, y0 and put the axis on the centre of patch
+    int centred;               /* 1: ignore x0, y0 and put the axis on the centre of patch
                               (nx / 2, ny / 2), i.e. at ((nx/2 + 0.5) delta, (ny/2 + 0.5) delta) */
 } im_indenter;
 
@@ -166,8 +166,8 @@ void im_indenter_axis(const im_indenter *punch, int nx, int ny, double delta, do
 
 /* Smooth-contact closed forms for an approach w >= 0 (0 for w <= 0), modulus e_star; for the
  * profile kinds see "User-given profiles" (Sneddon's integrals; NaN for a 2-D profile). */
-double im_indenter_load(const im_indenter *punch, double e_star, double w);          /* N(w) */
-double im_indenter_contact_radius(const im_indenter *punch, double w);               /* a(w) */
+double im_indenter_load(const im_indenter *punch, double e_star, double w); /* N(w) */
+double im_indenter_contact_radius(const im_indenter *punch, double w);      /* a(w) */
 /* Pressure at distance r from the axis at approach w (0 outside the contact; +INFINITY at the
  * cone's apex and the flat punch's edge). */
 double im_indenter_pressure(const im_indenter *punch, double e_star, double w, double r);

@@ -73,12 +73,18 @@ int im_path_suffix(char *out, size_t size, const char *path, const char *suffix)
 /* What a file holds, recognised from its first bytes. */
 enum im_file_kind {
     IM_KIND_NONE = 0, /* missing or empty */
-    IM_KIND_NPY, IM_KIND_PNG, IM_KIND_GIF, IM_KIND_PDF, IM_KIND_SVG, IM_KIND_MP4, IM_KIND_GSF,
-    IM_KIND_WISDOM,   /* FFTW wisdom: "(fftw-" */
-    IM_KIND_JSON,     /* starts with '{' */
-    IM_KIND_INI,      /* text whose first line that is not blank or a comment is a [section] */
-    IM_KIND_TEXT,     /* other text (CSV, text matrices, tables): no NUL byte in its head */
-    IM_KIND_BINARY    /* anything else */
+    IM_KIND_NPY,
+    IM_KIND_PNG,
+    IM_KIND_GIF,
+    IM_KIND_PDF,
+    IM_KIND_SVG,
+    IM_KIND_MP4,
+    IM_KIND_GSF,
+    IM_KIND_WISDOM, /* FFTW wisdom: "(fftw-" */
+    IM_KIND_JSON,   /* starts with '{' */
+    IM_KIND_INI,    /* text whose first line that is not blank or a comment is a [section] */
+    IM_KIND_TEXT,   /* other text (CSV, text matrices, tables): no NUL byte in its head */
+    IM_KIND_BINARY  /* anything else */
 };
 /* The kind of `length` first bytes of a file (512 are enough). */
 enum im_file_kind im_file_kind_of_bytes(const void *bytes, size_t length);
@@ -90,10 +96,10 @@ const char *im_file_kind_name(enum im_file_kind kind);
 
 /* ---- atomic files ---- */
 typedef struct im_atomic_file {
-    FILE *stream;        /* write here */
-    char path[4096];     /* final destination */
+    FILE *stream;    /* write here */
+    char path[4096]; /* final destination */
     char temp_path[4128];
-    int slot;            /* internal: its entry in the list of temporary files (-1: none) */
+    int slot; /* internal: its entry in the list of temporary files (-1: none) */
 } im_atomic_file;
 
 /* Opens a new temporary file beside path for writing (created exclusively, mode 0666 less the
@@ -141,9 +147,9 @@ int im_path_utf8(const char *path, char *out, size_t size);
  * a lock file no live process holds is taken over silently, and its pid reported in stale_pid for
  * the caller to tell the user (the indentmap program and scene runs do, as a warning). */
 typedef struct im_folder_lock {
-    int fd;             /* -1 when not held */
+    int fd; /* -1 when not held */
     char path[4104];
-    long stale_pid;     /* out: the pid of the dead process whose lock was taken over, 0 if none */
+    long stale_pid; /* out: the pid of the dead process whose lock was taken over, 0 if none */
 } im_folder_lock;
 int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock);
 /* Removes the lock file and releases it; nothing if not held. */
@@ -170,8 +176,8 @@ int im_folder_remove_temporaries(const char *folder, int depth);
  * readers that bound what they read as they go (text lines, below). Reads poll im_stop_requested
  * (status.h), so that SIGINT/SIGTERM end even a read of a long pipe promptly. */
 enum im_read_source {
-    IM_READ_REGULAR = 0,   /* regular files only */
-    IM_READ_OR_PIPE = 1    /* regular files and pipes (FIFOs, process substitution, stdin) */
+    IM_READ_REGULAR = 0, /* regular files only */
+    IM_READ_OR_PIPE = 1  /* regular files and pipes (FIFOs, process substitution, stdin) */
 };
 
 /* Opens path with fopen mode ("r", "rb") after checking what it is. Returns IM_OK and sets *stream
@@ -183,10 +189,10 @@ int im_read_open(const char *path, const char *mode, enum im_read_source source,
 
 /* One line of text as im_read_line reads it. */
 typedef struct im_text_line {
-    char *text;        /* the line without its newline, NUL-terminated; owned: free() it */
-    size_t length;     /* bytes in text */
-    size_t capacity;   /* bytes allocated */
-    long number;       /* 1-based number of the line last read */
+    char *text;      /* the line without its newline, NUL-terminated; owned: free() it */
+    size_t length;   /* bytes in text */
+    size_t capacity; /* bytes allocated */
+    long number;     /* 1-based number of the line last read */
 } im_text_line;
 
 /* Reads the next line of stream into line (zero-initialise it before the first call). Returns
@@ -221,8 +227,8 @@ typedef struct im_png_options {
 /* im_png_write: options may be NULL (no texts, no pHYs, zlib level 6). IM_EINVAL for a
  * size, channel count, stride or text it cannot write, the errors of an atomic write (IM_EIO,
  * nothing left at path). */
-int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
-                 size_t stride, const im_png_options *options);
+int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels, size_t stride,
+                 const im_png_options *options);
 
 /* Reads an 8-bit RGB or RGBA PNG (for tests and figure assembly); *pixels is malloc'ed, rows top
  * first, stride width * channels. */

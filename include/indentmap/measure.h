@@ -61,8 +61,8 @@ double im_measure_sneddon_modulus(double stiffness, double area);
  *           W_in - W_out is the loop's area, the dissipated energy.
  * h_c within 1e-9 h_max below 0 (a flat punch, h = P / S, to rounding) is 0. */
 typedef struct im_unloading_branch {
-    int top_step, last_step;   /* 1-based steps of the history: the top, the branch's last */
-    int loading_from;          /* 1-based step the loading before the top started at (0: the origin) */
+    int top_step, last_step; /* 1-based steps of the history: the top, the branch's last */
+    int loading_from;        /* 1-based step the loading before the top started at (0: the origin) */
     double approach_max, load_max, stiffness, epsilon, contact_depth, area_projected;
     double hardness, modulus, residual_approach, work_in, work_out;
 } im_unloading_branch;
@@ -71,8 +71,8 @@ typedef struct im_unloading_branch {
  * approach of each step's state), for punch: at most capacity of them into branches (*found says how
  * many there are). IM_EINVAL naming the argument for NULL arrays, count < 1, non-finite approaches or
  * loads, an invalid punch. */
-int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load,
-                         const double *residual, int count, im_unloading_branch *branches, int capacity, int *found);
+int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load, const double *residual,
+                         int count, im_unloading_branch *branches, int capacity, int *found);
 
 /* Oliver-Pharr's epsilon for the punch (see above); NaN for a 2-D profile. */
 double im_measure_epsilon(const im_indenter *punch);
@@ -82,11 +82,11 @@ double im_measure_projected_area(const im_indenter *punch, double contact_depth)
 
 /* Connected contact patches (force > 0; 4-neighbour connectivity, not periodic). */
 typedef struct im_contact_patches {
-    long patches;        /* number of connected patches (clusters of contacting grid cells) */
-    long cells;          /* contacting cells in all, n_p */
-    long largest;        /* cells of the largest patch */
-    double mean_area;    /* cells / patches * delta^2 (0 without contact) */
-    double perimeter;    /* length of the edges between contact and no contact (including the grid's
+    long patches;     /* number of connected patches (clusters of contacting grid cells) */
+    long cells;       /* contacting cells in all, n_p */
+    long largest;     /* cells of the largest patch */
+    double mean_area; /* cells / patches * delta^2 (0 without contact) */
+    double perimeter; /* length of the edges between contact and no contact (including the grid's
                             border next to a contacting cell), delta per edge */
 } im_contact_patches;
 

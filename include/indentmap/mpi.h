@@ -150,8 +150,7 @@ int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's
  * rows of heights (in units of delta, not modified). IM_ENUMERIC for a non-finite height, IM_EINVAL
  * for a bad punch or one that covers no patch. Collective. */
-int im_mpi_undeformed_gap(const im_mpi_solver *solver, const double *heights, const im_indenter *punch,
-                          double *gap0);
+int im_mpi_undeformed_gap(const im_mpi_solver *solver, const double *heights, const im_indenter *punch, double *gap0);
 
 /* IM_EEDGE (naming the patch) if pressure is positive on the outer row or column of the surface,
  * as im_indentation_step reports; IM_OK otherwise. Collective. */

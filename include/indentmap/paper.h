@@ -33,15 +33,15 @@ extern "C" {
  * count roughnesses slope_rms[i] >= 0 (the paper: 0.01, 0.02, 0.04, 0.08, 0.16; 0 is the smooth
  * surface, gamma = 1), coloured as a viridis family, with h'rms and rho_c (eq. 7) in the legend.
  * IM_EINVAL for count outside [1, 16], a negative or non-finite slope, alpha_deg outside (0, 90). */
-int im_paper_fig1_contact_density(double alpha_deg, const double *slope_rms, int count,
-                                  const im_plot *style, const char *path);
+int im_paper_fig1_contact_density(double alpha_deg, const double *slope_rms, int count, const im_plot *style,
+                                  const char *path);
 
 /* Measured points with error bars for Fig. 2, e.g. the ensemble means +- standard deviations of
  * A/A_cone at each rho_c. sigma may be NULL (no bars). */
 typedef struct im_paper_points {
     const double *x, *y, *sigma;
-    int count;                  /* 0: no points */
-    const char *label;          /* legend entry; NULL: "simulations (mean ± sd)" */
+    int count;         /* 0: no points */
+    const char *label; /* legend entry; NULL: "simulations (mean ± sd)" */
 } im_paper_points;
 
 /* Fig. 2: A/A_cone against rho_c on a log axis from 0.1 to 100 (widened to whole decades around
@@ -59,8 +59,8 @@ int im_paper_fig2_area_ratio(const im_paper_points *points, const im_plot *style
  * spacing delta: h / delta, curvature x delta, q delta, C / delta^4. params: those the surface was
  * generated with (only hurst, lambda_s and lambda_r are read). IM_EINVAL for an invalid surface
  * view, a NULL params, bins outside [10, 10000], or not 0 < hurst < 1 and 0 < lambda_s < lambda_r. */
-int im_paper_fig3_surface(const im_field *surface, const im_surface_params *params, int bins,
-                          const im_plot *style, const char *path);
+int im_paper_fig3_surface(const im_field *surface, const im_surface_params *params, int bins, const im_plot *style,
+                          const char *path);
 
 #ifdef __cplusplus
 }

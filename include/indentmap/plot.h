@@ -56,9 +56,9 @@ typedef enum im_plot_scale { IM_PLOT_LINEAR = 0, IM_PLOT_LOG = 1 } im_plot_scale
 
 typedef enum im_plot_line_style {
     IM_PLOT_SOLID = 0,
-    IM_PLOT_DASHED,   /* 3.5 pt on, 2 pt off (times the line width above 1 pt) */
-    IM_PLOT_DOTTED,   /* round dots 1.6 pt apart (times the line width above 1 pt) */
-    IM_PLOT_NO_LINE   /* markers, error bars and bands only */
+    IM_PLOT_DASHED, /* 3.5 pt on, 2 pt off (times the line width above 1 pt) */
+    IM_PLOT_DOTTED, /* round dots 1.6 pt apart (times the line width above 1 pt) */
+    IM_PLOT_NO_LINE /* markers, error bars and bands only */
 } im_plot_line_style;
 
 typedef enum im_plot_marker {
@@ -70,59 +70,59 @@ typedef enum im_plot_marker {
 } im_plot_marker;
 
 typedef struct im_plot_series {
-    const double *x, *y;        /* n points, in data units; required */
-    int n;                      /* >= 1 */
-    const double *sigma;        /* NULL, or n half-lengths: error bars from y - sigma to y + sigma */
+    const double *x, *y;             /* n points, in data units; required */
+    int n;                           /* >= 1 */
+    const double *sigma;             /* NULL, or n half-lengths: error bars from y - sigma to y + sigma */
     const double *band_lo, *band_hi; /* NULL, or n each: a band shaded between them (both needed) */
     im_plot_line_style line;
-    double line_width;          /* points; 0: 1 pt */
+    double line_width; /* points; 0: 1 pt */
     im_plot_marker marker;
-    double marker_size;         /* points across; 0: 4 pt */
-    uint8_t color[3];           /* line, markers and bars; the band at 25 % opacity */
-    const char *label;          /* legend entry; NULL: not in the legend */
+    double marker_size; /* points across; 0: 4 pt */
+    uint8_t color[3];   /* line, markers and bars; the band at 25 % opacity */
+    const char *label;  /* legend entry; NULL: not in the legend */
 } im_plot_series;
 
 typedef struct im_plot_axis {
     im_plot_scale scale;
-    double lo, hi;              /* fixed limits when lo < hi; otherwise automatic: the data's range
+    double lo, hi;     /* fixed limits when lo < hi; otherwise automatic: the data's range
                                    widened to whole tick steps (linear) or to the nearest 1, 2 or
                                    5 x 10^k (log) */
-    const char *label;          /* NULL: none */
+    const char *label; /* NULL: none */
 } im_plot_axis;
 
 typedef enum im_plot_legend {
-    IM_PLOT_LEGEND_AUTO = 0,    /* the first corner of the frame (in the order below) whose legend box,
+    IM_PLOT_LEGEND_AUTO = 0, /* the first corner of the frame (in the order below) whose legend box,
                                    grown by half a font size all round, touches no line, marker or
                                    error bar; outside on the right when every corner would */
     IM_PLOT_LEGEND_UPPER_RIGHT,
     IM_PLOT_LEGEND_UPPER_LEFT,
     IM_PLOT_LEGEND_LOWER_RIGHT,
     IM_PLOT_LEGEND_LOWER_LEFT,
-    IM_PLOT_LEGEND_HIDDEN,      /* no legend even when series have labels */
+    IM_PLOT_LEGEND_HIDDEN,       /* no legend even when series have labels */
     IM_PLOT_LEGEND_OUTSIDE_RIGHT /* right of the frame, top-aligned with it; the figure widens */
 } im_plot_legend;
 
 typedef struct im_plot_panel {
     im_plot_axis x, y;
-    const im_plot_series *series;  /* series_count >= 0 series, drawn in this order */
+    const im_plot_series *series; /* series_count >= 0 series, drawn in this order */
     int series_count;
-    const char *label;          /* "(a)", bold, above the frame's left edge; NULL: none */
-    const char *title;          /* above the frame, centred; NULL: none */
-    im_plot_legend legend;      /* drawn when at least one series has a label */
-    const char *legend_title;   /* a first legend row naming what the labels give; NULL: none */
+    const char *label;        /* "(a)", bold, above the frame's left edge; NULL: none */
+    const char *title;        /* above the frame, centred; NULL: none */
+    im_plot_legend legend;    /* drawn when at least one series has a label */
+    const char *legend_title; /* a first legend row naming what the labels give; NULL: none */
 } im_plot_panel;
 
 typedef struct im_plot {
-    int rows, columns;          /* >= 1 each, at most 64 panels */
-    const im_plot_panel *panels; /* panel_count panels, row by row from the top */
-    int panel_count;            /* 0: rows * columns; else more than (rows - 1) * columns and at most
+    int rows, columns;                /* >= 1 each, at most 64 panels */
+    const im_plot_panel *panels;      /* panel_count panels, row by row from the top */
+    int panel_count;                  /* 0: rows * columns; else more than (rows - 1) * columns and at most
                                    rows * columns: the last row's other cells stay empty */
     double panel_width, panel_height; /* size of each axes frame in points, (0, 2000] */
-    double dpi;                 /* (0, 2400] */
-    double font_size;           /* points, (0, 72] */
-    const im_png_text *texts;   /* PNG tEXt chunks, PDF keywords; may be NULL */
+    double dpi;                       /* (0, 2400] */
+    double font_size;                 /* points, (0, 72] */
+    const im_png_text *texts;         /* PNG tEXt chunks, PDF keywords; may be NULL */
     int text_count;
-    int png_compression;        /* zlib level 0-9 */
+    int png_compression; /* zlib level 0-9 */
 } im_plot;
 
 /* One panel (panels must still be set), 160 x 120 pt frames, 300 dpi, 8 pt text, PNG compression
@@ -137,10 +137,10 @@ int im_plot_write(const im_plot *plot, const char *path);
 
 /* Where a panel lands in the PNG that im_plot_write makes, in pixels from the top left corner. */
 typedef struct im_plot_geometry {
-    int width, height;                        /* the whole image */
-    double box_x, box_y, box_width, box_height; /* the frame: data x = lo at box_x, hi at
+    int width, height;                                      /* the whole image */
+    double box_x, box_y, box_width, box_height;             /* the frame: data x = lo at box_x, hi at
                                                  box_x + box_width; y = lo at box_y + box_height */
-    double x_lo, x_hi, y_lo, y_hi;            /* the limits in force (automatic ones resolved) */
+    double x_lo, x_hi, y_lo, y_hi;                          /* the limits in force (automatic ones resolved) */
     double legend_x, legend_y, legend_width, legend_height; /* all 0 when there is no legend */
 } im_plot_geometry;
 

@@ -54,11 +54,7 @@
 extern "C" {
 #endif
 
-typedef enum im_render_backend {
-    IM_RENDER_AUTO = 0,
-    IM_RENDER_EGL,
-    IM_RENDER_OSMESA
-} im_render_backend;
+typedef enum im_render_backend { IM_RENDER_AUTO = 0, IM_RENDER_EGL, IM_RENDER_OSMESA } im_render_backend;
 
 /* "auto", "egl" or "osmesa"; IM_EINVAL naming the valid choices otherwise. */
 int im_render_backend_from_name(const char *name, im_render_backend *backend);
@@ -96,11 +92,11 @@ const char *im_render_gl_version(const im_render_context *context);
  * data_y counted from the top. */
 typedef struct im_image {
     int width, height;
-    uint8_t *rgba;          /* owned; free with im_image_release */
-    int data_x, data_y;     /* top-left pixel of the field */
+    uint8_t *rgba;      /* owned; free with im_image_release */
+    int data_x, data_y; /* top-left pixel of the field */
     int pixels_per_patch;
-    int nx, ny;             /* the field's grid */
-    double delta;           /* the field's patch side and unit, for scale bars */
+    int nx, ny;   /* the field's grid */
+    double delta; /* the field's patch side and unit, for scale bars */
     char unit[16];
 } im_image;
 
@@ -148,22 +144,22 @@ double im_contact_largest_tension(const im_field *force);
  * its exact coverage of each pixel across the line (box filter), or aliased at half coverage. Errors: IM_EINVAL for a bad
  * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
  * the message); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
-int im_render_contact_map(im_render_context *context, const im_field *force,
-                          const im_contact_style *style, im_image *image);
+int im_render_contact_map(im_render_context *context, const im_field *force, const im_contact_style *style,
+                          im_image *image);
 
 /* ---- height field ---- */
 typedef struct im_height_style {
-    im_colormap colormap;      /* norm on heights */
-    int pixels_per_patch;      /* 1..64 */
-    int boundary_px;           /* 0..64 */
-    uint8_t line[3];           /* boundary colour */
-    double shading;            /* hill-shading strength: 0 none .. 1 full */
-    double light_azimuth;      /* degrees, clockwise from +y (north): 315 = from the upper left */
-    double light_altitude;     /* degrees above the horizon, (0, 90] */
-    double exaggeration;       /* slopes are multiplied by this for the shading only, > 0 */
-    const im_field *contact;   /* optional (NULL): same grid, patches with value > 0 outlined */
-    uint8_t outline[3];        /* contact outline colour */
-    int outline_px;            /* contact outline width in pixels; 0: automatic (see
+    im_colormap colormap;    /* norm on heights */
+    int pixels_per_patch;    /* 1..64 */
+    int boundary_px;         /* 0..64 */
+    uint8_t line[3];         /* boundary colour */
+    double shading;          /* hill-shading strength: 0 none .. 1 full */
+    double light_azimuth;    /* degrees, clockwise from +y (north): 315 = from the upper left */
+    double light_altitude;   /* degrees above the horizon, (0, 90] */
+    double exaggeration;     /* slopes are multiplied by this for the shading only, > 0 */
+    const im_field *contact; /* optional (NULL): same grid, patches with value > 0 outlined */
+    uint8_t outline[3];      /* contact outline colour */
+    int outline_px;          /* contact outline width in pixels; 0: automatic (see
                                   im_height_outline_width) */
 } im_height_style;
 
@@ -183,8 +179,8 @@ int im_height_outline_width(const im_height_style *style);
  * a line along the edges between patches in contact and patches not in contact, inside the
  * contact patches. NaN heights take the bad colour, unshaded. Errors as im_render_contact_map,
  * and IM_EINVAL when the contact field's grid differs. */
-int im_render_height_map(im_render_context *context, const im_field *height,
-                         const im_height_style *style, im_image *image);
+int im_render_height_map(im_render_context *context, const im_field *height, const im_height_style *style,
+                         im_image *image);
 
 /* ---- 3-D view of the deformed surface ----
  *
@@ -231,41 +227,41 @@ int im_render_height_map(im_render_context *context, const im_field *height,
 typedef enum im_view3d_projection { IM_VIEW3D_PERSPECTIVE = 0, IM_VIEW3D_ORTHOGRAPHIC = 1 } im_view3d_projection;
 
 typedef enum im_view3d_punch {
-    IM_VIEW3D_PUNCH_TRANSLUCENT = 0,  /* blended over the scene with punch_opacity */
-    IM_VIEW3D_PUNCH_OPAQUE = 1,       /* solid: what lies behind it is hidden */
-    IM_VIEW3D_PUNCH_CUTAWAY = 2,      /* solid, its half towards the camera removed */
+    IM_VIEW3D_PUNCH_TRANSLUCENT = 0, /* blended over the scene with punch_opacity */
+    IM_VIEW3D_PUNCH_OPAQUE = 1,      /* solid: what lies behind it is hidden */
+    IM_VIEW3D_PUNCH_CUTAWAY = 2,     /* solid, its half towards the camera removed */
     IM_VIEW3D_PUNCH_NONE = 3
 } im_view3d_punch;
 
 typedef struct im_view3d_camera {
-    double azimuth;            /* degrees, any finite value (see above) */
-    double elevation;          /* degrees above the horizon, [1, 90] */
-    double distance;           /* perspective: eye-target distance in units of max(nx, ny), > 0 */
-    double field_of_view;      /* perspective: vertical, degrees, (1, 120) */
+    double azimuth;       /* degrees, any finite value (see above) */
+    double elevation;     /* degrees above the horizon, [1, 90] */
+    double distance;      /* perspective: eye-target distance in units of max(nx, ny), > 0 */
+    double field_of_view; /* perspective: vertical, degrees, (1, 120) */
     im_view3d_projection projection;
-    double ortho_height;       /* orthographic: world height spanned by the image, in patches; 0 auto */
-    double target_z;           /* height looked at, in world units (exaggerated patches); NAN: the
+    double ortho_height; /* orthographic: world height spanned by the image, in patches; 0 auto */
+    double target_z;     /* height looked at, in world units (exaggerated patches); NAN: the
                                   middle of the surface's drawn range. Frames of a history fix it
                                   so that the camera stays put as the surface deforms. */
 } im_view3d_camera;
 
 typedef struct im_view3d_style {
-    im_colormap colormap;      /* norm on the local compressive force */
-    int width, height;         /* image size in pixels, >= 16 each */
-    int samples;               /* multisampling per pixel: 1 (none), 2, 4 or 8; capped at the GL
+    im_colormap colormap;  /* norm on the local compressive force */
+    int width, height;     /* image size in pixels, >= 16 each */
+    int samples;           /* multisampling per pixel: 1 (none), 2, 4 or 8; capped at the GL
                                   implementation's GL_MAX_SAMPLES */
-    int mesh_side;             /* level of detail: most mesh cells along the longer side, >= 8 */
-    double exaggeration;       /* vertical exaggeration, > 0 (1: true scale) */
-    double shading;            /* [0, 1]: 0 unlit (exact colours everywhere) */
-    double light_azimuth;      /* degrees, clockwise from +y, as the 2-D height map */
-    double light_altitude;     /* degrees above the horizon, (0, 90] */
-    uint8_t surface[3];        /* patches not in contact (force = 0, or no force field) */
-    im_colormap tension;       /* norm on the tension -f of patches with force < 0, as the contact map's */
+    int mesh_side;         /* level of detail: most mesh cells along the longer side, >= 8 */
+    double exaggeration;   /* vertical exaggeration, > 0 (1: true scale) */
+    double shading;        /* [0, 1]: 0 unlit (exact colours everywhere) */
+    double light_azimuth;  /* degrees, clockwise from +y, as the 2-D height map */
+    double light_altitude; /* degrees above the horizon, (0, 90] */
+    uint8_t surface[3];    /* patches not in contact (force = 0, or no force field) */
+    im_colormap tension;   /* norm on the tension -f of patches with force < 0, as the contact map's */
     uint8_t background[3];
     uint8_t punch_colour[3];
     im_view3d_punch punch_mode;
-    double punch_opacity;      /* translucent punch: (0, 1) */
-    double punch_extent;       /* radius to which a cone or sphere is drawn, in patches; 0:
+    double punch_opacity; /* translucent punch: (0, 1) */
+    double punch_extent;  /* radius to which a cone or sphere is drawn, in patches; 0:
                                   automatic (0.3 * min(nx, ny), a sphere at most its radius) */
     im_view3d_camera camera;
 } im_view3d_style;

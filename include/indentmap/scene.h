@@ -57,19 +57,23 @@
 extern "C" {
 #endif
 
-enum { IM_SCENE_MAX_FAMILIES = 64, IM_SCENE_MAX_STEPS = IM_HISTORY_MAX_STEPS, IM_SCENE_PATH = 4096, IM_SCENE_MAX_SWEEP = 16,
-       IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */,
-       IM_SCENE_CONTENTS = 16384 /* im_scene.contents: every key at most once, each line < 200 bytes */ };
+enum {
+    IM_SCENE_MAX_FAMILIES = 64,
+    IM_SCENE_MAX_STEPS = IM_HISTORY_MAX_STEPS,
+    IM_SCENE_PATH = 4096,
+    IM_SCENE_MAX_SWEEP = 16,
+    IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */,
+    IM_SCENE_CONTENTS = 16384 /* im_scene.contents: every key at most once, each line < 200 bytes */
+};
 
-enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2,
-                    IM_ANIMATION_BOTH = 3 };
+enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2, IM_ANIMATION_BOTH = 3 };
 
 /* The figures [output] plots can name ("plots = fig5, fig7"), one bit each of im_scene.plots. */
 enum im_scene_plot {
-    IM_SCENE_PLOT_FIG1 = 1u << 0,    /* fig1: gamma(r/a) of the scene's roughnesses */
-    IM_SCENE_PLOT_FIG2 = 1u << 1,    /* fig2: A/A_cone against rho_c, with the table */
-    IM_SCENE_PLOT_FIG3 = 1u << 2,    /* fig3: the framed family's surface */
-    IM_SCENE_PLOT_FIG5 = 1u << 3,    /* fig5, fig6, fig7: the ensemble's histories */
+    IM_SCENE_PLOT_FIG1 = 1u << 0, /* fig1: gamma(r/a) of the scene's roughnesses */
+    IM_SCENE_PLOT_FIG2 = 1u << 1, /* fig2: A/A_cone against rho_c, with the table */
+    IM_SCENE_PLOT_FIG3 = 1u << 2, /* fig3: the framed family's surface */
+    IM_SCENE_PLOT_FIG5 = 1u << 3, /* fig5, fig6, fig7: the ensemble's histories */
     IM_SCENE_PLOT_FIG6 = 1u << 4,
     IM_SCENE_PLOT_FIG7 = 1u << 5,
     IM_SCENE_PLOT_DENSITY = 1u << 6, /* ring-averaged contact density of the panels */
@@ -85,68 +89,68 @@ const char *im_scene_plot_name(enum im_scene_plot plot);
 enum im_scene_plot im_scene_plot_parse(const char *name);
 
 typedef struct im_scene {
-    char path[IM_SCENE_PATH];        /* the scene file as given */
-    char contents[IM_SCENE_CONTENTS];/* what the scene file set, as parsed: "[section]\nkey = value\n" for
+    char path[IM_SCENE_PATH];         /* the scene file as given */
+    char contents[IM_SCENE_CONTENTS]; /* what the scene file set, as parsed: "[section]\nkey = value\n" for
                                         every key given, in the file's order, values trimmed, comments and
                                         blank lines dropped (the other keys take their defaults). Runs
                                         record it: run.json's scene_contents, PNG and PDF metadata */
-    char from_record[IM_SCENE_PATH]; /* the run.json the scene was rebuilt from (im_scene_load_record),
+    char from_record[IM_SCENE_PATH];  /* the run.json the scene was rebuilt from (im_scene_load_record),
                                         "" for a scene file */
-    int recorded_plans;              /* rebuilt from a record: 1 when its run's FFTW plans were measured
+    int recorded_plans;               /* rebuilt from a record: 1 when its run's FFTW plans were measured
                                         (a wisdom file), 0 when estimated; -1 for a scene file */
     char name[64];
-    char output_dir[IM_SCENE_PATH];  /* default output/NAME */
-    char quality[16];                /* draft | standard (default) | publication: the solver
+    char output_dir[IM_SCENE_PATH]; /* default output/NAME */
+    char quality[16];               /* draft | standard (default) | publication: the solver
                                         tolerance preset of solver.h (1e-5, 1e-6, 1e-9); anything
                                         else is refused. [solver] tol, if given, overrides it.
                                         Both are recorded in OUTPUT/run.json. */
 
-    im_surface_params surface;       /* template of every generated surface */
-    char surface_file[IM_SCENE_PATH];/* `file`: surface files instead of generated families, a
+    im_surface_params surface;        /* template of every generated surface */
+    char surface_file[IM_SCENE_PATH]; /* `file`: surface files instead of generated families, a
                                         comma-separated list ("" if none). The files are the
                                         ensemble of one family: seed_count is their number and
                                         seeds[i] = i picks file i. `slopes` and `seeds` are refused
                                         beside them (their h'rms is measured, each is one surface). */
-    int file_count;                  /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
-    enum im_detrend detrend;         /* for the files (default none) */
-    enum im_row_alignment align;     /* the files' scan-line alignment, before detrend (default none) */
-    int fill;                        /* 1: fill the files' missing points (NaN); 0: refuse them */
-    char channel[64];                /* the files' channel (instrument files read through Gwyddion: an
+    int file_count;                   /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
+    enum im_detrend detrend;          /* for the files (default none) */
+    enum im_row_alignment align;      /* the files' scan-line alignment, before detrend (default none) */
+    int fill;                         /* 1: fill the files' missing points (NaN); 0: refuse them */
+    char channel[64];                 /* the files' channel (instrument files read through Gwyddion: an
                                         index or a title); "": the first holding heights */
-    int resample_square;             /* 1: resample files whose pixels are not square onto square ones
+    int resample_square;              /* 1: resample files whose pixels are not square onto square ones
                                         (formats.h: im_surface_read_options.resample_square); 0: refuse them */
-    enum im_npy_order npy_order;     /* `npy_order`: which index of the .npy files is x (formats.h; sidecar, the
+    enum im_npy_order npy_order;      /* `npy_order`: which index of the .npy files is x (formats.h; sidecar, the
                                         default: as each file's sidecar states, else yx) */
-    char file_unit[16];              /* the files' length unit ("": lengths in delta), set with them */
-    double file_slopes[IM_SCENE_MAX_FAMILIES]; /* each file's h'rms by forward differences of the
+    char file_unit[16];               /* the files' length unit ("": lengths in delta), set with them */
+    double file_slopes[IM_SCENE_MAX_FAMILIES];              /* each file's h'rms by forward differences of the
                                         surface as solved; measured by im_scene_run, which sets
                                         slopes[0] to their root mean square (NaN until then) */
     double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* each file's |delta_x - delta_y| / their
                                         mean as read (formats.h: spacing_difference), measured with them */
-    int file_resampled[IM_SCENE_MAX_FAMILIES]; /* 1 where that file was resampled onto square pixels */
-    double slopes[IM_SCENE_MAX_FAMILIES]; /* h'rms of each family; 0 means smooth */
+    int file_resampled[IM_SCENE_MAX_FAMILIES];              /* 1 where that file was resampled onto square pixels */
+    double slopes[IM_SCENE_MAX_FAMILIES];                   /* h'rms of each family; 0 means smooth */
     int family_count;
     uint64_t seeds[IM_SCENE_MAX_FAMILIES];
     int seed_count;
 
-    enum im_punch_kind punch;        /* cone, sphere, flat, profile (indenter.h: im_punch_parse reads shape) */
-    double alpha_degrees;            /* cone semi-opening angle */
+    enum im_punch_kind punch; /* cone, sphere, flat, profile (indenter.h: im_punch_parse reads shape) */
+    double alpha_degrees;     /* cone semi-opening angle */
     /* Sweeps (docs/scenes.md, "Sweeps"): [punch] alpha, [surfaces] hurst and lambda_s may be lists.
      * Each scalar above holds its list's first value; a count of 0 or 1 is no sweep. A scene with a
      * list of two or more values runs every combination (alpha x hurst x lambda_s, each with all
      * slopes x seeds) as a sweep point of its own in OUTPUT/alpha_A_hurst_H_lambda_s_L/; at most
      * IM_SCENE_MAX_SWEEP_POINTS combinations. */
-    double alphas[IM_SCENE_MAX_SWEEP];   /* degrees */
+    double alphas[IM_SCENE_MAX_SWEEP]; /* degrees */
     int alpha_count;
     double hursts[IM_SCENE_MAX_SWEEP];
     int hurst_count;
     double lambda_ss[IM_SCENE_MAX_SWEEP]; /* in delta */
     int lambda_s_count;
-    double radius;                   /* sphere radius or flat punch radius, in delta */
-    char profile_file[IM_SCENE_PATH];/* [punch] profile: the file of shape = profile (im_profile_read:
+    double radius;                    /* sphere radius or flat punch radius, in delta */
+    char profile_file[IM_SCENE_PATH]; /* [punch] profile: the file of shape = profile (im_profile_read:
                                         an (r, z) table, or a .npy 2-D field on the scene's grid),
                                         relative to the scene file's folder */
-    const im_profile *profile;       /* that file read: set by im_scene_run on its copy while it runs
+    const im_profile *profile;        /* that file read: set by im_scene_run on its copy while it runs
                                         (the punch borrows it; the copy's profile_file then holds the
                                         path resolved, IM_EINVAL naming [punch] profile when it would
                                         not fit in IM_SCENE_PATH); NULL otherwise */
@@ -161,8 +165,8 @@ typedef struct im_scene {
      * taken at every step of each family's first surface instead (see im_scene_run). Part of every
      * result's key. */
     int periodic;
-    double modulus;                  /* composite modulus E* */
-    double hardness;                 /* [material] hardness: pressure cap H_p (solver.h), 0: none */
+    double modulus;  /* composite modulus E* */
+    double hardness; /* [material] hardness: pressure cap H_p (solver.h), 0: none */
 
     /* [adhesion] (docs/scenes.md, "Adhesion"; solver.h, "Adhesion"): work w > 0 and range delta_c > 0
      * together, 0 for none; law: enum im_adhesion_law (maugis-dugdale, exponential). Every history is then solved with it
@@ -172,37 +176,37 @@ typedef struct im_scene {
     double adhesion_work, adhesion_range;
     int adhesion_law;
 
-    enum im_control control;         /* displacement, load or (periodic only) mean gap */
-    double load_star;                /* N* at which contact panels are drawn (0: none) */
-    double steps[IM_SCENE_MAX_STEPS];/* approaches or loads of a history, ascending (may be empty):
+    enum im_control control;          /* displacement, load or (periodic only) mean gap */
+    double load_star;                 /* N* at which contact panels are drawn (0: none) */
+    double steps[IM_SCENE_MAX_STEPS]; /* approaches or loads of a history, ascending (may be empty):
                                         first:last:count or a list, parsed as `indent --approach`,
                                         and then required to increase */
     int step_count;
 
-    double tol;                      /* solver tolerance (default: the quality preset's; the preset
+    double tol; /* solver tolerance (default: the quality preset's; the preset
                                         IM_QUALITY_DEFAULT of solver.h, as for `indent`) */
-    int device;                      /* [solver] device = cpu|gpu|auto: the solver's engine, IM_DEVICE_*
+    int device; /* [solver] device = cpu|gpu|auto: the solver's engine, IM_DEVICE_*
                                         of solver.h (default cpu) */
 
     int contact_panels, frames, table;
-    int distributions;               /* 1: gap and patch-size distributions at load_star of each
+    int distributions;                 /* 1: gap and patch-size distributions at load_star of each
                                         family's first surface (distributions/, docs/scenes.md) */
-    int frames3d;                    /* with frames: a 3-D view of every step too (frames3d.c) */
-    int page_embed;                  /* 1: index.html carries its images as data URIs (viewer.h) */
-    im_colormap_id colormap;         /* default magma, as render, indent --frames and Python */
-    int log_norm;                    /* 1 (default): forces on a log norm spanning two decades below the
+    int frames3d;                      /* with frames: a 3-D view of every step too (frames3d.c) */
+    int page_embed;                    /* 1: index.html carries its images as data URIs (viewer.h) */
+    im_colormap_id colormap;           /* default magma, as render, indent --frames and Python */
+    int log_norm;                      /* 1 (default): forces on a log norm spanning two decades below the
                                         largest, smaller forces in the under colour; 0: linear from 0 */
-    double frames_slope;             /* the family whose history is framed; < 0: the roughest */
-    int frame_count;                 /* steps of the framed history (default 24) */
-    double frame_rate;               /* frames per second of contact/view3d .gif and .mp4 (default 4) */
-    int frame_scale;                 /* pixels per patch of the contact and height frames (default 1) */
+    double frames_slope;               /* the family whose history is framed; < 0: the roughest */
+    int frame_count;                   /* steps of the framed history (default 24) */
+    double frame_rate;                 /* frames per second of contact/view3d .gif and .mp4 (default 4) */
+    int frame_scale;                   /* pixels per patch of the contact and height frames (default 1) */
     int frame3d_width, frame3d_height; /* the 3-D frames' view in pixels (default 960 x 540) */
     enum im_animation animation;
-    unsigned plots;                  /* bit set of enum im_scene_plot, 0 for none */
-    const char *wisdom_path;         /* FFTW wisdom file of every solve (solver.h: wisdom_path), not
+    unsigned plots;                /* bit set of enum im_scene_plot, 0 for none */
+    const char *wisdom_path;       /* FFTW wisdom file of every solve (solver.h: wisdom_path), not
                                         from the scene file: NULL (im_scene_load's default) for none;
                                         the caller sets it after loading. Not owned. */
-    struct scene_outputs *outputs;   /* internal: what the run makes in output_dir, set by
+    struct scene_outputs *outputs; /* internal: what the run makes in output_dir, set by
                                         im_scene_run on its copy while it runs; NULL otherwise */
 } im_scene;
 
@@ -227,13 +231,13 @@ int im_scene_load_record(const char *record, im_scene *scene);
 /* How im_scene_run runs. The library prints nothing: what the run has to say goes to the
  * callbacks (status.h), and nowhere when they are NULL (the default of a zeroed struct). */
 typedef struct im_scene_run_options {
-    int resume;          /* 1: reuse results already on disk under the output folder */
-    int quiet;           /* 1: no IM_LOG_INFO lines (the stage lines, "table: 51 surfaces ..."); warnings
+    int resume;         /* 1: reuse results already on disk under the output folder */
+    int quiet;          /* 1: no IM_LOG_INFO lines (the stage lines, "table: 51 surfaces ..."); warnings
                             (a kept result stale or damaged and solved again, a stale lock taken
                             over) are logged in any case, and progress calls are made as without it
                             (a caller that wants none gives no progress callback) */
-    int backend;         /* im_render_backend of render.h (0: auto) */
-    int no_space_check;  /* 1: skip the check of the free disk against the outputs' estimated size
+    int backend;        /* im_render_backend of render.h (0: auto) */
+    int no_space_check; /* 1: skip the check of the free disk against the outputs' estimated size
                             (an upper bound; a full disk still stops the run, keeping what it finished) */
     /* Interruption (may be NULL): a signal handler stores the signal's number here. The run
      * checks it between solver steps and between surfaces (a solve itself is never cut short),

@@ -176,27 +176,27 @@ extern "C" {
 #endif
 
 typedef struct im_solver_options {
-    double e_star;          /* composite modulus E* (default 1) */
-    double tol;             /* stopping tolerance on the relative residual (default 1e-6,
+    double e_star;           /* composite modulus E* (default 1) */
+    double tol;              /* stopping tolerance on the relative residual (default 1e-6,
                                IM_QUALITY_DEFAULT) */
-    int max_iterations;     /* iteration cap per solve (default 10000) */
-    int fft_measure;        /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
+    int max_iterations;      /* iteration cap per solve (default 10000) */
+    int fft_measure;         /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
                                wisdom file is in use, which implies FFTW_MEASURE */
-    const char *wisdom_path;/* FFTW wisdom file imported before planning and exported (merged with
+    const char *wisdom_path; /* FFTW wisdom file imported before planning and exported (merged with
                                what the file holds then, replaced atomically) after it; NULL
                                (default) or "": no wisdom. Not owned. The library reads no
                                environment: the command line resolves its default (docs/solver.md) */
-    int crop;               /* 1 (default): solve on the window that can touch; 0: whole surface */
-    int window_margin;      /* patches added around the window on each side (default 4) */
-    int periodic;           /* 0 (default): the half-space, DC-FFT on the zero-padded grid; 1: a
+    int crop;                /* 1 (default): solve on the window that can touch; 0: whole surface */
+    int window_margin;       /* patches added around the window on each side (default 4) */
+    int periodic;            /* 0 (default): the half-space, DC-FFT on the zero-padded grid; 1: a
                                periodic half-space (the grid repeats in x and y), for nominally flat
                                contact: no padding, the kernel's spectrum 2 / (E* |q|) (see
                                "Periodic mode" above); load control only; im_flat_contact_* set it */
-    double hardness;        /* 0 (default): none; H_p > 0: perfect plasticity at the pressure cap
+    double hardness;         /* 0 (default): none; H_p > 0: perfect plasticity at the pressure cap
                                H_p (units of E*'s stress), see "Hardness" above */
-    int cascade;            /* 1 (default): cold starts from the solution on coarser grids (see
+    int cascade;             /* 1 (default): cold starts from the solution on coarser grids (see
                                "Cascade start" above); 0: from the local (Winkler) guess */
-    int precondition;       /* 1 (default): preconditioned CG steps on the contact set (see
+    int precondition;        /* 1 (default): preconditioned CG steps on the contact set (see
                                "Preconditioning" above); 0: plain Polonsky-Keer */
     /* Cancellation (NULL, the default: none). A flag the caller owns, typically set by a signal handler
      * to the signal's number, that must outlive every solve of the plans made with these options (a
@@ -212,14 +212,14 @@ typedef struct im_solver_options {
      * IM_EUNSUPPORTED without any, or in a build without IM_GPU), IM_DEVICE_AUTO (a hardware GPU when
      * there is one, else the CPU engine: a software Vulkan device is never chosen for speed). */
     int device;
-    int gpu_validation;     /* 1: run the GPU engine under the Vulkan validation layers (tests, debugging);
+    int gpu_validation; /* 1: run the GPU engine under the Vulkan validation layers (tests, debugging);
                                IM_EUNSUPPORTED when they are not installed */
     /* Adhesion (see "Adhesion" above; 0, the default: none). It acts in an indentation only: a plan
      * made with adhesion_work > 0 is refused (a single solve is the repulsive problem). */
-    double adhesion_work;   /* work of adhesion w (E*'s stress times length), the Maugis-Dugdale law's */
-    double adhesion_range;  /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls;
+    double adhesion_work;  /* work of adhesion w (E*'s stress times length), the Maugis-Dugdale law's */
+    double adhesion_range; /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls;
                                the exponential law's decay length rho */
-    int adhesion_law;       /* enum im_adhesion_law (default IM_ADHESION_MAUGIS_DUGDALE) */
+    int adhesion_law;      /* enum im_adhesion_law (default IM_ADHESION_MAUGIS_DUGDALE) */
 } im_solver_options;
 
 /* The cohesive laws of "Adhesion" above. */
@@ -282,8 +282,7 @@ typedef struct im_solver_plan im_solver_plan;
 /* Plans an nx x ny problem (FFTW plans on the 2nx x 2ny padded grid, the kernel and its spectrum,
  * work buffers) with the OpenMP thread count in force. Thread-safe (the planner lock above).
  * IM_ENOMEM when im_solver_plan_bytes exceeds the memory available. */
-int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
-                          im_solver_plan **out);
+int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **out);
 void im_solver_plan_free(im_solver_plan *plan);
 
 /* Memory a plan takes, in bytes, with its cascade levels (the default options; less without). */
@@ -320,17 +319,17 @@ int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_fi
 enum im_control { IM_CONTROL_DISPLACEMENT = 0, IM_CONTROL_LOAD = 1, IM_CONTROL_MEAN_GAP = 2 };
 
 typedef struct im_solve_result {
-    double approach;        /* w (imposed, or found under load control) */
-    double load;            /* N = delta^2 sum p */
-    long contact_patches;   /* n_p: patches with p > 0 */
-    double mean_pressure;   /* N / (n_p delta^2), 0 without contact */
+    double approach;      /* w (imposed, or found under load control) */
+    double load;          /* N = delta^2 sum p */
+    long contact_patches; /* n_p: patches with p > 0 */
+    double mean_pressure; /* N / (n_p delta^2), 0 without contact */
     double max_pressure;
-    int iterations;         /* CG iterations (one search-direction convolution each) */
-    int convolutions;       /* all convolutions with K, including the exact recomputations (not
+    int iterations;        /* CG iterations (one search-direction convolution each) */
+    int convolutions;      /* all convolutions with K, including the exact recomputations (not
                                the preconditioner's unpadded transforms) */
-    double residual;        /* the stopping rule's value at exit */
-    double seconds;         /* wall time of the solve */
-    int coarse_iterations;  /* CG iterations on the cascade's coarser grids (all levels; one on the
+    double residual;       /* the stopping rule's value at exit */
+    double seconds;        /* wall time of the solve */
+    int coarse_iterations; /* CG iterations on the cascade's coarser grids (all levels; one on the
                                grid 2^k times coarser costs ~4^-k of a fine one); 0 without cascade */
 } im_solve_result;
 
@@ -345,14 +344,14 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
 
 /* ---- nominally flat contact: a periodic surface under a rigid flat ---- */
 typedef struct im_flat_result {
-    double mean_pressure;      /* the imposed nominal mean pressure p_m, units of E* */
-    double area_fraction;      /* A / A0 = n_p / (nx ny) */
-    long contact_patches;      /* n_p */
-    double contact_pressure;   /* mean pressure over the contact, p_m / (A / A0); 0 without contact */
+    double mean_pressure;    /* the imposed nominal mean pressure p_m, units of E* */
+    double area_fraction;    /* A / A0 = n_p / (nx ny) */
+    long contact_patches;    /* n_p */
+    double contact_pressure; /* mean pressure over the contact, p_m / (A / A0); 0 without contact */
     double max_pressure;
-    double approach;           /* mean of u + g0 over the contact, with mean u = 0 (the imposed one
+    double approach; /* mean of u + g0 over the contact, with mean u = 0 (the imposed one
                                   under mean-gap control) */
-    double mean_gap;           /* the mean gap over the cell, mean g0 - approach (mean u = 0) */
+    double mean_gap; /* the mean gap over the cell, mean g0 - approach (mean u = 0) */
     int iterations;
     double residual;
 } im_flat_result;
@@ -383,22 +382,22 @@ const double *im_flat_contact_pressure(const im_flat_contact *run);
 
 /* ---- indentation histories on a surface ---- */
 typedef struct im_window {
-    int x0, y0, nx, ny;     /* the solved sub-grid of the surface: [x0, x0 + nx) x [y0, y0 + ny) */
+    int x0, y0, nx, ny; /* the solved sub-grid of the surface: [x0, x0 + nx) x [y0, y0 + ny) */
 } im_window;
 
 typedef struct im_step_result {
     double approach, load;
-    double load_star;       /* N* = A(N) / delta^2 (the paper's 2N / (delta^2 E* cot alpha)) */
+    double load_star; /* N* = A(N) / delta^2 (the paper's 2N / (delta^2 E* cot alpha)) */
     long contact_patches;
-    double area_ratio;      /* n_p delta^2 / A(N), A from im_indenter_area_for_load; NaN at N = 0 */
+    double area_ratio; /* n_p delta^2 / A(N), A from im_indenter_area_for_load; NaN at N = 0 */
     double mean_pressure, max_pressure;
     int iterations, convolutions;
     double residual, seconds;
-    int coarse_iterations;  /* as im_solve_result's */
+    int coarse_iterations; /* as im_solve_result's */
     /* Plastic memory (with a hardness; 0 without): */
-    long yielding_patches;  /* patches at the cap in this step (they flowed, or would under more load) */
-    double plastic_depth;   /* the largest plastic depth so far (units of delta) */
-    double plastic_work;    /* energy dissipated so far: H_p delta^2 times the summed depth increments
+    long yielding_patches;    /* patches at the cap in this step (they flowed, or would under more load) */
+    double plastic_depth;     /* the largest plastic depth so far (units of delta) */
+    double plastic_work;      /* energy dissipated so far: H_p delta^2 times the summed depth increments
                                (units of E*'s stress times delta^3) */
     double residual_approach; /* min of g0 + plastic depth over the window: the approach at which the
                                withdrawn punch would touch the impression (0 without plastic flow) */
@@ -407,7 +406,7 @@ typedef struct im_step_result {
     long adhesive_patches;  /* patches whose net pressure is tensile (p < 0) */
     long repulsive_patches; /* patches whose net pressure is compressive (p > 0) */
     /* A periodic cell (NaN on the half-space): */
-    double mean_gap;        /* the mean of max(g, 0) over the cell (Persson's u-bar; mean u = 0): a yielded
+    double mean_gap; /* the mean of max(g, 0) over the cell (Persson's u-bar; mean u = 0): a yielded
                                patch's overlap is its plastic flattening and counts 0 */
 } im_step_result;
 
@@ -473,8 +472,7 @@ const im_solver_plan *im_indentation_plan(const im_indentation *run);
  * Outside the window the force is zero, u is reported as 0 (not computed: the true u there is
  * positive) and the gap is the undeformed g0 - w, a lower bound of the true gap (> 0 there).
  * Patches a flat punch can never touch have gap +INFINITY. */
-int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap,
-                          im_field **displacement);
+int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement);
 
 /* im_indentation_fields with the displacement on the whole grid (im_displacement_full_with, on a
  * plan the run makes at the first call and keeps) and the gap g = g0 - w + u corrected with it:

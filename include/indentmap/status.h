@@ -33,13 +33,13 @@ extern "C" {
 
 enum im_status {
     IM_OK = 0,
-    IM_EINVAL,    /* a parameter is out of range or malformed */
-    IM_EIO,       /* a file could not be opened, read or written */
-    IM_EFORMAT,   /* a file's contents do not follow its format */
-    IM_ENOMEM,    /* an allocation failed, or would exceed the memory available */
-    IM_ENUMERIC,  /* NaN or Inf where finite numbers are required, or a numeric failure */
-    IM_ENOCONV,   /* an iteration did not converge within its cap */
-    IM_EEDGE,     /* contact reached the edge of the modelled surface */
+    IM_EINVAL,       /* a parameter is out of range or malformed */
+    IM_EIO,          /* a file could not be opened, read or written */
+    IM_EFORMAT,      /* a file's contents do not follow its format */
+    IM_ENOMEM,       /* an allocation failed, or would exceed the memory available */
+    IM_ENUMERIC,     /* NaN or Inf where finite numbers are required, or a numeric failure */
+    IM_ENOCONV,      /* an iteration did not converge within its cap */
+    IM_EEDGE,        /* contact reached the edge of the modelled surface */
     IM_EUNSUPPORTED, /* a feature is not available on this machine (e.g. no GL context) */
     IM_EINTERRUPTED  /* the run was interrupted by a signal */
 };
@@ -73,8 +73,8 @@ int im_stop_requested(void);
  * the pointer given beside the callback. Where no callback is given (NULL), messages are dropped.
  * The indentmap program prints them on stderr as "indentmap: MESSAGE". */
 typedef enum im_log_level {
-    IM_LOG_INFO = 0,    /* progress of a stage ("table: 51 surfaces: 51 solved, ...") */
-    IM_LOG_WARNING = 1  /* a notice the user should see even when quiet: a kept result is stale
+    IM_LOG_INFO = 0,   /* progress of a stage ("table: 51 surfaces: 51 solved, ...") */
+    IM_LOG_WARNING = 1 /* a notice the user should see even when quiet: a kept result is stale
                            or damaged and solved again, a stale lock was taken over */
 } im_log_level;
 typedef void (*im_log_fn)(void *user, im_log_level level, const char *message);

@@ -48,16 +48,16 @@ enum im_slope_definition { IM_SLOPE_SPECTRAL = 0, IM_SLOPE_FINITE_DIFFERENCE = 1
 enum im_surface_target { IM_TARGET_SLOPE = 0, IM_TARGET_HEIGHT = 1 };
 
 typedef struct im_surface_params {
-    int nx, ny;            /* grid size (the paper: 512 x 512) */
-    double delta;          /* patch side (1: lengths in delta) */
-    double hurst;          /* Hurst exponent H in (0, 1) (the paper: 0.8) */
-    double lambda_s;       /* short-wavelength cutoff 2 pi / q_s, in units of delta (paper: 4) */
-    double lambda_r;       /* roll-off wavelength 2 pi / q_r, in units of delta (paper: 512) */
-    double lambda_0;       /* longest wavelength 2 pi / q_0; <= lambda_r (default 0) means no plateau,
+    int nx, ny;                    /* grid size (the paper: 512 x 512) */
+    double delta;                  /* patch side (1: lengths in delta) */
+    double hurst;                  /* Hurst exponent H in (0, 1) (the paper: 0.8) */
+    double lambda_s;               /* short-wavelength cutoff 2 pi / q_s, in units of delta (paper: 4) */
+    double lambda_r;               /* roll-off wavelength 2 pi / q_r, in units of delta (paper: 512) */
+    double lambda_0;               /* longest wavelength 2 pi / q_0; <= lambda_r (default 0) means no plateau,
                               whatever lambda_r is set to */
-    enum im_surface_target target;  /* which of the two below is imposed */
-    double slope_rms;      /* target h'rms (dimensionless) */
-    double height_rms;     /* target h_rms, in units of delta */
+    enum im_surface_target target; /* which of the two below is imposed */
+    double slope_rms;              /* target h'rms (dimensionless) */
+    double height_rms;             /* target h_rms, in units of delta */
     enum im_slope_definition slope_definition; /* how the target h'rms is measured */
     uint64_t seed;
 } im_surface_params;
@@ -78,19 +78,18 @@ double im_surface_generate_bytes(int nx, int ny);
 
 /* Slope of a surface by either definition (see the top of this header). IM_EINVAL for another
  * definition. */
-int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition,
-                         double *slope_rms);
+int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition, double *slope_rms);
 
 /* Summary statistics of a surface. Moments m_n are those of a profile along x and y (averaged),
  * computed spectrally, so that h'rms^2 = 2 m2 for an isotropic surface. */
 typedef struct im_surface_stats {
-    double mean;              /* mean height */
-    double height_rms;        /* sqrt(<(h - mean)^2>) */
+    double mean;       /* mean height */
+    double height_rms; /* sqrt(<(h - mean)^2>) */
     double slope_rms_spectral;
-    double slope_rms_fd;      /* forward differences, see above */
-    double curvature_rms;     /* rms of the mean curvature (h_xx + h_yy) / 2, spectral */
-    double m0, m2, m4;        /* spectral moments of profiles: m2 = <h_x^2>, m4 = <h_xx^2> */
-    double nayak;             /* Nayak's parameter m0 m4 / m2^2 */
+    double slope_rms_fd;  /* forward differences, see above */
+    double curvature_rms; /* rms of the mean curvature (h_xx + h_yy) / 2, spectral */
+    double m0, m2, m4;    /* spectral moments of profiles: m2 = <h_x^2>, m4 = <h_xx^2> */
+    double nayak;         /* Nayak's parameter m0 m4 / m2^2 */
     double height_min, height_max;
 } im_surface_stats;
 
@@ -125,15 +124,14 @@ typedef struct im_histogram {
 } im_histogram;
 
 enum im_histogram_quantity {
-    IM_HIST_HEIGHT,      /* h - mean */
-    IM_HIST_SLOPE,       /* both forward-difference slope components, pooled */
-    IM_HIST_CURVATURE    /* five-point mean curvature (h_xx + h_yy) / 2 at interior points */
+    IM_HIST_HEIGHT,   /* h - mean */
+    IM_HIST_SLOPE,    /* both forward-difference slope components, pooled */
+    IM_HIST_CURVATURE /* five-point mean curvature (h_xx + h_yy) / 2 at interior points */
 };
 
 /* Histogram of a quantity over [mean - 5 sd, mean + 5 sd] of that quantity: a new *out
  * (im_histogram_free). IM_EINVAL for bins outside [1, 1000000] or an unknown quantity, IM_ENOMEM. */
-int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins,
-                         im_histogram **out);
+int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins, im_histogram **out);
 void im_histogram_free(im_histogram *histogram);
 
 /* JSON sidecar of a surface file, written atomically beside it: the generation parameters and seed
@@ -179,8 +177,8 @@ int im_surface_resample_square(const im_field *field, double delta_x, double del
 
 enum im_detrend {
     IM_DETREND_NONE = 0,
-    IM_DETREND_PLANE = 1,     /* least-squares plane a + b x + c y (mean and tilt) */
-    IM_DETREND_CURVATURE = 2  /* least-squares quadric: the plane and x^2, xy, y^2 (bow) */
+    IM_DETREND_PLANE = 1,    /* least-squares plane a + b x + c y (mean and tilt) */
+    IM_DETREND_CURVATURE = 2 /* least-squares quadric: the plane and x^2, xy, y^2 (bow) */
 };
 
 /* Subtracts the least-squares polynomial in place. IM_ENUMERIC for a non-finite height. */
@@ -197,7 +195,7 @@ int im_surface_align_rows(im_field *surface, enum im_row_alignment how);
 enum im_taper_kind { IM_TAPER_NONE = 0, IM_TAPER_HANN = 1, IM_TAPER_TUKEY = 2 };
 typedef struct im_taper {
     enum im_taper_kind kind;
-    double alpha;             /* Tukey: the tapered fraction of the length, alpha / 2 at each end, in
+    double alpha; /* Tukey: the tapered fraction of the length, alpha / 2 at each end, in
                                  [0, 1] (1 is Hann, 0 no taper) */
 } im_taper;
 

@@ -58,9 +58,9 @@ typedef enum im_theory_normalisation {
 
 /* The rough interface: what the erf law needs to know about the surface and the materials. */
 typedef struct im_theory_interface {
-    double slope_rms;  /* h'rms >= 0; 0 is a smooth surface (full contact wherever p > 0) */
-    double e_star;     /* plane-strain composite modulus E* > 0 (1: stresses in units of E*) */
-    double k;          /* eq. (2)'s constant, > 0 */
+    double slope_rms; /* h'rms >= 0; 0 is a smooth surface (full contact wherever p > 0) */
+    double e_star;    /* plane-strain composite modulus E* > 0 (1: stresses in units of E*) */
+    double k;         /* eq. (2)'s constant, > 0 */
     im_theory_normalisation normalisation;
 } im_theory_interface;
 
@@ -196,19 +196,18 @@ int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *rat
 /* The smooth mean pressure p_m = N / A_smooth of a punch at load N > 0: the cone's p_m,c (alpha in
  * degrees in `size`), N / A_Hertz for a sphere of radius `size`, N / (pi a^2) for a flat punch of
  * radius a = `size` (E* in e_star; lengths and loads in consistent units). */
-int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star,
-                                  double *p_mean);
+int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star, double *p_mean);
 
 /* ---- Measuring k (eq. 2) on nominally flat contact ----
  * Eq. (1) with p_rough = h'rms E* / k reads A/A0 = erf(sqrt(pi)/2 k x) in the dimensionless mean
  * pressure x = p_m / (h'rms E*), linear (A/A0 ~ k x) for small x. */
 
 typedef struct im_theory_k_fit {
-    double k;             /* least-squares k of A/A0 = erf(sqrt(pi)/2 k x) over all points */
-    double k_error;       /* its standard error, sqrt(RSS / (n - 1) / sum J^2), J = dA/dk; 0 for one point */
-    double k_linear;      /* least-squares slope of A/A0 = k x through the origin, over A/A0 <= 0.5 */
-    int linear_points;    /* how many points that slope used (0: none, k_linear NaN) */
-    double rms_residual;  /* rms of A/A0 - erf(...) at the fitted k */
+    double k;            /* least-squares k of A/A0 = erf(sqrt(pi)/2 k x) over all points */
+    double k_error;      /* its standard error, sqrt(RSS / (n - 1) / sum J^2), J = dA/dk; 0 for one point */
+    double k_linear;     /* least-squares slope of A/A0 = k x through the origin, over A/A0 <= 0.5 */
+    int linear_points;   /* how many points that slope used (0: none, k_linear NaN) */
+    double rms_residual; /* rms of A/A0 - erf(...) at the fitted k */
 } im_theory_k_fit;
 
 /* Fits k to count >= 1 points (x_i > 0 finite, 0 <= A_i <= 1) by Gauss-Newton from the linear
@@ -238,8 +237,8 @@ typedef struct im_theory_step {
 /* The theory of a step for punch (indenter.h; lengths in its units, loads in E* length^2) on the
  * rough interface (its E*, k and normalisation). w, N >= 0. IM_EINVAL for a bad punch, interface,
  * w or N; a quadrature's status otherwise. */
-int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach,
-                           double load, im_theory_step *out);
+int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach, double load,
+                           im_theory_step *out);
 
 /* ---- Wavy surfaces in the periodic half-space (docs/theory.md, "Wavy surfaces") ----
  * Closed forms for a rigid flat pressed on one period L of an elastic wavy surface at nominal mean
@@ -313,8 +312,7 @@ int im_theory_md_sphere_separation(const im_theory_adhesion *law, double radius,
 
 /* The load at approach delta on the branch that displacement control follows (the contact radius above
  * the separation's); NaN below the separation's approach (separated). */
-int im_theory_md_sphere_load_at_approach(const im_theory_adhesion *law, double radius, double approach,
-                                         double *load);
+int im_theory_md_sphere_load_at_approach(const im_theory_adhesion *law, double radius, double approach, double *load);
 
 /* Kendall (1971), the adhesive flat punch of radius a > 0 (the JKR limit: law->range unused): in full
  * contact N = 2 E* a delta (Boussinesq), until the edge crack's energy release rate

@@ -40,7 +40,7 @@ extern "C" {
 int im_viewer_write(const char *dir, const char *title);
 
 typedef struct im_viewer_options {
-    int embed_images;   /* 1: images as data URIs, the page one file; 0 (default): relative paths */
+    int embed_images; /* 1: images as data URIs, the page one file; 0 (default): relative paths */
 } im_viewer_options;
 
 /* The same with options. Also IM_EIO naming an image that cannot be read whole to embed (or is over

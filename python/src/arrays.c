@@ -12,8 +12,10 @@ PyArrayObject *py_heights_array(PyObject *obj, const char *what)
     if (!array) {
         PyObject *type, *value, *traceback;
         PyErr_Fetch(&type, &value, &traceback);
-        PyErr_Format(PyExc_TypeError, "%s: expected a 2-D array of real numbers (float64, or castable to it "
-                     "without loss: bool, integers, float32), got %R", what, value ? value : Py_None);
+        PyErr_Format(PyExc_TypeError,
+                     "%s: expected a 2-D array of real numbers (float64, or castable to it "
+                     "without loss: bool, integers, float32), got %R",
+                     what, value ? value : Py_None);
         Py_XDECREF(type);
         Py_XDECREF(value);
         Py_XDECREF(traceback);
@@ -35,10 +37,7 @@ im_field py_field_view(PyArrayObject *array, double delta)
     return (im_field){.nx = (int)shape[1], .ny = (int)shape[0], .delta = delta, .data = PyArray_DATA(array)};
 }
 
-static void free_field_capsule(PyObject *capsule)
-{
-    im_field_free(PyCapsule_GetPointer(capsule, "indentmap.field"));
-}
+static void free_field_capsule(PyObject *capsule) { im_field_free(PyCapsule_GetPointer(capsule, "indentmap.field")); }
 
 PyObject *py_array_from_field(im_field *field)
 {

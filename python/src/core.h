@@ -46,8 +46,8 @@ PyObject *py_array_from_doubles(const double *values, npy_intp n);
  * KeyboardInterrupt, raised in the callback, stops the outer one. py_interrupt_init (module import)
  * finds the main thread. */
 typedef struct py_interrupt {
-    int armed;                          /* this call installed the handler (the outermost call) */
-    volatile sig_atomic_t *outer_flag;  /* a call made from a callback of an armed call: the outer
+    int armed;                         /* this call installed the handler (the outermost call) */
+    volatile sig_atomic_t *outer_flag; /* a call made from a callback of an armed call: the outer
                                            call's flag, armed again when this one returns */
 } py_interrupt;
 int py_interrupt_init(void);

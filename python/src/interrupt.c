@@ -12,7 +12,7 @@
 #include <string.h>
 
 static unsigned long main_thread;
-static struct sigaction python_handler;      /* the handler a call replaced (valid while armed) */
+static struct sigaction python_handler; /* the handler a call replaced (valid while armed) */
 static volatile sig_atomic_t *volatile armed_flag;
 
 static void on_interrupt(int signal_number, siginfo_t *info, void *context)

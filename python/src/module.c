@@ -15,9 +15,9 @@ static PyObject *status_errors[IM_EINTERRUPTED + 1];
 
 typedef struct error_kind {
     int status;
-    const char *name;     /* indentmap.NAME */
-    PyObject **builtin;   /* the built-in exception it also derives from, or NULL */
-    const char *doc;      /* what it means, for help() and docs/python-reference.md */
+    const char *name;   /* indentmap.NAME */
+    PyObject **builtin; /* the built-in exception it also derives from, or NULL */
+    const char *doc;    /* what it means, for help() and docs/python-reference.md */
 } error_kind;
 
 static const error_kind error_kinds[] = {
@@ -69,10 +69,11 @@ PyObject *py_raise_status(int status)
 
 static int add_errors(PyObject *module)
 {
-    base_error = PyErr_NewExceptionWithDoc("indentmap.Error",
-                                           "An error reported by libindentmap: str() is its message, .status the library's status code.\n\n"
-                                           "Example: ``try: im.read(path) except im.Error as e: print(e.status, e)``.",
-                                           NULL, NULL);
+    base_error = PyErr_NewExceptionWithDoc(
+        "indentmap.Error",
+        "An error reported by libindentmap: str() is its message, .status the library's status code.\n\n"
+        "Example: ``try: im.read(path) except im.Error as e: print(e.status, e)``.",
+        NULL, NULL);
     if (!base_error || PyModule_AddObjectRef(module, "Error", base_error) < 0)
         return -1;
     for (size_t i = 0; i < sizeof error_kinds / sizeof *error_kinds; ++i) {
@@ -91,10 +92,7 @@ static int add_errors(PyObject *module)
     return 0;
 }
 
-static int add_methods(PyObject *module, PyMethodDef *methods)
-{
-    return PyModule_AddFunctions(module, methods);
-}
+static int add_methods(PyObject *module, PyMethodDef *methods) { return PyModule_AddFunctions(module, methods); }
 
 /* memory_limit([bytes]) -> the cap in bytes (0: none); with an argument, sets it first (0 removes it). */
 static PyObject *memory_limit(PyObject *self, PyObject *args)
@@ -119,10 +117,8 @@ static PyObject *report_text(int (*make)(void *argument, char **text), void *arg
 {
     char *text = NULL;
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = make(argument, &text);
-    Py_END_ALLOW_THREADS
-    PyObject *out = status == IM_OK ? PyUnicode_FromString(text) : py_raise_status(status);
+    Py_BEGIN_ALLOW_THREADS status = make(argument, &text);
+    Py_END_ALLOW_THREADS PyObject *out = status == IM_OK ? PyUnicode_FromString(text) : py_raise_status(status);
     free(text);
     return out;
 }
@@ -160,10 +156,16 @@ static PyMethodDef core_methods[] = {
     {"formats_text", formats_text, METH_NOARGS, "formats_text() -> indentmap formats' text"},
     {NULL, NULL, 0, NULL}};
 
-static struct PyModuleDef module_definition = {
-    PyModuleDef_HEAD_INIT, "indentmap._core",
-    "The C extension over libindentmap; use the indentmap package instead.", -1, NULL,
-    NULL, NULL, NULL, NULL};
+static struct PyModuleDef module_definition = {PyModuleDef_HEAD_INIT,
+                                               "indentmap._core",
+                                               "The C extension over libindentmap; use the indentmap package "
+                                               "instead.",
+                                               -1,
+                                               NULL,
+                                               NULL,
+                                               NULL,
+                                               NULL,
+                                               NULL};
 
 PyMODINIT_FUNC PyInit__core(void)
 {
@@ -171,8 +173,8 @@ PyMODINIT_FUNC PyInit__core(void)
     PyObject *module = PyModule_Create(&module_definition);
     if (!module)
         return NULL;
-    if (py_interrupt_init() < 0 || py_render_init() < 0 || add_errors(module) < 0 || add_methods(module, core_methods) < 0 ||
-        add_methods(module, py_surface_methods) < 0 ||
+    if (py_interrupt_init() < 0 || py_render_init() < 0 || add_errors(module) < 0 ||
+        add_methods(module, core_methods) < 0 || add_methods(module, py_surface_methods) < 0 ||
         add_methods(module, py_theory_methods) < 0 || add_methods(module, py_render_methods) < 0 ||
         add_methods(module, py_scene_methods) < 0 || add_methods(module, py_solver_methods) < 0 ||
         PyType_Ready(&py_indentation_type) < 0 ||

@@ -37,12 +37,10 @@ int py_render_init(void)
 static int without_gil(int (*work)(void *job), void *job)
 {
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    PyThread_acquire_lock(drawing_lock, WAIT_LOCK);
+    Py_BEGIN_ALLOW_THREADS PyThread_acquire_lock(drawing_lock, WAIT_LOCK);
     status = work(job);
     PyThread_release_lock(drawing_lock);
-    Py_END_ALLOW_THREADS
-    return status;
+    Py_END_ALLOW_THREADS return status;
 }
 
 /* Opens a context of `backend` and makes it the one pictures use, closing the one before (once no call
@@ -66,10 +64,7 @@ static int open_context(im_render_backend backend)
     return 0;
 }
 
-static int ensure_context(void)
-{
-    return context ? 0 : open_context(IM_RENDER_AUTO);
-}
+static int ensure_context(void) { return context ? 0 : open_context(IM_RENDER_AUTO); }
 
 /* The norm of both kinds of picture: colour map by name, range, linear or logarithmic. */
 static int make_norm(const char *name, double lo, double hi, int logarithmic, im_colormap *norm)
@@ -89,14 +84,14 @@ static int make_norm(const char *name, double lo, double hi, int logarithmic, im
 }
 
 typedef struct picture_request {
-    int height_map;            /* 0: contact map of forces, 1: height field */
+    int height_map; /* 0: contact map of forces, 1: height field */
     const char *colormap;
     double lo, hi;
     int logarithmic, scale;
     double circle_radius, circle_x, circle_y; /* contact maps; radius <= 0: none */
-    PyObject *contact;         /* height fields: forces whose contact is outlined, or None */
-    const char *unit;          /* the length unit of delta ("": units of delta), for the scale bar */
-    double tension;            /* contact maps: the top of the tension norm shared by a figure's panels; NaN:
+    PyObject *contact;                        /* height fields: forces whose contact is outlined, or None */
+    const char *unit;                         /* the length unit of delta ("": units of delta), for the scale bar */
+    double tension; /* contact maps: the top of the tension norm shared by a figure's panels; NaN:
                                   each map's own largest tension */
 } picture_request;
 
@@ -160,10 +155,15 @@ static int render_one(const im_field *field, const picture_request *r, im_image 
 
 static int parse_request(PyObject *kwargs, picture_request *r)
 {
-    static char *keywords[] = {"height_map", "colormap", "vmin", "vmax", "log", "scale", "circle_radius",
-                               "circle_x", "circle_y", "contact", "unit", NULL};
-    *r = (picture_request){.colormap = "viridis", .scale = 2, .circle_x = NAN, .circle_y = NAN, .contact = Py_None,
-                           .unit = "", .tension = NAN};
+    static char *keywords[] = {"height_map",    "colormap", "vmin",     "vmax",    "log",  "scale",
+                               "circle_radius", "circle_x", "circle_y", "contact", "unit", NULL};
+    *r = (picture_request){.colormap = "viridis",
+                           .scale = 2,
+                           .circle_x = NAN,
+                           .circle_y = NAN,
+                           .contact = Py_None,
+                           .unit = "",
+                           .tension = NAN};
     PyObject *empty = PyTuple_New(0);
     if (!empty)
         return -1;
@@ -248,7 +248,8 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
         return -1;
     }
     for (Py_ssize_t i = 0; i < count; ++i)
-        panels[i] = (im_figure_panel){.image = &images[i], .label = item_text(layout->labels, i),
+        panels[i] = (im_figure_panel){.image = &images[i],
+                                      .label = item_text(layout->labels, i),
                                       .title = item_text(layout->titles, i)};
     im_colormap norm;
     int status = make_norm(request->colormap, request->lo, request->hi, request->logarithmic, &norm) < 0 ? -1 : IM_OK;
@@ -269,9 +270,9 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
             figure.tension_label = layout->tension_label;
         }
         figure_job job = {&figure, path};
-        status = figure.rows * figure.columns == count ? without_gil(write_figure_file, &job)
-                                                       : im_fail(IM_EINVAL, "figure: %ld panels do not fill %d columns",
-                                                                 (long)count, layout->columns);
+        status = figure.rows * figure.columns == count
+                     ? without_gil(write_figure_file, &job)
+                     : im_fail(IM_EINVAL, "figure: %ld panels do not fill %d columns", (long)count, layout->columns);
         if (status != IM_OK)
             py_raise_status(status);
     }
@@ -338,7 +339,8 @@ static PyObject *figure(PyObject *self, PyObject *args, PyObject *kwargs)
     picture_request request;
     if (!PyArg_ParseTuple(args, "O&O!dOOissdd", PyUnicode_FSConverter, &path_bytes, &PyList_Type, &fields, &delta,
                           &labels, &titles, &layout.columns, &layout.colorbar_label, &layout.tension_label,
-                          &layout.dpi, &layout.scale_bar) || parse_request(kwargs, &request) < 0)
+                          &layout.dpi, &layout.scale_bar) ||
+        parse_request(kwargs, &request) < 0)
         return NULL;
     if (layout.columns < 1 || PyList_Size(fields) < 1) {
         Py_DECREF(path_bytes);
@@ -419,8 +421,12 @@ static PyObject *write_png(PyObject *self, PyObject *args)
     PyArrayObject *rgba = rgba_array(obj);
     int status = IM_OK;
     if (rgba) {
-        png_job job = {PyBytes_AS_STRING(path_bytes), PyArray_DATA(rgba), (int)PyArray_DIMS(rgba)[1],
-                       (int)PyArray_DIMS(rgba)[0], texts, (int)PyTuple_GET_SIZE(pairs)};
+        png_job job = {PyBytes_AS_STRING(path_bytes),
+                       PyArray_DATA(rgba),
+                       (int)PyArray_DIMS(rgba)[1],
+                       (int)PyArray_DIMS(rgba)[0],
+                       texts,
+                       (int)PyTuple_GET_SIZE(pairs)};
         status = without_gil(write_png_file, &job);
     }
     PyMem_Free(texts);
@@ -435,16 +441,16 @@ typedef struct view3d_job {
     const im_field *height, *force; /* force: NULL for no contact colours */
     const im_indenter *punch;       /* NULL: none */
     im_view3d_style style;
-    int fit_distance;               /* the nearest perspective camera that shows it all */
+    int fit_distance; /* the nearest perspective camera that shows it all */
     im_image *image;
 } view3d_job;
 
 static int draw_view3d(void *argument)
 {
     view3d_job *job = argument;
-    int status = job->fit_distance ? im_view3d_fit_distance(job->height, job->punch, &job->style,
-                                                            &job->style.camera.distance)
-                                   : IM_OK;
+    int status = job->fit_distance
+                     ? im_view3d_fit_distance(job->height, job->punch, &job->style, &job->style.camera.distance)
+                     : IM_OK;
     return status == IM_OK ? im_render_view3d(context, job->height, job->force, job->punch, &job->style, job->image)
                            : status;
 }
@@ -475,21 +481,24 @@ static int view3d_punch(const char *kind, double alpha, double radius, PyObject 
 static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"height", "delta", "force", "punch", "alpha", "radius", "axis", "punch_mode",
-                               "azimuth", "elevation", "distance", "fov", "ortho", "ortho_height", "exaggeration",
-                               "width", "pixels_high", "samples", "mesh_side", "colormap", "vmin", "vmax", "log",
-                               NULL};
+    static char *keywords[] = {"height",    "delta",        "force",        "punch",     "alpha",       "radius",
+                               "axis",      "punch_mode",   "azimuth",      "elevation", "distance",    "fov",
+                               "ortho",     "ortho_height", "exaggeration", "width",     "pixels_high", "samples",
+                               "mesh_side", "colormap",     "vmin",         "vmax",      "log",         NULL};
     PyObject *height_obj, *force_obj, *axis, *distance;
     double delta, alpha, radius, lo, hi;
     const char *kind, *colormap;
     int ortho, logarithmic, punch_mode;
     im_view3d_style style = im_view3d_style_default(NULL);
     im_view3d_camera *camera = &style.camera;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OdOsddOiddOdpdd" "iiiisddp", keywords, &height_obj, &delta,
-                                     &force_obj, &kind, &alpha, &radius, &axis, &punch_mode, &camera->azimuth,
-                                     &camera->elevation, &distance, &camera->field_of_view, &ortho,
-                                     &camera->ortho_height, &style.exaggeration, &style.width, &style.height,
-                                     &style.samples, &style.mesh_side, &colormap, &lo, &hi, &logarithmic))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs,
+                                     "OdOsddOiddOdpdd"
+                                     "iiiisddp",
+                                     keywords, &height_obj, &delta, &force_obj, &kind, &alpha, &radius, &axis,
+                                     &punch_mode, &camera->azimuth, &camera->elevation, &distance,
+                                     &camera->field_of_view, &ortho, &camera->ortho_height, &style.exaggeration,
+                                     &style.width, &style.height, &style.samples, &style.mesh_side, &colormap, &lo,
+                                     &hi, &logarithmic))
         return NULL;
     camera->projection = ortho ? IM_VIEW3D_ORTHOGRAPHIC : IM_VIEW3D_PERSPECTIVE;
     style.punch_mode = (im_view3d_punch)punch_mode; /* checked by im_render_view3d */
@@ -504,8 +513,8 @@ static PyObject *view3d(PyObject *self, PyObject *args, PyObject *kwargs)
     PyArrayObject *force = height && force_obj != Py_None ? py_heights_array(force_obj, "force") : NULL;
     PyObject *out = NULL;
     if (height && (force || force_obj == Py_None)) {
-        im_field height_view = py_field_view(height, delta), force_view = force ? py_field_view(force, delta)
-                                                                                : (im_field){0};
+        im_field height_view = py_field_view(height, delta),
+                 force_view = force ? py_field_view(force, delta) : (im_field){0};
         im_image image = {0};
         job.height = &height_view;
         job.force = force ? &force_view : NULL;
@@ -569,8 +578,8 @@ static int write_view3d_figure(const char *path, const im_image *image, const im
 static PyObject *view3d_figure(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"path", "rgba", "force", "texts", "title", "exaggeration", "colormap",
-                               "vmin", "vmax", "log", "dpi", "unit", NULL};
+    static char *keywords[] = {"path", "rgba", "force", "texts", "title", "exaggeration", "colormap", "vmin",
+                               "vmax", "log",  "dpi",   "unit",  NULL};
     PyObject *path_bytes, *rgba_obj, *force_obj, *pairs;
     view3d_figure_request r;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&OOO!sdsddpds", keywords, PyUnicode_FSConverter, &path_bytes,
@@ -605,10 +614,8 @@ static PyObject *read_png(PyObject *self, PyObject *args)
         return NULL;
     uint8_t *pixels = NULL;
     int width = 0, height = 0, channels = 0, status;
-    Py_BEGIN_ALLOW_THREADS
-    status = im_png_read(PyBytes_AS_STRING(path_bytes), &pixels, &width, &height, &channels);
-    Py_END_ALLOW_THREADS
-    Py_DECREF(path_bytes);
+    Py_BEGIN_ALLOW_THREADS status = im_png_read(PyBytes_AS_STRING(path_bytes), &pixels, &width, &height, &channels);
+    Py_END_ALLOW_THREADS Py_DECREF(path_bytes);
     if (status != IM_OK)
         return py_raise_status(status);
     npy_intp shape[3] = {height, width, 4};

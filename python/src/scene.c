@@ -12,8 +12,8 @@
 /* The Python side of a run's callbacks, and the first exception one of them raised (which stops
  * the run at its next check, and is raised by run_scene). */
 typedef struct scene_callbacks {
-    PyObject *progress;  /* callable(stage, done, total), or NULL */
-    PyObject *log;       /* callable(level, message) with logging's levels (INFO, WARNING), or NULL */
+    PyObject *progress; /* callable(stage, done, total), or NULL */
+    PyObject *log;      /* callable(level, message) with logging's levels (INFO, WARNING), or NULL */
     volatile sig_atomic_t *stop;
     PyObject *error_type, *error_value, *error_traceback;
 } scene_callbacks;
@@ -46,8 +46,9 @@ static void call_log(void *user, im_log_level level, const char *message)
     scene_callbacks *c = user;
     PyGILState_STATE gil = PyGILState_Ensure();
     PyObject *text = PyUnicode_DecodeUTF8(message, (Py_ssize_t)strlen(message), "backslashreplace");
-    PyObject *result = c->error_type || !text ? NULL
-                       : PyObject_CallFunction(c->log, "iO", level == IM_LOG_WARNING ? 30 : 20, text);
+    PyObject *result = c->error_type || !text
+                           ? NULL
+                           : PyObject_CallFunction(c->log, "iO", level == IM_LOG_WARNING ? 30 : 20, text);
     Py_XDECREF(text);
     if (result)
         Py_DECREF(result);
@@ -90,12 +91,10 @@ static int load_and_run(const scene_source *source, im_scene *scene, const im_sc
 {
     int status;
     py_interrupt_arm(call, stop);
-    Py_BEGIN_ALLOW_THREADS
-    status = load_scene(source, scene);
+    Py_BEGIN_ALLOW_THREADS status = load_scene(source, scene);
     if (status == IM_OK)
         status = im_scene_run(scene, options);
-    Py_END_ALLOW_THREADS
-    return status;
+    Py_END_ALLOW_THREADS return status;
 }
 
 /* PyArg's converter of an optional path: None leaves *out NULL, else PyUnicode_FSConverter's bytes. */
@@ -109,8 +108,8 @@ static int optional_path(PyObject *object, void *out)
 static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"path",        "resume", "quiet",   "progress", "log", "out",
-                               "from_record", "wisdom", "backend", NULL};
+    static char *keywords[] = {"path", "resume",      "quiet",  "progress", "log",
+                               "out",  "from_record", "wisdom", "backend",  NULL};
     PyObject *path_bytes, *progress = Py_None, *log = Py_None, *out_bytes = NULL, *wisdom_bytes = NULL;
     int resume = 0, quiet = 0, from_record = 0;
     const char *backend_name = "auto";
@@ -134,12 +133,16 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
     }
     volatile sig_atomic_t stop = 0;
     scene_callbacks callbacks = {.progress = progress, .log = log, .stop = &stop};
-    im_scene_run_options options = {.resume = resume, .quiet = quiet, .stop = &stop, .user = &callbacks,
-                                     .progress = progress != Py_None ? call_progress : NULL,
-                                     .log = log != Py_None ? call_log : NULL, .backend = (int)backend};
+    im_scene_run_options options = {.resume = resume,
+                                    .quiet = quiet,
+                                    .stop = &stop,
+                                    .user = &callbacks,
+                                    .progress = progress != Py_None ? call_progress : NULL,
+                                    .log = log != Py_None ? call_log : NULL,
+                                    .backend = (int)backend};
     py_interrupt call;
-    scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL, from_record,
-                           wisdom_bytes ? PyBytes_AS_STRING(wisdom_bytes) : NULL};
+    scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL,
+                           from_record, wisdom_bytes ? PyBytes_AS_STRING(wisdom_bytes) : NULL};
     int status = load_and_run(&source, scene, &options, &stop, &call);
     Py_DECREF(path_bytes);
     Py_XDECREF(out_bytes);
@@ -153,14 +156,14 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
         Py_XDECREF(callbacks.error_traceback);
     }
     PyObject *out = interrupted || callbacks.error_type ? NULL
-                    : status == IM_OK                     ? PyUnicode_DecodeFSDefault(scene->output_dir)
-                                                          : py_raise_status(status);
+                    : status == IM_OK                   ? PyUnicode_DecodeFSDefault(scene->output_dir)
+                                                        : py_raise_status(status);
     PyMem_Free(scene);
     return out;
 }
 
-PyMethodDef py_scene_methods[] = {
-    {"run_scene", (PyCFunction)(void (*)(void))run_scene, METH_VARARGS | METH_KEYWORDS,
-     "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, from_record=False, "
-     "wisdom=None, backend='auto') -> output folder"},
-    {NULL, NULL, 0, NULL}};
+PyMethodDef py_scene_methods[] = {{"run_scene", (PyCFunction)(void (*)(void))run_scene, METH_VARARGS | METH_KEYWORDS,
+                                   "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, "
+                                   "from_record=False, "
+                                   "wisdom=None, backend='auto') -> output folder"},
+                                  {NULL, NULL, 0, NULL}};

@@ -11,8 +11,7 @@
 #include "indentmap/surface.h"
 
 typedef struct py_indentation {
-    PyObject_HEAD
-    im_indentation *run;
+    PyObject_HEAD im_indentation *run;
     im_profile *profile; /* a profile punch's shape: the run borrows it, so it is freed after the run */
     /* the history of the steps solved, measured as every front end does (history.h) */
     im_indenter punch;
@@ -138,10 +137,32 @@ static int gap_scale(const im_field *surface, double *scale)
 
 static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
 {
-    static char *keywords[] = {"heights", "delta", "punch", "alpha", "radius", "control", "largest", "e_star",
-                               "tol", "max_iterations", "crop", "window_margin", "x", "y", "profile", "device",
-                               "hardness", "periodic", "slope_definition", "adhesion_work", "adhesion_range",
-                               "plain_pk", "measure", "wisdom", "adhesion_law", NULL};
+    static char *keywords[] = {"heights",
+                               "delta",
+                               "punch",
+                               "alpha",
+                               "radius",
+                               "control",
+                               "largest",
+                               "e_star",
+                               "tol",
+                               "max_iterations",
+                               "crop",
+                               "window_margin",
+                               "x",
+                               "y",
+                               "profile",
+                               "device",
+                               "hardness",
+                               "periodic",
+                               "slope_definition",
+                               "adhesion_work",
+                               "adhesion_range",
+                               "plain_pk",
+                               "measure",
+                               "wisdom",
+                               "adhesion_law",
+                               NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None, *wisdom = NULL;
     int plain_pk = 0;
     double delta, alpha, radius, largest;
@@ -205,13 +226,12 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     double slope = 0;
     self->busy = 1;
     Py_BEGIN_ALLOW_THREADS /* planning: the library serialises FFTW's planner itself */
-    status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
+        status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
     if (status == IM_OK)
         status = im_surface_slope_rms(&surface, slope_definition, &slope);
     if (status == IM_OK)
         status = gap_scale(&surface, &self->gap_scale);
-    Py_END_ALLOW_THREADS
-    self->busy = 0;
+    Py_END_ALLOW_THREADS self->busy = 0;
     if (status == IM_OK) {
         self->punch = punch;
         self->rough = im_theory_interface_default(slope);
@@ -254,15 +274,15 @@ static int check_ready(py_indentation *self)
 
 static PyObject *step_dict(const im_step_result *r)
 {
-    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d,s:d,s:l,s:l,s:d}", "approach", r->approach,
-                         "load", r->load, "load_star", r->load_star, "contact_patches", r->contact_patches,
-                         "area_ratio", r->area_ratio, "mean_pressure", r->mean_pressure, "max_pressure",
-                         r->max_pressure, "iterations", r->iterations, "coarse_iterations", r->coarse_iterations,
-                         "convolutions", r->convolutions, "residual", r->residual, "seconds", r->seconds,
-                         "yielding_patches", r->yielding_patches, "plastic_depth", r->plastic_depth,
-                         "plastic_work", r->plastic_work, "residual_approach", r->residual_approach,
-                         "tensile_force", r->tensile_force, "adhesive_patches", r->adhesive_patches,
-                         "repulsive_patches", r->repulsive_patches, "mean_gap", r->mean_gap);
+    return Py_BuildValue("{s:d,s:d,s:d,s:l,s:d,s:d,s:d,s:i,s:i,s:i,s:d,s:d,s:l,s:d,s:d,s:d,s:d,s:l,s:l,s:d}",
+                         "approach", r->approach, "load", r->load, "load_star", r->load_star, "contact_patches",
+                         r->contact_patches, "area_ratio", r->area_ratio, "mean_pressure", r->mean_pressure,
+                         "max_pressure", r->max_pressure, "iterations", r->iterations, "coarse_iterations",
+                         r->coarse_iterations, "convolutions", r->convolutions, "residual", r->residual, "seconds",
+                         r->seconds, "yielding_patches", r->yielding_patches, "plastic_depth", r->plastic_depth,
+                         "plastic_work", r->plastic_work, "residual_approach", r->residual_approach, "tensile_force",
+                         r->tensile_force, "adhesive_patches", r->adhesive_patches, "repulsive_patches",
+                         r->repulsive_patches, "mean_gap", r->mean_gap);
 }
 
 /* The solved step as the next row of the history, measured as `indent` measures it (history.h). */
@@ -311,10 +331,8 @@ static PyObject *indentation_step(py_indentation *self, PyObject *arg)
     py_interrupt call;
     self->busy = 1;
     py_interrupt_arm(&call, &self->stop);
-    Py_BEGIN_ALLOW_THREADS
-    status = im_indentation_step(self->run, target, &result);
-    Py_END_ALLOW_THREADS
-    self->busy = 0;
+    Py_BEGIN_ALLOW_THREADS status = im_indentation_step(self->run, target, &result);
+    Py_END_ALLOW_THREADS self->busy = 0;
     if (py_interrupt_disarm(&call, &self->stop) < 0)
         return NULL;
     if (status == IM_OK)
@@ -331,9 +349,8 @@ static PyObject *indentation_fields(py_indentation *self, PyObject *unused)
     int status;
     self->busy = 1;
     Py_BEGIN_ALLOW_THREADS /* a convolution on the full grid, planned under the library's planner lock */
-    status = im_indentation_fields_full(self->run, &force, &gap, &displacement);
-    Py_END_ALLOW_THREADS
-    self->busy = 0;
+        status = im_indentation_fields_full(self->run, &force, &gap, &displacement);
+    Py_END_ALLOW_THREADS self->busy = 0;
     if (status != IM_OK)
         return py_raise_status(status);
     return Py_BuildValue("(NNN)", py_array_from_field(force), py_array_from_field(gap),
@@ -376,9 +393,8 @@ static PyObject *indentation_write_distributions(py_indentation *self, PyObject 
     int status;
     self->busy = 1;
     Py_BEGIN_ALLOW_THREADS /* the full grid's fields: one convolution */
-    status = write_distributions(self, PyBytes_AS_STRING(prefix));
-    Py_END_ALLOW_THREADS
-    self->busy = 0;
+        status = write_distributions(self, PyBytes_AS_STRING(prefix));
+    Py_END_ALLOW_THREADS self->busy = 0;
     Py_DECREF(prefix);
     return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
 }
@@ -404,14 +420,13 @@ static PyMethodDef indentation_methods[] = {
      "write_distributions(prefix): the last step's PREFIX_{gaps,patches,patch_list}.csv"},
     {NULL, NULL, 0, NULL}};
 
-static PyGetSetDef indentation_getset[] = {
-    {"window", (getter)indentation_window, NULL, "(x0, y0, nx, ny) of the solved sub-grid", NULL},
-    {NULL, NULL, NULL, NULL, NULL}};
+static PyGetSetDef indentation_getset[] = {{"window", (getter)indentation_window, NULL,
+                                            "(x0, y0, nx, ny) of the solved sub-grid", NULL},
+                                           {NULL, NULL, NULL, NULL, NULL}};
 
 /* ---- Plan ---- */
 typedef struct py_plan {
-    PyObject_HEAD
-    im_solver_plan *plan;
+    PyObject_HEAD im_solver_plan *plan;
     int nx, ny, busy;
     volatile sig_atomic_t stop; /* the solver's stop flag (interrupt.c): set by Ctrl-C during a solve */
 } py_plan;
@@ -439,9 +454,8 @@ static int plan_init(py_plan *self, PyObject *args, PyObject *kwargs)
     int status;
     self->busy = 1;
     Py_BEGIN_ALLOW_THREADS /* the library serialises FFTW's planner itself */
-    status = im_solver_plan_create(nx, ny, delta, &o, &plan);
-    Py_END_ALLOW_THREADS
-    self->busy = 0;
+        status = im_solver_plan_create(nx, ny, delta, &o, &plan);
+    Py_END_ALLOW_THREADS self->busy = 0;
     if (status != IM_OK) {
         py_raise_status(status);
         return -1;
@@ -511,11 +525,9 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     py_interrupt call;
     self->busy = 1;
     py_interrupt_arm(&call, &self->stop);
-    Py_BEGIN_ALLOW_THREADS
-    status = im_solver_solve(self->plan, PyArray_DATA(gap0), control, target, PyArray_DATA(pressure),
-                             PyArray_DATA(displacement), &result);
-    Py_END_ALLOW_THREADS
-    self->busy = 0;
+    Py_BEGIN_ALLOW_THREADS status = im_solver_solve(self->plan, PyArray_DATA(gap0), control, target,
+                                                    PyArray_DATA(pressure), PyArray_DATA(displacement), &result);
+    Py_END_ALLOW_THREADS self->busy = 0;
     Py_DECREF(gap0);
     int interrupted = py_interrupt_disarm(&call, &self->stop) < 0; /* KeyboardInterrupt is set */
     if (interrupted || status != IM_OK) {
@@ -526,10 +538,10 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     return Py_BuildValue("(NNN)", pressure, displacement, solve_dict(&result));
 }
 
-static PyMethodDef plan_methods[] = {
-    {"solve", (PyCFunction)(void (*)(void))plan_solve, METH_VARARGS | METH_KEYWORDS,
-     "solve(gap0, target, control='displacement', pressure=None) -> (pressure, displacement, result)"},
-    {NULL, NULL, 0, NULL}};
+static PyMethodDef plan_methods[] = {{"solve", (PyCFunction)(void (*)(void))plan_solve, METH_VARARGS | METH_KEYWORDS,
+                                      "solve(gap0, target, control='displacement', pressure=None) -> (pressure, "
+                                      "displacement, result)"},
+                                     {NULL, NULL, 0, NULL}};
 
 PyTypeObject py_plan_type = {
     PyVarObject_HEAD_INIT(NULL, 0).tp_name = "indentmap._core.Plan",
@@ -562,8 +574,8 @@ static int double_vector(PyObject *obj, npy_intp n, const char *what, PyArrayObj
     if (!*out)
         return -1;
     if (n >= 0 && PyArray_SIZE(*out) != n) {
-        PyErr_Format(PyExc_ValueError, "%s: %ld values, expected %ld (one per step)", what,
-                     (long)PyArray_SIZE(*out), (long)n);
+        PyErr_Format(PyExc_ValueError, "%s: %ld values, expected %ld (one per step)", what, (long)PyArray_SIZE(*out),
+                     (long)n);
         Py_CLEAR(*out);
         return -1;
     }
@@ -705,11 +717,11 @@ static PyObject *adhesion(PyObject *self, PyObject *args)
         patches[k] = (long)((const double *)PyArray_DATA(contact))[k];
     im_adhesion_summary a;
     int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, &a);
-    result = status != IM_OK ? py_raise_status(status)
-                             : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force,
-                                             "pull_off_approach", a.pull_off_approach, "jump_in_approach",
-                                             a.jump_in_approach, "jump_out_approach", a.jump_out_approach,
-                                             "hysteresis_work", a.hysteresis_work);
+    result = status != IM_OK
+                 ? py_raise_status(status)
+                 : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force, "pull_off_approach",
+                                 a.pull_off_approach, "jump_in_approach", a.jump_in_approach, "jump_out_approach",
+                                 a.jump_out_approach, "hysteresis_work", a.hysteresis_work);
 done:
     free(patches);
     Py_XDECREF(approach);

@@ -22,15 +22,16 @@ static int slope_definition_from_name(const char *name, enum im_slope_definition
 static PyObject *generate(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *keywords[] = {"nx", "ny", "delta", "hurst", "lambda_s", "lambda_r", "lambda_0", "slope",
-                               "height_rms", "slope_definition", "seed", NULL};
+    static char *keywords[] = {"nx",       "ny",       "delta", "hurst",      "lambda_s",
+                               "lambda_r", "lambda_0", "slope", "height_rms", "slope_definition",
+                               "seed",     NULL};
     im_surface_params p = im_surface_params_default();
     PyObject *height_rms = Py_None;
     const char *definition = "spectral";
     unsigned long long seed = p.seed;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|ddddddOsK", keywords, &p.nx, &p.ny, &p.delta, &p.hurst,
-                                     &p.lambda_s, &p.lambda_r, &p.lambda_0, &p.slope_rms, &height_rms,
-                                     &definition, &seed))
+                                     &p.lambda_s, &p.lambda_r, &p.lambda_0, &p.slope_rms, &height_rms, &definition,
+                                     &seed))
         return NULL;
     if (height_rms != Py_None) {
         p.target = IM_TARGET_HEIGHT;
@@ -43,18 +44,16 @@ static PyObject *generate(PyObject *self, PyObject *args, PyObject *kwargs)
     p.seed = seed;
     im_field *field = NULL;
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = im_surface_generate(&p, &field);
-    Py_END_ALLOW_THREADS
-    return status == IM_OK ? py_array_from_field(field) : py_raise_status(status);
+    Py_BEGIN_ALLOW_THREADS status = im_surface_generate(&p, &field);
+    Py_END_ALLOW_THREADS return status == IM_OK ? py_array_from_field(field) : py_raise_status(status);
 }
 
 static PyObject *stats_dict(const im_surface_stats *s)
 {
     return Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "mean", s->mean, "height_rms",
                          s->height_rms, "slope_rms_spectral", s->slope_rms_spectral, "slope_rms_fd", s->slope_rms_fd,
-                         "curvature_rms", s->curvature_rms, "m0", s->m0, "m2", s->m2, "m4", s->m4, "nayak",
-                         s->nayak, "height_min", s->height_min, "height_max", s->height_max);
+                         "curvature_rms", s->curvature_rms, "m0", s->m0, "m2", s->m2, "m4", s->m4, "nayak", s->nayak,
+                         "height_min", s->height_min, "height_max", s->height_max);
 }
 
 static int taper_from_name(const char *name, double alpha, im_taper *taper)
@@ -88,10 +87,8 @@ static PyObject *statistics(PyObject *self, PyObject *args)
     im_field field = py_field_view(array, delta);
     im_surface_stats stats;
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = im_surface_statistics_tapered(&field, &taper, &stats);
-    Py_END_ALLOW_THREADS
-    Py_DECREF(array);
+    Py_BEGIN_ALLOW_THREADS status = im_surface_statistics_tapered(&field, &taper, &stats);
+    Py_END_ALLOW_THREADS Py_DECREF(array);
     return status == IM_OK ? stats_dict(&stats) : py_raise_status(status);
 }
 
@@ -120,10 +117,8 @@ static PyObject *psd(PyObject *self, PyObject *args)
     im_field field = py_field_view(array, delta);
     im_psd *result = NULL;
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = im_surface_psd(&field, bins, &result);
-    Py_END_ALLOW_THREADS
-    Py_DECREF(array);
+    Py_BEGIN_ALLOW_THREADS status = im_surface_psd(&field, bins, &result);
+    Py_END_ALLOW_THREADS Py_DECREF(array);
     if (status != IM_OK)
         return py_raise_status(status);
     PyObject *out = Py_BuildValue("(NNN)", py_array_from_doubles(result->q, result->bins),
@@ -260,7 +255,8 @@ static PyObject *read_surface(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "O&sppisss", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square,
                           &npy_order, &unit, &height_unit, &length_unit))
         return NULL;
-    im_surface_read_options options = {.fill = fill, .resample_square = resample_square,
+    im_surface_read_options options = {.fill = fill,
+                                       .resample_square = resample_square,
                                        .npy_order = (enum im_npy_order)npy_order};
     if (length_unit_argument("unit", unit, options.set.lateral) < 0 ||
         length_unit_argument("height_unit", height_unit, options.set.height) < 0 ||
@@ -276,10 +272,8 @@ static PyObject *read_surface(PyObject *self, PyObject *args)
     snprintf(options.channel, sizeof options.channel, "%s", channel);
     im_field *field = NULL;
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = im_surface_read_with(PyBytes_AS_STRING(path_bytes), &options, &field, NULL);
-    Py_END_ALLOW_THREADS
-    Py_DECREF(path_bytes);
+    Py_BEGIN_ALLOW_THREADS status = im_surface_read_with(PyBytes_AS_STRING(path_bytes), &options, &field, NULL);
+    Py_END_ALLOW_THREADS Py_DECREF(path_bytes);
     if (status != IM_OK)
         return py_raise_status(status);
     double delta = field->delta;
@@ -319,9 +313,9 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "O&Ods", PyUnicode_FSConverter, &path_bytes, &obj, &delta, &unit))
         return NULL;
     PyArrayObject *array = py_heights_array(obj, "heights");
-    if (!array || strlen(unit) >= sizeof ((im_field *)NULL)->unit) {
+    if (!array || strlen(unit) >= sizeof((im_field *)NULL)->unit) {
         if (array)
-            PyErr_Format(PyExc_ValueError, "unit '%s': at most %zu bytes", unit, sizeof ((im_field *)NULL)->unit - 1);
+            PyErr_Format(PyExc_ValueError, "unit '%s': at most %zu bytes", unit, sizeof((im_field *)NULL)->unit - 1);
         Py_XDECREF(array);
         Py_DECREF(path_bytes);
         return NULL;
@@ -329,10 +323,8 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
     im_field field = py_field_view(array, delta);
     snprintf(field.unit, sizeof field.unit, "%s", unit);
     int status;
-    Py_BEGIN_ALLOW_THREADS
-    status = write_surface_file(PyBytes_AS_STRING(path_bytes), &field);
-    Py_END_ALLOW_THREADS
-    Py_DECREF(array);
+    Py_BEGIN_ALLOW_THREADS status = write_surface_file(PyBytes_AS_STRING(path_bytes), &field);
+    Py_END_ALLOW_THREADS Py_DECREF(array);
     Py_DECREF(path_bytes);
     return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
 }

@@ -79,10 +79,17 @@ typedef struct named_function {
 } named_function;
 
 static const named_function functions[] = {
-    {"rho_c", rho_c},           {"beta", beta},           {"area_ratio_eq6", ratio_eq6},
-    {"area_ratio_eq12", ratio_eq12}, {"area_ratio_eq19", ratio_eq19}, {"gamma", gamma_eq10},
-    {"cone_pressure", pressure_eq11}, {"flat_area_ratio", flat_eq1}, {"sphere_area", sphere_eq3},
-    {"hertz_area", hertz_area}, {"cone_area", cone_area},
+    {"rho_c", rho_c},
+    {"beta", beta},
+    {"area_ratio_eq6", ratio_eq6},
+    {"area_ratio_eq12", ratio_eq12},
+    {"area_ratio_eq19", ratio_eq19},
+    {"gamma", gamma_eq10},
+    {"cone_pressure", pressure_eq11},
+    {"flat_area_ratio", flat_eq1},
+    {"sphere_area", sphere_eq3},
+    {"hertz_area", hertz_area},
+    {"cone_area", cone_area},
 };
 
 static theory_function find_function(const char *name)

@@ -110,10 +110,10 @@ int cli_parse_name(const char *option, const char *text, char *out, size_t size)
 /* Preparation of a measured surface (prepare.c): crop (sides 0: none), then plane or curvature
  * removal. --fill is the reader's (im_surface_read_options.fill). */
 typedef struct cli_preparation {
-    int crop[4];             /* X0, Y0, NX, NY */
+    int crop[4]; /* X0, Y0, NX, NY */
     enum im_detrend detrend;
     enum im_row_alignment align; /* scan lines, before the detrending */
-    im_taper taper;          /* for spectral estimates only */
+    im_taper taper;              /* for spectral estimates only */
 } cli_preparation;
 
 /* --crop X0,Y0,NX,NY; --detrend none|plane|curvature; --window none|hann|tukey[:ALPHA]. Each returns

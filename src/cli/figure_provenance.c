@@ -13,14 +13,11 @@
 /* Whether text can stand unquoted in a POSIX shell's command line. */
 static int shell_plain(const char *text)
 {
-    return text[0] && strspn(text, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-+=.,:/@%") ==
-                          strlen(text);
+    return text[0] &&
+           strspn(text, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-+=.,:/@%") == strlen(text);
 }
 
-size_t cli_shell_word_room(const char *word)
-{
-    return 4 * strlen(word) + 3;
-}
+size_t cli_shell_word_room(const char *word) { return 4 * strlen(word) + 3; }
 
 size_t cli_shell_append(char *text, size_t size, size_t used, const char *word)
 {

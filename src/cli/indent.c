@@ -145,21 +145,21 @@ enum { CACHED_WISDOM_STEPS = 10 };
 typedef struct indent_options {
     const char *surface_path, *out, *wisdom;
     int no_wisdom;
-    char wisdom_cache[4096];      /* the cache's wisdom file, when that is the one used */
+    char wisdom_cache[4096]; /* the cache's wisdom file, when that is the one used */
     int smooth, nx, ny, m_given, fields;
-    int frames;                   /* --frames (sets fields) */
-    int page_embed;               /* --page-embed */
-    int distributions;            /* --distributions */
-    indent_files files;           /* what the run writes into --out (indent_run.h) */
-    double gap_scale;             /* their gaps' unit: the surface's h_rms (delta when smooth) */
+    int frames;         /* --frames (sets fields) */
+    int page_embed;     /* --page-embed */
+    int distributions;  /* --distributions */
+    indent_files files; /* what the run writes into --out (indent_run.h) */
+    double gap_scale;   /* their gaps' unit: the surface's h_rms (delta when smooth) */
     double delta;
-    double surface_delta;         /* the patch side as solved (the surface's, after --delta) */
-    im_surface_read_options read; /* --delta, --unit, --height-unit, --fill, --npy-order, --resample-square */
-    cli_preparation preparation;  /* --crop, --detrend */
-    char e_star_unit[16];         /* --e-star-unit, "" when not given */
-    char force_unit[40];          /* the unit of loads and forces, from the two above */
-    char length_unit[16];         /* the surface's, as solved ("" in units of delta) */
-    long filled;                  /* missing points filled on reading */
+    double surface_delta;           /* the patch side as solved (the surface's, after --delta) */
+    im_surface_read_options read;   /* --delta, --unit, --height-unit, --fill, --npy-order, --resample-square */
+    cli_preparation preparation;    /* --crop, --detrend */
+    char e_star_unit[16];           /* --e-star-unit, "" when not given */
+    char force_unit[40];            /* the unit of loads and forces, from the two above */
+    char length_unit[16];           /* the surface's, as solved ("" in units of delta) */
+    long filled;                    /* missing points filled on reading */
     im_surface_read_info read_info; /* how SURFACE was read (its pixels, for run.json) */
     im_indenter punch;
     const char *profile_path; /* --profile */
@@ -174,52 +174,116 @@ typedef struct indent_options {
     const char *targets_text;
     const char *quality; /* preset name, NULL if none given */
     int tol_given;
-    int adhesion_law_given;   /* --adhesion-law */
+    int adhesion_law_given; /* --adhesion-law */
     double *targets;
     int target_count;
     im_solver_options solver;
-    indent_arguments arguments; /* as run.json records them (indent_record.h) */
-    const char *from_record;    /* --from-record: the record of the run made again */
-    char *command;              /* the arguments as a command line, for the figures */
+    indent_arguments arguments;    /* as run.json records them (indent_record.h) */
+    const char *from_record;       /* --from-record: the record of the run made again */
+    char *command;                 /* the arguments as a command line, for the figures */
     run_figure_texts figure_texts; /* what every figure carries: the version, the command, the inputs */
 } indent_options;
 
-enum { OPT_SMOOTH = 256, OPT_N, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_LENGTH_UNIT, OPT_ESTAR_UNIT, OPT_FILL, OPT_RESAMPLE,
-       OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y, OPT_APPROACH, OPT_LOAD, OPT_ESTAR,
-       OPT_HARDNESS, OPT_QUALITY, OPT_TOL, OPT_MAXIT, OPT_FULL, OPT_MEASURE, OPT_WISDOM, OPT_OUT, OPT_FIELDS,
-       OPT_HELP, OPT_PLAIN_PK, OPT_DISTRIBUTIONS, OPT_PROFILE, OPT_NO_WISDOM, OPT_DEVICE, OPT_PERIODIC,
-       OPT_PRESSURE, OPT_SLOPE_DEFINITION, OPT_ADHESION_WORK, OPT_ADHESION_RANGE, OPT_NPY_ORDER, OPT_MEAN_GAP,
-       OPT_FRAMES, OPT_PAGE_EMBED, OPT_FROM_RECORD, OPT_ADHESION_LAW };
+enum {
+    OPT_SMOOTH = 256,
+    OPT_N,
+    OPT_M,
+    OPT_DELTA,
+    OPT_UNIT,
+    OPT_HEIGHT_UNIT,
+    OPT_CHANNEL,
+    OPT_LENGTH_UNIT,
+    OPT_ESTAR_UNIT,
+    OPT_FILL,
+    OPT_RESAMPLE,
+    OPT_CROP,
+    OPT_DETREND,
+    OPT_ALIGN,
+    OPT_PUNCH,
+    OPT_ALPHA,
+    OPT_RADIUS,
+    OPT_X,
+    OPT_Y,
+    OPT_APPROACH,
+    OPT_LOAD,
+    OPT_ESTAR,
+    OPT_HARDNESS,
+    OPT_QUALITY,
+    OPT_TOL,
+    OPT_MAXIT,
+    OPT_FULL,
+    OPT_MEASURE,
+    OPT_WISDOM,
+    OPT_OUT,
+    OPT_FIELDS,
+    OPT_HELP,
+    OPT_PLAIN_PK,
+    OPT_DISTRIBUTIONS,
+    OPT_PROFILE,
+    OPT_NO_WISDOM,
+    OPT_DEVICE,
+    OPT_PERIODIC,
+    OPT_PRESSURE,
+    OPT_SLOPE_DEFINITION,
+    OPT_ADHESION_WORK,
+    OPT_ADHESION_RANGE,
+    OPT_NPY_ORDER,
+    OPT_MEAN_GAP,
+    OPT_FRAMES,
+    OPT_PAGE_EMBED,
+    OPT_FROM_RECORD,
+    OPT_ADHESION_LAW
+};
 
-static const struct option LONG_OPTIONS[] = {
-    {"smooth", no_argument, 0, OPT_SMOOTH}, {"n", required_argument, 0, OPT_N},
-    {"m", required_argument, 0, OPT_M}, {"delta", required_argument, 0, OPT_DELTA},
-    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
-    {"channel", required_argument, 0, OPT_CHANNEL},
-    {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
-    {"crop", required_argument, 0, OPT_CROP},
-    {"npy-order", required_argument, 0, OPT_NPY_ORDER},
-    {"length-unit", required_argument, 0, OPT_LENGTH_UNIT}, {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
-    {"detrend", required_argument, 0, OPT_DETREND}, {"align", required_argument, 0, OPT_ALIGN}, {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
-    {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
-    {"y", required_argument, 0, OPT_Y}, {"approach", required_argument, 0, OPT_APPROACH},
-    {"load", required_argument, 0, OPT_LOAD}, {"e-star", required_argument, 0, OPT_ESTAR},
-    {"hardness", required_argument, 0, OPT_HARDNESS},
-    {"quality", required_argument, 0, OPT_QUALITY}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
-    {"full", no_argument, 0, OPT_FULL}, {"measure", no_argument, 0, OPT_MEASURE}, {"wisdom", required_argument, 0, OPT_WISDOM},
-    {"no-wisdom", no_argument, 0, OPT_NO_WISDOM},
-    {"out", required_argument, 0, OPT_OUT}, {"fields", no_argument, 0, OPT_FIELDS},
-    {"frames", no_argument, 0, OPT_FRAMES}, {"page-embed", no_argument, 0, OPT_PAGE_EMBED},
-    {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
-    {"help", no_argument, 0, OPT_HELP}, {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
-    {"profile", required_argument, 0, OPT_PROFILE}, {"device", required_argument, 0, OPT_DEVICE},
-    {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE},
-    {"mean-gap", required_argument, 0, OPT_MEAN_GAP},
-    {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION},
-    {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
-    {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
-    {"from-record", required_argument, 0, OPT_FROM_RECORD},
-    {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"smooth", no_argument, 0, OPT_SMOOTH},
+                                             {"n", required_argument, 0, OPT_N},
+                                             {"m", required_argument, 0, OPT_M},
+                                             {"delta", required_argument, 0, OPT_DELTA},
+                                             {"unit", required_argument, 0, OPT_UNIT},
+                                             {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+                                             {"channel", required_argument, 0, OPT_CHANNEL},
+                                             {"fill", no_argument, 0, OPT_FILL},
+                                             {"resample-square", no_argument, 0, OPT_RESAMPLE},
+                                             {"crop", required_argument, 0, OPT_CROP},
+                                             {"npy-order", required_argument, 0, OPT_NPY_ORDER},
+                                             {"length-unit", required_argument, 0, OPT_LENGTH_UNIT},
+                                             {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
+                                             {"detrend", required_argument, 0, OPT_DETREND},
+                                             {"align", required_argument, 0, OPT_ALIGN},
+                                             {"punch", required_argument, 0, OPT_PUNCH},
+                                             {"alpha", required_argument, 0, OPT_ALPHA},
+                                             {"radius", required_argument, 0, OPT_RADIUS},
+                                             {"x", required_argument, 0, OPT_X},
+                                             {"y", required_argument, 0, OPT_Y},
+                                             {"approach", required_argument, 0, OPT_APPROACH},
+                                             {"load", required_argument, 0, OPT_LOAD},
+                                             {"e-star", required_argument, 0, OPT_ESTAR},
+                                             {"hardness", required_argument, 0, OPT_HARDNESS},
+                                             {"quality", required_argument, 0, OPT_QUALITY},
+                                             {"tol", required_argument, 0, OPT_TOL},
+                                             {"max-iter", required_argument, 0, OPT_MAXIT},
+                                             {"full", no_argument, 0, OPT_FULL},
+                                             {"measure", no_argument, 0, OPT_MEASURE},
+                                             {"wisdom", required_argument, 0, OPT_WISDOM},
+                                             {"no-wisdom", no_argument, 0, OPT_NO_WISDOM},
+                                             {"out", required_argument, 0, OPT_OUT},
+                                             {"fields", no_argument, 0, OPT_FIELDS},
+                                             {"frames", no_argument, 0, OPT_FRAMES},
+                                             {"page-embed", no_argument, 0, OPT_PAGE_EMBED},
+                                             {"distributions", no_argument, 0, OPT_DISTRIBUTIONS},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {"plain-pk", no_argument, 0, OPT_PLAIN_PK},
+                                             {"profile", required_argument, 0, OPT_PROFILE},
+                                             {"device", required_argument, 0, OPT_DEVICE},
+                                             {"periodic", no_argument, 0, OPT_PERIODIC},
+                                             {"pressure", required_argument, 0, OPT_PRESSURE},
+                                             {"mean-gap", required_argument, 0, OPT_MEAN_GAP},
+                                             {"slope-definition", required_argument, 0, OPT_SLOPE_DEFINITION},
+                                             {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
+                                             {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
+                                             {"from-record", required_argument, 0, OPT_FROM_RECORD},
+                                             {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW},
+                                             {0, 0, 0, 0}};
 
 /* --punch (indenter.h: im_punch_parse, as a scene's [punch] shape). */
 static int parse_punch(const char *text, enum im_punch_kind *kind)
@@ -301,7 +365,9 @@ static int apply_one_option(int code, const char *arg, indent_options *o)
         fprintf(stderr, "indentmap: --slope-definition %s: expected spectral or fd\n", arg);
         return -1;
     case OPT_PROFILE: o->profile_path = arg; return 0;
-    case OPT_ALPHA: o->alpha_given = 1; return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
+    case OPT_ALPHA:
+        o->alpha_given = 1;
+        return cli_parse_double("--alpha", arg, -1e300, 1e300, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, -1e300, 1e300, &o->punch.radius);
     case OPT_X: o->x_given = 1; return cli_parse_double("--x", arg, -1e300, 1e300, &o->punch.x0);
     case OPT_Y: o->y_given = 1; return cli_parse_double("--y", arg, -1e300, 1e300, &o->punch.y0);
@@ -377,12 +443,14 @@ static int check_adhesion_options(const indent_options *o)
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
     else if (o->adhesion_law_given && !adhesion)
-        fprintf(stderr, "indentmap: --adhesion-law goes with --adhesion-work and --adhesion-range (the law's work and "
+        fprintf(stderr,
+                "indentmap: --adhesion-law goes with --adhesion-work and --adhesion-range (the law's work and "
                 "range): expected both\n");
     else if (adhesion && !held)
         fprintf(stderr, "indentmap: --adhesion-work takes %s\n",
-                o->solver.periodic ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
-                                   : "--approach or --load");
+                o->solver.periodic
+                    ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
+                    : "--approach or --load");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
     else
@@ -393,15 +461,18 @@ static int check_adhesion_options(const indent_options *o)
 static int check_options(const indent_options *o)
 {
     if (!o->targets_text)
-        fprintf(stderr, "indentmap: give --approach LIST or --load LIST (with --periodic also --pressure or --mean-gap)\n");
+        fprintf(stderr,
+                "indentmap: give --approach LIST or --load LIST (with --periodic also --pressure or --mean-gap)\n");
     else if (o->control == IM_CONTROL_MEAN_GAP && !o->solver.periodic)
-        fprintf(stderr, "indentmap: --mean-gap (a mean gap over the cell) needs --periodic; the half-space has none\n");
+        fprintf(stderr,
+                "indentmap: --mean-gap (a mean gap over the cell) needs --periodic; the half-space has none\n");
     else if (o->solver.periodic && !o->punch_given && (o->alpha_given || o->x_given))
-        fprintf(stderr, "indentmap: --periodic without --punch presses a rigid flat on the cell: --alpha, --x and --y "
+        fprintf(stderr,
+                "indentmap: --periodic without --punch presses a rigid flat on the cell: --alpha, --x and --y "
                 "apply to a punch (give --punch cone to repeat a cone with the cell)\n");
     else if (o->pressures && !o->solver.periodic)
         fprintf(stderr, "indentmap: --pressure (a mean pressure over the cell) needs --periodic; a punch on the "
-                "half-space takes --load\n");
+                        "half-space takes --load\n");
     else if (o->smooth == (o->surface_path != NULL))
         fprintf(stderr, "indentmap: give either a SURFACE file or --smooth\n");
     else if ((o->punch.kind == IM_PUNCH_PROFILE) != (o->profile_path != NULL))
@@ -410,7 +481,7 @@ static int check_options(const indent_options *o)
         fprintf(stderr, "indentmap: --punch %s needs --radius\n", im_punch_name(o->punch.kind));
     else if ((o->punch.kind == IM_PUNCH_CONE || o->punch.kind == IM_PUNCH_PROFILE) && o->radius_given)
         fprintf(stderr, "indentmap: --radius applies to --punch sphere or flat; a cone's shape is --alpha, a "
-                "profile's its --profile\n");
+                        "profile's its --profile\n");
     else if (o->x_given != o->y_given)
         fprintf(stderr, "indentmap: give both --x and --y, or neither\n");
     else
@@ -441,9 +512,12 @@ static const char *slope_definition_name(int definition)
 /* What the run writes into --out (indent_run.h: the names indent_files_claims claims). */
 static run_folder_rules folder_rules(const indent_options *o)
 {
-    return (run_folder_rules){.dir = o->out, .option = "--out", .lock_advice = "give this run another --out",
+    return (run_folder_rules){.dir = o->out,
+                              .option = "--out",
+                              .lock_advice = "give this run another --out",
                               .wisdom_advice = "give another --wisdom (or IM_FFTW_WISDOM) or another --out",
-                              .claims = indent_files_claims, .state = &o->files};
+                              .claims = indent_files_claims,
+                              .state = &o->files};
 }
 
 /* Refuses, before any work, an output folder whose outputs would replace the surface file, its
@@ -476,7 +550,7 @@ static int parse_operands(int argc, char **argv, indent_options *o)
     }
     if (o->from_record && (o->surface_path || o->arguments.list)) {
         fprintf(stderr, "indentmap: --from-record runs the recorded options: give only --out, --wisdom or "
-                "--no-wisdom beside it\n");
+                        "--no-wisdom beside it\n");
         return -1;
     }
     if (o->surface_path && indent_arguments_add(&o->arguments, NULL, o->surface_path, 1) != IM_OK) {
@@ -488,8 +562,12 @@ static int parse_operands(int argc, char **argv, indent_options *o)
 
 static int parse_arguments(int argc, char **argv, indent_options *o)
 {
-    *o = (indent_options){.nx = 512, .ny = 512, .delta = 1, .slope_definition = -1,
-                          .punch = im_indenter_cone(80), .solver = im_solver_options_default()};
+    *o = (indent_options){.nx = 512,
+                          .ny = 512,
+                          .delta = 1,
+                          .slope_definition = -1,
+                          .punch = im_indenter_cone(80),
+                          .solver = im_solver_options_default()};
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
         return parsed;
@@ -574,11 +652,10 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
         "{s:{s:s, s:i, s:i, s:f, s:s, s:s}, s:{s:s, s:f, s:f, s:f, s:f}, s:s, s:o, s:{s:i, s:i, s:i, s:i}, s:i, "
         "s:s, s:b}",
         "surface", "source", source, "nx", s->nx, "ny", s->ny, "delta", s->delta, "unit", s->unit, "preparation",
-        preparation, "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees,
-        "radius", o->punch.radius, "x", ax, "y", ay,
-        "control", target_name(o->control), "targets", targets,
-        "window", "x0", w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(),
-        "history", "history.csv", "fields", o->fields);
+        preparation, "punch", "kind", im_punch_name(o->punch.kind), "alpha_degrees", o->punch.alpha_degrees, "radius",
+        o->punch.radius, "x", ax, "y", ay, "control", target_name(o->control), "targets", targets, "window", "x0",
+        w.x0, "y0", w.y0, "nx", w.nx, "ny", w.ny, "threads", omp_get_max_threads(), "history", "history.csv",
+        "fields", o->fields);
     if (blocks) {
         json_object_set_new(blocks, "periodic", json_boolean(o->solver.periodic));
         json_object_set_new(blocks, "theory_slope_rms",
@@ -602,16 +679,16 @@ static json_t *json_number(double value) { return isfinite(value) ? json_real(va
  * the length unit and in patches) and, for a sphere, Maugis's lambda and the law's Tabor mu. */
 static json_t *adhesion_law_record(const indent_options *o)
 {
-    const double length = im_adhesion_zone_length(&o->solver), lambda = im_adhesion_maugis_lambda(&o->solver,
-                                                                                                  o->punch.radius);
+    const double length = im_adhesion_zone_length(&o->solver),
+                 lambda = im_adhesion_maugis_lambda(&o->solver, o->punch.radius);
     json_t *law = json_pack("{s:s, s:f, s:f, s:f, s:f, s:f}", "law", im_adhesion_law_name(o->solver.adhesion_law),
                             "work", o->solver.adhesion_work, "range", o->solver.adhesion_range, "stress",
                             o->solver.adhesion_work / o->solver.adhesion_range, "zone_length", length,
                             "zone_length_patches", length / o->surface_delta);
     const int sphere = o->punch.kind == IM_PUNCH_SPHERE;
     json_object_set_new(law, "maugis_lambda", sphere ? json_number(lambda) : json_null());
-    json_object_set_new(law, "tabor_mu", sphere ? json_number(im_adhesion_tabor_mu(&o->solver, o->punch.radius))
-                                                : json_null());
+    json_object_set_new(law, "tabor_mu",
+                        sphere ? json_number(im_adhesion_tabor_mu(&o->solver, o->punch.radius)) : json_null());
     return law;
 }
 
@@ -632,8 +709,11 @@ static void add_arguments(const indent_options *o, json_t *root)
 static json_t *run_record(const indent_options *o, const im_field *s, const im_indentation *run)
 {
     const im_solver_plan *plan = im_indentation_plan(run);
-    run_record_solver solver = {.quality = o->quality ? o->quality : o->tol_given ? "none" : IM_QUALITY_DEFAULT,
-                                .tol_from = tolerance_source(o), .options = &o->solver};
+    run_record_solver solver = {.quality = o->quality     ? o->quality
+                                           : o->tol_given ? "none"
+                                                          : IM_QUALITY_DEFAULT,
+                                .tol_from = tolerance_source(o),
+                                .options = &o->solver};
     json_t *root = run_record_create("indentmap indent", o->smooth ? "smooth" : "surface", o->surface_path, &solver);
     json_t *blocks = root ? indent_blocks(o, s, run) : NULL;
     if (!blocks) {
@@ -717,12 +797,16 @@ static void warn_if_rough_beyond_small_slopes(const indent_options *o)
 {
     const double flank = o->punch.kind == IM_PUNCH_CONE ? 1 / tan(o->punch.alpha_degrees * M_PI / 180) : INFINITY;
     if (o->theory_slope > 1.0)
-        fprintf(stderr, "indentmap: warning: the surface's h'rms = %.3g: slopes steeper than 45 degrees on average, "
-                "where small-slope elasticity is stretched\n", o->theory_slope);
+        fprintf(stderr,
+                "indentmap: warning: the surface's h'rms = %.3g: slopes steeper than 45 degrees on average, "
+                "where small-slope elasticity is stretched\n",
+                o->theory_slope);
     if (o->theory_slope > flank)
-        fprintf(stderr, "indentmap: warning: the surface's h'rms = %.3g is %.3g times the cone flank's slope cot(alpha) "
+        fprintf(stderr,
+                "indentmap: warning: the surface's h'rms = %.3g is %.3g times the cone flank's slope cot(alpha) "
                 "= %.3g: the roughness, not the cone, shapes the contact, beyond the paper's theory (h'rms below "
-                "cot(alpha))\n", o->theory_slope, o->theory_slope / flank, flank);
+                "cot(alpha))\n",
+                o->theory_slope, o->theory_slope / flank, flank);
 }
 
 static int load_surface(indent_options *o, im_field **surface)
@@ -734,7 +818,7 @@ static int load_surface(indent_options *o, im_field **surface)
     }
     int status = im_field_create(o->nx, o->ny, o->delta, surface);
     if (status == IM_OK)
-        memcpy((*surface)->unit, o->read.set.lateral, sizeof (*surface)->unit);
+        memcpy((*surface)->unit, o->read.set.lateral, sizeof(*surface)->unit);
     return status;
 }
 
@@ -751,8 +835,10 @@ static int check_axis_inside(const indent_options *o, const im_field *surface)
     double width = surface->nx * surface->delta, height = surface->ny * surface->delta;
     if (!o->x_given || (o->punch.x0 >= 0 && o->punch.x0 <= width && o->punch.y0 >= 0 && o->punch.y0 <= height))
         return IM_OK;
-    return im_fail(IM_EINVAL, "--x %g --y %g: the punch's axis lies outside the %d x %d surface (expected 0 <= x <= "
-                   "%g and 0 <= y <= %g)", o->punch.x0, o->punch.y0, surface->nx, surface->ny, width, height);
+    return im_fail(IM_EINVAL,
+                   "--x %g --y %g: the punch's axis lies outside the %d x %d surface (expected 0 <= x <= "
+                   "%g and 0 <= y <= %g)",
+                   o->punch.x0, o->punch.y0, surface->nx, surface->ny, width, height);
 }
 
 /* --profile, read now that the surface's spacing (a 2-D profile's) and length unit are known. */
@@ -791,9 +877,11 @@ static void warn_if_unresolved(const im_history_row *rows, int i)
         if (rows[k].result.contact_patches > 0 && rows[k].result.contact_patches < RESOLVED_PATCHES)
             return; /* said already */
     if (n > 0 && n < RESOLVED_PATCHES)
-        fprintf(stderr, "indentmap: warning: step %d: the contact covers %ld patch%s, too few for the grid to resolve "
+        fprintf(stderr,
+                "indentmap: warning: step %d: the contact covers %ld patch%s, too few for the grid to resolve "
                 "it (a smooth cone carries 2.4x Love's load at 1 patch, 1.05x at 9): use a finer delta or a larger "
-                "approach or load\n", i + 1, n, n == 1 ? "" : "es");
+                "approach or load\n",
+                i + 1, n, n == 1 ? "" : "es");
 }
 
 /* What the step line's area ratio divides by: the cell (periodic), or the smooth punch's area at the
@@ -831,7 +919,8 @@ static void warn_if_zone_unresolved(const indent_options *o)
 {
     const double patches = im_adhesion_zone_length(&o->solver) / o->surface_delta;
     if (patches < 1)
-        fprintf(stderr, "indentmap: warning: the adhesive zone's length pi E* D^2 / (8 W) = %.3g patches is below one "
+        fprintf(stderr,
+                "indentmap: warning: the adhesive zone's length pi E* D^2 / (8 W) = %.3g patches is below one "
                 "patch: the grid does not resolve it and the pull-off comes out too strong (a sphere: 8%% at 0.33 "
                 "patches, 5 times at 0.03; 0.6%% at 3): use a finer delta or a wider --adhesion-range\n",
                 patches);
@@ -858,10 +947,10 @@ static void write_adhesion_theory(const indent_options *o, const im_history_row 
         json_object_set_new(law, "theory", json_null());
         return;
     }
-    json_object_set_new(law, "theory", json_pack("{s:s, s:f, s:f, s:f, s:s}", "model", model, "pull_off_force",
-                                                 -pull_off.load, "pull_off_approach", pull_off.approach,
-                                                 "contact_radius", pull_off.contact_radius, "file",
-                                                 "adhesion_theory.csv"));
+    json_object_set_new(law, "theory",
+                        json_pack("{s:s, s:f, s:f, s:f, s:s}", "model", model, "pull_off_force", -pull_off.load,
+                                  "pull_off_approach", pull_off.approach, "contact_radius", pull_off.contact_radius,
+                                  "file", "adhesion_theory.csv"));
     printf("adhesion theory (%s): pull-off force %.6g at w = %.6g; %s/adhesion_theory.csv\n", model, -pull_off.load,
            pull_off.approach, o->out);
 }
@@ -884,8 +973,9 @@ static void write_adhesion(const indent_options *o, const im_history_row *rows, 
     json_object_set_new(law, "hysteresis_work", json_real(summary.hysteresis_work));
     json_object_set_new(law, "figure", json_string("force_distance.png"));
     printf("adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
-           "work lost %.6g; %s/force_distance.png and .pdf\n", summary.pull_off_force, summary.pull_off_approach,
-           summary.jump_in_approach, summary.jump_out_approach, summary.hysteresis_work, o->out);
+           "work lost %.6g; %s/force_distance.png and .pdf\n",
+           summary.pull_off_force, summary.pull_off_approach, summary.jump_in_approach, summary.jump_out_approach,
+           summary.hysteresis_work, o->out);
     write_adhesion_theory(o, rows, done, law);
 }
 
@@ -924,9 +1014,16 @@ static void write_history_figure(const indent_options *o, const im_theory_interf
     const int elastic = !(o->solver.hardness > 0) && !(o->solver.adhesion_work > 0);
     /* an adhesive cell's net load goes through 0: its force against the approach, as an adhesive punch's */
     const int area_plot = o->solver.periodic && !(o->solver.adhesion_work > 0);
-    const history_figure figure = {rows, done, &o->punch, area_plot ? o->cell_area : 0.0,
-                                   o->solver.periodic && !o->punch_given && elastic ? rough : NULL, elastic,
-                                   o->length_unit, o->force_unit, o->e_star_unit, &o->figure_texts};
+    const history_figure figure = {rows,
+                                   done,
+                                   &o->punch,
+                                   area_plot ? o->cell_area : 0.0,
+                                   o->solver.periodic && !o->punch_given && elastic ? rough : NULL,
+                                   elastic,
+                                   o->length_unit,
+                                   o->force_unit,
+                                   o->e_star_unit,
+                                   &o->figure_texts};
     if (history_figure_write(o->out, &figure) != IM_OK)
         fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
 }
@@ -952,8 +1049,8 @@ static void draw_frames(const indent_options *o, const im_history_row *rows, int
                         int *status, char *message, size_t size)
 {
     char folder[4096];
-    const fields_frames frames = {o->out, folder, rows, done, &o->punch, o->force_unit, o->figure_texts.texts,
-                                  o->figure_texts.count};
+    const fields_frames frames = {
+        o->out, folder, rows, done, &o->punch, o->force_unit, o->figure_texts.texts, o->figure_texts.count};
     int drawn = im_path_join(folder, sizeof folder, o->out, "frames");
     if (drawn == IM_OK)
         drawn = fields_frames_write(context, &frames);
@@ -998,11 +1095,18 @@ static int run_steps(const indent_options *o, const im_theory_interface *rough, 
     im_history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
     if (!rows)
         return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
-    const indent_run_plan plan = {
-        .dir = o->out, .punch = &o->punch, .rough = o->solver.periodic ? NULL : rough, .targets = o->targets,
-        .count = o->target_count, .target_name = target_name(o->control), .files = o->files,
-        .units = {o->solver.hardness, o->length_unit, o->force_unit}, .gap_scale = o->gap_scale,
-        .stop = stop_signal, .stepped = report_step, .state = o};
+    const indent_run_plan plan = {.dir = o->out,
+                                  .punch = &o->punch,
+                                  .rough = o->solver.periodic ? NULL : rough,
+                                  .targets = o->targets,
+                                  .count = o->target_count,
+                                  .target_name = target_name(o->control),
+                                  .files = o->files,
+                                  .units = {o->solver.hardness, o->length_unit, o->force_unit},
+                                  .gap_scale = o->gap_scale,
+                                  .stop = stop_signal,
+                                  .stepped = report_step,
+                                  .state = o};
     int done = 0;
     int status = indent_run_steps(&plan, run, history, rows, &done);
     char message[1024];
@@ -1052,8 +1156,9 @@ static int measured_interface(indent_options *o, const im_field *surface, im_the
     json_decref(generator);
     if (o->slope_definition < 0) {
         o->slope_definition = generated || o->solver.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
-        o->slope_reason = generated ? "default: a generated surface" : o->solver.periodic ? "default: a periodic cell"
-                                                                                         : "default: a measured surface";
+        o->slope_reason = generated            ? "default: a generated surface"
+                          : o->solver.periodic ? "default: a periodic cell"
+                                               : "default: a measured surface";
     } else {
         o->slope_reason = "--slope-definition";
     }
@@ -1115,7 +1220,7 @@ int cli_indent(int argc, char **argv)
     im_indentation *run = NULL;
     json_t *record = NULL;
     im_theory_interface rough;
-    int status = cli_interrupt_install() != 0    ? im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers")
+    int status = cli_interrupt_install() != 0       ? im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers")
                  : o.punch.kind == IM_PUNCH_PROFILE ? IM_OK /* checked once read, after the surface */
                                                     : im_indenter_check(&o.punch);
     if (status == IM_OK) {

@@ -39,8 +39,7 @@ char *indent_arguments_command(const indent_arguments *arguments)
     static const char PROGRAM[] = "indentmap indent";
     size_t size = sizeof PROGRAM, i;
     json_t *argument;
-    json_array_foreach(arguments->list, i, argument)
-        size += cli_shell_word_room(json_string_value(argument));
+    json_array_foreach(arguments->list, i, argument) size += cli_shell_word_room(json_string_value(argument));
     char *text = malloc(size);
     if (!text)
         return NULL;
@@ -59,7 +58,8 @@ static int check_inputs(const char *record, const json_t *root)
                        record);
     size_t i;
     json_t *input;
-    json_array_foreach(inputs, i, input) {
+    json_array_foreach(inputs, i, input)
+    {
         const char *key = json_string_value(json_object_get(input, "key"));
         const char *path = json_string_value(json_object_get(input, "path"));
         const char *sha256 = json_string_value(json_object_get(input, "sha256"));
@@ -77,16 +77,19 @@ static int recorded_arguments(const char *record, const json_t *root, json_t **a
 {
     *arguments = json_object_get(root, "arguments");
     if (!json_is_array(*arguments))
-        return im_fail(IM_EFORMAT, "%s: no arguments: expected the record of an indent run by a version that keeps "
-                       "them (issue 31); run indent with its options instead", record);
+        return im_fail(IM_EFORMAT,
+                       "%s: no arguments: expected the record of an indent run by a version that keeps "
+                       "them (issue 31); run indent with its options instead",
+                       record);
     if (json_object_get(root, "arguments_encoding"))
-        return im_fail(IM_EFORMAT, "%s: an argument was not UTF-8 and is recorded escaped: its bytes cannot be given "
-                       "again; run indent with its options instead", record);
+        return im_fail(IM_EFORMAT,
+                       "%s: an argument was not UTF-8 and is recorded escaped: its bytes cannot be given "
+                       "again; run indent with its options instead",
+                       record);
     size_t i;
     json_t *argument;
-    json_array_foreach(*arguments, i, argument)
-        if (!json_is_string(argument))
-            return im_fail(IM_EFORMAT, "%s: arguments[%zu]: expected a string", record, i);
+    json_array_foreach(*arguments, i, argument) if (!json_is_string(argument)) return im_fail(
+        IM_EFORMAT, "%s: arguments[%zu]: expected a string", record, i);
     return IM_OK;
 }
 

@@ -9,8 +9,8 @@
  * without --out, --wisdom and --no-wisdom (where a run writes and plans is the machine's, not the
  * run's). */
 typedef struct indent_arguments {
-    json_t *list;   /* strings: UTF-8, escaped (im_path_utf8) where not */
-    int escaped;    /* 1 when one was not UTF-8: its bytes are not recoverable by the replay */
+    json_t *list; /* strings: UTF-8, escaped (im_path_utf8) where not */
+    int escaped;  /* 1 when one was not UTF-8: its bytes are not recoverable by the replay */
 } indent_arguments;
 
 /* Appends the long option named option ("load" for --load) with value (NULL for a flag; a path made
@@ -34,7 +34,7 @@ typedef struct indent_replay_options {
  * of its inputs still have its recorded SHA-256: IM_EFORMAT or IM_EINVAL naming the record (and the
  * changed file with both checksums) otherwise. */
 typedef struct indent_replay {
-    json_t *root;    /* the record, which the argument strings borrow */
+    json_t *root; /* the record, which the argument strings borrow */
     char **argv;
     int argc;
     char out[4096];

@@ -22,8 +22,9 @@ static void usage(FILE *stream)
 
 enum { OPT_BACKEND = 256, OPT_HELP };
 
-static const struct option LONG_OPTIONS[] = {
-    {"backend", required_argument, 0, OPT_BACKEND}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"backend", required_argument, 0, OPT_BACKEND},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {0, 0, 0, 0}};
 
 static int apply_option(int code, const char *arg, void *state)
 {

@@ -56,17 +56,8 @@ static int install(void (*handler)(int))
                : -1;
 }
 
-int cli_interrupt_install(void)
-{
-    return install(on_signal);
-}
+int cli_interrupt_install(void) { return install(on_signal); }
 
-int cli_interrupt_install_cleanup(void)
-{
-    return install(end_by_signal);
-}
+int cli_interrupt_install_cleanup(void) { return install(end_by_signal); }
 
-int cli_interrupt_exit_status(void)
-{
-    return 128 + (int)cli_stop_signal;
-}
+int cli_interrupt_exit_status(void) { return 128 + (int)cli_stop_signal; }

@@ -21,7 +21,8 @@ static const subcommand SUBCOMMANDS[] = {
     {"formats", cli_formats, "list the surface formats this build reads (its own, and Gwyddion's file modules)"},
     {"info", cli_info, "print the version, FFTW version and OpenMP thread count"},
 #if IM_HAVE_MPI
-    {"mpi-indent", cli_mpi_indent, "one indentation of one surface over MPI ranks (mpirun -n K indentmap mpi-indent)"},
+    {"mpi-indent", cli_mpi_indent,
+     "one indentation of one surface over MPI ranks (mpirun -n K indentmap mpi-indent)"},
 #endif
 };
 static const int SUBCOMMAND_COUNT = (int)(sizeof SUBCOMMANDS / sizeof SUBCOMMANDS[0]);

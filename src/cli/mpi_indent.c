@@ -19,20 +19,48 @@
 #include <string.h>
 #include <sys/stat.h>
 
-enum { OPT_SURFACE = 256, OPT_N, OPT_M, OPT_SEED, OPT_SLOPE, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_APPROACH,
-       OPT_LOAD, OPT_HARDNESS, OPT_TOL, OPT_MAXIT, OPT_OUT, OPT_MAP, OPT_HELP, OPT_PERIODIC, OPT_PRESSURE,
-       OPT_MEAN_GAP };
+enum {
+    OPT_SURFACE = 256,
+    OPT_N,
+    OPT_M,
+    OPT_SEED,
+    OPT_SLOPE,
+    OPT_PUNCH,
+    OPT_ALPHA,
+    OPT_RADIUS,
+    OPT_APPROACH,
+    OPT_LOAD,
+    OPT_HARDNESS,
+    OPT_TOL,
+    OPT_MAXIT,
+    OPT_OUT,
+    OPT_MAP,
+    OPT_HELP,
+    OPT_PERIODIC,
+    OPT_PRESSURE,
+    OPT_MEAN_GAP
+};
 
-static const struct option LONG_OPTIONS[] = {
-    {"surface", required_argument, 0, OPT_SURFACE}, {"n", required_argument, 0, OPT_N},
-    {"m", required_argument, 0, OPT_M}, {"seed", required_argument, 0, OPT_SEED},
-    {"slope", required_argument, 0, OPT_SLOPE}, {"punch", required_argument, 0, OPT_PUNCH},
-    {"alpha", required_argument, 0, OPT_ALPHA}, {"radius", required_argument, 0, OPT_RADIUS},
-    {"approach", required_argument, 0, OPT_APPROACH}, {"load", required_argument, 0, OPT_LOAD},
-    {"hardness", required_argument, 0, OPT_HARDNESS}, {"tol", required_argument, 0, OPT_TOL}, {"max-iter", required_argument, 0, OPT_MAXIT},
-    {"out", required_argument, 0, OPT_OUT}, {"map", required_argument, 0, OPT_MAP}, {"help", no_argument, 0, OPT_HELP},
-    {"periodic", no_argument, 0, OPT_PERIODIC}, {"pressure", required_argument, 0, OPT_PRESSURE},
-    {"mean-gap", required_argument, 0, OPT_MEAN_GAP}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, OPT_SURFACE},
+                                             {"n", required_argument, 0, OPT_N},
+                                             {"m", required_argument, 0, OPT_M},
+                                             {"seed", required_argument, 0, OPT_SEED},
+                                             {"slope", required_argument, 0, OPT_SLOPE},
+                                             {"punch", required_argument, 0, OPT_PUNCH},
+                                             {"alpha", required_argument, 0, OPT_ALPHA},
+                                             {"radius", required_argument, 0, OPT_RADIUS},
+                                             {"approach", required_argument, 0, OPT_APPROACH},
+                                             {"load", required_argument, 0, OPT_LOAD},
+                                             {"hardness", required_argument, 0, OPT_HARDNESS},
+                                             {"tol", required_argument, 0, OPT_TOL},
+                                             {"max-iter", required_argument, 0, OPT_MAXIT},
+                                             {"out", required_argument, 0, OPT_OUT},
+                                             {"map", required_argument, 0, OPT_MAP},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {"periodic", no_argument, 0, OPT_PERIODIC},
+                                             {"pressure", required_argument, 0, OPT_PRESSURE},
+                                             {"mean-gap", required_argument, 0, OPT_MEAN_GAP},
+                                             {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
 {
@@ -235,7 +263,8 @@ static int solve(mpi_indent_options *o, im_solve_result *result)
     if (!o->surface_file)
         o->surface.lambda_r = o->surface.nx < o->surface.ny ? o->surface.nx : o->surface.ny;
     im_mpi_solver *solver;
-    if ((status = im_mpi_solver_create(MPI_COMM_WORLD, o->surface.nx, o->surface.ny, 1.0, &o->solver, &solver)) != IM_OK)
+    if ((status = im_mpi_solver_create(MPI_COMM_WORLD, o->surface.nx, o->surface.ny, 1.0, &o->solver, &solver)) !=
+        IM_OK)
         return status;
     int y0, rows;
     im_mpi_solver_rows(solver, &y0, &rows);
@@ -254,19 +283,21 @@ static int solve(mpi_indent_options *o, im_solve_result *result)
 static int check_periodic_options(mpi_indent_options *o)
 {
     if (o->targets_option && !o->periodic)
-        fprintf(stderr, "indentmap: mpi-indent: %s (over a periodic cell) needs --periodic; the half-space takes "
-                "--approach W or --load N\n", o->targets_option);
+        fprintf(stderr,
+                "indentmap: mpi-indent: %s (over a periodic cell) needs --periodic; the half-space takes "
+                "--approach W or --load N\n",
+                o->targets_option);
     else if (o->periodic && !isnan(o->target))
         fprintf(stderr, "indentmap: mpi-indent --periodic takes mean pressures (--pressure LIST) or mean gaps "
-                "(--mean-gap LIST), not --approach or --load\n");
+                        "(--mean-gap LIST), not --approach or --load\n");
     else if (o->periodic && !o->targets_option)
         fprintf(stderr, "indentmap: mpi-indent --periodic: give --pressure LIST or --mean-gap LIST\n");
     else if (o->periodic && o->punch_given)
         fprintf(stderr, "indentmap: mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha "
-                "and --radius are the half-space's\n");
+                        "and --radius are the half-space's\n");
     else if (o->periodic && o->solver.hardness > 0 && strcmp(o->targets_option, "--mean-gap") == 0)
         fprintf(stderr, "indentmap: mpi-indent --periodic --mean-gap with --hardness: the approach of a yielding "
-                "cell's mean gap is searched, which only indent does (serially); give --pressure LIST\n");
+                        "cell's mean gap is searched, which only indent does (serially); give --pressure LIST\n");
     else
         return 0;
     return -1;
@@ -274,8 +305,10 @@ static int check_periodic_options(mpi_indent_options *o)
 
 static int parse(int argc, char **argv, mpi_indent_options *o)
 {
-    *o = (mpi_indent_options){.surface = im_surface_params_default(), .punch = im_indenter_cone(80),
-                              .target = NAN, .solver = im_solver_options_default()};
+    *o = (mpi_indent_options){.surface = im_surface_params_default(),
+                              .punch = im_indenter_cone(80),
+                              .target = NAN,
+                              .solver = im_solver_options_default()};
     o->solver.crop = 0;
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
@@ -297,9 +330,10 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
     }
     int shorter = o->surface.nx < o->surface.ny ? o->surface.nx : o->surface.ny;
     if (!o->surface_file && !(shorter > o->surface.lambda_s)) { /* solve() makes lambda_r the shorter side */
-        fprintf(stderr, "indentmap: mpi-indent: --n %d --m %d: the shorter side is the surface's lambda_r, which "
-                "must exceed lambda_s = %g: expected --n and --m > %g\n", o->surface.nx, o->surface.ny,
-                o->surface.lambda_s, o->surface.lambda_s);
+        fprintf(stderr,
+                "indentmap: mpi-indent: --n %d --m %d: the shorter side is the surface's lambda_r, which "
+                "must exceed lambda_s = %g: expected --n and --m > %g\n",
+                o->surface.nx, o->surface.ny, o->surface.lambda_s, o->surface.lambda_s);
         return -1;
     }
     return 0;

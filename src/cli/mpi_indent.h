@@ -8,8 +8,8 @@
 #if IM_HAVE_MPI
 
 typedef struct mpi_indent_options {
-    im_surface_params surface;  /* synthesised when no file is given */
-    const char *surface_file;   /* float64 .npy heights in units of delta, or NULL */
+    im_surface_params surface; /* synthesised when no file is given */
+    const char *surface_file;  /* float64 .npy heights in units of delta, or NULL */
     im_indenter punch;
     int punch_given;            /* --punch, --alpha or --radius */
     enum im_control control;    /* --approach, --load; --periodic: --pressure (load), --mean-gap */
@@ -19,9 +19,9 @@ typedef struct mpi_indent_options {
     double *targets;            /* its step list (mean pressures or mean gaps) */
     int target_count;
     im_solver_options solver;
-    int tol_given;              /* --tol (run.json: no quality preset) */
-    const char *out;            /* folder for force.npy and gap.npy, or NULL */
-    int map_factor;             /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */
+    int tol_given;   /* --tol (run.json: no quality preset) */
+    const char *out; /* folder for force.npy and gap.npy, or NULL */
+    int map_factor;  /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */
 } mpi_indent_options;
 
 /* DIR/force.npy and DIR/gap.npy of this rank's rows (and DIR/force_map.npy with --map): rank 0 makes

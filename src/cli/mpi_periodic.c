@@ -23,13 +23,13 @@ typedef struct periodic_run {
     im_mpi_solver *solver;
     im_mpi_flat_contact *cell;
     int rank;
-    im_field shape;          /* the cell's grid and patch side (no data) */
-    im_indenter flat;        /* the rigid flat on the whole cell */
-    double *targets;         /* loads N (from the mean pressures) or mean gaps */
+    im_field shape;   /* the cell's grid and patch side (no data) */
+    im_indenter flat; /* the rigid flat on the whole cell */
+    double *targets;  /* loads N (from the mean pressures) or mean gaps */
     im_history_row *rows;
-    history_file history;    /* rank 0, with --out */
-    json_t *record;          /* rank 0, with --out */
-    double slope_rms;        /* rank 0: the cell's spectral h'rms */
+    history_file history; /* rank 0, with --out */
+    json_t *record;       /* rank 0, with --out */
+    double slope_rms;     /* rank 0: the cell's spectral h'rms */
 } periodic_run;
 
 /* Rank 0: the whole field of this rank's rows of values (caller frees; NULL elsewhere). Collective. */
@@ -80,9 +80,9 @@ static int add_blocks(const periodic_run *run, json_t *root)
         "surface", "source", o->surface_file ? o->surface_file : "synthesised over the ranks", "nx", run->shape.nx,
         "ny", run->shape.ny, "delta", run->shape.delta, "unit", "", "punch", "kind", im_punch_name(run->flat.kind),
         "radius", run->flat.radius, "control", o->control == IM_CONTROL_LOAD ? "load" : "mean_gap", "targets",
-        targets, "periodic", 1, "threads", omp_get_max_threads(), "history",
-        "history.csv", "theory_slope_rms", "value", run->slope_rms, "definition", "spectral", "chosen_by",
-        "default: a periodic cell", "units", indent_units_record("", "", 1), "indentation", "adhesion");
+        targets, "periodic", 1, "threads", omp_get_max_threads(), "history", "history.csv", "theory_slope_rms",
+        "value", run->slope_rms, "definition", "spectral", "chosen_by", "default: a periodic cell", "units",
+        indent_units_record("", "", 1), "indentation", "adhesion");
     if (!blocks)
         return im_fail(IM_ENOMEM, "run.json: out of memory");
     int ranks;
@@ -106,7 +106,8 @@ static int start_outputs(periodic_run *run)
         return IM_OK;
     int status = im_make_directories(o->out);
     run_record_solver solver = {.quality = o->tol_given ? "none" : IM_QUALITY_DEFAULT,
-                                .tol_from = o->tol_given ? "--tol" : "default", .options = &o->solver};
+                                .tol_from = o->tol_given ? "--tol" : "default",
+                                .options = &o->solver};
     if (status == IM_OK)
         run->record = run_record_create("indentmap mpi-indent", "surface", o->surface_file, &solver);
     if (status == IM_OK && !run->record)
@@ -150,9 +151,8 @@ static int finish_record(periodic_run *run, int done, int status)
     periodic_k_fit k;
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
-    if (!(run->o->solver.hardness > 0) &&
-        periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape), run->slope_rms, run->o->solver.e_star,
-                       &k) == IM_OK)
+    if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
+                                                         run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
     if (status != IM_OK)
         im_fail(status, "%s", message); /* the step's error, not the fit's */
@@ -194,7 +194,9 @@ static int run_steps(periodic_run *run)
 
 int mpi_indent_periodic(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights)
 {
-    periodic_run run = {.o = o, .solver = solver, .history = {.fd = -1},
+    periodic_run run = {.o = o,
+                        .solver = solver,
+                        .history = {.fd = -1},
                         .shape = {.nx = o->surface.nx, .ny = o->surface.ny, .delta = 1.0}};
     MPI_Comm_rank(MPI_COMM_WORLD, &run.rank);
     run.flat = periodic_rigid_flat(&run.shape);

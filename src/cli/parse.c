@@ -86,8 +86,10 @@ int cli_parse_npy_order(const char *text, enum im_npy_order *out)
         *out = text[0] == 'x' ? IM_NPY_ORDER_XY : IM_NPY_ORDER_YX;
         return 0;
     }
-    fprintf(stderr, "indentmap: --npy-order '%.20s': expected yx (rows are y) or xy (the first index is x, as "
-            "SurfaceTopography's heights() arrays)\n", text);
+    fprintf(stderr,
+            "indentmap: --npy-order '%.20s': expected yx (rows are y) or xy (the first index is x, as "
+            "SurfaceTopography's heights() arrays)\n",
+            text);
     return -1;
 }
 
@@ -116,8 +118,7 @@ int cli_parse_name(const char *option, const char *text, char *out, size_t size)
 int cli_report(int status)
 {
     fprintf(stderr, "indentmap: %s\n", im_last_error()[0] ? im_last_error() : im_strstatus(status));
-    return (status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM) ? CLI_EXIT_USAGE
-                                                                               : CLI_EXIT_FAILURE;
+    return (status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM) ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
 }
 
 int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),

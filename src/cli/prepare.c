@@ -88,9 +88,10 @@ int cli_prepare_surface(const cli_preparation *p, im_field **surface)
 void cli_warn_if_much_filled(const char *path, long filled, size_t points)
 {
     if (points > 0 && (double)filled > 0.05 * (double)points)
-        fprintf(stderr, "indentmap: warning: %s: --fill invented %.1f%% of the surface (%ld of %zu points): its "
-                "statistics and contacts there are the fill's\n", path, 100.0 * (double)filled / (double)points,
-                filled, points);
+        fprintf(stderr,
+                "indentmap: warning: %s: --fill invented %.1f%% of the surface (%ld of %zu points): its "
+                "statistics and contacts there are the fill's\n",
+                path, 100.0 * (double)filled / (double)points, filled, points);
 }
 
 void cli_describe_preparation(const cli_preparation *p, long filled, char *text, size_t size)

@@ -22,7 +22,8 @@ static void usage(FILE *stream)
             "usage: indentmap render contact FORCE... [OPTIONS] --out FILE\n"
             "       indentmap render height SURFACE... [OPTIONS] --out FILE\n"
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
-            "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d --help)\n\n"
+            "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d "
+            "--help)\n\n"
             "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, none grey (the paper's Fig. 4), patches under tension\n"
             "(adhesion) on a blue ramp of their tension -f with a second colour bar beside the force's,\n"
@@ -65,32 +66,63 @@ typedef struct render_options {
     im_colormap_id map;
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
-    int map_given, linear;        /* --colormap, --linear: else forces take the frames' magma, log */
-    double shared_lo, shared_hi; /* default norm: the union of the fields' ranges */
-    double shared_tension;       /* the largest tension -f of all the fields: the tension bar's top */
-    char value_unit[40];          /* the first field's value unit (its .npy sidecar), "" if none */
+    int map_given, linear;         /* --colormap, --linear: else forces take the frames' magma, log */
+    double shared_lo, shared_hi;   /* default norm: the union of the fields' ranges */
+    double shared_tension;         /* the largest tension -f of all the fields: the tension bar's top */
+    char value_unit[40];           /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
-    cli_provenance provenance;     /* the command line, where it ran and the inputs: every figure's record */
+    cli_provenance provenance; /* the command line, where it ran and the inputs: every figure's record */
 } render_options;
 
-enum { OPT_OUT = 256, OPT_RAW, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG, OPT_SCALE, OPT_CIRCLE, OPT_CX,
-       OPT_CY, OPT_CONTACT, OPT_LABEL, OPT_TITLE, OPT_QUANTITY, OPT_DPI, OPT_FPS, OPT_FRAMES,
-       OPT_BACKEND, OPT_TITLES, OPT_COLUMNS, OPT_LINEAR, OPT_HELP };
+enum {
+    OPT_OUT = 256,
+    OPT_RAW,
+    OPT_MAP,
+    OPT_VMIN,
+    OPT_VMAX,
+    OPT_LOG,
+    OPT_SCALE,
+    OPT_CIRCLE,
+    OPT_CX,
+    OPT_CY,
+    OPT_CONTACT,
+    OPT_LABEL,
+    OPT_TITLE,
+    OPT_QUANTITY,
+    OPT_DPI,
+    OPT_FPS,
+    OPT_FRAMES,
+    OPT_BACKEND,
+    OPT_TITLES,
+    OPT_COLUMNS,
+    OPT_LINEAR,
+    OPT_HELP
+};
 
-static const struct option LONG_OPTIONS[] = {
-    {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
-    {"colormap", required_argument, 0, OPT_MAP}, {"vmin", required_argument, 0, OPT_VMIN},
-    {"vmax", required_argument, 0, OPT_VMAX}, {"log", no_argument, 0, OPT_LOG},
-    {"linear", no_argument, 0, OPT_LINEAR},
-    {"scale", required_argument, 0, OPT_SCALE}, {"circle", required_argument, 0, OPT_CIRCLE},
-    {"circle-x", required_argument, 0, OPT_CX}, {"circle-y", required_argument, 0, OPT_CY},
-    {"contact", required_argument, 0, OPT_CONTACT}, {"label", required_argument, 0, OPT_LABEL},
-    {"title", required_argument, 0, OPT_TITLE}, {"quantity", required_argument, 0, OPT_QUANTITY},
-    {"dpi", required_argument, 0, OPT_DPI}, {"fps", required_argument, 0, OPT_FPS},
-    {"frames", required_argument, 0, OPT_FRAMES}, {"backend", required_argument, 0, OPT_BACKEND},
-    {"titles", required_argument, 0, OPT_TITLES}, {"columns", required_argument, 0, OPT_COLUMNS},
-    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"out", required_argument, 0, OPT_OUT},
+                                             {"raw", no_argument, 0, OPT_RAW},
+                                             {"colormap", required_argument, 0, OPT_MAP},
+                                             {"vmin", required_argument, 0, OPT_VMIN},
+                                             {"vmax", required_argument, 0, OPT_VMAX},
+                                             {"log", no_argument, 0, OPT_LOG},
+                                             {"linear", no_argument, 0, OPT_LINEAR},
+                                             {"scale", required_argument, 0, OPT_SCALE},
+                                             {"circle", required_argument, 0, OPT_CIRCLE},
+                                             {"circle-x", required_argument, 0, OPT_CX},
+                                             {"circle-y", required_argument, 0, OPT_CY},
+                                             {"contact", required_argument, 0, OPT_CONTACT},
+                                             {"label", required_argument, 0, OPT_LABEL},
+                                             {"title", required_argument, 0, OPT_TITLE},
+                                             {"quantity", required_argument, 0, OPT_QUANTITY},
+                                             {"dpi", required_argument, 0, OPT_DPI},
+                                             {"fps", required_argument, 0, OPT_FPS},
+                                             {"frames", required_argument, 0, OPT_FRAMES},
+                                             {"backend", required_argument, 0, OPT_BACKEND},
+                                             {"titles", required_argument, 0, OPT_TITLES},
+                                             {"columns", required_argument, 0, OPT_COLUMNS},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {0, 0, 0, 0}};
 
 static int named(int status, const char *option)
 {
@@ -151,8 +183,8 @@ static void note_extremes(render_options *o, const im_field *field, const im_col
     }
 }
 
-static int render_contact(im_render_context *context, const im_field *force, render_options *o,
-                          im_image *image, im_colormap *norm)
+static int render_contact(im_render_context *context, const im_field *force, render_options *o, im_image *image,
+                          im_colormap *norm)
 {
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
@@ -168,8 +200,8 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     return im_render_contact_map(context, force, &style, image);
 }
 
-static int render_height(im_render_context *context, const im_field *height, render_options *o,
-                         im_image *image, im_colormap *norm)
+static int render_height(im_render_context *context, const im_field *height, render_options *o, im_image *image,
+                         im_colormap *norm)
 {
     im_field *contact = NULL;
     int status = o->contact ? im_surface_read(o->contact, &contact) : IM_OK;
@@ -232,8 +264,8 @@ static int write_figure(const render_options *o, const im_image *images, int cou
 {
     if (o->raw) {
         im_png_options options = {texts->texts, texts->count, o->dpi / 0.0254, IM_FIGURE_PNG_COMPRESSION};
-        return im_png_write(o->out, images[0].rgba, images[0].width, images[0].height, 4,
-                            (size_t)images[0].width * 4, &options);
+        return im_png_write(o->out, images[0].rgba, images[0].width, images[0].height, 4, (size_t)images[0].width * 4,
+                            &options);
     }
     int columns = o->columns > 0 ? o->columns : count;
     if (count % columns != 0)
@@ -271,7 +303,8 @@ static int write_output(const render_options *o, char **inputs, const im_image *
                         const im_colormap *norm, im_image *frame)
 {
     char norm_text[128], scale_text[16];
-    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
+    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo,
+             norm->hi);
     snprintf(scale_text, sizeof scale_text, "%d", o->scale);
     int contact = strcmp(o->mode, "height") != 0;
     char label[96], tension_name[96];
@@ -282,8 +315,10 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     if (status != IM_OK)
         return status;
     const char *quantity = o->quantity ? o->quantity : label;
-    const im_png_text given[] = {{"Quantity", quantity}, {"Colormap", im_colormap_name(norm->map)},
-                                 {"Norm", norm_text}, {"Pixels per patch", scale_text}};
+    const im_png_text given[] = {{"Quantity", quantity},
+                                 {"Colormap", im_colormap_name(norm->map)},
+                                 {"Norm", norm_text},
+                                 {"Pixels per patch", scale_text}};
     run_figure_texts texts;
     status = cli_provenance_texts(&o->provenance, given, 4, &texts);
     if (status == IM_OK)
@@ -336,8 +371,8 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
 
 /* Frame i: its contact map into DIR/contact_NNNN.png, as a figure or (--raw) the map alone; for a GIF,
  * the frame's pixels as written stay in *frame. */
-static int write_animation_frame(im_render_context *context, im_field *field, char **input, int i,
-                                 render_options *o, int gif, im_image *frame)
+static int write_animation_frame(im_render_context *context, im_field *field, char **input, int i, render_options *o,
+                                 int gif, im_image *frame)
 {
     im_colormap norm;
     im_image image = {0};
@@ -520,8 +555,7 @@ int cli_render(int argc, char **argv)
 {
     if (argc > 1 && strcmp(argv[1], "view3d") == 0)
         return cli_render_view3d(argc - 1, argv + 1);
-    render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0,
-                        .backend = IM_RENDER_AUTO};
+    render_options o = {.map = IM_COLORMAP_VIRIDIS, .scale = 2, .dpi = 300.0, .fps = 5.0, .backend = IM_RENDER_AUTO};
     int status = cli_provenance_start("indentmap", argc, argv, &o.provenance);
     int code = status == IM_OK ? render(&o, argc, argv) : cli_report(status);
     cli_provenance_free(&o.provenance);

@@ -69,31 +69,74 @@ typedef struct view3d_options {
     int x_given, y_given, radius_given;
     im_view3d_style style;
     im_render_backend backend;
-    char force_unit[40];           /* of --force (its sidecar), "" for E* δ² */
-    cli_provenance provenance;     /* the command line, where it ran and the inputs: the figure's record */
+    char force_unit[40];       /* of --force (its sidecar), "" for E* δ² */
+    cli_provenance provenance; /* the command line, where it ran and the inputs: the figure's record */
 } view3d_options;
 
-enum { OPT_OUT = 256, OPT_RAW, OPT_FORCE, OPT_DISPLACEMENT, OPT_PUNCH, OPT_ALPHA, OPT_RADIUS, OPT_X, OPT_Y,
-       OPT_MODE, OPT_AZIMUTH, OPT_ELEVATION, OPT_DISTANCE, OPT_FOV, OPT_ORTHO, OPT_ORTHO_HEIGHT,
-       OPT_EXAGGERATION, OPT_WIDTH, OPT_HEIGHT, OPT_SAMPLES, OPT_MESH, OPT_MAP, OPT_VMIN, OPT_VMAX, OPT_LOG,
-       OPT_LINEAR, OPT_TITLE, OPT_DPI, OPT_BACKEND, OPT_HELP };
+enum {
+    OPT_OUT = 256,
+    OPT_RAW,
+    OPT_FORCE,
+    OPT_DISPLACEMENT,
+    OPT_PUNCH,
+    OPT_ALPHA,
+    OPT_RADIUS,
+    OPT_X,
+    OPT_Y,
+    OPT_MODE,
+    OPT_AZIMUTH,
+    OPT_ELEVATION,
+    OPT_DISTANCE,
+    OPT_FOV,
+    OPT_ORTHO,
+    OPT_ORTHO_HEIGHT,
+    OPT_EXAGGERATION,
+    OPT_WIDTH,
+    OPT_HEIGHT,
+    OPT_SAMPLES,
+    OPT_MESH,
+    OPT_MAP,
+    OPT_VMIN,
+    OPT_VMAX,
+    OPT_LOG,
+    OPT_LINEAR,
+    OPT_TITLE,
+    OPT_DPI,
+    OPT_BACKEND,
+    OPT_HELP
+};
 
-static const struct option LONG_OPTIONS[] = {
-    {"out", required_argument, 0, OPT_OUT}, {"raw", no_argument, 0, OPT_RAW},
-    {"force", required_argument, 0, OPT_FORCE}, {"displacement", required_argument, 0, OPT_DISPLACEMENT},
-    {"punch", required_argument, 0, OPT_PUNCH}, {"alpha", required_argument, 0, OPT_ALPHA},
-    {"radius", required_argument, 0, OPT_RADIUS}, {"x", required_argument, 0, OPT_X},
-    {"y", required_argument, 0, OPT_Y}, {"punch-mode", required_argument, 0, OPT_MODE},
-    {"azimuth", required_argument, 0, OPT_AZIMUTH}, {"elevation", required_argument, 0, OPT_ELEVATION},
-    {"distance", required_argument, 0, OPT_DISTANCE}, {"fov", required_argument, 0, OPT_FOV},
-    {"ortho", no_argument, 0, OPT_ORTHO}, {"ortho-height", required_argument, 0, OPT_ORTHO_HEIGHT},
-    {"exaggeration", required_argument, 0, OPT_EXAGGERATION}, {"width", required_argument, 0, OPT_WIDTH},
-    {"height", required_argument, 0, OPT_HEIGHT}, {"samples", required_argument, 0, OPT_SAMPLES},
-    {"mesh-side", required_argument, 0, OPT_MESH}, {"colormap", required_argument, 0, OPT_MAP},
-    {"vmin", required_argument, 0, OPT_VMIN}, {"vmax", required_argument, 0, OPT_VMAX},
-    {"log", no_argument, 0, OPT_LOG}, {"linear", no_argument, 0, OPT_LINEAR}, {"title", required_argument, 0, OPT_TITLE},
-    {"dpi", required_argument, 0, OPT_DPI}, {"backend", required_argument, 0, OPT_BACKEND},
-    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"out", required_argument, 0, OPT_OUT},
+                                             {"raw", no_argument, 0, OPT_RAW},
+                                             {"force", required_argument, 0, OPT_FORCE},
+                                             {"displacement", required_argument, 0, OPT_DISPLACEMENT},
+                                             {"punch", required_argument, 0, OPT_PUNCH},
+                                             {"alpha", required_argument, 0, OPT_ALPHA},
+                                             {"radius", required_argument, 0, OPT_RADIUS},
+                                             {"x", required_argument, 0, OPT_X},
+                                             {"y", required_argument, 0, OPT_Y},
+                                             {"punch-mode", required_argument, 0, OPT_MODE},
+                                             {"azimuth", required_argument, 0, OPT_AZIMUTH},
+                                             {"elevation", required_argument, 0, OPT_ELEVATION},
+                                             {"distance", required_argument, 0, OPT_DISTANCE},
+                                             {"fov", required_argument, 0, OPT_FOV},
+                                             {"ortho", no_argument, 0, OPT_ORTHO},
+                                             {"ortho-height", required_argument, 0, OPT_ORTHO_HEIGHT},
+                                             {"exaggeration", required_argument, 0, OPT_EXAGGERATION},
+                                             {"width", required_argument, 0, OPT_WIDTH},
+                                             {"height", required_argument, 0, OPT_HEIGHT},
+                                             {"samples", required_argument, 0, OPT_SAMPLES},
+                                             {"mesh-side", required_argument, 0, OPT_MESH},
+                                             {"colormap", required_argument, 0, OPT_MAP},
+                                             {"vmin", required_argument, 0, OPT_VMIN},
+                                             {"vmax", required_argument, 0, OPT_VMAX},
+                                             {"log", no_argument, 0, OPT_LOG},
+                                             {"linear", no_argument, 0, OPT_LINEAR},
+                                             {"title", required_argument, 0, OPT_TITLE},
+                                             {"dpi", required_argument, 0, OPT_DPI},
+                                             {"backend", required_argument, 0, OPT_BACKEND},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {0, 0, 0, 0}};
 
 static int named(int status, const char *option)
 {
@@ -151,7 +194,9 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_AZIMUTH: return cli_parse_double("--azimuth", arg, -1e6, 1e6, &s->camera.azimuth);
     case OPT_ELEVATION: return cli_parse_double("--elevation", arg, 1, 90, &s->camera.elevation);
-    case OPT_DISTANCE: o->has_distance = 1; return cli_parse_double("--distance", arg, 1e-3, 1e5, &s->camera.distance);
+    case OPT_DISTANCE:
+        o->has_distance = 1;
+        return cli_parse_double("--distance", arg, 1e-3, 1e5, &s->camera.distance);
     case OPT_FOV: return cli_parse_double("--fov", arg, 1.001, 119.999, &s->camera.field_of_view);
     case OPT_ORTHO: s->camera.projection = IM_VIEW3D_ORTHOGRAPHIC; return 0;
     case OPT_ORTHO_HEIGHT: return cli_parse_double("--ortho-height", arg, 1e-6, 1e8, &s->camera.ortho_height);
@@ -181,8 +226,8 @@ static int read_height(const char *path, const view3d_options *o, im_field **hei
         return status;
     status = im_surface_read(o->displacement, &u);
     if (status == IM_OK && (u->nx != (*height)->nx || u->ny != (*height)->ny))
-        status = im_fail(IM_EINVAL, "%s: grid %d x %d: expected the grid of %s, %d x %d", o->displacement,
-                         u->nx, u->ny, path, (*height)->nx, (*height)->ny);
+        status = im_fail(IM_EINVAL, "%s: grid %d x %d: expected the grid of %s, %d x %d", o->displacement, u->nx,
+                         u->ny, path, (*height)->nx, (*height)->ny);
     for (size_t i = 0; status == IM_OK && i < im_field_count(u); ++i)
         (*height)->data[i] -= u->data[i];
     im_field_free(u);
@@ -247,14 +292,17 @@ static int write_view(const view3d_options *o, const im_image *image)
     char norm_text[128];
     im_view3d_exaggeration_text(o->style.exaggeration, labels.exaggeration, sizeof labels.exaggeration);
     const im_colormap *norm = &o->style.colormap;
-    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
+    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo,
+             norm->hi);
     int status = im_figure_colorbar_label("force", o->force_unit, labels.force, sizeof labels.force);
     if (status == IM_OK)
         status = im_figure_colorbar_label("tension", o->force_unit, labels.tension, sizeof labels.tension);
     if (status != IM_OK)
         return status;
-    const im_png_text given[] = {{"Quantity", labels.force}, {"Colormap", im_colormap_name(norm->map)},
-                                 {"Norm", norm_text}, {"Vertical exaggeration", labels.exaggeration}};
+    const im_png_text given[] = {{"Quantity", labels.force},
+                                 {"Colormap", im_colormap_name(norm->map)},
+                                 {"Norm", norm_text},
+                                 {"Vertical exaggeration", labels.exaggeration}};
     run_figure_texts texts;
     status = cli_provenance_texts(&o->provenance, given, 4, &texts);
     if (status == IM_OK)
@@ -335,7 +383,9 @@ static int view3d(view3d_options *o, int argc, char **argv)
 
 int cli_render_view3d(int argc, char **argv)
 {
-    view3d_options o = {.map = IM_COLORMAP_MAGMA, .dpi = 300.0, .backend = IM_RENDER_AUTO,
+    view3d_options o = {.map = IM_COLORMAP_MAGMA,
+                        .dpi = 300.0,
+                        .backend = IM_RENDER_AUTO,
                         .style = im_view3d_style_default(NULL)};
     o.punch = im_indenter_cone(80.0);
     int status = cli_provenance_start("indentmap render", argc, argv, &o.provenance);

@@ -45,7 +45,7 @@ static void usage(FILE *stream)
                     "\nUnder mpirun (mpirun -n K indentmap run SCENE.ini) the ensembles' surfaces are shared\n"
                     "out over the K ranks and rank 0 writes the outputs (docs/mpi.md)\n"
 #endif
-                    );
+    );
 }
 
 #if IM_HAVE_MPI
@@ -65,7 +65,7 @@ static int finish(int status, const im_scene *scene, int reporting)
         return cli_interrupt_exit_status();
     }
     if (status != IM_OK)
-        return reporting                                                             ? cli_report(status)
+        return reporting                                                            ? cli_report(status)
                : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE
                                                                                     : CLI_EXIT_FAILURE;
     if (reporting)
@@ -125,7 +125,8 @@ static int check_asks_for_output(const im_scene *scene)
     if (scene->table || scene->plots || scene->contact_panels || scene->frames || scene->frames3d ||
         scene->distributions || scene->periodic) /* frames3d alone: check_runnable says it needs frames */
         return IM_OK;
-    return im_fail(IM_EINVAL, "%s: no output asked for: expected an [output] section with table, contact_panels, "
+    return im_fail(IM_EINVAL,
+                   "%s: no output asked for: expected an [output] section with table, contact_panels, "
                    "frames or distributions = yes, or plots = a figure (nothing would be solved or drawn)",
                    scene->path);
 }
@@ -173,11 +174,15 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
 
 int cli_run(int argc, char **argv)
 {
-    static const struct option options[] = {{"resume", no_argument, 0, 'r'}, {"quiet", no_argument, 0, 'q'},
-                                            {"backend", required_argument, 0, 'b'}, {"help", no_argument, 0, 'h'},
-                                            {"wisdom", required_argument, 0, 'w'}, {"no-wisdom", no_argument, 0, 'W'},
+    static const struct option options[] = {{"resume", no_argument, 0, 'r'},
+                                            {"quiet", no_argument, 0, 'q'},
+                                            {"backend", required_argument, 0, 'b'},
+                                            {"help", no_argument, 0, 'h'},
+                                            {"wisdom", required_argument, 0, 'w'},
+                                            {"no-wisdom", no_argument, 0, 'W'},
                                             {"from-record", required_argument, 0, 'R'},
-                                            {"out", required_argument, 0, 'o'}, {0, 0, 0, 0}};
+                                            {"out", required_argument, 0, 'o'},
+                                            {0, 0, 0, 0}};
     im_scene_run_options run = {0};
     run_source source = {0};
     im_render_backend backend = IM_RENDER_AUTO;

@@ -65,25 +65,64 @@ typedef struct surface_options {
     const char *out, *stats, *png, *psd, *histograms;
 } surface_options;
 
-enum { OPT_N = 256, OPT_M, OPT_DELTA, OPT_UNIT, OPT_HEIGHT_UNIT, OPT_CHANNEL, OPT_FILL, OPT_RESAMPLE, OPT_CROP, OPT_DETREND, OPT_ALIGN, OPT_WINDOW, OPT_HURST, OPT_SLOPE, OPT_HEIGHT, OPT_SLOPE_DEF, OPT_LS, OPT_LR,
-       OPT_L0, OPT_SEED, OPT_OUT, OPT_STATS, OPT_PNG, OPT_PSD, OPT_HIST, OPT_HELP, OPT_NPY_ORDER };
+enum {
+    OPT_N = 256,
+    OPT_M,
+    OPT_DELTA,
+    OPT_UNIT,
+    OPT_HEIGHT_UNIT,
+    OPT_CHANNEL,
+    OPT_FILL,
+    OPT_RESAMPLE,
+    OPT_CROP,
+    OPT_DETREND,
+    OPT_ALIGN,
+    OPT_WINDOW,
+    OPT_HURST,
+    OPT_SLOPE,
+    OPT_HEIGHT,
+    OPT_SLOPE_DEF,
+    OPT_LS,
+    OPT_LR,
+    OPT_L0,
+    OPT_SEED,
+    OPT_OUT,
+    OPT_STATS,
+    OPT_PNG,
+    OPT_PSD,
+    OPT_HIST,
+    OPT_HELP,
+    OPT_NPY_ORDER
+};
 
-static const struct option LONG_OPTIONS[] = {
-    {"n", required_argument, 0, OPT_N}, {"m", required_argument, 0, OPT_M},
-    {"delta", required_argument, 0, OPT_DELTA}, {"hurst", required_argument, 0, OPT_HURST},
-    {"unit", required_argument, 0, OPT_UNIT}, {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
-    {"channel", required_argument, 0, OPT_CHANNEL},
-    {"fill", no_argument, 0, OPT_FILL}, {"resample-square", no_argument, 0, OPT_RESAMPLE},
-    {"crop", required_argument, 0, OPT_CROP},
-    {"npy-order", required_argument, 0, OPT_NPY_ORDER},
-    {"detrend", required_argument, 0, OPT_DETREND}, {"align", required_argument, 0, OPT_ALIGN}, {"window", required_argument, 0, OPT_WINDOW},
-    {"slope", required_argument, 0, OPT_SLOPE}, {"height-rms", required_argument, 0, OPT_HEIGHT},
-    {"slope-def", required_argument, 0, OPT_SLOPE_DEF}, {"lambda-s", required_argument, 0, OPT_LS},
-    {"lambda-r", required_argument, 0, OPT_LR}, {"lambda-0", required_argument, 0, OPT_L0},
-    {"seed", required_argument, 0, OPT_SEED}, {"out", required_argument, 0, OPT_OUT},
-    {"stats", required_argument, 0, OPT_STATS}, {"png", required_argument, 0, OPT_PNG},
-    {"psd", required_argument, 0, OPT_PSD}, {"histograms", required_argument, 0, OPT_HIST},
-    {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"n", required_argument, 0, OPT_N},
+                                             {"m", required_argument, 0, OPT_M},
+                                             {"delta", required_argument, 0, OPT_DELTA},
+                                             {"hurst", required_argument, 0, OPT_HURST},
+                                             {"unit", required_argument, 0, OPT_UNIT},
+                                             {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
+                                             {"channel", required_argument, 0, OPT_CHANNEL},
+                                             {"fill", no_argument, 0, OPT_FILL},
+                                             {"resample-square", no_argument, 0, OPT_RESAMPLE},
+                                             {"crop", required_argument, 0, OPT_CROP},
+                                             {"npy-order", required_argument, 0, OPT_NPY_ORDER},
+                                             {"detrend", required_argument, 0, OPT_DETREND},
+                                             {"align", required_argument, 0, OPT_ALIGN},
+                                             {"window", required_argument, 0, OPT_WINDOW},
+                                             {"slope", required_argument, 0, OPT_SLOPE},
+                                             {"height-rms", required_argument, 0, OPT_HEIGHT},
+                                             {"slope-def", required_argument, 0, OPT_SLOPE_DEF},
+                                             {"lambda-s", required_argument, 0, OPT_LS},
+                                             {"lambda-r", required_argument, 0, OPT_LR},
+                                             {"lambda-0", required_argument, 0, OPT_L0},
+                                             {"seed", required_argument, 0, OPT_SEED},
+                                             {"out", required_argument, 0, OPT_OUT},
+                                             {"stats", required_argument, 0, OPT_STATS},
+                                             {"png", required_argument, 0, OPT_PNG},
+                                             {"psd", required_argument, 0, OPT_PSD},
+                                             {"histograms", required_argument, 0, OPT_HIST},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {0, 0, 0, 0}};
 
 static int parse_slope_definition(const char *text, enum im_slope_definition *out)
 {
@@ -151,9 +190,10 @@ static void print_units(const im_field *s, const im_surface_read_info *info, con
         printf(", %.9g %s, converted into %s", file->delta_x, file->lateral, s->unit);
     printf("\n");
     if (info->height_factor != 1.0)
-        printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height, info->height_factor);
+        printf("heights          in %s, converted from %s (x %.6g)\n", s->unit, info->used.height,
+               info->height_factor);
     else
-        printf("heights          in %s\n", s->unit[0]         ? s->unit
+        printf("heights          in %s\n", s->unit[0]        ? s->unit
                                            : s->delta == 1.0 ? "delta"
                                                              : "the spacing's unit (not named; --unit names it)");
     if (info->conversion[0])
@@ -171,8 +211,8 @@ static void print_pixels(const im_surface_read_info *info)
                info->resampled_delta, space, u->lateral);
     else if (info->spacing_difference > 0.0)
         printf("pixels           x spacing %.9g and y spacing %.9g%s%s differ by %.3g of their mean, within the %.3g "
-               "that rounding explains: read as square, of their mean\n", u->delta_x, u->delta_y, space, u->lateral,
-               info->spacing_difference, IM_SQUARE_PIXEL_TOLERANCE);
+               "that rounding explains: read as square, of their mean\n",
+               u->delta_x, u->delta_y, space, u->lateral, info->spacing_difference, IM_SQUARE_PIXEL_TOLERANCE);
 }
 
 static const char *taper_name(const im_taper *taper)
@@ -277,8 +317,10 @@ static int write_height_png(const char *path, const im_field *surface, const im_
     im_colormap_field_image(&colormap, surface, rgb);
     char range[96];
     snprintf(range, sizeof range, "[%.6g, %.6g]", colormap.lo, colormap.hi);
-    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION}, {"Title", "height field"},
-                           {"Colour map", "viridis"}, {"Height range", range}};
+    im_png_text texts[] = {{"Software", "indentmap " IM_VERSION},
+                           {"Title", "height field"},
+                           {"Colour map", "viridis"},
+                           {"Height range", range}};
     im_png_options options = {texts, 4, 0.0, 6};
     int status = im_png_write(path, rgb, surface->nx, surface->ny, 3, (size_t)surface->nx * 3, &options);
     free(rgb);
@@ -348,7 +390,8 @@ static int parse_options(int argc, char **argv, surface_options *o)
         return -1;
     }
     if (!o->stats && (o->read.set.height[0] || o->read.channel[0] || o->preparation_given)) {
-        fprintf(stderr, "indentmap: surface: --height-unit, --channel, --fill, --resample-square, --crop, --align, --detrend "
+        fprintf(stderr,
+                "indentmap: surface: --height-unit, --channel, --fill, --resample-square, --crop, --align, --detrend "
                 "and --window read a file: "
                 "use them with --stats\n");
         return -1;
@@ -360,13 +403,17 @@ static int parse_options(int argc, char **argv, surface_options *o)
     if (!o->lambda_r_given)
         o->params.lambda_r = o->params.nx > o->params.ny ? o->params.nx : o->params.ny;
     if (!o->stats && !o->lambda_r_given && !(o->params.lambda_r > o->params.lambda_s)) {
-        fprintf(stderr, "indentmap: --n %d: the box's side is the default lambda_r, which must exceed lambda_s = %g: "
-                "expected a larger --n (or --lambda-s, --lambda-r)\n", o->params.nx, o->params.lambda_s);
+        fprintf(stderr,
+                "indentmap: --n %d: the box's side is the default lambda_r, which must exceed lambda_s = %g: "
+                "expected a larger --n (or --lambda-s, --lambda-r)\n",
+                o->params.nx, o->params.lambda_s);
         return -1;
     }
     if (o->params.lambda_0 != 0.0 && o->params.lambda_0 < o->params.lambda_r) {
-        fprintf(stderr, "indentmap: --lambda-0 %g: expected >= lambda_r = %g (lambda_0 > lambda_r adds a roll-off "
-                "plateau; without --lambda-0 there is none)\n", o->params.lambda_0, o->params.lambda_r);
+        fprintf(stderr,
+                "indentmap: --lambda-0 %g: expected >= lambda_r = %g (lambda_0 > lambda_r adds a roll-off "
+                "plateau; without --lambda-0 there is none)\n",
+                o->params.lambda_0, o->params.lambda_r);
         return -1;
     }
     if (o->params.lambda_0 < o->params.lambda_r)

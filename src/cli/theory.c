@@ -20,41 +20,40 @@ enum { COLUMN_WIDTH = 16 };
 
 static void usage(FILE *stream)
 {
-    fprintf(stream,
-            "usage: indentmap theory --alpha DEG --slope S1,S2,... [OPTIONS]\n"
-            "       indentmap theory --rho MIN:MAX:N [OPTIONS]\n"
-            "       indentmap theory --punch sphere|flat --radius R --load N --slope S1,S2,... [OPTIONS]\n"
-            "       indentmap theory --punch sphere|flat --rho MIN:MAX:N [OPTIONS]\n"
-            "       indentmap theory --fit-k DIR/history.csv [--format table|csv]\n\n"
-            "The contact area of a rough elastic half-space under a cone (the paper's section 2.1):\n"
-            "rho_c = k cot(alpha) / (2 h'rms) (eq. 7), the constant-density ratio A/A_cone of eq. (6)\n"
-            "and the variable-density ratio of eq. (12), or with --gamma the local contact density\n"
-            "gamma(r/a) of eqs. (10)-(11) on r/a = 0, 0.01, ..., 1 (one column per slope or rho_c).\n"
-            "For a sphere (Hertz) or a flat punch (Boussinesq) the same local density with that punch's\n"
-            "smooth pressure: rho = p_m / p_rough with the smooth mean pressure p_m = N / A_smooth, the\n"
-            "constant-density ratio erf(sqrt(pi)/2 rho) (eq. 3 for the sphere) and the integral of gamma.\n\n"
-            "  --punch cone|sphere|flat  the punch (default cone)\n"
-            "  --radius R             sphere radius or flat punch radius, in grid spacings (with --slope)\n"
-            "  --load N               load in E* delta^2 (E* = 1; with --slope, sphere and flat only)\n"
-            "  --alpha DEG            cone semi-opening angle in degrees, 0 < DEG < 90 (the paper: 80)\n"
-            "  --slope LIST           comma-separated h'rms values >= 0 (0: smooth, rho_c = inf)\n"
-            "  --rho MIN:MAX:N        N values of rho_c (rho = p_m / p_rough for sphere and flat),\n"
-            "                         log-spaced from MIN to MAX (0 < MIN <= MAX)\n"
-            "  --gamma                print gamma(r/a) instead of the area ratios\n"
-            "  --format table|csv     aligned table (default) or CSV; CSV columns are\n"
-            "                         slope,rho_c,area_ratio_eq6,area_ratio_eq12 (no slope with --rho);\n"
-            "                         sphere: slope,rho,area_ratio_eq3,area_ratio_gamma; flat:\n"
-            "                         slope,rho,area_ratio_constant,area_ratio_gamma;\n"
-            "                         or r_over_a,gamma_slope_S,... (gamma_rho_c_R,...) with --gamma\n"
-            "  --normalisation pr|mg  the erf law's pressure: pr (default) p_PR = 2 p_rough / sqrt(pi),\n"
-            "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
-            "                         used in eqs. (6), (10) and (12) alike\n"
-            "  --k K                  p_rough = h'rms E* / K, eq. (2), 1e-6 <= K <= 1e6 (default 2)\n"
-            "  --fit-k HISTORY        k of eq. (2) fitted to the history of a periodic indent run under\n"
-            "                         the rigid flat (A/A0 against p_m / (h'rms E*)), with the cell, h'rms\n"
-            "                         and E* of the run.json beside it: the k line that run printed, or\n"
-            "                         with --format csv slope_rms,points,k,k_error,... (17 digits; the\n"
-            "                         columns of a scene's k_fit.csv)\n");
+    fprintf(stream, "usage: indentmap theory --alpha DEG --slope S1,S2,... [OPTIONS]\n"
+                    "       indentmap theory --rho MIN:MAX:N [OPTIONS]\n"
+                    "       indentmap theory --punch sphere|flat --radius R --load N --slope S1,S2,... [OPTIONS]\n"
+                    "       indentmap theory --punch sphere|flat --rho MIN:MAX:N [OPTIONS]\n"
+                    "       indentmap theory --fit-k DIR/history.csv [--format table|csv]\n\n"
+                    "The contact area of a rough elastic half-space under a cone (the paper's section 2.1):\n"
+                    "rho_c = k cot(alpha) / (2 h'rms) (eq. 7), the constant-density ratio A/A_cone of eq. (6)\n"
+                    "and the variable-density ratio of eq. (12), or with --gamma the local contact density\n"
+                    "gamma(r/a) of eqs. (10)-(11) on r/a = 0, 0.01, ..., 1 (one column per slope or rho_c).\n"
+                    "For a sphere (Hertz) or a flat punch (Boussinesq) the same local density with that punch's\n"
+                    "smooth pressure: rho = p_m / p_rough with the smooth mean pressure p_m = N / A_smooth, the\n"
+                    "constant-density ratio erf(sqrt(pi)/2 rho) (eq. 3 for the sphere) and the integral of gamma.\n\n"
+                    "  --punch cone|sphere|flat  the punch (default cone)\n"
+                    "  --radius R             sphere radius or flat punch radius, in grid spacings (with --slope)\n"
+                    "  --load N               load in E* delta^2 (E* = 1; with --slope, sphere and flat only)\n"
+                    "  --alpha DEG            cone semi-opening angle in degrees, 0 < DEG < 90 (the paper: 80)\n"
+                    "  --slope LIST           comma-separated h'rms values >= 0 (0: smooth, rho_c = inf)\n"
+                    "  --rho MIN:MAX:N        N values of rho_c (rho = p_m / p_rough for sphere and flat),\n"
+                    "                         log-spaced from MIN to MAX (0 < MIN <= MAX)\n"
+                    "  --gamma                print gamma(r/a) instead of the area ratios\n"
+                    "  --format table|csv     aligned table (default) or CSV; CSV columns are\n"
+                    "                         slope,rho_c,area_ratio_eq6,area_ratio_eq12 (no slope with --rho);\n"
+                    "                         sphere: slope,rho,area_ratio_eq3,area_ratio_gamma; flat:\n"
+                    "                         slope,rho,area_ratio_constant,area_ratio_gamma;\n"
+                    "                         or r_over_a,gamma_slope_S,... (gamma_rho_c_R,...) with --gamma\n"
+                    "  --normalisation pr|mg  the erf law's pressure: pr (default) p_PR = 2 p_rough / sqrt(pi),\n"
+                    "                         the paper's; mg p_MG = E* h'rms / sqrt(2), Manners and Greenwood's,\n"
+                    "                         used in eqs. (6), (10) and (12) alike\n"
+                    "  --k K                  p_rough = h'rms E* / K, eq. (2), 1e-6 <= K <= 1e6 (default 2)\n"
+                    "  --fit-k HISTORY        k of eq. (2) fitted to the history of a periodic indent run under\n"
+                    "                         the rigid flat (A/A0 against p_m / (h'rms E*)), with the cell, h'rms\n"
+                    "                         and E* of the run.json beside it: the k line that run printed, or\n"
+                    "                         with --format csv slope_rms,points,k,k_error,... (17 digits; the\n"
+                    "                         columns of a scene's k_fit.csv)\n");
 }
 
 typedef struct theory_options {
@@ -75,17 +74,33 @@ typedef struct theory_columns {
 } theory_columns;
 
 enum {
-    OPT_ALPHA = 256, OPT_SLOPE, OPT_RHO, OPT_GAMMA, OPT_FORMAT, OPT_NORMALISATION, OPT_K, OPT_PUNCH, OPT_RADIUS,
-    OPT_LOAD, OPT_FIT_K, OPT_HELP
+    OPT_ALPHA = 256,
+    OPT_SLOPE,
+    OPT_RHO,
+    OPT_GAMMA,
+    OPT_FORMAT,
+    OPT_NORMALISATION,
+    OPT_K,
+    OPT_PUNCH,
+    OPT_RADIUS,
+    OPT_LOAD,
+    OPT_FIT_K,
+    OPT_HELP
 };
 
-static const struct option LONG_OPTIONS[] = {
-    {"alpha", required_argument, 0, OPT_ALPHA}, {"slope", required_argument, 0, OPT_SLOPE},
-    {"rho", required_argument, 0, OPT_RHO}, {"gamma", no_argument, 0, OPT_GAMMA},
-    {"format", required_argument, 0, OPT_FORMAT}, {"normalisation", required_argument, 0, OPT_NORMALISATION},
-    {"k", required_argument, 0, OPT_K}, {"punch", required_argument, 0, OPT_PUNCH},
-    {"radius", required_argument, 0, OPT_RADIUS}, {"load", required_argument, 0, OPT_LOAD},
-    {"fit-k", required_argument, 0, OPT_FIT_K}, {"help", no_argument, 0, OPT_HELP}, {0, 0, 0, 0}};
+static const struct option LONG_OPTIONS[] = {{"alpha", required_argument, 0, OPT_ALPHA},
+                                             {"slope", required_argument, 0, OPT_SLOPE},
+                                             {"rho", required_argument, 0, OPT_RHO},
+                                             {"gamma", no_argument, 0, OPT_GAMMA},
+                                             {"format", required_argument, 0, OPT_FORMAT},
+                                             {"normalisation", required_argument, 0, OPT_NORMALISATION},
+                                             {"k", required_argument, 0, OPT_K},
+                                             {"punch", required_argument, 0, OPT_PUNCH},
+                                             {"radius", required_argument, 0, OPT_RADIUS},
+                                             {"load", required_argument, 0, OPT_LOAD},
+                                             {"fit-k", required_argument, 0, OPT_FIT_K},
+                                             {"help", no_argument, 0, OPT_HELP},
+                                             {0, 0, 0, 0}};
 
 static int parse_punch(const char *text, enum im_punch_kind *out)
 {
@@ -136,12 +151,8 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_K: return cli_parse_double("--k", arg, 1e-6, 1e6, &o->k);
     case OPT_PUNCH: return parse_punch(arg, &o->punch);
-    case OPT_RADIUS:
-        o->radius_given = 1;
-        return cli_parse_double("--radius", arg, 1e-300, 1e300, &o->radius);
-    case OPT_LOAD:
-        o->load_given = 1;
-        return cli_parse_double("--load", arg, 1e-300, 1e300, &o->load);
+    case OPT_RADIUS: o->radius_given = 1; return cli_parse_double("--radius", arg, 1e-300, 1e300, &o->radius);
+    case OPT_LOAD: o->load_given = 1; return cli_parse_double("--load", arg, 1e-300, 1e300, &o->load);
     default: return -1;
     }
 }
@@ -183,7 +194,8 @@ static int parse_options(int argc, char **argv, theory_options *o)
     const char *problem = NULL;
     if (o->fit_k)
         problem = o->others ? "--fit-k takes no other option than --format (the run.json beside the history holds "
-                              "the rest)" : NULL;
+                              "the rest)"
+                            : NULL;
     else if (!o->slope_list == !o->rho_sweep)
         problem = "give either --slope (with --alpha, or --radius and --load) or --rho";
     else
@@ -370,8 +382,7 @@ static int print_contact_density(const theory_options *o, const theory_columns *
         if (c->by_slope)
             snprintf(label, sizeof label, "gamma_slope_%g", c->slope[i]);
         else
-            snprintf(label, sizeof label, o->punch == IM_PUNCH_CONE ? "gamma_rho_c_%g" : "gamma_rho_%g",
-                     c->rho_c[i]);
+            snprintf(label, sizeof label, o->punch == IM_PUNCH_CONE ? "gamma_rho_c_%g" : "gamma_rho_%g", c->rho_c[i]);
         print_cell(label, 0, o->csv);
     }
     printf("\n");
@@ -392,7 +403,9 @@ static int print_contact_density(const theory_options *o, const theory_columns *
 
 int cli_theory(int argc, char **argv)
 {
-    theory_options o = {.punch = IM_PUNCH_CONE, .k = IM_THEORY_K_DEFAULT, .normalisation = IM_THEORY_NORMALISATION_PR};
+    theory_options o = {.punch = IM_PUNCH_CONE,
+                        .k = IM_THEORY_K_DEFAULT,
+                        .normalisation = IM_THEORY_NORMALISATION_PR};
     int parsed = parse_options(argc, argv, &o);
     if (parsed != 0)
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;

@@ -40,8 +40,10 @@ static int record_number(const json_t *record, const char *block, const char *ke
     *value = json_number_value(item);
     if (json_is_number(item) && isfinite(*value))
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: no number at %s.%s: expected the run.json of `indentmap indent --periodic` "
-                   "(the cell's nx, ny and delta, the h'rms and E* the fit needs)", path, block, key);
+    return im_fail(IM_EFORMAT,
+                   "%s: no number at %s.%s: expected the run.json of `indentmap indent --periodic` "
+                   "(the cell's nx, ny and delta, the h'rms and E* the fit needs)",
+                   path, block, key);
 }
 
 /* The cell of the record's surface block, or IM_EFORMAT naming what it lacks. */
@@ -55,8 +57,10 @@ static int read_cell(const json_t *record, const char *path, im_field *cell)
         status = record_number(record, "surface", "delta", path, &cell->delta);
     if (status == IM_OK && !(nx >= 1 && ny >= 1 && nx == floor(nx) && ny == floor(ny) && nx <= IM_FIELD_MAX_SIDE &&
                              ny <= IM_FIELD_MAX_SIDE && cell->delta > 0))
-        status = im_fail(IM_EFORMAT, "%s: surface.nx = %g, ny = %g, delta = %g: expected a grid (whole nx, ny from 1 "
-                         "to %d, delta > 0)", path, nx, ny, cell->delta, IM_FIELD_MAX_SIDE);
+        status = im_fail(IM_EFORMAT,
+                         "%s: surface.nx = %g, ny = %g, delta = %g: expected a grid (whole nx, ny from 1 "
+                         "to %d, delta > 0)",
+                         path, nx, ny, cell->delta, IM_FIELD_MAX_SIDE);
     if (status == IM_OK)
         cell->nx = (int)nx, cell->ny = (int)ny;
     return status;
@@ -67,17 +71,23 @@ static int read_cell(const json_t *record, const char *path, im_field *cell)
 static int check_periodic_run(const json_t *record, const char *path)
 {
     if (!json_is_true(json_object_get(record, "periodic")))
-        return im_fail(IM_EINVAL, "%s: not a periodic run (\"periodic\" is not true): k of eq. (2) is fitted to the "
-                       "history of `indentmap indent SURFACE --periodic`", path);
+        return im_fail(IM_EINVAL,
+                       "%s: not a periodic run (\"periodic\" is not true): k of eq. (2) is fitted to the "
+                       "history of `indentmap indent SURFACE --periodic`",
+                       path);
     double hardness;
     int status = record_number(record, "solver", "hardness", path, &hardness);
     if (status == IM_OK && hardness > 0)
-        return im_fail(IM_EINVAL, "%s: the run capped the pressure at solver.hardness = %g: eq. (2) is the elastic "
-                       "law, fitted to runs without a hardness", path, hardness);
+        return im_fail(IM_EINVAL,
+                       "%s: the run capped the pressure at solver.hardness = %g: eq. (2) is the elastic "
+                       "law, fitted to runs without a hardness",
+                       path, hardness);
     const json_t *adhesion = json_object_get(record, "adhesion");
     if (status == IM_OK && adhesion && !json_is_null(adhesion))
-        return im_fail(IM_EINVAL, "%s: the run was adhesive (\"adhesion\"): eq. (2) is the repulsive law, fitted "
-                       "to runs without adhesion", path);
+        return im_fail(IM_EINVAL,
+                       "%s: the run was adhesive (\"adhesion\"): eq. (2) is the repulsive law, fitted "
+                       "to runs without adhesion",
+                       path);
     return status;
 }
 
@@ -86,9 +96,11 @@ static int check_periodic_run(const json_t *record, const char *path)
 static int read_periodic_run(const char *path, periodic_run *run)
 {
     if (access(path, F_OK) != 0)
-        return im_fail(IM_EINVAL, "%s: no run.json beside the history: the fit needs the cell (surface.nx, ny, "
+        return im_fail(IM_EINVAL,
+                       "%s: no run.json beside the history: the fit needs the cell (surface.nx, ny, "
                        "delta), the h'rms (theory_slope_rms.value) and E* (solver.e_star) that `indentmap indent "
-                       "--periodic` records there", path);
+                       "--periodic` records there",
+                       path);
     json_error_t error;
     json_t *record = json_load_file(path, JSON_REJECT_DUPLICATES, &error);
     if (!record)
@@ -101,11 +113,13 @@ static int read_periodic_run(const char *path, periodic_run *run)
         status = record_number(record, "theory_slope_rms", "value", path, &run->slope_rms);
     if (status == IM_OK)
         status = record_number(record, "solver", "e_star", path, &run->e_star);
-    const char *definition = json_string_value(json_object_get(json_object_get(record, "theory_slope_rms"),
-                                                               "definition"));
+    const char *definition = json_string_value(
+        json_object_get(json_object_get(record, "theory_slope_rms"), "definition"));
     if (status == IM_OK && !definition)
-        status = im_fail(IM_EFORMAT, "%s: no text at theory_slope_rms.definition: expected the h'rms's definition "
-                         "(spectral or finite differences)", path);
+        status = im_fail(IM_EFORMAT,
+                         "%s: no text at theory_slope_rms.definition: expected the h'rms's definition "
+                         "(spectral or finite differences)",
+                         path);
     if (status == IM_OK) {
         run->cell_area = periodic_cell_area(&cell);
         snprintf(run->slope_definition, sizeof run->slope_definition, "%s", definition);
@@ -134,9 +148,11 @@ static int read_periodic_history(const char *path, im_history_row **rows, int *c
         status = im_fail(IM_EFORMAT, "%s: not a history of this version: %s", path, why);
     for (int i = 0; status == IM_OK && i < *count; ++i)
         if (!isfinite((*rows)[i].result.mean_gap))
-            status = im_fail(IM_EINVAL, "%s: row %d (line %d) has no mean_gap (not finite): not the history of a "
+            status = im_fail(IM_EINVAL,
+                             "%s: row %d (line %d) has no mean_gap (not finite): not the history of a "
                              "periodic cell under the rigid flat (`indentmap indent SURFACE --periodic` without "
-                             "--punch)", path, i + 1, i + 2);
+                             "--punch)",
+                             path, i + 1, i + 2);
     if (status == IM_OK && why[0]) /* parsed, but not as a cell's */
         status = im_fail(IM_EFORMAT, "%s: not a periodic cell's history: %s", path, why);
     free(text);

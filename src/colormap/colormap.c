@@ -7,8 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const MAP_NAMES[IM_COLORMAP_COUNT] = {"viridis", "cividis", "magma", "inferno", "grey",
-                                                              "tension"};
+static const char *const MAP_NAMES[IM_COLORMAP_COUNT] = {"viridis", "cividis", "magma", "inferno", "grey", "tension"};
 
 const uint8_t (*im_colormap_table(im_colormap_id map))[3]
 {
@@ -24,8 +23,7 @@ const uint8_t (*im_colormap_table(im_colormap_id map))[3]
 
 im_colormap im_colormap_make(im_colormap_id map, double lo, double hi)
 {
-    im_colormap colormap = {.map = map, .lo = lo, .hi = hi, .logarithmic = 0,
-                            .bad = {128, 128, 128}};
+    im_colormap colormap = {.map = map, .lo = lo, .hi = hi, .logarithmic = 0, .bad = {128, 128, 128}};
     const uint8_t(*table)[3] = im_colormap_table(map);
     memcpy(colormap.under, table[0], 3);
     memcpy(colormap.over, table[255], 3);
@@ -79,8 +77,10 @@ void im_colormap_rgb(const im_colormap *c, double value, uint8_t rgb[3])
     ARG_REQUIRE_OR(c, "colormap", );
     ARG_REQUIRE_OR(rgb, "rgb", );
     int index = im_colormap_index(c, value);
-    const uint8_t *colour = index == -2 ? c->bad : index == -1 ? c->under : index == 256 ? c->over
-                                                                     : im_colormap_table(c->map)[index];
+    const uint8_t *colour = index == -2    ? c->bad
+                            : index == -1  ? c->under
+                            : index == 256 ? c->over
+                                           : im_colormap_table(c->map)[index];
     memcpy(rgb, colour, 3);
 }
 

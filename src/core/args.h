@@ -22,44 +22,44 @@ int arg_sides(const char *function, int nx, int ny);
 
 /* The checks: p (f) is the parameter, name the argument as the header names it ("out"). */
 /* In a function returning a status: return IM_EINVAL when the pointer p is NULL. */
-#define ARG_REQUIRE(p, name)                                                                       \
-    do {                                                                                           \
-        if (!(p))                                                                                  \
-            return arg_null(__func__, name);                                                       \
+#define ARG_REQUIRE(p, name)                                                                                         \
+    do {                                                                                                             \
+        if (!(p))                                                                                                    \
+            return arg_null(__func__, name);                                                                         \
     } while (0)
 /* In a void or value function: record the misuse and return `result` (empty for void). */
-#define ARG_REQUIRE_OR(p, name, result)                                                            \
-    do {                                                                                           \
-        if (!(p)) {                                                                                \
-            arg_null(__func__, name);                                                              \
-            return result;                                                                         \
-        }                                                                                          \
+#define ARG_REQUIRE_OR(p, name, result)                                                                              \
+    do {                                                                                                             \
+        if (!(p)) {                                                                                                  \
+            arg_null(__func__, name);                                                                                \
+            return result;                                                                                           \
+        }                                                                                                            \
     } while (0)
 /* In a function returning a status: return IM_EINVAL when f is not a valid field view. */
-#define ARG_VIEW(f, name)                                                                          \
-    do {                                                                                           \
-        int arg_status_ = arg_view(__func__, name, (f));                                           \
-        if (arg_status_ != IM_OK)                                                                  \
-            return arg_status_;                                                                    \
+#define ARG_VIEW(f, name)                                                                                            \
+    do {                                                                                                             \
+        int arg_status_ = arg_view(__func__, name, (f));                                                             \
+        if (arg_status_ != IM_OK)                                                                                    \
+            return arg_status_;                                                                                      \
     } while (0)
 /* In a function returning a status (a value): return IM_EINVAL (result) for a grid size outside
  * [1, IM_FIELD_MAX_SIDE]. */
-#define ARG_SIDES(nx, ny)                                                                          \
-    do {                                                                                           \
-        int arg_status_ = arg_sides(__func__, (nx), (ny));                                         \
-        if (arg_status_ != IM_OK)                                                                  \
-            return arg_status_;                                                                    \
+#define ARG_SIDES(nx, ny)                                                                                            \
+    do {                                                                                                             \
+        int arg_status_ = arg_sides(__func__, (nx), (ny));                                                           \
+        if (arg_status_ != IM_OK)                                                                                    \
+            return arg_status_;                                                                                      \
     } while (0)
-#define ARG_SIDES_OR(nx, ny, result)                                                               \
-    do {                                                                                           \
-        if (arg_sides(__func__, (nx), (ny)) != IM_OK)                                              \
-            return result;                                                                         \
+#define ARG_SIDES_OR(nx, ny, result)                                                                                 \
+    do {                                                                                                             \
+        if (arg_sides(__func__, (nx), (ny)) != IM_OK)                                                                \
+            return result;                                                                                           \
     } while (0)
 /* The same in a void or value function. */
-#define ARG_VIEW_OR(f, name, result)                                                               \
-    do {                                                                                           \
-        if (arg_view(__func__, name, (f)) != IM_OK)                                                \
-            return result;                                                                         \
+#define ARG_VIEW_OR(f, name, result)                                                                                 \
+    do {                                                                                                             \
+        if (arg_view(__func__, name, (f)) != IM_OK)                                                                  \
+            return result;                                                                                           \
     } while (0)
 
 #endif

@@ -14,8 +14,7 @@ int im_field_create(int nx, int ny, double delta, im_field **out)
     ARG_REQUIRE(out, "out");
     *out = NULL;
     if (nx < 1 || ny < 1 || nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EINVAL, "grid %d x %d: expected each side in [1, %d]", nx, ny,
-                       IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EINVAL, "grid %d x %d: expected each side in [1, %d]", nx, ny, IM_FIELD_MAX_SIDE);
     if (!(delta > 0.0) || !isfinite(delta))
         return im_fail(IM_EINVAL, "grid spacing delta = %g: expected a finite value > 0", delta);
     char what[64];
@@ -70,8 +69,8 @@ int im_field_check_finite(const im_field *field, const char *what)
     size_t count = im_field_count(field);
     for (size_t i = 0; i < count; ++i) {
         if (!isfinite(field->data[i]))
-            return im_fail(IM_ENUMERIC, "%s: value %g at (x=%zu, y=%zu): expected finite numbers",
-                           what, field->data[i], i % (size_t)field->nx, i / (size_t)field->nx);
+            return im_fail(IM_ENUMERIC, "%s: value %g at (x=%zu, y=%zu): expected finite numbers", what,
+                           field->data[i], i % (size_t)field->nx, i / (size_t)field->nx);
     }
     return IM_OK;
 }

@@ -86,11 +86,11 @@ int im_memory_check(double bytes, const char *what)
     ARG_REQUIRE(what, "what");
     /* Beyond SIZE_MAX no allocation can succeed, whatever the machine reports (or fails to). */
     if (!(bytes <= (double)SIZE_MAX))
-        return im_fail(IM_ENOMEM, "%s needs about %.1f MiB, more than this machine can address (%.1f MiB)",
-                       what, bytes / 1048576.0, (double)SIZE_MAX / 1048576.0);
+        return im_fail(IM_ENOMEM, "%s needs about %.1f MiB, more than this machine can address (%.1f MiB)", what,
+                       bytes / 1048576.0, (double)SIZE_MAX / 1048576.0);
     size_t available = im_memory_available();
     if (available != 0 && bytes > (double)available)
-        return im_fail(IM_ENOMEM, "%s needs about %.1f MiB but only %.1f MiB are available",
-                       what, bytes / 1048576.0, (double)available / 1048576.0);
+        return im_fail(IM_ENOMEM, "%s needs about %.1f MiB but only %.1f MiB are available", what, bytes / 1048576.0,
+                       (double)available / 1048576.0);
     return IM_OK;
 }

@@ -23,9 +23,6 @@ static inline uint64_t hash3(uint64_t seed, int32_t a, int32_t b)
 }
 
 /* Uniform double in (0, 1] from the top 53 bits of a hash. */
-static inline double uniform_open0(uint64_t h)
-{
-    return (double)((h >> 11) + 1u) * 0x1.0p-53;
-}
+static inline double uniform_open0(uint64_t h) { return (double)((h >> 11) + 1u) * 0x1.0p-53; }
 
 #endif

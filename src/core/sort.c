@@ -8,7 +8,4 @@ static int compare_doubles(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-void sort_doubles(double *values, size_t count)
-{
-    qsort(values, count, sizeof *values, compare_doubles);
-}
+void sort_doubles(double *values, size_t count) { qsort(values, count, sizeof *values, compare_doubles); }

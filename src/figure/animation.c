@@ -46,8 +46,8 @@ static int put_loop_extension(GifFileType *gif)
 {
     static const GifByteType loop[3] = {1, 0, 0};
     return EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) == GIF_OK &&
-           EGifPutExtensionBlock(gif, 11, "NETSCAPE2.0") == GIF_OK &&
-           EGifPutExtensionBlock(gif, 3, loop) == GIF_OK && EGifPutExtensionTrailer(gif) == GIF_OK;
+           EGifPutExtensionBlock(gif, 11, "NETSCAPE2.0") == GIF_OK && EGifPutExtensionBlock(gif, 3, loop) == GIF_OK &&
+           EGifPutExtensionTrailer(gif) == GIF_OK;
 }
 
 /* The screen descriptor with the palette as the global colour table (padded to a power of two). */
@@ -97,11 +97,11 @@ static int check_frames(const im_image *frames, int count)
         return im_fail(IM_EINVAL, "animation: %d frames: expected at least 1", count);
     for (int i = 0; i < count; ++i) {
         if (!frames[i].rgba || frames[i].width != frames[0].width || frames[i].height != frames[0].height)
-            return im_fail(IM_EINVAL, "animation: frame %d is %d x %d (or empty): expected %d x %d like frame 0",
-                           i, frames[i].width, frames[i].height, frames[0].width, frames[0].height);
+            return im_fail(IM_EINVAL, "animation: frame %d is %d x %d (or empty): expected %d x %d like frame 0", i,
+                           frames[i].width, frames[i].height, frames[0].width, frames[0].height);
         if (frames[i].width > 65535 || frames[i].height > 65535)
-            return im_fail(IM_EINVAL, "animation: frame %d x %d: GIF sides are at most 65535",
-                           frames[i].width, frames[i].height);
+            return im_fail(IM_EINVAL, "animation: frame %d x %d: GIF sides are at most 65535", frames[i].width,
+                           frames[i].height);
     }
     return IM_OK;
 }
@@ -245,9 +245,9 @@ int im_animation_mp4(const char *directory, const char *prefix, int count, doubl
         return status;
     /* -frames:v: ffmpeg reads the pattern until its numbering stops, so a frame left from a longer run
      * would otherwise be encoded too */
-    char *arguments[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern, "-frames:v", frames,
-                         "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt",
-                         "yuv420p", file.temp_path, NULL};
+    char *arguments[] = {"ffmpeg", "-y",      "-loglevel", "error",   "-framerate",   rate,
+                         "-i",     pattern,   "-frames:v", frames,    "-vf",          "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                         "-c:v",   "libx264", "-pix_fmt",  "yuv420p", file.temp_path, NULL};
     status = run_ffmpeg(arguments);
     if (status == IM_OK)
         status = im_atomic_commit(&file);

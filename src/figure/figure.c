@@ -18,7 +18,11 @@ enum { MAX_TICKS = 32, MAX_PANELS = 64, MAX_BARS = 2 };
 
 im_figure im_figure_default(void)
 {
-    im_figure figure = {.rows = 1, .columns = 1, .scale_bar = 0.0, .dpi = 300.0, .font_size = 8.0,
+    im_figure figure = {.rows = 1,
+                        .columns = 1,
+                        .scale_bar = 0.0,
+                        .dpi = 300.0,
+                        .font_size = 8.0,
                         .png_compression = IM_FIGURE_PNG_COMPRESSION};
     return figure;
 }
@@ -45,8 +49,8 @@ typedef struct colorbar {
     const im_colormap *colormap;
     const char *label;
     int extend_under, extend_over;
-    double x, y, height;         /* left edge, top and length of the bar itself */
-    double ticks[MAX_TICKS];     /* the labelled ticks, thinned to fit */
+    double x, y, height;     /* left edge, top and length of the bar itself */
+    double ticks[MAX_TICKS]; /* the labelled ticks, thinned to fit */
     int tick_count;
     double tick_label_width;
 } colorbar;
@@ -61,8 +65,8 @@ typedef struct layout {
     double bar_width, tick_length;
     colorbar bars[MAX_BARS];
     int bar_count;
-    double scale_height;         /* strip below the grid for the scale bar and the note */
-    double note_x;               /* where the note starts */
+    double scale_height; /* strip below the grid for the scale bar and the note */
+    double note_x;       /* where the note starts */
     int width, height;
 } layout;
 
@@ -251,8 +255,11 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
     l->tick_length = round(0.4 * l->font);
     double cells_right = l->grid_x + grid_width, bars_end = images_right(f, l);
     if (f->colormap)
-        bars_end = place_colorbar(m, l, (colorbar){.colormap = f->colormap, .label = f->colorbar_label,
-                                             .extend_under = f->extend_under, .extend_over = f->extend_over},
+        bars_end = place_colorbar(m, l,
+                                  (colorbar){.colormap = f->colormap,
+                                             .label = f->colorbar_label,
+                                             .extend_under = f->extend_under,
+                                             .extend_over = f->extend_over},
                                   bars_end, cells_right, grid_height, &bottom);
     if (f->tension_colormap)
         bars_end = place_colorbar(m, l, (colorbar){.colormap = f->tension_colormap, .label = f->tension_label},
@@ -266,8 +273,7 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
 /* ---- drawing ---- */
 
 /* A cairo surface holding an RGBA image (opaque) or a table. Caller destroys it. */
-static cairo_surface_t *image_surface(const uint8_t *rgba, int width, int height, size_t stride_bytes,
-                                      int channels)
+static cairo_surface_t *image_surface(const uint8_t *rgba, int width, int height, size_t stride_bytes, int channels)
 {
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
     if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
@@ -285,8 +291,7 @@ static cairo_surface_t *image_surface(const uint8_t *rgba, int width, int height
     return surface;
 }
 
-static int paint_surface(cairo_t *cr, cairo_surface_t *surface, double x, double y, double scale_x,
-                         double scale_y)
+static int paint_surface(cairo_t *cr, cairo_surface_t *surface, double x, double y, double scale_x, double scale_y)
 {
     if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
         cairo_surface_destroy(surface);
@@ -317,8 +322,9 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
         const im_figure_panel *p = &f->panels[i];
         int x, y;
         panel_origin(f, l, i, &x, &y);
-        int status = paint_surface(cr, image_surface(p->image->rgba, p->image->width, p->image->height,
-                                                     (size_t)p->image->width * 4, 4), x, y, 1.0, 1.0);
+        int status = paint_surface(
+            cr, image_surface(p->image->rgba, p->image->width, p->image->height, (size_t)p->image->width * 4, 4), x,
+            y, 1.0, 1.0);
         if (status != IM_OK)
             return status;
         cairo_set_source_rgb(cr, 0, 0, 0);
@@ -424,7 +430,8 @@ static int draw_colorbar(const colorbar *b, const layout *l, cairo_t *cr, cairo_
         cairo_stroke(cr);
         char text[64];
         typeset_tick_label(c->logarithmic, b->ticks, b->tick_count, i, text, sizeof text);
-        typeset_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0, text);
+        typeset_show_text(cr, regular, l->font, right + l->tick_length + 0.3 * l->font, y + 0.36 * l->font, 0.0,
+                          text);
     }
     if (c->logarithmic)
         draw_minor_ticks(b, l, cr);
@@ -506,8 +513,10 @@ static int prepare(const im_figure *f, layout *l)
     cairo_destroy(m.cr);
     cairo_surface_destroy(scratch);
     if (l->width > 32768 || l->height > 32768)
-        return im_fail(IM_EINVAL, "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "
-                       "or the pixels per patch", l->width, l->height);
+        return im_fail(IM_EINVAL,
+                       "figure %d x %d pixels: expected at most 32768 per side; lower the dpi "
+                       "or the pixels per patch",
+                       l->width, l->height);
     return IM_OK;
 }
 

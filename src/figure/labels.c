@@ -10,15 +10,20 @@ typedef struct quantity_name {
     const char *quantity, *name, *without_unit;
 } quantity_name;
 
-static const quantity_name QUANTITIES[] = {
-    {"force", "local force f", "(E* δ²)"}, {"height", "height h", "δ"}, {"gap", "gap g", "δ"},
-    {"displacement", "displacement u", "δ"}, {"plastic", "plastic depth d", "δ"},
-    {"tension", "tensile force −f", "(E* δ²)"}};
+static const quantity_name QUANTITIES[] = {{"force", "local force f", "(E* δ²)"},
+                                           {"height", "height h", "δ"},
+                                           {"gap", "gap g", "δ"},
+                                           {"displacement", "displacement u", "δ"},
+                                           {"plastic", "plastic depth d", "δ"},
+                                           {"tension", "tensile force −f", "(E* δ²)"}};
 
 int im_figure_colorbar_label(const char *quantity, const char *unit, char *text, size_t size)
 {
     if (!quantity || !unit || !text)
-        return im_fail(IM_EINVAL, "im_figure_colorbar_label: %s is NULL", !quantity ? "quantity" : !unit ? "unit" : "text");
+        return im_fail(IM_EINVAL, "im_figure_colorbar_label: %s is NULL",
+                       !quantity ? "quantity"
+                       : !unit   ? "unit"
+                                 : "text");
     for (size_t i = 0; i < sizeof QUANTITIES / sizeof *QUANTITIES; ++i) {
         const quantity_name *q = &QUANTITIES[i];
         if (strcmp(quantity, q->quantity) != 0)
@@ -32,6 +37,8 @@ int im_figure_colorbar_label(const char *quantity, const char *unit, char *text,
                            length + 1);
         return IM_OK;
     }
-    return im_fail(IM_EINVAL, "im_figure_colorbar_label: quantity '%s': expected force, height, gap, displacement, "
-                              "plastic or tension", quantity);
+    return im_fail(IM_EINVAL,
+                   "im_figure_colorbar_label: quantity '%s': expected force, height, gap, displacement, "
+                   "plastic or tension",
+                   quantity);
 }

@@ -86,10 +86,7 @@ static int table_slot(colour_table *t, uint32_t rgb, size_t *slot)
     return IM_OK;
 }
 
-static uint32_t pixel_rgb(const uint8_t *p)
-{
-    return (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
-}
+static uint32_t pixel_rgb(const uint8_t *p) { return (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2]; }
 
 int colour_table_build(const im_image *frames, int count, colour_table **table)
 {
@@ -151,10 +148,7 @@ static void moments_add(moments *m, const weighted_colour *c)
     }
 }
 
-static double channel_error(const moments *m, int k)
-{
-    return m->w > 0.0 ? m->q[k] - m->s[k] * m->s[k] / m->w : 0.0;
-}
+static double channel_error(const moments *m, int k) { return m->w > 0.0 ? m->q[k] - m->s[k] * m->s[k] / m->w : 0.0; }
 
 static double moments_error(const moments *m)
 {
@@ -216,7 +210,8 @@ static weighted_colour *list_colours(const colour_table *t, size_t *n)
     for (size_t i = 0; colours && i < t->capacity; ++i)
         if (t->keys[i] && t->counts[i]) {
             uint32_t rgb = t->keys[i] - 1;
-            colours[(*n)++] = (weighted_colour){{(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb}, 0,
+            colours[(*n)++] = (weighted_colour){{(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb},
+                                                0,
                                                 sqrt((double)t->counts[i])};
         }
     return colours;
@@ -312,8 +307,8 @@ static int dither_frame(colour_table *t, const gif_palette *p, const im_image *f
     float *here = calloc(length, sizeof *here), *below = calloc(length, sizeof *below);
     int status = here && below ? IM_OK : im_fail(IM_ENOMEM, "GIF dithering: out of memory");
     for (int y = 0; status == IM_OK && y < frame->height; ++y) {
-        status = dither_row(t, p, frame->rgba + (size_t)y * frame->width * 4, frame->width, y % 2 ? -1 : 1,
-                            here, below, indices + (size_t)y * frame->width);
+        status = dither_row(t, p, frame->rgba + (size_t)y * frame->width * 4, frame->width, y % 2 ? -1 : 1, here,
+                            below, indices + (size_t)y * frame->width);
         float *swap = here;
         here = below, below = swap;
     }

@@ -122,7 +122,8 @@ static int start_child(const child_program *program, const char *executable, con
     process->errors = tmpfile();
     if (!process->errors || pipe2(ends, O_CLOEXEC) != 0)
         return im_fail(IM_EIO, "%s: cannot start %s: %s", path, program->reader, strerror(errno));
-    fcntl(ends[0], F_SETPIPE_SZ, 1 << 20); /* fewer, larger hand-overs of the values; the default is kept if refused */
+    fcntl(ends[0], F_SETPIPE_SZ,
+          1 << 20); /* fewer, larger hand-overs of the values; the default is kept if refused */
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);

@@ -18,13 +18,13 @@ enum { CHILD_READ_SECONDS = 300 };
 enum { CHILD_STREAM_LINE = 4096 };
 
 typedef struct child_program {
-    const char *name;         /* e.g. "indentmap-hdf5-read", looked for beside the running executable */
-    const char *mode;         /* an argument before the file's, choosing what the program reads, or NULL */
-    const char *environment;  /* e.g. "INDENTMAP_HDF5_READER": names another program */
-    const char *installed;    /* its installed path (libexec), or NULL */
-    const char *reader;       /* the program in messages: "Gwyddion's reader" */
-    const char *parser;       /* what crashes or hangs in it: "Gwyddion's file module" */
-    const char *damage;       /* what a crash says of the file: "a damaged file?" */
+    const char *name;        /* e.g. "indentmap-hdf5-read", looked for beside the running executable */
+    const char *mode;        /* an argument before the file's, choosing what the program reads, or NULL */
+    const char *environment; /* e.g. "INDENTMAP_HDF5_READER": names another program */
+    const char *installed;   /* its installed path (libexec), or NULL */
+    const char *reader;      /* the program in messages: "Gwyddion's reader" */
+    const char *parser;      /* what crashes or hangs in it: "Gwyddion's file module" */
+    const char *damage;      /* what a crash says of the file: "a damaged file?" */
 } child_program;
 
 /* The program to run: the one the environment variable names (read with secure_getenv; NULL when it is not

@@ -30,7 +30,8 @@ static int read_meta(zip_t *archive, const char *path, container_meta *meta)
     char *text;
     size_t size;
     int status = zip_entry_read(archive, path, "meta.yml", META_MAX_BYTES,
-                                "a zip archive without meta.yml: expected a contact.engineering container", &text, &size);
+                                "a zip archive without meta.yml: expected a contact.engineering container", &text,
+                                &size);
     if (status == IM_OK)
         status = container_meta_parse(path, text, size, meta);
     free(text);
@@ -64,15 +65,20 @@ static int choose(const char *path, const container_meta *meta, const char *aske
         if (asked[0] ? matches(asked, &meta->topographies[*k], *k) : meta->topographies[*k].size_count != 1)
             break;
     if (*k == meta->count && asked[0])
-        return im_fail(IM_EFORMAT, "%s: no topography has the index or name '%s'; its topographies: %s; choose one "
-                       "with --channel", path, asked, list);
+        return im_fail(IM_EFORMAT,
+                       "%s: no topography has the index or name '%s'; its topographies: %s; choose one "
+                       "with --channel",
+                       path, asked, list);
     if (*k == meta->count)
-        return im_fail(IM_EFORMAT, "%s: a contact.engineering container of line scans only (a 2-D contact solver "
-                       "cannot indent a 1-D profile); its topographies: %s", path, list);
+        return im_fail(IM_EFORMAT,
+                       "%s: a contact.engineering container of line scans only (a 2-D contact solver "
+                       "cannot indent a 1-D profile); its topographies: %s",
+                       path, list);
     if (meta->topographies[*k].size_count == 1)
-        return im_fail(IM_EFORMAT, "%s: topography %d '%s' is a line scan (meta.yml's size has one length): a 2-D "
-                       "contact solver cannot indent a 1-D profile; its topographies: %s", path, *k,
-                       meta->topographies[*k].name, list);
+        return im_fail(IM_EFORMAT,
+                       "%s: topography %d '%s' is a line scan (meta.yml's size has one length): a 2-D "
+                       "contact solver cannot indent a 1-D profile; its topographies: %s",
+                       path, *k, meta->topographies[*k].name, list);
     return IM_OK;
 }
 
@@ -85,8 +91,10 @@ static int entry_file_name(const char *path, const char *entry, const char **nam
         return im_fail(IM_EFORMAT, "%s: meta.yml: datafile '%.100s': expected the name of a file in the archive",
                        path, entry);
     if (strlen(*name) > 4 && strcasecmp(*name + strlen(*name) - 4, ".zip") == 0)
-        return im_fail(IM_EFORMAT, "%s: datafile '%.100s' is a zip archive: a container inside a container is not "
-                       "read", path, entry);
+        return im_fail(IM_EFORMAT,
+                       "%s: datafile '%.100s' is a zip archive: a container inside a container is not "
+                       "read",
+                       path, entry);
     return IM_OK;
 }
 
@@ -102,7 +110,7 @@ static int copy_entry(zip_t *archive, const char *path, const char *entry, const
     int written = out != NULL;
     while (written && (got = zip_fread(in, block, sizeof block)) > 0)
         written = fwrite(block, 1, (size_t)got, out) == (size_t)got;
-    int status = got < 0 ? im_fail(IM_EFORMAT, "%s: '%.100s': %s", path, entry, zip_file_strerror(in))
+    int status = got < 0    ? im_fail(IM_EFORMAT, "%s: '%.100s': %s", path, entry, zip_file_strerror(in))
                  : !written ? im_fail(IM_EIO, "%s: cannot write the copy of '%.100s' to %s", path, entry, copy)
                             : IM_OK;
     zip_fclose(in);
@@ -162,9 +170,11 @@ static int check_sizes(const char *path, const container_topography *t, const im
     double file_size[2] = {field->nx * field->delta * file_metres, field->ny * field->delta * file_metres};
     for (int k = 0; k < 2; ++k)
         if (fabs(file_size[k] - t->size[k] * meta_metres) > SIZE_TOLERANCE * file_size[k])
-            return im_fail(IM_EFORMAT, "%s: topography '%s': meta.yml's size %g x %g %s differs from its file's "
-                           "%g x %g m beyond %g", path, t->name, t->size[0], t->size[1], t->unit, file_size[0],
-                           file_size[1], SIZE_TOLERANCE);
+            return im_fail(IM_EFORMAT,
+                           "%s: topography '%s': meta.yml's size %g x %g %s differs from its file's "
+                           "%g x %g m beyond %g",
+                           path, t->name, t->size[0], t->size[1], t->unit, file_size[0], file_size[1],
+                           SIZE_TOLERANCE);
     return IM_OK;
 }
 
@@ -185,7 +195,8 @@ static void apply_meta(const container_topography *t, im_field *field, surface_s
 static int stated_units(const char *path, const container_topography *t, im_field *field, surface_stated *stated,
                         int *scaled)
 {
-    *stated = (surface_stated){.spacing_keys = "meta.yml's size / grid", .lateral_key = "meta.yml's unit",
+    *stated = (surface_stated){.spacing_keys = "meta.yml's size / grid",
+                               .lateral_key = "meta.yml's unit",
                                .height_key = "meta.yml's unit"};
     int status = IM_OK;
     if (field->unit[0]) {
@@ -216,8 +227,8 @@ static int read_archive(zip_t *archive, const char *path, const im_surface_read_
     if (status == IM_OK)
         status = stated_units(path, t, *out, stated, &scaled);
     if (status == IM_OK)
-        snprintf(stated->conversion, sizeof stated->conversion, "contact.engineering topography %d '%.30s' of %d%s", k,
-                 t->name, meta->count, scaled ? ", height_scale applied" : "");
+        snprintf(stated->conversion, sizeof stated->conversion, "contact.engineering topography %d '%.30s' of %d%s",
+                 k, t->name, meta->count, scaled ? ", height_scale applied" : "");
     free(meta);
     if (status != IM_OK) {
         im_field_free(*out);

@@ -65,8 +65,10 @@ static int read_size(const meta_reader *m, yaml_node_t *node, container_topograp
     yaml_node_item_t *items = node->data.sequence.items.start;
     long count = node->data.sequence.items.top - items;
     if (count < 1 || count > 2)
-        return im_fail(IM_EFORMAT, "%s: meta.yml: topography '%s': size has %ld entries: expected one (a line "
-                       "scan) or two (a map)", m->path, t->name, count);
+        return im_fail(IM_EFORMAT,
+                       "%s: meta.yml: topography '%s': size has %ld entries: expected one (a line "
+                       "scan) or two (a map)",
+                       m->path, t->name, count);
     for (long k = 0; k < count; ++k) {
         int status = number_of(m, node_at(m, items[k]), "size", &t->size[k]);
         if (status == IM_OK && t->size[k] <= 0.0)
@@ -85,8 +87,10 @@ static int read_datafile(const meta_reader *m, yaml_node_t *node, container_topo
 {
     yaml_node_t *original = value_of(m, node, "original"), *squeezed = value_of(m, node, "squeezed-netcdf");
     if (!original && !squeezed)
-        return im_fail(IM_EFORMAT, "%s: meta.yml: topography '%s': datafile names no file: expected 'original' or "
-                       "'squeezed-netcdf'", m->path, t->name);
+        return im_fail(IM_EFORMAT,
+                       "%s: meta.yml: topography '%s': datafile names no file: expected 'original' or "
+                       "'squeezed-netcdf'",
+                       m->path, t->name);
     t->squeezed = !original;
     return text_of(m, original ? original : squeezed, "datafile", t->datafile, sizeof t->datafile);
 }

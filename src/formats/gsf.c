@@ -22,10 +22,12 @@ static int write_header(char *header, size_t size, const im_field *field, const 
 {
     *metres = field->unit[0] ? im_length_unit_metres(field->unit, NULL) : 1.0;
     if (*metres == 0.0)
-        return im_fail(IM_EINVAL, "%s: unit '%.15s' is not a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
-                       "\u00c5): a .gsf states its lengths in metres", path, field->unit);
-    *length = snprintf(header, size, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n%s", GSF_MAGIC,
-                       field->nx, field->ny, field->nx * field->delta * *metres, field->ny * field->delta * *metres,
+        return im_fail(IM_EINVAL,
+                       "%s: unit '%.15s' is not a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
+                       "\u00c5): a .gsf states its lengths in metres",
+                       path, field->unit);
+    *length = snprintf(header, size, "%sXRes = %d\nYRes = %d\nXReal = %.17g\nYReal = %.17g\n%s", GSF_MAGIC, field->nx,
+                       field->ny, field->nx * field->delta * *metres, field->ny * field->delta * *metres,
                        field->unit[0] ? "XYUnits = m\nZUnits = m\n" : "");
     return IM_OK;
 }
@@ -64,9 +66,9 @@ int im_gsf_write(const char *path, const im_field *field)
 
 typedef struct gsf_header {
     long xres, yres;
-    double xreal, yreal;        /* 0 when absent */
+    double xreal, yreal; /* 0 when absent */
     char xy_units[16], z_units[16];
-    int refused;                /* 1 once a value was refused (the message is recorded) */
+    int refused; /* 1 once a value was refused (the message is recorded) */
 } gsf_header;
 
 /* A decimal integer and nothing else but blanks: "16abc" and "1.6e1" are not pixel counts. */
@@ -96,8 +98,8 @@ static int parse_units(const char *path, const char *key, const char *value, cha
 {
     size_t length = strcspn(value, " \t\r");
     if (length == 0 || length >= size || value[length + strspn(value + length, " \t\r")] != '\0')
-        return im_fail(IM_EFORMAT, "%s: %s = '%.32s': expected one unit name of at most %zu bytes", path, key,
-                       value, size - 1);
+        return im_fail(IM_EFORMAT, "%s: %s = '%.32s': expected one unit name of at most %zu bytes", path, key, value,
+                       size - 1);
     snprintf(out, size, "%.*s", (int)length, value);
     return IM_OK;
 }
@@ -167,11 +169,10 @@ static int read_values(FILE *stream, const char *path, im_field *field)
     while (got < count && fread(&value, sizeof value, 1, stream) == 1)
         field->data[got++] = value;
     if (got != count)
-        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu values (XRes %d x YRes %d)", path,
-                       got, count, field->nx, field->ny);
-    if (fgetc(stream) != EOF)
-        return im_fail(IM_EFORMAT, "%s: more data than XRes x YRes = %d x %d holds", path,
+        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu values (XRes %d x YRes %d)", path, got, count,
                        field->nx, field->ny);
+    if (fgetc(stream) != EOF)
+        return im_fail(IM_EFORMAT, "%s: more data than XRes x YRes = %d x %d holds", path, field->nx, field->ny);
     return IM_OK;
 }
 
@@ -186,8 +187,10 @@ static const char *const SPACING_KEYS[4] = {
 static void stated_units(const gsf_header *h, surface_stated *stated)
 {
     int absent = (h->xreal > 0.0 ? 0 : 1) | (h->yreal > 0.0 ? 0 : 2);
-    *stated = (surface_stated){.spacing_keys = SPACING_KEYS[absent], .lateral_key = "XYUnits",
-                               .height_key = "ZUnits", .height_unit_unknown = 1};
+    *stated = (surface_stated){.spacing_keys = SPACING_KEYS[absent],
+                               .lateral_key = "XYUnits",
+                               .height_key = "ZUnits",
+                               .height_unit_unknown = 1};
     stated->units.delta_x = (h->xreal > 0.0 ? h->xreal : 1.0) / (double)h->xres;
     stated->units.delta_y = (h->yreal > 0.0 ? h->yreal : 1.0) / (double)h->yres;
     memcpy(stated->units.lateral, h->xy_units, sizeof h->xy_units);

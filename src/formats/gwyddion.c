@@ -23,10 +23,7 @@ static const child_program GWYDDION_PROGRAM = {
     .damage = "a damaged file?",
 };
 
-const char *im_gwyddion_reader(void)
-{
-    return child_program_path(&GWYDDION_PROGRAM);
-}
+const char *im_gwyddion_reader(void) { return child_program_path(&GWYDDION_PROGRAM); }
 
 enum { MAX_LISTED = 8 };
 
@@ -37,7 +34,7 @@ typedef struct stream_header {
     int id, nx, ny, masked;
     double x_extent, y_extent;
     char lateral[16], height[16];
-    char title[64];     /* the chosen channel's */
+    char title[64]; /* the chosen channel's */
 } stream_header;
 
 /* "channel ID<TAB>XRES<TAB>YRES<TAB>ZUNIT<TAB>TITLE": appended to the list for messages. */
@@ -65,8 +62,10 @@ static int take_field_line(const char *path, const char *line, stream_header *he
         header->nx < 1 || header->ny < 1 || header->nx > IM_FIELD_MAX_SIDE || header->ny > IM_FIELD_MAX_SIDE ||
         !isfinite(header->x_extent) || !(header->x_extent > 0.0) || !isfinite(header->y_extent) ||
         !(header->y_extent > 0.0) || (header->masked != 0 && header->masked != 1))
-        return im_fail(IM_EFORMAT, "%s: Gwyddion's reader described the field as '%.80s': expected sides 1 to %d "
-                       "and extents > 0", path, line, IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EFORMAT,
+                       "%s: Gwyddion's reader described the field as '%.80s': expected sides 1 to %d "
+                       "and extents > 0",
+                       path, line, IM_FIELD_MAX_SIDE);
     snprintf(header->lateral, sizeof header->lateral, "%.15s", strcmp(lateral, "-") ? lateral : "");
     snprintf(header->height, sizeof header->height, "%.15s", strcmp(height, "-") ? height : "");
     snprintf(header->title, sizeof header->title, "%.63s", consumed ? line + consumed : "");
@@ -84,8 +83,9 @@ static int read_stream_header(FILE *stream, const char *path, stream_header *hea
         if (strncmp(line, "error unknown-format ", 21) == 0)
             return im_fail(IM_EFORMAT, "%s: " GWYDDION_UNKNOWN_FORMAT ": %.200s", path, line + 21);
         if (strncmp(line, "error line-scan ", 16) == 0)
-            return im_fail(IM_EFORMAT, "%s: " LINE_SCAN_REFUSAL ": Gwyddion's module '%s' reads it as %.200s; "
-                           LINE_SCAN_ADVICE, path, header->module, line + 16);
+            return im_fail(IM_EFORMAT,
+                           "%s: " LINE_SCAN_REFUSAL ": Gwyddion's module '%s' reads it as %.200s; " LINE_SCAN_ADVICE,
+                           path, header->module, line + 16);
         if (strncmp(line, "error failed ", 13) == 0)
             return im_fail(IM_EFORMAT, "%s: Gwyddion's file modules cannot read it: %.200s", path, line + 13);
         if (sscanf(line, "module %63s", header->module) == 1)
@@ -114,18 +114,21 @@ static int read_stream_values(FILE *stream, const char *path, const stream_heade
         if (invalid)
             field->data[k] = NAN;
     }
-    return fgetc(stream) == EOF ? IM_OK : im_fail(IM_EFORMAT, "%s: Gwyddion's reader wrote more than the field", path);
+    return fgetc(stream) == EOF ? IM_OK
+                                : im_fail(IM_EFORMAT, "%s: Gwyddion's reader wrote more than the field", path);
 }
 
 /* Gwyddion keeps values in base SI units: heights in "m", and any other unit is not a height. */
 static int state_units(const char *path, const stream_header *header, surface_stated *stated)
 {
     if (header->height[0] && strcmp(header->height, "m") != 0)
-        return im_fail(IM_EFORMAT, "%s: channel %d '%.40s' holds values in '%s', not heights (a length); its "
-                       "channels: %s; choose one with --channel", path, header->id, header->title, header->height,
-                       header->channels);
+        return im_fail(IM_EFORMAT,
+                       "%s: channel %d '%.40s' holds values in '%s', not heights (a length); its "
+                       "channels: %s; choose one with --channel",
+                       path, header->id, header->title, header->height, header->channels);
     *stated = (surface_stated){.spacing_keys = "Gwyddion's xreal / xres and yreal / yres",
-                               .lateral_key = "Gwyddion's lateral unit", .height_key = "Gwyddion's value unit"};
+                               .lateral_key = "Gwyddion's lateral unit",
+                               .height_key = "Gwyddion's value unit"};
     stated->units.delta_x = header->x_extent / header->nx;
     stated->units.delta_y = header->y_extent / header->ny;
     snprintf(stated->units.lateral, sizeof stated->units.lateral, "%s", header->lateral);
@@ -198,8 +201,10 @@ static int check_height_unit(const char *path, const surface_stated *stated, con
 {
     if (stated->units.height[0] || !stated->units.lateral[0] || (options && options->set.height[0]))
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: %s: its values have no unit beside lateral sizes in %s: give their unit "
-                   "(--height-unit) if they are heights", path, stated->conversion, stated->units.lateral);
+    return im_fail(IM_EFORMAT,
+                   "%s: %s: its values have no unit beside lateral sizes in %s: give their unit "
+                   "(--height-unit) if they are heights",
+                   path, stated->conversion, stated->units.lateral);
 }
 
 /* Where the program's stream goes: child_read hands the parser one pointer. */
@@ -220,8 +225,10 @@ int gwyddion_read_raw(const char *path, const im_surface_read_options *options, 
     *out = NULL;
     const char *program = im_gwyddion_reader();
     if (!program)
-        return im_fail(IM_EFORMAT, "%s: a format read through Gwyddion's file modules, which this build lacks "
-                       "(install libgwyddion20-dev and gwyddion, then rebuild)", path);
+        return im_fail(IM_EFORMAT,
+                       "%s: a format read through Gwyddion's file modules, which this build lacks "
+                       "(install libgwyddion20-dev and gwyddion, then rebuild)",
+                       path);
     stream_result result = {.out = out, .stated = stated};
     int status = child_read(&GWYDDION_PROGRAM, program, path, options ? options->channel : "", parse_from_program,
                             &result);

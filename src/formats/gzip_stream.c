@@ -18,10 +18,7 @@ static ssize_t read_decompressed(void *cookie, char *buffer, size_t size)
     return got;
 }
 
-static int close_decompressed(void *cookie)
-{
-    return gzclose_r((gzFile)cookie) == Z_OK ? 0 : EOF;
-}
+static int close_decompressed(void *cookie) { return gzclose_r((gzFile)cookie) == Z_OK ? 0 : EOF; }
 
 /* 1 when the regular file behind stream starts with 1f 8b; the stream is rewound. */
 static int starts_gzip(FILE *stream)

@@ -26,7 +26,7 @@ typedef struct data_set {
 typedef struct data_sets {
     data_set maps[MAX_DATA_SETS]; /* 2-D numeric: the channels */
     int map_count;
-    int line_count;               /* 1-D numeric: line scans */
+    int line_count; /* 1-D numeric: line scans */
 } data_sets;
 
 /* Rank and sizes of a numeric data set; 0 for anything else (text, compound, empty, or numbers wider
@@ -99,9 +99,10 @@ static int choose(const char *path, const data_sets *sets, const char *asked, in
     char list[1024];
     list_data_sets(sets, list, sizeof list);
     if (sets->map_count == 0)
-        return im_fail(IM_EFORMAT, "%s: HDF5 file without a 2-D numeric data set (%d 1-D: line scans, which a 2-D "
-                       "contact solver cannot indent): expected a data set of heights (x, y)", path,
-                       sets->line_count);
+        return im_fail(IM_EFORMAT,
+                       "%s: HDF5 file without a 2-D numeric data set (%d 1-D: line scans, which a 2-D "
+                       "contact solver cannot indent): expected a data set of heights (x, y)",
+                       path, sets->line_count);
     for (*k = 0; asked[0] && *k < sets->map_count; ++*k) {
         const char *name = sets->maps[*k].name;
         if ((all_digits(asked) && atol(asked) == *k) || strcasecmp(asked, name) == 0 ||
@@ -110,8 +111,10 @@ static int choose(const char *path, const data_sets *sets, const char *asked, in
     }
     if (!asked[0])
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: no channel has the index or name '%s'; its 2-D data sets: %s; choose one with "
-                   "--channel", path, asked, list);
+    return im_fail(IM_EFORMAT,
+                   "%s: no channel has the index or name '%s'; its 2-D data sets: %s; choose one with "
+                   "--channel",
+                   path, asked, list);
 }
 
 void hdf5_scatter_slab(im_field *field, const double *values, int x0, int rows)
@@ -155,9 +158,11 @@ static int read_slabs(hid_t file, const char *path, const data_set *chosen, cons
         H5Dclose(set);
     if (status != IM_OK)
         return status;
-    return error < 0 ? im_fail(IM_EFORMAT, "%s: data set '%.200s': libhdf5 cannot read its %llu x %llu values as "
-                               "numbers", path, chosen->name, (unsigned long long)chosen->nx,
-                               (unsigned long long)chosen->ny) : IM_OK;
+    return error < 0 ? im_fail(IM_EFORMAT,
+                               "%s: data set '%.200s': libhdf5 cannot read its %llu x %llu values as "
+                               "numbers",
+                               path, chosen->name, (unsigned long long)chosen->nx, (unsigned long long)chosen->ny)
+                     : IM_OK;
 }
 
 static int read_chosen(hid_t file, const char *path, const data_sets *sets, int k, const hdf5_sink *sink)
@@ -212,7 +217,8 @@ static int open_quietly(const char *path, quiet_file *opened)
     if (opened->file >= 0)
         return IM_OK;
     H5Eset_auto2(H5E_DEFAULT, opened->report, opened->report_data);
-    return im_fail(IM_EFORMAT, "%s: libhdf5 cannot open it: expected an HDF5 file (magic 89 'HDF' 0D 0A 1A 0A)", path);
+    return im_fail(IM_EFORMAT, "%s: libhdf5 cannot open it: expected an HDF5 file (magic 89 'HDF' 0D 0A 1A 0A)",
+                   path);
 }
 
 static void close_quietly(quiet_file *opened)
@@ -266,7 +272,8 @@ int hdf5_read_in_process(const char *path, const im_surface_read_options *option
                          surface_stated *stated)
 {
     field_sink into = {.stated = stated};
-    int status = hdf5_read_into(path, options, &(hdf5_sink){.begin = field_begin, .slab = field_slab, .context = &into});
+    int status = hdf5_read_into(path, options,
+                                &(hdf5_sink){.begin = field_begin, .slab = field_slab, .context = &into});
     if (status != IM_OK)
         im_field_free(into.field);
     *out = status == IM_OK ? into.field : NULL;

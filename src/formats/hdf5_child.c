@@ -36,10 +36,12 @@
 #endif
 
 /* The program, reading a file of HDF5 underneath in mode (NULL: plain HDF5) with parser. */
-#define HDF5_READER(mode_, parser_)                                                                         \
-    {.name = "indentmap-hdf5-read", .mode = mode_, .environment = "INDENTMAP_HDF5_READER",                  \
-     .installed = HDF5_READER_INSTALLED, .reader = "the HDF5 reader (indentmap-hdf5-read)", .parser = parser_, \
-     .damage = "the file is damaged or hostile"}
+#define HDF5_READER(mode_, parser_)                                                                                  \
+    {                                                                                                                \
+        .name = "indentmap-hdf5-read", .mode = mode_, .environment = "INDENTMAP_HDF5_READER",                        \
+        .installed = HDF5_READER_INSTALLED, .reader = "the HDF5 reader (indentmap-hdf5-read)", .parser = parser_,    \
+        .damage = "the file is damaged or hostile"                                                                   \
+    }
 
 static const child_program HDF5_PROGRAM = HDF5_READER(NULL, "the HDF5 library (libhdf5)");
 /* NetCDF-4 files are HDF5 files, which netCDF reads with libhdf5. */
@@ -70,8 +72,9 @@ static int stream_slab(void *context, const double *values, int x0, int rows)
     stream_sink *sink = context;
     size_t count = (size_t)rows * (size_t)sink->ny;
     fprintf(sink->stream, "slab %d %d\n", x0, rows);
-    return fwrite(values, sizeof(double), count, sink->stream) == count ? IM_OK
-           : im_fail(IM_EIO, "the stream to the library cannot be written");
+    return fwrite(values, sizeof(double), count, sink->stream) == count
+               ? IM_OK
+               : im_fail(IM_EIO, "the stream to the library cannot be written");
 }
 
 /* A NetCDF-4 file read here (netcdf.c), its field written in [x][y] slabs as a data set's are. */
@@ -84,7 +87,8 @@ static int write_netcdf4(stream_sink *sink, const char *path)
         status = stream_begin(sink, path, field->nx, field->ny, &stated);
     double *values = status == IM_OK ? malloc(sizeof *values * HDF5_SLAB_ROWS * (size_t)field->ny) : NULL;
     if (status == IM_OK && !values)
-        status = im_fail(IM_ENOMEM, "%s: allocation of %d x-rows of %d values failed", path, HDF5_SLAB_ROWS, field->ny);
+        status = im_fail(IM_ENOMEM, "%s: allocation of %d x-rows of %d values failed", path, HDF5_SLAB_ROWS,
+                         field->ny);
     for (int x0 = 0, rows = 0; status == IM_OK && x0 < field->nx; x0 += rows) {
         rows = field->nx - x0 < HDF5_SLAB_ROWS ? field->nx - x0 : HDF5_SLAB_ROWS;
         hdf5_gather_slab(field, values, x0, rows);
@@ -105,13 +109,15 @@ int hdf5_child_write(FILE *stream, const char *path, const char *channel, int ne
     if (!netcdf4 && hdf5_is_netcdf4(path)) {
         netcdf4 = 1;
         if (channel[0])
-            status = im_fail(IM_EINVAL, "%s: channel '%.63s' asked of a NetCDF-4 file, read in NetCDF's layout (one "
-                             "surface, heights(x, y))", path, channel);
+            status = im_fail(IM_EINVAL,
+                             "%s: channel '%.63s' asked of a NetCDF-4 file, read in NetCDF's layout (one "
+                             "surface, heights(x, y))",
+                             path, channel);
     }
     if (status == IM_OK)
         status = netcdf4 ? write_netcdf4(&sink, path)
-                         : hdf5_read_into(path, &options, &(hdf5_sink){.begin = stream_begin, .slab = stream_slab,
-                                                                       .context = &sink});
+                         : hdf5_read_into(path, &options,
+                                          &(hdf5_sink){.begin = stream_begin, .slab = stream_slab, .context = &sink});
     if (status != IM_OK) {
         char prefix[32];
         snprintf(prefix, sizeof prefix, "error %d ", status);
@@ -211,8 +217,10 @@ static int take_slab(FILE *stream, const char *path, im_field *field, int x0, do
     int most = field->nx - x0 < HDF5_SLAB_ROWS ? field->nx - x0 : HDF5_SLAB_ROWS;
     if (sscanf(line, "slab %d %d%n", &at, rows, &consumed) != 2 || line[consumed] || at != x0 || *rows < 1 ||
         *rows > most)
-        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'slab %d ROWS' "
-                       "with ROWS in [1, %d]", path, line, x0, most);
+        return im_fail(IM_EFORMAT,
+                       "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'slab %d ROWS' "
+                       "with ROWS in [1, %d]",
+                       path, line, x0, most);
     size_t count = (size_t)*rows * (size_t)field->ny;
     if (fread(values, sizeof(double), count, stream) != count)
         return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) ended inside x-rows %d to %d", path, x0,
@@ -232,8 +240,11 @@ static int take_values(FILE *stream, const char *path, im_field *field)
     free(values);
     if (status != IM_OK)
         return status;
-    return fgetc(stream) == EOF ? IM_OK : im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote "
-                                                  "more than the field", path);
+    return fgetc(stream) == EOF ? IM_OK
+                                : im_fail(IM_EFORMAT,
+                                          "%s: the HDF5 reader (indentmap-hdf5-read) wrote "
+                                          "more than the field",
+                                          path);
 }
 
 static int parse_stream(FILE *stream, const char *path, void *answer_, int *answered)
@@ -250,8 +261,10 @@ static int parse_stream(FILE *stream, const char *path, void *answer_, int *answ
     int nx = 0, ny = 0, consumed = 0;
     if (sscanf(line, "field %d %d%n", &nx, &ny, &consumed) != 2 || line[consumed] || nx < 1 || ny < 1 ||
         nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EFORMAT, "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'field NX NY' "
-                       "with sides in [1, %d]", path, line, IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EFORMAT,
+                       "%s: the HDF5 reader (indentmap-hdf5-read) wrote '%.60s': expected 'field NX NY' "
+                       "with sides in [1, %d]",
+                       path, line, IM_FIELD_MAX_SIDE);
     int status = take_stated(stream, path, answer->stated);
     if (status == IM_OK && (status = im_field_create(nx, ny, 1.0, answer->out)) != IM_OK)
         status = im_fail_context(status, "%s", path);
@@ -267,9 +280,11 @@ static int read_in_child(const child_program *program, const char *files, const 
     *out = NULL;
     const char *executable = child_program_path(program);
     if (!executable)
-        return im_fail(IM_EFORMAT, "%s: %s are read by indentmap-hdf5-read, a program of this build not found beside "
-                       "this program%s%s: set INDENTMAP_HDF5_READER to its path", path, files,
-                       program->installed ? " nor at " : "", program->installed ? program->installed : "");
+        return im_fail(IM_EFORMAT,
+                       "%s: %s are read by indentmap-hdf5-read, a program of this build not found beside "
+                       "this program%s%s: set INDENTMAP_HDF5_READER to its path",
+                       path, files, program->installed ? " nor at " : "",
+                       program->installed ? program->installed : "");
     hdf5_answer answer = {.out = out, .stated = stated};
     int status = child_read(program, executable, path, channel, parse_stream, &answer);
     if (status != IM_OK && *out) {
@@ -279,8 +294,7 @@ static int read_in_child(const child_program *program, const char *files, const 
     return status;
 }
 
-int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
-                  surface_stated *stated)
+int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out, surface_stated *stated)
 {
     return read_in_child(&HDF5_PROGRAM, "HDF5 files", path, options ? options->channel : "", out, stated);
 }

@@ -40,7 +40,8 @@ static int dimension(int ncid, const char *path, const char *name, int *id, size
         return im_fail(IM_EFORMAT, "%s: dimension '%s': %s (expected dimensions x and y)", path, name,
                        nc_strerror(error));
     if (*length < 1 || *length > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EFORMAT, "%s: dimension %s = %zu: expected 1 to %d", path, name, *length, IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EFORMAT, "%s: dimension %s = %zu: expected 1 to %d", path, name, *length,
+                       IM_FIELD_MAX_SIDE);
     return IM_OK;
 }
 
@@ -104,8 +105,18 @@ static int coordinate(int ncid, const char *path, const char *name, size_t point
 static int fill_value(int ncid, int var, double *fill)
 {
     nc_type type;
-    union { signed char b; unsigned char ub; short s; unsigned short us; int i; unsigned int ui; long long ll;
-            unsigned long long ull; float f; double d; } v;
+    union {
+        signed char b;
+        unsigned char ub;
+        short s;
+        unsigned short us;
+        int i;
+        unsigned int ui;
+        long long ll;
+        unsigned long long ull;
+        float f;
+        double d;
+    } v;
     int no_fill = 0;
     if (nc_inq_vartype(ncid, var, &type) != NC_NOERR || nc_inq_var_fill(ncid, var, &no_fill, &v) != NC_NOERR)
         return 0;
@@ -137,7 +148,7 @@ static void mark_fill_values(int ncid, int var, im_field *field)
 }
 
 typedef struct mapped_file {
-    void *bytes;   /* NULL when netCDF reads the file itself */
+    void *bytes; /* NULL when netCDF reads the file itself */
     size_t size;
 } mapped_file;
 
@@ -189,8 +200,9 @@ static int check_heights_fit(int ncid, const char *path, int var, size_t nx, siz
     unsigned long long needed = (unsigned long long)nx * ny * value_size;
     if (needed <= file->size)
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: truncated: heights (%zu x %zu values of %zu bytes) needs %llu bytes, the file has %zu",
-                   path, nx, ny, value_size, needed, file->size);
+    return im_fail(IM_EFORMAT,
+                   "%s: truncated: heights (%zu x %zu values of %zu bytes) needs %llu bytes, the file has %zu", path,
+                   nx, ny, value_size, needed, file->size);
 }
 
 static int read_open(int ncid, const char *path, im_field **out, surface_stated *stated, const mapped_file *file)
@@ -237,7 +249,7 @@ static int read_open(int ncid, const char *path, im_field **out, surface_stated 
 typedef struct header_walk {
     const unsigned char *bytes;
     size_t size, at;
-    int version;     /* 1, 2 or 5 */
+    int version; /* 1, 2 or 5 */
 } header_walk;
 
 /* A big-endian unsigned integer of `width` bytes; 0 (and the walk at its end) past the end. */
@@ -300,8 +312,8 @@ static void skip_attributes(header_walk *w)
  * past the end; 2: a variable of no known type (netCDF then divided by its size 0); 0: whole. */
 static int walk_header(header_walk *w, size_t *dims_out)
 {
-    take(w, 4);                              /* magic and version */
-    take(w, count_width(w));                 /* numrecs */
+    take(w, 4);              /* magic and version */
+    take(w, count_width(w)); /* numrecs */
     uint64_t dims = list_count(w, 0x0A);
     uint64_t *lengths = dims && dims < w->size ? calloc((size_t)dims, sizeof *lengths) : NULL;
     for (uint64_t i = 0; i < dims && lengths && !failed(w); ++i) {
@@ -342,7 +354,8 @@ static int check_classic_header(const char *path, const unsigned char *bytes, si
         return im_fail(IM_EFORMAT, "%s: truncated: a variable's data lies past the end of the file (%zu bytes)", path,
                        size);
     if (result == 2)
-        return im_fail(IM_EFORMAT, "%s: netCDF header: a variable of no known type (expected a classic nc_type)", path);
+        return im_fail(IM_EFORMAT, "%s: netCDF header: a variable of no known type (expected a classic nc_type)",
+                       path);
     return IM_OK;
 }
 
@@ -391,7 +404,8 @@ static int open_dataset(const char *path, mapped_file *file, int *ncid)
 int netcdf_read_in_process(const char *path, im_field **out, surface_stated *stated)
 {
     *out = NULL;
-    *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y", .lateral_key = "x:unit",
+    *stated = (surface_stated){.spacing_keys = "x:length / x and y:length / y",
+                               .lateral_key = "x:unit",
                                .height_key = "x:unit"};
     mapped_file file;
     int ncid, status = open_dataset(path, &file, &ncid);

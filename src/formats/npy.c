@@ -13,7 +13,11 @@
 
 static const char NPY_MAGIC[6] = {'\x93', 'N', 'U', 'M', 'P', 'Y'};
 
-static void store_le16(uint8_t *p, uint16_t v) { p[0] = (uint8_t)v; p[1] = (uint8_t)(v >> 8); }
+static void store_le16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+}
 
 /* Little-endian host assumed for the payload (x86-64, aarch64); checked at compile time. */
 _Static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "npy payload code assumes little-endian");
@@ -36,8 +40,7 @@ int im_npy_write(const char *path, const im_field *field, enum im_npy_dtype dtyp
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
     char dict[128];
-    int dict_length = snprintf(dict, sizeof dict,
-                               "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }",
+    int dict_length = snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }",
                                dtype == IM_NPY_FLOAT64 ? "<f8" : "<f4", field->ny, field->nx);
     /* magic(6) + version(2) + length(2) + dict + padding + '\n' is a multiple of 64 bytes */
     size_t header_length = (size_t)dict_length + 1;
@@ -160,14 +163,16 @@ static int parse_header(const char *path, const char *dict, npy_type *type, long
     if (!descr || !order || !shape)
         return im_fail(IM_EFORMAT, "%s: header lacks 'descr', 'fortran_order' or 'shape'", path);
     if (!parse_descr(descr, type))
-        return im_fail(IM_EFORMAT, "%s: dtype %.*s is not supported; expected a float ('<f8', '>f4', ...) or an "
-                       "integer ('<i2', '>u4', '|u1', ...) of either byte order", path, quoted_length(descr), descr);
+        return im_fail(IM_EFORMAT,
+                       "%s: dtype %.*s is not supported; expected a float ('<f8', '>f4', ...) or an "
+                       "integer ('<i2', '>u4', '|u1', ...) of either byte order",
+                       path, quoted_length(descr), descr);
     if (strncmp(order, "False", 5) != 0 && strncmp(order, "True", 4) != 0)
         return im_fail(IM_EFORMAT, "%s: fortran_order %.8s: expected True or False", path, order);
     type->fortran_order = order[0] == 'T';
     if (!parse_shape(shape, rows, cols))
-        return im_fail(IM_EFORMAT, "%s: shape %.*s: expected a 2-D shape (rows, columns)", path,
-                       tuple_length(shape), shape);
+        return im_fail(IM_EFORMAT, "%s: shape %.*s: expected a 2-D shape (rows, columns)", path, tuple_length(shape),
+                       shape);
     if (*rows < 1 || *cols < 1)
         return im_fail(IM_EFORMAT, "%s: shape (%ld, %ld): expected each side >= 1", path, *rows, *cols);
     return IM_OK; /* the upper bound on the sides is formats_check_grid's, after the memory check */
@@ -203,8 +208,19 @@ static double decode(const uint8_t *bytes, const npy_type *type)
     uint8_t ordered[8];
     for (int i = 0; i < type->size; ++i) /* into the host's (little-endian) order */
         ordered[i] = bytes[type->big_endian ? type->size - 1 - i : i];
-    union { uint8_t b[8]; double f8; float f4; int8_t i1; int16_t i2; int32_t i4; int64_t i8; uint8_t u1;
-            uint16_t u2; uint32_t u4; uint64_t u8; } v;
+    union {
+        uint8_t b[8];
+        double f8;
+        float f4;
+        int8_t i1;
+        int16_t i2;
+        int32_t i4;
+        int64_t i8;
+        uint8_t u1;
+        uint16_t u2;
+        uint32_t u4;
+        uint64_t u8;
+    } v;
     memcpy(v.b, ordered, (size_t)type->size);
     switch (type->kind * 16 + type->size) {
     case 'f' * 16 + 8: return v.f8;
@@ -238,11 +254,10 @@ static int read_payload(FILE *stream, const char *path, const npy_type *type, im
             break;
     }
     if (got != count)
-        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu values (header shape %d x %d)",
-                       path, got, count, field->ny, field->nx);
-    if (fgetc(stream) != EOF)
-        return im_fail(IM_EFORMAT, "%s: more data than the header shape (%d, %d) holds", path,
+        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu values (header shape %d x %d)", path, got, count,
                        field->ny, field->nx);
+    if (fgetc(stream) != EOF)
+        return im_fail(IM_EFORMAT, "%s: more data than the header shape (%d, %d) holds", path, field->ny, field->nx);
     return IM_OK;
 }
 
@@ -252,9 +267,8 @@ static void describe_conversion(const npy_type *type, char *text, size_t size)
     static const char *const KINDS[] = {"float", "int", "uint"};
     int kind = type->kind == 'f' ? 0 : type->kind == 'i' ? 1 : 2;
     int converted = strcmp(type->descr, "<f8") != 0 && strcmp(type->descr, "=f8") != 0;
-    snprintf(text, size, "%s%s%s%s%d%s", converted ? "'" : "", converted ? type->descr : "",
-             converted ? "' (" : "", converted ? KINDS[kind] : "", converted ? 8 * type->size : 0,
-             converted ? ") converted to float64" : "");
+    snprintf(text, size, "%s%s%s%s%d%s", converted ? "'" : "", converted ? type->descr : "", converted ? "' (" : "",
+             converted ? KINDS[kind] : "", converted ? 8 * type->size : 0, converted ? ") converted to float64" : "");
     if (!converted)
         text[0] = '\0';
     if (type->fortran_order)
@@ -264,7 +278,9 @@ static void describe_conversion(const npy_type *type, char *text, size_t size)
 
 int npy_read_raw(const char *path, im_field **out, surface_stated *stated)
 {
-    *stated = (surface_stated){.spacing_keys = "--delta", .lateral_key = "--unit", .height_key = "--height-unit",
+    *stated = (surface_stated){.spacing_keys = "--delta",
+                               .lateral_key = "--unit",
+                               .height_key = "--height-unit",
                                .npy_order = IM_NPY_ORDER_YX};
     *out = NULL;
     FILE *stream;
@@ -318,8 +334,7 @@ static int transpose(const char *path, im_field *field)
     return IM_OK;
 }
 
-int npy_apply_order(const char *path, im_field *field, surface_stated *stated,
-                    const im_surface_read_options *options)
+int npy_apply_order(const char *path, im_field *field, surface_stated *stated, const im_surface_read_options *options)
 {
     enum im_npy_order order = options && options->npy_order ? options->npy_order : stated->npy_order;
     if (stated->npy_order == IM_NPY_ORDER_SIDECAR || order != IM_NPY_ORDER_XY)

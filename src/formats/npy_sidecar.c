@@ -21,9 +21,9 @@ int im_field_sidecar_write(const char *path, const im_field *field, const char *
     int status = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
     if (status != IM_OK)
         return status;
-    json_t *root = json_pack("{s:s, s:s, s:s, s:i, s:i, s:f, s:s, s:s}", "program", "indentmap", "version", IM_VERSION,
-                             "quantity", quantity, "nx", field->nx, "ny", field->ny, "delta", field->delta, "unit",
-                             field->unit, "value_unit", field->value_unit);
+    json_t *root = json_pack("{s:s, s:s, s:s, s:i, s:i, s:f, s:s, s:s}", "program", "indentmap", "version",
+                             IM_VERSION, "quantity", quantity, "nx", field->nx, "ny", field->ny, "delta",
+                             field->delta, "unit", field->unit, "value_unit", field->value_unit);
     status = json_file_write(sidecar, root);
     json_decref(root);
     return status;
@@ -65,8 +65,10 @@ int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit,
     json_t *root = json_load_file(sidecar, 0, &error);
     if (!json_is_object(root)) {
         json_decref(root);
-        return im_fail(IM_EFORMAT, "%s:%d: the sidecar stating the units of %s is not a JSON object (%s); fix or "
-                       "remove it", sidecar, error.line, path, error.text);
+        return im_fail(IM_EFORMAT,
+                       "%s:%d: the sidecar stating the units of %s is not a JSON object (%s); fix or "
+                       "remove it",
+                       sidecar, error.line, path, error.text);
     }
     json_t *delta = json_object_get(root, "delta");
     int bad = delta && !(json_is_number(delta) && json_number_value(delta) > 0.0);
@@ -78,8 +80,10 @@ int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit,
           copy_string(root, "order", order, sizeof order) != 0 || parse_order(order, &stated->npy_order) != 0;
     json_decref(root);
     if (bad)
-        return im_fail(IM_EFORMAT, "%s: expected \"delta\" a number > 0, \"unit\" and \"value_unit\" short strings, "
-                       "\"order\" \"yx\" or \"xy\"", sidecar);
+        return im_fail(IM_EFORMAT,
+                       "%s: expected \"delta\" a number > 0, \"unit\" and \"value_unit\" short strings, "
+                       "\"order\" \"yx\" or \"xy\"",
+                       sidecar);
     stated->spacing_keys = "the sidecar's delta";
     stated->lateral_key = "the sidecar's unit";
     return IM_OK;

@@ -15,13 +15,15 @@ static int check_payload_size(FILE *stream, const char *path, uint64_t expected,
         return IM_OK;
     uint64_t present = info.st_size > position ? (uint64_t)(info.st_size - position) : 0;
     if (present < expected)
-        return im_fail(IM_EFORMAT, "%s: truncated data: the header (%s) needs %llu bytes after it, "
-                       "the file has %llu", path, claim, (unsigned long long)expected,
-                       (unsigned long long)present);
+        return im_fail(IM_EFORMAT,
+                       "%s: truncated data: the header (%s) needs %llu bytes after it, "
+                       "the file has %llu",
+                       path, claim, (unsigned long long)expected, (unsigned long long)present);
     if (present > expected)
-        return im_fail(IM_EFORMAT, "%s: more data than the header (%s) holds: %llu bytes after it, "
-                       "%llu expected", path, claim, (unsigned long long)present,
-                       (unsigned long long)expected);
+        return im_fail(IM_EFORMAT,
+                       "%s: more data than the header (%s) holds: %llu bytes after it, "
+                       "%llu expected",
+                       path, claim, (unsigned long long)present, (unsigned long long)expected);
     return IM_OK;
 }
 
@@ -52,8 +54,10 @@ int formats_check_heights_writable(const im_field *field, const char *path)
         return IM_OK;
     char message[4400];
     snprintf(message, sizeof message, "%s", im_last_error());
-    return im_fail(IM_EINVAL, "%s; not written: this format is written without missing points (.npy, .sdf, .nc "
-                   "and text files keep NaN as a missing point)", message);
+    return im_fail(IM_EINVAL,
+                   "%s; not written: this format is written without missing points (.npy, .sdf, .nc "
+                   "and text files keep NaN as a missing point)",
+                   message);
 }
 
 int formats_check_heights_or_missing_writable(const im_field *field, const char *path)
@@ -64,7 +68,9 @@ int formats_check_heights_or_missing_writable(const im_field *field, const char 
     size_t count = im_field_count(field);
     for (size_t i = 0; i < count; ++i)
         if (isinf(field->data[i]))
-            return im_fail(IM_EINVAL, "%s: value %g at (x=%zu, y=%zu); not written: expected finite heights or NaN "
-                           "(a missing point)", path, field->data[i], i % (size_t)field->nx, i / (size_t)field->nx);
+            return im_fail(IM_EINVAL,
+                           "%s: value %g at (x=%zu, y=%zu); not written: expected finite heights or NaN "
+                           "(a missing point)",
+                           path, field->data[i], i % (size_t)field->nx, i / (size_t)field->nx);
     return IM_OK;
 }

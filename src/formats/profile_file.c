@@ -95,8 +95,8 @@ static int read_table(FILE *file, const char *path, sample_table *t)
     while (status == IM_OK && fgets(buffer, sizeof buffer, file)) {
         ++line;
         if (!strchr(buffer, '\n') && !feof(file))
-            return im_fail(IM_EINVAL, "%s:%ld: line longer than %zu characters: expected 'r z' or 'r,z'", path,
-                           line, sizeof buffer - 2);
+            return im_fail(IM_EINVAL, "%s:%ld: line longer than %zu characters: expected 'r z' or 'r,z'", path, line,
+                           sizeof buffer - 2);
         const char *s = skip_blanks(buffer);
         if (*s == '\0' || *s == '#')
             continue;

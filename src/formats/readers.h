@@ -10,14 +10,14 @@
 #include "indentmap/io.h"
 
 typedef struct surface_stated {
-    im_surface_units units;  /* what the file states (zeros and "" where nothing) */
-    const char *spacing_keys;/* e.g. "XReal / XRes and YReal / YRes", for messages */
-    const char *lateral_key; /* e.g. "XYUnits" */
-    const char *height_key;  /* e.g. "ZUnits" */
-    int height_unit_unknown; /* 1: heights with no stated unit have an unknown one (a .gsf without
+    im_surface_units units;      /* what the file states (zeros and "" where nothing) */
+    const char *spacing_keys;    /* e.g. "XReal / XRes and YReal / YRes", for messages */
+    const char *lateral_key;     /* e.g. "XYUnits" */
+    const char *height_key;      /* e.g. "ZUnits" */
+    int height_unit_unknown;     /* 1: heights with no stated unit have an unknown one (a .gsf without
                                 ZUnits), refused once the spacing has a unit; 0: they are in the
                                 lateral unit */
-    char conversion[96];     /* how stored values became float64 row-major ("" for none) */
+    char conversion[96];         /* how stored values became float64 row-major ("" for none) */
     enum im_npy_order npy_order; /* a .npy's, as its sidecar states it (IM_NPY_ORDER_YX without one);
                                 IM_NPY_ORDER_SIDECAR (0) for the other formats: their layout is fixed */
 } surface_stated;
@@ -51,8 +51,7 @@ int surface_read_channel_format(const char *path, surface_channel_reader read, c
 /* Plain HDF5: each 2-D numeric data set is a channel, by default the first; a bare matrix. Read in a child
  * process, indentmap-hdf5-read (hdf5_child.c), since libhdf5 crashes inside itself on some hostile files:
  * IM_EFORMAT naming path, saying so, when it does, and when this build's program is not found. */
-int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
-                  surface_stated *stated);
+int hdf5_read_raw(const char *path, const im_surface_read_options *options, im_field **out, surface_stated *stated);
 /* A contact.engineering container (container.c): each topography of its meta.yml is a channel, by
  * default the first that is not a line scan. */
 int container_read_raw(const char *path, const im_surface_read_options *options, im_field **out,
@@ -62,7 +61,7 @@ int container_read_raw(const char *path, const im_surface_read_options *options,
  * im_surface_read_with describes; fills info (may be NULL). On failure the field is left to the
  * caller to free. */
 int surface_finish(const char *path, im_field *field, const surface_stated *stated,
-                      const im_surface_read_options *options, im_surface_read_info *info);
+                   const im_surface_read_options *options, im_surface_read_info *info);
 
 /* Reads PATH.json beside a .npy, when present, into stated (spacing, lateral unit, array order) and
  * value_unit (size bytes); IM_OK without one, IM_EFORMAT naming it when it is malformed. */
@@ -76,6 +75,6 @@ int npy_apply_order(const char *path, im_field *field, surface_stated *stated,
 
 /* A raw reader, npy_apply_order, then surface_finish; *out is NULL on failure. */
 int surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
-                           im_field **out, im_surface_read_info *info);
+                        im_field **out, im_surface_read_info *info);
 
 #endif

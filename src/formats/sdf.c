@@ -26,10 +26,10 @@ enum { SDF_UINT8, SDF_UINT16, SDF_UINT32, SDF_FLOAT, SDF_SINT8, SDF_SINT16, SDF_
 static const int SDF_SIZES[SDF_TYPES] = {1, 2, 4, 4, 1, 2, 4, 8};
 
 typedef struct sdf_header {
-    long points, profiles;           /* NumPoints (columns, along x), NumProfiles (rows, along y) */
-    double xscale, yscale, zscale;   /* metres per step and per unit of a value */
+    long points, profiles;         /* NumPoints (columns, along x), NumProfiles (rows, along y) */
+    double xscale, yscale, zscale; /* metres per step and per unit of a value */
     long compression, data_type;
-    long data_sets, nan_present;     /* Gwyddion's NumDataSet and NanPresent (1 and 0 when absent) */
+    long data_sets, nan_present; /* Gwyddion's NumDataSet and NanPresent (1 and 0 when absent) */
 } sdf_header;
 
 /* The versions read: the standard's, the older BCR ones and Gwyddion's (after 'a' or 'b'). */
@@ -67,9 +67,9 @@ static int check_header(const char *path, const sdf_header *h)
 
 /* The header keys read: integers first, then lengths. */
 enum { SDF_LONG_KEYS = 6, SDF_KEYS = 9 };
-static const char *const SDF_KEY_NAMES[SDF_KEYS] = {"NumPoints",  "NumProfiles", "Compression",
-                                                    "DataType",   "NumDataSet",  "NanPresent",
-                                                    "Xscale",     "Yscale",      "Zscale"};
+static const char *const SDF_KEY_NAMES[SDF_KEYS] = {"NumPoints", "NumProfiles", "Compression",
+                                                    "DataType",  "NumDataSet",  "NanPresent",
+                                                    "Xscale",    "Yscale",      "Zscale"};
 
 /* "Key = value" into the header; IM_EFORMAT naming the key for a value that is not a number. */
 static int parse_ascii_line(const char *path, long line_number, const char *line, sdf_header *h, int *seen)
@@ -137,7 +137,8 @@ static int read_ascii_values(FILE *stream, const char *path, const sdf_header *h
         field->data[got++] = value * h->zscale;
     }
     if (got != count)
-        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of NumPoints x NumProfiles = %zu values", path, got, count);
+        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of NumPoints x NumProfiles = %zu values", path, got,
+                       count);
     if (fscanf(stream, "%63s", token) == 1 && token[0] != '*')
         return im_fail(IM_EFORMAT, "%s: more values than NumPoints x NumProfiles = %zu ('%s' follows)", path, count,
                        token);
@@ -151,10 +152,18 @@ static double load_le(const uint8_t *bytes, int size, int type)
     uint64_t bits = 0;
     for (int i = size - 1; i >= 0; --i)
         bits = bits << 8 | bytes[i];
-    union { uint64_t u; double d; } d8 = {bits};
-    union { uint32_t u; float f; } f4 = {(uint32_t)bits};
+    union {
+        uint64_t u;
+        double d;
+    } d8 = {bits};
+    union {
+        uint32_t u;
+        float f;
+    } f4 = {(uint32_t)bits};
     switch (type) {
-    case SDF_UINT8: case SDF_UINT16: case SDF_UINT32: return (double)bits;
+    case SDF_UINT8:
+    case SDF_UINT16:
+    case SDF_UINT32: return (double)bits;
     case SDF_SINT8: return (int8_t)bits;
     case SDF_SINT16: return (int16_t)bits;
     case SDF_SINT32: return (int32_t)bits;
@@ -192,8 +201,8 @@ static int read_binary_values(FILE *stream, const char *path, const sdf_header *
     }
     int next = fgetc(stream);
     if (next != EOF && next != '*')
-        return im_fail(IM_EFORMAT, "%s: more data than NumPoints x NumProfiles = %zu values, and no '*' trailer", path,
-                       count);
+        return im_fail(IM_EFORMAT, "%s: more data than NumPoints x NumProfiles = %zu values, and no '*' trailer",
+                       path, count);
     return IM_OK;
 }
 
@@ -213,8 +222,10 @@ static int read_header(FILE *stream, const char *path, sdf_header *h, int *ascii
     char magic[8];
     long line = 1;
     if (fread(magic, 1, 8, stream) != 8 || (magic[0] != 'a' && magic[0] != 'b') || !known_version(magic + 1))
-        return im_fail(IM_EFORMAT, "%s: not an ISO 25178-71 surface data file (no aISO-1.0, bISO-1.0, aBCR-1.0, "
-                       "bBCR-1.0, aBCR-0.0 or bBCR-0.0 first)", path);
+        return im_fail(IM_EFORMAT,
+                       "%s: not an ISO 25178-71 surface data file (no aISO-1.0, bISO-1.0, aBCR-1.0, "
+                       "bBCR-1.0, aBCR-0.0 or bBCR-0.0 first)",
+                       path);
     *ascii = magic[0] == 'a';
     if (!*ascii)
         return read_binary_header(stream, path, h);
@@ -236,8 +247,10 @@ static int check_enough_data(FILE *stream, const char *path, const sdf_header *h
     double needed = (double)h->points * (double)h->profiles * (ascii ? 2.0 : SDF_SIZES[h->data_type]);
     double present = (double)info.st_size - (double)position;
     if (present + (ascii ? 1.0 : 0.0) < needed) /* the last ASCII value needs no separator */
-        return im_fail(IM_EFORMAT, "%s: truncated data: NumPoints x NumProfiles = %ld x %ld values need at least %.0f "
-                       "bytes, the file has %.0f after the header", path, h->points, h->profiles, needed, present);
+        return im_fail(IM_EFORMAT,
+                       "%s: truncated data: NumPoints x NumProfiles = %ld x %ld values need at least %.0f "
+                       "bytes, the file has %.0f after the header",
+                       path, h->points, h->profiles, needed, present);
     return IM_OK;
 }
 
@@ -262,8 +275,10 @@ int sdf_read_raw(const char *path, im_field **out, surface_stated *stated)
         im_field_free(field);
         return status;
     }
-    *stated = (surface_stated){.units = {h.xscale, h.yscale, "m", "m"}, .spacing_keys = "Xscale and Yscale",
-                               .lateral_key = "Xscale", .height_key = "Zscale"};
+    *stated = (surface_stated){.units = {h.xscale, h.yscale, "m", "m"},
+                               .spacing_keys = "Xscale and Yscale",
+                               .lateral_key = "Xscale",
+                               .height_key = "Zscale"};
     *out = field;
     return IM_OK;
 }
@@ -285,7 +300,10 @@ static void store_le(uint8_t *p, uint64_t bits, int size)
 
 static void store_double(uint8_t *p, double value)
 {
-    union { double d; uint64_t u; } v = {value};
+    union {
+        double d;
+        uint64_t u;
+    } v = {value};
     store_le(p, v.u, 8);
 }
 
@@ -301,7 +319,8 @@ int im_sdf_write(const char *path, const im_field *field)
         return im_fail(IM_EINVAL, "%s: an .sdf states metres: the surface needs a length unit (it has '%s')", path,
                        field->unit);
     if (field->nx > 65535 || field->ny > 65535)
-        return im_fail(IM_EINVAL, "%s: %d x %d: an .sdf holds at most 65535 x 65535 points", path, field->nx, field->ny);
+        return im_fail(IM_EINVAL, "%s: %d x %d: an .sdf holds at most 65535 x 65535 points", path, field->nx,
+                       field->ny);
     uint8_t header[SDF_BINARY_HEADER];
     memset(header, ' ', 8 + 10 + 12 + 12);
     memcpy(header, "bISO-1.0", 8);
@@ -315,7 +334,7 @@ int im_sdf_write(const char *path, const im_field *field)
     store_double(p + 28, -1.0); /* Zresolution: unknown */
     p[36] = 0;                  /* no compression */
     p[37] = SDF_DOUBLE;
-    p[38] = 0;                  /* no checksum */
+    p[38] = 0; /* no checksum */
     im_atomic_file file;
     int status = im_atomic_open(&file, path);
     if (status != IM_OK)

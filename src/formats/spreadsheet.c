@@ -79,8 +79,8 @@ static int count_sheet(zip_t *archive, const char *path, const char *name, sheet
 {
     char *text;
     size_t size;
-    int status = zip_entry_read(archive, path, name, MAX_PART_BYTES, "a spreadsheet without the sheet it lists", &text,
-                                &size);
+    int status = zip_entry_read(archive, path, name, MAX_PART_BYTES, "a spreadsheet without the sheet it lists",
+                                &text, &size);
     if (status != IM_OK)
         return status;
     memset(numbers->per_column, 0, MAX_COLUMNS * sizeof *numbers->per_column);
@@ -132,11 +132,13 @@ static int refuse_sheet(const char *path, const char *what, const char *name, co
     if (sheet->second_column >= 0)
         column_letters(sheet->second_column, second);
     if (sheet->columns_near_full <= 2)
-        return im_fail(IM_EFORMAT, "%s: %s: its fullest sheet, %s, holds numbers in %d column%s (%s%s%s) of %ld "
-                       "rows: " LINE_SCAN_REFUSAL " (positions and heights); " LINE_SCAN_ADVICE, path, what, name,
-                       sheet->columns_near_full, sheet->columns_near_full == 1 ? "" : "s", first,
+        return im_fail(IM_EFORMAT,
+                       "%s: %s: its fullest sheet, %s, holds numbers in %d column%s (%s%s%s) of %ld "
+                       "rows: " LINE_SCAN_REFUSAL " (positions and heights); " LINE_SCAN_ADVICE,
+                       path, what, name, sheet->columns_near_full, sheet->columns_near_full == 1 ? "" : "s", first,
                        second[0] ? ", " : "", second, sheet->fullest);
-    return im_fail(IM_EFORMAT, "%s: %s: no reader here reads spreadsheets; its fullest sheet, %s, holds numbers in %d "
+    return im_fail(IM_EFORMAT,
+                   "%s: %s: no reader here reads spreadsheets; its fullest sheet, %s, holds numbers in %d "
                    "columns (from %s) of %ld rows: save that sheet's heights as text (CSV) to read them as a matrix",
                    path, what, name, sheet->columns_near_full, first, sheet->fullest);
 }
@@ -156,8 +158,10 @@ static int count_sheets(zip_t *archive, const char *path, sheet_numbers *fullest
             continue;
         status = count_sheet(archive, path, entry, &sheet);
         if (status == IM_OK && sheet.fullest > fullest->fullest) {
-            *fullest = (sheet_numbers){.fullest = sheet.fullest, .columns_near_full = sheet.columns_near_full,
-                                       .first_column = sheet.first_column, .second_column = sheet.second_column};
+            *fullest = (sheet_numbers){.fullest = sheet.fullest,
+                                       .columns_near_full = sheet.columns_near_full,
+                                       .first_column = sheet.first_column,
+                                       .second_column = sheet.second_column};
             snprintf(name, size, "%s", entry);
         }
     }

@@ -129,10 +129,11 @@ static int refuse_other_text(const char *path, const char *first_line, const im_
         return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers", path, shown);
     char text_refusal[512];
     snprintf(text_refusal, sizeof text_refusal, "%s", im_last_error());
-    return im_fail(IM_EFORMAT, "%s: text whose first data line, '%s', is not numbers (column names, or a "
+    return im_fail(IM_EFORMAT,
+                   "%s: text whose first data line, '%s', is not numbers (column names, or a "
                    "vendor's text export), and no Gwyddion file module reads it: expected a matrix of heights, or "
-                   "x y z points under a header row naming x, y and a height; as text: %s", path, shown,
-                   text_refusal);
+                   "x y z points under a header row naming x, y and a height; as text: %s",
+                   path, shown, text_refusal);
 }
 
 /* 1 when the text reader refuses the file as a line scan (its refusal then stands): text whose first
@@ -150,8 +151,10 @@ static int refuse_channel(const char *path, const im_surface_read_options *optio
 {
     if (!options || !options->channel[0])
         return 0;
-    im_fail(IM_EINVAL, "%s: channel '%.63s' asked of a file read by indentmap's own reader, which holds one channel "
-            "(channels are chosen in instrument files read through Gwyddion's modules)", path, options->channel);
+    im_fail(IM_EINVAL,
+            "%s: channel '%.63s' asked of a file read by indentmap's own reader, which holds one channel "
+            "(channels are chosen in instrument files read through Gwyddion's modules)",
+            path, options->channel);
     return 1;
 }
 
@@ -160,9 +163,11 @@ static int refuse_channel(const char *path, const im_surface_read_options *optio
 static int refuse_binary(const char *path, const im_surface_read_options *options)
 {
     if (starts_with(path, OLE2_SIGNATURE))
-        return im_fail(IM_EFORMAT, "%s: an OLE2 (Microsoft compound) document, as Digital Surf's Mountains documents "
+        return im_fail(IM_EFORMAT,
+                       "%s: an OLE2 (Microsoft compound) document, as Digital Surf's Mountains documents "
                        "(.mnt) and spreadsheets (.xls) are, which no reader here opens: export the studiable from "
-                       "MountainsMap as .sur (read through Gwyddion's modules) or the heights as text", path);
+                       "MountainsMap as .sur (read through Gwyddion's modules) or the heights as text",
+                       path);
     im_field *field = NULL;
     int status = surface_read_format(path, text_read_raw, options, &field, NULL);
     im_field_free(field);
@@ -170,8 +175,10 @@ static int refuse_binary(const char *path, const im_surface_read_options *option
         return im_fail(IM_EFORMAT, "%s: no Gwyddion file module reads it", path);
     char text_refusal[512];
     snprintf(text_refusal, sizeof text_refusal, "%s", im_last_error());
-    return im_fail(status, "%s: a binary file no reader here opens: none of Gwyddion's file modules reads it "
-                   "('indentmap formats' lists those that do), and as text: %s", path, text_refusal);
+    return im_fail(status,
+                   "%s: a binary file no reader here opens: none of Gwyddion's file modules reads it "
+                   "('indentmap formats' lists those that do), and as text: %s",
+                   path, text_refusal);
 }
 
 int im_surface_read_with(const char *path, const im_surface_read_options *options, im_field **out,
@@ -181,8 +188,10 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     ARG_REQUIRE(out, "out");
     *out = NULL;
     if (options && (unsigned)options->npy_order > IM_NPY_ORDER_XY)
-        return im_fail(IM_EINVAL, "%s: options->npy_order = %d: expected IM_NPY_ORDER_SIDECAR, IM_NPY_ORDER_YX or "
-                       "IM_NPY_ORDER_XY", __func__, (int)options->npy_order);
+        return im_fail(IM_EINVAL,
+                       "%s: options->npy_order = %d: expected IM_NPY_ORDER_SIDECAR, IM_NPY_ORDER_YX or "
+                       "IM_NPY_ORDER_XY",
+                       __func__, (int)options->npy_order);
     surface_raw_reader read = reader_by_extension(path);
     if (read)
         return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, read, options, out, info);
@@ -197,7 +206,8 @@ int im_surface_read_with(const char *path, const im_surface_read_options *option
     if (kind == BINARY && spreadsheet_is_one(path))
         return spreadsheet_refuse(path);
     if (kind == TEXT_OF_NUMBERS || kind == GZIP || kind == UTF16_TEXT || !im_gwyddion_reader())
-        return refuse_channel(path, options) ? IM_EINVAL : surface_read_format(path, text_read_raw, options, out, info);
+        return refuse_channel(path, options) ? IM_EINVAL
+                                             : surface_read_format(path, text_read_raw, options, out, info);
     if (kind == OTHER_TEXT && refused_as_line_scan(path, options))
         return IM_EFORMAT;
     int status = surface_read_channel_format(path, gwyddion_read_raw, options, out, info);

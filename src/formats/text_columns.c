@@ -81,9 +81,10 @@ static int scan_row(const char *path, long line_number, const char *line, column
             return im_fail(IM_EFORMAT, "%s:%ld: header row '%.60s': column %d is not a name: %s", path, line_number,
                            line, *count + 1, EXPECTED);
     if (*count != 3)
-        return im_fail(IM_EFORMAT, "%s:%ld: header row '%.60s' of %s%d column names: a header row is read only above "
-                       "x y z points (a matrix's names state no spacing: remove them); %s", path, line_number, line,
-                       *count == MAX_NAMES ? "at least " : "", *count, EXPECTED);
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: header row '%.60s' of %s%d column names: a header row is read only above "
+                       "x y z points (a matrix's names state no spacing: remove them); %s",
+                       path, line_number, line, *count == MAX_NAMES ? "at least " : "", *count, EXPECTED);
     return IM_OK;
 }
 
@@ -100,17 +101,22 @@ static int check_units(const char *path, long line_number, const column_name nam
     for (int k = 0; k < 3; ++k) {
         stated += names[k].unit[0] != '\0';
         if (names[k].unit[0] && im_length_unit_metres(names[k].unit, NULL) == 0.0)
-            return im_fail(IM_EFORMAT, "%s:%ld: header row: column '%s' in '%s': expected a length unit (m, mm, "
-                           "\u00b5m or um, nm, \u00c5 or A)", path, line_number, names[k].name, names[k].unit);
+            return im_fail(IM_EFORMAT,
+                           "%s:%ld: header row: column '%s' in '%s': expected a length unit (m, mm, "
+                           "\u00b5m or um, nm, \u00c5 or A)",
+                           path, line_number, names[k].name, names[k].unit);
     }
     if (stated != 0 && stated != 3)
-        return im_fail(IM_EFORMAT, "%s:%ld: header row states units for %d of its 3 columns (%s '%s', %s '%s', %s "
-                       "'%s'): expected a unit for each of x, y and the height, or for none", path, line_number,
-                       stated, names[0].name, names[0].unit, names[1].name, names[1].unit, names[2].name,
-                       names[2].unit);
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: header row states units for %d of its 3 columns (%s '%s', %s '%s', %s "
+                       "'%s'): expected a unit for each of x, y and the height, or for none",
+                       path, line_number, stated, names[0].name, names[0].unit, names[1].name, names[1].unit,
+                       names[2].name, names[2].unit);
     if (stated && im_length_unit_metres(names[0].unit, NULL) != im_length_unit_metres(names[1].unit, NULL))
-        return im_fail(IM_EFORMAT, "%s:%ld: header row states x in '%s' but y in '%s': expected x and y in one unit "
-                       "(their steps are the grid's spacing)", path, line_number, names[0].unit, names[1].unit);
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: header row states x in '%s' but y in '%s': expected x and y in one unit "
+                       "(their steps are the grid's spacing)",
+                       path, line_number, names[0].unit, names[1].unit);
     return IM_OK;
 }
 
@@ -138,13 +144,17 @@ int text_columns_check(const char *path, const text_columns *columns, const text
     if (!columns->line)
         return IM_OK;
     if (data_columns != 3 || text_header_states_a_matrix(header))
-        return im_fail(IM_EFORMAT, "%s:%ld: a header row of x, y and height names above %s: expected x y z points, "
-                       "3 values a row, under no header stating a matrix's grid or extent", path, columns->line,
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: a header row of x, y and height names above %s: expected x y z points, "
+                       "3 values a row, under no header stating a matrix's grid or extent",
+                       path, columns->line,
                        data_columns != 3 ? "rows of another number of values" : "a header stating a matrix");
     if (header->value_unit[0] && columns->height[0] &&
         im_length_unit_metres(header->value_unit, NULL) != im_length_unit_metres(columns->height, NULL))
-        return im_fail(IM_EFORMAT, "%s:%ld: header row states the height in '%s' but '# Value units:' in '%s': "
-                       "expected one unit", path, columns->line, columns->height, header->value_unit);
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: header row states the height in '%s' but '# Value units:' in '%s': "
+                       "expected one unit",
+                       path, columns->line, columns->height, header->value_unit);
     return IM_OK;
 }
 

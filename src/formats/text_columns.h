@@ -7,8 +7,8 @@
 #include "formats/text_header.h"
 
 typedef struct text_columns {
-    long line;                     /* the header row's line; 0 when none */
-    char lateral[16], height[16];  /* the units it states for x and y, and for the height ("" none) */
+    long line;                    /* the header row's line; 0 when none */
+    char lateral[16], height[16]; /* the units it states for x and y, and for the height ("" none) */
 } text_columns;
 
 /* 1 when line, the first data line, begins with a name (a letter or a quote) rather than a number. */

@@ -25,8 +25,8 @@ static int parse_length(const char *path, long line_number, const char *key, con
     char unit_text[64] = "";
     int words = sscanf(end, "%63s", unit_text);
     if (end == value || !isfinite(number) || !(number > 0.0) || strlen(unit_text) >= unit_size)
-        return im_fail(IM_EFORMAT, "%s:%ld: %s '%.40s': expected a finite length > 0 and a unit", path,
-                       line_number, key, value);
+        return im_fail(IM_EFORMAT, "%s:%ld: %s '%.40s': expected a finite length > 0 and a unit", path, line_number,
+                       key, value);
     *length = number;
     snprintf(unit, unit_size, "%s", words == 1 ? unit_text : "");
     return IM_OK;
@@ -116,8 +116,10 @@ static int parse_vision_factor(const char *path, long line_number, const char *v
     char *end;
     double factor = strtod(value, &end);
     if (end == value || !isfinite(factor) || factor == 0.0 || end[strspn(end, " \t\r\n")])
-        return im_fail(IM_EFORMAT, "%s:%ld: height conversion factor (-> m) '%.40s': expected a finite number "
-                       "other than 0", path, line_number, value);
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: height conversion factor (-> m) '%.40s': expected a finite number "
+                       "other than 0",
+                       path, line_number, value);
     header->height_factor = factor;
     return IM_OK;
 }
@@ -134,7 +136,8 @@ int text_header_parse_vision(const char *path, long line_number, const char *lin
         return parse_unit(path, line_number, "data unit", value, header->data_unit, sizeof header->data_unit);
     if ((value = vision_value(line, "height conversion factor (-> m)")))
         return parse_vision_factor(path, line_number, value, header);
-    return im_fail(IM_EFORMAT, "%s:%ld: '%.40s': a header line of a kind this reader does not know (Wyko/Vision "
+    return im_fail(IM_EFORMAT,
+                   "%s:%ld: '%.40s': a header line of a kind this reader does not know (Wyko/Vision "
                    "ASCII: h= w=, pixel size=, data unit=, height conversion factor (-> m)=); expected numbers",
                    path, line_number, line);
 }
@@ -143,9 +146,11 @@ int text_header_check_shape(const char *path, const text_header *header, long co
 {
     if (!header->line || (header->columns == columns && header->rows == rows))
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s:%ld: the header states %ld columns x %ld rows, but the file has %ld "
-                   "columns x %ld rows of data (%s)", path, header->line, header->columns, header->rows, columns,
-                   rows, rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
+    return im_fail(IM_EFORMAT,
+                   "%s:%ld: the header states %ld columns x %ld rows, but the file has %ld "
+                   "columns x %ld rows of data (%s)",
+                   path, header->line, header->columns, header->rows, columns, rows,
+                   rows < header->rows ? "rows are missing: truncated?" : "the size disagrees");
 }
 
 int text_header_states_a_matrix(const text_header *header)
@@ -162,8 +167,10 @@ static int height_in_width_unit(const char *path, const text_header *header, dou
     double width_metres = im_length_unit_metres(header->width_unit, NULL);
     double height_metres = im_length_unit_metres(header->height_unit, NULL);
     if (width_metres == 0.0 || height_metres == 0.0)
-        return im_fail(IM_EFORMAT, "%s: Width is in '%s' but Height in '%s': expected two length units (m, mm, "
-                       "\u00b5m or um, nm, ...) or one unit", path, header->width_unit, header->height_unit);
+        return im_fail(IM_EFORMAT,
+                       "%s: Width is in '%s' but Height in '%s': expected two length units (m, mm, "
+                       "\u00b5m or um, nm, ...) or one unit",
+                       path, header->width_unit, header->height_unit);
     *height = header->height * height_metres / width_metres;
     return IM_OK;
 }
@@ -189,7 +196,8 @@ static int gwyddion_units(const char *path, const text_header *header, long colu
  * times the wavelength's share). Without a factor the data unit must itself be a length. */
 static int vision_units(const char *path, const text_header *header, surface_stated *stated, double *value_factor)
 {
-    *stated = (surface_stated){.spacing_keys = "pixel size", .lateral_key = "pixel size",
+    *stated = (surface_stated){.spacing_keys = "pixel size",
+                               .lateral_key = "pixel size",
                                .height_key = header->height_factor != 0.0 ? "height conversion factor (-> m)"
                                                                           : "data unit"};
     stated->units.delta_x = stated->units.delta_y = header->pixel_size;
@@ -203,8 +211,10 @@ static int vision_units(const char *path, const text_header *header, surface_sta
         return IM_OK;
     }
     if (header->data_unit[0] && im_length_unit_metres(header->data_unit, NULL) == 0.0)
-        return im_fail(IM_EFORMAT, "%s: data unit = '%s' is not a length and no 'height conversion factor (-> m)' "
-                       "converts it: expected heights", path, header->data_unit);
+        return im_fail(IM_EFORMAT,
+                       "%s: data unit = '%s' is not a length and no 'height conversion factor (-> m)' "
+                       "converts it: expected heights",
+                       path, header->data_unit);
     memcpy(stated->units.height, header->data_unit, sizeof stated->units.height);
     return IM_OK;
 }
@@ -215,7 +225,8 @@ int text_header_stated_units(const char *path, const text_header *header, long c
     *value_factor = 1.0;
     if (header->pixel_size > 0.0 || header->height_factor != 0.0 || header->data_unit[0])
         return vision_units(path, header, stated, value_factor);
-    *stated = (surface_stated){.spacing_keys = "Width / columns and Height / rows", .lateral_key = "Width",
+    *stated = (surface_stated){.spacing_keys = "Width / columns and Height / rows",
+                               .lateral_key = "Width",
                                .height_key = "Value units"};
     return gwyddion_units(path, header, columns, rows, stated);
 }

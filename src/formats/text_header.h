@@ -10,13 +10,13 @@
 #include "formats/readers.h"
 
 typedef struct text_header {
-    double width, height;           /* Gwyddion's extents along x and y; 0 when absent */
+    double width, height; /* Gwyddion's extents along x and y; 0 when absent */
     char width_unit[16], height_unit[16], value_unit[16];
-    long columns, rows, line;       /* a stated grid (indentmap's "C columns x R rows" or Vision's
+    long columns, rows, line; /* a stated grid (indentmap's "C columns x R rows" or Vision's
                                        "h= w="), and its line; 0 when none */
-    double pixel_size;              /* Vision's "pixel size"; 0 when absent */
+    double pixel_size;        /* Vision's "pixel size"; 0 when absent */
     char pixel_unit[16], data_unit[16];
-    double height_factor;           /* Vision's "height conversion factor (-> m)"; 0 when absent */
+    double height_factor; /* Vision's "height conversion factor (-> m)"; 0 when absent */
 } text_header;
 
 /* 1 when line (before any number) is a Vision "key=value" header line rather than data. */

@@ -29,10 +29,9 @@ int im_text_write(const char *path, const im_field *field)
     int status = im_atomic_open(&file, path);
     if (status != IM_OK)
         return status;
-    fprintf(file.stream, "# indentmap surface: %d columns x %d rows, row 0 (y = 0) first\n",
-            field->nx, field->ny);
-    fprintf(file.stream, "# Width: %.17g %s\n# Height: %.17g %s\n", field->nx * field->delta,
-            field->unit, field->ny * field->delta, field->unit);
+    fprintf(file.stream, "# indentmap surface: %d columns x %d rows, row 0 (y = 0) first\n", field->nx, field->ny);
+    fprintf(file.stream, "# Width: %.17g %s\n# Height: %.17g %s\n", field->nx * field->delta, field->unit,
+            field->ny * field->delta, field->unit);
     if (field->unit[0])
         fprintf(file.stream, "# Value units: %s\n", field->unit);
     for (int iy = 0; iy < field->ny; ++iy) {
@@ -131,8 +130,8 @@ static int parse_data_line(char *line, const char *path, long line_number, value
                            line_number, shown);
         }
         if (++*count > IM_FIELD_MAX_SIDE)
-            return im_fail(IM_EFORMAT, "%s:%ld: more than %d values on one line: expected at most %d columns",
-                           path, line_number, IM_FIELD_MAX_SIDE, IM_FIELD_MAX_SIDE);
+            return im_fail(IM_EFORMAT, "%s:%ld: more than %d values on one line: expected at most %d columns", path,
+                           line_number, IM_FIELD_MAX_SIDE, IM_FIELD_MAX_SIDE);
         int status = value_list_push(values, value, path, line_number);
         if (status != IM_OK)
             return status;
@@ -168,10 +167,7 @@ static void take_text_line(const char *text, const char *path, long line_number,
 }
 
 /* 1 when value can count rows: a whole number, not negative. */
-static int is_count(double value)
-{
-    return value >= 0.0 && value == floor(value);
-}
+static int is_count(double value) { return value >= 0.0 && value == floor(value); }
 
 /* A row of count values, the last count of reading->values. A lone whole number on the first row above
  * rows of more values is their count (a profile's point count), not a row. */
@@ -227,9 +223,10 @@ static int read_rows(FILE *stream, const char *path, text_reading *reading)
  * a 2 x N map would give a number a researcher might publish. */
 static int refuse_line_scan(const char *path, long columns, long rows)
 {
-    return im_fail(IM_EFORMAT, "%s: %ld column%s x %ld row%s of numbers: " LINE_SCAN_REFUSAL " (heights, or x and "
-                   "height pairs); " LINE_SCAN_ADVICE, path, columns, columns == 1 ? "" : "s", rows,
-                   rows == 1 ? "" : "s");
+    return im_fail(IM_EFORMAT,
+                   "%s: %ld column%s x %ld row%s of numbers: " LINE_SCAN_REFUSAL " (heights, or x and "
+                   "height pairs); " LINE_SCAN_ADVICE,
+                   path, columns, columns == 1 ? "" : "s", rows, rows == 1 ? "" : "s");
 }
 
 /* The numbers as a columns x rows matrix, each multiplied by factor (1: as stored). */
@@ -274,8 +271,8 @@ static void note_decompressed(surface_stated *stated)
 {
     char before[sizeof stated->conversion];
     memcpy(before, stated->conversion, sizeof before);
-    snprintf(stated->conversion, sizeof stated->conversion, "%s%.70s", before[0] ? "gzip-compressed text; " :
-             "gzip-compressed text", before);
+    snprintf(stated->conversion, sizeof stated->conversion, "%s%.70s",
+             before[0] ? "gzip-compressed text; " : "gzip-compressed text", before);
 }
 
 /* The record of how the values were read says the text was UTF-16 (decoded to UTF-8). */

@@ -57,14 +57,16 @@ static int axis_of_column(const double *values, long points, int column, grid_ax
 
 static int not_a_grid(const char *path, const grid_axis *x, const grid_axis *y, long points, const char *why)
 {
-    return im_fail(IM_EFORMAT, "%s: 3 columns, read as x y z points, but they are not a regular grid (%ld distinct "
+    return im_fail(IM_EFORMAT,
+                   "%s: 3 columns, read as x y z points, but they are not a regular grid (%ld distinct "
                    "x, %ld distinct y, %ld points: %s); expected each (x, y) of a regular grid once (a map as a "
-                   "matrix needs at least 4 columns)", path, x->count, y->count, points, why);
+                   "matrix needs at least 4 columns)",
+                   path, x->count, y->count, points, why);
 }
 
 /* Places each point's z at its (x, y) node; a node met twice is refused. */
-static int place_points(const char *path, const double *values, long points, const grid_axis *x,
-                        const grid_axis *y, im_field *field)
+static int place_points(const char *path, const double *values, long points, const grid_axis *x, const grid_axis *y,
+                        im_field *field)
 {
     unsigned char *taken = calloc((size_t)points, 1);
     if (!taken)
@@ -78,8 +80,10 @@ static int place_points(const char *path, const double *values, long points, con
         }
         size_t node = (size_t)iy * (size_t)x->count + (size_t)ix;
         if (taken[node])
-            status = im_fail(IM_EFORMAT, "%s: point %ld repeats (x, y) = (%.9g, %.9g): expected each node of the "
-                             "grid once", path, k + 1, values[3 * k], values[3 * k + 1]);
+            status = im_fail(IM_EFORMAT,
+                             "%s: point %ld repeats (x, y) = (%.9g, %.9g): expected each node of the "
+                             "grid once",
+                             path, k + 1, values[3 * k], values[3 * k + 1]);
         taken[node] = 1;
         field->data[node] = values[3 * k + 2];
     }
@@ -92,8 +96,10 @@ static int check_finite_positions(const char *path, const double *values, long p
 {
     for (long k = 0; k < points; ++k)
         if (!isfinite(values[3 * k]) || !isfinite(values[3 * k + 1]))
-            return im_fail(IM_EFORMAT, "%s: point %ld has (x, y) = (%g, %g): expected finite positions (a missing "
-                           "height is a NaN z)", path, k + 1, values[3 * k], values[3 * k + 1]);
+            return im_fail(IM_EFORMAT,
+                           "%s: point %ld has (x, y) = (%g, %g): expected finite positions (a missing "
+                           "height is a NaN z)",
+                           path, k + 1, values[3 * k], values[3 * k + 1]);
     return IM_OK;
 }
 
@@ -113,11 +119,13 @@ int text_points_grid(const char *path, const double *values, long points, im_fie
     if (!(x.step > 0.0) || !(y.step > 0.0))
         return not_a_grid(path, &x, &y, points, "x or y not equally spaced");
     if (x.count < 3 || y.count < 3)
-        return im_fail(IM_EFORMAT, "%s: x y z points on a %ld x %ld grid: a line scan (a 1-D profile), not a map; a 2-D "
-                       "contact needs heights on a grid of at least 3 x 3", path, x.count, y.count);
+        return im_fail(IM_EFORMAT,
+                       "%s: x y z points on a %ld x %ld grid: a line scan (a 1-D profile), not a map; a 2-D "
+                       "contact needs heights on a grid of at least 3 x 3",
+                       path, x.count, y.count);
     if (x.count > IM_FIELD_MAX_SIDE || y.count > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EFORMAT, "%s: x y z points on a %ld x %ld grid: expected at most %d a side", path,
-                       x.count, y.count, IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EFORMAT, "%s: x y z points on a %ld x %ld grid: expected at most %d a side", path, x.count,
+                       y.count, IM_FIELD_MAX_SIDE);
     im_field *field = NULL;
     status = im_field_create((int)x.count, (int)y.count, 1.0, &field);
     if (status == IM_OK)
@@ -126,7 +134,8 @@ int text_points_grid(const char *path, const double *values, long points, im_fie
         im_field_free(field);
         return status;
     }
-    *stated = (surface_stated){.spacing_keys = "the steps of the x and y columns", .lateral_key = "--unit",
+    *stated = (surface_stated){.spacing_keys = "the steps of the x and y columns",
+                               .lateral_key = "--unit",
                                .height_key = "--height-unit"};
     stated->units.delta_x = x.step;
     stated->units.delta_y = y.step;

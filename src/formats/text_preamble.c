@@ -45,10 +45,7 @@ static void copy_visible(char *out, size_t size, const char *line)
 
 /* The separators between a row's fields: commas, semicolons or tabs when it has any (names may hold
  * blanks: "x in µm"), else blanks. */
-static const char *field_separators(const char *line)
-{
-    return strpbrk(line, ",;\t") ? ",;\t\r\n" : " \r\n";
-}
+static const char *field_separators(const char *line) { return strpbrk(line, ",;\t") ? ",;\t\r\n" : " \r\n"; }
 
 /* The first word of a field (after blanks and a quote), lowercased, into word. */
 static void first_word(const char *field, size_t length, char *word, size_t size)
@@ -64,10 +61,7 @@ static int names_an_index(const char *word)
     return !strcmp(word, "index") || !strcmp(word, "no") || !strcmp(word, "nr") || !strcmp(word, "point");
 }
 
-static int names_a_validity_flag(const char *word)
-{
-    return !strcmp(word, "valid") || !strcmp(word, "validity");
-}
+static int names_a_validity_flag(const char *word) { return !strcmp(word, "valid") || !strcmp(word, "validity"); }
 
 /* Finds the columns a row of names calls an index or a validity flag; the number of names. */
 static int find_index_and_validity(text_preamble *preamble, const char *line)
@@ -170,8 +164,10 @@ static int refuse_line_scan(const char *path, const text_preamble *preamble, lon
         snprintf(beside_valid, sizeof beside_valid, "%s a validity column '%s'", index ? " and" : ", beside",
                  preamble->valid_name);
     long profile = columns - index - valid;
-    return im_fail(IM_EFORMAT, "%s: %ld column%s x %ld row%s of numbers under %s: " LINE_SCAN_REFUSAL " (%s%s%s); "
-                   LINE_SCAN_ADVICE, path, columns, columns == 1 ? "" : "s", rows, rows == 1 ? "" : "s", above,
+    return im_fail(IM_EFORMAT,
+                   "%s: %ld column%s x %ld row%s of numbers under %s: " LINE_SCAN_REFUSAL
+                   " (%s%s%s); " LINE_SCAN_ADVICE,
+                   path, columns, columns == 1 ? "" : "s", rows, rows == 1 ? "" : "s", above,
                    profile == 1 ? "heights" : "positions and heights", beside_index, beside_valid);
 }
 
@@ -183,15 +179,20 @@ int text_preamble_refuse(const char *path, const text_preamble *preamble, long c
     if (rows > 0 && profile >= 1 && profile <= 2)
         return refuse_line_scan(path, preamble, columns, rows, index, valid);
     if (rows == 0)
-        return im_fail(IM_EFORMAT, "%s: no numbers: %ld line%s of text (line %ld: '%s'): expected a matrix of "
-                       "heights, or x y z points under a header row naming x, y and a height", path, preamble->lines,
-                       preamble->lines == 1 ? "" : "s", preamble->first_line, preamble->first);
+        return im_fail(IM_EFORMAT,
+                       "%s: no numbers: %ld line%s of text (line %ld: '%s'): expected a matrix of "
+                       "heights, or x y z points under a header row naming x, y and a height",
+                       path, preamble->lines, preamble->lines == 1 ? "" : "s", preamble->first_line, preamble->first);
     if (preamble->names_refusal[0])
         return im_fail(IM_EFORMAT, "%s", preamble->names_refusal);
     if (!preamble->first_line)
-        return im_fail(IM_EFORMAT, "%s:%ld: a lone number, %g, above rows of %ld values: expected a matrix of "
-                       "heights with no count above it", path, preamble->count_line, preamble->count, columns);
-    return im_fail(IM_EFORMAT, "%s:%ld: '%s' is text above %ld columns of numbers: expected a matrix of heights "
+        return im_fail(IM_EFORMAT,
+                       "%s:%ld: a lone number, %g, above rows of %ld values: expected a matrix of "
+                       "heights with no count above it",
+                       path, preamble->count_line, preamble->count, columns);
+    return im_fail(IM_EFORMAT,
+                   "%s:%ld: '%s' is text above %ld columns of numbers: expected a matrix of heights "
                    "with no text above it but '#' comments, or x y z points under a header row naming x, y and a "
-                   "height", path, preamble->first_line, preamble->first, columns);
+                   "height",
+                   path, preamble->first_line, preamble->first, columns);
 }

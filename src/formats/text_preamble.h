@@ -7,15 +7,15 @@
 #define INDENTMAP_FORMATS_TEXT_PREAMBLE_H
 
 typedef struct text_preamble {
-    long lines;                        /* lines of text above the numbers; 0 when none */
+    long lines; /* lines of text above the numbers; 0 when none */
     long first_line, names_line, units_line, count_line;
     char first[64], names[64], units[64]; /* the first line, the last row of names, a row of units */
-    char names_refusal[400];           /* why the row of names is not an x y z header row */
-    const char *vendor;                /* the export recognised by its first line, or NULL */
-    int names_fields;                  /* how many names that row holds */
-    int index_column, valid_column;    /* columns (from 1) named an index or a validity flag; 0: none */
+    char names_refusal[400];              /* why the row of names is not an x y z header row */
+    const char *vendor;                   /* the export recognised by its first line, or NULL */
+    int names_fields;                     /* how many names that row holds */
+    int index_column, valid_column;       /* columns (from 1) named an index or a validity flag; 0: none */
     char index_name[24], valid_name[24];
-    double count;                      /* a lone count of the rows above them (count_line > 0) */
+    double count; /* a lone count of the rows above them (count_line > 0) */
 } text_preamble;
 
 /* 1 when line (not a '#' comment) is text rather than numbers: its first field is not a number. */

@@ -41,13 +41,17 @@ static int skip_comment(FILE *stream, const char *path)
     for (int length = 0; length <= TMD_COMMENT_MAX; ++length) {
         int c = fgetc(stream);
         if (c == EOF)
-            return im_fail(IM_EFORMAT, "%s: truncated header: the comment after the magic line has no "
-                           "terminating NUL", path);
+            return im_fail(IM_EFORMAT,
+                           "%s: truncated header: the comment after the magic line has no "
+                           "terminating NUL",
+                           path);
         if (c == '\0')
             return IM_OK;
     }
-    return im_fail(IM_EFORMAT, "%s: the comment after the magic line has no terminating NUL in its first %d "
-                   "bytes", path, TMD_COMMENT_MAX);
+    return im_fail(IM_EFORMAT,
+                   "%s: the comment after the magic line has no terminating NUL in its first %d "
+                   "bytes",
+                   path, TMD_COMMENT_MAX);
 }
 
 static int check_length(const char *path, const char *name, float length)
@@ -61,16 +65,22 @@ static int read_header(FILE *stream, const char *path, tmd_header *h)
 {
     unsigned char magic[sizeof TMD_MAGIC], sizes[24];
     if (fread(magic, 1, sizeof magic, stream) != sizeof magic || memcmp(magic, TMD_MAGIC, sizeof magic) != 0)
-        return im_fail(IM_EFORMAT, "%s: not a TrueMap file: expected the 32-byte magic 'Binary TrueMap Data "
-                       "File v2.0' + CR LF NUL", path);
+        return im_fail(IM_EFORMAT,
+                       "%s: not a TrueMap file: expected the 32-byte magic 'Binary TrueMap Data "
+                       "File v2.0' + CR LF NUL",
+                       path);
     int status = skip_comment(stream, path);
     if (status != IM_OK)
         return status;
     if (fread(sizes, 1, sizeof sizes, stream) != sizeof sizes)
-        return im_fail(IM_EFORMAT, "%s: truncated header: expected columns, rows (uint32), lengths and offsets "
-                       "(float32) after the comment", path);
-    *h = (tmd_header){.columns = little_u32(sizes), .rows = little_u32(sizes + 4),
-                      .length_x = little_f32(sizes + 8), .length_y = little_f32(sizes + 12)};
+        return im_fail(IM_EFORMAT,
+                       "%s: truncated header: expected columns, rows (uint32), lengths and offsets "
+                       "(float32) after the comment",
+                       path);
+    *h = (tmd_header){.columns = little_u32(sizes),
+                      .rows = little_u32(sizes + 4),
+                      .length_x = little_f32(sizes + 8),
+                      .length_y = little_f32(sizes + 12)};
     if (h->columns < 1 || h->rows < 1 || h->columns > IM_FIELD_MAX_SIDE || h->rows > IM_FIELD_MAX_SIDE)
         return im_fail(IM_EFORMAT, "%s: columns = %lu, rows = %lu: expected each in [1, %d]", path,
                        (unsigned long)h->columns, (unsigned long)h->rows, IM_FIELD_MAX_SIDE);
@@ -85,8 +95,8 @@ static int read_heights(FILE *stream, const char *path, im_field *field)
     while (got < count && fread(value, 1, sizeof value, stream) == sizeof value)
         field->data[got++] = little_f32(value);
     if (got != count)
-        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu float32 heights (columns %d x rows %d)", path,
-                       got, count, field->nx, field->ny);
+        return im_fail(IM_EFORMAT, "%s: truncated data: %zu of %zu float32 heights (columns %d x rows %d)", path, got,
+                       count, field->nx, field->ny);
     return IM_OK;
 }
 
@@ -116,7 +126,8 @@ int tmd_read_raw(const char *path, im_field **out, surface_stated *stated)
         return status;
     }
     *stated = (surface_stated){.spacing_keys = "length x / columns and length y / rows",
-                               .lateral_key = "TrueMap lengths (mm)", .height_key = "TrueMap heights (mm)"};
+                               .lateral_key = "TrueMap lengths (mm)",
+                               .height_key = "TrueMap heights (mm)"};
     stated->units.delta_x = header.length_x / (double)header.columns;
     stated->units.delta_y = header.length_y / (double)header.rows;
     snprintf(stated->units.lateral, sizeof stated->units.lateral, "mm");

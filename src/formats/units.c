@@ -19,12 +19,19 @@ typedef struct length_unit {
 
 /* Spellings met in Gwyddion, profilometer and AFM exports; "µ" is U+00B5, "μ" U+03BC, "Å" U+00C5
  * and U+212B (the Angstrom sign). */
-static const length_unit LENGTH_UNITS[] = {
-    {"m", "m", 1.0}, {"cm", "cm", 1e-2}, {"mm", "mm", 1e-3},
-    {"\u00b5m", "\u00b5m", 1e-6}, {"\u03bcm", "\u00b5m", 1e-6}, {"um", "\u00b5m", 1e-6},
-    {"micron", "\u00b5m", 1e-6}, {"nm", "nm", 1e-9}, {"pm", "pm", 1e-12},
-    {"\u00c5", "\u00c5", 1e-10}, {"\u212b", "\u00c5", 1e-10}, {"A", "\u00c5", 1e-10},
-    {"angstrom", "\u00c5", 1e-10}};
+static const length_unit LENGTH_UNITS[] = {{"m", "m", 1.0},
+                                           {"cm", "cm", 1e-2},
+                                           {"mm", "mm", 1e-3},
+                                           {"\u00b5m", "\u00b5m", 1e-6},
+                                           {"\u03bcm", "\u00b5m", 1e-6},
+                                           {"um", "\u00b5m", 1e-6},
+                                           {"micron", "\u00b5m", 1e-6},
+                                           {"nm", "nm", 1e-9},
+                                           {"pm", "pm", 1e-12},
+                                           {"\u00c5", "\u00c5", 1e-10},
+                                           {"\u212b", "\u00c5", 1e-10},
+                                           {"A", "\u00c5", 1e-10},
+                                           {"angstrom", "\u00c5", 1e-10}};
 
 double im_length_unit_metres(const char *name, const char **canonical)
 {
@@ -92,10 +99,11 @@ static int check_square_pixels(const char *path, const surface_stated *s, double
     if (difference <= IM_SQUARE_PIXEL_TOLERANCE || resample)
         return IM_OK;
     const char *unit = s->units.lateral;
-    return im_fail(IM_EFORMAT, "%s: %s: non-square pixels, x spacing %.9g and y spacing %.9g%s%s differ by %.3g "
+    return im_fail(IM_EFORMAT,
+                   "%s: %s: non-square pixels, x spacing %.9g and y spacing %.9g%s%s differ by %.3g "
                    "of their mean, beyond the %.3g (2^-16) that rounding explains: resample them onto square pixels "
-                   "(--resample-square; resample_square = yes in a scene, resample_square=True in Python)", path,
-                   s->spacing_keys, s->units.delta_x, s->units.delta_y, unit[0] ? " " : "", unit, difference,
+                   "(--resample-square; resample_square = yes in a scene, resample_square=True in Python)",
+                   path, s->spacing_keys, s->units.delta_x, s->units.delta_y, unit[0] ? " " : "", unit, difference,
                    IM_SQUARE_PIXEL_TOLERANCE);
 }
 
@@ -118,9 +126,10 @@ static int height_factor(const char *path, const surface_stated *s, double *fact
     if (!s->units.lateral[0] && !s->units.height[0])
         return IM_OK;
     if (!s->units.lateral[0])
-        return im_fail(IM_EFORMAT, "%s: %s = '%.15s' gives the heights a unit but the lateral spacing has none: "
-                       "state it (--delta and --unit) so that slopes compare lengths in one unit", path,
-                       s->height_key, s->units.height);
+        return im_fail(IM_EFORMAT,
+                       "%s: %s = '%.15s' gives the heights a unit but the lateral spacing has none: "
+                       "state it (--delta and --unit) so that slopes compare lengths in one unit",
+                       path, s->height_key, s->units.height);
     double lateral_metres = stated_metres(path, s->lateral_key, s->units.lateral, lateral);
     if (lateral_metres == 0.0)
         return IM_EFORMAT;
@@ -138,9 +147,10 @@ static int check_height_unit_stated(const char *path, const surface_stated *s)
 {
     if (!s->height_unit_unknown || !s->units.lateral[0] || s->units.height[0])
         return IM_OK;
-    return im_fail(IM_EFORMAT, "%s: no %s: the heights' unit is not stated, and is not assumed to be the lateral "
-                   "unit (%s): state it (a %s line, or --height-unit)", path, s->height_key, s->units.lateral,
-                   s->height_key);
+    return im_fail(IM_EFORMAT,
+                   "%s: no %s: the heights' unit is not stated, and is not assumed to be the lateral "
+                   "unit (%s): state it (a %s line, or --height-unit)",
+                   path, s->height_key, s->units.lateral, s->height_key);
 }
 
 /* Missing points (NaN): filled on request, else refused naming the first one and the remedy. */
@@ -152,9 +162,10 @@ static int missing_points(const char *path, im_field *field, int fill, long *fil
     if (i == count)
         return IM_OK;
     if (!fill)
-        return im_fail(IM_EFORMAT, "%s: value nan at (x=%zu, y=%zu): a missing point; expected finite heights "
-                       "(--fill fills missing points from their neighbours)", path, i % (size_t)field->nx,
-                       i / (size_t)field->nx);
+        return im_fail(IM_EFORMAT,
+                       "%s: value nan at (x=%zu, y=%zu): a missing point; expected finite heights "
+                       "(--fill fills missing points from their neighbours)",
+                       path, i % (size_t)field->nx, i / (size_t)field->nx);
     int status = im_surface_fill_missing(field, filled);
     return status == IM_OK ? IM_OK : im_fail_context(IM_EFORMAT, "%s", path);
 }
@@ -166,8 +177,10 @@ static int express_in(const char *path, im_field *field, const char *unit, doubl
     const char *canonical = "";
     double target = im_length_unit_metres(unit, &canonical), source = im_length_unit_metres(field->unit, NULL);
     if (target == 0.0)
-        return im_fail(IM_EINVAL, "--length-unit '%.15s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
-                       "\u00c5)", unit);
+        return im_fail(IM_EINVAL,
+                       "--length-unit '%.15s': expected a length unit (m, cm, mm, \u00b5m or um, nm, pm, "
+                       "\u00c5)",
+                       unit);
     if (source == 0.0)
         return im_fail(IM_EFORMAT, "%s: states no length unit to convert into %s from: give it (--unit)", path, unit);
     *ratio = source / target;
@@ -205,7 +218,8 @@ static int apply_units(const char *path, im_field *field, const surface_stated *
 static int check_heights(const char *path, im_field *field, const im_surface_read_options *options, long *filled)
 {
     int status = missing_points(path, field, options && options->fill, filled);
-    return status == IM_OK ? formats_check_finite(field, path) : status; /* after the conversion, which could overflow */
+    return status == IM_OK ? formats_check_finite(field, path)
+                           : status; /* after the conversion, which could overflow */
 }
 
 /* Replaces the field's grid by square pixels of the finer of the spacings delta_x and delta_y. */
@@ -223,7 +237,7 @@ static int resample_in_place(const char *path, im_field *field, double delta_x, 
 }
 
 int surface_finish(const char *path, im_field *field, const surface_stated *stated,
-                      const im_surface_read_options *options, im_surface_read_info *info)
+                   const im_surface_read_options *options, im_surface_read_info *info)
 {
     surface_stated merged = merge_overrides(stated, options);
     const int resample = options && options->resample_square;
@@ -248,16 +262,21 @@ int surface_finish(const char *path, im_field *field, const surface_stated *stat
         status = resample_in_place(path, field, used.delta_x, used.delta_y);
     if (status != IM_OK || !info)
         return status;
-    *info = (im_surface_read_info){.file = stated->units, .used = used, .height_factor = factor, .filled = filled,
-                                   .spacing_difference = difference, .resampled_delta = resampling ? field->delta : 0.0,
-                                   .stored_nx = stored_nx, .stored_ny = stored_ny};
+    *info = (im_surface_read_info){.file = stated->units,
+                                   .used = used,
+                                   .height_factor = factor,
+                                   .filled = filled,
+                                   .spacing_difference = difference,
+                                   .resampled_delta = resampling ? field->delta : 0.0,
+                                   .stored_nx = stored_nx,
+                                   .stored_ny = stored_ny};
     memcpy(info->conversion, stated->conversion, sizeof info->conversion);
     snprintf(info->resampled, sizeof info->resampled, "%s", resampling ? "bilinear" : "");
     return IM_OK;
 }
 
 int surface_read_format(const char *path, surface_raw_reader read, const im_surface_read_options *options,
-                           im_field **out, im_surface_read_info *info)
+                        im_field **out, im_surface_read_info *info)
 {
     surface_stated stated;
     int status = read(path, out, &stated);

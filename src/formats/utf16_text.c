@@ -43,8 +43,9 @@ static enum byte_order byte_order_mark(FILE *stream, long long *size)
     *size = (long long)about.st_size;
     int first = fgetc(stream), second = fgetc(stream);
     rewind(stream);
-    return first == 0xff && second == 0xfe ? LITTLE_ENDIAN_16 : first == 0xfe && second == 0xff ? BIG_ENDIAN_16
-                                                                                               : NOT_UTF16;
+    return first == 0xff && second == 0xfe   ? LITTLE_ENDIAN_16
+           : first == 0xfe && second == 0xff ? BIG_ENDIAN_16
+                                             : NOT_UTF16;
 }
 
 static unsigned long code_unit(const unsigned char *at, enum byte_order order)
@@ -78,16 +79,20 @@ static unsigned long next_code_point(const char *path, const unsigned char *in, 
         return 0;
     }
     if (unit >= 0xdc00 && unit <= 0xdfff) {
-        im_fail(IM_EFORMAT, "%s: UTF-16 text: a lone low surrogate 0x%04lX at byte %zu: expected it after a high "
-                "surrogate (D800-DBFF)", path, unit, *k);
+        im_fail(IM_EFORMAT,
+                "%s: UTF-16 text: a lone low surrogate 0x%04lX at byte %zu: expected it after a high "
+                "surrogate (D800-DBFF)",
+                path, unit, *k);
         return 0;
     }
     if (unit < 0xd800 || unit > 0xdbff)
         return unit;
     unsigned long low = *k + 3 < length ? code_unit(in + *k + 2, order) : 0;
     if (low < 0xdc00 || low > 0xdfff) {
-        im_fail(IM_EFORMAT, "%s: UTF-16 text: a lone high surrogate 0x%04lX at byte %zu: expected a low surrogate "
-                "(DC00-DFFF) after it", path, unit, *k);
+        im_fail(IM_EFORMAT,
+                "%s: UTF-16 text: a lone high surrogate 0x%04lX at byte %zu: expected a low surrogate "
+                "(DC00-DFFF) after it",
+                path, unit, *k);
         return 0;
     }
     *k += 2;
@@ -141,9 +146,9 @@ int formats_utf16_decode_if_marked(FILE **stream, const char *path, const char *
     int status = text ? read_and_decode(*stream, path, size, order, text)
                       : im_fail(IM_ENOMEM, "%s: allocation failed", path);
     fclose(*stream);
-    *stream = status == IM_OK ? fopencookie(text, "r", (cookie_io_functions_t){.read = read_decoded,
-                                                                                .close = close_decoded})
-                              : NULL;
+    *stream = status == IM_OK
+                  ? fopencookie(text, "r", (cookie_io_functions_t){.read = read_decoded, .close = close_decoded})
+                  : NULL;
     if (status == IM_OK && !*stream)
         status = im_fail(IM_ENOMEM, "%s: cannot open a stream over its decoded text", path);
     if (!*stream && text)

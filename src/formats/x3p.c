@@ -42,18 +42,18 @@ enum { X3P_BLOCK = 8 * 4096 }; /* entries are read in blocks of this many bytes:
 
 /* An entry of the archive that Record3/DataLink links. */
 typedef struct x3p_link {
-    const char *key;        /* the element naming it, e.g. "PointDataLink" */
-    const char *md5_key;    /* the element stating its MD5, e.g. "MD5ChecksumPointData" */
-    char path[256];         /* the entry; "" when an optional link is absent */
-    char md5[MD5_HEX + 1];  /* its stated MD5 (32 hex digits), or "" when none is stated */
+    const char *key;       /* the element naming it, e.g. "PointDataLink" */
+    const char *md5_key;   /* the element stating its MD5, e.g. "MD5ChecksumPointData" */
+    char path[256];        /* the entry; "" when an optional link is absent */
+    char md5[MD5_HEX + 1]; /* its stated MD5 (32 hex digits), or "" when none is stated */
 } x3p_link;
 
 typedef struct x3p_grid {
     long nx, ny, nz;
     double dx, dy, z_increment, z_offset;
-    char z_type;            /* I int16, L int32, F float32, D float64 */
-    x3p_link data;          /* the values: PointDataLink */
-    x3p_link valid;         /* the valid points' bits: ValidPointsLink, when there is one */
+    char z_type;    /* I int16, L int32, F float32, D float64 */
+    x3p_link data;  /* the values: PointDataLink */
+    x3p_link valid; /* the valid points' bits: ValidPointsLink, when there is one */
 } x3p_grid;
 
 /* The MD5 that `context` has taken in, as 32 hex digits (upper or lower case) and a terminating NUL. */
@@ -158,8 +158,10 @@ static int parse_axes(const char *path, xmlNode *root, x3p_grid *g)
     if (status == IM_OK)
         status = text_at(path, root, CZ_TYPE, "Record1/Axes/CZ/AxisType", cz, sizeof cz);
     if (status == IM_OK && (strcmp(cx, "I") != 0 || strcmp(cy, "I") != 0 || strcmp(cz, "A") != 0))
-        return im_fail(IM_EFORMAT, "%s: main.xml Record1/Axes: AxisType CX %s, CY %s, CZ %s: expected I, I, A (a "
-                       "regular grid of heights)", path, cx, cy, cz);
+        return im_fail(IM_EFORMAT,
+                       "%s: main.xml Record1/Axes: AxisType CX %s, CY %s, CZ %s: expected I, I, A (a "
+                       "regular grid of heights)",
+                       path, cx, cy, cz);
     if (status == IM_OK)
         status = text_at(path, root, CZ_DATA, "Record1/Axes/CZ/DataType", z_type, sizeof z_type);
     if (status == IM_OK && (strlen(z_type) != 1 || !strchr("ILFD", z_type[0])))
@@ -175,8 +177,10 @@ static int parse_axes(const char *path, xmlNode *root, x3p_grid *g)
     if (status == IM_OK)
         status = number_at(path, root, CZ_OFF, "Record1/Axes/CZ/Offset", 1, &g->z_offset);
     if (status == IM_OK && !(g->dx > 0.0 && g->dy > 0.0 && g->z_increment != 0.0))
-        return im_fail(IM_EFORMAT, "%s: main.xml Record1/Axes: Increment CX %g, CY %g, CZ %g: expected CX, CY > 0 "
-                       "and CZ non-zero", path, g->dx, g->dy, g->z_increment);
+        return im_fail(IM_EFORMAT,
+                       "%s: main.xml Record1/Axes: Increment CX %g, CY %g, CZ %g: expected CX, CY > 0 "
+                       "and CZ non-zero",
+                       path, g->dx, g->dy, g->z_increment);
     return status;
 }
 
@@ -216,13 +220,17 @@ static int parse_matrix(const char *path, xmlNode *root, x3p_grid *g)
         return status;
     if (sx != floor(sx) || sy != floor(sy) || sx < 1 || sy < 1 || sx > IM_FIELD_MAX_SIDE || sy > IM_FIELD_MAX_SIDE ||
         sz != 1)
-        return im_fail(IM_EFORMAT, "%s: main.xml Record3/MatrixDimension %g x %g x %g: expected SizeX, SizeY "
-                       "integers in [1, %d] and SizeZ 1", path, sx, sy, sz, IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EFORMAT,
+                       "%s: main.xml Record3/MatrixDimension %g x %g x %g: expected SizeX, SizeY "
+                       "integers in [1, %d] and SizeZ 1",
+                       path, sx, sy, sz, IM_FIELD_MAX_SIDE);
     g->nx = (long)sx;
     g->ny = (long)sy;
     if (!find(root, LINK) && find(root, LIST))
-        return im_fail(IM_EFORMAT, "%s: main.xml Record3/DataList: inline data is not read; expected a binary "
-                       "PointDataLink", path);
+        return im_fail(IM_EFORMAT,
+                       "%s: main.xml Record3/DataList: inline data is not read; expected a binary "
+                       "PointDataLink",
+                       path);
     status = parse_link(path, root, "PointDataLink", "MD5ChecksumPointData", &g->data);
     if (status == IM_OK && find(root, VALID))
         status = parse_link(path, root, "ValidPointsLink", "MD5ChecksumValidPoints", &g->valid);
@@ -246,8 +254,8 @@ typedef void (*entry_sink)(void *context, const uint8_t *bytes, size_t size, siz
 
 /* Reads the `size` bytes of entry `name` and one past them (zip_entry_check_end), handing each block to
  * sink (when not NULL) and taking their MD5 into hex (when not NULL). */
-static int read_entry(zip_t *archive, const char *path, const char *name, size_t size, entry_sink sink,
-                      void *context, char hex[MD5_HEX + 1])
+static int read_entry(zip_t *archive, const char *path, const char *name, size_t size, entry_sink sink, void *context,
+                      char hex[MD5_HEX + 1])
 {
     zip_file_t *file = zip_fopen(archive, name, 0);
     if (!file)
@@ -314,8 +322,7 @@ static int named_entry_md5(zip_t *archive, const char *path, const char *name, c
 /* One line of md5checksum.hex as md5sum writes it: 32 hex digits, blanks, '*' (binary mode) or not,
  * and the name of the entry whose MD5 they are (main.xml when the line names none). A line that does
  * not start with 32 hex digits states nothing. */
-static int check_checksum_line(zip_t *archive, const char *path, const char *line, const char *xml,
-                               size_t xml_size)
+static int check_checksum_line(zip_t *archive, const char *path, const char *line, const char *xml, size_t xml_size)
 {
     static const char BLANKS[] = " \t";
     char stated[MD5_HEX + 1], name[256], hex[MD5_HEX + 1];
@@ -351,16 +358,16 @@ static int read_main_xml(zip_t *archive, const char *path, x3p_grid *g)
 {
     char *text;
     size_t size;
-    int status = zip_entry_read(archive, path, "main.xml", X3P_MAX_XML, "the archive has no main.xml: not an x3p file",
-                                &text, &size);
+    int status = zip_entry_read(archive, path, "main.xml", X3P_MAX_XML,
+                                "the archive has no main.xml: not an x3p file", &text, &size);
     if (status == IM_OK)
         status = check_checksum_file(archive, path, text, size);
     if (status != IM_OK) {
         free(text);
         return status;
     }
-    xmlDoc *doc = xmlReadMemory(text, (int)size, "main.xml", NULL, XML_PARSE_NONET | XML_PARSE_NOERROR |
-                                XML_PARSE_NOWARNING);
+    xmlDoc *doc = xmlReadMemory(text, (int)size, "main.xml", NULL,
+                                XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
     free(text);
     xmlNode *root = doc ? xmlDocGetRootElement(doc) : NULL;
     if (!root || strcmp((const char *)root->name, "ISO5436_2") != 0)
@@ -382,8 +389,14 @@ static double decode(const uint8_t *b, char type)
     uint64_t bits = 0;
     for (int i = value_size(type) - 1; i >= 0; --i)
         bits = bits << 8 | b[i];
-    union { uint32_t u; float f; } f4 = {(uint32_t)bits};
-    union { uint64_t u; double d; } d8 = {bits};
+    union {
+        uint32_t u;
+        float f;
+    } f4 = {(uint32_t)bits};
+    union {
+        uint64_t u;
+        double d;
+    } d8 = {bits};
     return type == 'I' ? (int16_t)bits : type == 'L' ? (int32_t)bits : type == 'F' ? f4.f : d8.d;
 }
 
@@ -399,8 +412,8 @@ static void decode_heights(void *context, const uint8_t *bytes, size_t size, siz
     const heights_sink *sink = context;
     size_t value = (size_t)value_size(sink->g->z_type), first = offset / value;
     for (size_t k = 0; k < size / value; ++k)
-        sink->field->data[first + k] =
-            sink->g->z_offset + sink->g->z_increment * decode(bytes + k * value, sink->g->z_type);
+        sink->field->data[first + k] = sink->g->z_offset +
+                                       sink->g->z_increment * decode(bytes + k * value, sink->g->z_type);
 }
 
 /* A sink marking the invalid points of the field `context` missing (NaN): a bit per point, least
@@ -475,7 +488,8 @@ int x3p_read_raw(const char *path, im_field **out, surface_stated *stated)
     zip_discard(archive);
     *stated = (surface_stated){.units = {g.dx, g.dy, "m", "m"},
                                .spacing_keys = "Record1/Axes/CX/Increment and CY/Increment",
-                               .lateral_key = "x3p (metres)", .height_key = "x3p (metres)"};
+                               .lateral_key = "x3p (metres)",
+                               .height_key = "x3p (metres)"};
     return status;
 }
 

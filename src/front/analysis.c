@@ -45,10 +45,10 @@ static int format_branch(int index, const im_unloading_branch *b, const im_histo
     return snprintf(line, size,
                     "%d,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
                     "%.17g\n",
-                    index + 1, b->top_step, b->last_step, b->loading_from, b->approach_max, b->load_max,
-                    b->stiffness, b->epsilon, b->contact_depth, b->area_projected,
-                    (double)top->contact_patches * delta * delta, b->hardness, b->modulus, b->residual_approach,
-                    b->work_in, b->work_out, last->plastic_work - before, area_theory, stiffness_smooth);
+                    index + 1, b->top_step, b->last_step, b->loading_from, b->approach_max, b->load_max, b->stiffness,
+                    b->epsilon, b->contact_depth, b->area_projected, (double)top->contact_patches * delta * delta,
+                    b->hardness, b->modulus, b->residual_approach, b->work_in, b->work_out,
+                    last->plastic_work - before, area_theory, stiffness_smooth);
 }
 
 static int write_branches(const char *path, const im_unloading_branch *b, int found, const im_history_row *rows,
@@ -103,8 +103,7 @@ static int tangents(const im_unloading_branch *b, int found, segments *t)
     int drawn = 0;
     for (int k = 0; k < found; ++k)
         if (isfinite(b[k].stiffness) && b[k].stiffness > 0) {
-            add_segment(t, b[k].approach_max - b[k].load_max / b[k].stiffness, 0, b[k].approach_max,
-                        b[k].load_max);
+            add_segment(t, b[k].approach_max - b[k].load_max / b[k].stiffness, 0, b[k].approach_max, b[k].load_max);
             ++drawn;
         }
     return drawn;
@@ -113,17 +112,23 @@ static int tangents(const im_unloading_branch *b, int found, segments *t)
 static im_plot_series series_of(const segments *s, int palette, im_plot_line_style line, im_plot_marker marker,
                                 const char *label)
 {
-    im_plot_series series = {.x = s->x, .y = s->y, .n = s->n, .line = line, .line_width = 1.2, .marker = marker,
-                             .marker_size = 3.5, .label = label};
+    im_plot_series series = {.x = s->x,
+                             .y = s->y,
+                             .n = s->n,
+                             .line = line,
+                             .line_width = 1.2,
+                             .marker = marker,
+                             .marker_size = 3.5,
+                             .label = label};
     im_plot_palette(palette, series.color);
     return series;
 }
 
 /* What a force-distance figure is called and what its series say. */
 typedef struct figure_words {
-    const char *file;            /* DIR/FILE.png and .pdf */
-    const char *up, *down;       /* the rising and the falling segments */
-    const char *construction;    /* the grey dashed series (a tangent, a marker) */
+    const char *file;         /* DIR/FILE.png and .pdf */
+    const char *up, *down;    /* the rising and the falling segments */
+    const char *construction; /* the grey dashed series (a tangent, a marker) */
     im_plot_legend legend;
 } figure_words;
 
@@ -155,14 +160,17 @@ static int draw_figure(const char *dir, const figure_words *words, const segment
     if (down->n > 0)
         series[n++] = series_of(down, 1, IM_PLOT_SOLID, IM_PLOT_MARKER_SQUARE, words->down);
     if (construction->n > 0) {
-        series[n] = series_of(construction, 0, IM_PLOT_DASHED, construction->n == 1 ? IM_PLOT_MARKER_DIAMOND
-                                                                                     : IM_PLOT_MARKER_NONE,
+        series[n] = series_of(construction, 0, IM_PLOT_DASHED,
+                              construction->n == 1 ? IM_PLOT_MARKER_DIAMOND : IM_PLOT_MARKER_NONE,
                               words->construction);
         series[n].color[0] = series[n].color[1] = series[n].color[2] = 70; /* dark grey: a construction */
         ++n;
     }
-    im_plot_panel panel = {.x = {.label = axes->x_label}, .y = {.label = axes->y_label}, .series = series,
-                           .series_count = n, .legend = words->legend};
+    im_plot_panel panel = {.x = {.label = axes->x_label},
+                           .y = {.label = axes->y_label},
+                           .series = series,
+                           .series_count = n,
+                           .legend = words->legend};
     im_plot plot = im_plot_default();
     plot.texts = axes->texts ? axes->texts->texts : NULL;
     plot.text_count = axes->texts ? axes->texts->count : 0;

@@ -45,8 +45,8 @@ int fields_frames_pixels_per_patch(int nx, int ny)
 
 /* Step's frame: its contact map with the smooth punch's contact circle (none where N* is not finite: a
  * periodic cell, a 2-D profile), titled with N* (else N). */
-static int write_frame(im_render_context *context, const fields_frames *f, const im_colormap *norms,
-                       int tension_bar, int step)
+static int write_frame(im_render_context *context, const fields_frames *f, const im_colormap *norms, int tension_bar,
+                       int step)
 {
     const im_step_result *r = &f->rows[step - 1].result;
     im_field *force = NULL;
@@ -56,8 +56,13 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
         return status;
     double axis_x, axis_y;
     im_indenter_axis(f->punch, force->nx, force->ny, force->delta, &axis_x, &axis_y);
-    const frame_contact contact = {force, &norms[0], &norms[1], fields_frames_pixels_per_patch(force->nx, force->ny),
-                                   sqrt(r->load_star / M_PI), axis_x / force->delta, axis_y / force->delta};
+    const frame_contact contact = {force,
+                                   &norms[0],
+                                   &norms[1],
+                                   fields_frames_pixels_per_patch(force->nx, force->ny),
+                                   sqrt(r->load_star / M_PI),
+                                   axis_x / force->delta,
+                                   axis_y / force->delta};
     char title[96], label[96], tension_label[96], path[4096];
     if (isfinite(r->load_star))
         snprintf(title, sizeof title, "step %d: N* = %.4g", step, r->load_star);
@@ -65,8 +70,8 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
         snprintf(title, sizeof title, "step %d: N = %.4g %s", step, r->load, f->force_unit);
     im_figure_colorbar_label("force", f->force_unit, label, sizeof label); /* (96 bytes: fits any unit here) */
     im_figure_colorbar_label("tension", f->force_unit, tension_label, sizeof tension_label);
-    const frame_words words = {title, &norms[0], label, tension_bar ? &norms[1] : NULL, tension_label, f->texts,
-                               f->text_count};
+    const frame_words words = {title,         &norms[0], label,        tension_bar ? &norms[1] : NULL,
+                               tension_label, f->texts,  f->text_count};
     status = frame_contact_render(context, &contact, &image);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, f->frames, "contact", step - 1);

@@ -188,7 +188,7 @@ void step_force_unit(const char *e_star_unit, const char *length_unit, char *out
 
 /* What the fields are in, stated in each FILE.npy.json sidecar. */
 typedef struct step_units {
-    double hardness;        /* > 0: the plastic depth is written too */
+    double hardness;         /* > 0: the plastic depth is written too */
     const char *length_unit; /* the surface's ("": delta) */
     const char *force_unit;  /* step_force_unit's */
 } step_units;
@@ -249,7 +249,7 @@ typedef struct frame_words {
     const char *colorbar_label;
     const im_colormap *tension;
     const char *tension_label;
-    const im_png_text *texts;       /* PNG text chunks (e.g. the scene's contents); NULL: none */
+    const im_png_text *texts; /* PNG text chunks (e.g. the scene's contents); NULL: none */
     int text_count;
 } frame_words;
 
@@ -278,8 +278,8 @@ json_t *indent_units_record(const char *length_unit, const char *e_star_unit, in
 /* What every run record (OUTPUT/run.json of `indent` and of a scene) holds: the program, the
  * library's version, the inputs, and the solver options the run was made with. */
 typedef struct run_record_solver {
-    const char *quality;    /* preset name, "none" when the tolerance was given without one */
-    const char *tol_from;   /* "--tol", "--quality", "[solver] tol", "[scene] quality", "default" */
+    const char *quality;  /* preset name, "none" when the tolerance was given without one */
+    const char *tol_from; /* "--tol", "--quality", "[solver] tol", "[scene] quality", "default" */
     const im_solver_options *options;
 } run_record_solver;
 

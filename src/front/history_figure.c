@@ -45,7 +45,8 @@ static int periodic_plot(const history_figure *h, history_plot *p)
         largest = fmax(largest, p->x[i]);
     }
     p->points = h->count;
-    snprintf(p->x_label, sizeof p->x_label, "mean pressure p_{m} (%s)", h->pressure_unit[0] ? h->pressure_unit : "E^{*}");
+    snprintf(p->x_label, sizeof p->x_label, "mean pressure p_{m} (%s)",
+             h->pressure_unit[0] ? h->pressure_unit : "E^{*}");
     snprintf(p->y_label, sizeof p->y_label, "contact fraction A / A_{0}");
     if (!h->flat_theory || !(largest > 0.0))
         return IM_OK;
@@ -120,17 +121,27 @@ static int choose_plot(const history_figure *h, history_plot *p)
 
 static int draw(const char *dir, const history_plot *p, const run_figure_texts *texts)
 {
-    im_plot_series series[3] = {{.x = p->x, .y = p->y, .n = p->points, .line_width = 1.0,
-                                 .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 3.5, .label = "this run"}};
+    im_plot_series series[3] = {{.x = p->x,
+                                 .y = p->y,
+                                 .n = p->points,
+                                 .line_width = 1.0,
+                                 .marker = IM_PLOT_MARKER_CIRCLE,
+                                 .marker_size = 3.5,
+                                 .label = "this run"}};
     im_plot_palette(0, series[0].color);
     int n = 1;
     for (int k = 0; k < 2 && p->theory_points > 0 && p->theory_label[k]; ++k, ++n) {
-        series[n] = (im_plot_series){.x = p->theory_x, .y = p->theory[k], .n = p->theory_points,
-                                     .line = k == 0 ? IM_PLOT_SOLID : IM_PLOT_DASHED, .line_width = 1.2,
+        series[n] = (im_plot_series){.x = p->theory_x,
+                                     .y = p->theory[k],
+                                     .n = p->theory_points,
+                                     .line = k == 0 ? IM_PLOT_SOLID : IM_PLOT_DASHED,
+                                     .line_width = 1.2,
                                      .label = p->theory_label[k]};
         im_plot_palette(1, series[n].color);
     }
-    im_plot_panel panel = {.x = {.label = p->x_label}, .y = {.label = p->y_label}, .series = series,
+    im_plot_panel panel = {.x = {.label = p->x_label},
+                           .y = {.label = p->y_label},
+                           .series = series,
                            .series_count = n};
     im_plot plot = im_plot_default();
     plot.panels = &panel;

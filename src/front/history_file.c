@@ -37,9 +37,9 @@ int history_append(history_file *h, const im_history_row *row)
         return IM_OK;
     }
     int saved = written < 0 || written == length ? errno : ENOSPC; /* a short write: the disk filled */
-    if (ftruncate(h->fd, h->size) != 0) /* no torn last line */
-        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)",
-                       h->path, strerror(saved), strerror(errno));
+    if (ftruncate(h->fd, h->size) != 0)                            /* no torn last line */
+        return im_fail(IM_EIO, "%s: write failed: %s; its last line is incomplete (cutting it failed: %s)", h->path,
+                       strerror(saved), strerror(errno));
     return im_fail(IM_EIO, "%s: write failed: %s", h->path, strerror(saved));
 }
 

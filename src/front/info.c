@@ -113,10 +113,7 @@ static const char *const OWN_FORMATS[] = {
     "         Wyko/Vision ASCII exports; decimal commas                          read, write (matrix)",
 };
 
-static int compare_lines(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
+static int compare_lines(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 /* Writes the lines the program listed ("NAME<TAB>WHAT"), sorted by name. */
 static void write_sorted(FILE *out, char **lines, int count)
@@ -153,7 +150,8 @@ static int write_gwyddion_modules(FILE *out, const char *program)
         return im_fail(IM_EIO, "formats: cannot run %s", program);
     if (!sorted)
         return im_fail(IM_ENOMEM, "formats: out of memory");
-    return ended == 0 && count > 0 ? IM_OK : im_fail(IM_EIO, "formats: %s --formats failed or listed no module", program);
+    return ended == 0 && count > 0 ? IM_OK
+                                   : im_fail(IM_EIO, "formats: %s --formats failed or listed no module", program);
 }
 
 int im_formats_text(char **text)

@@ -47,7 +47,8 @@ void periodic_warn_if_not_periodic(const im_field *surface, const char *name)
 {
     double edge, inner;
     if (periodic_edge_mismatch(surface, &edge, &inner))
-        fprintf(stderr, "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
+        fprintf(stderr,
+                "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
                 "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
                 "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
                 name, edge, edge / inner, inner);
@@ -86,9 +87,9 @@ void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char 
 {
     const im_theory_k_fit *fit = &k->fit;
     printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-           "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n", fit->k, fit->k_error, k->points,
-           k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0], k->area_fraction[1], slope_rms,
-           slope_definition, fit->k_linear, fit->linear_points);
+           "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n",
+           fit->k, fit->k_error, k->points, k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0],
+           k->area_fraction[1], slope_rms, slope_definition, fit->k_linear, fit->linear_points);
 }
 
 const char PERIODIC_K_COLUMNS[] = "points,k,k_error,rms_residual,k_linear,linear_points,pressure_ratio_min,"
@@ -107,8 +108,8 @@ json_t *periodic_k_fit_record(const periodic_k_fit *k, double slope_rms, const c
     json_t *block = json_pack("{s:f, s:f, s:f, s:i, s:i, s:[f, f], s:[f, f], s:f, s:s}", "k", fit->k, "k_error",
                               fit->k_error, "rms_residual", fit->rms_residual, "points", k->points, "linear_points",
                               fit->linear_points, "pressure_ratio_range", k->pressure_ratio[0], k->pressure_ratio[1],
-                              "area_fraction_range", k->area_fraction[0], k->area_fraction[1], "slope_rms",
-                              slope_rms, "slope_rms_definition", slope_definition);
+                              "area_fraction_range", k->area_fraction[0], k->area_fraction[1], "slope_rms", slope_rms,
+                              "slope_rms_definition", slope_definition);
     if (block)
         json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
     return block;

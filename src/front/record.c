@@ -19,9 +19,9 @@ static json_t *solver_record(const run_record_solver *s)
     const im_solver_options *o = s->options;
     const int capped = o->hardness > 0;
     static const char *const devices[] = {[IM_DEVICE_CPU] = "cpu", [IM_DEVICE_GPU] = "gpu", [IM_DEVICE_AUTO] = "auto"};
-    return json_pack("{s:s, s:f, s:s, s:f, s:i, s:f, s:b, s:i, s:b, s:b, s:b, s:s}", "quality", s->quality, "tol", o->tol,
-                     "tol_from", s->tol_from, "e_star", o->e_star, "max_iterations", o->max_iterations, "hardness",
-                     o->hardness, "crop", o->crop, "window_margin", o->window_margin, "cascade",
+    return json_pack("{s:s, s:f, s:s, s:f, s:i, s:f, s:b, s:i, s:b, s:b, s:b, s:s}", "quality", s->quality, "tol",
+                     o->tol, "tol_from", s->tol_from, "e_star", o->e_star, "max_iterations", o->max_iterations,
+                     "hardness", o->hardness, "crop", o->crop, "window_margin", o->window_margin, "cascade",
                      o->cascade && !capped, "precondition", o->precondition && !capped, "fftw_wisdom",
                      im_solver_wisdom_file(o) != NULL, "device", devices[o->device]);
 }
@@ -92,9 +92,10 @@ int run_record_check_origin(const char *record, const json_t *root, const char *
         return im_fail(IM_EFORMAT, "%s: program '%s': expected the record of %s ('%s')", record,
                        recorded ? recorded : "(none)", kind, program);
     if (!version || strcmp(version, IM_VERSION) != 0)
-        return im_fail(IM_EINVAL, "%s: made by indentmap %s, this is %s: another version may solve differently in the "
-                       "last bits; run it with indentmap %s", record, version ? version : "(none)", IM_VERSION,
-                       version ? version : "(the record's)");
+        return im_fail(IM_EINVAL,
+                       "%s: made by indentmap %s, this is %s: another version may solve differently in the "
+                       "last bits; run it with indentmap %s",
+                       record, version ? version : "(none)", IM_VERSION, version ? version : "(the record's)");
     return IM_OK;
 }
 
@@ -121,9 +122,9 @@ static char *inputs_text(const json_t *inputs)
     if (!text)
         return NULL;
     snprintf(text, size, "none");
-    json_array_foreach(inputs, i, input)
-        used += (size_t)snprintf(text + used, size - used, "%s  %s\n", json_string_value(json_object_get(input,
-                                 "sha256")), json_string_value(json_object_get(input, "path")));
+    json_array_foreach(inputs, i, input) used += (size_t)snprintf(text + used, size - used, "%s  %s\n",
+                                                                  json_string_value(json_object_get(input, "sha256")),
+                                                                  json_string_value(json_object_get(input, "path")));
     return text;
 }
 

@@ -51,8 +51,9 @@ static int check_not_claimed(const run_folder_rules *rules, const char *dir, con
 {
     path_forms in;
     locate(path, &in);
-    const char *hit = folder_claims(rules, dir, in.named) ? in.named
-                    : folder_claims(rules, dir, in.full)  ? in.full : NULL;
+    const char *hit = folder_claims(rules, dir, in.named)  ? in.named
+                      : folder_claims(rules, dir, in.full) ? in.full
+                                                           : NULL;
     if (!hit)
         return IM_OK;
     return im_fail(IM_EINVAL, "%s %s would write %s/%s over the input file %s (%s); give another output folder",
@@ -151,7 +152,4 @@ int run_folder_page(const run_folder *folder, const char *title, int embed_image
     return keep_run_error(status, message, written);
 }
 
-void run_folder_close(run_folder *folder)
-{
-    im_folder_lock_release(&folder->lock);
-}
+void run_folder_close(run_folder *folder) { im_folder_lock_release(&folder->lock); }

@@ -22,7 +22,8 @@ void step_force_unit(const char *e_star_unit, const char *length_unit, char *out
     if (strcmp(e_star_unit, "Pa") == 0 && strcmp(length_unit, "m") == 0)
         snprintf(out, size, "N");
     else
-        snprintf(out, size, "%s %s\u00b2", e_star_unit[0] ? e_star_unit : "E*", length_unit[0] ? length_unit : "\u03b4");
+        snprintf(out, size, "%s %s\u00b2", e_star_unit[0] ? e_star_unit : "E*",
+                 length_unit[0] ? length_unit : "\u03b4");
 }
 
 /* FILE.npy, then FILE.npy.json beside it, under one lock so that no reader pairs two writers' halves. */

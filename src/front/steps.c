@@ -45,13 +45,15 @@ static int parse_range(const char *name, const char *text, const char *start, si
         !parse_value(start, (size_t)(colon - start), lowest, &first) ||
         !parse_value(colon + 1, (size_t)(second - colon - 1), lowest, &last) ||
         !parse_value(second + 1, (size_t)(end - second - 1), 0, &n)) {
-        snprintf(error, size, "%s '%s': '%.*s' is not a range first:last:count (three numbers%s): expected "
-                 "values and ranges separated by commas", name, text, (int)length, start, lowest == 0 ? " >= 0" : "");
+        snprintf(error, size,
+                 "%s '%s': '%.*s' is not a range first:last:count (three numbers%s): expected "
+                 "values and ranges separated by commas",
+                 name, text, (int)length, start, lowest == 0 ? " >= 0" : "");
         return 0;
     }
     if (n < 1 || n > STEPS_MAX || n != floor(n)) {
-        snprintf(error, size, "%s '%s': '%.*s': expected first:last:count with 1 <= count <= %d (an integer)",
-                 name, text, (int)length, start, STEPS_MAX);
+        snprintf(error, size, "%s '%s': '%.*s': expected first:last:count with 1 <= count <= %d (an integer)", name,
+                 text, (int)length, start, STEPS_MAX);
         return 0;
     }
     if (n > room)
@@ -77,8 +79,10 @@ static int parse_item(const char *name, const char *text, const char *item, size
     if (*count >= STEPS_MAX)
         return too_many_steps(name, text, error, size);
     if (!parse_value(item, length, lowest, &values[*count])) {
-        snprintf(error, size, "%s '%s': '%.*s' is not a number%s: expected values and ranges separated by "
-                 "commas", name, text, (int)length, item, lowest == 0 ? " >= 0" : "");
+        snprintf(error, size,
+                 "%s '%s': '%.*s' is not a number%s: expected values and ranges separated by "
+                 "commas",
+                 name, text, (int)length, item, lowest == 0 ? " >= 0" : "");
         return 0;
     }
     ++*count;
@@ -99,9 +103,11 @@ int steps_parse_signed(const char *name, const char *text, int negative, double 
         const char *comma = strchr(item, ',');
         size_t length = comma ? (size_t)(comma - item) : strlen(item);
         if (strspn(item, " \t") >= length) {
-            snprintf(error, size, "%s '%s': %s", name, text, *count == 0 && !comma ? "expected a list v1, v2, ... "
-                     "or a range first:last:count" : "an empty item (two commas, or a comma at either end): "
-                     "expected values separated by commas");
+            snprintf(error, size, "%s '%s': %s", name, text,
+                     *count == 0 && !comma ? "expected a list v1, v2, ... "
+                                             "or a range first:last:count"
+                                           : "an empty item (two commas, or a comma at either end): "
+                                             "expected values separated by commas");
             return -1;
         }
         if (!parse_item(name, text, item, length, lowest, values, count, error, size))

@@ -41,18 +41,33 @@ struct gpu_context {
 
 const char *gpu_result_name(VkResult result)
 {
-#define NAME(r) {r, #r}
+#define NAME(r)                                                                                                      \
+    {                                                                                                                \
+        r, #r                                                                                                        \
+    }
     static const struct {
         VkResult result;
         const char *name;
     } names[] = {
-        NAME(VK_SUCCESS), NAME(VK_NOT_READY), NAME(VK_TIMEOUT), NAME(VK_INCOMPLETE),
-        NAME(VK_ERROR_OUT_OF_HOST_MEMORY), NAME(VK_ERROR_OUT_OF_DEVICE_MEMORY),
-        NAME(VK_ERROR_INITIALIZATION_FAILED), NAME(VK_ERROR_DEVICE_LOST), NAME(VK_ERROR_MEMORY_MAP_FAILED),
-        NAME(VK_ERROR_LAYER_NOT_PRESENT), NAME(VK_ERROR_EXTENSION_NOT_PRESENT),
-        NAME(VK_ERROR_FEATURE_NOT_PRESENT), NAME(VK_ERROR_INCOMPATIBLE_DRIVER), NAME(VK_ERROR_TOO_MANY_OBJECTS),
-        NAME(VK_ERROR_FORMAT_NOT_SUPPORTED), NAME(VK_ERROR_FRAGMENTED_POOL), NAME(VK_ERROR_UNKNOWN),
-        NAME(VK_ERROR_OUT_OF_POOL_MEMORY), NAME(VK_ERROR_INVALID_EXTERNAL_HANDLE),
+        NAME(VK_SUCCESS),
+        NAME(VK_NOT_READY),
+        NAME(VK_TIMEOUT),
+        NAME(VK_INCOMPLETE),
+        NAME(VK_ERROR_OUT_OF_HOST_MEMORY),
+        NAME(VK_ERROR_OUT_OF_DEVICE_MEMORY),
+        NAME(VK_ERROR_INITIALIZATION_FAILED),
+        NAME(VK_ERROR_DEVICE_LOST),
+        NAME(VK_ERROR_MEMORY_MAP_FAILED),
+        NAME(VK_ERROR_LAYER_NOT_PRESENT),
+        NAME(VK_ERROR_EXTENSION_NOT_PRESENT),
+        NAME(VK_ERROR_FEATURE_NOT_PRESENT),
+        NAME(VK_ERROR_INCOMPATIBLE_DRIVER),
+        NAME(VK_ERROR_TOO_MANY_OBJECTS),
+        NAME(VK_ERROR_FORMAT_NOT_SUPPORTED),
+        NAME(VK_ERROR_FRAGMENTED_POOL),
+        NAME(VK_ERROR_UNKNOWN),
+        NAME(VK_ERROR_OUT_OF_POOL_MEMORY),
+        NAME(VK_ERROR_INVALID_EXTERNAL_HANDLE),
     };
 #undef NAME
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
@@ -65,17 +80,16 @@ const char *gpu_result_name(VkResult result)
  * (the device or driver cannot do what was asked). */
 static int vk_fail(VkResult result, const char *call)
 {
-    int status = result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY
-                     ? IM_ENOMEM
-                     : IM_EUNSUPPORTED;
+    int status = result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY ? IM_ENOMEM
+                                                                                                  : IM_EUNSUPPORTED;
     return im_fail(status, "%s: %s (%d)", call, gpu_result_name(result), (int)result);
 }
 
-#define VK_CHECK(call)                                                                            \
-    do {                                                                                          \
-        VkResult r_ = (call);                                                                     \
-        if (r_ != VK_SUCCESS)                                                                     \
-            return vk_fail(r_, #call);                                                            \
+#define VK_CHECK(call)                                                                                               \
+    do {                                                                                                             \
+        VkResult r_ = (call);                                                                                        \
+        if (r_ != VK_SUCCESS)                                                                                        \
+            return vk_fail(r_, #call);                                                                               \
     } while (0)
 
 /* ---- Instance and validation ---- */
@@ -98,15 +112,14 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageS
 
 static VkDebugUtilsMessengerCreateInfoEXT messenger_info(gpu_context *context)
 {
-    return (VkDebugUtilsMessengerCreateInfoEXT){
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity =
-            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-        .pfnUserCallback = on_validation_message,
-        .pUserData = context};
+    return (VkDebugUtilsMessengerCreateInfoEXT){.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+                                                .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+                                                .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+                                                .pfnUserCallback = on_validation_message,
+                                                .pUserData = context};
 }
 
 static int layer_installed(const char *name)
@@ -126,8 +139,7 @@ static int layer_installed(const char *name)
 static int create_instance(gpu_context *context, int validation)
 {
     if (validation && !layer_installed(VALIDATION_LAYER))
-        return im_fail(IM_EUNSUPPORTED,
-                       "Vulkan validation: %s is not installed (Debian: vulkan-validationlayers)",
+        return im_fail(IM_EUNSUPPORTED, "Vulkan validation: %s is not installed (Debian: vulkan-validationlayers)",
                        VALIDATION_LAYER);
     VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
                              .pApplicationName = "indentmap",
@@ -276,8 +288,8 @@ static int choose_device(gpu_context *context, enum gpu_preference preference)
     }
     if (best < 0)
         return im_fail(IM_EUNSUPPORTED, "no Vulkan %s with shaderFloat64, a compute queue and %s; found: %s",
-                       preference == GPU_PREFER_HARDWARE ? "GPU" : "device",
-                       VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME, found);
+                       preference == GPU_PREFER_HARDWARE ? "GPU" : "device", VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME,
+                       found);
     context->physical = devices[best];
     return IM_OK;
 }
@@ -309,8 +321,8 @@ static int create_device(gpu_context *context)
                                .pEnabledFeatures = &features};
     VK_CHECK(vkCreateDevice(context->physical, &info, NULL, &context->device));
     vkGetDeviceQueue(context->device, context->queue_family, 0, &context->queue);
-    context->push_descriptor_set =
-        (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(context->device, "vkCmdPushDescriptorSetKHR");
+    context->push_descriptor_set = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(context->device,
+                                                                                      "vkCmdPushDescriptorSetKHR");
     if (!context->push_descriptor_set)
         return im_fail(IM_EUNSUPPORTED, "vkGetDeviceProcAddr(vkCmdPushDescriptorSetKHR): not available");
     return IM_OK;
@@ -408,10 +420,9 @@ static int describe_device(VkPhysicalDevice device, char *line, size_t size)
     VkPhysicalDeviceFeatures features;
     vkGetPhysicalDeviceProperties(device, &properties);
     vkGetPhysicalDeviceFeatures(device, &features);
-    return snprintf(line, size, "%s, %s, Vulkan %u.%u, float64 %s, %llu MiB device-local\n",
-                    properties.deviceName, type_name(properties.deviceType),
-                    VK_API_VERSION_MAJOR(properties.apiVersion), VK_API_VERSION_MINOR(properties.apiVersion),
-                    features.shaderFloat64 ? "yes" : "no",
+    return snprintf(line, size, "%s, %s, Vulkan %u.%u, float64 %s, %llu MiB device-local\n", properties.deviceName,
+                    type_name(properties.deviceType), VK_API_VERSION_MAJOR(properties.apiVersion),
+                    VK_API_VERSION_MINOR(properties.apiVersion), features.shaderFloat64 ? "yes" : "no",
                     (unsigned long long)(device_local_bytes(device) >> 20));
 }
 
@@ -428,8 +439,7 @@ static int describe_all(VkInstance instance, char *text, size_t size)
     for (uint32_t i = 0; i < count; ++i) {
         int n = describe_device(devices[i], text + used, size - used);
         if (n < 0 || (size_t)n >= size - used)
-            return im_fail(IM_EINVAL, "Vulkan devices: %zu bytes of text are too few for %u devices", size,
-                           count);
+            return im_fail(IM_EINVAL, "Vulkan devices: %zu bytes of text are too few for %u devices", size, count);
         used += (size_t)n;
     }
     return IM_OK;
@@ -457,8 +467,7 @@ int gpu_devices_describe(char *text, size_t size)
 
 /* ---- Buffers ---- */
 
-static int memory_type(const gpu_context *context, uint32_t allowed, VkMemoryPropertyFlags wanted,
-                       uint32_t *type)
+static int memory_type(const gpu_context *context, uint32_t allowed, VkMemoryPropertyFlags wanted, uint32_t *type)
 {
     for (uint32_t i = 0; i < context->memory.memoryTypeCount; ++i) {
         if ((allowed & (1u << i)) && (context->memory.memoryTypes[i].propertyFlags & wanted) == wanted) {
@@ -510,8 +519,8 @@ int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, enum gpu_memory 
                        bytes / 1048576.0, context->name, context->max_buffer / 1048576.0);
     VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
                                .size = bytes,
-                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
     VkResult result = vkCreateBuffer(context->device, &info, NULL, &out->buffer);
     if (result != VK_SUCCESS)
@@ -538,8 +547,7 @@ static int check_range(const gpu_buffer *buffer, VkDeviceSize offset, VkDeviceSi
 {
     if (offset > buffer->bytes || bytes > buffer->bytes - offset)
         return im_fail(IM_EINVAL, "GPU buffer %s of %llu bytes at offset %llu: the buffer holds %llu", what,
-                       (unsigned long long)bytes, (unsigned long long)offset,
-                       (unsigned long long)buffer->bytes);
+                       (unsigned long long)bytes, (unsigned long long)offset, (unsigned long long)buffer->bytes);
     return IM_OK;
 }
 
@@ -656,8 +664,9 @@ static int create_layouts(gpu_context *context, gpu_pipeline *pipeline)
                                            .bindingCount = pipeline->bindings,
                                            .pBindings = bindings};
     VK_CHECK(vkCreateDescriptorSetLayout(context->device, &set, NULL, &pipeline->set_layout));
-    VkPushConstantRange range = {
-        .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .offset = 0, .size = pipeline->push_bytes};
+    VkPushConstantRange range = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+                                 .offset = 0,
+                                 .size = pipeline->push_bytes};
     VkPipelineLayoutCreateInfo layout = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
                                          .setLayoutCount = 1,
                                          .pSetLayouts = &pipeline->set_layout,
@@ -670,19 +679,18 @@ static int create_layouts(gpu_context *context, gpu_pipeline *pipeline)
 static int create_compute_pipeline(gpu_context *context, const uint32_t *spirv, size_t spirv_bytes,
                                    gpu_pipeline *pipeline)
 {
-    VkShaderModuleCreateInfo module_info = {
-        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = spirv_bytes, .pCode = spirv};
+    VkShaderModuleCreateInfo module_info = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                            .codeSize = spirv_bytes,
+                                            .pCode = spirv};
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(context->device, &module_info, NULL, &module));
-    VkComputePipelineCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                  .module = module,
-                  .pName = "main"},
-        .layout = pipeline->layout};
-    VkResult result =
-        vkCreateComputePipelines(context->device, VK_NULL_HANDLE, 1, &info, NULL, &pipeline->pipeline);
+    VkComputePipelineCreateInfo info = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+                                        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                                                  .module = module,
+                                                  .pName = "main"},
+                                        .layout = pipeline->layout};
+    VkResult result = vkCreateComputePipelines(context->device, VK_NULL_HANDLE, 1, &info, NULL, &pipeline->pipeline);
     vkDestroyShaderModule(context->device, module, NULL); /* the pipeline keeps what it needs */
     return result == VK_SUCCESS ? IM_OK : vk_fail(result, "vkCreateComputePipelines");
 }
@@ -694,8 +702,7 @@ int gpu_pipeline_create(gpu_context *context, const uint32_t *spirv, size_t spir
     if (bindings == 0 || bindings > MAX_BINDINGS)
         return im_fail(IM_EINVAL, "GPU pipeline: %u buffers: expected 1..%d", bindings, MAX_BINDINGS);
     if (push_bytes % 4 != 0 || push_bytes > 128)
-        return im_fail(IM_EINVAL,
-                       "GPU pipeline: %u bytes of push constants: expected a multiple of 4 up to 128",
+        return im_fail(IM_EINVAL, "GPU pipeline: %u bytes of push constants: expected a multiple of 4 up to 128",
                        push_bytes);
     if (!spirv || spirv_bytes == 0 || spirv_bytes % 4 != 0)
         return im_fail(IM_EINVAL, "GPU pipeline: SPIR-V of %zu bytes: expected a non-empty multiple of 4",
@@ -790,8 +797,7 @@ void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_
     VkDescriptorBufferInfo infos[MAX_BINDINGS];
     VkWriteDescriptorSet writes[MAX_BINDINGS];
     for (uint32_t k = 0; k < pipeline->bindings; ++k) {
-        infos[k] =
-            (VkDescriptorBufferInfo){.buffer = buffers[k]->buffer, .offset = 0, .range = VK_WHOLE_SIZE};
+        infos[k] = (VkDescriptorBufferInfo){.buffer = buffers[k]->buffer, .offset = 0, .range = VK_WHOLE_SIZE};
         writes[k] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                            .dstBinding = k,
                                            .descriptorCount = 1,
@@ -802,8 +808,8 @@ void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_
     context->push_descriptor_set(context->commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout, 0,
                                  pipeline->bindings, writes);
     if (pipeline->push_bytes)
-        vkCmdPushConstants(context->commands, pipeline->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           pipeline->push_bytes, push);
+        vkCmdPushConstants(context->commands, pipeline->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline->push_bytes,
+                           push);
     vkCmdDispatch(context->commands, groups, 1, 1);
     gpu_barrier(context);
     gpu_mark(context, pipeline->label ? pipeline->label : "dispatch");

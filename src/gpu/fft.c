@@ -36,10 +36,7 @@ struct gpu_fft {
     char labels[2][40]; /* a profile's names of the forward and the inverse transform */
 };
 
-VkDeviceSize gpu_fft_modes_bytes(int px, int py)
-{
-    return (VkDeviceSize)(px / 2 + 1) * py * 2 * sizeof(double);
-}
+VkDeviceSize gpu_fft_modes_bytes(int px, int py) { return (VkDeviceSize)(px / 2 + 1) * py * 2 * sizeof(double); }
 
 int gpu_fft_side_supported(int side)
 {
@@ -61,19 +58,18 @@ static int large_factor(int side)
     return side;
 }
 
-static int check_sizes(const gpu_context *context, int px, int py, const gpu_buffer *real,
-                       const gpu_buffer *modes)
+static int check_sizes(const gpu_context *context, int px, int py, const gpu_buffer *real, const gpu_buffer *modes)
 {
     if (px < 2 || py < 2)
         return im_fail(IM_EINVAL, "GPU FFT %d x %d: expected at least 2 x 2", px, py);
     int sides[2] = {px, py};
     for (int k = 0; k < 2; ++k)
         if (!gpu_fft_side_supported(sides[k]))
-            return im_fail(
-                IM_EUNSUPPORTED,
-                "GPU FFT %d x %d: side %d has a prime factor above 13 (%d); VkFFT's exact radices are 2, 3, "
-                "5, 7, 11 and 13",
-                px, py, sides[k], large_factor(sides[k]));
+            return im_fail(IM_EUNSUPPORTED,
+                           "GPU FFT %d x %d: side %d has a prime factor above 13 (%d); VkFFT's exact radices are 2, "
+                           "3, "
+                           "5, 7, 11 and 13",
+                           px, py, sides[k], large_factor(sides[k]));
     /* VkFFT 1.2.26 binds the real buffer, as the inverse's output, with the modes' size as its
      * descriptor range (validation: VUID-VkDescriptorBufferInfo-range-00342), so the real buffer
      * must be as large as the modes buffer; it reads and writes only the first px * py reals. */
@@ -147,8 +143,7 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     if (result != VKFFT_SUCCESS) {
         deleteVkFFT(&fft->app);
         free(fft);
-        return im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: initializeVkFFT: VkFFT error %d", px, py,
-                       (int)result);
+        return im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: initializeVkFFT: VkFFT error %d", px, py, (int)result);
     }
     *out = fft;
     return IM_OK;
@@ -165,9 +160,8 @@ static void append(gpu_context *context, gpu_fft *fft, int direction)
     launch.commandBuffer = &fft->commands;
     VkFFTResult result = VkFFTAppend(&fft->app, direction, &launch);
     if (result != VKFFT_SUCCESS) {
-        gpu_defer_failure(context,
-                          im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: VkFFTAppend (%s): VkFFT error %d",
-                                  fft->px, fft->py, direction < 0 ? "forward" : "inverse", (int)result));
+        gpu_defer_failure(context, im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: VkFFTAppend (%s): VkFFT error %d",
+                                           fft->px, fft->py, direction < 0 ? "forward" : "inverse", (int)result));
         return;
     }
     gpu_barrier(context);

@@ -21,7 +21,7 @@ struct gpu_profile {
     const char *labels[MAX_MARKS]; /* labels[k]: the pass that ends at mark k (mark 0: the start) */
     uint32_t marks;
     uint64_t ticks[MAX_MARKS];
-    long untimed;                  /* passes past MAX_MARKS in one submission */
+    long untimed; /* passes past MAX_MARKS in one submission */
     label_total totals[MAX_LABELS];
     int label_count;
     label_total host[4]; /* host work, not part of the device's span */
@@ -151,9 +151,10 @@ void gpu_profile_close(gpu_profile *p, const char *device_name, FILE *report)
     if (!p)
         return;
     qsort(p->totals, (size_t)p->label_count, sizeof *p->totals, by_time);
-    fprintf(report, "GPU profile (%s): %ld submissions waited for %.4f s on the host; the device's marks span "
-            "%.4f s (the rest, %.4f s, is submission and wait latency)%s\n", device_name, p->submissions,
-            p->host_seconds, p->device_seconds, p->host_seconds - p->device_seconds,
+    fprintf(report,
+            "GPU profile (%s): %ld submissions waited for %.4f s on the host; the device's marks span "
+            "%.4f s (the rest, %.4f s, is submission and wait latency)%s\n",
+            device_name, p->submissions, p->host_seconds, p->device_seconds, p->host_seconds - p->device_seconds,
             p->untimed ? " (some passes untimed: too many in one submission)" : "");
     fprintf(report, "  %-34s %9s %11s %7s %10s\n", "pass", "passes", "device ms", "share", "mean us");
     for (int k = 0; k < p->label_count; ++k) {
@@ -162,7 +163,8 @@ void gpu_profile_close(gpu_profile *p, const char *device_name, FILE *report)
                 p->device_seconds > 0 ? 100 * t->seconds / p->device_seconds : 0, t->seconds / t->passes * 1e6);
     }
     for (int k = 0; k < p->host_count; ++k)
-        fprintf(report, "  host: %-28s %9ld %11.3f ms\n", p->host[k].label, p->host[k].passes, p->host[k].seconds * 1e3);
+        fprintf(report, "  host: %-28s %9ld %11.3f ms\n", p->host[k].label, p->host[k].passes,
+                p->host[k].seconds * 1e3);
     vkDestroyQueryPool(p->device, p->pool, NULL);
     free(p);
 }

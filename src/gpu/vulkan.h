@@ -47,8 +47,8 @@ enum gpu_preference {
 int gpu_context_open(enum gpu_preference preference, int validation, gpu_context **out);
 void gpu_context_close(gpu_context *context);
 const char *gpu_context_device_name(const gpu_context *context);
-int gpu_context_is_software(const gpu_context *context); /* a CPU implementation (lavapipe) */
-VkDeviceSize gpu_context_max_buffer(const gpu_context *context); /* maxStorageBufferRange */
+int gpu_context_is_software(const gpu_context *context);          /* a CPU implementation (lavapipe) */
+VkDeviceSize gpu_context_max_buffer(const gpu_context *context);  /* maxStorageBufferRange */
 long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
 
 /* Writes one line per Vulkan device ("name, type, Vulkan x.y, float64 yes|no, N MiB") into text;

@@ -14,10 +14,10 @@
 #include <string.h>
 
 static const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patches,area_ratio,mean_pressure,"
-                               "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
-                               ",stiffness,e_star_sneddon,patches,patch_perimeter,"
-                               "yielding_patches,plastic_depth,plastic_work,residual_approach,"
-                               "tensile_force,adhesive_patches,repulsive_patches,mean_gap";
+                                      "max_pressure,iterations,residual,seconds,convolutions," IM_THEORY_STEP_COLUMNS
+                                      ",stiffness,e_star_sneddon,patches,patch_perimeter,"
+                                      "yielding_patches,plastic_depth,plastic_work,residual_approach,"
+                                      "tensile_force,adhesive_patches,repulsive_patches,mean_gap";
 
 enum { HISTORY_VALUES = 28 }; /* the columns above */
 
@@ -102,13 +102,16 @@ static int scan_row(const char *line, const char *end, im_history_row *row)
     im_step_result *r = &row->result;
     im_theory_step *t = &row->theory;
     int used = 0;
-    return sscanf(line, "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf,%lf,%ld,%ld,%lf%n",
+    return sscanf(line,
+                  "%d,%lf,%lf,%lf,%ld,%lf,%lf,%lf,%d,%lf,%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%ld,%lf,%ld,%lf,%lf,%lf,%lf,%"
+                  "ld,%ld,%lf%n",
                   &row->step, &r->approach, &r->load, &r->load_star, &r->contact_patches, &r->area_ratio,
-                  &r->mean_pressure, &r->max_pressure, &r->iterations, &r->residual, &r->seconds,
-                  &r->convolutions, &t->load_smooth, &t->area_smooth, &t->area_ratio_constant,
-                  &t->area_ratio_gamma, &row->stiffness, &row->e_star_sneddon, &row->patches, &row->perimeter,
-                  &r->yielding_patches, &r->plastic_depth, &r->plastic_work, &r->residual_approach,
-                  &r->tensile_force, &r->adhesive_patches, &r->repulsive_patches, &r->mean_gap, &used) == HISTORY_VALUES && line + used == end;
+                  &r->mean_pressure, &r->max_pressure, &r->iterations, &r->residual, &r->seconds, &r->convolutions,
+                  &t->load_smooth, &t->area_smooth, &t->area_ratio_constant, &t->area_ratio_gamma, &row->stiffness,
+                  &row->e_star_sneddon, &row->patches, &row->perimeter, &r->yielding_patches, &r->plastic_depth,
+                  &r->plastic_work, &r->residual_approach, &r->tensile_force, &r->adhesive_patches,
+                  &r->repulsive_patches, &r->mean_gap, &used) == HISTORY_VALUES &&
+           line + used == end;
 }
 
 /* Whether the solution's values are what the solver reports: approach and load finite; with a

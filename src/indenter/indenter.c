@@ -40,8 +40,11 @@ im_indenter im_indenter_flat(double radius)
 
 im_indenter im_indenter_from_profile(const im_profile *profile)
 {
-    return (im_indenter){.kind = profile ? im_profile_kind(profile) : IM_PUNCH_PROFILE, .alpha_degrees = 80,
-                         .radius = 1, .centred = 1, .profile = profile};
+    return (im_indenter){.kind = profile ? im_profile_kind(profile) : IM_PUNCH_PROFILE,
+                         .alpha_degrees = 80,
+                         .radius = 1,
+                         .centred = 1,
+                         .profile = profile};
 }
 
 const char *im_punch_name(enum im_punch_kind kind)
@@ -74,8 +77,8 @@ int im_indenter_check(const im_indenter *punch)
     case IM_PUNCH_SPHERE:
     case IM_PUNCH_FLAT:
         if (!(isfinite(punch->radius) && punch->radius > 0))
-            return im_fail(IM_EINVAL, "%s radius = %g: expected a finite radius > 0",
-                           im_punch_name(punch->kind), punch->radius);
+            return im_fail(IM_EINVAL, "%s radius = %g: expected a finite radius > 0", im_punch_name(punch->kind),
+                           punch->radius);
         break;
     case IM_PUNCH_PROFILE:
     case IM_PUNCH_PROFILE_2D:
@@ -90,8 +93,7 @@ int im_indenter_check(const im_indenter *punch)
                        (int)punch->kind);
     }
     if (!punch->centred && !(isfinite(punch->x0) && isfinite(punch->y0)))
-        return im_fail(IM_EINVAL, "indenter position (%g, %g): expected finite coordinates", punch->x0,
-                       punch->y0);
+        return im_fail(IM_EINVAL, "indenter position (%g, %g): expected finite coordinates", punch->x0, punch->y0);
     return IM_OK;
 }
 
@@ -170,8 +172,7 @@ double im_indenter_pressure(const im_indenter *punch, double e_star, double w, d
     if (w <= 0 || r > a)
         return 0;
     switch (punch->kind) {
-    case IM_PUNCH_CONE:
-        return r == 0 ? INFINITY : 0.5 * e_star * cot_degrees(punch->alpha_degrees) * acosh(a / r);
+    case IM_PUNCH_CONE: return r == 0 ? INFINITY : 0.5 * e_star * cot_degrees(punch->alpha_degrees) * acosh(a / r);
     case IM_PUNCH_SPHERE: return 2 * e_star * a / (M_PI * punch->radius) * sqrt(1 - (r / a) * (r / a));
     case IM_PUNCH_FLAT:
         return r == a ? INFINITY : im_indenter_load(punch, e_star, w) / (2 * M_PI * a * sqrt(a * a - r * r));

@@ -31,7 +31,7 @@ struct im_profile {
 
 enum im_punch_kind im_profile_kind(const im_profile *profile)
 {
-    ARG_REQUIRE_OR(profile, "profile", (enum im_punch_kind)-1);
+    ARG_REQUIRE_OR(profile, "profile", (enum im_punch_kind) - 1);
     return profile->kind;
 }
 
@@ -57,14 +57,20 @@ static int check_samples(const double *r, const double *z, int n)
         if (!isfinite(r[i]) || !isfinite(z[i]))
             return im_fail(IM_EINVAL, "profile sample %d (r = %g, z = %g): expected finite values", i, r[i], z[i]);
         if (i == 0 && (r[0] != 0.0 || z[0] != 0.0))
-            return im_fail(IM_EINVAL, "profile sample 0 (r = %g, z = %g): expected r = 0 and z = 0 (the apex, on "
-                           "the axis; heights are counted above it)", r[0], z[0]);
+            return im_fail(IM_EINVAL,
+                           "profile sample 0 (r = %g, z = %g): expected r = 0 and z = 0 (the apex, on "
+                           "the axis; heights are counted above it)",
+                           r[0], z[0]);
         if (i > 0 && !(r[i] > r[i - 1]))
-            return im_fail(IM_EINVAL, "profile sample %d: r = %g after r = %g: expected r strictly increasing "
-                           "(and r >= 0)", i, r[i], r[i - 1]);
+            return im_fail(IM_EINVAL,
+                           "profile sample %d: r = %g after r = %g: expected r strictly increasing "
+                           "(and r >= 0)",
+                           i, r[i], r[i - 1]);
         if (i > 0 && z[i] < z[i - 1])
-            return im_fail(IM_EINVAL, "profile sample %d: z = %g after z = %g: expected z non-decreasing (a "
-                           "monotone profile, the apex its lowest point)", i, z[i], z[i - 1]);
+            return im_fail(IM_EINVAL,
+                           "profile sample %d: z = %g after z = %g: expected z non-decreasing (a "
+                           "monotone profile, the apex its lowest point)",
+                           i, z[i], z[i - 1]);
     }
     return IM_OK;
 }
@@ -142,8 +148,10 @@ int im_profile_field(const im_field *heights, im_profile **out)
     if (!heights)
         return im_fail(IM_EINVAL, "2-D profile: NULL height field");
     if (heights->nx < 3 || heights->ny < 3)
-        return im_fail(IM_EINVAL, "2-D profile of %d x %d samples: expected at least 3 x 3 (the apex and its "
-                       "neighbours; an (n, 2) array is an axisymmetric (r, z) table)", heights->nx, heights->ny);
+        return im_fail(IM_EINVAL,
+                       "2-D profile of %d x %d samples: expected at least 3 x 3 (the apex and its "
+                       "neighbours; an (n, 2) array is an axisymmetric (r, z) table)",
+                       heights->nx, heights->ny);
     if (!(isfinite(heights->delta) && heights->delta > 0))
         return im_fail(IM_EINVAL, "2-D profile delta = %g: expected > 0", heights->delta);
     for (int iy = 0; iy < heights->ny; ++iy)
@@ -175,8 +183,7 @@ double im_profile_extent(const im_profile *p)
     return f->delta * hypot(fmax(cx, f->nx - 1 - cx), fmax(cy, f->ny - 1 - cy));
 }
 
-void im_profile_samples(const im_profile *p, const double **r, const double **z, int *count,
-                        const im_field **field)
+void im_profile_samples(const im_profile *p, const double **r, const double **z, int *count, const im_field **field)
 {
     ARG_REQUIRE_OR(r, "r", );
     ARG_REQUIRE_OR(z, "z", );

@@ -38,8 +38,10 @@ static int wait_for_pipe(int fd, const char *path)
         if (ready < 0 && errno != EINTR)
             return im_fail(IM_EIO, "%s: cannot wait for the pipe: %s", path, strerror(errno));
         if (im_stop_requested())
-            return im_fail(IM_EINTERRUPTED, "%s is a pipe no program has written to: waiting for one interrupted by "
-                           "signal %d", path, im_stop_requested());
+            return im_fail(IM_EINTERRUPTED,
+                           "%s is a pipe no program has written to: waiting for one interrupted by "
+                           "signal %d",
+                           path, im_stop_requested());
     }
 }
 
@@ -118,11 +120,13 @@ static int read_line_bytes(FILE *stream, const char *path, size_t max_length, im
         if (c == '\n')
             return IM_OK;
         if (c == '\0')
-            return im_fail(IM_EFORMAT, "%s:%ld: a NUL byte at column %zu: expected a text file", path,
-                           line->number, line->length + 1);
+            return im_fail(IM_EFORMAT, "%s:%ld: a NUL byte at column %zu: expected a text file", path, line->number,
+                           line->length + 1);
         if (line->length >= max_length)
-            return im_fail(IM_EFORMAT, "%s:%ld: line longer than %zu bytes: expected a text file with lines "
-                           "of at most that length", path, line->number, max_length);
+            return im_fail(IM_EFORMAT,
+                           "%s:%ld: line longer than %zu bytes: expected a text file with lines "
+                           "of at most that length",
+                           path, line->number, max_length);
         if (line->length + 2 > line->capacity) {
             int status = grow_line(line, path, line->length + 2);
             if (status != IM_OK)

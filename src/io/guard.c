@@ -23,9 +23,9 @@ typedef struct identity {
 } identity;
 
 typedef struct protected_input {
-    char given[PATH_MAX];                       /* as named, for messages */
-    char named[PATH_MAX], full[PATH_MAX];       /* folder resolved; everything resolved */
-    identity itself, target, sidecar;           /* lstat, stat, stat of PATH.json */
+    char given[PATH_MAX];                 /* as named, for messages */
+    char named[PATH_MAX], full[PATH_MAX]; /* folder resolved; everything resolved */
+    identity itself, target, sidecar;     /* lstat, stat, stat of PATH.json */
 } protected_input;
 
 static pthread_mutex_t inputs_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -76,7 +76,8 @@ static void named_form(const char *path, char *out)
     snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - path) + 1 : 1, slash ? path : ".");
     out[0] = '\0';
     if (im_path_absolute(folder, resolved, sizeof resolved) == IM_OK) {
-        int length = snprintf(out, PATH_MAX, "%s/%s", strcmp(resolved, "/") ? resolved : "", slash ? slash + 1 : path);
+        int length = snprintf(out, PATH_MAX, "%s/%s", strcmp(resolved, "/") ? resolved : "",
+                              slash ? slash + 1 : path);
         if (length < 0 || length >= PATH_MAX)
             out[0] = '\0';
     }
@@ -146,8 +147,11 @@ static int meets_sidecar(const protected_input *in, const char *named, identity 
 /* What a path that is not a regular file or a folder names, for the refusal below. */
 static const char *special_kind(mode_t mode)
 {
-    return S_ISCHR(mode) ? "character device" : S_ISBLK(mode) ? "block device" : S_ISFIFO(mode) ? "FIFO" :
-           S_ISSOCK(mode) ? "socket" : "special file";
+    return S_ISCHR(mode)    ? "character device"
+           : S_ISBLK(mode)  ? "block device"
+           : S_ISFIFO(mode) ? "FIFO"
+           : S_ISSOCK(mode) ? "socket"
+                            : "special file";
 }
 
 /* Outputs are written by renaming a new file over the old one: over a device node or a FIFO (as root:
@@ -158,9 +162,10 @@ static int check_replaceable(const char *path)
     struct stat info;
     if (stat(path, &info) != 0 || S_ISREG(info.st_mode) || S_ISDIR(info.st_mode))
         return IM_OK;
-    return im_fail(IM_EINVAL, "%s is a %s, not a regular file: an output replaces its file by renaming a new one "
-                   "over it, which would replace the %s itself; give a file name", path,
-                   special_kind(info.st_mode), special_kind(info.st_mode));
+    return im_fail(IM_EINVAL,
+                   "%s is a %s, not a regular file: an output replaces its file by renaming a new one "
+                   "over it, which would replace the %s itself; give a file name",
+                   path, special_kind(info.st_mode), special_kind(info.st_mode));
 }
 
 int im_output_check(const char *path)
@@ -177,8 +182,10 @@ int im_output_check(const char *path)
             status = im_fail(IM_EINVAL, "%s would overwrite the input file %s (%s); write it elsewhere", path,
                              in->given, in->full[0] ? in->full : in->named);
         else if (meets_sidecar(in, named, target))
-            status = im_fail(IM_EINVAL, "%s would overwrite %s.json, the sidecar of the input file %s; write it "
-                             "elsewhere", path, in->given, in->given);
+            status = im_fail(IM_EINVAL,
+                             "%s would overwrite %s.json, the sidecar of the input file %s; write it "
+                             "elsewhere",
+                             path, in->given, in->given);
     }
     pthread_mutex_unlock(&inputs_lock);
     return status == IM_OK ? check_replaceable(path) : status;
@@ -186,12 +193,19 @@ int im_output_check(const char *path)
 
 /* ---- kinds of files ---- */
 
-static const char *const KIND_NAMES[] = {
-    [IM_KIND_NONE] = "nothing", [IM_KIND_NPY] = "a NumPy array (.npy)", [IM_KIND_PNG] = "a PNG image",
-    [IM_KIND_GIF] = "a GIF image", [IM_KIND_PDF] = "a PDF document", [IM_KIND_SVG] = "an SVG image",
-    [IM_KIND_MP4] = "an MP4 video", [IM_KIND_GSF] = "a Gwyddion Simple Field (.gsf)",
-    [IM_KIND_WISDOM] = "FFTW wisdom", [IM_KIND_JSON] = "JSON", [IM_KIND_INI] = "an INI file (a scene)",
-    [IM_KIND_TEXT] = "text", [IM_KIND_BINARY] = "binary data of an unknown kind"};
+static const char *const KIND_NAMES[] = {[IM_KIND_NONE] = "nothing",
+                                         [IM_KIND_NPY] = "a NumPy array (.npy)",
+                                         [IM_KIND_PNG] = "a PNG image",
+                                         [IM_KIND_GIF] = "a GIF image",
+                                         [IM_KIND_PDF] = "a PDF document",
+                                         [IM_KIND_SVG] = "an SVG image",
+                                         [IM_KIND_MP4] = "an MP4 video",
+                                         [IM_KIND_GSF] = "a Gwyddion Simple Field (.gsf)",
+                                         [IM_KIND_WISDOM] = "FFTW wisdom",
+                                         [IM_KIND_JSON] = "JSON",
+                                         [IM_KIND_INI] = "an INI file (a scene)",
+                                         [IM_KIND_TEXT] = "text",
+                                         [IM_KIND_BINARY] = "binary data of an unknown kind"};
 
 const char *im_file_kind_name(enum im_file_kind kind)
 {
@@ -223,10 +237,18 @@ enum im_file_kind im_file_kind_of_bytes(const void *bytes, size_t length)
 {
     ARG_REQUIRE_OR(bytes, "bytes", IM_KIND_NONE);
     const char *head = bytes;
-    static const struct { const char *magic; enum im_file_kind kind; } MAGICS[] = {
-        {"\x93NUMPY", IM_KIND_NPY}, {"\x89PNG\r\n\x1a\n", IM_KIND_PNG}, {"GIF8", IM_KIND_GIF},
-        {"%PDF-", IM_KIND_PDF}, {"Gwyddion Simple Field", IM_KIND_GSF}, {"(fftw-", IM_KIND_WISDOM},
-        {"<?xml", IM_KIND_SVG}, {"<svg", IM_KIND_SVG}, {"{", IM_KIND_JSON}};
+    static const struct {
+        const char *magic;
+        enum im_file_kind kind;
+    } MAGICS[] = {{"\x93NUMPY", IM_KIND_NPY},
+                  {"\x89PNG\r\n\x1a\n", IM_KIND_PNG},
+                  {"GIF8", IM_KIND_GIF},
+                  {"%PDF-", IM_KIND_PDF},
+                  {"Gwyddion Simple Field", IM_KIND_GSF},
+                  {"(fftw-", IM_KIND_WISDOM},
+                  {"<?xml", IM_KIND_SVG},
+                  {"<svg", IM_KIND_SVG},
+                  {"{", IM_KIND_JSON}};
     if (length == 0)
         return IM_KIND_NONE;
     for (size_t i = 0; i < sizeof MAGICS / sizeof MAGICS[0]; ++i)
@@ -272,6 +294,8 @@ int output_check_replace(const char *path, int written_fd)
     enum im_file_kind existing, written = kind_of_descriptor(written_fd);
     if (im_file_kind_of(path, &existing) != IM_OK || existing == IM_KIND_NONE || existing == written)
         return IM_OK;
-    return im_fail(IM_EINVAL, "%s holds %s, not %s like the file written here: it was left as it is (remove it "
-                   "or write elsewhere)", path, im_file_kind_name(existing), im_file_kind_name(written));
+    return im_fail(IM_EINVAL,
+                   "%s holds %s, not %s like the file written here: it was left as it is (remove it "
+                   "or write elsewhere)",
+                   path, im_file_kind_name(existing), im_file_kind_name(written));
 }

@@ -59,8 +59,10 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
             if (lock_owner(fd) > 0)
                 snprintf(owner, sizeof owner, "pid %ld", lock_owner(fd));
             close(fd);
-            return im_fail(IM_EIO, "output folder %s is in use by another indentmap run (%s, lock file %s); "
-                           "wait for it to end or %s", folder, owner, lock->path, advice);
+            return im_fail(IM_EIO,
+                           "output folder %s is in use by another indentmap run (%s, lock file %s); "
+                           "wait for it to end or %s",
+                           folder, owner, lock->path, advice);
         }
         if (!still_linked(fd, lock->path)) {
             close(fd); /* its holder removed it as we opened it: take the new one */

@@ -37,10 +37,9 @@ static void set_metadata(png_structp png, png_infop info, const im_png_options *
         for (int i = 0; texts && i < options->text_count; ++i) {
             texts[i].key = (png_charp)options->texts[i].key;
             texts[i].text = (png_charp)options->texts[i].value;
-            texts[i].compression = is_ascii(texts[i].text) ? PNG_TEXT_COMPRESSION_NONE
-                                                            : PNG_ITXT_COMPRESSION_NONE;
-            texts[i].lang = (png_charp)"";
-            texts[i].lang_key = (png_charp)"";
+            texts[i].compression = is_ascii(texts[i].text) ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
+            texts[i].lang = (png_charp) "";
+            texts[i].lang_key = (png_charp) "";
         }
         if (texts)
             png_set_text(png, info, texts, options->text_count);
@@ -75,8 +74,8 @@ static void on_png_warning(png_structp png, png_const_charp message)
 }
 
 /* Encodes into an open stream; libpng reports errors through longjmp. */
-static int encode(FILE *stream, const uint8_t *pixels, int width, int height, int channels,
-                  size_t stride, const im_png_options *options, png_failure *failure)
+static int encode(FILE *stream, const uint8_t *pixels, int width, int height, int channels, size_t stride,
+                  const im_png_options *options, png_failure *failure)
 {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, failure, on_png_error, on_png_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -117,8 +116,8 @@ static int check_texts(const im_png_options *options)
     return IM_OK;
 }
 
-int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels,
-                 size_t stride, const im_png_options *options)
+int im_png_write(const char *path, const uint8_t *pixels, int width, int height, int channels, size_t stride,
+                 const im_png_options *options)
 {
     ARG_REQUIRE(path, "path");
     ARG_REQUIRE(pixels, "pixels");
@@ -126,8 +125,8 @@ int im_png_write(const char *path, const uint8_t *pixels, int width, int height,
     if (status != IM_OK)
         return status;
     if (stride < (size_t)width * (size_t)channels)
-        return im_fail(IM_EINVAL, "im_png_write: stride = %zu: expected at least width x channels = %d x %d",
-                       stride, width, channels);
+        return im_fail(IM_EINVAL, "im_png_write: stride = %zu: expected at least width x channels = %d x %d", stride,
+                       width, channels);
     status = check_texts(options);
     if (status != IM_OK)
         return status;

@@ -8,12 +8,18 @@
 /* The length of the valid UTF-8 sequence at s (1 to 4 bytes), or 0 if none starts there. */
 static size_t utf8_sequence(const unsigned char *s)
 {
-    size_t length = s[0] < 0x80 ? 1 : (s[0] & 0xe0) == 0xc0 ? 2 : (s[0] & 0xf0) == 0xe0 ? 3
-                  : (s[0] & 0xf8) == 0xf0 ? 4 : 0;
+    size_t length = s[0] < 0x80             ? 1
+                    : (s[0] & 0xe0) == 0xc0 ? 2
+                    : (s[0] & 0xf0) == 0xe0 ? 3
+                    : (s[0] & 0xf8) == 0xf0 ? 4
+                                            : 0;
     for (size_t i = 1; i < length; ++i)
         if ((s[i] & 0xc0) != 0x80)
             return 0;
-    unsigned long code = length == 1 ? s[0] : length == 2 ? s[0] & 0x1fUL : length == 3 ? s[0] & 0x0fUL : s[0] & 0x07UL;
+    unsigned long code = length == 1   ? s[0]
+                         : length == 2 ? s[0] & 0x1fUL
+                         : length == 3 ? s[0] & 0x0fUL
+                                       : s[0] & 0x07UL;
     for (size_t i = 1; i < length; ++i)
         code = code << 6 | (s[i] & 0x3fUL);
     static const unsigned long SMALLEST[5] = {0, 0, 0x80, 0x800, 0x10000}; /* overlong forms are invalid */

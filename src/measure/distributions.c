@@ -155,8 +155,8 @@ int im_measure_gap_distribution(const im_field *gap, const im_field *force, doub
         return im_fail(IM_EINVAL, "gap distribution: gap %d x %d and force %d x %d: expected one grid", gap->nx,
                        gap->ny, force->nx, force->ny);
     if (!(scale > 0.0 && isfinite(scale)) || bins < 1)
-        return im_fail(IM_EINVAL, "gap distribution: scale = %g, bins = %d: expected scale > 0 and bins >= 1",
-                       scale, bins);
+        return im_fail(IM_EINVAL, "gap distribution: scale = %g, bins = %d: expected scale > 0 and bins >= 1", scale,
+                       bins);
     double largest;
     int status = largest_free_gap(gap, force, &largest);
     if (status != IM_OK)

@@ -17,8 +17,10 @@ static int check_history(const double *w, const double *n, int count)
         if (!isfinite(w[i]) || !isfinite(n[i]))
             return im_fail(IM_EINVAL, "stiffness: step %d: w = %g, N = %g: expected finite values", i, w[i], n[i]);
         if (i > 0 && !(direction * (w[i] - w[i - 1]) > 0))
-            return im_fail(IM_EINVAL, "stiffness: step %d: w = %g after %g: expected strictly increasing (loading) "
-                           "or strictly decreasing (unloading) approaches", i, w[i], w[i - 1]);
+            return im_fail(IM_EINVAL,
+                           "stiffness: step %d: w = %g after %g: expected strictly increasing (loading) "
+                           "or strictly decreasing (unloading) approaches",
+                           i, w[i], w[i - 1]);
     }
     return IM_OK;
 }

@@ -66,8 +66,12 @@ static double top_stiffness(const double *h, const double *p, int top, int last)
 static im_unloading_branch analyse_branch(const im_indenter *punch, const double *h, const double *p,
                                           const double *residual, int from, int top, int last)
 {
-    im_unloading_branch b = {.top_step = top + 1, .last_step = last + 1, .loading_from = from < 0 ? 0 : from + 1,
-                             .approach_max = h[top], .load_max = p[top], .epsilon = im_measure_epsilon(punch)};
+    im_unloading_branch b = {.top_step = top + 1,
+                             .last_step = last + 1,
+                             .loading_from = from < 0 ? 0 : from + 1,
+                             .approach_max = h[top],
+                             .load_max = p[top],
+                             .epsilon = im_measure_epsilon(punch)};
     b.stiffness = top_stiffness(h, p, top, last);
     b.contact_depth = h[top] - b.epsilon * p[top] / b.stiffness;
     if (b.contact_depth < 0 && b.contact_depth > -1e-9 * h[top]) /* 0 but for rounding (a flat punch: h = P / S) */
@@ -98,8 +102,8 @@ static int check_unloading_arguments(const im_indenter *punch, const double *app
     return im_indenter_check(punch);
 }
 
-int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load,
-                         const double *residual, int count, im_unloading_branch *branches, int capacity, int *found)
+int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load, const double *residual,
+                         int count, im_unloading_branch *branches, int capacity, int *found)
 {
     ARG_REQUIRE(punch, "punch");
     ARG_REQUIRE(approach, "approach");
@@ -114,10 +118,11 @@ int im_measure_unloading(const im_indenter *punch, const double *approach, const
         if (!below(approach[k + 1], approach[k]))
             continue;
         int plateau = k; /* a top held over several steps (a repeated target, or load control's noise) */
-        while (plateau > 0 && !below(approach[plateau - 1], approach[k]) && !below(approach[k], approach[plateau - 1]))
+        while (plateau > 0 && !below(approach[plateau - 1], approach[k]) &&
+               !below(approach[k], approach[plateau - 1]))
             --plateau;
         if (!(plateau == 0 ? approach[0] > 0 : below(approach[plateau - 1], approach[k])))
-            continue; /* reached by unloading: no top */
+            continue;       /* reached by unloading: no top */
         int from = plateau; /* back along the loading to where it started: step `from`, or -1 for the origin */
         while (from > 0 && below(approach[from - 1], approach[from]))
             --from;

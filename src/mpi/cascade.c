@@ -33,8 +33,8 @@ static int create_level(im_mpi_solver *s, int cx, int cy)
     s->coarse_displacement = malloc(sizeof(double) * n);
     s->coarse_sums = malloc(sizeof(double) * 4 * n);
     if (!s->coarse_gap0 || !s->coarse_pressure || !s->coarse_displacement || !s->coarse_sums)
-        return im_fail(IM_ENOMEM, "distributed solver %d x %d: rank %d's cascade level %d x %d", s->nx, s->ny, s->rank,
-                       cx, cy);
+        return im_fail(IM_ENOMEM, "distributed solver %d x %d: rank %d's cascade level %d x %d", s->nx, s->ny,
+                       s->rank, cx, cy);
     const im_solver_options o = coarse_options(s);
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1); /* the coarse plans' FFTW threads too */

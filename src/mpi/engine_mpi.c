@@ -99,8 +99,11 @@ static gap_stats mpi_gaps(pk_run *r, double w, double cap)
     }
     double totals[4];
     mpi_ordered_totals(s, 4, totals);
-    return (gap_stats){.contact = (long)totals[3], .sum_squares = totals[0], .moving_squares = totals[1],
-                       .penetration = global_max(s, penetration), .penetration_squares = totals[2]};
+    return (gap_stats){.contact = (long)totals[3],
+                       .sum_squares = totals[0],
+                       .moving_squares = totals[1],
+                       .penetration = global_max(s, penetration),
+                       .penetration_squares = totals[2]};
 }
 
 static double mpi_winkler(pk_run *r, double w, double k0, int store)
@@ -269,7 +272,10 @@ static step_terms mpi_step(pk_run *r, double cap)
     }
     double totals[5];
     mpi_ordered_totals(s, 5, totals);
-    return (step_terms){.gt = totals[0], .kt_t = totals[1], .kt_sum = totals[2], .t_sum = totals[3],
+    return (step_terms){.gt = totals[0],
+                        .kt_t = totals[1],
+                        .kt_sum = totals[2],
+                        .t_sum = totals[3],
                         .count = (long)totals[4]};
 }
 

@@ -61,11 +61,12 @@ int im_mpi_flat_contact_create(im_mpi_solver *s, const double *heights, im_mpi_f
     ARG_REQUIRE(heights, "heights");
     if (!s->plan.options.periodic) /* the same options on every rank: the same answer */
         return im_fail(IM_EINVAL, "distributed flat contact: the solver solves the half-space; expected one made "
-                       "with periodic = 1 (a periodic cell)");
+                                  "with periodic = 1 (a periodic cell)");
     im_mpi_flat_contact *run = calloc(1, sizeof *run);
     const size_t n = (size_t)s->rows * s->nx;
     int status = run && flat_cell_allocate(&run->cell, n) == IM_OK &&
-                         (run->plastic = calloc(n + 1, sizeof(double))) && (run->terms = malloc(sizeof(double) * (n + 1)))
+                         (run->plastic = calloc(n + 1, sizeof(double))) &&
+                         (run->terms = malloc(sizeof(double) * (n + 1)))
                      ? IM_OK
                      : im_fail(IM_ENOMEM, "distributed flat contact %d x %d: rank %d's rows", s->nx, s->ny, s->rank);
     double highest;
@@ -184,17 +185,21 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
         return im_fail(IM_EINVAL, "periodic step: control %d: expected IM_CONTROL_LOAD or IM_CONTROL_MEAN_GAP",
                        (int)control);
     if (!(isfinite(target) && (control == IM_CONTROL_LOAD ? target >= 0 : target > 0)))
-        return im_fail(IM_EINVAL, "%s = %g: expected a finite value %s", control == IM_CONTROL_LOAD ? "load" : "mean gap",
-                       target, control == IM_CONTROL_LOAD ? ">= 0" : "> 0 (at 0 the cell is in full contact)");
+        return im_fail(IM_EINVAL, "%s = %g: expected a finite value %s",
+                       control == IM_CONTROL_LOAD ? "load" : "mean gap", target,
+                       control == IM_CONTROL_LOAD ? ">= 0" : "> 0 (at 0 the cell is in full contact)");
     if (control == IM_CONTROL_MEAN_GAP && cap > 0)
-        return im_fail(IM_EUNSUPPORTED, "mean gap %g with a hardness: the approach of a yielding cell's mean gap is "
+        return im_fail(IM_EUNSUPPORTED,
+                       "mean gap %g with a hardness: the approach of a yielding cell's mean gap is "
                        "searched (im_indentation_step), which the distributed cell does not do; give mean "
-                       "pressures (load control)", target);
+                       "pressures (load control)",
+                       target);
     const double capacity = cap * s->nx * s->ny * s->delta * s->delta;
     if (cap > 0 && target >= capacity)
-        return im_fail(IM_EINVAL, "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
-                       "load every patch would have yielded: full contact, no approach to find)", target, cap,
-                       capacity);
+        return im_fail(IM_EINVAL,
+                       "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
+                       "load every patch would have yielded: full contact, no approach to find)",
+                       target, cap, capacity);
     return IM_OK;
 }
 

@@ -80,7 +80,8 @@ static void describe(const char *mine, size_t mine_length, const char *theirs, s
     else if (theirs == theirs_end)
         snprintf(text, size, "rank %d lacks rank 0's argument %d, '%s'", rank, word, mine);
     else if (word > 1 && strncmp(before, "--", 2) == 0)
-        snprintf(text, size, "rank %d's argument %d is '%s' (after %s), rank 0's '%s'", rank, word, theirs, before, mine);
+        snprintf(text, size, "rank %d's argument %d is '%s' (after %s), rank 0's '%s'", rank, word, theirs, before,
+                 mine);
     else
         snprintf(text, size, "rank %d's argument %d is '%s', rank 0's '%s'", rank, word, theirs, mine);
 }
@@ -116,8 +117,10 @@ static int differing_ranks(const uint64_t *records, int ranks, int field, char *
  * or NULL). */
 static int other_bytes(const char *file, const char *key, const char *list, int count)
 {
-    return im_fail(IM_EINVAL, "%s%s%s%s: rank%s %s read%s other bytes from it than rank 0: every rank must read the "
-                   "same file", file, key ? " (" : "", key ? key : "", key ? ")" : "", count > 1 ? "s" : "", list,
+    return im_fail(IM_EINVAL,
+                   "%s%s%s%s: rank%s %s read%s other bytes from it than rank 0: every rank must read the "
+                   "same file",
+                   file, key ? " (" : "", key ? key : "", key ? ")" : "", count > 1 ? "s" : "", list,
                    count > 1 ? "" : "s");
 }
 
@@ -144,9 +147,11 @@ static int words_differ(MPI_Comm comm, const uint64_t *records, int ranks, const
                  sizeof detail);
     free(lengths);
     free(all);
-    return im_fail(IM_EINVAL, "the MPI ranks were not started alike: rank%s %s differ%s from rank 0%s%s%s: start "
-                   "every rank with the same command in the same folder", count > 1 ? "s" : "", list,
-                   count > 1 ? "" : "s", detail[0] ? " (" : "", detail, detail[0] ? ")" : "");
+    return im_fail(IM_EINVAL,
+                   "the MPI ranks were not started alike: rank%s %s differ%s from rank 0%s%s%s: start "
+                   "every rank with the same command in the same folder",
+                   count > 1 ? "s" : "", list, count > 1 ? "" : "s", detail[0] ? " (" : "", detail,
+                   detail[0] ? ")" : "");
 }
 
 int mpi_same_inputs(MPI_Comm comm, int count, char **args, const char *file)
@@ -218,9 +223,10 @@ static int counts_differ(const char *source, const int *counts, int ranks)
         }
     if (differing == 0)
         return IM_OK;
-    return im_fail(IM_EINVAL, "%s names %d input files on rank %d, %d on rank 0 (rank%s %s differ%s): every "
-                   "rank must read the same files", source, counts[first], first, counts[0], differing > 1 ? "s" : "",
-                   list, differing > 1 ? "" : "s");
+    return im_fail(IM_EINVAL,
+                   "%s names %d input files on rank %d, %d on rank 0 (rank%s %s differ%s): every "
+                   "rank must read the same files",
+                   source, counts[first], first, counts[0], differing > 1 ? "s" : "", list, differing > 1 ? "" : "s");
 }
 
 int mpi_same_files(MPI_Comm comm, const char *source, int count, const char *const *paths, const char *const *keys)

@@ -24,17 +24,17 @@ typedef struct mpi_transform {
  * what pk.c reads (options, delta, K(0), no direct sums), and its engine's passes work on the fields
  * below. */
 struct im_mpi_solver {
-    im_solver_plan plan;          /* engine = &solver_engine_mpi, mpi = this solver */
+    im_solver_plan plan; /* engine = &solver_engine_mpi, mpi = this solver */
     MPI_Comm comm;
     int rank, ranks;
-    int nx, ny, px, py;           /* surface grid; transform grid 2nx x 2ny (periodic: nx x ny) */
-    double delta, k0;             /* patch side; K(0), the local (Winkler) stiffness (plan.kernel) */
-    ptrdiff_t local_0_start;      /* this rank's first transform row */
-    ptrdiff_t local_1_start;      /* its first column of the transposed spectrum */
-    int y0, rows;                 /* its surface rows: the transform rows that lie on the surface */
-    int *row_counts, *row_starts; /* every rank's rows and y0, for the ordered sums */
-    mpi_transform convolution;    /* of the transform grid: u = K p */
-    double *spectrum;             /* its columns x py: K's real spectrum divided by px py, transposed */
+    int nx, ny, px, py;                 /* surface grid; transform grid 2nx x 2ny (periodic: nx x ny) */
+    double delta, k0;                   /* patch side; K(0), the local (Winkler) stiffness (plan.kernel) */
+    ptrdiff_t local_0_start;            /* this rank's first transform row */
+    ptrdiff_t local_1_start;            /* its first column of the transposed spectrum */
+    int y0, rows;                       /* its surface rows: the transform rows that lie on the surface */
+    int *row_counts, *row_starts;       /* every rank's rows and y0, for the ordered sums */
+    mpi_transform convolution;          /* of the transform grid: u = K p */
+    double *spectrum;                   /* its columns x py: K's real spectrum divided by px py, transposed */
     double *direction, *gap, *response; /* rows * nx work arrays of the iteration (t, g, K t) */
     double *row_sums, *all_row_sums;    /* rows * MPI_SUMS_MAX and ny * MPI_SUMS_MAX */
     /* The preconditioner (pk.c; off with a hardness): M = 1 / the spectrum of K wrapped on the unpadded
@@ -43,13 +43,13 @@ struct im_mpi_solver {
      * periodic mode that grid is the convolution's and its pair serves (precondition_with). */
     mpi_transform unpadded;
     const mpi_transform *precondition_with;
-    double *inverse_spectrum;     /* precondition_with's columns x ny, transposed, divided by nx ny */
-    double *preconditioned;       /* rows * nx: z = M g */
+    double *inverse_spectrum; /* precondition_with's columns x ny, transposed, divided by nx ny */
+    double *preconditioned;   /* rows * nx: z = M g */
     /* The cascade (cascade.c): its first coarse level, a serial CPU plan (with its own coarser levels)
      * that every rank holds whole and solves alike (NULL: none), and that level's fields. */
     im_solver_plan *coarse;
     double *coarse_gap0, *coarse_pressure, *coarse_displacement;
-    double *coarse_sums;          /* 4 cx cy: the blocks' pair sums and counts, upper and lower rows */
+    double *coarse_sums; /* 4 cx cy: the blocks' pair sums and counts, upper and lower rows */
 };
 
 #define MPI_SUMS_MAX 5

@@ -37,9 +37,10 @@ static int parse_dict(const char *path, const char *dict, int *nx, int *ny)
         return im_fail(IM_EFORMAT, "%s: expected fortran_order False (C order)", path);
     long rows, cols;
     char close;
-    if (!shape || sscanf(shape, "(%ld ,%ld %c", &rows, &cols, &close) != 3 || close != ')' || rows < 2 ||
-        cols < 2 || rows > IM_FIELD_MAX_SIDE || cols > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EFORMAT, "%s: expected a 2-D shape (ny, nx) with sides in [2, %d]", path, IM_FIELD_MAX_SIDE);
+    if (!shape || sscanf(shape, "(%ld ,%ld %c", &rows, &cols, &close) != 3 || close != ')' || rows < 2 || cols < 2 ||
+        rows > IM_FIELD_MAX_SIDE || cols > IM_FIELD_MAX_SIDE)
+        return im_fail(IM_EFORMAT, "%s: expected a 2-D shape (ny, nx) with sides in [2, %d]", path,
+                       IM_FIELD_MAX_SIDE);
     *ny = (int)rows;
     *nx = (int)cols;
     return IM_OK;
@@ -63,7 +64,8 @@ static int read_header_here(const char *path, int *nx, int *ny, long *offset)
         length = pre[6] == 2 ? (long)pre[8] | (long)pre[9] << 8 | (long)pre[10] << 16 | (long)pre[11] << 24
                              : (long)pre[8] | (long)pre[9] << 8;
         if (length > NPY_HEADER_MAX)
-            status = im_fail(IM_EFORMAT, "%s: header of %ld bytes (at most %d expected)", path, length, NPY_HEADER_MAX);
+            status = im_fail(IM_EFORMAT, "%s: header of %ld bytes (at most %d expected)", path, length,
+                             NPY_HEADER_MAX);
     }
     char *dict = status == IM_OK ? calloc((size_t)length + 1, 1) : NULL;
     if (status == IM_OK && (!dict || fread(dict, 1, (size_t)length, f) != (size_t)length))

@@ -144,7 +144,8 @@ static void compute_spectrum(im_mpi_solver *s)
     for (ptrdiff_t r = 0; r < t->rows; ++r) {
         long dy = wrapped_offset(s->local_0_start + r, s->ny, s->py);
         for (int jx = 0; jx < s->px; ++jx)
-            t->buffer[(size_t)r * t->stride + jx] = im_influence_square(wrapped_offset(jx, s->nx, s->px) * d, dy * d, d, e);
+            t->buffer[(size_t)r * t->stride + jx] = im_influence_square(wrapped_offset(jx, s->nx, s->px) * d, dy * d,
+                                                                        d, e);
     }
     fftw_execute(t->forward);
     take_real_spectrum(t, 1.0 / ((double)s->px * s->py), s->spectrum);
@@ -158,9 +159,10 @@ static int plan_preconditioner(im_mpi_solver *s)
     ptrdiff_t start0, start1;
     int status = make_transform(s, &s->unpadded, s->ny, s->nx, (s->py + s->ranks - 1) / s->ranks, &start0, &start1);
     if (status == IM_OK && (s->unpadded.rows != s->rows || (s->rows > 0 && start0 != s->y0)))
-        return im_fail(IM_EUNSUPPORTED, "distributed solver: FFTW-MPI gives rank %d rows [%td, %td) of the unpadded "
-                       "grid, not its surface rows [%d, %d)", s->rank, start0, start0 + s->unpadded.rows, s->y0,
-                       s->y0 + s->rows);
+        return im_fail(IM_EUNSUPPORTED,
+                       "distributed solver: FFTW-MPI gives rank %d rows [%td, %td) of the unpadded "
+                       "grid, not its surface rows [%d, %d)",
+                       s->rank, start0, start0 + s->unpadded.rows, s->y0, s->y0 + s->rows);
     return status;
 }
 
@@ -174,7 +176,8 @@ static void compute_preconditioner(im_mpi_solver *s)
     for (int r = 0; r < s->rows; ++r) {
         const int y = s->y0 + r, dy = y <= s->ny - y ? y : s->ny - y;
         for (int jx = 0; jx < s->nx; ++jx)
-            t->buffer[(size_t)r * t->stride + jx] = im_influence_square((jx <= s->nx - jx ? jx : s->nx - jx) * d, dy * d, d, e);
+            t->buffer[(size_t)r * t->stride + jx] = im_influence_square((jx <= s->nx - jx ? jx : s->nx - jx) * d,
+                                                                        dy * d, d, e);
     }
     fftw_execute(t->forward);
     const size_t count = (size_t)t->columns * t->column_length;
@@ -221,12 +224,13 @@ static void share_rows(im_mpi_solver *s)
 static int check_engine_options(const im_solver_options *o)
 {
     if (o->adhesion_work > 0)
-        return im_fail(IM_EUNSUPPORTED, "adhesion work = %g: the distributed solver solves the repulsive problem "
+        return im_fail(IM_EUNSUPPORTED,
+                       "adhesion work = %g: the distributed solver solves the repulsive problem "
                        "(adhesion acts in an indentation, im_indentation_create, which has no distributed form)",
                        o->adhesion_work);
     if (o->device == IM_DEVICE_GPU)
         return im_fail(IM_EUNSUPPORTED, "device = gpu: the distributed solver runs on each rank's CPU (OpenMP "
-                       "and FFTW-MPI); expected device = cpu or auto");
+                                        "and FFTW-MPI); expected device = cpu or auto");
     return IM_OK;
 }
 
@@ -261,8 +265,11 @@ static int make_transforms(im_mpi_solver *s)
     s->precondition_with = s->plan.options.periodic ? &s->convolution : &s->unpadded;
     const mpi_transform *m = s->precondition_with;
     s->inverse_spectrum = fftw_alloc_real((size_t)m->columns * m->column_length + 1);
-    return mpi_collective_status(s->comm, s->inverse_spectrum ? IM_OK : im_fail(IM_ENOMEM, "distributed solver "
-                                 "%d x %d: rank %d's preconditioner", s->nx, s->ny, s->rank));
+    return mpi_collective_status(s->comm, s->inverse_spectrum ? IM_OK
+                                                              : im_fail(IM_ENOMEM,
+                                                                        "distributed solver "
+                                                                        "%d x %d: rank %d's preconditioner",
+                                                                        s->nx, s->ny, s->rank));
 }
 
 static int set_up(im_mpi_solver *s)
@@ -270,7 +277,8 @@ static int set_up(im_mpi_solver *s)
     char what[192];
     const double coarse = s->plan.options.cascade ? cascade_bytes(s->nx, s->ny, s->plan.options.periodic) : 0;
     snprintf(what, sizeof what, "rank %d's share of a %d x %d distributed solver%s", s->rank, s->nx, s->ny,
-             coarse > 0 ? " (with the cascade's coarse levels, whole on every rank; cascade = 0 leaves them out)" : "");
+             coarse > 0 ? " (with the cascade's coarse levels, whole on every rank; cascade = 0 leaves them out)"
+                        : "");
     int status = im_memory_check(mpi_solver_bytes(s->nx, s->ny, s->ranks) + coarse, what);
     status = mpi_collective_status(s->comm, status);
     if (status == IM_OK)
@@ -308,8 +316,16 @@ int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_s
     solver_plan_options(&o);
     const int pad = o.periodic ? 1 : 2; /* periodic: the circular convolution on the grid itself */
     *s = (im_mpi_solver){.nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta};
-    s->plan = (im_solver_plan){.engine = &solver_engine_mpi, .mpi = s, .nx = nx, .ny = ny, .px = pad * nx,
-                               .py = pad * ny, .delta = delta, .options = o, .kernel = &s->k0, .direct_limit = 0};
+    s->plan = (im_solver_plan){.engine = &solver_engine_mpi,
+                               .mpi = s,
+                               .nx = nx,
+                               .ny = ny,
+                               .px = pad * nx,
+                               .py = pad * ny,
+                               .delta = delta,
+                               .options = o,
+                               .kernel = &s->k0,
+                               .direct_limit = 0};
     MPI_Comm_dup(comm, &s->comm);
     MPI_Comm_rank(s->comm, &s->rank);
     MPI_Comm_size(s->comm, &s->ranks);

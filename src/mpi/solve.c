@@ -29,8 +29,8 @@ static int check_inputs(const im_mpi_solver *s, const double *gap0, enum im_cont
         return im_fail(IM_ENUMERIC, "undeformed gap at patch (%ld, %ld): expected >= 0 or +inf", bad[0] % s->nx,
                        bad[0] / s->nx);
     if (bad[1] < LONG_MAX)
-        return im_fail(IM_EINVAL, "warm-start pressure at patch (%ld, %ld): expected finite and >= 0",
-                       bad[1] % s->nx, bad[1] / s->nx);
+        return im_fail(IM_EINVAL, "warm-start pressure at patch (%ld, %ld): expected finite and >= 0", bad[1] % s->nx,
+                       bad[1] / s->nx);
     if (solver_periodic_approach_checked(&s->plan, control))
         return solver_check_periodic_mean_gap(mpi_surface_mean(s, gap0), target);
     return IM_OK;
@@ -45,8 +45,14 @@ int im_mpi_solver_solve(im_mpi_solver *s, const double *gap0, enum im_control co
     int status = check_inputs(s, gap0, control, target, pressure);
     if (status != IM_OK)
         return status;
-    pk_run r = {.plan = &s->plan, .gap0 = gap0, .control = control, .target = target, .p = pressure,
-                .u = displacement, .status = IM_OK, .approach = NAN};
+    pk_run r = {.plan = &s->plan,
+                .gap0 = gap0,
+                .control = control,
+                .target = target,
+                .p = pressure,
+                .u = displacement,
+                .status = IM_OK,
+                .approach = NAN};
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * (size_t)s->rows * s->nx);
         memset(displacement, 0, sizeof(double) * (size_t)s->rows * s->nx);

@@ -81,8 +81,8 @@ static int transform_and_move(spectral_slab *slab, fftw_plan plan, double scale,
     fftw_execute(plan);
     const double *real_rows = (const double *)slab->modes;
     const size_t stride = 2 * (size_t)slab->half_nx;
-    int status = mpi_redistribute_rows(slab->comm, slab->nx, (int)slab->local_0_start, (int)slab->local_n0,
-                                       real_rows, stride, y0, rows, heights);
+    int status = mpi_redistribute_rows(slab->comm, slab->nx, (int)slab->local_0_start, (int)slab->local_n0, real_rows,
+                                       stride, y0, rows, heights);
     if (status == IM_OK) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < (size_t)rows * slab->nx; ++i)
@@ -100,11 +100,13 @@ int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, i
         return status;
     spectral_slab slab = {.comm = comm, .nx = p->nx, .ny = p->ny, .half_nx = p->nx / 2 + 1};
     ptrdiff_t alloc_local = fftw_mpi_local_size_2d_transposed(p->ny, slab.half_nx, comm, &slab.local_n0,
-                                                              &slab.local_0_start, &slab.local_n1, &slab.local_1_start);
+                                                              &slab.local_0_start, &slab.local_n1,
+                                                              &slab.local_1_start);
     slab.modes = fftw_alloc_complex((size_t)alloc_local + 1);
     double *column_sums = malloc(sizeof(double) * ((size_t)slab.local_n1 + 1));
-    status = slab.modes && column_sums ? IM_OK
-                                       : im_fail(IM_ENOMEM, "distributed synthesis of a %d x %d surface", p->nx, p->ny);
+    status = slab.modes && column_sums
+                 ? IM_OK
+                 : im_fail(IM_ENOMEM, "distributed synthesis of a %d x %d surface", p->nx, p->ny);
     status = mpi_collective_status(comm, status);
     fftw_plan plan = NULL;
     if (status == IM_OK) {
@@ -113,7 +115,8 @@ int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, i
         plan = fftw_mpi_plan_dft_c2r_2d(p->ny, p->nx, slab.modes, (double *)slab.modes, comm,
                                         FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
         fft_planner_unlock();
-        status = mpi_collective_status(comm, plan ? IM_OK : im_fail(IM_ENOMEM, "FFTW-MPI could not plan the synthesis"));
+        status = mpi_collective_status(comm,
+                                       plan ? IM_OK : im_fail(IM_ENOMEM, "FFTW-MPI could not plan the synthesis"));
     }
     if (status == IM_OK) {
         double current = sqrt(fill_columns(p, &slab, column_sums));
@@ -121,8 +124,9 @@ int im_mpi_surface_generate(MPI_Comm comm, const im_surface_params *p, int y0, i
         if (current > 0)
             status = transform_and_move(&slab, plan, wanted / current, y0, rows, heights);
         else
-            status = im_fail(IM_EINVAL, "no Fourier mode lies between lambda_s = %g and lambda_0 = %g on a %d x %d "
-                                        "grid: the surface would be flat",
+            status = im_fail(IM_EINVAL,
+                             "no Fourier mode lies between lambda_s = %g and lambda_0 = %g on a %d x %d "
+                             "grid: the surface would be flat",
                              p->lambda_s, fmax(p->lambda_0, p->lambda_r), p->nx, p->ny);
     }
     fft_planner_lock();

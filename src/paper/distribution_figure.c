@@ -39,8 +39,11 @@ static int distribution_series(const paper_distribution_family *families, int co
     int rough = 0;
     for (int f = 0; f < count; ++f) {
         const paper_distribution_family *d = &families[f];
-        series[count + f] = (im_plot_series){.x = d->patch_area, .y = d->patch_count, .n = d->patch_bins,
-                                             .line = IM_PLOT_NO_LINE, .marker = IM_PLOT_MARKER_CIRCLE,
+        series[count + f] = (im_plot_series){.x = d->patch_area,
+                                             .y = d->patch_count,
+                                             .n = d->patch_bins,
+                                             .line = IM_PLOT_NO_LINE,
+                                             .marker = IM_PLOT_MARKER_CIRCLE,
                                              .label = d->label};
         im_plot_family_color(f, count, series[count + f].color);
         if (!d->rough)
@@ -62,11 +65,18 @@ int paper_figure_distributions(const paper_distribution_family *families, int co
         return im_fail(IM_ENOMEM, "%s: allocation of the distributions' plot failed", source);
     int rough = distribution_series(families, count, series);
     im_plot_panel panels[2] = {
-        {.x = {IM_PLOT_LINEAR, 0, 0, "g / h_{rms} outside contact"}, .y = {IM_PLOT_LOG, 0, 0, "density over all cells"},
-         .series = series, .series_count = rough, .label = "(a)", .legend = IM_PLOT_LEGEND_UPPER_RIGHT},
+        {.x = {IM_PLOT_LINEAR, 0, 0, "g / h_{rms} outside contact"},
+         .y = {IM_PLOT_LOG, 0, 0, "density over all cells"},
+         .series = series,
+         .series_count = rough,
+         .label = "(a)",
+         .legend = IM_PLOT_LEGEND_UPPER_RIGHT},
         {.x = {IM_PLOT_LOG, 0, 0, "patch area A_{i} / δ^{2} (octaves)"},
          .y = {IM_PLOT_LOG, 0.5, 2.0 * most_patches(families, count), "patches"},
-         .series = series + count, .series_count = count, .label = "(b)", .legend = IM_PLOT_LEGEND_AUTO},
+         .series = series + count,
+         .series_count = count,
+         .label = "(b)",
+         .legend = IM_PLOT_LEGEND_AUTO},
     };
     im_plot plot = im_plot_default();
     plot.columns = rough > 0 ? 2 : 1; /* without a rough family, (b) alone */

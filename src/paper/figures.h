@@ -57,22 +57,22 @@ void paper_plot_grid(im_plot *plot, const im_plot_panel *panels, int count);
 
 /* One surface's indentation history: `steps` rows (borrowed arrays). */
 typedef struct paper_history {
-    int family;                 /* its family (0-based): the panel it is drawn in */
+    int family; /* its family (0-based): the panel it is drawn in */
     int steps;
-    const double *approach;     /* w */
-    const double *load;         /* N */
-    const double *load_star;    /* N* */
-    const double *area_ratio;   /* A / A_cone (cone), A / A_Hertz (sphere) */
-    const long *patches;        /* contact patches n_p (A / delta^2) */
+    const double *approach;   /* w */
+    const double *load;       /* N */
+    const double *load_star;  /* N* */
+    const double *area_ratio; /* A / A_cone (cone), A / A_Hertz (sphere) */
+    const long *patches;      /* contact patches n_p (A / delta^2) */
 } paper_history;
 
 /* The histories of an ensemble of families (a family: the surfaces of one roughness). */
 typedef struct paper_histories {
-    const char *source;         /* named in error messages */
-    int family_count;           /* 1 to PAPER_MAX_PANELS */
-    const double *slopes;       /* per family: h'rms, 0 for a smooth family */
-    const char *const *titles;  /* per family: the panel's title */
-    const double *eq12;         /* per family: eq. (12)'s A / A_cone, NaN where none (Fig. 5) */
+    const char *source;           /* named in error messages */
+    int family_count;             /* 1 to PAPER_MAX_PANELS */
+    const double *slopes;         /* per family: h'rms, 0 for a smooth family */
+    const char *const *titles;    /* per family: the panel's title */
+    const double *eq12;           /* per family: eq. (12)'s A / A_cone, NaN where none (Fig. 5) */
     const paper_history *members; /* every surface, in any order */
     int count;
     double delta, e_star, cot_alpha; /* grid spacing, E*, cot of the cone's half angle */
@@ -101,10 +101,10 @@ int paper_first_resolved_step(const paper_history *m);
 
 /* A rough family of the sphere's figure: its crossover load and the theory curves beside it. */
 typedef struct paper_sphere_family {
-    int family;                 /* index into the histories' families */
-    double crossover_load;      /* N_c of eq. (3) */
+    int family;            /* index into the histories' families */
+    double crossover_load; /* N_c of eq. (3) */
     int theory_points;
-    const double *theory_x;     /* N / N_c */
+    const double *theory_x;                       /* N / N_c */
     const double *theory_constant, *theory_gamma; /* A / A_Hertz: eq. (3), the gamma integral */
 } paper_sphere_family;
 
@@ -126,8 +126,8 @@ int paper_figure_sphere_regimes(const paper_histories *h, const paper_sphere_fam
  * ("Load": "N* = ..."); `source` is named in error messages. */
 typedef struct paper_contact_panels {
     int count;
-    const im_image *images;     /* count maps (borrowed) */
-    const char *const *titles;  /* count titles */
+    const im_image *images;    /* count maps (borrowed) */
+    const char *const *titles; /* count titles */
     const im_colormap *norm;
     const im_colormap *tension; /* the tension's norm and bar; NULL: none (no map has tension) */
     int extend_under;
@@ -139,11 +139,11 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const paper_file
 /* The local contact density seen directly: the contact fraction of each map averaged over rings
  * of width 0.05 a around the punch axis, out to 1.3 a, beside gamma(r/a) of eq. (10) for a cone. */
 typedef struct paper_density_map {
-    const im_field *force;      /* force per patch; contact where > 0 */
-    double axis_x, axis_y;      /* the punch axis from the grid's corner */
-    double radius;              /* a, the smooth contact radius */
-    double slope;               /* h'rms (> 0), for gamma and the title */
-    double load_star;           /* N* of the map, stated in its title */
+    const im_field *force; /* force per patch; contact where > 0 */
+    double axis_x, axis_y; /* the punch axis from the grid's corner */
+    double radius;         /* a, the smooth contact radius */
+    double slope;          /* h'rms (> 0), for gamma and the title */
+    double load_star;      /* N* of the map, stated in its title */
 } paper_density_map;
 int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count,
                                  const paper_file *file);
@@ -152,10 +152,10 @@ int paper_figure_contact_density(double alpha_degrees, const paper_density_map *
 
 /* One rough family pressed flat: A / A0 against x = p_m / (h'rms E*) and the fitted k. */
 typedef struct paper_flat_family {
-    double slope;               /* h'rms */
+    double slope; /* h'rms */
     int points;
-    const double *x, *area;     /* the surfaces' points */
-    double k, k_error;          /* fitted k of A / A0 = erf(sqrt(pi) / 2 k x) and its error */
+    const double *x, *area; /* the surfaces' points */
+    double k, k_error;      /* fitted k of A / A0 = erf(sqrt(pi) / 2 k x) and its error */
 } paper_flat_family;
 
 /* A panel per family: the points, erf with the fitted k and erf with k = 2, over x in [0, x_max]. */
@@ -170,7 +170,7 @@ enum { PAPER_MAX_SWEEP_GROUPS = 8 };
  * Borrowed arrays of count points: rho_c = cot alpha / h'rms (> 0, finite), the mean A / A_cone
  * and its standard deviation (NULL: no bars; NaN or 0: no bar at that point). */
 typedef struct paper_sweep_group {
-    const char *label;          /* legend entry */
+    const char *label; /* legend entry */
     int count;
     const double *rho_c, *area_ratio, *sd;
 } paper_sweep_group;
@@ -192,8 +192,8 @@ int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *s
  * the line). Gaps g in the surface's h_rms, density per cell of the whole grid and unit gap;
  * patch areas in delta^2 (one per octave: the smallest area of the octave), patches counted. */
 typedef struct paper_distribution_family {
-    const char *label;          /* legend entry */
-    int rough;                  /* non-zero: drawn in (a) too (a smooth surface has no h_rms) */
+    const char *label; /* legend entry */
+    int rough;         /* non-zero: drawn in (a) too (a smooth surface has no h_rms) */
     int gap_bins;
     const double *gap, *gap_density;
     int patch_bins;

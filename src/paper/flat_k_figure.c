@@ -23,16 +23,32 @@ static void flat_k_panel(const paper_flat_family *f, flat_k_figure *d, int i)
 {
     for (int j = 0; j < THEORY_POINTS; ++j)
         d->fitted[i][j] = erf(0.5 * sqrt(M_PI) * f->k * d->grid[j]);
-    d->series[i][0] = (im_plot_series){.x = f->x, .y = f->area, .n = f->points, .line = IM_PLOT_NO_LINE,
-                                       .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 2.5, .label = "surfaces"};
-    d->series[i][1] = (im_plot_series){.x = d->grid, .y = d->fitted[i], .n = THEORY_POINTS, .line = IM_PLOT_SOLID,
-                                       .line_width = 1.5, .label = "erf, fitted k"};
-    d->series[i][2] = (im_plot_series){.x = d->grid, .y = d->paper, .n = THEORY_POINTS, .line = IM_PLOT_DOTTED,
-                                       .line_width = 1.5, .label = "erf, k = 2"};
+    d->series[i][0] = (im_plot_series){.x = f->x,
+                                       .y = f->area,
+                                       .n = f->points,
+                                       .line = IM_PLOT_NO_LINE,
+                                       .marker = IM_PLOT_MARKER_CIRCLE,
+                                       .marker_size = 2.5,
+                                       .label = "surfaces"};
+    d->series[i][1] = (im_plot_series){.x = d->grid,
+                                       .y = d->fitted[i],
+                                       .n = THEORY_POINTS,
+                                       .line = IM_PLOT_SOLID,
+                                       .line_width = 1.5,
+                                       .label = "erf, fitted k"};
+    d->series[i][2] = (im_plot_series){.x = d->grid,
+                                       .y = d->paper,
+                                       .n = THEORY_POINTS,
+                                       .line = IM_PLOT_DOTTED,
+                                       .line_width = 1.5,
+                                       .label = "erf, k = 2"};
     snprintf(d->titles[i], sizeof d->titles[i], "h'_{rms} = %g: k = %.3f ± %.3f", f->slope, f->k, f->k_error);
     d->panels[i] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "p_{m} / (h'_{rms} E*)"},
-                                   .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{0}"}, .series = d->series[i],
-                                   .series_count = 3, .title = d->titles[i], .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
+                                   .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{0}"},
+                                   .series = d->series[i],
+                                   .series_count = 3,
+                                   .title = d->titles[i],
+                                   .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
 }
 
 int paper_figure_flat_k(const paper_flat_family *families, int count, double x_max, const paper_file *file)

@@ -123,23 +123,33 @@ static void approach_panel(const paper_histories *h, int load, int f, double *sc
         series[n].label = n == 0 ? "surfaces" : NULL;
         ++n;
     }
-    im_plot_series smooth = {.x = d->theory_w, .y = d->theory_smooth, .n = THEORY_POINTS, .line = IM_PLOT_SOLID,
-                             .line_width = 2.0, .label = "smooth (Love)"};
+    im_plot_series smooth = {.x = d->theory_w,
+                             .y = d->theory_smooth,
+                             .n = THEORY_POINTS,
+                             .line = IM_PLOT_SOLID,
+                             .line_width = 2.0,
+                             .label = "smooth (Love)"};
     series[n++] = smooth;
     if (!load && h->slopes[f] > 0.0) {
         double ratio = h->eq12[f];
         for (int i = 0; i < THEORY_POINTS; ++i)
             d->theory_eq12[f][i] = ratio * d->theory_smooth[i];
-        im_plot_series eq12 = {.x = d->theory_w, .y = d->theory_eq12[f], .n = THEORY_POINTS,
-                               .line = IM_PLOT_DASHED, .line_width = 1.0, .label = "eq. (12)"};
+        im_plot_series eq12 = {.x = d->theory_w,
+                               .y = d->theory_eq12[f],
+                               .n = THEORY_POINTS,
+                               .line = IM_PLOT_DASHED,
+                               .line_width = 1.0,
+                               .label = "eq. (12)"};
         im_plot_palette(1, eq12.color);
         series[n++] = eq12;
     }
-    d->grid.panels[f] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "approach w / δ"},
-                                        .y = {IM_PLOT_LINEAR, 0, 0, load ? "load N / (E* δ²)" : "contact area A / δ²"},
-                                        .series = series, .series_count = n, .title = h->titles[f],
-                                        .legend = f == h->family_count - 1 ? IM_PLOT_LEGEND_UPPER_LEFT
-                                                                           : IM_PLOT_LEGEND_HIDDEN};
+    d->grid.panels[f] =
+        (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "approach w / δ"},
+                        .y = {IM_PLOT_LINEAR, 0, 0, load ? "load N / (E* δ²)" : "contact area A / δ²"},
+                        .series = series,
+                        .series_count = n,
+                        .title = h->titles[f],
+                        .legend = f == h->family_count - 1 ? IM_PLOT_LEGEND_UPPER_LEFT : IM_PLOT_LEGEND_HIDDEN};
 }
 
 int paper_figure_against_approach(const paper_histories *h, int load, const paper_file *file)
@@ -175,7 +185,7 @@ static double interpolate(const double *x, const double *y, int n, double x0)
 
 typedef struct load_figure {
     panel_grid grid;
-    int panels;                 /* rough families drawn */
+    int panels; /* rough families drawn */
     int family[PAPER_MAX_PANELS];
     double x[PAPER_MAX_PANELS][COMMON_POINTS], mean[PAPER_MAX_PANELS][COMMON_POINTS];
     double sd[PAPER_MAX_PANELS][COMMON_POINTS], lo[PAPER_MAX_PANELS][COMMON_POINTS];
@@ -247,19 +257,27 @@ static void load_panel(const paper_histories *h, load_figure *d, int panel)
     int f = d->family[panel], n = 3;
     im_plot_series *series = d->grid.series[panel];
     series[0] = (im_plot_series){.x = d->x[panel], .y = d->mean[panel], .n = COMMON_POINTS, .label = "mean"};
-    series[1] = (im_plot_series){.x = d->x[panel], .y = d->lo[panel], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED,
+    series[1] = (im_plot_series){.x = d->x[panel],
+                                 .y = d->lo[panel],
+                                 .n = COMMON_POINTS,
+                                 .line = IM_PLOT_DOTTED,
                                  .label = "± 1 sd"};
     series[2] = (im_plot_series){.x = d->x[panel], .y = d->hi[panel], .n = COMMON_POINTS, .line = IM_PLOT_DOTTED};
     if (isfinite(h->eq12[f])) {
         d->eq12_x[panel][0] = d->x[panel][0], d->eq12_x[panel][1] = d->x[panel][COMMON_POINTS - 1];
         d->eq12_y[panel][0] = d->eq12_y[panel][1] = h->eq12[f];
-        series[n] = (im_plot_series){.x = d->eq12_x[panel], .y = d->eq12_y[panel], .n = 2, .line = IM_PLOT_DASHED,
+        series[n] = (im_plot_series){.x = d->eq12_x[panel],
+                                     .y = d->eq12_y[panel],
+                                     .n = 2,
+                                     .line = IM_PLOT_DASHED,
                                      .label = "eq. (12)"};
         im_plot_palette(1, series[n++].color);
     }
     d->grid.panels[panel] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0, 0, "N* = 2N / (δ² E* cot α)"},
                                             .y = {IM_PLOT_LINEAR, 0, 0, "A / A_{cone}"},
-                                            .series = series, .series_count = n, .title = h->titles[f],
+                                            .series = series,
+                                            .series_count = n,
+                                            .title = h->titles[f],
                                             .legend = panel == d->panels - 1 ? IM_PLOT_LEGEND_AUTO
                                                                              : IM_PLOT_LEGEND_HIDDEN};
 }
@@ -330,16 +348,26 @@ static void sphere_panel(const paper_histories *h, const paper_sphere_family *s,
         series[n].label = n == 0 ? "surfaces (n_{p} ≥ 10)" : NULL;
         ++n;
     }
-    im_plot_series eq3 = {.x = s->theory_x, .y = s->theory_constant, .n = s->theory_points,
-                          .line = IM_PLOT_SOLID, .line_width = 2.0, .label = "eq. (3)"};
+    im_plot_series eq3 = {.x = s->theory_x,
+                          .y = s->theory_constant,
+                          .n = s->theory_points,
+                          .line = IM_PLOT_SOLID,
+                          .line_width = 2.0,
+                          .label = "eq. (3)"};
     series[n++] = eq3;
-    im_plot_series gamma = {.x = s->theory_x, .y = s->theory_gamma, .n = s->theory_points,
-                            .line = IM_PLOT_DASHED, .line_width = 1.2, .label = "γ integral"};
+    im_plot_series gamma = {.x = s->theory_x,
+                            .y = s->theory_gamma,
+                            .n = s->theory_points,
+                            .line = IM_PLOT_DASHED,
+                            .line_width = 1.2,
+                            .label = "γ integral"};
     im_plot_palette(1, gamma.color); /* vermillion over eq. (3)'s black: both stay visible */
     series[n++] = gamma;
     grid->panels[panel] = (im_plot_panel){.x = {IM_PLOT_LOG, 0, 0, "N / N_{c}"},
-                                          .y = {IM_PLOT_LOG, 0, 0, "A / A_{Hertz}"}, .series = series,
-                                          .series_count = n, .title = h->titles[f],
+                                          .y = {IM_PLOT_LOG, 0, 0, "A / A_{Hertz}"},
+                                          .series = series,
+                                          .series_count = n,
+                                          .title = h->titles[f],
                                           .legend = IM_PLOT_LEGEND_LOWER_RIGHT};
 }
 

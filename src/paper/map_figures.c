@@ -100,10 +100,17 @@ static int density_panel(double alpha_degrees, const paper_density_map *map, den
 {
     ring_fractions(map, d->rings[i], d->fractions[i]);
     int status = theory_density(alpha_degrees, map->slope, d->theory_r[i], d->theory_gamma[i], DENSITY_THEORY_POINTS);
-    im_plot_series measured = {.x = d->rings[i], .y = d->fractions[i], .n = RINGS, .line = IM_PLOT_NO_LINE,
-                               .marker = IM_PLOT_MARKER_CIRCLE, .label = "simulated (ring average)"};
-    im_plot_series theory = {.x = d->theory_r[i], .y = d->theory_gamma[i], .n = DENSITY_THEORY_POINTS,
-                             .line = IM_PLOT_SOLID, .label = "γ(r) eq. (10)"};
+    im_plot_series measured = {.x = d->rings[i],
+                               .y = d->fractions[i],
+                               .n = RINGS,
+                               .line = IM_PLOT_NO_LINE,
+                               .marker = IM_PLOT_MARKER_CIRCLE,
+                               .label = "simulated (ring average)"};
+    im_plot_series theory = {.x = d->theory_r[i],
+                             .y = d->theory_gamma[i],
+                             .n = DENSITY_THEORY_POINTS,
+                             .line = IM_PLOT_SOLID,
+                             .label = "γ(r) eq. (10)"};
     im_plot_palette(0, measured.color);
     im_plot_palette(6, theory.color);
     d->series[i][0] = theory;
@@ -111,12 +118,15 @@ static int density_panel(double alpha_degrees, const paper_density_map *map, den
     snprintf(d->titles[i], sizeof d->titles[i], "h′_{rms} = %g, N* = %g", map->slope, map->load_star);
     d->panels[i] = (im_plot_panel){.x = {IM_PLOT_LINEAR, 0.0, 1.3, "r / a"},
                                    .y = {IM_PLOT_LINEAR, 0.0, 1.05, "contact density"},
-                                   .series = d->series[i], .series_count = 2, .title = d->titles[i],
+                                   .series = d->series[i],
+                                   .series_count = 2,
+                                   .title = d->titles[i],
                                    .legend = i == count - 1 ? IM_PLOT_LEGEND_AUTO : IM_PLOT_LEGEND_HIDDEN};
     return status;
 }
 
-int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count, const paper_file *file)
+int paper_figure_contact_density(double alpha_degrees, const paper_density_map *maps, int count,
+                                 const paper_file *file)
 {
     if (count < 1 || count > PAPER_MAX_PANELS)
         return im_fail(IM_EINVAL, "contact density: %d maps: expected 1 to %d", count, PAPER_MAX_PANELS);

@@ -23,8 +23,8 @@ static int check_groups(const paper_sweep_group *groups, int count, const char *
     for (int k = 0; k < count; ++k) {
         const paper_sweep_group *g = &groups[k];
         if (g->count > 0 && (!g->rho_c || !g->area_ratio))
-            return im_fail(IM_EINVAL, "%s: fig2 of a sweep: group %d has %d points without their arrays", source,
-                           k, g->count);
+            return im_fail(IM_EINVAL, "%s: fig2 of a sweep: group %d has %d points without their arrays", source, k,
+                           g->count);
         for (int i = 0; i < g->count; ++i)
             if (!(g->rho_c[i] > 0.0) || !isfinite(g->rho_c[i]))
                 return im_fail(IM_EINVAL, "%s: fig2 of a sweep: group %d's rho_c = %g: expected a positive number",
@@ -46,10 +46,17 @@ static void rho_axis(const paper_sweep_group *groups, int count, double *lo, dou
 
 static void theory_series(sweep_figure *d)
 {
-    d->series[0] = (im_plot_series){.x = d->rho, .y = d->variable, .n = CURVE_POINTS, .line_width = 1.2,
+    d->series[0] = (im_plot_series){.x = d->rho,
+                                    .y = d->variable,
+                                    .n = CURVE_POINTS,
+                                    .line_width = 1.2,
                                     .label = "eq. (12), variable γ"};
-    d->series[1] = (im_plot_series){.x = d->rho, .y = d->constant, .n = CURVE_POINTS, .line = IM_PLOT_DOTTED,
-                                    .line_width = 1.5, .label = "eq. (6), constant γ"};
+    d->series[1] = (im_plot_series){.x = d->rho,
+                                    .y = d->constant,
+                                    .n = CURVE_POINTS,
+                                    .line = IM_PLOT_DOTTED,
+                                    .line_width = 1.5,
+                                    .label = "eq. (6), constant γ"};
     im_plot_palette(6, d->series[0].color); /* black: the theory */
     im_plot_palette(6, d->series[1].color);
 }
@@ -59,9 +66,14 @@ static void group_series(const paper_sweep_group *groups, int count, sweep_figur
     const im_plot_marker markers[] = {IM_PLOT_MARKER_CIRCLE, IM_PLOT_MARKER_SQUARE, IM_PLOT_MARKER_TRIANGLE,
                                       IM_PLOT_MARKER_DIAMOND};
     for (int k = 0; k < count; ++k) {
-        d->series[2 + k] = (im_plot_series){.x = groups[k].rho_c, .y = groups[k].area_ratio, .sigma = groups[k].sd,
-                                            .n = groups[k].count, .line = IM_PLOT_NO_LINE, .marker = markers[k % 4],
-                                            .marker_size = 4.0, .label = groups[k].label};
+        d->series[2 + k] = (im_plot_series){.x = groups[k].rho_c,
+                                            .y = groups[k].area_ratio,
+                                            .sigma = groups[k].sd,
+                                            .n = groups[k].count,
+                                            .line = IM_PLOT_NO_LINE,
+                                            .marker = markers[k % 4],
+                                            .marker_size = 4.0,
+                                            .label = groups[k].label};
         im_plot_palette(k, d->series[2 + k].color);
     }
 }
@@ -81,7 +93,8 @@ int paper_figure_sweep(const paper_sweep_group *groups, int count, const char *s
     group_series(groups, count, d);
     im_plot_panel panel = {.x = {IM_PLOT_LOG, lo, hi, "ρ_{c} = cot α / h′_{rms}"},
                            .y = {IM_PLOT_LINEAR, 0.0, 1.05, "A / A_{cone}"},
-                           .series = d->series, .series_count = 2 + count,
+                           .series = d->series,
+                           .series_count = 2 + count,
                            .legend = IM_PLOT_LEGEND_AUTO};
     im_plot plot = im_plot_default();
     plot.panels = &panel;

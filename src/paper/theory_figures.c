@@ -44,8 +44,8 @@ static int density_label(double slope_rms, double rho, char *text, size_t size)
     return snprintf(text, size, "%g  (%.2f)", slope_rms, rho);
 }
 
-int im_paper_fig1_contact_density(double alpha_deg, const double *slope_rms, int count,
-                                  const im_plot *style, const char *path)
+int im_paper_fig1_contact_density(double alpha_deg, const double *slope_rms, int count, const im_plot *style,
+                                  const char *path)
 {
     ARG_REQUIRE(slope_rms, "slope_rms");
     ARG_REQUIRE(path, "path");
@@ -76,8 +76,11 @@ int im_paper_fig1_contact_density(double alpha_deg, const double *slope_rms, int
     if (status == IM_OK) {
         char title[64];
         snprintf(title, sizeof title, "cone, α = %g°", alpha_deg);
-        im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, "r / a"}, .y = {IM_PLOT_LINEAR, 0.0, 1.05, "γ(r)"},
-                               .series = series, .series_count = count, .title = title,
+        im_plot_panel panel = {.x = {IM_PLOT_LINEAR, 0.0, 1.0, "r / a"},
+                               .y = {IM_PLOT_LINEAR, 0.0, 1.05, "γ(r)"},
+                               .series = series,
+                               .series_count = count,
+                               .title = title,
                                .legend_title = "h′_{rms}  (ρ_{c})"};
         im_plot plot = plot_like(style, 1, 1, &panel);
         status = im_plot_write(&plot, path);
@@ -128,20 +131,30 @@ int im_paper_fig2_area_ratio(const im_paper_points *points, const im_plot *style
         return status;
     im_plot_series series[3] = {
         {.x = curves[0], .y = curves[1], .n = FIG2_POINTS, .line_width = 1.2, .label = "eq. (12), variable γ"},
-        {.x = curves[0], .y = curves[2], .n = FIG2_POINTS, .line = IM_PLOT_DOTTED, .line_width = 1.5,
+        {.x = curves[0],
+         .y = curves[2],
+         .n = FIG2_POINTS,
+         .line = IM_PLOT_DOTTED,
+         .line_width = 1.5,
          .label = "eq. (6), constant γ"},
     };
     im_plot_palette(6, series[0].color); /* black: the theory */
     im_plot_palette(6, series[1].color);
     if (has_points) {
-        series[2] = (im_plot_series){.x = points->x, .y = points->y, .sigma = points->sigma, .n = points->count,
-                                     .line = IM_PLOT_NO_LINE, .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 4.0,
+        series[2] = (im_plot_series){.x = points->x,
+                                     .y = points->y,
+                                     .sigma = points->sigma,
+                                     .n = points->count,
+                                     .line = IM_PLOT_NO_LINE,
+                                     .marker = IM_PLOT_MARKER_CIRCLE,
+                                     .marker_size = 4.0,
                                      .label = points->label ? points->label : "simulations (mean ± sd)"};
         im_plot_palette(1, series[2].color);
     }
     im_plot_panel panel = {.x = {IM_PLOT_LOG, lo, hi, "ρ_{c} = cot α / h′_{rms}"},
                            .y = {IM_PLOT_LINEAR, 0.0, 1.05, "A / A_{cone}"},
-                           .series = series, .series_count = has_points ? 3 : 2,
+                           .series = series,
+                           .series_count = has_points ? 3 : 2,
                            .legend = IM_PLOT_LEGEND_AUTO};
     im_plot plot = plot_like(style, 1, 1, &panel);
     return im_plot_write(&plot, path);
@@ -194,7 +207,8 @@ static int normalise_psd(im_psd *psd, double delta)
 
 /* The power law q^exponent over [q_lo, q_hi], a factor 4 above the spectrum's geometric mean
  * there (in C q^-exponent), so that it runs beside the data. IM_EINVAL without data in the band. */
-static int power_law(const im_psd *psd, int count, double exponent, double q_lo, double q_hi, double q[2], double c[2])
+static int power_law(const im_psd *psd, int count, double exponent, double q_lo, double q_hi, double q[2],
+                     double c[2])
 {
     double sum = 0.0;
     int n = 0;
@@ -213,7 +227,7 @@ typedef struct surface_figure {
     im_histogram *hist[3];
     double *gaussian[3];
     im_psd *psd;
-    int psd_count;             /* bins kept by normalise_psd */
+    int psd_count; /* bins kept by normalise_psd */
     double law_q[2], law_c[2];
     char law_label[64];
     im_plot_series series[8];
@@ -242,8 +256,8 @@ static int compute_statistics(const im_field *surface, const im_surface_params *
     f->psd_count = normalise_psd(f->psd, surface->delta);
     double exponent = -2.0 * (1.0 + params->hurst);
     snprintf(f->law_label, sizeof f->law_label, "∝ q^{−%.2g}  (H = %g)", -exponent, params->hurst);
-    return power_law(f->psd, f->psd_count, exponent, 2.0 * M_PI / params->lambda_r, 2.0 * M_PI / params->lambda_s, f->law_q,
-                     f->law_c);
+    return power_law(f->psd, f->psd_count, exponent, 2.0 * M_PI / params->lambda_r, 2.0 * M_PI / params->lambda_s,
+                     f->law_q, f->law_c);
 }
 
 static void layout_surface_figure(surface_figure *f, int bins)
@@ -254,30 +268,47 @@ static void layout_surface_figure(surface_figure *f, int bins)
         im_plot_series *s = &f->series[2 * k];
         /* The Gaussian, thin and dashed in a second colour, on top of the broad histogram line:
          * where they agree both stay visible. */
-        s[0] = (im_plot_series){.x = f->hist[k]->centre, .y = f->hist[k]->density, .n = bins, .line_width = 1.8,
+        s[0] = (im_plot_series){.x = f->hist[k]->centre,
+                                .y = f->hist[k]->density,
+                                .n = bins,
+                                .line_width = 1.8,
                                 .label = "surface"};
-        s[1] = (im_plot_series){.x = f->hist[k]->centre, .y = f->gaussian[k], .n = bins, .line = IM_PLOT_DASHED,
-                                .line_width = 0.9, .label = "Gaussian"};
+        s[1] = (im_plot_series){.x = f->hist[k]->centre,
+                                .y = f->gaussian[k],
+                                .n = bins,
+                                .line = IM_PLOT_DASHED,
+                                .line_width = 0.9,
+                                .label = "Gaussian"};
         im_plot_palette(0, s[0].color);
         im_plot_palette(1, s[1].color);
         f->panels[k] = (im_plot_panel){.x = {IM_PLOT_LINEAR, f->hist[k]->lo, f->hist[k]->hi, quantities[k]},
-                                       .y = {.label = "probability density"}, .series = s, .series_count = 2,
-                                       .label = labels[k], .legend = k == 0 ? IM_PLOT_LEGEND_UPPER_RIGHT
-                                                                            : IM_PLOT_LEGEND_HIDDEN};
+                                       .y = {.label = "probability density"},
+                                       .series = s,
+                                       .series_count = 2,
+                                       .label = labels[k],
+                                       .legend = k == 0 ? IM_PLOT_LEGEND_UPPER_RIGHT : IM_PLOT_LEGEND_HIDDEN};
     }
     im_plot_series *s = &f->series[6];
-    s[0] = (im_plot_series){.x = f->psd->q, .y = f->psd->c, .n = f->psd_count, .line_width = 0.8,
-                            .marker = IM_PLOT_MARKER_CIRCLE, .marker_size = 3.0, .label = "C^{iso}(q)"};
+    s[0] = (im_plot_series){.x = f->psd->q,
+                            .y = f->psd->c,
+                            .n = f->psd_count,
+                            .line_width = 0.8,
+                            .marker = IM_PLOT_MARKER_CIRCLE,
+                            .marker_size = 3.0,
+                            .label = "C^{iso}(q)"};
     s[1] = (im_plot_series){.x = f->law_q, .y = f->law_c, .n = 2, .line = IM_PLOT_DASHED, .label = f->law_label};
     im_plot_palette(0, s[0].color);
     im_plot_palette(6, s[1].color);
     f->panels[3] = (im_plot_panel){.x = {IM_PLOT_LOG, 0, 0, "wave number q δ"},
-                                   .y = {IM_PLOT_LOG, 0, 0, "C^{iso}(q) / δ^{4}"}, .series = s, .series_count = 2,
-                                   .label = "(d)", .legend = IM_PLOT_LEGEND_LOWER_LEFT};
+                                   .y = {IM_PLOT_LOG, 0, 0, "C^{iso}(q) / δ^{4}"},
+                                   .series = s,
+                                   .series_count = 2,
+                                   .label = "(d)",
+                                   .legend = IM_PLOT_LEGEND_LOWER_LEFT};
 }
 
-int im_paper_fig3_surface(const im_field *surface, const im_surface_params *params, int bins,
-                          const im_plot *style, const char *path)
+int im_paper_fig3_surface(const im_field *surface, const im_surface_params *params, int bins, const im_plot *style,
+                          const char *path)
 {
     ARG_VIEW(surface, "surface");
     ARG_REQUIRE(params, "params");
@@ -286,9 +317,12 @@ int im_paper_fig3_surface(const im_field *surface, const im_surface_params *para
         return im_fail(IM_EINVAL, "Fig. 3: a surface and its parameters are required");
     if (bins < 10 || bins > 10000)
         return im_fail(IM_EINVAL, "Fig. 3: %d bins: expected 10 to 10000", bins);
-    if (!(params->hurst > 0.0 && params->hurst < 1.0) || !(params->lambda_s > 0.0 && params->lambda_r > params->lambda_s))
-        return im_fail(IM_EINVAL, "Fig. 3: H = %g, lambda_s = %g, lambda_r = %g: expected 0 < H < 1 and "
-                       "0 < lambda_s < lambda_r", params->hurst, params->lambda_s, params->lambda_r);
+    if (!(params->hurst > 0.0 && params->hurst < 1.0) ||
+        !(params->lambda_s > 0.0 && params->lambda_r > params->lambda_s))
+        return im_fail(IM_EINVAL,
+                       "Fig. 3: H = %g, lambda_s = %g, lambda_r = %g: expected 0 < H < 1 and "
+                       "0 < lambda_s < lambda_r",
+                       params->hurst, params->lambda_s, params->lambda_r);
     surface_figure *f = calloc(1, sizeof *f);
     if (!f)
         return im_fail(IM_ENOMEM, "Fig. 3: out of memory");

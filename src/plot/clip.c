@@ -6,9 +6,9 @@
 
 /* A side of the rectangle: points with sign * coordinate[axis] <= sign * bound are inside. */
 typedef struct side {
-    int axis;      /* 0: x, 1: y */
+    int axis; /* 0: x, 1: y */
     double bound;
-    double sign;   /* +1: keep below the bound, -1: keep above it */
+    double sign; /* +1: keep below the bound, -1: keep above it */
 } side;
 
 static int inside(const double *p, side s) { return s.sign * p[s.axis] <= s.sign * s.bound; }

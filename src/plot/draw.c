@@ -65,8 +65,7 @@ void plot_draw_marker(cairo_t *cr, const im_plot_series *s, double points, doubl
         cairo_line_to(cr, x - 1.25 * r, y);
         cairo_close_path(cr);
         break;
-    case IM_PLOT_MARKER_NONE:
-        return;
+    case IM_PLOT_MARKER_NONE: return;
     }
     set_color(cr, s->color);
     cairo_fill(cr);
@@ -115,8 +114,8 @@ static int clip_segment(const frame *f, double *ax, double *ay, double *bx, doub
 /* The line through the finite points; NaN breaks it. */
 static void draw_line(cairo_t *cr, const im_plot_series *s, const frame *f, double points)
 {
-    double last_x = NAN, last_y = NAN;     /* previous finite point, pixels */
-    double pen_x = NAN, pen_y = NAN;       /* where the current path ends */
+    double last_x = NAN, last_y = NAN; /* previous finite point, pixels */
+    double pen_x = NAN, pen_y = NAN;   /* where the current path ends */
     for (int i = 0; i < s->n; ++i) {
         double x = px(f, s->x[i]), y = py(f, s->y[i]);
         if (!isfinite(x) || !isfinite(y)) {
@@ -323,8 +322,8 @@ static void draw_axis_labels(cairo_t *cr, cairo_font_face_t *face, const plot_la
 {
     double f = l->font;
     if (p->x.label)
-        typeset_show_text(cr, face, f, pl->box_x + 0.5 * pl->box_width, pl->box_y + pl->box_height + 2.55 * f,
-                          0.5, p->x.label);
+        typeset_show_text(cr, face, f, pl->box_x + 0.5 * pl->box_width, pl->box_y + pl->box_height + 2.55 * f, 0.5,
+                          p->x.label);
     if (p->y.label) {
         cairo_save(cr);
         cairo_translate(cr, y_label_left + 0.8 * f, pl->box_y + 0.5 * pl->box_height);
@@ -385,7 +384,7 @@ static void draw_legend(cairo_t *cr, cairo_font_face_t *face, const plot_layout 
 }
 
 static int draw_panel(cairo_t *cr, cairo_font_face_t *regular, cairo_font_face_t *bold, const plot_layout *l,
-                       const im_plot_panel *p, const plot_panel_layout *pl, double y_label_left)
+                      const im_plot_panel *p, const plot_panel_layout *pl, double y_label_left)
 {
     int status = draw_series(cr, p, pl, l->points);
     cairo_set_source_rgb(cr, 0, 0, 0);

@@ -21,9 +21,10 @@ static int check_plot(const im_plot *p)
     if (p->rows < 1 || p->columns < 1 || p->rows * p->columns > PLOT_MAX_PANELS || !p->panels)
         return im_fail(IM_EINVAL, "plot: %d x %d panels: expected 1 to %d panels", p->rows, p->columns,
                        PLOT_MAX_PANELS);
-    if (p->panel_count != 0 && (p->panel_count <= (p->rows - 1) * p->columns || p->panel_count > p->rows * p->columns))
-        return im_fail(IM_EINVAL, "plot: %d panels in %d x %d cells: expected %d to %d (0: every cell)", p->panel_count,
-                       p->rows, p->columns, (p->rows - 1) * p->columns + 1, p->rows * p->columns);
+    if (p->panel_count != 0 &&
+        (p->panel_count <= (p->rows - 1) * p->columns || p->panel_count > p->rows * p->columns))
+        return im_fail(IM_EINVAL, "plot: %d panels in %d x %d cells: expected %d to %d (0: every cell)",
+                       p->panel_count, p->rows, p->columns, (p->rows - 1) * p->columns + 1, p->rows * p->columns);
     if (!(p->panel_width > 0.0 && p->panel_width <= 2000.0 && p->panel_height > 0.0 && p->panel_height <= 2000.0))
         return im_fail(IM_EINVAL, "plot: panel %g x %g pt: expected (0, 2000] each", p->panel_width, p->panel_height);
     if (!(p->dpi > 0.0 && p->dpi <= 2400.0))
@@ -40,11 +41,13 @@ static int check_plot(const im_plot *p)
 static int check_axis(int panel, const char *name, const im_plot_axis *a)
 {
     if (a->scale != IM_PLOT_LINEAR && a->scale != IM_PLOT_LOG)
-        return im_fail(IM_EINVAL, "plot panel %d: %s axis scale %d: expected linear or log", panel, name, (int)a->scale);
+        return im_fail(IM_EINVAL, "plot panel %d: %s axis scale %d: expected linear or log", panel, name,
+                       (int)a->scale);
     if (!(a->lo < a->hi))
         return IM_OK; /* automatic */
     if (!isfinite(a->lo) || !isfinite(a->hi))
-        return im_fail(IM_ENUMERIC, "plot panel %d: %s limits [%g, %g]: expected finite values", panel, name, a->lo, a->hi);
+        return im_fail(IM_ENUMERIC, "plot panel %d: %s limits [%g, %g]: expected finite values", panel, name, a->lo,
+                       a->hi);
     if (a->scale == IM_PLOT_LOG && !(a->lo > 0.0))
         return im_fail(IM_EINVAL, "plot panel %d: %s limits [%g, %g] on a log axis: expected lo > 0", panel, name,
                        a->lo, a->hi);
@@ -56,11 +59,13 @@ static int check_values(int panel, int index, const char *what, const double *v,
 {
     for (int i = 0; i < n; ++i) {
         if (isinf(v[i]))
-            return im_fail(IM_ENUMERIC, "plot panel %d series %d: %s[%d] = %g: expected a finite value (NaN "
-                           "leaves a gap)", panel, index, what, i, v[i]);
-        if (positive && v[i] <= 0.0)
-            return im_fail(IM_EINVAL, "plot panel %d series %d: %s[%d] = %g on a log axis: expected > 0",
+            return im_fail(IM_ENUMERIC,
+                           "plot panel %d series %d: %s[%d] = %g: expected a finite value (NaN "
+                           "leaves a gap)",
                            panel, index, what, i, v[i]);
+        if (positive && v[i] <= 0.0)
+            return im_fail(IM_EINVAL, "plot panel %d series %d: %s[%d] = %g on a log axis: expected > 0", panel,
+                           index, what, i, v[i]);
     }
     return IM_OK;
 }
@@ -72,8 +77,10 @@ static int check_style(int panel, int index, const im_plot_series *s)
     if ((int)s->marker < IM_PLOT_MARKER_NONE || s->marker > IM_PLOT_MARKER_DIAMOND)
         return im_fail(IM_EINVAL, "plot panel %d series %d: marker %d unknown", panel, index, (int)s->marker);
     if (!(s->line_width >= 0.0 && s->line_width <= 50.0) || !(s->marker_size >= 0.0 && s->marker_size <= 50.0))
-        return im_fail(IM_EINVAL, "plot panel %d series %d: line width %g pt, marker size %g pt: expected "
-                       "[0, 50] (0: default)", panel, index, s->line_width, s->marker_size);
+        return im_fail(IM_EINVAL,
+                       "plot panel %d series %d: line width %g pt, marker size %g pt: expected "
+                       "[0, 50] (0: default)",
+                       panel, index, s->line_width, s->marker_size);
     if (!s->band_lo != !s->band_hi)
         return im_fail(IM_EINVAL, "plot panel %d series %d: a band needs both band_lo and band_hi", panel, index);
     return IM_OK;
@@ -82,8 +89,10 @@ static int check_style(int panel, int index, const im_plot_series *s)
 static int check_series(int panel, int index, const im_plot_series *s, const im_plot_panel *p)
 {
     if (s->n < 1 || !s->x || !s->y)
-        return im_fail(IM_EINVAL, "plot panel %d series %d%s%s: no points (n = %d): expected n >= 1 and x, y "
-                       "arrays", panel, index, s->label ? " " : "", s->label ? s->label : "", s->n);
+        return im_fail(IM_EINVAL,
+                       "plot panel %d series %d%s%s: no points (n = %d): expected n >= 1 and x, y "
+                       "arrays",
+                       panel, index, s->label ? " " : "", s->label ? s->label : "", s->n);
     int status = check_style(panel, index, s);
     if (status == IM_OK)
         status = check_values(panel, index, "x", s->x, s->n, p->x.scale == IM_PLOT_LOG);
@@ -204,8 +213,10 @@ static int resolve_axis(int panel, const char *name, const im_plot_axis *axis, r
             return im_fail(IM_EINVAL, "plot panel %d: no finite data to set the %s limits: give them", panel, name);
         widen(a, data);
         if (!isfinite(a->lo) || !isfinite(a->hi) || !(a->hi > a->lo))
-            return im_fail(IM_ENUMERIC, "plot panel %d: %s data from %g to %g: automatic limits overflow; give "
-                           "them", panel, name, data.lo, data.hi);
+            return im_fail(IM_ENUMERIC,
+                           "plot panel %d: %s data from %g to %g: automatic limits overflow; give "
+                           "them",
+                           panel, name, data.lo, data.hi);
     }
     a->tick_count = tick_values(a);
     int decades = a->scale == IM_PLOT_LOG && a->tick_count >= 2 && a->ticks[1] / a->ticks[0] > 9.99;
@@ -312,7 +323,8 @@ static int legend_touches_data(const im_plot_panel *p, const plot_panel_layout *
 static void size_legend(cairo_t *cr, const im_plot_panel *p, const plot_layout *l, plot_panel_layout *pl)
 {
     int entries = p->legend_title ? 1 : 0;
-    double text = p->legend_title ? text_width(cr, l, p->legend_title) - plot_legend_sample_length(l) - 0.5 * l->font : 0.0;
+    double text = p->legend_title ? text_width(cr, l, p->legend_title) - plot_legend_sample_length(l) - 0.5 * l->font
+                                  : 0.0;
     for (int s = 0; s < p->series_count; ++s)
         if (p->series[s].label) {
             ++entries;
@@ -427,7 +439,9 @@ int plot_make_layout(const im_plot *plot, cairo_t *cr, plot_layout *l)
         place_legend(&plot->panels[i], l, pl);
     }
     if (l->width > 32768 || l->height > 32768)
-        return im_fail(IM_EINVAL, "plot %d x %d pixels: expected at most 32768 per side; lower the dpi or the "
-                       "panel size", l->width, l->height);
+        return im_fail(IM_EINVAL,
+                       "plot %d x %d pixels: expected at most 32768 per side; lower the dpi or the "
+                       "panel size",
+                       l->width, l->height);
     return IM_OK;
 }

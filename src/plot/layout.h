@@ -11,21 +11,21 @@ enum { PLOT_MAX_PANELS = 64, PLOT_MAX_TICKS = 40 };
 
 typedef struct plot_axis_layout {
     im_plot_scale scale;
-    double lo, hi;                  /* limits in force */
+    double lo, hi; /* limits in force */
     double ticks[PLOT_MAX_TICKS];
     int tick_count;
-    int label_every;                /* label one tick in label_every (crowded decades) */
+    int label_every; /* label one tick in label_every (crowded decades) */
 } plot_axis_layout;
 
 typedef struct plot_panel_layout {
     plot_axis_layout x, y;
-    double box_x, box_y, box_width, box_height;         /* the frame, pixels */
+    double box_x, box_y, box_width, box_height;             /* the frame, pixels */
     double legend_x, legend_y, legend_width, legend_height; /* 0 size: none */
 } plot_panel_layout;
 
 typedef struct plot_layout {
-    double font;            /* text size, pixels */
-    double points;          /* pixels per point */
+    double font;   /* text size, pixels */
+    double points; /* pixels per point */
     int width, height;
     int panel_count;
     plot_panel_layout panels[PLOT_MAX_PANELS];

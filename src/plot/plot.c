@@ -14,8 +14,13 @@
 
 im_plot im_plot_default(void)
 {
-    im_plot plot = {.rows = 1, .columns = 1, .panel_width = 160.0, .panel_height = 120.0, .dpi = 300.0,
-                    .font_size = 8.0, .png_compression = IM_FIGURE_PNG_COMPRESSION};
+    im_plot plot = {.rows = 1,
+                    .columns = 1,
+                    .panel_width = 160.0,
+                    .panel_height = 120.0,
+                    .dpi = 300.0,
+                    .font_size = 8.0,
+                    .png_compression = IM_FIGURE_PNG_COMPRESSION};
     return plot;
 }
 
@@ -73,9 +78,9 @@ int im_plot_geometry_of(const im_plot *plot, int panel, im_plot_geometry *g)
         status = im_fail(IM_EINVAL, "plot: panel %d: expected 0 to %d", panel, l->panel_count - 1);
     if (status == IM_OK) {
         const plot_panel_layout *p = &l->panels[panel];
-        *g = (im_plot_geometry){l->width, l->height, p->box_x, p->box_y, p->box_width, p->box_height,
-                                p->x.lo, p->x.hi, p->y.lo, p->y.hi,
-                                p->legend_x, p->legend_y, p->legend_width, p->legend_height};
+        *g = (im_plot_geometry){l->width,      l->height,   p->box_x,        p->box_y,        p->box_width,
+                                p->box_height, p->x.lo,     p->x.hi,         p->y.lo,         p->y.hi,
+                                p->legend_x,   p->legend_y, p->legend_width, p->legend_height};
     }
     free(l);
     return status;
@@ -105,8 +110,8 @@ int im_plot_write(const im_plot *plot, const char *path)
         return im_fail(IM_ENOMEM, "plot layout: out of memory");
     status = layout_plot(plot, l);
     if (status == IM_OK) {
-        typeset_canvas canvas = {l->width, l->height, plot->dpi, plot->texts, plot->text_count,
-                                   plot->png_compression};
+        typeset_canvas canvas = {l->width,    l->height,        plot->dpi,
+                                 plot->texts, plot->text_count, plot->png_compression};
         plot_drawing drawing = {plot, l};
         status = typeset_output(path, format, &canvas, paint_plot, &drawing);
     }

@@ -56,9 +56,9 @@ const char *im_render_gl_version(const im_render_context *c)
 
 int gl_load(im_gl *gl, im_gl_loader loader)
 {
-#define IM_GL_LOAD(name, type)                                                                    \
-    gl->name = (type)loader("gl" #name);                                                          \
-    if (!gl->name)                                                                                \
+#define IM_GL_LOAD(name, type)                                                                                       \
+    gl->name = (type)loader("gl" #name);                                                                             \
+    if (!gl->name)                                                                                                   \
         return im_fail(IM_EUNSUPPORTED, "OpenGL function gl%s is not available", #name);
     IM_GL_FUNCTIONS(IM_GL_LOAD)
 #undef IM_GL_LOAD
@@ -81,10 +81,7 @@ static void append_reason(char *reasons, size_t size, const char *reason)
     snprintf(reasons + used, size - used, "%s%s", used ? "; " : "", reason);
 }
 
-static im_gl_proc egl_loader(const char *name)
-{
-    return (im_gl_proc)eglGetProcAddress(name);
-}
+static im_gl_proc egl_loader(const char *name) { return (im_gl_proc)eglGetProcAddress(name); }
 
 /* Initialises display, creates a surfaceless 3.3 core context and makes it current. */
 static int egl_context_on(im_render_context *c, EGLDisplay display, char *reason, size_t size)
@@ -97,11 +94,10 @@ static int egl_context_on(im_render_context *c, EGLDisplay display, char *reason
     EGLContext context = EGL_NO_CONTEXT;
     EGLConfig config = EGL_NO_CONFIG_KHR;
     EGLint count = 0;
-    const EGLint config_attributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0,
-                                        EGL_NONE};
-    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint config_attributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
+    const EGLint context_attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     if (!has_extension(extensions, "EGL_KHR_surfaceless_context"))
         snprintf(reason, size, "no EGL_KHR_surfaceless_context");
     else if (!eglBindAPI(EGL_OPENGL_API))
@@ -109,8 +105,7 @@ static int egl_context_on(im_render_context *c, EGLDisplay display, char *reason
     else if (!has_extension(extensions, "EGL_KHR_no_config_context") &&
              (!eglChooseConfig(display, config_attributes, &config, 1, &count) || count < 1))
         snprintf(reason, size, "no EGL config with EGL_OPENGL_BIT");
-    else if ((context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes)) ==
-             EGL_NO_CONTEXT)
+    else if ((context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes)) == EGL_NO_CONTEXT)
         snprintf(reason, size, "no OpenGL 3.3 core context (EGL error 0x%x)", (unsigned)eglGetError());
     else if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
         snprintf(reason, size, "eglMakeCurrent failed (EGL error 0x%x)", (unsigned)eglGetError());
@@ -135,8 +130,7 @@ typedef struct egl_platform {
 } egl_platform;
 
 /* Tries the enumerated devices whose software-ness matches `software`. */
-static int egl_try_devices(im_render_context *c, const egl_platform *egl, int software,
-                           char *reasons, size_t size)
+static int egl_try_devices(im_render_context *c, const egl_platform *egl, int software, char *reasons, size_t size)
 {
     EGLDeviceEXT devices[MAX_DEVICES];
     EGLint count = 0;
@@ -147,9 +141,12 @@ static int egl_try_devices(im_render_context *c, const egl_platform *egl, int so
         if (has_extension(extensions, "EGL_MESA_device_software") != software)
             continue;
         const char *drm = has_extension(extensions, "EGL_EXT_device_drm")
-                              ? egl->query_device_string(devices[i], EGL_DRM_DEVICE_FILE_EXT) : NULL;
+                              ? egl->query_device_string(devices[i], EGL_DRM_DEVICE_FILE_EXT)
+                              : NULL;
         snprintf(c->display_name, sizeof c->display_name, "device %d of %d (%s)", i + 1, (int)count,
-                 software ? "EGL_MESA_device_software" : drm ? drm : "hardware");
+                 software ? "EGL_MESA_device_software"
+                 : drm    ? drm
+                          : "hardware");
         EGLDisplay display = egl->get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
         char reason[256];
         if (egl_context_on(c, display, reason, sizeof reason) == IM_OK)
@@ -171,10 +168,9 @@ int egl_can_enumerate_devices(const char *client_extensions)
 static int egl_open(im_render_context *c, char *reasons, size_t size)
 {
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    egl_platform egl = {
-        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT"),
-        (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT"),
-        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT")};
+    egl_platform egl = {(PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT"),
+                        (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT"),
+                        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT")};
     if (!client || !has_extension(client, "EGL_EXT_platform_base") || !egl.get_platform_display) {
         append_reason(reasons, size, "egl: no EGL_EXT_platform_base (no usable libEGL)");
         return IM_EUNSUPPORTED;
@@ -234,8 +230,7 @@ static void release_backend(im_render_context *c)
 int im_render_context_missing(int status, const char *message)
 {
     ARG_REQUIRE_OR(message, "message", 0);
-    return status == IM_EUNSUPPORTED &&
-           strncmp(message, IM_RENDER_NO_CONTEXT, strlen(IM_RENDER_NO_CONTEXT)) == 0;
+    return status == IM_EUNSUPPORTED && strncmp(message, IM_RENDER_NO_CONTEXT, strlen(IM_RENDER_NO_CONTEXT)) == 0;
 }
 
 int render_context_open(im_render_backend backend, im_render_context **out)
@@ -267,8 +262,8 @@ int render_make_current(im_render_context *c)
                       ? osmesa_library_make_current(&c->osmesa)
                       : (eglBindAPI(EGL_OPENGL_API) &&
                          eglMakeCurrent(c->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, c->egl_context));
-    return current ? IM_OK : im_fail(IM_EUNSUPPORTED, "cannot make the %s context current",
-                                     im_render_backend_name(c));
+    return current ? IM_OK
+                   : im_fail(IM_EUNSUPPORTED, "cannot make the %s context current", im_render_backend_name(c));
 }
 
 void render_release_current(im_render_context *c)

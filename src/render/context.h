@@ -11,8 +11,8 @@
 
 /* OSMesa, opened with dlopen (osmesa.c). Kept free of GL headers: GL/osmesa.h brings GL/gl.h. */
 typedef struct im_osmesa {
-    void *library;          /* dlopen handle */
-    void *context;          /* OSMesaContext */
+    void *library;            /* dlopen handle */
+    void *context;            /* OSMesaContext */
     unsigned char buffer[16]; /* 2 x 2 RGBA colour buffer OSMesaMakeCurrent requires; unused */
 } im_osmesa;
 
@@ -32,11 +32,11 @@ struct im_render_context {
     im_render_backend backend;
     char display_name[160];
     char renderer[256], version[256];
-    void *egl_display, *egl_context;  /* EGLDisplay, EGLContext */
+    void *egl_display, *egl_context; /* EGLDisplay, EGLContext */
     im_osmesa osmesa;
     GLint max_texture_size, max_renderbuffer_size, max_viewport[2], max_samples;
     GLuint vertex_array, contact_program, height_program;
-    GLuint surface_program, punch_program, wall_program;  /* the 3-D view (view3d.c) */
+    GLuint surface_program, punch_program, wall_program; /* the 3-D view (view3d.c) */
 };
 
 /* Whether EGL's client extensions allow enumerating devices: EGL_EXT_platform_device and
@@ -84,8 +84,8 @@ int render_link_program(const im_gl *gl, const char *vertex_source, const char *
                         const char *fragment_prelude, const char *fragment_source, const char *name, GLuint *out);
 
 /* A nearest-filtered, edge-clamped 2-D texture bound on texture unit `unit`. */
-GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
-                         GLenum format, GLenum type, const void *data);
+GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height, GLenum format, GLenum type,
+                      const void *data);
 /* The colour map's 256-entry table as a 256 x 1 RGBA8 texture on `unit`. */
 GLuint render_table_texture(const im_gl *gl, int unit, im_colormap_id map);
 

@@ -15,8 +15,8 @@ enum { MAX_PIXELS_PER_PATCH = 64, MAX_BOUNDARY_PX = 64, MAX_IMAGE_SIDE = 32768 }
  * before the shader's own source makes the compiler's messages give that file's line numbers. */
 static const char GLSL_VERSION[] = "#version 330 core\n";
 
-static int compile_shader(const im_gl *gl, GLenum stage, const char *prelude, const char *source,
-                          const char *name, GLuint *out)
+static int compile_shader(const im_gl *gl, GLenum stage, const char *prelude, const char *source, const char *name,
+                          GLuint *out)
 {
     const char *parts[] = {GLSL_VERSION, prelude ? prelude : "", "#line 1\n", source};
     GLuint shader = gl->CreateShader(stage);
@@ -116,8 +116,7 @@ long render_image_limit(const im_render_context *c)
     return limit < MAX_IMAGE_SIDE ? limit : MAX_IMAGE_SIDE;
 }
 
-static int check_layout(const im_render_context *c, const im_field *field, int scale, int border,
-                        const char *what)
+static int check_layout(const im_render_context *c, const im_field *field, int scale, int border, const char *what)
 {
     if (!field || field->nx < 1 || field->ny < 1)
         return im_fail(IM_EINVAL, "%s: empty field: expected at least 1 x 1 patches", what);
@@ -126,20 +125,22 @@ static int check_layout(const im_render_context *c, const im_field *field, int s
     if (border < 0 || border > MAX_BOUNDARY_PX)
         return im_fail(IM_EINVAL, "%s: boundary_px = %d: expected 0..%d", what, border, MAX_BOUNDARY_PX);
     if (field->nx > c->max_texture_size || field->ny > c->max_texture_size)
-        return im_fail(IM_EINVAL, "%s: grid %d x %d exceeds GL_MAX_TEXTURE_SIZE %d of %s", what,
-                       field->nx, field->ny, c->max_texture_size, c->renderer);
+        return im_fail(IM_EINVAL, "%s: grid %d x %d exceeds GL_MAX_TEXTURE_SIZE %d of %s", what, field->nx, field->ny,
+                       c->max_texture_size, c->renderer);
     long limit = render_image_limit(c);
     long width = (long)field->nx * scale + 2L * border, height = (long)field->ny * scale + 2L * border;
     if (width > limit || height > limit)
-        return im_fail(IM_EINVAL, "%s: image %ld x %ld pixels exceeds the limit %ld (GL limits of %s); "
-                       "use fewer pixels per patch", what, width, height, limit, c->renderer);
+        return im_fail(IM_EINVAL,
+                       "%s: image %ld x %ld pixels exceeds the limit %ld (GL limits of %s); "
+                       "use fewer pixels per patch",
+                       what, width, height, limit, c->renderer);
     return im_memory_check(4.0 * (double)width * (double)height + 6.0 * (double)im_field_count(field), what);
 }
 
 /* ---- GL objects ---- */
 
-GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height,
-                           GLenum format, GLenum type, const void *data)
+GLuint render_texture(const im_gl *gl, int unit, GLint internal, int width, int height, GLenum format, GLenum type,
+                      const void *data)
 {
     GLuint texture;
     gl->GenTextures(1, &texture);
@@ -175,8 +176,8 @@ void render_set_int(const im_gl *gl, GLuint program, const char *name, int value
     gl->Uniform1i(gl->GetUniformLocation(program, name), value);
 }
 
-static void set_common(const im_gl *gl, GLuint program, const im_colormap *colormap,
-                       const im_field *field, int scale, int border, const uint8_t line[3])
+static void set_common(const im_gl *gl, GLuint program, const im_colormap *colormap, const im_field *field, int scale,
+                       int border, const uint8_t line[3])
 {
     render_set_colour(gl, program, "under_colour", colormap->under);
     render_set_colour(gl, program, "over_colour", colormap->over);
@@ -257,7 +258,7 @@ int render_patch_code(const im_colormap *colormap, double value)
 
 int render_force_code(const im_colormap *compression, const im_colormap *tension, double force)
 {
-    return isnan(force)    ? IM_CODE_BAD
+    return isnan(force)  ? IM_CODE_BAD
            : force > 0.0 ? render_patch_code(compression, force)
            : force < 0.0 ? IM_CODE_TENSION + render_patch_code(tension, -force)
                          : IM_CODE_BACKGROUND;
@@ -271,8 +272,8 @@ GLuint render_tension_texture(const im_gl *gl, GLuint program, int unit, const i
     return render_table_texture(gl, unit, tension->map);
 }
 
-static int finish(const im_render_context *c, int status, GLuint *textures, int texture_count,
-                  uint16_t *codes, im_image *image)
+static int finish(const im_render_context *c, int status, GLuint *textures, int texture_count, uint16_t *codes,
+                  im_image *image)
 {
     c->gl.DeleteTextures(texture_count, textures);
     free(codes);
@@ -306,14 +307,16 @@ im_contact_style im_contact_style_default(const im_field *force)
     for (size_t i = 0; i < count; ++i)
         if (isfinite(force->data[i]) && force->data[i] > largest)
             largest = force->data[i];
-    im_contact_style style = {
-        .colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest > 0.0 ? largest : 1.0),
-        .tension = im_contact_tension_norm(valid ? im_contact_largest_tension(force) : 0.0),
-        .pixels_per_patch = 2, .boundary_px = 2,
-        .background = {230, 230, 230}, .line = {0, 0, 0},
-        .circle_radius = 0.0, .circle_x = count ? 0.5 * force->nx : 0.0,
-        .circle_y = count ? 0.5 * force->ny : 0.0,
-        .circle_width_px = 2.0};
+    im_contact_style style = {.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest > 0.0 ? largest : 1.0),
+                              .tension = im_contact_tension_norm(valid ? im_contact_largest_tension(force) : 0.0),
+                              .pixels_per_patch = 2,
+                              .boundary_px = 2,
+                              .background = {230, 230, 230},
+                              .line = {0, 0, 0},
+                              .circle_radius = 0.0,
+                              .circle_x = count ? 0.5 * force->nx : 0.0,
+                              .circle_y = count ? 0.5 * force->ny : 0.0,
+                              .circle_width_px = 2.0};
     return style;
 }
 
@@ -326,8 +329,8 @@ static int check_contact_style(const im_contact_style *s)
     if (status != IM_OK)
         return im_fail_context(status, "contact map: tension");
     if (!isfinite(s->circle_radius) || !isfinite(s->circle_x) || !isfinite(s->circle_y))
-        return im_fail(IM_EINVAL, "contact map: circle (%g, %g) radius %g: expected finite values",
-                       s->circle_x, s->circle_y, s->circle_radius);
+        return im_fail(IM_EINVAL, "contact map: circle (%g, %g) radius %g: expected finite values", s->circle_x,
+                       s->circle_y, s->circle_radius);
     if (!(s->circle_width_px > 0.0 && s->circle_width_px <= 1000.0))
         return im_fail(IM_EINVAL, "contact map: circle_width_px = %g: expected (0, 1000]", s->circle_width_px);
     return IM_OK;
@@ -365,8 +368,7 @@ static int draw_contact_map(const im_render_context *c, const im_field *force, c
     return finish(c, status, textures, 3, codes, image);
 }
 
-int im_render_contact_map(im_render_context *c, const im_field *force, const im_contact_style *s,
-                          im_image *image)
+int im_render_contact_map(im_render_context *c, const im_field *force, const im_contact_style *s, im_image *image)
 {
     ARG_REQUIRE(c, "context");
     ARG_VIEW(force, "force");
@@ -397,8 +399,10 @@ static double slope_rms(const im_field *h)
             double own = h->data[(size_t)iy * h->nx + ix];
             double right = ix + 1 < h->nx ? h->data[(size_t)iy * h->nx + ix + 1] : NAN;
             double up = iy + 1 < h->ny ? h->data[(size_t)(iy + 1) * h->nx + ix] : NAN;
-            if (isfinite(own) && isfinite(right)) sum += (right - own) * (right - own), ++pairs;
-            if (isfinite(own) && isfinite(up)) sum += (up - own) * (up - own), ++pairs;
+            if (isfinite(own) && isfinite(right))
+                sum += (right - own) * (right - own), ++pairs;
+            if (isfinite(own) && isfinite(up))
+                sum += (up - own) * (up - own), ++pairs;
         }
     /* Each pair gives one component; |grad h|^2 has two. */
     return pairs ? sqrt(2.0 * sum / (double)pairs) / h->delta : 0.0;
@@ -419,12 +423,17 @@ im_height_style im_height_style_default(const im_field *height)
         hi = mid + 1.0;
     }
     double slope = count ? slope_rms(height) : 0.0;
-    im_height_style style = {
-        .colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi),
-        .pixels_per_patch = 2, .boundary_px = 2, .line = {0, 0, 0},
-        .shading = 0.6, .light_azimuth = 315.0, .light_altitude = 45.0,
-        .exaggeration = slope > 0.0 ? 0.5 / slope : 1.0,
-        .contact = NULL, .outline = {255, 255, 255}, .outline_px = 0};
+    im_height_style style = {.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi),
+                             .pixels_per_patch = 2,
+                             .boundary_px = 2,
+                             .line = {0, 0, 0},
+                             .shading = 0.6,
+                             .light_azimuth = 315.0,
+                             .light_altitude = 45.0,
+                             .exaggeration = slope > 0.0 ? 0.5 / slope : 1.0,
+                             .contact = NULL,
+                             .outline = {255, 255, 255},
+                             .outline_px = 0};
     return style;
 }
 
@@ -447,9 +456,10 @@ static int check_height_range(const im_field *height)
     for (size_t i = 0; height && i < im_field_count(height); ++i) {
         const double h = height->data[i] / height->delta;
         if (isfinite(h) && fabs(h) > 1e18)
-            return im_fail(IM_EINVAL, "height map: height %g (%g delta) at patch (%zu, %zu): expected |h| <= "
-                           "1e18 delta (drawn in float32, with slopes squared)", height->data[i], h,
-                           i % (size_t)height->nx, i / (size_t)height->nx);
+            return im_fail(IM_EINVAL,
+                           "height map: height %g (%g delta) at patch (%zu, %zu): expected |h| <= "
+                           "1e18 delta (drawn in float32, with slopes squared)",
+                           height->data[i], h, i % (size_t)height->nx, i / (size_t)height->nx);
     }
     return IM_OK;
 }
@@ -465,8 +475,10 @@ static int check_height_style(const im_height_style *s, const im_field *height)
     if (!(s->shading >= 0.0 && s->shading <= 1.0))
         return im_fail(IM_EINVAL, "height map: shading = %g: expected [0, 1]", s->shading);
     if (!(s->light_altitude > 0.0 && s->light_altitude <= 90.0) || !isfinite(s->light_azimuth))
-        return im_fail(IM_EINVAL, "height map: light altitude %g, azimuth %g: expected altitude in "
-                       "(0, 90] degrees and a finite azimuth", s->light_altitude, s->light_azimuth);
+        return im_fail(IM_EINVAL,
+                       "height map: light altitude %g, azimuth %g: expected altitude in "
+                       "(0, 90] degrees and a finite azimuth",
+                       s->light_altitude, s->light_azimuth);
     if (!(s->exaggeration > 0.0 && isfinite(s->exaggeration)))
         return im_fail(IM_EINVAL, "height map: exaggeration = %g: expected > 0", s->exaggeration);
     if (s->outline_px < 0 || s->outline_px > MAX_PIXELS_PER_PATCH)
@@ -479,8 +491,8 @@ static int check_height_style(const im_height_style *s, const im_field *height)
 }
 
 /* Heights / delta as float32, codes and contact flags for the shader. */
-static void height_inputs(const im_field *h, const im_height_style *s, uint16_t *codes,
-                          float *scaled, uint8_t *contact)
+static void height_inputs(const im_field *h, const im_height_style *s, uint16_t *codes, float *scaled,
+                          uint8_t *contact)
 {
     for (size_t i = 0; i < im_field_count(h); ++i) {
         codes[i] = (uint16_t)render_patch_code(&s->colormap, h->data[i]);
@@ -528,8 +540,7 @@ static int draw_height_map(const im_render_context *c, const im_field *height, c
     return finish(c, status, textures, 4, codes, image);
 }
 
-int im_render_height_map(im_render_context *c, const im_field *height, const im_height_style *s,
-                         im_image *image)
+int im_render_height_map(im_render_context *c, const im_field *height, const im_height_style *s, im_image *image)
 {
     ARG_REQUIRE(c, "context");
     ARG_VIEW(height, "height");

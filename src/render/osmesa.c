@@ -21,10 +21,7 @@ void (*osmesa_library_get_proc(const char *name))(void)
 }
 
 /* dlsym returns a data pointer; POSIX guarantees it converts to a function pointer. */
-static void *symbol(void *library, const char *name)
-{
-    return dlsym(library, name);
-}
+static void *symbol(void *library, const char *name) { return dlsym(library, name); }
 
 int osmesa_library_open(im_osmesa *osmesa, char *reason, size_t reason_size)
 {
@@ -44,10 +41,21 @@ int osmesa_library_open(im_osmesa *osmesa, char *reason, size_t reason_size)
         osmesa_library_close(osmesa);
         return IM_EUNSUPPORTED;
     }
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                              OSMESA_STENCIL_BITS, 0, OSMESA_ACCUM_BITS, 0,
-                              OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                              OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              0,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_ACCUM_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              3,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              3,
+                              0};
     osmesa->context = create(attributes, NULL);
     if (!osmesa->context) {
         snprintf(reason, reason_size, "osmesa: no OpenGL 3.3 core context");

@@ -35,8 +35,8 @@ int render_view3d_setup(im_render_context *c)
         status = render_link_program(&c->gl, im_shader_punch_vert, "punch.vert", NULL, im_shader_punch_frag,
                                      "punch.frag", &c->punch_program);
     if (status == IM_OK)
-        status = render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", NULL, im_shader_wall_frag,
-                                     "wall.frag", &c->wall_program);
+        status = render_link_program(&c->gl, im_shader_wall_vert, "wall.vert", NULL, im_shader_wall_frag, "wall.frag",
+                                     &c->wall_program);
     return status;
 }
 
@@ -44,24 +44,40 @@ im_view3d_style im_view3d_style_default(const im_field *force)
 {
     if (force && arg_view(__func__, "force", force) != IM_OK)
         force = NULL; /* an invalid view: the defaults without a force field */
-    im_view3d_style style = {
-        .colormap = force ? im_contact_style_default(force).colormap
-                          : im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0),
-        .tension = im_contact_tension_norm(force ? im_contact_largest_tension(force) : 0.0),
-        .width = 1920, .height = 1080, .samples = 4, .mesh_side = 384, .exaggeration = 1.0,
-        .shading = 0.7, .light_azimuth = 315.0, .light_altitude = 45.0,
-        .surface = {230, 230, 230}, .background = {255, 255, 255}, .punch_colour = {150, 160, 175},
-        .punch_mode = IM_VIEW3D_PUNCH_TRANSLUCENT, .punch_opacity = 0.35, .punch_extent = 0.0,
-        .camera = {.azimuth = 20.0, .elevation = 35.0, .distance = 2.1, .field_of_view = 30.0,
-                   .projection = IM_VIEW3D_PERSPECTIVE, .ortho_height = 0.0, .target_z = NAN}};
+    im_view3d_style style = {.colormap = force ? im_contact_style_default(force).colormap
+                                               : im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0),
+                             .tension = im_contact_tension_norm(force ? im_contact_largest_tension(force) : 0.0),
+                             .width = 1920,
+                             .height = 1080,
+                             .samples = 4,
+                             .mesh_side = 384,
+                             .exaggeration = 1.0,
+                             .shading = 0.7,
+                             .light_azimuth = 315.0,
+                             .light_altitude = 45.0,
+                             .surface = {230, 230, 230},
+                             .background = {255, 255, 255},
+                             .punch_colour = {150, 160, 175},
+                             .punch_mode = IM_VIEW3D_PUNCH_TRANSLUCENT,
+                             .punch_opacity = 0.35,
+                             .punch_extent = 0.0,
+                             .camera = {.azimuth = 20.0,
+                                        .elevation = 35.0,
+                                        .distance = 2.1,
+                                        .field_of_view = 30.0,
+                                        .projection = IM_VIEW3D_PERSPECTIVE,
+                                        .ortho_height = 0.0,
+                                        .target_z = NAN}};
     return style;
 }
 
 static int check_camera(const im_view3d_camera *k)
 {
     if (!isfinite(k->azimuth) || !(k->elevation >= 1.0 && k->elevation <= 90.0))
-        return im_fail(IM_EINVAL, "3-D view: camera azimuth %g, elevation %g: expected a finite azimuth and "
-                       "an elevation in [1, 90] degrees", k->azimuth, k->elevation);
+        return im_fail(IM_EINVAL,
+                       "3-D view: camera azimuth %g, elevation %g: expected a finite azimuth and "
+                       "an elevation in [1, 90] degrees",
+                       k->azimuth, k->elevation);
     if (k->projection != IM_VIEW3D_PERSPECTIVE && k->projection != IM_VIEW3D_ORTHOGRAPHIC)
         return im_fail(IM_EINVAL, "3-D view: camera projection %d: expected perspective or orthographic",
                        (int)k->projection);
@@ -72,8 +88,10 @@ static int check_camera(const im_view3d_camera *k)
     if (isinf(k->target_z))
         return im_fail(IM_EINVAL, "3-D view: target_z is infinite: expected a height or NAN (automatic)");
     if (!(k->ortho_height >= 0.0 && k->ortho_height < 1e9))
-        return im_fail(IM_EINVAL, "3-D view: ortho_height = %g: expected 0 (automatic) or a positive "
-                       "height in patches", k->ortho_height);
+        return im_fail(IM_EINVAL,
+                       "3-D view: ortho_height = %g: expected 0 (automatic) or a positive "
+                       "height in patches",
+                       k->ortho_height);
     return IM_OK;
 }
 
@@ -118,8 +136,10 @@ static int check_style(const im_render_context *c, const im_view3d_style *s, con
     if (!(s->shading >= 0.0 && s->shading <= 1.0))
         return im_fail(IM_EINVAL, "3-D view: shading = %g: expected [0, 1]", s->shading);
     if (!(s->light_altitude > 0.0 && s->light_altitude <= 90.0) || !isfinite(s->light_azimuth))
-        return im_fail(IM_EINVAL, "3-D view: light altitude %g, azimuth %g: expected altitude in (0, 90] "
-                       "degrees and a finite azimuth", s->light_altitude, s->light_azimuth);
+        return im_fail(IM_EINVAL,
+                       "3-D view: light altitude %g, azimuth %g: expected altitude in (0, 90] "
+                       "degrees and a finite azimuth",
+                       s->light_altitude, s->light_azimuth);
     if (s->punch_mode == IM_VIEW3D_PUNCH_TRANSLUCENT && !(s->punch_opacity > 0.0 && s->punch_opacity < 1.0))
         return im_fail(IM_EINVAL, "3-D view: punch_opacity = %g: expected (0, 1)", s->punch_opacity);
     return check_geometry_style(s);
@@ -137,7 +157,7 @@ static int check_inputs(const im_field *height, const im_field *force, const im_
                        force->nx, force->ny, height->nx, height->ny);
     if (punch && punch->kind == IM_PUNCH_PROFILE_2D)
         return im_fail(IM_EUNSUPPORTED, "3-D view: a 2-D profile punch is not drawn (axisymmetric punches only; "
-                       "draw without the punch)");
+                                        "draw without the punch)");
     return punch ? im_indenter_check(punch) : IM_OK;
 }
 
@@ -154,13 +174,13 @@ void im_view3d_exaggeration_text(double exaggeration, char *text, size_t size)
 
 typedef struct view_geometry {
     int nx, ny, stride, cells_x, cells_y;
-    double z_lo, z_hi;            /* exaggerated surface heights */
-    double base;                  /* the bottom of the block under the surface */
+    double z_lo, z_hi; /* exaggerated surface heights */
+    double base;       /* the bottom of the block under the surface */
     int has_punch;
     double axis[2];
     float profile[PROFILE_POINTS][2];
     int profile_count;
-    double punch_top;             /* highest z of the punch */
+    double punch_top; /* highest z of the punch */
 } view_geometry;
 
 static double punch_profile(const im_indenter *punch, double delta, double r_patches)
@@ -259,7 +279,7 @@ static void corner_heights(const view_geometry *g, const im_field *h, float *cor
 
 typedef struct camera_frame {
     double eye[3], right[3], up[3], forward[3];
-    double view_projection[16];   /* column-major, as GL takes it */
+    double view_projection[16]; /* column-major, as GL takes it */
 } camera_frame;
 
 static void camera_axes(const im_view3d_camera *k, camera_frame *f)
@@ -291,8 +311,8 @@ static void camera_target(const view_geometry *g, const im_view3d_camera *k, dou
 /* The least eye-target distance D at which `point` lies inside the image, FIT_MARGIN of its
  * half-width and half-height to spare: at offset d from the target the point lies at depth
  * D + d.forward, and fits when |d.right| <= (D + d.forward) tan_x and |d.up| <= (D + d.forward) tan_y. */
-static double fitting_distance(const camera_frame *f, const double target[3], const double point[3],
-                               double tan_x, double tan_y)
+static double fitting_distance(const camera_frame *f, const double target[3], const double point[3], double tan_x,
+                               double tan_y)
 {
     double d[3] = {point[0] - target[0], point[1] - target[1], point[2] - target[2]};
     return fmax(fabs(dot3(d, f->right)) / tan_x, fabs(dot3(d, f->up)) / tan_y) - dot3(d, f->forward);
@@ -336,7 +356,7 @@ static void camera_frame_of(const view_geometry *g, const im_view3d_camera *k, d
     for (int i = 0; i < 3; ++i)
         f->eye[i] = target[i] - distance * f->forward[i];
     double near = fmax(distance - radius, 1e-3 * distance), far = distance + radius;
-    double p[4][4] = {{0}};  /* p[row][column] */
+    double p[4][4] = {{0}}; /* p[row][column] */
     if (perspective) {
         double focal = 1.0 / tan(0.5 * radians(k->field_of_view));
         p[0][0] = focal / aspect;
@@ -397,8 +417,8 @@ static int make_targets(const im_render_context *c, int width, int height, int s
     gl->BindFramebuffer(GL_FRAMEBUFFER, t->multisampled);
     return complete == GL_FRAMEBUFFER_COMPLETE
                ? IM_OK
-               : im_fail(IM_EUNSUPPORTED, "3-D view: framebuffer %d x %d with %d samples incomplete (0x%x)",
-                         width, height, samples, complete);
+               : im_fail(IM_EUNSUPPORTED, "3-D view: framebuffer %d x %d with %d samples incomplete (0x%x)", width,
+                         height, samples, complete);
 }
 
 static void release_targets(const im_gl *gl, view_targets *t)
@@ -429,7 +449,7 @@ static void light_vector(const im_view3d_style *s, float light[3])
 typedef struct surface_inputs {
     uint16_t *codes;
     float *heights, *corners;
-    uint32_t *indices;   /* 6 per mesh cell: (0,0)-(1,0)-(1,1) and (0,0)-(1,1)-(0,1) */
+    uint32_t *indices; /* 6 per mesh cell: (0,0)-(1,0)-(1,1) and (0,0)-(1,1)-(0,1) */
 } surface_inputs;
 
 static void free_inputs(surface_inputs *in)
@@ -648,8 +668,7 @@ static void view_geometry_of(view_geometry *g, const im_field *h, const im_inden
         punch_geometry(g, h, punch, s);
 }
 
-static int fitted_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,
-                           double *fitted)
+static int fitted_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s, double *fitted)
 {
     int status = check_inputs(height, NULL, punch);
     if (status == IM_OK)
@@ -682,8 +701,8 @@ int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, con
     return status;
 }
 
-int im_render_view3d(im_render_context *c, const im_field *height, const im_field *force,
-                     const im_indenter *punch, const im_view3d_style *s, im_image *image)
+int im_render_view3d(im_render_context *c, const im_field *height, const im_field *force, const im_indenter *punch,
+                     const im_view3d_style *s, im_image *image)
 {
     ARG_REQUIRE(c, "context");
     ARG_VIEW(height, "height");
@@ -697,8 +716,9 @@ int im_render_view3d(im_render_context *c, const im_field *height, const im_fiel
         status = check_style(c, s, height);
     if (status == IM_OK)
         status = im_memory_check(4.0 * (double)s->width * s->height * (2.0 * s->samples + 2.0) +
-                                 14.0 * (double)im_field_count(height) +
-                                 28.0 * (double)s->mesh_side * s->mesh_side, "3-D view");
+                                     14.0 * (double)im_field_count(height) +
+                                     28.0 * (double)s->mesh_side * s->mesh_side,
+                                 "3-D view");
     if (status != IM_OK)
         return status;
     view_geometry geometry = {0};

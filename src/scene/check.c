@@ -27,10 +27,10 @@ static int check_files(const scene_given *given)
     int slopes = key_line(given, "surfaces", "slopes"), seeds = key_line(given, "surfaces", "seeds");
     int file = key_line(given, "surfaces", "file");
     if (slopes || seeds) {
-        im_fail(IM_EFORMAT, "%s beside `file` (line %d): %s", slopes ? "slopes" : "seeds",
-                 file, slopes ? "a file's h'rms is measured from the file, not given; remove `slopes`"
-                              : "the files listed in `file` are the ensemble, and seeds would only solve the "
-                                "same file again; remove `seeds`");
+        im_fail(IM_EFORMAT, "%s beside `file` (line %d): %s", slopes ? "slopes" : "seeds", file,
+                slopes ? "a file's h'rms is measured from the file, not given; remove `slopes`"
+                       : "the files listed in `file` are the ensemble, and seeds would only solve the "
+                         "same file again; remove `seeds`");
         return slopes ? slopes : seeds;
     }
     int count = 1;
@@ -39,8 +39,10 @@ static int check_files(const scene_given *given)
     char path[IM_SCENE_PATH];
     for (int i = 0; i < count; ++i) {
         if (i >= IM_SCENE_MAX_FAMILIES || im_scene_file_path(scene, i, path, sizeof path) != IM_OK) {
-            im_fail(IM_EFORMAT, "file: expected a comma-separated list of at most %d "
-                     "non-empty paths", IM_SCENE_MAX_FAMILIES);
+            im_fail(IM_EFORMAT,
+                    "file: expected a comma-separated list of at most %d "
+                    "non-empty paths",
+                    IM_SCENE_MAX_FAMILIES);
             return file;
         }
     }
@@ -59,8 +61,10 @@ static int check_punch_keys(const scene_given *given)
     const im_scene *scene = given->scene;
     int radius = key_line(given, "punch", "radius");
     if (radius && (scene->punch == IM_PUNCH_CONE || scene->punch == IM_PUNCH_PROFILE)) {
-        im_fail(IM_EFORMAT, "radius applies to shape = sphere or flat; a %s's shape is "
-                 "its %s", im_punch_name(scene->punch), scene->punch == IM_PUNCH_CONE ? "alpha" : "profile");
+        im_fail(IM_EFORMAT,
+                "radius applies to shape = sphere or flat; a %s's shape is "
+                "its %s",
+                im_punch_name(scene->punch), scene->punch == IM_PUNCH_CONE ? "alpha" : "profile");
         return radius;
     }
     return 0;
@@ -74,8 +78,9 @@ static const struct {
     size_t flag; /* offsetof the yes/no it sets (refused when yes), 0: refused whenever given */
     const char *why;
 } PERIODIC_REFUSED[] = {
-    {"loading", "load_star", 0, "N* = A(N) / delta^2 is a smooth punch's contact area on a half-space, which the "
-                             "periodic cell does not have"},
+    {"loading", "load_star", 0,
+     "N* = A(N) / delta^2 is a smooth punch's contact area on a half-space, which the "
+     "periodic cell does not have"},
     {"output", "frames", offsetof(im_scene, frames),
      "the frames are a history of their own up to load_star N*; a periodic scene draws the contact map of "
      "every step of its histories with contact_panels = yes"},
@@ -107,7 +112,7 @@ static int check_periodic(const scene_given *given)
     const int control = key_line(given, "loading", "control");
     if (control && scene->control != IM_CONTROL_MEAN_GAP) {
         im_fail(IM_EFORMAT, "[loading] control beside [punch] periodic: a periodic scene's "
-                 "steps are mean pressures p_m (units of E*), or mean gaps with control = mean_gap");
+                            "steps are mean pressures p_m (units of E*), or mean gaps with control = mean_gap");
         return control;
     }
     if (!control)
@@ -116,28 +121,32 @@ static int check_periodic(const scene_given *given)
         const int line = key_line(given, PERIODIC_REFUSED[i].section, PERIODIC_REFUSED[i].key);
         const size_t flag = PERIODIC_REFUSED[i].flag;
         if (line && (!flag || *(const int *)((const char *)scene + flag))) {
-            im_fail(IM_EFORMAT, "[%s] %s beside [punch] periodic: %s",
-                     PERIODIC_REFUSED[i].section, PERIODIC_REFUSED[i].key, PERIODIC_REFUSED[i].why);
+            im_fail(IM_EFORMAT, "[%s] %s beside [punch] periodic: %s", PERIODIC_REFUSED[i].section,
+                    PERIODIC_REFUSED[i].key, PERIODIC_REFUSED[i].why);
             return line;
         }
     }
     const char *const punch_keys[] = {"alpha", "radius", "profile"};
     for (int i = 0; !shape && i < 3; ++i)
         if (key_line(given, "punch", punch_keys[i])) {
-            im_fail(IM_EFORMAT, "[punch] %s beside periodic without shape: a rigid flat "
-                     "is pressed on the whole cell, which has no %s; give shape for a punch repeated with the "
-                     "cell", punch_keys[i], punch_keys[i]);
+            im_fail(IM_EFORMAT,
+                    "[punch] %s beside periodic without shape: a rigid flat "
+                    "is pressed on the whole cell, which has no %s; give shape for a punch repeated with the "
+                    "cell",
+                    punch_keys[i], punch_keys[i]);
             return key_line(given, "punch", punch_keys[i]);
         }
     const char *plot = periodic_refused_plot(scene);
     if (plot) {
-        im_fail(IM_EFORMAT, "plots = %s beside [punch] periodic: it sets a punch's "
-                 "contact on a half-space against its smooth theory; a periodic scene draws fig3 and flat_k", plot);
+        im_fail(IM_EFORMAT,
+                "plots = %s beside [punch] periodic: it sets a punch's "
+                "contact on a half-space against its smooth theory; a periodic scene draws fig3 and flat_k",
+                plot);
         return key_line(given, "output", "plots");
     }
     if (scene->step_count < 1) {
         im_fail(IM_EFORMAT, "[punch] periodic needs [loading] steps: the mean "
-                 "pressures p_m (units of E*) of each surface's history");
+                            "pressures p_m (units of E*) of each surface's history");
         return key_line(given, "punch", "periodic");
     }
     return 0;
@@ -150,7 +159,7 @@ static int check_sweeps(const scene_given *given)
     const im_scene *scene = given->scene;
     if (scene->alpha_count > 1 && scene->punch != IM_PUNCH_CONE) {
         im_fail(IM_EFORMAT, "alpha: a list of angles sweeps a cone's half-angle; "
-                 "[punch] shape is not cone");
+                            "[punch] shape is not cone");
         return key_line(given, "punch", "alpha");
     }
     int points = 1, last = 0;
@@ -162,15 +171,19 @@ static int check_sweeps(const scene_given *given)
         last = line > last ? line : last;
     }
     if (points > IM_SCENE_MAX_SWEEP_POINTS) {
-        im_fail(IM_EFORMAT, "the lists of alpha, hurst and lambda_s make %d sweep "
-                 "points: expected at most %d", points, IM_SCENE_MAX_SWEEP_POINTS);
+        im_fail(IM_EFORMAT,
+                "the lists of alpha, hurst and lambda_s make %d sweep "
+                "points: expected at most %d",
+                points, IM_SCENE_MAX_SWEEP_POINTS);
         return last;
     }
     int hurst = scene->hurst_count > 1 ? key_line(given, "surfaces", "hurst") : 0;
     int lambda_s = scene->lambda_s_count > 1 ? key_line(given, "surfaces", "lambda_s") : 0;
     if (scene->surface_file[0] && (hurst || lambda_s)) {
-        im_fail(IM_EFORMAT, "%s: a list sweeps the generated surfaces' parameter, but "
-                 "the surfaces are the files of `file`", hurst ? "hurst" : "lambda_s");
+        im_fail(IM_EFORMAT,
+                "%s: a list sweeps the generated surfaces' parameter, but "
+                "the surfaces are the files of `file`",
+                hurst ? "hurst" : "lambda_s");
         return hurst ? hurst : lambda_s;
     }
     return 0;
@@ -260,8 +273,10 @@ static int check_fig7_steps(const scene_given *given)
     const im_scene *scene = given->scene;
     if (!(scene->plots & IM_SCENE_PLOT_FIG7) || scene->step_count >= 2)
         return 0;
-    im_fail(IM_EFORMAT, "plots = fig7 needs at least two [loading] steps (%d given): it "
-             "draws A / A_cone against N* over the range of N* the surfaces share", scene->step_count);
+    im_fail(IM_EFORMAT,
+            "plots = fig7 needs at least two [loading] steps (%d given): it "
+            "draws A / A_cone against N* over the range of N* the surfaces share",
+            scene->step_count);
     return key_line(given, "output", "plots");
 }
 
@@ -292,8 +307,8 @@ int scene_check_keys(const scene_given *given)
         int r = key_line(given, "surfaces", "lambda_r"), s = key_line(given, "surfaces", "lambda_s");
         int n = key_line(given, "surfaces", "n"), m = key_line(given, "surfaces", "m");
         int r_from = r ? r : n > m ? n : m; /* a default lambda_r is the box's side: n (or m) made it */
-        im_fail(IM_EFORMAT, "lambda_r = %g must exceed lambda_s = %g%s",
-                 scene->surface.lambda_r, largest_lambda_s(scene), r ? "" : " (lambda_r defaults to the box's side)");
+        im_fail(IM_EFORMAT, "lambda_r = %g must exceed lambda_s = %g%s", scene->surface.lambda_r,
+                largest_lambda_s(scene), r ? "" : " (lambda_r defaults to the box's side)");
         int line = r_from > s ? r_from : s;
         return line > 0 ? line : 1;
     }
@@ -304,7 +319,7 @@ int scene_check_keys(const scene_given *given)
     }
     if (scene->control == IM_CONTROL_MEAN_GAP && !scene->periodic) {
         im_fail(IM_EFORMAT, "control = mean_gap needs [punch] periodic: the half-space "
-                 "has no mean gap");
+                            "has no mean gap");
         return key_line(given, "loading", "control");
     }
     /* a history that unloads needs the cap's memory (or adhesion's); without one, unloading only
@@ -312,12 +327,12 @@ int scene_check_keys(const scene_given *given)
     const double sense = scene->control == IM_CONTROL_MEAN_GAP ? -1 : 1;
     for (int i = 1; i < scene->step_count && !(scene->hardness > 0) && !(scene->adhesion_work > 0); ++i) {
         if (!(sense * scene->steps[i] > sense * scene->steps[i - 1])) {
-            im_fail(IM_EFORMAT, "steps must %s: %g follows %g (a history that "
-                     "unloads needs [material] hardness: without one unloading retraces loading)",
-                     sense > 0 ? "increase" : "decrease (mean gaps)", scene->steps[i], scene->steps[i - 1]);
+            im_fail(IM_EFORMAT,
+                    "steps must %s: %g follows %g (a history that "
+                    "unloads needs [material] hardness: without one unloading retraces loading)",
+                    sense > 0 ? "increase" : "decrease (mean gaps)", scene->steps[i], scene->steps[i - 1]);
             return key_line(given, "loading", "steps");
         }
     }
     return 0;
 }
-

@@ -6,9 +6,9 @@
 
 /* What parse.c saw of a scene. */
 typedef struct scene_given {
-    im_scene *scene;       /* every key given parsed into it, completed (keys.h: scene_complete) */
-    const int *key_lines;  /* the line of each key of keys.h's table, 0 for a key not given */
-    const char *steps;     /* [loading] steps as written (values.h: scene_parse_later) */
+    im_scene *scene;      /* every key given parsed into it, completed (keys.h: scene_complete) */
+    const int *key_lines; /* the line of each key of keys.h's table, 0 for a key not given */
+    const char *steps;    /* [loading] steps as written (values.h: scene_parse_later) */
 } scene_given;
 
 /* Parses [loading] steps and checks the settings that contradict each other (adhesion, periodic,

@@ -27,8 +27,8 @@ typedef struct family_curves {
 } family_curves;
 
 /* Force and full-grid gap of a surface at load n, in load control warm-started at n / 4. */
-static int solve_state(const im_scene *scene, const im_scene_run_options *options, const im_field *surface,
-                       double n, im_field **force, im_field **gap)
+static int solve_state(const im_scene *scene, const im_scene_run_options *options, const im_field *surface, double n,
+                       im_field **force, im_field **gap)
 {
     im_indenter punch = scene_punch(scene);
     im_solver_options solver = scene_solver_options(scene);
@@ -133,10 +133,14 @@ static int plot_distributions(const im_scene *scene, const family_curves *curves
     if (!families)
         return im_fail(IM_ENOMEM, "%s: allocation of the distributions' plot failed", scene->path);
     for (int f = 0; f < scene->family_count; ++f)
-        families[f] = (paper_distribution_family){
-            .label = curves[f].label, .rough = scene_member_slope(scene, f, scene->seeds[0]) > 0.0,
-            .gap_bins = GAP_BINS, .gap = curves[f].gap, .gap_density = curves[f].gap_density,
-            .patch_bins = IM_PATCH_BINS, .patch_area = curves[f].patch_area, .patch_count = curves[f].patch_count};
+        families[f] = (paper_distribution_family){.label = curves[f].label,
+                                                  .rough = scene_member_slope(scene, f, scene->seeds[0]) > 0.0,
+                                                  .gap_bins = GAP_BINS,
+                                                  .gap = curves[f].gap,
+                                                  .gap_density = curves[f].gap_density,
+                                                  .patch_bins = IM_PATCH_BINS,
+                                                  .patch_area = curves[f].patch_area,
+                                                  .patch_count = curves[f].patch_count};
     int status = scene_write_png_pdf(scene, "distributions", draw_distributions, families);
     free(families);
     return status;

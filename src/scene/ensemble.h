@@ -23,9 +23,9 @@ typedef struct scene_member {
     double load, load_star, area_ratio, seconds, load_star_approach;
     long contact_patches;
     int iterations;
-    im_field *force;               /* force at load_star, kept for a panel (first seed), else NULL */
+    im_field *force;                         /* force at load_star, kept for a panel (first seed), else NULL */
     const struct scene_member *at_load_star; /* histories: the table's member of this surface */
-    int step_reused;               /* histories: the step at load_star was the table's */
+    int step_reused;                         /* histories: the step at load_star was the table's */
     /* histories: one row per step that converged (history.h's schema), and the columns the figures
      * draw, spread from them */
     int steps;
@@ -53,12 +53,12 @@ typedef struct scene_ranks_run {
 
 /* What earlier stages of a run solved, for later stages to reuse: nothing is solved twice. */
 typedef struct scene_reuse {
-    scene_member *table;     /* the table's members (owned; NULL without a table) */
+    scene_member *table; /* the table's members (owned; NULL without a table) */
     int table_count;
     im_field *force[IM_SCENE_MAX_FAMILIES]; /* force at load_star of each family's first seed (owned),
                                                kept by the table or a load-controlled history */
     enum scene_result_kind force_kind[IM_SCENE_MAX_FAMILIES]; /* which of the two made it (key.h) */
-    struct im_history_row *rows[IM_SCENE_MAX_FAMILIES]; /* a periodic scene's panels: the history of each
+    struct im_history_row *rows[IM_SCENE_MAX_FAMILIES];       /* a periodic scene's panels: the history of each
                                                            family's first seed (owned; periodic.h) */
     int row_count[IM_SCENE_MAX_FAMILIES];
     const scene_ranks_run *ranks; /* an MPI run's members, solved by its ranks (not owned; NULL: solved here) */

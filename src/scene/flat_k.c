@@ -29,7 +29,7 @@ typedef struct flat_family {
     int family, surfaces, points;
     double x[IM_SCENE_MAX_FAMILIES * FLAT_POINTS], area[IM_SCENE_MAX_FAMILIES * FLAT_POINTS];
     im_theory_k_fit fit;
-    double seed_k_mean, seed_k_sem;     /* k fitted on each surface alone: mean, standard error */
+    double seed_k_mean, seed_k_sem;                     /* k fitted on each surface alone: mean, standard error */
     double rho_c_k, eq12_k, rho_c_2, eq12_2, simulated; /* the cone with the measured k and k = 2 */
 } flat_family;
 
@@ -64,8 +64,9 @@ static int solve_surface(const im_scene *scene, int family, uint64_t seed, flat_
     }
     im_flat_contact_free(run);
     im_field_free(surface);
-    return status == IM_OK ? IM_OK : im_fail_context(status, "flat contact of family %d, seed %llu", family,
-                                                     (unsigned long long)seed);
+    return status == IM_OK
+               ? IM_OK
+               : im_fail_context(status, "flat contact of family %d, seed %llu", family, (unsigned long long)seed);
 }
 
 /* Eq. (12) for the scene's cone on surfaces of h'rms slope with eq. (2)'s k (NaN for other punches). */
@@ -120,9 +121,11 @@ static int solve_family(const im_scene *scene, const im_scene_run_options *optio
     out->eq12_k = eq12_with_k(scene, slope, out->fit.k, &out->rho_c_k);
     out->eq12_2 = eq12_with_k(scene, slope, IM_THEORY_K_DEFAULT, &out->rho_c_2);
     out->simulated = simulated_area_ratio(reuse, family);
-    scene_progress(options, "flat contact, h'rms = %g: k = %.4f ± %.4f (surfaces: %.4f ± %.4f), linear to 50%%: "
-                   "%.4f; eq. (12) %.4f (k = 2: %.4f)", slope, out->fit.k, out->fit.k_error, out->seed_k_mean,
-                   out->seed_k_sem, out->fit.k_linear, out->eq12_k, out->eq12_2);
+    scene_progress(options,
+                   "flat contact, h'rms = %g: k = %.4f ± %.4f (surfaces: %.4f ± %.4f), linear to 50%%: "
+                   "%.4f; eq. (12) %.4f (k = 2: %.4f)",
+                   slope, out->fit.k, out->fit.k_error, out->seed_k_mean, out->seed_k_sem, out->fit.k_linear,
+                   out->eq12_k, out->eq12_2);
     return IM_OK;
 }
 
@@ -163,8 +166,8 @@ static int plot_k(const im_scene *scene, const flat_family *families, int count)
     flat_k_plot plot = {.count = count};
     for (int i = 0; i < count; ++i) {
         const flat_family *f = &families[i];
-        plot.families[i] = (paper_flat_family){scene->slopes[f->family], f->points, f->x, f->area, f->fit.k,
-                                               f->fit.k_error};
+        plot.families[i] =
+            (paper_flat_family){scene->slopes[f->family], f->points, f->x, f->area, f->fit.k, f->fit.k_error};
     }
     return scene_write_png_pdf(scene, "flat_k", draw_k, &plot);
 }

@@ -21,7 +21,7 @@
 typedef struct framed_history {
     int count;
     im_field *surface;
-    im_field **force, **deformed;   /* per step: force per patch, heights h - u */
+    im_field **force, **deformed; /* per step: force per patch, heights h - u */
     double *load_star;
 } framed_history;
 
@@ -149,8 +149,8 @@ static int write_frame(const im_scene *scene, frame_figure *f)
     snprintf(title, sizeof title, "N* = %.0f", f->load_star);
     run_figure_texts texts;
     status = scene_figure_texts(scene, NULL, 0, &texts);
-    const frame_words words = {title, f->norm, f->label, f->tension, "tensile force −f / (E* δ²)", texts.texts,
-                               texts.count};
+    const frame_words words = {title,       f->norm,    f->label, f->tension, "tensile force −f / (E* δ²)",
+                               texts.texts, texts.count};
     if (status == IM_OK)
         status = frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
     run_figure_texts_free(&texts);
@@ -164,11 +164,12 @@ static void write_frame_figure(const im_scene *scene, frame_figure *f)
         snprintf(f->error, sizeof f->error, "%s", im_last_error());
 }
 
-static int render_contact_frame(im_render_context *context, const framed_history *h, int i,
-                                const frame_norms *norms, int pixels_per_patch, im_image *image)
+static int render_contact_frame(im_render_context *context, const framed_history *h, int i, const frame_norms *norms,
+                                int pixels_per_patch, im_image *image)
 {
-    const frame_contact contact = {h->force[i], &norms->force, &norms->tension, pixels_per_patch, sqrt(h->load_star[i] / M_PI),
-                                   0.5 * h->force[i]->nx, 0.5 * h->force[i]->ny};
+    const frame_contact contact = {
+        h->force[i],           &norms->force,        &norms->tension, pixels_per_patch, sqrt(h->load_star[i] / M_PI),
+        0.5 * h->force[i]->nx, 0.5 * h->force[i]->ny};
     return frame_contact_render(context, &contact, image);
 }
 
@@ -176,12 +177,18 @@ static int render_contact_frame(im_render_context *context, const framed_history
 static int render_step(im_render_context *context, const im_scene *scene, const framed_history *h, int i,
                        const frame_norms *norms, frame_figure *figures)
 {
-    figures[0] = (frame_figure){.norm = &norms->force, .tension = norms->has_tension ? &norms->tension : NULL,
-                                .label = "local force f / (E* δ²)", .prefix = "contact",
-                                .index = i, .keep = (scene->animation & IM_ANIMATION_GIF) != 0,
+    figures[0] = (frame_figure){.norm = &norms->force,
+                                .tension = norms->has_tension ? &norms->tension : NULL,
+                                .label = "local force f / (E* δ²)",
+                                .prefix = "contact",
+                                .index = i,
+                                .keep = (scene->animation & IM_ANIMATION_GIF) != 0,
                                 .load_star = h->load_star[i]};
-    figures[1] = (frame_figure){.norm = &norms->height, .label = "deformed height (h − u) / δ", .prefix = "height",
-                                .index = i, .load_star = h->load_star[i]};
+    figures[1] = (frame_figure){.norm = &norms->height,
+                                .label = "deformed height (h − u) / δ",
+                                .prefix = "height",
+                                .index = i,
+                                .load_star = h->load_star[i]};
     int status = render_contact_frame(context, h, i, norms, scene->frame_scale, &figures[0].image);
     im_height_style style = im_height_style_default(h->deformed[i]);
     style.colormap = norms->height;
@@ -272,8 +279,8 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
     if (status == IM_OK)
         status = write_animations(scene, options, gif_frames, history.count);
     if (status == IM_OK && scene->frames3d) {
-        scene_frames3d_input in = {history.count, history.deformed, history.force, history.load_star, &norms.force,
-                                   norms.has_tension ? &norms.tension : NULL};
+        scene_frames3d_input in = {history.count,     history.deformed, history.force,
+                                   history.load_star, &norms.force,     norms.has_tension ? &norms.tension : NULL};
         status = scene_write_frames3d(scene, options, context, &in);
     }
     if (status == IM_OK)

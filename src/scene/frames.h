@@ -11,7 +11,7 @@ int scene_framed_family(const im_scene *scene);
 
 /* Frames of the framed family's history; *last_force receives its last step's force field (the
  * state at load_star), which the panels reuse instead of solving it again. */
-int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
-                     im_render_context *context, im_field **last_force);
+int scene_run_frames(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,
+                     im_field **last_force);
 
 #endif

@@ -10,10 +10,10 @@
 /* The framed history's steps, for the 3-D frames (frames3d.c). */
 typedef struct scene_frames3d_input {
     int count;
-    im_field *const *deformed, *const *force;  /* per step: h - u and the force per patch */
+    im_field *const *deformed, *const *force; /* per step: h - u and the force per patch */
     const double *load_star;
-    const im_colormap *norm;                   /* the contact frames' force norm */
-    const im_colormap *tension;                /* and their tension norm; NULL: no step has tension */
+    const im_colormap *norm;    /* the contact frames' force norm */
+    const im_colormap *tension; /* and their tension norm; NULL: no step has tension */
 } scene_frames3d_input;
 
 /* frames3d = yes: frames/view3d_NNNN.png, one annotated 3-D view per step (one norm, exaggeration and

@@ -100,9 +100,12 @@ static int write_history(const im_scene *scene, const scene_member *m)
         free(rows);
         return status;
     }
-    fprintf(file.stream, "# family %d, h'rms %.17g, seed %llu, h_rms %.17g, key %016" PRIx64 ", rows %d, checksum %016"
-            PRIx64 "\n", m->family, scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms,
-            scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY), m->steps, scene_checksum(rows, length));
+    fprintf(file.stream,
+            "# family %d, h'rms %.17g, seed %llu, h_rms %.17g, key %016" PRIx64 ", rows %d, checksum %016" PRIx64
+            "\n",
+            m->family, scene->slopes[m->family], (unsigned long long)m->seed, m->height_rms,
+            scene_result_key(scene, m->family, m->seed, SCENE_RESULT_HISTORY), m->steps,
+            scene_checksum(rows, length));
     fwrite(rows, 1, length, file.stream);
     free(rows);
     return im_atomic_commit(&file);
@@ -117,9 +120,13 @@ static int history_is_whole(char *text, int area, scene_member *m, int capacity,
     uint64_t checksum = 0;
     int rows = -1, used = 0;
     char *body = strchr(text, '\n');
-    if (!body || sscanf(text, "# family %*d, h'rms %*g, seed %*u, h_rms %lf, key %" SCNx64 ", rows %d, checksum %"
-                        SCNx64 "%n", &m->height_rms, key, &rows, &checksum, &used) != 4 || text + used != body) {
-        snprintf(why, why_size, "its first line is not a history header with a row count and checksum; or an older version wrote it");
+    if (!body ||
+        sscanf(text, "# family %*d, h'rms %*g, seed %*u, h_rms %lf, key %" SCNx64 ", rows %d, checksum %" SCNx64 "%n",
+               &m->height_rms, key, &rows, &checksum, &used) != 4 ||
+        text + used != body) {
+        snprintf(why, why_size,
+                 "its first line is not a history header with a row count and checksum; or an older version wrote "
+                 "it");
         return 0;
     }
     ++body;
@@ -151,7 +158,7 @@ static int read_history(const im_scene *scene, const im_scene_run_options *optio
     if (im_read_text_file(path, limit, &text, NULL) != IM_OK)
         return scene_kept_damaged(options, path, im_last_error());
     uint64_t key = 0;
-    int area = scene->periodic                                    ? IM_HISTORY_AREA_CELL
+    int area = scene->periodic                                  ? IM_HISTORY_AREA_CELL
                : scene_punch(scene).kind != IM_PUNCH_PROFILE_2D ? IM_HISTORY_AREA_SMOOTH
                                                                 : IM_HISTORY_AREA_NONE;
     int whole = history_is_whole(text, area, m, scene->step_count, &key, why, sizeof why);
@@ -189,18 +196,30 @@ static const char *step_name(const im_scene *scene)
 /* Step i of a history. At load_star (load control) the table's state is taken instead of solving
  * it again (what the table does not keep is unknown in the row: -1 and NaN, front.h); without a
  * table, that step's force is kept for the panels. */
-static int load_star_step(const im_scene *scene, im_indentation *run, scene_member *m, int i,
-                          const im_field *surface, im_step_result *step)
+static int load_star_step(const im_scene *scene, im_indentation *run, scene_member *m, int i, const im_field *surface,
+                          im_step_result *step)
 {
     int at_load_star = i == scene_load_star_step(scene);
     const scene_member *known = m->at_load_star;
     /* with a hardness the step is solved all the same: the run must remember its plastic flow */
     if (at_load_star && known && !(scene->hardness > 0)) {
-        *step = (im_step_result){.approach = known->load_star_approach, .load = known->load, .load_star = known->load_star,
-                                 .contact_patches = known->contact_patches, .area_ratio = known->area_ratio,
-                                 .mean_pressure = NAN, .max_pressure = NAN, .iterations = -1, .convolutions = -1,
-                                 .residual = NAN, .seconds = NAN, .coarse_iterations = -1, .yielding_patches = 0,
-                                 .plastic_depth = 0, .plastic_work = 0, .residual_approach = 0, .mean_gap = NAN};
+        *step = (im_step_result){.approach = known->load_star_approach,
+                                 .load = known->load,
+                                 .load_star = known->load_star,
+                                 .contact_patches = known->contact_patches,
+                                 .area_ratio = known->area_ratio,
+                                 .mean_pressure = NAN,
+                                 .max_pressure = NAN,
+                                 .iterations = -1,
+                                 .convolutions = -1,
+                                 .residual = NAN,
+                                 .seconds = NAN,
+                                 .coarse_iterations = -1,
+                                 .yielding_patches = 0,
+                                 .plastic_depth = 0,
+                                 .plastic_work = 0,
+                                 .residual_approach = 0,
+                                 .mean_gap = NAN};
         m->step_reused = 1;
         return IM_OK;
     }
@@ -234,9 +253,12 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
         int from_table = i == scene_load_star_step(scene) && m->at_load_star;
         status = load_star_step(scene, run, m, i, surface, &m->history[i].result);
         if (status == IM_EEDGE) /* a history short of the scene's steps would be drawn as if whole */
-            im_fail_context(status, "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
-                            "smaller steps)", i + 1, scene->step_count, step_name(scene), scene->steps[i]);
-        else if (status != IM_OK && status != IM_EINTERRUPTED && scene_steps_are_loads(scene)) /* past the pull-off: which step of the list */
+            im_fail_context(status,
+                            "step %d of %d (%s %g; the scene asks for every step: use a larger grid (n) or "
+                            "smaller steps)",
+                            i + 1, scene->step_count, step_name(scene), scene->steps[i]);
+        else if (status != IM_OK && status != IM_EINTERRUPTED &&
+                 scene_steps_are_loads(scene)) /* past the pull-off: which step of the list */
             im_fail_context(status, "step %d of %d (load %g)", i + 1, scene->step_count, scene->steps[i]);
         if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
             status = im_history_measure(&punch, theory, from_table ? NULL : run, m->history, i);
@@ -299,17 +321,25 @@ static int gather_histories(const im_scene *scene, const scene_member *members, 
     }
     for (int i = 0; i < count; ++i) {
         const scene_member *m = &members[i];
-        views[i] = (paper_history){m->family, m->steps, m->approach, m->history_load, m->history_load_star,
-                                   m->history_area_ratio, m->history_patches};
+        views[i] = (paper_history){
+            m->family,         m->steps, m->approach, m->history_load, m->history_load_star, m->history_area_ratio,
+            m->history_patches};
     }
     for (int f = 0; f < scene->family_count; ++f) {
         scene_family_title(scene, f, g->titles[f], sizeof g->titles[f]);
         g->title_of[f] = g->titles[f];
         g->eq12[f] = scene->slopes[f] > 0.0 ? scene_eq12(scene, scene->slopes[f], NULL) : NAN;
     }
-    g->h = (paper_histories){.source = scene->path, .family_count = scene->family_count, .slopes = scene->slopes,
-                             .titles = g->title_of, .eq12 = g->eq12, .members = views, .count = count,
-                             .delta = scene->surface.delta, .e_star = scene->modulus, .cot_alpha = cone_cot(scene)};
+    g->h = (paper_histories){.source = scene->path,
+                             .family_count = scene->family_count,
+                             .slopes = scene->slopes,
+                             .titles = g->title_of,
+                             .eq12 = g->eq12,
+                             .members = views,
+                             .count = count,
+                             .delta = scene->surface.delta,
+                             .e_star = scene->modulus,
+                             .cot_alpha = cone_cot(scene)};
     *out = g;
     return IM_OK;
 }
@@ -398,7 +428,8 @@ static int sphere_family(const im_scene *scene, const paper_histories *h, int f,
     if (status == IM_OK)
         sphere_load_range(h, f, n_c, &lo, &hi);
     if (status == IM_OK && !(hi > lo))
-        status = im_fail(IM_EINVAL, "%s: plots = sphere: the surfaces of h'rms %g reach %d contact patches (the "
+        status = im_fail(IM_EINVAL,
+                         "%s: plots = sphere: the surfaces of h'rms %g reach %d contact patches (the "
                          "grid's resolution) at fewer than two of [loading] steps: raise the loads",
                          scene->path, scene->slopes[f], PAPER_MIN_PATCHES);
     for (int k = 0; k < THEORY_POINTS && status == IM_OK && hi > lo; ++k) {
@@ -496,8 +527,8 @@ static int write_indentation(const im_scene *scene, const scene_member *m)
     return status == IM_OK ? IM_OK : im_fail_context(status, "%s", relative);
 }
 
-static int write_indentations(const im_scene *scene, const im_scene_run_options *options,
-                              const scene_member *members, int count)
+static int write_indentations(const im_scene *scene, const im_scene_run_options *options, const scene_member *members,
+                              int count)
 {
     char folder[IM_SCENE_PATH];
     int status = scene_output_path(scene, "indentation", folder, sizeof folder);
@@ -523,16 +554,17 @@ static void report_histories(const im_scene_run_options *options, const scene_me
 int scene_run_histories(const im_scene *scene, const im_scene_run_options *options, scene_reuse *reuse)
 {
     if (scene->step_count < 1)
-        return im_fail(IM_EINVAL, "%s: plots fig5, fig6 and fig7 need [loading] steps (approaches, or N* "
-                       "values with control = load)", scene->path);
+        return im_fail(IM_EINVAL,
+                       "%s: plots fig5, fig6 and fig7 need [loading] steps (approaches, or N* "
+                       "values with control = load)",
+                       scene->path);
     scene_member *members = NULL;
     int count = 0;
     int status = scene_ensemble_prepare(scene, "histories", &members, &count);
     if (status == IM_OK) {
         scene_link_table(scene, reuse, members, count);
         scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
-        status = scene_ensemble_run(scene, options, "histories", members, count, scene_history_member,
-                                    reuse->ranks);
+        status = scene_ensemble_run(scene, options, "histories", members, count, scene_history_member, reuse->ranks);
     }
     if (status == IM_OK)
         report_histories(options, members, count);

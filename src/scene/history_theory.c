@@ -10,8 +10,7 @@ im_theory_interface scene_theory_interface(const im_scene *scene, double slope)
     return rough;
 }
 
-int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
-                             im_theory_step *row)
+int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load, im_theory_step *row)
 {
     im_indenter punch = scene_punch(scene);
     im_theory_interface rough = scene_theory_interface(scene, slope);

@@ -9,7 +9,6 @@
  * E*, k = 2 and the PR normalisation (history_theory.c). */
 im_theory_interface scene_theory_interface(const im_scene *scene, double slope);
 /* The theory columns (theory.h's im_theory_step) of a step at approach w and load N on it. */
-int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load,
-                             im_theory_step *row);
+int scene_history_theory_row(const im_scene *scene, double slope, double approach, double load, im_theory_step *row);
 
 #endif

@@ -158,10 +158,14 @@ int scene_key_matches(const im_scene_run_options *options, const char *path, uin
         return 1;
     /* a warning, logged even when quiet: a kept result is being replaced */
     if (kept == 0)
-        scene_warn(options, "%s cannot be read back (damaged, or written by an older version without a key): "
-                   "solving it again", path);
+        scene_warn(options,
+                   "%s cannot be read back (damaged, or written by an older version without a key): "
+                   "solving it again",
+                   path);
     else
-        scene_warn(options, "%s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
-                   "): solving it again", path, kept, wanted);
+        scene_warn(options,
+                   "%s was made from other inputs (key %016" PRIx64 ", the scene's is %016" PRIx64
+                   "): solving it again",
+                   path, kept, wanted);
     return 0;
 }

@@ -153,4 +153,3 @@ void scene_complete(im_scene *scene, int tol_given, int ny_given, int lambda_r_g
         im_scene_resolve_path(scene, written, scene->output_dir, sizeof scene->output_dir);
     }
 }
-

@@ -24,9 +24,11 @@
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 
-enum { PLOT_BYTES = 1 << 18,     /* a plot's PNG and PDF together, besides any surface image it
+enum {
+    PLOT_BYTES = 1 << 18, /* a plot's PNG and PDF together, besides any surface image it
                                     embeds (measured at 64 x 64: at most 0.2 MiB) */
-       FRAME_TEXT_BYTES = 1 << 15 }; /* a frame's title, colour bar and labels (measured: 0.03 MiB) */
+    FRAME_TEXT_BYTES = 1 << 15
+}; /* a frame's title, colour bar and labels (measured: 0.03 MiB) */
 static const double MIB = 1048576.0;
 
 typedef struct grid {
@@ -67,7 +69,8 @@ static int check_radius_fits(const im_scene *scene, const grid *g, const char *k
 {
     double half = 0.5 * (g->nx < g->ny ? g->nx : g->ny);
     if (radius >= half)
-        return im_fail(IM_EINVAL, "%s: %s = %g: the smooth contact radius %s = %.1f patches reaches the edge of "
+        return im_fail(IM_EINVAL,
+                       "%s: %s = %g: the smooth contact radius %s = %.1f patches reaches the edge of "
                        "the %d x %d surface (expected a radius < %g patches; use a larger grid or smaller %s)",
                        scene->path, key, value, how, radius, g->nx, g->ny, half,
                        strstr(key, "steps") ? "steps" : "loads");
@@ -120,9 +123,10 @@ static int check_consistency(const im_scene *scene, const grid *g)
     if (status == IM_OK)
         status = check_histories_fit(scene, g);
     if (status == IM_OK && scene->punch == IM_PUNCH_FLAT && 2.0 * scene->radius >= (g->nx < g->ny ? g->nx : g->ny))
-        status = im_fail(IM_EINVAL, "%s: [punch] radius = %g: a flat punch as wide as the %d x %d surface "
-                         "(radius in patches; expected < %g)", scene->path, scene->radius, g->nx, g->ny,
-                         0.5 * (g->nx < g->ny ? g->nx : g->ny));
+        status = im_fail(IM_EINVAL,
+                         "%s: [punch] radius = %g: a flat punch as wide as the %d x %d surface "
+                         "(radius in patches; expected < %g)",
+                         scene->path, scene->radius, g->nx, g->ny, 0.5 * (g->nx < g->ny ? g->nx : g->ny));
     return status;
 }
 
@@ -130,10 +134,7 @@ static int check_consistency(const im_scene *scene, const grid *g)
 
 /* One solve: its plan on the whole grid (the solve window is at most that) and its fields
  * (surface, undeformed gap, pressure, displacement, and the copies a step hands out). */
-static double solve_bytes(const grid *g)
-{
-    return im_solver_plan_bytes(g->nx, g->ny) + 8.0 * 8.0 * g->nx * g->ny;
-}
+static double solve_bytes(const grid *g) { return im_solver_plan_bytes(g->nx, g->ny) + 8.0 * 8.0 * g->nx * g->ny; }
 
 static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
 {
@@ -194,18 +195,21 @@ static int check_memory(const im_scene *scene, const grid *g)
     double needed = memory_needed(scene, g, &at_once);
     size_t available = im_memory_available();
     if (available != 0 && needed > (double)available)
-        return im_fail(IM_ENOMEM, "%s: this scene needs about %.1f MiB of memory (%d surfaces solved at once, "
+        return im_fail(IM_ENOMEM,
+                       "%s: this scene needs about %.1f MiB of memory (%d surfaces solved at once, "
                        "%.1f MiB each for the solver plan and fields of a %d x %d grid, plus what the frames and "
                        "panels keep) but only %.1f MiB are available; use a smaller grid or fewer threads "
-                       "(OMP_NUM_THREADS)", scene->path, needed / MIB, at_once, solve_bytes(g) / MIB, g->nx, g->ny,
+                       "(OMP_NUM_THREADS)",
+                       scene->path, needed / MIB, at_once, solve_bytes(g) / MIB, g->nx, g->ny,
                        (double)available / MIB);
     size_t address_space = im_address_space_available();
     double reserved = address_space_overhead(scene);
     if (address_space != 0 && needed + reserved > (double)address_space)
-        return im_fail(IM_ENOMEM, "%s: this scene needs about %.1f MiB of address space (%.1f MiB of data, %.1f MiB "
+        return im_fail(IM_ENOMEM,
+                       "%s: this scene needs about %.1f MiB of address space (%.1f MiB of data, %.1f MiB "
                        "reserved by %d threads%s) but the address-space limit (ulimit -v) leaves %.1f MiB; raise the "
-                       "limit, or use fewer threads (OMP_NUM_THREADS%s)", scene->path, (needed + reserved) / MIB,
-                       needed / MIB, reserved / MIB, omp_get_max_threads(),
+                       "limit, or use fewer threads (OMP_NUM_THREADS%s)",
+                       scene->path, (needed + reserved) / MIB, needed / MIB, reserved / MIB, omp_get_max_threads(),
                        scene->contact_panels || scene->frames ? " and the renderer" : "", (double)address_space / MIB,
                        scene->contact_panels || scene->frames ? ", LP_NUM_THREADS" : "");
     return IM_OK;
@@ -303,17 +307,19 @@ static int check_disk(const im_scene *scene, const grid *g, int space_check)
     existing_ancestor(scene->output_dir, folder, sizeof folder);
     struct statvfs info;
     if (statvfs(folder, &info) != 0)
-        return IM_OK; /* cannot tell: the writes will report it */
+        return IM_OK;       /* cannot tell: the writes will report it */
     if (info.f_blocks == 0) /* proc, sysfs: "0.0 MiB free" would read as a full disk */
-        return im_fail(IM_EIO, "%s: the output folder %s is on a file system that stores no files (%s has no "
-                       "blocks, like /proc or /sys); give an output folder on a disk", scene->path, scene->output_dir,
-                       folder);
+        return im_fail(IM_EIO,
+                       "%s: the output folder %s is on a file system that stores no files (%s has no "
+                       "blocks, like /proc or /sys); give an output folder on a disk",
+                       scene->path, scene->output_dir, folder);
     double free_bytes = (double)info.f_bavail * (double)info.f_frsize;
     if (d.total > free_bytes && space_check)
-        return im_fail(IM_EIO, "%s: the outputs need about %.1f MiB of disk (the largest, %s, %.1f MiB) but %s has "
+        return im_fail(IM_EIO,
+                       "%s: the outputs need about %.1f MiB of disk (the largest, %s, %.1f MiB) but %s has "
                        "only %.1f MiB free; this is an upper bound: IM_NO_SPACE_CHECK=1 runs anyway (a full disk "
-                       "then stops the run, keeping what it finished)", scene->path, d.total / MIB, d.largest_name,
-                       d.largest / MIB, folder, free_bytes / MIB);
+                       "then stops the run, keeping what it finished)",
+                       scene->path, d.total / MIB, d.largest_name, d.largest / MIB, folder, free_bytes / MIB);
     return IM_OK;
 }
 
@@ -342,8 +348,10 @@ static int check_not_inside(const im_scene *scene, const char *output, const cha
         return IM_OK; /* the reader reports a missing input */
     size_t n = strlen(output);
     if (strcmp(resolved, output) == 0 || (strncmp(resolved, output, n) == 0 && resolved[n] == '/'))
-        return im_fail(IM_EINVAL, "%s: [scene] output = %s would hold the %s %s, and could overwrite it; "
-                       "give another output folder", scene->path, scene->output_dir, what, input);
+        return im_fail(IM_EINVAL,
+                       "%s: [scene] output = %s would hold the %s %s, and could overwrite it; "
+                       "give another output folder",
+                       scene->path, scene->output_dir, what, input);
     return IM_OK;
 }
 

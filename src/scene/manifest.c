@@ -21,8 +21,9 @@
 enum { WALK_DEPTH = 4 }; /* OUTPUT/point/panels/family_FF/file: a sweep point's periodic panels are the deepest */
 
 static const char MANIFEST[] = "outputs.txt";
-static const char MANIFEST_HEADER[] = "# indentmap outputs 1: the files the last run in this folder made; a later run "
-                                      "removes those its scene no longer makes (docs/scenes.md)\n";
+static const char MANIFEST_HEADER[] =
+    "# indentmap outputs 1: the files the last run in this folder made; a later run "
+    "removes those its scene no longer makes (docs/scenes.md)\n";
 
 typedef struct path_list {
     char **items;
@@ -76,10 +77,12 @@ static void list_free(path_list *list)
 /* The kind a file of this name holds when this program wrote it; IM_KIND_NONE: a name it does not judge. */
 static enum im_file_kind kind_by_name(const char *path)
 {
-    static const struct { const char *extension; enum im_file_kind kind; } KINDS[] = {
-        {".png", IM_KIND_PNG}, {".pdf", IM_KIND_PDF}, {".npy", IM_KIND_NPY},  {".gif", IM_KIND_GIF},
-        {".mp4", IM_KIND_MP4}, {".svg", IM_KIND_SVG}, {".json", IM_KIND_JSON}, {".csv", IM_KIND_TEXT},
-        {".md", IM_KIND_TEXT}, {".html", IM_KIND_TEXT}, {".key", IM_KIND_TEXT}, {".txt", IM_KIND_TEXT}};
+    static const struct {
+        const char *extension;
+        enum im_file_kind kind;
+    } KINDS[] = {{".png", IM_KIND_PNG}, {".pdf", IM_KIND_PDF},   {".npy", IM_KIND_NPY},   {".gif", IM_KIND_GIF},
+                 {".mp4", IM_KIND_MP4}, {".svg", IM_KIND_SVG},   {".json", IM_KIND_JSON}, {".csv", IM_KIND_TEXT},
+                 {".md", IM_KIND_TEXT}, {".html", IM_KIND_TEXT}, {".key", IM_KIND_TEXT},  {".txt", IM_KIND_TEXT}};
     const char *dot = strrchr(path, '.');
     for (size_t i = 0; dot && i < sizeof KINDS / sizeof *KINDS; ++i)
         if (strcmp(dot, KINDS[i].extension) == 0)
@@ -174,8 +177,10 @@ static void read_manifest(struct scene_outputs *o)
     if (!stream)
         return;
     if (!read_listed(o, stream)) {
-        scene_warn(o->options, "%s is damaged (a line is not a file under %s): the files an earlier run made "
-                   "there are not removed", path, o->root);
+        scene_warn(o->options,
+                   "%s is damaged (a line is not a file under %s): the files an earlier run made "
+                   "there are not removed",
+                   path, o->root);
         list_free(&o->listed);
     }
     fclose(stream);
@@ -241,7 +246,7 @@ static _Thread_local struct walk {
     const struct scene_outputs *outputs;
     path_list *made;
     int status;
-} *walking;
+} * walking;
 
 static int walk_entry(const char *path, const struct stat *info, int type, struct FTW *where)
 {
@@ -267,10 +272,7 @@ static int collect_made(const struct scene_outputs *o, int finished, path_list *
     return walk.status;
 }
 
-static int compare_paths(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
+static int compare_paths(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 /* outputs.txt, its paths sorted: the same for two runs of a scene, whatever the order of the folder. */
 static int write_manifest(const struct scene_outputs *o, int finished)

@@ -5,8 +5,8 @@
 
 #include <string.h>
 
-static const char *const PLOT_NAMES[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "fig7", "density", "sphere",
-                                         "flat_k"}; /* of the bits 1 << 0, 1 << 1, ... */
+static const char *const PLOT_NAMES[] = {"fig1", "fig2",    "fig3",   "fig5",  "fig6",
+                                         "fig7", "density", "sphere", "flat_k"}; /* of the bits 1 << 0, 1 << 1, ... */
 enum { PLOT_COUNT = sizeof PLOT_NAMES / sizeof PLOT_NAMES[0] };
 
 const char *im_scene_plot_name(enum im_scene_plot plot)

@@ -179,8 +179,9 @@ static int panel_force(const im_scene *scene, const im_scene_run_options *option
 {
     int framed = known_force && family == scene_framed_family(scene);
     const im_field *known = framed ? known_force : reuse->force[family];
-    enum scene_result_kind kind = framed ? SCENE_RESULT_FRAMED : known ? reuse->force_kind[family]
-                                                                       : SCENE_RESULT_AT_LOAD_STAR;
+    enum scene_result_kind kind = framed  ? SCENE_RESULT_FRAMED
+                                  : known ? reuse->force_kind[family]
+                                          : SCENE_RESULT_AT_LOAD_STAR;
     int status = IM_OK;
     r->origin = SCENE_REUSED;
     if (known)
@@ -235,8 +236,8 @@ static int write_results_csv(const im_scene *scene, const panel_result *results)
     for (int i = 0; i < scene->family_count; ++i) {
         const panel_result *r = &results[i];
         fprintf(file.stream, "%d,%.17g,%llu,%.17g,%.17g,%ld,%.17g,%.17g\n", i, scene->slopes[i],
-                (unsigned long long)scene->seeds[0], r->load, r->load_star, r->contact_patches,
-                r->area_ratio, r->area_ratio_eq12);
+                (unsigned long long)scene->seeds[0], r->load, r->load_star, r->contact_patches, r->area_ratio,
+                r->area_ratio_eq12);
     }
     return im_atomic_commit(&file);
 }
@@ -294,8 +295,13 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
         scene_family_title(scene, i, titles[i], sizeof titles[i]);
         title_of[i] = titles[i];
     }
-    paper_contact_panels panels = {.count = scene->family_count, .images = images, .titles = title_of,
-                                   .norm = norm, .tension = tension, .extend_under = scene->log_norm, .source = scene->path,
+    paper_contact_panels panels = {.count = scene->family_count,
+                                   .images = images,
+                                   .titles = title_of,
+                                   .norm = norm,
+                                   .tension = tension,
+                                   .extend_under = scene->log_norm,
+                                   .source = scene->path,
                                    .load_star = scene->load_star};
     return scene_write_png_pdf(scene, "contact_panels", draw_figure, &panels);
 }
@@ -356,8 +362,8 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
         measure_panel(scene, &results[i]);
         results[i].area_ratio_eq12 = scene_eq12(scene, scene->slopes[i], NULL);
-        scene_progress(options, "family %d: n_p = %ld, A/A_cone = %.4f (eq. 12: %.4f)", i,
-                       results[i].contact_patches, results[i].area_ratio, results[i].area_ratio_eq12);
+        scene_progress(options, "family %d: n_p = %ld, A/A_cone = %.4f (eq. 12: %.4f)", i, results[i].contact_patches,
+                       results[i].area_ratio, results[i].area_ratio_eq12);
     }
     if (status == IM_OK)
         report_panels(options, results, scene->family_count);

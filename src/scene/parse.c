@@ -19,12 +19,12 @@
 typedef struct parse_context {
     im_scene *scene;
     FILE *stream;
-    int line;        /* physical lines read so far, counted by read_line */
-    int error_line;  /* the first line refused by read_line or handle_key, 0 if none */
+    int line;                      /* physical lines read so far, counted by read_line */
+    int error_line;                /* the first line refused by read_line or handle_key, 0 if none */
     int key_line[SCENE_KEY_COUNT]; /* the line of each key of keys.h's table given, 0 if none */
-    char sections[16][32]; /* the sections opened so far, to refuse one opened twice */
+    char sections[16][32];         /* the sections opened so far, to refuse one opened twice */
     int section_lines[16], section_count;
-    char steps[INI_MAX_LINE]; /* [loading] steps as written (a line of inih's buffer fits) */
+    char steps[INI_MAX_LINE];  /* [loading] steps as written (a line of inih's buffer fits) */
     char contents_section[32]; /* the section of the last key noted in the scene's contents */
 } parse_context;
 
@@ -84,8 +84,10 @@ static char *read_line(char *buffer, int size, void *user)
         if (c == '\n' && length == size - 1)
             break; /* the newline itself need not be kept */
         if (length == size - 1)
-            return refuse_line(context, "line longer than %d characters, the INI reader's limit "
-                               "(for long lists of values use first:last:count)", size - 1);
+            return refuse_line(context,
+                               "line longer than %d characters, the INI reader's limit "
+                               "(for long lists of values use first:last:count)",
+                               size - 1);
         buffer[length++] = (char)c;
         if (c == '\n')
             break;
@@ -112,7 +114,7 @@ static int unknown_name(const char *section, const char *name)
 
 /* Every key given fits in im_scene.contents: each once, its line within inih's buffer, and each
  * section's header once. */
-_Static_assert(SCENE_KEY_COUNT * (INI_MAX_LINE + 4) + 16 * 32 < IM_SCENE_CONTENTS,
+_Static_assert(SCENE_KEY_COUNT *(INI_MAX_LINE + 4) + 16 * 32 < IM_SCENE_CONTENTS,
                "im_scene.contents holds every key a scene can give");
 
 /* Appends a key accepted to the scene's contents, under its section's header when the section
@@ -190,15 +192,16 @@ static int parse_stream(const char *path, FILE *stream, im_scene *scene)
         return im_fail(IM_ENOMEM, "%s: out of memory while parsing", path);
     /* inih's own error (a malformed line) precedes any error of ours, else it is the same line */
     if (line > 0 && line != context.error_line)
-        return im_fail(IM_EFORMAT, "%s:%d: malformed line: expected [section], key = value or a comment",
-                       path, line);
+        return im_fail(IM_EFORMAT, "%s:%d: malformed line: expected [section], key = value or a comment", path, line);
     if (context.error_line) /* its message is the last error */
         return im_fail_context(IM_EFORMAT, "%s:%d", path, context.error_line);
     if (read_failed)
         return im_fail(IM_EIO, "%s:%d: cannot read: %s", path, context.line + 1, strerror(read_errno));
     if (!any_key_given(&context))
-        return im_fail(IM_EFORMAT, "%s: no settings: a scene asks for its outputs with keys such as [output] "
-                       "plots (see docs/scenes.md)", path);
+        return im_fail(IM_EFORMAT,
+                       "%s: no settings: a scene asks for its outputs with keys such as [output] "
+                       "plots (see docs/scenes.md)",
+                       path);
     scene_complete(scene, scene->tol != -1, scene->surface.ny != -1, scene->surface.lambda_r != -1,
                    scene->output_dir[0] != '\0');
     const scene_given given = {scene, context.key_line, context.steps};
@@ -234,4 +237,3 @@ int scene_load_text(const char *text, const char *path, im_scene *scene)
         return im_fail(IM_ENOMEM, "%s: cannot read the scene's contents: %s", path, strerror(errno));
     return parse_stream(path, stream, scene);
 }
-

@@ -28,10 +28,11 @@ static void warn_if_not_periodic(const im_scene *scene, const im_scene_run_optio
     char file[IM_SCENE_PATH] = "";
     if (scene->file_count > 0)
         im_scene_file_path(scene, (int)m->seed, file, sizeof file);
-    scene_warn(options, "%s%sthe surface of family %d, seed %llu is not periodic: the steps across its edges have "
+    scene_warn(options,
+               "%s%sthe surface of family %d, seed %llu is not periodic: the steps across its edges have "
                "rms %.3g, %.3g times those inside it (%.3g); [punch] periodic joins its edges as if they met. Use "
-               "periodic surfaces (generated ones are) or leave periodic out (the half-space)", file,
-               file[0] ? ": " : "", m->family, (unsigned long long)m->seed, edge, edge / inner, inner);
+               "periodic surfaces (generated ones are) or leave periodic out (the half-space)",
+               file, file[0] ? ": " : "", m->family, (unsigned long long)m->seed, edge, edge / inner, inner);
 }
 
 /* One member's row of k_fit.csv. */

@@ -122,8 +122,8 @@ static int draw_family(const im_scene *scene, const scene_reuse *reuse, im_rende
     const im_indenter punch = scene_member_punch(scene, surface);
     run_figure_texts texts;
     status = scene_figure_texts(scene, NULL, 0, &texts);
-    const fields_frames frames = {folder, folder, reuse->rows[family], reuse->row_count[family], &punch, force_unit,
-                                  texts.texts, texts.count};
+    const fields_frames frames = {folder, folder,     reuse->rows[family], reuse->row_count[family],
+                                  &punch, force_unit, texts.texts,         texts.count};
     if (status == IM_OK)
         status = fields_frames_write(context, &frames);
     run_figure_texts_free(&texts);

@@ -135,8 +135,10 @@ int scene_plans_changed(const im_scene *scene, const im_scene_run_options *optio
     free(kept.items);
     free(now.items);
     if (why)
-        scene_warn(options, "%s: the kept results were solved with other FFTW plans than this run's (%s), and "
-                   "plans change the last bits: solving everything again", path, why);
+        scene_warn(options,
+                   "%s: the kept results were solved with other FFTW plans than this run's (%s), and "
+                   "plans change the last bits: solving everything again",
+                   path, why);
     return why != NULL;
 }
 

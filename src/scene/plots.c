@@ -14,7 +14,7 @@ int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot) { return (s
 int scene_wants_histories(const im_scene *scene)
 {
     return scene->periodic || scene_wants_plot(scene, IM_SCENE_PLOT_FIG5 | IM_SCENE_PLOT_FIG6 | IM_SCENE_PLOT_FIG7 |
-                                                      IM_SCENE_PLOT_SPHERE);
+                                                          IM_SCENE_PLOT_SPHERE);
 }
 
 /* The names are checked by the parser (parse.c); here what each plot needs beside it. */

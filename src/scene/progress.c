@@ -6,16 +6,14 @@
 #include <stdio.h>
 #include <string.h>
 
-int scene_stop_signal(const im_scene_run_options *options)
-{
-    return options->stop ? (int)*options->stop : 0;
-}
+int scene_stop_signal(const im_scene_run_options *options) { return options->stop ? (int)*options->stop : 0; }
 
 int scene_interrupted(const im_scene_run_options *options, const char *where)
 {
-    return im_fail(IM_EINTERRUPTED, "interrupted by signal %d (%s) %s; finished results are kept: "
-                   "run again with --resume to continue", scene_stop_signal(options),
-                   strsignal(scene_stop_signal(options)), where);
+    return im_fail(IM_EINTERRUPTED,
+                   "interrupted by signal %d (%s) %s; finished results are kept: "
+                   "run again with --resume to continue",
+                   scene_stop_signal(options), strsignal(scene_stop_signal(options)), where);
 }
 
 static void serialised_log(void *user, im_log_level level, const char *message)
@@ -45,10 +43,7 @@ im_scene_run_options scene_callbacks_begin(const im_scene_run_options *given, sc
     return run;
 }
 
-void scene_callbacks_end(scene_callbacks *callbacks)
-{
-    omp_destroy_lock(&callbacks->lock);
-}
+void scene_callbacks_end(scene_callbacks *callbacks) { omp_destroy_lock(&callbacks->lock); }
 
 /* One message to options->log (serialised by scene_callbacks_begin's lock), formatted here. */
 static void scene_log(const im_scene_run_options *options, im_log_level level, const char *fmt, va_list args)

@@ -23,8 +23,7 @@ void scene_callbacks_end(scene_callbacks *callbacks);
 
 /* A stage line (IM_LOG_INFO, dropped when quiet) and a warning (IM_LOG_WARNING, logged even when
  * quiet) to options->log, if any. */
-void scene_progress(const im_scene_run_options *options, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+void scene_progress(const im_scene_run_options *options, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void scene_warn(const im_scene_run_options *options, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The number of the signal that asked the run to stop, or 0 (checked between solver steps and

@@ -132,9 +132,11 @@ static int contents_text(const char *record, json_t *sections, char *text, size_
     size_t used = 0;
     const char *name, *key;
     json_t *section, *value;
-    json_object_foreach(sections, name, section) {
+    json_object_foreach(sections, name, section)
+    {
         used += (size_t)snprintf(text + used, used < size ? size - used : 0, "[%s]\n", name);
-        json_object_foreach(section, key, value) {
+        json_object_foreach(section, key, value)
+        {
             if (!json_is_string(value))
                 return im_fail(IM_EFORMAT, "%s: scene_contents [%s] %s: expected a string, the value as parsed",
                                record, name, key);
@@ -154,11 +156,15 @@ static int recorded_scene(const char *record, json_t *root, char *text, size_t s
     json_t *sections = json_object_get(contents, "sections");
     *scene_file = json_string_value(json_object_get(contents, "scene_file"));
     if (!json_is_object(sections) || !*scene_file)
-        return im_fail(IM_EFORMAT, "%s: no scene_contents with its sections and scene_file: expected the record of a "
-                       "scene run by a version that keeps them (issue 31); run the scene file instead", record);
+        return im_fail(IM_EFORMAT,
+                       "%s: no scene_contents with its sections and scene_file: expected the record of a "
+                       "scene run by a version that keeps them (issue 31); run the scene file instead",
+                       record);
     if (json_object_get(contents, "scene_file_encoding"))
-        return im_fail(IM_EFORMAT, "%s: scene_file %s is a path that was not UTF-8, recorded escaped: the scene's "
-                       "relative paths cannot be resolved from it; run the scene file instead", record, *scene_file);
+        return im_fail(IM_EFORMAT,
+                       "%s: scene_file %s is a path that was not UTF-8, recorded escaped: the scene's "
+                       "relative paths cannot be resolved from it; run the scene file instead",
+                       record, *scene_file);
     return contents_text(record, sections, text, size);
 }
 

@@ -30,8 +30,8 @@ static const char *const STAGE_FOLDERS[STAGES] = {"table", "histories"};
 typedef struct ranks_state {
     MPI_Comm comm;
     int rank, ranks;
-    int started;           /* rank 0: the other ranks were told to start solving */
-    int *origins[STAGES];  /* per member of a stage: its origin_code, -1 where no rank solved it */
+    int started;          /* rank 0: the other ranks were told to start solving */
+    int *origins[STAGES]; /* per member of a stage: its origin_code, -1 where no rank solved it */
     int counts[STAGES];
 } ranks_state;
 
@@ -106,8 +106,7 @@ static int gather_origins(ranks_state *st, int stage, const scene_member *mine, 
 }
 
 /* This rank's members of a stage (i % K == rank), copied out of the stage's list into *mine. */
-static int share_of(const im_scene *scene, const ranks_state *st, int stage, scene_member **mine, int *count,
-                    int *n)
+static int share_of(const im_scene *scene, const ranks_state *st, int stage, scene_member **mine, int *count, int *n)
 {
     scene_member *members = NULL;
     int status = scene_ensemble_prepare(scene, STAGE_FOLDERS[stage], &members, count);
@@ -188,13 +187,17 @@ static int rank0_solve_members(const im_scene *scene, const im_scene_run_options
     ranks_state *st = data;
     st->started = 1;
     broadcast_status(st, IM_OK);
-    scene_progress(options, "ensembles over %d MPI ranks: rank r solves members r, r + %d, ... of the table "
-                   "and the histories", st->ranks, st->ranks);
+    scene_progress(options,
+                   "ensembles over %d MPI ranks: rank r solves members r, r + %d, ... of the table "
+                   "and the histories",
+                   st->ranks, st->ranks);
     double start = MPI_Wtime();
     int status = solve_share(scene, options, st, IM_OK);
     if (status == IM_OK)
-        scene_progress(options, "members solved over %d ranks in %.2f s; rank 0 reads them back for the "
-                       "stages", st->ranks, MPI_Wtime() - start);
+        scene_progress(options,
+                       "members solved over %d ranks in %.2f s; rank 0 reads them back for the "
+                       "stages",
+                       st->ranks, MPI_Wtime() - start);
     return status;
 }
 
@@ -253,7 +256,8 @@ static int same_scene_inputs(MPI_Comm comm, const im_scene *scene)
     while (scene_input(scene, count, 0, &key, path, sizeof path))
         ++count;
     char *copies = malloc((size_t)count * IM_SCENE_PATH + 1);
-    const char **paths = malloc(sizeof *paths * (size_t)(count + 1)), **keys = malloc(sizeof *keys * (size_t)(count + 1));
+    const char **paths = malloc(sizeof *paths * (size_t)(count + 1)),
+               **keys = malloc(sizeof *keys * (size_t)(count + 1));
     int status = copies && paths && keys ? IM_OK : im_fail(IM_ENOMEM, "the paths of %d input files", count);
     for (int i = 0; status == IM_OK && i < count; ++i) {
         paths[i] = copies + (size_t)i * IM_SCENE_PATH;

@@ -25,18 +25,20 @@ static json_t *files_record(const im_scene *scene)
     for (int i = 0; i < scene->file_count; ++i) {
         char path[IM_SCENE_PATH];
         im_scene_file_path(scene, i, path, sizeof path);
-        json_array_append_new(files, json_pack("{s:s, s:f, s:f, s:o}", "path", path, "slope_rms", scene->file_slopes[i],
-                                               "spacing_difference", scene->file_spacing_differences[i], "resampled",
-                                               scene->file_resampled[i] ? json_string("bilinear") : json_null()));
+        json_array_append_new(files,
+                              json_pack("{s:s, s:f, s:f, s:o}", "path", path, "slope_rms", scene->file_slopes[i],
+                                        "spacing_difference", scene->file_spacing_differences[i], "resampled",
+                                        scene->file_resampled[i] ? json_string("bilinear") : json_null()));
     }
     static const char *const ALIGN[] = {"none", "median", "mean", "line"};
     return json_pack("{s:o, s:f, s:s, s:s, s:s, s:b, s:s, s:b, s:s, s:f, s:s}", "files", files, "slope_rms",
-                     scene->slopes[0], "slope_definition", "forward differences of each surface as solved; the "
-                     "ensemble's is their root mean square, the h'rms of eq. (12)", "detrend", DETREND[scene->detrend],
-                     "align", ALIGN[scene->align], "fill",
-                     scene->fill, "channel", scene->channel[0] ? scene->channel : "first holding heights",
-                     "resample_square", scene->resample_square, "npy_order", NPY_ORDER[scene->npy_order], "delta",
-                     scene->surface.delta, "length_unit", scene->file_unit[0] ? scene->file_unit : "delta");
+                     scene->slopes[0], "slope_definition",
+                     "forward differences of each surface as solved; the "
+                     "ensemble's is their root mean square, the h'rms of eq. (12)",
+                     "detrend", DETREND[scene->detrend], "align", ALIGN[scene->align], "fill", scene->fill, "channel",
+                     scene->channel[0] ? scene->channel : "first holding heights", "resample_square",
+                     scene->resample_square, "npy_order", NPY_ORDER[scene->npy_order], "delta", scene->surface.delta,
+                     "length_unit", scene->file_unit[0] ? scene->file_unit : "delta");
 }
 
 /* Where the scene's tolerance came from (a scene keeps the tolerance, not whether it was given:
@@ -71,10 +73,11 @@ static json_t *sweep_list(const double *values, int count, double scalar)
 
 static json_t *sweep_record(const im_scene *scene)
 {
-    return json_pack("{s:o, s:o, s:o, s:i}", "alpha", sweep_list(scene->alphas, scene->alpha_count,
-                     scene->alpha_degrees), "hurst", sweep_list(scene->hursts, scene->hurst_count,
-                     scene->surface.hurst), "lambda_s", sweep_list(scene->lambda_ss, scene->lambda_s_count,
-                     scene->surface.lambda_s), "points", scene_sweep_count(scene));
+    return json_pack("{s:o, s:o, s:o, s:i}", "alpha",
+                     sweep_list(scene->alphas, scene->alpha_count, scene->alpha_degrees), "hurst",
+                     sweep_list(scene->hursts, scene->hurst_count, scene->surface.hurst), "lambda_s",
+                     sweep_list(scene->lambda_ss, scene->lambda_s_count, scene->surface.lambda_s), "points",
+                     scene_sweep_count(scene));
 }
 
 /* [punch] periodic: the punch, what the steps are and where k of eq. (2) is (null without). */
@@ -83,9 +86,9 @@ static json_t *periodic_record(const im_scene *scene)
     if (!scene->periodic)
         return json_null();
     const int flat = scene->periodic == IM_SCENE_PERIODIC_FLAT;
-    json_t *record = json_pack("{s:s, s:s, s:s}", "punch", flat ? "rigid flat on the whole cell"
-                                                                : im_punch_name(scene->punch),
-                               "steps", "mean pressures p_m (units of E*)", "k_fit_slope_rms",
+    json_t *record = json_pack("{s:s, s:s, s:s}", "punch",
+                               flat ? "rigid flat on the whole cell" : im_punch_name(scene->punch), "steps",
+                               "mean pressures p_m (units of E*)", "k_fit_slope_rms",
                                "spectral, of each surface as solved");
     json_object_set_new(record, "k_fit", scene_periodic_fits_k(scene) ? json_string("k_fit.csv") : json_null());
     return record;
@@ -144,17 +147,17 @@ int scene_write_record(const im_scene *scene)
     json_object_set_new(root, "adhesion",
                         scene->adhesion_work > 0
                             ? json_pack("{s:s, s:f, s:f, s:f}", "law", im_adhesion_law_name(scene->adhesion_law),
-                                        "work", scene->adhesion_work,
-                                        "range", scene->adhesion_range, "stress",
+                                        "work", scene->adhesion_work, "range", scene->adhesion_range, "stress",
                                         scene->adhesion_work / scene->adhesion_range)
                             : json_null());
     json_object_set_new(root, "periodic", periodic_record(scene));
     json_object_set_new(root, "units", units_record(scene));
     /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */
     json_object_set_new(root, "theory_slope_rms",
-                        json_pack("{s:s, s:s}", "definition", scene->file_count > 0 ? "finite differences" : "spectral",
-                                  "chosen_by", scene->file_count > 0 ? "default: measured surfaces (the files)"
-                                                                     : "default: generated surfaces (their target)"));
+                        json_pack("{s:s, s:s}", "definition",
+                                  scene->file_count > 0 ? "finite differences" : "spectral", "chosen_by",
+                                  scene->file_count > 0 ? "default: measured surfaces (the files)"
+                                                        : "default: generated surfaces (their target)"));
     int status = add_provenance(scene, root);
     if (status == IM_OK)
         status = run_record_write(scene->output_dir, root);

@@ -35,14 +35,17 @@ static int check_without_area(const im_scene *scene)
 {
     const int at_n_star = !scene->periodic; /* a periodic scene's panels and distributions are at its steps */
     const int steps_at_n_star = scene->control == IM_CONTROL_LOAD && !scene_steps_are_loads(scene);
-    const char *need = at_n_star && (scene->contact_panels || scene->frames) ? "[output] contact panels and frames are drawn"
-                       : at_n_star && scene->distributions                   ? "[output] distributions are measured"
-                       : steps_at_n_star                                     ? "[loading] control = load takes steps"
-                                                                             : NULL;
+    const char *need = at_n_star && (scene->contact_panels || scene->frames)
+                           ? "[output] contact panels and frames are drawn"
+                       : at_n_star && scene->distributions ? "[output] distributions are measured"
+                       : steps_at_n_star                   ? "[loading] control = load takes steps"
+                                                           : NULL;
     if (!need)
         return IM_OK;
-    return im_fail(IM_EINVAL, "%s: %s at N* = A(N) / delta^2, which a 2-D profile does not define (no "
-                   "smooth-contact area): use control = displacement and its histories", scene->path, need);
+    return im_fail(IM_EINVAL,
+                   "%s: %s at N* = A(N) / delta^2, which a 2-D profile does not define (no "
+                   "smooth-contact area): use control = displacement and its histories",
+                   scene->path, need);
 }
 
 static int check_runnable(const im_scene *scene)
@@ -104,9 +107,11 @@ static int run_stages(const im_scene *scene, const im_scene_run_options *options
     int status = scene_run_theory_plots(scene, options);
     if (status == IM_OK && scene->table && (status = check_stop(options, "the table")) == IM_OK)
         status = scene_run_table(scene, options, &reuse);
-    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) && (status = check_stop(options, "the flat contacts")) == IM_OK)
+    if (status == IM_OK && scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) &&
+        (status = check_stop(options, "the flat contacts")) == IM_OK)
         status = scene_run_flat_k(scene, options, &reuse);
-    if (status == IM_OK && scene->distributions && !scene->periodic && (status = check_stop(options, "the distributions")) == IM_OK)
+    if (status == IM_OK && scene->distributions && !scene->periodic &&
+        (status = check_stop(options, "the distributions")) == IM_OK)
         status = scene_run_distributions(scene, options);
     if (status == IM_OK && scene_wants_histories(scene) && (status = check_stop(options, "the histories")) == IM_OK)
         status = scene_run_histories(scene, options, &reuse);
@@ -128,16 +133,16 @@ static int run_scene_stages(const im_scene *scene, const im_scene_run_options *o
 }
 
 /* scene_output_repair for run_folder.h's repair (state: the run options). */
-static void repair_output(const char *path, const void *options)
-{
-    scene_output_repair(options, path);
-}
+static void repair_output(const char *path, const void *options) { scene_output_repair(options, path); }
 
 /* What a scene writes into its output folder: anything under it (a sweep's points are subfolders). */
 static run_folder_rules folder_rules(const im_scene *scene, const im_scene_run_options *options)
 {
-    return (run_folder_rules){.dir = scene->output_dir, .lock_advice = "give this scene another [scene] output",
-                              .wisdom_advice = "keep it elsewhere", .repair = repair_output, .repair_state = options};
+    return (run_folder_rules){.dir = scene->output_dir,
+                              .lock_advice = "give this scene another [scene] output",
+                              .wisdom_advice = "keep it elsewhere",
+                              .repair = repair_output,
+                              .repair_state = options};
 }
 
 /* The scene file, its surface files and its profile (resolved by scene_prepare) become inputs no write
@@ -213,8 +218,10 @@ static int resolve_key_path(const im_scene *scene, const char *key, const char *
     im_scene_resolve_path(scene, written, whole, sizeof whole);
     size_t length = strlen(whole);
     if (length >= size)
-        return im_fail(IM_EINVAL, "%s: '%s' is %zu bytes once resolved against the folder of the scene, longer "
-                       "than %zu: %s", key, written, length, size - 1, scene->path); /* the key first: a long path is cut */
+        return im_fail(IM_EINVAL,
+                       "%s: '%s' is %zu bytes once resolved against the folder of the scene, longer "
+                       "than %zu: %s",
+                       key, written, length, size - 1, scene->path); /* the key first: a long path is cut */
     memcpy(out, whole, length + 1);
     return IM_OK;
 }
@@ -302,8 +309,10 @@ static int run_measured(im_scene *scene, const im_scene_run_options *options, co
     if (status == IM_OK)
         status = write_record(scene, options);
     if (status == IM_OK && ranks && scene_sweep_count(scene) > 1)
-        status = im_fail(IM_EINVAL, "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
-                         "run it without mpirun", scene->path);
+        status = im_fail(IM_EINVAL,
+                         "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
+                         "run it without mpirun",
+                         scene->path);
     if (status == IM_OK) {
         if (ranks) /* an MPI run: the ranks solve the members first */
             status = ranks->solve_members(scene, options, ranks->data);

@@ -16,7 +16,8 @@ static int file_surface(const im_scene *scene, int i, im_field **out, im_surface
 {
     char path[IM_SCENE_PATH];
     int status = im_scene_file_path(scene, i, path, sizeof path);
-    im_surface_read_options read = {.fill = scene->fill, .resample_square = scene->resample_square,
+    im_surface_read_options read = {.fill = scene->fill,
+                                    .resample_square = scene->resample_square,
                                     .npy_order = scene->npy_order};
     memcpy(read.channel, scene->channel, sizeof read.channel);
     if (status == IM_OK)
@@ -41,9 +42,11 @@ static int check_same_grid(const im_scene *scene, const im_field *first, const i
     char a[IM_SCENE_PATH], b[IM_SCENE_PATH];
     im_scene_file_path(scene, 0, a, sizeof a);
     im_scene_file_path(scene, i, b, sizeof b);
-    return im_fail(IM_EFORMAT, "%s: file: %s is %d x %d with delta %g %s but %s is %d x %d with delta %g %s: the "
-                   "files of an ensemble share one grid", scene->path, b, other->nx, other->ny, other->delta,
-                   other->unit, a, first->nx, first->ny, first->delta, first->unit);
+    return im_fail(IM_EFORMAT,
+                   "%s: file: %s is %d x %d with delta %g %s but %s is %d x %d with delta %g %s: the "
+                   "files of an ensemble share one grid",
+                   scene->path, b, other->nx, other->ny, other->delta, other->unit, a, first->nx, first->ny,
+                   first->delta, first->unit);
 }
 
 int im_scene_measure_files(im_scene *scene)

@@ -46,7 +46,8 @@ int scene_sweep_point(const im_scene *scene, int index, im_scene *point)
     int length = snprintf(point->output_dir, sizeof point->output_dir, "%s/alpha_%g_hurst_%g_lambda_s_%g",
                           scene->output_dir, point->alpha_degrees, point->surface.hurst, point->surface.lambda_s);
     if (length < 0 || (size_t)length >= sizeof point->output_dir)
-        return im_fail(IM_EINVAL, "%s: the sweep point's folder under %s is too long", scene->path, scene->output_dir);
+        return im_fail(IM_EINVAL, "%s: the sweep point's folder under %s is too long", scene->path,
+                       scene->output_dir);
     return IM_OK;
 }
 
@@ -59,8 +60,15 @@ typedef struct sweep_row {
 /* The mean and sample standard deviation of A/A_cone over the family's members. */
 static sweep_row sweep_summary(const im_scene *point, const scene_member *members, int count, int family)
 {
-    sweep_row row = {point->alpha_degrees, point->surface.hurst, point->surface.lambda_s, point->slopes[family],
-                     NAN, NAN, 0.0, NAN, 0};
+    sweep_row row = {point->alpha_degrees,
+                     point->surface.hurst,
+                     point->surface.lambda_s,
+                     point->slopes[family],
+                     NAN,
+                     NAN,
+                     0.0,
+                     NAN,
+                     0};
     double sum = 0.0, sum_squares = 0.0;
     for (int i = 0; i < count; ++i) {
         if (members[i].family != family)
@@ -134,7 +142,9 @@ static int group_rows(const im_scene *scene, const sweep_row *rows, int count, s
         if (k == g->count) {
             first[g->count++] = &rows[i];
             group_label(scene, &rows[i], g->labels[k], sizeof g->labels[k]);
-            *group = (paper_sweep_group){.label = g->labels[k], .rho_c = g->x[k], .area_ratio = g->y[k],
+            *group = (paper_sweep_group){.label = g->labels[k],
+                                         .rho_c = g->x[k],
+                                         .area_ratio = g->y[k],
                                          .sd = g->sigma[k]};
         }
         if (group->count == IM_SCENE_MAX_SWEEP_POINTS) /* parse.c refuses repeated values, so this is a bug */

@@ -27,9 +27,9 @@ static const struct paper_row {
     long n_p_ref;
     double area_ratio, sd, eq12;
 } PAPER_TABLE1[] = {
-    {0.00, NAN, INFINITY, 37164, 1.000, 0.0, 1.000},  {0.01, 0.16, 17.63, 37364, 1.002, 0.009, 0.998},
-    {0.02, 0.32, 8.82, 37470, 1.001, 0.017, 0.992},   {0.04, 0.64, 4.41, 37211, 0.985, 0.031, 0.969},
-    {0.08, 1.29, 2.20, 35152, 0.909, 0.045, 0.894},   {0.16, 2.57, 1.10, 30031, 0.724, 0.044, 0.719},
+    {0.00, NAN, INFINITY, 37164, 1.000, 0.0, 1.000}, {0.01, 0.16, 17.63, 37364, 1.002, 0.009, 0.998},
+    {0.02, 0.32, 8.82, 37470, 1.001, 0.017, 0.992},  {0.04, 0.64, 4.41, 37211, 0.985, 0.031, 0.969},
+    {0.08, 1.29, 2.20, 35152, 0.909, 0.045, 0.894},  {0.16, 2.57, 1.10, 30031, 0.724, 0.044, 0.719},
 };
 
 static const struct paper_row *paper_row_for(double slope)
@@ -59,9 +59,9 @@ static int write_member(const im_scene *scene, const scene_member *m)
     uint64_t key = scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR);
     size_t header = sizeof MEMBER_HEADER - 1;
     int length = snprintf(text, sizeof text, "%s%d,%.17g,%llu,%.17g,%.17g,%.17g,%ld,%.17g,%d,%.6f,%.17g,%016" PRIx64,
-                          MEMBER_HEADER, m->family, scene_member_slope(scene, m->family, m->seed), (unsigned long long)m->seed,
-                          m->height_rms, m->load, m->load_star, m->contact_patches, m->area_ratio, m->iterations,
-                          m->seconds, m->load_star_approach, key);
+                          MEMBER_HEADER, m->family, scene_member_slope(scene, m->family, m->seed),
+                          (unsigned long long)m->seed, m->height_rms, m->load, m->load_star, m->contact_patches,
+                          m->area_ratio, m->iterations, m->seconds, m->load_star_approach, key);
     uint64_t checksum = scene_checksum(text + header, (size_t)length - header);
     length += snprintf(text + length, sizeof text - (size_t)length, ",%016" PRIx64 "\n", checksum);
     return status == IM_OK ? im_write_file_atomic(path, text, (size_t)length) : status;
@@ -83,13 +83,15 @@ static int member_is_whole(const char *text, scene_member *m, uint64_t *key, cha
         sscanf(row, "%d,%lf,%llu,%lf,%lf,%lf,%ld,%lf,%d,%lf,%lf,%" SCNx64, &family, &slope, &seed, &m->height_rms,
                &m->load, &m->load_star, &m->contact_patches, &m->area_ratio, &m->iterations, &m->seconds,
                &m->load_star_approach, key) != 12) {
-        snprintf(why, why_size, "expected the header line \"%.40s...\" and one row ending in a key and a checksum; "
-                 "or an older version wrote it", MEMBER_HEADER);
+        snprintf(why, why_size,
+                 "expected the header line \"%.40s...\" and one row ending in a key and a checksum; "
+                 "or an older version wrote it",
+                 MEMBER_HEADER);
         return 0;
     }
     if (family != m->family || seed != m->seed) {
-        snprintf(why, why_size, "it holds family %d, seed %llu, where its name says %d, %llu", family, seed, m->family,
-                 (unsigned long long)m->seed);
+        snprintf(why, why_size, "it holds family %d, seed %llu, where its name says %d, %llu", family, seed,
+                 m->family, (unsigned long long)m->seed);
         return 0;
     }
     if (scene_checksum(row, (size_t)(last - row)) != checksum) {
@@ -114,7 +116,8 @@ static int read_member(const im_scene *scene, const im_scene_run_options *option
     free(text);
     if (!whole)
         return scene_kept_damaged(options, path, why);
-    return scene_key_matches(options, path, key, scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR));
+    return scene_key_matches(options, path, key,
+                             scene_result_key(scene, m->family, m->seed, SCENE_RESULT_AT_LOAD_STAR));
 }
 
 /* Solves one member at load_star: load control, warm-started by a step at a quarter of it. */
@@ -237,14 +240,17 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
     int status = scene_open_output(scene, "table1.md", &file);
     if (status != IM_OK)
         return status;
-    fprintf(file.stream, "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms, quality %s, tol %g), "
-                         "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
+    fprintf(file.stream,
+            "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms, quality %s, tol %g), "
+            "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
             scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count,
             scene->quality, scene->tol);
     if (scene->file_count > 0)
-        fprintf(file.stream, "The surfaces are the %d file(s) of `file`; h'rms is measured by forward differences of "
-                             "each surface as solved (root mean square over the files), and eq. (12) is taken at "
-                             "it.\n\n", scene->file_count);
+        fprintf(file.stream,
+                "The surfaces are the %d file(s) of `file`; h'rms is measured by forward differences of "
+                "each surface as solved (root mean square over the files), and eq. (12) is taken at "
+                "it.\n\n",
+                scene->file_count);
     fprintf(file.stream, "| h'rms | mean h_rms/δ | ρ_c | n_p,ref | A/A_cone indentmap | A/A_cone eq. (12) | "
                          "relative error | paper (Icarus) |\n|---|---|---|---|---|---|---|---|\n");
     for (int f = 0; f < scene->family_count; ++f)

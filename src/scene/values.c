@@ -61,8 +61,10 @@ int scene_parse_string(const key_spec *spec, const char *value, im_scene *scene)
 int scene_parse_name(const key_spec *spec, const char *value, im_scene *scene)
 {
     if (strchr(value, '/') || strcmp(value, ".") == 0 || strcmp(value, "..") == 0)
-        return im_fail(IM_EFORMAT, "name = '%s': expected a plain name without '/' (nor '.' or '..'): the outputs "
-                       "go to output/NAME; to write elsewhere, give [scene] output", value);
+        return im_fail(IM_EFORMAT,
+                       "name = '%s': expected a plain name without '/' (nor '.' or '..'): the outputs "
+                       "go to output/NAME; to write elsewhere, give [scene] output",
+                       value);
     return scene_parse_string(spec, value, scene);
 }
 
@@ -82,8 +84,8 @@ static int choice_index(const char *choices, const char *value)
 
 /* scene_parse_choice stores the index of the choice, in the enumerations' order, through an int. */
 _Static_assert(sizeof(enum im_detrend) == sizeof(int) && sizeof(enum im_control) == sizeof(int) &&
-               sizeof(im_colormap_id) == sizeof(int) && sizeof(enum im_animation) == sizeof(int) &&
-               sizeof(enum im_npy_order) == sizeof(int),
+                   sizeof(im_colormap_id) == sizeof(int) && sizeof(enum im_animation) == sizeof(int) &&
+                   sizeof(enum im_npy_order) == sizeof(int),
                "an enumeration scene_parse_choice sets is not an int's size");
 
 int scene_parse_choice(const key_spec *spec, const char *value, im_scene *scene)
@@ -121,10 +123,11 @@ static int split_list(const char *key, const char *value, char *buffer, size_t b
         while (length > 0 && (item[length - 1] == ' ' || item[length - 1] == '\t'))
             item[--length] = '\0';
         if (length == 0)
-            return im_fail(IM_EFORMAT, "%s = '%s': %s", key, value, *count == 0 && !comma
-                           ? "expected at least one value"
-                           : "an empty item (two commas, or a comma at either end): expected values separated by "
-                             "commas");
+            return im_fail(IM_EFORMAT, "%s = '%s': %s", key, value,
+                           *count == 0 && !comma
+                               ? "expected at least one value"
+                               : "an empty item (two commas, or a comma at either end): expected values separated by "
+                                 "commas");
         if (*count >= capacity)
             return im_fail(IM_EFORMAT, "%s = '%s': more than %d values", key, value, capacity);
         items[*count] = item;
@@ -143,8 +146,10 @@ static int check_distinct(const char *key, const char *value, const double *list
             snprintf(a, sizeof a, "%g", list[i]);
             snprintf(b, sizeof b, "%g", list[j]);
             if (strcmp(a, b) == 0)
-                return im_fail(IM_EFORMAT, "%s = '%s': %s is given twice (to six digits); each value is one family "
-                               "or sweep point, give each once", key, value, a);
+                return im_fail(IM_EFORMAT,
+                               "%s = '%s': %s is given twice (to six digits); each value is one family "
+                               "or sweep point, give each once",
+                               key, value, a);
         }
     return IM_OK;
 }
@@ -160,8 +165,7 @@ int scene_parse_double_list(const key_spec *spec, const char *value, im_scene *s
     if (steps_parse(name, value, values, &n, error, sizeof error) != 0)
         return im_fail(IM_EFORMAT, "%s", error);
     if ((size_t)n > spec->capacity)
-        return im_fail(IM_EFORMAT, "%s = '%s': %d values where at most %zu fit", spec->key, value, n,
-                       spec->capacity);
+        return im_fail(IM_EFORMAT, "%s = '%s': %d values where at most %zu fit", spec->key, value, n, spec->capacity);
     for (int i = 0; i < n; ++i)
         if (values[i] < spec->min || values[i] > spec->max)
             return im_fail(IM_EFORMAT, "%s = '%s': %g is outside [%g, %g]", spec->key, value, values[i], spec->min,
@@ -209,15 +213,19 @@ static int parse_seed_list(const key_spec *spec, const char *value, im_scene *sc
     for (int i = 0; i < count; ++i) {
         double v;
         if (!parse_number(items[i], &v) || v < 0 || v != floor(v) || v > 1e15)
-            return im_fail(IM_EFORMAT, "seeds = '%s': expected first:last or a list of at most %d non-negative "
-                           "integers", value, IM_SCENE_MAX_FAMILIES);
+            return im_fail(IM_EFORMAT,
+                           "seeds = '%s': expected first:last or a list of at most %d non-negative "
+                           "integers",
+                           value, IM_SCENE_MAX_FAMILIES);
         values[i] = v;
     }
     for (int i = 0; i < count; ++i)
         for (int j = 0; j < i; ++j)
             if (values[j] == values[i]) /* one surface twice: averaged as two, and both written to one file */
-                return im_fail(IM_EFORMAT, "seeds = '%s': seed %.0f is given twice; each seed is one surface, give "
-                               "each once", value, values[i]);
+                return im_fail(IM_EFORMAT,
+                               "seeds = '%s': seed %.0f is given twice; each seed is one surface, give "
+                               "each once",
+                               value, values[i]);
     scene->seed_count = count;
     for (int i = 0; i < count; ++i)
         scene->seeds[i] = (uint64_t)values[i];
@@ -250,8 +258,10 @@ int scene_parse_adhesion_law(const key_spec *spec, const char *value, im_scene *
 {
     if (im_adhesion_law_parse(value, (int *)destination(spec, scene)) == IM_OK)
         return IM_OK;
-    return im_fail(IM_EFORMAT, "law = '%s': expected maugis-dugdale (a constant stress w / range up to the gap range) "
-                   "or exponential (the tension (w / range) exp(-gap / range))", value);
+    return im_fail(IM_EFORMAT,
+                   "law = '%s': expected maugis-dugdale (a constant stress w / range up to the gap range) "
+                   "or exponential (the tension (w / range) exp(-gap / range))",
+                   value);
 }
 
 /* [punch] shape: the punch names of `indent --punch` (indenter.h: im_punch_parse), whose message follows. */
@@ -278,9 +288,11 @@ int scene_parse_plots(const key_spec *spec, const char *value, im_scene *scene)
         enum im_scene_plot plot = im_scene_plot_parse(name);
         if (!plot) {
             const char *suggestion = scene_suggest_plot(name);
-            return im_fail(IM_EFORMAT, "plots: '%s' is not a figure; %s%s%sexpected fig1, fig2, fig3, fig5, fig6, "
-                           "fig7, density, sphere or flat_k", name, suggestion ? "did you mean '" : "",
-                           suggestion ? suggestion : "", suggestion ? "'? " : "");
+            return im_fail(IM_EFORMAT,
+                           "plots: '%s' is not a figure; %s%s%sexpected fig1, fig2, fig3, fig5, fig6, "
+                           "fig7, density, sphere or flat_k",
+                           name, suggestion ? "did you mean '" : "", suggestion ? suggestion : "",
+                           suggestion ? "'? " : "");
         }
         scene->plots |= (unsigned)plot;
     }

@@ -15,11 +15,11 @@ typedef int (*value_parser)(const key_spec *spec, const char *value, im_scene *s
 struct key_spec {
     const char *section, *key;
     value_parser parse;
-    size_t offset;           /* of the destination in im_scene */
-    double min, max;         /* numeric range (inclusive) */
-    const char *choices;     /* "a|b|c" for enumerations */
-    size_t capacity;         /* string size or list capacity */
-    size_t count_offset;     /* of the list's count */
+    size_t offset;       /* of the destination in im_scene */
+    double min, max;     /* numeric range (inclusive) */
+    const char *choices; /* "a|b|c" for enumerations */
+    size_t capacity;     /* string size or list capacity */
+    size_t count_offset; /* of the list's count */
 };
 
 int scene_parse_double(const key_spec *spec, const char *value, im_scene *scene);

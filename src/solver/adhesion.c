@@ -296,8 +296,8 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
     return status;
 }
 
-void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile,
-                    long *adhesive_patches, long *repulsive_patches)
+void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile, long *adhesive_patches,
+                    long *repulsive_patches)
 {
     const size_t n = (size_t)a->nx * a->ny;
     long adhesive = 0, repulsive = 0;
@@ -335,8 +335,8 @@ int im_adhesion_law_parse(const char *word, int *law)
 {
     ARG_REQUIRE(word, "word");
     ARG_REQUIRE(law, "law");
-    static const char *const words[] = {[IM_ADHESION_MAUGIS_DUGDALE] = "maugis-dugdale",
-                                        [IM_ADHESION_EXPONENTIAL] = "exponential"};
+    static const char *const words[] =
+        {[IM_ADHESION_MAUGIS_DUGDALE] = "maugis-dugdale", [IM_ADHESION_EXPONENTIAL] = "exponential"};
     for (int k = 0; k < 2; ++k)
         if (strcmp(word, words[k]) == 0) {
             *law = k;
@@ -347,14 +347,17 @@ int im_adhesion_law_parse(const char *word, int *law)
 
 const char *im_adhesion_law_name(int law)
 {
-    return law == IM_ADHESION_MAUGIS_DUGDALE ? "Maugis-Dugdale" : law == IM_ADHESION_EXPONENTIAL ? "exponential" : NULL;
+    return law == IM_ADHESION_MAUGIS_DUGDALE ? "Maugis-Dugdale"
+           : law == IM_ADHESION_EXPONENTIAL  ? "exponential"
+                                             : NULL;
 }
 
 /* Whether the options hold a valid adhesion (no message left: the getters' misuse is a NaN). */
 static int has_adhesion(const im_solver_options *o)
 {
     return o && o->adhesion_work > 0 && o->adhesion_range > 0 && isfinite(o->adhesion_work) &&
-           isfinite(o->adhesion_range) && isfinite(o->e_star) && o->e_star > 0 && im_adhesion_law_name(o->adhesion_law);
+           isfinite(o->adhesion_range) && isfinite(o->e_star) && o->e_star > 0 &&
+           im_adhesion_law_name(o->adhesion_law);
 }
 
 double im_adhesion_zone_length(const im_solver_options *options)

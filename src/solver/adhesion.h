@@ -10,21 +10,21 @@
  * contact, or a gap of at most delta_c) and what it does to the surface, on the solve window. Under the
  * exponential law sigma0 is the peak w / rho and a patch's share the mean of sigma / sigma0 over it. */
 typedef struct adhesion_state {
-    int law;                 /* enum im_adhesion_law */
-    double stress;           /* sigma0 */
-    double range;            /* delta_c, or rho */
-    int nx, ny;              /* the window */
-    int periodic;            /* the window is a periodic cell: its gaps wrap around at the edges */
-    double *share;           /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
-    double *gaps;            /* the last pass's gaps */
-    double *proposal;        /* the shares they call for (between steps: adhesion_split's scratch) */
-    double *lift;            /* K 1_Z: the displacement of a unit stress on Z (sigma0 lift pulls up) */
-    double *gap0;            /* the repulsive solve's undeformed gap: g0 - sigma0 lift + shift */
-    double shift;            /* what was added to make min gap0 = 0 */
-    long zone_patches;       /* patches with a share > 0 */
-    double zone_area;        /* the sum of the shares (patches) */
-    double approach;         /* the last step's (retraction shrinks Z, approach grows it) */
-    int stepped;             /* 0 before the first step */
+    int law;                        /* enum im_adhesion_law */
+    double stress;                  /* sigma0 */
+    double range;                   /* delta_c, or rho */
+    int nx, ny;                     /* the window */
+    int periodic;                   /* the window is a periodic cell: its gaps wrap around at the edges */
+    double *share;                  /* the share of each patch on Z, in [0, 1] (1 in repulsive contact) */
+    double *gaps;                   /* the last pass's gaps */
+    double *proposal;               /* the shares they call for (between steps: adhesion_split's scratch) */
+    double *lift;                   /* K 1_Z: the displacement of a unit stress on Z (sigma0 lift pulls up) */
+    double *gap0;                   /* the repulsive solve's undeformed gap: g0 - sigma0 lift + shift */
+    double shift;                   /* what was added to make min gap0 = 0 */
+    long zone_patches;              /* patches with a share > 0 */
+    double zone_area;               /* the sum of the shares (patches) */
+    double approach;                /* the last step's (retraction shrinks Z, approach grows it) */
+    int stepped;                    /* 0 before the first step */
     struct adhesion_mark *marks[2]; /* the states adhesion_rewind returns to (adhesion_set_mark), or NULL */
 } adhesion_state;
 
@@ -60,8 +60,8 @@ static inline double adhesion_net_displacement(const adhesion_state *a, size_t i
 
 /* Sums of the net pressure over the window: tensile force delta^2 sum(-p) over p < 0 (compensated, as
  * loads; a->proposal is its scratch), the patches with p < 0 and p > 0. */
-void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile,
-                    long *adhesive_patches, long *repulsive_patches);
+void adhesion_split(adhesion_state *a, const double *pressure, double delta, double *tensile, long *adhesive_patches,
+                    long *repulsive_patches);
 
 /* Whether Z reaches the window's outer row or column (*x, *y: the patch, window coordinates); never for a
  * periodic cell, which has no edge. */

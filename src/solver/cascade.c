@@ -87,7 +87,8 @@ static void restrict_gap(const im_solver_plan *p, const double *gap0)
             solver_cascade_pair_sum(gap0 + (size_t)2 * cy * p->nx, p->nx, cx, &upper, &upper_count);
             if (2 * cy + 1 < p->ny)
                 solver_cascade_pair_sum(gap0 + (size_t)(2 * cy + 1) * p->nx, p->nx, cx, &lower, &lower_count);
-            p->coarse_gap0[(size_t)cy * c->nx + cx] = solver_cascade_block_mean(upper, lower, upper_count + lower_count);
+            p->coarse_gap0[(size_t)cy * c->nx + cx] = solver_cascade_block_mean(upper, lower,
+                                                                                upper_count + lower_count);
         }
 }
 

@@ -35,13 +35,13 @@ typedef struct step_terms {
 
 typedef struct pk_run {
     im_solver_plan *plan;
-    const double *gap0;       /* the caller's undeformed gap */
+    const double *gap0; /* the caller's undeformed gap */
     enum im_control control;
     double target;
-    double *p, *u;            /* the caller's pressure (in: a warm start or zeros) and displacement */
+    double *p, *u; /* the caller's pressure (in: a warm start or zeros) and displacement */
     int convolutions;
-    int status;               /* IM_OK, or the first failure of an engine pass (a lost GPU) */
-    double approach;          /* load control: the last approach taken from the elastic patches (NaN: none) */
+    int status;      /* IM_OK, or the first failure of an engine pass (a lost GPU) */
+    double approach; /* load control: the last approach taken from the elastic patches (NaN: none) */
 } pk_run;
 
 typedef struct solver_engine {

@@ -62,8 +62,11 @@ static gap_stats cpu_gaps(pk_run *r, double w, double cap)
         if (solver_moving(p[i], gi, cap))
             moving_squares += gi * gi;
     }
-    return (gap_stats){.contact = contact, .sum_squares = squares, .moving_squares = moving_squares,
-                       .penetration = penetration, .penetration_squares = penetration_squares};
+    return (gap_stats){.contact = contact,
+                       .sum_squares = squares,
+                       .moving_squares = moving_squares,
+                       .penetration = penetration,
+                       .penetration_squares = penetration_squares};
 }
 
 static double cpu_winkler(pk_run *r, double w, double k0, int store)

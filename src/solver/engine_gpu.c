@@ -37,19 +37,56 @@
 #include <string.h>
 
 /* ---- push constants: each mirrors its shader's block (std430: the doubles first) ---- */
-typedef struct { uint32_t nx, ny, px, py; } push_grid;
-typedef struct { uint32_t count; } push_count;
-typedef struct { double value; uint32_t n; } push_value;
-typedef struct { double a, b; uint32_t n, flag; } push_pair;
-typedef struct { double a, b; uint32_t nx, ny, px, py; } push_grid_pair; /* update_pressure: py = allow_join */
-typedef struct { double cap; uint32_t nx, ny, px; } push_step;
-typedef struct { uint32_t groups, slots, max_slots; } push_finish;
-typedef struct { uint32_t nx, ny, count; } push_point_loads;
+typedef struct {
+    uint32_t nx, ny, px, py;
+} push_grid;
+typedef struct {
+    uint32_t count;
+} push_count;
+typedef struct {
+    double value;
+    uint32_t n;
+} push_value;
+typedef struct {
+    double a, b;
+    uint32_t n, flag;
+} push_pair;
+typedef struct {
+    double a, b;
+    uint32_t nx, ny, px, py;
+} push_grid_pair; /* update_pressure: py = allow_join */
+typedef struct {
+    double cap;
+    uint32_t nx, ny, px;
+} push_step;
+typedef struct {
+    uint32_t groups, slots, max_slots;
+} push_finish;
+typedef struct {
+    uint32_t nx, ny, count;
+} push_point_loads;
 
 enum kernel {
-    K_PAD, K_UNPAD, K_MULTIPLY, K_CONTACT_MEAN, K_GAPS, K_WINKLER, K_CLIP, K_LOAD_SPLIT, K_SCALE_ELASTIC,
-    K_SUMMARY, K_SCALE, K_DIRECTION, K_PRECONDITION_MASK, K_PRECONDITION_RESTRICT, K_PRECONDITION_CENTRE,
-    K_STEP, K_UPDATE_PRESSURE, K_POINT_LOADS, K_REDUCE_FINISH, K_COUNT
+    K_PAD,
+    K_UNPAD,
+    K_MULTIPLY,
+    K_CONTACT_MEAN,
+    K_GAPS,
+    K_WINKLER,
+    K_CLIP,
+    K_LOAD_SPLIT,
+    K_SCALE_ELASTIC,
+    K_SUMMARY,
+    K_SCALE,
+    K_DIRECTION,
+    K_PRECONDITION_MASK,
+    K_PRECONDITION_RESTRICT,
+    K_PRECONDITION_CENTRE,
+    K_STEP,
+    K_UPDATE_PRESSURE,
+    K_POINT_LOADS,
+    K_REDUCE_FINISH,
+    K_COUNT
 };
 
 static const struct kernel_source {
@@ -98,10 +135,10 @@ typedef struct gpu_device {
 
 struct gpu_solver {
     gpu_device *device;
-    gpu_buffer gap0, p, u, g, t, z;      /* nx x ny */
-    gpu_buffer real, modes, spectrum;    /* the px x py transform grid and its modes */
+    gpu_buffer gap0, p, u, g, t, z;   /* nx x ny */
+    gpu_buffer real, modes, spectrum; /* the px x py transform grid and its modes */
     gpu_buffer precondition_modes, inverse_spectrum;
-    gpu_buffer kernel;                   /* nx x ny: K at offset (|dx|, |dy|), for direct sums */
+    gpu_buffer kernel;                                   /* nx x ny: K at offset (|dx|, |dy|), for direct sums */
     gpu_buffer change_count, change_index, change_value; /* update_pressure's changes */
     gpu_fft *fft, *precondition_fft;
     uint32_t nx, ny, px, py;
@@ -268,7 +305,10 @@ static gap_stats gpu_engine_gaps(pk_run *r, double w, double cap)
     const push_pair push = {.a = w, .b = cap, .n = patches(s)};
     double v[5];
     reduce(r, K_GAPS, b, &push, push.n, 5, 1u << 3, v);
-    return (gap_stats){.sum_squares = v[0], .contact = (long)v[1], .moving_squares = v[2], .penetration = v[3],
+    return (gap_stats){.sum_squares = v[0],
+                       .contact = (long)v[1],
+                       .moving_squares = v[2],
+                       .penetration = v[3],
                        .penetration_squares = v[4]};
 }
 
@@ -399,8 +439,9 @@ static step_terms gpu_engine_step(pk_run *r, double cap)
 static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int allow_join, int *joined)
 {
     struct gpu_solver *s = solver_of(r);
-    const gpu_buffer *b[9] = {&s->p, &s->u, &s->g, &s->t, &s->real, &s->device->partials,
-                              &s->change_count, &s->change_index, &s->change_value};
+    const gpu_buffer *b[9] = {
+        &s->p,           &s->u, &s->g, &s->t, &s->real, &s->device->partials, &s->change_count, &s->change_index,
+        &s->change_value};
     /* the shader's block is {tau, cap, nx, ny, px, allow_join}: the last word carries the flag */
     const push_grid_pair push = {.a = tau, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = allow_join != 0};
     double v[2];
@@ -457,9 +498,21 @@ static void gpu_engine_free(im_solver_plan *plan)
     gpu_context *c = context_of(s);
     gpu_fft_free(s->fft);
     gpu_fft_free(s->precondition_fft);
-    gpu_buffer *buffers[] = {&s->gap0, &s->p, &s->u, &s->g, &s->t, &s->z, &s->real, &s->modes, &s->spectrum,
-                             &s->precondition_modes, &s->inverse_spectrum, &s->kernel, &s->change_count,
-                             &s->change_index, &s->change_value};
+    gpu_buffer *buffers[] = {&s->gap0,
+                             &s->p,
+                             &s->u,
+                             &s->g,
+                             &s->t,
+                             &s->z,
+                             &s->real,
+                             &s->modes,
+                             &s->spectrum,
+                             &s->precondition_modes,
+                             &s->inverse_spectrum,
+                             &s->kernel,
+                             &s->change_count,
+                             &s->change_index,
+                             &s->change_value};
     for (size_t k = 0; k < sizeof buffers / sizeof *buffers; ++k)
         gpu_buffer_free(c, buffers[k]);
     device_release(s->device);
@@ -503,13 +556,15 @@ static int check_grid(const im_solver_plan *plan, const gpu_device *d)
             return im_fail(IM_EUNSUPPORTED,
                            "GPU engine: solver grid %d x %d (transforms %d x %d): side %d has a prime factor above "
                            "13, which VkFFT does not transform exactly; use device = cpu, or a grid whose sides "
-                           "factor into 2, 3, 5, 7, 11 and 13", plan->nx, plan->ny, plan->px, plan->py, sides[k]);
+                           "factor into 2, 3, 5, 7, 11 and 13",
+                           plan->nx, plan->ny, plan->px, plan->py, sides[k]);
     const double largest = (double)gpu_fft_modes_bytes(plan->px, plan->py);
     if ((double)plan->px * plan->py >= 4294967296.0 || largest > (double)gpu_context_max_buffer(d->context))
         return im_fail(IM_EUNSUPPORTED,
                        "GPU engine: solver grid %d x %d needs a %.0f MiB buffer; %s takes at most %.0f MiB per "
-                       "buffer (use device = cpu, or a smaller grid)", plan->nx, plan->ny, largest / 1048576.0,
-                       gpu_context_device_name(d->context), (double)gpu_context_max_buffer(d->context) / 1048576.0);
+                       "buffer (use device = cpu, or a smaller grid)",
+                       plan->nx, plan->ny, largest / 1048576.0, gpu_context_device_name(d->context),
+                       (double)gpu_context_max_buffer(d->context) / 1048576.0);
     return IM_OK;
 }
 
@@ -613,8 +668,11 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
         device_release(device);
         return im_fail(IM_ENOMEM, "GPU engine %d x %d", plan->nx, plan->ny);
     }
-    *s = (struct gpu_solver){.device = device, .nx = (uint32_t)plan->nx, .ny = (uint32_t)plan->ny,
-                             .px = (uint32_t)plan->px, .py = (uint32_t)plan->py};
+    *s = (struct gpu_solver){.device = device,
+                             .nx = (uint32_t)plan->nx,
+                             .ny = (uint32_t)plan->ny,
+                             .px = (uint32_t)plan->px,
+                             .py = (uint32_t)plan->py};
     plan->gpu = s;
     status = make_buffers(plan, s);
     if (status != IM_OK) { /* the plan stays whole on the CPU engine */

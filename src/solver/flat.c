@@ -32,9 +32,12 @@ static void flat_result(const flat_cell *cell, const im_solve_result *solve, im_
 {
     *out = (im_flat_result){.mean_pressure = solve->load / cell->cell_area,
                             .area_fraction = solve->contact_patches / cell->patches,
-                            .contact_patches = solve->contact_patches, .contact_pressure = solve->mean_pressure,
-                            .max_pressure = solve->max_pressure, .approach = solve->approach,
-                            .mean_gap = cell->mean_gap0 - solve->approach, .iterations = solve->iterations,
+                            .contact_patches = solve->contact_patches,
+                            .contact_pressure = solve->mean_pressure,
+                            .max_pressure = solve->max_pressure,
+                            .approach = solve->approach,
+                            .mean_gap = cell->mean_gap0 - solve->approach,
+                            .iterations = solve->iterations,
                             .residual = solve->residual};
 }
 
@@ -59,9 +62,11 @@ int flat_solve_pressure(flat_cell *cell, double mean_pressure, im_flat_result *o
 int flat_solve_gap(flat_cell *cell, double mean_gap, im_flat_result *out)
 {
     if (!(isfinite(mean_gap) && mean_gap > 0.0 && mean_gap <= cell->mean_gap0))
-        return im_fail(IM_EINVAL, "mean gap = %g: expected 0 < mean gap <= %.17g, the undeformed cell's (at that "
+        return im_fail(IM_EINVAL,
+                       "mean gap = %g: expected 0 < mean gap <= %.17g, the undeformed cell's (at that "
                        "gap the flat just touches the highest patch; at 0 the contact is full, at an infinite "
-                       "pressure)", mean_gap, cell->mean_gap0);
+                       "pressure)",
+                       mean_gap, cell->mean_gap0);
     int status = flat_solve(cell, IM_CONTROL_DISPLACEMENT, cell->mean_gap0 - mean_gap, out);
     out->mean_gap = mean_gap; /* the imposed one */
     return status;
@@ -69,13 +74,19 @@ int flat_solve_gap(flat_cell *cell, double mean_gap, im_flat_result *out)
 
 void step_result_from_solve(const im_solve_result *s, double area, double delta2, int cell, im_step_result *out)
 {
-    *out = (im_step_result){.approach = s->approach, .load = s->load, .load_star = area / delta2,
+    *out = (im_step_result){.approach = s->approach,
+                            .load = s->load,
+                            .load_star = area / delta2,
                             .contact_patches = s->contact_patches,
                             .area_ratio = s->load > 0 || (cell && s->contact_patches > 0)
-                                              ? s->contact_patches * delta2 / area : NAN,
-                            .mean_pressure = s->mean_pressure, .max_pressure = s->max_pressure,
-                            .iterations = s->iterations, .convolutions = s->convolutions,
-                            .residual = s->residual, .seconds = s->seconds,
+                                              ? s->contact_patches * delta2 / area
+                                              : NAN,
+                            .mean_pressure = s->mean_pressure,
+                            .max_pressure = s->max_pressure,
+                            .iterations = s->iterations,
+                            .convolutions = s->convolutions,
+                            .residual = s->residual,
+                            .seconds = s->seconds,
                             .coarse_iterations = s->coarse_iterations};
     if (cell || s->load < 0)
         out->load_star = NAN;

@@ -17,10 +17,10 @@ typedef struct flat_cell {
     flat_solve_fn solve;
     void *solver;
     double *gap0, *pressure, *displacement;
-    double patches;         /* nx ny, of the whole cell */
-    double cell_area;       /* nx ny delta^2: the load per unit mean pressure */
-    double mean_gap0;       /* the mean of gap0 over the cell: the mean gap at approach 0 (mean u = 0 always) */
-    double approach;        /* the last solve's */
+    double patches;   /* nx ny, of the whole cell */
+    double cell_area; /* nx ny delta^2: the load per unit mean pressure */
+    double mean_gap0; /* the mean of gap0 over the cell: the mean gap at approach 0 (mean u = 0 always) */
+    double approach;  /* the last solve's */
 } flat_cell;
 
 /* The cell's fields for n patches (gap0 uninitialised, pressure and displacement zero); IM_ENOMEM. */

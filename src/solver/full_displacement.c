@@ -9,15 +9,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options,
-                                im_solver_plan **plan)
+int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **plan)
 {
     ARG_REQUIRE(plan, "plan");
     ARG_SIDES(nx, ny);
     im_solver_options o = options ? *options : im_solver_options_default(); /* NULL: the defaults */
-    o.fft_measure = 0; /* a few convolutions: estimating the plan is cheaper than measuring it */
-    o.wisdom_path = NULL; /* nor read or written wisdom */
-    o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
+    o.fft_measure = 0;                      /* a few convolutions: estimating the plan is cheaper than measuring it */
+    o.wisdom_path = NULL;                   /* nor read or written wisdom */
+    o.cascade = o.precondition = 0;         /* no solve: no coarse levels, no preconditioner */
     o.adhesion_work = o.adhesion_range = 0; /* u = K p whatever the interaction that made p */
     return im_solver_plan_create(nx, ny, delta, &o, plan);
 }
@@ -34,9 +33,9 @@ int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_fi
                        force->ny, plan->nx, plan->ny);
     double *pressure = malloc(count * sizeof *pressure);
     im_field *u = NULL;
-    int status = pressure ? im_field_create(force->nx, force->ny, force->delta, &u)
-                          : im_fail(IM_ENOMEM, "full-grid displacement %d x %d: allocation failed", force->nx,
-                                    force->ny);
+    int status = pressure
+                     ? im_field_create(force->nx, force->ny, force->delta, &u)
+                     : im_fail(IM_ENOMEM, "full-grid displacement %d x %d: allocation failed", force->nx, force->ny);
     if (status == IM_OK) {
         double area = force->delta * force->delta;
         for (size_t i = 0; i < count; ++i)

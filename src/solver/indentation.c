@@ -17,20 +17,20 @@ struct im_indentation {
     im_indenter punch;
     enum im_control control;
     double largest_target;
-    double approach_bound;   /* largest approach the window is exact for */
+    double approach_bound; /* largest approach the window is exact for */
     im_solver_options options;
-    int nx, ny;              /* surface grid */
+    int nx, ny; /* surface grid */
     double delta;
-    double *gap0;            /* full grid, min 0 */
+    double *gap0; /* full grid, min 0 */
     im_window window;
     double *window_gap0, *pressure, *displacement; /* window grid; window_gap0 includes the plastic depth */
-    double *plastic;         /* window grid: plastic depth accumulated over the steps (>= 0, never decreases) */
-    double plastic_work;     /* H_p delta^2 times the sum of the depth increments: the energy dissipated */
+    double *plastic;     /* window grid: plastic depth accumulated over the steps (>= 0, never decreases) */
+    double plastic_work; /* H_p delta^2 times the sum of the depth increments: the energy dissipated */
     im_solver_plan *plan;
     im_solver_plan *full_plan; /* made at the first im_indentation_fields_full: the whole grid's u */
-    double approach;         /* last step's */
-    double load;             /* last step's (net, with adhesion) */
-    adhesion_state *adhesion; /* with a work of adhesion (adhesion.h); the plan's options have none */
+    double approach;           /* last step's */
+    double load;               /* last step's (net, with adhesion) */
+    adhesion_state *adhesion;  /* with a work of adhesion (adhesion.h); the plan's options have none */
     /* adhesion under load control: the solution of the last accepted try and of the step's start (adhesion.h) */
     double *marked_pressure[2], *marked_displacement[2];
 };
@@ -142,8 +142,10 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
     im_profile_samples(punch->profile, &r, &z, &count, &field);
     if (fabs(field->delta - surface->delta) <= 1e-12 * surface->delta)
         return IM_OK;
-    return im_fail(IM_EINVAL, "2-D profile delta = %.17g: expected the surface's delta %.17g (a 2-D profile is "
-                   "sampled on the surface's grid; it is not resampled)", field->delta, surface->delta);
+    return im_fail(IM_EINVAL,
+                   "2-D profile delta = %.17g: expected the surface's delta %.17g (a 2-D profile is "
+                   "sampled on the surface's grid; it is not resampled)",
+                   field->delta, surface->delta);
 }
 
 /* The largest approach the window must hold: the target itself, or under load control the smooth
@@ -180,12 +182,15 @@ static int check_adhesion_control(enum im_control control, const im_solver_optio
                                        : control == IM_CONTROL_DISPLACEMENT || control == IM_CONTROL_LOAD;
     if (!held)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected %s (adhesion under %s control is not available)",
-                       options->adhesion_work, options->periodic ? "mean-gap control on a periodic cell"
-                                                                 : "displacement or load control on the half-space",
+                       options->adhesion_work,
+                       options->periodic ? "mean-gap control on a periodic cell"
+                                         : "displacement or load control on the half-space",
                        control_target(control));
     if (options->hardness > 0)
-        return im_fail(IM_EINVAL, "adhesion work = %g: expected no hardness (adhesion under a hardness is not "
-                       "available)", options->adhesion_work);
+        return im_fail(IM_EINVAL,
+                       "adhesion work = %g: expected no hardness (adhesion under a hardness is not "
+                       "available)",
+                       options->adhesion_work);
     return IM_OK;
 }
 
@@ -203,7 +208,7 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
         return im_fail(IM_EINVAL, "control %d: expected displacement, load or mean gap", (int)control);
     if (control == IM_CONTROL_MEAN_GAP && !options->periodic)
         return im_fail(IM_EINVAL, "mean-gap control: expected a periodic cell (periodic = 1; the half-space has no "
-                       "mean gap)");
+                                  "mean gap)");
     if (options->adhesion_work > 0)
         status = check_adhesion_control(control, options);
     if (status != IM_OK)
@@ -215,7 +220,8 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
         return im_fail(IM_EINVAL, "surface delta = %g: expected > 0", surface->delta);
     /* forces are pressures times delta^2: a square out of range made "N = inf" of a unit load */
     if (!(surface->delta >= 1e-150 && surface->delta <= 1e150))
-        return im_fail(IM_EINVAL, "surface delta = %g: expected 1e-150 <= delta <= 1e150 (patch areas delta^2 and "
+        return im_fail(IM_EINVAL,
+                       "surface delta = %g: expected 1e-150 <= delta <= 1e150 (patch areas delta^2 and "
                        "the forces on them must be finite doubles): express the lengths in another unit",
                        surface->delta);
     return check_profile_grid(surface, punch);
@@ -230,8 +236,10 @@ static int allocate_window(im_indentation *run)
     run->displacement = calloc(n, sizeof(double));
     run->plastic = calloc(n, sizeof(double));
     if (!run->window_gap0 || !run->pressure || !run->displacement || !run->plastic)
-        return im_fail(IM_ENOMEM, "indentation window %d x %d: allocation of 4 x %.1f MiB failed (out of memory, or "
-                       "of the address space ulimit -v leaves)", w.nx, w.ny, sizeof(double) * (double)n / 1048576.0);
+        return im_fail(IM_ENOMEM,
+                       "indentation window %d x %d: allocation of 4 x %.1f MiB failed (out of memory, or "
+                       "of the address space ulimit -v leaves)",
+                       w.nx, w.ny, sizeof(double) * (double)n / 1048576.0);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
@@ -362,8 +370,9 @@ static int check_reachable(const im_indentation *run, double load)
 {
     /* a flat punch's contact radius is its own; a 2-D profile has no smooth-contact estimate; a
      * periodic cell has no edge */
-    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT || run->punch.kind == IM_PUNCH_PROFILE_2D ||
-        load <= 0 || run->options.periodic) /* (under tension, with adhesion: no smooth contact either) */
+    if (run->control != IM_CONTROL_LOAD || run->punch.kind == IM_PUNCH_FLAT ||
+        run->punch.kind == IM_PUNCH_PROFILE_2D || load <= 0 ||
+        run->options.periodic) /* (under tension, with adhesion: no smooth contact either) */
         return IM_OK;
     double ax, ay;
     im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
@@ -487,8 +496,8 @@ typedef struct approach_search {
     double (*measure)(const im_indentation *run, const im_solve_result *s);
     /* one displacement-controlled solve at approach w */
     int (*solve)(im_indentation *run, double w, im_solve_result *s);
-    double length;         /* the approaches' scale where they pass 0 (adhesion's range; else 0) */
-    im_solve_result last;  /* the last trial's, with iterations, convolutions and seconds summed */
+    double length;        /* the approaches' scale where they pass 0 (adhesion's range; else 0) */
+    im_solve_result last; /* the last trial's, with iterations, convolutions and seconds summed */
     int trials;
 } approach_search;
 
@@ -538,7 +547,8 @@ static int bracket_load(approach_search *search, double *lo, double *e_lo, doubl
          * yielded (a flat punch's or a profile's rim: the bound is then infinite) */
         const int plateau = *lo > 0 && !(*e_hi > *e_lo + 1e-12 * search->target);
         if (*hi >= run->approach_bound || plateau || search->trials >= SEARCH_MAX)
-            return im_fail(IM_EEDGE, "load %g cannot be reached: at the approach %g the contact carries %g%s "
+            return im_fail(IM_EEDGE,
+                           "load %g cannot be reached: at the approach %g the contact carries %g%s "
                            "(a yielded contact carries at most H_p times the area the punch can reach)",
                            search->target, *hi, search->target + *e_hi,
                            plateau ? ", no more than at half that approach" : "");
@@ -558,8 +568,10 @@ static int refine(approach_search *search, double lo, double e_lo, double hi, do
     int status = IM_OK, side = 0;
     while (fabs(e) > tol * scale && hi - lo > tol * fmax(fabs(hi), search->length)) {
         if (search->trials >= SEARCH_MAX)
-            return im_fail(IM_ENOCONV, "target %g: no approach in [%.17g, %.17g] reaches it to tol %g after %d "
-                           "solves", search->target, lo, hi, tol, search->trials);
+            return im_fail(IM_ENOCONV,
+                           "target %g: no approach in [%.17g, %.17g] reaches it to tol %g after %d "
+                           "solves",
+                           search->target, lo, hi, tol, search->trials);
         double w = (lo * e_hi - hi * e_lo) / (e_hi - e_lo);
         status = trial(search, w, &e);
         if (status != IM_OK)
@@ -705,8 +717,10 @@ static int narrow_forward(forward_walk *walk, double far, double e_far)
     double e = e_far;
     while (fabs(e) > tol * walk->scale && fabs(far - walk->near) > tol * fmax(fabs(far), length)) {
         if (walk->search.trials >= SEARCH_MAX)
-            return im_fail(IM_ENOCONV, "load %g: no approach between %.17g and %.17g reaches it to tol %g after %d "
-                           "solves", walk->search.target, walk->near, far, tol, walk->search.trials);
+            return im_fail(IM_ENOCONV,
+                           "load %g: no approach between %.17g and %.17g reaches it to tol %g after %d "
+                           "solves",
+                           walk->search.target, walk->near, far, tol, walk->search.trials);
         const double w = (walk->near * e_far - far * walk->e_near) / (e_far - walk->e_near);
         const enum forward_try t = try_forward(walk, w, &e, &status);
         if (t == TRY_FAILED)
@@ -737,8 +751,10 @@ static int walk_to_load(forward_walk *walk)
     for (;;) {
         const double far = fmin(walk->near + walk->direction * step, run->approach_bound);
         if (!(far != walk->near))
-            return im_fail(IM_EEDGE, "load %g cannot be reached: at the window's bound, approach %g, the contact "
-                           "carries %g", walk->search.target, walk->near, walk->search.target + walk->e_near);
+            return im_fail(IM_EEDGE,
+                           "load %g cannot be reached: at the window's bound, approach %g, the contact "
+                           "carries %g",
+                           walk->search.target, walk->near, walk->search.target + walk->e_near);
         if (walk->search.trials >= SEARCH_MAX)
             return im_fail(IM_ENOCONV, "load %g: not passed after %d adhesive solves (last approach %g)",
                            walk->search.target, walk->search.trials, walk->near);
@@ -752,7 +768,8 @@ static int walk_to_load(forward_walk *walk)
         if (walk->search.target + e < least)
             least = walk->search.target + e, least_at = far;
         if (walk->direction < 0 && walk->search.last.contact_patches == 0) /* let go: the tension only fades now */
-            return im_fail(IM_EINVAL, "load %g: below the least load the contact held on retraction, %.9g at "
+            return im_fail(IM_EINVAL,
+                           "load %g: below the least load the contact held on retraction, %.9g at "
                            "approach %.9g (the pull-off force under load control: the contact jumps out)",
                            walk->search.target, least, least_at);
         if (walk->direction > 0)
@@ -766,9 +783,14 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
     /* unstepped: clear of the law's reach, no load */
     const double w0 = stepped ? run->approach : -(adhesion_reach(&run->options) + run->options.adhesion_range);
     const double n0 = stepped ? run->load : 0;
-    forward_walk walk = {.search = {.run = run, .target = target, .measure = solved_load, .solve = adhesive_solve,
+    forward_walk walk = {.search = {.run = run,
+                                    .target = target,
+                                    .measure = solved_load,
+                                    .solve = adhesive_solve,
                                     .length = run->options.adhesion_range},
-                         .direction = n0 - target <= 0 ? 1 : -1, .near = w0, .e_near = n0 - target,
+                         .direction = n0 - target <= 0 ? 1 : -1,
+                         .near = w0,
+                         .e_near = n0 - target,
                          .scale = fmax(fabs(target), fabs(n0))};
     int status = mark_adhesive_state(run, ADHESION_MARK_STEP);
     if (status == IM_OK)
@@ -808,9 +830,10 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
         return status;
     const double cell_capacity = run->options.hardness * run->nx * run->ny * run->delta * run->delta;
     if (run->options.periodic && run->options.hardness > 0 && target >= cell_capacity)
-        return im_fail(IM_EINVAL, "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
-                       "load every patch would have yielded: full contact, no approach to find)", target,
-                       run->options.hardness, cell_capacity);
+        return im_fail(IM_EINVAL,
+                       "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
+                       "load every patch would have yielded: full contact, no approach to find)",
+                       target, run->options.hardness, cell_capacity);
     im_solve_result s;
     /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
     if (run->adhesion && run->control == IM_CONTROL_LOAD)
@@ -823,8 +846,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     else if (run->control == IM_CONTROL_MEAN_GAP)
         status = solve_at_mean_gap(run, target, &s);
     else
-        status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure,
-                                 run->displacement, &s);
+        status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure, run->displacement,
+                                 &s);
     if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0 && !run->adhesion)
         s.approach = withdrawn_approach(run); /* N = 0 holds at any approach up to it */
     run->approach = s.approach;
@@ -834,8 +857,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     if (status == IM_OK && run->adhesion)
         status = check_zone(run);
     if (status == IM_OK && s.approach > run->approach_bound) /* only if the bound were wrong: never hide it */
-        status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target,
-                         s.approach, run->approach_bound);
+        status = im_fail(IM_EEDGE, "load %g needed approach %g beyond the window's bound %g", target, s.approach,
+                         run->approach_bound);
     /* a step that failed leaves the surface as it was: the history stays the one reported */
     long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
     fill_step(run, &s, out);
@@ -925,9 +948,9 @@ int im_indentation_fields_full(im_indentation *run, im_field **force, im_field *
     if (run->options.periodic) /* the solve covers the whole cell with the periodic u already */
         return im_indentation_fields(run, force, gap, displacement);
     im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
-    int status = run->full_plan ? IM_OK
-                                : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options,
-                                                              &run->full_plan);
+    int status = run->full_plan
+                     ? IM_OK
+                     : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options, &run->full_plan);
     if (status == IM_OK)
         status = im_indentation_fields(run, &f, gap ? &g : NULL, &window_u);
     if (status == IM_OK)

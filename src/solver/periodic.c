@@ -102,7 +102,8 @@ int im_flat_contact_create(const im_field *surface, const im_solver_options *opt
     if (!run)
         return im_fail(IM_ENOMEM, "flat contact %d x %d", surface->nx, surface->ny);
     const size_t n = im_field_count(surface);
-    run->cell = (flat_cell){.solve = solve_on_plan, .patches = (double)n,
+    run->cell = (flat_cell){.solve = solve_on_plan,
+                            .patches = (double)n,
                             .cell_area = (double)n * surface->delta * surface->delta};
     int status = im_field_check_finite(surface, "surface heights");
     if (status == IM_OK && flat_cell_allocate(&run->cell, n) != IM_OK)

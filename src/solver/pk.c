@@ -161,9 +161,10 @@ int solver_check_periodic_mean_gap(double mean_gap0, double target)
     const double mean_gap = mean_gap0 - target;
     if (mean_gap > 0)
         return IM_OK;
-    return im_fail(IM_EINVAL, "approach %g on a periodic cell: its mean gap would be %g, expected > 0 (the mean "
-                   "of the undeformed gap is %g; full contact needs an infinite mean pressure)", target, mean_gap,
-                   mean_gap0);
+    return im_fail(IM_EINVAL,
+                   "approach %g on a periodic cell: its mean gap would be %g, expected > 0 (the mean "
+                   "of the undeformed gap is %g; full contact needs an infinite mean pressure)",
+                   target, mean_gap, mean_gap0);
 }
 
 static int check_periodic_approach(const im_solver_plan *plan, const double *gap0, enum im_control control,
@@ -175,8 +176,8 @@ static int check_periodic_approach(const im_solver_plan *plan, const double *gap
     return solver_check_periodic_mean_gap(sum_doubles(gap0, n) / (double)n, target);
 }
 
-static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control,
-                        double target, const double *p)
+static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control, double target,
+                        const double *p)
 {
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
@@ -226,7 +227,8 @@ static int check_capped_load(pk_run *r, const gap_stats *s, int iteration, int *
     *missed = !(fabs(load - r->target) <= r->plan->options.tol * r->target);
     if (!*missed || s->moving_squares > 0 || s->penetration_squares > 0)
         return IM_OK;
-    return im_fail(IM_ENOCONV, "contact iteration %d: every patch in contact is at the hardness cap H_p = %g, "
+    return im_fail(IM_ENOCONV,
+                   "contact iteration %d: every patch in contact is at the hardness cap H_p = %g, "
                    "carrying %g of the load %g, and no patch can join or unload at the approach %g (load control "
                    "with a cap needs an elastic patch; a smaller load step, or displacement control, avoids it)",
                    iteration, cap, load, r->target, s->approach);
@@ -276,8 +278,8 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
                            res->residual, o->tol, res->iterations);
         const int stopped_by = stop_signal(r);
         if (stopped_by) /* the caller asked to stop: p is still a valid (warm) start */
-            return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations",
-                           stopped_by, res->iterations);
+            return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations", stopped_by,
+                           res->iterations);
         if (s.contact == 0 && !e->any_positive(r)) {
             /* everything was clipped (patches at a pressure cap are not): start again from the local guess */
             cold_start(r);
@@ -360,8 +362,14 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     if (status != IM_OK)
         return status;
     const size_t n = (size_t)plan->nx * plan->ny;
-    pk_run r = {.plan = plan, .gap0 = gap0, .control = control, .target = target, .p = pressure,
-                .u = displacement, .status = IM_OK, .approach = NAN};
+    pk_run r = {.plan = plan,
+                .gap0 = gap0,
+                .control = control,
+                .target = target,
+                .p = pressure,
+                .u = displacement,
+                .status = IM_OK,
+                .approach = NAN};
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);

@@ -15,9 +15,17 @@
 
 im_solver_options im_solver_options_default(void)
 {
-    return (im_solver_options){.e_star = 1, .tol = im_quality_default_tolerance(), .max_iterations = 10000, .fft_measure = 0,
-                               .wisdom_path = NULL, .crop = 1, .window_margin = 4, .periodic = 0,
-                               .hardness = 0, .cascade = 1, .precondition = 1};
+    return (im_solver_options){.e_star = 1,
+                               .tol = im_quality_default_tolerance(),
+                               .max_iterations = 10000,
+                               .fft_measure = 0,
+                               .wisdom_path = NULL,
+                               .crop = 1,
+                               .window_margin = 4,
+                               .periodic = 0,
+                               .hardness = 0,
+                               .cascade = 1,
+                               .precondition = 1};
 }
 
 /* Work and range both > 0 (adhesion) or both 0 (none). */
@@ -27,7 +35,8 @@ static int check_adhesion(const im_solver_options *o)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected a finite work of adhesion w >= 0 (0: none)",
                        o->adhesion_work);
     if (!(isfinite(o->adhesion_range) && o->adhesion_range >= 0))
-        return im_fail(IM_EINVAL, "adhesion range = %g: expected a finite gap delta_c > 0 (0: none)", o->adhesion_range);
+        return im_fail(IM_EINVAL, "adhesion range = %g: expected a finite gap delta_c > 0 (0: none)",
+                       o->adhesion_range);
     if ((o->adhesion_work > 0) != (o->adhesion_range > 0))
         return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: expected both > 0 (adhesion) or both 0 (none)",
                        o->adhesion_work, o->adhesion_range);
@@ -128,8 +137,10 @@ int im_solver_wisdom_check(const im_solver_options *o)
         return IM_OK;
     char reason[512];
     snprintf(reason, sizeof reason, "%s", im_last_error());
-    return im_fail(status, "wisdom file %s: %s; it is neither read nor replaced (name a new file, or wisdom this "
-                   "program wrote)", path, reason);
+    return im_fail(status,
+                   "wisdom file %s: %s; it is neither read nor replaced (name a new file, or wisdom this "
+                   "program wrote)",
+                   path, reason);
 }
 
 /* Wisdom files hold a few kilobytes per transform size; anything far larger is not one. */
@@ -170,8 +181,10 @@ int im_solver_wisdom_verify(const im_solver_options *o)
     fft_planner_unlock();
     free(text);
     return accepted ? IM_OK
-                    : im_fail(IM_EFORMAT, "wisdom file %s: FFTW rejects it (damaged, or written by another FFTW "
-                              "version)", path);
+                    : im_fail(IM_EFORMAT,
+                              "wisdom file %s: FFTW rejects it (damaged, or written by another FFTW "
+                              "version)",
+                              path);
 }
 
 /* Writes the accumulated wisdom atomically, so concurrent runs never read a torn file. What the file
@@ -205,20 +218,20 @@ static int make_fft_plans(im_solver_plan *p)
     p->measured = p->options.fft_measure || wisdom != NULL;
     unsigned flags = p->measured ? FFTW_MEASURE : FFTW_ESTIMATE;
     const int mx = p->px / 2 + 1, row_length[1] = {p->px}, column_length[1] = {p->py};
-    fft_planner_lock(); /* ensembles plan from several threads */
+    fft_planner_lock();         /* ensembles plan from several threads */
     import_wisdom(wisdom_text); /* damaged or stale wisdom just means none (im_solver_wisdom_verify tells) */
     free(wisdom_text);
     fft_prepare_planner();
     /* ny real rows of length px -> the first ny complex rows of length mx; then, in place, mx
      * columns of length py */
-    p->rows_forward = fftw_plan_many_dft_r2c(1, row_length, p->ny, p->rows_in, NULL, 1, p->px, p->modes, NULL,
-                                             1, mx, flags);
+    p->rows_forward = fftw_plan_many_dft_r2c(1, row_length, p->ny, p->rows_in, NULL, 1, p->px, p->modes, NULL, 1, mx,
+                                             flags);
     p->columns_forward = fftw_plan_many_dft(1, column_length, mx, p->modes, NULL, mx, 1, p->modes, NULL, mx, 1,
                                             FFTW_FORWARD, flags);
-    p->columns_backward = fftw_plan_many_dft(1, column_length, mx, p->modes, NULL, mx, 1, p->modes, NULL, mx,
-                                             1, FFTW_BACKWARD, flags);
-    p->rows_backward = fftw_plan_many_dft_c2r(1, row_length, p->ny, p->modes, NULL, 1, mx, p->rows_out, NULL,
-                                              1, p->px, flags);
+    p->columns_backward = fftw_plan_many_dft(1, column_length, mx, p->modes, NULL, mx, 1, p->modes, NULL, mx, 1,
+                                             FFTW_BACKWARD, flags);
+    p->rows_backward = fftw_plan_many_dft_c2r(1, row_length, p->ny, p->modes, NULL, 1, mx, p->rows_out, NULL, 1,
+                                              p->px, flags);
     p->precondition_forward = fftw_plan_dft_r2c_2d(p->ny, p->nx, p->preconditioned, p->precondition_modes, flags);
     p->precondition_backward = fftw_plan_dft_c2r_2d(p->ny, p->nx, p->precondition_modes, p->preconditioned, flags);
     int status = wisdom ? export_wisdom(wisdom) : IM_OK;
@@ -240,8 +253,8 @@ static void compute_preconditioner(im_solver_plan *p)
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < ny; ++jy)
         for (int jx = 0; jx < nx; ++jx)
-            p->preconditioned[(size_t)jy * nx + jx] = p->kernel[(size_t)(jy <= ny - jy ? jy : ny - jy) * nx +
-                                                                 (jx <= nx - jx ? jx : nx - jx)];
+            p->preconditioned[(size_t)jy * nx + jx] =
+                p->kernel[(size_t)(jy <= ny - jy ? jy : ny - jy) * nx + (jx <= nx - jx ? jx : nx - jx)];
     fftw_execute(p->precondition_forward);
     const double scale = 1.0 / ((double)nx * ny);
 #pragma omp parallel for schedule(static)
@@ -307,9 +320,9 @@ static int allocate_plan(im_solver_plan *p)
     p->rows_in = fftw_malloc(sizeof(double) * rows);
     p->rows_out = fftw_malloc(sizeof(double) * rows);
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
-    if (!p->kernel || !p->direction || !p->gap || !p->changed || !p->changed_value ||
-        !p->spectrum || !p->inverse_spectrum || !p->preconditioned || !p->precondition_modes ||
-        !p->rows_in || !p->rows_out || !p->modes)
+    if (!p->kernel || !p->direction || !p->gap || !p->changed || !p->changed_value || !p->spectrum ||
+        !p->inverse_spectrum || !p->preconditioned || !p->precondition_modes || !p->rows_in || !p->rows_out ||
+        !p->modes)
         return im_fail(IM_ENOMEM, "solver plan %d x %d: allocation failed", p->nx, p->ny);
     memset(p->direction, 0, sizeof(double) * n);
     return IM_OK;
@@ -354,7 +367,7 @@ static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
     if (p->options.device == IM_DEVICE_AUTO)
         return IM_OK;
     return im_fail(IM_EUNSUPPORTED, "device = gpu: this build has no GPU engine (built without IM_GPU: Vulkan, "
-                   "glslang and VkFFT were not found; scripts/setup.sh installs them)");
+                                    "glslang and VkFFT were not found; scripts/setup.sh installs them)");
 #endif
 }
 
@@ -373,8 +386,10 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     if (status != IM_OK)
         return status;
     if (o.adhesion_work > 0)
-        return im_fail(IM_EINVAL, "adhesion work = %g: adhesion acts in an indentation (im_indentation_create); a "
-                       "solver plan solves the repulsive problem (expected adhesion_work = 0)", o.adhesion_work);
+        return im_fail(IM_EINVAL,
+                       "adhesion work = %g: adhesion acts in an indentation (im_indentation_create); a "
+                       "solver plan solves the repulsive problem (expected adhesion_work = 0)",
+                       o.adhesion_work);
     if (nx < 1 || ny < 1 || nx > IM_FIELD_MAX_SIDE || ny > IM_FIELD_MAX_SIDE)
         return im_fail(IM_EINVAL, "solver grid %d x %d: expected sides in [1, %d]", nx, ny, IM_FIELD_MAX_SIDE);
     if (!(isfinite(delta) && delta > 0))
@@ -389,7 +404,13 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     solver_plan_options(&o);
     /* periodic: the circular convolution on the grid itself */
     const int pad = o.periodic ? 1 : 2;
-    *p = (im_solver_plan){.engine = &solver_engine_cpu, .nx = nx, .ny = ny, .px = pad * nx, .py = pad * ny, .delta = delta, .options = o};
+    *p = (im_solver_plan){.engine = &solver_engine_cpu,
+                          .nx = nx,
+                          .ny = ny,
+                          .px = pad * nx,
+                          .py = pad * ny,
+                          .delta = delta,
+                          .options = o};
     double start = omp_get_wtime();
     status = allocate_plan(p);
     if (status == IM_OK)
@@ -419,8 +440,7 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     return IM_OK;
 }
 
-int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options,
-                          im_solver_plan **out)
+int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **out)
 {
     ARG_REQUIRE(out, "out");
     ARG_SIDES(nx, ny);
@@ -433,7 +453,7 @@ void im_solver_plan_free(im_solver_plan *p)
         return;
     if (p->engine)
         p->engine->free(p);
-    fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,       p->columns_backward,
+    fftw_plan plans[6] = {p->rows_forward,  p->columns_forward,      p->columns_backward,
                           p->rows_backward, p->precondition_forward, p->precondition_backward};
     fft_planner_lock();
     for (int i = 0; i < 6; ++i)

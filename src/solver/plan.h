@@ -12,27 +12,27 @@ struct im_mpi_solver;
 
 struct im_solver_plan {
     const struct solver_engine *engine; /* whose passes the iteration runs on (engine.h) */
-    struct gpu_solver *gpu;  /* the GPU engine's device state (engine_gpu.c), NULL on the CPU */
+    struct gpu_solver *gpu;             /* the GPU engine's device state (engine_gpu.c), NULL on the CPU */
     /* The MPI engine's ranks and slabs (src/mpi/engine_mpi.c), NULL otherwise. An MPI plan is part of
      * its im_mpi_solver and holds only what pk.c reads: options, delta, kernel (K(0) alone) and a
      * direct_limit of 0; its fields and transforms are the solver's. */
     struct im_mpi_solver *mpi;
-    int nx, ny;              /* problem grid */
-    int px, py;              /* padded grid: 2nx x 2ny (periodic: nx x ny, no padding) */
+    int nx, ny; /* problem grid */
+    int px, py; /* padded grid: 2nx x 2ny (periodic: nx x ny, no padding) */
     double delta;
     im_solver_options options;
-    double *kernel;          /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
-    double *spectrum;        /* py * (px/2 + 1): real spectrum of K, divided by px * py */
+    double *kernel;   /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
+    double *spectrum; /* py * (px/2 + 1): real spectrum of K, divided by px * py */
     /* The preconditioner M (pk.c): 1 / the spectrum of K wrapped periodically on the nx x ny grid
      * itself (divided by nx * ny), applied by an unpadded r2c / c2r pair in place of preconditioned,
      * a quarter of the padded transforms' size. */
-    double *inverse_spectrum;       /* ny * (nx/2 + 1) */
-    double *preconditioned;         /* nx * ny: the gap in, M g out */
+    double *inverse_spectrum;         /* ny * (nx/2 + 1) */
+    double *preconditioned;           /* nx * ny: the gap in, M g out */
     fftw_complex *precondition_modes; /* ny * (nx/2 + 1) */
     fftw_plan precondition_forward, precondition_backward;
-    double *rows_in;         /* ny * px: the grid's rows, zero-padded to px (right halves stay 0) */
-    double *rows_out;        /* ny * px */
-    fftw_complex *modes;     /* py * (px/2 + 1): the row transforms, then the 2-D transform */
+    double *rows_in;     /* ny * px: the grid's rows, zero-padded to px (right halves stay 0) */
+    double *rows_out;    /* ny * px */
+    fftw_complex *modes; /* py * (px/2 + 1): the row transforms, then the 2-D transform */
     /* The 2-D transform of the padded grid, pruned: the x transforms of the py - ny zero rows are
      * skipped going forward, and those of the rows outside the result coming back. The column
      * transforms run in place: out of place, FFTW_ESTIMATE's strided column plans were up to 3x

@@ -57,8 +57,7 @@ static void mean_and_sd(const double *x, size_t n, double *mean, double *sd)
     *sd = sqrt(ss / (double)n);
 }
 
-int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins,
-                         im_histogram **out)
+int im_surface_histogram(const im_field *surface, enum im_histogram_quantity quantity, int bins, im_histogram **out)
 {
     ARG_VIEW(surface, "surface");
     ARG_REQUIRE(out, "out");
@@ -66,8 +65,10 @@ int im_surface_histogram(const im_field *surface, enum im_histogram_quantity qua
     if (bins < 1 || bins > 1000000)
         return im_fail(IM_EINVAL, "histogram bins = %d: expected 1 to 1000000", bins);
     if (quantity != IM_HIST_HEIGHT && quantity != IM_HIST_SLOPE && quantity != IM_HIST_CURVATURE)
-        return im_fail(IM_EINVAL, "im_surface_histogram: quantity = %d: expected IM_HIST_HEIGHT, IM_HIST_SLOPE "
-                       "or IM_HIST_CURVATURE", (int)quantity);
+        return im_fail(IM_EINVAL,
+                       "im_surface_histogram: quantity = %d: expected IM_HIST_HEIGHT, IM_HIST_SLOPE "
+                       "or IM_HIST_CURVATURE",
+                       (int)quantity);
     size_t n = 0;
     double *samples = collect_samples(surface, quantity, &n);
     im_histogram *hist = calloc(1, sizeof *hist);
@@ -83,8 +84,7 @@ int im_surface_histogram(const im_field *surface, enum im_histogram_quantity qua
     if (n == 0) {
         free(samples);
         im_histogram_free(hist);
-        return im_fail(IM_EINVAL, "histogram: grid %d x %d too small for this quantity",
-                       surface->nx, surface->ny);
+        return im_fail(IM_EINVAL, "histogram: grid %d x %d too small for this quantity", surface->nx, surface->ny);
     }
     double mean, sd;
     mean_and_sd(samples, n, &mean, &sd);

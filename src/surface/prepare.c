@@ -15,8 +15,10 @@ int im_surface_crop(const im_field *surface, int x0, int y0, int nx, int ny, im_
     ARG_REQUIRE(out, "out");
     *out = NULL;
     if (x0 < 0 || y0 < 0 || nx < 2 || ny < 2 || x0 > surface->nx - nx || y0 > surface->ny - ny)
-        return im_fail(IM_EINVAL, "crop %d,%d,%d,%d: expected X0,Y0,NX,NY with NX, NY >= 2 inside the %d x %d "
-                       "grid", x0, y0, nx, ny, surface->nx, surface->ny);
+        return im_fail(IM_EINVAL,
+                       "crop %d,%d,%d,%d: expected X0,Y0,NX,NY with NX, NY >= 2 inside the %d x %d "
+                       "grid",
+                       x0, y0, nx, ny, surface->nx, surface->ny);
     int status = im_field_create(nx, ny, surface->delta, out);
     if (status != IM_OK)
         return status;
@@ -120,8 +122,10 @@ int im_surface_detrend(im_field *surface, enum im_detrend detrend)
 {
     ARG_VIEW(surface, "surface");
     if (detrend != IM_DETREND_NONE && detrend != IM_DETREND_PLANE && detrend != IM_DETREND_CURVATURE)
-        return im_fail(IM_EINVAL, "im_surface_detrend: detrend = %d: expected IM_DETREND_NONE, _PLANE or "
-                       "_CURVATURE", (int)detrend);
+        return im_fail(IM_EINVAL,
+                       "im_surface_detrend: detrend = %d: expected IM_DETREND_NONE, _PLANE or "
+                       "_CURVATURE",
+                       (int)detrend);
     int status = im_field_check_finite(surface, "detrend");
     if (status != IM_OK || detrend == IM_DETREND_NONE)
         return status;

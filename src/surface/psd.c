@@ -34,8 +34,8 @@ static im_psd *psd_alloc(int bins)
 }
 
 /* Accumulates one stored entry into its logarithmic bin (serial: the sums stay in order). */
-static void accumulate(im_psd *psd, const surface_spectrum *s, double log_lo, double log_width,
-                       double psd_scale, int jx, int jy, double *q_sum)
+static void accumulate(im_psd *psd, const surface_spectrum *s, double log_lo, double log_width, double psd_scale,
+                       int jx, int jy, double *q_sum)
 {
     double qx = spectrum_kx(jx) * s->qx_step, qy = spectrum_ky(s, jy) * s->qy_step;
     double q = hypot(qx, qy);
@@ -107,8 +107,8 @@ int im_psd_fit_exponent(const im_psd *psd, double q_min, double q_max, double *e
         ++used;
     }
     if (used < 2)
-        return im_fail(IM_EINVAL, "psd fit: %d non-empty bins in q = [%g, %g]; expected at least 2",
-                       used, q_min, q_max);
+        return im_fail(IM_EINVAL, "psd fit: %d non-empty bins in q = [%g, %g]; expected at least 2", used, q_min,
+                       q_max);
     *exponent = (used * sxy - sx * sy) / (used * sxx - sx * sx);
     return IM_OK;
 }

@@ -70,9 +70,10 @@ static int square_grid_sides(const im_field *field, double delta_x, double delta
     double fine = fmin(delta_x, delta_y);
     double sides[2] = {nodes_on_axis(field->nx, delta_x, fine), nodes_on_axis(field->ny, delta_y, fine)};
     if (sides[0] > IM_FIELD_MAX_SIDE || sides[1] > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EINVAL, "resampling %d x %d pixels of %g x %g onto square pixels of %g: %.0f x %.0f "
-                       "nodes, more than %d along a side", field->nx, field->ny, delta_x, delta_y, fine, sides[0],
-                       sides[1], IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EINVAL,
+                       "resampling %d x %d pixels of %g x %g onto square pixels of %g: %.0f x %.0f "
+                       "nodes, more than %d along a side",
+                       field->nx, field->ny, delta_x, delta_y, fine, sides[0], sides[1], IM_FIELD_MAX_SIDE);
     *nx = (int)sides[0];
     *ny = (int)sides[1];
     return IM_OK;

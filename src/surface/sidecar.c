@@ -29,24 +29,20 @@ double im_surface_height_rms_eq15(const im_surface_params *p, double slope_rms)
 
 static json_t *params_json(const im_surface_params *p)
 {
-    return json_pack("{s:i, s:i, s:f, s:f, s:f, s:f, s:f, s:s, s:f, s:f, s:s, s:I}",
-                     "nx", p->nx, "ny", p->ny, "delta", p->delta, "hurst", p->hurst,
-                     "lambda_s", p->lambda_s, "lambda_r", p->lambda_r, "lambda_0", p->lambda_0,
-                     "target", p->target == IM_TARGET_HEIGHT ? "height_rms" : "slope_rms",
-                     "slope_rms", p->slope_rms, "height_rms", p->height_rms,
-                     "slope_definition", p->slope_definition == IM_SLOPE_SPECTRAL ? "spectral"
-                                                                                    : "finite-difference",
-                     "seed", (json_int_t)p->seed);
+    return json_pack("{s:i, s:i, s:f, s:f, s:f, s:f, s:f, s:s, s:f, s:f, s:s, s:I}", "nx", p->nx, "ny", p->ny,
+                     "delta", p->delta, "hurst", p->hurst, "lambda_s", p->lambda_s, "lambda_r", p->lambda_r,
+                     "lambda_0", p->lambda_0, "target", p->target == IM_TARGET_HEIGHT ? "height_rms" : "slope_rms",
+                     "slope_rms", p->slope_rms, "height_rms", p->height_rms, "slope_definition",
+                     p->slope_definition == IM_SLOPE_SPECTRAL ? "spectral" : "finite-difference", "seed",
+                     (json_int_t)p->seed);
 }
 
 static json_t *stats_json(const im_surface_stats *s)
 {
-    return json_pack("{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}",
-                     "mean", s->mean, "height_rms", s->height_rms,
-                     "slope_rms_spectral", s->slope_rms_spectral, "slope_rms_fd", s->slope_rms_fd,
-                     "curvature_rms", s->curvature_rms, "m0", s->m0, "m2", s->m2, "m4", s->m4,
-                     "nayak", isfinite(s->nayak) ? s->nayak : 0.0, "height_min", s->height_min,
-                     "height_max", s->height_max);
+    return json_pack("{s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f, s:f}", "mean", s->mean, "height_rms",
+                     s->height_rms, "slope_rms_spectral", s->slope_rms_spectral, "slope_rms_fd", s->slope_rms_fd,
+                     "curvature_rms", s->curvature_rms, "m0", s->m0, "m2", s->m2, "m4", s->m4, "nayak",
+                     isfinite(s->nayak) ? s->nayak : 0.0, "height_min", s->height_min, "height_max", s->height_max);
 }
 
 int im_surface_sidecar_write(const char *path, const im_field *surface, const im_surface_params *params,
@@ -54,9 +50,8 @@ int im_surface_sidecar_write(const char *path, const im_field *surface, const im
 {
     ARG_REQUIRE(path, "path");
     ARG_VIEW(surface, "surface");
-    json_t *root = json_pack("{s:s, s:s, s:i, s:i, s:f, s:s}", "program", "indentmap",
-                             "version", IM_VERSION, "nx", surface->nx, "ny", surface->ny,
-                             "delta", surface->delta, "unit", surface->unit);
+    json_t *root = json_pack("{s:s, s:s, s:i, s:i, s:f, s:s}", "program", "indentmap", "version", IM_VERSION, "nx",
+                             surface->nx, "ny", surface->ny, "delta", surface->delta, "unit", surface->unit);
     if (!root)
         return im_fail(IM_ENOMEM, "%s: cannot build the JSON record", path);
     if (params) {

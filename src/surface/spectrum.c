@@ -54,8 +54,8 @@ int surface_spectrum_of(const im_field *field, surface_spectrum *out)
     }
     fft_planner_lock();
     fft_prepare_planner();
-    fftw_plan plan = fftw_plan_dft_r2c_2d(field->ny, field->nx, input,
-                                          (fftw_complex *)out->coefficients, FFTW_ESTIMATE);
+    fftw_plan plan = fftw_plan_dft_r2c_2d(field->ny, field->nx, input, (fftw_complex *)out->coefficients,
+                                          FFTW_ESTIMATE);
     fft_planner_unlock();
     memcpy(input, field->data, count * sizeof *input);
     fftw_execute(plan);
@@ -78,8 +78,7 @@ int surface_spectrum_to_field(const surface_spectrum *spectrum, im_field *field)
     fft_planner_lock();
     fft_prepare_planner();
     /* c2r transforms overwrite their input: plan and run on a copy. */
-    fftw_plan plan = fftw_plan_dft_c2r_2d(field->ny, field->nx, (fftw_complex *)work,
-                                          field->data, FFTW_ESTIMATE);
+    fftw_plan plan = fftw_plan_dft_c2r_2d(field->ny, field->nx, (fftw_complex *)work, field->data, FFTW_ESTIMATE);
     fft_planner_unlock();
     memcpy(work, spectrum->coefficients, spectrum_count * sizeof *work);
     fftw_execute(plan);
@@ -92,8 +91,8 @@ int spectrum_weighted_power(const surface_spectrum *s, double (*weight)(double q
 {
     double *row_sums = calloc((size_t)s->ny, sizeof *row_sums);
     if (!row_sums)
-        return im_fail(IM_ENOMEM, "spectral moment of a %d x %d surface: no memory for %d row sums",
-                       s->half_nx, s->ny, s->ny);
+        return im_fail(IM_ENOMEM, "spectral moment of a %d x %d surface: no memory for %d row sums", s->half_nx,
+                       s->ny, s->ny);
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < s->ny; ++jy) {
         double qy = spectrum_ky(s, jy) * s->qy_step;

@@ -11,7 +11,7 @@
 #include <math.h>
 
 typedef struct surface_spectrum {
-    int nx, ny, half_nx;    /* half_nx = nx / 2 + 1 columns */
+    int nx, ny, half_nx;     /* half_nx = nx / 2 + 1 columns */
     double qx_step, qy_step; /* 2 pi / L_x, 2 pi / L_y */
     double complex *coefficients;
 } surface_spectrum;
@@ -29,10 +29,7 @@ void surface_spectrum_release(surface_spectrum *spectrum);
 
 /* Signed integer wave numbers of a stored entry. */
 static inline int spectrum_kx(int jx) { return jx; }
-static inline int spectrum_ky(const surface_spectrum *s, int jy)
-{
-    return jy <= s->ny / 2 ? jy : jy - s->ny;
-}
+static inline int spectrum_ky(const surface_spectrum *s, int jy) { return jy <= s->ny / 2 ? jy : jy - s->ny; }
 
 /* How many modes of the full spectrum the stored entry (jx, .) stands for: 2 for a column whose
  * conjugate partner is not stored, 1 for column 0 and, with nx even, the Nyquist column. */

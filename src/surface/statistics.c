@@ -14,8 +14,7 @@ static int ordered_sum_over_rows(const im_field *f, int rows, row_term term, dou
 {
     double *partial = malloc((size_t)rows * sizeof *partial);
     if (!partial)
-        return im_fail(IM_ENOMEM, "statistics of a %d x %d surface: no memory for %d row sums", f->nx, f->ny,
-                       rows);
+        return im_fail(IM_ENOMEM, "statistics of a %d x %d surface: no memory for %d row sums", f->nx, f->ny, rows);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < rows; ++iy)
         partial[iy] = term(f, iy);
@@ -66,17 +65,16 @@ static int slope_rms_finite_difference(const im_field *f, double *slope)
     double mean_dy2 = f->ny > 1 ? sum_dy2 / ((double)f->nx * (f->ny - 1)) : 0.0;
     *slope = sqrt(mean_dx2 + mean_dy2) / f->delta;
     if (!isfinite(*slope))
-        return im_fail(IM_ENUMERIC, "slope of a %d x %d surface: the squared height differences overflow "
-                       "(heights of magnitude above ~1e154 in units of delta); rescale the heights", f->nx, f->ny);
+        return im_fail(IM_ENUMERIC,
+                       "slope of a %d x %d surface: the squared height differences overflow "
+                       "(heights of magnitude above ~1e154 in units of delta); rescale the heights",
+                       f->nx, f->ny);
     return IM_OK;
 }
 
 static double weight_q2(double qx, double qy) { return qx * qx + qy * qy; }
 static double weight_profile_q2(double qx, double qy) { return 0.5 * (qx * qx + qy * qy); }
-static double weight_profile_q4(double qx, double qy)
-{
-    return 0.5 * (qx * qx * qx * qx + qy * qy * qy * qy);
-}
+static double weight_profile_q4(double qx, double qy) { return 0.5 * (qx * qx * qx * qx + qy * qy * qy * qy); }
 static double weight_mean_curvature(double qx, double qy)
 {
     double q2 = qx * qx + qy * qy;
@@ -84,14 +82,15 @@ static double weight_mean_curvature(double qx, double qy)
 }
 static double weight_zero_mean(double qx, double qy) { return (qx == 0.0 && qy == 0.0) ? 0.0 : 1.0; }
 
-int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition,
-                         double *slope_rms)
+int im_surface_slope_rms(const im_field *surface, enum im_slope_definition definition, double *slope_rms)
 {
     ARG_VIEW(surface, "surface");
     ARG_REQUIRE(slope_rms, "slope_rms");
     if (definition != IM_SLOPE_SPECTRAL && definition != IM_SLOPE_FINITE_DIFFERENCE)
-        return im_fail(IM_EINVAL, "im_surface_slope_rms: definition = %d: expected IM_SLOPE_SPECTRAL or "
-                       "IM_SLOPE_FINITE_DIFFERENCE", (int)definition);
+        return im_fail(IM_EINVAL,
+                       "im_surface_slope_rms: definition = %d: expected IM_SLOPE_SPECTRAL or "
+                       "IM_SLOPE_FINITE_DIFFERENCE",
+                       (int)definition);
     if (definition == IM_SLOPE_FINITE_DIFFERENCE)
         return slope_rms_finite_difference(surface, slope_rms);
     surface_spectrum spectrum;
@@ -147,9 +146,10 @@ static int check_height_range(const im_field *surface)
 {
     for (size_t i = 0; i < im_field_count(surface); ++i)
         if (fabs(surface->data[i]) > LARGEST_HEIGHT)
-            return im_fail(IM_EINVAL, "surface: height %g at (x=%zu, y=%zu): expected |h| <= %g (rescale the "
-                           "heights: their squares must not overflow)", surface->data[i], i % (size_t)surface->nx,
-                           i / (size_t)surface->nx, LARGEST_HEIGHT);
+            return im_fail(IM_EINVAL,
+                           "surface: height %g at (x=%zu, y=%zu): expected |h| <= %g (rescale the "
+                           "heights: their squares must not overflow)",
+                           surface->data[i], i % (size_t)surface->nx, i / (size_t)surface->nx, LARGEST_HEIGHT);
     return IM_OK;
 }
 

@@ -12,10 +12,18 @@
 im_surface_params im_surface_params_default(void)
 {
     im_surface_params params = {
-        .nx = 512, .ny = 512, .delta = 1.0, .hurst = 0.8,
-        .lambda_s = 4.0, .lambda_r = 512.0, .lambda_0 = 0.0,
-        .target = IM_TARGET_SLOPE, .slope_rms = 0.08, .height_rms = 1.0,
-        .slope_definition = IM_SLOPE_SPECTRAL, .seed = 1,
+        .nx = 512,
+        .ny = 512,
+        .delta = 1.0,
+        .hurst = 0.8,
+        .lambda_s = 4.0,
+        .lambda_r = 512.0,
+        .lambda_0 = 0.0,
+        .target = IM_TARGET_SLOPE,
+        .slope_rms = 0.08,
+        .height_rms = 1.0,
+        .slope_definition = IM_SLOPE_SPECTRAL,
+        .seed = 1,
     };
     return params;
 }
@@ -24,18 +32,18 @@ int im_surface_params_check(const im_surface_params *p)
 {
     ARG_REQUIRE(p, "params");
     if (p->nx < 2 || p->ny < 2 || p->nx > IM_FIELD_MAX_SIDE || p->ny > IM_FIELD_MAX_SIDE)
-        return im_fail(IM_EINVAL, "grid %d x %d: expected each side in [2, %d]", p->nx, p->ny,
-                       IM_FIELD_MAX_SIDE);
+        return im_fail(IM_EINVAL, "grid %d x %d: expected each side in [2, %d]", p->nx, p->ny, IM_FIELD_MAX_SIDE);
     if (!(p->delta > 0.0) || !isfinite(p->delta))
         return im_fail(IM_EINVAL, "delta = %g: expected a finite value > 0", p->delta);
     if (!(p->hurst > 0.0 && p->hurst < 1.0))
         return im_fail(IM_EINVAL, "hurst = %g: expected 0 < H < 1", p->hurst);
     if (!(p->lambda_s >= 2.0) || !isfinite(p->lambda_s))
-        return im_fail(IM_EINVAL, "lambda_s = %g: expected a finite value >= 2 (grid spacings; "
-                       "shorter waves do not exist on the grid)", p->lambda_s);
+        return im_fail(IM_EINVAL,
+                       "lambda_s = %g: expected a finite value >= 2 (grid spacings; "
+                       "shorter waves do not exist on the grid)",
+                       p->lambda_s);
     if (!(p->lambda_r > p->lambda_s) || !isfinite(p->lambda_r))
-        return im_fail(IM_EINVAL, "lambda_r = %g: expected a finite value > lambda_s = %g",
-                       p->lambda_r, p->lambda_s);
+        return im_fail(IM_EINVAL, "lambda_r = %g: expected a finite value > lambda_s = %g", p->lambda_r, p->lambda_s);
     if (!isfinite(p->lambda_0))
         return im_fail(IM_EINVAL, "lambda_0 = %g: expected a finite value", p->lambda_0);
     if (p->target == IM_TARGET_SLOPE && (!(p->slope_rms >= 0.0) || !isfinite(p->slope_rms)))
@@ -107,15 +115,14 @@ static double complex mode_amplitude(uint64_t seed, int kx, int ky)
     uint64_t key = hash3(seed, ckx, cky);
     double u1 = uniform_open0(mix64(key ^ 0x1u));
     double u2 = uniform_open0(mix64(key ^ 0x2u));
-    double radius = sqrt(-log(u1));   /* |z|^2 exponential with mean 1: Box-Muller */
+    double radius = sqrt(-log(u1)); /* |z|^2 exponential with mean 1: Box-Muller */
     double complex z = radius * cexp(2.0 * M_PI * I * u2);
     return canonical ? z : conj(z);
 }
 
 static int is_nyquist(int k, int n) { return n % 2 == 0 && (k == n / 2 || k == -n / 2); }
 
-double complex surface_mode_coefficient(const im_surface_params *p, int kx, int ky, double qx_step,
-                                        double qy_step)
+double complex surface_mode_coefficient(const im_surface_params *p, int kx, int ky, double qx_step, double qy_step)
 {
     /* Nyquist modes have no well-defined slope (and no conjugate partner): no power. */
     if ((kx == 0 && ky == 0) || is_nyquist(kx, p->nx) || is_nyquist(ky, p->ny))
@@ -134,7 +141,12 @@ static void fill_spectrum(const im_surface_params *p, surface_spectrum *s)
                 surface_mode_coefficient(p, spectrum_kx(jx), spectrum_ky(s, jy), s->qx_step, s->qy_step);
 }
 
-static double weight_one(double qx, double qy) { (void)qx; (void)qy; return 1.0; }
+static double weight_one(double qx, double qy)
+{
+    (void)qx;
+    (void)qy;
+    return 1.0;
+}
 static double weight_q2(double qx, double qy) { return qx * qx + qy * qy; }
 
 static void scale_field(im_field *field, double factor)
@@ -146,8 +158,7 @@ static void scale_field(im_field *field, double factor)
 }
 
 /* The value of the target quantity for the unscaled surface. */
-static int measure_target(const im_surface_params *p, const surface_spectrum *s,
-                          const im_field *field, double *value)
+static int measure_target(const im_surface_params *p, const surface_spectrum *s, const im_field *field, double *value)
 {
     if (p->target == IM_TARGET_HEIGHT || p->slope_definition == IM_SLOPE_SPECTRAL) {
         double power = 0.0;
@@ -192,9 +203,10 @@ int im_surface_generate(const im_surface_params *p, im_field **out)
     double wanted = p->target == IM_TARGET_HEIGHT ? p->height_rms * p->delta : p->slope_rms;
     if (!(current > 0.0)) {
         im_field_free(field);
-        return im_fail(IM_EINVAL, "no Fourier mode lies between lambda_s = %g and lambda_0 = %g on "
-                       "a %d x %d grid: the surface would be flat", p->lambda_s,
-                       fmax(p->lambda_0, p->lambda_r), p->nx, p->ny);
+        return im_fail(IM_EINVAL,
+                       "no Fourier mode lies between lambda_s = %g and lambda_0 = %g on "
+                       "a %d x %d grid: the surface would be flat",
+                       p->lambda_s, fmax(p->lambda_0, p->lambda_r), p->nx, p->ny);
     }
     scale_field(field, wanted / current);
     *out = field;

@@ -258,10 +258,9 @@ int im_theory_kendall_load_at_approach(const im_theory_adhesion *law, double pun
 
 static im_theory_adhesive_point jkr_cone_at(const im_theory_adhesion *law, double cot_alpha, double a)
 {
-    return (im_theory_adhesive_point){a, a,
-                                      M_PI / 2.0 * law->e_star * cot_alpha * a * a -
-                                          sqrt(8.0 * M_PI * law->e_star * law->work * a * a * a),
-                                      M_PI / 2.0 * cot_alpha * a - sqrt(2.0 * M_PI * law->work * a / law->e_star)};
+    return (im_theory_adhesive_point){
+        a, a, M_PI / 2.0 * law->e_star * cot_alpha * a * a - sqrt(8.0 * M_PI * law->e_star * law->work * a * a * a),
+        M_PI / 2.0 * cot_alpha * a - sqrt(2.0 * M_PI * law->work * a / law->e_star)};
 }
 
 static double cot_degrees(double alpha_deg) { return cos(alpha_deg * DEGREE) / sin(alpha_deg * DEGREE); }

@@ -10,7 +10,9 @@ static const double DEGREE = M_PI / 180.0;
 
 im_theory_interface im_theory_interface_default(double slope_rms)
 {
-    return (im_theory_interface){.slope_rms = slope_rms, .e_star = 1.0, .k = IM_THEORY_K_DEFAULT,
+    return (im_theory_interface){.slope_rms = slope_rms,
+                                 .e_star = 1.0,
+                                 .k = IM_THEORY_K_DEFAULT,
                                  .normalisation = IM_THEORY_NORMALISATION_PR};
 }
 
@@ -230,10 +232,7 @@ int im_theory_cone_area_ratio_constant(double beta, double *ratio)
 
 /* acosh(1/s) = log((1 + sqrt(1 - s^2)) / s) = log1p((t + sqrt(t (1 + s))) / s) with t = 1 - s:
  * every operation is relatively accurate, also where t is tiny. */
-static double acosh_inverse(double s, double t)
-{
-    return s == 0.0 ? INFINITY : log1p((t + sqrt(t * (1.0 + s))) / s);
-}
+static double acosh_inverse(double s, double t) { return s == 0.0 ? INFINITY : log1p((t + sqrt(t * (1.0 + s))) / s); }
 
 double theory_acosh_inverse(double s) { return acosh_inverse(s, 1.0 - s); }
 

@@ -39,8 +39,8 @@ static double linear_slope(const double *x, const double *area, int count, int *
 }
 
 /* Sums over the points at k: residual squares, J^2 and J r with J = dA/dk = x exp(-z^2), z = sqrt(pi)/2 k x. */
-static void normal_equation(const double *x, const double *area, int count, double k, double *squares,
-                            double *jj, double *jr)
+static void normal_equation(const double *x, const double *area, int count, double k, double *squares, double *jj,
+                            double *jr)
 {
     *squares = *jj = *jr = 0.0;
     for (int i = 0; i < count; ++i) {

@@ -148,8 +148,7 @@ int im_theory_punch_area_ratio(enum im_punch_kind kind, double beta, double *rat
     return status;
 }
 
-int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star,
-                                  double *p_mean)
+int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double load, double e_star, double *p_mean)
 {
     ARG_REQUIRE(p_mean, "p_mean");
     int status = check_kind(kind);
@@ -160,8 +159,7 @@ int im_theory_punch_mean_pressure(enum im_punch_kind kind, double size, double l
     if (!(load > 0.0 && isfinite(load)))
         return im_fail(IM_EINVAL, "N = %g: expected a finite load N > 0", load);
     if (!(size > 0.0 && isfinite(size)))
-        return im_fail(IM_EINVAL, "%s = %g: expected a finite radius > 0", kind == IM_PUNCH_SPHERE ? "R" : "a",
-                       size);
+        return im_fail(IM_EINVAL, "%s = %g: expected a finite radius > 0", kind == IM_PUNCH_SPHERE ? "R" : "a", size);
     double area = M_PI * size * size;
     if (kind == IM_PUNCH_SPHERE)
         status = im_theory_hertz_area(load, size, e_star, &area);

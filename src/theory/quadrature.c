@@ -20,8 +20,7 @@ static int status_from_gsl(int gsl_status, const char *what, double lo, double h
     case GSL_ESING: status = IM_ENOCONV; break;
     default: status = IM_ENUMERIC; break;
     }
-    return im_fail(status, "%s on [%g, %g]: GSL quadrature failed: %s", what, lo, hi,
-                   gsl_strerror(gsl_status));
+    return im_fail(status, "%s on [%g, %g]: GSL quadrature failed: %s", what, lo, hi, gsl_strerror(gsl_status));
 }
 
 static int integrate(theory_integrand f, void *params, double lo, double hi, const char *what, double *result)
@@ -35,8 +34,8 @@ static int integrate(theory_integrand f, void *params, double lo, double hi, con
         return im_fail(IM_ENOMEM, "%s: GSL integration workspace allocation failed", what);
     gsl_function function = {.function = f, .params = params};
     double value, abserr;
-    int gsl_status = gsl_integration_qags(&function, lo, hi, 0.0, THEORY_QUADRATURE_EPSREL,
-                                          QUADRATURE_LIMIT, workspace, &value, &abserr);
+    int gsl_status = gsl_integration_qags(&function, lo, hi, 0.0, THEORY_QUADRATURE_EPSREL, QUADRATURE_LIMIT,
+                                          workspace, &value, &abserr);
     gsl_integration_workspace_free(workspace);
     if (gsl_status != GSL_SUCCESS)
         return status_from_gsl(gsl_status, what, lo, hi);
@@ -46,8 +45,7 @@ static int integrate(theory_integrand f, void *params, double lo, double hi, con
     return IM_OK;
 }
 
-int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what,
-                     double *result)
+int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what, double *result)
 {
     core_gsl_handler_off();
     int status = integrate(f, params, lo, hi, what, result);

@@ -13,7 +13,6 @@ typedef double (*theory_integrand)(double x, void *params);
 /* int_lo^hi f(x) dx by GSL's qags (adaptive Gauss-Kronrod with Wynn extrapolation, which copes
  * with integrable endpoint singularities) to THEORY_QUADRATURE_EPSREL. `what` names the integral
  * in error messages; lo >= hi gives 0. IM_OK, IM_ENOMEM, IM_ENUMERIC or IM_ENOCONV. */
-int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what,
-                     double *result);
+int theory_integrate(theory_integrand f, void *params, double lo, double hi, const char *what, double *result);
 
 #endif

@@ -6,8 +6,8 @@
 
 #include <math.h>
 
-int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach,
-                           double load, im_theory_step *out)
+int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *rough, double approach, double load,
+                           im_theory_step *out)
 {
     ARG_REQUIRE(punch, "punch");
     ARG_REQUIRE(rough, "rough");
@@ -22,7 +22,8 @@ int im_theory_step_columns(const im_indenter *punch, const im_theory_interface *
         return status;
     im_theory_step step = {.load_smooth = im_indenter_load(punch, rough->e_star, approach),
                            .area_smooth = load > 0.0 ? im_indenter_area_for_load(punch, rough->e_star, load) : 0.0,
-                           .area_ratio_constant = NAN, .area_ratio_gamma = NAN};
+                           .area_ratio_constant = NAN,
+                           .area_ratio_gamma = NAN};
     /* the rough-contact theory is for the cone, the sphere and the flat punch: NaN for a profile */
     if (load > 0.0 && punch->kind != IM_PUNCH_PROFILE && punch->kind != IM_PUNCH_PROFILE_2D) {
         double rho = p_rough > 0.0 ? load / step.area_smooth / p_rough : INFINITY;

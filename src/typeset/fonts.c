@@ -46,8 +46,10 @@ int typeset_fonts(cairo_font_face_t **regular, cairo_font_face_t **bold)
 {
     pthread_once(&once, load_fonts);
     if (!faces[0] || !faces[1])
-        return im_fail(IM_EUNSUPPORTED, "font %s cannot be loaded (FreeType error %d): install the "
-                       "DejaVu fonts (Debian: fonts-dejavu-core)", failed_file, failed_error);
+        return im_fail(IM_EUNSUPPORTED,
+                       "font %s cannot be loaded (FreeType error %d): install the "
+                       "DejaVu fonts (Debian: fonts-dejavu-core)",
+                       failed_file, failed_error);
     *regular = faces[0];
     *bold = faces[1];
     return IM_OK;

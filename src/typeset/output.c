@@ -14,8 +14,10 @@
 static int check_canvas(const typeset_canvas *c)
 {
     if (c->width < 1 || c->height < 1 || c->width > 32768 || c->height > 32768)
-        return im_fail(IM_EINVAL, "figure %d x %d pixels: expected 1 to 32768 per side; lower the dpi "
-                       "or the sizes", c->width, c->height);
+        return im_fail(IM_EINVAL,
+                       "figure %d x %d pixels: expected 1 to 32768 per side; lower the dpi "
+                       "or the sizes",
+                       c->width, c->height);
     return IM_OK;
 }
 
@@ -62,8 +64,8 @@ static int write_image_png(const char *path, const typeset_canvas *c, const im_i
     return status;
 }
 
-int typeset_output_frame(const char *path, const typeset_canvas *canvas, typeset_painter paint,
-                         const void *context, im_image *frame)
+int typeset_output_frame(const char *path, const typeset_canvas *canvas, typeset_painter paint, const void *context,
+                         im_image *frame)
 {
     int status = check_canvas(canvas);
     im_image image = {0};
@@ -133,8 +135,8 @@ static void set_pdf_metadata(const typeset_canvas *c, cairo_surface_t *surface)
     cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "indentmap " IM_VERSION);
 }
 
-static int write_vector(const char *path, typeset_format format, const typeset_canvas *c,
-                        typeset_painter paint, const void *context)
+static int write_vector(const char *path, typeset_format format, const typeset_canvas *c, typeset_painter paint,
+                        const void *context)
 {
     im_atomic_file file;
     int status = im_atomic_open(&file, path);
@@ -179,8 +181,8 @@ int typeset_format_of(const char *path, typeset_format *format)
     return IM_OK;
 }
 
-int typeset_output(const char *path, typeset_format format, const typeset_canvas *canvas,
-                   typeset_painter paint, const void *context)
+int typeset_output(const char *path, typeset_format format, const typeset_canvas *canvas, typeset_painter paint,
+                   const void *context)
 {
     if (format == TYPESET_PNG)
         return typeset_output_frame(path, canvas, paint, context, NULL);

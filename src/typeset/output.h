@@ -15,11 +15,11 @@ int typeset_format_of(const char *path, typeset_format *format);
 
 /* The page: its size in pixels at dpi, and what goes into the file besides the drawing. */
 typedef struct typeset_canvas {
-    int width, height;              /* pixels, 1 to 32768 each */
-    double dpi;                     /* PNG pHYs; PDF and SVG are scaled to 72 / dpi points per pixel */
-    const im_png_text *texts;       /* PNG tEXt chunks, PDF keywords; may be NULL */
+    int width, height;        /* pixels, 1 to 32768 each */
+    double dpi;               /* PNG pHYs; PDF and SVG are scaled to 72 / dpi points per pixel */
+    const im_png_text *texts; /* PNG tEXt chunks, PDF keywords; may be NULL */
     int text_count;
-    int png_compression;            /* zlib level 0-9 */
+    int png_compression; /* zlib level 0-9 */
 } typeset_canvas;
 
 /* Paints the whole canvas in pixel coordinates (the origin at the top left); returns a status. */
@@ -27,12 +27,12 @@ typedef int (*typeset_painter)(cairo_t *cr, const void *context);
 
 /* Draws with paint and writes path in format. The painter's failure is returned as it is and
  * nothing is left behind; IM_EIO when the file cannot be written, IM_ENOMEM. */
-int typeset_output(const char *path, typeset_format format, const typeset_canvas *canvas,
-                   typeset_painter paint, const void *context);
+int typeset_output(const char *path, typeset_format format, const typeset_canvas *canvas, typeset_painter paint,
+                   const void *context);
 
 /* As typeset_output for a PNG, and when frame is not NULL the PNG's pixels (RGBA, alpha 255) in
  * *frame (im_image_release; only the size and the pixels are set). */
-int typeset_output_frame(const char *path, const typeset_canvas *canvas, typeset_painter paint,
-                         const void *context, im_image *frame);
+int typeset_output_frame(const char *path, const typeset_canvas *canvas, typeset_painter paint, const void *context,
+                         im_image *frame);
 
 #endif

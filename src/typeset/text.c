@@ -109,8 +109,8 @@ static size_t plain_run(const char *text)
     return n;
 }
 
-double typeset_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                         const char *text, int draw)
+double typeset_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y, const char *text,
+                         int draw)
 {
     double advance = 0.0;
     cairo_set_font_face(cr, face);
@@ -139,8 +139,8 @@ double typeset_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, doub
     return advance;
 }
 
-void typeset_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                       double align, const char *text)
+void typeset_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y, double align,
+                       const char *text)
 {
     double width = typeset_rich_text(cr, face, size, 0.0, 0.0, text, 0);
     typeset_rich_text(cr, face, size, x - align * width, y, text, 1);

@@ -8,12 +8,12 @@
 
 /* Draws (draw = 1) or only measures text at baseline (x, y) in face at size (pixels); markup runs
  * are drawn at 70 % of the size, raised or lowered. Returns the advance (width) in pixels. */
-double typeset_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                         const char *text, int draw);
+double typeset_rich_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y, const char *text,
+                         int draw);
 
 /* Text at (x, y) baseline, aligned 0 left, 0.5 centre, 1 right. */
-void typeset_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y,
-                       double align, const char *text);
+void typeset_show_text(cairo_t *cr, cairo_font_face_t *face, double size, double x, double y, double align,
+                       const char *text);
 
 /* Label of ticks[i] of count ticks from im_figure_ticks. Linear: as many decimals as the step
  * needs ("0.25"), or, when the step is below 0.001 or a value reaches 10^5, one common power of

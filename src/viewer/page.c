@@ -21,8 +21,8 @@ enum { MAX_NAMES = 4096, MAX_TEXT_BYTES = 4 << 20, MAX_TABLE_ROWS = 2000, PATH_S
 typedef struct page {
     FILE *out;
     const char *dir;
-    int embed;                 /* images as data URIs (viewer.h: im_viewer_options) */
-    const json_t *units;       /* run.json's units.columns, or NULL */
+    int embed;           /* images as data URIs (viewer.h: im_viewer_options) */
+    const json_t *units; /* run.json's units.columns, or NULL */
 } page;
 
 typedef struct name_list {
@@ -37,10 +37,7 @@ static void free_names(name_list *list)
     list->count = 0;
 }
 
-static int compare_names(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
+static int compare_names(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 static int ends_with(const char *name, const char *suffix)
 {
@@ -135,7 +132,8 @@ static int write_data_uri(FILE *out, const char *path)
     FILE *f = fopen(path, "rb");
     long size = f && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
     unsigned char *data = size >= 0 && size <= MAX_IMAGE_BYTES && fseek(f, 0, SEEK_SET) == 0
-                              ? malloc((size_t)size + 1) : NULL;
+                              ? malloc((size_t)size + 1)
+                              : NULL;
     int read = data && fread(data, 1, (size_t)size, f) == (size_t)size;
     if (f)
         fclose(f);
@@ -144,8 +142,9 @@ static int write_data_uri(FILE *out, const char *path)
         write_base64(out, data, (size_t)size);
     }
     free(data);
-    return read ? IM_OK : im_fail(IM_EIO, "viewer page: cannot embed %s (unreadable, or over %ld MiB)", path,
-                                  MAX_IMAGE_BYTES >> 20);
+    return read ? IM_OK
+                : im_fail(IM_EIO, "viewer page: cannot embed %s (unreadable, or over %ld MiB)", path,
+                          MAX_IMAGE_BYTES >> 20);
 }
 
 /* Where an image is, relative to the page (name under dir): the name itself, or its data URI when the
@@ -166,8 +165,10 @@ static const char STYLE[] =
     "h1{font-size:1.5em;margin:0 0 .2em}h2{font-size:1.15em;border-bottom:1px solid #ccc;padding-bottom:.2em;"
     "margin-top:1.6em}.figures{display:flex;flex-wrap:wrap;gap:1.2em}figure{margin:0}"
     "figure img{max-width:100%;height:auto;border:1px solid #eee}figcaption{font-size:.85em;color:#555}"
-    ".figures figure{flex:0 1 auto;max-width:100%}.animations img{width:30em;image-rendering:pixelated}.frames{display:flex;gap:1em;align-items:flex-start}"
-    ".frames figure{flex:1 1 0;min-width:0}.frames figure img{width:100%}.slider{display:flex;align-items:center;gap:1em;margin:.6em 0}"
+    ".figures figure{flex:0 1 auto;max-width:100%}.animations "
+    "img{width:30em;image-rendering:pixelated}.frames{display:flex;gap:1em;align-items:flex-start}"
+    ".frames figure{flex:1 1 0;min-width:0}.frames figure "
+    "img{width:100%}.slider{display:flex;align-items:center;gap:1em;margin:.6em 0}"
     ".slider input{flex:1}table{border-collapse:collapse;font-size:.85em;font-variant-numeric:tabular-nums}"
     "th,td{border:1px solid #ddd;padding:.2em .5em;text-align:right}th{background:#f4f4f4}"
     "tr:nth-child(even) td{background:#fafafa}pre{background:#f7f7f7;padding:1em;overflow:auto;font-size:.8em}"
@@ -258,7 +259,8 @@ static int parse_frame_name(const char *name, size_t *prefix, int *step)
 /* The order of the frame panels: the known prefixes first, with their captions. */
 static const char *caption_of(const char *prefix, size_t length)
 {
-    static const char *const known[][2] = {{"contact", "contact map"}, {"height", "deformed surface (h − u)"},
+    static const char *const known[][2] = {{"contact", "contact map"},
+                                           {"height", "deformed surface (h − u)"},
                                            {"view3d", "3-D view"}};
     for (int k = 0; k < 3; ++k)
         if (strlen(known[k][0]) == length && strncmp(prefix, known[k][0], length) == 0)
@@ -268,8 +270,8 @@ static const char *caption_of(const char *prefix, size_t length)
 
 typedef struct frame_group {
     char prefix[64];
-    int rank;             /* known prefixes first */
-    int first;            /* index in the sorted name list of its first frame */
+    int rank;  /* known prefixes first */
+    int first; /* index in the sorted name list of its first frame */
 } frame_group;
 
 static int compare_groups(const void *a, const void *b)
@@ -290,7 +292,8 @@ static int frame_groups(const name_list *list, frame_group *groups, int capacity
             continue;
         *steps = step + 1 > *steps ? step + 1 : *steps;
         int g = 0;
-        while (g < count && !(strlen(groups[g].prefix) == length && strncmp(groups[g].prefix, list->names[i], length) == 0))
+        while (g < count &&
+               !(strlen(groups[g].prefix) == length && strncmp(groups[g].prefix, list->names[i], length) == 0))
             ++g;
         if (g == count && count < capacity) {
             snprintf(groups[count].prefix, sizeof groups[count].prefix, "%.*s", (int)length, list->names[i]);
@@ -320,7 +323,9 @@ static int write_frame_array(const page *p, const name_list *list, const frame_g
         char wanted[1024];
         snprintf(wanted, sizeof wanted, "%s_%04d.png", group->prefix, step);
         const char *found = bsearch(&(const char *){wanted}, list->names, (size_t)list->count, sizeof list->names[0],
-                                    compare_names) ? wanted : NULL;
+                                    compare_names)
+                                ? wanted
+                                : NULL;
         fputs(step ? "," : "", out);
         if (!found) {
             fputs("null", out);
@@ -424,8 +429,11 @@ static int write_frames(const page *p)
     frame_group groups[FRAME_GROUPS_MAX];
     int count = status == IM_OK ? frame_groups(&list, groups, FRAME_GROUPS_MAX, &steps) : 0;
     if (count > 0) {
-        fputs("<h2>Frames</h2>\n<div class=\"slider\"><input type=\"range\" id=\"frame-slider\" min=\"0\" max=\"", out);
-        fprintf(out, "%d\" value=\"0\" step=\"1\" aria-label=\"step\"><span id=\"frame-label\">step 1 of %d</span></div>\n",
+        fputs("<h2>Frames</h2>\n<div class=\"slider\"><input type=\"range\" id=\"frame-slider\" min=\"0\" max=\"",
+              out);
+        fprintf(out,
+                "%d\" value=\"0\" step=\"1\" aria-label=\"step\"><span id=\"frame-label\">step 1 of "
+                "%d</span></div>\n",
                 steps - 1, steps);
         status = write_frame_panels(p, folder, &list, groups, count);
         fprintf(out, "<script>var FRAMES={steps:%d,groups:[", steps);
@@ -573,14 +581,16 @@ static int write_page(const page *p, const char *title, const char *record)
 {
     FILE *out = p->out;
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>", out);
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>",
+          out);
     escape_all(out, title);
     fprintf(out, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>", STYLE);
     escape_all(out, title);
     fputs(p->embed ? "</h1>\n<p class=\"note\">Written by indentmap " IM_VERSION
                      "; its images are in this page, which stands alone.</p>\n"
                    : "</h1>\n<p class=\"note\">Written by indentmap " IM_VERSION
-                     "; every file is beside this page in the run's folder.</p>\n", out);
+                     "; every file is beside this page in the run's folder.</p>\n",
+          out);
     long before = ftell(out);
     int status = write_figures(p);
     if (status == IM_OK)

@@ -34,21 +34,18 @@ static void check(int ok, const char *what, const char *detail)
     MPI_Abort(MPI_COMM_WORLD, 1);
 }
 
-static void check_status(int status, const char *what)
-{
-    check(status == IM_OK, what, im_last_error());
-}
+static void check_status(int status, const char *what) { check(status == IM_OK, what, im_last_error()); }
 
 typedef struct scenario {
     const char *name;
     int nx, ny;
     im_indenter punch;
     enum im_control control;
-    double approach;  /* displacement control: w; load control: N = the smooth N(w) */
+    double approach; /* displacement control: w; load control: N = the smooth N(w) */
     unsigned seed;
-    double hardness;  /* the pressure cap H_p (0: none) */
-    int cascade;      /* both solvers start from their coarse grids (0: from the local guess) */
-    int periodic;     /* a periodic cell under a rigid flat (g0 = max h - h; approach: see run_periodic) */
+    double hardness; /* the pressure cap H_p (0: none) */
+    int cascade;     /* both solvers start from their coarse grids (0: from the local guess) */
+    int periodic;    /* a periodic cell under a rigid flat (g0 = max h - h; approach: see run_periodic) */
 } scenario;
 
 static im_field *rough_surface(const scenario *c)
@@ -132,7 +129,8 @@ static void serial_solution(const scenario *c, const distributed_run *d, im_solv
         im_solver_plan *plan;
         double *displacement = malloc(sizeof(double) * im_field_count(gap0));
         check_status(im_solver_plan_create(c->nx, c->ny, 1.0, &o, &plan), "serial plan");
-        check_status(im_solver_solve(plan, gap0->data, c->control, target_of(c), (*force)->data, displacement, serial),
+        check_status(im_solver_solve(plan, gap0->data, c->control, target_of(c), (*force)->data, displacement,
+                                     serial),
                      "serial solve");
         im_solver_plan_free(plan);
         free(displacement);
@@ -181,8 +179,8 @@ static void check_solution(const scenario *c, const im_field *force, int iterati
     check(serial_contact > 20, "a contact of many patches", detail);
 }
 
-static void compare(const scenario *c, const im_solve_result *serial, const im_field *force, const im_solve_result *mpi,
-                    const double *pressure, int y0, int rows)
+static void compare(const scenario *c, const im_solve_result *serial, const im_field *force,
+                    const im_solve_result *mpi, const double *pressure, int y0, int rows)
 {
     check_close(c, "load", mpi->load, serial->load);
     char detail[160];
@@ -202,8 +200,8 @@ static double check_maps(const scenario *c, const im_field *force, const im_fiel
     char detail[160];
     snprintf(detail, sizeof detail, "%s: map sizes %d x %d and %d x %d", c->name, whole->nx, whole->ny, coarse->nx,
              coarse->ny);
-    check(whole->nx == c->nx && whole->ny == c->ny && coarse->nx == (c->nx + 4) / 5 && coarse->ny == (c->ny + 4) / 5 &&
-              coarse->delta == 5.0,
+    check(whole->nx == c->nx && whole->ny == c->ny && coarse->nx == (c->nx + 4) / 5 &&
+              coarse->ny == (c->ny + 4) / 5 && coarse->delta == 5.0,
           "map sizes", detail);
     double total = 0, worst = 0;
     for (int by = 0; by < coarse->ny; ++by)
@@ -273,8 +271,9 @@ static void run_scenario(const scenario *c)
     check((rank == 0) == (whole != NULL && coarse != NULL), "maps on rank 0 only", c->name);
     if (rank == 0)
         printf("%s load %a contact %ld map %a iterations %d serial-iterations %d coarse %d load-vs-serial %.2g "
-               "capped %ld\n", c->name, result.load, result.contact_patches, check_maps(c, force, whole, coarse),
-               result.iterations, serial.iterations, result.coarse_iterations, fabs(result.load - serial.load) / serial.load,
+               "capped %ld\n",
+               c->name, result.load, result.contact_patches, check_maps(c, force, whole, coarse), result.iterations,
+               serial.iterations, result.coarse_iterations, fabs(result.load - serial.load) / serial.load,
                capped_patches(c, force));
     im_field_free(whole);
     im_field_free(coarse);
@@ -298,7 +297,8 @@ static double undeformed_mean_gap(const im_field *surface)
 static int flat_solve(const scenario *c, const im_field *surface, void *run, int over_ranks, im_flat_result *out)
 {
     if (c->control == IM_CONTROL_LOAD)
-        return over_ranks ? im_mpi_flat_contact_solve(run, c->approach, out) : im_flat_contact_solve(run, c->approach, out);
+        return over_ranks ? im_mpi_flat_contact_solve(run, c->approach, out)
+                          : im_flat_contact_solve(run, c->approach, out);
     const double gap = c->approach * undeformed_mean_gap(surface);
     return over_ranks ? im_mpi_flat_contact_solve_gap(run, gap, out) : im_flat_contact_solve_gap(run, gap, out);
 }
@@ -329,7 +329,8 @@ static void run_periodic(const scenario *c)
     check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "periodic distributed plan");
     im_mpi_solver_rows(solver, &y0, &rows);
     im_mpi_flat_contact *run;
-    check_status(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c->nx, &run), "distributed flat contact");
+    check_status(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c->nx, &run),
+                 "distributed flat contact");
     im_flat_result serial, result;
     im_field *force;
     serial_flat_solution(c, surface, &serial, &force);
@@ -424,8 +425,8 @@ static void check_periodic_refusals(void)
     check_status(im_mpi_solver_create(MPI_COMM_WORLD, c.nx, c.ny, 1.0, &o, &solver), "half-space plan");
     im_mpi_solver_rows(solver, &y0, &rows);
     im_mpi_flat_contact *run = NULL;
-    check_refused(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c.nx, &run), IM_EINVAL, "half-space",
-                  "flat contact on a half-space");
+    check_refused(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c.nx, &run), IM_EINVAL,
+                  "half-space", "flat contact on a half-space");
     check(run == NULL, "no flat contact on a half-space", c.name);
     im_mpi_solver_free(solver);
     o.periodic = 1;
@@ -462,7 +463,8 @@ static void check_npy(const char *folder)
     snprintf(written, sizeof written, "%s/mpi_written_%d.npy", folder, ranks);
     snprintf(serial_path, sizeof serial_path, "%s/serial_%d.npy", folder, ranks);
     check_status(im_mpi_npy_write_rows(MPI_COMM_WORLD, written, c.nx, c.ny, y0, rows,
-                                       surface->data + (size_t)y0 * c.nx), "MPI-IO write");
+                                       surface->data + (size_t)y0 * c.nx),
+                 "MPI-IO write");
     if (rank == 0)
         check_status(im_npy_write(serial_path, surface, IM_NPY_FLOAT64), "serial write");
     MPI_Barrier(MPI_COMM_WORLD);
@@ -495,7 +497,8 @@ int main(int argc, char **argv)
         {"cone-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2, 0, 0, 0},
         {"sphere-displacement-96x80", 96, 80, im_indenter_sphere(100), IM_CONTROL_DISPLACEMENT, w_sphere, 3, 0, 0, 0},
         {"sphere-load-50x71", 50, 71, im_indenter_sphere(100), IM_CONTROL_LOAD, w_sphere, 4, 0, 0, 0},
-        {"cone-hardness-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0.12, 0, 0},
+        {"cone-hardness-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0.12,
+         0, 0},
         {"cone-hardness-load-47x53", 47, 53, im_indenter_cone(80), IM_CONTROL_LOAD, w_cone, 2, 0.2, 0, 0},
         /* the cascade's coarse grids have sides of at least 32 */
         {"cone-cascade-displacement-128x96", 128, 96, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, 6, 7, 0, 1, 0},

@@ -88,10 +88,7 @@ static void collect_channel(gpointer key, gpointer value, gpointer user)
     g_array_append_val(channels, found);
 }
 
-static gint by_id(gconstpointer a, gconstpointer b)
-{
-    return ((const channel *)a)->id - ((const channel *)b)->id;
-}
+static gint by_id(gconstpointer a, gconstpointer b) { return ((const channel *)a)->id - ((const channel *)b)->id; }
 
 /* Each channel's title and mask ("/ID/data/title", "/ID/mask"), when the file has them. */
 static void complete_channels(GwyContainer *container, GArray *channels)
@@ -239,7 +236,8 @@ static int read_file(const char *path, const char *asked)
     const char *module = gwy_file_detect(path, FALSE, GWY_FILE_OPERATION_LOAD);
     GwyContainer *container = gwy_file_load(path, GWY_RUN_NONINTERACTIVE, &error);
     if (!container) {
-        int unknown = error && error->domain == GWY_MODULE_FILE_ERROR && error->code == GWY_MODULE_FILE_ERROR_UNIMPLEMENTED;
+        int unknown = error && error->domain == GWY_MODULE_FILE_ERROR &&
+                      error->code == GWY_MODULE_FILE_ERROR_UNIMPLEMENTED;
         return fail(unknown ? "unknown-format" : "failed", "%s", error ? error->message : "Gwyddion gave no reason");
     }
     printf("module %s\n", module ? module : "-");
@@ -254,8 +252,8 @@ static int read_file(const char *path, const char *asked)
         write_field(chosen, !module || strcmp(module, "gwyfile") != 0);
     else
         status = channels->len == 0 ? refuse_without_images(container)
-                 : asked ? fail("failed", "no channel has the index or title '%s'", asked)
-                         : fail("failed", "%s", "no channel holds heights (values in a length unit)");
+                 : asked            ? fail("failed", "no channel has the index or title '%s'", asked)
+                                    : fail("failed", "%s", "no channel holds heights (values in a length unit)");
     g_array_free(channels, TRUE);
     g_object_unref(container);
     return status;
@@ -264,10 +262,7 @@ static int read_file(const char *path, const char *asked)
 /* In a sanitizer build LeakSanitizer would end this program with status 1 for what GLib's type system
  * and Gwyddion's loaded modules keep until exit by design; its own code is still checked for errors. */
 const char *__asan_default_options(void);
-const char *__asan_default_options(void)
-{
-    return "detect_leaks=0";
-}
+const char *__asan_default_options(void) { return "detect_leaks=0"; }
 
 int main(int argc, char **argv)
 {

@@ -21,10 +21,7 @@
  * program by its signal, and what libhdf5 keeps until exit is not a leak report (exit status 23). The parse
  * itself is checked in-process by fuzz/fuzz_hdf5.c and the fuzz_regressions test. */
 const char *__asan_default_options(void);
-const char *__asan_default_options(void)
-{
-    return "allocator_may_return_null=1:handle_segv=0:detect_leaks=0";
-}
+const char *__asan_default_options(void) { return "allocator_may_return_null=1:handle_segv=0:detect_leaks=0"; }
 
 int main(int argc, char **argv)
 {
