@@ -109,8 +109,8 @@ static const char *const OWN_FORMATS[] = {
     ".tmd   TrueMap / GelSight binary (lengths and heights in mm)                read",
     ".h5    HDF5: each 2-D numeric data set a channel; a bare matrix             read",
     ".zip   contact.engineering container (meta.yml): each topography a channel  read",
-    "text   matrix; x y z points on a grid; Gwyddion (English, German) and\n"
-    "         Wyko/Vision ASCII exports; decimal commas                          read, write (matrix)",
+    ("text   matrix; x y z points on a grid; Gwyddion (English, German) and\n" /* one entry of two lines */
+     "         Wyko/Vision ASCII exports; decimal commas                          read, write (matrix)"),
 };
 
 static int compare_lines(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
