@@ -88,12 +88,13 @@ static int holds_all(const line_sums *now, const uint64_t *kept, size_t count)
 /* The record's kind and checksums; 0 when it does not read as one. */
 static int parse_record(char *text, const char **kind, line_sums *kept)
 {
-    char *line = strtok(text, "\n");
-    if (!line || strcmp(line, HEADER) != 0 || !(line = strtok(NULL, "\n")))
+    char *save = NULL; /* strtok_r: strtok's one hidden cursor is shared by every thread of the process */
+    char *line = strtok_r(text, "\n", &save);
+    if (!line || strcmp(line, HEADER) != 0 || !(line = strtok_r(NULL, "\n", &save)))
         return 0;
     *kind = strcmp(line, MEASURED) == 0 ? MEASURED : strcmp(line, ESTIMATED) == 0 ? ESTIMATED : NULL;
     kept->count = 0;
-    while ((line = strtok(NULL, "\n")) != NULL) {
+    while ((line = strtok_r(NULL, "\n", &save)) != NULL) {
         char *end;
         kept->items[kept->count++] = strtoull(line, &end, 16);
         if (end == line || *end)
