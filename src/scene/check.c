@@ -208,12 +208,10 @@ static int adhesion_line(const scene_given *given)
     return 0;
 }
 
-/* What [adhesion] cannot take, NULL if nothing. */
+/* What a scene that gives [adhesion] cannot take, NULL if nothing. */
 static const char *adhesion_conflict(const im_scene *scene)
 {
-    if (!(scene->adhesion_work > 0))
-        return NULL;
-    if (!(scene->adhesion_range > 0))
+    if (!(scene->adhesion_work > 0) || !(scene->adhesion_range > 0))
         return "[adhesion] work and range go together: expected both";
     if (scene->hardness > 0)
         return "[adhesion] with [material] hardness: adhesion with plasticity is not available";
@@ -235,20 +233,16 @@ static const char *adhesion_conflict(const im_scene *scene)
     return NULL;
 }
 
-/* [adhesion]'s consistency: the message (im_fail) and the line of the [adhesion] key (or of
- * [loading] steps), 0 if consistent. */
+/* [adhesion]'s consistency: the message (im_fail) and the line of the first [adhesion] key, 0 if
+ * consistent or not given. */
 static int check_adhesion(const scene_given *given)
 {
-    const im_scene *scene = given->scene;
-    const int adhesion = adhesion_line(given);
-    const char *conflict = adhesion && !(scene->adhesion_work > 0)
-                               ? "[adhesion] work and range go together: expected both"
-                               : adhesion_conflict(scene);
+    const int line = adhesion_line(given);
+    const char *conflict = line ? adhesion_conflict(given->scene) : NULL;
     if (!conflict)
         return 0;
     im_fail(IM_EFORMAT, "%s", conflict);
-    int line = adhesion ? adhesion : key_line(given, "loading", "steps");
-    return line > 0 ? line : 1;
+    return line;
 }
 
 /* [loading] steps (kept by handle_key) into the scene: below 0 with [adhesion] only. 0, or the line of the
