@@ -95,12 +95,7 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
 void scene_members_free(scene_member *members, int count)
 {
     for (int i = 0; members && i < count; ++i) {
-        free(members[i].approach);
         free(members[i].history);
-        free(members[i].history_load);
-        free(members[i].history_load_star);
-        free(members[i].history_area_ratio);
-        free(members[i].history_patches);
         im_field_free(members[i].force);
     }
     free(members);

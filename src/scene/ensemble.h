@@ -26,12 +26,10 @@ typedef struct scene_member {
     im_field *force;                         /* force at load_star, kept for a panel (first seed), else NULL */
     const struct scene_member *at_load_star; /* histories: the table's member of this surface */
     int step_reused;                         /* histories: the step at load_star was the table's */
-    /* histories: one row per step that converged (history.h's schema), and the columns the figures
-     * draw, spread from them */
+    /* histories: one row per step that converged (history.h's schema); the figures read their
+     * columns from these rows (histories.c) */
     int steps;
     struct im_history_row *history;
-    double *approach, *history_load, *history_load_star, *history_area_ratio;
-    long *history_patches;
 } scene_member;
 
 /* ---- ensembles over MPI ranks (ranks.c; docs/mpi.md) ----
