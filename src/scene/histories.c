@@ -574,14 +574,14 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         report_histories(options, members, count);
     scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_HISTORY);
-    if (status == IM_OK)
-        scene_periodic_keep_rows(scene, reuse, members, count);
     if (status == IM_OK && histories_unload(scene))
         status = write_indentations(scene, options, members, count);
     if (status == IM_OK && scene->periodic)
         status = scene_periodic_results(scene, options, members, count);
     if (status == IM_OK)
         status = plot_histories(scene, members, count);
+    if (status == IM_OK) /* last: it takes the rows the steps above read */
+        scene_periodic_keep_rows(scene, reuse, members, count);
     scene_members_free(members, count);
     return status;
 }
