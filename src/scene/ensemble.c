@@ -1,5 +1,6 @@
 /* Ensembles: every surface of every family, solved side by side on the available cores. */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "scene/ensemble.h"
 #include "scene/outputs.h"

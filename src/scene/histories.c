@@ -2,6 +2,7 @@
  * paper's figures drawn from them (paper/history_figures.c): Fig. 5 (A / delta^2 against w),
  * Fig. 6 (N against w) and Fig. 7 (A / A_cone against N*, mean and +- one standard deviation). */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "front/front.h"
