@@ -36,10 +36,16 @@
  * Misuse (status.h): IM_EINVAL for a NULL scene, path, record, dir or output; im_scene_free(NULL) does
  * nothing, the readers of a NULL scene give "", -1 or 0 (as each says), im_scene_resolve_path writes "" for a NULL scene or relative path, im_scene_plot_parse
  * (NULL) is 0 and im_scene_suggest_key(section, NULL) NULL.
- * Threads: the functions of a scene are thread-safe on distinct scenes. im_scene_run starts OpenMP
- * workers of its own and calls its callbacks one at a time (im_scene_run_options); two runs at
- * once in different threads of one process are not supported (run them one after the other, or
- * in separate processes: the output folder's lock keeps two runs out of one folder).
+ * Threads: the functions of a scene are thread-safe on distinct scenes, and the readers (im_scene_path
+ * ... im_scene_renders, im_scene_file_path) on one scene from several threads; a setter wants the scene
+ * to itself. im_scene_run reads its scene (it runs a copy with a run state of its own), starts OpenMP
+ * workers of its own and calls its callbacks one at a time (im_scene_run_options). Two runs may go at
+ * once in different threads of one process, each into its own output folder (the folder's lock refuses
+ * a second run into one, as a second process): tests/test_scene_threads.c runs two so, their files
+ * byte-identical to those of the two run one after the other. What that test does not cover: runs
+ * that render at once (contact panels, frames: each opens a GL context, and render.h leaves several
+ * contexts drawing at once untested), [solver] device = gpu (solver.h: GPU plans keep to one thread),
+ * and a process that calls FFTW's planner itself meanwhile (solver.h).
  */
 #ifndef INDENTMAP_SCENE_H
 #define INDENTMAP_SCENE_H
