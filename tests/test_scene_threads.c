@@ -1,5 +1,6 @@
 /* Two scene runs at once in two threads of one process (scene.h, "Threads"): each its own scene and
- * output folder, their files the same bytes as when the two run one after the other. */
+ * output folder, their files the same bytes as when the two run one after the other; and again with
+ * --resume's reading back (members, histories, the plans record) in both threads at once. */
 #include "support.h"
 
 #include "indentmap/scene.h"
@@ -25,6 +26,7 @@ static const char *const COMPARED_FILES[SCENES][COMPARED] = {{"fig5.png", "fftw-
 
 typedef struct scene_job {
     im_scene *scene;
+    int resume;
     int status;
     char error[512];
 } scene_job;
@@ -45,7 +47,7 @@ static im_scene *load_scene(int i, const char *run)
 static void *run_job(void *data)
 {
     scene_job *job = data;
-    im_scene_run_options options = {.quiet = 1};
+    im_scene_run_options options = {.quiet = 1, .resume = job->resume};
     job->status = im_scene_run(job->scene, &options);
     snprintf(job->error, sizeof job->error, "%s", job->status == IM_OK ? "" : im_last_error());
     return NULL;
@@ -76,6 +78,36 @@ static void assert_same_file(const char *a, const char *b)
     free(bytes_b);
 }
 
+/* Runs both scenes at once, each in a thread of its own, into folders `run`_i. */
+static void run_together(const char *run, int resume)
+{
+    scene_job jobs[SCENES];
+    pthread_t threads[SCENES];
+    for (int i = 0; i < SCENES; ++i) {
+        jobs[i] = (scene_job){.scene = load_scene(i, run), .resume = resume};
+        assert_int_equal(pthread_create(&threads[i], NULL, run_job, &jobs[i]), 0);
+    }
+    for (int i = 0; i < SCENES; ++i) {
+        assert_int_equal(pthread_join(threads[i], NULL), 0);
+        if (jobs[i].status != IM_OK)
+            fail_msg("scene %d in its thread: status %d: %s", i, jobs[i].status, jobs[i].error);
+        im_scene_free(jobs[i].scene);
+    }
+}
+
+/* The compared files of folders `run`_i are those of alone_i. */
+static void assert_same_as_alone(const char *run)
+{
+    for (int i = 0; i < SCENES; ++i)
+        for (int f = 0; f < COMPARED; ++f) {
+            char alone[96], other[96], alone_path[4096];
+            snprintf(alone, sizeof alone, "alone_%d/%s", i, COMPARED_FILES[i][f]);
+            snprintf(other, sizeof other, "%s_%d/%s", run, i, COMPARED_FILES[i][f]);
+            snprintf(alone_path, sizeof alone_path, "%s", test_path(alone));
+            assert_same_file(alone_path, test_path(other));
+        }
+}
+
 static void two_runs_at_once_write_what_they_write_alone(void **state)
 {
     (void)state;
@@ -85,27 +117,10 @@ static void two_runs_at_once_write_what_they_write_alone(void **state)
         assert_int_equal(job.status, IM_OK);
         im_scene_free(job.scene);
     }
-    scene_job jobs[SCENES];
-    pthread_t threads[SCENES];
-    for (int i = 0; i < SCENES; ++i) {
-        jobs[i] = (scene_job){.scene = load_scene(i, "together")};
-        assert_int_equal(pthread_create(&threads[i], NULL, run_job, &jobs[i]), 0);
-    }
-    for (int i = 0; i < SCENES; ++i) {
-        assert_int_equal(pthread_join(threads[i], NULL), 0);
-        if (jobs[i].status != IM_OK)
-            fail_msg("scene %d in its thread: status %d: %s", i, jobs[i].status, jobs[i].error);
-        im_scene_free(jobs[i].scene);
-    }
-    for (int i = 0; i < SCENES; ++i)
-        for (int f = 0; f < COMPARED; ++f) {
-            char alone[96], together[96];
-            snprintf(alone, sizeof alone, "alone_%d/%s", i, COMPARED_FILES[i][f]);
-            snprintf(together, sizeof together, "together_%d/%s", i, COMPARED_FILES[i][f]);
-            char alone_path[4096];
-            snprintf(alone_path, sizeof alone_path, "%s", test_path(alone));
-            assert_same_file(alone_path, test_path(together));
-        }
+    run_together("together", 0);
+    assert_same_as_alone("together");
+    run_together("together", 1); /* everything read back */
+    assert_same_as_alone("together");
 }
 
 int main(void)
