@@ -120,7 +120,7 @@ static im_plot plot;
 static im_plot_panel plot_panel;
 static im_figure figure;
 static im_surface_params params;
-static im_scene *scene; /* a scene file's */
+static im_scene *scene; /* misuse.ini loaded: a scene file's */
 static im_scene *scene_out;
 static long contact[64];
 static im_adhesion_summary adhesion;

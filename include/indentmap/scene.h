@@ -112,9 +112,8 @@ int im_scene_load(const char *path, im_scene **scene);
  * scene_contents parsed as im_scene_load parses a file, with paths resolved against the recorded
  * scene file's folder (im_scene_path is that file's absolute path; the file itself need not exist any
  * more), the record kept for the new run's run.json (from_record) and how its FFTW plans were made
- * (im_scene_recorded_plans). Refused
- * (IM_EFORMAT naming the record and what was expected) for a record that is not a scene run's or
- * has no scene_contents (an earlier build's, before issue 31), IM_EINVAL for a record of another
+ * (im_scene_recorded_plans); *scene as im_scene_load's. Refused (IM_EFORMAT naming the record and
+ * what was expected) for a record that is not a scene run's or has no scene_contents (an earlier build's, before issue 31), IM_EINVAL for a record of another
  * version (its numbers may differ in their last bits: rerun with that version) and for an input
  * (a surface or profile file) whose SHA-256 is no longer the recorded one, naming the file. */
 int im_scene_load_record(const char *record, im_scene **scene);
