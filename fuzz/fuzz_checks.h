@@ -5,6 +5,7 @@
 
 #include "indentmap/field.h"
 #include "indentmap/scene.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 
 #include <math.h>
@@ -36,7 +37,7 @@ static inline const char *fuzz_field_problem(int status, const im_field *field)
 }
 
 /* NULL if im_scene_load's (status, scene) is consistent, else what is wrong: an accepted scene
- * holds its counts within its arrays, terminated strings, known plot bits and lambda_r > lambda_s. */
+ * (a scene, NULL when refused) holds its counts within its arrays, terminated strings, known plot bits and lambda_r > lambda_s. */
 static inline const char *fuzz_scene_problem(int status, const im_scene *s)
 {
     if (status != IM_OK)

@@ -4,15 +4,17 @@
 #include "fuzz_file.h"
 
 #include "indentmap/scene.h"
+#include "scene/contents.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static im_scene scene; /* about 50 KiB: kept off the stack */
+    im_scene *scene = NULL;
     int status = im_scene_load(fuzz_write_input(data, size), &scene);
-    const char *problem = fuzz_scene_problem(status, &scene);
+    const char *problem = fuzz_scene_problem(status, scene);
+    im_scene_free(scene);
     if (problem) {
         fprintf(stderr, "fuzz_scene: %s (status %d: %s)\n", problem, status, im_last_error());
         abort();

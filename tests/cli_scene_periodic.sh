@@ -45,6 +45,11 @@ sys.exit(not (p['punch'] == 'rigid flat on the whole cell' and p['k_fit'] == 'k_
 cp "$dir/res/k_fit.csv" "$dir/k_fit.csv"
 check "--resume reads the periodic history back" expect_exit 0 "0 solved, 1 read back" "$cli" run --resume "$dir/flat.ini"
 check "and draws the same k" cmp "$dir/k_fit.csv" "$dir/res/k_fit.csv"
+# With its contact maps too: the k fit reads the history the maps take over (it crashed, issue 28).
+scene "$dir/flat_maps.ini" cell.npy "" "steps = 0.002:0.03:6" $'[output]\ncontact_panels = yes' flat_maps
+check "the rigid flat with contact maps runs" "$cli" run --no-wisdom "$dir/flat_maps.ini" > /dev/null 2>&1
+check "its k_fit.csv is the one without maps" cmp "$dir/k_fit.csv" "$dir/flat_maps/k_fit.csv"
+check "and its maps are drawn" [ -s "$dir/flat_maps/panels/family_00/contact_0005.png" ]
 scene "$dir/more.ini" cell.npy "" "steps = 0.002:0.03:7"
 check "other pressures are solved again" expect_exit 0 "made from other inputs" "$cli" run --resume "$dir/more.ini"
 

@@ -120,7 +120,8 @@ static im_plot plot;
 static im_plot_panel plot_panel;
 static im_figure figure;
 static im_surface_params params;
-static im_scene scene;
+static im_scene *scene; /* misuse.ini loaded: a scene file's */
+static im_scene *scene_out;
 static long contact[64];
 static im_adhesion_summary adhesion;
 static im_taper taper = {IM_TAPER_HANN, 1.0};
@@ -196,7 +197,9 @@ static void make_fixtures(void)
     figure = im_figure_default();
     gif_options = im_gif_options_default();
     params = im_surface_params_default();
-    im_scene_defaults(&scene);
+    const char *scene_path = test_path("misuse.ini");
+    test_write_bytes(scene_path, "[output]\ntable = yes\n", 21);
+    assert_int_equal(im_scene_load(scene_path, &scene), IM_OK);
     assert_int_equal(im_solver_plan_create(8, 8, 1.0, &options, &plan), IM_OK);
     assert_int_equal(im_indentation_create(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run), IM_OK);
     assert_int_equal(im_flat_contact_create(&good, NULL, &flat), IM_OK);
@@ -482,21 +485,29 @@ REPORT(im_view3d_fit_distance, "distance", im_view3d_fit_distance(&good, &cone, 
 
 /* ---- scene.h ---- */
 SAFE_RESULT(im_scene_plot_parse, "name", im_scene_plot_parse(NULL) == 0)
-SAFE_RESULT(im_scene_defaults, "scene", (im_scene_defaults(NULL), 1))
-REPORT(im_scene_load, "path", im_scene_load(NULL, &scene))
+REPORT(im_scene_load, "path", im_scene_load(NULL, &scene_out))
 REPORT(im_scene_load, "scene", im_scene_load(path_text, NULL))
-REPORT(im_scene_load_record, "record", im_scene_load_record(NULL, &scene))
+REPORT(im_scene_load_record, "record", im_scene_load_record(NULL, &scene_out))
 REPORT(im_scene_load_record, "scene", im_scene_load_record(path_text, NULL))
+ACCEPT(im_scene_free, (im_scene_free(NULL), 1))
+SAFE_RESULT(im_scene_path, "scene", strcmp(im_scene_path(NULL), "") == 0)
+SAFE_RESULT(im_scene_name, "scene", strcmp(im_scene_name(NULL), "") == 0)
+SAFE_RESULT(im_scene_output_dir, "scene", strcmp(im_scene_output_dir(NULL), "") == 0)
+REPORT(im_scene_set_output_dir, "scene", im_scene_set_output_dir(NULL, "out"))
+REPORT(im_scene_set_output_dir, "dir", im_scene_set_output_dir(scene, NULL))
+SAFE_RESULT(im_scene_set_wisdom_path, "scene", (im_scene_set_wisdom_path(NULL, "w"), 1))
+SAFE_RESULT(im_scene_recorded_plans, "scene", im_scene_recorded_plans(NULL) == -1)
+SAFE_RESULT(im_scene_asks_for_output, "scene", im_scene_asks_for_output(NULL) == 0)
+SAFE_RESULT(im_scene_renders, "scene", im_scene_renders(NULL) == 0)
 REPORT(im_scene_run, "scene", im_scene_run(NULL, NULL))
-REPORT(im_scene_run, "options", im_scene_run(&scene, NULL))
-REPORT(im_scene_measure_files, "scene", im_scene_measure_files(NULL))
+REPORT(im_scene_run, "options", im_scene_run(scene, NULL))
 REPORT(im_scene_file_path, "scene", im_scene_file_path(NULL, 0, text, sizeof text))
-REPORT(im_scene_file_path, "out", im_scene_file_path(&scene, 0, NULL, 64))
+REPORT(im_scene_file_path, "out", im_scene_file_path(scene, 0, NULL, 64))
 SAFE_RESULT(im_scene_resolve_path, "scene",
             (text[0] = 'x', im_scene_resolve_path(NULL, "a", text, sizeof text), text[0] == '\0'))
 SAFE_RESULT(im_scene_resolve_path, "relative",
-            (text[0] = 'x', im_scene_resolve_path(&scene, NULL, text, sizeof text), text[0] == '\0'))
-SAFE_RESULT(im_scene_resolve_path, "out", (im_scene_resolve_path(&scene, "a", NULL, 64), 1))
+            (text[0] = 'x', im_scene_resolve_path(scene, NULL, text, sizeof text), text[0] == '\0'))
+SAFE_RESULT(im_scene_resolve_path, "out", (im_scene_resolve_path(scene, "a", NULL, 64), 1))
 SAFE_RESULT(im_scene_suggest_key, "word", im_scene_suggest_key(NULL, NULL) == NULL)
 
 /* ---- solver.h ---- */
@@ -694,7 +705,7 @@ REPORT(im_mpi_npy_read_rows, "data", im_mpi_npy_read_rows(MPI_COMM_WORLD, path_t
 REPORT(im_mpi_npy_write_rows, "path", im_mpi_npy_write_rows(MPI_COMM_WORLD, NULL, 8, 8, 0, 1, values))
 REPORT(im_mpi_npy_write_rows, "data", im_mpi_npy_write_rows(MPI_COMM_WORLD, path_text, 8, 8, 0, 1, NULL))
 REPORT(im_scene_run_ranks, "scene", im_scene_run_ranks(MPI_COMM_WORLD, NULL, NULL))
-REPORT(im_scene_run_ranks, "options", im_scene_run_ranks(MPI_COMM_WORLD, &scene, NULL))
+REPORT(im_scene_run_ranks, "options", im_scene_run_ranks(MPI_COMM_WORLD, scene, NULL))
 #endif
 
 /* ---- sizes and enumerations out of range (the checks most functions always had) ---- */
@@ -721,7 +732,7 @@ REPORT_AS_BEFORE(im_frame_path, im_frame_path(text, sizeof text, "d", "p", -3))
 REPORT_AS_BEFORE(im_path_join, im_path_join(text, 0, "d", "n"))
 REPORT_AS_BEFORE(im_path_suffix, im_path_suffix(text, 0, "p", ".json"))
 REPORT_AS_BEFORE(im_path_absolute, im_path_absolute("a", text, 0))
-REPORT_AS_BEFORE(im_scene_file_path, im_scene_file_path(&scene, -3, text, sizeof text))
+REPORT_AS_BEFORE(im_scene_file_path, im_scene_file_path(scene, -3, text, sizeof text))
 REPORT_AS_BEFORE(im_plot_geometry_of, im_plot_geometry_of(&plot, -3, &geometry))
 REPORT_AS_BEFORE(im_paper_fig1_contact_density, im_paper_fig1_contact_density(80.0, values, -3, NULL, path_text))
 REPORT_AS_BEFORE(im_paper_fig3_surface, im_paper_fig3_surface(&good, &params, -3, NULL, path_text))
@@ -734,7 +745,7 @@ REPORT_AS_BEFORE(im_indentation_create,
 ACCEPT(im_figure_ticks, im_figure_ticks(&colormap, out_values, -3) == 0)
 ACCEPT(im_path_utf8, im_path_utf8("a", text, 0) == 0)
 ACCEPT(im_view3d_exaggeration_text, (im_view3d_exaggeration_text(1.0, text, 0), 1))
-ACCEPT(im_scene_resolve_path, (im_scene_resolve_path(&scene, "a", text, 0), 1))
+ACCEPT(im_scene_resolve_path, (im_scene_resolve_path(scene, "a", text, 0), 1))
 ACCEPT(im_colormap_name, strcmp(im_colormap_name((im_colormap_id)99), "unknown") == 0)
 ACCEPT(im_colormap_table, im_colormap_table((im_colormap_id)99) == im_colormap_table(IM_COLORMAP_VIRIDIS))
 ACCEPT(im_colormap_make, im_colormap_make((im_colormap_id)99, 0.0, 1.0).hi == 1.0)

@@ -10,6 +10,7 @@
 #include "indentmap/scene.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "scene/contents.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -26,9 +27,11 @@ static const char *scene_steps_error(const char *steps)
     snprintf(text, sizeof text, "[loading]\nsteps = %s\n", steps);
     const char *path = test_path("steps.ini");
     test_write_bytes(path, text, strlen(text));
-    im_scene scene;
-    if (im_scene_load(path, &scene) == IM_OK)
+    im_scene *scene = NULL;
+    if (im_scene_load(path, &scene) == IM_OK) {
+        im_scene_free(scene);
         return NULL;
+    }
     const char *colon = strstr(im_last_error(), ".ini:2: ");
     snprintf(message, sizeof message, "%s", colon ? colon + 8 : im_last_error());
     return message;
@@ -105,7 +108,7 @@ static void punch_names_one_parser(void **state)
     snprintf(expected, sizeof expected, "shape = %s", im_last_error());
     const char *path = test_path("punch.ini");
     test_write_bytes(path, "[punch]\nshape = pyramid\n", 24);
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
     if (!strstr(im_last_error(), expected))
         fail_msg("scene: '%s', expected to contain '%s'", im_last_error(), expected);
@@ -120,7 +123,7 @@ static void one_default_tolerance(void **state)
     assert_int_equal(im_quality_tolerance(IM_QUALITY_DEFAULT, &standard), IM_OK);
     assert_close(im_solver_options_default().tol, standard, 0);
     im_scene scene;
-    im_scene_defaults(&scene);
+    scene_defaults(&scene);
     assert_close(scene.tol, standard, 0);
     assert_string_equal(scene.quality, IM_QUALITY_DEFAULT);
 }

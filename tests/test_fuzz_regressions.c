@@ -44,9 +44,11 @@ static int container_read(const char *path, im_field **out)
 static const char *read_like_harness(const char *harness, const char *path, int *status)
 {
     if (strcmp(harness, "scene") == 0) {
-        static im_scene scene;
+        im_scene *scene = NULL;
         *status = im_scene_load(path, &scene);
-        return fuzz_scene_problem(*status, &scene);
+        const char *problem = fuzz_scene_problem(*status, scene);
+        im_scene_free(scene);
+        return problem;
     }
     surface_reader read = strcmp(harness, "npy") == 0         ? im_npy_read
                           : strcmp(harness, "gsf") == 0       ? im_gsf_read

@@ -7,6 +7,7 @@
 #include "indentmap/formats.h"
 #include "indentmap/scene.h"
 #include "indentmap/status.h"
+#include "scene/contents.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -390,11 +391,13 @@ static void scene_key_npy_order(void **state)
     (void)state;
     const char *path = test_path("order.ini");
     write_text(path, "[surfaces]\nfile = xy.npy\nnpy_order = xy\n");
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(path, &scene), IM_OK);
-    assert_int_equal(scene.npy_order, IM_NPY_ORDER_XY);
+    assert_int_equal(scene->npy_order, IM_NPY_ORDER_XY);
+    im_scene_free(scene);
     write_text(path, "[surfaces]\nfile = xy.npy\nnpy_order = x\n");
     assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
+    assert_null(scene);
     assert_non_null(strstr(im_last_error(), "order.ini:3: npy_order = 'x': expected one of sidecar|yx|xy"));
 }
 

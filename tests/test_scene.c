@@ -3,6 +3,7 @@
 
 #include "indentmap/scene.h"
 #include "indentmap/status.h"
+#include "scene/contents.h"
 
 #include <dirent.h>
 #include <ini.h>
@@ -25,28 +26,30 @@ static void values_are_read(void **state)
                                             "slopes = 0, 0.02 ,0.16\nseeds = 3:7\n"
                                             "[punch]\nshape = Sphere\nradius = 50\n"
                                             "[loading]\nsteps = 0.5:2:4\n[output]\nframes = yes\n");
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(path, &scene), IM_OK);
-    assert_string_equal(scene.name, "demo");
-    assert_string_equal(scene.output_dir, "output/demo");
-    assert_int_equal(scene.surface.nx, 64);
-    assert_int_equal(scene.surface.ny, 64);
-    assert_close(scene.surface.lambda_r, 64, 0);
-    assert_int_equal(scene.family_count, 3);
-    assert_close(scene.slopes[1], 0.02, 0);
-    assert_int_equal(scene.seed_count, 5);
-    assert_int_equal(scene.seeds[4], 7);
-    assert_int_equal(scene.punch, 1); /* IM_PUNCH_SPHERE */
-    assert_int_equal(scene.step_count, 4);
-    assert_close(scene.steps[1], 1.0, 1e-15);
-    assert_true(scene.frames);
+    assert_string_equal(scene->name, "demo");
+    assert_string_equal(scene->output_dir, "output/demo");
+    assert_int_equal(scene->surface.nx, 64);
+    assert_int_equal(scene->surface.ny, 64);
+    assert_close(scene->surface.lambda_r, 64, 0);
+    assert_int_equal(scene->family_count, 3);
+    assert_close(scene->slopes[1], 0.02, 0);
+    assert_int_equal(scene->seed_count, 5);
+    assert_int_equal(scene->seeds[4], 7);
+    assert_int_equal(scene->punch, 1); /* IM_PUNCH_SPHERE */
+    assert_int_equal(scene->step_count, 4);
+    assert_close(scene->steps[1], 1.0, 1e-15);
+    assert_true(scene->frames);
+    im_scene_free(scene);
 }
 
 static void expect_error(const char *name, const char *text, const char *phrase)
 {
     const char *path = write_scene(name, text);
-    im_scene scene;
+    im_scene *scene = NULL;
     int status = im_scene_load(path, &scene);
+    im_scene_free(scene);
     char expected[1024];
     snprintf(expected, sizeof expected, "%s%s", path, phrase);
     if (status != IM_EFORMAT || !strstr(im_last_error(), expected))
@@ -60,20 +63,22 @@ static void sweep_lists_are_read(void **state)
     (void)state;
     const char *path = write_scene("sweep.ini", "[surfaces]\nn = 64\nhurst = 0.6, 0.8\nlambda_s = 4:8:3\n"
                                                 "[punch]\nalpha = 80, 70\n");
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(path, &scene), IM_OK);
-    assert_int_equal(scene.alpha_count, 2);
-    assert_close(scene.alphas[1], 70, 0);
-    assert_close(scene.alpha_degrees, 80, 0);
-    assert_int_equal(scene.hurst_count, 2);
-    assert_close(scene.surface.hurst, 0.6, 0);
-    assert_int_equal(scene.lambda_s_count, 3);
-    assert_close(scene.lambda_ss[1], 6, 1e-15);
-    assert_close(scene.surface.lambda_s, 4, 0);
+    assert_int_equal(scene->alpha_count, 2);
+    assert_close(scene->alphas[1], 70, 0);
+    assert_close(scene->alpha_degrees, 80, 0);
+    assert_int_equal(scene->hurst_count, 2);
+    assert_close(scene->surface.hurst, 0.6, 0);
+    assert_int_equal(scene->lambda_s_count, 3);
+    assert_close(scene->lambda_ss[1], 6, 1e-15);
+    assert_close(scene->surface.lambda_s, 4, 0);
+    im_scene_free(scene);
     const char *single = write_scene("single.ini", "[punch]\nalpha = 75\n");
     assert_int_equal(im_scene_load(single, &scene), IM_OK);
-    assert_int_equal(scene.alpha_count, 1);
-    assert_close(scene.alpha_degrees, 75, 0);
+    assert_int_equal(scene->alpha_count, 1);
+    assert_close(scene->alpha_degrees, 75, 0);
+    im_scene_free(scene);
 }
 
 static void sweep_lists_are_refused_at_their_line(void **state)
@@ -107,19 +112,20 @@ static void files_form_the_ensemble(void **state)
 {
     (void)state;
     const char *path = write_scene("files.ini", "[surfaces]\nfile = s.npy , sub/t.npy\ndetrend = plane\n");
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(path, &scene), IM_OK);
-    assert_int_equal(scene.file_count, 2);
-    assert_int_equal(scene.family_count, 1);
-    assert_int_equal(scene.seed_count, 2);
-    assert_int_equal(scene.detrend, 1);
-    assert_true(isnan(scene.slopes[0])); /* measured when the scene runs */
+    assert_int_equal(scene->file_count, 2);
+    assert_int_equal(scene->family_count, 1);
+    assert_int_equal(scene->seed_count, 2);
+    assert_int_equal(scene->detrend, 1);
+    assert_true(isnan(scene->slopes[0])); /* measured when the scene runs */
     char resolved[IM_SCENE_PATH];
-    assert_int_equal(im_scene_file_path(&scene, 0, resolved, sizeof resolved), IM_OK);
+    assert_int_equal(im_scene_file_path(scene, 0, resolved, sizeof resolved), IM_OK);
     assert_string_equal(resolved, test_path("s.npy"));
-    assert_int_equal(im_scene_file_path(&scene, 1, resolved, sizeof resolved), IM_OK);
+    assert_int_equal(im_scene_file_path(scene, 1, resolved, sizeof resolved), IM_OK);
     assert_string_equal(resolved, test_path("sub/t.npy"));
-    assert_int_equal(im_scene_file_path(&scene, 2, resolved, sizeof resolved), IM_EINVAL);
+    assert_int_equal(im_scene_file_path(scene, 2, resolved, sizeof resolved), IM_EINVAL);
+    im_scene_free(scene);
     expect_error("slopes.ini", "[surfaces]\nfile = s.npy\nslopes = 0.16\n",
                  ":3: slopes beside `file` (line 2): a file's h'rms is measured from the file, not given");
     expect_error("seeds.ini", "[surfaces]\nseeds = 1:3\nfile = s.npy\n",
@@ -144,13 +150,14 @@ static void errors_name_the_line(void **state)
     expect_error("list.ini", "[surfaces]\nslopes = 0.01, abc\n", ":2: slopes = '0.01, abc': ' abc' is not a number");
     expect_error("order.ini", "[loading]\ncontrol = load\n\nsteps = 3, 2\n", ":4: steps must increase");
     /* with a hardness a history may unload (the cap remembers): the same list is read */
-    im_scene unloading;
+    im_scene *unloading = NULL;
     assert_int_equal(im_scene_load(write_scene("unload.ini", "[material]\nhardness = 0.1\n[loading]\ncontrol = "
                                                              "load\nsteps = 1:3:3, 2\n"),
                                    &unloading),
                      IM_OK);
-    assert_int_equal(unloading.step_count, 4);
-    assert_true(unloading.steps[3] == 2.0);
+    assert_int_equal(unloading->step_count, 4);
+    assert_true(unloading->steps[3] == 2.0);
+    im_scene_free(unloading);
     expect_error("lambda.ini", "[surfaces]\nlambda_r = 8\nhurst = 0.8\nlambda_s = 16\n",
                  ":4: lambda_r = 8 must exceed");
     expect_error("lambda_r.ini", "[surfaces]\nlambda_s = 16\nlambda_r = 8\n", ":3: lambda_r = 8 must exceed");
@@ -162,8 +169,9 @@ static void errors_name_the_line(void **state)
 static void missing_file_is_an_io_error(void **state)
 {
     (void)state;
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(test_path("none.ini"), &scene), IM_EIO);
+    assert_null(scene);
     assert_non_null(strstr(im_last_error(), "none.ini: cannot open"));
 }
 
@@ -191,11 +199,12 @@ static void long_lines_are_refused(void **state)
     int count = slopes_line(line, (size_t)limit);
     assert_int_equal((int)strlen(line), limit);
     snprintf(text, sizeof text, "[surfaces]\n%s\nseeds = 1:2\n", line);
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(write_scene("fits.ini", text), &scene), IM_OK);
-    assert_int_equal(scene.family_count, count);
-    assert_close(scene.slopes[count - 1], count * 1e-3, 1e-15);
-    assert_int_equal(scene.seed_count, 2);
+    assert_int_equal(scene->family_count, count);
+    assert_close(scene->slopes[count - 1], count * 1e-3, 1e-15);
+    assert_int_equal(scene->seed_count, 2);
+    im_scene_free(scene);
 
     slopes_line(line, (size_t)limit + 1);
     snprintf(text, sizeof text, "[surfaces]\n%s\nseeds = 1:2\n", line);
@@ -215,7 +224,7 @@ static void binary_and_unreadable_files_are_refused(void **state)
     (void)state;
     const char *path = test_path("nul.ini");
     test_write_bytes(path, "[scene]\nname = a\0b\n", 19);
-    im_scene scene;
+    im_scene *scene = NULL;
     assert_int_equal(im_scene_load(path, &scene), IM_EFORMAT);
     assert_non_null(strstr(im_last_error(), ":2: a NUL byte"));
     /* a directory opens for reading on Linux, but is refused before any read; so is a device */
@@ -223,6 +232,41 @@ static void binary_and_unreadable_files_are_refused(void **state)
     assert_non_null(strstr(im_last_error(), "is a directory"));
     assert_int_equal(im_scene_load("/dev/zero", &scene), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "/dev/zero is a character device"));
+}
+
+/* What callers outside the library read of a scene, and the settings they give it. */
+static void accessors_read_the_scene(void **state)
+{
+    (void)state;
+    const char *path = write_scene("read.ini", "[scene]\nname = seen\n[loading]\nload_star = 10\n[output]\n"
+                                               "contact_panels = yes\n");
+    im_scene *scene = NULL;
+    assert_int_equal(im_scene_load(path, &scene), IM_OK);
+    assert_string_equal(im_scene_path(scene), path);
+    assert_string_equal(im_scene_name(scene), "seen");
+    assert_string_equal(im_scene_output_dir(scene), "output/seen");
+    assert_int_equal(im_scene_recorded_plans(scene), -1);
+    assert_int_equal(im_scene_asks_for_output(scene), 1);
+    assert_int_equal(im_scene_renders(scene), 1);
+    assert_int_equal(im_scene_set_output_dir(scene, "elsewhere"), IM_OK);
+    assert_string_equal(im_scene_output_dir(scene), "elsewhere");
+    char *long_dir = malloc(IM_SCENE_PATH + 1);
+    assert_non_null(long_dir);
+    memset(long_dir, 'd', IM_SCENE_PATH);
+    long_dir[IM_SCENE_PATH] = '\0';
+    assert_int_equal(im_scene_set_output_dir(scene, long_dir), IM_EINVAL);
+    assert_non_null(strstr(im_last_error(), "4096 bytes: expected a path shorter than 4096 bytes"));
+    assert_string_equal(im_scene_output_dir(scene), "elsewhere"); /* left as it was */
+    free(long_dir);
+    im_scene_free(scene);
+    assert_int_equal(
+        im_scene_load(write_scene("quiet.ini", "[scene]\nname = quiet\n[output]\nplots = fig1\n"), &scene), IM_OK);
+    assert_int_equal(im_scene_asks_for_output(scene), 1);
+    assert_int_equal(im_scene_renders(scene), 0);
+    im_scene_free(scene);
+    assert_int_equal(im_scene_load(write_scene("no_output.ini", "[scene]\nname = none\n"), &scene), IM_OK);
+    assert_int_equal(im_scene_asks_for_output(scene), 0);
+    im_scene_free(scene);
 }
 
 /* Every bundled scene parses. */
@@ -242,9 +286,10 @@ static void bundled_scenes_parse(void **state)
             continue;
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", folder, entry->d_name);
-        im_scene scene;
+        im_scene *scene = NULL;
         if (im_scene_load(path, &scene) != IM_OK)
             fail_msg("%s", im_last_error());
+        im_scene_free(scene);
         ++parsed;
     }
     closedir(dir);
@@ -255,6 +300,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(values_are_read),
+        cmocka_unit_test(accessors_read_the_scene),
         cmocka_unit_test(files_form_the_ensemble),
         cmocka_unit_test(errors_name_the_line),
         cmocka_unit_test(missing_file_is_an_io_error),

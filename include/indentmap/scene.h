@@ -1,7 +1,10 @@
 /* indentmap/scene.h: scene files, what a user wants to see, in INI (parsed with inih).
  *
  * Entry points:
- *   im_scene_load, im_scene_load_record, im_scene_defaults   a scene from its file or a run's record
+ *   im_scene_load, im_scene_load_record, im_scene_free       a scene from its file or a run's record
+ *   im_scene_path, im_scene_name, im_scene_output_dir         what it is called and where it writes
+ *   im_scene_asks_for_output, im_scene_renders, im_scene_recorded_plans   what a run of it needs
+ *   im_scene_set_output_dir, im_scene_set_wisdom_path         the caller's settings, not from the file
  *   im_scene_run, im_scene_run_options                        everything the scene asks for, on disk
  *   im_scene_plot_parse, im_scene_plot_name                   [output] plots' names
  *   im_scene_file_path, im_scene_resolve_path                 paths written in a scene
@@ -30,13 +33,19 @@
  * Errors name the file and line ("fig4.ini:7: ...") and, for an unknown key or section, suggest
  * the nearest valid one. Paths inside a scene are resolved relative to the scene file.
  *
- * Misuse (status.h): IM_EINVAL for a NULL scene, path, record or output; im_scene_defaults(NULL) does
- * nothing, im_scene_resolve_path writes "" for a NULL scene or relative path, im_scene_plot_parse
+ * Misuse (status.h): IM_EINVAL for a NULL scene, path, record, dir or output; im_scene_free(NULL) does
+ * nothing, the readers of a NULL scene give "", -1 or 0 (as each says), im_scene_resolve_path writes "" for a NULL scene or relative path, im_scene_plot_parse
  * (NULL) is 0 and im_scene_suggest_key(section, NULL) NULL.
- * Threads: the functions of a scene are thread-safe on distinct scenes. im_scene_run starts OpenMP
- * workers of its own and calls its callbacks one at a time (im_scene_run_options); two runs at
- * once in different threads of one process are not supported (run them one after the other, or
- * in separate processes: the output folder's lock keeps two runs out of one folder).
+ * Threads: the functions of a scene are thread-safe on distinct scenes, and the readers (im_scene_path
+ * ... im_scene_renders, im_scene_file_path) on one scene from several threads; a setter wants the scene
+ * to itself. im_scene_run reads its scene (it runs a copy with a run state of its own), starts OpenMP
+ * workers of its own and calls its callbacks one at a time (im_scene_run_options). Two runs may go at
+ * once in different threads of one process, each into its own output folder (the folder's lock refuses
+ * a second run into one, as a second process): tests/test_scene_threads.c runs two so, their files
+ * byte-identical to those of the two run one after the other. What that test does not cover: runs
+ * that render at once (contact panels, frames: each opens a GL context, and render.h leaves several
+ * contexts drawing at once untested), [solver] device = gpu (solver.h: GPU plans keep to one thread),
+ * and a process that calls FFTW's planner itself meanwhile (solver.h).
  */
 #ifndef INDENTMAP_SCENE_H
 #define INDENTMAP_SCENE_H
@@ -63,12 +72,13 @@ enum {
     IM_SCENE_PATH = 4096,
     IM_SCENE_MAX_SWEEP = 16,
     IM_SCENE_MAX_SWEEP_POINTS = 64 /* combinations of a sweep's lists */,
-    IM_SCENE_CONTENTS = 16384 /* im_scene.contents: every key at most once, each line < 200 bytes */
+    IM_SCENE_CONTENTS = 16384 /* what a scene file set, as run.json's scene_contents records it: every key
+                                  at most once, each line < 200 bytes */
 };
 
 enum im_animation { IM_ANIMATION_NONE = 0, IM_ANIMATION_GIF = 1, IM_ANIMATION_MP4 = 2, IM_ANIMATION_BOTH = 3 };
 
-/* The figures [output] plots can name ("plots = fig5, fig7"), one bit each of im_scene.plots. */
+/* The figures [output] plots can name ("plots = fig5, fig7"), one bit each. */
 enum im_scene_plot {
     IM_SCENE_PLOT_FIG1 = 1u << 0, /* fig1: gamma(r/a) of the scene's roughnesses */
     IM_SCENE_PLOT_FIG2 = 1u << 1, /* fig2: A/A_cone against rho_c, with the table */
@@ -81,152 +91,63 @@ enum im_scene_plot {
     IM_SCENE_PLOT_FLAT_K = 1u << 8   /* eq. (2)'s k measured on the rough surfaces */
 };
 
-/* im_scene.periodic. */
+/* [punch] periodic: the rigid flat or the scene's punch on the whole cell (docs/scenes.md). */
 enum { IM_SCENE_PERIODIC_FLAT = 1, IM_SCENE_PERIODIC_PUNCH = 2 };
 
 /* The name of one plot bit ("fig5"), NULL for anything else; the bit named by name, 0 for none. */
 const char *im_scene_plot_name(enum im_scene_plot plot);
 enum im_scene_plot im_scene_plot_parse(const char *name);
 
-typedef struct im_scene {
-    char path[IM_SCENE_PATH];         /* the scene file as given */
-    char contents[IM_SCENE_CONTENTS]; /* what the scene file set, as parsed: "[section]\nkey = value\n" for
-                                        every key given, in the file's order, values trimmed, comments and
-                                        blank lines dropped (the other keys take their defaults). Runs
-                                        record it: run.json's scene_contents, PNG and PDF metadata */
-    char from_record[IM_SCENE_PATH];  /* the run.json the scene was rebuilt from (im_scene_load_record),
-                                        "" for a scene file */
-    int recorded_plans;               /* rebuilt from a record: 1 when its run's FFTW plans were measured
-                                        (a wisdom file), 0 when estimated; -1 for a scene file */
-    char name[64];
-    char output_dir[IM_SCENE_PATH]; /* default output/NAME */
-    char quality[16];               /* draft | standard (default) | publication: the solver
-                                        tolerance preset of solver.h (1e-5, 1e-6, 1e-9); anything
-                                        else is refused. [solver] tol, if given, overrides it.
-                                        Both are recorded in OUTPUT/run.json. */
+/* A scene: what its file (or a run's record) says, every key it left out at its default. Opaque: made by
+ * im_scene_load or im_scene_load_record, read through the functions below, freed by im_scene_free. What a
+ * run measures (the files' h'rms, the profile read, what it wrote) belongs to that run, not to the scene. */
+typedef struct im_scene im_scene;
 
-    im_surface_params surface;        /* template of every generated surface */
-    char surface_file[IM_SCENE_PATH]; /* `file`: surface files instead of generated families, a
-                                        comma-separated list ("" if none). The files are the
-                                        ensemble of one family: seed_count is their number and
-                                        seeds[i] = i picks file i. `slopes` and `seeds` are refused
-                                        beside them (their h'rms is measured, each is one surface). */
-    int file_count;                   /* files in surface_file (0: none), at most IM_SCENE_MAX_FAMILIES */
-    enum im_detrend detrend;          /* for the files (default none) */
-    enum im_row_alignment align;      /* the files' scan-line alignment, before detrend (default none) */
-    int fill;                         /* 1: fill the files' missing points (NaN); 0: refuse them */
-    char channel[64];                 /* the files' channel (instrument files read through Gwyddion: an
-                                        index or a title); "": the first holding heights */
-    int resample_square;              /* 1: resample files whose pixels are not square onto square ones
-                                        (formats.h: im_surface_read_options.resample_square); 0: refuse them */
-    enum im_npy_order npy_order;      /* `npy_order`: which index of the .npy files is x (formats.h; sidecar, the
-                                        default: as each file's sidecar states, else yx) */
-    char file_unit[16];               /* the files' length unit ("": lengths in delta), set with them */
-    double file_slopes[IM_SCENE_MAX_FAMILIES];              /* each file's h'rms by forward differences of the
-                                        surface as solved; measured by im_scene_run, which sets
-                                        slopes[0] to their root mean square (NaN until then) */
-    double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* each file's |delta_x - delta_y| / their
-                                        mean as read (formats.h: spacing_difference), measured with them */
-    int file_resampled[IM_SCENE_MAX_FAMILIES];              /* 1 where that file was resampled onto square pixels */
-    double slopes[IM_SCENE_MAX_FAMILIES];                   /* h'rms of each family; 0 means smooth */
-    int family_count;
-    uint64_t seeds[IM_SCENE_MAX_FAMILIES];
-    int seed_count;
-
-    enum im_punch_kind punch; /* cone, sphere, flat, profile (indenter.h: im_punch_parse reads shape) */
-    double alpha_degrees;     /* cone semi-opening angle */
-    /* Sweeps (docs/scenes.md, "Sweeps"): [punch] alpha, [surfaces] hurst and lambda_s may be lists.
-     * Each scalar above holds its list's first value; a count of 0 or 1 is no sweep. A scene with a
-     * list of two or more values runs every combination (alpha x hurst x lambda_s, each with all
-     * slopes x seeds) as a sweep point of its own in OUTPUT/alpha_A_hurst_H_lambda_s_L/; at most
-     * IM_SCENE_MAX_SWEEP_POINTS combinations. */
-    double alphas[IM_SCENE_MAX_SWEEP]; /* degrees */
-    int alpha_count;
-    double hursts[IM_SCENE_MAX_SWEEP];
-    int hurst_count;
-    double lambda_ss[IM_SCENE_MAX_SWEEP]; /* in delta */
-    int lambda_s_count;
-    double radius;                    /* sphere radius or flat punch radius, in delta */
-    char profile_file[IM_SCENE_PATH]; /* [punch] profile: the file of shape = profile (im_profile_read:
-                                        an (r, z) table, or a .npy 2-D field on the scene's grid),
-                                        relative to the scene file's folder */
-    const im_profile *profile;        /* that file read: set by im_scene_run on its copy while it runs
-                                        (the punch borrows it; the copy's profile_file then holds the
-                                        path resolved, IM_EINVAL naming [punch] profile when it would
-                                        not fit in IM_SCENE_PATH); NULL otherwise */
-    /* [punch] periodic = yes (docs/scenes.md, "Periodic contact"; solver.h, "Periodic mode"): every
-     * surface is one period of a periodic surface, pressed on the whole cell under mean-pressure control:
-     * [loading] steps are mean pressures p_m (units of E*; control is then load), or with [loading]
-     * control = mean_gap mean gaps over the cell (solver.h, IM_CONTROL_MEAN_GAP; any other control is
-     * refused, and mean_gap without periodic). IM_SCENE_PERIODIC_FLAT without [punch] shape: a rigid flat on the whole cell, as `indent
-     * --periodic`; IM_SCENE_PERIODIC_PUNCH with one: that punch, repeated with the cell. 0: the half-space.
-     * What needs the smooth contact on a half-space (load_star, frames, table, adhesion and the plots
-     * but fig3 and flat_k) is refused beside it, naming the key; contact_panels and distributions are
-     * taken at every step of each family's first surface instead (see im_scene_run). Part of every
-     * result's key. */
-    int periodic;
-    double modulus;  /* composite modulus E* */
-    double hardness; /* [material] hardness: pressure cap H_p (solver.h), 0: none */
-
-    /* [adhesion] (docs/scenes.md, "Adhesion"; solver.h, "Adhesion"): work w > 0 and range delta_c > 0
-     * together, 0 for none; law: enum im_adhesion_law (maugis-dugdale, exponential). Every history is then solved with it
-     * (steps may go down and below 0, pulling the punch away; under load control they are loads N, as
-     * `indent --load`'s, not N*); what is solved at load_star or in the periodic mode (panels, frames,
-     * table, distributions, flat_k) is refused beside it. Part of every result's key. */
-    double adhesion_work, adhesion_range;
-    int adhesion_law;
-
-    enum im_control control;          /* displacement, load or (periodic only) mean gap */
-    double load_star;                 /* N* at which contact panels are drawn (0: none) */
-    double steps[IM_SCENE_MAX_STEPS]; /* approaches or loads of a history, ascending (may be empty):
-                                        first:last:count or a list, parsed as `indent --approach`,
-                                        and then required to increase */
-    int step_count;
-
-    double tol; /* solver tolerance (default: the quality preset's; the preset
-                                        IM_QUALITY_DEFAULT of solver.h, as for `indent`) */
-    int device; /* [solver] device = cpu|gpu|auto: the solver's engine, IM_DEVICE_*
-                                        of solver.h (default cpu) */
-
-    int contact_panels, frames, table;
-    int distributions;                 /* 1: gap and patch-size distributions at load_star of each
-                                        family's first surface (distributions/, docs/scenes.md) */
-    int frames3d;                      /* with frames: a 3-D view of every step too (frames3d.c) */
-    int page_embed;                    /* 1: index.html carries its images as data URIs (viewer.h) */
-    im_colormap_id colormap;           /* default magma, as render, indent --frames and Python */
-    int log_norm;                      /* 1 (default): forces on a log norm spanning two decades below the
-                                        largest, smaller forces in the under colour; 0: linear from 0 */
-    double frames_slope;               /* the family whose history is framed; < 0: the roughest */
-    int frame_count;                   /* steps of the framed history (default 24) */
-    double frame_rate;                 /* frames per second of contact/view3d .gif and .mp4 (default 4) */
-    int frame_scale;                   /* pixels per patch of the contact and height frames (default 1) */
-    int frame3d_width, frame3d_height; /* the 3-D frames' view in pixels (default 960 x 540) */
-    enum im_animation animation;
-    unsigned plots;                /* bit set of enum im_scene_plot, 0 for none */
-    const char *wisdom_path;       /* FFTW wisdom file of every solve (solver.h: wisdom_path), not
-                                        from the scene file: NULL (im_scene_load's default) for none;
-                                        the caller sets it after loading. Not owned. */
-    struct scene_outputs *outputs; /* internal: what the run makes in output_dir, set by
-                                        im_scene_run on its copy while it runs; NULL otherwise */
-} im_scene;
-
-/* Defaults: the paper's surface family and 80 degree cone, E* = 1, no outputs. */
-void im_scene_defaults(im_scene *scene);
-
-/* Parses a scene file into *scene (defaults first). IM_EIO if it cannot be read, IM_EFORMAT with
- * "PATH:LINE: message" for a malformed line, an unknown section or key (with a suggestion), or a
- * value out of range (naming the key and what was expected). */
-int im_scene_load(const char *path, im_scene *scene);
+/* Parses a scene file into a new scene, *scene (free it with im_scene_free; NULL on an error). IM_EIO
+ * if it cannot be read, IM_EFORMAT with "PATH:LINE: message" for a malformed line, an unknown section or
+ * key (with a suggestion), or a value out of range (naming the key and what was expected), IM_ENOMEM. */
+int im_scene_load(const char *path, im_scene **scene);
 
 /* Rebuilds the scene a run recorded in its run.json (docs/scenes.md, "Provenance"): its
  * scene_contents parsed as im_scene_load parses a file, with paths resolved against the recorded
- * scene file's folder (scene->path is that file's absolute path; the file itself need not exist any
- * more), from_record set to record and recorded_plans to how the run's FFTW plans were made. Refused
- * (IM_EFORMAT naming the record and what was expected) for a record that is not a scene run's or
- * has no scene_contents (an earlier build's, before issue 31), IM_EINVAL for a record of another
+ * scene file's folder (im_scene_path is that file's absolute path; the file itself need not exist any
+ * more), the record kept for the new run's run.json (from_record) and how its FFTW plans were made
+ * (im_scene_recorded_plans); *scene as im_scene_load's. Refused (IM_EFORMAT naming the record and
+ * what was expected) for a record that is not a scene run's or has no scene_contents (an earlier build's, before issue 31), IM_EINVAL for a record of another
  * version (its numbers may differ in their last bits: rerun with that version) and for an input
  * (a surface or profile file) whose SHA-256 is no longer the recorded one, naming the file. */
-int im_scene_load_record(const char *record, im_scene *scene);
+int im_scene_load_record(const char *record, im_scene **scene);
+
+/* Frees a scene of im_scene_load or im_scene_load_record; NULL does nothing. */
+void im_scene_free(im_scene *scene);
+
+/* The scene file as given (for a scene rebuilt from a record, the recorded file's absolute path), its
+ * [scene] name, and the folder im_scene_run writes (output/NAME, [scene] output, or
+ * im_scene_set_output_dir's). "" for a NULL scene. */
+const char *im_scene_path(const im_scene *scene);
+const char *im_scene_name(const im_scene *scene);
+const char *im_scene_output_dir(const im_scene *scene);
+
+/* Sets the folder im_scene_run writes: IM_EINVAL for a NULL scene or dir, or a dir of IM_SCENE_PATH
+ * bytes or more (naming it; the scene is left as it was). */
+int im_scene_set_output_dir(im_scene *scene, const char *dir);
+
+/* The FFTW wisdom file of every solve of the scene's runs (solver.h: wisdom_path), NULL (the default)
+ * for none. Not from the scene file, and not copied: path must outlive the scene's runs. Nothing for
+ * a NULL scene. */
+void im_scene_set_wisdom_path(im_scene *scene, const char *path);
+
+/* For a scene rebuilt from a record (im_scene_load_record): 1 when that run's FFTW plans were measured
+ * (a wisdom file), 0 when they were estimated; -1 for a scene file and a NULL scene. */
+int im_scene_recorded_plans(const im_scene *scene);
+
+/* 1 when the scene asks for an output (a table, plots, contact panels, frames, distributions, or the
+ * histories of a periodic scene), 0 when a run would solve and draw nothing (and for NULL). */
+int im_scene_asks_for_output(const im_scene *scene);
+
+/* 1 when a run of the scene renders with OpenGL (contact panels or frames: im_scene_run_options.backend),
+ * 0 otherwise (and for NULL). */
+int im_scene_renders(const im_scene *scene);
 
 /* How im_scene_run runs. The library prints nothing: what the run has to say goes to the
  * callbacks (status.h), and nowhere when they are NULL (the default of a zeroed struct). */
@@ -256,7 +177,7 @@ typedef struct im_scene_run_options {
 } im_scene_run_options;
 
 /* Runs a scene: derives the least work its outputs need, solves it, and writes under
- * scene->output_dir:
+ * im_scene_output_dir(scene):
  *   contact_panels: panels/force_FAMILY.npy (force per patch at load_star, one per family, first
  *     seed), results.csv (one row per family: measured n_p and A/A_cone beside eq. (12)), and
  *     contact_panels.{png,pdf}: the panels in a grid of three columns with one shared colour bar
@@ -300,11 +221,6 @@ typedef struct im_scene_run_options {
  * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
  * has, or when the output folder is or contains an input (the scene or its surface file). */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
-
-/* Reads every surface file of a scene (prepared as it will be solved), checks that they share one
- * grid and spacing (IM_EFORMAT naming the files otherwise), and sets file_slopes[], slopes[0],
- * file_spacing_differences[] and file_resampled[] (see above). IM_OK at once for a scene without files. Called by im_scene_run on its copy. */
-int im_scene_measure_files(im_scene *scene);
 
 /* The path of file i of a scene's `file` list, resolved relative to the scene file (as
  * im_scene_resolve_path); IM_EINVAL when i is out of range. */

@@ -65,12 +65,12 @@ typedef struct scene_source {
     const char *wisdom; /* the FFTW wisdom file of its solves, NULL for none */
 } scene_source;
 
-/* The scene of a file or a record; out replaces its output folder. */
-static int load_scene(const scene_source *source, im_scene *scene)
+/* The scene of a file or a record into *scene (NULL on an error); out replaces its output folder. */
+static int load_scene(const scene_source *source, im_scene **scene)
 {
     int status = source->from_record ? im_scene_load_record(source->path, scene) : im_scene_load(source->path, scene);
     if (status == IM_OK && source->wisdom) {
-        scene->wisdom_path = source->wisdom;
+        im_scene_set_wisdom_path(*scene, source->wisdom);
         im_solver_options check = {.wisdom_path = source->wisdom};
         status = im_solver_wisdom_check(&check);
         if (status != IM_OK)
@@ -78,22 +78,20 @@ static int load_scene(const scene_source *source, im_scene *scene)
     }
     if (status != IM_OK || !source->out)
         return status;
-    if (strlen(source->out) >= sizeof scene->output_dir)
-        return im_fail(IM_EINVAL, "out %s: expected a path shorter than %zu bytes", source->out,
-                       sizeof scene->output_dir);
-    snprintf(scene->output_dir, sizeof scene->output_dir, "%s", source->out);
-    return IM_OK;
+    status = im_scene_set_output_dir(*scene, source->out);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "out");
 }
 
-/* Loads and runs the scene without the GIL (Ctrl-C armed: interrupt.c); IM_OK or a status. */
-static int load_and_run(const scene_source *source, im_scene *scene, const im_scene_run_options *options,
+/* Loads and runs the scene without the GIL (Ctrl-C armed: interrupt.c); IM_OK or a status. The caller
+ * frees *scene. */
+static int load_and_run(const scene_source *source, im_scene **scene, const im_scene_run_options *options,
                         volatile sig_atomic_t *stop, py_interrupt *call)
 {
     int status;
     py_interrupt_arm(call, stop);
     Py_BEGIN_ALLOW_THREADS status = load_scene(source, scene);
     if (status == IM_OK)
-        status = im_scene_run(scene, options);
+        status = im_scene_run(*scene, options);
     Py_END_ALLOW_THREADS return status;
 }
 
@@ -124,13 +122,6 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
         Py_XDECREF(wisdom_bytes);
         return py_raise_status(IM_EINVAL);
     }
-    im_scene *scene = PyMem_Calloc(1, sizeof *scene);
-    if (!scene) {
-        Py_DECREF(path_bytes);
-        Py_XDECREF(out_bytes);
-        Py_XDECREF(wisdom_bytes);
-        return PyErr_NoMemory();
-    }
     volatile sig_atomic_t stop = 0;
     scene_callbacks callbacks = {.progress = progress, .log = log, .stop = &stop};
     im_scene_run_options options = {.resume = resume,
@@ -143,7 +134,8 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
     py_interrupt call;
     scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL,
                            from_record, wisdom_bytes ? PyBytes_AS_STRING(wisdom_bytes) : NULL};
-    int status = load_and_run(&source, scene, &options, &stop, &call);
+    im_scene *scene = NULL;
+    int status = load_and_run(&source, &scene, &options, &stop, &call);
     Py_DECREF(path_bytes);
     Py_XDECREF(out_bytes);
     Py_XDECREF(wisdom_bytes);
@@ -156,9 +148,9 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
         Py_XDECREF(callbacks.error_traceback);
     }
     PyObject *out = interrupted || callbacks.error_type ? NULL
-                    : status == IM_OK                   ? PyUnicode_DecodeFSDefault(scene->output_dir)
+                    : status == IM_OK                   ? PyUnicode_DecodeFSDefault(im_scene_output_dir(scene))
                                                         : py_raise_status(status);
-    PyMem_Free(scene);
+    im_scene_free(scene);
     return out;
 }
 

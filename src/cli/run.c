@@ -69,11 +69,11 @@ static int finish(int status, const im_scene *scene, int reporting)
                : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE
                                                                                     : CLI_EXIT_FAILURE;
     if (reporting)
-        printf("indentmap: scene %s written to %s/\n", scene->name, scene->output_dir);
+        printf("indentmap: scene %s written to %s/\n", im_scene_name(scene), im_scene_output_dir(scene));
     return CLI_EXIT_OK;
 }
 
-/* The FFTW wisdom file of the run (cli.h: cli_wisdom_resolve), into scene->wisdom_path. */
+/* The FFTW wisdom file of the run (cli.h: cli_wisdom_resolve), the scene's (im_scene_set_wisdom_path). */
 typedef struct run_wisdom {
     const char *given;
     int off;
@@ -88,54 +88,52 @@ typedef struct run_source {
     const char *out;
 } run_source;
 
-/* The scene of a file or a record; --out replaces its output folder. */
-static int load_scene(const run_source *source, im_scene *scene)
+/* The scene of a file or a record into *scene (NULL on an error); --out replaces its output folder. */
+static int load_scene(const run_source *source, im_scene **scene)
 {
     int status = source->from_record ? im_scene_load_record(source->path, scene) : im_scene_load(source->path, scene);
     if (status != IM_OK || !source->out)
         return status;
-    if (strlen(source->out) >= sizeof scene->output_dir)
-        return im_fail(IM_EINVAL, "--out %s: expected a path shorter than %zu bytes", source->out,
-                       sizeof scene->output_dir);
-    snprintf(scene->output_dir, sizeof scene->output_dir, "%s", source->out);
-    return IM_OK;
+    status = im_scene_set_output_dir(*scene, source->out);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "--out");
 }
 
 /* The scene, its wisdom file, and the SIGINT/SIGTERM handlers that let a run stop cleanly. A scene
  * rebuilt from a record whose plans were estimated is estimated again unless --wisdom is given. */
-static int load_and_arm(const run_source *source, im_scene *scene, run_wisdom *wisdom)
+static int load_and_arm(const run_source *source, im_scene **scene, run_wisdom *wisdom)
 {
     int status = load_scene(source, scene);
     im_solver_options solver = im_solver_options_default();
     if (status == IM_OK) {
-        int off = wisdom->off || (scene->recorded_plans == 0 && !wisdom->given);
+        int off = wisdom->off || (im_scene_recorded_plans(*scene) == 0 && !wisdom->given);
         status = cli_wisdom_resolve(wisdom->given, off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
     }
-    scene->wisdom_path = solver.wisdom_path;
+    if (status == IM_OK)
+        im_scene_set_wisdom_path(*scene, solver.wisdom_path);
     if (status == IM_OK && cli_interrupt_install() != 0)
         status = im_fail(IM_EUNSUPPORTED, "cannot install the SIGINT/SIGTERM handlers");
     return status;
 }
 
 /* A scene that asks for no output would solve and draw nothing and still succeed: refused here, not by
- * the parser, since scenes built in code parse without [output] and set what they want after. A
- * periodic scene writes each surface's history and k without one. */
+ * the parser (nor by im_scene_run, which Python's run_scene calls on such a scene). A periodic scene
+ * writes each surface's history and k without one; frames3d alone is an output (im_scene_run then
+ * says it needs frames). */
 static int check_asks_for_output(const im_scene *scene)
 {
-    if (scene->table || scene->plots || scene->contact_panels || scene->frames || scene->frames3d ||
-        scene->distributions || scene->periodic) /* frames3d alone: check_runnable says it needs frames */
+    if (im_scene_asks_for_output(scene))
         return IM_OK;
     return im_fail(IM_EINVAL,
                    "%s: no output asked for: expected an [output] section with table, contact_panels, "
                    "frames or distributions = yes, or plots = a figure (nothing would be solved or drawn)",
-                   scene->path);
+                   im_scene_path(scene));
 }
 
 /* The backend of a scene that renders: --backend, else IM_RENDER_BACKEND, else auto. */
 static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
 {
     im_render_backend backend = (im_render_backend)run->backend;
-    int status = scene->contact_panels || scene->frames ? cli_render_backend(&backend) : IM_OK;
+    int status = im_scene_renders(scene) ? cli_render_backend(&backend) : IM_OK;
     run->backend = (int)backend;
     return status;
 }
@@ -151,20 +149,21 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
     int provided, rank;
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    im_scene scene;
+    im_scene *scene = NULL;
     im_scene_run_options options = *run;
     int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, source->path);
     if (status == IM_OK) {
         status = load_and_arm(source, &scene, wisdom);
         if (status == IM_OK)
-            status = check_asks_for_output(&scene);
+            status = check_asks_for_output(scene);
         if (status == IM_OK)
-            status = backend_of_scene(&scene, &options);
+            status = backend_of_scene(scene, &options);
         status = mpi_collective_status(MPI_COMM_WORLD, status);
     }
     if (status == IM_OK)
-        status = im_scene_run_ranks(MPI_COMM_WORLD, &scene, &options);
-    int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, &scene, rank == 0));
+        status = im_scene_run_ranks(MPI_COMM_WORLD, scene, &options);
+    int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, scene, rank == 0));
+    im_scene_free(scene);
     if (rank != 0) /* rank 0 has spoken for all: nothing more (mpirun may signal a rank still finishing) */
         (void)freopen("/dev/null", "w", stderr);
     MPI_Finalize();
@@ -226,13 +225,15 @@ int cli_run(int argc, char **argv)
     if (launched_by_mpirun())
         return run_under_mpirun(argc, argv, &source, &run, &wisdom);
 #endif
-    im_scene scene;
+    im_scene *scene = NULL;
     int status = load_and_arm(&source, &scene, &wisdom);
     if (status == IM_OK)
-        status = check_asks_for_output(&scene);
+        status = check_asks_for_output(scene);
     if (status == IM_OK)
-        status = backend_of_scene(&scene, &run);
+        status = backend_of_scene(scene, &run);
     if (status == IM_OK)
-        status = im_scene_run(&scene, &run);
-    return finish(status, &scene, 1);
+        status = im_scene_run(scene, &run);
+    code = finish(status, scene, 1);
+    im_scene_free(scene);
+    return code;
 }

@@ -1,6 +1,7 @@
 /* The consistency of a scene's keys with each other, checked once every key is parsed (a message
  * citing the line of the key at fault). */
 #include "scene/check.h"
+#include "scene/contents.h"
 #include "front/front.h"
 #include "indentmap/status.h"
 #include "scene/keys.h"

@@ -1,6 +1,7 @@
 /* Beyond the paper: the local contact density seen directly (paper/map_figures.c draws it): the
  * maps of every rough family at the panels' load, with their punch axis and smooth contact radius. */
 #include "indentmap/status.h"
+#include "scene/contents.h"
 #include "paper/figures.h"
 #include "scene/density.h"
 #include "scene/outputs.h"

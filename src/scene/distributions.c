@@ -3,6 +3,7 @@
  * OUTPUT/distributions/, and drawn in distributions.png/pdf. Solved here (a full-grid gap needs the
  * displacement the table and panels do not keep), every time it is asked for. */
 #include "indentmap/measure.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 #include "paper/figures.h"

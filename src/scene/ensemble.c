@@ -1,5 +1,6 @@
 /* Ensembles: every surface of every family, solved side by side on the available cores. */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "scene/ensemble.h"
 #include "scene/outputs.h"
@@ -95,12 +96,7 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
 void scene_members_free(scene_member *members, int count)
 {
     for (int i = 0; members && i < count; ++i) {
-        free(members[i].approach);
         free(members[i].history);
-        free(members[i].history_load);
-        free(members[i].history_load_star);
-        free(members[i].history_area_ratio);
-        free(members[i].history_patches);
         im_field_free(members[i].force);
     }
     free(members);

@@ -26,12 +26,10 @@ typedef struct scene_member {
     im_field *force;                         /* force at load_star, kept for a panel (first seed), else NULL */
     const struct scene_member *at_load_star; /* histories: the table's member of this surface */
     int step_reused;                         /* histories: the step at load_star was the table's */
-    /* histories: one row per step that converged (history.h's schema), and the columns the figures
-     * draw, spread from them */
+    /* histories: one row per step that converged (history.h's schema); the figures read their
+     * columns from these rows (histories.c) */
     int steps;
     struct im_history_row *history;
-    double *approach, *history_load, *history_load_star, *history_area_ratio;
-    long *history_patches;
 } scene_member;
 
 /* ---- ensembles over MPI ranks (ranks.c; docs/mpi.md) ----
@@ -94,12 +92,13 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
 /* im_scene_run, with the members of its ensembles from ranks (NULL: a single process solves them). */
 int scene_run(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
 
-/* The copy of a scene that runs, made alike by im_scene_run and by every MPI rank (run.c): its
- * surface files measured (im_scene_measure_files), its [punch] profile resolved against the
- * scene's folder (the copy's profile_file then holds the resolved path) and read, the copy's
- * profile borrowing *profile. On IM_OK the caller frees *prepared (free) and then *profile
- * (im_profile_free; NULL without a profile); on an error (IM_ENOMEM, IM_EINVAL naming the key,
- * the file's IM_EIO / IM_EINVAL / IM_EFORMAT) both are NULL. */
-int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profile);
+/* The copy of a scene that runs, made alike by im_scene_run and by every MPI rank (run.c), with its
+ * run state (run_state.h): its surface files measured (surfaces.h: scene_measure_files), its [punch]
+ * profile resolved against the scene's folder (the copy's profile_file then holds the resolved path)
+ * and read. On IM_OK the caller frees *prepared with scene_prepared_free; on an error (IM_ENOMEM,
+ * IM_EINVAL naming the key, the file's IM_EIO / IM_EINVAL / IM_EFORMAT) it is NULL. */
+int scene_prepare(const im_scene *scene, im_scene **prepared);
+/* Frees a copy of scene_prepare and its run state (NULL: nothing). */
+void scene_prepared_free(im_scene *prepared);
 
 #endif

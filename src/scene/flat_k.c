@@ -5,6 +5,7 @@
  * simulated A/A_cone on the same surfaces. Writes flat/flat_contact.csv, flat_k.csv and
  * flat_k.png/pdf. Not resumable: the stage solves every time it is asked for. */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "paper/figures.h"

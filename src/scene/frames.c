@@ -1,5 +1,6 @@
 /* Frames of one family's indentation history, and animations made from them. */
 #include "front/front.h"
+#include "scene/contents.h"
 #include "indentmap/figure.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"

@@ -1,6 +1,7 @@
 /* 3-D frames of the framed history (frames3d = yes): one view per step with one colour norm, one
  * exaggeration and one camera, and their animations. */
 #include "indentmap/figure.h"
+#include "scene/contents.h"
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"

@@ -2,6 +2,7 @@
  * paper's figures drawn from them (paper/history_figures.c): Fig. 5 (A / delta^2 against w),
  * Fig. 6 (N against w) and Fig. 7 (A / A_cone against N*, mean and +- one standard deviation). */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
 #include "front/front.h"
@@ -28,28 +29,7 @@
 static int allocate_history(scene_member *m, int steps)
 {
     m->history = calloc((size_t)steps, sizeof *m->history);
-    m->approach = calloc((size_t)steps, sizeof *m->approach);
-    m->history_load = calloc((size_t)steps, sizeof *m->history_load);
-    m->history_load_star = calloc((size_t)steps, sizeof *m->history_load_star);
-    m->history_area_ratio = calloc((size_t)steps, sizeof *m->history_area_ratio);
-    m->history_patches = calloc((size_t)steps, sizeof *m->history_patches);
-    if (!m->history || !m->approach || !m->history_load || !m->history_load_star || !m->history_area_ratio ||
-        !m->history_patches)
-        return im_fail(IM_ENOMEM, "history: allocation failed");
-    return IM_OK;
-}
-
-/* The figures' columns of the member's rows (m->history[0..m->steps)). */
-static void spread_rows(scene_member *m)
-{
-    for (int i = 0; i < m->steps; ++i) {
-        const im_step_result *r = &m->history[i].result;
-        m->approach[i] = r->approach;
-        m->history_load[i] = r->load;
-        m->history_load_star[i] = r->load_star;
-        m->history_patches[i] = r->contact_patches;
-        m->history_area_ratio[i] = r->area_ratio;
-    }
+    return m->history ? IM_OK : im_fail(IM_ENOMEM, "history: allocation failed");
 }
 
 static int history_path(const im_scene *scene, const scene_member *m, char *path, size_t size)
@@ -140,7 +120,6 @@ static int history_is_whole(char *text, int area, scene_member *m, int capacity,
         snprintf(why, why_size, "its rows do not match the checksum of its header: edited");
         return 0;
     }
-    spread_rows(m);
     return 1;
 }
 
@@ -268,7 +247,6 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
             m->steps = i + 1;
     }
     im_indentation_free(run);
-    spread_rows(m);
     return status;
 }
 
@@ -299,31 +277,66 @@ int scene_history_member(const im_scene *scene, const im_scene_run_options *opti
 enum { THEORY_POINTS = 101 };
 _Static_assert((int)PAPER_MAX_PANELS >= (int)IM_SCENE_MAX_FAMILIES, "a figure has a panel per family");
 
-/* The members' histories and the families' titles, as the figure builders take them. */
+/* The members' histories and the families' titles, as the figure builders take them: the columns
+ * they draw, read from the members' rows while the figures are made. */
 typedef struct gathered_histories {
     paper_histories h;
     char titles[IM_SCENE_MAX_FAMILIES][64];
     const char *title_of[IM_SCENE_MAX_FAMILIES];
     double eq12[IM_SCENE_MAX_FAMILIES];
+    double *columns; /* approach, load, load_star and area_ratio of every member's steps, in turn */
+    long *patches;
 } gathered_histories;
 
 static double cone_cot(const im_scene *scene) { return 1.0 / tan(scene->alpha_degrees * M_PI / 180.0); }
 
-/* *out (caller frees it and out->h.members) borrows the members' rows. */
+static void free_gathered(gathered_histories *g)
+{
+    if (g) {
+        free((void *)g->h.members);
+        free(g->columns);
+        free(g->patches);
+    }
+    free(g);
+}
+
+/* The figure's view of member m, its columns at offset `at` of g's (total steps in all). */
+static paper_history member_columns(gathered_histories *g, const scene_member *m, size_t at, size_t total)
+{
+    double *approach = g->columns + at, *load = approach + total, *load_star = load + total;
+    double *area_ratio = load_star + total;
+    for (int i = 0; i < m->steps; ++i) {
+        const im_step_result *r = &m->history[i].result;
+        approach[i] = r->approach;
+        load[i] = r->load;
+        load_star[i] = r->load_star;
+        area_ratio[i] = r->area_ratio;
+        g->patches[at + (size_t)i] = r->contact_patches;
+    }
+    return (paper_history){m->family, m->steps, approach, load, load_star, area_ratio, g->patches + at};
+}
+
+/* *out (freed with free_gathered) holds the members' columns. */
 static int gather_histories(const im_scene *scene, const scene_member *members, int count, gathered_histories **out)
 {
+    size_t total = 0;
+    for (int i = 0; i < count; ++i)
+        total += (size_t)members[i].steps;
     gathered_histories *g = calloc(1, sizeof *g);
-    paper_history *views = calloc((size_t)count + 1, sizeof *views);
-    if (!g || !views) {
-        free(g);
-        free(views);
+    paper_history *views = g ? calloc((size_t)count + 1, sizeof *views) : NULL;
+    if (g) {
+        g->h.members = views;
+        g->columns = calloc(4 * total + 1, sizeof *g->columns);
+        g->patches = calloc(total + 1, sizeof *g->patches);
+    }
+    if (!views || !g->columns || !g->patches) {
+        free_gathered(g);
         return im_fail(IM_ENOMEM, "history figures: allocation failed");
     }
+    size_t at = 0;
     for (int i = 0; i < count; ++i) {
-        const scene_member *m = &members[i];
-        views[i] = (paper_history){
-            m->family,         m->steps, m->approach, m->history_load, m->history_load_star, m->history_area_ratio,
-            m->history_patches};
+        views[i] = member_columns(g, &members[i], at, total);
+        at += (size_t)members[i].steps;
     }
     for (int f = 0; f < scene->family_count; ++f) {
         scene_family_title(scene, f, g->titles[f], sizeof g->titles[f]);
@@ -342,13 +355,6 @@ static int gather_histories(const im_scene *scene, const scene_member *members, 
                              .cot_alpha = cone_cot(scene)};
     *out = g;
     return IM_OK;
-}
-
-static void free_gathered(gathered_histories *g)
-{
-    if (g)
-        free((void *)g->h.members);
-    free(g);
 }
 
 static int draw_against_approach(const im_scene *scene, const void *h, const paper_file *file)
@@ -569,14 +575,14 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         report_histories(options, members, count);
     scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_HISTORY);
-    if (status == IM_OK)
-        scene_periodic_keep_rows(scene, reuse, members, count);
     if (status == IM_OK && histories_unload(scene))
         status = write_indentations(scene, options, members, count);
     if (status == IM_OK && scene->periodic)
         status = scene_periodic_results(scene, options, members, count);
     if (status == IM_OK)
         status = plot_histories(scene, members, count);
+    if (status == IM_OK) /* last: it takes the rows the steps above read */
+        scene_periodic_keep_rows(scene, reuse, members, count);
     scene_members_free(members, count);
     return status;
 }

@@ -1,5 +1,6 @@
 /* The theory beside every simulated history of a scene (the history files' theory columns). */
 #include "indentmap/theory.h"
+#include "scene/contents.h"
 #include "scene/history_theory.h"
 #include "scene/punch.h"
 

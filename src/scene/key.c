@@ -1,6 +1,8 @@
 /* Keys of kept results: a hash of every input that determines a member's result, written with
  * the result, so that --resume solves again what an edited scene would compute differently. */
 #include "core/fnv1a.h"
+#include "scene/contents.h"
+#include "scene/run_state.h"
 #include "indentmap/status.h"
 #include "scene/key.h"
 #include "scene/progress.h"
@@ -90,8 +92,9 @@ static void add_contact(key_hash *hash, const im_scene *scene)
     im_solver_options o = scene_solver_options(scene);
     key_add(hash, "punch %d %.17g %.17g; modulus %.17g;", scene->punch, scene->alpha_degrees, scene->radius,
             scene->modulus);
-    if (scene->profile) /* only then, so that the keys of the other punches stay as they were */
-        add_profile(hash, scene->profile);
+    const im_profile *profile = scene_profile(scene);
+    if (profile) /* only then, so that the keys of the other punches stay as they were */
+        add_profile(hash, profile);
     key_add(hash, "solver %.17g %.17g %d %d %d;", o.e_star, o.tol, o.max_iterations, o.crop, o.window_margin);
     /* only then, so that the keys of results without a cap stay as they were; "memory": results made
      * since the cap remembers its plastic flow (and load control searches the approach) differ from

@@ -1,6 +1,7 @@
 /* The keys a scene file may give: one table, section by section, with each key's parser, destination,
  * range and capacity; the defaults of the keys not given, and the settings that follow from others. */
 #include "scene/keys.h"
+#include "scene/contents.h"
 #include "core/args.h"
 #include "indentmap/solver.h"
 #include "scene/names.h"
@@ -105,9 +106,8 @@ const char *im_scene_suggest_key(const char *section, const char *word)
     return best;
 }
 
-void im_scene_defaults(im_scene *scene)
+void scene_defaults(im_scene *scene)
 {
-    ARG_REQUIRE_OR(scene, "scene", );
     memset(scene, 0, sizeof *scene);
     snprintf(scene->name, sizeof scene->name, "scene");
     snprintf(scene->quality, sizeof scene->quality, "%s", IM_QUALITY_DEFAULT);

@@ -1,6 +1,6 @@
 /* Internal: the keys a scene file may give (keys.c): one table of SCENE_KEY_COUNT keys, each with its
  * section, parser (values.h), destination in im_scene, range and capacity; the defaults of a scene
- * (im_scene_defaults) and the settings that follow from the keys given. */
+ * (contents.h: scene_defaults) and the settings that follow from the keys given. */
 #ifndef INDENTMAP_SCENE_KEYS_H
 #define INDENTMAP_SCENE_KEYS_H
 

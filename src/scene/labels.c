@@ -1,5 +1,6 @@
 /* How a scene's figures name its families and colour their forces. */
 #include "scene/labels.h"
+#include "scene/contents.h"
 #include "front/front.h"
 
 #include <stdio.h>

@@ -3,6 +3,7 @@
  * estimates are upper bounds of the largest terms, not exact accounts: each solve's FFT plan and
  * fields, the fields the frames keep, and the files at their uncompressed sizes. */
 #include "front/front.h"
+#include "scene/contents.h"
 #include "indentmap/field.h"
 #include "indentmap/io.h"
 #include "indentmap/solver.h"

@@ -2,6 +2,8 @@
  * again, and OUTPUT/outputs.txt, whose files a later run removes when its scene no longer makes them. */
 #define _GNU_SOURCE /* nftw's FTW_ACTIONRETVAL */
 #include "scene/manifest.h"
+#include "scene/contents.h"
+#include "scene/run_state.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -123,7 +125,7 @@ static const char *relative_to(const struct scene_outputs *o, const char *path)
 
 void scene_outputs_note(const im_scene *scene, const char *path)
 {
-    struct scene_outputs *o = scene->outputs;
+    struct scene_outputs *o = scene->run ? scene->run->outputs : NULL;
     const char *relative = o ? relative_to(o, path) : NULL;
     if (!relative)
         return;
@@ -186,7 +188,7 @@ static void read_manifest(struct scene_outputs *o)
     fclose(stream);
 }
 
-int scene_outputs_open(im_scene *scene, const im_scene_run_options *options)
+int scene_outputs_open(const im_scene *scene, const im_scene_run_options *options)
 {
     struct scene_outputs *o = calloc(1, sizeof *o);
     if (!o)
@@ -202,7 +204,7 @@ int scene_outputs_open(im_scene *scene, const im_scene_run_options *options)
     else
         clock_gettime(CLOCK_REALTIME, &o->start);
     read_manifest(o);
-    scene->outputs = o;
+    scene->run->outputs = o;
     return IM_OK;
 }
 
@@ -297,12 +299,12 @@ static int write_manifest(const struct scene_outputs *o, int finished)
     return status;
 }
 
-int scene_outputs_close(im_scene *scene, int status)
+int scene_outputs_close(const im_scene *scene, int status)
 {
-    struct scene_outputs *o = scene->outputs;
+    struct scene_outputs *o = scene->run->outputs;
     if (!o)
         return status;
-    scene->outputs = NULL;
+    scene->run->outputs = NULL;
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     if (status == IM_OK)

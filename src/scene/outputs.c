@@ -1,6 +1,7 @@
 /* Where a scene's outputs go: paths under its output folder, figures as PNG and PDF (the folder itself:
  * front/run_folder.h). */
 #include "indentmap/plot.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"

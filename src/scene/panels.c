@@ -1,6 +1,7 @@
 /* Contact-map panels at one load for every family (the paper's Fig. 4, drawn by
  * paper/map_figures.c), and their table. */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/formats.h"
 #include "indentmap/status.h"
 #include "paper/figures.h"

@@ -2,7 +2,7 @@
  * entry of keys.c's table, the contents noted, then the settings completed and checked (check.c).
  * Every error is one message with the file and line ("scene.ini:7: ..."). */
 #include "indentmap/scene.h"
-#include "core/args.h"
+#include "scene/contents.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "scene/check.h"
@@ -93,7 +93,7 @@ static char *read_line(char *buffer, int size, void *user)
             break;
     }
     if (length == 0)
-        return NULL; /* end of file, or a read error that im_scene_load reports */
+        return NULL; /* end of file, or a read error that scene_load_file reports */
     buffer[length] = '\0';
     ++context->line;
     return check_section_once(context, buffer) ? buffer : NULL;
@@ -173,7 +173,7 @@ static int any_key_given(const parse_context *context)
 /* The defaults, and what scene_complete fills unless the scene gives it. */
 static void begin_scene(im_scene *scene, const char *path)
 {
-    im_scene_defaults(scene);
+    scene_defaults(scene);
     snprintf(scene->path, sizeof scene->path, "%s", path);
     scene->surface.ny = -1;
     scene->surface.lambda_r = -1;
@@ -211,10 +211,8 @@ static int parse_stream(const char *path, FILE *stream, im_scene *scene)
     return IM_OK;
 }
 
-int im_scene_load(const char *path, im_scene *scene)
+int scene_load_file(const char *path, im_scene *scene)
 {
-    ARG_REQUIRE(path, "path");
-    ARG_REQUIRE(scene, "scene");
     begin_scene(scene, path);
     FILE *stream;
     long long size;

@@ -1,5 +1,6 @@
 /* The paths a scene names (surface files, profile, output folder): relative to the scene file. */
 #include "indentmap/scene.h"
+#include "scene/contents.h"
 #include "core/args.h"
 #include "indentmap/status.h"
 

@@ -1,6 +1,7 @@
 /* A periodic scene's results beyond its histories: the non-periodic-input warning and k of eq. (2) per
  * member, each computed by the helpers `indent --periodic` calls (front.h). */
 #include "scene/periodic.h"
+#include "scene/contents.h"
 
 #include "front/front.h"
 #include "indentmap/io.h"

@@ -3,6 +3,7 @@
  * contact maps drawn as `indent --frames` draws them (front.h, "the files of one solved step"). A cell
  * has no load_star to draw them at, nor a smooth contact circle. */
 #include "scene/periodic.h"
+#include "scene/contents.h"
 
 #include "front/front.h"
 #include "indentmap/figure.h"

@@ -2,6 +2,7 @@
  * of its transform, and FFTW writes wisdom a line per plan: the kept results' plans can still be had
  * while the wisdom file holds every line it held when they were solved. */
 #include "scene/plans.h"
+#include "scene/contents.h"
 
 #include "indentmap/io.h"
 #include "indentmap/solver.h"

@@ -1,5 +1,6 @@
 /* The paper's line figures that a scene asks for in [output] plots. */
 #include "indentmap/paper.h"
+#include "scene/contents.h"
 #include "indentmap/status.h"
 #include "scene/frames.h"
 #include "scene/outputs.h"

@@ -1,7 +1,7 @@
 /* A scene run's provenance: the scene's contents and its inputs' SHA-256 in run.json, so that the run
  * can be made again from its record alone (im_scene_load_record; docs/scenes.md, "Provenance"). */
 #include "scene/provenance.h"
-#include "core/args.h"
+#include "scene/contents.h"
 #include "front/front.h"
 #include "paper/figures.h"
 
@@ -208,10 +208,8 @@ static int rebuild(const char *record, json_t *root, im_scene *scene)
     return IM_OK;
 }
 
-int im_scene_load_record(const char *record, im_scene *scene)
+int scene_load_record(const char *record, im_scene *scene)
 {
-    ARG_REQUIRE(record, "record");
-    ARG_REQUIRE(scene, "scene");
     json_t *root;
     int status = run_record_load(record, &root);
     if (status != IM_OK)

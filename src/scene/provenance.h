@@ -8,9 +8,16 @@
 
 #include <jansson.h>
 
-/* Parses scene text as im_scene_load parses a file named path (parse.c): its errors name path and
+/* Parses the scene file at path into *scene, defaults first (parse.c): im_scene_load's errors. */
+int scene_load_file(const char *path, im_scene *scene);
+
+/* Parses scene text as scene_load_file parses a file named path (parse.c): its errors name path and
  * the line of text, and paths in it resolve against path's folder. */
 int scene_load_text(const char *text, const char *path, im_scene *scene);
+
+/* Rebuilds into *scene the scene of the run record at path (provenance.c): im_scene_load_record's
+ * errors. */
+int scene_load_record(const char *record, im_scene *scene);
 
 /* run.json's "scene_contents" into *record: what the scene file set ({"section": {"key": "value"}}),
  * which keys that is, and the scene file's absolute path. IM_EFORMAT for a value or path that is not

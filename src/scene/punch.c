@@ -1,5 +1,7 @@
 /* The punch of a scene, the loads that give its N*, its solver options and eq. (12) at its angle. */
 #include "indentmap/scene.h"
+#include "scene/contents.h"
+#include "scene/run_state.h"
 
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
@@ -13,7 +15,7 @@ im_indenter scene_punch(const im_scene *scene)
     switch (scene->punch) {
     case IM_PUNCH_SPHERE: return im_indenter_sphere(scene->radius);
     case IM_PUNCH_FLAT: return im_indenter_flat(scene->radius);
-    case IM_PUNCH_PROFILE: return im_indenter_from_profile(scene->profile); /* or a 2-D one, as read */
+    case IM_PUNCH_PROFILE: return im_indenter_from_profile(scene_profile(scene)); /* or a 2-D one, as read */
     default: return im_indenter_cone(scene->alpha_degrees);
     }
 }

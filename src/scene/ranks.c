@@ -3,6 +3,7 @@
  * folder, with the scene code's own member solvers (which write every member as soon as it is
  * solved, keyed by its inputs); rank 0 then runs the stages alone and reads them back exactly. */
 #include "indentmap/scene_ranks.h"
+#include "scene/contents.h"
 #include "core/args.h"
 
 #include "indentmap/io.h"
@@ -233,13 +234,11 @@ static int read_member_back(void *data, const im_scene *scene, const im_scene_ru
 static int run_worker(ranks_state *st, const im_scene *scene, const im_scene_run_options *options)
 {
     im_scene *measured = NULL; /* as im_scene_run: files measured, profile read */
-    im_profile *profile = NULL;
-    int status = scene_prepare(scene, &measured, &profile);
+    int status = scene_prepare(scene, &measured);
     int go = broadcast_status(st, IM_OK);
     if (go == IM_OK)
         status = solve_share(measured ? measured : scene, options, st, status);
-    free(measured);
-    im_profile_free(profile); /* after the solves that borrowed it */
+    scene_prepared_free(measured); /* after the solves that borrowed its profile */
     if (go != IM_OK)
         return im_fail(go, "rank 0 stopped before the members were solved");
     int outcome = broadcast_status(st, IM_OK);

@@ -1,5 +1,7 @@
 /* OUTPUT/run.json of a scene run: the common run record (front.h) and the scene's own fields. */
 #include "front/front.h"
+#include "scene/contents.h"
+#include "scene/run_state.h"
 #include "scene/outputs.h"
 #include "scene/periodic.h"
 #include "scene/provenance.h"
@@ -26,9 +28,9 @@ static json_t *files_record(const im_scene *scene)
         char path[IM_SCENE_PATH];
         im_scene_file_path(scene, i, path, sizeof path);
         json_array_append_new(files,
-                              json_pack("{s:s, s:f, s:f, s:o}", "path", path, "slope_rms", scene->file_slopes[i],
-                                        "spacing_difference", scene->file_spacing_differences[i], "resampled",
-                                        scene->file_resampled[i] ? json_string("bilinear") : json_null()));
+                              json_pack("{s:s, s:f, s:f, s:o}", "path", path, "slope_rms", scene->run->file_slopes[i],
+                                        "spacing_difference", scene->run->file_spacing_differences[i], "resampled",
+                                        scene->run->file_resampled[i] ? json_string("bilinear") : json_null()));
     }
     static const char *const ALIGN[] = {"none", "median", "mean", "line"};
     return json_pack("{s:o, s:f, s:s, s:s, s:s, s:b, s:s, s:b, s:s, s:f, s:s}", "files", files, "slope_rms",
@@ -58,7 +60,7 @@ static json_t *profile_record(const im_scene *scene)
 {
     char path[4 * IM_SCENE_PATH + 1];
     im_path_utf8(scene->profile_file, path, sizeof path);
-    return json_pack("{s:s, s:s}", "kind", im_punch_name(im_profile_kind(scene->profile)), "profile", path);
+    return json_pack("{s:s, s:s}", "kind", im_punch_name(im_profile_kind(scene_profile(scene))), "profile", path);
 }
 
 /* A sweep's lists (each given value; one value where the key is not a list) and how many points
@@ -140,7 +142,7 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(root, "scene_encoding", json_string("escaped"));
     if (scene->file_count > 0)
         json_object_set_new(root, "surface_files", files_record(scene));
-    if (scene->profile)
+    if (scene_profile(scene))
         json_object_set_new(root, "punch", profile_record(scene));
     if (scene_sweep_count(scene) > 1)
         json_object_set_new(root, "sweep", sweep_record(scene));

@@ -1,5 +1,7 @@
 /* A scene run: checks before any work, then the stages in order (the headers beside it have the pieces). */
 #include "indentmap/scene.h"
+#include "scene/contents.h"
+#include "scene/run_state.h"
 #include "core/args.h"
 #include "front/run_folder.h"
 
@@ -21,6 +23,7 @@
 #include "scene/progress.h"
 #include "scene/punch.h"
 #include "scene/record.h"
+#include "scene/surfaces.h"
 #include "scene/sweep.h"
 #include "scene/table.h"
 
@@ -195,10 +198,10 @@ static int write_viewer_page(const im_scene *scene, const run_folder *folder, in
     return run_folder_page(folder, title, scene->page_embed, status);
 }
 
-static int run_measured(im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
+static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
 
 /* OUTPUT/run.json (a damaged one removed first), then the noting of the run's outputs from its time. */
-static int write_record(im_scene *scene, const im_scene_run_options *options)
+static int write_record(const im_scene *scene, const im_scene_run_options *options)
 {
     char record[IM_SCENE_PATH];
     int status = im_path_join(record, sizeof record, scene->output_dir, "run.json");
@@ -244,23 +247,36 @@ static int read_profile(im_scene *scene, im_profile **out)
     return status == IM_OK ? IM_OK : im_fail_context(status, "%s: [punch] profile", scene->path);
 }
 
-int scene_prepare(const im_scene *scene, im_scene **prepared, im_profile **profile)
+const im_profile *scene_profile(const im_scene *scene) { return scene->run ? scene->run->profile : NULL; }
+
+void scene_prepared_free(im_scene *prepared)
+{
+    if (prepared && prepared->run) {
+        im_profile_free(prepared->run->profile);
+        free(prepared->run);
+    }
+    free(prepared);
+}
+
+int scene_prepare(const im_scene *scene, im_scene **prepared)
 {
     *prepared = NULL;
-    *profile = NULL;
     im_scene *copy = malloc(sizeof *copy);
-    if (!copy)
-        return im_fail(IM_ENOMEM, "%s: allocation of the scene failed", scene->path);
-    *copy = *scene;
-    int status = im_scene_measure_files(copy);
-    if (status == IM_OK)
-        status = read_profile(copy, profile);
-    if (status != IM_OK) {
+    scene_run_state *state = calloc(1, sizeof *state);
+    if (!copy || !state) {
         free(copy);
+        free(state);
+        return im_fail(IM_ENOMEM, "%s: allocation of the scene's run failed", scene->path);
+    }
+    *copy = *scene;
+    copy->run = state;
+    int status = scene_measure_files(copy, state);
+    if (status == IM_OK)
+        status = read_profile(copy, &state->profile);
+    if (status != IM_OK) {
+        scene_prepared_free(copy);
         return status;
     }
-    copy->profile = *profile;
-    copy->outputs = NULL;
     *prepared = copy;
     return IM_OK;
 }
@@ -279,20 +295,18 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     im_scene_run_options run = scene_callbacks_begin(given, &callbacks);
     const im_scene_run_options *options = &run;
     im_scene *measured = NULL;
-    im_profile *profile = NULL;
-    int status = scene_prepare(scene, &measured, &profile);
+    int status = scene_prepare(scene, &measured);
     if (status == IM_OK && measured->file_count > 0)
         scene_progress(options, "surface files: h'rms = %.6g (forward differences of the surfaces as solved%s)",
                        measured->slopes[0], measured->file_count > 1 ? ", root mean square over the files" : "");
     if (status == IM_OK)
         status = run_measured(measured, options, ranks);
-    free(measured);
-    im_profile_free(profile); /* after the run that borrowed it */
+    scene_prepared_free(measured);
     scene_callbacks_end(&callbacks);
     return status;
 }
 
-static int run_measured(im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
+static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
 {
     int status = check_runnable(scene);
     if (status == IM_OK)

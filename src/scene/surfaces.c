@@ -1,7 +1,8 @@
 /* The surfaces of a scene: generated per family and seed, or read from its files (measured first,
  * checked to share one grid). */
 #include "indentmap/scene.h"
-#include "core/args.h"
+#include "scene/contents.h"
+#include "scene/run_state.h"
 
 #include "indentmap/formats.h"
 #include "indentmap/io.h"
@@ -49,9 +50,8 @@ static int check_same_grid(const im_scene *scene, const im_field *first, const i
                    first->delta, first->unit);
 }
 
-int im_scene_measure_files(im_scene *scene)
+int scene_measure_files(im_scene *scene, scene_run_state *state)
 {
-    ARG_REQUIRE(scene, "scene");
     im_field *first = NULL;
     double sum_squares = 0.0;
     int status = IM_OK;
@@ -60,14 +60,14 @@ int im_scene_measure_files(im_scene *scene)
         im_surface_read_info info;
         status = file_surface(scene, i, &surface, &info);
         if (status == IM_OK) {
-            scene->file_spacing_differences[i] = info.spacing_difference;
-            scene->file_resampled[i] = info.resampled[0] != '\0';
+            state->file_spacing_differences[i] = info.spacing_difference;
+            state->file_resampled[i] = info.resampled[0] != '\0';
         }
         if (status == IM_OK && first)
             status = check_same_grid(scene, first, surface, i);
         if (status == IM_OK)
-            status = im_surface_slope_rms(surface, IM_SLOPE_FINITE_DIFFERENCE, &scene->file_slopes[i]);
-        sum_squares += status == IM_OK ? scene->file_slopes[i] * scene->file_slopes[i] : 0.0;
+            status = im_surface_slope_rms(surface, IM_SLOPE_FINITE_DIFFERENCE, &state->file_slopes[i]);
+        sum_squares += status == IM_OK ? state->file_slopes[i] * state->file_slopes[i] : 0.0;
         if (!first)
             first = surface;
         else
@@ -99,5 +99,5 @@ int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **o
 
 double scene_member_slope(const im_scene *scene, int family, uint64_t seed)
 {
-    return scene->file_count > 0 ? scene->file_slopes[seed] : scene->slopes[family];
+    return scene->file_count > 0 ? scene->run->file_slopes[seed] : scene->slopes[family];
 }

@@ -3,6 +3,7 @@
  * seeds) in its own folder. The table's families of every point are gathered into sweep.csv and,
  * with plots = fig2, drawn against rho_c beside eq. (12) in the scene's own fig2. */
 #include "indentmap/status.h"
+#include "scene/contents.h"
 #include "paper/figures.h"
 #include "scene/labels.h"
 #include "scene/limits.h"

@@ -1,6 +1,7 @@
 /* The ensemble table (the paper's Table 1): every seed of every family solved at one load, in
  * parallel over surfaces; per family the mean and spread of A/A_cone beside eq. (12). */
 #include "indentmap/io.h"
+#include "scene/contents.h"
 #include "indentmap/paper.h"
 #include "indentmap/status.h"
 #include "scene/ensemble.h"

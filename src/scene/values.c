@@ -2,6 +2,7 @@
  * im_scene field its key_spec names, or failing with IM_EFORMAT and a message that names the key
  * (parse.c adds the file and line). */
 #include "scene/values.h"
+#include "scene/contents.h"
 
 #include "front/front.h"
 #include "indentmap/solver.h"
