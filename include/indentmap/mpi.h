@@ -141,10 +141,11 @@ int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap);
  * load N = p_m nx ny delta^2, >= 0) or IM_CONTROL_MEAN_GAP (target: the mean gap, > 0; an approach
  * below 0 leaves the flat clear). With the solver's hardness, plastic memory: the overlap of the patches
  * at the cap is added to their plastic depth and their undeformed gap after each step, and a load of
- * H_p A0 or more is refused (IM_EINVAL); mean-gap control with a hardness, which im_indentation_step
- * searches, gives IM_EUNSUPPORTED. *out as im_indentation_step's: N* NaN, area_ratio A / A0, the mean
- * gap max(g, 0) over the cell, the plastic values; the same on every rank for any rank count (ordered
- * sums), equal to the serial step's to the tolerance with the same iterations. Collective. */
+ * H_p A0 or more is refused (IM_EINVAL); under mean-gap control the approach of a yielding cell's mean
+ * gap is searched as im_indentation_step searches it (its solves summed in the counts). *out as
+ * im_indentation_step's: N* NaN, area_ratio A / A0, the mean gap max(g, 0) over the cell, the plastic
+ * values; the same on every rank for any rank count (ordered sums), equal to the serial step's to the
+ * tolerance with the same iterations. Collective. */
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's

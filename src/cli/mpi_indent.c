@@ -16,7 +16,6 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 #include <sys/stat.h>
 
 enum {
@@ -89,8 +88,8 @@ static void usage(FILE *stream)
             "  --pressure LIST mean pressures p_m (units of E*; N = p_m nx ny), or\n"
             "  --mean-gap LIST mean gaps over the cell (delta), each > 0; LIST as indent's:\n"
             "                  'v1,v2,...' or 'first:last:count'. With --hardness: plastic memory from\n"
-            "                  step to step, under --pressure only (indent searches the approach of a\n"
-            "                  yielding cell's mean gap serially). Prints on rank 0 the history, indent's\n"
+            "                  step to step; a yielding cell's mean gap is found by indent's search of\n"
+            "                  the approach, over the ranks. Prints on rank 0 the history, indent's\n"
             "                  history.csv columns; with --out DIR also DIR/history.csv (appended step by\n"
             "                  step), DIR/run.json and the last step's fields. Rank 0 gathers the heights\n"
             "                  once (h'rms, k of eq. (2)) and each step's forces (contact patches)\n");
@@ -295,9 +294,6 @@ static int check_periodic_options(mpi_indent_options *o)
     else if (o->periodic && o->punch_given)
         fprintf(stderr, "indentmap: mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha "
                         "and --radius are the half-space's\n");
-    else if (o->periodic && o->solver.hardness > 0 && strcmp(o->targets_option, "--mean-gap") == 0)
-        fprintf(stderr, "indentmap: mpi-indent --periodic --mean-gap with --hardness: the approach of a yielding "
-                        "cell's mean gap is searched, which only indent does (serially); give --pressure LIST\n");
     else
         return 0;
     return -1;

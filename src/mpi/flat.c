@@ -4,6 +4,7 @@
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
 #include "solver/flat.h"
+#include "solver/search.h"
 
 #include "indentmap/status.h"
 
@@ -176,7 +177,7 @@ static double mean_open_gap(im_mpi_flat_contact *run)
     return mpi_surface_mean(run->solver, run->terms);
 }
 
-/* IM_EINVAL or IM_EUNSUPPORTED, as im_indentation_step, for a target this cell's steps do not take. */
+/* IM_EINVAL, as im_indentation_step, for a target this cell's steps do not take. */
 static int check_step(const im_mpi_flat_contact *run, enum im_control control, double target)
 {
     const im_mpi_solver *s = run->solver;
@@ -188,12 +189,6 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value %s",
                        control == IM_CONTROL_LOAD ? "load" : "mean gap", target,
                        control == IM_CONTROL_LOAD ? ">= 0" : "> 0 (at 0 the cell is in full contact)");
-    if (control == IM_CONTROL_MEAN_GAP && cap > 0)
-        return im_fail(IM_EUNSUPPORTED,
-                       "mean gap %g with a hardness: the approach of a yielding cell's mean gap is "
-                       "searched (im_indentation_step), which the distributed cell does not do; give mean "
-                       "pressures (load control)",
-                       target);
     const double capacity = cap * s->nx * s->ny * s->delta * s->delta;
     if (cap > 0 && target >= capacity)
         return im_fail(IM_EINVAL,
@@ -201,6 +196,31 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
                        "load every patch would have yielded: full contact, no approach to find)",
                        target, cap, capacity);
     return IM_OK;
+}
+
+static int displacement_solve(void *context, double w, im_solve_result *s)
+{
+    flat_cell *c = &((im_mpi_flat_contact *)context)->cell;
+    return c->solve(c->solver, c->gap0, IM_CONTROL_DISPLACEMENT, w, c->pressure, c->displacement, s);
+}
+
+static double negative_mean_gap(void *context, const im_solve_result *s)
+{
+    im_mpi_flat_contact *run = context;
+    run->cell.approach = s->approach;
+    return -mean_open_gap(run);
+}
+
+/* The approach of mean gap target, searched under a hardness as im_indentation_step searches it (search.h). */
+static int solve_at_mean_gap(im_mpi_flat_contact *run, double target, im_solve_result *out)
+{
+    approach_search search = {.context = run,
+                              .target = -target,
+                              .tol = run->solver->plan.options.tol,
+                              .measure = negative_mean_gap,
+                              .solve = displacement_solve};
+    /* mean u = 0: the approach mean g0 - target gives the mean gap; above mean g0 the flat is clear */
+    return search_mean_gap(&search, run->cell.mean_gap0 - target, run->solver->plan.options.hardness, out);
 }
 
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out)
@@ -212,14 +232,12 @@ int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, 
         return status;
     flat_cell *c = &run->cell;
     im_solve_result solve = {0};
-    /* mean u = 0: the approach mean g0 - target gives the mean gap; above mean g0 the flat is clear */
-    const double w = control == IM_CONTROL_MEAN_GAP ? c->mean_gap0 - target : target;
-    status = c->solve(c->solver, c->gap0, control == IM_CONTROL_MEAN_GAP ? IM_CONTROL_DISPLACEMENT : IM_CONTROL_LOAD,
-                      control == IM_CONTROL_MEAN_GAP ? fmax(w, 0.0) : target, c->pressure, c->displacement, &solve);
-    double deepest;
     if (control == IM_CONTROL_MEAN_GAP)
-        solve.approach = w;
-    else if (status == IM_OK && target == 0) /* N = 0 holds at any approach up to where the flat touches */
+        status = solve_at_mean_gap(run, target, &solve);
+    else
+        status = c->solve(c->solver, c->gap0, IM_CONTROL_LOAD, target, c->pressure, c->displacement, &solve);
+    double deepest;
+    if (control == IM_CONTROL_LOAD && status == IM_OK && target == 0) /* N = 0 up to where the flat touches */
         plastic_extremes(run, &deepest, &solve.approach);
     c->approach = solve.approach;
     const im_mpi_solver *s = run->solver;
