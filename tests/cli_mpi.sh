@@ -135,13 +135,13 @@ yielding=$(cut -d, -f"$(column_of yielding_patches "$work/ser_gap_cap/history.cs
   sed 1d | tr '\n' ' ')
 awk -v y="$yielding" 'BEGIN { n = split(y, v, " "); exit !(n == 4 && v[2] > 0 && v[3] > v[2] && v[4] == 0) }' ||
   fail "--mean-gap with --hardness 0.1: the cap should bind at mean gaps 0.1 and 0.05, not on unloading: $yielding"
-# adhesion (indent's Maugis-Dugdale passes over the ranks; refused before): approach, deeper, retraction, every
-# step under tension, the zone's share exchanged across the ranks' rows
-periodic_case adhesion --mean-gap 0.3,0.15,0.6 --adhesion-work 0.004 --adhesion-range 0.1
+# adhesion (indent's Maugis-Dugdale passes over the ranks; refused before): approach, deeper, retraction to a
+# pulled cell, every step under tension, the zone's share exchanged across the ranks' rows
+periodic_case adhesion --mean-gap 0.3,0.15,0.6,0.9 --adhesion-work 0.002 --adhesion-range 0.2
 tensile=$(cut -d, -f"$(column_of adhesive_patches "$work/ser_adhesion/history.csv")" "$work/ser_adhesion/history.csv" |
   sed 1d | tr '\n' ' ')
-awk -v t="$tensile" 'BEGIN { n = split(t, v, " "); exit !(n == 3 && v[1] > 0 && v[2] > v[1] && v[3] > 0) }' ||
-  fail "--adhesion-work 0.004: every step should have patches under tension: $tensile"
+awk -v t="$tensile" 'BEGIN { n = split(t, v, " "); exit !(n == 4 && v[1] > 0 && v[2] > v[1] && v[3] > 0 && v[4] > 0) }' ||
+  fail "--adhesion-work 0.002: every step should have patches under tension: $tensile"
 pull_off_of() { grep '"pull_off_force"' "$1" | head -1 | sed 's/.*: //; s/,$//'; }
 serial_pull=$(pull_off_of "$work/ser_adhesion/run.json") mpi_pull=$(pull_off_of "$work/mpi_adhesion_2/run.json")
 awk -v a="$serial_pull" -v b="$mpi_pull" 'BEGIN { d = a - b; exit !(a > 0 && d < 1e-8 * a && -d < 1e-8 * a) }' ||
