@@ -692,6 +692,7 @@ REPORT(im_mpi_flat_contact_solve_gap, "run", im_mpi_flat_contact_solve_gap(NULL,
 SAFE_RESULT(im_mpi_flat_contact_pressure, "run", im_mpi_flat_contact_pressure(NULL) == NULL)
 REPORT(im_mpi_flat_contact_gap, "run", im_mpi_flat_contact_gap(NULL, out_values))
 REPORT(im_mpi_flat_contact_step, "run", im_mpi_flat_contact_step(NULL, IM_CONTROL_LOAD, 0.1, &step_result))
+REPORT(im_mpi_flat_contact_adhesion, "run", im_mpi_flat_contact_adhesion(NULL, &options))
 REPORT(im_mpi_undeformed_gap, "solver", im_mpi_undeformed_gap(NULL, values, &cone, out_values))
 REPORT(im_mpi_check_edge, "solver", im_mpi_check_edge(NULL, values))
 REPORT(im_mpi_gather_map, "solver", im_mpi_gather_map(NULL, values, 1, &field_out))

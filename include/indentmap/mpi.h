@@ -4,6 +4,7 @@
  *   im_mpi_init, im_mpi_cleanup                     FFTW-MPI with threads, once per process
  *   im_mpi_solver_create, im_mpi_solver_solve, im_mpi_solver_free   solver.h's solver over ranks
  *   im_mpi_flat_contact_create, im_mpi_flat_contact_step, im_mpi_flat_contact_free   a periodic cell
+ *   im_mpi_flat_contact_adhesion                    its steps adhesive
  *   im_mpi_surface_generate                         surface.h's synthesis, each rank its rows
  *   im_mpi_npy_shape, im_mpi_npy_read_rows, im_mpi_npy_write_rows   one .npy file shared by ranks
  *   im_mpi_gather_map                               a field gathered on rank 0 (for pictures)
@@ -84,7 +85,8 @@ typedef struct im_mpi_solver im_mpi_solver;
  * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop and
  * window_margin are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
  * options; IM_EUNSUPPORTED, naming it, for what the distributed solver does not do: adhesion
- * (adhesion_work > 0), device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU). periodic = 1 solves
+ * (adhesion_work > 0: a solve is repulsive; a periodic cell's steps take it, im_mpi_flat_contact_adhesion),
+ * device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU). periodic = 1 solves
  * the periodic half-space on the unpadded nx x ny grid (its slabs are then the surface rows);
  * IM_ENOMEM when this rank's share (im_mpi_solver_bytes) does not fit or FFTW cannot plan. */
 int im_mpi_solver_create(MPI_Comm comm, int nx, int ny, double delta, const im_solver_options *options,
@@ -127,10 +129,17 @@ int im_mpi_flat_contact_create(im_mpi_solver *solver, const double *heights, im_
 /* NULL is ignored. Not collective. */
 void im_mpi_flat_contact_free(im_mpi_flat_contact *run);
 /* As im_flat_contact_solve and im_flat_contact_solve_gap (warm-started from the last solve): out
- * holds global values, the same on every rank. Collective. */
+ * holds global values, the same on every rank. IM_EINVAL on an adhesive cell. Collective. */
 int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im_flat_result *out);
 int im_mpi_flat_contact_solve_gap(im_mpi_flat_contact *run, double mean_gap, im_flat_result *out);
-/* This rank's rows of the pressure of the last solve (rows * nx values; owned by run). */
+/* Adhesion in the cell's steps (options' adhesion_work, adhesion_range, adhesion_law; the solver's own options
+ * have none, as a serial plan's): im_mpi_flat_contact_step then takes mean gaps only and solves the adhesive
+ * cell as im_indentation_step does (`indent --periodic --mean-gap --adhesion-work`), the passes over the ranks,
+ * the same iterations and values to the tolerance. IM_EINVAL for invalid options or no work, with the
+ * solver's hardness (adhesion with plasticity is not available), or after a step; IM_ENOMEM. Collective. */
+int im_mpi_flat_contact_adhesion(im_mpi_flat_contact *run, const im_solver_options *options);
+/* This rank's rows of the pressure of the last solve (rows * nx values; owned by run): with adhesion,
+ * the net pressure of the last step (tensile where negative). */
 const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run);
 /* This rank's rows of the gap g = g0 - w + u of the last solve or step (rows * nx values into gap; g0
  * includes the plastic depth). IM_EINVAL for NULL. Not collective. */
@@ -141,10 +150,11 @@ int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap);
  * load N = p_m nx ny delta^2, >= 0) or IM_CONTROL_MEAN_GAP (target: the mean gap, > 0; an approach
  * below 0 leaves the flat clear). With the solver's hardness, plastic memory: the overlap of the patches
  * at the cap is added to their plastic depth and their undeformed gap after each step, and a load of
- * H_p A0 or more is refused (IM_EINVAL); mean-gap control with a hardness, which im_indentation_step
- * searches, gives IM_EUNSUPPORTED. *out as im_indentation_step's: N* NaN, area_ratio A / A0, the mean
- * gap max(g, 0) over the cell, the plastic values; the same on every rank for any rank count (ordered
- * sums), equal to the serial step's to the tolerance with the same iterations. Collective. */
+ * H_p A0 or more is refused (IM_EINVAL); under mean-gap control the approach of a yielding cell's mean
+ * gap is searched as im_indentation_step searches it (its solves summed in the counts). *out as
+ * im_indentation_step's: N* NaN, area_ratio A / A0, the mean gap max(g, 0) over the cell, the plastic
+ * values; the same on every rank for any rank count (ordered sums), equal to the serial step's to the
+ * tolerance with the same iterations. Collective. */
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's

@@ -88,6 +88,9 @@ int cli_parse_int(const char *option, const char *text, long min, long max, int 
 int cli_parse_u64(const char *option, const char *text, uint64_t *out);
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out);
 
+/* --adhesion-law maugis-dugdale|exponential (solver.h: im_adhesion_law_parse): 0, or -1 after the message. */
+int cli_parse_adhesion_law(const char *text, int *law);
+
 /* A length unit for --unit or --height-unit (formats.h: m, mm, µm or um, nm, ...), copied into out
  * (16 bytes) in its canonical spelling ("um" becomes "µm"); 0, or -1 after naming the option and the known units. */
 int cli_parse_length_unit(const char *option, const char *text, char *out);

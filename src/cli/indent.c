@@ -294,15 +294,6 @@ static int parse_punch(const char *text, enum im_punch_kind *kind)
     return -1;
 }
 
-/* --adhesion-law (solver.h: im_adhesion_law_parse). */
-static int parse_adhesion_law(const char *text, int *law)
-{
-    if (im_adhesion_law_parse(text, law) == IM_OK)
-        return 0;
-    fprintf(stderr, "indentmap: --adhesion-law: %s\n", im_last_error());
-    return -1;
-}
-
 /* The option that gave the targets. */
 static const char *target_option(const indent_options *o)
 {
@@ -390,7 +381,7 @@ static int apply_one_option(int code, const char *arg, indent_options *o)
     case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->solver.adhesion_work);
     case OPT_ADHESION_RANGE:
         return cli_parse_double("--adhesion-range", arg, 1e-300, 1e300, &o->solver.adhesion_range);
-    case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return parse_adhesion_law(arg, &o->solver.adhesion_law);
+    case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return cli_parse_adhesion_law(arg, &o->solver.adhesion_law);
     case OPT_QUALITY: o->quality = arg; return 0;
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
@@ -672,26 +663,6 @@ static json_t *indent_blocks(const indent_options *o, const im_field *s, const i
     return blocks;
 }
 
-/* A number for JSON: null for NaN. */
-static json_t *json_number(double value) { return isfinite(value) ? json_real(value) : json_null(); }
-
-/* The adhesive law as run.json states it: its name, work, range, (peak) stress, the Dugdale zone's length (in
- * the length unit and in patches) and, for a sphere, Maugis's lambda and the law's Tabor mu. */
-static json_t *adhesion_law_record(const indent_options *o)
-{
-    const double length = im_adhesion_zone_length(&o->solver),
-                 lambda = im_adhesion_maugis_lambda(&o->solver, o->punch.radius);
-    json_t *law = json_pack("{s:s, s:f, s:f, s:f, s:f, s:f}", "law", im_adhesion_law_name(o->solver.adhesion_law),
-                            "work", o->solver.adhesion_work, "range", o->solver.adhesion_range, "stress",
-                            o->solver.adhesion_work / o->solver.adhesion_range, "zone_length", length,
-                            "zone_length_patches", length / o->surface_delta);
-    const int sphere = o->punch.kind == IM_PUNCH_SPHERE;
-    json_object_set_new(law, "maugis_lambda", sphere ? json_number(lambda) : json_null());
-    json_object_set_new(law, "tabor_mu",
-                        sphere ? json_number(im_adhesion_tabor_mu(&o->solver, o->punch.radius)) : json_null());
-    return law;
-}
-
 /* The arguments the run is made again from (indent --from-record), and the record it was itself made
  * from (null for a command line). */
 static void add_arguments(const indent_options *o, json_t *root)
@@ -742,7 +713,9 @@ static json_t *run_record(const indent_options *o, const im_field *s, const im_i
     json_decref(generator);
     drop_meaningless_punch_fields(json_object_get(root, "punch"), o->punch.kind);
     json_object_set_new(root, "units", indent_units_record(s->unit, o->e_star_unit, o->solver.periodic));
-    json_object_set_new(root, "adhesion", o->solver.adhesion_work > 0 ? adhesion_law_record(o) : json_null());
+    json_object_set_new(root, "adhesion",
+                        o->solver.adhesion_work > 0 ? run_record_adhesion_law(&o->solver, &o->punch, o->surface_delta)
+                                                    : json_null());
     add_arguments(o, root);
     return root;
 }
@@ -959,19 +932,11 @@ static void write_adhesion_theory(const indent_options *o, const im_history_row 
  * "adhesion" block beside the law, and force_distance.{png,pdf}. */
 static void write_adhesion(const indent_options *o, const im_history_row *rows, int done, json_t *record)
 {
-    im_adhesion_summary summary = {.hysteresis_work = NAN}; /* NaN: not summarised */
+    im_adhesion_summary summary;
     json_t *law = json_object_get(record, "adhesion");
-    if (done >= 1 && analysis_write_adhesion(o->out, rows, done, o->length_unit, o->force_unit, &o->figure_texts,
-                                             &summary) != IM_OK)
-        fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
-    if (isnan(summary.hysteresis_work))
+    if (!run_record_adhesion_summary(law, o->out, rows, done, o->length_unit, o->force_unit, &o->figure_texts,
+                                     &summary))
         return;
-    json_object_set_new(law, "pull_off_force", json_number(summary.pull_off_force));
-    json_object_set_new(law, "pull_off_approach", json_number(summary.pull_off_approach));
-    json_object_set_new(law, "jump_in_approach", json_number(summary.jump_in_approach));
-    json_object_set_new(law, "jump_out_approach", json_number(summary.jump_out_approach));
-    json_object_set_new(law, "hysteresis_work", json_real(summary.hysteresis_work));
-    json_object_set_new(law, "figure", json_string("force_distance.png"));
     printf("adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
            "work lost %.6g; %s/force_distance.png and .pdf\n",
            summary.pull_off_force, summary.pull_off_approach, summary.jump_in_approach, summary.jump_out_approach,

@@ -16,7 +16,6 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 #include <sys/stat.h>
 
 enum {
@@ -38,7 +37,10 @@ enum {
     OPT_HELP,
     OPT_PERIODIC,
     OPT_PRESSURE,
-    OPT_MEAN_GAP
+    OPT_MEAN_GAP,
+    OPT_ADHESION_WORK,
+    OPT_ADHESION_RANGE,
+    OPT_ADHESION_LAW
 };
 
 static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, OPT_SURFACE},
@@ -60,6 +62,9 @@ static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, O
                                              {"periodic", no_argument, 0, OPT_PERIODIC},
                                              {"pressure", required_argument, 0, OPT_PRESSURE},
                                              {"mean-gap", required_argument, 0, OPT_MEAN_GAP},
+                                             {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
+                                             {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
+                                             {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW},
                                              {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
@@ -89,11 +94,15 @@ static void usage(FILE *stream)
             "  --pressure LIST mean pressures p_m (units of E*; N = p_m nx ny), or\n"
             "  --mean-gap LIST mean gaps over the cell (delta), each > 0; LIST as indent's:\n"
             "                  'v1,v2,...' or 'first:last:count'. With --hardness: plastic memory from\n"
-            "                  step to step, under --pressure only (indent searches the approach of a\n"
-            "                  yielding cell's mean gap serially). Prints on rank 0 the history, indent's\n"
+            "                  step to step; a yielding cell's mean gap is found by indent's search of\n"
+            "                  the approach, over the ranks. Prints on rank 0 the history, indent's\n"
             "                  history.csv columns; with --out DIR also DIR/history.csv (appended step by\n"
             "                  step), DIR/run.json and the last step's fields. Rank 0 gathers the heights\n"
-            "                  once (h'rms, k of eq. (2)) and each step's forces (contact patches)\n");
+            "                  once (h'rms, k of eq. (2)) and each step's forces (contact patches)\n"
+            "  --adhesion-work W --adhesion-range D [--adhesion-law L]   with --periodic --mean-gap:\n"
+            "                  adhesion as indent's (the Maugis-Dugdale law, or L = exponential), its passes\n"
+            "                  over the ranks: the history's tensile force and adhesive and repulsive\n"
+            "                  patches, and the net forces in force.npy (not with --hardness)\n");
 }
 
 /* --pressure or --mean-gap: a step list (front.h: steps_parse, as indent's and a scene's). */
@@ -151,6 +160,9 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);
+    case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->adhesion_work);
+    case OPT_ADHESION_RANGE: return cli_parse_double("--adhesion-range", arg, 1e-300, 1e300, &o->adhesion_range);
+    case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return cli_parse_adhesion_law(arg, &o->adhesion_law);
     default: return -1;
     }
 }
@@ -295,9 +307,27 @@ static int check_periodic_options(mpi_indent_options *o)
     else if (o->periodic && o->punch_given)
         fprintf(stderr, "indentmap: mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha "
                         "and --radius are the half-space's\n");
-    else if (o->periodic && o->solver.hardness > 0 && strcmp(o->targets_option, "--mean-gap") == 0)
-        fprintf(stderr, "indentmap: mpi-indent --periodic --mean-gap with --hardness: the approach of a yielding "
-                        "cell's mean gap is searched, which only indent does (serially); give --pressure LIST\n");
+    else
+        return 0;
+    return -1;
+}
+
+/* Adhesion (indent's options): a periodic cell under mean gaps only. 0, or -1 with the message said. */
+static int check_adhesion_options(const mpi_indent_options *o)
+{
+    const int adhesion = o->adhesion_work > 0;
+    const int mean_gaps = o->periodic && o->targets_option && o->control == IM_CONTROL_MEAN_GAP;
+    if (adhesion != (o->adhesion_range > 0))
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-work and --adhesion-range go together\n");
+    else if (o->adhesion_law_given && !adhesion)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-law goes with --adhesion-work and --adhesion-range\n");
+    else if (adhesion && !mean_gaps)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-work takes --periodic --mean-gap LIST (the half-space's "
+                        "adhesive approach and retraction is indent's, serial; a mean pressure on an adhesive "
+                        "cell is not available)\n");
+    else if (adhesion && o->solver.hardness > 0)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not "
+                        "available\n");
     else
         return 0;
     return -1;
@@ -317,7 +347,7 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
         return -1;
     }
-    if (check_periodic_options(o) != 0)
+    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0)
         return -1;
     if (isnan(o->target) && !o->periodic) {
         fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");

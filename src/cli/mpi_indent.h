@@ -19,6 +19,9 @@ typedef struct mpi_indent_options {
     double *targets;            /* its step list (mean pressures or mean gaps) */
     int target_count;
     im_solver_options solver;
+    /* --adhesion-work, --adhesion-range, --adhesion-law: the cell's steps' (the solver's options have none) */
+    double adhesion_work, adhesion_range;
+    int adhesion_law, adhesion_law_given;
     int tol_given;   /* --tol (run.json: no quality preset) */
     const char *out; /* folder for force.npy and gap.npy, or NULL */
     int map_factor;  /* > 0: also DIR/force_map.npy, forces summed over factor^2 blocks */

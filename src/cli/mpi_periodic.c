@@ -67,6 +67,27 @@ static int prepare_targets(periodic_run *run)
     return IM_OK;
 }
 
+/* The solver's options with --adhesion-work's law (the cell's steps'; the solver's have none). */
+static im_solver_options adhesive_options(const mpi_indent_options *o)
+{
+    im_solver_options adhesive = o->solver;
+    adhesive.adhesion_work = o->adhesion_work;
+    adhesive.adhesion_range = o->adhesion_range;
+    adhesive.adhesion_law = o->adhesion_law;
+    return adhesive;
+}
+
+/* run.json's "adhesion" block of an adhesive cell (as indent's: no smooth theory beside a cell), or null. */
+static json_t *adhesion_block(const periodic_run *run)
+{
+    if (!(run->o->adhesion_work > 0))
+        return json_null();
+    const im_solver_options adhesive = adhesive_options(run->o);
+    json_t *law = run_record_adhesion_law(&adhesive, &run->flat, run->shape.delta);
+    json_object_set_new(law, "theory", json_null());
+    return law;
+}
+
 /* run.json's blocks beside the common record: indent --periodic's (surface, punch, control, targets,
  * periodic, threads, history, theory_slope_rms, units, inputs) and the ranks. */
 static int add_blocks(const periodic_run *run, json_t *root)
@@ -76,13 +97,13 @@ static int add_blocks(const periodic_run *run, json_t *root)
     for (int i = 0; i < o->target_count; ++i)
         json_array_append_new(targets, json_real(run->targets[i]));
     json_t *blocks = json_pack(
-        "{s:{s:s, s:i, s:i, s:f, s:s}, s:{s:s, s:f}, s:s, s:o, s:b, s:i, s:s, s:{s:f, s:s, s:s}, s:o, s:n, s:n}",
+        "{s:{s:s, s:i, s:i, s:f, s:s}, s:{s:s, s:f}, s:s, s:o, s:b, s:i, s:s, s:{s:f, s:s, s:s}, s:o, s:n, s:o}",
         "surface", "source", o->surface_file ? o->surface_file : "synthesised over the ranks", "nx", run->shape.nx,
         "ny", run->shape.ny, "delta", run->shape.delta, "unit", "", "punch", "kind", im_punch_name(run->flat.kind),
         "radius", run->flat.radius, "control", o->control == IM_CONTROL_LOAD ? "load" : "mean_gap", "targets",
         targets, "periodic", 1, "threads", omp_get_max_threads(), "history", "history.csv", "theory_slope_rms",
         "value", run->slope_rms, "definition", "spectral", "chosen_by", "default: a periodic cell", "units",
-        indent_units_record("", "", 1), "indentation", "adhesion");
+        indent_units_record("", "", 1), "indentation", "adhesion", adhesion_block(run));
     if (!blocks)
         return im_fail(IM_ENOMEM, "run.json: out of memory");
     int ranks;
@@ -151,8 +172,12 @@ static int finish_record(periodic_run *run, int done, int status)
     periodic_k_fit k;
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
-    if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
-                                                         run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
+    im_adhesion_summary summary;
+    if (run->o->adhesion_work > 0) /* eq. (2) is the repulsive law: no k fitted, as indent */
+        run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "", "",
+                                    NULL, &summary);
+    else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
+                                                              run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
     if (status != IM_OK)
         im_fail(status, "%s", message); /* the step's error, not the fit's */
@@ -203,6 +228,9 @@ int mpi_indent_periodic(const mpi_indent_options *o, im_mpi_solver *solver, cons
     int status = mpi_collective_status(MPI_COMM_WORLD, prepare_targets(&run));
     if (status == IM_OK)
         status = im_mpi_flat_contact_create(solver, heights, &run.cell);
+    const im_solver_options adhesive = adhesive_options(o);
+    if (status == IM_OK && o->adhesion_work > 0)
+        status = im_mpi_flat_contact_adhesion(run.cell, &adhesive);
     if (status == IM_OK)
         status = measure_surface(&run, heights);
     if (status == IM_OK)

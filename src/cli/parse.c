@@ -2,6 +2,7 @@
 
 #include "indentmap/io.h"
 #include "indentmap/formats.h"
+#include "indentmap/solver.h"
 #include "indentmap/status.h"
 
 #include <errno.h>
@@ -135,6 +136,14 @@ int cli_parse_options(int argc, char **argv, const struct option *options, int h
             return -1;
     }
     return 0;
+}
+
+int cli_parse_adhesion_law(const char *text, int *law)
+{
+    if (im_adhesion_law_parse(text, law) == IM_OK)
+        return 0;
+    fprintf(stderr, "indentmap: --adhesion-law: %s\n", im_last_error());
+    return -1;
 }
 
 /* ---- outputs never overwrite inputs ---- */

@@ -290,6 +290,18 @@ typedef struct run_record_solver {
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver);
 
+/* run.json's "adhesion" block of a run under options' law (solver.h, "Adhesion"): its name, work, range,
+ * (peak) stress, the Dugdale zone's length (in the length unit and in patches of side delta) and, for a
+ * sphere punch, Maugis's lambda and the law's Tabor mu; NULL when out of memory. */
+json_t *run_record_adhesion_law(const im_solver_options *options, const im_indenter *punch, double delta);
+
+/* With adhesion: the summary of rows[0..done) and DIR/force_distance.{png,pdf} (analysis_write_adhesion)
+ * into *summary and the block law (the pull-off, the jumps, the lost work and the figure). 1 when
+ * summarised; 0 when not (no step, or said on stderr). */
+int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
+                                const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                                im_adhesion_summary *summary);
+
 /* Appends {"key": key, "path": the absolute path (escaped where not UTF-8), "sha256": the file's}
  * to the record's inputs array; the error of a file that cannot be read, IM_ENOMEM. */
 int run_record_add_input(json_t *inputs, const char *key, const char *path);

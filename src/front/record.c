@@ -5,9 +5,11 @@
 #include "io/json_file.h"
 
 #include "indentmap/io.h"
+#include "indentmap/solver.h"
 #include "indentmap/status.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +26,44 @@ static json_t *solver_record(const run_record_solver *s)
                      "hardness", o->hardness, "crop", o->crop, "window_margin", o->window_margin, "cascade",
                      o->cascade && !capped, "precondition", o->precondition && !capped, "fftw_wisdom",
                      im_solver_wisdom_file(o) != NULL, "device", devices[o->device]);
+}
+
+/* A number for JSON: null for NaN. */
+static json_t *json_number(double value) { return isfinite(value) ? json_real(value) : json_null(); }
+
+json_t *run_record_adhesion_law(const im_solver_options *options, const im_indenter *punch, double delta)
+{
+    const double length = im_adhesion_zone_length(options),
+                 lambda = im_adhesion_maugis_lambda(options, punch->radius);
+    json_t *law = json_pack("{s:s, s:f, s:f, s:f, s:f, s:f}", "law", im_adhesion_law_name(options->adhesion_law),
+                            "work", options->adhesion_work, "range", options->adhesion_range, "stress",
+                            options->adhesion_work / options->adhesion_range, "zone_length", length,
+                            "zone_length_patches", length / delta);
+    const int sphere = punch->kind == IM_PUNCH_SPHERE;
+    if (law) {
+        json_object_set_new(law, "maugis_lambda", sphere ? json_number(lambda) : json_null());
+        json_object_set_new(law, "tabor_mu",
+                            sphere ? json_number(im_adhesion_tabor_mu(options, punch->radius)) : json_null());
+    }
+    return law;
+}
+
+int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
+                                const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                                im_adhesion_summary *summary)
+{
+    *summary = (im_adhesion_summary){.hysteresis_work = NAN}; /* NaN: not summarised */
+    if (done >= 1 && analysis_write_adhesion(dir, rows, done, length_unit, force_unit, texts, summary) != IM_OK)
+        fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+    if (isnan(summary->hysteresis_work))
+        return 0;
+    json_object_set_new(law, "pull_off_force", json_number(summary->pull_off_force));
+    json_object_set_new(law, "pull_off_approach", json_number(summary->pull_off_approach));
+    json_object_set_new(law, "jump_in_approach", json_number(summary->jump_in_approach));
+    json_object_set_new(law, "jump_out_approach", json_number(summary->jump_out_approach));
+    json_object_set_new(law, "hysteresis_work", json_real(summary->hysteresis_work));
+    json_object_set_new(law, "figure", json_string("force_distance.png"));
+    return 1;
 }
 
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,

@@ -1,9 +1,11 @@
 /* Nominally flat contact of a periodic cell over ranks: solver/flat.h's cell on a periodic
- * distributed solver, each rank holding its rows; and its history steps with plastic memory, as
- * im_indentation_step takes them on a periodic cell under a rigid flat (indentation.c). */
+ * distributed solver, each rank holding its rows; and its history steps with plastic memory or with
+ * adhesion (solver/adhesion.c's passes over the ranks), as im_indentation_step takes them on a periodic
+ * cell under a rigid flat (indentation.c). */
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
 #include "solver/flat.h"
+#include "solver/search.h"
 
 #include "indentmap/status.h"
 
@@ -16,6 +18,11 @@ struct im_mpi_flat_contact {
     double *plastic;       /* this rank's rows: the plastic depth accumulated over the steps */
     double *terms;         /* this rank's rows: the per-patch terms of an ordered sum */
     double plastic_work;   /* H_p delta^2 times the sum of the depth increments */
+    int steps;             /* taken so far */
+    /* with adhesion (im_mpi_flat_contact_adhesion): its state over the ranks, and the net pressure */
+    adhesion_state *adhesion;
+    adhesion_ranks ranks;
+    double *net_pressure;
 };
 
 static int solve_over_ranks(void *solver, const double *gap0, enum im_control control, double target,
@@ -50,6 +57,8 @@ void im_mpi_flat_contact_free(im_mpi_flat_contact *run)
     flat_cell_free(&run->cell);
     free(run->plastic);
     free(run->terms);
+    adhesion_free(run->adhesion);
+    free(run->net_pressure);
     free(run);
 }
 
@@ -88,24 +97,67 @@ int im_mpi_flat_contact_create(im_mpi_solver *s, const double *heights, im_mpi_f
     return IM_OK;
 }
 
+/* IM_EINVAL for a single (repulsive) solve of an adhesive cell. */
+static int check_repulsive(const im_mpi_flat_contact *run)
+{
+    return run->adhesion ? im_fail(IM_EINVAL, "an adhesive cell is solved in steps (im_mpi_flat_contact_step): a "
+                                              "single solve is the repulsive problem")
+                         : IM_OK;
+}
+
 int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im_flat_result *out)
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
-    return flat_solve_pressure(&run->cell, mean_pressure, out);
+    int status = check_repulsive(run);
+    return status == IM_OK ? flat_solve_pressure(&run->cell, mean_pressure, out) : status;
 }
 
 int im_mpi_flat_contact_solve_gap(im_mpi_flat_contact *run, double mean_gap, im_flat_result *out)
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
-    return flat_solve_gap(&run->cell, mean_gap, out);
+    int status = check_repulsive(run);
+    return status == IM_OK ? flat_solve_gap(&run->cell, mean_gap, out) : status;
+}
+
+int im_mpi_flat_contact_adhesion(im_mpi_flat_contact *run, const im_solver_options *options)
+{
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(options, "options");
+    int status = im_solver_options_check(options);
+    if (status != IM_OK)
+        return status;
+    const im_mpi_solver *s = run->solver;
+    if (!(options->adhesion_work > 0))
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected a work of adhesion > 0", options->adhesion_work);
+    if (s->plan.options.hardness > 0)
+        return im_fail(IM_EINVAL,
+                       "adhesion work = %g with the solver's hardness %g: adhesion with plasticity is not "
+                       "available (as im_indentation_create)",
+                       options->adhesion_work, s->plan.options.hardness);
+    if (run->adhesion || run->steps > 0)
+        return im_fail(IM_EINVAL, "adhesion: expected once, before the cell's first step (%d taken)", run->steps);
+    const size_t n = (size_t)s->rows * s->nx;
+    status = adhesion_create(s->nx, s->rows, 1, options, &run->adhesion);
+    if (status == IM_OK && !(run->net_pressure = calloc(n + 1, sizeof(double))))
+        status = im_fail(IM_ENOMEM, "distributed flat contact %d x %d: rank %d's net pressure", s->nx, s->ny,
+                         s->rank);
+    status = mpi_collective_status(s->comm, status);
+    if (status != IM_OK) {
+        adhesion_free(run->adhesion);
+        run->adhesion = NULL;
+        return status;
+    }
+    mpi_adhesion_ranks(run->solver, &run->ranks);
+    adhesion_over_ranks(run->adhesion, &run->ranks);
+    return IM_OK;
 }
 
 const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run)
 {
     ARG_REQUIRE_OR(run, "run", NULL);
-    return run->cell.pressure;
+    return run->adhesion ? run->net_pressure : run->cell.pressure;
 }
 
 int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap)
@@ -116,7 +168,7 @@ int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap)
     const size_t n = (size_t)run->solver->rows * run->solver->nx;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        gap[i] = c->gap0[i] - c->approach + c->displacement[i];
+        gap[i] = c->gap0[i] - c->approach + adhesion_net_displacement(run->adhesion, i, c->displacement[i]);
     return IM_OK;
 }
 
@@ -172,11 +224,12 @@ static double mean_open_gap(im_mpi_flat_contact *run)
     const size_t n = (size_t)run->solver->rows * run->solver->nx;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        run->terms[i] = fmax(c->gap0[i] - c->approach + c->displacement[i], 0.0);
+        run->terms[i] =
+            fmax(c->gap0[i] - c->approach + adhesion_net_displacement(run->adhesion, i, c->displacement[i]), 0.0);
     return mpi_surface_mean(run->solver, run->terms);
 }
 
-/* IM_EINVAL or IM_EUNSUPPORTED, as im_indentation_step, for a target this cell's steps do not take. */
+/* IM_EINVAL, as im_indentation_step, for a target this cell's steps do not take. */
 static int check_step(const im_mpi_flat_contact *run, enum im_control control, double target)
 {
     const im_mpi_solver *s = run->solver;
@@ -184,16 +237,15 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
     if (control != IM_CONTROL_LOAD && control != IM_CONTROL_MEAN_GAP)
         return im_fail(IM_EINVAL, "periodic step: control %d: expected IM_CONTROL_LOAD or IM_CONTROL_MEAN_GAP",
                        (int)control);
+    if (run->adhesion && control != IM_CONTROL_MEAN_GAP)
+        return im_fail(IM_EINVAL,
+                       "load %g on an adhesive cell: expected IM_CONTROL_MEAN_GAP (adhesion under load "
+                       "control is not available on a periodic cell)",
+                       target);
     if (!(isfinite(target) && (control == IM_CONTROL_LOAD ? target >= 0 : target > 0)))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value %s",
                        control == IM_CONTROL_LOAD ? "load" : "mean gap", target,
                        control == IM_CONTROL_LOAD ? ">= 0" : "> 0 (at 0 the cell is in full contact)");
-    if (control == IM_CONTROL_MEAN_GAP && cap > 0)
-        return im_fail(IM_EUNSUPPORTED,
-                       "mean gap %g with a hardness: the approach of a yielding cell's mean gap is "
-                       "searched (im_indentation_step), which the distributed cell does not do; give mean "
-                       "pressures (load control)",
-                       target);
     const double capacity = cap * s->nx * s->ny * s->delta * s->delta;
     if (cap > 0 && target >= capacity)
         return im_fail(IM_EINVAL,
@@ -201,6 +253,42 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
                        "load every patch would have yielded: full contact, no approach to find)",
                        target, cap, capacity);
     return IM_OK;
+}
+
+static int displacement_solve(void *context, double w, im_solve_result *s)
+{
+    flat_cell *c = &((im_mpi_flat_contact *)context)->cell;
+    return c->solve(c->solver, c->gap0, IM_CONTROL_DISPLACEMENT, w, c->pressure, c->displacement, s);
+}
+
+static double negative_mean_gap(void *context, const im_solve_result *s)
+{
+    im_mpi_flat_contact *run = context;
+    run->cell.approach = s->approach;
+    return -mean_open_gap(run);
+}
+
+/* The approach of mean gap target, searched under a hardness as im_indentation_step searches it (search.h). */
+static int solve_at_mean_gap(im_mpi_flat_contact *run, double target, im_solve_result *out)
+{
+    approach_search search = {.context = run,
+                              .target = -target,
+                              .tol = run->solver->plan.options.tol,
+                              .measure = negative_mean_gap,
+                              .solve = displacement_solve};
+    /* mean u = 0: the approach mean g0 - target gives the mean gap; above mean g0 the flat is clear */
+    return search_mean_gap(&search, run->cell.mean_gap0 - target, run->solver->plan.options.hardness, out);
+}
+
+/* The net pressure of the last step, and its tensile force and adhesive and repulsive patches. */
+static void adhesive_values(im_mpi_flat_contact *run, im_step_result *out)
+{
+    const size_t n = (size_t)run->solver->rows * run->solver->nx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        run->net_pressure[i] = adhesion_net_pressure(run->adhesion, i, run->cell.pressure[i]);
+    adhesion_split(run->adhesion, run->cell.pressure, run->solver->delta, &out->tensile_force, &out->adhesive_patches,
+                   &out->repulsive_patches);
 }
 
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out)
@@ -212,14 +300,16 @@ int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, 
         return status;
     flat_cell *c = &run->cell;
     im_solve_result solve = {0};
-    /* mean u = 0: the approach mean g0 - target gives the mean gap; above mean g0 the flat is clear */
-    const double w = control == IM_CONTROL_MEAN_GAP ? c->mean_gap0 - target : target;
-    status = c->solve(c->solver, c->gap0, control == IM_CONTROL_MEAN_GAP ? IM_CONTROL_DISPLACEMENT : IM_CONTROL_LOAD,
-                      control == IM_CONTROL_MEAN_GAP ? fmax(w, 0.0) : target, c->pressure, c->displacement, &solve);
+    ++run->steps;
+    if (run->adhesion) /* mean u = 0 with the zone's lift too: the approach gives the mean gap */
+        status = adhesion_solve(run->adhesion, &run->solver->plan, c->gap0, c->mean_gap0 - target, c->pressure,
+                                c->displacement, &solve);
+    else if (control == IM_CONTROL_MEAN_GAP)
+        status = solve_at_mean_gap(run, target, &solve);
+    else
+        status = c->solve(c->solver, c->gap0, IM_CONTROL_LOAD, target, c->pressure, c->displacement, &solve);
     double deepest;
-    if (control == IM_CONTROL_MEAN_GAP)
-        solve.approach = w;
-    else if (status == IM_OK && target == 0) /* N = 0 holds at any approach up to where the flat touches */
+    if (control == IM_CONTROL_LOAD && status == IM_OK && target == 0) /* N = 0 up to where the flat touches */
         plastic_extremes(run, &deepest, &solve.approach);
     c->approach = solve.approach;
     const im_mpi_solver *s = run->solver;
@@ -230,5 +320,7 @@ int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, 
     out->mean_gap = mean_open_gap(run);
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
     out->yielding_patches = yielding;
+    if (run->adhesion)
+        adhesive_values(run, out);
     return status;
 }

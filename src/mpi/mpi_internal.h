@@ -5,6 +5,7 @@
 #include "core/summation.h"
 #include "mpi/agree.h"
 #include "indentmap/mpi.h"
+#include "solver/adhesion.h"
 #include "solver/engine.h"
 
 #include <fftw3-mpi.h>
@@ -71,6 +72,9 @@ int mpi_cascade_create(im_mpi_solver *solver);
 int mpi_cascade_start(im_mpi_solver *solver, const double *gap0, enum im_control control, double target,
                       double *pressure);
 void mpi_cascade_free(im_mpi_solver *solver);
+
+/* The adhesive passes of a state over this solver's ranks (adhesion.c): out refers to s. */
+void mpi_adhesion_ranks(im_mpi_solver *s, adhesion_ranks *out);
 
 /* The mean over the surface of values (this rank's rows), summed in row order: the same bits on every
  * rank for any rank count. */

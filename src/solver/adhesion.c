@@ -39,6 +39,7 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,12 +63,12 @@ int adhesion_create(int nx, int ny, int periodic, const im_solver_options *optio
     *out = NULL;
     if (a) {
         a->share = calloc(n, sizeof(double));
-        a->gaps = malloc(n * sizeof(double));
+        a->gap_rows = malloc((n + 2 * (size_t)nx) * sizeof(double));
         a->proposal = malloc(n * sizeof(double));
         a->lift = calloc(n, sizeof(double));
         a->gap0 = malloc(n * sizeof(double));
     }
-    if (!a || !a->share || !a->gaps || !a->proposal || !a->lift || !a->gap0) {
+    if (!a || !a->share || !a->gap_rows || !a->proposal || !a->lift || !a->gap0) {
         adhesion_free(a);
         return im_fail(IM_ENOMEM, "adhesion on a %d x %d window", nx, ny);
     }
@@ -77,6 +78,7 @@ int adhesion_create(int nx, int ny, int periodic, const im_solver_options *optio
     a->nx = nx;
     a->ny = ny;
     a->periodic = periodic;
+    a->gaps = a->gap_rows + nx;
     *out = a;
     return IM_OK;
 }
@@ -104,11 +106,26 @@ void adhesion_free(adhesion_state *a)
     free_mark(a->marks[ADHESION_MARK_TRY]);
     free_mark(a->marks[ADHESION_MARK_STEP]);
     free(a->share);
-    free(a->gaps);
+    free(a->gap_rows);
     free(a->proposal);
     free(a->lift);
     free(a->gap0);
     free(a);
+}
+
+void adhesion_over_ranks(adhesion_state *a, const adhesion_ranks *ranks) { a->ranks = ranks; }
+
+/* values[0..count) combined over the ranks (one process: as they are). */
+static void combine(const adhesion_state *a, double *values, int count, enum adhesion_combine how)
+{
+    if (a->ranks)
+        a->ranks->combine(a->ranks->context, values, count, how);
+}
+
+/* The sum of a field over the grid, in a fixed order. */
+static double grid_sum(const adhesion_state *a, const double *field)
+{
+    return a->ranks ? a->ranks->sum(a->ranks->context, field) : sum_doubles(field, (size_t)a->nx * a->ny);
 }
 
 /* The repulsive solve's gap: g0 - sigma0 lift, shifted so that its least finite value is 0 (the
@@ -122,23 +139,37 @@ static void lifted_gap(adhesion_state *a, const double *gap0)
         a->gap0[i] = gap0[i] - a->stress * a->lift[i];
         lowest = fmin(lowest, a->gap0[i]);
     }
+    combine(a, &lowest, 1, ADHESION_MIN);
     a->shift = isfinite(lowest) ? -lowest : 0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
         a->gap0[i] += a->shift;
 }
 
-/* The gap at window patch (x, y), or NaN off the window (a periodic cell's neighbours wrap around) or where
- * the punch cannot reach. */
+/* The gaps' rows just outside the grid's (or, over ranks, this rank's): a periodic cell's wrap around, the
+ * window's are off it (NaN). */
+static void fill_outer_rows(adhesion_state *a)
+{
+    double *above = a->gaps - a->nx, *below = a->gaps + (size_t)a->ny * a->nx;
+    if (a->ranks) {
+        a->ranks->outer_rows(a->ranks->context, a->gaps, above, below);
+        return;
+    }
+    for (int x = 0; x < a->nx; ++x) {
+        above[x] = a->periodic ? a->gaps[(size_t)(a->ny - 1) * a->nx + x] : NAN;
+        below[x] = a->periodic ? a->gaps[x] : NAN;
+    }
+}
+
+/* The gap at patch (x, y), y from -1 to ny (the outer rows), or NaN off the window (a periodic cell's
+ * neighbours wrap around) or where the punch cannot reach. */
 static double gap_at(const adhesion_state *a, const double *gaps, int x, int y)
 {
-    if (a->periodic) {
+    if (a->periodic)
         x = (x + a->nx) % a->nx;
-        y = (y + a->ny) % a->ny;
-    }
-    if (x < 0 || y < 0 || x >= a->nx || y >= a->ny)
+    if (x < 0 || x >= a->nx)
         return NAN;
-    double g = gaps[(size_t)y * a->nx + x];
+    double g = gaps[(ptrdiff_t)y * a->nx + x];
     return isfinite(g) ? g : NAN;
 }
 
@@ -203,6 +234,7 @@ static double propose_shares(adhesion_state *a, double w_lifted, const double *p
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
         a->gaps[i] = a->gap0[i] - w_lifted + displacement[i];
+    fill_outer_rows(a);
     double largest = 0;
 #pragma omp parallel for schedule(static) reduction(max : largest)
     for (int y = 0; y < a->ny; ++y)
@@ -213,6 +245,7 @@ static double propose_shares(adhesion_state *a, double w_lifted, const double *p
             largest = fmax(largest, fabs(share - old));
             a->proposal[i] = share;
         }
+    combine(a, &largest, 1, ADHESION_MAX);
     return largest;
 }
 
@@ -227,8 +260,28 @@ static void apply_shares(adhesion_state *a)
         a->share[i] = a->proposal[i];
         count += a->share[i] > 0;
     }
-    a->zone_patches = count;
-    a->zone_area = sum_doubles(a->share, n);
+    double patches = (double)count;
+    combine(a, &patches, 1, ADHESION_SUM);
+    a->zone_patches = (long)patches;
+    a->zone_area = grid_sum(a, a->share);
+}
+
+/* The repulsive solve at approach w > 0 on the plan, or over the ranks. */
+static int repulsive_solve(const adhesion_state *a, im_solver_plan *plan, double w, double *pressure,
+                           double *displacement, im_solve_result *result)
+{
+    if (a->ranks)
+        return a->ranks->solve(a->ranks->context, a->gap0, w, pressure, displacement, result);
+    return im_solver_solve(plan, a->gap0, IM_CONTROL_DISPLACEMENT, w, pressure, displacement, result);
+}
+
+/* out = K in on the plan, or over the ranks. */
+static void convolve(const adhesion_state *a, im_solver_plan *plan, const double *in, double *out)
+{
+    if (a->ranks)
+        a->ranks->convolve(a->ranks->context, in, out);
+    else
+        im_solver_convolve(plan, in, out);
 }
 
 /* Adds a pass's counts to the step's. */
@@ -268,7 +321,7 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
         lifted_gap(a, gap0);
         const double w_lifted = w + a->shift;
         if (w_lifted > 0) {
-            status = im_solver_solve(plan, a->gap0, IM_CONTROL_DISPLACEMENT, w_lifted, pressure, displacement, &pass);
+            status = repulsive_solve(a, plan, w_lifted, pressure, displacement, &pass);
         } else { /* the lifted surface does not reach the punch: no repulsive contact */
             memset(pressure, 0, n * sizeof(double));
             memset(displacement, 0, n * sizeof(double));
@@ -284,7 +337,7 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
                              w, passes, a->zone_patches);
             break;
         }
-        im_solver_convolve(plan, a->share, a->lift);
+        convolve(a, plan, a->share, a->lift);
         ++total.convolutions;
     }
     if (status == IM_OK) { /* a failed step does not become the history the next one grows or shrinks from */
@@ -309,9 +362,11 @@ void adhesion_split(adhesion_state *a, const double *pressure, double delta, dou
         adhesive += p < 0;
         repulsive += p > 0;
     }
-    *tensile = sum_doubles(pull, n) * delta * delta;
-    *adhesive_patches = adhesive;
-    *repulsive_patches = repulsive;
+    double counts[2] = {(double)adhesive, (double)repulsive};
+    combine(a, counts, 2, ADHESION_SUM);
+    *tensile = grid_sum(a, pull) * delta * delta;
+    *adhesive_patches = (long)counts[0];
+    *repulsive_patches = (long)counts[1];
 }
 
 int adhesion_zone_on_border(const adhesion_state *a, int *x, int *y)

@@ -5,6 +5,7 @@
 #include "core/summation.h"
 #include "solver/adhesion.h"
 #include "solver/flat.h"
+#include "solver/search.h"
 
 #include "indentmap/status.h"
 
@@ -486,47 +487,19 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
  * the approach is undefined. With a hardness the load is reached instead by displacement-controlled
  * solves on the approach, each warm-started from the last: N(w) is continuous and non-decreasing, so
  * a bracket and the Illinois variant of regula falsi find it, to |N - target| <= tol target. A
- * periodic cell's mean gap with a hardness is found the same way (it falls as w grows). */
-enum { SEARCH_MAX = 200 };
-
-typedef struct approach_search {
-    im_indentation *run;
-    double target;
-    /* what the search matches to target: non-decreasing in the approach */
-    double (*measure)(const im_indentation *run, const im_solve_result *s);
-    /* one displacement-controlled solve at approach w */
-    int (*solve)(im_indentation *run, double w, im_solve_result *s);
-    double length;        /* the approaches' scale where they pass 0 (adhesion's range; else 0) */
-    im_solve_result last; /* the last trial's, with iterations, convolutions and seconds summed */
-    int trials;
-} approach_search;
-
-static int repulsive_solve(im_indentation *run, double w, im_solve_result *s)
+ * periodic cell's mean gap with a hardness is found the same way (it falls as w grows). The search itself
+ * is search.c's, shared with the distributed cell. */
+static int repulsive_solve(void *context, double w, im_solve_result *s)
 {
+    im_indentation *run = context;
     return im_solver_solve(run->plan, run->window_gap0, IM_CONTROL_DISPLACEMENT, w, run->pressure, run->displacement,
                            s);
 }
 
-static double solved_load(const im_indentation *run, const im_solve_result *s)
+static double solved_load(void *context, const im_solve_result *s)
 {
-    (void)run;
+    (void)context;
     return s->load;
-}
-
-/* One displacement-controlled solve at approach w; returns its measure minus the target in *excess. */
-static int trial(approach_search *search, double w, double *excess)
-{
-    im_indentation *run = search->run;
-    im_solve_result s;
-    int status = search->solve(run, w, &s);
-    s.iterations += search->last.iterations;
-    s.convolutions += search->last.convolutions;
-    s.coarse_iterations += search->last.coarse_iterations;
-    s.seconds += search->last.seconds;
-    search->last = s;
-    ++search->trials;
-    *excess = search->measure(run, &s) - search->target;
-    return status;
 }
 
 /* [lo, hi] with N(lo) <= target <= N(hi), from the last step's approach (or the smooth estimate)
@@ -534,14 +507,14 @@ static int trial(approach_search *search, double w, double *excess)
  * the load. */
 static int bracket_load(approach_search *search, double *lo, double *e_lo, double *hi, double *e_hi)
 {
-    im_indentation *run = search->run;
+    im_indentation *run = search->context;
     double w = run->approach > 0 ? run->approach
                                  : im_indenter_approach_for_load(&run->punch, run->options.e_star, search->target);
     if (!(isfinite(w) && w > 0 && w <= run->approach_bound))
         w = fmin(run->approach_bound, run->delta);
     *lo = 0, *e_lo = -search->target; /* no approach, no load */
     *hi = w;
-    int status = trial(search, w, e_hi);
+    int status = search_trial(search, w, e_hi);
     while (status == IM_OK && *e_hi < 0) {
         /* the window's bound reached, or the load no longer grows: every patch the punch can reach has
          * yielded (a flat punch's or a profile's rim: the bound is then infinite) */
@@ -554,37 +527,7 @@ static int bracket_load(approach_search *search, double *lo, double *e_lo, doubl
                            plateau ? ", no more than at half that approach" : "");
         *lo = *hi, *e_lo = *e_hi;
         *hi = fmin(2 * *hi, run->approach_bound);
-        status = trial(search, *hi, e_hi);
-    }
-    return status;
-}
-
-/* Narrows [lo, hi] (excess e_lo <= 0 <= e_hi) to |excess| <= tol scale, or to tol w in the approach
- * where the solves (each exact to tol w in the gap) cannot resolve the measure closer; the state is
- * the last solve's. */
-static int refine(approach_search *search, double lo, double e_lo, double hi, double e_hi, double e, double scale)
-{
-    const double tol = search->run->options.tol;
-    int status = IM_OK, side = 0;
-    while (fabs(e) > tol * scale && hi - lo > tol * fmax(fabs(hi), search->length)) {
-        if (search->trials >= SEARCH_MAX)
-            return im_fail(IM_ENOCONV,
-                           "target %g: no approach in [%.17g, %.17g] reaches it to tol %g after %d "
-                           "solves",
-                           search->target, lo, hi, tol, search->trials);
-        double w = (lo * e_hi - hi * e_lo) / (e_hi - e_lo);
-        status = trial(search, w, &e);
-        if (status != IM_OK)
-            return status;
-        if (e < 0) { /* Illinois: the end kept twice running has its value halved */
-            lo = w, e_lo = e;
-            e_hi *= side == -1 ? 0.5 : 1;
-            side = -1;
-        } else {
-            hi = w, e_hi = e;
-            e_lo *= side == 1 ? 0.5 : 1;
-            side = 1;
-        }
+        status = search_trial(search, *hi, e_hi);
     }
     return status;
 }
@@ -592,24 +535,25 @@ static int refine(approach_search *search, double lo, double e_lo, double hi, do
 /* The approach that carries target (see above). */
 static int solve_at_load(im_indentation *run, double target, im_solve_result *out)
 {
-    approach_search search = {.run = run, .target = target, .measure = solved_load, .solve = repulsive_solve};
+    approach_search search = {.context = run,
+                              .target = target,
+                              .tol = run->options.tol,
+                              .measure = solved_load,
+                              .solve = repulsive_solve};
     double lo, e_lo, hi, e_hi;
     int status = bracket_load(&search, &lo, &e_lo, &hi, &e_hi);
     if (status == IM_OK)
-        status = refine(&search, lo, e_lo, hi, e_hi, e_hi, target);
+        status = search_refine(&search, lo, e_lo, hi, e_hi, e_hi, target);
     *out = search.last;
     return status;
 }
 
-static double negative_mean_gap(const im_indentation *run, const im_solve_result *s)
+static double negative_mean_gap(void *context, const im_solve_result *s)
 {
+    const im_indentation *run = context;
     return -mean_open_gap(run, s->approach);
 }
 
-/* Mean-gap control: with mean u = 0 the approach mean g0 - target gives the mean gap target exactly
- * (one solve) unless patches yield; with a hardness their overlap opens no gap, so the approach is
- * searched from there upwards (the mean gap falls as w grows, to 0 once every patch has yielded). A
- * target above mean g0 leaves the flat clear of the surface: no contact, at a negative approach. */
 /* The approach of a periodic cell's mean gap: mean g0 - target (mean u = 0, with or without an adhesive zone,
  * whose stress moves no mean either). */
 static double mean_gap_approach(const im_indentation *run, double target)
@@ -618,32 +562,15 @@ static double mean_gap_approach(const im_indentation *run, double target)
     return sum_doubles(run->window_gap0, n) / (double)n - target;
 }
 
+/* Mean-gap control, searched under a hardness (search.h). */
 static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
 {
-    const double w = mean_gap_approach(run, target);
-    approach_search search = {.run = run, .target = -target, .measure = negative_mean_gap, .solve = repulsive_solve};
-    double e_lo, e_hi;
-    int status = trial(&search, fmax(w, 0.0), &e_lo);
-    search.last.approach = w;
-    if (status != IM_OK || !(run->options.hardness > 0) || !(w > 0) || fabs(e_lo) <= run->options.tol * target) {
-        *out = search.last;
-        return status;
-    }
-    double lo = w, hi = w, step = target;
-    do { /* e_lo <= 0: yielding left the gap above the target; move on until it is below */
-        hi = lo + step;
-        step *= 2;
-        status = trial(&search, hi, &e_hi);
-        if (status == IM_OK && e_hi < 0)
-            lo = hi, e_lo = e_hi;
-    } while (status == IM_OK && e_hi < 0 && search.trials < SEARCH_MAX);
-    if (status == IM_OK && e_hi < 0)
-        status = im_fail(IM_ENOCONV, "mean gap %g: not reached up to the approach %g after %d solves", target, hi,
-                         search.trials);
-    if (status == IM_OK)
-        status = refine(&search, lo, e_lo, hi, e_hi, e_hi, target);
-    *out = search.last;
-    return status;
+    approach_search search = {.context = run,
+                              .target = -target,
+                              .tol = run->options.tol,
+                              .measure = negative_mean_gap,
+                              .solve = repulsive_solve};
+    return search_mean_gap(&search, mean_gap_approach(run, target), run->options.hardness, out);
 }
 
 /* ---- load control with adhesion ----
@@ -677,8 +604,9 @@ static void rewind_adhesive_state(im_indentation *run, enum adhesion_mark_slot s
     adhesion_rewind(run->adhesion, slot);
 }
 
-static int adhesive_solve(im_indentation *run, double w, im_solve_result *s)
+static int adhesive_solve(void *context, double w, im_solve_result *s)
 {
+    im_indentation *run = context;
     rewind_adhesive_state(run, ADHESION_MARK_TRY);
     return adhesion_solve(run->adhesion, run->plan, run->window_gap0, w, run->pressure, run->displacement, s);
 }
@@ -697,13 +625,13 @@ enum forward_try { TRY_FAILED = -1, TRY_MARKED, TRY_PASSED };
  * new mark (TRY_MARKED); TRY_FAILED with *status on an error. */
 static enum forward_try try_forward(forward_walk *walk, double w, double *e, int *status)
 {
-    *status = trial(&walk->search, w, e);
+    *status = search_trial(&walk->search, w, e);
     if (*status != IM_OK)
         return TRY_FAILED;
     if (walk->direction * *e >= 0)
         return TRY_PASSED;
     walk->near = w, walk->e_near = *e;
-    *status = mark_adhesive_state(walk->search.run, ADHESION_MARK_TRY);
+    *status = mark_adhesive_state(walk->search.context, ADHESION_MARK_TRY);
     return *status == IM_OK ? TRY_MARKED : TRY_FAILED;
 }
 
@@ -712,7 +640,7 @@ static enum forward_try try_forward(forward_walk *walk, double w, double *e, int
  * state kept. */
 static int narrow_forward(forward_walk *walk, double far, double e_far)
 {
-    const double tol = walk->search.run->options.tol, length = walk->search.length;
+    const double tol = walk->search.tol, length = walk->search.length;
     int status = IM_OK, side = 0;
     double e = e_far;
     while (fabs(e) > tol * walk->scale && fabs(far - walk->near) > tol * fmax(fabs(far), length)) {
@@ -745,7 +673,7 @@ static int narrow_forward(forward_walk *walk, double far, double e_far)
  * then no approach held the target, and the least load met is the pull-off force under load control. */
 static int walk_to_load(forward_walk *walk)
 {
-    im_indentation *run = walk->search.run;
+    im_indentation *run = walk->search.context;
     const double range = run->options.adhesion_range;
     double step = range / 8, least = walk->search.target + walk->e_near, least_at = walk->near;
     for (;;) {
@@ -783,8 +711,9 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
     /* unstepped: clear of the law's reach, no load */
     const double w0 = stepped ? run->approach : -(adhesion_reach(&run->options) + run->options.adhesion_range);
     const double n0 = stepped ? run->load : 0;
-    forward_walk walk = {.search = {.run = run,
+    forward_walk walk = {.search = {.context = run,
                                     .target = target,
+                                    .tol = run->options.tol,
                                     .measure = solved_load,
                                     .solve = adhesive_solve,
                                     .length = run->options.adhesion_range},
@@ -797,7 +726,7 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
         status = mark_adhesive_state(run, ADHESION_MARK_TRY);
     if (status == IM_OK) {
         double e;
-        status = n0 == target ? trial(&walk.search, w0, &e) : walk_to_load(&walk);
+        status = n0 == target ? search_trial(&walk.search, w0, &e) : walk_to_load(&walk);
     }
     *out = walk.search.last;
     if (status != IM_OK && run->marked_pressure[ADHESION_MARK_STEP]) { /* the history stays the last step's */

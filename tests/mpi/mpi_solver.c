@@ -357,6 +357,93 @@ static void run_periodic(const scenario *c)
     im_field_free(surface);
 }
 
+/* The serial steps of an adhesive periodic cell on rank 0 (im_indentation_step, mean-gap control), shared with
+ * every rank: each step's result and net force. */
+static void serial_adhesive_steps(const im_field *surface, const im_solver_options *o, const double *gaps, int steps,
+                                  im_step_result *serial, im_field **forces)
+{
+    for (int k = 0; k < steps; ++k)
+        check_status(im_field_create(surface->nx, surface->ny, 1.0, &forces[k]), "force field");
+    if (rank == 0) {
+        const im_indenter flat = im_indenter_flat(100);
+        double largest = 0;
+        for (int k = 0; k < steps; ++k)
+            largest = fmax(largest, gaps[k]);
+        im_indentation *run;
+        check_status(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, largest, o, &run), "adhesive cell");
+        for (int k = 0; k < steps; ++k) {
+            im_field *force;
+            check_status(im_indentation_step(run, gaps[k], &serial[k]), "serial adhesive step");
+            check_status(im_indentation_fields(run, &force, NULL, NULL), "serial adhesive force");
+            memcpy(forces[k]->data, force->data, sizeof(double) * im_field_count(force));
+            im_field_free(force);
+        }
+        im_indentation_free(run);
+    }
+    MPI_Bcast(serial, (int)sizeof *serial * steps, MPI_BYTE, 0, MPI_COMM_WORLD);
+    for (int k = 0; k < steps; ++k)
+        MPI_Bcast(forces[k]->data, (int)im_field_count(forces[k]), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
+/* Patches whose net pressure's sign (in contact or pulled, or neither) differs from the serial force's. */
+static long sign_differences(const im_field *force, const double *pressure, int y0, int rows)
+{
+    long differ = 0;
+    for (size_t i = 0; i < (size_t)rows * force->nx; ++i) {
+        const double serial = force->data[(size_t)y0 * force->nx + i];
+        differ += (pressure[i] > 0) != (serial > 0) || (pressure[i] < 0) != (serial < 0);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+    return differ;
+}
+
+/* An adhesive periodic cell over ranks (im_mpi_flat_contact_adhesion) against the serial indentation's steps:
+ * an approach, a deeper step and a retraction, each under tension, with the same iterations, loads and tensile
+ * forces within 1e-10, and the same patches in contact and in the cohesive zone. */
+static void run_adhesive_cell(void)
+{
+    const scenario c = {"periodic-adhesion-mean-gap-64x48", 64, 48, {0}, IM_CONTROL_MEAN_GAP, 0, 5, 0, 0, 1};
+    im_field *surface = rough_surface(&c);
+    im_solver_options o = options(&c), adhesive = o;
+    adhesive.adhesion_work = 0.004;
+    adhesive.adhesion_range = 0.1;
+    const double mean_gap = undeformed_mean_gap(surface);
+    enum { STEPS = 3 };
+    const double gaps[STEPS] = {0.6 * mean_gap, 0.3 * mean_gap, 0.8 * mean_gap};
+    im_step_result serial[STEPS], step;
+    im_field *forces[STEPS];
+    serial_adhesive_steps(surface, &adhesive, gaps, STEPS, serial, forces);
+    im_mpi_solver *solver;
+    int y0, rows;
+    check_status(im_mpi_solver_create(MPI_COMM_WORLD, c.nx, c.ny, 1.0, &o, &solver), "periodic distributed plan");
+    im_mpi_solver_rows(solver, &y0, &rows);
+    im_mpi_flat_contact *run;
+    check_status(im_mpi_flat_contact_create(solver, surface->data + (size_t)y0 * c.nx, &run), "distributed cell");
+    check_status(im_mpi_flat_contact_adhesion(run, &adhesive), "adhesion over ranks");
+    for (int k = 0; k < STEPS; ++k) {
+        check_status(im_mpi_flat_contact_step(run, IM_CONTROL_MEAN_GAP, gaps[k], &step), "adhesive step");
+        check_close(&c, "load", step.load, serial[k].load);
+        check_close(&c, "tensile force", step.tensile_force, serial[k].tensile_force);
+        const long differ = sign_differences(forces[k], im_mpi_flat_contact_pressure(run), y0, rows);
+        char detail[256];
+        snprintf(detail, sizeof detail,
+                 "%s step %d: %d iterations (serial %d), %ld in contact (%ld), %ld pulled (%ld), %ld patches differ",
+                 c.name, k + 1, step.iterations, serial[k].iterations, step.contact_patches,
+                 serial[k].contact_patches, step.adhesive_patches, serial[k].adhesive_patches, differ);
+        check(step.iterations == serial[k].iterations && step.contact_patches == serial[k].contact_patches &&
+                  step.adhesive_patches == serial[k].adhesive_patches && differ == 0,
+              "adhesive step as the serial one", detail);
+        check(step.load < 0 && step.adhesive_patches > step.contact_patches / 2, "a cell under tension", detail);
+        if (rank == 0)
+            printf("%s step %d load %a iterations %d pulled %ld\n", c.name, k + 1, step.load, step.iterations,
+                   step.adhesive_patches);
+        im_field_free(forces[k]);
+    }
+    im_mpi_flat_contact_free(run);
+    im_mpi_solver_free(solver);
+    im_field_free(surface);
+}
+
 /* The stop flag, set on the last rank only, stops every rank at the same iteration with
  * IM_EINTERRUPTED; cleared, the same solve goes on from the pressure it left to the serial answer. */
 static void check_stop(const scenario *c)
@@ -518,6 +605,7 @@ int main(int argc, char **argv)
     };
     for (size_t k = 0; k < sizeof periodic_cases / sizeof periodic_cases[0]; ++k)
         run_periodic(&periodic_cases[k]);
+    run_adhesive_cell();
     check_stop(&cases[1]);
     check_refusals();
     check_periodic_refusals();
