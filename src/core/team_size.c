@@ -43,9 +43,11 @@ int team_parse_task_running(const char *line)
     return name_end[2] == 'R';
 }
 
-int team_size_rule(int requested, int cpus, int others)
+int team_size_rule(int requested, int online, int usable, int others)
 {
-    const int free_cpus = cpus - others;
+    if (usable < online)
+        return requested;
+    const int free_cpus = online - others;
     const int team = free_cpus < requested ? free_cpus : requested;
     return team > 1 ? team : 1;
 }
@@ -107,8 +109,8 @@ static _Thread_local struct {
 
 static int look_and_set(void)
 {
-    const int cpus = (int)sysconf(_SC_NPROCESSORS_ONLN);
-    const int team = team_size_rule(open_choice.requested, cpus, other_runnable_tasks());
+    const int online = (int)sysconf(_SC_NPROCESSORS_ONLN), usable = omp_get_num_procs();
+    const int team = team_size_rule(open_choice.requested, online, usable, other_runnable_tasks());
     open_choice.looked = omp_get_wtime();
     omp_set_num_threads(team);
     return team;

@@ -9,9 +9,11 @@ int team_parse_loadavg(const char *line);
  * one. The command name, in parentheses, may hold spaces and parentheses. */
 int team_parse_task_running(const char *line);
 
-/* The threads of a team: the requested count, cut to the cpus that the other runnable tasks (others)
- * leave free, and never below one. */
-int team_size_rule(int requested, int cpus, int others);
+/* The threads of a team: the requested count, cut to the online cpus that the other runnable tasks
+ * (others, machine-wide) leave free, and never below one; the requested count when this process may
+ * use fewer cpus than are online (taskset, a cpuset): the machine-wide count cannot say whether its
+ * own are free. */
+int team_size_rule(int requested, int online, int usable, int others);
 
 /* Sets the OpenMP thread count of the calling thread for a solve to team_size_rule's, from a look at
  * /proc, and returns it. Leaves the count as it is when the user chose (OMP_NUM_THREADS or
