@@ -114,7 +114,7 @@ static pid_t start_busy_process(void)
     if (child == 0)
         for (volatile unsigned long spin = 0;; ++spin)
             ;
-    nanosleep(&(struct timespec){0, 50000000}, NULL); /* until it runs */
+    nanosleep(&(struct timespec){0, 150000000}, NULL); /* until it runs, and any look is older than 0.1 s */
     return child;
 }
 

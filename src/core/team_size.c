@@ -100,20 +100,30 @@ static int other_runnable_tasks(void)
     return fewest > 0 ? fewest : 0;
 }
 
-/* The choice open on this thread: the caller's thread count (0: not ours to change) and the last look. */
+/* This thread's open choice: the caller's thread count (0: not ours to change), and the last look,
+ * kept between solves so that a run of small solves looks at most every RELOOK_S. */
 static _Thread_local struct {
     int depth; /* team_choose calls not yet restored */
     int requested;
+    int team, looked_for; /* the last look's team, and the count it was cut from */
     double looked;
 } open_choice;
 
-static int look_and_set(void)
+static int looked_lately(void)
 {
-    const int online = (int)sysconf(_SC_NPROCESSORS_ONLN), usable = omp_get_num_procs();
-    const int team = team_size_rule(open_choice.requested, online, usable, other_runnable_tasks());
-    open_choice.looked = omp_get_wtime();
-    omp_set_num_threads(team);
-    return team;
+    return open_choice.looked_for == open_choice.requested && omp_get_wtime() - open_choice.looked < RELOOK_S;
+}
+
+static int set_team(void)
+{
+    if (!looked_lately()) {
+        const int online = (int)sysconf(_SC_NPROCESSORS_ONLN), usable = omp_get_num_procs();
+        open_choice.team = team_size_rule(open_choice.requested, online, usable, other_runnable_tasks());
+        open_choice.looked_for = open_choice.requested;
+        open_choice.looked = omp_get_wtime();
+    }
+    omp_set_num_threads(open_choice.team);
+    return open_choice.team;
 }
 
 static int users_choice(void) { return getenv("OMP_NUM_THREADS") || getenv("OMP_WAIT_POLICY"); }
@@ -124,13 +134,13 @@ int team_choose(void)
     if (open_choice.depth++ > 0)
         return requested;
     open_choice.requested = requested > 1 && !omp_in_parallel() && !users_choice() ? requested : 0;
-    return open_choice.requested ? look_and_set() : requested;
+    return open_choice.requested ? set_team() : requested;
 }
 
 void team_refresh(void)
 {
-    if (open_choice.requested && omp_get_wtime() - open_choice.looked >= RELOOK_S)
-        look_and_set();
+    if (open_choice.requested && !looked_lately())
+        set_team();
 }
 
 void team_restore(void)

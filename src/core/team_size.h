@@ -16,7 +16,7 @@ int team_parse_task_running(const char *line);
 int team_size_rule(int requested, int online, int usable, int others);
 
 /* Sets the OpenMP thread count of the calling thread for a solve to team_size_rule's, from a look at
- * /proc, and returns it. Leaves the count as it is when the user chose (OMP_NUM_THREADS or
+ * /proc (the last one, when this thread looked less than a tenth of a second ago), and returns it. Leaves the count as it is when the user chose (OMP_NUM_THREADS or
  * OMP_WAIT_POLICY set), inside a parallel region, inside another choice on this thread (a coarse level's
  * solve), or when one thread is requested. Each call is paired with team_restore. */
 int team_choose(void);
