@@ -276,6 +276,61 @@ static void test_thread_count_independence(void **state)
     im_field_free(s);
 }
 
+/* Plans made for two threads, solved by a team of one and by a team of two (core/team_size.c picks a
+ * solve's team from the free cores): the same bits, for a cold cone and a periodic cell. */
+static im_indentation *cone_planned_for_two(const im_field *s)
+{
+    im_indenter cone = im_indenter_cone(80);
+    omp_set_num_threads(2);
+    return prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 10, NULL);
+}
+
+static im_field *cone_force_with_team(const im_field *s, int team, double *load)
+{
+    im_indentation *run = cone_planned_for_two(s);
+    im_field *force = NULL;
+    omp_set_num_threads(team);
+    *load = step(run, 10).load;
+    assert_int_equal(im_indentation_fields(run, &force, NULL, NULL), IM_OK);
+    im_indentation_free(run);
+    return force;
+}
+
+static double *periodic_pressure_with_team(const im_field *s, int team, double *approach)
+{
+    im_flat_contact *run = NULL;
+    im_flat_result r;
+    omp_set_num_threads(2);
+    assert_int_equal(im_flat_contact_create(s, NULL, &run), IM_OK);
+    omp_set_num_threads(team);
+    assert_int_equal(im_flat_contact_solve(run, 0.004, &r), IM_OK);
+    *approach = r.approach;
+    double *pressure = malloc(sizeof(double) * im_field_count(s));
+    memcpy(pressure, im_flat_contact_pressure(run), sizeof(double) * im_field_count(s));
+    im_flat_contact_free(run);
+    return pressure;
+}
+
+static void test_team_size_independence(void **state)
+{
+    (void)state;
+    const int saved = omp_get_max_threads();
+    im_field *s = test_rough_surface(128, 0.08, 5);
+    double load1, load2, approach1, approach2;
+    im_field *f1 = cone_force_with_team(s, 1, &load1), *f2 = cone_force_with_team(s, 2, &load2);
+    assert_memory_equal(&load1, &load2, sizeof load1);
+    assert_memory_equal(f1->data, f2->data, sizeof(double) * im_field_count(f1));
+    double *p1 = periodic_pressure_with_team(s, 1, &approach1), *p2 = periodic_pressure_with_team(s, 2, &approach2);
+    assert_memory_equal(&approach1, &approach2, sizeof approach1);
+    assert_memory_equal(p1, p2, sizeof(double) * im_field_count(s));
+    omp_set_num_threads(saved);
+    free(p1);
+    free(p2);
+    im_field_free(f1);
+    im_field_free(f2);
+    im_field_free(s);
+}
+
 static void test_cropped_window_equals_full_grid(void **state)
 {
     (void)state;
@@ -546,6 +601,7 @@ int main(void)
         cmocka_unit_test(test_flat_punch),
         cmocka_unit_test(test_load_matches_displacement_control),
         cmocka_unit_test(test_thread_count_independence),
+        cmocka_unit_test(test_team_size_independence),
         cmocka_unit_test(test_cropped_window_equals_full_grid),
         cmocka_unit_test(test_accelerated_equals_plain_pk_displacement),
         cmocka_unit_test(test_accelerated_equals_plain_pk_load),

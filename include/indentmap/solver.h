@@ -86,8 +86,11 @@
  * may be made and solved in different threads at once on the CPU engine (scenes' ensembles do).
  * The library holds one lock around FFTW's planner and wisdom for all its own calls; an application
  * that calls FFTW's planner itself meanwhile races with it (FFTW's planner is not thread-safe). Each
- * solve runs on the OpenMP thread count in force (sums compensated: loads agree to a few ulp
- * whatever the count). GPU plans (options.device) are made and used from one thread.
+ * solve runs on at most the OpenMP thread count in force, fewer while other processes hold the
+ * cores, unless OMP_NUM_THREADS or OMP_WAIT_POLICY is set (docs/solver.md, "Threads"); the caller's
+ * count is restored after. A plan gives the same bits whatever the team that solves with it; plans
+ * made at different thread counts agree to a few ulp (loads compensated). GPU plans
+ * (options.device) are made and used from one thread.
  */
 /* ---- Hardness (perfect plasticity at a pressure cap) ----
  * With options.hardness = H_p > 0 no patch carries more than H_p: a patch whose elastic pressure

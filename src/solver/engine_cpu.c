@@ -1,6 +1,7 @@
 /* The CPU engine of the Polonsky-Keer iteration (engine.h): the plan's own arrays, OpenMP loops,
- * FFTW transforms (plan.c). Sums are OpenMP reductions, except the load, which is summed exactly
- * (core/summation.h) so that it is the same for any thread count. */
+ * FFTW transforms (plan.c). Sums of doubles are taken over fixed parts of the grid, then in part order
+ * (the load compensated, core/summation.h), so that a solve gives the same bits whatever the team size
+ * (core/team_size.c picks it per solve); counts and extremes are OpenMP reductions, exact in any order. */
 #include "solver/engine.h"
 
 #include "core/summation.h"
@@ -11,6 +12,25 @@
 #include <string.h>
 
 static size_t patches(const pk_run *r) { return (size_t)r->plan->nx * r->plan->ny; }
+
+enum { PARTS = 64, MOST_SUMS = 4 };
+
+typedef struct part_sums {
+    double s[MOST_SUMS];
+} part_sums;
+
+/* The first index of part k of [0, n). */
+static size_t part_start(size_t n, int k) { return n * (size_t)k / PARTS; }
+
+/* The parts' sums added in part order. */
+static part_sums parts_total(const part_sums *parts)
+{
+    part_sums total = {{0}};
+    for (int k = 0; k < PARTS; ++k)
+        for (int j = 0; j < MOST_SUMS; ++j)
+            total.s[j] += parts[k].s[j];
+    return total;
+}
 
 static int cpu_nothing(pk_run *r)
 {
@@ -26,16 +46,20 @@ static double cpu_contact_mean(pk_run *r, double cap, long *count)
 {
     const size_t n = patches(r);
     const double *p = r->p, *u = r->u, *g0 = r->gap0;
-    double sum = 0;
+    part_sums parts[PARTS];
     long c = 0;
-#pragma omp parallel for schedule(static) reduction(+ : sum, c)
-    for (size_t i = 0; i < n; ++i)
-        if (solver_elastic(p[i], cap)) {
-            sum += u[i] + g0[i];
-            ++c;
-        }
+#pragma omp parallel for schedule(static) reduction(+ : c)
+    for (int k = 0; k < PARTS; ++k) {
+        double sum = 0;
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i)
+            if (solver_elastic(p[i], cap)) {
+                sum += u[i] + g0[i];
+                ++c;
+            }
+        parts[k] = (part_sums){{sum}};
+    }
     *count = c;
-    return c ? sum / c : 0;
+    return c ? parts_total(parts).s[0] / c : 0;
 }
 
 static gap_stats cpu_gaps(pk_run *r, double w, double cap)
@@ -43,45 +67,54 @@ static gap_stats cpu_gaps(pk_run *r, double w, double cap)
     const size_t n = patches(r);
     const double *p = r->p, *u = r->u, *g0 = r->gap0;
     double *g = r->plan->gap;
-    double squares = 0, moving_squares = 0, penetration = 0, penetration_squares = 0;
+    part_sums parts[PARTS];
+    double penetration = 0;
     long contact = 0;
-#pragma omp parallel for schedule(static) reduction(+ : squares, moving_squares, contact, penetration_squares) \
-    reduction(max : penetration)
-    for (size_t i = 0; i < n; ++i) {
-        double gi = u[i] + g0[i] - w;
-        g[i] = gi;
-        if (solver_elastic(p[i], cap)) {
-            squares += gi * gi;
-            ++contact;
-        } else {
-            if (solver_bound_violation(p[i], gi) > penetration)
-                penetration = solver_bound_violation(p[i], gi);
-            if (p[i] == 0 && gi < 0) /* would join */
-                penetration_squares += gi * gi;
+#pragma omp parallel for schedule(static) reduction(+ : contact) reduction(max : penetration)
+    for (int k = 0; k < PARTS; ++k) {
+        double squares = 0, moving_squares = 0, penetration_squares = 0;
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
+            double gi = u[i] + g0[i] - w;
+            g[i] = gi;
+            if (solver_elastic(p[i], cap)) {
+                squares += gi * gi;
+                ++contact;
+            } else {
+                if (solver_bound_violation(p[i], gi) > penetration)
+                    penetration = solver_bound_violation(p[i], gi);
+                if (p[i] == 0 && gi < 0) /* would join */
+                    penetration_squares += gi * gi;
+            }
+            if (solver_moving(p[i], gi, cap))
+                moving_squares += gi * gi;
         }
-        if (solver_moving(p[i], gi, cap))
-            moving_squares += gi * gi;
+        parts[k] = (part_sums){{squares, moving_squares, penetration_squares}};
     }
+    const part_sums total = parts_total(parts);
     return (gap_stats){.contact = contact,
-                       .sum_squares = squares,
-                       .moving_squares = moving_squares,
+                       .sum_squares = total.s[0],
+                       .moving_squares = total.s[1],
                        .penetration = penetration,
-                       .penetration_squares = penetration_squares};
+                       .penetration_squares = total.s[2]};
 }
 
 static double cpu_winkler(pk_run *r, double w, double k0, int store)
 {
     const size_t n = patches(r);
     const double d2 = r->plan->delta * r->plan->delta;
-    double sum = 0;
-#pragma omp parallel for schedule(static) reduction(+ : sum)
-    for (size_t i = 0; i < n; ++i) {
-        double pi = r->gap0[i] < w ? (w - r->gap0[i]) / k0 : 0;
-        if (store)
-            r->p[i] = pi;
-        sum += pi;
+    part_sums parts[PARTS];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < PARTS; ++k) {
+        double sum = 0;
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
+            double pi = r->gap0[i] < w ? (w - r->gap0[i]) / k0 : 0;
+            if (store)
+                r->p[i] = pi;
+            sum += pi;
+        }
+        parts[k] = (part_sums){{sum}};
     }
-    return sum * d2;
+    return parts_total(parts).s[0] * d2;
 }
 
 static void cpu_clip(pk_run *r, double cap)
@@ -97,16 +130,21 @@ static void cpu_load_split(pk_run *r, double cap, double *elastic, double *cappe
 {
     const size_t n = patches(r);
     const double d2 = r->plan->delta * r->plan->delta;
-    double elastic_load = 0, capped_load = 0;
-#pragma omp parallel for schedule(static) reduction(+ : elastic_load, capped_load)
-    for (size_t i = 0; i < n; ++i) {
-        if (solver_elastic(r->p[i], cap))
-            elastic_load += r->p[i] * d2;
-        else
-            capped_load += r->p[i] * d2;
+    part_sums parts[PARTS];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < PARTS; ++k) {
+        double elastic_load = 0, capped_load = 0;
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
+            if (solver_elastic(r->p[i], cap))
+                elastic_load += r->p[i] * d2;
+            else
+                capped_load += r->p[i] * d2;
+        }
+        parts[k] = (part_sums){{elastic_load, capped_load}};
     }
-    *elastic = elastic_load;
-    *capped = capped_load;
+    const part_sums total = parts_total(parts);
+    *elastic = total.s[0];
+    *capped = total.s[1];
 }
 
 int solver_scale_elastic_patches(double *p, size_t n, double scale, double cap)
@@ -169,18 +207,22 @@ static double cpu_precondition(pk_run *r, long *count)
     fftw_execute(plan->precondition_forward);
     solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
     fftw_execute(plan->precondition_backward);
-    double z_sum = 0;
+    part_sums parts[PARTS];
     long c = 0;
-#pragma omp parallel for schedule(static) reduction(+ : z_sum, c)
-    for (size_t i = 0; i < n; ++i) {
-        if (p[i] > 0) {
-            z_sum += z[i];
-            ++c;
-        } else
-            z[i] = 0;
+#pragma omp parallel for schedule(static) reduction(+ : c)
+    for (int k = 0; k < PARTS; ++k) {
+        double z_sum = 0;
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
+            if (p[i] > 0) {
+                z_sum += z[i];
+                ++c;
+            } else
+                z[i] = 0;
+        }
+        parts[k] = (part_sums){{z_sum}};
     }
     *count = c;
-    return z_sum;
+    return parts_total(parts).s[0];
 }
 
 static double cpu_precondition_centre(pk_run *r, double mean)
@@ -188,14 +230,18 @@ static double cpu_precondition_centre(pk_run *r, double mean)
     const size_t n = patches(r);
     const double *g = r->plan->gap, *p = r->p;
     double *z = r->plan->preconditioned;
-    double gz = 0;
-#pragma omp parallel for schedule(static) reduction(+ : gz)
-    for (size_t i = 0; i < n; ++i)
-        if (p[i] > 0) {
-            z[i] -= mean;
-            gz += g[i] * z[i];
-        }
-    return gz;
+    part_sums parts[PARTS];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < PARTS; ++k) {
+        double gz = 0;
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i)
+            if (p[i] > 0) {
+                z[i] -= mean;
+                gz += g[i] * z[i];
+            }
+        parts[k] = (part_sums){{gz}};
+    }
+    return parts_total(parts).s[0];
 }
 
 /* K t is read in place from the convolution's rows. */
@@ -204,23 +250,29 @@ static step_terms cpu_step(pk_run *r, double cap)
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
     const double *t = plan->direction, *g = plan->gap, *p = r->p;
-    double num = 0, qt = 0, q_sum = 0, t_sum = 0;
+    part_sums parts[PARTS];
     long count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : num, qt, q_sum, t_sum, count)
-    for (int iy = 0; iy < ny; ++iy) {
-        const double *q = plan->rows_out + (size_t)iy * px;
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            if (solver_moving(p[i], g[i], cap)) {
-                num += g[i] * t[i];
-                qt += q[ix] * t[i];
-                q_sum += q[ix];
-                t_sum += t[i];
-                ++count;
+#pragma omp parallel for schedule(static) reduction(+ : count)
+    for (int k = 0; k < PARTS; ++k) {
+        double num = 0, qt = 0, q_sum = 0, t_sum = 0;
+        for (size_t iy = part_start(ny, k); iy < part_start(ny, k + 1); ++iy) {
+            const double *q = plan->rows_out + iy * px;
+            for (int ix = 0; ix < nx; ++ix) {
+                size_t i = iy * nx + ix;
+                if (solver_moving(p[i], g[i], cap)) {
+                    num += g[i] * t[i];
+                    qt += q[ix] * t[i];
+                    q_sum += q[ix];
+                    t_sum += t[i];
+                    ++count;
+                }
             }
         }
+        parts[k] = (part_sums){{num, qt, q_sum, t_sum}};
     }
-    return (step_terms){.gt = num, .kt_t = qt, .kt_sum = q_sum, .t_sum = t_sum, .count = count};
+    const part_sums total = parts_total(parts);
+    return (
+        step_terms){.gt = total.s[0], .kt_t = total.s[1], .kt_sum = total.s[2], .t_sum = total.s[3], .count = count};
 }
 
 /* Records how p differs from the plain CG step p - tau t in plan->changed_value. */

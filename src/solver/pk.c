@@ -3,6 +3,7 @@
 #include "solver/engine.h"
 #include "core/args.h"
 #include "core/summation.h"
+#include "core/team_size.h"
 
 #include "indentmap/status.h"
 
@@ -276,6 +277,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
+        team_refresh();
         const int stopped_by = stop_signal(r);
         if (stopped_by) /* the caller asked to stop: p is still a valid (warm) start */
             return im_fail(IM_EINTERRUPTED, "contact solve: interrupted by signal %d after %d iterations", stopped_by,
@@ -374,9 +376,11 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);
     } else {
+        team_choose(); /* the threads the other processes leave free (core/team_size.c) */
         if (!solver_any_positive(pressure, n) && plan->coarse)
             res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
         status = solver_pk_solve(&r, &res);
+        team_restore();
     }
     res.convolutions = r.convolutions;
     res.seconds = omp_get_wtime() - start;
