@@ -23,6 +23,7 @@
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/history.h"
+#include "indentmap/indent.h"
 #include "indentmap/info.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
@@ -121,6 +122,7 @@ static im_plot_panel plot_panel;
 static im_figure figure;
 static im_surface_params params;
 static im_scene scene;
+static im_indent_options indent_no_out, indent_no_targets, indent_no_steps; /* each lacking what it names */
 static long contact[64];
 static im_adhesion_summary adhesion;
 static im_taper taper = {IM_TAPER_HANN, 1.0};
@@ -171,6 +173,10 @@ static const char *path_text = "misuse.npy"; /* set to a path in the test's fold
 
 static void make_fixtures(void)
 {
+    indent_no_out = indent_no_targets = indent_no_steps = im_indent_options_default();
+    indent_no_out.out = NULL;
+    indent_no_out.targets = indent_no_steps.targets = values;
+    indent_no_out.target_count = indent_no_targets.target_count = 1;
     for (int i = 0; i < 64; ++i)
         values[i] = 0.01 * (double)((i * 37) % 11);
     bad_views[0] = good; /* placeholder: case 0 passes NULL */
@@ -238,6 +244,11 @@ REPORT(im_figure_write, "figure", im_figure_write(NULL, path_text))
 REPORT(im_figure_write, "path", im_figure_write(&figure, NULL))
 SAFE_RESULT(im_figure_ticks, "colormap", im_figure_ticks(NULL, out_values, 8) == 0)
 SAFE_RESULT(im_figure_ticks, "ticks", im_figure_ticks(&colormap, NULL, 8) == 0)
+/* ---- indent.h ---- */
+REPORT(im_indent_run, "options", im_indent_run(NULL))
+REPORT(im_indent_run, "options->out", im_indent_run(&indent_no_out))
+REPORT(im_indent_run, "options->targets", im_indent_run(&indent_no_targets))
+REPORT(im_indent_run, "options->target_count", im_indent_run(&indent_no_steps))
 /* ---- info.h ---- */
 REPORT(im_info_text, "text", im_info_text(IM_RENDER_AUTO, NULL))
 REPORT(im_formats_text, "text", im_formats_text(NULL))
@@ -820,6 +831,7 @@ static const char *const no_pointer_arguments[] = {
     "im_plot_default",
     "im_scene_plot_name",
     "im_solver_options_default",
+    "im_indent_options_default",
     "im_quality_default_tolerance",
     "im_influence_square",
     "im_strstatus",

@@ -46,7 +46,10 @@ static int measure_surface(periodic_run *run, const double *heights)
     im_field *surface;
     int status = gather_whole(run, heights, &surface);
     if (status == IM_OK && run->rank == 0) {
-        periodic_warn_if_not_periodic(surface, run->o->surface_file ? run->o->surface_file : "the surface");
+        char warning[8192];
+        if (periodic_warning(surface, run->o->surface_file ? run->o->surface_file : "the surface", warning,
+                             sizeof warning))
+            fprintf(stderr, "indentmap: %s\n", warning);
         status = im_surface_slope_rms(surface, IM_SLOPE_SPECTRAL, &run->slope_rms);
     }
     im_field_free(surface);
