@@ -1,5 +1,6 @@
 """Indentation of a rough surface by a rigid punch (the library's solver.h)."""
 import json
+import logging
 import os
 from dataclasses import dataclass
 
@@ -335,6 +336,85 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     history = run.history()
     return (history, per_step) if fields else history
 
+
+
+def _run_punch(punch, periodic):
+    """The punch options of _core.indent_run: Cone, Sphere, Flat, a profile file's path, or None (a
+    periodic cell's rigid flat)."""
+    if punch is None:
+        if not periodic:
+            raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
+        return {"punch_given": 0}
+    if isinstance(punch, (str, bytes, os.PathLike)):
+        return {"kind": "profile", "profile": _checks.path("punch", punch), "punch_given": 1}
+    if isinstance(punch, np.ndarray):
+        raise TypeError("punch: indent_run takes a profile file's path (as indent --profile), not an array")
+    kind, alpha, radius, _ = _punch_arguments(punch)
+    return {"kind": kind, "alpha": alpha, "radius": radius, "punch_given": 1}
+
+
+def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, n=512,
+               m=None, delta=None, unit="", axis=None, e_star=1.0, e_star_unit="", hardness=0.0, quality=None,
+               tol=None, max_iterations=10000, crop=True, periodic=False, slope_definition=None, adhesion_work=0.0,
+               adhesion_range=0.0, adhesion_law="maugis-dugdale", device="cpu", plain_pk=False, measure=False,
+               wisdom=None, fields=False, frames=False, distributions=False, page_embed=False, backend="auto",
+               progress=None, log=None):
+    """Makes the run ``indentmap indent`` makes, into the folder ``out``, and returns ``out``: the same
+    library call (indent.h: im_indent_run), so the same files: history.csv, run.json, index.html, the
+    history figure, the indentation analysis of an unloading history, adhesion's force-distance figure,
+    with ``fields`` the step fields, with ``frames`` frames/contact_NNNN.png, with ``distributions`` the
+    distributions of each step (docs/solver.md). run.json records no arguments (a Python run is made
+    again by its script, not ``indent --from-record``) and its figures no command.
+
+    ``surface``: a surface file's path, or None for a flat ``n`` x ``m`` grid of spacing ``delta`` (1 by
+    default) in ``unit``; ``delta`` given with a file overrides its spacing (``indent --delta``). ``punch``:
+    ``Cone``, ``Sphere``, ``Flat``, a profile file's path (``indent --profile``) or, with ``periodic``, None
+    for the rigid flat on the whole cell. One of ``approaches``, ``loads``, ``pressures`` (periodic: mean
+    pressures) or ``mean_gaps`` (periodic). ``quality`` names the tolerance's preset unless ``tol`` is given.
+    The other options are ``Indentation``'s and ``indent``'s of the same names.
+
+    The run's lines go to ``log(level, message)``, by default the ``indentmap`` logger: the surface's and
+    each step's line at ``logging.INFO``, warnings and failures after the steps at ``logging.WARNING``;
+    ``progress("steps", done, total)`` after each step. Errors are raised as ``indentmap.Error``
+    subclasses with the program's messages (the steps before a failing one are in ``out``/history.csv);
+    Ctrl-C raises KeyboardInterrupt before the next step.
+
+    Example: ``im.indent_run("surface.npy", "out", im.Cone(80), approaches=np.linspace(0.5, 4, 8))``."""
+    if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
+        raise ValueError("give one of approaches, loads, pressures and mean_gaps")
+    control, targets = ("load", loads) if loads is not None else ("load", pressures) if pressures is not None \
+        else ("mean_gap", mean_gaps) if mean_gaps is not None else ("displacement", approaches)
+    plain_pk = _checks.flag("plain_pk", plain_pk)
+    options = dict(_run_punch(punch, periodic), out=_checks.path("out", out), control=control,
+                   pressures=int(pressures is not None), nx=_checks.integer("n", n),
+                   ny=_checks.integer("m", n if m is None else m), unit=_checks.text("unit", unit),
+                   e_star=_checks.real("e_star", e_star), e_star_unit=_checks.text("e_star_unit", e_star_unit),
+                   hardness=_checks.real("hardness", hardness),
+                   max_iterations=_checks.integer("max_iterations", max_iterations),
+                   crop=int(_checks.flag("crop", crop)), periodic=int(_checks.flag("periodic", periodic)),
+                   slope_definition=_checks.text("slope_definition", slope_definition or ""),
+                   adhesion_work=_checks.real("adhesion_work", adhesion_work),
+                   adhesion_range=_checks.real("adhesion_range", adhesion_range),
+                   adhesion_law=_checks.text("adhesion_law", adhesion_law), device=_checks.text("device", device),
+                   cascade=int(not plain_pk), precondition=int(not plain_pk), fft_measure=int(_checks.flag("measure", measure)),
+                   fields=int(_checks.flag("fields", fields)), frames=int(_checks.flag("frames", frames)),
+                   distributions=int(_checks.flag("distributions", distributions)),
+                   page_embed=int(_checks.flag("page_embed", page_embed)), backend=_checks.text("backend", backend))
+    if surface is not None:
+        options["surface"] = _checks.path("surface", surface)
+    if delta is not None:
+        options["delta" if surface is None else "delta_x"] = _checks.real("delta", delta)
+    if quality is not None:
+        options["quality"] = _checks.text("quality", quality)
+    if tol is not None or quality is not None:
+        options["tol"] = _checks.real("tol", tol) if tol is not None else _core.quality_tolerance(quality)
+        options["tol_given"] = int(tol is not None)
+    if wisdom is not None:
+        options["wisdom"] = _checks.path("wisdom", wisdom)
+    if axis is not None:
+        options["x"], options["y"] = (_checks.real("axis x", axis[0]), _checks.real("axis y", axis[1]))
+    targets = np.ascontiguousarray(np.asarray(targets, dtype=float).ravel())
+    return _core.indent_run(options, targets, progress, logging.getLogger("indentmap").log if log is None else log)
 
 UNLOADING_DTYPE = np.dtype([("branch", "i4"), ("top_step", "i4"), ("last_step", "i4"), ("loading_from", "i4"),
                             ("approach_max", "f8"), ("load_max", "f8"), ("stiffness", "f8"), ("epsilon", "f8"),

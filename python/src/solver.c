@@ -88,7 +88,7 @@ static int punch_from_arguments(const char *kind, double alpha, double radius, P
     return 0;
 }
 
-static int control_from_name(const char *name, enum im_control *control)
+int py_control_from_name(const char *name, enum im_control *control)
 {
     if (strcmp(name, "displacement") == 0)
         *control = IM_CONTROL_DISPLACEMENT;
@@ -206,7 +206,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     enum im_control control;
     if ((profile_obj != Py_None && profile_from_array(profile_obj, delta, &profile) < 0) ||
         punch_from_arguments(kind, alpha, radius, x, y, profile, &punch) < 0 ||
-        control_from_name(control_name, &control) < 0) {
+        py_control_from_name(control_name, &control) < 0) {
         im_profile_free(profile);
         return -1;
     }
@@ -506,7 +506,7 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     const char *control_name = "displacement";
     enum im_control control;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Od|sO", keywords, &gap_obj, &target, &control_name, &start) ||
-        control_from_name(control_name, &control) < 0)
+        py_control_from_name(control_name, &control) < 0)
         return NULL;
     if (!self->plan)
         return PyErr_Format(PyExc_RuntimeError, "Plan: not initialised");
