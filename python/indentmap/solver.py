@@ -64,22 +64,15 @@ def _axis_on_surface(axis, shape, delta):
 _INTEGER_COLUMNS = frozenset(_core.history_integer_columns.split(","))
 
 
-def _history_array(text, source="history"):
-    """A structured array of a history's text: history.csv's columns, names and values (17 digits: the
-    numbers written)."""
-    lines = [line for line in text.splitlines() if line and not line.startswith("#")]
-    if not lines or lines[0] != _core.history_columns:
-        raise ValueError(f"{source}: its columns are not this version's history columns "
-                         f"({_core.history_columns})")
-    names = lines[0].split(",")
-    dtype = np.dtype([(name, "i8" if name in _INTEGER_COLUMNS else "f8") for name in names])
-    rows = []
-    for number, line in enumerate(lines[1:], start=2):
-        values = line.split(",")
-        if len(values) != len(names):
-            raise ValueError(f"{source}: line {number}: {len(values)} values, expected {len(names)}")
-        rows.append(tuple(int(v) if n in _INTEGER_COLUMNS else float(v) for n, v in zip(names, values)))
-    return np.array(rows, dtype=dtype)
+def _history_array(values):
+    """A structured array of a history's rows given as its columns' numbers (history.h:
+    im_history_row_values): history.csv's column names, the integer columns int64."""
+    names = _core.history_columns.split(",")
+    values = np.asarray(values, dtype=float).reshape(-1, len(names))
+    history = np.empty(len(values), dtype=[(name, "i8" if name in _INTEGER_COLUMNS else "f8") for name in names])
+    for i, name in enumerate(names):
+        history[name] = values[:, i]
+    return history
 
 
 def read_history(path):
@@ -91,7 +84,8 @@ def read_history(path):
 
     Example: ``h = im.read_history("out/history.csv"); h["load"]``."""
     with open(path, encoding="utf-8") as f:
-        return _history_array(f.read(), str(path))
+        lines = [line for line in f.read().splitlines() if line and not line.startswith("#")]  # a scene's note
+    return _history_array(_core.history_values("".join(line + "\n" for line in lines), str(path)))
 
 
 class Indentation:
@@ -222,7 +216,7 @@ class Indentation:
         memory, measured as ``indentmap indent`` measures them.
 
         Example: ``run.step(1.0); run.step(2.0); run.history()["area_ratio"]``."""
-        return _history_array(self._run.history_text())
+        return _history_array(self._run.history_values())
 
     def write_distributions(self, prefix):
         """Writes the last step's gap and contact-patch size distributions as ``indentmap indent
@@ -462,15 +456,6 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
     return table
 
 
-def _history_text(history):
-    """A history array as history.csv's text, 17 digits (read back: the same bits)."""
-    lines = [_core.history_columns]
-    for row in history:
-        lines.append(",".join(str(int(row[name])) if name in _INTEGER_COLUMNS else format(float(row[name]), ".17g")
-                              for name in history.dtype.names))
-    return "\n".join(lines) + "\n"
-
-
 def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_unit="", force_unit="E* δ²"):
     """Writes the indentation analysis ``indentmap indent`` writes beside its history (history.h:
     im_history_write_analysis), when the history holds an unloading branch: ``out``/indentation.csv (the rows
@@ -489,7 +474,8 @@ def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_
         raise ValueError("history: expected the array indent returns (history.csv's columns) or a history.csv path")
     kind, alpha, radius, profile = _punch_arguments(punch)
     os.makedirs(out, exist_ok=True)
-    return _core.write_analysis(os.fspath(out), kind, alpha, radius, profile, _history_text(history),
+    values = np.column_stack([history[name].astype(float) for name in history.dtype.names])
+    return _core.write_analysis(os.fspath(out), kind, alpha, radius, profile, values,
                                 _checks.real("delta", delta), _checks.real("e_star", e_star),
                                 _checks.text("length_unit", length_unit), _checks.text("force_unit", force_unit))
 

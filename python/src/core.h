@@ -16,6 +16,7 @@
 #include <numpy/arrayobject.h>
 
 #include "indentmap/field.h"
+#include "indentmap/history.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 
@@ -78,9 +79,16 @@ int py_render_init(void);
  * (solver.c). */
 int py_control_from_name(const char *name, enum im_control *control);
 
+/* Rows as a new (count, IM_HISTORY_COLUMN_COUNT) float64 array of their columns' numbers as history.csv
+ * holds them (written by im_history_format and read back by im_history_parse: residual and seconds to 7
+ * digits), and rows (*rows, freed by the caller) from such an array-like; -1 with the error set
+ * (history.c). */
+PyObject *py_history_values(const im_history_row *rows, int count);
+int py_history_rows(PyObject *values, im_history_row **rows, int *count);
+
 /* Module tables, defined per file. */
 extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[],
-    py_solver_methods[], py_indent_methods[];
+    py_solver_methods[], py_indent_methods[], py_history_methods[];
 extern PyTypeObject py_indentation_type, py_plan_type;
 
 #endif
