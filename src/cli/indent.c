@@ -171,16 +171,8 @@ enum {
     OPT_N,
     OPT_M,
     OPT_DELTA,
-    OPT_UNIT,
-    OPT_HEIGHT_UNIT,
-    OPT_CHANNEL,
     OPT_LENGTH_UNIT,
     OPT_ESTAR_UNIT,
-    OPT_FILL,
-    OPT_RESAMPLE,
-    OPT_CROP,
-    OPT_DETREND,
-    OPT_ALIGN,
     OPT_PUNCH,
     OPT_ALPHA,
     OPT_RADIUS,
@@ -209,7 +201,6 @@ enum {
     OPT_SLOPE_DEFINITION,
     OPT_ADHESION_WORK,
     OPT_ADHESION_RANGE,
-    OPT_NPY_ORDER,
     OPT_MEAN_GAP,
     OPT_FRAMES,
     OPT_PAGE_EMBED,
@@ -221,17 +212,9 @@ static const struct option LONG_OPTIONS[] = {{"smooth", no_argument, 0, OPT_SMOO
                                              {"n", required_argument, 0, OPT_N},
                                              {"m", required_argument, 0, OPT_M},
                                              {"delta", required_argument, 0, OPT_DELTA},
-                                             {"unit", required_argument, 0, OPT_UNIT},
-                                             {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
-                                             {"channel", required_argument, 0, OPT_CHANNEL},
-                                             {"fill", no_argument, 0, OPT_FILL},
-                                             {"resample-square", no_argument, 0, OPT_RESAMPLE},
-                                             {"crop", required_argument, 0, OPT_CROP},
-                                             {"npy-order", required_argument, 0, OPT_NPY_ORDER},
+                                             CLI_SURFACE_FILE_OPTIONS,
                                              {"length-unit", required_argument, 0, OPT_LENGTH_UNIT},
                                              {"e-star-unit", required_argument, 0, OPT_ESTAR_UNIT},
-                                             {"detrend", required_argument, 0, OPT_DETREND},
-                                             {"align", required_argument, 0, OPT_ALIGN},
                                              {"punch", required_argument, 0, OPT_PUNCH},
                                              {"alpha", required_argument, 0, OPT_ALPHA},
                                              {"radius", required_argument, 0, OPT_RADIUS},
@@ -320,17 +303,8 @@ static int apply_one_option(int code, const char *arg, indent_options *o)
             return -1;
         o->read.set.delta_x = o->delta;
         return 0;
-    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
-    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
-    case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
-    case OPT_FILL: o->read.fill = 1; return 0;
-    case OPT_NPY_ORDER: return cli_parse_npy_order(arg, &o->read.npy_order);
-    case OPT_RESAMPLE: o->read.resample_square = 1; return 0;
     case OPT_LENGTH_UNIT: return cli_parse_length_unit("--length-unit", arg, o->read.express_in);
     case OPT_ESTAR_UNIT: return cli_parse_name("--e-star-unit", arg, o->e_star_unit, sizeof o->e_star_unit);
-    case OPT_CROP: return cli_parse_crop(arg, o->preparation.crop);
-    case OPT_DETREND: return cli_parse_detrend(arg, &o->preparation.detrend);
-    case OPT_ALIGN: return cli_parse_align(arg, &o->preparation.align);
     case OPT_PUNCH: o->punch_given = 1; return parse_punch(arg, &o->punch.kind);
     case OPT_PERIODIC: o->solver.periodic = 1; return 0;
     case OPT_SLOPE_DEFINITION:
@@ -382,7 +356,7 @@ static int apply_one_option(int code, const char *arg, indent_options *o)
     case OPT_PAGE_EMBED: o->page_embed = 1; return 0;
     case OPT_DISTRIBUTIONS: o->distributions = 1; return 0;
     case OPT_FROM_RECORD: return cli_parse_path("--from-record", arg, &o->from_record);
-    default: return -1;
+    default: return cli_apply_surface_file_option(code, arg, &o->read, &o->preparation, NULL);
     }
 }
 

@@ -70,6 +70,25 @@ int cli_parse_taper(const char *text, im_taper *out)
     return -1;
 }
 
+int cli_apply_surface_file_option(int code, const char *arg, im_surface_read_options *read,
+                                  cli_preparation *preparation, int *prepared)
+{
+    if (prepared)
+        *prepared |= code != CLI_OPT_UNIT && code != CLI_OPT_HEIGHT_UNIT && code != CLI_OPT_CHANNEL;
+    switch (code) {
+    case CLI_OPT_UNIT: return cli_parse_length_unit("--unit", arg, read->set.lateral);
+    case CLI_OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, read->set.height);
+    case CLI_OPT_CHANNEL: return cli_parse_channel(arg, read->channel);
+    case CLI_OPT_FILL: read->fill = 1; return 0;
+    case CLI_OPT_RESAMPLE: read->resample_square = 1; return 0;
+    case CLI_OPT_CROP: return cli_parse_crop(arg, preparation->crop);
+    case CLI_OPT_NPY_ORDER: return cli_parse_npy_order(arg, &read->npy_order);
+    case CLI_OPT_DETREND: return cli_parse_detrend(arg, &preparation->detrend);
+    case CLI_OPT_ALIGN: return cli_parse_align(arg, &preparation->align);
+    default: return -1;
+    }
+}
+
 /* The library's preparation (front.h) of the options' (the taper is for spectra only). */
 static surface_preparation preparation_of(const cli_preparation *p)
 {
