@@ -97,8 +97,8 @@ im_module(paper USES colormap core figure io plot render surface theory)
 if(IM_MPI)
   im_module(mpi USES core indenter io solver surface)
 endif()
-im_module(front HEADERS info.h USES colormap core figure formats ${IM_GPU_MODULE} history indenter io measure
-          plot render solver theory viewer)
+im_module(front HEADERS indent.h info.h USES colormap core figure formats ${IM_GPU_MODULE} history indenter io
+          measure plot render solver surface theory viewer)
 im_module(scene HEADERS scene.h scene_ranks.h USES colormap core figure formats front history indenter io measure
           ${IM_MPI_MODULE} paper plot render solver surface theory)
 im_module(cli USES colormap core figure formats front history indenter io measure ${IM_MPI_MODULE} render

@@ -23,6 +23,7 @@
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
 #include "indentmap/history.h"
+#include "indentmap/indent.h"
 #include "indentmap/info.h"
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
@@ -122,6 +123,7 @@ static im_figure figure;
 static im_surface_params params;
 static im_scene *scene; /* misuse.ini loaded: a scene file's */
 static im_scene *scene_out;
+static im_indent_options indent_no_out, indent_no_targets, indent_no_steps; /* each lacking what it names */
 static long contact[64];
 static im_adhesion_summary adhesion;
 static im_taper taper = {IM_TAPER_HANN, 1.0};
@@ -172,6 +174,10 @@ static const char *path_text = "misuse.npy"; /* set to a path in the test's fold
 
 static void make_fixtures(void)
 {
+    indent_no_out = indent_no_targets = indent_no_steps = im_indent_options_default();
+    indent_no_out.out = NULL;
+    indent_no_out.targets = indent_no_steps.targets = values;
+    indent_no_out.target_count = indent_no_targets.target_count = 1;
     for (int i = 0; i < 64; ++i)
         values[i] = 0.01 * (double)((i * 37) % 11);
     bad_views[0] = good; /* placeholder: case 0 passes NULL */
@@ -241,6 +247,11 @@ REPORT(im_figure_write, "figure", im_figure_write(NULL, path_text))
 REPORT(im_figure_write, "path", im_figure_write(&figure, NULL))
 SAFE_RESULT(im_figure_ticks, "colormap", im_figure_ticks(NULL, out_values, 8) == 0)
 SAFE_RESULT(im_figure_ticks, "ticks", im_figure_ticks(&colormap, NULL, 8) == 0)
+/* ---- indent.h ---- */
+REPORT(im_indent_run, "options", im_indent_run(NULL))
+REPORT(im_indent_run, "options->out", im_indent_run(&indent_no_out))
+REPORT(im_indent_run, "options->targets", im_indent_run(&indent_no_targets))
+REPORT(im_indent_run, "options->target_count", im_indent_run(&indent_no_steps))
 /* ---- info.h ---- */
 REPORT(im_info_text, "text", im_info_text(IM_RENDER_AUTO, NULL))
 REPORT(im_formats_text, "text", im_formats_text(NULL))
@@ -402,6 +413,10 @@ REPORT(im_history_units_json, "length_unit", im_history_units_json(NULL, "", 0, 
 REPORT(im_history_units_json, "e_star_unit", im_history_units_json("m", NULL, 0, big_text, sizeof big_text))
 REPORT(im_history_units_json, "text", im_history_units_json("m", "Pa", 0, NULL, sizeof big_text))
 REPORT(im_history_units_json, "size", im_history_units_json("m", "Pa", 0, big_text, 8))
+REPORT(im_history_row_values, "row", im_history_row_values(NULL, big_values))
+REPORT(im_history_row_values, "values", im_history_row_values(&history_row_out, NULL))
+REPORT(im_history_row_from_values, "values", im_history_row_from_values(NULL, &history_row_out))
+REPORT(im_history_row_from_values, "row", im_history_row_from_values(big_values, NULL))
 SAFE_RESULT(im_history_parse, "text", im_history_parse(NULL, 1, &history_row_out, 1, &count_out, big_text, 64) == 0)
 SAFE_RESULT(im_history_parse, "rows", im_history_parse("x", 1, NULL, 1, &count_out, big_text, 64) == 0)
 SAFE_RESULT(im_history_parse, "count", im_history_parse("x", 1, &history_row_out, 1, NULL, big_text, 64) == 0)
@@ -832,6 +847,7 @@ static const char *const no_pointer_arguments[] = {
     "im_plot_default",
     "im_scene_plot_name",
     "im_solver_options_default",
+    "im_indent_options_default",
     "im_quality_default_tolerance",
     "im_influence_square",
     "im_strstatus",

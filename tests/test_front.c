@@ -234,6 +234,40 @@ static void other_histories_refused(void **state)
 /* A punch without a smooth-contact area (a 2-D profile): its rows' N* and A / A_cone are NaN, as
  * the solver writes them, and read back; a finite one there is not its history, and a NaN where a
  * punch with that area has a number, or a NaN approach, is still refused. */
+/* im_history_row_values gives each column's number in the order the writer writes them (read back from
+ * im_history_format's line), im_history_row_from_values takes them back, and it refuses a fraction in
+ * exactly the columns im_history_integer_columns names. */
+static void row_values_are_the_written_columns(void **state)
+{
+    (void)state;
+    double values[IM_HISTORY_COLUMN_COUNT], back[IM_HISTORY_COLUMN_COUNT];
+    char integers[512], line[IM_HISTORY_LINE_MAX], *column = NULL, name[64];
+    snprintf(integers, sizeof integers, ",%s,", im_history_integer_columns());
+    const char *names = im_history_columns();
+    im_history_row row;
+    int integer[IM_HISTORY_COLUMN_COUNT];
+    for (int i = 0; i < IM_HISTORY_COLUMN_COUNT; ++i, names += strcspn(names, ",") + 1) {
+        snprintf(name, sizeof name, ",%.*s,", (int)strcspn(names, ","), names);
+        integer[i] = strstr(integers, name) != NULL;
+        for (int k = 0; k < IM_HISTORY_COLUMN_COUNT; ++k)
+            values[k] = k + 1; /* step 1; each other column its own number */
+        values[i] += 0.5;
+        assert_int_equal(im_history_row_from_values(values, &row), integer[i] ? IM_EINVAL : IM_OK);
+        snprintf(name, sizeof name, "%.*s = %g", (int)strcspn(names, ","), names, values[i]);
+        if (integer[i]) /* the message names the column and its value */
+            assert_non_null(strstr(im_last_error(), name));
+    }
+    for (int i = 0; i < IM_HISTORY_COLUMN_COUNT; ++i)
+        values[i] = i + 1 + (integer[i] ? 0.0 : 0.5); /* every column told apart, the real ones by a fraction */
+    assert_int_equal(im_history_row_from_values(values, &row), IM_OK);
+    im_history_format(&row, line, sizeof line);
+    column = line;
+    for (int i = 0; i < IM_HISTORY_COLUMN_COUNT; ++i, column = strchr(column, ',') + 1)
+        assert_true(strtod(column, NULL) == values[i]);
+    assert_int_equal(im_history_row_values(&row, back), IM_OK);
+    assert_memory_equal(back, values, sizeof values);
+}
+
 static void histories_without_smooth_area(void **state)
 {
     (void)state;
@@ -379,6 +413,7 @@ int main(void)
         cmocka_unit_test(one_default_tolerance),
         cmocka_unit_test(both_histories_one_reader),
         cmocka_unit_test(other_histories_refused),
+        cmocka_unit_test(row_values_are_the_written_columns),
         cmocka_unit_test(histories_without_smooth_area),
         cmocka_unit_test(histories_of_a_periodic_cell),
         cmocka_unit_test(path_join_refuses_what_does_not_fit),

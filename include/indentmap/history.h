@@ -7,6 +7,7 @@
  *   im_history_integer_columns             those of its columns that hold integers
  *   im_history_measure                     a solved step's row (the theory and measures beside it)
  *   im_history_format, im_history_parse    a row as CSV text and back
+ *   im_history_row_values, im_history_row_from_values   a row as its columns' numbers and back
  *   im_history_write_analysis              the indentation analysis `indent` writes beside a history
  *   im_history_units_json                  run.json's "units" block
  *
@@ -68,10 +69,20 @@ enum { IM_HISTORY_MAX_STEPS = 4096 };
 enum { IM_HISTORY_LINE_MAX = 1024 };
 int im_history_format(const im_history_row *row, char *line, size_t size);
 
+/* The row's values in the columns' order, IM_HISTORY_COLUMN_COUNT of them (the integer columns' as
+ * doubles, exactly), into values; and a row from such values: how a reader that keeps the columns apart
+ * (Python's history arrays) writes and reads rows with this schema, not a listing of its own.
+ * IM_EINVAL for a NULL row or values, and from values for an integer column holding a value that is not
+ * an integer of its type (naming the column). */
+enum { IM_HISTORY_COLUMN_COUNT = 28 };
+int im_history_row_values(const im_history_row *row, double *values);
+int im_history_row_from_values(const double *values, im_history_row *row);
+
 /* What area_ratio and load_star are measured against, im_history_parse's area: no area (a 2-D
- * profile: both NaN), the smooth punch's (load_star = A(N) / delta^2), or the periodic cell's (area_ratio
- * = A / A0, load_star NaN; solver.h, "Periodic mode"). */
-enum { IM_HISTORY_AREA_NONE = 0, IM_HISTORY_AREA_SMOOTH = 1, IM_HISTORY_AREA_CELL = 2 };
+ * profile: both NaN), the smooth punch's (load_star = A(N) / delta^2), the periodic cell's (area_ratio
+ * = A / A0, load_star NaN; solver.h, "Periodic mode"), or any of them (a reader that does not know the
+ * punch: load_star and area_ratio are not checked). */
+enum { IM_HISTORY_AREA_NONE = 0, IM_HISTORY_AREA_SMOOTH = 1, IM_HISTORY_AREA_CELL = 2, IM_HISTORY_AREA_ANY = 3 };
 
 /* Parses the text of a history from its column line: the line must be im_history_columns() (else a
  * history of another version), then each row whole, with the right number of values, numbers finite

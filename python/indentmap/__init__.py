@@ -15,7 +15,7 @@ from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, Inv
 from . import theory
 from .render import Figure, Image, View3DFigure, contact_map, height_map, renderer, use_backend, view3d
 from .scene import run_scene, run_scene_from_record
-from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, read_history, unloading,
+from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, indent_run, read_history, unloading,
                      write_analysis)
 from .surface import Topography, generate, histogram, prepare, psd, read, statistics, write
 
@@ -59,5 +59,5 @@ def formats():
 
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography", "View3DFigure",
-           "Unsupported", "adhesion", "contact_map", "formats", "generate", "height_map", "histogram", "indent", "info", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
+           "Unsupported", "adhesion", "contact_map", "formats", "generate", "height_map", "histogram", "indent", "indent_run", "info", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
            "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "use_backend", "view3d", "write", "write_analysis"]

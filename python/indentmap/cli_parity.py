@@ -123,14 +123,14 @@ PARITY = {
     "indent --measure": Python("Indentation", "measure"),
     "indent --wisdom": Python("Indentation", "wisdom"),
     "indent --no-wisdom": NO_WISDOM,
-    "indent --out": OUT,
+    "indent --out": Python("indent_run", "out", "the run's whole folder, as the program writes it"),
     "indent --fields": Python("indent", "fields"),
-    "indent --frames": Reason("Python returns the fields (fields=True); draw contact maps with the program's "
-                              "render contact or a scene's frames = yes"),
-    "indent --page-embed": OUT,
+    "indent --frames": Python("indent_run", "frames"),
+    "indent --page-embed": Python("indent_run", "page_embed"),
     "indent --distributions": Python("indent", "distributions", "Indentation.write_distributions for one step"),
-    "indent --from-record": Reason("a Python indentation writes no run.json to make it from again: the script that "
-                                   "made it is its record (run it again); scenes have run_scene_from_record"),
+    "indent --from-record": Reason("a Python indentation's run.json records no arguments to make it from again: "
+                                   "the script that made it is its record (run it again); scenes have "
+                                   "run_scene_from_record"),
     # ---- render ----
     "render": Python("Figure"),
     "render contact": Python("contact_map"),

@@ -1,5 +1,6 @@
 """Indentation of a rough surface by a rigid punch (the library's solver.h)."""
 import json
+import logging
 import os
 from dataclasses import dataclass
 
@@ -63,22 +64,15 @@ def _axis_on_surface(axis, shape, delta):
 _INTEGER_COLUMNS = frozenset(_core.history_integer_columns.split(","))
 
 
-def _history_array(text, source="history"):
-    """A structured array of a history's text: history.csv's columns, names and values (17 digits: the
-    numbers written)."""
-    lines = [line for line in text.splitlines() if line and not line.startswith("#")]
-    if not lines or lines[0] != _core.history_columns:
-        raise ValueError(f"{source}: its columns are not this version's history columns "
-                         f"({_core.history_columns})")
-    names = lines[0].split(",")
-    dtype = np.dtype([(name, "i8" if name in _INTEGER_COLUMNS else "f8") for name in names])
-    rows = []
-    for number, line in enumerate(lines[1:], start=2):
-        values = line.split(",")
-        if len(values) != len(names):
-            raise ValueError(f"{source}: line {number}: {len(values)} values, expected {len(names)}")
-        rows.append(tuple(int(v) if n in _INTEGER_COLUMNS else float(v) for n, v in zip(names, values)))
-    return np.array(rows, dtype=dtype)
+def _history_array(values):
+    """A structured array of a history's rows given as its columns' numbers (history.h:
+    im_history_row_values): history.csv's column names, the integer columns int64."""
+    names = _core.history_columns.split(",")
+    values = np.asarray(values, dtype=float).reshape(-1, len(names))
+    history = np.empty(len(values), dtype=[(name, "i8" if name in _INTEGER_COLUMNS else "f8") for name in names])
+    for i, name in enumerate(names):
+        history[name] = values[:, i]
+    return history
 
 
 def read_history(path):
@@ -90,7 +84,8 @@ def read_history(path):
 
     Example: ``h = im.read_history("out/history.csv"); h["load"]``."""
     with open(path, encoding="utf-8") as f:
-        return _history_array(f.read(), str(path))
+        lines = [line for line in f.read().splitlines() if line and not line.startswith("#")]  # a scene's note
+    return _history_array(_core.history_values("".join(line + "\n" for line in lines), str(path)))
 
 
 class Indentation:
@@ -221,7 +216,7 @@ class Indentation:
         memory, measured as ``indentmap indent`` measures them.
 
         Example: ``run.step(1.0); run.step(2.0); run.history()["area_ratio"]``."""
-        return _history_array(self._run.history_text())
+        return _history_array(self._run.history_values())
 
     def write_distributions(self, prefix):
         """Writes the last step's gap and contact-patch size distributions as ``indentmap indent
@@ -336,6 +331,85 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     return (history, per_step) if fields else history
 
 
+
+def _run_punch(punch, periodic):
+    """The punch options of _core.indent_run: Cone, Sphere, Flat, a profile file's path, or None (a
+    periodic cell's rigid flat)."""
+    if punch is None:
+        if not periodic:
+            raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
+        return {"punch_given": 0}
+    if isinstance(punch, (str, bytes, os.PathLike)):
+        return {"kind": "profile", "profile": _checks.path("punch", punch), "punch_given": 1}
+    if isinstance(punch, np.ndarray):
+        raise TypeError("punch: indent_run takes a profile file's path (as indent --profile), not an array")
+    kind, alpha, radius, _ = _punch_arguments(punch)
+    return {"kind": kind, "alpha": alpha, "radius": radius, "punch_given": 1}
+
+
+def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, n=512,
+               m=None, delta=None, unit="", axis=None, e_star=1.0, e_star_unit="", hardness=0.0, quality=None,
+               tol=None, max_iterations=10000, crop=True, periodic=False, slope_definition=None, adhesion_work=0.0,
+               adhesion_range=0.0, adhesion_law="maugis-dugdale", device="cpu", plain_pk=False, measure=False,
+               wisdom=None, fields=False, frames=False, distributions=False, page_embed=False, backend="auto",
+               progress=None, log=None):
+    """Makes the run ``indentmap indent`` makes, into the folder ``out``, and returns ``out``: the same
+    library call (indent.h: im_indent_run), so the same files: history.csv, run.json, index.html, the
+    history figure, the indentation analysis of an unloading history, adhesion's force-distance figure,
+    with ``fields`` the step fields, with ``frames`` frames/contact_NNNN.png, with ``distributions`` the
+    distributions of each step (docs/solver.md). run.json records no arguments (a Python run is made
+    again by its script, not ``indent --from-record``) and its figures no command.
+
+    ``surface``: a surface file's path, or None for a flat ``n`` x ``m`` grid of spacing ``delta`` (1 by
+    default) in ``unit``; ``delta`` given with a file overrides its spacing (``indent --delta``). ``punch``:
+    ``Cone``, ``Sphere``, ``Flat``, a profile file's path (``indent --profile``) or, with ``periodic``, None
+    for the rigid flat on the whole cell. One of ``approaches``, ``loads``, ``pressures`` (periodic: mean
+    pressures) or ``mean_gaps`` (periodic). ``quality`` names the tolerance's preset unless ``tol`` is given.
+    The other options are ``Indentation``'s and ``indent``'s of the same names.
+
+    The run's lines go to ``log(level, message)``, by default the ``indentmap`` logger: the surface's and
+    each step's line at ``logging.INFO``, warnings and failures after the steps at ``logging.WARNING``;
+    ``progress("steps", done, total)`` after each step. Errors are raised as ``indentmap.Error``
+    subclasses with the program's messages (the steps before a failing one are in ``out``/history.csv);
+    Ctrl-C raises KeyboardInterrupt before the next step.
+
+    Example: ``im.indent_run("surface.npy", "out", im.Cone(80), approaches=np.linspace(0.5, 4, 8))``."""
+    if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
+        raise ValueError("give one of approaches, loads, pressures and mean_gaps")
+    control, targets = ("load", loads) if loads is not None else ("load", pressures) if pressures is not None \
+        else ("mean_gap", mean_gaps) if mean_gaps is not None else ("displacement", approaches)
+    plain_pk = _checks.flag("plain_pk", plain_pk)
+    options = dict(_run_punch(punch, periodic), out=_checks.path("out", out), control=control,
+                   pressures=int(pressures is not None), nx=_checks.integer("n", n),
+                   ny=_checks.integer("m", n if m is None else m), unit=_checks.text("unit", unit),
+                   e_star=_checks.real("e_star", e_star), e_star_unit=_checks.text("e_star_unit", e_star_unit),
+                   hardness=_checks.real("hardness", hardness),
+                   max_iterations=_checks.integer("max_iterations", max_iterations),
+                   crop=int(_checks.flag("crop", crop)), periodic=int(_checks.flag("periodic", periodic)),
+                   slope_definition=_checks.text("slope_definition", slope_definition or ""),
+                   adhesion_work=_checks.real("adhesion_work", adhesion_work),
+                   adhesion_range=_checks.real("adhesion_range", adhesion_range),
+                   adhesion_law=_checks.text("adhesion_law", adhesion_law), device=_checks.text("device", device),
+                   cascade=int(not plain_pk), precondition=int(not plain_pk), fft_measure=int(_checks.flag("measure", measure)),
+                   fields=int(_checks.flag("fields", fields)), frames=int(_checks.flag("frames", frames)),
+                   distributions=int(_checks.flag("distributions", distributions)),
+                   page_embed=int(_checks.flag("page_embed", page_embed)), backend=_checks.text("backend", backend))
+    if surface is not None:
+        options["surface"] = _checks.path("surface", surface)
+    if delta is not None:
+        options["delta" if surface is None else "delta_x"] = _checks.real("delta", delta)
+    if quality is not None:
+        options["quality"] = _checks.text("quality", quality)
+    if tol is not None or quality is not None:
+        options["tol"] = _checks.real("tol", tol) if tol is not None else _core.quality_tolerance(quality)
+        options["tol_given"] = int(tol is not None)
+    if wisdom is not None:
+        options["wisdom"] = _checks.path("wisdom", wisdom)
+    if axis is not None:
+        options["x"], options["y"] = (_checks.real("axis x", axis[0]), _checks.real("axis y", axis[1]))
+    targets = np.ascontiguousarray(np.asarray(targets, dtype=float).ravel())
+    return _core.indent_run(options, targets, progress, logging.getLogger("indentmap").log if log is None else log)
+
 UNLOADING_DTYPE = np.dtype([("branch", "i4"), ("top_step", "i4"), ("last_step", "i4"), ("loading_from", "i4"),
                             ("approach_max", "f8"), ("load_max", "f8"), ("stiffness", "f8"), ("epsilon", "f8"),
                             ("contact_depth", "f8"), ("area_projected", "f8"), ("area_real", "f8"),
@@ -382,15 +456,6 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
     return table
 
 
-def _history_text(history):
-    """A history array as history.csv's text, 17 digits (read back: the same bits)."""
-    lines = [_core.history_columns]
-    for row in history:
-        lines.append(",".join(str(int(row[name])) if name in _INTEGER_COLUMNS else format(float(row[name]), ".17g")
-                              for name in history.dtype.names))
-    return "\n".join(lines) + "\n"
-
-
 def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_unit="", force_unit="E* δ²"):
     """Writes the indentation analysis ``indentmap indent`` writes beside its history (history.h:
     im_history_write_analysis), when the history holds an unloading branch: ``out``/indentation.csv (the rows
@@ -409,7 +474,8 @@ def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_
         raise ValueError("history: expected the array indent returns (history.csv's columns) or a history.csv path")
     kind, alpha, radius, profile = _punch_arguments(punch)
     os.makedirs(out, exist_ok=True)
-    return _core.write_analysis(os.fspath(out), kind, alpha, radius, profile, _history_text(history),
+    values = np.column_stack([history[name].astype(float) for name in history.dtype.names])
+    return _core.write_analysis(os.fspath(out), kind, alpha, radius, profile, values,
                                 _checks.real("delta", delta), _checks.real("e_star", e_star),
                                 _checks.text("length_unit", length_unit), _checks.text("force_unit", force_unit))
 

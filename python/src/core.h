@@ -16,6 +16,9 @@
 #include <numpy/arrayobject.h>
 
 #include "indentmap/field.h"
+#include "indentmap/history.h"
+#include "indentmap/solver.h"
+#include "indentmap/status.h"
 
 #include <signal.h>
 
@@ -54,12 +57,38 @@ int py_interrupt_init(void);
 void py_interrupt_arm(py_interrupt *call, volatile sig_atomic_t *flag);
 int py_interrupt_disarm(py_interrupt *call, volatile sig_atomic_t *flag);
 
+/* The Python side of a run's callbacks (callbacks.c), and the first exception one of them raised (which
+ * stops the run at its next check: *stop is set). py_call_progress and py_call_log are status.h's
+ * im_progress_fn and im_log_fn with a py_callbacks as user (log gets logging's levels, INFO or WARNING).
+ * py_callbacks_finish (GIL held, after the run): 1 with the kept exception raised again (or, when
+ * interrupted, dropped: KeyboardInterrupt is the one raised), 0 when no callback raised. */
+typedef struct py_callbacks {
+    PyObject *progress; /* callable(stage, done, total), or NULL */
+    PyObject *log;      /* callable(level, message), or NULL */
+    volatile sig_atomic_t *stop;
+    PyObject *error_type, *error_value, *error_traceback;
+} py_callbacks;
+void py_call_progress(void *user, const char *stage, int done, int total);
+void py_call_log(void *user, im_log_level level, const char *message);
+int py_callbacks_finish(py_callbacks *c, int interrupted);
+
 /* Makes the lock that lets one drawing call at a time run without the GIL (render.c; module import). */
 int py_render_init(void);
 
+/* A control's name ("displacement", "load", "mean_gap", solver.h) into *control; -1 with ValueError set
+ * (solver.c). */
+int py_control_from_name(const char *name, enum im_control *control);
+
+/* Rows as a new (count, IM_HISTORY_COLUMN_COUNT) float64 array of their columns' numbers as history.csv
+ * holds them (written by im_history_format and read back by im_history_parse: residual and seconds to 7
+ * digits), and rows (*rows, freed by the caller) from such an array-like; -1 with the error set
+ * (history.c). */
+PyObject *py_history_values(const im_history_row *rows, int count);
+int py_history_rows(PyObject *values, im_history_row **rows, int *count);
+
 /* Module tables, defined per file. */
 extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[],
-    py_solver_methods[];
+    py_solver_methods[], py_indent_methods[], py_history_methods[];
 extern PyTypeObject py_indentation_type, py_plan_type;
 
 #endif

@@ -177,6 +177,7 @@ PyMODINIT_FUNC PyInit__core(void)
         add_methods(module, core_methods) < 0 || add_methods(module, py_surface_methods) < 0 ||
         add_methods(module, py_theory_methods) < 0 || add_methods(module, py_render_methods) < 0 ||
         add_methods(module, py_scene_methods) < 0 || add_methods(module, py_solver_methods) < 0 ||
+        add_methods(module, py_indent_methods) < 0 || add_methods(module, py_history_methods) < 0 ||
         PyType_Ready(&py_indentation_type) < 0 ||
         PyModule_AddObjectRef(module, "Indentation", (PyObject *)&py_indentation_type) < 0 ||
         PyType_Ready(&py_plan_type) < 0 || PyModule_AddObjectRef(module, "Plan", (PyObject *)&py_plan_type) < 0 ||

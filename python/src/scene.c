@@ -1,5 +1,5 @@
 /* Scenes: load and run a scene file (scene.h) without the GIL; its log lines and progress go to
- * Python callables, called with the GIL taken back for each call. */
+ * Python callables, called with the GIL taken back for each call (callbacks.c). */
 #include "core.h"
 
 #include "indentmap/render.h"
@@ -8,54 +8,6 @@
 #include "indentmap/status.h"
 
 #include <signal.h>
-
-/* The Python side of a run's callbacks, and the first exception one of them raised (which stops
- * the run at its next check, and is raised by run_scene). */
-typedef struct scene_callbacks {
-    PyObject *progress; /* callable(stage, done, total), or NULL */
-    PyObject *log;      /* callable(level, message) with logging's levels (INFO, WARNING), or NULL */
-    volatile sig_atomic_t *stop;
-    PyObject *error_type, *error_value, *error_traceback;
-} scene_callbacks;
-
-/* After a call that raised (GIL held): keeps the first exception and asks the run to stop. */
-static void keep_error(scene_callbacks *c)
-{
-    if (c->error_type) {
-        PyErr_Clear();
-        return;
-    }
-    PyErr_Fetch(&c->error_type, &c->error_value, &c->error_traceback);
-    *c->stop = SIGINT; /* any non-zero value stops the run; its message is replaced by the exception */
-}
-
-static void call_progress(void *user, const char *stage, int done, int total)
-{
-    scene_callbacks *c = user;
-    PyGILState_STATE gil = PyGILState_Ensure();
-    PyObject *result = c->error_type ? NULL : PyObject_CallFunction(c->progress, "sii", stage, done, total);
-    if (result)
-        Py_DECREF(result);
-    else if (!c->error_type)
-        keep_error(c);
-    PyGILState_Release(gil);
-}
-
-static void call_log(void *user, im_log_level level, const char *message)
-{
-    scene_callbacks *c = user;
-    PyGILState_STATE gil = PyGILState_Ensure();
-    PyObject *text = PyUnicode_DecodeUTF8(message, (Py_ssize_t)strlen(message), "backslashreplace");
-    PyObject *result = c->error_type || !text
-                           ? NULL
-                           : PyObject_CallFunction(c->log, "iO", level == IM_LOG_WARNING ? 30 : 20, text);
-    Py_XDECREF(text);
-    if (result)
-        Py_DECREF(result);
-    else if (!c->error_type)
-        keep_error(c);
-    PyGILState_Release(gil);
-}
 
 /* Where a scene comes from (a scene file, or a run's record: from_record) and where it writes (out,
  * NULL for its own output folder). */
@@ -123,13 +75,13 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
         return py_raise_status(IM_EINVAL);
     }
     volatile sig_atomic_t stop = 0;
-    scene_callbacks callbacks = {.progress = progress, .log = log, .stop = &stop};
+    py_callbacks callbacks = {.progress = progress, .log = log, .stop = &stop};
     im_scene_run_options options = {.resume = resume,
                                     .quiet = quiet,
                                     .stop = &stop,
                                     .user = &callbacks,
-                                    .progress = progress != Py_None ? call_progress : NULL,
-                                    .log = log != Py_None ? call_log : NULL,
+                                    .progress = progress != Py_None ? py_call_progress : NULL,
+                                    .log = log != Py_None ? py_call_log : NULL,
                                     .backend = (int)backend};
     py_interrupt call;
     scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL,
@@ -140,16 +92,10 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
     Py_XDECREF(out_bytes);
     Py_XDECREF(wisdom_bytes);
     int interrupted = py_interrupt_disarm(&call, &stop) < 0; /* KeyboardInterrupt is set */
-    if (callbacks.error_type && !interrupted)
-        PyErr_Restore(callbacks.error_type, callbacks.error_value, callbacks.error_traceback);
-    else {
-        Py_XDECREF(callbacks.error_type);
-        Py_XDECREF(callbacks.error_value);
-        Py_XDECREF(callbacks.error_traceback);
-    }
-    PyObject *out = interrupted || callbacks.error_type ? NULL
-                    : status == IM_OK                   ? PyUnicode_DecodeFSDefault(im_scene_output_dir(scene))
-                                                        : py_raise_status(status);
+    int raised = py_callbacks_finish(&callbacks, interrupted);
+    PyObject *out = interrupted || raised ? NULL
+                    : status == IM_OK     ? PyUnicode_DecodeFSDefault(im_scene_output_dir(scene))
+                                          : py_raise_status(status);
     im_scene_free(scene);
     return out;
 }

@@ -88,7 +88,7 @@ static int punch_from_arguments(const char *kind, double alpha, double radius, P
     return 0;
 }
 
-static int control_from_name(const char *name, enum im_control *control)
+int py_control_from_name(const char *name, enum im_control *control)
 {
     if (strcmp(name, "displacement") == 0)
         *control = IM_CONTROL_DISPLACEMENT;
@@ -206,7 +206,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
     enum im_control control;
     if ((profile_obj != Py_None && profile_from_array(profile_obj, delta, &profile) < 0) ||
         punch_from_arguments(kind, alpha, radius, x, y, profile, &punch) < 0 ||
-        control_from_name(control_name, &control) < 0) {
+        py_control_from_name(control_name, &control) < 0) {
         im_profile_free(profile);
         return -1;
     }
@@ -303,22 +303,11 @@ static int record_row(py_indentation *self, const im_step_result *result)
     return status;
 }
 
-/* The history of the steps solved as the text of a history.csv: its column line, then a row per step. */
-static PyObject *indentation_history_text(py_indentation *self, PyObject *unused)
+/* The history of the steps solved as an array of its columns' numbers (history.c). */
+static PyObject *indentation_history_values(py_indentation *self, PyObject *unused)
 {
     (void)unused;
-    if (check_ready(self) < 0)
-        return NULL;
-    size_t size = IM_HISTORY_LINE_MAX * (size_t)(self->row_count + 1), used = 0;
-    char *text = malloc(size);
-    if (!text)
-        return PyErr_NoMemory();
-    used += (size_t)snprintf(text, size, "%s\n", im_history_columns());
-    for (int i = 0; i < self->row_count; ++i)
-        used += (size_t)im_history_format(&self->rows[i], text + used, size - used);
-    PyObject *out = PyUnicode_FromStringAndSize(text, (Py_ssize_t)used);
-    free(text);
-    return out;
+    return check_ready(self) < 0 ? NULL : py_history_values(self->rows, self->row_count);
 }
 
 static PyObject *indentation_step(py_indentation *self, PyObject *arg)
@@ -414,8 +403,8 @@ static PyMethodDef indentation_methods[] = {
      "fields() -> (force, gap, displacement) of the last step on the full grid"},
     {"plastic", (PyCFunction)indentation_plastic, METH_NOARGS,
      "plastic() -> the plastic depth accumulated so far on the full grid"},
-    {"history_text", (PyCFunction)indentation_history_text, METH_NOARGS,
-     "history_text() -> the steps solved as the text of a history.csv"},
+    {"history_values", (PyCFunction)indentation_history_values, METH_NOARGS,
+     "history_values() -> the steps solved as an array of the history's columns' numbers"},
     {"write_distributions", (PyCFunction)indentation_write_distributions, METH_O,
      "write_distributions(prefix): the last step's PREFIX_{gaps,patches,patch_list}.csv"},
     {NULL, NULL, 0, NULL}};
@@ -506,7 +495,7 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     const char *control_name = "displacement";
     enum im_control control;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Od|sO", keywords, &gap_obj, &target, &control_name, &start) ||
-        control_from_name(control_name, &control) < 0)
+        py_control_from_name(control_name, &control) < 0)
         return NULL;
     if (!self->plan)
         return PyErr_Format(PyExc_RuntimeError, "Plan: not initialised");
@@ -645,36 +634,16 @@ done:
     return result;
 }
 
-/* The rows of a history's text (history.h: im_history_parse, measured against punch's area) into *rows (the
- * caller frees them); -1 with a Python error. */
-static int rows_from_text(const char *text, const im_indenter *punch, im_history_row **rows, int *count)
-{
-    int capacity = 1;
-    for (const char *p = text; *p; ++p)
-        capacity += *p == '\n';
-    *rows = malloc(sizeof **rows * (size_t)capacity);
-    if (!*rows) {
-        PyErr_NoMemory();
-        return -1;
-    }
-    char why[256];
-    const int area = punch->kind == IM_PUNCH_PROFILE_2D ? IM_HISTORY_AREA_NONE : IM_HISTORY_AREA_SMOOTH;
-    if (im_history_parse(text, area, *rows, capacity, count, why, sizeof why))
-        return 0;
-    PyErr_Format(PyExc_ValueError, "history: %s", why);
-    return -1;
-}
-
-/* write_analysis(dir, punch, alpha, radius, profile, history_text, delta, e_star, length_unit, force_unit)
+/* write_analysis(dir, punch, alpha, radius, profile, history_values, delta, e_star, length_unit, force_unit)
  * -> branches (history.h: im_history_write_analysis) */
 static PyObject *write_analysis(PyObject *self, PyObject *args)
 {
     (void)self;
-    const char *kind, *text, *length_unit, *force_unit;
+    const char *kind, *length_unit, *force_unit;
     double alpha, radius, delta, e_star;
-    PyObject *dir, *profile_obj;
-    if (!PyArg_ParseTuple(args, "O&sddOsddss", PyUnicode_FSConverter, &dir, &kind, &alpha, &radius, &profile_obj,
-                          &text, &delta, &e_star, &length_unit, &force_unit))
+    PyObject *dir, *profile_obj, *values;
+    if (!PyArg_ParseTuple(args, "O&sddOOddss", PyUnicode_FSConverter, &dir, &kind, &alpha, &radius, &profile_obj,
+                          &values, &delta, &e_star, &length_unit, &force_unit))
         return NULL;
     im_profile *profile = NULL;
     im_indenter punch;
@@ -683,7 +652,7 @@ static PyObject *write_analysis(PyObject *self, PyObject *args)
     PyObject *result = NULL;
     if ((profile_obj == Py_None || profile_from_array(profile_obj, delta, &profile) == 0) &&
         punch_from_arguments(kind, alpha, radius, Py_None, Py_None, profile, &punch) == 0 &&
-        rows_from_text(text, &punch, &rows, &count) == 0) {
+        py_history_rows(values, &rows, &count) == 0) {
         int status = im_history_write_analysis(PyBytes_AS_STRING(dir), &punch, rows, count, delta, e_star,
                                                length_unit, force_unit, &branches);
         result = status == IM_OK ? PyLong_FromLong(branches) : py_raise_status(status);
@@ -761,7 +730,7 @@ PyMethodDef py_solver_methods[] = {
     {"quality_tolerance", quality_tolerance, METH_VARARGS,
      "quality_tolerance(name) -> the solver tolerance of a quality preset (draft, standard, publication)"},
     {"write_analysis", write_analysis, METH_VARARGS,
-     "write_analysis(dir, punch, alpha, radius, profile, history_text, delta, e_star, length_unit, force_unit) -> "
+     "write_analysis(dir, punch, alpha, radius, profile, history_values, delta, e_star, length_unit, force_unit) -> "
      "branches: indentation.csv and load_displacement.{png,pdf} in dir"},
     {"adhesion", adhesion, METH_VARARGS,
      "adhesion(approach, load, contact_patches) -> dict: pull-off force and approach, jumps, work lost"},

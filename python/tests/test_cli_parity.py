@@ -117,6 +117,9 @@ def test_help_agrees_with_the_option_tables_in_the_source(walked):
     source = os.environ.get("IM_SOURCE_DIR")
     if not source:
         pytest.skip("IM_SOURCE_DIR is not set (run through ctest)")
+    with open(os.path.join(source, "src", "cli", "cli.h"), encoding="utf-8") as f:
+        shared = re.search(r"#define CLI_SURFACE_FILE_OPTIONS((?:.*\\\n)*.*)", f.read())  # the lines it continues
+    assert shared, "cli.h: no CLI_SURFACE_FILE_OPTIONS"
     files = {"surface": "surface.c", "theory": "theory.c", "indent": "indent.c", "render": "render.c",
              "render view3d": "render_view3d.c", "run": "run.c", "info": "info.c", "mpi-indent": "mpi_indent.c"}
     for command, name in files.items():
@@ -126,7 +129,8 @@ def test_help_agrees_with_the_option_tables_in_the_source(walked):
             text = f.read()
         table = re.search(r"struct option \w+\[\] = \{(.*?)\{0, 0, 0, 0\}", text, re.S)
         assert table, f"{name}: no struct option table"
-        accepted = set(re.findall(r'\{"([a-z0-9-]+)"', table.group(1))) - NOT_OPTIONS
+        entries = table.group(1).replace("CLI_SURFACE_FILE_OPTIONS", shared.group(1))
+        accepted = set(re.findall(r'\{"([a-z0-9-]+)"', entries)) - NOT_OPTIONS
         assert accepted == walked[command], (f"{command}: getopt takes {sorted(accepted - walked[command])} "
                                              f"unlisted; --help lists {sorted(walked[command] - accepted)} "
                                              "that getopt does not take")

@@ -129,6 +129,38 @@ int cli_parse_taper(const char *text, im_taper *out);
 /* --device cpu|gpu|auto (solver.h: IM_DEVICE_*) */
 int cli_parse_device(const char *text, int *device);
 
+/* The options that read and prepare a surface file, which `indent` and `surface` both take (one table
+ * of them): their getopt codes (above every subcommand's own), CLI_SURFACE_FILE_OPTIONS (their
+ * entries, for a subcommand's struct option table) and cli_apply_surface_file_option, which applies
+ * code's option to read and preparation: 0, or -1 after printing its error or for a code that is not
+ * one of them. *prepared (prepared not NULL) is set for those that change the heights read (all but
+ * the units and the channel). */
+enum {
+    CLI_OPT_UNIT = 1000,
+    CLI_OPT_HEIGHT_UNIT,
+    CLI_OPT_CHANNEL,
+    CLI_OPT_FILL,
+    CLI_OPT_RESAMPLE,
+    CLI_OPT_CROP,
+    CLI_OPT_NPY_ORDER,
+    CLI_OPT_DETREND,
+    CLI_OPT_ALIGN
+};
+/* clang-format off */
+#define CLI_SURFACE_FILE_OPTIONS                                    \
+    {"unit", required_argument, 0, CLI_OPT_UNIT},                   \
+    {"height-unit", required_argument, 0, CLI_OPT_HEIGHT_UNIT},     \
+    {"channel", required_argument, 0, CLI_OPT_CHANNEL},             \
+    {"fill", no_argument, 0, CLI_OPT_FILL},                         \
+    {"resample-square", no_argument, 0, CLI_OPT_RESAMPLE},          \
+    {"crop", required_argument, 0, CLI_OPT_CROP},                   \
+    {"npy-order", required_argument, 0, CLI_OPT_NPY_ORDER},         \
+    {"detrend", required_argument, 0, CLI_OPT_DETREND},             \
+    {"align", required_argument, 0, CLI_OPT_ALIGN}
+/* clang-format on */
+int cli_apply_surface_file_option(int code, const char *arg, im_surface_read_options *read,
+                                  cli_preparation *preparation, int *prepared);
+
 /* Crops *surface (replacing it) and detrends it; a status naming the option on failure. */
 int cli_prepare_surface(const cli_preparation *preparation, im_field **surface);
 

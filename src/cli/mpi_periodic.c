@@ -46,7 +46,10 @@ static int measure_surface(periodic_run *run, const double *heights)
     im_field *surface;
     int status = gather_whole(run, heights, &surface);
     if (status == IM_OK && run->rank == 0) {
-        periodic_warn_if_not_periodic(surface, run->o->surface_file ? run->o->surface_file : "the surface");
+        char warning[8192];
+        if (periodic_warning(surface, run->o->surface_file ? run->o->surface_file : "the surface", warning,
+                             sizeof warning))
+            fprintf(stderr, "indentmap: %s\n", warning);
         status = im_surface_slope_rms(surface, IM_SLOPE_SPECTRAL, &run->slope_rms);
     }
     im_field_free(surface);
@@ -173,11 +176,12 @@ static int finish_record(periodic_run *run, int done, int status)
     char message[1024];
     snprintf(message, sizeof message, "%s", im_last_error());
     im_adhesion_summary summary;
-    if (run->o->adhesion_work > 0) /* eq. (2) is the repulsive law: no k fitted, as indent */
-        run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "", "",
-                                    NULL, &summary);
-    else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
-                                                              run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
+    if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
+        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
+                                        "", NULL, &summary) != IM_OK)
+            fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+    } else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
+                                                                run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
     if (status != IM_OK)
         im_fail(status, "%s", message); /* the step's error, not the fit's */

@@ -1,6 +1,7 @@
 /* Options that prepare a measured surface (--fill, --crop, --align, --detrend, --window), shared by
  * `surface --stats` and `indent`. */
 #include "cli/cli.h"
+#include "front/front.h"
 
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
@@ -69,41 +70,46 @@ int cli_parse_taper(const char *text, im_taper *out)
     return -1;
 }
 
+int cli_apply_surface_file_option(int code, const char *arg, im_surface_read_options *read,
+                                  cli_preparation *preparation, int *prepared)
+{
+    if (prepared)
+        *prepared |= code != CLI_OPT_UNIT && code != CLI_OPT_HEIGHT_UNIT && code != CLI_OPT_CHANNEL;
+    switch (code) {
+    case CLI_OPT_UNIT: return cli_parse_length_unit("--unit", arg, read->set.lateral);
+    case CLI_OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, read->set.height);
+    case CLI_OPT_CHANNEL: return cli_parse_channel(arg, read->channel);
+    case CLI_OPT_FILL: read->fill = 1; return 0;
+    case CLI_OPT_RESAMPLE: read->resample_square = 1; return 0;
+    case CLI_OPT_CROP: return cli_parse_crop(arg, preparation->crop);
+    case CLI_OPT_NPY_ORDER: return cli_parse_npy_order(arg, &read->npy_order);
+    case CLI_OPT_DETREND: return cli_parse_detrend(arg, &preparation->detrend);
+    case CLI_OPT_ALIGN: return cli_parse_align(arg, &preparation->align);
+    default: return -1;
+    }
+}
+
+/* The library's preparation (front.h) of the options' (the taper is for spectra only). */
+static surface_preparation preparation_of(const cli_preparation *p)
+{
+    return (surface_preparation){{p->crop[0], p->crop[1], p->crop[2], p->crop[3]}, p->detrend, p->align};
+}
+
 int cli_prepare_surface(const cli_preparation *p, im_field **surface)
 {
-    if (p->crop[2] > 0) {
-        im_field *crop = NULL;
-        int status = im_surface_crop(*surface, p->crop[0], p->crop[1], p->crop[2], p->crop[3], &crop);
-        if (status != IM_OK)
-            return im_fail_context(status, "--crop");
-        im_field_free(*surface);
-        *surface = crop;
-    }
-    int status = im_surface_align_rows(*surface, p->align);
-    if (status != IM_OK)
-        return im_fail_context(status, "--align");
-    return im_surface_detrend(*surface, p->detrend);
+    const surface_preparation preparation = preparation_of(p);
+    return surface_prepare(&preparation, surface);
 }
 
 void cli_warn_if_much_filled(const char *path, long filled, size_t points)
 {
-    if (points > 0 && (double)filled > 0.05 * (double)points)
-        fprintf(stderr,
-                "indentmap: warning: %s: --fill invented %.1f%% of the surface (%ld of %zu points): its "
-                "statistics and contacts there are the fill's\n",
-                path, 100.0 * (double)filled / (double)points, filled, points);
+    char warning[8192];
+    if (surface_fill_warning(path, filled, points, warning, sizeof warning))
+        fprintf(stderr, "indentmap: %s\n", warning);
 }
 
 void cli_describe_preparation(const cli_preparation *p, long filled, char *text, size_t size)
 {
-    static const char *const DETREND[] = {"nothing removed", "plane removed", "plane and curvature removed"};
-    int length = snprintf(text, size, "%s", DETREND[p->detrend]);
-    if (p->crop[2] > 0)
-        length += snprintf(text + length, size - (size_t)length, ", cropped to %d x %d at (%d, %d)", p->crop[2],
-                           p->crop[3], p->crop[0], p->crop[1]);
-    static const char *const ALIGN[] = {"", "median", "mean", "line"};
-    if (p->align != IM_ALIGN_NONE && length < (int)size)
-        length += snprintf(text + length, size - (size_t)length, ", rows aligned (%s)", ALIGN[p->align]);
-    if (filled > 0 && length < (int)size)
-        snprintf(text + length, size - (size_t)length, ", %ld missing points filled", filled);
+    const surface_preparation preparation = preparation_of(p);
+    surface_preparation_describe(&preparation, filled, text, size);
 }

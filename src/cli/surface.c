@@ -69,14 +69,6 @@ enum {
     OPT_N = 256,
     OPT_M,
     OPT_DELTA,
-    OPT_UNIT,
-    OPT_HEIGHT_UNIT,
-    OPT_CHANNEL,
-    OPT_FILL,
-    OPT_RESAMPLE,
-    OPT_CROP,
-    OPT_DETREND,
-    OPT_ALIGN,
     OPT_WINDOW,
     OPT_HURST,
     OPT_SLOPE,
@@ -91,23 +83,14 @@ enum {
     OPT_PNG,
     OPT_PSD,
     OPT_HIST,
-    OPT_HELP,
-    OPT_NPY_ORDER
+    OPT_HELP
 };
 
 static const struct option LONG_OPTIONS[] = {{"n", required_argument, 0, OPT_N},
                                              {"m", required_argument, 0, OPT_M},
                                              {"delta", required_argument, 0, OPT_DELTA},
                                              {"hurst", required_argument, 0, OPT_HURST},
-                                             {"unit", required_argument, 0, OPT_UNIT},
-                                             {"height-unit", required_argument, 0, OPT_HEIGHT_UNIT},
-                                             {"channel", required_argument, 0, OPT_CHANNEL},
-                                             {"fill", no_argument, 0, OPT_FILL},
-                                             {"resample-square", no_argument, 0, OPT_RESAMPLE},
-                                             {"crop", required_argument, 0, OPT_CROP},
-                                             {"npy-order", required_argument, 0, OPT_NPY_ORDER},
-                                             {"detrend", required_argument, 0, OPT_DETREND},
-                                             {"align", required_argument, 0, OPT_ALIGN},
+                                             CLI_SURFACE_FILE_OPTIONS,
                                              {"window", required_argument, 0, OPT_WINDOW},
                                              {"slope", required_argument, 0, OPT_SLOPE},
                                              {"height-rms", required_argument, 0, OPT_HEIGHT},
@@ -150,15 +133,6 @@ static int apply_option(int code, const char *arg, void *state)
             return -1;
         o->read.set.delta_x = p->delta;
         return 0;
-    case OPT_UNIT: return cli_parse_length_unit("--unit", arg, o->read.set.lateral);
-    case OPT_HEIGHT_UNIT: return cli_parse_length_unit("--height-unit", arg, o->read.set.height);
-    case OPT_CHANNEL: return cli_parse_channel(arg, o->read.channel);
-    case OPT_FILL: o->read.fill = o->preparation_given = 1; return 0;
-    case OPT_NPY_ORDER: o->preparation_given = 1; return cli_parse_npy_order(arg, &o->read.npy_order);
-    case OPT_RESAMPLE: o->read.resample_square = o->preparation_given = 1; return 0;
-    case OPT_CROP: o->preparation_given = 1; return cli_parse_crop(arg, o->preparation.crop);
-    case OPT_DETREND: o->preparation_given = 1; return cli_parse_detrend(arg, &o->preparation.detrend);
-    case OPT_ALIGN: o->preparation_given = 1; return cli_parse_align(arg, &o->preparation.align);
     case OPT_WINDOW: o->preparation_given = 1; return cli_parse_taper(arg, &o->preparation.taper);
     case OPT_HURST: return cli_parse_double("--hurst", arg, 1e-6, 1 - 1e-6, &p->hurst);
     case OPT_SLOPE: p->target = IM_TARGET_SLOPE; return cli_parse_double("--slope", arg, 0, 1e6, &p->slope_rms);
@@ -175,7 +149,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_PNG: o->png = arg; return 0;
     case OPT_PSD: return cli_parse_path("--psd", arg, &o->psd);
     case OPT_HIST: o->histograms = arg; return 0;
-    default: return -1;
+    default: return cli_apply_surface_file_option(code, arg, &o->read, &o->preparation, &o->preparation_given);
     }
 }
 

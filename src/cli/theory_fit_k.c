@@ -180,7 +180,9 @@ int cli_theory_fit_k(const char *history, int csv)
         printf("slope_rms,%s\n%.17g,", PERIODIC_K_COLUMNS, run.slope_rms);
         periodic_k_fit_write_row(stdout, &k);
     } else {
-        periodic_k_fit_print(&k, run.slope_rms, run.slope_definition);
+        char line[1024];
+        periodic_k_fit_describe(&k, run.slope_rms, run.slope_definition, line, sizeof line);
+        printf("%s\n", line);
     }
     return CLI_EXIT_OK;
 }

@@ -11,6 +11,7 @@
 #include "indentmap/measure.h"
 #include "indentmap/render.h"
 #include "indentmap/solver.h"
+#include "indentmap/surface.h"
 #include "indentmap/theory.h"
 
 #include <jansson.h>
@@ -148,9 +149,9 @@ im_indenter periodic_rigid_flat(const im_field *surface);
 
 /* Those two rms into *edge_rms and *inner_rms; 1 when the surface is not periodic by that rule. */
 int periodic_edge_mismatch(const im_field *surface, double *edge_rms, double *inner_rms);
-/* The warning on stderr, naming the surface (name), when it is not periodic by that rule: the solver joins its
- * edges as if they met (as ContactMechanics warns). */
-void periodic_warn_if_not_periodic(const im_field *surface, const char *name);
+/* 1 with the warning in text ("warning: NAME is not periodic: ...", no newline) when the surface is not
+ * periodic by that rule: the solver joins its edges as if they met (as ContactMechanics warns); else 0. */
+int periodic_warning(const im_field *surface, const char *name, char *text, size_t size);
 
 /* k of eq. (2) fitted to a periodic history under a rigid flat (theory.h: im_theory_fit_k) over its steps
  * with a positive load, x = p_m / (h'rms E*), with the ranges of x and of A/A0 it spans. */
@@ -164,13 +165,31 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
 
 /* The fit's outputs, the same wherever it is made: the line `indent --periodic` and `theory --fit-k` print
  * (with the h'rms and its definition's name), and its columns in a CSV (a scene's k_fit.csv, `theory --fit-k
- * --format csv`): PERIODIC_K_COLUMNS and one row of them, 17 digits, with its newline. */
-void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
+ * --format csv`; the line without its newline): PERIODIC_K_COLUMNS and one row of them, 17 digits, with its newline. */
+void periodic_k_fit_describe(const periodic_k_fit *k, double slope_rms, const char *slope_definition, char *text,
+                             size_t size);
 extern const char PERIODIC_K_COLUMNS[];
 void periodic_k_fit_write_row(FILE *stream, const periodic_k_fit *k);
 /* Its block in run.json ("k_fit": k, k_error, rms_residual, points, the ranges, the h'rms and its definition,
  * k_linear or null); NULL when out of memory. */
 json_t *periodic_k_fit_record(const periodic_k_fit *k, double slope_rms, const char *slope_definition);
+
+/* ---- a surface file's preparation (preparation.c): what `indent` and `surface` do alike ---- */
+
+/* --crop (crop[2] = NX > 0), --align and --detrend, in that order. */
+typedef struct surface_preparation {
+    int crop[4]; /* X0, Y0, NX, NY */
+    enum im_detrend detrend;
+    enum im_row_alignment align;
+} surface_preparation;
+
+/* Replaces *surface by its crop, then aligns its rows and detrends it; the error names the option. */
+int surface_prepare(const surface_preparation *preparation, im_field **surface);
+/* 1 with the warning in text ("warning: PATH: --fill invented ...") when more than 5% of the points
+ * were filled; else 0. */
+int surface_fill_warning(const char *path, long filled, size_t points, char *text, size_t size);
+/* What was done, for records: "plane removed, cropped to 64 x 64 at (0, 0), rows aligned (median)". */
+void surface_preparation_describe(const surface_preparation *preparation, long filled, char *text, size_t size);
 
 /* ---- the files of one solved step (step_files.c): `indent --fields/--distributions` and a periodic
  * scene's contact panels and distributions ---- */
@@ -296,8 +315,9 @@ json_t *run_record_create(const char *program, const char *input_kind, const cha
 json_t *run_record_adhesion_law(const im_solver_options *options, const im_indenter *punch, double delta);
 
 /* With adhesion: the summary of rows[0..done) and DIR/force_distance.{png,pdf} (analysis_write_adhesion)
- * into *summary and the block law (the pull-off, the jumps, the lost work and the figure). 1 when
- * summarised; 0 when not (no step, or said on stderr). */
+ * into *summary and the block law (the pull-off, the jumps, the lost work and the figure). The
+ * summary's hysteresis_work is NaN when nothing was summarised (no step, or an error); returns the
+ * analysis' status (a figure that could not be written, say), for the caller to report. */
 int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
                                 const char *length_unit, const char *force_unit, const run_figure_texts *texts,
                                 im_adhesion_summary *summary);

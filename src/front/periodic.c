@@ -43,15 +43,17 @@ int periodic_edge_mismatch(const im_field *s, double *edge_rms, double *inner_rm
     return *edge_rms > PERIODIC_EDGE_RATIO * *inner_rms;
 }
 
-void periodic_warn_if_not_periodic(const im_field *surface, const char *name)
+int periodic_warning(const im_field *surface, const char *name, char *text, size_t size)
 {
     double edge, inner;
-    if (periodic_edge_mismatch(surface, &edge, &inner))
-        fprintf(stderr,
-                "indentmap: warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g "
-                "times those inside it (%.3g); --periodic joins its edges as if they met. Use a periodic "
-                "surface (indentmap surface generates them) or indent it on the half-space (no --periodic)\n",
-                name, edge, edge / inner, inner);
+    if (!periodic_edge_mismatch(surface, &edge, &inner))
+        return 0;
+    snprintf(text, size,
+             "warning: %s is not periodic: the steps across its edges have rms %.3g, %.3g times those inside it "
+             "(%.3g); --periodic joins its edges as if they met. Use a periodic surface (indentmap surface "
+             "generates them) or indent it on the half-space (no --periodic)",
+             name, edge, edge / inner, inner);
+    return 1;
 }
 
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,
@@ -83,13 +85,15 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
     return status;
 }
 
-void periodic_k_fit_print(const periodic_k_fit *k, double slope_rms, const char *slope_definition)
+void periodic_k_fit_describe(const periodic_k_fit *k, double slope_rms, const char *slope_definition, char *text,
+                             size_t size)
 {
     const im_theory_k_fit *fit = &k->fit;
-    printf("k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-           "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)\n",
-           fit->k, fit->k_error, k->points, k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0],
-           k->area_fraction[1], slope_rms, slope_definition, fit->k_linear, fit->linear_points);
+    snprintf(text, size,
+             "k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
+             "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)",
+             fit->k, fit->k_error, k->points, k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0],
+             k->area_fraction[1], slope_rms, slope_definition, fit->k_linear, fit->linear_points);
 }
 
 const char PERIODIC_K_COLUMNS[] = "points,k,k_error,rms_residual,k_linear,linear_points,pressure_ratio_min,"

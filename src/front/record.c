@@ -53,17 +53,17 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
                                 im_adhesion_summary *summary)
 {
     *summary = (im_adhesion_summary){.hysteresis_work = NAN}; /* NaN: not summarised */
-    if (done >= 1 && analysis_write_adhesion(dir, rows, done, length_unit, force_unit, texts, summary) != IM_OK)
-        fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+    int status = done >= 1 ? analysis_write_adhesion(dir, rows, done, length_unit, force_unit, texts, summary)
+                           : IM_OK;
     if (isnan(summary->hysteresis_work))
-        return 0;
+        return status;
     json_object_set_new(law, "pull_off_force", json_number(summary->pull_off_force));
     json_object_set_new(law, "pull_off_approach", json_number(summary->pull_off_approach));
     json_object_set_new(law, "jump_in_approach", json_number(summary->jump_in_approach));
     json_object_set_new(law, "jump_out_approach", json_number(summary->jump_out_approach));
     json_object_set_new(law, "hysteresis_work", json_real(summary->hysteresis_work));
     json_object_set_new(law, "figure", json_string("force_distance.png"));
-    return 1;
+    return status;
 }
 
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,

@@ -9,6 +9,7 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,13 +20,110 @@ static const char HISTORY_COLUMNS[] = "step,approach,load,load_star,contact_patc
                                       "yielding_patches,plastic_depth,plastic_work,residual_approach,"
                                       "tensile_force,adhesive_patches,repulsive_patches,mean_gap";
 
-enum { HISTORY_VALUES = 28 }; /* the columns above */
+enum { HISTORY_VALUES = IM_HISTORY_COLUMN_COUNT }; /* the columns above */
 
 /* Those im_history_format writes with %d or %ld. */
 static const char HISTORY_INTEGER_COLUMNS[] = "step,contact_patches,iterations,convolutions,patches,yielding_patches,"
                                               "adhesive_patches,repulsive_patches";
 
 const char *im_history_columns(void) { return HISTORY_COLUMNS; }
+
+/* Where each column's value is in a row, in the columns' order, and its type. */
+typedef enum { COLUMN_INT, COLUMN_LONG, COLUMN_DOUBLE } column_type;
+typedef struct column_member {
+    size_t offset;
+    column_type type;
+} column_member;
+#define MEMBER(member, type)                                                                                         \
+    {                                                                                                                \
+        offsetof(im_history_row, member), type                                                                       \
+    }
+static const column_member COLUMN_MEMBERS[HISTORY_VALUES] = {
+    MEMBER(step, COLUMN_INT),
+    MEMBER(result.approach, COLUMN_DOUBLE),
+    MEMBER(result.load, COLUMN_DOUBLE),
+    MEMBER(result.load_star, COLUMN_DOUBLE),
+    MEMBER(result.contact_patches, COLUMN_LONG),
+    MEMBER(result.area_ratio, COLUMN_DOUBLE),
+    MEMBER(result.mean_pressure, COLUMN_DOUBLE),
+    MEMBER(result.max_pressure, COLUMN_DOUBLE),
+    MEMBER(result.iterations, COLUMN_INT),
+    MEMBER(result.residual, COLUMN_DOUBLE),
+    MEMBER(result.seconds, COLUMN_DOUBLE),
+    MEMBER(result.convolutions, COLUMN_INT),
+    MEMBER(theory.load_smooth, COLUMN_DOUBLE),
+    MEMBER(theory.area_smooth, COLUMN_DOUBLE),
+    MEMBER(theory.area_ratio_constant, COLUMN_DOUBLE),
+    MEMBER(theory.area_ratio_gamma, COLUMN_DOUBLE),
+    MEMBER(stiffness, COLUMN_DOUBLE),
+    MEMBER(e_star_sneddon, COLUMN_DOUBLE),
+    MEMBER(patches, COLUMN_LONG),
+    MEMBER(perimeter, COLUMN_DOUBLE),
+    MEMBER(result.yielding_patches, COLUMN_LONG),
+    MEMBER(result.plastic_depth, COLUMN_DOUBLE),
+    MEMBER(result.plastic_work, COLUMN_DOUBLE),
+    MEMBER(result.residual_approach, COLUMN_DOUBLE),
+    MEMBER(result.tensile_force, COLUMN_DOUBLE),
+    MEMBER(result.adhesive_patches, COLUMN_LONG),
+    MEMBER(result.repulsive_patches, COLUMN_LONG),
+    MEMBER(result.mean_gap, COLUMN_DOUBLE),
+};
+
+int im_history_row_values(const im_history_row *row, double *values)
+{
+    ARG_REQUIRE(row, "row");
+    ARG_REQUIRE(values, "values");
+    for (int i = 0; i < HISTORY_VALUES; ++i) {
+        const char *member = (const char *)row + COLUMN_MEMBERS[i].offset;
+        switch (COLUMN_MEMBERS[i].type) {
+        case COLUMN_INT: values[i] = *(const int *)member; break;
+        case COLUMN_LONG: values[i] = (double)*(const long *)member; break;
+        default: values[i] = *(const double *)member;
+        }
+    }
+    return IM_OK;
+}
+
+/* The name of column i (0-based) into name. */
+static void column_name(int i, char *name, size_t size)
+{
+    const char *start = HISTORY_COLUMNS;
+    for (int k = 0; k < i; ++k)
+        start = strchr(start, ',') + 1;
+    snprintf(name, size, "%.*s", (int)strcspn(start, ","), start);
+}
+
+/* values[i] into its integer member; IM_EINVAL naming the column when it is not such an integer. */
+static int set_integer(const double *values, int i, char *member)
+{
+    const int is_int = COLUMN_MEMBERS[i].type == COLUMN_INT;
+    const double v = values[i], bound = is_int ? 2147483648.0 : 9007199254740992.0; /* 2^31; 2^53: exact */
+    if (!(v == floor(v) && fabs(v) < bound)) {
+        char name[64];
+        column_name(i, name, sizeof name);
+        return im_fail(IM_EINVAL, "im_history_row_from_values: %s = %g: expected an integer", name, v);
+    }
+    if (is_int)
+        *(int *)member = (int)v;
+    else
+        *(long *)member = (long)v;
+    return IM_OK;
+}
+
+int im_history_row_from_values(const double *values, im_history_row *row)
+{
+    ARG_REQUIRE(values, "values");
+    ARG_REQUIRE(row, "row");
+    int status = IM_OK;
+    for (int i = 0; i < HISTORY_VALUES && status == IM_OK; ++i) {
+        char *member = (char *)row + COLUMN_MEMBERS[i].offset;
+        if (COLUMN_MEMBERS[i].type == COLUMN_DOUBLE)
+            *(double *)member = values[i];
+        else
+            status = set_integer(values, i, member);
+    }
+    return status;
+}
 
 const char *im_history_integer_columns(void) { return HISTORY_INTEGER_COLUMNS; }
 
@@ -121,6 +219,8 @@ static int scan_row(const char *line, const char *end, im_history_row *row)
 static int row_is_finite(const im_history_row *row, int area)
 {
     const im_step_result *r = &row->result;
+    if (area == IM_HISTORY_AREA_ANY)
+        return isfinite(r->approach) && isfinite(r->load);
     int ratio_ok = r->load > 0 && area != IM_HISTORY_AREA_NONE ? isfinite(r->area_ratio) : isnan(r->area_ratio);
     int n_star_ok = area == IM_HISTORY_AREA_SMOOTH && r->load >= 0 ? isfinite(r->load_star) : isnan(r->load_star);
     return isfinite(r->approach) && isfinite(r->load) && n_star_ok && ratio_ok;

@@ -1,0 +1,466 @@
+/* One indentation run into its folder (indentmap/indent.h: im_indent_run), as `indentmap indent` and
+ * Python make it: the surface read and prepared, the punch, the solver, the folder, then the steps
+ * (indent_run.c), run.json (indent_record.c) and what follows the steps (indent_results.c). */
+#include "front/indent_run.h"
+#include "core/args.h"
+
+#include "indentmap/indent.h"
+#include "indentmap/io.h"
+#include "indentmap/status.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+im_indent_options im_indent_options_default(void)
+{
+    return (im_indent_options){.nx = 512,
+                               .ny = 512,
+                               .delta = 1,
+                               .slope_definition = -1,
+                               .punch = im_indenter_cone(80),
+                               .control = IM_CONTROL_DISPLACEMENT,
+                               .solver = im_solver_options_default(),
+                               .out = "output/indent"};
+}
+
+void indent_say(const indent_run_state *s, im_log_level level, const char *format, ...)
+{
+    if (!s->options->log)
+        return;
+    char line[8192];
+    va_list arguments;
+    va_start(arguments, format);
+    vsnprintf(line, sizeof line, format, arguments);
+    va_end(arguments);
+    s->options->log(s->options->user, level, line);
+}
+
+const char *indent_target_name(enum im_control control)
+{
+    return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean_gap" : "approach";
+}
+
+const char *indent_slope_definition_name(int definition)
+{
+    return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
+}
+
+static indent_files files_of(const im_indent_options *o)
+{
+    return (indent_files){o->fields || o->frames, o->solver.hardness, o->distributions, o->target_count};
+}
+
+run_folder_rules indent_folder_rules(const im_indent_options *o, const indent_files *files)
+{
+    return (run_folder_rules){.dir = o->out,
+                              .option = "--out",
+                              .lock_advice = "give this run another --out",
+                              .wisdom_advice = "give another --wisdom (or IM_FFTW_WISDOM) or another --out",
+                              .claims = indent_files_claims,
+                              .state = files};
+}
+
+int indent_run_check(const im_indent_options *o)
+{
+    const char *const inputs[] = {o->surface_path, o->profile_path};
+    const indent_files files = files_of(o);
+    const run_folder_rules rules = indent_folder_rules(o, &files);
+    return run_folder_check(&rules, inputs, 2, &o->solver);
+}
+
+/* ---- warnings ---- */
+
+/* Small-slope (linear) elasticity assumes the surface slopes are small; a steep cone's flank,
+ * slope cot(alpha), stretches it. Warn, but still solve: the answer is the model's, not nature's. */
+#define STEEP_CONE_DEGREES 60.0
+
+static void warn_if_steep(const indent_run_state *s)
+{
+    const im_indenter *punch = &s->punch;
+    if (punch->kind == IM_PUNCH_CONE && punch->alpha_degrees > 0 && punch->alpha_degrees < STEEP_CONE_DEGREES)
+        indent_say(s, IM_LOG_WARNING,
+                   "warning: alpha = %g degrees: the cone flank's slope cot(alpha) = %.3g is not small; small-slope "
+                   "elasticity is stretched (alpha >= %g advised)",
+                   punch->alpha_degrees, 1 / tan(punch->alpha_degrees * M_PI / 180), STEEP_CONE_DEGREES);
+}
+
+/* The same for the surface: the half-space's small-slope elasticity and the paper's theory assume
+ * slopes well below 1 and, for a cone, below its flank's; a measured part can be far beyond both
+ * (finding D17: a machined part with h'rms 1.15 under an 80 degree cone, flank 0.176). */
+static void warn_if_rough_beyond_small_slopes(const indent_run_state *s)
+{
+    const double flank = s->punch.kind == IM_PUNCH_CONE ? 1 / tan(s->punch.alpha_degrees * M_PI / 180) : INFINITY;
+    if (s->theory_slope > 1.0)
+        indent_say(s, IM_LOG_WARNING,
+                   "warning: the surface's h'rms = %.3g: slopes steeper than 45 degrees on average, where "
+                   "small-slope elasticity is stretched",
+                   s->theory_slope);
+    if (s->theory_slope > flank)
+        indent_say(s, IM_LOG_WARNING,
+                   "warning: the surface's h'rms = %.3g is %.3g times the cone flank's slope cot(alpha) = %.3g: the "
+                   "roughness, not the cone, shapes the contact, beyond the paper's theory (h'rms below cot(alpha))",
+                   s->theory_slope, s->theory_slope / flank, flank);
+}
+
+/* A measured surface beyond small slopes, or mostly filled. */
+static void warn_about_surface(const indent_run_state *s, const im_field *surface)
+{
+    if (s->smooth)
+        return;
+    warn_if_rough_beyond_small_slopes(s);
+    char warning[8192];
+    if (surface_fill_warning(s->options->surface_path, s->filled, im_field_count(surface), warning, sizeof warning))
+        indent_say(s, IM_LOG_WARNING, "%s", warning);
+}
+
+/* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
+static void warn_if_zone_unresolved(const indent_run_state *s)
+{
+    const double patches = im_adhesion_zone_length(&s->options->solver) / s->surface_delta;
+    if (patches < 1)
+        indent_say(s, IM_LOG_WARNING,
+                   "warning: the adhesive zone's length pi E* D^2 / (8 W) = %.3g patches is below one patch: the "
+                   "grid does not resolve it and the pull-off comes out too strong (a sphere: 8%% at 0.33 patches, 5 "
+                   "times at 0.03; 0.6%% at 3): use a finer delta or a wider --adhesion-range",
+                   patches);
+}
+
+/* ---- the surface and the punch ---- */
+
+static int load_surface(indent_run_state *s, im_field **surface)
+{
+    const im_indent_options *o = s->options;
+    if (!s->smooth) {
+        int status = im_surface_read_with(o->surface_path, &o->read, surface, &s->read_info);
+        s->filled = status == IM_OK ? s->read_info.filled : 0;
+        const surface_preparation preparation = {{o->crop[0], o->crop[1], o->crop[2], o->crop[3]},
+                                                 o->detrend,
+                                                 o->align};
+        return status == IM_OK ? surface_prepare(&preparation, surface) : status;
+    }
+    int status = im_field_create(o->nx, o->ny, o->delta, surface);
+    if (status == IM_OK)
+        memcpy((*surface)->unit, o->read.set.lateral, sizeof(*surface)->unit);
+    return status;
+}
+
+/* The profile, read now that the surface's spacing (a 2-D profile's) and length unit are known. */
+static int load_profile(indent_run_state *s, const im_field *surface)
+{
+    if (!s->options->profile_path)
+        return IM_OK;
+    int status = im_profile_read(s->options->profile_path, surface->delta, &s->profile);
+    if (status != IM_OK)
+        return im_fail_context(status, "--profile");
+    const im_indenter given = s->punch;
+    s->punch = im_indenter_from_profile(s->profile);
+    s->punch.centred = given.centred;
+    s->punch.x0 = given.x0;
+    s->punch.y0 = given.y0;
+    return im_indenter_check(&s->punch);
+}
+
+/* A periodic cell: the rigid flat when no punch was given (a flat punch wider than the cell's diagonal
+ * covers every nearest image), loads from mean pressures, and a warning when the surface is not
+ * periodic (the solver joins its edges, as ContactMechanics warns). */
+static void prepare_periodic(indent_run_state *s, const im_field *surface)
+{
+    const im_indent_options *o = s->options;
+    if (!o->solver.periodic)
+        return;
+    s->cell_area = periodic_cell_area(surface);
+    if (!o->punch_given)
+        s->punch = periodic_rigid_flat(surface);
+    for (int i = 0; o->pressures && i < o->target_count; ++i)
+        s->targets[i] *= s->cell_area;
+    char warning[8192];
+    if (periodic_warning(surface, s->smooth ? "the surface" : o->surface_path, warning, sizeof warning))
+        indent_say(s, IM_LOG_WARNING, "%s", warning);
+}
+
+/* A punch placed off its centre must have its axis on the surface (before: "the surface is too small"). */
+static int check_axis_inside(const indent_run_state *s, const im_field *surface)
+{
+    const im_indenter *p = &s->options->punch;
+    double width = surface->nx * surface->delta, height = surface->ny * surface->delta;
+    if (p->centred || (p->x0 >= 0 && p->x0 <= width && p->y0 >= 0 && p->y0 <= height))
+        return IM_OK;
+    return im_fail(IM_EINVAL,
+                   "--x %g --y %g: the punch's axis lies outside the %d x %d surface (expected 0 <= x <= "
+                   "%g and 0 <= y <= %g)",
+                   p->x0, p->y0, surface->nx, surface->ny, width, height);
+}
+
+/* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
+ * The h'rms is the options' definition, else spectral for a surface known to be periodic (generated: its
+ * sidecar names the generator; flat; solved as a periodic cell) and forward differences for a measured
+ * one (the rule of scenes and of Python). */
+static int measured_interface(indent_run_state *s, const im_field *surface, im_theory_interface *rough)
+{
+    const im_indent_options *o = s->options;
+    json_t *generator = indent_surface_generator(o->surface_path);
+    const int generated = s->smooth || generator;
+    json_decref(generator);
+    s->slope_definition = o->slope_definition;
+    if (s->slope_definition < 0) {
+        s->slope_definition = generated || o->solver.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+        s->slope_reason = generated            ? "default: a generated surface"
+                          : o->solver.periodic ? "default: a periodic cell"
+                                               : "default: a measured surface";
+    } else {
+        s->slope_reason = "--slope-definition";
+    }
+    double slope;
+    int status = im_surface_slope_rms(surface, (enum im_slope_definition)s->slope_definition, &slope);
+    if (status == IM_OK) {
+        *rough = im_theory_interface_default(slope);
+        rough->e_star = o->solver.e_star;
+        s->theory_slope = slope;
+    }
+    return status;
+}
+
+/* The unit of the distributions' gaps: the surface's h_rms, its delta when it is flat. */
+static int set_gap_scale(indent_run_state *s, const im_field *surface)
+{
+    im_surface_stats stats;
+    int status = im_surface_statistics(surface, &stats);
+    if (status == IM_OK)
+        s->gap_scale = stats.height_rms > 0.0 ? stats.height_rms : surface->delta;
+    return status;
+}
+
+/* The surface read and prepared, the punch placed on it, what the run derives from both. */
+static int prepare_surface(indent_run_state *s, im_field **surface, im_theory_interface *rough)
+{
+    int status = s->punch.kind == IM_PUNCH_PROFILE ? IM_OK /* checked once read, after the surface */
+                                                   : im_indenter_check(&s->punch);
+    if (status == IM_OK) {
+        warn_if_steep(s);
+        status = load_surface(s, surface);
+    }
+    if (status == IM_OK)
+        status = load_profile(s, *surface);
+    if (status == IM_OK) {
+        prepare_periodic(s, *surface);
+        status = check_axis_inside(s, *surface);
+    }
+    if (status == IM_OK) {
+        s->surface_delta = (*surface)->delta;
+        memcpy(s->length_unit, (*surface)->unit, sizeof s->length_unit);
+        step_force_unit(s->options->e_star_unit ? s->options->e_star_unit : "", (*surface)->unit, s->force_unit,
+                        sizeof s->force_unit);
+        status = measured_interface(s, *surface, rough);
+    }
+    if (status == IM_OK)
+        warn_about_surface(s, *surface);
+    return status == IM_OK ? set_gap_scale(s, *surface) : status;
+}
+
+/* ---- the steps ---- */
+
+/* Once per run: a contact of a few patches is below the grid's resolution (a smooth cone at 1 patch
+ * carries 2.4x Love's load, at 9 patches 1.05x; issue 32), which nothing else would say. */
+enum { RESOLVED_PATCHES = 10 };
+static void warn_if_unresolved(const indent_run_state *s, const im_history_row *rows, int i)
+{
+    const long n = rows[i].result.contact_patches;
+    for (int k = 0; k < i; ++k)
+        if (rows[k].result.contact_patches > 0 && rows[k].result.contact_patches < RESOLVED_PATCHES)
+            return; /* said already */
+    if (n > 0 && n < RESOLVED_PATCHES)
+        indent_say(s, IM_LOG_WARNING,
+                   "warning: step %d: the contact covers %ld patch%s, too few for the grid to resolve it (a smooth "
+                   "cone carries 2.4x Love's load at 1 patch, 1.05x at 9): use a finer delta or a larger approach or "
+                   "load",
+                   i + 1, n, n == 1 ? "" : "es");
+}
+
+/* What the step line's area ratio divides by: the cell (periodic), or the smooth punch's area at the
+ * load (the history's area_ratio, indenter.h). */
+static const char *area_ratio_name(const indent_run_state *s)
+{
+    if (s->options->solver.periodic)
+        return "A/A0";
+    switch (s->punch.kind) {
+    case IM_PUNCH_CONE: return "A/A_cone";
+    case IM_PUNCH_SPHERE: return "A/A_Hertz";
+    case IM_PUNCH_FLAT: return "A/A_punch";
+    default: return "A/A_smooth";
+    }
+}
+
+/* The step just solved (indent_run.h's stepped): a warning for a contact too small, its line, the progress. */
+static void report_step(const im_history_row *rows, int i, const void *state)
+{
+    const indent_run_state *s = state;
+    warn_if_unresolved(s, rows, i);
+    const im_step_result *r = &rows[i].result;
+    char gap[48] = "";
+    if (s->options->solver.periodic)
+        snprintf(gap, sizeof gap, "  mean gap = %.6g", r->mean_gap);
+    indent_say(s, IM_LOG_INFO,
+               "step %d: w = %.6g%s  N = %.6g  n_p = %ld  %s = %.4f  iterations %d  residual %.2e  %.3f s", i + 1,
+               r->approach, gap, r->load, r->contact_patches, area_ratio_name(s), r->area_ratio, r->iterations,
+               r->residual, r->seconds);
+    if (s->options->progress)
+        s->options->progress(s->options->user, "steps", i + 1, s->options->target_count);
+}
+
+/* The signal that asked to stop, or 0 (indent_run.h's stop). */
+static int stop_signal(const void *state)
+{
+    const indent_run_state *s = state;
+    return s->options->stop ? (int)*s->options->stop : 0;
+}
+
+/* The steps (indent_run.h: indent_run_steps), then what follows them of those done, also after a
+ * failure; run.json finished. */
+static int run_steps(indent_run_state *s, const im_theory_interface *rough, im_indentation *run,
+                     history_file *history, im_render_context *context, const run_folder *folder, json_t *record)
+{
+    const im_indent_options *o = s->options;
+    im_history_row *rows = calloc((size_t)o->target_count, sizeof *rows);
+    if (!rows)
+        return im_fail(IM_ENOMEM, "history of %d steps", o->target_count);
+    const indent_run_plan plan = {.dir = o->out,
+                                  .punch = &s->punch,
+                                  .rough = o->solver.periodic ? NULL : rough,
+                                  .targets = s->targets,
+                                  .count = o->target_count,
+                                  .target_name = indent_target_name(o->control),
+                                  .files = s->files,
+                                  .units = {o->solver.hardness, s->length_unit, s->force_unit},
+                                  .gap_scale = s->gap_scale,
+                                  .stop = stop_signal,
+                                  .stepped = report_step,
+                                  .state = s};
+    int done = 0;
+    int status = indent_run_steps(&plan, run, history, rows, &done);
+    indent_run_results(s, rough, rows, done, context, record, &status);
+    free(rows);
+    return run_folder_record(folder, record, done, status);
+}
+
+/* ---- the folder ---- */
+
+/* Makes and locks the folder (a stale lock taken over is a warning), then removes what an earlier run
+ * left there that this one would not replace (indent_run.h: indent_files_clear). */
+static int prepare_folder(const indent_run_state *s, run_folder *folder)
+{
+    const run_folder_rules rules = indent_folder_rules(s->options, &s->files);
+    int status = run_folder_open(&rules, 0, folder); /* the folder may be any: not its subfolders */
+    if (status != IM_OK)
+        return status;
+    if (folder->lock.stale_pid > 0)
+        indent_say(s, IM_LOG_WARNING, "taking over the stale lock %s of pid %ld, which no longer runs",
+                   folder->lock.path, folder->lock.stale_pid);
+    return indent_files_clear(s->options->out);
+}
+
+/* The record, with its inputs, and the figures' texts; the history started. A failure here is said in
+ * run.json (no step solved: the record says why, not an earlier run's). */
+static int start_record(indent_run_state *s, const im_field *surface, const im_indentation *run,
+                        const run_folder *folder, history_file *history, json_t **record)
+{
+    const im_indent_options *o = s->options;
+    im_window w = im_indentation_window(run);
+    indent_say(s, IM_LOG_INFO, "surface %d x %d, window [%d, %d) x [%d, %d) (%d x %d), %d threads, device %s",
+               surface->nx, surface->ny, w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny, w.nx, w.ny, omp_get_max_threads(),
+               im_solver_plan_device(im_indentation_plan(run)));
+    *record = indent_run_record(s, surface, run);
+    int status = *record ? indent_run_record_inputs(o, *record) : im_fail(IM_ENOMEM, "run record");
+    const im_png_text command = {"Command", o->command};
+    if (status == IM_OK)
+        status = run_figure_texts_make(&command, o->command ? 1 : 0, json_object_get(*record, "inputs"),
+                                       &s->figure_texts);
+    if (status == IM_OK)
+        status = history_start(o->out, history);
+    if (*record && status != IM_OK)
+        run_folder_record(folder, *record, 0, status);
+    return status;
+}
+
+/* out/index.html over what the run left, even after a failure; the run's own error, if any, stays the
+ * one reported. */
+static int write_viewer_page(const indent_run_state *s, const run_folder *folder, int status)
+{
+    char title[1024];
+    snprintf(title, sizeof title, "indentmap indent: %s", s->smooth ? "smooth surface" : s->options->surface_path);
+    return run_folder_page(folder, title, s->options->page_embed, status);
+}
+
+/* The largest |target| (approaches below 0 pull away, with adhesion). */
+static double largest(const double *v, int n)
+{
+    double m = 0;
+    for (int i = 0; i < n; ++i)
+        m = fmax(m, fabs(v[i]));
+    return m;
+}
+
+/* The solver on the prepared surface, the folder and the record, the steps, the page. */
+static int run_on(indent_run_state *s, const im_field *surface, const im_theory_interface *rough)
+{
+    const im_indent_options *o = s->options;
+    im_render_context *context = NULL; /* frames: opened before any step is solved */
+    im_indentation *run = NULL;
+    json_t *record = NULL;
+    int status = o->frames ? im_render_open((im_render_backend)o->backend, &context) : IM_OK;
+    if (status == IM_OK)
+        status = im_indentation_create(surface, &s->punch, o->control, largest(s->targets, o->target_count),
+                                       &o->solver, &run);
+    if (status == IM_OK && o->solver.adhesion_work > 0)
+        warn_if_zone_unresolved(s);
+    run_folder folder = {.lock = {.fd = -1}};
+    history_file history = {.fd = -1};
+    if (status == IM_OK)
+        status = prepare_folder(s, &folder);
+    if (status == IM_OK)
+        status = start_record(s, surface, run, &folder, &history, &record);
+    if (status == IM_OK)
+        status = run_steps(s, rough, run, &history, context, &folder, record);
+    history_close(&history);
+    if (record)
+        status = write_viewer_page(s, &folder, status);
+    run_folder_close(&folder);
+    im_render_close(context);
+    json_decref(record);
+    im_indentation_free(run);
+    return status;
+}
+
+int im_indent_run(const im_indent_options *options)
+{
+    ARG_REQUIRE(options, "options");
+    ARG_REQUIRE(options->out, "options->out");
+    ARG_REQUIRE(options->targets, "options->targets");
+    if (options->target_count < 1 || options->target_count > IM_HISTORY_MAX_STEPS)
+        return im_fail(IM_EINVAL, "im_indent_run: options->target_count %d: expected 1 to %d", options->target_count,
+                       IM_HISTORY_MAX_STEPS);
+    int status = indent_run_check(options);
+    if (status != IM_OK)
+        return status;
+    indent_run_state s = {.options = options,
+                          .smooth = options->surface_path == NULL,
+                          .files = files_of(options),
+                          .punch = options->punch};
+    s.targets = malloc(sizeof(double) * (size_t)options->target_count);
+    if (!s.targets)
+        return im_fail(IM_ENOMEM, "%d targets", options->target_count);
+    memcpy(s.targets, options->targets, sizeof(double) * (size_t)options->target_count);
+    im_field *surface = NULL;
+    im_theory_interface rough;
+    status = prepare_surface(&s, &surface, &rough);
+    if (status == IM_OK)
+        status = run_on(&s, surface, &rough);
+    im_profile_free(s.profile); /* after the run that borrowed it */
+    im_field_free(surface);
+    free(s.targets);
+    run_figure_texts_free(&s.figure_texts);
+    return status;
+}
