@@ -16,7 +16,7 @@ ONLY_THE_PROGRAMS = {"arguments"}
 
 
 def history_without_seconds(path):
-    rows = [line.split(",") for line in open(path).read().splitlines()]
+    rows = [line.split(",") for line in open(path, encoding="utf-8").read().splitlines()]
     i = rows[0].index("seconds")
     return [r[:i] + r[i + 1:] for r in rows]
 
@@ -26,7 +26,7 @@ def record_without(path, keys):
         if isinstance(x, dict):
             return {k: strip(v) for k, v in x.items() if k not in keys}
         return [strip(v) for v in x] if isinstance(x, list) else x
-    return strip(json.load(open(path)))
+    return strip(json.load(open(path, encoding="utf-8")))
 
 
 def assert_same_folder(cli_out, py_out):
@@ -53,7 +53,7 @@ def test_the_programs_folder_for_a_loading_cycle(cli, tmp_path):
     assert out == str(tmp_path / "py")
     assert_same_folder(tmp_path / "cli", tmp_path / "py")
     assert os.path.exists(tmp_path / "py" / "indentation.csv")
-    assert json.load(open(tmp_path / "py" / "run.json"))["arguments"] == []
+    assert json.load(open(tmp_path / "py" / "run.json", encoding="utf-8"))["arguments"] == []
     assert done == [("steps", i, 6) for i in range(1, 7)]
     steps = [text for level, text in lines if level == logging.INFO and text.startswith("step ")]
     assert len(steps) == 6 and steps[0].startswith("step 1: w = 1  N = ")
@@ -67,7 +67,7 @@ def test_the_programs_folder_for_a_periodic_file(cli, tmp_path):
     im.indent_run(tmp_path / "cell.npy", tmp_path / "py", None, pressures=[0.01, 0.03], periodic=True,
                   log=lambda level, text: None)
     assert_same_folder(tmp_path / "cli", tmp_path / "py")
-    assert "k_fit" in json.load(open(tmp_path / "py" / "run.json"))
+    assert "k_fit" in json.load(open(tmp_path / "py" / "run.json", encoding="utf-8"))
 
 
 def test_the_programs_errors(tmp_path):
