@@ -250,7 +250,7 @@ static int stop_signal(pk_run *r)
  * rule's own terms: its largest penetration PENETRATION_LEAD times the rms gap on I_c. A few
  * penetrating patches never win the sums against the gaps of a large I_c, and the CG steps meanwhile
  * take the rms gap far below what the stopping rule needs while the penetration, which only a join
- * step reduces, holds the residual (measured in docs/benchmarks.md, "Periodic solves"). */
+ * step reduces, holds the residual (docs/benchmarks.md, "Joins by the stopping rule's terms"). */
 static const double PENETRATION_LEAD = 4;
 
 static int joining_pays(const gap_stats *s)
