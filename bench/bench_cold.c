@@ -14,14 +14,12 @@
  * load difference and the patches whose contact state differs. --measure plans with FFTW_MEASURE (the
  * planning time of the first plan is printed: later ones of the same sizes reuse the process's wisdom).
  */
-#include "bench_common.h"
-#include "core/fft_threads.h"
+#include "bench_fft.h"
 #include "indentmap/indenter.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 
-#include <fftw3.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -33,44 +31,6 @@ static void die(int status, const char *what)
 {
     fprintf(stderr, "bench_cold: %s: %s (%s)\n", what, im_last_error(), im_strstatus(status));
     exit(1);
-}
-
-static double cpu_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* One forward r2c + inverse c2r FFTW_ESTIMATE transform pair of a px x py grid at the process's thread
- * count (the solver's floor): its CPU and wall seconds, medians of PAIR_REPEATS. */
-enum { PAIR_REPEATS = 21 };
-typedef struct pair_time {
-    double cpu, wall;
-} pair_time;
-
-static pair_time fft_pair_time(int px, int py)
-{
-    double *real = fftw_malloc(sizeof(double) * (size_t)px * py);
-    fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * (size_t)py * (px / 2 + 1));
-    fft_prepare_planner();
-    fftw_plan f = fftw_plan_dft_r2c_2d(py, px, real, modes, FFTW_ESTIMATE);
-    fftw_plan b = fftw_plan_dft_c2r_2d(py, px, modes, real, FFTW_ESTIMATE);
-    for (size_t i = 0; i < (size_t)px * py; ++i)
-        real[i] = (double)(i % 7) * 0.1;
-    double cpu[PAIR_REPEATS], wall[PAIR_REPEATS];
-    for (int r = 0; r < PAIR_REPEATS; ++r) {
-        double start = cpu_now(), start_wall = omp_get_wtime();
-        fftw_execute(f);
-        fftw_execute(b);
-        cpu[r] = cpu_now() - start;
-        wall[r] = omp_get_wtime() - start_wall;
-    }
-    fftw_destroy_plan(f);
-    fftw_destroy_plan(b);
-    fftw_free(real);
-    fftw_free(modes);
-    return (pair_time){bench_median(cpu, PAIR_REPEATS), bench_median(wall, PAIR_REPEATS)};
 }
 
 typedef struct cold_solve {
@@ -90,11 +50,11 @@ static cold_solve solve_cold(const im_field *surface, double approach, const im_
         die(status, "im_indentation_create");
     cold_solve c = {.window = im_indentation_window(run),
                     .plan_seconds = im_solver_plan_seconds(im_indentation_plan(run))};
-    double wall = bench_now(), cpu = cpu_now();
+    double wall = bench_now(), cpu = bench_cpu_now();
     if ((status = im_indentation_step(run, approach, &c.step)) != IM_OK)
         die(status, "im_indentation_step");
     c.wall = bench_now() - wall;
-    c.cpu = cpu_now() - cpu;
+    c.cpu = bench_cpu_now() - cpu;
     c.coarse_iterations = c.step.coarse_iterations;
     if (keep && (status = im_indentation_fields(run, &c.force, NULL, NULL)) != IM_OK)
         die(status, "im_indentation_fields");
@@ -182,7 +142,7 @@ int main(int argc, char **argv)
         wall[r] = c.wall;
         cpu[r] = c.cpu;
     }
-    const pair_time pair = fft_pair_time(2 * c.window.nx, 2 * c.window.ny);
+    const bench_pair_time pair = bench_fft_pair_time(2 * c.window.nx, 2 * c.window.ny);
     const double floor = pair.cpu;
     const double cpu_median = bench_median(cpu, repeats);
     printf("n %d, threads %d, tol %g, cascade %d, precondition %d: window %d x %d, w %.4f, n_p %ld, N %.10g\n", n,
@@ -193,7 +153,7 @@ int main(int argc, char **argv)
            c.step.iterations, c.step.convolutions, c.coarse_iterations, bench_median(wall, repeats), cpu_median,
            repeats, cpu_median / floor, cpu_median / floor / c.step.iterations, 1e3 * floor, bench_peak_rss_mib());
     printf("  FFT pair of the padded window %d x %d: wall %.3f ms, CPU %.3f ms (medians of %d)\n", 2 * c.window.nx,
-           2 * c.window.ny, 1e3 * pair.wall, 1e3 * pair.cpu, PAIR_REPEATS);
+           2 * c.window.ny, 1e3 * pair.wall, 1e3 * pair.cpu, BENCH_PAIR_REPEATS);
     printf("  planning %.3f s wall (FFTW_%s, the first plan of the process)\n", first_plan,
            measure ? "MEASURE" : "ESTIMATE");
     im_field_free(surface);

@@ -52,7 +52,8 @@
  * the nx x ny grid (unpadded: a transform pair a quarter of a convolution's size), and 3-5x fewer
  * iterations. Patches join (p = -tau g for g < 0 outside I_c) only in a plain PK step,
  * taken when the penetration outside I_c outweighs the gap left on it, sum over p = 0, g < 0 of g^2
- * > sum over I_c of g^2 (Dostal's proportioning test); the next step restarts the conjugacy.
+ * > sum over I_c of g^2 (Dostal's proportioning test), or its largest value > 4 times the rms gap
+ * on I_c (the stopping rule's terms); the next step restarts the conjugacy.
  * Letting patches join in every step, as plain PK does, restarted the conjugacy at almost every
  * step. Clipping may shrink I_c in any step. In the periodic mode K is circulant and M is its exact
  * inverse E* |q| / 2 (0 on the mean mode). Neither this nor the cascade below is used with a
