@@ -157,6 +157,8 @@ refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha 
 refuse "adhesion at mean pressures" "" "steps = 0.01" "$sticky" \
     "bad.ini:12: [adhesion] with [punch] periodic takes [loading] control = mean_gap: a mean pressure on an adhesive cell is not available"
 refuse "adhesion" "" "steps = 0.01" $'[adhesion]\nwork = 0.1\nrange = 1' "[adhesion] with [punch] periodic"
+refuse "adhesion with a hardness" "" $'control = mean_gap\nsteps = 0.5' $'[adhesion]\nwork = 0.1\nrange = 1\n[material]\nhardness = 1' \
+    "[adhesion] with [material] hardness and [punch] periodic: adhesion with plasticity is solved on the half-space only"
 refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
 refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"
 refuse "mean gaps that rise without a hardness" "" $'control = mean_gap\nsteps = 0.2, 0.3' "" "steps must decrease"

@@ -801,10 +801,6 @@ static void refusals(void **state)
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_LOAD, 1, &o, &run), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "mean-gap control on a periodic cell"));
     o.periodic = 0;
-    o.hardness = 0.1;
-    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "adhesion under a hardness"));
-    o.hardness = 0;
     assert_int_equal(im_solver_plan_create(24, 24, 1.0, &o, &plan), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "acts in an indentation"));
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_OK);

@@ -434,8 +434,8 @@ static int apply_option(int code, const char *arg, void *state)
 }
 
 /* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap control on
- * a periodic cell, without a hardness (a negative target is refused by the step list's parser without
- * adhesion). 0, or -1 with the message said. */
+ * a periodic cell, a hardness on the half-space only (a negative target is refused by the step list's parser
+ * without adhesion). 0, or -1 with the message said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
@@ -451,8 +451,9 @@ static int check_adhesion_options(const indent_options *o)
                 o->solver.periodic
                     ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
                     : "--approach or --load");
-    else if (adhesion && o->solver.hardness > 0)
-        fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
+    else if (adhesion && o->solver.hardness > 0 && o->solver.periodic)
+        fprintf(stderr, "indentmap: --adhesion-work with --hardness and --periodic: adhesion with plasticity is "
+                        "solved on the half-space only (drop --periodic or --hardness)\n");
     else
         return 0;
     return -1;
@@ -927,15 +928,17 @@ static void warn_if_zone_unresolved(const indent_options *o)
 }
 
 /* The smooth punch's adhesive theory (front.h: a sphere's Maugis-Dugdale, a flat punch's Kendall) beside the
- * measured pull-off in run.json's "adhesion" block ("theory": null for the other punches or a rough
- * surface) and adhesion_theory.csv beside the history. */
+ * measured pull-off in run.json's "adhesion" block ("theory": null for the other punches, a rough surface or
+ * a hardness) and adhesion_theory.csv beside the history. */
 static void write_adhesion_theory(const indent_options *o, const im_history_row *rows, int done, json_t *law)
 {
     const im_theory_adhesion theory = {o->solver.e_star, o->solver.adhesion_work, o->solver.adhesion_range};
     const char *model = NULL;
     im_theory_adhesive_point pull_off;
-    /* (a periodic cell's flat is not a punch on a half-space, and the theories are the Maugis-Dugdale law's) */
-    const int smooth_punch = o->smooth && !o->solver.periodic && o->solver.adhesion_law == IM_ADHESION_MAUGIS_DUGDALE;
+    /* (a periodic cell's flat is not a punch on a half-space, and the theories are the Maugis-Dugdale law's, on an
+     * elastic body: no hardness) */
+    const int smooth_punch = o->smooth && !o->solver.periodic &&
+                             o->solver.adhesion_law == IM_ADHESION_MAUGIS_DUGDALE && !(o->solver.hardness > 0);
     int status = smooth_punch ? adhesion_theory_pull_off(&o->punch, &theory, &model, &pull_off) : IM_OK;
     if (status == IM_OK && model)
         status = adhesion_theory_write(o->out, &o->punch, &theory, rows, done);
