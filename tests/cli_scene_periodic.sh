@@ -65,7 +65,11 @@ scene "$dir/sticky.ini" cell.npy "" $'control = mean_gap\nsteps = 1.5, 1, 0.5, 1
     "$sticky"$'\n[output]\ncontact_panels = yes' sticky
 check "an adhesive cell's scene runs" "$cli" run "$dir/sticky.ini" > /dev/null 2>&1
 "$cli" indent "$dir/cell.npy" --periodic --mean-gap 1.5,1,0.5,1,1.5 --adhesion-work 0.001 --adhesion-range 0.5 \
-    --out "$dir/indent_sticky" > /dev/null
+    --out "$dir/indent_sticky" > "$dir/indent_sticky.out"
+# its loop's jumps lie between the steps, and at mean gap 1 the retraction's zone is one patch short of the
+# approach's: the trapezoids' -0.0003 is theirs, not a work lost
+check "its loop's work is stated as not resolved, with its error" grep -q \
+    "work lost not resolved by the steps: -0.000298703 within the trapezoids' error +- 0.34" "$dir/indent_sticky.out"
 check "its history is indent --periodic --mean-gap --adhesion-work's" \
     cmp <(rows "$dir/sticky/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_sticky/history.csv")
 check "the cell pulls out of contact" awk -F, '/^[0-9]/ && $3 < 0 && $5 == 0 { pulled = 1 } END { exit !pulled }' \

@@ -974,11 +974,17 @@ static void write_adhesion(const indent_options *o, const im_history_row *rows, 
     json_object_set_new(law, "jump_in_approach", json_number(summary.jump_in_approach));
     json_object_set_new(law, "jump_out_approach", json_number(summary.jump_out_approach));
     json_object_set_new(law, "hysteresis_work", json_real(summary.hysteresis_work));
+    json_object_set_new(law, "hysteresis_error", json_real(summary.hysteresis_error));
     json_object_set_new(law, "figure", json_string("force_distance.png"));
-    printf("adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
-           "work lost %.6g; %s/force_distance.png and .pdf\n",
-           summary.pull_off_force, summary.pull_off_approach, summary.jump_in_approach, summary.jump_out_approach,
-           summary.hysteresis_work, o->out);
+    printf("adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; ",
+           summary.pull_off_force, summary.pull_off_approach, summary.jump_in_approach, summary.jump_out_approach);
+    if (fabs(summary.hysteresis_work) > summary.hysteresis_error)
+        printf("work lost %.6g (+- %.2g, the steps' trapezoids)", summary.hysteresis_work, summary.hysteresis_error);
+    else /* the loop lies between the steps: its sign and size are the trapezoids' error */
+        printf("work lost not resolved by the steps: %.6g within the trapezoids' error +- %.2g (finer steps around "
+               "the jumps resolve it)",
+               summary.hysteresis_work, summary.hysteresis_error);
+    printf("; %s/force_distance.png and .pdf\n", o->out);
     write_adhesion_theory(o, rows, done, law);
 }
 
