@@ -71,7 +71,7 @@ python3 - "$DIR/sticky/run.json" <<'PY' || fail "run.json's adhesion block: $(gr
 import json, sys
 a = json.load(open(sys.argv[1]))["adhesion"]
 assert abs(a["pull_off_force"] / 17.07 - 1) < 0.03, a
-assert a["jump_in_approach"] > a["jump_out_approach"] + 0.2 and a["hysteresis_work"] > 0, a
+assert a["jump_in_approach"] > a["jump_out_approach"] + 0.2 and a["hysteresis_work"] > 5 * a["hysteresis_error"] > 0, a
 assert abs(a["maugis_lambda"] - 1) < 1e-4 and abs(a["zone_length_patches"] - 3.0) < 1e-3, a
 t = a["theory"]
 assert t["model"] == "Maugis-Dugdale sphere" and abs(t["pull_off_force"] / 17.07 - 1) < 1e-3, t
@@ -132,8 +132,24 @@ PY
 [ $? -eq 2 ] && grep -q "pull-off force under load control" "$DIR/sticky-off.err" \
     && [ "$(($(wc -l < "$DIR/sticky-off/history.csv") - 1))" -eq "$(($(wc -l < "$DIR/sticky-load/history.csv") - 1))" ] \
     || fail "a load beyond the pull-off under load control: $(cat "$DIR/sticky-off.err")"
+# ... and with a hardness below its peak pressure (H = 0.06): no net pressure above H, the plastic depth kept on
+# the retraction, a pull-off stronger than the elastic sphere's (the flattened contact is wider), and no elastic
+# theory beside it.
+"$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+    --hardness 0.06 --approach -1:2:16,1.9:-1.5:35 --out "$DIR/sticky-hard" > "$DIR/sticky-hard.log" \
+    || fail "adhesion with --hardness exited $?"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+         { p = $c["max_pressure"]; if (p > 0.06 * (1 + 1e-12)) exit 1; if (p >= 0.06 * (1 - 1e-12)) capped = 1
+           d = $c["plastic_depth"]; if (NR > 17 && d != top) exit 1; if (NR == 17) top = d }
+         END { if (!capped || !(top > 0.5)) exit 1 }' "$DIR/sticky-hard/history.csv" \
+    || fail "adhesion with --hardness: history $(cut -d, -f2,8,22 "$DIR/sticky-hard/history.csv" | tr '\n' ' ')"
+python3 - "$DIR/sticky-hard/run.json" <<'PY' || fail "adhesion with --hardness, run.json: $(grep -A16 '"adhesion"' "$DIR/sticky-hard/run.json")"
+import json, sys
+a = json.load(open(sys.argv[1]))["adhesion"]
+assert a["pull_off_force"] > 1.5 * 17.17 and a["theory"] is None, a
+PY
 for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
-           "--adhesion-work 0.1 --adhesion-range 1 --hardness 1 --approach 1|with --hardness" \
+           "--periodic --adhesion-work 0.1 --adhesion-range 1 --hardness 1 --mean-gap 1|with --hardness and --periodic" \
            "--periodic --adhesion-work 0.1 --adhesion-range 1 --pressure 0.01|takes --mean-gap with --periodic"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"
     [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"

@@ -70,7 +70,11 @@ scene "$dir/sticky.ini" cell.npy "" $'control = mean_gap\nsteps = 1.5, 1, 0.5, 1
     "$sticky"$'\n[output]\ncontact_panels = yes' sticky
 check "an adhesive cell's scene runs" "$cli" run "$dir/sticky.ini" > /dev/null 2>&1
 "$cli" indent "$dir/cell.npy" --periodic --mean-gap 1.5,1,0.5,1,1.5 --adhesion-work 0.001 --adhesion-range 0.5 \
-    --out "$dir/indent_sticky" > /dev/null
+    --out "$dir/indent_sticky" > "$dir/indent_sticky.out"
+# its loop's jumps lie between the steps, and at mean gap 1 the retraction's zone is one patch short of the
+# approach's: the trapezoids' -0.0003 is theirs, not a work lost
+check "its loop's work is stated as not resolved, with its error" grep -q \
+    "work lost not resolved by the steps: -0.000298703 within the trapezoids' error +- 0.34" "$dir/indent_sticky.out"
 check "its history is indent --periodic --mean-gap --adhesion-work's" \
     cmp <(rows "$dir/sticky/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_sticky/history.csv")
 check "the cell pulls out of contact" awk -F, '/^[0-9]/ && $3 < 0 && $5 == 0 { pulled = 1 } END { exit !pulled }' \
@@ -162,6 +166,8 @@ refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha 
 refuse "adhesion at mean pressures" "" "steps = 0.01" "$sticky" \
     "bad.ini:12: [adhesion] with [punch] periodic takes [loading] control = mean_gap: a mean pressure on an adhesive cell is not available"
 refuse "adhesion" "" "steps = 0.01" $'[adhesion]\nwork = 0.1\nrange = 1' "[adhesion] with [punch] periodic"
+refuse "adhesion with a hardness" "" $'control = mean_gap\nsteps = 0.5' $'[adhesion]\nwork = 0.1\nrange = 1\n[material]\nhardness = 1' \
+    "[adhesion] with [material] hardness and [punch] periodic: adhesion with plasticity is solved on the half-space only"
 refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
 refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"
 refuse "mean gaps that rise without a hardness" "" $'control = mean_gap\nsteps = 0.2, 0.3' "" "steps must decrease"

@@ -801,10 +801,6 @@ static void refusals(void **state)
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_LOAD, 1, &o, &run), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "mean-gap control on a periodic cell"));
     o.periodic = 0;
-    o.hardness = 0.1;
-    assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "adhesion under a hardness"));
-    o.hardness = 0;
     assert_int_equal(im_solver_plan_create(24, 24, 1.0, &o, &plan), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "acts in an indentation"));
     assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &run), IM_OK);
@@ -836,7 +832,11 @@ static void zone_length_and_lambda(void **state)
 }
 
 /* The summary of a hand-made history: approach without contact, a jump into contact at w = 2, a
- * retraction pulling 2 at w = 1 and separating below it; the loop's trapezoids add up to 2. */
+ * retraction pulling 2 at w = 1 and separating below it; the loop's trapezoids add up to 2, their error
+ * estimate (measure.h) to 1/12 + 1/4 + 1/4: over [1, 2] on approach the second difference at w = 1 is 1 (h^3 / 12
+ * of it, below h |dN| / 2 = 1/2), over each retracting step the one at w = 1 there, 3. A loop whose two
+ * branches differ by less than that (the periodic cell's -0.0003 of a one-patch difference in the zone at
+ * w = -0.06, the jumps between the steps) stays within its error: not resolved. */
 static void summary_of_a_loop(void **state)
 {
     (void)state;
@@ -847,6 +847,11 @@ static void summary_of_a_loop(void **state)
     assert_true(s.pull_off_force == 2 && s.pull_off_approach == 1);
     assert_true(s.jump_in_approach == 2 && s.jump_out_approach == 1);
     assert_close(s.hysteresis_work, 2.0, 1e-15);
+    assert_close(s.hysteresis_error, 7.0 / 12.0, 1e-15);
+    const double cell_w[] = {-0.5598, -0.0598, 0.4402, -0.0598, -0.5598};
+    const double cell_n[] = {0, -0.496795, 1.075141, -0.496198, 0};
+    assert_int_equal(im_measure_adhesion(cell_w, cell_n, (const long[]){0, 0, 143, 0, 0}, 5, &s), IM_OK);
+    assert_true(s.hysteresis_work < 0 && fabs(s.hysteresis_work) < s.hysteresis_error);
     const double none[] = {0, 1};
     const long touching[] = {1, 2};
     assert_int_equal(im_measure_adhesion(w, none, touching, 2, &s), IM_OK);

@@ -159,6 +159,10 @@ typedef struct im_adhesion_summary {
                                  falling (separation lies between it and the next); NaN when none */
     double hysteresis_work;   /* sum of N dw over the history (trapezoids): the work the punch did, lost
                                  in the jumps when the history returns to where it began */
+    double hysteresis_error;  /* an estimate of the trapezoids' error in it: over each step the smaller of
+                                 h^3 |N''| / 12 (N'' from the neighbouring second differences on the same
+                                 branch) and h |dN| / 2 (the bound where N is monotone between the steps, as
+                                 across a jump); a work within it is not resolved by the steps */
 } im_adhesion_summary;
 
 /* Summarises count >= 1 steps of approaches, net loads and contact patches (p_r > 0). IM_EINVAL for

@@ -152,8 +152,10 @@
  * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 0.6% of Maugis-Dugdale's at
  * l = 3 patches, 8% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
  * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length).
- * Controls: displacement or load on the half-space, mean gap on a periodic cell; no hardness with it
- * (IM_EINVAL). Approaches and loads may be negative (the punch pulled away, the contact under tension):
+ * Controls: displacement or load on the half-space, mean gap on a periodic cell. A hardness H_p goes with
+ * it on the half-space (a periodic cell refuses it, IM_EINVAL): the repulsive part is capped at
+ * H_p + sigma0, so the net pressure lies in [-sigma0, H_p], and the flattening is kept across steps as
+ * under "Hardness" (an unloading and its pull-off are those of the flattened profile). Approaches and loads may be negative (the punch pulled away, the contact under tension):
  * im_indentation_step takes targets in [-largest, largest]. Under load control a step walks forward over
  * the approach from the last step's state (the first approach met that carries the load, on the stable
  * branch) and refuses a load beyond the pull-off force with IM_EINVAL naming the least load the

@@ -485,7 +485,9 @@ def adhesion(history):
     ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``pull_off_force`` (the most
     tensile load, positive; NaN when nothing pulls) and its ``pull_off_approach``, ``jump_in_approach`` (first
     contact on approach after none), ``jump_out_approach`` (last contact retracting before none) and
-    ``hysteresis_work`` (sum of N dw: the work lost over a closed history).
+    ``hysteresis_work`` (sum of N dw: the work lost over a closed history) with ``hysteresis_error``, an
+    estimate of its trapezoids' error (a work within it is not resolved by the steps: finer steps around the
+    jumps resolve it).
 
     Example: ``h = im.indent(s, im.Sphere(40), approaches=[1, 0, -1], adhesion_work=0.02,
     adhesion_range=0.5); im.adhesion(h)["pull_off_force"]``."""

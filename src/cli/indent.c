@@ -375,8 +375,8 @@ static int apply_option(int code, const char *arg, void *state)
 }
 
 /* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap control on
- * a periodic cell, without a hardness (a negative target is refused by the step list's parser without
- * adhesion). 0, or -1 with the message said. */
+ * a periodic cell, a hardness on the half-space only (a negative target is refused by the step list's parser
+ * without adhesion). 0, or -1 with the message said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
@@ -392,8 +392,9 @@ static int check_adhesion_options(const indent_options *o)
                 o->solver.periodic
                     ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
                     : "--approach or --load");
-    else if (adhesion && o->solver.hardness > 0)
-        fprintf(stderr, "indentmap: --adhesion-work with --hardness: adhesion with plasticity is not available\n");
+    else if (adhesion && o->solver.hardness > 0 && o->solver.periodic)
+        fprintf(stderr, "indentmap: --adhesion-work with --hardness and --periodic: adhesion with plasticity is "
+                        "solved on the half-space only (drop --periodic or --hardness)\n");
     else
         return 0;
     return -1;

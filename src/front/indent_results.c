@@ -30,16 +30,18 @@ static void write_k_fit(const indent_run_state *s, const im_theory_interface *ro
 }
 
 /* The smooth punch's adhesive theory (front.h: a sphere's Maugis-Dugdale, a flat punch's Kendall) beside the
- * measured pull-off in run.json's "adhesion" block ("theory": null for the other punches or a rough
- * surface) and adhesion_theory.csv beside the history. */
+ * measured pull-off in run.json's "adhesion" block ("theory": null for the other punches, a rough surface or
+ * a hardness) and adhesion_theory.csv beside the history. */
 static void write_adhesion_theory(const indent_run_state *s, const im_history_row *rows, int done, json_t *law)
 {
     const im_solver_options *solver = &s->options->solver;
     const im_theory_adhesion theory = {solver->e_star, solver->adhesion_work, solver->adhesion_range};
     const char *model = NULL;
     im_theory_adhesive_point pull_off;
-    /* (a periodic cell's flat is not a punch on a half-space, and the theories are the Maugis-Dugdale law's) */
-    const int smooth_punch = s->smooth && !solver->periodic && solver->adhesion_law == IM_ADHESION_MAUGIS_DUGDALE;
+    /* (a periodic cell's flat is not a punch on a half-space, and the theories are the Maugis-Dugdale law's, on an
+     * elastic body: no hardness) */
+    const int smooth_punch = s->smooth && !solver->periodic && solver->adhesion_law == IM_ADHESION_MAUGIS_DUGDALE &&
+                             !(solver->hardness > 0);
     int status = smooth_punch ? adhesion_theory_pull_off(&s->punch, &theory, &model, &pull_off) : IM_OK;
     if (status == IM_OK && model)
         status = adhesion_theory_write(s->options->out, &s->punch, &theory, rows, done);
@@ -70,11 +72,20 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
         indent_say(s, IM_LOG_WARNING, "adhesion summary: %s", im_last_error());
     if (isnan(summary.hysteresis_work))
         return;
+    char work[256];
+    if (fabs(summary.hysteresis_work) > summary.hysteresis_error)
+        snprintf(work, sizeof work, "work lost %.6g (+- %.2g, the steps' trapezoids)", summary.hysteresis_work,
+                 summary.hysteresis_error);
+    else /* the loop lies between the steps: its sign and size are the trapezoids' error */
+        snprintf(work, sizeof work,
+                 "work lost not resolved by the steps: %.6g within the trapezoids' error +- %.2g (finer steps "
+                 "around the jumps resolve it)",
+                 summary.hysteresis_work, summary.hysteresis_error);
     indent_say(s, IM_LOG_INFO,
                "adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
-               "work lost %.6g; %s/force_distance.png and .pdf",
+               "%s; %s/force_distance.png and .pdf",
                summary.pull_off_force, summary.pull_off_approach, summary.jump_in_approach, summary.jump_out_approach,
-               summary.hysteresis_work, s->options->out);
+               work, s->options->out);
     write_adhesion_theory(s, rows, done, law);
 }
 

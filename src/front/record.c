@@ -62,6 +62,7 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
     json_object_set_new(law, "jump_in_approach", json_number(summary->jump_in_approach));
     json_object_set_new(law, "jump_out_approach", json_number(summary->jump_out_approach));
     json_object_set_new(law, "hysteresis_work", json_real(summary->hysteresis_work));
+    json_object_set_new(law, "hysteresis_error", json_real(summary->hysteresis_error));
     json_object_set_new(law, "figure", json_string("force_distance.png"));
     return status;
 }

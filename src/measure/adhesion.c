@@ -6,6 +6,27 @@
 
 #include <math.h>
 
+/* |N''| at step i from the second difference of steps i - 1, i, i + 1, or NaN where they are not on one
+ * branch (the approach turns at i) or i is the first or last step. */
+static double curvature_at(const double *approach, const double *load, int count, int i)
+{
+    if (i < 1 || i > count - 2)
+        return NAN;
+    const double before = approach[i] - approach[i - 1], after = approach[i + 1] - approach[i];
+    if (!(before * after > 0))
+        return NAN;
+    const double slopes = (load[i + 1] - load[i]) / after - (load[i] - load[i - 1]) / before;
+    return fabs(2 * slopes / (before + after));
+}
+
+/* The trapezoid's error estimate over the step from k - 1 to k (measure.h, hysteresis_error). */
+static double trapezoid_error(const double *approach, const double *load, int count, int k)
+{
+    const double h = fabs(approach[k] - approach[k - 1]), monotone = 0.5 * h * fabs(load[k] - load[k - 1]);
+    const double curvature = fmax(curvature_at(approach, load, count, k - 1), curvature_at(approach, load, count, k));
+    return isnan(curvature) ? monotone : fmin(monotone, h * h * h * curvature / 12);
+}
+
 int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count,
                         im_adhesion_summary *out)
 {
@@ -19,7 +40,7 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
         if (!(isfinite(approach[k]) && isfinite(load[k])))
             return im_fail(IM_EINVAL, "adhesion summary: step %d has w = %g, N = %g: expected finite values", k + 1,
                            approach[k], load[k]);
-    im_adhesion_summary s = {NAN, NAN, NAN, NAN, 0};
+    im_adhesion_summary s = {NAN, NAN, NAN, NAN, 0, 0};
     for (int k = 0; k < count; ++k) {
         if (load[k] < 0 && !(-load[k] <= s.pull_off_force)) {
             s.pull_off_force = -load[k];
@@ -28,6 +49,7 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
         if (k == 0)
             continue;
         s.hysteresis_work += 0.5 * (load[k] + load[k - 1]) * (approach[k] - approach[k - 1]);
+        s.hysteresis_error += trapezoid_error(approach, load, count, k);
         if (isnan(s.jump_in_approach) && contact[k] > 0 && contact[k - 1] == 0 && approach[k] > approach[k - 1])
             s.jump_in_approach = approach[k];
         if (contact[k] == 0 && contact[k - 1] > 0 && approach[k] < approach[k - 1])

@@ -176,7 +176,9 @@ static const char *control_target(enum im_control control)
 
 /* Adhesion's passes hold the approach fixed: displacement control on the half-space, mean-gap control on a
  * periodic cell (mean u = 0 there, so a mean gap is an approach), and load control on the half-space by a
- * search over the approach (solve_adhesive_at_load). No hardness beside it. */
+ * search over the approach (solve_adhesive_at_load). A hardness goes with it on the half-space only: on a cell
+ * the yielded patches' overlap opens no gap, so a mean gap no longer fixes the approach, and searching it
+ * would rewind the zone's history (not built). */
 static int check_adhesion_control(enum im_control control, const im_solver_options *options)
 {
     const int held = options->periodic ? control == IM_CONTROL_MEAN_GAP
@@ -187,11 +189,11 @@ static int check_adhesion_control(enum im_control control, const im_solver_optio
                        options->periodic ? "mean-gap control on a periodic cell"
                                          : "displacement or load control on the half-space",
                        control_target(control));
-    if (options->hardness > 0)
+    if (options->hardness > 0 && options->periodic)
         return im_fail(IM_EINVAL,
-                       "adhesion work = %g: expected no hardness (adhesion under a hardness is not "
-                       "available)",
-                       options->adhesion_work);
+                       "adhesion work = %g with hardness %g on a periodic cell: expected no hardness there "
+                       "(adhesion with plasticity is solved on the half-space only)",
+                       options->adhesion_work, options->hardness);
     return IM_OK;
 }
 
@@ -228,6 +230,16 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
     return check_profile_grid(surface, punch);
 }
 
+/* The cap on the repulsive part p_r of the pressure: the hardness H_p, or with adhesion H_p + sigma0, so that
+ * the net pressure p_r - sigma0 of a patch in contact (whole in the zone) is at most H_p; 0 without a
+ * hardness. */
+static double repulsive_cap(const im_solver_options *o)
+{
+    if (!(o->hardness > 0))
+        return 0;
+    return o->adhesion_work > 0 ? o->hardness + o->adhesion_work / o->adhesion_range : o->hardness;
+}
+
 static int allocate_window(im_indentation *run)
 {
     const im_window w = run->window;
@@ -247,6 +259,7 @@ static int allocate_window(im_indentation *run)
                sizeof(double) * w.nx);
     im_solver_options repulsive = run->options;
     repulsive.adhesion_work = repulsive.adhesion_range = 0;
+    repulsive.hardness = repulsive_cap(&run->options);
     int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
         status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
@@ -396,10 +409,12 @@ static int check_reachable(const im_indentation *run, double load)
  * -g is the surface's plastic flattening in this step. It is added to the patch's plastic depth and
  * to its undeformed gap, so that the state solved stays the solution (g = 0 there now) and every
  * later step sees the deformed surface: unloading is elastic from it, and reloading retraces the
- * unloading curve until a patch reaches the cap again. Returns the patches that yielded. */
+ * unloading curve until a patch reaches the cap again. With adhesion the cap is on the repulsive part
+ * (repulsive_cap: the net pressure there is H_p) and u the net displacement. Returns the patches that
+ * yielded. */
 static long accumulate_plastic_flow(im_indentation *run, double approach)
 {
-    const double cap = run->options.hardness;
+    const double cap = repulsive_cap(&run->options);
     const im_window w = run->window;
     long yielding = 0;
     double work = 0;
@@ -410,7 +425,8 @@ static long accumulate_plastic_flow(im_indentation *run, double approach)
             if (!(run->pressure[wi] >= cap))
                 continue;
             ++yielding;
-            double flow = -(run->window_gap0[wi] - approach + run->displacement[wi]);
+            double flow = -(run->window_gap0[wi] - approach +
+                            adhesion_net_displacement(run->adhesion, wi, run->displacement[wi]));
             if (!(flow > 0))
                 continue;
             run->plastic[wi] += flow;
@@ -418,7 +434,7 @@ static long accumulate_plastic_flow(im_indentation *run, double approach)
             run->gap0[(size_t)(iy + w.y0) * run->nx + ix + w.x0] += flow;
             work += flow;
         }
-    run->plastic_work += cap * run->delta * run->delta * work;
+    run->plastic_work += run->options.hardness * run->delta * run->delta * work;
     return yielding;
 }
 
