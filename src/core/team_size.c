@@ -126,7 +126,14 @@ static int set_team(void)
     return open_choice.team;
 }
 
-static int users_choice(void) { return getenv("OMP_NUM_THREADS") || getenv("OMP_WAIT_POLICY"); }
+/* Set and not empty (libgomp ignores an empty one: its defaults hold). */
+static int is_set(const char *name)
+{
+    const char *value = getenv(name);
+    return value && value[0];
+}
+
+static int users_choice(void) { return is_set("OMP_NUM_THREADS") || is_set("OMP_WAIT_POLICY"); }
 
 int team_choose(void)
 {
