@@ -15,6 +15,7 @@
  * planning time of the first plan is printed: later ones of the same sizes reuse the process's wisdom).
  */
 #include "bench_fft.h"
+#include "bench_recipe.h"
 #include "indentmap/indenter.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
@@ -104,11 +105,8 @@ int main(int argc, char **argv)
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
     omp_set_num_threads(threads);
-    im_surface_params p = im_surface_params_default();
-    p.nx = p.ny = n;
-    p.lambda_r = n;
-    im_field *surface = NULL;
-    int status = im_surface_generate(&p, &surface);
+    im_field *surface;
+    int status = bench_paper_surface(n, &surface);
     if (status != IM_OK)
         die(status, "im_surface_generate");
     /* Love's cone: a = 2 w tan(alpha) / pi, so a = n / 5 at w = pi n cot(alpha) / 10 */

@@ -16,6 +16,7 @@
  * bench/run_library_threads.sh runs it beside a busy process and quiet, and compares.
  */
 #include "bench_common.h"
+#include "bench_recipe.h"
 #include "indentmap/indenter.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
@@ -102,11 +103,8 @@ int main(int argc, char **argv)
     }
     if (threads)
         omp_set_num_threads(threads);
-    im_surface_params p = im_surface_params_default();
-    p.nx = p.ny = n;
-    p.lambda_r = n;
-    im_field *surface = NULL;
-    int status = im_surface_generate(&p, &surface);
+    im_field *surface;
+    int status = bench_paper_surface(n, &surface);
     if (status != IM_OK)
         die(status, "im_surface_generate");
     im_solver_options o = im_solver_options_default();

@@ -12,6 +12,7 @@
  * --compare solves each control once more by plain PK (no cascade, no preconditioner) and prints the
  * relative load and approach differences and the patches whose contact state differs. */
 #include "bench_fft.h"
+#include "bench_recipe.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
@@ -62,11 +63,8 @@ static im_solver_plan *plan_of(int n, const im_solver_options *o)
 
 static cell make_cell(int n)
 {
-    im_surface_params p = im_surface_params_default();
-    p.nx = p.ny = n;
-    p.lambda_r = n;
-    im_field *surface = NULL;
-    int status = im_surface_generate(&p, &surface);
+    im_field *surface;
+    int status = bench_paper_surface(n, &surface);
     if (status != IM_OK)
         die(status, "im_surface_generate");
     const size_t count = (size_t)n * n;
