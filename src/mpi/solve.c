@@ -45,14 +45,7 @@ int im_mpi_solver_solve(im_mpi_solver *s, const double *gap0, enum im_control co
     int status = check_inputs(s, gap0, control, target, pressure);
     if (status != IM_OK)
         return status;
-    pk_run r = {.plan = &s->plan,
-                .gap0 = gap0,
-                .control = control,
-                .target = target,
-                .p = pressure,
-                .u = displacement,
-                .status = IM_OK,
-                .approach = NAN};
+    pk_run r = solver_pk_run(&s->plan, gap0, control, target, pressure, displacement);
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * (size_t)s->rows * s->nx);
         memset(displacement, 0, sizeof(double) * (size_t)s->rows * s->nx);

@@ -95,8 +95,12 @@ typedef struct solver_engine {
 
 extern const solver_engine solver_engine_cpu;
 
+/* The run of one solve of the caller's arrays on plan's engine (no convolution yet, no approach taken). */
+pk_run solver_pk_run(im_solver_plan *plan, const double *gap0, enum im_control control, double target, double *p,
+                     double *u);
+
 /* From the start in r->p (a warm start, or zeros: then the local guess) to the answer on the plan's
- * engine, r filled by the caller (pk.c): no input checks, no cascade, target > 0. */
+ * engine, r made by solver_pk_run: no input checks, no cascade, target > 0. */
 int solver_pk_solve(pk_run *r, im_solve_result *res);
 
 /* A periodic cell under an imposed approach w (no cap): mean u = 0 (solver.h, "Periodic mode"), so

@@ -363,6 +363,19 @@ int solver_pk_solve(pk_run *r, im_solve_result *res)
     return status != IM_OK ? status : (r->status != IM_OK ? r->status : finished);
 }
 
+pk_run solver_pk_run(im_solver_plan *plan, const double *gap0, enum im_control control, double target, double *p,
+                     double *u)
+{
+    return (pk_run){.plan = plan,
+                    .gap0 = gap0,
+                    .control = control,
+                    .target = target,
+                    .p = p,
+                    .u = u,
+                    .status = IM_OK,
+                    .approach = NAN};
+}
+
 int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                     double *pressure, double *displacement, im_solve_result *result)
 {
@@ -376,14 +389,7 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     if (status != IM_OK)
         return status;
     const size_t n = (size_t)plan->nx * plan->ny;
-    pk_run r = {.plan = plan,
-                .gap0 = gap0,
-                .control = control,
-                .target = target,
-                .p = pressure,
-                .u = displacement,
-                .status = IM_OK,
-                .approach = NAN};
+    pk_run r = solver_pk_run(plan, gap0, control, target, pressure, displacement);
     if (target == 0) { /* no approach or no load: no contact */
         memset(pressure, 0, sizeof(double) * n);
         memset(displacement, 0, sizeof(double) * n);
