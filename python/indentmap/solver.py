@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core
+from .surface import _npy_order_code
 
 
 @dataclass(frozen=True)
@@ -347,8 +348,25 @@ def _run_punch(punch, periodic):
     return {"kind": kind, "alpha": alpha, "radius": radius, "punch_given": 1}
 
 
+def _file_options(surface, channel, fill, resample_square, npy_order, height_unit, length_unit, region, align,
+                  detrend):
+    """indent_run's options of how the surface file is read and prepared, checked and named."""
+    options = dict(surface=_checks.path("surface", surface), channel="" if channel is None else str(channel),
+                   fill=int(_checks.flag("fill", fill)),
+                   resample_square=int(_checks.flag("resample_square", resample_square)),
+                   npy_order=_npy_order_code(npy_order), height_unit=_checks.text("height_unit", height_unit),
+                   length_unit=_checks.text("length_unit", length_unit), align=_checks.text("align", align),
+                   detrend=_checks.text("detrend", detrend))
+    if region is not None:
+        if len(region) != 4:
+            raise ValueError(f"region {region!r}: expected (x0, y0, nx, ny)")
+        options["region"] = tuple(_checks.integer("region", v) for v in region)
+    return options
+
+
 def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, n=512,
-               m=None, delta=None, unit="", axis=None, e_star=1.0, e_star_unit="", hardness=0.0, quality=None,
+               m=None, delta=None, unit="", height_unit="", length_unit="", channel=None, fill=False,
+               resample_square=False, npy_order=None, region=None, align="none", detrend="none", axis=None, e_star=1.0, e_star_unit="", hardness=0.0, quality=None,
                tol=None, max_iterations=10000, crop=True, periodic=False, slope_definition=None, adhesion_work=0.0,
                adhesion_range=0.0, adhesion_law="maugis-dugdale", device="cpu", plain_pk=False, measure=False,
                wisdom=None, fields=False, frames=False, distributions=False, page_embed=False, backend="auto",
@@ -361,7 +379,11 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
     again by its script, not ``indent --from-record``) and its figures no command.
 
     ``surface``: a surface file's path, or None for a flat ``n`` x ``m`` grid of spacing ``delta`` (1 by
-    default) in ``unit``; ``delta`` given with a file overrides its spacing (``indent --delta``). ``punch``:
+    default) in ``unit``; ``delta`` given with a file overrides its spacing (``indent --delta``). A file
+    is read as ``read`` reads it (``unit``, ``height_unit``, ``length_unit``, ``channel``, ``fill``,
+    ``resample_square``, ``npy_order``); ``region=(x0, y0, nx, ny)`` indents that block of it (``indent
+    --crop``), its rows aligned (``align``) and then detrended (``detrend``) as ``prepare`` does, but
+    none by default, as ``indent``. ``punch``:
     ``Cone``, ``Sphere``, ``Flat``, a profile file's path (``indent --profile``) or, with ``periodic``, None
     for the rigid flat on the whole cell. One of ``approaches``, ``loads``, ``pressures`` (periodic: mean
     pressures) or ``mean_gaps`` (periodic). ``quality`` names the tolerance's preset unless ``tol`` is given.
@@ -395,7 +417,8 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
                    distributions=int(_checks.flag("distributions", distributions)),
                    page_embed=int(_checks.flag("page_embed", page_embed)), backend=_checks.text("backend", backend))
     if surface is not None:
-        options["surface"] = _checks.path("surface", surface)
+        options.update(_file_options(surface, channel, fill, resample_square, npy_order, height_unit, length_unit,
+                                     region, align, detrend))
     if delta is not None:
         options["delta" if surface is None else "delta_x"] = _checks.real("delta", delta)
     if quality is not None:

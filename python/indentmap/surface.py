@@ -105,6 +105,13 @@ def histogram(heights, quantity="height", bins=64, delta=1.0):
 _NPY_ORDERS = {None: 0, "yx": 1, "xy": 2}
 
 
+def _npy_order_code(npy_order):
+    """``npy_order`` as the library's enum im_npy_order; ValueError naming it otherwise."""
+    if npy_order not in _NPY_ORDERS:
+        raise ValueError(f"npy_order {npy_order!r}: expected 'yx', 'xy' or None (the sidecar's order, else yx)")
+    return _NPY_ORDERS[npy_order]
+
+
 def read(path, channel=None, fill=False, resample_square=False, npy_order=None, *, unit="", height_unit="",
          length_unit=""):
     """Reads a surface file (.npy with its sidecar, .gsf, .sdf, .nc, .x3p, text, or an instrument's file
@@ -135,10 +142,8 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None, 
     Example: ``t = im.read("scan.npy", unit="um", length_unit="m")`` gives heights and ``t.delta`` in
     metres, ``t.unit == "m"``; ``im.indent(t.heights, delta=t.delta, length_unit=t.unit, e_star=1e9,
     e_star_unit="Pa", loads=[1e-6])`` then records loads in N."""
-    if npy_order not in _NPY_ORDERS:
-        raise ValueError(f"npy_order {npy_order!r}: expected 'yx', 'xy' or None (the sidecar's order, else yx)")
     return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill),
-                                          bool(resample_square), _NPY_ORDERS[npy_order],
+                                          bool(resample_square), _npy_order_code(npy_order),
                                           _checks.text("unit", unit), _checks.text("height_unit", height_unit),
                                           _checks.text("length_unit", length_unit)))
 

@@ -16,9 +16,11 @@
 #include <numpy/arrayobject.h>
 
 #include "indentmap/field.h"
+#include "indentmap/formats.h"
 #include "indentmap/history.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
 
 #include <signal.h>
 
@@ -85,6 +87,18 @@ int py_control_from_name(const char *name, enum im_control *control);
  * (history.c). */
 PyObject *py_history_values(const im_history_row *rows, int count);
 int py_history_rows(PyObject *values, im_history_row **rows, int *count);
+
+/* How a surface file is read, as `indent --channel --unit --height-unit --length-unit --fill
+ * --resample-square --npy-order` take it, into those members of options (surface.c): the names UTF-8 ("" for the file's own), npy_order an
+ * enum im_npy_order; -1 with ValueError naming the parameter (an unknown unit) or the status's error set. */
+typedef struct py_read_names {
+    const char *channel, *unit, *height_unit, *length_unit;
+} py_read_names;
+int py_surface_read_options(const py_read_names *names, int fill, int resample_square, int npy_order,
+                            im_surface_read_options *options);
+/* `--detrend` and `--align` by name (surface.c); -1 with the error set naming the parameter. */
+int py_detrend_from_name(const char *name, enum im_detrend *detrend);
+int py_align_from_name(const char *name, enum im_row_alignment *align);
 
 /* Module tables, defined per file. */
 extern PyMethodDef py_surface_methods[], py_theory_methods[], py_render_methods[], py_scene_methods[],

@@ -29,6 +29,8 @@ static const option_field FIELDS[] = {
     FIELD("ny", INTEGER, ny),
     FIELD("delta", REAL, delta),
     FIELD("delta_x", REAL, read.set.delta_x),
+    FIELD("fill", INTEGER, read.fill),
+    FIELD("resample_square", INTEGER, read.resample_square),
     FIELD("alpha", REAL, punch.alpha_degrees),
     FIELD("radius", REAL, punch.radius),
     FIELD("punch_given", INTEGER, punch_given),
@@ -92,19 +94,43 @@ static void release(held_strings *h)
 
 static int read_strings(PyObject *dict, held_strings *h, im_indent_options *o)
 {
-    if (read_path(dict, "surface", &h->surface, &o->surface_path) < 0 ||
-        read_path(dict, "profile", &h->profile, &o->profile_path) < 0 ||
-        read_path(dict, "out", &h->out, &o->out) < 0 ||
-        read_path(dict, "wisdom", &h->wisdom, &o->solver.wisdom_path) < 0 ||
-        read_path(dict, "e_star_unit", &h->e_star_unit, &o->e_star_unit) < 0 ||
-        read_path(dict, "quality", &h->quality, &o->quality) < 0)
+    return read_path(dict, "surface", &h->surface, &o->surface_path) < 0 ||
+                   read_path(dict, "profile", &h->profile, &o->profile_path) < 0 ||
+                   read_path(dict, "out", &h->out, &o->out) < 0 ||
+                   read_path(dict, "wisdom", &h->wisdom, &o->solver.wisdom_path) < 0 ||
+                   read_path(dict, "e_star_unit", &h->e_star_unit, &o->e_star_unit) < 0 ||
+                   read_path(dict, "quality", &h->quality, &o->quality) < 0
+               ? -1
+               : 0;
+}
+
+/* The dict's string under name (UTF-8, borrowed from it), or NULL: none there, or an error set. */
+static const char *text_of(PyObject *dict, const char *name)
+{
+    PyObject *value = PyDict_GetItemString(dict, name);
+    return value ? PyUnicode_AsUTF8(value) : NULL;
+}
+
+/* How the surface file is read, the block indented and its preparation (--channel .. --npy-order,
+ * --crop, --align, --detrend), as the program reads them. */
+static int read_surface_options(PyObject *dict, im_indent_options *o)
+{
+    const char *channel = text_of(dict, "channel"), *unit = text_of(dict, "unit"),
+               *height_unit = text_of(dict, "height_unit"), *length_unit = text_of(dict, "length_unit"),
+               *detrend = text_of(dict, "detrend"), *align = text_of(dict, "align");
+    PyObject *npy_order = PyDict_GetItemString(dict, "npy_order"), *region = PyDict_GetItemString(dict, "region");
+    if (PyErr_Occurred())
         return -1;
-    PyObject *unit = PyDict_GetItemString(dict, "unit");
-    const char *text = unit ? PyUnicode_AsUTF8(unit) : "";
-    if (!text)
+    const py_read_names names = {channel ? channel : "", unit ? unit : "", height_unit ? height_unit : "",
+                                 length_unit ? length_unit : ""};
+    if (py_surface_read_options(&names, o->read.fill, o->read.resample_square,
+                                npy_order ? (int)PyLong_AsLong(npy_order) : 0, &o->read) < 0 ||
+        PyErr_Occurred())
         return -1;
-    snprintf(o->read.set.lateral, sizeof o->read.set.lateral, "%s", text);
-    return 0;
+    if ((detrend && py_detrend_from_name(detrend, &o->detrend) < 0) ||
+        (align && py_align_from_name(align, &o->align) < 0))
+        return -1;
+    return region && !PyArg_ParseTuple(region, "iiii", &o->crop[0], &o->crop[1], &o->crop[2], &o->crop[3]) ? -1 : 0;
 }
 
 /* The dict's axis (x, y), when it has one: the punch off the grid's centre. */
@@ -117,13 +143,6 @@ static int read_axis(PyObject *dict, im_indent_options *o)
     o->punch.x0 = PyFloat_AsDouble(x);
     o->punch.y0 = PyFloat_AsDouble(y);
     return PyErr_Occurred() ? -1 : 0;
-}
-
-/* The dict's string under name (UTF-8, borrowed from it), or NULL: none there, or an error set. */
-static const char *text_of(PyObject *dict, const char *name)
-{
-    PyObject *value = PyDict_GetItemString(dict, name);
-    return value ? PyUnicode_AsUTF8(value) : NULL;
 }
 
 /* --slope-definition's names: "spectral", "fd", or "" for the surface's rule (-1). */
@@ -163,7 +182,7 @@ static int read_options(PyObject *dict, held_strings *h, im_indent_options *o)
     for (size_t i = 0; i < sizeof FIELDS / sizeof *FIELDS; ++i)
         if (read_field(dict, &FIELDS[i], o) < 0)
             return -1;
-    if (read_names(dict, o) < 0 || read_strings(dict, h, o) < 0)
+    if (read_names(dict, o) < 0 || read_strings(dict, h, o) < 0 || read_surface_options(dict, o) < 0)
         return -1;
     return read_axis(dict, o);
 }

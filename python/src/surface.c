@@ -150,7 +150,7 @@ static PyObject *histogram(PyObject *self, PyObject *args)
     return out;
 }
 
-static int detrend_from_name(const char *name, enum im_detrend *detrend)
+int py_detrend_from_name(const char *name, enum im_detrend *detrend)
 {
     if (strcmp(name, "none") == 0)
         *detrend = IM_DETREND_NONE;
@@ -165,10 +165,7 @@ static int detrend_from_name(const char *name, enum im_detrend *detrend)
     return 0;
 }
 
-/* prepare(heights, detrend, fill) -> (new heights, points filled): NaN filled from their known
- * neighbours when fill (refused otherwise, with the first one's position), then the least-squares
- * plane or quadric removed. */
-static int align_from_name(const char *name, enum im_row_alignment *out)
+int py_align_from_name(const char *name, enum im_row_alignment *out)
 {
     static const char *const NAMES[] = {"none", "median", "mean", "line"};
     for (int i = 0; i < 4; ++i)
@@ -190,7 +187,7 @@ static PyObject *prepare(PyObject *self, PyObject *args)
     enum im_detrend detrend;
     enum im_row_alignment align;
     if (!PyArg_ParseTuple(args, "Osps", &obj, &detrend_name, &fill, &align_name) ||
-        detrend_from_name(detrend_name, &detrend) < 0 || align_from_name(align_name, &align) < 0)
+        py_detrend_from_name(detrend_name, &detrend) < 0 || py_align_from_name(align_name, &align) < 0)
         return NULL;
     PyArrayObject *array = py_heights_array(obj, "heights");
     if (!array)
@@ -243,6 +240,25 @@ static PyObject *length_unit(PyObject *self, PyObject *args)
     return PyUnicode_FromString(canonical);
 }
 
+int py_surface_read_options(const py_read_names *names, int fill, int resample_square, int npy_order,
+                            im_surface_read_options *options)
+{
+    options->fill = fill;
+    options->resample_square = resample_square;
+    options->npy_order = (enum im_npy_order)npy_order;
+    if (length_unit_argument("unit", names->unit, options->set.lateral) < 0 ||
+        length_unit_argument("height_unit", names->height_unit, options->set.height) < 0 ||
+        length_unit_argument("length_unit", names->length_unit, options->express_in) < 0)
+        return -1;
+    if (strlen(names->channel) >= sizeof options->channel) {
+        py_raise_status(im_fail(IM_EINVAL, "channel '%.70s': expected an index or title of at most %zu bytes",
+                                names->channel, sizeof options->channel - 1));
+        return -1;
+    }
+    snprintf(options->channel, sizeof options->channel, "%s", names->channel);
+    return 0;
+}
+
 /* read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit)
  * -> (heights, delta, unit); npy_order is an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy); the
  * units as `indent --unit --height-unit --length-unit` ("": the file's) */
@@ -250,26 +266,16 @@ static PyObject *read_surface(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_bytes;
-    const char *channel, *unit, *height_unit, *length_unit;
+    py_read_names names;
     int fill, resample_square, npy_order;
-    if (!PyArg_ParseTuple(args, "O&sppisss", PyUnicode_FSConverter, &path_bytes, &channel, &fill, &resample_square,
-                          &npy_order, &unit, &height_unit, &length_unit))
+    if (!PyArg_ParseTuple(args, "O&sppisss", PyUnicode_FSConverter, &path_bytes, &names.channel, &fill,
+                          &resample_square, &npy_order, &names.unit, &names.height_unit, &names.length_unit))
         return NULL;
-    im_surface_read_options options = {.fill = fill,
-                                       .resample_square = resample_square,
-                                       .npy_order = (enum im_npy_order)npy_order};
-    if (length_unit_argument("unit", unit, options.set.lateral) < 0 ||
-        length_unit_argument("height_unit", height_unit, options.set.height) < 0 ||
-        length_unit_argument("length_unit", length_unit, options.express_in) < 0) {
+    im_surface_read_options options = {0};
+    if (py_surface_read_options(&names, fill, resample_square, npy_order, &options) < 0) {
         Py_DECREF(path_bytes);
         return NULL;
     }
-    if (strlen(channel) >= sizeof options.channel) {
-        Py_DECREF(path_bytes);
-        return py_raise_status(im_fail(IM_EINVAL, "channel '%.70s': expected an index or title of at most %zu bytes",
-                                       channel, sizeof options.channel - 1));
-    }
-    snprintf(options.channel, sizeof options.channel, "%s", channel);
     im_field *field = NULL;
     int status;
     Py_BEGIN_ALLOW_THREADS status = im_surface_read_with(PyBytes_AS_STRING(path_bytes), &options, &field, NULL);

@@ -70,6 +70,27 @@ def test_the_programs_folder_for_a_periodic_file(cli, tmp_path):
     assert "k_fit" in json.load(open(tmp_path / "py" / "run.json", encoding="utf-8"))
 
 
+def test_the_programs_folder_for_a_file_read_and_prepared(cli, tmp_path):
+    """A measured-like file read with the program's options (spacing and height units, missing points
+    filled) and prepared (a block cropped, rows aligned, a plane removed): the same folder as the program's
+    with --unit --height-unit --fill --crop --align --detrend."""
+    rng = np.random.default_rng(7)
+    heights = 20.0 * rng.standard_normal((56, 60)) + np.arange(60)[None, :] * 3.0 + np.arange(56)[:, None] * 2.0
+    heights[10, 12] = heights[30, 41] = np.nan
+    im.write(tmp_path / "scan.npy", heights, delta=0.25, unit="")
+    run_cli(cli, "indent", tmp_path / "scan.npy", "--unit", "um", "--height-unit", "nm", "--fill", "--crop",
+            "4,6,48,40", "--align", "median", "--detrend", "plane", "--approach", "0.3,0.6", "--out", tmp_path / "cli")
+    im.indent_run(tmp_path / "scan.npy", tmp_path / "py", im.Cone(80), approaches=[0.3, 0.6], unit="um",
+                  height_unit="nm", fill=True, region=(4, 6, 48, 40), align="median", detrend="plane",
+                  log=lambda level, text: None)
+    assert_same_folder(tmp_path / "cli", tmp_path / "py")
+    surface = json.load(open(tmp_path / "py" / "run.json", encoding="utf-8"))["surface"]
+    assert (surface["nx"], surface["ny"], surface["unit"]) == (48, 40, "µm")
+    assert surface["preparation"] == "plane removed, cropped to 48 x 40 at (4, 6), rows aligned (median), " \
+                                     "2 missing points filled"
+    assert int(history_without_seconds(tmp_path / "py" / "history.csv")[2][4]) > 20  # contact patches
+
+
 def test_the_programs_errors(tmp_path):
     """A file that cannot be read and a punch the program refuses raise with the program's messages."""
     with pytest.raises(im.Error, match="nothere.npy: cannot open"):
@@ -78,3 +99,10 @@ def test_the_programs_errors(tmp_path):
         im.indent_run(None, tmp_path / "out", im.Sphere(-1.0), approaches=[1.0], n=16, log=lambda level, text: None)
     with pytest.raises(ValueError, match="give one of approaches"):
         im.indent_run(None, tmp_path / "out", approaches=[1.0], loads=[1.0])
+    im.write(tmp_path / "flat.npy", np.zeros((16, 16)))
+    for bad, message in ((dict(height_unit="inch"), "height_unit 'inch': expected a length unit"),
+                         (dict(align="rows"), "align 'rows': expected"), (dict(detrend="cubic"), "detrend 'cubic'"),
+                         (dict(npy_order="zx"), "npy_order 'zx'"), (dict(region=(0, 0, 8)), r"region \(0, 0, 8\)")):
+        with pytest.raises(ValueError, match=message):
+            im.indent_run(tmp_path / "flat.npy", tmp_path / "out", approaches=[1.0], log=lambda level, text: None,
+                          **bad)
