@@ -1,6 +1,6 @@
 /* Adhesive indentation of the half-space over ranks (im_mpi_indentation_*) against the serial indentation
- * (im_indentation_* on the whole surface, crop = 0), run under mpirun with 1, 2 and 3 ranks
- * (tests/mpi/mpi_solver.sh): rank 0 runs the serial history and shares its steps; every rank checks the
+ * (im_indentation_* on the whole surface, crop = 0), run under mpirun with 1, 2, 3 and 4 ranks
+ * (tests/mpi/mpi_solver.sh; of 2 ranks the first holds every surface row, 3 and 4 cut them): rank 0 runs the serial history and shares its steps; every rank checks the
  * distributed steps against them: net loads and tensile forces to 1e-9 relative, the same patches in
  * repulsive contact and under tension, the same iteration counts (the adhesive passes and the solves make
  * the same decisions on every rank: their sums are row-ordered), the same pull-off, jump-in and jump-out
