@@ -170,9 +170,10 @@ typedef struct im_mpi_indentation im_mpi_indentation;
 
 /* Prepares the indentation of the surface whose rows [y0, y0 + rows) (im_mpi_solver_rows) this rank
  * passes in heights (units of delta; not referenced after the call) by punch, on a half-space solver
- * (not freed here; it must outlive the run). adhesion: NULL, or options whose adhesion_work,
- * adhesion_range and adhesion_law (only those are read) make the steps adhesive (the solver's own
- * options have none, as a serial plan's). IM_EINVAL for a periodic solver, a bad punch or invalid
+ * (not freed here; it must outlive the run). adhesion: NULL or adhesion_work = 0 for a repulsive
+ * history, or options (checked whole, as im_solver_options_check) whose adhesion_work, adhesion_range
+ * and adhesion_law make the steps adhesive (the solver's own options have none, as a serial plan's;
+ * its tolerance rules the passes). IM_EINVAL for a periodic solver, a bad punch or invalid
  * adhesion, adhesion with the solver's hardness (adhesion with plasticity over ranks is not
  * available); IM_ENUMERIC naming a non-finite height; IM_ENOMEM. Collective. */
 int im_mpi_indentation_create(im_mpi_solver *solver, const double *heights, const im_indenter *punch,
