@@ -54,6 +54,11 @@ serial_summary=$(summary "$work/serial/run.json") mpi_summary=$(summary "$work/m
 [ "$serial_summary" = "$mpi_summary" ] || fail "run.json's adhesion: indent's '$serial_summary', mpi-indent's '$mpi_summary'"
 awk -v s="$serial_summary" 'BEGIN { split(s, v, " "); exit !(v[1] > 0 && v[4] != "none") }' ||
   fail "expected a pull-off force and a jump-out: $serial_summary"
+python3 -c 'import json, sys
+r = json.load(open(sys.argv[1]))
+sys.exit(not (r["periodic"] is False and r["control"] == "displacement" and r["punch"] == {"kind": "cone", "alpha_degrees": 80}
+              and r["ranks"] == 3 and r["steps_completed"] == 7))' "$work/mpi3/run.json" ||
+  fail "run.json: $(head -c 2000 "$work/mpi3/run.json")"
 [ -s "$work/mpi3/force_distance.png" ] || fail "no force_distance.png"
 [ -s "$work/mpi3/force.npy" ] && [ -s "$work/mpi3/gap.npy" ] || fail "no last step's fields"
 

@@ -122,6 +122,11 @@ static int add_blocks(const history_run *run, json_t *root)
         "units", indent_units_record("", "", 1), "indentation", "adhesion", adhesion_block(run));
     if (!blocks)
         return im_fail(IM_ENOMEM, "run.json: out of memory");
+    json_t *punch = json_object_get(blocks, "punch");
+    if (run->punch.kind == IM_PUNCH_CONE) { /* as indent's record: a cone's angle, no radius */
+        json_object_del(punch, "radius");
+        json_object_set_new(punch, "alpha_degrees", json_real(run->punch.alpha_degrees));
+    }
     int ranks;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (!o->surface_file)
