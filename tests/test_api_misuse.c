@@ -708,6 +708,14 @@ SAFE_RESULT(im_mpi_flat_contact_pressure, "run", im_mpi_flat_contact_pressure(NU
 REPORT(im_mpi_flat_contact_gap, "run", im_mpi_flat_contact_gap(NULL, out_values))
 REPORT(im_mpi_flat_contact_step, "run", im_mpi_flat_contact_step(NULL, IM_CONTROL_LOAD, 0.1, &step_result))
 REPORT(im_mpi_flat_contact_adhesion, "run", im_mpi_flat_contact_adhesion(NULL, &options))
+static im_mpi_indentation *mpi_indentation_out;
+REPORT(im_mpi_indentation_create, "out", im_mpi_indentation_create(NULL, values, &cone, &options, NULL))
+REPORT(im_mpi_indentation_create, "solver",
+       im_mpi_indentation_create(NULL, values, &cone, NULL, &mpi_indentation_out))
+ACCEPT(im_mpi_indentation_free, (im_mpi_indentation_free(NULL), 1))
+REPORT(im_mpi_indentation_step, "run", im_mpi_indentation_step(NULL, 0.1, &step_result))
+SAFE_RESULT(im_mpi_indentation_pressure, "run", im_mpi_indentation_pressure(NULL) == NULL)
+REPORT(im_mpi_indentation_gap, "run", im_mpi_indentation_gap(NULL, out_values))
 REPORT(im_mpi_undeformed_gap, "solver", im_mpi_undeformed_gap(NULL, values, &cone, out_values))
 REPORT(im_mpi_check_edge, "solver", im_mpi_check_edge(NULL, values))
 REPORT(im_mpi_gather_map, "solver", im_mpi_gather_map(NULL, values, 1, &field_out))

@@ -5,6 +5,8 @@
  *   im_mpi_solver_create, im_mpi_solver_solve, im_mpi_solver_free   solver.h's solver over ranks
  *   im_mpi_flat_contact_create, im_mpi_flat_contact_step, im_mpi_flat_contact_free   a periodic cell
  *   im_mpi_flat_contact_adhesion                    its steps adhesive
+ *   im_mpi_indentation_create, im_mpi_indentation_step, im_mpi_indentation_free   an indentation
+ *                                                   history of the half-space, adhesive or not
  *   im_mpi_surface_generate                         surface.h's synthesis, each rank its rows
  *   im_mpi_npy_shape, im_mpi_npy_read_rows, im_mpi_npy_write_rows   one .npy file shared by ranks
  *   im_mpi_gather_map                               a field gathered on rank 0 (for pictures)
@@ -85,7 +87,8 @@ typedef struct im_mpi_solver im_mpi_solver;
  * duplicated; comm may be freed afterwards). options as for im_solver_plan_create (crop and
  * window_margin are ignored; wisdom is not used). IM_EINVAL for a bad grid, delta or
  * options; IM_EUNSUPPORTED, naming it, for what the distributed solver does not do: adhesion
- * (adhesion_work > 0: a solve is repulsive; a periodic cell's steps take it, im_mpi_flat_contact_adhesion),
+ * (adhesion_work > 0: a solve is repulsive; the steps of a periodic cell, im_mpi_flat_contact_adhesion, and
+ * of an indentation, im_mpi_indentation_create, take it),
  * device = IM_DEVICE_GPU (IM_DEVICE_AUTO runs on the CPU). periodic = 1 solves
  * the periodic half-space on the unpadded nx x ny grid (its slabs are then the surface rows);
  * IM_ENOMEM when this rank's share (im_mpi_solver_bytes) does not fit or FFTW cannot plan. */
@@ -156,6 +159,40 @@ int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap);
  * values; the same on every rank for any rank count (ordered sums), equal to the serial step's to the
  * tolerance with the same iterations. Collective. */
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out);
+
+/* ---- An indentation of the half-space over ranks (solver.h, "Indentation histories") ----
+ * im_indentation_create's history under displacement control on the whole surface (the serial run
+ * with crop = 0), each rank holding its rows, optionally adhesive (solver.h, "Adhesion": the adhesive
+ * passes of im_indentation_step, over the ranks): an approach, a retraction through the pull-off, each
+ * step warm-started from the last. The same values as the serial steps to the tolerance, the same
+ * iterations, the same bits for any rank count. */
+typedef struct im_mpi_indentation im_mpi_indentation;
+
+/* Prepares the indentation of the surface whose rows [y0, y0 + rows) (im_mpi_solver_rows) this rank
+ * passes in heights (units of delta; not referenced after the call) by punch, on a half-space solver
+ * (not freed here; it must outlive the run). adhesion: NULL or adhesion_work = 0 for a repulsive
+ * history, or options (checked whole, as im_solver_options_check) whose adhesion_work, adhesion_range
+ * and adhesion_law make the steps adhesive (the solver's own options have none, as a serial plan's;
+ * its tolerance rules the passes). IM_EINVAL for a periodic solver, a bad punch or invalid
+ * adhesion, adhesion with the solver's hardness (adhesion with plasticity over ranks is not
+ * available); IM_ENUMERIC naming a non-finite height; IM_ENOMEM. Collective. */
+int im_mpi_indentation_create(im_mpi_solver *solver, const double *heights, const im_indenter *punch,
+                              const im_solver_options *adhesion, im_mpi_indentation **out);
+/* NULL is ignored. Not collective. */
+void im_mpi_indentation_free(im_mpi_indentation *run);
+/* One step at approach w (displacement control; with adhesion w may be negative: the punch pulled
+ * away), as im_indentation_step: *out the same on every rank (area_ratio and load_star from the
+ * smooth contact, mean_gap NaN, the plastic values 0; with adhesion the net load, the tensile force
+ * and the adhesive and repulsive patches). IM_EINVAL for a non-finite w, or w < 0 without adhesion;
+ * IM_EEDGE when the contact or the adhesive zone reaches the surface's outer row or column (naming
+ * the patch); the solver's errors. Collective. */
+int im_mpi_indentation_step(im_mpi_indentation *run, double approach, im_step_result *out);
+/* This rank's rows of the net pressure of the last step (rows * nx values; owned by run; tensile
+ * where negative), NULL for a NULL run. */
+const double *im_mpi_indentation_pressure(const im_mpi_indentation *run);
+/* This rank's rows of the gap g = g0 - w + u of the last step (u the net displacement) into gap.
+ * IM_EINVAL for NULL. Not collective. */
+int im_mpi_indentation_gap(const im_mpi_indentation *run, double *gap);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's
  * rows of heights (in units of delta, not modified). IM_ENUMERIC for a non-finite height, IM_EINVAL

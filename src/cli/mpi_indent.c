@@ -16,6 +16,7 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
 
 enum {
@@ -71,6 +72,7 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: mpirun -n K indentmap mpi-indent (--approach W | --load N) [options]\n"
+            "       mpirun -n K indentmap mpi-indent --approach LIST --adhesion-work W --adhesion-range D [options]\n"
             "       mpirun -n K indentmap mpi-indent --periodic (--pressure LIST | --mean-gap LIST) [options]\n\n"
             "One indentation of one surface over K MPI ranks (each with its OpenMP threads): the whole\n"
             "grid is solved (no crop window), the result is the same to the bit for any K.\n"
@@ -99,13 +101,18 @@ static void usage(FILE *stream)
             "                  history.csv columns; with --out DIR also DIR/history.csv (appended step by\n"
             "                  step), DIR/run.json and the last step's fields. Rank 0 gathers the heights\n"
             "                  once (h'rms, k of eq. (2)) and each step's forces (contact patches)\n"
-            "  --adhesion-work W --adhesion-range D [--adhesion-law L]   with --periodic --mean-gap:\n"
-            "                  adhesion as indent's (the Maugis-Dugdale law, or L = exponential), its passes\n"
-            "                  over the ranks: the history's tensile force and adhesive and repulsive\n"
-            "                  patches, and the net forces in force.npy (not with --hardness)\n");
+            "  --adhesion-work W --adhesion-range D [--adhesion-law L]   adhesion as indent's (the\n"
+            "                  Maugis-Dugdale law, or L = exponential), its passes over the ranks, with\n"
+            "                  --periodic --mean-gap LIST, or on the half-space with --approach LIST (indent\n"
+            "                  --full's history: approaches then retractions, negative ones pulling the punch\n"
+            "                  away, through the pull-off; printed and written as --periodic's, run.json with\n"
+            "                  the pull-off, the jumps and DIR/force_distance.png): the history's tensile\n"
+            "                  force and adhesive and repulsive patches, and the net forces in force.npy (not\n"
+            "                  with --hardness or under load control)\n");
 }
 
-/* --pressure or --mean-gap: a step list (front.h: steps_parse, as indent's and a scene's). */
+/* --pressure or --mean-gap, or the half-space's adhesive --approach: a step list (front.h: steps_parse, as
+ * indent's and a scene's; approaches may be negative, the punch pulled away). */
 static int steps_parse_list(mpi_indent_options *o, const char *text)
 {
     char error[512];
@@ -113,7 +120,8 @@ static int steps_parse_list(mpi_indent_options *o, const char *text)
         fprintf(stderr, "indentmap: mpi-indent: %s: out of memory\n", o->targets_option);
         return -1;
     }
-    if (steps_parse(o->targets_option, text, o->targets, &o->target_count, error, sizeof error) == 0)
+    const int negative = o->control == IM_CONTROL_DISPLACEMENT;
+    if (steps_parse_signed(o->targets_option, text, negative, o->targets, &o->target_count, error, sizeof error) == 0)
         return 0;
     fprintf(stderr, "indentmap: %s\n", error);
     return -1;
@@ -151,10 +159,11 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_ALPHA: o->punch_given = 1; return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->punch_given = 1; return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
-    case OPT_APPROACH:
-    case OPT_LOAD:
-        o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
-        return cli_parse_double(code == OPT_LOAD ? "--load" : "--approach", arg, 0, 1e300, &o->target);
+    case OPT_APPROACH: /* W, or with adhesion a LIST: read once the options are known (approach_targets) */
+        o->control = IM_CONTROL_DISPLACEMENT;
+        o->approach_text = arg;
+        return 0;
+    case OPT_LOAD: o->control = IM_CONTROL_LOAD; return cli_parse_double("--load", arg, 0, 1e300, &o->target);
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
@@ -285,7 +294,7 @@ static int solve(mpi_indent_options *o, im_solve_result *result)
     if (status == IM_OK)
         status = load_heights(o, y0, rows, heights);
     if (status == IM_OK)
-        status = o->periodic ? mpi_indent_periodic(o, solver, heights) : solve_half_space(o, solver, heights, result);
+        status = o->targets ? mpi_indent_history(o, solver, heights) : solve_half_space(o, solver, heights, result);
     im_mpi_solver_free(solver);
     free(heights);
     return status;
@@ -299,7 +308,7 @@ static int check_periodic_options(mpi_indent_options *o)
                 "indentmap: mpi-indent: %s (over a periodic cell) needs --periodic; the half-space takes "
                 "--approach W or --load N\n",
                 o->targets_option);
-    else if (o->periodic && !isnan(o->target))
+    else if (o->periodic && (!isnan(o->target) || o->approach_text))
         fprintf(stderr, "indentmap: mpi-indent --periodic takes mean pressures (--pressure LIST) or mean gaps "
                         "(--mean-gap LIST), not --approach or --load\n");
     else if (o->periodic && !o->targets_option)
@@ -312,25 +321,45 @@ static int check_periodic_options(mpi_indent_options *o)
     return -1;
 }
 
-/* Adhesion (indent's options): a periodic cell under mean gaps only. 0, or -1 with the message said. */
+/* Adhesion (indent's options): a periodic cell under mean gaps, the half-space under approaches. 0, or -1 with the
+ * message said. */
 static int check_adhesion_options(const mpi_indent_options *o)
 {
     const int adhesion = o->adhesion_work > 0;
     const int mean_gaps = o->periodic && o->targets_option && o->control == IM_CONTROL_MEAN_GAP;
+    const int approaches = !o->periodic && o->control == IM_CONTROL_DISPLACEMENT;
     if (adhesion != (o->adhesion_range > 0))
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work and --adhesion-range go together\n");
     else if (o->adhesion_law_given && !adhesion)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-law goes with --adhesion-work and --adhesion-range\n");
-    else if (adhesion && !mean_gaps)
-        fprintf(stderr, "indentmap: mpi-indent: --adhesion-work takes --periodic --mean-gap LIST (the half-space's "
-                        "adhesive approach and retraction is indent's, serial; a mean pressure on an adhesive "
-                        "cell is not available)\n");
+    else if (adhesion && !mean_gaps && !approaches)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-work takes --periodic --mean-gap LIST or the "
+                        "half-space's --approach LIST (adhesion under load control, --load or --pressure, is "
+                        "indent's, serial)\n");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not "
                         "available\n");
     else
         return 0;
     return -1;
+}
+
+/* --approach: W, or with adhesion the history's LIST (the half-space's approach and retraction). */
+static int approach_targets(mpi_indent_options *o)
+{
+    if (!o->approach_text || o->control != IM_CONTROL_DISPLACEMENT)
+        return 0;
+    if (!(o->adhesion_work > 0) && strpbrk(o->approach_text, ",:")) {
+        fprintf(stderr,
+                "indentmap: mpi-indent: --approach %s: a list of approaches is the half-space's adhesive history "
+                "(with --adhesion-work and --adhesion-range); without adhesion give one approach W\n",
+                o->approach_text);
+        return -1;
+    }
+    if (!(o->adhesion_work > 0))
+        return cli_parse_double("--approach", o->approach_text, 0, 1e300, &o->target);
+    o->targets_option = "--approach";
+    return steps_parse_list(o, o->approach_text);
 }
 
 static int parse(int argc, char **argv, mpi_indent_options *o)
@@ -347,9 +376,9 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
         return -1;
     }
-    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0)
+    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0 || approach_targets(o) != 0)
         return -1;
-    if (isnan(o->target) && !o->periodic) {
+    if (isnan(o->target) && !o->periodic && !o->targets) {
         fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");
         return -1;
     }
@@ -388,7 +417,7 @@ int cli_mpi_indent(int argc, char **argv)
         status = solve(&o, &result);
     if (status != IM_OK)
         code = cli_report(status);
-    else if (parsed == 0 && rank == 0 && !o.periodic)
+    else if (parsed == 0 && rank == 0 && !o.targets)
         printf("approach,load,contact_patches,iterations,residual,seconds\n%.17g,%.17g,%ld,%d,%.3g,%.3f\n",
                result.approach, result.load, result.contact_patches, result.iterations, result.residual,
                result.seconds);

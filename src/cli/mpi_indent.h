@@ -1,5 +1,5 @@
-/* Internal to `indentmap mpi-indent` (mpi_indent.c): its options, and its periodic mode
- * (mpi_periodic.c). Built only with MPI (IM_HAVE_MPI). */
+/* Internal to `indentmap mpi-indent` (mpi_indent.c): its options, and its histories (mpi_periodic.c): the
+ * periodic cell's and the half-space's adhesive one. Built only with MPI (IM_HAVE_MPI). */
 #ifndef INDENTMAP_CLI_MPI_INDENT_H
 #define INDENTMAP_CLI_MPI_INDENT_H
 
@@ -13,13 +13,14 @@ typedef struct mpi_indent_options {
     im_indenter punch;
     int punch_given;            /* --punch, --alpha or --radius */
     enum im_control control;    /* --approach, --load; --periodic: --pressure (load), --mean-gap */
-    double target;              /* w or N; NaN until given */
+    const char *approach_text;  /* --approach: W, or with adhesion a LIST */
+    double target;              /* w or N; NaN until given (and for a history) */
     int periodic;               /* --periodic: a rigid flat on the periodic cell, a history of targets */
-    const char *targets_option; /* --pressure or --mean-gap, NULL until given */
-    double *targets;            /* its step list (mean pressures or mean gaps) */
+    const char *targets_option; /* --pressure or --mean-gap, or the half-space's adhesive --approach; NULL: none */
+    double *targets;            /* its step list (mean pressures, mean gaps or approaches): a history */
     int target_count;
     im_solver_options solver;
-    /* --adhesion-work, --adhesion-range, --adhesion-law: the cell's steps' (the solver's options have none) */
+    /* --adhesion-work, --adhesion-range, --adhesion-law: the history's steps' (the solver's options have none) */
     double adhesion_work, adhesion_range;
     int adhesion_law, adhesion_law_given;
     int tol_given;   /* --tol (run.json: no quality preset) */
@@ -32,11 +33,11 @@ typedef struct mpi_indent_options {
 int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *solver, const double *pressure,
                             const double *gap);
 
-/* --periodic: the history of o's targets on the cell of heights (this rank's rows) under a rigid flat,
- * on a periodic solver: on rank 0 the history CSV on stdout and, with --out DIR, DIR/history.csv
- * appended step by step and DIR/run.json (indent --periodic's schema); the last step's fields in DIR.
- * Collective. */
-int mpi_indent_periodic(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights);
+/* The history of o's targets on the surface of heights (this rank's rows): --periodic, the cell under a rigid
+ * flat on a periodic solver; else the half-space's adhesive approaches by o's punch. On rank 0 the history CSV
+ * on stdout and, with --out DIR, DIR/history.csv appended step by step and DIR/run.json (indent's schema); the
+ * last step's fields in DIR. Collective. */
+int mpi_indent_history(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights);
 
 #endif
 

@@ -1,6 +1,7 @@
-/* indentmap mpi-indent --periodic: indent --periodic's history of a rigid flat on a periodic cell over
- * MPI ranks (mpi.h: im_mpi_flat_contact_step), written in its schema: the history's columns (history.h)
- * on stdout and in DIR/history.csv, and DIR/run.json, with front.h's pieces. Built only with MPI. */
+/* indentmap mpi-indent's histories over MPI ranks: --periodic, indent --periodic's history of a rigid flat on
+ * a periodic cell (mpi.h: im_mpi_flat_contact_step), and the half-space's adhesive approach and retraction by a
+ * punch (im_mpi_indentation_step), written in indent's schema: the history's columns (history.h) on stdout and
+ * in DIR/history.csv, and DIR/run.json, with front.h's pieces. Built only with MPI. */
 #include "cli/mpi_indent.h"
 
 #if IM_HAVE_MPI
@@ -18,46 +19,51 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-typedef struct periodic_run {
+typedef struct history_run {
     const mpi_indent_options *o;
     im_mpi_solver *solver;
-    im_mpi_flat_contact *cell;
+    im_mpi_flat_contact *cell;       /* --periodic */
+    im_mpi_indentation *indentation; /* the half-space */
     int rank;
-    im_field shape;   /* the cell's grid and patch side (no data) */
-    im_indenter flat; /* the rigid flat on the whole cell */
-    double *targets;  /* loads N (from the mean pressures) or mean gaps */
+    im_field shape;    /* the surface's grid and patch side (no data) */
+    im_indenter punch; /* the rigid flat on the whole cell, or the half-space's punch */
+    double *targets;   /* loads N (from the mean pressures) or mean gaps */
     im_history_row *rows;
-    history_file history; /* rank 0, with --out */
-    json_t *record;       /* rank 0, with --out */
-    double slope_rms;     /* rank 0: the cell's spectral h'rms */
-} periodic_run;
+    history_file history;      /* rank 0, with --out */
+    json_t *record;            /* rank 0, with --out */
+    double slope_rms;          /* rank 0: the surface's spectral h'rms */
+    im_theory_interface rough; /* rank 0, the half-space: the theory columns' interface (h'rms above) */
+} history_run;
 
 /* Rank 0: the whole field of this rank's rows of values (caller frees; NULL elsewhere). Collective. */
-static int gather_whole(const periodic_run *run, const double *values, im_field **whole)
+static int gather_whole(const history_run *run, const double *values, im_field **whole)
 {
     *whole = NULL;
     return im_mpi_gather_map(run->solver, values, 1, whole);
 }
 
-/* The surface's h'rms (spectral: a periodic cell, as indent's default) and indent's warning when its edges
- * do not meet, on rank 0 from the gathered heights. */
-static int measure_surface(periodic_run *run, const double *heights)
+/* The surface's h'rms (spectral: indent's default for a periodic cell and a generated surface) and the theory
+ * columns' interface of the half-space (indent's), or a cell's warning when its edges do not meet, on rank 0
+ * from the gathered heights. */
+static int measure_surface(history_run *run, const double *heights)
 {
     im_field *surface;
     int status = gather_whole(run, heights, &surface);
     if (status == IM_OK && run->rank == 0) {
         char warning[8192];
-        if (periodic_warning(surface, run->o->surface_file ? run->o->surface_file : "the surface", warning,
-                             sizeof warning))
+        if (run->o->periodic && periodic_warning(surface, run->o->surface_file ? run->o->surface_file : "the surface",
+                                                 warning, sizeof warning))
             fprintf(stderr, "indentmap: %s\n", warning);
         status = im_surface_slope_rms(surface, IM_SLOPE_SPECTRAL, &run->slope_rms);
+        run->rough = im_theory_interface_default(run->slope_rms);
+        run->rough.e_star = run->o->solver.e_star;
     }
     im_field_free(surface);
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }
 
 /* The step list as the cell takes it: loads N = p_m A0 from mean pressures, or the mean gaps. */
-static int prepare_targets(periodic_run *run)
+static int prepare_targets(history_run *run)
 {
     const mpi_indent_options *o = run->o;
     const int pressures = o->control == IM_CONTROL_LOAD; /* --pressure */
@@ -80,20 +86,26 @@ static im_solver_options adhesive_options(const mpi_indent_options *o)
     return adhesive;
 }
 
-/* run.json's "adhesion" block of an adhesive cell (as indent's: no smooth theory beside a cell), or null. */
-static json_t *adhesion_block(const periodic_run *run)
+/* run.json's "adhesion" block of an adhesive history (no smooth theory beside it: indent's is a cell's, or a
+ * smooth punch's, which indent draws), or null. */
+static json_t *adhesion_block(const history_run *run)
 {
     if (!(run->o->adhesion_work > 0))
         return json_null();
     const im_solver_options adhesive = adhesive_options(run->o);
-    json_t *law = run_record_adhesion_law(&adhesive, &run->flat, run->shape.delta);
+    json_t *law = run_record_adhesion_law(&adhesive, &run->punch, run->shape.delta);
     json_object_set_new(law, "theory", json_null());
     return law;
 }
 
+static const char *control_name(enum im_control control)
+{
+    return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean_gap" : "displacement";
+}
+
 /* run.json's blocks beside the common record: indent --periodic's (surface, punch, control, targets,
  * periodic, threads, history, theory_slope_rms, units, inputs) and the ranks. */
-static int add_blocks(const periodic_run *run, json_t *root)
+static int add_blocks(const history_run *run, json_t *root)
 {
     const mpi_indent_options *o = run->o;
     json_t *targets = json_array();
@@ -102,13 +114,19 @@ static int add_blocks(const periodic_run *run, json_t *root)
     json_t *blocks = json_pack(
         "{s:{s:s, s:i, s:i, s:f, s:s}, s:{s:s, s:f}, s:s, s:o, s:b, s:i, s:s, s:{s:f, s:s, s:s}, s:o, s:n, s:o}",
         "surface", "source", o->surface_file ? o->surface_file : "synthesised over the ranks", "nx", run->shape.nx,
-        "ny", run->shape.ny, "delta", run->shape.delta, "unit", "", "punch", "kind", im_punch_name(run->flat.kind),
-        "radius", run->flat.radius, "control", o->control == IM_CONTROL_LOAD ? "load" : "mean_gap", "targets",
-        targets, "periodic", 1, "threads", omp_get_max_threads(), "history", "history.csv", "theory_slope_rms",
-        "value", run->slope_rms, "definition", "spectral", "chosen_by", "default: a periodic cell", "units",
-        indent_units_record("", "", 1), "indentation", "adhesion", adhesion_block(run));
+        "ny", run->shape.ny, "delta", run->shape.delta, "unit", "", "punch", "kind", im_punch_name(run->punch.kind),
+        "radius", run->punch.radius, "control", control_name(o->control), "targets", targets, "periodic", o->periodic,
+        "threads", omp_get_max_threads(), "history", "history.csv", "theory_slope_rms", "value", run->slope_rms,
+        "definition", "spectral", "chosen_by",
+        o->periodic ? "default: a periodic cell" : "mpi-indent: spectral (indent's default for a generated surface)",
+        "units", indent_units_record("", "", 1), "indentation", "adhesion", adhesion_block(run));
     if (!blocks)
         return im_fail(IM_ENOMEM, "run.json: out of memory");
+    json_t *punch = json_object_get(blocks, "punch");
+    if (run->punch.kind == IM_PUNCH_CONE) { /* as indent's record: a cone's angle, no radius */
+        json_object_del(punch, "radius");
+        json_object_set_new(punch, "alpha_degrees", json_real(run->punch.alpha_degrees));
+    }
     int ranks;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (!o->surface_file)
@@ -123,7 +141,7 @@ static int add_blocks(const periodic_run *run, json_t *root)
 }
 
 /* Rank 0, with --out: the folder, history.csv's column line and the record. */
-static int start_outputs(periodic_run *run)
+static int start_outputs(history_run *run)
 {
     const mpi_indent_options *o = run->o;
     if (run->rank != 0 || !o->out)
@@ -141,17 +159,24 @@ static int start_outputs(periodic_run *run)
     return status == IM_OK ? history_start(o->out, &run->history) : status;
 }
 
+/* This rank's rows of the last step's (net) pressure. */
+static const double *last_pressure(const history_run *run)
+{
+    return run->cell ? im_mpi_flat_contact_pressure(run->cell) : im_mpi_indentation_pressure(run->indentation);
+}
+
 /* Step i: solved on every rank, its contact patches counted on rank 0 from the gathered forces, its row
  * measured (history.h), printed and appended to DIR/history.csv on rank 0. */
-static int run_step(periodic_run *run, int i)
+static int run_step(history_run *run, int i)
 {
     im_history_row *row = &run->rows[i];
-    int status = im_mpi_flat_contact_step(run->cell, run->o->control, run->targets[i], &row->result);
+    int status = run->cell ? im_mpi_flat_contact_step(run->cell, run->o->control, run->targets[i], &row->result)
+                           : im_mpi_indentation_step(run->indentation, run->targets[i], &row->result);
     im_field *force = NULL;
     if (status == IM_OK)
-        status = gather_whole(run, im_mpi_flat_contact_pressure(run->cell), &force);
-    if (status == IM_OK && run->rank == 0)
-        status = im_history_measure(&run->flat, NULL, NULL, run->rows, i);
+        status = gather_whole(run, last_pressure(run), &force);
+    if (status == IM_OK && run->rank == 0) /* the theory columns are the half-space's */
+        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->rows, i);
     im_contact_patches patches = {0};
     if (status == IM_OK && run->rank == 0 && (status = im_measure_contact_patches(force, &patches, NULL)) == IM_OK) {
         row->patches = patches.patches;
@@ -168,7 +193,7 @@ static int run_step(periodic_run *run, int i)
 }
 
 /* Rank 0, with --out: k of eq. (2) (elastic steps only, as indent) and the record's end. */
-static int finish_record(periodic_run *run, int done, int status)
+static int finish_record(history_run *run, int done, int status)
 {
     if (run->rank != 0 || !run->record)
         return status;
@@ -190,20 +215,22 @@ static int finish_record(periodic_run *run, int done, int status)
 }
 
 /* DIR/force.npy and gap.npy of the last step. Collective. */
-static int write_last_fields(const periodic_run *run)
+static int write_last_fields(const history_run *run)
 {
     int y0, rows;
     im_mpi_solver_rows(run->solver, &y0, &rows);
     double *gap = malloc(sizeof(double) * ((size_t)rows * run->shape.nx + 1));
-    int status = mpi_collective_status(MPI_COMM_WORLD, gap ? im_mpi_flat_contact_gap(run->cell, gap)
-                                                           : im_fail(IM_ENOMEM, "the last step's gap"));
+    int status = !gap        ? im_fail(IM_ENOMEM, "the last step's gap")
+                 : run->cell ? im_mpi_flat_contact_gap(run->cell, gap)
+                             : im_mpi_indentation_gap(run->indentation, gap);
+    status = mpi_collective_status(MPI_COMM_WORLD, status);
     if (status == IM_OK)
-        status = mpi_indent_write_fields(run->o, run->solver, im_mpi_flat_contact_pressure(run->cell), gap);
+        status = mpi_indent_write_fields(run->o, run->solver, last_pressure(run), gap);
     free(gap);
     return status;
 }
 
-static int run_steps(periodic_run *run)
+static int run_steps(history_run *run)
 {
     const mpi_indent_options *o = run->o;
     int status = IM_OK, done = 0;
@@ -221,20 +248,30 @@ static int run_steps(periodic_run *run)
     return mpi_collective_status(MPI_COMM_WORLD, finish_record(run, done, status));
 }
 
-int mpi_indent_periodic(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights)
+/* The cell (--periodic) or the half-space's indentation, with the options' adhesion. Collective. */
+static int prepare_contact(history_run *run, const double *heights)
 {
-    periodic_run run = {.o = o,
-                        .solver = solver,
-                        .history = {.fd = -1},
-                        .shape = {.nx = o->surface.nx, .ny = o->surface.ny, .delta = 1.0}};
+    const mpi_indent_options *o = run->o;
+    const im_solver_options adhesive = adhesive_options(o);
+    if (!o->periodic)
+        return im_mpi_indentation_create(run->solver, heights, &o->punch, &adhesive, &run->indentation);
+    int status = im_mpi_flat_contact_create(run->solver, heights, &run->cell);
+    if (status == IM_OK && o->adhesion_work > 0)
+        status = im_mpi_flat_contact_adhesion(run->cell, &adhesive);
+    return status;
+}
+
+int mpi_indent_history(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights)
+{
+    history_run run = {.o = o,
+                       .solver = solver,
+                       .history = {.fd = -1},
+                       .shape = {.nx = o->surface.nx, .ny = o->surface.ny, .delta = 1.0}};
     MPI_Comm_rank(MPI_COMM_WORLD, &run.rank);
-    run.flat = periodic_rigid_flat(&run.shape);
+    run.punch = o->periodic ? periodic_rigid_flat(&run.shape) : o->punch;
     int status = mpi_collective_status(MPI_COMM_WORLD, prepare_targets(&run));
     if (status == IM_OK)
-        status = im_mpi_flat_contact_create(solver, heights, &run.cell);
-    const im_solver_options adhesive = adhesive_options(o);
-    if (status == IM_OK && o->adhesion_work > 0)
-        status = im_mpi_flat_contact_adhesion(run.cell, &adhesive);
+        status = prepare_contact(&run, heights);
     if (status == IM_OK)
         status = measure_surface(&run, heights);
     if (status == IM_OK)
@@ -244,6 +281,7 @@ int mpi_indent_periodic(const mpi_indent_options *o, im_mpi_solver *solver, cons
     history_close(&run.history);
     json_decref(run.record);
     im_mpi_flat_contact_free(run.cell);
+    im_mpi_indentation_free(run.indentation);
     free(run.targets);
     free(run.rows);
     return status;

@@ -1,8 +1,11 @@
 /* The adhesive passes over ranks (solver/adhesion.h: adhesion_ranks): the repulsive solve on the ranks, sums
- * in row order, reductions over the communicator and the rows just outside each rank's. */
+ * in row order, reductions over the communicator and the rows just outside each rank's; and the state of the
+ * steps that take them (a periodic cell's, flat.c, and an indentation's, indentation.c). */
 #include "mpi/mpi_internal.h"
 
 #include "indentmap/status.h"
+
+#include <stdlib.h>
 
 static int solve_over_ranks(void *context, const double *gap0, double w, double *pressure, double *displacement,
                             im_solve_result *result)
@@ -63,4 +66,57 @@ void mpi_adhesion_ranks(im_mpi_solver *s, adhesion_ranks *out)
                             .sum = sum_over_ranks,
                             .combine = combine_over_ranks,
                             .outer_rows = outer_rows_over_ranks};
+}
+
+/* IM_EINVAL for invalid options, no work, or the solver's hardness. */
+static int check_adhesion(const im_mpi_solver *s, const im_solver_options *options)
+{
+    int status = im_solver_options_check(options);
+    if (status != IM_OK)
+        return status;
+    if (!(options->adhesion_work > 0))
+        return im_fail(IM_EINVAL, "adhesion work = %g: expected a work of adhesion > 0", options->adhesion_work);
+    if (s->plan.options.hardness > 0)
+        return im_fail(IM_EINVAL,
+                       "adhesion work = %g with the solver's hardness %g: adhesion with plasticity is not "
+                       "available over ranks",
+                       options->adhesion_work, s->plan.options.hardness);
+    return IM_OK;
+}
+
+int mpi_adhesion_create(im_mpi_solver *s, const im_solver_options *options, mpi_adhesion *out)
+{
+    *out = (mpi_adhesion){0};
+    int status = check_adhesion(s, options);
+    if (status != IM_OK)
+        return status;
+    const size_t n = (size_t)s->rows * s->nx;
+    status = adhesion_create(s->nx, s->rows, s->plan.options.periodic, options, &out->state);
+    if (status == IM_OK && !(out->net_pressure = calloc(n + 1, sizeof(double))))
+        status = im_fail(IM_ENOMEM, "adhesion over ranks %d x %d: rank %d's net pressure", s->nx, s->ny, s->rank);
+    status = mpi_collective_status(s->comm, status);
+    if (status != IM_OK) {
+        mpi_adhesion_free(out);
+        return status;
+    }
+    mpi_adhesion_ranks(s, &out->ranks);
+    adhesion_over_ranks(out->state, &out->ranks);
+    return IM_OK;
+}
+
+void mpi_adhesion_free(mpi_adhesion *a)
+{
+    adhesion_free(a->state);
+    free(a->net_pressure);
+    *a = (mpi_adhesion){0};
+}
+
+void mpi_adhesion_values(mpi_adhesion *a, const im_mpi_solver *s, const double *pressure, im_step_result *out)
+{
+    const size_t n = (size_t)s->rows * s->nx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        a->net_pressure[i] = adhesion_net_pressure(a->state, i, pressure[i]);
+    adhesion_split(a->state, pressure, s->delta, &out->tensile_force, &out->adhesive_patches,
+                   &out->repulsive_patches);
 }

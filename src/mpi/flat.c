@@ -19,10 +19,7 @@ struct im_mpi_flat_contact {
     double *terms;         /* this rank's rows: the per-patch terms of an ordered sum */
     double plastic_work;   /* H_p delta^2 times the sum of the depth increments */
     int steps;             /* taken so far */
-    /* with adhesion (im_mpi_flat_contact_adhesion): its state over the ranks, and the net pressure */
-    adhesion_state *adhesion;
-    adhesion_ranks ranks;
-    double *net_pressure;
+    mpi_adhesion adhesion; /* with im_mpi_flat_contact_adhesion: its state over the ranks, the net pressure */
 };
 
 static int solve_over_ranks(void *solver, const double *gap0, enum im_control control, double target,
@@ -57,8 +54,7 @@ void im_mpi_flat_contact_free(im_mpi_flat_contact *run)
     flat_cell_free(&run->cell);
     free(run->plastic);
     free(run->terms);
-    adhesion_free(run->adhesion);
-    free(run->net_pressure);
+    mpi_adhesion_free(&run->adhesion);
     free(run);
 }
 
@@ -100,9 +96,10 @@ int im_mpi_flat_contact_create(im_mpi_solver *s, const double *heights, im_mpi_f
 /* IM_EINVAL for a single (repulsive) solve of an adhesive cell. */
 static int check_repulsive(const im_mpi_flat_contact *run)
 {
-    return run->adhesion ? im_fail(IM_EINVAL, "an adhesive cell is solved in steps (im_mpi_flat_contact_step): a "
-                                              "single solve is the repulsive problem")
-                         : IM_OK;
+    return run->adhesion.state
+               ? im_fail(IM_EINVAL, "an adhesive cell is solved in steps (im_mpi_flat_contact_step): a "
+                                    "single solve is the repulsive problem")
+               : IM_OK;
 }
 
 int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im_flat_result *out)
@@ -125,39 +122,15 @@ int im_mpi_flat_contact_adhesion(im_mpi_flat_contact *run, const im_solver_optio
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(options, "options");
-    int status = im_solver_options_check(options);
-    if (status != IM_OK)
-        return status;
-    const im_mpi_solver *s = run->solver;
-    if (!(options->adhesion_work > 0))
-        return im_fail(IM_EINVAL, "adhesion work = %g: expected a work of adhesion > 0", options->adhesion_work);
-    if (s->plan.options.hardness > 0)
-        return im_fail(IM_EINVAL,
-                       "adhesion work = %g with the solver's hardness %g: adhesion with plasticity is not "
-                       "available (as im_indentation_create)",
-                       options->adhesion_work, s->plan.options.hardness);
-    if (run->adhesion || run->steps > 0)
+    if (run->adhesion.state || run->steps > 0)
         return im_fail(IM_EINVAL, "adhesion: expected once, before the cell's first step (%d taken)", run->steps);
-    const size_t n = (size_t)s->rows * s->nx;
-    status = adhesion_create(s->nx, s->rows, 1, options, &run->adhesion);
-    if (status == IM_OK && !(run->net_pressure = calloc(n + 1, sizeof(double))))
-        status = im_fail(IM_ENOMEM, "distributed flat contact %d x %d: rank %d's net pressure", s->nx, s->ny,
-                         s->rank);
-    status = mpi_collective_status(s->comm, status);
-    if (status != IM_OK) {
-        adhesion_free(run->adhesion);
-        run->adhesion = NULL;
-        return status;
-    }
-    mpi_adhesion_ranks(run->solver, &run->ranks);
-    adhesion_over_ranks(run->adhesion, &run->ranks);
-    return IM_OK;
+    return mpi_adhesion_create(run->solver, options, &run->adhesion);
 }
 
 const double *im_mpi_flat_contact_pressure(const im_mpi_flat_contact *run)
 {
     ARG_REQUIRE_OR(run, "run", NULL);
-    return run->adhesion ? run->net_pressure : run->cell.pressure;
+    return run->adhesion.state ? run->adhesion.net_pressure : run->cell.pressure;
 }
 
 int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap)
@@ -168,7 +141,7 @@ int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap)
     const size_t n = (size_t)run->solver->rows * run->solver->nx;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        gap[i] = c->gap0[i] - c->approach + adhesion_net_displacement(run->adhesion, i, c->displacement[i]);
+        gap[i] = c->gap0[i] - c->approach + adhesion_net_displacement(run->adhesion.state, i, c->displacement[i]);
     return IM_OK;
 }
 
@@ -224,8 +197,8 @@ static double mean_open_gap(im_mpi_flat_contact *run)
     const size_t n = (size_t)run->solver->rows * run->solver->nx;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        run->terms[i] =
-            fmax(c->gap0[i] - c->approach + adhesion_net_displacement(run->adhesion, i, c->displacement[i]), 0.0);
+        run->terms[i] = fmax(
+            c->gap0[i] - c->approach + adhesion_net_displacement(run->adhesion.state, i, c->displacement[i]), 0.0);
     return mpi_surface_mean(run->solver, run->terms);
 }
 
@@ -237,7 +210,7 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
     if (control != IM_CONTROL_LOAD && control != IM_CONTROL_MEAN_GAP)
         return im_fail(IM_EINVAL, "periodic step: control %d: expected IM_CONTROL_LOAD or IM_CONTROL_MEAN_GAP",
                        (int)control);
-    if (run->adhesion && control != IM_CONTROL_MEAN_GAP)
+    if (run->adhesion.state && control != IM_CONTROL_MEAN_GAP)
         return im_fail(IM_EINVAL,
                        "load %g on an adhesive cell: expected IM_CONTROL_MEAN_GAP (adhesion under load "
                        "control is not available on a periodic cell)",
@@ -280,17 +253,6 @@ static int solve_at_mean_gap(im_mpi_flat_contact *run, double target, im_solve_r
     return search_mean_gap(&search, run->cell.mean_gap0 - target, run->solver->plan.options.hardness, out);
 }
 
-/* The net pressure of the last step, and its tensile force and adhesive and repulsive patches. */
-static void adhesive_values(im_mpi_flat_contact *run, im_step_result *out)
-{
-    const size_t n = (size_t)run->solver->rows * run->solver->nx;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        run->net_pressure[i] = adhesion_net_pressure(run->adhesion, i, run->cell.pressure[i]);
-    adhesion_split(run->adhesion, run->cell.pressure, run->solver->delta, &out->tensile_force, &out->adhesive_patches,
-                   &out->repulsive_patches);
-}
-
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
@@ -301,8 +263,8 @@ int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, 
     flat_cell *c = &run->cell;
     im_solve_result solve = {0};
     ++run->steps;
-    if (run->adhesion) /* mean u = 0 with the zone's lift too: the approach gives the mean gap */
-        status = adhesion_solve(run->adhesion, &run->solver->plan, c->gap0, c->mean_gap0 - target, c->pressure,
+    if (run->adhesion.state) /* mean u = 0 with the zone's lift too: the approach gives the mean gap */
+        status = adhesion_solve(run->adhesion.state, &run->solver->plan, c->gap0, c->mean_gap0 - target, c->pressure,
                                 c->displacement, &solve);
     else if (control == IM_CONTROL_MEAN_GAP)
         status = solve_at_mean_gap(run, target, &solve);
@@ -320,7 +282,7 @@ int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, 
     out->mean_gap = mean_open_gap(run);
     plastic_extremes(run, &out->plastic_depth, &out->residual_approach);
     out->yielding_patches = yielding;
-    if (run->adhesion)
-        adhesive_values(run, out);
+    if (run->adhesion.state)
+        mpi_adhesion_values(&run->adhesion, s, c->pressure, out);
     return status;
 }

@@ -53,11 +53,17 @@ static long first_edge_contact(const im_mpi_solver *s, const double *p)
     return LONG_MAX;
 }
 
+long mpi_first_on_edge(const im_mpi_solver *s, const double *values)
+{
+    long first = first_edge_contact(s, values);
+    MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_LONG, MPI_MIN, s->comm);
+    return first;
+}
+
 int im_mpi_check_edge(const im_mpi_solver *s, const double *pressure)
 {
     ARG_REQUIRE(s, "solver");
-    long first = first_edge_contact(s, pressure);
-    MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_LONG, MPI_MIN, s->comm);
+    const long first = mpi_first_on_edge(s, pressure);
     if (first == LONG_MAX)
         return IM_OK;
     return im_fail(IM_EEDGE,

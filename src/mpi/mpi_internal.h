@@ -76,6 +76,28 @@ void mpi_cascade_free(im_mpi_solver *solver);
 /* The adhesive passes of a state over this solver's ranks (adhesion.c): out refers to s. */
 void mpi_adhesion_ranks(im_mpi_solver *s, adhesion_ranks *out);
 
+/* The adhesion of a history's steps over the ranks (adhesion.c): its state on this rank's rows, whose passes
+ * run over the solver's ranks, and the net pressure of the last step. Kept where it was made (the state refers
+ * to ranks). */
+typedef struct mpi_adhesion {
+    adhesion_state *state; /* NULL: no adhesion */
+    adhesion_ranks ranks;
+    double *net_pressure;
+} mpi_adhesion;
+
+/* *out for options' law over s's ranks (a periodic cell's when s is periodic): IM_EINVAL for invalid options,
+ * no work of adhesion, or the solver's hardness (adhesion with plasticity over ranks is not available; the same
+ * options on every rank: the same answer); IM_ENOMEM on every rank when some rank's allocation failed. */
+int mpi_adhesion_create(im_mpi_solver *s, const im_solver_options *options, mpi_adhesion *out);
+void mpi_adhesion_free(mpi_adhesion *a);
+/* The net pressure of a step whose repulsive pressure is pressure (this rank's rows), and its tensile force and
+ * adhesive and repulsive patches into *out. Collective. */
+void mpi_adhesion_values(mpi_adhesion *a, const im_mpi_solver *s, const double *pressure, im_step_result *out);
+
+/* The global index (y nx + x) of the first patch, row-major, on the surface's outer row or column where
+ * values (this rank's rows) is > 0, or LONG_MAX: the same on every rank. Collective. */
+long mpi_first_on_edge(const im_mpi_solver *solver, const double *values);
+
 /* The mean over the surface of values (this rank's rows), summed in row order: the same bits on every
  * rank for any rank count. */
 double mpi_surface_mean(const im_mpi_solver *solver, const double *values);

@@ -226,8 +226,8 @@ static int check_engine_options(const im_solver_options *o)
     if (o->adhesion_work > 0)
         return im_fail(IM_EUNSUPPORTED,
                        "adhesion work = %g: the distributed solver solves the repulsive problem "
-                       "(adhesion acts in a periodic cell's steps, im_mpi_flat_contact_adhesion; the "
-                       "half-space's indentation has no distributed form)",
+                       "(adhesion acts in the steps of a periodic cell, im_mpi_flat_contact_adhesion, and "
+                       "of an indentation, im_mpi_indentation_create)",
                        o->adhesion_work);
     if (o->device == IM_DEVICE_GPU)
         return im_fail(IM_EUNSUPPORTED, "device = gpu: the distributed solver runs on each rank's CPU (OpenMP "

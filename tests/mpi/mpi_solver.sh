@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Runs tests/mpi/mpi_solver.c with 1, 2, 3 and 4 ranks of one thread and 2 ranks of 2 OpenMP
-# threads (hybrid; each run compares with the serial solver), then checks that every run gave the
-# same loads to the bit and the same contact counts.
-#   mpi_solver.sh MPIEXEC PROGRAM
+# Runs tests/mpi/mpi_solver.c (or another PROGRAM of tests/mpi/ that prints its loads so) with 1, 2, 3
+# and 4 ranks of one thread and 2 ranks of 2 OpenMP threads (hybrid; each run compares with the serial
+# solver), or the RANKS given (N, or Nx2 for N ranks of 2 threads), then checks that every run gave the
+# same loads to the bit and the same contact counts (the first seven fields of each line).
+#   mpi_solver.sh MPIEXEC PROGRAM [RANKS...]
 # Loopback only, oversubscribed (more ranks than cores), allowed as root (CI runs as root).
 set -euo pipefail
 mpiexec=$1 program=$2
+shift 2
+runs=("$@")
+[ $# -gt 0 ] || runs=(1 2 3 4 2x2)
 export OMPI_MCA_btl=self,vader                 # shared memory and self: no network needed
 export OMPI_MCA_btl_vader_single_copy_mechanism=none  # containers forbid cross-process memory access
 export OMPI_MCA_rmaps_base_oversubscribe=1
@@ -14,7 +18,7 @@ export OMPI_MCA_oob_tcp_if_include=lo
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for ranks in 1 2 3 4 2x2; do
+for ranks in "${runs[@]}"; do
   threads=1
   [ "$ranks" = 2x2 ] && threads=2
   echo "== ${ranks%x2} rank(s), $threads thread(s) each"
@@ -24,11 +28,11 @@ for ranks in 1 2 3 4 2x2; do
   cut -d' ' -f1-7 "$work/out_$ranks" > "$work/loads_$ranks"
   [ -s "$work/loads_$ranks" ] || { echo "no output from $ranks rank(s)" >&2; exit 1; }
 done
-for ranks in 2 3 4 2x2; do
-  if ! cmp -s "$work/loads_1" "$work/loads_$ranks"; then
-    echo "FAILED: $ranks ranks give other loads than 1 rank:" >&2
-    diff "$work/loads_1" "$work/loads_$ranks" >&2 || true
+for ranks in "${runs[@]:1}"; do
+  if ! cmp -s "$work/loads_${runs[0]}" "$work/loads_$ranks"; then
+    echo "FAILED: $ranks ranks give other loads than ${runs[0]}:" >&2
+    diff "$work/loads_${runs[0]}" "$work/loads_$ranks" >&2 || true
     exit 1
   fi
 done
-echo "loads identical to the bit for 1, 2, 3 and 4 ranks and for 2 ranks of 2 threads"
+echo "loads identical to the bit for ranks ${runs[*]}"
