@@ -165,7 +165,8 @@ static void solve_to_step(const im_solve_result *s, long yielding, double deepes
 static void serial_indentation(const history *h, const im_field *surface, step_answer *answers)
 {
     im_solver_options o = h->kind == ADHESIVE ? adhesive_options(h) : options(h);
-    const im_indenter punch = h->kind == HALF_SPACE ? h->punch : im_indenter_flat(100);
+    /* a periodic cell's flat covers it whole (corners side / sqrt 2 from the centre) */
+    const im_indenter punch = h->kind == HALF_SPACE ? h->punch : im_indenter_flat(side);
     im_indentation *run;
     check_status(im_indentation_create(surface, &punch, h->control, largest_target(h, surface), &o, &run),
                  "serial indentation");
