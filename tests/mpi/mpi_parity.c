@@ -1,9 +1,10 @@
 /* MPI parity over every solve kind (issue 33), run under mpirun with 1, 2, 3 and 4 ranks
  * (tests/mpi/mpi_parity.sh): each kind is a history of warm-started steps on one rough surface, its first
- * step cold (the cascade start), solved over the ranks and, on rank 0, by the serial solver a user runs
- * for it. Every step must take the serial step's fine and coarse iterations, reach its load and approach
- * to 1e-10 relative and its contact set patch by patch, and, with a hardness, its plastic depth: the cap's
- * memory (the surface flattened on loading, unloading from the impression, not along the loading curve).
+ * step cold (the cascade start where the serial plan has one), solved over the ranks and, on rank 0, by the
+ * serial solver a user runs for it. Every step must take the serial step's fine and coarse iterations,
+ * reach its load and approach to 1e-10 relative and its contact set patch by patch, and, with a hardness,
+ * its plastic depth: the cap's memory (the depth kept across steps, the unloading step solved on the
+ * flattened surface).
  *
  * Kinds: the half-space cone, sphere and flat punch under displacement and load control, without and with
  * the hardness cap (loading, deeper, unloading); the periodic cell under a mean pressure and a mean gap,
