@@ -53,6 +53,16 @@ cmp -s "$work/cap_result1" "$work/result1" && fail "--hardness changed nothing: 
 highest=$("$cli" surface --stats "$work/cap1/force.npy" --detrend none | awk '$1 == "height" {gsub(/[\],]/, "", $4); print $4}')
 awk -v h="$highest" 'BEGIN { exit !(h <= 0.12 && h > 0.119) }' || fail "--hardness 0.12: the largest force is $highest"
 
+# a flat punch (refused before the MPI parity work, though the solver takes it): the same result on 1 and
+# 3 ranks, its contact within the punch's radius 12 (at most the 441 patches whose centres lie within 12 of the axis)
+for k in 1 3; do
+  "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --n 64 --m 48 --punch flat --radius 12 --approach 1 --tol 1e-8 \
+    2> "$work/flat$k.err" | cut -d, -f1-5 > "$work/flat_result$k" || fail "--punch flat on $k ranks: $(cat "$work/flat$k.err")"
+done
+cmp -s "$work/flat_result1" "$work/flat_result3" || fail "--punch flat: 1 and 3 ranks differ: $(cat "$work/flat_result"*)"
+flat_contact=$(sed -n 2p "$work/flat_result1" | cut -d, -f3)
+[ "${flat_contact:-0}" -gt 100 ] && [ "$flat_contact" -le 441 ] || fail "--punch flat: $(cat "$work/flat_result1")"
+
 # a surface from a file (the gap just written is a valid height field) on 2 ranks
 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/out1/gap.npy" --punch sphere --radius 50 \
   --load 10 > "$work/stdout_file" || fail "mpi-indent --surface exited with $?"

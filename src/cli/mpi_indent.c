@@ -81,7 +81,8 @@ static void usage(FILE *stream)
             "                  a surface is synthesised over the ranks:\n"
             "  --n NX --m NY   its grid (default 512 x 512; lambda_r = the shorter side)\n"
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
-            "  --punch cone|sphere   (default cone) --alpha DEG (default 80) --radius R (sphere)\n"
+            "  --punch cone|sphere|flat   (default cone) --alpha DEG (default 80) --radius R (sphere,\n"
+            "                  flat punch)\n"
             "  --approach W | --load N   displacement or load control\n"
             "  --hardness H    perfect plasticity: no patch carries more than H (units of E*'s stress);\n"
             "                  with --load, Polonsky-Keer's load control with the cap (indent's search\n"
@@ -146,14 +147,14 @@ static int apply_option(int code, const char *arg, void *state)
         o->targets_option = code == OPT_PRESSURE ? "--pressure" : "--mean-gap";
         o->control = code == OPT_PRESSURE ? IM_CONTROL_LOAD : IM_CONTROL_MEAN_GAP;
         return steps_parse_list(o, arg);
-    case OPT_PUNCH: /* the names of `indent --punch` (indenter.h); a flat punch is not solved over ranks */
+    case OPT_PUNCH: /* the names of `indent --punch` (indenter.h); a profile needs indent's --profile */
         o->punch_given = 1;
         if (im_punch_parse(arg, &o->punch.kind) != IM_OK) {
             fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
             return -1;
         }
-        if (o->punch.kind != IM_PUNCH_CONE && o->punch.kind != IM_PUNCH_SPHERE) {
-            fprintf(stderr, "indentmap: --punch %s: mpi-indent solves a cone or a sphere\n", arg);
+        if (o->punch.kind != IM_PUNCH_CONE && o->punch.kind != IM_PUNCH_SPHERE && o->punch.kind != IM_PUNCH_FLAT) {
+            fprintf(stderr, "indentmap: --punch %s: mpi-indent solves a cone, a sphere or a flat punch\n", arg);
             return -1;
         }
         return 0;
