@@ -240,7 +240,7 @@ static void test_scale_pipeline(void **state)
     REQUIRE_CONTEXT();
     enum { N = 1000 };
     gpu_pipeline pipeline;
-    ok(gpu_pipeline_create(context, spirv_scale, sizeof spirv_scale, 1, sizeof(struct scale_push), &pipeline),
+    ok(gpu_pipeline_create(context, spirv_scale, sizeof spirv_scale, 1, 1, sizeof(struct scale_push), &pipeline),
        "gpu_pipeline_create");
     double data[N + 2], back[N + 2];
     uint64_t seed = 7;
