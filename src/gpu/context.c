@@ -32,7 +32,8 @@ struct gpu_context {
     PFN_vkCmdPushDescriptorSetKHR push_descriptor_set;
     VkPhysicalDeviceMemoryProperties memory;
     VkDeviceSize max_buffer;
-    VkDeviceSize chunk_bytes; /* gpu_context_chunk_bytes */
+    VkDeviceSize part_bytes, chunk_bytes; /* gpu_context_part_bytes, gpu_context_chunk_bytes */
+    int nonuniform_buffers;               /* gpu_context_nonuniform_buffers */
     int software;
     int recording;
     int deferred_status; /* a failure while recording (void functions), returned by gpu_submit_wait */
@@ -308,12 +309,13 @@ static VkDeviceSize power_of_two_within(VkDeviceSize limit)
     return bytes;
 }
 
-/* The chunk size: within maxStorageBufferRange, and within INDENTMAP_GPU_MAX_BUFFER when that is set
- * (the one place it is read; tests lower it to split small fields into chunks). */
+/* The part size and the chunk size: within INDENTMAP_GPU_MAX_BUFFER when that is set (the one place
+ * it is read; tests lower it to split small fields into chunks). */
 static int choose_chunk_bytes(gpu_context *context)
 {
     enum { SMALLEST = 4096 };
-    VkDeviceSize limit = context->max_buffer;
+    context->part_bytes = power_of_two_within(context->max_buffer);
+    VkDeviceSize limit = context->part_bytes;
     const char *text = getenv("INDENTMAP_GPU_MAX_BUFFER");
     if (text && *text) {
         char *end;
@@ -329,6 +331,19 @@ static int choose_chunk_bytes(gpu_context *context)
     return IM_OK;
 }
 
+/* shaderStorageBufferArrayNonUniformIndexingNative (VK_EXT_descriptor_indexing's property). */
+static int nonuniform_buffers(VkPhysicalDevice device)
+{
+    if (!has_device_extension(device, VK_EXT_DESCRIPTOR_INDEXING_EXTENSION_NAME))
+        return 0;
+    VkPhysicalDeviceDescriptorIndexingPropertiesEXT indexing = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DESCRIPTOR_INDEXING_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 properties = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+                                              .pNext = &indexing};
+    vkGetPhysicalDeviceProperties2(device, &properties);
+    return indexing.shaderStorageBufferArrayNonUniformIndexingNative == VK_TRUE;
+}
+
 static int create_device(gpu_context *context)
 {
     VkPhysicalDeviceProperties properties;
@@ -342,6 +357,7 @@ static int create_device(gpu_context *context)
     int status = choose_chunk_bytes(context);
     if (status != IM_OK)
         return status;
+    context->nonuniform_buffers = nonuniform_buffers(context->physical);
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -428,16 +444,16 @@ void gpu_context_close(gpu_context *context)
 const char *gpu_context_device_name(const gpu_context *context) { return context->name; }
 int gpu_context_is_software(const gpu_context *context) { return context->software; }
 VkDeviceSize gpu_context_max_buffer(const gpu_context *context) { return context->max_buffer; }
+VkDeviceSize gpu_context_part_bytes(const gpu_context *context) { return context->part_bytes; }
 VkDeviceSize gpu_context_chunk_bytes(const gpu_context *context) { return context->chunk_bytes; }
+int gpu_context_nonuniform_buffers(const gpu_context *context) { return context->nonuniform_buffers; }
 
-static uint32_t chunks_for(const gpu_context *context, VkDeviceSize bytes)
-{
-    return bytes <= context->chunk_bytes ? 1 : (uint32_t)((bytes + context->chunk_bytes - 1) / context->chunk_bytes);
-}
+/* How many pieces of `size` hold `bytes`. */
+static uint32_t pieces(VkDeviceSize bytes, VkDeviceSize size) { return (uint32_t)((bytes + size - 1) / size); }
 
 VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSize bytes)
 {
-    return bytes <= context->chunk_bytes ? bytes : chunks_for(context, bytes) * context->chunk_bytes;
+    return bytes <= context->part_bytes ? bytes : pieces(bytes, context->part_bytes) * context->part_bytes;
 }
 long gpu_context_validation_messages(const gpu_context *context) { return context->validation_messages; }
 
@@ -540,16 +556,16 @@ static int memory_type_for(const gpu_context *context, uint32_t allowed, enum gp
     return memory_type(context, allowed, mapped, type);
 }
 
-static int allocate_chunk(gpu_context *context, gpu_buffer *buffer, uint32_t k, enum gpu_memory memory)
+static int allocate_part(gpu_context *context, gpu_buffer *buffer, uint32_t k, enum gpu_memory memory)
 {
     VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
-                               .size = buffer->chunk_bytes,
+                               .size = buffer->part_bytes,
                                .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
-    VK_CHECK(vkCreateBuffer(context->device, &info, NULL, &buffer->chunk[k]));
+    VK_CHECK(vkCreateBuffer(context->device, &info, NULL, &buffer->part[k]));
     VkMemoryRequirements needs;
-    vkGetBufferMemoryRequirements(context->device, buffer->chunk[k], &needs);
+    vkGetBufferMemoryRequirements(context->device, buffer->part[k], &needs);
     uint32_t type;
     const int host_visible = memory != GPU_DEVICE_LOCAL;
     if (!memory_type_for(context, needs.memoryTypeBits, memory, &type))
@@ -559,24 +575,25 @@ static int allocate_chunk(gpu_context *context, gpu_buffer *buffer, uint32_t k, 
                                      .allocationSize = needs.size,
                                      .memoryTypeIndex = type};
     VK_CHECK(vkAllocateMemory(context->device, &allocate, NULL, &buffer->memory[k]));
-    VK_CHECK(vkBindBufferMemory(context->device, buffer->chunk[k], buffer->memory[k], 0));
+    VK_CHECK(vkBindBufferMemory(context->device, buffer->part[k], buffer->memory[k], 0));
     if (host_visible)
         VK_CHECK(vkMapMemory(context->device, buffer->memory[k], 0, VK_WHOLE_SIZE, 0, &buffer->mapped));
     return IM_OK;
 }
 
-/* Host-visible buffers are mapped whole, so they stay within one chunk (the staging copies go chunk
- * by chunk); device-local ones take up to GPU_MAX_CHUNKS. */
+/* Host-visible buffers are mapped whole, so they stay within one part (the staging copies go part
+ * by part); device-local ones take up to GPU_MAX_CHUNKS chunks. */
 static int check_buffer_size(const gpu_context *context, VkDeviceSize bytes, enum gpu_memory memory)
 {
     if (bytes == 0)
         return im_fail(IM_EINVAL, "GPU buffer of 0 bytes: expected at least 1");
-    const uint32_t most = memory == GPU_DEVICE_LOCAL ? GPU_MAX_CHUNKS : 1;
-    if (bytes > most * context->chunk_bytes)
+    const int local = memory == GPU_DEVICE_LOCAL;
+    const VkDeviceSize piece = local ? context->chunk_bytes : context->part_bytes;
+    const uint32_t most = local ? GPU_MAX_CHUNKS : 1;
+    if (bytes > most * piece)
         return im_fail(IM_ENOMEM,
-                       "GPU buffer of %.1f MiB: more than %u chunk%s of %.1f MiB (%s's maxStorageBufferRange is "
-                       "%.1f MiB)",
-                       bytes / 1048576.0, most, most == 1 ? "" : "s", context->chunk_bytes / 1048576.0, context->name,
+                       "GPU buffer of %.1f MiB: more than %u %s of %.1f MiB (%s's maxStorageBufferRange is %.1f MiB)",
+                       bytes / 1048576.0, most, local ? "chunks" : "part", piece / 1048576.0, context->name,
                        context->max_buffer / 1048576.0);
     return IM_OK;
 }
@@ -588,10 +605,10 @@ int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, enum gpu_memory 
     if (status != IM_OK)
         return status;
     out->bytes = bytes;
-    out->chunks = chunks_for(context, bytes);
-    out->chunk_bytes = out->chunks == 1 ? bytes : context->chunk_bytes;
-    for (uint32_t k = 0; k < out->chunks && status == IM_OK; ++k)
-        status = allocate_chunk(context, out, k, memory);
+    out->parts = pieces(bytes, context->part_bytes);
+    out->part_bytes = out->parts == 1 ? bytes : context->part_bytes;
+    for (uint32_t k = 0; k < out->parts && status == IM_OK; ++k)
+        status = allocate_part(context, out, k, memory);
     if (status != IM_OK)
         gpu_buffer_free(context, out);
     return status;
@@ -603,8 +620,8 @@ void gpu_buffer_free(gpu_context *context, gpu_buffer *buffer)
         return;
     if (buffer->mapped)
         vkUnmapMemory(context->device, buffer->memory[0]);
-    for (uint32_t k = 0; k < buffer->chunks; ++k) {
-        vkDestroyBuffer(context->device, buffer->chunk[k], NULL);
+    for (uint32_t k = 0; k < buffer->parts; ++k) {
+        vkDestroyBuffer(context->device, buffer->part[k], NULL);
         vkFreeMemory(context->device, buffer->memory[k], NULL);
     }
     *buffer = (gpu_buffer){0};
@@ -626,10 +643,10 @@ static int ensure_staging(gpu_context *context, gpu_buffer *staging, enum gpu_me
     return gpu_buffer_create(context, bytes, memory, staging);
 }
 
-/* The staging buffers hold at most one chunk: larger copies go chunk by chunk. */
+/* The staging buffers hold at most one part: larger copies go part by part. */
 int gpu_context_reserve_staging(gpu_context *context, VkDeviceSize bytes)
 {
-    bytes = bytes < context->chunk_bytes ? bytes : context->chunk_bytes;
+    bytes = bytes < context->part_bytes ? bytes : context->part_bytes;
     int status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, bytes);
     return status == IM_OK ? ensure_staging(context, &context->download, GPU_HOST_READ, bytes) : status;
 }
@@ -674,21 +691,21 @@ static int transfer_allowed(const gpu_context *context, const char *what)
     return IM_OK;
 }
 
-/* The part of a copy at `offset` of a buffer that one staging copy takes: within one chunk and
- * within the staging size. */
+/* The part of a copy at `offset` of a buffer that one staging copy takes: within one part of the
+ * buffer and within the staging size (a part of the context). */
 typedef struct {
-    uint32_t chunk;
-    VkDeviceSize offset, bytes; /* in that chunk */
+    uint32_t part;
+    VkDeviceSize offset, bytes; /* in that part */
 } copy_piece;
 
 static copy_piece piece_at(const gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset,
                            VkDeviceSize left)
 {
-    copy_piece piece = {.chunk = (uint32_t)(offset / buffer->chunk_bytes), .offset = offset % buffer->chunk_bytes};
-    const VkDeviceSize room = buffer->chunk_bytes - piece.offset;
+    copy_piece piece = {.part = (uint32_t)(offset / buffer->part_bytes), .offset = offset % buffer->part_bytes};
+    const VkDeviceSize room = buffer->part_bytes - piece.offset;
     piece.bytes = left < room ? left : room;
-    if (piece.bytes > context->chunk_bytes)
-        piece.bytes = context->chunk_bytes;
+    if (piece.bytes > context->part_bytes)
+        piece.bytes = context->part_bytes;
     return piece;
 }
 
@@ -700,14 +717,14 @@ static int upload_piece(gpu_context *context, gpu_buffer *buffer, copy_piece pie
     const double start = seconds_now();
     copy_threaded(context->upload.mapped, data, piece.bytes);
     gpu_profile_host(context->profile, "copy into staging", seconds_now() - start);
-    return copy_and_wait(context, context->upload.chunk[0], 0, buffer->chunk[piece.chunk], piece.offset, piece.bytes);
+    return copy_and_wait(context, context->upload.part[0], 0, buffer->part[piece.part], piece.offset, piece.bytes);
 }
 
 static int download_piece(gpu_context *context, const gpu_buffer *buffer, copy_piece piece, void *data)
 {
     int status = ensure_staging(context, &context->download, GPU_HOST_READ, piece.bytes);
     if (status == IM_OK)
-        status = copy_and_wait(context, buffer->chunk[piece.chunk], piece.offset, context->download.chunk[0], 0,
+        status = copy_and_wait(context, buffer->part[piece.part], piece.offset, context->download.part[0], 0,
                                piece.bytes);
     if (status == IM_OK) {
         const double start = seconds_now();
@@ -898,8 +915,8 @@ void gpu_zero(gpu_context *context, gpu_buffer *buffer)
 {
     if (!recording(context))
         return;
-    for (uint32_t k = 0; k < buffer->chunks; ++k)
-        vkCmdFillBuffer(context->commands, buffer->chunk[k], 0, VK_WHOLE_SIZE, 0);
+    for (uint32_t k = 0; k < buffer->parts; ++k)
+        vkCmdFillBuffer(context->commands, buffer->part[k], 0, VK_WHOLE_SIZE, 0);
     gpu_barrier(context);
     gpu_mark(context, "zero");
 }
@@ -910,16 +927,25 @@ void gpu_mark(gpu_context *context, const char *label)
         gpu_profile_mark(context->profile, context->commands, label);
 }
 
-/* A field binding's descriptors: its chunks, the last repeated up to GPU_MAX_CHUNKS (the shader
- * never reads past a field's end, but every element of a bound array must be valid). */
-static uint32_t describe_binding(const gpu_buffer *buffer, int field, VkDescriptorBufferInfo *infos)
+/* A field binding's descriptors: chunk j is the part holding bytes j C .. (j + 1) C (C, a power of
+ * two, divides the part size), the last chunk repeated up to GPU_MAX_CHUNKS (the shader never reads
+ * past a field's end, but every element of a bound array must be valid). */
+static uint32_t describe_binding(const gpu_context *context, const gpu_buffer *buffer, int field,
+                                 VkDescriptorBufferInfo *infos)
 {
-    const uint32_t count = field ? GPU_MAX_CHUNKS : 1;
-    for (uint32_t j = 0; j < count; ++j) {
-        const uint32_t k = j < buffer->chunks ? j : buffer->chunks - 1;
-        infos[j] = (VkDescriptorBufferInfo){.buffer = buffer->chunk[k], .offset = 0, .range = VK_WHOLE_SIZE};
+    if (!field) {
+        infos[0] = (VkDescriptorBufferInfo){.buffer = buffer->part[0], .offset = 0, .range = VK_WHOLE_SIZE};
+        return 1;
     }
-    return count;
+    const VkDeviceSize chunk = context->chunk_bytes, last = (buffer->bytes - 1) / chunk;
+    for (uint32_t j = 0; j < GPU_MAX_CHUNKS; ++j) {
+        const VkDeviceSize start = (j < last ? j : last) * chunk, in_part = start % buffer->part_bytes;
+        const VkDeviceSize rest = buffer->part_bytes - in_part;
+        infos[j] = (VkDescriptorBufferInfo){.buffer = buffer->part[start / buffer->part_bytes],
+                                            .offset = in_part,
+                                            .range = rest <= chunk ? VK_WHOLE_SIZE : chunk};
+    }
+    return GPU_MAX_CHUNKS;
 }
 
 void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_buffer *const *buffers,
@@ -931,13 +957,14 @@ void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_
     VkWriteDescriptorSet writes[MAX_BINDINGS];
     uint32_t used = 0;
     for (uint32_t k = 0; k < pipeline->bindings; ++k) {
-        if (k >= pipeline->fields && buffers[k]->chunks > 1) {
+        if (k >= pipeline->fields && buffers[k]->bytes > context->chunk_bytes) {
             gpu_defer_failure(context,
-                              im_fail(IM_EINVAL, "GPU dispatch (%s): binding %u is one buffer, given %u chunks",
-                                      pipeline->label ? pipeline->label : "dispatch", k, buffers[k]->chunks));
+                              im_fail(IM_EINVAL, "GPU dispatch (%s): binding %u takes one chunk, given %llu bytes",
+                                      pipeline->label ? pipeline->label : "dispatch", k,
+                                      (unsigned long long)buffers[k]->bytes));
             return;
         }
-        const uint32_t count = describe_binding(buffers[k], k < pipeline->fields, infos + used);
+        const uint32_t count = describe_binding(context, buffers[k], k < pipeline->fields, infos + used);
         writes[k] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                            .dstBinding = k,
                                            .descriptorCount = count,

@@ -31,7 +31,7 @@ struct gpu_fft {
     gpu_handles handles;
     VkBuffer real[GPU_MAX_CHUNKS], modes[GPU_MAX_CHUNKS];
     uint64_t real_bytes[GPU_MAX_CHUNKS], modes_bytes[GPU_MAX_CHUNKS];
-    uint32_t real_chunks, modes_chunks;
+    uint32_t real_parts, modes_parts;
     VkCommandBuffer commands;
     int px, py;
     char labels[2][40]; /* a profile's names of the forward and the inverse transform */
@@ -81,7 +81,12 @@ static int check_sizes(const gpu_context *context, int px, int py, const gpu_buf
                        "least %llu each",
                        px, py, (unsigned long long)real->bytes, (unsigned long long)modes->bytes,
                        (unsigned long long)modes_bytes);
-    (void)context;
+    /* VkFFT's multi-buffer shaders index their blocks by non-uniform indices without marking them so */
+    if ((real->parts > 1 || modes->parts > 1) && !gpu_context_nonuniform_buffers(context))
+        return im_fail(IM_EUNSUPPORTED,
+                       "GPU FFT %d x %d: its %.0f MiB buffers exceed one storage buffer, and %s does not index "
+                       "arrays of storage buffers non-uniformly natively (VkFFT's multi-buffer mode needs it)",
+                       px, py, (double)modes_bytes / 1048576.0, gpu_context_device_name(context));
     return IM_OK;
 }
 
@@ -107,12 +112,12 @@ static VkFFTConfiguration configuration(gpu_fft *fft)
     c.fence = fft->handles.fence;
     c.isInputFormatted = 1;
     c.inverseReturnToInputBuffer = 1;
-    c.inputBufferNum = fft->real_chunks;
+    c.inputBufferNum = fft->real_parts;
     c.inputBuffer = fft->real;
     c.inputBufferSize = fft->real_bytes;
     c.inputBufferStride[0] = (uint64_t)fft->px; /* in reals */
     c.inputBufferStride[1] = (uint64_t)fft->px * (uint64_t)fft->py;
-    c.bufferNum = fft->modes_chunks;
+    c.bufferNum = fft->modes_parts;
     c.buffer = fft->modes;
     c.bufferSize = fft->modes_bytes;
     c.bufferStride[0] = (uint64_t)(fft->px / 2 + 1); /* in complex numbers */
@@ -121,13 +126,13 @@ static VkFFTConfiguration configuration(gpu_fft *fft)
 }
 
 /* A buffer as VkFFT takes it: one buffer of the bytes used, or (VkFFT's multi-buffer mode) its
- * equal chunks, which VkFFT binds as blocks of the smallest one's size. */
+ * equal parts, which VkFFT binds as blocks of the smallest one's size. */
 static void hand_over(const gpu_buffer *buffer, uint64_t used, VkBuffer *buffers, uint64_t *sizes, uint32_t *count)
 {
-    *count = buffer->chunks;
-    for (uint32_t k = 0; k < buffer->chunks; ++k) {
-        buffers[k] = buffer->chunk[k];
-        sizes[k] = buffer->chunks == 1 ? used : buffer->chunk_bytes;
+    *count = buffer->parts;
+    for (uint32_t k = 0; k < buffer->parts; ++k) {
+        buffers[k] = buffer->part[k];
+        sizes[k] = buffer->parts == 1 ? used : buffer->part_bytes;
     }
 }
 
@@ -141,8 +146,8 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     if (!fft)
         return im_fail(IM_ENOMEM, "GPU FFT %d x %d: out of memory", px, py);
     fft->handles = gpu_context_handles(context);
-    hand_over(real, (uint64_t)px * py * sizeof(double), fft->real, fft->real_bytes, &fft->real_chunks);
-    hand_over(modes, gpu_fft_modes_bytes(px, py), fft->modes, fft->modes_bytes, &fft->modes_chunks);
+    hand_over(real, (uint64_t)px * py * sizeof(double), fft->real, fft->real_bytes, &fft->real_parts);
+    hand_over(modes, gpu_fft_modes_bytes(px, py), fft->modes, fft->modes_bytes, &fft->modes_parts);
     fft->px = px;
     fft->py = py;
     snprintf(fft->labels[0], sizeof fft->labels[0], "FFT R2C %d x %d", px, py);

@@ -19,18 +19,19 @@
 
 typedef struct gpu_context gpu_context;
 
-/* A device-local buffer larger than the context's chunk size (gpu_context_chunk_bytes) is held as
- * up to GPU_MAX_CHUNKS Vulkan buffers of that size each (the last one too, as VkFFT's multi-buffer
- * mode needs equal blocks), since no storage buffer binding may exceed maxStorageBufferRange; the
- * shaders bind each field as an array of its chunks (shaders/compute/chunks.glsl). */
+/* A buffer as the shaders see it is an array of GPU_MAX_CHUNKS chunks of the context's chunk size
+ * (gpu_context_chunk_bytes; shaders/compute/chunks.glsl), since no storage buffer binding may
+ * exceed maxStorageBufferRange. In memory it is one Vulkan buffer, or, beyond the largest power of
+ * two within that range (gpu_context_part_bytes), several parts of that size each (the last one
+ * too, as VkFFT's multi-buffer mode needs equal blocks); each chunk lies within one part. */
 enum { GPU_MAX_CHUNKS = 5 };
 typedef struct gpu_buffer {
-    VkBuffer chunk[GPU_MAX_CHUNKS];
+    VkBuffer part[GPU_MAX_CHUNKS];
     VkDeviceMemory memory[GPU_MAX_CHUNKS];
-    uint32_t chunks;
-    VkDeviceSize bytes;       /* what was asked for */
-    VkDeviceSize chunk_bytes; /* each chunk's size: bytes when there is one */
-    void *mapped; /* host-visible buffers (one chunk): their persistent mapping (coherent); NULL otherwise */
+    uint32_t parts;
+    VkDeviceSize bytes;      /* what was asked for */
+    VkDeviceSize part_bytes; /* each part's size: bytes when there is one */
+    void *mapped; /* host-visible buffers (one part): their persistent mapping (coherent); NULL otherwise */
 } gpu_buffer;
 
 typedef struct gpu_pipeline {
@@ -57,12 +58,17 @@ void gpu_context_close(gpu_context *context);
 const char *gpu_context_device_name(const gpu_context *context);
 int gpu_context_is_software(const gpu_context *context);         /* a CPU implementation (lavapipe) */
 VkDeviceSize gpu_context_max_buffer(const gpu_context *context); /* maxStorageBufferRange */
-/* The size of a large buffer's chunks: the largest power of two within maxStorageBufferRange, at
- * most 2 GiB, or within the environment's INDENTMAP_GPU_MAX_BUFFER (bytes; a test setting that
- * splits small fields) when that is smaller. A buffer holds at most GPU_MAX_CHUNKS of them. */
+/* A buffer's parts: the largest power of two within maxStorageBufferRange, at most 2 GiB. */
+VkDeviceSize gpu_context_part_bytes(const gpu_context *context);
+/* The chunks the shaders index: the part size, or the largest power of two within the environment's
+ * INDENTMAP_GPU_MAX_BUFFER (bytes; a test setting that splits small fields) when that is smaller.
+ * A device-local buffer holds at most GPU_MAX_CHUNKS of them. */
 VkDeviceSize gpu_context_chunk_bytes(const gpu_context *context);
+/* Whether the device indexes arrays of storage buffers by non-uniform indices natively, which
+ * VkFFT's multi-buffer mode (transforms of buffers in several parts) relies on. */
+int gpu_context_nonuniform_buffers(const gpu_context *context);
 /* The device-local memory of the context's device (its heaps' sum), and what a buffer of `bytes`
- * occupies there (whole chunks). */
+ * occupies there (whole parts). */
 VkDeviceSize gpu_context_device_bytes(const gpu_context *context);
 VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSize bytes);
 long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
