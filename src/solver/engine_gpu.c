@@ -130,6 +130,7 @@ typedef struct gpu_device {
     gpu_context *context;
     gpu_pipeline kernels[K_COUNT];
     gpu_buffer partials, result; /* result: host-visible */
+    VkDeviceSize fields_bytes;   /* what the plans' buffers occupy (solver_footprint) */
     int references;
 } gpu_device;
 
@@ -142,6 +143,7 @@ struct gpu_solver {
     gpu_buffer change_count, change_index, change_value; /* update_pressure's changes */
     gpu_fft *fft, *precondition_fft;
     uint32_t nx, ny, px, py;
+    VkDeviceSize footprint; /* its share of device->fields_bytes */
 };
 
 /* ---- the device and its pipelines ---- */
@@ -515,6 +517,7 @@ static void gpu_engine_free(im_solver_plan *plan)
                              &s->change_value};
     for (size_t k = 0; k < sizeof buffers / sizeof *buffers; ++k)
         gpu_buffer_free(c, buffers[k]);
+    s->device->fields_bytes -= s->footprint;
     device_release(s->device);
     free(s);
     plan->gpu = NULL;
@@ -668,18 +671,23 @@ static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
     return status;
 }
 
-/* Refuses, before allocating, a plan whose buffers exceed the device's memory. */
+/* Refuses, before allocating, a plan whose buffers with those of its finer levels exceed the
+ * device's memory (IM_EUNSUPPORTED: device = auto then solves on the CPU). */
 static int check_memory(const im_solver_plan *plan, struct gpu_solver *s)
 {
-    const double needed = (double)solver_footprint(s, plan->options.precondition);
-    const double available = (double)gpu_context_device_bytes(context_of(s));
-    if (needed <= available)
+    gpu_device *d = s->device;
+    const VkDeviceSize needed = solver_footprint(s, plan->options.precondition);
+    const VkDeviceSize available = gpu_context_device_bytes(d->context);
+    if (d->fields_bytes + needed <= available) {
+        d->fields_bytes += s->footprint = needed;
         return IM_OK;
-    return im_fail(IM_ENOMEM,
-                   "GPU engine: solver grid %d x %d needs %.2f GiB of device memory for its fields, and %s has "
-                   "%.2f GiB (use device = cpu, or a smaller grid)",
-                   plan->nx, plan->ny, needed / 1073741824.0, gpu_context_device_name(context_of(s)),
-                   available / 1073741824.0);
+    }
+    return im_fail(IM_EUNSUPPORTED,
+                   "GPU engine: solver grid %d x %d needs %.2f GiB of device memory for its fields (%.2f GiB with "
+                   "its finer cascade levels), and %s has %.2f GiB (use device = cpu, or a smaller grid)",
+                   plan->nx, plan->ny, (double)needed / 1073741824.0,
+                   (double)(d->fields_bytes + needed) / 1073741824.0, gpu_context_device_name(d->context),
+                   (double)available / 1073741824.0);
 }
 
 int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
