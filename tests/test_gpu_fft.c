@@ -1,7 +1,8 @@
 /* The Vulkan layer under the GPU solver engine (src/gpu/): VkFFT's R2C / C2R against FFTW, its
  * refusal of sides it cannot do exactly, a compute pipeline (shaders/compute/scale.comp) through
- * push descriptors and push constants, buffers both ways. Every case runs under the validation
- * layer with synchronization validation, and must leave it silent.
+ * push descriptors and push constants, buffers both ways, fields split into chunks and buffers held
+ * in parts (vulkan.h, gpu_buffer). Every case runs under the validation layer with synchronization
+ * validation, and must leave it silent.
  *
  * Exits 77 (skipped) when the library is built without the GPU layer (IM_GPU off) or when no
  * Vulkan device with double precision opens (with IM_REQUIRE_GPU=1 that fails instead). A missing
