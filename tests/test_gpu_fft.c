@@ -1,7 +1,8 @@
 /* The Vulkan layer under the GPU solver engine (src/gpu/): VkFFT's R2C / C2R against FFTW, its
  * refusal of sides it cannot do exactly, a compute pipeline (shaders/compute/scale.comp) through
- * push descriptors and push constants, buffers both ways. Every case runs under the validation
- * layer with synchronization validation, and must leave it silent.
+ * push descriptors and push constants, buffers both ways, fields split into chunks and buffers held
+ * in parts (vulkan.h, gpu_buffer). Every case runs under the validation layer with synchronization
+ * validation, and must leave it silent.
  *
  * Exits 77 (skipped) when the library is built without the GPU layer (IM_GPU off) or when no
  * Vulkan device with double precision opens (with IM_REQUIRE_GPU=1 that fails instead). A missing
@@ -223,14 +224,16 @@ struct scale_push {
     uint32_t padding;
 };
 
-/* data *= factor by scale.comp over fewer workgroups than the data needs (the grid-stride loop). */
-static void scale_on_gpu(const gpu_pipeline *pipeline, const gpu_buffer *buffer, uint32_t count, double factor)
+/* data *= factor twice by scale.comp over fewer workgroups than the data needs (the grid-stride
+ * loop): first over `groups` of them, then over half as many (the barrier between must hold). */
+static void scale_on_gpu(const gpu_pipeline *pipeline, const gpu_buffer *buffer, uint32_t count, double factor,
+                         uint32_t groups)
 {
     struct scale_push push = {.factor = factor, .count = count};
     const gpu_buffer *buffers[] = {buffer};
     ok(gpu_begin(context), "gpu_begin");
-    gpu_dispatch(context, pipeline, buffers, &push, 2);
-    gpu_dispatch(context, pipeline, buffers, &push, 1); /* twice: the barrier between must hold */
+    gpu_dispatch(context, pipeline, buffers, &push, groups);
+    gpu_dispatch(context, pipeline, buffers, &push, groups / 2);
     ok(gpu_submit_wait(context), "gpu_submit_wait");
 }
 
@@ -240,7 +243,7 @@ static void test_scale_pipeline(void **state)
     REQUIRE_CONTEXT();
     enum { N = 1000 };
     gpu_pipeline pipeline;
-    ok(gpu_pipeline_create(context, spirv_scale, sizeof spirv_scale, 1, sizeof(struct scale_push), &pipeline),
+    ok(gpu_pipeline_create(context, spirv_scale, sizeof spirv_scale, 1, 1, sizeof(struct scale_push), &pipeline),
        "gpu_pipeline_create");
     double data[N + 2], back[N + 2];
     uint64_t seed = 7;
@@ -252,7 +255,7 @@ static void test_scale_pipeline(void **state)
         ok(gpu_buffer_create(context, sizeof data, memory, &buffer), "buffer");
         assert_int_equal(buffer.mapped != NULL, host_visible);
         ok(gpu_buffer_upload(context, &buffer, 0, data, sizeof data), "upload");
-        scale_on_gpu(&pipeline, &buffer, N, 2.0); /* the last two stay as they are */
+        scale_on_gpu(&pipeline, &buffer, N, 2.0, 2); /* the last two stay as they are */
         ok(gpu_buffer_download(context, &buffer, 0, back, sizeof back), "download");
         for (int i = 0; i < N + 2; ++i)
             if (back[i] != (i < N ? 4.0 : 1.0) * data[i])
@@ -324,6 +327,101 @@ static void test_devices(void **state)
     assert_no_validation_messages();
 }
 
+/* scale.comp over a field of n doubles (two passes: all but the last scaled by 4), and copies
+ * across the element `boundary` (a chunk's or a part's end): every double as expected. */
+static void scale_across(size_t n, size_t boundary)
+{
+    double *data = malloc(sizeof(double) * n), *back = malloc(sizeof(double) * n);
+    assert_true(data && back && boundary >= 2 && boundary + 12 <= n);
+    uint64_t seed = 13;
+    for (size_t i = 0; i < n; ++i)
+        data[i] = uniform(&seed);
+    gpu_buffer buffer;
+    gpu_pipeline pipeline;
+    ok(gpu_buffer_create(context, sizeof(double) * n, GPU_DEVICE_LOCAL, &buffer), "buffer");
+    ok(gpu_pipeline_create(context, spirv_scale, sizeof spirv_scale, 1, 1, sizeof(struct scale_push), &pipeline),
+       "gpu_pipeline_create");
+    ok(gpu_buffer_upload(context, &buffer, 0, data, sizeof(double) * n), "upload");
+    /* lavapipe ends a loop after 65535 iterations without a word: at most 4096 per thread here */
+    scale_on_gpu(&pipeline, &buffer, (uint32_t)n - 1, 2.0, (uint32_t)(n / (256 * 4096)) + 2);
+    ok(gpu_buffer_download(context, &buffer, 0, back, sizeof(double) * n), "download");
+    for (size_t i = 0; i < n; ++i)
+        if (back[i] != (i < n - 1 ? 4.0 : 1.0) * data[i])
+            fail_msg("element %zu of %zu = %.17g, expected %.17g", i, n, back[i], (i < n - 1 ? 4.0 : 1.0) * data[i]);
+    ok(gpu_buffer_upload(context, &buffer, (boundary - 4) * sizeof(double), data, 10 * sizeof(double)),
+       "upload across");
+    ok(gpu_buffer_download(context, &buffer, (boundary - 6) * sizeof(double), back, 14 * sizeof(double)),
+       "download across");
+    assert_true(back[0] == 4.0 * data[boundary - 6] && back[13] == 4.0 * data[boundary + 7]);
+    assert_memory_equal(back + 2, data, 10 * sizeof(double));
+    gpu_pipeline_free(context, &pipeline);
+    gpu_buffer_free(context, &buffer);
+    free(data);
+    free(back);
+}
+
+/* A context whose chunks are at most `limit` bytes (INDENTMAP_GPU_MAX_BUFFER); NULL after a refusal. */
+static gpu_context *open_chunked(const char *limit)
+{
+    setenv("INDENTMAP_GPU_MAX_BUFFER", limit, 1);
+    gpu_context *chunked = NULL;
+    int status = gpu_context_open(GPU_ANY, 1, &chunked);
+    unsetenv("INDENTMAP_GPU_MAX_BUFFER");
+    return status == IM_OK ? chunked : NULL;
+}
+
+/* Fields in chunks of 8 KiB: a pass over 3 chunks of one buffer (descriptors at offsets), copies
+ * across their ends, and the transforms unchanged; sizes beyond GPU_MAX_CHUNKS chunks and bad
+ * limits are refused. */
+static void test_chunked_fields(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    assert_null(open_chunked("8k"));
+    assert_non_null(strstr(im_last_error(), "INDENTMAP_GPU_MAX_BUFFER=8k"));
+    assert_null(open_chunked("100"));
+    gpu_context *whole = context;
+    context = open_chunked("12000"); /* the largest power of two within: 8192 bytes */
+    ok(context ? IM_OK : IM_EINVAL, "chunked context");
+    assert_int_equal(gpu_context_chunk_bytes(context), 8192);
+    assert_int_equal(gpu_context_part_bytes(context), gpu_context_part_bytes(whole));
+    gpu_buffer buffer;
+    assert_int_equal(gpu_buffer_create(context, 5 * 8192 + 8, GPU_DEVICE_LOCAL, &buffer), IM_ENOMEM);
+    assert_non_null(strstr(im_last_error(), "more than 5 chunks of 0.0 MiB"));
+    scale_across(3000, 1024);
+    check_fft(48, 40, 6);
+    assert_no_validation_messages();
+    gpu_context_close(context);
+    context = whole;
+}
+
+/* A buffer beyond one part (the largest power of two within maxStorageBufferRange) in two parts: a
+ * pass and copies across the parts' boundary. Its transforms need VkFFT's multi-buffer mode, which
+ * a device without native non-uniform indexing of buffer arrays (lavapipe) refuses, naming why. */
+static void test_buffer_parts(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    const VkDeviceSize part = gpu_context_part_bytes(context);
+    const size_t n = part / sizeof(double) + 512;
+    gpu_buffer host;
+    assert_int_equal(gpu_buffer_create(context, part + 8, GPU_HOST_WRITE, &host), IM_ENOMEM);
+    scale_across(n, part / sizeof(double));
+    const int side = 4096; /* modes of 4096^2: 128.06 MiB, beyond lavapipe's 128 MiB */
+    if (gpu_fft_modes_bytes(side, side) > part && !gpu_context_nonuniform_buffers(context)) {
+        gpu_buffer real, complex;
+        ok(gpu_buffer_create(context, gpu_fft_modes_bytes(side, side), 0, &real), "real buffer");
+        ok(gpu_buffer_create(context, gpu_fft_modes_bytes(side, side), 0, &complex), "modes buffer");
+        assert_int_equal(real.parts, 2);
+        gpu_fft *fft = NULL;
+        assert_int_equal(gpu_fft_create(context, side, side, &real, &complex, &fft), IM_EUNSUPPORTED);
+        assert_non_null(strstr(im_last_error(), "non-uniformly"));
+        gpu_buffer_free(context, &real);
+        gpu_buffer_free(context, &complex);
+    }
+    assert_no_validation_messages();
+}
+
 /* Under AddressSanitizer: the Vulkan loader unloads drivers and layers when an instance ends, so
  * what they keep until exit would be reported in "<unknown module>"; kept loaded, LeakSanitizer
  * names their libraries and tests/gpu_lsan.supp can suppress those (and nothing of ours). */
@@ -344,6 +442,7 @@ int main(void)
         cmocka_unit_test(test_devices),         cmocka_unit_test(test_scale_pipeline),
         cmocka_unit_test(test_large_transfers), cmocka_unit_test(test_fft_small),
         cmocka_unit_test(test_fft_sides),       cmocka_unit_test(test_fft_large),
+        cmocka_unit_test(test_chunked_fields),  cmocka_unit_test(test_buffer_parts),
     };
     int failed = cmocka_run_group_tests(tests, open_context, close_context);
     if (skip_all)

@@ -268,6 +268,48 @@ static void test_periodic_mean_gap(void **state)
     im_field_free(s);
 }
 
+/* The engines with the GPU's fields split into chunks of at most `limit` bytes
+ * (INDENTMAP_GPU_MAX_BUFFER, read when a GPU plan opens its device), chunk ends mid-row. */
+static void set_chunk_limit(const char *limit)
+{
+    if (limit)
+        setenv("INDENTMAP_GPU_MAX_BUFFER", limit, 1);
+    else
+        unsetenv("INDENTMAP_GPU_MAX_BUFFER");
+}
+
+/* Periodic cells of 240^2 in chunks of 16384 doubles (68.3 rows): the fields in 4 chunks, the
+ * modes in 4, the spectra in 2; both controls. */
+static void test_chunked_periodic(void **state)
+{
+    (void)state;
+    set_chunk_limit("131072");
+    const double pressures[] = {0.005, 0.02};
+    compare_flat(240, 0.1, pressures, 2);
+    im_field *s = test_rough_surface(240, 0.1, 19);
+    im_indenter flat = im_indenter_flat(2.0 * 240 * 1.5);
+    const double gaps[] = {0.5, 0.3};
+    im_solver_options physics = {.periodic = 1};
+    compare_runs(s, &flat, IM_CONTROL_MEAN_GAP, gaps, 2, &physics);
+    im_field_free(s);
+    set_chunk_limit(NULL);
+}
+
+/* A rough cone of 200^2 in chunks of 32768 doubles (163.8 rows): the fields in 2 chunks, the
+ * padded 400^2 grid's modes in 5; with and without the hardness cap. */
+static void test_chunked_cone(void **state)
+{
+    (void)state;
+    set_chunk_limit("262144");
+    im_field *s = test_rough_surface(200, 0.08, 23);
+    im_indenter cone = im_indenter_cone(80);
+    const double approaches[] = {1, 3}, loads[] = {150};
+    compare_history(s, &cone, IM_CONTROL_DISPLACEMENT, approaches, 2, 0);
+    compare_history(s, &cone, IM_CONTROL_LOAD, loads, 1, 2.0);
+    im_field_free(s);
+    set_chunk_limit(NULL);
+}
+
 /* The convolution alone, for a pressure of the caller's: both engines' K p agree to rounding. */
 static void test_convolution(void **state)
 {
@@ -342,6 +384,8 @@ int main(void)
         cmocka_unit_test(test_adhesion),
         cmocka_unit_test(test_periodic_flat),
         cmocka_unit_test(test_periodic_mean_gap),
+        cmocka_unit_test(test_chunked_periodic),
+        cmocka_unit_test(test_chunked_cone),
         cmocka_unit_test(test_rough_cone_1024),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -5,19 +5,20 @@ layout(local_size_x = 256) in;
 #define SLOTS 2u
 #define MAX_SLOTS 0u
 #define PARTIALS_BINDING 3
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Displacement { double u[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Gap0 { double g0[]; };
+FIELD_IN(0, p)
+FIELD_IN(1, u)
+FIELD_IN(2, g0)
 layout(push_constant) uniform Push { double cap; uint n; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf);
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride())
-        if (elastic(p[i], pc.cap)) {
-            v[0] += u[i] + g0[i];
+        if (elastic(p_at(i), pc.cap)) {
+            v[0] += u_at(i) + g0_at(i);
             v[1] += 1.0lf;
         }
     reduce_workgroup(v);

@@ -3,12 +3,13 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
+#include "chunks.glsl"
 #include "patch_sets.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Gap { double g[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Source { double src[]; };
-layout(std430, set = 0, binding = 3) buffer Direction { double t[]; };
-layout(std430, set = 0, binding = 4) writeonly buffer Real { double real_grid[]; };
+FIELD_IN(0, p)
+FIELD_IN(1, g)
+FIELD_IN(2, src)
+FIELD(3, t)
+FIELD_OUT(4, real_grid)
 layout(push_constant) uniform Push { double beta; double cap; uint nx; uint ny; uint px; uint py; } pc;
 
 void main()
@@ -19,9 +20,9 @@ void main()
         double value = 0.0lf;
         if (x < pc.nx && y < pc.ny) {
             uint i = y * pc.nx + x;
-            value = moving(p[i], g[i], pc.cap) ? src[i] + pc.beta * t[i] : 0.0lf;
-            t[i] = value;
+            value = moving(p_at(i), g_at(i), pc.cap) ? src_at(i) + pc.beta * t_at(i) : 0.0lf;
+            t_put(i, value);
         }
-        real_grid[k] = value;
+        real_grid_put(k, value);
     }
 }

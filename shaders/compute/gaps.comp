@@ -6,20 +6,21 @@ layout(local_size_x = 256) in;
 #define SLOTS 5u
 #define MAX_SLOTS 8u
 #define PARTIALS_BINDING 4
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Displacement { double u[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Gap0 { double g0[]; };
-layout(std430, set = 0, binding = 3) writeonly buffer Gap { double g[]; };
+FIELD_IN(0, p)
+FIELD_IN(1, u)
+FIELD_IN(2, g0)
+FIELD_OUT(3, g)
 layout(push_constant) uniform Push { double w; double cap; uint n; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf, 0.0lf, 0.0lf, 0.0lf);
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride()) {
-        double pi = p[i], gi = u[i] + g0[i] - pc.w;
-        g[i] = gi;
+        double pi = p_at(i), gi = u_at(i) + g0_at(i) - pc.w;
+        g_put(i, gi);
         if (elastic(pi, pc.cap)) {
             v[0] += gi * gi;
             v[1] += 1.0lf;

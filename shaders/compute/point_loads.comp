@@ -4,10 +4,11 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "point_loads.glsl"
-layout(std430, set = 0, binding = 0) buffer Displacement { double u[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Kernel { double kernel[]; };
+FIELD(0, u)
+FIELD_IN(1, kernel)
 layout(std430, set = 0, binding = 2) readonly buffer ChangeIndex { uint change_index[]; };
 layout(std430, set = 0, binding = 3) readonly buffer ChangeValue { double change_value[]; };
 layout(push_constant) uniform Push { uint nx; uint ny; uint count; } pc;
@@ -38,9 +39,9 @@ void main()
     uint n = pc.nx * pc.ny;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride()) {
         uint ix = i % pc.nx, iy = i / pc.nx;
-        double sum = u[i];
+        double sum = u_at(i);
         for (uint k = 0u; k < pc.count; ++k)
-            sum += sorted_value[k] * kernel[offset(iy, sorted_y[k]) * pc.nx + offset(ix, sorted_x[k])];
-        u[i] = sum;
+            sum += sorted_value[k] * kernel_at(offset(iy, sorted_y[k]) * pc.nx + offset(ix, sorted_x[k]));
+        u_put(i, sum);
     }
 }

@@ -5,20 +5,21 @@ layout(local_size_x = 256) in;
 #define SLOTS 1u
 #define MAX_SLOTS 0u
 #define PARTIALS_BINDING 3
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Gap { double g[]; };
-layout(std430, set = 0, binding = 2) buffer Preconditioned { double z[]; };
+FIELD_IN(0, p)
+FIELD_IN(1, g)
+FIELD(2, z)
 layout(push_constant) uniform Push { double mean; uint n; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf);
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride())
-        if (p[i] > 0.0lf) {
-            z[i] -= pc.mean;
-            v[0] += g[i] * z[i];
+        if (p_at(i) > 0.0lf) {
+            z_put(i, z_at(i) - pc.mean);
+            v[0] += g_at(i) * z_at(i);
         }
     reduce_workgroup(v);
 }

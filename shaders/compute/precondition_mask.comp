@@ -2,14 +2,15 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
+#include "chunks.glsl"
 #include "patch_sets.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Gap { double g[]; };
-layout(std430, set = 0, binding = 2) writeonly buffer Preconditioned { double z[]; };
+FIELD_IN(0, p)
+FIELD_IN(1, g)
+FIELD_OUT(2, z)
 layout(push_constant) uniform Push { uint n; } pc;
 
 void main()
 {
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride())
-        z[i] = p[i] > 0.0lf ? g[i] : 0.0lf;
+        z_put(i, p_at(i) > 0.0lf ? g_at(i) : 0.0lf);
 }

@@ -6,12 +6,13 @@ layout(local_size_x = 256) in;
 #define SLOTS 5u
 #define MAX_SLOTS 0u
 #define PARTIALS_BINDING 4
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Gap { double g[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Direction { double t[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Real { double real_grid[]; };
+FIELD_IN(0, p)
+FIELD_IN(1, g)
+FIELD_IN(2, t)
+FIELD_IN(3, real_grid)
 layout(push_constant) uniform Push { double cap; uint nx; uint ny; uint px; } pc;
 
 void main()
@@ -19,12 +20,12 @@ void main()
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf, 0.0lf, 0.0lf, 0.0lf);
     uint n = pc.nx * pc.ny;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride())
-        if (moving(p[i], g[i], pc.cap)) {
-            double q = real_grid[(i / pc.nx) * pc.px + i % pc.nx];
-            v[0] += g[i] * t[i];
-            v[1] += q * t[i];
+        if (moving(p_at(i), g_at(i), pc.cap)) {
+            double q = real_grid_at((i / pc.nx) * pc.px + i % pc.nx);
+            v[0] += g_at(i) * t_at(i);
+            v[1] += q * t_at(i);
             v[2] += q;
-            v[3] += t[i];
+            v[3] += t_at(i);
             v[4] += 1.0lf;
         }
     reduce_workgroup(v);

@@ -8,14 +8,15 @@ layout(local_size_x = 256) in;
 #define SLOTS 2u
 #define MAX_SLOTS 2u
 #define PARTIALS_BINDING 5
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
 #include "point_loads.glsl"
-layout(std430, set = 0, binding = 0) buffer Pressure { double p[]; };
-layout(std430, set = 0, binding = 1) buffer Displacement { double u[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Gap { double g[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Direction { double t[]; };
-layout(std430, set = 0, binding = 4) readonly buffer Real { double real_grid[]; };
+FIELD(0, p)
+FIELD(1, u)
+FIELD_IN(2, g)
+FIELD_IN(3, t)
+FIELD_IN(4, real_grid)
 layout(std430, set = 0, binding = 6) buffer ChangeCount { uint change_count; };
 layout(std430, set = 0, binding = 7) writeonly buffer ChangeIndex { uint change_index[]; };
 layout(std430, set = 0, binding = 8) writeonly buffer ChangeValue { double change_value[]; };
@@ -26,15 +27,15 @@ void main()
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf);
     uint n = pc.nx * pc.ny;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride()) {
-        double c = 0.0lf, pi = p[i], gi = g[i];
-        u[i] -= pc.tau * real_grid[(i / pc.nx) * pc.px + i % pc.nx];
+        double c = 0.0lf, pi = p_at(i), gi = g_at(i);
+        u_put(i, u_at(i) - pc.tau * real_grid_at((i / pc.nx) * pc.px + i % pc.nx));
         if (moving(pi, gi, pc.cap)) {
-            double next = pi - pc.tau * t[i];
-            p[i] = project(next, pc.cap);
-            c = p[i] - next;
+            double next = pi - pc.tau * t_at(i);
+            p_put(i, project(next, pc.cap));
+            c = p_at(i) - next;
         } else if (pc.allow_join != 0u && pi == 0.0lf && gi < 0.0lf) {
-            p[i] = project(-pc.tau * gi, pc.cap);
-            c = p[i];
+            p_put(i, project(-pc.tau * gi, pc.cap));
+            c = p_at(i);
             v[1] = 1.0lf;
         }
         if (c != 0.0lf) {

@@ -5,19 +5,20 @@ layout(local_size_x = 256) in;
 #define SLOTS 1u
 #define MAX_SLOTS 0u
 #define PARTIALS_BINDING 2
+#include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
-layout(std430, set = 0, binding = 0) readonly buffer Gap0 { double g0[]; };
-layout(std430, set = 0, binding = 1) buffer Pressure { double p[]; };
+FIELD_IN(0, g0)
+FIELD(1, p)
 layout(push_constant) uniform Push { double w; double k0; uint n; uint store; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf);
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride()) {
-        double pi = g0[i] < pc.w ? (pc.w - g0[i]) / pc.k0 : 0.0lf;
+        double pi = g0_at(i) < pc.w ? (pc.w - g0_at(i)) / pc.k0 : 0.0lf;
         if (pc.store != 0u)
-            p[i] = pi;
+            p_put(i, pi);
         v[0] += pi;
     }
     reduce_workgroup(v);

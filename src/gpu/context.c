@@ -6,12 +6,15 @@
 
 #include "indentmap/status.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-enum { MAX_DEVICES = 16, MAX_BINDINGS = 16 };
+/* MAX_DESCRIPTORS: the push descriptors a pipeline may take, the least maxPushDescriptors a device
+ * offers (a field binding takes GPU_MAX_CHUNKS of them). */
+enum { MAX_DEVICES = 16, MAX_BINDINGS = 16, MAX_DESCRIPTORS = 32 };
 
 static const char VALIDATION_LAYER[] = "VK_LAYER_KHRONOS_validation";
 
@@ -29,6 +32,8 @@ struct gpu_context {
     PFN_vkCmdPushDescriptorSetKHR push_descriptor_set;
     VkPhysicalDeviceMemoryProperties memory;
     VkDeviceSize max_buffer;
+    VkDeviceSize part_bytes, chunk_bytes; /* gpu_context_part_bytes, gpu_context_chunk_bytes */
+    int nonuniform_buffers;               /* gpu_context_nonuniform_buffers */
     int software;
     int recording;
     int deferred_status; /* a failure while recording (void functions), returned by gpu_submit_wait */
@@ -294,6 +299,51 @@ static int choose_device(gpu_context *context, enum gpu_preference preference)
     return IM_OK;
 }
 
+/* The largest power of two not above limit, nor above 2 GiB (so a chunk's doubles fit a 32-bit
+ * index with room to spare). */
+static VkDeviceSize power_of_two_within(VkDeviceSize limit)
+{
+    VkDeviceSize bytes = (VkDeviceSize)1 << 31;
+    while (bytes > limit)
+        bytes >>= 1;
+    return bytes;
+}
+
+/* The part size and the chunk size: within INDENTMAP_GPU_MAX_BUFFER when that is set (the one place
+ * it is read; tests lower it to split small fields into chunks). */
+static int choose_chunk_bytes(gpu_context *context)
+{
+    enum { SMALLEST = 4096 };
+    context->part_bytes = power_of_two_within(context->max_buffer);
+    VkDeviceSize limit = context->part_bytes;
+    const char *text = getenv("INDENTMAP_GPU_MAX_BUFFER");
+    if (text && *text) {
+        char *end;
+        errno = 0;
+        const unsigned long long asked = strtoull(text, &end, 10);
+        if (errno || *end || text[0] == '-' || asked < SMALLEST)
+            return im_fail(IM_EINVAL, "INDENTMAP_GPU_MAX_BUFFER=%s: expected a whole number of bytes, at least %d",
+                           text, SMALLEST);
+        if (asked < limit)
+            limit = asked;
+    }
+    context->chunk_bytes = power_of_two_within(limit);
+    return IM_OK;
+}
+
+/* shaderStorageBufferArrayNonUniformIndexingNative (VK_EXT_descriptor_indexing's property). */
+static int nonuniform_buffers(VkPhysicalDevice device)
+{
+    if (!has_device_extension(device, VK_EXT_DESCRIPTOR_INDEXING_EXTENSION_NAME))
+        return 0;
+    VkPhysicalDeviceDescriptorIndexingPropertiesEXT indexing = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DESCRIPTOR_INDEXING_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 properties = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+                                              .pNext = &indexing};
+    vkGetPhysicalDeviceProperties2(device, &properties);
+    return indexing.shaderStorageBufferArrayNonUniformIndexingNative == VK_TRUE;
+}
+
 static int create_device(gpu_context *context)
 {
     VkPhysicalDeviceProperties properties;
@@ -304,6 +354,10 @@ static int create_device(gpu_context *context)
     snprintf(context->name, sizeof context->name, "%s", properties.deviceName);
     context->software = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     context->max_buffer = properties.limits.maxStorageBufferRange;
+    int status = choose_chunk_bytes(context);
+    if (status != IM_OK)
+        return status;
+    context->nonuniform_buffers = nonuniform_buffers(context->physical);
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -390,6 +444,17 @@ void gpu_context_close(gpu_context *context)
 const char *gpu_context_device_name(const gpu_context *context) { return context->name; }
 int gpu_context_is_software(const gpu_context *context) { return context->software; }
 VkDeviceSize gpu_context_max_buffer(const gpu_context *context) { return context->max_buffer; }
+VkDeviceSize gpu_context_part_bytes(const gpu_context *context) { return context->part_bytes; }
+VkDeviceSize gpu_context_chunk_bytes(const gpu_context *context) { return context->chunk_bytes; }
+int gpu_context_nonuniform_buffers(const gpu_context *context) { return context->nonuniform_buffers; }
+
+/* How many pieces of `size` hold `bytes`. */
+static uint32_t pieces(VkDeviceSize bytes, VkDeviceSize size) { return (uint32_t)((bytes + size - 1) / size); }
+
+VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSize bytes)
+{
+    return bytes <= context->part_bytes ? bytes : pieces(bytes, context->part_bytes) * context->part_bytes;
+}
 long gpu_context_validation_messages(const gpu_context *context) { return context->validation_messages; }
 
 gpu_handles gpu_context_handles(gpu_context *context)
@@ -413,6 +478,8 @@ static VkDeviceSize device_local_bytes(VkPhysicalDevice device)
             bytes += memory.memoryHeaps[i].size;
     return bytes;
 }
+
+VkDeviceSize gpu_context_device_bytes(const gpu_context *context) { return device_local_bytes(context->physical); }
 
 static int describe_device(VkPhysicalDevice device, char *line, size_t size)
 {
@@ -489,44 +556,59 @@ static int memory_type_for(const gpu_context *context, uint32_t allowed, enum gp
     return memory_type(context, allowed, mapped, type);
 }
 
-static int allocate_memory(gpu_context *context, gpu_buffer *buffer, enum gpu_memory memory)
+static int allocate_part(gpu_context *context, gpu_buffer *buffer, uint32_t k, enum gpu_memory memory)
 {
+    VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                               .size = buffer->part_bytes,
+                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
+    VK_CHECK(vkCreateBuffer(context->device, &info, NULL, &buffer->part[k]));
     VkMemoryRequirements needs;
-    vkGetBufferMemoryRequirements(context->device, buffer->buffer, &needs);
+    vkGetBufferMemoryRequirements(context->device, buffer->part[k], &needs);
     uint32_t type;
     const int host_visible = memory != GPU_DEVICE_LOCAL;
     if (!memory_type_for(context, needs.memoryTypeBits, memory, &type))
         return im_fail(IM_EUNSUPPORTED, "GPU buffer: no %s memory type on %s",
                        host_visible ? "host-visible coherent" : "device-local", context->name);
-    VkMemoryAllocateInfo info = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                 .allocationSize = needs.size,
-                                 .memoryTypeIndex = type};
-    VK_CHECK(vkAllocateMemory(context->device, &info, NULL, &buffer->memory));
-    VK_CHECK(vkBindBufferMemory(context->device, buffer->buffer, buffer->memory, 0));
+    VkMemoryAllocateInfo allocate = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                     .allocationSize = needs.size,
+                                     .memoryTypeIndex = type};
+    VK_CHECK(vkAllocateMemory(context->device, &allocate, NULL, &buffer->memory[k]));
+    VK_CHECK(vkBindBufferMemory(context->device, buffer->part[k], buffer->memory[k], 0));
     if (host_visible)
-        VK_CHECK(vkMapMemory(context->device, buffer->memory, 0, VK_WHOLE_SIZE, 0, &buffer->mapped));
+        VK_CHECK(vkMapMemory(context->device, buffer->memory[k], 0, VK_WHOLE_SIZE, 0, &buffer->mapped));
+    return IM_OK;
+}
+
+/* Host-visible buffers are mapped whole, so they stay within one part (the staging copies go part
+ * by part); device-local ones take up to GPU_MAX_CHUNKS chunks. */
+static int check_buffer_size(const gpu_context *context, VkDeviceSize bytes, enum gpu_memory memory)
+{
+    if (bytes == 0)
+        return im_fail(IM_EINVAL, "GPU buffer of 0 bytes: expected at least 1");
+    const int local = memory == GPU_DEVICE_LOCAL;
+    const VkDeviceSize piece = local ? context->chunk_bytes : context->part_bytes;
+    const uint32_t most = local ? GPU_MAX_CHUNKS : 1;
+    if (bytes > most * piece)
+        return im_fail(IM_ENOMEM,
+                       "GPU buffer of %.1f MiB: more than %u %s of %.1f MiB (%s's maxStorageBufferRange is %.1f MiB)",
+                       bytes / 1048576.0, most, local ? "chunks" : "part", piece / 1048576.0, context->name,
+                       context->max_buffer / 1048576.0);
     return IM_OK;
 }
 
 int gpu_buffer_create(gpu_context *context, VkDeviceSize bytes, enum gpu_memory memory, gpu_buffer *out)
 {
     *out = (gpu_buffer){0};
-    if (bytes == 0)
-        return im_fail(IM_EINVAL, "GPU buffer of 0 bytes: expected at least 1");
-    /* Every buffer is bound whole as a storage buffer, so none may exceed the storage range. */
-    if (bytes > context->max_buffer)
-        return im_fail(IM_ENOMEM, "GPU buffer of %.1f MiB: more than %s's maxStorageBufferRange (%.1f MiB)",
-                       bytes / 1048576.0, context->name, context->max_buffer / 1048576.0);
-    VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
-                               .size = bytes,
-                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                               .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
-    VkResult result = vkCreateBuffer(context->device, &info, NULL, &out->buffer);
-    if (result != VK_SUCCESS)
-        return vk_fail(result, "vkCreateBuffer");
+    int status = check_buffer_size(context, bytes, memory);
+    if (status != IM_OK)
+        return status;
     out->bytes = bytes;
-    int status = allocate_memory(context, out, memory);
+    out->parts = pieces(bytes, context->part_bytes);
+    out->part_bytes = out->parts == 1 ? bytes : context->part_bytes;
+    for (uint32_t k = 0; k < out->parts && status == IM_OK; ++k)
+        status = allocate_part(context, out, k, memory);
     if (status != IM_OK)
         gpu_buffer_free(context, out);
     return status;
@@ -537,9 +619,11 @@ void gpu_buffer_free(gpu_context *context, gpu_buffer *buffer)
     if (!context || !buffer)
         return;
     if (buffer->mapped)
-        vkUnmapMemory(context->device, buffer->memory);
-    vkDestroyBuffer(context->device, buffer->buffer, NULL);
-    vkFreeMemory(context->device, buffer->memory, NULL);
+        vkUnmapMemory(context->device, buffer->memory[0]);
+    for (uint32_t k = 0; k < buffer->parts; ++k) {
+        vkDestroyBuffer(context->device, buffer->part[k], NULL);
+        vkFreeMemory(context->device, buffer->memory[k], NULL);
+    }
     *buffer = (gpu_buffer){0};
 }
 
@@ -559,8 +643,10 @@ static int ensure_staging(gpu_context *context, gpu_buffer *staging, enum gpu_me
     return gpu_buffer_create(context, bytes, memory, staging);
 }
 
+/* The staging buffers hold at most one part: larger copies go part by part. */
 int gpu_context_reserve_staging(gpu_context *context, VkDeviceSize bytes)
 {
+    bytes = bytes < context->part_bytes ? bytes : context->part_bytes;
     int status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, bytes);
     return status == IM_OK ? ensure_staging(context, &context->download, GPU_HOST_READ, bytes) : status;
 }
@@ -605,6 +691,49 @@ static int transfer_allowed(const gpu_context *context, const char *what)
     return IM_OK;
 }
 
+/* The part of a copy at `offset` of a buffer that one staging copy takes: within one part of the
+ * buffer and within the staging size (a part of the context). */
+typedef struct {
+    uint32_t part;
+    VkDeviceSize offset, bytes; /* in that part */
+} copy_piece;
+
+static copy_piece piece_at(const gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset,
+                           VkDeviceSize left)
+{
+    copy_piece piece = {.part = (uint32_t)(offset / buffer->part_bytes), .offset = offset % buffer->part_bytes};
+    const VkDeviceSize room = buffer->part_bytes - piece.offset;
+    piece.bytes = left < room ? left : room;
+    if (piece.bytes > context->part_bytes)
+        piece.bytes = context->part_bytes;
+    return piece;
+}
+
+static int upload_piece(gpu_context *context, gpu_buffer *buffer, copy_piece piece, const void *data)
+{
+    int status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, piece.bytes);
+    if (status != IM_OK)
+        return status;
+    const double start = seconds_now();
+    copy_threaded(context->upload.mapped, data, piece.bytes);
+    gpu_profile_host(context->profile, "copy into staging", seconds_now() - start);
+    return copy_and_wait(context, context->upload.part[0], 0, buffer->part[piece.part], piece.offset, piece.bytes);
+}
+
+static int download_piece(gpu_context *context, const gpu_buffer *buffer, copy_piece piece, void *data)
+{
+    int status = ensure_staging(context, &context->download, GPU_HOST_READ, piece.bytes);
+    if (status == IM_OK)
+        status = copy_and_wait(context, buffer->part[piece.part], piece.offset, context->download.part[0], 0,
+                               piece.bytes);
+    if (status == IM_OK) {
+        const double start = seconds_now();
+        copy_threaded(data, context->download.mapped, piece.bytes);
+        gpu_profile_host(context->profile, "copy out of staging", seconds_now() - start);
+    }
+    return status;
+}
+
 int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize offset, const void *data,
                       VkDeviceSize bytes)
 {
@@ -617,13 +746,12 @@ int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize off
         memcpy((char *)buffer->mapped + offset, data, bytes);
         return IM_OK;
     }
-    status = ensure_staging(context, &context->upload, GPU_HOST_WRITE, bytes);
-    if (status != IM_OK)
-        return status;
-    const double start = seconds_now();
-    copy_threaded(context->upload.mapped, data, bytes);
-    gpu_profile_host(context->profile, "copy into staging", seconds_now() - start);
-    return copy_and_wait(context, context->upload.buffer, 0, buffer->buffer, offset, bytes);
+    for (VkDeviceSize done = 0; done < bytes && status == IM_OK;) {
+        const copy_piece piece = piece_at(context, buffer, offset + done, bytes - done);
+        status = upload_piece(context, buffer, piece, (const char *)data + done);
+        done += piece.bytes;
+    }
+    return status;
 }
 
 int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset, void *data,
@@ -638,13 +766,10 @@ int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDevice
         memcpy(data, (const char *)buffer->mapped + offset, bytes);
         return IM_OK;
     }
-    status = ensure_staging(context, &context->download, GPU_HOST_READ, bytes);
-    if (status == IM_OK)
-        status = copy_and_wait(context, buffer->buffer, offset, context->download.buffer, 0, bytes);
-    if (status == IM_OK) {
-        const double start = seconds_now();
-        copy_threaded(data, context->download.mapped, bytes);
-        gpu_profile_host(context->profile, "copy out of staging", seconds_now() - start);
+    for (VkDeviceSize done = 0; done < bytes && status == IM_OK;) {
+        const copy_piece piece = piece_at(context, buffer, offset + done, bytes - done);
+        status = download_piece(context, buffer, piece, (char *)data + done);
+        done += piece.bytes;
     }
     return status;
 }
@@ -657,7 +782,7 @@ static int create_layouts(gpu_context *context, gpu_pipeline *pipeline)
     for (uint32_t k = 0; k < pipeline->bindings; ++k)
         bindings[k] = (VkDescriptorSetLayoutBinding){.binding = k,
                                                      .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                     .descriptorCount = 1,
+                                                     .descriptorCount = k < pipeline->fields ? GPU_MAX_CHUNKS : 1,
                                                      .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
     VkDescriptorSetLayoutCreateInfo set = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
@@ -684,11 +809,18 @@ static int create_compute_pipeline(gpu_context *context, const uint32_t *spirv, 
                                             .pCode = spirv};
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(context->device, &module_info, NULL, &module));
+    const uint32_t chunk_doubles = (uint32_t)(context->chunk_bytes / sizeof(double));
+    const VkSpecializationMapEntry entry = {.constantID = 0, .offset = 0, .size = sizeof chunk_doubles};
+    const VkSpecializationInfo specialization = {.mapEntryCount = 1,
+                                                 .pMapEntries = &entry,
+                                                 .dataSize = sizeof chunk_doubles,
+                                                 .pData = &chunk_doubles};
     VkComputePipelineCreateInfo info = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                                                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                                                   .module = module,
-                                                  .pName = "main"},
+                                                  .pName = "main",
+                                                  .pSpecializationInfo = &specialization},
                                         .layout = pipeline->layout};
     VkResult result = vkCreateComputePipelines(context->device, VK_NULL_HANDLE, 1, &info, NULL, &pipeline->pipeline);
     vkDestroyShaderModule(context->device, module, NULL); /* the pipeline keeps what it needs */
@@ -696,11 +828,16 @@ static int create_compute_pipeline(gpu_context *context, const uint32_t *spirv, 
 }
 
 int gpu_pipeline_create(gpu_context *context, const uint32_t *spirv, size_t spirv_bytes, uint32_t bindings,
-                        uint32_t push_bytes, gpu_pipeline *out)
+                        uint32_t fields, uint32_t push_bytes, gpu_pipeline *out)
 {
-    *out = (gpu_pipeline){.bindings = bindings, .push_bytes = push_bytes};
+    *out = (gpu_pipeline){.bindings = bindings, .fields = fields, .push_bytes = push_bytes};
     if (bindings == 0 || bindings > MAX_BINDINGS)
         return im_fail(IM_EINVAL, "GPU pipeline: %u buffers: expected 1..%d", bindings, MAX_BINDINGS);
+    if (fields > bindings || fields * GPU_MAX_CHUNKS + (bindings - fields) > MAX_DESCRIPTORS)
+        return im_fail(IM_EINVAL,
+                       "GPU pipeline: %u fields of %u chunks among %u buffers: expected at most %d "
+                       "descriptors in all",
+                       fields, GPU_MAX_CHUNKS, bindings, MAX_DESCRIPTORS);
     if (push_bytes % 4 != 0 || push_bytes > 128)
         return im_fail(IM_EINVAL, "GPU pipeline: %u bytes of push constants: expected a multiple of 4 up to 128",
                        push_bytes);
@@ -778,7 +915,8 @@ void gpu_zero(gpu_context *context, gpu_buffer *buffer)
 {
     if (!recording(context))
         return;
-    vkCmdFillBuffer(context->commands, buffer->buffer, 0, VK_WHOLE_SIZE, 0);
+    for (uint32_t k = 0; k < buffer->parts; ++k)
+        vkCmdFillBuffer(context->commands, buffer->part[k], 0, VK_WHOLE_SIZE, 0);
     gpu_barrier(context);
     gpu_mark(context, "zero");
 }
@@ -789,20 +927,50 @@ void gpu_mark(gpu_context *context, const char *label)
         gpu_profile_mark(context->profile, context->commands, label);
 }
 
+/* A field binding's descriptors: chunk j is the part holding bytes j C .. (j + 1) C (C, a power of
+ * two, divides the part size), the last chunk repeated up to GPU_MAX_CHUNKS (the shader never reads
+ * past a field's end, but every element of a bound array must be valid). */
+static uint32_t describe_binding(const gpu_context *context, const gpu_buffer *buffer, int field,
+                                 VkDescriptorBufferInfo *infos)
+{
+    if (!field) {
+        infos[0] = (VkDescriptorBufferInfo){.buffer = buffer->part[0], .offset = 0, .range = VK_WHOLE_SIZE};
+        return 1;
+    }
+    const VkDeviceSize chunk = context->chunk_bytes, last = (buffer->bytes - 1) / chunk;
+    for (uint32_t j = 0; j < GPU_MAX_CHUNKS; ++j) {
+        const VkDeviceSize start = (j < last ? j : last) * chunk, in_part = start % buffer->part_bytes;
+        const VkDeviceSize rest = buffer->part_bytes - in_part;
+        infos[j] = (VkDescriptorBufferInfo){.buffer = buffer->part[start / buffer->part_bytes],
+                                            .offset = in_part,
+                                            .range = rest <= chunk ? VK_WHOLE_SIZE : chunk};
+    }
+    return GPU_MAX_CHUNKS;
+}
+
 void gpu_dispatch(gpu_context *context, const gpu_pipeline *pipeline, const gpu_buffer *const *buffers,
                   const void *push, uint32_t groups)
 {
     if (!recording(context))
         return;
-    VkDescriptorBufferInfo infos[MAX_BINDINGS];
+    VkDescriptorBufferInfo infos[MAX_DESCRIPTORS];
     VkWriteDescriptorSet writes[MAX_BINDINGS];
+    uint32_t used = 0;
     for (uint32_t k = 0; k < pipeline->bindings; ++k) {
-        infos[k] = (VkDescriptorBufferInfo){.buffer = buffers[k]->buffer, .offset = 0, .range = VK_WHOLE_SIZE};
+        if (k >= pipeline->fields && buffers[k]->bytes > context->chunk_bytes) {
+            gpu_defer_failure(context,
+                              im_fail(IM_EINVAL, "GPU dispatch (%s): binding %u takes one chunk, given %llu bytes",
+                                      pipeline->label ? pipeline->label : "dispatch", k,
+                                      (unsigned long long)buffers[k]->bytes));
+            return;
+        }
+        const uint32_t count = describe_binding(context, buffers[k], k < pipeline->fields, infos + used);
         writes[k] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                            .dstBinding = k,
-                                           .descriptorCount = 1,
+                                           .descriptorCount = count,
                                            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                           .pBufferInfo = &infos[k]};
+                                           .pBufferInfo = infos + used};
+        used += count;
     }
     vkCmdBindPipeline(context->commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->pipeline);
     context->push_descriptor_set(context->commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout, 0,

@@ -29,8 +29,9 @@ struct gpu_fft {
     VkFFTApplication app;
     /* VkFFT keeps these pointers (configuration and launches), so they live with the plan. */
     gpu_handles handles;
-    VkBuffer real, modes;
-    uint64_t real_bytes, modes_bytes;
+    VkBuffer real[GPU_MAX_CHUNKS], modes[GPU_MAX_CHUNKS];
+    uint64_t real_bytes[GPU_MAX_CHUNKS], modes_bytes[GPU_MAX_CHUNKS];
+    uint32_t real_parts, modes_parts;
     VkCommandBuffer commands;
     int px, py;
     char labels[2][40]; /* a profile's names of the forward and the inverse transform */
@@ -80,7 +81,12 @@ static int check_sizes(const gpu_context *context, int px, int py, const gpu_buf
                        "least %llu each",
                        px, py, (unsigned long long)real->bytes, (unsigned long long)modes->bytes,
                        (unsigned long long)modes_bytes);
-    (void)context;
+    /* VkFFT's multi-buffer shaders index their blocks by non-uniform indices without marking them so */
+    if ((real->parts > 1 || modes->parts > 1) && !gpu_context_nonuniform_buffers(context))
+        return im_fail(IM_EUNSUPPORTED,
+                       "GPU FFT %d x %d: its %.0f MiB buffers exceed one storage buffer, and %s does not index "
+                       "arrays of storage buffers non-uniformly natively (VkFFT's multi-buffer mode needs it)",
+                       px, py, (double)modes_bytes / 1048576.0, gpu_context_device_name(context));
     return IM_OK;
 }
 
@@ -106,17 +112,28 @@ static VkFFTConfiguration configuration(gpu_fft *fft)
     c.fence = fft->handles.fence;
     c.isInputFormatted = 1;
     c.inverseReturnToInputBuffer = 1;
-    c.inputBufferNum = 1;
-    c.inputBuffer = &fft->real;
-    c.inputBufferSize = &fft->real_bytes;
+    c.inputBufferNum = fft->real_parts;
+    c.inputBuffer = fft->real;
+    c.inputBufferSize = fft->real_bytes;
     c.inputBufferStride[0] = (uint64_t)fft->px; /* in reals */
     c.inputBufferStride[1] = (uint64_t)fft->px * (uint64_t)fft->py;
-    c.bufferNum = 1;
-    c.buffer = &fft->modes;
-    c.bufferSize = &fft->modes_bytes;
+    c.bufferNum = fft->modes_parts;
+    c.buffer = fft->modes;
+    c.bufferSize = fft->modes_bytes;
     c.bufferStride[0] = (uint64_t)(fft->px / 2 + 1); /* in complex numbers */
     c.bufferStride[1] = (uint64_t)(fft->px / 2 + 1) * (uint64_t)fft->py;
     return c;
+}
+
+/* A buffer as VkFFT takes it: one buffer of the bytes used, or (VkFFT's multi-buffer mode) its
+ * equal parts, which VkFFT binds as blocks of the smallest one's size. */
+static void hand_over(const gpu_buffer *buffer, uint64_t used, VkBuffer *buffers, uint64_t *sizes, uint32_t *count)
+{
+    *count = buffer->parts;
+    for (uint32_t k = 0; k < buffer->parts; ++k) {
+        buffers[k] = buffer->part[k];
+        sizes[k] = buffer->parts == 1 ? used : buffer->part_bytes;
+    }
 }
 
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out)
@@ -129,10 +146,8 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     if (!fft)
         return im_fail(IM_ENOMEM, "GPU FFT %d x %d: out of memory", px, py);
     fft->handles = gpu_context_handles(context);
-    fft->real = real->buffer;
-    fft->modes = modes->buffer;
-    fft->real_bytes = (uint64_t)px * py * sizeof(double);
-    fft->modes_bytes = gpu_fft_modes_bytes(px, py);
+    hand_over(real, (uint64_t)px * py * sizeof(double), fft->real, fft->real_bytes, &fft->real_parts);
+    hand_over(modes, gpu_fft_modes_bytes(px, py), fft->modes, fft->modes_bytes, &fft->modes_parts);
     fft->px = px;
     fft->py = py;
     snprintf(fft->labels[0], sizeof fft->labels[0], "FFT R2C %d x %d", px, py);

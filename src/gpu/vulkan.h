@@ -19,11 +19,19 @@
 
 typedef struct gpu_context gpu_context;
 
+/* A buffer as the shaders see it is an array of GPU_MAX_CHUNKS chunks of the context's chunk size
+ * (gpu_context_chunk_bytes; shaders/compute/chunks.glsl), since no storage buffer binding may
+ * exceed maxStorageBufferRange. In memory it is one Vulkan buffer, or, beyond the largest power of
+ * two within that range (gpu_context_part_bytes), several parts of that size each (the last one
+ * too, as VkFFT's multi-buffer mode needs equal blocks); each chunk lies within one part. */
+enum { GPU_MAX_CHUNKS = 5 };
 typedef struct gpu_buffer {
-    VkBuffer buffer;
-    VkDeviceMemory memory;
-    VkDeviceSize bytes;
-    void *mapped; /* host-visible buffers: their persistent mapping (coherent); NULL otherwise */
+    VkBuffer part[GPU_MAX_CHUNKS];
+    VkDeviceMemory memory[GPU_MAX_CHUNKS];
+    uint32_t parts;
+    VkDeviceSize bytes;      /* what was asked for */
+    VkDeviceSize part_bytes; /* each part's size: bytes when there is one */
+    void *mapped; /* host-visible buffers (one part): their persistent mapping (coherent); NULL otherwise */
 } gpu_buffer;
 
 typedef struct gpu_pipeline {
@@ -31,6 +39,7 @@ typedef struct gpu_pipeline {
     VkPipelineLayout layout;
     VkDescriptorSetLayout set_layout;
     uint32_t bindings;   /* storage buffers at bindings 0 .. bindings - 1 of set 0 */
+    uint32_t fields;     /* bindings 0 .. fields - 1 are fields: arrays of GPU_MAX_CHUNKS chunks */
     uint32_t push_bytes; /* push-constant block size */
     const char *label;   /* the pass's name in a profile (profile.h); set by its maker */
 } gpu_pipeline;
@@ -47,8 +56,21 @@ enum gpu_preference {
 int gpu_context_open(enum gpu_preference preference, int validation, gpu_context **out);
 void gpu_context_close(gpu_context *context);
 const char *gpu_context_device_name(const gpu_context *context);
-int gpu_context_is_software(const gpu_context *context);          /* a CPU implementation (lavapipe) */
-VkDeviceSize gpu_context_max_buffer(const gpu_context *context);  /* maxStorageBufferRange */
+int gpu_context_is_software(const gpu_context *context);         /* a CPU implementation (lavapipe) */
+VkDeviceSize gpu_context_max_buffer(const gpu_context *context); /* maxStorageBufferRange */
+/* A buffer's parts: the largest power of two within maxStorageBufferRange, at most 2 GiB. */
+VkDeviceSize gpu_context_part_bytes(const gpu_context *context);
+/* The chunks the shaders index: the part size, or the largest power of two within the environment's
+ * INDENTMAP_GPU_MAX_BUFFER (bytes; a test setting that splits small fields) when that is smaller.
+ * A device-local buffer holds at most GPU_MAX_CHUNKS of them. */
+VkDeviceSize gpu_context_chunk_bytes(const gpu_context *context);
+/* Whether the device indexes arrays of storage buffers by non-uniform indices natively, which
+ * VkFFT's multi-buffer mode (transforms of buffers in several parts) relies on. */
+int gpu_context_nonuniform_buffers(const gpu_context *context);
+/* The device-local memory of the context's device (its heaps' sum), and what a buffer of `bytes`
+ * occupies there (whole parts). */
+VkDeviceSize gpu_context_device_bytes(const gpu_context *context);
+VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSize bytes);
 long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
 
 /* Writes one line per Vulkan device ("name, type, Vulkan x.y, float64 yes|no, N MiB") into text;
@@ -72,8 +94,10 @@ int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize off
 int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDeviceSize offset, void *data,
                         VkDeviceSize bytes);
 
+/* bindings 0 .. fields - 1 are chunked fields (chunks.glsl), the rest single small buffers; the
+ * shader's CHUNK_DOUBLES (specialization constant 0) is set to the context's chunk size. */
 int gpu_pipeline_create(gpu_context *context, const uint32_t *spirv, size_t spirv_bytes, uint32_t bindings,
-                        uint32_t push_bytes, gpu_pipeline *out);
+                        uint32_t fields, uint32_t push_bytes, gpu_pipeline *out);
 void gpu_pipeline_free(gpu_context *context, gpu_pipeline *pipeline);
 
 /* Starts recording into the context's command buffer (idempotent while recording). */

@@ -92,29 +92,29 @@ enum kernel {
 static const struct kernel_source {
     const uint32_t *code;
     size_t bytes;
-    uint32_t bindings, push_bytes;
-    const char *label; /* its name in a GPU profile */
+    uint32_t bindings, fields, push_bytes; /* bindings 0 .. fields - 1: chunked fields (chunks.glsl) */
+    const char *label;                     /* its name in a GPU profile */
 } KERNELS[K_COUNT] = {
-#define KERNEL(id, name, bindings, push) [id] = {name, sizeof name, bindings, sizeof(push), #name + 6}
-    KERNEL(K_PAD, spirv_pad, 2, push_grid),
-    KERNEL(K_UNPAD, spirv_unpad, 2, push_grid),
-    KERNEL(K_MULTIPLY, spirv_multiply, 2, push_count),
-    KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, push_value),
-    KERNEL(K_GAPS, spirv_gaps, 5, push_pair),
-    KERNEL(K_WINKLER, spirv_winkler, 3, push_pair),
-    KERNEL(K_CLIP, spirv_clip, 1, push_value),
-    KERNEL(K_LOAD_SPLIT, spirv_load_split, 2, push_pair),
-    KERNEL(K_SCALE_ELASTIC, spirv_scale_elastic, 2, push_pair),
-    KERNEL(K_SUMMARY, spirv_summary, 2, push_count),
-    KERNEL(K_SCALE, spirv_scale, 1, push_value),
-    KERNEL(K_DIRECTION, spirv_direction, 5, push_grid_pair),
-    KERNEL(K_PRECONDITION_MASK, spirv_precondition_mask, 3, push_count),
-    KERNEL(K_PRECONDITION_RESTRICT, spirv_precondition_restrict, 3, push_count),
-    KERNEL(K_PRECONDITION_CENTRE, spirv_precondition_centre, 4, push_value),
-    KERNEL(K_STEP, spirv_step, 5, push_step),
-    KERNEL(K_UPDATE_PRESSURE, spirv_update_pressure, 9, push_grid_pair),
-    KERNEL(K_POINT_LOADS, spirv_point_loads, 4, push_point_loads),
-    KERNEL(K_REDUCE_FINISH, spirv_reduce_finish, 2, push_finish),
+#define KERNEL(id, name, bindings, fields, push) [id] = {name, sizeof name, bindings, fields, sizeof(push), #name + 6}
+    KERNEL(K_PAD, spirv_pad, 2, 2, push_grid),
+    KERNEL(K_UNPAD, spirv_unpad, 2, 2, push_grid),
+    KERNEL(K_MULTIPLY, spirv_multiply, 2, 2, push_count),
+    KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, 3, push_value),
+    KERNEL(K_GAPS, spirv_gaps, 5, 4, push_pair),
+    KERNEL(K_WINKLER, spirv_winkler, 3, 2, push_pair),
+    KERNEL(K_CLIP, spirv_clip, 1, 1, push_value),
+    KERNEL(K_LOAD_SPLIT, spirv_load_split, 2, 1, push_pair),
+    KERNEL(K_SCALE_ELASTIC, spirv_scale_elastic, 2, 1, push_pair),
+    KERNEL(K_SUMMARY, spirv_summary, 2, 1, push_count),
+    KERNEL(K_SCALE, spirv_scale, 1, 1, push_value),
+    KERNEL(K_DIRECTION, spirv_direction, 5, 5, push_grid_pair),
+    KERNEL(K_PRECONDITION_MASK, spirv_precondition_mask, 3, 3, push_count),
+    KERNEL(K_PRECONDITION_RESTRICT, spirv_precondition_restrict, 3, 2, push_count),
+    KERNEL(K_PRECONDITION_CENTRE, spirv_precondition_centre, 4, 3, push_value),
+    KERNEL(K_STEP, spirv_step, 5, 4, push_step),
+    KERNEL(K_UPDATE_PRESSURE, spirv_update_pressure, 9, 5, push_grid_pair),
+    KERNEL(K_POINT_LOADS, spirv_point_loads, 4, 2, push_point_loads),
+    KERNEL(K_REDUCE_FINISH, spirv_reduce_finish, 2, 0, push_finish),
 #undef KERNEL
 };
 
@@ -130,6 +130,7 @@ typedef struct gpu_device {
     gpu_context *context;
     gpu_pipeline kernels[K_COUNT];
     gpu_buffer partials, result; /* result: host-visible */
+    VkDeviceSize fields_bytes;   /* what the plans' buffers occupy (solver_footprint) */
     int references;
 } gpu_device;
 
@@ -142,6 +143,7 @@ struct gpu_solver {
     gpu_buffer change_count, change_index, change_value; /* update_pressure's changes */
     gpu_fft *fft, *precondition_fft;
     uint32_t nx, ny, px, py;
+    VkDeviceSize footprint; /* its share of device->fields_bytes */
 };
 
 /* ---- the device and its pipelines ---- */
@@ -169,7 +171,7 @@ static int device_open(const im_solver_options *o, gpu_device **out)
     int status = gpu_context_open(preference, o->gpu_validation, &d->context);
     for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
         status = gpu_pipeline_create(d->context, KERNELS[k].code, KERNELS[k].bytes, KERNELS[k].bindings,
-                                     KERNELS[k].push_bytes, &d->kernels[k]);
+                                     KERNELS[k].fields, KERNELS[k].push_bytes, &d->kernels[k]);
     for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
         d->kernels[k].label = KERNELS[k].label;
     const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
@@ -515,6 +517,7 @@ static void gpu_engine_free(im_solver_plan *plan)
                              &s->change_value};
     for (size_t k = 0; k < sizeof buffers / sizeof *buffers; ++k)
         gpu_buffer_free(c, buffers[k]);
+    s->device->fields_bytes -= s->footprint;
     device_release(s->device);
     free(s);
     plan->gpu = NULL;
@@ -559,12 +562,13 @@ static int check_grid(const im_solver_plan *plan, const gpu_device *d)
                            "factor into 2, 3, 5, 7, 11 and 13",
                            plan->nx, plan->ny, plan->px, plan->py, sides[k]);
     const double largest = (double)gpu_fft_modes_bytes(plan->px, plan->py);
-    if ((double)plan->px * plan->py >= 4294967296.0 || largest > (double)gpu_context_max_buffer(d->context))
+    const double most = (double)GPU_MAX_CHUNKS * (double)gpu_context_chunk_bytes(d->context);
+    if ((double)plan->px * plan->py >= 4294967296.0 || largest > most)
         return im_fail(IM_EUNSUPPORTED,
                        "GPU engine: solver grid %d x %d needs a %.0f MiB buffer; %s takes at most %.0f MiB per "
-                       "buffer (use device = cpu, or a smaller grid)",
-                       plan->nx, plan->ny, largest / 1048576.0, gpu_context_device_name(d->context),
-                       (double)gpu_context_max_buffer(d->context) / 1048576.0);
+                       "buffer (%d chunks of %.0f MiB; use device = cpu, or a smaller grid)",
+                       plan->nx, plan->ny, largest / 1048576.0, gpu_context_device_name(d->context), most / 1048576.0,
+                       GPU_MAX_CHUNKS, (double)gpu_context_chunk_bytes(d->context) / 1048576.0);
     return IM_OK;
 }
 
@@ -578,23 +582,6 @@ static int zero_fields(struct gpu_solver *s)
     return status == IM_OK ? gpu_submit_wait(c) : status;
 }
 
-/* The real-space kernel and the change list, for direct sums of a step's few changes. */
-static int make_change_list(const im_solver_plan *plan, struct gpu_solver *s)
-{
-    gpu_context *c = context_of(s);
-    const VkDeviceSize n = (VkDeviceSize)s->nx * s->ny;
-    int status = gpu_buffer_create(c, sizeof(double) * n, GPU_DEVICE_LOCAL, &s->kernel);
-    if (status == IM_OK)
-        status = gpu_buffer_upload(c, &s->kernel, 0, plan->kernel, sizeof(double) * n);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, 16, GPU_DEVICE_LOCAL, &s->change_count);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, sizeof(uint32_t) * CHANGE_CAPACITY, GPU_DEVICE_LOCAL, &s->change_index);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, sizeof(double) * CHANGE_CAPACITY, GPU_DEVICE_LOCAL, &s->change_value);
-    return status;
-}
-
 /* How many changes a step adds by direct summation rather than a new u = K p: a sum costs about one
  * read of the nx x ny kernel per change, an FFT pair about 1.1 px py log2(px py) / (nx ny) of them
  * (on an H200 a periodic 8192^2 pair with its pad, multiply and unpad took 3.4 ms, the padded pair of
@@ -606,42 +593,101 @@ static long direct_limit(const struct gpu_solver *s)
     return limit < CHANGE_CAPACITY ? limit : CHANGE_CAPACITY;
 }
 
-static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
+enum { MAX_SOLVER_BUFFERS = 16 };
+
+/* The buffers of a plan's device state and their sizes (the preconditioner's only with it). */
+static size_t solver_buffers(struct gpu_solver *s, int precondition, gpu_buffer **buffers, VkDeviceSize *bytes)
+{
+    const VkDeviceSize d = sizeof(double), n = (VkDeviceSize)s->nx * s->ny;
+    const VkDeviceSize modes = (VkDeviceSize)s->py * (s->px / 2 + 1), small = (VkDeviceSize)s->ny * (s->nx / 2 + 1);
+    /* the transforms' real buffers hold as many bytes as their modes (gpu/vulkan.h: VkFFT binds them so) */
+    const struct {
+        gpu_buffer *buffer;
+        VkDeviceSize bytes;
+    } list[] = {{&s->gap0, d * n},
+                {&s->p, d * n},
+                {&s->u, d * n},
+                {&s->g, d * n},
+                {&s->t, d * n},
+                {&s->z, gpu_fft_modes_bytes(s->nx, s->ny)},
+                {&s->real, gpu_fft_modes_bytes(s->px, s->py)},
+                {&s->modes, 2 * d * modes},
+                {&s->spectrum, d * modes},
+                {&s->kernel, d * n}, /* K at offset (|dx|, |dy|), for direct sums of a step's few changes */
+                {&s->change_count, 16},
+                {&s->change_index, sizeof(uint32_t) * CHANGE_CAPACITY},
+                {&s->change_value, d * CHANGE_CAPACITY},
+                {&s->precondition_modes, 2 * d * small},
+                {&s->inverse_spectrum, d * small}};
+    const size_t count = sizeof list / sizeof *list - (precondition ? 0 : 2);
+    for (size_t k = 0; k < count; ++k) {
+        buffers[k] = list[k].buffer;
+        bytes[k] = list[k].bytes;
+    }
+    return count;
+}
+
+/* The device memory a plan's buffers occupy (whole chunks; VkFFT's own buffers not counted). */
+static VkDeviceSize solver_footprint(struct gpu_solver *s, int precondition)
+{
+    gpu_buffer *buffers[MAX_SOLVER_BUFFERS];
+    VkDeviceSize bytes[MAX_SOLVER_BUFFERS], total = 0;
+    const size_t count = solver_buffers(s, precondition, buffers, bytes);
+    for (size_t k = 0; k < count; ++k)
+        total += gpu_context_buffer_footprint(context_of(s), bytes[k]);
+    return total;
+}
+
+static int upload_tables(const im_solver_plan *plan, struct gpu_solver *s)
 {
     gpu_context *c = context_of(s);
     const VkDeviceSize d = sizeof(double), n = (VkDeviceSize)s->nx * s->ny;
     const VkDeviceSize modes = (VkDeviceSize)s->py * (s->px / 2 + 1), small = (VkDeviceSize)s->ny * (s->nx / 2 + 1);
-    gpu_buffer *fields[] = {&s->gap0, &s->p, &s->u, &s->g, &s->t};
+    int status = gpu_buffer_upload(c, &s->spectrum, 0, plan->spectrum, d * modes);
+    if (status == IM_OK)
+        status = gpu_buffer_upload(c, &s->kernel, 0, plan->kernel, d * n);
+    if (status == IM_OK && plan->options.precondition)
+        status = gpu_buffer_upload(c, &s->inverse_spectrum, 0, plan->inverse_spectrum, d * small);
+    return status;
+}
+
+static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
+{
+    gpu_context *c = context_of(s);
+    gpu_buffer *buffers[MAX_SOLVER_BUFFERS];
+    VkDeviceSize bytes[MAX_SOLVER_BUFFERS];
+    const size_t count = solver_buffers(s, plan->options.precondition, buffers, bytes);
     int status = IM_OK;
-    for (size_t k = 0; k < sizeof fields / sizeof *fields && status == IM_OK; ++k)
-        status = gpu_buffer_create(c, d * n, GPU_DEVICE_LOCAL, fields[k]);
-    /* the transforms' real buffers hold as many bytes as their modes (gpu/vulkan.h: VkFFT binds them so) */
+    for (size_t k = 0; k < count && status == IM_OK; ++k)
+        status = gpu_buffer_create(c, bytes[k], GPU_DEVICE_LOCAL, buffers[k]);
     if (status == IM_OK)
-        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->nx, s->ny), GPU_DEVICE_LOCAL, &s->z);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, gpu_fft_modes_bytes(s->px, s->py), GPU_DEVICE_LOCAL, &s->real);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, 2 * d * modes, GPU_DEVICE_LOCAL, &s->modes);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, d * modes, GPU_DEVICE_LOCAL, &s->spectrum);
-    if (status == IM_OK)
-        status = gpu_buffer_upload(c, &s->spectrum, 0, plan->spectrum, d * modes);
-    if (status == IM_OK)
-        status = make_change_list(plan, s);
+        status = upload_tables(plan, s);
     if (status == IM_OK)
         status = zero_fields(s); /* t is read (times beta = 0) before it is first written */
     if (status == IM_OK)
         status = gpu_fft_create(c, (int)s->px, (int)s->py, &s->real, &s->modes, &s->fft);
-    if (status != IM_OK || !plan->options.precondition)
-        return status;
-    status = gpu_buffer_create(c, 2 * d * small, GPU_DEVICE_LOCAL, &s->precondition_modes);
-    if (status == IM_OK)
-        status = gpu_buffer_create(c, d * small, GPU_DEVICE_LOCAL, &s->inverse_spectrum);
-    if (status == IM_OK)
-        status = gpu_buffer_upload(c, &s->inverse_spectrum, 0, plan->inverse_spectrum, d * small);
-    if (status == IM_OK)
+    if (status == IM_OK && plan->options.precondition)
         status = gpu_fft_create(c, (int)s->nx, (int)s->ny, &s->z, &s->precondition_modes, &s->precondition_fft);
     return status;
+}
+
+/* Refuses, before allocating, a plan whose buffers with those of its finer levels exceed the
+ * device's memory (IM_EUNSUPPORTED: device = auto then solves on the CPU). */
+static int check_memory(const im_solver_plan *plan, struct gpu_solver *s)
+{
+    gpu_device *d = s->device;
+    const VkDeviceSize needed = solver_footprint(s, plan->options.precondition);
+    const VkDeviceSize available = gpu_context_device_bytes(d->context);
+    if (d->fields_bytes + needed <= available) {
+        d->fields_bytes += s->footprint = needed;
+        return IM_OK;
+    }
+    return im_fail(IM_EUNSUPPORTED,
+                   "GPU engine: solver grid %d x %d needs %.2f GiB of device memory for its fields (%.2f GiB with "
+                   "its finer cascade levels), and %s has %.2f GiB (use device = cpu, or a smaller grid)",
+                   plan->nx, plan->ny, (double)needed / 1073741824.0,
+                   (double)(d->fields_bytes + needed) / 1073741824.0, gpu_context_device_name(d->context),
+                   (double)available / 1073741824.0);
 }
 
 int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
@@ -674,7 +720,9 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
                              .px = (uint32_t)plan->px,
                              .py = (uint32_t)plan->py};
     plan->gpu = s;
-    status = make_buffers(plan, s);
+    status = check_memory(plan, s);
+    if (status == IM_OK)
+        status = make_buffers(plan, s);
     if (status != IM_OK) { /* the plan stays whole on the CPU engine */
         status = im_fail_context(status, "GPU engine %d x %d on %s", plan->nx, plan->ny,
                                  gpu_context_device_name(device->context));
