@@ -1,4 +1,4 @@
-// The search direction t = source + beta t on the moving patches, 0 elsewhere, written also into
+// The search direction t = source + beta t on the step's set, 0 elsewhere, written also into
 // the px x py transform grid with its zero padding (one pass instead of two).
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -9,7 +9,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Gap { double g[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Source { double src[]; };
 layout(std430, set = 0, binding = 3) buffer Direction { double t[]; };
 layout(std430, set = 0, binding = 4) writeonly buffer Real { double real_grid[]; };
-layout(push_constant) uniform Push { double beta; double cap; uint nx; uint ny; uint px; uint py; } pc;
+layout(push_constant) uniform Push { double beta; double cap; uint nx; uint ny; uint px; uint py; uint join; } pc;
 
 void main()
 {
@@ -19,7 +19,7 @@ void main()
         double value = 0.0lf;
         if (x < pc.nx && y < pc.ny) {
             uint i = y * pc.nx + x;
-            value = moving(p[i], g[i], pc.cap) ? src[i] + pc.beta * t[i] : 0.0lf;
+            value = in_step(p[i], g[i], pc.cap, pc.join) ? src[i] + pc.beta * t[i] : 0.0lf;
             t[i] = value;
         }
         real_grid[k] = value;

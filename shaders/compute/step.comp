@@ -1,4 +1,4 @@
-// The step length's sums over the moving patches, K t read from the transform grid:
+// The step length's sums over the step's set, K t read from the transform grid:
 // slots (<g, t>, <K t, t>, sum K t, sum t, count).
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -12,14 +12,14 @@ layout(std430, set = 0, binding = 0) readonly buffer Pressure { double p[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Gap { double g[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Direction { double t[]; };
 layout(std430, set = 0, binding = 3) readonly buffer Real { double real_grid[]; };
-layout(push_constant) uniform Push { double cap; uint nx; uint ny; uint px; } pc;
+layout(push_constant) uniform Push { double cap; uint nx; uint ny; uint px; uint join; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf, 0.0lf, 0.0lf, 0.0lf);
     uint n = pc.nx * pc.ny;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride())
-        if (moving(p[i], g[i], pc.cap)) {
+        if (in_step(p[i], g[i], pc.cap, pc.join)) {
             double q = real_grid[(i / pc.nx) * pc.px + i % pc.nx];
             v[0] += g[i] * t[i];
             v[1] += q * t[i];
