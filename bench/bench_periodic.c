@@ -7,8 +7,9 @@
  * solved cold at the mean pressure P_M (units of E*, default 0.004: about 10% contact) and then, as a
  * second solve, under the mean gap that the first one found (displacement control at its approach).
  * Prints per control, as medians of R repeats (default 3): fine-grid iterations, the cascade's coarse
- * iterations (all levels), wall and CPU time of the solve (planning apart), and CPU time per fine
- * iteration over the CPU time of one forward + inverse FFT pair of the n x n cell (the floor).
+ * iterations (all levels), the fine grid's convolutions, wall and CPU time of the solve (planning
+ * apart), and CPU time per fine iteration over the CPU time of one forward + inverse FFT pair of the
+ * n x n cell (the floor).
  * --compare solves each control once more by plain PK (no cascade, no preconditioner) and prints the
  * relative load and approach differences and the patches whose contact state differs. */
 #include "bench_fft.h"
@@ -128,12 +129,12 @@ static im_solve_result run_control(im_solver_plan *plan, const cell *c, const im
     const im_solve_result *s = &t.result;
     const double cpu_median = bench_median(cpu, repeats);
     printf("n %d, threads %d, tol %g, cascade %d, precondition %d, %s control: fine iterations %d, coarse "
-           "iterations %d, wall %.3f s, CPU %.3f s (medians of %d), %.2f FFT pairs per fine iteration (pair %.3f "
-           "ms); approach %.12g, load %.12g, n_p %ld\n",
+           "iterations %d, convolutions %d, wall %.3f s, CPU %.3f s (medians of %d), %.2f FFT pairs per fine "
+           "iteration (pair %.3f ms); approach %.12g, load %.12g, n_p %ld\n",
            c->n, omp_get_max_threads(), o->tol, o->cascade, o->precondition,
            control == IM_CONTROL_LOAD ? "mean-pressure" : "mean-gap", s->iterations, s->coarse_iterations,
-           bench_median(wall, repeats), cpu_median, repeats, cpu_median / floor / s->iterations, 1e3 * floor,
-           s->approach, s->load, s->contact_patches);
+           s->convolutions, bench_median(wall, repeats), cpu_median, repeats, cpu_median / floor / s->iterations,
+           1e3 * floor, s->approach, s->load, s->contact_patches);
     if (compare)
         compare_with_plain(c, o, control, target, s);
     return *s;

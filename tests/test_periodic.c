@@ -7,9 +7,11 @@
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "solver/engine.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* One wavelength along x on NX patches, uniform along y: a 1-D wavy surface. */
 enum { NX = 256, NY = 4 };
@@ -333,6 +335,75 @@ static void refusals(void **state)
     im_solver_plan_free(plan);
 }
 
+/* A preconditioned join step (pk.c) on a rough cell, through the CPU engine's passes: its set is I_c
+ * and the penetrating patches at p = 0, whose pressures come from the step itself, p = max(-tau t, 0)
+ * with t = z there, at the exact step length over the whole set: the gaps of the step before its
+ * projection, g - tau K t, are orthogonal to the direction there (the line's minimum). The join step
+ * before took them in at -tau g beside a step on I_c alone. */
+static void join_step_is_a_line_minimum(void **state)
+{
+    (void)state;
+    enum { N = 64 };
+    const size_t count = (size_t)N * N;
+    im_field *s = test_rough_surface(N, 0.08, 4);
+    double *gap0 = malloc(sizeof(double) * count), *p = malloc(sizeof(double) * count),
+           *u = malloc(sizeof(double) * count), *t_before = malloc(sizeof(double) * count);
+    assert_true(gap0 && p && u && t_before);
+    double highest = -INFINITY;
+    for (size_t i = 0; i < count; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < count; ++i)
+        gap0[i] = highest - s->data[i];
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+    const double w = 0.3, k0 = plan->kernel[0];
+    for (size_t i = 0; i < count; ++i) /* half the local guess: the contact set penetrates around it */
+        p[i] = gap0[i] < w ? 0.5 * (w - gap0[i]) / k0 : 0;
+    pk_run r = solver_pk_run(plan, gap0, IM_CONTROL_DISPLACEMENT, w, p, u);
+    const solver_engine *e = plan->engine;
+    e->convolve_pressure(&r);
+    const gap_stats before = e->gaps(&r, w, INFINITY);
+    long joining = 0;
+    for (size_t i = 0; i < count; ++i)
+        joining += p[i] == 0 && plan->gap[i] < 0;
+    assert_true(joining > 0);
+    r.join = SOLVER_JOIN_IN_DIRECTION;
+    long in_step;
+    e->precondition(&r, &in_step);
+    assert_int_equal(in_step, before.contact + joining);
+    e->precondition_centre(&r, 0);
+    e->direction(&r, 1, 0, INFINITY);
+    e->convolve_direction(&r);
+    const step_terms terms = e->step(&r, INFINITY);
+    assert_int_equal(terms.count, in_step);
+    const double tau = terms.gt / terms.kt_t;
+    memcpy(t_before, plan->direction, sizeof(double) * count);
+    double *p_before = malloc(sizeof(double) * count), *g_before = malloc(sizeof(double) * count);
+    assert_true(p_before && g_before);
+    memcpy(p_before, p, sizeof(double) * count);
+    memcpy(g_before, plan->gap, sizeof(double) * count);
+    int joined;
+    e->update_pressure(&r, tau, INFINITY, &joined); /* u -= tau K t: the step before its projection */
+    assert_true(joined);
+    for (size_t i = 0; i < count; ++i)
+        if (p_before[i] == 0 && g_before[i] < 0 && p[i] != fmax(-tau * t_before[i], 0))
+            fail_msg("joining patch %zu: p %.17g, expected max(-tau t, 0) = %.17g", i, p[i], -tau * t_before[i]);
+    e->gaps(&r, w, INFINITY);
+    double slope = 0, slope_before = 0;
+    for (size_t i = 0; i < count; ++i)
+        if (solver_in_step(p_before[i], g_before[i], INFINITY, SOLVER_JOIN_IN_DIRECTION)) {
+            slope += plan->gap[i] * t_before[i];
+            slope_before += g_before[i] * t_before[i];
+        }
+    if (!(fabs(slope) <= 1e-12 * fabs(slope_before)))
+        fail_msg("<g', t> = %g after the step, <g, t> = %g before", slope, slope_before);
+    im_solver_plan_free(plan);
+    free(gap0), free(p), free(u), free(t_before), free(p_before), free(g_before);
+    im_field_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -344,6 +415,7 @@ int main(void)
         cmocka_unit_test(wavy_1d_converges),
         cmocka_unit_test(preconditioned_cascade_is_plain_pk),
         cmocka_unit_test(mean_gap_control),
+        cmocka_unit_test(join_step_is_a_line_minimum),
         cmocka_unit_test(refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

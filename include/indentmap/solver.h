@@ -50,7 +50,8 @@
  * 512^2 / 1024^2 / 2048^2. The steps that keep the contact set are preconditioned CG steps with
  * z = M g on I_c, M ~ E* |k| the inverse of the spectrum of K's samples wrapped periodically on
  * the nx x ny grid (unpadded: a transform pair a quarter of a convolution's size), and 3-5x fewer
- * iterations. Patches join (p = -tau g for g < 0 outside I_c) only in a plain PK step,
+ * iterations. Patches join (g < 0 outside I_c) only in a join step, a preconditioned steepest-descent
+ * step over I_c and the joining patches together (z = M g on both, its exact step length over both),
  * taken when the penetration outside I_c outweighs the gap left on it, sum over p = 0, g < 0 of g^2
  * > sum over I_c of g^2 (Dostal's proportioning test), or its largest value > 4 times the rms gap
  * on I_c (the stopping rule's terms); the next step restarts the conjugacy.

@@ -1,4 +1,4 @@
-// z -= mean where p > 0: slot (<g, z> there).
+// z -= mean on the step's set: slot (<g, z> there).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
@@ -11,13 +11,13 @@ layout(local_size_x = 256) in;
 FIELD_IN(0, p)
 FIELD_IN(1, g)
 FIELD(2, z)
-layout(push_constant) uniform Push { double mean; uint n; } pc;
+layout(push_constant) uniform Push { double mean; uint n; uint join; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf);
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride())
-        if (p_at(i) > 0.0lf) {
+        if (in_preconditioned_step(p_at(i), g_at(i), pc.join)) {
             z_put(i, z_at(i) - pc.mean);
             v[0] += g_at(i) * z_at(i);
         }

@@ -1,4 +1,4 @@
-// The step length's sums over the moving patches, K t read from the transform grid:
+// The step length's sums over the step's set, K t read from the transform grid:
 // slots (<g, t>, <K t, t>, sum K t, sum t, count).
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -13,14 +13,14 @@ FIELD_IN(0, p)
 FIELD_IN(1, g)
 FIELD_IN(2, t)
 FIELD_IN(3, real_grid)
-layout(push_constant) uniform Push { double cap; uint nx; uint ny; uint px; } pc;
+layout(push_constant) uniform Push { double cap; uint nx; uint ny; uint px; uint join; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf, 0.0lf, 0.0lf, 0.0lf);
     uint n = pc.nx * pc.ny;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride())
-        if (moving(p_at(i), g_at(i), pc.cap)) {
+        if (in_step(p_at(i), g_at(i), pc.cap, pc.join)) {
             double q = real_grid_at((i / pc.nx) * pc.px + i % pc.nx);
             v[0] += g_at(i) * t_at(i);
             v[1] += q * t_at(i);

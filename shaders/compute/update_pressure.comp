@@ -1,4 +1,4 @@
-// u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; with allow_join the
+// u -= tau K t; p -= tau t on the step's set, projected onto [0, cap]; joining by the gap, the
 // penetrating patches at p = 0 join with min(-tau g, cap): slots (patches that differ from the
 // plain step, 1 if any joined). The changes themselves are appended to the change list
 // (point_loads.glsl) while it has room; the host zeroes its count before the pass.
@@ -20,7 +20,7 @@ FIELD_IN(4, real_grid)
 layout(std430, set = 0, binding = 6) buffer ChangeCount { uint change_count; };
 layout(std430, set = 0, binding = 7) writeonly buffer ChangeIndex { uint change_index[]; };
 layout(std430, set = 0, binding = 8) writeonly buffer ChangeValue { double change_value[]; };
-layout(push_constant) uniform Push { double tau; double cap; uint nx; uint ny; uint px; uint allow_join; } pc;
+layout(push_constant) uniform Push { double tau; double cap; uint nx; uint ny; uint px; uint join; } pc;
 
 void main()
 {
@@ -29,11 +29,13 @@ void main()
     for (uint i = gl_GlobalInvocationID.x; i < n; i += grid_stride()) {
         double c = 0.0lf, pi = p_at(i), gi = g_at(i);
         u_put(i, u_at(i) - pc.tau * real_grid_at((i / pc.nx) * pc.px + i % pc.nx));
-        if (moving(pi, gi, pc.cap)) {
+        if (in_step(pi, gi, pc.cap, pc.join)) {
             double next = pi - pc.tau * t_at(i);
+            if (pi == 0.0lf && next > 0.0lf)
+                v[1] = 1.0lf;
             p_put(i, project(next, pc.cap));
             c = p_at(i) - next;
-        } else if (pc.allow_join != 0u && pi == 0.0lf && gi < 0.0lf) {
+        } else if (pc.join == JOIN_BY_GAP && pi == 0.0lf && gi < 0.0lf) {
             p_put(i, project(-pc.tau * gi, pc.cap));
             c = p_at(i);
             v[1] = 1.0lf;

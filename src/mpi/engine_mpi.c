@@ -12,6 +12,7 @@
 
 #include "indentmap/status.h"
 
+#include <math.h>
 #include <string.h>
 
 static im_mpi_solver *ranks_of(const pk_run *r) { return r->plan->mpi; }
@@ -197,16 +198,16 @@ static void mpi_direction(pk_run *r, int preconditioned, double beta, double cap
     const double *g = s->gap, *p = r->p, *source = preconditioned ? s->preconditioned : s->gap;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        t[i] = solver_moving(p[i], g[i], cap) ? source[i] + beta * t[i] : 0;
+        t[i] = solver_in_step(p[i], g[i], cap, r->join) ? source[i] + beta * t[i] : 0;
 }
 
-/* z = M g on p > 0 through the preconditioner's pair (plan.c). */
-static void apply_preconditioner(im_mpi_solver *s, const double *p)
+/* z = M g on the step's set through the preconditioner's pair (plan.c). */
+static void apply_preconditioner(im_mpi_solver *s, const pk_run *r)
 {
     const size_t n = local_patches(s);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        s->preconditioned[i] = p[i] > 0 ? s->gap[i] : 0;
+        s->preconditioned[i] = solver_in_step(r->p[i], s->gap[i], INFINITY, r->join) ? s->gap[i] : 0;
     mpi_transform_apply(s, s->precondition_with, s->inverse_spectrum, s->preconditioned, s->preconditioned);
 }
 
@@ -214,12 +215,12 @@ static double mpi_precondition(pk_run *r, long *count)
 {
     im_mpi_solver *s = ranks_of(r);
     const int nx = s->nx;
-    apply_preconditioner(s, r->p);
+    apply_preconditioner(s, r);
 #pragma omp parallel for schedule(static)
     for (int row = 0; row < s->rows; ++row) {
         compensated sums[2] = {{0, 0}, {0, 0}}; /* z, count */
         for (size_t i = (size_t)row * nx; i < (size_t)(row + 1) * nx; ++i) {
-            if (r->p[i] > 0) {
+            if (solver_in_step(r->p[i], s->gap[i], INFINITY, r->join)) {
                 compensated_add(&sums[0], s->preconditioned[i]);
                 compensated_add(&sums[1], 1);
             } else
@@ -241,7 +242,7 @@ static double mpi_precondition_centre(pk_run *r, double mean)
     for (int row = 0; row < s->rows; ++row) {
         compensated gz = {0, 0};
         for (size_t i = (size_t)row * nx; i < (size_t)(row + 1) * nx; ++i)
-            if (r->p[i] > 0) {
+            if (solver_in_step(r->p[i], s->gap[i], INFINITY, r->join)) {
                 s->preconditioned[i] -= mean;
                 compensated_add(&gz, s->gap[i] * s->preconditioned[i]);
             }
@@ -261,7 +262,7 @@ static step_terms mpi_step(pk_run *r, double cap)
     for (int row = 0; row < s->rows; ++row) {
         compensated sums[5] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}, {0, 0}}; /* <g,t>, <q,t>, sum q, sum t, count */
         for (size_t i = (size_t)row * nx; i < (size_t)(row + 1) * nx; ++i)
-            if (solver_moving(p[i], g[i], cap)) {
+            if (solver_in_step(p[i], g[i], cap, r->join)) {
                 compensated_add(&sums[0], g[i] * t[i]);
                 compensated_add(&sums[1], q[i] * t[i]);
                 compensated_add(&sums[2], q[i]);
@@ -279,7 +280,7 @@ static step_terms mpi_step(pk_run *r, double cap)
                         .count = (long)totals[4]};
 }
 
-static long mpi_update_pressure(pk_run *r, double tau, double cap, int allow_join, int *joined)
+static long mpi_update_pressure(pk_run *r, double tau, double cap, int *joined)
 {
     const im_mpi_solver *s = ranks_of(r);
     const size_t n = local_patches(s);
@@ -289,11 +290,12 @@ static long mpi_update_pressure(pk_run *r, double tau, double cap, int allow_joi
 #pragma omp parallel for schedule(static) reduction(+ : changes, joins)
     for (size_t i = 0; i < n; ++i) {
         u[i] -= tau * q[i];
-        if (solver_moving(p[i], g[i], cap)) {
+        if (solver_in_step(p[i], g[i], cap, r->join)) {
             const double next = p[i] - tau * t[i];
+            joins += p[i] == 0 && next > 0;
             p[i] = solver_project(next, cap);
             changes += p[i] != next;
-        } else if (allow_join && p[i] == 0 && g[i] < 0) {
+        } else if (solver_joins_by_gap(p[i], g[i], r->join)) {
             p[i] = solver_project(-tau * g[i], cap);
             changes += p[i] != 0;
             ++joins;

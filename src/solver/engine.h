@@ -33,6 +33,12 @@ typedef struct step_terms {
     long count;
 } step_terms;
 
+/* How the penetrating patches at p = 0 join in a step: not at all (a preconditioned CG step on I_c),
+ * by the gap (plain PK: p = min(-tau g, cap) beside the step, the change added to u afterwards), or in
+ * the step's direction (a preconditioned join: the step's set is the moving patches and the penetrating
+ * ones, and the preconditioner, the direction, its step length and the update all cover both). */
+enum solver_join { SOLVER_JOIN_NONE, SOLVER_JOIN_BY_GAP, SOLVER_JOIN_IN_DIRECTION };
+
 typedef struct pk_run {
     im_solver_plan *plan;
     const double *gap0; /* the caller's undeformed gap */
@@ -40,8 +46,9 @@ typedef struct pk_run {
     double target;
     double *p, *u; /* the caller's pressure (in: a warm start or zeros) and displacement */
     int convolutions;
-    int status;      /* IM_OK, or the first failure of an engine pass (a lost GPU) */
-    double approach; /* load control: the last approach taken from the elastic patches (NaN: none) */
+    int status;            /* IM_OK, or the first failure of an engine pass (a lost GPU) */
+    double approach;       /* load control: the last approach taken from the elastic patches (NaN: none) */
+    enum solver_join join; /* the current step's (pk.c sets it before the step's passes) */
 } pk_run;
 
 typedef struct solver_engine {
@@ -70,17 +77,18 @@ typedef struct solver_engine {
     double (*pressure_sum)(pk_run *r);
     /* p *= p_factor, u *= u_factor (a factor of 1 leaves its field unchanged, bit for bit) */
     void (*scale)(pk_run *r, double p_factor, double u_factor);
-    /* t = source + beta t on the moving patches, 0 elsewhere; source: g, or z when preconditioned */
+    /* The passes below work on the step's set (solver_in_step, r->join). */
+    /* t = source + beta t on the step's set, 0 elsewhere; source: g, or z when preconditioned */
     void (*direction)(pk_run *r, int preconditioned, double beta, double cap);
-    /* z = M g restricted to p > 0; returns sum of z there and the count */
+    /* z = M g restricted to the step's set (no cap with a preconditioner); returns sum of z there and the count */
     double (*precondition)(pk_run *r, long *count);
-    /* z -= mean on p > 0; returns <g, z> there */
+    /* z -= mean on the step's set; returns <g, z> there */
     double (*precondition_centre)(pk_run *r, double mean);
     step_terms (*step)(pk_run *r, double cap);
-    /* u -= tau K t; p -= tau t on the moving patches, projected onto [0, cap]; with allow_join the
+    /* u -= tau K t; p -= tau t on the step's set, projected onto [0, cap]; joining by the gap, the
      * penetrating patches at p = 0 join with min(-tau g, cap). Returns how many patches differ from
      * the plain step (their changes kept for add_point_loads); *joined when any joined. */
-    long (*update_pressure)(pk_run *r, double tau, double cap, int allow_join, int *joined);
+    long (*update_pressure)(pk_run *r, double tau, double cap, int *joined);
     /* u += K (the recorded changes), by direct summation; never called when direct_limit is 0 */
     void (*add_point_loads)(pk_run *r, long changes);
     /* sum p, the patches with p > 0 and the largest p */
@@ -126,6 +134,16 @@ static inline int solver_elastic(double p, double cap) { return p > 0 && p < cap
 static inline int solver_moving(double p, double g, double cap)
 {
     return solver_elastic(p, cap) || (p == cap && g > 0);
+}
+/* The patches a step moves: the moving ones, and with a join in the direction the penetrating ones at p = 0. */
+static inline int solver_in_step(double p, double g, double cap, enum solver_join join)
+{
+    return solver_moving(p, g, cap) || (join == SOLVER_JOIN_IN_DIRECTION && p == 0 && g < 0);
+}
+/* Whether a patch outside the step's set joins by the gap (plain PK). */
+static inline int solver_joins_by_gap(double p, double g, enum solver_join join)
+{
+    return join == SOLVER_JOIN_BY_GAP && p == 0 && g < 0;
 }
 static inline double solver_project(double p, double cap) { return p < 0 ? 0 : (p > cap ? cap : p); }
 /* Whether any of the n pressures is positive (a warm start, or a contact left). */

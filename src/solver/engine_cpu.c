@@ -188,7 +188,7 @@ static void cpu_direction(pk_run *r, int preconditioned, double beta, double cap
         double *padded = plan->rows_in + (size_t)iy * px;
         for (int ix = 0; ix < nx; ++ix) {
             size_t i = (size_t)iy * nx + ix;
-            t[i] = solver_moving(p[i], g[i], cap) ? source[i] + beta * t[i] : 0;
+            t[i] = solver_in_step(p[i], g[i], cap, r->join) ? source[i] + beta * t[i] : 0;
             padded[ix] = t[i];
         }
     }
@@ -203,7 +203,7 @@ static double cpu_precondition(pk_run *r, long *count)
     double *z = plan->preconditioned;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        z[i] = p[i] > 0 ? g[i] : 0;
+        z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
     fftw_execute(plan->precondition_forward);
     solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
     fftw_execute(plan->precondition_backward);
@@ -213,7 +213,7 @@ static double cpu_precondition(pk_run *r, long *count)
     for (int k = 0; k < PARTS; ++k) {
         double z_sum = 0;
         for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
-            if (p[i] > 0) {
+            if (solver_in_step(p[i], g[i], INFINITY, r->join)) {
                 z_sum += z[i];
                 ++c;
             } else
@@ -235,7 +235,7 @@ static double cpu_precondition_centre(pk_run *r, double mean)
     for (int k = 0; k < PARTS; ++k) {
         double gz = 0;
         for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i)
-            if (p[i] > 0) {
+            if (solver_in_step(p[i], g[i], INFINITY, r->join)) {
                 z[i] -= mean;
                 gz += g[i] * z[i];
             }
@@ -259,7 +259,7 @@ static step_terms cpu_step(pk_run *r, double cap)
             const double *q = plan->rows_out + iy * px;
             for (int ix = 0; ix < nx; ++ix) {
                 size_t i = iy * nx + ix;
-                if (solver_moving(p[i], g[i], cap)) {
+                if (solver_in_step(p[i], g[i], cap, r->join)) {
                     num += g[i] * t[i];
                     qt += q[ix] * t[i];
                     q_sum += q[ix];
@@ -276,7 +276,7 @@ static step_terms cpu_step(pk_run *r, double cap)
 }
 
 /* Records how p differs from the plain CG step p - tau t in plan->changed_value. */
-static long cpu_update_pressure(pk_run *r, double tau, double cap, int allow_join, int *joined)
+static long cpu_update_pressure(pk_run *r, double tau, double cap, int *joined)
 {
     const im_solver_plan *plan = r->plan;
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
@@ -291,11 +291,12 @@ static long cpu_update_pressure(pk_run *r, double tau, double cap, int allow_joi
             size_t i = (size_t)iy * nx + ix;
             double c = 0;
             u[i] -= tau * q[ix];
-            if (solver_moving(p[i], g[i], cap)) {
-                double next = p[i] - tau * t[i];
+            if (solver_in_step(p[i], g[i], cap, r->join)) {
+                const double next = p[i] - tau * t[i];
+                any_joined |= p[i] == 0 && next > 0;
                 p[i] = solver_project(next, cap);
                 c = p[i] - next;
-            } else if (allow_join && p[i] == 0 && g[i] < 0) {
+            } else if (solver_joins_by_gap(p[i], g[i], r->join)) {
                 p[i] = c = solver_project(-tau * g[i], cap);
                 any_joined = 1;
             }

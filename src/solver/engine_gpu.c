@@ -53,12 +53,23 @@ typedef struct {
 } push_pair;
 typedef struct {
     double a, b;
-    uint32_t nx, ny, px, py;
-} push_grid_pair; /* update_pressure: py = allow_join */
+    uint32_t nx, ny, px, join;
+} push_update; /* a = tau, b = cap */
+typedef struct {
+    double beta, cap;
+    uint32_t nx, ny, px, py, join;
+} push_direction;
 typedef struct {
     double cap;
-    uint32_t nx, ny, px;
+    uint32_t nx, ny, px, join;
 } push_step;
+typedef struct {
+    uint32_t n, join;
+} push_set;
+typedef struct {
+    double value;
+    uint32_t n, join;
+} push_value_set;
 typedef struct {
     uint32_t groups, slots, max_slots;
 } push_finish;
@@ -107,12 +118,12 @@ static const struct kernel_source {
     KERNEL(K_SCALE_ELASTIC, spirv_scale_elastic, 2, 1, push_pair),
     KERNEL(K_SUMMARY, spirv_summary, 2, 1, push_count),
     KERNEL(K_SCALE, spirv_scale, 1, 1, push_value),
-    KERNEL(K_DIRECTION, spirv_direction, 5, 5, push_grid_pair),
-    KERNEL(K_PRECONDITION_MASK, spirv_precondition_mask, 3, 3, push_count),
-    KERNEL(K_PRECONDITION_RESTRICT, spirv_precondition_restrict, 3, 2, push_count),
-    KERNEL(K_PRECONDITION_CENTRE, spirv_precondition_centre, 4, 3, push_value),
+    KERNEL(K_DIRECTION, spirv_direction, 5, 5, push_direction),
+    KERNEL(K_PRECONDITION_MASK, spirv_precondition_mask, 3, 3, push_set),
+    KERNEL(K_PRECONDITION_RESTRICT, spirv_precondition_restrict, 4, 3, push_set),
+    KERNEL(K_PRECONDITION_CENTRE, spirv_precondition_centre, 4, 3, push_value_set),
     KERNEL(K_STEP, spirv_step, 5, 4, push_step),
-    KERNEL(K_UPDATE_PRESSURE, spirv_update_pressure, 9, 5, push_grid_pair),
+    KERNEL(K_UPDATE_PRESSURE, spirv_update_pressure, 9, 5, push_update),
     KERNEL(K_POINT_LOADS, spirv_point_loads, 4, 2, push_point_loads),
     KERNEL(K_REDUCE_FINISH, spirv_reduce_finish, 2, 0, push_finish),
 #undef KERNEL
@@ -396,24 +407,25 @@ static void gpu_engine_direction(pk_run *r, int preconditioned, double beta, dou
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[5] = {&s->p, &s->g, preconditioned ? &s->z : &s->g, &s->t, &s->real};
-    const push_grid_pair push = {.a = beta, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = s->py};
+    const push_direction push =
+        {.beta = beta, .cap = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = s->py, .join = r->join};
     record(s, K_DIRECTION, b, &push, s->px * s->py);
 }
 
 static double gpu_engine_precondition(pk_run *r, long *count)
 {
     struct gpu_solver *s = solver_of(r);
-    const push_count n = {.count = patches(s)};
+    const push_set set = {.n = patches(s), .join = r->join};
     const push_count modes = {.count = s->ny * (s->nx / 2 + 1)};
     const gpu_buffer *mask[3] = {&s->p, &s->g, &s->z};
     const gpu_buffer *multiply[2] = {&s->precondition_modes, &s->inverse_spectrum};
-    const gpu_buffer *restrict_to_contact[3] = {&s->p, &s->z, &s->device->partials};
-    record(s, K_PRECONDITION_MASK, mask, &n, n.count);
+    const gpu_buffer *restrict_to_set[4] = {&s->p, &s->g, &s->z, &s->device->partials};
+    record(s, K_PRECONDITION_MASK, mask, &set, set.n);
     gpu_fft_forward(context_of(s), s->precondition_fft);
     record(s, K_MULTIPLY, multiply, &modes, modes.count);
     gpu_fft_inverse(context_of(s), s->precondition_fft);
     double v[2];
-    reduce(r, K_PRECONDITION_RESTRICT, restrict_to_contact, &n, n.count, 2, 0, v);
+    reduce(r, K_PRECONDITION_RESTRICT, restrict_to_set, &set, set.n, 2, 0, v);
     *count = (long)v[1];
     return v[0];
 }
@@ -422,7 +434,7 @@ static double gpu_engine_precondition_centre(pk_run *r, double mean)
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[4] = {&s->p, &s->g, &s->z, &s->device->partials};
-    const push_value push = {.value = mean, .n = patches(s)};
+    const push_value_set push = {.value = mean, .n = patches(s), .join = r->join};
     double gz;
     reduce(r, K_PRECONDITION_CENTRE, b, &push, push.n, 1, 0, &gz);
     return gz;
@@ -432,20 +444,19 @@ static step_terms gpu_engine_step(pk_run *r, double cap)
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[5] = {&s->p, &s->g, &s->t, &s->real, &s->device->partials};
-    const push_step push = {.cap = cap, .nx = s->nx, .ny = s->ny, .px = s->px};
+    const push_step push = {.cap = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .join = r->join};
     double v[5];
     reduce(r, K_STEP, b, &push, patches(s), 5, 0, v);
     return (step_terms){.gt = v[0], .kt_t = v[1], .kt_sum = v[2], .t_sum = v[3], .count = (long)v[4]};
 }
 
-static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int allow_join, int *joined)
+static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int *joined)
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[9] = {
         &s->p,           &s->u, &s->g, &s->t, &s->real, &s->device->partials, &s->change_count, &s->change_index,
         &s->change_value};
-    /* the shader's block is {tau, cap, nx, ny, px, allow_join}: the last word carries the flag */
-    const push_grid_pair push = {.a = tau, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .py = allow_join != 0};
+    const push_update push = {.a = tau, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .join = r->join};
     double v[2];
     gpu_zero(context_of(s), &s->change_count);
     reduce(r, K_UPDATE_PRESSURE, b, &push, patches(s), 2, 1u << 1, v);

@@ -244,9 +244,12 @@ static int stop_signal(pk_run *r)
     return stop ? (int)*stop : 0;
 }
 
-/* Preconditioned: patches join only in a plain PK step (steepest descent); the other steps are
- * preconditioned CG on I_c, which may only shrink it (clipping). Plain PK lets patches join in every
- * step. (No preconditioner with a pressure cap: plan.c.) A join step is taken when the penetration
+/* Preconditioned: patches join only in a join step, a preconditioned steepest-descent step whose set
+ * is I_c and the penetrating patches at p = 0 (the preconditioner, the direction and the exact step
+ * length all cover both, so the joining patches get the pressure the step finds for them rather than
+ * -tau g at a step length set by I_c alone); the other steps are preconditioned CG on I_c, which may
+ * only shrink it (clipping). Plain PK lets patches join by the gap in every step. (No preconditioner
+ * with a pressure cap: plan.c.) A join step is taken when the penetration
  * outside I_c outweighs the gap left on it, in sums (Dostal's proportioning test) or in the stopping
  * rule's own terms: its largest penetration PENETRATION_LEAD times the rms gap on I_c. A few
  * penetrating patches never win the sums against the gaps of a large I_c, and the CG steps meanwhile
@@ -258,6 +261,13 @@ static int joining_pays(const gap_stats *s)
 {
     const double rms = s->contact ? sqrt(s->sum_squares / s->contact) : 0;
     return s->penetration_squares > s->sum_squares || s->penetration > PENETRATION_LEAD * rms;
+}
+
+static enum solver_join step_join(const im_solver_options *o, const gap_stats *s)
+{
+    if (!o->precondition)
+        return SOLVER_JOIN_BY_GAP;
+    return joining_pays(s) ? SOLVER_JOIN_IN_DIRECTION : SOLVER_JOIN_NONE;
 }
 
 /* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC, IM_EINTERRUPTED or an engine's
@@ -306,10 +316,10 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             continue;
         }
         ++res->iterations;
-        const int join = !o->precondition || joining_pays(&s);
-        if (o->precondition && join)
+        r->join = step_join(o, &s);
+        if (o->precondition && r->join == SOLVER_JOIN_IN_DIRECTION)
             restart = 1;
-        if (join) {
+        if (!o->precondition) {
             e->direction(r, 0, restart ? 0 : s.moving_squares / previous_squares, cap);
             previous_squares = s.moving_squares;
         } else {
@@ -326,15 +336,18 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             restart = 1;
             continue;
         }
-        if (isnan(tau) && restart)
-            /* The direction vanishes on the contact set (under load control, one patch, or gaps
-             * already equal there): only penetrating patches outside it are left to join. Give
-             * them the local (Winkler) step, p = -g / K(0). */
+        /* The direction vanishes on the step's set (under load control, one patch, or gaps already
+         * equal there): only penetrating patches outside the contact set are left to join. Give
+         * them the local (Winkler) step, p = -g / K(0), by the gap (t is 0 on them too). */
+        if (isnan(tau) && restart) {
             tau = 1.0 / r->plan->kernel[0];
+            if (r->join == SOLVER_JOIN_IN_DIRECTION)
+                r->join = SOLVER_JOIN_BY_GAP;
+        }
         if (!isfinite(tau) || tau <= 0)
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
-        long changes = e->update_pressure(r, tau, cap, join, &restart);
-        if (o->precondition && join)
+        long changes = e->update_pressure(r, tau, cap, &restart);
+        if (o->precondition && r->join == SOLVER_JOIN_IN_DIRECTION)
             restart = 1; /* the next preconditioned step starts its own conjugate sequence */
         exact = update_displacement(r, changes);
         if (r->control == IM_CONTROL_LOAD)
