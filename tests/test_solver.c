@@ -442,7 +442,7 @@ static void test_full_grid_displacement(void **state)
  * inside the run's window: a history that rises (boxes replanned as they grow), falls (a smaller approach
  * in the same box) and rises again, against the same history solved on the whole surface (crop off, no
  * boxes), at tol 1e-10: loads to 1e-9, the same contact sets, and u and g inside the window (u outside
- * the last box is recomputed when the fields are asked for). With a hardness, the plastic memory too. */
+ * the last box is recomputed when the fields are asked for; the full grid's g too). With a hardness, the plastic memory too. */
 static void assert_same_fields_in_window(im_indentation *boxed, im_indentation *whole)
 {
     im_field *fb = NULL, *gb = NULL, *ub = NULL, *fw = NULL, *gw = NULL, *uw = NULL;
@@ -466,6 +466,15 @@ static void assert_same_fields_in_window(im_indentation *boxed, im_indentation *
     im_field *fields[] = {fb, gb, ub, fw, gw, uw};
     for (int k = 0; k < 6; ++k)
         im_field_free(fields[k]);
+    assert_int_equal(im_indentation_fields_full(boxed, NULL, &gb, NULL), IM_OK);
+    assert_int_equal(im_indentation_fields_full(whole, NULL, &gw, NULL), IM_OK);
+    worst_g = 0;
+    for (size_t i = 0; i < im_field_count(gb); ++i)
+        worst_g = fmax(worst_g, fabs(gb->data[i] - gw->data[i]));
+    if (worst_g > 1e-8 * peak)
+        fail_msg("the full grid's g differs by %g (peak u %g)", worst_g, peak);
+    im_field_free(gb);
+    im_field_free(gw);
 }
 
 static void assert_same_plastic_depth(const im_indentation *boxed, const im_indentation *whole)

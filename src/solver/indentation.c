@@ -820,9 +820,9 @@ static int new_full_field(const im_indentation *run, im_field **out)
     return out ? im_field_create(run->nx, run->ny, run->delta, out) : IM_OK;
 }
 
-int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+/* The fields of im_indentation_fields, with the window's u as it stands (see there). */
+static int window_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
-    ARG_REQUIRE(run, "run");
     im_field *f = NULL, *g = NULL, *u = NULL;
     int status = new_full_field(run, force ? &f : NULL);
     if (status == IM_OK)
@@ -833,10 +833,6 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
         im_field_free(f);
         im_field_free(g);
         return status;
-    }
-    if (run->steps && (u || g)) { /* u outside the last step's box is not K p yet */
-        const window_grid grid = window_grid_of(run);
-        step_window_refresh(run->steps, &grid);
     }
     const im_window w = run->window;
     const double d2 = run->delta * run->delta, approach = run->approach;
@@ -866,6 +862,16 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
     return IM_OK;
 }
 
+int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+{
+    ARG_REQUIRE(run, "run");
+    if (run->steps && (gap || displacement)) { /* u outside the last step's box is not K p yet */
+        const window_grid grid = window_grid_of(run);
+        step_window_refresh(run->steps, &grid);
+    }
+    return window_fields(run, force, gap, displacement);
+}
+
 int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
     ARG_REQUIRE(run, "run");
@@ -875,8 +881,8 @@ int im_indentation_fields_full(im_indentation *run, im_field **force, im_field *
     int status = run->full_plan
                      ? IM_OK
                      : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options, &run->full_plan);
-    if (status == IM_OK)
-        status = im_indentation_fields(run, &f, gap ? &g : NULL, &window_u);
+    if (status == IM_OK) /* g is corrected by the full u minus the same window u: stale or not, it cancels */
+        status = window_fields(run, &f, gap ? &g : NULL, &window_u);
     if (status == IM_OK)
         status = im_displacement_full_with(run->full_plan, f, &u);
     if (status == IM_OK && g) /* g = g0 - w + u: the same gap with the true u */
