@@ -4,15 +4,9 @@
 
 #include "indentmap/status.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-struct step_window {
-    im_window box; /* in the run window's patches; nx = 0: none, the steps are solved on the whole window */
-    im_solver_plan *plan;
-    double *gap0, *pressure, *displacement; /* box.nx * box.ny */
-    int stale;                              /* the run window's displacement outside the box is not K p */
-};
 
 /* Smallest 2^a 3^b 5^c 7^d >= n (FFTW is fastest on such sizes). */
 static int fft_friendly(int n)
@@ -69,24 +63,46 @@ im_window solver_gap_window(const double *gap0, int nx, int ny, double bound, in
     return (im_window){x_lo, y_lo, x1 - x_lo, y1 - y_lo};
 }
 
-step_window *step_window_create(void) { return calloc(1, sizeof(step_window)); }
+/* A box of the run's window (in its patches) with a plan and the box's own arrays; no plan when the box
+ * is the whole window (the run's plan serves). */
+typedef struct box_plan {
+    im_window box; /* nx = 0: none yet */
+    im_solver_plan *plan;
+    double *gap0, *pressure, *displacement;
+} box_plan;
 
-static void release_box(step_window *s)
+/* inner: where the step is solved, the box of the patches that its estimated gap brings into contact;
+ * outer: the box of the patches within reach (g0 <= w), where u is computed to confirm that no patch
+ * outside inner penetrates. */
+struct step_window {
+    box_plan inner, outer;
+    double approach; /* the last step's; NAN before the first */
+    int stale;       /* the run window's displacement outside outer is not K p */
+};
+
+step_window *step_window_create(void)
 {
-    im_solver_plan_free(s->plan);
-    free(s->gap0);
-    free(s->pressure);
-    free(s->displacement);
-    s->plan = NULL;
-    s->gap0 = s->pressure = s->displacement = NULL;
-    s->box = (im_window){0, 0, 0, 0};
+    step_window *s = calloc(1, sizeof(step_window));
+    if (s)
+        s->approach = NAN;
+    return s;
+}
+
+static void release_box(box_plan *b)
+{
+    im_solver_plan_free(b->plan);
+    free(b->gap0);
+    free(b->pressure);
+    free(b->displacement);
+    *b = (box_plan){{0, 0, 0, 0}, NULL, NULL, NULL, NULL};
 }
 
 void step_window_free(step_window *s)
 {
     if (!s)
         return;
-    release_box(s);
+    release_box(&s->inner);
+    release_box(&s->outer);
     free(s);
 }
 
@@ -94,6 +110,11 @@ static int holds(im_window outer, im_window inner)
 {
     return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x0 + inner.nx <= outer.x0 + outer.nx &&
            inner.y0 + inner.ny <= outer.y0 + outer.ny;
+}
+
+static int inside(im_window b, int ix, int iy)
+{
+    return ix >= b.x0 && ix < b.x0 + b.nx && iy >= b.y0 && iy < b.y0 + b.ny;
 }
 
 /* A new box is an eighth wider than the step needs on each side, so that the next steps of a rising
@@ -108,65 +129,163 @@ static im_window roomy_box(im_window need, const window_grid *g)
     return (im_window){x0, y0, x1 - x0, y1 - y0};
 }
 
-/* Plans box (the whole window: none, the whole window's plan solves); IM_ENOMEM and no box when it
- * does not fit. */
-static int plan_box(step_window *s, im_window box, const window_grid *g)
+/* Plans box, a solver's plan (solving) or a convolution's; IM_ENOMEM and no box when it does not fit. */
+static int plan_box(box_plan *b, im_window box, const window_grid *g, int solving)
 {
-    release_box(s);
-    if (box.nx == g->nx && box.ny == g->ny)
-        return IM_OK;
+    release_box(b);
     const size_t n = (size_t)box.nx * box.ny;
-    s->gap0 = malloc(sizeof(double) * n);
-    s->pressure = malloc(sizeof(double) * n);
-    s->displacement = malloc(sizeof(double) * n);
-    int status = s->gap0 && s->pressure && s->displacement
-                     ? im_solver_plan_create(box.nx, box.ny, g->plan->delta, &g->plan->options, &s->plan)
-                     : IM_ENOMEM;
+    b->gap0 = malloc(sizeof(double) * n);
+    b->pressure = malloc(sizeof(double) * n);
+    b->displacement = malloc(sizeof(double) * n);
+    int status = b->gap0 && b->pressure && b->displacement ? IM_OK : IM_ENOMEM;
+    const int whole = box.nx == g->nx && box.ny == g->ny;
+    if (status == IM_OK && !whole && solving)
+        status = im_solver_plan_create(box.nx, box.ny, g->plan->delta, &g->plan->options, &b->plan);
+    else if (status == IM_OK && !whole)
+        status = im_displacement_plan_create(box.nx, box.ny, g->plan->delta, &g->plan->options, &b->plan);
     if (status != IM_OK) {
-        release_box(s);
+        release_box(b);
         return status;
     }
-    s->box = box;
+    b->box = box;
     return IM_OK;
 }
 
-/* Copies the box's rows between the window grid's array (stride g->nx) and the box's own. */
-static void copy_box(const step_window *s, const window_grid *g, const double *from, double *to, int into_box)
+/* The box b holds need, replanned (roomy) when it does not. */
+static int hold(box_plan *b, im_window need, const window_grid *g, int solving)
 {
-    const im_window b = s->box;
+    return b->box.nx > 0 && holds(b->box, need) ? IM_OK : plan_box(b, roomy_box(need, g), g, solving);
+}
+
+static im_solver_plan *plan_of(const box_plan *b, const window_grid *g) { return b->plan ? b->plan : g->plan; }
+
+/* Copies the box's rows between the window grid's array (stride g->nx) and the box's own. */
+static void copy_box(const box_plan *b, const window_grid *g, const double *from, double *to, int into_box)
+{
+    const im_window w = b->box;
 #pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < b.ny; ++iy) {
-        const size_t at = (size_t)(iy + b.y0) * g->nx + b.x0, row = (size_t)iy * b.nx;
+    for (int iy = 0; iy < w.ny; ++iy) {
+        const size_t at = (size_t)(iy + w.y0) * g->nx + w.x0, row = (size_t)iy * w.nx;
         if (into_box)
-            memcpy(to + row, from + at, sizeof(double) * b.nx);
+            memcpy(to + row, from + at, sizeof(double) * w.nx);
         else
-            memcpy(to + at, from + row, sizeof(double) * b.nx);
+            memcpy(to + at, from + row, sizeof(double) * w.nx);
     }
 }
 
-static int solve_in_box(step_window *s, const window_grid *g, double w, im_solve_result *result)
+/* Solves on the inner box, warm-started from the grid's pressure; the grid's pressure is then the box's
+ * (0 outside it). */
+static int solve_inner(step_window *s, const window_grid *g, double w, im_solve_result *result)
 {
-    copy_box(s, g, g->gap0, s->gap0, 1);
-    copy_box(s, g, g->pressure, s->pressure, 1); /* the last step's, outside the box 0 at this w anyway */
-    int status = im_solver_solve(s->plan, s->gap0, IM_CONTROL_DISPLACEMENT, w, s->pressure, s->displacement, result);
+    box_plan *b = &s->inner;
+    copy_box(b, g, g->gap0, b->gap0, 1);
+    copy_box(b, g, g->pressure, b->pressure, 1);
+    int status = im_solver_solve(plan_of(b, g), b->gap0, IM_CONTROL_DISPLACEMENT, w, b->pressure, b->displacement,
+                                 result);
     memset(g->pressure, 0, sizeof(double) * (size_t)g->nx * g->ny);
-    copy_box(s, g, s->pressure, g->pressure, 0);
-    copy_box(s, g, s->displacement, g->displacement, 0);
+    copy_box(b, g, b->pressure, g->pressure, 0);
+    return status;
+}
+
+/* u = K p on the outer box into the grid's displacement; the box of the patches outside the inner box that
+ * penetrate (g0 - w + u < 0), grown by margin (nx = 0: none). */
+static im_window penetrating_outside(step_window *s, const window_grid *g, double w, int margin)
+{
+    box_plan *b = &s->outer;
+    copy_box(b, g, g->pressure, b->pressure, 1);
+    im_solver_convolve(plan_of(b, g), b->pressure, b->displacement);
+    copy_box(b, g, b->displacement, g->displacement, 0);
     s->stale = 1;
+    const im_window o = b->box, in = s->inner.box;
+    int x_lo = g->nx, x_hi = -1, y_lo = g->ny, y_hi = -1;
+    for (int iy = o.y0; iy < o.y0 + o.ny; ++iy)
+        for (int ix = o.x0; ix < o.x0 + o.nx; ++ix) {
+            const size_t i = (size_t)iy * g->nx + ix;
+            if (inside(in, ix, iy) || !(g->gap0[i] - w + g->displacement[i] < 0))
+                continue;
+            x_lo = ix < x_lo ? ix : x_lo;
+            x_hi = ix > x_hi ? ix : x_hi;
+            y_lo = iy < y_lo ? iy : y_lo;
+            y_hi = iy > y_hi ? iy : y_hi;
+        }
+    if (x_hi < 0)
+        return (im_window){0, 0, 0, 0};
+    x_lo = x_lo < in.x0 ? x_lo : in.x0, y_lo = y_lo < in.y0 ? y_lo : in.y0;
+    int x1 = x_hi + 1 > in.x0 + in.nx ? x_hi + 1 : in.x0 + in.nx,
+        y1 = y_hi + 1 > in.y0 + in.ny ? y_hi + 1 : in.y0 + in.ny;
+    grow_span(&x_lo, &x1, margin, g->nx);
+    grow_span(&y_lo, &y1, margin, g->ny);
+    return (im_window){x_lo, y_lo, x1 - x_lo, y1 - y_lo};
+}
+
+/* The box of the patches that the last step's displacement, scaled with the approach (a cone's contact
+ * is self-similar: u grows as w), brings into contact, g0 - w + u w / w_last <= 0, grown by margin; need
+ * itself without a last step or such a patch. A guess: penetrating_outside confirms it. */
+static im_window contact_guess(const step_window *s, const window_grid *g, im_window need, double w, int margin)
+{
+    if (!(s->approach > 0))
+        return need;
+    const double scale = w / s->approach;
+    int x_lo = g->nx, x_hi = -1, y_lo = g->ny, y_hi = -1;
+#pragma omp parallel for schedule(static) reduction(min : x_lo, y_lo) reduction(max : x_hi, y_hi)
+    for (int iy = need.y0; iy < need.y0 + need.ny; ++iy)
+        for (int ix = need.x0; ix < need.x0 + need.nx; ++ix) {
+            const size_t i = (size_t)iy * g->nx + ix;
+            if (!(g->gap0[i] - w + scale * g->displacement[i] <= 0))
+                continue;
+            x_lo = ix < x_lo ? ix : x_lo;
+            x_hi = ix > x_hi ? ix : x_hi;
+            y_lo = iy < y_lo ? iy : y_lo;
+            y_hi = iy > y_hi ? iy : y_hi;
+        }
+    if (x_hi < 0)
+        return need;
+    int x1 = x_hi + 1, y1 = y_hi + 1;
+    grow_span(&x_lo, &x1, margin, g->nx);
+    grow_span(&y_lo, &y1, margin, g->ny);
+    return (im_window){x_lo, y_lo, x1 - x_lo, y1 - y_lo};
+}
+
+static void add_try(im_solve_result *total, const im_solve_result *last)
+{
+    const im_solve_result before = *total;
+    *total = *last;
+    total->iterations += before.iterations;
+    total->coarse_iterations += before.coarse_iterations;
+    total->convolutions += before.convolutions;
+    total->seconds += before.seconds;
+}
+
+/* Solves on the guessed box, then confirms on the box within reach that no patch outside it penetrates;
+ * else again on the box with those patches too, warm-started. IM_ENOMEM when a box cannot be planned. */
+static int solve_in_boxes(step_window *s, const window_grid *g, im_window need, double w, im_solve_result *result)
+{
+    const int margin = g->plan->options.window_margin;
+    im_window guess = contact_guess(s, g, need, w, margin);
+    int status = hold(&s->outer, need, g, 0);
+    *result = (im_solve_result){0};
+    while (status == IM_OK && guess.nx > 0 && (status = hold(&s->inner, guess, g, 1)) == IM_OK) {
+        im_solve_result try;
+        status = solve_inner(s, g, w, &try);
+        add_try(result, &try);
+        s->stale = 1; /* until penetrating_outside: u is not yet K p on the grid */
+        if (status != IM_OK)
+            return status;
+        guess = penetrating_outside(s, g, w, margin);
+    }
     return status;
 }
 
 int step_window_solve(step_window *s, const window_grid *g, double w, im_solve_result *result)
 {
     const im_window need = solver_gap_window(g->gap0, g->nx, g->ny, w, g->plan->options.window_margin);
-    int status = IM_OK;
-    if (need.nx > 0 && !(s->box.nx > 0 && holds(s->box, need)))
-        status = plan_box(s, roomy_box(need, g), g);
-    if (need.nx > 0 && s->box.nx > 0 && status == IM_OK)
-        return solve_in_box(s, g, w, result);
-    /* no patch within reach, a box as large as the window, or no memory for a box's plan: the whole window */
-    s->stale = 0;
-    return im_solver_solve(g->plan, g->gap0, IM_CONTROL_DISPLACEMENT, w, g->pressure, g->displacement, result);
+    int status = need.nx > 0 ? solve_in_boxes(s, g, need, w, result) : IM_ENOMEM;
+    if (status == IM_ENOMEM) { /* no patch within reach, or no memory for a box's plan: the whole window */
+        s->stale = 0;
+        status = im_solver_solve(g->plan, g->gap0, IM_CONTROL_DISPLACEMENT, w, g->pressure, g->displacement, result);
+    }
+    s->approach = status == IM_OK ? w : NAN;
+    return status;
 }
 
 void step_window_refresh(step_window *s, const window_grid *g)
