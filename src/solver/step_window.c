@@ -132,7 +132,8 @@ static im_window roomy_box(im_window need, const window_grid *g, int solving)
     return (im_window){x0, y0, x1 - x0, y1 - y0};
 }
 
-/* Plans box, a solver's plan (solving) or a convolution's; IM_ENOMEM and no box when it does not fit. */
+/* Plans box, a solver's plan (solving) or a convolution's, both FFTW_ESTIMATE; IM_ENOMEM and no box when it
+ * does not fit. */
 static int plan_box(box_plan *b, im_window box, const window_grid *g, int solving)
 {
     release_box(b);
@@ -142,8 +143,11 @@ static int plan_box(box_plan *b, im_window box, const window_grid *g, int solvin
     b->displacement = malloc(sizeof(double) * n);
     int status = b->gap0 && b->pressure && b->displacement ? IM_OK : IM_ENOMEM;
     const int whole = box.nx == g->nx && box.ny == g->ny;
+    im_solver_options estimated = g->plan->options;
+    estimated.fft_measure = 0;    /* a history plans a dozen boxes: measuring each would cost more than it */
+    estimated.wisdom_path = NULL; /* saves, and a wisdom file would gain a dozen sizes per surface */
     if (status == IM_OK && !whole && solving)
-        status = im_solver_plan_create(box.nx, box.ny, g->plan->delta, &g->plan->options, &b->plan);
+        status = im_solver_plan_create(box.nx, box.ny, g->plan->delta, &estimated, &b->plan);
     else if (status == IM_OK && !whole)
         status = im_displacement_plan_create(box.nx, box.ny, g->plan->delta, &g->plan->options, &b->plan);
     if (status != IM_OK) {
