@@ -226,8 +226,8 @@ static int allocate_window(im_indentation *run)
     int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
         status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
-    if (status == IM_OK && steps_in_boxes(run))
-        run->steps = step_window_create(); /* NULL (no memory): every step on the whole window */
+    if (status == IM_OK && steps_in_boxes(run) && !(run->steps = step_window_create()))
+        status = im_fail(IM_ENOMEM, "indentation window %d x %d: the step boxes' state", w.nx, w.ny);
     return status;
 }
 

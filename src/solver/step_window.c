@@ -133,7 +133,7 @@ static im_window roomy_box(im_window need, const window_grid *g, int solving)
 }
 
 /* Plans box, a solver's plan (solving) or a convolution's, both FFTW_ESTIMATE; IM_ENOMEM and no box when it
- * does not fit. */
+ * does not fit in memory. */
 static int plan_box(box_plan *b, im_window box, const window_grid *g, int solving)
 {
     release_box(b);
@@ -141,7 +141,10 @@ static int plan_box(box_plan *b, im_window box, const window_grid *g, int solvin
     b->gap0 = malloc(sizeof(double) * n);
     b->pressure = malloc(sizeof(double) * n);
     b->displacement = malloc(sizeof(double) * n);
-    int status = b->gap0 && b->pressure && b->displacement ? IM_OK : IM_ENOMEM;
+    int status = b->gap0 && b->pressure && b->displacement
+                     ? IM_OK
+                     : im_fail(IM_ENOMEM, "step box %d x %d: allocation of 3 x %.1f MiB failed", box.nx, box.ny,
+                               sizeof(double) * (double)n / 1048576.0);
     const int whole = box.nx == g->nx && box.ny == g->ny;
     im_solver_options estimated = g->plan->options;
     estimated.fft_measure = 0;    /* a history plans a dozen boxes: measuring each would cost more than it */
@@ -264,7 +267,7 @@ static void add_try(im_solve_result *total, const im_solve_result *last)
 }
 
 /* Solves on the guessed box, then confirms on the box within reach that no patch outside it penetrates;
- * else again on the box with those patches too, warm-started. IM_ENOMEM when a box cannot be planned. */
+ * else again on the box with those patches too, warm-started. */
 static int solve_in_boxes(step_window *s, const window_grid *g, im_window need, double w, im_solve_result *result)
 {
     const int margin = g->plan->options.window_margin;
@@ -286,8 +289,10 @@ static int solve_in_boxes(step_window *s, const window_grid *g, im_window need, 
 int step_window_solve(step_window *s, const window_grid *g, double w, im_solve_result *result)
 {
     const im_window need = solver_gap_window(g->gap0, g->nx, g->ny, w, g->plan->options.window_margin);
-    int status = need.nx > 0 ? solve_in_boxes(s, g, need, w, result) : IM_ENOMEM;
-    if (status == IM_ENOMEM) { /* no patch within reach, or no memory for a box's plan: the whole window */
+    int status;
+    if (need.nx > 0) {
+        status = solve_in_boxes(s, g, need, w, result);
+    } else { /* no patch within reach (a plastic surface withdrawn): no contact, on the whole window */
         s->stale = 0;
         status = im_solver_solve(g->plan, g->gap0, IM_CONTROL_DISPLACEMENT, w, g->pressure, g->displacement, result);
     }

@@ -24,14 +24,15 @@ typedef struct window_grid {
 
 typedef struct step_window step_window;
 
-/* NULL when there is no memory (the steps are then solved on the whole window). */
+/* NULL when there is no memory. */
 step_window *step_window_create(void);
 void step_window_free(step_window *s);
 
 /* Solves the window grid at approach w under displacement control on the step's window (planned with
  * the whole window's options when the last step's does not hold it), warm-started from and writing back
  * into the grid's pressure (0 outside the step's window) and displacement, which outside the step's
- * window is then stale until step_window_refresh. As im_solver_solve. */
+ * window is then stale until step_window_refresh. As im_solver_solve (IM_ENOMEM also when a box's plan
+ * does not fit). */
 int step_window_solve(step_window *s, const window_grid *g, double w, im_solve_result *result);
 
 /* Makes the grid's displacement K p on the whole window again, if a step left it stale. */
