@@ -43,24 +43,60 @@ static void grow_span(int *lo, int *hi, int margin, int n)
     *hi = start + length;
 }
 
-im_window solver_gap_window(const double *gap0, int nx, int ny, double bound, int margin)
+static const im_window NO_BOX = {0, 0, 0, 0};
+
+static int inside(im_window b, int ix, int iy)
+{
+    return ix >= b.x0 && ix < b.x0 + b.nx && iy >= b.y0 && iy < b.y0 + b.ny;
+}
+
+/* Which patches a box is drawn around: those outside skip whose g0 + scale u is at most w (below w with
+ * strict), u NULL counting 0. */
+typedef struct gap_test {
+    const double *gap0, *u;
+    double w, scale;
+    int strict;
+    im_window skip; /* nx = 0: none */
+} gap_test;
+
+static int selected(const gap_test *t, size_t i, int ix, int iy)
+{
+    if (inside(t->skip, ix, iy))
+        return 0;
+    const double g = t->u ? t->gap0[i] + t->scale * t->u[i] : t->gap0[i];
+    return t->strict ? g < t->w : g <= t->w;
+}
+
+/* The bounding box of the selected patches of region (of the nx x ny grid), joined with also (nx = 0:
+ * nothing), grown by margin and then to a friendly size (grow_span); empty when none is selected. */
+static im_window box_of(const gap_test *t, im_window region, im_window also, int nx, int ny, int margin)
 {
     int x_lo = nx, x_hi = -1, y_lo = ny, y_hi = -1;
 #pragma omp parallel for schedule(static) reduction(min : x_lo, y_lo) reduction(max : x_hi, y_hi)
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix)
-            if (gap0[(size_t)iy * nx + ix] <= bound) {
+    for (int iy = region.y0; iy < region.y0 + region.ny; ++iy)
+        for (int ix = region.x0; ix < region.x0 + region.nx; ++ix)
+            if (selected(t, (size_t)iy * nx + ix, ix, iy)) {
                 x_lo = ix < x_lo ? ix : x_lo;
                 x_hi = ix > x_hi ? ix : x_hi;
                 y_lo = iy < y_lo ? iy : y_lo;
                 y_hi = iy > y_hi ? iy : y_hi;
             }
     if (x_hi < 0)
-        return (im_window){0, 0, 0, 0};
+        return NO_BOX;
     int x1 = x_hi + 1, y1 = y_hi + 1;
+    if (also.nx > 0) {
+        x_lo = x_lo < also.x0 ? x_lo : also.x0, y_lo = y_lo < also.y0 ? y_lo : also.y0;
+        x1 = x1 > also.x0 + also.nx ? x1 : also.x0 + also.nx, y1 = y1 > also.y0 + also.ny ? y1 : also.y0 + also.ny;
+    }
     grow_span(&x_lo, &x1, margin, nx);
     grow_span(&y_lo, &y1, margin, ny);
     return (im_window){x_lo, y_lo, x1 - x_lo, y1 - y_lo};
+}
+
+im_window solver_gap_window(const double *gap0, int nx, int ny, double bound, int margin)
+{
+    const gap_test within = {.gap0 = gap0, .w = bound};
+    return box_of(&within, (im_window){0, 0, nx, ny}, NO_BOX, nx, ny, margin);
 }
 
 /* A box of the run's window (in its patches) with a plan and the box's own arrays; no plan when the box
@@ -77,7 +113,7 @@ typedef struct box_plan {
 struct step_window {
     box_plan inner, outer;
     double approach; /* the last step's; NAN before the first */
-    int stale;       /* the run window's displacement outside outer is not K p */
+    int stale;       /* the run window's displacement is not K p everywhere (step_window_refresh) */
 };
 
 step_window *step_window_create(void)
@@ -94,7 +130,7 @@ static void release_box(box_plan *b)
     free(b->gap0);
     free(b->pressure);
     free(b->displacement);
-    *b = (box_plan){{0, 0, 0, 0}, NULL, NULL, NULL, NULL};
+    *b = (box_plan){NO_BOX, NULL, NULL, NULL, NULL};
 }
 
 void step_window_free(step_window *s)
@@ -110,11 +146,6 @@ static int holds(im_window outer, im_window inner)
 {
     return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x0 + inner.nx <= outer.x0 + outer.nx &&
            inner.y0 + inner.ny <= outer.y0 + outer.ny;
-}
-
-static int inside(im_window b, int ix, int iy)
-{
-    return ix >= b.x0 && ix < b.x0 + b.nx && iy >= b.y0 && iy < b.y0 + b.ny;
 }
 
 /* A new box is wider than the step needs on each side, so that the next steps of a rising history fit in
@@ -205,27 +236,8 @@ static im_window penetrating_outside(step_window *s, const window_grid *g, doubl
     copy_box(b, g, g->pressure, b->pressure, 1);
     im_solver_convolve(plan_of(b, g), b->pressure, b->displacement);
     copy_box(b, g, b->displacement, g->displacement, 0);
-    s->stale = 1;
-    const im_window o = b->box, in = s->inner.box;
-    int x_lo = g->nx, x_hi = -1, y_lo = g->ny, y_hi = -1;
-    for (int iy = o.y0; iy < o.y0 + o.ny; ++iy)
-        for (int ix = o.x0; ix < o.x0 + o.nx; ++ix) {
-            const size_t i = (size_t)iy * g->nx + ix;
-            if (inside(in, ix, iy) || !(g->gap0[i] - w + g->displacement[i] < 0))
-                continue;
-            x_lo = ix < x_lo ? ix : x_lo;
-            x_hi = ix > x_hi ? ix : x_hi;
-            y_lo = iy < y_lo ? iy : y_lo;
-            y_hi = iy > y_hi ? iy : y_hi;
-        }
-    if (x_hi < 0)
-        return (im_window){0, 0, 0, 0};
-    x_lo = x_lo < in.x0 ? x_lo : in.x0, y_lo = y_lo < in.y0 ? y_lo : in.y0;
-    int x1 = x_hi + 1 > in.x0 + in.nx ? x_hi + 1 : in.x0 + in.nx,
-        y1 = y_hi + 1 > in.y0 + in.ny ? y_hi + 1 : in.y0 + in.ny;
-    grow_span(&x_lo, &x1, margin, g->nx);
-    grow_span(&y_lo, &y1, margin, g->ny);
-    return (im_window){x_lo, y_lo, x1 - x_lo, y1 - y_lo};
+    const gap_test penetrating = {g->gap0, g->displacement, w, 1, 1, s->inner.box};
+    return box_of(&penetrating, b->box, s->inner.box, g->nx, g->ny, margin);
 }
 
 /* The box of the patches that the last step's displacement, scaled with the approach (a cone's contact
@@ -235,25 +247,9 @@ static im_window contact_guess(const step_window *s, const window_grid *g, im_wi
 {
     if (!(s->approach > 0))
         return need;
-    const double scale = w / s->approach;
-    int x_lo = g->nx, x_hi = -1, y_lo = g->ny, y_hi = -1;
-#pragma omp parallel for schedule(static) reduction(min : x_lo, y_lo) reduction(max : x_hi, y_hi)
-    for (int iy = need.y0; iy < need.y0 + need.ny; ++iy)
-        for (int ix = need.x0; ix < need.x0 + need.nx; ++ix) {
-            const size_t i = (size_t)iy * g->nx + ix;
-            if (!(g->gap0[i] - w + scale * g->displacement[i] <= 0))
-                continue;
-            x_lo = ix < x_lo ? ix : x_lo;
-            x_hi = ix > x_hi ? ix : x_hi;
-            y_lo = iy < y_lo ? iy : y_lo;
-            y_hi = iy > y_hi ? iy : y_hi;
-        }
-    if (x_hi < 0)
-        return need;
-    int x1 = x_hi + 1, y1 = y_hi + 1;
-    grow_span(&x_lo, &x1, margin, g->nx);
-    grow_span(&y_lo, &y1, margin, g->ny);
-    return (im_window){x_lo, y_lo, x1 - x_lo, y1 - y_lo};
+    const gap_test touching = {g->gap0, g->displacement, w, w / s->approach, 0, NO_BOX};
+    const im_window guess = box_of(&touching, need, NO_BOX, g->nx, g->ny, margin);
+    return guess.nx > 0 ? guess : need;
 }
 
 static void add_try(im_solve_result *total, const im_solve_result *last)
@@ -278,7 +274,7 @@ static int solve_in_boxes(step_window *s, const window_grid *g, im_window need, 
         im_solve_result try;
         status = solve_inner(s, g, w, &try);
         add_try(result, &try);
-        s->stale = 1; /* until penetrating_outside: u is not yet K p on the grid */
+        s->stale = 1; /* the grid's u is K p on the outer box at most (after penetrating_outside) */
         if (status != IM_OK)
             return status;
         guess = penetrating_outside(s, g, w, margin);
