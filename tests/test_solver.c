@@ -438,6 +438,102 @@ static void test_full_grid_displacement(void **state)
     im_field_free(s);
 }
 
+/* Each displacement-controlled step is solved on the box its approach can touch (solver/step_window.h),
+ * inside the run's window: a history that rises (boxes replanned as they grow), falls (a smaller approach
+ * in the same box) and rises again, against the same history solved on the whole surface (crop off, no
+ * boxes), at tol 1e-10: loads to 1e-9, the same contact sets, and u and g inside the window (u outside
+ * the last box is recomputed when the fields are asked for; the full grid's g too). With a hardness, the plastic memory too. */
+static void assert_same_fields_in_window(im_indentation *boxed, im_indentation *whole)
+{
+    im_field *fb = NULL, *gb = NULL, *ub = NULL, *fw = NULL, *gw = NULL, *uw = NULL;
+    assert_int_equal(im_indentation_fields(boxed, &fb, &gb, &ub), IM_OK);
+    assert_int_equal(im_indentation_fields(whole, &fw, &gw, &uw), IM_OK);
+    const im_window w = im_indentation_window(boxed);
+    double peak = 0, worst_u = 0, worst_g = 0;
+    long differing = 0;
+    for (int iy = w.y0; iy < w.y0 + w.ny; ++iy)
+        for (int ix = w.x0; ix < w.x0 + w.nx; ++ix) {
+            const size_t i = (size_t)iy * fb->nx + ix;
+            peak = fmax(peak, uw->data[i]);
+            worst_u = fmax(worst_u, fabs(ub->data[i] - uw->data[i]));
+            worst_g = fmax(worst_g, fabs(gb->data[i] - gw->data[i]));
+            differing += (fb->data[i] > 0) != (fw->data[i] > 0);
+        }
+    if (worst_u > 1e-8 * peak || worst_g > 1e-8 * peak)
+        fail_msg("u differs by %g and g by %g in the window (peak u %g)", worst_u, worst_g, peak);
+    if (differing > 0)
+        fail_msg("%ld patches in contact in one history only", differing);
+    im_field *fields[] = {fb, gb, ub, fw, gw, uw};
+    for (int k = 0; k < 6; ++k)
+        im_field_free(fields[k]);
+    assert_int_equal(im_indentation_fields_full(boxed, NULL, &gb, NULL), IM_OK);
+    assert_int_equal(im_indentation_fields_full(whole, NULL, &gw, NULL), IM_OK);
+    worst_g = 0;
+    for (size_t i = 0; i < im_field_count(gb); ++i)
+        worst_g = fmax(worst_g, fabs(gb->data[i] - gw->data[i]));
+    if (worst_g > 1e-8 * peak)
+        fail_msg("the full grid's g differs by %g (peak u %g)", worst_g, peak);
+    im_field_free(gb);
+    im_field_free(gw);
+}
+
+static void assert_same_plastic_depth(const im_indentation *boxed, const im_indentation *whole)
+{
+    im_field *a = NULL, *b = NULL;
+    assert_int_equal(im_indentation_plastic(boxed, &a), IM_OK);
+    assert_int_equal(im_indentation_plastic(whole, &b), IM_OK);
+    double peak = 0, worst = 0;
+    for (size_t i = 0; i < im_field_count(a); ++i) {
+        peak = fmax(peak, b->data[i]);
+        worst = fmax(worst, fabs(a->data[i] - b->data[i]));
+    }
+    if (worst > 1e-8 * peak)
+        fail_msg("plastic depths differ by %g (peak %g)", worst, peak);
+    im_field_free(a);
+    im_field_free(b);
+}
+
+static void compare_boxed_history(double hardness)
+{
+    im_field *s = test_rough_surface(192, 0.08, 13);
+    im_indenter cone = im_indenter_cone(80);
+    im_solver_options o = im_solver_options_default();
+    o.tol = 1e-10;
+    o.hardness = hardness;
+    im_indentation *boxed = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 6, &o);
+    o.crop = 0;
+    im_indentation *whole = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 6, &o);
+    const double targets[] = {0.4, 1.2, 2.5, 4, 6, 3, 0.8, 5};
+    long yielded = 0;
+    for (size_t k = 0; k < sizeof targets / sizeof *targets; ++k) {
+        im_step_result rb = step(boxed, targets[k]), rw = step(whole, targets[k]);
+        assert_close(rb.load, rw.load, 1e-9 * rw.load);
+        assert_int_equal(rb.contact_patches, rw.contact_patches);
+        assert_same_fields_in_window(boxed, whole);
+        yielded += rb.yielding_patches;
+        if (hardness > 0) {
+            assert_close(rb.plastic_work, rw.plastic_work, 1e-8 * rw.plastic_work);
+            assert_same_plastic_depth(boxed, whole);
+        }
+    }
+    assert_true(hardness > 0 ? yielded > 0 : yielded == 0);
+    im_indentation_free(boxed);
+    im_indentation_free(whole);
+    im_field_free(s);
+}
+
+static void test_step_boxes_equal_whole_surface(void **state)
+{
+    (void)state;
+    compare_boxed_history(0);
+}
+
+static void test_step_boxes_keep_plastic_memory(void **state)
+{
+    (void)state;
+    compare_boxed_history(0.25);
+}
+
 /* ---- refusals, with nothing computed lost ---- */
 
 /* The stopping rule bounds both halves of the complementarity conditions: the rms gap over the
@@ -610,6 +706,8 @@ int main(void)
         cmocka_unit_test(test_accelerated_equals_plain_pk_load),
         cmocka_unit_test(test_stopping_rule_bounds_penetration),
         cmocka_unit_test(test_full_grid_displacement),
+        cmocka_unit_test(test_step_boxes_equal_whole_surface),
+        cmocka_unit_test(test_step_boxes_keep_plastic_memory),
         cmocka_unit_test(test_edge_contact),
         cmocka_unit_test(test_no_convergence),
         cmocka_unit_test(test_stop_flag_interrupts),

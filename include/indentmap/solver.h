@@ -455,7 +455,10 @@ void im_indentation_free(im_indentation *run);
 
 /* Solves the next step (approach or load, per the run's control), warm-started from the last one.
  * Targets may go up and down. With a hardness the run remembers plastic flow ("Hardness" above):
- * each step starts from the surface the steps before deformed.
+ * each step starts from the surface the steps before deformed. Under displacement control (cropped
+ * half-space, no adhesion, CPU engine) a step is solved on the box of the window its contact can
+ * reach, confirmed on the box of g0 <= w (docs/solver.md, "Step boxes"): the same answer to the
+ * tolerance, in less time; max_iterations caps each solve of it.
  * IM_EINVAL for a target outside [0, largest_target]; IM_ENOCONV (out holds the residual; the run
  * keeps the last iterate); IM_EEDGE when a contact patch lies on the outer row or column of the
  * surface, where the finite surface, not the half-space, would decide the answer, and, under load
@@ -478,7 +481,9 @@ const im_solver_plan *im_indentation_plan(const im_indentation *run);
  * NULL to skip that field): force per patch f = p delta^2; displacement u; gap g = g0 - w + u.
  * Outside the window the force is zero, u is reported as 0 (not computed: the true u there is
  * positive) and the gap is the undeformed g0 - w, a lower bound of the true gap (> 0 there).
- * Patches a flat punch can never touch have gap +INFINITY. */
+ * Patches a flat punch can never touch have gap +INFINITY. After a step solved on a box of the window
+ * (im_indentation_step) u or g costs one convolution of the window, at the first such call; so the
+ * call is not thread-safe on one run when it asks for u or g. */
 int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement);
 
 /* im_indentation_fields with the displacement on the whole grid (im_displacement_full_with, on a

@@ -6,6 +6,7 @@
 #include "solver/adhesion.h"
 #include "solver/flat.h"
 #include "solver/search.h"
+#include "solver/step_window.h"
 
 #include "indentmap/status.h"
 
@@ -34,6 +35,7 @@ struct im_indentation {
     adhesion_state *adhesion;  /* with a work of adhesion (adhesion.h); the plan's options have none */
     /* adhesion under load control: the solution of the last accepted try and of the step's start (adhesion.h) */
     double *marked_pressure[2], *marked_displacement[2];
+    step_window *steps; /* displacement control on the CPU engine: each step on the box it can touch */
 };
 
 /* g0 = z(r) - h - min(z - h) over the full grid. */
@@ -66,59 +68,11 @@ static int undeformed_gap(im_indentation *run, const im_field *surface)
     return IM_OK;
 }
 
-/* Smallest 2^a 3^b 5^c 7^d >= n (FFTW is fastest on such sizes). */
-static int fft_friendly(int n)
-{
-    for (int m = n;; ++m) {
-        int k = m;
-        static const int primes[] = {2, 3, 5, 7};
-        for (int j = 0; j < 4; ++j)
-            while (k % primes[j] == 0)
-                k /= primes[j];
-        if (k == 1)
-            return m;
-    }
-}
-
-/* Grows [lo, hi) to a friendly length inside [0, n), centred on the original span; the whole
- * range when the friendly length does not fit. */
-static void grow_span(int *lo, int *hi, int n)
-{
-    int length = fft_friendly(*hi - *lo);
-    if (length >= n) {
-        *lo = 0;
-        *hi = n;
-        return;
-    }
-    int start = *lo - (length - (*hi - *lo)) / 2;
-    if (start < 0)
-        start = 0;
-    if (start + length > n)
-        start = n - length;
-    *lo = start;
-    *hi = start + length;
-}
-
 static im_window choose_window(const im_indentation *run)
 {
     if (!run->options.crop || run->options.periodic) /* a periodic cell has no outside to crop */
         return (im_window){0, 0, run->nx, run->ny};
-    int x_lo = run->nx, x_hi = -1, y_lo = run->ny, y_hi = -1;
-#pragma omp parallel for schedule(static) reduction(min : x_lo, y_lo) reduction(max : x_hi, y_hi)
-    for (int iy = 0; iy < run->ny; ++iy)
-        for (int ix = 0; ix < run->nx; ++ix)
-            if (run->gap0[(size_t)iy * run->nx + ix] <= run->approach_bound) {
-                x_lo = ix < x_lo ? ix : x_lo;
-                x_hi = ix > x_hi ? ix : x_hi;
-                y_lo = iy < y_lo ? iy : y_lo;
-                y_hi = iy > y_hi ? iy : y_hi;
-            }
-    const int m = run->options.window_margin;
-    int x0 = x_lo - m < 0 ? 0 : x_lo - m, x1 = x_hi + 1 + m > run->nx ? run->nx : x_hi + 1 + m;
-    int y0 = y_lo - m < 0 ? 0 : y_lo - m, y1 = y_hi + 1 + m > run->ny ? run->ny : y_hi + 1 + m;
-    grow_span(&x0, &x1, run->nx);
-    grow_span(&y0, &y1, run->ny);
-    return (im_window){x0, y0, x1 - x0, y1 - y0};
+    return solver_gap_window(run->gap0, run->nx, run->ny, run->approach_bound, run->options.window_margin);
 }
 
 static double height_range(const im_field *surface)
@@ -240,6 +194,15 @@ static double repulsive_cap(const im_solver_options *o)
     return o->adhesion_work > 0 ? o->hardness + o->adhesion_work / o->adhesion_range : o->hardness;
 }
 
+/* Whether each step is solved on the box its approach can touch (step_window.h): under displacement
+ * control on a cropped half-space, without adhesion (whose zone and marks live on the whole window), on
+ * the CPU engine (a GPU plan per box costs more than the box saves). */
+static int steps_in_boxes(const im_indentation *run)
+{
+    return run->options.crop && !run->options.periodic && run->control == IM_CONTROL_DISPLACEMENT &&
+           !(run->options.adhesion_work > 0) && strcmp(im_solver_plan_device(run->plan), "cpu") == 0;
+}
+
 static int allocate_window(im_indentation *run)
 {
     const im_window w = run->window;
@@ -263,6 +226,8 @@ static int allocate_window(im_indentation *run)
     int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
         status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
+    if (status == IM_OK && steps_in_boxes(run) && !(run->steps = step_window_create()))
+        status = im_fail(IM_ENOMEM, "indentation window %d x %d: the step boxes' state", w.nx, w.ny);
     return status;
 }
 
@@ -315,6 +280,7 @@ void im_indentation_free(im_indentation *run)
     free(run->displacement);
     free(run->plastic);
     adhesion_free(run->adhesion);
+    step_window_free(run->steps);
     for (int slot = 0; slot < 2; ++slot) {
         free(run->marked_pressure[slot]);
         free(run->marked_displacement[slot]);
@@ -759,6 +725,12 @@ static double adhesive_approach(const im_indentation *run, double target)
     return run->control == IM_CONTROL_MEAN_GAP ? mean_gap_approach(run, target) : target;
 }
 
+static window_grid window_grid_of(const im_indentation *run)
+{
+    return (window_grid){run->window.nx, run->window.ny,    run->window_gap0,
+                         run->pressure,  run->displacement, run->plan};
+}
+
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
@@ -790,7 +762,10 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
         status = solve_at_load(run, target, &s);
     else if (run->control == IM_CONTROL_MEAN_GAP)
         status = solve_at_mean_gap(run, target, &s);
-    else
+    else if (run->steps) {
+        const window_grid grid = window_grid_of(run);
+        status = step_window_solve(run->steps, &grid, target, &s);
+    } else
         status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure, run->displacement,
                                  &s);
     if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0 && !run->adhesion)
@@ -845,9 +820,9 @@ static int new_full_field(const im_indentation *run, im_field **out)
     return out ? im_field_create(run->nx, run->ny, run->delta, out) : IM_OK;
 }
 
-int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+/* The fields of im_indentation_fields, with the window's u as it stands (see there). */
+static int window_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
-    ARG_REQUIRE(run, "run");
     im_field *f = NULL, *g = NULL, *u = NULL;
     int status = new_full_field(run, force ? &f : NULL);
     if (status == IM_OK)
@@ -887,6 +862,16 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
     return IM_OK;
 }
 
+int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+{
+    ARG_REQUIRE(run, "run");
+    if (run->steps && (gap || displacement)) { /* u outside the last step's box is not K p yet */
+        const window_grid grid = window_grid_of(run);
+        step_window_refresh(run->steps, &grid);
+    }
+    return window_fields(run, force, gap, displacement);
+}
+
 int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
     ARG_REQUIRE(run, "run");
@@ -896,8 +881,8 @@ int im_indentation_fields_full(im_indentation *run, im_field **force, im_field *
     int status = run->full_plan
                      ? IM_OK
                      : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options, &run->full_plan);
-    if (status == IM_OK)
-        status = im_indentation_fields(run, &f, gap ? &g : NULL, &window_u);
+    if (status == IM_OK) /* g is corrected by the full u minus the same window u: stale or not, it cancels */
+        status = window_fields(run, &f, gap ? &g : NULL, &window_u);
     if (status == IM_OK)
         status = im_displacement_full_with(run->full_plan, f, &u);
     if (status == IM_OK && g) /* g = g0 - w + u: the same gap with the true u */
