@@ -7,9 +7,11 @@
 #include "indentmap/indenter.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 enum { N = 64 };
 
@@ -151,6 +153,69 @@ static void load_control_matches_displacement(void **state)
     im_indentation_free(run);
 }
 
+/* A single solve under load control with a cap (im_solver_solve) on a rough cone: the displacement-controlled
+ * state at the approach it returns, whatever the load (Polonsky-Keer's own load control broke down at its
+ * first step on most of these: "step length -12.3"), and a load beyond what the cap lets the punch carry
+ * refused, naming it. */
+static double *rough_cone_gap(const im_indenter *punch)
+{
+    im_surface_params params = im_surface_params_default();
+    params.nx = params.ny = N;
+    params.lambda_r = N;
+    params.seed = 33;
+    im_field *surface = NULL;
+    assert_int_equal(im_surface_generate(&params, &surface), IM_OK);
+    double top = -INFINITY, *gap0 = malloc(sizeof(double) * N * N);
+    for (int i = 0; i < N * N; ++i)
+        top = fmax(top, surface->data[i]);
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x)
+            gap0[y * N + x] = im_indenter_height(punch, x - N / 2, y - N / 2) + top - surface->data[y * N + x];
+    im_field_free(surface);
+    return gap0;
+}
+
+static void assert_same_contact(const double *a, const double *b, double hardness)
+{
+    for (int i = 0; i < N * N; ++i)
+        if ((a[i] > 0) != (b[i] > 0) || (a[i] == hardness) != (b[i] == hardness))
+            fail_msg("patch %d: p = %.17g under load control, %.17g under displacement control", i, a[i], b[i]);
+}
+
+static void single_solve_under_load_with_a_cap(void **state)
+{
+    (void)state;
+    const double hardness = 0.12, w0 = M_PI * N / tan(80.0 * M_PI / 180.0) / 10;
+    im_indenter cone = im_indenter_cone(80);
+    double *gap0 = rough_cone_gap(&cone), *p = calloc(N * N, sizeof(double)), *q = calloc(N * N, sizeof(double)),
+           *u = malloc(sizeof(double) * N * N);
+    im_solver_options o = im_solver_options_default();
+    o.crop = 0;
+    o.tol = 1e-10;
+    o.hardness = hardness;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+    for (double factor = 0.5; factor <= 4; factor *= 2) {
+        const double load = factor * im_indenter_load(&cone, 1.0, w0);
+        im_solve_result by_n, by_w;
+        memset(p, 0, sizeof(double) * N * N);
+        memset(q, 0, sizeof(double) * N * N);
+        if (im_solver_solve(plan, gap0, IM_CONTROL_LOAD, load, p, u, &by_n) != IM_OK)
+            fail_msg("load %g: %s", load, im_last_error());
+        assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_DISPLACEMENT, by_n.approach, q, u, &by_w), IM_OK);
+        if (test_relative_difference(by_n.load, load) > 1e-10 || test_relative_difference(by_w.load, load) > 1e-9)
+            fail_msg("load %.12g: %.12g under load control, %.12g at its approach %.12g", load, by_n.load, by_w.load,
+                     by_n.approach);
+        assert_same_contact(p, q, hardness);
+    }
+    const double beyond = 1.01 * hardness * N * N; /* more than the whole surface at the cap carries */
+    memset(p, 0, sizeof(double) * N * N);
+    assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_LOAD, beyond, p, u, NULL), IM_EEDGE);
+    assert_non_null(strstr(im_last_error(), "cannot be reached under the hardness cap H_p = 0.12"));
+    im_solver_plan_free(plan);
+    free(gap0), free(p), free(q), free(u);
+}
+
 static void bad_hardness_is_refused(void **state)
 {
     (void)state;
@@ -172,6 +237,7 @@ int main(void)
         cmocka_unit_test(cone_apex_is_capped),
         cmocka_unit_test(cone_fully_plastic_limit),
         cmocka_unit_test(load_control_matches_displacement),
+        cmocka_unit_test(single_solve_under_load_with_a_cap),
         cmocka_unit_test(bad_hardness_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -102,9 +102,13 @@
  *     p = H_p     and g <= 0   (plastic contact: -g is the surface's plastic flattening)
  * The iteration is the same with I_c = {0 < p < H_p}, every update projected onto [0, H_p], and
  * patches at either bound that violate their condition released by a local step; the stopping rule's
- * penetration term counts g > 0 at p = H_p as well. Under load control the elastic pressures are
- * rescaled with the capped ones fixed, and u is recomputed by FFT (one convolution more per
- * iteration while a patch is capped). The cone's apex singularity and a flat punch's edge are capped;
+ * penetration term counts g > 0 at p = H_p as well. Under load control on the half-space the load is
+ * found by displacement-controlled solves on the approach (bracketed from w = 0, narrowed by regula
+ * falsi, each warm-started from the last: 5-9 times the iterations of the one displacement-controlled
+ * solve at the approach found), because Polonsky-Keer's own load control breaks down with a cap (a
+ * negative step length); a load the cap does not let the punch carry is IM_EEDGE. On a periodic cell
+ * the elastic pressures are rescaled to the mean pressure with the capped ones fixed, and u is
+ * recomputed by FFT (one convolution more per iteration while a patch is capped). The cone's apex singularity and a flat punch's edge are capped;
  * in the fully plastic limit A = N / H_p.
  * Memory (an indentation, im_indentation_step): after each step the overlap -g of every capped patch
  * is added to its plastic depth d and to its undeformed gap (g0 + d: the surface pushed down by d),

@@ -108,7 +108,8 @@ pk_run solver_pk_run(im_solver_plan *plan, const double *gap0, enum im_control c
                      double *u);
 
 /* From the start in r->p (a warm start, or zeros: then the local guess) to the answer on the plan's
- * engine, r made by solver_pk_run: no input checks, no cascade, target > 0. */
+ * engine, r made by solver_pk_run: no input checks, no cascade, target > 0. Under load control with a
+ * cap on the half-space, the approach is searched with displacement-controlled solves (pk.c says why). */
 int solver_pk_solve(pk_run *r, im_solve_result *res);
 
 /* A periodic cell under an imposed approach w (no cap): mean u = 0 (solver.h, "Periodic mode"), so

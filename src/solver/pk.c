@@ -1,6 +1,7 @@
 /* Polonsky-Keer constrained conjugate gradients (see solver.h for the algorithm and stopping rule),
  * written once over the engines of engine.h: this file decides, the engine's passes compute. */
 #include "solver/engine.h"
+#include "solver/search.h"
 #include "core/args.h"
 #include "core/summation.h"
 #include "core/team_size.h"
@@ -355,7 +356,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
     }
 }
 
-int solver_pk_solve(pk_run *r, im_solve_result *res)
+static int solve_once(pk_run *r, im_solve_result *res)
 {
     const solver_engine *e = engine_of(r);
     gap_stats last = {0};
@@ -374,6 +375,90 @@ int solver_pk_solve(pk_run *r, im_solve_result *res)
     summarise(r, &last, res);
     int finished = e->finish(r); /* p and u back, also after a failure: p is a valid warm start */
     return status != IM_OK ? status : (r->status != IM_OK ? r->status : finished);
+}
+
+/* ---- Load control with a cap on the half-space ----
+ * Polonsky-Keer's load control takes the approach from the mean gap over the elastic patches and rescales
+ * them to the load; with a cap the direction also moves the capped patches that unload, so the centred
+ * step denominator <Kt, t> - mean(Kt) sum t can turn negative and the iteration breaks down (a 256^2 rough
+ * cone at H_p 0.12 and twice the smooth cone's load: "step length -18.8" at iteration 1). There the load is
+ * found as an indentation finds it: displacement-controlled solves on the approach, each warm-started from
+ * the last, bracketed from w = 0 (gap0 >= 0: no load) and narrowed by search.c. A periodic cell keeps
+ * Polonsky-Keer's load control (its mean-pressure steps converge with a cap: tests/mpi/mpi_parity.c). */
+static int load_is_searched(const pk_run *r)
+{
+    return r->control == IM_CONTROL_LOAD && isfinite(pressure_cap(r->plan)) && !r->plan->options.periodic;
+}
+
+static int displacement_trial(void *context, double w, im_solve_result *s)
+{
+    pk_run *r = context;
+    r->control = IM_CONTROL_DISPLACEMENT;
+    r->target = w;
+    *s = (im_solve_result){0};
+    return solve_once(r, s);
+}
+
+static double trial_load(void *context, const im_solve_result *s)
+{
+    (void)context;
+    return s->load;
+}
+
+/* The next approach to try below the load: from N(w) > 0 as if N grew as w^2 (a cone's; a sphere's and a
+ * flat punch's grow slower, so this stays short of the load there), doubled while nothing carries. */
+static double next_approach(double w, double carried, double load)
+{
+    return carried > 0 ? w * fmax(1.1, sqrt(load / carried)) : 2 * w;
+}
+
+/* [lo, hi] with N(lo) <= load <= N(hi), from one patch spacing upwards (next_approach); IM_EEDGE once
+ * the load stops growing (every patch the punch reaches has yielded). */
+static int bracket_capped_load(approach_search *search, double cap, double *lo, double *e_lo, double *hi,
+                               double *e_hi)
+{
+    const pk_run *r = search->context;
+    const double load = search->target;
+    *lo = 0, *e_lo = -load;
+    *hi = r->plan->delta;
+    int status = search_trial(search, *hi, e_hi);
+    while (status == IM_OK && *e_hi < 0) {
+        const int carries = *e_lo > -load;
+        if ((carries && !(*e_hi > *e_lo + 1e-12 * load)) || search->trials >= SEARCH_MAX)
+            return im_fail(IM_EEDGE,
+                           "load %g cannot be reached under the hardness cap H_p = %g: at the approach %g the "
+                           "contact carries %g, no more than at a smaller approach",
+                           load, cap, *hi, load + *e_hi);
+        *lo = *hi, *e_lo = *e_hi;
+        *hi = next_approach(*hi, load + *e_hi, load);
+        status = search_trial(search, *hi, e_hi);
+    }
+    return status;
+}
+
+static int solve_capped_load(pk_run *r, im_solve_result *res)
+{
+    const double load = r->target;
+    approach_search search = {.context = r,
+                              .target = load,
+                              .tol = r->plan->options.tol,
+                              .measure = trial_load,
+                              .solve = displacement_trial};
+    double lo, e_lo, hi, e_hi;
+    int status = bracket_capped_load(&search, pressure_cap(r->plan), &lo, &e_lo, &hi, &e_hi);
+    if (status == IM_OK)
+        status = search_refine(&search, lo, e_lo, hi, e_hi, e_hi, load);
+    r->control = IM_CONTROL_LOAD;
+    r->target = load;
+    const int coarse = res->coarse_iterations;
+    *res = search.last;
+    res->coarse_iterations += coarse;
+    return status;
+}
+
+int solver_pk_solve(pk_run *r, im_solve_result *res)
+{
+    return load_is_searched(r) ? solve_capped_load(r, res) : solve_once(r, res);
 }
 
 pk_run solver_pk_run(im_solver_plan *plan, const double *gap0, enum im_control control, double target, double *p,

@@ -293,8 +293,14 @@ static void compare_step(const history *h, int k, const step_answer *mpi, const 
              h->name, k + 1, m->iterations, m->coarse_iterations, s->iterations, s->coarse_iterations,
              m->contact_patches, s->contact_patches, m->yielding_patches, s->yielding_patches,
              sign_differences(mpi->force, serial->force));
-    check(m->iterations == s->iterations && m->coarse_iterations == s->coarse_iterations,
-          "iterations as the serial step's", detail);
+    /* A load under a cap on the half-space is searched: a dozen displacement-controlled solves (pk.c), any
+     * of which may end one iteration apart from the serial one where its residual meets the tolerance within
+     * the engines' different orders of summation; the ranks still agree to the bit (the script), and the
+     * answer and contact set with the serial one (below). */
+    const int searched = h->kind == HALF_SPACE && h->control == IM_CONTROL_LOAD && h->hardness > 0;
+    const int slack = searched ? s->iterations / 100 + 1 : 0;
+    check(abs(m->iterations - s->iterations) <= slack && m->coarse_iterations == s->coarse_iterations,
+          searched ? "iterations as the serial step's, to 1%" : "iterations as the serial step's", detail);
     check(m->contact_patches == s->contact_patches && m->yielding_patches == s->yielding_patches &&
               sign_differences(mpi->force, serial->force) == 0,
           "contact as the serial step's", detail);
