@@ -376,8 +376,8 @@ static int apply_option(int code, const char *arg, void *state)
 }
 
 /* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap and load
- * control (mean pressures) on a periodic cell, a hardness on the half-space only (a negative target is refused
- * by the step list's parser without adhesion). 0, or -1 with the message said. */
+ * control (mean pressures) on a periodic cell (a negative target is refused by the step list's parser without
+ * adhesion). 0, or -1 with the message said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
@@ -393,9 +393,6 @@ static int check_adhesion_options(const indent_options *o)
                 o->solver.periodic
                     ? "--mean-gap, --pressure or --load with --periodic (an approach on a cell is its mean gap)"
                     : "--approach or --load");
-    else if (adhesion && o->solver.hardness > 0 && o->solver.periodic)
-        fprintf(stderr, "indentmap: --adhesion-work with --hardness and --periodic: adhesion with plasticity is "
-                        "solved on the half-space only (drop --periodic or --hardness)\n");
     else
         return 0;
     return -1;

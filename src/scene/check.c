@@ -214,9 +214,6 @@ static const char *adhesion_conflict(const im_scene *scene)
 {
     if (!(scene->adhesion_work > 0) || !(scene->adhesion_range > 0))
         return "[adhesion] work and range go together: expected both";
-    if (scene->hardness > 0 && scene->periodic)
-        return "[adhesion] with [material] hardness and [punch] periodic: adhesion with plasticity is solved on "
-               "the half-space only";
     if (scene->plots & IM_SCENE_PLOT_FLAT_K)
         return "[adhesion] with plots = flat_k: its flat panels are solved at mean pressures, which an adhesive "
                "cell does not take";

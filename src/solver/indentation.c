@@ -176,10 +176,9 @@ static const char *control_target(enum im_control control)
 }
 
 /* Adhesion's passes hold the approach fixed: displacement control on the half-space, mean-gap control on a
- * periodic cell (mean u = 0 there, so a mean gap is an approach), and load control on either by a search over
- * the approach (solve_adhesive_at_load). A hardness goes with it on the half-space only: on a cell
- * the yielded patches' overlap opens no gap, so a mean gap no longer fixes the approach, and searching it
- * would rewind the zone's history (not built). */
+ * periodic cell (mean u = 0 there, so a mean gap is an approach; with a hardness searched, every try from the
+ * step's start: solve_adhesive_at_mean_gap), and load control on either by a walk over the approach
+ * (solve_adhesive_at_load). */
 static int check_adhesion_control(enum im_control control, const im_solver_options *options)
 {
     const int held = control == IM_CONTROL_LOAD ||
@@ -190,11 +189,6 @@ static int check_adhesion_control(enum im_control control, const im_solver_optio
                        options->periodic ? "mean-gap or load control on a periodic cell"
                                          : "displacement or load control on the half-space",
                        control_target(control));
-    if (options->hardness > 0 && options->periodic)
-        return im_fail(IM_EINVAL,
-                       "adhesion work = %g with hardness %g on a periodic cell: expected no hardness there "
-                       "(adhesion with plasticity is solved on the half-space only)",
-                       options->adhesion_work, options->hardness);
     return IM_OK;
 }
 
@@ -682,11 +676,14 @@ static int narrow_forward(forward_walk *walk, double far, double e_far)
     return status;
 }
 
-/* The farthest approach a try may take: the window's bound, or on a periodic cell half the way from the mark to
- * mean g0, where the mean gap closes (full contact at an infinite pressure: no solve there). */
+/* The farthest approach a try may take: the window's bound, or on an elastic periodic cell half the way from the
+ * mark to mean g0, where the mean gap closes (full contact at an infinite pressure: no solve there; with a
+ * hardness the yielded patches take any approach). */
 static double farthest_try(const im_indentation *run, double near)
 {
-    return run->options.periodic ? near + 0.5 * (mean_gap_approach(run, 0) - near) : run->approach_bound;
+    if (run->options.periodic && !(run->options.hardness > 0))
+        return near + 0.5 * (mean_gap_approach(run, 0) - near);
+    return run->approach_bound;
 }
 
 static double cell_area(const im_indentation *run) { return run->nx * run->ny * run->delta * run->delta; }
@@ -807,6 +804,29 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
     return status;
 }
 
+/* An adhesive cell's mean gap under a hardness: search_mean_gap's search, each try a step from the step's start
+ * (marked: the zone's history is the last step's whatever the tries before), which a failed search returns to. */
+static int solve_adhesive_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
+{
+    approach_search search = {.context = run,
+                              .target = -target,
+                              .tol = run->options.tol,
+                              .measure = negative_mean_gap,
+                              .solve = adhesive_solve,
+                              .length = run->options.adhesion_range,
+                              .lowest = -INFINITY};
+    int status = mark_adhesive_state(run, ADHESION_MARK_TRY);
+    if (status != IM_OK)
+        return status;
+    status = search_mean_gap(&search, mean_gap_approach(run, target), run->options.hardness, out);
+    if (status != IM_OK) { /* the history stays the last step's */
+        rewind_adhesive_state(run, ADHESION_MARK_TRY);
+        out->approach = run->approach;
+        out->load = run->load;
+    }
+    return status;
+}
+
 /* The approach adhesion's passes hold: the target, or on a periodic cell its mean gap's. */
 static double adhesive_approach(const im_indentation *run, double target)
 {
@@ -837,6 +857,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
     if (run->adhesion && run->control == IM_CONTROL_LOAD)
         status = solve_adhesive_at_load(run, target, &s);
+    else if (run->adhesion && run->control == IM_CONTROL_MEAN_GAP && run->options.hardness > 0)
+        status = solve_adhesive_at_mean_gap(run, target, &s);
     else if (run->adhesion)
         status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, adhesive_approach(run, target),
                                 run->pressure, run->displacement, &s);
