@@ -689,7 +689,7 @@ static double farthest_try(const im_indentation *run, double near)
 static double cell_area(const im_indentation *run) { return run->nx * run->ny * run->delta * run->delta; }
 
 /* IM_EINVAL for a target below the least load met on retraction (at approach least_at): a cell's named by its
- * mean pressure and mean gap. */
+ * mean pressure. */
 static int refuse_beyond_pull_off(const im_indentation *run, double target, double least, double least_at)
 {
     if (!run->options.periodic)
@@ -700,8 +700,8 @@ static int refuse_beyond_pull_off(const im_indentation *run, double target, doub
     const double area = cell_area(run);
     return im_fail(IM_EINVAL,
                    "mean pressure %g (load %g): below the least mean pressure the cell held on retraction, %.9g "
-                   "at mean gap %.9g (the cell's pull-off under load control: it jumps out of contact)",
-                   target / area, target, least / area, mean_gap_approach(run, 0) - least_at);
+                   "at approach %.9g (the cell's pull-off under load control: it jumps out of contact)",
+                   target / area, target, least / area, least_at);
 }
 
 /* Whether a patch of the last step is in repulsive contact. */
