@@ -149,8 +149,7 @@ a = json.load(open(sys.argv[1]))["adhesion"]
 assert a["pull_off_force"] > 1.5 * 17.17 and a["theory"] is None, a
 PY
 for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
-           "--periodic --adhesion-work 0.1 --adhesion-range 1 --hardness 1 --mean-gap 1|with --hardness and --periodic" \
-           "--periodic --adhesion-work 0.1 --adhesion-range 1 --pressure 0.01|takes --mean-gap with --periodic"; do
+           "--periodic --adhesion-work 0.1 --adhesion-range 1 --approach 0.01|takes --mean-gap, --pressure or --load with --periodic"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"
     [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
 done
@@ -176,6 +175,29 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["adhesion"]["theory"] is None and "k_fit" not in r and r["adhesion"]["pull_off_force"] > 0
 PY
+# The adhesive cell under mean pressures (--pressure, load control): compression, unloading and a tension held
+# (load = p_m A0, tension in the last row), then a tension beyond the pull-off refused, exit 2, naming the mean
+# pressure and the least one the retraction held, the history kept up to it.
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.004,0.001,-0.0005,-0.01 --adhesion-work 0.002 \
+    --adhesion-range 0.5 --out "$DIR/peradhp" > /dev/null 2> "$DIR/peradhp.err"
+[ $? -eq 2 ] && grep -q "mean pressure -0.01 (load -40.96): below the least mean pressure the cell held on retraction" \
+    "$DIR/peradhp.err" || fail "an adhesive cell beyond its pull-off: $(cat "$DIR/peradhp.err")"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { split("0.004 0.001 -0.0005", p, " ")
+         d = $c["load"] / (p[NR - 1] * 4096) - 1; if (d > 1e-5 || -d > 1e-5) exit 1; pulled = $c["tensile_force"] > 0 }
+         END { if (NR != 4 || !pulled) exit 1 }' "$DIR/peradhp/history.csv" \
+    || fail "adhesive cell under mean pressures: $(cat "$DIR/peradhp/history.csv")"
+# The adhesive cell with a hardness (--hardness 0.05) under mean gaps falling and rising: each mean gap held
+# (to tol 1e-6 of the larger of it, the approach and delta_c: where the search stops), patches yielded on the
+# way in and none on the way out, the net pressure capped at H, tension.
+"$BIN" indent "$DIR/cell.npy" --periodic --mean-gap 0.4,0.2,0.3,0.6 --hardness 0.05 --adhesion-work 0.002 \
+    --adhesion-range 0.5 --out "$DIR/peradhh" > /dev/null 2> "$DIR/peradhh.err" \
+    || fail "an adhesive cell with a hardness exited $?: $(cat "$DIR/peradhh.err")"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { split("0.4 0.2 0.3 0.6", g, " ")
+         d = $c["mean_gap"] - g[NR - 1]; w = $c["approach"]; s = g[NR - 1] > w ? g[NR - 1] : w; s = s > 0.5 ? s : 0.5
+         if (d > 1e-6 * s || -d > 1e-6 * s || $c["max_pressure"] > 0.05 * (1 + 1e-12)) exit 1
+         if (NR == 3) yielded = $c["yielding_patches"]; if (NR > 3 && $c["yielding_patches"] > 0) exit 1
+         pulled = $c["tensile_force"] > 0 } END { if (NR != 5 || !(yielded > 0) || !pulled) exit 1 }' \
+    "$DIR/peradhh/history.csv" || fail "adhesive cell with a hardness: $(cat "$DIR/peradhh/history.csv")"
 # The exponential law (--adhesion-law exponential): a flat cell is the law itself, its load at mean gap g
 # -(w / rho) exp(-g / rho) A0, approaching and retracting; a sphere's run.json names the law with its Tabor
 # mu = (R w^2 / (E*^2 rho^3))^(1/3) and no Maugis-Dugdale theory beside it; an unknown law and the law alone

@@ -3,7 +3,7 @@
 # read as a scene's surface file and by `indent --periodic --pressure`: the scene's history is indent's and
 # its k_fit.csv row is indent's run.json "k_fit", both exactly (one thread each, the same helpers); --resume
 # reads the history back and draws the same k; a sphere repeated with the cell under a hardness, loaded and
-# unloaded, is indent's too; so are mean gaps (control = mean_gap). A ramp (not periodic) is warned about; what needs a half-space is refused,
+# unloaded, is indent's too; so are mean gaps (control = mean_gap) and an adhesive cell's mean pressures. A ramp (not periodic) is warned about; what needs a half-space is refused,
 # naming the key. Then an indentation/member_FF_SEED.csv per member of a hardness history that goes up and
 # down, equal to indent's indentation.csv, and the example scene scenes/periodic.ini.
 set -u
@@ -83,6 +83,22 @@ check "the cell pulls out of contact" awk -F, '/^[0-9]/ && $3 < 0 && $5 == 0 { p
     "$dir/sticky/histories/member_00_0.csv"
 check "each step's contact map is drawn" [ -s "$dir/sticky/panels/family_00/contact_0004.png" ]
 check "no k for an adhesive cell" [ ! -e "$dir/sticky/k_fit.csv" ]
+# The adhesive cell at mean pressures (load control), into tension: indent --periodic --pressure's history.
+scene "$dir/sticky_p.ini" cell.npy "" "steps = 0.004, 0.001, -0.0005" $'[adhesion]\nwork = 0.002\nrange = 0.5' \
+    sticky_p
+check "an adhesive cell's scene runs at mean pressures" "$cli" run "$dir/sticky_p.ini" > /dev/null 2>&1
+"$cli" indent "$dir/cell.npy" --periodic --pressure 0.004,0.001,-0.0005 --adhesion-work 0.002 --adhesion-range 0.5 \
+    --out "$dir/indent_sticky_p" > /dev/null 2>&1
+check "its history is indent --periodic --pressure --adhesion-work's" \
+    cmp <(rows "$dir/sticky_p/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_sticky_p/history.csv")
+# With a hardness too, under mean gaps: indent --periodic --mean-gap --hardness --adhesion-work's history.
+scene "$dir/sticky_h.ini" cell.npy "" $'control = mean_gap\nsteps = 0.4, 0.2, 0.3' \
+    $'[adhesion]\nwork = 0.002\nrange = 0.5\n[material]\nhardness = 0.05' sticky_h
+check "an adhesive cell's scene runs with a hardness" "$cli" run "$dir/sticky_h.ini" > /dev/null 2>&1
+"$cli" indent "$dir/cell.npy" --periodic --mean-gap 0.4,0.2,0.3 --hardness 0.05 --adhesion-work 0.002 \
+    --adhesion-range 0.5 --out "$dir/indent_sticky_h" > /dev/null 2>&1
+check "its history is indent --periodic --mean-gap --hardness --adhesion-work's" \
+    cmp <(rows "$dir/sticky_h/histories/member_00_0.csv" | tail -n +2) <(rows "$dir/indent_sticky_h/history.csv")
 
 # A sphere repeated with the cell, with a hardness, loaded and unloaded: indent's history; no k (a cap).
 scene "$dir/sphere.ini" cell.npy $'shape = sphere\nradius = 20' "steps = 0.01:0.05:3, 0.03:0.01:2" \
@@ -165,11 +181,6 @@ refuse "frames" "" "steps = 0.01" $'[output]\ncontact_panels = no\nframes = yes'
 refuse "Love's theory" "" "steps = 0.01" $'[output]\nplots = fig6' "plots = fig6 beside [punch] periodic"
 refuse "the smooth contact circle" "" "steps = 0.01" $'[output]\nplots = fig1' "plots = fig1 beside [punch] periodic"
 refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha beside periodic without shape"
-refuse "adhesion at mean pressures" "" "steps = 0.01" "$sticky" \
-    "bad.ini:12: [adhesion] with [punch] periodic takes [loading] control = mean_gap: a mean pressure on an adhesive cell is not available"
-refuse "adhesion" "" "steps = 0.01" $'[adhesion]\nwork = 0.1\nrange = 1' "[adhesion] with [punch] periodic"
-refuse "adhesion with a hardness" "" $'control = mean_gap\nsteps = 0.5' $'[adhesion]\nwork = 0.1\nrange = 1\n[material]\nhardness = 1' \
-    "[adhesion] with [material] hardness and [punch] periodic: adhesion with plasticity is solved on the half-space only"
 refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
 refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"
 refuse "mean gaps that rise without a hardness" "" $'control = mean_gap\nsteps = 0.2, 0.3' "" "steps must decrease"

@@ -143,20 +143,18 @@ static int obeys_the_law(double p, double g, double least, double largest, doubl
     return 1;
 }
 
-/* At every step of the history, every patch obeys the law with the cap (obeys_the_law); the patches at H_p are
- * the step's yielded ones, in contact, the load is the force field's sum, and somewhere both bounds are met. */
-static void every_patch_obeys_the_capped_law(void **state)
+/* At every step of a history (the targets), every patch obeys the law with the cap (obeys_the_law); the patches
+ * at H_p are the step's yielded ones, in contact, the load is the force field's sum, and somewhere both bounds
+ * are met. */
+static void history_obeys_the_capped_law(im_indentation *run, const double *targets, double tol)
 {
-    (void)state;
-    const im_solver_options o = sphere_options(WORK, HARDNESS);
-    im_indentation *run = sphere_run(NULL, IM_CONTROL_DISPLACEMENT, LARGEST, &o);
     long capped_steps = 0, pulled_steps = 0;
     double worst_gap = 0;
     for (int k = 0; k < HISTORY_STEPS; ++k) {
-        const im_step_result r = step(run, HISTORY[k]);
+        const im_step_result r = step(run, targets[k]);
         im_field *force = NULL, *gap = NULL;
         assert_int_equal(im_indentation_fields(run, &force, &gap, NULL), IM_OK);
-        const double gap_tol = 10 * o.tol * fmax(fabs(HISTORY[k]), RANGE);
+        const double gap_tol = 10 * tol * fmax(fabs(r.approach), RANGE);
         long at_cap = 0, at_tension = 0;
         double sum = 0;
         for (int y = 0; y < SIDE; ++y)
@@ -166,8 +164,8 @@ static void every_patch_obeys_the_capped_law(void **state)
                 double least, largest;
                 gap_spread(gap, x, y, &least, &largest);
                 if (!obeys_the_law(p, g, least, largest, gap_tol))
-                    fail_msg("w = %g, patch (%d, %d): p = %.17g at g = %.17g (neighbours %g to %g)", HISTORY[k], x, y,
-                             p, g, least, largest);
+                    fail_msg("step to %g, patch (%d, %d): p = %.17g at g = %.17g (neighbours %g to %g)", targets[k],
+                             x, y, p, g, least, largest);
                 at_cap += p >= HARDNESS * (1 - 1e-12);
                 at_tension += p == -WORK / RANGE;
                 worst_gap = p > 0 ? fmax(worst_gap, fabs(g)) : worst_gap;
@@ -182,6 +180,14 @@ static void every_patch_obeys_the_capped_law(void **state)
     }
     print_message("largest |gap| under compression %.3g\n", worst_gap);
     assert_true(capped_steps >= 2 && pulled_steps >= 8);
+}
+
+static void every_patch_obeys_the_capped_law(void **state)
+{
+    (void)state;
+    const im_solver_options o = sphere_options(WORK, HARDNESS);
+    im_indentation *run = sphere_run(NULL, IM_CONTROL_DISPLACEMENT, LARGEST, &o);
+    history_obeys_the_capped_law(run, HISTORY, o.tol);
     im_indentation_free(run);
 }
 
@@ -268,20 +274,149 @@ static void load_control_holds_the_displacement_states(void **state)
     im_indentation_free(by_load);
 }
 
-/* A periodic cell takes no hardness with adhesion: refused naming both. */
-static void periodic_cell_refuses_the_hardness(void **state)
+/* ---- a periodic cell under mean-gap control ---- */
+
+/* The undeformed mean gap of a periodic run (mean g0: at a mean gap of 100 the flat is clear, at the approach
+ * mean g0 - 100). */
+static double undeformed_mean_gap(const im_field *surface, const im_indenter *punch)
+{
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    im_indentation *run = NULL;
+    assert_int_equal(im_indentation_create(surface, punch, IM_CONTROL_MEAN_GAP, 100, &o, &run), IM_OK);
+    const double mean_gap0 = step(run, 100).approach + 100;
+    im_indentation_free(run);
+    return mean_gap0;
+}
+
+/* The sphere repeated with a SIDE^2 cell (its contact at the deepest approach about 20 patches across) under
+ * mean-gap control, or load control up to largest_load, and the mean gaps of HISTORY's approaches before any
+ * yielding (mean g0 - w). */
+static im_indentation *cell_sphere_run(const im_solver_options *elastic, double hardness, enum im_control control,
+                                       double largest_load, double *mean_gaps)
+{
+    im_field *flat = NULL;
+    assert_int_equal(im_field_create(SIDE, SIDE, 1.0, &flat), IM_OK);
+    const im_indenter sphere = im_indenter_sphere(RADIUS);
+    const double mean_gap0 = undeformed_mean_gap(flat, &sphere);
+    for (int k = 0; k < HISTORY_STEPS; ++k)
+        mean_gaps[k] = mean_gap0 - HISTORY[k];
+    im_solver_options o = *elastic;
+    o.periodic = 1;
+    o.hardness = hardness;
+    im_indentation *run = NULL;
+    const double largest = control == IM_CONTROL_MEAN_GAP ? mean_gap0 + LARGEST : largest_load;
+    if (im_indentation_create(flat, &sphere, control, largest, &o, &run) != IM_OK)
+        fail_msg("im_indentation_create: %s", im_last_error());
+    im_field_free(flat);
+    return run;
+}
+
+/* On the cell too a vanishing work gives the capped repulsive answers, on a rough cell under the rigid flat:
+ * mean gaps falling into yielding and rising again, the same loads to 1e-8, contact, yielded patches and plastic
+ * depth. */
+static void cell_vanishing_work_gives_the_capped_answers(void **state)
 {
     (void)state;
-    im_field *surface = NULL;
-    assert_int_equal(im_field_create(16, 16, 1.0, &surface), IM_OK);
-    im_solver_options o = sphere_options(WORK, HARDNESS);
-    o.periodic = 1;
-    im_indenter flat = im_indenter_flat(100);
-    im_indentation *run = NULL;
-    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, 1, &o, &run), IM_EINVAL);
-    assert_non_null(strstr(im_last_error(), "hardness 0.06 on a periodic cell"));
-    assert_null(run);
+    im_field *surface = test_rough_surface(SIDE, 0.08, 3);
+    const im_indenter flat = im_indenter_flat(4.0 * SIDE);
+    const double mean_gap0 = undeformed_mean_gap(surface, &flat), parts[] = {0.5, 0.3, 0.2, 0.3, 0.5};
+    im_solver_options plain = im_solver_options_default(), sticky;
+    plain.tol = 1e-10;
+    plain.periodic = 1;
+    plain.hardness = 0.05;
+    sticky = plain;
+    sticky.adhesion_work = 1e-16;
+    sticky.adhesion_range = 1e-6;
+    im_indentation *a = NULL, *b = NULL;
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, mean_gap0, &plain, &a), IM_OK);
+    assert_int_equal(im_indentation_create(surface, &flat, IM_CONTROL_MEAN_GAP, mean_gap0, &sticky, &b), IM_OK);
+    long yielded = 0;
+    for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k) {
+        const double gap = parts[k] * mean_gap0;
+        const im_step_result ra = step(a, gap), rb = step(b, gap);
+        if (!(test_relative_difference(ra.load, rb.load) <= 1e-8 && ra.contact_patches == rb.contact_patches &&
+              ra.yielding_patches == rb.yielding_patches &&
+              test_relative_difference(ra.plastic_depth, rb.plastic_depth) <= 1e-8 &&
+              fabs(rb.mean_gap - gap) <= 1e-8 * gap))
+            fail_msg("mean gap %g: load %.17g against %.17g, contact %ld against %ld, yielded %ld against %ld, "
+                     "plastic depth %.17g against %.17g, mean gap %.17g",
+                     gap, rb.load, ra.load, rb.contact_patches, ra.contact_patches, rb.yielding_patches,
+                     ra.yielding_patches, rb.plastic_depth, ra.plastic_depth, rb.mean_gap);
+        yielded += ra.yielding_patches;
+    }
+    assert_true(yielded > 0);
+    im_indentation_free(a);
+    im_indentation_free(b);
     im_field_free(surface);
+}
+
+/* On the cell a hardness far above every pressure gives the adhesive answers along the history. */
+static void cell_huge_hardness_gives_the_adhesive_answers(void **state)
+{
+    (void)state;
+    const im_solver_options o = sphere_options(WORK, 0);
+    double gaps[HISTORY_STEPS];
+    im_indentation *a = cell_sphere_run(&o, 0, IM_CONTROL_MEAN_GAP, 0, gaps);
+    im_indentation *b = cell_sphere_run(&o, 1e6, IM_CONTROL_MEAN_GAP, 0, gaps);
+    const double unit = M_PI * WORK * RADIUS;
+    for (int k = 0; k < HISTORY_STEPS; ++k) {
+        const im_step_result ra = step(a, gaps[k]), rb = step(b, gaps[k]);
+        if (!(fabs(ra.load - rb.load) <= 1e-6 * unit && ra.contact_patches == rb.contact_patches &&
+              rb.yielding_patches == 0 && rb.plastic_depth == 0))
+            fail_msg("mean gap %g: load %.17g against %.17g, contact %ld against %ld, %ld yielded", gaps[k], rb.load,
+                     ra.load, rb.contact_patches, ra.contact_patches, rb.yielding_patches);
+    }
+    im_indentation_free(a);
+    im_indentation_free(b);
+}
+
+/* On the cell, at every step of the history's mean gaps, every patch obeys the law with the cap. */
+static void cell_every_patch_obeys_the_capped_law(void **state)
+{
+    (void)state;
+    const im_solver_options o = sphere_options(WORK, 0);
+    double gaps[HISTORY_STEPS];
+    im_indentation *run = cell_sphere_run(&o, HARDNESS, IM_CONTROL_MEAN_GAP, 0, gaps);
+    history_obeys_the_capped_law(run, gaps, o.tol);
+    im_indentation_free(run);
+}
+
+/* Under load control the yielding, adhesive cell holds the loads mean-gap control found (HISTORY's approaches
+ * 1.5, 2, 1.5, 1: loading into yielding and unloading) at its mean gaps, with its contact and plastic depth.
+ * Further out the states part with the path: at approach 0.5 (load -34.73) mean-gap control's one step from 1
+ * leaves 325 patches in contact, the walk's steps of delta_c / 8 meet that load at 0.64 with 393. */
+static void cell_load_control_holds_the_mean_gap_states(void **state)
+{
+    (void)state;
+    const im_solver_options o = sphere_options(WORK, 0);
+    enum { FIRST = 3, COUNT = 4 };
+    double gaps[HISTORY_STEPS];
+    im_indentation *by_gap = cell_sphere_run(&o, HARDNESS, IM_CONTROL_MEAN_GAP, 0, gaps);
+    im_step_result expected[COUNT];
+    double largest = 0;
+    for (int k = 0; k < COUNT; ++k) {
+        expected[k] = step(by_gap, gaps[FIRST + k]);
+        largest = fmax(largest, fabs(expected[k].load));
+    }
+    assert_true(expected[1].yielding_patches > 0 && expected[COUNT - 1].yielding_patches == 0);
+    im_indentation *by_load = cell_sphere_run(&o, HARDNESS, IM_CONTROL_LOAD, largest, gaps);
+    double worst = 0;
+    for (int k = 0; k < COUNT; ++k) {
+        const im_step_result r = step(by_load, expected[k].load);
+        /* as on the half-space: within tol of the load or of the approach (of delta_c near 0) */
+        const int held = fabs(r.load - expected[k].load) <= 2e-8 * largest ||
+                         fabs(r.mean_gap - expected[k].mean_gap) <= 5e-8 * fmax(fabs(r.approach), RANGE);
+        if (!(held && r.contact_patches == expected[k].contact_patches &&
+              test_relative_difference(r.plastic_depth, expected[k].plastic_depth) <= 1e-6))
+            fail_msg("load %.17g: mean gap %.17g (expected %.17g), contact %ld (%ld), plastic depth %.17g (%.17g)",
+                     expected[k].load, r.mean_gap, expected[k].mean_gap, r.contact_patches,
+                     expected[k].contact_patches, r.plastic_depth, expected[k].plastic_depth);
+        worst = fmax(worst, fabs(r.mean_gap - expected[k].mean_gap));
+    }
+    print_message("load control on the cell: mean gaps within %.2g of mean-gap control's\n", worst);
+    im_indentation_free(by_gap);
+    im_indentation_free(by_load);
 }
 
 int main(void)
@@ -292,7 +427,10 @@ int main(void)
         cmocka_unit_test(every_patch_obeys_the_capped_law),
         cmocka_unit_test(unloading_keeps_the_flattening),
         cmocka_unit_test(load_control_holds_the_displacement_states),
-        cmocka_unit_test(periodic_cell_refuses_the_hardness),
+        cmocka_unit_test(cell_vanishing_work_gives_the_capped_answers),
+        cmocka_unit_test(cell_huge_hardness_gives_the_adhesive_answers),
+        cmocka_unit_test(cell_every_patch_obeys_the_capped_law),
+        cmocka_unit_test(cell_load_control_holds_the_mean_gap_states),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -121,9 +121,10 @@ class Indentation:
 
     ``adhesion_work`` w and ``adhesion_range`` delta_c (both > 0) make the surfaces attract (the
     Maugis-Dugdale law, ``indentmap indent --adhesion-work --adhesion-range``; docs/solver.md, "Adhesion"):
-    displacement or load control on the half-space, mean-gap control on a periodic cell; approaches and loads
-    may then be negative down to -largest (the punch pulled away, the contact under tension); under load
-    control a load beyond the pull-off force is refused (InvalidArgument naming it: the contact jumps out);
+    displacement or load control on the half-space, mean-gap or load control (mean pressures) on a periodic
+    cell; approaches and loads may then be negative down to -largest (the punch pulled away, the contact under
+    tension); under load control a load beyond the pull-off force is refused (InvalidArgument naming it, a
+    cell's as a mean pressure: the contact jumps out);
     ``adhesion(history)`` gives the pull-off.
     ``adhesion_law='exponential'`` (``indent --adhesion-law exponential``) takes the smooth law instead: the
     tension (w / rho) exp(-g / rho) at a gap g, rho = ``adhesion_range``, w / rho in contact.

@@ -140,8 +140,8 @@ def test_adhesion_bit_for_bit(cli, rough64, tmp_path):
 
 def test_adhesion_with_hardness_bit_for_bit(cli, rough64, tmp_path):
     """Adhesion with a hardness (indent --hardness --adhesion-work): the same history as the program's, yielding
-    and pulling, the same plastic depth field, no net pressure above the hardness; with a periodic cell both
-    refuse it naming the hardness."""
+    and pulling, the same plastic depth field, no net pressure above the hardness; on a periodic cell under mean
+    gaps the same rows too, yielding."""
     im.write(tmp_path / "s.npy", rough64)
     options = dict(adhesion_work=0.02, adhesion_range=0.5, hardness=0.05)
     run_cli(cli, "indent", tmp_path / "s.npy", "--punch", "sphere", "--radius", "40", "--adhesion-work", "0.02",
@@ -156,8 +156,14 @@ def test_adhesion_with_hardness_bit_for_bit(cli, rough64, tmp_path):
     assert (history["yielding_patches"] > 0).any() and (history["tensile_force"] > 0).any()
     assert (history["max_pressure"] <= 0.05 * (1 + 1e-12)).all()
     assert np.load(tmp_path / "out" / "plastic_0008.npy").tobytes() == fields[7]["plastic"].tobytes()
-    with pytest.raises(im.InvalidArgument, match="hardness 0.05 on a periodic cell"):
-        im.indent(rough64, None, mean_gaps=[1.0], periodic=True, **options)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--adhesion-work", "0.02", "--adhesion-range", "0.5",
+            "--hardness", "0.05", "--mean-gap", "0.6,0.3,0.5", "--out", tmp_path / "cell")
+    history = im.indent(rough64, None, mean_gaps=[0.6, 0.3, 0.5], periodic=True, **options)
+    theirs = im.read_history(tmp_path / "cell" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    assert (history["yielding_patches"] > 0).any() and (history["max_pressure"] <= 0.05 * (1 + 1e-12)).all()
 
 
 def test_adhesion_under_load_control_bit_for_bit(cli, rough64, tmp_path):
@@ -175,8 +181,8 @@ def test_adhesion_under_load_control_bit_for_bit(cli, rough64, tmp_path):
     assert history["load"][-1] == pytest.approx(-0.3, rel=1e-5) and history["tensile_force"][-1] > 0
     with pytest.raises(im.InvalidArgument, match="pull-off force under load control"):
         im.indent(rough64, im.Sphere(40), loads=[1.0, -100.0], **options)
-    with pytest.raises(im.InvalidArgument, match="mean-gap control on a periodic cell"):
-        im.Indentation(rough64, None, control="load", largest=1.0, periodic=True, **options)
+    with pytest.raises(im.InvalidArgument, match="mean-gap or load control on a periodic cell"):
+        im.Indentation(rough64, None, control="displacement", largest=1.0, periodic=True, **options)
 
 
 def test_exponential_adhesion_bit_for_bit(cli, rough64, tmp_path):
@@ -360,7 +366,8 @@ def test_instrument_file_orientation_matches_gwyddions_export(cli):
 def test_periodic_adhesion_bit_for_bit(cli, rough64, tmp_path):
     """Adhesion on a periodic cell (mean-gap control): indent --periodic --mean-gap --adhesion-work and
     indent(..., periodic=True, mean_gaps=..., adhesion_work=...) give the same rows, under tension too, and the
-    cell's A/A0 whenever it has contact; mean-pressure control is refused naming the mean-gap control."""
+    cell's A/A0 whenever it has contact; under mean pressures (load control) the same rows too, into tension, and
+    a tension beyond the cell's pull-off refused by both, naming the mean pressure."""
     im.write(tmp_path / "s.npy", rough64)
     run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--mean-gap", "1.6:0.8:3,1:1.8:3", "--adhesion-work",
             "0.02", "--adhesion-range", "0.5", "--out", tmp_path / "out")
@@ -373,5 +380,14 @@ def test_periodic_adhesion_bit_for_bit(cli, rough64, tmp_path):
     assert (history["tensile_force"] > 0).any()
     in_contact = history["contact_patches"] > 0
     np.testing.assert_array_equal(history["area_ratio"][in_contact], history["contact_patches"][in_contact] / 64**2)
-    with pytest.raises(im.InvalidArgument, match="mean-gap control on a periodic cell"):
-        im.indent(rough64, None, pressures=[0.01], periodic=True, adhesion_work=0.02, adhesion_range=0.5)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--pressure", "0.004,0.001,-0.0005",
+            "--adhesion-work", "0.002", "--adhesion-range", "0.5", "--out", tmp_path / "pressures")
+    options = dict(periodic=True, adhesion_work=0.002, adhesion_range=0.5)
+    history = im.indent(rough64, None, pressures=[0.004, 0.001, -0.0005], **options)
+    theirs = im.read_history(tmp_path / "pressures" / "history.csv")
+    for name in history.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(history[name], theirs[name], err_msg=name)
+    assert history["tensile_force"][-1] > 0 and history["load"][-1] < 0
+    with pytest.raises(im.InvalidArgument, match="mean pressure -0.01 .*the cell's pull-off under load control"):
+        im.indent(rough64, None, pressures=[0.004, -0.01], **options)

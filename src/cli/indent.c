@@ -85,7 +85,8 @@ static void usage(FILE *stream)
             "                      stress); default none\n"
             "  --adhesion-work W   adhesion (Maugis-Dugdale): the work of adhesion W (E*'s stress times\n"
             "                      the length unit), with --adhesion-range: the stress W / D pulls every\n"
-            "                      patch whose gap is at most D. Under --approach or --load, whose values\n"
+            "                      patch whose gap is at most D. Under --approach or --load (--periodic:\n"
+            "                      --mean-gap, --pressure or --load), whose loads, pressures and approaches\n"
             "                      may then be negative (the punch pulled away; a load beyond the pull-off\n"
             "                      force is refused: the contact jumps out): the force-distance curve\n"
             "                      with its jumps, pull-off and lost work (run.json \"adhesion\",\n"
@@ -374,13 +375,13 @@ static int apply_option(int code, const char *arg, void *state)
     return -1;
 }
 
-/* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap control on
- * a periodic cell, a hardness on the half-space only (a negative target is refused by the step list's parser
- * without adhesion). 0, or -1 with the message said. */
+/* Adhesion's options: both or neither, displacement or load control on the half-space or mean-gap and load
+ * control (mean pressures) on a periodic cell (a negative target is refused by the step list's parser without
+ * adhesion). 0, or -1 with the message said. */
 static int check_adhesion_options(const indent_options *o)
 {
     const int adhesion = o->solver.adhesion_work > 0;
-    const int held = o->solver.periodic ? o->control == IM_CONTROL_MEAN_GAP : o->control != IM_CONTROL_MEAN_GAP;
+    const int held = o->solver.periodic ? o->control != IM_CONTROL_DISPLACEMENT : o->control != IM_CONTROL_MEAN_GAP;
     if (adhesion != (o->solver.adhesion_range > 0))
         fprintf(stderr, "indentmap: --adhesion-work and --adhesion-range go together\n");
     else if (o->adhesion_law_given && !adhesion)
@@ -390,11 +391,8 @@ static int check_adhesion_options(const indent_options *o)
     else if (adhesion && !held)
         fprintf(stderr, "indentmap: --adhesion-work takes %s\n",
                 o->solver.periodic
-                    ? "--mean-gap with --periodic (a mean pressure on an adhesive cell is not available)"
+                    ? "--mean-gap, --pressure or --load with --periodic (an approach on a cell is its mean gap)"
                     : "--approach or --load");
-    else if (adhesion && o->solver.hardness > 0 && o->solver.periodic)
-        fprintf(stderr, "indentmap: --adhesion-work with --hardness and --periodic: adhesion with plasticity is "
-                        "solved on the half-space only (drop --periodic or --hardness)\n");
     else
         return 0;
     return -1;

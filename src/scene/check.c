@@ -214,17 +214,12 @@ static const char *adhesion_conflict(const im_scene *scene)
 {
     if (!(scene->adhesion_work > 0) || !(scene->adhesion_range > 0))
         return "[adhesion] work and range go together: expected both";
-    if (scene->hardness > 0 && scene->periodic)
-        return "[adhesion] with [material] hardness and [punch] periodic: adhesion with plasticity is solved on "
-               "the half-space only";
     if (scene->plots & IM_SCENE_PLOT_FLAT_K)
         return "[adhesion] with plots = flat_k: its flat panels are solved at mean pressures, which an adhesive "
                "cell does not take";
-    if (scene->periodic) /* as indent --periodic: mean gaps; its panels and distributions are taken at every step */
-        return scene->control == IM_CONTROL_MEAN_GAP
-                   ? NULL
-                   : "[adhesion] with [punch] periodic takes [loading] control = mean_gap: a mean pressure on an "
-                     "adhesive cell is not available";
+    if (scene->periodic) /* as indent --periodic: mean pressures or mean gaps; its panels and distributions are
+                            taken at every step */
+        return NULL;
     if (scene->contact_panels || scene->frames || scene->table || scene->distributions)
         return "[adhesion] with [output] contact_panels, frames, table or distributions: those are solved under "
                "load control at load_star, which an adhesive contact does not take (its histories, plots = fig5, "

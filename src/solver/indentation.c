@@ -12,6 +12,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -129,25 +130,19 @@ static const char *control_target(enum im_control control)
 }
 
 /* Adhesion's passes hold the approach fixed: displacement control on the half-space, mean-gap control on a
- * periodic cell (mean u = 0 there, so a mean gap is an approach), and load control on the half-space by a
- * search over the approach (solve_adhesive_at_load). A hardness goes with it on the half-space only: on a cell
- * the yielded patches' overlap opens no gap, so a mean gap no longer fixes the approach, and searching it
- * would rewind the zone's history (not built). */
+ * periodic cell (mean u = 0 there, so a mean gap is an approach; with a hardness searched, every try from the
+ * step's start: solve_adhesive_at_mean_gap), and load control on either by a walk over the approach
+ * (solve_adhesive_at_load). */
 static int check_adhesion_control(enum im_control control, const im_solver_options *options)
 {
-    const int held = options->periodic ? control == IM_CONTROL_MEAN_GAP
-                                       : control == IM_CONTROL_DISPLACEMENT || control == IM_CONTROL_LOAD;
+    const int held = control == IM_CONTROL_LOAD ||
+                     control == (options->periodic ? IM_CONTROL_MEAN_GAP : IM_CONTROL_DISPLACEMENT);
     if (!held)
         return im_fail(IM_EINVAL, "adhesion work = %g: expected %s (adhesion under %s control is not available)",
                        options->adhesion_work,
-                       options->periodic ? "mean-gap control on a periodic cell"
+                       options->periodic ? "mean-gap or load control on a periodic cell"
                                          : "displacement or load control on the half-space",
                        control_target(control));
-    if (options->hardness > 0 && options->periodic)
-        return im_fail(IM_EINVAL,
-                       "adhesion work = %g with hardness %g on a periodic cell: expected no hardness there "
-                       "(adhesion with plasticity is solved on the half-space only)",
-                       options->adhesion_work, options->hardness);
     return IM_OK;
 }
 
@@ -647,6 +642,61 @@ static int narrow_forward(forward_walk *walk, double far, double e_far)
     return status;
 }
 
+/* The farthest approach a try may take: the window's bound, or on an elastic periodic cell half the way from the
+ * mark to mean g0, where the mean gap closes (full contact at an infinite pressure: no solve there; with a
+ * hardness the yielded patches take any approach). */
+static double farthest_try(const im_indentation *run, double near)
+{
+    if (run->options.periodic && !(run->options.hardness > 0))
+        return near + 0.5 * (mean_gap_approach(run, 0) - near);
+    return run->approach_bound;
+}
+
+static double cell_area(const im_indentation *run) { return run->nx * run->ny * run->delta * run->delta; }
+
+/* IM_EINVAL for a target below the least load met on retraction (at approach least_at): a cell's named by its
+ * mean pressure. */
+static int refuse_beyond_pull_off(const im_indentation *run, double target, double least, double least_at)
+{
+    if (!run->options.periodic)
+        return im_fail(IM_EINVAL,
+                       "load %g: below the least load the contact held on retraction, %.9g at "
+                       "approach %.9g (the pull-off force under load control: the contact jumps out)",
+                       target, least, least_at);
+    const double area = cell_area(run);
+    return im_fail(IM_EINVAL,
+                   "mean pressure %g (load %g): below the least mean pressure the cell held on retraction, %.9g "
+                   "at approach %.9g (the cell's pull-off under load control: it jumps out of contact)",
+                   target / area, target, least / area, least_at);
+}
+
+/* Whether a patch of the last step is in repulsive contact. */
+static int touching(const im_indentation *run)
+{
+    const size_t n = (size_t)run->window.nx * run->window.ny;
+    for (size_t i = 0; i < n; ++i)
+        if (run->pressure[i] > 0)
+            return 1;
+    return 0;
+}
+
+/* IM_EINVAL for a tension beyond the last step's load n0 with no patch in contact: under a load the surfaces
+ * fly apart there (the tension only fades as they part), and a contact is held in tension only on retraction
+ * from contact. */
+static int refuse_tension_out_of_contact(const im_indentation *run, double target, double n0)
+{
+    char what[96];
+    if (run->options.periodic)
+        snprintf(what, sizeof what, "mean pressure %g (load %g)", target / cell_area(run), target);
+    else
+        snprintf(what, sizeof what, "load %g", target);
+    return im_fail(IM_EINVAL,
+                   "%s: a tension beyond the last step's load %g with no patch in contact (the surfaces would part "
+                   "under it; a load-controlled contact holds tension on retraction from contact: load it into "
+                   "compression first)",
+                   what, n0);
+}
+
 /* Steps from the mark towards the target until a try passes it; then narrow_forward. Steps of delta_c / 8, on
  * approach doubling up to delta_c: a retraction's state depends on the steps it took (the zone's edge lets go
  * patch by patch, and a long step skips states a slow pull passes through: its pull-off comes out weaker), so
@@ -659,7 +709,7 @@ static int walk_to_load(forward_walk *walk)
     const double range = run->options.adhesion_range;
     double step = range / 8, least = walk->search.target + walk->e_near, least_at = walk->near;
     for (;;) {
-        const double far = fmin(walk->near + walk->direction * step, run->approach_bound);
+        const double far = fmin(walk->near + walk->direction * step, farthest_try(run, walk->near));
         if (!(far != walk->near))
             return im_fail(IM_EEDGE,
                            "load %g cannot be reached: at the window's bound, approach %g, the contact "
@@ -678,10 +728,7 @@ static int walk_to_load(forward_walk *walk)
         if (walk->search.target + e < least)
             least = walk->search.target + e, least_at = far;
         if (walk->direction < 0 && walk->search.last.contact_patches == 0) /* let go: the tension only fades now */
-            return im_fail(IM_EINVAL,
-                           "load %g: below the least load the contact held on retraction, %.9g at "
-                           "approach %.9g (the pull-off force under load control: the contact jumps out)",
-                           walk->search.target, least, least_at);
+            return refuse_beyond_pull_off(run, walk->search.target, least, least_at);
         if (walk->direction > 0)
             step = fmin(2 * step, range);
     }
@@ -693,6 +740,10 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
     /* unstepped: clear of the law's reach, no load */
     const double w0 = stepped ? run->approach : -(adhesion_reach(&run->options) + run->options.adhesion_range);
     const double n0 = stepped ? run->load : 0;
+    if (target < fmin(n0, 0) && !touching(run)) {
+        *out = (im_solve_result){.approach = w0, .load = n0};
+        return refuse_tension_out_of_contact(run, target, n0);
+    }
     forward_walk walk = {.search = {.context = run,
                                     .target = target,
                                     .tol = run->options.tol,
@@ -715,6 +766,29 @@ static int solve_adhesive_at_load(im_indentation *run, double target, im_solve_r
         rewind_adhesive_state(run, ADHESION_MARK_STEP);
         out->approach = w0;
         out->load = n0;
+    }
+    return status;
+}
+
+/* An adhesive cell's mean gap under a hardness: search_mean_gap's search, each try a step from the step's start
+ * (marked: the zone's history is the last step's whatever the tries before), which a failed search returns to. */
+static int solve_adhesive_at_mean_gap(im_indentation *run, double target, im_solve_result *out)
+{
+    approach_search search = {.context = run,
+                              .target = -target,
+                              .tol = run->options.tol,
+                              .measure = negative_mean_gap,
+                              .solve = adhesive_solve,
+                              .length = run->options.adhesion_range,
+                              .lowest = -INFINITY};
+    int status = mark_adhesive_state(run, ADHESION_MARK_TRY);
+    if (status != IM_OK)
+        return status;
+    status = search_mean_gap(&search, mean_gap_approach(run, target), run->options.hardness, out);
+    if (status != IM_OK) { /* the history stays the last step's */
+        rewind_adhesive_state(run, ADHESION_MARK_TRY);
+        out->approach = run->approach;
+        out->load = run->load;
     }
     return status;
 }
@@ -745,7 +819,7 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     int status = check_reachable(run, target);
     if (status != IM_OK)
         return status;
-    const double cell_capacity = run->options.hardness * run->nx * run->ny * run->delta * run->delta;
+    const double cell_capacity = run->options.hardness * cell_area(run);
     if (run->options.periodic && run->options.hardness > 0 && target >= cell_capacity)
         return im_fail(IM_EINVAL,
                        "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
@@ -755,6 +829,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
     if (run->adhesion && run->control == IM_CONTROL_LOAD)
         status = solve_adhesive_at_load(run, target, &s);
+    else if (run->adhesion && run->control == IM_CONTROL_MEAN_GAP && run->options.hardness > 0)
+        status = solve_adhesive_at_mean_gap(run, target, &s);
     else if (run->adhesion)
         status = adhesion_solve(run->adhesion, run->plan, run->window_gap0, adhesive_approach(run, target),
                                 run->pressure, run->displacement, &s);

@@ -48,15 +48,15 @@ int search_refine(approach_search *search, double lo, double e_lo, double hi, do
 
 /* With mean u = 0 the approach mean g0 - target gives the mean gap target exactly (one solve) unless patches
  * yield; with a hardness their overlap opens no gap, so the approach is searched from there upwards (the mean
- * gap falls as w grows, to 0 once every patch has yielded). A target above mean g0 leaves the flat clear of
- * the surface: no contact, at a negative approach. */
+ * gap falls as w grows, to 0 once every patch has yielded). Without adhesion a target above mean g0 leaves the
+ * flat clear of the surface: no contact, at a negative approach. */
 int search_mean_gap(approach_search *search, double w, double hardness, im_solve_result *out)
 {
     const double target = -search->target;
     double e_lo, e_hi;
-    int status = search_trial(search, fmax(w, 0.0), &e_lo);
+    int status = search_trial(search, fmax(w, search->lowest), &e_lo);
     search->last.approach = w;
-    if (status != IM_OK || !(hardness > 0) || !(w > 0) || fabs(e_lo) <= search->tol * target) {
+    if (status != IM_OK || !(hardness > 0) || !(w > search->lowest) || fabs(e_lo) <= search->tol * target) {
         *out = search->last;
         return status;
     }

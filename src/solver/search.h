@@ -19,6 +19,8 @@ typedef struct approach_search {
     /* one displacement-controlled solve at approach w */
     int (*solve)(void *context, double w, im_solve_result *s);
     double length;        /* the approaches' scale where they pass 0 (adhesion's range; else 0) */
+    double lowest;        /* the least approach a trial takes: 0, below which the flat is clear of the surface,
+                             or -INFINITY with adhesion, whose zone pulls before it touches */
     im_solve_result last; /* the last trial's, with iterations, convolutions and seconds summed */
     int trials;
 } approach_search;
@@ -34,7 +36,7 @@ int search_refine(approach_search *search, double lo, double e_lo, double hi, do
 /* A periodic cell's mean gap under a hardness H_p (0: none): the search's measure is minus the mean open
  * gap and its target minus the mean gap. From approach w (mean g0 - mean gap: exact without yielding, as
  * mean u = 0) upwards while yielded patches, whose overlap opens no gap, leave the mean gap above the
- * target. w <= 0 leaves the flat clear (one solve at 0); the result's approach is w there. */
+ * target. w <= lowest leaves the flat clear (one solve at lowest); the result's approach is w there. */
 int search_mean_gap(approach_search *search, double w, double hardness, im_solve_result *out);
 
 #endif
