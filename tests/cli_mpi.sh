@@ -160,7 +160,7 @@ grep -q '"k_fit"' "$work/mpi_adhesion_2/run.json" && fail "an adhesive cell's ru
 [ -s "$work/mpi_adhesion_2/force_distance.png" ] || fail "mpi-indent --adhesion-work: no force_distance.png"
 refused adhesion_load 2 "mpi-indent: --adhesion-work takes --periodic --mean-gap LIST" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --pressure 0.01 --adhesion-work 0.004 --adhesion-range 0.1
-refused adhesion_cap 2 "mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not available" \
+refused adhesion_cap 2 "mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not available over ranks" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --hardness 0.1 --adhesion-work 0.004 --adhesion-range 0.1
 refused adhesion_range 2 "mpi-indent: --adhesion-work and --adhesion-range go together" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --adhesion-work 0.004

@@ -339,7 +339,7 @@ static int check_adhesion_options(const mpi_indent_options *o)
                         "indent's, serial)\n");
     else if (adhesion && o->solver.hardness > 0)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not "
-                        "available\n");
+                        "available over ranks (it is indent's, serial)\n");
     else
         return 0;
     return -1;

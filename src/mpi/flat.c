@@ -213,7 +213,7 @@ static int check_step(const im_mpi_flat_contact *run, enum im_control control, d
     if (run->adhesion.state && control != IM_CONTROL_MEAN_GAP)
         return im_fail(IM_EINVAL,
                        "load %g on an adhesive cell: expected IM_CONTROL_MEAN_GAP (adhesion under load "
-                       "control is not available on a periodic cell)",
+                       "control is not available over ranks: im_indentation_step's, serial)",
                        target);
     if (!(isfinite(target) && (control == IM_CONTROL_LOAD ? target >= 0 : target > 0)))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value %s",
