@@ -8,6 +8,8 @@
  * (Maugis-Dugdale, and the exponential law), each an approach and a retraction through the pull-off. Prints
  * one line per step with the load and tensile force in hexadecimal, so that the script can check that they
  * are the same bits for every rank count. A failed check aborts all ranks. */
+#include "mpi_check.h"
+
 #include "indentmap/measure.h"
 #include "indentmap/mpi.h"
 #include "indentmap/solver.h"
@@ -17,18 +19,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-static int rank;
-
-static void check(int ok, const char *what, const char *detail)
-{
-    if (ok)
-        return;
-    fprintf(stderr, "rank %d: FAILED %s: %s\n", rank, what, detail);
-    MPI_Abort(MPI_COMM_WORLD, 1);
-}
-
-static void check_status(int status, const char *what) { check(status == IM_OK, what, im_last_error()); }
 
 enum { STEPS_MAX = 16 };
 

@@ -17,6 +17,8 @@
  * Prints one line per step on rank 0, the values in hexadecimal: the script requires the same bytes for
  * every rank count. Usage: mpi_parity_check [SIDE] (the grid is SIDE x SIDE, 64 by default; the punches,
  * targets and surface scale with it). A failed check aborts all ranks. */
+#include "mpi_check.h"
+
 #include "indentmap/mpi.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
@@ -28,18 +30,6 @@
 #include <string.h>
 
 enum { MAX_STEPS = 4 };
-
-static int rank;
-
-static void check(int ok, const char *what, const char *detail)
-{
-    if (ok)
-        return;
-    fprintf(stderr, "rank %d: FAILED %s: %s\n", rank, what, detail);
-    MPI_Abort(MPI_COMM_WORLD, 1);
-}
-
-static void check_status(int status, const char *what) { check(status == IM_OK, what, im_last_error()); }
 
 enum kind { HALF_SPACE, PERIODIC, ADHESIVE };
 

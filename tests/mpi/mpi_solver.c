@@ -11,6 +11,8 @@
  * and .npy rows through MPI-IO against the serial reader and writer. Prints one line per case with
  * the load and the map's total in hexadecimal, so the script can check that they are the same
  * bits for every rank count. A failed check aborts all ranks. */
+#include "mpi_check.h"
+
 #include "indentmap/io.h"
 #include "indentmap/formats.h"
 #include "indentmap/mpi.h"
@@ -23,18 +25,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int rank;
-
-static void check(int ok, const char *what, const char *detail)
-{
-    if (ok)
-        return;
-    fprintf(stderr, "rank %d: FAILED %s: %s\n", rank, what, detail);
-    MPI_Abort(MPI_COMM_WORLD, 1);
-}
-
-static void check_status(int status, const char *what) { check(status == IM_OK, what, im_last_error()); }
 
 typedef struct scenario {
     const char *name;
