@@ -174,10 +174,7 @@ static void run_case(const history_case *c)
 
 int main(int argc, char **argv)
 {
-    int provided;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    im_mpi_init();
+    mpi_test_start(&argc, &argv);
     /* The sphere: reduced radius L = 3 patches (R = 8 L, w = K L^3 / (pi R^2)), lambda = 1 (sigma0 = lambda / 2
      * (pi w K^2 / R)^(1/3)); approaches in units of L^2 / R = 0.375 to D = 1.5, back to D = -1.6. */
     const double radius = 24, work = 4.0 / 3.0 * 27 / (M_PI * radius * radius);

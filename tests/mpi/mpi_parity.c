@@ -363,10 +363,7 @@ static void run_history(const history *h)
 
 int main(int argc, char **argv)
 {
-    int provided;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    im_mpi_init();
+    mpi_test_start(&argc, &argv);
     if (argc > 1)
         side = atoi(argv[1]);
     check(side >= 64, "grid side", "expected a side of at least 64 (the cascade's coarse grid is 32)");

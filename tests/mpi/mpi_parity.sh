@@ -3,12 +3,10 @@
 # ranks of one thread and 2 ranks of 2 OpenMP threads, then requires every run's lines (loads, approaches,
 # contact counts, iterations) to be the same bytes as one rank's.
 #   mpi_parity.sh MPIEXEC PROGRAM [SIDE]
-# Loopback only, oversubscribed (more ranks than cores), allowed as root (CI runs as root).
+# Open MPI as tests/mpi/open_mpi_env.sh sets it.
 set -euo pipefail
 mpiexec=$1 program=$2 side=${3:-64}
-export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1
-export OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_oob_tcp_if_include=lo
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source "$(dirname "$0")/open_mpi_env.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for ranks in 1 2 3 4 2x2; do

@@ -564,10 +564,7 @@ static void check_npy(const char *folder)
 
 int main(int argc, char **argv)
 {
-    int provided;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    im_mpi_init();
+    mpi_test_start(&argc, &argv);
     const double w_cone = 3.0, w_sphere = 2.0;
     const scenario cases[] = {
         {"cone-displacement-64x48", 64, 48, im_indenter_cone(80), IM_CONTROL_DISPLACEMENT, w_cone, 1, 0, 0, 0},

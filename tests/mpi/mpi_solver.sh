@@ -4,18 +4,13 @@
 # solver), or the RANKS given (N, or Nx2 for N ranks of 2 threads), then checks that every run gave the
 # same loads to the bit and the same contact counts (the first seven fields of each line).
 #   mpi_solver.sh MPIEXEC PROGRAM [RANKS...]
-# Loopback only, oversubscribed (more ranks than cores), allowed as root (CI runs as root).
+# Open MPI as tests/mpi/open_mpi_env.sh sets it.
 set -euo pipefail
 mpiexec=$1 program=$2
 shift 2
 runs=("$@")
 [ $# -gt 0 ] || runs=(1 2 3 4 2x2)
-export OMPI_MCA_btl=self,vader                 # shared memory and self: no network needed
-export OMPI_MCA_btl_vader_single_copy_mechanism=none  # containers forbid cross-process memory access
-export OMPI_MCA_rmaps_base_oversubscribe=1
-export OMPI_MCA_mpi_yield_when_idle=1          # waiting ranks yield the core (oversubscribed)
-export OMPI_MCA_oob_tcp_if_include=lo
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source "$(dirname "$0")/open_mpi_env.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for ranks in "${runs[@]}"; do

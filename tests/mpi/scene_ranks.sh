@@ -6,12 +6,10 @@
 # cannot write fails the run with that rank's message; a locked folder is refused as today; an
 # interrupted run (SIGINT to mpirun) keeps its members and --resume completes it.
 #   scene_ranks.sh MPIEXEC PATH_TO_INDENTMAP
-# Loopback only, oversubscribed (more ranks than cores), allowed as root (CI runs as root).
+# Open MPI as tests/mpi/open_mpi_env.sh sets it.
 set -uo pipefail
 mpiexec=$1 cli=$2
-export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1
-export OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_oob_tcp_if_include=lo
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+source "$(dirname "$0")/open_mpi_env.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAILED: $*" >&2; exit 1; }

@@ -1,0 +1,8 @@
+# Open MPI's settings for the tests that run mpirun (sourced): loopback only, oversubscribed (more ranks
+# than cores), allowed as root (CI runs as root).
+export OMPI_MCA_btl=self,vader                        # shared memory and self: no network needed
+export OMPI_MCA_btl_vader_single_copy_mechanism=none # containers forbid cross-process memory access
+export OMPI_MCA_rmaps_base_oversubscribe=1
+export OMPI_MCA_mpi_yield_when_idle=1                 # waiting ranks yield the core (oversubscribed)
+export OMPI_MCA_oob_tcp_if_include=lo
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
