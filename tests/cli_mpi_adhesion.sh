@@ -4,19 +4,12 @@
 # history on the whole surface (indent --full): every column of history.csv (the same iterations and patch
 # counts; loads, tensile forces and the theory beside them to 1e-9; seconds and convolutions, which the MPI
 # solver spends otherwise, aside; residuals to 1e-3 of theirs), run.json's pull-off, jumps and lost work, and
-# the same bytes on 1 and 3 ranks but for the seconds. Refused with one clear message: a periodic cell's
-# adhesion under mean pressures and with a hardness, a negative single approach, a bad list.
+# the same bytes on 1 and 3 ranks but for the seconds. Refused with one clear message: a negative single
+# approach, a bad list (a cell's adhesion under mean pressures or with a hardness: cli_mpi.sh).
 #   cli_mpi_adhesion.sh PATH_TO_INDENTMAP
 set -uo pipefail
 cli=$1
-"$cli" --help | grep -q mpi-indent || { echo "built without MPI: skipped"; exit 77; }
-mpiexec=$(command -v mpiexec || command -v mpirun) || { echo "no mpiexec: skipped"; exit 77; }
-source "$(dirname "$0")/mpi/open_mpi_env.sh"
-source "$(dirname "$0")/mpi/history_compare.sh"
-export OMP_NUM_THREADS=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() { echo "FAILED: $*" >&2; exit 1; }
+source "$(dirname "$0")/mpi/cli_history.sh"
 
 "$cli" surface --n 64 --m 48 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface"
 steps=(--approach 0.5,2,0.5,0,-0.1,-0.2,-0.3 --adhesion-work 0.02 --adhesion-range 0.2 --tol 1e-8)
@@ -53,20 +46,6 @@ sys.exit(not (r["periodic"] is False and r["control"] == "approach" and r["punch
 [ -s "$work/mpi3/force_distance.png" ] || fail "no force_distance.png"
 [ -s "$work/mpi3/force.npy" ] && [ -s "$work/mpi3/gap.npy" ] || fail "no last step's fields"
 
-# refused NAME PATTERN ARGUMENTS...: exit status 2 and one message from indentmap
-refused() {
-  local name=$1 pattern=$2
-  shift 2
-  timeout 300 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 32 "$@" > /dev/null 2> "$work/$name.err"
-  local status=$?
-  [ $status -eq 2 ] || fail "$name: exit $status, expected 2: $(cat "$work/$name.err")"
-  grep -q -- "$pattern" "$work/$name.err" || fail "$name: expected '$pattern': $(cat "$work/$name.err")"
-  [ "$(grep -c '^indentmap:' "$work/$name.err")" = 1 ] || fail "$name: not one message: $(cat "$work/$name.err")"
-}
-refused pressure "takes --periodic --mean-gap LIST or the half-space's --approach or --load LIST" \
-  --periodic --pressure 0.01 --adhesion-work 0.02 --adhesion-range 0.2
-refused cell_hardness "a cell's adhesion with plasticity is not available over ranks" \
-  --periodic --mean-gap 0.3 --hardness 0.1 --adhesion-work 0.02 --adhesion-range 0.2
 refused negative "--approach = -0.5: expected a number in \[0," --approach -0.5
 refused bad_list "--approach '0.5,x': 'x' is not a number" --approach 0.5,x --adhesion-work 0.02 --adhesion-range 0.2
 echo "mpi-indent's adhesive history is indent's on 1 and 3 ranks"

@@ -10,26 +10,20 @@
 # on 3 oversubscribed ranks each of its many trial solves waits in the passes' collectives).
 set -uo pipefail
 cli=$1
-"$cli" --help | grep -q mpi-indent || { echo "built without MPI: skipped"; exit 77; }
-mpiexec=$(command -v mpiexec || command -v mpirun) || { echo "no mpiexec: skipped"; exit 77; }
-source "$(dirname "$0")/mpi/open_mpi_env.sh"
-source "$(dirname "$0")/mpi/history_compare.sh"
-export OMP_NUM_THREADS=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() { echo "FAILED: $*" >&2; exit 1; }
+source "$(dirname "$0")/mpi/cli_history.sh"
 
 "$cli" surface --n 64 --m 48 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface"
 
-# same_history NAME ARGUMENTS...: indent --full's history and mpi-indent's on 1 and 3 ranks (DIR/NAME.serial,
-# NAME.1, NAME.3)
+# same_history NAME ARGUMENTS...: indent --full's history and mpi-indent's on 1 and 3 ranks at --tol $tol
+# (DIR/NAME.serial, NAME.1, NAME.3)
+tol=1e-8
 same_history() {
   local name=$1
   shift
-  "$cli" indent "$work/p.npy" --full "$@" --tol 1e-8 --out "$work/$name.serial" > /dev/null 2> "$work/$name.err" ||
+  "$cli" indent "$work/p.npy" --full "$@" --tol $tol --out "$work/$name.serial" > /dev/null 2> "$work/$name.err" ||
     fail "$name: indent: $(cat "$work/$name.err")"
   for k in 1 3; do
-    timeout 600 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --surface "$work/p.npy" "$@" --tol 1e-8 \
+    timeout 600 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --surface "$work/p.npy" "$@" --tol $tol \
       --out "$work/$name.$k" > "$work/$name.$k.csv" 2> "$work/$name.$k.err" ||
       fail "$name: mpi-indent on $k ranks (exit $?, 124: timed out): $(cat "$work/$name.$k.err")"
     cut -d, -f1-10,12- "$work/$name.$k.csv" > "$work/$name.$k.cut"
@@ -71,6 +65,9 @@ unloading_differs() {
 }
 
 if [ "${2:-}" = adhesive-load ]; then
+  # the walk ends within tol of the load or tol apart in the approach, where a steep N(w) leaves the load
+  # 1e-7 from the target at tol 1e-8 (serially and over ranks, 5e-8 apart): compared at 1e-9, solved at 1e-10
+  tol=1e-10
   same_history adhesive_load --load 1,5,1,-0.5,-1 --adhesion-work 0.02 --adhesion-range 0.2
   echo "mpi-indent's adhesive load-controlled history is indent's on 1 and 3 ranks"
   exit 0
@@ -89,16 +86,6 @@ same_history adhesive_capped --approach 0.5,2,0.5,0,-0.1,-0.2 --adhesion-work 0.
   --hardness 0.12
 unloading_differs adhesive_capped load 1 3
 
-# refused NAME PATTERN ARGUMENTS...: exit status 2 and one message from indentmap
-refused() {
-  local name=$1 pattern=$2
-  shift 2
-  timeout 300 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 32 "$@" > /dev/null 2> "$work/$name.err"
-  local status=$?
-  [ $status -eq 2 ] || fail "$name: exit $status, expected 2: $(cat "$work/$name.err")"
-  grep -q -- "$pattern" "$work/$name.err" || fail "$name: expected '$pattern': $(cat "$work/$name.err")"
-  [ "$(grep -c '^indentmap:' "$work/$name.err")" = 1 ] || fail "$name: not one message: $(cat "$work/$name.err")"
-}
 refused bad_loads "--load '2,x': 'x' is not a number" --load 2,x
 refused tension "--load '2,-1'" --load 2,-1 --hardness 0.1
 echo "mpi-indent's histories of the half-space are indent's on 1 and 3 ranks"

@@ -252,9 +252,9 @@ static int allocate_window(im_indentation *run)
     if (!run->window_gap0 || !run->pressure || !run->displacement || !run->plastic ||
         (run->options.hardness > 0 && !run->flow))
         return im_fail(IM_ENOMEM,
-                       "indentation window %d x %d: allocation of 4 x %.1f MiB failed (out of memory, or "
+                       "indentation window %d x %d: allocation of %d x %.1f MiB failed (out of memory, or "
                        "of the address space ulimit -v leaves)",
-                       w.nx, w.ny, sizeof(double) * (double)n / 1048576.0);
+                       w.nx, w.ny, run->options.hardness > 0 ? 5 : 4, sizeof(double) * (double)n / 1048576.0);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
@@ -262,7 +262,11 @@ static int allocate_window(im_indentation *run)
     im_solver_options repulsive = run->options;
     repulsive.adhesion_work = repulsive.adhesion_range = 0;
     repulsive.hardness = repulsive_cap(&run->options);
-    int status = run->ranks ? IM_OK : im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
+    int status = IM_OK;
+    if (run->ranks) /* the ranks' plan: it solves the run's repulsive problem (indentation_rows.h) */
+        run->plan->options.hardness = repulsive.hardness;
+    else
+        status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
         status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
     if (status == IM_OK && run->adhesion && run->ranks)
@@ -341,7 +345,6 @@ int indentation_create_on_rows(const indentation_rows *grid, const im_indenter *
                             .window = {0, 0, grid->nx, grid->rows},
                             .plan = grid->plan,
                             .ranks = grid->ranks};
-    grid->plan->options.hardness = repulsive_cap(&o);
     status = allocate_window(run);
     if (status != IM_OK) {
         im_indentation_free(run);
