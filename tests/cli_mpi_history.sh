@@ -14,15 +14,15 @@ source "$(dirname "$0")/mpi/cli_history.sh"
 
 "$cli" surface --n 64 --m 48 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface"
 
-# same_history NAME ARGUMENTS...: indent --full's history and mpi-indent's on 1 and 3 ranks at --tol $tol
-# (DIR/NAME.serial, NAME.1, NAME.3)
-tol=1e-8
+# same_history NAME ARGUMENTS...: indent --full's history and mpi-indent's on 1 and 3 ranks (and those of
+# $more_ranks) at --tol $tol (DIR/NAME.serial, NAME.1, NAME.3)
+tol=1e-8 more_ranks=""
 same_history() {
   local name=$1
   shift
   "$cli" indent "$work/p.npy" --full "$@" --tol $tol --out "$work/$name.serial" > /dev/null 2> "$work/$name.err" ||
     fail "$name: indent: $(cat "$work/$name.err")"
-  for k in 1 3; do
+  for k in 1 3 $more_ranks; do
     timeout 600 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --surface "$work/p.npy" "$@" --tol $tol \
       --out "$work/$name.$k" > "$work/$name.$k.csv" 2> "$work/$name.$k.err" ||
       fail "$name: mpi-indent on $k ranks (exit $?, 124: timed out): $(cat "$work/$name.$k.err")"
@@ -30,8 +30,10 @@ same_history() {
   done
   history_differences "$work/$name.serial/history.csv" "$work/$name.1/history.csv" > "$work/$name.diff" ||
     fail "$name: mpi-indent's history is not indent's: $(head -5 "$work/$name.diff")"
-  cmp -s "$work/$name.1.cut" "$work/$name.3.cut" ||
-    fail "$name: 1 and 3 ranks differ: $(diff "$work/$name.1.cut" "$work/$name.3.cut")"
+  for k in 3 $more_ranks; do
+    cmp -s "$work/$name.1.cut" "$work/$name.$k.cut" ||
+      fail "$name: 1 and $k ranks differ: $(diff "$work/$name.1.cut" "$work/$name.$k.cut")"
+  done
   cmp -s "$work/$name.3.csv" "$work/$name.3/history.csv" || fail "$name: history.csv is not stdout"
   if [ -e "$work/$name.serial/indentation.csv" ]; then # Oliver-Pharr's table of the unloading branches
     history_differences "$work/$name.serial/indentation.csv" "$work/$name.3/indentation.csv" > "$work/$name.diff" ||
@@ -74,7 +76,9 @@ if [ "${2:-}" = adhesive-load ]; then
 fi
 
 same_history approaches --approach 0.5,1.5,3,1.5,0.5
-same_history capped --approach 0.5,1.5,3,1.5,0.5 --hardness 0.12
+# also on 4 ranks: rank 0, which prints, then holds the rows above the axis only (FFTW-MPI's slabs of the 96
+# padded rows), not the deepest patch (seen to fail there with the plastic extremes not reduced over the ranks)
+more_ranks=4 same_history capped --approach 0.5,1.5,3,1.5,0.5 --hardness 0.12
 unloading_differs capped load 2 4
 same_history loads --load 2,10,30,10,2
 same_history capped_loads --load 2,10,30,10,2 --hardness 0.12
