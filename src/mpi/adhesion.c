@@ -1,6 +1,6 @@
 /* The adhesive passes over ranks (solver/adhesion.h: adhesion_ranks): the repulsive solve on the ranks, sums
- * in row order, reductions over the communicator and the rows just outside each rank's; and the state of the
- * steps that take them (a periodic cell's, flat.c, and an indentation's, indentation.c). */
+ * in row order, reductions over the communicator, the rows just outside each rank's and the edge check (also
+ * an indentation's steps over ranks, indentation.c); and the state of a periodic cell's adhesive steps (flat.c). */
 #include "mpi/mpi_internal.h"
 
 #include "indentmap/status.h"
