@@ -105,19 +105,8 @@ refused tiny_grid 2 "mpi-indent: --n 2 --m 512: the shorter side .* must exceed 
 # to the tolerance (residuals to 1e-3 of theirs; seconds and convolutions, which the MPI solver spends
 # otherwise, aside), and the same bytes on 1, 2 and 3 ranks but for the seconds.
 "$cli" surface --n 64 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface for --periodic"
-same_history() { # same_history SERIAL MPI: columns by name (history.h), 0 when they agree
-  awk -F, 'NR == FNR { for (c = 1; c <= NF; ++c) serial[FNR, c] = $c; rows = FNR; next }
-    FNR == 1 { for (c = 1; c <= NF; ++c) name[c] = $c; next }
-    { for (c = 1; c <= NF; ++c) {
-        a = serial[FNR, c]; b = $c
-        if (name[c] == "seconds" || name[c] == "convolutions" || a == b) continue
-        tol = name[c] == "residual" ? 1e-3 : 1e-8
-        d = a - b; if (d < 0) d = -d; s = a < 0 ? -a : a
-        if (a == "nan" || b == "nan" || name[c] ~ /^(step|contact_patches|iterations|patches|yielding_patches)$/ ||
-            d > tol * s + 1e-12) { print "row " FNR - 1 ", " name[c] ": indent " a ", mpi-indent " b; bad = 1 }
-      } }
-    END { exit bad || FNR != rows }' "$1" "$2"
-}
+source "$(dirname "$0")/mpi/history_compare.sh"
+same_history() { history_differences "$1" "$2" 1e-8; } # same_history SERIAL MPI: 0 when they agree
 periodic_case() { # periodic_case NAME ARGUMENTS...: indent --periodic against mpi-indent on 1, 2 and 3 ranks
   local name=$1
   shift
@@ -160,7 +149,7 @@ grep -q '"k_fit"' "$work/mpi_adhesion_2/run.json" && fail "an adhesive cell's ru
 [ -s "$work/mpi_adhesion_2/force_distance.png" ] || fail "mpi-indent --adhesion-work: no force_distance.png"
 refused adhesion_load 2 "mpi-indent: --adhesion-work takes --periodic --mean-gap LIST" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --pressure 0.01 --adhesion-work 0.004 --adhesion-range 0.1
-refused adhesion_cap 2 "mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not available over ranks" \
+refused adhesion_cap 2 "mpi-indent: --periodic --adhesion-work with --hardness: a cell's adhesion with plasticity is not available over ranks" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --hardness 0.1 --adhesion-work 0.004 --adhesion-range 0.1
 refused adhesion_range 2 "mpi-indent: --adhesion-work and --adhesion-range go together" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --adhesion-work 0.004

@@ -4,18 +4,12 @@
 # history on the whole surface (indent --full): every column of history.csv (the same iterations and patch
 # counts; loads, tensile forces and the theory beside them to 1e-9; seconds and convolutions, which the MPI
 # solver spends otherwise, aside; residuals to 1e-3 of theirs), run.json's pull-off, jumps and lost work, and
-# the same bytes on 1 and 3 ranks but for the seconds. Refused with one clear message: adhesion under load
-# control, an approach list without adhesion.
+# the same bytes on 1 and 3 ranks but for the seconds. Refused with one clear message: a negative single
+# approach, a bad list (a cell's adhesion under mean pressures or with a hardness: cli_mpi.sh).
 #   cli_mpi_adhesion.sh PATH_TO_INDENTMAP
 set -uo pipefail
 cli=$1
-"$cli" --help | grep -q mpi-indent || { echo "built without MPI: skipped"; exit 77; }
-mpiexec=$(command -v mpiexec || command -v mpirun) || { echo "no mpiexec: skipped"; exit 77; }
-source "$(dirname "$0")/mpi/open_mpi_env.sh"
-export OMP_NUM_THREADS=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() { echo "FAILED: $*" >&2; exit 1; }
+source "$(dirname "$0")/mpi/cli_history.sh"
 
 "$cli" surface --n 64 --m 48 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface"
 steps=(--approach 0.5,2,0.5,0,-0.1,-0.2,-0.3 --adhesion-work 0.02 --adhesion-range 0.2 --tol 1e-8)
@@ -28,17 +22,7 @@ for k in 1 3; do
   cut -d, -f1-10,12- "$work/mpi$k.csv" > "$work/mpi$k.cut"
 done
 
-# columns by name (history.h): 0 when every row agrees
-awk -F, 'NR == FNR { for (c = 1; c <= NF; ++c) serial[FNR, c] = $c; rows = FNR; next }
-  FNR == 1 { for (c = 1; c <= NF; ++c) name[c] = $c; next }
-  { for (c = 1; c <= NF; ++c) {
-      a = serial[FNR, c]; b = $c
-      if (name[c] == "seconds" || name[c] == "convolutions" || a == b) continue
-      tol = name[c] == "residual" ? 1e-3 : 1e-9
-      d = a - b; if (d < 0) d = -d; s = a < 0 ? -a : a
-      if (a == "nan" || b == "nan" || name[c] ~ /(step|patches|iterations|perimeter)$/ || d > tol * s + 1e-12) {
-        print "row " FNR - 1 ", " name[c] ": indent " a ", mpi-indent " b; bad = 1 } } }
-  END { exit bad || FNR != rows }' "$work/serial/history.csv" "$work/mpi1.csv" > "$work/diff" ||
+history_differences "$work/serial/history.csv" "$work/mpi1.csv" > "$work/diff" ||
   fail "mpi-indent's history is not indent's: $(head -5 "$work/diff")"
 cmp -s "$work/mpi1.cut" "$work/mpi3.cut" || fail "1 and 3 ranks differ: $(diff "$work/mpi1.cut" "$work/mpi3.cut")"
 cmp -s "$work/mpi3.csv" "$work/mpi3/history.csv" || fail "history.csv is not stdout"
@@ -56,25 +40,12 @@ awk -v s="$serial_summary" 'BEGIN { split(s, v, " "); exit !(v[1] > 0 && v[4] !=
   fail "expected a pull-off force and a jump-out: $serial_summary"
 python3 -c 'import json, sys
 r = json.load(open(sys.argv[1]))
-sys.exit(not (r["periodic"] is False and r["control"] == "displacement" and r["punch"] == {"kind": "cone", "alpha_degrees": 80}
+sys.exit(not (r["periodic"] is False and r["control"] == "approach" and r["punch"] == {"kind": "cone", "alpha_degrees": 80}
               and r["ranks"] == 3 and r["steps_completed"] == 7))' "$work/mpi3/run.json" ||
   fail "run.json: $(head -c 2000 "$work/mpi3/run.json")"
 [ -s "$work/mpi3/force_distance.png" ] || fail "no force_distance.png"
 [ -s "$work/mpi3/force.npy" ] && [ -s "$work/mpi3/gap.npy" ] || fail "no last step's fields"
 
-# refused NAME PATTERN ARGUMENTS...: exit status 2 and one message from indentmap
-refused() {
-  local name=$1 pattern=$2
-  shift 2
-  timeout 300 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 32 "$@" > /dev/null 2> "$work/$name.err"
-  local status=$?
-  [ $status -eq 2 ] || fail "$name: exit $status, expected 2: $(cat "$work/$name.err")"
-  grep -q -- "$pattern" "$work/$name.err" || fail "$name: expected '$pattern': $(cat "$work/$name.err")"
-  [ "$(grep -c '^indentmap:' "$work/$name.err")" = 1 ] || fail "$name: not one message: $(cat "$work/$name.err")"
-}
-refused load "takes --periodic --mean-gap LIST or the half-space's --approach LIST" \
-  --load 1 --adhesion-work 0.02 --adhesion-range 0.2
-refused list "--approach 0.5,1: a list of approaches is the half-space's adhesive history" --approach 0.5,1
 refused negative "--approach = -0.5: expected a number in \[0," --approach -0.5
 refused bad_list "--approach '0.5,x': 'x' is not a number" --approach 0.5,x --adhesion-work 0.02 --adhesion-range 0.2
 echo "mpi-indent's adhesive history is indent's on 1 and 3 ranks"

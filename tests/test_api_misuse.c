@@ -709,9 +709,10 @@ REPORT(im_mpi_flat_contact_gap, "run", im_mpi_flat_contact_gap(NULL, out_values)
 REPORT(im_mpi_flat_contact_step, "run", im_mpi_flat_contact_step(NULL, IM_CONTROL_LOAD, 0.1, &step_result))
 REPORT(im_mpi_flat_contact_adhesion, "run", im_mpi_flat_contact_adhesion(NULL, &options))
 static im_mpi_indentation *mpi_indentation_out;
-REPORT(im_mpi_indentation_create, "out", im_mpi_indentation_create(NULL, values, &cone, &options, NULL))
+REPORT(im_mpi_indentation_create, "out",
+       im_mpi_indentation_create(NULL, values, &cone, IM_CONTROL_DISPLACEMENT, 1, &options, NULL))
 REPORT(im_mpi_indentation_create, "solver",
-       im_mpi_indentation_create(NULL, values, &cone, NULL, &mpi_indentation_out))
+       im_mpi_indentation_create(NULL, values, &cone, IM_CONTROL_LOAD, 1, NULL, &mpi_indentation_out))
 ACCEPT(im_mpi_indentation_free, (im_mpi_indentation_free(NULL), 1))
 REPORT(im_mpi_indentation_step, "run", im_mpi_indentation_step(NULL, 0.1, &step_result))
 SAFE_RESULT(im_mpi_indentation_pressure, "run", im_mpi_indentation_pressure(NULL) == NULL)

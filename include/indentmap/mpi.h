@@ -161,37 +161,43 @@ int im_mpi_flat_contact_gap(const im_mpi_flat_contact *run, double *gap);
 int im_mpi_flat_contact_step(im_mpi_flat_contact *run, enum im_control control, double target, im_step_result *out);
 
 /* ---- An indentation of the half-space over ranks (solver.h, "Indentation histories") ----
- * im_indentation_create's history under displacement control on the whole surface (the serial run
- * with crop = 0), each rank holding its rows, optionally adhesive (solver.h, "Adhesion": the adhesive
- * passes of im_indentation_step, over the ranks): an approach, a retraction through the pull-off, each
- * step warm-started from the last. The same values as the serial steps to the tolerance, the same
- * iterations, the same bits for any rank count. */
+ * im_indentation_create's history on the whole surface (the serial run with crop = 0), each rank holding its
+ * rows: im_indentation_step's own step logic on the ranks' rows (its solves and sums over the ranks), so under
+ * displacement or load control, with the solver's hardness (plastic memory from step to step: unloading is
+ * elastic from the flattened surface; a load under the cap found by displacement-controlled solves on the
+ * approach) and optionally adhesive (solver.h, "Adhesion": the adhesive passes; under load control the forward
+ * walk of the approach; with a hardness the cap on the repulsive part), each step warm-started from the last.
+ * The same values as the serial steps to the tolerance, the same iterations, the same bits for any rank count. */
 typedef struct im_mpi_indentation im_mpi_indentation;
 
 /* Prepares the indentation of the surface whose rows [y0, y0 + rows) (im_mpi_solver_rows) this rank
  * passes in heights (units of delta; not referenced after the call) by punch, on a half-space solver
- * (not freed here; it must outlive the run). adhesion: NULL or adhesion_work = 0 for a repulsive
- * history, or options (checked whole, as im_solver_options_check) whose adhesion_work, adhesion_range
- * and adhesion_law make the steps adhesive (the solver's own options have none, as a serial plan's;
- * its tolerance rules the passes). IM_EINVAL for a periodic solver, a bad punch or invalid
- * adhesion, adhesion with the solver's hardness (adhesion with plasticity over ranks is not
- * available); IM_ENUMERIC naming a non-finite height; IM_ENOMEM. Collective. */
+ * (not freed here; it must outlive the run), under control IM_CONTROL_DISPLACEMENT or IM_CONTROL_LOAD up to
+ * largest_target (as im_indentation_create: the steps' targets lie in [0, largest_target], or with adhesion
+ * in [-largest_target, largest_target]). The run's options are the solver's (tol, E*, hardness); adhesion:
+ * NULL or adhesion_work = 0 for a repulsive history, or options whose adhesion_work, adhesion_range and
+ * adhesion_law make the steps adhesive (checked whole with the solver's, as im_solver_options_check). While
+ * the run lives, the solver's cap is the steps' (with adhesion H_p + sigma0 on the repulsive part; restored by
+ * im_mpi_indentation_free). IM_EINVAL for a periodic solver, a bad punch, control or largest target, or invalid
+ * adhesion; IM_ENUMERIC naming a non-finite height; IM_ENOMEM. Collective. */
 int im_mpi_indentation_create(im_mpi_solver *solver, const double *heights, const im_indenter *punch,
-                              const im_solver_options *adhesion, im_mpi_indentation **out);
+                              enum im_control control, double largest_target, const im_solver_options *adhesion,
+                              im_mpi_indentation **out);
 /* NULL is ignored. Not collective. */
 void im_mpi_indentation_free(im_mpi_indentation *run);
-/* One step at approach w (displacement control; with adhesion w may be negative: the punch pulled
- * away), as im_indentation_step: *out the same on every rank (area_ratio and load_star from the
- * smooth contact, mean_gap NaN, the plastic values 0; with adhesion the net load, the tensile force
- * and the adhesive and repulsive patches). IM_EINVAL for a non-finite w, or w < 0 without adhesion;
- * IM_EEDGE when the contact or the adhesive zone reaches the surface's outer row or column (naming
- * the patch); the solver's errors. Collective. */
-int im_mpi_indentation_step(im_mpi_indentation *run, double approach, im_step_result *out);
+/* One step at target (the approach w, or the load N; with adhesion either may be negative: the punch pulled
+ * away, a tension), as im_indentation_step: *out the same on every rank (area_ratio and load_star from the
+ * smooth contact, mean_gap NaN, the plastic values; with adhesion the net load, the tensile force and the
+ * adhesive and repulsive patches). IM_EINVAL for a target out of the run's range (or, under load control,
+ * past the pull-off); IM_EEDGE when the contact or the adhesive zone reaches the surface's outer row or
+ * column (naming the patch); the solver's errors. A failed step leaves the history the last step's.
+ * Collective. */
+int im_mpi_indentation_step(im_mpi_indentation *run, double target, im_step_result *out);
 /* This rank's rows of the net pressure of the last step (rows * nx values; owned by run; tensile
  * where negative), NULL for a NULL run. */
 const double *im_mpi_indentation_pressure(const im_mpi_indentation *run);
-/* This rank's rows of the gap g = g0 - w + u of the last step (u the net displacement) into gap.
- * IM_EINVAL for NULL. Not collective. */
+/* This rank's rows of the gap g = g0 - w + u of the last step (g0 with the plastic depth, u the net
+ * displacement) into gap. IM_EINVAL for NULL. Not collective. */
 int im_mpi_indentation_gap(const im_mpi_indentation *run, double *gap);
 
 /* gap0 = z(r) - h - min over the whole surface of (z - h), as solver.h defines it, for this rank's

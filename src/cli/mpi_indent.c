@@ -71,8 +71,7 @@ static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, O
 static void usage(FILE *stream)
 {
     fprintf(stream,
-            "usage: mpirun -n K indentmap mpi-indent (--approach W | --load N) [options]\n"
-            "       mpirun -n K indentmap mpi-indent --approach LIST --adhesion-work W --adhesion-range D [options]\n"
+            "usage: mpirun -n K indentmap mpi-indent (--approach W|LIST | --load N|LIST) [options]\n"
             "       mpirun -n K indentmap mpi-indent --periodic (--pressure LIST | --mean-gap LIST) [options]\n\n"
             "One indentation of one surface over K MPI ranks (each with its OpenMP threads): the whole\n"
             "grid is solved (no crop window), the result is the same to the bit for any K.\n"
@@ -83,10 +82,13 @@ static void usage(FILE *stream)
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
             "  --punch cone|sphere|flat   (default cone) --alpha DEG (default 80) --radius R (sphere,\n"
             "                  flat punch)\n"
-            "  --approach W | --load N   displacement or load control\n"
+            "  --approach W | --load N   displacement or load control: one step, or with a LIST\n"
+            "                  ('v1,v2,...' or 'first:last:count') indent --full's history, each step\n"
+            "                  warm-started from the last, printed and written as --periodic's\n"
             "  --hardness H    perfect plasticity: no patch carries more than H (units of E*'s stress);\n"
-            "                  with --load, Polonsky-Keer's load control with the cap (indent's search\n"
-            "                  of the approach is serial)\n"
+            "                  in a history with plastic memory from step to step (unloading is elastic\n"
+            "                  from the flattened surface); a load under the cap is found by\n"
+            "                  displacement-controlled solves on the approach, as indent's\n"
             "  --tol T --max-iter M      stopping rule (defaults 1e-6 as for indent and scenes, 10000)\n"
             "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
             "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
@@ -104,16 +106,17 @@ static void usage(FILE *stream)
             "                  once (h'rms, k of eq. (2)) and each step's forces (contact patches)\n"
             "  --adhesion-work W --adhesion-range D [--adhesion-law L]   adhesion as indent's (the\n"
             "                  Maugis-Dugdale law, or L = exponential), its passes over the ranks, with\n"
-            "                  --periodic --mean-gap LIST, or on the half-space with --approach LIST (indent\n"
-            "                  --full's history: approaches then retractions, negative ones pulling the punch\n"
-            "                  away, through the pull-off; printed and written as --periodic's, run.json with\n"
-            "                  the pull-off, the jumps and DIR/force_distance.png): the history's tensile\n"
-            "                  force and adhesive and repulsive patches, and the net forces in force.npy (not\n"
-            "                  with --hardness or under load control)\n");
+            "                  --periodic --mean-gap LIST (not with --hardness), or on the half-space with\n"
+            "                  --approach or --load LIST, with or without --hardness (indent --full's history:\n"
+            "                  approaches then retractions, negative ones pulling the punch away, through the\n"
+            "                  pull-off; negative loads a tension; run.json with the pull-off, the jumps and\n"
+            "                  DIR/force_distance.png): the history's tensile force and adhesive and repulsive\n"
+            "                  patches, and the net forces in force.npy\n");
 }
 
-/* --pressure or --mean-gap, or the half-space's adhesive --approach: a step list (front.h: steps_parse, as
- * indent's and a scene's; approaches may be negative, the punch pulled away). */
+/* --pressure or --mean-gap, or the half-space's --approach or --load LIST: a step list (front.h: steps_parse, as
+ * indent's and a scene's; with adhesion approaches and loads may be negative: the punch pulled away, the contact
+ * under tension). */
 static int steps_parse_list(mpi_indent_options *o, const char *text)
 {
     char error[512];
@@ -121,7 +124,7 @@ static int steps_parse_list(mpi_indent_options *o, const char *text)
         fprintf(stderr, "indentmap: mpi-indent: %s: out of memory\n", o->targets_option);
         return -1;
     }
-    const int negative = o->control == IM_CONTROL_DISPLACEMENT;
+    const int negative = o->adhesion_work > 0 && o->control != IM_CONTROL_MEAN_GAP;
     if (steps_parse_signed(o->targets_option, text, negative, o->targets, &o->target_count, error, sizeof error) == 0)
         return 0;
     fprintf(stderr, "indentmap: %s\n", error);
@@ -160,11 +163,11 @@ static int apply_option(int code, const char *arg, void *state)
         return 0;
     case OPT_ALPHA: o->punch_given = 1; return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->punch_given = 1; return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
-    case OPT_APPROACH: /* W, or with adhesion a LIST: read once the options are known (approach_targets) */
-        o->control = IM_CONTROL_DISPLACEMENT;
-        o->approach_text = arg;
+    case OPT_APPROACH: /* W or N, or a LIST: read once the options are known (half_space_targets) */
+    case OPT_LOAD:
+        o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
+        o->target_text = arg;
         return 0;
-    case OPT_LOAD: o->control = IM_CONTROL_LOAD; return cli_parse_double("--load", arg, 0, 1e300, &o->target);
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
     case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
@@ -309,7 +312,7 @@ static int check_periodic_options(mpi_indent_options *o)
                 "indentmap: mpi-indent: %s (over a periodic cell) needs --periodic; the half-space takes "
                 "--approach W or --load N\n",
                 o->targets_option);
-    else if (o->periodic && (!isnan(o->target) || o->approach_text))
+    else if (o->periodic && o->target_text)
         fprintf(stderr, "indentmap: mpi-indent --periodic takes mean pressures (--pressure LIST) or mean gaps "
                         "(--mean-gap LIST), not --approach or --load\n");
     else if (o->periodic && !o->targets_option)
@@ -322,45 +325,41 @@ static int check_periodic_options(mpi_indent_options *o)
     return -1;
 }
 
-/* Adhesion (indent's options): a periodic cell under mean gaps, the half-space under approaches. 0, or -1 with the
- * message said. */
+/* Adhesion (indent's options): a periodic cell under mean gaps, the half-space under approaches or loads (with
+ * a hardness too). 0, or -1 with the message said. */
 static int check_adhesion_options(const mpi_indent_options *o)
 {
     const int adhesion = o->adhesion_work > 0;
     const int mean_gaps = o->periodic && o->targets_option && o->control == IM_CONTROL_MEAN_GAP;
-    const int approaches = !o->periodic && o->control == IM_CONTROL_DISPLACEMENT;
+    const int half_space = !o->periodic && o->target_text;
     if (adhesion != (o->adhesion_range > 0))
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work and --adhesion-range go together\n");
     else if (o->adhesion_law_given && !adhesion)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-law goes with --adhesion-work and --adhesion-range\n");
-    else if (adhesion && !mean_gaps && !approaches)
+    else if (adhesion && !mean_gaps && !half_space)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work takes --periodic --mean-gap LIST or the "
-                        "half-space's --approach LIST (adhesion under load control, --load or --pressure, is "
-                        "indent's, serial)\n");
-    else if (adhesion && o->solver.hardness > 0)
-        fprintf(stderr, "indentmap: mpi-indent: --adhesion-work with --hardness: adhesion with plasticity is not "
-                        "available over ranks (it is indent's, serial)\n");
+                        "half-space's --approach or --load LIST (a periodic cell's adhesion under mean pressures, "
+                        "--pressure, is indent's, serial)\n");
+    else if (adhesion && o->periodic && o->solver.hardness > 0)
+        fprintf(stderr, "indentmap: mpi-indent: --periodic --adhesion-work with --hardness: a cell's adhesion with "
+                        "plasticity is not available over ranks (it is indent --periodic's, serial; the "
+                        "half-space's is)\n");
     else
         return 0;
     return -1;
 }
 
-/* --approach: W, or with adhesion the history's LIST (the half-space's approach and retraction). */
-static int approach_targets(mpi_indent_options *o)
+/* The half-space's --approach or --load: one value W or N (one step), or a LIST, indent's history (with
+ * adhesion always a history). */
+static int half_space_targets(mpi_indent_options *o)
 {
-    if (!o->approach_text || o->control != IM_CONTROL_DISPLACEMENT)
+    if (!o->target_text || o->periodic)
         return 0;
-    if (!(o->adhesion_work > 0) && strpbrk(o->approach_text, ",:")) {
-        fprintf(stderr,
-                "indentmap: mpi-indent: --approach %s: a list of approaches is the half-space's adhesive history "
-                "(with --adhesion-work and --adhesion-range); without adhesion give one approach W\n",
-                o->approach_text);
-        return -1;
-    }
-    if (!(o->adhesion_work > 0))
-        return cli_parse_double("--approach", o->approach_text, 0, 1e300, &o->target);
-    o->targets_option = "--approach";
-    return steps_parse_list(o, o->approach_text);
+    const char *option = o->control == IM_CONTROL_LOAD ? "--load" : "--approach";
+    if (!(o->adhesion_work > 0) && !strpbrk(o->target_text, ",:"))
+        return cli_parse_double(option, o->target_text, 0, 1e300, &o->target);
+    o->targets_option = option;
+    return steps_parse_list(o, o->target_text);
 }
 
 static int parse(int argc, char **argv, mpi_indent_options *o)
@@ -377,7 +376,7 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
         return -1;
     }
-    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0 || approach_targets(o) != 0)
+    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0 || half_space_targets(o) != 0)
         return -1;
     if (isnan(o->target) && !o->periodic && !o->targets) {
         fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");

@@ -13,10 +13,10 @@ typedef struct mpi_indent_options {
     im_indenter punch;
     int punch_given;            /* --punch, --alpha or --radius */
     enum im_control control;    /* --approach, --load; --periodic: --pressure (load), --mean-gap */
-    const char *approach_text;  /* --approach: W, or with adhesion a LIST */
+    const char *target_text;    /* the half-space's --approach or --load: W or N, or a LIST (a history) */
     double target;              /* w or N; NaN until given (and for a history) */
     int periodic;               /* --periodic: a rigid flat on the periodic cell, a history of targets */
-    const char *targets_option; /* --pressure or --mean-gap, or the half-space's adhesive --approach; NULL: none */
+    const char *targets_option; /* --pressure or --mean-gap, or the half-space's --approach or --load LIST */
     double *targets;            /* its step list (mean pressures, mean gaps or approaches): a history */
     int target_count;
     im_solver_options solver;
@@ -34,7 +34,8 @@ int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *so
                             const double *gap);
 
 /* The history of o's targets on the surface of heights (this rank's rows): --periodic, the cell under a rigid
- * flat on a periodic solver; else the half-space's adhesive approaches by o's punch. On rank 0 the history CSV
+ * flat on a periodic solver; else the half-space's approaches or loads by o's punch (plastic memory with a
+ * hardness, adhesion). On rank 0 the history CSV
  * on stdout and, with --out DIR, DIR/history.csv appended step by step and DIR/run.json (indent's schema); the
  * last step's fields in DIR. Collective. */
 int mpi_indent_history(const mpi_indent_options *o, im_mpi_solver *solver, const double *heights);

@@ -1,12 +1,13 @@
 /* indentmap mpi-indent's histories over MPI ranks: --periodic, indent --periodic's history of a rigid flat on
- * a periodic cell (mpi.h: im_mpi_flat_contact_step), and the half-space's adhesive approach and retraction by a
- * punch (im_mpi_indentation_step), written in indent's schema: the history's columns (history.h) on stdout and
+ * a periodic cell (mpi.h: im_mpi_flat_contact_step), and the half-space's approaches or loads by a punch, with
+ * plastic memory and adhesion (im_mpi_indentation_step), written in indent's schema: the history's columns (history.h) on stdout and
  * in DIR/history.csv, and DIR/run.json, with front.h's pieces. Built only with MPI. */
 #include "cli/mpi_indent.h"
 
 #if IM_HAVE_MPI
 
 #include "front/front.h"
+#include "front/indent_run.h"
 #include "mpi/agree.h"
 
 #include "indentmap/history.h"
@@ -66,7 +67,7 @@ static int measure_surface(history_run *run, const double *heights)
 static int prepare_targets(history_run *run)
 {
     const mpi_indent_options *o = run->o;
-    const int pressures = o->control == IM_CONTROL_LOAD; /* --pressure */
+    const int pressures = o->periodic && o->control == IM_CONTROL_LOAD; /* --pressure */
     run->targets = malloc(sizeof(double) * (size_t)o->target_count);
     run->rows = calloc((size_t)o->target_count, sizeof *run->rows);
     if (!run->targets || !run->rows)
@@ -98,11 +99,6 @@ static json_t *adhesion_block(const history_run *run)
     return law;
 }
 
-static const char *control_name(enum im_control control)
-{
-    return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean_gap" : "displacement";
-}
-
 /* run.json's blocks beside the common record: indent --periodic's (surface, punch, control, targets,
  * periodic, threads, history, theory_slope_rms, units, inputs) and the ranks. */
 static int add_blocks(const history_run *run, json_t *root)
@@ -115,9 +111,9 @@ static int add_blocks(const history_run *run, json_t *root)
         "{s:{s:s, s:i, s:i, s:f, s:s}, s:{s:s, s:f}, s:s, s:o, s:b, s:i, s:s, s:{s:f, s:s, s:s}, s:o, s:n, s:o}",
         "surface", "source", o->surface_file ? o->surface_file : "synthesised over the ranks", "nx", run->shape.nx,
         "ny", run->shape.ny, "delta", run->shape.delta, "unit", "", "punch", "kind", im_punch_name(run->punch.kind),
-        "radius", run->punch.radius, "control", control_name(o->control), "targets", targets, "periodic", o->periodic,
-        "threads", omp_get_max_threads(), "history", "history.csv", "theory_slope_rms", "value", run->slope_rms,
-        "definition", "spectral", "chosen_by",
+        "radius", run->punch.radius, "control", indent_target_name(o->control), "targets", targets, "periodic",
+        o->periodic, "threads", omp_get_max_threads(), "history", "history.csv", "theory_slope_rms", "value",
+        run->slope_rms, "definition", "spectral", "chosen_by",
         o->periodic ? "default: a periodic cell" : "mpi-indent: spectral (indent's default for a generated surface)",
         "units", indent_units_record("", "", 1), "indentation", "adhesion", adhesion_block(run));
     if (!blocks)
@@ -192,7 +188,20 @@ static int run_step(history_run *run, int i)
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }
 
-/* Rank 0, with --out: k of eq. (2) (elastic steps only, as indent) and the record's end. */
+/* Rank 0: the half-space's Oliver-Pharr analysis of the unloading branches (indentation.csv and
+ * load_displacement.{png,pdf}), as indent's; said, not the run's error, when it fails. */
+static void write_analysis(const history_run *run, int done)
+{
+    int branches = 0;
+    if (analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star, "", "",
+                       NULL, &branches) != IM_OK)
+        fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
+    else if (branches > 0)
+        json_object_set_new(run->record, "indentation", json_string("indentation.csv"));
+}
+
+/* Rank 0, with --out: the adhesion's summary, the half-space's analysis or a cell's k of eq. (2) (elastic
+ * steps only, as indent) and the record's end. */
 static int finish_record(history_run *run, int done, int status)
 {
     if (run->rank != 0 || !run->record)
@@ -205,8 +214,10 @@ static int finish_record(history_run *run, int done, int status)
         if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
                                         "", NULL, &summary) != IM_OK)
             fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
-    } else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
-                                                                run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
+    } else if (!run->o->periodic)
+        write_analysis(run, done);
+    else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
+                                                              run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
     if (status != IM_OK)
         im_fail(status, "%s", message); /* the step's error, not the fit's */
@@ -254,7 +265,8 @@ static int prepare_contact(history_run *run, const double *heights)
     const mpi_indent_options *o = run->o;
     const im_solver_options adhesive = adhesive_options(o);
     if (!o->periodic)
-        return im_mpi_indentation_create(run->solver, heights, &o->punch, &adhesive, &run->indentation);
+        return im_mpi_indentation_create(run->solver, heights, &o->punch, o->control,
+                                         steps_largest(o->targets, o->target_count), &adhesive, &run->indentation);
     int status = im_mpi_flat_contact_create(run->solver, heights, &run->cell);
     if (status == IM_OK && o->adhesion_work > 0)
         status = im_mpi_flat_contact_adhesion(run->cell, &adhesive);

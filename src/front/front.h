@@ -48,6 +48,9 @@ enum { STEPS_MAX = IM_HISTORY_MAX_STEPS };
  * 0, or -1 with a message "NAME 'TEXT': expected ..." in error (name is the option or key:
  * "--approach", "steps"). */
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t error_size);
+/* The largest |value| of a step list: a history's largest target (im_indentation_create's; approaches and loads
+ * below 0 pull away, with adhesion). */
+double steps_largest(const double *values, int count);
 /* The same, with negative values too when negative is nonzero (approaches pulling away, with adhesion). */
 int steps_parse_signed(const char *name, const char *text, int negative, double *values, int *count, char *error,
                        size_t error_size);

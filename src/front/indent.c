@@ -394,15 +394,6 @@ static int write_viewer_page(const indent_run_state *s, const run_folder *folder
     return run_folder_page(folder, title, s->options->page_embed, status);
 }
 
-/* The largest |target| (approaches below 0 pull away, with adhesion). */
-static double largest(const double *v, int n)
-{
-    double m = 0;
-    for (int i = 0; i < n; ++i)
-        m = fmax(m, fabs(v[i]));
-    return m;
-}
-
 /* The solver on the prepared surface, the folder and the record, the steps, the page. */
 static int run_on(indent_run_state *s, const im_field *surface, const im_theory_interface *rough)
 {
@@ -412,7 +403,7 @@ static int run_on(indent_run_state *s, const im_field *surface, const im_theory_
     json_t *record = NULL;
     int status = o->frames ? im_render_open((im_render_backend)o->backend, &context) : IM_OK;
     if (status == IM_OK)
-        status = im_indentation_create(surface, &s->punch, o->control, largest(s->targets, o->target_count),
+        status = im_indentation_create(surface, &s->punch, o->control, steps_largest(s->targets, o->target_count),
                                        &o->solver, &run);
     if (status == IM_OK && o->solver.adhesion_work > 0)
         warn_if_zone_unresolved(s);

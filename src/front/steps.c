@@ -117,3 +117,11 @@ int steps_parse_signed(const char *name, const char *text, int negative, double 
         item = comma + 1;
     }
 }
+
+double steps_largest(const double *values, int count)
+{
+    double largest = 0;
+    for (int i = 0; i < count; ++i)
+        largest = fmax(largest, fabs(values[i]));
+    return largest;
+}

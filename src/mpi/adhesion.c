@@ -1,16 +1,16 @@
 /* The adhesive passes over ranks (solver/adhesion.h: adhesion_ranks): the repulsive solve on the ranks, sums
- * in row order, reductions over the communicator and the rows just outside each rank's; and the state of the
- * steps that take them (a periodic cell's, flat.c, and an indentation's, indentation.c). */
+ * in row order, reductions over the communicator, the rows just outside each rank's and the edge check (also
+ * an indentation's steps over ranks, indentation.c); and the state of a periodic cell's adhesive steps (flat.c). */
 #include "mpi/mpi_internal.h"
 
 #include "indentmap/status.h"
 
 #include <stdlib.h>
 
-static int solve_over_ranks(void *context, const double *gap0, double w, double *pressure, double *displacement,
-                            im_solve_result *result)
+static int solve_over_ranks(void *context, const double *gap0, enum im_control control, double target,
+                            double *pressure, double *displacement, im_solve_result *result)
 {
-    return im_mpi_solver_solve(context, gap0, IM_CONTROL_DISPLACEMENT, w, pressure, displacement, result);
+    return im_mpi_solver_solve(context, gap0, control, target, pressure, displacement, result);
 }
 
 static void convolve_over_ranks(void *context, const double *in, double *out) { mpi_convolve(context, in, out); }
@@ -58,6 +58,11 @@ static void outer_rows_over_ranks(void *context, const double *field, double *ab
                  MPI_STATUS_IGNORE);
 }
 
+static long first_on_edge_over_ranks(void *context, const double *values)
+{
+    return mpi_first_on_edge(context, values);
+}
+
 void mpi_adhesion_ranks(im_mpi_solver *s, adhesion_ranks *out)
 {
     *out = (adhesion_ranks){.context = s,
@@ -65,7 +70,8 @@ void mpi_adhesion_ranks(im_mpi_solver *s, adhesion_ranks *out)
                             .convolve = convolve_over_ranks,
                             .sum = sum_over_ranks,
                             .combine = combine_over_ranks,
-                            .outer_rows = outer_rows_over_ranks};
+                            .outer_rows = outer_rows_over_ranks,
+                            .first_on_edge = first_on_edge_over_ranks};
 }
 
 /* IM_EINVAL for invalid options, no work, or the solver's hardness. */

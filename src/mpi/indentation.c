@@ -1,46 +1,95 @@
-/* An indentation history of the half-space over ranks (mpi.h): im_indentation_step's displacement-controlled
- * steps on the whole surface, each rank holding its rows, the adhesive ones by solver/adhesion.c's passes over
- * the ranks (adhesion.c: mpi_adhesion). */
+/* An indentation history of the half-space over ranks (mpi.h): im_indentation_step's steps on the whole surface,
+ * each rank holding its rows, by the serial step logic itself (solver/indentation_rows.h: plastic memory, load
+ * control and its searches, adhesion), its solves and reductions over the ranks (adhesion.c: mpi_adhesion_ranks). */
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
-#include "solver/flat.h"
+#include "solver/indentation_rows.h"
 
 #include "indentmap/status.h"
 
-#include <limits.h>
 #include <stdlib.h>
 
 struct im_mpi_indentation {
-    im_mpi_solver *solver; /* the caller's */
-    im_indenter punch;
-    double *gap0, *pressure, *displacement; /* this rank's rows: pressure and displacement the repulsive parts */
-    double approach;                        /* the last step's */
-    mpi_adhesion adhesion;                  /* state NULL: a repulsive history */
+    im_mpi_solver *solver;  /* the caller's */
+    double solver_hardness; /* its own cap, restored when the run is freed (the steps set theirs) */
+    adhesion_ranks ranks;   /* the steps' solves and reductions over the solver's ranks */
+    im_indentation *steps;  /* the serial steps on this rank's rows */
+    double *net_pressure;   /* this rank's rows: the last step's net pressure (tensile where negative) */
 };
 
 void im_mpi_indentation_free(im_mpi_indentation *run)
 {
     if (!run)
         return;
-    free(run->gap0);
-    free(run->pressure);
-    free(run->displacement);
-    mpi_adhesion_free(&run->adhesion);
+    if (run->solver)
+        run->solver->plan.options.hardness = run->solver_hardness;
+    im_indentation_free(run->steps);
+    free(run->net_pressure);
     free(run);
 }
 
-static int allocate(const im_mpi_solver *s, im_mpi_indentation *run)
+/* max h - min h over the whole surface (the bound of a load-controlled approach, as serially). */
+static double height_range(const im_mpi_solver *s, const double *heights)
 {
+    const size_t n = (size_t)s->rows * s->nx;
+    double extremes[2] = {-INFINITY, -INFINITY}; /* the largest height and minus the least */
+    for (size_t i = 0; i < n; ++i) {
+        extremes[0] = fmax(extremes[0], heights[i]);
+        extremes[1] = fmax(extremes[1], -heights[i]);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, extremes, 2, MPI_DOUBLE, MPI_MAX, s->comm);
+    return extremes[0] + extremes[1];
+}
+
+/* The run's options: the solver's (tol, E*, hardness) with the adhesion's work, range and law. */
+static im_solver_options run_options(const im_mpi_solver *s, const im_solver_options *adhesion)
+{
+    im_solver_options o = s->plan.options;
+    if (adhesion && adhesion->adhesion_work != 0) {
+        o.adhesion_work = adhesion->adhesion_work;
+        o.adhesion_range = adhesion->adhesion_range;
+        o.adhesion_law = adhesion->adhesion_law;
+    }
+    return o;
+}
+
+/* The serial steps on this rank's rows of g0. Collective. */
+static int create_steps(im_mpi_indentation *run, const double *heights, const im_indenter *punch,
+                        enum im_control control, double largest_target, const im_solver_options *adhesion)
+{
+    im_mpi_solver *s = run->solver;
     const size_t n = (size_t)s->rows * s->nx + 1; /* + 1: ranks without surface rows */
-    run->gap0 = malloc(sizeof(double) * n);
-    run->pressure = calloc(n, sizeof(double));
-    run->displacement = calloc(n, sizeof(double));
-    const int ok = run->gap0 && run->pressure && run->displacement;
-    return ok ? IM_OK : im_fail(IM_ENOMEM, "distributed indentation %d x %d: rank %d's rows", s->nx, s->ny, s->rank);
+    double *gap0 = malloc(sizeof(double) * n);
+    run->net_pressure = calloc(n, sizeof(double));
+    int status = mpi_collective_status(s->comm, gap0 && run->net_pressure
+                                                    ? IM_OK
+                                                    : im_fail(IM_ENOMEM,
+                                                              "distributed indentation %d x %d: rank "
+                                                              "%d's rows",
+                                                              s->nx, s->ny, s->rank));
+    if (status == IM_OK)
+        status = im_mpi_undeformed_gap(s, heights, punch, gap0);
+    if (status == IM_OK) {
+        mpi_adhesion_ranks(s, &run->ranks);
+        const indentation_rows grid = {.nx = s->nx,
+                                       .ny = s->ny,
+                                       .rows = s->rows,
+                                       .delta = s->delta,
+                                       .gap0 = gap0,
+                                       .height_range = height_range(s, heights),
+                                       .plan = &s->plan,
+                                       .ranks = &run->ranks};
+        const im_solver_options options = run_options(s, adhesion);
+        status = mpi_collective_status(s->comm, indentation_create_on_rows(&grid, punch, control, largest_target,
+                                                                           &options, &run->steps));
+    }
+    free(gap0);
+    return status;
 }
 
 int im_mpi_indentation_create(im_mpi_solver *s, const double *heights, const im_indenter *punch,
-                              const im_solver_options *adhesion, im_mpi_indentation **out)
+                              enum im_control control, double largest_target, const im_solver_options *adhesion,
+                              im_mpi_indentation **out)
 {
     ARG_REQUIRE(out, "out");
     *out = NULL;
@@ -51,90 +100,50 @@ int im_mpi_indentation_create(im_mpi_solver *s, const double *heights, const im_
         return im_fail(IM_EINVAL, "distributed indentation: the solver solves a periodic cell; expected one made "
                                   "with periodic = 0 (the half-space; a cell's steps: im_mpi_flat_contact_step)");
     im_mpi_indentation *run = calloc(1, sizeof *run);
-    int status = run ? allocate(s, run) : im_fail(IM_ENOMEM, "distributed indentation");
-    status = mpi_collective_status(s->comm, status);
-    if (status == IM_OK)
-        status = im_mpi_undeformed_gap(s, heights, punch, run->gap0);
-    if (status == IM_OK && adhesion && adhesion->adhesion_work != 0)
-        status = mpi_adhesion_create(s, adhesion, &run->adhesion);
+    int status = mpi_collective_status(s->comm, run ? IM_OK : im_fail(IM_ENOMEM, "distributed indentation"));
+    if (status != IM_OK) {
+        free(run);
+        return status;
+    }
+    run->solver = s;
+    run->solver_hardness = s->plan.options.hardness;
+    status = create_steps(run, heights, punch, control, largest_target, adhesion);
     if (status != IM_OK) {
         im_mpi_indentation_free(run);
         return status;
     }
-    run->solver = s;
-    run->punch = *punch;
     *out = run;
     return IM_OK;
 }
 
-/* IM_EEDGE when the adhesive zone reaches the surface's outer row or column (indentation.c: check_zone). */
-static int check_zone(const im_mpi_indentation *run)
-{
-    const im_mpi_solver *s = run->solver;
-    const long first = mpi_first_on_edge(s, run->adhesion.state->share);
-    if (first == LONG_MAX)
-        return IM_OK;
-    return im_fail(IM_EEDGE,
-                   "the adhesive zone reached the edge of the surface at patch (%ld, %ld) (approach %g): the "
-                   "surface is too small for this step",
-                   first % s->nx, first / s->nx, run->approach);
-}
-
-static int solve_step(im_mpi_indentation *run, double approach, im_solve_result *solve)
-{
-    im_mpi_solver *s = run->solver;
-    if (run->adhesion.state)
-        return adhesion_solve(run->adhesion.state, &s->plan, run->gap0, approach, run->pressure, run->displacement,
-                              solve);
-    return im_mpi_solver_solve(s, run->gap0, IM_CONTROL_DISPLACEMENT, approach, run->pressure, run->displacement,
-                               solve);
-}
-
-/* *out from the step's solve, as indentation.c's fill_step on the half-space without plastic memory. */
-static void fill_step(im_mpi_indentation *run, const im_solve_result *solve, im_step_result *out)
-{
-    const im_mpi_solver *s = run->solver;
-    const double d2 = s->delta * s->delta;
-    const double area = im_indenter_area_for_load(&run->punch, s->plan.options.e_star, solve->load);
-    step_result_from_solve(solve, area, d2, 0, out);
-    out->mean_gap = NAN;
-    if (run->adhesion.state)
-        mpi_adhesion_values(&run->adhesion, s, run->pressure, out);
-}
-
-int im_mpi_indentation_step(im_mpi_indentation *run, double approach, im_step_result *out)
+int im_mpi_indentation_step(im_mpi_indentation *run, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
-    const int adhesive = run->adhesion.state != NULL;
-    if (!(isfinite(approach) && (adhesive || approach >= 0)))
-        return im_fail(IM_EINVAL, "approach = %g: expected a finite value%s", approach,
-                       adhesive ? "" : " >= 0 (a negative one only with adhesion)");
-    im_solve_result solve = {0};
-    int status = solve_step(run, approach, &solve);
-    run->approach = solve.approach;
-    if (status == IM_OK)
-        status = im_mpi_check_edge(run->solver, run->pressure);
-    if (status == IM_OK && adhesive)
-        status = check_zone(run);
-    fill_step(run, &solve, out);
+    /* the steps' decisions are global (every rank the same); only an allocation may fail on one rank */
+    int status = mpi_collective_status(run->solver->comm, im_indentation_step(run->steps, target, out));
+    const indentation_rows_state state = indentation_rows_state_of(run->steps);
+    const size_t n = (size_t)run->solver->rows * run->solver->nx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; ++i)
+        run->net_pressure[i] = adhesion_net_pressure(state.adhesion, i, state.pressure[i]);
     return status;
 }
 
 const double *im_mpi_indentation_pressure(const im_mpi_indentation *run)
 {
     ARG_REQUIRE_OR(run, "run", NULL);
-    return run->adhesion.state ? run->adhesion.net_pressure : run->pressure;
+    return run->net_pressure;
 }
 
 int im_mpi_indentation_gap(const im_mpi_indentation *run, double *gap)
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(gap, "gap");
+    const indentation_rows_state state = indentation_rows_state_of(run->steps);
     const size_t n = (size_t)run->solver->rows * run->solver->nx;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
-        gap[i] = run->gap0[i] - run->approach +
-                 adhesion_net_displacement(run->adhesion.state, i, run->displacement[i]);
+        gap[i] = state.gap0[i] - state.approach + adhesion_net_displacement(state.adhesion, i, state.displacement[i]);
     return IM_OK;
 }

@@ -76,7 +76,7 @@ void mpi_cascade_free(im_mpi_solver *solver);
 /* The adhesive passes of a state over this solver's ranks (adhesion.c): out refers to s. */
 void mpi_adhesion_ranks(im_mpi_solver *s, adhesion_ranks *out);
 
-/* The adhesion of a history's steps over the ranks (adhesion.c): its state on this rank's rows, whose passes
+/* The adhesion of a periodic cell's steps over the ranks (adhesion.c): its state on this rank's rows, whose passes
  * run over the solver's ranks, and the net pressure of the last step. Kept where it was made (the state refers
  * to ranks). */
 typedef struct mpi_adhesion {

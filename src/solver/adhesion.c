@@ -271,7 +271,8 @@ static int repulsive_solve(const adhesion_state *a, im_solver_plan *plan, double
                            double *displacement, im_solve_result *result)
 {
     if (a->ranks)
-        return a->ranks->solve(a->ranks->context, a->gap0, w, pressure, displacement, result);
+        return a->ranks->solve(a->ranks->context, a->gap0, IM_CONTROL_DISPLACEMENT, w, pressure, displacement,
+                               result);
     return im_solver_solve(plan, a->gap0, IM_CONTROL_DISPLACEMENT, w, pressure, displacement, result);
 }
 

@@ -6,14 +6,15 @@
 
 #include "indentmap/solver.h"
 
-/* Over ranks, each holding rows of the grid: the solve and what the passes need of the whole grid. Every
- * reduction is over all ranks and in a fixed order, so every rank takes the same decisions (mpi/flat.c). */
+/* Over ranks, each holding rows of the grid: the solve and what the passes (and an indentation's steps over
+ * ranks, indentation_rows.h) need of the whole grid. Every reduction is over all ranks and in a fixed order, so
+ * every rank takes the same decisions (mpi/flat.c, mpi/indentation.c). */
 enum adhesion_combine { ADHESION_MIN, ADHESION_MAX, ADHESION_SUM };
 typedef struct adhesion_ranks {
     void *context;
-    /* the repulsive solve at approach w > 0 on gap0 (pressure and displacement: warm in, solution out) */
-    int (*solve)(void *context, const double *gap0, double w, double *pressure, double *displacement,
-                 im_solve_result *result);
+    /* the repulsive solve on gap0 (im_solver_solve's arguments; pressure and displacement: warm in, solution out) */
+    int (*solve)(void *context, const double *gap0, enum im_control control, double target, double *pressure,
+                 double *displacement, im_solve_result *result);
     void (*convolve)(void *context, const double *in, double *out); /* out = K in */
     double (*sum)(void *context, const double *field);              /* over the grid, in row order */
     /* values[0..count) replaced by their minimum, maximum or sum over the ranks */
@@ -21,6 +22,8 @@ typedef struct adhesion_ranks {
     /* the rows of field just outside this rank's: above (its first row - 1) and below (its last + 1),
      * wrapping around a periodic cell, NaN off the grid */
     void (*outer_rows)(void *context, const double *field, double *above, double *below);
+    /* the first patch y nx + x (row-major) on the grid's outer row or column where values > 0, or LONG_MAX */
+    long (*first_on_edge)(void *context, const double *values);
 } adhesion_ranks;
 
 /* The adhesive zone Z (patches where the stress sigma0 = w / delta_c pulls the surface up: repulsive

@@ -5,12 +5,15 @@
 #include "core/summation.h"
 #include "solver/adhesion.h"
 #include "solver/flat.h"
+#include "solver/indentation_rows.h"
+#include "solver/plan.h"
 #include "solver/search.h"
 #include "solver/step_window.h"
 
 #include "indentmap/status.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +31,7 @@ struct im_indentation {
     im_window window;
     double *window_gap0, *pressure, *displacement; /* window grid; window_gap0 includes the plastic depth */
     double *plastic;     /* window grid: plastic depth accumulated over the steps (>= 0, never decreases) */
+    double *flow;        /* window grid, with a hardness: the last step's depth increments (their ordered sum) */
     double plastic_work; /* H_p delta^2 times the sum of the depth increments: the energy dissipated */
     im_solver_plan *plan;
     im_solver_plan *full_plan; /* made at the first im_indentation_fields_full: the whole grid's u */
@@ -37,7 +41,34 @@ struct im_indentation {
     /* adhesion under load control: the solution of the last accepted try and of the step's start (adhesion.h) */
     double *marked_pressure[2], *marked_displacement[2];
     step_window *steps; /* displacement control on the CPU engine: each step on the box it can touch */
+    /* NULL: one process holds the surface and owns plan. Else the grid is held in rows over ranks
+     * (indentation_rows.h): the window is this rank's rows, plan the ranks' (not freed here), and the solves,
+     * sums, extremes and edge checks go over the ranks. */
+    const adhesion_ranks *ranks;
 };
+
+/* values[0..count) combined over the ranks (one process: as they are). */
+static void combine(const im_indentation *run, double *values, int count, enum adhesion_combine how)
+{
+    if (run->ranks)
+        run->ranks->combine(run->ranks->context, values, count, how);
+}
+
+/* The sum of a window field over the grid, in a fixed order (row order over ranks). */
+static double grid_sum(const im_indentation *run, const double *field)
+{
+    return run->ranks ? run->ranks->sum(run->ranks->context, field)
+                      : sum_doubles(field, (size_t)run->window.nx * run->window.ny);
+}
+
+/* One solve of the window's problem on the plan, or over the ranks. */
+static int solve_window(im_indentation *run, enum im_control control, double target, im_solve_result *s)
+{
+    if (run->ranks)
+        return run->ranks->solve(run->ranks->context, run->window_gap0, control, target, run->pressure,
+                                 run->displacement, s);
+    return im_solver_solve(run->plan, run->window_gap0, control, target, run->pressure, run->displacement, s);
+}
 
 /* g0 = z(r) - h - min(z - h) over the full grid. */
 static int undeformed_gap(im_indentation *run, const im_field *surface)
@@ -110,7 +141,7 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
  * punch's cross-section carries the load at H_p everywhere (pi r^2 H_p = N, at height z(r)), which
  * bounds the fully plastic approach. A 2-D profile has no smooth estimate: its whole footprint
  * (INFINITY). */
-static double approach_bound(const im_field *surface, const im_indenter *punch, enum im_control control,
+static double approach_bound(double height_range, const im_indenter *punch, enum im_control control,
                              double largest_target, const im_solver_options *o)
 {
     if (control == IM_CONTROL_DISPLACEMENT) /* with adhesion, also its zone, and a range for its lift */
@@ -121,7 +152,7 @@ static double approach_bound(const im_field *surface, const im_indenter *punch, 
     if (o->hardness > 0)
         smooth = fmax(smooth, im_indenter_profile(punch, sqrt(largest_target / (M_PI * o->hardness))));
     /* with adhesion the zone's reach too (a deeper adhesive approach is caught by the zone's check) */
-    return isfinite(smooth) ? 1.1 * smooth + height_range(surface) + adhesion_reach(o) + o->adhesion_range : INFINITY;
+    return isfinite(smooth) ? 1.1 * smooth + height_range + adhesion_reach(o) + o->adhesion_range : INFINITY;
 }
 
 static const char *control_target(enum im_control control)
@@ -146,12 +177,11 @@ static int check_adhesion_control(enum im_control control, const im_solver_optio
     return IM_OK;
 }
 
-static int check_create(const im_field *surface, const im_indenter *punch, enum im_control control,
-                        double largest_target, const im_solver_options *options)
+/* The punch, the options, the control and its largest target. */
+static int check_run(const im_indenter *punch, enum im_control control, double largest_target,
+                     const im_solver_options *options)
 {
-    int status = im_field_check_finite(surface, "surface heights");
-    if (status == IM_OK)
-        status = im_indenter_check(punch);
+    int status = im_indenter_check(punch);
     if (status == IM_OK)
         status = im_solver_options_check(options);
     if (status != IM_OK)
@@ -168,6 +198,17 @@ static int check_create(const im_field *surface, const im_indenter *punch, enum 
     if (!(isfinite(largest_target) && largest_target >= 0))
         return im_fail(IM_EINVAL, "largest %s = %g: expected a finite value >= 0", control_target(control),
                        largest_target);
+    return IM_OK;
+}
+
+static int check_create(const im_field *surface, const im_indenter *punch, enum im_control control,
+                        double largest_target, const im_solver_options *options)
+{
+    int status = im_field_check_finite(surface, "surface heights");
+    if (status == IM_OK)
+        status = check_run(punch, control, largest_target, options);
+    if (status != IM_OK)
+        return status;
     if (!(isfinite(surface->delta) && surface->delta > 0))
         return im_fail(IM_EINVAL, "surface delta = %g: expected > 0", surface->delta);
     /* forces are pressures times delta^2: a square out of range made "N = inf" of a unit load */
@@ -202,15 +243,18 @@ static int allocate_window(im_indentation *run)
 {
     const im_window w = run->window;
     size_t n = (size_t)w.nx * w.ny;
-    run->window_gap0 = malloc(sizeof(double) * n);
-    run->pressure = calloc(n, sizeof(double));
-    run->displacement = calloc(n, sizeof(double));
-    run->plastic = calloc(n, sizeof(double));
-    if (!run->window_gap0 || !run->pressure || !run->displacement || !run->plastic)
+    run->window_gap0 = malloc(sizeof(double) * (n + 1)); /* + 1: a rank may hold no rows */
+    run->pressure = calloc(n + 1, sizeof(double));
+    run->displacement = calloc(n + 1, sizeof(double));
+    run->plastic = calloc(n + 1, sizeof(double));
+    if (run->options.hardness > 0)
+        run->flow = calloc(n + 1, sizeof(double));
+    if (!run->window_gap0 || !run->pressure || !run->displacement || !run->plastic ||
+        (run->options.hardness > 0 && !run->flow))
         return im_fail(IM_ENOMEM,
-                       "indentation window %d x %d: allocation of 4 x %.1f MiB failed (out of memory, or "
+                       "indentation window %d x %d: allocation of %d x %.1f MiB failed (out of memory, or "
                        "of the address space ulimit -v leaves)",
-                       w.nx, w.ny, sizeof(double) * (double)n / 1048576.0);
+                       w.nx, w.ny, run->options.hardness > 0 ? 5 : 4, sizeof(double) * (double)n / 1048576.0);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < w.ny; ++iy)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
@@ -218,9 +262,15 @@ static int allocate_window(im_indentation *run)
     im_solver_options repulsive = run->options;
     repulsive.adhesion_work = repulsive.adhesion_range = 0;
     repulsive.hardness = repulsive_cap(&run->options);
-    int status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
+    int status = IM_OK;
+    if (run->ranks) /* the ranks' plan: it solves the run's repulsive problem (indentation_rows.h) */
+        run->plan->options.hardness = repulsive.hardness;
+    else
+        status = im_solver_plan_create(w.nx, w.ny, run->delta, &repulsive, &run->plan);
     if (status == IM_OK && run->options.adhesion_work > 0)
         status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
+    if (status == IM_OK && run->adhesion && run->ranks)
+        adhesion_over_ranks(run->adhesion, run->ranks);
     if (status == IM_OK && steps_in_boxes(run) && !(run->steps = step_window_create()))
         status = im_fail(IM_ENOMEM, "indentation window %d x %d: the step boxes' state", w.nx, w.ny);
     return status;
@@ -249,7 +299,8 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
     run->nx = surface->nx;
     run->ny = surface->ny;
     run->delta = surface->delta;
-    run->approach_bound = approach_bound(surface, punch, control, largest_target, &o);
+    run->approach_bound = approach_bound(control == IM_CONTROL_LOAD ? height_range(surface) : 0, punch, control,
+                                         largest_target, &o);
     status = undeformed_gap(run, surface);
     if (status == IM_OK) {
         run->window = choose_window(run);
@@ -263,17 +314,64 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
     return IM_OK;
 }
 
+int indentation_create_on_rows(const indentation_rows *grid, const im_indenter *punch, enum im_control control,
+                               double largest_target, const im_solver_options *options, im_indentation **out)
+{
+    *out = NULL;
+    im_solver_options o = *options;
+    o.crop = 0;
+    if (o.periodic)
+        return im_fail(IM_EINVAL, "an indentation over ranks: periodic = 1: expected the half-space (a periodic "
+                                  "cell's steps: im_mpi_flat_contact_step)");
+    int status = check_run(punch, control, largest_target, &o);
+    if (status != IM_OK)
+        return status;
+    im_indentation *run = calloc(1, sizeof *run);
+    const size_t n = (size_t)grid->rows * grid->nx;
+    if (!run || !(run->gap0 = malloc(sizeof(double) * (n + 1)))) {
+        free(run);
+        return im_fail(IM_ENOMEM, "indentation of %d rows of a %d x %d surface", grid->rows, grid->nx, grid->ny);
+    }
+    memcpy(run->gap0, grid->gap0, sizeof(double) * n);
+    *run = (im_indentation){.punch = *punch,
+                            .control = control,
+                            .largest_target = largest_target,
+                            .options = o,
+                            .nx = grid->nx,
+                            .ny = grid->ny,
+                            .delta = grid->delta,
+                            .approach_bound = approach_bound(grid->height_range, punch, control, largest_target, &o),
+                            .gap0 = run->gap0,
+                            .window = {0, 0, grid->nx, grid->rows},
+                            .plan = grid->plan,
+                            .ranks = grid->ranks};
+    status = allocate_window(run);
+    if (status != IM_OK) {
+        im_indentation_free(run);
+        return status;
+    }
+    *out = run;
+    return IM_OK;
+}
+
+indentation_rows_state indentation_rows_state_of(const im_indentation *run)
+{
+    return (indentation_rows_state){run->pressure, run->displacement, run->window_gap0, run->adhesion, run->approach};
+}
+
 void im_indentation_free(im_indentation *run)
 {
     if (!run)
         return;
-    im_solver_plan_free(run->plan);
+    if (!run->ranks)
+        im_solver_plan_free(run->plan);
     im_solver_plan_free(run->full_plan);
     free(run->gap0);
     free(run->window_gap0);
     free(run->pressure);
     free(run->displacement);
     free(run->plastic);
+    free(run->flow);
     adhesion_free(run->adhesion);
     step_window_free(run->steps);
     for (int slot = 0; slot < 2; ++slot) {
@@ -302,12 +400,24 @@ static int line_in_contact(const im_indentation *run, int line, int column, int 
     return 0;
 }
 
+/* Over ranks: whether values > 0 on the surface's outer row or column (*x, *y: the first such patch,
+ * row-major, on every rank). */
+static int on_edge_over_ranks(const im_indentation *run, const double *values, int *x, int *y)
+{
+    const long first = run->ranks->first_on_edge(run->ranks->context, values);
+    *x = first == LONG_MAX ? -1 : (int)(first % run->nx);
+    *y = first == LONG_MAX ? -1 : (int)(first / run->nx);
+    return first != LONG_MAX;
+}
+
 /* IM_EEDGE if a contact patch lies on the outer row or column of the surface. */
 static int check_edge(const im_indentation *run)
 {
     const int rows[2] = {0, run->ny - 1}, columns[2] = {0, run->nx - 1};
     int sx = -1, sy = -1;
-    for (int k = 0; k < 2 && sx < 0; ++k) {
+    if (run->ranks)
+        on_edge_over_ranks(run, run->pressure, &sx, &sy);
+    for (int k = 0; k < 2 && sx < 0 && !run->ranks; ++k) {
         if (line_in_contact(run, rows[k], 0, &sx))
             sy = rows[k];
         else if (line_in_contact(run, columns[k], 1, &sy))
@@ -326,7 +436,8 @@ static int check_edge(const im_indentation *run)
 static int check_zone(const im_indentation *run)
 {
     int x, y;
-    if (!adhesion_zone_on_border(run->adhesion, &x, &y))
+    if (!(run->ranks ? on_edge_over_ranks(run, run->adhesion->share, &x, &y)
+                     : adhesion_zone_on_border(run->adhesion, &x, &y)))
         return IM_OK;
     const im_window w = run->window;
     const int whole = w.nx == run->nx && w.ny == run->ny;
@@ -377,12 +488,12 @@ static long accumulate_plastic_flow(im_indentation *run, double approach)
 {
     const double cap = repulsive_cap(&run->options);
     const im_window w = run->window;
-    long yielding = 0;
-    double work = 0;
-#pragma omp parallel for schedule(static) reduction(+ : yielding, work)
+    double yielding = 0; /* a count, exact in a double, summed over the ranks */
+#pragma omp parallel for schedule(static) reduction(+ : yielding)
     for (int iy = 0; iy < w.ny; ++iy)
         for (int ix = 0; ix < w.nx; ++ix) {
             size_t wi = (size_t)iy * w.nx + ix;
+            run->flow[wi] = 0;
             if (!(run->pressure[wi] >= cap))
                 continue;
             ++yielding;
@@ -390,13 +501,15 @@ static long accumulate_plastic_flow(im_indentation *run, double approach)
                             adhesion_net_displacement(run->adhesion, wi, run->displacement[wi]));
             if (!(flow > 0))
                 continue;
+            run->flow[wi] = flow;
             run->plastic[wi] += flow;
             run->window_gap0[wi] += flow;
             run->gap0[(size_t)(iy + w.y0) * run->nx + ix + w.x0] += flow;
-            work += flow;
         }
-    run->plastic_work += run->options.hardness * run->delta * run->delta * work;
-    return yielding;
+    combine(run, &yielding, 1, ADHESION_SUM);
+    /* in a fixed order: the same bits for any thread or rank count */
+    run->plastic_work += run->options.hardness * run->delta * run->delta * grid_sum(run, run->flow);
+    return (long)yielding;
 }
 
 /* The largest plastic depth so far, and the least undeformed gap (g0 + plastic depth): where the
@@ -410,8 +523,10 @@ static void plastic_extremes(const im_indentation *run, double *deepest, double 
         d = fmax(d, run->plastic[i]);
         g = fmin(g, run->window_gap0[i]);
     }
-    *deepest = d;
-    *touch = g;
+    double extremes[2] = {d, -g}; /* both maxima: one reduction over the ranks */
+    combine(run, extremes, 2, ADHESION_MAX);
+    *deepest = extremes[0];
+    *touch = -extremes[1];
 }
 
 /* The largest approach at which the punch carries nothing: where it touches the (deformed) surface. */
@@ -468,9 +583,7 @@ static void fill_step(const im_indentation *run, const im_solve_result *s, im_st
  * is search.c's, shared with the distributed cell. */
 static int repulsive_solve(void *context, double w, im_solve_result *s)
 {
-    im_indentation *run = context;
-    return im_solver_solve(run->plan, run->window_gap0, IM_CONTROL_DISPLACEMENT, w, run->pressure, run->displacement,
-                           s);
+    return solve_window(context, IM_CONTROL_DISPLACEMENT, w, s);
 }
 
 static double solved_load(void *context, const im_solve_result *s)
@@ -536,7 +649,7 @@ static double negative_mean_gap(void *context, const im_solve_result *s)
 static double mean_gap_approach(const im_indentation *run, double target)
 {
     const size_t n = (size_t)run->window.nx * run->window.ny;
-    return sum_doubles(run->window_gap0, n) / (double)n - target;
+    return grid_sum(run, run->window_gap0) / (double)n - target;
 }
 
 /* Mean-gap control, searched under a hardness (search.h). */
@@ -674,10 +787,11 @@ static int refuse_beyond_pull_off(const im_indentation *run, double target, doub
 static int touching(const im_indentation *run)
 {
     const size_t n = (size_t)run->window.nx * run->window.ny;
-    for (size_t i = 0; i < n; ++i)
-        if (run->pressure[i] > 0)
-            return 1;
-    return 0;
+    double any = 0;
+    for (size_t i = 0; i < n && !any; ++i)
+        any = run->pressure[i] > 0;
+    combine(run, &any, 1, ADHESION_MAX);
+    return any > 0;
 }
 
 /* IM_EINVAL for a tension beyond the last step's load n0 with no patch in contact: under a load the surfaces
@@ -842,8 +956,7 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
         const window_grid grid = window_grid_of(run);
         status = step_window_solve(run->steps, &grid, target, &s);
     } else
-        status = im_solver_solve(run->plan, run->window_gap0, run->control, target, run->pressure, run->displacement,
-                                 &s);
+        status = solve_window(run, run->control, target, &s);
     if (status == IM_OK && run->control == IM_CONTROL_LOAD && target == 0 && !run->adhesion)
         s.approach = withdrawn_approach(run); /* N = 0 holds at any approach up to it */
     run->approach = s.approach;

@@ -69,15 +69,22 @@ static im_solver_options adhesive_options(const history_case *c)
 }
 
 /* Rank 0's serial history, shared with every rank. */
+/* The history's largest |approach|: the runs' largest target. */
+static double largest_approach(const history_case *c)
+{
+    double largest = 0;
+    for (int k = 0; k < c->steps; ++k)
+        largest = fmax(largest, fabs(c->approaches[k]));
+    return largest;
+}
+
 static void serial_history(const history_case *c, const im_field *surface, im_step_result *steps)
 {
     if (rank == 0) {
         const im_solver_options o = adhesive_options(c);
-        double largest = 0;
-        for (int k = 0; k < c->steps; ++k)
-            largest = fmax(largest, fabs(c->approaches[k]));
         im_indentation *run;
-        check_status(im_indentation_create(surface, &c->punch, IM_CONTROL_DISPLACEMENT, largest, &o, &run),
+        check_status(im_indentation_create(surface, &c->punch, IM_CONTROL_DISPLACEMENT, largest_approach(c), &o,
+                                           &run),
                      "serial indentation");
         for (int k = 0; k < c->steps; ++k)
             check_status(im_indentation_step(run, c->approaches[k], &steps[k]), "serial step");
@@ -157,7 +164,8 @@ static void run_case(const history_case *c)
     check_status(im_mpi_solver_create(MPI_COMM_WORLD, c->nx, c->ny, 1.0, &o, &solver), "distributed plan");
     im_mpi_solver_rows(solver, &y0, &rows);
     im_mpi_indentation *run;
-    check_status(im_mpi_indentation_create(solver, surface->data + (size_t)y0 * c->nx, &c->punch, &adhesion, &run),
+    check_status(im_mpi_indentation_create(solver, surface->data + (size_t)y0 * c->nx, &c->punch,
+                                           IM_CONTROL_DISPLACEMENT, largest_approach(c), &adhesion, &run),
                  "distributed indentation");
     for (int k = 0; k < c->steps; ++k) {
         check_status(im_mpi_indentation_step(run, c->approaches[k], &mpi[k]), "distributed step");
