@@ -204,6 +204,7 @@ static double cpu_precondition(pk_run *r, long *count)
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
         z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
+    solver_count_pair(plan, SOLVER_PAIR_M);
     fftw_execute(plan->precondition_forward);
     solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
     fftw_execute(plan->precondition_backward);
