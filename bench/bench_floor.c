@@ -13,13 +13,15 @@
  * pair (the solver's flags) of each grid a solve transforms (the padded window 2nx x 2ny and the window
  * itself, or the cell), so that load drifts over all alike. Printed per kind and thread count, as medians:
  * fine iterations, the transform pairs run on the fine grid (convolutions with K, preconditioner pairs M)
- * and on the cascade's coarser grids, wall and CPU time of the solve (planning apart), per-iteration wall
- * time (CPU time at 1 thread, wall at 2, pair times alike) over one pair of K's grid ("pairs/it") and over
- * the floor ("floor x"), and the peak RSS of the
+ * and on the cascade's coarser grids, wall and CPU time of the solve (planning apart), per-iteration CPU
+ * time over the CPU time of one pair of K's grid ("pairs/it") and over the floor ("floor x"), and the peak
+ * RSS of the
  * process after the kind's first solve (a running maximum: the cell's kinds run first, then the step and
  * the cone, whose padded grids are the larger). The floor of a fine iteration is what the algorithm needs
  * per iteration: one K pair, plus one M pair on the window's grid when every step is preconditioned (pair
- * times measured here, at the same thread count). */
+ * times measured here, at the same thread count). The ratios are of CPU times, the work done, at both
+ * thread counts: on a shared 2-core machine a 2-thread wall time measures the neighbours (the solver's
+ * team shrinks to the free cores, core/team_size.c; FFTW's own pair does not). */
 #include "bench_fft.h"
 #include "bench_recipe.h"
 #include "indentmap/indenter.h"
@@ -172,10 +174,6 @@ typedef struct series {
     double peak_rss;
 } series;
 
-/* The time the ratios are taken in: CPU time at 1 thread (other processes on the cores disturb it less),
- * wall time at 2. */
-static double pair_seconds(bench_pair_time t, int threads) { return threads == 1 ? t.cpu : t.wall; }
-
 static void report(const series *s, enum kind kind, int n, int threads, int repeats)
 {
     double wall[MAX_REPEATS], cpu[MAX_REPEATS], k_pair[MAX_REPEATS], m_pair[MAX_REPEATS];
@@ -187,7 +185,7 @@ static void report(const series *s, enum kind kind, int n, int threads, int repe
     const double t = bench_median(wall, repeats), c = bench_median(cpu, repeats);
     const double kp = bench_median(k_pair, repeats), mp = bench_median(m_pair, repeats);
     const int it = m->iterations;
-    const double per_iteration = (threads == 1 ? c : t) / it;
+    const double per_iteration = c / it;
     /* the pairs the algorithm needs per fine iteration: K t, and M g where every step is preconditioned */
     const double floor = kp + (m->m_pairs >= it ? mp : 0);
     printf("%-8s n %4d threads %d: grid %dx%d, it %3d (coarse %4d), pairs K %3ld M %3ld coarse %4ld, "
@@ -235,8 +233,8 @@ int main(int argc, char **argv)
                 s->last = solve_kind(&pb, order[k]);
                 s->wall[r] = s->last.wall;
                 s->cpu[r] = s->last.cpu;
-                s->k_pair[r] = pair_seconds(bench_fft_pair_time(s->last.px, s->last.py), threads);
-                s->m_pair[r] = pair_seconds(bench_fft_pair_time(s->last.nx, s->last.ny), threads);
+                s->k_pair[r] = bench_fft_pair_time(s->last.px, s->last.py).cpu;
+                s->m_pair[r] = bench_fft_pair_time(s->last.nx, s->last.ny).cpu;
                 if (r == 0)
                     s->peak_rss = bench_peak_rss_mib();
             }

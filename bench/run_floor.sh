@@ -3,7 +3,7 @@
 # cone; periodic cell under mean pressure and under mean gap; one step of the paper's history) at each
 # size, 1 and 2 threads alternated within one process per size, medians of the repeats. Prints the machine
 # and the load average before and after each size, then bench_floor's lines, and at the end the exponent
-# of a least-squares fit time ~ n^b per kind and thread count over the sizes (the floor grows as
+# of a least-squares fit CPU time ~ n^b per kind and thread count over the sizes (the floor grows as
 # n^2 log n: b = 2.1-2.2 over 512-2048).
 # usage: bench/run_floor.sh [--repeats R] [--sizes "512 1024 2048"]   (BUILD=DIR, default build)
 set -euo pipefail
@@ -27,7 +27,7 @@ for n in $sizes; do
     "$build/bench_floor" --n "$n" --repeats "$repeats" | tee -a "$out"
     echo "# n $n: load after $(cut -d' ' -f1-3 /proc/loadavg)"
 done
-# the fit: log(CPU time at 1 thread, wall at 2) against log(n) per kind and thread count
+# the fit: log(CPU time) against log(n) per kind and thread count
 awk '{
     kind = $1; n = $3; threads = $5 + 0
     for (i = 1; i <= NF; ++i) {
@@ -35,7 +35,7 @@ awk '{
         if ($i == "CPU") cpu = $(i + 1)
     }
     key = kind " threads " threads
-    x = log(n); y = log(threads == 1 ? cpu : wall)
+    x = log(n); y = log(cpu)
     sx[key] += x; sy[key] += y; sxx[key] += x * x; sxy[key] += x * y; count[key]++
 } END {
     for (key in count)
