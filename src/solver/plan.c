@@ -429,10 +429,14 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
         im_solver_plan_free(p);
         return status;
     }
-    /* Direct summation costs ~nx ny multiply-adds per changed patch, a pruned padded convolution
-     * ~c nx ny log2(4 nx ny): the crossover grows like log2(4 nx ny). Measured at 375 x 378, one
-     * thread: 0.035 ms per patch against 4.4 ms per convolution, a crossover near 125 patches. */
-    p->direct_limit = (long)(6 * log2(4.0 * nx * ny));
+    /* Direct summation costs ~nx ny multiply-adds per changed patch, a convolution ~c px py log2(px py)
+     * (px py = 4 nx ny padded, nx ny periodic): the crossover is 1.5 px py / (nx ny) log2(px py) patches.
+     * Measured at 375 x 378, one thread: 0.035 ms per patch against 4.4 ms per padded convolution, a
+     * crossover near 125 patches; on periodic cells of 256^2-1024^2, 27-55 patches (docs/benchmarks.md,
+     * "Per-iteration cost against the FFT floor"), where the padded rule's 108-132 cost up to 12% of a
+     * periodic solve's time in direct sums. */
+    const double transformed = (double)p->px * p->py;
+    p->direct_limit = (long)(1.5 * transformed / ((double)nx * ny) * log2(transformed));
     if ((status = choose_engine(p, finer)) != IM_OK || (status = solver_cascade_create(p)) != IM_OK) {
         im_solver_plan_free(p);
         return status;
