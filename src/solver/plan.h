@@ -39,6 +39,7 @@ struct im_solver_plan {
      * slower on large grids (a 3584^2 convolution cost 1.26 full 2-D pairs at 2 threads; in place 0.85). */
     fftw_plan rows_forward, columns_forward, columns_backward, rows_backward;
     double *direction, *gap; /* nx * ny work arrays of the iteration; K t is read from rows_out */
+    double uncentred_gz;     /* <g, z> over the step's set from the CPU engine's last precondition pass */
     long *changed;           /* nx * ny: indices of patches changed outside the CG step */
     double *changed_value;   /* their pressure changes */
     long direct_limit;       /* most changes added by direct summation rather than by FFT */
