@@ -19,6 +19,9 @@ done
 build="${BUILD:-build}"
 [ -x "$build/bench_floor" ] || { echo "$0: $build/bench_floor not built (cmake --build $build --target bench_floor)" >&2; exit 1; }
 export IM_FFTW_WISDOM= # FFTW_ESTIMATE plans, no wisdom file touched
+# threads spin briefly, then sleep, as the CLI's do (bench/run_threads.sh): a spinning FFTW thread on a
+# shared core counts the neighbour's time as ours
+[ -n "${OMP_WAIT_POLICY:-}" ] || export GOMP_SPINCOUNT="${GOMP_SPINCOUNT:-3000}"
 echo "# $(nproc) CPUs, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
