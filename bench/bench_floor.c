@@ -159,11 +159,7 @@ static problem make_problem(int n, double tol)
     pb.displacement = malloc(sizeof(double) * count);
     if (!pb.gap0 || !pb.pressure || !pb.displacement)
         die(IM_ENOMEM, "cell");
-    double highest = -INFINITY;
-    for (size_t i = 0; i < count; ++i)
-        highest = fmax(highest, pb.surface->data[i]);
-    for (size_t i = 0; i < count; ++i)
-        pb.gap0[i] = highest - pb.surface->data[i];
+    bench_cell_gap(pb.surface, pb.gap0);
     return pb;
 }
 

@@ -340,20 +340,29 @@ static void refusals(void **state)
  * with t = z there, at the exact step length over the whole set: the gaps of the step before its
  * projection, g - tau K t, are orthogonal to the direction there (the line's minimum). The join step
  * before took them in at -tau g beside a step on I_c alone. */
+/* The undeformed gap of a periodic cell of surface s: max h - h. */
+static double *cell_gap(const im_field *s)
+{
+    const size_t count = im_field_count(s);
+    double *gap0 = malloc(sizeof(double) * count);
+    assert_non_null(gap0);
+    double highest = -INFINITY;
+    for (size_t i = 0; i < count; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < count; ++i)
+        gap0[i] = highest - s->data[i];
+    return gap0;
+}
+
 static void join_step_is_a_line_minimum(void **state)
 {
     (void)state;
     enum { N = 64 };
     const size_t count = (size_t)N * N;
     im_field *s = test_rough_surface(N, 0.08, 4);
-    double *gap0 = malloc(sizeof(double) * count), *p = malloc(sizeof(double) * count),
-           *u = malloc(sizeof(double) * count), *t_before = malloc(sizeof(double) * count);
-    assert_true(gap0 && p && u && t_before);
-    double highest = -INFINITY;
-    for (size_t i = 0; i < count; ++i)
-        highest = fmax(highest, s->data[i]);
-    for (size_t i = 0; i < count; ++i)
-        gap0[i] = highest - s->data[i];
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count),
+           *t_before = malloc(sizeof(double) * count);
+    assert_true(p && u && t_before);
     im_solver_options o = im_solver_options_default();
     o.periodic = 1;
     im_solver_plan *plan = NULL;
@@ -413,14 +422,8 @@ static void transform_pairs_are_counted(void **state)
     enum { N = 128 };
     const size_t count = (size_t)N * N;
     im_field *s = test_rough_surface(N, 0.08, 4);
-    double *gap0 = malloc(sizeof(double) * count), *p = malloc(sizeof(double) * count),
-           *u = malloc(sizeof(double) * count);
-    assert_true(gap0 && p && u);
-    double highest = -INFINITY;
-    for (size_t i = 0; i < count; ++i)
-        highest = fmax(highest, s->data[i]);
-    for (size_t i = 0; i < count; ++i)
-        gap0[i] = highest - s->data[i];
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count);
+    assert_true(p && u);
     for (int cascade = 0; cascade <= 1; ++cascade) {
         im_solver_options o = im_solver_options_default();
         o.periodic = 1;
