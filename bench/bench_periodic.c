@@ -75,11 +75,7 @@ static cell make_cell(int n)
               .displacement = malloc(sizeof(double) * count)};
     if (!c.gap0 || !c.pressure || !c.displacement)
         die(IM_ENOMEM, "cell");
-    double highest = -INFINITY;
-    for (size_t i = 0; i < count; ++i)
-        highest = fmax(highest, surface->data[i]);
-    for (size_t i = 0; i < count; ++i)
-        c.gap0[i] = highest - surface->data[i];
+    bench_cell_gap(surface, c.gap0);
     im_field_free(surface);
     return c;
 }

@@ -340,20 +340,29 @@ static void refusals(void **state)
  * with t = z there, at the exact step length over the whole set: the gaps of the step before its
  * projection, g - tau K t, are orthogonal to the direction there (the line's minimum). The join step
  * before took them in at -tau g beside a step on I_c alone. */
+/* The undeformed gap of a periodic cell of surface s: max h - h. */
+static double *cell_gap(const im_field *s)
+{
+    const size_t count = im_field_count(s);
+    double *gap0 = malloc(sizeof(double) * count);
+    assert_non_null(gap0);
+    double highest = -INFINITY;
+    for (size_t i = 0; i < count; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < count; ++i)
+        gap0[i] = highest - s->data[i];
+    return gap0;
+}
+
 static void join_step_is_a_line_minimum(void **state)
 {
     (void)state;
     enum { N = 64 };
     const size_t count = (size_t)N * N;
     im_field *s = test_rough_surface(N, 0.08, 4);
-    double *gap0 = malloc(sizeof(double) * count), *p = malloc(sizeof(double) * count),
-           *u = malloc(sizeof(double) * count), *t_before = malloc(sizeof(double) * count);
-    assert_true(gap0 && p && u && t_before);
-    double highest = -INFINITY;
-    for (size_t i = 0; i < count; ++i)
-        highest = fmax(highest, s->data[i]);
-    for (size_t i = 0; i < count; ++i)
-        gap0[i] = highest - s->data[i];
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count),
+           *t_before = malloc(sizeof(double) * count);
+    assert_true(p && u && t_before);
     im_solver_options o = im_solver_options_default();
     o.periodic = 1;
     im_solver_plan *plan = NULL;
@@ -404,6 +413,43 @@ static void join_step_is_a_line_minimum(void **state)
     im_field_free(s);
 }
 
+/* The CPU engine's count of transform pairs (bench/bench_floor.c measures a solve's work with it) agrees
+ * with what the solve reports: on the top plan one K pair per convolution and one M pair per step, each
+ * preconditioned; the cascade's coarser levels counted apart, none without a cascade, some with one. */
+static void transform_pairs_are_counted(void **state)
+{
+    (void)state;
+    enum { N = 128 };
+    const size_t count = (size_t)N * N;
+    im_field *s = test_rough_surface(N, 0.08, 4);
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count);
+    assert_true(p && u);
+    for (int cascade = 0; cascade <= 1; ++cascade) {
+        im_solver_options o = im_solver_options_default();
+        o.periodic = 1;
+        o.cascade = cascade;
+        im_solver_plan *plan = NULL;
+        assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+        memset(p, 0, sizeof(double) * count);
+        long before[SOLVER_PAIR_KINDS], after[SOLVER_PAIR_KINDS];
+        for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
+            before[k] = solver_pairs_run(k);
+        im_solve_result r;
+        assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_LOAD, 0.004 * count, p, u, &r), IM_OK);
+        for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
+            after[k] = solver_pairs_run(k) - before[k];
+        if (after[SOLVER_PAIR_K] != r.convolutions || after[SOLVER_PAIR_M] != r.iterations)
+            fail_msg("cascade %d: %ld K and %ld M pairs counted for %d convolutions in %d iterations", cascade,
+                     after[SOLVER_PAIR_K], after[SOLVER_PAIR_M], r.convolutions, r.iterations);
+        if ((after[SOLVER_PAIR_COARSE] > 0) != (r.coarse_iterations > 0) || (r.coarse_iterations > 0) != cascade)
+            fail_msg("cascade %d: %ld coarse pairs counted for %d coarse iterations", cascade,
+                     after[SOLVER_PAIR_COARSE], r.coarse_iterations);
+        im_solver_plan_free(plan);
+    }
+    free(gap0), free(p), free(u);
+    im_field_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -416,6 +462,7 @@ int main(void)
         cmocka_unit_test(preconditioned_cascade_is_plain_pk),
         cmocka_unit_test(mean_gap_control),
         cmocka_unit_test(join_step_is_a_line_minimum),
+        cmocka_unit_test(transform_pairs_are_counted),
         cmocka_unit_test(refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

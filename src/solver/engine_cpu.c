@@ -204,6 +204,7 @@ static double cpu_precondition(pk_run *r, long *count)
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
         z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
+    solver_count_pair(plan, SOLVER_PAIR_M);
     fftw_execute(plan->precondition_forward);
     solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
     fftw_execute(plan->precondition_backward);
@@ -211,22 +212,29 @@ static double cpu_precondition(pk_run *r, long *count)
     long c = 0;
 #pragma omp parallel for schedule(static) reduction(+ : c)
     for (int k = 0; k < PARTS; ++k) {
-        double z_sum = 0;
+        double z_sum = 0, gz = 0;
         for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
             if (solver_in_step(p[i], g[i], INFINITY, r->join)) {
                 z_sum += z[i];
+                gz += g[i] * z[i];
                 ++c;
             } else
                 z[i] = 0;
         }
-        parts[k] = (part_sums){{z_sum}};
+        parts[k] = (part_sums){{z_sum, gz}};
     }
     *count = c;
-    return parts_total(parts).s[0];
+    const part_sums total = parts_total(parts);
+    plan->uncentred_gz = total.s[1];
+    return total.s[0];
 }
 
+/* Centring by 0 (displacement control) changes no z: <g, z> is then the one the precondition pass
+ * summed, the same parts in the same order, and the pass over p, g and z is saved. */
 static double cpu_precondition_centre(pk_run *r, double mean)
 {
+    if (mean == 0)
+        return r->plan->uncentred_gz;
     const size_t n = patches(r);
     const double *g = r->plan->gap, *p = r->p;
     double *z = r->plan->preconditioned;

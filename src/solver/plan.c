@@ -7,6 +7,7 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -410,7 +411,8 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
                           .px = pad * nx,
                           .py = pad * ny,
                           .delta = delta,
-                          .options = o};
+                          .options = o,
+                          .cascade_level = finer ? finer->cascade_level + 1 : 0};
     double start = omp_get_wtime();
     status = allocate_plan(p);
     if (status == IM_OK)
@@ -427,10 +429,14 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
         im_solver_plan_free(p);
         return status;
     }
-    /* Direct summation costs ~nx ny multiply-adds per changed patch, a pruned padded convolution
-     * ~c nx ny log2(4 nx ny): the crossover grows like log2(4 nx ny). Measured at 375 x 378, one
-     * thread: 0.035 ms per patch against 4.4 ms per convolution, a crossover near 125 patches. */
-    p->direct_limit = (long)(6 * log2(4.0 * nx * ny));
+    /* Direct summation costs ~nx ny multiply-adds per changed patch, a convolution ~c px py log2(px py)
+     * (px py = 4 nx ny padded, nx ny periodic): the crossover is 1.5 px py / (nx ny) log2(px py) patches.
+     * Measured at 375 x 378, one thread: 0.035 ms per patch against 4.4 ms per padded convolution, a
+     * crossover near 125 patches; on periodic cells of 256^2-1024^2, 27-55 patches (docs/benchmarks.md,
+     * "Per-iteration cost against the FFT floor"), where the padded rule's 108-132 cost up to 12% of a
+     * periodic solve's time in direct sums. */
+    const double transformed = (double)p->px * p->py;
+    p->direct_limit = (long)(1.5 * transformed / ((double)nx * ny) * log2(transformed));
     if ((status = choose_engine(p, finer)) != IM_OK || (status = solver_cascade_create(p)) != IM_OK) {
         im_solver_plan_free(p);
         return status;
@@ -497,9 +503,35 @@ void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t c
     }
 }
 
+static _Atomic long pairs_run[SOLVER_PAIR_KINDS];
+static _Atomic int last_top_grid[4];
+
+void solver_count_pair(const im_solver_plan *plan, enum solver_pair_kind kind)
+{
+    atomic_fetch_add_explicit(&pairs_run[plan->cascade_level ? SOLVER_PAIR_COARSE : kind], 1, memory_order_relaxed);
+    if (plan->cascade_level || kind != SOLVER_PAIR_K)
+        return;
+    const int grid[4] = {plan->px, plan->py, plan->nx, plan->ny};
+    for (int k = 0; k < 4; ++k)
+        atomic_store_explicit(&last_top_grid[k], grid[k], memory_order_relaxed);
+}
+
+void solver_last_top_grid(int *px, int *py, int *nx, int *ny)
+{
+    int *out[4] = {px, py, nx, ny};
+    for (int k = 0; k < 4; ++k)
+        *out[k] = atomic_load_explicit(&last_top_grid[k], memory_order_relaxed);
+}
+
+long solver_pairs_run(enum solver_pair_kind kind)
+{
+    return atomic_load_explicit(&pairs_run[kind], memory_order_relaxed);
+}
+
 void solver_convolve_rows(im_solver_plan *p)
 {
     const size_t mx = p->px / 2 + 1, count = (size_t)p->py * mx;
+    solver_count_pair(p, SOLVER_PAIR_K);
     fftw_execute(p->rows_forward);
 #pragma omp parallel for schedule(static)
     for (int iy = p->ny; iy < p->py; ++iy) /* the zero rows of the padding, overwritten last time */

@@ -39,11 +39,13 @@ struct im_solver_plan {
      * slower on large grids (a 3584^2 convolution cost 1.26 full 2-D pairs at 2 threads; in place 0.85). */
     fftw_plan rows_forward, columns_forward, columns_backward, rows_backward;
     double *direction, *gap; /* nx * ny work arrays of the iteration; K t is read from rows_out */
+    double uncentred_gz;     /* <g, z> over the step's set from the CPU engine's last precondition pass */
     long *changed;           /* nx * ny: indices of patches changed outside the CG step */
     double *changed_value;   /* their pressure changes */
     long direct_limit;       /* most changes added by direct summation rather than by FFT */
     double plan_seconds;
     int measured;
+    int cascade_level; /* 0 for a top plan, 1 for its cascade's first coarser level, ... */
     /* The cascade (cascade.c): the plan of the grid twice as coarse (NULL when cascade is off or the
      * grid is too small), and the coarse problem's gap, pressure and displacement. */
     struct im_solver_plan *coarse;
@@ -88,6 +90,16 @@ int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, 
 
 /* modes[k] *= spectrum[k] (a real, even kernel's spectrum) for k < count. */
 void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t count);
+
+/* The transform pairs the CPU engine has run since the process started, by kind: convolutions with K
+ * and preconditioner pairs on top plans, and every pair on a cascade's coarser levels (bench/bench_floor.c
+ * counts a solve's work from them). One relaxed atomic increment per pair. */
+enum solver_pair_kind { SOLVER_PAIR_K, SOLVER_PAIR_M, SOLVER_PAIR_COARSE, SOLVER_PAIR_KINDS };
+void solver_count_pair(const im_solver_plan *plan, enum solver_pair_kind kind);
+long solver_pairs_run(enum solver_pair_kind kind);
+/* The grids of the last top plan that ran a convolution: K's (px x py) and the problem's (nx x ny), which
+ * an indentation's step box may make smaller than its window's. */
+void solver_last_top_grid(int *px, int *py, int *nx, int *ny);
 
 /* Transforms rows_in (filled by the caller: the grid's rows, stride px) and leaves the
  * convolution with K in rows_out (stride px, the first nx values of each of the ny rows). */
