@@ -23,7 +23,7 @@
  *
  * Against the step's direction. The shares also follow the gap's local slope, which an early pass of a long
  * step can steepen and a later one flatten: held to one direction, a share so raised stayed although the
- * final gaps called for less, and a state reached in one step was no equilibrium (a rough cell's load 2.6%
+ * final gaps called for less, and a state reached in one step was no equilibrium (a rough cell's load 2.5%
  * below the one reached in 80 steps, whose shares were off by less). So a share also moves against the
  * step's direction, to the law's share of the new gaps, where that is off by more than a band of SHARE_BAND
  * tol: the passes end on an equilibrium of the discrete problem to within the band, whatever the steps that
