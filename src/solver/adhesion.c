@@ -12,15 +12,23 @@
  * per reduced radius, 5% at 16. The share of a patch is the part of it whose gap is at most delta_c,
  * the gap taken linear across the patch (its central differences): 0.6% and 0.07% (lambda = 1).
  *
- * The passes are monotone. Adding stress to the zone lowers every gap of the constrained half-space (a
- * comparison principle of the obstacle problem), so from a state below the solution the zone only
- * grows, and from one above it only shrinks (exactly so for all-or-nothing patches; the shares, which
- * also follow the gap's local slope, keep it as the rule). An approach step (w at least the last
- * step's) starts from the last shares and only raises them; a retraction step only lowers them (a
- * patch in repulsive contact is whole in the zone either way). The passes end when no share would
- * move by more than tol / 100, on the state the history leads to:
- * the least zone on approach, the largest on retraction. That is the hysteresis of adhesive contact
- * (jump-in late on approach, pull-off late on retraction) without a rule of its own.
+ * The passes are monotone as a rule. Adding stress to the zone lowers every gap of the constrained
+ * half-space (a comparison principle of the obstacle problem), so from a state below the solution the zone
+ * only grows, and from one above it only shrinks (exactly so for all-or-nothing patches). An approach step
+ * (w at least the last step's) starts from the last shares and raises them; a retraction step lowers them
+ * (a patch in repulsive contact is whole in the zone either way). The passes end when no share would move
+ * by more than tol / 100, on the state the history leads to: the least zone on approach, the largest on
+ * retraction. That is the hysteresis of adhesive contact (jump-in late on approach, pull-off late on
+ * retraction) without a rule of its own.
+ *
+ * Against the step's direction. The shares also follow the gap's local slope, which an early pass of a long
+ * step can steepen and a later one flatten: held to one direction, a share so raised stayed although the
+ * final gaps called for less, and a state reached in one step was no equilibrium (a rough cell's load 2.5%
+ * below the one reached in 80 steps, whose shares were off by less). So a share also moves against the
+ * step's direction, to the law's share of the new gaps, where that is off by more than a band of SHARE_BAND
+ * tol: the passes end on an equilibrium of the discrete problem to within the band, whatever the steps that
+ * led to it. Within the band a share keeps to the step's direction, as the solves' own error moves the
+ * shares both ways (about 10 tol: 1e-7 at tol 1e-8 on a rough cone), and unheld those passes never settled.
  *
  * The exponential law. The tension sigma(g) = (w / rho) exp(-g / rho) depends on the gap everywhere: a
  * patch's share is the mean of sigma / sigma0 over it (sigma0 = w / rho, the gap linear across it as above,
@@ -42,6 +50,10 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* A share moves against the step's direction only where the law's share is off by more than this many tol
+ * (the passes' noise, from solves to tol, is about 10 tol). */
+static const double SHARE_BAND = 1000;
 
 /* A zone still changing after this many passes is reported (a retraction through pull-off on a
  * 196^2 window took 300). */
@@ -225,10 +237,18 @@ static double zone_share(const adhesion_state *a, const double *gaps, int x, int
                                              : dugdale_share(a->range, g, change);
 }
 
-/* The shares the gaps of the repulsive solution at approach w_lifted call for, into a->proposal (grow: only
- * raised; else only lowered; 1 in repulsive contact either way). Returns the largest change. */
+/* The share a pass takes: the law's (target) where it lies in the step's direction (grow: above the old share),
+ * or beyond the band against it; else the old one. */
+static double next_share(double old, double target, int grow, double band)
+{
+    const double along = grow ? target - old : old - target;
+    return along > 0 || -along > band ? target : old;
+}
+
+/* The shares the gaps of the repulsive solution at approach w_lifted call for, into a->proposal (next_share; 1 in
+ * repulsive contact). Returns the largest change. */
 static double propose_shares(adhesion_state *a, double w_lifted, const double *pressure, const double *displacement,
-                             int grow)
+                             int grow, double band)
 {
     const size_t n = (size_t)a->nx * a->ny;
 #pragma omp parallel for schedule(static)
@@ -240,8 +260,8 @@ static double propose_shares(adhesion_state *a, double w_lifted, const double *p
     for (int y = 0; y < a->ny; ++y)
         for (int x = 0; x < a->nx; ++x) {
             const size_t i = (size_t)y * a->nx + x;
-            const double target = zone_share(a, a->gaps, x, y), old = a->share[i];
-            const double share = pressure[i] > 0 ? 1 : grow ? fmax(old, target) : fmin(old, target);
+            const double old = a->share[i];
+            const double share = pressure[i] > 0 ? 1 : next_share(old, zone_share(a, a->gaps, x, y), grow, band);
             largest = fmax(largest, fabs(share - old));
             a->proposal[i] = share;
         }
@@ -317,7 +337,7 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
     int status = IM_OK;
     /* The shares settle to a hundredth of the gaps' tolerance: the passes converge linearly, slowly near the
      * jumps, where stopping at tol would leave about tol / (1 - rate) (tol 1e-6 -> 1e-8: 6% more iterations). */
-    const double settle = 0.01 * plan->options.tol;
+    const double settle = 0.01 * plan->options.tol, band = SHARE_BAND * plan->options.tol;
     for (int passes = 1;; ++passes) {
         lifted_gap(a, gap0);
         const double w_lifted = w + a->shift;
@@ -330,7 +350,7 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
         }
         add_counts(&total, &pass);
         /* a change below settle is not taken: the shares stay those the lift and the solve were made with */
-        if (status != IM_OK || propose_shares(a, w_lifted, pressure, displacement, grow) <= settle)
+        if (status != IM_OK || propose_shares(a, w_lifted, pressure, displacement, grow, band) <= settle)
             break;
         apply_shares(a);
         if (passes >= ADHESION_PASSES_MAX) {
