@@ -257,7 +257,8 @@ static void sphere_follows_maugis_dugdale(void **state)
 /* The same across Tabor's mu = 0.1, 1 and 3 on three grids each (labelled slow: 82 s of CPU, 11 minutes on a
  * loaded 2-core machine, most of it the finest mu = 3 grid, L = 40).
  * Not wider towards JKR: the Dugdale zone l = 3 L / (8 lambda^2) must span about a patch, L >= 8 lambda^2 / 3
- * (357 patches at mu = 10: a window near 1200^2 and hundreds of iterations a step, hours here); on coarser
+ * (357 patches at mu = 10: a window near 1200^2 and thousands of iterations a step, hours here; `--mu 10 --L N`
+ * runs one grid, scripts/gpu-adhesion.sh on a GPU); on coarser
  * grids a patch at the contact's edge holds up to sigma0 delta^2 and the contact sticks (docs/solver.md,
  * "Adhesion"). */
 static void sphere_across_tabor_mu(void **state)
@@ -906,6 +907,7 @@ static int one_mu_on_one_grid(int argc, char **argv)
 {
     double mu = NAN, scale = NAN, zone = 0;
     int device = IM_DEVICE_CPU;
+    const char *device_word = "cpu";
     for (int k = 1; k < argc; k += 2) {
         const char *value = k + 1 < argc ? argv[k + 1] : "";
         if (strcmp(argv[k], "--mu") == 0)
@@ -914,7 +916,9 @@ static int one_mu_on_one_grid(int argc, char **argv)
             scale = positive_argument("--L", value);
         else if (strcmp(argv[k], "--zone") == 0)
             zone = positive_argument("--zone", value);
-        else if (strcmp(argv[k], "--device") != 0 || im_device_parse(value, &device) != IM_OK) {
+        else if (strcmp(argv[k], "--device") == 0 && im_device_parse(value, &device) == IM_OK)
+            device_word = value;
+        else {
             fprintf(stderr, "test_adhesion: '%s %s': expected --mu M --L N [--device cpu|gpu] [--zone P]\n", argv[k],
                     value);
             return 2;
@@ -933,8 +937,7 @@ static int one_mu_on_one_grid(int argc, char **argv)
     }
     printf("Tabor mu %g (lambda %g), L = %g patches, R = %g, Dugdale zone %.4f patches (solved with %.4f), "
            "device %s\n",
-           mu, c.lambda, scale, c.radius, zone_length, fmax(zone, zone_length),
-           device == IM_DEVICE_GPU ? "gpu" : "cpu");
+           mu, c.lambda, scale, c.radius, zone_length, fmax(zone, zone_length), device_word);
     const sphere_errors e = retraction_errors_of(&c, 1);
     printf("largest |N - N_MD| / (pi w R) %.5f, pull-off error %.5f, load-area %.5f\n", e.curve, e.pull_off,
            e.load_area);
