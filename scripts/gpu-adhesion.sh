@@ -6,7 +6,7 @@
 # Each step is printed as it is solved, so a run cut by the limit still leaves the curve so far; then the
 # retraction's errors against Maugis-Dugdale (test_adhesion --mu).
 mu10_runs() {
-  local out=$1 scale=${MU10_L:-256} limit=${MU10_LIMIT:-210} status=0
+  local out=$1 scale=${MU10_L:-96} limit=${MU10_LIMIT:-210} status=0
   echo "mu = 10 sphere at L = $scale on the GPU (limit $limit s)" | tee "$out/mu10.txt"
   local start=$SECONDS
   timeout "$limit" "${runner[@]}" "$carry/bin/test_adhesion" --mu 10 --L "$scale" --device gpu 2>&1 |
