@@ -16,6 +16,9 @@
 #                               (BIG_SIZE, 16384 by default: fields beyond one storage buffer, VkFFT's
 #                               multi-buffer mode) with its time and peak device memory, in place of the
 #                               baseline bench and the profile (to stay within 5 minutes)
+#   GPUCHECK_MU10=1 scripts/gpu-check.sh run   the device, the GPU tests, then the adhesive sphere at
+#                               Tabor's mu = 10 (scripts/gpu-adhesion.sh: MU10_L, MU10_LIMIT) in place of
+#                               fig4, the benches and the profile (about 4 minutes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 carry=.gpu-carry
@@ -25,7 +28,8 @@ pack() {
   cmake --build build-gpu --target bench_gpu -j "$(nproc)"
   rm -rf "$carry"
   mkdir -p "$carry"/{bin,lib,glibc,layers,fonts}
-  cp build-gpu/indentmap build-gpu/test_gpu_solver build-gpu/test_gpu_fft build-gpu/bench_gpu "$carry/bin/"
+  cp build-gpu/indentmap build-gpu/test_gpu_solver build-gpu/test_gpu_fft build-gpu/bench_gpu build-gpu/test_adhesion \
+    "$carry/bin/"
   # a baseline to time against on the same machine (BASELINE_BENCH=path to an earlier bench_gpu)
   if [ -n "${BASELINE_BENCH:-}" ]; then cp "$BASELINE_BENCH" "$carry/bin/bench_gpu_base"; fi
   for program in "$carry"/bin/*; do ldd "$program"; done | awk '/=> \// {print $3}' | sort -u |
@@ -97,6 +101,11 @@ run() {
   # each stage has a time limit of its own, so that one that hangs leaves the others their time
   timeout 120 "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
   timeout 180 "${runner[@]}" "$carry/bin/test_gpu_solver" 2>&1 | tee -a "$out/tests.txt" || status=1
+  if [ "${GPUCHECK_MU10:-0}" = 1 ]; then
+    source scripts/gpu-adhesion.sh
+    mu10_runs "$out" || status=1
+    return $status
+  fi
   local start=$SECONDS
   IM_RENDER_BACKEND=egl timeout 120 "${runner[@]}" "$carry/bin/indentmap" run scenes/fig4.ini 2>&1 | tail -5 |
     tee "$out/fig4.txt" || status=1

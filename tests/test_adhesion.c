@@ -25,6 +25,7 @@ typedef struct sphere_case {
     double radius, work, stress, range, approach_unit, load_unit;
     im_theory_adhesion law;
     int adhesion_law; /* the solver's: Maugis-Dugdale, or the exponential law of the same work and peak stress */
+    int device;       /* the solver's engine (IM_DEVICE_CPU unless a --mu run asks for the GPU) */
 } sphere_case;
 
 /* Maugis' lambda over Tabor's mu for the Dugdale law (Johnson & Greenwood 1997) */
@@ -43,7 +44,8 @@ static sphere_case sphere_case_make(double lambda, double scale)
                          scale * scale / radius,
                          M_PI * work * radius,
                          {1.0, work, work / stress},
-                         IM_ADHESION_MAUGIS_DUGDALE};
+                         IM_ADHESION_MAUGIS_DUGDALE,
+                         IM_DEVICE_CPU};
 }
 
 /* The exponential law matched to Maugis-Dugdale's lambda (Johnson & Greenwood 1997): the same work and peak
@@ -77,6 +79,7 @@ static im_indentation *sphere_run_under(const sphere_case *c, enum im_control co
     o.adhesion_work = c->work;
     o.adhesion_range = c->range;
     o.adhesion_law = c->adhesion_law;
+    o.device = c->device;
     im_indenter sphere = im_indenter_sphere(c->radius);
     im_indentation *run = NULL;
     if (im_indentation_create(surface, &sphere, control, largest, &o, &run) != IM_OK)
@@ -141,35 +144,56 @@ static double load_area_error(const sphere_case *c, const im_step_result *r)
     return fabs(r->load - p.load) / c->load_unit;
 }
 
-static sphere_errors sphere_retraction_errors(double lambda, double scale)
+/* A step, printed (D, N and N_MD in pi w R, the contact, the solver's work and time) when `verbose`. */
+static im_step_result sphere_step_shown(im_indentation *run, const sphere_case *c, double d, int verbose)
 {
-    const sphere_case c = sphere_case_make(lambda, scale);
-    im_indentation *run = sphere_run(&c, 2.0);
+    const im_step_result r = sphere_step(run, c, d);
+    double expected = NAN;
+    if (verbose) {
+        if (im_theory_md_sphere_load_at_approach(&c->law, c->radius, d * c->approach_unit, &expected) != IM_OK)
+            expected = NAN; /* past the reference's separation */
+        printf("D %+.3f  N %+.4f  N_MD %+.4f  contact %ld  adhesive %ld  iterations %d  seconds %.2f\n", d,
+               r.load / c->load_unit, expected / c->load_unit, r.contact_patches, r.adhesive_patches, r.iterations,
+               r.seconds);
+        fflush(stdout);
+    }
+    return r;
+}
+
+static sphere_errors retraction_errors_of(const sphere_case *c, int verbose)
+{
+    im_indentation *run = sphere_run(c, 2.0);
     for (double d = 0.25; d <= 1.5; d += 0.25)
-        sphere_step(run, &c, d);
-    const double separation = md_separation(&c);
+        sphere_step_shown(run, c, d, verbose);
+    const double separation = md_separation(c);
     im_theory_adhesive_point pull_off;
-    assert_int_equal(im_theory_md_sphere_pull_off(&c.law, c.radius, &pull_off), IM_OK);
-    const double pull_off_at = pull_off.approach / c.approach_unit;
+    assert_int_equal(im_theory_md_sphere_pull_off(&c->law, c->radius, &pull_off), IM_OK);
+    const double pull_off_at = pull_off.approach / c->approach_unit;
     double loads[64], expected;
     sphere_errors e = {0, 0, 0};
     int count = 0;
     for (double d = 1.5; d > pull_off_at - 0.1 && count<64; d -= d> pull_off_at + 0.2 ? 0.1 : 0.05) {
-        const im_step_result r = sphere_step(run, &c, d);
-        loads[count] = r.load / c.load_unit;
+        const im_step_result r = sphere_step_shown(run, c, d, verbose);
+        loads[count] = r.load / c->load_unit;
         if (d > separation + 0.05) {
-            assert_int_equal(im_theory_md_sphere_load_at_approach(&c.law, c.radius, d * c.approach_unit, &expected),
-                             IM_OK);
-            e.curve = fmax(e.curve, fabs(loads[count] - expected / c.load_unit));
+            assert_int_equal(
+                im_theory_md_sphere_load_at_approach(&c->law, c->radius, d * c->approach_unit, &expected), IM_OK);
+            e.curve = fmax(e.curve, fabs(loads[count] - expected / c->load_unit));
             if (r.contact_patches > 0)
-                e.load_area = fmax(e.load_area, load_area_error(&c, &r));
+                e.load_area = fmax(e.load_area, load_area_error(c, &r));
         }
         ++count;
     }
     assert_true(count >= 10);
     im_indentation_free(run);
-    e.pull_off = fabs(least_load(loads, count) - pull_off.load / c.load_unit);
+    e.pull_off = fabs(least_load(loads, count) - pull_off.load / c->load_unit);
     return e;
+}
+
+static sphere_errors sphere_retraction_errors(double lambda, double scale)
+{
+    const sphere_case c = sphere_case_make(lambda, scale);
+    return retraction_errors_of(&c, 0);
 }
 
 /* A sphere's retraction errors on grids of L = scales[0] < scales[1] < ... patches: each finer grid's errors
@@ -233,7 +257,8 @@ static void sphere_follows_maugis_dugdale(void **state)
 /* The same across Tabor's mu = 0.1, 1 and 3 on three grids each (labelled slow: 82 s of CPU, 11 minutes on a
  * loaded 2-core machine, most of it the finest mu = 3 grid, L = 40).
  * Not wider towards JKR: the Dugdale zone l = 3 L / (8 lambda^2) must span about a patch, L >= 8 lambda^2 / 3
- * (357 patches at mu = 10: a window near 1200^2 and hundreds of iterations a step, hours here); on coarser
+ * (357 patches at mu = 10: a window near 1200^2 and thousands of iterations a step, hours here; `--mu 10 --L N`
+ * runs one grid, scripts/gpu-adhesion.sh on a GPU); on coarser
  * grids a patch at the contact's edge holds up to sigma0 delta^2 and the contact sticks (docs/solver.md,
  * "Adhesion"). */
 static void sphere_across_tabor_mu(void **state)
@@ -861,9 +886,69 @@ static void summary_of_a_loop(void **state)
     assert_non_null(strstr(im_last_error(), "step 2"));
 }
 
+/* `test_adhesion --mu M --L N [--device cpu|gpu] [--zone P]`: the sweep's retraction at one Tabor mu on one
+ * grid (L patches per reduced radius), each step printed with the solver's iterations and time, then its
+ * errors against Maugis-Dugdale; no bound (for the grids too large for ctest: mu = 10 wants L >= 357,
+ * scripts/gpu-adhesion.sh). --zone P widens the Dugdale zone to P patches where it is narrower, the work
+ * kept (sigma0 lowered, delta_c raised; the reference stays the asked mu's): the cohesive-zone
+ * regularisation tried in docs/solver.md, "Across Tabor's mu". */
+static double positive_argument(const char *name, const char *word)
+{
+    char *end = NULL;
+    const double value = strtod(word, &end);
+    if (end == word || *end != '\0' || !(value > 0) || !isfinite(value)) {
+        fprintf(stderr, "test_adhesion: %s '%s': expected a positive number\n", name, word);
+        exit(2);
+    }
+    return value;
+}
+
+static int one_mu_on_one_grid(int argc, char **argv)
+{
+    double mu = NAN, scale = NAN, zone = 0;
+    int device = IM_DEVICE_CPU;
+    const char *device_word = "cpu";
+    for (int k = 1; k < argc; k += 2) {
+        const char *value = k + 1 < argc ? argv[k + 1] : "";
+        if (strcmp(argv[k], "--mu") == 0)
+            mu = positive_argument("--mu", value);
+        else if (strcmp(argv[k], "--L") == 0)
+            scale = positive_argument("--L", value);
+        else if (strcmp(argv[k], "--zone") == 0)
+            zone = positive_argument("--zone", value);
+        else if (strcmp(argv[k], "--device") == 0 && im_device_parse(value, &device) == IM_OK)
+            device_word = value;
+        else {
+            fprintf(stderr, "test_adhesion: '%s %s': expected --mu M --L N [--device cpu|gpu] [--zone P]\n", argv[k],
+                    value);
+            return 2;
+        }
+    }
+    if (isnan(mu) || isnan(scale)) {
+        fprintf(stderr, "test_adhesion: --mu and --L are both needed (Tabor's mu, patches per reduced radius)\n");
+        return 2;
+    }
+    sphere_case c = sphere_case_make(mu * MAUGIS_PER_TABOR, scale);
+    c.device = device;
+    const double zone_length = M_PI * c.range * c.range / (8 * c.work); /* E* = 1 */
+    if (zone > zone_length) {
+        c.range = sqrt(8 * c.work * zone / M_PI);
+        c.stress = c.work / c.range;
+    }
+    printf("Tabor mu %g (lambda %g), L = %g patches, R = %g, Dugdale zone %.4f patches (solved with %.4f), "
+           "device %s\n",
+           mu, c.lambda, scale, c.radius, zone_length, fmax(zone, zone_length), device_word);
+    const sphere_errors e = retraction_errors_of(&c, 1);
+    printf("largest |N - N_MD| / (pi w R) %.5f, pull-off error %.5f, load-area %.5f\n", e.curve, e.pull_off,
+           e.load_area);
+    return 0;
+}
+
 /* `test_adhesion --across-mu` runs the slow sweep alone (ctest's adhesion_across_mu, labelled slow). */
 int main(int argc, char **argv)
 {
+    if (argc > 2 && strcmp(argv[1], "--mu") == 0)
+        return one_mu_on_one_grid(argc, argv);
     if (argc == 2 && strcmp(argv[1], "--across-mu") == 0) {
         const struct CMUnitTest slow[] = {cmocka_unit_test(sphere_across_tabor_mu)};
         return cmocka_run_group_tests(slow, NULL, NULL);
