@@ -122,6 +122,16 @@ static double level_bytes(int nx, int ny)
     return table_bytes(nx, ny, 0) + fmax(temporary_bytes(nx, ny, 0), cpu_array_bytes(nx, ny));
 }
 
+/* What a level's plan needs on the host before it knows its engine: the whole CPU plan when it asks
+ * for the CPU (with its coarser levels, as before the GPU engine), else the tables and their
+ * temporaries (the CPU engine's arrays are checked when such a plan stays on the CPU). */
+static double planning_bytes(int nx, int ny, const im_solver_options *o)
+{
+    if (o->device == IM_DEVICE_CPU)
+        return im_solver_plan_bytes(nx, ny);
+    return table_bytes(nx, ny, o->periodic) + temporary_bytes(nx, ny, o->periodic);
+}
+
 double im_solver_plan_bytes(int nx, int ny)
 {
     ARG_SIDES_OR(nx, ny, NAN);
@@ -358,7 +368,7 @@ static int allocate_tables(im_solver_plan *p)
 static int allocate_cpu_arrays(im_solver_plan *p)
 {
     char what[64];
-    snprintf(what, sizeof what, "solver plan %d x %d: CPU engine arrays", p->nx, p->ny);
+    snprintf(what, sizeof what, "solver plan %d x %d", p->nx, p->ny);
     int status = im_memory_check(cpu_array_bytes(p->nx, p->ny), what);
     if (status != IM_OK)
         return status;
@@ -374,7 +384,7 @@ static int allocate_cpu_arrays(im_solver_plan *p)
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
     if (!p->direction || !p->gap || !p->changed || !p->changed_value || !p->preconditioned ||
         !p->precondition_modes || !p->rows_in || !p->rows_out || !p->modes)
-        return im_fail(IM_ENOMEM, "%s: allocation failed", what);
+        return im_fail(IM_ENOMEM, "%s: CPU engine arrays: allocation failed", what);
     memset(p->direction, 0, sizeof(double) * n);
     return IM_OK;
 }
@@ -474,9 +484,7 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
         return im_fail(IM_EINVAL, "delta = %g: expected a finite patch side > 0", delta);
     char what[64];
     snprintf(what, sizeof what, "solver plan %d x %d", nx, ny);
-    /* the tables first; the CPU engine's arrays are checked when a plan stays on the CPU */
-    if ((status = im_memory_check(table_bytes(nx, ny, o.periodic) + temporary_bytes(nx, ny, o.periodic), what)) !=
-        IM_OK)
+    if ((status = im_memory_check(planning_bytes(nx, ny, &o), what)) != IM_OK)
         return status;
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
