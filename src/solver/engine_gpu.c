@@ -205,9 +205,10 @@ static int device_open(const im_solver_options *o, gpu_device **out)
     for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
         d->kernels[k].label = KERNELS[k].label;
     const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
-    if (status == IM_OK)
+    if (status == IM_OK) {
         status = gpu_buffer_create(d->context, partial_bytes, GPU_DEVICE_LOCAL, &d->partials);
-    d->fields_bytes = gpu_context_buffer_footprint(d->context, partial_bytes);
+        d->fields_bytes = gpu_context_buffer_footprint(d->context, partial_bytes);
+    }
     if (status == IM_OK)
         status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, GPU_HOST_READ, &d->result);
     if (status != IM_OK) {
