@@ -279,42 +279,55 @@ void solver_execute_once(fftw_plan plan)
 }
 
 /* M = 1 / the spectrum of K wrapped periodically on the nx x ny grid (offsets min(j, n - j)): the
- * inverse of a circulant close to K, positive where that spectrum is (0 elsewhere). Its transform
- * is a one-off plan on temporaries, as the GPU engine has no CPU arrays to lend. */
-static int compute_preconditioner(im_solver_plan *p)
+ * inverse of a circulant close to K, positive where that spectrum is (0 elsewhere). The wrapped
+ * kernel into `wrapped`, transformed by `forward` into `spectrum`. */
+static void invert_wrapped_kernel(im_solver_plan *p, double *wrapped, fftw_plan forward, fftw_complex *spectrum)
 {
     const int nx = p->nx, ny = p->ny;
     const size_t modes = (size_t)ny * (nx / 2 + 1);
-    double *wrapped = fftw_malloc(sizeof(double) * (size_t)nx * ny);
-    fftw_complex *spectrum = fftw_malloc(sizeof(fftw_complex) * modes);
-    fft_planner_lock();
-    fftw_plan forward = wrapped && spectrum ? fftw_plan_dft_r2c_2d(ny, nx, wrapped, spectrum, FFTW_ESTIMATE) : NULL;
-    fft_planner_unlock();
-    if (!forward) {
-        fftw_free(wrapped);
-        fftw_free(spectrum);
-        return im_fail(IM_ENOMEM, "solver plan %d x %d: preconditioner transform", nx, ny);
-    }
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < ny; ++jy)
         for (int jx = 0; jx < nx; ++jx)
             wrapped[(size_t)jy * nx + jx] =
                 p->kernel[(size_t)(jy <= ny - jy ? jy : ny - jy) * nx + (jx <= nx - jx ? jx : nx - jx)];
-    solver_execute_once(forward);
+    fftw_execute(forward);
     const double scale = 1.0 / ((double)nx * ny);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < modes; ++k) {
         double re = spectrum[k][0];
         p->inverse_spectrum[k] = re > 0 ? scale / re : 0;
     }
+}
+
+/* The preconditioner's spectrum: through the CPU engine's own plan where it has one (measured with
+ * its wisdom, so that a run's numbers do not depend on when the wisdom was read), else a one-off
+ * plan on temporaries (a GPU plan has no CPU arrays to lend). */
+static int compute_preconditioner(im_solver_plan *p)
+{
+    if (p->precondition_forward) {
+        invert_wrapped_kernel(p, p->preconditioned, p->precondition_forward, p->precondition_modes);
+        return IM_OK;
+    }
+    const int nx = p->nx, ny = p->ny;
+    double *wrapped = fftw_malloc(sizeof(double) * (size_t)nx * ny);
+    fftw_complex *spectrum = fftw_malloc(sizeof(fftw_complex) * (size_t)ny * (nx / 2 + 1));
+    fft_planner_lock();
+    fftw_plan forward = wrapped && spectrum ? fftw_plan_dft_r2c_2d(ny, nx, wrapped, spectrum, FFTW_ESTIMATE) : NULL;
+    fft_planner_unlock();
+    if (forward) {
+        invert_wrapped_kernel(p, wrapped, forward, spectrum);
+        fft_planner_lock();
+        fftw_destroy_plan(forward);
+        fft_planner_unlock();
+    }
     fftw_free(wrapped);
     fftw_free(spectrum);
-    return IM_OK;
+    return forward ? IM_OK : im_fail(IM_ENOMEM, "solver plan %d x %d: preconditioner transform", nx, ny);
 }
 
 /* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
  * that it is even and its spectrum real), then transforms it once with a one-off plan on
- * temporaries (the CPU engine's arrays come later, and only on the CPU). */
+ * temporaries (a GPU plan has no CPU arrays to lend). */
 static int compute_kernel(im_solver_plan *p)
 {
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
@@ -441,9 +454,15 @@ const char *im_solver_plan_device(const im_solver_plan *p)
 
 /* Moves the plan onto the GPU engine when its options ask for it (auto: when a hardware GPU opens;
  * otherwise it stays on the CPU, silently, as documented). */
+/* Whether a plan is on the CPU engine whatever opens: it asks for the CPU, or its finer level is there. */
+static int cpu_only(const im_solver_plan *p, const im_solver_plan *finer)
+{
+    return p->options.device == IM_DEVICE_CPU || (finer && finer->engine == &solver_engine_cpu);
+}
+
 static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
 {
-    if (p->options.device == IM_DEVICE_CPU || (finer && finer->engine == &solver_engine_cpu))
+    if (cpu_only(p, finer))
         return IM_OK;
 #if IM_HAVE_GPU
     int status = solver_engine_gpu_attach(p, finer);
@@ -500,16 +519,21 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
                           .delta = delta,
                           .options = o};
     double start = omp_get_wtime();
+    /* A CPU plan makes its FFTW plans first, as before the GPU engine: its tables then come from the
+     * same wisdom whenever it was read. Other plans compute the tables on temporaries, for the device. */
+    const int cpu = cpu_only(p, finer);
     status = allocate_tables(p);
+    if (status == IM_OK && cpu)
+        status = make_cpu_engine(p);
     if (status == IM_OK)
         status = o.periodic ? solver_periodic_kernel(p) : compute_kernel(p);
     /* Direct summation costs ~nx ny multiply-adds per changed patch, a pruned padded convolution
      * ~c nx ny log2(4 nx ny): the crossover grows like log2(4 nx ny). Measured at 375 x 378, one
      * thread: 0.035 ms per patch against 4.4 ms per convolution, a crossover near 125 patches. */
     p->direct_limit = (long)(6 * log2(4.0 * nx * ny));
-    if (status == IM_OK)
+    if (status == IM_OK && !cpu)
         status = choose_engine(p, finer);
-    if (status == IM_OK)
+    if (status == IM_OK && !cpu) /* auto without a GPU, or a level VkFFT cannot transform: on the CPU */
         status = p->engine == &solver_engine_cpu ? make_cpu_engine(p) : keep_host_k0(p);
     p->options.wisdom_path = NULL; /* not owned: used while planning only */
     if (status == IM_OK)
