@@ -221,9 +221,9 @@ static void test_rough_cone_1024(void **state)
     im_field_free(s);
 }
 
-/* Periodic flat contact of the surface s (freed here) on both engines at mean pressures. */
-static void compare_flat_on(im_field *s, const double *pressures, int count)
+static void compare_flat(int n, double slope, const double *pressures, int count)
 {
+    im_field *s = test_rough_surface(n, slope, 17);
     im_solver_options cpu_options = engine_options(IM_DEVICE_CPU), gpu_options = engine_options(IM_DEVICE_GPU);
     im_flat_contact *cpu = NULL, *gpu = NULL;
     assert_int_equal(im_flat_contact_create(s, &cpu_options, &cpu), IM_OK);
@@ -247,35 +247,12 @@ static void compare_flat_on(im_field *s, const double *pressures, int count)
     im_field_free(s);
 }
 
-static void compare_flat(int n, double slope, const double *pressures, int count)
-{
-    compare_flat_on(test_rough_surface(n, slope, 17), pressures, count);
-}
-
 static void test_periodic_flat(void **state)
 {
     (void)state;
     const double small[] = {0.005, 0.02}, large[] = {0.01};
     compare_flat(128, 0.1, small, 2);
     compare_flat(512, 0.1, large, 1);
-}
-
-/* A periodic cell of 16384 x 64: its rows' transforms take several uploads on any device (VkFFT's
- * four-step algorithm), which reorder through z in the kernel's transforms and the transform grid in
- * the preconditioner's (engine_gpu.c); its cascade level of 8192 x 32 runs in the same buffers. */
-static void test_periodic_long_rows(void **state)
-{
-    (void)state;
-    im_surface_params p = im_surface_params_default();
-    p.nx = 16384;
-    p.ny = 64;
-    p.lambda_r = 64;
-    p.slope_rms = 0.1;
-    p.seed = 29;
-    im_field *s = NULL;
-    assert_int_equal(im_surface_generate(&p, &s), IM_OK);
-    const double pressures[] = {0.01};
-    compare_flat_on(s, pressures, 1);
 }
 
 /* Mean-gap control of a periodic cell (displacement control with mean u = 0) over the GPU engine: the same
@@ -501,7 +478,6 @@ int main(void)
         cmocka_unit_test(test_unsupported_grid_refused),
         cmocka_unit_test(test_device_memory_counted),
         cmocka_unit_test(test_gpu_plan_host_side),
-        cmocka_unit_test(test_periodic_long_rows),
         cmocka_unit_test(test_rough_cone_displacement),
         cmocka_unit_test(test_rough_cone_load),
         cmocka_unit_test(test_rough_sphere),
