@@ -1,7 +1,7 @@
 /* Benchmark of the GPU engine against the CPU engine (not a test).
  *
  *   bench_gpu [--cone 1024,2048,4096] [--periodic 1024,2048,4096,8192] [--history] [--repeats R]
- *             [--cpu-limit N]
+ *             [--cpu-limit N] [--floor-limit N]
  *
  * 1. Cold rough-cone solves on the whole n x n grid (no window crop: the padded transform is 2n x 2n):
  *    H 0.8, lambda_s 4, lambda_r n, h'rms 0.08, seed 1, an 80 deg cone on the centre to the approach
@@ -12,8 +12,9 @@
  *    device (the GPU's floor), and the relative load difference and differing contact patches
  *    between the engines. The CPU engine runs with all OpenMP threads, up to n = --cpu-limit (2048).
  * 2. Periodic flat contact (im_flat_contact) of the same surfaces at mean pressure 0.004 E*
- *    (about 10% contact), plain PK as the periodic mode has it: per-iteration time and its ratio to
- *    the unpadded pair.
+ *    (about 10% contact), plain PK as the periodic mode has it: the solve's time and the process's
+ *    peak resident memory so far, then per-iteration time and its ratio to the unpadded pair (for
+ *    n up to --floor-limit: the largest grids skip its planning and buffers).
  * 3. --history: the paper's 25-step history (512^2, approaches up to 31.5, window crop) on both.
  * Prints the devices (Vulkan device name, threads) first. Figures go to docs/benchmarks.md.
  */
@@ -28,6 +29,7 @@
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #if IM_HAVE_GPU
 #include "gpu/vulkan.h"
@@ -89,7 +91,7 @@ static double *cone_gap(const im_field *s)
 static double vkfft_pair_seconds(int px, int py)
 {
     gpu_context *c = NULL;
-    gpu_buffer real = {0}, modes = {0};
+    gpu_buffer real = {0}, modes = {0}, scratch = {0}; /* scratch: VkFFT's, in parts as the engine gives it */
     gpu_fft *fft = NULL;
     int status = gpu_context_open(GPU_ANY, 0, &c);
     if (status == IM_OK)
@@ -97,7 +99,9 @@ static double vkfft_pair_seconds(int px, int py)
     if (status == IM_OK)
         status = gpu_buffer_create(c, gpu_fft_modes_bytes(px, py), 0, &modes);
     if (status == IM_OK)
-        status = gpu_fft_create(c, px, py, &real, &modes, &fft);
+        status = gpu_buffer_create(c, gpu_fft_modes_bytes(px, py), 0, &scratch);
+    if (status == IM_OK)
+        status = gpu_fft_create(c, px, py, &real, &modes, &scratch, &fft);
     if (status != IM_OK)
         die(status, "VkFFT floor");
     double batches[9];
@@ -116,6 +120,7 @@ static double vkfft_pair_seconds(int px, int py)
     gpu_fft_free(fft);
     gpu_buffer_free(c, &real);
     gpu_buffer_free(c, &modes);
+    gpu_buffer_free(c, &scratch);
     gpu_context_close(c);
     return bench_median(batches, 9);
 }
@@ -209,17 +214,26 @@ static void flat_solve(const im_field *s, int device, double *seconds, im_flat_r
     im_flat_contact_free(run);
 }
 
-static void bench_periodic(int n, int cpu_limit)
+/* The process's peak resident memory so far, GiB (on lavapipe the device's memory is the host's too). */
+static double peak_rss_gib(void)
+{
+    struct rusage usage;
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1048576.0; /* KiB */
+}
+
+static void bench_periodic(int n, int cpu_limit, int floor_limit)
 {
     im_field *s = paper_surface(n);
     im_flat_result gpu, cpu;
     double gpu_seconds, cpu_seconds;
     flat_solve(s, IM_DEVICE_GPU, &gpu_seconds, &gpu);
-    double pair = vkfft_pair_seconds(n, n);
-    printf("periodic %5d^2 gpu: %.3f s, %d iterations (residual %.2g), %.3f ms per iteration = %.2f VkFFT pairs "
-           "of %d^2 (%.3f ms), contact %.4f\n",
-           n, gpu_seconds, gpu.iterations, gpu.residual, 1e3 * gpu_seconds / gpu.iterations,
-           gpu_seconds / gpu.iterations / pair, n, 1e3 * pair, gpu.area_fraction);
+    printf("periodic %5d^2 gpu: %.3f s, %d iterations (residual %.2g), contact %.4f, host peak RSS %.2f GiB\n", n,
+           gpu_seconds, gpu.iterations, gpu.residual, gpu.area_fraction, peak_rss_gib());
+    fflush(stdout);
+    const double pair = n <= floor_limit ? vkfft_pair_seconds(n, n) : NAN;
+    printf("periodic %5d^2 gpu: %.3f ms per iteration = %.2f VkFFT pairs of %d^2 (%.3f ms)\n", n,
+           1e3 * gpu_seconds / gpu.iterations, gpu_seconds / gpu.iterations / pair, n, 1e3 * pair);
     if (n <= cpu_limit) {
         flat_solve(s, IM_DEVICE_CPU, &cpu_seconds, &cpu);
         printf("periodic %5d^2 cpu: %.3f s (%d threads), %d iterations; gpu speed-up %.2fx; |dw|/w = %.2e, "
@@ -269,7 +283,7 @@ static void bench_history(void)
 int main(int argc, char **argv)
 {
     int cones[MAX_SIZES] = {1024, 2048, 4096}, periodic[MAX_SIZES] = {1024, 2048, 4096};
-    int cone_count = 3, periodic_count = 3, repeats = 3, history = 0, cpu_limit = 2048;
+    int cone_count = 3, periodic_count = 3, repeats = 3, history = 0, cpu_limit = 2048, floor_limit = 1 << 30;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--cone") == 0 && i + 1 < argc)
             cone_count = parse_sizes(argv[++i], cones);
@@ -279,11 +293,13 @@ int main(int argc, char **argv)
             repeats = atoi(argv[++i]);
         else if (strcmp(argv[i], "--cpu-limit") == 0 && i + 1 < argc)
             cpu_limit = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--floor-limit") == 0 && i + 1 < argc)
+            floor_limit = atoi(argv[++i]);
         else if (strcmp(argv[i], "--history") == 0)
             history = 1;
         else {
             fprintf(stderr, "usage: bench_gpu [--cone LIST] [--periodic LIST] [--history] [--repeats R] "
-                            "[--cpu-limit N]\n");
+                            "[--cpu-limit N] [--floor-limit N]\n");
             return 2;
         }
     }
@@ -295,7 +311,7 @@ int main(int argc, char **argv)
     for (int k = 0; k < cone_count; ++k)
         bench_cone(cones[k], repeats, cpu_limit);
     for (int k = 0; k < periodic_count; ++k)
-        bench_periodic(periodic[k], cpu_limit / 2);
+        bench_periodic(periodic[k], cpu_limit / 2, floor_limit);
     if (history)
         bench_history();
     printf("peak host memory: %.0f MiB\n", bench_peak_rss_mib());

@@ -127,8 +127,10 @@ static void transform(void (*direction)(gpu_context *, gpu_fft *), gpu_fft *fft)
 
 /* R2C then C2R of random reals on the GPU: the modes equal FFTW's and the round trip gives
  * px * py times the input (unnormalised), each to 1e-12 of the largest value. The real buffer is
- * as large as the modes buffer (vulkan.h); its tail past px * py reals must stay untouched. */
-static void check_fft(int px, int py, uint64_t seed)
+ * as large as the modes buffer (vulkan.h); its tail past px * py reals must stay untouched.
+ * borrowed: as a coarse cascade level runs them, in buffers 4 times larger than the transform
+ * needs, with a scratch buffer of ours for VkFFT (filled with garbage first). */
+static void check_fft_in(int px, int py, uint64_t seed, int borrowed)
 {
     size_t n = (size_t)px * py, m = (size_t)(px / 2 + 1) * py;
     double *input = malloc(2 * m * sizeof *input), *modes = malloc(2 * m * sizeof *modes);
@@ -136,12 +138,17 @@ static void check_fft(int px, int py, uint64_t seed)
     assert_true(input && modes && back && 2 * m >= n);
     for (size_t i = 0; i < 2 * m; ++i)
         input[i] = i < n ? uniform(&seed) : -1234.5; /* the tail: a sentinel */
-    gpu_buffer real, complex;
-    ok(gpu_buffer_create(context, gpu_fft_modes_bytes(px, py), 0, &real), "real buffer");
-    ok(gpu_buffer_create(context, gpu_fft_modes_bytes(px, py), 0, &complex), "modes buffer");
+    gpu_buffer real, complex, scratch = {0};
+    const VkDeviceSize bytes = gpu_fft_modes_bytes(px, py) * (borrowed ? 4 : 1);
+    ok(gpu_buffer_create(context, bytes, 0, &real), "real buffer");
+    ok(gpu_buffer_create(context, bytes, 0, &complex), "modes buffer");
     ok(gpu_buffer_upload(context, &real, 0, input, 2 * m * sizeof(double)), "upload");
+    if (borrowed) {
+        ok(gpu_buffer_create(context, gpu_fft_modes_bytes(px, py), 0, &scratch), "scratch buffer");
+        ok(gpu_buffer_upload(context, &scratch, 0, input, 2 * m * sizeof(double)), "scratch garbage");
+    }
     gpu_fft *fft = NULL;
-    ok(gpu_fft_create(context, px, py, &real, &complex, &fft), "gpu_fft_create");
+    ok(gpu_fft_create(context, px, py, &real, &complex, borrowed ? &scratch : NULL, &fft), "gpu_fft_create");
 
     transform(gpu_fft_forward, fft);
     ok(gpu_buffer_download(context, &complex, 0, modes, 2 * m * sizeof(double)), "download modes");
@@ -160,6 +167,7 @@ static void check_fft(int px, int py, uint64_t seed)
     gpu_fft_free(fft);
     gpu_buffer_free(context, &real);
     gpu_buffer_free(context, &complex);
+    gpu_buffer_free(context, &scratch);
     free(expected);
     free(input);
     free(modes);
@@ -171,6 +179,8 @@ static void check_fft(int px, int py, uint64_t seed)
     if (tail_changed)
         fail_msg("%d x %d: the inverse wrote %zu reals past px * py", px, py, tail_changed);
 }
+
+static void check_fft(int px, int py, uint64_t seed) { check_fft_in(px, py, seed, 0); }
 
 static void test_fft_small(void **state)
 {
@@ -190,6 +200,19 @@ static void test_fft_large(void **state)
     assert_no_validation_messages();
 }
 
+/* Axes of 16384 take several uploads on any device's shared memory (VkFFT's four-step algorithm),
+ * which reorders through the scratch buffer we give it (the GPU engine's z or transform grid), in
+ * buffers larger than the transform (a coarse level's). */
+static void test_fft_scratch(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    check_fft_in(16384, 8, 5, 1);
+    check_fft_in(8, 16384, 6, 1);
+    check_fft_in(64, 48, 7, 1);
+    assert_no_validation_messages();
+}
+
 /* 17 is prime: VkFFT would take its Bluestein path, which returned zeros in a probe. */
 static void test_fft_sides(void **state)
 {
@@ -204,13 +227,13 @@ static void test_fft_sides(void **state)
     ok(gpu_buffer_create(context, gpu_fft_modes_bytes(64, 64), 0, &real), "real buffer");
     ok(gpu_buffer_create(context, gpu_fft_modes_bytes(64, 64), 0, &complex), "modes buffer");
     gpu_fft *fft = NULL;
-    assert_int_equal(gpu_fft_create(context, 17, 64, &real, &complex, &fft), IM_EUNSUPPORTED);
+    assert_int_equal(gpu_fft_create(context, 17, 64, &real, &complex, NULL, &fft), IM_EUNSUPPORTED);
     assert_null(fft);
     if (!strstr(im_last_error(), "side 17 has a prime factor above 13"))
         fail_msg("unexpected refusal: %s", im_last_error());
-    assert_int_equal(gpu_fft_create(context, 64, 17, &real, &complex, &fft), IM_EUNSUPPORTED);
+    assert_int_equal(gpu_fft_create(context, 64, 17, &real, &complex, NULL, &fft), IM_EUNSUPPORTED);
     /* Buffers too small for the modes of 128 x 64 (those of 64 x 64). */
-    assert_int_equal(gpu_fft_create(context, 128, 64, &real, &complex, &fft), IM_EINVAL);
+    assert_int_equal(gpu_fft_create(context, 128, 64, &real, &complex, NULL, &fft), IM_EINVAL);
     assert_null(fft);
     gpu_buffer_free(context, &real);
     gpu_buffer_free(context, &complex);
@@ -414,7 +437,7 @@ static void test_buffer_parts(void **state)
         ok(gpu_buffer_create(context, gpu_fft_modes_bytes(side, side), 0, &complex), "modes buffer");
         assert_int_equal(real.parts, 2);
         gpu_fft *fft = NULL;
-        assert_int_equal(gpu_fft_create(context, side, side, &real, &complex, &fft), IM_EUNSUPPORTED);
+        assert_int_equal(gpu_fft_create(context, side, side, &real, &complex, NULL, &fft), IM_EUNSUPPORTED);
         assert_non_null(strstr(im_last_error(), "non-uniformly"));
         gpu_buffer_free(context, &real);
         gpu_buffer_free(context, &complex);
@@ -443,6 +466,7 @@ int main(void)
         cmocka_unit_test(test_large_transfers), cmocka_unit_test(test_fft_small),
         cmocka_unit_test(test_fft_sides),       cmocka_unit_test(test_fft_large),
         cmocka_unit_test(test_chunked_fields),  cmocka_unit_test(test_buffer_parts),
+        cmocka_unit_test(test_fft_scratch),
     };
     int failed = cmocka_run_group_tests(tests, open_context, close_context);
     if (skip_all)

@@ -310,6 +310,106 @@ static void test_chunked_cone(void **state)
     set_chunk_limit(NULL);
 }
 
+/* The device memory a GPU plan counts before allocating (solver_footprint, the refusal's number)
+ * is what its buffers then hold, with the cascade's levels (which borrow the finest level's work
+ * buffers) and with fields split into chunks; and it is the closed form of engine_gpu.c's list:
+ * the finest level's five fields, z (as large as the unpadded grid's modes), the transform grid and
+ * its modes (each as large as the modes), VkFFT's scratch on the padded grid (as large), the spectrum, K (padded grid) and the
+ * preconditioner's spectrum (padded grid), the change lists (3088 bytes); a coarse level the same
+ * tables and lists only; and the reductions' 65536 bytes. */
+static double expected_device_bytes(int nx, int ny, int periodic, int cascade)
+{
+    const double n = (double)nx * ny, small = (double)ny * (nx / 2 + 1);
+    const double modes = periodic ? small : 2.0 * ny * (nx + 1),
+                 tables = 8 * modes + (periodic ? 0 : 8 * n + 8 * small);
+    double bytes = 65536 + tables + 3088;
+    bytes += 5 * 8 * n + 16 * small + 16 * modes * (periodic ? 2 : 3);
+    for (int cx = nx, cy = ny; cascade && solver_cascade_sides(cx, cy, periodic, &cx, &cy);)
+        bytes += (periodic ? 8.0 * cy * (cx / 2 + 1)
+                           : 16.0 * cy * (cx + 1) + 8.0 * cx * cy + 8.0 * cy * (cx / 2 + 1)) +
+                 3088;
+    return bytes;
+}
+
+static void check_device_memory(int n, int periodic, int cascade)
+{
+    im_solver_options o = engine_options(IM_DEVICE_GPU);
+    o.periodic = periodic;
+    o.cascade = cascade;
+    im_solver_plan *plan = NULL;
+    if (im_solver_plan_create(n, n, 1.0, &o, &plan) != IM_OK)
+        fail_msg("gpu plan %d^2: %s", n, im_last_error());
+    double counted, held;
+    solver_engine_gpu_memory(plan, &counted, &held);
+    const double expected = expected_device_bytes(n, n, periodic, cascade);
+    print_message("%d^2 %s, cascade %d: counted %.0f bytes, held %.0f, expected %.0f\n", n,
+                  periodic ? "periodic" : "half-space", cascade, counted, held, expected);
+    if (counted != held || counted != expected)
+        fail_msg("%d^2 periodic %d cascade %d: counted %.0f bytes of device memory, the buffers hold %.0f, the "
+                 "closed form gives %.0f",
+                 n, periodic, cascade, counted, held, expected);
+    im_solver_plan_free(plan);
+}
+
+static void test_device_memory_counted(void **state)
+{
+    (void)state;
+    const char *limits[] = {NULL, "262144"}; /* the second: fields in 2 chunks, modes in up to 5 */
+    for (int k = 0; k < 2; ++k) {
+        set_chunk_limit(limits[k]);
+        check_device_memory(240, 1, 1);
+        check_device_memory(240, 1, 0);
+        check_device_memory(200, 0, 1);
+        check_device_memory(96, 0, 0);
+    }
+    set_chunk_limit(NULL);
+}
+
+/* A GPU plan, each of its cascade levels, holds none of the CPU engine's arrays and FFTW plans on
+ * the host, and of the tables only K(0); a CPU plan has them all. */
+static void assert_host_side(const im_solver_plan *p, int gpu)
+{
+    const void *cpu_arrays[] = {p->direction,
+                                p->gap,
+                                p->changed,
+                                p->changed_value,
+                                p->preconditioned,
+                                p->precondition_modes,
+                                p->rows_in,
+                                p->rows_out,
+                                p->modes,
+                                p->spectrum,
+                                p->inverse_spectrum,
+                                p->rows_forward,
+                                p->columns_forward,
+                                p->columns_backward,
+                                p->rows_backward,
+                                p->precondition_forward,
+                                p->precondition_backward};
+    for (size_t k = 0; k < sizeof cpu_arrays / sizeof *cpu_arrays; ++k)
+        if ((cpu_arrays[k] != NULL) == gpu)
+            fail_msg("%s plan %d x %d: CPU array %zu is %s", gpu ? "GPU" : "CPU", p->nx, p->ny, k,
+                     gpu ? "allocated" : "missing");
+    assert_non_null(p->kernel);
+}
+
+static void test_gpu_plan_host_side(void **state)
+{
+    (void)state;
+    for (int periodic = 0; periodic < 2; ++periodic)
+        for (int device = IM_DEVICE_CPU; device <= IM_DEVICE_GPU; ++device) {
+            im_solver_options o = engine_options(device);
+            o.periodic = periodic;
+            im_solver_plan *plan = NULL;
+            assert_int_equal(im_solver_plan_create(160, 128, 1.0, &o, &plan), IM_OK);
+            int levels = 0;
+            for (const im_solver_plan *p = plan; p; p = p->coarse, ++levels)
+                assert_host_side(p, device == IM_DEVICE_GPU);
+            assert_int_equal(levels, 3); /* 160 x 128, 80 x 64, 40 x 32 */
+            im_solver_plan_free(plan);
+        }
+}
+
 /* The convolution alone, for a pressure of the caller's: both engines' K p agree to rounding. */
 static void test_convolution(void **state)
 {
@@ -376,6 +476,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_convolution),
         cmocka_unit_test(test_unsupported_grid_refused),
+        cmocka_unit_test(test_device_memory_counted),
+        cmocka_unit_test(test_gpu_plan_host_side),
         cmocka_unit_test(test_rough_cone_displacement),
         cmocka_unit_test(test_rough_cone_load),
         cmocka_unit_test(test_rough_sphere),

@@ -39,6 +39,7 @@ struct gpu_context {
     int deferred_status; /* a failure while recording (void functions), returned by gpu_submit_wait */
     char deferred_error[512];
     gpu_buffer upload, download; /* staging (GPU_HOST_WRITE, GPU_HOST_READ), grown on demand */
+    VkDeviceSize local_bytes;    /* gpu_context_local_bytes */
     long validation_messages;
     gpu_profile *profile; /* NULL unless INDENTMAP_GPU_PROFILE asks for one */
     char name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
@@ -455,6 +456,7 @@ VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSi
 {
     return bytes <= context->part_bytes ? bytes : pieces(bytes, context->part_bytes) * context->part_bytes;
 }
+VkDeviceSize gpu_context_local_bytes(const gpu_context *context) { return context->local_bytes; }
 long gpu_context_validation_messages(const gpu_context *context) { return context->validation_messages; }
 
 gpu_handles gpu_context_handles(gpu_context *context)
@@ -575,6 +577,10 @@ static int allocate_part(gpu_context *context, gpu_buffer *buffer, uint32_t k, e
                                      .allocationSize = needs.size,
                                      .memoryTypeIndex = type};
     VK_CHECK(vkAllocateMemory(context->device, &allocate, NULL, &buffer->memory[k]));
+    if (!host_visible) {
+        buffer->local_bytes += info.size;
+        context->local_bytes += info.size;
+    }
     VK_CHECK(vkBindBufferMemory(context->device, buffer->part[k], buffer->memory[k], 0));
     if (host_visible)
         VK_CHECK(vkMapMemory(context->device, buffer->memory[k], 0, VK_WHOLE_SIZE, 0, &buffer->mapped));
@@ -624,6 +630,7 @@ void gpu_buffer_free(gpu_context *context, gpu_buffer *buffer)
         vkDestroyBuffer(context->device, buffer->part[k], NULL);
         vkFreeMemory(context->device, buffer->memory[k], NULL);
     }
+    context->local_bytes -= buffer->local_bytes;
     *buffer = (gpu_buffer){0};
 }
 

@@ -29,9 +29,9 @@ struct gpu_fft {
     VkFFTApplication app;
     /* VkFFT keeps these pointers (configuration and launches), so they live with the plan. */
     gpu_handles handles;
-    VkBuffer real[GPU_MAX_CHUNKS], modes[GPU_MAX_CHUNKS];
-    uint64_t real_bytes[GPU_MAX_CHUNKS], modes_bytes[GPU_MAX_CHUNKS];
-    uint32_t real_parts, modes_parts;
+    VkBuffer real[GPU_MAX_CHUNKS], modes[GPU_MAX_CHUNKS], scratch[GPU_MAX_CHUNKS];
+    uint64_t real_bytes[GPU_MAX_CHUNKS], modes_bytes[GPU_MAX_CHUNKS], scratch_bytes[GPU_MAX_CHUNKS];
+    uint32_t real_parts, modes_parts, scratch_parts; /* scratch_parts 0: VkFFT allocates its own */
     VkCommandBuffer commands;
     int px, py;
     char labels[2][40]; /* a profile's names of the forward and the inverse transform */
@@ -59,7 +59,8 @@ static int large_factor(int side)
     return side;
 }
 
-static int check_sizes(const gpu_context *context, int px, int py, const gpu_buffer *real, const gpu_buffer *modes)
+static int check_sizes(const gpu_context *context, int px, int py, const gpu_buffer *real, const gpu_buffer *modes,
+                       const gpu_buffer *scratch)
 {
     if (px < 2 || py < 2)
         return im_fail(IM_EINVAL, "GPU FFT %d x %d: expected at least 2 x 2", px, py);
@@ -75,14 +76,15 @@ static int check_sizes(const gpu_context *context, int px, int py, const gpu_buf
      * descriptor range (validation: VUID-VkDescriptorBufferInfo-range-00342), so the real buffer
      * must be as large as the modes buffer; it reads and writes only the first px * py reals. */
     VkDeviceSize modes_bytes = gpu_fft_modes_bytes(px, py);
-    if (real->bytes < modes_bytes || modes->bytes < modes_bytes)
+    const VkDeviceSize scratch_bytes = scratch ? scratch->bytes : modes_bytes;
+    if (real->bytes < modes_bytes || modes->bytes < modes_bytes || scratch_bytes < modes_bytes)
         return im_fail(IM_EINVAL,
-                       "GPU FFT %d x %d: buffers of %llu (reals) and %llu (modes) bytes: expected at "
-                       "least %llu each",
+                       "GPU FFT %d x %d: buffers of %llu (reals), %llu (modes) and %llu (scratch) bytes: expected "
+                       "at least %llu each",
                        px, py, (unsigned long long)real->bytes, (unsigned long long)modes->bytes,
-                       (unsigned long long)modes_bytes);
+                       (unsigned long long)scratch_bytes, (unsigned long long)modes_bytes);
     /* VkFFT's multi-buffer shaders index their blocks by non-uniform indices without marking them so */
-    if ((real->parts > 1 || modes->parts > 1) && !gpu_context_nonuniform_buffers(context))
+    if (modes_bytes > gpu_context_part_bytes(context) && !gpu_context_nonuniform_buffers(context))
         return im_fail(IM_EUNSUPPORTED,
                        "GPU FFT %d x %d: its %.0f MiB buffers exceed one storage buffer, and %s does not index "
                        "arrays of storage buffers non-uniformly natively (VkFFT's multi-buffer mode needs it)",
@@ -122,32 +124,45 @@ static VkFFTConfiguration configuration(gpu_fft *fft)
     c.bufferSize = fft->modes_bytes;
     c.bufferStride[0] = (uint64_t)(fft->px / 2 + 1); /* in complex numbers */
     c.bufferStride[1] = (uint64_t)(fft->px / 2 + 1) * (uint64_t)fft->py;
+    if (fft->scratch_parts) { /* the four-step algorithm's reordering, when an axis takes several uploads */
+        c.userTempBuffer = 1;
+        c.tempBufferNum = fft->scratch_parts;
+        c.tempBuffer = fft->scratch;
+        c.tempBufferSize = fft->scratch_bytes;
+    }
     return c;
 }
 
-/* A buffer as VkFFT takes it: one buffer of the bytes used, or (VkFFT's multi-buffer mode) its
- * equal parts, which VkFFT binds as blocks of the smallest one's size. */
-static void hand_over(const gpu_buffer *buffer, uint64_t used, VkBuffer *buffers, uint64_t *sizes, uint32_t *count)
+/* A buffer as VkFFT takes it: the bytes used in one part when the modes' extent fits one, or
+ * (VkFFT's multi-buffer mode) the equal parts that hold that extent, which VkFFT binds as blocks of
+ * the smallest one's size. A larger buffer (a coarse cascade level's, which is its finest level's)
+ * is handed over only as far as the transform reaches. */
+static void hand_over(const gpu_buffer *buffer, uint64_t extent, uint64_t used, VkBuffer *buffers, uint64_t *sizes,
+                      uint32_t *count)
 {
-    *count = buffer->parts;
-    for (uint32_t k = 0; k < buffer->parts; ++k) {
+    *count = extent <= buffer->part_bytes ? 1 : (uint32_t)((extent + buffer->part_bytes - 1) / buffer->part_bytes);
+    for (uint32_t k = 0; k < *count; ++k) {
         buffers[k] = buffer->part[k];
-        sizes[k] = buffer->parts == 1 ? used : buffer->part_bytes;
+        sizes[k] = *count == 1 ? used : buffer->part_bytes;
     }
 }
 
-int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out)
+int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_buffer *scratch,
+                   gpu_fft **out)
 {
     *out = NULL;
-    int status = check_sizes(context, px, py, real, modes);
+    int status = check_sizes(context, px, py, real, modes, scratch);
     if (status != IM_OK)
         return status;
     gpu_fft *fft = calloc(1, sizeof *fft);
     if (!fft)
         return im_fail(IM_ENOMEM, "GPU FFT %d x %d: out of memory", px, py);
     fft->handles = gpu_context_handles(context);
-    hand_over(real, (uint64_t)px * py * sizeof(double), fft->real, fft->real_bytes, &fft->real_parts);
-    hand_over(modes, gpu_fft_modes_bytes(px, py), fft->modes, fft->modes_bytes, &fft->modes_parts);
+    const uint64_t extent = gpu_fft_modes_bytes(px, py);
+    hand_over(real, extent, (uint64_t)px * py * sizeof(double), fft->real, fft->real_bytes, &fft->real_parts);
+    hand_over(modes, extent, extent, fft->modes, fft->modes_bytes, &fft->modes_parts);
+    if (scratch)
+        hand_over(scratch, extent, extent, fft->scratch, fft->scratch_bytes, &fft->scratch_parts);
     fft->px = px;
     fft->py = py;
     snprintf(fft->labels[0], sizeof fft->labels[0], "FFT R2C %d x %d", px, py);

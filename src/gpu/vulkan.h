@@ -32,6 +32,7 @@ typedef struct gpu_buffer {
     VkDeviceSize bytes;      /* what was asked for */
     VkDeviceSize part_bytes; /* each part's size: bytes when there is one */
     void *mapped; /* host-visible buffers (one part): their persistent mapping (coherent); NULL otherwise */
+    VkDeviceSize local_bytes; /* the device-local memory it holds (gpu_context_local_bytes) */
 } gpu_buffer;
 
 typedef struct gpu_pipeline {
@@ -71,6 +72,9 @@ int gpu_context_nonuniform_buffers(const gpu_context *context);
  * occupies there (whole parts). */
 VkDeviceSize gpu_context_device_bytes(const gpu_context *context);
 VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSize bytes);
+/* The device-local memory the context's buffers hold now (their parts' sizes; VkFFT's own small
+ * allocations, its twiddle tables, are not among them). */
+VkDeviceSize gpu_context_local_bytes(const gpu_context *context);
 long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
 
 /* Writes one line per Vulkan device ("name, type, Vulkan x.y, float64 yes|no, N MiB") into text;
@@ -143,10 +147,15 @@ const char *gpu_result_name(VkResult result);
  * FFTW's c2r destroys its input). Both buffers must hold gpu_fft_modes_bytes(px, py): VkFFT binds
  * the real buffer with the modes' size, though it touches only the first px * py reals. Sides must
  * factor into 2, 3, 5, 7, 11 and 13 (VkFFT's exact radices): others are refused with
- * IM_EUNSUPPORTED naming the side. */
+ * IM_EUNSUPPORTED naming the side. Buffers larger than that are used from their start (a coarse
+ * cascade level's transforms run in its finest level's buffers). scratch: VkFFT's work buffer for
+ * the four-step algorithm (an axis longer than the device's shared memory holds takes several
+ * uploads, and VkFFT reorders through it), at least gpu_fft_modes_bytes too, whose contents the
+ * transforms destroy; NULL lets VkFFT allocate its own, as one buffer, when it needs one. */
 VkDeviceSize gpu_fft_modes_bytes(int px, int py); /* (px/2 + 1) * py complex doubles */
 typedef struct gpu_fft gpu_fft;
-int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_fft **out);
+int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_buffer *scratch,
+                   gpu_fft **out);
 void gpu_fft_forward(gpu_context *context, gpu_fft *fft); /* records into the current command buffer */
 void gpu_fft_inverse(gpu_context *context, gpu_fft *fft);
 void gpu_fft_free(gpu_fft *fft);

@@ -125,6 +125,10 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer);
 const char *solver_engine_gpu_device(const im_solver_plan *plan);
 /* What the Vulkan validation layers reported so far on a GPU plan's device (-1 on the CPU). */
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan);
+/* The device memory the plan's solver counted before allocating (all its cascade levels and the
+ * reductions' buffers: solver_footprint) and what its buffers hold on the device now (the context's
+ * count of device-local allocations); -1 for a plan without a GPU. Tests compare the two. */
+void solver_engine_gpu_memory(const im_solver_plan *plan, double *counted, double *held);
 
 /* p = min(p scale, cap) on the elastic patches of p[0..n); whether any reached the cap (engine_cpu.c,
  * also the MPI engine's pass on its rows). */

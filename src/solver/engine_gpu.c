@@ -5,8 +5,20 @@
  * result are only recorded; a pass with one submits what was recorded and waits for it.
  *
  * The plan made on the CPU (plan.c) gives the kernel's spectrum, the preconditioner's and K(0), so
- * both engines convolve with the same numbers; the GPU keeps its own copies. Coarse cascade levels
- * share their finest plan's device and pipelines. */
+ * both engines convolve with the same numbers; the GPU keeps its own copies (the host keeps K(0)).
+ * Coarse cascade levels share their finest plan's device and pipelines, and its work buffers.
+ *
+ * Device memory (solver_buffers, docs/solver.md): five fields of nx x ny (gap0, p, u, g, t), z and
+ * the transform grid `real` (each as large as the modes, as VkFFT binds them), one modes buffer that
+ * the kernel's transform and the preconditioner's share, and VkFFT's scratch (its four-step
+ * reordering, as large as the modes): z during the kernel's periodic transforms and `real` during
+ * the preconditioner's (each idle then: z holds M g from precondition to direction only, and `real`
+ * holds K t from convolve_direction to update_pressure only, overwritten before it is read again),
+ * a buffer of its own on the padded grid. Then the tables: the spectrum, the preconditioner's
+ * (derived from the spectrum in the periodic mode, where M is K's inverse: multiply.comp), and K for
+ * the direct sums (not in the periodic mode, where a pair costs about as much as 1.1 log2(nx ny)
+ * direct sums: direct_limit). A coarse level has only its own tables: its fields are the finest
+ * level's, idle while the cascade start solves the coarse levels before the fine solve begins. */
 #include "solver/engine.h"
 
 #include "gpu/vulkan.h"
@@ -43,6 +55,10 @@ typedef struct {
 typedef struct {
     uint32_t count;
 } push_count;
+typedef struct {
+    double scale; /* invert: the spectrum's product with its inverse (1 / (nx ny)^2) */
+    uint32_t count, invert;
+} push_multiply;
 typedef struct {
     double value;
     uint32_t n;
@@ -109,7 +125,7 @@ static const struct kernel_source {
 #define KERNEL(id, name, bindings, fields, push) [id] = {name, sizeof name, bindings, fields, sizeof(push), #name + 6}
     KERNEL(K_PAD, spirv_pad, 2, 2, push_grid),
     KERNEL(K_UNPAD, spirv_unpad, 2, 2, push_grid),
-    KERNEL(K_MULTIPLY, spirv_multiply, 2, 2, push_count),
+    KERNEL(K_MULTIPLY, spirv_multiply, 2, 2, push_multiply),
     KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, 3, push_value),
     KERNEL(K_GAPS, spirv_gaps, 5, 4, push_pair),
     KERNEL(K_WINKLER, spirv_winkler, 3, 2, push_pair),
@@ -141,7 +157,7 @@ typedef struct gpu_device {
     gpu_context *context;
     gpu_pipeline kernels[K_COUNT];
     gpu_buffer partials, result; /* result: host-visible */
-    VkDeviceSize fields_bytes;   /* what the plans' buffers occupy (solver_footprint) */
+    VkDeviceSize fields_bytes;   /* what the plans' buffers and partials occupy (solver_footprint) */
     int references;
 } gpu_device;
 
@@ -149,11 +165,14 @@ struct gpu_solver {
     gpu_device *device;
     gpu_buffer gap0, p, u, g, t, z;   /* nx x ny */
     gpu_buffer real, modes, spectrum; /* the px x py transform grid and its modes */
-    gpu_buffer precondition_modes, inverse_spectrum;
-    gpu_buffer kernel;                                   /* nx x ny: K at offset (|dx|, |dy|), for direct sums */
+    gpu_buffer scratch;               /* VkFFT's own work (the padded grid; periodic: none) */
+    gpu_buffer inverse_spectrum;      /* the preconditioner's (not periodic) */
+    gpu_buffer kernel;                /* nx x ny: K at offset (|dx|, |dy|), for direct sums (not periodic) */
     gpu_buffer change_count, change_index, change_value; /* update_pressure's changes */
     gpu_fft *fft, *precondition_fft;
     uint32_t nx, ny, px, py;
+    int periodic;
+    int borrowed;           /* its work buffers are its finest level's (not freed here) */
     VkDeviceSize footprint; /* its share of device->fields_bytes */
 };
 
@@ -186,8 +205,10 @@ static int device_open(const im_solver_options *o, gpu_device **out)
     for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
         d->kernels[k].label = KERNELS[k].label;
     const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
-    if (status == IM_OK)
+    if (status == IM_OK) {
         status = gpu_buffer_create(d->context, partial_bytes, GPU_DEVICE_LOCAL, &d->partials);
+        d->fields_bytes = gpu_context_buffer_footprint(d->context, partial_bytes);
+    }
     if (status == IM_OK)
         status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, GPU_HOST_READ, &d->result);
     if (status != IM_OK) {
@@ -257,7 +278,7 @@ static void flush(pk_run *r)
 static void convolve_real(struct gpu_solver *s)
 {
     const gpu_buffer *multiply[2] = {&s->modes, &s->spectrum};
-    const push_count modes = {.count = s->py * (s->px / 2 + 1)};
+    const push_multiply modes = {.count = s->py * (s->px / 2 + 1)};
     gpu_fft_forward(context_of(s), s->fft);
     record(s, K_MULTIPLY, multiply, &modes, modes.count);
     gpu_fft_inverse(context_of(s), s->fft);
@@ -282,6 +303,10 @@ static int gpu_engine_begin(pk_run *r)
     int status = gpu_buffer_upload(context_of(s), &s->gap0, 0, r->gap0, bytes);
     if (status == IM_OK)
         status = gpu_buffer_upload(context_of(s), &s->p, 0, r->p, bytes);
+    if (status == IM_OK) /* t is read (times beta = 0) before it is first written, and the coarse levels' */
+        status = gpu_begin(context_of(s)); /* solves, which share it, may leave anything there */
+    if (status == IM_OK)
+        gpu_zero(context_of(s), &s->t);
     return status == IM_OK ? IM_OK : im_fail_context(status, "GPU solve %u x %u", s->nx, s->ny);
 }
 
@@ -416,9 +441,10 @@ static double gpu_engine_precondition(pk_run *r, long *count)
 {
     struct gpu_solver *s = solver_of(r);
     const push_set set = {.n = patches(s), .join = r->join};
-    const push_count modes = {.count = s->ny * (s->nx / 2 + 1)};
+    const double n = (double)patches(s);
+    const push_multiply modes = {.scale = 1 / (n * n), .count = s->ny * (s->nx / 2 + 1), .invert = s->periodic};
     const gpu_buffer *mask[3] = {&s->p, &s->g, &s->z};
-    const gpu_buffer *multiply[2] = {&s->precondition_modes, &s->inverse_spectrum};
+    const gpu_buffer *multiply[2] = {&s->modes, s->periodic ? &s->spectrum : &s->inverse_spectrum};
     const gpu_buffer *restrict_to_set[4] = {&s->p, &s->g, &s->z, &s->device->partials};
     record(s, K_PRECONDITION_MASK, mask, &set, set.n);
     gpu_fft_forward(context_of(s), s->precondition_fft);
@@ -503,6 +529,59 @@ static int gpu_engine_convolve_arrays(im_solver_plan *plan, const double *pressu
 
 /* ---- making and freeing a plan's device state ---- */
 
+enum { MAX_SOLVER_BUFFERS = 16 };
+
+/* A buffer of a plan's device state: where it is, its size, and whether it is a work field (which a
+ * coarse level borrows from its finest level) rather than a table of its own. */
+typedef struct {
+    gpu_buffer *buffer;
+    VkDeviceSize bytes;
+    int field;
+} solver_buffer;
+
+/* The buffers of a plan's device state (the header's list), in a fixed order. */
+static size_t solver_buffers(struct gpu_solver *s, int precondition, solver_buffer *list)
+{
+    const VkDeviceSize d = sizeof(double), n = (VkDeviceSize)s->nx * s->ny;
+    const VkDeviceSize modes = (VkDeviceSize)s->py * (s->px / 2 + 1), small = (VkDeviceSize)s->ny * (s->nx / 2 + 1);
+    /* the transforms' real buffers hold as many bytes as their modes (gpu/vulkan.h: VkFFT binds them
+     * so), and so does VkFFT's scratch; z is the kernel's periodic transforms' scratch */
+    const VkDeviceSize transform = gpu_fft_modes_bytes((int)s->px, (int)s->py);
+    const solver_buffer all[] = {{&s->gap0, d * n, 1},
+                                 {&s->p, d * n, 1},
+                                 {&s->u, d * n, 1},
+                                 {&s->g, d * n, 1},
+                                 {&s->t, d * n, 1},
+                                 {&s->z, gpu_fft_modes_bytes((int)s->nx, (int)s->ny), 1},
+                                 {&s->real, transform, 1},
+                                 {&s->modes, transform, 1},
+                                 {&s->scratch, s->periodic ? 0 : transform, 1},
+                                 {&s->spectrum, d * modes, 0},
+                                 {&s->kernel, s->periodic ? 0 : d * n, 0},
+                                 {&s->change_count, 16, 0},
+                                 {&s->change_index, sizeof(uint32_t) * CHANGE_CAPACITY, 0},
+                                 {&s->change_value, d * CHANGE_CAPACITY, 0},
+                                 {&s->inverse_spectrum, precondition && !s->periodic ? d * small : 0, 0}};
+    size_t count = 0;
+    for (size_t k = 0; k < sizeof all / sizeof *all; ++k)
+        if (all[k].bytes > 0)
+            list[count++] = all[k];
+    return count;
+}
+
+/* The device memory a plan's own buffers occupy (whole parts; a coarse level's fields are its finest
+ * level's). VkFFT's scratch is among them; its small twiddle tables are not. */
+static VkDeviceSize solver_footprint(struct gpu_solver *s, int precondition)
+{
+    solver_buffer list[MAX_SOLVER_BUFFERS];
+    VkDeviceSize total = 0;
+    const size_t count = solver_buffers(s, precondition, list);
+    for (size_t k = 0; k < count; ++k)
+        if (!(s->borrowed && list[k].field))
+            total += gpu_context_buffer_footprint(context_of(s), list[k].bytes);
+    return total;
+}
+
 static void gpu_engine_free(im_solver_plan *plan)
 {
     struct gpu_solver *s = plan->gpu;
@@ -511,23 +590,11 @@ static void gpu_engine_free(im_solver_plan *plan)
     gpu_context *c = context_of(s);
     gpu_fft_free(s->fft);
     gpu_fft_free(s->precondition_fft);
-    gpu_buffer *buffers[] = {&s->gap0,
-                             &s->p,
-                             &s->u,
-                             &s->g,
-                             &s->t,
-                             &s->z,
-                             &s->real,
-                             &s->modes,
-                             &s->spectrum,
-                             &s->precondition_modes,
-                             &s->inverse_spectrum,
-                             &s->kernel,
-                             &s->change_count,
-                             &s->change_index,
-                             &s->change_value};
-    for (size_t k = 0; k < sizeof buffers / sizeof *buffers; ++k)
-        gpu_buffer_free(c, buffers[k]);
+    solver_buffer list[MAX_SOLVER_BUFFERS];
+    const size_t count = solver_buffers(s, plan->options.precondition, list);
+    for (size_t k = 0; k < count; ++k)
+        if (!(s->borrowed && list[k].field))
+            gpu_buffer_free(c, list[k].buffer);
     s->device->fields_bytes -= s->footprint;
     device_release(s->device);
     free(s);
@@ -604,81 +671,51 @@ static long direct_limit(const struct gpu_solver *s)
     return limit < CHANGE_CAPACITY ? limit : CHANGE_CAPACITY;
 }
 
-enum { MAX_SOLVER_BUFFERS = 16 };
-
-/* The buffers of a plan's device state and their sizes (the preconditioner's only with it). */
-static size_t solver_buffers(struct gpu_solver *s, int precondition, gpu_buffer **buffers, VkDeviceSize *bytes)
-{
-    const VkDeviceSize d = sizeof(double), n = (VkDeviceSize)s->nx * s->ny;
-    const VkDeviceSize modes = (VkDeviceSize)s->py * (s->px / 2 + 1), small = (VkDeviceSize)s->ny * (s->nx / 2 + 1);
-    /* the transforms' real buffers hold as many bytes as their modes (gpu/vulkan.h: VkFFT binds them so) */
-    const struct {
-        gpu_buffer *buffer;
-        VkDeviceSize bytes;
-    } list[] = {{&s->gap0, d * n},
-                {&s->p, d * n},
-                {&s->u, d * n},
-                {&s->g, d * n},
-                {&s->t, d * n},
-                {&s->z, gpu_fft_modes_bytes(s->nx, s->ny)},
-                {&s->real, gpu_fft_modes_bytes(s->px, s->py)},
-                {&s->modes, 2 * d * modes},
-                {&s->spectrum, d * modes},
-                {&s->kernel, d * n}, /* K at offset (|dx|, |dy|), for direct sums of a step's few changes */
-                {&s->change_count, 16},
-                {&s->change_index, sizeof(uint32_t) * CHANGE_CAPACITY},
-                {&s->change_value, d * CHANGE_CAPACITY},
-                {&s->precondition_modes, 2 * d * small},
-                {&s->inverse_spectrum, d * small}};
-    const size_t count = sizeof list / sizeof *list - (precondition ? 0 : 2);
-    for (size_t k = 0; k < count; ++k) {
-        buffers[k] = list[k].buffer;
-        bytes[k] = list[k].bytes;
-    }
-    return count;
-}
-
-/* The device memory a plan's buffers occupy (whole chunks; VkFFT's own buffers not counted). */
-static VkDeviceSize solver_footprint(struct gpu_solver *s, int precondition)
-{
-    gpu_buffer *buffers[MAX_SOLVER_BUFFERS];
-    VkDeviceSize bytes[MAX_SOLVER_BUFFERS], total = 0;
-    const size_t count = solver_buffers(s, precondition, buffers, bytes);
-    for (size_t k = 0; k < count; ++k)
-        total += gpu_context_buffer_footprint(context_of(s), bytes[k]);
-    return total;
-}
-
 static int upload_tables(const im_solver_plan *plan, struct gpu_solver *s)
 {
     gpu_context *c = context_of(s);
     const VkDeviceSize d = sizeof(double), n = (VkDeviceSize)s->nx * s->ny;
     const VkDeviceSize modes = (VkDeviceSize)s->py * (s->px / 2 + 1), small = (VkDeviceSize)s->ny * (s->nx / 2 + 1);
     int status = gpu_buffer_upload(c, &s->spectrum, 0, plan->spectrum, d * modes);
-    if (status == IM_OK)
+    if (status == IM_OK && !s->periodic)
         status = gpu_buffer_upload(c, &s->kernel, 0, plan->kernel, d * n);
-    if (status == IM_OK && plan->options.precondition)
+    if (status == IM_OK && plan->options.precondition && !s->periodic)
         status = gpu_buffer_upload(c, &s->inverse_spectrum, 0, plan->inverse_spectrum, d * small);
     return status;
+}
+
+/* A coarse level's work fields: its finest level's buffers (handles copied; the list's order is
+ * the same on every level, and a coarser level needs no more of each than a finer one). */
+static void borrow_fields(struct gpu_solver *s, struct gpu_solver *finer, int precondition)
+{
+    solver_buffer mine[MAX_SOLVER_BUFFERS], theirs[MAX_SOLVER_BUFFERS];
+    const size_t count = solver_buffers(s, precondition, mine);
+    solver_buffers(finer, precondition, theirs);
+    for (size_t k = 0; k < count && mine[k].field; ++k)
+        *mine[k].buffer = *theirs[k].buffer;
 }
 
 static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
 {
     gpu_context *c = context_of(s);
-    gpu_buffer *buffers[MAX_SOLVER_BUFFERS];
-    VkDeviceSize bytes[MAX_SOLVER_BUFFERS];
-    const size_t count = solver_buffers(s, plan->options.precondition, buffers, bytes);
+    solver_buffer list[MAX_SOLVER_BUFFERS];
+    const size_t count = solver_buffers(s, plan->options.precondition, list);
     int status = IM_OK;
     for (size_t k = 0; k < count && status == IM_OK; ++k)
-        status = gpu_buffer_create(c, bytes[k], GPU_DEVICE_LOCAL, buffers[k]);
+        if (!(s->borrowed && list[k].field))
+            status = gpu_buffer_create(c, list[k].bytes, GPU_DEVICE_LOCAL, list[k].buffer);
     if (status == IM_OK)
         status = upload_tables(plan, s);
     if (status == IM_OK)
         status = zero_fields(s); /* t is read (times beta = 0) before it is first written */
+    /* VkFFT's scratch: its own on the padded grid; periodic, z for the kernel's transform and the
+     * transform grid for the preconditioner's (the header says why each is idle then) */
     if (status == IM_OK)
-        status = gpu_fft_create(c, (int)s->px, (int)s->py, &s->real, &s->modes, &s->fft);
+        status = gpu_fft_create(c, (int)s->px, (int)s->py, &s->real, &s->modes, s->periodic ? &s->z : &s->scratch,
+                                &s->fft);
     if (status == IM_OK && plan->options.precondition)
-        status = gpu_fft_create(c, (int)s->nx, (int)s->ny, &s->z, &s->precondition_modes, &s->precondition_fft);
+        status = gpu_fft_create(c, (int)s->nx, (int)s->ny, &s->z, &s->modes, s->periodic ? &s->real : &s->scratch,
+                                &s->precondition_fft);
     return status;
 }
 
@@ -729,8 +766,12 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
                              .nx = (uint32_t)plan->nx,
                              .ny = (uint32_t)plan->ny,
                              .px = (uint32_t)plan->px,
-                             .py = (uint32_t)plan->py};
+                             .py = (uint32_t)plan->py,
+                             .periodic = plan->options.periodic,
+                             .borrowed = finer != NULL};
     plan->gpu = s;
+    if (finer)
+        borrow_fields(s, finer->gpu, plan->options.precondition);
     status = check_memory(plan, s);
     if (status == IM_OK)
         status = make_buffers(plan, s);
@@ -741,13 +782,20 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
         return status;
     }
     plan->engine = &solver_engine_gpu;
-    plan->direct_limit = direct_limit(s);
+    plan->direct_limit = s->periodic ? 0 : direct_limit(s);
     return IM_OK;
 }
 
 const char *solver_engine_gpu_device(const im_solver_plan *plan)
 {
     return plan->gpu ? gpu_context_device_name(plan->gpu->device->context) : NULL;
+}
+
+void solver_engine_gpu_memory(const im_solver_plan *plan, double *counted, double *held)
+{
+    const gpu_device *d = plan->gpu ? plan->gpu->device : NULL;
+    *counted = d ? (double)d->fields_bytes : -1;
+    *held = d ? (double)gpu_context_local_bytes(d->context) : -1;
 }
 
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan)

@@ -38,20 +38,21 @@ int solver_periodic_kernel(im_solver_plan *p)
             solver_periodic_mode(p, kx, ky, &p->spectrum[k], &p->inverse_spectrum[k]);
         }
     /* The real-space kernel for direct sums (and K(0) for the Winkler start): the inverse transform
-     * of the spectrum, a one-off plan. K is even, so K(|dx|, |dy|) serves every offset. */
+     * of the spectrum, a one-off plan on a temporary. K is even, so K(|dx|, |dy|) serves every offset. */
+    fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * (size_t)ny * mx);
     fft_planner_lock();
-    fftw_plan inverse = fftw_plan_dft_c2r_2d(ny, nx, p->modes, p->kernel, FFTW_ESTIMATE);
+    fftw_plan inverse = modes ? fftw_plan_dft_c2r_2d(ny, nx, modes, p->kernel, FFTW_ESTIMATE) : NULL;
     fft_planner_unlock();
-    if (!inverse)
+    if (!inverse) {
+        fftw_free(modes);
         return im_fail(IM_ENOMEM, "periodic solver plan %d x %d: kernel transform", nx, ny);
-    for (size_t k = 0; k < (size_t)ny * mx; ++k) {
-        p->modes[k][0] = p->spectrum[k];
-        p->modes[k][1] = 0.0;
     }
-    fftw_execute(inverse);
-    fft_planner_lock();
-    fftw_destroy_plan(inverse);
-    fft_planner_unlock();
+    for (size_t k = 0; k < (size_t)ny * mx; ++k) {
+        modes[k][0] = p->spectrum[k];
+        modes[k][1] = 0.0;
+    }
+    solver_execute_once(inverse);
+    fftw_free(modes);
     return IM_OK;
 }
 

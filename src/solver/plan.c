@@ -97,14 +97,40 @@ double im_influence_square(double x, double y, double delta, double e_star)
     return sum / (M_PI * e_star);
 }
 
-/* One level's plan, without the coarser levels. */
+/* A level's tables on the host (kernel, spectrum, the preconditioner's spectrum): what every
+ * engine's plan computes, before it knows where it runs. */
+static double table_bytes(int nx, int ny, int periodic)
+{
+    const double n = (double)nx * ny, small = 0.5 * ny * (nx + 2), spectrum = periodic ? small : 2.0 * ny * (nx + 1);
+    return 8 * (n + spectrum + small);
+}
+
+/* The temporaries while the tables are computed: the padded grid and its modes (4 n + 4 n reals),
+ * or, periodic, the modes the kernel is transformed back from (n). */
+static double temporary_bytes(int nx, int ny, int periodic) { return 8.0 * nx * ny * (periodic ? 1 : 8); }
+
+/* The CPU engine's arrays of one level (a padded grid): 3 work arrays, changes (long + double), 2
+ * padded rows, the padded modes, the preconditioner's grid and modes. */
+static double cpu_array_bytes(int nx, int ny)
+{
+    const double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
+    return 8 * (n * 4 + 2 * rows + 2 * modes + 2 * n);
+}
+
+/* One level's CPU plan, without the coarser levels. */
 static double level_bytes(int nx, int ny)
 {
-    double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
-    /* kernel, 3 work arrays, changes (long + double); spectrum; 2 padded rows; 1 complex array; the
-     * preconditioner's spectrum and complex array (1.5 n). While planning, the kernel's transform
-     * needs a 4 n temporary on top. */
-    return 8 * (n * 6 + modes + 2 * rows + 2 * modes + 1.5 * n + 4 * n);
+    return table_bytes(nx, ny, 0) + fmax(temporary_bytes(nx, ny, 0), cpu_array_bytes(nx, ny));
+}
+
+/* What a level's plan needs on the host before it knows its engine: the whole CPU plan when it asks
+ * for the CPU (with its coarser levels, as before the GPU engine), else the tables and their
+ * temporaries (the CPU engine's arrays are checked when such a plan stays on the CPU). */
+static double planning_bytes(int nx, int ny, const im_solver_options *o)
+{
+    if (o->device == IM_DEVICE_CPU)
+        return im_solver_plan_bytes(nx, ny);
+    return table_bytes(nx, ny, o->periodic) + temporary_bytes(nx, ny, o->periodic);
 }
 
 double im_solver_plan_bytes(int nx, int ny)
@@ -245,38 +271,76 @@ static int make_fft_plans(im_solver_plan *p)
 
 static long wrapped_offset(long j, long n, long padded) { return j <= n ? j : padded - j; }
 
+void solver_execute_once(fftw_plan plan)
+{
+    fftw_execute(plan);
+    fft_planner_lock();
+    fftw_destroy_plan(plan);
+    fft_planner_unlock();
+}
+
 /* M = 1 / the spectrum of K wrapped periodically on the nx x ny grid (offsets min(j, n - j)): the
- * inverse of a circulant close to K, positive where that spectrum is (0 elsewhere). */
-static void compute_preconditioner(im_solver_plan *p)
+ * inverse of a circulant close to K, positive where that spectrum is (0 elsewhere). The wrapped
+ * kernel into `wrapped`, transformed by `forward` into `spectrum`. */
+static void invert_wrapped_kernel(im_solver_plan *p, double *wrapped, fftw_plan forward, fftw_complex *spectrum)
 {
     const int nx = p->nx, ny = p->ny;
     const size_t modes = (size_t)ny * (nx / 2 + 1);
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < ny; ++jy)
         for (int jx = 0; jx < nx; ++jx)
-            p->preconditioned[(size_t)jy * nx + jx] =
+            wrapped[(size_t)jy * nx + jx] =
                 p->kernel[(size_t)(jy <= ny - jy ? jy : ny - jy) * nx + (jx <= nx - jx ? jx : nx - jx)];
-    fftw_execute(p->precondition_forward);
+    fftw_execute(forward);
     const double scale = 1.0 / ((double)nx * ny);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < modes; ++k) {
-        double re = p->precondition_modes[k][0];
+        double re = spectrum[k][0];
         p->inverse_spectrum[k] = re > 0 ? scale / re : 0;
     }
 }
 
+/* The preconditioner's spectrum: through the CPU engine's own plan where it has one (measured with
+ * its wisdom, so that a run's numbers do not depend on when the wisdom was read), else a one-off
+ * plan on temporaries (a GPU plan has no CPU arrays to lend). */
+static int compute_preconditioner(im_solver_plan *p)
+{
+    if (p->precondition_forward) {
+        invert_wrapped_kernel(p, p->preconditioned, p->precondition_forward, p->precondition_modes);
+        return IM_OK;
+    }
+    const int nx = p->nx, ny = p->ny;
+    double *wrapped = fftw_malloc(sizeof(double) * (size_t)nx * ny);
+    fftw_complex *spectrum = fftw_malloc(sizeof(fftw_complex) * (size_t)ny * (nx / 2 + 1));
+    fft_planner_lock();
+    fftw_plan forward = wrapped && spectrum ? fftw_plan_dft_r2c_2d(ny, nx, wrapped, spectrum, FFTW_ESTIMATE) : NULL;
+    fft_planner_unlock();
+    if (forward) {
+        invert_wrapped_kernel(p, wrapped, forward, spectrum);
+        fft_planner_lock();
+        fftw_destroy_plan(forward);
+        fft_planner_unlock();
+    }
+    fftw_free(wrapped);
+    fftw_free(spectrum);
+    return forward ? IM_OK : im_fail(IM_ENOMEM, "solver plan %d x %d: preconditioner transform", nx, ny);
+}
+
 /* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
- * that it is even and its spectrum real), then transforms it once with a one-off plan. */
+ * that it is even and its spectrum real), then transforms it once with a one-off plan on
+ * temporaries (a GPU plan has no CPU arrays to lend). */
 static int compute_kernel(im_solver_plan *p)
 {
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
     const double e = p->options.e_star, d = p->delta;
     double *padded = fftw_malloc(sizeof(double) * (size_t)px * py);
+    fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * (size_t)py * mx);
     fft_planner_lock();
-    fftw_plan transform = padded ? fftw_plan_dft_r2c_2d(py, px, padded, p->modes, FFTW_ESTIMATE) : NULL;
+    fftw_plan transform = padded && modes ? fftw_plan_dft_r2c_2d(py, px, padded, modes, FFTW_ESTIMATE) : NULL;
     fft_planner_unlock();
     if (!transform) {
         fftw_free(padded);
+        fftw_free(modes);
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel transform", nx, ny);
     }
 #pragma omp parallel for schedule(static)
@@ -292,40 +356,77 @@ static int compute_kernel(im_solver_plan *p)
                                                               : im_influence_square(dx * d, dy * d, d, e);
         }
     }
-    fftw_execute(transform);
-    fft_planner_lock();
-    fftw_destroy_plan(transform);
-    fft_planner_unlock();
+    solver_execute_once(transform);
     fftw_free(padded);
     const double scale = 1.0 / ((double)px * py);
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < (size_t)py * mx; ++k)
-        p->spectrum[k] = p->modes[k][0] * scale;
-    compute_preconditioner(p);
+        p->spectrum[k] = modes[k][0] * scale;
+    fftw_free(modes);
+    return compute_preconditioner(p);
+}
+
+/* The tables every engine takes from a plan: K on the grid, its spectrum and the preconditioner's. */
+static int allocate_tables(im_solver_plan *p)
+{
+    const size_t n = (size_t)p->nx * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
+    p->kernel = fftw_malloc(sizeof(double) * n);
+    p->spectrum = fftw_malloc(sizeof(double) * modes);
+    p->inverse_spectrum = fftw_malloc(sizeof(double) * (size_t)p->ny * (p->nx / 2 + 1));
+    if (!p->kernel || !p->spectrum || !p->inverse_spectrum)
+        return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel tables", p->nx, p->ny);
     return IM_OK;
 }
 
-static int allocate_plan(im_solver_plan *p)
+/* The CPU engine's work arrays (engine_cpu.c), checked against the memory left first. */
+static int allocate_cpu_arrays(im_solver_plan *p)
 {
+    char what[64];
+    snprintf(what, sizeof what, "solver plan %d x %d", p->nx, p->ny);
+    int status = im_memory_check(cpu_array_bytes(p->nx, p->ny), what);
+    if (status != IM_OK)
+        return status;
     size_t n = (size_t)p->nx * p->ny, rows = (size_t)p->px * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
-    p->kernel = fftw_malloc(sizeof(double) * n);
     p->direction = fftw_malloc(sizeof(double) * n);
     p->gap = fftw_malloc(sizeof(double) * n);
     p->changed = malloc(sizeof(long) * n);
     p->changed_value = malloc(sizeof(double) * n);
-    p->spectrum = fftw_malloc(sizeof(double) * modes);
-    size_t small_modes = (size_t)p->ny * (p->nx / 2 + 1);
-    p->inverse_spectrum = fftw_malloc(sizeof(double) * small_modes);
     p->preconditioned = fftw_malloc(sizeof(double) * n);
-    p->precondition_modes = fftw_malloc(sizeof(fftw_complex) * small_modes);
+    p->precondition_modes = fftw_malloc(sizeof(fftw_complex) * (size_t)p->ny * (p->nx / 2 + 1));
     p->rows_in = fftw_malloc(sizeof(double) * rows);
     p->rows_out = fftw_malloc(sizeof(double) * rows);
     p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
-    if (!p->kernel || !p->direction || !p->gap || !p->changed || !p->changed_value || !p->spectrum ||
-        !p->inverse_spectrum || !p->preconditioned || !p->precondition_modes || !p->rows_in || !p->rows_out ||
-        !p->modes)
-        return im_fail(IM_ENOMEM, "solver plan %d x %d: allocation failed", p->nx, p->ny);
+    if (!p->direction || !p->gap || !p->changed || !p->changed_value || !p->preconditioned ||
+        !p->precondition_modes || !p->rows_in || !p->rows_out || !p->modes)
+        return im_fail(IM_ENOMEM, "%s: CPU engine arrays: allocation failed", what);
     memset(p->direction, 0, sizeof(double) * n);
+    return IM_OK;
+}
+
+/* The CPU engine's arrays and FFTW plans, for a plan that stays on the CPU. */
+static int make_cpu_engine(im_solver_plan *p)
+{
+    int status = allocate_cpu_arrays(p);
+    if (status == IM_OK)
+        status = make_fft_plans(p);
+    if (status == IM_OK) /* after planning, which may scribble on the arrays: the zeros the pruning relies on */
+        memset(p->rows_in, 0, sizeof(double) * (size_t)p->px * p->ny);
+    return status;
+}
+
+/* A GPU plan's host side after its tables went to the device: K(0) alone (pk.c's Winkler start and
+ * step length), as the MPI plan keeps it; the device holds the rest. */
+static int keep_host_k0(im_solver_plan *p)
+{
+    double *k0 = fftw_malloc(sizeof(double));
+    if (!k0)
+        return im_fail(IM_ENOMEM, "solver plan %d x %d", p->nx, p->ny);
+    *k0 = p->kernel[0];
+    fftw_free(p->kernel);
+    fftw_free(p->spectrum);
+    fftw_free(p->inverse_spectrum);
+    p->kernel = k0;
+    p->spectrum = p->inverse_spectrum = NULL;
     return IM_OK;
 }
 
@@ -354,9 +455,15 @@ const char *im_solver_plan_device(const im_solver_plan *p)
 
 /* Moves the plan onto the GPU engine when its options ask for it (auto: when a hardware GPU opens;
  * otherwise it stays on the CPU, silently, as documented). */
+/* Whether a plan is on the CPU engine whatever opens: it asks for the CPU, or its finer level is there. */
+static int cpu_only(const im_solver_plan *p, const im_solver_plan *finer)
+{
+    return p->options.device == IM_DEVICE_CPU || (finer && finer->engine == &solver_engine_cpu);
+}
+
 static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
 {
-    if (p->options.device == IM_DEVICE_CPU || (finer && finer->engine == &solver_engine_cpu))
+    if (cpu_only(p, finer))
         return IM_OK;
 #if IM_HAVE_GPU
     int status = solver_engine_gpu_attach(p, finer);
@@ -397,7 +504,7 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
         return im_fail(IM_EINVAL, "delta = %g: expected a finite patch side > 0", delta);
     char what[64];
     snprintf(what, sizeof what, "solver plan %d x %d", nx, ny);
-    if ((status = im_memory_check(im_solver_plan_bytes(nx, ny), what)) != IM_OK)
+    if ((status = im_memory_check(planning_bytes(nx, ny, &o), what)) != IM_OK)
         return status;
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
@@ -414,21 +521,14 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
                           .options = o,
                           .cascade_level = finer ? finer->cascade_level + 1 : 0};
     double start = omp_get_wtime();
-    status = allocate_plan(p);
+    /* A CPU plan makes its FFTW plans first, as before the GPU engine: its tables then come from the
+     * same wisdom whenever it was read. Other plans compute the tables on temporaries, for the device. */
+    const int cpu = cpu_only(p, finer);
+    status = allocate_tables(p);
+    if (status == IM_OK && cpu)
+        status = make_cpu_engine(p);
     if (status == IM_OK)
-        status = make_fft_plans(p);
-    p->options.wisdom_path = NULL; /* not owned: used while planning only */
-    if (status != IM_OK) {
-        im_solver_plan_free(p);
-        return status;
-    }
-    /* after planning, which may scribble on the arrays: the zeros the pruning relies on */
-    memset(p->rows_in, 0, sizeof(double) * (size_t)p->px * p->ny);
-    status = o.periodic ? solver_periodic_kernel(p) : compute_kernel(p);
-    if (status != IM_OK) {
-        im_solver_plan_free(p);
-        return status;
-    }
+        status = o.periodic ? solver_periodic_kernel(p) : compute_kernel(p);
     /* Direct summation costs ~nx ny multiply-adds per changed patch, a convolution ~c px py log2(px py)
      * (px py = 4 nx ny padded, nx ny periodic): the crossover is 1.5 px py / (nx ny) log2(px py) patches.
      * Measured at 375 x 378, one thread: 0.035 ms per patch against 4.4 ms per padded convolution, a
@@ -437,7 +537,14 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
      * periodic solve's time in direct sums. */
     const double transformed = (double)p->px * p->py;
     p->direct_limit = (long)(1.5 * transformed / ((double)nx * ny) * log2(transformed));
-    if ((status = choose_engine(p, finer)) != IM_OK || (status = solver_cascade_create(p)) != IM_OK) {
+    if (status == IM_OK && !cpu)
+        status = choose_engine(p, finer);
+    if (status == IM_OK && !cpu) /* auto without a GPU, or a level VkFFT cannot transform: on the CPU */
+        status = p->engine == &solver_engine_cpu ? make_cpu_engine(p) : keep_host_k0(p);
+    p->options.wisdom_path = NULL; /* not owned: used while planning only */
+    if (status == IM_OK)
+        status = solver_cascade_create(p);
+    if (status != IM_OK) {
         im_solver_plan_free(p);
         return status;
     }

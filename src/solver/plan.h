@@ -21,6 +21,9 @@ struct im_solver_plan {
     int px, py; /* padded grid: 2nx x 2ny (periodic: nx x ny, no padding) */
     double delta;
     im_solver_options options;
+    /* The tables, computed on the host for every engine; a GPU plan keeps only K(0) of them once its
+     * device has them (kernel[0]; spectrum and inverse_spectrum NULL), and has none of the CPU
+     * engine's arrays and FFTW plans below (direction ... modes: NULL). */
     double *kernel;   /* nx * ny: K at offset (|dx|, |dy|) delta, for direct summation */
     double *spectrum; /* py * (px/2 + 1): real spectrum of K, divided by px * py */
     /* The preconditioner M (pk.c): 1 / the spectrum of K wrapped periodically on the nx x ny grid
@@ -87,6 +90,9 @@ int solver_cascade_solve(struct im_solver_plan *coarse, const double *coarse_gap
                          double target, double *coarse_pressure, double *coarse_displacement, int *usable);
 /* a fine row of nx prolonged from its coarse row (0 where the fine gap is infinite); whether any > 0. */
 int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, int nx, double *pressure_row);
+
+/* Executes a one-off plan and destroys it (under the planner lock). */
+void solver_execute_once(fftw_plan plan);
 
 /* modes[k] *= spectrum[k] (a real, even kernel's spectrum) for k < count. */
 void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t count);
