@@ -120,7 +120,7 @@ int im_mpi_indentation_step(im_mpi_indentation *run, double target, im_step_resu
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
-    /* the steps' decisions are global (every rank the same); only an allocation may fail on one rank */
+    /* the steps' decisions are global (every rank the same); their allocations are made at creation */
     int status = mpi_collective_status(run->solver->comm, im_indentation_step(run->steps, target, out));
     const indentation_rows_state state = indentation_rows_state_of(run->steps);
     const size_t n = (size_t)run->solver->rows * run->solver->nx;

@@ -52,7 +52,8 @@
 #include <string.h>
 
 /* A share moves against the step's direction only where the law's share is off by more than this many tol
- * (the passes' noise, from solves to tol, is about 10 tol). */
+ * (the passes' noise, from solves to tol, is about 10 tol). From tol 1e-3 the band is a whole share: the
+ * passes are then one-way (docs/solver.md says so), rather than held by a band near the noise. */
 static const double SHARE_BAND = 1000;
 
 /* A zone still changing after this many passes is reported (a retraction through pull-off on a
@@ -453,19 +454,28 @@ double im_adhesion_maugis_lambda(const im_solver_options *options, double radius
     return 2 * (w / options->adhesion_range) * cbrt(radius / (M_PI * w * k * k));
 }
 
+int adhesion_reserve_mark(adhesion_state *a, enum adhesion_mark_slot slot)
+{
+    if (a->marks[slot])
+        return IM_OK;
+    const size_t n = (size_t)a->nx * a->ny + 1; /* + 1: a rank may hold no rows */
+    struct adhesion_mark *m = calloc(1, sizeof *m);
+    if (m && (!(m->share = malloc(n * sizeof(double))) || !(m->lift = malloc(n * sizeof(double))))) {
+        free_mark(m);
+        m = NULL;
+    }
+    if (!m)
+        return im_fail(IM_ENOMEM, "adhesion: the state of a %d x %d window for a load search", a->nx, a->ny);
+    a->marks[slot] = m;
+    return IM_OK;
+}
+
 int adhesion_set_mark(adhesion_state *a, enum adhesion_mark_slot slot)
 {
     const size_t n = (size_t)a->nx * a->ny;
-    if (!a->marks[slot]) {
-        struct adhesion_mark *m = calloc(1, sizeof *m);
-        if (m && (!(m->share = malloc(n * sizeof(double))) || !(m->lift = malloc(n * sizeof(double))))) {
-            free_mark(m);
-            m = NULL;
-        }
-        if (!m)
-            return im_fail(IM_ENOMEM, "adhesion: the state of a %d x %d window for a load search", a->nx, a->ny);
-        a->marks[slot] = m;
-    }
+    int status = adhesion_reserve_mark(a, slot);
+    if (status != IM_OK)
+        return status;
     struct adhesion_mark *m = a->marks[slot];
     memcpy(m->share, a->share, n * sizeof(double));
     memcpy(m->lift, a->lift, n * sizeof(double));

@@ -69,8 +69,11 @@ int adhesion_solve(adhesion_state *a, im_solver_plan *plan, const double *gap0, 
 
 /* A search that tries several approaches (load control) marks a state and rewinds to it before a try, so
  * that the try moves from that history: the last accepted try's (ADHESION_MARK_TRY), and the step's start,
- * which a failed step returns to (ADHESION_MARK_STEP). adhesion_set_mark: IM_ENOMEM. */
+ * which a failed step returns to (ADHESION_MARK_STEP). adhesion_reserve_mark allocates a slot ahead (a run over
+ * ranks reserves its slots where every rank can agree on an allocation failure, not inside a step's collective
+ * solves); adhesion_set_mark allocates what is not reserved. Both: IM_ENOMEM. */
 enum adhesion_mark_slot { ADHESION_MARK_TRY, ADHESION_MARK_STEP };
+int adhesion_reserve_mark(adhesion_state *a, enum adhesion_mark_slot slot);
 int adhesion_set_mark(adhesion_state *a, enum adhesion_mark_slot slot);
 void adhesion_rewind(adhesion_state *a, enum adhesion_mark_slot slot);
 

@@ -5,7 +5,9 @@
  * result are only recorded; a pass with one submits what was recorded and waits for it.
  *
  * The plan made on the CPU (plan.c) gives the kernel's spectrum, the preconditioner's and K(0), so
- * both engines convolve with the same numbers; the GPU keeps its own copies (the host keeps K(0)).
+ * both engines convolve with the same numbers; the GPU keeps its own copies (the host keeps K(0)). In
+ * the periodic mode the preconditioner's spectrum is derived on the device from the kernel's
+ * (multiply.comp), within an ulp of the CPU's, not to the bit.
  * Coarse cascade levels share their finest plan's device and pipelines, and its work buffers.
  *
  * Device memory (solver_buffers, docs/solver.md): five fields of nx x ny (gap0, p, u, g, t), z and

@@ -239,6 +239,29 @@ static int steps_in_boxes(const im_indentation *run)
            !(run->options.adhesion_work > 0) && strcmp(im_solver_plan_device(run->plan), "cpu") == 0;
 }
 
+/* The searches that mark adhesive states (solve_adhesive_at_load, solve_adhesive_at_mean_gap) get their marks
+ * here, at creation: over ranks an allocation failing on one rank inside a step would leave the others waiting
+ * in the step's collective solves, while the creation's failure is agreed on by every rank. */
+static int reserve_adhesive_marks(im_indentation *run)
+{
+    const int searches = run->control == IM_CONTROL_LOAD ||
+                         (run->control == IM_CONTROL_MEAN_GAP && run->options.hardness > 0);
+    if (!run->adhesion || !searches)
+        return IM_OK;
+    const size_t n = (size_t)run->window.nx * run->window.ny + 1; /* + 1: a rank may hold no rows */
+    for (int slot = ADHESION_MARK_TRY; slot <= ADHESION_MARK_STEP; ++slot) {
+        run->marked_pressure[slot] = malloc(sizeof(double) * n);
+        run->marked_displacement[slot] = malloc(sizeof(double) * n);
+        if (!run->marked_pressure[slot] || !run->marked_displacement[slot])
+            return im_fail(IM_ENOMEM, "adhesion under load control: a marked state (2 x %.1f MiB)",
+                           sizeof(double) * (double)n / 1048576.0);
+        int status = adhesion_reserve_mark(run->adhesion, (enum adhesion_mark_slot)slot);
+        if (status != IM_OK)
+            return status;
+    }
+    return IM_OK;
+}
+
 static int allocate_window(im_indentation *run)
 {
     const im_window w = run->window;
@@ -271,6 +294,8 @@ static int allocate_window(im_indentation *run)
         status = adhesion_create(w.nx, w.ny, run->options.periodic, &run->options, &run->adhesion);
     if (status == IM_OK && run->adhesion && run->ranks)
         adhesion_over_ranks(run->adhesion, run->ranks);
+    if (status == IM_OK)
+        status = reserve_adhesive_marks(run);
     if (status == IM_OK && steps_in_boxes(run) && !(run->steps = step_window_create()))
         status = im_fail(IM_ENOMEM, "indentation window %d x %d: the step boxes' state", w.nx, w.ny);
     return status;
@@ -440,7 +465,7 @@ static int check_zone(const im_indentation *run)
                      : adhesion_zone_on_border(run->adhesion, &x, &y)))
         return IM_OK;
     const im_window w = run->window;
-    const int whole = w.nx == run->nx && w.ny == run->ny;
+    const int whole = run->ranks || (w.nx == run->nx && w.ny == run->ny); /* the ranks' rows are the surface's */
     return im_fail(IM_EEDGE, "the adhesive zone reached the edge of the %s at patch (%d, %d) (approach %g): %s",
                    whole ? "surface" : "solve window", x + w.x0, y + w.y0, run->approach,
                    whole ? "the surface is too small for this step"
@@ -675,12 +700,6 @@ static int solve_at_mean_gap(im_indentation *run, double target, im_solve_result
 static int mark_adhesive_state(im_indentation *run, enum adhesion_mark_slot slot)
 {
     const size_t bytes = (size_t)run->window.nx * run->window.ny * sizeof(double);
-    if (!run->marked_pressure[slot])
-        run->marked_pressure[slot] = malloc(bytes);
-    if (!run->marked_displacement[slot])
-        run->marked_displacement[slot] = malloc(bytes);
-    if (!run->marked_pressure[slot] || !run->marked_displacement[slot])
-        return im_fail(IM_ENOMEM, "adhesion under load control: a marked state (2 x %.1f MiB)", bytes / 1048576.0);
     memcpy(run->marked_pressure[slot], run->pressure, bytes);
     memcpy(run->marked_displacement[slot], run->displacement, bytes);
     return adhesion_set_mark(run->adhesion, slot);

@@ -117,10 +117,11 @@ static double cpu_array_bytes(int nx, int ny)
     return 8 * (n * 4 + 2 * rows + 2 * modes + 2 * n);
 }
 
-/* One level's CPU plan, without the coarser levels. */
+/* One level's CPU plan, without the coarser levels: its tables, its arrays, and the padded grid the
+ * kernel is sampled on while they are all held (compute_kernel transforms it into the arrays' modes). */
 static double level_bytes(int nx, int ny)
 {
-    return table_bytes(nx, ny, 0) + fmax(temporary_bytes(nx, ny, 0), cpu_array_bytes(nx, ny));
+    return table_bytes(nx, ny, 0) + cpu_array_bytes(nx, ny) + 0.5 * temporary_bytes(nx, ny, 0);
 }
 
 /* What a level's plan needs on the host before it knows its engine: the whole CPU plan when it asks
@@ -327,20 +328,22 @@ static int compute_preconditioner(im_solver_plan *p)
 }
 
 /* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
- * that it is even and its spectrum real), then transforms it once with a one-off plan on
- * temporaries (a GPU plan has no CPU arrays to lend). */
+ * that it is even and its spectrum real), then transforms it once with a one-off plan: into the CPU
+ * engine's modes where the plan has them (its peak is then level_bytes'), else on temporaries (a GPU
+ * plan has no CPU arrays to lend). */
 static int compute_kernel(im_solver_plan *p)
 {
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
     const double e = p->options.e_star, d = p->delta;
     double *padded = fftw_malloc(sizeof(double) * (size_t)px * py);
-    fftw_complex *modes = fftw_malloc(sizeof(fftw_complex) * (size_t)py * mx);
+    fftw_complex *own_modes = p->modes ? NULL : fftw_malloc(sizeof(fftw_complex) * (size_t)py * mx);
+    fftw_complex *modes = p->modes ? p->modes : own_modes;
     fft_planner_lock();
     fftw_plan transform = padded && modes ? fftw_plan_dft_r2c_2d(py, px, padded, modes, FFTW_ESTIMATE) : NULL;
     fft_planner_unlock();
     if (!transform) {
         fftw_free(padded);
-        fftw_free(modes);
+        fftw_free(own_modes);
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel transform", nx, ny);
     }
 #pragma omp parallel for schedule(static)
@@ -362,7 +365,7 @@ static int compute_kernel(im_solver_plan *p)
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < (size_t)py * mx; ++k)
         p->spectrum[k] = modes[k][0] * scale;
-    fftw_free(modes);
+    fftw_free(own_modes);
     return compute_preconditioner(p);
 }
 
@@ -453,14 +456,14 @@ const char *im_solver_plan_device(const im_solver_plan *p)
     return p->engine->name; /* "cpu", or "mpi" for a distributed solver's plan */
 }
 
-/* Moves the plan onto the GPU engine when its options ask for it (auto: when a hardware GPU opens;
- * otherwise it stays on the CPU, silently, as documented). */
 /* Whether a plan is on the CPU engine whatever opens: it asks for the CPU, or its finer level is there. */
 static int cpu_only(const im_solver_plan *p, const im_solver_plan *finer)
 {
     return p->options.device == IM_DEVICE_CPU || (finer && finer->engine == &solver_engine_cpu);
 }
 
+/* Moves the plan onto the GPU engine when its options ask for it (auto: when a hardware GPU opens;
+ * otherwise it stays on the CPU, silently, as documented). */
 static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
 {
     if (cpu_only(p, finer))
