@@ -18,6 +18,14 @@
 #     are not powers of two used 32928 bytes, which the validation layers reject
 #     (VUID-RuntimeSpirv-Workgroup-06530). It is told 1 KiB less than the device has, and its
 #     power-of-two size follows (left at the device's, a 2048 x 1024 plan divided by zero).
+# (d) In its multi-buffer mode (buffers beyond one storage buffer's range, the GPU engine's parts),
+#     the forward R2C's multi-upload decomposition (VkFFTPlanR2CMultiUploadDecomposition, used when
+#     the first axis takes several uploads: 16384 and longer in double) computes its input's block
+#     count into outputBufferBlockNum: inputBufferBlockNum stays 0, becomes 1, and the kernel reads
+#     the modes as one block of the first part's size. On an H200 a 16384^2 periodic solve (modes
+#     2 GiB + 256 KiB: the last row in a second part) stopped after 980 iterations and a 32768^2
+#     one (5 parts) at its first (docs/benchmarks.md, "GPU engine"). The two assignments name the
+#     input's count.
 cmake_minimum_required(VERSION 3.25)
 if(NOT INPUT OR NOT OUTPUT)
   message(FATAL_ERROR "patch_vkfft.cmake: pass -DINPUT=vkFFT.h -DOUTPUT=patched/vkFFT.h")
@@ -80,6 +88,10 @@ replace_exactly(1 "app->configuration.sharedMemorySize = physicalDevicePropertie
   "app->configuration.sharedMemorySize = physicalDeviceProperties.limits.maxComputeSharedMemorySize - 1024; /* indentmap */")
 replace_exactly(1 "app->configuration.sharedMemorySizePow2 = (uint64_t)pow(2, (uint64_t)log2(physicalDeviceProperties.limits.maxComputeSharedMemorySize));"
   "app->configuration.sharedMemorySizePow2 = (uint64_t)pow(2, (uint64_t)log2(app->configuration.sharedMemorySize)); /* indentmap */")
+
+# (d)
+replace_exactly(2 "axis->specializationConstants.outputBufferBlockNum = (locBufferNum == 1) ? 1 : (uint64_t)ceil(totalSize / (double)(axis->specializationConstants.inputBufferBlockSize * storageComplexSize));"
+  "axis->specializationConstants.inputBufferBlockNum = (locBufferNum == 1) ? 1 : (uint64_t)ceil(totalSize / (double)(axis->specializationConstants.inputBufferBlockSize * storageComplexSize)); /* indentmap */")
 
 get_filename_component(dir "${OUTPUT}" DIRECTORY)
 file(MAKE_DIRECTORY "${dir}")

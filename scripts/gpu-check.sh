@@ -20,6 +20,12 @@
 #   GPUCHECK_MU10=1 scripts/gpu-check.sh run   the device, the GPU tests, then the adhesive sphere at
 #                               Tabor's mu = 10 (scripts/gpu-adhesion.sh: MU10_L, MU10_LIMIT) in place of
 #                               fig4, the benches and the profile (about 4 minutes)
+#   GPUCHECK_TESTS=0 skips test_gpu_fft and test_gpu_solver (a second call after one that ran them)
+#   GPUCHECK_PARTS=1 scripts/gpu-check.sh run   VkFFT's multi-buffer mode: test_gpu_fft (and
+#                               test_gpu_fft_unpatched, carried when pack had UNPATCHED_FFT_TEST, a
+#                               build without cmake/patch_vkfft.cmake's edit (d), expected to fail
+#                               test_multi_buffer_transforms), test_gpu_solver's test_buffers_in_parts,
+#                               then the periodic cells of 16384^2 and 32768^2 (big_periodic)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 carry=.gpu-carry
@@ -33,6 +39,7 @@ pack() {
     "$carry/bin/"
   # a baseline to time against on the same machine (BASELINE_BENCH=path to an earlier bench_gpu)
   if [ -n "${BASELINE_BENCH:-}" ]; then cp "$BASELINE_BENCH" "$carry/bin/bench_gpu_base"; fi
+  if [ -n "${UNPATCHED_FFT_TEST:-}" ]; then cp "$UNPATCHED_FFT_TEST" "$carry/bin/test_gpu_fft_unpatched"; fi
   for program in "$carry"/bin/*; do ldd "$program"; done | awk '/=> \// {print $3}' | sort -u |
     while read -r library; do
       case "$(basename "$library")" in
@@ -70,10 +77,27 @@ big_periodic() {
   local out=$1 size=${BIG_SIZE:-32768} status=0
   nvidia-smi --query-gpu=memory.used --format=csv,noheader,nounits -lms 200 > "$out/big_memory.txt" &
   local sampler=$!
-  timeout 270 "${runner[@]}" "$carry/bin/bench_gpu" --cone "" --periodic "$size" --repeats 1 --cpu-limit 0 \
+  timeout "${BIG_LIMIT:-270}" "${runner[@]}" "$carry/bin/bench_gpu" --cone "" --periodic "$size" --repeats 1 --cpu-limit 0 \
     --floor-limit 16384 2>&1 | tee "$out/big.txt" || status=1
   kill "$sampler" 2>/dev/null || true
   echo "peak device memory in use: $(sort -n "$out/big_memory.txt" | tail -1) MiB" | tee -a "$out/big.txt"
+  return $status
+}
+
+# VkFFT's multi-buffer mode (GPUCHECK_PARTS=1): the transforms and a solve in small parts, then the
+# two sizes whose buffers exceed one storage buffer's range.
+parts_checks() {
+  local out=$1 status=0
+  timeout 60 "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
+  if [ -x "$carry/bin/test_gpu_fft_unpatched" ]; then
+    echo "without patch (d), expected to fail test_multi_buffer_transforms:" | tee "$out/unpatched.txt"
+    timeout 60 "${runner[@]}" "$carry/bin/test_gpu_fft_unpatched" 2>&1 | tail -25 | tee -a "$out/unpatched.txt"
+  fi
+  timeout 60 "${runner[@]}" "$carry/bin/test_gpu_solver" test_buffers_in_parts 2>&1 | tee -a "$out/tests.txt" ||
+    status=1
+  mkdir -p "$out/16384" "$out/32768"
+  BIG_SIZE=16384 BIG_LIMIT=90 big_periodic "$out/16384" || status=1
+  BIG_SIZE=32768 BIG_LIMIT=170 big_periodic "$out/32768" || status=1
   return $status
 }
 
@@ -104,9 +128,15 @@ run() {
     big_periodic "$out" || status=1
     return $status
   fi
+  if [ "${GPUCHECK_PARTS:-0}" = 1 ]; then
+    parts_checks "$out" || status=1
+    return $status
+  fi
   # each stage has a time limit of its own, so that one that hangs leaves the others their time
-  timeout 120 "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
-  timeout 180 "${runner[@]}" "$carry/bin/test_gpu_solver" 2>&1 | tee -a "$out/tests.txt" || status=1
+  if [ "${GPUCHECK_TESTS:-1}" = 1 ]; then # 0: a second call on the same machine, the tests already run
+    timeout 120 "${runner[@]}" "$carry/bin/test_gpu_fft" 2>&1 | tee "$out/tests.txt" || status=1
+    timeout 180 "${runner[@]}" "$carry/bin/test_gpu_solver" 2>&1 | tee -a "$out/tests.txt" || status=1
+  fi
   if [ "${GPUCHECK_MU10:-0}" = 1 ]; then
     source scripts/gpu-adhesion.sh
     mu10_runs "$out" || status=1

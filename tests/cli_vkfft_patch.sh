@@ -45,6 +45,11 @@ check "the patched header compiles as C11" bash -c '"$@" >"$0/cc.log" 2>&1 || { 
 check "no pre-glslang-12 resource table is left" bash -c "! grep -q 'default_resource = {' '$patched'"
 check "glslang's default resource is used twice" \
   test "$(grep -c 'glslang_default_resource(),' "$patched")" -eq 2
+# (d): the forward R2C decomposition's input block count, in VkFFT's multi-buffer mode
+check "no input block count is written into the output's" \
+  bash -c "! grep -q 'outputBufferBlockNum = .*inputBufferBlockSize' '$patched'"
+check "the R2C decomposition counts its input's blocks" \
+  test "$(grep -c 'inputBufferBlockNum = .*inputBufferBlockSize .*indentmap' "$patched")" -eq 2
 
 # Another VkFFT version (here: one handle initializer already fixed) stops the build, naming the text.
 sed '0,/VkCommandBuffer commandBuffer = {};/s//VkCommandBuffer commandBuffer = 0;/' "$IM_VKFFT_HEADER" >"$dir/other.h"

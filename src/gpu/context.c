@@ -310,24 +310,39 @@ static VkDeviceSize power_of_two_within(VkDeviceSize limit)
     return bytes;
 }
 
-/* The part size and the chunk size: within INDENTMAP_GPU_MAX_BUFFER when that is set (the one place
- * it is read; tests lower it to split small fields into chunks). */
-static int choose_chunk_bytes(gpu_context *context)
+/* Lowers *limit to the whole number of bytes in environment variable `name`, when it is set. */
+static int lower_to_environment(const char *name, VkDeviceSize *limit)
 {
     enum { SMALLEST = 4096 };
-    context->part_bytes = power_of_two_within(context->max_buffer);
+    const char *text = getenv(name);
+    if (!text || !*text)
+        return IM_OK;
+    char *end;
+    errno = 0;
+    const unsigned long long asked = strtoull(text, &end, 10);
+    if (errno || *end || text[0] == '-' || asked < SMALLEST)
+        return im_fail(IM_EINVAL, "%s=%s: expected a whole number of bytes, at least %d", name, text, SMALLEST);
+    if (asked < *limit)
+        *limit = asked;
+    return IM_OK;
+}
+
+/* The part size and the chunk size, within INDENTMAP_GPU_MAX_PART and INDENTMAP_GPU_MAX_BUFFER when
+ * they are set (the one place they are read). Tests lower them: INDENTMAP_GPU_MAX_BUFFER splits
+ * small fields into shader chunks while VkFFT keeps one buffer (any device, lavapipe included);
+ * INDENTMAP_GPU_MAX_PART splits buffers into parts, so that VkFFT's multi-buffer mode runs on small
+ * grids (devices that index buffer arrays non-uniformly natively: NVIDIA's, not lavapipe). */
+static int choose_chunk_bytes(gpu_context *context)
+{
+    VkDeviceSize part_limit = context->max_buffer;
+    int status = lower_to_environment("INDENTMAP_GPU_MAX_PART", &part_limit);
+    if (status != IM_OK)
+        return status;
+    context->part_bytes = power_of_two_within(part_limit);
     VkDeviceSize limit = context->part_bytes;
-    const char *text = getenv("INDENTMAP_GPU_MAX_BUFFER");
-    if (text && *text) {
-        char *end;
-        errno = 0;
-        const unsigned long long asked = strtoull(text, &end, 10);
-        if (errno || *end || text[0] == '-' || asked < SMALLEST)
-            return im_fail(IM_EINVAL, "INDENTMAP_GPU_MAX_BUFFER=%s: expected a whole number of bytes, at least %d",
-                           text, SMALLEST);
-        if (asked < limit)
-            limit = asked;
-    }
+    status = lower_to_environment("INDENTMAP_GPU_MAX_BUFFER", &limit);
+    if (status != IM_OK)
+        return status;
     context->chunk_bytes = power_of_two_within(limit);
     return IM_OK;
 }

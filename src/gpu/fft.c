@@ -86,7 +86,7 @@ static int check_sizes(const gpu_context *context, int px, int py, const gpu_buf
     /* VkFFT's multi-buffer shaders index their blocks by non-uniform indices without marking them so */
     if (modes_bytes > gpu_context_part_bytes(context) && !gpu_context_nonuniform_buffers(context))
         return im_fail(IM_EUNSUPPORTED,
-                       "GPU FFT %d x %d: its %.0f MiB buffers exceed one storage buffer, and %s does not index "
+                       "GPU FFT %d x %d: its %.1f MiB buffers exceed one storage buffer, and %s does not index "
                        "arrays of storage buffers non-uniformly natively (VkFFT's multi-buffer mode needs it)",
                        px, py, (double)modes_bytes / 1048576.0, gpu_context_device_name(context));
     return IM_OK;

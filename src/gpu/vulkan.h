@@ -59,7 +59,9 @@ void gpu_context_close(gpu_context *context);
 const char *gpu_context_device_name(const gpu_context *context);
 int gpu_context_is_software(const gpu_context *context);         /* a CPU implementation (lavapipe) */
 VkDeviceSize gpu_context_max_buffer(const gpu_context *context); /* maxStorageBufferRange */
-/* A buffer's parts: the largest power of two within maxStorageBufferRange, at most 2 GiB. */
+/* A buffer's parts: the largest power of two within maxStorageBufferRange, at most 2 GiB, or within
+ * the environment's INDENTMAP_GPU_MAX_PART (bytes; a test setting for VkFFT's multi-buffer mode on
+ * small grids) when that is smaller. */
 VkDeviceSize gpu_context_part_bytes(const gpu_context *context);
 /* The chunks the shaders index: the part size, or the largest power of two within the environment's
  * INDENTMAP_GPU_MAX_BUFFER (bytes; a test setting that splits small fields) when that is smaller.
