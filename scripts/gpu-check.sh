@@ -97,7 +97,7 @@ parts_checks() {
     status=1
   mkdir -p "$out/16384" "$out/32768"
   BIG_SIZE=16384 BIG_LIMIT=90 big_periodic "$out/16384" || status=1
-  BIG_SIZE=32768 BIG_LIMIT=170 big_periodic "$out/32768" || status=1
+  BIG_SIZE=32768 BIG_LIMIT=240 big_periodic "$out/32768" || status=1
   return $status
 }
 

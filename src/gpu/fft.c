@@ -147,6 +147,27 @@ static void hand_over(const gpu_buffer *buffer, uint64_t extent, uint64_t used, 
     }
 }
 
+/* Buffers in parts only where VkFFT 1.2.26's multi-buffer mode was seen right. Its kernels that read
+ * or write the reals as reals (the R2C axis in one upload) index the blocks of the real buffer by the
+ * complex block size, half the reals a block holds: on an H200 a 256^2 transform in 5 parts was
+ * wrong (1.3e3 of the largest mode) with cmake/patch_vkfft.cmake's edit (d) and without. When the
+ * first axis takes several uploads (16384 and longer in double) VkFFT reads the reals as complex
+ * pairs, and with edit (d) a 16384^2 periodic solve (modes in 2 parts) converged on the H200. */
+static int check_parts_path(const gpu_fft *fft)
+{
+    const int in_parts = fft->real_parts > 1 || fft->modes_parts > 1;
+    const VkFFTPlan *plans[2] = {fft->app.localFFTPlan, fft->app.localFFTPlan_inverse};
+    for (int k = 0; k < 2 && in_parts; ++k)
+        if (plans[k] && plans[k]->numAxisUploads[0] < 2)
+            return im_fail(IM_EUNSUPPORTED,
+                           "GPU FFT %d x %d: its buffers exceed one storage buffer (%u parts) and its first axis "
+                           "takes one upload: VkFFT 1.2.26's multi-buffer mode then addresses the reals wrongly "
+                           "(docs/solver.md, \"Fields beyond one storage buffer\"); transforms in parts need a "
+                           "first axis of several uploads (16384 and longer in double)",
+                           fft->px, fft->py, fft->modes_parts > fft->real_parts ? fft->modes_parts : fft->real_parts);
+    return IM_OK;
+}
+
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_buffer *scratch,
                    gpu_fft **out)
 {
@@ -170,10 +191,13 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     /* VkFFT starts glslang (glslang_initialize_process, reference counted in glslang 12) for the
      * plan's shaders and stops it again before returning. */
     VkFFTResult result = initializeVkFFT(&fft->app, configuration(fft));
-    if (result != VKFFT_SUCCESS) {
+    status = result == VKFFT_SUCCESS
+                 ? check_parts_path(fft)
+                 : im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: initializeVkFFT: VkFFT error %d", px, py, (int)result);
+    if (status != IM_OK) {
         deleteVkFFT(&fft->app);
         free(fft);
-        return im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: initializeVkFFT: VkFFT error %d", px, py, (int)result);
+        return status;
     }
     *out = fft;
     return IM_OK;
