@@ -197,16 +197,21 @@ static void bench_cone(int n, int repeats, int cpu_limit)
     im_field_free(s);
 }
 
+/* Prints the plan's seconds as soon as it is made (a 32768^2 cell's host work takes minutes: a run
+ * stopped by a time limit still says how far it came). */
 static void flat_solve(const im_field *s, int device, double *seconds, im_flat_result *out)
 {
     im_solver_options o = im_solver_options_default();
     o.device = device;
     o.max_iterations = 5000; /* plain PK on large periodic grids: report what is left rather than wait */
     im_flat_contact *run = NULL;
+    double start = bench_now();
     int status = im_flat_contact_create(s, &o, &run);
     if (status != IM_OK)
         die(status, "flat contact");
-    double start = bench_now();
+    printf("periodic %5d^2 %s: plan %.1f s\n", s->nx, device == IM_DEVICE_GPU ? "gpu" : "cpu", bench_now() - start);
+    fflush(stdout);
+    start = bench_now();
     status = im_flat_contact_solve(run, 0.004, out);
     *seconds = bench_now() - start;
     if (status != IM_OK && status != IM_ENOCONV)
@@ -224,7 +229,9 @@ static double peak_rss_gib(void)
 
 static void bench_periodic(int n, int cpu_limit, int floor_limit)
 {
+    const double start = bench_now();
     im_field *s = paper_surface(n);
+    printf("periodic %5d^2: surface %.1f s\n", n, bench_now() - start);
     im_flat_result gpu, cpu;
     double gpu_seconds, cpu_seconds;
     flat_solve(s, IM_DEVICE_GPU, &gpu_seconds, &gpu);
@@ -308,6 +315,7 @@ int main(int argc, char **argv)
     if (gpu_devices_describe(devices, sizeof devices) == IM_OK)
         printf("Vulkan devices:\n%s", devices);
     printf("OpenMP threads: %d\n", omp_get_max_threads());
+    fflush(stdout);
     for (int k = 0; k < cone_count; ++k)
         bench_cone(cones[k], repeats, cpu_limit);
     for (int k = 0; k < periodic_count; ++k)
