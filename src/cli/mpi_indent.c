@@ -438,6 +438,9 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         return -1;
     }
     o->solver.periodic = o->periodic;
+    const char *const inputs[] = {o->surface_file, o->profile_path}; /* no output replaces or clears them */
+    if (cli_protect_inputs(inputs, 2) != 0)
+        return -1;
     if (optind < argc) {
         fprintf(stderr, "indentmap: mpi-indent: unexpected argument '%s'\n", argv[optind]);
         return -1;
