@@ -468,9 +468,9 @@ int cli_mpi_indent(int argc, char **argv)
         (void)freopen("/dev/null", "w", stderr);
     int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, NULL);
     cli_provenance provenance = {0}; /* the command as given (before getopt reorders argv), for the figures */
-    if (status == IM_OK && rank == 0)
-        status = cli_provenance_start("indentmap", argc, argv, &provenance);
-    status = mpi_collective_status(MPI_COMM_WORLD, status);
+    if (status == IM_OK) /* (only then: ranks started unalike may run another command, without this collective) */
+        status = mpi_collective_status(
+            MPI_COMM_WORLD, rank == 0 ? cli_provenance_start("indentmap", argc, argv, &provenance) : IM_OK);
     int parsed = status == IM_OK ? parse(argc, argv, &o) : 0;
     o.command = provenance.command;
     if (parsed != 0)
