@@ -160,7 +160,7 @@ awk -v a="$serial_k" -v b="$mpi_k" 'BEGIN { d = a - b; exit !(a > 1 && d < 1e-9 
 # what --periodic does not take
 refused periodic_approach 2 "mpi-indent --periodic takes mean pressures (--pressure LIST) or mean gaps (--mean-gap LIST), not --approach or --load" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --approach 1
-refused periodic_punch 2 "mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha and --radius are the half-space's" \
+refused periodic_punch 2 "mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha, --radius and --profile are the half-space's" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --pressure 0.01 --alpha 70
 refused periodic_targets 2 "mpi-indent --periodic: give --pressure LIST or --mean-gap LIST" -n 2 "$cli" mpi-indent --periodic --n 64
 refused pressure_alone 2 "mpi-indent: --pressure (over a periodic cell) needs --periodic" -n 2 "$cli" mpi-indent --n 64 --pressure 0.01

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # indentmap mpi-indent's histories of the half-space (MPI builds; skipped, exit 77, elsewhere): --approach LIST
-# and --load LIST, repulsive, with --hardness (plastic memory from step to step) and adhesive with --hardness,
+# and --load LIST, repulsive, with --hardness (plastic memory from step to step) and adhesive with --hardness, by
+# a profile punch (--profile: an axisymmetric table and a 2-D field),
 # against indent --full on a 64 x 48 rough surface: every column of history.csv (history_compare.sh: counts
 # exact, values to 1e-9), the same bytes on 1 and 3 ranks but for the seconds, the Oliver-Pharr table where
 # there is an unloading branch, run.json's control and targets; a capped history whose unloading does not
@@ -83,6 +84,18 @@ unloading_differs capped load 2 4
 same_history loads --load 2,10,30,10,2
 same_history capped_loads --load 2,10,30,10,2 --hardness 0.12
 unloading_differs capped_loads approach 2 4
+# the profile punch (--profile, read on every rank), a tabulated paraboloid z = r^2 / 40 and a 2-D field (elliptic
+# paraboloid around its centre sample, not axisymmetric)
+awk 'BEGIN { print "# r z"; for (i = 0; i <= 40; ++i) print i, i * i / 40 }' > "$work/profile.txt"
+same_history profile --approach 0.5,1.5,3,1.5,0.5 --punch profile --profile "$work/profile.txt"
+python3 -c 'import struct, sys
+ny, nx = 21, 31
+header = "{\x27descr\x27: \x27<f8\x27, \x27fortran_order\x27: False, \x27shape\x27: (%d, %d), }" % (ny, nx)
+header += " " * (118 - len(header)) + "\n"
+z = [((x - 15) ** 2 + 2 * (y - 10) ** 2) / 40 for y in range(ny) for x in range(nx)]
+open(sys.argv[1], "wb").write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode() +
+                              struct.pack("<%dd" % len(z), *z))' "$work/profile_2d.npy" || fail "profile_2d.npy"
+same_history profile_2d --load 2,10,25 --punch profile --profile "$work/profile_2d.npy"
 # (at --hardness 0.15 and 0.2 the deeper step took 1 and 3 more of its ~1500 iterations over ranks than serially,
 # its loads 4e-13 apart: the passes' stopping rules met at rounding level, the serial solver summing a few patches
 # directly where the ranks recompute u; docs/mpi.md)
@@ -92,4 +105,6 @@ unloading_differs adhesive_capped load 1 3
 
 refused bad_loads "--load '2,x': 'x' is not a number" --load 2,x
 refused tension "--load '2,-1'" --load 2,-1 --hardness 0.1
+refused profile_alone "--punch profile and --profile FILE go together" --approach 1 --punch profile
+refused profile_on_cell "--profile are the half-space's" --periodic --pressure 0.1 --profile "$work/profile.txt"
 echo "mpi-indent's histories of the half-space are indent's on 1 and 3 ranks"

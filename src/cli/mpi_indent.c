@@ -5,6 +5,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "cli/figure_provenance.h"
 #include "cli/mpi_indent.h"
 #include "front/front.h"
 #include "mpi/agree.h"
@@ -41,7 +42,9 @@ enum {
     OPT_MEAN_GAP,
     OPT_ADHESION_WORK,
     OPT_ADHESION_RANGE,
-    OPT_ADHESION_LAW
+    OPT_ADHESION_LAW,
+    OPT_PROFILE,
+    OPT_FRAMES
 };
 
 static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, OPT_SURFACE},
@@ -66,6 +69,8 @@ static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, O
                                              {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
                                              {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
                                              {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW},
+                                             {"profile", required_argument, 0, OPT_PROFILE},
+                                             {"frames", no_argument, 0, OPT_FRAMES},
                                              {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
@@ -80,8 +85,11 @@ static void usage(FILE *stream)
             "                  a surface is synthesised over the ranks:\n"
             "  --n NX --m NY   its grid (default 512 x 512; lambda_r = the shorter side)\n"
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
-            "  --punch cone|sphere|flat   (default cone) --alpha DEG (default 80) --radius R (sphere,\n"
-            "                  flat punch)\n"
+            "  --punch cone|sphere|flat|profile   (default cone) --alpha DEG (default 80) --radius R\n"
+            "                  (sphere, flat punch)\n"
+            "  --profile FILE  the punch's shape for --punch profile, indent's: an 'r z' table\n"
+            "                  (axisymmetric) or a .npy height field on the surface's grid (2-D), in\n"
+            "                  units of delta; every rank reads it (the same bytes on every rank)\n"
             "  --approach W | --load N   displacement or load control: one step, or with a LIST\n"
             "                  ('v1,v2,...' or 'first:last:count') indent --full's history, each step\n"
             "                  warm-started from the last, printed and written as --periodic's\n"
@@ -111,7 +119,11 @@ static void usage(FILE *stream)
             "                  approaches then retractions, negative ones pulling the punch away, through the\n"
             "                  pull-off; negative loads a tension; run.json with the pull-off, the jumps and\n"
             "                  DIR/force_distance.png): the history's tensile force and adhesive and repulsive\n"
-            "                  patches, and the net forces in force.npy\n");
+            "                  patches, and the net forces in force.npy\n"
+            "  With a LIST and --out DIR, DIR/history.png and .pdf (indent's history figure), drawn on rank 0\n"
+            "  --frames        also DIR/force_NNNN.npy and DIR/frames/contact_NNNN.png for every step of a\n"
+            "                  history (indent --frames' contact maps; needs OpenGL on rank 0 and --out):\n"
+            "                  rank 0 gathers each step's forces (8 nx ny bytes, held one step at a time)\n");
 }
 
 /* --pressure or --mean-gap, or the half-space's --approach or --load LIST: a step list (front.h: steps_parse, as
@@ -150,17 +162,14 @@ static int apply_option(int code, const char *arg, void *state)
         o->targets_option = code == OPT_PRESSURE ? "--pressure" : "--mean-gap";
         o->control = code == OPT_PRESSURE ? IM_CONTROL_LOAD : IM_CONTROL_MEAN_GAP;
         return steps_parse_list(o, arg);
-    case OPT_PUNCH: /* the names of `indent --punch` (indenter.h); a profile needs indent's --profile */
+    case OPT_PUNCH: /* the names of `indent --punch` (indenter.h); a profile's shape is --profile's */
         o->punch_given = 1;
-        if (im_punch_parse(arg, &o->punch.kind) != IM_OK) {
-            fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
-            return -1;
-        }
-        if (o->punch.kind != IM_PUNCH_CONE && o->punch.kind != IM_PUNCH_SPHERE && o->punch.kind != IM_PUNCH_FLAT) {
-            fprintf(stderr, "indentmap: --punch %s: mpi-indent solves a cone, a sphere or a flat punch\n", arg);
-            return -1;
-        }
-        return 0;
+        if (im_punch_parse(arg, &o->punch.kind) == IM_OK)
+            return 0;
+        fprintf(stderr, "indentmap: --punch %s\n", im_last_error());
+        return -1;
+    case OPT_PROFILE: o->punch_given = 1; return cli_parse_path("--profile", arg, &o->profile_path);
+    case OPT_FRAMES: o->frames = 1; return 0;
     case OPT_ALPHA: o->punch_given = 1; return cli_parse_double("--alpha", arg, 0, 90, &o->punch.alpha_degrees);
     case OPT_RADIUS: o->punch_given = 1; return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
     case OPT_APPROACH: /* W or N, or a LIST: read once the options are known (half_space_targets) */
@@ -231,16 +240,44 @@ int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *so
     return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
 }
 
-/* The grid: the file's shape, or the synthesis's. Every rank must read the same bytes from the file
- * (agree.h: a path may name other files on other nodes). */
+/* Every rank must read the same bytes from the surface and profile files (agree.h: a path may name other files on
+ * other nodes). */
+static int same_files(const mpi_indent_options *o)
+{
+    const char *paths[2], *keys[2];
+    int count = 0;
+    if (o->surface_file) {
+        paths[count] = o->surface_file;
+        keys[count++] = "--surface";
+    }
+    if (o->profile_path) {
+        paths[count] = o->profile_path;
+        keys[count++] = "--profile";
+    }
+    return count ? mpi_same_files(MPI_COMM_WORLD, "the command", count, paths, keys) : IM_OK;
+}
+
+/* The grid: the file's shape, or the synthesis's. */
 static int grid_of(mpi_indent_options *o)
 {
-    if (!o->surface_file)
+    int status = same_files(o);
+    if (status != IM_OK || !o->surface_file)
+        return status;
+    return im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny);
+}
+
+/* --profile read on every rank (each evaluates the punch on its rows), in units of delta = 1 as the heights:
+ * the punch borrows it, centred as indent's. Collective. */
+static int load_profile(mpi_indent_options *o)
+{
+    if (!o->profile_path)
         return IM_OK;
-    const char *key = "--surface";
-    int status = mpi_same_files(MPI_COMM_WORLD, "the command", 1, &o->surface_file, &key);
-    return status == IM_OK ? im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny)
-                           : status;
+    int status = im_profile_read(o->profile_path, 1.0, &o->profile);
+    if (status == IM_OK) {
+        o->punch = im_indenter_from_profile(o->profile);
+        status = im_indenter_check(&o->punch);
+    }
+    return mpi_collective_status(MPI_COMM_WORLD, status == IM_OK ? IM_OK : im_fail_context(status, "--profile"));
 }
 
 /* Fails every rank (IM_ENOMEM naming the fields) when some rank's allocation failed (have 0). */
@@ -283,6 +320,8 @@ static int solve_half_space(const mpi_indent_options *o, im_mpi_solver *solver, 
 static int solve(mpi_indent_options *o, im_solve_result *result)
 {
     int status = grid_of(o);
+    if (status == IM_OK)
+        status = load_profile(o);
     if (status != IM_OK)
         return status;
     if (!o->surface_file)
@@ -318,8 +357,8 @@ static int check_periodic_options(mpi_indent_options *o)
     else if (o->periodic && !o->targets_option)
         fprintf(stderr, "indentmap: mpi-indent --periodic: give --pressure LIST or --mean-gap LIST\n");
     else if (o->periodic && o->punch_given)
-        fprintf(stderr, "indentmap: mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha "
-                        "and --radius are the half-space's\n");
+        fprintf(stderr, "indentmap: mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha, "
+                        "--radius and --profile are the half-space's\n");
     else
         return 0;
     return -1;
@@ -344,6 +383,21 @@ static int check_adhesion_options(const mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --periodic --adhesion-work with --hardness: a cell's adhesion with "
                         "plasticity is not available over ranks (it is indent --periodic's, serial; the "
                         "half-space's is)\n");
+    else
+        return 0;
+    return -1;
+}
+
+/* The punch's options and --frames' (indent's rules). 0, or -1 with the message said. */
+static int check_punch_and_frames(const mpi_indent_options *o)
+{
+    if ((o->punch.kind == IM_PUNCH_PROFILE) != (o->profile_path != NULL))
+        fprintf(stderr, "indentmap: mpi-indent: --punch profile and --profile FILE go together\n");
+    else if (o->frames && !o->out)
+        fprintf(stderr, "indentmap: mpi-indent: --frames needs --out DIR\n");
+    else if (o->frames && !o->targets)
+        fprintf(stderr, "indentmap: mpi-indent: --frames draws a history's steps: expected a LIST ('v1,v2,...' or "
+                        "'first:last:count') after --approach or --load\n");
     else
         return 0;
     return -1;
@@ -376,13 +430,17 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
         return -1;
     }
-    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0 || half_space_targets(o) != 0)
+    if (check_periodic_options(o) != 0 || check_adhesion_options(o) != 0 || half_space_targets(o) != 0 ||
+        check_punch_and_frames(o) != 0)
         return -1;
     if (isnan(o->target) && !o->periodic && !o->targets) {
         fprintf(stderr, "indentmap: mpi-indent: give --approach W or --load N\n");
         return -1;
     }
     o->solver.periodic = o->periodic;
+    const char *const inputs[] = {o->surface_file, o->profile_path}; /* no output replaces or clears them */
+    if (cli_protect_inputs(inputs, 2) != 0)
+        return -1;
     if (optind < argc) {
         fprintf(stderr, "indentmap: mpi-indent: unexpected argument '%s'\n", argv[optind]);
         return -1;
@@ -409,7 +467,12 @@ int cli_mpi_indent(int argc, char **argv)
     if (rank != 0) /* every rank parses the same arguments (checked first): rank 0 speaks for them */
         (void)freopen("/dev/null", "w", stderr);
     int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, NULL);
+    cli_provenance provenance = {0}; /* the command as given (before getopt reorders argv), for the figures */
+    if (status == IM_OK) /* (only then: ranks started unalike may run another command, without this collective) */
+        status = mpi_collective_status(
+            MPI_COMM_WORLD, rank == 0 ? cli_provenance_start("indentmap", argc, argv, &provenance) : IM_OK);
     int parsed = status == IM_OK ? parse(argc, argv, &o) : 0;
+    o.command = provenance.command;
     if (parsed != 0)
         code = parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     im_solve_result result;
@@ -422,6 +485,8 @@ int cli_mpi_indent(int argc, char **argv)
                result.approach, result.load, result.contact_patches, result.iterations, result.residual,
                result.seconds);
     free(o.targets);
+    im_profile_free(o.profile); /* after the solves that borrowed it */
+    cli_provenance_free(&provenance);
     code = mpi_exit_code(MPI_COMM_WORLD, code);
     im_mpi_cleanup();
     MPI_Finalize();

@@ -1,11 +1,13 @@
 /* indentmap mpi-indent's histories over MPI ranks: --periodic, indent --periodic's history of a rigid flat on
  * a periodic cell (mpi.h: im_mpi_flat_contact_step), and the half-space's approaches or loads by a punch, with
  * plastic memory and adhesion (im_mpi_indentation_step), written in indent's schema: the history's columns (history.h) on stdout and
- * in DIR/history.csv, and DIR/run.json, with front.h's pieces. Built only with MPI. */
+ * in DIR/history.csv, DIR/run.json, and indent's figures (the history figure, the analyses', --frames' contact maps)
+ * drawn on rank 0 by indent's writers from what it gathers, with front.h's pieces. Built only with MPI. */
 #include "cli/mpi_indent.h"
 
 #if IM_HAVE_MPI
 
+#include "cli/cli.h"
 #include "front/front.h"
 #include "front/indent_run.h"
 #include "mpi/agree.h"
@@ -16,6 +18,7 @@
 #include "indentmap/status.h"
 
 #include <jansson.h>
+#include <limits.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,6 +37,9 @@ typedef struct history_run {
     json_t *record;            /* rank 0, with --out */
     double slope_rms;          /* rank 0: the surface's spectral h'rms */
     im_theory_interface rough; /* rank 0, the half-space: the theory columns' interface (h'rms above) */
+    char force_unit[40];       /* of loads and forces (units of E* delta^2) */
+    run_figure_texts texts;    /* rank 0, with --out: what the figures carry (indent's, with this Command) */
+    im_render_context *render; /* rank 0, --frames: opened before any step is solved, as indent's */
 } history_run;
 
 /* Rank 0: the whole field of this rank's rows of values (caller frees; NULL elsewhere). Collective. */
@@ -119,9 +125,14 @@ static int add_blocks(const history_run *run, json_t *root)
     if (!blocks)
         return im_fail(IM_ENOMEM, "run.json: out of memory");
     json_t *punch = json_object_get(blocks, "punch");
-    if (run->punch.kind == IM_PUNCH_CONE) { /* as indent's record: a cone's angle, no radius */
-        json_object_del(punch, "radius");
+    if (run->punch.kind != IM_PUNCH_SPHERE && run->punch.kind != IM_PUNCH_FLAT) /* as indent's record: */
+        json_object_del(punch, "radius");                                       /* a cone's angle, a profile's file */
+    if (run->punch.kind == IM_PUNCH_CONE)
         json_object_set_new(punch, "alpha_degrees", json_real(run->punch.alpha_degrees));
+    if (o->profile_path) {
+        char profile[4 * PATH_MAX + 1];
+        im_path_utf8(o->profile_path, profile, sizeof profile);
+        json_object_set_new(punch, "profile", json_string(profile));
     }
     int ranks;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
@@ -132,6 +143,8 @@ static int add_blocks(const history_run *run, json_t *root)
     json_decref(blocks);
     json_t *inputs = json_array();
     int status = inputs && o->surface_file ? run_record_add_input(inputs, "--surface", o->surface_file) : IM_OK;
+    if (status == IM_OK && inputs && o->profile_path)
+        status = run_record_add_input(inputs, "--profile", o->profile_path);
     json_object_set_new(root, "inputs", inputs);
     return status;
 }
@@ -152,6 +165,14 @@ static int start_outputs(history_run *run)
         status = im_fail(IM_ENOMEM, "run.json: out of memory");
     if (status == IM_OK)
         status = add_blocks(run, run->record);
+    const im_png_text command = {"Command", o->command};
+    if (status == IM_OK) /* the figures' texts: indent's, from the record's inputs */
+        status = run_figure_texts_make(&command, o->command ? 1 : 0, json_object_get(run->record, "inputs"),
+                                       &run->texts);
+    if (status == IM_OK) /* an earlier run's step files, figures and frames, as indent */
+        status = indent_files_clear(o->out);
+    if (status == IM_OK && o->frames)
+        status = cli_render_open(IM_RENDER_AUTO, &run->render);
     return status == IM_OK ? history_start(o->out, &run->history) : status;
 }
 
@@ -174,6 +195,9 @@ static int run_step(history_run *run, int i)
     if (status == IM_OK && run->rank == 0) /* the theory columns are the half-space's */
         status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->rows, i);
     im_contact_patches patches = {0};
+    const step_units units = {run->o->solver.hardness, "", run->force_unit};
+    if (status == IM_OK && run->rank == 0 && run->o->frames) /* what the frames are drawn from, as indent's */
+        status = step_field_write(run->o->out, i + 1, 0, force, &units);
     if (status == IM_OK && run->rank == 0 && (status = im_measure_contact_patches(force, &patches, NULL)) == IM_OK) {
         row->patches = patches.patches;
         row->perimeter = patches.perimeter;
@@ -193,15 +217,31 @@ static int run_step(history_run *run, int i)
 static void write_analysis(const history_run *run, int done)
 {
     int branches = 0;
-    if (analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star, "", "",
-                       NULL, &branches) != IM_OK)
+    if (analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star, "",
+                       run->force_unit, &run->texts, &branches) != IM_OK)
         fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
     else if (branches > 0)
         json_object_set_new(run->record, "indentation", json_string("indentation.csv"));
 }
 
+/* Rank 0: DIR/history.{png,pdf} of the steps done, as indent draws it; said, not the run's error, when it fails. */
+static void write_history_figure(const history_run *run, int done)
+{
+    const im_solver_options options = adhesive_options(run->o);
+    history_figure figure = indent_history_figure(&options, run->o->punch_given, periodic_cell_area(&run->shape),
+                                                  &run->rough);
+    figure.rows = run->rows;
+    figure.count = done;
+    figure.punch = &run->punch;
+    figure.length_unit = figure.pressure_unit = "";
+    figure.force_unit = run->force_unit;
+    figure.texts = &run->texts;
+    if (history_figure_write(run->o->out, &figure) != IM_OK)
+        fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
+}
+
 /* Rank 0, with --out: the adhesion's summary, the half-space's analysis or a cell's k of eq. (2) (elastic
- * steps only, as indent) and the record's end. */
+ * steps only, as indent), the history figure and the record's end. */
 static int finish_record(history_run *run, int done, int status)
 {
     if (run->rank != 0 || !run->record)
@@ -212,13 +252,14 @@ static int finish_record(history_run *run, int done, int status)
     im_adhesion_summary summary;
     if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
         if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
-                                        "", NULL, &summary) != IM_OK)
+                                        run->force_unit, &run->texts, &summary) != IM_OK)
             fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
     } else if (!run->o->periodic)
         write_analysis(run, done);
     else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
                                                               run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
+    write_history_figure(run, done);
     if (status != IM_OK)
         im_fail(status, "%s", message); /* the step's error, not the fit's */
     int recorded = run_record_finish(run->o->out, run->record, done, status);
@@ -241,6 +282,28 @@ static int write_last_fields(const history_run *run)
     return status;
 }
 
+/* Rank 0, --frames: DIR/frames/contact_NNNN.png of the steps done from their force files (front.h:
+ * fields_frames_write, indent's): a failure is the run's error when it had none. */
+static int draw_frames(const history_run *run, int done, int status)
+{
+    if (run->rank != 0 || !run->o->frames)
+        return status;
+    char folder[PATH_MAX], message[1024];
+    snprintf(message, sizeof message, "%s", im_last_error());
+    const fields_frames frames = {run->o->out, folder,          run->rows,        done,
+                                  &run->punch, run->force_unit, run->texts.texts, run->texts.count};
+    int drawn = im_path_join(folder, sizeof folder, run->o->out, "frames");
+    if (drawn == IM_OK)
+        drawn = fields_frames_write(run->render, &frames);
+    if (drawn != IM_OK)
+        im_fail_context(drawn, "--frames");
+    if (status == IM_OK)
+        return drawn;
+    if (drawn != IM_OK)
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+    return im_fail(status, "%s", message); /* the step's error */
+}
+
 static int run_steps(history_run *run)
 {
     const mpi_indent_options *o = run->o;
@@ -254,7 +317,8 @@ static int run_steps(history_run *run)
     if (status != IM_OK) /* done: the steps whose rows are written */
         im_fail_context(status, "step %d of %d (%s %g)", done + 1, o->target_count, o->targets_option,
                         o->targets[done]);
-    else if (o->out)
+    status = mpi_collective_status(MPI_COMM_WORLD, draw_frames(run, done, status));
+    if (status == IM_OK && o->out)
         status = write_last_fields(run);
     return mpi_collective_status(MPI_COMM_WORLD, finish_record(run, done, status));
 }
@@ -280,6 +344,7 @@ int mpi_indent_history(const mpi_indent_options *o, im_mpi_solver *solver, const
                        .history = {.fd = -1},
                        .shape = {.nx = o->surface.nx, .ny = o->surface.ny, .delta = 1.0}};
     MPI_Comm_rank(MPI_COMM_WORLD, &run.rank);
+    step_force_unit("", "", run.force_unit, sizeof run.force_unit);
     run.punch = o->periodic ? periodic_rigid_flat(&run.shape) : o->punch;
     int status = mpi_collective_status(MPI_COMM_WORLD, prepare_targets(&run));
     if (status == IM_OK)
@@ -292,6 +357,8 @@ int mpi_indent_history(const mpi_indent_options *o, im_mpi_solver *solver, const
         status = run_steps(&run);
     history_close(&run.history);
     json_decref(run.record);
+    run_figure_texts_free(&run.texts);
+    im_render_close(run.render);
     im_mpi_flat_contact_free(run.cell);
     im_mpi_indentation_free(run.indentation);
     free(run.targets);

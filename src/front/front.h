@@ -218,6 +218,9 @@ typedef struct step_units {
 /* Writes the fields of the run's last step as DIR/PREFIXNNNN.npy with their .npy.json sidecars, each
  * pair under the pair-writers lock (io.h). */
 int step_fields_write(const char *dir, im_indentation *run, int step, const step_units *units);
+/* One of them, field STEP_FIELD_PREFIXES[which] of step, from a field given whole (mpi-indent's, gathered on
+ * rank 0): its units set from units, then written as step_fields_write writes it. */
+int step_field_write(const char *dir, int step, int which, im_field *field, const step_units *units);
 
 /* Writes the gap (in gap_scale, IM_MEASURE_GAP_BINS bins) and contact-patch size distributions of the run's last
  * step: PREFIX_{gaps,patches,patch_list}.csv (measure.h: im_measure_write_distributions). */

@@ -117,25 +117,31 @@ static void write_analysis(const indent_run_state *s, const im_history_row *rows
                    branches, branches == 1 ? "" : "es", o->out);
 }
 
+history_figure indent_history_figure(const im_solver_options *solver, int punch_given, double cell_area,
+                                     const im_theory_interface *rough)
+{
+    const int elastic = !(solver->hardness > 0) && !(solver->adhesion_work > 0);
+    /* an adhesive cell's net load goes through 0: its force against the approach, as an adhesive punch's */
+    const int area_plot = solver->periodic && !(solver->adhesion_work > 0);
+    return (history_figure){.cell_area = area_plot ? cell_area : 0.0,
+                            .flat_theory = solver->periodic && !punch_given && elastic ? rough : NULL,
+                            .theory = elastic};
+}
+
 /* out/history.{png,pdf} (front.h: history_figure_write), with the theory where the run is elastic and
  * repulsive. */
 static void write_history_figure(const indent_run_state *s, const im_theory_interface *rough,
                                  const im_history_row *rows, int done)
 {
     const im_indent_options *o = s->options;
-    const int elastic = !(o->solver.hardness > 0) && !(o->solver.adhesion_work > 0);
-    /* an adhesive cell's net load goes through 0: its force against the approach, as an adhesive punch's */
-    const int area_plot = o->solver.periodic && !(o->solver.adhesion_work > 0);
-    const history_figure figure = {rows,
-                                   done,
-                                   &s->punch,
-                                   area_plot ? s->cell_area : 0.0,
-                                   o->solver.periodic && !o->punch_given && elastic ? rough : NULL,
-                                   elastic,
-                                   s->length_unit,
-                                   s->force_unit,
-                                   o->e_star_unit ? o->e_star_unit : "",
-                                   &s->figure_texts};
+    history_figure figure = indent_history_figure(&o->solver, o->punch_given, s->cell_area, rough);
+    figure.rows = rows;
+    figure.count = done;
+    figure.punch = &s->punch;
+    figure.length_unit = s->length_unit;
+    figure.force_unit = s->force_unit;
+    figure.pressure_unit = o->e_star_unit ? o->e_star_unit : "";
+    figure.texts = &s->figure_texts;
     if (history_figure_write(o->out, &figure) != IM_OK)
         indent_say(s, IM_LOG_WARNING, "history figure: %s", im_last_error());
 }

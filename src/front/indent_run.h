@@ -109,6 +109,13 @@ int indent_run_record_inputs(const im_indent_options *options, json_t *record);
 /* The generator block of the surface file's sidecar (written by `indentmap surface`), or NULL. */
 json_t *indent_surface_generator(const char *surface_path);
 
+/* What indent's history figure draws of a run under solver's options (front.h: history_figure's choices): a
+ * periodic cell's contact fraction (cell_area) with eq. (1) of rough under the rigid flat (no punch_given), the
+ * theory columns of an elastic, repulsive run; the caller sets the rows, the punch, the units and the texts.
+ * `indent` and mpi-indent draw it alike. */
+history_figure indent_history_figure(const im_solver_options *solver, int punch_given, double cell_area,
+                                     const im_theory_interface *rough);
+
 /* After the steps rows[0..done) (also after a failure, *status): the frames (a failure is the run's
  * when it had none), the indentation or adhesion analysis, the history figure, the k fit, each said
  * in record. rough: the theory's interface. */

@@ -37,6 +37,19 @@ static int write_field_pair(const char *path, const im_field *field, const char 
     return status;
 }
 
+int step_field_write(const char *dir, int step, int which, im_field *field, const step_units *units)
+{
+    char name[64], path[4096];
+    snprintf(name, sizeof name, "%s%04d.npy", STEP_FIELD_PREFIXES[which], step);
+    int status = im_path_join(path, sizeof path, dir, name);
+    if (status != IM_OK)
+        return status;
+    snprintf(field->unit, sizeof field->unit, "%s", units->length_unit);
+    if (which == 0)
+        snprintf(field->value_unit, sizeof field->value_unit, "%s", units->force_unit);
+    return write_field_pair(path, field, STEP_FIELD_QUANTITIES[which]);
+}
+
 int step_fields_write(const char *dir, im_indentation *run, int step, const step_units *units)
 {
     im_field *f[STEP_FIELDS_MAX] = {NULL, NULL, NULL, NULL};
@@ -44,17 +57,8 @@ int step_fields_write(const char *dir, im_indentation *run, int step, const step
     int status = im_indentation_fields_full(run, &f[0], &f[1], &f[2]);
     if (status == IM_OK && count == STEP_FIELDS_MAX)
         status = im_indentation_plastic(run, &f[3]);
-    for (int i = 0; i < count && status == IM_OK; ++i) {
-        char name[64], path[4096];
-        snprintf(name, sizeof name, "%s%04d.npy", STEP_FIELD_PREFIXES[i], step);
-        status = im_path_join(path, sizeof path, dir, name);
-        if (status != IM_OK)
-            break;
-        snprintf(f[i]->unit, sizeof f[i]->unit, "%s", units->length_unit);
-        if (i == 0)
-            snprintf(f[i]->value_unit, sizeof f[i]->value_unit, "%s", units->force_unit);
-        status = write_field_pair(path, f[i], STEP_FIELD_QUANTITIES[i]);
-    }
+    for (int i = 0; i < count && status == IM_OK; ++i)
+        status = step_field_write(dir, step, i, f[i], units);
     for (int i = 0; i < STEP_FIELDS_MAX; ++i)
         im_field_free(f[i]);
     return status;
