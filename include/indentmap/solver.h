@@ -231,6 +231,10 @@ typedef struct im_solver_options {
     double adhesion_range; /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls;
                                the exponential law's decay length rho */
     int adhesion_law;      /* enum im_adhesion_law (default IM_ADHESION_MAUGIS_DUGDALE) */
+    double adhesion_zone;  /* 0 (default): the law as given; P > 0 (the Maugis-Dugdale law only): an
+                               indentation solves the law of the same work whose Dugdale zone spans at
+                               least P patches (im_adhesion_solved_law), a smoother one where the
+                               given zone is narrower (docs/solver.md, "Across Tabor's mu") */
 } im_solver_options;
 
 /* The cohesive laws of "Adhesion" above. */
@@ -438,6 +442,16 @@ double im_adhesion_maugis_lambda(const im_solver_options *options, double radius
  * (lambda: the Maugis-Dugdale law of its work and peak stress w / rho, Johnson & Greenwood's matching).
  * NaN as im_adhesion_maugis_lambda. */
 double im_adhesion_tabor_mu(const im_solver_options *options, double radius);
+
+/* The law an indentation on patches of side delta solves (*solved: options' copy): options' own, or with
+ * adhesion_zone = P > 0 and a Dugdale zone l (im_adhesion_zone_length) shorter than P delta, the
+ * Maugis-Dugdale law of the same work w whose zone spans P patches: delta_c' = (8 w P delta / (pi E*))^(1/2),
+ * sigma0' = w / delta_c' (the cohesive-zone rule of fracture mechanics' finite elements: the strength lowered,
+ * the toughness kept). Its lambda and mu are then those of the law solved, not the law given: the pull-off
+ * of a JKR-like contact is w's, the curve Maugis-Dugdale's at that lambda (docs/solver.md). solved's
+ * adhesion_zone is 0 (solving it again changes nothing); *widened (may be NULL): 1 when the range was raised.
+ * IM_EINVAL as im_solver_options_check, or for a delta not finite and > 0. */
+int im_adhesion_solved_law(const im_solver_options *options, double delta, im_solver_options *solved, int *widened);
 
 typedef struct im_indentation im_indentation;
 

@@ -114,6 +114,7 @@ PARITY = {
     "indent --adhesion-work": Python("Indentation", "adhesion_work"),
     "indent --adhesion-range": Python("Indentation", "adhesion_range"),
     "indent --adhesion-law": Python("Indentation", "adhesion_law"),
+    "indent --adhesion-zone": Python("Indentation", "adhesion_zone"),
     "indent --quality": Python("Indentation", "quality"),
     "indent --tol": Python("Indentation", "tol"),
     "indent --max-iter": Python("Indentation", "max_iterations"),
