@@ -193,7 +193,7 @@ PARITY = {
     **{f"mpi-indent --{name}": MPI for name in (
         "surface", "n", "m", "seed", "slope", "punch", "alpha", "radius", "approach", "load", "hardness", "tol",
         "max-iter", "out", "map", "periodic", "pressure", "mean-gap", "adhesion-work", "adhesion-range",
-        "adhesion-law")},
+        "adhesion-law", "adhesion-zone")},
 }
 
 # Subcommands only some builds have: their entries may name what this build's program lacks.

@@ -41,7 +41,8 @@ enum {
     OPT_MEAN_GAP,
     OPT_ADHESION_WORK,
     OPT_ADHESION_RANGE,
-    OPT_ADHESION_LAW
+    OPT_ADHESION_LAW,
+    OPT_ADHESION_ZONE
 };
 
 static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, OPT_SURFACE},
@@ -66,6 +67,7 @@ static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, O
                                              {"adhesion-work", required_argument, 0, OPT_ADHESION_WORK},
                                              {"adhesion-range", required_argument, 0, OPT_ADHESION_RANGE},
                                              {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW},
+                                             {"adhesion-zone", required_argument, 0, OPT_ADHESION_ZONE},
                                              {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
@@ -111,7 +113,9 @@ static void usage(FILE *stream)
             "                  approaches then retractions, negative ones pulling the punch away, through the\n"
             "                  pull-off; negative loads a tension; run.json with the pull-off, the jumps and\n"
             "                  DIR/force_distance.png): the history's tensile force and adhesive and repulsive\n"
-            "                  patches, and the net forces in force.npy\n");
+            "                  patches, and the net forces in force.npy\n"
+            "  --adhesion-zone P  the Maugis-Dugdale zone widened to P patches at the same work, as\n"
+            "                  indent's (run.json states the law solved and the law asked)\n");
 }
 
 /* --pressure or --mean-gap, or the half-space's --approach or --load LIST: a step list (front.h: steps_parse, as
@@ -176,6 +180,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->adhesion_work);
     case OPT_ADHESION_RANGE: return cli_parse_double("--adhesion-range", arg, 1e-300, 1e300, &o->adhesion_range);
     case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return cli_parse_adhesion_law(arg, &o->adhesion_law);
+    case OPT_ADHESION_ZONE: return cli_parse_double("--adhesion-zone", arg, 1e-300, 1e300, &o->adhesion_zone);
     default: return -1;
     }
 }
@@ -336,6 +341,12 @@ static int check_adhesion_options(const mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work and --adhesion-range go together\n");
     else if (o->adhesion_law_given && !adhesion)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-law goes with --adhesion-work and --adhesion-range\n");
+    else if (o->adhesion_zone > 0 && !adhesion)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-zone widens the zone of --adhesion-work and "
+                        "--adhesion-range: expected both\n");
+    else if (o->adhesion_zone > 0 && o->adhesion_law != IM_ADHESION_MAUGIS_DUGDALE)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-zone widens the Maugis-Dugdale law's zone: expected "
+                        "--adhesion-law maugis-dugdale\n");
     else if (adhesion && !mean_gaps && !half_space)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work takes --periodic --mean-gap LIST or the "
                         "half-space's --approach or --load LIST (a periodic cell's adhesion under mean pressures, "
