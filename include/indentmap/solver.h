@@ -156,7 +156,8 @@
  * Resolution: Z must span patches. A Dugdale zone's length at a crack tip is of the order of
  * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 0.6% of Maugis-Dugdale's at
  * l = 3 patches, 8% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
- * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length).
+ * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length), or a law of the same
+ * work whose zone spans a patch (adhesion_zone below: a smoother law, the pull-off within 2-5% at mu = 10).
  * Controls: displacement or load on the half-space, mean gap on a periodic cell. A hardness H_p goes with
  * it on the half-space (a periodic cell refuses it, IM_EINVAL): the repulsive part is capped at
  * H_p + sigma0, so the net pressure lies in [-sigma0, H_p], and the flattening is kept across steps as
