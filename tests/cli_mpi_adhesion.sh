@@ -46,6 +46,16 @@ sys.exit(not (r["periodic"] is False and r["control"] == "approach" and r["punch
 [ -s "$work/mpi3/force_distance.png" ] || fail "no force_distance.png"
 [ -s "$work/mpi3/force.npy" ] && [ -s "$work/mpi3/gap.npy" ] || fail "no last step's fields"
 
+# --adhesion-zone as indent's: the widened law (l = 0.79 patches widened to 2), the same history on one rank
+"$cli" indent "$work/p.npy" --full "${steps[@]}" --adhesion-zone 2 --out "$work/zone" > /dev/null 2> "$work/zone.err" ||
+  fail "indent --adhesion-zone: $(cat "$work/zone.err")"
+timeout 300 "$mpiexec" -n 1 "$cli" mpi-indent --surface "$work/p.npy" "${steps[@]}" --adhesion-zone 2 \
+  > "$work/mpi-zone.csv" 2> "$work/mpi-zone.err" || fail "mpi-indent --adhesion-zone: $(cat "$work/mpi-zone.err")"
+history_differences "$work/zone/history.csv" "$work/mpi-zone.csv" > "$work/diff" ||
+  fail "mpi-indent --adhesion-zone's history is not indent's: $(head -5 "$work/diff")"
+! cmp -s "$work/mpi-zone.csv" "$work/mpi1.csv" || fail "--adhesion-zone 2 changed nothing"
+refused zone_alone "--adhesion-zone widens the zone of --adhesion-work" --approach 0.5 --adhesion-zone 1
+
 refused negative "--approach = -0.5: expected a number in \[0," --approach -0.5
 refused bad_list "--approach '0.5,x': 'x' is not a number" --approach 0.5,x --adhesion-work 0.02 --adhesion-range 0.2
 echo "mpi-indent's adhesive history is indent's on 1 and 3 ranks"

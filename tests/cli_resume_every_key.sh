@@ -78,6 +78,7 @@ output.plots|ensemble|plots = fig7, fig5
 adhesion.work|sticky|work = 0.06
 adhesion.range|sticky|range = 0.7
 adhesion.law|-|one law (maugis-dugdale): nothing to edit it to
+adhesion.zone|sticky|zone = 4
 solver.tol|ensemble|tol = 1e-9
 '$(device_rule)
 

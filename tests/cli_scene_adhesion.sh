@@ -72,6 +72,25 @@ PY
 scene "$dir/expmd.ini" "${exponential/exponential/maugis-dugdale}" "" "-0.5:1:4, 0.5:-0.5:3" exp
 check "another law is solved again" expect_exit 0 "made from other inputs" "$cli" run --resume "$dir/expmd.ini"
 
+# zone = 4 (indent --adhesion-zone 4): l = 3.0 patches widened to 4, the same history as indent's, not the law's as given
+scene "$dir/zone.ini" "$sticky"$'\nzone = 4' "" "0.5, 1, -0.5" zone
+check "a scene with zone runs" "$cli" run "$dir/zone.ini" > /dev/null 2> "$dir/zone.err"
+for zone in 4 none; do
+  "$cli" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
+      $([ $zone = none ] || echo --adhesion-zone $zone) --approach 0.5,1,-0.5 --out "$dir/indent-$zone" > /dev/null 2>&1
+done
+check "the zone's history is indent --adhesion-zone's, not the law's as given" python3 - \
+    "$dir/zone/histories/member_00_1.csv" "$dir/indent-4/history.csv" "$dir/indent-none/history.csv" <<'PY'
+import csv, sys
+def loads(path):
+    return [float(r["load"]) for r in csv.DictReader(l for l in open(path) if not l.startswith("#"))]
+a, b, given = (loads(path) for path in sys.argv[1:])
+sys.exit(not (len(a) == len(b) == len(given) == 3 and max(abs(x - y) for x, y in zip(a, b)) <= 1e-9 * max(map(abs, b))
+              and a != given))
+PY
+check "run.json states the zone" python3 -c "import json, sys; sys.exit(json.load(open(sys.argv[1]))['adhesion']['zone'] != 4)" \
+    "$dir/zone/run.json"
+
 # The refusals, each naming the key at fault and what is expected.
 refuse() { # NAME ADHESION-LINES EXTRA-LINES PHRASE
     scene "$dir/bad.ini" "$2" "$3"
@@ -85,6 +104,10 @@ range = 0.1' "" "[adhesion] work and range go together"
 refuse "a negative work" '[adhesion]
 work = -1
 range = 1' "" "work = '-1': expected a number in"
+refuse "a zone of 0 patches" "$sticky"$'\nzone = 0' "" "zone = '0': expected a number in"
+refuse "a zone without work and range" $'[adhesion]\nzone = 1' "" "[adhesion] zone widens the zone of the law's work and range"
+refuse "a zone of the exponential law" "${sticky/maugis-dugdale/exponential}"$'\nzone = 1' "" \
+    "[adhesion] zone widens the Maugis-Dugdale law's zone: expected law = maugis-dugdale"
 refuse "panels under load control" "$sticky" "contact_panels = yes" "contact_panels, frames, table or distributions"
 refuse "periodic flat panels" "$sticky" "plots = flat_k" "plots = flat_k: its flat panels are solved at mean pressures, which an adhesive cell does not take"
 refuse "log-axis figures" "$sticky" "plots = fig7" "plots = fig7 or sphere"

@@ -856,6 +856,92 @@ static void zone_length_and_lambda(void **state)
     assert_true(isnan(im_adhesion_zone_length(&o)) && isnan(im_adhesion_maugis_lambda(&o, 1)));
 }
 
+/* --adhesion-zone's law (solver.h: im_adhesion_solved_law): where the Dugdale zone is narrower than P patches
+ * of side delta the range makes it P patches exactly (its closed form, E* and delta both entering) at the same
+ * work; where it is wider the options come back as given; nonsense is refused naming the option. */
+static int same_law(const im_solver_options *a, const im_solver_options *b)
+{
+    return a->e_star == b->e_star && a->adhesion_work == b->adhesion_work && a->adhesion_range == b->adhesion_range &&
+           a->adhesion_law == b->adhesion_law && a->adhesion_zone == b->adhesion_zone;
+}
+
+static void widened_zone_keeps_the_work(void **state)
+{
+    (void)state;
+    im_solver_options o = im_solver_options_default(), solved;
+    o.e_star = 2;
+    o.adhesion_work = 0.05;
+    o.adhesion_range = 0.1; /* l = pi 2 0.01 / 0.4 = 0.157 */
+    o.adhesion_zone = 3;
+    int widened = 0;
+    assert_int_equal(im_adhesion_solved_law(&o, 0.5, &solved, &widened), IM_OK);
+    assert_true(widened);
+    assert_close(im_adhesion_zone_length(&solved), 3 * 0.5, 1e-12);
+    assert_close(solved.adhesion_range, sqrt(8 * 0.05 * 1.5 / (M_PI * 2)), 1e-12);
+    assert_true(solved.adhesion_work == o.adhesion_work && solved.e_star == o.e_star && solved.adhesion_zone == 0);
+    assert_true(solved.tol == o.tol && solved.device == o.device);
+    im_solver_options again;
+    assert_int_equal(im_adhesion_solved_law(&solved, 0.5, &again, &widened), IM_OK);
+    assert_true(!widened && same_law(&again, &solved));
+    o.adhesion_zone = 0.1; /* 0.05 length units: l spans it already */
+    assert_int_equal(im_adhesion_solved_law(&o, 0.5, &solved, &widened), IM_OK);
+    o.adhesion_zone = 0;
+    assert_true(!widened && same_law(&o, &solved));
+    const struct {
+        double zone, work, delta;
+        int law;
+        const char *message;
+    } nonsense[] = {{-1, 0.05, 1, IM_ADHESION_MAUGIS_DUGDALE, "adhesion zone = -1"},
+                    {NAN, 0.05, 1, IM_ADHESION_MAUGIS_DUGDALE, "adhesion zone = nan"},
+                    {2, 0, 1, IM_ADHESION_MAUGIS_DUGDALE, "without adhesion"},
+                    {2, 0.05, 1, IM_ADHESION_EXPONENTIAL, "the exponential law"},
+                    {2, 0.05, 0, IM_ADHESION_MAUGIS_DUGDALE, "delta = 0"}};
+    for (size_t i = 0; i < sizeof nonsense / sizeof nonsense[0]; ++i) {
+        o.adhesion_zone = nonsense[i].zone;
+        o.adhesion_work = nonsense[i].work;
+        o.adhesion_range = nonsense[i].work > 0 ? 0.1 : 0;
+        o.adhesion_law = nonsense[i].law;
+        assert_int_equal(im_adhesion_solved_law(&o, nonsense[i].delta, &solved, NULL), IM_EINVAL);
+        assert_non_null(strstr(im_last_error(), nonsense[i].message));
+    }
+}
+
+/* An indentation with adhesion_zone solves the widened law: its steps are those of the law given directly,
+ * to the bit; and a zone already wider than P patches leaves the steps as they were, to the bit. */
+static void indentation_solves_the_widened_law(void **state)
+{
+    (void)state;
+    const sphere_case c = sphere_case_make(10 * MAUGIS_PER_TABOR, 4); /* l = 0.011 patches */
+    im_solver_options o = im_solver_options_default(), solved;
+    o.adhesion_work = c.work;
+    o.adhesion_range = c.range;
+    const double zones[] = {1, 0.01}; /* widened; not: l = 0.011 patches > 0.01 */
+    for (int k = 0; k < 2; ++k) {
+        o.adhesion_zone = zones[k];
+        int widened = 0;
+        assert_int_equal(im_adhesion_solved_law(&o, 1.0, &solved, &widened), IM_OK);
+        assert_int_equal(widened, k == 0);
+        im_field *surface = NULL;
+        assert_int_equal(im_field_create(48, 48, 1.0, &surface), IM_OK);
+        const im_indenter sphere = im_indenter_sphere(c.radius);
+        im_indentation *asked = NULL, *direct = NULL;
+        assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &o, &asked), IM_OK);
+        assert_int_equal(im_indentation_create(surface, &sphere, IM_CONTROL_DISPLACEMENT, 1, &solved, &direct),
+                         IM_OK);
+        const double approaches[] = {0.5, 1, 0.25, -0.25};
+        for (int i = 0; i < 4; ++i) {
+            im_step_result a, b;
+            assert_int_equal(im_indentation_step(asked, approaches[i], &a), IM_OK);
+            assert_int_equal(im_indentation_step(direct, approaches[i], &b), IM_OK);
+            assert_true(a.load == b.load && a.tensile_force == b.tensile_force);
+            assert_true(a.contact_patches == b.contact_patches && a.adhesive_patches == b.adhesive_patches);
+        }
+        im_indentation_free(asked);
+        im_indentation_free(direct);
+        im_field_free(surface);
+    }
+}
+
 /* The summary of a hand-made history: approach without contact, a jump into contact at w = 2, a
  * retraction pulling 2 at w = 1 and separating below it; the loop's trapezoids add up to 2, their error
  * estimate (measure.h) to 1/12 + 1/4 + 1/4: over [1, 2] on approach the second difference at w = 1 is 1 (h^3 / 12
@@ -930,11 +1016,14 @@ static int one_mu_on_one_grid(int argc, char **argv)
     }
     sphere_case c = sphere_case_make(mu * MAUGIS_PER_TABOR, scale);
     c.device = device;
-    const double zone_length = M_PI * c.range * c.range / (8 * c.work); /* E* = 1 */
-    if (zone > zone_length) {
-        c.range = sqrt(8 * c.work * zone / M_PI);
-        c.stress = c.work / c.range;
-    }
+    im_solver_options law = im_solver_options_default(); /* E* = 1 */
+    law.adhesion_work = c.work;
+    law.adhesion_range = c.range;
+    law.adhesion_zone = zone;
+    const double zone_length = im_adhesion_zone_length(&law);
+    assert_int_equal(im_adhesion_solved_law(&law, 1.0, &law, NULL), IM_OK);
+    c.range = law.adhesion_range;
+    c.stress = c.work / c.range;
     printf("Tabor mu %g (lambda %g), L = %g patches, R = %g, Dugdale zone %.4f patches (solved with %.4f), "
            "device %s\n",
            mu, c.lambda, scale, c.radius, zone_length, fmax(zone, zone_length), device_word);
@@ -969,6 +1058,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(periodic_bump_pulls_off_like_a_sphere),
         cmocka_unit_test(refusals),
         cmocka_unit_test(zone_length_and_lambda),
+        cmocka_unit_test(widened_zone_keeps_the_work),
+        cmocka_unit_test(indentation_solves_the_widened_law),
         cmocka_unit_test(summary_of_a_loop),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

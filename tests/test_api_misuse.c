@@ -546,6 +546,8 @@ REPORT(im_measure_adhesion, "out", im_measure_adhesion(values, values, contact, 
 SAFE_RESULT(im_adhesion_zone_length, "options", isnan(im_adhesion_zone_length(NULL)))
 SAFE_RESULT(im_adhesion_maugis_lambda, "options", isnan(im_adhesion_maugis_lambda(NULL, 1.0)))
 SAFE_RESULT(im_adhesion_tabor_mu, "options", isnan(im_adhesion_tabor_mu(NULL, 1.0)))
+REPORT(im_adhesion_solved_law, "options", im_adhesion_solved_law(NULL, 1.0, &options, NULL))
+REPORT(im_adhesion_solved_law, "solved", im_adhesion_solved_law(&options, 1.0, NULL, NULL))
 REPORT(im_adhesion_law_parse, "word", im_adhesion_law_parse(NULL, &i1))
 REPORT(im_adhesion_law_parse, "law", im_adhesion_law_parse("exponential", NULL))
 SAFE_RESULT(im_solver_plan_device, "plan", im_solver_plan_device(NULL) == NULL)

@@ -135,7 +135,7 @@ void im_mpi_flat_contact_free(im_mpi_flat_contact *run);
  * holds global values, the same on every rank. IM_EINVAL on an adhesive cell. Collective. */
 int im_mpi_flat_contact_solve(im_mpi_flat_contact *run, double mean_pressure, im_flat_result *out);
 int im_mpi_flat_contact_solve_gap(im_mpi_flat_contact *run, double mean_gap, im_flat_result *out);
-/* Adhesion in the cell's steps (options' adhesion_work, adhesion_range, adhesion_law; the solver's own options
+/* Adhesion in the cell's steps (options' adhesion_work, adhesion_range, adhesion_law, adhesion_zone; the solver's own options
  * have none, as a serial plan's): im_mpi_flat_contact_step then takes mean gaps only and solves the adhesive
  * cell as im_indentation_step does (`indent --periodic --mean-gap --adhesion-work`), the passes over the ranks,
  * the same iterations and values to the tolerance. IM_EINVAL for invalid options or no work, with the
@@ -175,8 +175,8 @@ typedef struct im_mpi_indentation im_mpi_indentation;
  * (not freed here; it must outlive the run), under control IM_CONTROL_DISPLACEMENT or IM_CONTROL_LOAD up to
  * largest_target (as im_indentation_create: the steps' targets lie in [0, largest_target], or with adhesion
  * in [-largest_target, largest_target]). The run's options are the solver's (tol, E*, hardness); adhesion:
- * NULL or adhesion_work = 0 for a repulsive history, or options whose adhesion_work, adhesion_range and
- * adhesion_law make the steps adhesive (checked whole with the solver's, as im_solver_options_check). While
+ * NULL or adhesion_work = 0 for a repulsive history, or options whose adhesion_work, adhesion_range,
+ * adhesion_law and adhesion_zone make the steps adhesive (checked whole with the solver's, as im_solver_options_check). While
  * the run lives, the solver's cap is the steps' (with adhesion H_p + sigma0 on the repulsive part; restored by
  * im_mpi_indentation_free). IM_EINVAL for a periodic solver, a bad punch, control or largest target, or invalid
  * adhesion; IM_ENUMERIC naming a non-finite height; IM_ENOMEM. Collective. */

@@ -156,7 +156,8 @@
  * Resolution: Z must span patches. A Dugdale zone's length at a crack tip is of the order of
  * l = pi E* w / (8 sigma0^2); a sphere's pull-off force is within 0.6% of Maugis-Dugdale's at
  * l = 3 patches, 8% at l = 0.33, and far off (several times too strong) at l < 0.1: the JKR limit
- * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length).
+ * (lambda -> infinity, l -> 0) needs grids fine enough for l (im_adhesion_zone_length), or a law of the same
+ * work whose zone spans a patch (adhesion_zone below: a smoother law, the pull-off within 2-5% at mu = 10).
  * Controls: displacement or load on the half-space, mean gap on a periodic cell. A hardness H_p goes with
  * it on the half-space (a periodic cell refuses it, IM_EINVAL): the repulsive part is capped at
  * H_p + sigma0, so the net pressure lies in [-sigma0, H_p], and the flattening is kept across steps as
@@ -231,6 +232,10 @@ typedef struct im_solver_options {
     double adhesion_range; /* delta_c > 0 (length): the gap up to which the stress w / delta_c pulls;
                                the exponential law's decay length rho */
     int adhesion_law;      /* enum im_adhesion_law (default IM_ADHESION_MAUGIS_DUGDALE) */
+    double adhesion_zone;  /* 0 (default): the law as given; P > 0 (the Maugis-Dugdale law only): an
+                               indentation solves the law of the same work whose Dugdale zone spans at
+                               least P patches (im_adhesion_solved_law), a smoother one where the
+                               given zone is narrower (docs/solver.md, "Across Tabor's mu") */
 } im_solver_options;
 
 /* The cohesive laws of "Adhesion" above. */
@@ -438,6 +443,16 @@ double im_adhesion_maugis_lambda(const im_solver_options *options, double radius
  * (lambda: the Maugis-Dugdale law of its work and peak stress w / rho, Johnson & Greenwood's matching).
  * NaN as im_adhesion_maugis_lambda. */
 double im_adhesion_tabor_mu(const im_solver_options *options, double radius);
+
+/* The law an indentation on patches of side delta solves (*solved: options' copy): options' own, or with
+ * adhesion_zone = P > 0 and a Dugdale zone l (im_adhesion_zone_length) shorter than P delta, the
+ * Maugis-Dugdale law of the same work w whose zone spans P patches: delta_c' = (8 w P delta / (pi E*))^(1/2),
+ * sigma0' = w / delta_c' (the cohesive-zone rule of fracture mechanics' finite elements: the strength lowered,
+ * the toughness kept). Its lambda and mu are then those of the law solved, not the law given: the pull-off
+ * of a JKR-like contact is w's, the curve Maugis-Dugdale's at that lambda (docs/solver.md). solved's
+ * adhesion_zone is 0 (solving it again changes nothing); *widened (may be NULL): 1 when the range was raised.
+ * IM_EINVAL as im_solver_options_check, or for a delta not finite and > 0. */
+int im_adhesion_solved_law(const im_solver_options *options, double delta, im_solver_options *solved, int *widened);
 
 typedef struct im_indentation im_indentation;
 

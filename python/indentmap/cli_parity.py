@@ -114,6 +114,7 @@ PARITY = {
     "indent --adhesion-work": Python("Indentation", "adhesion_work"),
     "indent --adhesion-range": Python("Indentation", "adhesion_range"),
     "indent --adhesion-law": Python("Indentation", "adhesion_law"),
+    "indent --adhesion-zone": Python("Indentation", "adhesion_zone"),
     "indent --quality": Python("Indentation", "quality"),
     "indent --tol": Python("Indentation", "tol"),
     "indent --max-iter": Python("Indentation", "max_iterations"),
@@ -192,7 +193,7 @@ PARITY = {
     **{f"mpi-indent --{name}": MPI for name in (
         "surface", "n", "m", "seed", "slope", "punch", "alpha", "radius", "approach", "load", "hardness", "tol",
         "max-iter", "out", "map", "periodic", "pressure", "mean-gap", "adhesion-work", "adhesion-range",
-        "adhesion-law", "profile", "frames")},
+        "adhesion-law", "adhesion-zone", "profile", "frames")},
 }
 
 # Subcommands only some builds have: their entries may name what this build's program lacks.

@@ -128,6 +128,9 @@ class Indentation:
     ``adhesion(history)`` gives the pull-off.
     ``adhesion_law='exponential'`` (``indent --adhesion-law exponential``) takes the smooth law instead: the
     tension (w / rho) exp(-g / rho) at a gap g, rho = ``adhesion_range``, w / rho in contact.
+    ``adhesion_zone=P`` (``indent --adhesion-zone P``) solves instead the Maugis-Dugdale law of the same work
+    whose Dugdale zone spans at least P patches, where the given one is narrower (a smoother law whose pull-off
+    coarse grids resolve; docs/solver.md, "Across Tabor's mu"; ``indent_run``'s run.json states both laws).
 
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
@@ -162,7 +165,7 @@ class Indentation:
                  tol=None, max_iterations=10000, crop=True, window_margin=4, axis=None, device="cpu",
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
                  quality=None, length_unit="", e_star_unit="", plain_pk=False, measure=False, wisdom=None,
-                 adhesion_law="maugis-dugdale"):
+                 adhesion_law="maugis-dugdale", adhesion_zone=0.0):
         if tol is None:
             tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
         if punch is None:
@@ -188,7 +191,8 @@ class Indentation:
                                       plain_pk=_checks.flag("plain_pk", plain_pk),
                                       measure=_checks.flag("measure", measure),
                                       wisdom="" if wisdom is None else _checks.path("wisdom", wisdom),
-                                      adhesion_law=_checks.text("adhesion_law", adhesion_law))
+                                      adhesion_law=_checks.text("adhesion_law", adhesion_law),
+                                      adhesion_zone=_checks.real("adhesion_zone", adhesion_zone))
         self.units = json.loads(_core.units_record(_core.length_unit("length_unit", _checks.text("length_unit",
                                                                                                length_unit)),
                                                    _checks.text("e_star_unit", e_star_unit),
@@ -369,8 +373,8 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
                m=None, delta=None, unit="", height_unit="", length_unit="", channel=None, fill=False,
                resample_square=False, npy_order=None, region=None, align="none", detrend="none", axis=None, e_star=1.0, e_star_unit="", hardness=0.0, quality=None,
                tol=None, max_iterations=10000, crop=True, periodic=False, slope_definition=None, adhesion_work=0.0,
-               adhesion_range=0.0, adhesion_law="maugis-dugdale", device="cpu", plain_pk=False, measure=False,
-               wisdom=None, fields=False, frames=False, distributions=False, page_embed=False, backend="auto",
+               adhesion_range=0.0, adhesion_law="maugis-dugdale", adhesion_zone=0.0, device="cpu", plain_pk=False,
+               measure=False, wisdom=None, fields=False, frames=False, distributions=False, page_embed=False, backend="auto",
                progress=None, log=None):
     """Makes the run ``indentmap indent`` makes, into the folder ``out``, and returns ``out``: the same
     library call (indent.h: im_indent_run), so the same files: history.csv, run.json, index.html, the
@@ -412,7 +416,8 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
                    slope_definition=_checks.text("slope_definition", slope_definition or ""),
                    adhesion_work=_checks.real("adhesion_work", adhesion_work),
                    adhesion_range=_checks.real("adhesion_range", adhesion_range),
-                   adhesion_law=_checks.text("adhesion_law", adhesion_law), device=_checks.text("device", device),
+                   adhesion_law=_checks.text("adhesion_law", adhesion_law),
+                   adhesion_zone=_checks.real("adhesion_zone", adhesion_zone), device=_checks.text("device", device),
                    cascade=int(not plain_pk), precondition=int(not plain_pk), fft_measure=int(_checks.flag("measure", measure)),
                    fields=int(_checks.flag("fields", fields)), frames=int(_checks.flag("frames", frames)),
                    distributions=int(_checks.flag("distributions", distributions)),

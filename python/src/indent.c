@@ -44,6 +44,7 @@ static const option_field FIELDS[] = {
     FIELD("periodic", INTEGER, solver.periodic),
     FIELD("adhesion_work", REAL, solver.adhesion_work),
     FIELD("adhesion_range", REAL, solver.adhesion_range),
+    FIELD("adhesion_zone", REAL, solver.adhesion_zone),
     FIELD("cascade", INTEGER, solver.cascade),
     FIELD("precondition", INTEGER, solver.precondition),
     FIELD("fft_measure", INTEGER, solver.fft_measure),

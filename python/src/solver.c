@@ -162,17 +162,18 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
                                "measure",
                                "wisdom",
                                "adhesion_law",
+                               "adhesion_zone",
                                NULL};
     PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None, *wisdom = NULL;
     int plain_pk = 0;
     double delta, alpha, radius, largest;
     const char *kind, *control_name, *device = "cpu", *slope_name = "", *law = "maugis-dugdale";
     im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&s", keywords, &obj, &delta, &kind,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&sd", keywords, &obj, &delta, &kind,
                                      &alpha, &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
                                      &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
                                      &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range, &plain_pk,
-                                     &o.fft_measure, PyUnicode_FSConverter, &wisdom, &law))
+                                     &o.fft_measure, PyUnicode_FSConverter, &wisdom, &law, &o.adhesion_zone))
         return -1;
     int wisdom_ok = check_idle(self) < 0 ? -1 : set_wisdom(self, wisdom, &o); /* a running step reads it */
     Py_XDECREF(wisdom);

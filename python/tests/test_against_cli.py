@@ -138,6 +138,21 @@ def test_adhesion_bit_for_bit(cli, rough64, tmp_path):
         assert value == record[name] or (np.isnan(value) and record[name] is None), name
 
 
+def test_adhesion_zone_bit_for_bit(cli, rough64, tmp_path):
+    """adhesion_zone as indent --adhesion-zone: the widened law's history (l = 4.9 patches widened to 8), to the
+    bit, which differs from the law as given."""
+    im.write(tmp_path / "s.npy", rough64)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--punch", "sphere", "--radius", "40", "--adhesion-work", "0.02",
+            "--adhesion-range", "0.5", "--adhesion-zone", "8", "--approach", "1,-0.5", "--out", tmp_path / "out")
+    options = dict(approaches=[1, -0.5], adhesion_work=0.02, adhesion_range=0.5)
+    widened = im.indent(rough64, im.Sphere(40), adhesion_zone=8, **options)
+    theirs = im.read_history(tmp_path / "out" / "history.csv")
+    for name in widened.dtype.names:
+        if name != "seconds":
+            np.testing.assert_array_equal(widened[name], theirs[name], err_msg=name)
+    assert not np.array_equal(widened["load"], im.indent(rough64, im.Sphere(40), **options)["load"])
+
+
 def test_adhesion_with_hardness_bit_for_bit(cli, rough64, tmp_path):
     """Adhesion with a hardness (indent --hardness --adhesion-work): the same history as the program's, yielding
     and pulling, the same plastic depth field, no net pressure above the hardness; on a periodic cell under mean

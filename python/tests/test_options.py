@@ -53,6 +53,8 @@ INDENTATION = [
     ("adhesion_range", INF, ValueError, r"adhesion range = inf: expected a finite gap delta_c > 0"),
     ("adhesion_law", "lennard-jones", ValueError, r"adhesion_law 'lennard-jones': expected 'maugis-dugdale' or 'exponential'"),
     ("adhesion_law", 3, TypeError, r"adhesion_law: expected a string, got 3"),
+    ("adhesion_zone", -1, ValueError, r"adhesion zone = -1: expected a finite number of patches P > 0"),
+    ("adhesion_zone", 1, ValueError, r"adhesion zone = 1 patches without adhesion: expected a work and a range"),
     ("quality", "best", ValueError, r"quality = 'best': expected draft, standard or publication"),
     ("quality", 3, TypeError, r"quality: expected a string, got 3"),
     ("length_unit", "furlong", ValueError, r"length_unit 'furlong': expected a length unit"),

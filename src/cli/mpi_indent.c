@@ -44,7 +44,8 @@ enum {
     OPT_ADHESION_RANGE,
     OPT_ADHESION_LAW,
     OPT_PROFILE,
-    OPT_FRAMES
+    OPT_FRAMES,
+    OPT_ADHESION_ZONE
 };
 
 static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, OPT_SURFACE},
@@ -71,6 +72,7 @@ static const struct option LONG_OPTIONS[] = {{"surface", required_argument, 0, O
                                              {"adhesion-law", required_argument, 0, OPT_ADHESION_LAW},
                                              {"profile", required_argument, 0, OPT_PROFILE},
                                              {"frames", no_argument, 0, OPT_FRAMES},
+                                             {"adhesion-zone", required_argument, 0, OPT_ADHESION_ZONE},
                                              {0, 0, 0, 0}};
 
 static void usage(FILE *stream)
@@ -120,6 +122,8 @@ static void usage(FILE *stream)
             "                  pull-off; negative loads a tension; run.json with the pull-off, the jumps and\n"
             "                  DIR/force_distance.png): the history's tensile force and adhesive and repulsive\n"
             "                  patches, and the net forces in force.npy\n"
+            "  --adhesion-zone P  the Maugis-Dugdale zone widened to P patches at the same work, as\n"
+            "                  indent's (run.json states the law solved and the law asked)\n"
             "  With a LIST and --out DIR, DIR/history.png and .pdf (indent's history figure), drawn on rank 0\n"
             "  --frames        also DIR/force_NNNN.npy and DIR/frames/contact_NNNN.png for every step of a\n"
             "                  history (indent --frames' contact maps; needs OpenGL on rank 0 and --out):\n"
@@ -185,6 +189,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_ADHESION_WORK: return cli_parse_double("--adhesion-work", arg, 1e-300, 1e300, &o->adhesion_work);
     case OPT_ADHESION_RANGE: return cli_parse_double("--adhesion-range", arg, 1e-300, 1e300, &o->adhesion_range);
     case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return cli_parse_adhesion_law(arg, &o->adhesion_law);
+    case OPT_ADHESION_ZONE: return cli_parse_double("--adhesion-zone", arg, 1e-300, 1e300, &o->adhesion_zone);
     default: return -1;
     }
 }
@@ -375,6 +380,12 @@ static int check_adhesion_options(const mpi_indent_options *o)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work and --adhesion-range go together\n");
     else if (o->adhesion_law_given && !adhesion)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-law goes with --adhesion-work and --adhesion-range\n");
+    else if (o->adhesion_zone > 0 && !adhesion)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-zone widens the zone of --adhesion-work and "
+                        "--adhesion-range: expected both\n");
+    else if (o->adhesion_zone > 0 && o->adhesion_law != IM_ADHESION_MAUGIS_DUGDALE)
+        fprintf(stderr, "indentmap: mpi-indent: --adhesion-zone widens the Maugis-Dugdale law's zone: expected "
+                        "--adhesion-law maugis-dugdale\n");
     else if (adhesion && !mean_gaps && !half_space)
         fprintf(stderr, "indentmap: mpi-indent: --adhesion-work takes --periodic --mean-gap LIST or the "
                         "half-space's --approach or --load LIST (a periodic cell's adhesion under mean pressures, "

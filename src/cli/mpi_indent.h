@@ -22,8 +22,9 @@ typedef struct mpi_indent_options {
     double *targets;            /* its step list (mean pressures, mean gaps or approaches): a history */
     int target_count;
     im_solver_options solver;
-    /* --adhesion-work, --adhesion-range, --adhesion-law: the history's steps' (the solver's options have none) */
-    double adhesion_work, adhesion_range;
+    /* --adhesion-work, --adhesion-range, --adhesion-law, --adhesion-zone: the history's steps' (the solver's options
+     * have none) */
+    double adhesion_work, adhesion_range, adhesion_zone;
     int adhesion_law, adhesion_law_given;
     int tol_given;       /* --tol (run.json: no quality preset) */
     const char *out;     /* folder for force.npy and gap.npy, or NULL */

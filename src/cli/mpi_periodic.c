@@ -90,6 +90,7 @@ static im_solver_options adhesive_options(const mpi_indent_options *o)
     adhesive.adhesion_work = o->adhesion_work;
     adhesive.adhesion_range = o->adhesion_range;
     adhesive.adhesion_law = o->adhesion_law;
+    adhesive.adhesion_zone = o->adhesion_zone;
     return adhesive;
 }
 

@@ -317,7 +317,9 @@ json_t *run_record_create(const char *program, const char *input_kind, const cha
 
 /* run.json's "adhesion" block of a run under options' law (solver.h, "Adhesion"): its name, work, range,
  * (peak) stress, the Dugdale zone's length (in the length unit and in patches of side delta) and, for a
- * sphere punch, Maugis's lambda and the law's Tabor mu; NULL when out of memory. */
+ * sphere punch, Maugis's lambda and the law's Tabor mu, all of the law solved on patches of side delta
+ * (solver.h: im_adhesion_solved_law); with options' adhesion_zone P > 0 also "zone": P, whether it widened
+ * the law, and the law asked ("asked", the same fields). NULL when out of memory or for invalid options. */
 json_t *run_record_adhesion_law(const im_solver_options *options, const im_indenter *punch, double delta);
 
 /* With adhesion: the summary of rows[0..done) and DIR/force_distance.{png,pdf} (analysis_write_adhesion)

@@ -118,15 +118,43 @@ static void warn_about_surface(const indent_run_state *s, const im_field *surfac
 }
 
 /* Said once before the steps: a Dugdale zone shorter than a patch is not resolved. */
-static void warn_if_zone_unresolved(const indent_run_state *s)
+static void warn_if_zone_unresolved(const indent_run_state *s, const im_solver_options *solved)
 {
-    const double patches = im_adhesion_zone_length(&s->options->solver) / s->surface_delta;
+    const double patches = im_adhesion_zone_length(solved) / s->surface_delta;
     if (patches < 1)
         indent_say(s, IM_LOG_WARNING,
                    "warning: the adhesive zone's length pi E* D^2 / (8 W) = %.3g patches is below one patch: the "
                    "grid does not resolve it and the pull-off comes out too strong (a sphere: 8%% at 0.33 patches, 5 "
-                   "times at 0.03; 0.6%% at 3): use a finer delta or a wider --adhesion-range",
+                   "times at 0.03; 0.6%% at 3): use a finer delta, a wider --adhesion-range or --adhesion-zone 1",
                    patches);
+}
+
+/* Said once before the steps: with --adhesion-zone, the law solved and the law asked (run.json "adhesion"). */
+static void say_adhesion_law(const indent_run_state *s)
+{
+    const im_solver_options *asked = &s->options->solver;
+    im_solver_options solved;
+    int widened = 0;
+    if (im_adhesion_solved_law(asked, s->surface_delta, &solved, &widened) != IM_OK)
+        return; /* (the run solving it checked the options) */
+    warn_if_zone_unresolved(s, &solved);
+    if (!(asked->adhesion_zone > 0))
+        return;
+    const double patches = im_adhesion_zone_length(asked) / s->surface_delta;
+    if (!widened) {
+        indent_say(s, IM_LOG_INFO, "adhesion zone %.4g patches already spans --adhesion-zone %g: the law as given",
+                   patches, asked->adhesion_zone);
+        return;
+    }
+    char mu[128] = "";
+    if (s->punch.kind == IM_PUNCH_SPHERE)
+        snprintf(mu, sizeof mu, ", Tabor mu %.4g (asked %.4g)", im_adhesion_tabor_mu(&solved, s->punch.radius),
+                 im_adhesion_tabor_mu(asked, s->punch.radius));
+    indent_say(s, IM_LOG_INFO,
+               "adhesion zone widened from %.4g to %g patches at the same work: range %.6g (asked %.6g), stress "
+               "%.6g (asked %.6g)%s; a smoother law than the one asked (docs/solver.md, \"Across Tabor's mu\")",
+               patches, asked->adhesion_zone, solved.adhesion_range, asked->adhesion_range,
+               solved.adhesion_work / solved.adhesion_range, asked->adhesion_work / asked->adhesion_range, mu);
 }
 
 /* ---- the surface and the punch ---- */
@@ -406,7 +434,7 @@ static int run_on(indent_run_state *s, const im_field *surface, const im_theory_
         status = im_indentation_create(surface, &s->punch, o->control, steps_largest(s->targets, o->target_count),
                                        &o->solver, &run);
     if (status == IM_OK && o->solver.adhesion_work > 0)
-        warn_if_zone_unresolved(s);
+        say_adhesion_law(s);
     run_folder folder = {.lock = {.fd = -1}};
     history_file history = {.fd = -1};
     if (status == IM_OK)

@@ -31,7 +31,7 @@ static json_t *solver_record(const run_record_solver *s)
 /* A number for JSON: null for NaN. */
 static json_t *json_number(double value) { return isfinite(value) ? json_real(value) : json_null(); }
 
-json_t *run_record_adhesion_law(const im_solver_options *options, const im_indenter *punch, double delta)
+static json_t *law_record(const im_solver_options *options, const im_indenter *punch, double delta)
 {
     const double length = im_adhesion_zone_length(options),
                  lambda = im_adhesion_maugis_lambda(options, punch->radius);
@@ -45,6 +45,20 @@ json_t *run_record_adhesion_law(const im_solver_options *options, const im_inden
         json_object_set_new(law, "tabor_mu",
                             sphere ? json_number(im_adhesion_tabor_mu(options, punch->radius)) : json_null());
     }
+    return law;
+}
+
+json_t *run_record_adhesion_law(const im_solver_options *options, const im_indenter *punch, double delta)
+{
+    im_solver_options solved;
+    int widened = 0;
+    if (im_adhesion_solved_law(options, delta, &solved, &widened) != IM_OK)
+        return NULL; /* (the run solving it checked the options) */
+    json_t *law = law_record(&solved, punch, delta);
+    if (law && options->adhesion_zone > 0)
+        json_object_set_new(law, "zone",
+                            json_pack("{s:f, s:b, s:o}", "patches", options->adhesion_zone, "widened", widened,
+                                      "asked", law_record(options, punch, delta)));
     return law;
 }
 

@@ -96,8 +96,11 @@ int mpi_adhesion_create(im_mpi_solver *s, const im_solver_options *options, mpi_
     int status = check_adhesion(s, options);
     if (status != IM_OK)
         return status;
+    im_solver_options solved; /* a widened zone's law (solver.h: im_adhesion_solved_law) */
+    status = im_adhesion_solved_law(options, s->delta, &solved, NULL);
     const size_t n = (size_t)s->rows * s->nx;
-    status = adhesion_create(s->nx, s->rows, s->plan.options.periodic, options, &out->state);
+    if (status == IM_OK)
+        status = adhesion_create(s->nx, s->rows, s->plan.options.periodic, &solved, &out->state);
     if (status == IM_OK && !(out->net_pressure = calloc(n + 1, sizeof(double))))
         status = im_fail(IM_ENOMEM, "adhesion over ranks %d x %d: rank %d's net pressure", s->nx, s->ny, s->rank);
     status = mpi_collective_status(s->comm, status);

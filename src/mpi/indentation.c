@@ -41,7 +41,7 @@ static double height_range(const im_mpi_solver *s, const double *heights)
     return extremes[0] + extremes[1];
 }
 
-/* The run's options: the solver's (tol, E*, hardness) with the adhesion's work, range and law. */
+/* The run's options: the solver's (tol, E*, hardness) with the adhesion's work, range, law and zone. */
 static im_solver_options run_options(const im_mpi_solver *s, const im_solver_options *adhesion)
 {
     im_solver_options o = s->plan.options;
@@ -49,6 +49,7 @@ static im_solver_options run_options(const im_mpi_solver *s, const im_solver_opt
         o.adhesion_work = adhesion->adhesion_work;
         o.adhesion_range = adhesion->adhesion_range;
         o.adhesion_law = adhesion->adhesion_law;
+        o.adhesion_zone = adhesion->adhesion_zone;
     }
     return o;
 }

@@ -202,8 +202,8 @@ static double largest_lambda_s(const im_scene *scene)
 /* The line of the first [adhesion] key given, 0 if none. */
 static int adhesion_line(const scene_given *given)
 {
-    const char *keys[] = {"work", "range", "law"};
-    for (int i = 0; i < 3; ++i)
+    const char *keys[] = {"work", "range", "law", "zone"};
+    for (int i = 0; i < 4; ++i)
         if (key_line(given, "adhesion", keys[i]))
             return key_line(given, "adhesion", keys[i]);
     return 0;
@@ -212,8 +212,13 @@ static int adhesion_line(const scene_given *given)
 /* What a scene that gives [adhesion] cannot take, NULL if nothing. */
 static const char *adhesion_conflict(const im_scene *scene)
 {
+    if (scene->adhesion_zone > 0 && !(scene->adhesion_work > 0) && !(scene->adhesion_range > 0))
+        return "[adhesion] zone widens the zone of the law's work and range: expected both";
     if (!(scene->adhesion_work > 0) || !(scene->adhesion_range > 0))
         return "[adhesion] work and range go together: expected both";
+    if (scene->adhesion_zone > 0 && scene->adhesion_law != IM_ADHESION_MAUGIS_DUGDALE)
+        return "[adhesion] zone widens the Maugis-Dugdale law's zone: expected law = maugis-dugdale (the exponential "
+               "law has no Dugdale zone)";
     if (scene->plots & IM_SCENE_PLOT_FLAT_K)
         return "[adhesion] with plots = flat_k: its flat panels are solved at mean pressures, which an adhesive "
                "cell does not take";

@@ -84,6 +84,7 @@ struct im_scene {
      * table, distributions, flat_k) is refused beside it. Part of every result's key. */
     double adhesion_work, adhesion_range;
     int adhesion_law;
+    double adhesion_zone; /* [adhesion] zone: the Dugdale zone widened to P patches (solver.h), 0: the law as given */
 
     enum im_control control;          /* displacement, load or (periodic only) mean gap */
     double load_star;                 /* N* at which contact panels are drawn (0: none) */

@@ -111,6 +111,8 @@ static void add_contact(key_hash *hash, const im_scene *scene)
         key_add(hash, "adhesion %s %.17g %.17g;",
                 o.adhesion_law == IM_ADHESION_EXPONENTIAL ? "exponential" : "maugis-dugdale", o.adhesion_work,
                 o.adhesion_range);
+    if (o.adhesion_zone > 0) /* likewise */
+        key_add(hash, "adhesion zone %.17g;", o.adhesion_zone);
 }
 
 uint64_t scene_checksum(const char *bytes, size_t length)

@@ -63,6 +63,7 @@ im_solver_options scene_solver_options(const im_scene *scene)
     options.adhesion_work = scene->adhesion_work;
     options.adhesion_range = scene->adhesion_range;
     options.adhesion_law = scene->adhesion_law;
+    options.adhesion_zone = scene->adhesion_zone;
     options.device = scene->device;
     options.wisdom_path = scene->wisdom_path;
     options.periodic = scene->periodic != 0;

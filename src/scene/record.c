@@ -152,6 +152,8 @@ int scene_write_record(const im_scene *scene)
                                         "work", scene->adhesion_work, "range", scene->adhesion_range, "stress",
                                         scene->adhesion_work / scene->adhesion_range)
                             : json_null());
+    if (scene->adhesion_zone > 0) /* each history solves the law widened on its grid (solver.h) */
+        json_object_set_new(json_object_get(root, "adhesion"), "zone", json_real(scene->adhesion_zone));
     json_object_set_new(root, "periodic", periodic_record(scene));
     json_object_set_new(root, "units", units_record(scene));
     /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */

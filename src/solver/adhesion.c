@@ -445,6 +445,26 @@ double im_adhesion_zone_length(const im_solver_options *options)
     return M_PI * options->e_star * options->adhesion_range * options->adhesion_range / (8 * options->adhesion_work);
 }
 
+int im_adhesion_solved_law(const im_solver_options *options, double delta, im_solver_options *solved, int *widened)
+{
+    ARG_REQUIRE(options, "options");
+    ARG_REQUIRE(solved, "solved");
+    int status = im_solver_options_check(options);
+    if (status != IM_OK)
+        return status;
+    if (!(isfinite(delta) && delta > 0))
+        return im_fail(IM_EINVAL, "adhesion zone: patch side delta = %g: expected a finite length > 0", delta);
+    const double span = options->adhesion_zone * delta; /* 0 without a zone to widen */
+    const int widen = span > 0 && im_adhesion_zone_length(options) < span;
+    *solved = *options;
+    solved->adhesion_zone = 0;
+    if (widen) /* l = pi E* delta_c^2 / (8 w) = span at the same w */
+        solved->adhesion_range = sqrt(8 * options->adhesion_work * span / (M_PI * options->e_star));
+    if (widened)
+        *widened = widen;
+    return IM_OK;
+}
+
 double im_adhesion_maugis_lambda(const im_solver_options *options, double radius)
 {
     ARG_REQUIRE_OR(options, "options", NAN);

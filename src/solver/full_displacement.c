@@ -14,10 +14,10 @@ int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_op
     ARG_REQUIRE(plan, "plan");
     ARG_SIDES(nx, ny);
     im_solver_options o = options ? *options : im_solver_options_default(); /* NULL: the defaults */
-    o.fft_measure = 0;                      /* a few convolutions: estimating the plan is cheaper than measuring it */
-    o.wisdom_path = NULL;                   /* nor read or written wisdom */
-    o.cascade = o.precondition = 0;         /* no solve: no coarse levels, no preconditioner */
-    o.adhesion_work = o.adhesion_range = 0; /* u = K p whatever the interaction that made p */
+    o.fft_measure = 0;              /* a few convolutions: estimating the plan is cheaper than measuring it */
+    o.wisdom_path = NULL;           /* nor read or written wisdom */
+    o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
+    o.adhesion_work = o.adhesion_range = o.adhesion_zone = 0; /* u = K p whatever the interaction that made p */
     return im_solver_plan_create(nx, ny, delta, &o, plan);
 }
 

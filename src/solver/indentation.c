@@ -283,7 +283,7 @@ static int allocate_window(im_indentation *run)
         memcpy(run->window_gap0 + (size_t)iy * w.nx, run->gap0 + (size_t)(iy + w.y0) * run->nx + w.x0,
                sizeof(double) * w.nx);
     im_solver_options repulsive = run->options;
-    repulsive.adhesion_work = repulsive.adhesion_range = 0;
+    repulsive.adhesion_work = repulsive.adhesion_range = repulsive.adhesion_zone = 0;
     repulsive.hardness = repulsive_cap(&run->options);
     int status = IM_OK;
     if (run->ranks) /* the ranks' plan: it solves the run's repulsive problem (indentation_rows.h) */
@@ -310,6 +310,8 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
     *out = NULL;
     im_solver_options o = options ? *options : im_solver_options_default();
     int status = check_create(surface, punch, control, largest_target, &o);
+    if (status == IM_OK) /* from here on the law solved (a widened zone's) is the run's */
+        status = im_adhesion_solved_law(&o, surface->delta, &o, NULL);
     if (status != IM_OK)
         return status;
     im_indentation *run = calloc(1, sizeof *run);
@@ -349,6 +351,8 @@ int indentation_create_on_rows(const indentation_rows *grid, const im_indenter *
         return im_fail(IM_EINVAL, "an indentation over ranks: periodic = 1: expected the half-space (a periodic "
                                   "cell's steps: im_mpi_flat_contact_step)");
     int status = check_run(punch, control, largest_target, &o);
+    if (status == IM_OK)
+        status = im_adhesion_solved_law(&o, grid->delta, &o, NULL);
     if (status != IM_OK)
         return status;
     im_indentation *run = calloc(1, sizeof *run);

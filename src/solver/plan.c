@@ -29,6 +29,24 @@ im_solver_options im_solver_options_default(void)
                                .precondition = 1};
 }
 
+/* The zone widened (P > 0) only with the Maugis-Dugdale law's adhesion, the only law with a Dugdale zone. */
+static int check_adhesion_zone(const im_solver_options *o)
+{
+    if (!(isfinite(o->adhesion_zone) && o->adhesion_zone >= 0))
+        return im_fail(IM_EINVAL,
+                       "adhesion zone = %g: expected a finite number of patches P > 0 (0: the law as given)",
+                       o->adhesion_zone);
+    if (o->adhesion_zone > 0 && !(o->adhesion_work > 0))
+        return im_fail(IM_EINVAL, "adhesion zone = %g patches without adhesion: expected a work and a range to widen",
+                       o->adhesion_zone);
+    if (o->adhesion_zone > 0 && o->adhesion_law != IM_ADHESION_MAUGIS_DUGDALE)
+        return im_fail(IM_EINVAL,
+                       "adhesion zone = %g patches with the %s law: expected the Maugis-Dugdale law (the only one "
+                       "with a Dugdale zone to widen)",
+                       o->adhesion_zone, im_adhesion_law_name(o->adhesion_law));
+    return IM_OK;
+}
+
 /* Work and range both > 0 (adhesion) or both 0 (none). */
 static int check_adhesion(const im_solver_options *o)
 {
@@ -47,7 +65,7 @@ static int check_adhesion(const im_solver_options *o)
     if (o->adhesion_work > 0 && !(isfinite(o->adhesion_work / o->adhesion_range)))
         return im_fail(IM_EINVAL, "adhesion work = %g, range = %g: the stress w / delta_c is not finite",
                        o->adhesion_work, o->adhesion_range);
-    return IM_OK;
+    return check_adhesion_zone(o);
 }
 
 int im_solver_options_check(const im_solver_options *o)
