@@ -65,9 +65,9 @@ static void print_plan_memory(int n, int periodic, int device)
         printf("none (%s)\n", im_last_error());
         return;
     }
-    printf("host %.2f GiB", m.host_bytes / gib);
+    printf("host %.3g GiB", m.host_bytes / gib);
     if (m.gpu)
-        printf(", device %.2f GiB of %s's %.2f GiB%s", m.device_bytes / gib, m.device, m.device_memory / gib,
+        printf(", device %.3g GiB of %s's %.3g GiB%s", m.device_bytes / gib, m.device, m.device_memory / gib,
                status == IM_OK ? "" : ": does not fit");
     printf("\n");
 }
