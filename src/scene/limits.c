@@ -224,8 +224,10 @@ static int plan_memory(const im_scene *scene, const im_scene_run_options *option
     if (!solves)
         solver.device = IM_DEVICE_CPU;
     int status = im_solver_memory_needed(g->nx, g->ny, &solver, plan);
-    if (status != IM_OK)
+    if (status == IM_ENOMEM) /* the device's memory: the others name what they refuse */
         return im_fail_context(status, "%s: [solver] device = gpu", scene->path);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s", scene->path);
     if (plan->note[0])
         scene_warn(options, "%s: %s", scene->path, plan->note);
     return IM_OK;
