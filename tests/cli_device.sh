@@ -49,7 +49,20 @@ if [ "${IM_HAVE_GPU:-0}" = 1 ]; then
   "$cli" run --quiet "$dir/c.ini" >/dev/null 2>&1
   check "scene on the gpu: the CPU's member history" bash -c \
     "diff <(tail -n +2 '$dir/sc/histories/member_00_1.csv' | cut -d, -f1,5) <(tail -n +2 '$dir/sg/histories/member_00_1.csv' | cut -d, -f1,5)"
+  # the device memory estimated before any work (docs/solver.md, "Limits"): listed, and a scene on a
+  # device the engine may fill only 1 MiB of refused naming it, with no output folder
+  "$cli" info --memory 256 >"$dir/memory.txt"
+  check "info --memory: the GPU's host and device memory" grep -q "periodic   gpu: host [0-9.e-]* GiB, device [0-9.e-]* GiB of .*'s [0-9.e-]* GiB$" "$dir/memory.txt"
+  check "info --memory: the CPU's" grep -q "half-space cpu: host [0-9.e-]* GiB$" "$dir/memory.txt"
+  sed 's/sg$/small/; s/n = 64/n = 256/' "$dir/g.ini" >"$dir/small.ini"
+  INDENTMAP_GPU_MAX_MEMORY=1048576 "$cli" run --quiet "$dir/small.ini" >/dev/null 2>"$dir/small.err"
+  echo $? >"$dir/small.status"
+  check "a GPU too small for the scene: exit 2" test "$(cat "$dir/small.status")" -eq 2
+  check "a GPU too small: the device, the memory needed and the memory it has" grep -q \
+    "small.ini: \[solver\] device = gpu: a 256 x 256 solve needs [0-9.]* GiB of device memory .* has 0.000977 GiB" "$dir/small.err"
+  check "a GPU too small: no output folder" test ! -e "$dir/small"
 else
+  check "info --memory: no GPU engine" bash -c "'$cli' info --memory 64 | grep -q 'periodic   gpu: none (.*no GPU engine'"
   # exit 1, not 2: the arguments are valid, this build cannot run them (IM_EUNSUPPORTED)
   check "gpu refused without the engine" expect_exit 1 "no GPU engine" indent gpu --device gpu
   check "auto falls back to the cpu" grep -q ", device cpu$" "$dir/auto.txt"

@@ -140,6 +140,7 @@ static im_history_row history_row_out;
 static char big_text[2048];
 static im_histogram *histogram_out;
 static im_solver_plan *plan_out;
+static im_solver_memory memory_out;
 static im_indentation *run_out;
 static im_flat_contact *flat_out;
 static im_surface_stats stats;
@@ -538,6 +539,8 @@ REPORT(im_solver_plan_create, "out", im_solver_plan_create(8, 8, 1.0, &options, 
 REPORT(im_solver_plan_create, "nx", im_solver_plan_create(-3, 8, 1.0, &options, &plan_out))
 ACCEPT(im_solver_plan_free, (im_solver_plan_free(NULL), 1))
 SAFE_RESULT(im_solver_plan_bytes, "nx", isnan(im_solver_plan_bytes(-3, 8)))
+REPORT(im_solver_memory_needed, "out", im_solver_memory_needed(8, 8, &options, NULL))
+REPORT(im_solver_memory_needed, "nx", im_solver_memory_needed(-3, 8, &options, &memory_out))
 SAFE_RESULT(im_solver_plan_seconds, "plan", isnan(im_solver_plan_seconds(NULL)))
 REPORT(im_measure_adhesion, "approach", im_measure_adhesion(NULL, values, contact, 2, &adhesion))
 REPORT(im_measure_adhesion, "load", im_measure_adhesion(values, NULL, contact, 2, &adhesion))

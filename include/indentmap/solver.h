@@ -303,6 +303,29 @@ void im_solver_plan_free(im_solver_plan *plan);
 
 /* Memory a plan takes, in bytes, with its cascade levels (the default options; less without). */
 double im_solver_plan_bytes(int nx, int ny);
+/* The memory a solve of an nx x ny grid needs with these options (NULL: the defaults), by the engine
+ * options->device takes, before any plan is made (scenes' limits, indentmap info --memory). Not counted:
+ * the caller's fields (surface, gap, pressure, displacement), VkFFT's twiddle tables and the driver's
+ * own memory (on lavapipe its compiled shaders: about 150 MiB). device = cpu: the CPU plan
+ * (im_solver_plan_bytes). gpu: the GPU engine's device memory, its buffers and those of its cascade
+ * levels as the engine counts them before allocating (exact), and the host's peak (the tables and their
+ * temporaries while computed, the staging buffers, the cascade's coarse arrays; with the device memory
+ * on a CPU device such as lavapipe, whose memory is the host's); IM_ENOMEM naming the device, the memory
+ * needed and the memory it has when it does not hold them (*out then has the GPU's numbers), or the
+ * engine's refusal (IM_EUNSUPPORTED: no GPU engine, no device). auto: the GPU's when a hardware GPU
+ * opens and holds the plan, else the CPU's, with a note in out->note when the GPU's memory was too
+ * small. The opening and closing of a Vulkan device takes a fraction of a second. IM_EINVAL for a NULL
+ * out or invalid sides or options. */
+typedef struct im_solver_memory {
+    int gpu;              /* 1: the GPU engine solves it; 0: the CPU engine */
+    double host_bytes;    /* the plan's host memory at its peak */
+    double device_bytes;  /* on the GPU: its buffers' device memory; 0 on the CPU */
+    double device_memory; /* the GPU's memory that the engine may fill (INDENTMAP_GPU_MAX_MEMORY, bytes,
+                             lowers it for tests); 0 when no GPU was opened */
+    char device[256];     /* "cpu", or the GPU's name */
+    char note[512];       /* device = auto on the CPU because the GPU's memory is too small: why; else "" */
+} im_solver_memory;
+int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out);
 /* Seconds spent planning (FFTW planning plus the kernel spectrum). */
 double im_solver_plan_seconds(const im_solver_plan *plan);
 /* The engine a plan's solves run on: "cpu", or the GPU's device name. */

@@ -47,6 +47,18 @@ def info(backend="auto"):
     return _core.info_text(backend)
 
 
+def solver_memory(n, m=None, periodic=False, device="cpu"):
+    """The memory an n x m solve's plan needs (m defaults to n), before any plan is made, on the engine
+    ``device`` takes ('cpu', 'gpu' or 'auto'): a dict of ``gpu`` (whether the GPU engine solves it),
+    ``host_bytes`` (the plan's host memory at its peak), ``device_bytes`` (on the GPU: its buffers, as
+    the engine counts them), ``device_memory`` (the GPU's), ``device`` (its name, or 'cpu') and ``note``
+    ('auto' on the CPU because the GPU is too small: why). The surface and fields are not counted. The
+    program's ``indentmap info --memory N``; ``OutOfMemory`` naming the device when 'gpu' would not hold it.
+
+    Example: ``im.solver_memory(32768, periodic=True, device="gpu")["device_bytes"] / 2**30``."""
+    return _core.solver_memory(int(n), int(n if m is None else m), bool(periodic), device)
+
+
 def formats():
     """The text ``indentmap formats`` prints, byte for byte: the surface formats ``read`` reads, its own
     readers, then each of Gwyddion's file modules where the build has them (found as ``read`` finds
@@ -60,4 +72,4 @@ def formats():
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography", "View3DFigure",
            "Unsupported", "adhesion", "contact_map", "formats", "generate", "height_map", "histogram", "indent", "indent_run", "info", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
-           "run_scene", "run_scene_from_record", "statistics", "theory", "unloading", "use_backend", "view3d", "write", "write_analysis"]
+           "run_scene", "run_scene_from_record", "solver_memory", "statistics", "theory", "unloading", "use_backend", "view3d", "write", "write_analysis"]

@@ -188,6 +188,7 @@ PARITY = {
     "formats": Python("formats"),
     "info": Python("info"),
     "info --backend": Python("info", "backend"),
+    "info --memory": Python("solver_memory", "n", "one engine and mode per call: periodic=, device="),
     # ---- mpi-indent (in builds with MPI) ----
     "mpi-indent": MPI,
     **{f"mpi-indent --{name}": MPI for name in (

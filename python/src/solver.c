@@ -726,7 +726,31 @@ static PyObject *quality_tolerance(PyObject *self, PyObject *args)
     return status == IM_OK ? PyFloat_FromDouble(tol) : py_raise_status(status);
 }
 
+/* solver_memory(nx, ny, periodic, device) -> dict (solver.h: im_solver_memory_needed); device = gpu that
+ * the device would not hold raises OutOfMemory naming it */
+static PyObject *solver_memory(PyObject *self, PyObject *args)
+{
+    (void)self;
+    int nx, ny, periodic;
+    const char *device;
+    im_solver_options o = im_solver_options_default();
+    if (!PyArg_ParseTuple(args, "iips", &nx, &ny, &periodic, &device))
+        return NULL;
+    int status = im_device_parse(device, &o.device);
+    o.periodic = periodic;
+    im_solver_memory m;
+    if (status == IM_OK)
+        status = im_solver_memory_needed(nx, ny, &o, &m);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    return Py_BuildValue("{s:O,s:d,s:d,s:d,s:s,s:s}", "gpu", m.gpu ? Py_True : Py_False, "host_bytes", m.host_bytes,
+                         "device_bytes", m.device_bytes, "device_memory", m.device_memory, "device", m.device, "note",
+                         m.note);
+}
+
 PyMethodDef py_solver_methods[] = {
+    {"solver_memory", solver_memory, METH_VARARGS,
+     "solver_memory(nx, ny, periodic, device) -> dict: the memory a solve's plan needs (host; device on the GPU)"},
     {"units_record", units_record, METH_VARARGS,
      "units_record(length_unit, e_star_unit, periodic) -> run.json's \"units\" block as JSON text"},
     {"quality_tolerance", quality_tolerance, METH_VARARGS,

@@ -17,6 +17,17 @@ def test_info_is_the_programs(cli):
         im.info("vulkan")
 
 
+def test_solver_memory_is_the_programs(cli):
+    """im.solver_memory is `info --memory`'s estimate (solver.h: im_solver_memory_needed), line for line."""
+    listed = run_cli(cli, "info", "--memory", 256).stdout
+    for periodic, mode in ((False, "half-space"), (True, "periodic")):
+        ours = im.solver_memory(256, periodic=periodic)
+        assert not ours["gpu"] and ours["device"] == "cpu" and ours["device_bytes"] == 0
+        assert f"  {mode:<10} cpu: host {ours['host_bytes'] / 2**30:.3g} GiB\n" in listed
+    with pytest.raises(ValueError, match="device 'tpu'"):
+        im.solver_memory(256, device="tpu")
+
+
 def test_formats_are_the_programs(cli, monkeypatch):
     reader = os.environ.get("INDENTMAP_GWYDDION_READER") or os.path.join(os.path.dirname(cli),
                                                                           "indentmap-gwyddion-read")

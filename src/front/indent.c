@@ -422,6 +422,17 @@ static int write_viewer_page(const indent_run_state *s, const run_folder *folder
     return run_folder_page(folder, title, s->options->page_embed, status);
 }
 
+/* device = auto on the CPU because the GPU's memory would not hold the plan: said, with the numbers. */
+static void note_auto_on_cpu(const indent_run_state *s, const im_indentation *run)
+{
+    const im_window w = im_indentation_window(run);
+    im_solver_memory m;
+    if (s->options->solver.device == IM_DEVICE_AUTO &&
+        strcmp(im_solver_plan_device(im_indentation_plan(run)), "cpu") == 0 &&
+        im_solver_memory_needed(w.nx, w.ny, &s->options->solver, &m) == IM_OK && m.note[0])
+        indent_say(s, IM_LOG_WARNING, "%s", m.note);
+}
+
 /* The solver on the prepared surface, the folder and the record, the steps, the page. */
 static int run_on(indent_run_state *s, const im_field *surface, const im_theory_interface *rough)
 {
@@ -433,6 +444,8 @@ static int run_on(indent_run_state *s, const im_field *surface, const im_theory_
     if (status == IM_OK)
         status = im_indentation_create(surface, &s->punch, o->control, steps_largest(s->targets, o->target_count),
                                        &o->solver, &run);
+    if (status == IM_OK)
+        note_auto_on_cpu(s, run);
     if (status == IM_OK && o->solver.adhesion_work > 0)
         say_adhesion_law(s);
     run_folder folder = {.lock = {.fd = -1}};

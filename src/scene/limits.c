@@ -11,6 +11,7 @@
 #include "scene/ensemble.h"
 #include "scene/limits.h"
 #include "scene/plots.h"
+#include "scene/progress.h"
 #include "scene/punch.h"
 #include "scene/surfaces.h"
 
@@ -133,29 +134,39 @@ static int check_consistency(const im_scene *scene, const grid *g)
 
 /* ---- memory ---- */
 
-/* One solve: its plan on the whole grid (the solve window is at most that) and its fields
- * (surface, undeformed gap, pressure, displacement, and the copies a step hands out). */
-static double solve_bytes(const grid *g) { return im_solver_plan_bytes(g->nx, g->ny) + 8.0 * 8.0 * g->nx * g->ny; }
-
-static double memory_needed(const im_scene *scene, const grid *g, int *at_once)
+/* One solve: its plan on the whole grid (the solve window is at most that) on the engine the scene's
+ * device takes (the host's share: the CPU plan, or a GPU plan's tables, staging and cascade arrays) and
+ * its fields (surface, undeformed gap, pressure, displacement, and the copies a step hands out). */
+static double solve_bytes(const grid *g, const im_solver_memory *plan)
 {
-    double field = 8.0 * g->nx * g->ny, needed = 0.0;
+    return plan->host_bytes + 8.0 * 8.0 * g->nx * g->ny;
+}
+
+/* The host memory; *at_once: the most solves at once (the members, or the panels, one per thread). */
+static double memory_needed(const im_scene *scene, const grid *g, const im_solver_memory *plan, int *at_once)
+{
+    double field = 8.0 * g->nx * g->ny, needed = 0.0, solve = solve_bytes(g, plan);
     int members = ensemble_size(scene), threads = omp_get_max_threads();
-    *at_once = members < threads ? members : threads;
-    if (scene->table || scene->step_count > 0)
-        needed = *at_once * solve_bytes(g) + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
+    *at_once = 0;
+    if (scene->table || scene->step_count > 0) {
+        *at_once = members < threads ? members : threads;
+        needed = *at_once * solve + members * (5.0 * 8.0 * scene->step_count + sizeof(scene_member));
+    }
     double frame_pixels = (double)scene->frame_scale * scene->frame_scale * g->nx * g->ny;
     if (scene->frames) /* force and deformed heights of every step, the contact and height images, all
                         * rendered before their figures are written, and the contact figures (counted as
                         * twice the image) kept for the GIF */
-        needed = fmax(needed, solve_bytes(g) + scene->frame_count * (2.0 * field + 16.0 * frame_pixels));
+        needed = fmax(needed, solve + scene->frame_count * (2.0 * field + 16.0 * frame_pixels));
     if (scene->frames3d) /* the 3-D frames' figures kept for the GIF (RGBA, twice the view) */
         needed += scene->frame_count * 8.0 * scene->frame3d_width * scene->frame3d_height;
     if (scene->contact_panels) { /* every family's force and panel image (2 pixels a patch when small); the
                                   * panels are solved side by side, one per thread */
         int panels_at_once = scene->family_count < threads ? scene->family_count : threads;
-        needed = fmax(needed, panels_at_once * solve_bytes(g) + scene->family_count * (field + 16.0 * g->nx * g->ny));
+        needed = fmax(needed, panels_at_once * solve + scene->family_count * (field + 16.0 * g->nx * g->ny));
+        *at_once = panels_at_once > *at_once ? panels_at_once : *at_once;
     }
+    if (*at_once == 0 && scene->frames)
+        *at_once = 1;
     return needed;
 }
 
@@ -190,19 +201,56 @@ static double address_space_overhead(const im_scene *scene)
     return overhead;
 }
 
-static int check_memory(const im_scene *scene, const grid *g)
+/* The device memory of the solves at once, each on its own context of the one GPU. */
+static int check_device_memory(const im_scene *scene, const grid *g, const im_solver_memory *plan, int at_once)
 {
-    int at_once;
-    double needed = memory_needed(scene, g, &at_once);
+    if (!plan->gpu || at_once * plan->device_bytes <= plan->device_memory)
+        return IM_OK;
+    return im_fail(IM_ENOMEM,
+                   "%s: this scene solves %d surfaces at once on %s, %.3g GiB of device memory each for a %d x %d "
+                   "grid (%.3g GiB), but %s has %.3g GiB; use fewer threads (OMP_NUM_THREADS), device = cpu, or a "
+                   "smaller grid",
+                   scene->path, at_once, plan->device, plan->device_bytes / (1024 * MIB), g->nx, g->ny,
+                   at_once * plan->device_bytes / (1024 * MIB), plan->device, plan->device_memory / (1024 * MIB));
+}
+
+/* The memory a solve needs on the engine the scene's device takes (a GPU is opened only when asked for,
+ * and only for scenes that solve); device = auto falling back to the CPU says why. */
+static int plan_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g,
+                       im_solver_memory *plan)
+{
+    im_solver_options solver = scene_solver_options(scene);
+    int solves = scene->table || scene->step_count > 0 || scene->frames || scene->contact_panels;
+    if (!solves)
+        solver.device = IM_DEVICE_CPU;
+    int status = im_solver_memory_needed(g->nx, g->ny, &solver, plan);
+    if (status == IM_ENOMEM) /* the device's memory: the others name what they refuse */
+        return im_fail_context(status, "%s: [solver] device = gpu", scene->path);
+    if (status != IM_OK)
+        return im_fail_context(status, "%s", scene->path);
+    if (plan->note[0])
+        scene_warn(options, "%s: %s", scene->path, plan->note);
+    return IM_OK;
+}
+
+static int check_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g)
+{
+    im_solver_memory plan;
+    int at_once, status = plan_memory(scene, options, g, &plan);
+    if (status != IM_OK)
+        return status;
+    double needed = memory_needed(scene, g, &plan, &at_once);
+    if ((status = check_device_memory(scene, g, &plan, at_once)) != IM_OK)
+        return status;
     size_t available = im_memory_available();
     if (available != 0 && needed > (double)available)
         return im_fail(IM_ENOMEM,
                        "%s: this scene needs about %.1f MiB of memory (%d surfaces solved at once, "
-                       "%.1f MiB each for the solver plan and fields of a %d x %d grid, plus what the frames and "
-                       "panels keep) but only %.1f MiB are available; use a smaller grid or fewer threads "
-                       "(OMP_NUM_THREADS)",
-                       scene->path, needed / MIB, at_once, solve_bytes(g) / MIB, g->nx, g->ny,
-                       (double)available / MIB);
+                       "%.1f MiB each for the solver plan (%s engine) and fields of a %d x %d grid, plus what the "
+                       "frames and panels keep) but only %.1f MiB are available; use a smaller grid or fewer "
+                       "threads (OMP_NUM_THREADS)",
+                       scene->path, needed / MIB, at_once, solve_bytes(g, &plan) / MIB, plan.gpu ? "GPU" : "CPU",
+                       g->nx, g->ny, (double)available / MIB);
     size_t address_space = im_address_space_available();
     double reserved = address_space_overhead(scene);
     if (address_space != 0 && needed + reserved > (double)address_space)
@@ -380,7 +428,7 @@ int scene_check_limits(const im_scene *scene, const im_scene_run_options *option
     if (status == IM_OK)
         status = check_consistency(scene, &g);
     if (status == IM_OK)
-        status = check_memory(scene, &g);
+        status = check_memory(scene, options, &g);
     if (status == IM_OK)
         status = check_disk(scene, &g, !options->no_space_check);
     return status;

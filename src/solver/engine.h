@@ -123,6 +123,23 @@ int solver_check_periodic_mean_gap(double mean_gap0, double target);
  * plan (finer NULL), the finer level's device for a cascade level. engine_gpu.c, IM_GPU builds. */
 int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer);
 const char *solver_engine_gpu_device(const im_solver_plan *plan);
+/* What a plan of nx x ny with options o (solver_plan_options applied) would need on the GPU engine,
+ * before any plan is made: its device memory as the engine counts it when it attaches the plan and its
+ * cascade levels (device_bytes), what the engine may fill of the device (device_memory), the host's
+ * staging buffers, and whether the device is a CPU one (lavapipe: its memory is the host's). Opens and
+ * closes a context on the device o->device would take; its failure as gpu_context_open's. */
+typedef struct solver_gpu_estimate {
+    double device_bytes, device_memory, staging_bytes;
+    int software;
+    char device[256];
+} solver_gpu_estimate;
+int solver_engine_gpu_estimate(int nx, int ny, const im_solver_options *o, solver_gpu_estimate *out);
+/* The engine a solve of nx x ny with options o takes given the GPU's estimate, and the memory it needs
+ * (solver.h: im_solver_memory_needed): the GPU when its memory holds the plan; else device = auto
+ * stays on the CPU with a note, device = gpu fails (IM_ENOMEM naming the device, the memory needed and
+ * the memory it has) with the GPU's numbers in *out. plan.c; apart for the tests (lavapipe is never auto's). */
+int solver_memory_choose(int nx, int ny, const im_solver_options *o, const solver_gpu_estimate *gpu,
+                         im_solver_memory *out);
 /* What the Vulkan validation layers reported so far on a GPU plan's device (-1 on the CPU). */
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan);
 /* The device memory the plan's solver counted before allocating (all its cascade levels and the

@@ -47,6 +47,7 @@
 #include "spirv/winkler.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -152,6 +153,8 @@ static const struct kernel_source {
 enum { REDUCE_GROUPS = 1024, REDUCE_SLOTS = 8, GROUP_SIZE = 256, MAX_GROUPS = 65535 };
 /* The change list's room (shaders/compute/point_loads.glsl: CHANGE_CAPACITY). */
 enum { CHANGE_CAPACITY = 256 };
+/* The reductions' partial sums on the device (gpu_device.partials). */
+static const VkDeviceSize PARTIAL_BYTES = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
 
 /* What the plans of one solver (its cascade levels) share: one device, its pipelines, and the
  * buffers of the reductions. */
@@ -206,10 +209,9 @@ static int device_open(const im_solver_options *o, gpu_device **out)
                                      KERNELS[k].fields, KERNELS[k].push_bytes, &d->kernels[k]);
     for (int k = 0; k < K_COUNT && status == IM_OK; ++k)
         d->kernels[k].label = KERNELS[k].label;
-    const VkDeviceSize partial_bytes = sizeof(double) * REDUCE_GROUPS * REDUCE_SLOTS;
     if (status == IM_OK) {
-        status = gpu_buffer_create(d->context, partial_bytes, GPU_DEVICE_LOCAL, &d->partials);
-        d->fields_bytes = gpu_context_buffer_footprint(d->context, partial_bytes);
+        status = gpu_buffer_create(d->context, PARTIAL_BYTES, GPU_DEVICE_LOCAL, &d->partials);
+        d->fields_bytes = gpu_context_buffer_footprint(d->context, PARTIAL_BYTES);
     }
     if (status == IM_OK)
         status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, GPU_HOST_READ, &d->result);
@@ -573,15 +575,44 @@ static size_t solver_buffers(struct gpu_solver *s, int precondition, solver_buff
 
 /* The device memory a plan's own buffers occupy (whole parts; a coarse level's fields are its finest
  * level's). VkFFT's scratch is among them; its small twiddle tables are not. */
-static VkDeviceSize solver_footprint(struct gpu_solver *s, int precondition)
+static VkDeviceSize solver_footprint(const gpu_context *c, struct gpu_solver *s, int precondition)
 {
     solver_buffer list[MAX_SOLVER_BUFFERS];
     VkDeviceSize total = 0;
     const size_t count = solver_buffers(s, precondition, list);
     for (size_t k = 0; k < count; ++k)
         if (!(s->borrowed && list[k].field))
-            total += gpu_context_buffer_footprint(context_of(s), list[k].bytes);
+            total += gpu_context_buffer_footprint(c, list[k].bytes);
     return total;
+}
+
+/* What check_memory will have counted once a plan of nx x ny and its cascade levels are made: the
+ * reductions' partials, then each level's solver_footprint, from buffer lists of levels not yet made. */
+static VkDeviceSize plan_footprint(const gpu_context *c, int nx, int ny, const im_solver_options *o)
+{
+    VkDeviceSize total = gpu_context_buffer_footprint(c, PARTIAL_BYTES);
+    const int pad = o->periodic ? 1 : 2;
+    for (int borrowed = 0, more = 1; more; borrowed = 1) {
+        struct gpu_solver level = {.nx = (uint32_t)nx,
+                                   .ny = (uint32_t)ny,
+                                   .px = (uint32_t)(pad * nx),
+                                   .py = (uint32_t)(pad * ny),
+                                   .periodic = o->periodic,
+                                   .borrowed = borrowed};
+        total += solver_footprint(c, &level, o->precondition);
+        more = o->cascade && solver_cascade_sides(nx, ny, o->periodic, &nx, &ny);
+    }
+    return total;
+}
+
+/* The device memory the engine may fill: the device's, or less where INDENTMAP_GPU_MAX_MEMORY (bytes)
+ * says so, for tests (a run too large for the device, on any machine). */
+static VkDeviceSize device_memory(const gpu_context *c)
+{
+    const VkDeviceSize bytes = gpu_context_device_bytes(c);
+    const char *text = getenv("INDENTMAP_GPU_MAX_MEMORY");
+    const double limit = text && text[0] ? strtod(text, NULL) : 0;
+    return limit > 0 && limit < (double)bytes ? (VkDeviceSize)limit : bytes;
 }
 
 static void gpu_engine_free(im_solver_plan *plan)
@@ -726,8 +757,8 @@ static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
 static int check_memory(const im_solver_plan *plan, struct gpu_solver *s)
 {
     gpu_device *d = s->device;
-    const VkDeviceSize needed = solver_footprint(s, plan->options.precondition);
-    const VkDeviceSize available = gpu_context_device_bytes(d->context);
+    const VkDeviceSize needed = solver_footprint(d->context, s, plan->options.precondition);
+    const VkDeviceSize available = device_memory(d->context);
     if (d->fields_bytes + needed <= available) {
         d->fields_bytes += s->footprint = needed;
         return IM_OK;
@@ -785,6 +816,23 @@ int solver_engine_gpu_attach(im_solver_plan *plan, const im_solver_plan *finer)
     }
     plan->engine = &solver_engine_gpu;
     plan->direct_limit = s->periodic ? 0 : direct_limit(s);
+    return IM_OK;
+}
+
+int solver_engine_gpu_estimate(int nx, int ny, const im_solver_options *o, solver_gpu_estimate *out)
+{
+    gpu_context *c = NULL;
+    int status = gpu_context_open(o->device == IM_DEVICE_AUTO ? GPU_PREFER_HARDWARE : GPU_ANY, 0, &c);
+    if (status != IM_OK)
+        return status;
+    /* gpu_context_reserve_staging: an upload and a download buffer of the top plan's field, a part at most */
+    const double field = sizeof(double) * (double)nx * ny, part = (double)gpu_context_part_bytes(c);
+    *out = (solver_gpu_estimate){.device_bytes = (double)plan_footprint(c, nx, ny, o),
+                                 .device_memory = (double)device_memory(c),
+                                 .staging_bytes = 2 * fmin(field, part),
+                                 .software = gpu_context_is_software(c)};
+    snprintf(out->device, sizeof out->device, "%s", gpu_context_device_name(c));
+    gpu_context_close(c);
     return IM_OK;
 }
 

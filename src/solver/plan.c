@@ -162,6 +162,82 @@ double im_solver_plan_bytes(int nx, int ny)
     return level_bytes(nx, ny) + 8 * 3.0 * cx * cy + im_solver_plan_bytes(cx, cy);
 }
 
+/* A GPU plan's host memory at its peak, level by level from the finest; `held` is what the finer
+ * levels keep meanwhile. A level's tables stay until they are on the device (keep_host_k0): beside
+ * their temporaries while computed, then beside what attaching it adds (`attach`: the top level's
+ * staging buffers, and its device buffers when the device's memory is the host's); its cascade arrays
+ * (coarse gap, pressure, displacement) stay beside its coarser levels. */
+static double gpu_host_bytes(int nx, int ny, const im_solver_options *o, double held, double attach)
+{
+    double peak = held + table_bytes(nx, ny, o->periodic) + fmax(temporary_bytes(nx, ny, o->periodic), attach);
+    int cx, cy;
+    if (o->cascade && solver_cascade_sides(nx, ny, o->periodic, &cx, &cy))
+        peak = fmax(peak, gpu_host_bytes(cx, cy, o, held + attach + 8 * 3.0 * cx * cy, 0));
+    return peak;
+}
+
+int solver_memory_choose(int nx, int ny, const im_solver_options *o, const solver_gpu_estimate *gpu,
+                         im_solver_memory *out)
+{
+    const double gib = 1073741824.0;
+    if (gpu->device_bytes > gpu->device_memory && o->device == IM_DEVICE_AUTO) {
+        snprintf(out->note, sizeof out->note,
+                 "device auto: a %d x %d solve needs %.3g GiB of device memory and %s has %.3g GiB: solved on "
+                 "the CPU",
+                 nx, ny, gpu->device_bytes / gib, gpu->device, gpu->device_memory / gib);
+        return IM_OK;
+    }
+    const double attach = gpu->staging_bytes + (gpu->software ? gpu->device_bytes : 0);
+    *out = (im_solver_memory){.gpu = 1,
+                              .host_bytes = gpu_host_bytes(nx, ny, o, 0, attach),
+                              .device_bytes = gpu->device_bytes,
+                              .device_memory = gpu->device_memory};
+    snprintf(out->device, sizeof out->device, "%s", gpu->device);
+    if (gpu->device_bytes <= gpu->device_memory)
+        return IM_OK;
+    return im_fail(IM_ENOMEM,
+                   "a %d x %d solve needs %.3g GiB of device memory (its fields, transforms and cascade levels) "
+                   "and %s has %.3g GiB; use device cpu or auto, or a smaller grid",
+                   nx, ny, gpu->device_bytes / gib, gpu->device, gpu->device_memory / gib);
+}
+
+#if !IM_HAVE_GPU
+static int no_gpu_engine(void)
+{
+    return im_fail(IM_EUNSUPPORTED, "device = gpu: this build has no GPU engine (built without IM_GPU: Vulkan, "
+                                    "glslang and VkFFT were not found; scripts/setup.sh installs them)");
+}
+#endif
+
+/* The GPU's estimate and choice (solver_memory_choose); auto without a GPU engine or a GPU: the CPU. */
+static int gpu_memory_needed(int nx, int ny, const im_solver_options *o, im_solver_memory *out)
+{
+#if IM_HAVE_GPU
+    solver_gpu_estimate gpu;
+    int status = solver_engine_gpu_estimate(nx, ny, o, &gpu);
+    if (status != IM_OK)
+        return o->device == IM_DEVICE_AUTO ? IM_OK : status;
+    return solver_memory_choose(nx, ny, o, &gpu, out);
+#else
+    (void)nx, (void)ny, (void)out;
+    return o->device == IM_DEVICE_AUTO ? IM_OK : no_gpu_engine();
+#endif
+}
+
+int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out)
+{
+    ARG_REQUIRE(out, "out");
+    *out = (im_solver_memory){.host_bytes = NAN};
+    ARG_SIDES(nx, ny);
+    im_solver_options o = options ? *options : im_solver_options_default();
+    int status = im_solver_options_check(&o);
+    if (status != IM_OK)
+        return status;
+    solver_plan_options(&o);
+    *out = (im_solver_memory){.host_bytes = im_solver_plan_bytes(nx, ny), .device = "cpu"};
+    return o.device == IM_DEVICE_CPU ? IM_OK : gpu_memory_needed(nx, ny, &o, out);
+}
+
 const char *im_solver_wisdom_file(const im_solver_options *o)
 {
     return o && o->wisdom_path && o->wisdom_path[0] ? o->wisdom_path : NULL; /* NULL options: none */
@@ -495,8 +571,7 @@ static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
 #else
     if (p->options.device == IM_DEVICE_AUTO)
         return IM_OK;
-    return im_fail(IM_EUNSUPPORTED, "device = gpu: this build has no GPU engine (built without IM_GPU: Vulkan, "
-                                    "glslang and VkFFT were not found; scripts/setup.sh installs them)");
+    return no_gpu_engine();
 #endif
 }
 
