@@ -42,20 +42,27 @@ static void cpu_convolve_pressure(pk_run *r) { im_solver_convolve(r->plan, r->p,
 
 static void cpu_convolve_direction(pk_run *r) { solver_convolve_rows(r->plan); }
 
-static double cpu_contact_mean(pk_run *r, double cap, long *count)
+static double cpu_contact_mean(pk_run *r, double p_factor, double u_factor, double cap, long *count)
 {
     const size_t n = patches(r);
-    const double *p = r->p, *u = r->u, *g0 = r->gap0;
+    const int rescale = p_factor != 1 || u_factor != 1;
+    double *p = r->p, *u = r->u;
+    const double *g0 = r->gap0;
     part_sums parts[PARTS];
     long c = 0;
 #pragma omp parallel for schedule(static) reduction(+ : c)
     for (int k = 0; k < PARTS; ++k) {
         double sum = 0;
-        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i)
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
+            if (rescale) {
+                p[i] *= p_factor;
+                u[i] *= u_factor;
+            }
             if (solver_elastic(p[i], cap)) {
                 sum += u[i] + g0[i];
                 ++c;
             }
+        }
         parts[k] = (part_sums){{sum}};
     }
     *count = c;
@@ -66,7 +73,8 @@ static gap_stats cpu_gaps(pk_run *r, double w, double cap)
 {
     const size_t n = patches(r);
     const double *p = r->p, *u = r->u, *g0 = r->gap0;
-    double *g = r->plan->gap;
+    double *g = r->plan->gap, *z = r->plan->preconditioned;
+    const int mask = r->plan->options.precondition;
     part_sums parts[PARTS];
     double penetration = 0;
     long contact = 0;
@@ -76,6 +84,8 @@ static gap_stats cpu_gaps(pk_run *r, double w, double cap)
         for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
             double gi = u[i] + g0[i] - w;
             g[i] = gi;
+            if (mask)
+                z[i] = solver_in_step(p[i], gi, INFINITY, SOLVER_JOIN_NONE) ? gi : 0;
             if (solver_elastic(p[i], cap)) {
                 squares += gi * gi;
                 ++contact;
@@ -201,9 +211,11 @@ static double cpu_precondition(pk_run *r, long *count)
     const size_t n = patches(r), modes = (size_t)plan->ny * (plan->nx / 2 + 1);
     const double *g = plan->gap, *p = r->p;
     double *z = plan->preconditioned;
+    if (r->join != SOLVER_JOIN_NONE) { /* without a join the gaps pass left this mask */
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
+        for (size_t i = 0; i < n; ++i)
+            z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
+    }
     solver_count_pair(plan, SOLVER_PAIR_M);
     fftw_execute(plan->precondition_forward);
     solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
