@@ -235,8 +235,7 @@ static double mpi_precondition(pk_run *r, long *count)
             if (solver_in_step(r->p[i], s->gap[i], INFINITY, r->join)) {
                 compensated_add(&sums[0], s->preconditioned[i]);
                 compensated_add(&sums[1], 1);
-            } else
-                s->preconditioned[i] = 0;
+            }
         }
         store_row(s, row, 2, sums);
     }

@@ -85,8 +85,9 @@ typedef struct solver_engine {
     /* The passes below work on the step's set (solver_in_step, r->join). */
     /* t = source + beta t on the step's set, 0 elsewhere; source: g, or z when preconditioned */
     void (*direction)(pk_run *r, int preconditioned, double beta, double cap);
-    /* z = M g restricted to the step's set (no cap with a preconditioner), from the gaps pass's z = g
-     * on it (masked here only with a join); returns sum of z there and the count */
+    /* z = M g of g restricted to the step's set (no cap with a preconditioner), from the gaps pass's
+     * z = g on it (masked here only with a join); returns sum of z there and the count. z is M g on
+     * the step's set only: the passes read it nowhere else (not zeroed there: a write saved) */
     double (*precondition)(pk_run *r, long *count);
     /* z -= mean on the step's set; returns <g, z> there */
     double (*precondition_centre)(pk_run *r, double mean);

@@ -230,8 +230,7 @@ static double cpu_precondition(pk_run *r, long *count)
                 z_sum += z[i];
                 gz += g[i] * z[i];
                 ++c;
-            } else
-                z[i] = 0;
+            }
         }
         parts[k] = (part_sums){{z_sum, gz}};
     }
