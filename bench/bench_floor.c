@@ -1,7 +1,7 @@
 /* Benchmark of a solve's cost per iteration against the FFT floor (not a test): issue 33's "every solve
  * at 1.3x the FFT-pair floor per iteration".
  *
- *   bench_floor [--n N] [--repeats R] [--tol T] [--threads T]   (T: 1, 2, or 0 for both, alternated)
+ *   bench_floor [--n N] [--repeats R] [--tol T] [--threads T] [--answers]   (T: 1, 2, or 0 for both, alternated)
  *
  * Four solve kinds on the paper's rough surface n x n (bench_recipe.h), each cold unless said:
  *   cone      the rough cone of bench_cold (80 deg, approach of smooth contact radius n / 5), non-periodic
@@ -21,7 +21,9 @@
  * per iteration: one K pair, plus one M pair on the window's grid when every step is preconditioned (pair
  * times measured here, at the same thread count). The ratios are of CPU times, the work done, at both
  * thread counts: on a shared 2-core machine a 2-thread wall time measures the neighbours (the solver's
- * team shrinks to the free cores, core/team_size.c; FFTW's own pair does not). */
+ * team shrinks to the free cores, core/team_size.c; FFTW's own pair does not). With --answers, one more
+ * line per kind and thread count gives the last solve's answer to the bit (load, approach, contact
+ * patches, largest pressure, and for a cell a hash of its pressures' bits), to compare builds by. */
 #include "bench_fft.h"
 #include "bench_recipe.h"
 #include "indentmap/indenter.h"
@@ -49,7 +51,19 @@ typedef struct measured {
     long k_pairs, m_pairs, coarse_pairs;
     double wall, cpu;
     int nx, ny, px, py; /* the window (or cell) and the grid K is transformed on */
+    double load, approach, max_pressure;
+    long contact;
+    unsigned long long pressure_hash; /* a cell's (FNV-1a over its pressures' bytes); 0 for a cone or a step */
 } measured;
+
+static unsigned long long bits_hash(const double *v, size_t n)
+{
+    const unsigned char *bytes = (const unsigned char *)v;
+    unsigned long long h = 14695981039346656037ull;
+    for (size_t i = 0; i < n * sizeof(double); ++i)
+        h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
+}
 
 typedef struct pair_counts {
     long k, m, coarse;
@@ -114,6 +128,7 @@ static measured solve_indentation(const problem *pb, enum kind kind)
     if ((status = im_indentation_step(run, w, &s)) != IM_OK)
         die(status, KIND_NAMES[kind]);
     measured m = stop_watch(&watch, s.iterations, s.coarse_iterations);
+    m.load = s.load, m.approach = s.approach, m.max_pressure = s.max_pressure, m.contact = s.contact_patches;
     im_indentation_free(run);
     return m;
 }
@@ -136,6 +151,8 @@ static measured solve_cell(problem *pb, enum kind kind)
     if ((status = im_solver_solve(plan, pb->gap0, control, target, pb->pressure, pb->displacement, &s)) != IM_OK)
         die(status, KIND_NAMES[kind]);
     measured m = stop_watch(&watch, s.iterations, s.coarse_iterations);
+    m.load = s.load, m.approach = s.approach, m.max_pressure = s.max_pressure, m.contact = s.contact_patches;
+    m.pressure_hash = bits_hash(pb->pressure, (size_t)n * n);
     if (kind == PRESSURE)
         pb->cell_approach = s.approach;
     im_solver_plan_free(plan);
@@ -191,9 +208,15 @@ static void report(const series *s, enum kind kind, int n, int threads, int repe
            m->coarse_pairs, t, c, 1e3 * kp, 1e3 * mp, per_iteration / kp, per_iteration / floor, s->peak_rss);
 }
 
+static void report_answer(const measured *m, enum kind kind, int n, int threads)
+{
+    printf("answer %-8s n %4d threads %d: load %.17g approach %.17g contact %ld max %.17g hash %016llx\n",
+           KIND_NAMES[kind], n, threads, m->load, m->approach, m->contact, m->max_pressure, m->pressure_hash);
+}
+
 int main(int argc, char **argv)
 {
-    int n = 512, repeats = 3, only_threads = 0;
+    int n = 512, repeats = 3, only_threads = 0, answers = 0;
     double tol = 1e-8;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--n") == 0 && i + 1 < argc)
@@ -204,8 +227,10 @@ int main(int argc, char **argv)
             tol = atof(argv[++i]);
         else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
             only_threads = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--answers") == 0)
+            answers = 1;
         else {
-            fprintf(stderr, "usage: bench_floor [--n N] [--repeats R] [--tol T] [--threads 0|1|2]\n");
+            fprintf(stderr, "usage: bench_floor [--n N] [--repeats R] [--tol T] [--threads 0|1|2] [--answers]\n");
             return 2;
         }
     }
@@ -239,6 +264,10 @@ int main(int argc, char **argv)
         for (int k = 0; k < KINDS; ++k)
             if (!only_threads || threads == only_threads)
                 report(&runs[threads - 1][order[k]], order[k], n, threads, repeats);
+    for (int threads = 1; threads <= MOST_THREADS && answers; ++threads)
+        for (int k = 0; k < KINDS; ++k)
+            if (!only_threads || threads == only_threads)
+                report_answer(&runs[threads - 1][order[k]].last, order[k], n, threads);
     im_field_free(pb.surface);
     free(pb.gap0);
     free(pb.pressure);

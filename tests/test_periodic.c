@@ -413,6 +413,57 @@ static void join_step_is_a_line_minimum(void **state)
     im_field_free(s);
 }
 
+/* The engine's fused passes against the passes they replace (engine.h): the gaps pass leaves the
+ * preconditioner's input of a step without a join, z = g on the contact set and 0 elsewhere (z filled
+ * with NaN before: every patch written); the contact mean with load control's rescaling gives the
+ * bits of scale followed by the plain mean, in p, u and the mean. */
+static void fused_passes_equal_their_parts(void **state)
+{
+    (void)state;
+    enum { N = 64 };
+    const size_t count = (size_t)N * N;
+    im_field *s = test_rough_surface(N, 0.08, 4);
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count),
+           *p_apart = malloc(sizeof(double) * count), *u_apart = malloc(sizeof(double) * count);
+    assert_true(p && u && p_apart && u_apart);
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+    assert_true(plan->options.precondition);
+    const double w = 0.3, k0 = plan->kernel[0];
+    for (size_t i = 0; i < count; ++i)
+        p[i] = gap0[i] < w ? 0.5 * (w - gap0[i]) / k0 : 0;
+    const solver_engine *e = plan->engine;
+    pk_run r = solver_pk_run(plan, gap0, IM_CONTROL_LOAD, 1, p, u);
+    e->convolve_pressure(&r);
+    for (size_t i = 0; i < count; ++i)
+        plan->preconditioned[i] = NAN;
+    e->gaps(&r, w, INFINITY);
+    for (size_t i = 0; i < count; ++i) {
+        const double expected = p[i] > 0 ? plan->gap[i] : 0;
+        if (memcmp(&plan->preconditioned[i], &expected, sizeof expected) != 0)
+            fail_msg("patch %zu (p %g): z %.17g after the gaps pass, expected %.17g", i, p[i],
+                     plan->preconditioned[i], expected);
+    }
+    memcpy(p_apart, p, sizeof(double) * count);
+    memcpy(u_apart, u, sizeof(double) * count);
+    const double p_factor = 1.0 / 3, u_factor = 0.7;
+    long fused_count, apart_count;
+    const double fused = e->contact_mean(&r, p_factor, u_factor, INFINITY, &fused_count);
+    pk_run apart = solver_pk_run(plan, gap0, IM_CONTROL_LOAD, 1, p_apart, u_apart);
+    e->scale(&apart, p_factor, u_factor);
+    const double mean = e->contact_mean(&apart, 1, 1, INFINITY, &apart_count);
+    assert_true(fused_count > 0);
+    assert_int_equal(fused_count, apart_count);
+    if (memcmp(&fused, &mean, sizeof mean) != 0 || memcmp(p, p_apart, sizeof(double) * count) != 0 ||
+        memcmp(u, u_apart, sizeof(double) * count) != 0)
+        fail_msg("fused contact mean %.17g, scale then mean %.17g (or their p, u differ)", fused, mean);
+    im_solver_plan_free(plan);
+    free(gap0), free(p), free(u), free(p_apart), free(u_apart);
+    im_field_free(s);
+}
+
 /* The CPU engine's count of transform pairs (bench/bench_floor.c measures a solve's work with it) agrees
  * with what the solve reports: on the top plan one K pair per convolution and one M pair per step, each
  * preconditioned; the cascade's coarser levels counted apart, none without a cascade, some with one. */
@@ -462,6 +513,7 @@ int main(void)
         cmocka_unit_test(preconditioned_cascade_is_plain_pk),
         cmocka_unit_test(mean_gap_control),
         cmocka_unit_test(join_step_is_a_line_minimum),
+        cmocka_unit_test(fused_passes_equal_their_parts),
         cmocka_unit_test(transform_pairs_are_counted),
         cmocka_unit_test(refusals),
     };

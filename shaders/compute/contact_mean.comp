@@ -1,4 +1,5 @@
-// The mean of u + g0 over the elastic patches: slots (sum, count).
+// p *= p_factor, u *= u_factor (load control's rescaling, as scale.comp does it; none when both are 1),
+// then the mean of u + g0 over the elastic patches: slots (sum, count).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
@@ -8,18 +9,27 @@ layout(local_size_x = 256) in;
 #include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
-FIELD_IN(0, p)
-FIELD_IN(1, u)
+FIELD(0, p)
+FIELD(1, u)
 FIELD_IN(2, g0)
-layout(push_constant) uniform Push { double cap; uint n; } pc;
+layout(push_constant) uniform Push { double cap; double p_factor; double u_factor; uint n; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf);
-    for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride())
-        if (elastic(p_at(i), pc.cap)) {
-            v[0] += u_at(i) + g0_at(i);
+    bool rescale = pc.p_factor != 1.0lf || pc.u_factor != 1.0lf;
+    for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride()) {
+        double pi = p_at(i), ui = u_at(i);
+        if (rescale) {
+            pi *= pc.p_factor;
+            ui *= pc.u_factor;
+            p_put(i, pi);
+            u_put(i, ui);
+        }
+        if (elastic(pi, pc.cap)) {
+            v[0] += ui + g0_at(i);
             v[1] += 1.0lf;
         }
+    }
     reduce_workgroup(v);
 }

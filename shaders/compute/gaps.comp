@@ -1,11 +1,13 @@
 // g = u + g0 - w and its statistics: slots (sum of g^2 over the elastic patches, their count,
-// sum of g^2 over the moving ones, the largest bound violation, sum of g^2 over p = 0, g < 0).
+// sum of g^2 over the moving ones, the largest bound violation, sum of g^2 over p = 0, g < 0); with
+// the flag (a preconditioned plan) also the preconditioner's input for a step without a join, z = g
+// on the moving patches and 0 elsewhere (precondition_mask.comp's, fused).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
 #define SLOTS 5u
 #define MAX_SLOTS 8u
-#define PARTIALS_BINDING 4
+#define PARTIALS_BINDING 5
 #include "chunks.glsl"
 #include "patch_sets.glsl"
 #include "reduce.glsl"
@@ -13,7 +15,8 @@ FIELD_IN(0, p)
 FIELD_IN(1, u)
 FIELD_IN(2, g0)
 FIELD_OUT(3, g)
-layout(push_constant) uniform Push { double w; double cap; uint n; } pc;
+FIELD_OUT(4, z)
+layout(push_constant) uniform Push { double w; double cap; uint n; uint mask; } pc;
 
 void main()
 {
@@ -21,6 +24,8 @@ void main()
     for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride()) {
         double pi = p_at(i), gi = u_at(i) + g0_at(i) - pc.w;
         g_put(i, gi);
+        if (pc.mask != 0u)
+            z_put(i, in_preconditioned_step(pi, gi, 0u) ? gi : 0.0lf);
         if (elastic(pi, pc.cap)) {
             v[0] += gi * gi;
             v[1] += 1.0lf;

@@ -1,4 +1,5 @@
-// M g restricted to the step's set (0 elsewhere): slots (sum of z there, count).
+// The sums of z = M g over the step's set: slots (sum of z there, count). z is left as it is elsewhere:
+// no pass reads it there (engine.h).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 256) in;
@@ -10,18 +11,16 @@ layout(local_size_x = 256) in;
 #include "reduce.glsl"
 FIELD_IN(0, p)
 FIELD_IN(1, g)
-FIELD(2, z)
+FIELD_IN(2, z)
 layout(push_constant) uniform Push { uint n; uint join; } pc;
 
 void main()
 {
     double v[SLOTS] = double[SLOTS](0.0lf, 0.0lf);
-    for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride()) {
+    for (uint i = gl_GlobalInvocationID.x; i < pc.n; i += grid_stride())
         if (in_preconditioned_step(p_at(i), g_at(i), pc.join)) {
             v[0] += z_at(i);
             v[1] += 1.0lf;
-        } else
-            z_put(i, 0.0lf);
-    }
+        }
     reduce_workgroup(v);
 }

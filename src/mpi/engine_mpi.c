@@ -52,18 +52,24 @@ static void mpi_convolve_direction(pk_run *r)
     mpi_convolve(s, s->direction, s->response);
 }
 
-static double mpi_contact_mean(pk_run *r, double cap, long *count)
+static double mpi_contact_mean(pk_run *r, double p_factor, double u_factor, double cap, long *count)
 {
     const im_mpi_solver *s = ranks_of(r);
     const int nx = s->nx;
+    const int rescale = p_factor != 1 || u_factor != 1;
 #pragma omp parallel for schedule(static)
     for (int row = 0; row < s->rows; ++row) {
         compensated sums[2] = {{0, 0}, {0, 0}}; /* u + g0, count */
-        for (size_t i = (size_t)row * nx; i < (size_t)(row + 1) * nx; ++i)
+        for (size_t i = (size_t)row * nx; i < (size_t)(row + 1) * nx; ++i) {
+            if (rescale) {
+                r->p[i] *= p_factor;
+                r->u[i] *= u_factor;
+            }
             if (solver_elastic(r->p[i], cap)) {
                 compensated_add(&sums[0], r->u[i] + r->gap0[i]);
                 compensated_add(&sums[1], 1);
             }
+        }
         store_row(s, row, 2, sums);
     }
     double totals[2];
@@ -77,6 +83,7 @@ static gap_stats mpi_gaps(pk_run *r, double w, double cap)
     const im_mpi_solver *s = ranks_of(r);
     const int nx = s->nx;
     const double *p = r->p, *u = r->u, *g0 = r->gap0;
+    const int mask = r->plan->options.precondition;
     double penetration = 0;
 #pragma omp parallel for schedule(static) reduction(max : penetration)
     for (int row = 0; row < s->rows; ++row) {
@@ -84,6 +91,8 @@ static gap_stats mpi_gaps(pk_run *r, double w, double cap)
         for (size_t i = (size_t)row * nx; i < (size_t)(row + 1) * nx; ++i) {
             const double gi = u[i] + g0[i] - w;
             s->gap[i] = gi;
+            if (mask)
+                s->preconditioned[i] = solver_in_step(p[i], gi, INFINITY, SOLVER_JOIN_NONE) ? gi : 0;
             if (solver_elastic(p[i], cap)) {
                 compensated_add(&sums[0], gi * gi);
                 compensated_add(&sums[3], 1);
@@ -201,13 +210,16 @@ static void mpi_direction(pk_run *r, int preconditioned, double beta, double cap
         t[i] = solver_in_step(p[i], g[i], cap, r->join) ? source[i] + beta * t[i] : 0;
 }
 
-/* z = M g on the step's set through the preconditioner's pair (plan.c). */
+/* z = M g on the step's set through the preconditioner's pair (plan.c); without a join the gaps pass
+ * left z = g on the set. */
 static void apply_preconditioner(im_mpi_solver *s, const pk_run *r)
 {
     const size_t n = local_patches(s);
+    if (r->join != SOLVER_JOIN_NONE) {
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        s->preconditioned[i] = solver_in_step(r->p[i], s->gap[i], INFINITY, r->join) ? s->gap[i] : 0;
+        for (size_t i = 0; i < n; ++i)
+            s->preconditioned[i] = solver_in_step(r->p[i], s->gap[i], INFINITY, r->join) ? s->gap[i] : 0;
+    }
     mpi_transform_apply(s, s->precondition_with, s->inverse_spectrum, s->preconditioned, s->preconditioned);
 }
 
@@ -223,8 +235,7 @@ static double mpi_precondition(pk_run *r, long *count)
             if (solver_in_step(r->p[i], s->gap[i], INFINITY, r->join)) {
                 compensated_add(&sums[0], s->preconditioned[i]);
                 compensated_add(&sums[1], 1);
-            } else
-                s->preconditioned[i] = 0;
+            }
         }
         store_row(s, row, 2, sums);
     }

@@ -49,6 +49,8 @@ typedef struct pk_run {
     int status;            /* IM_OK, or the first failure of an engine pass (a lost GPU) */
     double approach;       /* load control: the last approach taken from the elastic patches (NaN: none) */
     enum solver_join join; /* the current step's (pk.c sets it before the step's passes) */
+    /* load control: the rescaling impose_load leaves to the next contact_mean pass (1, 1: none) */
+    double p_factor, u_factor;
 } pk_run;
 
 typedef struct solver_engine {
@@ -60,9 +62,12 @@ typedef struct solver_engine {
     void (*convolve_pressure)(pk_run *r);
     /* K t of the current direction, kept for step_terms and update_pressure */
     void (*convolve_direction)(pk_run *r);
-    /* The mean of u + g0 over the elastic patches, and their count */
-    double (*contact_mean)(pk_run *r, double cap, long *count);
-    /* g = u + g0 - w, and its statistics (approach left for the caller) */
+    /* p *= p_factor, u *= u_factor as scale does (load control's rescaling, fused into this pass), then
+     * the mean of u + g0 over the elastic patches, and their count */
+    double (*contact_mean)(pk_run *r, double p_factor, double u_factor, double cap, long *count);
+    /* g = u + g0 - w, and its statistics (approach left for the caller); on a preconditioned plan
+     * also the preconditioner's input for a step without a join: z = g on the moving patches, 0
+     * elsewhere (fused here: precondition then masks only for a join) */
     gap_stats (*gaps)(pk_run *r, double w, double cap);
     /* The local (Winkler) guess p = max(w - g0, 0) / k0: its load delta^2 sum p, stored when store */
     double (*winkler)(pk_run *r, double w, double k0, int store);
@@ -80,7 +85,9 @@ typedef struct solver_engine {
     /* The passes below work on the step's set (solver_in_step, r->join). */
     /* t = source + beta t on the step's set, 0 elsewhere; source: g, or z when preconditioned */
     void (*direction)(pk_run *r, int preconditioned, double beta, double cap);
-    /* z = M g restricted to the step's set (no cap with a preconditioner); returns sum of z there and the count */
+    /* z = M g of g restricted to the step's set (no cap with a preconditioner), from the gaps pass's
+     * z = g on it (masked here only with a join); returns sum of z there and the count. z is M g on
+     * the step's set only: the passes read it nowhere else (not zeroed there: a write saved) */
     double (*precondition)(pk_run *r, long *count);
     /* z -= mean on the step's set; returns <g, z> there */
     double (*precondition_centre)(pk_run *r, double mean);

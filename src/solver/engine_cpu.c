@@ -42,20 +42,27 @@ static void cpu_convolve_pressure(pk_run *r) { im_solver_convolve(r->plan, r->p,
 
 static void cpu_convolve_direction(pk_run *r) { solver_convolve_rows(r->plan); }
 
-static double cpu_contact_mean(pk_run *r, double cap, long *count)
+static double cpu_contact_mean(pk_run *r, double p_factor, double u_factor, double cap, long *count)
 {
     const size_t n = patches(r);
-    const double *p = r->p, *u = r->u, *g0 = r->gap0;
+    const int rescale = p_factor != 1 || u_factor != 1;
+    double *p = r->p, *u = r->u;
+    const double *g0 = r->gap0;
     part_sums parts[PARTS];
     long c = 0;
 #pragma omp parallel for schedule(static) reduction(+ : c)
     for (int k = 0; k < PARTS; ++k) {
         double sum = 0;
-        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i)
+        for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
+            if (rescale) {
+                p[i] *= p_factor;
+                u[i] *= u_factor;
+            }
             if (solver_elastic(p[i], cap)) {
                 sum += u[i] + g0[i];
                 ++c;
             }
+        }
         parts[k] = (part_sums){{sum}};
     }
     *count = c;
@@ -66,7 +73,8 @@ static gap_stats cpu_gaps(pk_run *r, double w, double cap)
 {
     const size_t n = patches(r);
     const double *p = r->p, *u = r->u, *g0 = r->gap0;
-    double *g = r->plan->gap;
+    double *g = r->plan->gap, *z = r->plan->preconditioned;
+    const int mask = r->plan->options.precondition;
     part_sums parts[PARTS];
     double penetration = 0;
     long contact = 0;
@@ -76,6 +84,8 @@ static gap_stats cpu_gaps(pk_run *r, double w, double cap)
         for (size_t i = part_start(n, k); i < part_start(n, k + 1); ++i) {
             double gi = u[i] + g0[i] - w;
             g[i] = gi;
+            if (mask)
+                z[i] = solver_in_step(p[i], gi, INFINITY, SOLVER_JOIN_NONE) ? gi : 0;
             if (solver_elastic(p[i], cap)) {
                 squares += gi * gi;
                 ++contact;
@@ -201,9 +211,11 @@ static double cpu_precondition(pk_run *r, long *count)
     const size_t n = patches(r), modes = (size_t)plan->ny * (plan->nx / 2 + 1);
     const double *g = plan->gap, *p = r->p;
     double *z = plan->preconditioned;
+    if (r->join != SOLVER_JOIN_NONE) { /* without a join the gaps pass left this mask */
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; ++i)
-        z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
+        for (size_t i = 0; i < n; ++i)
+            z[i] = solver_in_step(p[i], g[i], INFINITY, r->join) ? g[i] : 0;
+    }
     solver_count_pair(plan, SOLVER_PAIR_M);
     fftw_execute(plan->precondition_forward);
     solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
@@ -218,8 +230,7 @@ static double cpu_precondition(pk_run *r, long *count)
                 z_sum += z[i];
                 gz += g[i] * z[i];
                 ++c;
-            } else
-                z[i] = 0;
+            }
         }
         parts[k] = (part_sums){{z_sum, gz}};
     }
@@ -283,49 +294,73 @@ static step_terms cpu_step(pk_run *r, double cap)
         step_terms){.gt = total.s[0], .kt_t = total.s[1], .kt_sum = total.s[2], .t_sum = total.s[3], .count = count};
 }
 
-/* Records how p differs from the plain CG step p - tau t in plan->changed_value. */
-static long cpu_update_pressure(pk_run *r, double tau, double cap, int *joined)
+/* The changes of part k's rows, at the front of the part's own stretch of plan->changed and
+ * changed_value (a part holds no more changes than patches); compact_changes moves them together. */
+static long update_part(pk_run *r, int k, double tau, double cap, int *joined)
 {
     const im_solver_plan *plan = r->plan;
-    const int nx = plan->nx, ny = plan->ny, px = plan->px;
+    const int nx = plan->nx, px = plan->px;
     const double *t = plan->direction, *g = plan->gap;
-    double *p = r->p, *u = r->u, *change = plan->changed_value;
+    double *p = r->p, *u = r->u;
+    const size_t first = part_start(plan->ny, k) * nx;
     long changes = 0;
-    int any_joined = 0;
-#pragma omp parallel for schedule(static) reduction(+ : changes) reduction(| : any_joined)
-    for (int iy = 0; iy < ny; ++iy) {
-        const double *q = plan->rows_out + (size_t)iy * px;
+    for (size_t iy = part_start(plan->ny, k); iy < part_start(plan->ny, k + 1); ++iy) {
+        const double *q = plan->rows_out + iy * px;
         for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
+            size_t i = iy * nx + ix;
             double c = 0;
             u[i] -= tau * q[ix];
             if (solver_in_step(p[i], g[i], cap, r->join)) {
                 const double next = p[i] - tau * t[i];
-                any_joined |= p[i] == 0 && next > 0;
+                *joined |= p[i] == 0 && next > 0;
                 p[i] = solver_project(next, cap);
                 c = p[i] - next;
             } else if (solver_joins_by_gap(p[i], g[i], r->join)) {
                 p[i] = c = solver_project(-tau * g[i], cap);
-                any_joined = 1;
+                *joined = 1;
             }
-            change[i] = c;
-            changes += c != 0;
+            if (c != 0) {
+                plan->changed[first + changes] = (long)i;
+                plan->changed_value[first + changes++] = c;
+            }
         }
     }
+    return changes;
+}
+
+/* The parts' changes moved to the front of plan->changed, in index order (as the parts are). */
+static void compact_changes(const im_solver_plan *plan, const long *part_changes)
+{
+    long total = 0;
+    for (int k = 0; k < PARTS; ++k) {
+        const size_t first = part_start(plan->ny, k) * plan->nx;
+        memmove(plan->changed + total, plan->changed + first, sizeof(long) * part_changes[k]);
+        memmove(plan->changed_value + total, plan->changed_value + first, sizeof(double) * part_changes[k]);
+        total += part_changes[k];
+    }
+}
+
+/* Records how p differs from the plain CG step p - tau t in plan->changed and changed_value, listed
+ * as they arise (no pass over a grid of changes); listed together only when the direct sums will
+ * take them (direct_limit; more are never read: pk.c convolves). */
+static long cpu_update_pressure(pk_run *r, double tau, double cap, int *joined)
+{
+    long part_changes[PARTS], changes = 0;
+    int any_joined = 0;
+#pragma omp parallel for schedule(static) reduction(+ : changes) reduction(| : any_joined)
+    for (int k = 0; k < PARTS; ++k) {
+        part_changes[k] = update_part(r, k, tau, cap, &any_joined);
+        changes += part_changes[k];
+    }
     *joined = any_joined;
+    if (changes > 0 && changes <= r->plan->direct_limit)
+        compact_changes(r->plan, part_changes);
     return changes;
 }
 
 static void cpu_add_point_loads(pk_run *r, long changes)
 {
     im_solver_plan *plan = r->plan;
-    const size_t n = patches(r);
-    long k = 0;
-    for (size_t i = 0; i < n && k < changes; ++i)
-        if (plan->changed_value[i] != 0) {
-            plan->changed[k] = (long)i;
-            plan->changed_value[k++] = plan->changed_value[i];
-        }
     solver_add_point_loads(plan, plan->changed, plan->changed_value, changes, r->u);
 }
 

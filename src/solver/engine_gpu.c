@@ -14,8 +14,9 @@
  * the transform grid `real` (each as large as the modes, as VkFFT binds them), one modes buffer that
  * the kernel's transform and the preconditioner's share, and VkFFT's scratch (its four-step
  * reordering, as large as the modes): z during the kernel's periodic transforms and `real` during
- * the preconditioner's (each idle then: z holds M g from precondition to direction only, and `real`
- * holds K t from convolve_direction to update_pressure only, overwritten before it is read again),
+ * the preconditioner's (each idle then: z holds the masked g from gaps to precondition and M g from
+ * there to direction only, and `real` holds K t from convolve_direction to update_pressure only,
+ * overwritten before it is read again),
  * a buffer of its own on the padded grid. Then the tables: the spectrum, the preconditioner's
  * (derived from the spectrum in the periodic mode, where M is K's inverse: multiply.comp), and K for
  * the direct sums (not in the periodic mode, where a pair costs about as much as 1.1 log2(nx ny)
@@ -70,6 +71,10 @@ typedef struct {
     double a, b;
     uint32_t n, flag;
 } push_pair;
+typedef struct {
+    double cap, p_factor, u_factor;
+    uint32_t n;
+} push_rescaled_mean;
 typedef struct {
     double a, b;
     uint32_t nx, ny, px, join;
@@ -129,8 +134,8 @@ static const struct kernel_source {
     KERNEL(K_PAD, spirv_pad, 2, 2, push_grid),
     KERNEL(K_UNPAD, spirv_unpad, 2, 2, push_grid),
     KERNEL(K_MULTIPLY, spirv_multiply, 2, 2, push_multiply),
-    KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, 3, push_value),
-    KERNEL(K_GAPS, spirv_gaps, 5, 4, push_pair),
+    KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, 3, push_rescaled_mean),
+    KERNEL(K_GAPS, spirv_gaps, 6, 5, push_pair),
     KERNEL(K_WINKLER, spirv_winkler, 3, 2, push_pair),
     KERNEL(K_CLIP, spirv_clip, 1, 1, push_value),
     KERNEL(K_LOAD_SPLIT, spirv_load_split, 2, 1, push_pair),
@@ -329,11 +334,11 @@ static void gpu_engine_convolve_pressure(pk_run *r) { record_convolution(solver_
 
 static void gpu_engine_convolve_direction(pk_run *r) { convolve_real(solver_of(r)); }
 
-static double gpu_engine_contact_mean(pk_run *r, double cap, long *count)
+static double gpu_engine_contact_mean(pk_run *r, double p_factor, double u_factor, double cap, long *count)
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[4] = {&s->p, &s->u, &s->gap0, &s->device->partials};
-    const push_value push = {.value = cap, .n = patches(s)};
+    const push_rescaled_mean push = {.cap = cap, .p_factor = p_factor, .u_factor = u_factor, .n = patches(s)};
     double v[2];
     reduce(r, K_CONTACT_MEAN, b, &push, push.n, 2, 0, v);
     *count = (long)v[1];
@@ -343,8 +348,8 @@ static double gpu_engine_contact_mean(pk_run *r, double cap, long *count)
 static gap_stats gpu_engine_gaps(pk_run *r, double w, double cap)
 {
     struct gpu_solver *s = solver_of(r);
-    const gpu_buffer *b[5] = {&s->p, &s->u, &s->gap0, &s->g, &s->device->partials};
-    const push_pair push = {.a = w, .b = cap, .n = patches(s)};
+    const gpu_buffer *b[6] = {&s->p, &s->u, &s->gap0, &s->g, &s->z, &s->device->partials};
+    const push_pair push = {.a = w, .b = cap, .n = patches(s), .flag = r->plan->options.precondition != 0};
     double v[5];
     reduce(r, K_GAPS, b, &push, push.n, 5, 1u << 3, v);
     return (gap_stats){.sum_squares = v[0],
@@ -450,7 +455,8 @@ static double gpu_engine_precondition(pk_run *r, long *count)
     const gpu_buffer *mask[3] = {&s->p, &s->g, &s->z};
     const gpu_buffer *multiply[2] = {&s->modes, s->periodic ? &s->spectrum : &s->inverse_spectrum};
     const gpu_buffer *restrict_to_set[4] = {&s->p, &s->g, &s->z, &s->device->partials};
-    record(s, K_PRECONDITION_MASK, mask, &set, set.n);
+    if (r->join != SOLVER_JOIN_NONE) /* without a join the gaps pass left this mask */
+        record(s, K_PRECONDITION_MASK, mask, &set, set.n);
     gpu_fft_forward(context_of(s), s->precondition_fft);
     record(s, K_MULTIPLY, multiply, &modes, modes.count);
     gpu_fft_inverse(context_of(s), s->precondition_fft);

@@ -33,7 +33,8 @@ static gap_stats compute_gaps(pk_run *r)
     double w = r->target;
     if (r->control == IM_CONTROL_LOAD) {
         long count;
-        w = engine_of(r)->contact_mean(r, cap, &count);
+        w = engine_of(r)->contact_mean(r, r->p_factor, r->u_factor, cap, &count);
+        r->p_factor = r->u_factor = 1;
         /* With a cap every contact patch may be capped for a while (none elastic to take the approach
          * from): the approach stays where it was; the capped patches whose gap opens then unload and the
          * penetrating free ones join, which restores an elastic set. */
@@ -98,10 +99,12 @@ static void impose_load_capped(pk_run *r, double cap)
         convolve(r);
         return;
     }
-    engine_of(r)->scale(r, 1, scale); /* nothing capped: all of p was scaled, and u with it by linearity */
+    r->u_factor = scale; /* nothing capped: all of p was scaled, and u with it by linearity (postponed) */
 }
 
-/* Under load control, rescales p (and u, by linearity) so that delta^2 sum p = N. */
+/* Under load control, rescales p (and u, by linearity) so that delta^2 sum p = N. The rescaling of
+ * both fields is left to the pass that reads them next, compute_gaps's contact mean (r->p_factor,
+ * r->u_factor; rescale_now where none follows): one pass over p and u saved per iteration. */
 static void impose_load(pk_run *r)
 {
     const double cap = pressure_cap(r->plan);
@@ -112,8 +115,15 @@ static void impose_load(pk_run *r)
     const double load = engine_of(r)->pressure_sum(r) * r->plan->delta * r->plan->delta; /* p >= 0 */
     if (!(load > 0))
         return;
-    const double scale = r->target / load;
-    engine_of(r)->scale(r, scale, scale);
+    r->p_factor = r->u_factor = r->target / load; /* postponed */
+}
+
+/* The rescaling impose_load left for the next contact mean, done now: the solve ends before one. */
+static void rescale_now(pk_run *r)
+{
+    if (r->p_factor != 1 || r->u_factor != 1)
+        engine_of(r)->scale(r, r->p_factor, r->u_factor);
+    r->p_factor = r->u_factor = 1;
 }
 
 /* z = M g on I_c (0 elsewhere), M the inverse of a periodic circulant close to K (plan.c): K is
@@ -372,6 +382,7 @@ static int solve_once(pk_run *r, im_solve_result *res)
     if (r->control == IM_CONTROL_LOAD)
         impose_load(r);
     status = iterate(r, res, &last);
+    rescale_now(r);
     summarise(r, &last, res);
     int finished = e->finish(r); /* p and u back, also after a failure: p is a valid warm start */
     return status != IM_OK ? status : (r->status != IM_OK ? r->status : finished);
@@ -471,7 +482,9 @@ pk_run solver_pk_run(im_solver_plan *plan, const double *gap0, enum im_control c
                     .p = p,
                     .u = u,
                     .status = IM_OK,
-                    .approach = NAN};
+                    .approach = NAN,
+                    .p_factor = 1,
+                    .u_factor = 1};
 }
 
 int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
