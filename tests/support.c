@@ -1,5 +1,7 @@
 #include "support.h"
 
+#include <dlfcn.h>
+
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 
@@ -81,4 +83,14 @@ im_field *test_rough_surface(int n, double slope, uint64_t seed)
     im_field *s = NULL;
     assert_int_equal(im_surface_generate(&p, &s), IM_OK);
     return s;
+}
+
+void test_keep_vulkan_libraries_loaded(void)
+{
+#ifdef __SANITIZE_ADDRESS__
+    static const char *const libraries[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so",
+                                            "libVkLayer_MESA_device_select.so"};
+    for (size_t i = 0; i < sizeof libraries / sizeof libraries[0]; ++i)
+        dlopen(libraries[i], RTLD_NOW | RTLD_NODELETE); /* never closed, on purpose */
+#endif
 }

@@ -26,6 +26,12 @@ void test_copy_file(const char *from, const char *to);
 struct im_field;
 struct im_field *test_rough_surface(int n, double slope, uint64_t seed);
 
+/* Under AddressSanitizer: the Vulkan loader unloads drivers and layers when an instance ends, so what
+ * they keep until exit would be reported in "<unknown module>"; kept loaded, LeakSanitizer names their
+ * libraries and tests/gpu_lsan.supp can suppress those (and nothing of ours). A no-op otherwise. Call
+ * first in main of a test that opens Vulkan. */
+void test_keep_vulkan_libraries_loaded(void);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double test_relative_difference(double a, double b);
 

@@ -19,7 +19,6 @@
 #include "indentmap/status.h"
 #include "spirv/scale.h"
 
-#include <dlfcn.h>
 #include <fftw3.h>
 #include <stdlib.h>
 #include <string.h>
@@ -503,22 +502,9 @@ static void test_multi_buffer_transforms(void **state)
     refused_in_parts("524288", 8, 16384);           /* 1.25 MiB in 3 parts */
 }
 
-/* Under AddressSanitizer: the Vulkan loader unloads drivers and layers when an instance ends, so
- * what they keep until exit would be reported in "<unknown module>"; kept loaded, LeakSanitizer
- * names their libraries and tests/gpu_lsan.supp can suppress those (and nothing of ours). */
-static void keep_vulkan_libraries_loaded(void)
-{
-#ifdef __SANITIZE_ADDRESS__
-    static const char *const libraries[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so",
-                                            "libVkLayer_MESA_device_select.so"};
-    for (size_t i = 0; i < sizeof libraries / sizeof libraries[0]; ++i)
-        dlopen(libraries[i], RTLD_NOW | RTLD_NODELETE); /* the handle is never closed, on purpose */
-#endif
-}
-
 int main(void)
 {
-    keep_vulkan_libraries_loaded();
+    test_keep_vulkan_libraries_loaded();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_devices),         cmocka_unit_test(test_scale_pipeline),
         cmocka_unit_test(test_large_transfers), cmocka_unit_test(test_fft_small),

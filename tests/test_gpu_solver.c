@@ -13,7 +13,6 @@
 #include "indentmap/surface.h"
 #include "solver/engine.h"
 
-#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -513,23 +512,11 @@ static void test_unsupported_grid_refused(void **state)
     im_solver_plan_free(plan);
 }
 
-/* Under the sanitizers LeakSanitizer names the libraries it finds leaks in only while they are
- * loaded: keep the Vulkan driver and layers (tests/gpu_lsan.supp) loaded past the loader's unload. */
-static void keep_vulkan_libraries_loaded(void)
-{
-#ifdef __SANITIZE_ADDRESS__
-    static const char *const libraries[] = {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so",
-                                            "libVkLayer_MESA_device_select.so"};
-    for (size_t i = 0; i < sizeof libraries / sizeof libraries[0]; ++i)
-        dlopen(libraries[i], RTLD_NOW | RTLD_NODELETE); /* never closed, on purpose */
-#endif
-}
-
 /* test_gpu_solver [PATTERN]: only the cases whose names match PATTERN (cmocka's filter: * and ?), as
  * scripts/gpu-check.sh runs one case on a device machine whose time is counted. */
 int main(int argc, char **argv)
 {
-    keep_vulkan_libraries_loaded();
+    test_keep_vulkan_libraries_loaded();
     if (argc > 1)
         cmocka_set_test_filter(argv[1]);
     const struct CMUnitTest tests[] = {

@@ -229,6 +229,7 @@ static void test_auto_falls_back(void **state)
 
 int main(int argc, char **argv)
 {
+    test_keep_vulkan_libraries_loaded();
     if (argc == 3 && strcmp(argv[1], "--peak") == 0) {
         const peak p = periodic_peak(atoi(argv[2]));
         printf("peak %.0f %.0f\n", p.measured, p.estimated);
