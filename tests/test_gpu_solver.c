@@ -19,6 +19,8 @@
 #include <string.h>
 
 #if IM_HAVE_GPU
+#include "gpu/vulkan.h"
+
 static const double TOL = 1e-10;
 
 static im_solver_options engine_options(int device)
@@ -334,6 +336,11 @@ static im_field *long_strip(void)
  * is made, or refused naming non-uniform indexing (lavapipe). */
 static int parts_supported(const im_field *s)
 {
+    gpu_context *c = NULL; /* the part size the plans will have: INDENTMAP_GPU_MAX_PART's, below the modes' */
+    assert_int_equal(gpu_context_open(GPU_ANY, 0, &c), IM_OK);
+    assert_int_equal(gpu_context_part_bytes(c), 2097152);
+    assert_true(gpu_fft_modes_bytes(s->nx, s->ny) > 2 * gpu_context_part_bytes(c));
+    gpu_context_close(c);
     im_solver_options o = engine_options(IM_DEVICE_GPU);
     o.periodic = 1;
     im_flat_contact *flat = NULL;

@@ -667,26 +667,47 @@ const solver_engine solver_engine_gpu = {
 };
 
 /* What VkFFT and the shaders' 32-bit indices can take; IM_EUNSUPPORTED naming what cannot. */
-static int check_grid(const im_solver_plan *plan, const gpu_device *d)
+/* A solver grid nx x ny whose transforms are px x py (nx x ny periodic, 2 nx x 2 ny padded) on context c. */
+static int check_transform_grid(gpu_context *c, int nx, int ny, int px, int py)
 {
-    /* the transforms are nx x ny (periodic, the preconditioner) and 2 nx x 2 ny (the padded grid) */
-    const int sides[2] = {plan->nx, plan->ny};
+    const int sides[2] = {nx, ny};
     for (int k = 0; k < 2; ++k)
         if (!gpu_fft_side_supported(sides[k]))
             return im_fail(IM_EUNSUPPORTED,
                            "GPU engine: solver grid %d x %d (transforms %d x %d): side %d has a prime factor above "
                            "13, which VkFFT does not transform exactly; use device = cpu, or a grid whose sides "
                            "factor into 2, 3, 5, 7, 11 and 13",
-                           plan->nx, plan->ny, plan->px, plan->py, sides[k]);
-    const double largest = (double)gpu_fft_modes_bytes(plan->px, plan->py);
-    const double most = (double)GPU_MAX_CHUNKS * (double)gpu_context_chunk_bytes(d->context);
-    if ((double)plan->px * plan->py >= 4294967296.0 || largest > most)
+                           nx, ny, px, py, sides[k]);
+    const double largest = (double)gpu_fft_modes_bytes(px, py);
+    const double most = (double)GPU_MAX_CHUNKS * (double)gpu_context_chunk_bytes(c);
+    if ((double)px * py >= 4294967296.0 || largest > most)
         return im_fail(IM_EUNSUPPORTED,
                        "GPU engine: solver grid %d x %d needs a %.0f MiB buffer; %s takes at most %.0f MiB per "
                        "buffer (%d chunks of %.0f MiB; use device = cpu, or a smaller grid)",
-                       plan->nx, plan->ny, largest / 1048576.0, gpu_context_device_name(d->context), most / 1048576.0,
-                       GPU_MAX_CHUNKS, (double)gpu_context_chunk_bytes(d->context) / 1048576.0);
+                       nx, ny, largest / 1048576.0, gpu_context_device_name(c), most / 1048576.0, GPU_MAX_CHUNKS,
+                       (double)gpu_context_chunk_bytes(c) / 1048576.0);
     return IM_OK;
+}
+
+static int check_grid(const im_solver_plan *plan, const gpu_device *d)
+{
+    return check_transform_grid(d->context, plan->nx, plan->ny, plan->px, plan->py);
+}
+
+/* What the plan's transforms would meet when made (gpu_fft_create's refusal of buffers in parts
+ * whose first axis takes one of VkFFT's uploads, known only once VkFFT plans it): judged before any
+ * plan by the first axis' length, 16384 and longer taking several uploads in double, so that a grid
+ * the GPU may refuse is estimated on the CPU (the larger plan). */
+static int check_estimated_transforms(gpu_context *c, int nx, int ny, const im_solver_options *o)
+{
+    const int px = o->periodic ? nx : 2 * nx, py = o->periodic ? ny : 2 * ny;
+    int status = check_transform_grid(c, nx, ny, px, py);
+    if (status == IM_OK && gpu_fft_modes_bytes(px, py) > gpu_context_part_bytes(c) && px < 16384)
+        status = im_fail(IM_EUNSUPPORTED,
+                         "GPU engine: solver grid %d x %d: its buffers exceed one storage buffer and its first "
+                         "axis (%d) is shorter than VkFFT's several uploads need (16384)",
+                         nx, ny, px);
+    return status;
 }
 
 static int zero_fields(struct gpu_solver *s)
@@ -829,8 +850,12 @@ int solver_engine_gpu_estimate(int nx, int ny, const im_solver_options *o, solve
 {
     gpu_context *c = NULL;
     int status = gpu_context_open(o->device == IM_DEVICE_AUTO ? GPU_PREFER_HARDWARE : GPU_ANY, 0, &c);
-    if (status != IM_OK)
+    if (status == IM_OK)
+        status = check_estimated_transforms(c, nx, ny, o);
+    if (status != IM_OK) {
+        gpu_context_close(c);
         return status;
+    }
     /* gpu_context_reserve_staging: an upload and a download buffer of the top plan's field, a part at most */
     const double field = sizeof(double) * (double)nx * ny, part = (double)gpu_context_part_bytes(c);
     *out = (solver_gpu_estimate){.device_bytes = (double)plan_footprint(c, nx, ny, o),
