@@ -227,6 +227,39 @@ static void test_auto_falls_back(void **state)
     assert_non_null(strstr(m.note, "solved on the CPU"));
 }
 
+/* The estimate with buffers in parts of `part` bytes (INDENTMAP_GPU_MAX_PART; NULL: the device's own). */
+static int estimate_in_parts(int nx, int ny, const im_solver_options *o, const char *part, im_solver_memory *m)
+{
+    if (part)
+        setenv("INDENTMAP_GPU_MAX_PART", part, 1);
+    const int status = im_solver_memory_needed(nx, ny, o, m);
+    unsetenv("INDENTMAP_GPU_MAX_PART");
+    return status;
+}
+
+/* Grids the engine would refuse are refused by the estimate too (gpu) or estimated on the CPU (auto):
+ * a side of 17 (a prime above VkFFT's radices), and a periodic 256^2 cell in parts of 256 KiB (its
+ * 528 KiB of modes in 3), whose first axis takes one upload. */
+static void check_refused_like_the_engine(int nx, int ny, int periodic, const char *part, const char *phrase)
+{
+    im_solver_options o = gpu_options(periodic, 1, 0);
+    im_solver_memory m;
+    assert_int_equal(estimate_in_parts(nx, ny, &o, part, &m), IM_EUNSUPPORTED);
+    if (!strstr(im_last_error(), phrase))
+        fail_msg("%d x %d: '%s' does not say '%s'", nx, ny, im_last_error(), phrase);
+    o.device = IM_DEVICE_AUTO;
+    assert_int_equal(estimate_in_parts(nx, ny, &o, part, &m), IM_OK);
+    assert_string_equal(m.device, "cpu");
+    assert_true(m.host_bytes == im_solver_plan_bytes(nx, ny));
+}
+
+static void test_estimate_refuses_what_the_engine_refuses(void **state)
+{
+    (void)state;
+    check_refused_like_the_engine(17, 64, 0, NULL, "prime factor above 13");
+    check_refused_like_the_engine(256, 256, 1, "262144", "first axis (256)");
+}
+
 int main(int argc, char **argv)
 {
     test_keep_vulkan_libraries_loaded();
@@ -245,6 +278,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_device_estimate_exact),
         cmocka_unit_test(test_gpu_refused_when_too_small),
         cmocka_unit_test(test_auto_falls_back),
+        cmocka_unit_test(test_estimate_refuses_what_the_engine_refuses),
         cmocka_unit_test(test_host_estimate_against_peak),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
