@@ -55,7 +55,11 @@ if [ "${IM_HAVE_GPU:-0}" = 1 ]; then
   check "info --memory: the GPU's host and device memory" grep -q "periodic   gpu: host [0-9.e-]* GiB, device [0-9.e-]* GiB of .*'s [0-9.e-]* GiB$" "$dir/memory.txt"
   check "info --memory: the CPU's" grep -q "half-space cpu: host [0-9.e-]* GiB$" "$dir/memory.txt"
   sed 's/sg$/small/; s/n = 64/n = 256/' "$dir/g.ini" >"$dir/small.ini"
-  INDENTMAP_GPU_MAX_MEMORY=1048576 "$cli" run --quiet "$dir/small.ini" >/dev/null 2>"$dir/small.err"
+  # (under AddressSanitizer without leak detection for this one run: the estimate opens and closes a Vulkan
+  # context, and lavapipe, unloaded with it, leaves 128 bytes of its one-time setup that LeakSanitizer can
+  # no longer name for tests/gpu_lsan.supp; its exit code would hide the refusal's)
+  ASAN_OPTIONS=detect_leaks=0 INDENTMAP_GPU_MAX_MEMORY=1048576 "$cli" run --quiet "$dir/small.ini" >/dev/null \
+    2>"$dir/small.err"
   echo $? >"$dir/small.status"
   check "a GPU too small for the scene: exit 2" test "$(cat "$dir/small.status")" -eq 2
   check "a GPU too small: the device, the memory needed and the memory it has" grep -q \
