@@ -90,12 +90,6 @@ static void restrict_gap(const im_solver_plan *p, const double *gap0)
             p->coarse_gap0[(size_t)cy * c->nx + cx] = solver_cascade_block_mean(upper, lower,
                                                                                 upper_count + lower_count);
         }
-    const char *amp = getenv("IM_CASCADE_AMP"); /* PROTOTYPE */
-    if (amp && p->options.periodic) {
-        const double s = atof(amp);
-        for (size_t i = 0; i < (size_t)c->nx * c->ny; ++i)
-            p->coarse_gap0[i] *= s;
-    }
 }
 
 int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, int nx, double *pressure_row)

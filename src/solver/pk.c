@@ -11,7 +11,6 @@
 #include <math.h>
 #include <omp.h>
 #include <string.h>
-#include <stdio.h>
 
 static const solver_engine *engine_of(const pk_run *r) { return r->plan->engine; }
 
@@ -282,191 +281,6 @@ static enum solver_join step_join(const im_solver_options *o, const gap_stats *s
     return joining_pays(s) ? SOLVER_JOIN_IN_DIRECTION : SOLVER_JOIN_NONE;
 }
 
-
-/* PROTOTYPE (issue 33, fifth step): joining ahead by the step's K t. */
-#include <stdlib.h>
-static int ahead_mode(void)
-{
-    const char *v = getenv("IM_AHEAD");
-    return v ? atoi(v) : 0;
-}
-
-static long mark_ahead(pk_run *r, double tau, int mode)
-{
-    const im_solver_plan *plan = r->plan;
-    const int nx = plan->nx, ny = plan->ny, px = plan->px;
-    double *g = plan->gap;
-    const double *p = r->p;
-    double mean = 0;
-    long count = 0;
-    if (r->control == IM_CONTROL_LOAD) {
-        for (int iy = 0; iy < ny; ++iy)
-            for (int ix = 0; ix < nx; ++ix) {
-                size_t i = (size_t)iy * nx + ix;
-                if (solver_in_step(p[i], g[i], INFINITY, r->join)) {
-                    mean += plan->rows_out[(size_t)iy * px + ix];
-                    ++count;
-                }
-            }
-        mean = count ? mean / count : 0;
-    }
-    long added = 0;
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix) {
-            size_t i = (size_t)iy * nx + ix;
-            if (p[i] != 0 || g[i] < 0)
-                continue;
-            const double next = g[i] - tau * (plan->rows_out[(size_t)iy * px + ix] - mean);
-            if (next < 0) {
-                g[i] = mode == 1 ? -1e-300 : next;
-                ++added;
-            }
-        }
-    return added;
-}
-
-/* PROTOTYPE (issue 33, fifth step): a primal-dual active-set outer loop, CPU engine, periodic, no cap. */
-static double pdas_approach(pk_run *r, const unsigned char *A, size_t n)
-{
-    if (r->control != IM_CONTROL_LOAD)
-        return r->target;
-    double s = 0;
-    long c = 0;
-    for (size_t i = 0; i < n; ++i)
-        if (A[i]) {
-            s += r->u[i] + r->gap0[i];
-            ++c;
-        }
-    return c ? s / c : r->approach;
-}
-
-static void pdas_rescale(pk_run *r, double *q, size_t n)
-{
-    if (r->control != IM_CONTROL_LOAD)
-        return;
-    double s = 0;
-    for (size_t i = 0; i < n; ++i)
-        s += q[i];
-    const double f = r->target / (s * r->plan->delta * r->plan->delta);
-    for (size_t i = 0; i < n; ++i) {
-        q[i] *= f;
-        r->u[i] *= f;
-    }
-}
-
-static void pdas_exact_u(pk_run *r, const double *q)
-{
-    im_solver_convolve(r->plan, q, r->u);
-    ++r->convolutions;
-}
-
-static void pdas(pk_run *r, im_solve_result *res)
-{
-    im_solver_plan *plan = r->plan;
-    const size_t n = (size_t)plan->nx * plan->ny, modes = (size_t)plan->ny * (plan->nx / 2 + 1);
-    const double k0 = plan->kernel[0], c = atof(getenv("IM_PDAS")) / k0;
-    const double lead = getenv("IM_PDAS_LEAD") ? atof(getenv("IM_PDAS_LEAD")) : 0.25;
-    const int max_inner = getenv("IM_PDAS_INNER") ? atoi(getenv("IM_PDAS_INNER")) : 10;
-    double *q = malloc(sizeof(double) * n), *g = plan->gap, *z = plan->preconditioned, *t = plan->direction;
-    unsigned char *A = malloc(n);
-    rescale_now(r);
-    memcpy(q, r->p, sizeof(double) * n);
-    for (size_t i = 0; i < n; ++i)
-        A[i] = q[i] > 0;
-    double w = pdas_approach(r, A, n);
-    for (size_t i = 0; i < n; ++i) {
-        g[i] = r->u[i] + r->gap0[i] - w;
-        A[i] = q[i] - c * g[i] > 0;
-    }
-    for (int outer = 0; outer < 40; ++outer) {
-        double rms = 0, prev = 1;
-        for (int inner = 0;; ++inner) {
-            w = pdas_approach(r, A, n);
-            double sq = 0, v = 0;
-            long count = 0;
-            for (size_t i = 0; i < n; ++i) {
-                g[i] = r->u[i] + r->gap0[i] - w;
-                if (A[i]) {
-                    sq += g[i] * g[i];
-                    ++count;
-                    v = fmax(v, -q[i] * k0);
-                } else
-                    v = fmax(v, -g[i]);
-            }
-            rms = count ? sqrt(sq / count) : 0;
-            if (rms <= fmax(lead * v, 0.5 * plan->options.tol * w) || inner >= max_inner)
-                break;
-            for (size_t i = 0; i < n; ++i)
-                z[i] = A[i] ? g[i] : 0;
-            fftw_execute(plan->precondition_forward);
-            solver_multiply_modes(plan->precondition_modes, plan->inverse_spectrum, modes);
-            fftw_execute(plan->precondition_backward);
-            double zs = 0;
-            for (size_t i = 0; i < n; ++i)
-                zs += A[i] ? z[i] : 0;
-            const double mean = r->control == IM_CONTROL_LOAD ? zs / count : 0;
-            double gz = 0;
-            for (size_t i = 0; i < n; ++i)
-                if (A[i]) {
-                    z[i] -= mean;
-                    gz += g[i] * z[i];
-                }
-            const double beta = inner ? gz / prev : 0;
-            prev = gz;
-            for (size_t i = 0; i < n; ++i) {
-                t[i] = A[i] ? z[i] + beta * t[i] : 0;
-                plan->rows_in[i] = t[i]; /* periodic: px = nx */
-            }
-            solver_convolve_rows(plan);
-            ++r->convolutions;
-            ++res->iterations;
-            const double *kt = plan->rows_out;
-            double gt = 0, ktt = 0, kts = 0, ts = 0;
-            for (size_t i = 0; i < n; ++i)
-                if (A[i]) {
-                    gt += g[i] * t[i];
-                    ktt += kt[i] * t[i];
-                    kts += kt[i];
-                    ts += t[i];
-                }
-            const double den = ktt - (r->control == IM_CONTROL_LOAD ? kts / count * ts : 0);
-            const double tau = gt / den;
-            if (!(tau > 0 && isfinite(tau)))
-                break;
-            for (size_t i = 0; i < n; ++i) {
-                q[i] -= A[i] ? tau * t[i] : 0;
-                r->u[i] -= tau * kt[i];
-            }
-        }
-        long changed = 0, dropped = 0;
-        for (size_t i = 0; i < n; ++i) {
-            const unsigned char next = q[i] - c * g[i] > 0;
-            changed += next != A[i];
-            if (!next && q[i] != 0) {
-                q[i] = 0;
-                ++dropped;
-            }
-            A[i] = next;
-        }
-        if (getenv("IM_TRACE"))
-            fprintf(stderr, "pdas outer %d: it %d rms %.3g |A| changed %ld dropped %ld\n", outer, res->iterations,
-                    rms / w, changed, dropped);
-        if (dropped) {
-            pdas_exact_u(r, q);
-            pdas_rescale(r, q, n);
-        }
-        if (!changed)
-            break;
-    }
-    for (size_t i = 0; i < n; ++i)
-        r->p[i] = fmax(q[i], 0);
-    pdas_exact_u(r, r->p);
-    if (r->control == IM_CONTROL_LOAD)
-        impose_load(r);
-    free(q);
-    free(A);
-}
-
 /* The CG loop proper; returns IM_OK, IM_ENOCONV, IM_ENUMERIC, IM_EINTERRUPTED or an engine's
  * failure, and leaves the last gap_stats. */
 static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
@@ -527,14 +341,6 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         e->convolve_direction(r); /* K t, kept by the engine */
         ++r->convolutions;
         double tau = step_length(r);
-        if (ahead_mode() && r->join == SOLVER_JOIN_IN_DIRECTION && tau > 0 && isfinite(tau) &&
-            mark_ahead(r, tau, ahead_mode())) {
-            precondition(r);
-            e->direction(r, 1, 0, cap);
-            e->convolve_direction(r);
-            ++r->convolutions;
-            tau = step_length(r);
-        }
         if (!(tau > 0) && !restart) {
             /* Clipping changed the contact set and the conjugate direction no longer descends:
              * restart from steepest descent, whose step <g, g> / <K g, g> is always positive. */
@@ -575,25 +381,6 @@ static int solve_once(pk_run *r, im_solve_result *res)
     convolve(r);
     if (r->control == IM_CONTROL_LOAD)
         impose_load(r);
-    const char *jac = getenv("IM_JACOBI"); /* PROTOTYPE: projected local steps on the start */
-    for (int k = 0; jac && k < atoi(getenv("IM_JACOBI_STEPS") ? getenv("IM_JACOBI_STEPS") : "1"); ++k) {
-        const double f = atof(jac) / r->plan->kernel[0];
-        compute_gaps(r);
-        const double *g = r->plan->gap;
-        for (size_t i = 0; i < (size_t)r->plan->nx * r->plan->ny; ++i)
-            r->p[i] = fmax(r->p[i] - f * g[i], 0);
-        convolve(r);
-        if (r->control == IM_CONTROL_LOAD)
-            impose_load(r);
-    }
-    if (getenv("IM_PDAS") && r->plan->options.periodic && r->plan->cascade_level == 0)
-        pdas(r, res);
-    if (getenv("IM_TRACE")) {
-        long c = 0;
-        for (size_t i = 0; i < (size_t)r->plan->nx * r->plan->ny; ++i)
-            c += r->p[i] > 0;
-        fprintf(stderr, "start %d: %ld\n", r->plan->nx, c);
-    }
     status = iterate(r, res, &last);
     rescale_now(r);
     summarise(r, &last, res);
