@@ -10,6 +10,7 @@
 
 #include "indentmap/field.h"
 #include "indentmap/gpu_config.h"
+#include "indentmap/indenter.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "gpu/vulkan.h"
@@ -68,6 +69,38 @@ static void test_device_estimate_exact(void **state)
             o = gpu_options(periodic, 1, 0.5); /* a cap: no cascade, no preconditioner */
             check_device_estimate(sides[k][0], sides[k][1], &o);
         }
+}
+
+/* indent's note under auto (src/front/indent.c) estimates the plan as made (im_solver_plan_memory): an
+ * indentation's plan solves the repulsive problem on its window, with the cap H_p + w / delta_c, no
+ * adhesion, and neither cascade nor preconditioner under the cap; its estimate is what the engine counted
+ * for it, and the estimate of the run's own grid and options is not. */
+static void test_plan_memory_is_the_plans(void **state)
+{
+    (void)state;
+    im_field *surface = test_rough_surface(128, 0.08, 3);
+    const im_indenter cone = im_indenter_cone(80);
+    im_solver_options o = gpu_options(0, 1, 0.5);
+    o.adhesion_work = 0.05;
+    o.adhesion_range = 0.6;
+    im_indentation *run = NULL;
+    if (im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 2.0, &o, &run) != IM_OK)
+        fail_msg("indentation: %s", im_last_error());
+    const im_solver_plan *plan = im_indentation_plan(run);
+    const im_window w = im_indentation_window(run);
+    im_solver_memory m, whole;
+    assert_int_equal(im_solver_plan_memory(plan, &m), IM_OK);
+    assert_int_equal(im_solver_memory_needed(128, 128, &o, &whole), IM_OK);
+    double counted, held;
+    solver_engine_gpu_memory(plan, &counted, &held);
+    print_message("window %d x %d of 128 x 128: the plan's estimate %.0f bytes, counted %.0f; the grid's %.0f\n",
+                  w.nx, w.ny, m.device_bytes, counted, whole.device_bytes);
+    assert_true(w.nx < 128 && w.ny < 128);
+    assert_int_equal(m.gpu, 1);
+    assert_true(m.device_bytes == counted);
+    assert_true(whole.device_bytes > counted);
+    im_indentation_free(run);
+    im_field_free(surface);
 }
 
 /* ---- the host's peak against VmHWM ---- */
@@ -334,6 +367,7 @@ int main(int argc, char **argv)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_device_estimate_exact),
+        cmocka_unit_test(test_plan_memory_is_the_plans),
         cmocka_unit_test(test_gpu_refused_when_too_small),
         cmocka_unit_test(test_auto_falls_back),
         cmocka_unit_test(test_estimate_refuses_what_the_engine_refuses),

@@ -326,6 +326,11 @@ typedef struct im_solver_memory {
     char note[512];       /* device = auto on the CPU because the GPU's memory is too small: why; else "" */
 } im_solver_memory;
 int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out);
+/* The same estimate for a plan as made: its grid and the options it was made with, which a caller's may
+ * not be (an indentation's plan solves the repulsive problem: no adhesion, the cap H_p + w / delta_c;
+ * a cap turns the cascade and the preconditioner off), and its device as asked (auto: the note says
+ * why a plan that stayed on the CPU did). IM_EINVAL for a NULL plan or out; else as above. */
+int im_solver_plan_memory(const im_solver_plan *plan, im_solver_memory *out);
 /* Seconds spent planning (FFTW planning plus the kernel spectrum). */
 double im_solver_plan_seconds(const im_solver_plan *plan);
 /* The engine a plan's solves run on: "cpu", or the GPU's device name. */

@@ -245,6 +245,14 @@ int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im
     return o.device == IM_DEVICE_CPU ? IM_OK : gpu_memory_needed(nx, ny, &o, out);
 }
 
+int im_solver_plan_memory(const im_solver_plan *plan, im_solver_memory *out)
+{
+    ARG_REQUIRE(out, "out");
+    *out = (im_solver_memory){.host_bytes = NAN};
+    ARG_REQUIRE(plan, "plan");
+    return im_solver_memory_needed(plan->nx, plan->ny, &plan->options, out);
+}
+
 const char *im_solver_wisdom_file(const im_solver_options *o)
 {
     return o && o->wisdom_path && o->wisdom_path[0] ? o->wisdom_path : NULL; /* NULL options: none */
