@@ -315,7 +315,8 @@ double im_solver_plan_bytes(int nx, int ny);
  * engine's refusal (IM_EUNSUPPORTED: no GPU engine, no device). auto: the GPU's when a hardware GPU
  * opens and holds the plan, else the CPU's, with a note in out->note when the GPU's memory was too
  * small. The opening and closing of a Vulkan device takes a fraction of a second. IM_EINVAL for a NULL
- * out or invalid sides or options. */
+ * out or invalid sides or options, and under gpu and auto alike for an INDENTMAP_GPU_MAX_MEMORY (or
+ * _MAX_PART, _MAX_BUFFER) that is not a whole number of bytes >= 4096, naming it and its text. */
 typedef struct im_solver_memory {
     int gpu;              /* 1: the GPU engine solves it; 0: the CPU engine */
     double host_bytes;    /* the plan's host memory at its peak */
