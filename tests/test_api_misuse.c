@@ -142,6 +142,7 @@ static im_histogram *histogram_out;
 static im_solver_plan *plan_out;
 static im_solver_memory memory_out;
 static im_indentation *run_out;
+static im_window window_out;
 static im_flat_contact *flat_out;
 static im_surface_stats stats;
 static im_contact_patches patches;
@@ -589,6 +590,12 @@ REPORT(im_indentation_create, "punch",
        im_indentation_create(&good, NULL, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out))
 REPORT(im_indentation_create, "out",
        im_indentation_create(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, NULL))
+REPORT_VIEW(im_indentation_window_for, "surface",
+            im_indentation_window_for(BAD, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, &window_out))
+REPORT(im_indentation_window_for, "punch",
+       im_indentation_window_for(&good, NULL, IM_CONTROL_DISPLACEMENT, 0.5, &options, &window_out))
+REPORT(im_indentation_window_for, "out",
+       im_indentation_window_for(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, NULL))
 ACCEPT(im_indentation_free, (im_indentation_free(NULL), 1))
 REPORT(im_indentation_step, "run", im_indentation_step(NULL, 0.1, &step_result))
 REPORT(im_indentation_step, "out", im_indentation_step(run, 0.1, NULL))

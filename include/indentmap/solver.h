@@ -523,6 +523,12 @@ int im_indentation_plastic(const im_indentation *run, im_field **plastic);
 /* The sub-grid the run solves (all zero for a NULL run), and the plan it solves on (NULL for a NULL
  * run; owned by the run). */
 im_window im_indentation_window(const im_indentation *run);
+/* The window im_indentation_create would solve on with these arguments, without making its plan or
+ * fields (the undeformed gap of the whole grid is made and freed): what a solve there allocates is
+ * that window's (scenes' limits). Its errors are im_indentation_create's checks'; *out is all zero
+ * on an error. IM_EINVAL for a NULL out, punch or an invalid surface view. */
+int im_indentation_window_for(const im_field *surface, const im_indenter *punch, enum im_control control,
+                              double largest_target, const im_solver_options *options, im_window *out);
 const im_solver_plan *im_indentation_plan(const im_indentation *run);
 
 /* Fields of the last step on the FULL surface grid (new fields, caller frees; any pointer may be
