@@ -65,6 +65,26 @@ if [ "${IM_HAVE_GPU:-0}" = 1 ]; then
   check "a GPU too small: the device, the memory needed and the memory it has" grep -q \
     "small.ini: \[solver\] device = gpu: a 256 x 256 solve needs [0-9.]* GiB of device memory .* has 0.000977 GiB" "$dir/small.err"
   check "a GPU too small: no output folder" test ! -e "$dir/small"
+  # a scene's solves estimated on their window where the heights are known before any work (a smooth surface):
+  # a 256^2 grid whose whole-grid plan needs 0.0112 GiB runs in 4 MiB, its 32 x 32 window's plan fitting;
+  # in 64 KiB that window is refused, naming its size and the grid's
+  printf '[scene]\nname = w\noutput = %s/sw\n[surfaces]\nn = 256\nslopes = 0\nseeds = 1\n[loading]\nsteps = 0.5:2:2\n[solver]\ndevice = gpu\n[output]\nplots = fig5\n' "$dir" >"$dir/w.ini"
+  scene_in() { ASAN_OPTIONS=detect_leaks=0 INDENTMAP_GPU_MAX_MEMORY=$1 "$cli" run --quiet "$dir/w.ini"; }
+  check "a scene whose grid exceeds the device and whose window fits: runs" scene_in 4194304
+  check "its history written" test -s "$dir/sw/histories/member_00_1.csv"
+  rm -rf "$dir/sw"
+  check "a scene whose window exceeds the device: refused naming the window and the grid" expect_exit 2 \
+    "w.ini: [solver] device = gpu, solves on a 32 x 32 window of the 256 x 256 grid: a 32 x 32 solve needs" scene_in 65536
+  check "a window refused: no output folder" test ! -e "$dir/sw"
+  # INDENTMAP_GPU_MAX_MEMORY is a whole number of bytes: other text refused naming it (exit 2), under auto too;
+  # indent's plan on a device too small refused by the engine with the estimate's status (IM_ENOMEM: exit 2)
+  with_max_memory() { ASAN_OPTIONS=detect_leaks=0 INDENTMAP_GPU_MAX_MEMORY=$1 indent "${@:2}"; }
+  for text in 12GiB abc -5 1e400 nan; do
+    check "INDENTMAP_GPU_MAX_MEMORY=$text refused" expect_exit 2 \
+      "INDENTMAP_GPU_MAX_MEMORY=$text: expected a whole number of bytes" with_max_memory "$text" bad --device auto
+  done
+  check "indent on a GPU too small: exit 2 naming the device's memory" expect_exit 2 \
+    "needs 0.00 GiB of device memory for its fields" with_max_memory 4096 small --device gpu
 else
   check "info --memory: no GPU engine" bash -c "'$cli' info --memory 64 | grep -q 'periodic   gpu: none (.*no GPU engine'"
   # exit 1, not 2: the arguments are valid, this build cannot run them (IM_EUNSUPPORTED)

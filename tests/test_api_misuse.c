@@ -142,6 +142,7 @@ static im_histogram *histogram_out;
 static im_solver_plan *plan_out;
 static im_solver_memory memory_out;
 static im_indentation *run_out;
+static im_window window_out;
 static im_flat_contact *flat_out;
 static im_surface_stats stats;
 static im_contact_patches patches;
@@ -541,6 +542,8 @@ ACCEPT(im_solver_plan_free, (im_solver_plan_free(NULL), 1))
 SAFE_RESULT(im_solver_plan_bytes, "nx", isnan(im_solver_plan_bytes(-3, 8)))
 REPORT(im_solver_memory_needed, "out", im_solver_memory_needed(8, 8, &options, NULL))
 REPORT(im_solver_memory_needed, "nx", im_solver_memory_needed(-3, 8, &options, &memory_out))
+REPORT(im_solver_plan_memory, "plan", im_solver_plan_memory(NULL, &memory_out))
+REPORT(im_solver_plan_memory, "out", im_solver_plan_memory(NULL, NULL))
 SAFE_RESULT(im_solver_plan_seconds, "plan", isnan(im_solver_plan_seconds(NULL)))
 REPORT(im_measure_adhesion, "approach", im_measure_adhesion(NULL, values, contact, 2, &adhesion))
 REPORT(im_measure_adhesion, "load", im_measure_adhesion(values, NULL, contact, 2, &adhesion))
@@ -587,6 +590,12 @@ REPORT(im_indentation_create, "punch",
        im_indentation_create(&good, NULL, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run_out))
 REPORT(im_indentation_create, "out",
        im_indentation_create(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, NULL))
+REPORT_VIEW(im_indentation_window_for, "surface",
+            im_indentation_window_for(BAD, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, &window_out))
+REPORT(im_indentation_window_for, "punch",
+       im_indentation_window_for(&good, NULL, IM_CONTROL_DISPLACEMENT, 0.5, &options, &window_out))
+REPORT(im_indentation_window_for, "out",
+       im_indentation_window_for(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, NULL))
 ACCEPT(im_indentation_free, (im_indentation_free(NULL), 1))
 REPORT(im_indentation_step, "run", im_indentation_step(NULL, 0.1, &step_result))
 REPORT(im_indentation_step, "out", im_indentation_step(run, 0.1, NULL))

@@ -438,6 +438,45 @@ static void test_full_grid_displacement(void **state)
     im_field_free(s);
 }
 
+/* im_indentation_window_for is the window im_indentation_create solves on, without making its plan: under
+ * displacement and load control, with a cap (whose fully plastic approach widens the load's bound), and
+ * with the crop off (the whole grid); a punch that covers no patch fails as the run does. */
+static void test_window_for_is_the_runs(void **state)
+{
+    (void)state;
+    im_field *s = test_rough_surface(96, 0.08, 3);
+    const im_indenter cone = im_indenter_cone(80.0);
+    const struct {
+        enum im_control control;
+        double target, hardness;
+        int crop;
+    } cases[] = {{IM_CONTROL_DISPLACEMENT, 1.5, 0, 1},
+                 {IM_CONTROL_LOAD, 2.0, 0, 1},
+                 {IM_CONTROL_LOAD, 2.0, 0.5, 1},
+                 {IM_CONTROL_DISPLACEMENT, 1.5, 0, 0}};
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; ++k) {
+        im_solver_options o = im_solver_options_default();
+        o.hardness = cases[k].hardness;
+        o.crop = cases[k].crop;
+        im_window w;
+        assert_int_equal(im_indentation_window_for(s, &cone, cases[k].control, cases[k].target, &o, &w), IM_OK);
+        im_indentation *run = prepare(s, &cone, cases[k].control, cases[k].target, &o);
+        const im_window made = im_indentation_window(run);
+        print_message("case %zu: window [%d, %d) x [%d, %d)\n", k, w.x0, w.x0 + w.nx, w.y0, w.y0 + w.ny);
+        assert_true(w.x0 == made.x0 && w.y0 == made.y0 && w.nx == made.nx && w.ny == made.ny);
+        assert_true(cases[k].crop ? w.nx < 96 && w.ny < 96 : w.nx == 96 && w.ny == 96);
+        im_indentation_free(run);
+    }
+    im_indenter away = im_indenter_flat(20);
+    away.centred = 0;
+    away.x0 = away.y0 = 1e6; /* far outside the surface */
+    im_solver_options o = im_solver_options_default();
+    im_window w = {1, 1, 1, 1};
+    assert_int_equal(im_indentation_window_for(s, &away, IM_CONTROL_DISPLACEMENT, 1.0, &o, &w), IM_EINVAL);
+    assert_int_equal(w.nx, 0);
+    im_field_free(s);
+}
+
 /* Each displacement-controlled step is solved on the box its approach can touch (solver/step_window.h),
  * inside the run's window: a history that rises (boxes replanned as they grow), falls (a smaller approach
  * in the same box) and rises again, against the same history solved on the whole surface (crop off, no
@@ -706,6 +745,7 @@ int main(void)
         cmocka_unit_test(test_accelerated_equals_plain_pk_load),
         cmocka_unit_test(test_stopping_rule_bounds_penetration),
         cmocka_unit_test(test_full_grid_displacement),
+        cmocka_unit_test(test_window_for_is_the_runs),
         cmocka_unit_test(test_step_boxes_equal_whole_surface),
         cmocka_unit_test(test_step_boxes_keep_plastic_memory),
         cmocka_unit_test(test_edge_contact),

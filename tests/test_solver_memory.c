@@ -10,8 +10,10 @@
 
 #include "indentmap/field.h"
 #include "indentmap/gpu_config.h"
+#include "indentmap/indenter.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "gpu/vulkan.h"
 #include "solver/engine.h"
 
 #include <math.h>
@@ -67,6 +69,38 @@ static void test_device_estimate_exact(void **state)
             o = gpu_options(periodic, 1, 0.5); /* a cap: no cascade, no preconditioner */
             check_device_estimate(sides[k][0], sides[k][1], &o);
         }
+}
+
+/* indent's note under auto (src/front/indent.c) estimates the plan as made (im_solver_plan_memory): an
+ * indentation's plan solves the repulsive problem on its window, with the cap H_p + w / delta_c, no
+ * adhesion, and neither cascade nor preconditioner under the cap; its estimate is what the engine counted
+ * for it, and the estimate of the run's own grid and options is not. */
+static void test_plan_memory_is_the_plans(void **state)
+{
+    (void)state;
+    im_field *surface = test_rough_surface(128, 0.08, 3);
+    const im_indenter cone = im_indenter_cone(80);
+    im_solver_options o = gpu_options(0, 1, 0.5);
+    o.adhesion_work = 0.05;
+    o.adhesion_range = 0.6;
+    im_indentation *run = NULL;
+    if (im_indentation_create(surface, &cone, IM_CONTROL_DISPLACEMENT, 2.0, &o, &run) != IM_OK)
+        fail_msg("indentation: %s", im_last_error());
+    const im_solver_plan *plan = im_indentation_plan(run);
+    const im_window w = im_indentation_window(run);
+    im_solver_memory m, whole;
+    assert_int_equal(im_solver_plan_memory(plan, &m), IM_OK);
+    assert_int_equal(im_solver_memory_needed(128, 128, &o, &whole), IM_OK);
+    double counted, held;
+    solver_engine_gpu_memory(plan, &counted, &held);
+    print_message("window %d x %d of 128 x 128: the plan's estimate %.0f bytes, counted %.0f; the grid's %.0f\n",
+                  w.nx, w.ny, m.device_bytes, counted, whole.device_bytes);
+    assert_true(w.nx < 128 && w.ny < 128);
+    assert_int_equal(m.gpu, 1);
+    assert_true(m.device_bytes == counted);
+    assert_true(whole.device_bytes > counted);
+    im_indentation_free(run);
+    im_field_free(surface);
 }
 
 /* ---- the host's peak against VmHWM ---- */
@@ -175,7 +209,8 @@ static void test_host_estimate_against_peak(void **state)
 /* ---- refusals and the fall-back ---- */
 
 /* device = gpu on a device the engine may fill only 1 MiB of: refused before any plan, naming the
- * device, the memory needed and the memory it has; a plan made anyway is refused by the engine. */
+ * device, the memory needed and the memory it has; a plan made anyway is refused by the engine, with
+ * the same status (IM_ENOMEM: the device's memory is too small, whichever finds it). */
 static void test_gpu_refused_when_too_small(void **state)
 {
     (void)state;
@@ -190,7 +225,7 @@ static void test_gpu_refused_when_too_small(void **state)
     unsetenv("INDENTMAP_GPU_MAX_MEMORY");
     print_message("%s\n", error);
     assert_int_equal(estimated, IM_ENOMEM);
-    assert_int_equal(planned, IM_EUNSUPPORTED);
+    assert_int_equal(planned, IM_ENOMEM);
     char needed[128], has[sizeof m.device + 64];
     snprintf(needed, sizeof needed, "a 256 x 256 solve needs %.3g GiB of device memory",
              m.device_bytes / 1073741824.0);
@@ -260,6 +295,62 @@ static void test_estimate_refuses_what_the_engine_refuses(void **state)
     check_refused_like_the_engine(256, 256, 1, "262144", "first axis (256)");
 }
 
+/* The estimate's rule for buffers in parts at its edge, GPU_PARTS_FIRST_AXIS (vulkan.h, the rule
+ * fft.c's refusal names too): a periodic cell in parts of 256 KiB whose first axis is the largest
+ * side under it that VkFFT transforms (16380 = 2^2 3^2 5 7 13) is refused naming the constant, one of
+ * GPU_PARTS_FIRST_AXIS is estimated (its modes in 4 parts). */
+static void test_parts_rule_at_its_edge(void **state)
+{
+    (void)state;
+    im_solver_options o = gpu_options(1, 0, 0);
+    im_solver_memory m;
+    char phrase[128];
+    snprintf(phrase, sizeof phrase, "first axis (16380) is shorter than VkFFT's several uploads need (%d)",
+             GPU_PARTS_FIRST_AXIS);
+    assert_int_equal(estimate_in_parts(16380, 8, &o, "262144", &m), IM_EUNSUPPORTED);
+    if (!strstr(im_last_error(), phrase))
+        fail_msg("'%s' does not say '%s'", im_last_error(), phrase);
+    if (estimate_in_parts(GPU_PARTS_FIRST_AXIS, 8, &o, "262144", &m) != IM_OK)
+        fail_msg("%d x 8 in parts: %s", GPU_PARTS_FIRST_AXIS, im_last_error());
+    assert_int_equal(m.gpu, 1);
+}
+
+/* INDENTMAP_GPU_MAX_MEMORY is a whole number of bytes: other text fails the estimate and the plan, under
+ * gpu and under auto alike (not read as some other size, nor ignored), naming the variable, its text and
+ * what is expected; empty is unset, as for INDENTMAP_GPU_MAX_PART. */
+static void test_max_memory_parsed_strictly(void **state)
+{
+    (void)state;
+    const char *bad[] = {"abc", "-5", "12GiB", "1e400", "nan", "0", "1048576.5", "99999999999999999999999"};
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; ++k)
+        for (int device = IM_DEVICE_GPU; device <= IM_DEVICE_AUTO; ++device) {
+            im_solver_options o = gpu_options(1, 1, 0);
+            o.device = device;
+            im_solver_memory m;
+            im_solver_plan *plan = NULL;
+            setenv("INDENTMAP_GPU_MAX_MEMORY", bad[k], 1);
+            const int estimated = im_solver_memory_needed(64, 64, &o, &m);
+            char error[1024], expected[128];
+            snprintf(error, sizeof error, "%s", im_last_error());
+            const int planned = device == IM_DEVICE_GPU ? im_solver_plan_create(64, 64, 1.0, &o, &plan) : IM_EINVAL;
+            unsetenv("INDENTMAP_GPU_MAX_MEMORY");
+            im_solver_plan_free(plan);
+            snprintf(expected, sizeof expected, "INDENTMAP_GPU_MAX_MEMORY=%s: expected a whole number of bytes",
+                     bad[k]);
+            if (estimated != IM_EINVAL || planned != IM_EINVAL || !strstr(error, expected))
+                fail_msg("INDENTMAP_GPU_MAX_MEMORY=%s, device %d: estimate %d (%s), plan %d", bad[k], device,
+                         estimated, error, planned);
+        }
+    im_solver_options o = gpu_options(1, 1, 0);
+    im_solver_memory m;
+    setenv("INDENTMAP_GPU_MAX_MEMORY", "", 1);
+    assert_int_equal(im_solver_memory_needed(64, 64, &o, &m), IM_OK);
+    setenv("INDENTMAP_GPU_MAX_MEMORY", "1048576", 1);
+    assert_int_equal(im_solver_memory_needed(64, 64, &o, &m), IM_OK);
+    unsetenv("INDENTMAP_GPU_MAX_MEMORY");
+    assert_true(m.device_memory == 1048576.0);
+}
+
 int main(int argc, char **argv)
 {
     test_keep_vulkan_libraries_loaded();
@@ -276,9 +367,12 @@ int main(int argc, char **argv)
     }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_device_estimate_exact),
+        cmocka_unit_test(test_plan_memory_is_the_plans),
         cmocka_unit_test(test_gpu_refused_when_too_small),
         cmocka_unit_test(test_auto_falls_back),
         cmocka_unit_test(test_estimate_refuses_what_the_engine_refuses),
+        cmocka_unit_test(test_parts_rule_at_its_edge),
+        cmocka_unit_test(test_max_memory_parsed_strictly),
         cmocka_unit_test(test_host_estimate_against_peak),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -315,7 +315,8 @@ double im_solver_plan_bytes(int nx, int ny);
  * engine's refusal (IM_EUNSUPPORTED: no GPU engine, no device). auto: the GPU's when a hardware GPU
  * opens and holds the plan, else the CPU's, with a note in out->note when the GPU's memory was too
  * small. The opening and closing of a Vulkan device takes a fraction of a second. IM_EINVAL for a NULL
- * out or invalid sides or options. */
+ * out or invalid sides or options, and under gpu and auto alike for an INDENTMAP_GPU_MAX_MEMORY (or
+ * _MAX_PART, _MAX_BUFFER) that is not a whole number of bytes >= 4096, naming it and its text. */
 typedef struct im_solver_memory {
     int gpu;              /* 1: the GPU engine solves it; 0: the CPU engine */
     double host_bytes;    /* the plan's host memory at its peak */
@@ -326,6 +327,11 @@ typedef struct im_solver_memory {
     char note[512];       /* device = auto on the CPU because the GPU's memory is too small: why; else "" */
 } im_solver_memory;
 int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out);
+/* The same estimate for a plan as made: its grid and the options it was made with, which a caller's may
+ * not be (an indentation's plan solves the repulsive problem: no adhesion, the cap H_p + w / delta_c;
+ * a cap turns the cascade and the preconditioner off), and its device as asked (auto: the note says
+ * why a plan that stayed on the CPU did). IM_EINVAL for a NULL plan or out; else as above. */
+int im_solver_plan_memory(const im_solver_plan *plan, im_solver_memory *out);
 /* Seconds spent planning (FFTW planning plus the kernel spectrum). */
 double im_solver_plan_seconds(const im_solver_plan *plan);
 /* The engine a plan's solves run on: "cpu", or the GPU's device name. */
@@ -517,6 +523,12 @@ int im_indentation_plastic(const im_indentation *run, im_field **plastic);
 /* The sub-grid the run solves (all zero for a NULL run), and the plan it solves on (NULL for a NULL
  * run; owned by the run). */
 im_window im_indentation_window(const im_indentation *run);
+/* The window im_indentation_create would solve on with these arguments, without making its plan or
+ * fields (the undeformed gap of the whole grid is made and freed): what a solve there allocates is
+ * that window's (scenes' limits). Its errors are im_indentation_create's checks'; *out is all zero
+ * on an error. IM_EINVAL for a NULL out, punch or an invalid surface view. */
+int im_indentation_window_for(const im_field *surface, const im_indenter *punch, enum im_control control,
+                              double largest_target, const im_solver_options *options, im_window *out);
 const im_solver_plan *im_indentation_plan(const im_indentation *run);
 
 /* Fields of the last step on the FULL surface grid (new fields, caller frees; any pointer may be

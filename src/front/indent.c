@@ -422,14 +422,14 @@ static int write_viewer_page(const indent_run_state *s, const run_folder *folder
     return run_folder_page(folder, title, s->options->page_embed, status);
 }
 
-/* device = auto on the CPU because the GPU's memory would not hold the plan: said, with the numbers. */
+/* device = auto on the CPU because the GPU's memory would not hold the plan: said, with the numbers of
+ * the plan as made (its window and options, not the run's: solver.h, im_solver_plan_memory). */
 static void note_auto_on_cpu(const indent_run_state *s, const im_indentation *run)
 {
-    const im_window w = im_indentation_window(run);
+    const im_solver_plan *plan = im_indentation_plan(run);
     im_solver_memory m;
-    if (s->options->solver.device == IM_DEVICE_AUTO &&
-        strcmp(im_solver_plan_device(im_indentation_plan(run)), "cpu") == 0 &&
-        im_solver_memory_needed(w.nx, w.ny, &s->options->solver, &m) == IM_OK && m.note[0])
+    if (s->options->solver.device == IM_DEVICE_AUTO && strcmp(im_solver_plan_device(plan), "cpu") == 0 &&
+        im_solver_plan_memory(plan, &m) == IM_OK && m.note[0])
         indent_say(s, IM_LOG_WARNING, "%s", m.note);
 }
 

@@ -18,6 +18,11 @@ enum { MAX_DEVICES = 16, MAX_BINDINGS = 16, MAX_DESCRIPTORS = 32 };
 
 static const char VALIDATION_LAYER[] = "VK_LAYER_KHRONOS_validation";
 
+/* Limits in bytes a test may set (read_limits); UINT64_MAX: none. */
+typedef struct gpu_limits {
+    VkDeviceSize memory, part, buffer;
+} gpu_limits;
+
 struct gpu_context {
     VkInstance instance;
     VkDebugUtilsMessengerEXT messenger;
@@ -33,6 +38,8 @@ struct gpu_context {
     VkPhysicalDeviceMemoryProperties memory;
     VkDeviceSize max_buffer;
     VkDeviceSize part_bytes, chunk_bytes; /* gpu_context_part_bytes, gpu_context_chunk_bytes */
+    VkDeviceSize device_bytes;            /* gpu_context_device_bytes */
+    gpu_limits limits;                    /* the environment's (read_limits) */
     int nonuniform_buffers;               /* gpu_context_nonuniform_buffers */
     int software;
     int recording;
@@ -300,6 +307,18 @@ static int choose_device(gpu_context *context, enum gpu_preference preference)
     return IM_OK;
 }
 
+/* The sum of the device-local heaps of a device. */
+static VkDeviceSize device_local_bytes(VkPhysicalDevice device)
+{
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(device, &memory);
+    VkDeviceSize bytes = 0;
+    for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+        if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            bytes += memory.memoryHeaps[i].size;
+    return bytes;
+}
+
 /* The largest power of two not above limit, nor above 2 GiB (so a chunk's doubles fit a 32-bit
  * index with room to spare). */
 static VkDeviceSize power_of_two_within(VkDeviceSize limit)
@@ -310,7 +329,8 @@ static VkDeviceSize power_of_two_within(VkDeviceSize limit)
     return bytes;
 }
 
-/* Lowers *limit to the whole number of bytes in environment variable `name`, when it is set. */
+/* Lowers *limit to the whole number of bytes in environment variable `name`, when it is set (empty:
+ * not set); IM_EINVAL naming the variable and its text for anything else, a unit suffix included. */
 static int lower_to_environment(const char *name, VkDeviceSize *limit)
 {
     enum { SMALLEST = 4096 };
@@ -321,30 +341,39 @@ static int lower_to_environment(const char *name, VkDeviceSize *limit)
     errno = 0;
     const unsigned long long asked = strtoull(text, &end, 10);
     if (errno || *end || text[0] == '-' || asked < SMALLEST)
-        return im_fail(IM_EINVAL, "%s=%s: expected a whole number of bytes, at least %d", name, text, SMALLEST);
+        return im_fail(IM_EINVAL, "%s=%s: expected a whole number of bytes (digits only, no unit), at least %d", name,
+                       text, SMALLEST);
     if (asked < *limit)
         *limit = asked;
     return IM_OK;
 }
 
-/* The part size and the chunk size, within INDENTMAP_GPU_MAX_PART and INDENTMAP_GPU_MAX_BUFFER when
- * they are set (the one place they are read). Tests lower them: INDENTMAP_GPU_MAX_BUFFER splits
- * small fields into shader chunks while VkFFT keeps one buffer (any device, lavapipe included);
+/* The test settings of the environment, read when a context opens, before any device, so that bad text
+ * fails wherever it is set (not only where a device opens): INDENTMAP_GPU_MAX_MEMORY lowers the device
+ * memory the engine may fill (a run too large for the device on any machine); INDENTMAP_GPU_MAX_BUFFER
+ * splits small fields into shader chunks while VkFFT keeps one buffer (any device, lavapipe included);
  * INDENTMAP_GPU_MAX_PART splits buffers into parts, so that VkFFT's multi-buffer mode runs on small
- * grids (devices that index buffer arrays non-uniformly natively: NVIDIA's, not lavapipe). */
-static int choose_chunk_bytes(gpu_context *context)
+ * grids (devices that index buffer arrays non-uniformly natively: NVIDIA's, not lavapipe). The one
+ * place they are read. */
+static int read_limits(gpu_limits *limits)
 {
-    VkDeviceSize part_limit = context->max_buffer;
-    int status = lower_to_environment("INDENTMAP_GPU_MAX_PART", &part_limit);
-    if (status != IM_OK)
-        return status;
-    context->part_bytes = power_of_two_within(part_limit);
-    VkDeviceSize limit = context->part_bytes;
-    status = lower_to_environment("INDENTMAP_GPU_MAX_BUFFER", &limit);
-    if (status != IM_OK)
-        return status;
-    context->chunk_bytes = power_of_two_within(limit);
-    return IM_OK;
+    *limits = (gpu_limits){UINT64_MAX, UINT64_MAX, UINT64_MAX};
+    int status = lower_to_environment("INDENTMAP_GPU_MAX_MEMORY", &limits->memory);
+    if (status == IM_OK)
+        status = lower_to_environment("INDENTMAP_GPU_MAX_PART", &limits->part);
+    if (status == IM_OK)
+        status = lower_to_environment("INDENTMAP_GPU_MAX_BUFFER", &limits->buffer);
+    return status;
+}
+
+static VkDeviceSize smaller(VkDeviceSize a, VkDeviceSize b) { return a < b ? a : b; }
+
+/* The device memory the engine may fill, the part size and the chunk size, within the settings. */
+static void choose_limits(gpu_context *context)
+{
+    context->device_bytes = smaller(device_local_bytes(context->physical), context->limits.memory);
+    context->part_bytes = power_of_two_within(smaller(context->max_buffer, context->limits.part));
+    context->chunk_bytes = power_of_two_within(smaller(context->part_bytes, context->limits.buffer));
 }
 
 /* shaderStorageBufferArrayNonUniformIndexingNative (VK_EXT_descriptor_indexing's property). */
@@ -370,9 +399,7 @@ static int create_device(gpu_context *context)
     snprintf(context->name, sizeof context->name, "%s", properties.deviceName);
     context->software = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     context->max_buffer = properties.limits.maxStorageBufferRange;
-    int status = choose_chunk_bytes(context);
-    if (status != IM_OK)
-        return status;
+    choose_limits(context);
     context->nonuniform_buffers = nonuniform_buffers(context->physical);
 
     float priority = 1.0f;
@@ -420,7 +447,9 @@ int gpu_context_open(enum gpu_preference preference, int validation, gpu_context
     gpu_context *context = calloc(1, sizeof *context);
     if (!context)
         return im_fail(IM_ENOMEM, "GPU context: out of memory");
-    int status = create_instance(context, validation);
+    int status = read_limits(&context->limits);
+    if (status == IM_OK)
+        status = create_instance(context, validation);
     if (status == IM_OK)
         status = choose_device(context, preference);
     if (status == IM_OK)
@@ -485,18 +514,7 @@ gpu_handles gpu_context_handles(gpu_context *context)
 
 /* ---- Describing the devices (indentmap info) ---- */
 
-static VkDeviceSize device_local_bytes(VkPhysicalDevice device)
-{
-    VkPhysicalDeviceMemoryProperties memory;
-    vkGetPhysicalDeviceMemoryProperties(device, &memory);
-    VkDeviceSize bytes = 0;
-    for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
-        if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            bytes += memory.memoryHeaps[i].size;
-    return bytes;
-}
-
-VkDeviceSize gpu_context_device_bytes(const gpu_context *context) { return device_local_bytes(context->physical); }
+VkDeviceSize gpu_context_device_bytes(const gpu_context *context) { return context->device_bytes; }
 
 static int describe_device(VkPhysicalDevice device, char *line, size_t size)
 {

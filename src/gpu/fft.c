@@ -151,8 +151,8 @@ static void hand_over(const gpu_buffer *buffer, uint64_t extent, uint64_t used, 
  * or write the reals as reals (the R2C axis in one upload) index the blocks of the real buffer by the
  * complex block size, half the reals a block holds: on an H200 a 256^2 transform in 5 parts was
  * wrong (1.3e3 of the largest mode) with cmake/patch_vkfft.cmake's edit (d) and without. When the
- * first axis takes several uploads (16384 and longer in double) VkFFT reads the reals as complex
- * pairs, and with edit (d) a 16384^2 periodic solve (modes in 2 parts) converged on the H200. */
+ * first axis takes several uploads (GPU_PARTS_FIRST_AXIS and longer in double) VkFFT reads the reals as
+ * complex pairs, and with edit (d) a 16384^2 periodic solve (modes in 2 parts) converged on the H200. */
 static int check_parts_path(const gpu_fft *fft)
 {
     const int in_parts = fft->real_parts > 1 || fft->modes_parts > 1;
@@ -163,8 +163,9 @@ static int check_parts_path(const gpu_fft *fft)
                            "GPU FFT %d x %d: its buffers exceed one storage buffer (%u parts) and its first axis "
                            "takes one upload: VkFFT 1.2.26's multi-buffer mode then addresses the reals wrongly "
                            "(docs/solver.md, \"Fields beyond one storage buffer\"); transforms in parts need a "
-                           "first axis of several uploads (16384 and longer in double)",
-                           fft->px, fft->py, fft->modes_parts > fft->real_parts ? fft->modes_parts : fft->real_parts);
+                           "first axis of several uploads (%d and longer in double)",
+                           fft->px, fft->py, fft->modes_parts > fft->real_parts ? fft->modes_parts : fft->real_parts,
+                           GPU_PARTS_FIRST_AXIS);
     return IM_OK;
 }
 

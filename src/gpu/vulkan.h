@@ -70,8 +70,11 @@ VkDeviceSize gpu_context_chunk_bytes(const gpu_context *context);
 /* Whether the device indexes arrays of storage buffers by non-uniform indices natively, which
  * VkFFT's multi-buffer mode (transforms of buffers in several parts) relies on. */
 int gpu_context_nonuniform_buffers(const gpu_context *context);
-/* The device-local memory of the context's device (its heaps' sum), and what a buffer of `bytes`
- * occupies there (whole parts). */
+/* The device-local memory the engine may fill: the device's heaps' sum, or less where the environment's
+ * INDENTMAP_GPU_MAX_MEMORY (a whole number of bytes, no unit; a test setting: a run too large for the
+ * device on any machine) says so; and what a buffer of `bytes` occupies there (whole parts). Like
+ * INDENTMAP_GPU_MAX_PART and INDENTMAP_GPU_MAX_BUFFER it is read when the context opens, which fails
+ * with IM_EINVAL naming the variable and its text when that is not a whole number of bytes >= 4096. */
 VkDeviceSize gpu_context_device_bytes(const gpu_context *context);
 VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSize bytes);
 /* The device-local memory the context's buffers hold now (their parts' sizes; VkFFT's own small
@@ -155,6 +158,13 @@ const char *gpu_result_name(VkResult result);
  * uploads, and VkFFT reorders through it), at least gpu_fft_modes_bytes too, whose contents the
  * transforms destroy; NULL lets VkFFT allocate its own, as one buffer, when it needs one. */
 VkDeviceSize gpu_fft_modes_bytes(int px, int py); /* (px/2 + 1) * py complex doubles */
+/* Buffers in parts (VkFFT's multi-buffer mode) are transformed only when the transform's first axis
+ * takes several of VkFFT's uploads: its one-upload R2C kernels address the reals of a buffer in parts
+ * wrongly (fft.c, check_parts_path, which asks the plan). A first axis of this many reals or more takes
+ * several in double (its 8192 complex values, 128 KiB, exceed a workgroup's shared memory on the devices
+ * seen); the estimate (engine_gpu.c, check_estimated_transforms) judges by this length before any plan,
+ * refusing in parts whatever is shorter. */
+enum { GPU_PARTS_FIRST_AXIS = 16384 };
 typedef struct gpu_fft gpu_fft;
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_buffer *scratch,
                    gpu_fft **out);

@@ -162,6 +162,14 @@ static double step_target(const im_scene *scene, int i, const im_field *surface)
                                              : scene->steps[i];
 }
 
+double scene_largest_step(const im_scene *scene, const im_field *surface)
+{
+    double largest = 0; /* a history with a hardness may go down, one with adhesion below 0 */
+    for (int i = 0; i < scene->step_count; ++i)
+        largest = fmax(largest, fabs(step_target(scene, i, surface)));
+    return largest;
+}
+
 /* What a step of the scene's list is. */
 static const char *step_name(const im_scene *scene)
 {
@@ -220,10 +228,8 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
     const im_theory_interface *theory = scene->periodic ? NULL : &rough; /* as indent: none for a cell */
     im_solver_options options = scene_solver_options(scene);
     im_indentation *run = NULL;
-    double largest = 0; /* the largest step: a history with a hardness may go down, one with adhesion below 0 */
-    for (int i = 0; i < scene->step_count; ++i)
-        largest = fmax(largest, fabs(step_target(scene, i, surface)));
-    int status = im_indentation_create(surface, &punch, scene->control, largest, &options, &run);
+    int status = im_indentation_create(surface, &punch, scene->control, scene_largest_step(scene, surface), &options,
+                                       &run);
     for (int i = 0; i < scene->step_count && status == IM_OK; ++i) {
         if (scene_stop_signal(run_options)) {
             status = IM_EINTERRUPTED; /* abandoned: the caller reports the interruption */

@@ -12,6 +12,10 @@ int scene_history_member(const im_scene *scene, const im_scene_run_options *opti
  * state at load_star a load-controlled history takes instead of solving it again. */
 void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count);
 
+/* The largest |target| of the [loading] steps on surface: a history's largest target
+ * (im_indentation_create's), which bounds its window. */
+double scene_largest_step(const im_scene *scene, const im_field *surface);
+
 /* Histories of every member over [loading] steps, for plots fig5, fig6, fig7. A load-controlled
  * step at load_star takes the table's state (reuse->table) instead of solving it again; without a
  * table, that step's force is kept in reuse->force for the panels. */

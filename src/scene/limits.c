@@ -9,6 +9,7 @@
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "scene/ensemble.h"
+#include "scene/histories.h"
 #include "scene/limits.h"
 #include "scene/plots.h"
 #include "scene/progress.h"
@@ -134,8 +135,8 @@ static int check_consistency(const im_scene *scene, const grid *g)
 
 /* ---- memory ---- */
 
-/* One solve: its plan on the whole grid (the solve window is at most that) on the engine the scene's
- * device takes (the host's share: the CPU plan, or a GPU plan's tables, staging and cascade arrays) and
+/* One solve: its plan on the solves' window (solves_window: the whole grid where it is not known) on
+ * the engine the scene's device takes (the host's share: the CPU plan, or a GPU plan's tables, staging and cascade arrays) and
  * its fields (surface, undeformed gap, pressure, displacement, and the copies a step hands out). */
 static double solve_bytes(const grid *g, const im_solver_memory *plan)
 {
@@ -201,31 +202,113 @@ static double address_space_overhead(const im_scene *scene)
     return overhead;
 }
 
+/* ---- the solves' window ---- */
+
+/* *largest, or the window of a solve of surface at the largest target (im_indentation_window_for) when
+ * it has more patches. An error is left to the solve (the whole grid is then counted). */
+static int keep_larger_window(const im_field *surface, const im_indenter *punch, enum im_control control,
+                              double target, const im_solver_options *options, im_window *largest)
+{
+    im_window w;
+    int status = im_indentation_window_for(surface, punch, control, target, options, &w);
+    if (status == IM_OK && (double)w.nx * w.ny > (double)largest->nx * largest->ny)
+        *largest = w;
+    return status;
+}
+
+/* The largest window of the solves of a member on surface: its history's at the largest step, and the
+ * load_star stages' (table, frames, panels, distributions) at load_star. */
+static int member_window(const im_scene *scene, const im_field *surface, im_window *largest)
+{
+    const im_solver_options options = scene_solver_options(scene);
+    int status = IM_OK;
+    if (scene_wants_histories(scene) && scene->step_count > 0) {
+        const im_indenter punch = scene_member_punch(scene, surface);
+        status = keep_larger_window(surface, &punch, scene->control, scene_largest_step(scene, surface), &options,
+                                    largest);
+    }
+    const int at_load_star = scene->load_star > 0.0 &&
+                             (scene->contact_panels || scene->frames || scene->table || scene->distributions);
+    if (status == IM_OK && at_load_star) {
+        const im_indenter punch = scene_punch(scene);
+        status = keep_larger_window(surface, &punch, IM_CONTROL_LOAD, scene_load_for_load_star(scene, surface->delta),
+                                    &options, largest);
+    }
+    return status;
+}
+
+/* Whether every member's heights are known before any work: surface files (read again here), or smooth
+ * families. A synthesized family's are not, and its window's bound holds its height range. */
+static int heights_known(const im_scene *scene)
+{
+    for (int f = 0; f < scene->family_count && !scene->surface_file[0]; ++f)
+        if (scene->slopes[f] != 0.0)
+            return 0;
+    return 1;
+}
+
+/* The grid a solve of the scene is planned on: the largest window of its members' solves where their
+ * heights are known before any work, else (a synthesized family, a periodic cell, which has no window, or
+ * a window the solve would refuse) the whole grid, an upper bound. */
+static grid solves_window(const im_scene *scene, const grid *g)
+{
+    if (scene->periodic || !heights_known(scene))
+        return *g;
+    const int files = scene->surface_file[0] ? scene->file_count : 0, members = files ? files : scene->family_count;
+    im_window largest = {0, 0, 0, 0};
+    int status = IM_OK;
+    for (int k = 0; k < members && status == IM_OK; ++k) {
+        im_field *surface = NULL;
+        status = scene_surface(scene, files ? 0 : k, files ? (uint64_t)k : scene->seeds[0], &surface);
+        if (status == IM_OK)
+            status = member_window(scene, surface, &largest);
+        im_field_free(surface);
+    }
+    return status == IM_OK && largest.nx > 0 ? (grid){largest.nx, largest.ny, g->delta} : *g;
+}
+
+/* Whether the solves take less than the whole grid. */
+static int is_window(const grid *g, const grid *w) { return w->nx != g->nx || w->ny != g->ny; }
+
+/* "a 60 x 54 window of the 256 x 256 grid", or "a 256 x 256 grid" when the solves take all of it. */
+static void describe_solve(const grid *g, const grid *w, char *text, size_t size)
+{
+    if (!is_window(g, w))
+        snprintf(text, size, "a %d x %d grid", g->nx, g->ny);
+    else
+        snprintf(text, size, "a %d x %d window of the %d x %d grid", w->nx, w->ny, g->nx, g->ny);
+}
+
 /* The device memory of the solves at once, each on its own context of the one GPU. */
-static int check_device_memory(const im_scene *scene, const grid *g, const im_solver_memory *plan, int at_once)
+static int check_device_memory(const im_scene *scene, const grid *g, const grid *w, const im_solver_memory *plan,
+                               int at_once)
 {
     if (!plan->gpu || at_once * plan->device_bytes <= plan->device_memory)
         return IM_OK;
+    char solve[96];
+    describe_solve(g, w, solve, sizeof solve);
     return im_fail(IM_ENOMEM,
-                   "%s: this scene solves %d surfaces at once on %s, %.3g GiB of device memory each for a %d x %d "
-                   "grid (%.3g GiB), but %s has %.3g GiB; use fewer threads (OMP_NUM_THREADS), device = cpu, or a "
-                   "smaller grid",
-                   scene->path, at_once, plan->device, plan->device_bytes / (1024 * MIB), g->nx, g->ny,
+                   "%s: this scene solves %d surfaces at once on %s, %.3g GiB of device memory each for %s (%.3g "
+                   "GiB), but %s has %.3g GiB; use fewer threads (OMP_NUM_THREADS), device = cpu, or a smaller grid",
+                   scene->path, at_once, plan->device, plan->device_bytes / (1024 * MIB), solve,
                    at_once * plan->device_bytes / (1024 * MIB), plan->device, plan->device_memory / (1024 * MIB));
 }
 
-/* The memory a solve needs on the engine the scene's device takes (a GPU is opened only when asked for,
- * and only for scenes that solve); device = auto falling back to the CPU says why. */
-static int plan_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g,
+/* The memory a solve on w needs on the engine the scene's device takes (a GPU is opened only when asked
+ * for, and only for scenes that solve); device = auto falling back to the CPU says why. */
+static int plan_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g, const grid *w,
                        im_solver_memory *plan)
 {
     im_solver_options solver = scene_solver_options(scene);
     int solves = scene->table || scene->step_count > 0 || scene->frames || scene->contact_panels;
     if (!solves)
         solver.device = IM_DEVICE_CPU;
-    int status = im_solver_memory_needed(g->nx, g->ny, &solver, plan);
+    int status = im_solver_memory_needed(w->nx, w->ny, &solver, plan);
+    char solve[96];
+    describe_solve(g, w, solve, sizeof solve);
     if (status == IM_ENOMEM) /* the device's memory: the others name what they refuse */
-        return im_fail_context(status, "%s: [solver] device = gpu", scene->path);
+        return im_fail_context(status, "%s: [solver] device = gpu%s%s", scene->path,
+                               is_window(g, w) ? ", solves on " : "", is_window(g, w) ? solve : "");
     if (status != IM_OK)
         return im_fail_context(status, "%s", scene->path);
     if (plan->note[0])
@@ -236,11 +319,12 @@ static int plan_memory(const im_scene *scene, const im_scene_run_options *option
 static int check_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g)
 {
     im_solver_memory plan;
-    int at_once, status = plan_memory(scene, options, g, &plan);
+    const grid w = solves_window(scene, g);
+    int at_once, status = plan_memory(scene, options, g, &w, &plan);
     if (status != IM_OK)
         return status;
     double needed = memory_needed(scene, g, &plan, &at_once);
-    if ((status = check_device_memory(scene, g, &plan, at_once)) != IM_OK)
+    if ((status = check_device_memory(scene, g, &w, &plan, at_once)) != IM_OK)
         return status;
     size_t available = im_memory_available();
     if (available != 0 && needed > (double)available)

@@ -611,16 +611,6 @@ static VkDeviceSize plan_footprint(const gpu_context *c, int nx, int ny, const i
     return total;
 }
 
-/* The device memory the engine may fill: the device's, or less where INDENTMAP_GPU_MAX_MEMORY (bytes)
- * says so, for tests (a run too large for the device, on any machine). */
-static VkDeviceSize device_memory(const gpu_context *c)
-{
-    const VkDeviceSize bytes = gpu_context_device_bytes(c);
-    const char *text = getenv("INDENTMAP_GPU_MAX_MEMORY");
-    const double limit = text && text[0] ? strtod(text, NULL) : 0;
-    return limit > 0 && limit < (double)bytes ? (VkDeviceSize)limit : bytes;
-}
-
 static void gpu_engine_free(im_solver_plan *plan)
 {
     struct gpu_solver *s = plan->gpu;
@@ -696,17 +686,17 @@ static int check_grid(const im_solver_plan *plan, const gpu_device *d)
 
 /* What the plan's transforms would meet when made (gpu_fft_create's refusal of buffers in parts
  * whose first axis takes one of VkFFT's uploads, known only once VkFFT plans it): judged before any
- * plan by the first axis' length, 16384 and longer taking several uploads in double, so that a grid
- * the GPU may refuse is estimated on the CPU (the larger plan). */
+ * plan by the first axis' length (vulkan.h: GPU_PARTS_FIRST_AXIS), so that a grid the GPU may refuse
+ * is estimated on the CPU (the larger plan). */
 static int check_estimated_transforms(gpu_context *c, int nx, int ny, const im_solver_options *o)
 {
     const int px = o->periodic ? nx : 2 * nx, py = o->periodic ? ny : 2 * ny;
     int status = check_transform_grid(c, nx, ny, px, py);
-    if (status == IM_OK && gpu_fft_modes_bytes(px, py) > gpu_context_part_bytes(c) && px < 16384)
+    if (status == IM_OK && gpu_fft_modes_bytes(px, py) > gpu_context_part_bytes(c) && px < GPU_PARTS_FIRST_AXIS)
         status = im_fail(IM_EUNSUPPORTED,
                          "GPU engine: solver grid %d x %d: its buffers exceed one storage buffer and its first "
-                         "axis (%d) is shorter than VkFFT's several uploads need (16384)",
-                         nx, ny, px);
+                         "axis (%d) is shorter than VkFFT's several uploads need (%d)",
+                         nx, ny, px, GPU_PARTS_FIRST_AXIS);
     return status;
 }
 
@@ -780,17 +770,18 @@ static int make_buffers(im_solver_plan *plan, struct gpu_solver *s)
 }
 
 /* Refuses, before allocating, a plan whose buffers with those of its finer levels exceed the
- * device's memory (IM_EUNSUPPORTED: device = auto then solves on the CPU). */
+ * device's memory: IM_ENOMEM, as im_solver_memory_needed's estimate and a failed device allocation
+ * (device = auto then solves on the CPU). */
 static int check_memory(const im_solver_plan *plan, struct gpu_solver *s)
 {
     gpu_device *d = s->device;
     const VkDeviceSize needed = solver_footprint(d->context, s, plan->options.precondition);
-    const VkDeviceSize available = device_memory(d->context);
+    const VkDeviceSize available = gpu_context_device_bytes(d->context);
     if (d->fields_bytes + needed <= available) {
         d->fields_bytes += s->footprint = needed;
         return IM_OK;
     }
-    return im_fail(IM_EUNSUPPORTED,
+    return im_fail(IM_ENOMEM,
                    "GPU engine: solver grid %d x %d needs %.2f GiB of device memory for its fields (%.2f GiB with "
                    "its finer cascade levels), and %s has %.2f GiB (use device = cpu, or a smaller grid)",
                    plan->nx, plan->ny, (double)needed / 1073741824.0,
@@ -859,7 +850,7 @@ int solver_engine_gpu_estimate(int nx, int ny, const im_solver_options *o, solve
     /* gpu_context_reserve_staging: an upload and a download buffer of the top plan's field, a part at most */
     const double field = sizeof(double) * (double)nx * ny, part = (double)gpu_context_part_bytes(c);
     *out = (solver_gpu_estimate){.device_bytes = (double)plan_footprint(c, nx, ny, o),
-                                 .device_memory = (double)device_memory(c),
+                                 .device_memory = (double)gpu_context_device_bytes(c),
                                  .staging_bytes = 2 * fmin(field, part),
                                  .software = gpu_context_is_software(c)};
     snprintf(out->device, sizeof out->device, "%s", gpu_context_device_name(c));

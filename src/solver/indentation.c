@@ -301,12 +301,10 @@ static int allocate_window(im_indentation *run)
     return status;
 }
 
-int im_indentation_create(const im_field *surface, const im_indenter *punch, enum im_control control,
-                          double largest_target, const im_solver_options *options, im_indentation **out)
+/* A run up to its window: checked, its undeformed gap and window chosen, nothing of the window's made. */
+static int start_run(const im_field *surface, const im_indenter *punch, enum im_control control,
+                     double largest_target, const im_solver_options *options, im_indentation **out)
 {
-    ARG_VIEW(surface, "surface");
-    ARG_REQUIRE(punch, "punch");
-    ARG_REQUIRE(out, "out");
     *out = NULL;
     im_solver_options o = options ? *options : im_solver_options_default();
     int status = check_create(surface, punch, control, largest_target, &o);
@@ -329,16 +327,43 @@ int im_indentation_create(const im_field *surface, const im_indenter *punch, enu
     run->approach_bound = approach_bound(control == IM_CONTROL_LOAD ? height_range(surface) : 0, punch, control,
                                          largest_target, &o);
     status = undeformed_gap(run, surface);
-    if (status == IM_OK) {
+    if (status == IM_OK)
         run->window = choose_window(run);
-        status = allocate_window(run);
-    }
     if (status != IM_OK) {
         im_indentation_free(run);
         return status;
     }
     *out = run;
     return IM_OK;
+}
+
+int im_indentation_create(const im_field *surface, const im_indenter *punch, enum im_control control,
+                          double largest_target, const im_solver_options *options, im_indentation **out)
+{
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(punch, "punch");
+    ARG_REQUIRE(out, "out");
+    int status = start_run(surface, punch, control, largest_target, options, out);
+    if (status == IM_OK && (status = allocate_window(*out)) != IM_OK) {
+        im_indentation_free(*out);
+        *out = NULL;
+    }
+    return status;
+}
+
+int im_indentation_window_for(const im_field *surface, const im_indenter *punch, enum im_control control,
+                              double largest_target, const im_solver_options *options, im_window *out)
+{
+    ARG_REQUIRE(out, "out");
+    *out = (im_window){0, 0, 0, 0};
+    ARG_VIEW(surface, "surface");
+    ARG_REQUIRE(punch, "punch");
+    im_indentation *run = NULL;
+    const int status = start_run(surface, punch, control, largest_target, options, &run);
+    if (status == IM_OK)
+        *out = run->window;
+    im_indentation_free(run);
+    return status;
 }
 
 int indentation_create_on_rows(const indentation_rows *grid, const im_indenter *punch, enum im_control control,

@@ -209,6 +209,13 @@ static int no_gpu_engine(void)
 }
 #endif
 
+#if IM_HAVE_GPU
+/* Whether the GPU engine declined a plan that device = auto (or a cascade level of a plan on the GPU)
+ * then solves on the CPU: it cannot do it (no hardware GPU, a size VkFFT does not transform) or the
+ * device's memory would not hold it. Anything else (a bad INDENTMAP_GPU_* setting) is an error. */
+static int gpu_declined(int status) { return status == IM_EUNSUPPORTED || status == IM_ENOMEM; }
+#endif
+
 /* The GPU's estimate and choice (solver_memory_choose); auto without a GPU engine or a GPU: the CPU. */
 static int gpu_memory_needed(int nx, int ny, const im_solver_options *o, im_solver_memory *out)
 {
@@ -216,7 +223,7 @@ static int gpu_memory_needed(int nx, int ny, const im_solver_options *o, im_solv
     solver_gpu_estimate gpu;
     int status = solver_engine_gpu_estimate(nx, ny, o, &gpu);
     if (status != IM_OK)
-        return o->device == IM_DEVICE_AUTO ? IM_OK : status;
+        return o->device == IM_DEVICE_AUTO && gpu_declined(status) ? IM_OK : status;
     return solver_memory_choose(nx, ny, o, &gpu, out);
 #else
     (void)nx, (void)ny, (void)out;
@@ -236,6 +243,14 @@ int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im
     solver_plan_options(&o);
     *out = (im_solver_memory){.host_bytes = im_solver_plan_bytes(nx, ny), .device = "cpu"};
     return o.device == IM_DEVICE_CPU ? IM_OK : gpu_memory_needed(nx, ny, &o, out);
+}
+
+int im_solver_plan_memory(const im_solver_plan *plan, im_solver_memory *out)
+{
+    ARG_REQUIRE(out, "out");
+    *out = (im_solver_memory){.host_bytes = NAN};
+    ARG_REQUIRE(plan, "plan");
+    return im_solver_memory_needed(plan->nx, plan->ny, &plan->options, out);
 }
 
 const char *im_solver_wisdom_file(const im_solver_options *o)
@@ -564,8 +579,9 @@ static int choose_engine(im_solver_plan *p, const im_solver_plan *finer)
         return IM_OK;
 #if IM_HAVE_GPU
     int status = solver_engine_gpu_attach(p, finer);
-    /* a cascade level VkFFT cannot transform is solved on the CPU (a quarter of the finer level's size) */
-    if (status == IM_EUNSUPPORTED && (finer || p->options.device == IM_DEVICE_AUTO))
+    /* a cascade level VkFFT cannot transform or the device cannot hold is solved on the CPU (a quarter
+     * of the finer level's size) */
+    if (gpu_declined(status) && (finer || p->options.device == IM_DEVICE_AUTO))
         return IM_OK;
     return status;
 #else
