@@ -8,7 +8,6 @@
 
 #include "indentmap/status.h"
 
-#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <string.h>
@@ -189,25 +188,8 @@ static int check_periodic_approach(const im_solver_plan *plan, const double *gap
     return solver_check_periodic_mean_gap(sum_doubles(gap0, n) / (double)n, target);
 }
 
-/* The first index in [0, n) whose value fails its check, n if none: only after the fast check failed. */
-static size_t first_bad_gap(const double *gap0, size_t n)
-{
-    size_t i = 0;
-    while (i < n && gap0[i] >= 0)
-        ++i;
-    return i;
-}
-
-static size_t first_bad_pressure(const double *p, size_t n)
-{
-    size_t i = 0;
-    while (i < n && isfinite(p[i]) && p[i] >= 0)
-        ++i;
-    return i;
-}
-
-/* The caller's arrays checked in one pass, which also says whether any pressure is positive (a warm start).
- * The pass only accumulates flags, which vectorise: the offending index is searched for after a failure. */
+/* The caller's arrays checked in one pass, which also says whether any pressure is positive (a warm
+ * start), so that no second pass over p looks for one. */
 static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                         const double *p, int *positive)
 {
@@ -217,18 +199,19 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
     const size_t n = (size_t)plan->nx * plan->ny;
-    int gaps_valid = 1, pressures_valid = 1, any_positive = 0;
-#pragma omp parallel for schedule(static) reduction(& : gaps_valid, pressures_valid) reduction(| : any_positive)
+    size_t bad_gap = n, bad_pressure = n; /* the first offending index of each, n if none */
+    int any_positive = 0;
+#pragma omp parallel for schedule(static) reduction(min : bad_gap, bad_pressure) reduction(| : any_positive)
     for (size_t i = 0; i < n; ++i) {
-        gaps_valid &= gap0[i] >= 0; /* NaN fails, +inf passes */
-        pressures_valid &= p[i] >= 0 && p[i] <= DBL_MAX;
+        if ((isnan(gap0[i]) || gap0[i] < 0) && i < bad_gap)
+            bad_gap = i;
+        if (!(isfinite(p[i]) && p[i] >= 0) && i < bad_pressure)
+            bad_pressure = i;
         any_positive |= p[i] > 0;
     }
     *positive = any_positive;
-    const size_t bad_gap = gaps_valid ? n : first_bad_gap(gap0, n);
     if (bad_gap < n)
         return im_fail(IM_ENUMERIC, "undeformed gap[%zu] = %g: expected >= 0 or +inf", bad_gap, gap0[bad_gap]);
-    const size_t bad_pressure = pressures_valid ? n : first_bad_pressure(p, n);
     if (bad_pressure < n)
         return im_fail(IM_EINVAL, "warm-start pressure[%zu] = %g: expected finite and >= 0", bad_pressure,
                        p[bad_pressure]);
