@@ -426,6 +426,86 @@ static void test_device_memory_counted(void **state)
     set_chunk_limit(NULL);
 }
 
+/* What a cold cascade solve of nx x ny moves (bytes up, down), the coarse answers handed over on the
+ * device: each level's gap up, the coarsest level's zero start up, the top level's p and u down. */
+static void expected_cascade_transfers(int nx, int ny, int periodic, double *up, double *down)
+{
+    *up = 8.0 * nx * ny;
+    *down = 16.0 * nx * ny;
+    for (int cx, cy; solver_cascade_sides(nx, ny, periodic, &cx, &cy); nx = cx, ny = cy)
+        *up += 8.0 * cx * cy;
+    *up += 8.0 * nx * ny;
+}
+
+/* One cold solve of a rough flat contact under load on the engine: its result, pressure and the bytes
+ * its device moved (-1 on the CPU). */
+static im_solve_result cold_flat_solve(int device, const im_field *s, int periodic, double *p, double *up,
+                                       double *down)
+{
+    const size_t n = im_field_count(s);
+    double highest = -INFINITY, *gap0 = malloc(sizeof(double) * n), *u = malloc(sizeof(double) * n);
+    for (size_t i = 0; i < n; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < n; ++i)
+        gap0[i] = highest - s->data[i];
+    im_solver_options o = engine_options(device);
+    o.periodic = periodic;
+    im_solver_plan *plan = NULL;
+    if (im_solver_plan_create(s->nx, s->ny, 1.0, &o, &plan) != IM_OK)
+        fail_msg("plan %d x %d: %s", s->nx, s->ny, im_last_error());
+    double up0, down0;
+    solver_engine_gpu_transfers(plan, &up0, &down0);
+    memset(p, 0, sizeof(double) * n);
+    im_solve_result r;
+    if (im_solver_solve(plan, gap0, IM_CONTROL_LOAD, 0.01 * (double)n, p, u, &r) != IM_OK)
+        fail_msg("cold solve %d x %d on device %d: %s", s->nx, s->ny, device, im_last_error());
+    solver_engine_gpu_transfers(plan, up, down);
+    *up -= up0;
+    *down -= down0;
+    if (device == IM_DEVICE_GPU)
+        assert_no_validation_messages(plan);
+    im_solver_plan_free(plan);
+    free(gap0);
+    free(u);
+    return r;
+}
+
+static void check_cascade_on_device(int side, int periodic)
+{
+    im_field *s = test_rough_surface(side, 0.1, 23);
+    const int nx = side, ny = side;
+    const size_t n = (size_t)nx * ny;
+    double *cpu_p = malloc(sizeof(double) * n), *gpu_p = malloc(sizeof(double) * n), up, down, want_up, want_down;
+    im_solve_result cpu = cold_flat_solve(IM_DEVICE_CPU, s, periodic, cpu_p, &up, &down);
+    im_solve_result gpu = cold_flat_solve(IM_DEVICE_GPU, s, periodic, gpu_p, &up, &down);
+    expected_cascade_transfers(nx, ny, periodic, &want_up, &want_down);
+    print_message("%d x %d periodic %d: %d + %d iterations, up %.0f bytes (expected %.0f), down %.0f (%.0f)\n", nx,
+                  ny, periodic, gpu.iterations, gpu.coarse_iterations, up, want_up, down, want_down);
+    if (up != want_up || down != want_down)
+        fail_msg("%d x %d: the solve moved %.0f bytes up and %.0f down, expected %.0f and %.0f", nx, ny, up, down,
+                 want_up, want_down);
+    if (test_relative_difference(cpu.approach, gpu.approach) > 1e-10)
+        fail_msg("%d x %d: approach %.17g on the cpu, %.17g on the gpu", nx, ny, cpu.approach, gpu.approach);
+    assert_int_equal(cpu.iterations, gpu.iterations);
+    assert_int_equal(cpu.coarse_iterations, gpu.coarse_iterations);
+    for (size_t i = 0; i < n; ++i)
+        if ((cpu_p[i] > 0) != (gpu_p[i] > 0))
+            fail_msg("%d x %d: patch %zu in contact on one engine only", nx, ny, i);
+    free(cpu_p);
+    free(gpu_p);
+    im_field_free(s);
+}
+
+/* The cascade's coarse answers are prolonged on the device: the bytes a cold solve moves, and its
+ * answer against the CPU engine's (which prolongs on the host), on a periodic cell and on an odd
+ * half-space grid whose last blocks are cut by its odd side (63^2: 32^2 below it). */
+static void test_cascade_on_device(void **state)
+{
+    (void)state;
+    check_cascade_on_device(128, 1);
+    check_cascade_on_device(63, 0);
+}
+
 /* A GPU plan, each of its cascade levels, holds none of the CPU engine's arrays and FFTW plans on
  * the host, and of the tables only K(0); a CPU plan has them all. */
 static void assert_host_side(const im_solver_plan *p, int gpu)
@@ -531,6 +611,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_unsupported_grid_refused),
         cmocka_unit_test(test_device_memory_counted),
         cmocka_unit_test(test_gpu_plan_host_side),
+        cmocka_unit_test(test_cascade_on_device),
         cmocka_unit_test(test_rough_cone_displacement),
         cmocka_unit_test(test_rough_cone_load),
         cmocka_unit_test(test_rough_sphere),

@@ -45,8 +45,9 @@ struct gpu_context {
     int recording;
     int deferred_status; /* a failure while recording (void functions), returned by gpu_submit_wait */
     char deferred_error[512];
-    gpu_buffer upload, download; /* staging (GPU_HOST_WRITE, GPU_HOST_READ), grown on demand */
-    VkDeviceSize local_bytes;    /* gpu_context_local_bytes */
+    gpu_buffer upload, download;       /* staging (GPU_HOST_WRITE, GPU_HOST_READ), grown on demand */
+    VkDeviceSize local_bytes;          /* gpu_context_local_bytes */
+    VkDeviceSize uploaded, downloaded; /* gpu_context_transfers */
     long validation_messages;
     gpu_profile *profile; /* NULL unless INDENTMAP_GPU_PROFILE asks for one */
     char name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
@@ -503,6 +504,12 @@ VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSi
 VkDeviceSize gpu_context_local_bytes(const gpu_context *context) { return context->local_bytes; }
 long gpu_context_validation_messages(const gpu_context *context) { return context->validation_messages; }
 
+void gpu_context_transfers(const gpu_context *context, VkDeviceSize *uploaded, VkDeviceSize *downloaded)
+{
+    *uploaded = context->uploaded;
+    *downloaded = context->downloaded;
+}
+
 gpu_handles gpu_context_handles(gpu_context *context)
 {
     return (gpu_handles){.physical_device = &context->physical,
@@ -782,6 +789,7 @@ int gpu_buffer_upload(gpu_context *context, gpu_buffer *buffer, VkDeviceSize off
         status = transfer_allowed(context, "upload");
     if (status != IM_OK || bytes == 0)
         return status;
+    context->uploaded += bytes;
     if (buffer->mapped) {
         memcpy((char *)buffer->mapped + offset, data, bytes);
         return IM_OK;
@@ -802,6 +810,7 @@ int gpu_buffer_download(gpu_context *context, const gpu_buffer *buffer, VkDevice
         status = transfer_allowed(context, "download");
     if (status != IM_OK || bytes == 0)
         return status;
+    context->downloaded += bytes;
     if (buffer->mapped) {
         memcpy(data, (const char *)buffer->mapped + offset, bytes);
         return IM_OK;

@@ -81,6 +81,8 @@ VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSi
  * allocations, its twiddle tables, are not among them). */
 VkDeviceSize gpu_context_local_bytes(const gpu_context *context);
 long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
+/* The bytes gpu_buffer_upload and gpu_buffer_download have copied to and from the device so far. */
+void gpu_context_transfers(const gpu_context *context, VkDeviceSize *uploaded, VkDeviceSize *downloaded);
 
 /* Writes one line per Vulkan device ("name, type, Vulkan x.y, float64 yes|no, N MiB") into text;
  * IM_EUNSUPPORTED (with the reason) when there is no Vulkan loader or no device. */

@@ -3,7 +3,7 @@
  * from a coarser grid), and its pressure, prolonged piecewise constant, starts the fine solve. The
  * fine solve then has the contact set nearly right, so it needs far fewer iterations than from the
  * local guess; the coarse solves cost a quarter per level. */
-#include "solver/plan.h"
+#include "solver/engine.h"
 
 #include "indentmap/status.h"
 
@@ -116,26 +116,38 @@ static int prolong_pressure(const im_solver_plan *p, const double *gap0, double 
     return loaded;
 }
 
-int solver_cascade_solve(im_solver_plan *coarse, const double *coarse_gap0, enum im_control control, double target,
-                         double *coarse_pressure, double *coarse_displacement, int *usable)
+/* The coarse solve from zero pressure; keep: its answer may stay on the engine (*kept when it did). */
+static int solve_level(im_solver_plan *coarse, const double *coarse_gap0, enum im_control control, double target,
+                       double *coarse_pressure, double *coarse_displacement, int keep, int *usable, int *kept)
 {
     memset(coarse_pressure, 0, sizeof(double) * (size_t)coarse->nx * coarse->ny);
     im_solve_result result = {0};
     /* Only a start: a coarse solve that stops at its cap still gives one (p >= 0 whatever happens),
      * and one that breaks down leaves the fine solve the local guess. */
-    int status = im_solver_solve(coarse, coarse_gap0, control, target, coarse_pressure, coarse_displacement, &result);
+    int status = solver_solve_coarse(coarse, coarse_gap0, control, target, coarse_pressure, coarse_displacement, keep,
+                                     &result, kept);
     *usable = status != IM_ENUMERIC;
     return result.iterations + result.coarse_iterations;
 }
 
+int solver_cascade_solve(im_solver_plan *coarse, const double *coarse_gap0, enum im_control control, double target,
+                         double *coarse_pressure, double *coarse_displacement, int *usable)
+{
+    int kept;
+    return solve_level(coarse, coarse_gap0, control, target, coarse_pressure, coarse_displacement, 0, usable, &kept);
+}
+
 int solver_cascade_start(im_solver_plan *p, const double *gap0, enum im_control control, double target,
-                         double *pressure)
+                         double *pressure, int *prolonged)
 {
     restrict_gap(p, gap0);
-    int usable;
-    int iterations = solver_cascade_solve(p->coarse, p->coarse_gap0, control, target, p->coarse_pressure,
-                                          p->coarse_displacement, &usable);
-    if (!usable || !prolong_pressure(p, gap0, pressure))
+    /* both levels on one engine that keeps answers: the coarse answer is prolonged there (engine.h) */
+    const int keep = p->engine->keeps_answers && p->coarse->engine == p->engine;
+    int usable, kept;
+    int iterations = solve_level(p->coarse, p->coarse_gap0, control, target, p->coarse_pressure,
+                                 p->coarse_displacement, keep, &usable, &kept);
+    *prolonged = usable && kept;
+    if (!usable || (!kept && !prolong_pressure(p, gap0, pressure)))
         memset(pressure, 0, sizeof(double) * (size_t)p->nx * p->ny);
     return iterations;
 }

@@ -51,10 +51,19 @@ typedef struct pk_run {
     enum solver_join join; /* the current step's (pk.c sets it before the step's passes) */
     /* load control: the rescaling impose_load leaves to the next contact_mean pass (1, 1: none) */
     double p_factor, u_factor;
+    /* A cascade handed over on an engine that keeps answers (solver_engine.keeps_answers):
+     * start_prolonged: the start is the coarse level's answer, which its solve left on the engine, and
+     * begin prolongs it there rather than uploading p (once: a later begin uploads p);
+     * keep_answer: this solve is a coarse level whose finer level prolongs its answer on the engine, so
+     * finish leaves p and u there (the caller's arrays are not written); answer_kept: it did. */
+    int start_prolonged, keep_answer, answer_kept;
 } pk_run;
 
 typedef struct solver_engine {
     const char *name;
+    /* Whether a cascade's levels may hand their answers over on the engine (pk_run.keep_answer and
+     * start_prolonged; the GPU's: the levels share its buffers), rather than through the host. */
+    int keeps_answers;
     /* The solve's inputs onto the engine (gap0, p) and its results back (p, u): nothing on the CPU. */
     int (*begin)(pk_run *r);
     int (*finish)(pk_run *r);
@@ -153,6 +162,9 @@ long solver_engine_gpu_validation_messages(const im_solver_plan *plan);
  * reductions' buffers: solver_footprint) and what its buffers hold on the device now (the context's
  * count of device-local allocations); -1 for a plan without a GPU. Tests compare the two. */
 void solver_engine_gpu_memory(const im_solver_plan *plan, double *counted, double *held);
+/* The bytes the plan's device has received from and sent to the host so far (uploads and downloads
+ * of fields and tables; not the reductions' few values); -1 for a plan without a GPU. */
+void solver_engine_gpu_transfers(const im_solver_plan *plan, double *uploaded, double *downloaded);
 
 /* p = min(p scale, cap) on the elastic patches of p[0..n); whether any reached the cap (engine_cpu.c,
  * also the MPI engine's pass on its rows). */

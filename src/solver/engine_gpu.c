@@ -38,6 +38,7 @@
 #include "spirv/precondition_centre.h"
 #include "spirv/precondition_mask.h"
 #include "spirv/precondition_restrict.h"
+#include "spirv/prolong.h"
 #include "spirv/reduce_finish.h"
 #include "spirv/scale.h"
 #include "spirv/scale_elastic.h"
@@ -100,6 +101,9 @@ typedef struct {
 typedef struct {
     uint32_t nx, ny, count;
 } push_point_loads;
+typedef struct {
+    uint32_t nx, ny, cx; /* cx: the coarse level's row length */
+} push_prolong;
 
 enum kernel {
     K_PAD,
@@ -120,6 +124,7 @@ enum kernel {
     K_STEP,
     K_UPDATE_PRESSURE,
     K_POINT_LOADS,
+    K_PROLONG,
     K_REDUCE_FINISH,
     K_COUNT
 };
@@ -149,6 +154,7 @@ static const struct kernel_source {
     KERNEL(K_STEP, spirv_step, 5, 4, push_step),
     KERNEL(K_UPDATE_PRESSURE, spirv_update_pressure, 9, 5, push_update),
     KERNEL(K_POINT_LOADS, spirv_point_loads, 4, 2, push_point_loads),
+    KERNEL(K_PROLONG, spirv_prolong, 3, 3, push_prolong),
     KERNEL(K_REDUCE_FINISH, spirv_reduce_finish, 2, 0, push_finish),
 #undef KERNEL
 };
@@ -305,25 +311,44 @@ static void record_convolution(struct gpu_solver *s)
 
 /* ---- the engine's passes ---- */
 
+/* p = the coarse level's answer, which its solve left at the start of p (a coarse level's fields are
+ * these buffers), prolonged into g and copied to p (unpad over the same grid). */
+static void record_prolongation(struct gpu_solver *s, const im_solver_plan *coarse)
+{
+    const push_prolong prolong = {.nx = s->nx, .ny = s->ny, .cx = (uint32_t)coarse->nx};
+    const push_grid copy = {.nx = s->nx, .ny = s->ny, .px = s->nx, .py = s->ny};
+    const gpu_buffer *to_g[3] = {&s->gap0, &s->p, &s->g}, *to_p[2] = {&s->g, &s->p};
+    record(s, K_PROLONG, to_g, &prolong, patches(s));
+    record(s, K_UNPAD, to_p, &copy, patches(s));
+}
+
+/* gap0 up, and p up or, from a cascade's coarse level, prolonged on the device (pk_run.start_prolonged). */
 static int gpu_engine_begin(pk_run *r)
 {
     struct gpu_solver *s = solver_of(r);
     const VkDeviceSize bytes = sizeof(double) * patches(s);
+    const int prolong = r->start_prolonged;
+    r->start_prolonged = 0; /* a later begin (a search's next trial) starts from the p it returned */
     int status = gpu_buffer_upload(context_of(s), &s->gap0, 0, r->gap0, bytes);
-    if (status == IM_OK)
+    if (status == IM_OK && !prolong)
         status = gpu_buffer_upload(context_of(s), &s->p, 0, r->p, bytes);
     if (status == IM_OK) /* t is read (times beta = 0) before it is first written, and the coarse levels' */
         status = gpu_begin(context_of(s)); /* solves, which share it, may leave anything there */
+    if (status == IM_OK && prolong)
+        record_prolongation(s, r->plan->coarse);
     if (status == IM_OK)
         gpu_zero(context_of(s), &s->t);
     return status == IM_OK ? IM_OK : im_fail_context(status, "GPU solve %u x %u", s->nx, s->ny);
 }
 
+/* p and u back to the caller, except from a cascade's coarse level whose finer level prolongs p here. */
 static int gpu_engine_finish(pk_run *r)
 {
     struct gpu_solver *s = solver_of(r);
     const VkDeviceSize bytes = sizeof(double) * patches(s);
     flush(r);
+    if (r->keep_answer)
+        return IM_OK;
     int status = gpu_buffer_download(context_of(s), &s->p, 0, r->p, bytes);
     if (status == IM_OK)
         status = gpu_buffer_download(context_of(s), &s->u, 0, r->u, bytes);
@@ -632,6 +657,7 @@ static void gpu_engine_free(im_solver_plan *plan)
 
 const solver_engine solver_engine_gpu = {
     .name = "gpu",
+    .keeps_answers = 1,
     .begin = gpu_engine_begin,
     .finish = gpu_engine_finish,
     .convolve_pressure = gpu_engine_convolve_pressure,
@@ -868,6 +894,15 @@ void solver_engine_gpu_memory(const im_solver_plan *plan, double *counted, doubl
     const gpu_device *d = plan->gpu ? plan->gpu->device : NULL;
     *counted = d ? (double)d->fields_bytes : -1;
     *held = d ? (double)gpu_context_local_bytes(d->context) : -1;
+}
+
+void solver_engine_gpu_transfers(const im_solver_plan *plan, double *uploaded, double *downloaded)
+{
+    VkDeviceSize up = 0, down = 0;
+    if (plan->gpu)
+        gpu_context_transfers(plan->gpu->device->context, &up, &down);
+    *uploaded = plan->gpu ? (double)up : -1;
+    *downloaded = plan->gpu ? (double)down : -1;
 }
 
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan)

@@ -188,8 +188,10 @@ static int check_periodic_approach(const im_solver_plan *plan, const double *gap
     return solver_check_periodic_mean_gap(sum_doubles(gap0, n) / (double)n, target);
 }
 
+/* The caller's arrays checked in one pass, which also says whether any pressure is positive (a warm
+ * start), so that no second pass over p looks for one. */
 static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control, double target,
-                        const double *p)
+                        const double *p, int *positive)
 {
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
@@ -198,13 +200,16 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
     const size_t n = (size_t)plan->nx * plan->ny;
     size_t bad_gap = n, bad_pressure = n; /* the first offending index of each, n if none */
-#pragma omp parallel for schedule(static) reduction(min : bad_gap, bad_pressure)
+    int any_positive = 0;
+#pragma omp parallel for schedule(static) reduction(min : bad_gap, bad_pressure) reduction(| : any_positive)
     for (size_t i = 0; i < n; ++i) {
         if ((isnan(gap0[i]) || gap0[i] < 0) && i < bad_gap)
             bad_gap = i;
         if (!(isfinite(p[i]) && p[i] >= 0) && i < bad_pressure)
             bad_pressure = i;
+        any_positive |= p[i] > 0;
     }
+    *positive = any_positive;
     if (bad_gap < n)
         return im_fail(IM_ENUMERIC, "undeformed gap[%zu] = %g: expected >= 0 or +inf", bad_gap, gap0[bad_gap]);
     if (bad_pressure < n)
@@ -385,6 +390,7 @@ static int solve_once(pk_run *r, im_solve_result *res)
     rescale_now(r);
     summarise(r, &last, res);
     int finished = e->finish(r); /* p and u back, also after a failure: p is a valid warm start */
+    r->answer_kept = r->keep_answer && r->status == IM_OK;
     return status != IM_OK ? status : (r->status != IM_OK ? r->status : finished);
 }
 
@@ -487,6 +493,31 @@ pk_run solver_pk_run(im_solver_plan *plan, const double *gap0, enum im_control c
                     .u_factor = 1};
 }
 
+/* A solve whose inputs were checked (positive: whether any pressure is positive), from start (its clock). */
+static int solve_checked(pk_run *r, int positive, double start, im_solve_result *result)
+{
+    im_solver_plan *plan = r->plan;
+    im_solve_result res = {0};
+    int status = IM_OK;
+    const size_t n = (size_t)plan->nx * plan->ny;
+    if (r->target == 0) { /* no approach or no load: no contact */
+        memset(r->p, 0, sizeof(double) * n);
+        memset(r->u, 0, sizeof(double) * n);
+    } else {
+        team_choose(); /* the threads the other processes leave free (core/team_size.c) */
+        if (!positive && plan->coarse)
+            res.coarse_iterations = solver_cascade_start(plan, r->gap0, r->control, r->target, r->p,
+                                                         &r->start_prolonged);
+        status = solver_pk_solve(r, &res);
+        team_restore();
+    }
+    res.convolutions = r->convolutions;
+    res.seconds = omp_get_wtime() - start;
+    if (result)
+        *result = res;
+    return status;
+}
+
 int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                     double *pressure, double *displacement, im_solve_result *result)
 {
@@ -494,26 +525,26 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     ARG_REQUIRE(gap0, "gap0");
     ARG_REQUIRE(pressure, "pressure");
     ARG_REQUIRE(displacement, "displacement");
-    im_solve_result res = {0};
-    double start = omp_get_wtime();
-    int status = check_inputs(plan, gap0, control, target, pressure);
+    const double start = omp_get_wtime();
+    int positive = 0;
+    int status = check_inputs(plan, gap0, control, target, pressure, &positive);
     if (status != IM_OK)
         return status;
-    const size_t n = (size_t)plan->nx * plan->ny;
     pk_run r = solver_pk_run(plan, gap0, control, target, pressure, displacement);
-    if (target == 0) { /* no approach or no load: no contact */
-        memset(pressure, 0, sizeof(double) * n);
-        memset(displacement, 0, sizeof(double) * n);
-    } else {
-        team_choose(); /* the threads the other processes leave free (core/team_size.c) */
-        if (!solver_any_positive(pressure, n) && plan->coarse)
-            res.coarse_iterations = solver_cascade_start(plan, gap0, control, target, pressure);
-        status = solver_pk_solve(&r, &res);
-        team_restore();
-    }
-    res.convolutions = r.convolutions;
-    res.seconds = omp_get_wtime() - start;
-    if (result)
-        *result = res;
+    return solve_checked(&r, positive, start, result);
+}
+
+int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, enum im_control control, double target,
+                        double *pressure, double *displacement, int keep, im_solve_result *result, int *kept)
+{
+    const double start = omp_get_wtime();
+    *kept = 0;
+    int status = check_periodic_approach(coarse, gap0, control, target);
+    if (status != IM_OK)
+        return status;
+    pk_run r = solver_pk_run(coarse, gap0, control, target, pressure, displacement);
+    r.keep_answer = keep && !load_is_searched(&r);
+    status = solve_checked(&r, 0, start, result);
+    *kept = r.answer_kept;
     return status;
 }

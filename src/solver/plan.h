@@ -73,9 +73,17 @@ void solver_cascade_free(im_solver_plan *plan);
 
 /* Cold start from the coarse grids: restricts gap0, solves there (itself started from the next
  * level), and prolongs the pressure into pressure. Returns the coarse iterations of all levels;
- * pressure stays all zero when the coarse grids found no contact. */
+ * pressure stays all zero when the coarse grids found no contact. On an engine that keeps answers
+ * (engine.h) the coarse answer stays there: *prolonged is then set, and the fine solve's begin
+ * prolongs it on the engine (pressure is left as it was, all zero); else *prolonged is 0. */
 int solver_cascade_start(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
-                         double *pressure);
+                         double *pressure, int *prolonged);
+/* im_solver_solve of a cascade's coarse level, from zero pressure on a gap restricted from a checked
+ * one: only the periodic approach is checked (the rest holds by construction). keep: its answer may
+ * stay on the engine for the finer level (pk_run.keep_answer); *kept when it did, and then pressure
+ * and displacement are not written. pk.c. */
+int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, enum im_control control, double target,
+                        double *pressure, double *displacement, int keep, im_solve_result *result, int *kept);
 
 /* The pieces of a cascade start that the distributed solver (mpi/cascade.c) shares, so that its
  * coarse levels see the serial plan's numbers to the bit:
