@@ -96,6 +96,11 @@ typedef struct im_surface_stats {
 /* Refuses (IM_EINVAL, naming the first) heights with |h| > 1e100, whose squares would overflow. */
 int im_surface_statistics(const im_field *surface, im_surface_stats *stats);
 
+/* IM_OK when every height has |h| <= 1e100 (the bound im_surface_statistics and the readers keep, far
+ * below the ~1e154 where squares overflow); else IM_EINVAL naming `what` (NULL: "surface"), the first
+ * such point and its value. */
+int im_surface_check_height_range(const im_field *surface, const char *what);
+
 /* Radially averaged power spectral density C_iso(q) as in Jacobs, Junge and Pastewka (2017):
  * C(q) = |h~(q)|^2 / A with h~ the discrete Fourier transform scaled by delta^2 and A = L_x L_y,
  * averaged over the modes in each of `bins` logarithmically spaced shells between the smallest
