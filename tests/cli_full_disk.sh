@@ -74,4 +74,14 @@ check "indent, full disk: the step and the history named" grep -q "steps before 
 check "indent, full disk: a run.json not written is said" \
   bash -c "test -e '$dir/tiny/indent/run.json' || grep -q 'run.json was not written either' '$dir/indent_full.log'"
 
+# render's vector figures onto a full disk (reliability row 154): the reason, as for PNG (an SVG said
+# only cairo's "error while writing to output stream").
+rm -rf "$dir/tiny/indent"
+dd if=/dev/zero of="$dir/tiny/filler" bs=4k 2>/dev/null
+for format in pdf svg; do
+  "$cli" render contact "$dir/fields/force_0002.npy" --out "$dir/tiny/r.$format" >/dev/null 2>"$dir/render.log"
+  check "render .$format, full disk: exit 1" test $? -eq 1
+  check "render .$format, full disk: the file and the reason" grep -q "r.$format: write failed: No space left on device" "$dir/render.log"
+done
+
 finish
