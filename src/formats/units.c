@@ -214,14 +214,12 @@ static int apply_units(const char *path, im_field *field, const surface_stated *
     return IM_OK;
 }
 
-/* Heights to solve on: none missing (or filled, counted in *filled), all finite, none so large that
- * their squares overflow: checked as read, before detrending moves a huge height to other points. */
+/* Heights to solve on: none missing (or filled, counted in *filled), all finite. */
 static int check_heights(const char *path, im_field *field, const im_surface_read_options *options, long *filled)
 {
     int status = missing_points(path, field, options && options->fill, filled);
-    if (status == IM_OK)
-        status = formats_check_finite(field, path); /* after the conversion, which could overflow */
-    return status == IM_OK ? im_surface_check_height_range(field, path) : status;
+    return status == IM_OK ? formats_check_finite(field, path)
+                           : status; /* after the conversion, which could overflow */
 }
 
 /* Replaces the field's grid by square pixels of the finer of the spacings delta_x and delta_y. */
