@@ -116,6 +116,16 @@ awk 'BEGIN { for (y = 0; y < 8; ++y) { line = ""; for (x = 0; x < 8; ++x) line =
   > "$dir/huge_field.txt"
 check "render height 1e308" expect_exit 2 "height map: height 1e+308 (1e+308 delta) at patch (3, 2): expected |h| <= 1e18 delta" \
   "$cli" render height "$dir/huge_field.txt" --out "$dir/huge.png"
+# One huge height in a surface file (reliability row 18): named as the file holds it, before the
+# plane is removed (which moved it to another point and value, or made every statistic NaN at 1e308).
+# The reader itself takes such finite values (fuzz/corpus/npy/valid_v2_1x3.npy holds -1e300).
+for huge in 1e160 1e308; do
+  awk -v h="$huge" 'BEGIN { for (y = 0; y < 8; ++y) { line = ""; for (x = 0; x < 8; ++x) line = line (x ? " " : "") ((x == 3 && y == 2) ? h : x + y); print line } }' \
+    >"$dir/huge_$huge.txt"
+  check "surface --stats: a height $huge named with its file and point" expect_exit 2 \
+    "huge_$huge.txt: surface before detrending: height ${huge/e/e+} at (x=3, y=2): expected |h| <= 1e+100" \
+    "$cli" surface --stats "$dir/huge_$huge.txt"
+done
 check "--out ''" expect_exit 2 "--out '': expected a file or folder name" "$cli" indent "$dir/s.npy" --approach 1 --out ''
 check "--psd ''" expect_exit 2 "--psd '': expected a file or folder name" "$cli" surface --n 16 --psd '' --out "$dir/p.npy"
 check "--radius with a cone" expect_exit 2 "--radius applies to --punch sphere or flat" \

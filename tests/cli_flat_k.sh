@@ -58,4 +58,14 @@ check "p_m = x h'rms E*" awk -F, 'NR > 1 { d = $5 - $4 * $2; if (d < -1e-15 || d
   "$dir/out/flat/flat_contact.csv"
 check "contact grows with the pressure" awk -F, 'NR > 2 && $3 == seed && $1 == fam && $6 < prev { bad = 1 }
   NR > 1 { prev = $6; seed = $3; fam = $1 } END { exit bad }' "$dir/out/flat/flat_contact.csv"
+# A measured scan is not periodic (researcher finding R6): its flat contacts, solved on the periodic
+# cell, are warned about as [punch] periodic's are; the generated surfaces above (periodic) are not.
+check "generated surfaces: no periodicity warning" bash -c "! grep -q 'is not periodic' '$dir/log'"
+awk 'BEGIN { for (y = 0; y < 64; ++y) { line = ""; for (x = 0; x < 64; ++x) line = line (x ? " " : "") 0.05 * x + 0.3 * sin(x * 1.3 + y * 0.7) * cos(y * 2.1); print line } }' \
+  >"$dir/ramp.txt"
+sed -e '/^slopes/d' -e '/^seeds/d' -e '/^n = 64/d' -e '/^hurst/d' -e '/^lambda_s/d' -e "s|^output = .*|output = $dir/ramp|" \
+  -e "s|^\[surfaces\]|[surfaces]\nfile = $dir/ramp.txt|" -e 's/^table = yes/table = no/' "$dir/k.ini" >"$dir/ramp.ini"
+"$cli" run "$dir/ramp.ini" >"$dir/ramp.log" 2>&1
+check "a scan that is not periodic: runs" test $? -eq 0
+check "... and is warned about" grep -q "ramp.txt: the surface of family 0, seed 0 is not periodic" "$dir/ramp.log"
 finish

@@ -64,4 +64,24 @@ check "animate, full disk: the frame and the reason" \
 check "animate, full disk: no libpng message" bash -c "! grep -q libpng '$dir/animate.log'"
 check "animate, full disk: no temporary file" bash -c "! find '$dir/tiny' -name '*.tmp.*' | grep -q ."
 
+# indent --fields onto a disk that fills mid-run (reliability finding 13): the step and the history are
+# named, and so is the record that could not be written after them (run.json was gone, unsaid).
+rm -rf "$dir/tiny/filler" "$dir/tiny/frames" "$dir/tiny/out"
+"$cli" surface --n 128 --seed 1 --out "$dir/s128.npy" >/dev/null
+"$cli" indent "$dir/s128.npy" --approach 0.5:6:40 --fields --out "$dir/tiny/indent" >/dev/null 2>"$dir/indent_full.log"
+check "indent, full disk: exit 1" test $? -eq 1
+check "indent, full disk: the step and the history named" grep -q "steps before are in .*history.csv" "$dir/indent_full.log"
+check "indent, full disk: a run.json not written is said" \
+  bash -c "test -e '$dir/tiny/indent/run.json' || grep -q 'run.json was not written either' '$dir/indent_full.log'"
+
+# render's vector figures onto a full disk (reliability row 154): the reason, as for PNG (an SVG said
+# only cairo's "error while writing to output stream").
+rm -rf "$dir/tiny/indent"
+dd if=/dev/zero of="$dir/tiny/filler" bs=4k 2>/dev/null
+for format in pdf svg; do
+  "$cli" render contact "$dir/fields/force_0002.npy" --out "$dir/tiny/r.$format" >/dev/null 2>"$dir/render.log"
+  check "render .$format, full disk: exit 1" test $? -eq 1
+  check "render .$format, full disk: the file and the reason" grep -q "r.$format: write failed: No space left on device" "$dir/render.log"
+done
+
 finish

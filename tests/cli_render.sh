@@ -90,6 +90,10 @@ check "animation GIF with --circle" "$cli" render animate "$dir/f32.npy" "$dir/f
 check "GIF with --circle: PNG frames" test -s "$dir/framesc/contact_0001.png"
 check "GIF without --circle" "$cli" render animate "$dir/f32.npy" "$dir/f32.npy" --frames "$dir/framesn" --out "$dir/n.gif"
 check "GIF with --circle differs from without" bash -c "! cmp -s '$dir/n.gif' '$dir/c.gif'"
+# Fields of different grids (reliability row 176): the files are named, not the frames' pixels.
+check "animation of fields of two grids names the files" expect_exit 2 \
+  "render animate: $dir/f32.npy (frame 1) is 32 x 32 but $dir/f.npy (frame 0) is" \
+  "$cli" render animate "$dir/f.npy" "$dir/f32.npy" --frames "$dir/framesg" --out "$dir/g.gif"
 if command -v ffmpeg >/dev/null; then
   check "MP4" "$cli" render animate "$dir/f.npy" "$dir/g.npy" --frames "$dir/frames2" --out "$dir/a.mp4"
 else

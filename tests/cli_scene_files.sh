@@ -57,6 +57,18 @@ check "files of different grids refused" expect_exit 2 "small.npy is 32 x 32 wit
   "$cli" run --quiet "$dir/mixed.ini"
 
 # Pixels 1 x 2 um (issue 25): refused naming the key; `resample_square = yes` resamples them, and
+# A file in metres (researcher finding R3): table1's mean h_rms is in units of delta, as run.json's
+# units say, not in the file's length unit (it printed 0.00 for heights of 0.27 delta).
+"$cli" surface --n 64 --slope 0.1 --seed 5 --delta 1e-7 --unit m --out "$dir/metres.nc" >/dev/null
+h_over_delta=$("$cli" surface --stats "$dir/metres.nc" --detrend none --window none |
+  awk '/^grid/ { delta = $7 } /^h_rms / { printf "%.6g", $2 / delta }')
+scene metres "file = metres.nc"
+"$cli" run --quiet "$dir/metres.ini" >/dev/null 2>"$dir/metres.err"
+check "a file in metres: table1.csv's height_rms_mean is h_rms / delta ($h_over_delta)" \
+  test "$(sed -n 2p "$dir/metres/table1.csv" | cut -d, -f3)" = "$h_over_delta"
+check "... and table1.md's mean h_rms/δ column" \
+  grep -q "| $(printf '%.2f' "$h_over_delta") | " "$dir/metres/table1.md"
+
 # run.json records the key and, per file, the spacings' difference and the method.
 "$cli" surface --n 64 --slope 0.1 --out "$dir/square.txt" >/dev/null
 (printf '# Width: 64 um\n# Height: 128 um\n'; grep -v '^#' "$dir/square.txt") >"$dir/rect.txt"

@@ -615,6 +615,8 @@ REPORT_VIEW(im_surface_slope_rms, "surface", im_surface_slope_rms(BAD, IM_SLOPE_
 REPORT(im_surface_slope_rms, "slope_rms", im_surface_slope_rms(&good, IM_SLOPE_SPECTRAL, NULL))
 REPORT_VIEW(im_surface_statistics, "surface", im_surface_statistics(BAD, &stats))
 REPORT(im_surface_statistics, "stats", im_surface_statistics(&good, NULL))
+REPORT_VIEW(im_surface_check_height_range, "surface", im_surface_check_height_range(BAD, "s"))
+ACCEPT(im_surface_check_height_range, im_surface_check_height_range(&good, NULL) == IM_OK)
 REPORT_VIEW(im_surface_psd, "surface", im_surface_psd(BAD, 4, &psd_out))
 REPORT(im_surface_psd, "out", im_surface_psd(&good, 4, NULL))
 ACCEPT(im_psd_free, (im_psd_free(NULL), 1))

@@ -96,6 +96,11 @@ typedef struct im_surface_stats {
 /* Refuses (IM_EINVAL, naming the first) heights with |h| > 1e100, whose squares would overflow. */
 int im_surface_statistics(const im_field *surface, im_surface_stats *stats);
 
+/* IM_OK when every height has |h| <= 1e100 (the bound im_surface_statistics and the readers keep, far
+ * below the ~1e154 where squares overflow); else IM_EINVAL naming `what` (NULL: "surface"), the first
+ * such point and its value. */
+int im_surface_check_height_range(const im_field *surface, const char *what);
+
 /* Radially averaged power spectral density C_iso(q) as in Jacobs, Junge and Pastewka (2017):
  * C(q) = |h~(q)|^2 / A with h~ the discrete Fourier transform scaled by delta^2 and A = L_x L_y,
  * averaged over the modes in each of `bins` logarithmically spaced shells between the smallest
@@ -181,14 +186,16 @@ enum im_detrend {
     IM_DETREND_CURVATURE = 2 /* least-squares quadric: the plane and x^2, xy, y^2 (bow) */
 };
 
-/* Subtracts the least-squares polynomial in place. IM_ENUMERIC for a non-finite height. */
+/* Subtracts the least-squares polynomial in place. IM_ENUMERIC for a non-finite height; IM_EINVAL for one
+ * beyond im_surface_check_height_range's bound, named as given (before the fit spreads it). */
 int im_surface_detrend(im_field *surface, enum im_detrend detrend);
 
 /* Scan-line alignment of an AFM image (rows are the scan lines, along x): each row's offset (its median
  * or mean) or its least-squares line is removed and the mean of the rows' levels kept, as Gwyddion's
  * Align Rows does; the streaks a drifting feedback leaves are gone. A surface that varies only along x
  * plus a constant per row comes back exactly as one row repeated (median, mean). In place; IM_EINVAL for
- * an unknown method, IM_ENUMERIC for a non-finite height (fill missing points first). */
+ * an unknown method, IM_ENUMERIC for a non-finite height (fill missing points first), IM_EINVAL for one beyond
+ * im_surface_check_height_range's bound. */
 enum im_row_alignment { IM_ALIGN_NONE = 0, IM_ALIGN_MEDIAN = 1, IM_ALIGN_MEAN = 2, IM_ALIGN_LINE = 3 };
 int im_surface_align_rows(im_field *surface, enum im_row_alignment how);
 

@@ -392,6 +392,18 @@ static int write_animation_frame(im_render_context *context, im_field *field, ch
     return status;
 }
 
+/* The fields of an animation share one grid: frames of different sizes cannot make one animation. */
+static int check_one_grid(char **inputs, im_field **fields, int count)
+{
+    for (int i = 1; i < count; ++i)
+        if (fields[i]->nx != fields[0]->nx || fields[i]->ny != fields[0]->ny)
+            return im_fail(IM_EINVAL,
+                           "render animate: %s (frame %d) is %d x %d but %s (frame 0) is %d x %d: the frames of an "
+                           "animation are fields of one grid",
+                           inputs[i], i, fields[i]->nx, fields[i]->ny, inputs[0], fields[0]->nx, fields[0]->ny);
+    return IM_OK;
+}
+
 /* One contact map per force file, all with one norm, into DIR/contact_NNNN.png, then the GIF or MP4 of
  * those frames. */
 static int animate(im_render_context *context, char **inputs, int count, render_options *o)
@@ -406,6 +418,8 @@ static int animate(im_render_context *context, char **inputs, int count, render_
     }
     if (status == IM_OK)
         status = read_fields(o, inputs, count, fields);
+    if (status == IM_OK)
+        status = check_one_grid(inputs, fields, count);
     const char *dot = o->out ? strrchr(o->out, '.') : NULL;
     int gif = dot && strcmp(dot, ".gif") == 0;
     for (int i = 0; status == IM_OK && i < count; ++i)

@@ -414,6 +414,8 @@ int cli_surface(int argc, char **argv)
     if (status == IM_OK && o.stats) {
         cli_warn_if_much_filled(o.stats, info.filled, im_field_count(surface));
         status = cli_prepare_surface(&o.preparation, &surface);
+        if (status != IM_OK)
+            im_fail_context(status, "%s", o.stats);
     }
     im_surface_stats stats;
     if (status == IM_OK)

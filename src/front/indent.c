@@ -168,7 +168,9 @@ static int load_surface(indent_run_state *s, im_field **surface)
         const surface_preparation preparation = {{o->crop[0], o->crop[1], o->crop[2], o->crop[3]},
                                                  o->detrend,
                                                  o->align};
-        return status == IM_OK ? surface_prepare(&preparation, surface) : status;
+        if (status == IM_OK && (status = surface_prepare(&preparation, surface)) != IM_OK)
+            im_fail_context(status, "%s", o->surface_path);
+        return status;
     }
     int status = im_field_create(o->nx, o->ny, o->delta, surface);
     if (status == IM_OK)

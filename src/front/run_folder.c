@@ -116,12 +116,19 @@ int run_folder_open(const run_folder_rules *rules, int depth, run_folder *folder
     return status;
 }
 
-/* What write returns for a run that succeeded; the run's status with its error kept for one that failed. */
-static int keep_run_error(int status, const char *message, int written)
+/* What write returns for a run that succeeded; the run's status with its error kept for one that failed,
+ * and the file `name` named where it could not be written either (a full disk: the record is not there). */
+static int keep_run_error(int status, const char *message, int written, const char *name)
 {
     if (status == IM_OK)
         return written;
-    im_fail(status, "%s", message);
+    if (written == IM_OK) {
+        im_fail(status, "%s", message);
+        return status;
+    }
+    char reason[1024];
+    snprintf(reason, sizeof reason, "%s", im_last_error());
+    im_fail(status, "%s; %s was not written either (%s)", message, name, reason);
     return status;
 }
 
@@ -139,7 +146,7 @@ int run_folder_record(const run_folder *folder, json_t *record, int steps_done, 
     snprintf(message, sizeof message, "%s", im_last_error());
     repair(folder, "run.json");
     int written = run_record_finish(folder->rules.dir, record, steps_done, status);
-    return keep_run_error(status, message, written);
+    return keep_run_error(status, message, written, "run.json");
 }
 
 int run_folder_page(const run_folder *folder, const char *title, int embed_images, int status)
@@ -149,7 +156,7 @@ int run_folder_page(const run_folder *folder, const char *title, int embed_image
     repair(folder, "index.html");
     const im_viewer_options options = {.embed_images = embed_images};
     int written = im_viewer_write_with(folder->rules.dir, title, &options);
-    return keep_run_error(status, message, written);
+    return keep_run_error(status, message, written, "index.html");
 }
 
 void run_folder_close(run_folder *folder) { im_folder_lock_release(&folder->lock); }

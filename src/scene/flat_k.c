@@ -12,6 +12,7 @@
 #include "scene/ensemble.h"
 #include "scene/flat_k.h"
 #include "scene/outputs.h"
+#include "scene/periodic.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
 #include "scene/surfaces.h"
@@ -34,16 +35,19 @@ typedef struct flat_family {
     double rho_c_k, eq12_k, rho_c_2, eq12_2, simulated; /* the cone with the measured k and k = 2 */
 } flat_family;
 
-/* One surface's sweep, appended to the family's points and to flat_contact.csv. */
-static int solve_surface(const im_scene *scene, int family, uint64_t seed, flat_family *out, FILE *rows,
-                         double *seed_k)
+/* One surface's sweep, appended to the family's points and to flat_contact.csv; a surface that is not
+ * periodic (a measured scan) warned about, since the flat contact is solved on the periodic cell. */
+static int solve_surface(const im_scene *scene, const im_scene_run_options *run_options, int family, uint64_t seed,
+                         flat_family *out, FILE *rows, double *seed_k)
 {
     im_field *surface = NULL;
     im_flat_contact *run = NULL;
     im_solver_options options = scene_solver_options(scene);
     int status = scene_surface(scene, family, seed, &surface);
-    if (status == IM_OK)
+    if (status == IM_OK) {
+        scene_warn_if_not_periodic(scene, run_options, family, seed, surface);
         status = im_flat_contact_create(surface, &options, &run);
+    }
     const double slope = scene->slopes[family];
     double *x = out->x + out->points, *area = out->area + out->points;
     for (int i = 0; i < FLAT_POINTS && status == IM_OK; ++i) {
@@ -105,7 +109,7 @@ static int solve_family(const im_scene *scene, const im_scene_run_options *optio
     for (int s = 0; s < scene->seed_count && status == IM_OK; ++s) {
         if (scene_stop_signal(options))
             return scene_interrupted(options, "during the flat contacts");
-        status = solve_surface(scene, family, scene->seeds[s], out, rows, &seed_k[s]);
+        status = solve_surface(scene, options, family, scene->seeds[s], out, rows, &seed_k[s]);
     }
     if (status == IM_OK)
         status = im_theory_fit_k(out->x, out->area, out->points, &out->fit);

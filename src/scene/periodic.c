@@ -20,20 +20,20 @@ int scene_periodic_fits_k(const im_scene *scene)
     return scene->periodic == IM_SCENE_PERIODIC_FLAT && !(scene->hardness > 0) && !(scene->adhesion_work > 0);
 }
 
-static void warn_if_not_periodic(const im_scene *scene, const im_scene_run_options *options, const scene_member *m,
-                                 const im_field *surface)
+void scene_warn_if_not_periodic(const im_scene *scene, const im_scene_run_options *options, int family, uint64_t seed,
+                                const im_field *surface)
 {
     double edge, inner;
     if (!periodic_edge_mismatch(surface, &edge, &inner))
         return;
     char file[IM_SCENE_PATH] = "";
     if (scene->file_count > 0)
-        im_scene_file_path(scene, (int)m->seed, file, sizeof file);
+        im_scene_file_path(scene, (int)seed, file, sizeof file);
     scene_warn(options,
                "%s%sthe surface of family %d, seed %llu is not periodic: the steps across its edges have "
                "rms %.3g, %.3g times those inside it (%.3g); [punch] periodic joins its edges as if they met. Use "
                "periodic surfaces (generated ones are) or leave periodic out (the half-space)",
-               file, file[0] ? ": " : "", m->family, (unsigned long long)m->seed, edge, edge / inner, inner);
+               file, file[0] ? ": " : "", family, (unsigned long long)seed, edge, edge / inner, inner);
 }
 
 /* One member's row of k_fit.csv. */
@@ -60,7 +60,7 @@ static int member_results(const im_scene *scene, const im_scene_run_options *opt
     im_field *surface = NULL;
     int status = scene_surface(scene, m->family, m->seed, &surface);
     if (status == IM_OK)
-        warn_if_not_periodic(scene, options, m, surface);
+        scene_warn_if_not_periodic(scene, options, m->family, m->seed, surface);
     if (status == IM_OK && k_rows && scene->slopes[m->family] > 0) /* a smooth cell has no k */
         status = write_k_row(scene, m, surface, k_rows);
     im_field_free(surface);

@@ -11,6 +11,11 @@
  * is an elastic law for a rigid flat), as `indent --periodic`. */
 int scene_periodic_fits_k(const im_scene *scene);
 
+/* Warns (scene_warn, naming the file of a scene over files) when the surface of family, seed is not
+ * periodic (front.h: periodic_edge_mismatch): a periodic cell joins its edges as if they met. */
+void scene_warn_if_not_periodic(const im_scene *scene, const im_scene_run_options *options, int family, uint64_t seed,
+                                const im_field *surface);
+
 /* After the histories of a periodic scene: warns for each surface that is not periodic (front.h:
  * periodic_edge_mismatch, as `indent --periodic`), and when scene_periodic_fits_k, writes OUTPUT/k_fit.csv:
  * a row per rough member, k fitted to its history (front.h: periodic_fit_k) with its surface's spectral

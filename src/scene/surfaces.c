@@ -23,10 +23,9 @@ static int file_surface(const im_scene *scene, int i, im_field **out, im_surface
     memcpy(read.channel, scene->channel, sizeof read.channel);
     if (status == IM_OK)
         status = im_surface_read_with(path, &read, out, info);
-    if (status == IM_OK)
-        status = im_surface_align_rows(*out, scene->align);
-    if (status == IM_OK)
-        status = im_surface_detrend(*out, scene->detrend);
+    if (status == IM_OK && ((status = im_surface_align_rows(*out, scene->align)) != IM_OK ||
+                            (status = im_surface_detrend(*out, scene->detrend)) != IM_OK))
+        im_fail_context(status, "%s", path);
     if (status != IM_OK && *out) {
         im_field_free(*out);
         *out = NULL;

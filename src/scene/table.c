@@ -181,6 +181,9 @@ typedef struct family_summary {
 static family_summary summarise(const im_scene *scene, const scene_member *members, int count, int family)
 {
     family_summary s = {.slope = scene->slopes[family], .n_p_ref = -1};
+    /* members keep h_rms in the surfaces' length unit; the table states it in delta (run.json's units),
+     * which differ for files with a unit (all files of a scene share one delta) */
+    const double delta = scene->surface.delta;
     double sum = 0.0, sum_sq = 0.0, height = 0.0, patches = 0.0, patches_sq = 0.0;
     for (int i = 0; i < count; ++i) {
         const scene_member *m = &members[i];
@@ -189,7 +192,7 @@ static family_summary summarise(const im_scene *scene, const scene_member *membe
         ++s.count;
         sum += m->area_ratio;
         sum_sq += m->area_ratio * m->area_ratio;
-        height += m->height_rms;
+        height += m->height_rms / delta;
         patches += (double)m->contact_patches;
         patches_sq += (double)m->contact_patches * (double)m->contact_patches;
         if (s.n_p_ref < 0 || m->contact_patches < s.n_p_ref)

@@ -51,6 +51,8 @@ int im_surface_align_rows(im_field *surface, enum im_row_alignment how)
     if (how == IM_ALIGN_NONE)
         return IM_OK;
     int status = im_field_check_finite(surface, "surface (align rows after missing points are filled)");
+    if (status == IM_OK) /* named where the file holds it, before a row's level moves it */
+        status = im_surface_check_height_range(surface, "surface before aligning rows");
     double *levels = status == IM_OK ? malloc((size_t)surface->ny * sizeof *levels) : NULL;
     double *scratch = levels ? malloc((size_t)surface->nx * sizeof *scratch) : NULL;
     if (status == IM_OK && !scratch)

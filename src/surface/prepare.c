@@ -129,6 +129,10 @@ int im_surface_detrend(im_field *surface, enum im_detrend detrend)
     int status = im_field_check_finite(surface, "detrend");
     if (status != IM_OK || detrend == IM_DETREND_NONE)
         return status;
+    /* a huge height is named where the file holds it: the fit spreads it (or its overflow) over every point */
+    status = im_surface_check_height_range(surface, "surface before detrending");
+    if (status != IM_OK)
+        return status;
     static const int TERMS[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
     int terms = detrend == IM_DETREND_CURVATURE ? 6 : 3;
     for (int t = 0; t < terms; ++t)

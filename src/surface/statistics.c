@@ -142,14 +142,16 @@ static int spectral_statistics(const surface_spectrum *spectrum, im_surface_stat
  * an allocation failure. No surface in any length unit comes near this bound. */
 static const double LARGEST_HEIGHT = 1e100;
 
-static int check_height_range(const im_field *surface)
+int im_surface_check_height_range(const im_field *surface, const char *what)
 {
+    ARG_VIEW(surface, "surface");
     for (size_t i = 0; i < im_field_count(surface); ++i)
         if (fabs(surface->data[i]) > LARGEST_HEIGHT)
             return im_fail(IM_EINVAL,
-                           "surface: height %g at (x=%zu, y=%zu): expected |h| <= %g (rescale the "
-                           "heights: their squares must not overflow)",
-                           surface->data[i], i % (size_t)surface->nx, i / (size_t)surface->nx, LARGEST_HEIGHT);
+                           "%s: height %g at (x=%zu, y=%zu): expected |h| <= %g (rescale the heights: their "
+                           "squares must not overflow)",
+                           what ? what : "surface", surface->data[i], i % (size_t)surface->nx,
+                           i / (size_t)surface->nx, LARGEST_HEIGHT);
     return IM_OK;
 }
 
@@ -159,7 +161,7 @@ int im_surface_statistics(const im_field *surface, im_surface_stats *stats)
     ARG_REQUIRE(stats, "stats");
     int status = im_field_check_finite(surface, "surface");
     if (status == IM_OK)
-        status = check_height_range(surface);
+        status = im_surface_check_height_range(surface, NULL);
     if (status != IM_OK)
         return status;
     surface_spectrum spectrum;

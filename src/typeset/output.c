@@ -6,6 +6,7 @@
 
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -80,9 +81,21 @@ int typeset_output_frame(const char *path, const typeset_canvas *canvas, typeset
     return status;
 }
 
+/* Where cairo writes a vector figure, and errno of the first write that failed: cairo's own status says
+ * only "error while writing to output stream", not why (a full disk). */
+typedef struct vector_stream {
+    FILE *stream;
+    int error;
+} vector_stream;
+
 static cairo_status_t write_stream(void *closure, const unsigned char *data, unsigned int length)
 {
-    return fwrite(data, 1, length, (FILE *)closure) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+    vector_stream *out = closure;
+    if (fwrite(data, 1, length, out->stream) == length)
+        return CAIRO_STATUS_SUCCESS;
+    if (!out->error)
+        out->error = errno ? errno : EIO;
+    return CAIRO_STATUS_WRITE_ERROR;
 }
 
 /* text as UTF-8, the text of PDF metadata (a path that is not UTF-8 is escaped, io.h: im_path_utf8);
@@ -143,10 +156,11 @@ static int write_vector(const char *path, typeset_format format, const typeset_c
     if (status != IM_OK)
         return status;
     double points = 72.0 / c->dpi;
+    vector_stream out = {file.stream, 0};
     cairo_surface_t *surface =
         format == TYPESET_PDF
-            ? cairo_pdf_surface_create_for_stream(write_stream, file.stream, c->width * points, c->height * points)
-            : cairo_svg_surface_create_for_stream(write_stream, file.stream, c->width * points, c->height * points);
+            ? cairo_pdf_surface_create_for_stream(write_stream, &out, c->width * points, c->height * points)
+            : cairo_svg_surface_create_for_stream(write_stream, &out, c->width * points, c->height * points);
     if (format == TYPESET_PDF)
         set_pdf_metadata(c, surface);
     cairo_t *cr = cairo_create(surface);
@@ -158,7 +172,9 @@ static int write_vector(const char *path, typeset_format format, const typeset_c
     cairo_surface_finish(surface);
     cairo_status_t written = cairo_surface_status(surface);
     cairo_surface_destroy(surface);
-    if (status == IM_OK && written != CAIRO_STATUS_SUCCESS)
+    if (status == IM_OK && out.error)
+        status = im_fail(IM_EIO, "%s: write failed: %s", path, strerror(out.error));
+    else if (status == IM_OK && written != CAIRO_STATUS_SUCCESS)
         status = im_fail(IM_EIO, "%s: %s", path, cairo_status_to_string(written));
     if (status != IM_OK) {
         im_atomic_abort(&file);
