@@ -37,4 +37,10 @@ double sum_doubles(const double *v, size_t n);
 /* Sum of term(i, context) over i in [0, n), the same way (for values no array holds). */
 double sum_terms(size_t n, double (*term)(size_t i, const void *context), const void *context);
 
+/* The same sum of values made range by range: range(lo, hi, context) returns the compensated sum
+ * (compensated_add from zero, in index order, then compensated_total) of the values of [lo, hi), for
+ * blocks [lo, hi) that depend on n only, called in parallel. A pass that makes values (and stores
+ * them) can so sum them as it goes, to sum_doubles' bits on the values stored. */
+double sum_ranges(size_t n, double (*range)(size_t lo, size_t hi, const void *context), const void *context);
+
 #endif

@@ -8,6 +8,7 @@
  * then takes the serial solver's path. */
 #include "mpi/mpi_internal.h"
 
+#include "core/summation.h"
 #include "indentmap/status.h"
 
 #include <omp.h>
@@ -60,9 +61,24 @@ void mpi_cascade_free(im_mpi_solver *s)
     free(s->coarse_sums);
 }
 
+/* The coarse gaps of [lo, hi) from their blocks' sums (restrict_gap's layout), stored, and their compensated
+ * sum (summation.h: sum_ranges). */
+static double block_means(size_t lo, size_t hi, const void *context)
+{
+    const im_mpi_solver *s = context;
+    const size_t m = (size_t)s->coarse->nx * s->coarse->ny;
+    const double *sums = s->coarse_sums;
+    compensated sum = {0, 0};
+    for (size_t k = lo; k < hi; ++k) {
+        s->coarse_gap0[k] = solver_cascade_block_mean(sums[k], sums[m + k], (int)(sums[2 * m + k] + sums[3 * m + k]));
+        compensated_add(&sum, s->coarse_gap0[k]);
+    }
+    return compensated_total(&sum);
+}
+
 /* The coarse gap on every rank: each block's upper and lower pair sums and counts (layout: 4 arrays
- * of cx cy), from the rows' owners, summed over ranks. */
-static void restrict_gap(im_mpi_solver *s, const double *gap0)
+ * of cx cy), from the rows' owners, summed over ranks; its mean, summed as the serial cascade sums it. */
+static double restrict_gap(im_mpi_solver *s, const double *gap0)
 {
     const int cx = s->coarse->nx;
     const size_t m = (size_t)cx * s->coarse->ny;
@@ -79,9 +95,7 @@ static void restrict_gap(im_mpi_solver *s, const double *gap0)
         }
     }
     MPI_Allreduce(MPI_IN_PLACE, sums, (int)(4 * m), MPI_DOUBLE, MPI_SUM, s->comm);
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < m; ++k)
-        s->coarse_gap0[k] = solver_cascade_block_mean(sums[k], sums[m + k], (int)(sums[2 * m + k] + sums[3 * m + k]));
+    return sum_ranges(m, block_means, s) / (double)m;
 }
 
 /* This rank's rows of the fine start; whether any rank's is loaded. */
@@ -98,11 +112,11 @@ static int prolong_pressure(const im_mpi_solver *s, const double *gap0, double *
 
 int mpi_cascade_start(im_mpi_solver *s, const double *gap0, enum im_control control, double target, double *pressure)
 {
-    restrict_gap(s, gap0);
+    const double mean_gap0 = restrict_gap(s, gap0);
     int usable;
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
-    int iterations = solver_cascade_solve(s->coarse, s->coarse_gap0, control, target, s->coarse_pressure,
+    int iterations = solver_cascade_solve(s->coarse, s->coarse_gap0, mean_gap0, control, target, s->coarse_pressure,
                                           s->coarse_displacement, &usable);
     omp_set_num_threads(threads);
     if (!usable || !prolong_pressure(s, gap0, pressure))
