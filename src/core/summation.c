@@ -3,15 +3,15 @@
 
 #include <math.h>
 
-/* Compensated sum of v[lo..hi). */
-static double range_sum(size_t lo, size_t hi, const void *context)
+double sum_doubles_range(const double *v, size_t lo, size_t hi)
 {
-    const double *v = context;
     compensated c = {0, 0};
     for (size_t i = lo; i < hi; ++i)
         compensated_add(&c, v[i]);
     return compensated_total(&c);
 }
+
+static double range_sum(size_t lo, size_t hi, const void *context) { return sum_doubles_range(context, lo, hi); }
 
 /* term and its context, for terms_sum. */
 typedef struct terms {
