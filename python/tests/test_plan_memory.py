@@ -28,7 +28,7 @@ def test_window_for_is_indents(cli, rough128, tmp_path, punch, flags, control, t
     im.write(tmp_path / "s.npy", rough128)
     run_cli(cli, "indent", tmp_path / "s.npy", *flags, f"--{'load' if control == 'load' else 'approach'}", targets,
             "--no-wisdom", "--out", tmp_path / "out")
-    window = json.loads((tmp_path / "out" / "run.json").read_text())["window"]
+    window = json.loads((tmp_path / "out" / "run.json").read_text(encoding="utf-8"))["window"]
     largest = max(float(t) for t in targets.split(","))
     ours = im.Indentation.window_for(rough128, punch, control=control, largest=largest)
     assert ours == (window["x0"], window["y0"], window["nx"], window["ny"])
