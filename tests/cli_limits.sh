@@ -141,4 +141,38 @@ check "relative paths: output beside the scene" test -s "$dir/results/table1.csv
 fd=$("$cli" surface --stats "$dir/inputs/rough.npy" --detrend none --window none | awk '/^h.rms fd/ { print $3 }')
 check "relative paths: the surface file was read" grep -q "^$fd,1," "$dir/results/table1.csv"
 
+# A history stepping in boxes of its window (displacement control, CPU) holds each box's plans beside the
+# window's: the estimate counts them. The run's peak resident memory beyond a tiny scene's (the program
+# and its libraries, which the estimate leaves out) stays within the estimate (102 MiB against 75.3 MiB
+# counted before the boxes were, 206 MiB now); one thread, so one solve.
+boxes() {
+  cat >"$dir/$1.ini" <<INI
+[scene]
+name = $1
+output = out_$1
+[surfaces]
+n = $2
+slopes = 0
+seeds = 1
+[loading]
+steps = $3
+[solver]
+device = cpu
+[output]
+plots = fig5
+INI
+}
+peak_kib() {
+  OMP_NUM_THREADS=1 python3 -c 'import resource, subprocess, sys
+subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' "$@"
+}
+boxes tiny 64 1:2:2
+boxes steps 512 30:52:2
+estimate=$(OMP_NUM_THREADS=1 IM_MEMORY_LIMIT_MIB=1 "$cli" run --quiet "$dir/steps.ini" 2>&1 |
+  sed -n 's/.*this scene needs about \([0-9.]*\) MiB of memory.*/\1/p')
+held=$(( $(peak_kib "$cli" run --quiet "$dir/steps.ini") - $(peak_kib "$cli" run --quiet "$dir/tiny.ini") ))
+echo "steps in boxes: estimated $estimate MiB, held $((held / 1024)) MiB beyond a tiny scene"
+check "steps in boxes: the estimate holds the run's peak" awk -v e="$estimate" -v h="$held" 'BEGIN { exit !(e > 0 && h / 1024 <= e) }'
+
 finish

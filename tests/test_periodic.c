@@ -7,6 +7,7 @@
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "indentmap/theory.h"
+#include "core/summation.h"
 #include "solver/engine.h"
 
 #include <math.h>
@@ -354,6 +355,57 @@ static double *cell_gap(const im_field *s)
     return gap0;
 }
 
+/* A cell whose first cascade level's gap has a mean below the cell's own: a checkerboard of 2 x 2 blocks,
+ * of zeros and of (1 + 2^-52, 2^-54; 1, 2^-54), whose restriction (cascade.c: each block's upper pair
+ * summed, then its lower, then both, over 4) rounds every addition down to 0.5 where the block's mean is
+ * 0.5 + 0.75 2^-53: the coarse mean is 0.25, the cell's 0.25 + 2^-54 (to the nearest). */
+static double *cell_with_rounded_blocks(int n)
+{
+    double *gap0 = calloc((size_t)n * n, sizeof(double));
+    assert_non_null(gap0);
+    for (int by = 0; by < n / 2; ++by)
+        for (int bx = (by % 2); bx < n / 2; bx += 2) {
+            double *upper = gap0 + (size_t)2 * by * n + 2 * bx, *lower = upper + n;
+            upper[0] = 1 + ldexp(1, -52);
+            upper[1] = lower[1] = ldexp(1, -54);
+            lower[0] = 1;
+        }
+    return gap0;
+}
+
+/* The coarse levels' periodic approach check (pk.c: solver_solve_coarse) is made on the coarse gap's own
+ * mean, which the restriction sums as it goes (cascade.c) to the bits of sum_doubles over it: at an
+ * approach equal to that mean (0.25) the first coarse level's mean gap is 0, refused (no coarse iteration
+ * at all), one ulp less it solves; the fine level, whose mean is above, passes both. */
+static void coarse_mean_gap_is_the_restrictions(void **state)
+{
+    (void)state;
+    enum { N = 128 };
+    const size_t n = (size_t)N * N;
+    double *gap0 = cell_with_rounded_blocks(N), *p = calloc(n, sizeof(double)), *u = malloc(sizeof(double) * n);
+    assert_true(p && u);
+    assert_true(sum_doubles(gap0, n) / (double)n == 0.25 + ldexp(1, -54));
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.max_iterations = 2; /* the count of coarse iterations tells; the solves need not converge */
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+    const double approaches[2] = {0.25, nextafter(0.25, 0)};
+    for (int k = 0; k < 2; ++k) {
+        im_solve_result r;
+        memset(p, 0, sizeof(double) * n);
+        const int status = im_solver_solve(plan, gap0, IM_CONTROL_DISPLACEMENT, approaches[k], p, u, &r);
+        print_message("approach %.17g: status %d, coarse iterations %d\n", approaches[k], status,
+                      r.coarse_iterations);
+        assert_true(status == IM_OK || status == IM_ENOCONV);
+        assert_true(k == 0 ? r.coarse_iterations == 0 : r.coarse_iterations > 0);
+    }
+    free(p);
+    free(u);
+    free(gap0);
+    im_solver_plan_free(plan);
+}
+
 static void join_step_is_a_line_minimum(void **state)
 {
     (void)state;
@@ -516,6 +568,7 @@ int main(void)
         cmocka_unit_test(fused_passes_equal_their_parts),
         cmocka_unit_test(transform_pairs_are_counted),
         cmocka_unit_test(refusals),
+        cmocka_unit_test(coarse_mean_gap_is_the_restrictions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define SIDE 4096
 #define COUNT ((size_t)SIDE * SIDE)
@@ -88,6 +89,59 @@ static void test_independent_of_thread_count(void **state)
     free(v);
 }
 
+/* Values made range by range and stored as they are summed (sum_ranges: the cascade's restriction). */
+static double made_range(size_t lo, size_t hi, const void *context)
+{
+    double *v = *(double *const *)context;
+    compensated c = {0, 0};
+    for (size_t i = lo; i < hi; ++i) {
+        v[i] = sin(0.37 * (double)i) * ldexp(1, (int)(i % 97) - 48); /* 29 decades: the order tells */
+        compensated_add(&c, v[i]);
+    }
+    return compensated_total(&c);
+}
+
+/* summation.h's layout, written out: compensated sums of blocks of max(IM_SUM_BLOCK, n / IM_SUM_MAX_BLOCKS
+ * rounded up) values, combined with compensation in block order. */
+static double blocks_in_order(const double *v, size_t n)
+{
+    const size_t shortest = (n + IM_SUM_MAX_BLOCKS - 1) / IM_SUM_MAX_BLOCKS;
+    const size_t length = shortest > IM_SUM_BLOCK ? shortest : IM_SUM_BLOCK;
+    compensated total = {0, 0};
+    for (size_t lo = 0; lo < n; lo += length) {
+        compensated block = {0, 0};
+        for (size_t i = lo; i < n && i < lo + length; ++i)
+            compensated_add(&block, v[i]);
+        compensated_add(&total, compensated_total(&block));
+    }
+    return compensated_total(&total);
+}
+
+/* sum_ranges of values made as they are summed is, to the bit, sum_doubles over the values stored and
+ * the layout written out, at any thread count: with one block, a ragged last block, and beyond
+ * IM_SUM_MAX_BLOCKS blocks of IM_SUM_BLOCK (longer blocks). */
+static void test_ranges_are_sum_doubles(void **state)
+{
+    (void)state;
+    const size_t sizes[] = {1, IM_SUM_BLOCK - 1, 3 * IM_SUM_BLOCK + 17,
+                            (size_t)IM_SUM_MAX_BLOCKS * IM_SUM_BLOCK + 4097};
+    const int threads = omp_get_max_threads();
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; ++k) {
+        double *v = malloc(sizeof(double) * sizes[k]);
+        assert_non_null(v);
+        for (int team = 1; team <= 3; team += 2) {
+            omp_set_num_threads(team);
+            memset(v, 0, sizeof(double) * sizes[k]);
+            const double made = sum_ranges(sizes[k], made_range, &v), stored = sum_doubles(v, sizes[k]),
+                         reference = blocks_in_order(v, sizes[k]);
+            assert_memory_equal(&made, &reference, sizeof made);
+            assert_memory_equal(&stored, &reference, sizeof made);
+        }
+        free(v);
+    }
+    omp_set_num_threads(threads);
+}
+
 static void test_short_and_empty(void **state)
 {
     (void)state;
@@ -102,6 +156,7 @@ int main(void)
         cmocka_unit_test(test_single_precision_data),
         cmocka_unit_test(test_double_precision_over_19_decades),
         cmocka_unit_test(test_independent_of_thread_count),
+        cmocka_unit_test(test_ranges_are_sum_doubles),
         cmocka_unit_test(test_short_and_empty),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,4 +1,5 @@
 """Indentation of a rough surface by a rigid punch (the library's solver.h)."""
+import inspect
 import json
 import logging
 import os
@@ -61,6 +62,9 @@ def _axis_on_surface(axis, shape, delta):
     return x, y
 
 
+# Indentation's options that label what is written and change no solve.
+_UNIT_OPTIONS = ("length_unit", "e_star_unit")
+
 # The integer columns of a history (history.h: im_history_integer_columns); every other column is float64.
 _INTEGER_COLUMNS = frozenset(_core.history_integer_columns.split(","))
 
@@ -87,6 +91,36 @@ def read_history(path):
     with open(path, encoding="utf-8") as f:
         lines = [line for line in f.read().splitlines() if line and not line.startswith("#")]  # a scene's note
     return _history_array(_core.history_values("".join(line + "\n" for line in lines), str(path)))
+
+
+def _core_arguments(heights, punch, *, control, largest, delta, e_star, tol, max_iterations, crop, window_margin,
+                    axis, device, hardness, periodic, slope_definition, adhesion_work, adhesion_range, quality,
+                    plain_pk, measure, wisdom, adhesion_law, adhesion_zone):
+    """Indentation's arguments checked and named as _core.Indentation and _core.indentation_window take them:
+    (args, kwargs). The defaults are Indentation's signature's."""
+    if tol is None:
+        tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
+    if punch is None:
+        if not periodic:
+            raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
+        ny, nx = np.shape(heights)
+        punch = Flat(2.0 * np.hypot(nx, ny) * delta)  # wider than the cell: every nearest image
+    kind, alpha, radius, profile = _punch_arguments(punch)
+    delta = _checks.real("delta", delta)
+    x, y = (None, None) if axis is None else _axis_on_surface(axis, np.shape(heights), delta)
+    args = (heights, delta, kind, alpha, radius, _checks.text("control", control), _checks.real("largest", largest))
+    return args, dict(e_star=_checks.real("e_star", e_star), tol=_checks.real("tol", tol),
+                      max_iterations=_checks.integer("max_iterations", max_iterations),
+                      crop=_checks.flag("crop", crop), window_margin=_checks.integer("window_margin", window_margin),
+                      x=x, y=y, profile=profile, device=_checks.text("device", device),
+                      hardness=_checks.real("hardness", hardness), periodic=_checks.flag("periodic", periodic),
+                      slope_definition=_checks.text("slope_definition", slope_definition or ""),
+                      adhesion_work=_checks.real("adhesion_work", adhesion_work),
+                      adhesion_range=_checks.real("adhesion_range", adhesion_range),
+                      plain_pk=_checks.flag("plain_pk", plain_pk), measure=_checks.flag("measure", measure),
+                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom),
+                      adhesion_law=_checks.text("adhesion_law", adhesion_law),
+                      adhesion_zone=_checks.real("adhesion_zone", adhesion_zone))
 
 
 class Indentation:
@@ -166,33 +200,14 @@ class Indentation:
                  hardness=0.0, periodic=False, slope_definition=None, adhesion_work=0.0, adhesion_range=0.0,
                  quality=None, length_unit="", e_star_unit="", plain_pk=False, measure=False, wisdom=None,
                  adhesion_law="maugis-dugdale", adhesion_zone=0.0):
-        if tol is None:
-            tol = _core.default_tol if quality is None else _core.quality_tolerance(_checks.text("quality", quality))
-        if punch is None:
-            if not periodic:
-                raise ValueError("punch None (a rigid flat over the cell) needs periodic=True")
-            ny, nx = np.shape(heights)
-            punch = Flat(2.0 * np.hypot(nx, ny) * delta)  # wider than the cell: every nearest image
-        kind, alpha, radius, profile = _punch_arguments(punch)
-        delta = _checks.real("delta", delta)
-        x, y = (None, None) if axis is None else _axis_on_surface(axis, np.shape(heights), delta)
-        self._run = _core.Indentation(heights, delta, kind, alpha, radius, _checks.text("control", control),
-                                      _checks.real("largest", largest), e_star=_checks.real("e_star", e_star),
-                                      tol=_checks.real("tol", tol),
-                                      max_iterations=_checks.integer("max_iterations", max_iterations),
-                                      crop=_checks.flag("crop", crop),
-                                      window_margin=_checks.integer("window_margin", window_margin), x=x, y=y,
-                                      profile=profile, device=_checks.text("device", device),
-                                      hardness=_checks.real("hardness", hardness),
-                                      periodic=_checks.flag("periodic", periodic),
-                                      slope_definition=_checks.text("slope_definition", slope_definition or ""),
-                                      adhesion_work=_checks.real("adhesion_work", adhesion_work),
-                                      adhesion_range=_checks.real("adhesion_range", adhesion_range),
-                                      plain_pk=_checks.flag("plain_pk", plain_pk),
-                                      measure=_checks.flag("measure", measure),
-                                      wisdom="" if wisdom is None else _checks.path("wisdom", wisdom),
-                                      adhesion_law=_checks.text("adhesion_law", adhesion_law),
-                                      adhesion_zone=_checks.real("adhesion_zone", adhesion_zone))
+        args, kwargs = _core_arguments(heights, punch, control=control, largest=largest, delta=delta, e_star=e_star,
+                                       tol=tol, max_iterations=max_iterations, crop=crop,
+                                       window_margin=window_margin, axis=axis, device=device, hardness=hardness,
+                                       periodic=periodic, slope_definition=slope_definition,
+                                       adhesion_work=adhesion_work, adhesion_range=adhesion_range, quality=quality,
+                                       plain_pk=plain_pk, measure=measure, wisdom=wisdom,
+                                       adhesion_law=adhesion_law, adhesion_zone=adhesion_zone)
+        self._run = _core.Indentation(*args, **kwargs)
         self.units = json.loads(_core.units_record(_core.length_unit("length_unit", _checks.text("length_unit",
                                                                                                length_unit)),
                                                    _checks.text("e_star_unit", e_star_unit),
@@ -251,6 +266,31 @@ class Indentation:
         Example: ``x0, y0, nx, ny = run.window``; ``crop=False`` solves on the whole grid."""
         return self._run.window
 
+    @staticmethod
+    def window_for(heights, punch=Cone(), **options):
+        """(x0, y0, nx, ny): the window ``Indentation(heights, punch, **options)`` would solve on, found
+        without planning it or making its fields (solver.h: im_indentation_window_for; only the whole
+        grid's undeformed gap is made): to size a run before making it. The options and errors are
+        Indentation's, raised for the same arguments (``EdgeContact``, ``InvalidArgument``, ...); the
+        window is the one ``indentmap indent`` states ("window [x0, x1) x [y0, y1)") and run.json records.
+
+        Example: ``x0, y0, nx, ny = im.Indentation.window_for(h, im.Cone(80), largest=4.0)``."""
+        bound = inspect.signature(Indentation).bind(heights, punch, **options)
+        bound.apply_defaults()
+        given = {name: value for name, value in bound.arguments.items() if name not in _UNIT_OPTIONS}
+        args, kwargs = _core_arguments(**given)
+        return _core.indentation_window(*args, **kwargs)
+
+    def memory(self):
+        """The memory of the run's plan as made, as ``solver_memory`` gives it (a dict of ``gpu``,
+        ``host_bytes``, ``device_bytes``, ``device_memory``, ``device``, ``note``; solver.h:
+        im_solver_plan_memory): the plan's grid is the window, and its options the repulsive problem's
+        (no adhesion; a cap turns the cascade and the preconditioner off), not the run's. With
+        device='auto' on the CPU, ``note`` says why (the GPU's memory too small).
+
+        Example: ``run = im.Indentation(h, largest=2.0, device="gpu"); run.memory()["device_bytes"]``."""
+        return self._run.memory()
+
 
 class Plan:
     """The contact solver on an (ny, nx) grid of spacing ``delta``, for gaps of your own: planned once
@@ -283,6 +323,14 @@ class Plan:
 
         Example: ``pressure, displacement, result = plan.solve(gap0, 2.0); result["load"]``."""
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
+
+    def memory(self):
+        """The memory of this plan as made, as ``solver_memory`` gives it for its grid and options (solver.h:
+        im_solver_plan_memory; a dict of ``gpu``, ``host_bytes``, ``device_bytes``, ``device_memory``,
+        ``device``, ``note``).
+
+        Example: ``im.Plan(256, device="gpu").memory()["device_bytes"]``."""
+        return self._plan.memory()
 
 
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, fields=False,

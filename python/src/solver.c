@@ -135,7 +135,52 @@ static int gap_scale(const im_field *surface, double *scale)
     return status;
 }
 
-static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
+/* What _core.Indentation and _core.indentation_window take, parsed and checked: the heights (a new
+ * reference), the punch (with its profile, owned until handed to a run), the control, the largest
+ * target, the solver's options and the theory's slope definition. */
+typedef struct indentation_arguments {
+    PyArrayObject *heights;
+    double delta, largest;
+    im_profile *profile;
+    im_indenter punch;
+    enum im_control control;
+    im_solver_options options;
+    enum im_slope_definition slope_definition;
+} indentation_arguments;
+
+static void release_arguments(indentation_arguments *a)
+{
+    Py_CLEAR(a->heights);
+    im_profile_free(a->profile);
+    a->profile = NULL;
+}
+
+/* The options that are names, into *o and a->slope_definition; -1 with ValueError set. */
+static int parse_named_options(const char *law, const char *slope_name, const char *device, indentation_arguments *a)
+{
+    im_solver_options *o = &a->options;
+    if (im_adhesion_law_parse(law, &o->adhesion_law) != IM_OK) {
+        PyErr_Format(PyExc_ValueError, "adhesion_law '%s': expected 'maugis-dugdale' or 'exponential'", law);
+        return -1;
+    }
+    /* the theory's h'rms (as indent --slope-definition): spectral for a periodic cell, else forward
+     * differences (an array may be measured: its edges would count in the spectrum) */
+    a->slope_definition = o->periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+    if (strcmp(slope_name, "spectral") == 0 || strcmp(slope_name, "fd") == 0)
+        a->slope_definition = slope_name[0] == 's' ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+    else if (slope_name[0]) {
+        PyErr_Format(PyExc_ValueError, "slope_definition '%s': expected 'spectral' or 'fd'", slope_name);
+        return -1;
+    }
+    if (im_device_parse(device, &o->device) != IM_OK) {
+        PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);
+        return -1;
+    }
+    return 0;
+}
+
+/* *wisdom: the wisdom file's path (bytes, a new reference) or NULL; -1 with the error set (nothing held). */
+static int parse_arguments(PyObject *args, PyObject *kwargs, indentation_arguments *a, PyObject **wisdom)
 {
     static char *keywords[] = {"heights",
                                "delta",
@@ -164,82 +209,75 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
                                "adhesion_law",
                                "adhesion_zone",
                                NULL};
-    PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None, *wisdom = NULL;
+    PyObject *obj, *x = Py_None, *y = Py_None, *profile_obj = Py_None;
     int plain_pk = 0;
-    double delta, alpha, radius, largest;
+    double alpha, radius;
     const char *kind, *control_name, *device = "cpu", *slope_name = "", *law = "maugis-dugdale";
-    im_solver_options o = im_solver_options_default();
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&sd", keywords, &obj, &delta, &kind,
-                                     &alpha, &radius, &control_name, &largest, &o.e_star, &o.tol, &o.max_iterations,
-                                     &o.crop, &o.window_margin, &x, &y, &profile_obj, &device, &o.hardness,
-                                     &o.periodic, &slope_name, &o.adhesion_work, &o.adhesion_range, &plain_pk,
-                                     &o.fft_measure, PyUnicode_FSConverter, &wisdom, &law, &o.adhesion_zone))
+    *a = (indentation_arguments){.options = im_solver_options_default()};
+    im_solver_options *o = &a->options;
+    *wisdom = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Odsddsd|ddipiOOOsdpsddppO&sd", keywords, &obj, &a->delta, &kind,
+                                     &alpha, &radius, &control_name, &a->largest, &o->e_star, &o->tol,
+                                     &o->max_iterations, &o->crop, &o->window_margin, &x, &y, &profile_obj, &device,
+                                     &o->hardness, &o->periodic, &slope_name, &o->adhesion_work, &o->adhesion_range,
+                                     &plain_pk, &o->fft_measure, PyUnicode_FSConverter, wisdom, &law,
+                                     &o->adhesion_zone))
         return -1;
-    int wisdom_ok = check_idle(self) < 0 ? -1 : set_wisdom(self, wisdom, &o); /* a running step reads it */
-    Py_XDECREF(wisdom);
-    if (wisdom_ok < 0)
-        return -1;
-    o.cascade = o.precondition = !plain_pk; /* indent --plain-pk */
-    if (im_adhesion_law_parse(law, &o.adhesion_law) != IM_OK) {
-        PyErr_Format(PyExc_ValueError, "adhesion_law '%s': expected 'maugis-dugdale' or 'exponential'", law);
-        return -1;
-    }
-    /* the theory's h'rms (as indent --slope-definition): spectral for a periodic cell, else forward
-     * differences (an array may be measured: its edges would count in the spectrum) */
-    enum im_slope_definition slope_definition = o.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
-    if (strcmp(slope_name, "spectral") == 0 || strcmp(slope_name, "fd") == 0)
-        slope_definition = slope_name[0] == 's' ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
-    else if (slope_name[0]) {
-        PyErr_Format(PyExc_ValueError, "slope_definition '%s': expected 'spectral' or 'fd'", slope_name);
-        return -1;
-    }
-    if (im_device_parse(device, &o.device) != IM_OK) {
-        PyErr_Format(PyExc_ValueError, "device '%s': expected 'cpu', 'gpu' or 'auto'", device);
-        return -1;
-    }
-    o.stop = &self->stop;
-    if ((strcmp(kind, "profile") == 0) != (profile_obj != Py_None)) {
+    o->cascade = o->precondition = !plain_pk; /* indent --plain-pk */
+    int ok = parse_named_options(law, slope_name, device, a);
+    if (ok == 0 && (strcmp(kind, "profile") == 0) != (profile_obj != Py_None)) {
         PyErr_SetString(PyExc_ValueError, "punch 'profile' and a profile array go together");
+        ok = -1;
+    }
+    if (ok == 0 &&
+        ((profile_obj != Py_None && profile_from_array(profile_obj, a->delta, &a->profile) < 0) ||
+         punch_from_arguments(kind, alpha, radius, x, y, a->profile, &a->punch) < 0 ||
+         py_control_from_name(control_name, &a->control) < 0 || !(a->heights = py_heights_array(obj, "heights"))))
+        ok = -1;
+    if (ok < 0) {
+        release_arguments(a);
+        Py_CLEAR(*wisdom);
+    }
+    return ok;
+}
+
+static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwargs)
+{
+    indentation_arguments a;
+    PyObject *wisdom;
+    if (parse_arguments(args, kwargs, &a, &wisdom) < 0)
+        return -1;
+    int ready = check_idle(self) < 0 ? -1 : set_wisdom(self, wisdom, &a.options); /* a running step reads it */
+    Py_XDECREF(wisdom);
+    if (ready < 0) {
+        release_arguments(&a);
         return -1;
     }
-    im_profile *profile = NULL;
-    im_indenter punch;
-    enum im_control control;
-    if ((profile_obj != Py_None && profile_from_array(profile_obj, delta, &profile) < 0) ||
-        punch_from_arguments(kind, alpha, radius, x, y, profile, &punch) < 0 ||
-        py_control_from_name(control_name, &control) < 0) {
-        im_profile_free(profile);
-        return -1;
-    }
-    PyArrayObject *array = py_heights_array(obj, "heights");
-    if (!array || check_idle(self) < 0) {
-        Py_XDECREF(array);
-        im_profile_free(profile);
-        return -1;
-    }
-    im_field surface = py_field_view(array, delta);
+    a.options.stop = &self->stop;
+    im_field surface = py_field_view(a.heights, a.delta);
     im_indentation_free(self->run);
     self->run = NULL;
     im_profile_free(self->profile); /* after the run that borrowed it */
-    self->profile = profile;
+    self->profile = a.profile;
+    a.profile = NULL;
     self->row_count = 0;
     int status;
     double slope = 0;
     self->busy = 1;
     Py_BEGIN_ALLOW_THREADS /* planning: the library serialises FFTW's planner itself */
-        status = im_indentation_create(&surface, &punch, control, largest, &o, &self->run);
+        status = im_indentation_create(&surface, &a.punch, a.control, a.largest, &a.options, &self->run);
     if (status == IM_OK)
-        status = im_surface_slope_rms(&surface, slope_definition, &slope);
+        status = im_surface_slope_rms(&surface, a.slope_definition, &slope);
     if (status == IM_OK)
         status = gap_scale(&surface, &self->gap_scale);
     Py_END_ALLOW_THREADS self->busy = 0;
     if (status == IM_OK) {
-        self->punch = punch;
+        self->punch = a.punch;
         self->rough = im_theory_interface_default(slope);
-        self->rough.e_star = o.e_star;
-        self->periodic = o.periodic;
+        self->rough.e_star = a.options.e_star;
+        self->periodic = a.options.periodic;
     }
-    Py_DECREF(array);
+    release_arguments(&a);
     if (status != IM_OK) {
         py_raise_status(status);
         return -1;
@@ -398,6 +436,32 @@ static PyObject *indentation_window(py_indentation *self, void *closure)
     return Py_BuildValue("(iiii)", w.x0, w.y0, w.nx, w.ny);
 }
 
+/* A solve's memory (solver.h: im_solver_memory) as the dict solver_memory() returns. */
+static PyObject *memory_dict(const im_solver_memory *m)
+{
+    return Py_BuildValue("{s:O,s:d,s:d,s:d,s:s,s:s}", "gpu", m->gpu ? Py_True : Py_False, "host_bytes", m->host_bytes,
+                         "device_bytes", m->device_bytes, "device_memory", m->device_memory, "device", m->device,
+                         "note", m->note);
+}
+
+/* The memory of a plan as made (solver.h: im_solver_plan_memory), as a dict. The estimate may open the
+ * engine's device: without the GIL, the owner marked *busy meanwhile (no thread may free the plan). */
+static PyObject *plan_memory_dict(const im_solver_plan *plan, int *busy)
+{
+    im_solver_memory m;
+    int status;
+    *busy = 1;
+    Py_BEGIN_ALLOW_THREADS status = im_solver_plan_memory(plan, &m);
+    Py_END_ALLOW_THREADS *busy = 0;
+    return status == IM_OK ? memory_dict(&m) : py_raise_status(status);
+}
+
+static PyObject *indentation_memory(py_indentation *self, PyObject *unused)
+{
+    (void)unused;
+    return check_ready(self) < 0 ? NULL : plan_memory_dict(im_indentation_plan(self->run), &self->busy);
+}
+
 static PyMethodDef indentation_methods[] = {
     {"step", (PyCFunction)indentation_step, METH_O, "step(target) -> dict: solve the next step"},
     {"fields", (PyCFunction)indentation_fields, METH_NOARGS,
@@ -408,6 +472,8 @@ static PyMethodDef indentation_methods[] = {
      "history_values() -> the steps solved as an array of the history's columns' numbers"},
     {"write_distributions", (PyCFunction)indentation_write_distributions, METH_O,
      "write_distributions(prefix): the last step's PREFIX_{gaps,patches,patch_list}.csv"},
+    {"memory", (PyCFunction)indentation_memory, METH_NOARGS,
+     "memory() -> dict: the memory of the run's plan as made (its window and options)"},
     {NULL, NULL, 0, NULL}};
 
 static PyGetSetDef indentation_getset[] = {{"window", (getter)indentation_window, NULL,
@@ -528,9 +594,21 @@ static PyObject *plan_solve(py_plan *self, PyObject *args, PyObject *kwargs)
     return Py_BuildValue("(NNN)", pressure, displacement, solve_dict(&result));
 }
 
+static PyObject *plan_memory(py_plan *self, PyObject *unused)
+{
+    (void)unused;
+    if (!self->plan)
+        return PyErr_Format(PyExc_RuntimeError, "Plan: not initialised");
+    if (self->busy)
+        return PyErr_Format(PyExc_RuntimeError, "Plan: a solve on this plan is running in another thread");
+    return plan_memory_dict(self->plan, &self->busy);
+}
+
 static PyMethodDef plan_methods[] = {{"solve", (PyCFunction)(void (*)(void))plan_solve, METH_VARARGS | METH_KEYWORDS,
                                       "solve(gap0, target, control='displacement', pressure=None) -> (pressure, "
                                       "displacement, result)"},
+                                     {"memory", (PyCFunction)plan_memory, METH_NOARGS,
+                                      "memory() -> dict: the memory of this plan as made"},
                                      {NULL, NULL, 0, NULL}};
 
 PyTypeObject py_plan_type = {
@@ -741,14 +819,31 @@ static PyObject *solver_memory(PyObject *self, PyObject *args)
     im_solver_memory m;
     if (status == IM_OK)
         status = im_solver_memory_needed(nx, ny, &o, &m);
-    if (status != IM_OK)
-        return py_raise_status(status);
-    return Py_BuildValue("{s:O,s:d,s:d,s:d,s:s,s:s}", "gpu", m.gpu ? Py_True : Py_False, "host_bytes", m.host_bytes,
-                         "device_bytes", m.device_bytes, "device_memory", m.device_memory, "device", m.device, "note",
-                         m.note);
+    return status == IM_OK ? memory_dict(&m) : py_raise_status(status);
+}
+
+/* indentation_window(same arguments as Indentation) -> (x0, y0, nx, ny) (solver.h:
+ * im_indentation_window_for): the window a run would solve on, without its plan. */
+static PyObject *indentation_window_for(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    indentation_arguments a;
+    PyObject *wisdom; /* read by planning only: not here */
+    if (parse_arguments(args, kwargs, &a, &wisdom) < 0)
+        return NULL;
+    Py_XDECREF(wisdom);
+    im_field surface = py_field_view(a.heights, a.delta);
+    im_window w;
+    int status;
+    Py_BEGIN_ALLOW_THREADS /* the undeformed gap of the whole grid */
+        status = im_indentation_window_for(&surface, &a.punch, a.control, a.largest, &a.options, &w);
+    Py_END_ALLOW_THREADS release_arguments(&a);
+    return status == IM_OK ? Py_BuildValue("(iiii)", w.x0, w.y0, w.nx, w.ny) : py_raise_status(status);
 }
 
 PyMethodDef py_solver_methods[] = {
+    {"indentation_window", (PyCFunction)(void (*)(void))indentation_window_for, METH_VARARGS | METH_KEYWORDS,
+     "indentation_window(the arguments of Indentation) -> (x0, y0, nx, ny): the window it would solve on"},
     {"solver_memory", solver_memory, METH_VARARGS,
      "solver_memory(nx, ny, periodic, device) -> dict: the memory a solve's plan needs (host; device on the GPU)"},
     {"units_record", units_record, METH_VARARGS,

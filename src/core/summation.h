@@ -37,4 +37,14 @@ double sum_doubles(const double *v, size_t n);
 /* Sum of term(i, context) over i in [0, n), the same way (for values no array holds). */
 double sum_terms(size_t n, double (*term)(size_t i, const void *context), const void *context);
 
+/* The same sum of values made range by range: range(lo, hi, context) returns the compensated sum
+ * (sum_doubles_range) of the values of [lo, hi), for blocks [lo, hi) that depend on n only, called in
+ * parallel. A pass that makes values (and stores them) can so sum them while they are in cache, to
+ * sum_doubles' bits on the values stored. */
+double sum_ranges(size_t n, double (*range)(size_t lo, size_t hi, const void *context), const void *context);
+
+/* The compensated sum of v[lo..hi) in index order (compensated_add from zero, then compensated_total):
+ * one block of sum_doubles. */
+double sum_doubles_range(const double *v, size_t lo, size_t hi);
+
 #endif

@@ -10,6 +10,7 @@
 
 #include "indentmap/status.h"
 
+#include <math.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,9 +61,29 @@ void mpi_cascade_free(im_mpi_solver *s)
     free(s->coarse_sums);
 }
 
+/* The solver and whether the coarse gaps are summed. */
+typedef struct coarse_means {
+    const im_mpi_solver *solver;
+    int summed;
+} coarse_means;
+
+/* The coarse gaps of [lo, hi) from their blocks' sums (restrict_gap's layout), and when summed their sum,
+ * taken while they are in cache (summation.h: sum_ranges; else 0). */
+static double block_means(size_t lo, size_t hi, const void *context)
+{
+    const coarse_means *means = context;
+    const im_mpi_solver *s = means->solver;
+    const size_t m = (size_t)s->coarse->nx * s->coarse->ny;
+    const double *sums = s->coarse_sums;
+    for (size_t k = lo; k < hi; ++k)
+        s->coarse_gap0[k] = solver_cascade_block_mean(sums[k], sums[m + k], (int)(sums[2 * m + k] + sums[3 * m + k]));
+    return means->summed ? sum_doubles_range(s->coarse_gap0, lo, hi) : 0;
+}
+
 /* The coarse gap on every rank: each block's upper and lower pair sums and counts (layout: 4 arrays
- * of cx cy), from the rows' owners, summed over ranks. */
-static void restrict_gap(im_mpi_solver *s, const double *gap0)
+ * of cx cy), from the rows' owners, summed over ranks; its mean where the coarse level's periodic
+ * approach is checked (else NaN), summed as the serial cascade sums it. */
+static double restrict_gap(im_mpi_solver *s, const double *gap0, enum im_control control)
 {
     const int cx = s->coarse->nx;
     const size_t m = (size_t)cx * s->coarse->ny;
@@ -79,9 +100,9 @@ static void restrict_gap(im_mpi_solver *s, const double *gap0)
         }
     }
     MPI_Allreduce(MPI_IN_PLACE, sums, (int)(4 * m), MPI_DOUBLE, MPI_SUM, s->comm);
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < m; ++k)
-        s->coarse_gap0[k] = solver_cascade_block_mean(sums[k], sums[m + k], (int)(sums[2 * m + k] + sums[3 * m + k]));
+    const coarse_means means = {s, solver_periodic_approach_checked(s->coarse, control)};
+    const double sum = sum_ranges(m, block_means, &means);
+    return means.summed ? sum / (double)m : NAN;
 }
 
 /* This rank's rows of the fine start; whether any rank's is loaded. */
@@ -98,11 +119,11 @@ static int prolong_pressure(const im_mpi_solver *s, const double *gap0, double *
 
 int mpi_cascade_start(im_mpi_solver *s, const double *gap0, enum im_control control, double target, double *pressure)
 {
-    restrict_gap(s, gap0);
+    const double mean_gap0 = restrict_gap(s, gap0, control);
     int usable;
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
-    int iterations = solver_cascade_solve(s->coarse, s->coarse_gap0, control, target, s->coarse_pressure,
+    int iterations = solver_cascade_solve(s->coarse, s->coarse_gap0, mean_gap0, control, target, s->coarse_pressure,
                                           s->coarse_displacement, &usable);
     omp_set_num_threads(threads);
     if (!usable || !prolong_pressure(s, gap0, pressure))

@@ -5,6 +5,7 @@
  * local guess; the coarse solves cost a quarter per level. */
 #include "solver/engine.h"
 
+#include "core/summation.h"
 #include "indentmap/status.h"
 
 #include <math.h>
@@ -74,22 +75,52 @@ double solver_cascade_block_mean(double upper, double lower, int count)
     return count ? (upper + lower) / count : INFINITY;
 }
 
-/* Coarse gap: the mean over each 2 x 2 block of the fine gaps that are finite (+inf if none is: a
- * flat punch cannot touch there). Blocks cut by an odd side hold fewer patches. */
-static void restrict_gap(const im_solver_plan *p, const double *gap0)
+/* A restriction's fine plan and gap, and whether the coarse gaps are summed. */
+typedef struct restriction {
+    const im_solver_plan *fine;
+    const double *gap0;
+    int summed;
+} restriction;
+
+/* The coarse gaps [first, last) of coarse row cy. A coarse gap is the mean over its 2 x 2 block of the fine
+ * gaps that are finite (+inf if none is: a flat punch cannot touch there); blocks cut by an odd side hold
+ * fewer patches. */
+static void restrict_row(const im_solver_plan *p, const double *gap0, int cy, int first, int last)
 {
     const im_solver_plan *c = p->coarse;
-#pragma omp parallel for schedule(static)
-    for (int cy = 0; cy < c->ny; ++cy)
-        for (int cx = 0; cx < c->nx; ++cx) {
-            double upper, lower = 0;
-            int upper_count, lower_count = 0;
-            solver_cascade_pair_sum(gap0 + (size_t)2 * cy * p->nx, p->nx, cx, &upper, &upper_count);
-            if (2 * cy + 1 < p->ny)
-                solver_cascade_pair_sum(gap0 + (size_t)(2 * cy + 1) * p->nx, p->nx, cx, &lower, &lower_count);
-            p->coarse_gap0[(size_t)cy * c->nx + cx] = solver_cascade_block_mean(upper, lower,
-                                                                                upper_count + lower_count);
-        }
+    for (int cx = first; cx < last; ++cx) {
+        double upper, lower = 0;
+        int upper_count, lower_count = 0;
+        solver_cascade_pair_sum(gap0 + (size_t)2 * cy * p->nx, p->nx, cx, &upper, &upper_count);
+        if (2 * cy + 1 < p->ny)
+            solver_cascade_pair_sum(gap0 + (size_t)(2 * cy + 1) * p->nx, p->nx, cx, &lower, &lower_count);
+        p->coarse_gap0[(size_t)cy * c->nx + cx] = solver_cascade_block_mean(upper, lower, upper_count + lower_count);
+    }
+}
+
+/* The coarse gaps of the coarse patches [lo, hi) (row-major), and when summed their sum, taken while they
+ * are in cache (summation.h: sum_ranges; else 0). */
+static double restrict_range(size_t lo, size_t hi, const void *context)
+{
+    const restriction *r = context;
+    const int nx = r->fine->coarse->nx;
+    for (size_t k = lo; k < hi;) {
+        const int cy = (int)(k / (size_t)nx), first = (int)(k % (size_t)nx);
+        const int last = hi - k < (size_t)(nx - first) ? first + (int)(hi - k) : nx;
+        restrict_row(r->fine, r->gap0, cy, first, last);
+        k += (size_t)(last - first);
+    }
+    return r->summed ? sum_doubles_range(r->fine->coarse_gap0, lo, hi) : 0;
+}
+
+/* The coarse gap, and its mean where the coarse level's periodic approach is checked (else NaN): summed
+ * as the pass makes it, to sum_doubles' bits over the coarse gap, with no second pass over it. */
+static double restrict_gap(const im_solver_plan *p, const double *gap0, enum im_control control)
+{
+    const restriction r = {p, gap0, solver_periodic_approach_checked(p->coarse, control)};
+    const size_t n = (size_t)p->coarse->nx * p->coarse->ny;
+    const double sum = sum_ranges(n, restrict_range, &r);
+    return r.summed ? sum / (double)n : NAN;
 }
 
 int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, int nx, double *pressure_row)
@@ -117,34 +148,36 @@ static int prolong_pressure(const im_solver_plan *p, const double *gap0, double 
 }
 
 /* The coarse solve from zero pressure; keep: its answer may stay on the engine (*kept when it did). */
-static int solve_level(im_solver_plan *coarse, const double *coarse_gap0, enum im_control control, double target,
-                       double *coarse_pressure, double *coarse_displacement, int keep, int *usable, int *kept)
+static int solve_level(im_solver_plan *coarse, const double *coarse_gap0, double mean_gap0, enum im_control control,
+                       double target, double *coarse_pressure, double *coarse_displacement, int keep, int *usable,
+                       int *kept)
 {
     memset(coarse_pressure, 0, sizeof(double) * (size_t)coarse->nx * coarse->ny);
     im_solve_result result = {0};
     /* Only a start: a coarse solve that stops at its cap still gives one (p >= 0 whatever happens),
      * and one that breaks down leaves the fine solve the local guess. */
-    int status = solver_solve_coarse(coarse, coarse_gap0, control, target, coarse_pressure, coarse_displacement, keep,
-                                     &result, kept);
+    int status = solver_solve_coarse(coarse, coarse_gap0, mean_gap0, control, target, coarse_pressure,
+                                     coarse_displacement, keep, &result, kept);
     *usable = status != IM_ENUMERIC;
     return result.iterations + result.coarse_iterations;
 }
 
-int solver_cascade_solve(im_solver_plan *coarse, const double *coarse_gap0, enum im_control control, double target,
-                         double *coarse_pressure, double *coarse_displacement, int *usable)
+int solver_cascade_solve(im_solver_plan *coarse, const double *coarse_gap0, double mean_gap0, enum im_control control,
+                         double target, double *coarse_pressure, double *coarse_displacement, int *usable)
 {
     int kept;
-    return solve_level(coarse, coarse_gap0, control, target, coarse_pressure, coarse_displacement, 0, usable, &kept);
+    return solve_level(coarse, coarse_gap0, mean_gap0, control, target, coarse_pressure, coarse_displacement, 0,
+                       usable, &kept);
 }
 
 int solver_cascade_start(im_solver_plan *p, const double *gap0, enum im_control control, double target,
                          double *pressure, int *prolonged)
 {
-    restrict_gap(p, gap0);
+    const double mean_gap0 = restrict_gap(p, gap0, control);
     /* both levels on one engine that keeps answers: the coarse answer is prolonged there (engine.h) */
     const int keep = p->engine->keeps_answers && p->coarse->engine == p->engine;
     int usable, kept;
-    int iterations = solve_level(p->coarse, p->coarse_gap0, control, target, p->coarse_pressure,
+    int iterations = solve_level(p->coarse, p->coarse_gap0, mean_gap0, control, target, p->coarse_pressure,
                                  p->coarse_displacement, keep, &usable, &kept);
     *prolonged = usable && kept;
     if (!usable || (!kept && !prolong_pressure(p, gap0, pressure)))

@@ -534,12 +534,14 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     return solve_checked(&r, positive, start, result);
 }
 
-int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, enum im_control control, double target,
-                        double *pressure, double *displacement, int keep, im_solve_result *result, int *kept)
+int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, double mean_gap0, enum im_control control,
+                        double target, double *pressure, double *displacement, int keep, im_solve_result *result,
+                        int *kept)
 {
     const double start = omp_get_wtime();
     *kept = 0;
-    int status = check_periodic_approach(coarse, gap0, control, target);
+    int status = solver_periodic_approach_checked(coarse, control) ? solver_check_periodic_mean_gap(mean_gap0, target)
+                                                                   : IM_OK;
     if (status != IM_OK)
         return status;
     pk_run r = solver_pk_run(coarse, gap0, control, target, pressure, displacement);

@@ -79,11 +79,13 @@ void solver_cascade_free(im_solver_plan *plan);
 int solver_cascade_start(im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                          double *pressure, int *prolonged);
 /* im_solver_solve of a cascade's coarse level, from zero pressure on a gap restricted from a checked
- * one: only the periodic approach is checked (the rest holds by construction). keep: its answer may
- * stay on the engine for the finer level (pk_run.keep_answer); *kept when it did, and then pressure
- * and displacement are not written. pk.c. */
-int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, enum im_control control, double target,
-                        double *pressure, double *displacement, int keep, im_solve_result *result, int *kept);
+ * one: only the periodic approach is checked (the rest holds by construction), on mean_gap0, the mean
+ * of gap0 that the restriction summed (sum_doubles' value). keep: its answer may stay on the engine for
+ * the finer level (pk_run.keep_answer); *kept when it did, and then pressure and displacement are not
+ * written. pk.c. */
+int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, double mean_gap0, enum im_control control,
+                        double target, double *pressure, double *displacement, int keep, im_solve_result *result,
+                        int *kept);
 
 /* The pieces of a cascade start that the distributed solver (mpi/cascade.c) shares, so that its
  * coarse levels see the serial plan's numbers to the bit:
@@ -93,9 +95,11 @@ im_solver_options solver_cascade_options(const im_solver_options *fine);
 void solver_cascade_pair_sum(const double *row, int nx, int cx, double *sum, int *count);
 /* a coarse gap from its block's upper and lower pair sums and their count (+inf for none); */
 double solver_cascade_block_mean(double upper, double lower, int count);
-/* the coarse solve (from zero pressure), its iterations over all levels; *usable unless it broke down; */
-int solver_cascade_solve(struct im_solver_plan *coarse, const double *coarse_gap0, enum im_control control,
-                         double target, double *coarse_pressure, double *coarse_displacement, int *usable);
+/* the coarse solve (from zero pressure; mean_gap0: the coarse gap's mean, summed as sum_doubles sums it), its
+ * iterations over all levels; *usable unless it broke down; */
+int solver_cascade_solve(struct im_solver_plan *coarse, const double *coarse_gap0, double mean_gap0,
+                         enum im_control control, double target, double *coarse_pressure, double *coarse_displacement,
+                         int *usable);
 /* a fine row of nx prolonged from its coarse row (0 where the fine gap is infinite); whether any > 0. */
 int solver_cascade_prolong_row(const double *coarse_row, const double *gap_row, int nx, double *pressure_row);
 
