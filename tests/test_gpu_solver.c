@@ -599,13 +599,11 @@ static void test_unsupported_grid_refused(void **state)
     im_solver_plan_free(plan);
 }
 
-/* test_gpu_solver [PATTERN]: only the cases whose names match PATTERN (cmocka's filter: * and ?), as
- * scripts/gpu-check.sh runs one case on a device machine whose time is counted. */
+/* test_gpu_solver [NAMES | --skip NAMES]: only the cases named (comma-separated), or all but those
+ * (test_run_cases), as scripts/gpu-check.sh runs one case on a device machine whose time is counted. */
 int main(int argc, char **argv)
 {
     test_keep_vulkan_libraries_loaded();
-    if (argc > 1)
-        cmocka_set_test_filter(argv[1]);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_convolution),
         cmocka_unit_test(test_unsupported_grid_refused),
@@ -625,7 +623,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_buffers_in_parts),
         cmocka_unit_test(test_rough_cone_1024),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return test_run_chosen_cases(tests, argc, argv);
 }
 #else
 int main(void)
