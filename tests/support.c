@@ -67,12 +67,24 @@ void test_copy_file(const char *from, const char *to)
     free(bytes);
 }
 
-/* Whether `name` is one of the comma-separated names of `list`. */
+/* The name after the next comma of a comma-separated list, or NULL after the last. */
+static const char *next_name(const char *at)
+{
+    const char *comma = strchr(at, ',');
+    return comma ? comma + 1 : NULL;
+}
+
+/* Whether the list's name at `at` (up to a comma or the end) is `name`. */
+static int name_is(const char *at, const char *name)
+{
+    const size_t length = strcspn(at, ",");
+    return strncmp(at, name, length) == 0 && name[length] == '\0';
+}
+
 static int listed(const char *list, const char *name)
 {
-    const size_t length = strlen(name);
-    for (const char *at = list; at; at = strchr(at, ',') ? strchr(at, ',') + 1 : NULL)
-        if (strncmp(at, name, length) == 0 && (at[length] == ',' || at[length] == '\0'))
+    for (const char *at = list; at; at = next_name(at))
+        if (name_is(at, name))
             return 1;
     return 0;
 }
@@ -80,14 +92,13 @@ static int listed(const char *list, const char *name)
 /* Exits with status 2 naming the first name of `list` that no case has. */
 static void refuse_unknown_names(const char *program, const char *list, const struct CMUnitTest *tests, size_t count)
 {
-    for (const char *at = list; at; at = strchr(at, ',') ? strchr(at, ',') + 1 : NULL) {
-        const size_t length = strcspn(at, ",");
+    for (const char *at = list; at; at = next_name(at)) {
         size_t k = 0;
-        while (k < count && !(strncmp(tests[k].name, at, length) == 0 && tests[k].name[length] == '\0'))
+        while (k < count && !name_is(at, tests[k].name))
             ++k;
         if (k == count) {
             fprintf(stderr, "%s: '%.*s' is not one of its cases: expected case names separated by commas\n", program,
-                    (int)length, at);
+                    (int)strcspn(at, ","), at);
             exit(2);
         }
     }
