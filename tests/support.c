@@ -67,6 +67,64 @@ void test_copy_file(const char *from, const char *to)
     free(bytes);
 }
 
+/* The name after the next comma of a comma-separated list, or NULL after the last. */
+static const char *next_name(const char *at)
+{
+    const char *comma = strchr(at, ',');
+    return comma ? comma + 1 : NULL;
+}
+
+/* Whether the list's name at `at` (up to a comma or the end) is `name`. */
+static int name_is(const char *at, const char *name)
+{
+    const size_t length = strcspn(at, ",");
+    return strncmp(at, name, length) == 0 && name[length] == '\0';
+}
+
+static int listed(const char *list, const char *name)
+{
+    for (const char *at = list; at; at = next_name(at))
+        if (name_is(at, name))
+            return 1;
+    return 0;
+}
+
+/* Exits with status 2 naming the first name of `list` that no case has. */
+static void refuse_unknown_names(const char *program, const char *list, const struct CMUnitTest *tests, size_t count)
+{
+    for (const char *at = list; at; at = next_name(at)) {
+        size_t k = 0;
+        while (k < count && !name_is(at, tests[k].name))
+            ++k;
+        if (k == count) {
+            fprintf(stderr, "%s: '%.*s' is not one of its cases: expected case names separated by commas\n", program,
+                    (int)strcspn(at, ","), at);
+            exit(2);
+        }
+    }
+}
+
+int test_run_cases(const struct CMUnitTest *tests, size_t count, int argc, char **argv)
+{
+    const int skip = argc == 3 && strcmp(argv[1], "--skip") == 0;
+    if (argc > 1 && !skip && !(argc == 2 && argv[1][0] != '-')) {
+        fprintf(stderr, "%s: '%s': expected no argument, case NAMES (comma-separated) or --skip NAMES\n", argv[0],
+                argv[1]);
+        exit(2);
+    }
+    const char *names = argc > 1 ? argv[argc - 1] : NULL;
+    if (names)
+        refuse_unknown_names(argv[0], names, tests, count);
+    struct CMUnitTest *chosen = malloc(sizeof *chosen * count);
+    size_t n = 0;
+    for (size_t k = 0; chosen && k < count; ++k)
+        if (!names || listed(names, tests[k].name) != skip)
+            chosen[n++] = tests[k];
+    const int failed = chosen ? _cmocka_run_group_tests("tests", chosen, n, NULL, NULL) : 1;
+    free(chosen);
+    return failed;
+}
+
 double test_relative_difference(double a, double b)
 {
     double scale = fmax(fmax(fabs(a), fabs(b)), 1e-300);

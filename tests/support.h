@@ -32,6 +32,13 @@ struct im_field *test_rough_surface(int n, double slope, uint64_t seed);
  * first in main of a test that opens Vulkan. */
 void test_keep_vulkan_libraries_loaded(void);
 
+/* Runs the cases of `tests` that the program's arguments choose: none, every case; NAMES (comma-separated),
+ * those; --skip NAMES, all the others. A name that is no case's is refused with a message and exit status 2,
+ * so a renamed case cannot drop out of both of the ctest entries that split a program: the cases costly under
+ * the sanitizers in one labelled slow, the rest in the other (CMakeLists.txt, docs/tests.md). */
+int test_run_cases(const struct CMUnitTest *tests, size_t count, int argc, char **argv);
+#define test_run_chosen_cases(tests, argc, argv) test_run_cases(tests, sizeof tests / sizeof *tests, argc, argv)
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double test_relative_difference(double a, double b);
 

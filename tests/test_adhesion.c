@@ -1062,5 +1062,5 @@ int main(int argc, char **argv)
         cmocka_unit_test(indentation_solves_the_widened_law),
         cmocka_unit_test(summary_of_a_loop),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return test_run_chosen_cases(tests, argc, argv);
 }
