@@ -315,6 +315,9 @@ typedef struct run_record_solver {
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver);
 
+/* What run.json and the messages call an h'rms definition (IM_SLOPE_*): "spectral" or "finite differences". */
+const char *slope_definition_name(int definition);
+
 /* run.json's "adhesion" block of a run under options' law (solver.h, "Adhesion"): its name, work, range,
  * (peak) stress, the Dugdale zone's length (in the length unit and in patches of side delta) and, for a
  * sphere punch, Maugis's lambda and the law's Tabor mu, all of the law solved on patches of side delta

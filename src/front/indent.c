@@ -44,11 +44,6 @@ const char *indent_target_name(enum im_control control)
     return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean_gap" : "approach";
 }
 
-const char *indent_slope_definition_name(int definition)
-{
-    return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
-}
-
 static indent_files files_of(const im_indent_options *o)
 {
     return (indent_files){o->fields || o->frames, o->solver.hardness, o->distributions, o->target_count};

@@ -86,7 +86,7 @@ static json_t *indent_blocks(const indent_run_state *s, const im_field *surface,
     json_object_set_new(blocks, "periodic", json_boolean(o->solver.periodic));
     json_object_set_new(blocks, "theory_slope_rms",
                         json_pack("{s:f, s:s, s:s}", "value", s->theory_slope, "definition",
-                                  indent_slope_definition_name(s->slope_definition), "chosen_by",
+                                  slope_definition_name(s->slope_definition), "chosen_by",
                                   s->slope_reason ? s->slope_reason : "none"));
     add_surface_details(s, json_object_get(blocks, "surface"), escaped);
     return blocks;

@@ -91,7 +91,6 @@ void indent_say(const indent_run_state *state, im_log_level level, const char *f
 
 /* What the step lines, messages and run.json call the targets: "approach", "load" or "mean_gap". */
 const char *indent_target_name(enum im_control control);
-const char *indent_slope_definition_name(int definition);
 
 /* The folder's rules for options (run_folder.h), files: what the run writes there. */
 run_folder_rules indent_folder_rules(const im_indent_options *options, const indent_files *files);

@@ -81,6 +81,11 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
     return status;
 }
 
+const char *slope_definition_name(int definition)
+{
+    return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
+}
+
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver)
 {

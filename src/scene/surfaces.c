@@ -4,9 +4,11 @@
 #include "scene/contents.h"
 #include "scene/run_state.h"
 
+#include "front/front.h"
 #include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "indentmap/surface.h"
 #include "scene/surfaces.h"
 
 #include <math.h>
@@ -49,14 +51,51 @@ static int check_same_grid(const im_scene *scene, const im_field *first, const i
                    first->delta, first->unit);
 }
 
+/* The h'rms of the files, one definition for the ensemble. Spectral when the scene is solved as a
+ * periodic cell or every file is one (its edges meet, front.h: periodic_edge_mismatch), as generated
+ * families are measured (their target is the spectral h'rms of the grid, realised to about 1e-16): a
+ * generated surface written to a file and read back gives the numbers it gave generated. Else forward
+ * differences: a measured scan's spectrum would count the steps across its edges. */
+static void choose_slope_definition(const im_scene *scene, int all_periodic, scene_run_state *state)
+{
+    const int spectral = scene->periodic || all_periodic;
+    state->file_slope_definition = spectral ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+    state->file_slope_reason = scene->periodic ? "default: a periodic cell ([punch] periodic)"
+                               : all_periodic  ? "default: periodic surfaces (the edges of every file meet)"
+                                               : "default: measured surfaces (the edges of a file do not meet)";
+}
+
+/* Both h'rms of one file as solved, and whether its edges meet. */
+static int measure_file(const im_field *surface, double *spectral, double *forward, int *periodic)
+{
+    double edge, inner;
+    *periodic = !periodic_edge_mismatch(surface, &edge, &inner);
+    int status = im_surface_slope_rms(surface, IM_SLOPE_SPECTRAL, spectral);
+    return status == IM_OK ? im_surface_slope_rms(surface, IM_SLOPE_FINITE_DIFFERENCE, forward) : status;
+}
+
+/* The files' h'rms by the chosen definition into state, their root mean square into slopes[0]. */
+static void set_file_slopes(im_scene *scene, scene_run_state *state, const double *spectral, const double *forward,
+                            int all_periodic)
+{
+    choose_slope_definition(scene, all_periodic, state);
+    double sum_squares = 0.0;
+    for (int i = 0; i < scene->file_count; ++i) {
+        state->file_slopes[i] = state->file_slope_definition == IM_SLOPE_SPECTRAL ? spectral[i] : forward[i];
+        sum_squares += state->file_slopes[i] * state->file_slopes[i];
+    }
+    scene->slopes[0] = sqrt(sum_squares / scene->file_count);
+}
+
 int scene_measure_files(im_scene *scene, scene_run_state *state)
 {
     im_field *first = NULL;
-    double sum_squares = 0.0;
-    int status = IM_OK;
+    double spectral[IM_SCENE_MAX_FAMILIES], forward[IM_SCENE_MAX_FAMILIES];
+    int status = IM_OK, all_periodic = 1;
     for (int i = 0; i < scene->file_count && status == IM_OK; ++i) {
         im_field *surface = NULL;
         im_surface_read_info info;
+        int periodic = 0;
         status = file_surface(scene, i, &surface, &info);
         if (status == IM_OK) {
             state->file_spacing_differences[i] = info.spacing_difference;
@@ -65,8 +104,8 @@ int scene_measure_files(im_scene *scene, scene_run_state *state)
         if (status == IM_OK && first)
             status = check_same_grid(scene, first, surface, i);
         if (status == IM_OK)
-            status = im_surface_slope_rms(surface, IM_SLOPE_FINITE_DIFFERENCE, &state->file_slopes[i]);
-        sum_squares += status == IM_OK ? state->file_slopes[i] * state->file_slopes[i] : 0.0;
+            status = measure_file(surface, &spectral[i], &forward[i], &periodic);
+        all_periodic = all_periodic && periodic;
         if (!first)
             first = surface;
         else
@@ -77,7 +116,7 @@ int scene_measure_files(im_scene *scene, scene_run_state *state)
         scene->surface.ny = first->ny;
         scene->surface.delta = first->delta;
         memcpy(scene->file_unit, first->unit, sizeof scene->file_unit);
-        scene->slopes[0] = sqrt(sum_squares / scene->file_count);
+        set_file_slopes(scene, state, spectral, forward, all_periodic);
     }
     im_field_free(first);
     return status;
