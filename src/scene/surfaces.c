@@ -51,20 +51,6 @@ static int check_same_grid(const im_scene *scene, const im_field *first, const i
                    first->delta, first->unit);
 }
 
-/* The h'rms of the files, one definition for the ensemble. Spectral when the scene is solved as a
- * periodic cell or every file is one (its edges meet, front.h: periodic_edge_mismatch), as generated
- * families are measured (their target is the spectral h'rms of the grid, realised to about 1e-16): a
- * generated surface written to a file and read back gives the numbers it gave generated. Else forward
- * differences: a measured scan's spectrum would count the steps across its edges. */
-static void choose_slope_definition(const im_scene *scene, int all_periodic, scene_run_state *state)
-{
-    const int spectral = scene->periodic || all_periodic;
-    state->file_slope_definition = spectral ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
-    state->file_slope_reason = scene->periodic ? "default: a periodic cell ([punch] periodic)"
-                               : all_periodic  ? "default: periodic surfaces (the edges of every file meet)"
-                                               : "default: measured surfaces (the edges of a file do not meet)";
-}
-
 /* Both h'rms of one file as solved, and whether its edges meet. */
 static int measure_file(const im_field *surface, double *spectral, double *forward, int *periodic)
 {
@@ -74,11 +60,15 @@ static int measure_file(const im_field *surface, double *spectral, double *forwa
     return status == IM_OK ? im_surface_slope_rms(surface, IM_SLOPE_FINITE_DIFFERENCE, forward) : status;
 }
 
-/* The files' h'rms by the chosen definition into state, their root mean square into slopes[0]. */
+/* The files' h'rms into state, their root mean square into slopes[0]: one definition for the ensemble,
+ * front.h's rule (periodic_slope_definition) with edges that meet when every file's do, the rule generated
+ * families follow (their target is the spectral h'rms of the grid, realised to about 1e-16): a generated
+ * surface written to a file and read back gives the numbers it gave generated. */
 static void set_file_slopes(im_scene *scene, scene_run_state *state, const double *spectral, const double *forward,
                             int all_periodic)
 {
-    choose_slope_definition(scene, all_periodic, state);
+    state->file_slope_definition = periodic_slope_definition(scene->periodic != 0, all_periodic,
+                                                             &state->file_slope_reason);
     double sum_squares = 0.0;
     for (int i = 0; i < scene->file_count; ++i) {
         state->file_slopes[i] = state->file_slope_definition == IM_SLOPE_SPECTRAL ? spectral[i] : forward[i];
