@@ -285,7 +285,7 @@ grep -A3 '"theory_slope_rms"' "$DIR/sd_file/run.json" | grep -q '"definition": "
 # A generated surface without its sidecar is still periodic (its edges meet): spectral, as generated (R5).
 cp "$DIR/cell.npy" "$DIR/bare.npy"
 "$BIN" indent "$DIR/bare.npy" --approach 1 --out "$DIR/sd_bare" > /dev/null 2>&1 || fail "slope: bare run"
-grep -q '"chosen_by": "default: periodic surfaces (their edges meet)"' "$DIR/sd_bare/run.json" &&
+grep -q '"chosen_by": "default: a periodic surface (its edges meet)"' "$DIR/sd_bare/run.json" &&
     [ "$(grep -A1 '"theory_slope_rms"' "$DIR/sd_bare/run.json" | tail -1)" = "$(grep -A1 '"theory_slope_rms"' "$DIR/sd_gen/run.json" | tail -1)" ] ||
     fail "a bare periodic file: not the generated one's h'rms: $(grep -A3 '"theory_slope_rms"' "$DIR/sd_bare/run.json")"
 "$BIN" indent "$DIR/measured.txt" --approach 0.5 --slope-definition spectral --out "$DIR/sd_spec" > /dev/null 2>&1 || fail "slope: chosen"

@@ -36,7 +36,7 @@ check "one file: eq. (12) column is indentmap theory at it ($theory)" \
   awk -v a="$(cut -d, -f9 <<<"$row")" -v b="$theory" 'BEGIN { exit !(a - b < 1e-6 && b - a < 1e-6) }'
 check "one file: the definition is stated" grep -q "measured by the spectrum" "$dir/one/table1.md"
 check "one file: run.json records it" grep -q '"slope_definition": "spectral, of each surface' "$dir/one/run.json"
-check "one file: run.json says what chose it" grep -q '"chosen_by": "default: periodic surfaces' "$dir/one/run.json"
+check "one file: run.json says what chose it" grep -q '"chosen_by": "default: a periodic surface' "$dir/one/run.json"
 check "one file: run.json records the length unit" grep -q '"length_unit": "delta"' "$dir/one/run.json"
 
 # A scan whose edges do not meet (a tilt and noise): forward differences, since its spectrum would count

@@ -46,7 +46,7 @@ int periodic_edge_mismatch(const im_field *s, double *edge_rms, double *inner_rm
 int periodic_slope_definition(int periodic, int edges_meet, const char **reason)
 {
     *reason = periodic     ? "default: a periodic cell (solved as one)"
-              : edges_meet ? "default: periodic surfaces (their edges meet)"
+              : edges_meet ? "default: a periodic surface (its edges meet)"
                            : "default: a measured surface (its edges do not meet)";
     return periodic || edges_meet ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
 }
