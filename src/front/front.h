@@ -152,13 +152,6 @@ im_indenter periodic_rigid_flat(const im_field *surface);
 
 /* Those two rms into *edge_rms and *inner_rms; 1 when the surface is not periodic by that rule. */
 int periodic_edge_mismatch(const im_field *surface, double *edge_rms, double *inner_rms);
-/* The h'rms definition (IM_SLOPE_*) of the theory beside a solve when none is chosen, and what chose it
- * (*reason, a static text): spectral for a periodic cell, whether solved as one (periodic) or a surface
- * whose edges meet (edges_meet: not periodic_edge_mismatch; every generated surface, in memory or read
- * back from a file), as generated surfaces are measured (their target is the spectral h'rms of the grid);
- * forward differences for a scan whose edges do not meet, whose spectrum would count the steps across
- * them. The same surface gives the same h'rms by whatever path it came. */
-int periodic_slope_definition(int periodic, int edges_meet, const char **reason);
 /* 1 with the warning in text ("warning: NAME is not periodic: ...", no newline) when the surface is not
  * periodic by that rule: the solver joins its edges as if they met (as ContactMechanics warns); else 0. */
 int periodic_warning(const im_field *surface, const char *name, char *text, size_t size);
@@ -321,6 +314,10 @@ typedef struct run_record_solver {
  * "surface", "smooth" or "scene"; input_path may be NULL. */
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver);
+
+/* The generator block of a surface file's sidecar (written by `indentmap surface`: the file is a generated
+ * surface), a new reference; NULL for a NULL path, a file without a sidecar or a sidecar naming none. */
+json_t *surface_sidecar_generator(const char *surface_path);
 
 /* What run.json and the messages call an h'rms definition (IM_SLOPE_*): "spectral" or "finite differences". */
 const char *slope_definition_name(int definition);

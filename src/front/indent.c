@@ -221,22 +221,22 @@ static int check_axis_inside(const indent_run_state *s, const im_field *surface)
 }
 
 /* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
- * The h'rms is the options' definition, else spectral for a generated surface (its sidecar names the
- * generator; flat) and else front.h's rule (periodic_slope_definition), the rule of scenes' files. */
+ * The h'rms is the options' definition, else spectral for a surface known to be periodic (generated: its
+ * sidecar names the generator; flat; solved as a periodic cell) and forward differences for a measured
+ * one (the rule of Python; scenes' files take spectral also for a file whose edges meet without a
+ * sidecar, scene/surfaces.c). */
 static int measured_interface(indent_run_state *s, const im_field *surface, im_theory_interface *rough)
 {
     const im_indent_options *o = s->options;
-    json_t *generator = indent_surface_generator(o->surface_path);
+    json_t *generator = surface_sidecar_generator(o->surface_path);
     const int generated = s->smooth || generator;
     json_decref(generator);
     s->slope_definition = o->slope_definition;
-    double edge, inner;
-    if (s->slope_definition < 0 && generated) {
-        s->slope_definition = IM_SLOPE_SPECTRAL;
-        s->slope_reason = "default: a generated surface";
-    } else if (s->slope_definition < 0) {
-        const int edges_meet = !periodic_edge_mismatch(surface, &edge, &inner);
-        s->slope_definition = periodic_slope_definition(o->solver.periodic, edges_meet, &s->slope_reason);
+    if (s->slope_definition < 0) {
+        s->slope_definition = generated || o->solver.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
+        s->slope_reason = generated            ? "default: a generated surface"
+                          : o->solver.periodic ? "default: a periodic cell"
+                                               : "default: a measured surface";
     } else {
         s->slope_reason = "--slope-definition";
     }

@@ -105,9 +105,6 @@ int indent_run_check(const im_indent_options *options);
 json_t *indent_run_record(const indent_run_state *state, const im_field *surface, const im_indentation *run);
 int indent_run_record_inputs(const im_indent_options *options, json_t *record);
 
-/* The generator block of the surface file's sidecar (written by `indentmap surface`), or NULL. */
-json_t *indent_surface_generator(const char *surface_path);
-
 /* What indent's history figure draws of a run under solver's options (front.h: history_figure's choices): a
  * periodic cell's contact fraction (cell_area) with eq. (1) of rough under the rigid flat (no punch_given), the
  * theory columns of an elastic, repulsive run; the caller sets the rows, the punch, the units and the texts.

@@ -43,14 +43,6 @@ int periodic_edge_mismatch(const im_field *s, double *edge_rms, double *inner_rm
     return *edge_rms > PERIODIC_EDGE_RATIO * *inner_rms;
 }
 
-int periodic_slope_definition(int periodic, int edges_meet, const char **reason)
-{
-    *reason = periodic     ? "default: a periodic cell (solved as one)"
-              : edges_meet ? "default: a periodic surface (its edges meet)"
-                           : "default: a measured surface (its edges do not meet)";
-    return periodic || edges_meet ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
-}
-
 int periodic_warning(const im_field *surface, const char *name, char *text, size_t size)
 {
     double edge, inner;

@@ -135,6 +135,17 @@ static int add_provenance(const im_scene *scene, json_t *root)
     return IM_OK;
 }
 
+/* The h'rms of the theory beside the results: the files' as measured (surfaces.c: the rule), else the
+ * generated families' target, by the definition [surfaces] slope_definition names. */
+static json_t *theory_slope_record(const im_scene *scene)
+{
+    if (scene->file_count > 0)
+        return json_pack("{s:s, s:s}", "definition", slope_definition_name(scene->run->file_slope_definition),
+                         "chosen_by", scene->run->file_slope_reason);
+    return json_pack("{s:s, s:s}", "definition", slope_definition_name((int)scene->surface.slope_definition),
+                     "chosen_by", "generated surfaces (their target, [surfaces] slope_definition)");
+}
+
 /* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
  * surface files it measured, a profile punch's file and a sweep's lists. */
 int scene_write_record(const im_scene *scene)
@@ -164,13 +175,7 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(json_object_get(root, "adhesion"), "zone", json_real(scene->adhesion_zone));
     json_object_set_new(root, "periodic", periodic_record(scene));
     json_object_set_new(root, "units", units_record(scene));
-    /* the h'rms of the theory beside the results (surfaces.c: the rule for files) */
-    const int files = scene->file_count > 0;
-    json_object_set_new(
-        root, "theory_slope_rms",
-        json_pack("{s:s, s:s}", "definition",
-                  slope_definition_name(files ? scene->run->file_slope_definition : IM_SLOPE_SPECTRAL), "chosen_by",
-                  files ? scene->run->file_slope_reason : "default: generated surfaces (their target)"));
+    json_object_set_new(root, "theory_slope_rms", theory_slope_record(scene));
     int status = add_provenance(scene, root);
     if (status == IM_OK)
         status = run_record_write(scene->output_dir, root);
