@@ -228,7 +228,7 @@ static void print_statistics(const surface_options *o, const im_field *s, const 
     else
         printf("h'rms spectral   %.6g\n", st->slope_rms_spectral);
     printf("h'rms fd         %.6g   (forward differences%s)\n", st->slope_rms_fd,
-           info ? " of the prepared surface: the theory's h'rms for a scan whose edges do not meet" : "");
+           info ? " of the prepared surface: what scenes compare with theory" : "");
     printf("curvature rms    %.6g   (mean curvature, spectral)\n", st->curvature_rms);
     printf("m0 m2 m4         %.6g %.6g %.6g\n", st->m0, st->m2, st->m4);
     printf("Nayak alpha      %.6g\n", st->nayak);

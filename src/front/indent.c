@@ -223,8 +223,7 @@ static int check_axis_inside(const indent_run_state *s, const im_field *surface)
 /* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
  * The h'rms is the options' definition, else spectral for a surface known to be periodic (generated: its
  * sidecar names the generator; flat; solved as a periodic cell) and forward differences for a measured
- * one (the rule of Python; scenes' files take spectral also for a file whose edges meet without a
- * sidecar, scene/surfaces.c). */
+ * one (the rule of Python and of scenes' files, scene/surfaces.c). */
 static int measured_interface(indent_run_state *s, const im_field *surface, im_theory_interface *rough)
 {
     const im_indent_options *o = s->options;
