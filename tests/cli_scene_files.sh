@@ -102,4 +102,13 @@ entry = files["files"][0]
 sys.exit(not (files["resample_square"] is True and entry["resampled"] == "bilinear"
               and abs(entry["spacing_difference"] - 2 / 3) < 1e-15 and files["delta"] == 1.0))' "$dir/rect/run.json"
 
+
+# Generated families record the definition of their target ([surfaces] slope_definition), not always
+# "spectral".
+scene fdgen "n = 32" "slope_definition = fd"
+"$cli" run --quiet "$dir/fdgen.ini" >/dev/null 2>"$dir/fdgen.err"
+check "generated fd family: runs" test $? -eq 0
+check "generated fd family: run.json says finite differences" \
+  bash -c "grep -A1 '\"theory_slope_rms\"' '$dir/fdgen/run.json' | grep -q '\"definition\": \"finite differences\"'"
+
 finish
