@@ -1,9 +1,12 @@
-/* A solve's OpenMP team beside a busy process (core/team_size.c), through every solve entry: the serial
- * im_solver_solve and the distributed im_mpi_solver_solve (one rank, under mpirun). Each must leave the
- * busy process a core: no parallel region of the library runs with more threads than the free cpus.
- * Before the distributed solve chose its team it ran on all the cpus, spinning in libgomp's barriers
- * for a thread that shared its core with the neighbour: `mpi-indent --n 256` took 4.5 s against 1.1 s
- * on one thread beside two busy processes on 2 cores (docs/benchmarks.md, "Two threads against one").
+/* The OpenMP team beside a busy process (core/team_size.c), through every entry that solves: a solve
+ * (im_solver_solve, and im_mpi_solver_solve on one rank under mpirun) and an indentation's steps and
+ * fields (im_indentation_step twice, so that the second solves on its step box, im_indentation_fields;
+ * im_mpi_indentation_step). Each must leave the busy process a core: no parallel region of the library
+ * runs with more threads than the free cpus. Before, the distributed solve chose no team, and a step's
+ * own regions (its box, its window's passes) ran on all the cpus around the solve's choice, spinning in
+ * libgomp's barriers for a thread that shared its core with the neighbour: `mpi-indent --n 256` took
+ * 4.3-6.4 s against 0.9-1.5 s on one thread, `indent` a 40-step history 2.7-4.0 s against 0.9-1.4 s
+ * (docs/benchmarks.md, "Two threads against one").
  *
  * The regions are watched by wrapping libgomp's entry (the link's --wrap=GOMP_parallel, which reaches
  * the static library's objects): a region asked for no particular count runs the calling thread's
@@ -59,8 +62,9 @@ typedef struct problem {
     double *gap0, *pressure, *displacement;
 } problem;
 
-/* A rough cone's undeformed gap on 128^2 (the distributed solver's, the same on one rank as the serial
- * gap); a depth of 3 touches over many patches. */
+static const double DEPTH = 3.0; /* touches the rough cone over many patches */
+
+/* A rough cone on 128^2: its undeformed gap (the distributed solver's, on one rank the serial gap). */
 static problem rough_cone(void)
 {
     im_surface_params params = im_surface_params_default();
@@ -90,32 +94,76 @@ static void free_problem(problem *p)
     free(p->displacement);
 }
 
-/* The largest team of the regions a cold solve ran beside a busy process, serially or over the rank. */
-static int team_of_solve(problem *p, int distributed)
+enum entry { SERIAL_SOLVE, DISTRIBUTED_SOLVE, SERIAL_STEPS, DISTRIBUTED_STEPS, ENTRIES };
+static const char *const ENTRY_NAMES[ENTRIES] = {"serial solve", "distributed solve", "serial steps and fields",
+                                                 "distributed steps"};
+
+/* What an entry needs made before the busy process starts: planning is not watched. */
+typedef struct prepared {
+    im_solver_plan *plan;
+    im_indentation *steps;
+    im_mpi_indentation *distributed_steps;
+} prepared;
+
+static prepared prepare(problem *p, enum entry e)
 {
     im_solver_options o = im_solver_options_default();
-    im_solver_plan *plan = NULL;
-    if (!distributed)
-        check_status(im_solver_plan_create(p->surface->nx, p->surface->ny, 1.0, &o, &plan), "serial plan");
+    const im_indenter cone = im_indenter_cone(80);
+    prepared made = {0};
     memset(p->pressure, 0, sizeof(double) * im_field_count(p->surface));
-    const pid_t busy = start_busy_process();
-    largest_team = 0;
-    const int status = distributed ? im_mpi_solver_solve(p->solver, p->gap0, IM_CONTROL_DISPLACEMENT, 3.0,
-                                                         p->pressure, p->displacement, NULL)
-                                   : im_solver_solve(plan, p->gap0, IM_CONTROL_DISPLACEMENT, 3.0, p->pressure,
-                                                     p->displacement, NULL);
-    const int team = largest_team;
-    stop_busy_process(busy);
-    check_status(status, distributed ? "distributed solve" : "serial solve");
-    im_solver_plan_free(plan);
-    return team;
+    if (e == SERIAL_SOLVE)
+        check_status(im_solver_plan_create(p->surface->nx, p->surface->ny, 1.0, &o, &made.plan), "serial plan");
+    if (e == SERIAL_STEPS)
+        check_status(im_indentation_create(p->surface, &cone, IM_CONTROL_DISPLACEMENT, DEPTH, &o, &made.steps),
+                     "serial indentation");
+    if (e == DISTRIBUTED_STEPS)
+        check_status(im_mpi_indentation_create(p->solver, p->surface->data, &cone, IM_CONTROL_DISPLACEMENT, DEPTH,
+                                               NULL, &made.distributed_steps),
+                     "distributed indentation");
+    return made;
 }
 
-static void check_team(const char *entry, int team, int cpus)
+static int run_entry(problem *p, enum entry e, prepared *made)
 {
-    char detail[160];
-    snprintf(detail, sizeof detail, "a region ran %d threads beside a busy process on %d cpus", team, cpus);
-    check(team >= 1 && team <= cpus - 1, entry, detail);
+    im_step_result step;
+    im_field *force = NULL;
+    int status = IM_OK;
+    switch (e) {
+    case SERIAL_SOLVE:
+        return im_solver_solve(made->plan, p->gap0, IM_CONTROL_DISPLACEMENT, DEPTH, p->pressure, p->displacement,
+                               NULL);
+    case DISTRIBUTED_SOLVE:
+        return im_mpi_solver_solve(p->solver, p->gap0, IM_CONTROL_DISPLACEMENT, DEPTH, p->pressure, p->displacement,
+                                   NULL);
+    case SERIAL_STEPS:
+        for (double w = DEPTH / 2; w <= DEPTH && status == IM_OK; w += DEPTH / 2)
+            status = im_indentation_step(made->steps, w, &step);
+        if (status == IM_OK)
+            status = im_indentation_fields(made->steps, &force, NULL, NULL);
+        im_field_free(force);
+        return status;
+    case DISTRIBUTED_STEPS:
+        for (double w = DEPTH / 2; w <= DEPTH && status == IM_OK; w += DEPTH / 2)
+            status = im_mpi_indentation_step(made->distributed_steps, w, &step);
+        return status;
+    default: return IM_EINVAL;
+    }
+}
+
+/* The largest team of the regions an entry ran beside a busy process. */
+static int team_of(problem *p, enum entry e)
+{
+    prepared made = prepare(p, e);
+    const pid_t busy = start_busy_process();
+    largest_team = 0;
+    const int status = run_entry(p, e, &made);
+    const int team = largest_team;
+    stop_busy_process(busy);
+    check_status(status, ENTRY_NAMES[e]);
+    im_solver_plan_free(made.plan);
+    im_indentation_free(made.steps);
+    im_mpi_indentation_free(made.distributed_steps);
+    return team;
 }
 
 int main(int argc, char **argv)
@@ -135,10 +183,14 @@ int main(int argc, char **argv)
     unsetenv("OMP_WAIT_POLICY");
     omp_set_num_threads(cpus);
     problem p = rough_cone();
-    const int serial = team_of_solve(&p, 0), distributed = team_of_solve(&p, 1);
-    check_team("serial solve", serial, cpus);
-    check_team("distributed solve", distributed, cpus);
-    printf("team beside a busy process: serial %d, distributed %d, of %d cpus\n", serial, distributed, cpus);
+    printf("largest team beside a busy process on %d cpus:", cpus);
+    for (enum entry e = 0; e < ENTRIES; ++e) {
+        const int team = team_of(&p, e);
+        char detail[160];
+        snprintf(detail, sizeof detail, "a region ran %d threads beside a busy process on %d cpus", team, cpus);
+        check(team >= 1 && team <= cpus - 1, ENTRY_NAMES[e], detail);
+        printf(" %s %d%s", ENTRY_NAMES[e], team, e + 1 < ENTRIES ? "," : "\n");
+    }
     free_problem(&p);
     im_mpi_cleanup();
     MPI_Finalize();
