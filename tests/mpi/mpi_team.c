@@ -5,7 +5,7 @@
  * runs with more threads than the free cpus. Before, the distributed solve chose no team, and a step's
  * own regions (its box, its window's passes) ran on all the cpus around the solve's choice, spinning in
  * libgomp's barriers for a thread that shared its core with the neighbour: `mpi-indent --n 256` took
- * 4.3-6.4 s against 0.9-1.5 s on one thread, `indent` a 40-step history 2.7-4.0 s against 0.9-1.4 s
+ * 4.3-6.4 s against 0.9-1.5 s on one thread, `indent` a 40-step history 0.24-0.40 s of CPU against one thread's 0.11-0.15 s
  * (docs/benchmarks.md, "Two threads against one").
  *
  * The regions are watched by wrapping libgomp's entry (the link's --wrap=GOMP_parallel, which reaches
