@@ -4,7 +4,7 @@
  * im_mpi_indentation_step). Each must leave the busy process a core: no parallel region of the library
  * runs with more threads than the free cpus. Before, the distributed solve chose no team, and a step's
  * own regions (its box, its window's passes) ran on all the cpus around the solve's choice, spinning in
- * libgomp's barriers for a thread that shared its core with the neighbour: `mpi-indent --n 256` took
+ * libgomp's barriers for a thread that shared its core with the neighbour: `mpi-indent --n 256 --m 512` took
  * 4.3-6.4 s against 0.9-1.5 s on one thread, `indent` a 40-step history 0.24-0.40 s of CPU against one thread's 0.11-0.15 s
  * (docs/benchmarks.md, "Two threads against one").
  *
