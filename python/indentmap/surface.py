@@ -151,11 +151,12 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None, 
 def write(path, heights, delta=1.0, unit=""):
     """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
     matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
-    PATH.json). NaN heights (missing points) are kept by .npy, .sdf, .nc and text, which ``read`` takes
-    back as missing (refused, or filled with ``fill=True``).
+    PATH.json). NaN heights (missing points) are kept by every format (.x3p in its validity mask), and
+    ``read`` takes them back as missing (refused, or filled with ``fill=True``). A path that is a symbolic
+    link is written through: its target is replaced, the link stays.
 
     ``FileError`` when the file cannot be written (nothing is left); ``InvalidArgument`` for an
-    unknown extension, an infinite height, or NaN in a .gsf or .x3p (naming the first one's x, y).
+    unknown extension, an infinite height (naming the first one's x, y), or a loop of links.
 
     Example: ``im.write("surface.x3p", h, delta=0.5, unit="µm")``."""
     _core.write_surface(path, heights, float(delta), unit)
