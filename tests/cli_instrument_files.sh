@@ -82,6 +82,17 @@ check "Nanoscope: a channel not there" expect_exit 2 "no channel has the index o
 check "Gwyddion's export of the ZSensor channel gives the Nanoscope file's slopes" \
   bash -c "diff <(grep \"^h'rms\" '$dir/m3') <(grep \"^h'rms\" '$dir/di3p')"
 check "... and its h_rms (µm against m)" bash -c "grep -qx 'h_rms            0.0352229' '$dir/m3' && grep -qx 'h_rms            3.52229e-08' '$dir/di3p'"
+# Without its `# Value units:` line (finding D8b) the export's heights are taken in the Width's unit, µm, and
+# said so on stderr, naming the file and the unit; --height-unit states theirs, and nothing is said.
+grep -v '^# Value units:' "$data/matrix-3.txt" >"$dir/no-value-units.txt"
+"$cli" surface --stats "$dir/no-value-units.txt" >"$dir/nvu" 2>"$dir/nvu.err"
+check "no Value units: read (exit 0)" test $? -eq 0
+check "... warned, naming the file and the unit taken" grep -qF \
+  "warning: $dir/no-value-units.txt: no '# Value units:' line: its heights are taken in µm, the lateral unit" "$dir/nvu.err"
+check "... heights taken as µm unconverted: h_rms 1e6 times too small" grep -qx 'h_rms            3.52229e-08' "$dir/nvu"
+"$cli" surface --stats "$dir/no-value-units.txt" --height-unit m >"$dir/nvu-m" 2>"$dir/nvu-m.err"
+check "--height-unit m: converted as with the line" grep -qx 'h_rms            0.0352229' "$dir/nvu-m"
+check "... and no warning" bash -c "! grep -q warning '$dir/nvu-m.err' && ! grep -q warning '$dir/m3'"
 stats "$data/stp-1.stp" >"$dir/stp" 2>&1
 check "WSxM: grid and spacing" grep -q 'grid             256 x 256, delta = 2.34375e-09 m' "$dir/stp"
 check "WSxM: h_rms as Gwyddion's" stated "$dir/stp" h_rms 1.65416e-09

@@ -96,8 +96,19 @@ refused() {
   grep -q -- "$pattern" "$work/$name.err" || fail "$name: expected '$pattern': $(cat "$work/$name.err")"
   [ "$(grep -c '^indentmap:' "$work/$name.err")" = 1 ] || fail "$name: not one message: $(cat "$work/$name.err")"
 }
-refused tiny_grid 2 "mpi-indent: --n 2 --m 512: the shorter side .* must exceed lambda_s = 4: expected --n and --m > 4" \
+refused tiny_grid 2 "mpi-indent: --n 2 --m 2: the shorter side .* must exceed lambda_s = 4: expected --n and --m > 4" \
   -n 3 "$cli" mpi-indent --n 2 --approach 1
+# --n alone is a square grid, as indent's and surface's (it was --n x 512)
+"$mpiexec" -n 1 --oversubscribe "$cli" mpi-indent --n 40 --approach 1 --out "$work/square" > /dev/null 2> "$work/square.err" ||
+  fail "--n 40: $(cat "$work/square.err")"
+head -c 128 "$work/square/force.npy" | grep -q "'shape': (40, 40)" || fail "--n 40: $(head -c 128 "$work/square/force.npy")"
+# an output that is a symbolic link is written through, as every other writer's (io.h, im_atomic_open): the link
+# stays and its (dangling) target gets the rows of both ranks
+mkdir -p "$work/linked" "$work/targets" && ln -s ../targets/force.npy "$work/linked/force.npy"
+"$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 40 --approach 1 --out "$work/linked" > /dev/null 2> "$work/linked.err" ||
+  fail "--out through a link: $(cat "$work/linked.err")"
+[ -L "$work/linked/force.npy" ] && cmp -s "$work/targets/force.npy" "$work/square/force.npy" ||
+  fail "--out through a link: $(ls -l "$work/linked" "$work/targets")"
 
 # --periodic: indent --periodic's history of a rigid flat on the cell (mean pressures, mean gaps, and mean
 # pressures and mean gaps under a cap with plastic memory, unloading at step 3; a yielding cell's mean gap is

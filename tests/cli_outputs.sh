@@ -94,6 +94,33 @@ check "run: nothing written outside output/" test ! -e escape -a ! -e deep/outpu
 printf '[scene]\nname = twice\n[surfaces]\nn = 32\nseeds = 1,2,1\n' >seeds.ini
 check "run: duplicate seeds" expect_exit 2 "seeds.ini:5: seeds = '1,2,1': seed 1 is given twice" "$cli" run seeds.ini
 
+# an output that is a symbolic link is written through it (reliability finding 1): the link stays, its
+# target holds what a plain write of the same name holds; a dangling link's target is made; a loop is
+# refused naming the path
+mkdir -p links/target links/plain
+written_through() { # written_through LINK PLAIN: LINK still a link, its target equal to PLAIN
+  test -L "$1" && cmp -s "$(readlink -f "$1")" "$2"
+}
+for name in s.npy s.png s.csv s.x3p; do ln -s "target/$name" "links/$name"; done
+"$cli" surface --n 16 --seed 5 --out links/plain/s.npy >/dev/null
+cp links/plain/s.npy links/target/s.npy # an old file under the link, of the same kind
+"$cli" surface --n 16 --seed 4 --out links/s.npy >/dev/null # replaced through the link
+"$cli" surface --n 16 --seed 4 --out links/plain/s.npy >/dev/null
+check "surface --out through a symlink" written_through links/s.npy links/plain/s.npy
+"$cli" surface --stats s.npy --psd links/s.csv >/dev/null && "$cli" surface --stats s.npy --psd links/plain/s.csv >/dev/null
+check "surface --psd through a dangling symlink: its target made" written_through links/s.csv links/plain/s.csv
+"$cli" surface --n 16 --delta 0.1 --unit um --out links/s.x3p >/dev/null
+check "surface --out .x3p through a symlink" bash -c "test -L links/s.x3p && '$cli' surface --stats links/target/s.x3p >/dev/null"
+"$cli" render contact f.npy --out links/s.png >/dev/null # (its text chunks name the path given)
+check "render --out through a symlink" bash -c "test -L links/s.png && head -c 4 links/target/s.png | grep -q PNG"
+mkdir -p linked && ln -s ../links/target/history.csv linked/history.csv
+"$cli" indent s.npy --approach 0.5 --out linked >/dev/null
+check "indent's history.csv through a symlink" bash -c "test -L linked/history.csv && grep -q '^step,' links/target/history.csv"
+ln -s loop.b links/loop.a && ln -s loop.a links/loop.b
+check "a loop of symbolic links refused, naming the path" expect_exit 2 \
+  "links/loop.a: a loop of symbolic links" "$cli" surface --n 16 --out links/loop.a
+check "... and left as it was" test "$(readlink links/loop.a)" = loop.b
+
 # standard output is checked to the end
 check "theory > /dev/full: exit 1" expect_exit 1 "standard output: write failed: No space left on device" \
   bash -c "'$cli' theory --rho 0.01:100:2000 --format csv >/dev/full"

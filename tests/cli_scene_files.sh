@@ -35,6 +35,8 @@ theory=$("$cli" theory --alpha 80 --slope "$slope" --format csv | awk -F, 'NR ==
 check "one file: eq. (12) column is indentmap theory at it ($theory)" \
   awk -v a="$(cut -d, -f9 <<<"$row")" -v b="$theory" 'BEGIN { exit !(a - b < 1e-6 && b - a < 1e-6) }'
 check "one file: the definition is stated" grep -q "measured by the spectrum" "$dir/one/table1.md"
+check "one file: table1.md counts in the singular" grep -q "the 1 file of \`file\`" "$dir/one/table1.md"
+check "... and 1 surface per h'rms" grep -q "1 surface per h'rms" "$dir/one/table1.md"
 check "one file: run.json records it" grep -q '"slope_definition": "spectral, of each surface' "$dir/one/run.json"
 check "one file: run.json says what chose it" grep -q '"chosen_by": "default: generated surfaces' "$dir/one/run.json"
 check "one file: run.json records the length unit" grep -q '"length_unit": "delta"' "$dir/one/run.json"
@@ -58,6 +60,7 @@ check "two files: runs" test $? -eq 0
 sb=$(spectral_slope "$dir/b.npy")
 rms=$(awk -v a="$slope" -v b="$sb" 'BEGIN { printf "%.6g", sqrt((a * a + b * b) / 2) }')
 check "two files: 2 surfaces, slope the rms ($rms)" grep -q "^$rms,2," "$dir/two/table1.csv"
+check "two files: table1.md counts in the plural" grep -q "The surfaces are the 2 files of \`file\`" "$dir/two/table1.md"
 check "two files: members keep their own h'rms" \
   bash -c "cat '$dir'/two/table/member_00_*.csv | grep -v '^family' | cut -d, -f2 | sort -u | wc -l | grep -qx 2"
 check "two files: sd over different surfaces is not 0" \

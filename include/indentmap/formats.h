@@ -199,6 +199,10 @@ typedef struct im_surface_read_info {
     double resampled_delta;    /* the square pixels' spacing when resampled (field->delta, in its unit);
                                 0 otherwise */
     int stored_nx, stored_ny;  /* the grid as the file stores it (before resampling) */
+    char assumed[128];         /* what was assumed where the file is silent and a reader should be told (the
+                                indentmap program and Python's im.read warn with it, after the path):
+                                e.g. "no '# Value units:' line: its heights are taken in µm, the lateral
+                                unit" for a Gwyddion text export without one; "" when nothing */
 } im_surface_read_info;
 
 /* Reads a surface by extension (.npy, .gsf, .sdf, .nc, .x3p), else as text (see im_text_read) when the

@@ -97,14 +97,16 @@ const char *im_file_kind_name(enum im_file_kind kind);
 /* ---- atomic files ---- */
 typedef struct im_atomic_file {
     FILE *stream;    /* write here */
-    char path[4096]; /* final destination */
+    char path[4096]; /* final destination (a symbolic link's target) */
     char temp_path[4128];
     int slot; /* internal: its entry in the list of temporary files (-1: none) */
 } im_atomic_file;
 
 /* Opens a new temporary file beside path for writing (created exclusively, mode 0666 less the
- * umask). IM_EINVAL when path is a registered input or its sidecar (im_output_check); IM_EIO when
- * the file cannot be created. */
+ * umask). A path that is a symbolic link (or a chain of them) is written through: the temporary file
+ * is made beside the link's target and replaces it, so the link stays and shows the new content (a
+ * dangling link's target is created). IM_EINVAL when path is a registered input or its sidecar
+ * (im_output_check) or a loop of links; IM_EIO when the file cannot be created. */
 int im_atomic_open(im_atomic_file *file, const char *path);
 /* The same with a temporary name ending in suffix (e.g. ".mp4", for a program that picks its
  * format from the name and writes file->temp_path itself). */

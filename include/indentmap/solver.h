@@ -307,7 +307,7 @@ double im_solver_plan_bytes(int nx, int ny);
  * options->device takes, before any plan is made (scenes' limits, indentmap info --memory). Not counted:
  * the caller's fields (surface, gap, pressure, displacement), VkFFT's twiddle tables and the driver's
  * own memory (on lavapipe its compiled shaders: about 150 MiB). device = cpu: the CPU plan
- * (im_solver_plan_bytes). gpu: the GPU engine's device memory, its buffers and those of its cascade
+ * (im_solver_plan_bytes; one level where the options have no cascade, or a cap turns it off). gpu: the GPU engine's device memory, its buffers and those of its cascade
  * levels as the engine counts them before allocating (exact), and the host's peak (the tables and their
  * temporaries while computed, the staging buffers, the cascade's coarse arrays; with the device memory
  * on a CPU device such as lavapipe, whose memory is the host's); IM_ENOMEM naming the device, the memory

@@ -145,7 +145,9 @@ class Figure:
     PDF or SVG by extension; a notebook shows it as PNG. Norm defaults as ``contact_map``'s (magma, log). ``unit`` (the length unit of ``delta``) and
     ``force_unit`` label the scale bar ('10 µm') and the colour bar ('local force f / N') as
     ``indentmap render contact`` labels a force file of that run; ``colorbar_label`` overrides the
-    colour bar's. Patches under tension (force < 0, adhesion) are drawn on the tension ramp, its range 0 to the
+    colour bar's. ``scale_bar`` is the bar's length in the unit of ``delta`` (0: a 1-2-5 length near a
+    fifth of a panel; negative: no bar); without ``unit`` the bar is drawn and labelled in patches, as
+    the program draws a spacing without a unit: ``delta=1e-7, scale_bar=5e-6`` gives '50 δ'. Patches under tension (force < 0, adhesion) are drawn on the tension ramp, its range 0 to the
     largest tension of all the panels, with a second bar ('tensile force −f / N') when any panel has tension,
     as ``render contact`` draws them.
 
@@ -169,7 +171,11 @@ class Figure:
         if colorbar_label is None:
             colorbar_label = _core.colorbar_label("force", force_unit)
         self.tension_label = _core.colorbar_label("tension", force_unit)
-        self.delta, self.colorbar_label, self.dpi, self.scale_bar = float(delta), colorbar_label, dpi, scale_bar
+        self.delta, self.colorbar_label, self.dpi = float(delta), colorbar_label, dpi
+        # without a unit the bar counts patches (δ), as `indentmap render` draws a spacing without one: a
+        # length in delta's unit is that many deltas (finding R4: 5e-6 at delta 1e-7 drew '5e-06 δ')
+        bar = float(scale_bar)
+        self.scale_bar = bar / self.delta if bar > 0 and self.delta > 0 and not self.style["unit"] else bar
 
     def save(self, path):
         """Writes the figure (atomically); the format follows the extension: .png, .pdf or .svg.

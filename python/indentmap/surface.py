@@ -1,4 +1,6 @@
 """Rough surfaces: synthesis, statistics, spectra and files (the library's surface.h and formats.h)."""
+import os
+import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -137,25 +139,30 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None, 
     ``unit`` is the unit of the spacing, overriding the file's; ``height_unit`` the unit of the heights
     (default: the spacing's), converted into the spacing's; ``length_unit`` converts spacing and heights
     into it (the file's unit must be known: ``FormatError`` otherwise). A name that is no length unit
-    raises ValueError naming the parameter. The Topography's ``unit`` is the one the heights are in.
+    raises ValueError naming the parameter. The Topography's ``unit`` is the one the heights are in. A
+    unit taken that the file does not state (a Gwyddion text export without ``# Value units:``: heights
+    in its Width's unit) gives a ``UserWarning`` naming the file and the unit, unless ``height_unit`` is given.
 
     Example: ``t = im.read("scan.npy", unit="um", length_unit="m")`` gives heights and ``t.delta`` in
     metres, ``t.unit == "m"``; ``im.indent(t.heights, delta=t.delta, length_unit=t.unit, e_star=1e9,
     e_star_unit="Pa", loads=[1e-6])`` then records loads in N."""
-    return Topography(*_core.read_surface(path, "" if channel is None else str(channel), bool(fill),
-                                          bool(resample_square), _npy_order_code(npy_order),
-                                          _checks.text("unit", unit), _checks.text("height_unit", height_unit),
-                                          _checks.text("length_unit", length_unit)))
+    heights, delta, unit, assumed = _core.read_surface(
+        path, "" if channel is None else str(channel), bool(fill), bool(resample_square), _npy_order_code(npy_order),
+        _checks.text("unit", unit), _checks.text("height_unit", height_unit), _checks.text("length_unit", length_unit))
+    if assumed:  # a unit the file does not state, as `indentmap surface --stats` warns
+        warnings.warn(f"{os.fsdecode(path)}: {assumed} (height_unit= states theirs)", stacklevel=2)
+    return Topography(heights, delta, unit)
 
 
 def write(path, heights, delta=1.0, unit=""):
     """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
     matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
-    PATH.json). NaN heights (missing points) are kept by .npy, .sdf, .nc and text, which ``read`` takes
-    back as missing (refused, or filled with ``fill=True``).
+    PATH.json). NaN heights (missing points) are kept by every format (.x3p in its validity mask), and
+    ``read`` takes them back as missing (refused, or filled with ``fill=True``). A path that is a symbolic
+    link is written through: its target is replaced, the link stays.
 
     ``FileError`` when the file cannot be written (nothing is left); ``InvalidArgument`` for an
-    unknown extension, an infinite height, or NaN in a .gsf or .x3p (naming the first one's x, y).
+    unknown extension, an infinite height (naming the first one's x, y), or a loop of links.
 
     Example: ``im.write("surface.x3p", h, delta=0.5, unit="µm")``."""
     _core.write_surface(path, heights, float(delta), unit)

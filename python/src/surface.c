@@ -260,7 +260,7 @@ int py_surface_read_options(const py_read_names *names, int fill, int resample_s
 }
 
 /* read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit)
- * -> (heights, delta, unit); npy_order is an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy); the
+ * -> (heights, delta, unit, assumed: what was taken that the file does not state, "" if nothing); npy_order is an enum im_npy_order (0: the sidecar's, 1: yx, 2: xy); the
  * units as `indent --unit --height-unit --length-unit` ("": the file's) */
 static PyObject *read_surface(PyObject *self, PyObject *args)
 {
@@ -277,14 +277,16 @@ static PyObject *read_surface(PyObject *self, PyObject *args)
         return NULL;
     }
     im_field *field = NULL;
+    im_surface_read_info info;
     int status;
-    Py_BEGIN_ALLOW_THREADS status = im_surface_read_with(PyBytes_AS_STRING(path_bytes), &options, &field, NULL);
+    Py_BEGIN_ALLOW_THREADS status = im_surface_read_with(PyBytes_AS_STRING(path_bytes), &options, &field, &info);
     Py_END_ALLOW_THREADS Py_DECREF(path_bytes);
     if (status != IM_OK)
         return py_raise_status(status);
     double delta = field->delta;
     PyObject *unit_text = PyUnicode_DecodeUTF8(field->unit, (Py_ssize_t)strlen(field->unit), "replace");
-    return Py_BuildValue("(NdN)", py_array_from_field(field), delta, unit_text);
+    PyObject *assumed = PyUnicode_DecodeUTF8(info.assumed, (Py_ssize_t)strlen(info.assumed), "replace");
+    return Py_BuildValue("(NdNN)", py_array_from_field(field), delta, unit_text, assumed);
 }
 
 static int has_suffix(const char *path, const char *suffix)
@@ -343,7 +345,7 @@ PyMethodDef py_surface_methods[] = {
     {"histogram", histogram, METH_VARARGS, "histogram(heights, delta, quantity, bins) -> (centre, density)"},
     {"read_surface", read_surface, METH_VARARGS,
      "read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit) -> "
-     "(heights, delta, unit)"},
+     "(heights, delta, unit, assumed)"},
     {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
     {"length_unit", length_unit, METH_VARARGS, "length_unit(parameter, text) -> the unit's canonical spelling"},
     {NULL, NULL, 0, NULL}};

@@ -36,6 +36,25 @@ def test_errors_carry_the_library_message(tmp_path):
     assert (tmp_path / "fifo").is_fifo()
 
 
+def test_write_through_a_symbolic_link(tmp_path):
+    """A link as the path is written through (reliability finding 1): it stays a link, its target holds the
+    heights, a dangling link's target is made, and a loop is refused naming the path."""
+    heights = np.arange(16.0).reshape(4, 4)
+    (tmp_path / "target").mkdir()
+    for name in ("old.npy", "new.txt"):
+        os.symlink(f"target/{name}", tmp_path / name)
+    im.write(tmp_path / "target" / "old.npy", np.zeros((4, 4)))
+    im.write(tmp_path / "old.npy", heights)
+    im.write(tmp_path / "new.txt", heights)  # dangling until now
+    for name in ("old.npy", "new.txt"):
+        assert (tmp_path / name).is_symlink()
+        np.testing.assert_array_equal(im.read(tmp_path / "target" / name).heights, heights)
+    os.symlink("b", tmp_path / "a")
+    os.symlink("a", tmp_path / "b")
+    with pytest.raises(im.InvalidArgument, match=r"/a: a loop of symbolic links"):
+        im.write(tmp_path / "a", heights)
+
+
 def test_a_file_that_crashes_libhdf5_is_a_format_error():
     """libhdf5 crashes inside itself on fuzz_hdf5's input, which ended this interpreter with it; read in a
     child (indentmap-hdf5-read, which the build puts beside the extension module), the file is refused

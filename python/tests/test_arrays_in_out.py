@@ -1,5 +1,9 @@
 """Array functions as documented: the PSD's shells and their counts, the theory broadcasting over every
-array argument, and surface files that hold missing points keeping them."""
+array argument, surface files that hold missing points keeping them, and a unit a file leaves unstated
+said."""
+import os
+import warnings
+
 import numpy as np
 import pytest
 
@@ -38,14 +42,14 @@ def test_area_ratio_broadcasts_over_alpha():
     assert ratio[1, 2] == im.theory.area_ratio(0.08, alpha=80.0)
 
 
-def test_write_keeps_missing_points_where_the_format_can(tmp_path):
+def test_write_keeps_missing_points_in_every_format(tmp_path):
     heights = np.arange(12.0).reshape(3, 4)
     heights[1, 2] = np.nan
     im.write(tmp_path / "s.npy", heights, delta=0.5, unit="um")
     np.testing.assert_array_equal(np.load(tmp_path / "s.npy"), heights)  # numpy's own reading: NaN where it was
     im.write(tmp_path / "s.txt", heights, delta=0.5, unit="um")
     np.testing.assert_array_equal(np.loadtxt(tmp_path / "s.txt", comments="#"), heights)
-    for suffix in (".npy", ".txt", ".sdf", ".nc"):
+    for suffix in (".npy", ".txt", ".sdf", ".nc", ".gsf", ".x3p"):  # .x3p in its validity mask (finding R14)
         path = tmp_path / f"t{suffix}"
         im.write(path, heights, delta=0.5, unit="um")
         with pytest.raises(im.FormatError, match=r"\(x=2, y=1\): a missing point"):
@@ -54,13 +58,30 @@ def test_write_keeps_missing_points_where_the_format_can(tmp_path):
         assert np.isfinite(filled).all() and filled.shape == heights.shape
 
 
-def test_write_refuses_what_the_format_cannot_hold(tmp_path):
+def test_write_refuses_what_no_format_can_hold(tmp_path):
     heights = np.zeros((3, 4))
-    heights[1, 2] = np.nan
-    for suffix in (".gsf", ".x3p"):
+    heights[1, 2] = np.inf
+    for suffix in (".npy", ".gsf", ".x3p"):
         with pytest.raises(im.InvalidArgument, match=r"\(x=2, y=1\)"):
             im.write(tmp_path / f"s{suffix}", heights, delta=0.5, unit="um")
         assert not (tmp_path / f"s{suffix}").exists()
-    heights[1, 2] = np.inf
-    with pytest.raises(im.InvalidArgument, match=r"\(x=2, y=1\)"):
-        im.write(tmp_path / "s.npy", heights)
+
+
+def test_read_warns_of_a_height_unit_the_file_does_not_state(tmp_path):
+    """A Gwyddion text export without its `# Value units:` line (finding D8b): heights taken in the Width's
+    unit, with a UserWarning naming the file and the unit, as `surface --stats` warns; none with the line or
+    with height_unit."""
+    source = os.path.join(os.environ.get("IM_SOURCE_DIR", ""), "tests", "data", "instruments", "matrix-3.txt")
+    with open(source, encoding="utf-8") as original:
+        lines = original.readlines()
+    cut = tmp_path / "no-value-units.txt"
+    cut.write_text("".join(line for line in lines if not line.startswith("# Value units:")), encoding="utf-8")
+    with pytest.warns(UserWarning, match=r"no-value-units.txt: no '# Value units:' line: its heights are taken in µm"):
+        taken = im.read(cut)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        stated = im.read(source)
+        converted = im.read(cut, height_unit="m")
+    assert taken.unit == stated.unit == converted.unit == "µm"
+    np.testing.assert_allclose(taken.heights * 1e6, stated.heights, rtol=1e-12)
+    np.testing.assert_array_equal(converted.heights, stated.heights)

@@ -47,6 +47,25 @@ def test_contact_figure_in_units_is_the_programs(cli, run_in_metres, tmp_path):
     assert png_texts(tmp_path / "cli.png")["Quantity"] == "local force f / N"
 
 
+def test_scale_bar_without_a_unit_counts_patches_as_the_programs(cli, rough64, tmp_path):
+    """A spacing without a unit (finding R4): ``indentmap render`` draws its bar in patches ('10 δ' on 64
+    patches); Python's Figure takes scale_bar in the unit of delta, so 1e-6 at delta = 1e-7 is those 10
+    patches, the program's picture pixel for pixel (it was a bar '1e-06 δ' of 1e-6 patches)."""
+    delta = 1e-7
+    im.write(tmp_path / "s.npy", delta * rough64, delta=delta)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--approach", 2 * delta, "--fields", "--out", tmp_path / "out")
+    force_file = tmp_path / "out" / "force_0001.npy"
+    run_cli(cli, "render", "contact", force_file, "--out", tmp_path / "cli.png")
+    force = np.load(force_file)
+    theirs = im.Image.read(tmp_path / "cli.png").rgba
+    for bar in (0.0, 10 * delta):  # automatic (10 patches on 64), and the same length in delta's unit
+        im.Figure([force], delta=delta, scale_bar=bar).save(tmp_path / "python.png")
+        ours = im.Image.read(tmp_path / "python.png").rgba
+        assert ours.shape == theirs.shape and np.array_equal(ours, theirs), bar
+    im.Figure([force], delta=delta, scale_bar=20 * delta).save(tmp_path / "longer.png")
+    assert not np.array_equal(im.Image.read(tmp_path / "longer.png").rgba, theirs)  # the length does matter
+
+
 def test_contact_map_texts_are_the_programs(cli, run_in_metres, tmp_path):
     t, units, force, force_file = run_in_metres
     run_cli(cli, "render", "contact", force_file, "--raw", "--out", tmp_path / "cli.png")

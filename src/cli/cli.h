@@ -164,9 +164,10 @@ int cli_apply_surface_file_option(int code, const char *arg, im_surface_read_opt
 /* Crops *surface (replacing it) and detrends it; a status naming the option on failure. */
 int cli_prepare_surface(const cli_preparation *preparation, im_field **surface);
 
-/* A warning when --fill invented more than 5% of the surface: statistics and contact on it are then
- * partly the fill's (finding D17: 30% of a profilometer scan filled without a word). */
-void cli_warn_if_much_filled(const char *path, long filled, size_t points);
+/* The warnings of reading the surface file path (of `points` points): --fill invented more than 5% of it,
+ * so that statistics and contact on it are partly the fill's (finding D17: 30% of a profilometer scan
+ * filled without a word); the reader took a unit the file does not state (finding D8b). */
+void cli_warn_about_reading(const char *path, const im_surface_read_info *info, size_t points);
 
 /* "plane removed, cropped to 256 x 256 at (0, 0), 3 missing points filled" */
 void cli_describe_preparation(const cli_preparation *preparation, long filled, char *text, size_t size);

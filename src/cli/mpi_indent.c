@@ -85,7 +85,7 @@ static void usage(FILE *stream)
             "Prints on rank 0: approach,load,contact_patches,iterations,residual,seconds (CSV with header).\n\n"
             "  --surface FILE  heights (float64 .npy, units of delta = 1), read with MPI-IO; otherwise\n"
             "                  a surface is synthesised over the ranks:\n"
-            "  --n NX --m NY   its grid (default 512 x 512; lambda_r = the shorter side)\n"
+            "  --n NX --m NY   its grid (default 512 x 512, NY = NX; lambda_r = the shorter side)\n"
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
             "  --punch cone|sphere|flat|profile   (default cone) --alpha DEG (default 80) --radius R\n"
             "                  (sphere, flat punch)\n"
@@ -153,7 +153,7 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_SURFACE: o->surface_file = arg; return 0;
     case OPT_N: return cli_parse_int("--n", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.nx);
-    case OPT_M: return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.ny);
+    case OPT_M: o->m_given = 1; return cli_parse_int("--m", arg, 2, IM_FIELD_MAX_SIDE, &o->surface.ny);
     case OPT_SEED: return cli_parse_u64("--seed", arg, &o->surface.seed);
     case OPT_SLOPE: return cli_parse_double("--slope", arg, 0, 1e6, &o->surface.slope_rms);
     case OPT_PERIODIC: o->periodic = 1; return 0;
@@ -437,6 +437,8 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
     int parsed = cli_parse_options(argc, argv, LONG_OPTIONS, OPT_HELP, usage, apply_option, o);
     if (parsed != 0)
         return parsed;
+    if (!o->m_given)
+        o->surface.ny = o->surface.nx;
     if (o->map_factor > 0 && !o->out) {
         fprintf(stderr, "indentmap: mpi-indent: --map needs --out DIR\n");
         return -1;

@@ -9,6 +9,7 @@
 
 typedef struct mpi_indent_options {
     im_surface_params surface; /* synthesised when no file is given */
+    int m_given;               /* --m; else NY = NX, as indent's and surface's */
     const char *surface_file;  /* float64 .npy heights in units of delta, or NULL */
     im_indenter punch;
     const char *profile_path;   /* --profile: the punch's shape (indent's), read on every rank */

@@ -101,10 +101,12 @@ int cli_prepare_surface(const cli_preparation *p, im_field **surface)
     return surface_prepare(&preparation, surface);
 }
 
-void cli_warn_if_much_filled(const char *path, long filled, size_t points)
+void cli_warn_about_reading(const char *path, const im_surface_read_info *info, size_t points)
 {
     char warning[8192];
-    if (surface_fill_warning(path, filled, points, warning, sizeof warning))
+    if (surface_fill_warning(path, info->filled, points, warning, sizeof warning))
+        fprintf(stderr, "indentmap: %s\n", warning);
+    if (surface_assumption_warning(path, info, warning, sizeof warning))
         fprintf(stderr, "indentmap: %s\n", warning);
 }
 

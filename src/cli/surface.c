@@ -412,7 +412,7 @@ int cli_surface(int argc, char **argv)
     if (status == IM_OK && !o.stats)
         memcpy(surface->unit, o.read.set.lateral, sizeof surface->unit);
     if (status == IM_OK && o.stats) {
-        cli_warn_if_much_filled(o.stats, info.filled, im_field_count(surface));
+        cli_warn_about_reading(o.stats, &info, im_field_count(surface));
         status = cli_prepare_surface(&o.preparation, &surface);
         if (status != IM_OK)
             im_fail_context(status, "%s", o.stats);

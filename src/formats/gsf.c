@@ -32,11 +32,13 @@ static int write_header(char *header, size_t size, const im_field *field, const 
     return IM_OK;
 }
 
+/* A missing point is written as NaN: Gwyddion's own GSF reader masks NaN as an invalid point (2.62's gsffile
+ * module, checked by reading such a file back through it), and this one reads it back as missing. */
 int im_gsf_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
-    int writable = formats_check_heights_writable(field, path);
+    int writable = formats_check_heights_or_missing_writable(field, path);
     if (writable != IM_OK)
         return writable;
     char header[512];

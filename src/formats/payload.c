@@ -48,18 +48,6 @@ int formats_check_finite(const im_field *field, const char *path)
     return im_fail(IM_EFORMAT, "%s (NaN and Inf are not heights)", message);
 }
 
-int formats_check_heights_writable(const im_field *field, const char *path)
-{
-    if (im_field_check_finite(field, path) == IM_OK)
-        return IM_OK;
-    char message[4400];
-    snprintf(message, sizeof message, "%s", im_last_error());
-    return im_fail(IM_EINVAL,
-                   "%s; not written: this format is written without missing points (.npy, .sdf, .nc "
-                   "and text files keep NaN as a missing point)",
-                   message);
-}
-
 int formats_check_heights_or_missing_writable(const im_field *field, const char *path)
 {
     int status = im_field_check_view(field, path);

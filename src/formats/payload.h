@@ -23,12 +23,9 @@ int formats_check_grid(FILE *stream, const char *path, long nx, long ny, unsigne
  * failure while running, exit 1, rather than as bad input, exit 2). */
 int formats_check_finite(const im_field *field, const char *path);
 
-/* The writers' side: IM_EINVAL naming path and the first NaN or Inf, before anything is written, for the
- * formats written without missing points (.gsf, .x3p: its validity mask is not written). */
-int formats_check_heights_writable(const im_field *field, const char *path);
-
-/* The same for the formats whose readers take NaN back as a missing point (.npy, .sdf, .nc, text): only
- * an infinite value is refused. */
+/* The writers' side: IM_EINVAL naming path and the first infinite value with its (x, y), before anything is
+ * written. NaN, a missing point, is written: every format's reader takes it back as missing (.npy, .sdf,
+ * .nc, .gsf and text as NaN, .x3p in its validity mask). */
 int formats_check_heights_or_missing_writable(const im_field *field, const char *path);
 
 #endif

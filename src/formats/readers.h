@@ -17,6 +17,9 @@ typedef struct surface_stated {
     int height_unit_unknown;     /* 1: heights with no stated unit have an unknown one (a .gsf without
                                 ZUnits), refused once the spacing has a unit; 0: they are in the
                                 lateral unit */
+    const char *unstated_height; /* heights with no stated unit, taken in the lateral unit with a warning
+                                (info->assumed): what the file lacks, e.g. "no '# Value units:' line";
+                                NULL: taken without a word */
     char conversion[96];         /* how stored values became float64 row-major ("" for none) */
     enum im_npy_order npy_order; /* a .npy's, as its sidecar states it (IM_NPY_ORDER_YX without one);
                                 IM_NPY_ORDER_SIDECAR (0) for the other formats: their layout is fixed */

@@ -189,6 +189,7 @@ static int gwyddion_units(const char *path, const text_header *header, long colu
                sizeof stated->units.lateral);
     }
     memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
+    stated->unstated_height = "no '# Value units:' line"; /* Gwyddion states it: a line cut, or a hand edit */
     return IM_OK;
 }
 

@@ -236,6 +236,16 @@ static int resample_in_place(const char *path, im_field *field, double delta_x, 
     return IM_OK;
 }
 
+/* info->assumed: the unit taken for heights whose file states none (merged: after the options, whose
+ * height unit, when given, leaves nothing assumed). */
+static void note_assumed_height_unit(const surface_stated *merged, char *text, size_t size)
+{
+    const im_surface_units *u = &merged->units;
+    if (merged->unstated_height && u->lateral[0] && !u->height[0])
+        snprintf(text, size, "%s: its heights are taken in %s, the lateral unit", merged->unstated_height,
+                 u->lateral);
+}
+
 int surface_finish(const char *path, im_field *field, const surface_stated *stated,
                    const im_surface_read_options *options, im_surface_read_info *info)
 {
@@ -272,6 +282,7 @@ int surface_finish(const char *path, im_field *field, const surface_stated *stat
                                    .stored_ny = stored_ny};
     memcpy(info->conversion, stated->conversion, sizeof info->conversion);
     snprintf(info->resampled, sizeof info->resampled, "%s", resampling ? "bilinear" : "");
+    note_assumed_height_unit(&merged, info->assumed, sizeof info->assumed);
     return IM_OK;
 }
 

@@ -4,7 +4,8 @@
  * binary data in the archive), and the data holds SizeX x SizeY little-endian values, x fastest.
  * DataLink ValidPointsLink, when present, names a packed bit array of the points' validity: a bit
  * per point in the data's order, least significant bit first, 1 valid; an invalid point is a missing
- * point (NaN) whatever the data hold there.
+ * point (NaN) whatever the data hold there; written (bindata/valid.bin, with its
+ * MD5ChecksumValidPoints) when a surface has missing points, which its data then hold as NaN.
  * The zip is read with libzip and the XML with libxml2 (no network, no entity expansion). Written
  * files carry what the ISO5436_2 schema requires beyond that: Record2 (date, creator, instrument,
  * probing system "Software"), the data's MD5ChecksumPointData, and Record4's ChecksumFile
@@ -542,9 +543,21 @@ static void add_record2(xmlNode *root)
     add(probing, "Identification", "indentmap " IM_VERSION);
 }
 
-/* main.xml for a field of spacing `spacing` metres, data in bindata/data.bin as doubles whose MD5 is
- * data_md5 (hex). */
-static xmlDoc *main_xml(const im_field *field, double spacing, const char *data_md5)
+/* Record3's DataLink: the data in bindata/data.bin as doubles whose MD5 is data_md5 (hex), and where
+ * some points are missing, their validity bits in bindata/valid.bin whose MD5 is valid_md5 (else NULL). */
+static void add_data_link(xmlNode *record3, const char *data_md5, const char *valid_md5)
+{
+    xmlNode *link = add(record3, "DataLink", NULL);
+    add(link, "PointDataLink", "bindata/data.bin");
+    add(link, "MD5ChecksumPointData", data_md5);
+    if (!valid_md5)
+        return;
+    add(link, "ValidPointsLink", "bindata/valid.bin");
+    add(link, "MD5ChecksumValidPoints", valid_md5);
+}
+
+/* main.xml for a field of spacing `spacing` metres (add_data_link: the data and valid points). */
+static xmlDoc *main_xml(const im_field *field, double spacing, const char *data_md5, const char *valid_md5)
 {
     xmlDoc *doc = xmlNewDoc((const xmlChar *)"1.0");
     xmlNode *root = xmlNewNode(NULL, (const xmlChar *)"ISO5436_2");
@@ -567,9 +580,7 @@ static xmlDoc *main_xml(const im_field *field, double spacing, const char *data_
     snprintf(text, sizeof text, "%d", field->ny);
     add(matrix, "SizeY", text);
     add(matrix, "SizeZ", "1");
-    xmlNode *link = add(record3, "DataLink", NULL);
-    add(link, "PointDataLink", "bindata/data.bin");
-    add(link, "MD5ChecksumPointData", data_md5);
+    add_data_link(record3, data_md5, valid_md5);
     add(add(root, "Record4", NULL), "ChecksumFile", "md5checksum.hex");
     return doc;
 }
@@ -589,7 +600,8 @@ static int add_buffer(zip_t *archive, const char *name, void *bytes, size_t size
     return 0;
 }
 
-/* The heights in metres as the file's doubles (a little-endian host: the bytes are the file's), or NULL. */
+/* The heights in metres as the file's doubles (a little-endian host: the bytes are the file's; a
+ * missing point stays NaN, which its validity bit marks), or NULL. */
 static double *data_in_metres(const im_field *field, double metres)
 {
     size_t count = im_field_count(field);
@@ -597,6 +609,29 @@ static double *data_in_metres(const im_field *field, double metres)
     for (size_t i = 0; data && i < count; ++i)
         data[i] = field->data[i] * metres;
     return data;
+}
+
+static int has_missing_points(const im_field *field)
+{
+    size_t count = im_field_count(field);
+    for (size_t i = 0; i < count; ++i)
+        if (isnan(field->data[i]))
+            return 1;
+    return 0;
+}
+
+/* The points' validity as ValidPointsLink holds it (read by mark_invalid_points): a bit per point in
+ * the data's order, least significant first, 1 valid, the last byte's unused bits 0; in a malloc'ed
+ * buffer of *size bytes, or NULL. */
+static uint8_t *validity_bits(const im_field *field, size_t *size)
+{
+    size_t count = im_field_count(field);
+    *size = (count + 7) / 8;
+    uint8_t *bits = calloc(*size, 1);
+    for (size_t i = 0; bits && i < count; ++i)
+        if (!isnan(field->data[i]))
+            bits[i / 8] |= (uint8_t)(1u << (i % 8));
+    return bits;
 }
 
 /* The document as UTF-8 text in a malloc'ed buffer (which the archive frees), or NULL; frees doc. */
@@ -625,43 +660,125 @@ static char *checksum_file(const char *xml, size_t xml_size, size_t *size)
     return text;
 }
 
-/* Writes heights and spacing in metres (the field needs a length unit). libzip writes the archive
- * to a temporary file beside path and renames it into place on zip_close, so it is atomic. */
+/* An entry of the archive written: its name and a malloc'ed buffer of its bytes (NULL: none, or
+ * allocation failed). */
+typedef struct x3p_entry {
+    const char *name;
+    void *bytes;
+    size_t size;
+} x3p_entry;
+
+enum { X3P_DATA, X3P_VALID, X3P_XML, X3P_CHECKSUM, X3P_ENTRIES };
+
+/* Frees the entries' buffers (the archive has not taken them). */
+static void free_entries(x3p_entry entries[X3P_ENTRIES])
+{
+    for (int i = 0; i < X3P_ENTRIES; ++i)
+        free(entries[i].bytes);
+}
+
+/* The entries of the archive for field: the data, the valid points' bits when some are missing
+ * (entries[X3P_VALID].name NULL otherwise), main.xml and md5checksum.hex. IM_ENOMEM after freeing
+ * them when one cannot be made. */
+static int make_entries(const char *path, const im_field *field, double metres, x3p_entry entries[X3P_ENTRIES])
+{
+    size_t count = im_field_count(field), valid_size = 0, xml_size = 0, checksum_size = 0;
+    const int missing = has_missing_points(field);
+    char data_md5[MD5_HEX + 1] = "", valid_md5[MD5_HEX + 1] = "";
+    double *data = data_in_metres(field, metres);
+    uint8_t *valid = missing ? validity_bits(field, &valid_size) : NULL;
+    int made = data && (valid || !missing);
+    if (made) {
+        md5_hex(data, count * sizeof *data, 1, data_md5);
+        if (valid)
+            md5_hex(valid, valid_size, 1, valid_md5);
+    }
+    char *xml = made ? dump_xml(main_xml(field, field->delta * metres, data_md5, valid ? valid_md5 : NULL), &xml_size)
+                     : NULL;
+    char *checksum = xml ? checksum_file(xml, xml_size, &checksum_size) : NULL;
+    entries[X3P_DATA] = (x3p_entry){"bindata/data.bin", data, count * sizeof *data};
+    entries[X3P_VALID] = (x3p_entry){valid ? "bindata/valid.bin" : NULL, valid, valid_size};
+    entries[X3P_XML] = (x3p_entry){"main.xml", xml, xml_size};
+    entries[X3P_CHECKSUM] = (x3p_entry){"md5checksum.hex", checksum, checksum_size};
+    if (checksum)
+        return IM_OK;
+    free_entries(entries);
+    return im_fail(IM_ENOMEM, "%s: allocation of the x3p contents (%zu values) failed", path, count);
+}
+
+/* The bytes a memory source holds, in a malloc'ed buffer. */
+static int source_bytes(const char *path, zip_source_t *source, void **bytes, size_t *size)
+{
+    *bytes = NULL;
+    if (zip_source_open(source) < 0)
+        return im_fail(IM_EIO, "%s: cannot read the x3p archive made: %s", path,
+                       zip_error_strerror(zip_source_error(source)));
+    zip_int64_t length = zip_source_seek(source, 0, SEEK_END) == 0 ? zip_source_tell(source) : -1;
+    *bytes = length > 0 && zip_source_seek(source, 0, SEEK_SET) == 0 ? malloc((size_t)length) : NULL;
+    int read = *bytes && zip_source_read(source, *bytes, (zip_uint64_t)length) == length;
+    zip_source_close(source);
+    if (read) {
+        *size = (size_t)length;
+        return IM_OK;
+    }
+    free(*bytes);
+    *bytes = NULL;
+    return im_fail(IM_EIO, "%s: cannot read the x3p archive made (%lld bytes)", path, (long long)length);
+}
+
+/* The zip archive of the entries, made in memory (so that the file is written as every output is, by
+ * im_write_file_atomic: through symbolic links, past the output guard); the entries' buffers go to it,
+ * the archive's bytes to *bytes (malloc'ed). */
+static int archive_in_memory(const char *path, x3p_entry entries[X3P_ENTRIES], void **bytes, size_t *size)
+{
+    zip_error_t error;
+    zip_error_init(&error);
+    zip_source_t *memory = zip_source_buffer_create(NULL, 0, 0, &error);
+    zip_t *archive = memory ? zip_open_from_source(memory, ZIP_TRUNCATE, &error) : NULL;
+    if (!archive) {
+        free_entries(entries);
+        zip_source_free(memory);
+        int status = im_fail(IM_ENOMEM, "%s: cannot make the x3p archive: %s", path, zip_error_strerror(&error));
+        zip_error_fini(&error);
+        return status;
+    }
+    zip_source_keep(memory); /* read after zip_close, which drops the archive's reference */
+    int failed = 0;          /* each buffer goes to the archive, which frees it, even after a failure */
+    for (int i = 0; i < X3P_ENTRIES; ++i)
+        if (entries[i].name)
+            failed |= add_buffer(archive, entries[i].name, entries[i].bytes, entries[i].size) != 0;
+    int status = IM_OK;
+    if (failed || zip_close(archive) != 0) {
+        status = im_fail(IM_EIO, "%s: cannot make the x3p archive: %s", path, zip_strerror(archive));
+        zip_discard(archive);
+    }
+    if (status == IM_OK)
+        status = source_bytes(path, memory, bytes, size);
+    zip_source_free(memory);
+    return status;
+}
+
+/* Writes heights and spacing in metres (the field needs a length unit); missing points (NaN) are
+ * marked invalid in a ValidPointsLink. */
 int im_x3p_write(const char *path, const im_field *field)
 {
     ARG_REQUIRE(path, "path");
     ARG_VIEW(field, "field");
-    int writable = formats_check_heights_writable(field, path);
-    if (writable != IM_OK)
-        return writable;
+    int status = formats_check_heights_or_missing_writable(field, path);
+    if (status != IM_OK)
+        return status;
     double metres = im_length_unit_metres(field->unit, NULL);
     if (metres == 0.0)
         return im_fail(IM_EINVAL, "%s: an .x3p states metres: the surface needs a length unit (it has '%s')", path,
                        field->unit);
-    size_t count = im_field_count(field), xml_size = 0, checksum_size = 0;
-    double *data = data_in_metres(field, metres);
-    char data_md5[MD5_HEX + 1] = "";
-    if (data)
-        md5_hex(data, count * sizeof *data, 1, data_md5);
-    char *xml = data ? dump_xml(main_xml(field, field->delta * metres, data_md5), &xml_size) : NULL;
-    char *checksum = xml ? checksum_file(xml, xml_size, &checksum_size) : NULL;
-    int error = 0;
-    zip_t *archive = checksum ? zip_open(path, ZIP_CREATE | ZIP_TRUNCATE, &error) : NULL;
-    if (!archive) {
-        free(data);
-        free(xml);
-        free(checksum);
-        return checksum ? im_fail(IM_EIO, "%s: cannot create the x3p archive (zip error %d)", path, error)
-                        : im_fail(IM_ENOMEM, "%s: allocation of the x3p contents (%zu values) failed", path, count);
-    }
-    /* each buffer goes to the archive, which frees it, even after a failure: no short-circuit */
-    int failed = (add_buffer(archive, "main.xml", xml, xml_size) != 0) |
-                 (add_buffer(archive, "bindata/data.bin", data, count * sizeof *data) != 0) |
-                 (add_buffer(archive, "md5checksum.hex", checksum, checksum_size) != 0);
-    if (failed || zip_close(archive) != 0) {
-        int status = im_fail(IM_EIO, "%s: cannot write the x3p archive: %s", path, zip_strerror(archive));
-        zip_discard(archive);
-        return status;
-    }
-    return IM_OK;
+    x3p_entry entries[X3P_ENTRIES];
+    void *bytes = NULL;
+    size_t size = 0;
+    status = make_entries(path, field, metres, entries);
+    if (status == IM_OK)
+        status = archive_in_memory(path, entries, &bytes, &size);
+    if (status == IM_OK)
+        status = im_write_file_atomic(path, bytes, size);
+    free(bytes);
+    return status;
 }

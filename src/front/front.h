@@ -5,6 +5,7 @@
 #ifndef INDENTMAP_FRONT_H
 #define INDENTMAP_FRONT_H
 
+#include "indentmap/formats.h"
 #include "indentmap/history.h"
 #include "indentmap/indenter.h"
 #include "indentmap/io.h"
@@ -191,6 +192,9 @@ int surface_prepare(const surface_preparation *preparation, im_field **surface);
 /* 1 with the warning in text ("warning: PATH: --fill invented ...") when more than 5% of the points
  * were filled; else 0. */
 int surface_fill_warning(const char *path, long filled, size_t points, char *text, size_t size);
+/* 1 with the warning in text ("warning: PATH: no '# Value units:' line: ...") when the reader took a unit
+ * the file does not state (info->assumed); else 0. */
+int surface_assumption_warning(const char *path, const im_surface_read_info *info, char *text, size_t size);
 /* What was done, for records: "plane removed, cropped to 64 x 64 at (0, 0), rows aligned (median)". */
 void surface_preparation_describe(const surface_preparation *preparation, long filled, char *text, size_t size);
 

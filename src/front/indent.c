@@ -101,7 +101,7 @@ static void warn_if_rough_beyond_small_slopes(const indent_run_state *s)
                    s->theory_slope, s->theory_slope / flank, flank);
 }
 
-/* A measured surface beyond small slopes, or mostly filled. */
+/* A measured surface beyond small slopes, mostly filled, or with heights in a unit its file does not state. */
 static void warn_about_surface(const indent_run_state *s, const im_field *surface)
 {
     if (s->smooth)
@@ -109,6 +109,8 @@ static void warn_about_surface(const indent_run_state *s, const im_field *surfac
     warn_if_rough_beyond_small_slopes(s);
     char warning[8192];
     if (surface_fill_warning(s->options->surface_path, s->filled, im_field_count(surface), warning, sizeof warning))
+        indent_say(s, IM_LOG_WARNING, "%s", warning);
+    if (surface_assumption_warning(s->options->surface_path, &s->read_info, warning, sizeof warning))
         indent_say(s, IM_LOG_WARNING, "%s", warning);
 }
 

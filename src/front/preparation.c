@@ -33,6 +33,14 @@ int surface_fill_warning(const char *path, long filled, size_t points, char *tex
     return 1;
 }
 
+int surface_assumption_warning(const char *path, const im_surface_read_info *info, char *text, size_t size)
+{
+    if (!info->assumed[0])
+        return 0;
+    snprintf(text, size, "warning: %s: %s (--height-unit states theirs)", path, info->assumed);
+    return 1;
+}
+
 void surface_preparation_describe(const surface_preparation *p, long filled, char *text, size_t size)
 {
     static const char *const DETREND[] = {"nothing removed", "plane removed", "plane and curvature removed"};

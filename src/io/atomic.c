@@ -1,6 +1,7 @@
 /* Atomic writes: a temporary file with a short unique name beside the destination, renamed over it
- * when complete. Every file the program writes goes through here, and so through the output guard
- * (guard.c): no input, no sidecar of an input, no file of another kind is ever replaced. */
+ * when complete; a destination that is a symbolic link is the link's target (the link stays). Every
+ * file the program writes goes through here, and so through the output guard (guard.c): no input, no
+ * sidecar of an input, no file of another kind is ever replaced. */
 #include "indentmap/io.h"
 #include "core/args.h"
 
@@ -91,6 +92,47 @@ int im_atomic_is_temporary_name(const char *name)
     return all_digits(pid, length);
 }
 
+/* ---- symbolic links ---- */
+
+enum { LINKS_FOLLOWED_AT_MOST = 40 }; /* Linux's own limit: more links in a row are a loop */
+
+/* Where the link `link` points: `target` when absolute, else `target` in the link's folder. */
+static int link_destination(const char *link, const char *target, char *out, size_t size)
+{
+    const char *slash = strrchr(link, '/');
+    int folder = target[0] == '/' || !slash ? 0 : (int)(slash - link) + 1;
+    int length = snprintf(out, size, "%.*s%s", folder, link, target);
+    return length > 0 && (size_t)length < size ? IM_OK : im_fail(IM_EINVAL, "%.64s...: path too long", link);
+}
+
+/* The file that path names once its symbolic links are followed (path itself when it is none, or a
+ * dangling link's target), so that the new file replaces the target in its folder and a link stays a
+ * link, pointing at the new content. A loop of links is refused naming path. */
+static int follow_links(const char *path, char *out, size_t size)
+{
+    char target[sizeof((im_atomic_file *)0)->path];
+    snprintf(out, size, "%s", path);
+    for (int followed = 0; followed <= LINKS_FOLLOWED_AT_MOST; ++followed) {
+        ssize_t length = readlink(out, target, sizeof target);
+        if (length < 0 && errno != ELOOP)
+            return IM_OK; /* not a link (EINVAL), or nothing there yet: out is the file to write */
+        if (length < 0)
+            break; /* a loop among the folders above */
+        if ((size_t)length == sizeof target)
+            return im_fail(IM_EINVAL, "%s: the symbolic link's target is too long", path);
+        target[length] = '\0';
+        char link[sizeof target];
+        snprintf(link, sizeof link, "%s", out);
+        int status = link_destination(link, target, out, size);
+        if (status != IM_OK)
+            return status;
+    }
+    return im_fail(IM_EINVAL,
+                   "%s: a loop of symbolic links (more than %d followed): expected a file, or a link to one, "
+                   "to write",
+                   path, LINKS_FOLLOWED_AT_MOST);
+}
+
 /* Creates the temporary file exclusively (O_EXCL: a name left by a dead process of the same pid is
  * skipped), readable back for the kind check at commit. */
 static int create_temporary(im_atomic_file *file, const char *suffix)
@@ -130,8 +172,9 @@ int im_atomic_open_suffixed(im_atomic_file *file, const char *path, const char *
     file->slot = -1;
     if (strlen(path) >= sizeof file->path)
         return im_fail(IM_EINVAL, "%.64s...: path too long", path);
-    strcpy(file->path, path);
-    int status = im_output_check(path);
+    int status = follow_links(path, file->path, sizeof file->path);
+    if (status == IM_OK)
+        status = im_output_check(path);
     return status == IM_OK ? create_temporary(file, suffix ? suffix : "") : status;
 }
 

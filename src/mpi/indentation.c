@@ -3,6 +3,7 @@
  * control and its searches, adhesion), its solves and reductions over the ranks (adhesion.c: mpi_adhesion_ranks). */
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
+#include "core/team_size.h"
 #include "solver/indentation_rows.h"
 
 #include "indentmap/status.h"
@@ -121,6 +122,7 @@ int im_mpi_indentation_step(im_mpi_indentation *run, double target, im_step_resu
 {
     ARG_REQUIRE(run, "run");
     ARG_REQUIRE(out, "out");
+    team_choose(); /* this rank's threads, for the step and the net pressures alike (core/team_size.c) */
     /* the steps' decisions are global (every rank the same); their allocations are made at creation */
     int status = mpi_collective_status(run->solver->comm, im_indentation_step(run->steps, target, out));
     const indentation_rows_state state = indentation_rows_state_of(run->steps);
@@ -128,6 +130,7 @@ int im_mpi_indentation_step(im_mpi_indentation *run, double target, im_step_resu
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; ++i)
         run->net_pressure[i] = adhesion_net_pressure(state.adhesion, i, state.pressure[i]);
+    team_restore();
     return status;
 }
 

@@ -2,13 +2,13 @@
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
 
+#include "indentmap/io.h"
 #include "indentmap/status.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 enum { NPY_PREAMBLE_V1 = 10, NPY_PREAMBLE_V2 = 12, NPY_HEADER_MAX = 65536, NPY_ALIGN = 64 };
 
@@ -160,14 +160,6 @@ static long make_header(int nx, int ny, char *header, size_t size)
     return total;
 }
 
-/* A temporary name beside path, the same on every rank (rank 0's process id). */
-static void temporary_name(MPI_Comm comm, const char *path, char *name, size_t size)
-{
-    long id = (long)getpid();
-    MPI_Bcast(&id, 1, MPI_LONG, 0, comm);
-    snprintf(name, size, "%s.tmp.%ld", path, id);
-}
-
 static int write_file(MPI_Comm comm, const char *name, int nx, int ny, int y0, int rows, const double *data)
 {
     int rank;
@@ -188,28 +180,34 @@ static int write_file(MPI_Comm comm, const char *name, int nx, int ny, int y0, i
     return rc != MPI_SUCCESS ? rc : rc_sync != MPI_SUCCESS ? rc_sync : rc_close;
 }
 
+/* Rank 0 opens the output as every writer does (io.h's im_atomic_open: a symbolic link written through, a
+ * protected input refused, the temporary file made beside the target and removed on a signal); every rank
+ * writes its rows into that temporary file through MPI-IO, and rank 0 moves it into place (the output
+ * guard's kind check, the rename) or removes it. */
 int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y0, int rows, const double *data)
 {
     ARG_REQUIRE(path, "path");
     ARG_REQUIRE(data || rows == 0, "data"); /* a rank may own no rows */
-    int status = IM_OK;
+    int rank, status = IM_OK;
+    MPI_Comm_rank(comm, &rank);
     if (nx < 1 || ny < 1 || y0 < 0 || rows < 0 || y0 + rows > ny)
         status = im_fail(IM_EINVAL, "%s: rows [%d, %d) of a %d x %d grid", path, y0, y0 + rows, nx, ny);
     status = mpi_collective_status(comm, status);
     if (status != IM_OK)
         return status;
-    char name[4096];
-    temporary_name(comm, path, name, sizeof name);
-    int rc = write_file(comm, name, nx, ny, y0, rows, data);
-    status = rc == MPI_SUCCESS ? IM_OK : im_fail(IM_EIO, "%s: MPI-IO write of %s failed", path, name);
+    im_atomic_file file = {.slot = -1};
+    if (rank == 0)
+        status = im_atomic_open(&file, path);
     status = mpi_collective_status(comm, status);
-    int rank;
-    MPI_Comm_rank(comm, &rank);
-    if (rank == 0) {
-        if (status == IM_OK && rename(name, path) != 0)
-            status = im_fail(IM_EIO, "%s: cannot rename %s over it", path, name);
-        if (status != IM_OK)
-            remove(name);
-    }
+    if (status != IM_OK)
+        return status;
+    MPI_Bcast(file.temp_path, sizeof file.temp_path, MPI_CHAR, 0, comm);
+    int rc = write_file(comm, file.temp_path, nx, ny, y0, rows, data);
+    status = rc == MPI_SUCCESS ? IM_OK : im_fail(IM_EIO, "%s: MPI-IO write of %s failed", path, file.temp_path);
+    status = mpi_collective_status(comm, status);
+    if (rank == 0 && status == IM_OK)
+        status = im_atomic_commit(&file);
+    else if (rank == 0)
+        im_atomic_abort(&file);
     return mpi_collective_status(comm, status);
 }

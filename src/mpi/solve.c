@@ -2,6 +2,7 @@
  * after this rank's inputs are checked (the first bad patch over all ranks named on every rank). */
 #include "mpi/mpi_internal.h"
 #include "core/args.h"
+#include "core/team_size.h"
 
 #include "indentmap/status.h"
 
@@ -50,9 +51,11 @@ int im_mpi_solver_solve(im_mpi_solver *s, const double *gap0, enum im_control co
         memset(pressure, 0, sizeof(double) * (size_t)s->rows * s->nx);
         memset(displacement, 0, sizeof(double) * (size_t)s->rows * s->nx);
     } else {
+        team_choose(); /* this rank's threads: those the other processes leave free, as a serial solve's */
         if (s->coarse && !s->plan.engine->any_positive(&r))
             res.coarse_iterations = mpi_cascade_start(s, gap0, control, target, pressure);
         status = solver_pk_solve(&r, &res);
+        team_restore();
     }
     res.convolutions = r.convolutions;
     res.seconds = MPI_Wtime() - start;

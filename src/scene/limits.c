@@ -157,9 +157,34 @@ static double solve_bytes(const im_scene *scene, const grid *g, const grid *w, c
     return plan->host_bytes + boxes + 8.0 * 8.0 * g->nx * g->ny;
 }
 
+/* Whether the scene draws or measures a state's displacement on the whole grid (frames, distributions:
+ * im_indentation_fields_full), which a run plans once beside its solver's (a periodic cell's solve covers
+ * the cell already). */
+static int draws_whole_grid(const im_scene *scene)
+{
+    return (scene->frames || scene->distributions) && !scene->periodic;
+}
+
+/* That whole-grid convolution's plan (im_displacement_plan_create's: no coarse levels, no preconditioner,
+ * on the engine the scene's device takes); all zero where the scene has none. A 1024^2 frame history on a
+ * file (its window known and small) held 246 MiB beyond a tiny scene against the 143 MiB counted without it. */
+static int full_grid_memory(const im_scene *scene, const grid *g, const im_solver_memory *plan,
+                            im_solver_memory *full)
+{
+    *full = (im_solver_memory){.host_bytes = 0.0};
+    if (!draws_whole_grid(scene))
+        return IM_OK;
+    im_solver_options o = scene_solver_options(scene);
+    o.cascade = o.precondition = 0;
+    o.adhesion_work = o.adhesion_range = o.adhesion_zone = 0;
+    o.device = plan->gpu ? IM_DEVICE_GPU : IM_DEVICE_CPU; /* where the run's own plans went */
+    int status = im_solver_memory_needed(g->nx, g->ny, &o, full);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "%s: the whole grid's displacement", scene->path);
+}
+
 /* The host memory; *at_once: the most solves at once (the members, or the panels, one per thread). */
 static double memory_needed(const im_scene *scene, const grid *g, const grid *w, const im_solver_memory *plan,
-                            int *at_once)
+                            const im_solver_memory *full, int *at_once)
 {
     double field = 8.0 * g->nx * g->ny, needed = 0.0, solve = solve_bytes(scene, g, w, plan);
     int members = ensemble_size(scene), threads = omp_get_max_threads();
@@ -172,7 +197,9 @@ static double memory_needed(const im_scene *scene, const grid *g, const grid *w,
     if (scene->frames) /* force and deformed heights of every step, the contact and height images, all
                         * rendered before their figures are written, and the contact figures (counted as
                         * twice the image) kept for the GIF */
-        needed = fmax(needed, solve + scene->frame_count * (2.0 * field + 16.0 * frame_pixels));
+        needed = fmax(needed, solve + full->host_bytes + scene->frame_count * (2.0 * field + 16.0 * frame_pixels));
+    if (scene->distributions) /* one state at a time: its force and gap on the whole grid */
+        needed = fmax(needed, solve + full->host_bytes + 2.0 * field);
     if (scene->frames3d) /* the 3-D frames' figures kept for the GIF (RGBA, twice the view) */
         needed += scene->frame_count * 8.0 * scene->frame3d_width * scene->frame3d_height;
     if (scene->contact_panels) { /* every family's force and panel image (2 pixels a patch when small); the
@@ -294,14 +321,24 @@ static void describe_solve(const grid *g, const grid *w, char *text, size_t size
         snprintf(text, size, "a %d x %d window of the %d x %d grid", w->nx, w->ny, g->nx, g->ny);
 }
 
-/* The device memory of the solves at once, each on its own context of the one GPU. */
+/* The device memory of the solves at once, each on its own context of the one GPU, and of a run that
+ * draws the whole grid: its solve's plan beside the whole grid's convolution. */
 static int check_device_memory(const im_scene *scene, const grid *g, const grid *w, const im_solver_memory *plan,
-                               int at_once)
+                               const im_solver_memory *full, int at_once)
 {
-    if (!plan->gpu || at_once * plan->device_bytes <= plan->device_memory)
+    const double drawing = full->gpu ? plan->device_bytes + full->device_bytes : 0.0;
+    if (!plan->gpu || fmax(at_once * plan->device_bytes, drawing) <= plan->device_memory)
         return IM_OK;
     char solve[96];
     describe_solve(g, w, solve, sizeof solve);
+    if (drawing > at_once * plan->device_bytes)
+        return im_fail(IM_ENOMEM,
+                       "%s: this scene's frames or distributions hold a solve's %.3g GiB of device memory on %s (for "
+                       "%s) beside %.3g GiB for the whole %d x %d grid's displacement, but %s has %.3g GiB; use "
+                       "device = cpu or a smaller grid",
+                       scene->path, plan->device_bytes / (1024 * MIB), plan->device, solve,
+                       full->device_bytes / (1024 * MIB), g->nx, g->ny, plan->device,
+                       plan->device_memory / (1024 * MIB));
     return im_fail(IM_ENOMEM,
                    "%s: this scene solves %d surfaces at once on %s, %.3g GiB of device memory each for %s (%.3g "
                    "GiB), but %s has %.3g GiB; use fewer threads (OMP_NUM_THREADS), device = cpu, or a smaller grid",
@@ -333,20 +370,23 @@ static int plan_memory(const im_scene *scene, const im_scene_run_options *option
 
 static int check_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g)
 {
-    im_solver_memory plan;
+    im_solver_memory plan, full;
     const grid w = solves_window(scene, g);
     int at_once, status = plan_memory(scene, options, g, &w, &plan);
+    if (status == IM_OK)
+        status = full_grid_memory(scene, g, &plan, &full);
     if (status != IM_OK)
         return status;
-    double needed = memory_needed(scene, g, &w, &plan, &at_once);
-    if ((status = check_device_memory(scene, g, &w, &plan, at_once)) != IM_OK)
+    double needed = memory_needed(scene, g, &w, &plan, &full, &at_once);
+    if ((status = check_device_memory(scene, g, &w, &plan, &full, at_once)) != IM_OK)
         return status;
     size_t available = im_memory_available();
     if (available != 0 && needed > (double)available)
         return im_fail(IM_ENOMEM,
                        "%s: this scene needs about %.1f MiB of memory (%d surfaces solved at once, "
                        "%.1f MiB each for the solver plan (%s engine) and fields of a %d x %d grid, plus what the "
-                       "frames and panels keep) but only %.1f MiB are available; use a smaller grid or fewer "
+                       "frames, panels and the whole grid's displacement keep) but only %.1f MiB are available; use "
+                       "a smaller grid or fewer "
                        "threads (OMP_NUM_THREADS)",
                        scene->path, needed / MIB, at_once, solve_bytes(scene, g, &w, &plan) / MIB,
                        plan.gpu ? "GPU" : "CPU", g->nx, g->ny, (double)available / MIB);

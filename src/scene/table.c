@@ -246,16 +246,15 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
     if (status != IM_OK)
         return status;
     fprintf(file.stream,
-            "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surfaces per h'rms, quality %s, tol %g), "
+            "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surface%s per h'rms, quality %s, tol %g), "
             "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref).\n\n",
             scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count,
-            scene->quality, scene->tol);
+            scene->seed_count == 1 ? "" : "s", scene->quality, scene->tol);
     if (scene->file_count > 0)
         fprintf(file.stream,
-                "The surfaces are the %d file(s) of `file`; h'rms is measured by %s of "
-                "each surface as solved (root mean square over the files), and eq. (12) is taken at "
-                "it.\n\n",
-                scene->file_count,
+                "The surface%s the %d file%s of `file`; h'rms is measured by %s of each surface as solved "
+                "(root mean square over the files), and eq. (12) is taken at it.\n\n",
+                scene->file_count == 1 ? " is" : "s are", scene->file_count, scene->file_count == 1 ? "" : "s",
                 scene->run->file_slope_definition == IM_SLOPE_SPECTRAL ? "the spectrum" : "forward differences");
     fprintf(file.stream, "| h'rms | mean h_rms/δ | ρ_c | n_p,ref | A/A_cone indentmap | A/A_cone eq. (12) | "
                          "relative error | paper (Icarus) |\n|---|---|---|---|---|---|---|---|\n");

@@ -3,6 +3,7 @@
 #include "indentmap/solver.h"
 #include "core/args.h"
 #include "core/summation.h"
+#include "core/team_size.h"
 #include "solver/adhesion.h"
 #include "solver/flat.h"
 #include "solver/indentation_rows.h"
@@ -967,26 +968,10 @@ static window_grid window_grid_of(const im_indentation *run)
                          run->pressure,  run->displacement, run->plan};
 }
 
-int im_indentation_step(im_indentation *run, double target, im_step_result *out)
+/* A checked step's solve, its checks and its record; the surface keeps its state where it fails. */
+static int solve_step(im_indentation *run, double target, im_step_result *out)
 {
-    ARG_REQUIRE(run, "run");
-    ARG_REQUIRE(out, "out");
-    const char *what = control_target(run->control);
-    const double lowest = run->adhesion ? -run->largest_target : 0; /* adhesion: the punch pulled away too */
-    if (!(isfinite(target) && target >= lowest && target <= run->largest_target))
-        return im_fail(IM_EINVAL, "%s = %g: expected a value in [%g, %g], the largest %s the run was prepared for%s",
-                       what, target, lowest, run->largest_target, what, run->adhesion ? " and its negative" : "");
-    if (run->control == IM_CONTROL_MEAN_GAP && !(target > 0))
-        return im_fail(IM_EINVAL, "mean gap = %g: expected > 0 (at 0 the cell is in full contact)", target);
-    int status = check_reachable(run, target);
-    if (status != IM_OK)
-        return status;
-    const double cell_capacity = run->options.hardness * cell_area(run);
-    if (run->options.periodic && run->options.hardness > 0 && target >= cell_capacity)
-        return im_fail(IM_EINVAL,
-                       "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
-                       "load every patch would have yielded: full contact, no approach to find)",
-                       target, run->options.hardness, cell_capacity);
+    int status;
     im_solve_result s;
     /* (a periodic cell under load control: Polonsky-Keer's own, which keeps mean u = 0) */
     if (run->adhesion && run->control == IM_CONTROL_LOAD)
@@ -1020,6 +1005,32 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     long yielding = status == IM_OK && run->options.hardness > 0 ? accumulate_plastic_flow(run, s.approach) : 0;
     fill_step(run, &s, out);
     out->yielding_patches = yielding;
+    return status;
+}
+
+int im_indentation_step(im_indentation *run, double target, im_step_result *out)
+{
+    ARG_REQUIRE(run, "run");
+    ARG_REQUIRE(out, "out");
+    const char *what = control_target(run->control);
+    const double lowest = run->adhesion ? -run->largest_target : 0; /* adhesion: the punch pulled away too */
+    if (!(isfinite(target) && target >= lowest && target <= run->largest_target))
+        return im_fail(IM_EINVAL, "%s = %g: expected a value in [%g, %g], the largest %s the run was prepared for%s",
+                       what, target, lowest, run->largest_target, what, run->adhesion ? " and its negative" : "");
+    if (run->control == IM_CONTROL_MEAN_GAP && !(target > 0))
+        return im_fail(IM_EINVAL, "mean gap = %g: expected > 0 (at 0 the cell is in full contact)", target);
+    int status = check_reachable(run, target);
+    if (status != IM_OK)
+        return status;
+    const double cell_capacity = run->options.hardness * cell_area(run);
+    if (run->options.periodic && run->options.hardness > 0 && target >= cell_capacity)
+        return im_fail(IM_EINVAL,
+                       "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
+                       "load every patch would have yielded: full contact, no approach to find)",
+                       target, run->options.hardness, cell_capacity);
+    team_choose(); /* every region of the step on the threads the other processes leave free (core/team_size.c) */
+    status = solve_step(run, target, out);
+    team_restore();
     return status;
 }
 
@@ -1102,11 +1113,14 @@ static int window_fields(const im_indentation *run, im_field **force, im_field *
 int im_indentation_fields(const im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
     ARG_REQUIRE(run, "run");
+    team_choose();                             /* as a step's */
     if (run->steps && (gap || displacement)) { /* u outside the last step's box is not K p yet */
         const window_grid grid = window_grid_of(run);
         step_window_refresh(run->steps, &grid);
     }
-    return window_fields(run, force, gap, displacement);
+    const int status = window_fields(run, force, gap, displacement);
+    team_restore();
+    return status;
 }
 
 int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)

@@ -504,12 +504,10 @@ static int solve_checked(pk_run *r, int positive, double start, im_solve_result 
         memset(r->p, 0, sizeof(double) * n);
         memset(r->u, 0, sizeof(double) * n);
     } else {
-        team_choose(); /* the threads the other processes leave free (core/team_size.c) */
         if (!positive && plan->coarse)
             res.coarse_iterations = solver_cascade_start(plan, r->gap0, r->control, r->target, r->p,
                                                          &r->start_prolonged);
         status = solver_pk_solve(r, &res);
-        team_restore();
     }
     res.convolutions = r->convolutions;
     res.seconds = omp_get_wtime() - start;
@@ -527,11 +525,14 @@ int im_solver_solve(im_solver_plan *plan, const double *gap0, enum im_control co
     ARG_REQUIRE(displacement, "displacement");
     const double start = omp_get_wtime();
     int positive = 0;
+    team_choose(); /* the threads the other processes leave free (core/team_size.c), for every region */
     int status = check_inputs(plan, gap0, control, target, pressure, &positive);
-    if (status != IM_OK)
-        return status;
-    pk_run r = solver_pk_run(plan, gap0, control, target, pressure, displacement);
-    return solve_checked(&r, positive, start, result);
+    if (status == IM_OK) {
+        pk_run r = solver_pk_run(plan, gap0, control, target, pressure, displacement);
+        status = solve_checked(&r, positive, start, result);
+    }
+    team_restore();
+    return status;
 }
 
 int solver_solve_coarse(im_solver_plan *coarse, const double *gap0, double mean_gap0, enum im_control control,

@@ -241,7 +241,8 @@ int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im
     if (status != IM_OK)
         return status;
     solver_plan_options(&o);
-    *out = (im_solver_memory){.host_bytes = im_solver_plan_bytes(nx, ny), .device = "cpu"};
+    const double cpu_bytes = o.cascade ? im_solver_plan_bytes(nx, ny) : level_bytes(nx, ny); /* no coarse levels */
+    *out = (im_solver_memory){.host_bytes = cpu_bytes, .device = "cpu"};
     return o.device == IM_DEVICE_CPU ? IM_OK : gpu_memory_needed(nx, ny, &o, out);
 }
 
