@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Scenes over surface files (issue 13, reliability finding 4): the theory is taken at the files' own
 # measured h'rms (not the default slope 0.08 or a `slopes` label), a list of files is the ensemble,
-# and `slopes`/`seeds` beside `file` are refused at their line.
+# and `slopes`/`seeds` beside `file` are refused at their line. The h'rms is spectral for generated files
+# of spectral h'rms (their sidecar says so: the h'rms their family had generated, researcher finding R5)
+# and by forward differences for any other file, as `indent` measures them.
 set -u
 cli=$1
 dir=$(mktemp -d)
@@ -13,34 +15,49 @@ source "$(dirname "$0")/lib.sh"
 "$cli" surface --n 64 --slope 0.12 --seed 5 --out "$dir/b.npy" >/dev/null
 "$cli" surface --n 32 --slope 0.12 --seed 5 --out "$dir/small.npy" >/dev/null
 fd_slope() { "$cli" surface --stats "$1" --detrend none --window none | awk '/^h.rms fd/ { print $3 }'; }
+spectral_slope() { "$cli" surface --stats "$1" --detrend none --window none | awk '/^h.rms spectral/ { print $3 }'; }
 
 scene() { # scene NAME FILE-LINE [EXTRA-LINE]
   printf '[scene]\nname = %s\noutput = %s\n[surfaces]\n%s\n%s\n[loading]\nload_star = 100\n[output]\ntable = yes\n' \
     "$1" "$1" "$2" "${3:-}" >"$dir/$1.ini"
 }
 
-# One file: the table's slope is the file's h'rms by forward differences, and its eq. (12) column is
-# `indentmap theory` at that h'rms.
+# One file: the table's slope is the file's h'rms, spectral for a generated file: its target, as its
+# family had it generated; its eq. (12) column is `indentmap theory` at that h'rms.
 scene one "file = a.npy"
 "$cli" run --quiet "$dir/one.ini" >/dev/null 2>"$dir/one.err"
 check "one file: runs" test $? -eq 0
-slope=$(fd_slope "$dir/a.npy")
+slope=$(spectral_slope "$dir/a.npy")
 row=$(sed -n 2p "$dir/one/table1.csv")
-check "one file: slope column is the file's fd h'rms ($slope)" test "$(cut -d, -f1 <<<"$row")" = "$slope"
+check "one file: slope column is the file's spectral h'rms, its target ($slope)" \
+  test "$(cut -d, -f1 <<<"$row")" = "$slope" -a "$slope" = 0.16
 theory=$("$cli" theory --alpha 80 --slope "$slope" --format csv | awk -F, 'NR == 2 { print $4 }')
 check "one file: eq. (12) column is indentmap theory at it ($theory)" \
   awk -v a="$(cut -d, -f9 <<<"$row")" -v b="$theory" 'BEGIN { exit !(a - b < 1e-6 && b - a < 1e-6) }'
-check "one file: the definition is stated" grep -q "measured by forward differences" "$dir/one/table1.md"
+check "one file: the definition is stated" grep -q "measured by the spectrum" "$dir/one/table1.md"
 check "one file: table1.md counts in the singular" grep -q "the 1 file of \`file\`" "$dir/one/table1.md"
 check "... and 1 surface per h'rms" grep -q "1 surface per h'rms" "$dir/one/table1.md"
-check "one file: run.json records it" grep -q '"slope_definition": "forward differences' "$dir/one/run.json"
+check "one file: run.json records it" grep -q '"slope_definition": "spectral, of each surface' "$dir/one/run.json"
+check "one file: run.json says what chose it" grep -q '"chosen_by": "default: generated surfaces' "$dir/one/run.json"
 check "one file: run.json records the length unit" grep -q '"length_unit": "delta"' "$dir/one/run.json"
+
+# Any other file (a scan: its spectrum would count the steps across its edges; here the same generated
+# surface without its sidecar): forward differences.
+cp "$dir/a.npy" "$dir/scan.npy"
+scene scan "file = scan.npy"
+"$cli" run --quiet "$dir/scan.ini" >/dev/null 2>"$dir/scan.err"
+check "a scan: runs" test $? -eq 0
+fd=$(fd_slope "$dir/scan.npy")
+check "a scan: slope column is its fd h'rms ($fd)" grep -q "^$fd," "$dir/scan/table1.csv"
+check "a scan: the definition is stated" grep -q "measured by forward differences" "$dir/scan/table1.md"
+check "a scan: run.json records it" grep -q '"slope_definition": "forward differences' "$dir/scan/run.json"
+check "a scan: run.json says what chose it" grep -q '"chosen_by": "default: measured surfaces' "$dir/scan/run.json"
 
 # Two files are an ensemble of two: slope the rms of theirs, one member each with its own h'rms.
 scene two "file = a.npy, b.npy"
 "$cli" run --quiet "$dir/two.ini" >/dev/null 2>"$dir/two.err"
 check "two files: runs" test $? -eq 0
-sb=$(fd_slope "$dir/b.npy")
+sb=$(spectral_slope "$dir/b.npy")
 rms=$(awk -v a="$slope" -v b="$sb" 'BEGIN { printf "%.6g", sqrt((a * a + b * b) / 2) }')
 check "two files: 2 surfaces, slope the rms ($rms)" grep -q "^$rms,2," "$dir/two/table1.csv"
 check "two files: table1.md counts in the plural" grep -q "The surfaces are the 2 files of \`file\`" "$dir/two/table1.md"
@@ -87,5 +104,14 @@ files = json.load(open(sys.argv[1]))["surface_files"]
 entry = files["files"][0]
 sys.exit(not (files["resample_square"] is True and entry["resampled"] == "bilinear"
               and abs(entry["spacing_difference"] - 2 / 3) < 1e-15 and files["delta"] == 1.0))' "$dir/rect/run.json"
+
+
+# Generated families record the definition of their target ([surfaces] slope_definition), not always
+# "spectral".
+scene fdgen "n = 32" "slope_definition = fd"
+"$cli" run --quiet "$dir/fdgen.ini" >/dev/null 2>"$dir/fdgen.err"
+check "generated fd family: runs" test $? -eq 0
+check "generated fd family: run.json says finite differences" \
+  bash -c "grep -A1 '\"theory_slope_rms\"' '$dir/fdgen/run.json' | grep -q '\"definition\": \"finite differences\"'"
 
 finish

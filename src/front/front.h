@@ -319,6 +319,13 @@ typedef struct run_record_solver {
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver);
 
+/* The generator block of a surface file's sidecar (written by `indentmap surface`: the file is a generated
+ * surface), a new reference; NULL for a NULL path, a file without a sidecar or a sidecar naming none. */
+json_t *surface_sidecar_generator(const char *surface_path);
+
+/* What run.json and the messages call an h'rms definition (IM_SLOPE_*): "spectral" or "finite differences". */
+const char *slope_definition_name(int definition);
+
 /* run.json's "adhesion" block of a run under options' law (solver.h, "Adhesion"): its name, work, range,
  * (peak) stress, the Dugdale zone's length (in the length unit and in patches of side delta) and, for a
  * sphere punch, Maugis's lambda and the law's Tabor mu, all of the law solved on patches of side delta

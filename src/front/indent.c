@@ -44,11 +44,6 @@ const char *indent_target_name(enum im_control control)
     return control == IM_CONTROL_LOAD ? "load" : control == IM_CONTROL_MEAN_GAP ? "mean_gap" : "approach";
 }
 
-const char *indent_slope_definition_name(int definition)
-{
-    return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
-}
-
 static indent_files files_of(const im_indent_options *o)
 {
     return (indent_files){o->fields || o->frames, o->solver.hardness, o->distributions, o->target_count};
@@ -230,11 +225,11 @@ static int check_axis_inside(const indent_run_state *s, const im_field *surface)
 /* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
  * The h'rms is the options' definition, else spectral for a surface known to be periodic (generated: its
  * sidecar names the generator; flat; solved as a periodic cell) and forward differences for a measured
- * one (the rule of scenes and of Python). */
+ * one (the rule of Python and of scenes' files, scene/surfaces.c). */
 static int measured_interface(indent_run_state *s, const im_field *surface, im_theory_interface *rough)
 {
     const im_indent_options *o = s->options;
-    json_t *generator = indent_surface_generator(o->surface_path);
+    json_t *generator = surface_sidecar_generator(o->surface_path);
     const int generated = s->smooth || generator;
     json_decref(generator);
     s->slope_definition = o->slope_definition;

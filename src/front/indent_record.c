@@ -11,19 +11,6 @@
 #include <omp.h>
 #include <string.h>
 
-json_t *indent_surface_generator(const char *surface_path)
-{
-    if (!surface_path)
-        return NULL;
-    char path[PATH_MAX];
-    if (im_path_suffix(path, sizeof path, surface_path, ".json") != IM_OK)
-        return NULL; /* no sidecar can be there: the surface's own path is refused when read */
-    json_t *root = json_load_file(path, 0, NULL);
-    json_t *generator = root ? json_incref(json_object_get(root, "generator")) : NULL;
-    json_decref(root);
-    return generator;
-}
-
 /* The surface's pixels as read: its spacings along x and y (in the surface's unit), their relative
  * difference, and the resampling onto square pixels (method, spacing and the stored grid), or null. */
 static json_t *pixels_record(const im_surface_read_info *info)
@@ -86,7 +73,7 @@ static json_t *indent_blocks(const indent_run_state *s, const im_field *surface,
     json_object_set_new(blocks, "periodic", json_boolean(o->solver.periodic));
     json_object_set_new(blocks, "theory_slope_rms",
                         json_pack("{s:f, s:s, s:s}", "value", s->theory_slope, "definition",
-                                  indent_slope_definition_name(s->slope_definition), "chosen_by",
+                                  slope_definition_name(s->slope_definition), "chosen_by",
                                   s->slope_reason ? s->slope_reason : "none"));
     add_surface_details(s, json_object_get(blocks, "surface"), escaped);
     return blocks;
@@ -118,7 +105,7 @@ static const char *tolerance_source(const im_indent_options *o)
 static void add_sources(const indent_run_state *s, json_t *root)
 {
     const im_indent_options *o = s->options;
-    json_t *generator = indent_surface_generator(o->surface_path);
+    json_t *generator = surface_sidecar_generator(o->surface_path);
     if (generator) {
         json_object_set(json_object_get(root, "surface"), "generator", generator);
         json_t *seed = json_object_get(generator, "seed");

@@ -22,7 +22,7 @@ static void write_k_fit(const indent_run_state *s, const im_theory_interface *ro
         indent_say(s, IM_LOG_WARNING, "%s", im_last_error());
         return;
     }
-    const char *definition = indent_slope_definition_name(s->slope_definition);
+    const char *definition = slope_definition_name(s->slope_definition);
     char line[1024];
     periodic_k_fit_describe(&k, rough->slope_rms, definition, line, sizeof line);
     indent_say(s, IM_LOG_INFO, "%s", line);

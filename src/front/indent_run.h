@@ -91,7 +91,6 @@ void indent_say(const indent_run_state *state, im_log_level level, const char *f
 
 /* What the step lines, messages and run.json call the targets: "approach", "load" or "mean_gap". */
 const char *indent_target_name(enum im_control control);
-const char *indent_slope_definition_name(int definition);
 
 /* The folder's rules for options (run_folder.h), files: what the run writes there. */
 run_folder_rules indent_folder_rules(const im_indent_options *options, const indent_files *files);
@@ -105,9 +104,6 @@ int indent_run_check(const im_indent_options *options);
  * SHA-256, as a scene's record has them (an empty list for a flat surface without a profile). */
 json_t *indent_run_record(const indent_run_state *state, const im_field *surface, const im_indentation *run);
 int indent_run_record_inputs(const im_indent_options *options, json_t *record);
-
-/* The generator block of the surface file's sidecar (written by `indentmap surface`), or NULL. */
-json_t *indent_surface_generator(const char *surface_path);
 
 /* What indent's history figure draws of a run under solver's options (front.h: history_figure's choices): a
  * periodic cell's contact fraction (cell_area) with eq. (1) of rough under the rigid flat (no punch_given), the

@@ -81,6 +81,24 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
     return status;
 }
 
+json_t *surface_sidecar_generator(const char *surface_path)
+{
+    if (!surface_path)
+        return NULL;
+    char path[PATH_MAX];
+    if (im_path_suffix(path, sizeof path, surface_path, ".json") != IM_OK)
+        return NULL; /* no sidecar can be there: the surface's own path is refused when read */
+    json_t *root = json_load_file(path, 0, NULL);
+    json_t *generator = root ? json_incref(json_object_get(root, "generator")) : NULL;
+    json_decref(root);
+    return generator;
+}
+
+const char *slope_definition_name(int definition)
+{
+    return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";
+}
+
 json_t *run_record_create(const char *program, const char *input_kind, const char *input_path,
                           const run_record_solver *solver)
 {

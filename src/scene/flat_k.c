@@ -1,6 +1,7 @@
 /* Beyond the paper: eq. (2)'s k measured instead of assumed. Every rough surface of the scene,
  * pressed flat under a sweep of mean pressures in the periodic half-space (solver.h, "Periodic
- * mode"); A/A0 against x = p_m / (h'rms E*) per family, the fitted k of A/A0 = erf(sqrt(pi)/2 k x)
+ * mode"); A/A0 against x = p_m / (h'rms E*) per family (h'rms the spectral one of each surface as
+ * solved, generated or read: the periodic cell's, whatever the input path), the fitted k of A/A0 = erf(sqrt(pi)/2 k x)
  * with its error, and eq. (12) for the scene's cone with that k beside k = 2 and (with a table) the
  * simulated A/A_cone on the same surfaces. Writes flat/flat_contact.csv, flat_k.csv and
  * flat_k.png/pdf. Not resumable: the stage solves every time it is asked for. */
@@ -29,6 +30,7 @@ static const double FLAT_STEP = 0.025;
 
 typedef struct flat_family {
     int family, surfaces, points;
+    double slope, slope_squares; /* the surfaces' root mean square spectral h'rms; the sum of their squares */
     double x[IM_SCENE_MAX_FAMILIES * FLAT_POINTS], area[IM_SCENE_MAX_FAMILIES * FLAT_POINTS];
     im_theory_k_fit fit;
     double seed_k_mean, seed_k_sem;                     /* k fitted on each surface alone: mean, standard error */
@@ -43,12 +45,14 @@ static int solve_surface(const im_scene *scene, const im_scene_run_options *run_
     im_field *surface = NULL;
     im_flat_contact *run = NULL;
     im_solver_options options = scene_solver_options(scene);
+    double slope = NAN;
     int status = scene_surface(scene, family, seed, &surface);
     if (status == IM_OK) {
         scene_warn_if_not_periodic(scene, run_options, family, seed, surface);
-        status = im_flat_contact_create(surface, &options, &run);
+        status = im_surface_slope_rms(surface, IM_SLOPE_SPECTRAL, &slope);
     }
-    const double slope = scene->slopes[family];
+    if (status == IM_OK)
+        status = im_flat_contact_create(surface, &options, &run);
     double *x = out->x + out->points, *area = out->area + out->points;
     for (int i = 0; i < FLAT_POINTS && status == IM_OK; ++i) {
         im_flat_result r;
@@ -64,6 +68,7 @@ static int solve_surface(const im_scene *scene, const im_scene_run_options *run_
         status = im_theory_fit_k(x, area, FLAT_POINTS, &fit);
     if (status == IM_OK) {
         *seed_k = fit.k;
+        out->slope_squares += slope * slope;
         out->points += FLAT_POINTS;
         ++out->surfaces;
     }
@@ -122,7 +127,7 @@ static int solve_family(const im_scene *scene, const im_scene_run_options *optio
     for (int s = 0; s < out->surfaces; ++s)
         squares += (seed_k[s] - out->seed_k_mean) * (seed_k[s] - out->seed_k_mean);
     out->seed_k_sem = out->surfaces > 1 ? sqrt(squares / (out->surfaces - 1) / out->surfaces) : NAN;
-    const double slope = scene->slopes[family];
+    const double slope = out->slope = sqrt(out->slope_squares / out->surfaces);
     out->eq12_k = eq12_with_k(scene, slope, out->fit.k, &out->rho_c_k);
     out->eq12_2 = eq12_with_k(scene, slope, IM_THEORY_K_DEFAULT, &out->rho_c_2);
     out->simulated = simulated_area_ratio(reuse, family);
@@ -145,9 +150,8 @@ static int write_k_table(const im_scene *scene, const flat_family *families, int
     for (int i = 0; i < count; ++i) {
         const flat_family *f = &families[i];
         fprintf(file.stream, "%.17g,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                scene->slopes[f->family], f->surfaces, f->points, f->fit.k, f->fit.k_error, f->seed_k_mean,
-                f->seed_k_sem, f->fit.k_linear, f->fit.rms_residual, f->rho_c_k, f->eq12_k, f->rho_c_2, f->eq12_2,
-                f->simulated);
+                f->slope, f->surfaces, f->points, f->fit.k, f->fit.k_error, f->seed_k_mean, f->seed_k_sem,
+                f->fit.k_linear, f->fit.rms_residual, f->rho_c_k, f->eq12_k, f->rho_c_2, f->eq12_2, f->simulated);
     }
     return im_atomic_commit(&file);
 }
@@ -171,8 +175,7 @@ static int plot_k(const im_scene *scene, const flat_family *families, int count)
     flat_k_plot plot = {.count = count};
     for (int i = 0; i < count; ++i) {
         const flat_family *f = &families[i];
-        plot.families[i] =
-            (paper_flat_family){scene->slopes[f->family], f->points, f->x, f->area, f->fit.k, f->fit.k_error};
+        plot.families[i] = (paper_flat_family){f->slope, f->points, f->x, f->area, f->fit.k, f->fit.k_error};
     }
     return scene_write_png_pdf(scene, "flat_k", draw_k, &plot);
 }

@@ -17,6 +17,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* What the files' h'rms are (surfaces.c: the rule). */
+static const char *files_slope_definition(const im_scene *scene)
+{
+    return scene->run->file_slope_definition == IM_SLOPE_SPECTRAL
+               ? "spectral, of each surface as solved; the ensemble's is their root mean square, the h'rms of "
+                 "eq. (12)"
+               : "forward differences of each surface as solved; the ensemble's is their root mean square, the "
+                 "h'rms of eq. (12)";
+}
+
 /* The files of a scene over files, each with its measured h'rms and its pixels (the relative difference
  * of its spacings; resampled: the method, or null), how they were read, and what that h'rms is. */
 static json_t *files_record(const im_scene *scene)
@@ -34,10 +44,8 @@ static json_t *files_record(const im_scene *scene)
     }
     static const char *const ALIGN[] = {"none", "median", "mean", "line"};
     return json_pack("{s:o, s:f, s:s, s:s, s:s, s:b, s:s, s:b, s:s, s:f, s:s}", "files", files, "slope_rms",
-                     scene->slopes[0], "slope_definition",
-                     "forward differences of each surface as solved; the "
-                     "ensemble's is their root mean square, the h'rms of eq. (12)",
-                     "detrend", DETREND[scene->detrend], "align", ALIGN[scene->align], "fill", scene->fill, "channel",
+                     scene->slopes[0], "slope_definition", files_slope_definition(scene), "detrend",
+                     DETREND[scene->detrend], "align", ALIGN[scene->align], "fill", scene->fill, "channel",
                      scene->channel[0] ? scene->channel : "first holding heights", "resample_square",
                      scene->resample_square, "npy_order", NPY_ORDER[scene->npy_order], "delta", scene->surface.delta,
                      "length_unit", scene->file_unit[0] ? scene->file_unit : "delta");
@@ -127,6 +135,17 @@ static int add_provenance(const im_scene *scene, json_t *root)
     return IM_OK;
 }
 
+/* The h'rms of the theory beside the results: the files' as measured (surfaces.c: the rule), else the
+ * generated families' target, by the definition [surfaces] slope_definition names. */
+static json_t *theory_slope_record(const im_scene *scene)
+{
+    if (scene->file_count > 0)
+        return json_pack("{s:s, s:s}", "definition", slope_definition_name(scene->run->file_slope_definition),
+                         "chosen_by", scene->run->file_slope_reason);
+    return json_pack("{s:s, s:s}", "definition", slope_definition_name((int)scene->surface.slope_definition),
+                     "chosen_by", "generated surfaces (their target, [surfaces] slope_definition)");
+}
+
 /* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
  * surface files it measured, a profile punch's file and a sweep's lists. */
 int scene_write_record(const im_scene *scene)
@@ -156,12 +175,7 @@ int scene_write_record(const im_scene *scene)
         json_object_set_new(json_object_get(root, "adhesion"), "zone", json_real(scene->adhesion_zone));
     json_object_set_new(root, "periodic", periodic_record(scene));
     json_object_set_new(root, "units", units_record(scene));
-    /* the h'rms of the theory beside the results: the rule of `indent` (docs/solver.md) */
-    json_object_set_new(root, "theory_slope_rms",
-                        json_pack("{s:s, s:s}", "definition",
-                                  scene->file_count > 0 ? "finite differences" : "spectral", "chosen_by",
-                                  scene->file_count > 0 ? "default: measured surfaces (the files)"
-                                                        : "default: generated surfaces (their target)"));
+    json_object_set_new(root, "theory_slope_rms", theory_slope_record(scene));
     int status = add_provenance(scene, root);
     if (status == IM_OK)
         status = run_record_write(scene->output_dir, root);

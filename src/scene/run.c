@@ -3,6 +3,7 @@
 #include "scene/contents.h"
 #include "scene/run_state.h"
 #include "core/args.h"
+#include "front/front.h"
 #include "front/run_folder.h"
 
 #include "indentmap/formats.h"
@@ -297,8 +298,9 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     im_scene *measured = NULL;
     int status = scene_prepare(scene, &measured);
     if (status == IM_OK && measured->file_count > 0)
-        scene_progress(options, "surface files: h'rms = %.6g (forward differences of the surfaces as solved%s)",
-                       measured->slopes[0], measured->file_count > 1 ? ", root mean square over the files" : "");
+        scene_progress(options, "surface files: h'rms = %.6g (%s, of the surfaces as solved%s)", measured->slopes[0],
+                       slope_definition_name(measured->run->file_slope_definition),
+                       measured->file_count > 1 ? ", root mean square over the files" : "");
     if (status == IM_OK)
         status = run_measured(measured, options, ranks);
     scene_prepared_free(measured);

@@ -8,8 +8,11 @@
 
 typedef struct scene_run_state {
     /* A scene over files (surfaces.c: scene_measure_files), each file as read and prepared: */
-    double file_slopes[IM_SCENE_MAX_FAMILIES];              /* h'rms by forward differences of the surface as
-                                                               solved; their root mean square is the copy's slopes[0] */
+    double file_slopes[IM_SCENE_MAX_FAMILIES];              /* h'rms of the surface as solved, by
+                                                               file_slope_definition; their root mean square is
+                                                               the copy's slopes[0] */
+    int file_slope_definition;                              /* IM_SLOPE_* (surfaces.c: the rule) */
+    const char *file_slope_reason;                          /* what chose it (a static text) */
     double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* |delta_x - delta_y| / their mean as read
                                                                (formats.h: spacing_difference) */
     int file_resampled[IM_SCENE_MAX_FAMILIES];              /* 1 where it was resampled onto square pixels */

@@ -13,8 +13,9 @@ int scene_surface(const im_scene *scene, int family, uint64_t seed, im_field **o
 
 /* Reads every surface file of the run's copy of a scene (prepared as it will be solved), checks that
  * they share one grid and spacing (IM_EFORMAT naming the files otherwise), and sets the copy's grid,
- * file_unit and slopes[0] (the files' root mean square h'rms) and state's measurements of each file
- * (run_state.h). IM_OK at once for a scene without files. */
+ * file_unit and slopes[0] (the files' root mean square h'rms: spectral when the scene is periodic or
+ * every file is a generated surface of spectral h'rms by its sidecar, else forward differences; state says
+ * which and why) and state's measurements of each file (run_state.h). IM_OK at once for a scene without files. */
 int scene_measure_files(im_scene *scene, struct scene_run_state *state);
 
 /* The h'rms of one member: its file's measured one in a scene over files (a run's copy), else its

@@ -10,6 +10,7 @@
 #include "scene/plots.h"
 #include "scene/progress.h"
 #include "scene/punch.h"
+#include "scene/run_state.h"
 #include "scene/surfaces.h"
 #include "scene/table.h"
 
@@ -251,9 +252,10 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
             scene->seed_count == 1 ? "" : "s", scene->quality, scene->tol);
     if (scene->file_count > 0)
         fprintf(file.stream,
-                "The surface%s the %d file%s of `file`; h'rms is measured by forward differences of each surface "
-                "as solved (root mean square over the files), and eq. (12) is taken at it.\n\n",
-                scene->file_count == 1 ? " is" : "s are", scene->file_count, scene->file_count == 1 ? "" : "s");
+                "The surface%s the %d file%s of `file`; h'rms is measured by %s of each surface as solved "
+                "(root mean square over the files), and eq. (12) is taken at it.\n\n",
+                scene->file_count == 1 ? " is" : "s are", scene->file_count, scene->file_count == 1 ? "" : "s",
+                scene->run->file_slope_definition == IM_SLOPE_SPECTRAL ? "the spectrum" : "forward differences");
     fprintf(file.stream, "| h'rms | mean h_rms/δ | ρ_c | n_p,ref | A/A_cone indentmap | A/A_cone eq. (12) | "
                          "relative error | paper (Icarus) |\n|---|---|---|---|---|---|---|---|\n");
     for (int f = 0; f < scene->family_count; ++f)
