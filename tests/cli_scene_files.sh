@@ -114,4 +114,15 @@ check "generated fd family: runs" test $? -eq 0
 check "generated fd family: run.json says finite differences" \
   bash -c "grep -A1 '\"theory_slope_rms\"' '$dir/fdgen/run.json' | grep -q '\"definition\": \"finite differences\"'"
 
+# A Gwyddion text export without its `# Value units:` line (finding D8b): its heights are taken in the Width's
+# unit, as `surface --stats` and `indent` read it, and the scene says so, naming the scene and the file.
+grep -v '^# Value units:' "$(dirname "$0")/data/instruments/matrix-3.txt" >"$dir/no-value-units.txt"
+scene unstated "file = no-value-units.txt"
+"$cli" run --quiet "$dir/unstated.ini" >/dev/null 2>"$dir/unstated.err"
+check "no Value units: runs" test $? -eq 0
+check "... and warns, naming the scene, the file and the unit taken" grep -qF \
+  "$dir/unstated.ini: $dir/no-value-units.txt: no '# Value units:' line: its heights are taken in µm, the lateral unit" \
+  "$dir/unstated.err"
+check "... once" test "$(grep -c "Value units" "$dir/unstated.err")" = 1
+
 finish

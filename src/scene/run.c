@@ -259,6 +259,19 @@ void scene_prepared_free(im_scene *prepared)
     free(prepared);
 }
 
+/* What was taken where a surface file is silent (formats.h: im_surface_read_info.assumed), said as indent
+ * and surface --stats say it. */
+static void warn_assumed_units(const im_scene *measured, const im_scene_run_options *options)
+{
+    for (int i = 0; i < measured->file_count; ++i) {
+        if (!measured->run->file_assumed[i][0])
+            continue;
+        char file[IM_SCENE_PATH];
+        im_scene_file_path(measured, i, file, sizeof file);
+        scene_warn(options, "%s: %s: %s", measured->path, file, measured->run->file_assumed[i]);
+    }
+}
+
 int scene_prepare(const im_scene *scene, im_scene **prepared)
 {
     *prepared = NULL;
@@ -297,6 +310,8 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     const im_scene_run_options *options = &run;
     im_scene *measured = NULL;
     int status = scene_prepare(scene, &measured);
+    if (status == IM_OK)
+        warn_assumed_units(measured, options);
     if (status == IM_OK && measured->file_count > 0)
         scene_progress(options, "surface files: h'rms = %.6g (%s, of the surfaces as solved%s)", measured->slopes[0],
                        slope_definition_name(measured->run->file_slope_definition),

@@ -16,6 +16,8 @@ typedef struct scene_run_state {
     double file_spacing_differences[IM_SCENE_MAX_FAMILIES]; /* |delta_x - delta_y| / their mean as read
                                                                (formats.h: spacing_difference) */
     int file_resampled[IM_SCENE_MAX_FAMILIES];              /* 1 where it was resampled onto square pixels */
+    char file_assumed[IM_SCENE_MAX_FAMILIES][128];          /* what was taken where the file is silent, "" if
+                                                               nothing (formats.h: im_surface_read_info.assumed) */
     im_profile *profile;           /* [punch] profile read (owned; the punch borrows it), NULL for other
                                       punches; the copy's profile_file holds its resolved path */
     struct scene_outputs *outputs; /* what the run makes in output_dir (manifest.h), NULL before

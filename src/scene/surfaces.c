@@ -100,6 +100,7 @@ int scene_measure_files(im_scene *scene, scene_run_state *state)
         if (status == IM_OK) {
             state->file_spacing_differences[i] = info.spacing_difference;
             state->file_resampled[i] = info.resampled[0] != '\0';
+            memcpy(state->file_assumed[i], info.assumed, sizeof state->file_assumed[i]);
         }
         if (status == IM_OK && first)
             status = check_same_grid(scene, first, surface, i);
