@@ -1,6 +1,6 @@
 /* Internal: VkFFT's compiled kernels kept for the life of the process (fft.c).
  *
- * VkFFT compiles every kernel of a plan with glslang when the plan is made (0.1-0.9 s a plan on
+ * VkFFT compiles every kernel of a plan with glslang when the plan is made (0.06-0.9 s a plan on
  * lavapipe's host, most of a small solve's time; a test program or an ensemble makes many plans of
  * the same sizes). VkFFT can save a plan's SPIR-V (saveApplicationToString) and make a plan from it
  * again without glslang (loadApplicationFromString): this cache keeps those binaries, keyed by
@@ -11,7 +11,7 @@
 
 #include <stddef.h>
 
-enum { GPU_PLAN_CACHE_BYTES = 64 << 20 };
+enum { GPU_PLAN_CACHE_BYTES = 32 << 20 };
 
 /* A copy (malloc'd, the caller frees it) of the binary kept under key, and its size in bytes; NULL
  * when none is kept (or the copy's memory could not be had: the plan is then compiled). */
