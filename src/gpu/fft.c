@@ -208,8 +208,7 @@ static plan_key key_of(const gpu_fft *fft)
 static VkFFTResult initialize(gpu_fft *fft)
 {
     const plan_key key = key_of(fft);
-    size_t bytes = 0;
-    void *binary = gpu_plan_cache_copy(&key, sizeof key, &bytes);
+    void *binary = gpu_plan_cache_copy(&key, sizeof key);
     VkFFTConfiguration c = configuration(fft);
     c.loadApplicationFromString = binary != NULL;
     c.loadApplicationString = binary;

@@ -23,14 +23,13 @@ static entry *find(const void *key, size_t key_bytes)
     return NULL;
 }
 
-void *gpu_plan_cache_copy(const void *key, size_t key_bytes, size_t *bytes)
+void *gpu_plan_cache_copy(const void *key, size_t key_bytes)
 {
     pthread_mutex_lock(&lock);
     const entry *e = find(key, key_bytes);
     void *copy = e ? malloc(e->bytes) : NULL;
     if (copy) {
         memcpy(copy, e->binary, e->bytes);
-        *bytes = e->bytes;
         ++found_count;
     }
     pthread_mutex_unlock(&lock);

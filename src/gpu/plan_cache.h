@@ -13,9 +13,9 @@
 
 enum { GPU_PLAN_CACHE_BYTES = 32 << 20 };
 
-/* A copy (malloc'd, the caller frees it) of the binary kept under key, and its size in bytes; NULL
- * when none is kept (or the copy's memory could not be had: the plan is then compiled). */
-void *gpu_plan_cache_copy(const void *key, size_t key_bytes, size_t *bytes);
+/* A copy (malloc'd, the caller frees it) of the binary kept under key; NULL when none is kept (or
+ * the copy's memory could not be had: the plan is then compiled). */
+void *gpu_plan_cache_copy(const void *key, size_t key_bytes);
 /* Keeps binary (malloc'd; the cache takes it over and frees it when dropped) under key. */
 void gpu_plan_cache_keep(const void *key, size_t key_bytes, void *binary, size_t bytes);
 /* Since the process started: plans found in the cache, binaries kept. */
