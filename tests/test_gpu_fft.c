@@ -15,6 +15,7 @@
 
 #if IM_HAVE_GPU
 
+#include "gpu/plan_cache.h"
 #include "gpu/vulkan.h"
 #include "indentmap/status.h"
 #include "spirv/scale.h"
@@ -209,6 +210,30 @@ static void test_fft_scratch(void **state)
     check_fft_in(16384, 8, 5, 1);
     check_fft_in(8, 16384, 6, 1);
     check_fft_in(64, 48, 7, 1);
+    assert_no_validation_messages();
+}
+
+/* VkFFT's kernels compiled once per key (src/gpu/plan_cache.h): a second plan of the same size in
+ * the same buffers is made from the kept binaries and transforms as FFTW does (check_fft_in), and
+ * the same size in other buffers (larger ones and a scratch buffer of ours, which VkFFT's kernels
+ * are made for) is compiled and kept anew. 40 x 30 is no other case's size. */
+static void test_plan_cache(void **state)
+{
+    (void)state;
+    REQUIRE_CONTEXT();
+    long found[4], kept[4];
+    gpu_plan_cache_counts(&found[0], &kept[0]);
+    check_fft(40, 30, 8);
+    gpu_plan_cache_counts(&found[1], &kept[1]);
+    check_fft(40, 30, 9);
+    gpu_plan_cache_counts(&found[2], &kept[2]);
+    check_fft_in(40, 30, 10, 1);
+    gpu_plan_cache_counts(&found[3], &kept[3]);
+    const long expected_found[] = {0, 0, 1, 0}, expected_kept[] = {0, 1, 0, 1};
+    for (int k = 1; k < 4; ++k)
+        if (found[k] - found[k - 1] != expected_found[k] || kept[k] - kept[k - 1] != expected_kept[k])
+            fail_msg("plan %d of 40 x 30: %ld found in the cache and %ld kept, expected %ld and %ld", k,
+                     found[k] - found[k - 1], kept[k] - kept[k - 1], expected_found[k], expected_kept[k]);
     assert_no_validation_messages();
 }
 
@@ -511,6 +536,7 @@ int main(void)
         cmocka_unit_test(test_fft_sides),       cmocka_unit_test(test_fft_large),
         cmocka_unit_test(test_chunked_fields),  cmocka_unit_test(test_buffer_parts),
         cmocka_unit_test(test_fft_scratch),     cmocka_unit_test(test_multi_buffer_transforms),
+        cmocka_unit_test(test_plan_cache),
     };
     int failed = cmocka_run_group_tests(tests, open_context, close_context);
     if (skip_all)

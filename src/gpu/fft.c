@@ -3,10 +3,13 @@
  * the copy cmake/patch_vkfft.cmake makes of Debian's header. */
 #include "gpu/vulkan.h"
 
+#include "gpu/plan_cache.h"
+
 #include "indentmap/status.h"
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* VkFFT's own code is not held to the project's warnings. */
 #pragma GCC diagnostic push
@@ -169,6 +172,57 @@ static int check_parts_path(const gpu_fft *fft)
     return IM_OK;
 }
 
+/* What VkFFT's kernels depend on (plan_cache.h): the device, whose limits VkFFT sizes its
+ * workgroups and shared memory by, and the configuration but for its handles. */
+typedef struct plan_key {
+    uint32_t vendor, device, driver;
+    uint8_t pipeline_cache[VK_UUID_SIZE];
+    int px, py;
+    uint32_t real_parts, modes_parts, scratch_parts;
+    uint64_t real_bytes[GPU_MAX_CHUNKS], modes_bytes[GPU_MAX_CHUNKS], scratch_bytes[GPU_MAX_CHUNKS];
+} plan_key;
+
+static plan_key key_of(const gpu_fft *fft)
+{
+    plan_key key;
+    memset(&key, 0, sizeof key); /* padding too: keys compare as bytes */
+    VkPhysicalDeviceProperties device;
+    vkGetPhysicalDeviceProperties(*fft->handles.physical_device, &device);
+    key.vendor = device.vendorID;
+    key.device = device.deviceID;
+    key.driver = device.driverVersion;
+    memcpy(key.pipeline_cache, device.pipelineCacheUUID, VK_UUID_SIZE);
+    key.px = fft->px;
+    key.py = fft->py;
+    key.real_parts = fft->real_parts;
+    key.modes_parts = fft->modes_parts;
+    key.scratch_parts = fft->scratch_parts;
+    memcpy(key.real_bytes, fft->real_bytes, sizeof key.real_bytes);
+    memcpy(key.modes_bytes, fft->modes_bytes, sizeof key.modes_bytes);
+    memcpy(key.scratch_bytes, fft->scratch_bytes, sizeof key.scratch_bytes);
+    return key;
+}
+
+/* initializeVkFFT from the kernels a plan of the same key compiled before, or compiling them
+ * with glslang and keeping them for the next one. */
+static VkFFTResult initialize(gpu_fft *fft)
+{
+    const plan_key key = key_of(fft);
+    void *binary = gpu_plan_cache_copy(&key, sizeof key);
+    VkFFTConfiguration c = configuration(fft);
+    c.loadApplicationFromString = binary != NULL;
+    c.loadApplicationString = binary;
+    c.saveApplicationToString = binary == NULL;
+    VkFFTResult result = initializeVkFFT(&fft->app, c);
+    free(binary); /* VkFFT copied each kernel out of it */
+    if (result == VKFFT_SUCCESS && c.saveApplicationToString) {
+        /* the cache takes VkFFT's copy over (deleteVkFFT frees only what it still points to) */
+        gpu_plan_cache_keep(&key, sizeof key, fft->app.saveApplicationString, fft->app.applicationStringSize);
+        fft->app.saveApplicationString = NULL;
+    }
+    return result;
+}
+
 int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_buffer *modes, gpu_buffer *scratch,
                    gpu_fft **out)
 {
@@ -191,7 +245,7 @@ int gpu_fft_create(gpu_context *context, int px, int py, gpu_buffer *real, gpu_b
     snprintf(fft->labels[1], sizeof fft->labels[1], "FFT C2R %d x %d", px, py);
     /* VkFFT starts glslang (glslang_initialize_process, reference counted in glslang 12) for the
      * plan's shaders and stops it again before returning. */
-    VkFFTResult result = initializeVkFFT(&fft->app, configuration(fft));
+    VkFFTResult result = initialize(fft);
     status = result == VKFFT_SUCCESS
                  ? check_parts_path(fft)
                  : im_fail(IM_EUNSUPPORTED, "GPU FFT %d x %d: initializeVkFFT: VkFFT error %d", px, py, (int)result);
