@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Scenes over surface files (issue 13, reliability finding 4): the theory is taken at the files' own
 # measured h'rms (not the default slope 0.08 or a `slopes` label), a list of files is the ensemble,
-# and `slopes`/`seeds` beside `file` are refused at their line. The h'rms is spectral for generated files
+# and `slopes`/`seeds` and the generator's parameters beside `file` are refused at their line. The h'rms is spectral for generated files
 # of spectral h'rms (their sidecar says so: the h'rms their family had generated, researcher finding R5)
 # and by forward differences for any other file, as `indent` measures them.
 set -u
@@ -72,6 +72,14 @@ check "slopes beside file refused at its line" expect_exit 2 "slopes.ini:6: slop
 scene seeds "file = a.npy" "seeds = 1:3"
 check "seeds beside file refused at its line" expect_exit 2 "seeds.ini:6: seeds beside \`file\` (line 5)" \
   "$cli" run --quiet "$dir/seeds.ini"
+# the generator's parameters beside files were taken without effect (a flat_k over files with
+# `slope_definition = fd` measured them spectrally all the same): refused at their line
+for key in "hurst = 0.5" "lambda_s = 8" "lambda_r = 32" "lambda_0 = 40" "slope_definition = fd"; do
+  name=${key%% *}
+  scene "$name" "file = a.npy" "$key"
+  check "$name beside file refused at its line" expect_exit 2 "$name.ini:6: $name beside \`file\` (line 5)" \
+    "$cli" run --quiet "$dir/$name.ini"
+done
 scene mixed "file = a.npy, small.npy"
 check "files of different grids refused" expect_exit 2 "small.npy is 32 x 32 with delta 1  but $dir/a.npy is 64 x 64" \
   "$cli" run --quiet "$dir/mixed.ini"

@@ -21,7 +21,8 @@ static int key_line(const scene_given *given, const char *section, const char *k
 /* A scene over surface files: they are the ensemble (seeds[i] = i picks file i) and each has its
  * own h'rms, measured when the scene runs; `slopes` or `seeds` beside them would contradict that
  * (reliability finding 4: `slopes` labelled the file and chose the theory, `seeds = 1:3` solved
- * one file three times). Returns the line at fault, 0 if none. */
+ * one file three times), and the generator's parameters would be taken without effect. Returns the
+ * line at fault, 0 if none. */
 static int check_files(const scene_given *given)
 {
     im_scene *scene = given->scene;
@@ -33,6 +34,17 @@ static int check_files(const scene_given *given)
                        : "the files listed in `file` are the ensemble, and seeds would only solve the "
                          "same file again; remove `seeds`");
         return slopes ? slopes : seeds;
+    }
+    static const char *const GENERATOR_KEYS[] = {"hurst", "lambda_s", "lambda_r", "lambda_0", "slope_definition"};
+    for (size_t k = 0; k < sizeof GENERATOR_KEYS / sizeof *GENERATOR_KEYS; ++k) {
+        int line = key_line(given, "surfaces", GENERATOR_KEYS[k]);
+        if (line) { /* it was taken without effect */
+            im_fail(IM_EFORMAT,
+                    "%s beside `file` (line %d): it sets how surfaces are generated, and the surfaces are the "
+                    "files (their h'rms is measured as the solve and their sidecars say); remove `%s`",
+                    GENERATOR_KEYS[k], file, GENERATOR_KEYS[k]);
+            return line;
+        }
     }
     int count = 1;
     for (const char *c = scene->surface_file; *c; ++c)
