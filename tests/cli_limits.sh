@@ -141,27 +141,17 @@ check "relative paths: output beside the scene" test -s "$dir/results/table1.csv
 h_rms=$("$cli" surface --stats "$dir/inputs/rough.npy" --detrend none --window none | awk '/^h_rms / { print $2 }')
 check "relative paths: the surface file was read" grep -q "^0.08,1,$h_rms," "$dir/results/table1.csv"
 
+# cpu_scene NAME SURFACES LOADING OUTPUT: a scene on the CPU engine writing to out_NAME, its sections' lines
+# given ('\n' between them)
+cpu_scene() {
+  printf '[scene]\nname = %s\noutput = out_%s\n[surfaces]\n%b\n[loading]\n%b\n[solver]\ndevice = cpu\n[output]\n%b\n' \
+    "$1" "$1" "$2" "$3" "$4" >"$dir/$1.ini"
+}
 # A history stepping in boxes of its window (displacement control, CPU) holds each box's plans beside the
 # window's: the estimate counts them. The run's peak resident memory beyond a tiny scene's (the program
 # and its libraries, which the estimate leaves out) stays within the estimate (102 MiB against 75.3 MiB
 # counted before the boxes were, 206 MiB now); one thread, so one solve.
-boxes() {
-  cat >"$dir/$1.ini" <<INI
-[scene]
-name = $1
-output = out_$1
-[surfaces]
-n = $2
-slopes = 0
-seeds = 1
-[loading]
-steps = $3
-[solver]
-device = cpu
-[output]
-plots = fig5
-INI
-}
+boxes() { cpu_scene "$1" "n = $2\nslopes = 0\nseeds = 1" "steps = $3" "plots = fig5"; }
 peak_kib() {
   OMP_NUM_THREADS=1 python3 -c 'import resource, subprocess, sys
 subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
@@ -173,22 +163,7 @@ print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' "$@"
 # beyond a tiny frame history against 143 MiB counted.
 framed() {
   "$cli" surface --n "$2" --slope 0.08 --seed 1 --out "$dir/$1.npy" >/dev/null 2>&1
-  cat >"$dir/$1.ini" <<INI
-[scene]
-name = $1
-output = out_$1
-[surfaces]
-n = $2
-file = $1.npy
-[loading]
-control = load
-load_star = $3
-[solver]
-device = cpu
-[output]
-frames = yes
-frame_count = 2
-INI
+  cpu_scene "$1" "n = $2\nfile = $1.npy" "control = load\nload_star = $3" "frames = yes\nframe_count = 2"
 }
 boxes tiny 64 1:2:2
 boxes steps 512 30:52:2
