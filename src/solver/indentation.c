@@ -1123,11 +1123,9 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
     return status;
 }
 
-int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+/* The fields on the whole grid: the window's, with u convolved over every patch (one plan per run). */
+static int whole_grid_fields(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
 {
-    ARG_REQUIRE(run, "run");
-    if (run->options.periodic) /* the solve covers the whole cell with the periodic u already */
-        return im_indentation_fields(run, force, gap, displacement);
     im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
     int status = run->full_plan
                      ? IM_OK
@@ -1157,4 +1155,15 @@ int im_indentation_fields_full(im_indentation *run, im_field **force, im_field *
     else
         im_field_free(u);
     return IM_OK;
+}
+
+int im_indentation_fields_full(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+{
+    ARG_REQUIRE(run, "run");
+    if (run->options.periodic) /* the solve covers the whole cell with the periodic u already */
+        return im_indentation_fields(run, force, gap, displacement);
+    team_choose(); /* as a step's: the whole grid's convolution and its plan beside other work */
+    const int status = whole_grid_fields(run, force, gap, displacement);
+    team_restore();
+    return status;
 }

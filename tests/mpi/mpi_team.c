@@ -1,7 +1,7 @@
 /* The OpenMP team beside a busy process (core/team_size.c), through every entry that solves: a solve
  * (im_solver_solve, and im_mpi_solver_solve on one rank under mpirun) and an indentation's steps and
- * fields (im_indentation_step twice, so that the second solves on its step box, im_indentation_fields;
- * im_mpi_indentation_step). Each must leave the busy process a core: no parallel region of the library
+ * fields (im_indentation_step twice, so that the second solves on its step box, im_indentation_fields,
+ * im_indentation_fields_full; im_mpi_indentation_step). Each must leave the busy process a core: no parallel region of the library
  * runs with more threads than the free cpus. Before, the distributed solve chose no team, and a step's
  * own regions (its box, its window's passes) ran on all the cpus around the solve's choice, spinning in
  * libgomp's barriers for a thread that shared its core with the neighbour: `mpi-indent --n 256 --m 512` took
@@ -140,6 +140,10 @@ static int run_entry(problem *p, enum entry e, prepared *made)
             status = im_indentation_step(made->steps, w, &step);
         if (status == IM_OK)
             status = im_indentation_fields(made->steps, &force, NULL, NULL);
+        im_field_free(force);
+        force = NULL;
+        if (status == IM_OK) /* the whole grid's u: its own plan and convolution (frames, step files) */
+            status = im_indentation_fields_full(made->steps, &force, NULL, NULL);
         im_field_free(force);
         return status;
     case DISTRIBUTED_STEPS:
