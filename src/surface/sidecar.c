@@ -78,33 +78,30 @@ static int integer_member(json_t *record, const char *key, json_int_t lo, json_i
     return IM_OK;
 }
 
-static const char *const GENERATOR_KEYS[] = {
-    "nx",       "ny",     "delta",     "hurst",      "lambda_s",         "lambda_r",
-    "lambda_0", "target", "slope_rms", "height_rms", "slope_definition", "seed"};
-enum { GENERATOR_KEY_COUNT = sizeof GENERATOR_KEYS / sizeof GENERATOR_KEYS[0] };
-
-/* IM_OK when the record holds exactly the generator's keys (a misspelt key would otherwise be a default
- * silently taken); else IM_EINVAL naming the first missing or unknown one. */
+/* IM_OK when the record holds exactly the keys params_json writes (a misspelt key would otherwise be a
+ * default silently taken); else IM_EINVAL naming the first unknown or missing one. */
 static int check_generator_keys(json_t *record)
 {
-    const char *key;
+    const im_surface_params defaults = im_surface_params_default();
+    json_t *keys = params_json(&defaults);
+    const char *key, *missing = NULL, *unknown = NULL;
     json_t *value;
     json_object_foreach(record, key, value)
     {
-        int known = 0;
-        for (int i = 0; i < GENERATOR_KEY_COUNT && !known; ++i)
-            known = strcmp(key, GENERATOR_KEYS[i]) == 0;
-        if (!known)
-            return im_fail(IM_EINVAL,
-                           "generator: \"%.60s\": not a key of the record (expected nx, ny, delta, "
-                           "hurst, lambda_s, lambda_r, lambda_0, target, slope_rms, height_rms, "
-                           "slope_definition, seed)",
-                           key);
+        if (!unknown && !json_object_get(keys, key))
+            unknown = key;
     }
-    for (int i = 0; i < GENERATOR_KEY_COUNT; ++i)
-        if (!json_object_get(record, GENERATOR_KEYS[i]))
-            return im_fail(IM_EINVAL, "generator: \"%s\" is missing", GENERATOR_KEYS[i]);
-    return IM_OK;
+    json_object_foreach(keys, key, value)
+    {
+        if (!missing && !json_object_get(record, key))
+            missing = key;
+    }
+    int status = !keys     ? im_fail(IM_ENOMEM, "generator: out of memory")
+                 : unknown ? im_fail(IM_EINVAL, "generator: \"%.60s\": not a key of the record", unknown)
+                 : missing ? im_fail(IM_EINVAL, "generator: \"%s\" is missing", missing)
+                           : IM_OK;
+    json_decref(keys);
+    return status;
 }
 
 /* The record's real members into p, else IM_EINVAL naming the first that is not a number. */
