@@ -330,6 +330,81 @@ static void bad_parameters_are_refused(void **state)
     assert_null(s);
 }
 
+/* A generator record made, parsed and made again: the same text and the same parameters, a seed of 2^64 - 1
+ * (recorded as -1) and a record without a plateau (lambda_0 0: recorded as lambda_r) included. */
+static void generator_record_round_trips(void **state)
+{
+    (void)state;
+    im_surface_params p = im_surface_params_default(), back;
+    p.nx = 96;
+    p.ny = 48;
+    p.delta = 0.25;
+    p.hurst = 0.6;
+    p.lambda_r = 64;
+    p.lambda_0 = 0.0;
+    p.target = IM_TARGET_HEIGHT;
+    p.height_rms = 1.0 / 3.0;
+    p.slope_definition = IM_SLOPE_FINITE_DIFFERENCE;
+    p.seed = UINT64_MAX;
+    char *text = NULL, *again = NULL;
+    assert_int_equal(im_surface_generator_record(&p, &text), IM_OK);
+    assert_non_null(strstr(text, "\"lambda_0\":64.0,"));
+    assert_non_null(strstr(text, "\"seed\":-1}"));
+    assert_int_equal(im_surface_generator_parse(text, &back), IM_OK);
+    assert_int_equal(im_surface_generator_record(&back, &again), IM_OK);
+    assert_string_equal(again, text);
+    p.lambda_0 = p.lambda_r; /* the one in effect */
+    assert_true(back.nx == p.nx && back.ny == p.ny && back.delta == p.delta && back.hurst == p.hurst &&
+                back.lambda_s == p.lambda_s && back.lambda_r == p.lambda_r && back.lambda_0 == p.lambda_0 &&
+                back.target == p.target && back.slope_rms == p.slope_rms && back.height_rms == p.height_rms &&
+                back.slope_definition == p.slope_definition && back.seed == p.seed);
+    free(text);
+    free(again);
+}
+
+/* text with its first `old` replaced by `new`, into out. */
+static const char *replaced(const char *text, const char *old, const char *new, char *out, size_t size)
+{
+    const char *at = strstr(text, old);
+    if (!at)
+        fail_msg("'%s' is not in '%s'", old, text);
+    snprintf(out, size, "%.*s%s%s", (int)(at - text), text, new, at + strlen(old));
+    return out;
+}
+
+static void malformed_generator_records_are_refused(void **state)
+{
+    (void)state;
+    im_surface_params p = im_surface_params_default(), back = {.nx = -7};
+    p.nx = p.ny = 64;
+    p.lambda_r = 64;
+    p.hurst = 0.5; /* printed as it is written here */
+    char *text = NULL, spoilt[1024];
+    assert_int_equal(im_surface_generator_record(&p, &text), IM_OK);
+    const struct {
+        const char *old, *new, *message;
+    } cases[] = {
+        {"{", "[", "generator: expected a JSON object"},
+        {"\"seed\"", "\"sead\"", "generator: \"sead\": not a key of the record"},
+        {"\"nx\":64,", "", "generator: \"nx\" is missing"},
+        {"\"nx\":64", "\"nx\":1", "generator: \"nx\": expected an integer in [2, "},
+        {"\"nx\":64", "\"nx\":64.0", "generator: \"nx\": expected an integer"},
+        {"\"hurst\":0.5,", "\"hurst\":\"0.5\",", "generator: \"hurst\": expected a number"},
+        {"\"hurst\":0.5,", "\"hurst\":1.0,", "generator: hurst = 1: expected 0 < H < 1"},
+        {"\"target\":\"slope_rms\"", "\"target\":\"slope\"", "generator: \"target\": expected"},
+        {"\"spectral\"", "\"fd\"", "generator: \"slope_definition\": expected"},
+        {"\"ny\":64", "\"ny\":64,\"nx\":64", "generator: expected a JSON object"}, /* a duplicate key */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        replaced(text, cases[i].old, cases[i].new, spoilt, sizeof spoilt);
+        assert_int_equal(im_surface_generator_parse(spoilt, &back), IM_EINVAL);
+        if (!strstr(im_last_error(), cases[i].message))
+            fail_msg("%s: message '%s' lacks '%s'", spoilt, im_last_error(), cases[i].message);
+        assert_int_equal(back.nx, -7); /* untouched */
+    }
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -345,6 +420,8 @@ int main(void)
         cmocka_unit_test(histograms_are_normalised),
         cmocka_unit_test(prepared_crop_estimates_the_slope),
         cmocka_unit_test(bad_parameters_are_refused),
+        cmocka_unit_test(generator_record_round_trips),
+        cmocka_unit_test(malformed_generator_records_are_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

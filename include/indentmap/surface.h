@@ -5,6 +5,7 @@
  *   im_surface_statistics, im_surface_slope_rms       heights' and slopes' moments
  *   im_surface_psd, im_psd_fit_exponent               the isotropic spectrum and its power law
  *   im_surface_histogram                              distributions of height, slope, curvature
+ *   im_surface_generator_record, _parse               a generated surface's record (its sidecar's)
  *   im_surface_detrend, im_surface_align_rows, im_surface_fill_missing, im_surface_crop,
  *   im_surface_resample_square, im_surface_tapered    preparing a measured surface
  *
@@ -144,6 +145,22 @@ void im_histogram_free(im_histogram *histogram);
  * version, the grid, and its statistics with the eq. (15) estimate of h_rms where it applies. */
 int im_surface_sidecar_write(const char *path, const im_field *surface, const im_surface_params *params,
                              const char *source, const im_surface_stats *stats);
+
+/* The record of a generated surface that its sidecar holds as "generator" (im_surface_sidecar_write
+ * writes it; `indent` and scenes read it: a file whose sidecar names a generator is a generated, periodic
+ * surface, docs/theory.md): the parameters under the keys nx, ny, delta, hurst, lambda_s, lambda_r,
+ * lambda_0 (the longest wavelength in effect: lambda_r when there is no plateau), target ("slope_rms"
+ * or "height_rms"), slope_rms, height_rms, slope_definition ("spectral" or "finite-difference") and seed
+ * (a signed 64-bit integer: a seed of 2^63 or more is its two's complement). */
+
+/* The record of params as compact JSON text in a new *text (free()). IM_EINVAL naming the first parameter
+ * out of range (im_surface_params_check) or a NULL argument, IM_ENOMEM. */
+int im_surface_generator_record(const im_surface_params *params, char **text);
+
+/* The parameters of a record (JSON text, as im_surface_generator_record or a sidecar has it): every key
+ * present, of its type, no other key, and in range; else IM_EINVAL "generator: ..." naming the first
+ * key that is not (params untouched). */
+int im_surface_generator_parse(const char *text, im_surface_params *params);
 
 /* Expected h_rms of a generated surface, in the units of its heights: from the exact moments of
  * eq. (13) (which the cell-averaged discrete spectrum reproduces) or from the paper's eq. (15). */

@@ -17,7 +17,8 @@ from .render import Figure, Image, View3DFigure, contact_map, height_map, render
 from .scene import run_scene, run_scene_from_record
 from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, indent_run, read_history, unloading,
                      write_analysis)
-from .surface import Topography, generate, histogram, prepare, psd, read, statistics, write
+from .surface import (Generated, Topography, generate, generate_recorded, histogram, prepare, psd, read,
+                      read_generator, statistics, write)
 
 __version__ = _core.library_version
 
@@ -69,7 +70,7 @@ def formats():
     return _core.formats_text()
 
 
-__all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Image", "Indentation",
+__all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Generated", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography", "View3DFigure",
-           "Unsupported", "adhesion", "contact_map", "formats", "generate", "height_map", "histogram", "indent", "indent_run", "info", "memory_limit", "prepare", "psd", "read", "read_history", "renderer",
+           "Unsupported", "adhesion", "contact_map", "formats", "generate", "generate_recorded", "height_map", "histogram", "indent", "indent_run", "info", "memory_limit", "prepare", "psd", "read", "read_generator", "read_history", "renderer",
            "run_scene", "run_scene_from_record", "solver_memory", "statistics", "theory", "unloading", "use_backend", "view3d", "write", "write_analysis"]

@@ -1,4 +1,5 @@
 """Rough surfaces: synthesis, statistics, spectra and files (the library's surface.h and formats.h)."""
+import json
 import os
 import warnings
 from typing import NamedTuple
@@ -6,6 +7,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import _checks, _core
+from ._core import FormatError
 
 
 class Topography(NamedTuple):
@@ -15,6 +17,35 @@ class Topography(NamedTuple):
     heights: np.ndarray
     delta: float
     unit: str
+
+
+class Generated(NamedTuple):
+    """A generated surface with its provenance: ``heights[y, x]`` in units of ``delta``, the grid spacing,
+    and ``generator``, the record ``indentmap surface --out`` writes in its sidecar for the same parameters
+    (a dict: nx, ny, delta, hurst, lambda_s, lambda_r, lambda_0, target, slope_rms, height_rms,
+    slope_definition, seed; ``read_generator``).
+
+    Example: ``s = im.generate_recorded(256, slope=0.1, seed=7)``, then
+    ``im.write("s.npy", s.heights, s.delta, generator=s.generator)``."""
+    heights: np.ndarray
+    delta: float
+    generator: dict
+
+
+def _generator_arguments(n, m, delta, hurst, lambda_s, lambda_r, lambda_0, slope, height_rms, slope_definition,
+                         seed):
+    """generate's arguments, checked, as the library's generator takes them."""
+    n = _checks.integer("n", n)
+    m = n if m is None else _checks.integer("m", m)
+    lambda_r = float(n) if lambda_r is None else _checks.real("lambda_r", lambda_r)
+    lambda_0 = _checks.real("lambda_0", lambda_0)
+    if lambda_0 != 0 and not lambda_0 >= lambda_r:  # a longest wave shorter than the roll-off: no plateau
+        raise ValueError(f"lambda_0 = {lambda_0:g}: expected >= lambda_r = {lambda_r:g} (lambda_0 > lambda_r adds "
+                         "a roll-off plateau; 0, the default, none)")
+    return (n, m, _checks.real("delta", delta), _checks.real("hurst", hurst), _checks.real("lambda_s", lambda_s),
+            lambda_r, lambda_0, _checks.real("slope", slope),
+            None if height_rms is None else _checks.real("height_rms", height_rms),
+            _checks.text("slope_definition", slope_definition), _checks.seed(seed))
 
 
 def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None, lambda_0=0.0, slope=0.08,
@@ -27,21 +58,53 @@ def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None
     [0, 2^64 - 1]. An argument of the wrong kind raises TypeError, a value out of its range ValueError
     (``InvalidArgument`` from the library), naming the parameter and what was expected.
 
-    Returns a new (m, n) float64 array of heights in units of delta.
+    Returns a new (m, n) float64 array of heights in units of delta. The array does not say that it was
+    generated: ``generate_recorded`` gives it with its generator's record, for ``write`` to keep.
 
     Example: ``h = im.generate(256, hurst=0.8, slope=0.1, seed=7)``.
     """
-    n = _checks.integer("n", n)
-    m = n if m is None else _checks.integer("m", m)
-    lambda_r = float(n) if lambda_r is None else _checks.real("lambda_r", lambda_r)
-    lambda_0 = _checks.real("lambda_0", lambda_0)
-    if lambda_0 != 0 and not lambda_0 >= lambda_r:  # a longest wave shorter than the roll-off: no plateau
-        raise ValueError(f"lambda_0 = {lambda_0:g}: expected >= lambda_r = {lambda_r:g} (lambda_0 > lambda_r adds "
-                         "a roll-off plateau; 0, the default, none)")
-    return _core.generate(n, m, _checks.real("delta", delta), _checks.real("hurst", hurst),
-                          _checks.real("lambda_s", lambda_s), lambda_r, lambda_0, _checks.real("slope", slope),
-                          None if height_rms is None else _checks.real("height_rms", height_rms),
-                          _checks.text("slope_definition", slope_definition), _checks.seed(seed))
+    return _core.generate(*_generator_arguments(n, m, delta, hurst, lambda_s, lambda_r, lambda_0, slope, height_rms,
+                                                slope_definition, seed))
+
+
+def generate_recorded(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None, lambda_0=0.0, slope=0.08,
+                      height_rms=None, slope_definition="spectral", seed=1):
+    """``generate``'s surface (the same arguments, the same heights) with its provenance: a ``Generated``
+    (heights, delta, generator), ``generator`` being the record ``indentmap surface --out`` writes in its
+    sidecar for the same parameters (``lambda_0`` in effect: ``lambda_r`` without a plateau).
+
+    ``write(path, s.heights, s.delta, generator=s.generator)`` writes the file with that sidecar, so that ``indentmap indent``, scenes'
+    ``file =`` and ``indent_run`` take it as the generated, periodic surface it is (the spectral h'rms,
+    as for the program's file: docs/theory.md), and ``read_generator(path)`` gives the record back.
+
+    Example: ``s = im.generate_recorded(128, slope=0.1, seed=11)``, then
+    ``im.write("s.npy", s.heights, s.delta, generator=s.generator)``."""
+    arguments = _generator_arguments(n, m, delta, hurst, lambda_s, lambda_r, lambda_0, slope, height_rms,
+                                     slope_definition, seed)
+    return Generated(_core.generate(*arguments), arguments[2], json.loads(_core.generator_record(*arguments)))
+
+
+def read_generator(path):
+    """The generator's record in the sidecar PATH.json of a surface file (a dict, as ``Generated.generator``),
+    or None when the file has no sidecar or its sidecar names no generator (a measured surface, or one
+    written without ``generator``). ``indentmap indent`` takes the spectral h'rms for a file whose sidecar
+    names a generator, and scenes' ``file =`` when every file's names one with ``slope_definition``
+    'spectral'; an array has no sidecar, so ``Indentation`` and ``indent`` take forward differences unless
+    told: ``slope_definition='spectral' if im.read_generator(path) else None`` gives ``indent``'s numbers.
+    ``FormatError`` names a sidecar that is not a JSON object.
+
+    Example: ``im.read_generator("s.npy")["seed"]``."""
+    sidecar = os.fsencode(_checks.path("path", path)) + b".json"
+    try:
+        with open(sidecar, "rb") as stream:
+            record = json.load(stream)
+    except FileNotFoundError:
+        return None
+    except ValueError as error:
+        raise FormatError(f"{os.fsdecode(sidecar)}: not a JSON sidecar ({error})") from None
+    if not isinstance(record, dict):
+        raise FormatError(f"{os.fsdecode(sidecar)}: expected a JSON object, the sidecar of a surface file")
+    return record.get("generator")
 
 
 def statistics(heights, delta=1.0, window="none", alpha=0.5):
@@ -154,15 +217,34 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None, 
     return Topography(heights, delta, unit)
 
 
-def write(path, heights, delta=1.0, unit=""):
+def write(path, heights, delta=1.0, unit="", *, generator=None):
     """Writes heights (in ``unit``, as the spacing ``delta``) as .npy, .gsf, .sdf, .nc, .x3p or a text
     matrix, by extension, atomically; the format records the spacing and unit (a .npy in its sidecar
     PATH.json). NaN heights (missing points) are kept by every format (.x3p in its validity mask), and
     ``read`` takes them back as missing (refused, or filled with ``fill=True``). A path that is a symbolic
     link is written through: its target is replaced, the link stays.
 
+    ``generator``: the record of the generator that made the heights (``generate_recorded``'s, or
+    ``read_generator``'s of another file): the sidecar PATH.json is then, for any format, the one
+    ``indentmap surface --out`` writes (the record, the grid and the statistics: for the same surface the
+    same bytes), and ``indentmap indent``, scenes and ``indent_run`` read the file as that generated
+    surface. The record must hold exactly its keys, of their types and in range, for the heights' shape
+    (nx, ny) and ``delta``, without NaN heights: else ``InvalidArgument`` (``NumericError`` for NaN)
+    naming ``generator`` and the key; a record that is not a dict raises TypeError.
+
     ``FileError`` when the file cannot be written (nothing is left); ``InvalidArgument`` for an
     unknown extension, an infinite height (naming the first one's x, y), or a loop of links.
 
     Example: ``im.write("surface.x3p", h, delta=0.5, unit="µm")``."""
-    _core.write_surface(path, heights, float(delta), unit)
+    _core.write_surface(path, heights, float(delta), unit, None if generator is None else _generator_text(generator))
+
+
+def _generator_text(generator):
+    """A generator record (a dict) as the JSON text the library parses and checks."""
+    if not isinstance(generator, dict):
+        raise TypeError(f"generator: expected a dict, the generator's record (Generated.generator), got "
+                        f"{type(generator).__name__}")
+    try:
+        return json.dumps(generator, allow_nan=False)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"generator: expected a record of numbers and strings ({error})") from None

@@ -19,33 +19,56 @@ static int slope_definition_from_name(const char *name, enum im_slope_definition
     return 0;
 }
 
-static PyObject *generate(PyObject *self, PyObject *args, PyObject *kwargs)
+/* generate's and generator_record's arguments as the library's parameters; -1 with the exception set. */
+static int params_from_arguments(PyObject *args, PyObject *kwargs, im_surface_params *p)
 {
-    (void)self;
     static char *keywords[] = {"nx",       "ny",       "delta", "hurst",      "lambda_s",
                                "lambda_r", "lambda_0", "slope", "height_rms", "slope_definition",
                                "seed",     NULL};
-    im_surface_params p = im_surface_params_default();
+    *p = im_surface_params_default();
     PyObject *height_rms = Py_None;
     const char *definition = "spectral";
-    unsigned long long seed = p.seed;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|ddddddOsK", keywords, &p.nx, &p.ny, &p.delta, &p.hurst,
-                                     &p.lambda_s, &p.lambda_r, &p.lambda_0, &p.slope_rms, &height_rms, &definition,
-                                     &seed))
-        return NULL;
+    unsigned long long seed = p->seed;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|ddddddOsK", keywords, &p->nx, &p->ny, &p->delta, &p->hurst,
+                                     &p->lambda_s, &p->lambda_r, &p->lambda_0, &p->slope_rms, &height_rms,
+                                     &definition, &seed))
+        return -1;
     if (height_rms != Py_None) {
-        p.target = IM_TARGET_HEIGHT;
-        p.height_rms = PyFloat_AsDouble(height_rms);
+        p->target = IM_TARGET_HEIGHT;
+        p->height_rms = PyFloat_AsDouble(height_rms);
         if (PyErr_Occurred())
-            return NULL;
+            return -1;
     }
-    if (slope_definition_from_name(definition, &p.slope_definition) < 0)
+    p->seed = seed;
+    return slope_definition_from_name(definition, &p->slope_definition);
+}
+
+static PyObject *generate(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    im_surface_params p;
+    if (params_from_arguments(args, kwargs, &p) < 0)
         return NULL;
-    p.seed = seed;
     im_field *field = NULL;
     int status;
     Py_BEGIN_ALLOW_THREADS status = im_surface_generate(&p, &field);
     Py_END_ALLOW_THREADS return status == IM_OK ? py_array_from_field(field) : py_raise_status(status);
+}
+
+/* generator_record(generate's arguments) -> the record `surface --out` writes in its sidecar, as JSON text */
+static PyObject *generator_record(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    im_surface_params p;
+    char *text = NULL;
+    if (params_from_arguments(args, kwargs, &p) < 0)
+        return NULL;
+    int status = im_surface_generator_record(&p, &text);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    PyObject *record = PyUnicode_FromString(text);
+    free(text);
+    return record;
 }
 
 static PyObject *stats_dict(const im_surface_stats *s)
@@ -295,30 +318,55 @@ static int has_suffix(const char *path, const char *suffix)
     return n >= m && strcmp(path + n - m, suffix) == 0;
 }
 
-/* A .npy states no units: its sidecar does, always written so that none from an earlier file stays. The
- * pair is written under the lock the program's writers take (io.h), so that racing writers, from
- * Python or the program, leave one writer's whole pair. Runs without the GIL. */
-static int write_surface_file(const char *path, const im_field *field)
+/* The generator's parameters, checked against the heights they are written with: a record of another grid
+ * or spacing would tell the readers of the file that it is a surface it is not. */
+static int generator_for_heights(const char *text, const im_field *field, im_surface_params *params)
 {
-    if (!has_suffix(path, ".npy"))
+    int status = im_surface_generator_parse(text, params);
+    if (status == IM_OK) /* the record's statistics are of every point: a generated surface misses none */
+        status = im_field_check_finite(field, "heights written with a generator");
+    if (status == IM_OK && (params->nx != field->nx || params->ny != field->ny))
+        status = im_fail(IM_EINVAL, "generator: nx = %d, ny = %d: expected the heights' shape, %d x %d (ny x nx)",
+                         params->nx, params->ny, field->ny, field->nx);
+    if (status == IM_OK && params->delta != field->delta)
+        status = im_fail(IM_EINVAL, "generator: delta = %.17g: expected delta = %.17g, the spacing written",
+                         params->delta, field->delta);
+    return status;
+}
+
+/* The file and its sidecar: a .npy's stating its units, or with a generator (any format) the sidecar
+ * `indentmap surface --out` writes (its record and statistics; im_surface_sidecar_write), so that the
+ * readers take the file as the generated surface it is. The pair is written under the lock the program's
+ * writers take (io.h), so that racing writers, from Python or the program, leave one writer's whole pair.
+ * A .npy's sidecar is always written, so that none from an earlier file stays. Runs without the GIL. */
+static int write_surface_file(const char *path, const im_field *field, const im_surface_params *generator)
+{
+    if (!generator && !has_suffix(path, ".npy"))
         return im_surface_write(path, field);
-    int pair_lock = im_pair_writers_lock(path);
-    if (pair_lock < 0)
-        return IM_EIO;
-    int status = im_surface_write(path, field);
+    im_surface_stats stats;
+    char sidecar[4096];
+    int status = generator ? im_surface_statistics(field, &stats) : IM_OK;
     if (status == IM_OK)
-        status = im_field_sidecar_write(path, field, "height");
+        status = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
+    int pair_lock = status == IM_OK ? im_pair_writers_lock(path) : -1;
+    if (pair_lock < 0)
+        return status == IM_OK ? IM_EIO : status;
+    status = im_surface_write(path, field);
+    if (status == IM_OK)
+        status = generator ? im_surface_sidecar_write(sidecar, field, generator, NULL, &stats)
+                           : im_field_sidecar_write(path, field, "height");
     im_pair_writers_unlock(pair_lock);
     return status;
 }
 
+/* write_surface(path, heights, delta, unit, generator: its record as JSON text, or None) */
 static PyObject *write_surface(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_bytes, *obj;
     double delta;
-    const char *unit;
-    if (!PyArg_ParseTuple(args, "O&Ods", PyUnicode_FSConverter, &path_bytes, &obj, &delta, &unit))
+    const char *unit, *generator_text = NULL;
+    if (!PyArg_ParseTuple(args, "O&Odsz", PyUnicode_FSConverter, &path_bytes, &obj, &delta, &unit, &generator_text))
         return NULL;
     PyArrayObject *array = py_heights_array(obj, "heights");
     if (!array || strlen(unit) >= sizeof((im_field *)NULL)->unit) {
@@ -330,9 +378,14 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
     }
     im_field field = py_field_view(array, delta);
     snprintf(field.unit, sizeof field.unit, "%s", unit);
-    int status;
-    Py_BEGIN_ALLOW_THREADS status = write_surface_file(PyBytes_AS_STRING(path_bytes), &field);
-    Py_END_ALLOW_THREADS Py_DECREF(array);
+    im_surface_params generator;
+    int status = generator_text ? generator_for_heights(generator_text, &field, &generator) : IM_OK;
+    if (status == IM_OK) {
+        Py_BEGIN_ALLOW_THREADS status = write_surface_file(PyBytes_AS_STRING(path_bytes), &field,
+                                                           generator_text ? &generator : NULL);
+        Py_END_ALLOW_THREADS
+    }
+    Py_DECREF(array);
     Py_DECREF(path_bytes);
     return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
 }
@@ -346,6 +399,8 @@ PyMethodDef py_surface_methods[] = {
     {"read_surface", read_surface, METH_VARARGS,
      "read_surface(path, channel, fill, resample_square, npy_order, unit, height_unit, length_unit) -> "
      "(heights, delta, unit, assumed)"},
-    {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit)"},
+    {"generator_record", (PyCFunction)(void (*)(void))generator_record, METH_VARARGS | METH_KEYWORDS,
+     "generator_record(generate's arguments) -> the sidecar's generator record (JSON text)"},
+    {"write_surface", write_surface, METH_VARARGS, "write_surface(path, heights, delta, unit, generator)"},
     {"length_unit", length_unit, METH_VARARGS, "length_unit(parameter, text) -> the unit's canonical spelling"},
     {NULL, NULL, 0, NULL}};
