@@ -277,6 +277,13 @@ grep -q "is not periodic: the steps across its edges have rms" "$DIR/per_r.err" 
 # by --slope-definition; run.json states the value, the definition and what chose it.
 "$BIN" indent "$DIR/cell.npy" --approach 1 --out "$DIR/sd_gen" > /dev/null 2>&1 || fail "slope: generated run"
 grep -A3 '"theory_slope_rms"' "$DIR/sd_gen/run.json" | grep -q '"definition": "spectral"' || fail "generated: not spectral"
+# a surface generated to a forward-difference h'rms: that definition, whose value is its target (0.1), as a
+# generated family's and a scene's over the same file (finding R5); before, any generated file took the spectral one
+"$BIN" surface --n 48 --slope 0.1 --slope-def fd --seed 4 --out "$DIR/fd_gen.npy" > /dev/null || fail "surface --slope-def fd"
+"$BIN" indent "$DIR/fd_gen.npy" --approach 0.5 --out "$DIR/sd_fd_gen" > /dev/null 2>&1 || fail "slope: fd-generated run"
+grep -A3 '"theory_slope_rms"' "$DIR/sd_fd_gen/run.json" | grep -q '"definition": "finite differences"' &&
+    grep -A1 '"theory_slope_rms"' "$DIR/sd_fd_gen/run.json" | awk '/"value"/ { v = $2 + 0; ok = (v > 0.1 - 1e-12 && v < 0.1 + 1e-12) } END { exit !ok }' \
+    || fail "fd-generated: not its target's definition: $(grep -A3 '"theory_slope_rms"' "$DIR/sd_fd_gen/run.json")"
 awk 'BEGIN { srand(3); for (y = 0; y < 48; ++y) { line = ""; for (x = 0; x < 48; ++x) line = line (x ? " " : "") 0.02 * x + 0.3 * rand(); print line } }' \
     > "$DIR/measured.txt"
 "$BIN" indent "$DIR/measured.txt" --approach 0.5 --out "$DIR/sd_file" > /dev/null 2>&1 || fail "slope: measured run"

@@ -169,9 +169,9 @@ class Indentation:
     ``slope_definition`` is the h'rms of the history's theory columns: 'spectral' or 'fd' (forward
     differences); by default spectral for a periodic cell and fd otherwise (an array may be measured, and a
     measured surface's edges would count in its spectrum), as ``indentmap indent`` for a measured file. An
-    array does not say that it was generated: for a generated surface, ``indent`` takes the spectral h'rms
-    (its file's sidecar names the generator: ``read_generator``), so pass ``slope_definition='spectral'``
-    for its numbers.
+    array does not say that it was generated: for a generated surface, ``indent`` takes the definition its
+    generator targeted (its file's sidecar: ``read_generator(path)["slope_definition"]``, 'spectral' or
+    'finite-difference'), so pass that ('fd' for the latter) for its numbers.
 
     Units (``indentmap indent --length-unit --e-star-unit``): ``length_unit`` is the unit of ``delta``,
     the heights and every length (``read(path).unit``; "" for units of delta) and ``e_star_unit`` that

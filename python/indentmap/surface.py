@@ -87,10 +87,12 @@ def generate_recorded(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lamb
 def read_generator(path):
     """The generator's record in the sidecar PATH.json of a surface file (a dict, as ``Generated.generator``),
     or None when the file has no sidecar or its sidecar names no generator (a measured surface, or one
-    written without ``generator``). ``indentmap indent`` takes the spectral h'rms for a file whose sidecar
-    names a generator, and scenes' ``file =`` when every file's names one with ``slope_definition``
-    'spectral'; an array has no sidecar, so ``Indentation`` and ``indent`` take forward differences unless
-    told: ``slope_definition='spectral' if im.read_generator(path) else None`` gives ``indent``'s numbers.
+    written without ``generator``). ``indentmap indent`` takes the h'rms definition the generator targeted
+    (the record's ``slope_definition``) for a file whose sidecar names one, and scenes' ``file =`` the
+    spectral one when every file's names a generator of spectral h'rms; an array has no sidecar, so
+    ``Indentation`` and ``indent`` take forward differences unless told: with ``g = im.read_generator(path)``,
+    ``slope_definition={"spectral": "spectral", "finite-difference": "fd"}[g["slope_definition"]] if g else
+    None`` gives ``indent``'s numbers.
     ``FormatError`` names a sidecar that is not a JSON object.
 
     Example: ``im.read_generator("s.npy")["seed"]``."""

@@ -323,6 +323,11 @@ json_t *run_record_create(const char *program, const char *input_kind, const cha
  * surface), a new reference; NULL for a NULL path, a file without a sidecar or a sidecar naming none. */
 json_t *surface_sidecar_generator(const char *surface_path);
 
+/* The h'rms definition its generator targeted (IM_SLOPE_*: the sidecar's "slope_definition"), or -1 for a
+ * surface no generator made. A generated surface's h'rms in that definition is its target, as a
+ * generated family's is: `indent` and scenes over files take it (finding R5). */
+int surface_sidecar_slope_definition(const char *surface_path);
+
 /* What run.json and the messages call an h'rms definition (IM_SLOPE_*): "spectral" or "finite differences". */
 const char *slope_definition_name(int definition);
 

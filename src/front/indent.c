@@ -222,25 +222,38 @@ static int check_axis_inside(const indent_run_state *s, const im_field *surface)
                    p->x0, p->y0, surface->nx, surface->ny, width, height);
 }
 
-/* The theory columns' interface: the surface's h'rms, the solver's E*, k = 2 and the PR normalisation.
- * The h'rms is the options' definition, else spectral for a surface known to be periodic (generated: its
- * sidecar names the generator; flat; solved as a periodic cell) and forward differences for a measured
- * one (the rule of Python and of scenes' files, scene/surfaces.c). */
+/* The h'rms definition when none is given, into s with what chose it: spectral for a cell solved as
+ * periodic and a flat surface, a generated surface's own (its sidecar's: the definition of its target, so
+ * that a generated surface gives a generated family's numbers, as scenes' files do, scene/surfaces.c), and
+ * forward differences for a measured one. */
+static void default_slope_definition(indent_run_state *s)
+{
+    const im_indent_options *o = s->options;
+    const int generated = s->smooth ? IM_SLOPE_SPECTRAL : surface_sidecar_slope_definition(o->surface_path);
+    if (o->solver.periodic) {
+        s->slope_definition = IM_SLOPE_SPECTRAL;
+        s->slope_reason = "default: a periodic cell";
+    } else if (generated >= 0) {
+        s->slope_definition = generated;
+        s->slope_reason = generated == IM_SLOPE_SPECTRAL ? "default: a generated surface (its target's definition)"
+                                                         : "default: a generated surface of forward-difference h'rms "
+                                                           "(its target's definition)";
+    } else {
+        s->slope_definition = IM_SLOPE_FINITE_DIFFERENCE;
+        s->slope_reason = "default: a measured surface";
+    }
+}
+
+/* The theory columns' interface: the surface's h'rms (the options' definition, else the default's), the
+ * solver's E*, k = 2 and the PR normalisation. */
 static int measured_interface(indent_run_state *s, const im_field *surface, im_theory_interface *rough)
 {
     const im_indent_options *o = s->options;
-    json_t *generator = surface_sidecar_generator(o->surface_path);
-    const int generated = s->smooth || generator;
-    json_decref(generator);
     s->slope_definition = o->slope_definition;
-    if (s->slope_definition < 0) {
-        s->slope_definition = generated || o->solver.periodic ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
-        s->slope_reason = generated            ? "default: a generated surface"
-                          : o->solver.periodic ? "default: a periodic cell"
-                                               : "default: a measured surface";
-    } else {
+    if (s->slope_definition < 0)
+        default_slope_definition(s);
+    else
         s->slope_reason = "--slope-definition";
-    }
     double slope;
     int status = im_surface_slope_rms(surface, (enum im_slope_definition)s->slope_definition, &slope);
     if (status == IM_OK) {

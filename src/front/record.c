@@ -94,6 +94,19 @@ json_t *surface_sidecar_generator(const char *surface_path)
     return generator;
 }
 
+int surface_sidecar_slope_definition(const char *surface_path)
+{
+    json_t *generator = surface_sidecar_generator(surface_path);
+    const char *definition = json_string_value(json_object_get(generator, "slope_definition"));
+    int chosen = -1; /* the names params_json writes (surface/sidecar.c) */
+    if (definition && strcmp(definition, "spectral") == 0)
+        chosen = IM_SLOPE_SPECTRAL;
+    else if (definition && strcmp(definition, "finite-difference") == 0)
+        chosen = IM_SLOPE_FINITE_DIFFERENCE;
+    json_decref(generator);
+    return chosen;
+}
+
 const char *slope_definition_name(int definition)
 {
     return definition == IM_SLOPE_FINITE_DIFFERENCE ? "finite differences" : "spectral";

@@ -57,13 +57,8 @@ static int check_same_grid(const im_scene *scene, const im_field *first, const i
 static int generated_spectral(const im_scene *scene, int i)
 {
     char path[IM_SCENE_PATH];
-    if (im_scene_file_path(scene, i, path, sizeof path) != IM_OK)
-        return 0;
-    json_t *generator = surface_sidecar_generator(path);
-    const char *definition = json_string_value(json_object_get(generator, "slope_definition"));
-    const int spectral = definition && strcmp(definition, "spectral") == 0;
-    json_decref(generator);
-    return spectral;
+    return im_scene_file_path(scene, i, path, sizeof path) == IM_OK &&
+           surface_sidecar_slope_definition(path) == IM_SLOPE_SPECTRAL;
 }
 
 /* The h'rms definition of the files, one for the ensemble, into state with what chose it. Spectral when
