@@ -37,7 +37,7 @@ def _generator_arguments(n, m, delta, hurst, lambda_s, lambda_r, lambda_0, slope
     """generate's arguments, checked, as the library's generator takes them."""
     n = _checks.integer("n", n)
     m = n if m is None else _checks.integer("m", m)
-    lambda_r = float(n) if lambda_r is None else _checks.real("lambda_r", lambda_r)
+    lambda_r = float(max(n, m)) if lambda_r is None else _checks.real("lambda_r", lambda_r)  # the longer side
     lambda_0 = _checks.real("lambda_0", lambda_0)
     if lambda_0 != 0 and not lambda_0 >= lambda_r:  # a longest wave shorter than the roll-off: no plateau
         raise ValueError(f"lambda_0 = {lambda_0:g}: expected >= lambda_r = {lambda_r:g} (lambda_0 > lambda_r adds "
@@ -54,7 +54,7 @@ def generate(n=512, m=None, *, delta=1.0, hurst=0.8, lambda_s=4.0, lambda_r=None
 
     The same seed gives the same surface for any thread count. ``slope`` is the target h'rms
     (``slope_definition`` 'spectral' or 'fd'), or give ``height_rms`` (in units of delta) instead.
-    ``lambda_r`` defaults to n; ``lambda_0 > lambda_r`` adds a roll-off plateau. ``seed`` is an integer in
+    ``lambda_r`` defaults to the longer side, max(n, m), as ``indentmap surface``'s; ``lambda_0 > lambda_r`` adds a roll-off plateau. ``seed`` is an integer in
     [0, 2^64 - 1]. An argument of the wrong kind raises TypeError, a value out of its range ValueError
     (``InvalidArgument`` from the library), naming the parameter and what was expected.
 

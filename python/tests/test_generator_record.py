@@ -10,11 +10,14 @@ import indentmap as im
 from conftest import run_cli
 
 # The program's options and generate_recorded's arguments for the same surfaces: the paper's slope target, and a
-# height target measured by forward differences on a non-square grid with a roll-off plateau.
+# height target measured by forward differences on a non-square grid with a roll-off plateau, and the default
+# lambda_r of a grid taller than wide.
 SURFACES = [
     (["--n", "64", "--slope", "0.1", "--seed", "11"], dict(n=64, slope=0.1, seed=11)),
     (["--n", "64", "--m", "48", "--hurst", "0.6", "--lambda-0", "128", "--height-rms", "2", "--slope-def", "fd",
       "--seed", "12"], dict(n=64, m=48, hurst=0.6, lambda_0=128.0, height_rms=2.0, slope_definition="fd", seed=12)),
+    # taller than wide, lambda_r not given: the longer side, as the program's (Python took n, the width)
+    (["--n", "32", "--m", "48", "--seed", "13"], dict(n=32, m=48, seed=13)),
 ]
 
 

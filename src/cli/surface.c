@@ -46,7 +46,7 @@ static void usage(FILE *stream)
             "  --height-rms R     target h_rms instead of h'rms, in units of delta\n"
             "  --slope-def DEF    'spectral' (default) or 'fd' (forward differences): how h'rms is measured\n"
             "  --lambda-s L       short-wavelength cutoff 2 pi / q_s (default 4)\n"
-            "  --lambda-r L       roll-off wavelength 2 pi / q_r (default: N)\n"
+            "  --lambda-r L       roll-off wavelength 2 pi / q_r (default: max(N, M), the longer side)\n"
             "  --lambda-0 L       longest wavelength, > lambda-r adds a roll-off plateau (default: none)\n"
             "  --seed S           random seed (default 1); the same seed gives the same surface\n"
             "  --out FILE         write the surface (.npy, .gsf, .sdf, .nc, .x3p or text) and FILE.json beside it\n"
