@@ -120,9 +120,10 @@ def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, 
     """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact. ``unit`` is
     the length unit of ``delta`` and the heights ("" for units of delta); ``quantity`` what they are:
     'height', or a field of ``indent``: 'gap', 'displacement' or 'plastic' (the Image's 'Quantity' text,
-    e.g. 'gap g / µm').
+    e.g. 'gap g / µm'). The norm is linear over the smallest .. largest finite height ([v - 1, v + 1] for a
+    flat surface v), as ``indentmap render height`` draws it, ``vmin`` / ``vmax`` replacing its ends.
 
-    Returns an Image; errors as ``contact_map``'s.
+    Returns an Image; errors as ``contact_map``'s (``vmin`` not below the top: ``InvalidArgument``).
 
     Example: ``im.height_map(t.heights, delta=t.delta, unit=t.unit, contact=force).save("h.png")``."""
     lo, hi = _core.norm_range([heights], "field", True, vmin, vmax, False)  # as render height's
