@@ -114,6 +114,7 @@ static im_theory_interface rough;
 static im_theory_adhesion adhesion_law = {1.0, 0.1, 0.5};
 static im_theory_adhesive_point adhesive_point;
 static im_colormap colormap;
+static im_colormap_range forces_range, unknown_range; /* unknown_range: values not an im_colormap_values */
 static im_contact_style contact_style;
 static im_height_style height_style;
 static im_view3d_style view_style;
@@ -196,6 +197,8 @@ static void make_fixtures(void)
     cone = im_indenter_cone(80.0);
     rough = im_theory_interface_default(0.1);
     colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    forces_range = im_colormap_range_empty(IM_COLORMAP_FORCES);
+    unknown_range = im_colormap_range_empty((im_colormap_values)7);
     contact_style = im_contact_style_default(&good);
     height_style = im_height_style_default(&good);
     view_style = im_view3d_style_default(&good);
@@ -241,6 +244,11 @@ SAFE_RESULT(im_colormap_rgb, "rgb", (im_colormap_rgb(&colormap, 0.5, NULL), 1))
 SAFE_RESULT(im_colormap_field_image, "colormap", (im_colormap_field_image(NULL, &good, pixels), 1))
 SAFE_VIEW(im_colormap_field_image, "field", (im_colormap_field_image(&colormap, BAD, pixels), 1))
 SAFE_RESULT(im_colormap_field_image, "rgb", (im_colormap_field_image(&colormap, &good, NULL), 1))
+REPORT(im_colormap_range_add, "range", im_colormap_range_add(NULL, &good))
+REPORT_VIEW(im_colormap_range_add, "field", im_colormap_range_add(&forces_range, BAD))
+SAFE_RESULT(im_colormap_range_norm, "range", isnan(im_colormap_range_norm(NULL, IM_COLORMAP_MAGMA, NAN, NAN, 1).hi))
+SAFE_RESULT(im_colormap_range_norm, "values",
+            isnan(im_colormap_range_norm(&unknown_range, IM_COLORMAP_MAGMA, NAN, NAN, 1).lo))
 
 /* ---- figure.h ---- */
 REPORT(im_figure_format_of, "path", im_figure_format_of(NULL, &figure_format))
@@ -852,6 +860,7 @@ static const char *const no_pointer_arguments[] = {
     "im_colormap_make",
     "im_colormap_name",
     "im_colormap_table",
+    "im_colormap_range_empty",
     "im_contact_tension_norm",
     "im_memory_available",
     "im_memory_set_limit",

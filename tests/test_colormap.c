@@ -123,6 +123,88 @@ static void test_tension_ramp_is_an_ordered_blue(void **state)
     assert_int_equal(im_colormap_from_name(im_colormap_name(IM_COLORMAP_TENSION), &map), IM_EINVAL);
 }
 
+/* ---- one norm over several fields (im_colormap_range_*) ---- */
+
+/* The norm of a range gathered from count fields of 4 values each (one row of 4 patches). */
+static im_colormap norm_over(im_colormap_values values, double fields[][4], int count, double vmin, double vmax,
+                             int logarithmic)
+{
+    im_colormap_range range = im_colormap_range_empty(values);
+    for (int i = 0; i < count; ++i) {
+        const im_field field = {4, 1, 1.0, "", fields[i], ""};
+        assert_int_equal(im_colormap_range_add(&range, &field), IM_OK);
+    }
+    return im_colormap_range_norm(&range, IM_COLORMAP_MAGMA, vmin, vmax, logarithmic);
+}
+
+static void assert_norm(const im_colormap *c, double lo, double hi, int logarithmic)
+{
+    if (c->lo != lo || c->hi != hi || c->logarithmic != logarithmic)
+        fail_msg("norm %s [%.17g, %.17g], expected %s [%.17g, %.17g]", c->logarithmic ? "log" : "linear", c->lo,
+                 c->hi, logarithmic ? "log" : "linear", lo, hi);
+}
+
+/* Two frames share the range of both: forces 0 .. the largest force of either (tension, NaN and Inf left
+ * out), a log norm over the two decades below it, in which force 1 at the middle of [0.1, 10] is entry
+ * 128; heights the smallest .. the largest finite height of either. */
+static void test_frames_share_the_range_of_all_their_values(void **state)
+{
+    (void)state;
+    double forces[2][4] = {{0.0, 2.0, -30.0, NAN}, {10.0, INFINITY, 0.5, 0.0}};
+    im_colormap log = norm_over(IM_COLORMAP_FORCES, forces, 2, NAN, NAN, 1);
+    assert_norm(&log, 0.01 * 10.0, 10.0, 1);
+    assert_int_equal(im_colormap_index(&log, 1.0), 128);
+    im_colormap_range gathered = im_colormap_range_empty(IM_COLORMAP_FORCES); /* the forces > 0 it holds */
+    for (int i = 0; i < 2; ++i)
+        assert_int_equal(im_colormap_range_add(&gathered, &(const im_field){4, 1, 1.0, "", forces[i], ""}), IM_OK);
+    assert_true(gathered.lo == 0.5 && gathered.hi == 10.0);
+    im_colormap linear = norm_over(IM_COLORMAP_FORCES, forces, 2, NAN, NAN, 0);
+    assert_norm(&linear, 0.0, 10.0, 0);
+    assert_int_equal(im_colormap_index(&linear, 5.0), 128);
+    double heights[2][4] = {{-2.0, 1.0, NAN, 0.0}, {3.0, -INFINITY, 0.5, 2.0}};
+    im_colormap drawn = norm_over(IM_COLORMAP_HEIGHTS, heights, 2, NAN, NAN, 0);
+    assert_norm(&drawn, -2.0, 3.0, 0);
+    double first_only[1][4] = {{-2.0, 1.0, NAN, 0.0}};
+    im_colormap one = norm_over(IM_COLORMAP_HEIGHTS, first_only, 1, NAN, NAN, 0);
+    assert_norm(&one, -2.0, 1.0, 0);
+}
+
+/* The caller's bounds replace the range's: vmax moves the log norm's two decades with it; vmin stays as
+ * given, also where it is not below vmax (im_colormap_check refuses that norm, naming it). */
+static void test_given_bounds_replace_the_range(void **state)
+{
+    (void)state;
+    double forces[1][4] = {{0.0, 2.0, 4.0, 1.0}};
+    im_colormap c = norm_over(IM_COLORMAP_FORCES, forces, 1, NAN, 20.0, 1);
+    assert_norm(&c, 0.01 * 20.0, 20.0, 1);
+    c = norm_over(IM_COLORMAP_FORCES, forces, 1, 0.5, NAN, 1);
+    assert_norm(&c, 0.5, 4.0, 1);
+    c = norm_over(IM_COLORMAP_FORCES, forces, 1, 0.5, 0.5, 0);
+    assert_norm(&c, 0.5, 0.5, 0);
+    assert_int_equal(im_colormap_check(&c), IM_EINVAL);
+    c = norm_over(IM_COLORMAP_FORCES, forces, 1, NAN, -1.0, 1); /* no decades below a top <= 0 */
+    assert_norm(&c, 0.0, -1.0, 1);
+    assert_int_equal(im_colormap_check(&c), IM_EINVAL);
+}
+
+/* Where the fields give no range, the defaults: no force > 0 (all zero, all tension, all NaN) [0, 1];
+ * heights of one value v [v - 1, v + 1]; no finite height [-1, 1]. */
+static void test_a_range_without_values_takes_the_defaults(void **state)
+{
+    (void)state;
+    double no_contact[2][4] = {{0.0, 0.0, 0.0, 0.0}, {-1.0, NAN, 0.0, -INFINITY}};
+    im_colormap c = norm_over(IM_COLORMAP_FORCES, no_contact, 2, NAN, NAN, 1);
+    assert_norm(&c, 0.01, 1.0, 1);
+    c = norm_over(IM_COLORMAP_FORCES, no_contact, 0, NAN, NAN, 0);
+    assert_norm(&c, 0.0, 1.0, 0);
+    double flat[2][4] = {{5.0, 5.0, NAN, 5.0}, {5.0, INFINITY, 5.0, 5.0}};
+    c = norm_over(IM_COLORMAP_HEIGHTS, flat, 2, NAN, NAN, 0);
+    assert_norm(&c, 4.0, 6.0, 0);
+    double none[1][4] = {{NAN, NAN, INFINITY, NAN}};
+    c = norm_over(IM_COLORMAP_HEIGHTS, none, 1, NAN, NAN, 0);
+    assert_norm(&c, -1.0, 1.0, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -131,6 +213,9 @@ int main(void)
         cmocka_unit_test(test_outside_the_norm),
         cmocka_unit_test(test_colours_are_table_entries),
         cmocka_unit_test(test_tension_ramp_is_an_ordered_blue),
+        cmocka_unit_test(test_frames_share_the_range_of_all_their_values),
+        cmocka_unit_test(test_given_bounds_replace_the_range),
+        cmocka_unit_test(test_a_range_without_values_takes_the_defaults),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -8,6 +8,8 @@
  *   im_colormap_index, im_colormap_rgb          one value's table entry and colour
  *   im_colormap_field_image                     a field as an RGB image
  *   im_colormap_table                           a map's 256 colours
+ *   im_colormap_range_empty, im_colormap_range_add, im_colormap_range_norm
+ *                                               one default norm shared by several fields
  *
  * A norm maps [lo, hi] linearly (or logarithmically, lo > 0) onto the 256 table entries:
  * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
@@ -16,7 +18,8 @@
  *
  * Misuse (status.h): IM_EINVAL for a NULL argument; im_colormap_index gives -2 (as for NaN) for a
  * NULL colormap, and im_colormap_rgb and im_colormap_field_image do nothing for a NULL argument or
- * an invalid field view (both record the message).
+ * an invalid field view (both record the message); im_colormap_range_norm gives NaN bounds (which
+ * im_colormap_check refuses) for a NULL range or an unknown kind of values, recording the message.
  * Threads: every function is thread-safe (the tables are constant; nothing else is shared).
  */
 #ifndef INDENTMAP_COLORMAP_H
@@ -72,6 +75,36 @@ void im_colormap_rgb(const im_colormap *colormap, double value, uint8_t rgb[3]);
 /* CPU image of a field: one pixel per patch, RGB, stride 3 nx, image row 0 = field row ny - 1
  * (y up). The reference the GL renderer is tested against. */
 void im_colormap_field_image(const im_colormap *colormap, const im_field *field, uint8_t *rgb);
+
+/* ---- one norm over several fields ----
+ * The default norm every front end gives a contact map, a height map, the frames of a history and the
+ * panels of a figure: a range gathered field by field (so that frames need not be in memory at once),
+ * then made a norm with the caller's bounds. */
+typedef enum im_colormap_values {
+    IM_COLORMAP_FORCES, /* contact maps: 0 .. the largest finite force > 0; [0, 1] when no force is > 0 */
+    IM_COLORMAP_HEIGHTS /* every finite value, smallest .. largest; [v - 1, v + 1] when all are one value v
+                           ([-1, 1] when none is finite) */
+} im_colormap_values;
+
+typedef struct im_colormap_range {
+    im_colormap_values values;
+    double lo, hi; /* the smallest and largest finite value gathered (forces: of those > 0); lo = +Inf and
+                      hi = -Inf while there is none */
+} im_colormap_range;
+
+/* A range of the given kind with no value gathered yet. */
+im_colormap_range im_colormap_range_empty(im_colormap_values values);
+
+/* Widens range to the field's finite values (forces: those > 0). IM_EINVAL (range unchanged) for a
+ * NULL argument or an invalid field view. */
+int im_colormap_range_add(im_colormap_range *range, const im_field *field);
+
+/* The norm of map over the range (the defaults of im_colormap_values where it is empty or one value),
+ * with the caller's bounds put in: vmin and vmax (NaN: not given) replace its lo and hi; a logarithmic
+ * norm without vmin starts two decades below its top (lo = 0.01 hi) where the top is > 0. Checks
+ * nothing more (im_colormap_check does: a vmin >= vmax stays the caller's to be refused). */
+im_colormap im_colormap_range_norm(const im_colormap_range *range, im_colormap_id map, double vmin, double vmax,
+                                   int logarithmic);
 
 #ifdef __cplusplus
 }

@@ -76,13 +76,11 @@ class Image:
         return _png_bytes(self.save)
 
 
-def _contact_norm(force, vmin, vmax, log):
-    """(vmin, vmax) of a force norm: 0 .. the largest force (1 without any), a log norm over the two decades
-    below it, as the frames'."""
-    largest = float(np.max(force)) if np.size(force) else 0.0
-    vmax = vmax if vmax is not None else (largest if largest > 0 else 1.0)
-    vmin = vmin if vmin is not None else (vmax / 100.0 if log else 0.0)
-    return vmin, vmax
+def _contact_norm(forces, what, vmin, vmax, log):
+    """(vmin, vmax) of the norm the force fields share, the library's for every front end (colormap.h:
+    im_colormap_range_norm): 0 .. the largest finite force (1 without any), a log norm over the two decades
+    below it, as the frames'; ``what`` names the fields in a TypeError."""
+    return _core.norm_range(forces, what, False, vmin, vmax, bool(log))
 
 
 def _picture_texts(quantity, unit, colormap, norm, log, scale=None):
@@ -109,7 +107,7 @@ def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log
 
     Example: ``im.contact_map(force, delta=t.delta, unit=t.unit, force_unit=run.units["force"],
     log=True).texts["Quantity"]`` is 'local force f / N' for a run in m and Pa."""
-    lo, hi = _contact_norm(force, vmin, vmax, log)
+    lo, hi = _contact_norm([force], "field", vmin, vmax, log)
     cx, cy = (float("nan"), float("nan")) if circle_centre is None else circle_centre
     return Image(_core.render(force, float(delta), height_map=False, colormap=colormap, vmin=lo, vmax=hi, log=log,
                               scale=int(scale), circle_radius=float(circle_radius), circle_x=cx, circle_y=cy,
@@ -122,15 +120,13 @@ def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, 
     """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact. ``unit`` is
     the length unit of ``delta`` and the heights ("" for units of delta); ``quantity`` what they are:
     'height', or a field of ``indent``: 'gap', 'displacement' or 'plastic' (the Image's 'Quantity' text,
-    e.g. 'gap g / µm').
+    e.g. 'gap g / µm'). The norm is linear over the smallest .. largest finite height ([v - 1, v + 1] for a
+    flat surface v), as ``indentmap render height`` draws it, ``vmin`` / ``vmax`` replacing its ends.
 
-    Returns an Image; errors as ``contact_map``'s.
+    Returns an Image; errors as ``contact_map``'s (``vmin`` not below the top: ``InvalidArgument``).
 
     Example: ``im.height_map(t.heights, delta=t.delta, unit=t.unit, contact=force).save("h.png")``."""
-    lo = float(np.min(heights)) if vmin is None else vmin
-    hi = float(np.max(heights)) if vmax is None else vmax
-    if not hi > lo:
-        hi = lo + 1.0
+    lo, hi = _core.norm_range([heights], "field", True, vmin, vmax, False)  # as render height's
     unit = _core.length_unit("unit", unit)
     return Image(_core.render(heights, float(delta), height_map=True, colormap=colormap, vmin=lo, vmax=hi, log=False,
                               scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact,
@@ -161,8 +157,7 @@ class Figure:
         self.fields = [np.asarray(f, dtype=float) for f in fields]
         if not self.fields:
             raise ValueError("Figure: no fields")
-        largest = max(float(np.max(f)) for f in self.fields)
-        self.norm = _contact_norm(np.array([largest]), vmin, vmax, log)
+        self.norm = _contact_norm(self.fields, "panel field", vmin, vmax, log)
         self.columns = len(self.fields) if columns is None else int(columns)
         self.labels, self.titles = labels, titles
         self.style = dict(height_map=False, colormap=colormap, log=log, scale=int(scale),
@@ -236,7 +231,7 @@ def view3d(heights, *, force=None, displacement=None, delta=1.0, punch=Cone(), a
         drawn = drawn - u
     if punch_mode not in _PUNCH_MODES:
         raise ValueError(f"punch_mode {punch_mode!r}: expected one of {list(_PUNCH_MODES)}")
-    lo, hi = _contact_norm(np.zeros(0) if force is None else force, vmin, vmax, log)
+    lo, hi = _contact_norm([] if force is None else [force], "force", vmin, vmax, log)
     kind, alpha, radius = _view3d_punch(punch)
     return Image(_core.view3d(drawn, float(delta), force, kind, float(alpha), float(radius),
                               None if axis is None else tuple(axis), punch_mode=_PUNCH_MODES[punch_mode],
@@ -268,7 +263,7 @@ class View3DFigure:
         view = bound.arguments
         self.image = view3d(heights, **options)
         self.force = view["force"]
-        self.norm = _contact_norm(np.zeros(0) if self.force is None else self.force, view["vmin"], view["vmax"],
+        self.norm = _contact_norm([] if self.force is None else [self.force], "force", view["vmin"], view["vmax"],
                                   view["log"])
         self.texts = _picture_texts("force", force_unit, view["colormap"], self.norm, view["log"])
         self.style = dict(title=_checks.text("title", title or ""), exaggeration=float(view["exaggeration"]),

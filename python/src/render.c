@@ -661,7 +661,48 @@ static PyObject *use_backend(PyObject *self, PyObject *args)
     return open_context(backend) < 0 ? NULL : renderer(self, NULL);
 }
 
+/* norm_range(fields, what, heights, vmin, vmax, log) -> (lo, hi): the default norm every front end gives the
+ * fields together (colormap.h: im_colormap_range_norm), forces or (heights) heights, with vmin / vmax (None:
+ * not given); TypeError naming `what` for a field that is not a 2-D array of numbers. */
+static PyObject *norm_range(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *fields, *vmin_obj, *vmax_obj;
+    const char *what;
+    int heights, logarithmic;
+    if (!PyArg_ParseTuple(args, "OspOOp", &fields, &what, &heights, &vmin_obj, &vmax_obj, &logarithmic))
+        return NULL;
+    double vmin = vmin_obj == Py_None ? NAN : PyFloat_AsDouble(vmin_obj);
+    double vmax = vmax_obj == Py_None ? NAN : PyFloat_AsDouble(vmax_obj);
+    PyObject *sequence = PyErr_Occurred() ? NULL : PySequence_Fast(fields, "fields: expected a sequence of arrays");
+    if (!sequence)
+        return NULL;
+    im_colormap_range range = im_colormap_range_empty(heights ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES);
+    int failed = 0;
+    for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(sequence) && !failed; ++i) {
+        PyArrayObject *array = py_heights_array(PySequence_Fast_GET_ITEM(sequence, i), what);
+        if (!array) {
+            failed = 1;
+            break;
+        }
+        im_field field = py_field_view(array, 1.0);
+        int status = im_colormap_range_add(&range, &field);
+        Py_DECREF(array);
+        if (status != IM_OK) {
+            py_raise_status(status);
+            failed = 1;
+        }
+    }
+    Py_DECREF(sequence);
+    if (failed)
+        return NULL;
+    const im_colormap norm = im_colormap_range_norm(&range, IM_COLORMAP_VIRIDIS, vmin, vmax, logarithmic);
+    return Py_BuildValue("dd", norm.lo, norm.hi);
+}
+
 PyMethodDef py_render_methods[] = {
+    {"norm_range", norm_range, METH_VARARGS,
+     "norm_range(fields, what, heights, vmin, vmax, log) -> (lo, hi): the fields' shared default norm"},
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
     {"write_png", write_png, METH_VARARGS, "write_png(path, rgba, texts)"},

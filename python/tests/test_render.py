@@ -43,14 +43,26 @@ def test_contact_map_defaults_to_the_frames_norm(rough64):
     """Forces default to every front end's map and norm (render contact, scenes, indent --frames): magma on a
     log norm over the two decades below the largest force; log=False is linear from 0."""
     force = np.clip(rough64 - np.median(rough64), 0.0, None)
-    frames = im.contact_map(force, colormap="magma", log=True, vmin=force.max() / 100, vmax=force.max()).rgba
+    frames = im.contact_map(force, colormap="magma", log=True, vmin=0.01 * force.max(), vmax=force.max()).rgba
     assert (im.contact_map(force).rgba == frames).all()
     linear = im.contact_map(force, log=False, colormap="viridis").rgba
     assert (linear == im.contact_map(force, log=False, colormap="viridis", vmin=0.0, vmax=force.max()).rgba).all()
     assert not (linear == frames).all()
     figure = im.Figure([force])
-    assert figure.norm == (force.max() / 100, force.max())
+    assert figure.norm == (0.01 * force.max(), force.max())  # the program's bounds, bit for bit (colormap.h)
     assert figure.style["colormap"] == "magma" and figure.style["log"]
+
+
+def test_default_norms_are_the_programs_where_values_are_missing_or_one():
+    """The norms are the library's (colormap.h: im_colormap_range_norm), as `render` gives them: a NaN force
+    is left out (the largest finite force is the top), a flat surface v takes [v - 1, v + 1], and a vmin not
+    below the top is refused as the program refuses it."""
+    force = np.array([[0.0, 2.0, np.nan], [4.0, -1.0, 0.0]])
+    assert im.Figure([force]).norm == (0.01 * 4.0, 4.0)
+    assert im.contact_map(force, log=False).texts["Norm"] == "linear [0, 4]"
+    assert im.height_map(np.full((4, 4), 3.0)).texts["Norm"] == "linear [2, 4]"
+    with pytest.raises(im.InvalidArgument):
+        im.height_map(np.full((4, 4), 3.0), vmin=5.0)
 
 
 def test_height_map_and_png(tmp_path, rough64):

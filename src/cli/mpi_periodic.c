@@ -8,6 +8,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "core/error_keep.h"
 #include "front/front.h"
 #include "front/indent_run.h"
 #include "mpi/agree.h"
@@ -248,8 +249,8 @@ static int finish_record(history_run *run, int done, int status)
     if (run->rank != 0 || !run->record)
         return status;
     periodic_k_fit k;
-    char message[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    kept_error kept;
+    error_keep(&kept);
     im_adhesion_summary summary;
     if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
         if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
@@ -262,7 +263,7 @@ static int finish_record(history_run *run, int done, int status)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
     write_history_figure(run, done);
     if (status != IM_OK)
-        im_fail(status, "%s", message); /* the step's error, not the fit's */
+        error_restore(&kept, status); /* the step's error, not the fit's */
     int recorded = run_record_finish(run->o->out, run->record, done, status);
     return status == IM_OK ? recorded : status;
 }
@@ -289,8 +290,9 @@ static int draw_frames(const history_run *run, int done, int status)
 {
     if (run->rank != 0 || !run->o->frames)
         return status;
-    char folder[PATH_MAX], message[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    char folder[PATH_MAX];
+    kept_error kept;
+    error_keep(&kept);
     const fields_frames frames = {run->o->out, folder,          run->rows,        done,
                                   &run->punch, run->force_unit, run->texts.texts, run->texts.count};
     int drawn = im_path_join(folder, sizeof folder, run->o->out, "frames");
@@ -302,7 +304,7 @@ static int draw_frames(const history_run *run, int done, int status)
         return drawn;
     if (drawn != IM_OK)
         fprintf(stderr, "indentmap: %s\n", im_last_error());
-    return im_fail(status, "%s", message); /* the step's error */
+    return error_restore(&kept, status); /* the step's error */
 }
 
 static int run_steps(history_run *run)

@@ -1,6 +1,7 @@
 /* indentmap render: draw a field file as a contact map or a height field, or animate frames. */
 #include "cli/cli.h"
 #include "cli/figure_provenance.h"
+#include "front/front.h"
 
 #include "indentmap/colormap.h"
 #include "indentmap/figure.h"
@@ -67,7 +68,7 @@ typedef struct render_options {
     double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     int map_given, linear;         /* --colormap, --linear: else forces take the frames' magma, log */
-    double shared_lo, shared_hi;   /* default norm: the union of the fields' ranges */
+    im_colormap_range shared;      /* default norm: the union of the fields' values */
     double shared_tension;         /* the largest tension -f of all the fields: the tension bar's top */
     char value_unit[40];           /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
@@ -160,14 +161,11 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-/* The norm: defaults from the style, overridden by --vmin/--vmax/--log/--colormap. */
+/* The norm: the fields' shared range, overridden by --vmin/--vmax/--log/--colormap. */
 static void apply_norm(const render_options *o, im_colormap *c)
 {
-    double lo = o->has_vmin ? o->vmin : o->shared_lo, hi = o->has_vmax ? o->vmax : o->shared_hi;
-    if (o->logarithmic && !o->has_vmin && hi > 0.0)
-        lo = hi * 1e-2; /* two decades, as the frames' (front.h: frame_force_norm) */
-    *c = im_colormap_make(o->map, lo, hi);
-    c->logarithmic = o->logarithmic;
+    *c = im_colormap_range_norm(&o->shared, o->map, o->has_vmin ? o->vmin : NAN, o->has_vmax ? o->vmax : NAN,
+                                o->logarithmic);
 }
 
 /* Notes values outside the norm (force > 0 only for contact maps), for the colour bar. */
@@ -327,31 +325,17 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     return status;
 }
 
-/* The default norm of several fields: the union of their finite values (forces: 0 .. the largest;
- * heights: min .. max), and only when that union is empty or a single value the style's fallback.
- * Taking the union of each field's default range instead let one all-zero force field widen the
- * norm of every frame to its fallback [0, 1]. */
+/* The default norm of several fields: the union of their finite values (colormap.h: forces 0 .. the
+ * largest; heights min .. max), its defaults only when that union is empty or a single value. Taking
+ * the union of each field's default range instead let one all-zero force field widen the norm of
+ * every frame to its default [0, 1]. */
 static void set_shared_range(render_options *o, im_field **fields, int count)
 {
     int height = strcmp(o->mode, "height") == 0;
-    double lo = height ? INFINITY : 0.0, hi = height ? -INFINITY : 0.0;
+    o->shared = im_colormap_range_empty(height ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES);
     for (int i = 0; i < count; ++i)
-        for (size_t k = 0; k < im_field_count(fields[i]); ++k)
-            if (isfinite(fields[i]->data[k])) {
-                lo = height ? fmin(lo, fields[i]->data[k]) : lo;
-                hi = fmax(hi, fields[i]->data[k]);
-            }
-    if (!(hi > lo)) {
-        im_colormap fallback = height ? im_height_style_default(fields[0]).colormap
-                                      : im_contact_style_default(fields[0]).colormap;
-        lo = fallback.lo;
-        hi = fallback.hi;
-    }
-    o->shared_lo = lo;
-    o->shared_hi = hi;
-    o->shared_tension = 0.0;
-    for (int i = 0; !height && i < count; ++i)
-        o->shared_tension = fmax(o->shared_tension, im_contact_largest_tension(fields[i]));
+        im_colormap_range_add(&o->shared, fields[i]);
+    o->shared_tension = height ? 0.0 : frame_largest_tension(fields, count);
 }
 
 /* Reads the fields and sets the default norm. */

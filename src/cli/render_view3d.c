@@ -234,15 +234,14 @@ static int read_height(const char *path, const view3d_options *o, im_field **hei
     return status;
 }
 
-/* The contact frames' norm (frame_force_norm) unless --linear, with --vmin / --vmax put in. */
+/* The contact maps' norm of the force (colormap.h: log unless --linear), with --vmin / --vmax put in. */
 static void apply_norm(const view3d_options *o, const im_field *force, im_colormap *c)
 {
-    double largest = force ? im_contact_style_default(force).colormap.hi : 1.0;
-    *c = frame_force_norm(o->map, !o->has_linear, o->has_vmax ? o->vmax : largest);
-    if (o->has_vmax)
-        c->hi = o->vmax;
-    if (o->has_vmin)
-        c->lo = o->vmin;
+    im_colormap_range forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
+    if (force)
+        im_colormap_range_add(&forces, force);
+    *c = im_colormap_range_norm(&forces, o->map, o->has_vmin ? o->vmin : NAN, o->has_vmax ? o->vmax : NAN,
+                                !o->has_linear);
 }
 
 /* Without --distance, the nearest perspective camera that shows all that is drawn. */

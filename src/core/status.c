@@ -1,5 +1,6 @@
 #include "indentmap/status.h"
 #include "core/args.h"
+#include "core/error_keep.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -50,6 +51,12 @@ int im_fail_context(int status, const char *fmt, ...)
         snprintf(last_message + used, sizeof last_message - (size_t)used, ": %s", previous);
     return status;
 }
+
+_Static_assert(sizeof(((kept_error *)0)->message) == MESSAGE_CAPACITY, "a kept message holds any message");
+
+void error_keep(kept_error *kept) { memcpy(kept->message, last_message, sizeof kept->message); }
+
+int error_restore(const kept_error *kept, int status) { return im_fail(status, "%s", kept->message); }
 
 static volatile sig_atomic_t *stop_flag;
 

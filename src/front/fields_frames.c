@@ -18,17 +18,18 @@ static int read_force(const char *dir, int step, im_field **force)
     return status == IM_OK ? im_npy_read(path, force) : status;
 }
 
-/* The largest force and the largest tension of any step: the tops of the frames' one force norm and
- * one tension norm. */
-static int largest_force(const fields_frames *f, double *largest, double *largest_tension)
+/* The forces of every step and their largest tension: the frames' one force norm and the top of their
+ * one tension norm, gathered a step at a time. */
+static int shared_ranges(const fields_frames *f, im_colormap_range *forces, double *largest_tension)
 {
-    *largest = *largest_tension = 0.0;
+    *forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
+    *largest_tension = 0.0;
     int status = IM_OK;
     for (int step = 1; step <= f->count && status == IM_OK; ++step) {
         im_field *force = NULL;
         status = read_force(f->dir, step, &force);
-        for (size_t i = 0; status == IM_OK && i < im_field_count(force); ++i)
-            *largest = fmax(*largest, force->data[i]);
+        if (status == IM_OK)
+            status = im_colormap_range_add(forces, force);
         if (status == IM_OK)
             *largest_tension = fmax(*largest_tension, im_contact_largest_tension(force));
         im_field_free(force);
@@ -84,11 +85,12 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
 
 int fields_frames_write(im_render_context *context, const fields_frames *f)
 {
-    double largest = 0.0, largest_tension = 0.0;
+    im_colormap_range forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
+    double largest_tension = 0.0;
     int status = im_make_directories(f->frames);
     if (status == IM_OK)
-        status = largest_force(f, &largest, &largest_tension);
-    const im_colormap norms[2] = {frame_force_norm(IM_COLORMAP_MAGMA, 1, largest),
+        status = shared_ranges(f, &forces, &largest_tension);
+    const im_colormap norms[2] = {im_colormap_range_norm(&forces, IM_COLORMAP_MAGMA, NAN, NAN, 1),
                                   im_contact_tension_norm(largest_tension)};
     for (int step = 1; step <= f->count && status == IM_OK; ++step)
         status = write_frame(context, f, norms, largest_tension > 0.0, step);

@@ -7,14 +7,6 @@
 
 #include <math.h>
 
-im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest)
-{
-    double hi = largest > 0.0 ? largest : 1.0;
-    im_colormap norm = im_colormap_make(map, logarithmic ? 0.01 * hi : 0.0, hi);
-    norm.logarithmic = logarithmic;
-    return norm;
-}
-
 double frame_largest_tension(im_field *const *fields, int count)
 {
     double largest = 0.0;

@@ -232,7 +232,7 @@ int step_distributions_write(const char *prefix, im_indentation *run, double gap
 
 /* Contact frames of steps 1..count drawn from DIR/force_NNNN.npy (as step_fields_write wrote them) into
  * FRAMES/contact_MMMM.png (MMMM = step - 1, the viewer's numbering) with one log force norm (magma, two
- * decades) over all of them and, where any step has tension, one tension norm and its bar (frame.c), the
+ * decades: colormap.h, im_colormap_range_norm) over all of them and, where any step has tension, one tension norm and its bar (frame.c), the
  * smooth punch's contact circle where N* is finite (none for a periodic
  * cell), titled with the step and N* (else N in force_unit), carrying texts as PNG text chunks. */
 typedef struct fields_frames {
@@ -249,10 +249,6 @@ int fields_frames_write(im_render_context *context, const fields_frames *f);
 int fields_frames_pixels_per_patch(int nx, int ny);
 
 /* ---- frames of a history (frame.c): what a scene's frames and `indent --frames` draw alike ---- */
-
-/* The colour norm of local forces up to `largest` (<= 0: 1): map, linear from 0 or log over the two
- * decades below `largest`. */
-im_colormap frame_force_norm(im_colormap_id map, int logarithmic, double largest);
 
 /* The largest tension -f over the fields (im_contact_largest_tension): the top of the tension norm
  * the frames share, as they share the force norm; 0 when none pulls. */

@@ -3,6 +3,7 @@
  * periodic cell's k fit. A failure here is said but leaves the run's status alone (the history is the
  * result), but for the frames'. */
 #include "front/indent_run.h"
+#include "core/error_keep.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -147,9 +148,9 @@ static void write_history_figure(const indent_run_state *s, const im_theory_inte
 }
 
 /* out/frames/contact_NNNN.png of the steps done (front.h: fields_frames_write): a failure is the run's
- * error when it had none, else said. */
+ * error (kept in *kept) when it had none, else said. */
 static void draw_frames(const indent_run_state *s, const im_history_row *rows, int done, im_render_context *context,
-                        int *status, char *message, size_t size)
+                        int *status, kept_error *kept)
 {
     char folder[PATH_MAX];
     const fields_frames frames = {
@@ -161,7 +162,7 @@ static void draw_frames(const indent_run_state *s, const im_history_row *rows, i
         im_fail_context(drawn, "--frames");
     if (drawn != IM_OK && *status == IM_OK) {
         *status = drawn;
-        snprintf(message, size, "%s", im_last_error());
+        error_keep(kept);
     } else if (drawn != IM_OK) {
         indent_say(s, IM_LOG_WARNING, "%s", im_last_error());
     }
@@ -171,15 +172,15 @@ void indent_run_results(indent_run_state *s, const im_theory_interface *rough, c
                         im_render_context *context, json_t *record, int *status)
 {
     const im_solver_options *solver = &s->options->solver;
-    char message[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    kept_error kept;
+    error_keep(&kept);
     if (s->options->frames) /* of the steps done, also when a later step failed */
-        draw_frames(s, rows, done, context, status, message, sizeof message);
+        draw_frames(s, rows, done, context, status, &kept);
     write_analysis(s, rows, done, record);
     write_history_figure(s, rough, rows, done);
     /* eq. (2) is an elastic, repulsive law for a rigid flat: no fit with a cap, adhesion or a repeated punch */
     if (solver->periodic && !s->options->punch_given && !(solver->hardness > 0) && !(solver->adhesion_work > 0))
         write_k_fit(s, rough, rows, done, record);
     if (*status != IM_OK) /* what the analysis or the fit said is not the run's error */
-        im_fail(*status, "%s", message);
+        error_restore(&kept, *status);
 }

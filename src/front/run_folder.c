@@ -1,5 +1,6 @@
 /* The output folder of a run (run_folder.h): what scenes and `indent` did each their own way. */
 #include "front/run_folder.h"
+#include "core/error_keep.h"
 #include "front/front.h"
 
 #include "indentmap/status.h"
@@ -118,18 +119,15 @@ int run_folder_open(const run_folder_rules *rules, int depth, run_folder *folder
 
 /* What write returns for a run that succeeded; the run's status with its error kept for one that failed,
  * and the file `name` named where it could not be written either (a full disk: the record is not there). */
-static int keep_run_error(int status, const char *message, int written, const char *name)
+static int keep_run_error(int status, const kept_error *kept, int written, const char *name)
 {
     if (status == IM_OK)
         return written;
-    if (written == IM_OK) {
-        im_fail(status, "%s", message);
-        return status;
-    }
-    char reason[1024];
-    snprintf(reason, sizeof reason, "%s", im_last_error());
-    im_fail(status, "%s; %s was not written either (%s)", message, name, reason);
-    return status;
+    if (written == IM_OK)
+        return error_restore(kept, status);
+    kept_error reason;
+    error_keep(&reason);
+    return im_fail(status, "%s; %s was not written either (%s)", kept->message, name, reason.message);
 }
 
 /* rules.repair on the folder's file name, if the rules have one. */
@@ -142,21 +140,21 @@ static void repair(const run_folder *folder, const char *name)
 
 int run_folder_record(const run_folder *folder, json_t *record, int steps_done, int status)
 {
-    char message[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    kept_error kept;
+    error_keep(&kept);
     repair(folder, "run.json");
     int written = run_record_finish(folder->rules.dir, record, steps_done, status);
-    return keep_run_error(status, message, written, "run.json");
+    return keep_run_error(status, &kept, written, "run.json");
 }
 
 int run_folder_page(const run_folder *folder, const char *title, int embed_images, int status)
 {
-    char message[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    kept_error kept;
+    error_keep(&kept);
     repair(folder, "index.html");
     const im_viewer_options options = {.embed_images = embed_images};
     int written = im_viewer_write_with(folder->rules.dir, title, &options);
-    return keep_run_error(status, message, written, "index.html");
+    return keep_run_error(status, &kept, written, "index.html");
 }
 
 void run_folder_close(run_folder *folder) { im_folder_lock_release(&folder->lock); }

@@ -301,13 +301,12 @@ double im_contact_largest_tension(const im_field *force)
 
 im_contact_style im_contact_style_default(const im_field *force)
 {
-    double largest = 0.0;
+    im_colormap_range forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
     int valid = arg_view(__func__, "force", force) == IM_OK;
     size_t count = valid ? im_field_count(force) : 0; /* invalid: empty */
-    for (size_t i = 0; i < count; ++i)
-        if (isfinite(force->data[i]) && force->data[i] > largest)
-            largest = force->data[i];
-    im_contact_style style = {.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, largest > 0.0 ? largest : 1.0),
+    if (valid)
+        im_colormap_range_add(&forces, force);
+    im_contact_style style = {.colormap = im_colormap_range_norm(&forces, IM_COLORMAP_VIRIDIS, NAN, NAN, 0),
                               .tension = im_contact_tension_norm(valid ? im_contact_largest_tension(force) : 0.0),
                               .pixels_per_patch = 2,
                               .boundary_px = 2,
@@ -410,20 +409,12 @@ static double slope_rms(const im_field *h)
 
 im_height_style im_height_style_default(const im_field *height)
 {
-    double lo = INFINITY, hi = -INFINITY;
+    im_colormap_range heights = im_colormap_range_empty(IM_COLORMAP_HEIGHTS);
     size_t count = arg_view(__func__, "height", height) == IM_OK ? im_field_count(height) : 0; /* invalid: empty */
-    for (size_t i = 0; i < count; ++i)
-        if (isfinite(height->data[i])) {
-            lo = fmin(lo, height->data[i]);
-            hi = fmax(hi, height->data[i]);
-        }
-    if (!(hi > lo)) {
-        double mid = isfinite(lo) ? lo : 0.0;
-        lo = mid - 1.0;
-        hi = mid + 1.0;
-    }
+    if (count)
+        im_colormap_range_add(&heights, height);
     double slope = count ? slope_rms(height) : 0.0;
-    im_height_style style = {.colormap = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi),
+    im_height_style style = {.colormap = im_colormap_range_norm(&heights, IM_COLORMAP_VIRIDIS, NAN, NAN, 0),
                              .pixels_per_patch = 2,
                              .boundary_px = 2,
                              .line = {0, 0, 0},

@@ -101,22 +101,13 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
     return status;
 }
 
-static void field_range(im_field *const *fields, int count, int positive_only, double *lo, double *hi)
+/* The range of the values of the steps' fields, which their frames share. */
+static im_colormap_range steps_range(im_field *const *fields, int count, im_colormap_values values)
 {
-    *lo = INFINITY;
-    *hi = -INFINITY;
-    for (int k = 0; k < count; ++k)
-        for (size_t i = 0; i < im_field_count(fields[k]); ++i) {
-            double v = fields[k]->data[i];
-            if (positive_only && !(v > 0.0))
-                continue;
-            *lo = fmin(*lo, v);
-            *hi = fmax(*hi, v);
-        }
-    if (!(*hi > *lo)) {
-        *lo = isfinite(*lo) ? *lo - 1.0 : 0.0;
-        *hi = *lo + 2.0;
-    }
+    im_colormap_range range = im_colormap_range_empty(values);
+    for (int i = 0; i < count; ++i)
+        im_colormap_range_add(&range, fields[i]);
+    return range;
 }
 
 /* The norms every step's frames share; has_tension: some step has patches under tension, and every
@@ -206,13 +197,13 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
                         im_image *gif_frames, frame_norms *norms)
 {
-    double lo, hi, largest_tension = frame_largest_tension(h->force, h->count);
-    field_range(h->force, h->count, 1, &lo, &hi);
-    norms->force = scene_force_norm(scene, hi);
+    double largest_tension = frame_largest_tension(h->force, h->count);
+    const im_colormap_range forces = steps_range(h->force, h->count, IM_COLORMAP_FORCES),
+                            heights = steps_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
+    norms->force = scene_force_norm(scene, &forces);
     norms->tension = im_contact_tension_norm(largest_tension);
     norms->has_tension = largest_tension > 0.0;
-    field_range(h->deformed, h->count, 0, &lo, &hi);
-    norms->height = im_colormap_make(IM_COLORMAP_VIRIDIS, lo, hi);
+    norms->height = im_colormap_range_norm(&heights, IM_COLORMAP_VIRIDIS, NAN, NAN, 0);
     int count = 2 * h->count;
     frame_figure *figures = calloc((size_t)count, sizeof *figures);
     int status = figures ? IM_OK : im_fail(IM_ENOMEM, "frames: allocation failed");

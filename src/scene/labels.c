@@ -1,8 +1,8 @@
 /* How a scene's figures name its families and colour their forces. */
 #include "scene/labels.h"
 #include "scene/contents.h"
-#include "front/front.h"
 
+#include <math.h>
 #include <stdio.h>
 
 void scene_family_title(const im_scene *scene, int family, char *buffer, size_t size)
@@ -17,7 +17,7 @@ void scene_family_title(const im_scene *scene, int family, char *buffer, size_t 
         snprintf(buffer, size, "h′_{rms} = %g", scene->slopes[family]);
 }
 
-im_colormap scene_force_norm(const im_scene *scene, double largest)
+im_colormap scene_force_norm(const im_scene *scene, const im_colormap_range *forces)
 {
-    return frame_force_norm(scene->colormap, scene->log_norm, largest);
+    return im_colormap_range_norm(forces, scene->colormap, NAN, NAN, scene->log_norm);
 }

@@ -2,6 +2,7 @@
  * again, and OUTPUT/outputs.txt, whose files a later run removes when its scene no longer makes them. */
 #define _GNU_SOURCE /* nftw's FTW_ACTIONRETVAL */
 #include "scene/manifest.h"
+#include "core/error_keep.h"
 #include "scene/contents.h"
 #include "scene/run_state.h"
 
@@ -305,8 +306,8 @@ int scene_outputs_close(const im_scene *scene, int status)
     if (!o)
         return status;
     scene->run->outputs = NULL;
-    char message[1024];
-    snprintf(message, sizeof message, "%s", im_last_error());
+    kept_error kept;
+    error_keep(&kept);
     if (status == IM_OK)
         remove_stale(o);
     int written = write_manifest(o, status == IM_OK);
@@ -315,6 +316,5 @@ int scene_outputs_close(const im_scene *scene, int status)
     free(o);
     if (status == IM_OK)
         return written;
-    im_fail(status, "%s", message); /* the run's own error stays the one reported */
-    return status;
+    return error_restore(&kept, status); /* the run's own error stays the one reported */
 }

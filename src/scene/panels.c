@@ -243,13 +243,13 @@ static int write_results_csv(const im_scene *scene, const panel_result *results)
     return im_atomic_commit(&file);
 }
 
-static double largest_force(const panel_result *results, int count)
+/* The panels' forces, which share one norm. */
+static im_colormap_range shared_force_range(const panel_result *results, int count)
 {
-    double largest = 0.0;
+    im_colormap_range forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
     for (int i = 0; i < count; ++i)
-        for (size_t j = 0; j < im_field_count(results[i].force); ++j)
-            largest = fmax(largest, results[i].force->data[j]);
-    return largest > 0.0 ? largest : 1.0;
+        im_colormap_range_add(&forces, results[i].force);
+    return forces;
 }
 
 static double largest_tension(const panel_result *results, int count)
@@ -266,7 +266,8 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
                          im_image *images, im_colormap norms[2])
 {
     int status = IM_OK;
-    norms[0] = scene_force_norm(scene, largest_force(results, scene->family_count));
+    const im_colormap_range forces = shared_force_range(results, scene->family_count);
+    norms[0] = scene_force_norm(scene, &forces);
     norms[1] = im_contact_tension_norm(largest_tension(results, scene->family_count));
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
         const im_field *f = results[i].force;
