@@ -106,6 +106,13 @@ awk -F, 'NR > 1 && $3 < 0 && $25 > 0 && $26 > 0 { pulled = 1 } END { exit !pulle
 head -c 8 "$DIR/sticky/force_distance.png" | od -An -tx1 | grep -q '89 50 4e 47' && [ ! -e "$DIR/sticky/indentation.csv" ] \
     || fail "no force-distance figure, or an Oliver-Pharr table of an adhesive history"
 grep -q "adhesion: pull-off force" "$DIR/sticky.log" || fail "the pull-off is not said"
+grep -q "work lost 3.8" "$DIR/sticky.log" || fail "the closed loop's lost work is not said: $(grep adhesion: "$DIR/sticky.log")"
+# ... a retraction only (from contact at w = 0 to an attraction out of contact) closes no loop: its sum of N dw
+# (2.13 here) was said as "work lost"
+"$BIN" indent --smooth --n 128 --punch sphere --radius 100 --adhesion-work 0.01 --adhesion-range 0.5 \
+    --approach 0,-0.25,-0.5 --out "$DIR/pull" > "$DIR/pull.log" || fail "a retraction exited $?"
+grep -q "work done 2.13[0-9]* (+- 0.18; sum of N dw), no loss: the history does not return to where it began" \
+    "$DIR/pull.log" && ! grep -q "work lost" "$DIR/pull.log" || fail "an open history's work: $(grep adhesion: "$DIR/pull.log")"
 # ... under load control (--load): the same sphere through the loads of sticky's retraction while they fall to
 # 95% of its least, at sticky's approaches (to the solver's tolerance in the load or the approach); then a load
 # 2% beyond the least is refused naming the pull-off, exit 2, the history kept up to it.
