@@ -156,9 +156,11 @@ a = json.load(open(sys.argv[1]))["adhesion"]
 assert a["pull_off_force"] > 1.5 * 17.17 and a["theory"] is None, a
 PY
 for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
-           "--periodic --adhesion-work 0.1 --adhesion-range 1 --approach 0.01|takes --mean-gap, --pressure or --load with --periodic"; do
+           "--periodic --adhesion-work 0.1 --adhesion-range 1 --approach 0.01|takes --mean-gap, --pressure or --load with --periodic" \
+           "--periodic --mean-gap 0.4,0|--mean-gap '0.4,0': step 2 is 0: expected mean gaps > 0"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"
-    [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
+    [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" && [ ! -e "$DIR/badadh" ] \
+        || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
 done
 # --periodic (issue 26): a generated (periodic) surface under a rigid flat at two mean pressures: load =
 # p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole
@@ -270,7 +272,7 @@ grep -q '"control": "mean_gap"' "$DIR/per_g/run.json" || fail "run.json does not
 "$BIN" indent "$DIR/cell.npy" --mean-gap 0.5 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
 [ $? -eq 2 ] && grep -q "needs --periodic" "$DIR/per_w.err" || fail "--mean-gap without --periodic: $(cat "$DIR/per_w.err")"
 "$BIN" indent "$DIR/cell.npy" --periodic --mean-gap 0 --out "$DIR/per_z" > /dev/null 2> "$DIR/per_z.err"
-[ $? -ne 0 ] && grep -q "mean gap = 0: expected > 0" "$DIR/per_z.err" || fail "--mean-gap 0: $(cat "$DIR/per_z.err")"
+[ $? -eq 2 ] && grep -q "step 1 is 0: expected mean gaps > 0" "$DIR/per_z.err" || fail "--mean-gap 0: $(cat "$DIR/per_z.err")"
 "$BIN" indent "$DIR/cell.npy" --periodic --alpha 70 --pressure 0.01 --out "$DIR/per_a" > /dev/null 2> "$DIR/per_a.err"
 [ $? -eq 2 ] && grep -q "apply to a punch" "$DIR/per_a.err" || fail "--periodic --alpha without --punch: $(cat "$DIR/per_a.err")"
 "$BIN" indent "$DIR/cell.npy" --pressure 0.01 --out "$DIR/per_p" > /dev/null 2> "$DIR/per_p.err"

@@ -367,6 +367,10 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     targets = np.asarray(targets, dtype=float).ravel()
     if targets.size == 0:
         raise ValueError("no steps")
+    if control == "mean_gap" and not np.all(targets > 0):  # refused now, not after the steps before it
+        step = int(np.argmin(targets > 0))
+        raise ValueError(f"mean_gaps: step {step + 1} is {targets[step]:g}: expected mean gaps > 0 (at 0 the cell is "
+                         "in full contact)")
     run = Indentation(heights, punch, control=control,
                       largest=float(np.abs(targets).max()), **options)
     if distributions is not None:

@@ -297,6 +297,12 @@ def test_write_analysis_files_are_the_cli_ones(cli, rough64, tmp_path):
         im.write_analysis(np.zeros(3), tmp_path / "bad")
 
 
+def test_a_mean_gap_of_zero_is_refused_before_any_step(rough64):
+    """as indent --mean-gap: it was refused at its step, after the steps before it were solved"""
+    with pytest.raises(ValueError, match=r"mean_gaps: step 2 is 0: expected mean gaps > 0"):
+        im.indent(rough64, None, mean_gaps=[0.4, 0.0], periodic=True, max_iterations=1)
+
+
 def test_periodic_mean_gap_bit_for_bit(cli, rough64, tmp_path):
     """indent --periodic --mean-gap and indent(..., periodic=True, mean_gaps=...): the same rows, with a
     hardness (the searched approach) and unloading; the mean gap reached is the one imposed."""
