@@ -56,6 +56,8 @@ def test_one_history_schema(cli, rough64, tmp_path):
     (tmp_path / "old.csv").write_text("step,approach\n1,2\n")
     with pytest.raises(ValueError, match="not this version's history columns"):
         im.read_history(tmp_path / "old.csv")
+    with pytest.raises(ValueError, match=r"s\.npy: byte 0 is not UTF-8 text: expected a history\.csv"):
+        im.read_history(tmp_path / "s.npy")  # was a bare UnicodeDecodeError naming no file
 
 
 def test_load_control_sphere_bit_for_bit(cli, rough64, tmp_path):
