@@ -244,6 +244,10 @@ grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spect
 # (17 digits) every number of run.json's k_fit, bit for bit; a history of the half-space refused by its mean_gap
 "$BIN" theory --fit-k "$DIR/per/history.csv" > "$DIR/fitk.out" 2>&1 || fail "theory --fit-k: $(cat "$DIR/fitk.out")"
 grep '^k of eq. (2)' "$DIR/per.out" | cmp -s - "$DIR/fitk.out" || fail "theory --fit-k: $(cat "$DIR/fitk.out")"
+# ... from one step: no spread to give (its error 0 was said "+- 0.0000 over 1 steps", an exact k)
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.01 --out "$DIR/per1" > "$DIR/per1.out" || fail "one-step k fit exited $?"
+grep -q "^k of eq. (2): [0-9.]* from 1 step (no error estimate) (" "$DIR/per1.out" && ! grep -q "+- 0.0000" "$DIR/per1.out" \
+    || fail "a one-step k fit: $(grep '^k of' "$DIR/per1.out")"
 "$BIN" theory --fit-k "$DIR/per/history.csv" --format csv > "$DIR/fitk.csv" || fail "theory --fit-k --format csv"
 python3 - "$DIR/fitk.csv" "$DIR/per/run.json" <<'PY' || fail "theory --fit-k is not run.json's k_fit: $(cat "$DIR/fitk.csv")"
 import csv, json, math, sys
