@@ -125,6 +125,10 @@ for huge in 1e160 1e308; do
   check "surface --stats: a height $huge named with its file and point" expect_exit 2 \
     "huge_$huge.txt: surface before detrending: height ${huge/e/e+} at (x=3, y=2): expected |h| <= 1e+100" \
     "$cli" surface --stats "$dir/huge_$huge.txt"
+  # indent's default, --detrend none, met it first in the statistics, which name no file
+  check "indent: a height $huge named with its file and point" expect_exit 2 \
+    "huge_$huge.txt: surface: height ${huge/e/e+} at (x=3, y=2): expected |h| <= 1e+100" \
+    "$cli" indent "$dir/huge_$huge.txt" --approach 1 --out "$dir/o_huge"
 done
 check "--out ''" expect_exit 2 "--out '': expected a file or folder name" "$cli" indent "$dir/s.npy" --approach 1 --out ''
 check "--psd ''" expect_exit 2 "--psd '': expected a file or folder name" "$cli" surface --n 16 --psd '' --out "$dir/p.npy"

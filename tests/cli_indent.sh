@@ -106,6 +106,13 @@ awk -F, 'NR > 1 && $3 < 0 && $25 > 0 && $26 > 0 { pulled = 1 } END { exit !pulle
 head -c 8 "$DIR/sticky/force_distance.png" | od -An -tx1 | grep -q '89 50 4e 47' && [ ! -e "$DIR/sticky/indentation.csv" ] \
     || fail "no force-distance figure, or an Oliver-Pharr table of an adhesive history"
 grep -q "adhesion: pull-off force" "$DIR/sticky.log" || fail "the pull-off is not said"
+grep -q "work lost 3.8" "$DIR/sticky.log" || fail "the closed loop's lost work is not said: $(grep adhesion: "$DIR/sticky.log")"
+# ... a retraction only (from contact at w = 0 to an attraction out of contact) closes no loop: its sum of N dw
+# (2.13 here) was said as "work lost"
+"$BIN" indent --smooth --n 128 --punch sphere --radius 100 --adhesion-work 0.01 --adhesion-range 0.5 \
+    --approach 0,-0.25,-0.5 --out "$DIR/pull" > "$DIR/pull.log" || fail "a retraction exited $?"
+grep -q "work done 2.13[0-9]* (+- 0.18; sum of N dw), no loss: the history does not return to where it began" \
+    "$DIR/pull.log" && ! grep -q "work lost" "$DIR/pull.log" || fail "an open history's work: $(grep adhesion: "$DIR/pull.log")"
 # ... under load control (--load): the same sphere through the loads of sticky's retraction while they fall to
 # 95% of its least, at sticky's approaches (to the solver's tolerance in the load or the approach); then a load
 # 2% beyond the least is refused naming the pull-off, exit 2, the history kept up to it.
@@ -149,9 +156,11 @@ a = json.load(open(sys.argv[1]))["adhesion"]
 assert a["pull_off_force"] > 1.5 * 17.17 and a["theory"] is None, a
 PY
 for bad in "--adhesion-work 0.1 --approach 1|go together" "--approach -1,1|is not a number >= 0" \
-           "--periodic --adhesion-work 0.1 --adhesion-range 1 --approach 0.01|takes --mean-gap, --pressure or --load with --periodic"; do
+           "--periodic --adhesion-work 0.1 --adhesion-range 1 --approach 0.01|takes --mean-gap, --pressure or --load with --periodic" \
+           "--periodic --mean-gap 0.4,0|--mean-gap '0.4,0': step 2 is 0: expected mean gaps > 0"; do
     "$BIN" indent --smooth --n 32 ${bad%%|*} --out "$DIR/badadh" > /dev/null 2> "$DIR/badadh.err"
-    [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
+    [ $? -eq 2 ] && grep -q -- "${bad#*|}" "$DIR/badadh.err" && [ ! -e "$DIR/badadh" ] \
+        || fail "indent ${bad%%|*}: $(cat "$DIR/badadh.err")"
 done
 # --periodic (issue 26): a generated (periodic) surface under a rigid flat at two mean pressures: load =
 # p_m times the cell's area, area_ratio = n_p / (nx ny), no N* or half-space theory, fields on the whole
@@ -235,6 +244,10 @@ grep -q '"k_fit"' "$DIR/per/run.json" && grep -q '"slope_rms_definition": "spect
 # (17 digits) every number of run.json's k_fit, bit for bit; a history of the half-space refused by its mean_gap
 "$BIN" theory --fit-k "$DIR/per/history.csv" > "$DIR/fitk.out" 2>&1 || fail "theory --fit-k: $(cat "$DIR/fitk.out")"
 grep '^k of eq. (2)' "$DIR/per.out" | cmp -s - "$DIR/fitk.out" || fail "theory --fit-k: $(cat "$DIR/fitk.out")"
+# ... from one step: no spread to give (its error 0 was said "+- 0.0000 over 1 steps", an exact k)
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.01 --out "$DIR/per1" > "$DIR/per1.out" || fail "one-step k fit exited $?"
+grep -q "^k of eq. (2): [0-9.]* from 1 step (no error estimate) (" "$DIR/per1.out" && ! grep -q "+- 0.0000" "$DIR/per1.out" \
+    || fail "a one-step k fit: $(grep '^k of' "$DIR/per1.out")"
 "$BIN" theory --fit-k "$DIR/per/history.csv" --format csv > "$DIR/fitk.csv" || fail "theory --fit-k --format csv"
 python3 - "$DIR/fitk.csv" "$DIR/per/run.json" <<'PY' || fail "theory --fit-k is not run.json's k_fit: $(cat "$DIR/fitk.csv")"
 import csv, json, math, sys
@@ -263,7 +276,7 @@ grep -q '"control": "mean_gap"' "$DIR/per_g/run.json" || fail "run.json does not
 "$BIN" indent "$DIR/cell.npy" --mean-gap 0.5 --out "$DIR/per_w" > /dev/null 2> "$DIR/per_w.err"
 [ $? -eq 2 ] && grep -q "needs --periodic" "$DIR/per_w.err" || fail "--mean-gap without --periodic: $(cat "$DIR/per_w.err")"
 "$BIN" indent "$DIR/cell.npy" --periodic --mean-gap 0 --out "$DIR/per_z" > /dev/null 2> "$DIR/per_z.err"
-[ $? -ne 0 ] && grep -q "mean gap = 0: expected > 0" "$DIR/per_z.err" || fail "--mean-gap 0: $(cat "$DIR/per_z.err")"
+[ $? -eq 2 ] && grep -q "step 1 is 0: expected mean gaps > 0" "$DIR/per_z.err" || fail "--mean-gap 0: $(cat "$DIR/per_z.err")"
 "$BIN" indent "$DIR/cell.npy" --periodic --alpha 70 --pressure 0.01 --out "$DIR/per_a" > /dev/null 2> "$DIR/per_a.err"
 [ $? -eq 2 ] && grep -q "apply to a punch" "$DIR/per_a.err" || fail "--periodic --alpha without --punch: $(cat "$DIR/per_a.err")"
 "$BIN" indent "$DIR/cell.npy" --pressure 0.01 --out "$DIR/per_p" > /dev/null 2> "$DIR/per_p.err"

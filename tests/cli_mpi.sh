@@ -75,6 +75,18 @@ status=$?
 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/missing.npy" --approach 1 > /dev/null 2> "$work/err2"
 status=$?
 [ $status -ne 0 ] && grep -q "missing.npy: cannot open" "$work/err2" || fail "missing file: status $status, $(cat "$work/err2")"
+# a surface whose sidecar states a spacing other than 1, or the order [x, y], was solved as if in units of
+# delta = 1, rows along y: another problem, without a word (N 7.38 on 83 patches for indent's 3.69 on 7)
+"$cli" surface --n 64 --m 48 --delta 2.5 --unit nm --out "$work/nm.npy" > /dev/null || fail "surface in nm"
+"$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/nm.npy" --approach 1 > /dev/null 2> "$work/err3"
+status=$?
+[ $status -eq 2 ] && grep -q "surface .*nm.npy: its sidecar .*nm.npy.json states delta = 2.5 nm, but mpi-indent reads heights in units of delta = 1" \
+  "$work/err3" || fail "a sidecar's spacing: status $status, $(cat "$work/err3")"
+"$cli" surface --n 16 --out "$work/xy.npy" > /dev/null && printf '{"delta": 1, "order": "xy"}\n' > "$work/xy.npy.json"
+"$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --surface "$work/xy.npy" --approach 0.3 > /dev/null 2> "$work/err4"
+status=$?
+[ $status -eq 2 ] && grep -q "states the order xy (indexed \[x, y\]), but mpi-indent reads rows along y" "$work/err4" \
+  || fail "a sidecar's order xy: status $status, $(cat "$work/err4")"
 # A grid smaller than the rank count: a 3 x 3 surface (6 padded rows) on 7 ranks, some of them with
 # no rows, gives the one-rank result; a side not above lambda_s = 4 is refused naming --n and --m.
 "$cli" surface --n 3 --lambda-s 2 --out "$work/s3.npy" > /dev/null || fail "surface --n 3"

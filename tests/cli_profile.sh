@@ -61,6 +61,12 @@ echo "$message" | grep -q "down.txt:4.*sample 2.*non-decreasing" || fail "a decr
 printf '0 0\n1 0.5\n2 x\n' > "$DIR/word.txt"
 message=$("$BIN" indent "$DIR/s.npy" --approach 1 --punch profile --profile "$DIR/word.txt" --out "$DIR/x" 2>&1 >/dev/null)
 echo "$message" | grep -q "word.txt:3" || fail "a bad line: message '$message'"
+# a file with no sample (empty, or comments only) was refused with the library's "r is NULL: expected a pointer"
+printf '# r z\n' > "$DIR/comments.txt"
+message=$("$BIN" indent "$DIR/s.npy" --approach 1 --punch profile --profile "$DIR/comments.txt" --out "$DIR/x" 2>&1 >/dev/null)
+[ $? -eq 2 ] || fail "a profile without samples: exit status (expected 2, invalid input)"
+echo "$message" | grep -q "comments.txt: no profile sample: expected at least 3 lines 'r z' or 'r,z'" \
+    || fail "a profile without samples: message '$message'"
 message=$("$BIN" indent "$DIR/s.npy" --approach 1 --punch profile --profile "$DIR/none.txt" --out "$DIR/x" 2>&1 >/dev/null)
 echo "$message" | grep -q "none.txt" || fail "a missing file: message '$message'"
 [ ! -e "$DIR/x" ] || fail "a refused run made its output folder"

@@ -184,6 +184,9 @@ refuse "an angle without a shape" "alpha = 70" "steps = 0.01" "" "[punch] alpha 
 refuse "no steps" "" "" "" "[punch] periodic needs [loading] steps"
 refuse "unloading without a hardness" "" "steps = 0.02, 0.01" "" "steps must increase"
 refuse "mean gaps that rise without a hardness" "" $'control = mean_gap\nsteps = 0.2, 0.3' "" "steps must decrease"
+# (refused before solving: it was refused at its step, after those before it were solved)
+refuse "a mean gap of 0" "" $'control = mean_gap\nsteps = 0.4, 0' "" \
+    "bad.ini:11: steps: step 2 is the mean gap 0: expected mean gaps > 0 (at 0 the cell is in full contact)"
 printf '[scene]\nname = hs\noutput = hs\n[surfaces]\nfile = cell.npy\n[punch]\nshape = cone\n[loading]\ncontrol = mean_gap\nsteps = 0.5\n' \
     > "$dir/hs.ini"
 check "mean gaps on the half-space" expect_exit 2 "control = mean_gap needs [punch] periodic" "$cli" run "$dir/hs.ini"

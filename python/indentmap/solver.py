@@ -84,12 +84,16 @@ def read_history(path):
     """A history.csv (``indentmap indent``) or a scene's histories/member_FF_SEED.csv as the structured
     array ``indent`` returns: the same columns, names and values.
 
-    Raises ``ValueError`` naming the file for other columns (another version's history) or a
-    line with too few values, ``OSError`` for a file that cannot be read.
+    Raises ``ValueError`` naming the file for other columns (another version's history), a
+    line with too few values or bytes that are not UTF-8 text, ``OSError`` for a file that cannot be read.
 
     Example: ``h = im.read_history("out/history.csv"); h["load"]``."""
     with open(path, encoding="utf-8") as f:
-        lines = [line for line in f.read().splitlines() if line and not line.startswith("#")]  # a scene's note
+        try:
+            text = f.read()
+        except UnicodeDecodeError as error:
+            raise ValueError(f"{path}: byte {error.start} is not UTF-8 text: expected a history.csv") from None
+    lines = [line for line in text.splitlines() if line and not line.startswith("#")]  # a scene's note
     return _history_array(_core.history_values("".join(line + "\n" for line in lines), str(path)))
 
 
@@ -370,6 +374,10 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
     targets = np.asarray(targets, dtype=float).ravel()
     if targets.size == 0:
         raise ValueError("no steps")
+    if control == "mean_gap" and not np.all(targets > 0):  # refused now, not after the steps before it
+        step = int(np.argmin(targets > 0))
+        raise ValueError(f"mean_gaps: step {step + 1} is {targets[step]:g}: expected mean gaps > 0 (at 0 the cell is "
+                         "in full contact)")
     run = Indentation(heights, punch, control=control,
                       largest=float(np.abs(targets).max()), **options)
     if distributions is not None:

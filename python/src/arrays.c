@@ -3,8 +3,23 @@
 
 #include "indentmap/status.h"
 
+/* im.read's Topography (heights, delta, unit) is a tuple: numpy would try it as a ragged array and say
+ * nothing a user can act on. It is named, with what to pass instead. */
+static int refuse_topography(PyObject *obj, const char *what)
+{
+    if (PyArray_Check(obj) || !PyObject_HasAttrString(obj, "heights") || !PyObject_HasAttrString(obj, "delta"))
+        return 0;
+    PyErr_Format(PyExc_TypeError,
+                 "%s: got a %s (im.read's heights, delta and unit): expected its 2-D array of heights, "
+                 "top.heights, with its spacing as delta=top.delta (and length_unit=top.unit where taken)",
+                 what, Py_TYPE(obj)->tp_name);
+    return 1;
+}
+
 PyArrayObject *py_heights_array(PyObject *obj, const char *what)
 {
+    if (refuse_topography(obj, what))
+        return NULL;
     PyArray_Descr *float64 = PyArray_DescrFromType(NPY_DOUBLE);
     /* Safe casting only: complex, object and string arrays are refused, not silently cut. */
     PyArrayObject *array = (PyArrayObject *)PyArray_FromAny(obj, float64, 2, 2,

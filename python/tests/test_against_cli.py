@@ -56,6 +56,8 @@ def test_one_history_schema(cli, rough64, tmp_path):
     (tmp_path / "old.csv").write_text("step,approach\n1,2\n")
     with pytest.raises(ValueError, match="not this version's history columns"):
         im.read_history(tmp_path / "old.csv")
+    with pytest.raises(ValueError, match=r"s\.npy: byte 0 is not UTF-8 text: expected a history\.csv"):
+        im.read_history(tmp_path / "s.npy")  # was a bare UnicodeDecodeError naming no file
 
 
 def test_load_control_sphere_bit_for_bit(cli, rough64, tmp_path):
@@ -295,6 +297,12 @@ def test_write_analysis_files_are_the_cli_ones(cli, rough64, tmp_path):
     assert im.write_analysis(history[:3], tmp_path / "loading") == 0 and not any((tmp_path / "loading").iterdir())
     with pytest.raises(ValueError, match="history.csv's columns"):
         im.write_analysis(np.zeros(3), tmp_path / "bad")
+
+
+def test_a_mean_gap_of_zero_is_refused_before_any_step(rough64):
+    """as indent --mean-gap: it was refused at its step, after the steps before it were solved"""
+    with pytest.raises(ValueError, match=r"mean_gaps: step 2 is 0: expected mean gaps > 0"):
+        im.indent(rough64, None, mean_gaps=[0.4, 0.0], periodic=True, max_iterations=1)
 
 
 def test_periodic_mean_gap_bit_for_bit(cli, rough64, tmp_path):

@@ -105,6 +105,17 @@ def test_arrays_converted_or_refused_as_documented(rough64):
         im.statistics(np.array([["a", "b"]]))
 
 
+def test_a_topography_where_heights_are_expected_names_what_to_pass(tmp_path, rough64):
+    """im.read's Topography is a tuple: numpy's own message spoke of a ragged sequence."""
+    im.write(str(tmp_path / "s.npy"), rough64, delta=2.0)
+    top = im.read(str(tmp_path / "s.npy"))
+    for call in (lambda: im.indent(top, approaches=[1.0]), lambda: im.statistics(top),
+                 lambda: im.Indentation(top, largest=1.0), lambda: im.write(str(tmp_path / "c.npy"), top)):
+        with pytest.raises(TypeError, match=r"heights: got a Topography .*top\.heights.*delta=top\.delta"):
+            call()
+    assert im.statistics(top.heights) == im.statistics(rough64)
+
+
 def test_outputs_own_their_memory(rough64):
     run = im.Indentation(rough64, largest=1.0)
     run.step(1.0)

@@ -15,6 +15,8 @@
 
 #include <errno.h>
 #include <getopt.h>
+#include <jansson.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -83,7 +85,9 @@ static void usage(FILE *stream)
             "One indentation of one surface over K MPI ranks (each with its OpenMP threads): the whole\n"
             "grid is solved (no crop window), the result is the same to the bit for any K.\n"
             "Prints on rank 0: approach,load,contact_patches,iterations,residual,seconds (CSV with header).\n\n"
-            "  --surface FILE  heights (float64 .npy, units of delta = 1), read with MPI-IO; otherwise\n"
+            "  --surface FILE  heights (float64 .npy, units of delta = 1, rows along y: a sidecar\n"
+            "                  FILE.json stating another delta or the order xy is refused), read\n"
+            "                  with MPI-IO; otherwise\n"
             "                  a surface is synthesised over the ranks:\n"
             "  --n NX --m NY   its grid (default 512 x 512, NY = NX; lambda_r = the shorter side)\n"
             "  --seed S --slope H'rms   (default 1 and 0.08; H = 0.8, lambda_s = 4)\n"
@@ -262,11 +266,42 @@ static int same_files(const mpi_indent_options *o)
     return count ? mpi_same_files(MPI_COMM_WORLD, "the command", count, paths, keys) : IM_OK;
 }
 
+/* The heights are read in units of delta = 1, rows along y: a sidecar stating another spacing (`surface
+ * --delta 2.5 --unit nm --out`) or the order [x, y] was not read, and the surface solved another problem
+ * without a word. This rank's verdict on FILE.json (the same bytes on every rank: same_files). */
+static int sidecar_readable_as_is(const char *surface_file)
+{
+    char path[PATH_MAX];
+    struct stat info;
+    if (im_path_suffix(path, sizeof path, surface_file, ".json") != IM_OK || stat(path, &info) != 0)
+        return IM_OK; /* no sidecar: nothing stated */
+    json_t *root = json_load_file(path, 0, NULL);
+    json_t *delta = json_object_get(root, "delta"), *unit = json_object_get(root, "unit");
+    const char *order = json_string_value(json_object_get(root, "order"));
+    int status = IM_OK;
+    if (json_is_number(delta) && json_number_value(delta) != 1.0)
+        status = im_fail(IM_EINVAL,
+                         "--surface %s: its sidecar %s states delta = %g %s, but mpi-indent reads heights in "
+                         "units of delta = 1: expected the heights divided by delta (a surface of delta 1)",
+                         surface_file, path, json_number_value(delta),
+                         json_is_string(unit) ? json_string_value(unit) : "");
+    else if (order && strcmp(order, "xy") == 0)
+        status = im_fail(IM_EINVAL,
+                         "--surface %s: its sidecar %s states the order xy (indexed [x, y]), but mpi-indent reads "
+                         "rows along y: expected the array transposed (order yx)",
+                         surface_file, path);
+    json_decref(root);
+    return status;
+}
+
 /* The grid: the file's shape, or the synthesis's. */
 static int grid_of(mpi_indent_options *o)
 {
     int status = same_files(o);
     if (status != IM_OK || !o->surface_file)
+        return status;
+    status = mpi_collective_status(MPI_COMM_WORLD, sidecar_readable_as_is(o->surface_file));
+    if (status != IM_OK)
         return status;
     return im_mpi_npy_shape(MPI_COMM_WORLD, o->surface_file, &o->surface.nx, &o->surface.ny);
 }

@@ -118,6 +118,8 @@ static int read_table(FILE *file, const char *path, sample_table *t)
 /* The table's samples as a profile; a refusal names the file and the sample's line. */
 static int table_profile(const sample_table *t, const char *path, im_profile **out)
 {
+    if (t->count == 0)
+        return im_fail(IM_EINVAL, "%s: no profile sample: expected at least 3 lines 'r z' or 'r,z'", path);
     int status = im_profile_axisymmetric(t->r, t->z, t->count, out);
     if (status != IM_OK) {
         const char *message = im_last_error();

@@ -74,7 +74,16 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
     if (isnan(summary.hysteresis_work))
         return;
     char work[256];
-    if (fabs(summary.hysteresis_work) > summary.hysteresis_error)
+    const im_step_result *first = &rows[0].result, *last = &rows[done - 1].result;
+    /* sum N dw is a loss only over a loop: back to the first approach, or from no force to no force (the
+     * path between at N = 0 does no work); a retraction alone is the work done, not a hysteresis */
+    if (!(last->approach == first->approach || (first->load == 0 && last->load == 0)))
+        snprintf(work, sizeof work,
+                 "work done %.6g (+- %.2g; sum of N dw), no loss: the history does not return to where it began "
+                 "(w = %.6g, N = %.6g at the first step; w = %.6g, N = %.6g at the last)",
+                 summary.hysteresis_work, summary.hysteresis_error, first->approach, first->load, last->approach,
+                 last->load);
+    else if (fabs(summary.hysteresis_work) > summary.hysteresis_error)
         snprintf(work, sizeof work, "work lost %.6g (+- %.2g, the steps' trapezoids)", summary.hysteresis_work,
                  summary.hysteresis_error);
     else /* the loop lies between the steps: its sign and size are the trapezoids' error */

@@ -89,11 +89,16 @@ void periodic_k_fit_describe(const periodic_k_fit *k, double slope_rms, const ch
                              size_t size)
 {
     const im_theory_k_fit *fit = &k->fit;
+    char spread[64]; /* one point has no spread: its k_error 0 read as "+- 0.0000", an exact k */
+    if (k->points > 1)
+        snprintf(spread, sizeof spread, "+- %.4f over %d steps", fit->k_error, k->points);
+    else
+        snprintf(spread, sizeof spread, "from 1 step (no error estimate)");
     snprintf(text, size,
-             "k of eq. (2): %.4f +- %.4f over %d steps (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-             "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d steps)",
-             fit->k, fit->k_error, k->points, k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0],
-             k->area_fraction[1], slope_rms, slope_definition, fit->k_linear, fit->linear_points);
+             "k of eq. (2): %.4f %s (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
+             "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d step%s)",
+             fit->k, spread, k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0], k->area_fraction[1],
+             slope_rms, slope_definition, fit->k_linear, fit->linear_points, fit->linear_points == 1 ? "" : "s");
 }
 
 const char PERIODIC_K_COLUMNS[] = "points,k,k_error,rms_residual,k_linear,linear_points,pressure_ratio_min,"

@@ -330,6 +330,14 @@ int scene_check_keys(const scene_given *given)
                             "has no mean gap");
         return key_line(given, "loading", "control");
     }
+    for (int i = 0; scene->control == IM_CONTROL_MEAN_GAP && i < scene->step_count; ++i)
+        if (!(scene->steps[i] > 0)) { /* refused before solving, not at its step */
+            im_fail(IM_EFORMAT,
+                    "steps: step %d is the mean gap %g: expected mean gaps > 0 (at 0 the cell is in full "
+                    "contact)",
+                    i + 1, scene->steps[i]);
+            return key_line(given, "loading", "steps");
+        }
     /* a history that unloads needs the cap's memory (or adhesion's); without one, unloading only
      * retraces loading and a list out of order is more likely a slip. Mean gaps load as they fall. */
     const double sense = scene->control == IM_CONTROL_MEAN_GAP ? -1 : 1;

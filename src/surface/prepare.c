@@ -127,11 +127,13 @@ int im_surface_detrend(im_field *surface, enum im_detrend detrend)
                        "_CURVATURE",
                        (int)detrend);
     int status = im_field_check_finite(surface, "detrend");
-    if (status != IM_OK || detrend == IM_DETREND_NONE)
-        return status;
-    /* a huge height is named where the file holds it: the fit spreads it (or its overflow) over every point */
-    status = im_surface_check_height_range(surface, "surface before detrending");
     if (status != IM_OK)
+        return status;
+    /* a huge height is named where the file holds it, here where the caller still names the file: the fit
+     * spreads it (or its overflow) over every point, and undetrended the statistics met it unnamed */
+    status = im_surface_check_height_range(surface,
+                                           detrend == IM_DETREND_NONE ? "surface" : "surface before detrending");
+    if (status != IM_OK || detrend == IM_DETREND_NONE)
         return status;
     static const int TERMS[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
     int terms = detrend == IM_DETREND_CURVATURE ? 6 : 3;
