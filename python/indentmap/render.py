@@ -6,8 +6,6 @@ import inspect
 import os
 import tempfile
 
-import numpy as np
-
 from . import _checks, _core
 from .solver import Cone, Flat, Sphere
 
@@ -154,7 +152,7 @@ class Figure:
     def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="magma", vmin=None,
                  vmax=None, log=True, scale=2, circle_radius=0.0, colorbar_label=None,
                  dpi=300.0, scale_bar=0.0, unit="", force_unit=""):
-        self.fields = [np.asarray(f, dtype=float) for f in fields]
+        self.fields = [_core.heights_array(f, "panel field") for f in fields]
         if not self.fields:
             raise ValueError("Figure: no fields")
         self.norm = _contact_norm(self.fields, "panel field", vmin, vmax, log)
@@ -223,9 +221,9 @@ def view3d(heights, *, force=None, displacement=None, delta=1.0, punch=Cone(), a
 
     Example: ``h, f = im.indent(s, approaches=[3.0], fields=True); im.view3d(s, force=f[0]["force"],
     displacement=f[0]["displacement"], exaggeration=4)``."""
-    drawn = np.asarray(heights, dtype=float)
+    drawn = _core.heights_array(heights, "heights")
     if displacement is not None:
-        u = np.asarray(displacement, dtype=float)
+        u = _core.heights_array(displacement, "displacement")
         if u.shape != drawn.shape:
             raise ValueError(f"displacement: shape {u.shape}, expected the heights' {drawn.shape}")
         drawn = drawn - u

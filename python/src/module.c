@@ -150,7 +150,20 @@ static PyObject *formats_text(PyObject *self, PyObject *unused)
     return report_text(make_formats, NULL);
 }
 
+/* heights_array(obj, what) -> obj as the library takes a field: a 2-D float64 array (safe casts only), a
+ * Topography refused naming what (arrays.c), for the Python code that works on a field before the library */
+static PyObject *heights_array(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *obj;
+    const char *what;
+    if (!PyArg_ParseTuple(args, "Os", &obj, &what))
+        return NULL;
+    return (PyObject *)py_heights_array(obj, what);
+}
+
 static PyMethodDef core_methods[] = {
+    {"heights_array", heights_array, METH_VARARGS, "heights_array(obj, what) -> a 2-D float64 array of obj"},
     {"memory_limit", memory_limit, METH_VARARGS, "memory_limit([bytes]) -> the cap in bytes (0: none)"},
     {"info_text", info_text, METH_VARARGS, "info_text(backend) -> indentmap info's text"},
     {"formats_text", formats_text, METH_NOARGS, "formats_text() -> indentmap formats' text"},

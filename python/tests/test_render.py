@@ -167,3 +167,15 @@ def test_run_scene_renders_with_the_backend_named(tmp_path):
     with pytest.raises(im.InvalidArgument, match="render backend 'vulkan': expected auto, egl or osmesa"):
         im.run_scene(scene, out=tmp_path / "never", backend="vulkan")
     assert not (tmp_path / "never").exists()
+
+
+def test_a_topography_where_a_field_is_expected_names_what_to_pass(tmp_path):
+    """Figure and view3d converted their fields in Python, where numpy spoke of a ragged sequence."""
+    im.write(str(tmp_path / "s.npy"), np.arange(64.0).reshape(8, 8) / 64)
+    top = im.read(str(tmp_path / "s.npy"))
+    for what, call in (("field", lambda: im.contact_map(top)), ("field", lambda: im.height_map(top)),
+                       ("panel field", lambda: im.Figure([top])), ("heights", lambda: im.view3d(top)),
+                       ("displacement", lambda: im.view3d(top.heights, displacement=top))):
+        with pytest.raises(TypeError, match=what + r": got a Topography .*top\.heights"):
+            call()
+
