@@ -74,6 +74,7 @@ check "missing --out" expect_exit 2 "--out is required" "$cli" render contact "$
 check "unknown mode" expect_exit 2 "expected contact, height or animate" "$cli" render map "$dir/f.npy"
 check "bad colour map" expect_exit 2 "expected viridis" "$cli" render contact "$dir/f.npy" --colormap jet --out "$dir/x.png"
 check "log norm needs vmin > 0" expect_exit 2 "logarithmic" "$cli" render contact "$dir/f.npy" --log --vmin 0 --out "$dir/x.png"
+check "the default log norm names --vmin" expect_exit 2 "--vmin 0: a logarithmic norm needs --vmin > 0 (or --linear)" "$cli" render contact "$dir/f.npy" --vmin 0 --out "$dir/x.png"
 check "bad backend" expect_exit 2 "auto, egl or osmesa" "$cli" render contact "$dir/f.npy" --backend vulkan --out "$dir/x.png"
 check "bad scale" expect_exit 2 "--scale = 0" "$cli" render contact "$dir/f.npy" --scale 0 --out "$dir/x.png"
 check "unknown extension" expect_exit 2 ".png, .pdf or .svg" "$cli" render contact "$dir/f.npy" --out "$dir/x.tiff"

@@ -194,7 +194,7 @@ check "mean gaps on the half-space" expect_exit 2 "control = mean_gap needs [pun
 # An indentation analysis per member of a hardness history that goes up and down: indent's indentation.csv.
 printf '[scene]\nname = cycle\noutput = cycle\n[surfaces]\nfile = cell.npy\n[punch]\nshape = cone\nalpha = 80\n[material]\nhardness = 0.3\n[loading]\ncontrol = displacement\nsteps = 1:4:4, 3:1:3\n[output]\nplots = fig5\n' \
     > "$dir/cycle.ini"
-check "a cycle with a hardness runs" expect_exit 0 "the indentation analysis of 1 surfaces" "$cli" run "$dir/cycle.ini"
+check "a cycle with a hardness runs" expect_exit 0 "the indentation analysis of 1 surface in" "$cli" run "$dir/cycle.ini"
 "$cli" indent "$dir/cell.npy" --hardness 0.3 --approach 1:4:4,3:1:3 --out "$dir/indent_cycle" > /dev/null
 check "the member's indentation.csv is indent's" \
     cmp "$dir/cycle/indentation/member_00_0.csv" "$dir/indent_cycle/indentation.csv"

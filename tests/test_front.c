@@ -186,8 +186,8 @@ static void both_histories_one_reader(void **state)
     free(member);
 }
 
-/* A history of the previous version (the scene's nine columns) is refused, never misread; so are a
- * row short of a column, a NaN approach and rows out of order. */
+/* A history of the previous version (the scene's nine columns) is refused, never misread; so are an
+ * empty file (said to be empty), a row short of a column, a NaN approach and rows out of order. */
 static void other_histories_refused(void **state)
 {
     (void)state;
@@ -198,6 +198,8 @@ static void other_histories_refused(void **state)
     char why[160], text[2048];
     assert_false(im_history_parse(OLD, 1, rows, 4, &count, why, sizeof why));
     assert_non_null(strstr(why, "older version"));
+    assert_false(im_history_parse("", 1, rows, 4, &count, why, sizeof why)); /* not an older version's */
+    assert_non_null(strstr(why, "it is empty"));
     im_history_row row = {.step = 1,
                           .result = {.approach = 1,
                                      .load = 2,

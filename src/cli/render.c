@@ -465,6 +465,9 @@ static int check_usage(const render_options *o, int inputs)
         fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
     else if (o->linear && strcmp(o->mode, "height") == 0)
         fprintf(stderr, "indentmap: --linear is for forces (contact, animate): heights are drawn linear\n");
+    else if (o->has_vmin && !(o->vmin > 0) && !o->linear && (o->logarithmic || strcmp(o->mode, "height") != 0))
+        fprintf(stderr, "indentmap: --vmin %g: a logarithmic norm needs --vmin > 0 (or %s)\n", o->vmin,
+                strcmp(o->mode, "height") == 0 ? "no --log: heights are linear by default" : "--linear");
     else
         return 0;
     return -1;

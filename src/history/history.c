@@ -235,6 +235,10 @@ int im_history_parse(const char *text, int area, im_history_row *rows, int capac
     ARG_REQUIRE_OR(why, "why", 0);
     size_t columns = strlen(HISTORY_COLUMNS);
     *count = 0;
+    if (!text[0]) {
+        snprintf(why, why_size, "it is empty: expected the history columns' line, then a row per step");
+        return 0;
+    }
     if (strncmp(text, HISTORY_COLUMNS, columns) != 0 || text[columns] != '\n') {
         snprintf(why, why_size, "its columns are not this version's history columns (an older version wrote it)");
         return 0;

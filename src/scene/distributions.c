@@ -156,8 +156,8 @@ int scene_run_distributions(const im_scene *scene, const im_scene_run_options *o
     if (status == IM_OK)
         status = im_make_directories(folder);
     if (status == IM_OK)
-        scene_progress(options, "distributions: gaps and patch sizes of %d surfaces at N* = %g", scene->family_count,
-                       scene->load_star);
+        scene_progress(options, "distributions: gaps and patch sizes of %d surface%s at N* = %g", scene->family_count,
+                       scene->family_count == 1 ? "" : "s", scene->load_star);
     for (int f = 0; f < scene->family_count && status == IM_OK; ++f)
         status = family_distributions(scene, options, f, &curves[f]);
     if (status == IM_OK)

@@ -52,7 +52,7 @@ static int report_interrupted(const im_scene_run_options *options, const scene_m
     for (int i = 0; i < count; ++i)
         finished += members[i].status == IM_OK;
     char where[96];
-    snprintf(where, sizeof where, "after %d of %d surfaces", finished, count);
+    snprintf(where, sizeof where, "after %d of %d surface%s", finished, count, count == 1 ? "" : "s");
     return scene_interrupted(options, where);
 }
 
@@ -131,9 +131,10 @@ void scene_reuse_take_forces(scene_reuse *reuse, scene_member *members, int coun
 
 void scene_report_origin_counts(const im_scene_run_options *options, const char *stage, const int counted[3])
 {
-    scene_progress(options, "%s: %d surfaces: %d solved, %d read back, %d reused from an earlier stage", stage,
-                   counted[SCENE_SOLVED] + counted[SCENE_READ_BACK] + counted[SCENE_REUSED], counted[SCENE_SOLVED],
-                   counted[SCENE_READ_BACK], counted[SCENE_REUSED]);
+    const int total = counted[SCENE_SOLVED] + counted[SCENE_READ_BACK] + counted[SCENE_REUSED];
+    scene_progress(options, "%s: %d surface%s: %d solved, %d read back, %d reused from an earlier stage", stage,
+                   total, total == 1 ? "" : "s", counted[SCENE_SOLVED], counted[SCENE_READ_BACK],
+                   counted[SCENE_REUSED]);
 }
 
 void scene_report_origins(const im_scene_run_options *options, const char *stage, const scene_member *members,

@@ -549,7 +549,8 @@ static int write_indentations(const im_scene *scene, const im_scene_run_options 
     for (int i = 0; i < count && status == IM_OK; ++i)
         status = write_indentation(scene, &members[i]);
     if (status == IM_OK)
-        scene_progress(options, "histories: the indentation analysis of %d surfaces in indentation/", count);
+        scene_progress(options, "histories: the indentation analysis of %d surface%s in indentation/", count,
+                       count == 1 ? "" : "s");
     return status;
 }
 
@@ -575,7 +576,8 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     int status = scene_ensemble_prepare(scene, "histories", &members, &count);
     if (status == IM_OK) {
         scene_link_table(scene, reuse, members, count);
-        scene_progress(options, "histories: %d surfaces x %d steps", count, scene->step_count);
+        scene_progress(options, "histories: %d surface%s x %d step%s", count, count == 1 ? "" : "s",
+                       scene->step_count, scene->step_count == 1 ? "" : "s");
         status = scene_ensemble_run(scene, options, "histories", members, count, scene_history_member, reuse->ranks);
     }
     if (status == IM_OK)

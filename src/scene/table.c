@@ -285,8 +285,8 @@ int scene_run_table(const im_scene *scene, const im_scene_run_options *options, 
     int count = 0;
     int status = scene_ensemble_prepare(scene, "table", &members, &count);
     if (status == IM_OK) {
-        scene_progress(options, "table: %d surfaces of %d families at N* = %g", count, scene->family_count,
-                       scene->load_star);
+        scene_progress(options, "table: %d surface%s of %d famil%s at N* = %g", count, count == 1 ? "" : "s",
+                       scene->family_count, scene->family_count == 1 ? "y" : "ies", scene->load_star);
         status = scene_ensemble_run(scene, options, "table", members, count, scene_table_member, reuse->ranks);
     }
     if (status == IM_OK)
