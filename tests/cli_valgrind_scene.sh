@@ -21,8 +21,11 @@ sed -n '/^\[scene\]/,/^INI$/p' "$here/cli_run.sh" | grep -v '^INI$' | sed "s|\$d
 # Mesa's shader disk cache off (as for the sanitizer pass): a cache miss writes the cache, and Mesa's writer
 # hands valgrind uninitialised bytes of its own (a client check request in the link, zstd in its disk thread):
 # the first run after a shader changed failed so, in Mesa only; with a fresh cache: 2 errors, disabled: 0.
+# No --track-origins: it finds no other errors, it only adds to a report of an uninitialised value where the value
+# was made, and took the run from 104-106 s to 176-187 s (user 36-39 s to 57-58 s, alternated, load 9-10); to
+# read an origin, run the command below again with it.
 MESA_SHADER_CACHE_DISABLE=true IM_RENDER_BACKEND=osmesa OMP_NUM_THREADS=2 valgrind --tool=memcheck --leak-check=full \
-  --errors-for-leak-kinds=definite,indirect,possible --error-exitcode=99 -v --track-origins=yes --num-callers=30 \
+  --errors-for-leak-kinds=definite,indirect,possible --error-exitcode=99 -v --num-callers=30 \
   --suppressions="$here/valgrind_mesa.supp" "$cli" run --quiet "$dir/small.ini" >"$dir/out.log" 2>"$dir/valgrind.log"
 status=$?
 grep -E "ERROR SUMMARY|definitely lost|indirectly lost|possibly lost|suppressed:|used_suppression" "$dir/valgrind.log" |
