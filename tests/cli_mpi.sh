@@ -176,6 +176,10 @@ refused adhesion_cap 2 "mpi-indent: --periodic --adhesion-work with --hardness: 
   -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --hardness 0.1 --adhesion-work 0.004 --adhesion-range 0.1
 refused adhesion_range 2 "mpi-indent: --adhesion-work and --adhesion-range go together" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.1 --adhesion-work 0.004
+# a mean gap <= 0 is refused before any step is solved, as indent's (redteam T3: step 1 was solved first)
+refused mean_gap_zero 2 "--mean-gap '0.4,0': step 2 is 0: expected mean gaps > 0" \
+  -n 2 "$cli" mpi-indent --periodic --n 64 --mean-gap 0.4,0 --out "$work/mean_gap_zero"
+[ ! -e "$work/mean_gap_zero/history.csv" ] || fail "--mean-gap 0.4,0: a step was solved before the refusal"
 k_of() { grep -A1 '"k_fit"' "$1" | awk '$1 == "\"k\":" { sub(/,$/, "", $2); print $2 }'; }
 serial_k=$(k_of "$work/ser_pressure/run.json") mpi_k=$(k_of "$work/mpi_pressure_2/run.json")
 awk -v a="$serial_k" -v b="$mpi_k" 'BEGIN { d = a - b; exit !(a > 1 && d < 1e-9 * a && -d < 1e-9 * a) }' ||

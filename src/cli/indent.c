@@ -288,19 +288,12 @@ static int parse_targets(indent_options *o)
     if (!(o->targets = malloc(sizeof(double) * STEPS_MAX)))
         return -1;
     if (steps_parse_signed(option, o->targets_text, negative, o->targets, &o->target_count, error, sizeof error) !=
-        0) {
+            0 ||
+        (o->control == IM_CONTROL_MEAN_GAP && /* refused now, not at its step after the steps before it */
+         steps_check_mean_gaps(option, o->targets_text, o->targets, o->target_count, error, sizeof error) != 0)) {
         fprintf(stderr, "indentmap: %s\n", error);
         return -1;
     }
-    /* refused now, not at its step after the steps before it were solved */
-    for (int i = 0; o->control == IM_CONTROL_MEAN_GAP && i < o->target_count; ++i)
-        if (!(o->targets[i] > 0)) {
-            fprintf(stderr,
-                    "indentmap: --mean-gap '%s': step %d is %g: expected mean gaps > 0 (at 0 the cell is in "
-                    "full contact)\n",
-                    o->targets_text, i + 1, o->targets[i]);
-            return -1;
-        }
     return 0;
 }
 

@@ -145,7 +145,10 @@ static int steps_parse_list(mpi_indent_options *o, const char *text)
         return -1;
     }
     const int negative = o->adhesion_work > 0 && o->control != IM_CONTROL_MEAN_GAP;
-    if (steps_parse_signed(o->targets_option, text, negative, o->targets, &o->target_count, error, sizeof error) == 0)
+    if (steps_parse_signed(o->targets_option, text, negative, o->targets, &o->target_count, error, sizeof error) ==
+            0 &&
+        (o->control != IM_CONTROL_MEAN_GAP || /* refused now, not at its step after the steps before it */
+         steps_check_mean_gaps(o->targets_option, text, o->targets, o->target_count, error, sizeof error) == 0))
         return 0;
     fprintf(stderr, "indentmap: %s\n", error);
     return -1;

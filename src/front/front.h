@@ -55,6 +55,10 @@ double steps_largest(const double *values, int count);
 /* The same, with negative values too when negative is nonzero (approaches pulling away, with adhesion). */
 int steps_parse_signed(const char *name, const char *text, int negative, double *values, int *count, char *error,
                        size_t error_size);
+/* 0 when every mean gap of a parsed list is > 0, else -1 with the message (naming name, text and the step):
+ * at a mean gap of 0 a periodic cell is in full contact. Checked before any step is solved. */
+int steps_check_mean_gaps(const char *name, const char *text, const double *values, int count, char *error,
+                          size_t error_size);
 
 /* ---- history.csv appended step by step (history_file.c; the schema is history.h's) ---- */
 

@@ -89,6 +89,18 @@ static int parse_item(const char *name, const char *text, const char *item, size
     return 1;
 }
 
+int steps_check_mean_gaps(const char *name, const char *text, const double *values, int count, char *error,
+                          size_t size)
+{
+    for (int i = 0; i < count; ++i)
+        if (!(values[i] > 0)) {
+            snprintf(error, size, "%s '%s': step %d is %g: expected mean gaps > 0 (at 0 the cell is in full contact)",
+                     name, text, i + 1, values[i]);
+            return -1;
+        }
+    return 0;
+}
+
 int steps_parse(const char *name, const char *text, double *values, int *count, char *error, size_t size)
 {
     return steps_parse_signed(name, text, 0, values, count, error, size);
