@@ -683,7 +683,7 @@ static PyObject *norm_range(PyObject *self, PyObject *args)
         PyArrayObject *array = py_heights_array(PySequence_Fast_GET_ITEM(sequence, i), what);
         if (!array) {
             failed = 1;
-            break;
+            continue; /* the loop's condition ends it */
         }
         im_field field = py_field_view(array, 1.0);
         int status = im_colormap_range_add(&range, &field);

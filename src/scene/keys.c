@@ -128,8 +128,8 @@ void scene_defaults(im_scene *scene)
     scene->frame_scale = 1;
     scene->frame3d_width = 960;
     scene->frame3d_height = 540;
-    scene->colormap =
-        IM_COLORMAP_MAGMA; /* forces as every front end draws them (colormap.h: im_colormap_range_norm) */
+    /* forces as every front end draws them (colormap.h: im_colormap_range_norm) */
+    scene->colormap = IM_COLORMAP_MAGMA;
     scene->log_norm = 1;
     scene->recorded_plans = -1;
 }
