@@ -4,6 +4,7 @@
 #include "indentmap/formats.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -46,7 +47,7 @@ int cli_parse_u64(const char *option, const char *text, uint64_t *out)
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out)
 {
     char *end;
-    double value = strtod(text, &end);
+    double value = number_parse(text, &end);
     if (end == text || *end != '\0' || !isfinite(value)) {
         fprintf(stderr, "indentmap: %s: '%s' is not a finite number\n", option, text);
         return -1;
