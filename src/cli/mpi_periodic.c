@@ -195,7 +195,8 @@ static int run_step(history_run *run, int i)
     if (status == IM_OK)
         status = gather_whole(run, last_pressure(run), &force);
     if (status == IM_OK && run->rank == 0) /* the theory columns are the half-space's */
-        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->rows, i);
+        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->o->solver.tol, run->rows,
+                                    i);
     im_contact_patches patches = {0};
     const step_units units = {run->o->solver.hardness, "", run->force_unit};
     if (status == IM_OK && run->rank == 0 && run->o->frames) /* what the frames are drawn from, as indent's */
