@@ -144,10 +144,21 @@ for k, row in enumerate(lc):
     assert row["contact_patches"] == ref["contact_patches"], (k, row["contact_patches"], ref["contact_patches"])
 PY
 "$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
-    --load "${loads% *},${loads#* }" --out "$DIR/sticky-off" > /dev/null 2> "$DIR/sticky-off.err"
+    --load "${loads% *},${loads#* }" --out "$DIR/sticky-off" > "$DIR/sticky-off.log" 2> "$DIR/sticky-off.err"
 [ $? -eq 2 ] && grep -q "pull-off force under load control" "$DIR/sticky-off.err" \
     && [ "$(($(wc -l < "$DIR/sticky-off/history.csv") - 1))" -eq "$(($(wc -l < "$DIR/sticky-load/history.csv") - 1))" ] \
     || fail "a load beyond the pull-off under load control: $(cat "$DIR/sticky-off.err")"
+# ... the steps held are said as what they are, not as the pull-off the refusal names (T16: "pull-off force 3"
+# on stdout, "-5.43" in the refusal)
+grep -q "^adhesion: most tensile load held [0-9.]* at w = [-0-9.e]* (not the pull-off: load control holds each load" \
+    "$DIR/sticky-off.log" && ! grep -q "^adhesion: pull-off force" "$DIR/sticky-off.log" \
+    || fail "load control's least load said as: $(grep adhesion: "$DIR/sticky-off.log")"
+grep -q "^adhesion: pull-off force 5.36[0-9]* at w = -0.25;" "$DIR/pull.log" \
+    || fail "a retraction past the pull-off: $(grep adhesion: "$DIR/pull.log")"
+"$BIN" indent --smooth --n 128 --punch sphere --radius 100 --adhesion-work 0.01 --adhesion-range 0.5 \
+    --approach 0,-0.1 --out "$DIR/pull-short" > "$DIR/pull-short.log" || fail "a short retraction exited $?"
+grep -q "^adhesion: most tensile load held 5.21[0-9]* at w = -0.1 (not the pull-off: no later step's load rises" \
+    "$DIR/pull-short.log" || fail "a retraction ending before the pull-off: $(grep adhesion: "$DIR/pull-short.log")"
 # ... and with a hardness below its peak pressure (H = 0.06): no net pressure above H, the plastic depth kept on
 # the retraction, a pull-off stronger than the elastic sphere's (the flattened contact is wider), and no elastic
 # theory beside it.

@@ -254,8 +254,8 @@ static int finish_record(history_run *run, int done, int status)
     error_keep(&kept);
     im_adhesion_summary summary;
     if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
-        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
-                                        run->force_unit, &run->texts, &summary) != IM_OK)
+        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done,
+                                        run->o->control, "", run->force_unit, &run->texts, &summary) != IM_OK)
             fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
     } else if (!run->o->periodic)
         write_analysis(run, done);
