@@ -405,8 +405,10 @@ REPORT(im_png_read, "channels", im_png_read(path_text, &pixels_out, &i1, &i2, NU
 REPORT(im_measure_stiffness, "approach", im_measure_stiffness(NULL, values, 3, out_values))
 REPORT(im_measure_stiffness, "load", im_measure_stiffness(values, NULL, 3, out_values))
 REPORT(im_measure_stiffness, "stiffness", im_measure_stiffness(values, values, 3, NULL))
-REPORT(im_history_measure, "punch", im_history_measure(NULL, NULL, NULL, &history_row_out, 0))
-REPORT(im_history_measure, "rows", im_history_measure(&cone, NULL, NULL, NULL, 0))
+REPORT(im_history_measure, "punch", im_history_measure(NULL, NULL, NULL, 1e-6, &history_row_out, 0))
+REPORT(im_history_measure, "rows", im_history_measure(&cone, NULL, NULL, 1e-6, NULL, 0))
+REPORT(im_history_measure, "tol", im_history_measure(&cone, NULL, NULL, NAN, &history_row_out, 0))
+REPORT(im_history_measure, "tol", im_history_measure(&cone, NULL, NULL, -1e-6, &history_row_out, 0))
 SAFE_RESULT(im_history_format, "row", im_history_format(NULL, big_text, sizeof big_text) == -1)
 SAFE_RESULT(im_history_format, "line", im_history_format(&history_row_out, NULL, 0) == -1)
 REPORT(im_history_write_analysis, "dir",

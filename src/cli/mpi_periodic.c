@@ -195,7 +195,8 @@ static int run_step(history_run *run, int i)
     if (status == IM_OK)
         status = gather_whole(run, last_pressure(run), &force);
     if (status == IM_OK && run->rank == 0) /* the theory columns are the half-space's */
-        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->rows, i);
+        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->o->solver.tol, run->rows,
+                                    i);
     im_contact_patches patches = {0};
     const step_units units = {run->o->solver.hardness, "", run->force_unit};
     if (status == IM_OK && run->rank == 0 && run->o->frames) /* what the frames are drawn from, as indent's */
@@ -253,8 +254,8 @@ static int finish_record(history_run *run, int done, int status)
     error_keep(&kept);
     im_adhesion_summary summary;
     if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
-        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
-                                        run->force_unit, &run->texts, &summary) != IM_OK)
+        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done,
+                                        run->o->control, "", run->force_unit, &run->texts, &summary) != IM_OK)
             fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
     } else if (!run->o->periodic)
         write_analysis(run, done);

@@ -142,7 +142,7 @@ static int run_step(const indent_run_plan *plan, im_indentation *run, history_fi
 {
     int status = im_indentation_step(run, plan->targets[i], &rows[i].result);
     if (status == IM_OK)
-        status = im_history_measure(plan->punch, plan->rough, run, rows, i);
+        status = im_history_measure(plan->punch, plan->rough, run, plan->tol, rows, i);
     if (status == IM_OK && plan->files.fields) /* first: history.csv lists only steps whose fields are written */
         status = step_fields_write(plan->dir, run, i + 1, &plan->units);
     if (status == IM_OK && plan->files.distributions)

@@ -46,10 +46,11 @@ typedef struct indent_run_plan {
     const im_theory_interface *rough; /* the theory columns' interface; NULL: none (a periodic cell) */
     const double *targets;
     int count;
-    const char *target_name;        /* "approach", "load", "mean_gap": the failure message names the target */
-    indent_files files;             /* fields and distributions of each step */
-    step_units units;               /* what the fields are in */
-    double gap_scale;               /* the distributions' gap unit */
+    double tol;              /* the solver's tolerance: area_ratio is NaN at a load zero to it (im_history_measure) */
+    const char *target_name; /* "approach", "load", "mean_gap": the failure message names the target */
+    indent_files files;      /* fields and distributions of each step */
+    step_units units;        /* what the fields are in */
+    double gap_scale;        /* the distributions' gap unit */
     int (*stop)(const void *state); /* NULL, or a signal's number (0: none): stop before the next step */
     void (*stepped)(const im_history_row *rows, int i, const void *state); /* NULL, or after step i's files */
     const void *state;

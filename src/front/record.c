@@ -63,12 +63,13 @@ json_t *run_record_adhesion_law(const im_solver_options *options, const im_inden
 }
 
 int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
-                                const char *length_unit, const char *force_unit, const run_figure_texts *texts,
-                                im_adhesion_summary *summary)
+                                enum im_control control, const char *length_unit, const char *force_unit,
+                                const run_figure_texts *texts, im_adhesion_summary *summary)
 {
     *summary = (im_adhesion_summary){.hysteresis_work = NAN}; /* NaN: not summarised */
-    int status = done >= 1 ? analysis_write_adhesion(dir, rows, done, length_unit, force_unit, texts, summary)
-                           : IM_OK;
+    int status = done >= 1
+                     ? analysis_write_adhesion(dir, rows, done, control, length_unit, force_unit, texts, summary)
+                     : IM_OK;
     if (isnan(summary->hysteresis_work))
         return status;
     json_object_set_new(law, "pull_off_force", json_number(summary->pull_off_force));

@@ -8,6 +8,7 @@
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "scene/names.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <math.h>
@@ -22,7 +23,7 @@ static int parse_number(const char *text, double *value)
 {
     char *end;
     errno = 0;
-    *value = strtod(text, &end);
+    *value = number_parse(text, &end);
     while (*end == ' ' || *end == '\t')
         ++end;
     return end != text && *end == '\0' && errno != ERANGE && isfinite(*value);
