@@ -154,6 +154,16 @@ static int steps_parse_list(mpi_indent_options *o, const char *text)
     return -1;
 }
 
+/* The controls exclude one another, as in indent: a second of --approach, --load, --pressure and --mean-gap is
+ * refused (the same one twice is cli_parse_options' refusal). */
+static int control_given_before(const mpi_indent_options *o)
+{
+    if (!o->targets_option && !o->target_text)
+        return 0;
+    fprintf(stderr, "indentmap: mpi-indent: give one of --approach, --load, --pressure and --mean-gap, once\n");
+    return 1;
+}
+
 static int apply_option(int code, const char *arg, void *state)
 {
     mpi_indent_options *o = state;
@@ -166,10 +176,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_PERIODIC: o->periodic = 1; return 0;
     case OPT_PRESSURE:
     case OPT_MEAN_GAP:
-        if (o->targets_option) {
-            fprintf(stderr, "indentmap: mpi-indent: give one of --pressure and --mean-gap, once\n");
+        if (control_given_before(o))
             return -1;
-        }
         o->targets_option = code == OPT_PRESSURE ? "--pressure" : "--mean-gap";
         o->control = code == OPT_PRESSURE ? IM_CONTROL_LOAD : IM_CONTROL_MEAN_GAP;
         return steps_parse_list(o, arg);
@@ -185,6 +193,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_RADIUS: o->punch_given = 1; return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
     case OPT_APPROACH: /* W or N, or a LIST: read once the options are known (half_space_targets) */
     case OPT_LOAD:
+        if (control_given_before(o))
+            return -1;
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         o->target_text = arg;
         return 0;
