@@ -1,5 +1,6 @@
 /* indentmap render: draw a field file as a contact map or a height field, or animate frames. */
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "cli/figure_provenance.h"
 #include "front/front.h"
 
@@ -245,7 +246,7 @@ static const char *height_quantity(const char *path)
                                            {"plastic depth", "plastic"}};
     char sidecar[4096];
     snprintf(sidecar, sizeof sidecar, "%s.json", path);
-    json_t *record = json_load_file(sidecar, 0, NULL);
+    json_t *record = json_file_load(sidecar, 0, NULL);
     const char *stated = json_string_value(json_object_get(record, "quantity")), *quantity = "height";
     for (size_t i = 0; stated && i < sizeof KNOWN / sizeof *KNOWN; ++i)
         if (strncmp(stated, KNOWN[i][0], strlen(KNOWN[i][0])) == 0)
