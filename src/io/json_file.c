@@ -131,30 +131,39 @@ json_t *json_text_load(const char *text, size_t flags, json_error_t *error)
     return root;
 }
 
+/* A file not read, in jansson's words (line -1: no place in the text): NULL. */
+static json_t *not_read(json_error_t *error, const char *verb, const char *path, const char *why)
+{
+    if (error) {
+        *error = (json_error_t){.line = -1, .column = -1};
+        snprintf(error->text, sizeof error->text, "unable to %s %s: %s", verb, path, why);
+    }
+    return NULL;
+}
+
 json_t *json_file_load(const char *path, size_t flags, json_error_t *error)
 {
     FILE *file = fopen(path, "rb");
+    if (!file)
+        return not_read(error, "open", path, strerror(errno));
     char *text = NULL;
     size_t length = 0, size = 0;
-    while (file && !ferror(file) && !feof(file)) {
-        if (length + 4096 + 1 > size) {
-            char *grown = realloc(text, size = 2 * size + 4096 + 1);
-            if (!grown)
-                break;
-            text = grown;
+    const char *failed = NULL; /* why */
+    while (!failed && !feof(file)) {
+        char *grown = length + 1 < size ? text : realloc(text, size = 2 * size + 4096);
+        if (!grown) {
+            failed = "out of memory";
+            break;
         }
+        text = grown;
         length += fread(text + length, 1, size - length - 1, file);
+        failed = ferror(file) ? "a read error" : NULL;
     }
-    int complete = file && text && feof(file) && !ferror(file);
-    if (file)
-        fclose(file);
-    json_t *root = NULL;
-    if (complete) {
+    fclose(file);
+    json_t *root = failed ? not_read(error, "read", path, failed) : NULL;
+    if (!failed) {
         text[length] = '\0';
         root = json_text_load(text, flags, error);
-    } else if (error) {
-        snprintf(error->text, sizeof error->text, "unable to read %s", path);
-        error->line = -1;
     }
     free(text);
     return root;
