@@ -5,6 +5,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "cli/figure_provenance.h"
 #include "cli/mpi_indent.h"
 #include "front/front.h"
@@ -288,7 +289,7 @@ static int sidecar_readable_as_is(const char *surface_file)
     struct stat info;
     if (im_path_suffix(path, sizeof path, surface_file, ".json") != IM_OK || stat(path, &info) != 0)
         return IM_OK; /* no sidecar: nothing stated */
-    json_t *root = json_load_file(path, 0, NULL);
+    json_t *root = json_file_load(path, 0, NULL);
     json_t *delta = json_object_get(root, "delta"), *unit = json_object_get(root, "unit");
     const char *order = json_string_value(json_object_get(root, "order"));
     int status = IM_OK;

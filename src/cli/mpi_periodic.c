@@ -8,6 +8,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "core/error_keep.h"
 #include "front/front.h"
 #include "front/indent_run.h"
@@ -139,7 +140,7 @@ static int add_blocks(const history_run *run, json_t *root)
     int ranks;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (!o->surface_file)
-        json_object_set_new(blocks, "seed", json_integer((json_int_t)o->surface.seed));
+        json_object_set_new(blocks, "seed", json_unsigned(o->surface.seed));
     json_object_set_new(blocks, "ranks", json_integer(ranks));
     json_object_update(root, blocks);
     json_decref(blocks);

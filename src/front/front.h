@@ -262,9 +262,9 @@ int fields_frames_pixels_per_patch(int nx, int ny);
 
 /* ---- frames of a history (frame.c): what a scene's frames and `indent --frames` draw alike ---- */
 
-/* The largest tension -f over the fields (im_contact_largest_tension): the top of the tension norm
- * the frames share, as they share the force norm; 0 when none pulls. */
-double frame_largest_tension(im_field *const *fields, int count);
+/* The range of values (colormap.h) over count fields: the forces, the tensions or the heights whose one
+ * norm the frames share. */
+im_colormap_range frame_range(im_field *const *fields, int count, im_colormap_values values);
 
 /* A step's contact map: its force field through norm (tension: through tension) at pixels_per_patch,
  * with the smooth contact circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y)

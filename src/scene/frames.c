@@ -101,15 +101,6 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
     return status;
 }
 
-/* The range of the values of the steps' fields, which their frames share. */
-static im_colormap_range steps_range(im_field *const *fields, int count, im_colormap_values values)
-{
-    im_colormap_range range = im_colormap_range_empty(values);
-    for (int i = 0; i < count; ++i)
-        im_colormap_range_add(&range, fields[i]);
-    return range;
-}
-
 /* The norms every step's frames share; has_tension: some step has patches under tension, and every
  * contact frame draws the tension's bar. */
 typedef struct frame_norms {
@@ -197,12 +188,12 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
                         im_image *gif_frames, frame_norms *norms)
 {
-    double largest_tension = frame_largest_tension(h->force, h->count);
-    const im_colormap_range forces = steps_range(h->force, h->count, IM_COLORMAP_FORCES),
-                            heights = steps_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
+    const im_colormap_range forces = frame_range(h->force, h->count, IM_COLORMAP_FORCES),
+                            tensions = frame_range(h->force, h->count, IM_COLORMAP_TENSIONS),
+                            heights = frame_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
     norms->force = scene_force_norm(scene, &forces);
-    norms->tension = im_contact_tension_norm(largest_tension);
-    norms->has_tension = largest_tension > 0.0;
+    norms->tension = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    norms->has_tension = tensions.hi > 0.0;
     norms->height = im_colormap_range_norm(&heights, IM_COLORMAP_VIRIDIS, NAN, NAN, 0);
     int count = 2 * h->count;
     frame_figure *figures = calloc((size_t)count, sizeof *figures);
