@@ -141,6 +141,12 @@ for f in "$dir"/scene/frames/view3d_000[0-2].png; do
 done
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+# The stage lines of one frame are in the singular ("frames: 1 steps", "1 3-D views" before).
+sed -e "s|^output = .*|output = $dir/one|" -e 's/^frame_count = 3/frame_count = 1/' "$dir/scene.ini" >"$dir/one.ini"
+"$cli" run "$dir/one.ini" >"$dir/one.log" 2>&1
+check "one frame: 'frames: 1 step of'" grep -q "frames: 1 step of family 0" "$dir/one.log"
+check "one frame: 'frames3d: 1 3-D view ('" grep -q "frames3d: 1 3-D view (" "$dir/one.log"
+check "three frames: 'frames: 3 steps of'" grep -q "frames: 3 steps of family 0" "$dir/run.log"
 
 # Frame size and rate: frame_rate sets every GIF frame's delay (1/10 s: a graphic control extension
 # 21 f9 04 04 0a 00 per frame), frame3d_width/height the 3-D view, frame_scale the 2-D maps' pixels per

@@ -85,7 +85,8 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
     im_solver_options solver = scene_solver_options(scene);
     im_indentation *run = NULL;
     status = im_indentation_create(h->surface, &punch, IM_CONTROL_LOAD, n, &solver, &run);
-    scene_progress(options, "frames: %d steps of family %d (h'rms = %g)", h->count, family, scene->slopes[family]);
+    scene_progress(options, "frames: %d step%s of family %d (h'rms = %g)", h->count, h->count == 1 ? "" : "s", family,
+                   scene->slopes[family]);
     for (int i = 0; i < h->count && status == IM_OK; ++i) {
         if (scene_stop_signal(options)) {
             status = scene_interrupted(options, "during the frames' history (no frame is written before it ends)");

@@ -156,8 +156,8 @@ int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *opti
     im_image *frames = calloc((size_t)in->count, sizeof *frames);
     if (!frames)
         return im_fail(IM_ENOMEM, "3-D frames: allocation failed");
-    scene_progress(options, "frames3d: %d 3-D views (%s, vertical exaggeration %g)", in->count,
-                   im_render_gl_renderer(context), style.exaggeration);
+    scene_progress(options, "frames3d: %d 3-D view%s (%s, vertical exaggeration %g)", in->count,
+                   in->count == 1 ? "" : "s", im_render_gl_renderer(context), style.exaggeration);
     for (int i = 0; i < in->count && status == IM_OK; ++i) {
         im_image view = {0};
         status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &view);
