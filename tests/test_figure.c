@@ -569,6 +569,48 @@ static void test_colorbar_beside_a_strip(void **state)
     im_image_release(&image);
 }
 
+/* The rightmost ink below the image, as columns right of the image's left edge, in a figure of one
+ * small panel with or without a colour bar (whose bar then starts at *bar_left, likewise). */
+static int ink_below_small_panel(im_image *image, const im_colormap *norm, int *bar_left)
+{
+    im_figure_panel panel = {image, NULL, NULL};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = norm;
+    figure.dpi = 150;
+    const char *path = test_path("small_bar.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x, y, most;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    assert_clear_edges(rgb, width, height);
+    find_image(rgb, width, height, image, &x, &y);
+    int limit = width, column = norm ? table_column(norm->map, rgb, width, height, &most) : -1;
+    if (norm) {
+        *bar_left = column;
+        while (is_ink(rgb, width, *bar_left - 1, height / 2))
+            --*bar_left;
+        *bar_left -= x;
+        limit = x + *bar_left;
+    }
+    int end = last_ink_column(rgb, width, y + image->height, height, limit) - x;
+    free(rgb);
+    return end;
+}
+
+/* Under a panel of 3 x 3 patches the scale bar's text ("0.5 δ") is wider than the panel: the colour bar,
+ * lengthened below the panel, stands right of it (it stood over the text's δ). */
+static void test_colorbar_right_of_the_scale_text(void **state)
+{
+    (void)state;
+    im_image image = make_image(10, 10, 7);
+    im_colormap norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    int bar_left = 0, text_end = ink_below_small_panel(&image, NULL, NULL);
+    assert_true(text_end > image.width);
+    ink_below_small_panel(&image, &norm, &bar_left);
+    assert_true(bar_left > text_end);
+    im_image_release(&image);
+}
+
 /* Finds a PNG chunk of the given type whose data starts with prefix; returns its data or NULL. */
 static const uint8_t *find_chunk(const uint8_t *png, size_t size, const char *type, const char *prefix,
                                  size_t prefix_length)
@@ -1039,6 +1081,7 @@ int main(void)
         cmocka_unit_test(test_colorbar_extensions),
         cmocka_unit_test(test_tension_colorbar),
         cmocka_unit_test(test_colorbar_beside_a_strip),
+        cmocka_unit_test(test_colorbar_right_of_the_scale_text),
         cmocka_unit_test(test_png_metadata_pdf_svg),
         cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),
