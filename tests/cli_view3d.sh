@@ -169,4 +169,13 @@ read -r w4 _ < <(png_size "$dir/sized/frames/view3d_0000.png")
 check "frame3d_width = 480 narrows the 3-D frame by 480" test $((w3 - w4)) -eq 480
 sed 's/^frame_rate = 10/frame_rate = 0/' "$dir/sized.ini" >"$dir/bad.ini"
 check "frame_rate 0 refused" expect_exit 2 "frame_rate = '0': expected a number in [0.01, 100]" "$cli" run "$dir/bad.ini"
+# Every frame of a history has one size, which its GIF needs: on a 64 x 64 map at 1 px per patch the
+# title ("N* = 42" .. "N* = 1000") was wider than the map and widened some frames ("animation: frame 2
+# is 231 x 196 ...: expected 220 x 196 like frame 0", exit 2): the titles now share one width.
+sed -e "s|^output = .*|output = $dir/small|" -e 's/^frame_count = 3/frame_count = 24/' -e 's/^load_star = 400/load_star = 1000/' -e 's/^frames3d = yes/frames3d = no/' \
+  "$dir/scene.ini" >"$dir/small.ini"
+check "24 frames of a 64 x 64 map and their GIFs" "$cli" run "$dir/small.ini"
+sizes=$(for f in "$dir"/small/frames/contact_00*.png; do png_size "$f"; done | sort -u | wc -l)
+check "the 24 contact frames have one size" test "$sizes" -eq 1
+check "their GIF is written" test -s "$dir/small/contact.gif"
 finish
