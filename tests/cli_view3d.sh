@@ -141,6 +141,9 @@ for f in "$dir"/scene/frames/view3d_000[0-2].png; do
 done
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+sed -e "s|^output = .*|output = $dir/noframes|" -e 's/^frames = yes/frames = no/' -e 's/^frames3d = yes/frames3d = no/' -e 's/^frame_count = 3/contact_panels = yes/' \
+  "$dir/scene.ini" >"$dir/bad.ini"
+check "animation needs frames (no GIF, and exit 0, before)" expect_exit 2 "animation animates the frames: set frames = yes too" "$cli" run "$dir/bad.ini"
 # The stage lines of one frame are in the singular ("frames: 1 steps", "1 3-D views" before).
 sed -e "s|^output = .*|output = $dir/one|" -e 's/^frame_count = 3/frame_count = 1/' "$dir/scene.ini" >"$dir/one.ini"
 "$cli" run "$dir/one.ini" >"$dir/one.log" 2>&1
