@@ -416,19 +416,30 @@ static int count_colour(const uint8_t *rgb, int width, int height, const uint8_t
     return count;
 }
 
+/* Over and under colours that no test image nor colour map holds. */
+static const uint8_t over[3] = {255, 0, 255}, under[3] = {0, 200, 255};
+
+/* A figure at 150 dpi of one panel beside the bar of a norm on [0, 1] of map with those over and under
+ * colours, which *norm receives. */
+static im_figure extended_figure(im_figure_panel *panel, im_colormap_id map, im_colormap *norm)
+{
+    *norm = im_colormap_make(map, 0.0, 1.0);
+    memcpy(norm->over, over, 3);
+    memcpy(norm->under, under, 3);
+    im_figure figure = im_figure_default();
+    figure.panels = panel;
+    figure.colormap = norm;
+    figure.dpi = 150;
+    return figure;
+}
+
 static void test_colorbar_extensions(void **state)
 {
     (void)state;
     im_image image = make_image(40, 40, 5);
     im_figure_panel panel = {&image, NULL, NULL};
-    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
-    const uint8_t over[3] = {255, 0, 255}, under[3] = {0, 200, 255};
-    memcpy(norm.over, over, 3);
-    memcpy(norm.under, under, 3);
-    im_figure figure = im_figure_default();
-    figure.panels = &panel;
-    figure.colormap = &norm;
-    figure.dpi = 150;
+    im_colormap norm;
+    im_figure figure = extended_figure(&panel, IM_COLORMAP_GREY, &norm);
     const char *path = test_path("extend.png");
     int width, height, x, y;
     for (int extend = 0; extend <= 1; ++extend) {
@@ -537,15 +548,9 @@ static void test_colorbar_beside_a_strip(void **state)
     (void)state;
     im_image image = make_image(600, 36, 6);
     im_figure_panel panel = {&image, NULL, NULL};
-    im_colormap norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
-    const uint8_t over[3] = {255, 0, 255}, under[3] = {0, 200, 255};
-    memcpy(norm.over, over, 3);
-    memcpy(norm.under, under, 3);
-    im_figure figure = im_figure_default();
-    figure.panels = &panel;
-    figure.colormap = &norm;
+    im_colormap norm;
+    im_figure figure = extended_figure(&panel, IM_COLORMAP_VIRIDIS, &norm);
     figure.extend_under = figure.extend_over = 1;
-    figure.dpi = 150;
     const char *path = test_path("strip.png");
     assert_int_equal(im_figure_write(&figure, path), IM_OK);
     int width, height, most;
