@@ -164,8 +164,17 @@ int indent_run_steps(const indent_run_plan *plan, im_indentation *run, history_f
                         : run_step(plan, run, history, rows, i);
     }
     *done = status == IM_OK ? i : i - 1;
-    if (status != IM_OK)
-        im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", *done + 1,
-                        plan->count, plan->target_name, plan->targets[*done], *done, plan->dir);
+    if (status != IM_OK) {
+        const int kept = *done;
+        if (kept == 0)
+            im_fail_context(status, "step 1 of %d (%s %g; no step before it was solved)", plan->count,
+                            plan->target_name, plan->targets[0]);
+        else if (kept == 1)
+            im_fail_context(status, "step 2 of %d (%s %g; the step before is in %s/history.csv)", plan->count,
+                            plan->target_name, plan->targets[1], plan->dir);
+        else
+            im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", kept + 1,
+                            plan->count, plan->target_name, plan->targets[kept], kept, plan->dir);
+    }
     return status;
 }

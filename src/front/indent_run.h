@@ -60,7 +60,8 @@ typedef struct indent_run_plan {
  * holding plan->count), its fields and distributions written, then its line appended to history
  * (started by the caller), then plan->stepped called. *done: the steps whose files are all written.
  * Stops at the first failure with the error given the step's context ("step I of N (TARGET V; the
- * D steps before are in DIR/history.csv)"), and before a step once plan->stop says a signal asked
+ * D steps before are in DIR/history.csv)", "the step before is in ...", "no step before it was
+ * solved"), and before a step once plan->stop says a signal asked
  * to: IM_EINTERRUPTED "interrupted by signal S" with that context. A solve is never cut short. */
 int indent_run_steps(const indent_run_plan *plan, im_indentation *run, history_file *history, im_history_row *rows,
                      int *done);
