@@ -152,6 +152,15 @@ check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$
 sed -e "s|^output = .*|output = $dir/noframes|" -e 's/^frames = yes/frames = no/' -e 's/^frames3d = yes/frames3d = no/' -e 's/^frame_count = 3/contact_panels = yes/' \
   "$dir/scene.ini" >"$dir/bad.ini"
 check "animation needs frames (no GIF, and exit 0, before)" expect_exit 2 "animation animates the frames: set frames = yes too" "$cli" run "$dir/bad.ini"
+# A frame key of an output the scene does not draw is warned about, naming it (it did nothing, silently);
+# the scene still runs: frames = no for a quick run needs no other key removed.
+sed -e "s|^output = .*|output = $dir/unused|" -e 's/^frames = yes/frames = no/' -e 's/^frames3d = yes/contact_panels = yes/' \
+  -e 's/^animation = gif/frame_rate = 2/' "$dir/scene.ini" >"$dir/unused.ini"
+"$cli" run "$dir/unused.ini" >"$dir/unused.log" 2>&1
+check "unused frame keys: the scene runs" test $? -eq 0 -a -s "$dir/unused/contact_panels.png"
+check "unused frame keys: frame_count named" grep -q "\[output\] frame_count does nothing: it applies to the frames (frames = yes)" "$dir/unused.log"
+check "unused frame keys: frame_rate named" grep -q "\[output\] frame_rate does nothing: it applies to the animations" "$dir/unused.log"
+check "unused frame keys: no other named" test "$(grep -c 'does nothing' "$dir/unused.log")" -eq 2
 # The stage lines of one frame are in the singular ("frames: 1 steps", "1 3-D views" before).
 sed -e "s|^output = .*|output = $dir/one|" -e 's/^frame_count = 3/frame_count = 1/' "$dir/scene.ini" >"$dir/one.ini"
 "$cli" run "$dir/one.ini" >"$dir/one.log" 2>&1

@@ -52,6 +52,57 @@ static int check_without_area(const im_scene *scene)
                    scene->path, need);
 }
 
+/* The [output] keys that shape only an output the scene may not draw. Given without it they do nothing: warned,
+ * not refused, so that frames = no for a quick run needs no other key removed. */
+typedef enum { SHAPES_FRAMES, SHAPES_ANIMATION, SHAPES_FRAMES3D } shaped_output;
+
+static const struct {
+    const char *key;
+    shaped_output output;
+    const char *what;
+} SHAPING_KEYS[] = {
+    {"frame_count", SHAPES_FRAMES, "the frames (frames = yes)"},
+    {"frames_slope", SHAPES_FRAMES, "the frames (frames = yes)"},
+    {"frame_scale", SHAPES_FRAMES, "the frames (frames = yes)"},
+    {"frame_rate", SHAPES_ANIMATION, "the animations (animation = gif, mp4 or both)"},
+    {"frame3d_width", SHAPES_FRAMES3D, "the 3-D frames (frames3d = yes)"},
+    {"frame3d_height", SHAPES_FRAMES3D, "the 3-D frames (frames3d = yes)"},
+};
+
+static int draws(const im_scene *scene, shaped_output output)
+{
+    switch (output) {
+    case SHAPES_FRAMES: return scene->frames;
+    case SHAPES_ANIMATION: return scene->animation != IM_ANIMATION_NONE;
+    case SHAPES_FRAMES3D: return scene->frames3d;
+    }
+    return 0;
+}
+
+/* Whether the scene file gave [output] key: its contents hold each key given as "key = value" under its
+ * section's "[section]" line. */
+static int output_key_given(const im_scene *scene, const char *key)
+{
+    const size_t length = strlen(key);
+    int in_output = 0;
+    for (const char *line = scene->contents; line && *line; line = strchr(line, '\n')) {
+        line += *line == '\n';
+        if (*line == '[')
+            in_output = strncmp(line, "[output]\n", 9) == 0;
+        else if (in_output && strncmp(line, key, length) == 0 && strncmp(line + length, " = ", 3) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+static void warn_unused_output_keys(const im_scene *scene, const im_scene_run_options *options)
+{
+    for (size_t i = 0; i < sizeof SHAPING_KEYS / sizeof SHAPING_KEYS[0]; ++i)
+        if (!draws(scene, SHAPING_KEYS[i].output) && output_key_given(scene, SHAPING_KEYS[i].key))
+            scene_warn(options, "%s: [output] %s does nothing: it applies to %s, which this scene does not draw",
+                       scene->path, SHAPING_KEYS[i].key, SHAPING_KEYS[i].what);
+}
+
 static int check_runnable(const im_scene *scene)
 {
     if ((scene->contact_panels || scene->frames || scene->table || scene->distributions) && !scene->periodic &&
@@ -328,6 +379,8 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
 static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
 {
     int status = check_runnable(scene);
+    if (status == IM_OK)
+        warn_unused_output_keys(scene, options);
     if (status == IM_OK)
         status = check_folder(scene, options);
     if (status == IM_OK)
