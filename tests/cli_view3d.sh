@@ -161,6 +161,17 @@ check "unused frame keys: the scene runs" test $? -eq 0 -a -s "$dir/unused/conta
 check "unused frame keys: frame_count named" grep -q "\[output\] frame_count does nothing: it applies to the frames (frames = yes)" "$dir/unused.log"
 check "unused frame keys: frame_rate named" grep -q "\[output\] frame_rate does nothing: it applies to the animations" "$dir/unused.log"
 check "unused frame keys: no other named" test "$(grep -c 'does nothing' "$dir/unused.log")" -eq 2
+# The contact and height frames carry render's texts (S11: only the 3-D frames stated their norm): the
+# contact frames the 3-D frames' norm, the height frames theirs.
+texts="$(dirname "$0")/figure_texts.py"
+view3d_norm=$(grep -ao 'magma log \[[^]]*\]' "$dir/scene/frames/view3d_0000.png" | cut -c7-)
+check "a 3-D frame states its norm" test -n "$view3d_norm"
+for f in contact_0000 contact_0002; do
+  check "$f: the 3-D frames' norm, render's texts" python3 "$texts" "$dir/scene/frames/$f.png" "Norm=$view3d_norm" \
+    Colormap=magma "Quantity=local force f / (E* δ²)" "Pixels per patch=1"
+done
+check "height frame: render's texts" python3 "$texts" "$dir/scene/frames/height_0001.png" "Norm=linear [" \
+  Colormap=viridis "Quantity=deformed height" "Pixels per patch=1"
 # The stage lines of one frame are in the singular ("frames: 1 steps", "1 3-D views" before).
 sed -e "s|^output = .*|output = $dir/one|" -e 's/^frame_count = 3/frame_count = 1/' "$dir/scene.ini" >"$dir/one.ini"
 "$cli" run "$dir/one.ini" >"$dir/one.log" 2>&1

@@ -302,8 +302,7 @@ static int write_output(const render_options *o, char **inputs, const im_image *
                         const im_colormap *norm, im_image *frame)
 {
     char norm_text[128], scale_text[16];
-    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo,
-             norm->hi);
+    run_figure_norm_text(norm, norm_text, sizeof norm_text);
     snprintf(scale_text, sizeof scale_text, "%d", o->scale);
     int contact = strcmp(o->mode, "height") != 0;
     char label[96], tension_name[96];

@@ -299,8 +299,7 @@ static int write_view(const view3d_options *o, const im_image *image)
     char norm_text[128];
     im_view3d_exaggeration_text(o->style.exaggeration, labels.exaggeration, sizeof labels.exaggeration);
     const im_colormap *norm = &o->style.colormap;
-    snprintf(norm_text, sizeof norm_text, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo,
-             norm->hi);
+    run_figure_norm_text(norm, norm_text, sizeof norm_text);
     int status = im_figure_colorbar_label("force", o->force_unit, labels.force, sizeof labels.force);
     if (status == IM_OK)
         status = im_figure_colorbar_label("tension", o->force_unit, labels.tension, sizeof labels.tension);

@@ -34,6 +34,9 @@ typedef struct run_figure_texts {
 /* At most RUN_FIGURE_TEXTS_MAX - 2 given texts (borrowed); IM_ENOMEM. Free with run_figure_texts_free. */
 int run_figure_texts_make(const im_png_text *given, int given_count, const json_t *inputs, run_figure_texts *out);
 void run_figure_texts_free(run_figure_texts *texts);
+/* The "Norm" text of a colour-mapped figure: "log [lo, hi]" or "linear [lo, hi]", nine digits (the
+ * "Colormap" text names the map). */
+void run_figure_norm_text(const im_colormap *norm, char *text, size_t size);
 
 /* ---- step lists (steps.c) ---- */
 

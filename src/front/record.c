@@ -227,6 +227,11 @@ int run_figure_texts_make(const im_png_text *given, int given_count, const json_
     return IM_OK;
 }
 
+void run_figure_norm_text(const im_colormap *norm, char *text, size_t size)
+{
+    snprintf(text, size, "%s [%.9g, %.9g]", norm->logarithmic ? "log" : "linear", norm->lo, norm->hi);
+}
+
 void run_figure_texts_free(run_figure_texts *texts)
 {
     free(texts->inputs);

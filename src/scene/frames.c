@@ -146,8 +146,15 @@ static int write_frame(const im_scene *scene, frame_figure *f)
     if (status != IM_OK)
         return status;
     scene_outputs_note(scene, path);
+    char norm_text[128], scale_text[16];
+    run_figure_norm_text(f->norm, norm_text, sizeof norm_text);
+    snprintf(scale_text, sizeof scale_text, "%d", scene->frame_scale);
+    const im_png_text own[] = {{"Quantity", f->label}, /* render's four texts */
+                               {"Colormap", im_colormap_name(f->norm->map)},
+                               {"Norm", norm_text},
+                               {"Pixels per patch", scale_text}};
     run_figure_texts texts;
-    status = scene_figure_texts(scene, NULL, 0, &texts);
+    status = scene_figure_texts(scene, own, 4, &texts);
     const frame_words words = {f->title,    f->norm,    f->label, f->tension, "tensile force −f / (E* δ²)",
                                texts.texts, texts.count};
     if (status == IM_OK)
