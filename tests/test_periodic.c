@@ -553,6 +553,101 @@ static void transform_pairs_are_counted(void **state)
     im_field_free(s);
 }
 
+/* The pairs a solve transforms beyond its floor, counted exactly: with every change summed directly
+ * (direct_limit raised on every level), a solve transforms p once at its start, then one direction (K)
+ * and one preconditioner pair (M) per iteration, on the fine grid and on each cascade level, and nothing
+ * more: no confirming transform at the stop while the residual is below tol by more than the drift of
+ * u's direct updates (pk.c, drift_bound), as at tol 1e-8 here. */
+static void transforms_are_start_and_steps(void **state)
+{
+    (void)state;
+    enum { N = 128 };
+    const size_t count = (size_t)N * N;
+    im_field *s = test_rough_surface(N, 0.08, 4);
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count);
+    assert_true(p && u);
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.tol = 1e-8;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+    int levels = 0;
+    for (im_solver_plan *level = plan; level; level = level->coarse, ++levels)
+        level->direct_limit = (long)level->nx * level->ny;
+    assert_true(levels > 1);
+    double target = 0.004 * count; /* under load control, then at the approach it found */
+    for (int control = IM_CONTROL_LOAD; control >= IM_CONTROL_DISPLACEMENT; --control) {
+        memset(p, 0, sizeof(double) * count);
+        long before[SOLVER_PAIR_KINDS];
+        for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
+            before[k] = solver_pairs_run(k);
+        im_solve_result r;
+        assert_int_equal(im_solver_solve(plan, gap0, control, target, p, u, &r), IM_OK);
+        target = r.approach;
+        const long k = solver_pairs_run(SOLVER_PAIR_K) - before[SOLVER_PAIR_K];
+        const long m = solver_pairs_run(SOLVER_PAIR_M) - before[SOLVER_PAIR_M];
+        const long coarse = solver_pairs_run(SOLVER_PAIR_COARSE) - before[SOLVER_PAIR_COARSE];
+        if (k != r.iterations + 1 || m != r.iterations || coarse != 2L * r.coarse_iterations + (levels - 1))
+            fail_msg("control %d: %ld K, %ld M and %ld coarse pairs for %d fine and %d coarse iterations on %d "
+                     "coarse levels (expected it + 1, it, 2 coarse it + levels)",
+                     control, k, m, coarse, r.iterations, r.coarse_iterations, levels - 1);
+    }
+    im_solver_plan_free(plan);
+    free(gap0), free(p), free(u);
+    im_field_free(s);
+}
+
+/* The stopping rule's residual on u = K p itself (pk.c stops on the u its steps updated, confirming on
+ * a transform only near tol: drift_bound), under both controls (load control's approach taken as the rule
+ * takes it, the mean of u + g0 over I_c), at a tolerance far above the rounding and at one near it. */
+static void stop_holds_on_the_exact_displacement(void **state)
+{
+    (void)state;
+    enum { N = 128 };
+    const size_t count = (size_t)N * N;
+    im_field *s = test_rough_surface(N, 0.08, 4);
+    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count);
+    assert_true(p && u);
+    const double tols[] = {1e-8, 1e-12};
+    for (int t = 0; t < 2; ++t) {
+        im_solver_options o = im_solver_options_default();
+        o.periodic = 1;
+        o.tol = tols[t];
+        im_solver_plan *plan = NULL;
+        assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
+        double target = 0.004 * count;
+        for (int control = IM_CONTROL_LOAD; control >= IM_CONTROL_DISPLACEMENT; --control) {
+            memset(p, 0, sizeof(double) * count);
+            im_solve_result r;
+            assert_int_equal(im_solver_solve(plan, gap0, control, target, p, u, &r), IM_OK);
+            target = r.approach;
+            im_solver_convolve(plan, p, u);
+            double mean = 0, squares = 0, penetration = 0;
+            long contact = 0;
+            for (size_t i = 0; i < count; ++i)
+                if (p[i] > 0) {
+                    mean += u[i] + gap0[i];
+                    ++contact;
+                }
+            const double w = control == IM_CONTROL_LOAD ? mean / contact : r.approach;
+            for (size_t i = 0; i < count; ++i) {
+                const double g = u[i] + gap0[i] - w;
+                if (p[i] > 0)
+                    squares += g * g;
+                else
+                    penetration = fmax(penetration, -g);
+            }
+            const double residual = fmax(sqrt(squares / contact), penetration) / w;
+            if (!(residual <= o.tol))
+                fail_msg("tol %g, control %d: residual %.3g on K p (the solve's %.3g after %d iterations)", o.tol,
+                         control, residual, r.residual, r.iterations);
+        }
+        im_solver_plan_free(plan);
+    }
+    free(gap0), free(p), free(u);
+    im_field_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -567,6 +662,8 @@ int main(void)
         cmocka_unit_test(join_step_is_a_line_minimum),
         cmocka_unit_test(fused_passes_equal_their_parts),
         cmocka_unit_test(transform_pairs_are_counted),
+        cmocka_unit_test(transforms_are_start_and_steps),
+        cmocka_unit_test(stop_holds_on_the_exact_displacement),
         cmocka_unit_test(refusals),
         cmocka_unit_test(coarse_mean_gap_is_the_restrictions),
     };
