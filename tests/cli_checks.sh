@@ -187,4 +187,20 @@ check "no [output]: refused naming the file" expect_exit 2 "nothing.ini: no outp
 printf '[output]\nplots =\ntable = no\n' >>"$dir/nothing.ini"
 check "[output] asking for nothing: refused" expect_exit 2 "nothing.ini: no output asked for" "$cli" run "$dir/nothing.ini"
 check "no output: no folder made" test ! -e "$dir/nothing"
+# an option with a value given twice: the last won silently (T10); one rule for every command's options
+check "--alpha twice: refused" expect_exit 2 "--alpha given twice ('70', then '85'): expected it once" \
+  "$cli" indent --smooth --n 32 --approach 2 --alpha 70 --alpha 85
+check "--approach twice: the same rule" expect_exit 2 "--approach given twice ('1', then '2')" \
+  "$cli" indent --smooth --n 32 --approach 1 --approach 2
+check "--quality twice: refused" expect_exit 2 "--quality given twice ('draft', then 'publication')" \
+  "$cli" indent --smooth --n 32 --approach 1 --quality draft --quality publication
+check "an abbreviation is the same option" expect_exit 2 "--alpha given twice ('70', then '85')" \
+  "$cli" indent --smooth --n 32 --approach 2 --alp 70 --alpha=85
+check "surface --out twice" expect_exit 2 "--out given twice ('$dir/a.npy', then '$dir/b.npy')" \
+  "$cli" surface --n 32 --out "$dir/a.npy" --out "$dir/b.npy"
+check "... nothing written" test ! -e "$dir/a.npy" -a ! -e "$dir/b.npy"
+check "run --out twice" expect_exit 2 "--out given twice ('a', then 'b')" "$cli" run --out a --out b "$dir/unload.ini"
+check "theory --slope twice" expect_exit 2 "--slope given twice" "$cli" theory --alpha 80 --slope 0.1 --slope 0.2
+check "render --vmin twice" expect_exit 2 "--vmin given twice" "$cli" render contact x.npy --vmin 1 --vmin 2
+check "a flag twice changes nothing" "$cli" indent --smooth --smooth --n 32 --approach 1
 finish

@@ -113,6 +113,15 @@ grep -q "work lost 3.8" "$DIR/sticky.log" || fail "the closed loop's lost work i
     --approach 0,-0.25,-0.5 --out "$DIR/pull" > "$DIR/pull.log" || fail "a retraction exited $?"
 grep -q "work done 2.13[0-9]* (+- 0.18; sum of N dw), no loss: the history does not return to where it began" \
     "$DIR/pull.log" && ! grep -q "work lost" "$DIR/pull.log" || fail "an open history's work: $(grep adhesion: "$DIR/pull.log")"
+# ... a load held at zero only to the solver's tolerance (9.5e-7 here, 1e-6 of the 5 before it) has no smooth
+# reference area: A/A_Hertz was 52665 in history.csv, the step line and the plot (T8); NaN now, as under tension,
+# while the first step's ratio stays a number; the history reads back as a sphere's (theory --fit-k's reader)
+"$BIN" indent --smooth --n 128 --punch sphere --radius 100 --adhesion-work 0.01 --adhesion-range 0.5 \
+    --load 5,0,-3 --out "$DIR/zero" > "$DIR/zero.log" || fail "a load through zero exited $?"
+awk -F, 'NR == 2 { ok = $6 > 2 && $6 < 3 } NR == 3 { ok = ok && $3 > 0 && $3 < 5e-6 && $6 == "nan" }
+    NR == 4 { ok = ok && $6 == "nan" } END { exit !(ok && NR == 4) }' "$DIR/zero/history.csv" \
+    || fail "A/A_Hertz at a load zero to the tolerance: $(cut -d, -f1-6 "$DIR/zero/history.csv")"
+grep -q "^step 2: .* A/A_Hertz = nan " "$DIR/zero.log" || fail "the step line's A/A_Hertz at zero: $(grep '^step 2' "$DIR/zero.log")"
 # ... under load control (--load): the same sphere through the loads of sticky's retraction while they fall to
 # 95% of its least, at sticky's approaches (to the solver's tolerance in the load or the approach); then a load
 # 2% beyond the least is refused naming the pull-off, exit 2, the history kept up to it.
@@ -135,10 +144,21 @@ for k, row in enumerate(lc):
     assert row["contact_patches"] == ref["contact_patches"], (k, row["contact_patches"], ref["contact_patches"])
 PY
 "$BIN" indent --smooth --n 96 --punch sphere --radius 64 --adhesion-work 0.05305 --adhesion-range 0.6366 \
-    --load "${loads% *},${loads#* }" --out "$DIR/sticky-off" > /dev/null 2> "$DIR/sticky-off.err"
+    --load "${loads% *},${loads#* }" --out "$DIR/sticky-off" > "$DIR/sticky-off.log" 2> "$DIR/sticky-off.err"
 [ $? -eq 2 ] && grep -q "pull-off force under load control" "$DIR/sticky-off.err" \
     && [ "$(($(wc -l < "$DIR/sticky-off/history.csv") - 1))" -eq "$(($(wc -l < "$DIR/sticky-load/history.csv") - 1))" ] \
     || fail "a load beyond the pull-off under load control: $(cat "$DIR/sticky-off.err")"
+# ... the steps held are said as what they are, not as the pull-off the refusal names (T16: "pull-off force 3"
+# on stdout, "-5.43" in the refusal)
+grep -q "^adhesion: most tensile load held [0-9.]* at w = [-0-9.e]* (not the pull-off: load control holds each load" \
+    "$DIR/sticky-off.log" && ! grep -q "^adhesion: pull-off force" "$DIR/sticky-off.log" \
+    || fail "load control's least load said as: $(grep adhesion: "$DIR/sticky-off.log")"
+grep -q "^adhesion: pull-off force 5.36[0-9]* at w = -0.25;" "$DIR/pull.log" \
+    || fail "a retraction past the pull-off: $(grep adhesion: "$DIR/pull.log")"
+"$BIN" indent --smooth --n 128 --punch sphere --radius 100 --adhesion-work 0.01 --adhesion-range 0.5 \
+    --approach 0,-0.1 --out "$DIR/pull-short" > "$DIR/pull-short.log" || fail "a short retraction exited $?"
+grep -q "^adhesion: most tensile load held 5.21[0-9]* at w = -0.1 (not the pull-off: no later step's load rises" \
+    "$DIR/pull-short.log" || fail "a retraction ending before the pull-off: $(grep adhesion: "$DIR/pull-short.log")"
 # ... and with a hardness below its peak pressure (H = 0.06): no net pressure above H, the plastic depth kept on
 # the retraction, a pull-off stronger than the elastic sphere's (the flattened contact is wider), and no elastic
 # theory beside it.

@@ -190,6 +190,11 @@ refused periodic_approach 2 "mpi-indent --periodic takes mean pressures (--press
 refused periodic_punch 2 "mpi-indent --periodic presses a rigid flat on the whole cell: --punch, --alpha, --radius and --profile are the half-space's" \
   -n 2 "$cli" mpi-indent --periodic --n 64 --pressure 0.01 --alpha 70
 refused periodic_targets 2 "mpi-indent --periodic: give --pressure LIST or --mean-gap LIST" -n 2 "$cli" mpi-indent --periodic --n 64
+# the controls exclude one another, as in indent (the last one given was taken silently)
+refused two_controls 2 "mpi-indent: give one of --approach, --load, --pressure and --mean-gap, once" \
+  -n 1 "$cli" mpi-indent --n 64 --approach 1 --load 2
+refused two_cell_controls 2 "mpi-indent: give one of --approach, --load, --pressure and --mean-gap, once" \
+  -n 1 "$cli" mpi-indent --periodic --n 64 --pressure 0.01 --mean-gap 0.3
 refused pressure_alone 2 "mpi-indent: --pressure (over a periodic cell) needs --periodic" -n 2 "$cli" mpi-indent --n 64 --pressure 0.01
 refused periodic_list 2 "--pressure 'x': 'x' is not a number >= 0" -n 2 "$cli" mpi-indent --periodic --n 64 --pressure x
 refused periodic_capacity 2 "step 1 of 1 (--pressure 0.2): load 819.2: a periodic cell at hardness 0.1 carries less than H_p A0 = 409.6" \

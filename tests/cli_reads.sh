@@ -87,6 +87,27 @@ scene_refused noslopes "noslopes.ini:2: slopes = '': expected a list v1, v2, ...
 scene_refused emptyitem "emptyitem.ini:2: slopes = '0.1,,0.2': an empty item" "[surfaces]\nslopes = 0.1,,0.2\n"
 check "scene /dev/null" expect_exit 2 "/dev/null is a character device" "$cli" run --quiet /dev/null
 
+# Hexadecimal numbers (strtod's C99 "0x10" = 16, "0x1p3" = 8) were read (T11): refused wherever a number is
+# read from text, naming the option or the file and line; decimals with exponents still read.
+check "--alpha 0x10" expect_exit 2 "--alpha: '0x10' is not a finite number" \
+  "$cli" indent --smooth --n 32 --approach 2 --alpha 0x10
+check "a step list's 0x1" expect_exit 2 "--approach '0x1,2': '0x1' is not a number" \
+  "$cli" indent --smooth --n 32 --approach 0x1,2
+check "--window tukey:0x0.8" expect_exit 2 "--window 'tukey:0x0.8': expected none" \
+  "$cli" surface --stats "$dir/s.txt" --window tukey:0x0.8
+printf '1 2 3\n4 0x1p3 6\n7 8 9\n' >"$dir/hex.txt"
+check "a text matrix's 0x1p3" expect_exit 2 "hex.txt:2: '0x1p3' is not a number" "$cli" surface --stats "$dir/hex.txt"
+printf '1 2 3\n4 -0X8 6\n7 8 9\n' >"$dir/hexneg.txt"
+check "... signed, upper case" expect_exit 2 "hexneg.txt:2: '-0X8' is not a number" "$cli" surface --stats "$dir/hexneg.txt"
+printf 'x,y,z\n0,0,1\n1,0,0x2\n0,1,3\n1,1,4\n' >"$dir/hexpoints.csv"
+check "an x,y,z file's 0x2" expect_exit 2 "hexpoints.csv:3:" "$cli" surface --stats "$dir/hexpoints.csv"
+printf '0 0\n1 0x1\n' >"$dir/hexprofile.txt"
+check "a profile's 0x1" expect_exit 2 "hexprofile.txt:2: '1 0x1': expected two numbers" \
+  "$cli" indent --smooth --n 32 --punch profile --profile "$dir/hexprofile.txt" --approach 1
+scene_refused hexslope "hexslope.ini:2: slopes = '0x0.1': '0x0.1' is not a number" "[surfaces]\nslopes = 0x0.1\n"
+printf '1e0 2.5E-1 -0.0 +3\n0 1 2 3\n4 5 6 7\n8 9 10 11\n' >"$dir/decimal.txt"
+check "decimal numbers with exponents and signs still read" "$cli" surface --stats "$dir/decimal.txt"
+
 # --resume reads back only whole histories: one cut short and one holding a NaN are solved again
 # with a notice (before: accepted, and the figures drawn from them).
 cat >"$dir/h.ini" <<INI

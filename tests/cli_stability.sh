@@ -77,9 +77,9 @@ check "zero approach: N = 0, n_p = 0, area_ratio written as nan" \
     awk -F, 'NR == 2 { exit !($3 == 0 && $5 == 0 && $6 == "nan") }' "$dir/zero/history.csv"
 "$cli" indent --help | grep -q "undefined and written as nan"
 check "indent --help says area_ratio is nan at N = 0" test $? -eq 0
-"$cli" indent "$dir/s1.0.npy" --approach 1,2,40 --out "$dir/edge" >/dev/null 2>"$dir/err"
+"$cli" indent "$dir/s1.0.npy" --approach 1,2,40 --out "$dir/edge" >/dev/null 2>"$dir/err.edge"
 check "contact at the edge: exit 1" test $? -eq 1
-check "contact at the edge: clear message" grep -q "reached the edge of the 64 x 64 surface" "$dir/err"
+check "contact at the edge: clear message" grep -q "reached the edge of the 64 x 64 surface" "$dir/err.edge"
 check "contact at the edge: steps before kept" test "$(rows "$dir/edge/history.csv")" -eq 2
 # A load no 32 x 32 surface can carry: the smooth contact radius sqrt(N* / pi) = 601 patches at
 # N = 1e5 (alpha 80), against 15.5 patches from the axis to the edge. Refused before solving.
@@ -88,6 +88,12 @@ check "unreachable load: exit 1" test $? -eq 1
 check "unreachable load: named, with the radius and the room" \
     grep -q "load 100000 cannot be reached on the 32 x 32 surface: the smooth contact at this load has radius 600.9, but the punch axis is 15.5 from the surface's edge" "$dir/err"
 check "unreachable load: the step before kept" test "$(rows "$dir/unreachable/history.csv")" -eq 1
+# The message counts the steps kept in the words of their number ("the 1 steps before", "the 0 steps
+# before are in ...history.csv", which then held none).
+check "unreachable load: 'the step before is in'" grep -q "; the step before is in $dir/unreachable/history.csv" "$dir/err"
+check "contact at the edge: 'the 2 steps before are in'" grep -q "; the 2 steps before are in $dir/edge/history.csv" "$dir/err.edge"
+"$cli" indent --smooth --n 32 --load 100000 --out "$dir/first" >/dev/null 2>"$dir/err.first"
+check "unreachable first load: 'no step before it'" grep -q "step 1 of 1 (load 100000; no step before it was solved)" "$dir/err.first"
 
 # ---- sizes ----
 "$cli" indent --smooth --n 8 --approach 0.1,0.3 --out "$dir/g8" >/dev/null 2>&1

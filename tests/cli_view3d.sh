@@ -65,7 +65,15 @@ check "elevation out of range refused" expect_exit 2 "--elevation" \
   "$cli" render view3d "$dir/s.npy" --elevation 0 --out "$dir/x.png"
 check "sphere needs a radius" expect_exit 2 "--radius" \
   "$cli" render view3d "$dir/s.npy" --punch sphere --out "$dir/x.png"
+# A scan with missing points: refused naming --fill, which view3d takes as indent does (it had none).
+"$cli" surface --n 64 --slope 0.1 --seed 2 --out "$dir/s.txt" >/dev/null
+awk '/^#/ {print; next} {r++; if (r > 20 && r <= 35) for (i = 21; i <= 35; i++) $i = "nan"; print}' "$dir/s.txt" >"$dir/holes.txt"
+check "missing points refused, naming --fill" expect_exit 2 "(--fill fills missing points" \
+  "$cli" render view3d "$dir/holes.txt" --width 320 --height 200 --out "$dir/x.png"
 check "nothing left by refusals" test ! -e "$dir/x.png"
+"$cli" render view3d "$dir/holes.txt" --fill --width 320 --height 200 --out "$dir/filled.png" 2>"$dir/filled.err"
+check "--fill draws the scan" test -s "$dir/filled.png"
+check "--fill warns of the points it invented" grep -q "(225 of 4096 points)" "$dir/filled.err"
 
 # A scene with frames3d: 3-D frames, their GIF, and the page with the three frame panels.
 cat >"$dir/scene.ini" <<INI
@@ -141,6 +149,15 @@ for f in "$dir"/scene/frames/view3d_000[0-2].png; do
 done
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+sed -e "s|^output = .*|output = $dir/noframes|" -e 's/^frames = yes/frames = no/' -e 's/^frames3d = yes/frames3d = no/' -e 's/^frame_count = 3/contact_panels = yes/' \
+  "$dir/scene.ini" >"$dir/bad.ini"
+check "animation needs frames (no GIF, and exit 0, before)" expect_exit 2 "animation animates the frames: set frames = yes too" "$cli" run "$dir/bad.ini"
+# The stage lines of one frame are in the singular ("frames: 1 steps", "1 3-D views" before).
+sed -e "s|^output = .*|output = $dir/one|" -e 's/^frame_count = 3/frame_count = 1/' "$dir/scene.ini" >"$dir/one.ini"
+"$cli" run "$dir/one.ini" >"$dir/one.log" 2>&1
+check "one frame: 'frames: 1 step of'" grep -q "frames: 1 step of family 0" "$dir/one.log"
+check "one frame: 'frames3d: 1 3-D view ('" grep -q "frames3d: 1 3-D view (" "$dir/one.log"
+check "three frames: 'frames: 3 steps of'" grep -q "frames: 3 steps of family 0" "$dir/run.log"
 
 # Frame size and rate: frame_rate sets every GIF frame's delay (1/10 s: a graphic control extension
 # 21 f9 04 04 0a 00 per frame), frame3d_width/height the 3-D view, frame_scale the 2-D maps' pixels per
@@ -163,4 +180,13 @@ read -r w4 _ < <(png_size "$dir/sized/frames/view3d_0000.png")
 check "frame3d_width = 480 narrows the 3-D frame by 480" test $((w3 - w4)) -eq 480
 sed 's/^frame_rate = 10/frame_rate = 0/' "$dir/sized.ini" >"$dir/bad.ini"
 check "frame_rate 0 refused" expect_exit 2 "frame_rate = '0': expected a number in [0.01, 100]" "$cli" run "$dir/bad.ini"
+# Every frame of a history has one size, which its GIF needs: on a 64 x 64 map at 1 px per patch the
+# title ("N* = 42" .. "N* = 1000") was wider than the map and widened some frames ("animation: frame 2
+# is 231 x 196 ...: expected 220 x 196 like frame 0", exit 2): the titles now share one width.
+sed -e "s|^output = .*|output = $dir/small|" -e 's/^frame_count = 3/frame_count = 24/' -e 's/^load_star = 400/load_star = 1000/' -e 's/^frames3d = yes/frames3d = no/' \
+  "$dir/scene.ini" >"$dir/small.ini"
+check "24 frames of a 64 x 64 map and their GIFs" "$cli" run "$dir/small.ini"
+sizes=$(for f in "$dir"/small/frames/contact_00*.png; do png_size "$f"; done | sort -u | wc -l)
+check "the 24 contact frames have one size" test "$sizes" -eq 1
+check "their GIF is written" test -s "$dir/small/contact.gif"
 finish

@@ -4,6 +4,7 @@
 #include "support.h"
 
 #include "indentmap/colormap.h"
+#include "indentmap/render.h"
 #include "indentmap/status.h"
 
 #include <string.h>
@@ -169,6 +170,34 @@ static void test_frames_share_the_range_of_all_their_values(void **state)
     assert_norm(&one, -2.0, 1.0, 0);
 }
 
+/* The tension norm two frames share: 0 .. the largest tension -f of either (forces >= 0, NaN and -Inf left
+ * out), as the one frame's im_contact_largest_tension and im_contact_tension_norm give it; [0, 1] and hi
+ * not > 0 (no tension bar) where no force is < 0. */
+static void test_frames_share_the_largest_tension_of_all_their_forces(void **state)
+{
+    (void)state;
+    double forces[2][4] = {{0.0, -2.0, 30.0, NAN}, {-7.5, -INFINITY, -0.5, 0.0}};
+    im_colormap_range tensions = im_colormap_range_empty(IM_COLORMAP_TENSIONS);
+    for (int i = 0; i < 2; ++i)
+        assert_int_equal(im_colormap_range_add(&tensions, &(const im_field){4, 1, 1.0, "", forces[i], ""}), IM_OK);
+    assert_true(tensions.lo == 0.5 && tensions.hi == 7.5);
+    im_colormap norm = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    assert_norm(&norm, 0.0, 7.5, 0);
+    assert_int_equal(im_colormap_index(&norm, 7.5 / 2), 128);
+    assert_true(im_contact_largest_tension(&(const im_field){4, 1, 1.0, "", forces[1], ""}) == 7.5);
+    im_colormap single = im_contact_tension_norm(7.5);
+    assert_norm(&single, 0.0, 7.5, 0);
+    assert_true(single.map == IM_COLORMAP_TENSION && norm.map == IM_COLORMAP_TENSION);
+    assert_memory_equal(single.over, norm.over, 3);
+    im_colormap_range none = im_colormap_range_empty(IM_COLORMAP_TENSIONS);
+    double repulsive[4] = {0.0, 3.0, NAN, INFINITY};
+    assert_int_equal(im_colormap_range_add(&none, &(const im_field){4, 1, 1.0, "", repulsive, ""}), IM_OK);
+    assert_false(none.hi > 0.0);
+    norm = im_colormap_range_norm(&none, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    assert_norm(&norm, 0.0, 1.0, 0);
+    assert_true(im_contact_largest_tension(&(const im_field){4, 1, 1.0, "", repulsive, ""}) == 0.0);
+}
+
 /* The caller's bounds replace the range's: vmax moves the log norm's two decades with it; vmin stays as
  * given, also where it is not below vmax (im_colormap_check refuses that norm, naming it). */
 static void test_given_bounds_replace_the_range(void **state)
@@ -214,6 +243,7 @@ int main(void)
         cmocka_unit_test(test_colours_are_table_entries),
         cmocka_unit_test(test_tension_ramp_is_an_ordered_blue),
         cmocka_unit_test(test_frames_share_the_range_of_all_their_values),
+        cmocka_unit_test(test_frames_share_the_largest_tension_of_all_their_forces),
         cmocka_unit_test(test_given_bounds_replace_the_range),
         cmocka_unit_test(test_a_range_without_values_takes_the_defaults),
     };

@@ -288,29 +288,10 @@ static void test_note_under_the_panels(void **state)
     im_image_release(&image);
 }
 
-/* A short colour bar: its tick labels are thinned, so that the labels' ink forms separate runs
- * of rows at most one line high with blank rows between them. */
-static void test_short_colorbar_labels_apart(void **state)
+/* The tick labels right of a colour bar whose ink ends at column bar_right: the runs of rows holding
+ * their ink, each at most one line high with at least 0.2 em of blank rows before the next. */
+static int tick_label_runs(const uint8_t *rgb, int width, int height, int bar_right, double em)
 {
-    (void)state;
-    im_image image = make_image(40, 30, 4);
-    im_figure_panel panel = {&image, NULL, NULL};
-    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
-    im_figure figure = im_figure_default();
-    figure.panels = &panel;
-    figure.colormap = &norm;
-    figure.scale_bar = -1.0;
-    figure.dpi = 150;
-    const char *path = test_path("short.png");
-    assert_int_equal(im_figure_write(&figure, path), IM_OK);
-    int width, height, x, y;
-    uint8_t *rgb = read_rgb(path, &width, &height);
-    find_image(rgb, width, height, &image, &x, &y);
-    assert_clear_edges(rgb, width, height);
-    double em = 8.0 * 150.0 / 72.0;
-    int bar_right = first_ink_column(rgb, width, y + 10, y + 11, x + image.width + 1);
-    while (is_ink(rgb, width, bar_right + 1, y + 10))
-        ++bar_right;
     int from = bar_right + (int)ceil(0.55 * em), runs = 0, run = 0, gap = 1000;
     for (int row = 0; row <= height; ++row) {
         int ink = 0;
@@ -330,7 +311,32 @@ static void test_short_colorbar_labels_apart(void **state)
             ++gap;
         }
     }
-    assert_true(runs >= 2);
+    return runs;
+}
+
+/* A short colour bar: its tick labels are thinned, so that the labels' ink forms separate runs
+ * of rows at most one line high with blank rows between them. */
+static void test_short_colorbar_labels_apart(void **state)
+{
+    (void)state;
+    im_image image = make_image(40, 30, 4);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = &norm;
+    figure.scale_bar = -1.0;
+    figure.dpi = 150;
+    const char *path = test_path("short.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x, y;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    find_image(rgb, width, height, &image, &x, &y);
+    assert_clear_edges(rgb, width, height);
+    int bar_right = first_ink_column(rgb, width, y + 10, y + 11, x + image.width + 1);
+    while (is_ink(rgb, width, bar_right + 1, y + 10))
+        ++bar_right;
+    assert_true(tick_label_runs(rgb, width, height, bar_right, 8.0 * 150.0 / 72.0) >= 2);
     free(rgb);
     im_image_release(&image);
 }
@@ -410,19 +416,30 @@ static int count_colour(const uint8_t *rgb, int width, int height, const uint8_t
     return count;
 }
 
+/* Over and under colours that no test image nor colour map holds. */
+static const uint8_t over[3] = {255, 0, 255}, under[3] = {0, 200, 255};
+
+/* A figure at 150 dpi of one panel beside the bar of a norm on [0, 1] of map with those over and under
+ * colours, which *norm receives. */
+static im_figure extended_figure(im_figure_panel *panel, im_colormap_id map, im_colormap *norm)
+{
+    *norm = im_colormap_make(map, 0.0, 1.0);
+    memcpy(norm->over, over, 3);
+    memcpy(norm->under, under, 3);
+    im_figure figure = im_figure_default();
+    figure.panels = panel;
+    figure.colormap = norm;
+    figure.dpi = 150;
+    return figure;
+}
+
 static void test_colorbar_extensions(void **state)
 {
     (void)state;
     im_image image = make_image(40, 40, 5);
     im_figure_panel panel = {&image, NULL, NULL};
-    im_colormap norm = im_colormap_make(IM_COLORMAP_GREY, 0.0, 1.0);
-    const uint8_t over[3] = {255, 0, 255}, under[3] = {0, 200, 255};
-    memcpy(norm.over, over, 3);
-    memcpy(norm.under, under, 3);
-    im_figure figure = im_figure_default();
-    figure.panels = &panel;
-    figure.colormap = &norm;
-    figure.dpi = 150;
+    im_colormap norm;
+    im_figure figure = extended_figure(&panel, IM_COLORMAP_GREY, &norm);
     const char *path = test_path("extend.png");
     int width, height, x, y;
     for (int extend = 0; extend <= 1; ++extend) {
@@ -443,25 +460,25 @@ static void test_colorbar_extensions(void **state)
     im_image_release(&image);
 }
 
-/* The index of a tension ramp entry with this colour, -1 if none. */
-static int ramp_index(const uint8_t *rgb)
+/* The index of the map's table entry with this colour, -1 if none. */
+static int table_index(im_colormap_id map, const uint8_t *rgb)
 {
-    const uint8_t(*ramp)[3] = im_colormap_table(IM_COLORMAP_TENSION);
+    const uint8_t(*ramp)[3] = im_colormap_table(map);
     for (int k = 0; k < 256; ++k)
         if (memcmp(ramp[k], rgb, 3) == 0)
             return k;
     return -1;
 }
 
-/* The column holding the most pixels of the tension ramp, and how many; -1 and 0 when none does. */
-static int ramp_column(const uint8_t *rgb, int width, int height, int *most)
+/* The column holding the most pixels of the map's table, and how many; -1 and 0 when none does. */
+static int table_column(im_colormap_id map, const uint8_t *rgb, int width, int height, int *most)
 {
     int best = -1;
     *most = 0;
     for (int x = 0; x < width; ++x) {
         int count = 0;
         for (int row = 0; row < height; ++row)
-            count += ramp_index(rgb + ((size_t)row * width + x) * 3) >= 0;
+            count += table_index(map, rgb + ((size_t)row * width + x) * 3) >= 0;
         if (count > *most)
             *most = count, best = x;
     }
@@ -487,7 +504,7 @@ static void test_tension_colorbar(void **state)
     int width, height, x, y, most;
     assert_int_equal(im_figure_write(&figure, path), IM_OK);
     uint8_t *rgb = read_rgb(path, &width, &height);
-    assert_int_equal(ramp_column(rgb, width, height, &most), -1);
+    assert_int_equal(table_column(IM_COLORMAP_TENSION, rgb, width, height, &most), -1);
     free(rgb);
     int width_without = width;
     figure.tension_colormap = &tension;
@@ -495,7 +512,7 @@ static void test_tension_colorbar(void **state)
     assert_int_equal(im_figure_write(&figure, path), IM_OK);
     rgb = read_rgb(path, &width, &height);
     find_image(rgb, width, height, &image, &x, &y);
-    int column = ramp_column(rgb, width, height, &most), grey_bar = 0;
+    int column = table_column(IM_COLORMAP_TENSION, rgb, width, height, &most), grey_bar = 0;
     assert_true(width > width_without && most > 150);
     for (int c = x + image.width; c < column; ++c) { /* the force's bar: its middle, left of the ramp */
         const uint8_t *p = rgb + ((size_t)(y + 100) * width + c) * 3;
@@ -504,7 +521,7 @@ static void test_tension_colorbar(void **state)
     assert_true(grey_bar);
     int first = -1, last = -1;
     for (int row = 0; row < height; ++row) {
-        int k = ramp_index(rgb + ((size_t)row * width + column) * 3);
+        int k = table_index(IM_COLORMAP_TENSION, rgb + ((size_t)row * width + column) * 3);
         if (k < 0)
             continue;
         if (last >= 0 && k > last)
@@ -519,6 +536,83 @@ static void test_tension_colorbar(void **state)
     assert_int_equal(im_figure_write(&figure, path), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "tension colour bar"));
     free(rgb);
+    im_image_release(&image);
+}
+
+/* Beside a strip 16 patches high (a 16 x 1024 scan at 2 px per patch) the colour bar keeps a readable
+ * length: it was the strip's height less its two triangles, here -4 px, the triangles drawn over each
+ * other and one tick labelled. Now at least 2.4 em of the table (two labels 1.2 em apart), the over
+ * triangle wholly above it, the under triangle below, and two or more tick labels. */
+static void test_colorbar_beside_a_strip(void **state)
+{
+    (void)state;
+    im_image image = make_image(600, 36, 6);
+    im_figure_panel panel = {&image, NULL, NULL};
+    im_colormap norm;
+    im_figure figure = extended_figure(&panel, IM_COLORMAP_VIRIDIS, &norm);
+    figure.extend_under = figure.extend_over = 1;
+    const char *path = test_path("strip.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, most;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    assert_clear_edges(rgb, width, height);
+    double em = 8.0 * 150.0 / 72.0;
+    int column = table_column(IM_COLORMAP_VIRIDIS, rgb, width, height, &most), top = height, bottom = -1;
+    assert_true(column >= 0 && most >= 2.4 * em);
+    for (int row = 0; row < height; ++row)
+        if (table_index(IM_COLORMAP_VIRIDIS, rgb + ((size_t)row * width + column) * 3) >= 0)
+            top = row < top ? row : top, bottom = row;
+    assert_true(count_colour(rgb, width, height, over, height, height) > 20);
+    assert_true(count_colour(rgb, width, height, under, height, height) > 20);
+    assert_int_equal(count_colour(rgb, width, height, over, 0, top - 1), 0);
+    assert_int_equal(count_colour(rgb, width, height, under, bottom + 1, height), 0);
+    int bar_right = column;
+    while (is_ink(rgb, width, bar_right + 1, top + 1))
+        ++bar_right;
+    assert_true(tick_label_runs(rgb, width, height, bar_right, em) >= 2);
+    free(rgb);
+    im_image_release(&image);
+}
+
+/* The rightmost ink below the image, as columns right of the image's left edge, in a figure of one
+ * small panel with or without a colour bar (whose bar then starts at *bar_left, likewise). */
+static int ink_below_small_panel(im_image *image, const im_colormap *norm, int *bar_left)
+{
+    im_figure_panel panel = {image, NULL, NULL};
+    im_figure figure = im_figure_default();
+    figure.panels = &panel;
+    figure.colormap = norm;
+    figure.dpi = 150;
+    const char *path = test_path("small_bar.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x, y, most;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    assert_clear_edges(rgb, width, height);
+    find_image(rgb, width, height, image, &x, &y);
+    int limit = width, column = norm ? table_column(norm->map, rgb, width, height, &most) : -1;
+    if (norm) {
+        *bar_left = column;
+        while (is_ink(rgb, width, *bar_left - 1, height / 2))
+            --*bar_left;
+        *bar_left -= x;
+        limit = x + *bar_left;
+    }
+    int end = last_ink_column(rgb, width, y + image->height, height, limit) - x;
+    free(rgb);
+    return end;
+}
+
+/* Under a panel of 3 x 3 patches the scale bar's text ("0.5 δ") is wider than the panel: the colour bar,
+ * lengthened below the panel, stands right of it (it stood over the text's δ). */
+static void test_colorbar_right_of_the_scale_text(void **state)
+{
+    (void)state;
+    im_image image = make_image(10, 10, 7);
+    im_colormap norm = im_colormap_make(IM_COLORMAP_VIRIDIS, 0.0, 1.0);
+    int bar_left = 0, text_end = ink_below_small_panel(&image, NULL, NULL);
+    assert_true(text_end > image.width);
+    ink_below_small_panel(&image, &norm, &bar_left);
+    assert_true(bar_left > text_end);
     im_image_release(&image);
 }
 
@@ -991,6 +1085,8 @@ int main(void)
         cmocka_unit_test(test_panel_grid_and_colorbar),
         cmocka_unit_test(test_colorbar_extensions),
         cmocka_unit_test(test_tension_colorbar),
+        cmocka_unit_test(test_colorbar_beside_a_strip),
+        cmocka_unit_test(test_colorbar_right_of_the_scale_text),
         cmocka_unit_test(test_png_metadata_pdf_svg),
         cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),

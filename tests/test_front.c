@@ -233,6 +233,43 @@ static void other_histories_refused(void **state)
     assert_false(im_history_parse(text, 1, rows, 4, &count, why, sizeof why));
 }
 
+/* The history text of rows[0..n): the column line, then each row's. */
+static void history_text(const im_history_row *rows, int n, char *text, size_t size)
+{
+    size_t used = (size_t)snprintf(text, size, "%s\n", im_history_columns());
+    for (int i = 0; i < n; ++i)
+        used += (size_t)im_history_format(&rows[i], text + used, size - used);
+}
+
+/* A / A_Hertz at a load held at zero only to the solver's tolerance (T8: 9.5e-7 after 5 at tol 1e-6 gave
+ * 52665): im_history_measure makes it NaN where N <= tol max |N| of the rows so far, keeps it just above, and
+ * the reader takes such a NaN back, but not at a load above every load before it (the first step's, a new
+ * largest), where the ratio is always a number. */
+static void area_ratio_undefined_at_a_zero_load(void **state)
+{
+    (void)state;
+    const im_indenter sphere = im_indenter_sphere(100);
+    const im_theory_interface smooth = im_theory_interface_default(0);
+    im_history_row rows[3] = {{.result = {.approach = 0.76, .load = 5, .load_star = 163, .area_ratio = 2.36}},
+                              {.result = {.approach = 0.45, .load = 4e-6, .load_star = 0.03, .area_ratio = 5e4}},
+                              {.result = {.approach = 0.46, .load = 5.1e-6, .load_star = 0.03, .area_ratio = 5e4}}};
+    for (int i = 0; i < 3; ++i)
+        assert_int_equal(im_history_measure(&sphere, &smooth, NULL, 1e-6, rows, i), IM_OK);
+    assert_close(rows[0].result.area_ratio, 2.36, 0);
+    assert_true(isnan(rows[1].result.area_ratio)); /* 4e-6 <= 1e-6 x 5 */
+    assert_close(rows[2].result.area_ratio, 5e4, 0);
+    char text[4 * IM_HISTORY_LINE_MAX], why[160];
+    im_history_row back[3];
+    int count;
+    history_text(rows, 3, text, sizeof text);
+    if (!im_history_parse(text, IM_HISTORY_AREA_SMOOTH, back, 3, &count, why, sizeof why))
+        fail_msg("a history through zero load: %s", why);
+    assert_true(isnan(back[1].result.area_ratio));
+    rows[0].result.area_ratio = NAN; /* the first step's load is the largest so far: its ratio is a number */
+    history_text(rows, 3, text, sizeof text);
+    assert_false(im_history_parse(text, IM_HISTORY_AREA_SMOOTH, back, 3, &count, why, sizeof why));
+}
+
 /* A punch without a smooth-contact area (a 2-D profile): its rows' N* and A / A_cone are NaN, as
  * the solver writes them, and read back; a finite one there is not its history, and a NaN where a
  * punch with that area has a number, or a NaN approach, is still refused. */
@@ -414,6 +451,7 @@ int main(void)
         cmocka_unit_test(punch_names_one_parser),
         cmocka_unit_test(one_default_tolerance),
         cmocka_unit_test(both_histories_one_reader),
+        cmocka_unit_test(area_ratio_undefined_at_a_zero_load),
         cmocka_unit_test(other_histories_refused),
         cmocka_unit_test(row_values_are_the_written_columns),
         cmocka_unit_test(histories_without_smooth_area),

@@ -6,6 +6,7 @@
 #include "indentmap/status.h"
 #include "indentmap/surface.h"
 #include "core/memory.h"
+#include "io/json_file.h"
 
 #include <math.h>
 #include <netcdf.h>
@@ -895,6 +896,79 @@ static void gsf_header_values_are_strict(void **state)
     im_field_free(g);
 }
 
+/* The text of a small file ("" where there is none), in static storage. */
+static const char *file_text(const char *path)
+{
+    static char text[16384];
+    FILE *file = fopen(path, "rb");
+    size_t length = file ? fread(text, 1, sizeof text - 1, file) : 0;
+    if (file)
+        fclose(file);
+    text[length] = '\0';
+    return text;
+}
+
+/* A surface file and its sidecar, one pair (formats.h, im_surface_write_with_sidecar): with a generator, the
+ * record `surface --out` writes; without one, a .npy's units replacing that record (none of the generator's
+ * is left to be taken for this file's); a text file without a record gets no sidecar, with a source the
+ * record naming it. Each file reads back as written. */
+static void a_surface_is_written_with_its_sidecar(void **state)
+{
+    (void)state;
+    im_field *f = sample_field(8, 6), *g = NULL;
+    snprintf(f->unit, sizeof f->unit, "um");
+    im_surface_params p = im_surface_params_default();
+    p.nx = 8, p.ny = 6, p.lambda_r = 6, p.lambda_s = 2;
+    p.seed = UINT64_MAX; /* beyond JSON's signed integers: the sidecar still reads (its units) */
+    const char *npy = test_path("pair.npy"), *npy_sidecar = test_path("pair.npy.json");
+    assert_int_equal(im_surface_write_with_sidecar(npy, f, &p, NULL, NULL), IM_OK);
+    assert_non_null(strstr(file_text(npy_sidecar), "\"generator\""));
+    assert_non_null(strstr(file_text(npy_sidecar), "\"statistics\""));
+    assert_non_null(strstr(file_text(npy_sidecar), "\"seed\": 18446744073709551615"));
+    assert_int_equal(im_surface_read(npy, &g), IM_OK);
+    assert_memory_equal(g->data, f->data, im_field_count(f) * sizeof(double));
+    im_field_free(g);
+    assert_int_equal(im_surface_write_with_sidecar(npy, f, NULL, NULL, NULL), IM_OK);
+    assert_null(strstr(file_text(npy_sidecar), "\"generator\""));
+    assert_non_null(strstr(file_text(npy_sidecar), "\"unit\": \"um\""));
+    const char *text = test_path("pair.txt"), *text_sidecar = test_path("pair.txt.json");
+    assert_int_equal(im_surface_write_with_sidecar(text, f, NULL, NULL, NULL), IM_OK);
+    assert_int_equal(access(text_sidecar, F_OK), -1);
+    assert_int_equal(im_surface_write_with_sidecar(text, f, NULL, "measured.gsf", NULL), IM_OK);
+    assert_non_null(strstr(file_text(text_sidecar), "\"source\": \"measured.gsf\""));
+    assert_int_equal(im_surface_read(text, &g), IM_OK);
+    assert_int_equal(g->nx * g->ny, f->nx * f->ny);
+    im_field_free(g);
+    im_field_free(f);
+}
+
+/* Unsigned integers in the JSON records (io/json_file.h): written as their decimal, read back from it or from
+ * an earlier build's two's complement; other numbers and a string that only begins as the marked ones stay
+ * as they are. */
+static void json_records_hold_unsigned_integers(void **state)
+{
+    (void)state;
+    json_t *root = json_pack("{s:o, s:o, s:s}", "big", json_unsigned(UINT64_MAX), "small", json_unsigned(7), "text",
+                             "\001uint64:x");
+    char *text = json_text(root, JSON_COMPACT);
+    assert_string_equal(text, "{\"big\":18446744073709551615,\"small\":7,\"text\":\"\\u0001uint64:x\"}");
+    json_decref(root);
+    free(text);
+    root = json_text_load("{\"big\": 18446744073709551615, \"older\": -1, \"real\": 12345678901234567890.5, "
+                          "\"exp\": 1e300, \"beyond\": 18446744073709551616, \"name\": \"18446744073709551615\"}",
+                          0, NULL);
+    assert_non_null(root);
+    uint64_t value = 0;
+    assert_int_equal(json_unsigned_value(json_object_get(root, "big"), &value), 0);
+    assert_true(value == UINT64_MAX);
+    assert_int_equal(json_unsigned_value(json_object_get(root, "older"), &value), 0);
+    assert_true(value == UINT64_MAX);
+    assert_true(json_is_real(json_object_get(root, "real")) && json_is_real(json_object_get(root, "exp")));
+    assert_int_equal(json_unsigned_value(json_object_get(root, "beyond"), &value), -1);
+    assert_int_equal(json_unsigned_value(json_object_get(root, "name"), &value), -1);
+    json_decref(root);
+}
+
 /* .npy files state no units: the options set them (and override a file's). */
 static void read_options_set_spacing_and_units(void **state)
 {
@@ -1141,6 +1215,8 @@ int main(void)
         cmocka_unit_test(non_finite_heights_are_not_written),
         cmocka_unit_test(missing_points_are_written_where_they_can_be_read_back),
         cmocka_unit_test(a_height_alone_states_the_spacing),
+        cmocka_unit_test(a_surface_is_written_with_its_sidecar),
+        cmocka_unit_test(json_records_hold_unsigned_integers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -133,6 +133,29 @@ static void files_form_the_ensemble(void **state)
     expect_error("empty.ini", "[surfaces]\nfile = s.npy,,t.npy\n", ":2: file: expected a comma-separated list");
 }
 
+/* A refused value lies outside the range its message states: the range's ends are printed to as many
+ * digits as they need (alpha's end 90 - 1e-9 was printed "90", refusing 90 as "expected a number in
+ * [1e-09, 90]"). */
+static void refused_values_lie_outside_the_stated_range(void **state)
+{
+    (void)state;
+    const char *cases[][2] = {{"[punch]\nalpha = 90\n", "90"},        {"[punch]\nalpha = 0\n", "0"},
+                              {"[punch]\nalpha = 70, 90\n", "90"},    {"[punch]\nradius = 0\n", "0"},
+                              {"[material]\nmodulus = 0\n", "0"},     {"[surfaces]\nhurst = 1\n", "1"},
+                              {"[output]\nframe_rate = 200\n", "200"}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        im_scene *scene = NULL;
+        assert_int_equal(im_scene_load(write_scene("outside.ini", cases[i][0]), &scene), IM_EFORMAT);
+        im_scene_free(scene);
+        const char *range = strrchr(im_last_error(), '[');
+        assert_non_null(range);
+        char *end;
+        double lo = strtod(range + 1, &end), hi = strtod(end + 1, NULL), value = strtod(cases[i][1], NULL);
+        if (!(value < lo || value > hi))
+            fail_msg("%s refused as '%s': %s lies in the stated range", cases[i][0], im_last_error(), cases[i][1]);
+    }
+}
+
 static void errors_name_the_line(void **state)
 {
     (void)state;
@@ -302,6 +325,7 @@ int main(void)
         cmocka_unit_test(values_are_read),
         cmocka_unit_test(accessors_read_the_scene),
         cmocka_unit_test(files_form_the_ensemble),
+        cmocka_unit_test(refused_values_lie_outside_the_stated_range),
         cmocka_unit_test(errors_name_the_line),
         cmocka_unit_test(missing_file_is_an_io_error),
         cmocka_unit_test(long_lines_are_refused),

@@ -331,7 +331,8 @@ static void bad_parameters_are_refused(void **state)
 }
 
 /* A generator record made, parsed and made again: the same text and the same parameters, a seed of 2^64 - 1
- * (recorded as -1) and a record without a plateau (lambda_0 0: recorded as lambda_r) included. */
+ * (recorded as that decimal, which JSON's signed integers do not hold) and a record without a plateau
+ * (lambda_0 0: recorded as lambda_r) included. */
 static void generator_record_round_trips(void **state)
 {
     (void)state;
@@ -349,7 +350,7 @@ static void generator_record_round_trips(void **state)
     char *text = NULL, *again = NULL;
     assert_int_equal(im_surface_generator_record(&p, &text), IM_OK);
     assert_non_null(strstr(text, "\"lambda_0\":64.0,"));
-    assert_non_null(strstr(text, "\"seed\":-1}"));
+    assert_non_null(strstr(text, "\"seed\":18446744073709551615}"));
     assert_int_equal(im_surface_generator_parse(text, &back), IM_OK);
     assert_int_equal(im_surface_generator_record(&back, &again), IM_OK);
     assert_string_equal(again, text);
@@ -370,6 +371,46 @@ static const char *replaced(const char *text, const char *old, const char *new, 
         fail_msg("'%s' is not in '%s'", old, text);
     snprintf(out, size, "%.*s%s%s", (int)(at - text), text, new, at + strlen(old));
     return out;
+}
+
+/* Seeds as unsigned 64-bit integers: 2^63 round trips as its decimal; an earlier build's record of a seed of
+ * 2^63 or more, its two's complement (a negative integer), is read as that seed; beyond 0 .. 2^64 - 1, a
+ * fraction or a string is refused naming the seed. */
+static void generator_seeds_are_unsigned(void **state)
+{
+    (void)state;
+    im_surface_params p = im_surface_params_default(), back;
+    p.nx = p.ny = 64;
+    p.lambda_r = 64;
+    p.seed = (uint64_t)1 << 63;
+    char *text = NULL, *again = NULL, changed[1024];
+    assert_int_equal(im_surface_generator_record(&p, &text), IM_OK);
+    const char *seed = "\"seed\":9223372036854775808}";
+    assert_non_null(strstr(text, seed));
+    assert_int_equal(im_surface_generator_parse(text, &back), IM_OK);
+    assert_true(back.seed == p.seed);
+    const struct {
+        const char *recorded;
+        uint64_t seed;
+    } earlier[] = {{"\"seed\":-9223372036854775808}", (uint64_t)1 << 63}, {"\"seed\":-1}", UINT64_MAX}};
+    for (size_t i = 0; i < sizeof earlier / sizeof earlier[0]; ++i) {
+        assert_int_equal(
+            im_surface_generator_parse(replaced(text, seed, earlier[i].recorded, changed, sizeof changed), &back),
+            IM_OK);
+        assert_true(back.seed == earlier[i].seed);
+    }
+    assert_int_equal(im_surface_generator_record(&back, &again), IM_OK);
+    assert_non_null(strstr(again, "\"seed\":18446744073709551615}"));
+    const char *refused[] = {"\"seed\":18446744073709551616}", "\"seed\":-9223372036854775809}",
+                             "\"seed\":99999999999999999999999}", "\"seed\":1.5}", "\"seed\":\"1\"}"};
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; ++i) {
+        assert_int_equal(im_surface_generator_parse(replaced(text, seed, refused[i], changed, sizeof changed), &back),
+                         IM_EINVAL);
+        if (!strstr(im_last_error(), "generator: \"seed\": expected an integer in [0, 18446744073709551615]"))
+            fail_msg("%s: message '%s'", changed, im_last_error());
+    }
+    free(text);
+    free(again);
 }
 
 static void malformed_generator_records_are_refused(void **state)
@@ -421,6 +462,7 @@ int main(void)
         cmocka_unit_test(prepared_crop_estimates_the_slope),
         cmocka_unit_test(bad_parameters_are_refused),
         cmocka_unit_test(generator_record_round_trips),
+        cmocka_unit_test(generator_seeds_are_unsigned),
         cmocka_unit_test(malformed_generator_records_are_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -9,7 +9,8 @@
  *   im_colormap_field_image                     a field as an RGB image
  *   im_colormap_table                           a map's 256 colours
  *   im_colormap_range_empty, im_colormap_range_add, im_colormap_range_norm
- *                                               one default norm shared by several fields
+ *                                               one default norm shared by several fields (forces,
+ *                                               heights, or the tension of patches under tension)
  *
  * A norm maps [lo, hi] linearly (or logarithmically, lo > 0) onto the 256 table entries:
  * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
@@ -79,24 +80,28 @@ void im_colormap_field_image(const im_colormap *colormap, const im_field *field,
 /* ---- one norm over several fields ----
  * The default norm every front end gives a contact map, a height map, the frames of a history and the
  * panels of a figure: a range gathered field by field (so that frames need not be in memory at once),
- * then made a norm with the caller's bounds. */
+ * then made a norm with the caller's bounds. The tension norm those maps share (render.h,
+ * im_contact_style.tension) is the range of IM_COLORMAP_TENSIONS over their forces, made a norm of
+ * IM_COLORMAP_TENSION; a figure draws the tension's colour bar only where that range's hi is > 0. */
 typedef enum im_colormap_values {
-    IM_COLORMAP_FORCES, /* contact maps: 0 .. the largest finite force > 0; [0, 1] when no force is > 0 */
-    IM_COLORMAP_HEIGHTS /* every finite value, smallest .. largest; [v - 1, v + 1] when all are one value v
-                           ([-1, 1] when none is finite) */
+    IM_COLORMAP_FORCES,  /* contact maps: 0 .. the largest finite force > 0; [0, 1] when no force is > 0 */
+    IM_COLORMAP_HEIGHTS, /* every finite value, smallest .. largest; [v - 1, v + 1] when all are one value v
+                            ([-1, 1] when none is finite) */
+    IM_COLORMAP_TENSIONS /* force fields' patches under tension: 0 .. the largest finite tension -f of a
+                            force f < 0; [0, 1] when no force is < 0 */
 } im_colormap_values;
 
 typedef struct im_colormap_range {
     im_colormap_values values;
-    double lo, hi; /* the smallest and largest finite value gathered (forces: of those > 0); lo = +Inf and
-                      hi = -Inf while there is none */
+    double lo, hi; /* the smallest and largest finite value gathered (forces: of those > 0; tensions: the
+                      tensions -f > 0); lo = +Inf and hi = -Inf while there is none */
 } im_colormap_range;
 
 /* A range of the given kind with no value gathered yet. */
 im_colormap_range im_colormap_range_empty(im_colormap_values values);
 
-/* Widens range to the field's finite values (forces: those > 0). IM_EINVAL (range unchanged) for a
- * NULL argument or an invalid field view. */
+/* Widens range to the field's finite values (forces: those > 0; tensions: -f of those < 0). IM_EINVAL
+ * (range unchanged) for a NULL argument or an invalid field view. */
 int im_colormap_range_add(im_colormap_range *range, const im_field *field);
 
 /* The norm of map over the range (the defaults of im_colormap_values where it is empty or one value),

@@ -14,6 +14,7 @@
 
 #include "indentmap/field.h"
 #include "indentmap/indenter.h"
+#include "indentmap/surface.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -239,6 +240,16 @@ const char *im_gwyddion_reader(void);
  * matrix. A NaN or Inf height is refused before anything is written (IM_EINVAL naming the path and
  * the point), here and by each format's writer: no reader takes such a file back. */
 int im_surface_write(const char *path, const im_field *field);
+
+/* Writes the surface file (im_surface_write) and then its sidecar PATH.json as one writer's pair: under
+ * im_pair_writers_lock (io.h), so that writers racing for the name, the program's and Python's, leave one
+ * writer's file beside that writer's sidecar. With params, source or stats, the sidecar is the surface's
+ * record (im_surface_sidecar_write: params and source may be NULL; stats NULL: computed here); with none of
+ * them, a .npy gets the sidecar stating its units (im_field_sidecar_write, quantity "height"; written even
+ * where one exists, so that none from an earlier file stays) and another format no sidecar (nor the lock).
+ * IM_EINVAL for a NULL path or an invalid field view; else the first failing step's status. */
+int im_surface_write_with_sidecar(const char *path, const im_field *surface, const im_surface_params *params,
+                                  const char *source, const im_surface_stats *stats);
 
 /* ---- punch profiles ---- */
 

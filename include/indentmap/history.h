@@ -57,9 +57,13 @@ const char *im_history_integer_columns(void);
 /* Fills rows[i] (rows[0..i) filled before; rows[i].result set by the caller, e.g. by
  * im_indentation_step): its step number, the theory for punch on the interface rough at its approach
  * and load (NaN when rough is NULL: a periodic cell), the stiffness and Sneddon modulus, and (run not
- * NULL: the state of this step) the contact patches. IM_EINVAL for i < 0. */
+ * NULL: the state of this step) the contact patches. On the half-space (rough not NULL) it also settles
+ * area_ratio, A / A_smooth(N): NaN where the load is not positive beyond the solver's tolerance tol (the
+ * steps' options.tol), N <= tol max |N| over rows[0..i]. The smooth area vanishes as N -> 0 while an
+ * adhesive contact keeps its area, so a load the solver holds at zero only to tol (load control's 0,
+ * 1e-6 of the loads before it) gave any ratio at all (52665). IM_EINVAL for i < 0 or tol not in [0, 1]. */
 int im_history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
-                       im_history_row *rows, int i);
+                       double tol, im_history_row *rows, int i);
 
 /* The most steps of one history (IM_SCENE_MAX_STEPS of a scene, and indent's). */
 enum { IM_HISTORY_MAX_STEPS = 4096 };
@@ -87,9 +91,10 @@ enum { IM_HISTORY_AREA_NONE = 0, IM_HISTORY_AREA_SMOOTH = 1, IM_HISTORY_AREA_CEL
 /* Parses the text of a history from its column line: the line must be im_history_columns() (else a
  * history of another version), then each row whole, with the right number of values, numbers finite
  * where they must be (approach, load; with IM_HISTORY_AREA_SMOOTH, load_star unless the load is
- * tensile; with it or IM_HISTORY_AREA_CELL, area_ratio unless the load is not compressive) and NaN where
- * the solver writes NaN (area_ratio at no load; load_star but with a smooth-contact area, area_ratio
- * without any area). Fills rows[0..*count) (capacity at most). Returns 1, or 0 with a reason in why at
+ * tensile; with it or IM_HISTORY_AREA_CELL, area_ratio unless the load is not compressive, and with the
+ * first also where it may be zero to the solver's tolerance: not above every load before it,
+ * im_history_measure) and NaN where the solver writes NaN (area_ratio at no load; load_star but with a
+ * smooth-contact area, area_ratio without any area). Fills rows[0..*count) (capacity at most). Returns 1, or 0 with a reason in why at
  * the first fault (also for NULL arguments). */
 int im_history_parse(const char *text, int area, im_history_row *rows, int capacity, int *count, char *why,
                      size_t why_size);

@@ -165,6 +165,7 @@ PARITY = {
         "ortho-height", "exaggeration", "width", "height", "samples", "mesh-side", "colormap", "vmin", "vmax",
         "log")},
     "render view3d --raw": Python("view3d", note="view3d returns the data image; Image.save writes it"),
+    "render view3d --fill": Python("read", "fill", "im.read(path, fill=True).heights"),
     "render view3d --alpha": Python("Cone", "alpha"),
     "render view3d --radius": Python("Sphere", "radius", "Flat(radius) for the flat punch"),
     "render view3d --x": Python("view3d", "axis"),

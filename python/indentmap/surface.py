@@ -93,7 +93,9 @@ def read_generator(path):
     ``Indentation`` and ``indent`` take forward differences unless told: with ``g = im.read_generator(path)``,
     ``slope_definition={"spectral": "spectral", "finite-difference": "fd"}[g["slope_definition"]] if g else
     None`` gives ``indent``'s numbers.
-    ``FormatError`` names a sidecar that is not a JSON object.
+    ``FormatError`` names a sidecar that is not a JSON object. The seed is the unsigned 64-bit integer
+    ``--seed`` takes (0 to 2**64 - 1), also from a file of an earlier build, which wrote a seed of 2**63 or
+    more as its two's complement, a negative integer.
 
     Example: ``im.read_generator("s.npy")["seed"]``."""
     sidecar = os.fsencode(_checks.path("path", path)) + b".json"
@@ -106,7 +108,11 @@ def read_generator(path):
         raise FormatError(f"{os.fsdecode(sidecar)}: not a JSON sidecar ({error})") from None
     if not isinstance(record, dict):
         raise FormatError(f"{os.fsdecode(sidecar)}: expected a JSON object, the sidecar of a surface file")
-    return record.get("generator")
+    generator = record.get("generator")
+    seed = generator.get("seed") if isinstance(generator, dict) else None
+    if type(seed) is int and -2**63 <= seed < 0:  # an earlier build's two's complement of a seed >= 2**63
+        generator = dict(generator, seed=seed + 2**64)
+    return generator
 
 
 def statistics(heights, delta=1.0, window="none", alpha=0.5):

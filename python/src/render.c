@@ -284,16 +284,16 @@ static int write_figure(const char *path, im_image *images, Py_ssize_t count, co
  * contact` shares it; -1 with an exception set if a field is not an array of heights. */
 static double shared_tension(PyObject *fields, double delta, const picture_request *request)
 {
-    double largest = 0;
+    im_colormap_range tensions = im_colormap_range_empty(IM_COLORMAP_TENSIONS);
     for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(fields); ++i) {
         PyArrayObject *array = py_heights_array(PyTuple_GET_ITEM(fields, i), "panel field");
         if (!array)
             return -1;
         im_field field = picture_field(array, delta, request);
-        largest = fmax(largest, im_contact_largest_tension(&field));
+        im_colormap_range_add(&tensions, &field);
         Py_DECREF(array);
     }
-    return largest;
+    return fmax(tensions.hi, 0.0); /* 0: none under tension */
 }
 
 /* The panels' images and the figure written from them, the GIL released around each drawing call

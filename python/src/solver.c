@@ -17,6 +17,7 @@ typedef struct py_indentation {
     im_indenter punch;
     im_theory_interface rough; /* the surface's spectral h'rms and E*, as `indent`'s theory columns */
     int periodic;              /* no half-space theory beside a periodic cell */
+    double tol;                /* the solver's tolerance (the history's area_ratio: im_history_measure) */
     double gap_scale;          /* the distributions' gap unit: the surface's h_rms (delta when flat) */
     char wisdom[4096];         /* the FFTW wisdom file the plan reads and updates ("": none) */
     im_history_row *rows;
@@ -276,6 +277,7 @@ static int indentation_init(py_indentation *self, PyObject *args, PyObject *kwar
         self->rough = im_theory_interface_default(slope);
         self->rough.e_star = a.options.e_star;
         self->periodic = a.options.periodic;
+        self->tol = a.options.tol;
     }
     release_arguments(&a);
     if (status != IM_OK) {
@@ -336,8 +338,8 @@ static int record_row(py_indentation *self, const im_step_result *result)
         self->row_capacity = capacity;
     }
     self->rows[self->row_count].result = *result;
-    int status = im_history_measure(&self->punch, self->periodic ? NULL : &self->rough, self->run, self->rows,
-                                    self->row_count);
+    int status = im_history_measure(&self->punch, self->periodic ? NULL : &self->rough, self->run, self->tol,
+                                    self->rows, self->row_count);
     self->row_count += status == IM_OK;
     return status;
 }

@@ -312,12 +312,6 @@ static PyObject *read_surface(PyObject *self, PyObject *args)
     return Py_BuildValue("(NdNN)", py_array_from_field(field), delta, unit_text, assumed);
 }
 
-static int has_suffix(const char *path, const char *suffix)
-{
-    size_t n = strlen(path), m = strlen(suffix);
-    return n >= m && strcmp(path + n - m, suffix) == 0;
-}
-
 /* The generator's parameters, checked against the heights they are written with: a record of another grid
  * or spacing would tell the readers of the file that it is a surface it is not. */
 static int generator_for_heights(const char *text, const im_field *field, im_surface_params *params)
@@ -331,31 +325,6 @@ static int generator_for_heights(const char *text, const im_field *field, im_sur
     if (status == IM_OK && params->delta != field->delta)
         status = im_fail(IM_EINVAL, "generator: delta = %.17g: expected delta = %.17g, the spacing written",
                          params->delta, field->delta);
-    return status;
-}
-
-/* The file and its sidecar: a .npy's stating its units, or with a generator (any format) the sidecar
- * `indentmap surface --out` writes (its record and statistics; im_surface_sidecar_write), so that the
- * readers take the file as the generated surface it is. The pair is written under the lock the program's
- * writers take (io.h), so that racing writers, from Python or the program, leave one writer's whole pair.
- * A .npy's sidecar is always written, so that none from an earlier file stays. Runs without the GIL. */
-static int write_surface_file(const char *path, const im_field *field, const im_surface_params *generator)
-{
-    if (!generator && !has_suffix(path, ".npy"))
-        return im_surface_write(path, field);
-    im_surface_stats stats;
-    char sidecar[4096];
-    int status = generator ? im_surface_statistics(field, &stats) : IM_OK;
-    if (status == IM_OK)
-        status = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
-    int pair_lock = status == IM_OK ? im_pair_writers_lock(path) : -1;
-    if (pair_lock < 0)
-        return status == IM_OK ? IM_EIO : status;
-    status = im_surface_write(path, field);
-    if (status == IM_OK)
-        status = generator ? im_surface_sidecar_write(sidecar, field, generator, NULL, &stats)
-                           : im_field_sidecar_write(path, field, "height");
-    im_pair_writers_unlock(pair_lock);
     return status;
 }
 
@@ -381,8 +350,10 @@ static PyObject *write_surface(PyObject *self, PyObject *args)
     im_surface_params generator;
     int status = generator_text ? generator_for_heights(generator_text, &field, &generator) : IM_OK;
     if (status == IM_OK) {
-        Py_BEGIN_ALLOW_THREADS status = write_surface_file(PyBytes_AS_STRING(path_bytes), &field,
-                                                           generator_text ? &generator : NULL);
+        /* The file and its sidecar, one writer's pair (formats.h): with a generator the record `surface --out`
+         * writes, so that the readers take the file as the generated surface it is; else a .npy's units. */
+        Py_BEGIN_ALLOW_THREADS status = im_surface_write_with_sidecar(PyBytes_AS_STRING(path_bytes), &field,
+                                                                      generator_text ? &generator : NULL, NULL, NULL);
         Py_END_ALLOW_THREADS
     }
     Py_DECREF(array);

@@ -18,6 +18,9 @@ SURFACES = [
       "--seed", "12"], dict(n=64, m=48, hurst=0.6, lambda_0=128.0, height_rms=2.0, slope_definition="fd", seed=12)),
     # taller than wide, lambda_r not given: the longer side, as the program's (Python took n, the width)
     (["--n", "32", "--m", "48", "--seed", "13"], dict(n=32, m=48, seed=13)),
+    # seeds beyond JSON's signed 64-bit integers, written as the decimal typed (earlier: a negative integer)
+    (["--n", "16", "--seed", "18446744073709551615"], dict(n=16, seed=2**64 - 1)),
+    (["--n", "16", "--seed", "9223372036854775808"], dict(n=16, seed=2**63)),
 ]
 
 
@@ -39,6 +42,23 @@ def test_python_writes_the_programs_sidecar(cli, tmp_path, options, arguments):
     assert (tmp_path / "python" / "s.npy.json").read_bytes() == (tmp_path / "program" / "s.npy.json").read_bytes()
     assert im.read_generator(tmp_path / "program" / "s.npy") == surface.generator
     assert im.read_generator(tmp_path / "python" / "s.npy") == surface.generator
+    assert f'"seed": {arguments["seed"]}' in (tmp_path / "program" / "s.npy.json").read_text()
+    assert im.read_generator(tmp_path / "python" / "s.npy")["seed"] == arguments["seed"]
+
+
+def test_an_earlier_builds_negative_seed_is_read_as_its_twos_complement(tmp_path):
+    """A sidecar of an earlier build states a seed of 2**64 - 1 as -1: read_generator gives 2**64 - 1, which
+    write records as that decimal; a seed below -2**63 or above 2**64 - 1 is refused naming it."""
+    surface = im.generate_recorded(16, seed=2**64 - 1)
+    earlier = dict(surface.generator, seed=-1)
+    (tmp_path / "old.npy.json").write_text(json.dumps({"generator": earlier}))
+    assert im.read_generator(tmp_path / "old.npy") == surface.generator
+    im.write(tmp_path / "s.npy", surface.heights, generator=earlier)
+    assert '"seed": 18446744073709551615' in (tmp_path / "s.npy.json").read_text()
+    refused = r'generator: "seed": expected an integer in \[0, 18446744073709551615\]'
+    for seed in (2**64, -2**63 - 1, 1.5, "1"):
+        with pytest.raises(im.InvalidArgument, match=refused):
+            im.write(tmp_path / "t.npy", surface.heights, generator=dict(surface.generator, seed=seed))
 
 
 def test_a_record_read_back_writes_the_same_sidecar_beside_another_format(cli, tmp_path):

@@ -5,6 +5,7 @@
 #include "indentmap/field.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -17,7 +18,7 @@ int cli_apply_memory_limit(void)
     if (!text || !text[0])
         return 0;
     char *end;
-    double mib = strtod(text, &end);
+    double mib = number_parse(text, &end);
     if (end == text || *end != '\0' || !(mib > 0.0) || !isfinite(mib)) {
         fprintf(stderr, "indentmap: IM_MEMORY_LIMIT_MIB = '%s': expected a number of MiB > 0\n", text);
         return -1;

@@ -139,7 +139,8 @@ static void usage(FILE *stream)
             "solved, so the steps already solved survive a later failure or a crash (no convergence:\n"
             "exit 1; contact at the surface's edge: exit 1). DIR is locked while the run writes there\n"
             "(DIR/.lock, as for scenes); the field files of an earlier run in DIR are removed first.\n"
-            "At N = 0 the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
+            "Where N is not positive beyond the solver's tolerance (N <= tol max |N| of the steps so far)\n"
+            "the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
 
 /* Runs of at least this many steps keep FFTW wisdom in the user's cache by default. */

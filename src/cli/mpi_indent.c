@@ -5,6 +5,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "cli/figure_provenance.h"
 #include "cli/mpi_indent.h"
 #include "front/front.h"
@@ -154,6 +155,16 @@ static int steps_parse_list(mpi_indent_options *o, const char *text)
     return -1;
 }
 
+/* The controls exclude one another, as in indent: a second of --approach, --load, --pressure and --mean-gap is
+ * refused (the same one twice is cli_parse_options' refusal). */
+static int control_given_before(const mpi_indent_options *o)
+{
+    if (!o->targets_option && !o->target_text)
+        return 0;
+    fprintf(stderr, "indentmap: mpi-indent: give one of --approach, --load, --pressure and --mean-gap, once\n");
+    return 1;
+}
+
 static int apply_option(int code, const char *arg, void *state)
 {
     mpi_indent_options *o = state;
@@ -166,10 +177,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_PERIODIC: o->periodic = 1; return 0;
     case OPT_PRESSURE:
     case OPT_MEAN_GAP:
-        if (o->targets_option) {
-            fprintf(stderr, "indentmap: mpi-indent: give one of --pressure and --mean-gap, once\n");
+        if (control_given_before(o))
             return -1;
-        }
         o->targets_option = code == OPT_PRESSURE ? "--pressure" : "--mean-gap";
         o->control = code == OPT_PRESSURE ? IM_CONTROL_LOAD : IM_CONTROL_MEAN_GAP;
         return steps_parse_list(o, arg);
@@ -185,6 +194,8 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_RADIUS: o->punch_given = 1; return cli_parse_double("--radius", arg, 0, 1e300, &o->punch.radius);
     case OPT_APPROACH: /* W or N, or a LIST: read once the options are known (half_space_targets) */
     case OPT_LOAD:
+        if (control_given_before(o))
+            return -1;
         o->control = code == OPT_LOAD ? IM_CONTROL_LOAD : IM_CONTROL_DISPLACEMENT;
         o->target_text = arg;
         return 0;
@@ -278,7 +289,7 @@ static int sidecar_readable_as_is(const char *surface_file)
     struct stat info;
     if (im_path_suffix(path, sizeof path, surface_file, ".json") != IM_OK || stat(path, &info) != 0)
         return IM_OK; /* no sidecar: nothing stated */
-    json_t *root = json_load_file(path, 0, NULL);
+    json_t *root = json_file_load(path, 0, NULL);
     json_t *delta = json_object_get(root, "delta"), *unit = json_object_get(root, "unit");
     const char *order = json_string_value(json_object_get(root, "order"));
     int status = IM_OK;

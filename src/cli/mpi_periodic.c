@@ -8,6 +8,7 @@
 #if IM_HAVE_MPI
 
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "core/error_keep.h"
 #include "front/front.h"
 #include "front/indent_run.h"
@@ -139,7 +140,7 @@ static int add_blocks(const history_run *run, json_t *root)
     int ranks;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (!o->surface_file)
-        json_object_set_new(blocks, "seed", json_integer((json_int_t)o->surface.seed));
+        json_object_set_new(blocks, "seed", json_unsigned(o->surface.seed));
     json_object_set_new(blocks, "ranks", json_integer(ranks));
     json_object_update(root, blocks);
     json_decref(blocks);
@@ -195,7 +196,8 @@ static int run_step(history_run *run, int i)
     if (status == IM_OK)
         status = gather_whole(run, last_pressure(run), &force);
     if (status == IM_OK && run->rank == 0) /* the theory columns are the half-space's */
-        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->rows, i);
+        status = im_history_measure(&run->punch, run->cell ? NULL : &run->rough, NULL, run->o->solver.tol, run->rows,
+                                    i);
     im_contact_patches patches = {0};
     const step_units units = {run->o->solver.hardness, "", run->force_unit};
     if (status == IM_OK && run->rank == 0 && run->o->frames) /* what the frames are drawn from, as indent's */
@@ -253,8 +255,8 @@ static int finish_record(history_run *run, int done, int status)
     error_keep(&kept);
     im_adhesion_summary summary;
     if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
-        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done, "",
-                                        run->force_unit, &run->texts, &summary) != IM_OK)
+        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done,
+                                        run->o->control, "", run->force_unit, &run->texts, &summary) != IM_OK)
             fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
     } else if (!run->o->periodic)
         write_analysis(run, done);

@@ -4,6 +4,7 @@
 #include "indentmap/formats.h"
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -46,7 +47,7 @@ int cli_parse_u64(const char *option, const char *text, uint64_t *out)
 int cli_parse_double(const char *option, const char *text, double min, double max, double *out)
 {
     char *end;
-    double value = strtod(text, &end);
+    double value = number_parse(text, &end);
     if (end == text || *end != '\0' || !isfinite(value)) {
         fprintf(stderr, "indentmap: %s: '%s' is not a finite number\n", option, text);
         return -1;
@@ -122,18 +123,44 @@ int cli_report(int status)
     return (status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM) ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
 }
 
+/* An option with a value given before (seen[index] its first value): refused, naming it, whatever the
+ * option (a value is one setting: the last must not win silently over the first, issue T10). Flags may be
+ * repeated: saying one twice changes nothing. */
+static int refuse_repeated_value(const struct option *option, const char **seen, const char *arg)
+{
+    if (option->has_arg == no_argument)
+        return 0;
+    if (*seen) {
+        fprintf(stderr, "indentmap: --%s given twice ('%s', then '%s'): expected it once\n", option->name, *seen,
+                arg);
+        return -1;
+    }
+    *seen = arg;
+    return 0;
+}
+
 int cli_parse_options(int argc, char **argv, const struct option *options, int help_code, void (*usage)(FILE *),
                       int (*apply)(int code, const char *arg, void *state), void *state)
 {
-    int code;
+    enum { OPTIONS_MAX = 128 }; /* more than any subcommand's table */
+    const char *seen[OPTIONS_MAX] = {0};
+    int code, index = -1, count = 0;
+    while (options[count].name)
+        ++count;
+    if (count > OPTIONS_MAX) {
+        fprintf(stderr, "indentmap: %d options: expected at most %d (OPTIONS_MAX, parse.c)\n", count, OPTIONS_MAX);
+        return -1;
+    }
     optind = 1;
-    while ((code = getopt_long(argc, argv, "h", options, NULL)) != -1) {
+    while ((code = getopt_long(argc, argv, "h", options, &index)) != -1) {
         if (code == help_code || code == 'h') {
             usage(stdout);
             return 1;
         }
-        if (code == '?' || apply(code, optarg, state) != 0)
+        if (code == '?' || (index >= 0 && refuse_repeated_value(&options[index], &seen[index], optarg) != 0) ||
+            apply(code, optarg, state) != 0)
             return -1;
+        index = -1; /* getopt_long sets it for long options only */
     }
     return 0;
 }

@@ -5,6 +5,7 @@
 
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -60,9 +61,11 @@ int cli_parse_taper(const char *text, im_taper *out)
         return 0;
     }
     double alpha = 0.5;
-    char tail;
-    if (strcmp(text, "tukey") == 0 ||
-        (sscanf(text, "tukey:%lf%c", &alpha, &tail) == 1 && alpha >= 0.0 && alpha <= 1.0)) {
+    const char *given = strncmp(text, "tukey:", 6) == 0 ? text + 6 : NULL;
+    char *end = NULL;
+    if (given)
+        alpha = number_parse(given, &end);
+    if (strcmp(text, "tukey") == 0 || (given && end != given && !*end && alpha >= 0.0 && alpha <= 1.0)) {
         *out = (im_taper){IM_TAPER_TUKEY, alpha};
         return 0;
     }

@@ -1,5 +1,6 @@
 /* indentmap render: draw a field file as a contact map or a height field, or animate frames. */
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "cli/figure_provenance.h"
 #include "front/front.h"
 
@@ -69,7 +70,7 @@ typedef struct render_options {
     int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     int map_given, linear;         /* --colormap, --linear: else forces take the frames' magma, log */
     im_colormap_range shared;      /* default norm: the union of the fields' values */
-    double shared_tension;         /* the largest tension -f of all the fields: the tension bar's top */
+    im_colormap_range tensions;    /* the tension -f of all the fields: one tension norm, its bar where hi > 0 */
     char value_unit[40];           /* the first field's value unit (its .npy sidecar), "" if none */
     int extend_under, extend_over; /* some drawn values lie below / above the norm */
     im_render_backend backend;
@@ -187,7 +188,7 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
     note_extremes(o, force, &style.colormap, 1);
-    style.tension = im_contact_tension_norm(o->shared_tension);
+    style.tension = im_colormap_range_norm(&o->tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
     if (o->has_circle_x)
@@ -245,7 +246,7 @@ static const char *height_quantity(const char *path)
                                            {"plastic depth", "plastic"}};
     char sidecar[4096];
     snprintf(sidecar, sizeof sidecar, "%s.json", path);
-    json_t *record = json_load_file(sidecar, 0, NULL);
+    json_t *record = json_file_load(sidecar, 0, NULL);
     const char *stated = json_string_value(json_object_get(record, "quantity")), *quantity = "height";
     for (size_t i = 0; stated && i < sizeof KNOWN / sizeof *KNOWN; ++i)
         if (strncmp(stated, KNOWN[i][0], strlen(KNOWN[i][0])) == 0)
@@ -284,8 +285,8 @@ static int write_figure(const render_options *o, const im_image *images, int cou
     figure.colorbar_label = quantity;
     figure.extend_under = o->extend_under;
     figure.extend_over = o->extend_over;
-    const im_colormap tension = im_contact_tension_norm(o->shared_tension);
-    if (strcmp(o->mode, "height") != 0 && o->shared_tension > 0.0) {
+    const im_colormap tension = im_colormap_range_norm(&o->tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    if (strcmp(o->mode, "height") != 0 && o->tensions.hi > 0.0) {
         figure.tension_colormap = &tension;
         figure.tension_label = tension_name;
     }
@@ -332,10 +333,8 @@ static int write_output(const render_options *o, char **inputs, const im_image *
 static void set_shared_range(render_options *o, im_field **fields, int count)
 {
     int height = strcmp(o->mode, "height") == 0;
-    o->shared = im_colormap_range_empty(height ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES);
-    for (int i = 0; i < count; ++i)
-        im_colormap_range_add(&o->shared, fields[i]);
-    o->shared_tension = height ? 0.0 : frame_largest_tension(fields, count);
+    o->shared = frame_range(fields, count, height ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES);
+    o->tensions = frame_range(fields, height ? 0 : count, IM_COLORMAP_TENSIONS); /* heights: none */
 }
 
 /* Reads the fields and sets the default norm. */

@@ -32,6 +32,8 @@ static void usage(FILE *stream)
             "  --raw                 PNG of the rendered image only\n"
             "  --force FILE          local forces (same grid) for the contact colours\n"
             "  --displacement FILE   subtract this displacement u from HEIGHT\n"
+            "  --fill                fill HEIGHT's missing points (NaN) from their neighbours (default:\n"
+            "                        refuse)\n"
             "  --punch KIND          cone (default), sphere, flat or none\n"
             "  --alpha A             cone semi-opening angle in degrees (default 80)\n"
             "  --radius R            sphere or flat punch radius, in the units of delta\n"
@@ -61,7 +63,7 @@ static void usage(FILE *stream)
 
 typedef struct view3d_options {
     const char *out, *force, *displacement, *title;
-    int raw, has_log, has_linear, has_vmin, has_vmax, has_distance, no_punch;
+    int raw, fill, has_log, has_linear, has_vmin, has_vmax, has_distance, no_punch;
     double vmin, vmax, dpi;
     double largest_tension; /* of --force: > 0 draws the tension's colour bar */
     im_colormap_id map;
@@ -78,6 +80,7 @@ enum {
     OPT_RAW,
     OPT_FORCE,
     OPT_DISPLACEMENT,
+    OPT_FILL,
     OPT_PUNCH,
     OPT_ALPHA,
     OPT_RADIUS,
@@ -110,6 +113,7 @@ static const struct option LONG_OPTIONS[] = {{"out", required_argument, 0, OPT_O
                                              {"raw", no_argument, 0, OPT_RAW},
                                              {"force", required_argument, 0, OPT_FORCE},
                                              {"displacement", required_argument, 0, OPT_DISPLACEMENT},
+                                             {"fill", no_argument, 0, OPT_FILL},
                                              {"punch", required_argument, 0, OPT_PUNCH},
                                              {"alpha", required_argument, 0, OPT_ALPHA},
                                              {"radius", required_argument, 0, OPT_RADIUS},
@@ -180,6 +184,7 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_RAW: o->raw = 1; return 0;
+    case OPT_FILL: o->fill = 1; return 0;
     case OPT_FORCE: o->force = arg; return 0;
     case OPT_DISPLACEMENT: o->displacement = arg; return 0;
     case OPT_PUNCH: return apply_punch(o, arg);
@@ -217,10 +222,13 @@ static int apply_option(int code, const char *arg, void *state)
     }
 }
 
-/* HEIGHT, minus the displacement when one is given. */
+/* HEIGHT (its missing points filled with --fill, as indent's), minus the displacement when one is given. */
 static int read_height(const char *path, const view3d_options *o, im_field **height)
 {
-    int status = im_surface_read(path, height);
+    im_surface_read_info info;
+    int status = im_surface_read_with(path, &(im_surface_read_options){.fill = o->fill}, height, &info);
+    if (status == IM_OK)
+        cli_warn_about_reading(path, &info, im_field_count(*height));
     im_field *u = NULL;
     if (status != IM_OK || !o->displacement)
         return status;

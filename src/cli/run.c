@@ -171,6 +171,33 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
 }
 #endif
 
+/* What `run`'s options set. */
+typedef struct run_arguments {
+    im_scene_run_options *run;
+    run_source *source;
+    im_render_backend *backend;
+    run_wisdom *wisdom;
+} run_arguments;
+
+static int apply_option(int code, const char *arg, void *state)
+{
+    run_arguments *a = state;
+    switch (code) {
+    case 'r': a->run->resume = 1; return 0;
+    case 'q': a->run->quiet = 1; return 0;
+    case 'w': a->wisdom->given = arg; return 0;
+    case 'W': a->wisdom->off = 1; return 0;
+    case 'R': *a->source = (run_source){.path = arg, .from_record = 1, .out = a->source->out}; return 0;
+    case 'o': a->source->out = arg; return 0;
+    case 'b':
+        if (im_render_backend_from_name(arg, a->backend) == IM_OK)
+            return 0;
+        cli_report(IM_EINVAL);
+        return -1;
+    default: return -1;
+    }
+}
+
 int cli_run(int argc, char **argv)
 {
     static const struct option options[] = {{"resume", no_argument, 0, 'r'},
@@ -186,30 +213,10 @@ int cli_run(int argc, char **argv)
     run_source source = {0};
     im_render_backend backend = IM_RENDER_AUTO;
     run_wisdom wisdom = {0};
-    int code;
-    optind = 1;
-    while ((code = getopt_long(argc, argv, "h", options, NULL)) != -1) {
-        if (code == 'h') {
-            usage(stdout);
-            return CLI_EXIT_OK;
-        }
-        if (code == 'r')
-            run.resume = 1;
-        else if (code == 'q')
-            run.quiet = 1;
-        else if (code == 'w')
-            wisdom.given = optarg;
-        else if (code == 'W')
-            wisdom.off = 1;
-        else if (code == 'R')
-            source = (run_source){.path = optarg, .from_record = 1, .out = source.out};
-        else if (code == 'o')
-            source.out = optarg;
-        else if (code == 'b' && im_render_backend_from_name(optarg, &backend) != IM_OK)
-            return cli_report(IM_EINVAL);
-        else if (code == '?')
-            return CLI_EXIT_USAGE;
-    }
+    run_arguments arguments = {&run, &source, &backend, &wisdom};
+    int code = cli_parse_options(argc, argv, options, 'h', usage, apply_option, &arguments);
+    if (code != 0)
+        return code > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     if (optind != argc - !source.from_record) { /* a scene file, or a record */
         usage(stderr);
         return CLI_EXIT_USAGE;

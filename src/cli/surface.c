@@ -301,30 +301,12 @@ static int write_height_png(const char *path, const im_field *surface, const im_
     return status;
 }
 
-/* --out and its sidecar, one writer's pair even when other writers race for the same name. */
-static int write_surface_and_sidecar(const surface_options *o, const im_field *surface, const im_surface_stats *st,
-                                     const im_surface_params *params)
-{
-    char sidecar[4096];
-    int status = im_path_suffix(sidecar, sizeof sidecar, o->out, ".json");
-    if (status != IM_OK)
-        return status;
-    int pair_lock = im_pair_writers_lock(o->out);
-    if (pair_lock < 0)
-        return IM_EIO;
-    status = im_surface_write(o->out, surface);
-    if (status == IM_OK)
-        status = im_surface_sidecar_write(sidecar, surface, params, o->stats, st);
-    im_pair_writers_unlock(pair_lock);
-    return status;
-}
-
 static int write_outputs(const surface_options *o, const im_field *surface, const im_surface_stats *st,
                          const im_surface_params *params)
 {
     int status = IM_OK;
     if (o->out)
-        status = write_surface_and_sidecar(o, surface, st, params);
+        status = im_surface_write_with_sidecar(o->out, surface, params, o->stats, st);
     if (status == IM_OK && o->png)
         status = write_height_png(o->png, surface, st);
     if (status == IM_OK && o->psd)

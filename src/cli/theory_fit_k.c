@@ -2,6 +2,7 @@
  * cell, the h'rms and E* of the run.json beside it: the fit `indent --periodic` makes at its end
  * (front.h: periodic_fit_k), printed the same way. */
 #include "cli/cli.h"
+#include "io/json_file.h"
 #include "front/front.h"
 
 #include "indentmap/io.h"
@@ -102,7 +103,7 @@ static int read_periodic_run(const char *path, periodic_run *run)
                        "--periodic` records there",
                        path);
     json_error_t error;
-    json_t *record = json_load_file(path, JSON_REJECT_DUPLICATES, &error);
+    json_t *record = json_file_load(path, JSON_REJECT_DUPLICATES, &error);
     if (!record)
         return im_fail(IM_EFORMAT, "%s: line %d: %s", path, error.line, error.text);
     im_field cell = {.nx = 0};

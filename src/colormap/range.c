@@ -1,6 +1,7 @@
 /* One default norm over several fields (colormap.h, "one norm over several fields"): the contact maps
  * and height maps of `render`, the frames of scenes and of `indent --frames`, the panels of a scene's
- * figure, the 3-D views and Python's pictures all take their norm from here. */
+ * figure, the 3-D views and Python's pictures all take their norm, and their shared tension norm, from
+ * here. */
 #include "indentmap/colormap.h"
 #include "core/args.h"
 
@@ -15,10 +16,11 @@ int im_colormap_range_add(im_colormap_range *range, const im_field *field)
 {
     ARG_REQUIRE(range, "range");
     ARG_VIEW(field, "field");
-    const int forces = range->values == IM_COLORMAP_FORCES;
+    const int positive = range->values != IM_COLORMAP_HEIGHTS; /* forces > 0, tensions -f > 0 */
+    const double sign = range->values == IM_COLORMAP_TENSIONS ? -1.0 : 1.0;
     for (size_t i = 0; i < im_field_count(field); ++i) {
-        double v = field->data[i];
-        if (isfinite(v) && (!forces || v > 0.0)) {
+        double v = sign * field->data[i];
+        if (isfinite(v) && (!positive || v > 0.0)) {
             range->lo = fmin(range->lo, v);
             range->hi = fmax(range->hi, v);
         }
@@ -31,6 +33,7 @@ static int default_bounds(const im_colormap_range *range, double *lo, double *hi
 {
     switch (range->values) {
     case IM_COLORMAP_FORCES:
+    case IM_COLORMAP_TENSIONS:
         *lo = 0.0;
         *hi = range->hi > 0.0 ? range->hi : 1.0;
         return IM_OK;
@@ -42,8 +45,8 @@ static int default_bounds(const im_colormap_range *range, double *lo, double *hi
     }
     default:
         return im_fail(IM_EINVAL,
-                       "im_colormap_range_norm: values = %d: expected IM_COLORMAP_FORCES or "
-                       "IM_COLORMAP_HEIGHTS",
+                       "im_colormap_range_norm: values = %d: expected IM_COLORMAP_FORCES, "
+                       "IM_COLORMAP_HEIGHTS or IM_COLORMAP_TENSIONS",
                        (int)range->values);
     }
 }

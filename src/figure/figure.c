@@ -16,6 +16,10 @@
 
 enum { MAX_TICKS = 32, MAX_PANELS = 64, MAX_BARS = 2 };
 
+/* The shortest colour bar, in ems: room for three tick labels 1.2 em apart (choose_ticks), so that a
+ * two-decade log bar labels every decade; shorter, a bar labels one tick or none. */
+#define MIN_BAR_EMS 2.5
+
 im_figure im_figure_default(void)
 {
     im_figure figure = {.rows = 1,
@@ -197,9 +201,11 @@ static double images_right(const im_figure *f, const layout *l)
 
 /* Places a colour bar along the panels' height (less its extension triangles) right of `left`, or of
  * `cells_right` (the cells' edge, which titles wider than their images push out) when its rotated
- * label, longer than the bar, would reach up into the title row; the right edge of its labels. */
+ * label, longer than the bar, would reach up into the title row; the right edge of its labels.
+ * Beside panels too low for it (a 16 x 1024 scan) the bar keeps MIN_BAR_EMS and runs on below them,
+ * right of `under_end`, where the scale bar's text and the note under the panels end. */
 static double place_colorbar(const measure *m, layout *l, colorbar bar, double left, double cells_right,
-                             double grid_height, double *bottom)
+                             double under_end, double grid_height, double *bottom)
 {
     colorbar *b = &l->bars[l->bar_count++];
     *b = bar;
@@ -207,12 +213,20 @@ static double place_colorbar(const measure *m, layout *l, colorbar bar, double l
     double triangle = round(1.2 * l->bar_width);
     b->y = l->grid_y + l->title_height + (b->extend_over ? triangle : 0.0);
     b->height = grid_height - l->title_height - (b->extend_over + b->extend_under) * triangle;
+    int lengthened = b->height < round(MIN_BAR_EMS * l->font);
+    if (lengthened) {
+        b->height = round(MIN_BAR_EMS * l->font);
+        left = fmax(left, under_end);
+    }
     if (text_width(m, m->regular, l->font, b->label) > b->height)
         left = fmax(left, cells_right);
     b->x = round(left + 1.2 * l->font);
     measure_colorbar(m, l->font, b);
     if (b->label)
         fit_colorbar_label(m, l, bottom);
+    /* the under triangle, or the lowest tick label's lower half */
+    if (lengthened)
+        *bottom = fmax(*bottom, b->y + b->height + fmax(b->extend_under ? triangle : 0.0, 0.6 * l->font));
     return b->x + l->bar_width + l->tick_length + 0.3 * l->font + b->tick_label_width +
            (b->label ? 1.6 * l->font : 0.0);
 }
@@ -253,17 +267,17 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
     }
     l->bar_width = round(1.1 * l->font);
     l->tick_length = round(0.4 * l->font);
-    double cells_right = l->grid_x + grid_width, bars_end = images_right(f, l);
+    double cells_right = l->grid_x + grid_width, bars_end = images_right(f, l), under_end = right;
     if (f->colormap)
         bars_end = place_colorbar(m, l,
                                   (colorbar){.colormap = f->colormap,
                                              .label = f->colorbar_label,
                                              .extend_under = f->extend_under,
                                              .extend_over = f->extend_over},
-                                  bars_end, cells_right, grid_height, &bottom);
+                                  bars_end, cells_right, under_end, grid_height, &bottom);
     if (f->tension_colormap)
         bars_end = place_colorbar(m, l, (colorbar){.colormap = f->tension_colormap, .label = f->tension_label},
-                                  bars_end, cells_right, grid_height, &bottom);
+                                  bars_end, cells_right, under_end, grid_height, &bottom);
     if (l->bar_count)
         right = fmax(right, bars_end);
     l->width = (int)ceil(right + l->margin);

@@ -3,6 +3,7 @@
 #include "formats/container.h"
 
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -50,7 +51,7 @@ static int number_of(const meta_reader *m, yaml_node_t *node, const char *key, d
     int status = text_of(m, node, key, text, sizeof text);
     if (status != IM_OK)
         return status;
-    *value = strtod(text, &end);
+    *value = number_parse(text, &end);
     if (end == text || *end || !isfinite(*value))
         return im_fail(IM_EFORMAT, "%s: meta.yml: %s = '%s': expected a finite number", m->path, key, text);
     return IM_OK;

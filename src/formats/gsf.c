@@ -5,6 +5,7 @@
 #include "indentmap/status.h"
 #include "formats/payload.h"
 #include "formats/readers.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <math.h>
@@ -89,7 +90,7 @@ static int parse_count(const char *path, const char *key, const char *value, lon
 static int parse_extent(const char *path, const char *key, const char *value, double *out)
 {
     char *end;
-    double number = strtod(value, &end);
+    double number = number_parse(value, &end);
     if (end == value || end[strspn(end, " \t\r")] != '\0' || !isfinite(number) || !(number > 0.0))
         return im_fail(IM_EFORMAT, "%s: %s = '%.32s': expected a finite length > 0", path, key, value);
     *out = number;

@@ -62,7 +62,7 @@ int npy_sidecar_read(const char *path, surface_stated *stated, char *value_unit,
         return im_fail(IM_EFORMAT, "%s: the sidecar stating the units of %s is not a regular file of at most 1 MiB",
                        sidecar, path);
     json_error_t error;
-    json_t *root = json_load_file(sidecar, 0, &error);
+    json_t *root = json_file_load(sidecar, 0, &error);
     if (!json_is_object(root)) {
         json_decref(root);
         return im_fail(IM_EFORMAT,

@@ -6,6 +6,7 @@
 #include "indentmap/formats.h"
 #include "indentmap/io.h"
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -65,7 +66,7 @@ static int parse_pair(const char *text, double *r, double *z)
 {
     char *end;
     errno = 0;
-    *r = strtod(text, &end);
+    *r = number_parse(text, &end);
     if (end == text)
         return 0;
     const char *s = skip_blanks(end);
@@ -74,7 +75,7 @@ static int parse_pair(const char *text, double *r, double *z)
     else if (s == end)
         return 0;
     const char *start = s;
-    *z = strtod(start, &end);
+    *z = number_parse(start, &end);
     return end != start && *skip_blanks(end) == '\0';
 }
 

@@ -11,6 +11,7 @@
 #include "indentmap/status.h"
 #include "formats/payload.h"
 #include "formats/readers.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <math.h>
@@ -91,7 +92,7 @@ static int parse_ascii_line(const char *path, long line_number, const char *line
         }
     for (int i = SDF_LONG_KEYS; i < SDF_KEYS; ++i)
         if (strcmp(key, SDF_KEY_NAMES[i]) == 0) {
-            *double_fields[i - SDF_LONG_KEYS] = strtod(value, &end);
+            *double_fields[i - SDF_LONG_KEYS] = number_parse(value, &end);
             if (*end != '\0')
                 return im_fail(IM_EFORMAT, "%s:%ld: %s = '%s': expected a number", path, line_number, key, value);
             seen[i] = 1;
@@ -128,7 +129,7 @@ static int read_ascii_values(FILE *stream, const char *path, const sdf_header *h
     char token[64];
     while (got < count && fscanf(stream, "%63s", token) == 1) {
         char *end;
-        double value = strcmp(token, "BAD") == 0 ? NAN : strtod(token, &end);
+        double value = strcmp(token, "BAD") == 0 ? NAN : number_parse(token, &end);
         if (token[0] == '*')
             break;
         if (strcmp(token, "BAD") != 0 && *end != '\0')

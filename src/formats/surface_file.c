@@ -241,3 +241,36 @@ int im_surface_write(const char *path, const im_field *field)
         return im_x3p_write(path, field);
     return im_text_write(path, field);
 }
+
+/* The pair's second file: the surface's record, or a .npy's units. */
+static int write_sidecar(const char *path, const char *sidecar, const im_field *surface,
+                         const im_surface_params *params, const char *source, const im_surface_stats *stats)
+{
+    if (!params && !source && !stats)
+        return im_field_sidecar_write(path, surface, "height");
+    im_surface_stats computed;
+    int status = stats ? IM_OK : im_surface_statistics(surface, &computed);
+    return status == IM_OK ? im_surface_sidecar_write(sidecar, surface, params, source, stats ? stats : &computed)
+                           : status;
+}
+
+int im_surface_write_with_sidecar(const char *path, const im_field *surface, const im_surface_params *params,
+                                  const char *source, const im_surface_stats *stats)
+{
+    ARG_REQUIRE(path, "path");
+    ARG_VIEW(surface, "surface");
+    if (!params && !source && !stats && !has_extension(path, ".npy"))
+        return im_surface_write(path, surface);
+    char sidecar[4096];
+    int status = im_path_suffix(sidecar, sizeof sidecar, path, ".json");
+    if (status != IM_OK)
+        return status;
+    int pair_lock = im_pair_writers_lock(path);
+    if (pair_lock < 0)
+        return IM_EIO;
+    status = im_surface_write(path, surface);
+    if (status == IM_OK)
+        status = write_sidecar(path, sidecar, surface, params, source, stats);
+    im_pair_writers_unlock(pair_lock);
+    return status;
+}

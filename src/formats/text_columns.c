@@ -2,6 +2,7 @@
 #include "formats/text_columns.h"
 
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -22,7 +23,7 @@ int text_columns_is_named_row(const char *line)
 {
     const char *at = line + strspn(line, " \t");
     char *end;
-    (void)strtod(at, &end); /* "nan" and "inf" are numbers */
+    (void)number_parse(at, &end); /* "nan" and "inf" are numbers */
     return *at == '"' || *at == '\'' || (isalpha((unsigned char)*at) && end == at);
 }
 

@@ -1,6 +1,7 @@
 #include "formats/text_header.h"
 
 #include "indentmap/status.h"
+#include "core/number.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -21,7 +22,7 @@ static int parse_length(const char *path, long line_number, const char *key, con
                         char *unit, size_t unit_size)
 {
     char *end;
-    double number = strtod(value, &end);
+    double number = number_parse(value, &end);
     char unit_text[64] = "";
     int words = sscanf(end, "%63s", unit_text);
     if (end == value || !isfinite(number) || !(number > 0.0) || strlen(unit_text) >= unit_size)
@@ -114,7 +115,7 @@ static int parse_vision_grid(const char *path, long line_number, const char *lin
 static int parse_vision_factor(const char *path, long line_number, const char *value, text_header *header)
 {
     char *end;
-    double factor = strtod(value, &end);
+    double factor = number_parse(value, &end);
     if (end == value || !isfinite(factor) || factor == 0.0 || end[strspn(end, " \t\r\n")])
         return im_fail(IM_EFORMAT,
                        "%s:%ld: height conversion factor (-> m) '%.40s': expected a finite number "

@@ -11,6 +11,7 @@
 #include "formats/text_points.h"
 #include "formats/text_preamble.h"
 #include "formats/utf16_text.h"
+#include "core/number.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -119,7 +120,7 @@ static int parse_data_line(char *line, const char *path, long line_number, value
     for (char *token = strtok_r(line, separators, &rest); token; token = strtok_r(NULL, separators, &rest)) {
         char *end;
         errno = 0;
-        double value = strtod(token, &end);
+        double value = number_parse(token, &end);
         if (end == token || *end != '\0') {
             visible_token(token, shown, sizeof shown);
             return im_fail(IM_EFORMAT, "%s:%ld: '%s' is not a number", path, line_number, shown);

@@ -5,6 +5,7 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 #include "formats/readers.h"
+#include "core/number.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -25,7 +26,7 @@ int text_preamble_is_text(const char *line)
     if (!*at)
         return 0;
     char *end;
-    (void)strtod(at, &end); /* a name that starts like "inf" or "nan" ("info") is a name */
+    (void)number_parse(at, &end); /* a name that starts like "inf" or "nan" ("info") is a name */
     return end == at || (isalpha((unsigned char)*at) && (isalnum((unsigned char)*end) || *end == '_'));
 }
 

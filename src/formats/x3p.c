@@ -20,6 +20,7 @@
 #include "formats/payload.h"
 #include "formats/readers.h"
 #include "formats/zip_entry.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <libxml/parser.h>
@@ -113,7 +114,7 @@ static int number_at(const char *path, xmlNode *root, const char *const *names, 
         return optional ? IM_OK : im_fail(IM_EFORMAT, "%s: main.xml lacks %s", path, what);
     xmlChar *text = xmlNodeGetContent(node);
     char *end;
-    double value = text ? strtod((const char *)text, &end) : NAN;
+    double value = text ? number_parse((const char *)text, &end) : NAN;
     int ok = text && end != (char *)text && end[strspn(end, " \t\r\n")] == '\0' && isfinite(value);
     if (!ok) {
         im_fail(IM_EFORMAT, "%s: main.xml %s '%.32s': expected a finite number", path, what,

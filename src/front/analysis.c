@@ -136,6 +136,8 @@ static const figure_words LOAD_DISPLACEMENT = {"load_displacement", "loading", "
                                                IM_PLOT_LEGEND_UPPER_LEFT};
 static const figure_words FORCE_DISTANCE = {"force_distance", "approach", "retraction", "pull-off",
                                             IM_PLOT_LEGEND_UPPER_LEFT};
+static const figure_words FORCE_DISTANCE_HELD = {"force_distance", "approach", "retraction", "most tensile load held",
+                                                 IM_PLOT_LEGEND_UPPER_LEFT};
 
 /* A figure's axis labels in the run's units and the texts it carries (NULL: none). */
 typedef struct figure_axes {
@@ -282,8 +284,23 @@ int im_history_write_analysis(const char *dir, const im_indenter *punch, const i
 
 /* ---- adhesion: the summary and the force-distance figure ---- */
 
-int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
-                            const char *force_unit, const run_figure_texts *texts, im_adhesion_summary *summary)
+int analysis_least_load_is_pull_off(const im_history_row *rows, int count, enum im_control control)
+{
+    if (control != IM_CONTROL_DISPLACEMENT)
+        return 0;
+    int least = 0;
+    for (int k = 1; k < count; ++k)
+        if (rows[k].result.load < rows[least].result.load)
+            least = k;
+    for (int k = least + 1; k < count; ++k)
+        if (rows[k].result.load > rows[least].result.load)
+            return 1;
+    return 0;
+}
+
+int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, enum im_control control,
+                            const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                            im_adhesion_summary *summary)
 {
     if (count < 1)
         return im_fail(IM_EINVAL, "adhesion summary: no step solved");
@@ -312,7 +329,8 @@ int analysis_write_adhesion(const char *dir, const im_history_row *rows, int cou
     if (status == IM_OK) {
         split_segments(rows, count, 0, &up, &down);
         const figure_axes axes = axes_of(length_unit, force_unit, texts);
-        status = draw_figure(dir, &FORCE_DISTANCE, &up, &down, &marker, &axes);
+        const int pull_off = analysis_least_load_is_pull_off(rows, count, control);
+        status = draw_figure(dir, pull_off ? &FORCE_DISTANCE : &FORCE_DISTANCE_HELD, &up, &down, &marker, &axes);
     }
     free(columns);
     free(contact);

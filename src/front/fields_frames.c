@@ -18,20 +18,18 @@ static int read_force(const char *dir, int step, im_field **force)
     return status == IM_OK ? im_npy_read(path, force) : status;
 }
 
-/* The forces of every step and their largest tension: the frames' one force norm and the top of their
+/* The forces and the tensions of every step (ranges[0], ranges[1]): the frames' one force norm and their
  * one tension norm, gathered a step at a time. */
-static int shared_ranges(const fields_frames *f, im_colormap_range *forces, double *largest_tension)
+static int shared_ranges(const fields_frames *f, im_colormap_range ranges[2])
 {
-    *forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
-    *largest_tension = 0.0;
+    ranges[0] = im_colormap_range_empty(IM_COLORMAP_FORCES);
+    ranges[1] = im_colormap_range_empty(IM_COLORMAP_TENSIONS);
     int status = IM_OK;
     for (int step = 1; step <= f->count && status == IM_OK; ++step) {
         im_field *force = NULL;
         status = read_force(f->dir, step, &force);
-        if (status == IM_OK)
-            status = im_colormap_range_add(forces, force);
-        if (status == IM_OK)
-            *largest_tension = fmax(*largest_tension, im_contact_largest_tension(force));
+        for (int i = 0; i < 2 && status == IM_OK; ++i)
+            status = im_colormap_range_add(&ranges[i], force);
         im_field_free(force);
     }
     return status;
@@ -85,14 +83,14 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
 
 int fields_frames_write(im_render_context *context, const fields_frames *f)
 {
-    im_colormap_range forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
-    double largest_tension = 0.0;
+    im_colormap_range ranges[2] = {im_colormap_range_empty(IM_COLORMAP_FORCES),
+                                   im_colormap_range_empty(IM_COLORMAP_TENSIONS)};
     int status = im_make_directories(f->frames);
     if (status == IM_OK)
-        status = shared_ranges(f, &forces, &largest_tension);
-    const im_colormap norms[2] = {im_colormap_range_norm(&forces, IM_COLORMAP_MAGMA, NAN, NAN, 1),
-                                  im_contact_tension_norm(largest_tension)};
+        status = shared_ranges(f, ranges);
+    const im_colormap norms[2] = {im_colormap_range_norm(&ranges[0], IM_COLORMAP_MAGMA, NAN, NAN, 1),
+                                  im_colormap_range_norm(&ranges[1], IM_COLORMAP_TENSION, NAN, NAN, 0)};
     for (int step = 1; step <= f->count && status == IM_OK; ++step)
-        status = write_frame(context, f, norms, largest_tension > 0.0, step);
+        status = write_frame(context, f, norms, ranges[1].hi > 0.0, step);
     return status;
 }

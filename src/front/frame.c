@@ -7,12 +7,12 @@
 
 #include <math.h>
 
-double frame_largest_tension(im_field *const *fields, int count)
+im_colormap_range frame_range(im_field *const *fields, int count, im_colormap_values values)
 {
-    double largest = 0.0;
+    im_colormap_range range = im_colormap_range_empty(values);
     for (int i = 0; i < count; ++i)
-        largest = fmax(largest, im_contact_largest_tension(fields[i]));
-    return largest;
+        im_colormap_range_add(&range, fields[i]);
+    return range;
 }
 
 int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image)

@@ -99,12 +99,20 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
 int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
                          double delta, double e_star, int *branches);
 
+/* Whether the least load of rows[0..count) (the summary's pull_off_force, -min N) is a pull-off the steps
+ * sampled: under displacement control, with a later step's load above it (the contact let go past it).
+ * Under load control never: the contact held every load it was given, and the pull-off, the least load it
+ * can hold, lies below them (a step past it is refused naming that least load; issue T16). */
+int analysis_least_load_is_pull_off(const im_history_row *rows, int count, enum im_control control);
+
 /* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
- * pull-off marked, carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be written
- * leaves the summary set. */
-int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, const char *length_unit,
-                            const char *force_unit, const run_figure_texts *texts, im_adhesion_summary *summary);
+ * least load marked (as the pull-off, or as the most tensile load held: analysis_least_load_is_pull_off
+ * with the steps' control), carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be
+ * written leaves the summary set. */
+int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, enum im_control control,
+                            const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                            im_adhesion_summary *summary);
 
 /* The smooth adhesive theory of punch under law (theory.h, "Adhesion"; adhesion_theory.c): "Maugis-Dugdale
  * sphere" or "Kendall flat punch" into *model and the pull-off point into *pull_off; NULL *model (IM_OK)
@@ -254,9 +262,9 @@ int fields_frames_pixels_per_patch(int nx, int ny);
 
 /* ---- frames of a history (frame.c): what a scene's frames and `indent --frames` draw alike ---- */
 
-/* The largest tension -f over the fields (im_contact_largest_tension): the top of the tension norm
- * the frames share, as they share the force norm; 0 when none pulls. */
-double frame_largest_tension(im_field *const *fields, int count);
+/* The range of values (colormap.h) over count fields: the forces, the tensions or the heights whose one
+ * norm the frames share. */
+im_colormap_range frame_range(im_field *const *fields, int count, im_colormap_values values);
 
 /* A step's contact map: its force field through norm (tension: through tension) at pixels_per_patch,
  * with the smooth contact circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y)
@@ -343,8 +351,8 @@ json_t *run_record_adhesion_law(const im_solver_options *options, const im_inden
  * summary's hysteresis_work is NaN when nothing was summarised (no step, or an error); returns the
  * analysis' status (a figure that could not be written, say), for the caller to report. */
 int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
-                                const char *length_unit, const char *force_unit, const run_figure_texts *texts,
-                                im_adhesion_summary *summary);
+                                enum im_control control, const char *length_unit, const char *force_unit,
+                                const run_figure_texts *texts, im_adhesion_summary *summary);
 
 /* Appends {"key": key, "path": the absolute path (escaped where not UTF-8), "sha256": the file's}
  * to the record's inputs array; the error of a file that cannot be read, IM_ENOMEM. */

@@ -372,6 +372,7 @@ static int run_steps(indent_run_state *s, const im_theory_interface *rough, im_i
                                   .rough = o->solver.periodic ? NULL : rough,
                                   .targets = s->targets,
                                   .count = o->target_count,
+                                  .tol = o->solver.tol,
                                   .target_name = indent_target_name(o->control),
                                   .files = s->files,
                                   .units = {o->solver.hardness, s->length_unit, s->force_unit},

@@ -68,8 +68,8 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
 {
     im_adhesion_summary summary;
     json_t *law = json_object_get(record, "adhesion");
-    if (run_record_adhesion_summary(law, s->options->out, rows, done, s->length_unit, s->force_unit, &s->figure_texts,
-                                    &summary) != IM_OK)
+    if (run_record_adhesion_summary(law, s->options->out, rows, done, s->options->control, s->length_unit,
+                                    s->force_unit, &s->figure_texts, &summary) != IM_OK)
         indent_say(s, IM_LOG_WARNING, "adhesion summary: %s", im_last_error());
     if (isnan(summary.hysteresis_work))
         return;
@@ -91,11 +91,20 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
                  "work lost not resolved by the steps: %.6g within the trapezoids' error +- %.2g (finer steps "
                  "around the jumps resolve it)",
                  summary.hysteresis_work, summary.hysteresis_error);
+    /* -min N is the pull-off only where the steps passed it (T16: load control's -3 was said as the pull-off
+     * while the step refused at -6 named the least load the contact holds, -5.43) */
+    const int pull_off = analysis_least_load_is_pull_off(rows, done, s->options->control);
+    const char *why_not = pull_off ? ""
+                          : s->options->control == IM_CONTROL_DISPLACEMENT
+                              ? " (not the pull-off: no later step's load rises above it)"
+                              : " (not the pull-off: load control holds each load given; a load below the pull-off "
+                                "is refused, naming the least load the contact holds)";
     indent_say(s, IM_LOG_INFO,
-               "adhesion: pull-off force %.6g at w = %.6g; jump-in at w = %.6g, last contact retracting at w = %.6g; "
+               "adhesion: %s %.6g at w = %.6g%s; jump-in at w = %.6g, last contact retracting at w = %.6g; "
                "%s; %s/force_distance.png and .pdf",
-               summary.pull_off_force, summary.pull_off_approach, summary.jump_in_approach, summary.jump_out_approach,
-               work, s->options->out);
+               pull_off ? "pull-off force" : "most tensile load held", summary.pull_off_force,
+               summary.pull_off_approach, why_not, summary.jump_in_approach, summary.jump_out_approach, work,
+               s->options->out);
     write_adhesion_theory(s, rows, done, law);
 }
 

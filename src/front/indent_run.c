@@ -142,7 +142,7 @@ static int run_step(const indent_run_plan *plan, im_indentation *run, history_fi
 {
     int status = im_indentation_step(run, plan->targets[i], &rows[i].result);
     if (status == IM_OK)
-        status = im_history_measure(plan->punch, plan->rough, run, rows, i);
+        status = im_history_measure(plan->punch, plan->rough, run, plan->tol, rows, i);
     if (status == IM_OK && plan->files.fields) /* first: history.csv lists only steps whose fields are written */
         status = step_fields_write(plan->dir, run, i + 1, &plan->units);
     if (status == IM_OK && plan->files.distributions)
@@ -164,8 +164,17 @@ int indent_run_steps(const indent_run_plan *plan, im_indentation *run, history_f
                         : run_step(plan, run, history, rows, i);
     }
     *done = status == IM_OK ? i : i - 1;
-    if (status != IM_OK)
-        im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", *done + 1,
-                        plan->count, plan->target_name, plan->targets[*done], *done, plan->dir);
+    if (status != IM_OK) {
+        const int kept = *done;
+        if (kept == 0)
+            im_fail_context(status, "step 1 of %d (%s %g; no step before it was solved)", plan->count,
+                            plan->target_name, plan->targets[0]);
+        else if (kept == 1)
+            im_fail_context(status, "step 2 of %d (%s %g; the step before is in %s/history.csv)", plan->count,
+                            plan->target_name, plan->targets[1], plan->dir);
+        else
+            im_fail_context(status, "step %d of %d (%s %g; the %d steps before are in %s/history.csv)", kept + 1,
+                            plan->count, plan->target_name, plan->targets[kept], kept, plan->dir);
+    }
     return status;
 }

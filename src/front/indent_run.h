@@ -46,10 +46,11 @@ typedef struct indent_run_plan {
     const im_theory_interface *rough; /* the theory columns' interface; NULL: none (a periodic cell) */
     const double *targets;
     int count;
-    const char *target_name;        /* "approach", "load", "mean_gap": the failure message names the target */
-    indent_files files;             /* fields and distributions of each step */
-    step_units units;               /* what the fields are in */
-    double gap_scale;               /* the distributions' gap unit */
+    double tol;              /* the solver's tolerance: area_ratio is NaN at a load zero to it (im_history_measure) */
+    const char *target_name; /* "approach", "load", "mean_gap": the failure message names the target */
+    indent_files files;      /* fields and distributions of each step */
+    step_units units;        /* what the fields are in */
+    double gap_scale;        /* the distributions' gap unit */
     int (*stop)(const void *state); /* NULL, or a signal's number (0: none): stop before the next step */
     void (*stepped)(const im_history_row *rows, int i, const void *state); /* NULL, or after step i's files */
     const void *state;
@@ -59,7 +60,8 @@ typedef struct indent_run_plan {
  * holding plan->count), its fields and distributions written, then its line appended to history
  * (started by the caller), then plan->stepped called. *done: the steps whose files are all written.
  * Stops at the first failure with the error given the step's context ("step I of N (TARGET V; the
- * D steps before are in DIR/history.csv)"), and before a step once plan->stop says a signal asked
+ * D steps before are in DIR/history.csv)", "the step before is in ...", "no step before it was
+ * solved"), and before a step once plan->stop says a signal asked
  * to: IM_EINTERRUPTED "interrupted by signal S" with that context. A solve is never cut short. */
 int indent_run_steps(const indent_run_plan *plan, im_indentation *run, history_file *history, im_history_row *rows,
                      int *done);

@@ -63,12 +63,13 @@ json_t *run_record_adhesion_law(const im_solver_options *options, const im_inden
 }
 
 int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
-                                const char *length_unit, const char *force_unit, const run_figure_texts *texts,
-                                im_adhesion_summary *summary)
+                                enum im_control control, const char *length_unit, const char *force_unit,
+                                const run_figure_texts *texts, im_adhesion_summary *summary)
 {
     *summary = (im_adhesion_summary){.hysteresis_work = NAN}; /* NaN: not summarised */
-    int status = done >= 1 ? analysis_write_adhesion(dir, rows, done, length_unit, force_unit, texts, summary)
-                           : IM_OK;
+    int status = done >= 1
+                     ? analysis_write_adhesion(dir, rows, done, control, length_unit, force_unit, texts, summary)
+                     : IM_OK;
     if (isnan(summary->hysteresis_work))
         return status;
     json_object_set_new(law, "pull_off_force", json_number(summary->pull_off_force));
@@ -88,7 +89,7 @@ json_t *surface_sidecar_generator(const char *surface_path)
     char path[PATH_MAX];
     if (im_path_suffix(path, sizeof path, surface_path, ".json") != IM_OK)
         return NULL; /* no sidecar can be there: the surface's own path is refused when read */
-    json_t *root = json_load_file(path, 0, NULL);
+    json_t *root = json_file_load(path, 0, NULL);
     json_t *generator = root ? json_incref(json_object_get(root, "generator")) : NULL;
     json_decref(root);
     return generator;
@@ -162,7 +163,7 @@ int run_record_finish(const char *dir, json_t *record, int steps_done, int statu
 int run_record_load(const char *record, json_t **root)
 {
     json_error_t error;
-    *root = json_load_file(record, JSON_REJECT_DUPLICATES, &error);
+    *root = json_file_load(record, JSON_REJECT_DUPLICATES, &error);
     if (!*root && error.line > 0)
         return im_fail(IM_EFORMAT, "%s:%d: %s: expected a run record (run.json)", record, error.line, error.text);
     if (!*root)

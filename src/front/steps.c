@@ -1,6 +1,7 @@
 /* The step lists of `indent --approach/--load` and of a scene's [loading] steps: one parser, one
  * limit, one set of messages. */
 #include "front/front.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <math.h>
@@ -21,7 +22,7 @@ static int parse_value(const char *start, size_t length, double lowest, double *
     memcpy(item, start, length);
     item[length] = '\0';
     errno = 0;
-    *value = strtod(item, &end);
+    *value = number_parse(item, &end);
     return end == item + length && errno != ERANGE && isfinite(*value) && *value >= lowest;
 }
 

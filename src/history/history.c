@@ -141,15 +141,31 @@ static int measure_patches(const im_indentation *run, im_history_row *row)
     return status;
 }
 
+/* A / A_smooth(N) is a number only where the load is positive beyond the solver's tolerance (history.h):
+ * the loads of a history are solved to tol of the largest of them (load control's search, to tol of the
+ * target's and the last step's), so a smaller one is zero, where the smooth area is 0. */
+static void settle_area_ratio(im_history_row *rows, int i, double tol)
+{
+    double largest = 0.0;
+    for (int k = 0; k <= i; ++k)
+        largest = fmax(largest, fabs(rows[k].result.load));
+    if (!(rows[i].result.load > tol * largest))
+        rows[i].result.area_ratio = NAN;
+}
+
 int im_history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
-                       im_history_row *rows, int i)
+                       double tol, im_history_row *rows, int i)
 {
     ARG_REQUIRE(punch, "punch");
     ARG_REQUIRE(rows, "rows");
     if (i < 0)
         return im_fail(IM_EINVAL, "history row %d: expected >= 0", i);
+    if (!(tol >= 0.0 && tol <= 1.0))
+        return im_fail(IM_EINVAL, "im_history_measure: tol = %g: expected the solver's tolerance, in [0, 1]", tol);
     im_history_row *row = &rows[i];
     row->step = i + 1;
+    if (rough)
+        settle_area_ratio(rows, i, tol);
     int status = IM_OK;
     /* none for a periodic cell (the theory is the half-space's), nor for an adhesive step pulled below
      * first touch or into tension (the theory is of repulsive contact) */
@@ -212,16 +228,27 @@ static int scan_row(const char *line, const char *end, im_history_row *row)
            line + used == end;
 }
 
+/* Whether A / A_cone may be NaN at a positive load: with a smooth-contact area, where the load is zero to the
+ * solver's tolerance (settle_area_ratio), which is at most 1, so never above every load before it. */
+static int ratio_may_be_undefined(const im_step_result *r, int area, double largest_before)
+{
+    return area == IM_HISTORY_AREA_SMOOTH && r->load <= largest_before;
+}
+
 /* Whether the solution's values are what the solver reports: approach and load finite; with a
  * smooth-contact area, N* finite unless the load is tensile (adhesion) and A / A_cone NaN only where
- * there is no compressive load; without one (a 2-D profile), both NaN; on a periodic cell, N* NaN and
- * A / A0 as A / A_cone. */
-static int row_is_finite(const im_history_row *row, int area)
+ * there is no compressive load, or one zero to the solver's tolerance; without one (a 2-D profile), both
+ * NaN; on a periodic cell, N* NaN and A / A0 as A / A_cone. largest_before: the largest |load| of the rows
+ * before. */
+static int row_is_finite(const im_history_row *row, int area, double largest_before)
 {
     const im_step_result *r = &row->result;
     if (area == IM_HISTORY_AREA_ANY)
         return isfinite(r->approach) && isfinite(r->load);
-    int ratio_ok = r->load > 0 && area != IM_HISTORY_AREA_NONE ? isfinite(r->area_ratio) : isnan(r->area_ratio);
+    int ratio_ok = r->load > 0 && area != IM_HISTORY_AREA_NONE
+                       ? isfinite(r->area_ratio) ||
+                             (isnan(r->area_ratio) && ratio_may_be_undefined(r, area, largest_before))
+                       : isnan(r->area_ratio);
     int n_star_ok = area == IM_HISTORY_AREA_SMOOTH && r->load >= 0 ? isfinite(r->load_star) : isnan(r->load_star);
     return isfinite(r->approach) && isfinite(r->load) && n_star_ok && ratio_ok;
 }
@@ -243,16 +270,18 @@ int im_history_parse(const char *text, int area, im_history_row *rows, int capac
         snprintf(why, why_size, "its columns are not this version's history columns (an older version wrote it)");
         return 0;
     }
+    double largest = 0.0; /* |load| over the rows read */
     for (const char *line = text + columns + 1; *line; ++*count) {
         const char *next = strchr(line, '\n');
         if (!next || *count >= capacity || !scan_row(line, next, &rows[*count])) {
             snprintf(why, why_size, "row %d is not %d numbers on a whole line", *count + 1, HISTORY_VALUES);
             return 0;
         }
-        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count], area)) {
+        if (rows[*count].step != *count + 1 || !row_is_finite(&rows[*count], area, largest)) {
             snprintf(why, why_size, "row %d holds a value that is not finite or a step out of order", *count + 1);
             return 0;
         }
+        largest = fmax(largest, fabs(rows[*count].result.load));
         line = next + 1;
     }
     return 1;

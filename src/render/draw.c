@@ -284,19 +284,21 @@ static int finish(const im_render_context *c, int status, GLuint *textures, int 
 
 /* ---- contact map ---- */
 
+/* Both through the tension range (colormap.h), which the frames and panels of several fields share. */
 im_colormap im_contact_tension_norm(double largest)
 {
-    return im_colormap_make(IM_COLORMAP_TENSION, 0.0, largest > 0.0 && isfinite(largest) ? largest : 1.0);
+    im_colormap_range tensions = im_colormap_range_empty(IM_COLORMAP_TENSIONS);
+    if (isfinite(largest))
+        tensions.hi = largest;
+    return im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
 }
 
 double im_contact_largest_tension(const im_field *force)
 {
-    double largest = 0.0;
-    size_t count = arg_view(__func__, "force", force) == IM_OK ? im_field_count(force) : 0;
-    for (size_t i = 0; i < count; ++i)
-        if (isfinite(force->data[i]) && -force->data[i] > largest)
-            largest = -force->data[i];
-    return largest;
+    im_colormap_range tensions = im_colormap_range_empty(IM_COLORMAP_TENSIONS);
+    if (arg_view(__func__, "force", force) == IM_OK)
+        im_colormap_range_add(&tensions, force);
+    return fmax(tensions.hi, 0.0);
 }
 
 im_contact_style im_contact_style_default(const im_field *force)

@@ -18,6 +18,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct framed_history {
     int count;
@@ -85,7 +86,8 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
     im_solver_options solver = scene_solver_options(scene);
     im_indentation *run = NULL;
     status = im_indentation_create(h->surface, &punch, IM_CONTROL_LOAD, n, &solver, &run);
-    scene_progress(options, "frames: %d steps of family %d (h'rms = %g)", h->count, family, scene->slopes[family]);
+    scene_progress(options, "frames: %d step%s of family %d (h'rms = %g)", h->count, h->count == 1 ? "" : "s", family,
+                   scene->slopes[family]);
     for (int i = 0; i < h->count && status == IM_OK; ++i) {
         if (scene_stop_signal(options)) {
             status = scene_interrupted(options, "during the frames' history (no frame is written before it ends)");
@@ -101,13 +103,19 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *opti
     return status;
 }
 
-/* The range of the values of the steps' fields, which their frames share. */
-static im_colormap_range steps_range(im_field *const *fields, int count, im_colormap_values values)
+void scene_frame_load_title(const double *load_stars, int count, int index, char *text, size_t size)
 {
-    im_colormap_range range = im_colormap_range_empty(values);
-    for (int i = 0; i < count; ++i)
-        im_colormap_range_add(&range, fields[i]);
-    return range;
+    double largest = load_stars[0];
+    for (int i = 1; i < count; ++i)
+        largest = fmax(largest, load_stars[i]);
+    char digits[32], widest[32];
+    int pad = snprintf(widest, sizeof widest, "%.0f", largest) -
+              snprintf(digits, sizeof digits, "%.0f", load_stars[index]);
+    size_t used = (size_t)snprintf(text, size, "N* = ");
+    for (int i = 0; i < pad && used < size; ++i)
+        used += (size_t)snprintf(text + used, size - used, "\u2007");
+    if (used < size)
+        snprintf(text + used, size - used, "%s", digits);
 }
 
 /* The norms every step's frames share; has_tension: some step has patches under tension, and every
@@ -124,24 +132,23 @@ typedef struct frame_figure {
     const im_colormap *norm, *tension; /* tension: the tension's bar, NULL for none */
     const char *label, *prefix;
     int index, keep; /* keep: the frame's pixels are wanted (the contact GIF's) */
-    double load_star;
+    char title[64];
     int status;
     char error[256];
 } frame_figure;
 
 static int write_frame(const im_scene *scene, frame_figure *f)
 {
-    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[64];
+    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH];
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, f->prefix, f->index);
     if (status != IM_OK)
         return status;
     scene_outputs_note(scene, path);
-    snprintf(title, sizeof title, "N* = %.0f", f->load_star);
     run_figure_texts texts;
     status = scene_figure_texts(scene, NULL, 0, &texts);
-    const frame_words words = {title,       f->norm,    f->label, f->tension, "tensile force −f / (E* δ²)",
+    const frame_words words = {f->title,    f->norm,    f->label, f->tension, "tensile force −f / (E* δ²)",
                                texts.texts, texts.count};
     if (status == IM_OK)
         status = frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
@@ -174,13 +181,13 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
                                 .label = "local force f / (E* δ²)",
                                 .prefix = "contact",
                                 .index = i,
-                                .keep = (scene->animation & IM_ANIMATION_GIF) != 0,
-                                .load_star = h->load_star[i]};
+                                .keep = (scene->animation & IM_ANIMATION_GIF) != 0};
     figures[1] = (frame_figure){.norm = &norms->height,
                                 .label = "deformed height (h − u) / δ",
                                 .prefix = "height",
-                                .index = i,
-                                .load_star = h->load_star[i]};
+                                .index = i};
+    scene_frame_load_title(h->load_star, h->count, i, figures[0].title, sizeof figures[0].title);
+    memcpy(figures[1].title, figures[0].title, sizeof figures[1].title);
     int status = render_contact_frame(context, h, i, norms, scene->frame_scale, &figures[0].image);
     im_height_style style = im_height_style_default(h->deformed[i]);
     style.colormap = norms->height;
@@ -197,12 +204,12 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
                         im_image *gif_frames, frame_norms *norms)
 {
-    double largest_tension = frame_largest_tension(h->force, h->count);
-    const im_colormap_range forces = steps_range(h->force, h->count, IM_COLORMAP_FORCES),
-                            heights = steps_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
+    const im_colormap_range forces = frame_range(h->force, h->count, IM_COLORMAP_FORCES),
+                            tensions = frame_range(h->force, h->count, IM_COLORMAP_TENSIONS),
+                            heights = frame_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
     norms->force = scene_force_norm(scene, &forces);
-    norms->tension = im_contact_tension_norm(largest_tension);
-    norms->has_tension = largest_tension > 0.0;
+    norms->tension = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    norms->has_tension = tensions.hi > 0.0;
     norms->height = im_colormap_range_norm(&heights, IM_COLORMAP_VIRIDIS, NAN, NAN, 0);
     int count = 2 * h->count;
     frame_figure *figures = calloc((size_t)count, sizeof *figures);

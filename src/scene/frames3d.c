@@ -6,6 +6,7 @@
 #include "indentmap/render.h"
 #include "indentmap/status.h"
 #include "paper/figures.h"
+#include "scene/frames.h"
 #include "scene/frames3d.h"
 #include "scene/manifest.h"
 #include "scene/outputs.h"
@@ -86,15 +87,15 @@ static int frames_style(const im_scene *scene, const scene_frames3d_input *in, c
 static int write_frame(const im_scene *scene, const scene_frames3d_input *in, const im_image *image,
                        const im_view3d_style *s, int index, im_image *frame)
 {
-    const double load_star = in->load_star[index];
-    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[160], scale[96], norm[128];
+    char folder[IM_SCENE_PATH], path[IM_SCENE_PATH], title[192], load[64], scale[96], norm[128];
     int status = scene_output_path(scene, "frames", folder, sizeof folder);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, folder, "view3d", index);
     if (status == IM_OK)
         scene_outputs_note(scene, path);
     im_view3d_exaggeration_text(s->exaggeration, scale, sizeof scale);
-    snprintf(title, sizeof title, "N* = %.0f, %s", load_star, scale);
+    scene_frame_load_title(in->load_star, in->count, index, load, sizeof load);
+    snprintf(title, sizeof title, "%s, %s", load, scale);
     snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),
              s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
     im_figure_panel panel = {image, NULL, title};
@@ -156,8 +157,8 @@ int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *opti
     im_image *frames = calloc((size_t)in->count, sizeof *frames);
     if (!frames)
         return im_fail(IM_ENOMEM, "3-D frames: allocation failed");
-    scene_progress(options, "frames3d: %d 3-D views (%s, vertical exaggeration %g)", in->count,
-                   im_render_gl_renderer(context), style.exaggeration);
+    scene_progress(options, "frames3d: %d 3-D view%s (%s, vertical exaggeration %g)", in->count,
+                   in->count == 1 ? "" : "s", im_render_gl_renderer(context), style.exaggeration);
     for (int i = 0; i < in->count && status == IM_OK; ++i) {
         im_image view = {0};
         status = im_render_view3d(context, in->deformed[i], in->force[i], &punch, &style, &view);

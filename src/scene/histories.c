@@ -246,7 +246,7 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
                  scene_steps_are_loads(scene)) /* past the pull-off: which step of the list */
             im_fail_context(status, "step %d of %d (load %g)", i + 1, scene->step_count, scene->steps[i]);
         if (status == IM_OK) /* a step taken from the table has no state of the run to measure */
-            status = im_history_measure(&punch, theory, from_table ? NULL : run, m->history, i);
+            status = im_history_measure(&punch, theory, from_table ? NULL : run, options.tol, m->history, i);
         if (status == IM_OK && scene_periodic_writes_steps(scene, m))
             status = scene_periodic_step_files(scene, m, run, i + 1, surface);
         if (status == IM_OK)

@@ -243,21 +243,14 @@ static int write_results_csv(const im_scene *scene, const panel_result *results)
     return im_atomic_commit(&file);
 }
 
-/* The panels' forces, which share one norm. */
-static im_colormap_range shared_force_range(const panel_result *results, int count)
+/* The panels' forces (values IM_COLORMAP_FORCES) or their tensions (IM_COLORMAP_TENSIONS), each of which
+ * the panels share as one norm. */
+static im_colormap_range shared_range(const panel_result *results, int count, im_colormap_values values)
 {
-    im_colormap_range forces = im_colormap_range_empty(IM_COLORMAP_FORCES);
+    im_colormap_range range = im_colormap_range_empty(values);
     for (int i = 0; i < count; ++i)
-        im_colormap_range_add(&forces, results[i].force);
-    return forces;
-}
-
-static double largest_tension(const panel_result *results, int count)
-{
-    double largest = 0.0;
-    for (int i = 0; i < count; ++i)
-        largest = fmax(largest, im_contact_largest_tension(results[i].force));
-    return largest;
+        im_colormap_range_add(&range, results[i].force);
+    return range;
 }
 
 /* Renders every panel with one shared force norm and one tension norm (norms[0], norms[1]) and the smooth
@@ -266,9 +259,10 @@ static int render_panels(const im_scene *scene, im_render_context *context, cons
                          im_image *images, im_colormap norms[2])
 {
     int status = IM_OK;
-    const im_colormap_range forces = shared_force_range(results, scene->family_count);
+    const im_colormap_range forces = shared_range(results, scene->family_count, IM_COLORMAP_FORCES),
+                            tensions = shared_range(results, scene->family_count, IM_COLORMAP_TENSIONS);
     norms[0] = scene_force_norm(scene, &forces);
-    norms[1] = im_contact_tension_norm(largest_tension(results, scene->family_count));
+    norms[1] = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
         const im_field *f = results[i].force;
         im_contact_style style = im_contact_style_default(f);
@@ -374,7 +368,7 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     im_colormap norms[2];
     if (status == IM_OK)
         status = render_panels(scene, context, results, images, norms);
-    int has_tension = status == IM_OK && largest_tension(results, scene->family_count) > 0.0;
+    int has_tension = status == IM_OK && shared_range(results, scene->family_count, IM_COLORMAP_TENSIONS).hi > 0.0;
     if (status == IM_OK)
         status = write_panel_outputs(scene, results, images, &norms[0], has_tension ? &norms[1] : NULL);
     for (int i = 0; i < scene->family_count; ++i) {

@@ -61,6 +61,8 @@ static int check_runnable(const im_scene *scene)
     if (scene->frames3d && !scene->frames)
         return im_fail(IM_EINVAL, "%s: [output] frames3d draws the frames' history in 3-D: set frames = yes too",
                        scene->path);
+    if (scene->animation != IM_ANIMATION_NONE && !scene->frames)
+        return im_fail(IM_EINVAL, "%s: [output] animation animates the frames: set frames = yes too", scene->path);
     if (scene->table && scene->punch != IM_PUNCH_CONE)
         return im_fail(IM_EINVAL, "%s: [output] table compares with eq. (12), which is for a cone", scene->path);
     im_indenter punch = scene_punch(scene);

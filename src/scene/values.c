@@ -8,6 +8,7 @@
 #include "indentmap/solver.h"
 #include "indentmap/status.h"
 #include "scene/names.h"
+#include "core/number.h"
 
 #include <errno.h>
 #include <math.h>
@@ -22,18 +23,40 @@ static int parse_number(const char *text, double *value)
 {
     char *end;
     errno = 0;
-    *value = strtod(text, &end);
+    *value = number_parse(text, &end);
     while (*end == ' ' || *end == '\t')
         ++end;
     return end != text && *end == '\0' && errno != ERANGE && isfinite(*value);
 }
 
+/* A bound in the fewest digits (six or more) that read back as it: %g alone printed alpha's 90 - 1e-9
+ * as "90", and a message refusing 90 named it as allowed. */
+static void format_bound(double bound, char *text, size_t size)
+{
+    for (int digits = 6; digits <= 17; ++digits) {
+        snprintf(text, size, "%.*g", digits, bound);
+        if (strtod(text, NULL) == bound)
+            return;
+    }
+}
+
+/* "[min, max]" of a numeric key, as its check applies it. */
+static const char *range_text(const key_spec *spec, char *text, size_t size)
+{
+    char lo[32], hi[32];
+    format_bound(spec->min, lo, sizeof lo);
+    format_bound(spec->max, hi, sizeof hi);
+    snprintf(text, size, "[%s, %s]", lo, hi);
+    return text;
+}
+
 int scene_parse_double(const key_spec *spec, const char *value, im_scene *scene)
 {
     double v;
+    char range[80];
     if (!parse_number(value, &v) || v < spec->min || v > spec->max)
-        return im_fail(IM_EFORMAT, "%s = '%s': expected a number in [%g, %g]", spec->key, value, spec->min,
-                       spec->max);
+        return im_fail(IM_EFORMAT, "%s = '%s': expected a number in %s", spec->key, value,
+                       range_text(spec, range, sizeof range));
     *(double *)destination(spec, scene) = v;
     return IM_OK;
 }
@@ -167,10 +190,11 @@ int scene_parse_double_list(const key_spec *spec, const char *value, im_scene *s
         return im_fail(IM_EFORMAT, "%s", error);
     if ((size_t)n > spec->capacity)
         return im_fail(IM_EFORMAT, "%s = '%s': %d values where at most %zu fit", spec->key, value, n, spec->capacity);
+    char range[80];
     for (int i = 0; i < n; ++i)
         if (values[i] < spec->min || values[i] > spec->max)
-            return im_fail(IM_EFORMAT, "%s = '%s': %g is outside [%g, %g]", spec->key, value, values[i], spec->min,
-                           spec->max);
+            return im_fail(IM_EFORMAT, "%s = '%s': %g is outside %s", spec->key, value, values[i],
+                           range_text(spec, range, sizeof range));
     int status = check_distinct(spec->key, value, values, n);
     if (status != IM_OK)
         return status;

@@ -6,6 +6,7 @@
 #include "indentmap/theory.h"
 #include "io/json_file.h"
 
+#include <inttypes.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
@@ -29,17 +30,17 @@ double im_surface_height_rms_eq15(const im_surface_params *p, double slope_rms)
 
 /* The generator record. lambda_0 is the longest wavelength in effect: one up to lambda_r (no plateau) is
  * recorded as lambda_r, as `indentmap surface` sets it, so that the record of a surface depends on the
- * surface's parameters only, not on how a caller spelt "no plateau". The seed is a JSON integer (signed
- * 64 bits): a seed of 2^63 or more is recorded as its two's complement, and read back so. */
+ * surface's parameters only, not on how a caller spelt "no plateau". The seed is written as the unsigned
+ * decimal the user gave (json_unsigned: 2^63 and more too, which JSON's signed integers do not hold). */
 static json_t *params_json(const im_surface_params *p)
 {
-    return json_pack("{s:i, s:i, s:f, s:f, s:f, s:f, s:f, s:s, s:f, s:f, s:s, s:I}", "nx", p->nx, "ny", p->ny,
+    return json_pack("{s:i, s:i, s:f, s:f, s:f, s:f, s:f, s:s, s:f, s:f, s:s, s:o}", "nx", p->nx, "ny", p->ny,
                      "delta", p->delta, "hurst", p->hurst, "lambda_s", p->lambda_s, "lambda_r", p->lambda_r,
                      "lambda_0", fmax(p->lambda_0, p->lambda_r), "target",
                      p->target == IM_TARGET_HEIGHT ? "height_rms" : "slope_rms", "slope_rms", p->slope_rms,
                      "height_rms", p->height_rms, "slope_definition",
                      p->slope_definition == IM_SLOPE_SPECTRAL ? "spectral" : "finite-difference", "seed",
-                     (json_int_t)p->seed);
+                     json_unsigned(p->seed));
 }
 
 int im_surface_generator_record(const im_surface_params *params, char **text)
@@ -51,7 +52,7 @@ int im_surface_generator_record(const im_surface_params *params, char **text)
     if (status != IM_OK)
         return status;
     json_t *record = params_json(params);
-    *text = record ? json_dumps(record, JSON_COMPACT | JSON_REAL_PRECISION(17)) : NULL;
+    *text = record ? json_text(record, JSON_COMPACT | JSON_REAL_PRECISION(17)) : NULL;
     json_decref(record);
     return *text ? IM_OK : im_fail(IM_ENOMEM, "generator: cannot build the JSON record");
 }
@@ -126,14 +127,14 @@ static int record_params(json_t *record, im_surface_params *p)
 {
     static const char *const TARGETS[] = {"slope_rms", "height_rms"};
     static const char *const DEFINITIONS[] = {"spectral", "finite-difference"};
-    json_int_t nx = 0, ny = 0, seed = 0;
+    json_int_t nx = 0, ny = 0;
     int status = check_generator_keys(record);
     if (status == IM_OK)
         status = integer_member(record, "nx", 2, IM_FIELD_MAX_SIDE, &nx);
     if (status == IM_OK)
         status = integer_member(record, "ny", 2, IM_FIELD_MAX_SIDE, &ny);
-    if (status == IM_OK)
-        status = integer_member(record, "seed", INT64_MIN, INT64_MAX, &seed);
+    if (status == IM_OK && json_unsigned_value(json_object_get(record, "seed"), &p->seed) != 0)
+        status = im_fail(IM_EINVAL, "generator: \"seed\": expected an integer in [0, %" PRIu64 "]", UINT64_MAX);
     if (status == IM_OK)
         status = real_members(record, p);
     if (status != IM_OK)
@@ -144,7 +145,6 @@ static int record_params(json_t *record, im_surface_params *p)
         return IM_EINVAL;
     p->nx = (int)nx;
     p->ny = (int)ny;
-    p->seed = (uint64_t)seed; /* the two's complement params_json wrote */
     p->target = target == 0 ? IM_TARGET_SLOPE : IM_TARGET_HEIGHT;
     p->slope_definition = definition == 0 ? IM_SLOPE_SPECTRAL : IM_SLOPE_FINITE_DIFFERENCE;
     status = im_surface_params_check(p);
@@ -156,7 +156,7 @@ int im_surface_generator_parse(const char *text, im_surface_params *params)
     ARG_REQUIRE(text, "text");
     ARG_REQUIRE(params, "params");
     json_error_t error;
-    json_t *record = json_loads(text, JSON_REJECT_DUPLICATES, &error);
+    json_t *record = json_text_load(text, JSON_REJECT_DUPLICATES, &error);
     im_surface_params p = im_surface_params_default();
     int status = json_is_object(record)
                      ? record_params(record, &p)

@@ -1,6 +1,7 @@
 /* DIR/index.html: a self-contained page over a run's figures, frames, tables and record. */
 #include "indentmap/viewer.h"
 #include "core/args.h"
+#include "io/json_file.h"
 
 #include "indentmap/io.h"
 #include "indentmap/status.h"
@@ -616,7 +617,7 @@ int im_viewer_write_with(const char *dir, const char *title, const im_viewer_opt
     if (!p.out)
         return im_fail(IM_ENOMEM, "viewer page %s/index.html: out of memory", dir);
     char *record = im_path_join(path, sizeof path, dir, "run.json") == IM_OK ? read_text(path) : NULL;
-    json_t *root = record ? json_loads(record, 0, NULL) : NULL;
+    json_t *root = record ? json_text_load(record, 0, NULL) : NULL;
     p.units = json_object_get(json_object_get(root, "units"), "columns");
     int status = write_page(&p, title, record);
     json_decref(root);
