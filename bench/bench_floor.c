@@ -13,7 +13,9 @@
  * pair (the solver's flags) of each grid a solve transforms (the padded window 2nx x 2ny and the window
  * itself, or the cell), so that load drifts over all alike. Printed per kind and thread count, as medians:
  * fine iterations, the transform pairs run on the fine grid (convolutions with K, preconditioner pairs M)
- * and on the cascade's coarser grids, wall and CPU time of the solve (planning apart), per-iteration CPU
+ * and on the cascade's coarser grids (also in K pairs of the fine grid, by their points), all of them per
+ * fine iteration in K pairs ("K-pairs/it", exact counts; its floor one K pair and, preconditioned, an M
+ * pair's nx ny / px py), wall and CPU time of the solve (planning apart), per-iteration CPU
  * time over the CPU time of one pair of K's grid ("pairs/it") and over the floor ("floor x"), and the peak
  * RSS of the
  * process after the kind's first solve (a running maximum: the cell's kinds run first, then the step and
@@ -49,6 +51,7 @@ static void die(int status, const char *what)
 typedef struct measured {
     int iterations, coarse_iterations;
     long k_pairs, m_pairs, coarse_pairs;
+    long long coarse_points; /* the grid points of the coarse pairs (their size in K pairs: over px py) */
     double wall, cpu;
     int nx, ny, px, py; /* the window (or cell) and the grid K is transformed on */
     double load, approach, max_pressure;
@@ -67,12 +70,13 @@ static unsigned long long bits_hash(const double *v, size_t n)
 
 typedef struct pair_counts {
     long k, m, coarse;
+    long long coarse_points;
 } pair_counts;
 
 static pair_counts pairs_now(void)
 {
     return (pair_counts){solver_pairs_run(SOLVER_PAIR_K), solver_pairs_run(SOLVER_PAIR_M),
-                         solver_pairs_run(SOLVER_PAIR_COARSE)};
+                         solver_pairs_run(SOLVER_PAIR_COARSE), solver_coarse_points_run()};
 }
 
 typedef struct stopwatch {
@@ -92,6 +96,7 @@ static measured stop_watch(const stopwatch *w, int iterations, int coarse_iterat
                   .k_pairs = now.k - w->pairs.k,
                   .m_pairs = now.m - w->pairs.m,
                   .coarse_pairs = now.coarse - w->pairs.coarse,
+                  .coarse_points = now.coarse_points - w->pairs.coarse_points,
                   .wall = bench_now() - w->wall,
                   .cpu = bench_cpu_now() - w->cpu};
     solver_last_top_grid(&m.px, &m.py, &m.nx, &m.ny);
@@ -201,11 +206,16 @@ static void report(const series *s, enum kind kind, int n, int threads, int repe
     const double per_iteration = c / it;
     /* the pairs the algorithm needs per fine iteration: K t, and M g where every step is preconditioned */
     const double floor = kp + (m->m_pairs >= it ? mp : 0);
-    printf("%-8s n %4d threads %d: grid %dx%d, it %3d (coarse %4d), pairs K %3ld M %3ld coarse %4ld, "
-           "wall %.4f s, CPU %.4f s, K pair %.3f ms, M pair %.3f ms, pairs/it %.2f, floor x %.2f, "
-           "peak RSS %.1f MiB\n",
+    /* the transforms counted exactly, in K pairs of the fine grid (an M pair: nx ny / px py of one) */
+    const double k_grid = (double)m->px * m->py, m_share = m->nx * (double)m->ny / k_grid;
+    const double coarse = m->coarse_points / k_grid;
+    printf("%-8s n %4d threads %d: grid %dx%d, it %3d (coarse %4d), pairs K %3ld M %3ld coarse %4ld (%.1f K), "
+           "K-pairs/it %.2f (floor %.2f), wall %.4f s, CPU %.4f s, K pair %.3f ms, M pair %.3f ms, pairs/it %.2f, "
+           "floor x %.2f, peak RSS %.1f MiB\n",
            KIND_NAMES[kind], n, threads, m->nx, m->ny, it, m->coarse_iterations, m->k_pairs, m->m_pairs,
-           m->coarse_pairs, t, c, 1e3 * kp, 1e3 * mp, per_iteration / kp, per_iteration / floor, s->peak_rss);
+           m->coarse_pairs, coarse, (m->k_pairs + m->m_pairs * m_share + coarse) / it,
+           1 + (m->m_pairs >= it ? m_share : 0), t, c, 1e3 * kp, 1e3 * mp, per_iteration / kp, per_iteration / floor,
+           s->peak_rss);
 }
 
 static void report_answer(const measured *m, enum kind kind, int n, int threads)

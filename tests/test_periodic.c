@@ -516,41 +516,154 @@ static void fused_passes_equal_their_parts(void **state)
     im_field_free(s);
 }
 
+/* A 128^2 rough periodic cell (the paper's slopes) and room for its pressure and displacement. */
+enum { ROUGH_N = 128 };
+typedef struct rough_cell {
+    im_field *surface;
+    double *gap0, *p, *u;
+    size_t count;
+} rough_cell;
+
+static rough_cell rough_cell_make(void)
+{
+    rough_cell c = {.surface = test_rough_surface(ROUGH_N, 0.08, 4), .count = (size_t)ROUGH_N * ROUGH_N};
+    c.gap0 = cell_gap(c.surface);
+    c.p = malloc(sizeof(double) * c.count);
+    c.u = malloc(sizeof(double) * c.count);
+    assert_true(c.p && c.u);
+    return c;
+}
+
+static void rough_cell_free(rough_cell *c)
+{
+    free(c->gap0), free(c->p), free(c->u);
+    im_field_free(c->surface);
+}
+
+static im_solver_plan *rough_cell_plan(double tol, int cascade)
+{
+    im_solver_options o = im_solver_options_default();
+    o.periodic = 1;
+    o.tol = tol;
+    o.cascade = cascade;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(ROUGH_N, ROUGH_N, 1.0, &o, &plan), IM_OK);
+    return plan;
+}
+
+/* A cold solve of the cell, and the pairs it ran by kind. */
+static im_solve_result cold_solve_counted(im_solver_plan *plan, rough_cell *c, enum im_control control, double target,
+                                          long pairs[SOLVER_PAIR_KINDS])
+{
+    memset(c->p, 0, sizeof(double) * c->count);
+    for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
+        pairs[k] = -solver_pairs_run(k);
+    im_solve_result r;
+    assert_int_equal(im_solver_solve(plan, c->gap0, control, target, c->p, c->u, &r), IM_OK);
+    for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
+        pairs[k] += solver_pairs_run(k);
+    return r;
+}
+
 /* The CPU engine's count of transform pairs (bench/bench_floor.c measures a solve's work with it) agrees
  * with what the solve reports: on the top plan one K pair per convolution and one M pair per step, each
  * preconditioned; the cascade's coarser levels counted apart, none without a cascade, some with one. */
 static void transform_pairs_are_counted(void **state)
 {
     (void)state;
-    enum { N = 128 };
-    const size_t count = (size_t)N * N;
-    im_field *s = test_rough_surface(N, 0.08, 4);
-    double *gap0 = cell_gap(s), *p = malloc(sizeof(double) * count), *u = malloc(sizeof(double) * count);
-    assert_true(p && u);
+    rough_cell c = rough_cell_make();
     for (int cascade = 0; cascade <= 1; ++cascade) {
-        im_solver_options o = im_solver_options_default();
-        o.periodic = 1;
-        o.cascade = cascade;
-        im_solver_plan *plan = NULL;
-        assert_int_equal(im_solver_plan_create(N, N, 1.0, &o, &plan), IM_OK);
-        memset(p, 0, sizeof(double) * count);
-        long before[SOLVER_PAIR_KINDS], after[SOLVER_PAIR_KINDS];
-        for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
-            before[k] = solver_pairs_run(k);
-        im_solve_result r;
-        assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_LOAD, 0.004 * count, p, u, &r), IM_OK);
-        for (int k = 0; k < SOLVER_PAIR_KINDS; ++k)
-            after[k] = solver_pairs_run(k) - before[k];
-        if (after[SOLVER_PAIR_K] != r.convolutions || after[SOLVER_PAIR_M] != r.iterations)
+        im_solver_plan *plan = rough_cell_plan(1e-6, cascade);
+        long pairs[SOLVER_PAIR_KINDS];
+        im_solve_result r = cold_solve_counted(plan, &c, IM_CONTROL_LOAD, 0.004 * c.count, pairs);
+        if (pairs[SOLVER_PAIR_K] != r.convolutions || pairs[SOLVER_PAIR_M] != r.iterations)
             fail_msg("cascade %d: %ld K and %ld M pairs counted for %d convolutions in %d iterations", cascade,
-                     after[SOLVER_PAIR_K], after[SOLVER_PAIR_M], r.convolutions, r.iterations);
-        if ((after[SOLVER_PAIR_COARSE] > 0) != (r.coarse_iterations > 0) || (r.coarse_iterations > 0) != cascade)
+                     pairs[SOLVER_PAIR_K], pairs[SOLVER_PAIR_M], r.convolutions, r.iterations);
+        if ((pairs[SOLVER_PAIR_COARSE] > 0) != (r.coarse_iterations > 0) || (r.coarse_iterations > 0) != cascade)
             fail_msg("cascade %d: %ld coarse pairs counted for %d coarse iterations", cascade,
-                     after[SOLVER_PAIR_COARSE], r.coarse_iterations);
+                     pairs[SOLVER_PAIR_COARSE], r.coarse_iterations);
         im_solver_plan_free(plan);
     }
-    free(gap0), free(p), free(u);
-    im_field_free(s);
+    rough_cell_free(&c);
+}
+
+/* The pairs a solve transforms beyond its floor, counted exactly: with every change summed directly
+ * (direct_limit raised on every level), a solve transforms p once at its start, then one direction (K)
+ * and one preconditioner pair (M) per iteration, on the fine grid and on each cascade level, and nothing
+ * more: no confirming transform at the stop while the residual is below tol by more than the drift of
+ * u's direct updates (pk.c, drift_bound), as at tol 1e-8 here. */
+static void transforms_are_start_and_steps(void **state)
+{
+    (void)state;
+    rough_cell c = rough_cell_make();
+    im_solver_plan *plan = rough_cell_plan(1e-8, 1);
+    int levels = 0;
+    for (im_solver_plan *level = plan; level; level = level->coarse, ++levels)
+        level->direct_limit = (long)level->nx * level->ny;
+    assert_true(levels > 1);
+    double target = 0.004 * c.count; /* under load control, then at the approach it found */
+    for (int control = IM_CONTROL_LOAD; control >= IM_CONTROL_DISPLACEMENT; --control) {
+        long pairs[SOLVER_PAIR_KINDS];
+        im_solve_result r = cold_solve_counted(plan, &c, control, target, pairs);
+        target = r.approach;
+        if (pairs[SOLVER_PAIR_K] != r.iterations + 1 || pairs[SOLVER_PAIR_M] != r.iterations ||
+            pairs[SOLVER_PAIR_COARSE] != 2L * r.coarse_iterations + (levels - 1))
+            fail_msg("control %d: %ld K, %ld M and %ld coarse pairs for %d fine and %d coarse iterations on %d "
+                     "coarse levels (expected it + 1, it, 2 coarse it + levels)",
+                     control, pairs[SOLVER_PAIR_K], pairs[SOLVER_PAIR_M], pairs[SOLVER_PAIR_COARSE], r.iterations,
+                     r.coarse_iterations, levels - 1);
+    }
+    im_solver_plan_free(plan);
+    rough_cell_free(&c);
+}
+
+/* The stopping rule's residual on u = K p of the cell's last solve, w its approach or (load control) taken
+ * as the rule takes it, the mean of u + g0 over I_c. */
+static double residual_on_exact_displacement(im_solver_plan *plan, rough_cell *c, enum im_control control,
+                                             double approach)
+{
+    im_solver_convolve(plan, c->p, c->u);
+    double mean = 0, squares = 0, penetration = 0;
+    long contact = 0;
+    for (size_t i = 0; i < c->count; ++i)
+        if (c->p[i] > 0) {
+            mean += c->u[i] + c->gap0[i];
+            ++contact;
+        }
+    const double w = control == IM_CONTROL_LOAD ? mean / contact : approach;
+    for (size_t i = 0; i < c->count; ++i) {
+        const double g = c->u[i] + c->gap0[i] - w;
+        if (c->p[i] > 0)
+            squares += g * g;
+        else
+            penetration = fmax(penetration, -g);
+    }
+    return fmax(sqrt(squares / contact), penetration) / w;
+}
+
+/* The stopping rule holds on u = K p itself (pk.c stops on the u its steps updated, confirming on a
+ * transform only near tol: drift_bound), under both controls, at a tolerance far above the rounding
+ * (no confirmation) and at one near it (confirmed). */
+static void stop_holds_on_the_exact_displacement(void **state)
+{
+    (void)state;
+    rough_cell c = rough_cell_make();
+    const double tols[] = {1e-8, 1e-12};
+    for (int t = 0; t < 2; ++t) {
+        im_solver_plan *plan = rough_cell_plan(tols[t], 1);
+        double target = 0.004 * c.count;
+        for (int control = IM_CONTROL_LOAD; control >= IM_CONTROL_DISPLACEMENT; --control) {
+            long pairs[SOLVER_PAIR_KINDS];
+            im_solve_result r = cold_solve_counted(plan, &c, control, target, pairs);
+            target = r.approach;
+            const double residual = residual_on_exact_displacement(plan, &c, control, r.approach);
+            if (!(residual <= tols[t]))
+                fail_msg("tol %g, control %d: residual %.3g on K p (the solve's %.3g after %d iterations)", tols[t],
+                         control, residual, r.residual, r.iterations);
+        }
+        im_solver_plan_free(plan);
+    }
+    rough_cell_free(&c);
 }
 
 int main(void)
@@ -567,6 +680,8 @@ int main(void)
         cmocka_unit_test(join_step_is_a_line_minimum),
         cmocka_unit_test(fused_passes_equal_their_parts),
         cmocka_unit_test(transform_pairs_are_counted),
+        cmocka_unit_test(transforms_are_start_and_steps),
+        cmocka_unit_test(stop_holds_on_the_exact_displacement),
         cmocka_unit_test(refusals),
         cmocka_unit_test(coarse_mean_gap_is_the_restrictions),
     };

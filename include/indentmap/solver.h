@@ -73,8 +73,9 @@
  * ---- Stopping rule ----
  * residual = max( rms over I_c of g ,  max over p = 0 of (-g) ) / w   (with a hardness, also g at p = H_p)
  * i.e. the rms gap left in the contact set and the worst penetration outside it, relative to the
- * approach. A solve stops when residual <= tol (default 1e-6), checked on u recomputed exactly by
- * FFT (not on the incrementally updated u); IM_ENOCONV after max_iterations (default 10000)
+ * approach. A solve stops when residual <= tol (default 1e-6), taken on the incrementally updated u
+ * where it is below tol by more than that u's rounding can move it (a bound, about 1e-11 after 40 steps),
+ * else on u recomputed exactly by FFT; IM_ENOCONV after max_iterations (default 10000)
  * iterations. Both the iteration count and the residual are reported for every solve. A solve whose
  * options.stop flag is set ends with IM_EINTERRUPTED after the iteration in progress.
  *

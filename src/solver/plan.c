@@ -724,11 +724,17 @@ void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t c
 }
 
 static _Atomic long pairs_run[SOLVER_PAIR_KINDS];
+static _Atomic long long coarse_points_run;
 static _Atomic int last_top_grid[4];
 
 void solver_count_pair(const im_solver_plan *plan, enum solver_pair_kind kind)
 {
     atomic_fetch_add_explicit(&pairs_run[plan->cascade_level ? SOLVER_PAIR_COARSE : kind], 1, memory_order_relaxed);
+    if (plan->cascade_level) {
+        const long long points = kind == SOLVER_PAIR_K ? (long long)plan->px * plan->py
+                                                       : (long long)plan->nx * plan->ny;
+        atomic_fetch_add_explicit(&coarse_points_run, points, memory_order_relaxed);
+    }
     if (plan->cascade_level || kind != SOLVER_PAIR_K)
         return;
     const int grid[4] = {plan->px, plan->py, plan->nx, plan->ny};
@@ -747,6 +753,8 @@ long solver_pairs_run(enum solver_pair_kind kind)
 {
     return atomic_load_explicit(&pairs_run[kind], memory_order_relaxed);
 }
+
+long long solver_coarse_points_run(void) { return atomic_load_explicit(&coarse_points_run, memory_order_relaxed); }
 
 void solver_convolve_rows(im_solver_plan *p)
 {

@@ -115,6 +115,9 @@ void solver_multiply_modes(fftw_complex *modes, const double *spectrum, size_t c
 enum solver_pair_kind { SOLVER_PAIR_K, SOLVER_PAIR_M, SOLVER_PAIR_COARSE, SOLVER_PAIR_KINDS };
 void solver_count_pair(const im_solver_plan *plan, enum solver_pair_kind kind);
 long solver_pairs_run(enum solver_pair_kind kind);
+/* The grid points of the cascade levels' pairs since the process started (each pair counts the points of
+ * the grid it transforms: px py for K, nx ny for M): over a top plan's px py, its coarse pairs in K pairs. */
+long long solver_coarse_points_run(void);
 /* The grids of the last top plan that ran a convolution: K's (px x py) and the problem's (nx x ny), which
  * an indentation's step box may make smaller than its window's. */
 void solver_last_top_grid(int *px, int *py, int *nx, int *ny);
