@@ -94,34 +94,41 @@ def help_options(program, command, cache):
     return cache[command]
 
 
-def command_spans(line, in_code):
-    """The command lines of a markdown line: the whole line in a code block (up to a comment), else
-    each inline code span."""
-    if in_code:
-        return [line.split("  #")[0]]
-    return [BARE_COMMAND.sub(r"indentmap \1", span) for span in re.findall(r"`([^`]+)`", line)]
+def command_texts(path):
+    """Yields (line number, text) for each command a markdown file shows: a code block's line (up to a
+    comment; a line ending in a backslash joined to the next), and each inline code span (a span may
+    run on over lines of its paragraph: the number is the line where it ends)."""
+    joined, prose = "", ""
+    for number, line, in_code in lines_with_code(path):
+        if in_code:
+            text = joined + " " + line.split("  #")[0]
+            joined = text.rstrip("\\ ") if text.rstrip().endswith("\\") else ""
+            if not joined:
+                yield number, text
+            continue
+        if not line.strip():
+            prose = ""
+        prose += " " + line
+        spans = prose.split("`")
+        for span in spans[1:-1:2]:
+            yield number, BARE_COMMAND.sub(r"indentmap \1", span)
+        # an unclosed span runs on into the next line
+        prose = "`" + spans[-1] if len(spans) % 2 == 0 else ""
 
 
 def check_options(source, path, program, cache, faults):
-    pending = ""
-    for number, line, in_code in lines_with_code(path):
-        for span in command_spans(line, in_code):
-            if in_code and pending:
-                span = pending + " " + span
-            pending = span.rstrip("\\ ") if in_code and span.rstrip().endswith("\\") else ""
-            if pending:
-                continue
-            for match in COMMAND.finditer(span):
-                command = " ".join(word for word in match.groups() if word)
-                known = help_options(program, command, cache)
-                if known is None:
-                    continue  # not a subcommand: prose such as "indentmap and ..."
-                rest = span[match.end():]
-                following = COMMAND.search(rest)
-                for option in OPTION.findall(rest[:following.start()] if following else rest):
-                    if option not in known:
-                        faults.append("%s:%d: indentmap %s: option %s is not in 'indentmap %s --help'"
-                                      % (os.path.relpath(path, source), number, command, option, command))
+    for number, text in command_texts(path):
+        for match in COMMAND.finditer(text):
+            command = " ".join(word for word in match.groups() if word)
+            known = help_options(program, command, cache)
+            if known is None:
+                continue  # not a subcommand: prose such as "indentmap and ..."
+            rest = text[match.end():]
+            following = COMMAND.search(rest)
+            for option in OPTION.findall(rest[:following.start()] if following else rest):
+                if option not in known:
+                    faults.append("%s:%d: indentmap %s: option %s is not in 'indentmap %s --help'"
+                                  % (os.path.relpath(path, source), number, command, option, command))
 
 
 def scene_keys(source):
