@@ -5,7 +5,8 @@
       of that file (GitHub's anchors: lower case, punctuation dropped, spaces to hyphens, -1, -2 for repeats);
   (b) every option a documented command line gives (`indentmap COMMAND ... --option`, in code blocks and
       inline code) is one `indentmap COMMAND --help` lists;
-  (c) every `key = value` line of an INI block is a key of its [section] in the scene parser's table
+  (c) every file of the tree a command or code span names (src/..., scripts/..., tests/...) exists;
+  (d) every `key = value` line of an INI block is a key of its [section] in the scene parser's table
       (src/scene/keys.c), and every key of that table is named in docs/scenes.md.
 
 Usage: docs_check.py SOURCE_DIR INDENTMAP     exit 1 naming each fault (file:line and what was expected)
@@ -23,6 +24,10 @@ OPTION = re.compile(r"(?<![\w-])(--[a-z][a-z0-9-]*)")
 COMMAND = re.compile(r"\bindentmap\s+([a-z][a-z0-9-]*)(?:\s+(contact|height|animate|view3d)\b)?")
 # prose names a command without the program: `indent --device auto`, `render view3d --ortho`
 BARE_COMMAND = re.compile(r"^((?:surface|theory|indent|render|run|formats|info|mpi-indent)\b[^`]*?\s--)")
+# a file of the tree a document names in code (src/NAME/, shaders/x.{vert,frag}, crash-* are patterns)
+TREE_PATH = re.compile(r"(?<![\w./-])((?:src|tests|scripts|bench|include|python|examples|scenes|cmake|fuzz|shaders|docs)"
+                       r"/[^\s`'\"(),;:]*)")
+PATTERN = re.compile(r"[*<>{}\[]|(?<![A-Za-z])[A-Z]+(?![a-z])")
 KEY_ENTRY = re.compile(r'\{"([a-z0-9_]+)",\s*"([a-z0-9_]+)"')
 INI_SECTION = re.compile(r"^\s*\[([a-z0-9_]+)\]\s*(;.*)?$")
 INI_KEY = re.compile(r"^\s*([a-z0-9_]+)\s*=")
@@ -131,6 +136,14 @@ def check_options(source, path, program, cache, faults):
                                   % (os.path.relpath(path, source), number, command, option, command))
 
 
+def check_paths(source, path, faults):
+    for number, text in command_texts(path):
+        for named in TREE_PATH.findall(text):
+            named = named.rstrip(".")
+            if not os.path.exists(os.path.join(source, named)) and not PATTERN.search(named):
+                faults.append("%s:%d: %s: no such file in the tree" % (os.path.relpath(path, source), number, named))
+
+
 def scene_keys(source):
     with open(os.path.join(source, "src", "scene", "keys.c"), encoding="utf-8") as stream:
         return set(KEY_ENTRY.findall(stream.read()))
@@ -172,6 +185,7 @@ def main(argv):
         check_links(source, path, faults)
         if os.path.basename(path) not in RECORDS:
             check_options(source, path, program, cache, faults)
+            check_paths(source, path, faults)
         check_scene_keys(source, path, keys, faults)
     check_keys_documented(source, keys, faults)
     for fault in faults:
