@@ -29,7 +29,7 @@ def run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None
     ``backend`` is the OpenGL backend of the scene's frames and panels (``run --backend``): 'auto' (EGL,
     else OSMesa), 'egl' or 'osmesa'; another name raises ``InvalidArgument`` before anything runs.
 
-    Example: ``im.run_scene("scenes/paper.ini", out="paper", wisdom="fftw-wisdom")``."""
+    Example: ``im.run_scene("scenes/fig4.ini", out="fig4", wisdom="fftw-wisdom")``."""
     return _core.run_scene(path, resume=resume, quiet=quiet, progress=progress,
                            log=logger.log if log is None else log, out=out, wisdom=wisdom, backend=backend)
 
