@@ -22,9 +22,6 @@ if [ "${IM_SKIP_SANITIZE:-0}" != 1 ]; then
   # Mesa's on-disk shader cache off: with it, LeakSanitizer's tracer crashed ("Tracer caught signal 11")
   # at exit of EGL renders whose shaders came from the cache, a failure of the tool, not a leak (the
   # same runs pass with the cache off, and without the sanitizers either way).
-  # One test more than there are cores: the sanitized MPI tests idle part of their time (a failing mpirun waits
-  # its kill timeout, 2 s, after the ranks exit; a refused 2-rank run used 2.9 s of CPU in 5.4 s), and a third
-  # test fills those waits (docs/tests.md, "CI's time").
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 MESA_SHADER_CACHE_DISABLE=true \
-     ctest --output-on-failure -j "$(( $(nproc) + 1 ))" -LE slow)
+     ctest --output-on-failure -j "$(nproc)" -LE slow)
 fi
