@@ -143,7 +143,8 @@ double im_contact_largest_tension(const im_field *force);
  * is drawn as background only (a valid picture, not an error). The circle is anti-aliased with
  * its exact coverage of each pixel across the line (box filter), or aliased at half coverage. Errors: IM_EINVAL for a bad
  * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
- * the message); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
+ * the message) or an infinite force (a force is finite; NaN marks no data), naming the first such
+ * patch (x, y); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
 int im_render_contact_map(im_render_context *context, const im_field *force, const im_contact_style *style,
                           im_image *image);
 
