@@ -149,6 +149,11 @@ for f in "$dir"/scene/frames/view3d_000[0-2].png; do
 done
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+# A punch the 3-D view cannot frame is refused before solving, naming its key (S12: solved, then refused at the
+# camera, exit 2)
+sed -e "s|^output = .*|output = $dir/needle|" -e 's/^alpha = 70/alpha = 1e-9/' "$dir/scene.ini" >"$dir/needle.ini"
+check "a needle with frames3d: refused before solving" expect_exit 2 "[punch] alpha = 1e-09 with [output] frames3d" "$cli" run "$dir/needle.ini"
+check "a needle with frames3d: nothing solved" bash -c "! grep -q 'histories' '$dir/err' && ! test -e '$dir/needle/results.csv'"
 sed -e "s|^output = .*|output = $dir/noframes|" -e 's/^frames = yes/frames = no/' -e 's/^frames3d = yes/frames3d = no/' -e 's/^frame_count = 3/contact_panels = yes/' \
   "$dir/scene.ini" >"$dir/bad.ini"
 check "animation needs frames (no GIF, and exit 0, before)" expect_exit 2 "animation animates the frames: set frames = yes too" "$cli" run "$dir/bad.ini"

@@ -292,7 +292,8 @@ int im_render_view3d(im_render_context *context, const im_field *height, const i
  * spare, seen from the style's camera direction, target and field of view at its image's aspect
  * ratio; the projection and the distance set in the style are not read. The frames of a history
  * take the largest over their steps for one camera that shows every step whole. Errors: IM_EINVAL
- * for a bad height, punch or camera (as im_render_view3d), IM_ENUMERIC for a non-finite height,
+ * for a bad height, punch or camera (as im_render_view3d), also for a fitted distance the camera cannot take
+ * (a needle of a cone rising 1e10 grid sides over the grid; *distance is set then), IM_ENUMERIC for a non-finite height,
  * IM_ENOMEM; *distance is NaN then. */
 int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *style,
                            double *distance);

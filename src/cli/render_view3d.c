@@ -257,7 +257,18 @@ static int apply_distance(const view3d_options *o, const im_field *height, im_vi
 {
     if (o->has_distance || s->camera.projection != IM_VIEW3D_PERSPECTIVE)
         return IM_OK;
-    return im_view3d_fit_distance(height, o->no_punch ? NULL : &o->punch, s, &s->camera.distance);
+    const int status = im_view3d_fit_distance(height, o->no_punch ? NULL : &o->punch, s, &s->camera.distance);
+    if (status != IM_EINVAL || o->no_punch || isnan(s->camera.distance)) /* NaN: not fitted (render.h) */
+        return status;
+    char key[64]; /* the punch the camera cannot frame: a needle of a cone (S12) */
+    if (o->punch.kind == IM_PUNCH_CONE)
+        snprintf(key, sizeof key, "--alpha %.9g", o->punch.alpha_degrees);
+    else
+        snprintf(key, sizeof key, "--punch %s", im_punch_name(o->punch.kind));
+    return im_fail_context(status,
+                           "%s: a camera that sees the punch whole stands too far (expected a blunter punch, "
+                           "--punch none or --distance D)",
+                           key);
 }
 
 /* The colour bars' labels in --force's unit (figure.h: im_figure_colorbar_label, as the maps'). */
