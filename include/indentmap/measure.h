@@ -151,8 +151,8 @@ int im_measure_write_distributions(const im_field *force, const im_field *gap, d
 
 /* ---- adhesion: a force-distance history's pull-off, jumps and lost work (solver.h, "Adhesion") ---- */
 typedef struct im_adhesion_summary {
-    double pull_off_force;        /* the pull-off, -min N (> 0), where the steps passed it: the approaches were
-                                 given (displacement control) and a later step's load rises above it; NaN
+    double pull_off_force;        /* the pull-off, -min N (> 0), where the steps passed it: the approaches (or
+                                 mean gaps) were given and a later step's load rises above it; NaN
                                  otherwise (a load-controlled contact holds every load it is given, and the
                                  least load it can hold lies below them: a step past it is refused naming it) */
     double pull_off_approach;     /* the approach of that step; NaN with pull_off_force */
@@ -170,11 +170,11 @@ typedef struct im_adhesion_summary {
     double most_tensile_approach; /* the approach of that step */
 } im_adhesion_summary;
 
-/* Summarises count >= 1 steps of approaches, net loads and contact patches (p_r > 0), solved at the approaches
- * given (approaches_given != 0, displacement control) or at loads or mean gaps (0: their least load is never a
- * pull-off). IM_EINVAL for NULL arrays, count < 1 or a non-finite approach or load (naming the step). */
-int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count,
-                        int approaches_given, im_adhesion_summary *out);
+/* Summarises count >= 1 steps of approaches, net loads and contact patches (p_r > 0), solved at the loads given
+ * (loads_given != 0, load control: their least load is never a pull-off) or at approaches or mean gaps (0).
+ * IM_EINVAL for NULL arrays, count < 1 or a non-finite approach or load (naming the step). */
+int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count, int loads_given,
+                        im_adhesion_summary *out);
 
 #ifdef __cplusplus
 }

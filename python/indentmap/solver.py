@@ -572,9 +572,9 @@ def adhesion(history, control="displacement"):
     """The pull-off of an adhesive history (``Indentation(..., adhesion_work=, adhesion_range=)``) as
     ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``most_tensile_load`` (-min N,
     positive; NaN when nothing pulls) at ``most_tensile_approach``; ``pull_off_force`` and ``pull_off_approach``,
-    the same where the steps passed the pull-off (``control`` 'displacement', the control the history was solved
-    under, and a later step's load above it), NaN otherwise (under 'load' or 'mean_gap' control the contact held
-    every load it was given: a load below the pull-off is refused, naming the least load it holds);
+    the same where the steps passed the pull-off (``control``, the control the history was solved under,
+    'displacement' or 'mean_gap', and a later step's load above it), NaN otherwise (under 'load' control the
+    contact held every load it was given: a load below the pull-off is refused, naming the least load it holds);
     ``jump_in_approach`` (first contact on approach after none), ``jump_out_approach`` (last contact retracting
     before none) and ``hysteresis_work`` (sum of N dw: the work lost over a closed history) with
     ``hysteresis_error``, an estimate of its trapezoids' error (a work within it is not resolved by the steps:
@@ -587,4 +587,4 @@ def adhesion(history, control="displacement"):
     history = np.asarray(history)
     return _core.adhesion(np.ascontiguousarray(history["approach"], dtype=float),
                           np.ascontiguousarray(history["load"], dtype=float),
-                          np.ascontiguousarray(history["contact_patches"], dtype=float), control == "displacement")
+                          np.ascontiguousarray(history["contact_patches"], dtype=float), control == "load")

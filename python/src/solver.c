@@ -744,14 +744,14 @@ static PyObject *write_analysis(PyObject *self, PyObject *args)
     return result;
 }
 
-/* adhesion(approach, load, contact, approaches_given) -> dict (measure.h: im_measure_adhesion); NaN where there
+/* adhesion(approach, load, contact, loads_given) -> dict (measure.h: im_measure_adhesion); NaN where there
  * is none */
 static PyObject *adhesion(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *approach_obj, *load_obj, *contact_obj;
-    int approaches_given;
-    if (!PyArg_ParseTuple(args, "OOOp", &approach_obj, &load_obj, &contact_obj, &approaches_given))
+    int loads_given;
+    if (!PyArg_ParseTuple(args, "OOOp", &approach_obj, &load_obj, &contact_obj, &loads_given))
         return NULL;
     PyArrayObject *approach = NULL, *load = NULL, *contact = NULL;
     PyObject *result = NULL;
@@ -768,8 +768,7 @@ static PyObject *adhesion(PyObject *self, PyObject *args)
     for (int k = 0; k < count; ++k)
         patches[k] = (long)((const double *)PyArray_DATA(contact))[k];
     im_adhesion_summary a;
-    int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, approaches_given,
-                                     &a);
+    int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, loads_given, &a);
     result = status != IM_OK
                  ? py_raise_status(status)
                  : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force,

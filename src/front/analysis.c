@@ -303,8 +303,7 @@ int analysis_write_adhesion(const char *dir, const im_history_row *rows, int cou
         columns[count + k] = rows[k].result.load;
         contact[k] = rows[k].result.contact_patches;
     }
-    int status = im_measure_adhesion(columns, columns + count, contact, count, control == IM_CONTROL_DISPLACEMENT,
-                                     summary);
+    int status = im_measure_adhesion(columns, columns + count, contact, count, control == IM_CONTROL_LOAD, summary);
     double *plot = columns + 2 * (size_t)count;
     segments up = {plot, plot + room, 0}, down = {plot + 2 * room, plot + 3 * room, 0};
     segments marker = {plot + 4 * room, plot + 5 * room, 0};

@@ -95,7 +95,7 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
      * while the step refused at -6 named the least load the contact holds, -5.43) */
     const int pull_off = isfinite(summary.pull_off_force);
     const char *why_not = pull_off ? ""
-                          : s->options->control == IM_CONTROL_DISPLACEMENT
+                          : s->options->control != IM_CONTROL_LOAD
                               ? " (not the pull-off: no later step's load rises above it)"
                               : " (not the pull-off: load control holds each load given; a load below the pull-off "
                                 "is refused, naming the least load the contact holds)";

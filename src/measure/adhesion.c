@@ -27,11 +27,11 @@ static double trapezoid_error(const double *approach, const double *load, int co
     return isnan(curvature) ? monotone : fmin(monotone, h * h * h * curvature / 12);
 }
 
-/* Whether the least load, at step least, is a pull-off the steps passed (measure.h, pull_off_force): under
- * displacement control with a later step's load above it (the contact let go past it). */
-static int passed_pull_off(const double *load, int count, int least, int approaches_given)
+/* Whether the least load, at step least, is a pull-off the steps passed (measure.h, pull_off_force): the
+ * approaches or mean gaps given, a later step's load above it (the contact let go past it). */
+static int passed_pull_off(const double *load, int count, int least, int loads_given)
 {
-    if (!approaches_given)
+    if (loads_given)
         return 0;
     for (int k = least + 1; k < count; ++k)
         if (load[k] > load[least])
@@ -39,8 +39,8 @@ static int passed_pull_off(const double *load, int count, int least, int approac
     return 0;
 }
 
-int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count,
-                        int approaches_given, im_adhesion_summary *out)
+int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count, int loads_given,
+                        im_adhesion_summary *out)
 {
     ARG_REQUIRE(approach, "approach");
     ARG_REQUIRE(load, "load");
@@ -69,7 +69,7 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
         if (contact[k] == 0 && contact[k - 1] > 0 && approach[k] < approach[k - 1])
             s.jump_out_approach = approach[k - 1];
     }
-    if (least >= 0 && passed_pull_off(load, count, least, approaches_given)) {
+    if (least >= 0 && passed_pull_off(load, count, least, loads_given)) {
         s.pull_off_force = s.most_tensile_load;
         s.pull_off_approach = s.most_tensile_approach;
     }
