@@ -23,7 +23,7 @@ print(repr(w), repr(w / stress))')
 sphere=(--smooth --n 64 --punch sphere --radius 64 --adhesion-work "$work" --adhesion-range "$range" --tol 1e-8
   --approach 0.25:1.5:6,1.4:-0.5:20)
 
-# pull_off_error RUN WIDENED WORK RADIUS: |pull-off - Maugis-Dugdale's| / (pi w R), from run.json's "adhesion"
+# pull_off_error RUN WIDENED WORK RADIUS: |most tensile load - Maugis-Dugdale's pull-off| / (pi w R), from run.json's "adhesion"
 # block (its theory is the law asked's), after checking what the block says of the zone: WIDENED 1 (the law solved
 # spans one patch at the same work, Tabor's mu below the asked 10), 0 (the law as asked), none (no "zone").
 pull_off_error() {
@@ -43,7 +43,7 @@ else:
         assert abs(asked["tabor_mu"] - 10) < 1e-9 and law["tabor_mu"] < 2, law
     else:
         assert all(law[key] == asked[key] for key in asked), law
-print(abs(law["pull_off_force"] - law["theory"]["pull_off_force"]) / (math.pi * work * radius))
+print(abs(law["most_tensile_load"] - law["theory"]["pull_off_force"]) / (math.pi * work * radius))
 PY
 }
 

@@ -159,6 +159,19 @@ grep -q "^adhesion: pull-off force 5.36[0-9]* at w = -0.25;" "$DIR/pull.log" \
     --approach 0,-0.1 --out "$DIR/pull-short" > "$DIR/pull-short.log" || fail "a short retraction exited $?"
 grep -q "^adhesion: most tensile load held 5.21[0-9]* at w = -0.1 (not the pull-off: no later step's load rises" \
     "$DIR/pull-short.log" || fail "a retraction ending before the pull-off: $(grep adhesion: "$DIR/pull-short.log")"
+# ... and run.json says the same: pull_off_force only where the steps passed it (null otherwise), the most
+# tensile load beside it, -min N of history.csv
+python3 - "$DIR" <<'PY' || fail "run.json's pull-off against the steps"
+import csv, json, math, sys
+for run, passed in (("sticky-off", False), ("pull-short", False), ("pull", True)):
+    block = json.load(open(f"{sys.argv[1]}/{run}/run.json"))["adhesion"]
+    rows = list(csv.DictReader(open(f"{sys.argv[1]}/{run}/history.csv")))
+    least = min(rows, key=lambda row: float(row["load"]))
+    assert math.isclose(block["most_tensile_load"], -float(least["load"]), rel_tol=1e-12), (run, block)
+    assert block["most_tensile_approach"] == float(least["approach"]), (run, block)
+    expected = (block["most_tensile_load"], block["most_tensile_approach"]) if passed else (None, None)
+    assert (block["pull_off_force"], block["pull_off_approach"]) == expected, (run, block)
+PY
 # ... and with a hardness below its peak pressure (H = 0.06): no net pressure above H, the plastic depth kept on
 # the retraction, a pull-off stronger than the elastic sphere's (the flattened contact is wider), and no elastic
 # theory beside it.
@@ -202,7 +215,9 @@ awk -F, 'NR > 1 && $5 > 0 && $6 != $5 / 4096 { exit 1 } NR > 1 && $3 < 0 { pulle
 python3 - "$DIR/peradh/run.json" <<'PY' || fail "periodic adhesive run.json: $(grep -A12 '"adhesion"' "$DIR/peradh/run.json")"
 import json, sys
 r = json.load(open(sys.argv[1]))
-assert r["adhesion"]["theory"] is None and "k_fit" not in r and r["adhesion"]["pull_off_force"] > 0
+block = r["adhesion"]  # mean gaps set the separation as approaches do: the retraction passed the pull-off
+assert block["theory"] is None and "k_fit" not in r and block["pull_off_force"] > 0
+assert block["pull_off_force"] == block["most_tensile_load"], block
 PY
 # The adhesive cell under mean pressures (--pressure, load control): compression, unloading and a tension held
 # (load = p_m A0, tension in the last row), then a tension beyond the pull-off refused, exit 2, naming the mean

@@ -75,6 +75,15 @@ check "unknown mode" expect_exit 2 "expected contact, height or animate" "$cli" 
 check "bad colour map" expect_exit 2 "expected viridis" "$cli" render contact "$dir/f.npy" --colormap jet --out "$dir/x.png"
 check "log norm needs vmin > 0" expect_exit 2 "logarithmic" "$cli" render contact "$dir/f.npy" --log --vmin 0 --out "$dir/x.png"
 check "the default log norm names --vmin" expect_exit 2 "--vmin 0: a logarithmic norm needs --vmin > 0 (or --linear)" "$cli" render contact "$dir/f.npy" --vmin 0 --out "$dir/x.png"
+# a force is finite (NaN marks no data): +-Inf refused naming the file and the first such patch (x, y) (S10); a
+# height's +Inf (an open gap) is drawn as before
+python3 -c 'import struct, sys  # a 4 x 3 float64 .npy, without numpy: NaN at (0, 0), +Inf at (2, 1), -Inf at (1, 2)
+header = "{\x27descr\x27: \x27<f8\x27, \x27fortran_order\x27: False, \x27shape\x27: (3, 4), }"
+header += " " * (117 - len(header)) + "\n"
+values = [float("nan"), 1, 2, 3, 4, 5, float("inf"), 7, 8, float("-inf"), 10, 11]
+open(sys.argv[1], "wb").write(b"\x93NUMPY\x01\x00" + struct.pack("<H", 118) + header.encode() + struct.pack("<12d", *values))' "$dir/inf.npy"
+check "an infinite force refused" expect_exit 2 "inf.npy: contact map: force inf at patch (2, 1): expected a finite force (NaN marks no data)" "$cli" render contact "$dir/f.npy" "$dir/inf.npy" --out "$dir/x.png"
+check "an infinite height drawn" "$cli" render height "$dir/inf.npy" --out "$dir/inf-height.png"
 check "bad backend" expect_exit 2 "auto, egl or osmesa" "$cli" render contact "$dir/f.npy" --backend vulkan --out "$dir/x.png"
 check "bad scale" expect_exit 2 "--scale = 0" "$cli" render contact "$dir/f.npy" --scale 0 --out "$dir/x.png"
 check "unknown extension" expect_exit 2 ".png, .pdf or .svg" "$cli" render contact "$dir/f.npy" --out "$dir/x.tiff"

@@ -74,6 +74,17 @@ check "nothing left by refusals" test ! -e "$dir/x.png"
 "$cli" render view3d "$dir/holes.txt" --fill --width 320 --height 200 --out "$dir/filled.png" 2>"$dir/filled.err"
 check "--fill draws the scan" test -s "$dir/filled.png"
 check "--fill warns of the points it invented" grep -q "(225 of 4096 points)" "$dir/filled.err"
+# ... and indent's other surface-file options, from its table (--unit, --crop, --detrend, ...; they were indent's
+# only): HEIGHT prepared as indent's SURFACE, so that the displacement of a cropped run's --fields fits it
+"$cli" surface --n 32 --seed 4 --out "$dir/s32.npy" >/dev/null 2>&1
+"$cli" surface --n 16 --seed 5 --out "$dir/u16.npy" >/dev/null 2>&1
+check "a 16 x 16 displacement on a 32 x 32 HEIGHT refused" expect_exit 2 "grid 16 x 16: expected the grid of" \
+  "$cli" render view3d "$dir/s32.npy" --displacement "$dir/u16.npy" --width 320 --height 200 --raw --out "$dir/x.png"
+check "--crop, --detrend, --align, --unit, --npy-order: HEIGHT cropped to the displacement's grid" \
+  "$cli" render view3d "$dir/s32.npy" --crop 8,8,16,16 --detrend plane --align median --unit nm --npy-order yx \
+  --displacement "$dir/u16.npy" --width 320 --height 200 --raw --out "$dir/cropped.png"
+check "--crop beyond HEIGHT refused naming it" expect_exit 2 "--crop: crop 0,0,64,64: expected X0,Y0,NX,NY with NX, NY >= 2 inside the 32 x 32 grid" \
+  "$cli" render view3d "$dir/s32.npy" --crop 0,0,64,64 --width 320 --height 200 --raw --out "$dir/x.png"
 
 # A scene with frames3d: 3-D frames, their GIF, and the page with the three frame panels.
 cat >"$dir/scene.ini" <<INI
@@ -149,6 +160,11 @@ for f in "$dir"/scene/frames/view3d_000[0-2].png; do
 done
 sed 's/^frames = yes/frames = no/' "$dir/scene.ini" >"$dir/bad.ini"
 check "frames3d needs frames" expect_exit 2 "set frames = yes too" "$cli" run "$dir/bad.ini"
+# A punch the 3-D view cannot frame is refused before solving, naming its key (S12: solved, then refused at the
+# camera, exit 2)
+sed -e "s|^output = .*|output = $dir/needle|" -e 's/^alpha = 70/alpha = 1e-9/' "$dir/scene.ini" >"$dir/needle.ini"
+check "a needle with frames3d: refused before solving" expect_exit 2 "[punch] alpha = 1e-09 with [output] frames3d" "$cli" run "$dir/needle.ini"
+check "a needle with frames3d: nothing solved" bash -c "! grep -q 'histories' '$dir/err' && ! test -e '$dir/needle/results.csv'"
 sed -e "s|^output = .*|output = $dir/noframes|" -e 's/^frames = yes/frames = no/' -e 's/^frames3d = yes/frames3d = no/' -e 's/^frame_count = 3/contact_panels = yes/' \
   "$dir/scene.ini" >"$dir/bad.ini"
 check "animation needs frames (no GIF, and exit 0, before)" expect_exit 2 "animation animates the frames: set frames = yes too" "$cli" run "$dir/bad.ini"

@@ -954,22 +954,42 @@ static void summary_of_a_loop(void **state)
     const double w[] = {0, 1, 2, 1, 0}, n[] = {0, 0, -1, -2, 0};
     const long contact[] = {0, 0, 5, 5, 0};
     im_adhesion_summary s;
-    assert_int_equal(im_measure_adhesion(w, n, contact, 5, &s), IM_OK);
+    assert_int_equal(im_measure_adhesion(w, n, contact, 5, 0, &s), IM_OK);
     assert_true(s.pull_off_force == 2 && s.pull_off_approach == 1);
+    assert_true(s.most_tensile_load == 2 && s.most_tensile_approach == 1);
     assert_true(s.jump_in_approach == 2 && s.jump_out_approach == 1);
     assert_close(s.hysteresis_work, 2.0, 1e-15);
     assert_close(s.hysteresis_error, 7.0 / 12.0, 1e-15);
     const double cell_w[] = {-0.5598, -0.0598, 0.4402, -0.0598, -0.5598};
     const double cell_n[] = {0, -0.496795, 1.075141, -0.496198, 0};
-    assert_int_equal(im_measure_adhesion(cell_w, cell_n, (const long[]){0, 0, 143, 0, 0}, 5, &s), IM_OK);
+    assert_int_equal(im_measure_adhesion(cell_w, cell_n, (const long[]){0, 0, 143, 0, 0}, 5, 0, &s), IM_OK);
     assert_true(s.hysteresis_work < 0 && fabs(s.hysteresis_work) < s.hysteresis_error);
     const double none[] = {0, 1};
     const long touching[] = {1, 2};
-    assert_int_equal(im_measure_adhesion(w, none, touching, 2, &s), IM_OK);
-    assert_true(isnan(s.pull_off_force) && isnan(s.jump_in_approach) && isnan(s.jump_out_approach));
+    assert_int_equal(im_measure_adhesion(w, none, touching, 2, 0, &s), IM_OK);
+    assert_true(isnan(s.pull_off_force) && isnan(s.most_tensile_load));
+    assert_true(isnan(s.jump_in_approach) && isnan(s.jump_out_approach));
     const double broken[] = {0, NAN};
-    assert_int_equal(im_measure_adhesion(broken, n, contact, 2, &s), IM_EINVAL);
+    assert_int_equal(im_measure_adhesion(broken, n, contact, 2, 0, &s), IM_EINVAL);
     assert_non_null(strstr(im_last_error(), "step 2"));
+}
+
+/* The least load is the pull-off only where the steps passed it (measure.h; T16): approaches (or mean gaps)
+ * given, a later load above it; the same loads given as loads (their contact held each) or a retraction that
+ * ends while the load still falls say it as the most tensile load, pull_off_force NaN. */
+static void least_load_is_a_pull_off_only_when_passed(void **state)
+{
+    (void)state;
+    const double w[] = {0, 1, 0.5, 0}, n[] = {5, 0, -3, -1};
+    const long contact[] = {9, 5, 3, 0};
+    im_adhesion_summary s;
+    assert_int_equal(im_measure_adhesion(w, n, contact, 4, 0, &s), IM_OK);
+    assert_true(s.pull_off_force == 3 && s.pull_off_approach == 0.5 && s.most_tensile_load == 3);
+    assert_int_equal(im_measure_adhesion(w, n, contact, 4, 1, &s), IM_OK);
+    assert_true(isnan(s.pull_off_force) && isnan(s.pull_off_approach));
+    assert_true(s.most_tensile_load == 3 && s.most_tensile_approach == 0.5);
+    assert_int_equal(im_measure_adhesion(w, n, contact, 3, 0, &s), IM_OK);
+    assert_true(isnan(s.pull_off_force) && s.most_tensile_load == 3);
 }
 
 /* `test_adhesion --mu M --L N [--device cpu|gpu] [--zone P]`: the sweep's retraction at one Tabor mu on one
@@ -1061,6 +1081,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(widened_zone_keeps_the_work),
         cmocka_unit_test(indentation_solves_the_widened_law),
         cmocka_unit_test(summary_of_a_loop),
+        cmocka_unit_test(least_load_is_a_pull_off_only_when_passed),
     };
     return test_run_chosen_cases(tests, argc, argv);
 }

@@ -151,23 +151,29 @@ int im_measure_write_distributions(const im_field *force, const im_field *gap, d
 
 /* ---- adhesion: a force-distance history's pull-off, jumps and lost work (solver.h, "Adhesion") ---- */
 typedef struct im_adhesion_summary {
-    double pull_off_force;    /* the most tensile load, -min N (> 0), NaN when no step pulls */
-    double pull_off_approach; /* the approach of that step */
-    double jump_in_approach;  /* the first step in contact right after one out of contact, the approach
+    double pull_off_force;        /* the pull-off, -min N (> 0), where the steps passed it: the approaches (or
+                                 mean gaps) were given and a later step's load rises above it; NaN
+                                 otherwise (a load-controlled contact holds every load it is given, and the
+                                 least load it can hold lies below them: a step past it is refused naming it) */
+    double pull_off_approach;     /* the approach of that step; NaN with pull_off_force */
+    double jump_in_approach;      /* the first step in contact right after one out of contact, the approach
                                  rising (the surface snapped up to the punch); NaN when none */
-    double jump_out_approach; /* the last step in contact right before one out of contact, the approach
+    double jump_out_approach;     /* the last step in contact right before one out of contact, the approach
                                  falling (separation lies between it and the next); NaN when none */
-    double hysteresis_work;   /* sum of N dw over the history (trapezoids): the work the punch did, lost
+    double hysteresis_work;       /* sum of N dw over the history (trapezoids): the work the punch did, lost
                                  in the jumps when the history returns to where it began */
-    double hysteresis_error;  /* an estimate of the trapezoids' error in it: over each step the smaller of
+    double hysteresis_error;      /* an estimate of the trapezoids' error in it: over each step the smaller of
                                  h^3 |N''| / 12 (N'' from the neighbouring second differences on the same
                                  branch) and h |dN| / 2 (the bound where N is monotone between the steps, as
                                  across a jump); a work within it is not resolved by the steps */
+    double most_tensile_load;     /* -min N (> 0), pull-off or not; NaN when no step pulls */
+    double most_tensile_approach; /* the approach of that step */
 } im_adhesion_summary;
 
-/* Summarises count >= 1 steps of approaches, net loads and contact patches (p_r > 0). IM_EINVAL for
- * NULL arrays, count < 1 or a non-finite approach or load (naming the step). */
-int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count,
+/* Summarises count >= 1 steps of approaches, net loads and contact patches (p_r > 0), solved at the loads given
+ * (loads_given != 0, load control: their least load is never a pull-off) or at approaches or mean gaps (0).
+ * IM_EINVAL for NULL arrays, count < 1 or a non-finite approach or load (naming the step). */
+int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count, int loads_given,
                         im_adhesion_summary *out);
 
 #ifdef __cplusplus

@@ -143,7 +143,8 @@ double im_contact_largest_tension(const im_field *force);
  * is drawn as background only (a valid picture, not an error). The circle is anti-aliased with
  * its exact coverage of each pixel across the line (box filter), or aliased at half coverage. Errors: IM_EINVAL for a bad
  * style (norm, scale, sizes) or an image larger than the GL implementation's limits (named in
- * the message); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
+ * the message) or an infinite force (a force is finite; NaN marks no data), naming the first such
+ * patch (x, y); IM_ENOMEM; IM_EUNSUPPORTED if GL fails. On failure *image is left zeroed. */
 int im_render_contact_map(im_render_context *context, const im_field *force, const im_contact_style *style,
                           im_image *image);
 
@@ -291,7 +292,8 @@ int im_render_view3d(im_render_context *context, const im_field *height, const i
  * spare, seen from the style's camera direction, target and field of view at its image's aspect
  * ratio; the projection and the distance set in the style are not read. The frames of a history
  * take the largest over their steps for one camera that shows every step whole. Errors: IM_EINVAL
- * for a bad height, punch or camera (as im_render_view3d), IM_ENUMERIC for a non-finite height,
+ * for a bad height, punch or camera (as im_render_view3d), also for a fitted distance the camera cannot take
+ * (a needle of a cone rising 1e10 grid sides over the grid; *distance is set then), IM_ENUMERIC for a non-finite height,
  * IM_ENOMEM; *distance is NaN then. */
 int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *style,
                            double *distance);

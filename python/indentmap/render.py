@@ -100,8 +100,8 @@ def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log
     (``read(path).unit`` and ``Indentation(...).units["force"]``; "" for units of delta and E* δ²): the
     Image's 'Quantity' text then says 'local force f / N' as the program's pictures do.
 
-    Returns an Image; ``InvalidArgument`` for a bad colour map or norm, ``Unsupported`` without
-    OpenGL.
+    Returns an Image; ``InvalidArgument`` for a bad colour map or norm or an infinite force (a force is finite,
+    NaN marks no data; the first such patch (x, y) named), ``Unsupported`` without OpenGL.
 
     Example: ``im.contact_map(force, delta=t.delta, unit=t.unit, force_unit=run.units["force"],
     log=True).texts["Quantity"]`` is 'local force f / N' for a run in m and Pa."""

@@ -163,7 +163,7 @@ class Indentation:
     cell; approaches and loads may then be negative down to -largest (the punch pulled away, the contact under
     tension); under load control a load beyond the pull-off force is refused (InvalidArgument naming it, a
     cell's as a mean pressure: the contact jumps out);
-    ``adhesion(history)`` gives the pull-off.
+    ``adhesion(history, control)`` gives the pull-off where the steps passed it.
     ``adhesion_law='exponential'`` (``indent --adhesion-law exponential``) takes the smooth law instead: the
     tension (w / rho) exp(-g / rho) at a gap g, rho = ``adhesion_range``, w / rho in contact.
     ``adhesion_zone=P`` (``indent --adhesion-zone P``) solves instead the Maugis-Dugdale law of the same work
@@ -568,18 +568,23 @@ def write_analysis(history, out, punch=Cone(), *, delta=1.0, e_star=1.0, length_
                                 _checks.text("length_unit", length_unit), _checks.text("force_unit", force_unit))
 
 
-def adhesion(history):
+def adhesion(history, control="displacement"):
     """The pull-off of an adhesive history (``Indentation(..., adhesion_work=, adhesion_range=)``) as
-    ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``pull_off_force`` (the most
-    tensile load, positive; NaN when nothing pulls) and its ``pull_off_approach``, ``jump_in_approach`` (first
-    contact on approach after none), ``jump_out_approach`` (last contact retracting before none) and
-    ``hysteresis_work`` (sum of N dw: the work lost over a closed history) with ``hysteresis_error``, an
-    estimate of its trapezoids' error (a work within it is not resolved by the steps: finer steps around the
-    jumps resolve it).
+    ``indentmap indent`` states it in run.json's "adhesion" block: a dict of ``most_tensile_load`` (-min N,
+    positive; NaN when nothing pulls) at ``most_tensile_approach``; ``pull_off_force`` and ``pull_off_approach``,
+    the same where the steps passed the pull-off (``control``, the control the history was solved under,
+    'displacement' or 'mean_gap', and a later step's load above it), NaN otherwise (under 'load' control the
+    contact held every load it was given: a load below the pull-off is refused, naming the least load it holds);
+    ``jump_in_approach`` (first contact on approach after none), ``jump_out_approach`` (last contact retracting
+    before none) and ``hysteresis_work`` (sum of N dw: the work lost over a closed history) with
+    ``hysteresis_error``, an estimate of its trapezoids' error (a work within it is not resolved by the steps:
+    finer steps around the jumps resolve it).
 
     Example: ``h = im.indent(s, im.Sphere(40), approaches=[1, 0, -1], adhesion_work=0.02,
     adhesion_range=0.5); im.adhesion(h)["pull_off_force"]``."""
+    if control not in ("displacement", "load", "mean_gap"):
+        raise ValueError(f"control: {control!r}: expected 'displacement', 'load' or 'mean_gap' (the history's)")
     history = np.asarray(history)
     return _core.adhesion(np.ascontiguousarray(history["approach"], dtype=float),
                           np.ascontiguousarray(history["load"], dtype=float),
-                          np.ascontiguousarray(history["contact_patches"], dtype=float))
+                          np.ascontiguousarray(history["contact_patches"], dtype=float), control == "load")

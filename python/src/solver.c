@@ -744,12 +744,14 @@ static PyObject *write_analysis(PyObject *self, PyObject *args)
     return result;
 }
 
-/* adhesion(approach, load, contact) -> dict (measure.h: im_measure_adhesion); NaN where there is none */
+/* adhesion(approach, load, contact, loads_given) -> dict (measure.h: im_measure_adhesion); NaN where there
+ * is none */
 static PyObject *adhesion(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *approach_obj, *load_obj, *contact_obj;
-    if (!PyArg_ParseTuple(args, "OOO", &approach_obj, &load_obj, &contact_obj))
+    int loads_given;
+    if (!PyArg_ParseTuple(args, "OOOp", &approach_obj, &load_obj, &contact_obj, &loads_given))
         return NULL;
     PyArrayObject *approach = NULL, *load = NULL, *contact = NULL;
     PyObject *result = NULL;
@@ -766,13 +768,14 @@ static PyObject *adhesion(PyObject *self, PyObject *args)
     for (int k = 0; k < count; ++k)
         patches[k] = (long)((const double *)PyArray_DATA(contact))[k];
     im_adhesion_summary a;
-    int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, &a);
+    int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, loads_given, &a);
     result = status != IM_OK
                  ? py_raise_status(status)
-                 : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force, "pull_off_approach",
-                                 a.pull_off_approach, "jump_in_approach", a.jump_in_approach, "jump_out_approach",
-                                 a.jump_out_approach, "hysteresis_work", a.hysteresis_work, "hysteresis_error",
-                                 a.hysteresis_error);
+                 : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force,
+                                 "pull_off_approach", a.pull_off_approach, "most_tensile_load", a.most_tensile_load,
+                                 "most_tensile_approach", a.most_tensile_approach, "jump_in_approach",
+                                 a.jump_in_approach, "jump_out_approach", a.jump_out_approach, "hysteresis_work",
+                                 a.hysteresis_work, "hysteresis_error", a.hysteresis_error);
 done:
     free(patches);
     Py_XDECREF(approach);

@@ -23,6 +23,18 @@ def test_contact_map_pixels():
     assert tuple(background) == (230, 230, 230)
 
 
+def test_contact_map_refuses_an_infinite_force():
+    """A force is finite (NaN marks no data): +-Inf is refused naming the first such patch (x, y), not drawn in the
+    over colour as a large force (S10); NaN stays the bad colour."""
+    force = np.ones((4, 5))
+    force[0, 0] = np.nan
+    force[2, 3] = -np.inf  # row y = 2, column x = 3
+    with pytest.raises(im.InvalidArgument, match=r"force -inf at patch \(3, 2\): expected a finite force"):
+        im.contact_map(force)
+    force[2, 3] = 1.0
+    assert im.contact_map(force).rgba.shape == (4 * 2 + 4, 5 * 2 + 4, 4)
+
+
 def test_contact_map_tension_on_the_blue_ramp():
     """Patches under tension (adhesion) take the C renderer's blue ramp: darker as the tension grows, blue
     over red and green, never the no-contact grey; the largest takes the ramp's darkest colour."""

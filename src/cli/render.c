@@ -182,8 +182,9 @@ static void note_extremes(render_options *o, const im_field *field, const im_col
     }
 }
 
-static int render_contact(im_render_context *context, const im_field *force, render_options *o, im_image *image,
-                          im_colormap *norm)
+/* The contact map of the force read from input (named in an error: an infinite force, say). */
+static int render_contact(im_render_context *context, const im_field *force, const char *input, render_options *o,
+                          im_image *image, im_colormap *norm)
 {
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
@@ -196,7 +197,8 @@ static int render_contact(im_render_context *context, const im_field *force, ren
     if (o->has_circle_y)
         style.circle_y = o->circle_y;
     *norm = style.colormap;
-    return im_render_contact_map(context, force, &style, image);
+    const int status = im_render_contact_map(context, force, &style, image);
+    return status == IM_OK ? IM_OK : im_fail_context(status, "%s", input);
 }
 
 static int render_height(im_render_context *context, const im_field *height, render_options *o, im_image *image,
@@ -359,7 +361,7 @@ static int write_animation_frame(im_render_context *context, im_field *field, ch
     im_colormap norm;
     im_image image = {0};
     char path[4096];
-    int status = render_contact(context, field, o, &image, &norm);
+    int status = render_contact(context, field, input[0], o, &image, &norm);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, o->frames, "contact", i);
     if (status == IM_OK) {
@@ -430,7 +432,7 @@ static int draw_panels(im_render_context *context, char **inputs, int count, ren
     int status = fields && images ? read_fields(o, inputs, count, fields)
                                   : im_fail(IM_ENOMEM, "render: out of memory");
     for (int i = 0; status == IM_OK && i < count; ++i)
-        status = strcmp(o->mode, "contact") == 0 ? render_contact(context, fields[i], o, &images[i], &norm)
+        status = strcmp(o->mode, "contact") == 0 ? render_contact(context, fields[i], inputs[i], o, &images[i], &norm)
                                                  : render_height(context, fields[i], o, &images[i], &norm);
     if (status == IM_OK)
         status = write_output(o, inputs, images, count, &norm, NULL);

@@ -32,8 +32,9 @@ static void usage(FILE *stream)
             "  --raw                 PNG of the rendered image only\n"
             "  --force FILE          local forces (same grid) for the contact colours\n"
             "  --displacement FILE   subtract this displacement u from HEIGHT\n"
-            "  --fill                fill HEIGHT's missing points (NaN) from their neighbours (default:\n"
-            "                        refuse)\n"
+            "  --unit, --height-unit, --channel, --fill, --npy-order, --resample-square, --crop,\n"
+            "  --detrend, --align    read and prepare HEIGHT as `indentmap indent` its SURFACE (the\n"
+            "                        displacement of its --fields is of the surface so prepared)\n"
             "  --punch KIND          cone (default), sphere, flat or none\n"
             "  --alpha A             cone semi-opening angle in degrees (default 80)\n"
             "  --radius R            sphere or flat punch radius, in the units of delta\n"
@@ -63,7 +64,7 @@ static void usage(FILE *stream)
 
 typedef struct view3d_options {
     const char *out, *force, *displacement, *title;
-    int raw, fill, has_log, has_linear, has_vmin, has_vmax, has_distance, no_punch;
+    int raw, has_log, has_linear, has_vmin, has_vmax, has_distance, no_punch;
     double vmin, vmax, dpi;
     double largest_tension; /* of --force: > 0 draws the tension's colour bar */
     im_colormap_id map;
@@ -71,8 +72,10 @@ typedef struct view3d_options {
     int x_given, y_given, radius_given;
     im_view3d_style style;
     im_render_backend backend;
-    char force_unit[40];       /* of --force (its sidecar), "" for E* δ² */
-    cli_provenance provenance; /* the command line, where it ran and the inputs: the figure's record */
+    char force_unit[40];          /* of --force (its sidecar), "" for E* δ² */
+    cli_provenance provenance;    /* the command line, where it ran and the inputs: the figure's record */
+    im_surface_read_options read; /* HEIGHT's reading and preparation, indent's options (cli.h) */
+    cli_preparation preparation;
 } view3d_options;
 
 enum {
@@ -80,7 +83,6 @@ enum {
     OPT_RAW,
     OPT_FORCE,
     OPT_DISPLACEMENT,
-    OPT_FILL,
     OPT_PUNCH,
     OPT_ALPHA,
     OPT_RADIUS,
@@ -113,7 +115,7 @@ static const struct option LONG_OPTIONS[] = {{"out", required_argument, 0, OPT_O
                                              {"raw", no_argument, 0, OPT_RAW},
                                              {"force", required_argument, 0, OPT_FORCE},
                                              {"displacement", required_argument, 0, OPT_DISPLACEMENT},
-                                             {"fill", no_argument, 0, OPT_FILL},
+                                             CLI_SURFACE_FILE_OPTIONS,
                                              {"punch", required_argument, 0, OPT_PUNCH},
                                              {"alpha", required_argument, 0, OPT_ALPHA},
                                              {"radius", required_argument, 0, OPT_RADIUS},
@@ -184,7 +186,6 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_RAW: o->raw = 1; return 0;
-    case OPT_FILL: o->fill = 1; return 0;
     case OPT_FORCE: o->force = arg; return 0;
     case OPT_DISPLACEMENT: o->displacement = arg; return 0;
     case OPT_PUNCH: return apply_punch(o, arg);
@@ -218,17 +219,20 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_TITLE: o->title = arg; return 0;
     case OPT_DPI: return cli_parse_double("--dpi", arg, 1.0, 2400.0, &o->dpi);
     case OPT_BACKEND: return named(im_render_backend_from_name(arg, &o->backend), "--backend");
-    default: return -1;
+    default: return cli_apply_surface_file_option(code, arg, &o->read, &o->preparation, NULL);
     }
 }
 
-/* HEIGHT (its missing points filled with --fill, as indent's), minus the displacement when one is given. */
+/* HEIGHT read and prepared as indent's SURFACE (its surface-file options), minus the displacement when one is
+ * given. */
 static int read_height(const char *path, const view3d_options *o, im_field **height)
 {
     im_surface_read_info info;
-    int status = im_surface_read_with(path, &(im_surface_read_options){.fill = o->fill}, height, &info);
+    int status = im_surface_read_with(path, &o->read, height, &info);
     if (status == IM_OK)
         cli_warn_about_reading(path, &info, im_field_count(*height));
+    if (status == IM_OK)
+        status = cli_prepare_surface(&o->preparation, height);
     im_field *u = NULL;
     if (status != IM_OK || !o->displacement)
         return status;
@@ -257,7 +261,18 @@ static int apply_distance(const view3d_options *o, const im_field *height, im_vi
 {
     if (o->has_distance || s->camera.projection != IM_VIEW3D_PERSPECTIVE)
         return IM_OK;
-    return im_view3d_fit_distance(height, o->no_punch ? NULL : &o->punch, s, &s->camera.distance);
+    const int status = im_view3d_fit_distance(height, o->no_punch ? NULL : &o->punch, s, &s->camera.distance);
+    if (status != IM_EINVAL || o->no_punch || isnan(s->camera.distance)) /* NaN: not fitted (render.h) */
+        return status;
+    char key[64]; /* the punch the camera cannot frame: a needle of a cone (S12) */
+    if (o->punch.kind == IM_PUNCH_CONE)
+        snprintf(key, sizeof key, "--alpha %.9g", o->punch.alpha_degrees);
+    else
+        snprintf(key, sizeof key, "--punch %s", im_punch_name(o->punch.kind));
+    return im_fail_context(status,
+                           "%s: a camera that sees the punch whole stands too far (expected a blunter punch, "
+                           "--punch none or --distance D)",
+                           key);
 }
 
 /* The colour bars' labels in --force's unit (figure.h: im_figure_colorbar_label, as the maps'). */

@@ -284,20 +284,6 @@ int im_history_write_analysis(const char *dir, const im_indenter *punch, const i
 
 /* ---- adhesion: the summary and the force-distance figure ---- */
 
-int analysis_least_load_is_pull_off(const im_history_row *rows, int count, enum im_control control)
-{
-    if (control != IM_CONTROL_DISPLACEMENT)
-        return 0;
-    int least = 0;
-    for (int k = 1; k < count; ++k)
-        if (rows[k].result.load < rows[least].result.load)
-            least = k;
-    for (int k = least + 1; k < count; ++k)
-        if (rows[k].result.load > rows[least].result.load)
-            return 1;
-    return 0;
-}
-
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, enum im_control control,
                             const char *length_unit, const char *force_unit, const run_figure_texts *texts,
                             im_adhesion_summary *summary)
@@ -317,20 +303,20 @@ int analysis_write_adhesion(const char *dir, const im_history_row *rows, int cou
         columns[count + k] = rows[k].result.load;
         contact[k] = rows[k].result.contact_patches;
     }
-    int status = im_measure_adhesion(columns, columns + count, contact, count, summary);
+    int status = im_measure_adhesion(columns, columns + count, contact, count, control == IM_CONTROL_LOAD, summary);
     double *plot = columns + 2 * (size_t)count;
     segments up = {plot, plot + room, 0}, down = {plot + 2 * room, plot + 3 * room, 0};
     segments marker = {plot + 4 * room, plot + 5 * room, 0};
-    if (status == IM_OK && isfinite(summary->pull_off_force)) {
-        marker.x[0] = summary->pull_off_approach;
-        marker.y[0] = -summary->pull_off_force;
+    if (status == IM_OK && isfinite(summary->most_tensile_load)) {
+        marker.x[0] = summary->most_tensile_approach;
+        marker.y[0] = -summary->most_tensile_load;
         marker.n = 1;
     }
     if (status == IM_OK) {
         split_segments(rows, count, 0, &up, &down);
         const figure_axes axes = axes_of(length_unit, force_unit, texts);
-        const int pull_off = analysis_least_load_is_pull_off(rows, count, control);
-        status = draw_figure(dir, pull_off ? &FORCE_DISTANCE : &FORCE_DISTANCE_HELD, &up, &down, &marker, &axes);
+        status = draw_figure(dir, isfinite(summary->pull_off_force) ? &FORCE_DISTANCE : &FORCE_DISTANCE_HELD, &up,
+                             &down, &marker, &axes);
     }
     free(columns);
     free(contact);

@@ -102,16 +102,10 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
 int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
                          double delta, double e_star, int *branches);
 
-/* Whether the least load of rows[0..count) (the summary's pull_off_force, -min N) is a pull-off the steps
- * sampled: under displacement control, with a later step's load above it (the contact let go past it).
- * Under load control never: the contact held every load it was given, and the pull-off, the least load it
- * can hold, lies below them (a step past it is refused naming that least load; issue T16). */
-int analysis_least_load_is_pull_off(const im_history_row *rows, int count, enum im_control control);
-
 /* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
- * least load marked (as the pull-off, or as the most tensile load held: analysis_least_load_is_pull_off
- * with the steps' control), carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be
+ * least load marked (as the pull-off, or as the most tensile load held: measure.h, pull_off_force, with
+ * the steps' control), carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be
  * written leaves the summary set. */
 int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, enum im_control control,
                             const char *length_unit, const char *force_unit, const run_figure_texts *texts,

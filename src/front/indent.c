@@ -303,21 +303,36 @@ static int prepare_surface(indent_run_state *s, im_field **surface, im_theory_in
 
 /* ---- the steps ---- */
 
-/* Once per run: a contact of a few patches is below the grid's resolution (a smooth cone at 1 patch
- * carries 2.4x Love's load, at 9 patches 1.05x; issue 32), which nothing else would say. */
+/* Once per run, after the steps, one line naming every step whose contact covers a few patches: below the
+ * grid's resolution (a smooth cone at 1 patch carries 2.4x Love's load, at 9 patches 1.05x; issue 32), which
+ * nothing else would say (S13: said of the first such step only). A long list ends in "and N more". */
 enum { RESOLVED_PATCHES = 10 };
-static void warn_if_unresolved(const indent_run_state *s, const im_history_row *rows, int i)
+static void warn_if_unresolved(const indent_run_state *s, const im_history_row *rows, int done)
 {
-    const long n = rows[i].result.contact_patches;
-    for (int k = 0; k < i; ++k)
-        if (rows[k].result.contact_patches > 0 && rows[k].result.contact_patches < RESOLVED_PATCHES)
-            return; /* said already */
-    if (n > 0 && n < RESOLVED_PATCHES)
+    char steps[640] = "";
+    int named = 0, unnamed = 0;
+    for (int k = 0; k < done; ++k) {
+        const long n = rows[k].result.contact_patches;
+        if (!(n > 0 && n < RESOLVED_PATCHES))
+            continue;
+        const size_t used = strlen(steps);
+        if (used + 64 > sizeof steps) {
+            ++unnamed;
+            continue;
+        }
+        snprintf(steps + used, sizeof steps - used, "%s%d (%ld patch%s)", named ? ", " : "", k + 1, n,
+                 n == 1 ? "" : "es");
+        ++named;
+    }
+    char more[48] = "";
+    if (unnamed)
+        snprintf(more, sizeof more, " and %d more", unnamed);
+    if (named)
         indent_say(s, IM_LOG_WARNING,
-                   "warning: step %d: the contact covers %ld patch%s, too few for the grid to resolve it (a smooth "
-                   "cone carries 2.4x Love's load at 1 patch, 1.05x at 9): use a finer delta or a larger approach or "
-                   "load",
-                   i + 1, n, n == 1 ? "" : "es");
+                   "warning: step%s %s%s: the contact covers too few patches for the grid to resolve it (a smooth "
+                   "cone carries 2.4x Love's load at 1 patch, 1.05x at 9): use a finer delta or a larger approach "
+                   "or load",
+                   named + unnamed == 1 ? "" : "s", steps, more);
 }
 
 /* What the step line's area ratio divides by: the cell (periodic), or the smooth punch's area at the
@@ -338,7 +353,6 @@ static const char *area_ratio_name(const indent_run_state *s)
 static void report_step(const im_history_row *rows, int i, const void *state)
 {
     const indent_run_state *s = state;
-    warn_if_unresolved(s, rows, i);
     const im_step_result *r = &rows[i].result;
     char gap[48] = "";
     if (s->options->solver.periodic)
@@ -382,6 +396,7 @@ static int run_steps(indent_run_state *s, const im_theory_interface *rough, im_i
                                   .state = s};
     int done = 0;
     int status = indent_run_steps(&plan, run, history, rows, &done);
+    warn_if_unresolved(s, rows, done);
     indent_run_results(s, rough, rows, done, context, record, &status);
     free(rows);
     return run_folder_record(folder, record, done, status);

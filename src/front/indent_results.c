@@ -93,17 +93,17 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
                  summary.hysteresis_work, summary.hysteresis_error);
     /* -min N is the pull-off only where the steps passed it (T16: load control's -3 was said as the pull-off
      * while the step refused at -6 named the least load the contact holds, -5.43) */
-    const int pull_off = analysis_least_load_is_pull_off(rows, done, s->options->control);
+    const int pull_off = isfinite(summary.pull_off_force);
     const char *why_not = pull_off ? ""
-                          : s->options->control == IM_CONTROL_DISPLACEMENT
+                          : s->options->control != IM_CONTROL_LOAD
                               ? " (not the pull-off: no later step's load rises above it)"
                               : " (not the pull-off: load control holds each load given; a load below the pull-off "
                                 "is refused, naming the least load the contact holds)";
     indent_say(s, IM_LOG_INFO,
                "adhesion: %s %.6g at w = %.6g%s; jump-in at w = %.6g, last contact retracting at w = %.6g; "
                "%s; %s/force_distance.png and .pdf",
-               pull_off ? "pull-off force" : "most tensile load held", summary.pull_off_force,
-               summary.pull_off_approach, why_not, summary.jump_in_approach, summary.jump_out_approach, work,
+               pull_off ? "pull-off force" : "most tensile load held", summary.most_tensile_load,
+               summary.most_tensile_approach, why_not, summary.jump_in_approach, summary.jump_out_approach, work,
                s->options->out);
     write_adhesion_theory(s, rows, done, law);
 }

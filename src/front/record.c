@@ -74,6 +74,8 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
         return status;
     json_object_set_new(law, "pull_off_force", json_number(summary->pull_off_force));
     json_object_set_new(law, "pull_off_approach", json_number(summary->pull_off_approach));
+    json_object_set_new(law, "most_tensile_load", json_number(summary->most_tensile_load));
+    json_object_set_new(law, "most_tensile_approach", json_number(summary->most_tensile_approach));
     json_object_set_new(law, "jump_in_approach", json_number(summary->jump_in_approach));
     json_object_set_new(law, "jump_out_approach", json_number(summary->jump_out_approach));
     json_object_set_new(law, "hysteresis_work", json_real(summary->hysteresis_work));

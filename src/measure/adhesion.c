@@ -27,7 +27,19 @@ static double trapezoid_error(const double *approach, const double *load, int co
     return isnan(curvature) ? monotone : fmin(monotone, h * h * h * curvature / 12);
 }
 
-int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count,
+/* Whether the least load, at step least, is a pull-off the steps passed (measure.h, pull_off_force): the
+ * approaches or mean gaps given, a later step's load above it (the contact let go past it). */
+static int passed_pull_off(const double *load, int count, int least, int loads_given)
+{
+    if (loads_given)
+        return 0;
+    for (int k = least + 1; k < count; ++k)
+        if (load[k] > load[least])
+            return 1;
+    return 0;
+}
+
+int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count, int loads_given,
                         im_adhesion_summary *out)
 {
     ARG_REQUIRE(approach, "approach");
@@ -40,11 +52,13 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
         if (!(isfinite(approach[k]) && isfinite(load[k])))
             return im_fail(IM_EINVAL, "adhesion summary: step %d has w = %g, N = %g: expected finite values", k + 1,
                            approach[k], load[k]);
-    im_adhesion_summary s = {NAN, NAN, NAN, NAN, 0, 0};
+    im_adhesion_summary s = {NAN, NAN, NAN, NAN, 0, 0, NAN, NAN};
+    int least = -1;
     for (int k = 0; k < count; ++k) {
-        if (load[k] < 0 && !(-load[k] <= s.pull_off_force)) {
-            s.pull_off_force = -load[k];
-            s.pull_off_approach = approach[k];
+        if (load[k] < 0 && !(-load[k] <= s.most_tensile_load)) {
+            s.most_tensile_load = -load[k];
+            s.most_tensile_approach = approach[k];
+            least = k;
         }
         if (k == 0)
             continue;
@@ -54,6 +68,10 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
             s.jump_in_approach = approach[k];
         if (contact[k] == 0 && contact[k - 1] > 0 && approach[k] < approach[k - 1])
             s.jump_out_approach = approach[k - 1];
+    }
+    if (least >= 0 && passed_pull_off(load, count, least, loads_given)) {
+        s.pull_off_force = s.most_tensile_load;
+        s.pull_off_approach = s.most_tensile_approach;
     }
     *out = s;
     return IM_OK;

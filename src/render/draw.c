@@ -321,6 +321,21 @@ im_contact_style im_contact_style_default(const im_field *force)
     return style;
 }
 
+/* IM_EINVAL naming the first patch (x, y) of force holding +-Inf: a force is finite (NaN marks no data), and
+ * an infinite one drawn in the over colour would pass for a large one (S10). */
+static int check_finite_force(const im_field *force)
+{
+    for (int iy = 0; iy < force->ny; ++iy)
+        for (int ix = 0; ix < force->nx; ++ix) {
+            const double f = force->data[(size_t)iy * force->nx + ix];
+            if (isinf(f))
+                return im_fail(IM_EINVAL,
+                               "contact map: force %g at patch (%d, %d): expected a finite force (NaN marks no data)",
+                               f, ix, iy);
+        }
+    return IM_OK;
+}
+
 static int check_contact_style(const im_contact_style *s)
 {
     int status = im_colormap_check(&s->colormap);
@@ -377,6 +392,8 @@ int im_render_contact_map(im_render_context *c, const im_field *force, const im_
     ARG_REQUIRE(image, "image");
     memset(image, 0, sizeof *image);
     int status = check_contact_style(s);
+    if (status == IM_OK)
+        status = check_finite_force(force);
     if (status == IM_OK)
         status = check_layout(c, force, s->pixels_per_patch, s->boundary_px, "contact map");
     if (status == IM_OK)

@@ -684,7 +684,9 @@ static int fitted_distance(const im_field *height, const im_indenter *punch, con
     wall_base(&g, s, corners);
     free(corners);
     *fitted = fit_distance(&g, &s->camera, (double)s->width / s->height) / fmax(g.nx, g.ny);
-    return IM_OK;
+    im_view3d_camera camera = s->camera;
+    camera.distance = *fitted; /* a camera the view can take: refused here, not after the frames' solves (S12) */
+    return check_camera(&camera);
 }
 
 int im_view3d_fit_distance(const im_field *height, const im_indenter *punch, const im_view3d_style *s,

@@ -56,6 +56,16 @@ static int fit_camera(im_field *const *deformed, int count, const im_indenter *p
     return IM_OK;
 }
 
+/* The frames' view before the fields shape it: their size, the punch cut away. */
+static im_view3d_style view_of(const im_scene *scene)
+{
+    im_view3d_style s = im_view3d_style_default(NULL);
+    s.width = scene->frame3d_width;
+    s.height = scene->frame3d_height;
+    s.punch_mode = IM_VIEW3D_PUNCH_CUTAWAY; /* the contact under the punch stays in sight */
+    return s;
+}
+
 /* One style for every frame (the punch cut away, the camera as near as shows every step whole):
  * the relief of the last (deepest) step exaggerated to about an eighth
  * of the grid's longer side (a 1-2-5 factor, never below true scale), the camera's target fixed at
@@ -65,13 +75,10 @@ static int frames_style(const im_scene *scene, const scene_frames3d_input *in, c
 {
     im_field *const *deformed = in->deformed;
     const int count = in->count;
-    im_view3d_style s = im_view3d_style_default(NULL);
-    s.width = scene->frame3d_width;
-    s.height = scene->frame3d_height;
+    im_view3d_style s = view_of(scene);
     s.colormap = *in->norm;
     if (in->tension)
         s.tension = *in->tension;
-    s.punch_mode = IM_VIEW3D_PUNCH_CUTAWAY; /* the contact under the punch stays in sight */
     double lo = INFINITY, hi = -INFINITY;
     height_range(deformed[count - 1], &lo, &hi);
     int longer = deformed[0]->nx > deformed[0]->ny ? deformed[0]->nx : deformed[0]->ny;
@@ -143,6 +150,42 @@ static int write_animations(const im_scene *scene, const im_scene_run_options *o
     if (status == IM_OK)
         status = scene_output_path(scene, "view3d.mp4", path, sizeof path);
     return status == IM_OK ? im_animation_mp4(folder, "view3d", count, scene->frame_rate, path) : status;
+}
+
+/* The punch's key as the scene gives it, with its value, for a message. */
+static void punch_key(const im_scene *scene, char *key, size_t size)
+{
+    if (scene->punch == IM_PUNCH_CONE)
+        snprintf(key, size, "[punch] alpha = %.9g", scene->alpha_degrees);
+    else if (scene->punch == IM_PUNCH_SPHERE || scene->punch == IM_PUNCH_FLAT)
+        snprintf(key, size, "[punch] radius = %.9g", scene->radius);
+    else
+        snprintf(key, size, "[punch] profile");
+}
+
+int scene_check_frames3d(const im_scene *scene)
+{
+    if (!scene->frames3d)
+        return IM_OK;
+    im_field *flat = NULL;
+    int status = im_field_create(scene->surface.nx, scene->surface.ny, scene->surface.delta, &flat);
+    if (status != IM_OK)
+        return status;
+    const im_view3d_style style = view_of(scene);
+    const im_indenter punch = scene_punch(scene);
+    double distance;
+    status = im_view3d_fit_distance(flat, &punch, &style, &distance);
+    im_field_free(flat);
+    if (status != IM_EINVAL || isnan(distance)) /* NaN: not fitted (render.h) */
+        return status;
+    char key[96];
+    punch_key(scene, key, sizeof key);
+    return im_fail_context(status,
+                           "%s: %s with [output] frames3d: the 3-D frames show the punch over the %d x %d grid, and "
+                           "a "
+                           "camera that sees it whole stands too far (expected a punch the 3-D view can frame: a "
+                           "blunter one, or frames3d = no)",
+                           scene->path, key, scene->surface.nx, scene->surface.ny);
 }
 
 int scene_write_frames3d(const im_scene *scene, const im_scene_run_options *options, im_render_context *context,

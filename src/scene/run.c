@@ -13,6 +13,7 @@
 #include "scene/ensemble.h"
 #include "scene/flat_k.h"
 #include "scene/frames.h"
+#include "scene/frames3d.h"
 #include "scene/histories.h"
 #include "scene/limits.h"
 #include "scene/manifest.h"
@@ -121,6 +122,8 @@ static int check_runnable(const im_scene *scene)
     if (status != IM_OK)
         return status;
     status = im_indenter_check(&punch);
+    if (status == IM_OK)
+        status = scene_check_frames3d(scene);
     return status == IM_OK ? scene_check_plots(scene) : status;
 }
 

@@ -135,7 +135,8 @@ static void check_summary(const history_case *c, const im_step_result *mpi, cons
     }
     im_adhesion_summary summary[2];
     for (int h = 0; h < 2; ++h)
-        check_status(im_measure_adhesion(approach, load[h], contact[h], c->steps, &summary[h]), "adhesion summary");
+        check_status(im_measure_adhesion(approach, load[h], contact[h], c->steps, 0, &summary[h]),
+                     "adhesion summary");
     char detail[512];
     snprintf(detail, sizeof detail, "%s: pull-off %.17g at %g (serial %.17g at %g), jump-in %g (%g), out %g (%g)",
              c->name, summary[0].pull_off_force, summary[0].pull_off_approach, summary[1].pull_off_force,
