@@ -30,7 +30,8 @@ for punch in cone sphere; do
 import json, sys
 a = json.load(open(sys.argv[1]))["adhesion"]
 mine, theirs = sys.argv[4].split(), sys.argv[5].split()
-print(f"{sys.argv[2]:6s} {sys.argv[3]:5s} {a['pull_off_force']:9.3f} {a['pull_off_approach']:7.2f} "
+none_as_nan = lambda v: v if v is not None else float('nan')  # null: the steps did not pass the pull-off
+print(f"{sys.argv[2]:6s} {sys.argv[3]:5s} {none_as_nan(a['pull_off_force']):9.3f} {none_as_nan(a['pull_off_approach']):7.2f} "
       f"{a['jump_in_approach'] if a['jump_in_approach'] is not None else float('nan'):7.2f} "
       f"{a['jump_out_approach'] if a['jump_out_approach'] is not None else float('nan'):7.2f} "
       f"{a['hysteresis_work']:9.3f} | {mine[0]:>8s} {mine[1]:>8s} | {theirs[0]:>8s} {theirs[1]:>8s}")
