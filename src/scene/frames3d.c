@@ -181,10 +181,9 @@ int scene_check_frames3d(const im_scene *scene)
     char key[96];
     punch_key(scene, key, sizeof key);
     return im_fail_context(status,
-                           "%s: %s with [output] frames3d: the 3-D frames show the punch over the %d x %d grid, and "
-                           "a "
-                           "camera that sees it whole stands too far (expected a punch the 3-D view can frame: a "
-                           "blunter one, or frames3d = no)",
+                           "%s: %s with [output] frames3d: the 3-D frames show the punch over the %d x %d grid,"
+                           " and a camera that sees it whole stands too far (expected a punch the 3-D view can"
+                           " frame: a blunter one, or frames3d = no)",
                            scene->path, key, scene->surface.nx, scene->surface.ny);
 }
 
