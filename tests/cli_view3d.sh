@@ -68,7 +68,7 @@ check "sphere needs a radius" expect_exit 2 "--radius" \
 # A scan with missing points: refused naming --fill, which view3d takes as indent does (it had none).
 "$cli" surface --n 64 --slope 0.1 --seed 2 --out "$dir/s.txt" >/dev/null
 awk '/^#/ {print; next} {r++; if (r > 20 && r <= 35) for (i = 21; i <= 35; i++) $i = "nan"; print}' "$dir/s.txt" >"$dir/holes.txt"
-check "missing points refused, naming --fill" expect_exit 2 "(--fill fills missing points" \
+check "missing points refused, naming --fill" expect_exit 2 "on request: --fill" \
   "$cli" render view3d "$dir/holes.txt" --width 320 --height 200 --out "$dir/x.png"
 check "nothing left by refusals" test ! -e "$dir/x.png"
 "$cli" render view3d "$dir/holes.txt" --fill --width 320 --height 200 --out "$dir/filled.png" 2>"$dir/filled.err"

@@ -52,7 +52,8 @@ def test_write_keeps_missing_points_in_every_format(tmp_path):
     for suffix in (".npy", ".txt", ".sdf", ".nc", ".gsf", ".x3p"):  # .x3p in its validity mask (finding R14)
         path = tmp_path / f"t{suffix}"
         im.write(path, heights, delta=0.5, unit="um")
-        with pytest.raises(im.FormatError, match=r"\(x=2, y=1\): a missing point"):
+        # the remedy in Python's words too (DA9: the message named the program's --fill only)
+        with pytest.raises(im.FormatError, match=r"\(x=2, y=1\): a missing point.*fill=True"):
             im.read(path)
         filled = im.read(path, fill=True).heights
         assert np.isfinite(filled).all() and filled.shape == heights.shape

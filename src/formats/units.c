@@ -164,7 +164,7 @@ static int missing_points(const char *path, im_field *field, int fill, long *fil
     if (!fill)
         return im_fail(IM_EFORMAT,
                        "%s: value nan at (x=%zu, y=%zu): a missing point; expected finite heights "
-                       "(--fill fills missing points from their neighbours)",
+                       "(filled from their neighbours on request: --fill, a scene's fill = yes, Python's fill=True)",
                        path, i % (size_t)field->nx, i / (size_t)field->nx);
     int status = im_surface_fill_missing(field, filled);
     return status == IM_OK ? IM_OK : im_fail_context(IM_EFORMAT, "%s", path);
