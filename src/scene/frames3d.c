@@ -5,6 +5,7 @@
 #include "indentmap/io.h"
 #include "indentmap/render.h"
 #include "indentmap/status.h"
+#include "front/front.h"
 #include "paper/figures.h"
 #include "scene/frames.h"
 #include "scene/frames3d.h"
@@ -103,8 +104,9 @@ static int write_frame(const im_scene *scene, const scene_frames3d_input *in, co
     im_view3d_exaggeration_text(s->exaggeration, scale, sizeof scale);
     scene_frame_load_title(in->load_star, in->count, index, load, sizeof load);
     snprintf(title, sizeof title, "%s, %s", load, scale);
-    snprintf(norm, sizeof norm, "%s %s [%.9g, %.9g]", im_colormap_name(s->colormap.map),
-             s->colormap.logarithmic ? "log" : "linear", s->colormap.lo, s->colormap.hi);
+    char range[96];
+    run_figure_norm_text(&s->colormap, range, sizeof range);
+    snprintf(norm, sizeof norm, "%s %s", im_colormap_name(s->colormap.map), range); /* the map named in it */
     im_figure_panel panel = {image, NULL, title};
     const im_png_text own[] = {{"Title", title}, {"Quantity", "local force f / (E* δ²)"}, {"Norm", norm}};
     run_figure_texts texts;
