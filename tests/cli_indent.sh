@@ -113,6 +113,10 @@ grep -q "work lost 3.8" "$DIR/sticky.log" || fail "the closed loop's lost work i
     --approach 0,-0.25,-0.5 --out "$DIR/pull" > "$DIR/pull.log" || fail "a retraction exited $?"
 grep -q "work done 2.13[0-9]* (+- 0.18; sum of N dw), no loss: the history does not return to where it began" \
     "$DIR/pull.log" && ! grep -q "work lost" "$DIR/pull.log" || fail "an open history's work: $(grep adhesion: "$DIR/pull.log")"
+python3 -c 'import json, sys
+a = json.load(open(sys.argv[1]))["adhesion"]
+sys.exit(not (a["hysteresis_work"] is None and 2.13 <= a["work_done"] < 2.14))' "$DIR/pull/run.json" \
+    || fail "run.json recorded an open history's work as lost: $(head -c 1500 "$DIR/pull/run.json")"
 # ... a load held at zero only to the solver's tolerance (9.5e-7 here, 1e-6 of the 5 before it) has no smooth
 # reference area: A/A_Hertz was 52665 in history.csv, the step line and the plot (T8); NaN now, as under tension,
 # while the first step's ratio stays a number; the history reads back as a sphere's (theory --fit-k's reader)

@@ -32,7 +32,7 @@ summary() { # summary RUN_JSON: the adhesion block's pull-off force and approach
   python3 -c 'import json, sys
 a = json.load(open(sys.argv[1]))["adhesion"]
 print(" ".join("%.10g" % a[k] if a[k] is not None else "none" for k in
-      ("pull_off_force", "pull_off_approach", "jump_in_approach", "jump_out_approach", "hysteresis_work")))' "$1"
+      ("pull_off_force", "pull_off_approach", "jump_in_approach", "jump_out_approach", "work_done", "hysteresis_work")))' "$1"
 }
 serial_summary=$(summary "$work/serial/run.json") mpi_summary=$(summary "$work/mpi3/run.json")
 [ "$serial_summary" = "$mpi_summary" ] || fail "run.json's adhesion: indent's '$serial_summary', mpi-indent's '$mpi_summary'"

@@ -958,8 +958,14 @@ static void summary_of_a_loop(void **state)
     assert_true(s.pull_off_force == 2 && s.pull_off_approach == 1);
     assert_true(s.most_tensile_load == 2 && s.most_tensile_approach == 1);
     assert_true(s.jump_in_approach == 2 && s.jump_out_approach == 1);
-    assert_close(s.hysteresis_work, 2.0, 1e-15);
+    assert_close(s.work_done, 2.0, 1e-15);
+    assert_true(s.hysteresis_work == s.work_done);
     assert_close(s.hysteresis_error, 7.0 / 12.0, 1e-15);
+    /* the same steps stopped at w = 1, pulling 2: sum N dw = 0 - 1/2 (into the pull) + 3/2 (retracting) = 1,
+     * the punch's work against the attraction; no loop closed, so no loss */
+    assert_int_equal(im_measure_adhesion(w, n, contact, 4, 0, &s), IM_OK);
+    assert_close(s.work_done, -0.5 + 1.5, 1e-15);
+    assert_true(isnan(s.hysteresis_work));
     const double cell_w[] = {-0.5598, -0.0598, 0.4402, -0.0598, -0.5598};
     const double cell_n[] = {0, -0.496795, 1.075141, -0.496198, 0};
     assert_int_equal(im_measure_adhesion(cell_w, cell_n, (const long[]){0, 0, 143, 0, 0}, 5, 0, &s), IM_OK);

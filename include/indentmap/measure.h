@@ -160,9 +160,11 @@ typedef struct im_adhesion_summary {
                                  rising (the surface snapped up to the punch); NaN when none */
     double jump_out_approach;     /* the last step in contact right before one out of contact, the approach
                                  falling (separation lies between it and the next); NaN when none */
-    double hysteresis_work;       /* sum of N dw over the history (trapezoids): the work the punch did, lost
-                                 in the jumps when the history returns to where it began */
-    double hysteresis_error;      /* an estimate of the trapezoids' error in it: over each step the smaller of
+    double work_done;             /* sum of N dw over the history (trapezoids): the work the punch did */
+    double hysteresis_work;       /* work_done where the history closes a loop, the work lost in its jumps: its
+                                 last step at the first approach, or both without force (the path between
+                                 at N = 0 does no work); NaN otherwise (a retraction alone is no loss) */
+    double hysteresis_error;      /* an estimate of the trapezoids' error in work_done: over each step the smaller of
                                  h^3 |N''| / 12 (N'' from the neighbouring second differences on the same
                                  branch) and h |dN| / 2 (the bound where N is monotone between the steps, as
                                  across a jump); a work within it is not resolved by the steps */

@@ -576,9 +576,10 @@ def adhesion(history, control="displacement"):
     'displacement' or 'mean_gap', and a later step's load above it), NaN otherwise (under 'load' control the
     contact held every load it was given: a load below the pull-off is refused, naming the least load it holds);
     ``jump_in_approach`` (first contact on approach after none), ``jump_out_approach`` (last contact retracting
-    before none) and ``hysteresis_work`` (sum of N dw: the work lost over a closed history) with
-    ``hysteresis_error``, an estimate of its trapezoids' error (a work within it is not resolved by the steps:
-    finer steps around the jumps resolve it).
+    before none), ``work_done`` (sum of N dw by trapezoids) with ``hysteresis_error``, an estimate of their
+    error (a work within it is not resolved by the steps: finer steps around the jumps resolve it), and
+    ``hysteresis_work``, the work lost: ``work_done`` where the history closes a loop (its last step at the first
+    approach, or both without force), NaN otherwise (a retraction alone loses nothing).
 
     Example: ``h = im.indent(s, im.Sphere(40), approaches=[1, 0, -1], adhesion_work=0.02,
     adhesion_range=0.5); im.adhesion(h)["pull_off_force"]``."""

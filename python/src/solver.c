@@ -771,11 +771,12 @@ static PyObject *adhesion(PyObject *self, PyObject *args)
     int status = im_measure_adhesion(PyArray_DATA(approach), PyArray_DATA(load), patches, count, loads_given, &a);
     result = status != IM_OK
                  ? py_raise_status(status)
-                 : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force,
+                 : Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "pull_off_force", a.pull_off_force,
                                  "pull_off_approach", a.pull_off_approach, "most_tensile_load", a.most_tensile_load,
                                  "most_tensile_approach", a.most_tensile_approach, "jump_in_approach",
-                                 a.jump_in_approach, "jump_out_approach", a.jump_out_approach, "hysteresis_work",
-                                 a.hysteresis_work, "hysteresis_error", a.hysteresis_error);
+                                 a.jump_in_approach, "jump_out_approach", a.jump_out_approach, "work_done",
+                                 a.work_done, "hysteresis_work", a.hysteresis_work, "hysteresis_error",
+                                 a.hysteresis_error);
 done:
     free(patches);
     Py_XDECREF(approach);

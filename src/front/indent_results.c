@@ -71,17 +71,15 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
     if (run_record_adhesion_summary(law, s->options->out, rows, done, s->options->control, s->length_unit,
                                     s->force_unit, &s->figure_texts, &summary) != IM_OK)
         indent_say(s, IM_LOG_WARNING, "adhesion summary: %s", im_last_error());
-    if (isnan(summary.hysteresis_work))
+    if (isnan(summary.work_done))
         return;
     char work[256];
     const im_step_result *first = &rows[0].result, *last = &rows[done - 1].result;
-    /* sum N dw is a loss only over a loop: back to the first approach, or from no force to no force (the
-     * path between at N = 0 does no work); a retraction alone is the work done, not a hysteresis */
-    if (!(last->approach == first->approach || (first->load == 0 && last->load == 0)))
+    if (isnan(summary.hysteresis_work)) /* no loop (measure.h): a retraction alone is the work done */
         snprintf(work, sizeof work,
                  "work done %.6g (+- %.2g; sum of N dw), no loss: the history does not return to where it began "
                  "(w = %.6g, N = %.6g at the first step; w = %.6g, N = %.6g at the last)",
-                 summary.hysteresis_work, summary.hysteresis_error, first->approach, first->load, last->approach,
+                 summary.work_done, summary.hysteresis_error, first->approach, first->load, last->approach,
                  last->load);
     else if (fabs(summary.hysteresis_work) > summary.hysteresis_error)
         snprintf(work, sizeof work, "work lost %.6g (+- %.2g, the steps' trapezoids)", summary.hysteresis_work,

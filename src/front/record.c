@@ -66,11 +66,11 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
                                 enum im_control control, const char *length_unit, const char *force_unit,
                                 const run_figure_texts *texts, im_adhesion_summary *summary)
 {
-    *summary = (im_adhesion_summary){.hysteresis_work = NAN}; /* NaN: not summarised */
+    *summary = (im_adhesion_summary){.work_done = NAN}; /* NaN: not summarised */
     int status = done >= 1
                      ? analysis_write_adhesion(dir, rows, done, control, length_unit, force_unit, texts, summary)
                      : IM_OK;
-    if (isnan(summary->hysteresis_work))
+    if (isnan(summary->work_done))
         return status;
     json_object_set_new(law, "pull_off_force", json_number(summary->pull_off_force));
     json_object_set_new(law, "pull_off_approach", json_number(summary->pull_off_approach));
@@ -78,7 +78,8 @@ int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_r
     json_object_set_new(law, "most_tensile_approach", json_number(summary->most_tensile_approach));
     json_object_set_new(law, "jump_in_approach", json_number(summary->jump_in_approach));
     json_object_set_new(law, "jump_out_approach", json_number(summary->jump_out_approach));
-    json_object_set_new(law, "hysteresis_work", json_real(summary->hysteresis_work));
+    json_object_set_new(law, "work_done", json_real(summary->work_done));
+    json_object_set_new(law, "hysteresis_work", json_number(summary->hysteresis_work));
     json_object_set_new(law, "hysteresis_error", json_real(summary->hysteresis_error));
     json_object_set_new(law, "figure", json_string("force_distance.png"));
     return status;

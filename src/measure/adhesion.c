@@ -39,6 +39,13 @@ static int passed_pull_off(const double *load, int count, int least, int loads_g
     return 0;
 }
 
+/* Whether sum N dw is a loss (measure.h, hysteresis_work): the last step back at the first approach, or from no
+ * force to no force. */
+static int closes_a_loop(const double *approach, const double *load, int count)
+{
+    return approach[count - 1] == approach[0] || (load[0] == 0 && load[count - 1] == 0);
+}
+
 int im_measure_adhesion(const double *approach, const double *load, const long *contact, int count, int loads_given,
                         im_adhesion_summary *out)
 {
@@ -52,7 +59,7 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
         if (!(isfinite(approach[k]) && isfinite(load[k])))
             return im_fail(IM_EINVAL, "adhesion summary: step %d has w = %g, N = %g: expected finite values", k + 1,
                            approach[k], load[k]);
-    im_adhesion_summary s = {NAN, NAN, NAN, NAN, 0, 0, NAN, NAN};
+    im_adhesion_summary s = {NAN, NAN, NAN, NAN, 0, NAN, 0, NAN, NAN};
     int least = -1;
     for (int k = 0; k < count; ++k) {
         if (load[k] < 0 && !(-load[k] <= s.most_tensile_load)) {
@@ -62,13 +69,15 @@ int im_measure_adhesion(const double *approach, const double *load, const long *
         }
         if (k == 0)
             continue;
-        s.hysteresis_work += 0.5 * (load[k] + load[k - 1]) * (approach[k] - approach[k - 1]);
+        s.work_done += 0.5 * (load[k] + load[k - 1]) * (approach[k] - approach[k - 1]);
         s.hysteresis_error += trapezoid_error(approach, load, count, k);
         if (isnan(s.jump_in_approach) && contact[k] > 0 && contact[k - 1] == 0 && approach[k] > approach[k - 1])
             s.jump_in_approach = approach[k];
         if (contact[k] == 0 && contact[k - 1] > 0 && approach[k] < approach[k - 1])
             s.jump_out_approach = approach[k - 1];
     }
+    if (closes_a_loop(approach, load, count))
+        s.hysteresis_work = s.work_done;
     if (least >= 0 && passed_pull_off(load, count, least, loads_given)) {
         s.pull_off_force = s.most_tensile_load;
         s.pull_off_approach = s.most_tensile_approach;
