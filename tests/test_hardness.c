@@ -160,7 +160,7 @@ static void load_control_matches_displacement(void **state)
 
 /* Deep in the plastic range most of the approach is the half-space's sink under the yielded disc, not
  * the punch's depth where its section carries the load at H_p: load control must still reach the
- * loads displacement control reached there (a sphere R = 100 at w = 3.2 with H_p = 0.05: 1.27 of its
+ * loads displacement control reached there (a sphere R = 100 at w = 3.2 with H_p = 0.05: about 1.25 of its
  * 3.2; an 80-degree cone at w = 3 with H_p = 0.02, 697 patches of which most have yielded). Both were
  * refused, the approach searched only up to 3.03 and 2.88, before the bound took in the sink. (A fully
  * yielded contact would not do: N = H_p n_p is flat in w between the patches joining.) */
