@@ -156,7 +156,7 @@ static void settle_area_ratio(im_history_row *rows, int i, double tol)
 /* The punch short of where it touches (the surface, or the impression a hardness left: the residual
  * approach, 0 without one) and nothing pulls it: N is 0 about the step, so S = dN/dw is exactly 0. The
  * three points would span the touch (N turns from 0 to its unloading curve there) and gave
- * -1.28 E* delta after a plastic sphere's unloading (redteam3 R1). */
+ * -1.28 E* delta after a plastic sphere's unloading (redteam3 R2). */
 static int punch_withdrawn(const im_step_result *r)
 {
     return r->contact_patches == 0 && r->adhesive_patches == 0 && r->approach < r->residual_approach;
