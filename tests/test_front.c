@@ -270,6 +270,40 @@ static void area_ratio_undefined_at_a_zero_load(void **state)
     assert_false(im_history_parse(text, IM_HISTORY_AREA_SMOOTH, back, 3, &count, why, sizeof why));
 }
 
+/* A plastic sphere unloaded past where it touches its impression (R = 100, H_p = 0.05 to w = 3, then
+ * down: `indent --smooth --n 128 --punch sphere --radius 100 --hardness 0.05`, steps 12 to 15, residual
+ * approach 1.107): below that approach N is 0 about the step, so its stiffness dN/dw is exactly 0 (the
+ * three-point formula across the touch gave -1.28 and -2.77); at the step still in contact the formula
+ * stands (positive: N rises with w); a reload's first steps past the touch get none (NaN), as after a turn. */
+static void stiffness_is_zero_where_the_punch_is_withdrawn(void **state)
+{
+    (void)state;
+    const im_indenter sphere = im_indenter_sphere(100);
+    const im_theory_interface smooth = im_theory_interface_default(0);
+    const double w[4] = {1.5, 1.25, 1.0, 0.75}, n[4] = {6.18954, 1.38721, 0, 0};
+    const long patches[4] = {421, 177, 0, 0};
+    im_history_row rows[4];
+    for (int i = 0; i < 4; ++i) {
+        rows[i] = (im_history_row){.result = {.approach = w[i],
+                                              .load = n[i],
+                                              .contact_patches = patches[i],
+                                              .area_ratio = patches[i] ? 2 : NAN,
+                                              .residual_approach = 1.10707}};
+        assert_int_equal(im_history_measure(&sphere, &smooth, NULL, 1e-6, rows, i), IM_OK);
+    }
+    assert_true(rows[2].stiffness == 0.0 && rows[3].stiffness == 0.0);
+    assert_true(isnan(rows[2].e_star_sneddon));
+    rows[2].result.approach = rows[2].result.residual_approach; /* touching: the formula's one-sided slope */
+    assert_int_equal(im_history_measure(&sphere, &smooth, NULL, 1e-6, rows, 2), IM_OK);
+    assert_true(rows[2].stiffness != 0.0);
+    /* reloaded from withdrawn steps (steps 19 to 21: w = 0.5, 1, 1.5): no derivative spans the touch */
+    im_history_row reload[3] = {rows[3], rows[3], rows[0]};
+    reload[1].result.approach = 1.0;
+    for (int i = 0; i < 3; ++i)
+        assert_int_equal(im_history_measure(&sphere, &smooth, NULL, 1e-6, reload, i), IM_OK);
+    assert_true(isnan(reload[2].stiffness));
+}
+
 /* A punch without a smooth-contact area (a 2-D profile): its rows' N* and A / A_cone are NaN, as
  * the solver writes them, and read back; a finite one there is not its history, and a NaN where a
  * punch with that area has a number, or a NaN approach, is still refused. */
@@ -452,6 +486,7 @@ int main(void)
         cmocka_unit_test(one_default_tolerance),
         cmocka_unit_test(both_histories_one_reader),
         cmocka_unit_test(area_ratio_undefined_at_a_zero_load),
+        cmocka_unit_test(stiffness_is_zero_where_the_punch_is_withdrawn),
         cmocka_unit_test(other_histories_refused),
         cmocka_unit_test(row_values_are_the_written_columns),
         cmocka_unit_test(histories_without_smooth_area),

@@ -135,22 +135,41 @@ static void cone_fully_plastic_limit(void **state)
     im_indentation_free(run);
 }
 
-/* Load control with a cap finds the displacement-controlled state at its load. */
-static void load_control_matches_displacement(void **state)
+/* Load control with a cap finds the displacement-controlled state at approach w at its load. */
+static void assert_load_control_matches(const im_indenter *punch, double w, double hardness)
 {
-    (void)state;
-    const double a = 10.0, hardness = 0.05, w = 0.5 * hardness * a;
-    im_indenter punch = im_indenter_flat(a);
-    im_indentation *run = prepare(&punch, IM_CONTROL_DISPLACEMENT, w, hardness);
+    im_indentation *run = prepare(punch, IM_CONTROL_DISPLACEMENT, w, hardness);
     im_step_result by_w = step(run, w);
     im_indentation_free(run);
-    run = prepare(&punch, IM_CONTROL_LOAD, by_w.load, hardness);
+    run = prepare(punch, IM_CONTROL_LOAD, by_w.load, hardness);
     im_step_result by_n = step(run, by_w.load);
     assert_plastic_complementarity(run, hardness, by_n.approach);
     if (test_relative_difference(by_n.approach, w) > 1e-6)
         fail_msg("load control: w = %.12g, displacement control %.12g", by_n.approach, w);
     assert_int_equal(by_n.contact_patches, by_w.contact_patches);
     im_indentation_free(run);
+}
+
+static void load_control_matches_displacement(void **state)
+{
+    (void)state;
+    const double a = 10.0, hardness = 0.05;
+    im_indenter punch = im_indenter_flat(a);
+    assert_load_control_matches(&punch, 0.5 * hardness * a, hardness);
+}
+
+/* Deep in the plastic range most of the approach is the half-space's sink under the yielded disc, not
+ * the punch's depth where its section carries the load at H_p: load control must still reach the
+ * loads displacement control reached there (a sphere R = 100 at w = 3.2 with H_p = 0.05: about 1.25 of its
+ * 3.2; an 80-degree cone at w = 3 with H_p = 0.02, 697 patches of which most have yielded). Both were
+ * refused, the approach searched only up to 3.03 and 2.88, before the bound took in the sink. (A fully
+ * yielded contact would not do: N = H_p n_p is flat in w between the patches joining.) */
+static void load_control_reaches_deep_plastic_states(void **state)
+{
+    (void)state;
+    im_indenter sphere = im_indenter_sphere(100.0), cone = im_indenter_cone(80.0);
+    assert_load_control_matches(&sphere, 3.2, 0.05);
+    assert_load_control_matches(&cone, 3.0, 0.02);
 }
 
 /* A single solve under load control with a cap (im_solver_solve) on a rough cone: the displacement-controlled
@@ -237,6 +256,7 @@ int main(void)
         cmocka_unit_test(cone_apex_is_capped),
         cmocka_unit_test(cone_fully_plastic_limit),
         cmocka_unit_test(load_control_matches_displacement),
+        cmocka_unit_test(load_control_reaches_deep_plastic_states),
         cmocka_unit_test(single_solve_under_load_with_a_cap),
         cmocka_unit_test(bad_hardness_is_refused),
     };

@@ -100,6 +100,32 @@ static void repeated_tops_and_rounding(void **state)
     assert_close(b[0].modulus, e_star, 1e-9);
 }
 
+/* Unloaded past the impression by the third point: the steps below the residual approach carry 0, so
+ * a parabola through them is no slope of the unloading curve; S and what follows from it are NaN there
+ * (a rough cone's 16, 12, 8 nm with h_r = 9.15 gave S = 167 against 141 from finer steps), and the
+ * slope of the curve above the touch stands once the third point is on it. Here the curve is Love's
+ * shifted to h_r = 1: P = c (h - 1)^2 above it, exactly quadratic, so that S = 2 c (h_max - 1). */
+static void no_stiffness_across_the_touch(void **state)
+{
+    (void)state;
+    const double h_r = 1.0;
+    double h[] = {2, 3, 4, 3, 2, 0.5}, p[6], residual[6];
+    for (int k = 0; k < 6; ++k) {
+        residual[k] = k < 2 ? 0 : h_r; /* the top on the unloading curve (the loading before it matters not) */
+        p[k] = k < 2 ? love_load(h[k]) : love_load(fmax(h[k] - h_r, 0));
+    }
+    im_indenter cone = im_indenter_cone(alpha);
+    im_unloading_branch b;
+    int found = 0;
+    assert_int_equal(im_measure_unloading(&cone, h, p, residual, 6, &b, 1, &found), IM_OK);
+    assert_true(isfinite(b.stiffness)); /* 4, 3, 2: all above the touch */
+    assert_close(b.stiffness, 2 * love_load(1.0) * (4 - h_r), 1e-11 * b.stiffness);
+    h[4] = 0.75, p[4] = 0; /* the third point short of the touch */
+    assert_int_equal(im_measure_unloading(&cone, h, p, residual, 6, &b, 1, &found), IM_OK);
+    assert_true(isnan(b.stiffness) && isnan(b.modulus) && isnan(b.hardness));
+    assert_close(b.residual_approach, h_r, 0);
+}
+
 /* Two cycles and a final loading: two branches, each loading from where the approach last turned up. */
 static void branches_of_a_cycling_history(void **state)
 {
@@ -195,11 +221,9 @@ static void plastic_loop_area_is_the_dissipation(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(love_cone_in_closed_form),
-        cmocka_unit_test(flat_punch_works_are_exact),
-        cmocka_unit_test(branches_of_a_cycling_history),
-        cmocka_unit_test(repeated_tops_and_rounding),
-        cmocka_unit_test(plastic_loop_area_is_the_dissipation),
+        cmocka_unit_test(love_cone_in_closed_form),      cmocka_unit_test(flat_punch_works_are_exact),
+        cmocka_unit_test(branches_of_a_cycling_history), cmocka_unit_test(no_stiffness_across_the_touch),
+        cmocka_unit_test(repeated_tops_and_rounding),    cmocka_unit_test(plastic_loop_area_is_the_dissipation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -45,7 +45,9 @@ double im_measure_sneddon_modulus(double stiffness, double area);
  * each other (relative) count as one (a repeated target, or load control finding one load twice).
  * For each, with h the approach (counted from first touch) and P the load:
  *   S     = dP/dh at the top: the slope there of the parabola through the top and the next two
- *           unloading steps (im_measure_stiffness's one-sided formula; NaN with fewer than 3 points);
+ *           unloading steps (im_measure_stiffness's one-sided formula; NaN with fewer than 3 points,
+ *           or when the second or third has P = 0 short of the touch, below its residual approach
+ *           where those are given: a parabola across the touch is no slope of the curve);
  *   h_c   = h_max - epsilon P_max / S, epsilon the punch's geometry factor: 0.72 cone, 0.75 sphere and
  *           axisymmetric profiles (Oliver-Pharr's paraboloid), 1 flat punch;
  *   A_p   = pi r^2 with z(r) = h_c on the punch's profile (the projected area at the contact depth;

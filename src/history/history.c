@@ -153,6 +153,15 @@ static void settle_area_ratio(im_history_row *rows, int i, double tol)
         rows[i].result.area_ratio = NAN;
 }
 
+/* The punch short of where it touches (the surface, or the impression a hardness left: the residual
+ * approach, 0 without one) and nothing pulls it: N is 0 about the step, so S = dN/dw is exactly 0. The
+ * three points would span the touch (N turns from 0 to its unloading curve there) and gave
+ * -1.28 E* delta after a plastic sphere's unloading (redteam3 R2). */
+static int punch_withdrawn(const im_step_result *r)
+{
+    return r->contact_patches == 0 && r->adhesive_patches == 0 && r->approach < r->residual_approach;
+}
+
 int im_history_measure(const im_indenter *punch, const im_theory_interface *rough, const im_indentation *run,
                        double tol, im_history_row *rows, int i)
 {
@@ -176,8 +185,13 @@ int im_history_measure(const im_indenter *punch, const im_theory_interface *roug
     row->stiffness = row->e_star_sneddon = NAN;
     /* Three steps on one branch (the parabola's slope: exact for Love's quadratic N(w)); at the first
      * two steps, a repeated approach or a turn from loading to unloading the stiffness stays NaN. Two
-     * steps would give only their secant, 25% low on a cone when w doubles (issue 26). */
-    if (status == IM_OK && i >= 2) {
+     * steps would give only their secant, 25% low on a cone when w doubles (issue 26). Nor across the
+     * touch: a reload from a withdrawn step (N = 0 there, rising steeply past the touch) gave 18.6
+     * where the same state unloading gives 23.7. */
+    if (status == IM_OK && punch_withdrawn(&row->result)) {
+        row->stiffness = 0.0;
+    } else if (status == IM_OK && i >= 2 && !punch_withdrawn(&rows[i - 2].result) &&
+               !punch_withdrawn(&rows[i - 1].result)) {
         double w[3], n[3], s[3];
         for (int k = 0; k < 3; ++k) {
             w[k] = rows[i - 2 + k].result.approach;

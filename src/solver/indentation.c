@@ -138,10 +138,11 @@ static int check_profile_grid(const im_field *surface, const im_indenter *punch)
 
 /* The largest approach the window must hold: the target itself, or under load control the smooth
  * punch's approach for the largest load with a tenth to spare, plus the surface's height range.
- * With a hardness H_p a contact can sink deeper than the elastic one: to the depth at which the
- * punch's cross-section carries the load at H_p everywhere (pi r^2 H_p = N, at height z(r)), which
- * bounds the fully plastic approach. A 2-D profile has no smooth estimate: its whole footprint
- * (INFINITY). */
+ * With a hardness H_p a contact can sink deeper than the elastic one: to the fully plastic approach,
+ * where the punch's cross-section carries the load at H_p everywhere (pi r^2 H_p = N) at its height
+ * z(r) plus the half-space's sink there, the rim displacement 4 H_p r / (pi E*) of a uniform H_p on
+ * that disc (without it a sphere or cone pressed deep into the plastic range was refused loads that
+ * displacement control reached). A 2-D profile has no smooth estimate: its whole footprint (INFINITY). */
 static double approach_bound(double height_range, const im_indenter *punch, enum im_control control,
                              double largest_target, const im_solver_options *o)
 {
@@ -150,8 +151,10 @@ static double approach_bound(double height_range, const im_indenter *punch, enum
     if (o->periodic) /* no window to bound */
         return INFINITY;
     double smooth = im_indenter_approach_for_load(punch, o->e_star, largest_target);
-    if (o->hardness > 0)
-        smooth = fmax(smooth, im_indenter_profile(punch, sqrt(largest_target / (M_PI * o->hardness))));
+    if (o->hardness > 0) {
+        const double r = sqrt(largest_target / (M_PI * o->hardness));
+        smooth = fmax(smooth, im_indenter_profile(punch, r) + 4.0 * o->hardness * r / (M_PI * o->e_star));
+    }
     /* with adhesion the zone's reach too (a deeper adhesive approach is caught by the zone's check) */
     return isfinite(smooth) ? 1.1 * smooth + height_range + adhesion_reach(o) + o->adhesion_range : INFINITY;
 }
