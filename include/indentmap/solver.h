@@ -354,7 +354,7 @@ int im_displacement_full(const im_field *force, const im_solver_options *options
 
 /* The same with a plan made once for many fields of one grid (frames, steps): the plan of
  * im_displacement_plan_create, a convolution's (on the CPU: the kernel's spectrum and the padded
- * transform's arrays only, about 64 B per patch held and 88 B while planned, against a solver plan's
+ * transform's arrays only, about 64 B per patch held and 80 B while planned, against a solver plan's
  * 140 and more; the same FFTW_ESTIMATE transforms, so the same u to the bit; im_solver_convolve takes
  * it, im_solver_solve refuses it), used by im_displacement_full_with (IM_EINVAL for a force field of
  * another grid). */

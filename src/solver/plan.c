@@ -143,13 +143,14 @@ static double cpu_array_bytes(int nx, int ny)
     return convolution_array_bytes(nx, ny) + 8 * (n * 4 + rows + 2 * n);
 }
 
-/* A convolution's plan at its peak: its tables with their temporaries while they are computed, or its
- * spectrum with the convolution's arrays (made once the rest of the tables is freed: finish_engine). */
+/* A convolution's plan at its peak: its tables with their temporaries while they are computed (padded:
+ * the spectrum alone), or its spectrum with the convolution's arrays (made once the rest of the tables
+ * is freed: finish_engine). */
 static double convolution_bytes(int nx, int ny, int periodic)
 {
     const double spectrum = 8.0 * (periodic ? 0.5 * ny * (nx + 2) : 2.0 * ny * (nx + 1));
-    return fmax(table_bytes(nx, ny, periodic) + temporary_bytes(nx, ny, periodic),
-                spectrum + convolution_array_bytes(nx, ny));
+    const double tables = periodic ? table_bytes(nx, ny, 1) : spectrum;
+    return fmax(tables + temporary_bytes(nx, ny, periodic), spectrum + convolution_array_bytes(nx, ny));
 }
 
 /* One level's CPU plan, without the coarser levels: its tables, its arrays, and the padded grid the
@@ -483,16 +484,21 @@ static int compute_kernel(im_solver_plan *p)
         fftw_free(own_modes);
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel transform", nx, ny);
     }
+    /* K on the grid's offsets is the padded grid's first nx x ny block (and the kernel table where the
+     * plan keeps one); the wrapped offsets beyond it repeat it, and only offsets nx or ny are new. */
 #pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
+    for (int iy = 0; iy < ny; ++iy) {
         for (int ix = 0; ix < nx; ++ix)
-            p->kernel[(size_t)iy * nx + ix] = im_influence_square(ix * d, iy * d, d, e);
+            padded[(size_t)iy * px + ix] = im_influence_square(ix * d, iy * d, d, e);
+        if (p->kernel)
+            memcpy(p->kernel + (size_t)iy * nx, padded + (size_t)iy * px, sizeof(double) * nx);
+    }
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < py; ++jy) {
         long dy = wrapped_offset(jy, ny, py);
-        for (int jx = 0; jx < px; ++jx) {
+        for (int jx = jy < ny ? nx : 0; jx < px; ++jx) {
             long dx = wrapped_offset(jx, nx, px);
-            padded[(size_t)jy * px + jx] = dx < nx && dy < ny ? p->kernel[(size_t)dy * nx + dx]
+            padded[(size_t)jy * px + jx] = dx < nx && dy < ny ? padded[(size_t)dy * px + dx]
                                                               : im_influence_square(dx * d, dy * d, d, e);
         }
     }
@@ -506,18 +512,19 @@ static int compute_kernel(im_solver_plan *p)
     return p->inverse_spectrum ? compute_preconditioner(p) : IM_OK;
 }
 
-/* The tables every engine takes from a plan: K on the grid, its spectrum and the preconditioner's (not
- * for a convolution's padded plan on the CPU: the periodic kernel computes both spectra at once, and
- * another engine may take it). */
+/* The tables every engine takes from a plan: K on the grid, its spectrum and the preconditioner's; a
+ * convolution's padded plan on the CPU makes its spectrum alone (the periodic kernel computes all three
+ * at once, and another engine may take them). */
 static int allocate_tables(im_solver_plan *p, int cpu)
 {
     const size_t n = (size_t)p->nx * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
-    const int preconditioner = !(p->convolution_only && cpu && !p->options.periodic);
-    p->kernel = fftw_malloc(sizeof(double) * n);
+    const int all = !(p->convolution_only && cpu && !p->options.periodic);
     p->spectrum = fftw_malloc(sizeof(double) * modes);
-    if (preconditioner)
+    if (all) {
+        p->kernel = fftw_malloc(sizeof(double) * n);
         p->inverse_spectrum = fftw_malloc(sizeof(double) * (size_t)p->ny * (p->nx / 2 + 1));
-    if (!p->kernel || !p->spectrum || (preconditioner && !p->inverse_spectrum))
+    }
+    if (!p->spectrum || (all && (!p->kernel || !p->inverse_spectrum)))
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel tables", p->nx, p->ny);
     return IM_OK;
 }
