@@ -465,10 +465,10 @@ static int compute_preconditioner(im_solver_plan *p)
     return forward ? IM_OK : im_fail(IM_ENOMEM, "solver plan %d x %d: preconditioner transform", nx, ny);
 }
 
-/* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
- * that it is even and its spectrum real), then transforms it once with a one-off plan: into the CPU
- * engine's modes where the plan has them (its peak is then level_bytes'), else on temporaries (a GPU
- * plan has no CPU arrays to lend). */
+/* Samples K on the grid (for direct sums, where the plan keeps the table) and on the padded grid with
+ * wrap-around offsets (so that it is even and its spectrum real), then transforms it once with a one-off
+ * plan: into the CPU engine's modes where the plan has them (its peak is then level_bytes'), else on
+ * temporaries (a GPU plan has no CPU arrays to lend; a convolution's makes them after). */
 static int compute_kernel(im_solver_plan *p)
 {
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
@@ -726,7 +726,9 @@ static int create_plan(int nx, int ny, double delta, const im_solver_options *op
     p->direct_limit = (long)(1.5 * transformed / ((double)nx * ny) * log2(transformed));
     if (status == IM_OK && !cpu)
         status = choose_engine(p, finer);
-    if (status == IM_OK && !arrays_first) /* auto without a GPU, or a level VkFFT cannot transform: on the CPU */
+    /* on the CPU (a convolution's plan, auto without a GPU, or a level VkFFT cannot transform), or K(0)
+     * beside the device */
+    if (status == IM_OK && !arrays_first)
         status = finish_engine(p);
     p->options.wisdom_path = NULL; /* not owned: used while planning only */
     if (status == IM_OK)
