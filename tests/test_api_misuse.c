@@ -107,6 +107,7 @@ static const char *bad_view_names[5] = {"NULL", "data NULL", "nx = -3", "ny = 0"
                                         "nx = ny = 2^20 (nx * ny overflows)"};
 static const im_field *BAD; /* the invalid view of the case running */
 static im_solver_plan *plan;
+static im_solver_plan *convolution_plan; /* im_displacement_plan_create's: it convolves, never solves */
 static im_indentation *run;
 static im_flat_contact *flat;
 static im_profile *profile;
@@ -215,6 +216,7 @@ static void make_fixtures(void)
     test_write_bytes(scene_path, "[output]\ntable = yes\n", 21);
     assert_int_equal(im_scene_load(scene_path, &scene), IM_OK);
     assert_int_equal(im_solver_plan_create(8, 8, 1.0, &options, &plan), IM_OK);
+    assert_int_equal(im_displacement_plan_create(8, 8, 1.0, &options, &convolution_plan), IM_OK);
     assert_int_equal(im_indentation_create(&good, &cone, IM_CONTROL_DISPLACEMENT, 0.5, &options, &run), IM_OK);
     assert_int_equal(im_flat_contact_create(&good, NULL, &flat), IM_OK);
     assert_int_equal(im_profile_axisymmetric(r3, z3, 3, &profile), IM_OK);
@@ -585,6 +587,8 @@ REPORT_VIEW(im_displacement_full_with, "force", im_displacement_full_with(plan, 
 REPORT(im_displacement_full_with, "displacement", im_displacement_full_with(plan, &good, NULL))
 REPORT(im_solver_solve, "plan",
        im_solver_solve(NULL, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
+REPORT(im_solver_solve, "plan",
+       im_solver_solve(convolution_plan, values, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
 REPORT(im_solver_solve, "gap0",
        im_solver_solve(plan, NULL, IM_CONTROL_DISPLACEMENT, 0.1, out_values, big_values, NULL))
 REPORT(im_solver_solve, "pressure",
@@ -995,6 +999,7 @@ static void every_misuse_is_reported(void **state)
     printf("%d misuse calls of %d cases, %d failed\n", runs, case_count, failures);
     im_indentation_free(run);
     im_solver_plan_free(plan);
+    im_solver_plan_free(convolution_plan);
     im_flat_contact_free(flat);
     im_profile_free(profile);
     im_psd_free(psd);

@@ -63,6 +63,21 @@ static void test_influence_kernel(void **state)
     assert_close(im_influence_square(1, 0, 1, 1) * M_PI, sum, 1e-6);
 }
 
+/* The largest relative difference between u and the direct sum of K p (E* = 1) on an nx x ny grid. */
+static double direct_sum_difference(int nx, int ny, double delta, const double *p, const double *u)
+{
+    double worst = 0;
+    for (int iy = 0; iy < ny; ++iy)
+        for (int ix = 0; ix < nx; ++ix) {
+            double direct = 0;
+            for (int jy = 0; jy < ny; ++jy)
+                for (int jx = 0; jx < nx; ++jx)
+                    direct += p[jy * nx + jx] * im_influence_square((ix - jx) * delta, (iy - jy) * delta, delta, 1.0);
+            worst = fmax(worst, fabs(u[iy * nx + ix] - direct) / direct);
+        }
+    return worst;
+}
+
 static void test_convolution_is_linear_not_periodic(void **state)
 {
     (void)state;
@@ -73,17 +88,31 @@ static void test_convolution_is_linear_not_periodic(void **state)
     for (int i = 0; i < nx * ny; ++i)
         p[i] = (double)((i * 7919) % 17) / 17.0;
     im_solver_convolve(plan, p, u);
-    double worst = 0;
-    for (int iy = 0; iy < ny; ++iy)
-        for (int ix = 0; ix < nx; ++ix) {
-            double direct = 0;
-            for (int jy = 0; jy < ny; ++jy)
-                for (int jx = 0; jx < nx; ++jx)
-                    direct += p[jy * nx + jx] * im_influence_square((ix - jx) * 0.5, (iy - jy) * 0.5, 0.5, 1.0);
-            worst = fmax(worst, fabs(u[iy * nx + ix] - direct) / direct);
-        }
+    double worst = direct_sum_difference(nx, ny, 0.5, p, u);
     if (worst > 1e-12)
         fail_msg("FFT convolution differs from direct summation by %g (relative)", worst);
+    im_solver_plan_free(plan);
+}
+
+/* A convolution's plan (im_displacement_plan_create: no solver arrays, its result written back over its
+ * input rows) against the direct sum, in place, twice: the second load, nonzero in one corner only, is
+ * convolved after the first result filled the padded rows. */
+static void test_convolution_plan_in_place(void **state)
+{
+    (void)state;
+    const int nx = 11, ny = 14;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_displacement_plan_create(nx, ny, 0.25, NULL, &plan), IM_OK);
+    double p[11 * 14], u[11 * 14];
+    for (int load = 0; load < 2; ++load) {
+        for (int i = 0; i < nx * ny; ++i)
+            p[i] = load == 0 ? (double)((i * 7919) % 13) / 13.0 + 0.1 : (i % nx < 3 && i / nx < 2);
+        memcpy(u, p, sizeof p);
+        im_solver_convolve(plan, u, u);
+        double worst = direct_sum_difference(nx, ny, 0.25, p, u);
+        if (worst > 1e-12)
+            fail_msg("load %d: the convolution's plan differs from direct summation by %g (relative)", load, worst);
+    }
     im_solver_plan_free(plan);
 }
 
@@ -438,6 +467,38 @@ static void test_full_grid_displacement(void **state)
     im_field_free(s);
 }
 
+/* Without a crop the window is the whole grid and the whole grid's u is convolved on the run's own
+ * (estimated) solver plan: to the bit what a convolution's plan gives for the same force, and the gap
+ * g0 - w + u with that u (on a flat surface g0 is the cone's height less its lowest on the grid). */
+static void test_full_grid_displacement_on_solver_plan(void **state)
+{
+    (void)state;
+    im_field *s = smooth_surface(48), *f = NULL, *g = NULL, *u = NULL, *again = NULL;
+    im_indenter cone = im_indenter_cone(80.0);
+    im_solver_options o = im_solver_options_default();
+    o.crop = 0;
+    im_indentation *run = prepare(s, &cone, IM_CONTROL_DISPLACEMENT, 2.0, &o);
+    step(run, 2.0);
+    assert_int_equal(im_indentation_fields_full(run, &f, &g, &u), IM_OK);
+    assert_int_equal(im_displacement_full(f, &o, &again), IM_OK);
+    if (memcmp(u->data, again->data, sizeof(double) * im_field_count(u)) != 0)
+        fail_msg("u on the solver's plan differs from a convolution plan's");
+    double ax, ay, lowest = INFINITY, worst = 0;
+    im_indenter_axis(&cone, 48, 48, 1.0, &ax, &ay);
+    for (int i = 0; i < 48 * 48; ++i)
+        lowest = fmin(lowest, im_indenter_height(&cone, i % 48 + 0.5 - ax, i / 48 + 0.5 - ay));
+    for (int i = 0; i < 48 * 48; ++i) {
+        const double g0 = im_indenter_height(&cone, i % 48 + 0.5 - ax, i / 48 + 0.5 - ay) - lowest;
+        worst = fmax(worst, fabs(g->data[i] - (g0 - 2.0 + u->data[i])));
+    }
+    if (worst > 1e-12)
+        fail_msg("g differs from g0 - w + u by %g", worst);
+    im_field *fields[] = {s, f, g, u, again};
+    for (int k = 0; k < 5; ++k)
+        im_field_free(fields[k]);
+    im_indentation_free(run);
+}
+
 /* im_indentation_window_for is the window im_indentation_create solves on, without making its plan: under
  * displacement and load control, with a cap (whose fully plastic approach widens the load's bound), and
  * with the crop off (the whole grid); a punch that covers no patch fails as the run does. */
@@ -734,6 +795,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_influence_kernel),
         cmocka_unit_test(test_convolution_is_linear_not_periodic),
+        cmocka_unit_test(test_convolution_plan_in_place),
         cmocka_unit_test(test_cone_love),
         cmocka_unit_test(test_sphere_hertz),
         cmocka_unit_test(test_flat_punch),
@@ -745,6 +807,7 @@ int main(void)
         cmocka_unit_test(test_accelerated_equals_plain_pk_load),
         cmocka_unit_test(test_stopping_rule_bounds_penetration),
         cmocka_unit_test(test_full_grid_displacement),
+        cmocka_unit_test(test_full_grid_displacement_on_solver_plan),
         cmocka_unit_test(test_window_for_is_the_runs),
         cmocka_unit_test(test_step_boxes_equal_whole_surface),
         cmocka_unit_test(test_step_boxes_keep_plastic_memory),

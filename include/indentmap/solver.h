@@ -340,7 +340,7 @@ const char *im_solver_plan_device(const im_solver_plan *plan);
 /* 1 if the plan was made with FFTW_MEASURE. */
 int im_solver_plan_measured(const im_solver_plan *plan);
 
-/* u = K p on the plan's grid (nx * ny values each; may not alias). */
+/* u = K p on the plan's grid (nx * ny values each; displacement may be pressure itself: in place). */
 void im_solver_convolve(im_solver_plan *plan, const double *pressure, double *displacement);
 
 /* The displacement u = K p (positive into the half-space, units of force->delta) on the whole grid
@@ -353,8 +353,10 @@ void im_solver_convolve(im_solver_plan *plan, const double *pressure, double *di
 int im_displacement_full(const im_field *force, const im_solver_options *options, im_field **displacement);
 
 /* The same with a plan made once for many fields of one grid (frames, steps): the plan of
- * im_displacement_plan_create (im_solver_plan_create without the solver's coarse levels and
- * preconditioner, FFTW_ESTIMATE), used by im_displacement_full_with (IM_EINVAL for a force field of
+ * im_displacement_plan_create, a convolution's (on the CPU: the kernel's spectrum and the padded
+ * transform's arrays only, about 64 B per patch held and 80 B while planned, against a solver plan's
+ * 140 and more; the same FFTW_ESTIMATE transforms, so the same u to the bit; im_solver_convolve takes
+ * it, im_solver_solve refuses it), used by im_displacement_full_with (IM_EINVAL for a force field of
  * another grid). */
 int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options,
                                 im_solver_plan **plan);

@@ -385,8 +385,10 @@ static int cpu_convolve_arrays(im_solver_plan *plan, const double *pressure, dou
 {
     const int nx = plan->nx, ny = plan->ny, px = plan->px;
 #pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
+    for (int iy = 0; iy < ny; ++iy) { /* the right halves zeroed again: a convolution's plan wrote its result there */
         memcpy(plan->rows_in + (size_t)iy * px, pressure + (size_t)iy * nx, sizeof(double) * nx);
+        memset(plan->rows_in + (size_t)iy * px + nx, 0, sizeof(double) * (px - nx));
+    }
     solver_convolve_rows(plan);
 #pragma omp parallel for schedule(static)
     for (int iy = 0; iy < ny; ++iy)

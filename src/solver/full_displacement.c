@@ -7,7 +7,6 @@
 #include "solver/plan.h"
 
 #include <stdio.h>
-#include <stdlib.h>
 
 int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **plan)
 {
@@ -18,7 +17,7 @@ int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_op
     o.wisdom_path = NULL;           /* nor read or written wisdom */
     o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
     o.adhesion_work = o.adhesion_range = o.adhesion_zone = 0; /* u = K p whatever the interaction that made p */
-    return im_solver_plan_create(nx, ny, delta, &o, plan);
+    return solver_convolution_plan_create(nx, ny, delta, &o, plan);
 }
 
 int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement)
@@ -31,20 +30,16 @@ int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_fi
     if (plan->nx != force->nx || plan->ny != force->ny)
         return im_fail(IM_EINVAL, "full-grid displacement: a %d x %d force field on a %d x %d plan", force->nx,
                        force->ny, plan->nx, plan->ny);
-    double *pressure = malloc(count * sizeof *pressure);
     im_field *u = NULL;
-    int status = pressure
-                     ? im_field_create(force->nx, force->ny, force->delta, &u)
-                     : im_fail(IM_ENOMEM, "full-grid displacement %d x %d: allocation failed", force->nx, force->ny);
-    if (status == IM_OK) {
+    int status = im_field_create(force->nx, force->ny, force->delta, &u);
+    if (status == IM_OK) { /* the pressure in u's array, convolved in place: no grid beside it */
         double area = force->delta * force->delta;
         for (size_t i = 0; i < count; ++i)
-            pressure[i] = force->data[i] / area;
-        im_solver_convolve(plan, pressure, u->data);
+            u->data[i] = force->data[i] / area;
+        im_solver_convolve(plan, u->data, u->data);
         snprintf(u->unit, sizeof u->unit, "%s", force->unit);
         *displacement = u;
     }
-    free(pressure);
     return status;
 }
 

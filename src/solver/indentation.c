@@ -1126,21 +1126,59 @@ int im_indentation_fields(const im_indentation *run, im_field **force, im_field 
     return status;
 }
 
-/* The fields on the whole grid: the window's, with u convolved over every patch (one plan per run). */
-static int whole_grid_fields(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+/* g = g0 - w + u with the whole grid's u, from window_fields' g: corrected by u less the window's u
+ * that g holds (window_fields' value, 0 outside the window), stale or not: it cancels. */
+static void correct_gap(const im_indentation *run, im_field *g, const im_field *u)
 {
-    im_field *f = NULL, *g = NULL, *window_u = NULL, *u = NULL;
+    const im_window w = run->window;
+#pragma omp parallel for schedule(static)
+    for (int iy = 0; iy < run->ny; ++iy)
+        for (int ix = 0; ix < run->nx; ++ix) {
+            const size_t i = (size_t)iy * run->nx + ix, wi = (size_t)(iy - w.y0) * w.nx + (ix - w.x0);
+            const int inside = iy >= w.y0 && iy < w.y0 + w.ny && ix >= w.x0 && ix < w.x0 + w.nx;
+            const double window_u = inside ? adhesion_net_displacement(run->adhesion, wi, run->displacement[wi])
+                                           : 0.0;
+            g->data[i] += u->data[i] - window_u;
+        }
+}
+
+/* Whether the run's solver plan convolves the whole grid as a convolution's plan would, to the bit: it
+ * is the whole grid's (the window is), on the CPU and estimated (the same FFTW_ESTIMATE transforms and
+ * the same spectrum; a measured plan's transforms may round differently). */
+static int solver_plan_convolves_grid(const im_indentation *run)
+{
+    const im_solver_plan *p = run->plan;
+    return p && !run->ranks && p->nx == run->nx && p->ny == run->ny && !p->measured &&
+           strcmp(im_solver_plan_device(p), "cpu") == 0;
+}
+
+/* The plan the whole grid's u is convolved on: the solver's where it convolves the grid (no second plan
+ * beside it), else a convolution's plan, made at the first call and kept. */
+static int full_grid_plan(im_indentation *run, im_solver_plan **plan)
+{
+    if (solver_plan_convolves_grid(run)) {
+        *plan = run->plan;
+        return IM_OK;
+    }
     int status = run->full_plan
                      ? IM_OK
                      : im_displacement_plan_create(run->nx, run->ny, run->delta, &run->options, &run->full_plan);
-    if (status == IM_OK) /* g is corrected by the full u minus the same window u: stale or not, it cancels */
-        status = window_fields(run, &f, gap ? &g : NULL, &window_u);
+    *plan = run->full_plan;
+    return status;
+}
+
+/* The fields on the whole grid: the window's, with u convolved over every patch. */
+static int whole_grid_fields(im_indentation *run, im_field **force, im_field **gap, im_field **displacement)
+{
+    im_field *f = NULL, *g = NULL, *u = NULL;
+    im_solver_plan *plan = NULL;
+    int status = full_grid_plan(run, &plan);
     if (status == IM_OK)
-        status = im_displacement_full_with(run->full_plan, f, &u);
-    if (status == IM_OK && g) /* g = g0 - w + u: the same gap with the true u */
-        for (size_t i = 0; i < im_field_count(g); ++i)
-            g->data[i] += u->data[i] - window_u->data[i];
-    im_field_free(window_u);
+        status = window_fields(run, &f, gap ? &g : NULL, NULL);
+    if (status == IM_OK)
+        status = im_displacement_full_with(plan, f, &u);
+    if (status == IM_OK && g)
+        correct_gap(run, g, u);
     if (status != IM_OK) {
         im_field_free(f);
         im_field_free(g);

@@ -194,6 +194,9 @@ static int check_periodic_approach(const im_solver_plan *plan, const double *gap
 static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_control control, double target,
                         const double *p, int *positive)
 {
+    if (plan->convolution_only)
+        return im_fail(IM_EINVAL, "im_solver_solve: plan is a convolution's (im_displacement_plan_create), which "
+                                  "cannot solve; expected one from im_solver_plan_create");
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
         return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
     if (!(isfinite(target) && target >= 0))

@@ -127,12 +127,30 @@ static double table_bytes(int nx, int ny, int periodic)
  * or, periodic, the modes the kernel is transformed back from (n). */
 static double temporary_bytes(int nx, int ny, int periodic) { return 8.0 * nx * ny * (periodic ? 1 : 8); }
 
-/* The CPU engine's arrays of one level (a padded grid): 3 work arrays, changes (long + double), 2
- * padded rows, the padded modes, the preconditioner's grid and modes. */
+/* What a convolution reads on the CPU engine: the padded rows and the padded modes (a periodic plan's
+ * are a quarter: an upper bound). */
+static double convolution_array_bytes(int nx, int ny)
+{
+    const double rows = 2.0 * nx * ny, modes = 2.0 * ny * (nx + 1);
+    return 8 * (rows + 2 * modes);
+}
+
+/* The CPU engine's arrays of one level (a padded grid): the convolution's, 3 work arrays, changes (long +
+ * double), the rows K t is read from, the preconditioner's grid and modes. */
 static double cpu_array_bytes(int nx, int ny)
 {
-    const double n = (double)nx * ny, rows = 2 * n, modes = 2.0 * ny * (nx + 1);
-    return 8 * (n * 4 + 2 * rows + 2 * modes + 2 * n);
+    const double n = (double)nx * ny, rows = 2 * n;
+    return convolution_array_bytes(nx, ny) + 8 * (n * 4 + rows + 2 * n);
+}
+
+/* A convolution's plan at its peak: its tables with their temporaries while they are computed (padded:
+ * the spectrum alone), or its spectrum with the convolution's arrays (made once the rest of the tables
+ * is freed: finish_engine). */
+static double convolution_bytes(int nx, int ny, int periodic)
+{
+    const double spectrum = 8.0 * (periodic ? 0.5 * ny * (nx + 2) : 2.0 * ny * (nx + 1));
+    const double tables = periodic ? table_bytes(nx, ny, 1) : spectrum;
+    return fmax(tables + temporary_bytes(nx, ny, periodic), spectrum + convolution_array_bytes(nx, ny));
 }
 
 /* One level's CPU plan, without the coarser levels: its tables, its arrays, and the padded grid the
@@ -145,8 +163,10 @@ static double level_bytes(int nx, int ny)
 /* What a level's plan needs on the host before it knows its engine: the whole CPU plan when it asks
  * for the CPU (with its coarser levels, as before the GPU engine), else the tables and their
  * temporaries (the CPU engine's arrays are checked when such a plan stays on the CPU). */
-static double planning_bytes(int nx, int ny, const im_solver_options *o)
+static double planning_bytes(int nx, int ny, const im_solver_options *o, int convolution_only)
 {
+    if (o->device == IM_DEVICE_CPU && convolution_only)
+        return convolution_bytes(nx, ny, o->periodic);
     if (o->device == IM_DEVICE_CPU)
         return im_solver_plan_bytes(nx, ny);
     return table_bytes(nx, ny, o->periodic) + temporary_bytes(nx, ny, o->periodic);
@@ -251,6 +271,11 @@ int im_solver_plan_memory(const im_solver_plan *plan, im_solver_memory *out)
     ARG_REQUIRE(out, "out");
     *out = (im_solver_memory){.host_bytes = NAN};
     ARG_REQUIRE(plan, "plan");
+    if (plan->convolution_only && plan->engine == &solver_engine_cpu) {
+        *out = (im_solver_memory){.host_bytes = convolution_bytes(plan->nx, plan->ny, plan->options.periodic),
+                                  .device = "cpu"};
+        return IM_OK;
+    }
     return im_solver_memory_needed(plan->nx, plan->ny, &plan->options, out);
 }
 
@@ -370,12 +395,15 @@ static int make_fft_plans(im_solver_plan *p)
                                              FFTW_BACKWARD, flags);
     p->rows_backward = fftw_plan_many_dft_c2r(1, row_length, p->ny, p->modes, NULL, 1, mx, p->rows_out, NULL, 1,
                                               p->px, flags);
-    p->precondition_forward = fftw_plan_dft_r2c_2d(p->ny, p->nx, p->preconditioned, p->precondition_modes, flags);
-    p->precondition_backward = fftw_plan_dft_c2r_2d(p->ny, p->nx, p->precondition_modes, p->preconditioned, flags);
+    if (p->preconditioned) { /* a convolution's plan has none */
+        p->precondition_forward = fftw_plan_dft_r2c_2d(p->ny, p->nx, p->preconditioned, p->precondition_modes, flags);
+        p->precondition_backward = fftw_plan_dft_c2r_2d(p->ny, p->nx, p->precondition_modes, p->preconditioned,
+                                                        flags);
+    }
     int status = wisdom ? export_wisdom(wisdom) : IM_OK;
     fft_planner_unlock();
     if (!p->rows_forward || !p->columns_forward || !p->columns_backward || !p->rows_backward ||
-        !p->precondition_forward || !p->precondition_backward)
+        (p->preconditioned && (!p->precondition_forward || !p->precondition_backward)))
         return im_fail(IM_ENOMEM, "FFTW could not plan a %d x %d transform", p->px, p->py);
     return status;
 }
@@ -437,10 +465,10 @@ static int compute_preconditioner(im_solver_plan *p)
     return forward ? IM_OK : im_fail(IM_ENOMEM, "solver plan %d x %d: preconditioner transform", nx, ny);
 }
 
-/* Samples K on the grid (for direct sums) and on the padded grid with wrap-around offsets (so
- * that it is even and its spectrum real), then transforms it once with a one-off plan: into the CPU
- * engine's modes where the plan has them (its peak is then level_bytes'), else on temporaries (a GPU
- * plan has no CPU arrays to lend). */
+/* Samples K on the grid (for direct sums, where the plan keeps the table) and on the padded grid with
+ * wrap-around offsets (so that it is even and its spectrum real), then transforms it once with a one-off
+ * plan: into the CPU engine's modes where the plan has them (its peak is then level_bytes'), else on
+ * temporaries (a GPU plan has no CPU arrays to lend; a convolution's makes them after). */
 static int compute_kernel(im_solver_plan *p)
 {
     const int nx = p->nx, ny = p->ny, px = p->px, py = p->py, mx = px / 2 + 1;
@@ -456,16 +484,21 @@ static int compute_kernel(im_solver_plan *p)
         fftw_free(own_modes);
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel transform", nx, ny);
     }
+    /* K on the grid's offsets is the padded grid's first nx x ny block (and the kernel table where the
+     * plan keeps one); the wrapped offsets beyond it repeat it, and only offsets nx or ny are new. */
 #pragma omp parallel for schedule(static)
-    for (int iy = 0; iy < ny; ++iy)
+    for (int iy = 0; iy < ny; ++iy) {
         for (int ix = 0; ix < nx; ++ix)
-            p->kernel[(size_t)iy * nx + ix] = im_influence_square(ix * d, iy * d, d, e);
+            padded[(size_t)iy * px + ix] = im_influence_square(ix * d, iy * d, d, e);
+        if (p->kernel)
+            memcpy(p->kernel + (size_t)iy * nx, padded + (size_t)iy * px, sizeof(double) * nx);
+    }
 #pragma omp parallel for schedule(static)
     for (int jy = 0; jy < py; ++jy) {
         long dy = wrapped_offset(jy, ny, py);
-        for (int jx = 0; jx < px; ++jx) {
+        for (int jx = jy < ny ? nx : 0; jx < px; ++jx) {
             long dx = wrapped_offset(jx, nx, px);
-            padded[(size_t)jy * px + jx] = dx < nx && dy < ny ? p->kernel[(size_t)dy * nx + dx]
+            padded[(size_t)jy * px + jx] = dx < nx && dy < ny ? padded[(size_t)dy * px + dx]
                                                               : im_influence_square(dx * d, dy * d, d, e);
         }
     }
@@ -476,18 +509,34 @@ static int compute_kernel(im_solver_plan *p)
     for (size_t k = 0; k < (size_t)py * mx; ++k)
         p->spectrum[k] = modes[k][0] * scale;
     fftw_free(own_modes);
-    return compute_preconditioner(p);
+    return p->inverse_spectrum ? compute_preconditioner(p) : IM_OK;
 }
 
-/* The tables every engine takes from a plan: K on the grid, its spectrum and the preconditioner's. */
-static int allocate_tables(im_solver_plan *p)
+/* The tables every engine takes from a plan: K on the grid, its spectrum and the preconditioner's; a
+ * convolution's padded plan on the CPU makes its spectrum alone (the periodic kernel computes all three
+ * at once, and another engine may take them). */
+static int allocate_tables(im_solver_plan *p, int cpu)
 {
     const size_t n = (size_t)p->nx * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
-    p->kernel = fftw_malloc(sizeof(double) * n);
+    const int all = !(p->convolution_only && cpu && !p->options.periodic);
     p->spectrum = fftw_malloc(sizeof(double) * modes);
-    p->inverse_spectrum = fftw_malloc(sizeof(double) * (size_t)p->ny * (p->nx / 2 + 1));
-    if (!p->kernel || !p->spectrum || !p->inverse_spectrum)
+    if (all) {
+        p->kernel = fftw_malloc(sizeof(double) * n);
+        p->inverse_spectrum = fftw_malloc(sizeof(double) * (size_t)p->ny * (p->nx / 2 + 1));
+    }
+    if (!p->spectrum || (all && (!p->kernel || !p->inverse_spectrum)))
         return im_fail(IM_ENOMEM, "solver plan %d x %d: kernel tables", p->nx, p->ny);
+    return IM_OK;
+}
+
+/* A convolution's arrays: the padded rows, in and out, and the padded modes. */
+static int allocate_convolution_arrays(im_solver_plan *p, const char *what)
+{
+    size_t rows = (size_t)p->px * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
+    p->rows_in = p->rows_out = fftw_malloc(sizeof(double) * rows);
+    p->modes = fftw_malloc(sizeof(fftw_complex) * modes);
+    if (!p->rows_in || !p->modes)
+        return im_fail(IM_ENOMEM, "%s: convolution arrays: allocation failed", what);
     return IM_OK;
 }
 
@@ -496,9 +545,10 @@ static int allocate_cpu_arrays(im_solver_plan *p)
 {
     char what[64];
     snprintf(what, sizeof what, "solver plan %d x %d", p->nx, p->ny);
-    int status = im_memory_check(cpu_array_bytes(p->nx, p->ny), what);
-    if (status != IM_OK)
-        return status;
+    const double bytes = p->convolution_only ? convolution_array_bytes(p->nx, p->ny) : cpu_array_bytes(p->nx, p->ny);
+    int status = im_memory_check(bytes, what);
+    if (status != IM_OK || p->convolution_only)
+        return status == IM_OK ? allocate_convolution_arrays(p, what) : status;
     size_t n = (size_t)p->nx * p->ny, rows = (size_t)p->px * p->ny, modes = (size_t)p->py * (p->px / 2 + 1);
     p->direction = fftw_malloc(sizeof(double) * n);
     p->gap = fftw_malloc(sizeof(double) * n);
@@ -541,6 +591,27 @@ static int keep_host_k0(im_solver_plan *p)
     p->kernel = k0;
     p->spectrum = p->inverse_spectrum = NULL;
     return IM_OK;
+}
+
+/* A convolution's plan on the CPU after its spectrum is made: the kernel table (direct sums) and the
+ * preconditioner's spectrum that another engine might have taken are not read. */
+static void drop_solver_tables(im_solver_plan *p)
+{
+    fftw_free(p->kernel);
+    fftw_free(p->inverse_spectrum);
+    p->kernel = p->inverse_spectrum = NULL;
+}
+
+/* The host side of a plan whose tables were computed on temporaries: the CPU engine's arrays (a
+ * convolution's made only once its other tables are freed, so that its peak is either, not both), or
+ * K(0) alone beside another engine. */
+static int finish_engine(im_solver_plan *p)
+{
+    if (p->engine != &solver_engine_cpu)
+        return keep_host_k0(p);
+    if (p->convolution_only)
+        drop_solver_tables(p);
+    return make_cpu_engine(p);
 }
 
 int im_device_parse(const char *word, int *device)
@@ -598,8 +669,9 @@ void solver_plan_options(im_solver_options *o)
         o->cascade = o->precondition = 0;
 }
 
-int solver_plan_create_level(int nx, int ny, double delta, const im_solver_options *options,
-                             const im_solver_plan *finer, im_solver_plan **out)
+/* A solver plan's level, or (convolution_only) a convolution's plan. */
+static int create_plan(int nx, int ny, double delta, const im_solver_options *options, const im_solver_plan *finer,
+                       int convolution_only, im_solver_plan **out)
 {
     *out = NULL;
     im_solver_options o = options ? *options : im_solver_options_default();
@@ -617,7 +689,7 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
         return im_fail(IM_EINVAL, "delta = %g: expected a finite patch side > 0", delta);
     char what[64];
     snprintf(what, sizeof what, "solver plan %d x %d", nx, ny);
-    if ((status = im_memory_check(planning_bytes(nx, ny, &o), what)) != IM_OK)
+    if ((status = im_memory_check(planning_bytes(nx, ny, &o, convolution_only), what)) != IM_OK)
         return status;
     im_solver_plan *p = calloc(1, sizeof *p);
     if (!p)
@@ -632,13 +704,15 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
                           .py = pad * ny,
                           .delta = delta,
                           .options = o,
+                          .convolution_only = convolution_only,
                           .cascade_level = finer ? finer->cascade_level + 1 : 0};
     double start = omp_get_wtime();
-    /* A CPU plan makes its FFTW plans first, as before the GPU engine: its tables then come from the
-     * same wisdom whenever it was read. Other plans compute the tables on temporaries, for the device. */
-    const int cpu = cpu_only(p, finer);
-    status = allocate_tables(p);
-    if (status == IM_OK && cpu)
+    /* A CPU solver plan makes its FFTW plans first, as before the GPU engine: its tables then come from
+     * the same wisdom whenever it was read. Other plans compute the tables on temporaries, for the device,
+     * and so does a convolution's (FFTW_ESTIMATE, no wisdom of its own; finish_engine). */
+    const int cpu = cpu_only(p, finer), arrays_first = cpu && !convolution_only;
+    status = allocate_tables(p, cpu);
+    if (status == IM_OK && arrays_first)
         status = make_cpu_engine(p);
     if (status == IM_OK)
         status = o.periodic ? solver_periodic_kernel(p) : compute_kernel(p);
@@ -652,8 +726,10 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     p->direct_limit = (long)(1.5 * transformed / ((double)nx * ny) * log2(transformed));
     if (status == IM_OK && !cpu)
         status = choose_engine(p, finer);
-    if (status == IM_OK && !cpu) /* auto without a GPU, or a level VkFFT cannot transform: on the CPU */
-        status = p->engine == &solver_engine_cpu ? make_cpu_engine(p) : keep_host_k0(p);
+    /* on the CPU (a convolution's plan, auto without a GPU, or a level VkFFT cannot transform), or K(0)
+     * beside the device */
+    if (status == IM_OK && !arrays_first)
+        status = finish_engine(p);
     p->options.wisdom_path = NULL; /* not owned: used while planning only */
     if (status == IM_OK)
         status = solver_cascade_create(p);
@@ -664,6 +740,18 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
     p->plan_seconds = omp_get_wtime() - start;
     *out = p;
     return IM_OK;
+}
+
+int solver_plan_create_level(int nx, int ny, double delta, const im_solver_options *options,
+                             const im_solver_plan *finer, im_solver_plan **out)
+{
+    return create_plan(nx, ny, delta, options, finer, 0, out);
+}
+
+int solver_convolution_plan_create(int nx, int ny, double delta, const im_solver_options *options,
+                                   im_solver_plan **out)
+{
+    return create_plan(nx, ny, delta, options, NULL, 1, out);
 }
 
 int im_solver_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **out)
@@ -695,8 +783,9 @@ void im_solver_plan_free(im_solver_plan *p)
     fftw_free(p->inverse_spectrum);
     fftw_free(p->preconditioned);
     fftw_free(p->precondition_modes);
+    if (p->rows_out != p->rows_in) /* a convolution's plan has one array for both */
+        fftw_free(p->rows_out);
     fftw_free(p->rows_in);
-    fftw_free(p->rows_out);
     fftw_free(p->modes);
     solver_cascade_free(p);
     free(p);

@@ -33,8 +33,12 @@ struct im_solver_plan {
     double *preconditioned;           /* nx * ny: the gap in, M g out */
     fftw_complex *precondition_modes; /* ny * (nx/2 + 1) */
     fftw_plan precondition_forward, precondition_backward;
+    /* A convolution's plan (solver_convolution_plan_create: im_displacement_plan_create's) holds only
+     * what a convolution reads: the spectrum, rows_in and modes; rows_out is rows_in (the c2r writes
+     * the result back over the input rows), and it has no kernel table, preconditioner or work arrays. */
+    int convolution_only;
     double *rows_in;     /* ny * px: the grid's rows, zero-padded to px (right halves stay 0) */
-    double *rows_out;    /* ny * px */
+    double *rows_out;    /* ny * px (a convolution's plan: rows_in) */
     fftw_complex *modes; /* py * (px/2 + 1): the row transforms, then the 2-D transform */
     /* The 2-D transform of the padded grid, pruned: the x transforms of the py - ny zero rows are
      * skipped going forward, and those of the rows outside the result coming back. The column
@@ -63,6 +67,12 @@ void solver_plan_options(im_solver_options *o);
  * top plan), whose engine and device a coarse level shares. */
 int solver_plan_create_level(int nx, int ny, double delta, const im_solver_options *options,
                              const struct im_solver_plan *finer, struct im_solver_plan **out);
+
+/* A convolution's plan (convolution_only, on the CPU engine unless options ask for another): what
+ * im_solver_convolve needs of im_solver_plan_create's, with the same transforms (the same bits);
+ * im_solver_solve refuses it. */
+int solver_convolution_plan_create(int nx, int ny, double delta, const im_solver_options *options,
+                                   struct im_solver_plan **out);
 
 /* Coarse grid sides of a cascade level under an nx x ny grid; 0 when there is none (too small). */
 int solver_cascade_sides(int nx, int ny, int periodic, int *cx, int *cy);
