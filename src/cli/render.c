@@ -177,26 +177,13 @@ static void apply_norm(const render_options *o, im_colormap *c)
                                 o->logarithmic);
 }
 
-/* Notes values outside the norm (force > 0 only for contact maps), for the colour bar. */
-static void note_extremes(render_options *o, const im_field *field, const im_colormap *norm, int contact)
-{
-    for (size_t i = 0; i < im_field_count(field); ++i) {
-        double v = field->data[i];
-        if (isnan(v) || (contact && !(v > 0.0)))
-            continue;
-        int index = im_colormap_index(norm, v);
-        o->extend_under |= index == -1;
-        o->extend_over |= index == 256;
-    }
-}
-
 /* The contact map of the force read from input (named in an error: an infinite force, say). */
 static int render_contact(im_render_context *context, const im_field *force, const char *input, render_options *o,
                           im_image *image, im_colormap *norm)
 {
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
-    note_extremes(o, force, &style.colormap, 1);
+    frame_extends(force, &style.colormap, 1, &o->extend_under, &o->extend_over);
     style.tension = im_colormap_range_norm(&o->tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
@@ -218,7 +205,7 @@ static int render_height(im_render_context *context, const im_field *height, ren
         return status;
     im_height_style style = im_height_style_default(height);
     apply_norm(o, &style.colormap);
-    note_extremes(o, height, &style.colormap, 0);
+    frame_extends(height, &style.colormap, 0, &o->extend_under, &o->extend_over);
     style.pixels_per_patch = o->scale;
     style.contact = contact;
     *norm = style.colormap;
