@@ -70,6 +70,35 @@ check "--log with --linear refused" expect_exit 2 "expected one norm" \
 check "--linear on heights refused" expect_exit 2 "heights are drawn linear" \
   "$cli" render height "$dir/f.npy" --linear --out "$dir/x.png"
 
+# --clip P (S9): the default range with P % of the values cut at each end, the percentiles of the finite values
+# (forces: of those > 0, the top end only), computed here by sorting (numpy.percentile's default, without numpy);
+# a scan whose few spikes and dropouts set the default range is named on stderr with the option, drawn as before.
+python3 -c 'import math, struct, sys  # 40 x 30 float64 .npy: a 1e-5 relief, 10 dropouts (0), 9 spikes 3e-4, 4 NaN
+header = "{\x27descr\x27: \x27<f8\x27, \x27fortran_order\x27: False, \x27shape\x27: (30, 40), }"
+header += " " * (117 - len(header)) + "\n"
+values = [0.0 if i < 10 else 3e-4 if i % 131 == 7 else math.nan if i % 293 == 5 else 1e-5 + 5e-6 * math.sin(0.05 * i)
+          for i in range(1200)]
+open(sys.argv[1], "wb").write(b"\x93NUMPY\x01\x00" + struct.pack("<H", 118) + header.encode() + struct.pack("<1200d", *values))' "$dir/spiky.npy"
+percentile() { python3 -c 'import array, math, sys  # FILE PERCENT heights|forces
+data = open(sys.argv[1], "rb").read(); length = int.from_bytes(data[8:10], "little")
+kept = sorted(v for v in array.array("d", data[10 + length:]) if math.isfinite(v) and (sys.argv[3] == "heights" or v > 0))
+rank = float(sys.argv[2]) / 100 * (len(kept) - 1); k = math.floor(rank)
+value = kept[k] + (rank - k) * (kept[k + 1] - kept[k]) if k + 1 < len(kept) else kept[k]
+print("%.9g" % (value / 100 if len(sys.argv) > 4 else value))' "$@"; }
+"$cli" render height "$dir/spiky.npy" --clip 2 --out "$dir/norms/clip.png"
+check "height --clip 2: the 2nd .. 98th percentile" png_text "$dir/norms/clip.png" Norm \
+  "linear [$(percentile "$dir/spiky.npy" 2 heights), $(percentile "$dir/spiky.npy" 98 heights)]"
+"$cli" render contact "$dir/f.npy" --clip 5 --out "$dir/norms/clip-contact.png"
+check "contact --clip 5: log up to the 95th percentile of the forces" png_text "$dir/norms/clip-contact.png" Norm \
+  "log [$(percentile "$dir/f.npy" 95 forces tenth), $(percentile "$dir/f.npy" 95 forces)]"
+"$cli" render height "$dir/spiky.npy" --out "$dir/norms/spiky.png" 2>"$dir/spiky.err"
+check "outliers: one notice naming the file and --clip" bash -c "test \$(wc -l <'$dir/spiky.err') -eq 1 &&
+  grep -q '^indentmap: $dir/spiky.npy: a few outliers set the colour range: .* --clip 1 cuts 1% ' '$dir/spiky.err'"
+check "outliers: drawn min .. max as before" png_text "$dir/norms/spiky.png" Norm "linear [0, 0.0003]"
+"$cli" render height "$dir/f.npy" --out "$dir/norms/plain.png" 2>"$dir/plain.err"
+check "no outliers: no notice" test ! -s "$dir/plain.err"
+check "--clip 50 refused" expect_exit 2 "--clip 50: expected a percentage in [0, 50) cut at each end" \
+  "$cli" render height "$dir/f.npy" --clip 50 --out "$dir/x.png"
 check "missing --out" expect_exit 2 "--out is required" "$cli" render contact "$dir/f.npy"
 check "unknown mode" expect_exit 2 "expected contact, height or animate" "$cli" render map "$dir/f.npy"
 check "bad colour map" expect_exit 2 "expected viridis" "$cli" render contact "$dir/f.npy" --colormap jet --out "$dir/x.png"

@@ -107,6 +107,23 @@ check "resume reuses panels" grep -q "reusing" "$dir/log2"
 check "resume reads the table back" grep -q "table: 3 surfaces: 0 solved, 3 read back" "$dir/log2"
 check "resume solves no panel" grep -q "panels: 2 surfaces: 0 solved" "$dir/log2"
 
+# [output] frames_clip = 5 (render --clip's): the frames drawn again with 5 % of their values cut at each end of
+# their one range: the height frames' norm strictly inside the full one, the contact frames' top below the largest
+# force, the colour bar's triangles (the figure's pixels differ); the key removed again before what follows.
+norm_of() { grep -ao 'Norm.[a-z]* \[[^]]*\]' "$1" | cut -c6-; }
+cp -r "$dir/out" "$dir/unclipped"
+sed -i 's/^frame_count = 3$/frame_count = 3\nframes_clip = 5/' "$dir/small.ini"
+"$cli" run --resume "$dir/small.ini" >"$dir/log_clip" 2>&1
+check "frames_clip: resume succeeds" test $? -eq 0
+inside() { python3 -c 'import re, sys  # FULL CLIPPED ENDS: CLIPPED strictly inside FULL at the ENDS (lo, hi, both)
+full, cut = ([float(v) for v in re.findall(r"-?[0-9][-+0-9.e]*", text)] for text in sys.argv[1:3])
+sys.exit(not ((cut[0] > full[0] or sys.argv[3] == "hi") and cut[1] < full[1]))' "$@"; }
+check "frames_clip: the height frame's norm inside the full one" inside \
+  "$(norm_of "$dir/unclipped/frames/height_0002.png")" "$(norm_of "$dir/out/frames/height_0002.png")" both
+check "frames_clip: the contact frame's top below the largest force" inside \
+  "$(norm_of "$dir/unclipped/frames/contact_0002.png")" "$(norm_of "$dir/out/frames/contact_0002.png")" hi
+sed -i '/^frames_clip = 5$/d' "$dir/small.ini"
+
 # An edited scene: --resume solves again what the change touches (with a notice) and ends with the
 # results of a fresh run of the edited scene, not the old ones.
 cp -r "$dir/out" "$dir/old"

@@ -251,6 +251,15 @@ SAFE_VIEW(im_colormap_field_image, "field", (im_colormap_field_image(&colormap, 
 SAFE_RESULT(im_colormap_field_image, "rgb", (im_colormap_field_image(&colormap, &good, NULL), 1))
 REPORT(im_colormap_range_add, "range", im_colormap_range_add(NULL, &good))
 REPORT_VIEW(im_colormap_range_add, "field", im_colormap_range_add(&forces_range, BAD))
+REPORT(im_colormap_range_clipped, "range",
+       im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, (im_field *const[]){&good}, 1, 1.0, NULL))
+REPORT(im_colormap_range_clipped, "fields",
+       im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, NULL, 1, 1.0, &forces_range))
+REPORT(im_colormap_range_clipped, "percent",
+       im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, (im_field *const[]){&good}, 1, 50.0, &forces_range))
+REPORT_VIEW(im_colormap_range_clipped, "fields",
+            im_colormap_range_clipped(IM_COLORMAP_FORCES, (im_field *const[]){(im_field *)BAD}, 1, 1.0,
+                                      &forces_range))
 SAFE_RESULT(im_colormap_range_norm, "range", isnan(im_colormap_range_norm(NULL, IM_COLORMAP_MAGMA, NAN, NAN, 1).hi))
 SAFE_RESULT(im_colormap_range_norm, "values",
             isnan(im_colormap_range_norm(&unknown_range, IM_COLORMAP_MAGMA, NAN, NAN, 1).lo))

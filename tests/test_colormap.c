@@ -7,6 +7,8 @@
 #include "indentmap/render.h"
 #include "indentmap/status.h"
 
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The value at fraction t of the norm's range, in the norm's own scale. */
@@ -170,6 +172,115 @@ static void test_frames_share_the_range_of_all_their_values(void **state)
     assert_norm(&one, -2.0, 1.0, 0);
 }
 
+/* ---- a range with outliers cut (im_colormap_range_clipped) ---- */
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The reference percentile: every gathered value (kept as im_colormap_values says, written out here
+ * apart from the library's rule) sorted, then numpy.percentile's linear interpolation. */
+static double sorted_percentile(im_colormap_values values, im_field *const *fields, int count, double percent,
+                                size_t *n)
+{
+    size_t total = 0;
+    for (int i = 0; i < count; ++i)
+        total += (size_t)fields[i]->nx * fields[i]->ny;
+    double *kept = malloc((total + 1) * sizeof *kept);
+    *n = 0;
+    for (int i = 0; i < count; ++i)
+        for (size_t j = 0; j < (size_t)fields[i]->nx * fields[i]->ny; ++j) {
+            const double v = fields[i]->data[j];
+            if (values == IM_COLORMAP_HEIGHTS  ? isfinite(v)
+                : values == IM_COLORMAP_FORCES ? v > 0 && v < INFINITY
+                                               : v < 0 && v > -INFINITY)
+                kept[(*n)++] = values == IM_COLORMAP_TENSIONS ? -v : v;
+        }
+    qsort(kept, *n, sizeof *kept, by_value);
+    const double rank = percent / 100.0 * (double)(*n - 1);
+    const size_t k = (size_t)floor(rank);
+    const double result = *n == 0 ? NAN : k + 1 < *n ? kept[k] + (rank - k) * (kept[k + 1] - kept[k]) : kept[k];
+    free(kept);
+    return result;
+}
+
+/* Fields of size n x 1 filled by a seeded generator: each a different kind of trouble for a selection (ties, a
+ * row of zeros, spikes, NaN, ±Inf, sorted and reversed runs). */
+static im_field *awkward_field(int n, int kind, unsigned *seed)
+{
+    im_field *field;
+    assert_int_equal(im_field_create(n, 1, 1.0, &field), IM_OK);
+    for (int i = 0; i < n; ++i) {
+        *seed = *seed * 1664525u + 1013904223u;
+        const double u = (*seed >> 8) / 16777216.0; /* [0, 1) */
+        const double values[] = {u - 0.5,
+                                 floor(4.0 * u) - 1.0,
+                                 i < n / 8 ? 0.0 : 1e-5 * sin(0.1 * i) + (u < 0.01 ? 3e-4 : 0.0),
+                                 u < 0.05   ? NAN
+                                 : u < 0.07 ? INFINITY
+                                 : u < 0.09 ? -INFINITY
+                                            : u - 0.3,
+                                 (double)i,
+                                 (double)(n - i),
+                                 2.5};
+        field->data[i] = values[kind % 7];
+    }
+    return field;
+}
+
+/* The cut range is the sorted values' percentiles exactly (equal to the last bit: the same order statistics,
+ * found by selection in the library and by sorting here), for each kind of values, over fields of different
+ * sizes together, from 0 % (the smallest .. largest of im_colormap_range_add) to 49.99 %; one value, and
+ * none (an empty range), too. */
+static void test_clipped_range_is_the_sorted_percentile(void **state)
+{
+    (void)state;
+    unsigned seed = 12345u;
+    const double percents[] = {0.0, 0.3, 1.0, 2.5, 10.0, 33.3, 49.99};
+    const int sizes[] = {1, 2, 3, 17, 256, 1001};
+    for (int kind = 0; kind < 7; ++kind)
+        for (size_t s = 0; s < sizeof sizes / sizeof *sizes; ++s) {
+            im_field *fields[2] = {awkward_field(sizes[s], kind, &seed),
+                                   awkward_field(sizes[s] + 5, kind + 3, &seed)};
+            for (im_colormap_values values = IM_COLORMAP_FORCES; values <= IM_COLORMAP_TENSIONS; ++values)
+                for (size_t p = 0; p < sizeof percents / sizeof *percents; ++p) {
+                    im_colormap_range cut = im_colormap_range_empty(values), added = cut;
+                    assert_int_equal(im_colormap_range_clipped(values, fields, 2, percents[p], &cut), IM_OK);
+                    size_t n;
+                    const double lo = sorted_percentile(values, fields, 2, percents[p], &n),
+                                 hi = sorted_percentile(values, fields, 2, 100.0 - percents[p], &n);
+                    if (n == 0 ? cut.lo != INFINITY || cut.hi != -INFINITY : cut.lo != lo || cut.hi != hi)
+                        fail_msg("kind %d, %d + %d values, kind of values %d, %g %%: [%.17g, %.17g], sorted: [%.17g, "
+                                 "%.17g] of %zu",
+                                 kind, sizes[s], sizes[s] + 5, (int)values, percents[p], cut.lo, cut.hi, lo, hi, n);
+                    for (int i = 0; percents[p] == 0.0 && i < 2; ++i)
+                        assert_int_equal(im_colormap_range_add(&added, fields[i]), IM_OK);
+                    assert_true(percents[p] > 0.0 || (cut.lo == added.lo && cut.hi == added.hi));
+                }
+            im_field_free(fields[0]);
+            im_field_free(fields[1]);
+        }
+}
+
+/* A scan's row of dropouts and its spikes (S9): 1 % cut at each end leaves the relief's own range. */
+static void test_clipped_range_leaves_out_spikes_and_dropouts(void **state)
+{
+    (void)state;
+    im_field *scan;
+    assert_int_equal(im_field_create(100, 100, 1.0, &scan), IM_OK);
+    for (int i = 0; i < 100 * 100; ++i)
+        scan->data[i] = i < 80 ? 0.0 : 1e-3 + 1e-5 * sin(0.37 * i); /* 0.8 % dropouts */
+    for (int i = 5000; i < 5030; ++i)
+        scan->data[i] = 0.3; /* spikes */
+    im_colormap_range cut;
+    assert_int_equal(im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, &scan, 1, 1.0, &cut), IM_OK);
+    assert_true(cut.lo > 1e-3 - 1e-5 && cut.hi < 1e-3 + 1e-5);
+    assert_true(cut.hi - cut.lo > 1.9e-5);
+    im_field_free(scan);
+}
+
 /* The tension norm two frames share: 0 .. the largest tension -f of either (forces >= 0, NaN and -Inf left
  * out), as the one frame's im_contact_largest_tension and im_contact_tension_norm give it; [0, 1] and hi
  * not > 0 (no tension bar) where no force is < 0. */
@@ -243,6 +354,8 @@ int main(void)
         cmocka_unit_test(test_colours_are_table_entries),
         cmocka_unit_test(test_tension_ramp_is_an_ordered_blue),
         cmocka_unit_test(test_frames_share_the_range_of_all_their_values),
+        cmocka_unit_test(test_clipped_range_is_the_sorted_percentile),
+        cmocka_unit_test(test_clipped_range_leaves_out_spikes_and_dropouts),
         cmocka_unit_test(test_frames_share_the_largest_tension_of_all_their_forces),
         cmocka_unit_test(test_given_bounds_replace_the_range),
         cmocka_unit_test(test_a_range_without_values_takes_the_defaults),

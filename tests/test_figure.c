@@ -616,6 +616,46 @@ static void test_colorbar_right_of_the_scale_text(void **state)
     im_image_release(&image);
 }
 
+/* The rows from the bottom of the bottom-left panel (of side `small`, the others of side `large`, 2 x 2 panels)
+ * down to the top of the scale bar under it, measured in the PNG's pixels: the first dark pixel below the
+ * panel in a column of the bar (its data's third pixel). */
+static int scale_bar_drop(int small, int large)
+{
+    im_image images[4];
+    im_figure_panel panels[4];
+    for (int i = 0; i < 4; ++i) {
+        images[i] = make_image(i == 2 ? small : large, i == 2 ? small : large, 40 + i);
+        panels[i] = (im_figure_panel){&images[i], NULL, NULL};
+    }
+    im_figure figure = im_figure_default();
+    figure.rows = 2, figure.columns = 2, figure.panels = panels;
+    figure.dpi = 150;
+    const char *path = test_path("scale_bar.png");
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    int width, height, x, y;
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    find_image(rgb, width, height, &images[2], &x, &y);
+    int row = y + images[2].height;
+    for (const uint8_t *p; row < height; ++row)
+        if (p = rgb + ((size_t)row * width + x + images[2].data_x + 2) * 3, p[0] < 64 && p[1] < 64 && p[2] < 64)
+            break;
+    assert_true(row < height);
+    free(rgb);
+    for (int i = 0; i < 4; ++i)
+        im_image_release(&images[i]);
+    return row - (y + small);
+}
+
+/* The scale bar gives the bottom-left panel's scale and sits under it as under panels of one size, though the
+ * other panels are twice its side (S13: it sat under the larger cell, far below a 64^2 panel among 128^2). */
+static void test_scale_bar_under_its_panel(void **state)
+{
+    (void)state;
+    const int drop = scale_bar_drop(68, 68);
+    assert_true(drop > 0 && drop < 20);
+    assert_int_equal(scale_bar_drop(68, 132), drop);
+}
+
 /* Finds a PNG chunk of the given type whose data starts with prefix; returns its data or NULL. */
 static const uint8_t *find_chunk(const uint8_t *png, size_t size, const char *type, const char *prefix,
                                  size_t prefix_length)
@@ -1087,6 +1127,7 @@ int main(void)
         cmocka_unit_test(test_tension_colorbar),
         cmocka_unit_test(test_colorbar_beside_a_strip),
         cmocka_unit_test(test_colorbar_right_of_the_scale_text),
+        cmocka_unit_test(test_scale_bar_under_its_panel),
         cmocka_unit_test(test_png_metadata_pdf_svg),
         cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),

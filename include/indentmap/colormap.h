@@ -11,6 +11,7 @@
  *   im_colormap_range_empty, im_colormap_range_add, im_colormap_range_norm
  *                                               one default norm shared by several fields (forces,
  *                                               heights, or the tension of patches under tension)
+ *   im_colormap_range_clipped                   such a range with a percentage of outliers cut at each end
  *
  * A norm maps [lo, hi] linearly (or logarithmically, lo > 0) onto the 256 table entries:
  * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
@@ -103,6 +104,18 @@ im_colormap_range im_colormap_range_empty(im_colormap_values values);
 /* Widens range to the field's finite values (forces: those > 0; tensions: -f of those < 0). IM_EINVAL
  * (range unchanged) for a NULL argument or an invalid field view. */
 int im_colormap_range_add(im_colormap_range *range, const im_field *field);
+
+/* The range of the fields' values of the given kind (those im_colormap_range_add gathers) with `percent`
+ * percent of them cut at each end, for a picture that a few outliers (a scan's spikes, its row of dropouts,
+ * a needle asperity's force) would make one colour: lo the `percent` percentile, hi the 100 - `percent`
+ * percentile (forces, tensions: their norm takes hi only, starting at 0 or two decades below it). Exact:
+ * numpy.percentile's default (the order statistics at ranks floor(r) and floor(r) + 1 of the n values,
+ * interpolated linearly, r = percent / 100 (n - 1)), by selection in a copy of the values (8 bytes each,
+ * freed before returning); percent 0 gives im_colormap_range_add's smallest .. largest, an empty range
+ * when no value is gathered. IM_EINVAL (range unchanged) for a NULL range, NULL fields with count > 0,
+ * count < 0, percent outside [0, 50), an unknown kind or an invalid field view; IM_ENOMEM. */
+int im_colormap_range_clipped(im_colormap_values values, im_field *const *fields, int count, double percent,
+                              im_colormap_range *range);
 
 /* The norm of map over the range (the defaults of im_colormap_values where it is empty or one value),
  * with the caller's bounds put in: vmin and vmax (NaN: not given) replace its lo and hi; a logarithmic

@@ -144,6 +144,7 @@ PARITY = {
     "render --vmax": Python("contact_map", "vmax"),
     "render --log": Python("contact_map", "log"),
     "render --linear": Python("contact_map", "log", "log=False"),
+    "render --clip": Python("height_map", "clip"),
     "render --scale": Python("contact_map", "scale"),
     "render --circle": Python("contact_map", "circle_radius"),
     "render --circle-x": Python("contact_map", "circle_centre"),

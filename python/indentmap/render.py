@@ -74,11 +74,12 @@ class Image:
         return _png_bytes(self.save)
 
 
-def _contact_norm(forces, what, vmin, vmax, log):
+def _contact_norm(forces, what, vmin, vmax, log, clip=0.0):
     """(vmin, vmax) of the norm the force fields share, the library's for every front end (colormap.h:
-    im_colormap_range_norm): 0 .. the largest finite force (1 without any), a log norm over the two decades
-    below it, as the frames'; ``what`` names the fields in a TypeError."""
-    return _core.norm_range(forces, what, False, vmin, vmax, bool(log))
+    im_colormap_range_norm): 0 .. the largest finite force (1 without any; with ``clip`` P, the 100 - P
+    percentile of the forces > 0), a log norm over the two decades below it, as the frames'; ``what`` names the
+    fields in a TypeError."""
+    return _core.norm_range(forces, what, False, vmin, vmax, bool(log), float(clip))
 
 
 def _picture_texts(quantity, unit, colormap, norm, log, scale=None):
@@ -91,12 +92,13 @@ def _picture_texts(quantity, unit, colormap, norm, log, scale=None):
     return texts
 
 
-def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log=True, scale=2,
+def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log=True, clip=0.0, scale=2,
                 circle_radius=0.0, circle_centre=None, unit="", force_unit=""):
     """Patches in contact (force > 0) coloured by their force, the others grey; optionally the smooth
     contact circle (radius and centre in patches). The defaults are every front end's for forces (``indentmap
     render contact``, scenes, ``indent --frames``): magma on a log norm from a hundredth of the largest force
-    to it; ``log=False``: linear from 0. ``unit`` is the length unit of ``delta`` and ``force_unit`` that of the forces
+    to it; ``log=False``: linear from 0; ``clip`` P (percent, [0, 50), ``render --clip``) tops it at the 100 - P
+    percentile of the forces > 0 instead (a needle asperity's force), the forces above in the top colour. ``unit`` is the length unit of ``delta`` and ``force_unit`` that of the forces
     (``read(path).unit`` and ``Indentation(...).units["force"]``; "" for units of delta and E* δ²): the
     Image's 'Quantity' text then says 'local force f / N' as the program's pictures do.
 
@@ -105,7 +107,7 @@ def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log
 
     Example: ``im.contact_map(force, delta=t.delta, unit=t.unit, force_unit=run.units["force"],
     log=True).texts["Quantity"]`` is 'local force f / N' for a run in m and Pa."""
-    lo, hi = _contact_norm([force], "field", vmin, vmax, log)
+    lo, hi = _contact_norm([force], "field", vmin, vmax, log, clip)
     cx, cy = (float("nan"), float("nan")) if circle_centre is None else circle_centre
     return Image(_core.render(force, float(delta), height_map=False, colormap=colormap, vmin=lo, vmax=hi, log=log,
                               scale=int(scale), circle_radius=float(circle_radius), circle_x=cx, circle_y=cy,
@@ -113,18 +115,22 @@ def contact_map(force, *, delta=1.0, colormap="magma", vmin=None, vmax=None, log
                  _picture_texts("force", force_unit, colormap, (lo, hi), log, scale))
 
 
-def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, scale=2, contact=None, unit="",
-               quantity="height"):
+def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, clip=0.0, scale=2, contact=None,
+               unit="", quantity="height"):
     """Heights coloured and hill-shaded; ``contact`` (forces) outlines the patches in contact. ``unit`` is
     the length unit of ``delta`` and the heights ("" for units of delta); ``quantity`` what they are:
     'height', or a field of ``indent``: 'gap', 'displacement' or 'plastic' (the Image's 'Quantity' text,
     e.g. 'gap g / µm'). The norm is linear over the smallest .. largest finite height ([v - 1, v + 1] for a
-    flat surface v), as ``indentmap render height`` draws it, ``vmin`` / ``vmax`` replacing its ends.
+    flat surface v), as ``indentmap render height`` draws it; ``clip`` P (percent, [0, 50), ``render --clip``)
+    cuts P % of the finite heights at each end (the P and 100 - P percentiles, numpy.percentile's), for a scan
+    whose few spikes or dropouts would make it one colour, the heights beyond in the ends' colours; ``vmin`` /
+    ``vmax`` replace its ends.
 
-    Returns an Image; errors as ``contact_map``'s (``vmin`` not below the top: ``InvalidArgument``).
+    Returns an Image; errors as ``contact_map``'s (``vmin`` not below the top, ``clip`` outside [0, 50):
+    ``InvalidArgument``).
 
     Example: ``im.height_map(t.heights, delta=t.delta, unit=t.unit, contact=force).save("h.png")``."""
-    lo, hi = _core.norm_range([heights], "field", True, vmin, vmax, False)  # as render height's
+    lo, hi = _core.norm_range([heights], "field", True, vmin, vmax, False, float(clip))  # as render height's
     unit = _core.length_unit("unit", unit)
     return Image(_core.render(heights, float(delta), height_map=True, colormap=colormap, vmin=lo, vmax=hi, log=False,
                               scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact,
@@ -136,7 +142,8 @@ class Figure:
     """Panels of force fields with one shared norm and colour bar, like the paper's Fig. 4.
 
     ``Figure(fields, columns=3, labels=['(a)', ...], titles=[...])``; ``save('fig.pdf')`` writes PNG,
-    PDF or SVG by extension; a notebook shows it as PNG. Norm defaults as ``contact_map``'s (magma, log). ``unit`` (the length unit of ``delta``) and
+    PDF or SVG by extension; a notebook shows it as PNG. Norm defaults as ``contact_map``'s (magma, log; ``clip``
+    over all the panels' forces). ``unit`` (the length unit of ``delta``) and
     ``force_unit`` label the scale bar ('10 µm') and the colour bar ('local force f / N') as
     ``indentmap render contact`` labels a force file of that run; ``colorbar_label`` overrides the
     colour bar's. ``scale_bar`` is the bar's length in the unit of ``delta`` (0: a 1-2-5 length near a
@@ -150,12 +157,12 @@ class Figure:
     """
 
     def __init__(self, fields, *, delta=1.0, columns=None, labels=None, titles=None, colormap="magma", vmin=None,
-                 vmax=None, log=True, scale=2, circle_radius=0.0, colorbar_label=None,
+                 vmax=None, log=True, clip=0.0, scale=2, circle_radius=0.0, colorbar_label=None,
                  dpi=300.0, scale_bar=0.0, unit="", force_unit=""):
         self.fields = [_core.heights_array(f, "panel field") for f in fields]
         if not self.fields:
             raise ValueError("Figure: no fields")
-        self.norm = _contact_norm(self.fields, "panel field", vmin, vmax, log)
+        self.norm = _contact_norm(self.fields, "panel field", vmin, vmax, log, clip)
         self.columns = len(self.fields) if columns is None else int(columns)
         self.labels, self.titles = labels, titles
         self.style = dict(height_map=False, colormap=colormap, log=log, scale=int(scale),

@@ -661,38 +661,57 @@ static PyObject *use_backend(PyObject *self, PyObject *args)
     return open_context(backend) < 0 ? NULL : renderer(self, NULL);
 }
 
-/* norm_range(fields, what, heights, vmin, vmax, log) -> (lo, hi): the default norm every front end gives the
- * fields together (colormap.h: im_colormap_range_norm), forces or (heights) heights, with vmin / vmax (None:
- * not given); TypeError naming `what` for a field that is not a 2-D array of numbers. */
+/* The range of the values of kind `values` over the arrays of sequence, `clip` percent cut at each end
+ * (colormap.h: im_colormap_range_clipped; 0: smallest .. largest); -1 with the exception set. */
+static int fields_range(PyObject *sequence, const char *what, im_colormap_values values, double clip,
+                        im_colormap_range *range)
+{
+    const Py_ssize_t count = PySequence_Fast_GET_SIZE(sequence);
+    PyArrayObject **arrays = PyMem_Calloc((size_t)count + 1, sizeof *arrays);
+    im_field *views = PyMem_Calloc((size_t)count + 1, sizeof *views),
+             **fields = PyMem_Calloc((size_t)count + 1, sizeof *fields);
+    Py_ssize_t made = 0;
+    for (; arrays && views && fields && made < count; ++made) {
+        arrays[made] = py_heights_array(PySequence_Fast_GET_ITEM(sequence, made), what);
+        if (!arrays[made])
+            break;
+        views[made] = py_field_view(arrays[made], 1.0);
+        fields[made] = &views[made];
+    }
+    int status = !arrays || !views || !fields ? (PyErr_NoMemory(), IM_ENOMEM)
+                 : made < count               ? IM_EINVAL /* py_heights_array's TypeError set */
+                                              : im_colormap_range_clipped(values, fields, (int)count, clip, range);
+    if (arrays && views && fields && made == count && status != IM_OK)
+        py_raise_status(status);
+    for (Py_ssize_t i = 0; arrays && i < made; ++i)
+        Py_DECREF(arrays[i]);
+    PyMem_Free(arrays);
+    PyMem_Free(views);
+    PyMem_Free(fields);
+    return status == IM_OK ? 0 : -1;
+}
+
+/* norm_range(fields, what, heights, vmin, vmax, log, clip) -> (lo, hi): the default norm every front end gives
+ * the fields together (colormap.h: im_colormap_range_norm), forces or (heights) heights, `clip` percent cut at
+ * each end (render --clip), with vmin / vmax (None: not given); TypeError naming `what` for a field that is not
+ * a 2-D array of numbers, InvalidArgument for a clip outside [0, 50). */
 static PyObject *norm_range(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *fields, *vmin_obj, *vmax_obj;
     const char *what;
     int heights, logarithmic;
-    if (!PyArg_ParseTuple(args, "OspOOp", &fields, &what, &heights, &vmin_obj, &vmax_obj, &logarithmic))
+    double clip;
+    if (!PyArg_ParseTuple(args, "OspOOpd", &fields, &what, &heights, &vmin_obj, &vmax_obj, &logarithmic, &clip))
         return NULL;
     double vmin = vmin_obj == Py_None ? NAN : PyFloat_AsDouble(vmin_obj);
     double vmax = vmax_obj == Py_None ? NAN : PyFloat_AsDouble(vmax_obj);
     PyObject *sequence = PyErr_Occurred() ? NULL : PySequence_Fast(fields, "fields: expected a sequence of arrays");
     if (!sequence)
         return NULL;
-    im_colormap_range range = im_colormap_range_empty(heights ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES);
-    int failed = 0;
-    for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(sequence) && !failed; ++i) {
-        PyArrayObject *array = py_heights_array(PySequence_Fast_GET_ITEM(sequence, i), what);
-        if (!array) {
-            failed = 1;
-            continue; /* the loop's condition ends it */
-        }
-        im_field field = py_field_view(array, 1.0);
-        int status = im_colormap_range_add(&range, &field);
-        Py_DECREF(array);
-        if (status != IM_OK) {
-            py_raise_status(status);
-            failed = 1;
-        }
-    }
+    im_colormap_range range;
+    const int failed = fields_range(sequence, what, heights ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES, clip,
+                                    &range) != 0;
     Py_DECREF(sequence);
     if (failed)
         return NULL;
@@ -702,7 +721,7 @@ static PyObject *norm_range(PyObject *self, PyObject *args)
 
 PyMethodDef py_render_methods[] = {
     {"norm_range", norm_range, METH_VARARGS,
-     "norm_range(fields, what, heights, vmin, vmax, log) -> (lo, hi): the fields' shared default norm"},
+     "norm_range(fields, what, heights, vmin, vmax, log, clip) -> (lo, hi): the fields' shared default norm"},
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
     {"write_png", write_png, METH_VARARGS, "write_png(path, rgba, texts)"},

@@ -77,6 +77,28 @@ def test_default_norms_are_the_programs_where_values_are_missing_or_one():
         im.height_map(np.full((4, 4), 3.0), vmin=5.0)
 
 
+def test_clip_cuts_numpys_percentiles_of_the_finite_values(rough64):
+    """clip=P (render --clip): heights from np.percentile's P to its 100 - P over the finite values (NaN left out),
+    forces up to the 100 - P percentile of those > 0 (the log norm two decades below it), for contact_map and a
+    Figure's panels together; clip=0 is the default picture, bit for bit; [0, 50) or InvalidArgument."""
+    heights = rough64.copy()
+    heights[0, :] = 0.0  # a row of dropouts
+    heights[5, 5], heights[9, 9], heights[7, 3] = np.nan, 40.0, -np.inf  # a missing point, a spike
+    finite = heights[np.isfinite(heights)]
+    for clip in (0.5, 2.0, 25.0):
+        lo, hi = np.percentile(finite, [clip, 100 - clip])
+        assert im.height_map(heights, clip=clip).texts["Norm"] == f"linear [{lo:.9g}, {hi:.9g}]"
+    assert (im.height_map(heights, clip=0).rgba == im.height_map(heights).rgba).all()
+    force = np.clip(rough64 - np.median(rough64), 0.0, None)
+    force[3, 3] = 100 * force.max()  # a needle asperity
+    top = np.percentile(force[force > 0], 99)
+    assert im.contact_map(force, clip=1).texts["Norm"] == f"log [{top / 100:.9g}, {top:.9g}]"
+    both = np.percentile(np.concatenate([force[force > 0], 2 * force[force > 0]]), 95)
+    assert im.Figure([force, 2 * force], clip=5).norm == pytest.approx((both / 100, both), rel=1e-15)
+    with pytest.raises(im.InvalidArgument, match="percent"):
+        im.height_map(heights, clip=50)
+
+
 def test_height_map_and_png(tmp_path, rough64):
     picture = im.height_map(rough64, scale=1)
     assert picture.rgba.shape[:2] == (64 + 4, 64 + 4)

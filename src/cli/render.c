@@ -43,6 +43,11 @@ static void usage(FILE *stream)
             "                      or grey\n"
             "  --vmin V, --vmax V  norm range (default: the two decades below the largest force, log; 0 ..\n"
             "                      largest force with --linear; min .. max height)\n"
+            "  --clip P            cut P percent of the values (P in [0, 50); default 0) at each end of the\n"
+            "                      default range: heights from the P to the 100 - P percentile, forces up to\n"
+            "                      the 100 - P percentile of those > 0 (a scan's spikes and dropouts, a\n"
+            "                      needle asperity's force); the values beyond take the ends' colours, the\n"
+            "                      colour bar's triangles; --vmin/--vmax replace its ends\n"
             "  --log               logarithmic norm (vmin > 0; default vmin: vmax / 100): the default for\n"
             "                      forces (contact, animate)\n"
             "  --linear            linear norm of forces (contact, animate; heights are linear)\n"
@@ -66,8 +71,8 @@ static void usage(FILE *stream)
 typedef struct render_options {
     const char *mode, *out, *contact, *label, *title, *titles, *quantity, *frames;
     im_colormap_id map;
-    double vmin, vmax, circle, circle_x, circle_y, dpi, fps;
-    int has_vmin, has_vmax, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
+    double vmin, vmax, clip, circle, circle_x, circle_y, dpi, fps;
+    int has_vmin, has_vmax, has_clip, has_circle_x, has_circle_y, logarithmic, scale, raw, columns;
     int map_given, linear;         /* --colormap, --linear: else forces take the frames' magma, log */
     im_colormap_range shared;      /* default norm: the union of the fields' values */
     im_colormap_range tensions;    /* the tension -f of all the fields: one tension norm, its bar where hi > 0 */
@@ -99,6 +104,7 @@ enum {
     OPT_TITLES,
     OPT_COLUMNS,
     OPT_LINEAR,
+    OPT_CLIP,
     OPT_HELP
 };
 
@@ -109,6 +115,7 @@ static const struct option LONG_OPTIONS[] = {{"out", required_argument, 0, OPT_O
                                              {"vmax", required_argument, 0, OPT_VMAX},
                                              {"log", no_argument, 0, OPT_LOG},
                                              {"linear", no_argument, 0, OPT_LINEAR},
+                                             {"clip", required_argument, 0, OPT_CLIP},
                                              {"scale", required_argument, 0, OPT_SCALE},
                                              {"circle", required_argument, 0, OPT_CIRCLE},
                                              {"circle-x", required_argument, 0, OPT_CX},
@@ -144,6 +151,7 @@ static int apply_option(int code, const char *arg, void *state)
     case OPT_VMAX: o->has_vmax = 1; return cli_parse_double("--vmax", arg, -1e300, 1e300, &o->vmax);
     case OPT_LOG: o->logarithmic = 1; return 0;
     case OPT_LINEAR: o->linear = 1; return 0;
+    case OPT_CLIP: o->has_clip = 1; return cli_parse_double("--clip", arg, 0.0, 50.0, &o->clip);
     case OPT_SCALE: return cli_parse_int("--scale", arg, 1, 64, &o->scale);
     case OPT_CIRCLE: return cli_parse_double("--circle", arg, 0.0, 1e9, &o->circle);
     case OPT_CX: o->has_circle_x = 1; return cli_parse_double("--circle-x", arg, -1e9, 1e9, &o->circle_x);
@@ -169,26 +177,13 @@ static void apply_norm(const render_options *o, im_colormap *c)
                                 o->logarithmic);
 }
 
-/* Notes values outside the norm (force > 0 only for contact maps), for the colour bar. */
-static void note_extremes(render_options *o, const im_field *field, const im_colormap *norm, int contact)
-{
-    for (size_t i = 0; i < im_field_count(field); ++i) {
-        double v = field->data[i];
-        if (isnan(v) || (contact && !(v > 0.0)))
-            continue;
-        int index = im_colormap_index(norm, v);
-        o->extend_under |= index == -1;
-        o->extend_over |= index == 256;
-    }
-}
-
 /* The contact map of the force read from input (named in an error: an infinite force, say). */
 static int render_contact(im_render_context *context, const im_field *force, const char *input, render_options *o,
                           im_image *image, im_colormap *norm)
 {
     im_contact_style style = im_contact_style_default(force);
     apply_norm(o, &style.colormap);
-    note_extremes(o, force, &style.colormap, 1);
+    frame_extends(force, &style.colormap, 1, &o->extend_under, &o->extend_over);
     style.tension = im_colormap_range_norm(&o->tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
     style.pixels_per_patch = o->scale;
     style.circle_radius = o->circle;
@@ -210,7 +205,7 @@ static int render_height(im_render_context *context, const im_field *height, ren
         return status;
     im_height_style style = im_height_style_default(height);
     apply_norm(o, &style.colormap);
-    note_extremes(o, height, &style.colormap, 0);
+    frame_extends(height, &style.colormap, 0, &o->extend_under, &o->extend_over);
     style.pixels_per_patch = o->scale;
     style.contact = contact;
     *norm = style.colormap;
@@ -327,15 +322,59 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     return status;
 }
 
+/* A picture is dominated by outliers where the central 98 % of its values span less than a twentieth of the
+ * colour range: the bulk of it then takes at most 13 of the 256 colours (S9: frt-1's spikes and dropouts
+ * leave its relief one colour). */
+#define OUTLIER_PERCENT 1.0
+#define OUTLIER_SHARE 20.0
+
+/* The index of the field whose values reach farthest beyond the central range. */
+static int farthest_outlier(im_field **fields, int count, const im_colormap_range *central)
+{
+    int farthest = 0;
+    double reach = -INFINITY;
+    for (int i = 0; i < count; ++i) {
+        const im_colormap_range own = frame_range(&fields[i], 1, IM_COLORMAP_HEIGHTS);
+        const double beyond = fmax(central->lo - own.lo, own.hi - central->hi);
+        if (beyond > reach)
+            reach = beyond, farthest = i;
+    }
+    return farthest;
+}
+
+/* Where a few outliers set the default linear range, one notice on stderr naming the file that holds the
+ * farthest and suggesting --clip; the picture is drawn as without it. */
+static int note_outliers(const render_options *o, char **inputs, im_field **fields, int count)
+{
+    im_colormap_range central;
+    int status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, fields, count, OUTLIER_PERCENT, &central);
+    const double full = o->shared.hi - o->shared.lo, bulk = central.hi - central.lo;
+    if (status != IM_OK || !(bulk * OUTLIER_SHARE < full))
+        return status;
+    const char *unit = fields[0]->value_unit[0] ? fields[0]->value_unit : fields[0]->unit;
+    fprintf(stderr,
+            "indentmap: %s: a few outliers set the colour range: the central %g%% of the values span %.3g%s%s of "
+            "its %.3g%s%s, %.0f of the 256 colours; --clip %g cuts %g%% of the values at each end (or set "
+            "--vmin/--vmax)\n",
+            inputs[farthest_outlier(fields, count, &central)], 100.0 - 2.0 * OUTLIER_PERCENT, bulk,
+            unit[0] ? " " : "", unit, full, unit[0] ? " " : "", unit, ceil(256.0 * bulk / full), OUTLIER_PERCENT,
+            OUTLIER_PERCENT);
+    return IM_OK;
+}
+
 /* The default norm of several fields: the union of their finite values (colormap.h: forces 0 .. the
- * largest; heights min .. max), its defaults only when that union is empty or a single value. Taking
- * the union of each field's default range instead let one all-zero force field widen the norm of
- * every frame to its default [0, 1]. */
-static void set_shared_range(render_options *o, im_field **fields, int count)
+ * largest; heights min .. max), its defaults only when that union is empty or a single value, with --clip
+ * percent cut at each end. Taking the union of each field's default range instead let one all-zero force
+ * field widen the norm of every frame to its default [0, 1]. */
+static int set_shared_range(render_options *o, char **inputs, im_field **fields, int count)
 {
     int height = strcmp(o->mode, "height") == 0;
-    o->shared = frame_range(fields, count, height ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES);
+    const im_colormap_values values = height ? IM_COLORMAP_HEIGHTS : IM_COLORMAP_FORCES;
+    o->shared = frame_range(fields, count, values);
     o->tensions = frame_range(fields, height ? 0 : count, IM_COLORMAP_TENSIONS); /* heights: none */
+    if (o->clip > 0.0)
+        return im_colormap_range_clipped(values, fields, count, o->clip, &o->shared);
+    return height && !o->has_clip && !o->has_vmin && !o->has_vmax ? note_outliers(o, inputs, fields, count) : IM_OK;
 }
 
 /* Reads the fields and sets the default norm. */
@@ -349,8 +388,7 @@ static int read_fields(render_options *o, char **inputs, int count, im_field **f
         if (i == 0)
             memcpy(o->value_unit, fields[i]->value_unit, sizeof o->value_unit);
     }
-    set_shared_range(o, fields, count);
-    return IM_OK;
+    return set_shared_range(o, inputs, fields, count);
 }
 
 /* Frame i: its contact map into DIR/contact_NNNN.png, as a figure or (--raw) the map alone; for a GIF,
@@ -461,6 +499,8 @@ static int check_usage(const render_options *o, int inputs)
         fprintf(stderr, "indentmap: render %s: %s is required\n", o->mode, animation ? "--frames" : "--out");
     else if (o->raw && !animation && strstr(o->out, ".png") == NULL)
         fprintf(stderr, "indentmap: --raw writes PNG: expected --out FILE.png\n");
+    else if (!(o->clip < 50.0))
+        fprintf(stderr, "indentmap: --clip %g: expected a percentage in [0, 50) cut at each end\n", o->clip);
     else if (o->logarithmic && o->linear)
         fprintf(stderr, "indentmap: --log and --linear: expected one norm\n");
     else if (o->linear && strcmp(o->mode, "height") == 0)

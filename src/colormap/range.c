@@ -6,25 +6,120 @@
 #include "core/args.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
 
 im_colormap_range im_colormap_range_empty(im_colormap_values values)
 {
     return (im_colormap_range){.values = values, .lo = INFINITY, .hi = -INFINITY};
 }
 
+/* Whether a field's value is one a range of this kind gathers, and as what (*v): heights every finite
+ * value, forces those > 0, tensions -f of those < 0. */
+static int gathered(im_colormap_values values, double value, double *v)
+{
+    *v = values == IM_COLORMAP_TENSIONS ? -value : value;
+    return isfinite(*v) && (values == IM_COLORMAP_HEIGHTS || *v > 0.0);
+}
+
 int im_colormap_range_add(im_colormap_range *range, const im_field *field)
 {
     ARG_REQUIRE(range, "range");
     ARG_VIEW(field, "field");
-    const int positive = range->values != IM_COLORMAP_HEIGHTS; /* forces > 0, tensions -f > 0 */
-    const double sign = range->values == IM_COLORMAP_TENSIONS ? -1.0 : 1.0;
     for (size_t i = 0; i < im_field_count(field); ++i) {
-        double v = sign * field->data[i];
-        if (isfinite(v) && (!positive || v > 0.0)) {
+        double v;
+        if (gathered(range->values, field->data[i], &v)) {
             range->lo = fmin(range->lo, v);
             range->hi = fmax(range->hi, v);
         }
     }
+    return IM_OK;
+}
+
+/* Reorders values[0..n) so that values[k] is the k-th smallest, none before it larger and none after it
+ * smaller: Wirth's selection (Hoare's partition, which splits ties such as a scan's row of zeros evenly)
+ * with the median of three as pivot. Signed indices: j runs to left - 1. */
+static void select_kth(double *values, ptrdiff_t n, ptrdiff_t k)
+{
+    ptrdiff_t left = 0, right = n - 1;
+    while (left < right) {
+        const double a = values[left], b = values[left + (right - left) / 2], c = values[right];
+        const double pivot = fmax(fmin(a, b), fmin(fmax(a, b), c));
+        ptrdiff_t i = left, j = right;
+        do {
+            while (values[i] < pivot)
+                ++i;
+            while (pivot < values[j])
+                --j;
+            if (i <= j) {
+                const double swap = values[i];
+                values[i++] = values[j];
+                values[j--] = swap;
+            }
+        } while (i <= j);
+        if (j < k)
+            left = i;
+        if (k < i)
+            right = j;
+    }
+}
+
+/* The percentile of values[0..n) (n > 0; reordered), numpy.percentile's default: the order statistics at
+ * ranks floor(r) and floor(r) + 1 interpolated linearly, r = percent / 100 (n - 1). */
+static double percentile(double *values, size_t n, double percent)
+{
+    const double rank = percent / 100.0 * (double)(n - 1);
+    const size_t k = (size_t)floor(rank);
+    select_kth(values, (ptrdiff_t)n, (ptrdiff_t)k);
+    if (rank == (double)k)
+        return values[k];
+    double above = INFINITY; /* the next order statistic: the smallest of those after rank k */
+    for (size_t i = k + 1; i < n; ++i)
+        above = fmin(above, values[i]);
+    return values[k] + (rank - (double)k) * (above - values[k]);
+}
+
+/* The values of the fields (valid views) a range of this kind gathers, in one array (*values NULL when there is none). */
+static int gather_values(im_colormap_values values, im_field *const *fields, int count, double **gathered_values,
+                         size_t *n)
+{
+    size_t total = 0;
+    for (int i = 0; i < count; ++i)
+        total += im_field_count(fields[i]);
+    *n = 0;
+    *gathered_values = total ? malloc(total * sizeof **gathered_values) : NULL;
+    if (total && !*gathered_values)
+        return im_fail(IM_ENOMEM, "im_colormap_range_clipped: %zu values: out of memory", total);
+    for (int i = 0; i < count; ++i)
+        for (size_t j = 0; j < im_field_count(fields[i]); ++j)
+            *n += gathered(values, fields[i]->data[j], &(*gathered_values)[*n]);
+    return IM_OK;
+}
+
+int im_colormap_range_clipped(im_colormap_values values, im_field *const *fields, int count, double percent,
+                              im_colormap_range *range)
+{
+    ARG_REQUIRE(range, "range");
+    ARG_REQUIRE(fields || count == 0, "fields");
+    if (count < 0 || !(percent >= 0.0 && percent < 50.0) || values < IM_COLORMAP_FORCES ||
+        values > IM_COLORMAP_TENSIONS)
+        return im_fail(IM_EINVAL,
+                       "im_colormap_range_clipped: count %d, percent %g, values %d: expected count >= 0, percent "
+                       "in [0, 50) and a kind of values of colormap.h",
+                       count, percent, (int)values);
+    for (int i = 0; i < count; ++i)
+        ARG_VIEW(fields[i], "fields");
+    double *gathered_values;
+    size_t n;
+    int status = gather_values(values, fields, count, &gathered_values, &n);
+    if (status != IM_OK)
+        return status;
+    *range = im_colormap_range_empty(values);
+    if (n) {
+        range->lo = percentile(gathered_values, n, percent);
+        range->hi = percentile(gathered_values, n, 100.0 - percent);
+    }
+    free(gathered_values);
     return IM_OK;
 }
 

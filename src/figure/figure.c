@@ -355,8 +355,10 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
     return IM_OK;
 }
 
-/* Under the bottom-left panel: a bar of the given length and its value, in δ or the unit; the
- * text centred under the bar, or starting at the panel's edge when the bar is shorter. */
+/* Under the bottom-left panel, whose scale it gives: a bar of the given length and its value, in δ or the
+ * unit; the text centred under the bar, or starting at the panel's edge when the bar is shorter. It hangs
+ * from that panel's image, not its cell: under a panel smaller than the others it sat a cell's height below
+ * it (S13). */
 static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
     int index = (f->rows - 1) * f->columns, x, y;
@@ -365,7 +367,7 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
     char text[64];
     double pixels;
     scale_bar(f, text, sizeof text, &pixels);
-    double top = y + l->cell_height + 0.5 * l->font, left = x + image->data_x;
+    double top = y + image->height + 0.5 * l->font, left = x + image->data_x;
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, pixels, round(0.3 * l->font));
     cairo_fill(cr);

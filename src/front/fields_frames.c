@@ -69,8 +69,8 @@ static int write_frame(im_render_context *context, const fields_frames *f, const
         snprintf(title, sizeof title, "step %d: N = %.4g %s", step, r->load, f->force_unit);
     im_figure_colorbar_label("force", f->force_unit, label, sizeof label); /* (96 bytes: fits any unit here) */
     im_figure_colorbar_label("tension", f->force_unit, tension_label, sizeof tension_label);
-    const frame_words words = {title,         &norms[0], label,        tension_bar ? &norms[1] : NULL,
-                               tension_label, f->texts,  f->text_count};
+    const frame_words words = {
+        title, &norms[0], label, tension_bar ? &norms[1] : NULL, tension_label, f->texts, f->text_count, 0, 0};
     status = frame_contact_render(context, &contact, &image);
     if (status == IM_OK)
         status = im_frame_path(path, sizeof path, f->frames, "contact", step - 1);

@@ -15,6 +15,18 @@ im_colormap_range frame_range(im_field *const *fields, int count, im_colormap_va
     return range;
 }
 
+void frame_extends(const im_field *field, const im_colormap *norm, int forces, int *under, int *over)
+{
+    for (size_t i = 0; i < im_field_count(field); ++i) {
+        const double v = field->data[i];
+        if (isnan(v) || (forces && !(v > 0.0)))
+            continue;
+        const int index = im_colormap_index(norm, v);
+        *under |= index == -1;
+        *over |= index == 256;
+    }
+}
+
 int frame_contact_render(im_render_context *context, const frame_contact *contact, im_image *image)
 {
     im_contact_style style = im_contact_style_default(contact->force);
@@ -39,7 +51,8 @@ int frame_figure_write(const im_image *image, const frame_words *words, const ch
     figure.tension_colormap = words->tension;
     figure.tension_label = words->tension_label;
     figure.dpi = 150;
-    figure.extend_under = words->norm->logarithmic;
+    figure.extend_under = words->norm->logarithmic || words->extend_under;
+    figure.extend_over = words->extend_over;
     figure.texts = words->texts;
     figure.text_count = words->text_count;
     return kept ? im_figure_write_frame(&figure, path, kept) : im_figure_write(&figure, path);

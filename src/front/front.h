@@ -263,6 +263,11 @@ int fields_frames_pixels_per_patch(int nx, int ny);
  * norm the frames share. */
 im_colormap_range frame_range(im_field *const *fields, int count, im_colormap_values values);
 
+/* Sets *under / *over (left as they are otherwise) where some value of field lies below / above norm (forces: of
+ * those > 0, the ones drawn through it; NaN never): the colour bar's extension triangles, by which a clipped range
+ * (im_colormap_range_clipped) shows. */
+void frame_extends(const im_field *field, const im_colormap *norm, int forces, int *under, int *over);
+
 /* A step's contact map: its force field through norm (tension: through tension) at pixels_per_patch,
  * with the smooth contact circle of circle_radius patches (0 or NaN: none) about (circle_x, circle_y)
  * in patches. */
@@ -285,10 +290,12 @@ typedef struct frame_words {
     const char *tension_label;
     const im_png_text *texts; /* PNG text chunks (e.g. the scene's contents); NULL: none */
     int text_count;
+    int extend_under, extend_over; /* values lie below / above norm (frame_extends): its triangles */
 } frame_words;
 
 /* Writes image as a frame's figure at path (figure.h: one panel, the colour bar with an under triangle on
- * a log norm, the scale bar, 150 dpi), atomically; kept (not NULL) receives the frame's pixels. */
+ * a log norm or where extend_under says, an over triangle where extend_over says, the scale bar, 150 dpi),
+ * atomically; kept (not NULL) receives the frame's pixels. */
 int frame_figure_write(const im_image *image, const frame_words *words, const char *path, im_image *kept);
 
 /* ---- the units of the history's and the analysis' columns (units.c) ---- */

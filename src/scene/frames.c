@@ -123,6 +123,7 @@ void scene_frame_load_title(const double *load_stars, int count, int index, char
 typedef struct frame_norms {
     im_colormap force, tension, height;
     int has_tension;
+    int force_under, force_over, height_under, height_over; /* some step's values lie beyond (frame_extends) */
 } frame_norms;
 
 /* One frame's figure, written as PNG by whichever thread takes it, with the status and message of that
@@ -130,6 +131,7 @@ typedef struct frame_norms {
 typedef struct frame_figure {
     im_image image, frame;
     const im_colormap *norm, *tension; /* tension: the tension's bar, NULL for none */
+    int extend_under, extend_over;     /* the colour bar's triangles */
     const char *label, *prefix;
     int index, keep; /* keep: the frame's pixels are wanted (the contact GIF's) */
     char title[64];
@@ -155,8 +157,8 @@ static int write_frame(const im_scene *scene, frame_figure *f)
                                {"Pixels per patch", scale_text}};
     run_figure_texts texts;
     status = scene_figure_texts(scene, own, 4, &texts);
-    const frame_words words = {f->title,    f->norm,    f->label, f->tension, "tensile force −f / (E* δ²)",
-                               texts.texts, texts.count};
+    const frame_words words = {f->title,    f->norm,     f->label,        f->tension,    "tensile force −f / (E* δ²)",
+                               texts.texts, texts.count, f->extend_under, f->extend_over};
     if (status == IM_OK)
         status = frame_figure_write(&f->image, &words, path, f->keep ? &f->frame : NULL);
     run_figure_texts_free(&texts);
@@ -185,11 +187,15 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
 {
     figures[0] = (frame_figure){.norm = &norms->force,
                                 .tension = norms->has_tension ? &norms->tension : NULL,
+                                .extend_under = norms->force_under,
+                                .extend_over = norms->force_over,
                                 .label = "local force f / (E* δ²)",
                                 .prefix = "contact",
                                 .index = i,
                                 .keep = (scene->animation & IM_ANIMATION_GIF) != 0};
     figures[1] = (frame_figure){.norm = &norms->height,
+                                .extend_under = norms->height_under,
+                                .extend_over = norms->height_over,
                                 .label = "deformed height (h − u) / δ",
                                 .prefix = "height",
                                 .index = i};
@@ -205,22 +211,40 @@ static int render_step(im_render_context *context, const im_scene *scene, const 
     return status;
 }
 
+/* The norms every step's frames share: the range of all their values, [output] frames_clip percent cut at
+ * each end (forces: the top), and whether some step's values lie beyond them. */
+static int make_frame_norms(const im_scene *scene, const framed_history *h, frame_norms *norms)
+{
+    const double clip = scene->frames_clip;
+    im_colormap_range forces = frame_range(h->force, h->count, IM_COLORMAP_FORCES),
+                      heights = frame_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
+    const im_colormap_range tensions = frame_range(h->force, h->count, IM_COLORMAP_TENSIONS);
+    int status = clip > 0.0 ? im_colormap_range_clipped(IM_COLORMAP_FORCES, h->force, h->count, clip, &forces)
+                            : IM_OK;
+    if (status == IM_OK && clip > 0.0)
+        status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, h->deformed, h->count, clip, &heights);
+    norms->force = scene_force_norm(scene, &forces);
+    norms->tension = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    norms->has_tension = tensions.hi > 0.0;
+    norms->height = im_colormap_range_norm(&heights, IM_COLORMAP_VIRIDIS, NAN, NAN, 0);
+    norms->force_under = norms->force_over = norms->height_under = norms->height_over = 0;
+    for (int i = 0; i < h->count; ++i) {
+        frame_extends(h->force[i], &norms->force, 1, &norms->force_under, &norms->force_over);
+        frame_extends(h->deformed[i], &norms->height, 0, &norms->height_under, &norms->height_over);
+    }
+    return status;
+}
+
 /* Renders every step on this thread, which holds the GL context, then writes the figures side by side
  * (cairo layout and PNG encoding: a sixth of fig4's CPU time at one thread); the contact frames' pixels
  * go to gif_frames. */
 static int write_frames(const im_scene *scene, im_render_context *context, const framed_history *h,
                         im_image *gif_frames, frame_norms *norms)
 {
-    const im_colormap_range forces = frame_range(h->force, h->count, IM_COLORMAP_FORCES),
-                            tensions = frame_range(h->force, h->count, IM_COLORMAP_TENSIONS),
-                            heights = frame_range(h->deformed, h->count, IM_COLORMAP_HEIGHTS);
-    norms->force = scene_force_norm(scene, &forces);
-    norms->tension = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
-    norms->has_tension = tensions.hi > 0.0;
-    norms->height = im_colormap_range_norm(&heights, IM_COLORMAP_VIRIDIS, NAN, NAN, 0);
+    int status = make_frame_norms(scene, h, norms);
     int count = 2 * h->count;
-    frame_figure *figures = calloc((size_t)count, sizeof *figures);
-    int status = figures ? IM_OK : im_fail(IM_ENOMEM, "frames: allocation failed");
+    frame_figure *figures = status == IM_OK ? calloc((size_t)count, sizeof *figures) : NULL;
+    status = status != IM_OK || figures ? status : im_fail(IM_ENOMEM, "frames: allocation failed");
     for (int i = 0; i < h->count && status == IM_OK; ++i)
         status = render_step(context, scene, h, i, norms, &figures[2 * i]);
     if (status == IM_OK) {

@@ -6,7 +6,7 @@
 
 #include "scene/values.h"
 
-enum { SCENE_KEY_COUNT = 51 };
+enum { SCENE_KEY_COUNT = 52 };
 
 /* Key index of the table (0 <= index < SCENE_KEY_COUNT). */
 const key_spec *scene_key(int index);

@@ -64,6 +64,7 @@ static const struct {
 } SHAPING_KEYS[] = {
     {"frame_count", SHAPES_FRAMES, "the frames (frames = yes)"},
     {"frames_slope", SHAPES_FRAMES, "the frames (frames = yes)"},
+    {"frames_clip", SHAPES_FRAMES, "the frames (frames = yes)"},
     {"frame_scale", SHAPES_FRAMES, "the frames (frames = yes)"},
     {"frame_rate", SHAPES_ANIMATION, "the animations (animation = gif, mp4 or both)"},
     {"frame3d_width", SHAPES_FRAMES3D, "the 3-D frames (frames3d = yes)"},
