@@ -165,6 +165,9 @@ void solver_engine_gpu_memory(const im_solver_plan *plan, double *counted, doubl
 /* The bytes the plan's device has received from and sent to the host so far (uploads and downloads
  * of fields and tables; not the reductions' few values); -1 for a plan without a GPU. */
 void solver_engine_gpu_transfers(const im_solver_plan *plan, double *uploaded, double *downloaded);
+/* The submissions the plan's device has waited for so far (gpu_context_submissions: the host's round
+ * trips, uploads and downloads among them); -1 for a plan without a GPU. */
+long solver_engine_gpu_submissions(const im_solver_plan *plan);
 
 /* p = min(p scale, cap) on the elastic patches of p[0..n); whether any reached the cap (engine_cpu.c,
  * also the MPI engine's pass on its rows). */

@@ -905,6 +905,11 @@ void solver_engine_gpu_transfers(const im_solver_plan *plan, double *uploaded, d
     *downloaded = plan->gpu ? (double)down : -1;
 }
 
+long solver_engine_gpu_submissions(const im_solver_plan *plan)
+{
+    return plan->gpu ? gpu_context_submissions(plan->gpu->device->context) : -1;
+}
+
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan)
 {
     return plan->gpu ? gpu_context_validation_messages(plan->gpu->device->context) : -1;
