@@ -269,6 +269,66 @@ static void test_periodic_flat_512(void **state)
     compare_flat(512, 0.1, pressures, 1);
 }
 
+/* The host's round trips (submissions waited for) of one cold solve of a periodic cell without the
+ * cascade, under control to target: its result and the submissions (*submissions). */
+static im_solve_result counted_periodic_solve(im_solver_plan *plan, const double *gap0, enum im_control control,
+                                              double target, long *submissions)
+{
+    const size_t n = (size_t)plan->nx * plan->ny;
+    double *p = calloc(n, sizeof(double)), *u = malloc(sizeof(double) * n);
+    const long before = solver_engine_gpu_submissions(plan);
+    im_solve_result r;
+    if (im_solver_solve(plan, gap0, control, target, p, u, &r) != IM_OK)
+        fail_msg("periodic solve, control %d: %s", (int)control, im_last_error());
+    *submissions = solver_engine_gpu_submissions(plan) - before;
+    free(p);
+    free(u);
+    return r;
+}
+
+/* The waits a preconditioned iteration needs (engine_gpu.c, "Fewer waits"): under displacement control
+ * the preconditioner's sums, the step's and the update's, and the gaps' unless the update recorded
+ * them (at most 4; 5 before the kept sums); under load control also the contact mean and the centring
+ * (at most 6; 7 before, the pressure sum among them). Beside them a solve waits a fixed number of
+ * times: the uploads of gap0 and p, any_positive, the local guess, the last gaps (which stop it), the
+ * downloads of p and u (7); under load control also 60 bisection steps of the guess, the first load's
+ * sum, the last rescaling's flush and the summary after it, and the last contact mean (71). */
+static void test_round_trips_per_iteration(void **state)
+{
+    (void)state;
+    const int side = 128;
+    im_field *s = test_rough_surface(side, 0.1, 17);
+    const size_t n = im_field_count(s);
+    double *gap0 = malloc(sizeof(double) * n), highest = -INFINITY;
+    for (size_t i = 0; i < n; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < n; ++i)
+        gap0[i] = highest - s->data[i];
+    im_solver_options o = engine_options(IM_DEVICE_GPU);
+    o.periodic = 1;
+    o.cascade = 0;
+    im_solver_plan *plan = NULL;
+    if (im_solver_plan_create(side, side, 1.0, &o, &plan) != IM_OK)
+        fail_msg("plan: %s", im_last_error());
+    long load_waits, approach_waits;
+    const im_solve_result load = counted_periodic_solve(plan, gap0, IM_CONTROL_LOAD, 0.005 * n, &load_waits);
+    const im_solve_result approach = counted_periodic_solve(plan, gap0, IM_CONTROL_DISPLACEMENT, load.approach,
+                                                            &approach_waits);
+    print_message("%d^2 periodic: under load %d iterations, %ld submissions; under the approach %d iterations, %ld "
+                  "submissions\n",
+                  side, load.iterations, load_waits, approach.iterations, approach_waits);
+    if (approach_waits > 4L * approach.iterations + 7)
+        fail_msg("under the approach: %ld submissions in %d iterations, expected at most 4 per iteration + 7",
+                 approach_waits, approach.iterations);
+    if (load_waits > 6L * load.iterations + 71)
+        fail_msg("under load: %ld submissions in %d iterations, expected at most 6 per iteration + 71", load_waits,
+                 load.iterations);
+    assert_no_validation_messages(plan);
+    im_solver_plan_free(plan);
+    free(gap0);
+    im_field_free(s);
+}
+
 /* Mean-gap control of a periodic cell (displacement control with mean u = 0) over the GPU engine: the same
  * loads, approaches and contact at three mean gaps, down and up. */
 static void test_periodic_mean_gap(void **state)
@@ -627,6 +687,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_periodic_flat),
         cmocka_unit_test(test_periodic_flat_512),
         cmocka_unit_test(test_periodic_mean_gap),
+        cmocka_unit_test(test_round_trips_per_iteration),
         cmocka_unit_test(test_chunked_periodic),
         cmocka_unit_test(test_chunked_cone),
         cmocka_unit_test(test_buffers_in_parts),
