@@ -4,13 +4,14 @@
  * (reduce.glsl) whose few values are all that comes back to the host per pass. Passes without a
  * result are only recorded; a pass with one submits what was recorded and waits for it.
  *
- * Fewer waits (docs/solver.md, "GPU engine: host round trips"): a pass that returns sums also
+ * Fewer waits (docs/solver.md, "Host round trips"): a pass that returns sums also
  * sums what a later pass would, in the same order (the same bits), and keeps it until a pass writes
  * the fields those sums read: update_pressure the summary of p (impose_load's pressure sum, the
  * solve's summary), precondition <g, z> (precondition_centre's result when the mean is 0: no pass),
  * and under displacement control update_pressure records the next gaps pass in its own submission
  * when the step before changed no patch beyond the plain step (then the next gaps are at the same
  * approach, on the p and u it leaves); when this step did change some, those gaps are dropped.
+ * winkler_loads sums the local guess at the 7 midpoints of three bisection steps in one pass.
  *
  * The plan made on the CPU (plan.c) gives the kernel's spectrum, the preconditioner's and K(0), so
  * both engines convolve with the same numbers; the GPU keeps its own copies (the host keeps K(0)). In
@@ -55,6 +56,7 @@
 #include "spirv/unpad.h"
 #include "spirv/update_pressure.h"
 #include "spirv/winkler.h"
+#include "spirv/winkler_loads.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -100,6 +102,10 @@ typedef struct {
     uint32_t n, join;
 } push_set;
 typedef struct {
+    double w[SOLVER_WINKLER_BATCH], k0;
+    uint32_t n;
+} push_loads;
+typedef struct {
     double value;
     uint32_t n, join;
 } push_value_set;
@@ -120,6 +126,7 @@ enum kernel {
     K_CONTACT_MEAN,
     K_GAPS,
     K_WINKLER,
+    K_WINKLER_LOADS,
     K_CLIP,
     K_LOAD_SPLIT,
     K_SCALE_ELASTIC,
@@ -150,6 +157,7 @@ static const struct kernel_source {
     KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, 3, push_rescaled_mean),
     KERNEL(K_GAPS, spirv_gaps, 6, 5, push_pair),
     KERNEL(K_WINKLER, spirv_winkler, 3, 2, push_pair),
+    KERNEL(K_WINKLER_LOADS, spirv_winkler_loads, 2, 1, push_loads),
     KERNEL(K_CLIP, spirv_clip, 1, 1, push_value),
     KERNEL(K_LOAD_SPLIT, spirv_load_split, 2, 1, push_pair),
     KERNEL(K_SCALE_ELASTIC, spirv_scale_elastic, 2, 1, push_pair),
@@ -463,6 +471,18 @@ static double gpu_engine_winkler(pk_run *r, double w, double k0, int store)
     return sum * r->plan->delta * r->plan->delta;
 }
 
+static void gpu_engine_winkler_loads(pk_run *r, const double *w, int count, double k0, double *loads)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[2] = {&s->gap0, &s->device->partials};
+    push_loads push = {.k0 = k0, .n = patches(s)}; /* the slots past count sum at w = 0: nothing */
+    memcpy(push.w, w, sizeof(double) * (size_t)count);
+    double v[SOLVER_WINKLER_BATCH];
+    reduce(r, K_WINKLER_LOADS, b, &push, push.n, SOLVER_WINKLER_BATCH, 0, v);
+    for (int k = 0; k < count; ++k)
+        loads[k] = v[k] * r->plan->delta * r->plan->delta;
+}
+
 static void gpu_engine_clip(pk_run *r, double cap)
 {
     struct gpu_solver *s = solver_of(r);
@@ -767,6 +787,7 @@ const solver_engine solver_engine_gpu = {
     .contact_mean = gpu_engine_contact_mean,
     .gaps = gpu_engine_gaps,
     .winkler = gpu_engine_winkler,
+    .winkler_loads = gpu_engine_winkler_loads,
     .clip = gpu_engine_clip,
     .any_positive = gpu_engine_any_positive,
     .load_split = gpu_engine_load_split,
