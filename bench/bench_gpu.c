@@ -305,16 +305,6 @@ static void bench_history(void)
            gpu, gpu_iterations, cpu, cpu_iterations, omp_get_max_threads(), cpu / gpu);
 }
 
-/* FNV-1a of the n doubles' bytes. */
-static unsigned long long bytes_hash(const double *values, size_t n)
-{
-    const unsigned char *b = (const unsigned char *)values;
-    unsigned long long h = 14695981039346656037ull;
-    for (size_t k = 0; k < n * sizeof(double); ++k)
-        h = (h ^ b[k]) * 1099511628211ull;
-    return h;
-}
-
 /* One cold GPU solve on plan, its counts printed under name; returns its result. */
 static im_solve_result counted_solve(const char *name, int n, im_solver_plan *plan, const double *g0,
                                      enum im_control control, double target)
@@ -331,7 +321,7 @@ static im_solve_result counted_solve(const char *name, int n, im_solver_plan *pl
            "fine iteration, %.2f per iteration of all levels; pressures' hash %016llx\n",
            n, name, r.iterations, r.coarse_iterations, r.convolutions, submissions,
            (double)submissions / r.iterations, (double)submissions / (r.iterations + r.coarse_iterations),
-           bytes_hash(p, count));
+           bench_bits_hash(p, count));
     fflush(stdout);
     free(p);
     free(u);
