@@ -633,14 +633,16 @@ static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int *j
     if (status == IM_OK)
         status = gpu_submit_wait(context_of(s));
     read_result(r, status, &s->device->result, UPDATE_SLOTS, v);
-    read_result(r, status, &s->device->ahead, GAPS_SLOTS, gaps);
     s->step_changed = v[0] != 0;
     s->summary_kept = status == IM_OK;
     memcpy(s->summary, v + 2, sizeof s->summary);
     s->gaps_kept = status == IM_OK && ahead && !s->step_changed; /* else u moves before the next gaps */
-    s->gaps = gap_stats_of(gaps);
-    s->gaps_w = r->target;
-    s->gaps_cap = cap;
+    if (s->gaps_kept) {
+        read_result(r, status, &s->device->ahead, GAPS_SLOTS, gaps);
+        s->gaps = gap_stats_of(gaps);
+        s->gaps_w = r->target;
+        s->gaps_cap = cap;
+    }
     *joined = v[1] > 0;
     return (long)v[0];
 }
