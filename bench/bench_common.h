@@ -1,4 +1,4 @@
-/* Shared helpers for benchmarks: wall clock, medians, peak memory. */
+/* Shared helpers for benchmarks: wall clock, medians, peak memory, a hash of answers. */
 #ifndef INDENTMAP_BENCH_COMMON_H
 #define INDENTMAP_BENCH_COMMON_H
 
@@ -32,6 +32,16 @@ static inline double bench_peak_rss_mib(void)
     struct rusage usage;
     getrusage(RUSAGE_SELF, &usage);
     return (double)usage.ru_maxrss / 1024.0;
+}
+
+/* FNV-1a over the bytes of n doubles: equal hashes, bit-identical answers (in practice). */
+static inline unsigned long long bench_bits_hash(const double *v, size_t n)
+{
+    const unsigned char *bytes = (const unsigned char *)v;
+    unsigned long long h = 14695981039346656037ull;
+    for (size_t i = 0; i < n * sizeof(double); ++i)
+        h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
 }
 
 #endif

@@ -59,15 +59,6 @@ typedef struct measured {
     unsigned long long pressure_hash; /* a cell's (FNV-1a over its pressures' bytes); 0 for a cone or a step */
 } measured;
 
-static unsigned long long bits_hash(const double *v, size_t n)
-{
-    const unsigned char *bytes = (const unsigned char *)v;
-    unsigned long long h = 14695981039346656037ull;
-    for (size_t i = 0; i < n * sizeof(double); ++i)
-        h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
-}
-
 typedef struct pair_counts {
     long k, m, coarse;
     long long coarse_points;
@@ -157,7 +148,7 @@ static measured solve_cell(problem *pb, enum kind kind)
         die(status, KIND_NAMES[kind]);
     measured m = stop_watch(&watch, s.iterations, s.coarse_iterations);
     m.load = s.load, m.approach = s.approach, m.max_pressure = s.max_pressure, m.contact = s.contact_patches;
-    m.pressure_hash = bits_hash(pb->pressure, (size_t)n * n);
+    m.pressure_hash = bench_bits_hash(pb->pressure, (size_t)n * n);
     if (kind == PRESSURE)
         pb->cell_approach = s.approach;
     im_solver_plan_free(plan);

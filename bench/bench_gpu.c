@@ -1,7 +1,7 @@
 /* Benchmark of the GPU engine against the CPU engine (not a test).
  *
  *   bench_gpu [--cone 1024,2048,4096] [--periodic 1024,2048,4096,8192] [--history] [--repeats R]
- *             [--cpu-limit N] [--floor-limit N]
+ *             [--cpu-limit N] [--floor-limit N] [--counts 256,512]
  *
  * 1. Cold rough-cone solves on the whole n x n grid (no window crop: the padded transform is 2n x 2n):
  *    H 0.8, lambda_s 4, lambda_r n, h'rms 0.08, seed 1, an 80 deg cone on the centre to the approach
@@ -16,6 +16,12 @@
  *    peak resident memory so far, then per-iteration time and its ratio to the unpadded pair (for
  *    n up to --floor-limit: the largest grids skip its planning and buffers).
  * 3. --history: the paper's 25-step history (512^2, approaches up to 31.5, window crop) on both.
+ * 4. --counts: what does not depend on the device's speed, on the GPU engine alone: for a periodic
+ *    cell under load (mean pressure 0.004 E*) and under the approach that load found, and for the cone
+ *    of 1. under displacement and under the load that found, each solve's fine and coarse iterations,
+ *    its submissions (the host's fence waits) in all and per fine iteration, and a hash of its
+ *    pressures (FNV-1a of their bytes: equal hashes, bit-identical answers). Sections 1 and 2 print
+ *    the submissions per fine iteration beside their times.
  * Prints the devices (Vulkan device name, threads) first. Figures go to docs/benchmarks.md.
  */
 #include "bench_common.h"
@@ -33,6 +39,8 @@
 
 #if IM_HAVE_GPU
 #include "gpu/vulkan.h"
+#include "solver/engine.h"
+#include "solver/flat.h"
 
 #define MAX_SIZES 8
 #define MAX_REPEATS 9
@@ -128,6 +136,7 @@ static double vkfft_pair_seconds(int px, int py)
 typedef struct cold_result {
     double plan_seconds, seconds, load;
     int iterations, coarse_iterations, convolutions;
+    long submissions; /* the last solve's (GPU), -1 on the CPU */
     double *pressure;
 } cold_result;
 
@@ -147,6 +156,7 @@ static cold_result cold_solves(int n, const double *g0, double approach, int dev
     for (int k = 0; k < repeats; ++k) {
         memset(r.pressure, 0, sizeof(double) * count);
         im_solve_result s;
+        const long submitted = solver_engine_gpu_submissions(plan);
         if ((status = im_solver_solve(plan, g0, IM_CONTROL_DISPLACEMENT, approach, r.pressure, u, &s)) != IM_OK)
             die(status, "cold solve");
         times[k] = s.seconds;
@@ -155,6 +165,7 @@ static cold_result cold_solves(int n, const double *g0, double approach, int dev
                           .iterations = s.iterations,
                           .coarse_iterations = s.coarse_iterations,
                           .convolutions = s.convolutions,
+                          .submissions = submitted < 0 ? -1 : solver_engine_gpu_submissions(plan) - submitted,
                           .pressure = r.pressure};
     }
     r.seconds = bench_median(times, repeats);
@@ -179,9 +190,11 @@ static void bench_cone(int n, int repeats, int cpu_limit)
     cold_result gpu = cold_solves(n, g0, approach, IM_DEVICE_GPU, repeats);
     double pair = vkfft_pair_seconds(2 * n, 2 * n);
     printf("cone %5d^2 gpu: plan %.3f s, solve %.4f s (median of %d), %d fine + %d coarse iterations, %d "
-           "convolutions, %.3f ms per fine iteration = %.2f VkFFT pairs of %d^2 (%.3f ms), N = %.10g\n",
+           "convolutions, %ld submissions (%.2f per fine iteration), %.3f ms per fine iteration = %.2f VkFFT "
+           "pairs of %d^2 (%.3f ms), N = %.10g\n",
            n, gpu.plan_seconds, gpu.seconds, repeats, gpu.iterations, gpu.coarse_iterations, gpu.convolutions,
-           1e3 * gpu.seconds / gpu.iterations, gpu.seconds / gpu.iterations / pair, 2 * n, 1e3 * pair, gpu.load);
+           gpu.submissions, (double)gpu.submissions / gpu.iterations, 1e3 * gpu.seconds / gpu.iterations,
+           gpu.seconds / gpu.iterations / pair, 2 * n, 1e3 * pair, gpu.load);
     if (n <= cpu_limit) {
         cold_result cpu = cold_solves(n, g0, approach, IM_DEVICE_CPU, repeats);
         printf("cone %5d^2 cpu: plan %.3f s, solve %.4f s (median of %d, %d threads), %d fine + %d coarse "
@@ -199,7 +212,7 @@ static void bench_cone(int n, int repeats, int cpu_limit)
 
 /* Prints the plan's seconds as soon as it is made (a 32768^2 cell's host work takes minutes: a run
  * stopped by a time limit still says how far it came). */
-static void flat_solve(const im_field *s, int device, double *seconds, im_flat_result *out)
+static void flat_solve(const im_field *s, int device, double *seconds, long *submissions, im_flat_result *out)
 {
     im_solver_options o = im_solver_options_default();
     o.device = device;
@@ -211,9 +224,11 @@ static void flat_solve(const im_field *s, int device, double *seconds, im_flat_r
         die(status, "flat contact");
     printf("periodic %5d^2 %s: plan %.1f s\n", s->nx, device == IM_DEVICE_GPU ? "gpu" : "cpu", bench_now() - start);
     fflush(stdout);
+    const long submitted = solver_engine_gpu_submissions(flat_contact_plan(run));
     start = bench_now();
     status = im_flat_contact_solve(run, 0.004, out);
     *seconds = bench_now() - start;
+    *submissions = solver_engine_gpu_submissions(flat_contact_plan(run)) - submitted;
     if (status != IM_OK && status != IM_ENOCONV)
         die(status, "flat solve");
     im_flat_contact_free(run);
@@ -234,15 +249,18 @@ static void bench_periodic(int n, int cpu_limit, int floor_limit)
     printf("periodic %5d^2: surface %.1f s\n", n, bench_now() - start);
     im_flat_result gpu, cpu;
     double gpu_seconds, cpu_seconds;
-    flat_solve(s, IM_DEVICE_GPU, &gpu_seconds, &gpu);
-    printf("periodic %5d^2 gpu: %.3f s, %d iterations (residual %.2g), contact %.4f, host peak RSS %.2f GiB\n", n,
-           gpu_seconds, gpu.iterations, gpu.residual, gpu.area_fraction, peak_rss_gib());
+    long submissions, cpu_submissions;
+    flat_solve(s, IM_DEVICE_GPU, &gpu_seconds, &submissions, &gpu);
+    printf("periodic %5d^2 gpu: %.3f s, %d iterations (residual %.2g), %ld submissions (%.2f per fine "
+           "iteration), contact %.4f, host peak RSS %.2f GiB\n",
+           n, gpu_seconds, gpu.iterations, gpu.residual, submissions, (double)submissions / gpu.iterations,
+           gpu.area_fraction, peak_rss_gib());
     fflush(stdout);
     const double pair = n <= floor_limit ? vkfft_pair_seconds(n, n) : NAN;
     printf("periodic %5d^2 gpu: %.3f ms per iteration = %.2f VkFFT pairs of %d^2 (%.3f ms)\n", n,
            1e3 * gpu_seconds / gpu.iterations, gpu_seconds / gpu.iterations / pair, n, 1e3 * pair);
     if (n <= cpu_limit) {
-        flat_solve(s, IM_DEVICE_CPU, &cpu_seconds, &cpu);
+        flat_solve(s, IM_DEVICE_CPU, &cpu_seconds, &cpu_submissions, &cpu);
         printf("periodic %5d^2 cpu: %.3f s (%d threads), %d iterations; gpu speed-up %.2fx; |dw|/w = %.2e, "
                "contact patches %ld vs %ld\n",
                n, cpu_seconds, omp_get_max_threads(), cpu.iterations, cpu_seconds / gpu_seconds,
@@ -287,10 +305,71 @@ static void bench_history(void)
            gpu, gpu_iterations, cpu, cpu_iterations, omp_get_max_threads(), cpu / gpu);
 }
 
+/* One cold GPU solve on plan, its counts printed under name; returns its result. */
+static im_solve_result counted_solve(const char *name, int n, im_solver_plan *plan, const double *g0,
+                                     enum im_control control, double target)
+{
+    const size_t count = (size_t)n * n;
+    double *p = calloc(count, sizeof(double)), *u = malloc(sizeof(double) * count);
+    im_solve_result r;
+    const long submitted = solver_engine_gpu_submissions(plan);
+    int status = im_solver_solve(plan, g0, control, target, p, u, &r);
+    if (status != IM_OK)
+        die(status, name);
+    const long submissions = solver_engine_gpu_submissions(plan) - submitted;
+    printf("counts %5d^2 %-22s %3d fine + %4d coarse iterations, %4d convolutions, %5ld submissions: %.2f per "
+           "fine iteration, %.2f per iteration of all levels; pressures' hash %016llx\n",
+           n, name, r.iterations, r.coarse_iterations, r.convolutions, submissions,
+           (double)submissions / r.iterations, (double)submissions / (r.iterations + r.coarse_iterations),
+           bench_bits_hash(p, count));
+    fflush(stdout);
+    free(p);
+    free(u);
+    return r;
+}
+
+static im_solver_plan *gpu_plan(int n, int periodic)
+{
+    im_solver_options o = im_solver_options_default();
+    o.device = IM_DEVICE_GPU;
+    o.periodic = periodic;
+    im_solver_plan *plan = NULL;
+    int status = im_solver_plan_create(n, n, 1.0, &o, &plan);
+    if (status != IM_OK)
+        die(status, "plan");
+    return plan;
+}
+
+/* 4. the counts of a periodic cell and of the cone, under both controls */
+static void bench_counts(int n)
+{
+    im_field *s = paper_surface(n);
+    const size_t count = (size_t)n * n;
+    double *g0 = malloc(sizeof(double) * count), highest = -INFINITY;
+    for (size_t i = 0; i < count; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < count; ++i)
+        g0[i] = highest - s->data[i];
+    im_solver_plan *plan = gpu_plan(n, 1);
+    im_solve_result r = counted_solve("periodic, load", n, plan, g0, IM_CONTROL_LOAD, 0.004 * (double)count);
+    counted_solve("periodic, approach", n, plan, g0, IM_CONTROL_DISPLACEMENT, r.approach);
+    im_solver_plan_free(plan);
+    free(g0);
+    g0 = cone_gap(s);
+    plan = gpu_plan(n, 0);
+    r = counted_solve("cone, approach", n, plan, g0, IM_CONTROL_DISPLACEMENT, M_PI * n / (10 * tan(80 * M_PI / 180)));
+    counted_solve("cone, load", n, plan, g0, IM_CONTROL_LOAD, r.load);
+    im_solver_plan_free(plan);
+    free(g0);
+    im_field_free(s);
+}
+
 int main(int argc, char **argv)
 {
     int cones[MAX_SIZES] = {1024, 2048, 4096}, periodic[MAX_SIZES] = {1024, 2048, 4096};
+    int counts[MAX_SIZES];
     int cone_count = 3, periodic_count = 3, repeats = 3, history = 0, cpu_limit = 2048, floor_limit = 1 << 30;
+    int count_count = 0;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--cone") == 0 && i + 1 < argc)
             cone_count = parse_sizes(argv[++i], cones);
@@ -302,11 +381,13 @@ int main(int argc, char **argv)
             cpu_limit = atoi(argv[++i]);
         else if (strcmp(argv[i], "--floor-limit") == 0 && i + 1 < argc)
             floor_limit = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--counts") == 0 && i + 1 < argc)
+            count_count = parse_sizes(argv[++i], counts);
         else if (strcmp(argv[i], "--history") == 0)
             history = 1;
         else {
             fprintf(stderr, "usage: bench_gpu [--cone LIST] [--periodic LIST] [--history] [--repeats R] "
-                            "[--cpu-limit N] [--floor-limit N]\n");
+                            "[--cpu-limit N] [--floor-limit N] [--counts LIST]\n");
             return 2;
         }
     }
@@ -322,6 +403,8 @@ int main(int argc, char **argv)
         bench_periodic(periodic[k], cpu_limit / 2, floor_limit);
     if (history)
         bench_history();
+    for (int k = 0; k < count_count; ++k)
+        bench_counts(counts[k]);
     printf("peak host memory: %.0f MiB\n", bench_peak_rss_mib());
     return 0;
 }

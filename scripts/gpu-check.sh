@@ -9,7 +9,9 @@
 #                               (ignored by git; the device call carries the .tar.xz)
 #   scripts/gpu-check.sh run    on the GPU machine, from the repository root: the Vulkan devices and
 #                               GL_RENDERER (indentmap info), the GPU tests under the validation layers on
-#                               the NVIDIA device, bench_gpu against the CPU engine on all cores, and
+#                               the NVIDIA device, bench_gpu against the CPU engine on all cores (each GPU
+#                               solve's time beside its submissions, the host's fence waits, per fine
+#                               iteration: gathered after the benches, the baseline's beside), and
 #                               fig4's frames rendered through EGL, and a profile of the largest solves
 #                               (INDENTMAP_GPU_PROFILE); logs and pictures to ${OUT:-gpu-check-out}/
 #   GPUCHECK_BIG=1 scripts/gpu-check.sh run   only the devices and one periodic cell of BIG_SIZE^2
@@ -153,6 +155,8 @@ run() {
     timeout 240 "${runner[@]}" "$carry/bin/bench_gpu_base" "${sizes[@]}" 2>&1 | tee "$out/bench_base.txt" || status=1
   fi
   timeout 240 "${runner[@]}" "$carry/bin/bench_gpu" "${sizes[@]}" 2>&1 | tee "$out/bench.txt" || status=1
+  # the host's round trips beside the times, both builds' (docs/benchmarks.md: lavapipe's counts)
+  grep -H "submissions" "$out"/bench_base.txt "$out/bench.txt" 2>/dev/null | sed 's|^.*/||' || true
   # where the device time goes (src/gpu/profile.h), on the largest sizes, in a run of its own so that
   # the timestamps stay out of the figures above
   INDENTMAP_GPU_PROFILE=1 timeout 120 "${runner[@]}" "$carry/bin/bench_gpu" --cone 4096 --periodic 8192 \

@@ -269,6 +269,82 @@ static void test_periodic_flat_512(void **state)
     compare_flat(512, 0.1, pressures, 1);
 }
 
+/* One cold solve of a periodic 128^2 cell without the cascade at tolerance tol, under load (mean
+ * pressure 0.005) or under the approach that load needs (*approach: found under load, used under the
+ * approach): its iterations and the submissions its device waited for (*waits). */
+static int counted_periodic_solve(const im_field *s, const double *gap0, double tol, enum im_control control,
+                                  double *approach, long *waits)
+{
+    const size_t n = im_field_count(s);
+    im_solver_options o = engine_options(IM_DEVICE_GPU);
+    o.periodic = 1;
+    o.cascade = 0;
+    o.tol = tol;
+    im_solver_plan *plan = NULL;
+    if (im_solver_plan_create(s->nx, s->ny, 1.0, &o, &plan) != IM_OK)
+        fail_msg("plan: %s", im_last_error());
+    double *p = calloc(n, sizeof(double)), *u = malloc(sizeof(double) * n);
+    const long before = solver_engine_gpu_submissions(plan);
+    const double target = control == IM_CONTROL_LOAD ? 0.005 * (double)n : *approach;
+    im_solve_result r;
+    if (im_solver_solve(plan, gap0, control, target, p, u, &r) != IM_OK)
+        fail_msg("periodic solve, control %d, tol %g: %s", (int)control, tol, im_last_error());
+    *waits = solver_engine_gpu_submissions(plan) - before;
+    *approach = r.approach;
+    assert_no_validation_messages(plan);
+    im_solver_plan_free(plan);
+    free(p);
+    free(u);
+    return r.iterations;
+}
+
+/* The waits per iteration, from two cold solves at tolerances 1e-5 and 1e-10 (what they wait for
+ * besides their iterations is the same), at most `most`; and those besides, at most `fixed_most`. */
+static void check_waits(const im_field *s, const double *gap0, enum im_control control, double *approach, int most,
+                        long fixed_most)
+{
+    long loose_waits, tight_waits;
+    const int loose = counted_periodic_solve(s, gap0, 1e-5, control, approach, &loose_waits);
+    const int tight = counted_periodic_solve(s, gap0, 1e-10, control, approach, &tight_waits);
+    const double per_iteration = (double)(tight_waits - loose_waits) / (tight - loose);
+    const long fixed = tight_waits - (long)most * tight;
+    print_message("control %d: %d and %d iterations, %ld and %ld submissions: %.2f per iteration, %ld besides\n",
+                  (int)control, loose, tight, loose_waits, tight_waits, per_iteration, fixed);
+    if (tight <= loose)
+        fail_msg("control %d: %d iterations at tol 1e-10, %d at 1e-5", (int)control, tight, loose);
+    if (per_iteration > most)
+        fail_msg("control %d: %.2f submissions per iteration, expected at most %d", (int)control, per_iteration,
+                 most);
+    if (fixed > fixed_most)
+        fail_msg("control %d: %ld submissions besides %d per iteration, expected at most %ld", (int)control, fixed,
+                 most, fixed_most);
+}
+
+/* The host's waits (engine_gpu.c, "Fewer waits"). A preconditioned iteration under displacement
+ * control waits for the preconditioner's sums, the step's and the update's, and the gaps' unless the
+ * update recorded them: at most 4 (5 before the kept sums); under load control also for the contact
+ * mean and the centring: 6 (7 before, the pressure sum among them). Besides them a cold solve waits for
+ * the uploads of gap0 and p, any_positive, the local guess, the last gaps, the downloads of p and u
+ * (7), and under load control also the guess's bisection (20 waits; 60 before winkler_loads), the first
+ * load's sum, the last rescaling and the summary after it, and the last contact mean (31). The bounds
+ * leave room for a restart or two (an iteration that waits again without an update), and still fail
+ * the code before: 7 and 5 per iteration, 57 and 29 besides on this cell. */
+static void test_round_trips_per_iteration(void **state)
+{
+    (void)state;
+    im_field *s = test_rough_surface(128, 0.1, 17);
+    const size_t n = im_field_count(s);
+    double *gap0 = malloc(sizeof(double) * n), highest = -INFINITY, approach = 0;
+    for (size_t i = 0; i < n; ++i)
+        highest = fmax(highest, s->data[i]);
+    for (size_t i = 0; i < n; ++i)
+        gap0[i] = highest - s->data[i];
+    check_waits(s, gap0, IM_CONTROL_LOAD, &approach, 6, 40);
+    check_waits(s, gap0, IM_CONTROL_DISPLACEMENT, &approach, 4, 12);
+    free(gap0);
+    im_field_free(s);
+}
+
 /* Mean-gap control of a periodic cell (displacement control with mean u = 0) over the GPU engine: the same
  * loads, approaches and contact at three mean gaps, down and up. */
 static void test_periodic_mean_gap(void **state)
@@ -627,6 +703,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_periodic_flat),
         cmocka_unit_test(test_periodic_flat_512),
         cmocka_unit_test(test_periodic_mean_gap),
+        cmocka_unit_test(test_round_trips_per_iteration),
         cmocka_unit_test(test_chunked_periodic),
         cmocka_unit_test(test_chunked_cone),
         cmocka_unit_test(test_buffers_in_parts),

@@ -48,6 +48,7 @@ struct gpu_context {
     gpu_buffer upload, download;       /* staging (GPU_HOST_WRITE, GPU_HOST_READ), grown on demand */
     VkDeviceSize local_bytes;          /* gpu_context_local_bytes */
     VkDeviceSize uploaded, downloaded; /* gpu_context_transfers */
+    long submissions;                  /* gpu_context_submissions */
     long validation_messages;
     gpu_profile *profile; /* NULL unless INDENTMAP_GPU_PROFILE asks for one */
     char name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
@@ -503,6 +504,8 @@ VkDeviceSize gpu_context_buffer_footprint(const gpu_context *context, VkDeviceSi
 }
 VkDeviceSize gpu_context_local_bytes(const gpu_context *context) { return context->local_bytes; }
 long gpu_context_validation_messages(const gpu_context *context) { return context->validation_messages; }
+
+long gpu_context_submissions(const gpu_context *context) { return context->submissions; }
 
 void gpu_context_transfers(const gpu_context *context, VkDeviceSize *uploaded, VkDeviceSize *downloaded)
 {
@@ -1070,6 +1073,7 @@ static int end_submit_wait(gpu_context *context)
                            .pCommandBuffers = &context->commands};
     const double start = seconds_now();
     VK_CHECK(vkQueueSubmit(context->queue, 1, &submit, context->fence));
+    ++context->submissions;
     VK_CHECK(wait_for_fence(context, start));
     const double waited = seconds_now() - start;
     VK_CHECK(vkResetFences(context->device, 1, &context->fence));

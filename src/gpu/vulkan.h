@@ -83,6 +83,9 @@ VkDeviceSize gpu_context_local_bytes(const gpu_context *context);
 long gpu_context_validation_messages(const gpu_context *context); /* warnings and errors so far */
 /* The bytes gpu_buffer_upload and gpu_buffer_download have copied to and from the device so far. */
 void gpu_context_transfers(const gpu_context *context, VkDeviceSize *uploaded, VkDeviceSize *downloaded);
+/* The submissions gpu_submit_wait has made and waited for so far (each one fence wait of the host;
+ * VkFFT's own, while it plans, are not among them). */
+long gpu_context_submissions(const gpu_context *context);
 
 /* Writes one line per Vulkan device ("name, type, Vulkan x.y, float64 yes|no, N MiB") into text;
  * IM_EUNSUPPORTED (with the reason) when there is no Vulkan loader or no device. */

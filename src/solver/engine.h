@@ -59,6 +59,9 @@ typedef struct pk_run {
     int start_prolonged, keep_answer, answer_kept;
 } pk_run;
 
+/* How many approaches winkler_loads takes at once: the midpoints of three halvings of a bisection. */
+enum { SOLVER_WINKLER_BATCH = 7 };
+
 typedef struct solver_engine {
     const char *name;
     /* Whether a cascade's levels may hand their answers over on the engine (pk_run.keep_answer and
@@ -80,6 +83,9 @@ typedef struct solver_engine {
     gap_stats (*gaps)(pk_run *r, double w, double cap);
     /* The local (Winkler) guess p = max(w - g0, 0) / k0: its load delta^2 sum p, stored when store */
     double (*winkler)(pk_run *r, double w, double k0, int store);
+    /* The local guess's loads at count <= SOLVER_WINKLER_BATCH approaches w (winkler's, p not stored), in
+     * one round trip; NULL where winkler's one pass per approach costs no more (CPU, MPI) */
+    void (*winkler_loads)(pk_run *r, const double *w, int count, double k0, double *loads);
     /* p = min(p, cap) */
     void (*clip)(pk_run *r, double cap);
     int (*any_positive)(pk_run *r);
@@ -165,6 +171,9 @@ void solver_engine_gpu_memory(const im_solver_plan *plan, double *counted, doubl
 /* The bytes the plan's device has received from and sent to the host so far (uploads and downloads
  * of fields and tables; not the reductions' few values); -1 for a plan without a GPU. */
 void solver_engine_gpu_transfers(const im_solver_plan *plan, double *uploaded, double *downloaded);
+/* The submissions the plan's device has waited for so far (gpu_context_submissions: the host's round
+ * trips, uploads and downloads among them); -1 for a plan without a GPU. */
+long solver_engine_gpu_submissions(const im_solver_plan *plan);
 
 /* p = min(p scale, cap) on the elastic patches of p[0..n); whether any reached the cap (engine_cpu.c,
  * also the MPI engine's pass on its rows). */

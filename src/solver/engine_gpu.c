@@ -4,6 +4,15 @@
  * (reduce.glsl) whose few values are all that comes back to the host per pass. Passes without a
  * result are only recorded; a pass with one submits what was recorded and waits for it.
  *
+ * Fewer waits (docs/solver.md, "Host round trips"): a pass that returns sums also
+ * sums what a later pass would, in the same order (the same bits), and keeps it until a pass writes
+ * the fields those sums read: update_pressure the summary of p (impose_load's pressure sum, the
+ * solve's summary), precondition <g, z> (precondition_centre's result when the mean is 0: no pass),
+ * and under displacement control update_pressure records the next gaps pass in its own submission
+ * when the step before changed no patch beyond the plain step (then the next gaps are at the same
+ * approach, on the p and u it leaves); when this step did change some, those gaps are dropped.
+ * winkler_loads sums the local guess at the 7 midpoints of three bisection steps in one pass.
+ *
  * The plan made on the CPU (plan.c) gives the kernel's spectrum, the preconditioner's and K(0), so
  * both engines convolve with the same numbers; the GPU keeps its own copies (the host keeps K(0)). In
  * the periodic mode the preconditioner's spectrum is derived on the device from the kernel's
@@ -47,6 +56,7 @@
 #include "spirv/unpad.h"
 #include "spirv/update_pressure.h"
 #include "spirv/winkler.h"
+#include "spirv/winkler_loads.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -92,6 +102,10 @@ typedef struct {
     uint32_t n, join;
 } push_set;
 typedef struct {
+    double w[SOLVER_WINKLER_BATCH], k0;
+    uint32_t n;
+} push_loads;
+typedef struct {
     double value;
     uint32_t n, join;
 } push_value_set;
@@ -112,6 +126,7 @@ enum kernel {
     K_CONTACT_MEAN,
     K_GAPS,
     K_WINKLER,
+    K_WINKLER_LOADS,
     K_CLIP,
     K_LOAD_SPLIT,
     K_SCALE_ELASTIC,
@@ -142,6 +157,7 @@ static const struct kernel_source {
     KERNEL(K_CONTACT_MEAN, spirv_contact_mean, 4, 3, push_rescaled_mean),
     KERNEL(K_GAPS, spirv_gaps, 6, 5, push_pair),
     KERNEL(K_WINKLER, spirv_winkler, 3, 2, push_pair),
+    KERNEL(K_WINKLER_LOADS, spirv_winkler_loads, 2, 1, push_loads),
     KERNEL(K_CLIP, spirv_clip, 1, 1, push_value),
     KERNEL(K_LOAD_SPLIT, spirv_load_split, 2, 1, push_pair),
     KERNEL(K_SCALE_ELASTIC, spirv_scale_elastic, 2, 1, push_pair),
@@ -162,6 +178,8 @@ static const struct kernel_source {
 /* A reduction runs at most this many workgroups (reduce_finish.comp folds their partials), and
  * carries at most this many values. */
 enum { REDUCE_GROUPS = 1024, REDUCE_SLOTS = 8, GROUP_SIZE = 256, MAX_GROUPS = 65535 };
+/* update_pressure's slots: its own two, then the summary's three (summary.comp's order) */
+enum { SUMMARY_SLOTS = 3, UPDATE_SLOTS = 2 + SUMMARY_SLOTS };
 /* The change list's room (shaders/compute/point_loads.glsl: CHANGE_CAPACITY). */
 enum { CHANGE_CAPACITY = 256 };
 /* The reductions' partial sums on the device (gpu_device.partials). */
@@ -173,6 +191,7 @@ typedef struct gpu_device {
     gpu_context *context;
     gpu_pipeline kernels[K_COUNT];
     gpu_buffer partials, result; /* result: host-visible */
+    gpu_buffer ahead;            /* host-visible: the gaps pass recorded ahead (update_pressure) */
     VkDeviceSize fields_bytes;   /* what the plans' buffers and partials occupy (solver_footprint) */
     int references;
 } gpu_device;
@@ -190,6 +209,13 @@ struct gpu_solver {
     int periodic;
     int borrowed;           /* its work buffers are its finest level's (not freed here) */
     VkDeviceSize footprint; /* its share of device->fields_bytes */
+    /* Sums kept from a pass for a later one (the header's "Fewer waits"); each valid while its flag is
+     * set, cleared by any pass that writes what they read (wrote_pressure, wrote_fields). */
+    int summary_kept, gz_kept, gaps_kept, step_changed; /* step_changed: the last update's changes */
+    double summary[SUMMARY_SLOTS];                      /* sum of p, patches with p > 0, largest p */
+    double gz;                                          /* <g, z> on the step's set */
+    gap_stats gaps;                                     /* at gaps_w, gaps_cap */
+    double gaps_w, gaps_cap;
 };
 
 /* ---- the device and its pipelines ---- */
@@ -202,6 +228,7 @@ static void device_release(gpu_device *d)
         gpu_pipeline_free(d->context, &d->kernels[k]);
     gpu_buffer_free(d->context, &d->partials);
     gpu_buffer_free(d->context, &d->result);
+    gpu_buffer_free(d->context, &d->ahead);
     gpu_context_close(d->context);
     free(d);
 }
@@ -226,6 +253,8 @@ static int device_open(const im_solver_options *o, gpu_device **out)
     }
     if (status == IM_OK)
         status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, GPU_HOST_READ, &d->result);
+    if (status == IM_OK)
+        status = gpu_buffer_create(d->context, sizeof(double) * REDUCE_SLOTS, GPU_HOST_READ, &d->ahead);
     if (status != IM_OK) {
         device_release(d);
         return status;
@@ -260,26 +289,46 @@ static void record(struct gpu_solver *s, enum kernel k, const gpu_buffer *const 
     gpu_dispatch(context_of(s), &s->device->kernels[k], buffers, push, groups_for(count));
 }
 
-/* Records a reducing pass over count elements and its finish, runs everything recorded, and reads
- * its slots' values into out (NaN after a failure, which r->status keeps). */
-static void reduce(pk_run *r, enum kernel k, const gpu_buffer *const *buffers, const void *push, uint32_t count,
-                   uint32_t slots, uint32_t max_slots, double *out)
+/* Records a reducing pass over count elements and its finish, which leaves its slots' values in the
+ * host-visible buffer into; a failure to begin recording as gpu_begin's. */
+static int record_reduction(struct gpu_solver *s, enum kernel k, const gpu_buffer *const *buffers, const void *push,
+                            uint32_t count, uint32_t slots, uint32_t max_slots, const gpu_buffer *into)
 {
-    struct gpu_solver *s = solver_of(r);
     gpu_context *c = context_of(s);
     const push_finish finish = {.groups = reduce_groups(count), .slots = slots, .max_slots = max_slots};
-    const gpu_buffer *folded[2] = {&s->device->partials, &s->device->result};
+    const gpu_buffer *folded[2] = {&s->device->partials, into};
     int status = gpu_begin(c);
     if (status == IM_OK) {
         gpu_dispatch(c, &s->device->kernels[k], buffers, push, finish.groups);
         gpu_dispatch(c, &s->device->kernels[K_REDUCE_FINISH], folded, &finish, 1);
-        status = gpu_submit_wait(c);
     }
+    return status;
+}
+
+/* Reads slots values of a host-visible result buffer into out after a submission of status (NaN
+ * after a failure, which r->status keeps). */
+static void read_result(pk_run *r, int status, const gpu_buffer *from, uint32_t slots, double *out)
+{
     if (status != IM_OK && r->status == IM_OK)
         r->status = status;
     for (uint32_t j = 0; j < slots; ++j)
-        out[j] = status == IM_OK ? ((const double *)s->device->result.mapped)[j] : NAN;
+        out[j] = status == IM_OK ? ((const double *)from->mapped)[j] : NAN;
 }
+
+/* Records a reducing pass, runs everything recorded, and reads its slots' values into out. */
+static void reduce(pk_run *r, enum kernel k, const gpu_buffer *const *buffers, const void *push, uint32_t count,
+                   uint32_t slots, uint32_t max_slots, double *out)
+{
+    struct gpu_solver *s = solver_of(r);
+    int status = record_reduction(s, k, buffers, push, count, slots, max_slots, &s->device->result);
+    read_result(r, status == IM_OK ? gpu_submit_wait(context_of(s)) : status, &s->device->result, slots, out);
+}
+
+/* What a pass that writes p (and perhaps u, g, z, gap0) leaves of the kept sums: none. */
+static void wrote_pressure(struct gpu_solver *s) { s->summary_kept = s->gz_kept = s->gaps_kept = 0; }
+
+/* What a pass that writes u, g or z but not p leaves of them: the summary of p. */
+static void wrote_fields(struct gpu_solver *s) { s->gz_kept = s->gaps_kept = 0; }
 
 /* Runs what is recorded (passes without a result), keeping a failure in r->status. */
 static void flush(pk_run *r)
@@ -329,6 +378,8 @@ static int gpu_engine_begin(pk_run *r)
     const VkDeviceSize bytes = sizeof(double) * patches(s);
     const int prolong = r->start_prolonged;
     r->start_prolonged = 0; /* a later begin (a search's next trial) starts from the p it returned */
+    wrote_pressure(s);
+    s->step_changed = 1; /* no gaps ahead of the first step */
     int status = gpu_buffer_upload(context_of(s), &s->gap0, 0, r->gap0, bytes);
     if (status == IM_OK && !prolong)
         status = gpu_buffer_upload(context_of(s), &s->p, 0, r->p, bytes);
@@ -355,7 +406,11 @@ static int gpu_engine_finish(pk_run *r)
     return status == IM_OK ? IM_OK : im_fail_context(status, "GPU solve %u x %u", s->nx, s->ny);
 }
 
-static void gpu_engine_convolve_pressure(pk_run *r) { record_convolution(solver_of(r)); }
+static void gpu_engine_convolve_pressure(pk_run *r)
+{
+    wrote_fields(solver_of(r));
+    record_convolution(solver_of(r));
+}
 
 static void gpu_engine_convolve_direction(pk_run *r) { convolve_real(solver_of(r)); }
 
@@ -365,23 +420,44 @@ static double gpu_engine_contact_mean(pk_run *r, double p_factor, double u_facto
     const gpu_buffer *b[4] = {&s->p, &s->u, &s->gap0, &s->device->partials};
     const push_rescaled_mean push = {.cap = cap, .p_factor = p_factor, .u_factor = u_factor, .n = patches(s)};
     double v[2];
+    wrote_pressure(s);
     reduce(r, K_CONTACT_MEAN, b, &push, push.n, 2, 0, v);
     *count = (long)v[1];
     return v[1] > 0 ? v[0] / v[1] : 0;
 }
 
-static gap_stats gpu_engine_gaps(pk_run *r, double w, double cap)
+enum { GAPS_SLOTS = 5 };
+
+/* Records the gaps pass at approach w, its sums into the host-visible buffer into. */
+static int record_gaps(pk_run *r, double w, double cap, const gpu_buffer *into)
 {
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[6] = {&s->p, &s->u, &s->gap0, &s->g, &s->z, &s->device->partials};
     const push_pair push = {.a = w, .b = cap, .n = patches(s), .flag = r->plan->options.precondition != 0};
-    double v[5];
-    reduce(r, K_GAPS, b, &push, push.n, 5, 1u << 3, v);
+    return record_reduction(s, K_GAPS, b, &push, push.n, GAPS_SLOTS, 1u << 3, into);
+}
+
+static gap_stats gap_stats_of(const double v[GAPS_SLOTS])
+{
     return (gap_stats){.sum_squares = v[0],
                        .contact = (long)v[1],
                        .moving_squares = v[2],
                        .penetration = v[3],
                        .penetration_squares = v[4]};
+}
+
+static gap_stats gpu_engine_gaps(pk_run *r, double w, double cap)
+{
+    struct gpu_solver *s = solver_of(r);
+    if (s->gaps_kept && s->gaps_w == w && s->gaps_cap == cap) { /* recorded ahead by update_pressure */
+        s->gaps_kept = 0;
+        return s->gaps;
+    }
+    wrote_fields(s);
+    double v[GAPS_SLOTS];
+    const int status = record_gaps(r, w, cap, &s->device->result);
+    read_result(r, status == IM_OK ? gpu_submit_wait(context_of(s)) : status, &s->device->result, GAPS_SLOTS, v);
+    return gap_stats_of(v);
 }
 
 static double gpu_engine_winkler(pk_run *r, double w, double k0, int store)
@@ -390,8 +466,21 @@ static double gpu_engine_winkler(pk_run *r, double w, double k0, int store)
     const gpu_buffer *b[3] = {&s->gap0, &s->p, &s->device->partials};
     const push_pair push = {.a = w, .b = k0, .n = patches(s), .flag = store != 0};
     double sum;
+    wrote_pressure(s);
     reduce(r, K_WINKLER, b, &push, push.n, 1, 0, &sum);
     return sum * r->plan->delta * r->plan->delta;
+}
+
+static void gpu_engine_winkler_loads(pk_run *r, const double *w, int count, double k0, double *loads)
+{
+    struct gpu_solver *s = solver_of(r);
+    const gpu_buffer *b[2] = {&s->gap0, &s->device->partials};
+    push_loads push = {.k0 = k0, .n = patches(s)}; /* the slots past count sum at w = 0: nothing */
+    memcpy(push.w, w, sizeof(double) * (size_t)count);
+    double v[SOLVER_WINKLER_BATCH];
+    reduce(r, K_WINKLER_LOADS, b, &push, push.n, SOLVER_WINKLER_BATCH, 0, v);
+    for (int k = 0; k < count; ++k)
+        loads[k] = v[k] * r->plan->delta * r->plan->delta;
 }
 
 static void gpu_engine_clip(pk_run *r, double cap)
@@ -399,6 +488,7 @@ static void gpu_engine_clip(pk_run *r, double cap)
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[1] = {&s->p};
     const push_value push = {.value = cap, .n = patches(s)};
+    wrote_pressure(s);
     record(s, K_CLIP, b, &push, push.n);
 }
 
@@ -407,8 +497,11 @@ static void gpu_engine_summary(pk_run *r, double *sum, long *contact, double *pe
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[2] = {&s->p, &s->device->partials};
     const push_count push = {.count = patches(s)};
-    double v[3];
-    reduce(r, K_SUMMARY, b, &push, push.count, 3, 1u << 2, v);
+    double v[SUMMARY_SLOTS];
+    if (s->summary_kept) /* summed by update_pressure, in this pass's order */
+        memcpy(v, s->summary, sizeof v);
+    else
+        reduce(r, K_SUMMARY, b, &push, push.count, SUMMARY_SLOTS, 1u << 2, v);
     *sum = v[0];
     *contact = (long)v[1];
     *peak = v[2];
@@ -439,6 +532,7 @@ static int gpu_engine_scale_elastic(pk_run *r, double scale, double cap)
     const gpu_buffer *b[2] = {&s->p, &s->device->partials};
     const push_pair push = {.a = scale, .b = cap, .n = patches(s)};
     double clipped;
+    wrote_pressure(s);
     reduce(r, K_SCALE_ELASTIC, b, &push, push.n, 1, 1, &clipped);
     return clipped > 0;
 }
@@ -456,6 +550,7 @@ static void gpu_engine_scale(pk_run *r, double p_factor, double u_factor)
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *p[1] = {&s->p}, *u[1] = {&s->u};
     const push_value scale_p = {.value = p_factor, .n = patches(s)}, scale_u = {.value = u_factor, .n = patches(s)};
+    wrote_pressure(s);
     if (p_factor != 1)
         record(s, K_SCALE, p, &scale_p, scale_p.n);
     if (u_factor != 1)
@@ -480,13 +575,16 @@ static double gpu_engine_precondition(pk_run *r, long *count)
     const gpu_buffer *mask[3] = {&s->p, &s->g, &s->z};
     const gpu_buffer *multiply[2] = {&s->modes, s->periodic ? &s->spectrum : &s->inverse_spectrum};
     const gpu_buffer *restrict_to_set[4] = {&s->p, &s->g, &s->z, &s->device->partials};
+    wrote_fields(s);
     if (r->join != SOLVER_JOIN_NONE) /* without a join the gaps pass left this mask */
         record(s, K_PRECONDITION_MASK, mask, &set, set.n);
     gpu_fft_forward(context_of(s), s->precondition_fft);
     record(s, K_MULTIPLY, multiply, &modes, modes.count);
     gpu_fft_inverse(context_of(s), s->precondition_fft);
-    double v[2];
-    reduce(r, K_PRECONDITION_RESTRICT, restrict_to_set, &set, set.n, 2, 0, v);
+    double v[3];
+    reduce(r, K_PRECONDITION_RESTRICT, restrict_to_set, &set, set.n, 3, 0, v);
+    s->gz = v[2];
+    s->gz_kept = r->status == IM_OK;
     *count = (long)v[1];
     return v[0];
 }
@@ -496,7 +594,12 @@ static double gpu_engine_precondition_centre(pk_run *r, double mean)
     struct gpu_solver *s = solver_of(r);
     const gpu_buffer *b[4] = {&s->p, &s->g, &s->z, &s->device->partials};
     const push_value_set push = {.value = mean, .n = patches(s), .join = r->join};
-    double gz;
+    double gz = s->gz;
+    if (s->gz_kept && mean == 0) { /* z - 0 is z: precondition summed <g, z> in this pass's order */
+        s->gz_kept = 0;
+        return gz;
+    }
+    wrote_fields(s);
     reduce(r, K_PRECONDITION_CENTRE, b, &push, push.n, 1, 0, &gz);
     return gz;
 }
@@ -518,9 +621,28 @@ static long gpu_engine_update_pressure(pk_run *r, double tau, double cap, int *j
         &s->p,           &s->u, &s->g, &s->t, &s->real, &s->device->partials, &s->change_count, &s->change_index,
         &s->change_value};
     const push_update push = {.a = tau, .b = cap, .nx = s->nx, .ny = s->ny, .px = s->px, .join = r->join};
-    double v[2];
+    /* the next gaps, when this step is likely to leave p and u to them as it does (the last changed none) */
+    const int ahead = r->control == IM_CONTROL_DISPLACEMENT && !s->step_changed;
+    double v[UPDATE_SLOTS], gaps[GAPS_SLOTS];
+    wrote_pressure(s);
     gpu_zero(context_of(s), &s->change_count);
-    reduce(r, K_UPDATE_PRESSURE, b, &push, patches(s), 2, 1u << 1, v);
+    int status = record_reduction(s, K_UPDATE_PRESSURE, b, &push, patches(s), UPDATE_SLOTS, 1u << 1 | 1u << 4,
+                                  &s->device->result);
+    if (status == IM_OK && ahead)
+        status = record_gaps(r, r->target, cap, &s->device->ahead);
+    if (status == IM_OK)
+        status = gpu_submit_wait(context_of(s));
+    read_result(r, status, &s->device->result, UPDATE_SLOTS, v);
+    s->step_changed = v[0] != 0;
+    s->summary_kept = status == IM_OK;
+    memcpy(s->summary, v + 2, sizeof s->summary);
+    s->gaps_kept = status == IM_OK && ahead && !s->step_changed; /* else u moves before the next gaps */
+    if (s->gaps_kept) {
+        read_result(r, status, &s->device->ahead, GAPS_SLOTS, gaps);
+        s->gaps = gap_stats_of(gaps);
+        s->gaps_w = r->target;
+        s->gaps_cap = cap;
+    }
     *joined = v[1] > 0;
     return (long)v[0];
 }
@@ -532,9 +654,10 @@ static void gpu_engine_add_point_loads(pk_run *r, long changes)
 {
     struct gpu_solver *s = solver_of(r);
     if (changes > CHANGE_CAPACITY) {
-        record_convolution(s);
+        gpu_engine_convolve_pressure(r);
         return;
     }
+    wrote_fields(s);
     const gpu_buffer *b[4] = {&s->u, &s->kernel, &s->change_index, &s->change_value};
     const push_point_loads push = {.nx = s->nx, .ny = s->ny, .count = (uint32_t)changes};
     gpu_begin(context_of(s));
@@ -547,6 +670,7 @@ static int gpu_engine_convolve_arrays(im_solver_plan *plan, const double *pressu
 {
     struct gpu_solver *s = plan->gpu;
     const VkDeviceSize bytes = sizeof(double) * patches(s);
+    wrote_pressure(s);
     int status = gpu_buffer_upload(context_of(s), &s->p, 0, pressure, bytes);
     if (status == IM_OK)
         status = gpu_begin(context_of(s));
@@ -665,6 +789,7 @@ const solver_engine solver_engine_gpu = {
     .contact_mean = gpu_engine_contact_mean,
     .gaps = gpu_engine_gaps,
     .winkler = gpu_engine_winkler,
+    .winkler_loads = gpu_engine_winkler_loads,
     .clip = gpu_engine_clip,
     .any_positive = gpu_engine_any_positive,
     .load_split = gpu_engine_load_split,
@@ -903,6 +1028,11 @@ void solver_engine_gpu_transfers(const im_solver_plan *plan, double *uploaded, d
         gpu_context_transfers(plan->gpu->device->context, &up, &down);
     *uploaded = plan->gpu ? (double)up : -1;
     *downloaded = plan->gpu ? (double)down : -1;
+}
+
+long solver_engine_gpu_submissions(const im_solver_plan *plan)
+{
+    return plan->gpu ? gpu_context_submissions(plan->gpu->device->context) : -1;
 }
 
 long solver_engine_gpu_validation_messages(const im_solver_plan *plan)

@@ -35,6 +35,9 @@ void flat_gap(const double *heights, size_t n, double highest, double *gap0);
 int flat_solve_pressure(flat_cell *cell, double mean_pressure, im_flat_result *out);
 int flat_solve_gap(flat_cell *cell, double mean_gap, im_flat_result *out);
 
+/* The plan a flat contact solves on (periodic.c; its GPU counts for bench_gpu). */
+const im_solver_plan *flat_contact_plan(const im_flat_contact *run);
+
 /* A step's result from its solve s (indentation.c's steps, mpi/flat.c's periodic steps): the solve's values,
  * area_ratio n_p delta2 / area where the load is positive (on a cell, also where there is contact) and NaN
  * elsewhere, load_star area / delta2 (NaN on a cell, which has no smooth contact, and under tension). The

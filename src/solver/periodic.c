@@ -133,6 +133,8 @@ int im_flat_contact_solve_gap(im_flat_contact *run, double mean_gap, im_flat_res
     return flat_solve_gap(&run->cell, mean_gap, out);
 }
 
+const im_solver_plan *flat_contact_plan(const im_flat_contact *run) { return run->plan; }
+
 const double *im_flat_contact_pressure(const im_flat_contact *run)
 {
     ARG_REQUIRE_OR(run, "run", NULL);

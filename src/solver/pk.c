@@ -61,22 +61,46 @@ static void convolve(pk_run *r)
     ++r->convolutions;
 }
 
+/* `depth` halvings of [lo, hi] towards the approach where the local guess carries the load: the
+ * 2^depth - 1 midpoints they may take (in heap order, node j's halves are nodes 2j and 2j + 1), their
+ * loads, then the walk down the tree, which takes the midpoints and comparisons that depth single
+ * halvings take. depth 1 on an engine without winkler_loads; up to 3 (SOLVER_WINKLER_BATCH) with. */
+static void bisect_levels(pk_run *r, double k0, int depth, double *lo, double *hi)
+{
+    double lows[SOLVER_WINKLER_BATCH + 1] = {0, *lo}, highs[SOLVER_WINKLER_BATCH + 1] = {0, *hi};
+    double mids[SOLVER_WINKLER_BATCH + 1], loads[SOLVER_WINKLER_BATCH + 1];
+    const int nodes = (1 << depth) - 1;
+    for (int j = 1; j <= nodes; ++j) {
+        mids[j] = 0.5 * (lows[j] + highs[j]);
+        if (2 * j < nodes) {
+            lows[2 * j] = lows[j], highs[2 * j] = mids[j];
+            lows[2 * j + 1] = mids[j], highs[2 * j + 1] = highs[j];
+        }
+    }
+    if (depth == 1)
+        loads[1] = engine_of(r)->winkler(r, mids[1], k0, 0);
+    else
+        engine_of(r)->winkler_loads(r, mids + 1, nodes, k0, loads + 1);
+    for (int j = 1, level = 0; level < depth; ++level)
+        if (loads[j] < r->target)
+            *lo = mids[j], j = 2 * j + 1;
+        else
+            *hi = mids[j], j = 2 * j;
+}
+
 /* Cold start: the Winkler guess p = max(w - g0, 0) / K(0) (the local part of the response only) at
- * the imposed approach, or (load control) at the approach where it carries the load, found by
- * bisection (at w = K(0) N / delta^2 the first-touch patch alone does). */
+ * the imposed approach, or (load control) at the approach where it carries the load, found by 60
+ * halvings (at w = K(0) N / delta^2 the first-touch patch alone does), three at a time on an engine
+ * that sums several approaches in one round trip (the GPU's: 20 waits for 60). */
 static void cold_start(pk_run *r)
 {
     const double k0 = r->plan->kernel[0];
     double w = r->target;
     if (r->control == IM_CONTROL_LOAD) {
         double lo = 0, hi = k0 * r->target / (r->plan->delta * r->plan->delta);
-        for (int k = 0; k < 60; ++k) {
-            double mid = 0.5 * (lo + hi);
-            if (engine_of(r)->winkler(r, mid, k0, 0) < r->target)
-                lo = mid;
-            else
-                hi = mid;
-        }
+        const int batch = engine_of(r)->winkler_loads ? 3 : 1;
+        for (int k = 0; k < 60; k += batch)
+            bisect_levels(r, k0, batch, &lo, &hi);
         w = hi;
         r->approach = w; /* load control's approach until an elastic set forms (compute_gaps) */
     }
