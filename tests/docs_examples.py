@@ -22,6 +22,7 @@ and every file name its comment gives (`# ... history.png`) in its output folder
                                                info, render on stand-ins): seconds, also under the sanitizers
   docs_examples.py SOURCE BUILD --part slow    every example (indent, scenes, mpirun where the build has MPI)
   docs_examples.py SOURCE BUILD --list         the inventory: document:line, part, command
+  ... --part=slow README.md:91                 that example alone (stand-ins for the files it reads)
 exit 1 naming each failing example (document:line, the command, its exit status or the missing output).
 """
 import glob
@@ -76,6 +77,9 @@ class Example:
 
     def needs_gwyddion(self):
         return any(path.endswith(".spm") for path, _ in inputs(self))
+
+    def needs_python(self):
+        return any(w.startswith("PYTHONPATH=build/python") for w in self.words)
 
     def needs_gpu(self):
         words = self.program_words()
@@ -235,6 +239,8 @@ def run_one(example, scratch):
         words = example.program_words()
         if example.subcommand() == "run" and "--out" not in words:
             expected.append((scene_file_output(scratch, words[-1]), True))
+        if example.subcommand() == "indent" and "--out" not in words:
+            expected.append(("output/indent", True))  # indent's default folder (indent --help)
     if example.needs_mpi():
         command = "source %s && %s" % (shlex.quote(os.path.join(scratch.source, "tests/mpi/open_mpi_env.sh")), command)
     done = scratch.shell(command)
@@ -264,11 +270,13 @@ def mpi_built(build):
 
 
 def main(argv):
-    if len(argv) != 4 or argv[3] not in ("--part=quick", "--part=slow", "--list"):
-        sys.stderr.write("usage: docs_examples.py SOURCE BUILD --part=quick|--part=slow|--list\n")
+    if len(argv) not in (4, 5) or argv[3] not in ("--part=quick", "--part=slow", "--list"):
+        sys.stderr.write("usage: docs_examples.py SOURCE BUILD --part=quick|--part=slow|--list [DOCUMENT:LINE]\n")
         return 2
     source, build, mode = os.path.abspath(argv[1]), os.path.abspath(argv[2]), argv[3]
     found = examples(source)
+    if len(argv) == 5:  # that example alone: what the ones before it would write, stand-ins make
+        found = [e for e in found if e.where() == argv[4]]
     if mode == "--list":
         for example in found:
             print("%-26s %-5s %s" % (example.where(), "slow" if example.slow() else "quick",
@@ -277,6 +285,7 @@ def main(argv):
     # the GPU engine where it is built and a device opens, as tests/cli_device.sh decides (CMake's IM_HAVE_GPU)
     slow, mpi, gpu = mode == "--part=slow", mpi_built(build), os.environ.get("IM_HAVE_GPU") == "1"
     gwyddion = gwyddion_built(build)
+    python = os.path.isdir(os.path.join(build, "python", "indentmap"))  # CMake builds it where numpy is found
     faults, ran = [], 0
     for document in dict.fromkeys(e.document for e in found):
         with tempfile.TemporaryDirectory(prefix="docs_examples.") as root:
@@ -285,7 +294,8 @@ def main(argv):
             for example in (e for e in found if e.document == document):
                 reads_skipped = any(w.startswith(path) for w in example.words for path, _ in skipped)
                 if (example.slow() and not slow) or reads_skipped or (example.needs_mpi() and not mpi) or (
-                        example.needs_gpu() and not gpu) or (example.needs_gwyddion() and not gwyddion):
+                        example.needs_gpu() and not gpu) or (example.needs_gwyddion() and not gwyddion) or (
+                        example.needs_python() and not python):
                     skipped += outputs(example) if example.kind == "command" else []
                     continue
                 started = time.monotonic()
