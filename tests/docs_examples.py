@@ -183,12 +183,12 @@ class Scratch:
 
     def stand_ins(self):
         """A 512 x 512 surface (the README's s.npy) solved at one load: the fields every stand-in is copied from (once)."""
-        folder = os.path.join(self.root, ".stand-in")
+        folder = os.path.join(os.path.dirname(self.root), "stand-in")  # beside the documents' folders: made once
         if not os.path.isdir(folder):
             os.mkdir(folder)
-            made = self.shell("build/indentmap surface --n 512 --seed 1 --out .stand-in/surface.npy && "
-                              "build/indentmap surface --n 512 --seed 1 --out .stand-in/surface.gsf && "
-                              "build/indentmap indent .stand-in/surface.npy --load 1000 --fields --out .stand-in/run")
+            made = self.shell("build/indentmap surface --n 512 --seed 1 --out ../stand-in/surface.npy && "
+                              "build/indentmap surface --n 512 --seed 1 --out ../stand-in/surface.gsf && "
+                              "build/indentmap indent ../stand-in/surface.npy --load 1000 --fields --out ../stand-in/run")
             if made.returncode != 0:
                 raise RuntimeError("the stand-ins could not be made:\n" + made.stdout)
         return folder
@@ -259,6 +259,30 @@ def run_one(example, scratch):
     return faults
 
 
+def left_out(example, can):
+    """Whether this pass leaves the example out: a slow one in the quick part, or one this build cannot run."""
+    return ((example.slow() and not can["slow"]) or (example.needs_mpi() and not can["mpi"])
+            or (example.needs_gpu() and not can["gpu"]) or (example.needs_gwyddion() and not can["gwyddion"])
+            or (example.needs_python() and not can["python"]))
+
+
+def run_document(found, scratch, can):
+    """Runs a document's examples in order; returns (how many ran, their faults)."""
+    faults, ran = [], 0
+    skipped = []  # what the examples left out write: a later one reading it is left out too
+    for example in found:
+        if left_out(example, can) or any(w.startswith(path) for w in example.words for path, _ in skipped):
+            skipped += outputs(example) if example.kind == "command" else []
+            continue
+        started = time.monotonic()
+        problems = run_one(example, scratch)
+        ran += 1
+        first = example.text.splitlines()[0]
+        print("%-26s %6.1f s  %s" % (example.where(), time.monotonic() - started, first), flush=True)
+        faults += ["%s: %s: %s" % (example.where(), first, p) for p in problems]
+    return ran, faults
+
+
 def gwyddion_built(build):
     text = subprocess.run([os.path.join(build, "indentmap"), "formats"], stdout=subprocess.PIPE, text=True).stdout
     return "Gwyddion's file modules" in text
@@ -282,28 +306,18 @@ def main(argv):
             print("%-26s %-5s %s" % (example.where(), "slow" if example.slow() else "quick",
                                      example.text.splitlines()[0] + (" ..." if example.kind == "scene" else "")))
         return 0
-    # the GPU engine where it is built and a device opens, as tests/cli_device.sh decides (CMake's IM_HAVE_GPU)
-    slow, mpi, gpu = mode == "--part=slow", mpi_built(build), os.environ.get("IM_HAVE_GPU") == "1"
-    gwyddion = gwyddion_built(build)
-    python = os.path.isdir(os.path.join(build, "python", "indentmap"))  # CMake builds it where numpy is found
+    can = {"slow": mode == "--part=slow", "mpi": mpi_built(build), "gwyddion": gwyddion_built(build),
+           # the GPU engine where it is built and a device opens, as tests/cli_device.sh decides (CMake's IM_HAVE_GPU)
+           "gpu": os.environ.get("IM_HAVE_GPU") == "1",
+           "python": os.path.isdir(os.path.join(build, "python", "indentmap"))}  # built where numpy is found
     faults, ran = [], 0
-    for document in dict.fromkeys(e.document for e in found):
-        with tempfile.TemporaryDirectory(prefix="docs_examples.") as root:
-            scratch = Scratch(root, source, build)
-            skipped = []  # what the examples left to the slow part write: a later one reading it waits too
-            for example in (e for e in found if e.document == document):
-                reads_skipped = any(w.startswith(path) for w in example.words for path, _ in skipped)
-                if (example.slow() and not slow) or reads_skipped or (example.needs_mpi() and not mpi) or (
-                        example.needs_gpu() and not gpu) or (example.needs_gwyddion() and not gwyddion) or (
-                        example.needs_python() and not python):
-                    skipped += outputs(example) if example.kind == "command" else []
-                    continue
-                started = time.monotonic()
-                problems = run_one(example, scratch)
-                ran += 1
-                print("%-26s %6.1f s  %s" % (example.where(), time.monotonic() - started,
-                                             example.text.splitlines()[0]), flush=True)
-                faults += ["%s: %s: %s" % (example.where(), example.text.splitlines()[0], p) for p in problems]
+    with tempfile.TemporaryDirectory(prefix="docs_examples.") as scratches:
+        for document in dict.fromkeys(e.document for e in found):
+            root = os.path.join(scratches, document.replace("/", "_"))
+            os.mkdir(root)
+            count, problems = run_document([e for e in found if e.document == document], Scratch(root, source, build),
+                                           can)
+            ran, faults = ran + count, faults + problems
     for fault in faults:
         print("FAIL " + fault)
     print("%d examples run, %d faults" % (ran, len(faults)))
