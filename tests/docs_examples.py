@@ -23,7 +23,8 @@ and every file name its comment gives (`# ... history.png`) in its output folder
   docs_examples.py SOURCE BUILD --part slow    every example (indent, scenes, mpirun where the build has MPI)
   docs_examples.py SOURCE BUILD --list         the inventory: document:line, part, command
   ... --part=slow README.md:91                 that example alone (stand-ins for the files it reads)
-exit 1 naming each failing example (document:line, the command, its exit status or the missing output).
+exit 1 naming each failing example (document:line, the command, its exit status or the missing output); 77
+(skipped) where no OpenGL context opens, unless IM_REQUIRE_GL=1, as tests/cli_render.sh.
 """
 import glob
 import os
@@ -283,6 +284,11 @@ def run_document(found, scratch, can):
     return ran, faults
 
 
+def gl_context(build):
+    text = subprocess.run([os.path.join(build, "indentmap"), "info"], stdout=subprocess.PIPE, text=True).stdout
+    return "render backend: unavailable" not in text
+
+
 def gwyddion_built(build):
     text = subprocess.run([os.path.join(build, "indentmap"), "formats"], stdout=subprocess.PIPE, text=True).stdout
     return "Gwyddion's file modules" in text
@@ -306,6 +312,9 @@ def main(argv):
             print("%-26s %-5s %s" % (example.where(), "slow" if example.slow() else "quick",
                                      example.text.splitlines()[0] + (" ..." if example.kind == "scene" else "")))
         return 0
+    if not gl_context(build) and os.environ.get("IM_REQUIRE_GL") != "1":
+        print("SKIPPED: no OpenGL context (indentmap info): the examples draw their figures with GL")
+        return 77  # as tests/cli_render.sh decides; scripts/test.sh sets IM_REQUIRE_GL=1
     can = {"slow": mode == "--part=slow", "mpi": mpi_built(build), "gwyddion": gwyddion_built(build),
            # the GPU engine where it is built and a device opens, as tests/cli_device.sh decides (CMake's IM_HAVE_GPU)
            "gpu": os.environ.get("IM_HAVE_GPU") == "1",
