@@ -21,7 +21,7 @@ and every file name its comment gives (`# ... history.png`) in its output folder
   docs_examples.py SOURCE BUILD --part quick   the examples that solve nothing (theory, surface, formats,
                                                info, render on stand-ins): seconds, also under the sanitizers
   docs_examples.py SOURCE BUILD --part slow    every example (indent, scenes, mpirun where the build has MPI)
-  docs_examples.py SOURCE BUILD --list         the inventory: document:line, part, command
+  docs_examples.py SOURCE BUILD --list         the inventory: document:line, slow (it solves) or quick, command
   ... --part=slow README.md:91                 that example alone (stand-ins for the files it reads)
 exit 1 naming each failing example (document:line, the command, its exit status or the missing output); 77
 (skipped) where no OpenGL context opens, unless IM_REQUIRE_GL=1, as tests/cli_render.sh.
