@@ -18,11 +18,12 @@ cone's profile. Each example must exit 0 and write what its text names: every fi
 --out, --png, --psd, --histograms, --frames or `>`, a scene's output folder with run.json and index.html,
 and every file name its comment gives (`# ... history.png`) in its output folder.
 
-  docs_examples.py SOURCE BUILD --part quick   the examples that solve nothing (theory, surface, formats,
+  docs_examples.py SOURCE BUILD --part=quick   the examples that solve nothing (theory, surface, formats,
                                                info, render on stand-ins): seconds, also under the sanitizers
-  docs_examples.py SOURCE BUILD --part slow    every example (indent, scenes, mpirun where the build has MPI)
+  docs_examples.py SOURCE BUILD --part=slow    every example (indent, scenes, mpirun where the build has MPI);
+                                               grids over 1024² only with IM_DOCS_EXAMPLES_LARGE=1
   docs_examples.py SOURCE BUILD --list         the inventory: document:line, slow (it solves) or quick, command
-  ... --part=slow README.md:91                 that example alone (stand-ins for the files it reads)
+  ... --part=slow README.md:91[,...]           those examples alone (stand-ins for the files they read)
 exit 1 naming each failing example (document:line, the command, its exit status or the missing output); 77
 (skipped) where no OpenGL context opens, unless IM_REQUIRE_GL=1, as tests/cli_render.sh.
 """
@@ -43,6 +44,7 @@ PROGRAM = re.compile(r"^(build/indentmap|indentmap|mpirun|(/usr/bin/)?python3)$"
 SETUP = re.compile(r"^(scripts/|cmake$|cc$|pip$|python3 -m venv)")
 # the commands that solve a contact problem (or run a whole program): the slow part
 SOLVES = ("indent", "mpi-indent", "run")
+LARGEST = 1024  # grids above it only with IM_DOCS_EXAMPLES_LARGE=1
 OUTPUT_OPTIONS = ("--out", "--png", "--psd", "--histograms", "--frames")
 INPUT_EXTENSIONS = (".npy", ".gsf", ".csv", ".spm", ".json", ".ini", ".py")
 FIELD_OPTIONS = {"--force": "force", "--contact": "force", "--displacement": "displacement"}
@@ -78,6 +80,11 @@ class Example:
 
     def needs_gwyddion(self):
         return any(path.endswith(".spm") for path, _ in inputs(self))
+
+    def large(self):
+        """A grid over 1024² (the README's 4096² over MPI: 3.7 GiB, past 5 min on CI's 2 cores)."""
+        words = self.program_words()
+        return "--n" in words and int(words[words.index("--n") + 1]) > LARGEST
 
     def needs_python(self):
         return any(w.startswith("PYTHONPATH=build/python") for w in self.words)
@@ -264,7 +271,12 @@ def left_out(example, can):
     """Whether this pass leaves the example out: a slow one in the quick part, or one this build cannot run."""
     return ((example.slow() and not can["slow"]) or (example.needs_mpi() and not can["mpi"])
             or (example.needs_gpu() and not can["gpu"]) or (example.needs_gwyddion() and not can["gwyddion"])
-            or (example.needs_python() and not can["python"]))
+            or (example.needs_python() and not can["python"]) or (example.large() and not can["large"]))
+
+
+def reads(word, path):
+    """Whether a word names path or a file under it (output/mpi_adhesion is not under output/mpi)."""
+    return word == path or word.startswith(path.rstrip("/") + "/")
 
 
 def run_document(found, scratch, can):
@@ -272,7 +284,7 @@ def run_document(found, scratch, can):
     faults, ran = [], 0
     skipped = []  # what the examples left out write: a later one reading it is left out too
     for example in found:
-        if left_out(example, can) or any(w.startswith(path) for w in example.words for path, _ in skipped):
+        if left_out(example, can) or any(reads(w, path) for w in example.words for path, _ in skipped):
             skipped += outputs(example) if example.kind == "command" else []
             continue
         started = time.monotonic()
@@ -305,8 +317,8 @@ def main(argv):
         return 2
     source, build, mode = os.path.abspath(argv[1]), os.path.abspath(argv[2]), argv[3]
     found = examples(source)
-    if len(argv) == 5:  # that example alone: what the ones before it would write, stand-ins make
-        found = [e for e in found if e.where() == argv[4]]
+    if len(argv) == 5:  # those examples alone: what the ones before them would write, stand-ins make
+        found = [e for e in found if e.where() in argv[4].split(",")]
     if mode == "--list":
         for example in found:
             print("%-26s %-5s %s" % (example.where(), "slow" if example.slow() else "quick",
@@ -318,7 +330,8 @@ def main(argv):
     can = {"slow": mode == "--part=slow", "mpi": mpi_built(build), "gwyddion": gwyddion_built(build),
            # the GPU engine where it is built and a device opens, as tests/cli_device.sh decides (CMake's IM_HAVE_GPU)
            "gpu": os.environ.get("IM_HAVE_GPU") == "1",
-           "python": os.path.isdir(os.path.join(build, "python", "indentmap"))}  # built where numpy is found
+           "python": os.path.isdir(os.path.join(build, "python", "indentmap")),  # built where numpy is found
+           "large": os.environ.get("IM_DOCS_EXAMPLES_LARGE") == "1"}
     faults, ran = [], 0
     with tempfile.TemporaryDirectory(prefix="docs_examples.") as scratches:
         for document in dict.fromkeys(e.document for e in found):
