@@ -22,7 +22,8 @@ and every file name its comment gives (`# ... history.png`) in its output folder
                                                info, render on stand-ins): seconds, also under the sanitizers
   docs_examples.py SOURCE BUILD --part=slow    every example (indent, scenes, mpirun where the build has MPI);
                                                grids over 1024² only with IM_DOCS_EXAMPLES_LARGE=1
-  docs_examples.py SOURCE BUILD --list         the inventory: document:line, slow (it solves) or quick, command
+  docs_examples.py SOURCE BUILD --list         the inventory: document:line, slow (it solves) or quick, command,
+                                               the files and folders it says it writes
   ... --part=slow README.md:91[,...]           those examples alone (stand-ins for the files they read)
 exit 1 naming each failing example (document:line, the command, its exit status or the missing output); 77
 (skipped) where no OpenGL context opens, unless IM_REQUIRE_GL=1, as tests/cli_render.sh.
@@ -227,9 +228,17 @@ def scene_output(text):
     return output.group(1) if output else "output/" + name.group(1)
 
 
-def scene_file_output(scratch, path):
-    with open(os.path.join(scratch.root, path), encoding="utf-8") as stream:
-        return scene_output(stream.read())
+def expected(example, folder):
+    """What the example says it writes: (path, whether a folder), its scene file read under folder."""
+    if example.kind == "scene":
+        return [(scene_output(example.text), True)]
+    named, words = outputs(example), example.program_words()
+    if example.subcommand() == "run" and "--out" not in words:
+        with open(os.path.join(folder, words[-1]), encoding="utf-8") as stream:
+            named.append((scene_output(stream.read()), True))
+    if example.subcommand() == "indent" and "--out" not in words:
+        named.append(("output/indent", True))  # indent's default folder (indent --help)
+    return named
 
 
 def run_one(example, scratch):
@@ -238,24 +247,19 @@ def run_one(example, scratch):
         name = re.search(r"^\s*name\s*=\s*(\S+)", example.text, re.M).group(1)
         with open(os.path.join(scratch.root, name + ".ini"), "w", encoding="utf-8") as stream:
             stream.write(example.text + "\n")
-        command, expected = "build/indentmap run --quiet %s.ini" % name, [(scene_output(example.text), True)]
+        command = "build/indentmap run --quiet %s.ini" % name
     else:
         for path, field in inputs(example):
             if not os.path.exists(os.path.join(scratch.root, path)) and not scratch.make_stand_in(path, field):
                 return ["reads %s, which no earlier example writes and which has no stand-in" % path]
-        command, expected = example.command, outputs(example)
-        words = example.program_words()
-        if example.subcommand() == "run" and "--out" not in words:
-            expected.append((scene_file_output(scratch, words[-1]), True))
-        if example.subcommand() == "indent" and "--out" not in words:
-            expected.append(("output/indent", True))  # indent's default folder (indent --help)
+        command = example.command
     if example.needs_mpi():
         command = "source %s && %s" % (shlex.quote(os.path.join(scratch.source, "tests/mpi/open_mpi_env.sh")), command)
     done = scratch.shell(command)
     if done.returncode != 0:
         return ["exit %d:\n%s" % (done.returncode, done.stdout[-3000:])]
     faults = []
-    for path, folder in expected:
+    for path, folder in expected(example, scratch.root):
         full = os.path.join(scratch.root, path)
         if folder and not os.path.isdir(full):
             faults.append("wrote no folder %s" % path)
@@ -321,8 +325,9 @@ def main(argv):
         found = [e for e in found if e.where() in argv[4].split(",")]
     if mode == "--list":
         for example in found:
-            print("%-26s %-5s %s" % (example.where(), "slow" if example.slow() else "quick",
-                                     example.text.splitlines()[0] + (" ..." if example.kind == "scene" else "")))
+            writes = " ".join(path + ("/" if folder else "") for path, folder in expected(example, source))
+            print("%-26s %-5s %s\n%33s writes: %s" % (example.where(), "slow" if example.slow() else "quick",
+                                                       example.text.splitlines()[0], "", writes or "(standard output)"))
         return 0
     if not gl_context(build) and os.environ.get("IM_REQUIRE_GL") != "1":
         print("SKIPPED: no OpenGL context (indentmap info): the examples draw their figures with GL")
