@@ -196,7 +196,7 @@ class Scratch:
         if not os.path.isdir(folder):
             os.mkdir(folder)
             made = self.shell("build/indentmap surface --n 512 --seed 1 --out ../stand-in/surface.npy && "
-                              "build/indentmap surface --n 512 --seed 1 --out ../stand-in/surface.gsf && "
+                              "build/indentmap surface --n 512 --seed 1 --delta 1e-8 --unit m --out ../stand-in/surface.gsf && "
                               "build/indentmap indent ../stand-in/surface.npy --load 1000 --fields --out ../stand-in/run")
             if made.returncode != 0:
                 raise RuntimeError("the stand-ins could not be made:\n" + made.stdout)
