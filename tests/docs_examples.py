@@ -192,12 +192,14 @@ class Scratch:
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
     def stand_ins(self):
-        """A 512 x 512 surface (the README's s.npy) solved at one load: the fields every stand-in is copied from (once)."""
+        """A 512 x 512 surface (the README's s.npy) solved at one load: what every stand-in is copied from."""
         folder = os.path.join(os.path.dirname(self.root), "stand-in")  # beside the documents' folders: made once
         if not os.path.isdir(folder):
             os.mkdir(folder)
+            # the .gsf states its unit, as a scan does: 10 nm pixels
             made = self.shell("build/indentmap surface --n 512 --seed 1 --out ../stand-in/surface.npy && "
-                              "build/indentmap surface --n 512 --seed 1 --delta 1e-8 --unit m --out ../stand-in/surface.gsf && "
+                              "build/indentmap surface --n 512 --seed 1 --delta 1e-8 --unit m "
+                              "--out ../stand-in/surface.gsf && "
                               "build/indentmap indent ../stand-in/surface.npy --load 1000 --fields --out ../stand-in/run")
             if made.returncode != 0:
                 raise RuntimeError("the stand-ins could not be made:\n" + made.stdout)
@@ -207,7 +209,7 @@ class Scratch:
         folder = self.stand_ins()
         target = os.path.join(self.root, path)
         os.makedirs(os.path.dirname(target) or ".", exist_ok=True)
-        if path.endswith(".csv"):  # a punch profile: a cone of 80 degrees as r, z samples
+        if path.endswith(".csv"):  # a punch profile: an 80 degree cone, z = r cot 80°, as r, z samples
             with open(target, "w", encoding="utf-8") as stream:
                 stream.write("r,z\n" + "".join("%d,%.6f\n" % (r, r * 0.17632698) for r in range(0, 200, 2)))
             return True
