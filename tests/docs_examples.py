@@ -200,7 +200,8 @@ class Scratch:
             made = self.shell("build/indentmap surface --n 512 --seed 1 --out ../stand-in/surface.npy && "
                               "build/indentmap surface --n 512 --seed 1 --delta 1e-8 --unit m "
                               "--out ../stand-in/surface.gsf && "
-                              "build/indentmap indent ../stand-in/surface.npy --load 1000 --fields --out ../stand-in/run")
+                              "build/indentmap indent ../stand-in/surface.npy --load 1000 --fields "
+                              "--out ../stand-in/run")
             if made.returncode != 0:
                 raise RuntimeError("the stand-ins could not be made:\n" + made.stdout)
         return folder
