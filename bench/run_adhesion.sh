@@ -34,7 +34,7 @@ none_as_nan = lambda v: v if v is not None else float('nan')  # null: the steps 
 print(f"{sys.argv[2]:6s} {sys.argv[3]:5s} {none_as_nan(a['pull_off_force']):9.3f} {none_as_nan(a['pull_off_approach']):7.2f} "
       f"{a['jump_in_approach'] if a['jump_in_approach'] is not None else float('nan'):7.2f} "
       f"{a['jump_out_approach'] if a['jump_out_approach'] is not None else float('nan'):7.2f} "
-      f"{a['hysteresis_work']:9.3f} | {mine[0]:>8s} {mine[1]:>8s} | {theirs[0]:>8s} {theirs[1]:>8s}")
+      f"{none_as_nan(a['hysteresis_work']):9.3f} | {mine[0]:>8s} {mine[1]:>8s} | {theirs[0]:>8s} {theirs[1]:>8s}")
 PY
   done
 done

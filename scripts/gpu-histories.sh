@@ -52,7 +52,7 @@ history plastic 3,23 --approach 8:48:6,44:0:12 --hardness 0.05
 cat "$out/plastic_gpu/indentation.csv" "$out/plastic_cpu/indentation.csv" 2>/dev/null | cut -d, -f5-13
 history adhesion 2,3,5 --adhesion-work 0.03 --adhesion-range 1 --approach -1:16:18,15.5:-4:40
 for device in gpu cpu; do
-  python3 -c "import json,sys; a=json.load(open(sys.argv[1]))['adhesion']; print(sys.argv[2], {k: a[k] for k in ('pull_off_force','pull_off_approach','most_tensile_load','hysteresis_work')})" \
+  python3 -c "import json,sys; a=json.load(open(sys.argv[1]))['adhesion']; print(sys.argv[2], {k: a[k] for k in ('pull_off_force','pull_off_approach','most_tensile_load','work_done','hysteresis_work')})" \
     "$out/adhesion_$device/run.json" "$device" 2>/dev/null || grep -A8 '"adhesion"' "$out/adhesion_$device/run.json"
 done
 history periodic_adhesion 3,5,25,28 --periodic --adhesion-work 0.02 --adhesion-range 0.5 --mean-gap 2:0.8:5,1.1:2:4

@@ -109,7 +109,7 @@ int im_colormap_range_add(im_colormap_range *range, const im_field *field);
  * percent of them cut at each end, for a picture that a few outliers (a scan's spikes, its row of dropouts,
  * a needle asperity's force) would make one colour: lo the `percent` percentile, hi the 100 - `percent`
  * percentile (forces, tensions: their norm takes hi only, starting at 0 or two decades below it). Exact:
- * numpy.percentile's default (the order statistics at ranks floor(r) and floor(r) + 1 of the n values,
+ * numpy.percentile's default method (the order statistics at ranks floor(r) and floor(r) + 1 of the n values,
  * interpolated linearly, r = percent / 100 (n - 1)), by selection in a copy of the values (8 bytes each,
  * freed before returning); percent 0 gives im_colormap_range_add's smallest .. largest, an empty range
  * when no value is gathered. IM_EINVAL (range unchanged) for a NULL range, NULL fields with count > 0,

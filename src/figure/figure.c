@@ -376,7 +376,7 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
                       top + 0.3 * l->font + 1.1 * l->font, 0.0, text);
 }
 
-/* The note under the grid, on the scale bar's text line. */
+/* The note under the grid, on the line of a scale bar under the bottom row's full cell height. */
 static void draw_note(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
     double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;

@@ -352,7 +352,7 @@ json_t *run_record_adhesion_law(const im_solver_options *options, const im_inden
 
 /* With adhesion: the summary of rows[0..done) and DIR/force_distance.{png,pdf} (analysis_write_adhesion)
  * into *summary and the block law (the pull-off, the jumps, the lost work and the figure). The
- * summary's hysteresis_work is NaN when nothing was summarised (no step, or an error); returns the
+ * summary's work_done is NaN when nothing was summarised (no step, or an error); returns the
  * analysis' status (a figure that could not be written, say), for the caller to report. */
 int run_record_adhesion_summary(json_t *law, const char *dir, const im_history_row *rows, int done,
                                 enum im_control control, const char *length_unit, const char *force_unit,
