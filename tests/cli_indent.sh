@@ -57,7 +57,7 @@ head -c 8 "$DIR/cycle/load_displacement.png" | od -An -tx1 | grep -q '89 50 4e 4
     || fail "no load-displacement figure"
 grep -q '"indentation": "indentation.csv"' "$DIR/cycle/run.json" || fail "run.json does not name indentation.csv"
 # the run page shows the analysis, its numbers to 6 digits with the whole value on hover (issue 31: 17 digits)
-grep -q '<h3>indentation.csv</h3>' "$DIR/cycle/index.html" && grep -q '<span title="0.71999999999999997">0.72</span>' "$DIR/cycle/index.html" \
+grep -q '<h3><a href="indentation.csv">indentation.csv</a></h3>' "$DIR/cycle/index.html" && grep -q '<span title="0.71999999999999997">0.72</span>' "$DIR/cycle/index.html" \
     || fail "the page lacks the analysis or shows its numbers whole"
 ! ls "$DIR/ok" | grep -q plastic_ || fail "plastic fields written without a hardness"
 # Adhesion (issue 27): a sphere at Maugis's lambda = 1 (R = 64, w = 0.05305, delta_c = 0.6366: a reduced

@@ -15,7 +15,7 @@ require_renderer "$cli"
 "$cli" indent --smooth --n 64 --alpha 70 --load 50,100 --fields --out "$dir/ind" >"$dir/indent.log" 2>&1
 check "indent runs" test $? -eq 0
 check "indent writes index.html" test -s "$dir/ind/index.html"
-check "the page shows the history" grep -q "<h3>history.csv</h3>" "$dir/ind/index.html"
+check "the page shows the history" grep -q '<h3><a href="history.csv">history.csv</a></h3>' "$dir/ind/index.html"
 check "the page shows the run record" grep -q "Run record" "$dir/ind/index.html"
 check "indent draws its history" test -s "$dir/ind/history.png"
 check "the page shows the history figure" grep -q '<img src="history.png"' "$dir/ind/index.html"

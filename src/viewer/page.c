@@ -197,15 +197,23 @@ static int write_images(const page *p, const name_list *list, const char *headin
 }
 
 /* A link to a file beside the page; its name alone on a page that embeds its images. */
-static void write_link(const page *p, const char *name)
+/* A file of the folder by its name, linked unless the page embeds its images (it may travel alone). */
+static void write_file_name(const page *p, const char *name)
 {
-    fputs(p->embed ? " " : " <a href=\"", p->out);
     if (!p->embed) {
+        fputs("<a href=\"", p->out);
         escape_all(p->out, name);
         fputs("\">", p->out);
     }
     escape_all(p->out, name);
     fputs(p->embed ? "" : "</a>", p->out);
+}
+
+/* The same after a space, in a sentence. */
+static void write_link(const page *p, const char *name)
+{
+    fputc(' ', p->out);
+    write_file_name(p, name);
 }
 
 /* Figures (PNG, SVG) and animations (GIF) shown, documents (PDF, MP4) linked (named only, on a page that
@@ -513,7 +521,9 @@ static void write_table(const page *p, const char *name)
     char *text = im_path_join(path, sizeof path, p->dir, name) == IM_OK ? read_text(path) : NULL;
     if (!text)
         return;
-    fprintf(out, "<h3>%s</h3>\n<div class=\"scroll\"><table>\n", name);
+    fputs("<h3>", out);
+    write_file_name(p, name);
+    fputs("</h3>\n<div class=\"scroll\"><table>\n", out);
     const char *c = text;
     int row = 0;
     for (; *c && row <= MAX_TABLE_ROWS; ++row) {
@@ -545,24 +555,55 @@ static void write_table(const page *p, const char *name)
     free(text);
 }
 
-static void write_results(const page *p)
+/* The summary tables a run or scene writes, shown in this order; any other CSV of the folder (a
+ * distribution's per step, say: many and long) is linked under them. */
+static const char *const SHOWN_TABLES[] = {"results.csv", "table1.csv", "indentation.csv",
+                                           "history.csv", "k_fit.csv",  "flat_k.csv",
+                                           "sweep.csv",   "fig7.csv",   "adhesion_theory.csv"};
+
+static int shown_table(const char *name)
 {
-    FILE *out = p->out;
-    const char *dir = p->dir;
-    static const char *const tables[] = {"results.csv", "table1.csv", "indentation.csv", "history.csv"};
+    for (size_t k = 0; k < sizeof SHOWN_TABLES / sizeof *SHOWN_TABLES; ++k)
+        if (strcmp(name, SHOWN_TABLES[k]) == 0)
+            return 1;
+    return 0;
+}
+
+/* The CSVs not shown, named (linked unless embedded) in one line. */
+static int write_other_tables(const page *p, int any)
+{
+    static const char *const tables[] = {".csv", NULL};
+    name_list list;
+    int status = list_folder(p->dir, tables, &list), listed = 0;
+    for (int k = 0; status == IM_OK && k < list.count; ++k) {
+        if (shown_table(list.names[k]))
+            continue;
+        if (!listed++)
+            fputs(any ? "<p class=\"note\">More tables:" : "<h2>Results</h2>\n<p class=\"note\">Tables:", p->out);
+        write_link(p, list.names[k]);
+    }
+    if (listed)
+        fputs("</p>\n", p->out);
+    free_names(&list);
+    return status;
+}
+
+static int write_results(const page *p)
+{
     char path[PATH_SIZE];
     int any = 0;
-    for (size_t k = 0; k < sizeof tables / sizeof *tables; ++k) {
-        if (im_path_join(path, sizeof path, dir, tables[k]) != IM_OK)
+    for (size_t k = 0; k < sizeof SHOWN_TABLES / sizeof *SHOWN_TABLES; ++k) {
+        if (im_path_join(path, sizeof path, p->dir, SHOWN_TABLES[k]) != IM_OK)
             continue;
         FILE *f = fopen(path, "rb");
         if (!f)
             continue;
         fclose(f);
         if (!any++)
-            fputs("<h2>Results</h2>\n", out);
-        write_table(p, tables[k]);
+            fputs("<h2>Results</h2>\n", p->out);
+        write_table(p, SHOWN_TABLES[k]);
     }
+    return write_other_tables(p, any);
 }
 
 static void write_record(const page *p, const char *text)
@@ -596,10 +637,10 @@ static int write_page(const page *p, const char *title, const char *record)
     int status = write_figures(p);
     if (status == IM_OK)
         status = write_frames(p);
-    if (status == IM_OK) {
-        write_results(p);
+    if (status == IM_OK)
+        status = write_results(p);
+    if (status == IM_OK)
         write_record(p, record);
-    }
     if (ftell(out) == before)
         fputs("<p>This folder holds no figures, frames, tables or run record yet.</p>\n", out);
     fputs("</body>\n</html>\n", out);
