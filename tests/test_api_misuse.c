@@ -591,6 +591,8 @@ REPORT_VIEW(im_displacement_full, "force", im_displacement_full(BAD, &options, &
 REPORT(im_displacement_full, "displacement", im_displacement_full(&good, &options, NULL))
 REPORT(im_displacement_plan_create, "plan", im_displacement_plan_create(8, 8, 1.0, &options, NULL))
 REPORT(im_displacement_plan_create, "nx", im_displacement_plan_create(-3, 8, 1.0, &options, &plan_out))
+REPORT(im_displacement_memory_needed, "out", im_displacement_memory_needed(8, 8, &options, NULL))
+REPORT(im_displacement_memory_needed, "nx", im_displacement_memory_needed(-3, 8, &options, &memory_out))
 REPORT(im_displacement_full_with, "plan", im_displacement_full_with(NULL, &good, &field_out))
 REPORT_VIEW(im_displacement_full_with, "force", im_displacement_full_with(plan, BAD, &field_out))
 REPORT(im_displacement_full_with, "displacement", im_displacement_full_with(plan, &good, NULL))

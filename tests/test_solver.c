@@ -499,6 +499,30 @@ static void test_full_grid_displacement_on_solver_plan(void **state)
     im_indentation_free(run);
 }
 
+/* A convolution's plan estimated before it is made (im_displacement_memory_needed: scenes' limits) is the
+ * plan as made (im_solver_plan_memory), half-space and periodic, under a solve's options whose cascade and
+ * preconditioner it drops; below the solver plan's estimate of the same grid, which scenes counted for it. */
+static void test_convolution_plan_estimated_as_made(void **state)
+{
+    (void)state;
+    const int sides[][2] = {{64, 64}, {96, 40}, {200, 128}};
+    for (int k = 0; k < 3; ++k)
+        for (int periodic = 0; periodic < 2; ++periodic) {
+            im_solver_options o = im_solver_options_default();
+            o.periodic = periodic;
+            im_solver_memory estimated, made, solver;
+            im_solver_plan *plan = NULL;
+            assert_int_equal(im_displacement_memory_needed(sides[k][0], sides[k][1], &o, &estimated), IM_OK);
+            assert_int_equal(im_displacement_plan_create(sides[k][0], sides[k][1], 1.0, &o, &plan), IM_OK);
+            assert_int_equal(im_solver_plan_memory(plan, &made), IM_OK);
+            assert_int_equal(im_solver_memory_needed(sides[k][0], sides[k][1], &o, &solver), IM_OK);
+            if (estimated.host_bytes != made.host_bytes || !(made.host_bytes < solver.host_bytes))
+                fail_msg("%d x %d periodic %d: estimated %.0f bytes, the plan %.0f, a solver plan %.0f", sides[k][0],
+                         sides[k][1], periodic, estimated.host_bytes, made.host_bytes, solver.host_bytes);
+            im_solver_plan_free(plan);
+        }
+}
+
 /* im_indentation_window_for is the window im_indentation_create solves on, without making its plan: under
  * displacement and load control, with a cap (whose fully plastic approach widens the load's bound), and
  * with the crop off (the whole grid); a punch that covers no patch fails as the run does. */
@@ -808,6 +832,7 @@ int main(void)
         cmocka_unit_test(test_stopping_rule_bounds_penetration),
         cmocka_unit_test(test_full_grid_displacement),
         cmocka_unit_test(test_full_grid_displacement_on_solver_plan),
+        cmocka_unit_test(test_convolution_plan_estimated_as_made),
         cmocka_unit_test(test_window_for_is_the_runs),
         cmocka_unit_test(test_step_boxes_equal_whole_surface),
         cmocka_unit_test(test_step_boxes_keep_plastic_memory),

@@ -360,6 +360,9 @@ int im_displacement_full(const im_field *force, const im_solver_options *options
  * another grid). */
 int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options,
                                 im_solver_plan **plan);
+/* im_solver_memory_needed for the plan im_displacement_plan_create makes of nx x ny under options (what
+ * im_solver_plan_memory says of it once made), without making it: a scene's estimate. */
+int im_displacement_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out);
 int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement);
 
 /* What a solve or a step imposes: the approach w, the load N, or (im_indentation on a periodic cell

@@ -165,10 +165,10 @@ static int draws_whole_grid(const im_scene *scene)
     return (scene->frames || scene->distributions) && !scene->periodic;
 }
 
-/* That whole-grid convolution's plan (im_displacement_plan_create's: no coarse levels, no preconditioner,
- * on the engine the scene's device takes); all zero where the scene has none. A 1024^2 frame history on a
- * file (its window known and small) held 163-168 MiB beyond a tiny frame history against the 142.8 MiB
- * counted without it. */
+/* That whole-grid convolution's plan (im_displacement_plan_create's: a convolution's, on the engine the
+ * scene's device takes); all zero where the scene has none. A 1024^2 frame history on a file (its window
+ * known and small) held 163-168 MiB beyond a tiny frame history against the 142.8 MiB counted without it;
+ * a solver plan's 140 B a patch was counted for it until the convolution's own (64-80 B) was made. */
 static int full_grid_memory(const im_scene *scene, const grid *g, const im_solver_memory *plan,
                             im_solver_memory *full)
 {
@@ -176,10 +176,8 @@ static int full_grid_memory(const im_scene *scene, const grid *g, const im_solve
     if (!draws_whole_grid(scene))
         return IM_OK;
     im_solver_options o = scene_solver_options(scene);
-    o.cascade = o.precondition = 0;
-    o.adhesion_work = o.adhesion_range = o.adhesion_zone = 0;
     o.device = plan->gpu ? IM_DEVICE_GPU : IM_DEVICE_CPU; /* where the run's own plans went */
-    int status = im_solver_memory_needed(g->nx, g->ny, &o, full);
+    int status = im_displacement_memory_needed(g->nx, g->ny, &o, full);
     return status == IM_OK ? IM_OK : im_fail_context(status, "%s: the whole grid's displacement", scene->path);
 }
 

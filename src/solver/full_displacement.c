@@ -8,16 +8,31 @@
 
 #include <stdio.h>
 
-int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **plan)
+/* A convolution's options from a solve's (NULL: the defaults). */
+static im_solver_options convolution_options(const im_solver_options *options)
 {
-    ARG_REQUIRE(plan, "plan");
-    ARG_SIDES(nx, ny);
-    im_solver_options o = options ? *options : im_solver_options_default(); /* NULL: the defaults */
+    im_solver_options o = options ? *options : im_solver_options_default();
     o.fft_measure = 0;              /* a few convolutions: estimating the plan is cheaper than measuring it */
     o.wisdom_path = NULL;           /* nor read or written wisdom */
     o.cascade = o.precondition = 0; /* no solve: no coarse levels, no preconditioner */
     o.adhesion_work = o.adhesion_range = o.adhesion_zone = 0; /* u = K p whatever the interaction that made p */
+    return o;
+}
+
+int im_displacement_plan_create(int nx, int ny, double delta, const im_solver_options *options, im_solver_plan **plan)
+{
+    ARG_REQUIRE(plan, "plan");
+    ARG_SIDES(nx, ny);
+    const im_solver_options o = convolution_options(options);
     return solver_convolution_plan_create(nx, ny, delta, &o, plan);
+}
+
+int im_displacement_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out)
+{
+    ARG_REQUIRE(out, "out");
+    ARG_SIDES(nx, ny);
+    const im_solver_options o = convolution_options(options);
+    return solver_convolution_memory_needed(nx, ny, &o, out);
 }
 
 int im_displacement_full_with(im_solver_plan *plan, const im_field *force, im_field **displacement)

@@ -266,6 +266,14 @@ int im_solver_memory_needed(int nx, int ny, const im_solver_options *options, im
     return o.device == IM_DEVICE_CPU ? IM_OK : gpu_memory_needed(nx, ny, &o, out);
 }
 
+int solver_convolution_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out)
+{
+    int status = im_solver_memory_needed(nx, ny, options, out);
+    if (status == IM_OK && !out->gpu)
+        out->host_bytes = convolution_bytes(nx, ny, options->periodic);
+    return status;
+}
+
 int im_solver_plan_memory(const im_solver_plan *plan, im_solver_memory *out)
 {
     ARG_REQUIRE(out, "out");

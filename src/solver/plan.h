@@ -71,6 +71,9 @@ int solver_plan_create_level(int nx, int ny, double delta, const im_solver_optio
 /* A convolution's plan (convolution_only, on the CPU engine unless options ask for another): what
  * im_solver_convolve needs of im_solver_plan_create's, with the same transforms (the same bits);
  * im_solver_solve refuses it. */
+/* im_solver_memory_needed for such a plan (im_displacement_memory_needed): on the CPU its peak, the
+ * solver plan's estimate on a GPU. */
+int solver_convolution_memory_needed(int nx, int ny, const im_solver_options *options, im_solver_memory *out);
 int solver_convolution_plan_create(int nx, int ny, double delta, const im_solver_options *options,
                                    struct im_solver_plan **out);
 
