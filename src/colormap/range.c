@@ -4,9 +4,9 @@
  * here. */
 #include "indentmap/colormap.h"
 #include "core/args.h"
+#include "core/sort.h"
 
 #include <math.h>
-#include <stddef.h>
 #include <stdlib.h>
 
 im_colormap_range im_colormap_range_empty(im_colormap_values values)
@@ -36,41 +36,13 @@ int im_colormap_range_add(im_colormap_range *range, const im_field *field)
     return IM_OK;
 }
 
-/* Reorders values[0..n) so that values[k] is the k-th smallest, none before it larger and none after it
- * smaller: Wirth's selection (Hoare's partition, which splits ties such as a scan's row of zeros evenly)
- * with the median of three as pivot. Signed indices: j runs to left - 1. */
-static void select_kth(double *values, ptrdiff_t n, ptrdiff_t k)
-{
-    ptrdiff_t left = 0, right = n - 1;
-    while (left < right) {
-        const double a = values[left], b = values[left + (right - left) / 2], c = values[right];
-        const double pivot = fmax(fmin(a, b), fmin(fmax(a, b), c));
-        ptrdiff_t i = left, j = right;
-        do {
-            while (values[i] < pivot)
-                ++i;
-            while (pivot < values[j])
-                --j;
-            if (i <= j) {
-                const double swap = values[i];
-                values[i++] = values[j];
-                values[j--] = swap;
-            }
-        } while (i <= j);
-        if (j < k)
-            left = i;
-        if (k < i)
-            right = j;
-    }
-}
-
 /* The percentile of values[0..n) (n > 0; reordered), numpy.percentile's default: the order statistics at
  * ranks floor(r) and floor(r) + 1 interpolated linearly, r = percent / 100 (n - 1). */
 static double percentile(double *values, size_t n, double percent)
 {
     const double rank = percent / 100.0 * (double)(n - 1);
     const size_t k = (size_t)floor(rank);
-    select_kth(values, (ptrdiff_t)n, (ptrdiff_t)k);
+    select_doubles(values, n, k);
     if (rank == (double)k)
         return values[k];
     double above = INFINITY; /* the next order statistic: the smallest of those after rank k */
