@@ -189,6 +189,14 @@ static void list_members(const output_list *o, const im_scene *scene, const char
 static void list_histories(const output_list *o, const im_scene *scene)
 {
     list_members(o, scene, "histories", scene_history_member);
+    if (scene->periodic && scene->contact_panels) /* periodic.h: scene_periodic_step_files */
+        list_file(o,
+                  scene->hardness > 0 ? "panels/family_FF/{force,gap,displacement,plastic}_NNNN.npy{,.json}"
+                                      : "panels/family_FF/{force,gap,displacement}_NNNN.npy{,.json}",
+                  "(every step of each family's first surface)");
+    if (scene->periodic && scene->distributions)
+        list_file(o, "distributions/family_FF_NNNN_{gaps,patches,patch_list}.csv",
+                  "(every step of each family's first surface)");
     if (scene_histories_unload(scene))
         list_file(o, "indentation/member_FF_SEED.csv", "(one a surface)");
     if (scene->periodic && scene_periodic_fits_k(scene))
@@ -221,8 +229,7 @@ static void list_rendered(const output_list *o, const im_scene *scene)
             list_file(o, scene->frames3d ? "contact.mp4, view3d.mp4" : "contact.mp4", "(when ffmpeg is installed)");
     }
     if (scene->contact_panels && scene->periodic) {
-        list_file(o, "panels/family_FF/{force,gap,displacement}_NNNN.npy, contact_MMMM.png",
-                  "(every step of each family's first surface)");
+        list_file(o, "panels/family_FF/contact_MMMM.png", "(every step of each family's first surface)");
         return;
     }
     if (scene->contact_panels) {
