@@ -104,6 +104,33 @@ sed -i '2s/^1,/2,/' "$dir/out_histories/table/member_01_6.csv"
 check "an edited member: not reused" grep -q "^  table/member_01_6.csv$" "$dir/edited.check"
 check "an edited member: the run's notice" grep -q "member_01_6.csv is damaged" "$dir/edited.err"
 
+# ---- under mpirun (MPI builds with an mpiexec): rank 0 reports, each member on one rank; the list is the
+# files the ranks' run writes; a sweep is refused as the run refuses it ----
+mpiexec=$(command -v mpiexec || command -v mpirun)
+if "$cli" --help | grep -q mpi-indent && [ -n "$mpiexec" ]; then
+  source "$(dirname "$0")/mpi/open_mpi_env.sh"
+  sed 's/^output = out_histories$/output = out_ranks/; s/^name = histories$/name = ranks/' "$dir/histories.ini" >"$dir/ranks.ini"
+  "$mpiexec" -n 2 --oversubscribe "$cli" run "$dir/ranks.ini" --check >"$dir/ranks.check" 2>"$dir/ranks.check_err"
+  check "mpirun: --check exits 0" test $? -eq 0
+  check "mpirun: rank 0 alone reports" test "$(grep -c "would run" "$dir/ranks.check")" -eq 1
+  shares=$(sed -n 's/^  rank [01]: //p' "$dir/ranks.check" | tr ',' '\n' | sed 's/^ *//' | sort)
+  members=$(sed -n 's|^  histories/member_\([0-9]*\)_\([0-9]*\)\.csv.*|family \1 seed \2|p' "$dir/ranks.check" | sort)
+  check "mpirun: each member on one rank" test -n "$members" -a "$shares" = "$members"
+  check "mpirun: nothing written" test ! -e "$dir/out_ranks"
+  "$mpiexec" -n 2 --oversubscribe "$cli" run --quiet "$dir/ranks.ini" >/dev/null 2>"$dir/ranks.err"
+  check "mpirun: the ranks' run" test $? -eq 0
+  check "mpirun: the outputs listed are those written" same_list ranks
+  "$mpiexec" -n 2 --oversubscribe "$cli" run --quiet "$dir/sweep.ini" >/dev/null 2>"$dir/sweep_ranks.run_err"
+  run_status=$?
+  "$mpiexec" -n 2 --oversubscribe "$cli" run "$dir/sweep.ini" --check >/dev/null 2>"$dir/sweep_ranks.check_err"
+  check "mpirun: a sweep refused as the run refuses it" test $run_status -ne 0 -a $? -eq $run_status
+  check "mpirun: the run's message" diff <(grep "^indentmap:" "$dir/sweep_ranks.run_err") \
+    <(grep "^indentmap:" "$dir/sweep_ranks.check_err") # not mpirun's own lines (its job ids)
+  check "mpirun: the sweep named" grep -q "sweep .* runs in a single process" "$dir/sweep_ranks.check_err"
+else
+  echo "mpirun: not compared (a build without MPI, or no mpiexec)"
+fi
+
 # ---- refusals: the run's own error and exit status, and nothing written ----
 same_refusal() { # same_refusal NAME: run and run --check exit alike (not 0) with the same stderr (the memory
   # available capped, so that both state the same)
