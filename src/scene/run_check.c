@@ -113,7 +113,8 @@ static void report_solves(FILE *out, const im_scene *scene, int members, const s
 static void report_estimates(FILE *out, const im_scene *scene, const scene_limits *l,
                              const im_scene_run_options *options)
 {
-    fprintf(out, "estimates (the run's own, upper bounds of the largest terms: docs/scenes.md, \"Limits\"):\n");
+    fprintf(out, "estimates (the run's own, upper bounds of the largest terms: docs/reliability.md, \"Limits, before "
+                 "any work\"):\n");
     fprintf(out, "  memory: about %.1f MiB (%d solve%s at once, %.1f MiB each for the %s engine's plan and fields), ",
             l->memory_needed / MIB, l->at_once, l->at_once == 1 ? "" : "s", l->solve_bytes / MIB,
             l->gpu ? "GPU" : "CPU");
@@ -378,7 +379,7 @@ int im_scene_check(const im_scene *scene, const im_scene_run_options *given, int
     ARG_REQUIRE(scene, "scene");
     ARG_REQUIRE(given, "options");
     if (ranks < 1)
-        return im_fail(IM_EINVAL, "ranks = %d: expected at least 1", ranks);
+        return im_fail(IM_EINVAL, "im_scene_check: ranks = %d: expected at least 1", ranks);
     scene_callbacks callbacks;
     im_scene_run_options options = scene_callbacks_begin(given, &callbacks);
     im_scene *measured = NULL;
