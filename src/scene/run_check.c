@@ -36,8 +36,8 @@ static void report_files(FILE *out, const im_scene *scene)
         char path[IM_SCENE_PATH];
         im_scene_file_path(scene, i, path, sizeof path);
         fprintf(out, "  file %s: %d x %d, spacing %g %s, h'rms %.6g (%s)%s%s\n", path, scene->surface.nx,
-                scene->surface.ny, scene->surface.delta, scene->file_unit, scene->run->file_slopes[i],
-                slope_definition_name(scene->run->file_slope_definition),
+                scene->surface.ny, scene->surface.delta, scene->file_unit[0] ? scene->file_unit : "(no unit given)",
+                scene->run->file_slopes[i], slope_definition_name(scene->run->file_slope_definition),
                 scene->run->file_resampled[i] ? ", resampled onto square pixels" : "",
                 scene->run->file_assumed[i][0] ? ", assumed: " : "");
         if (scene->run->file_assumed[i][0])
