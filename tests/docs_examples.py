@@ -73,8 +73,12 @@ class Example:
         words = self.program_words()
         return words[1] if len(words) > 1 and words[0].endswith("indentmap") else None
 
+    def solves(self):
+        """A solving subcommand, but `run --check` (which solves and writes nothing)."""
+        return self.subcommand() in SOLVES and "--check" not in self.program_words()
+
     def slow(self):
-        return self.kind == "scene" or self.subcommand() in SOLVES or not self.program_words()[0].endswith("indentmap")
+        return self.kind == "scene" or self.solves() or not self.program_words()[0].endswith("indentmap")
 
     def needs_mpi(self):
         return self.words and self.words[0] == "mpirun"
@@ -237,7 +241,7 @@ def expected(example, folder):
     if example.kind == "scene":
         return [(scene_output(example.text), True)]
     named, words = outputs(example), example.program_words()
-    if example.subcommand() == "run" and "--out" not in words:
+    if example.subcommand() == "run" and example.solves() and "--out" not in words:
         with open(os.path.join(folder, words[-1]), encoding="utf-8") as stream:
             named.append((scene_output(stream.read()), True))
     if example.subcommand() == "indent" and "--out" not in words:

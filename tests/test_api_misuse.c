@@ -128,6 +128,7 @@ static im_figure figure;
 static im_surface_params params;
 static im_scene *scene; /* misuse.ini loaded: a scene file's */
 static im_scene *scene_out;
+static im_scene_run_options scene_options;                                  /* a run's defaults */
 static im_indent_options indent_no_out, indent_no_targets, indent_no_steps; /* each lacking what it names */
 static long contact[64];
 static im_adhesion_summary adhesion;
@@ -544,6 +545,10 @@ SAFE_RESULT(im_scene_asks_for_output, "scene", im_scene_asks_for_output(NULL) ==
 SAFE_RESULT(im_scene_renders, "scene", im_scene_renders(NULL) == 0)
 REPORT(im_scene_run, "scene", im_scene_run(NULL, NULL))
 REPORT(im_scene_run, "options", im_scene_run(scene, NULL))
+REPORT(im_scene_check, "report", im_scene_check(scene, &scene_options, 1, NULL))
+REPORT(im_scene_check, "scene", im_scene_check(NULL, &scene_options, 1, &text_out))
+REPORT(im_scene_check, "options", im_scene_check(scene, NULL, 1, &text_out))
+REPORT(im_scene_check, "ranks", im_scene_check(scene, &scene_options, 0, &text_out))
 REPORT(im_scene_file_path, "scene", im_scene_file_path(NULL, 0, text, sizeof text))
 REPORT(im_scene_file_path, "out", im_scene_file_path(scene, 0, NULL, 64))
 SAFE_RESULT(im_scene_resolve_path, "scene",

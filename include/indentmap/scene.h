@@ -6,6 +6,7 @@
  *   im_scene_asks_for_output, im_scene_renders, im_scene_recorded_plans   what a run of it needs
  *   im_scene_set_output_dir, im_scene_set_wisdom_path         the caller's settings, not from the file
  *   im_scene_run, im_scene_run_options                        everything the scene asks for, on disk
+ *   im_scene_check                                            what a run would do, before any work
  *   im_scene_plot_parse, im_scene_plot_name                   [output] plots' names
  *   im_scene_file_path, im_scene_resolve_path                 paths written in a scene
  *
@@ -221,6 +222,17 @@ typedef struct im_scene_run_options {
  * (IM_ENOMEM / IM_EIO with the estimate) when its memory or disk needs exceed what the machine
  * has, or when the output folder is or contains an input (the scene or its surface file). */
 int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
+
+/* What im_scene_run(scene, options) would do, told without solving or writing anything (`indentmap run
+ * --check`): the run's own preparation and checks before any work (its input files read, the outputs the
+ * scene can make, the output folder's and the wisdom file's rules, the smooth contact inside the surface,
+ * the memory and disk estimates against the machine's), then *report, a text the caller frees with free():
+ * the inputs, the solves, the estimates, every output in the order the run writes it (with whether
+ * --resume would reuse a kept member) and, for ranks > 1, each MPI rank's share of the ensembles. Returns
+ * the error the run would stop with (*report NULL), IM_EINVAL for a NULL argument or ranks < 1. Notices
+ * (a kept result damaged, a unit assumed) go to options->log, as the run's. Reads only: a scene a run
+ * holds may be checked at once. */
+int im_scene_check(const im_scene *scene, const im_scene_run_options *options, int ranks, char **report);
 
 /* The path of file i of a scene's `file` list, resolved relative to the scene file (as
  * im_scene_resolve_path); IM_EINVAL when i is out of range. */

@@ -194,6 +194,7 @@ PARITY = {
     "run --no-wisdom": NO_WISDOM,
     "run --from-record": Python("run_scene_from_record"),
     "run --out": Python("run_scene", "out"),
+    "run --check": Python("check_scene"),
     # ---- formats, info ----
     "formats": Python("formats"),
     "info": Python("info"),

@@ -50,3 +50,17 @@ def run_scene_from_record(record, out=None, resume=False, quiet=False, progress=
     return _core.run_scene(record, resume=resume, quiet=quiet, progress=progress,
                            log=logger.log if log is None else log, out=out, from_record=True, wisdom=wisdom,
                            backend=backend)
+
+
+def check_scene(path, out=None, wisdom=None, log=None, from_record=False):
+    """What ``run_scene`` would do, told without solving or writing anything (``indentmap run --check``):
+    returns the report the program prints (the inputs as read, the solves, the memory and disk estimates
+    against this machine's, every output in the order the run writes it, with the members ``resume`` would
+    reuse), or raises the error the run would stop with before any work (``InvalidArgument``,
+    ``FormatError``, ``FileError``, ``OutOfMemory`` for a scene too large for this machine's memory).
+    ``out``, ``wisdom`` and ``from_record`` (``path`` is then a run's ``run.json``) are ``run_scene``'s;
+    notices (a kept result damaged and solved again) go to ``log``, by default the ``indentmap`` logger.
+
+    Example: ``print(im.check_scene("scenes/fig2.ini"))``."""
+    return _core.check_scene(path, log=logger.log if log is None else log, out=out, from_record=from_record,
+                             wisdom=wisdom)

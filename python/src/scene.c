@@ -8,6 +8,7 @@
 #include "indentmap/status.h"
 
 #include <signal.h>
+#include <stdlib.h>
 
 /* Where a scene comes from (a scene file, or a run's record: from_record) and where it writes (out,
  * NULL for its own output folder). */
@@ -100,8 +101,50 @@ static PyObject *run_scene(PyObject *self, PyObject *args, PyObject *kwargs)
     return out;
 }
 
+/* Loads and checks the scene without the GIL (scene.h: im_scene_check, one process); the report into
+ * *report (the caller frees it). The caller frees *scene. */
+static int load_and_check(const scene_source *source, im_scene **scene, const im_scene_run_options *options,
+                          char **report)
+{
+    int status;
+    Py_BEGIN_ALLOW_THREADS status = load_scene(source, scene);
+    if (status == IM_OK)
+        status = im_scene_check(*scene, options, 1, report);
+    Py_END_ALLOW_THREADS return status;
+}
+
+static PyObject *check_scene(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *keywords[] = {"path", "log", "out", "from_record", "wisdom", NULL};
+    PyObject *path_bytes, *log = Py_None, *out_bytes = NULL, *wisdom_bytes = NULL;
+    int from_record = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O&|OO&pO&", keywords, PyUnicode_FSConverter, &path_bytes, &log,
+                                     optional_path, &out_bytes, &from_record, optional_path, &wisdom_bytes))
+        return NULL;
+    volatile sig_atomic_t stop = 0; /* set by a log callback that raised: its exception is kept */
+    py_callbacks callbacks = {.log = log, .stop = &stop};
+    im_scene_run_options options = {.stop = &stop, .user = &callbacks, .log = log != Py_None ? py_call_log : NULL};
+    scene_source source = {PyBytes_AS_STRING(path_bytes), out_bytes ? PyBytes_AS_STRING(out_bytes) : NULL,
+                           from_record, wisdom_bytes ? PyBytes_AS_STRING(wisdom_bytes) : NULL};
+    im_scene *scene = NULL;
+    char *report = NULL;
+    int status = load_and_check(&source, &scene, &options, &report);
+    Py_DECREF(path_bytes);
+    Py_XDECREF(out_bytes);
+    Py_XDECREF(wisdom_bytes);
+    int raised = py_callbacks_finish(&callbacks, 0);
+    PyObject *out = raised ? NULL : status == IM_OK ? PyUnicode_FromString(report) : py_raise_status(status);
+    free(report);
+    im_scene_free(scene);
+    return out;
+}
+
 PyMethodDef py_scene_methods[] = {{"run_scene", (PyCFunction)(void (*)(void))run_scene, METH_VARARGS | METH_KEYWORDS,
                                    "run_scene(path, resume=False, quiet=False, progress=None, log=None, out=None, "
                                    "from_record=False, "
                                    "wisdom=None, backend='auto') -> output folder"},
+                                  {"check_scene", (PyCFunction)(void (*)(void))check_scene,
+                                   METH_VARARGS | METH_KEYWORDS,
+                                   "check_scene(path, log=None, out=None, from_record=False, wisdom=None) -> report"},
                                   {NULL, NULL, 0, NULL}};

@@ -68,14 +68,16 @@ int cli_render_backend(im_render_backend *backend);
 int cli_render_open(im_render_backend backend, im_render_context **out);
 
 /* The FFTW wisdom file of a run (wisdom.c; the library reads no environment): --wisdom FILE (given),
- * else $IM_FFTW_WISDOM (set but empty: none), else, when use_cache (a run long enough for measured
- * plans to pay: docs/solver.md, "FFTW wisdom"), the user's cache, $XDG_CACHE_HOME/indentmap/fftw-wisdom
- * or ~/.cache/indentmap/fftw-wisdom (its folder is created); none with --no-wisdom (off). Sets
+ * else $IM_FFTW_WISDOM (set but empty: none), else, when use_cache is CLI_WISDOM_CACHE (a run long enough
+ * for measured plans to pay: docs/solver.md, "FFTW wisdom"), the user's cache, $XDG_CACHE_HOME/indentmap/
+ * fftw-wisdom or ~/.cache/indentmap/fftw-wisdom (its folder is created); CLI_WISDOM_CACHE_LOOK (run
+ * --check): that cache's path, the file and its folder neither made nor cleaned; none with --no-wisdom (off). Sets
  * solver->wisdom_path (NULL for none; it may point into buffer, which must outlive the run). A damaged
  * wisdom file gets a notice on stderr and the run goes on (a damaged cache file is removed first); a
  * named file that may not be replaced (a surface, an input, a device) is an error (status.h), its
  * message naming where the path came from. IM_OK otherwise. */
 struct im_solver_options;
+enum { CLI_WISDOM_NO_CACHE = 0, CLI_WISDOM_CACHE = 1, CLI_WISDOM_CACHE_LOOK = 2 };
 int cli_wisdom_resolve(const char *given, int off, int use_cache, struct im_solver_options *solver, char *buffer,
                        size_t size);
 

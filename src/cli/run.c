@@ -17,7 +17,7 @@
 
 static void usage(FILE *stream)
 {
-    fprintf(stream, "usage: indentmap run SCENE.ini [--resume] [--quiet] [--backend auto|egl|osmesa]\n"
+    fprintf(stream, "usage: indentmap run SCENE.ini [--check] [--resume] [--quiet] [--backend auto|egl|osmesa]\n"
                     "                     [--wisdom FILE | --no-wisdom] [--out DIR]\n"
                     "       indentmap run --from-record DIR/run.json [--out NEWDIR] [options as above]\n\n"
                     "Runs a scene: solves what its outputs need and writes them under its output folder\n"
@@ -26,6 +26,11 @@ static void usage(FILE *stream)
                     "                  again: refused when an input file's SHA-256 is no longer the recorded\n"
                     "                  one or R was made by another version; its FFTW plans as recorded\n"
                     "                  (estimated ones unless --wisdom is given) (docs/scenes.md, \"Provenance\")\n"
+                    "  --check         solve and write nothing: check the scene as the run would (its keys,\n"
+                    "                  input files, outputs, memory and disk estimates against this\n"
+                    "                  machine's) and print what it would read, solve and write, with\n"
+                    "                  whether --resume would reuse each kept result; exit 0 when it would\n"
+                    "                  run, else the run's error (docs/scenes.md, \"Checking a scene\")\n"
                     "  --out DIR       write under DIR instead of the scene's output folder\n"
                     "  --resume        reuse results already on disk instead of solving them again\n"
                     "                  (after an interruption: SIGINT or SIGTERM stops at the next solver\n"
@@ -77,6 +82,7 @@ static int finish(int status, const im_scene *scene, int reporting)
 typedef struct run_wisdom {
     const char *given;
     int off;
+    int use_cache; /* cli_wisdom_resolve's: the cache, or (--check) the cache looked at only */
     char cache[4096];
 } run_wisdom;
 
@@ -106,7 +112,8 @@ static int load_and_arm(const run_source *source, im_scene **scene, run_wisdom *
     im_solver_options solver = im_solver_options_default();
     if (status == IM_OK) {
         int off = wisdom->off || (im_scene_recorded_plans(*scene) == 0 && !wisdom->given);
-        status = cli_wisdom_resolve(wisdom->given, off, 1, &solver, wisdom->cache, sizeof wisdom->cache);
+        status = cli_wisdom_resolve(wisdom->given, off, wisdom->use_cache, &solver, wisdom->cache,
+                                    sizeof wisdom->cache);
     }
     if (status == IM_OK)
         im_scene_set_wisdom_path(*scene, solver.wisdom_path);
@@ -138,17 +145,37 @@ static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
     return status;
 }
 
+/* --check: the report of what a run over `ranks` processes would do on stdout, or the run's error. */
+static int check_scene(const im_scene *scene, const im_scene_run_options *run, int ranks)
+{
+    char *report = NULL;
+    int status = im_scene_check(scene, run, ranks, &report);
+    if (status == IM_OK)
+        fputs(report, stdout);
+    free(report);
+    return status;
+}
+
+/* The exit status of --check; only the reporting rank prints. */
+static int finish_check(int status, int reporting)
+{
+    if (status == IM_OK)
+        return CLI_EXIT_OK;
+    return reporting ? cli_report(status) : finish(status, NULL, 0);
+}
+
 #if IM_HAVE_MPI
 /* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
  * force); every rank checks that it was given the same command and scene as the others, loads it,
  * and runs it over the ranks once all have loaded it (an error on one rank, such as a wisdom file
  * or backend of its own environment, stops all); rank 0 reports. */
 static int run_under_mpirun(int argc, char **argv, const run_source *source, const im_scene_run_options *run,
-                            run_wisdom *wisdom)
+                            run_wisdom *wisdom, int check)
 {
-    int provided, rank;
+    int provided, rank, ranks;
     MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     im_scene *scene = NULL;
     im_scene_run_options options = *run;
     int status = mpi_same_inputs(MPI_COMM_WORLD, argc, argv, source->path);
@@ -160,9 +187,12 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
             status = backend_of_scene(scene, &options);
         status = mpi_collective_status(MPI_COMM_WORLD, status);
     }
-    if (status == IM_OK)
+    if (status == IM_OK && check) /* rank 0 checks and reports for all */
+        status = mpi_collective_status(MPI_COMM_WORLD, rank == 0 ? check_scene(scene, &options, ranks) : IM_OK);
+    else if (status == IM_OK)
         status = im_scene_run_ranks(MPI_COMM_WORLD, scene, &options);
-    int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, scene, rank == 0));
+    int code = mpi_exit_code(MPI_COMM_WORLD,
+                             check ? finish_check(status, rank == 0) : finish(status, scene, rank == 0));
     im_scene_free(scene);
     if (rank != 0) /* rank 0 has spoken for all: nothing more (mpirun may signal a rank still finishing) */
         (void)freopen("/dev/null", "w", stderr);
@@ -177,6 +207,7 @@ typedef struct run_arguments {
     run_source *source;
     im_render_backend *backend;
     run_wisdom *wisdom;
+    int *check;
 } run_arguments;
 
 static int apply_option(int code, const char *arg, void *state)
@@ -185,6 +216,10 @@ static int apply_option(int code, const char *arg, void *state)
     switch (code) {
     case 'r': a->run->resume = 1; return 0;
     case 'q': a->run->quiet = 1; return 0;
+    case 'c':
+        *a->check = 1;
+        a->wisdom->use_cache = CLI_WISDOM_CACHE_LOOK;
+        return 0;
     case 'w': a->wisdom->given = arg; return 0;
     case 'W': a->wisdom->off = 1; return 0;
     case 'R': *a->source = (run_source){.path = arg, .from_record = 1, .out = a->source->out}; return 0;
@@ -200,20 +235,18 @@ static int apply_option(int code, const char *arg, void *state)
 
 int cli_run(int argc, char **argv)
 {
-    static const struct option options[] = {{"resume", no_argument, 0, 'r'},
-                                            {"quiet", no_argument, 0, 'q'},
-                                            {"backend", required_argument, 0, 'b'},
-                                            {"help", no_argument, 0, 'h'},
-                                            {"wisdom", required_argument, 0, 'w'},
-                                            {"no-wisdom", no_argument, 0, 'W'},
-                                            {"from-record", required_argument, 0, 'R'},
-                                            {"out", required_argument, 0, 'o'},
-                                            {0, 0, 0, 0}};
+    static const struct option options[] = {
+        {"resume", no_argument, 0, 'r'},    {"quiet", no_argument, 0, 'q'},
+        {"check", no_argument, 0, 'c'},     {"backend", required_argument, 0, 'b'},
+        {"help", no_argument, 0, 'h'},      {"wisdom", required_argument, 0, 'w'},
+        {"no-wisdom", no_argument, 0, 'W'}, {"from-record", required_argument, 0, 'R'},
+        {"out", required_argument, 0, 'o'}, {0, 0, 0, 0}};
     im_scene_run_options run = {0};
     run_source source = {0};
     im_render_backend backend = IM_RENDER_AUTO;
-    run_wisdom wisdom = {0};
-    run_arguments arguments = {&run, &source, &backend, &wisdom};
+    run_wisdom wisdom = {.use_cache = CLI_WISDOM_CACHE};
+    int check = 0;
+    run_arguments arguments = {&run, &source, &backend, &wisdom, &check};
     int code = cli_parse_options(argc, argv, options, 'h', usage, apply_option, &arguments);
     if (code != 0)
         return code > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
@@ -230,7 +263,7 @@ int cli_run(int argc, char **argv)
     run.progress = run.quiet ? NULL : cli_progress; /* --quiet: no bar either */
 #if IM_HAVE_MPI
     if (launched_by_mpirun())
-        return run_under_mpirun(argc, argv, &source, &run, &wisdom);
+        return run_under_mpirun(argc, argv, &source, &run, &wisdom, check);
 #endif
     im_scene *scene = NULL;
     int status = load_and_arm(&source, &scene, &wisdom);
@@ -238,9 +271,11 @@ int cli_run(int argc, char **argv)
         status = check_asks_for_output(scene);
     if (status == IM_OK)
         status = backend_of_scene(scene, &run);
-    if (status == IM_OK)
+    if (status == IM_OK && check)
+        status = check_scene(scene, &run, 1);
+    else if (status == IM_OK)
         status = im_scene_run(scene, &run);
-    code = finish(status, scene, 1);
+    code = check ? finish_check(status, 1) : finish(status, scene, 1);
     im_scene_free(scene);
     return code;
 }

@@ -12,9 +12,9 @@
 #include <unistd.h>
 
 /* $XDG_CACHE_HOME/indentmap/fftw-wisdom, else ~/.cache/indentmap/fftw-wisdom (the XDG base directory
- * rules: a relative XDG_CACHE_HOME is ignored); its folder is created. 0 when there is none (no
- * HOME, a path too long, a folder that cannot be made). */
-static int cache_path(char *path, size_t size)
+ * rules: a relative XDG_CACHE_HOME is ignored); its folder is created when `make`. 0 when there is none
+ * (no HOME, a path too long, a folder that cannot be made). */
+static int cache_path(char *path, size_t size, int make)
 {
     const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
     char folder[4096];
@@ -25,7 +25,7 @@ static int cache_path(char *path, size_t size)
         length = snprintf(folder, sizeof folder, "%s/.cache/indentmap", home);
     else
         return 0;
-    if (length < 0 || (size_t)length >= sizeof folder || im_make_directories(folder) != IM_OK)
+    if (length < 0 || (size_t)length >= sizeof folder || (make && im_make_directories(folder) != IM_OK))
         return 0;
     length = snprintf(path, size, "%s/fftw-wisdom", folder);
     return length > 0 && (size_t)length < size;
@@ -57,8 +57,10 @@ int cli_wisdom_resolve(const char *given, int off, int use_cache, im_solver_opti
     if (off || (!given && env && !env[0])) /* --no-wisdom, or IM_FFTW_WISDOM set but empty */
         return IM_OK;
     if (!path) {
-        if (use_cache && cache_path(buffer, size))
+        if (use_cache == CLI_WISDOM_CACHE && cache_path(buffer, size, 1))
             use_cache_file(buffer, solver);
+        else if (use_cache == CLI_WISDOM_CACHE_LOOK && cache_path(buffer, size, 0))
+            solver->wisdom_path = buffer; /* what the run would plan with, as it is now (it may not exist yet) */
         return IM_OK;
     }
     solver->wisdom_path = path;

@@ -93,6 +93,8 @@ int scene_ensemble_run(const im_scene *scene, const im_scene_run_options *option
     return IM_OK;
 }
 
+int scene_member_rank(int index, int ranks) { return index % ranks; }
+
 void scene_members_free(scene_member *members, int count)
 {
     for (int i = 0; members && i < count; ++i) {

@@ -5,6 +5,7 @@
 #include "indentmap/field.h"
 #include "indentmap/scene.h"
 #include "scene/key.h"
+#include "scene/limits.h"
 
 #include <stdint.h>
 
@@ -48,6 +49,10 @@ typedef struct scene_ranks_run {
                      scene_member_solver solve, int index, scene_member *m);
     void *data;
 } scene_ranks_run;
+
+/* The rank of K ranks that solves member `index` of a stage's list (ranks.c; `run --check` lists each
+ * rank's share). */
+int scene_member_rank(int index, int ranks);
 
 /* What earlier stages of a run solved, for later stages to reuse: nothing is solved twice. */
 typedef struct scene_reuse {
@@ -98,6 +103,15 @@ int scene_run(const im_scene *scene, const im_scene_run_options *options, const 
  * and read. On IM_OK the caller frees *prepared with scene_prepared_free; on an error (IM_ENOMEM,
  * IM_EINVAL naming the key, the file's IM_EIO / IM_EINVAL / IM_EFORMAT) it is NULL. */
 int scene_prepare(const im_scene *scene, im_scene **prepared);
+/* scene_prepare, then what a run says of it: the units assumed where a file is silent (warnings) and the
+ * files' h'rms (a stage line). */
+int scene_prepare_run(const im_scene *scene, const im_scene_run_options *options, im_scene **measured);
+/* What a run of the prepared scene checks before it writes anything (run.c): the outputs it can make, the
+ * [output] keys that do nothing (warned), a sweep under MPI ranks (ranked), the inputs and wisdom file
+ * apart from the output folder, and limits.c's limits (their estimates in *limits). IM_OK or the run's
+ * error. */
+int scene_check_before_work(const im_scene *scene, const im_scene_run_options *options, int ranked,
+                            scene_limits *limits);
 /* Frees a copy of scene_prepare and its run state (NULL: nothing). */
 void scene_prepared_free(im_scene *prepared);
 

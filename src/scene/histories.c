@@ -256,12 +256,19 @@ static int solve_history(const im_scene *scene, const im_scene_run_options *run_
     return status;
 }
 
+int scene_history_member_kept(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+{
+    if (!m->history && allocate_history(m, scene->step_count) != IM_OK)
+        return 0;
+    return !scene_periodic_writes_steps(scene, m) && read_history(scene, options, m);
+}
+
 int scene_history_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     int status = allocate_history(m, scene->step_count);
     if (status != IM_OK)
         return status;
-    if (options->resume && !scene_periodic_writes_steps(scene, m) && read_history(scene, options, m)) {
+    if (options->resume && scene_history_member_kept(scene, options, m)) {
         m->origin = SCENE_READ_BACK;
         return IM_OK;
     }
@@ -517,7 +524,7 @@ void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_mem
 /* Whether the histories unload (steps that go down, with a hardness's memory): then each member's
  * indentation analysis is written. Not in the periodic mode, as `indent --periodic` (Oliver-Pharr's
  * areas are a punch's on a half-space), nor with adhesion (its summary is another). */
-static int histories_unload(const im_scene *scene)
+int scene_histories_unload(const im_scene *scene)
 {
     for (int i = 1; i < scene->step_count && scene->hardness > 0 && !scene->periodic; ++i)
         if (scene->steps[i] < scene->steps[i - 1])
@@ -583,7 +590,7 @@ int scene_run_histories(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         report_histories(options, members, count);
     scene_reuse_take_forces(reuse, members, count, SCENE_RESULT_HISTORY);
-    if (status == IM_OK && histories_unload(scene))
+    if (status == IM_OK && scene_histories_unload(scene))
         status = write_indentations(scene, options, members, count);
     if (status == IM_OK && scene->periodic)
         status = scene_periodic_results(scene, options, members, count);

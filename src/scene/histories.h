@@ -8,6 +8,15 @@
  * earlier run kept (options->resume) or solves it, and writes it under the output folder. */
 int scene_history_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m);
 
+/* Reads a history an earlier run kept into m (its rows allocated here when m->history is NULL) where
+ * --resume reuses it: 0 where a periodic member writes its steps' files (solved again), or there is none,
+ * or it is damaged or made from other inputs (solved again, with a notice: scene_warn). */
+int scene_history_member_kept(const im_scene *scene, const im_scene_run_options *options, scene_member *m);
+
+/* Whether the histories unload (steps that go down, with a hardness's memory, not periodic): then each
+ * member's indentation analysis is written (indentation/member_FF_SEED.csv). */
+int scene_histories_unload(const im_scene *scene);
+
 /* Points each history member at the table's member of the same surface (reuse->table), whose
  * state at load_star a load-controlled history takes instead of solving it again. */
 void scene_link_table(const im_scene *scene, const scene_reuse *reuse, scene_member *members, int count);

@@ -367,7 +367,23 @@ static int plan_memory(const im_scene *scene, const im_scene_run_options *option
     return IM_OK;
 }
 
-static int check_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g)
+/* The estimate check_memory judges and what it is judged against, kept in *limits. */
+static void keep_memory(const im_scene *scene, scene_limits *limits, const grid *w, const im_solver_memory *plan,
+                        double solve, double needed, int at_once)
+{
+    limits->window_nx = w->nx;
+    limits->window_ny = w->ny;
+    limits->gpu = plan->gpu;
+    limits->solve_bytes = solve;
+    limits->memory_needed = needed;
+    limits->at_once = at_once;
+    limits->memory_available = (double)im_memory_available();
+    limits->address_space = (double)im_address_space_available();
+    limits->address_reserved = address_space_overhead(scene);
+}
+
+static int check_memory(const im_scene *scene, const im_scene_run_options *options, const grid *g,
+                        scene_limits *limits)
 {
     im_solver_memory plan, full;
     const grid w = solves_window(scene, g);
@@ -377,27 +393,27 @@ static int check_memory(const im_scene *scene, const im_scene_run_options *optio
     if (status != IM_OK)
         return status;
     double needed = memory_needed(scene, g, &w, &plan, &full, &at_once);
+    keep_memory(scene, limits, &w, &plan, solve_bytes(scene, g, &w, &plan), needed, at_once);
     if ((status = check_device_memory(scene, g, &w, &plan, &full, at_once)) != IM_OK)
         return status;
-    size_t available = im_memory_available();
-    if (available != 0 && needed > (double)available)
+    const double available = limits->memory_available;
+    if (available != 0 && needed > available)
         return im_fail(IM_ENOMEM,
                        "%s: this scene needs about %.1f MiB of memory (%d surfaces solved at once, "
                        "%.1f MiB each for the solver plan (%s engine) and fields of a %d x %d grid, plus what the "
                        "frames, panels and the whole grid's displacement keep) but only %.1f MiB are available; use "
                        "a smaller grid or fewer "
                        "threads (OMP_NUM_THREADS)",
-                       scene->path, needed / MIB, at_once, solve_bytes(scene, g, &w, &plan) / MIB,
-                       plan.gpu ? "GPU" : "CPU", g->nx, g->ny, (double)available / MIB);
-    size_t address_space = im_address_space_available();
-    double reserved = address_space_overhead(scene);
-    if (address_space != 0 && needed + reserved > (double)address_space)
+                       scene->path, needed / MIB, at_once, limits->solve_bytes / MIB, plan.gpu ? "GPU" : "CPU", g->nx,
+                       g->ny, available / MIB);
+    const double address_space = limits->address_space, reserved = limits->address_reserved;
+    if (address_space != 0 && needed + reserved > address_space)
         return im_fail(IM_ENOMEM,
                        "%s: this scene needs about %.1f MiB of address space (%.1f MiB of data, %.1f MiB "
                        "reserved by %d threads%s) but the address-space limit (ulimit -v) leaves %.1f MiB; raise the "
                        "limit, or use fewer threads (OMP_NUM_THREADS%s)",
                        scene->path, (needed + reserved) / MIB, needed / MIB, reserved / MIB, omp_get_max_threads(),
-                       scene->contact_panels || scene->frames ? " and the renderer" : "", (double)address_space / MIB,
+                       scene->contact_panels || scene->frames ? " and the renderer" : "", address_space / MIB,
                        scene->contact_panels || scene->frames ? ", LP_NUM_THREADS" : "");
     return IM_OK;
 }
@@ -483,15 +499,19 @@ static void existing_ancestor(const char *path, char *out, size_t size)
     snprintf(out, size, "%.*s", n ? (int)n : 1, n ? path : ".");
 }
 
-static int check_disk(const im_scene *scene, const grid *g, int space_check)
+static int check_disk(const im_scene *scene, const grid *g, int space_check, scene_limits *limits)
 {
     disk_estimate d = disk_needed(scene, g);
+    limits->disk_total = d.total;
+    limits->disk_largest = d.largest;
+    limits->disk_largest_name = d.largest_name;
+    limits->disk_free = -1.0;
     struct rlimit limit;
     if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && d.largest > (double)limit.rlim_cur)
         return im_fail(IM_EIO, "%s: %s would be about %.1f MiB but the file-size limit (ulimit -f) is %.1f MiB",
                        scene->path, d.largest_name, d.largest / MIB, (double)limit.rlim_cur / MIB);
-    char folder[IM_SCENE_PATH];
-    existing_ancestor(scene->output_dir, folder, sizeof folder);
+    char *folder = limits->disk_folder;
+    existing_ancestor(scene->output_dir, folder, sizeof limits->disk_folder);
     struct statvfs info;
     if (statvfs(folder, &info) != 0)
         return IM_OK;       /* cannot tell: the writes will report it */
@@ -501,6 +521,7 @@ static int check_disk(const im_scene *scene, const grid *g, int space_check)
                        "blocks, like /proc or /sys); give an output folder on a disk",
                        scene->path, scene->output_dir, folder);
     double free_bytes = (double)info.f_bavail * (double)info.f_frsize;
+    limits->disk_free = free_bytes;
     if (d.total > free_bytes && space_check)
         return im_fail(IM_EIO,
                        "%s: the outputs need about %.1f MiB of disk (the largest, %s, %.1f MiB) but %s has "
@@ -557,17 +578,21 @@ static int check_outputs_apart(const im_scene *scene)
     return status;
 }
 
-int scene_check_limits(const im_scene *scene, const im_scene_run_options *options)
+int scene_check_limits(const im_scene *scene, const im_scene_run_options *options, scene_limits *limits)
 {
     grid g;
+    *limits = (scene_limits){.disk_free = -1.0};
     int status = check_outputs_apart(scene);
     if (status == IM_OK)
         status = scene_grid(scene, &g);
-    if (status == IM_OK)
+    if (status == IM_OK) {
+        limits->nx = limits->window_nx = g.nx;
+        limits->ny = limits->window_ny = g.ny;
         status = check_consistency(scene, &g);
+    }
     if (status == IM_OK)
-        status = check_memory(scene, options, &g);
+        status = check_memory(scene, options, &g, limits);
     if (status == IM_OK)
-        status = check_disk(scene, &g, !options->no_space_check);
+        status = check_disk(scene, &g, !options->no_space_check, limits);
     return status;
 }

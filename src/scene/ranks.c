@@ -106,7 +106,7 @@ static int gather_origins(ranks_state *st, int stage, const scene_member *mine, 
     return IM_OK;
 }
 
-/* This rank's members of a stage (i % K == rank), copied out of the stage's list into *mine. */
+/* This rank's members of a stage (scene_member_rank), copied out of the stage's list into *mine. */
 static int share_of(const im_scene *scene, const ranks_state *st, int stage, scene_member **mine, int *count, int *n)
 {
     scene_member *members = NULL;
@@ -115,8 +115,9 @@ static int share_of(const im_scene *scene, const ranks_state *st, int stage, sce
     if (status == IM_OK && !*mine)
         status = im_fail(IM_ENOMEM, "%s: allocation of %d members failed", STAGE_FOLDERS[stage], *count);
     *n = 0;
-    for (int i = st->rank; status == IM_OK && i < *count; i += st->ranks)
-        (*mine)[(*n)++] = members[i]; /* family and seed: nothing allocated yet */
+    for (int i = 0; status == IM_OK && i < *count; ++i)
+        if (scene_member_rank(i, st->ranks) == st->rank)
+            (*mine)[(*n)++] = members[i]; /* family and seed: nothing allocated yet */
     scene_members_free(members, status == IM_OK ? *count : 0);
     return status;
 }

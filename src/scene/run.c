@@ -359,6 +359,18 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options)
     return scene_run(scene, options, NULL);
 }
 
+int scene_prepare_run(const im_scene *scene, const im_scene_run_options *options, im_scene **measured)
+{
+    int status = scene_prepare(scene, measured);
+    if (status == IM_OK)
+        warn_assumed_units(*measured, options);
+    if (status == IM_OK && (*measured)->file_count > 0)
+        scene_progress(options, "surface files: h'rms = %.6g (%s, of the surfaces as solved%s)",
+                       (*measured)->slopes[0], slope_definition_name((*measured)->run->file_slope_definition),
+                       (*measured)->file_count > 1 ? ", root mean square over the files" : "");
+    return status;
+}
+
 /* Run on the prepared copy: the caller's scene stays as parsed. */
 int scene_run(const im_scene *scene, const im_scene_run_options *given, const scene_ranks_run *ranks)
 {
@@ -366,13 +378,7 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     im_scene_run_options run = scene_callbacks_begin(given, &callbacks);
     const im_scene_run_options *options = &run;
     im_scene *measured = NULL;
-    int status = scene_prepare(scene, &measured);
-    if (status == IM_OK)
-        warn_assumed_units(measured, options);
-    if (status == IM_OK && measured->file_count > 0)
-        scene_progress(options, "surface files: h'rms = %.6g (%s, of the surfaces as solved%s)", measured->slopes[0],
-                       slope_definition_name(measured->run->file_slope_definition),
-                       measured->file_count > 1 ? ", root mean square over the files" : "");
+    int status = scene_prepare_run(scene, options, &measured);
     if (status == IM_OK)
         status = run_measured(measured, options, ranks);
     scene_prepared_free(measured);
@@ -380,15 +386,26 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     return status;
 }
 
-static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
+int scene_check_before_work(const im_scene *scene, const im_scene_run_options *options, int ranked,
+                            scene_limits *limits)
 {
     int status = check_runnable(scene);
     if (status == IM_OK)
         warn_unused_output_keys(scene, options);
+    if (status == IM_OK && ranked && scene_sweep_count(scene) > 1)
+        status = im_fail(IM_EINVAL,
+                         "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
+                         "run it without mpirun",
+                         scene->path);
     if (status == IM_OK)
         status = check_folder(scene, options);
-    if (status == IM_OK)
-        status = scene_check_limits(scene, options);
+    return status == IM_OK ? scene_check_limits(scene, options, limits) : status;
+}
+
+static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
+{
+    scene_limits limits;
+    int status = scene_check_before_work(scene, options, ranks != NULL, &limits);
     run_folder folder = {.lock = {.fd = -1}};
     if (status == IM_OK)
         status = open_folder(scene, options, &folder);
@@ -398,11 +415,6 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     options = &checked;
     if (status == IM_OK)
         status = write_record(scene, options);
-    if (status == IM_OK && ranks && scene_sweep_count(scene) > 1)
-        status = im_fail(IM_EINVAL,
-                         "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
-                         "run it without mpirun",
-                         scene->path);
     if (status == IM_OK) {
         if (ranks) /* an MPI run: the ranks solve the members first */
             status = ranks->solve_members(scene, options, ranks->data);

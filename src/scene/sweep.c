@@ -203,9 +203,7 @@ static int run_point(const im_scene *scene, const im_scene_run_options *options,
     return status;
 }
 
-/* Every point's limits (limits.c: the smooth contact inside the surface, memory, disk) before any
- * work, so that a sweep is not refused half-way. */
-static int check_points(const im_scene *scene, const im_scene_run_options *options)
+int scene_sweep_check_points(const im_scene *scene, const im_scene_run_options *options, scene_limits *each)
 {
     im_scene *point = malloc(sizeof *point);
     if (!point)
@@ -213,8 +211,9 @@ static int check_points(const im_scene *scene, const im_scene_run_options *optio
     int status = IM_OK;
     for (int i = 0; i < scene_sweep_count(scene) && status == IM_OK; ++i) {
         status = scene_sweep_point(scene, i, point);
+        scene_limits limits;
         if (status == IM_OK)
-            status = scene_check_limits(point, options);
+            status = scene_check_limits(point, options, each ? &each[i] : &limits);
     }
     free(point);
     return status;
@@ -226,7 +225,7 @@ int scene_run_sweep(const im_scene *scene, const im_scene_run_options *options, 
     sweep_row *rows = calloc((size_t)count * IM_SCENE_MAX_FAMILIES, sizeof *rows);
     if (!rows)
         return im_fail(IM_ENOMEM, "%s: allocation of the sweep's rows failed", scene->path);
-    int status = check_points(scene, options);
+    int status = scene_sweep_check_points(scene, options, NULL);
     for (int i = 0; i < count && status == IM_OK; ++i) {
         if (scene_stop_signal(options))
             status = scene_interrupted(options, "between sweep points");

@@ -103,9 +103,7 @@ static int member_is_whole(const char *text, scene_member *m, uint64_t *key, cha
     return 1;
 }
 
-/* Reads a member written by an earlier, interrupted run; 0 if there is none, if it is damaged, or
- * if it was made from other inputs (its key differs): then it is solved again, with a notice. */
-static int read_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
+int scene_table_member_kept(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
     char path[IM_SCENE_PATH], why[160];
     if (member_path(scene, m, path, sizeof path) != IM_OK || access(path, F_OK) != 0)
@@ -163,7 +161,7 @@ static int solve_member(const im_scene *scene, const im_scene_run_options *run_o
 
 int scene_table_member(const im_scene *scene, const im_scene_run_options *options, scene_member *m)
 {
-    if (options->resume && read_member(scene, options, m)) {
+    if (options->resume && scene_table_member_kept(scene, options, m)) {
         m->origin = SCENE_READ_BACK;
         return IM_OK;
     }
