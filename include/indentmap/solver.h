@@ -188,10 +188,18 @@
 extern "C" {
 #endif
 
+/* The tolerances every front end accepts (im_solver_options_check; --tol, [solver] tol, Python's tol):
+ * below 1e-15 the residual, relative to the approach, is at double precision's rounding of the gaps
+ * (it scatters between 1e-16 and 1e-14 on 256^2-512^2 grids), which no iteration lowers; a tol there is
+ * refused rather than iterated to max_iterations (the solve stops with IM_ENOCONV where the rounding
+ * is coarser still and the residual stops falling: "Stopping rule" above). */
+#define IM_SOLVER_TOL_MIN 1e-15
+#define IM_SOLVER_TOL_MAX 0.5
+
 typedef struct im_solver_options {
     double e_star;           /* composite modulus E* (default 1) */
     double tol;              /* stopping tolerance on the relative residual (default 1e-6,
-                               IM_QUALITY_DEFAULT) */
+                               IM_QUALITY_DEFAULT), in [IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX] */
     int max_iterations;      /* iteration cap per solve (default 10000) */
     int fft_measure;         /* 1: plan with FFTW_MEASURE; 0 (default): FFTW_ESTIMATE, unless a
                                wisdom file is in use, which implies FFTW_MEASURE */

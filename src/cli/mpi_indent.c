@@ -200,7 +200,9 @@ static int apply_option(int code, const char *arg, void *state)
         o->target_text = arg;
         return 0;
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
-    case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
+    case OPT_TOL:
+        o->tol_given = 1;
+        return cli_parse_double("--tol", arg, IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);
