@@ -297,6 +297,10 @@ grep -q "^k of eq. (2): [0-9.]* from 1 step (no error estimate) (.*; 3 steps in 
 "$BIN" indent "$DIR/cell.npy" --periodic --pressure 1,10 --out "$DIR/perall" > "$DIR/perall.out" 2> "$DIR/perall.err"
 grep -q "every step with a positive load is in full contact (A/A0 = 1, 2 steps)" "$DIR/perall.err" \
     && ! grep -q "^k of" "$DIR/perall.out" || fail "a k fit of full contacts only: $(cat "$DIR/perall.out" "$DIR/perall.err")"
+# ... and none when no step was solved: the failure of step 1 alone (it followed "no step with a positive load")
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.01 --max-iter 1 --out "$DIR/perfail" > /dev/null 2> "$DIR/perfail.err"
+[ $? -eq 1 ] && grep -q "step 1 of 1 (load 40.96; no step before it was solved): contact solve" "$DIR/perfail.err" \
+    && ! grep -q "k of eq. (2)" "$DIR/perfail.err" || fail "a periodic run failing at step 1: $(cat "$DIR/perfail.err")"
 "$BIN" theory --fit-k "$DIR/per/history.csv" --format csv > "$DIR/fitk.csv" || fail "theory --fit-k --format csv"
 python3 - "$DIR/fitk.csv" "$DIR/per/run.json" <<'PY' || fail "theory --fit-k is not run.json's k_fit: $(cat "$DIR/fitk.csv")"
 import csv, json, math, sys
