@@ -287,6 +287,20 @@ grep '^k of eq. (2)' "$DIR/per.out" | cmp -s - "$DIR/fitk.out" || fail "theory -
 "$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.01 --out "$DIR/per1" > "$DIR/per1.out" || fail "one-step k fit exited $?"
 grep -q "^k of eq. (2): [0-9.]* from 1 step (no error estimate) (" "$DIR/per1.out" && ! grep -q "+- 0.0000" "$DIR/per1.out" \
     || fail "a one-step k fit: $(grep '^k of' "$DIR/per1.out")"
+# ... steps in full contact (A/A0 = 1, every patch) bound k without measuring it: left out and counted (one step
+# at A/A0 0.99 and three at 1 read "+- 0.0000 over 4 steps"); every step in full contact gives no k
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.1,1,10,1e6 --out "$DIR/perfull" > "$DIR/perfull.out" \
+    || fail "full-contact k fit exited $?"
+grep -q "^k of eq. (2): [0-9.]* from 1 step (no error estimate) (.*; 3 steps in full contact (A/A0 = 1) left out" \
+    "$DIR/perfull.out" && grep -q '"full_contact_points": 3' "$DIR/perfull/run.json" \
+    || fail "full contact in the k fit: $(grep '^k of' "$DIR/perfull.out")"
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 1,10 --out "$DIR/perall" > "$DIR/perall.out" 2> "$DIR/perall.err"
+grep -q "every step with a positive load is in full contact (A/A0 = 1, 2 steps)" "$DIR/perall.err" \
+    && ! grep -q "^k of" "$DIR/perall.out" || fail "a k fit of full contacts only: $(cat "$DIR/perall.out" "$DIR/perall.err")"
+# ... and none when no step was solved: the failure of step 1 alone (it followed "no step with a positive load")
+"$BIN" indent "$DIR/cell.npy" --periodic --pressure 0.01 --max-iter 1 --out "$DIR/perfail" > /dev/null 2> "$DIR/perfail.err"
+[ $? -eq 1 ] && grep -q "step 1 of 1 (load 40.96; no step before it was solved): contact solve" "$DIR/perfail.err" \
+    && ! grep -q "k of eq. (2)" "$DIR/perfail.err" || fail "a periodic run failing at step 1: $(cat "$DIR/perfail.err")"
 "$BIN" theory --fit-k "$DIR/per/history.csv" --format csv > "$DIR/fitk.csv" || fail "theory --fit-k --format csv"
 python3 - "$DIR/fitk.csv" "$DIR/per/run.json" <<'PY' || fail "theory --fit-k is not run.json's k_fit: $(cat "$DIR/fitk.csv")"
 import csv, json, math, sys

@@ -51,6 +51,12 @@ check "--tol alone: quality none" test "$(json_field "$dir/tol_only/run.json" qu
 "$cli" indent "$dir/s.npy" --approach 1 --quality best --out "$dir/bad" >/dev/null 2>"$dir/err"
 check "--quality best: exit 2" test $? -eq 2
 check "--quality best: the message names the choices" grep -q "quality = 'best': expected draft, standard or publication" "$dir/err"
+# One tolerance range in every front end (solver.h: IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX): below 1e-15
+# the residual is double precision's rounding; --tol 1e-17 ran 10000 iterations to fail (91 s at 512^2).
+"$cli" indent "$dir/s.npy" --approach 1 --tol 1e-17 --out "$dir/fine" >/dev/null 2>"$dir/err"
+check "--tol 1e-17: exit 2" test $? -eq 2
+check "--tol 1e-17: names the option and the range" grep -q -- "--tol = 1e-17: expected a number in \[1e-15, 0.5\]" "$dir/err"
+check "--tol 1e-17: nothing solved" test ! -e "$dir/fine/history.csv"
 "$cli" indent --help | grep -q -- "--quality Q"
 check "indent --help documents --quality" test $? -eq 0
 
@@ -70,6 +76,12 @@ check "scene default: standard, tol 1e-6" test "$(json_field "$dir/out/run.json"
 scene "quality = publication" "$(printf '[solver]\ntol = 1e-7')"
 "$cli" run "$dir/q.ini" >/dev/null 2>&1
 check "scene [solver] tol overrides quality" same_number "$(json_tol "$dir/out/run.json")" 1e-7
+scene "" "$(printf '[solver]\ntol = 1e-16')"
+"$cli" run "$dir/q.ini" >/dev/null 2>"$dir/err"
+check "scene tol = 1e-16: exit 2, the range of --tol" grep -q "tol = '1e-16': expected a number in \[1e-15, 0.5\]" "$dir/err"
+scene "" "$(printf '[solver]\ntol = 0.3')"
+"$cli" run "$dir/q.ini" >/dev/null 2>&1
+check "scene tol = 0.3 accepted as --tol 0.3 is" test $? -eq 0
 scene "quality = best" ""
 "$cli" run "$dir/q.ini" >/dev/null 2>"$dir/err"
 check "scene quality = best: exit 2" test $? -eq 2

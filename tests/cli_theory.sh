@@ -33,6 +33,14 @@ check "aligned table has the same header" bash -c \
 # A smooth surface: rho_c = inf, full contact.
 "$cli" theory --alpha 80 --slope 0 --format csv >"$dir/smooth.csv"
 check "smooth surface" bash -c "sed -n 2p '$dir/smooth.csv' | grep -qx '0,inf,1,1'"
+# The aligned table keeps six significant digits of a small ratio, as the CSV has them (it printed
+# "0.000000" for eq. (6)'s 1.76327e-07 at h'rms 1e6, and 2 digits at 2.2e-5).
+"$cli" theory --alpha 80 --slope 1e6 --format csv >"$dir/tiny.csv"
+tiny_table=$("$cli" theory --alpha 80 --slope 1e6 | awk 'NR == 3 { print $3, $4 }')
+for column in 1 2; do
+  check "table: small ratio, column $column, to 6 digits of the CSV's" awk -v t="$(echo "$tiny_table" | cut -d' ' -f$column)" \
+    -v c="$(field "$dir/tiny.csv" 2 $((column + 2)))" 'BEGIN { d = (t - c) / c; if (d < 0) d = -d; exit !(c > 0 && d < 5e-6) }'
+done
 # k enters rho_c = k cot(alpha) / (2 h'rms).
 "$cli" theory --alpha 80 --slope 0.08 --k 4 --format csv >"$dir/k4.csv"
 check "--k 4 doubles rho_c" close "$(field "$dir/k4.csv" 2 2)" 4.40817 0.00001

@@ -166,7 +166,8 @@ def _periodic_run(path):
 def fit_k_history(path):
     """k of eq. (2) over a periodic history written earlier, as ``indentmap theory --fit-k`` and the end of
     ``indent --periodic`` fit it: the history.csv at ``path`` (A/A0 = area_ratio against
-    x = load / (nx ny delta^2) / (h'rms E*) over the steps with a positive load) with the cell, h'rms and E*
+    x = load / (nx ny delta^2) / (h'rms E*) over the steps with a positive load in partial contact: steps in
+    full contact, A/A0 = 1, bound k without measuring it and are counted in full_contact_points) with the cell, h'rms and E*
     of the run.json beside it. Returns run.json's ``k_fit`` block as a dict, bit for bit (k_linear NaN
     where it is null): fit_k's keys with points, pressure_ratio_range, area_fraction_range, slope_rms and
     slope_rms_definition. ValueError naming the row for a history whose mean_gap is not finite (the
@@ -186,10 +187,17 @@ def fit_k_history(path):
     loaded = history[history["load"] > 0]
     if loaded.size == 0:
         raise ValueError(f"{path}: k of eq. (2): no step with a positive load")
+    # steps in full contact (A/A0 = 1) bound k without measuring it: left out and counted, as the program does
+    full = loaded["area_ratio"] >= 1
+    loaded, full_contact = loaded[~full], int(np.count_nonzero(full))
+    if loaded.size == 0:
+        raise ValueError(f"{path}: k of eq. (2): every step with a positive load is in full contact (A/A0 = 1, "
+                         f"{full_contact} steps), which does not measure k: expected a step in partial contact "
+                         "(a smaller load or pressure)")
     x = loaded["load"] / cell_area / (slope_rms * e_star)
     area = loaded["area_ratio"]
     fit = fit_k(x, area)
     fit.update(points=int(loaded.size), pressure_ratio_range=[float(x.min()), float(x.max())],
                area_fraction_range=[float(area.min()), float(area.max())], slope_rms=slope_rms,
-               slope_rms_definition=definition)
+               slope_rms_definition=definition, full_contact_points=full_contact)
     return fit

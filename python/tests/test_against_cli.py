@@ -256,6 +256,12 @@ def test_fit_k_history_bit_for_bit(cli, rough64, tmp_path):
     for name in ("k", "k_error", "rms_residual", "k_linear", "slope_rms"):
         assert float(row[name]) == ours[name], name
     assert int(row["points"]) == ours["points"] == 3 and int(row["linear_points"]) == ours["linear_points"]
+    # steps in full contact (A/A0 = 1) left out and counted, as the program does (redteam4)
+    run_cli(cli, "indent", tmp_path / "s.npy", "--periodic", "--pressure", "0.01,1,10", "--out", tmp_path / "full")
+    ours = im.theory.fit_k_history(tmp_path / "full" / "history.csv")
+    record = json.loads((tmp_path / "full" / "run.json").read_text())["k_fit"]
+    assert ours.keys() == record.keys() and ours["points"] == 1 and ours["full_contact_points"] == 2, ours
+    assert all(ours[name] == value or (value is None and np.isnan(ours[name])) for name, value in record.items())
     run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "0.5,1", "--out", tmp_path / "half")
     with pytest.raises(ValueError, match=r"row 1 \(line 2\) has no mean_gap"):
         im.theory.fit_k_history(tmp_path / "half" / "history.csv")

@@ -105,8 +105,9 @@ static void usage(FILE *stream)
             "  --quality Q         draft (tol 1e-5), standard (1e-6, the default, as for scenes) or\n"
             "                      publication (1e-9): the solver tolerance of a speed/accuracy preset\n"
             "                      (errors measured in solver.h)\n"
-            "  --tol T             stopping tolerance on the relative gap residual (default: the\n"
-            "                      quality's); overrides --quality. run.json records quality and tol\n"
+            "  --tol T             stopping tolerance on the relative gap residual, 1e-15 to 0.5\n"
+            "                      (default: the quality's; below 1e-15 double precision's rounding\n"
+            "                      holds the residual); overrides --quality. run.json records both\n"
             "  --max-iter K        iteration cap per step (default 10000)\n"
             "  --full              solve on the whole surface, not the window that can touch\n"
             "  --plain-pk          plain Polonsky-Keer CG from the local guess: no cascade cold start, no\n"
@@ -349,7 +350,9 @@ static int apply_one_option(int code, const char *arg, indent_options *o)
     case OPT_ADHESION_LAW: o->adhesion_law_given = 1; return cli_parse_adhesion_law(arg, &o->solver.adhesion_law);
     case OPT_ADHESION_ZONE: return cli_parse_double("--adhesion-zone", arg, 1e-300, 1e300, &o->solver.adhesion_zone);
     case OPT_QUALITY: o->quality = arg; return 0;
-    case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 0.5, &o->solver.tol);
+    case OPT_TOL:
+        o->tol_given = 1;
+        return cli_parse_double("--tol", arg, IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 100000000, &o->solver.max_iterations);
     case OPT_FULL: o->solver.crop = 0; return 0;
     case OPT_PLAIN_PK: o->solver.cascade = o->solver.precondition = 0; return 0;

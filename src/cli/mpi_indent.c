@@ -104,7 +104,8 @@ static void usage(FILE *stream)
             "                  in a history with plastic memory from step to step (unloading is elastic\n"
             "                  from the flattened surface); a load under the cap is found by\n"
             "                  displacement-controlled solves on the approach, as indent's\n"
-            "  --tol T --max-iter M      stopping rule (defaults 1e-6 as for indent and scenes, 10000)\n"
+            "  --tol T --max-iter M      stopping rule (defaults 1e-6 as for indent and scenes, 10000;\n"
+            "                            tol 1e-15 to 0.5, as --tol of indent)\n"
             "  --out DIR       write DIR/force.npy (force per patch) and DIR/gap.npy with MPI-IO\n"
             "  --map F         also DIR/force_map.npy, the forces summed over F x F blocks (patch side F;\n"
             "                  .npy keeps no patch side), gathered on rank 0 (to draw with\n"
@@ -200,7 +201,9 @@ static int apply_option(int code, const char *arg, void *state)
         o->target_text = arg;
         return 0;
     case OPT_HARDNESS: return cli_parse_double("--hardness", arg, 1e-300, 1e300, &o->solver.hardness);
-    case OPT_TOL: o->tol_given = 1; return cli_parse_double("--tol", arg, 1e-300, 1, &o->solver.tol);
+    case OPT_TOL:
+        o->tol_given = 1;
+        return cli_parse_double("--tol", arg, IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX, &o->solver.tol);
     case OPT_MAXIT: return cli_parse_int("--max-iter", arg, 1, 1000000000, &o->solver.max_iterations);
     case OPT_OUT: return cli_parse_path("--out", arg, &o->out);
     case OPT_MAP: return cli_parse_int("--map", arg, 1, IM_FIELD_MAX_SIDE, &o->map_factor);

@@ -330,6 +330,13 @@ static void print_number(double value, const char *table_format, int first, int 
     print_cell(text, first, csv);
 }
 
+/* A ratio in [0, 1]: six decimals, but six significant digits below 1e-3, where the decimals would keep
+ * too few or none (eq. (6) at rho_c 1.8e-7, h'rms 1e6: "0.000000" for 1.76327e-07). */
+static void print_ratio(double value, int first, int csv)
+{
+    print_number(value, value != 0 && fabs(value) < 1e-3 ? "%.6g" : "%.6f", first, csv);
+}
+
 static void print_settings(const theory_options *o)
 {
     if (o->csv)
@@ -367,8 +374,8 @@ static int print_area_ratios(const theory_options *o, const theory_columns *c)
         if (c->by_slope)
             print_number(c->slope[i], "%g", 1, o->csv);
         print_number(c->rho_c[i], "%.6g", !c->by_slope, o->csv);
-        print_number(constant, "%.6f", 0, o->csv);
-        print_number(variable, "%.6f", 0, o->csv);
+        print_ratio(constant, 0, o->csv);
+        print_ratio(variable, 0, o->csv);
         printf("\n");
     }
     return IM_OK;
@@ -394,7 +401,7 @@ static int print_contact_density(const theory_options *o, const theory_columns *
             int status = im_theory_punch_contact_density(o->punch, c->beta[i], r_over_a, &gamma);
             if (status != IM_OK)
                 return status;
-            print_number(gamma, "%.6f", 0, o->csv);
+            print_ratio(gamma, 0, o->csv);
         }
         printf("\n");
     }

@@ -167,10 +167,14 @@ int periodic_edge_mismatch(const im_field *surface, double *edge_rms, double *in
 int periodic_warning(const im_field *surface, const char *name, char *text, size_t size);
 
 /* k of eq. (2) fitted to a periodic history under a rigid flat (theory.h: im_theory_fit_k) over its steps
- * with a positive load, x = p_m / (h'rms E*), with the ranges of x and of A/A0 it spans. */
+ * with a positive load in partial contact, x = p_m / (h'rms E*), with the ranges of x and of A/A0 it spans.
+ * Steps in full contact (A/A0 = 1: every patch) are left out and counted: the erf law reaches 1 only as
+ * p_m grows without bound, so they bound k from below without measuring it, and counted as points they
+ * shrank k_error (one step at A/A0 0.992 and four at 1: "+- 0.0000 over 5 steps"). */
 typedef struct periodic_k_fit {
     im_theory_k_fit fit;
     int points;
+    int full_contact;                           /* steps left out: A/A0 = 1 */
     double pressure_ratio[2], area_fraction[2]; /* least and largest */
 } periodic_k_fit;
 int periodic_fit_k(const im_history_row *rows, int count, double cell_area, double slope_rms, double e_star,

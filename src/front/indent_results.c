@@ -194,8 +194,10 @@ void indent_run_results(indent_run_state *s, const im_theory_interface *rough, c
         draw_frames(s, rows, done, context, status, &kept);
     write_analysis(s, rows, done, record);
     write_history_figure(s, rough, rows, done);
-    /* eq. (2) is an elastic, repulsive law for a rigid flat: no fit with a cap, adhesion or a repeated punch */
-    if (solver->periodic && !s->options->punch_given && !(solver->hardness > 0) && !(solver->adhesion_work > 0))
+    /* eq. (2) is an elastic, repulsive law for a rigid flat: no fit with a cap, adhesion or a repeated punch;
+     * none when no step was solved (it said "no step with a positive load" above the failure of step 1) */
+    if (solver->periodic && !s->options->punch_given && !(solver->hardness > 0) && !(solver->adhesion_work > 0) &&
+        done > 0)
         write_k_fit(s, rough, rows, done, record);
     if (*status != IM_OK) /* what the analysis or the fit said is not the run's error */
         error_restore(&kept, *status);

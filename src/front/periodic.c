@@ -65,13 +65,23 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
                        slope_rms);
     double *x = malloc(sizeof(double) * (size_t)(count + 1)), *area = malloc(sizeof(double) * (size_t)(count + 1));
     int status = x && area ? IM_OK : im_fail(IM_ENOMEM, "k of eq. (2) over %d steps", count);
-    for (int i = 0; status == IM_OK && i < count; ++i)
-        if (rows[i].result.load > 0) {
-            x[out->points] = rows[i].result.load / cell_area / (slope_rms * e_star);
-            area[out->points++] = rows[i].result.area_ratio;
+    for (int i = 0; status == IM_OK && i < count; ++i) {
+        if (!(rows[i].result.load > 0))
+            continue;
+        if (rows[i].result.area_ratio >= 1) {
+            ++out->full_contact;
+            continue;
         }
+        x[out->points] = rows[i].result.load / cell_area / (slope_rms * e_star);
+        area[out->points++] = rows[i].result.area_ratio;
+    }
     if (status == IM_OK && out->points == 0)
-        status = im_fail(IM_EINVAL, "k of eq. (2): no step with a positive load");
+        status = out->full_contact ? im_fail(IM_EINVAL,
+                                             "k of eq. (2): every step with a positive load is in full contact "
+                                             "(A/A0 = 1, %d steps), which does not measure k: expected a step in "
+                                             "partial contact (a smaller load or pressure)",
+                                             out->full_contact)
+                                   : im_fail(IM_EINVAL, "k of eq. (2): no step with a positive load");
     if (status == IM_OK)
         status = im_theory_fit_k(x, area, out->points, &out->fit);
     for (int i = 0; status == IM_OK && i < out->points; ++i) {
@@ -94,11 +104,17 @@ void periodic_k_fit_describe(const periodic_k_fit *k, double slope_rms, const ch
         snprintf(spread, sizeof spread, "+- %.4f over %d steps", fit->k_error, k->points);
     else
         snprintf(spread, sizeof spread, "from 1 step (no error estimate)");
+    char left_out[96] = "";
+    if (k->full_contact)
+        snprintf(left_out, sizeof left_out,
+                 "; %d step%s in full contact (A/A0 = 1) left out: they bound k, not measure it", k->full_contact,
+                 k->full_contact == 1 ? "" : "s");
     snprintf(text, size,
              "k of eq. (2): %.4f %s (p_m / (h'rms E*) %.4g to %.4g, A/A0 %.4f to %.4f; "
-             "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d step%s)",
+             "h'rms %.6g, %s); slope through 0 over A/A0 <= 0.5: %.4f (%d step%s)%s",
              fit->k, spread, k->pressure_ratio[0], k->pressure_ratio[1], k->area_fraction[0], k->area_fraction[1],
-             slope_rms, slope_definition, fit->k_linear, fit->linear_points, fit->linear_points == 1 ? "" : "s");
+             slope_rms, slope_definition, fit->k_linear, fit->linear_points, fit->linear_points == 1 ? "" : "s",
+             left_out);
 }
 
 const char PERIODIC_K_COLUMNS[] = "points,k,k_error,rms_residual,k_linear,linear_points,pressure_ratio_min,"
@@ -119,7 +135,9 @@ json_t *periodic_k_fit_record(const periodic_k_fit *k, double slope_rms, const c
                               fit->linear_points, "pressure_ratio_range", k->pressure_ratio[0], k->pressure_ratio[1],
                               "area_fraction_range", k->area_fraction[0], k->area_fraction[1], "slope_rms", slope_rms,
                               "slope_rms_definition", slope_definition);
-    if (block)
+    if (block) {
         json_object_set_new(block, "k_linear", isfinite(fit->k_linear) ? json_real(fit->k_linear) : json_null());
+        json_object_set_new(block, "full_contact_points", json_integer(k->full_contact));
+    }
     return block;
 }

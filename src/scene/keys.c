@@ -66,7 +66,7 @@ static const key_spec KEYS[] = {
     {"adhesion", "range", scene_parse_double, FIELD(adhesion_range), 1e-300, 1e300, NULL, 0, 0},
     {"adhesion", "law", scene_parse_adhesion_law, FIELD(adhesion_law), 0, 0, "maugis-dugdale|exponential", 0, 0},
     {"adhesion", "zone", scene_parse_double, FIELD(adhesion_zone), 1e-300, 1e300, NULL, 0, 0},
-    {"solver", "tol", scene_parse_double, FIELD(tol), 1e-14, 1e-1, NULL, 0, 0},
+    {"solver", "tol", scene_parse_double, FIELD(tol), IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX, NULL, 0, 0},
     {"solver", "device", scene_parse_choice, FIELD(device), 0, 0, "cpu|gpu|auto", 0, 0},
     {"output", "plots", scene_parse_plots, FIELD(plots), 0, 0, NULL, 0, 0},
 };

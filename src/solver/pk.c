@@ -11,6 +11,7 @@
 #include <float.h>
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <string.h>
 
 static const solver_engine *engine_of(const pk_run *r) { return r->plan->engine; }
@@ -293,6 +294,44 @@ static double drift_bound(const pk_run *r, int steps)
     return 2 * 8 * steps * (4 + (double)r->plan->direct_limit + log2(transformed)) * DBL_EPSILON;
 }
 
+/* A tolerance below what double precision resolves on this problem: the residual reaches its rounding
+ * (drift_bound of one step, ~5e-13 on a 512^2 grid) and from there only scatters (1e-16 to 1e-14 of the
+ * approach), so the solve would run to max_iterations and fail (91 s at 512^2 for tol 1e-17). A residual
+ * at that level whose least value has not halved in STALL_ITERATIONS iterations stops the solve, naming
+ * the range it scattered over; converging solves halve it within a few iterations there. */
+enum { STALL_ITERATIONS = 100 };
+typedef struct {
+    double best;  /* the least residual, updated when it halves */
+    double worst; /* the largest residual since */
+    int since;    /* the iteration of that update */
+} stall_watch;
+
+static int residual_stalls(stall_watch *watch, double residual, double rounding, int iteration)
+{
+    if (residual < 0.5 * watch->best) {
+        *watch = (stall_watch){residual, residual, iteration};
+        return 0;
+    }
+    watch->worst = fmax(watch->worst, residual);
+    return watch->best <= rounding && iteration - watch->since >= STALL_ITERATIONS;
+}
+
+/* How the rounding showed: the residual's scatter (step_length NaN), or a step length that rounding
+ * turned non-positive (periodic load control's centred one: <K t, t> - mean(K t) sum t). */
+static int fail_stalled(const stall_watch *watch, double tol, int iterations, double rounding, double step_length)
+{
+    char how[64];
+    if (isnan(step_length))
+        snprintf(how, sizeof how, "it has not halved in %d iterations", STALL_ITERATIONS);
+    else
+        snprintf(how, sizeof how, "the step length came out %.3g", step_length);
+    return im_fail(IM_ENOCONV,
+                   "contact solve: residual > tol %.3g after %d iterations: %s, at double precision's rounding of "
+                   "this problem's gaps (the residual %.3g to %.3g of the approach since it last halved; the "
+                   "stopping rule's bound %.3g); expected a tol above %.3g",
+                   tol, iterations, how, watch->best, watch->worst, rounding, watch->worst);
+}
+
 /* The caller's stop flag: the signal's number, 0 to go on. */
 static int stop_signal(pk_run *r)
 {
@@ -337,6 +376,8 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
     const double cap = pressure_cap(r->plan);
     int drifting = 0, restart = 1; /* drifting: the steps since u was last transformed (drift_bound) */
     double previous_squares = 1;
+    stall_watch watch = {INFINITY, 0, 0};
+    const double rounding = drift_bound(r, 1);
     for (;;) {
         if (r->status != IM_OK)
             return r->status;
@@ -361,6 +402,8 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
+        if (residual_stalls(&watch, res->residual, rounding, res->iterations))
+            return fail_stalled(&watch, o->tol, res->iterations, rounding, NAN);
         team_refresh();
         const int stopped_by = stop_signal(r);
         if (stopped_by) /* the caller asked to stop: p is still a valid (warm) start */
@@ -403,8 +446,11 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
             if (r->join == SOLVER_JOIN_IN_DIRECTION)
                 r->join = SOLVER_JOIN_BY_GAP;
         }
-        if (!isfinite(tau) || tau <= 0)
+        if (!isfinite(tau) || tau <= 0) {
+            if (!isnan(tau) && watch.best <= rounding)
+                return fail_stalled(&watch, o->tol, res->iterations, rounding, tau);
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
+        }
         long changes = e->update_pressure(r, tau, cap, &restart);
         if (o->precondition && r->join == SOLVER_JOIN_IN_DIRECTION)
             restart = 1; /* the next preconditioned step starts its own conjugate sequence */

@@ -73,8 +73,11 @@ int im_solver_options_check(const im_solver_options *o)
     ARG_REQUIRE(o, "options");
     if (!(isfinite(o->e_star) && o->e_star > 0))
         return im_fail(IM_EINVAL, "E* = %g: expected a finite modulus > 0", o->e_star);
-    if (!(o->tol > 0 && o->tol < 1))
-        return im_fail(IM_EINVAL, "tol = %g: expected 0 < tol < 1", o->tol);
+    if (!(o->tol >= IM_SOLVER_TOL_MIN && o->tol <= IM_SOLVER_TOL_MAX))
+        return im_fail(IM_EINVAL,
+                       "tol = %g: expected %g <= tol <= %g (below, the relative residual is at double precision's "
+                       "rounding)",
+                       o->tol, IM_SOLVER_TOL_MIN, IM_SOLVER_TOL_MAX);
     if (o->max_iterations < 1)
         return im_fail(IM_EINVAL, "max_iterations = %d: expected >= 1", o->max_iterations);
     if (o->window_margin < 0)
