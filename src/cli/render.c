@@ -26,7 +26,7 @@ static void usage(FILE *stream)
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
             "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d "
             "--help)\n\n"
-            "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
+            "Draws a field file (" CLI_SURFACE_FORMATS " matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, none grey (the paper's Fig. 4), patches under tension\n"
             "(adhesion) on a blue ramp of their tension -f with a second colour bar beside the force's,\n"
             "from 0 to the largest tension of all the files; height: heights with hill-shading;\n"
