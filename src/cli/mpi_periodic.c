@@ -217,16 +217,26 @@ static int run_step(history_run *run, int i)
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }
 
+static void say_note(void *user, const char *note)
+{
+    (void)user;
+    fprintf(stderr, "indentation analysis: %s\n", note);
+}
+
 /* Rank 0: the half-space's Oliver-Pharr analysis of the unloading branches (indentation.csv and
- * load_displacement.{png,pdf}), as indent's; said, not the run's error, when it fails. */
+ * load_displacement.{png,pdf}), as indent's, and why a branch's S is NaN, on stderr beside the CSV; said, not
+ * the run's error, when it fails. */
 static void write_analysis(const history_run *run, int done)
 {
     int branches = 0;
-    if (analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star, "",
-                       run->force_unit, &run->texts, &branches) != IM_OK)
-        fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
-    else if (branches > 0)
+    int status = analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star,
+                                "", run->force_unit, &run->texts, &branches);
+    if (status == IM_OK && branches > 0) {
         json_object_set_new(run->record, "indentation", json_string("indentation.csv"));
+        status = analysis_notes(&run->punch, run->rows, done, say_note, NULL);
+    }
+    if (status != IM_OK)
+        fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
 }
 
 /* Rank 0: DIR/history.{png,pdf} of the steps done, as indent draws it; said, not the run's error, when it fails. */

@@ -231,6 +231,22 @@ static int measure_branches(const im_indenter *punch, const im_history_row *rows
     return status;
 }
 
+int analysis_notes(const im_indenter *punch, const im_history_row *rows, int count, analysis_say *say, void *user)
+{
+    if (count < 2)
+        return IM_OK;
+    im_unloading_branch *found = NULL;
+    int branches = 0, status = measure_branches(punch, rows, count, &found, &branches);
+    for (int k = 0; status == IM_OK && k < branches; ++k) {
+        char note[512];
+        status = im_measure_unloading_note(&found[k], note, sizeof note);
+        if (status == IM_OK && note[0])
+            say(user, note);
+    }
+    free(found);
+    return status;
+}
+
 int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
                          double delta, double e_star, int *branches)
 {

@@ -97,6 +97,11 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
                    double e_star, const char *length_unit, const char *force_unit, const run_figure_texts *texts,
                    int *branches);
 
+/* Why a branch of rows[0..count)'s S is NaN and what to do (measure.h: im_measure_unloading_note), handed to
+ * say(user, note) for each such branch: what the front ends say beside the table (findings R3). */
+typedef void analysis_say(void *user, const char *note);
+int analysis_notes(const im_indenter *punch, const im_history_row *rows, int count, analysis_say *say, void *user);
+
 /* The same table alone at path (a scene's per-member file), atomically, when rows[0..count) hold an
  * unloading branch; *branches says how many (0: nothing written). */
 int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,

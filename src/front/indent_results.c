@@ -79,7 +79,12 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
     write_adhesion_theory(s, rows, done, law);
 }
 
-/* indentation.csv over the steps done (front.h), said and in run.json. */
+static void say_note(void *user, const char *note)
+{
+    indent_say(user, IM_LOG_INFO, "indentation analysis: %s", note);
+}
+
+/* indentation.csv over the steps done (front.h), said and in run.json, with why a branch's S is NaN. */
 static void write_analysis(const indent_run_state *s, const im_history_row *rows, int done, json_t *record)
 {
     const im_indent_options *o = s->options;
@@ -105,6 +110,8 @@ static void write_analysis(const indent_run_state *s, const im_history_row *rows
                    "indentation analysis of %d unloading branch%s: %s/indentation.csv, load_displacement.png and "
                    ".pdf",
                    branches, branches == 1 ? "" : "es", o->out);
+    if (branches > 0 && analysis_notes(&s->punch, rows, done, say_note, (void *)s) != IM_OK)
+        indent_say(s, IM_LOG_WARNING, "indentation analysis: %s", im_last_error());
 }
 
 history_figure indent_history_figure(const im_solver_options *solver, int punch_given, double cell_area,
