@@ -261,6 +261,13 @@ REPORT(im_colormap_range_clipped, "percent",
 REPORT_VIEW(im_colormap_range_clipped, "fields",
             im_colormap_range_clipped(IM_COLORMAP_FORCES, (im_field *const[]){(im_field *)BAD}, 1, 1.0,
                                       &forces_range))
+REPORT(im_colormap_outlier_note, "fields", im_colormap_outlier_note(NULL, 1, big_text, sizeof big_text, &count_out))
+REPORT(im_colormap_outlier_note, "text",
+       im_colormap_outlier_note((im_field *const[]){&good}, 1, NULL, sizeof big_text, &count_out))
+REPORT(im_colormap_outlier_note, "size",
+       im_colormap_outlier_note((im_field *const[]){&good}, 1, big_text, 0, &count_out))
+REPORT(im_colormap_outlier_note, "farthest",
+       im_colormap_outlier_note((im_field *const[]){&good}, 1, big_text, sizeof big_text, NULL))
 SAFE_RESULT(im_colormap_range_norm, "range", isnan(im_colormap_range_norm(NULL, IM_COLORMAP_MAGMA, NAN, NAN, 1).hi))
 SAFE_RESULT(im_colormap_range_norm, "values",
             isnan(im_colormap_range_norm(&unknown_range, IM_COLORMAP_MAGMA, NAN, NAN, 1).lo))
