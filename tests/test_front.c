@@ -123,6 +123,9 @@ static void ranges_cross_zero_exactly(void **state)
                 }
     assert_true(zeros > 1000); /* the formula missed 0 in many of them */
     assert_true(others > 1000000);
+    char error[512]; /* a range's first is the one given, however small */
+    assert_int_equal(steps_parse("steps", "1e-20:1:3", values, &count, error, sizeof error), 0);
+    assert_true(values[0] == 1e-20 && values[1] == 0.5);
 }
 
 /* A scene's steps refuse what `indent --approach` refuses, with the same message. */

@@ -36,15 +36,16 @@ static int too_many_steps(const char *name, const char *text, char *error, size_
 }
 
 /* Value i of first:last:n (n >= 2) by first + (last - first) i / (n - 1), the formula every kept result's
- * approaches (and so its scene key) came from, but that a value within RANGE_ZERO_ULPS of the ends' size
- * from 0 is 0: the formula's own rounding is that large (0.6:-3:37 gave -1.11e-16 for 0), so such a value
- * means 0, and its sign and size are noise. Every other value keeps the formula's bits. */
+ * approaches (and so its scene key) came from, but that a value past the first within RANGE_ZERO_ULPS of the
+ * ends' size from 0 is 0: the formula's own rounding is that large (0.6:-3:37 gave -1.11e-16 for 0), so such a
+ * value means 0, and its sign and size are noise. The first is first itself, exactly (1e-20:1:3 starts at
+ * 1e-20). Every other value keeps the formula's bits. */
 #define RANGE_ZERO_ULPS 4
 static double range_value(double first, double last, int i, int n)
 {
     const double value = first + (last - first) * i / (n - 1);
     const double ends = fmax(fabs(first), fabs(last));
-    return fabs(value) <= RANGE_ZERO_ULPS * DBL_EPSILON * ends ? 0 : value;
+    return i > 0 && fabs(value) <= RANGE_ZERO_ULPS * DBL_EPSILON * ends ? 0 : value;
 }
 
 /* "first:last:count" spanning [start, start + length) into values (room for `room` values); 0 with a
