@@ -13,7 +13,7 @@ source "$(dirname "$0")/mpi/cli_history.sh"
 
 "$cli" surface --n 64 --m 48 --seed 3 --out "$work/p.npy" > /dev/null || fail "surface"
 steps=(--approach 0.5,2,0.5,0,-0.1,-0.2,-0.3 --adhesion-work 0.02 --adhesion-range 0.2 --tol 1e-8)
-"$cli" indent "$work/p.npy" --full "${steps[@]}" --out "$work/serial" > /dev/null 2> "$work/serial.err" ||
+"$cli" indent "$work/p.npy" --full "${steps[@]}" --out "$work/serial" > "$work/serial.out" 2> "$work/serial.err" ||
   fail "indent: $(cat "$work/serial.err")"
 for k in 1 3; do
   timeout 300 "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --surface "$work/p.npy" "${steps[@]}" \
@@ -44,6 +44,12 @@ sys.exit(not (r["periodic"] is False and r["control"] == "approach" and r["punch
               and r["ranks"] == 3 and r["steps_completed"] == 7))' "$work/mpi3/run.json" ||
   fail "run.json: $(head -c 2000 "$work/mpi3/run.json")"
 [ -s "$work/mpi3/force_distance.png" ] || fail "no force_distance.png"
+# ... and said in indent's words, on stderr beside the CSV (findings R7: run.json only): the same line, the
+# same numbers, but for the folder named
+said() { grep '^adhesion: ' "$1" | sed "s|; $2/force_distance.png and .pdf\$||"; }
+serial_said=$(said "$work/serial.out" "$work/serial") mpi_said=$(said "$work/mpi3.err" "$work/mpi3")
+[ -n "$serial_said" ] && [ "$serial_said" = "$mpi_said" ] ||
+  fail "the adhesion line: indent's '$serial_said', mpi-indent's '$mpi_said'"
 [ -s "$work/mpi3/force.npy" ] && [ -s "$work/mpi3/gap.npy" ] || fail "no last step's fields"
 
 # --adhesion-zone as indent's: the widened law (l = 0.79 patches widened to 2), the same history on one rank
@@ -54,6 +60,8 @@ timeout 300 "$mpiexec" -n 1 "$cli" mpi-indent --surface "$work/p.npy" "${steps[@
 history_differences "$work/zone/history.csv" "$work/mpi-zone.csv" > "$work/diff" ||
   fail "mpi-indent --adhesion-zone's history is not indent's: $(head -5 "$work/diff")"
 ! cmp -s "$work/mpi-zone.csv" "$work/mpi1.csv" || fail "--adhesion-zone 2 changed nothing"
+grep -q '^adhesion: pull-off force ' "$work/mpi-zone.err" && ! grep -q force_distance "$work/mpi-zone.err" ||
+  fail "without --out: expected the adhesion line, naming no figure: $(cat "$work/mpi-zone.err")"
 refused zone_alone "--adhesion-zone widens the zone of --adhesion-work" --approach 0.5 --adhesion-zone 1
 
 refused negative "--approach = -0.5: expected a number in \[0," --approach -0.5

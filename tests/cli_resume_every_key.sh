@@ -70,6 +70,7 @@ output.colormap|ensemble|colormap = viridis
 output.log_norm|ensemble|log_norm = no
 output.frames_slope|ensemble|frames_slope = 0.04
 output.frames_clip|ensemble|frames_clip = 2
+output.contact_panels_clip|ensemble|contact_panels_clip = 2
 output.frame_count|ensemble|frame_count = 4
 output.frame_rate|ensemble|animation = gif;frame_rate = 2
 output.frame_scale|ensemble|frame_scale = 2

@@ -123,6 +123,14 @@ check "frames_clip: the height frame's norm inside the full one" inside \
 check "frames_clip: the contact frame's top below the largest force" inside \
   "$(norm_of "$dir/unclipped/frames/contact_0002.png")" "$(norm_of "$dir/out/frames/contact_0002.png")" hi
 sed -i '/^frames_clip = 5$/d' "$dir/small.ini"
+# [output] contact_panels_clip = 5: the contact panels' one force norm with its top 5 % cut, as frames_clip's
+# (it took no clip: a needle asperity's force made every other patch one colour), its PNG stating the norm.
+sed -i 's/^contact_panels = yes$/contact_panels = yes\ncontact_panels_clip = 5/' "$dir/small.ini"
+"$cli" run --resume "$dir/small.ini" >"$dir/log_clip" 2>&1
+check "contact_panels_clip: resume succeeds" test $? -eq 0
+check "contact_panels_clip: the panels' top below the largest force" inside \
+  "$(norm_of "$dir/unclipped/contact_panels.png")" "$(norm_of "$dir/out/contact_panels.png")" hi
+sed -i '/^contact_panels_clip = 5$/d' "$dir/small.ini"
 
 # An edited scene: --resume solves again what the change touches (with a notice) and ends with the
 # results of a fresh run of the edited scene, not the old ones.

@@ -202,7 +202,12 @@ check "outputs.txt lists it" grep -qx "indentation/member_00_0.csv" "$dir/cycle/
 printf 'x\0y' > "$dir/cycle/indentation/member_00_0.csv"
 check "--resume makes a damaged one again" expect_exit 0 "holds binary" "$cli" run --resume "$dir/cycle.ini"
 check "as it was" cmp "$dir/cycle/indentation/member_00_0.csv" "$dir/indent_cycle/indentation.csv"
-sed -i 's/1:4:4, 3:1:3/1:4:4/' "$dir/cycle.ini"
+# ... and a fit past the touch (w = 0 withdrawn) says why S is NaN and what to do, in indent's words (findings R3)
+sed -i 's/1:4:4, 3:1:3/1:4:4, 2, 0/' "$dir/cycle.ini"
+note="the unloading from step 4: S, and h_c, A_p, H_IT and E_r after it, are NaN: the stiffness fit's third point (step 6) is past the touch"
+check "a scene says why S is NaN" expect_exit 0 "histories: indentation/member_00_0.csv: $note" "$cli" run "$dir/cycle.ini"
+check "as indent says it" bash -c "'$cli' indent '$dir/cell.npy' --hardness 0.3 --approach 1:4:4,2,0 | grep -qF \"indentation analysis: $note\""
+sed -i 's/1:4:4, 2, 0/1:4:4/' "$dir/cycle.ini"
 check "a history that only loads removes it" expect_exit 0 "indentation/member_00_0.csv" "$cli" run "$dir/cycle.ini"
 check "removed" [ ! -e "$dir/cycle/indentation/member_00_0.csv" ]
 

@@ -11,6 +11,12 @@ export OMP_WAIT_POLICY=passive
 source "$(dirname "$0")/lib.sh"
 require_renderer "$cli"
 
+# view3d's help names the surface formats render's names, from one list (findings DA11: ".npy, .gsf or text"
+# while it reads every one, an .x3p too).
+render_formats=$("$cli" render --help | sed -n 's/^Draws a field file (\(.*\) matrix).*/\1/p')
+view3d_formats=$("$cli" render view3d --help | sed -n 's/^Draws HEIGHT (a surface or deformed surface file: \([^)]*\)).*/\1/p')
+check "view3d's help names render's formats ($view3d_formats)" test -n "$render_formats" -a "$render_formats" = "$view3d_formats"
+
 # indent writes its page beside history.csv and run.json, with the history as a table.
 "$cli" indent --smooth --n 64 --alpha 70 --load 50,100 --fields --out "$dir/ind" >"$dir/indent.log" 2>&1
 check "indent runs" test $? -eq 0

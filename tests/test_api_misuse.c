@@ -101,6 +101,7 @@ static void add_case(const char *function, const char *argument, const char *cal
 /* ---- fixtures, made once before the children fork ---- */
 
 static double values[64], out_values[64], big_values[4096];
+static im_unloading_branch branch; /* measured nothing: no note */
 static im_field good = {8, 8, 1.0, "", values, ""};
 static im_field bad_views[5];
 static const char *bad_view_names[5] = {"NULL", "data NULL", "nx = -3", "ny = 0",
@@ -261,6 +262,13 @@ REPORT(im_colormap_range_clipped, "percent",
 REPORT_VIEW(im_colormap_range_clipped, "fields",
             im_colormap_range_clipped(IM_COLORMAP_FORCES, (im_field *const[]){(im_field *)BAD}, 1, 1.0,
                                       &forces_range))
+REPORT(im_colormap_outlier_note, "fields", im_colormap_outlier_note(NULL, 1, big_text, sizeof big_text, &count_out))
+REPORT(im_colormap_outlier_note, "text",
+       im_colormap_outlier_note((im_field *const[]){&good}, 1, NULL, sizeof big_text, &count_out))
+REPORT(im_colormap_outlier_note, "size",
+       im_colormap_outlier_note((im_field *const[]){&good}, 1, big_text, 0, &count_out))
+REPORT(im_colormap_outlier_note, "farthest",
+       im_colormap_outlier_note((im_field *const[]){&good}, 1, big_text, sizeof big_text, NULL))
 SAFE_RESULT(im_colormap_range_norm, "range", isnan(im_colormap_range_norm(NULL, IM_COLORMAP_MAGMA, NAN, NAN, 1).hi))
 SAFE_RESULT(im_colormap_range_norm, "values",
             isnan(im_colormap_range_norm(&unknown_range, IM_COLORMAP_MAGMA, NAN, NAN, 1).lo))
@@ -455,6 +463,9 @@ REPORT(im_measure_unloading, "approach", im_measure_unloading(&cone, NULL, value
 REPORT(im_measure_unloading, "load", im_measure_unloading(&cone, values, NULL, NULL, 3, NULL, 0, &count_out))
 REPORT(im_measure_unloading, "found", im_measure_unloading(&cone, values, values, NULL, 3, NULL, 0, NULL))
 REPORT(im_measure_unloading, "branches", im_measure_unloading(&cone, values, values, NULL, 3, NULL, 2, &count_out))
+REPORT(im_measure_unloading_note, "branch", im_measure_unloading_note(NULL, big_text, sizeof big_text))
+REPORT(im_measure_unloading_note, "text", im_measure_unloading_note(&branch, NULL, sizeof big_text))
+REPORT(im_measure_unloading_note, "size", im_measure_unloading_note(&branch, big_text, 0))
 SAFE_RESULT(im_measure_epsilon, "punch", isnan(im_measure_epsilon(NULL)))
 SAFE_RESULT(im_measure_projected_area, "punch", isnan(im_measure_projected_area(NULL, 1.0)))
 REPORT_VIEW(im_measure_contact_patches, "force", im_measure_contact_patches(BAD, &patches, NULL))

@@ -656,6 +656,63 @@ static void test_scale_bar_under_its_panel(void **state)
     assert_int_equal(scale_bar_drop(68, 132), drop);
 }
 
+/* The length in pixels of the first dark run in the 40 rows below image (found in the figure's PNG pixels), in
+ * the column of its data's third pixel and to the right of it: its scale bar; 0 where none hangs from it. */
+static int scale_bar_under(const uint8_t *rgb, int width, int height, const im_image *image)
+{
+    int x, y;
+    find_image(rgb, width, height, image, &x, &y);
+    const int left = x + image->data_x;
+#define DARK(row, column)                                                                                            \
+    (rgb[((size_t)(row)*width + (column)) * 3] < 64 && rgb[((size_t)(row)*width + (column)) * 3 + 1] < 64 &&         \
+     rgb[((size_t)(row)*width + (column)) * 3 + 2] < 64)
+    for (int row = y + image->height; row < height && row < y + image->height + 40; ++row)
+        if (DARK(row, left + 2)) {
+            int end = left;
+            while (end < width && DARK(row, end))
+                ++end;
+            return end - left;
+        }
+#undef DARK
+    return 0;
+}
+
+/* Panels of different spacings have a scale bar each (a bar under the bottom-left panel gave its scale only): 1
+ * and 2 nm patches side by side, a 10 nm bar 10 and 5 patches long (2 pixels a patch); panels of one spacing
+ * keep their one bar; one panel above the other, each with its bar. Measured in the PNG. */
+static void test_a_scale_bar_per_spacing(void **state)
+{
+    (void)state;
+    im_image images[2] = {make_image(64, 64, 50), make_image(64, 64, 51)};
+    im_figure_panel panels[2];
+    for (int i = 0; i < 2; ++i) {
+        snprintf(images[i].unit, sizeof images[i].unit, "nm");
+        images[i].delta = i + 1.0;
+        panels[i] = (im_figure_panel){&images[i], NULL, NULL};
+    }
+    im_figure figure = im_figure_default();
+    figure.rows = 1, figure.columns = 2, figure.panels = panels, figure.scale_bar = 10.0;
+    const char *path = test_path("spacings.png");
+    int width, height;
+    for (int same = 0; same < 2; ++same) {
+        images[1].delta = same ? 1.0 : 2.0;
+        assert_int_equal(im_figure_write(&figure, path), IM_OK);
+        uint8_t *rgb = read_rgb(path, &width, &height);
+        assert_int_equal(scale_bar_under(rgb, width, height, &images[0]), 20);
+        assert_int_equal(scale_bar_under(rgb, width, height, &images[1]), same ? 0 : 10);
+        free(rgb);
+    }
+    figure.rows = 2, figure.columns = 1; /* one above the other: a strip for the upper one's bar */
+    images[1].delta = 2.0;
+    assert_int_equal(im_figure_write(&figure, path), IM_OK);
+    uint8_t *rgb = read_rgb(path, &width, &height);
+    assert_int_equal(scale_bar_under(rgb, width, height, &images[0]), 20);
+    assert_int_equal(scale_bar_under(rgb, width, height, &images[1]), 10);
+    free(rgb);
+    for (int i = 0; i < 2; ++i)
+        im_image_release(&images[i]);
+}
+
 /* Finds a PNG chunk of the given type whose data starts with prefix; returns its data or NULL. */
 static const uint8_t *find_chunk(const uint8_t *png, size_t size, const char *type, const char *prefix,
                                  size_t prefix_length)
@@ -1128,6 +1185,7 @@ int main(void)
         cmocka_unit_test(test_colorbar_beside_a_strip),
         cmocka_unit_test(test_colorbar_right_of_the_scale_text),
         cmocka_unit_test(test_scale_bar_under_its_panel),
+        cmocka_unit_test(test_a_scale_bar_per_spacing),
         cmocka_unit_test(test_png_metadata_pdf_svg),
         cmocka_unit_test(test_png_text_utf8_in_itxt),
         cmocka_unit_test(test_bad_figures_refused),

@@ -76,6 +76,58 @@ static void step_lists_one_limit(void **state)
     free(many);
 }
 
+/* The range's formula, first + (last - first) i / (n - 1), as every kept result's approaches were made. */
+static double range_formula(double first, double last, int i, int n)
+{
+    return n == 1 || i == n - 1 ? last : first + (last - first) * i / (n - 1);
+}
+
+/* first:last:n of thousandths (first = a k / 1000 and last = -a (n - 1 - k) / 1000, or both negated), parsed. */
+static void parse_thousandths(long long first, long long last, int n, double *values, int *count)
+{
+    char text[128], error[512];
+    snprintf(text, sizeof text, "%s%lld.%03lld:%s%lld.%03lld:%d", first < 0 ? "-" : "", llabs(first) / 1000,
+             llabs(first) % 1000, last < 0 ? "-" : "", llabs(last) / 1000, llabs(last) % 1000, n);
+    if (steps_parse_signed("--approach", text, 1, values, count, error, sizeof error) != 0)
+        fail_msg("%s: %s", text, error);
+}
+
+/* A range crossing 0 has 0 in it exactly (findings R4: 0.6:-3:37 gave -1.11e-16 at its 7th step), and no other
+ * value of any range moves from the formula's bits (a kept scene result's key hashes its approaches). */
+static void ranges_cross_zero_exactly(void **state)
+{
+    (void)state;
+    static const long long STEP[] = {100, 50, 300, 10, 20, 3, 70, 110, 1100, 125, 2500, 13, 7, 250, 150};
+    double values[STEPS_MAX];
+    int count = 0, zeros = 0, others = 0;
+    for (size_t a = 0; a < sizeof STEP / sizeof *STEP; ++a)
+        for (int n = 3; n <= 120; ++n)
+            for (int k = 1; k < n - 1; ++k)
+                for (int sign = -1; sign <= 1; sign += 2) {
+                    const long long first = sign * STEP[a] * k, last = -sign * STEP[a] * (n - 1 - k);
+                    parse_thousandths(first, last, n, values, &count);
+                    for (int i = 0; i < n; ++i) {
+                        const double old = range_formula(first / 1000.0, last / 1000.0, i, n);
+                        if (i == k) {
+                            if (values[i] != 0)
+                                fail_msg("%lld:%lld:%d (thousandths): step %d is %g, expected 0", first, last, n,
+                                         i + 1, values[i]);
+                            zeros += old != 0;
+                        } else if (memcmp(&values[i], &old, sizeof old) != 0) {
+                            fail_msg("%lld:%lld:%d (thousandths): step %d is %.17g, the formula's %.17g", first, last,
+                                     n, i + 1, values[i], old);
+                        } else {
+                            ++others;
+                        }
+                    }
+                }
+    assert_true(zeros > 1000); /* the formula missed 0 in many of them */
+    assert_true(others > 1000000);
+    char error[512]; /* a range's first is the one given, however small */
+    assert_int_equal(steps_parse("steps", "1e-20:1:3", values, &count, error, sizeof error), 0);
+    assert_true(values[0] == 1e-20 && values[1] == 0.5);
+}
+
 /* A scene's steps refuse what `indent --approach` refuses, with the same message. */
 static void step_lists_same_messages(void **state)
 {
@@ -482,6 +534,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(step_lists_one_limit),
         cmocka_unit_test(step_lists_same_messages),
+        cmocka_unit_test(ranges_cross_zero_exactly),
         cmocka_unit_test(punch_names_one_parser),
         cmocka_unit_test(one_default_tolerance),
         cmocka_unit_test(both_histories_one_reader),

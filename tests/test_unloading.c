@@ -124,6 +124,22 @@ static void no_stiffness_across_the_touch(void **state)
     assert_int_equal(im_measure_unloading(&cone, h, p, residual, 6, &b, 1, &found), IM_OK);
     assert_true(isnan(b.stiffness) && isnan(b.modulus) && isnan(b.hardness));
     assert_close(b.residual_approach, h_r, 0);
+    /* ... and every front end says why and what to do (findings R3: a NaN alone told neither) */
+    char note[512];
+    assert_int_equal(b.withdrawn_step, 5);
+    assert_int_equal(im_measure_unloading_note(&b, note, sizeof note), IM_OK);
+    assert_non_null(strstr(note, "the unloading from step 3: S, and h_c, A_p, H_IT and E_r after it, are NaN: the "
+                                 "stiffness fit's third point (step 5) is past the touch"));
+    assert_non_null(strstr(note, "unload in smaller steps that keep at least three points in contact"));
+    h[3] = 0.9, p[3] = 0; /* the second point too: the first past the touch is named */
+    assert_int_equal(im_measure_unloading(&cone, h, p, residual, 6, &b, 1, &found), IM_OK);
+    assert_int_equal(im_measure_unloading_note(&b, note, sizeof note), IM_OK);
+    assert_non_null(strstr(note, "second point (step 4)"));
+    h[3] = 3, h[4] = 2, p[3] = love_load(3 - h_r), p[4] = love_load(2 - h_r); /* measured: nothing to say */
+    assert_int_equal(im_measure_unloading(&cone, h, p, residual, 6, &b, 1, &found), IM_OK);
+    assert_int_equal(b.withdrawn_step, 0);
+    assert_int_equal(im_measure_unloading_note(&b, note, sizeof note), IM_OK);
+    assert_string_equal(note, "");
 }
 
 /* Two cycles and a final loading: two branches, each loading from where the approach last turned up. */

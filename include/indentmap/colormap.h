@@ -12,6 +12,7 @@
  *                                               one default norm shared by several fields (forces,
  *                                               heights, or the tension of patches under tension)
  *   im_colormap_range_clipped                   such a range with a percentage of outliers cut at each end
+ *   im_colormap_outlier_note                    whether a few outliers set heights' default range, said
  *
  * A norm maps [lo, hi] linearly (or logarithmically, lo > 0) onto the 256 table entries:
  * index = floor(256 t) clamped to 255, with t = (v - lo) / (hi - lo) (or in log v). Values below
@@ -116,6 +117,19 @@ int im_colormap_range_add(im_colormap_range *range, const im_field *field);
  * count < 0, percent outside [0, 50), an unknown kind or an invalid field view; IM_ENOMEM. */
 int im_colormap_range_clipped(im_colormap_values values, im_field *const *fields, int count, double percent,
                               im_colormap_range *range);
+
+/* A picture of heights is dominated by outliers where the central 100 - 2 IM_COLORMAP_OUTLIER_PERCENT % of the
+ * fields' finite values span less than 1 / IM_COLORMAP_OUTLIER_SHARE of their smallest .. largest (the default
+ * linear range): the bulk then takes at most 13 of the 256 colours (findings S9: a scan's spikes and dropouts
+ * leave its relief one colour). Where it is, the sentence every front end says, "a few outliers set the colour
+ * range: the central 98% of the values span B U of its F U, N of the 256 colours" (U: fields[0]'s value unit,
+ * else its unit), into text, and into *farthest the index of the field whose values reach farthest beyond the
+ * central range (to name it); "" and -1 where it is not. The front end adds its remedy: cutting
+ * IM_COLORMAP_OUTLIER_PERCENT % at each end (render --clip, Python's clip=). IM_EINVAL as
+ * im_colormap_range_clipped's, for a NULL text or farthest, or size 0; IM_ENOMEM. */
+#define IM_COLORMAP_OUTLIER_PERCENT 1.0
+#define IM_COLORMAP_OUTLIER_SHARE 20.0
+int im_colormap_outlier_note(im_field *const *fields, int count, char *text, size_t size, int *farthest);
 
 /* The norm of map over the range (the defaults of im_colormap_values where it is empty or one value),
  * with the caller's bounds put in: vmin and vmax (NaN: not given) replace its lo and hi; a logarithmic

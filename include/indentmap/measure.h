@@ -67,6 +67,7 @@ typedef struct im_unloading_branch {
     int loading_from;        /* 1-based step the loading before the top started at (0: the origin) */
     double approach_max, load_max, stiffness, epsilon, contact_depth, area_projected;
     double hardness, modulus, residual_approach, work_in, work_out;
+    int withdrawn_step; /* 1-based step of S's second or third point when it is past the touch (S NaN), else 0 */
 } im_unloading_branch;
 
 /* The unloading branches of a history of count steps (approach, load and, may be NULL, the residual
@@ -75,6 +76,12 @@ typedef struct im_unloading_branch {
  * loads, an invalid punch. */
 int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load, const double *residual,
                          int count, im_unloading_branch *branches, int capacity, int *found);
+
+/* Why branch's S (and h_c, A_p, H_IT, E_r after it) is NaN and what to do, the sentence every front end says
+ * (findings R3): its fit's second or third point is past the touch (withdrawn_step); unload in smaller
+ * steps that keep at least three points in contact. "" where S is measured or NaN for another reason (fewer
+ * than three unloading steps). IM_EINVAL for NULL branch or text, or size 0. */
+int im_measure_unloading_note(const im_unloading_branch *branch, char *text, size_t size);
 
 /* Oliver-Pharr's epsilon for the punch (see above); NaN for a 2-D profile. */
 double im_measure_epsilon(const im_indenter *punch);

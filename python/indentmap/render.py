@@ -5,6 +5,7 @@ one at a time."""
 import inspect
 import os
 import tempfile
+import warnings
 
 from . import _checks, _core
 from .solver import Cone, Flat, Sphere
@@ -124,7 +125,9 @@ def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, 
     flat surface v), as ``indentmap render height`` draws it; ``clip`` P (percent, [0, 50), ``render --clip``)
     cuts P % of the finite heights at each end (the P and 100 - P percentiles, numpy.percentile's), for a scan
     whose few spikes or dropouts would make it one colour, the heights beyond in the ends' colours; ``vmin`` /
-    ``vmax`` replace its ends.
+    ``vmax`` replace its ends. Where a few outliers set that range (the central 98 % of the heights span less
+    than a twentieth of it) and neither ``clip`` nor ``vmin``/``vmax`` is given, a ``UserWarning`` says so and
+    suggests ``clip=1``, the notice ``render height`` prints.
 
     Returns an Image; errors as ``contact_map``'s (``vmin`` not below the top, ``clip`` outside [0, 50):
     ``InvalidArgument``).
@@ -132,6 +135,11 @@ def height_map(heights, *, delta=1.0, colormap="viridis", vmin=None, vmax=None, 
     Example: ``im.height_map(t.heights, delta=t.delta, unit=t.unit, contact=force).save("h.png")``."""
     lo, hi = _core.norm_range([heights], "field", True, vmin, vmax, False, float(clip))  # as render height's
     unit = _core.length_unit("unit", unit)
+    if not clip and vmin is None and vmax is None:  # render height's notice, in Python's words
+        note, _, percent = _core.outlier_note([heights], "field", unit)
+        if note:
+            warnings.warn(f"{note}; clip={percent:g} cuts {percent:g}% of the values at each end (or set vmin=/vmax=)",
+                          stacklevel=2)
     return Image(_core.render(heights, float(delta), height_map=True, colormap=colormap, vmin=lo, vmax=hi, log=False,
                               scale=int(scale), circle_radius=0.0, circle_x=0.0, circle_y=0.0, contact=contact,
                               unit=unit),

@@ -3,6 +3,7 @@ import inspect
 import json
 import logging
 import os
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -523,7 +524,9 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
     (12)'s real area and the smooth punch's stiffness (``e_star``: the history's E*). ``history`` is what
     ``indent`` returns.
 
-    Returns a structured array (one row per branch; none without an unloading branch).
+    Returns a structured array (one row per branch; none without an unloading branch). A branch whose
+    stiffness fit reaches past the touch has S (and what follows from it) NaN and gives a ``UserWarning``
+    saying so and what to do, the line ``indentmap indent`` prints.
 
     Example: ``h = im.indent(s, approaches=np.r_[1:4:4j, 3.5:0:8j], hardness=0.1);
     im.unloading(h)["hardness_it"]``."""
@@ -535,6 +538,8 @@ def unloading(history, punch=Cone(), *, delta=1.0, e_star=1.0):
                                float(delta))
     table = np.zeros(len(branches), dtype=UNLOADING_DTYPE)
     for i, b in enumerate(branches):
+        if b["note"]:  # why S is NaN and what to do, as indentmap indent says it
+            warnings.warn(b["note"], stacklevel=2)
         before = history["plastic_work"][b["loading_from"] - 1] if b["loading_from"] > 0 else 0.0
         area_theory, stiffness_smooth = _theory_beside(history, b["top_step"] - 1, e_star)
         row = dict(b, branch=i + 1, area_real=history["contact_patches"][b["top_step"] - 1] * delta * delta,

@@ -661,10 +661,10 @@ static PyObject *use_backend(PyObject *self, PyObject *args)
     return open_context(backend) < 0 ? NULL : renderer(self, NULL);
 }
 
-/* The range of the values of kind `values` over the arrays of sequence, `clip` percent cut at each end
- * (colormap.h: im_colormap_range_clipped; 0: smallest .. largest); -1 with the exception set. */
-static int fields_range(PyObject *sequence, const char *what, im_colormap_values values, double clip,
-                        im_colormap_range *range)
+/* use(fields, count, user) over field views of the sequence's arrays (TypeError naming `what` for one that is
+ * not a 2-D array of numbers); its status, raised as the library's error where it is not IM_OK. 0 or -1. */
+typedef int fields_use(im_field **fields, int count, void *user);
+static int with_field_views(PyObject *sequence, const char *what, fields_use *use, void *user)
 {
     const Py_ssize_t count = PySequence_Fast_GET_SIZE(sequence);
     PyArrayObject **arrays = PyMem_Calloc((size_t)count + 1, sizeof *arrays);
@@ -680,7 +680,7 @@ static int fields_range(PyObject *sequence, const char *what, im_colormap_values
     }
     int status = !arrays || !views || !fields ? (PyErr_NoMemory(), IM_ENOMEM)
                  : made < count               ? IM_EINVAL /* py_heights_array's TypeError set */
-                                              : im_colormap_range_clipped(values, fields, (int)count, clip, range);
+                                              : use(fields, (int)count, user);
     if (arrays && views && fields && made == count && status != IM_OK)
         py_raise_status(status);
     for (Py_ssize_t i = 0; arrays && i < made; ++i)
@@ -689,6 +689,60 @@ static int fields_range(PyObject *sequence, const char *what, im_colormap_values
     PyMem_Free(views);
     PyMem_Free(fields);
     return status == IM_OK ? 0 : -1;
+}
+
+typedef struct clipped_range {
+    im_colormap_values values;
+    double clip;
+    im_colormap_range range;
+} clipped_range;
+
+static int clip_range(im_field **fields, int count, void *user)
+{
+    clipped_range *r = user;
+    return im_colormap_range_clipped(r->values, fields, count, r->clip, &r->range);
+}
+
+/* The fields' range of values of the given kind with clip percent cut at each end (colormap.h). 0 or -1. */
+static int fields_range(PyObject *sequence, const char *what, im_colormap_values values, double clip,
+                        im_colormap_range *range)
+{
+    clipped_range r = {values, clip, {0}};
+    const int failed = with_field_views(sequence, what, clip_range, &r);
+    *range = r.range;
+    return failed;
+}
+
+typedef struct outlier_note_text {
+    const char *unit; /* of the heights, said in the text */
+    char text[512];
+    int farthest;
+} outlier_note_text;
+
+static int note_outliers(im_field **fields, int count, void *user)
+{
+    outlier_note_text *note = user;
+    for (int i = 0; i < count; ++i) /* our views: the unit the caller gave the arrays */
+        snprintf(fields[i]->unit, sizeof fields[i]->unit, "%s", note->unit);
+    return im_colormap_outlier_note(fields, count, note->text, sizeof note->text, &note->farthest);
+}
+
+/* outlier_note(fields, what, unit) -> (text, farthest, percent): render's notice that a few outliers set the fields'
+ * default range of heights (colormap.h: im_colormap_outlier_note; "" and -1 where they do not), in `unit`. */
+static PyObject *outlier_note(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *fields;
+    const char *what, *unit;
+    if (!PyArg_ParseTuple(args, "Oss", &fields, &what, &unit))
+        return NULL;
+    PyObject *sequence = PySequence_Fast(fields, "fields: expected a sequence of arrays");
+    if (!sequence)
+        return NULL;
+    outlier_note_text note = {unit, "", -1};
+    const int failed = with_field_views(sequence, what, note_outliers, &note);
+    Py_DECREF(sequence);
+    return failed ? NULL : Py_BuildValue("sid", note.text, note.farthest, IM_COLORMAP_OUTLIER_PERCENT);
 }
 
 /* norm_range(fields, what, heights, vmin, vmax, log, clip) -> (lo, hi): the default norm every front end gives
@@ -722,6 +776,8 @@ static PyObject *norm_range(PyObject *self, PyObject *args)
 PyMethodDef py_render_methods[] = {
     {"norm_range", norm_range, METH_VARARGS,
      "norm_range(fields, what, heights, vmin, vmax, log, clip) -> (lo, hi): the fields' shared default norm"},
+    {"outlier_note", outlier_note, METH_VARARGS,
+     "outlier_note(fields, what, unit) -> (text, farthest, percent): whether a few outliers set the heights' range"},
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
     {"write_png", write_png, METH_VARARGS, "write_png(path, rgba, texts)"},

@@ -652,14 +652,19 @@ static int double_vector(PyObject *obj, npy_intp n, const char *what, PyArrayObj
     return 0;
 }
 
+/* A branch's values and its note (measure.h: im_measure_unloading_note: why S is NaN, "" where measured). */
 static PyObject *branch_dict(const im_unloading_branch *b)
 {
-    return Py_BuildValue("{s:i,s:i,s:i,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}", "top_step", b->top_step,
+    char note[512];
+    int status = im_measure_unloading_note(b, note, sizeof note);
+    if (status != IM_OK)
+        return py_raise_status(status);
+    return Py_BuildValue("{s:i,s:i,s:i,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:s}", "top_step", b->top_step,
                          "last_step", b->last_step, "loading_from", b->loading_from, "approach_max", b->approach_max,
                          "load_max", b->load_max, "stiffness", b->stiffness, "epsilon", b->epsilon, "contact_depth",
                          b->contact_depth, "area_projected", b->area_projected, "hardness_it", b->hardness,
                          "modulus_reduced", b->modulus, "residual_approach", b->residual_approach, "work_in",
-                         b->work_in, "work_out", b->work_out);
+                         b->work_in, "work_out", b->work_out, "note", note);
 }
 
 static PyObject *branches_list(const im_unloading_branch *b, int found)

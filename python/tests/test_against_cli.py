@@ -2,6 +2,7 @@
 import csv
 import io
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -94,6 +95,25 @@ def test_loading_unloading_with_hardness_bit_for_bit(cli, rough64, tmp_path):
     assert table[0]["top_step"] == 3 and table[0]["last_step"] == 9 and table[0]["residual_approach"] > 0
     # the top yielded: the elastic theory is not beside it
     assert np.isnan(table[0]["area_real_theory"]) and np.isnan(table[0]["stiffness_smooth"])
+
+
+def test_stiffness_past_the_touch_says_why_as_the_cli(cli, rough64, tmp_path):
+    """An unloading in steps too large (1:3:3 then 2, 1, 0 with a hardness: withdrawn by w = 1) has S NaN, and
+    Python warns why and what to do in the words indent prints (findings R3: a NaN alone told neither)."""
+    im.write(tmp_path / "s.npy", rough64)
+    said = run_cli(cli, "indent", tmp_path / "s.npy", "--approach", "1:3:3,2:0:3", "--hardness", "0.05", "--out",
+                   tmp_path / "out").stdout
+    history = im.read_history(tmp_path / "out" / "history.csv")
+    with pytest.warns(UserWarning) as warned:
+        table = im.unloading(history, im.Cone(80))
+    assert np.isnan(table[0]["stiffness"]) and np.isnan(table[0]["hardness_it"])
+    notes = [str(w.message) for w in warned]
+    assert len(notes) == 1 and "unload in smaller steps that keep at least three points in contact" in notes[0]
+    assert f"indentation analysis: {notes[0]}\n" in said
+    finer = im.indent(rough64, im.Cone(80), approaches=[1, 2, 3, 2.8, 2.6, 2.4], hardness=0.05)
+    with warnings.catch_warnings():  # a fit above the touch is measured, and says nothing
+        warnings.simplefilter("error")
+        assert np.isfinite(im.unloading(finer, im.Cone(80))["stiffness"]).all()
 
 
 def test_elastic_unloading_with_theory_bit_for_bit(cli, rough64, tmp_path):

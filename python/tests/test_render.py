@@ -99,6 +99,32 @@ def test_clip_cuts_numpys_percentiles_of_the_finite_values(rough64):
         im.height_map(heights, clip=50)
 
 
+def test_height_map_says_when_outliers_set_its_range(cli, tmp_path):
+    """A relief of 1e-5 with dropouts (0) and spikes (3e-4): height_map warns as render height notes (findings
+    S9), the same measured sentence from the same C function (colormap.h: im_colormap_outlier_note), in Python's
+    words for the remedy; not with clip= or vmin=/vmax=, nor for a plain relief."""
+    import math
+    import subprocess
+    import warnings
+    values = [0.0 if i < 10 else 3e-4 if i % 131 == 7 else math.nan if i % 293 == 5 else
+              1e-5 + 5e-6 * math.sin(0.05 * i) for i in range(1200)]
+    heights = np.array(values).reshape(30, 40)
+    np.save(tmp_path / "spiky.npy", heights)
+    said = subprocess.run([cli, "render", "height", str(tmp_path / "spiky.npy"), "--out", str(tmp_path / "s.png")],
+                          capture_output=True, text=True, check=True).stderr
+    with pytest.warns(UserWarning) as warned:
+        im.height_map(heights)
+    assert len(warned) == 1
+    note = str(warned[0].message)
+    assert note.endswith("; clip=1 cuts 1% of the values at each end (or set vmin=/vmax=)")
+    assert f"spiky.npy: {note.split('; clip=')[0]}; --clip 1 cuts 1% " in said
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        im.height_map(heights, clip=1)
+        im.height_map(heights, vmin=0.0, vmax=3e-4)
+        im.height_map(np.nan_to_num(np.where(heights > 1e-4, 1e-5, heights), nan=1e-5) + 1e-5 * np.eye(30, 40))
+
+
 def test_height_map_and_png(tmp_path, rough64):
     picture = im.height_map(rough64, scale=1)
     assert picture.rgba.shape[:2] == (64 + 4, 64 + 4)

@@ -148,6 +148,10 @@ enum {
     CLI_OPT_DETREND,
     CLI_OPT_ALIGN
 };
+/* The surface formats every command's help names (formats.h: im_surface_read; instrument files too through
+ * Gwyddion, `indentmap formats`): one list, so that no command's help names fewer than it reads (DA11). */
+#define CLI_SURFACE_FORMATS ".npy, .gsf, .sdf, .nc, .x3p or text"
+
 /* clang-format off */
 #define CLI_SURFACE_FILE_OPTIONS                                    \
     {"unit", required_argument, 0, CLI_OPT_UNIT},                   \

@@ -25,7 +25,7 @@ static void usage(FILE *stream)
     fprintf(stream,
             "usage: indentmap indent (SURFACE | --smooth --n N) (--approach LIST | --load LIST) [OPTIONS]\n"
             "       indentmap indent --from-record DIR/run.json [--out NEWDIR] [--wisdom FILE | --no-wisdom]\n\n"
-            "Indents SURFACE (.npy, .gsf, .sdf, .nc, .x3p or text) with a rigid punch and solves each\n"
+            "Indents SURFACE (" CLI_SURFACE_FORMATS ") with a rigid punch and solves each\n"
             "step (FFT boundary elements, Polonsky-Keer CG), warm-started from the last. Units: lengths\n"
             "in the surface's unit (its spacing delta when it states none), stresses in E* (settable).\n"
             "w counts from first touch.\n\n"

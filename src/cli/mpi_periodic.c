@@ -21,6 +21,7 @@
 
 #include <jansson.h>
 #include <limits.h>
+#include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -216,16 +217,26 @@ static int run_step(history_run *run, int i)
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }
 
+static void say_note(void *user, const char *note)
+{
+    (void)user;
+    fprintf(stderr, "indentation analysis: %s\n", note);
+}
+
 /* Rank 0: the half-space's Oliver-Pharr analysis of the unloading branches (indentation.csv and
- * load_displacement.{png,pdf}), as indent's; said, not the run's error, when it fails. */
+ * load_displacement.{png,pdf}), as indent's, and why a branch's S is NaN, on stderr beside the CSV; said, not
+ * the run's error, when it fails. */
 static void write_analysis(const history_run *run, int done)
 {
     int branches = 0;
-    if (analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star, "",
-                       run->force_unit, &run->texts, &branches) != IM_OK)
-        fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
-    else if (branches > 0)
+    int status = analysis_write(run->o->out, &run->punch, run->rows, done, run->shape.delta, run->o->solver.e_star,
+                                "", run->force_unit, &run->texts, &branches);
+    if (status == IM_OK && branches > 0) {
         json_object_set_new(run->record, "indentation", json_string("indentation.csv"));
+        status = analysis_notes(&run->punch, run->rows, done, say_note, NULL);
+    }
+    if (status != IM_OK)
+        fprintf(stderr, "indentmap: indentation analysis: %s\n", im_last_error());
 }
 
 /* Rank 0: DIR/history.{png,pdf} of the steps done, as indent draws it; said, not the run's error, when it fails. */
@@ -244,25 +255,54 @@ static void write_history_figure(const history_run *run, int done)
         fprintf(stderr, "indentmap: history figure: %s\n", im_last_error());
 }
 
-/* Rank 0, with --out: the adhesion's summary, the half-space's analysis or a cell's k of eq. (2) (elastic
- * steps only, as indent), the history figure and the record's end. */
-static int finish_record(history_run *run, int done, int status)
+/* Rank 0, with adhesion: the pull-off, the jumps and the lost work (front.h), with --out in run.json's
+ * "adhesion" block and force_distance.{png,pdf}, and said in indent's words (analysis_describe_adhesion) on
+ * stderr: stdout is the history's CSV (findings R7: the summary was in run.json only). */
+static void summarise_adhesion(const history_run *run, int done)
 {
-    if (run->rank != 0 || !run->record)
-        return status;
+    im_adhesion_summary summary = {.work_done = NAN};
+    int status = IM_OK;
+    if (run->record)
+        status = run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done,
+                                             run->o->control, "", run->force_unit, &run->texts, &summary);
+    else if (done >= 1 && (status = analysis_measure_adhesion(run->rows, done, run->o->control, &summary)) != IM_OK)
+        summary.work_done = NAN;
+    if (status != IM_OK)
+        fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
+    if (isnan(summary.work_done))
+        return;
+    char line[8192];
+    analysis_describe_adhesion(&summary, run->rows, done, run->o->control, run->o->out, line, sizeof line);
+    fprintf(stderr, "%s\n", line);
+}
+
+/* Rank 0, with --out and no adhesion: the half-space's analysis, or a cell's k of eq. (2) (elastic steps only, as
+ * indent; eq. (2) is the repulsive law). */
+static void write_repulsive_results(history_run *run, int done)
+{
     periodic_k_fit k;
-    kept_error kept;
-    error_keep(&kept);
-    im_adhesion_summary summary;
-    if (run->o->adhesion_work > 0) { /* eq. (2) is the repulsive law: no k fitted, as indent */
-        if (run_record_adhesion_summary(json_object_get(run->record, "adhesion"), run->o->out, run->rows, done,
-                                        run->o->control, "", run->force_unit, &run->texts, &summary) != IM_OK)
-            fprintf(stderr, "indentmap: adhesion summary: %s\n", im_last_error());
-    } else if (!run->o->periodic)
+    if (!run->o->periodic)
         write_analysis(run, done);
     else if (!(run->o->solver.hardness > 0) && periodic_fit_k(run->rows, done, periodic_cell_area(&run->shape),
                                                               run->slope_rms, run->o->solver.e_star, &k) == IM_OK)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
+}
+
+/* Rank 0: the adhesion's summary, and with --out the other results, the history figure and the record's end. */
+static int finish_record(history_run *run, int done, int status)
+{
+    if (run->rank != 0)
+        return status;
+    kept_error kept;
+    error_keep(&kept);
+    if (run->o->adhesion_work > 0)
+        summarise_adhesion(run, done);
+    if (status != IM_OK)
+        error_restore(&kept, status); /* the step's error, not the summary's */
+    if (!run->record)
+        return status;
+    if (!(run->o->adhesion_work > 0))
+        write_repulsive_results(run, done);
     write_history_figure(run, done);
     if (status != IM_OK)
         error_restore(&kept, status); /* the step's error, not the fit's */

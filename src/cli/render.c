@@ -26,7 +26,7 @@ static void usage(FILE *stream)
             "       indentmap render animate FORCE... --frames DIR [--out FILE.gif|FILE.mp4] [OPTIONS]\n"
             "       indentmap render view3d HEIGHT [--force FILE] [OPTIONS] --out FILE   (see render view3d "
             "--help)\n\n"
-            "Draws a field file (.npy, .gsf, .sdf, .nc, .x3p or text matrix) with the off-screen OpenGL renderer.\n"
+            "Draws a field file (" CLI_SURFACE_FORMATS " matrix) with the off-screen OpenGL renderer.\n"
             "contact: local compressive forces, none grey (the paper's Fig. 4), patches under tension\n"
             "(adhesion) on a blue ramp of their tension -f with a second colour bar beside the force's,\n"
             "from 0 to the largest tension of all the files; height: heights with hill-shading;\n"
@@ -322,44 +322,17 @@ static int write_output(const render_options *o, char **inputs, const im_image *
     return status;
 }
 
-/* A picture is dominated by outliers where the central 98 % of its values span less than a twentieth of the
- * colour range: the bulk of it then takes at most 13 of the 256 colours (S9: frt-1's spikes and dropouts
- * leave its relief one colour). */
-#define OUTLIER_PERCENT 1.0
-#define OUTLIER_SHARE 20.0
-
-/* The index of the field whose values reach farthest beyond the central range. */
-static int farthest_outlier(im_field **fields, int count, const im_colormap_range *central)
+/* Where a few outliers set the default linear range (colormap.h: im_colormap_outlier_note), one notice on
+ * stderr naming the file that holds the farthest and suggesting --clip; the picture is drawn as without it. */
+static int note_outliers(char **inputs, im_field **fields, int count)
 {
-    int farthest = 0;
-    double reach = -INFINITY;
-    for (int i = 0; i < count; ++i) {
-        const im_colormap_range own = frame_range(&fields[i], 1, IM_COLORMAP_HEIGHTS);
-        const double beyond = fmax(central->lo - own.lo, own.hi - central->hi);
-        if (beyond > reach)
-            reach = beyond, farthest = i;
-    }
-    return farthest;
-}
-
-/* Where a few outliers set the default linear range, one notice on stderr naming the file that holds the
- * farthest and suggesting --clip; the picture is drawn as without it. */
-static int note_outliers(const render_options *o, char **inputs, im_field **fields, int count)
-{
-    im_colormap_range central;
-    int status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, fields, count, OUTLIER_PERCENT, &central);
-    const double full = o->shared.hi - o->shared.lo, bulk = central.hi - central.lo;
-    if (status != IM_OK || !(bulk * OUTLIER_SHARE < full))
-        return status;
-    const char *unit = fields[0]->value_unit[0] ? fields[0]->value_unit : fields[0]->unit;
-    fprintf(stderr,
-            "indentmap: %s: a few outliers set the colour range: the central %g%% of the values span %.3g%s%s of "
-            "its %.3g%s%s, %.0f of the 256 colours; --clip %g cuts %g%% of the values at each end (or set "
-            "--vmin/--vmax)\n",
-            inputs[farthest_outlier(fields, count, &central)], 100.0 - 2.0 * OUTLIER_PERCENT, bulk,
-            unit[0] ? " " : "", unit, full, unit[0] ? " " : "", unit, ceil(256.0 * bulk / full), OUTLIER_PERCENT,
-            OUTLIER_PERCENT);
-    return IM_OK;
+    char note[512];
+    int farthest;
+    int status = im_colormap_outlier_note(fields, count, note, sizeof note, &farthest);
+    if (status == IM_OK && note[0])
+        fprintf(stderr, "indentmap: %s: %s; --clip %g cuts %g%% of the values at each end (or set --vmin/--vmax)\n",
+                inputs[farthest], note, IM_COLORMAP_OUTLIER_PERCENT, IM_COLORMAP_OUTLIER_PERCENT);
+    return status;
 }
 
 /* The default norm of several fields: the union of their finite values (colormap.h: forces 0 .. the
@@ -374,7 +347,7 @@ static int set_shared_range(render_options *o, char **inputs, im_field **fields,
     o->tensions = frame_range(fields, height ? 0 : count, IM_COLORMAP_TENSIONS); /* heights: none */
     if (o->clip > 0.0)
         return im_colormap_range_clipped(values, fields, count, o->clip, &o->shared);
-    return height && !o->has_clip && !o->has_vmin && !o->has_vmax ? note_outliers(o, inputs, fields, count) : IM_OK;
+    return height && !o->has_clip && !o->has_vmin && !o->has_vmax ? note_outliers(inputs, fields, count) : IM_OK;
 }
 
 /* Reads the fields and sets the default norm. */

@@ -20,12 +20,12 @@ static void usage(FILE *stream)
 {
     fprintf(stream,
             "usage: indentmap render view3d HEIGHT [--force FILE] [--displacement FILE] [OPTIONS] --out FILE\n\n"
-            "Draws HEIGHT (a surface or deformed surface file: .npy, .gsf or text) as a lit 3-D mesh with\n"
-            "the off-screen OpenGL renderer; with --displacement the drawn surface is HEIGHT - u (u from\n"
-            "`indentmap indent --fields`, positive into the half-space). Patches with force > 0 in\n"
-            "--force are coloured by it through the norm (as `render contact`), patches under tension\n"
-            "(force < 0: adhesion) by their tension on the blue ramp of a second colour bar, the others\n"
-            "light grey.\n"
+            "Draws HEIGHT (a surface or deformed surface file: " CLI_SURFACE_FORMATS ")\n"
+            "as a lit 3-D mesh with the off-screen OpenGL renderer; with --displacement the drawn surface\n"
+            "is HEIGHT - u (u from `indentmap indent --fields`, positive into the half-space). Patches\n"
+            "with force > 0 in --force are coloured by it through the norm (as `render contact`), patches\n"
+            "under tension (force < 0: adhesion) by their tension on the blue ramp of a second colour bar,\n"
+            "the others light grey.\n"
             "The punch rests on the drawn heights. Output: a figure (.png, .pdf, .svg) with the colour\n"
             "bar and the vertical exaggeration stated, or with --raw the image only (PNG).\n\n"
             "  --out FILE            the figure\n"

@@ -7,6 +7,7 @@
 #include "core/sort.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 im_colormap_range im_colormap_range_empty(im_colormap_values values)
@@ -92,6 +93,51 @@ int im_colormap_range_clipped(im_colormap_values values, im_field *const *fields
         range->hi = percentile(gathered_values, n, 100.0 - percent);
     }
     free(gathered_values);
+    return IM_OK;
+}
+
+/* The index of the field whose values reach farthest beyond the central range. */
+static int farthest_outlier(im_field *const *fields, int count, const im_colormap_range *central)
+{
+    int farthest = 0;
+    double reach = -INFINITY;
+    for (int i = 0; i < count; ++i) {
+        im_colormap_range own = im_colormap_range_empty(IM_COLORMAP_HEIGHTS);
+        im_colormap_range_add(&own, fields[i]);
+        const double beyond = fmax(central->lo - own.lo, own.hi - central->hi);
+        if (beyond > reach)
+            reach = beyond, farthest = i;
+    }
+    return farthest;
+}
+
+int im_colormap_outlier_note(im_field *const *fields, int count, char *text, size_t size, int *farthest)
+{
+    ARG_REQUIRE(fields || count == 0, "fields");
+    ARG_REQUIRE(text, "text");
+    ARG_REQUIRE(farthest, "farthest");
+    if (size == 0 || count < 0)
+        return im_fail(IM_EINVAL,
+                       "im_colormap_outlier_note: size %zu, count %d: expected room for the text and "
+                       "count >= 0",
+                       size, count);
+    text[0] = '\0';
+    *farthest = -1;
+    im_colormap_range full, central;
+    int status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, fields, count, 0.0, &full);
+    if (status == IM_OK)
+        status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, fields, count, IM_COLORMAP_OUTLIER_PERCENT, &central);
+    const double whole = full.hi - full.lo, bulk = central.hi - central.lo;
+    if (status != IM_OK || !(bulk * IM_COLORMAP_OUTLIER_SHARE < whole))
+        return status;
+    const char *unit = fields[0]->value_unit[0] ? fields[0]->value_unit : fields[0]->unit; /* count > 0 here */
+    const char *space = unit[0] ? " " : "";
+    snprintf(text, size,
+             "a few outliers set the colour range: the central %g%% of the values span %.3g%s%s of its %.3g%s%s, "
+             "%.0f of the 256 colours",
+             100.0 - 2.0 * IM_COLORMAP_OUTLIER_PERCENT, bulk, space, unit, whole, space, unit,
+             ceil(256.0 * bulk / whole));
+    *farthest = farthest_outlier(fields, count, &central);
     return IM_OK;
 }
 

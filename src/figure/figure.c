@@ -70,6 +70,8 @@ typedef struct layout {
     colorbar bars[MAX_BARS];
     int bar_count;
     double scale_height; /* strip below the grid for the scale bar and the note */
+    int own_bars;        /* a scale bar under each panel: their scales differ (scales_differ) */
+    double row_scale;    /* then a strip for them below every row but the last (the last has scale_height) */
     double note_x;       /* where the note starts */
     int width, height;
 } layout;
@@ -165,10 +167,28 @@ static void measure_colorbar(const measure *m, double font, colorbar *b)
     }
 }
 
-/* The scale bar's text (its length in the images' units) and its length in pixels. */
-static void scale_bar(const im_figure *f, char *text, size_t size, double *pixels)
+/* Pixels per unit length of an image (per patch where it has no unit). */
+static double pixels_per_length(const im_image *image)
 {
-    const im_image *image = f->panels[(f->rows - 1) * f->columns].image;
+    return image->pixels_per_patch / (image->unit[0] ? image->delta : 1.0);
+}
+
+/* Whether the panels have different scales (spacing, pixels per patch or unit): then each panel has a bar of
+ * its own, as one bar gives only the bottom-left panel's scale. */
+static int scales_differ(const im_figure *f)
+{
+    const im_image *first = f->panels[0].image;
+    for (int i = 1; i < f->rows * f->columns; ++i) {
+        const im_image *image = f->panels[i].image;
+        if (strcmp(image->unit, first->unit) != 0 || pixels_per_length(image) != pixels_per_length(first))
+            return 1;
+    }
+    return 0;
+}
+
+/* The scale bar's text (its length in the image's units) and its length in pixels, for the panel image. */
+static void scale_bar(const im_figure *f, const im_image *image, char *text, size_t size, double *pixels)
+{
     double length = f->scale_bar > 0.0 ? f->scale_bar : automatic_scale_bar(image);
     *pixels = (image->unit[0] ? length / image->delta : length) * image->pixels_per_patch;
     typeset_length_label(length, image->unit, text, size);
@@ -231,6 +251,12 @@ static double place_colorbar(const measure *m, layout *l, colorbar bar, double l
            (b->label ? 1.6 * l->font : 0.0);
 }
 
+/* The panels' grid: its rows, their titles, the gaps and the scale bars' strips between them. */
+static double grid_height_of(const im_figure *f, const layout *l)
+{
+    return f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * (l->gap + l->row_scale);
+}
+
 static void make_layout(const im_figure *f, const measure *m, layout *l)
 {
     memset(l, 0, sizeof *l);
@@ -247,13 +273,15 @@ static void make_layout(const im_figure *f, const measure *m, layout *l)
     l->grid_x = (int)l->margin;
     l->grid_y = (int)l->margin;
     double grid_width = f->columns * l->cell_width + (f->columns - 1) * l->gap;
-    double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
     l->scale_height = f->scale_bar >= 0.0 || f->note ? round(2.4 * l->font) : 0.0;
+    l->own_bars = f->scale_bar >= 0.0 && scales_differ(f);
+    l->row_scale = l->own_bars ? l->scale_height : 0.0;
+    double grid_height = grid_height_of(f, l);
     double right = l->grid_x + grid_width, bottom = 0.0, scale_end = l->grid_x;
     if (f->scale_bar >= 0.0) {
         char text[64];
         double pixels;
-        scale_bar(f, text, sizeof text, &pixels);
+        scale_bar(f, f->panels[(f->rows - 1) * f->columns].image, text, sizeof text, &pixels);
         /* the bar starts at the bottom-left panel's data, data_x into its cell */
         double start = f->panels[(f->rows - 1) * f->columns].image->data_x;
         scale_end = l->grid_x + start + fmax(pixels, text_width(m, m->regular, l->font, text));
@@ -326,7 +354,7 @@ static void panel_origin(const im_figure *f, const layout *l, int index, int *x,
 {
     int row = index / f->columns, column = index % f->columns;
     *x = l->grid_x + (int)(column * (l->cell_width + l->gap));
-    *y = l->grid_y + (int)(row * (l->title_height + l->cell_height + l->gap) + l->title_height);
+    *y = l->grid_y + (int)(row * (l->title_height + l->cell_height + l->row_scale + l->gap) + l->title_height);
 }
 
 static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular,
@@ -355,18 +383,17 @@ static int draw_panels(const im_figure *f, const layout *l, cairo_t *cr, cairo_f
     return IM_OK;
 }
 
-/* Under the bottom-left panel, whose scale it gives: a bar of the given length and its value, in δ or the
- * unit; the text centred under the bar, or starting at the panel's edge when the bar is shorter. It hangs
- * from that panel's image, not its cell: under a panel smaller than the others it sat a cell's height below
- * it (S13). */
-static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
+/* Under the panel `index`, whose scale it gives: a bar of the given length and its value, in δ or the unit; the
+ * text centred under the bar, or starting at the panel's edge when the bar is shorter. It hangs from that
+ * panel's image, not its cell: under a panel smaller than the others it sat a cell's height below it (S13). */
+static void draw_scale_bar(const im_figure *f, const layout *l, int index, cairo_t *cr, cairo_font_face_t *regular)
 {
-    int index = (f->rows - 1) * f->columns, x, y;
+    int x, y;
     const im_image *image = f->panels[index].image;
     panel_origin(f, l, index, &x, &y);
     char text[64];
     double pixels;
-    scale_bar(f, text, sizeof text, &pixels);
+    scale_bar(f, image, text, sizeof text, &pixels);
     double top = y + image->height + 0.5 * l->font, left = x + image->data_x;
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, pixels, round(0.3 * l->font));
@@ -379,8 +406,7 @@ static void draw_scale_bar(const im_figure *f, const layout *l, cairo_t *cr, cai
 /* The note under the grid, on the line of a scale bar under the bottom row's full cell height. */
 static void draw_note(const im_figure *f, const layout *l, cairo_t *cr, cairo_font_face_t *regular)
 {
-    double grid_height = f->rows * (l->title_height + l->cell_height) + (f->rows - 1) * l->gap;
-    double top = l->grid_y + grid_height + 0.5 * l->font;
+    double top = l->grid_y + grid_height_of(f, l) + 0.5 * l->font;
     cairo_set_source_rgb(cr, 0, 0, 0);
     typeset_show_text(cr, regular, l->font, l->note_x, top + 0.3 * l->font + 1.1 * l->font, 0.0, f->note);
 }
@@ -471,8 +497,10 @@ static int draw_figure(const im_figure *f, const layout *l, cairo_t *cr)
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     status = draw_panels(f, l, cr, regular, bold);
-    if (status == IM_OK && f->scale_bar >= 0.0)
-        draw_scale_bar(f, l, cr, regular);
+    if (status == IM_OK && f->scale_bar >= 0.0) /* under the bottom-left panel; under each where scales differ */
+        for (int i = 0; i < f->rows * f->columns; ++i)
+            if (l->own_bars || i == (f->rows - 1) * f->columns)
+                draw_scale_bar(f, l, i, cr, regular);
     if (status == IM_OK && f->note)
         draw_note(f, l, cr, regular);
     for (int i = 0; i < l->bar_count && status == IM_OK; ++i)

@@ -231,6 +231,22 @@ static int measure_branches(const im_indenter *punch, const im_history_row *rows
     return status;
 }
 
+int analysis_notes(const im_indenter *punch, const im_history_row *rows, int count, analysis_say *say, void *user)
+{
+    if (count < 2)
+        return IM_OK;
+    im_unloading_branch *found = NULL;
+    int branches = 0, status = measure_branches(punch, rows, count, &found, &branches);
+    for (int k = 0; status == IM_OK && k < branches; ++k) {
+        char note[512];
+        status = im_measure_unloading_note(&found[k], note, sizeof note);
+        if (status == IM_OK && note[0])
+            say(user, note);
+    }
+    free(found);
+    return status;
+}
+
 int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
                          double delta, double e_star, int *branches)
 {
@@ -284,41 +300,92 @@ int im_history_write_analysis(const char *dir, const im_indenter *punch, const i
 
 /* ---- adhesion: the summary and the force-distance figure ---- */
 
-int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, enum im_control control,
-                            const char *length_unit, const char *force_unit, const run_figure_texts *texts,
-                            im_adhesion_summary *summary)
+int analysis_measure_adhesion(const im_history_row *rows, int count, enum im_control control,
+                              im_adhesion_summary *summary)
 {
     if (count < 1)
         return im_fail(IM_EINVAL, "adhesion summary: no step solved");
-    const size_t room = 3 * (size_t)count + 3;
-    double *columns = malloc(sizeof(double) * (2 * (size_t)count + 6 * room));
+    double *columns = malloc(sizeof(double) * 2 * (size_t)count);
     long *contact = malloc(sizeof(long) * (size_t)count);
-    if (!columns || !contact) {
-        free(columns);
-        free(contact);
-        return im_fail(IM_ENOMEM, "force-distance figure of %d steps", count);
-    }
-    for (int k = 0; k < count; ++k) {
+    int status = columns && contact ? IM_OK : im_fail(IM_ENOMEM, "adhesion summary of %d steps", count);
+    for (int k = 0; status == IM_OK && k < count; ++k) {
         columns[k] = rows[k].result.approach;
         columns[count + k] = rows[k].result.load;
         contact[k] = rows[k].result.contact_patches;
     }
-    int status = im_measure_adhesion(columns, columns + count, contact, count, control == IM_CONTROL_LOAD, summary);
-    double *plot = columns + 2 * (size_t)count;
+    if (status == IM_OK)
+        status = im_measure_adhesion(columns, columns + count, contact, count, control == IM_CONTROL_LOAD, summary);
+    free(columns);
+    free(contact);
+    return status;
+}
+
+/* What the work line says: the work done without a loop, the loop's lost work, or that the steps do not
+ * resolve it. */
+static void describe_work(const im_adhesion_summary *summary, const im_history_row *rows, int done, char *work,
+                          size_t size)
+{
+    const im_step_result *first = &rows[0].result, *last = &rows[done - 1].result;
+    if (isnan(summary->hysteresis_work)) /* no loop (measure.h): a retraction alone is the work done */
+        snprintf(work, size,
+                 "work done %.6g (+- %.2g; sum of N dw), no loss: the history does not return to where it began "
+                 "(w = %.6g, N = %.6g at the first step; w = %.6g, N = %.6g at the last)",
+                 summary->work_done, summary->hysteresis_error, first->approach, first->load, last->approach,
+                 last->load);
+    else if (fabs(summary->hysteresis_work) > summary->hysteresis_error)
+        snprintf(work, size, "work lost %.6g (+- %.2g, the steps' trapezoids)", summary->hysteresis_work,
+                 summary->hysteresis_error);
+    else /* the loop lies between the steps: its sign and size are the trapezoids' error */
+        snprintf(work, size,
+                 "work lost not resolved by the steps: %.6g within the trapezoids' error +- %.2g (finer steps "
+                 "around the jumps resolve it)",
+                 summary->hysteresis_work, summary->hysteresis_error);
+}
+
+void analysis_describe_adhesion(const im_adhesion_summary *summary, const im_history_row *rows, int done,
+                                enum im_control control, const char *dir, char *line, size_t size)
+{
+    char work[512], figure[4200] = "";
+    describe_work(summary, rows, done, work, sizeof work);
+    if (dir)
+        snprintf(figure, sizeof figure, "; %s/force_distance.png and .pdf", dir);
+    /* -min N is the pull-off only where the steps passed it (T16: load control's -3 was said as the pull-off
+     * while the step refused at -6 named the least load the contact holds, -5.43) */
+    const int pull_off = isfinite(summary->pull_off_force);
+    const char *why_not = pull_off                     ? ""
+                          : control != IM_CONTROL_LOAD ? " (not the pull-off: no later step's load rises above it)"
+                                                       : " (not the pull-off: load control holds each load given; a "
+                                                         "load below the pull-off is refused, naming the least load "
+                                                         "the contact holds)";
+    snprintf(line, size,
+             "adhesion: %s %.6g at w = %.6g%s; jump-in at w = %.6g, last contact retracting at w = %.6g; %s%s",
+             pull_off ? "pull-off force" : "most tensile load held", summary->most_tensile_load,
+             summary->most_tensile_approach, why_not, summary->jump_in_approach, summary->jump_out_approach, work,
+             figure);
+}
+
+int analysis_write_adhesion(const char *dir, const im_history_row *rows, int count, enum im_control control,
+                            const char *length_unit, const char *force_unit, const run_figure_texts *texts,
+                            im_adhesion_summary *summary)
+{
+    int status = analysis_measure_adhesion(rows, count, control, summary);
+    if (status != IM_OK)
+        return status;
+    const size_t room = 3 * (size_t)count + 3;
+    double *plot = malloc(sizeof(double) * 6 * room);
+    if (!plot)
+        return im_fail(IM_ENOMEM, "force-distance figure of %d steps", count);
     segments up = {plot, plot + room, 0}, down = {plot + 2 * room, plot + 3 * room, 0};
     segments marker = {plot + 4 * room, plot + 5 * room, 0};
-    if (status == IM_OK && isfinite(summary->most_tensile_load)) {
+    if (isfinite(summary->most_tensile_load)) {
         marker.x[0] = summary->most_tensile_approach;
         marker.y[0] = -summary->most_tensile_load;
         marker.n = 1;
     }
-    if (status == IM_OK) {
-        split_segments(rows, count, 0, &up, &down);
-        const figure_axes axes = axes_of(length_unit, force_unit, texts);
-        status = draw_figure(dir, isfinite(summary->pull_off_force) ? &FORCE_DISTANCE : &FORCE_DISTANCE_HELD, &up,
-                             &down, &marker, &axes);
-    }
-    free(columns);
-    free(contact);
+    split_segments(rows, count, 0, &up, &down);
+    const figure_axes axes = axes_of(length_unit, force_unit, texts);
+    status = draw_figure(dir, isfinite(summary->pull_off_force) ? &FORCE_DISTANCE : &FORCE_DISTANCE_HELD, &up, &down,
+                         &marker, &axes);
+    free(plot);
     return status;
 }

@@ -97,12 +97,28 @@ int analysis_write(const char *dir, const im_indenter *punch, const im_history_r
                    double e_star, const char *length_unit, const char *force_unit, const run_figure_texts *texts,
                    int *branches);
 
+/* Why a branch of rows[0..count)'s S is NaN and what to do (measure.h: im_measure_unloading_note), handed to
+ * say(user, note) for each such branch: what the front ends say beside the table (findings R3). */
+typedef void analysis_say(void *user, const char *note);
+int analysis_notes(const im_indenter *punch, const im_history_row *rows, int count, analysis_say *say, void *user);
+
 /* The same table alone at path (a scene's per-member file), atomically, when rows[0..count) hold an
  * unloading branch; *branches says how many (0: nothing written). */
 int analysis_write_table(const char *path, const im_indenter *punch, const im_history_row *rows, int count,
                          double delta, double e_star, int *branches);
 
-/* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, then
+/* With adhesion: the summary of rows[0..count) (measure.h, im_measure_adhesion) into *summary, under the
+ * steps' control. IM_EINVAL for count < 1. */
+int analysis_measure_adhesion(const im_history_row *rows, int count, enum im_control control,
+                              im_adhesion_summary *summary);
+
+/* The line every front end says of that summary of rows[0..done) (`indent` on stdout, `mpi-indent` on stderr
+ * beside its CSV): the pull-off force (or the most tensile load held, and why it is not the pull-off), the
+ * jumps, the work lost (or done, or not resolved), and DIR/force_distance.{png,pdf} where dir is not NULL. */
+void analysis_describe_adhesion(const im_adhesion_summary *summary, const im_history_row *rows, int done,
+                                enum im_control control, const char *dir, char *line, size_t size);
+
+/* With adhesion: the summary of rows[0..count) (analysis_measure_adhesion) into *summary, then
  * DIR/force_distance.{png,pdf}: the approach and retraction segments of N(w) in two colours, the
  * least load marked (as the pull-off, or as the most tensile load held: measure.h, pull_off_force, with
  * the steps' control), carrying texts (NULL: none). IM_EINVAL for count < 1; a figure that cannot be

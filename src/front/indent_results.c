@@ -73,40 +73,18 @@ static void write_adhesion(const indent_run_state *s, const im_history_row *rows
         indent_say(s, IM_LOG_WARNING, "adhesion summary: %s", im_last_error());
     if (isnan(summary.work_done))
         return;
-    char work[256];
-    const im_step_result *first = &rows[0].result, *last = &rows[done - 1].result;
-    if (isnan(summary.hysteresis_work)) /* no loop (measure.h): a retraction alone is the work done */
-        snprintf(work, sizeof work,
-                 "work done %.6g (+- %.2g; sum of N dw), no loss: the history does not return to where it began "
-                 "(w = %.6g, N = %.6g at the first step; w = %.6g, N = %.6g at the last)",
-                 summary.work_done, summary.hysteresis_error, first->approach, first->load, last->approach,
-                 last->load);
-    else if (fabs(summary.hysteresis_work) > summary.hysteresis_error)
-        snprintf(work, sizeof work, "work lost %.6g (+- %.2g, the steps' trapezoids)", summary.hysteresis_work,
-                 summary.hysteresis_error);
-    else /* the loop lies between the steps: its sign and size are the trapezoids' error */
-        snprintf(work, sizeof work,
-                 "work lost not resolved by the steps: %.6g within the trapezoids' error +- %.2g (finer steps "
-                 "around the jumps resolve it)",
-                 summary.hysteresis_work, summary.hysteresis_error);
-    /* -min N is the pull-off only where the steps passed it (T16: load control's -3 was said as the pull-off
-     * while the step refused at -6 named the least load the contact holds, -5.43) */
-    const int pull_off = isfinite(summary.pull_off_force);
-    const char *why_not = pull_off ? ""
-                          : s->options->control != IM_CONTROL_LOAD
-                              ? " (not the pull-off: no later step's load rises above it)"
-                              : " (not the pull-off: load control holds each load given; a load below the pull-off "
-                                "is refused, naming the least load the contact holds)";
-    indent_say(s, IM_LOG_INFO,
-               "adhesion: %s %.6g at w = %.6g%s; jump-in at w = %.6g, last contact retracting at w = %.6g; "
-               "%s; %s/force_distance.png and .pdf",
-               pull_off ? "pull-off force" : "most tensile load held", summary.most_tensile_load,
-               summary.most_tensile_approach, why_not, summary.jump_in_approach, summary.jump_out_approach, work,
-               s->options->out);
+    char line[8192];
+    analysis_describe_adhesion(&summary, rows, done, s->options->control, s->options->out, line, sizeof line);
+    indent_say(s, IM_LOG_INFO, "%s", line);
     write_adhesion_theory(s, rows, done, law);
 }
 
-/* indentation.csv over the steps done (front.h), said and in run.json. */
+static void say_note(void *user, const char *note)
+{
+    indent_say(user, IM_LOG_INFO, "indentation analysis: %s", note);
+}
+
+/* indentation.csv over the steps done (front.h), said and in run.json, with why a branch's S is NaN. */
 static void write_analysis(const indent_run_state *s, const im_history_row *rows, int done, json_t *record)
 {
     const im_indent_options *o = s->options;
@@ -132,6 +110,8 @@ static void write_analysis(const indent_run_state *s, const im_history_row *rows
                    "indentation analysis of %d unloading branch%s: %s/indentation.csv, load_displacement.png and "
                    ".pdf",
                    branches, branches == 1 ? "" : "es", o->out);
+    if (branches > 0 && analysis_notes(&s->punch, rows, done, say_note, (void *)s) != IM_OK)
+        indent_say(s, IM_LOG_WARNING, "indentation analysis: %s", im_last_error());
 }
 
 history_figure indent_history_figure(const im_solver_options *solver, int punch_given, double cell_area,

@@ -4,6 +4,7 @@
 #include "core/number.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,6 +35,19 @@ static int too_many_steps(const char *name, const char *text, char *error, size_
     return 0;
 }
 
+/* Value i of first:last:n (n >= 2) by first + (last - first) i / (n - 1), the formula every kept result's
+ * approaches (and so its scene key) came from, but that a value past the first within RANGE_ZERO_ULPS of the
+ * ends' size from 0 is 0: the formula's own rounding is that large (0.6:-3:37 gave -1.11e-16 for 0), so such a
+ * value means 0, and its sign and size are noise. The first is first itself, exactly (1e-20:1:3 starts at
+ * 1e-20). Every other value keeps the formula's bits. */
+#define RANGE_ZERO_ULPS 4
+static double range_value(double first, double last, int i, int n)
+{
+    const double value = first + (last - first) * i / (n - 1);
+    const double ends = fmax(fabs(first), fabs(last));
+    return i > 0 && fabs(value) <= RANGE_ZERO_ULPS * DBL_EPSILON * ends ? 0 : value;
+}
+
 /* "first:last:count" spanning [start, start + length) into values (room for `room` values); 0 with a
  * message naming the item when it is not one or holds more values than fit. */
 static int parse_range(const char *name, const char *text, const char *start, size_t length, double lowest,
@@ -61,7 +75,7 @@ static int parse_range(const char *name, const char *text, const char *start, si
         return too_many_steps(name, text, error, size);
     *count = (int)n;
     for (int i = 0; i < *count; ++i)
-        values[i] = *count == 1 ? last : first + (last - first) * i / (*count - 1);
+        values[i] = *count == 1 ? last : range_value(first, last, i, *count);
     values[*count - 1] = last; /* exactly: 0:0.3:3 must end at 0.3, not 0.30000000000000004 */
     return 1;
 }

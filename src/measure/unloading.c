@@ -6,6 +6,7 @@
 #include "indentmap/status.h"
 
 #include <math.h>
+#include <stdio.h>
 
 double im_measure_epsilon(const im_indenter *punch)
 {
@@ -65,13 +66,19 @@ static int withdrawn(const double *h, const double *p, const double *residual, i
  * withdrawn by its third point: a parabola across the touch is no slope of the unloading curve (Oliver
  * and Pharr fit its upper part). A rough cone unloaded from 16 to 12 and 8 nm, withdrawn at 9.15, gave
  * S = 167 against 141 from steps of 0.5 nm. */
-static double top_stiffness(const double *h, const double *p, const double *residual, int top, int last)
+static double top_stiffness(const double *h, const double *p, const double *residual, int top, int last,
+                            int *withdrawn_step)
 {
     double s[3];
-    if (last - top < 2 || withdrawn(h, p, residual, top + 1) || withdrawn(h, p, residual, top + 2) ||
-        im_measure_stiffness(h + top, p + top, 3, s) != IM_OK)
+    *withdrawn_step = 0;
+    if (last - top < 2)
         return NAN;
-    return s[0];
+    for (int k = top + 1; k <= top + 2; ++k)
+        if (withdrawn(h, p, residual, k)) {
+            *withdrawn_step = k + 1;
+            return NAN;
+        }
+    return im_measure_stiffness(h + top, p + top, 3, s) == IM_OK ? s[0] : NAN;
 }
 
 static im_unloading_branch analyse_branch(const im_indenter *punch, const double *h, const double *p,
@@ -83,7 +90,7 @@ static im_unloading_branch analyse_branch(const im_indenter *punch, const double
                              .approach_max = h[top],
                              .load_max = p[top],
                              .epsilon = im_measure_epsilon(punch)};
-    b.stiffness = top_stiffness(h, p, residual, top, last);
+    b.stiffness = top_stiffness(h, p, residual, top, last, &b.withdrawn_step);
     b.contact_depth = h[top] - b.epsilon * p[top] / b.stiffness;
     if (b.contact_depth < 0 && b.contact_depth > -1e-9 * h[top]) /* 0 but for rounding (a flat punch: h = P / S) */
         b.contact_depth = 0;
@@ -111,6 +118,23 @@ static int check_unloading_arguments(const im_indenter *punch, const double *app
             return im_fail(IM_EINVAL, "unloading analysis: step %d: approach %g, load %g: expected finite values",
                            k + 1, approach[k], load[k]);
     return im_indenter_check(punch);
+}
+
+int im_measure_unloading_note(const im_unloading_branch *branch, char *text, size_t size)
+{
+    ARG_REQUIRE(branch, "branch");
+    ARG_REQUIRE(text, "text");
+    if (size == 0)
+        return im_fail(IM_EINVAL, "im_measure_unloading_note: size 0: expected room for the text");
+    text[0] = '\0';
+    if (branch->withdrawn_step > 0)
+        snprintf(text, size,
+                 "the unloading from step %d: S, and h_c, A_p, H_IT and E_r after it, are NaN: the stiffness fit's "
+                 "%s point (step %d) is past the touch (no load, the punch withdrawn short of the residual "
+                 "approach): unload in smaller steps that keep at least three points in contact",
+                 branch->top_step, branch->withdrawn_step - branch->top_step == 1 ? "second" : "third",
+                 branch->withdrawn_step);
+    return IM_OK;
 }
 
 int im_measure_unloading(const im_indenter *punch, const double *approach, const double *load, const double *residual,

@@ -129,8 +129,9 @@ typedef struct paper_contact_panels {
     const im_image *images;    /* count maps (borrowed) */
     const char *const *titles; /* count titles */
     const im_colormap *norm;
-    const im_colormap *tension; /* the tension's norm and bar; NULL: none (no map has tension) */
-    int extend_under;
+    const im_colormap *tension;    /* the tension's norm and bar; NULL: none (no map has tension) */
+    int extend_under, extend_over; /* forces below / above norm: the colour bar's triangles */
+    const char *norm_text;         /* the PNG's "Norm" text (render's and the frames'), NULL: none */
     const char *source;
     double load_star;
 } paper_contact_panels;

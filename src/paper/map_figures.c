@@ -26,13 +26,16 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const paper_file
     }
     char load_text[64];
     snprintf(load_text, sizeof load_text, "N* = %g", in->load_star);
-    if (file->text_count >= PAPER_MAX_TEXTS)
+    if (file->text_count + 1 >= PAPER_MAX_TEXTS)
         return im_fail(IM_EINVAL, "%s: contact panels: %d texts: expected fewer than %d", in->source,
-                       file->text_count, PAPER_MAX_TEXTS);
+                       file->text_count, PAPER_MAX_TEXTS - 1);
     im_png_text texts[PAPER_MAX_TEXTS];
-    for (int i = 0; i < file->text_count; ++i)
-        texts[i] = file->texts[i];
-    texts[file->text_count] = (im_png_text){"Load", load_text};
+    int count = 0;
+    for (; count < file->text_count; ++count)
+        texts[count] = file->texts[count];
+    texts[count++] = (im_png_text){"Load", load_text};
+    if (in->norm_text)
+        texts[count++] = (im_png_text){"Norm", in->norm_text};
     im_figure figure = im_figure_default();
     figure.rows = in->count / columns;
     figure.columns = columns;
@@ -40,10 +43,11 @@ int paper_figure_contact_panels(const paper_contact_panels *in, const paper_file
     figure.colormap = in->norm;
     figure.colorbar_label = "local force f / (E* δ²)";
     figure.extend_under = in->extend_under;
+    figure.extend_over = in->extend_over;
     figure.tension_colormap = in->tension;
     figure.tension_label = "tensile force −f / (E* δ²)";
     figure.texts = texts;
-    figure.text_count = file->text_count + 1;
+    figure.text_count = count;
     figure.note = load_text;
     return im_figure_write(&figure, file->path);
 }

@@ -109,6 +109,7 @@ struct im_scene {
     double frames_slope;               /* the family whose history is framed; < 0: the roughest */
     double frames_clip;                /* percent of the frames' values cut at each end of their colour
                                           ranges (forces: the top), render --clip's; default 0 */
+    double contact_panels_clip;        /* the same for the contact panels' one force range; default 0 */
     int frame_count;                   /* steps of the framed history (default 24) */
     double frame_rate;                 /* frames per second of contact/view3d .gif and .mp4 (default 4) */
     int frame_scale;                   /* pixels per patch of the contact and height frames (default 1) */

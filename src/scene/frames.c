@@ -309,8 +309,14 @@ int scene_run_frames(const im_scene *scene, const im_scene_run_options *options,
     if (status == IM_OK)
         status = write_animations(scene, options, gif_frames, history.count);
     if (status == IM_OK && scene->frames3d) {
-        scene_frames3d_input in = {history.count,     history.deformed, history.force,
-                                   history.load_star, &norms.force,     norms.has_tension ? &norms.tension : NULL};
+        scene_frames3d_input in = {.count = history.count,
+                                   .deformed = history.deformed,
+                                   .force = history.force,
+                                   .load_star = history.load_star,
+                                   .norm = &norms.force,
+                                   .extend_under = norms.force_under,
+                                   .extend_over = norms.force_over,
+                                   .tension = norms.has_tension ? &norms.tension : NULL};
         status = scene_write_frames3d(scene, options, context, &in);
     }
     if (status == IM_OK)

@@ -120,7 +120,8 @@ static int write_frame(const im_scene *scene, const scene_frames3d_input *in, co
     figure.panels = &panel;
     figure.colormap = &s->colormap;
     figure.colorbar_label = "local force f / (E* δ²)";
-    figure.extend_under = s->colormap.logarithmic;
+    figure.extend_under = in->extend_under; /* the contact frames' triangles: one norm, one bar */
+    figure.extend_over = in->extend_over;
     if (in->tension) {
         figure.tension_colormap = &s->tension;
         figure.tension_label = "tensile force −f / (E* δ²)";

@@ -12,8 +12,9 @@ typedef struct scene_frames3d_input {
     int count;
     im_field *const *deformed, *const *force; /* per step: h - u and the force per patch */
     const double *load_star;
-    const im_colormap *norm;    /* the contact frames' force norm */
-    const im_colormap *tension; /* and their tension norm; NULL: no step has tension */
+    const im_colormap *norm;       /* the contact frames' force norm (frames_clip's cut included) */
+    int extend_under, extend_over; /* some step's forces lie below / above it: the colour bar's triangles */
+    const im_colormap *tension;    /* and their tension norm; NULL: no step has tension */
 } scene_frames3d_input;
 
 /* With frames3d = yes: IM_EINVAL naming the punch's key when a camera that frames the punch over the scene's

@@ -532,9 +532,22 @@ int scene_histories_unload(const im_scene *scene)
     return 0;
 }
 
+/* A member's note of why a branch's S is NaN (front.h: analysis_notes), a stage line naming its file. */
+typedef struct member_note {
+    const im_scene_run_options *options;
+    const char *file;
+} member_note;
+
+static void say_note(void *user, const char *note)
+{
+    const member_note *m = user;
+    scene_progress(m->options, "histories: %s: %s", m->file, note);
+}
+
 /* indentation/member_FF_SEED.csv: the analysis of a member's unloading branches, indent's
- * indentation.csv (front.h: analysis_write_table), drawn again from the history by every run. */
-static int write_indentation(const im_scene *scene, const scene_member *m)
+ * indentation.csv (front.h: analysis_write_table), drawn again from the history by every run, and why a
+ * branch's S is NaN. */
+static int write_indentation(const im_scene *scene, const im_scene_run_options *options, const scene_member *m)
 {
     char relative[96], path[IM_SCENE_PATH];
     snprintf(relative, sizeof relative, "indentation/member_%02d_%llu.csv", m->family, (unsigned long long)m->seed);
@@ -543,6 +556,9 @@ static int write_indentation(const im_scene *scene, const scene_member *m)
     if (status == IM_OK)
         status = analysis_write_table(path, &punch, m->history, m->steps, scene->surface.delta, scene->modulus,
                                       &branches);
+    member_note note = {options, relative};
+    if (status == IM_OK && branches > 0)
+        status = analysis_notes(&punch, m->history, m->steps, say_note, &note);
     return status == IM_OK ? IM_OK : im_fail_context(status, "%s", relative);
 }
 
@@ -554,7 +570,7 @@ static int write_indentations(const im_scene *scene, const im_scene_run_options 
     if (status == IM_OK)
         status = im_make_directories(folder);
     for (int i = 0; i < count && status == IM_OK; ++i)
-        status = write_indentation(scene, &members[i]);
+        status = write_indentation(scene, options, &members[i]);
     if (status == IM_OK)
         scene_progress(options, "histories: the indentation analysis of %d surface%s in indentation/", count,
                        count == 1 ? "" : "s");

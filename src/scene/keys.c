@@ -57,6 +57,7 @@ static const key_spec KEYS[] = {
     {"output", "log_norm", scene_parse_bool, FIELD(log_norm), 0, 0, NULL, 0, 0},
     {"output", "frames_slope", scene_parse_double, FIELD(frames_slope), 0, 10, NULL, 0, 0},
     {"output", "frames_clip", scene_parse_double, FIELD(frames_clip), 0, 50 - 1e-9, NULL, 0, 0},
+    {"output", "contact_panels_clip", scene_parse_double, FIELD(contact_panels_clip), 0, 50 - 1e-9, NULL, 0, 0},
     {"output", "frame_count", scene_parse_int, FIELD(frame_count), 1, 10000, NULL, 0, 0},
     {"output", "frame_rate", scene_parse_double, FIELD(frame_rate), 0.01, 100, NULL, 0, 0},
     {"output", "frame_scale", scene_parse_int, FIELD(frame_scale), 1, 16, NULL, 0, 0},

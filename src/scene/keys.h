@@ -6,7 +6,7 @@
 
 #include "scene/values.h"
 
-enum { SCENE_KEY_COUNT = 52 };
+enum { SCENE_KEY_COUNT = 53 };
 
 /* Key index of the table (0 <= index < SCENE_KEY_COUNT). */
 const key_spec *scene_key(int index);

@@ -1,5 +1,6 @@
 /* Contact-map panels at one load for every family (the paper's Fig. 4, drawn by
  * paper/map_figures.c), and their table. */
+#include "front/front.h"
 #include "indentmap/io.h"
 #include "scene/contents.h"
 #include "indentmap/formats.h"
@@ -253,16 +254,42 @@ static im_colormap_range shared_range(const panel_result *results, int count, im
     return range;
 }
 
-/* Renders every panel with one shared force norm and one tension norm (norms[0], norms[1]) and the smooth
- * contact circle. */
-static int render_panels(const im_scene *scene, im_render_context *context, const panel_result *results,
-                         im_image *images, im_colormap norms[2])
+/* The panels' one force range: all their forces, or with [output] contact_panels_clip P the top P percent cut
+ * (render --clip's, as frames_clip cuts the frames'), a needle asperity's force no longer making every other
+ * patch one colour. */
+static int panels_force_range(const im_scene *scene, const panel_result *results, im_colormap_range *forces)
 {
-    int status = IM_OK;
-    const im_colormap_range forces = shared_range(results, scene->family_count, IM_COLORMAP_FORCES),
-                            tensions = shared_range(results, scene->family_count, IM_COLORMAP_TENSIONS);
+    *forces = shared_range(results, scene->family_count, IM_COLORMAP_FORCES);
+    if (!(scene->contact_panels_clip > 0.0))
+        return IM_OK;
+    im_field *fields[IM_SCENE_MAX_FAMILIES];
+    for (int i = 0; i < scene->family_count; ++i)
+        fields[i] = results[i].force;
+    return im_colormap_range_clipped(IM_COLORMAP_FORCES, fields, scene->family_count, scene->contact_panels_clip,
+                                     forces);
+}
+
+/* The panels' norms: one shared force norm and one tension norm (norms[0], norms[1]), and whether some
+ * panel's forces lie below or above the force norm (*under, *over: the colour bar's triangles). */
+static int panels_norms(const im_scene *scene, const panel_result *results, im_colormap norms[2], int *under,
+                        int *over)
+{
+    im_colormap_range forces;
+    const im_colormap_range tensions = shared_range(results, scene->family_count, IM_COLORMAP_TENSIONS);
+    int status = panels_force_range(scene, results, &forces);
     norms[0] = scene_force_norm(scene, &forces);
     norms[1] = im_colormap_range_norm(&tensions, IM_COLORMAP_TENSION, NAN, NAN, 0);
+    *under = scene->log_norm, *over = 0; /* a log norm's under colour holds the forces two decades down */
+    for (int i = 0; i < scene->family_count; ++i)
+        frame_extends(results[i].force, &norms[0], 1, under, over);
+    return status;
+}
+
+/* Renders every panel with the norms (panels_norms) and the smooth contact circle. */
+static int render_panels(const im_scene *scene, im_render_context *context, const panel_result *results,
+                         im_image *images, const im_colormap norms[2])
+{
+    int status = IM_OK;
     for (int i = 0; i < scene->family_count && status == IM_OK; ++i) {
         const im_field *f = results[i].force;
         im_contact_style style = im_contact_style_default(f);
@@ -281,9 +308,9 @@ static int draw_figure(const im_scene *scene, const void *panels, const paper_fi
     return paper_figure_contact_panels(panels, file);
 }
 
-/* tension: the tension's norm, NULL where no panel has tension. */
+/* tension: the tension's norm, NULL where no panel has tension; extends: the force bar's triangles. */
 static int write_panel_figure(const im_scene *scene, const im_image *images, const im_colormap *norm,
-                              const im_colormap *tension)
+                              const im_colormap *tension, const int extends[2])
 {
     char titles[IM_SCENE_MAX_FAMILIES][64];
     const char *title_of[IM_SCENE_MAX_FAMILIES];
@@ -291,12 +318,16 @@ static int write_panel_figure(const im_scene *scene, const im_image *images, con
         scene_family_title(scene, i, titles[i], sizeof titles[i]);
         title_of[i] = titles[i];
     }
+    char norm_text[128];
+    run_figure_norm_text(norm, norm_text, sizeof norm_text);
     paper_contact_panels panels = {.count = scene->family_count,
                                    .images = images,
                                    .titles = title_of,
                                    .norm = norm,
                                    .tension = tension,
-                                   .extend_under = scene->log_norm,
+                                   .extend_under = extends[0],
+                                   .extend_over = extends[1],
+                                   .norm_text = norm_text,
                                    .source = scene->path,
                                    .load_star = scene->load_star};
     return scene_write_png_pdf(scene, "contact_panels", draw_figure, &panels);
@@ -316,14 +347,14 @@ static int plot_density(const im_scene *scene, const panel_result *results)
 /* The panels' figure and the density plot, side by side (each is CPU work for one thread: layout, PNG
  * and PDF encoding); their errors are kept per output, as either may run on another thread. */
 static int write_panel_outputs(const im_scene *scene, const panel_result *results, const im_image *images,
-                               const im_colormap *norm, const im_colormap *tension)
+                               const im_colormap *norm, const im_colormap *tension, const int extends[2])
 {
     int statuses[2] = {IM_OK, IM_OK};
     char errors[2][256] = {"", ""};
 #pragma omp parallel for schedule(dynamic, 1)
     for (int k = 0; k < 2; ++k) {
         if (k == 0)
-            statuses[k] = write_panel_figure(scene, images, norm, tension);
+            statuses[k] = write_panel_figure(scene, images, norm, tension, extends);
         else if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY))
             statuses[k] = plot_density(scene, results);
         if (statuses[k] != IM_OK)
@@ -366,11 +397,14 @@ int scene_run_panels(const im_scene *scene, const im_scene_run_options *options,
     if (status == IM_OK)
         status = write_results_csv(scene, results);
     im_colormap norms[2];
+    int extends[2] = {0, 0};
+    if (status == IM_OK)
+        status = panels_norms(scene, results, norms, &extends[0], &extends[1]);
     if (status == IM_OK)
         status = render_panels(scene, context, results, images, norms);
     int has_tension = status == IM_OK && shared_range(results, scene->family_count, IM_COLORMAP_TENSIONS).hi > 0.0;
     if (status == IM_OK)
-        status = write_panel_outputs(scene, results, images, &norms[0], has_tension ? &norms[1] : NULL);
+        status = write_panel_outputs(scene, results, images, &norms[0], has_tension ? &norms[1] : NULL, extends);
     for (int i = 0; i < scene->family_count; ++i) {
         im_field_free(results[i].force);
         im_image_release(&images[i]);

@@ -55,7 +55,7 @@ static int check_without_area(const im_scene *scene)
 
 /* The [output] keys that shape only an output the scene may not draw. Given without it they do nothing: warned,
  * not refused, so that frames = no for a quick run needs no other key removed. */
-typedef enum { SHAPES_FRAMES, SHAPES_ANIMATION, SHAPES_FRAMES3D } shaped_output;
+typedef enum { SHAPES_FRAMES, SHAPES_ANIMATION, SHAPES_FRAMES3D, SHAPES_PANELS } shaped_output;
 
 static const struct {
     const char *key;
@@ -69,6 +69,7 @@ static const struct {
     {"frame_rate", SHAPES_ANIMATION, "the animations (animation = gif, mp4 or both)"},
     {"frame3d_width", SHAPES_FRAMES3D, "the 3-D frames (frames3d = yes)"},
     {"frame3d_height", SHAPES_FRAMES3D, "the 3-D frames (frames3d = yes)"},
+    {"contact_panels_clip", SHAPES_PANELS, "the contact panels of the half-space (contact_panels = yes)"},
 };
 
 static int draws(const im_scene *scene, shaped_output output)
@@ -77,6 +78,8 @@ static int draws(const im_scene *scene, shaped_output output)
     case SHAPES_FRAMES: return scene->frames;
     case SHAPES_ANIMATION: return scene->animation != IM_ANIMATION_NONE;
     case SHAPES_FRAMES3D: return scene->frames3d;
+    /* a periodic scene's panels are every step's map, drawn as indent --frames draws them: no clip */
+    case SHAPES_PANELS: return scene->contact_panels && !scene->periodic;
     }
     return 0;
 }
