@@ -148,9 +148,12 @@ enum {
     CLI_OPT_DETREND,
     CLI_OPT_ALIGN
 };
-/* The surface formats every command's help names (formats.h: im_surface_read; instrument files too through
- * Gwyddion, `indentmap formats`): one list, so that no command's help names fewer than it reads (DA11). */
-#define CLI_SURFACE_FORMATS ".npy, .gsf, .sdf, .nc, .x3p or text"
+/* The surface formats every command that reads one names in its help (formats.h: im_surface_read's readers by
+ * extension and signature, src/formats/surface_file.c; instrument files too through Gwyddion, `indentmap
+ * formats`), and those `surface --out` writes: one list each, so that no help names fewer than it reads
+ * (DA11). */
+#define CLI_SURFACE_FORMATS ".npy, .gsf, .sdf, .nc, .x3p, .tmd, .h5, contact.engineering .zip or text"
+#define CLI_SURFACE_WRITE_FORMATS ".npy, .gsf, .sdf, .nc, .x3p or text"
 
 /* clang-format off */
 #define CLI_SURFACE_FILE_OPTIONS                                    \

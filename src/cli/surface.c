@@ -50,7 +50,7 @@ static void usage(FILE *stream)
             "  --lambda-r L       roll-off wavelength 2 pi / q_r (default: max(N, M), the longer side)\n"
             "  --lambda-0 L       longest wavelength, > lambda-r adds a roll-off plateau (default: none)\n"
             "  --seed S           random seed (default 1); the same seed gives the same surface\n"
-            "  --out FILE         write the surface (" CLI_SURFACE_FORMATS ") and FILE.json beside it\n"
+            "  --out FILE         write the surface (" CLI_SURFACE_WRITE_FORMATS ") and FILE.json beside it\n"
             "  --stats FILE       measure FILE (" CLI_SURFACE_FORMATS " matrix) instead of generating\n"
             "  --png FILE         write a height-field image (viridis, one pixel per patch)\n"
             "  --psd FILE         write the radially averaged PSD C_iso(q) as CSV\n"

@@ -123,13 +123,17 @@ int im_colormap_outlier_note(im_field *const *fields, int count, char *text, siz
                        size, count);
     text[0] = '\0';
     *farthest = -1;
-    im_colormap_range full, central;
-    int status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, fields, count, 0.0, &full);
+    im_colormap_range full = im_colormap_range_empty(IM_COLORMAP_HEIGHTS), central;
+    int status = IM_OK;
+    for (int i = 0; i < count && status == IM_OK; ++i)
+        status = im_colormap_range_add(&full, fields[i]);
     if (status == IM_OK)
         status = im_colormap_range_clipped(IM_COLORMAP_HEIGHTS, fields, count, IM_COLORMAP_OUTLIER_PERCENT, &central);
-    const double whole = full.hi - full.lo, bulk = central.hi - central.lo;
-    if (status != IM_OK || !(bulk * IM_COLORMAP_OUTLIER_SHARE < whole))
+    if (status != IM_OK)
         return status;
+    const double whole = full.hi - full.lo, bulk = central.hi - central.lo;
+    if (!(bulk * IM_COLORMAP_OUTLIER_SHARE < whole))
+        return IM_OK;
     const char *unit = fields[0]->value_unit[0] ? fields[0]->value_unit : fields[0]->unit; /* count > 0 here */
     const char *space = unit[0] ? " " : "";
     snprintf(text, size,

@@ -337,7 +337,7 @@ static void note_unresolved(const indent_run_state *s, const im_history_row *row
     const long n = row->result.contact_patches;
     char radius[40] = "";
     if (n >= RESOLVED_PATCHES)
-        snprintf(radius, sizeof radius, ", radius %.2g", contact_radius_patches(s, row));
+        snprintf(radius, sizeof radius, ", radius %.1f", contact_radius_patches(s, row));
     const size_t used = strlen(list);
     snprintf(list + used, size - used, "%s%d (%ld patch%s%s)", named ? ", " : "", k + 1, n, n == 1 ? "" : "es",
              radius);

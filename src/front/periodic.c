@@ -78,9 +78,9 @@ int periodic_fit_k(const im_history_row *rows, int count, double cell_area, doub
     if (status == IM_OK && out->points == 0)
         status = out->full_contact ? im_fail(IM_EINVAL,
                                              "k of eq. (2): every step with a positive load is in full contact "
-                                             "(A/A0 = 1, %d steps), which does not measure k: expected a step in "
+                                             "(A/A0 = 1, %d step%s), which does not measure k: expected a step in "
                                              "partial contact (a smaller load or pressure)",
-                                             out->full_contact)
+                                             out->full_contact, out->full_contact == 1 ? "" : "s")
                                    : im_fail(IM_EINVAL, "k of eq. (2): no step with a positive load");
     if (status == IM_OK)
         status = im_theory_fit_k(x, area, out->points, &out->fit);

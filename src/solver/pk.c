@@ -298,7 +298,9 @@ static double drift_bound(const pk_run *r, int steps)
  * (drift_bound of one step, ~5e-13 on a 512^2 grid) and from there only scatters (1e-16 to 1e-14 of the
  * approach), so the solve would run to max_iterations and fail (91 s at 512^2 for tol 1e-17). A residual
  * at that level whose least value has not halved in STALL_ITERATIONS iterations stops the solve, naming
- * the range it scattered over; converging solves halve it within a few iterations there. */
+ * the range it scattered over; converging solves halve it within a few iterations there. Armed only for a
+ * tol below that rounding (a coarser tol is met before it) and on residuals that count (not a capped load
+ * control's missed load, whose residual may be 0). */
 enum { STALL_ITERATIONS = 100 };
 typedef struct {
     double best;  /* the least residual, updated when it halves */
@@ -402,7 +404,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
         if (res->iterations >= o->max_iterations)
             return im_fail(IM_ENOCONV, "contact solve: residual %.3g > tol %.3g after %d iterations (cap)",
                            res->residual, o->tol, res->iterations);
-        if (residual_stalls(&watch, res->residual, rounding, res->iterations))
+        if (o->tol < rounding && !load_missed && residual_stalls(&watch, res->residual, rounding, res->iterations))
             return fail_stalled(&watch, o->tol, res->iterations, rounding, NAN);
         team_refresh();
         const int stopped_by = stop_signal(r);
@@ -447,7 +449,7 @@ static int iterate(pk_run *r, im_solve_result *res, gap_stats *last)
                 r->join = SOLVER_JOIN_BY_GAP;
         }
         if (!isfinite(tau) || tau <= 0) {
-            if (!isnan(tau) && watch.best <= rounding)
+            if (tau <= 0 && o->tol < rounding && watch.best <= rounding)
                 return fail_stalled(&watch, o->tol, res->iterations, rounding, tau);
             return im_fail(IM_ENUMERIC, "contact iteration %d: step length %g", res->iterations, tau);
         }
