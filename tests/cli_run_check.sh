@@ -162,6 +162,61 @@ check "too large for memory: the run's error" same_refusal memory
 check "too large for memory: the estimate" grep -q "memory.ini: this scene needs about [0-9.]* MiB of memory" \
   "$dir/memory.check_err"
 
+# ---- refused before any work by both, as the run would refuse them (the run writes nothing either) ----
+scene smooth_sphere "n = 32\nslopes = 0\nseeds = 1" "control = load\nsteps = 20:100:2" "plots = sphere"
+sed -i 's/^shape = cone$/shape = sphere/; s/^alpha = 80$/radius = 100/' "$dir/smooth_sphere.ini"
+check "plots = sphere, no rough family: the run's error" same_refusal smooth_sphere
+check "plots = sphere, no rough family: named" grep -q "plots = sphere needs a rough family" \
+  "$dir/smooth_sphere.check_err"
+scene groups "n = 32\nslopes = 0.02, 0.04, 0.06, 0.08, 0.1\nseeds = 1\nhurst = 0.7, 0.8" \
+  "control = load\nload_star = 60" "table = yes\nplots = fig2" # 5 x 2 roughnesses, fig2 draws at most 8
+check "fig2 of a sweep, too many roughnesses: the run's error" same_refusal groups
+check "fig2 of a sweep, too many roughnesses: named" grep -q "fig2 of a sweep draws at most" "$dir/groups.check_err"
+scene folder_file "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+echo "not a folder" >"$dir/plain"
+sed -i "s|^output = out_folder_file$|output = $dir/plain|" "$dir/folder_file.ini"
+check "output a regular file: the run's error" same_refusal folder_file
+check "output a regular file: named" grep -q "output folder $dir/plain is not a directory" "$dir/folder_file.check_err"
+scene file_parent "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+sed -i "s|^output = out_file_parent$|output = $dir/plain/deeper/out|" "$dir/file_parent.ini"
+check "output under a regular file: the run's error" same_refusal file_parent
+check "output under a regular file: named" grep -q "nearest existing parent, $dir/plain, is not a directory" \
+  "$dir/file_parent.check_err"
+mkdir -p "$dir/readonly" && chmod a-w "$dir/readonly"
+scene unwritable "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+sed -i "s|^output = out_unwritable$|output = $dir/readonly/deeper/out|" "$dir/unwritable.ini"
+if touch "$dir/readonly/probe" 2>/dev/null; then
+  echo "an unwritable parent: not compared (written anyway: root?)"
+else
+  check "an unwritable parent: the run's error" same_refusal unwritable
+  check "an unwritable parent: named" grep -q "parent, $dir/readonly, is not writable" "$dir/unwritable.check_err"
+fi
+scene locked "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+sed -i "s|^output = out_locked$|output = $dir/held|" "$dir/locked.ini"
+mkdir "$dir/held"
+flock "$dir/held/.lock" sleep 60 & # a run holding the folder's lock
+locker=$!
+sleep 0.5
+check "a folder locked by a running run: the run's error" same_refusal locked
+kill $locker
+check "a folder locked by a running run: named" grep -q "is in use by another indentmap run" "$dir/locked.check_err"
+check "a folder locked by a running run: nothing written there" test "$(ls -A "$dir/held")" = .lock
+
+# ---- a damaged wisdom cache: the run removes it and goes on; --check says so and removes nothing ----
+mkdir -p "$dir/cachehome/indentmap"
+damaged=$source_dir/docs/images/adhesion_maps.png # an image where the wisdom should be
+cp "$damaged" "$dir/cachehome/indentmap/fftw-wisdom"
+cached() { env -u IM_FFTW_WISDOM XDG_CACHE_HOME="$dir/cachehome" "$cli" run "$@"; }
+cached "$dir/histories.ini" --check >"$dir/cache.check" 2>"$dir/cache.check_err"
+check "a damaged wisdom cache: --check exits 0, as the run does" test $? -eq 0
+check "a damaged wisdom cache: --check tells the run's judgement" grep -q "the run would remove it and write it afresh" \
+  "$dir/cache.check_err"
+check "a damaged wisdom cache: --check removes nothing" cmp -s "$damaged" "$dir/cachehome/indentmap/fftw-wisdom"
+sed 's/^output = out_histories$/output = out_cached/' "$dir/histories.ini" >"$dir/cached.ini"
+cached --quiet "$dir/cached.ini" >/dev/null 2>"$dir/cache.run_err"
+check "a damaged wisdom cache: the run exits 0" test $? -eq 0
+check "a damaged wisdom cache: the run removes it" grep -q "removed, it is written afresh" "$dir/cache.run_err"
+
 # ---- the estimates printed are the run's ----
 scene estimate "n = 256\nslopes = 0, 0.08\nseeds = 1" "control = load\nload_star = 3000" "table = yes\ncontact_panels = yes"
 refused_memory=$(OMP_NUM_THREADS=1 IM_MEMORY_LIMIT_MIB=1 "$cli" run --quiet "$dir/estimate.ini" 2>&1 |

@@ -8,6 +8,8 @@
  * plot lacks what it draws (density: contact_panels, sphere: a sphere, fig2: the table). */
 int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot);
 int scene_check_plots(const im_scene *scene);
+/* How many families are rough (h'rms > 0): those fig1, sphere, fig2's groups and contact_density draw. */
+int scene_rough_family_count(const im_scene *scene);
 /* Whether a plot needs the ensemble's histories (fig5, fig6, fig7, sphere). */
 int scene_wants_histories(const im_scene *scene);
 

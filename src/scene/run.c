@@ -207,8 +207,8 @@ static run_folder_rules folder_rules(const im_scene *scene, const im_scene_run_o
 }
 
 /* The scene file, its surface files and its profile (resolved by scene_prepare) become inputs no write
- * may replace, and the FFTW wisdom file may be neither one of them, nor in the output folder, nor
- * anything but wisdom (run_folder.h). */
+ * may replace, the FFTW wisdom file may be neither one of them, nor in the output folder, nor
+ * anything but wisdom, and the folder must be one the run can make and lock (run_folder.h). */
 static int check_folder(const im_scene *scene, const im_scene_run_options *options)
 {
     const char **inputs = calloc((size_t)scene->file_count + 2, sizeof *inputs);
@@ -225,6 +225,8 @@ static int check_folder(const im_scene *scene, const im_scene_run_options *optio
         inputs[1] = scene->profile_file[0] ? scene->profile_file : NULL;
         status = run_folder_check(&rules, inputs, scene->file_count + 2, &solver);
     }
+    if (status == IM_OK)
+        status = run_folder_probe(&rules);
     free(surfaces);
     free(inputs);
     return status;
@@ -397,6 +399,8 @@ int scene_check_before_work(const im_scene *scene, const im_scene_run_options *o
                          "%s: a sweep (a list of alpha, hurst or lambda_s) runs in a single process; "
                          "run it without mpirun",
                          scene->path);
+    if (status == IM_OK)
+        status = scene_sweep_check_fig2(scene);
     if (status == IM_OK)
         status = check_folder(scene, options);
     return status == IM_OK ? scene_check_limits(scene, options, limits) : status;
