@@ -168,6 +168,12 @@ sed -i 's/^shape = cone$/shape = sphere/; s/^alpha = 80$/radius = 100/' "$dir/sm
 check "plots = sphere, no rough family: the run's error" same_refusal smooth_sphere
 check "plots = sphere, no rough family: named" grep -q "plots = sphere needs a rough family" \
   "$dir/smooth_sphere.check_err"
+scene smooth_fig7 "n = 32\nslopes = 0\nseeds = 1" "control = load\nsteps = 20:100:2" "plots = fig7"
+check "plots = fig7, no rough family: the run's error" same_refusal smooth_fig7
+scene smooth_flat_k "n = 32\nslopes = 0\nseeds = 1" "control = load\nload_star = 100" "plots = flat_k"
+check "plots = flat_k, no rough family: the run's error" same_refusal smooth_flat_k
+check "plots = flat_k, no rough family: named" grep -q "flat_k measures k on rough surfaces" \
+  "$dir/smooth_flat_k.check_err"
 scene groups "n = 32\nslopes = 0.02, 0.04, 0.06, 0.08, 0.1\nseeds = 1\nhurst = 0.7, 0.8" \
   "control = load\nload_star = 60" "table = yes\nplots = fig2" # 5 x 2 roughnesses, fig2 draws at most 8
 check "fig2 of a sweep, too many roughnesses: the run's error" same_refusal groups

@@ -38,6 +38,10 @@ int scene_check_plots(const im_scene *scene)
                        scene->path);
     if (scene_wants_plot(scene, IM_SCENE_PLOT_SPHERE) && scene_rough_family_count(scene) == 0)
         return im_fail(IM_EINVAL, "%s: plots = sphere needs a rough family", scene->path);
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG7) && scene_rough_family_count(scene) == 0)
+        return im_fail(IM_EINVAL, "%s: plots = fig7 draws the rough families: give a slope > 0", scene->path);
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) && scene_rough_family_count(scene) == 0)
+        return im_fail(IM_EINVAL, "%s: plots = flat_k measures k on rough surfaces: give a slope > 0", scene->path);
     if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG2) && !scene->table)
         return im_fail(IM_EINVAL, "%s: plots = fig2 draws the ensemble of [output] table = yes", scene->path);
     return IM_OK;
