@@ -96,10 +96,11 @@ if checked_then_run rendered; then
   check "rendered: the outputs listed are those written" same_list rendered
   check "periodic maps: --check writes nothing, then the run" checked_then_run periodic_maps
   check "periodic maps: the outputs listed are those written" same_list periodic_maps
-elif grep -q "rendering with" "$dir/rendered.err" || ! grep -q "OpenGL\|EGL\|OSMesa\|render" "$dir/rendered.err"; then
-  check "rendered: --check writes nothing, then the run ($(tail -1 "$dir/rendered.err"))" false
+elif grep -qs "rendering with" "$dir/rendered.err" ||
+  ! grep -qs "OpenGL\|EGL\|OSMesa\|render" "$dir/rendered.check_err" "$dir/rendered.err"; then # both refuse before any work
+  check "rendered: --check writes nothing, then the run ($(cat "$dir"/rendered.*err | tail -1))" false
 else
-  echo "rendered: no OpenGL context here, not compared ($(tail -1 "$dir/rendered.err"))"
+  echo "rendered: no OpenGL context here, not compared ($(cat "$dir"/rendered.*err | tail -1))"
 fi
 
 # --resume's reuse: a kept member is reused; one edited is named, solved again
@@ -207,6 +208,13 @@ check "a folder locked by a running run: the run's error" same_refusal locked
 kill $locker
 check "a folder locked by a running run: named" grep -q "is in use by another indentmap run" "$dir/locked.check_err"
 check "a folder locked by a running run: nothing written there" test "$(ls -A "$dir/held")" = .lock
+
+scene no_gl "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "contact_panels = yes"
+without_gl() { # without_gl COMMAND...: with EGL that has no device (as cli_render.sh has it)
+  (unset IM_REQUIRE_GL; export __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json IM_RENDER_BACKEND=egl; "$@")
+}
+check "no OpenGL context: the run's error, before any work" without_gl same_refusal no_gl
+check "no OpenGL context: named" grep -q "no OpenGL 3.3 core context" "$dir/no_gl.check_err"
 
 # ---- a damaged wisdom cache: the run removes it and goes on; --check says so and removes nothing ----
 mkdir -p "$dir/cachehome/indentmap"

@@ -388,6 +388,16 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     return status;
 }
 
+/* A scene that renders opens its OpenGL context after every solve: opened and closed here, before any
+ * work, so that a machine without one refuses the run (and run --check) at once. */
+static int check_renderer(const im_scene *scene, const im_scene_run_options *options)
+{
+    im_render_context *context = NULL;
+    int status = im_scene_renders(scene) ? im_render_open((im_render_backend)options->backend, &context) : IM_OK;
+    im_render_close(context);
+    return status;
+}
+
 int scene_check_before_work(const im_scene *scene, const im_scene_run_options *options, int ranked,
                             scene_limits *limits)
 {
@@ -403,7 +413,9 @@ int scene_check_before_work(const im_scene *scene, const im_scene_run_options *o
         status = scene_sweep_check_fig2(scene);
     if (status == IM_OK)
         status = check_folder(scene, options);
-    return status == IM_OK ? scene_check_limits(scene, options, limits) : status;
+    if (status == IM_OK)
+        status = scene_check_limits(scene, options, limits);
+    return status == IM_OK ? check_renderer(scene, options) : status;
 }
 
 static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)
