@@ -61,7 +61,8 @@ static int launched_by_mpirun(void)
 }
 #endif
 
-/* The exit status of a run; only the reporting rank (rank 0, or a single process) prints. */
+/* The exit status of a run, or of --check (scene NULL: its report is the success's output); only the
+ * reporting rank (rank 0, or a single process) prints. */
 static int finish(int status, const im_scene *scene, int reporting)
 {
     if (status == IM_EINTERRUPTED) {
@@ -73,7 +74,7 @@ static int finish(int status, const im_scene *scene, int reporting)
         return reporting                                                            ? cli_report(status)
                : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE
                                                                                     : CLI_EXIT_FAILURE;
-    if (reporting)
+    if (reporting && scene)
         printf("indentmap: scene %s written to %s/\n", im_scene_name(scene), im_scene_output_dir(scene));
     return CLI_EXIT_OK;
 }
@@ -156,14 +157,6 @@ static int check_scene(const im_scene *scene, const im_scene_run_options *run, i
     return status;
 }
 
-/* The exit status of --check; only the reporting rank prints. */
-static int finish_check(int status, int reporting)
-{
-    if (status == IM_OK)
-        return CLI_EXIT_OK;
-    return reporting ? cli_report(status) : finish(status, NULL, 0);
-}
-
 #if IM_HAVE_MPI
 /* Under mpirun: MPI starts before the signal handlers (ours, installed after, are the ones in
  * force); every rank checks that it was given the same command and scene as the others, loads it,
@@ -191,8 +184,7 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
         status = mpi_collective_status(MPI_COMM_WORLD, rank == 0 ? check_scene(scene, &options, ranks) : IM_OK);
     else if (status == IM_OK)
         status = im_scene_run_ranks(MPI_COMM_WORLD, scene, &options);
-    int code = mpi_exit_code(MPI_COMM_WORLD,
-                             check ? finish_check(status, rank == 0) : finish(status, scene, rank == 0));
+    int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, check ? NULL : scene, rank == 0));
     im_scene_free(scene);
     if (rank != 0) /* rank 0 has spoken for all: nothing more (mpirun may signal a rank still finishing) */
         (void)freopen("/dev/null", "w", stderr);
@@ -275,7 +267,7 @@ int cli_run(int argc, char **argv)
         status = check_scene(scene, &run, 1);
     else if (status == IM_OK)
         status = im_scene_run(scene, &run);
-    code = check ? finish_check(status, 1) : finish(status, scene, 1);
+    code = finish(status, check ? NULL : scene, 1);
     im_scene_free(scene);
     return code;
 }
