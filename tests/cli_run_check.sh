@@ -153,6 +153,20 @@ elif "$cli" --help | grep -q mpi-indent && [ -n "$mpiexec" ]; then
   check "mpirun: the run's message" diff <(grep "^indentmap:" "$dir/sweep_ranks.run_err") \
     <(grep "^indentmap:" "$dir/sweep_ranks.check_err") # not mpirun's own lines (its job ids)
   check "mpirun: the sweep named" grep -q "sweep .* runs in a single process" "$dir/sweep_ranks.check_err"
+  # a surface file that is another on rank 1 (node_local.npy, a link to each rank's fd 8, as cli_mpi.sh has it)
+  "$cli" surface --n 32 --seed 1 --out "$dir/h1.npy" >/dev/null && "$cli" surface --n 32 --seed 2 --out "$dir/h2.npy" >/dev/null
+  ln -s /proc/self/fd/8 "$dir/node_local.npy"
+  scene node_local "file = h1.npy, node_local.npy" "load_star = 100" "table = yes"
+  on_fd8() { echo "exec '$cli' run '$dir/node_local.ini' $2 8< '$1'"; } # on_fd8 FILE OPTION: a rank's command
+  "$mpiexec" --oversubscribe -n 1 bash -c "$(on_fd8 "$dir/h1.npy" --quiet)" : -n 1 bash -c "$(on_fd8 "$dir/h2.npy" --quiet)" \
+    >/dev/null 2>"$dir/node_local.run_err"
+  run_status=$?
+  "$mpiexec" --oversubscribe -n 1 bash -c "$(on_fd8 "$dir/h1.npy" --check)" : -n 1 bash -c "$(on_fd8 "$dir/h2.npy" --check)" \
+    >"$dir/node_local.check" 2>"$dir/node_local.check_err"
+  check "mpirun: a file another on rank 1: refused as the run refuses it" test $run_status -ne 0 -a $? -eq $run_status
+  check "mpirun: a file another on rank 1: the run's message" grep -q "node_local.npy (\[surfaces\] file): rank 1 reads other bytes" \
+    "$dir/node_local.check_err"
+  check "mpirun: a file another on rank 1: no report" test ! -s "$dir/node_local.check"
 else
   echo "mpirun: not compared (a build without MPI, or no mpiexec)"
 fi

@@ -788,6 +788,9 @@ REPORT(im_mpi_npy_write_rows, "path", im_mpi_npy_write_rows(MPI_COMM_WORLD, NULL
 REPORT(im_mpi_npy_write_rows, "data", im_mpi_npy_write_rows(MPI_COMM_WORLD, path_text, 8, 8, 0, 1, NULL))
 REPORT(im_scene_run_ranks, "scene", im_scene_run_ranks(MPI_COMM_WORLD, NULL, NULL))
 REPORT(im_scene_run_ranks, "options", im_scene_run_ranks(MPI_COMM_WORLD, scene, NULL))
+REPORT(im_scene_check_ranks, "report", im_scene_check_ranks(MPI_COMM_WORLD, scene, &scene_options, NULL))
+REPORT(im_scene_check_ranks, "scene", im_scene_check_ranks(MPI_COMM_WORLD, NULL, &scene_options, &text_out))
+REPORT(im_scene_check_ranks, "options", im_scene_check_ranks(MPI_COMM_WORLD, scene, NULL, &text_out))
 #endif
 
 /* ---- sizes and enumerations out of range (the checks most functions always had) ---- */

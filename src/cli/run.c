@@ -146,14 +146,13 @@ static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
     return status;
 }
 
-/* --check: the report of what a run over `ranks` processes would do on stdout, or the run's error. */
-static int check_scene(const im_scene *scene, const im_scene_run_options *run, int ranks)
+/* --check: the report of what the run would do on stdout (report: im_scene_check's or, under mpirun,
+ * im_scene_check_ranks'), or the run's error. */
+static int print_check(int status, char **report)
 {
-    char *report = NULL;
-    int status = im_scene_check(scene, run, ranks, &report);
-    if (status == IM_OK)
-        fputs(report, stdout);
-    free(report);
+    if (status == IM_OK && *report)
+        fputs(*report, stdout);
+    free(*report);
     return status;
 }
 
@@ -180,8 +179,9 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
             status = backend_of_scene(scene, &options);
         status = mpi_collective_status(MPI_COMM_WORLD, status);
     }
-    if (status == IM_OK && check) /* rank 0 checks and reports for all */
-        status = mpi_collective_status(MPI_COMM_WORLD, rank == 0 ? check_scene(scene, &options, ranks) : IM_OK);
+    char *report = NULL;
+    if (status == IM_OK && check) /* every rank's checks of the run, then rank 0's report for all */
+        status = print_check(im_scene_check_ranks(MPI_COMM_WORLD, scene, &options, &report), &report);
     else if (status == IM_OK)
         status = im_scene_run_ranks(MPI_COMM_WORLD, scene, &options);
     int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, check ? NULL : scene, rank == 0));
@@ -263,8 +263,9 @@ int cli_run(int argc, char **argv)
         status = check_asks_for_output(scene);
     if (status == IM_OK)
         status = backend_of_scene(scene, &run);
+    char *report = NULL;
     if (status == IM_OK && check)
-        status = check_scene(scene, &run, 1);
+        status = print_check(im_scene_check(scene, &run, 1, &report), &report);
     else if (status == IM_OK)
         status = im_scene_run(scene, &run);
     code = finish(status, check ? NULL : scene, 1);
