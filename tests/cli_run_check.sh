@@ -79,6 +79,15 @@ scene files "file = s1.npy, s2.npy" "control = load\nload_star = 100" "table = y
 check "files: --check writes nothing, then the run" checked_then_run files
 check "files: the outputs listed are those written" same_list files
 check "files: each read as the run reads it" test "$(grep -c "^  file $dir/s[12].npy: 48 x 40, spacing 1 " "$dir/files.check")" -eq 2
+scene adhesive "n = 32\nslopes = 0, 0.08\nseeds = 1" "control = displacement\nsteps = 0.2, 0.4, 0.2" \
+  "plots = fig5, fig6\n[adhesion]\nwork = 0.0001\nrange = 0.2\n[material]\nhardness = 0.5"
+sed -i 's/^shape = cone$/shape = sphere/; s/^alpha = 80$/radius = 100/' "$dir/adhesive.ini"
+check "adhesive, unloaded: --check writes nothing, then the run" checked_then_run adhesive
+check "adhesive, unloaded: the outputs listed are those written" same_list adhesive
+scene sphere "n = 32\nslopes = 0.08\nseeds = 1:2" "control = load\nsteps = 20:100:3" "plots = sphere"
+sed -i 's/^shape = cone$/shape = sphere/; s/^alpha = 80$/radius = 100/' "$dir/sphere.ini"
+check "sphere: --check writes nothing, then the run" checked_then_run sphere
+check "sphere: the outputs listed are those written" same_list sphere
 scene sweep "n = 32\nslopes = 0.08\nseeds = 1:2\nlambda_s = 4, 8" "control = load\nload_star = 60" \
   "table = yes\nplots = fig2"
 check "sweep: --check writes nothing, then the run" checked_then_run sweep
@@ -92,14 +101,21 @@ scene rendered "n = 32\nslopes = 0, 0.08\nseeds = 1" "control = load\nload_star 
 scene periodic_maps "n = 32\nslopes = 0.08\nseeds = 1:2" "steps = 0.002:0.01:2" \
   "contact_panels = yes\ndistributions = yes\n[material]\nhardness = 0.5"
 sed -i 's/^shape = cone$/periodic = yes/; /^alpha = 80$/d' "$dir/periodic_maps.ini"
+# every kind of output one cone scene can have (a new output missing from the listing fails here)
+every="table = yes\ncontact_panels = yes\nframes = yes\nframe_count = 2\nframes3d = yes\nanimation = gif"
+every+="\ndistributions = yes\nplots = fig1, fig2, fig3, fig5, fig6, fig7, flat_k, density"
+scene every "n = 32\nslopes = 0, 0.08\nseeds = 1" "control = load\nload_star = 100\nsteps = 20:100:2" "$every"
 if checked_then_run rendered; then
   check "rendered: the outputs listed are those written" same_list rendered
+  check "every output: --check writes nothing, then the run" checked_then_run every
+  check "every output: the outputs listed are those written" same_list every
   check "periodic maps: --check writes nothing, then the run" checked_then_run periodic_maps
   check "periodic maps: the outputs listed are those written" same_list periodic_maps
-elif grep -q "rendering with" "$dir/rendered.err" || ! grep -q "OpenGL\|EGL\|OSMesa\|render" "$dir/rendered.err"; then
-  check "rendered: --check writes nothing, then the run ($(tail -1 "$dir/rendered.err"))" false
+elif grep -qs "rendering with" "$dir/rendered.err" ||
+  ! grep -qs "OpenGL\|EGL\|OSMesa\|render" "$dir/rendered.check_err" "$dir/rendered.err"; then # both refuse before any work
+  check "rendered: --check writes nothing, then the run ($(cat "$dir"/rendered.*err | tail -1))" false
 else
-  echo "rendered: no OpenGL context here, not compared ($(tail -1 "$dir/rendered.err"))"
+  echo "rendered: no OpenGL context here, not compared ($(cat "$dir"/rendered.*err | tail -1))"
 fi
 
 # --resume's reuse: a kept member is reused; one edited is named, solved again
@@ -137,6 +153,20 @@ elif "$cli" --help | grep -q mpi-indent && [ -n "$mpiexec" ]; then
   check "mpirun: the run's message" diff <(grep "^indentmap:" "$dir/sweep_ranks.run_err") \
     <(grep "^indentmap:" "$dir/sweep_ranks.check_err") # not mpirun's own lines (its job ids)
   check "mpirun: the sweep named" grep -q "sweep .* runs in a single process" "$dir/sweep_ranks.check_err"
+  # a surface file that is another on rank 1 (node_local.npy, a link to each rank's fd 8, as cli_mpi.sh has it)
+  "$cli" surface --n 32 --seed 1 --out "$dir/h1.npy" >/dev/null && "$cli" surface --n 32 --seed 2 --out "$dir/h2.npy" >/dev/null
+  ln -s /proc/self/fd/8 "$dir/node_local.npy"
+  scene node_local "file = h1.npy, node_local.npy" "load_star = 100" "table = yes"
+  on_fd8() { echo "exec '$cli' run '$dir/node_local.ini' $2 8< '$1'"; } # on_fd8 FILE OPTION: a rank's command
+  "$mpiexec" --oversubscribe -n 1 bash -c "$(on_fd8 "$dir/h1.npy" --quiet)" : -n 1 bash -c "$(on_fd8 "$dir/h2.npy" --quiet)" \
+    >/dev/null 2>"$dir/node_local.run_err"
+  run_status=$?
+  "$mpiexec" --oversubscribe -n 1 bash -c "$(on_fd8 "$dir/h1.npy" --check)" : -n 1 bash -c "$(on_fd8 "$dir/h2.npy" --check)" \
+    >"$dir/node_local.check" 2>"$dir/node_local.check_err"
+  check "mpirun: a file another on rank 1: refused as the run refuses it" test $run_status -ne 0 -a $? -eq $run_status
+  check "mpirun: a file another on rank 1: the run's message" grep -q "node_local.npy (\[surfaces\] file): rank 1 reads other bytes" \
+    "$dir/node_local.check_err"
+  check "mpirun: a file another on rank 1: no report" test ! -s "$dir/node_local.check"
 else
   echo "mpirun: not compared (a build without MPI, or no mpiexec)"
 fi
@@ -161,6 +191,74 @@ scene memory "n = 65536\nslopes = 0.08\nseeds = 1" "load_star = 1000" "table = y
 check "too large for memory: the run's error" same_refusal memory
 check "too large for memory: the estimate" grep -q "memory.ini: this scene needs about [0-9.]* MiB of memory" \
   "$dir/memory.check_err"
+
+# ---- refused before any work by both, as the run would refuse them (the run writes nothing either) ----
+scene smooth_sphere "n = 32\nslopes = 0\nseeds = 1" "control = load\nsteps = 20:100:2" "plots = sphere"
+sed -i 's/^shape = cone$/shape = sphere/; s/^alpha = 80$/radius = 100/' "$dir/smooth_sphere.ini"
+check "plots = sphere, no rough family: the run's error" same_refusal smooth_sphere
+check "plots = sphere, no rough family: named" grep -q "plots = sphere needs a rough family" \
+  "$dir/smooth_sphere.check_err"
+scene smooth_fig7 "n = 32\nslopes = 0\nseeds = 1" "control = load\nsteps = 20:100:2" "plots = fig7"
+check "plots = fig7, no rough family: the run's error" same_refusal smooth_fig7
+scene smooth_flat_k "n = 32\nslopes = 0\nseeds = 1" "control = load\nload_star = 100" "plots = flat_k"
+check "plots = flat_k, no rough family: the run's error" same_refusal smooth_flat_k
+check "plots = flat_k, no rough family: named" grep -q "flat_k measures k on rough surfaces" \
+  "$dir/smooth_flat_k.check_err"
+scene groups "n = 32\nslopes = 0.02, 0.04, 0.06, 0.08, 0.1\nseeds = 1\nhurst = 0.7, 0.8" \
+  "control = load\nload_star = 60" "table = yes\nplots = fig2" # 5 x 2 roughnesses, fig2 draws at most 8
+check "fig2 of a sweep, too many roughnesses: the run's error" same_refusal groups
+check "fig2 of a sweep, too many roughnesses: named" grep -q "fig2 of a sweep draws at most" "$dir/groups.check_err"
+scene folder_file "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+echo "not a folder" >"$dir/plain"
+sed -i "s|^output = out_folder_file$|output = $dir/plain|" "$dir/folder_file.ini"
+check "output a regular file: the run's error" same_refusal folder_file
+check "output a regular file: named" grep -q "output folder $dir/plain is not a directory" "$dir/folder_file.check_err"
+scene file_parent "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+sed -i "s|^output = out_file_parent$|output = $dir/plain/deeper/out|" "$dir/file_parent.ini"
+check "output under a regular file: the run's error" same_refusal file_parent
+check "output under a regular file: named" grep -q "nearest existing parent, $dir/plain, is not a directory" \
+  "$dir/file_parent.check_err"
+mkdir -p "$dir/readonly" && chmod a-w "$dir/readonly"
+scene unwritable "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+sed -i "s|^output = out_unwritable$|output = $dir/readonly/deeper/out|" "$dir/unwritable.ini"
+if touch "$dir/readonly/probe" 2>/dev/null; then
+  echo "an unwritable parent: not compared (written anyway: root?)"
+else
+  check "an unwritable parent: the run's error" same_refusal unwritable
+  check "an unwritable parent: named" grep -q "parent, $dir/readonly, is not writable" "$dir/unwritable.check_err"
+fi
+scene locked "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "table = yes"
+sed -i "s|^output = out_locked$|output = $dir/held|" "$dir/locked.ini"
+mkdir "$dir/held"
+flock "$dir/held/.lock" sleep 60 & # a run holding the folder's lock
+locker=$!
+sleep 0.5
+check "a folder locked by a running run: the run's error" same_refusal locked
+kill $locker
+check "a folder locked by a running run: named" grep -q "is in use by another indentmap run" "$dir/locked.check_err"
+check "a folder locked by a running run: nothing written there" test "$(ls -A "$dir/held")" = .lock
+
+scene no_gl "n = 32\nslopes = 0.08\nseeds = 1" "load_star = 100" "contact_panels = yes"
+without_gl() { # without_gl COMMAND...: with EGL that has no device (as cli_render.sh has it)
+  (unset IM_REQUIRE_GL; export __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json IM_RENDER_BACKEND=egl; "$@")
+}
+check "no OpenGL context: the run's error, before any work" without_gl same_refusal no_gl
+check "no OpenGL context: named" grep -q "no OpenGL 3.3 core context" "$dir/no_gl.check_err"
+
+# ---- a damaged wisdom cache: the run removes it and goes on; --check says so and removes nothing ----
+mkdir -p "$dir/cachehome/indentmap"
+damaged=$source_dir/docs/images/adhesion_maps.png # an image where the wisdom should be
+cp "$damaged" "$dir/cachehome/indentmap/fftw-wisdom"
+cached() { env -u IM_FFTW_WISDOM XDG_CACHE_HOME="$dir/cachehome" "$cli" run "$@"; }
+cached "$dir/histories.ini" --check >"$dir/cache.check" 2>"$dir/cache.check_err"
+check "a damaged wisdom cache: --check exits 0, as the run does" test $? -eq 0
+check "a damaged wisdom cache: --check tells the run's judgement" grep -q "the run would remove it and write it afresh" \
+  "$dir/cache.check_err"
+check "a damaged wisdom cache: --check removes nothing" cmp -s "$damaged" "$dir/cachehome/indentmap/fftw-wisdom"
+sed 's/^output = out_histories$/output = out_cached/' "$dir/histories.ini" >"$dir/cached.ini"
+cached --quiet "$dir/cached.ini" >/dev/null 2>"$dir/cache.run_err"
+check "a damaged wisdom cache: the run exits 0" test $? -eq 0
+check "a damaged wisdom cache: the run removes it" grep -q "removed, it is written afresh" "$dir/cache.run_err"
 
 # ---- the estimates printed are the run's ----
 scene estimate "n = 256\nslopes = 0, 0.08\nseeds = 1" "control = load\nload_star = 3000" "table = yes\ncontact_panels = yes"

@@ -365,6 +365,8 @@ SAFE_RESULT(im_path_utf8, "out", im_path_utf8("a", NULL, 64) == 0)
 REPORT(im_folder_lock_acquire, "folder", im_folder_lock_acquire(NULL, "advice", &lock))
 REPORT(im_folder_lock_acquire, "lock", im_folder_lock_acquire(test_temp_dir(), "advice", NULL))
 ACCEPT(im_folder_lock_release, (im_folder_lock_release(NULL), 1))
+REPORT(im_folder_lock_probe, "folder", im_folder_lock_probe(NULL, "advice"))
+REPORT(im_folder_lock_probe, "advice", im_folder_lock_probe(test_temp_dir(), NULL))
 SAFE_RESULT(im_folder_remove_temporaries, "folder", im_folder_remove_temporaries(NULL, 0) == 0)
 SAFE_RESULT(im_pair_writers_lock, "path", im_pair_writers_lock(NULL) == -1)
 ACCEPT(im_pair_writers_unlock, (im_pair_writers_unlock(-1), 1))
@@ -797,6 +799,9 @@ REPORT(im_mpi_npy_write_rows, "path", im_mpi_npy_write_rows(MPI_COMM_WORLD, NULL
 REPORT(im_mpi_npy_write_rows, "data", im_mpi_npy_write_rows(MPI_COMM_WORLD, path_text, 8, 8, 0, 1, NULL))
 REPORT(im_scene_run_ranks, "scene", im_scene_run_ranks(MPI_COMM_WORLD, NULL, NULL))
 REPORT(im_scene_run_ranks, "options", im_scene_run_ranks(MPI_COMM_WORLD, scene, NULL))
+REPORT(im_scene_check_ranks, "report", im_scene_check_ranks(MPI_COMM_WORLD, scene, &scene_options, NULL))
+REPORT(im_scene_check_ranks, "scene", im_scene_check_ranks(MPI_COMM_WORLD, NULL, &scene_options, &text_out))
+REPORT(im_scene_check_ranks, "options", im_scene_check_ranks(MPI_COMM_WORLD, scene, NULL, &text_out))
 #endif
 
 /* ---- sizes and enumerations out of range (the checks most functions always had) ---- */

@@ -9,6 +9,7 @@
  *   im_atomic_open, im_atomic_commit, im_atomic_abort, im_write_file_atomic   atomic writes
  *   im_output_protect, im_output_check                        the inputs no write may replace
  *   im_folder_lock_acquire, im_folder_lock_release            an output folder's lock
+ *   im_folder_lock_probe                                       whether it is free, nothing written
  *   im_read_open, im_read_line, im_read_text_file             bounded reading
  *   im_path_join, im_path_absolute, im_make_directories       paths
  *
@@ -154,6 +155,10 @@ typedef struct im_folder_lock {
     long stale_pid; /* out: the pid of the dead process whose lock was taken over, 0 if none */
 } im_folder_lock;
 int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_lock *lock);
+/* Whether im_folder_lock_acquire would find the lock free, creating and writing nothing: IM_OK when
+ * FOLDER/.lock does not exist or no live process holds it, else its IM_EIO and message (advice as
+ * there). A read-only look (run --check): the answer may change before a later acquire. */
+int im_folder_lock_probe(const char *folder, const char *advice);
 /* Removes the lock file and releases it; nothing if not held. */
 void im_folder_lock_release(im_folder_lock *lock);
 

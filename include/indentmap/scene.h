@@ -230,8 +230,10 @@ int im_scene_run(const im_scene *scene, const im_scene_run_options *options);
  * the inputs, the solves, the estimates, every output in the order the run writes it (with whether
  * --resume would reuse a kept member) and, for ranks > 1, each MPI rank's share of the ensembles. Returns
  * the error the run would stop with (*report NULL), IM_EINVAL for a NULL argument or ranks < 1. Notices
- * (a kept result damaged, a unit assumed) go to options->log, as the run's. Reads only: a scene a run
- * holds may be checked at once. */
+ * (a kept result damaged, a unit assumed) go to options->log, as the run's. Writes nothing: its inputs
+ * join the process's output guard (io.h: im_output_protect) as a run's do, the output folder's lock is
+ * only probed (a folder a run holds: that run's IM_EIO), and a scene that renders opens and closes an
+ * OpenGL context, as the run does before any work. */
 int im_scene_check(const im_scene *scene, const im_scene_run_options *options, int ranks, char **report);
 
 /* The path of file i of a scene's `file` list, resolved relative to the scene file (as

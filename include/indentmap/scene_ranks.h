@@ -1,8 +1,8 @@
 /* indentmap/scene_ranks.h: a scene's ensembles shared out over MPI ranks (docs/mpi.md, "Ensembles
- * over ranks"). The scene module's one entry point that needs MPI; its single-process twin is
- * im_scene_run (scene.h).
+ * over ranks"). The scene module's entry points that need MPI; their single-process twins are
+ * im_scene_run and im_scene_check (scene.h).
  *
- * Installed always; im_scene_run_ranks exists only in a library built with MPI (indentmap/mpi_config.h:
+ * Installed always; im_scene_run_ranks and im_scene_check_ranks exist only in a library built with MPI (indentmap/mpi_config.h:
  * IM_HAVE_MPI, as for indentmap/mpi.h). */
 #ifndef INDENTMAP_SCENE_RANKS_H
 #define INDENTMAP_SCENE_RANKS_H
@@ -35,6 +35,13 @@ extern "C" {
  * and the failing rank carry its message, the others "rank K: <message>". Rank 0's status is the
  * run's (its outputs, its message). */
 int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options);
+
+/* im_scene_check (scene.h) of a run by im_scene_run_ranks over comm: first the checks every rank of that
+ * run makes before any work (the files the scene names read alike on every rank, each rank's preparation
+ * of the scene), then rank 0's im_scene_check for that many ranks; *report (rank 0's; NULL on the
+ * others and on an error) as there. Collective; every rank returns the same status, its message as
+ * im_scene_run_ranks gives it. With one rank, im_scene_check. */
+int im_scene_check_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options, char **report);
 
 #ifdef __cplusplus
 }

@@ -134,7 +134,7 @@ static PyObject *check_scene(PyObject *self, PyObject *args, PyObject *kwargs)
     Py_XDECREF(out_bytes);
     Py_XDECREF(wisdom_bytes);
     int raised = py_callbacks_finish(&callbacks, 0);
-    PyObject *out = raised ? NULL : status == IM_OK ? PyUnicode_FromString(report) : py_raise_status(status);
+    PyObject *out = raised ? NULL : status == IM_OK ? PyUnicode_DecodeFSDefault(report) : py_raise_status(status);
     free(report);
     im_scene_free(scene);
     return out;

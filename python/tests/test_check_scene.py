@@ -52,3 +52,14 @@ def test_check_scene_refuses_as_the_run(tmp_path):
     with pytest.raises(im.OutOfMemory, match="this scene needs about"):
         im.check_scene(str(tmp_path / "big.ini"))
     assert sorted(os.listdir(tmp_path)) == ["bad.ini", "big.ini"]
+
+
+def test_check_scene_non_utf8_folder(tmp_path):
+    """A path that is not UTF-8 comes back as Python's os.fsdecode has it (surrogate escapes), not an error."""
+    folder = os.fsencode(tmp_path) + b"/caf\xe9"
+    os.mkdir(folder)
+    with open(folder + b"/checked.ini", "w") as scene:
+        scene.write(SCENE)
+    report = im.check_scene(os.fsdecode(folder + b"/checked.ini"))
+    assert "  scene " + os.fsdecode(folder + b"/checked.ini") + "\n" in report
+    assert os.listdir(folder) == [b"checked.ini"]  # nothing written

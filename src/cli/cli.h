@@ -71,7 +71,8 @@ int cli_render_open(im_render_backend backend, im_render_context **out);
  * else $IM_FFTW_WISDOM (set but empty: none), else, when use_cache is CLI_WISDOM_CACHE (a run long enough
  * for measured plans to pay: docs/solver.md, "FFTW wisdom"), the user's cache, $XDG_CACHE_HOME/indentmap/
  * fftw-wisdom or ~/.cache/indentmap/fftw-wisdom (its folder is created); CLI_WISDOM_CACHE_LOOK (run
- * --check): that cache's path, the file and its folder neither made nor cleaned; none with --no-wisdom (off). Sets
+ * --check): that cache's path, the file and its folder neither made nor cleaned (a damaged file is told
+ * as the run would remove it, and none is used); none with --no-wisdom (off). Sets
  * solver->wisdom_path (NULL for none; it may point into buffer, which must outlive the run). A damaged
  * wisdom file gets a notice on stderr and the run goes on (a damaged cache file is removed first); a
  * named file that may not be replaced (a surface, an input, a device) is an error (status.h), its

@@ -61,7 +61,8 @@ static int launched_by_mpirun(void)
 }
 #endif
 
-/* The exit status of a run; only the reporting rank (rank 0, or a single process) prints. */
+/* The exit status of a run, or of --check (scene NULL: its report is the success's output); only the
+ * reporting rank (rank 0, or a single process) prints. */
 static int finish(int status, const im_scene *scene, int reporting)
 {
     if (status == IM_EINTERRUPTED) {
@@ -73,7 +74,7 @@ static int finish(int status, const im_scene *scene, int reporting)
         return reporting                                                            ? cli_report(status)
                : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE
                                                                                     : CLI_EXIT_FAILURE;
-    if (reporting)
+    if (reporting && scene)
         printf("indentmap: scene %s written to %s/\n", im_scene_name(scene), im_scene_output_dir(scene));
     return CLI_EXIT_OK;
 }
@@ -145,23 +146,14 @@ static int backend_of_scene(const im_scene *scene, im_scene_run_options *run)
     return status;
 }
 
-/* --check: the report of what a run over `ranks` processes would do on stdout, or the run's error. */
-static int check_scene(const im_scene *scene, const im_scene_run_options *run, int ranks)
+/* --check: the report of what the run would do on stdout (report: im_scene_check's or, under mpirun,
+ * im_scene_check_ranks'), or the run's error. */
+static int print_check(int status, char **report)
 {
-    char *report = NULL;
-    int status = im_scene_check(scene, run, ranks, &report);
-    if (status == IM_OK)
-        fputs(report, stdout);
-    free(report);
+    if (status == IM_OK && *report)
+        fputs(*report, stdout);
+    free(*report);
     return status;
-}
-
-/* The exit status of --check; only the reporting rank prints. */
-static int finish_check(int status, int reporting)
-{
-    if (status == IM_OK)
-        return CLI_EXIT_OK;
-    return reporting ? cli_report(status) : finish(status, NULL, 0);
 }
 
 #if IM_HAVE_MPI
@@ -187,12 +179,12 @@ static int run_under_mpirun(int argc, char **argv, const run_source *source, con
             status = backend_of_scene(scene, &options);
         status = mpi_collective_status(MPI_COMM_WORLD, status);
     }
-    if (status == IM_OK && check) /* rank 0 checks and reports for all */
-        status = mpi_collective_status(MPI_COMM_WORLD, rank == 0 ? check_scene(scene, &options, ranks) : IM_OK);
+    char *report = NULL;
+    if (status == IM_OK && check) /* every rank's checks of the run, then rank 0's report for all */
+        status = print_check(im_scene_check_ranks(MPI_COMM_WORLD, scene, &options, &report), &report);
     else if (status == IM_OK)
         status = im_scene_run_ranks(MPI_COMM_WORLD, scene, &options);
-    int code = mpi_exit_code(MPI_COMM_WORLD,
-                             check ? finish_check(status, rank == 0) : finish(status, scene, rank == 0));
+    int code = mpi_exit_code(MPI_COMM_WORLD, finish(status, check ? NULL : scene, rank == 0));
     im_scene_free(scene);
     if (rank != 0) /* rank 0 has spoken for all: nothing more (mpirun may signal a rank still finishing) */
         (void)freopen("/dev/null", "w", stderr);
@@ -271,11 +263,12 @@ int cli_run(int argc, char **argv)
         status = check_asks_for_output(scene);
     if (status == IM_OK)
         status = backend_of_scene(scene, &run);
+    char *report = NULL;
     if (status == IM_OK && check)
-        status = check_scene(scene, &run, 1);
+        status = print_check(im_scene_check(scene, &run, 1, &report), &report);
     else if (status == IM_OK)
         status = im_scene_run(scene, &run);
-    code = check ? finish_check(status, 1) : finish(status, scene, 1);
+    code = finish(status, check ? NULL : scene, 1);
     im_scene_free(scene);
     return code;
 }

@@ -32,13 +32,19 @@ static int cache_path(char *path, size_t size, int make)
 }
 
 /* The cache is ours: a file there that is not wisdom FFTW accepts is removed (with a notice) and
- * planning writes a new one; if it cannot be removed, this run keeps no wisdom. */
-static void use_cache_file(const char *path, im_solver_options *solver)
+ * planning writes a new one; if it cannot be removed, this run keeps no wisdom. Without `remove`
+ * (--check), the same judgement is told and nothing removed: no wisdom is planned with then. */
+static void use_cache_file(const char *path, int remove, im_solver_options *solver)
 {
     solver->wisdom_path = path;
     if (im_solver_wisdom_verify(solver) == IM_OK)
         return;
     fprintf(stderr, "indentmap: notice: %s; ", im_last_error());
+    if (!remove) {
+        fprintf(stderr, "the run would remove it and write it afresh\n");
+        solver->wisdom_path = NULL;
+        return;
+    }
     if (unlink(path) == 0 || errno == ENOENT) {
         fprintf(stderr, "removed, it is written afresh\n");
         return;
@@ -57,10 +63,10 @@ int cli_wisdom_resolve(const char *given, int off, int use_cache, im_solver_opti
     if (off || (!given && env && !env[0])) /* --no-wisdom, or IM_FFTW_WISDOM set but empty */
         return IM_OK;
     if (!path) {
-        if (use_cache == CLI_WISDOM_CACHE && cache_path(buffer, size, 1))
-            use_cache_file(buffer, solver);
-        else if (use_cache == CLI_WISDOM_CACHE_LOOK && cache_path(buffer, size, 0))
-            solver->wisdom_path = buffer; /* what the run would plan with, as it is now (it may not exist yet) */
+        /* --check looks at the cache as it is now (it may not exist yet), making and removing nothing */
+        int look = use_cache == CLI_WISDOM_CACHE_LOOK;
+        if (use_cache != CLI_WISDOM_NO_CACHE && cache_path(buffer, size, !look))
+            use_cache_file(buffer, !look, solver);
         return IM_OK;
     }
     solver->wisdom_path = path;

@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* Two canonical forms of an existing path: with every symlink resolved (realpath), and with only
  * its folder resolved (a symlink named as the input is itself replaced by a rename onto its name).
@@ -104,6 +106,45 @@ int run_folder_check(const run_folder_rules *rules, const char *const *inputs, i
         if (inputs[i])
             status = check_input_apart(rules, inputs[i]);
     return status == IM_OK ? check_wisdom_apart(rules, solver) : status;
+}
+
+/* The folder itself, else its nearest existing parent (where run_folder_open would make it), into
+ * existing; 0 when no part of the path exists (a relative path's "." always does). */
+static int nearest_existing(const char *dir, char *existing, size_t size)
+{
+    int length = snprintf(existing, size, "%s", dir);
+    if (length < 0 || (size_t)length >= size)
+        return 0;
+    for (;;) {
+        if (access(existing, F_OK) == 0)
+            return 1;
+        char *slash = strrchr(existing, '/');
+        while (slash && slash > existing && slash[1] == '\0') { /* "a/b/": the trailing slash first */
+            *slash = '\0';
+            slash = strrchr(existing, '/');
+        }
+        if (!slash)
+            return snprintf(existing, size, ".") > 0;
+        slash[slash == existing] = '\0'; /* "/name" is in "/" */
+    }
+}
+
+int run_folder_probe(const run_folder_rules *rules)
+{
+    char existing[PATH_MAX];
+    struct stat info;
+    if (!nearest_existing(rules->dir, existing, sizeof existing))
+        return im_fail(IM_EINVAL, "output folder %s: path too long", rules->dir);
+    const int exists = strcmp(existing, rules->dir) == 0;
+    const char *problem = stat(existing, &info) != 0 || !S_ISDIR(info.st_mode) ? "is not a directory"
+                          : access(existing, W_OK | X_OK) != 0                 ? "is not writable"
+                                                                               : NULL;
+    if (problem && exists)
+        return im_fail(IM_EIO, "output folder %s %s", rules->dir, problem);
+    if (problem)
+        return im_fail(IM_EIO, "output folder %s cannot be made: its nearest existing parent, %s, %s", rules->dir,
+                       existing, problem);
+    return exists ? im_folder_lock_probe(rules->dir, rules->lock_advice) : IM_OK;
 }
 
 int run_folder_open(const run_folder_rules *rules, int depth, run_folder *folder)

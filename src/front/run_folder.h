@@ -3,6 +3,7 @@
  *
  * Entry points, in the order a run calls them:
  *   run_folder_check   before any work: the inputs protected, none overwritten, the wisdom rule
+ *   run_folder_probe   before any work: the folder could be made and locked (nothing written)
  *   run_folder_open    the folder made and locked, a killed run's temporary files removed
  *   run_folder_record  run.json finished with the run's status, the run's error kept
  *   run_folder_page    index.html over what the run left, the run's error kept
@@ -43,6 +44,11 @@ typedef struct run_folder {
  * the file and the folder. */
 int run_folder_check(const run_folder_rules *rules, const char *const *inputs, int count,
                      const im_solver_options *solver);
+
+/* Before any work, writing nothing (a run and run --check alike): the folder, or where it does not exist
+ * its nearest existing parent, a writable directory, and its lock free (io.h: im_folder_lock_probe).
+ * IM_EIO naming the folder otherwise. */
+int run_folder_probe(const run_folder_rules *rules);
 
 /* Makes the folder, takes its lock (io.h: im_folder_lock_acquire, with rules->lock_advice) and removes
  * the temporary files of atomic writes a killed run left there, depth levels of subfolders down

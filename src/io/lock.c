@@ -34,6 +34,18 @@ static int still_linked(int fd, const char *path)
            opened.st_dev == named.st_dev;
 }
 
+/* IM_EIO: the lock file at path (open as fd, closed here) is held by another live run. */
+static int in_use(int fd, const char *folder, const char *path, const char *advice)
+{
+    char owner[32] = "pid not written yet";
+    if (lock_owner(fd) > 0)
+        snprintf(owner, sizeof owner, "pid %ld", lock_owner(fd));
+    close(fd);
+    return im_fail(IM_EIO,
+                   "output folder %s is in use by another indentmap run (%s, lock file %s); wait for it to end or %s",
+                   folder, owner, path, advice);
+}
+
 static int write_owner(int fd, const char *path)
 {
     char text[32];
@@ -54,16 +66,8 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
         int fd = open(lock->path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
         if (fd < 0)
             return im_fail(IM_EIO, "%s: cannot create the lock file: %s", lock->path, strerror(errno));
-        if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-            char owner[32] = "pid not written yet";
-            if (lock_owner(fd) > 0)
-                snprintf(owner, sizeof owner, "pid %ld", lock_owner(fd));
-            close(fd);
-            return im_fail(IM_EIO,
-                           "output folder %s is in use by another indentmap run (%s, lock file %s); "
-                           "wait for it to end or %s",
-                           folder, owner, lock->path, advice);
-        }
+        if (flock(fd, LOCK_EX | LOCK_NB) != 0)
+            return in_use(fd, folder, lock->path, advice);
         if (!still_linked(fd, lock->path)) {
             close(fd); /* its holder removed it as we opened it: take the new one */
             continue;
@@ -79,6 +83,21 @@ int im_folder_lock_acquire(const char *folder, const char *advice, im_folder_loc
         return IM_OK;
     }
     return status == IM_OK ? im_fail(IM_EIO, "%s: the lock file keeps changing", lock->path) : status;
+}
+
+int im_folder_lock_probe(const char *folder, const char *advice)
+{
+    ARG_REQUIRE(folder, "folder");
+    ARG_REQUIRE(advice, "advice");
+    char path[sizeof((im_folder_lock *)0)->path];
+    int status = im_path_join(path, sizeof path, folder, ".lock");
+    int fd = status == IM_OK ? open(path, O_RDONLY | O_CLOEXEC) : -1;
+    if (fd < 0)
+        return status; /* no lock file (or one we cannot read, which acquiring reports): free */
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0)
+        return in_use(fd, folder, path, advice);
+    close(fd); /* closing the only descriptor releases the probe's lock */
+    return IM_OK;
 }
 
 void im_folder_lock_release(im_folder_lock *lock)

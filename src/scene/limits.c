@@ -452,7 +452,7 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
                   "panels/family_FF/force_NNNN.npy");
         add_files(&d, steps, 3.0 * scale * scale * cells + FRAME_TEXT_BYTES, "panels/family_FF/contact_NNNN.png");
     } else if (scene->contact_panels) {
-        add_files(&d, scene->family_count, 8.0 * cells + 128.0, "panels/force_NN.npy");
+        add_files(&d, scene->family_count, 8.0 * cells + 128.0, "panels/force_FF.npy");
         add_files(&d, 2.0, scene->family_count * 3.0 * 4.0 * cells + PLOT_BYTES, "contact_panels.png");
     }
     double frame_cells = cells * scene->frame_scale * scene->frame_scale,

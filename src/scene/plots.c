@@ -18,7 +18,16 @@ int scene_wants_histories(const im_scene *scene)
                                                           IM_SCENE_PLOT_SPHERE);
 }
 
-/* The names are checked by the parser (parse.c); here what each plot needs beside it. */
+int scene_rough_family_count(const im_scene *scene)
+{
+    int count = 0;
+    for (int f = 0; f < scene->family_count; ++f)
+        count += scene->slopes[f] > 0.0;
+    return count;
+}
+
+/* The names are checked by the parser (parse.c); here what each plot needs beside it, before any work
+ * (the run's, and --check's). */
 int scene_check_plots(const im_scene *scene)
 {
     if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY) && !scene->contact_panels)
@@ -27,6 +36,12 @@ int scene_check_plots(const im_scene *scene)
     if (scene_wants_plot(scene, IM_SCENE_PLOT_SPHERE) && scene->punch != IM_PUNCH_SPHERE)
         return im_fail(IM_EINVAL, "%s: plots = sphere compares with eq. (3): it needs [punch] shape = sphere",
                        scene->path);
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_SPHERE) && scene_rough_family_count(scene) == 0)
+        return im_fail(IM_EINVAL, "%s: plots = sphere needs a rough family", scene->path);
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG7) && scene_rough_family_count(scene) == 0)
+        return im_fail(IM_EINVAL, "%s: plots = fig7 draws the rough families: give a slope > 0", scene->path);
+    if (scene_wants_plot(scene, IM_SCENE_PLOT_FLAT_K) && scene_rough_family_count(scene) == 0)
+        return im_fail(IM_EINVAL, "%s: plots = flat_k measures k on rough surfaces: give a slope > 0", scene->path);
     if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG2) && !scene->table)
         return im_fail(IM_EINVAL, "%s: plots = fig2 draws the ensemble of [output] table = yes", scene->path);
     return IM_OK;

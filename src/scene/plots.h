@@ -5,9 +5,12 @@
 #include "indentmap/scene.h"
 
 /* Plots: whether [output] plots names one of the figures in the bits of plot; IM_EINVAL when a
- * plot lacks what it draws (density: contact_panels, sphere: a sphere, fig2: the table). */
+ * plot lacks what it draws (density: contact_panels, sphere: a sphere, fig2: the table; sphere, fig7 and
+ * flat_k: a rough family), before any work. */
 int scene_wants_plot(const im_scene *scene, enum im_scene_plot plot);
 int scene_check_plots(const im_scene *scene);
+/* How many families are rough (h'rms > 0): those fig1, sphere, fig2's groups and contact_density draw. */
+int scene_rough_family_count(const im_scene *scene);
 /* Whether a plot needs the ensemble's histories (fig5, fig6, fig7, sphere). */
 int scene_wants_histories(const im_scene *scene);
 

@@ -307,3 +307,35 @@ int im_scene_run_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_
         free(st.origins[s]);
     return status;
 }
+
+/* Each rank's preparation of the scene, as run_worker's: its files read and measured there. */
+static int prepare_here(const im_scene *scene)
+{
+    im_scene *measured = NULL;
+    int status = scene_prepare(scene, &measured);
+    scene_prepared_free(measured);
+    return status;
+}
+
+int im_scene_check_ranks(MPI_Comm comm, const im_scene *scene, const im_scene_run_options *options, char **report)
+{
+    ARG_REQUIRE(report, "report");
+    *report = NULL;
+    ARG_REQUIRE(scene, "scene");
+    ARG_REQUIRE(options, "options");
+    int rank, ranks;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &ranks);
+    if (ranks == 1)
+        return im_scene_check(scene, options, 1, report);
+    int status = same_scene_inputs(comm, scene);
+    if (status == IM_OK)
+        status = mpi_collective_status(comm, rank == 0 ? IM_OK : prepare_here(scene));
+    if (status == IM_OK)
+        status = mpi_collective_status(comm, rank == 0 ? im_scene_check(scene, options, ranks, report) : IM_OK);
+    if (status != IM_OK) {
+        free(*report);
+        *report = NULL;
+    }
+    return status;
+}

@@ -210,8 +210,8 @@ static run_folder_rules folder_rules(const im_scene *scene, const im_scene_run_o
 }
 
 /* The scene file, its surface files and its profile (resolved by scene_prepare) become inputs no write
- * may replace, and the FFTW wisdom file may be neither one of them, nor in the output folder, nor
- * anything but wisdom (run_folder.h). */
+ * may replace, the FFTW wisdom file may be neither one of them, nor in the output folder, nor
+ * anything but wisdom, and the folder must be one the run can make and lock (run_folder.h). */
 static int check_folder(const im_scene *scene, const im_scene_run_options *options)
 {
     const char **inputs = calloc((size_t)scene->file_count + 2, sizeof *inputs);
@@ -228,6 +228,8 @@ static int check_folder(const im_scene *scene, const im_scene_run_options *optio
         inputs[1] = scene->profile_file[0] ? scene->profile_file : NULL;
         status = run_folder_check(&rules, inputs, scene->file_count + 2, &solver);
     }
+    if (status == IM_OK)
+        status = run_folder_probe(&rules);
     free(surfaces);
     free(inputs);
     return status;
@@ -389,6 +391,16 @@ int scene_run(const im_scene *scene, const im_scene_run_options *given, const sc
     return status;
 }
 
+/* A scene that renders opens its OpenGL context after every solve: opened and closed here, before any
+ * work, so that a machine without one refuses the run (and run --check) at once. */
+static int check_renderer(const im_scene *scene, const im_scene_run_options *options)
+{
+    im_render_context *context = NULL;
+    int status = im_scene_renders(scene) ? im_render_open((im_render_backend)options->backend, &context) : IM_OK;
+    im_render_close(context);
+    return status;
+}
+
 int scene_check_before_work(const im_scene *scene, const im_scene_run_options *options, int ranked,
                             scene_limits *limits)
 {
@@ -401,8 +413,12 @@ int scene_check_before_work(const im_scene *scene, const im_scene_run_options *o
                          "run it without mpirun",
                          scene->path);
     if (status == IM_OK)
+        status = scene_sweep_check_fig2(scene);
+    if (status == IM_OK)
         status = check_folder(scene, options);
-    return status == IM_OK ? scene_check_limits(scene, options, limits) : status;
+    if (status == IM_OK)
+        status = scene_check_limits(scene, options, limits);
+    return status == IM_OK ? check_renderer(scene, options) : status;
 }
 
 static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks)

@@ -144,7 +144,15 @@ typedef struct output_list {
     const char *prefix;
     const im_scene_run_options *options;
     int resumable; /* 0 when --resume would solve everything again (plans.h: scene_plans_changed) */
+    int *status;   /* the first error of a listing (members or sweep points not made), for the report */
 } output_list;
+
+/* Keeps the first error of a listing in *o->status. */
+static void list_failed(const output_list *o, int status)
+{
+    if (*o->status == IM_OK)
+        *o->status = status;
+}
 
 static void list_file(const output_list *o, const char *name, const char *note)
 {
@@ -160,41 +168,51 @@ static void list_figure(const output_list *o, const char *name)
     list_file(o, file, "");
 }
 
-/* Whether --resume would read member m of a stage back (its kept file whole and of these inputs); what is
- * wrong with a kept one goes to options->log as the run says it. */
-static const char *resume_note(const output_list *o, const im_scene *scene, scene_member_solver solve,
-                               scene_member *m)
+/* Whether --resume would read member m of a stage back (kept: the stage's test of its kept file, whole
+ * and of these inputs); what is wrong with a kept one goes to options->log as the run says it. */
+typedef int (*member_kept)(const im_scene *scene, const im_scene_run_options *options, scene_member *m);
+
+static const char *resume_note(const output_list *o, const im_scene *scene, member_kept kept, scene_member *m)
 {
-    if (!o->resumable)
-        return "";
-    const int kept = solve == scene_table_member ? scene_table_member_kept(scene, o->options, m)
-                                                 : scene_history_member_kept(scene, o->options, m);
-    return kept ? "(kept: --resume reuses it)" : "";
+    return o->resumable && kept(scene, o->options, m) ? "(kept: --resume reuses it)" : "";
 }
 
-static void list_members(const output_list *o, const im_scene *scene, const char *folder, scene_member_solver solve)
+static void list_members(const output_list *o, const im_scene *scene, const char *folder, member_kept kept)
 {
     scene_member *members = NULL;
     int count = 0;
-    if (scene_ensemble_members(scene, &members, &count) != IM_OK)
+    int status = scene_ensemble_members(scene, &members, &count);
+    if (status != IM_OK) {
+        list_failed(o, status);
         return;
+    }
     for (int i = 0; i < count; ++i) {
         char name[96];
         snprintf(name, sizeof name, "%s/member_%02d_%llu.csv", folder, members[i].family,
                  (unsigned long long)members[i].seed);
-        list_file(o, name, resume_note(o, scene, solve, &members[i]));
+        list_file(o, name, resume_note(o, scene, kept, &members[i]));
     }
     scene_members_free(members, count);
 }
 
+/* A periodic scene's fields of each step (front.h: step_fields_write's names). */
+static void list_step_fields(const output_list *o, const im_scene *scene)
+{
+    char name[160] = "panels/family_FF/{";
+    for (int i = 0; i < step_field_count(scene->hardness); ++i) {
+        size_t length = strlen(name);
+        snprintf(name + length, sizeof name - length, "%s%.*s", i ? "," : "", (int)strlen(STEP_FIELD_PREFIXES[i]) - 1,
+                 STEP_FIELD_PREFIXES[i]); /* without its "_" */
+    }
+    strncat(name, "}_NNNN.npy{,.json}", sizeof name - strlen(name) - 1);
+    list_file(o, name, "(every step of each family's first surface)");
+}
+
 static void list_histories(const output_list *o, const im_scene *scene)
 {
-    list_members(o, scene, "histories", scene_history_member);
+    list_members(o, scene, "histories", scene_history_member_kept);
     if (scene->periodic && scene->contact_panels) /* periodic.h: scene_periodic_step_files */
-        list_file(o,
-                  scene->hardness > 0 ? "panels/family_FF/{force,gap,displacement,plastic}_NNNN.npy{,.json}"
-                                      : "panels/family_FF/{force,gap,displacement}_NNNN.npy{,.json}",
-                  "(every step of each family's first surface)");
+        list_step_fields(o, scene);
     if (scene->periodic && scene->distributions)
         list_file(o, "distributions/family_FF_NNNN_{gaps,patches,patch_list}.csv",
                   "(every step of each family's first surface)");
@@ -237,8 +255,8 @@ static void list_rendered(const output_list *o, const im_scene *scene)
         list_file(o, "panels/force_FF.npy, panels/force_FF.key", "(one each a family)");
         list_file(o, "results.csv", "");
         list_figure(o, "contact_panels");
-        if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY))
-            list_figure(o, "contact_density");
+        if (scene_wants_plot(scene, IM_SCENE_PLOT_DENSITY) && scene_rough_family_count(scene) > 0)
+            list_figure(o, "contact_density"); /* density.c: the maps of the rough families */
     }
 }
 
@@ -250,7 +268,7 @@ static void list_stages(const output_list *o, const im_scene *scene)
     if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG3))
         list_figure(o, "fig3");
     if (scene->table) {
-        list_members(o, scene, "table", scene_table_member);
+        list_members(o, scene, "table", scene_table_member_kept);
         list_file(o, "table1.csv", "");
         list_file(o, "table1.md", "");
         if (scene_wants_plot(scene, IM_SCENE_PLOT_FIG2) && scene_sweep_count(scene) == 1)
@@ -273,12 +291,17 @@ static void list_stages(const output_list *o, const im_scene *scene)
 static void list_sweep(const output_list *o, const im_scene *scene)
 {
     im_scene *point = malloc(sizeof *point);
-    for (int i = 0; point && i < scene_sweep_count(scene); ++i) {
-        if (scene_sweep_point(scene, i, point) != IM_OK)
-            continue;
+    if (!point)
+        list_failed(o, im_fail(IM_ENOMEM, "%s: allocation of a sweep point failed", scene->path));
+    for (int i = 0; point && i < scene_sweep_count(scene) && *o->status == IM_OK; ++i) {
+        int status = scene_sweep_point(scene, i, point);
+        if (status != IM_OK) {
+            list_failed(o, status);
+            break;
+        }
         char prefix[IM_SCENE_PATH];
         snprintf(prefix, sizeof prefix, "%s/", point->output_dir + strlen(scene->output_dir) + 1);
-        list_stages(&(output_list){o->out, prefix, o->options, o->resumable}, point);
+        list_stages(&(output_list){o->out, prefix, o->options, o->resumable, o->status}, point);
     }
     free(point);
     if (scene->table)
@@ -287,11 +310,13 @@ static void list_sweep(const output_list *o, const im_scene *scene)
         list_figure(o, "fig2");
 }
 
-static void report_outputs(FILE *out, const im_scene *scene, const im_scene_run_options *options)
+/* IM_OK, or the first error of the listing (members or sweep points that could not be made). */
+static int report_outputs(FILE *out, const im_scene *scene, const im_scene_run_options *options)
 {
+    int status = IM_OK;
     fprintf(out, "outputs under %s/, in the order the run writes them%s:\n", scene->output_dir,
             access(scene->output_dir, F_OK) == 0 ? " (the folder exists)" : " (the folder is made)");
-    const output_list o = {out, "", options, !scene_plans_changed(scene, options)};
+    const output_list o = {out, "", options, !scene_plans_changed(scene, options), &status};
     list_file(&o, "run.json", "");
     if (scene_sweep_count(scene) > 1)
         list_sweep(&o, scene);
@@ -300,6 +325,7 @@ static void report_outputs(FILE *out, const im_scene *scene, const im_scene_run_
     list_file(&o, "fftw-plans.txt", "");
     list_file(&o, "outputs.txt", "");
     list_file(&o, "index.html", "");
+    return status;
 }
 
 /* ---- over MPI ranks (ranks.c: member i on rank i % K) ---- */
@@ -352,9 +378,15 @@ static int write_report(const im_scene *scene, const im_scene_run_options *optio
     report_estimates(out, scene, limits, options);
     if (points)
         report_sweep_points(out, scene, points);
-    report_outputs(out, scene, options);
+    int status = report_outputs(out, scene, options);
     report_ranks(out, scene, ranks);
-    return fclose(out) == 0 ? IM_OK : im_fail(IM_ENOMEM, "%s: writing the check's report failed", scene->path);
+    if (fclose(out) != 0 && status == IM_OK)
+        status = im_fail(IM_ENOMEM, "%s: writing the check's report failed", scene->path);
+    if (status != IM_OK) { /* scene.h: *report NULL on an error */
+        free(*report);
+        *report = NULL;
+    }
+    return status;
 }
 
 /* The run's checks of the prepared scene, and each sweep point's limits into *points (allocated; NULL

@@ -126,6 +126,21 @@ static void group_label(const im_scene *scene, const sweep_row *row, char *label
         snprintf(label + written, size - (size_t)written, ", λ_{s} = %g", row->lambda_s);
 }
 
+static int too_many_groups(const im_scene *scene)
+{
+    return im_fail(IM_EINVAL, "%s: fig2 of a sweep draws at most %d roughnesses (h'rms x H x lambda_s)", scene->path,
+                   MAX_GROUPS);
+}
+
+int scene_sweep_check_fig2(const im_scene *scene)
+{
+    if (scene_sweep_count(scene) == 1 || !scene->table || !scene_wants_plot(scene, IM_SCENE_PLOT_FIG2))
+        return IM_OK;
+    int roughnesses = scene_rough_family_count(scene) * list_count(scene->hurst_count) *
+                      list_count(scene->lambda_s_count);
+    return roughnesses > MAX_GROUPS ? too_many_groups(scene) : IM_OK;
+}
+
 /* Rough rows with a finite rho_c, grouped (at most MAX_GROUPS groups; IM_EINVAL beyond). */
 static int group_rows(const im_scene *scene, const sweep_row *rows, int count, sweep_groups *g)
 {
@@ -137,8 +152,7 @@ static int group_rows(const im_scene *scene, const sweep_row *rows, int count, s
         while (k < g->count && !same_roughness(first[k], &rows[i]))
             ++k;
         if (k == MAX_GROUPS)
-            return im_fail(IM_EINVAL, "%s: fig2 of a sweep draws at most %d roughnesses (h'rms x H x lambda_s)",
-                           scene->path, MAX_GROUPS);
+            return too_many_groups(scene);
         paper_sweep_group *group = &g->groups[k];
         if (k == g->count) {
             first[g->count++] = &rows[i];

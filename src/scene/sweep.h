@@ -21,6 +21,10 @@ int scene_sweep_point(const im_scene *scene, int index, im_scene *point);
  * work, so that a sweep is not refused half-way; each point's estimates in each[i] unless each is NULL. */
 int scene_sweep_check_points(const im_scene *scene, const im_scene_run_options *options, scene_limits *each);
 
+/* Before any work: IM_EINVAL when the sweep's fig2 would draw more roughnesses (rough families x H x
+ * lambda_s) than it can (the run's refusal, which would otherwise come after every point is solved). */
+int scene_sweep_check_fig2(const im_scene *scene);
+
 /* Runs every sweep point with run_stages (in the output folder the caller has locked); with a
  * table, writes OUTPUT/sweep.csv (one row per point and family: A/A_cone mean and sd, rho_c,
  * eq. (12)) and, with plots = fig2, OUTPUT/fig2.{png,pdf} over all of them. */
