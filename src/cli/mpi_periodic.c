@@ -306,11 +306,11 @@ static int finish_record(history_run *run, int done, int status)
     if (status != IM_OK)
         error_restore(&kept, status); /* the step's error, not the fit's */
     /* the record before the figure: after a signal mpirun kills the ranks a second later (docs/mpi.md) */
-    int recorded = run_record_finish(run->o->out, run->record, done, status);
+    int outcome = run_record_finish(run->o->out, run->record, done, status);
+    outcome = status == IM_OK ? outcome : status;
+    error_keep(&kept); /* the step's or the record's error, not the figure's */
     write_history_figure(run, done);
-    if (status != IM_OK)
-        error_restore(&kept, status); /* the step's error, not the figure's */
-    return status == IM_OK ? recorded : status;
+    return outcome == IM_OK ? IM_OK : error_restore(&kept, outcome);
 }
 
 /* DIR/force.npy and gap.npy of the last step. Collective. */
