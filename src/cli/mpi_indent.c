@@ -521,6 +521,26 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
     return 0;
 }
 
+/* SIGINT, SIGTERM and SIGHUP (mpirun passes them on to every rank, then kills the ranks a second later) stop
+ * every rank at the same iteration of a solve or before the same step of a history (mpi_periodic.c), so that
+ * the steps done keep their record and figure, as indent's. Collective. */
+static int arm_signals(mpi_indent_options *o)
+{
+    int status = cli_interrupt_install() == 0 ? IM_OK
+                                              : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
+    o->solver.stop = &cli_stop_signal;
+    return mpi_collective_status(MPI_COMM_WORLD, status);
+}
+
+/* Rank 0 says why the run stopped; every rank's exit status is 128 + the signal it received (mpi_exit_code
+ * takes the largest). */
+static int report_interruption(int rank)
+{
+    if (rank == 0)
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+    return cli_interrupt_exit_status();
+}
+
 int cli_mpi_indent(int argc, char **argv)
 {
     int provided, rank;
@@ -542,8 +562,12 @@ int cli_mpi_indent(int argc, char **argv)
         code = parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     im_solve_result result;
     if (status == IM_OK && parsed == 0)
+        status = arm_signals(&o);
+    if (status == IM_OK && parsed == 0)
         status = solve(&o, &result);
-    if (status != IM_OK)
+    if (status == IM_EINTERRUPTED) /* the steps done are kept: said once, with the signal's exit status */
+        code = report_interruption(rank);
+    else if (status != IM_OK)
         code = cli_report(status);
     else if (parsed == 0 && rank == 0 && !o.targets)
         printf("approach,load,contact_patches,iterations,residual,seconds\n%.17g,%.17g,%ld,%d,%.3g,%.3f\n",

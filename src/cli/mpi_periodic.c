@@ -303,11 +303,14 @@ static int finish_record(history_run *run, int done, int status)
         return status;
     if (!(run->o->adhesion_work > 0))
         write_repulsive_results(run, done);
-    write_history_figure(run, done);
     if (status != IM_OK)
         error_restore(&kept, status); /* the step's error, not the fit's */
-    int recorded = run_record_finish(run->o->out, run->record, done, status);
-    return status == IM_OK ? recorded : status;
+    /* the record before the figure: after a signal mpirun kills the ranks a second later (docs/mpi.md) */
+    int outcome = run_record_finish(run->o->out, run->record, done, status);
+    outcome = status == IM_OK ? outcome : status;
+    error_keep(&kept); /* the step's or the record's error, not the figure's */
+    write_history_figure(run, done);
+    return outcome == IM_OK ? IM_OK : error_restore(&kept, outcome);
 }
 
 /* DIR/force.npy and gap.npy of the last step. Collective. */
@@ -349,6 +352,15 @@ static int draw_frames(const history_run *run, int done, int status)
     return error_restore(&kept, status); /* the step's error */
 }
 
+/* The signal that asked to stop on any rank (SIGTERM from mpirun, or sent to one rank alone), 0 if none: every
+ * rank stops before the same step. Collective. */
+static int stop_agreed(const mpi_indent_options *o)
+{
+    int local = o->solver.stop ? (int)*o->solver.stop : 0, any;
+    MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return any;
+}
+
 static int run_steps(history_run *run)
 {
     const mpi_indent_options *o = run->o;
@@ -357,8 +369,13 @@ static int run_steps(history_run *run)
         printf("%s\n", im_history_columns());
         fflush(stdout);
     }
-    while (done < o->target_count && (status = run_step(run, done)) == IM_OK)
+    while (done < o->target_count) {
+        const int signal = stop_agreed(o);
+        status = signal ? im_fail(IM_EINTERRUPTED, "interrupted by signal %d", signal) : run_step(run, done);
+        if (status != IM_OK)
+            break;
         ++done;
+    }
     if (status != IM_OK) /* done: the steps whose rows are written */
         im_fail_context(status, "step %d of %d (%s %g)", done + 1, o->target_count, o->targets_option,
                         o->targets[done]);
