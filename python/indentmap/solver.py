@@ -307,7 +307,7 @@ class Plan:
     ``solve(gap0, target)`` takes the undeformed gap at first touch (>= 0; +inf where the punch never
     touches) and an approach w (``control='displacement'``) or a load N (``control='load'``), optionally a
     warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
-    without the GIL; creating a plan holds it (FFTW's planner is not thread-safe). Ctrl-C during a solve
+    without the GIL, and so does creating a plan (the library serialises FFTW's planner). Ctrl-C during a solve
     on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
 
     Example::
@@ -327,9 +327,15 @@ class Plan:
         where the punch never touches) at approach ``target`` (``control='displacement'``) or load
         ``target`` ('load', in E* delta^2), from the warm start ``pressure`` when given. Returns
         (pressure, displacement, result dict) as new arrays, pressures in units of E*. ``NotConverged`` when
-        the tolerance is not reached, ``InvalidArgument`` for a gap of another grid or a negative one.
+        the tolerance is not reached; ``ValueError`` naming ``gap0`` or ``pressure`` for an array of another
+        grid, and ``control`` for one other than 'displacement' or 'load' (mean gaps are an
+        ``Indentation``'s, ``periodic=True``); ``NumericError`` naming the first gap that is negative or NaN;
+        ``InvalidArgument`` for a target or warm start out of range.
 
         Example: ``pressure, displacement, result = plan.solve(gap0, 2.0); result["load"]``."""
+        if control not in ("displacement", "load"):
+            raise ValueError(f"control {control!r}: expected 'displacement' or 'load' (mean gaps: "
+                             "Indentation(..., periodic=True, control='mean_gap'))")
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
 
     def memory(self):

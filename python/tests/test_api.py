@@ -83,6 +83,19 @@ def test_plan_solves_complementarity_and_warm_starts(rough64):
         plan.solve(np.zeros((8, 8)), 1.0)
 
 
+def test_plan_solve_errors_name_what_was_wrong():
+    """Plan.solve's errors as its docstring names them (redteam5 P3: mean_gap was taken by the keyword and
+    refused by the library as "control 2", and the gap's errors were documented as InvalidArgument)."""
+    plan = im.Plan(16)
+    gap0 = np.ones((16, 16))
+    with pytest.raises(ValueError, match=r"control 'mean_gap': expected 'displacement' or 'load'"):
+        plan.solve(gap0, 0.5, control="mean_gap")
+    with pytest.raises(im.NumericError, match=r"undeformed gap\[17\] = -1: expected >= 0 or \+inf"):
+        plan.solve(np.where(np.arange(256).reshape(16, 16) == 17, -1.0, gap0), 0.5)
+    with pytest.raises(ValueError, match=r"gap0: shape \(8, 16\), the plan's grid is \(16, 16\)"):
+        plan.solve(gap0[:8], 0.5)
+
+
 def test_edge_contact_is_an_exception():
     run = im.Indentation(np.zeros((16, 16)), im.Flat(20), largest=1.0)
     with pytest.raises(im.EdgeContact):
