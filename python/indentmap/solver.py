@@ -347,6 +347,17 @@ class Plan:
         return self._plan.memory()
 
 
+def _step_targets(name, values):
+    """A history's targets as a 1-D float64 array (a number is one step). Strings and arrays of more than one
+    dimension are refused naming the argument: numpy alone reads "12" as 12 and [[1, 2]] as two steps."""
+    array = np.asarray(values)
+    if array.dtype.kind not in "biuf":
+        raise TypeError(f"{name}: expected real numbers, got an array of {array.dtype}")
+    if array.ndim > 1:
+        raise ValueError(f"{name}: shape {array.shape}: expected a number or a 1-D sequence of steps")
+    return array.astype(float).ravel()
+
+
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, fields=False,
            distributions=None, **options):
     """Solves a history of approaches (displacement control), loads (load control) or mean gaps.
@@ -371,14 +382,16 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
         raise ValueError("give one of approaches, loads, pressures and mean_gaps")
     if mean_gaps is not None and not options.get("periodic", False):
         raise ValueError("mean_gaps (mean gaps over the cell) need periodic=True")
+    name = next(name for name, given in (("approaches", approaches), ("loads", loads), ("pressures", pressures),
+                                         ("mean_gaps", mean_gaps)) if given is not None)
     if pressures is not None:
         if not options.get("periodic", False):
             raise ValueError("pressures (mean pressures over the cell) need periodic=True; give loads otherwise")
         ny, nx = np.shape(heights)
-        loads = np.asarray(pressures, dtype=float) * (nx * ny * options.get("delta", 1.0) ** 2)
+        loads = _step_targets(name, pressures) * (nx * ny * options.get("delta", 1.0) ** 2)
     control, targets = ("load", loads) if loads is not None else ("mean_gap", mean_gaps) if mean_gaps is not None \
         else ("displacement", approaches)
-    targets = np.asarray(targets, dtype=float).ravel()
+    targets = _step_targets(name, targets)
     if targets.size == 0:
         raise ValueError("no steps")
     if control == "mean_gap" and not np.all(targets > 0):  # refused now, not after the steps before it
@@ -469,8 +482,10 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
     Example: ``im.indent_run("surface.npy", "out", im.Cone(80), approaches=np.linspace(0.5, 4, 8))``."""
     if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
         raise ValueError("give one of approaches, loads, pressures and mean_gaps")
-    control, targets = ("load", loads) if loads is not None else ("load", pressures) if pressures is not None \
-        else ("mean_gap", mean_gaps) if mean_gaps is not None else ("displacement", approaches)
+    name, control, targets = next(given for given in (("approaches", "displacement", approaches),
+                                                      ("loads", "load", loads), ("pressures", "load", pressures),
+                                                      ("mean_gaps", "mean_gap", mean_gaps)) if given[2] is not None)
+    targets = _step_targets(name, targets)
     plain_pk = _checks.flag("plain_pk", plain_pk)
     options = dict(_run_punch(punch, periodic), out=_checks.path("out", out), control=control,
                    pressures=int(pressures is not None), nx=_checks.integer("n", n),
@@ -502,7 +517,6 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
         options["wisdom"] = _checks.path("wisdom", wisdom)
     if axis is not None:
         options["x"], options["y"] = (_checks.real("axis x", axis[0]), _checks.real("axis y", axis[1]))
-    targets = np.ascontiguousarray(np.asarray(targets, dtype=float).ravel())
     return _core.indent_run(options, targets, progress, logging.getLogger("indentmap").log if log is None else log)
 
 UNLOADING_DTYPE = np.dtype([("branch", "i4"), ("top_step", "i4"), ("last_step", "i4"), ("loading_from", "i4"),

@@ -419,3 +419,17 @@ def test_racing_writers_of_a_npy_leave_one_writers_pair(tmp_path, cli):
                 mixed.append(f"trial {trial}: {name} is not writer {seed}'s, whose sidecar stands beside it")
     assert mixed == []
     assert not list(tmp_path.glob(".im.tmp.*"))
+
+
+def test_indent_targets_are_numbers_in_one_dimension(rough64):
+    """A string or a 2-D list of steps is refused naming the argument (redteam5 P5: "12" was solved as an
+    approach of 12, [[1, 2]] as two steps); a number is one step."""
+    with pytest.raises(TypeError, match=r"approaches: expected real numbers, got an array of <U2"):
+        im.indent(rough64, approaches="12")
+    with pytest.raises(ValueError, match=r"loads: shape \(1, 2\): expected a number or a 1-D sequence of steps"):
+        im.indent(rough64, loads=[[1.0, 2.0]])
+    with pytest.raises(TypeError, match=r"pressures: expected real numbers"):
+        im.indent(rough64, None, pressures=["0.01"], periodic=True)
+    assert len(im.indent(rough64, approaches=1.0)) == 1
+    with pytest.raises(TypeError, match=r"approaches: expected real numbers"):
+        im.indent_run(None, "unused", n=64, approaches=["1"])
