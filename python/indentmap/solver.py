@@ -319,8 +319,12 @@ class Plan:
 
     def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000,
                  device="cpu"):
-        self._plan = _core.Plan(int(nx), int(nx if ny is None else ny), float(delta), float(e_star), float(tol),
-                                int(max_iterations), str(device))
+        sides = [_checks.integer(name, value) for name, value in (("nx", nx), ("ny", nx if ny is None else ny))]
+        for name, side in zip(("nx", "ny"), sides):
+            if not 1 <= side <= 65536:  # also before C's int: 2**40 gave "signed integer is greater than maximum"
+                raise _core.InvalidArgument(f"Plan: {name} = {side}: expected each side in [1, 65536]")
+        self._plan = _core.Plan(*sides, float(delta), float(e_star), float(tol),
+                                _checks.integer("max_iterations", max_iterations), str(device))
 
     def solve(self, gap0, target, control="displacement", pressure=None):
         """Solves the contact of the undeformed gap ``gap0`` ((ny, nx), >= 0 in the units of delta; +inf

@@ -433,3 +433,15 @@ def test_indent_targets_are_numbers_in_one_dimension(rough64):
     assert len(im.indent(rough64, approaches=1.0)) == 1
     with pytest.raises(TypeError, match=r"approaches: expected real numbers"):
         im.indent_run(None, "unused", n=64, approaches=["1"])
+
+
+def test_plan_sizes_are_integers_in_range():
+    """Plan(64.7) was a 64 x 64 plan, Plan(2**40) an OverflowError naming nothing (redteam5 P6)."""
+    with pytest.raises(TypeError, match=r"nx: expected an integer, got 64.7"):
+        im.Plan(64.7)
+    with pytest.raises(im.InvalidArgument, match=r"Plan: nx = 1099511627776: expected each side in \[1, 65536\]"):
+        im.Plan(2**40)
+    with pytest.raises(im.InvalidArgument, match=r"Plan: ny = 0: expected each side in \[1, 65536\]"):
+        im.Plan(8, 0)
+    with pytest.raises(TypeError, match=r"max_iterations: expected an integer, got 2.5"):
+        im.Plan(8, max_iterations=2.5)
