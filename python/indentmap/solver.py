@@ -234,7 +234,8 @@ class Indentation:
 
     def fields(self):
         """(force, gap, displacement) of the last step on the full grid, as new arrays: the displacement is
-        computed on the whole grid (one convolution), not only in the solve window.
+        computed on the whole grid (one convolution), not only in the solve window. Before any step they are
+        those of an approach of 0: zero force and displacement, the undeformed gap from first touch.
 
         Example: ``force, gap, displacement = run.fields()``; ``force.sum()`` is the step's load."""
         return self._run.fields()
