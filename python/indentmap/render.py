@@ -76,7 +76,7 @@ class Image:
 
 
 def animate(frames, path, *, fps=5.0):
-    """Writes ``frames`` (Images or (height, width, 4) uint8 RGBA arrays, all of one size) as a looping
+    """Writes ``frames`` (a list of Images or (height, width, 4) uint8 RGBA arrays, all of one size) as a looping
     animated GIF at ``path``, at ``fps`` frames per second (0.01 to 100), as ``indentmap render animate
     --out FILE.gif --fps F`` writes its frames (figure.h: im_animation_gif): one palette of at most 256
     colours made from all the frames' pixels, exact when they have no more. Given the program's PNG frames
@@ -89,6 +89,8 @@ def animate(frames, path, *, fps=5.0):
     fps = float(fps)
     if not 0.01 <= fps <= 100.0:
         raise _core.InvalidArgument(f"fps = {fps:g}: expected 0.01 <= fps <= 100 (as render --fps)")
+    if not isinstance(frames, (list, tuple)):
+        raise TypeError(f"frames: expected a list of Images or RGBA arrays, got {type(frames).__name__}")
     pictures = [frame.rgba if isinstance(frame, Image) else frame for frame in frames]
     _core.write_gif(path, pictures, 1.0 / fps)
 

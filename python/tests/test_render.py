@@ -256,6 +256,8 @@ def test_animate_writes_the_programs_gif_from_its_frames(cli, tmp_path, rough64)
     assert (tmp_path / "python.gif").read_bytes() == (tmp_path / "cli.gif").read_bytes()
     with pytest.raises(ValueError, match=r"frames\[1\]: expected an \(height, width, 4\) uint8 RGBA array"):
         im.animate([frames[0], np.zeros((4, 4))], tmp_path / "bad.gif")
+    with pytest.raises(TypeError, match=r"frames: expected a list of Images or RGBA arrays, got int"):
+        im.animate(5, tmp_path / "bad.gif")
     with pytest.raises(im.InvalidArgument, match=r"fps = 0: expected 0.01 <= fps <= 100"):
         im.animate(frames, tmp_path / "bad.gif", fps=0)
     with pytest.raises(im.InvalidArgument, match=r"frame"):
