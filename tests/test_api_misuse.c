@@ -335,6 +335,19 @@ SAFE_RESULT(im_indenter_contact_radius, "punch", isnan(im_indenter_contact_radiu
 SAFE_RESULT(im_indenter_pressure, "punch", isnan(im_indenter_pressure(NULL, 1.0, 1.0, 0.5)))
 SAFE_RESULT(im_indenter_approach_for_load, "punch", isnan(im_indenter_approach_for_load(NULL, 1.0, 1.0)))
 SAFE_RESULT(im_indenter_area_for_load, "punch", isnan(im_indenter_area_for_load(NULL, 1.0, 1.0)))
+/* A punch im_indenter_check refuses, or a modulus that is not finite and positive: NaN and the message, not a
+ * number of the wrong sign (a 95-degree cone's Love load was -29.1 at w = 2, with no message). */
+SAFE_RESULT(im_indenter_load, "alpha",
+            isnan(im_indenter_load(&(im_indenter){.kind = IM_PUNCH_CONE, .alpha_degrees = 95}, 1.0, 2.0)))
+SAFE_RESULT(im_indenter_load, "E*", isnan(im_indenter_load(&cone, -1.0, 2.0)))
+SAFE_RESULT(im_indenter_contact_radius, "radius",
+            isnan(im_indenter_contact_radius(&(im_indenter){.kind = IM_PUNCH_SPHERE, .radius = -1}, 1.0)))
+SAFE_RESULT(im_indenter_pressure, "radius",
+            isnan(im_indenter_pressure(&(im_indenter){.kind = IM_PUNCH_FLAT, .radius = NAN}, 1.0, 1.0, 0.5)))
+SAFE_RESULT(im_indenter_pressure, "E*", isnan(im_indenter_pressure(&cone, NAN, 1.0, 0.5)))
+SAFE_RESULT(im_indenter_approach_for_load, "E*", isnan(im_indenter_approach_for_load(&cone, 0.0, 1.0)))
+SAFE_RESULT(im_indenter_area_for_load, "alpha",
+            isnan(im_indenter_area_for_load(&(im_indenter){.kind = IM_PUNCH_CONE, .alpha_degrees = 0}, 1.0, 1.0)))
 
 /* ---- io.h ---- */
 REPORT(im_output_protect, "path", im_output_protect(NULL))

@@ -94,6 +94,24 @@ static void test_convolution_is_linear_not_periodic(void **state)
     im_solver_plan_free(plan);
 }
 
+/* A plan solves under displacement or load control only; a mean gap is refused naming the function, the
+ * control and the ones it takes (redteam5 P3: the message was "control 2: expected displacement or load"). */
+static void test_solve_refuses_mean_gap_control_by_name(void **state)
+{
+    (void)state;
+    im_solver_plan *plan = NULL;
+    assert_int_equal(im_solver_plan_create(8, 8, 1.0, NULL, &plan), IM_OK);
+    double gap0[64], p[64], u[64];
+    for (int i = 0; i < 64; ++i)
+        gap0[i] = 1.0;
+    im_solve_result result;
+    assert_int_equal(im_solver_solve(plan, gap0, IM_CONTROL_MEAN_GAP, 0.5, p, u, &result), IM_EINVAL);
+    const char *message = im_last_error();
+    if (!strstr(message, "im_solver_solve: control = 2") || !strstr(message, "IM_CONTROL_LOAD"))
+        fail_msg("message '%s' does not name im_solver_solve, the control and the ones it takes", message);
+    im_solver_plan_free(plan);
+}
+
 /* A convolution's plan (im_displacement_plan_create: no solver arrays, its result written back over its
  * input rows) against the direct sum, in place, twice: the second load, nonzero in one corner only, is
  * convolved after the first result filled the padded rows. */
@@ -855,6 +873,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_influence_kernel),
         cmocka_unit_test(test_convolution_is_linear_not_periodic),
+        cmocka_unit_test(test_solve_refuses_mean_gap_control_by_name),
         cmocka_unit_test(test_tolerance_at_the_rounding),
         cmocka_unit_test(test_convolution_plan_in_place),
         cmocka_unit_test(test_cone_love),

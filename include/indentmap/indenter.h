@@ -36,7 +36,10 @@
  *
  * Misuse (status.h): IM_EINVAL for a NULL argument or an invalid field view; the value functions
  * of a NULL punch or profile give NaN (im_profile_kind: -1), im_indenter_axis and
- * im_profile_samples set their outputs to NaN, or NULL and 0; im_profile_free accepts NULL.
+ * im_profile_samples set their outputs to NaN, or NULL and 0; im_profile_free accepts NULL. The
+ * closed forms (im_indenter_load, _contact_radius, _pressure, _approach_for_load, _area_for_load) of
+ * a punch im_indenter_check refuses, or with an E* not finite and positive, give NaN and record the
+ * message ("im_indenter_load: alpha = 95: expected 0 < alpha < 90 degrees").
  * Threads: thread-safe: a punch is a value and a profile immutable once made (one profile may
  * serve several threads at once).
  */

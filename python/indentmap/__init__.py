@@ -13,7 +13,7 @@ from . import _core
 from ._core import (EdgeContact, Error, FileError, FormatError, Interrupted, InvalidArgument, NotConverged,
                     NumericError, OutOfMemory, Unsupported)
 from . import theory
-from .render import Figure, Image, View3DFigure, contact_map, height_map, renderer, use_backend, view3d
+from .render import Figure, Image, View3DFigure, animate, contact_map, height_map, renderer, use_backend, view3d
 from .scene import check_scene, run_scene, run_scene_from_record
 from .solver import (Cone, Flat, Indentation, Plan, Sphere, adhesion, indent, indent_run, read_history, unloading,
                      write_analysis)
@@ -72,5 +72,5 @@ def formats():
 
 __all__ = ["Cone", "EdgeContact", "Error", "FileError", "Figure", "Flat", "FormatError", "Generated", "Image", "Indentation",
            "Interrupted", "InvalidArgument", "NotConverged", "NumericError", "OutOfMemory", "Plan", "Sphere", "Topography", "View3DFigure",
-           "Unsupported", "adhesion", "check_scene", "contact_map", "formats", "generate", "generate_recorded", "height_map", "histogram", "indent", "indent_run", "info", "memory_limit", "prepare", "psd", "read", "read_generator", "read_history", "renderer",
+           "Unsupported", "adhesion", "animate", "check_scene", "contact_map", "formats", "generate", "generate_recorded", "height_map", "histogram", "indent", "indent_run", "info", "memory_limit", "prepare", "psd", "read", "read_generator", "read_history", "renderer",
            "run_scene", "run_scene_from_record", "solver_memory", "statistics", "theory", "unloading", "use_backend", "view3d", "write", "write_analysis"]

@@ -35,8 +35,9 @@ PRINT = Reason("Python returns arrays; print or format them with numpy")
 # render animate's frames are composed in src/cli/render.c from render's own option struct (its shared norm,
 # the colour bar's extension triangles, the PNG texts) by the code that also writes render's figures; the
 # library has the pieces (figure.h: im_figure_write_frame, im_animation_gif, im_animation_mp4), not the frames.
-ANIMATE = Reason("draw each step with Figure([force], ...).save(path) (one shared vmax), or run the program's "
-                 "render animate; its frame composition lives in src/cli/render.c, not yet in the library")
+ANIMATE = Reason("draw each step with Figure([force], ...).save(path) (one shared vmax) and animate() the "
+                 "pictures into a GIF, or run the program's render animate; its frame composition lives in "
+                 "src/cli/render.c, not yet in the library")
 
 PARITY = {
     # ---- surface: generate or measure ----
@@ -156,7 +157,7 @@ PARITY = {
     "render --columns": Python("Figure", "columns"),
     "render --quantity": Python("Figure", "colorbar_label"),
     "render --dpi": Python("Figure", "dpi"),
-    "render --fps": ANIMATE,
+    "render --fps": Python("animate", "fps"),
     "render --frames": ANIMATE,
     "render --backend": BACKEND,
     # ---- render view3d: the 3-D view ----

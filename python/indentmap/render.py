@@ -75,6 +75,26 @@ class Image:
         return _png_bytes(self.save)
 
 
+def animate(frames, path, *, fps=5.0):
+    """Writes ``frames`` (a list of Images or (height, width, 4) uint8 RGBA arrays, all of one size) as a looping
+    animated GIF at ``path``, at ``fps`` frames per second (0.01 to 100), as ``indentmap render animate
+    --out FILE.gif --fps F`` writes its frames (figure.h: im_animation_gif): one palette of at most 256
+    colours made from all the frames' pixels, exact when they have no more. Given the program's PNG frames
+    (``render animate --frames DIR``) read back with ``Image.read``, it writes the program's GIF byte for
+    byte. ``ValueError`` naming the first frame that is not an RGBA array; ``InvalidArgument`` naming a
+    frame of another size or ``fps``; ``FileError`` naming the path.
+
+    Example: ``im.animate([im.contact_map(f["force"], vmax=top) for f in fields], "contact.gif")`` (one
+    ``vmax`` for all, as the program's shared norm)."""
+    fps = float(fps)
+    if not 0.01 <= fps <= 100.0:
+        raise _core.InvalidArgument(f"fps = {fps:g}: expected 0.01 <= fps <= 100 (as render --fps)")
+    if not isinstance(frames, (list, tuple)):
+        raise TypeError(f"frames: expected a list of Images or RGBA arrays, got {type(frames).__name__}")
+    pictures = [frame.rgba if isinstance(frame, Image) else frame for frame in frames]
+    _core.write_gif(path, pictures, 1.0 / fps)
+
+
 def _contact_norm(forces, what, vmin, vmax, log, clip=0.0):
     """(vmin, vmax) of the norm the force fields share, the library's for every front end (colormap.h:
     im_colormap_range_norm): 0 .. the largest finite force (1 without any; with ``clip`` P, the 100 - P

@@ -234,7 +234,8 @@ class Indentation:
 
     def fields(self):
         """(force, gap, displacement) of the last step on the full grid, as new arrays: the displacement is
-        computed on the whole grid (one convolution), not only in the solve window.
+        computed on the whole grid (one convolution), not only in the solve window. Before any step they are
+        those of an approach of 0: zero force and displacement, the undeformed gap from first touch.
 
         Example: ``force, gap, displacement = run.fields()``; ``force.sum()`` is the step's load."""
         return self._run.fields()
@@ -307,7 +308,7 @@ class Plan:
     ``solve(gap0, target)`` takes the undeformed gap at first touch (>= 0; +inf where the punch never
     touches) and an approach w (``control='displacement'``) or a load N (``control='load'``), optionally a
     warm-start ``pressure``; it returns (pressure, displacement, result dict) as new arrays. Solves run
-    without the GIL; creating a plan holds it (FFTW's planner is not thread-safe). Ctrl-C during a solve
+    without the GIL, and so does creating a plan (the library serialises FFTW's planner). Ctrl-C during a solve
     on the main thread stops it within one iteration and raises KeyboardInterrupt; the plan stays usable.
 
     Example::
@@ -319,17 +320,27 @@ class Plan:
 
     def __init__(self, nx, ny=None, *, delta=1.0, e_star=1.0, tol=_core.default_tol, max_iterations=10000,
                  device="cpu"):
-        self._plan = _core.Plan(int(nx), int(nx if ny is None else ny), float(delta), float(e_star), float(tol),
-                                int(max_iterations), str(device))
+        sides = [_checks.integer(name, value) for name, value in (("nx", nx), ("ny", nx if ny is None else ny))]
+        for name, side in zip(("nx", "ny"), sides):
+            if not 1 <= side <= 65536:  # also before C's int: 2**40 gave "signed integer is greater than maximum"
+                raise _core.InvalidArgument(f"Plan: {name} = {side}: expected each side in [1, 65536]")
+        self._plan = _core.Plan(*sides, float(delta), float(e_star), float(tol),
+                                _checks.integer("max_iterations", max_iterations), str(device))
 
     def solve(self, gap0, target, control="displacement", pressure=None):
         """Solves the contact of the undeformed gap ``gap0`` ((ny, nx), >= 0 in the units of delta; +inf
         where the punch never touches) at approach ``target`` (``control='displacement'``) or load
         ``target`` ('load', in E* delta^2), from the warm start ``pressure`` when given. Returns
         (pressure, displacement, result dict) as new arrays, pressures in units of E*. ``NotConverged`` when
-        the tolerance is not reached, ``InvalidArgument`` for a gap of another grid or a negative one.
+        the tolerance is not reached; ``ValueError`` naming ``gap0`` or ``pressure`` for an array of another
+        grid, and ``control`` for one other than 'displacement' or 'load' (mean gaps are an
+        ``Indentation``'s, ``periodic=True``); ``NumericError`` naming the first gap that is negative or NaN;
+        ``InvalidArgument`` for a target or warm start out of range.
 
         Example: ``pressure, displacement, result = plan.solve(gap0, 2.0); result["load"]``."""
+        if control not in ("displacement", "load"):
+            raise ValueError(f"control {control!r}: expected 'displacement' or 'load' (mean gaps: "
+                             "Indentation(..., periodic=True, control='mean_gap'))")
         return self._plan.solve(gap0, float(target), control=control, pressure=pressure)
 
     def memory(self):
@@ -339,6 +350,17 @@ class Plan:
 
         Example: ``im.Plan(256, device="gpu").memory()["device_bytes"]``."""
         return self._plan.memory()
+
+
+def _step_targets(name, values):
+    """A history's targets as a 1-D float64 array (a number is one step). Strings and arrays of more than one
+    dimension are refused naming the argument: numpy alone reads "12" as 12 and [[1, 2]] as two steps."""
+    array = np.asarray(values)
+    if array.dtype.kind not in "biuf":
+        raise TypeError(f"{name}: expected real numbers, got an array of {array.dtype}")
+    if array.ndim > 1:
+        raise ValueError(f"{name}: shape {array.shape}: expected a number or a 1-D sequence of steps")
+    return array.astype(float).ravel()
 
 
 def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None, mean_gaps=None, fields=False,
@@ -365,14 +387,16 @@ def indent(heights, punch=Cone(), *, approaches=None, loads=None, pressures=None
         raise ValueError("give one of approaches, loads, pressures and mean_gaps")
     if mean_gaps is not None and not options.get("periodic", False):
         raise ValueError("mean_gaps (mean gaps over the cell) need periodic=True")
+    name = next(name for name, given in (("approaches", approaches), ("loads", loads), ("pressures", pressures),
+                                         ("mean_gaps", mean_gaps)) if given is not None)
     if pressures is not None:
         if not options.get("periodic", False):
             raise ValueError("pressures (mean pressures over the cell) need periodic=True; give loads otherwise")
         ny, nx = np.shape(heights)
-        loads = np.asarray(pressures, dtype=float) * (nx * ny * options.get("delta", 1.0) ** 2)
+        loads = _step_targets(name, pressures) * (nx * ny * options.get("delta", 1.0) ** 2)
     control, targets = ("load", loads) if loads is not None else ("mean_gap", mean_gaps) if mean_gaps is not None \
         else ("displacement", approaches)
-    targets = np.asarray(targets, dtype=float).ravel()
+    targets = _step_targets(name, targets)
     if targets.size == 0:
         raise ValueError("no steps")
     if control == "mean_gap" and not np.all(targets > 0):  # refused now, not after the steps before it
@@ -463,8 +487,10 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
     Example: ``im.indent_run("surface.npy", "out", im.Cone(80), approaches=np.linspace(0.5, 4, 8))``."""
     if sum(t is not None for t in (approaches, loads, pressures, mean_gaps)) != 1:
         raise ValueError("give one of approaches, loads, pressures and mean_gaps")
-    control, targets = ("load", loads) if loads is not None else ("load", pressures) if pressures is not None \
-        else ("mean_gap", mean_gaps) if mean_gaps is not None else ("displacement", approaches)
+    name, control, targets = next(given for given in (("approaches", "displacement", approaches),
+                                                      ("loads", "load", loads), ("pressures", "load", pressures),
+                                                      ("mean_gaps", "mean_gap", mean_gaps)) if given[2] is not None)
+    targets = _step_targets(name, targets)
     plain_pk = _checks.flag("plain_pk", plain_pk)
     options = dict(_run_punch(punch, periodic), out=_checks.path("out", out), control=control,
                    pressures=int(pressures is not None), nx=_checks.integer("n", n),
@@ -496,7 +522,6 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
         options["wisdom"] = _checks.path("wisdom", wisdom)
     if axis is not None:
         options["x"], options["y"] = (_checks.real("axis x", axis[0]), _checks.real("axis y", axis[1]))
-    targets = np.ascontiguousarray(np.asarray(targets, dtype=float).ravel())
     return _core.indent_run(options, targets, progress, logging.getLogger("indentmap").log if log is None else log)
 
 UNLOADING_DTYPE = np.dtype([("branch", "i4"), ("top_step", "i4"), ("last_step", "i4"), ("loading_from", "i4"),

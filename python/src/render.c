@@ -11,6 +11,8 @@
 #include "indentmap/render.h"
 #include "indentmap/status.h"
 
+#include <limits.h>
+
 static im_render_context *context;
 static PyThread_type_lock drawing_lock; /* held by the call that draws or writes */
 
@@ -437,6 +439,68 @@ static PyObject *write_png(PyObject *self, PyObject *args)
     return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
 }
 
+typedef struct gif_job {
+    const char *path;
+    const im_image *frames;
+    int count;
+    double seconds_per_frame;
+} gif_job;
+
+static int write_gif_file(void *argument)
+{
+    const gif_job *job = argument;
+    return im_animation_gif(job->frames, job->count, job->seconds_per_frame, job->path);
+}
+
+/* The frames of the sequence as (height, width, 4) uint8 arrays (new references in arrays[]) and images
+ * borrowing their pixels; -1 with a ValueError naming the first frame that is not one. */
+static int gif_frames(PyObject *items, Py_ssize_t count, PyArrayObject **arrays, im_image *frames)
+{
+    for (Py_ssize_t i = 0; i < count; ++i) {
+        arrays[i] = rgba_array(PySequence_Fast_GET_ITEM(items, i));
+        if (!arrays[i]) {
+            PyErr_Format(PyExc_ValueError, "frames[%zd]: expected an (height, width, 4) uint8 RGBA array", i);
+            return -1;
+        }
+        frames[i] = (im_image){.width = (int)PyArray_DIMS(arrays[i])[1],
+                               .height = (int)PyArray_DIMS(arrays[i])[0],
+                               .rgba = PyArray_DATA(arrays[i])};
+    }
+    return 0;
+}
+
+/* write_gif(path, frames, seconds_per_frame): the (height, width, 4) uint8 arrays of the sequence frames as
+ * a looping GIF, as `render animate --out FILE.gif` writes its frames (figure.h: im_animation_gif). */
+static PyObject *write_gif(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_bytes, *sequence;
+    double seconds_per_frame;
+    if (!PyArg_ParseTuple(args, "O&Od", PyUnicode_FSConverter, &path_bytes, &sequence, &seconds_per_frame))
+        return NULL;
+    PyObject *items = PySequence_Fast(sequence, "frames: expected a sequence of (height, width, 4) uint8 arrays");
+    Py_ssize_t count = items ? PySequence_Fast_GET_SIZE(items) : 0;
+    if (items && (count < 1 || count > INT_MAX))
+        PyErr_Format(PyExc_ValueError, "frames: %zd frames: expected 1 to %d", count, INT_MAX);
+    PyArrayObject **arrays = PyErr_Occurred() ? NULL : PyMem_Calloc((size_t)count, sizeof *arrays);
+    im_image *frames = arrays ? PyMem_Calloc((size_t)count, sizeof *frames) : NULL;
+    int status = IM_OK;
+    if (frames && gif_frames(items, count, arrays, frames) == 0) {
+        gif_job job = {PyBytes_AS_STRING(path_bytes), frames, (int)count, seconds_per_frame};
+        status = without_gil(write_gif_file, &job);
+    } else if (!PyErr_Occurred())
+        PyErr_NoMemory();
+    for (Py_ssize_t i = 0; arrays && i < count; ++i)
+        Py_XDECREF(arrays[i]);
+    PyMem_Free(arrays);
+    PyMem_Free(frames);
+    Py_XDECREF(items);
+    Py_DECREF(path_bytes);
+    if (PyErr_Occurred())
+        return NULL;
+    return status == IM_OK ? Py_NewRef(Py_None) : py_raise_status(status);
+}
+
 typedef struct view3d_job {
     const im_field *height, *force; /* force: NULL for no contact colours */
     const im_indenter *punch;       /* NULL: none */
@@ -781,6 +845,7 @@ PyMethodDef py_render_methods[] = {
     {"render", (PyCFunction)(void (*)(void))render, METH_VARARGS | METH_KEYWORDS, "render a field to RGBA"},
     {"figure", (PyCFunction)(void (*)(void))figure, METH_VARARGS | METH_KEYWORDS, "write a multi-panel figure"},
     {"write_png", write_png, METH_VARARGS, "write_png(path, rgba, texts)"},
+    {"write_gif", write_gif, METH_VARARGS, "write_gif(path, frames, seconds_per_frame): an animated GIF"},
     {"colorbar_label", colorbar_label, METH_VARARGS, "colorbar_label(quantity, unit) -> the colour bar's label"},
     {"read_png", read_png, METH_VARARGS, "read_png(path) -> (height, width, 4) uint8 RGBA"},
     {"view3d", (PyCFunction)(void (*)(void))view3d, METH_VARARGS | METH_KEYWORDS,

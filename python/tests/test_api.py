@@ -83,6 +83,19 @@ def test_plan_solves_complementarity_and_warm_starts(rough64):
         plan.solve(np.zeros((8, 8)), 1.0)
 
 
+def test_plan_solve_errors_name_what_was_wrong():
+    """Plan.solve's errors as its docstring names them (redteam5 P3: mean_gap was taken by the keyword and
+    refused by the library as "control 2", and the gap's errors were documented as InvalidArgument)."""
+    plan = im.Plan(16)
+    gap0 = np.ones((16, 16))
+    with pytest.raises(ValueError, match=r"control 'mean_gap': expected 'displacement' or 'load'"):
+        plan.solve(gap0, 0.5, control="mean_gap")
+    with pytest.raises(im.NumericError, match=r"undeformed gap\[17\] = -1: expected >= 0 or \+inf"):
+        plan.solve(np.where(np.arange(256).reshape(16, 16) == 17, -1.0, gap0), 0.5)
+    with pytest.raises(ValueError, match=r"gap0: shape \(8, 16\), the plan's grid is \(16, 16\)"):
+        plan.solve(gap0[:8], 0.5)
+
+
 def test_edge_contact_is_an_exception():
     run = im.Indentation(np.zeros((16, 16)), im.Flat(20), largest=1.0)
     with pytest.raises(im.EdgeContact):
@@ -406,3 +419,29 @@ def test_racing_writers_of_a_npy_leave_one_writers_pair(tmp_path, cli):
                 mixed.append(f"trial {trial}: {name} is not writer {seed}'s, whose sidecar stands beside it")
     assert mixed == []
     assert not list(tmp_path.glob(".im.tmp.*"))
+
+
+def test_indent_targets_are_numbers_in_one_dimension(rough64):
+    """A string or a 2-D list of steps is refused naming the argument (redteam5 P5: "12" was solved as an
+    approach of 12, [[1, 2]] as two steps); a number is one step."""
+    with pytest.raises(TypeError, match=r"approaches: expected real numbers, got an array of <U2"):
+        im.indent(rough64, approaches="12")
+    with pytest.raises(ValueError, match=r"loads: shape \(1, 2\): expected a number or a 1-D sequence of steps"):
+        im.indent(rough64, loads=[[1.0, 2.0]])
+    with pytest.raises(TypeError, match=r"pressures: expected real numbers"):
+        im.indent(rough64, None, pressures=["0.01"], periodic=True)
+    assert len(im.indent(rough64, approaches=1.0)) == 1
+    with pytest.raises(TypeError, match=r"approaches: expected real numbers"):
+        im.indent_run(None, "unused", n=64, approaches=["1"])
+
+
+def test_plan_sizes_are_integers_in_range():
+    """Plan(64.7) was a 64 x 64 plan, Plan(2**40) an OverflowError naming nothing (redteam5 P6)."""
+    with pytest.raises(TypeError, match=r"nx: expected an integer, got 64.7"):
+        im.Plan(64.7)
+    with pytest.raises(im.InvalidArgument, match=r"Plan: nx = 1099511627776: expected each side in \[1, 65536\]"):
+        im.Plan(2**40)
+    with pytest.raises(im.InvalidArgument, match=r"Plan: ny = 0: expected each side in \[1, 65536\]"):
+        im.Plan(8, 0)
+    with pytest.raises(TypeError, match=r"max_iterations: expected an integer, got 2.5"):
+        im.Plan(8, max_iterations=2.5)

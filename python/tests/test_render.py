@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import indentmap as im
-from conftest import longest_pause_of_this_thread
+from conftest import longest_pause_of_this_thread, run_cli
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -239,3 +239,26 @@ def test_a_topography_where_a_field_is_expected_names_what_to_pass(tmp_path):
         with pytest.raises(TypeError, match=what + r": got a Topography .*top\.heights"):
             call()
 
+
+
+def test_animate_writes_the_programs_gif_from_its_frames(cli, tmp_path, rough64):
+    """render animate's GIF from Python (redteam5 P4: Python had no animation): the program's PNG frames read
+    back and animated at the same fps are its GIF, byte for byte; errors name the frame and fps."""
+    fields = im.indent(rough64, approaches=[0.5, 1.0, 1.5], fields=True)[1]
+    inputs = []
+    for i, field in enumerate(fields):
+        inputs.append(tmp_path / f"force_{i}.npy")
+        np.save(inputs[-1], field["force"])
+    run_cli(cli, "render", "animate", *inputs, "--frames", tmp_path / "frames", "--fps", 4,
+            "--out", tmp_path / "cli.gif")
+    frames = [im.Image.read(tmp_path / "frames" / f"contact_{i:04d}.png") for i in range(len(fields))]
+    im.animate(frames, tmp_path / "python.gif", fps=4)
+    assert (tmp_path / "python.gif").read_bytes() == (tmp_path / "cli.gif").read_bytes()
+    with pytest.raises(ValueError, match=r"frames\[1\]: expected an \(height, width, 4\) uint8 RGBA array"):
+        im.animate([frames[0], np.zeros((4, 4))], tmp_path / "bad.gif")
+    with pytest.raises(TypeError, match=r"frames: expected a list of Images or RGBA arrays, got int"):
+        im.animate(5, tmp_path / "bad.gif")
+    with pytest.raises(im.InvalidArgument, match=r"fps = 0: expected 0.01 <= fps <= 100"):
+        im.animate(frames, tmp_path / "bad.gif", fps=0)
+    with pytest.raises(im.InvalidArgument, match=r"frame"):
+        im.animate([frames[0], im.contact_map(fields[0]["force"])], tmp_path / "bad.gif")

@@ -97,6 +97,22 @@ int im_indenter_check(const im_indenter *punch)
     return IM_OK;
 }
 
+/* The closed forms of a punch im_indenter_check refuses, or of a modulus that is not finite and positive,
+ * are numbers of no meaning (a 95-degree cone's load is negative): the value functions record the
+ * failure, prefixed with their name, and return NaN instead. e_star_used 0: the function takes none. */
+static int closed_form_refused(const char *function, const im_indenter *punch, int e_star_used, double e_star)
+{
+    if (im_indenter_check(punch) != IM_OK) {
+        im_fail_context(IM_EINVAL, "%s", function);
+        return 1;
+    }
+    if (e_star_used && !(isfinite(e_star) && e_star > 0)) {
+        im_fail(IM_EINVAL, "%s: E* = %g: expected a finite modulus > 0", function, e_star);
+        return 1;
+    }
+    return 0;
+}
+
 double im_indenter_profile(const im_indenter *punch, double r)
 {
     ARG_REQUIRE_OR(punch, "punch", NAN);
@@ -136,6 +152,8 @@ void im_indenter_axis(const im_indenter *punch, int nx, int ny, double delta, do
 double im_indenter_load(const im_indenter *punch, double e_star, double w)
 {
     ARG_REQUIRE_OR(punch, "punch", NAN);
+    if (closed_form_refused(__func__, punch, 1, e_star))
+        return NAN;
     if (w <= 0)
         return 0;
     switch (punch->kind) {
@@ -151,6 +169,8 @@ double im_indenter_load(const im_indenter *punch, double e_star, double w)
 double im_indenter_contact_radius(const im_indenter *punch, double w)
 {
     ARG_REQUIRE_OR(punch, "punch", NAN);
+    if (closed_form_refused(__func__, punch, 0, 0.0))
+        return NAN;
     if (w <= 0)
         return 0;
     switch (punch->kind) {
@@ -166,6 +186,8 @@ double im_indenter_contact_radius(const im_indenter *punch, double w)
 double im_indenter_pressure(const im_indenter *punch, double e_star, double w, double r)
 {
     ARG_REQUIRE_OR(punch, "punch", NAN);
+    if (closed_form_refused(__func__, punch, 1, e_star))
+        return NAN;
     if (is_profile(punch))
         return NAN;
     double a = im_indenter_contact_radius(punch, w);
@@ -185,6 +207,8 @@ double im_indenter_pressure(const im_indenter *punch, double e_star, double w, d
 double im_indenter_approach_for_load(const im_indenter *punch, double e_star, double n)
 {
     ARG_REQUIRE_OR(punch, "punch", NAN);
+    if (closed_form_refused(__func__, punch, 1, e_star))
+        return NAN;
     if (n <= 0)
         return 0;
     switch (punch->kind) {
@@ -200,6 +224,8 @@ double im_indenter_approach_for_load(const im_indenter *punch, double e_star, do
 double im_indenter_area_for_load(const im_indenter *punch, double e_star, double n)
 {
     ARG_REQUIRE_OR(punch, "punch", NAN);
+    if (closed_form_refused(__func__, punch, 1, e_star))
+        return NAN;
     if (n <= 0)
         return 0;
     if (punch->kind == IM_PUNCH_CONE)

@@ -223,7 +223,10 @@ static int check_inputs(const im_solver_plan *plan, const double *gap0, enum im_
         return im_fail(IM_EINVAL, "im_solver_solve: plan is a convolution's (im_displacement_plan_create), which "
                                   "cannot solve; expected one from im_solver_plan_create");
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
-        return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+        return im_fail(IM_EINVAL,
+                       "im_solver_solve: control = %d: expected IM_CONTROL_DISPLACEMENT or IM_CONTROL_LOAD (mean-gap "
+                       "control is im_indentation_create's, periodic)",
+                       (int)control);
     if (!(isfinite(target) && target >= 0))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);

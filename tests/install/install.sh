@@ -27,6 +27,15 @@ cc -std=c11 -Wall -Wextra -Werror -o "$prefix/consumer_pc" "$source/consumer.c" 
 c++ -std=c++17 -Wall -Wextra -Werror -x c++ -o "$prefix/consumer_cxx" "$source/consumer.c" -x none \
     $(pkg-config --cflags --libs indentmap) -Wl,-rpath,"$lib"
 "$prefix/consumer_cxx"
+# The static library with `pkg-config --static`: every member of the archive linked (whole-archive),
+# so that a dependency missing from the .pc file's Requires.private or Libs.private fails here whatever
+# the consumer happens to call (libyaml, FFTW-MPI and MPI were missing: a program calling
+# im_scene_run did not link).
+# shellcheck disable=SC2046
+cc -std=c11 -o "$prefix/consumer_static" "$source/consumer.c" \
+   $(pkg-config --cflags indentmap) -Wl,--whole-archive "$lib/libindentmap.a" -Wl,--no-whole-archive \
+   $(pkg-config --static --libs indentmap | sed 's/-lindentmap//') -lm
+"$prefix/consumer_static"
 
 cmake -S "$source" -B "$prefix/consumer_build" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_RPATH="$lib" >/dev/null
