@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import indentmap as im
-from conftest import longest_pause_of_this_thread, run_cli
+from conftest import gil_held_share, run_cli
 
 
 def test_errors_carry_the_library_message(tmp_path):
@@ -144,14 +144,17 @@ def test_long_calls_release_the_gil(call):
     """Planning a history or a plan, a solve and the full-grid fields run without the GIL (issue 32: planning
     and fields held it)."""
     heights = im.generate(192 if call == "step" else 512, slope=0.1, seed=3)
-    run = None if call in ("create", "plan") else im.Indentation(heights, largest=20.0, tol=1e-10)
-    if call == "fields":
-        run.step(5.0)
-    work = {"create": lambda: im.Indentation(heights, largest=20.0, crop=False), "step": lambda: run.step(20.0),
-            "fields": lambda: run.fields(), "plan": lambda: im.Plan(768)}[call]
-    longest_pause, duration = longest_pause_of_this_thread(work)
+
+    def make_work():
+        run = None if call in ("create", "plan") else im.Indentation(heights, largest=20.0, tol=1e-10)
+        if call == "fields":
+            run.step(5.0)
+        return {"create": lambda: im.Indentation(heights, largest=20.0, crop=False), "step": lambda: run.step(20.0),
+                "fields": lambda: run.fields(), "plan": lambda: im.Plan(768)}[call]
+
+    share, pause, duration = gil_held_share(make_work)
     # Held through the call, the GIL would stop this thread for the whole of it.
-    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s {call}"
+    assert share < 0.5, f"main thread paused {pause:.3f} s of a {duration:.3f} s {call}"
 
 
 def indentation_history(seed, spans=None):

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import indentmap as im
-from conftest import longest_pause_of_this_thread, run_cli
+from conftest import gil_held_share, run_cli
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -162,9 +162,9 @@ def test_drawing_releases_the_gil(call, tmp_path):
             "height_map": lambda: im.height_map(heights, scale=2, contact=force),
             "figure": lambda: im.Figure([force[:512, :512]] * 4, columns=2).save(tmp_path / "f.png"),
             "save": lambda: im.Image(np.full((2048, 2048, 4), 7, np.uint8)).save(tmp_path / "i.png")}[call]
-    longest_pause, duration = longest_pause_of_this_thread(work)
+    share, pause, duration = gil_held_share(lambda: work)
     # Held through the call, the GIL would stop this thread for the whole of it.
-    assert longest_pause < 0.5 * duration, f"main thread paused {longest_pause:.3f} s of a {duration:.3f} s {call}"
+    assert share < 0.5, f"main thread paused {pause:.3f} s of a {duration:.3f} s {call}"
 
 
 def test_pictures_from_threads_equal_those_of_one_thread(rough64):
