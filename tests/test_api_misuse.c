@@ -340,7 +340,7 @@ SAFE_RESULT(im_indenter_area_for_load, "punch", isnan(im_indenter_area_for_load(
 SAFE_RESULT(im_indenter_load, "alpha",
             isnan(im_indenter_load(&(im_indenter){.kind = IM_PUNCH_CONE, .alpha_degrees = 95}, 1.0, 2.0)))
 SAFE_RESULT(im_indenter_load, "E*", isnan(im_indenter_load(&cone, -1.0, 2.0)))
-SAFE_RESULT(im_indenter_contact_radius, "radius",
+SAFE_RESULT(im_indenter_contact_radius, "sphere radius = -1",
             isnan(im_indenter_contact_radius(&(im_indenter){.kind = IM_PUNCH_SPHERE, .radius = -1}, 1.0)))
 SAFE_RESULT(im_indenter_pressure, "radius",
             isnan(im_indenter_pressure(&(im_indenter){.kind = IM_PUNCH_FLAT, .radius = NAN}, 1.0, 1.0, 0.5)))

@@ -2,6 +2,7 @@
 parameter in its message. A conversion such as ``int(2.5)`` or ``bool("no")`` would pass a value the caller
 never meant without a word, and ``float("x")`` would fail without naming the parameter."""
 import numbers
+import operator
 import os
 
 import numpy as np
@@ -17,10 +18,22 @@ def real(name, value):
 
 
 def integer(name, value):
-    """value as an int: an integer (not a bool, and not a float even when whole)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+    """value as an int: an integer, a numpy integer or a 0-d integer array (not a bool, and not a float even
+    when whole)."""
+    if isinstance(value, (bool, np.bool_)) or (isinstance(value, np.ndarray) and value.dtype == bool):
         raise TypeError(f"{name}: expected an integer, got {value!r}")
-    return int(value)
+    try:
+        return operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name}: expected an integer, got {value!r}") from None
+
+
+def c_int(name, value):
+    """An integer that C's int holds (one beyond would be Python's OverflowError, naming nothing)."""
+    value = integer(name, value)
+    if not -(2 ** 31) <= value < 2 ** 31:
+        raise ValueError(f"{name} = {value}: expected an integer in [-2^31, 2^31 - 1]")
+    return value
 
 
 def flag(name, value):

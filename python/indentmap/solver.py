@@ -115,7 +115,7 @@ def _core_arguments(heights, punch, *, control, largest, delta, e_star, tol, max
     x, y = (None, None) if axis is None else _axis_on_surface(axis, np.shape(heights), delta)
     args = (heights, delta, kind, alpha, radius, _checks.text("control", control), _checks.real("largest", largest))
     return args, dict(e_star=_checks.real("e_star", e_star), tol=_checks.real("tol", tol),
-                      max_iterations=_checks.integer("max_iterations", max_iterations),
+                      max_iterations=_checks.c_int("max_iterations", max_iterations),
                       crop=_checks.flag("crop", crop), window_margin=_checks.integer("window_margin", window_margin),
                       x=x, y=y, profile=profile, device=_checks.text("device", device),
                       hardness=_checks.real("hardness", hardness), periodic=_checks.flag("periodic", periodic),
@@ -322,10 +322,10 @@ class Plan:
                  device="cpu"):
         sides = [_checks.integer(name, value) for name, value in (("nx", nx), ("ny", nx if ny is None else ny))]
         for name, side in zip(("nx", "ny"), sides):
-            if not 1 <= side <= 65536:  # also before C's int: 2**40 gave "signed integer is greater than maximum"
-                raise _core.InvalidArgument(f"Plan: {name} = {side}: expected each side in [1, 65536]")
+            if not 1 <= side <= _core.field_max_side:  # before C's int: 2**40 gave an OverflowError naming nothing
+                raise _core.InvalidArgument(f"Plan: {name} = {side}: expected each side in [1, {_core.field_max_side}]")
         self._plan = _core.Plan(*sides, float(delta), float(e_star), float(tol),
-                                _checks.integer("max_iterations", max_iterations), str(device))
+                                _checks.c_int("max_iterations", max_iterations), str(device))
 
     def solve(self, gap0, target, control="displacement", pressure=None):
         """Solves the contact of the undeformed gap ``gap0`` ((ny, nx), >= 0 in the units of delta; +inf
@@ -497,7 +497,7 @@ def indent_run(surface, out, punch=Cone(), *, approaches=None, loads=None, press
                    ny=_checks.integer("m", n if m is None else m), unit=_checks.text("unit", unit),
                    e_star=_checks.real("e_star", e_star), e_star_unit=_checks.text("e_star_unit", e_star_unit),
                    hardness=_checks.real("hardness", hardness),
-                   max_iterations=_checks.integer("max_iterations", max_iterations),
+                   max_iterations=_checks.c_int("max_iterations", max_iterations),
                    crop=int(_checks.flag("crop", crop)), periodic=int(_checks.flag("periodic", periodic)),
                    slope_definition=_checks.text("slope_definition", slope_definition or ""),
                    adhesion_work=_checks.real("adhesion_work", adhesion_work),

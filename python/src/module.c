@@ -198,6 +198,7 @@ PyMODINIT_FUNC PyInit__core(void)
         PyModule_AddStringConstant(module, "history_columns", im_history_columns()) < 0 ||
         PyModule_AddStringConstant(module, "history_integer_columns", im_history_integer_columns()) < 0 ||
         PyModule_AddStringConstant(module, "header_version", IM_VERSION_STRING) < 0 ||
+        PyModule_AddIntConstant(module, "field_max_side", IM_FIELD_MAX_SIDE) < 0 ||
         /* the one default tolerance of the library and its front ends (solver.h) */
         PyModule_AddObject(module, "default_tol", PyFloat_FromDouble(im_quality_default_tolerance())) < 0) {
         Py_DECREF(module);

@@ -448,3 +448,9 @@ def test_plan_sizes_are_integers_in_range():
         im.Plan(8, 0)
     with pytest.raises(TypeError, match=r"max_iterations: expected an integer, got 2.5"):
         im.Plan(8, max_iterations=2.5)
+    with pytest.raises(ValueError, match=r"max_iterations = 1099511627776: expected an integer in \[-2\^31, 2\^31 - 1\]"):
+        im.Plan(8, max_iterations=2**40)
+    with pytest.raises(TypeError, match=r"nx: expected an integer, got array\(True\)"):
+        im.Plan(np.array(True))
+    # numpy's integers and 0-d integer arrays are integers (int() took them before the check)
+    assert im.Plan(np.array(8), np.int16(4)).solve(np.zeros((4, 8)), 0.0)[0].shape == (4, 8)

@@ -260,5 +260,8 @@ def test_animate_writes_the_programs_gif_from_its_frames(cli, tmp_path, rough64)
         im.animate(5, tmp_path / "bad.gif")
     with pytest.raises(im.InvalidArgument, match=r"fps = 0: expected 0.01 <= fps <= 100"):
         im.animate(frames, tmp_path / "bad.gif", fps=0)
-    with pytest.raises(im.InvalidArgument, match=r"frame"):
+    with pytest.raises(im.InvalidArgument, match=r"frame 1 is \d+ x \d+ \(or empty\): expected"):
         im.animate([frames[0], im.contact_map(fields[0]["force"])], tmp_path / "bad.gif")
+    with pytest.raises(im.InvalidArgument, match=r"frame 0 is 0 x 0: expected at least 1 x 1 pixels"):
+        im.animate([np.zeros((0, 0, 4), np.uint8)], tmp_path / "empty.gif")
+    assert not (tmp_path / "empty.gif").exists()

@@ -96,6 +96,9 @@ static int check_frames(const im_image *frames, int count)
     if (count < 1)
         return im_fail(IM_EINVAL, "animation: %d frames: expected at least 1", count);
     for (int i = 0; i < count; ++i) {
+        if (frames[i].width < 1 || frames[i].height < 1)
+            return im_fail(IM_EINVAL, "animation: frame %d is %d x %d: expected at least 1 x 1 pixels", i,
+                           frames[i].width, frames[i].height);
         if (!frames[i].rgba || frames[i].width != frames[0].width || frames[i].height != frames[0].height)
             return im_fail(IM_EINVAL, "animation: frame %d is %d x %d (or empty): expected %d x %d like frame 0", i,
                            frames[i].width, frames[i].height, frames[0].width, frames[0].height);

@@ -13,7 +13,10 @@ static int check_inputs(const im_mpi_solver *s, const double *gap0, enum im_cont
                         const double *p)
 {
     if (control != IM_CONTROL_DISPLACEMENT && control != IM_CONTROL_LOAD)
-        return im_fail(IM_EINVAL, "control %d: expected displacement or load", (int)control);
+        return im_fail(IM_EINVAL,
+                       "im_mpi_solver_solve: control = %d: expected IM_CONTROL_DISPLACEMENT or IM_CONTROL_LOAD "
+                       "(mean-gap control is im_mpi_flat_contact_solve_gap's, periodic)",
+                       (int)control);
     if (!(isfinite(target) && target >= 0))
         return im_fail(IM_EINVAL, "%s = %g: expected a finite value >= 0",
                        control == IM_CONTROL_LOAD ? "load" : "approach", target);
