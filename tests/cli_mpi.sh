@@ -134,7 +134,8 @@ same_history() { history_differences "$1" "$2" 1e-8; } # same_history SERIAL MPI
 # and LeakSanitizer's exit checks) the periodic histories run on 1 and 3 ranks, not 2, and run.json, history.csv
 # and the figure are read from the 3-rank run: the 3-rank run takes the 2-rank run's C paths (FFTW-MPI's blocks of
 # ceil(64 / ranks) rows: 32 + 32 and 22 + 22 + 20, every rank holding rows and spectrum columns, the same
-# exchanges and reductions) and adds the uneven split. The plain pass compares all three, files from 2 ranks.
+# exchanges and reductions): rows split unevenly on 3, the spectrum columns on 2 (17 + 16), whose larger column
+# slab the 2-rank non-periodic cases size there. The plain pass compares all three, files from 2 ranks.
 periodic_ranks="1 2 3" files_rank=2
 [ "${IM_SANITIZED:-0}" = 1 ] && periodic_ranks="1 3" files_rank=3
 periodic_case() { # periodic_case NAME ARGUMENTS...: indent --periodic against mpi-indent on $periodic_ranks ranks
@@ -221,9 +222,9 @@ refused out 2 "$start: rank 1 differs from rank 0 (rank 1's argument 7 is 'o2' (
   -n 1 "$cli" mpi-indent --n 64 --approach 5 --out o1 : -n 1 "$cli" mpi-indent --n 64 --approach 5 --out o2
 [ ! -e o1 ] && [ ! -e o2 ] || fail "different --out: a folder was made"
 # Under the sanitizers (IM_SANITIZED=1) grid and control are left to the plain pass, their C paths run by out and
-# commands there (src/mpi/inputs.c): grid's is out's (mpi-indent on 2 ranks, one differing rank, describe()'s
-# "(after --OPTION)" branch); control's is commands' (mpi-indent's rank 0 among 3 ranks, describe()'s plain branch)
-# with one differing rank, as in out.
+# scenes there (src/mpi/inputs.c): grid's is out's (mpi-indent on 2 ranks, one differing rank, describe()'s
+# "(after --OPTION)" branch); control's is scenes' (describe()'s plain branch past the first word, where the
+# strncmp against the word before fails), its launch on 3 ranks commands'.
 if [ "${IM_SANITIZED:-0}" != 1 ]; then
   refused grid 2 "$start: rank 1 differs from rank 0 (rank 1's argument 3 is '32' (after --n), rank 0's '64')" \
     -n 1 "$cli" mpi-indent --n 64 --approach 5 : -n 1 "$cli" mpi-indent --n 32 --approach 5

@@ -9,6 +9,6 @@ source=$1 python=$2 gwyddion=$3
 . "$source/tests/install/scratch.sh"
 scratch_setup "$python" "$4"
 start=$SECONDS
-"$scratch/venv/bin/python" -m pip install --quiet --no-build-isolation --no-deps --no-index "$copy"
+"$scratch/venv/bin/python" -m pip install --quiet --no-build-isolation --no-deps --no-index --no-cache-dir "$copy"
 echo "pip: installed in $((SECONDS - start)) s"
 scratch_check "$source" "$gwyddion"
