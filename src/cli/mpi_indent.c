@@ -558,7 +558,7 @@ int cli_mpi_indent(int argc, char **argv)
         status = solve(&o, &result);
     /* The steps done are kept: said once, by rank 0. Each rank's code is 128 + the signal it received (128 on a
      * rank that received none); mpi_exit_code gives rank 0 the largest and the others 0, and mpirun exits with
-     * rank 0's, 128 + the signal (cli_mpi_signal). */
+     * rank 0's, 128 + the signal, when the ranks were signalled (cli_mpi_signal); 1 when mpirun was (measured). */
     if (status == IM_EINTERRUPTED)
         code = cli_interrupt_report(rank == 0);
     else if (status != IM_OK)
