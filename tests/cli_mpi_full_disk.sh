@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # mpi-indent's MPI-IO fields onto a full disk (MPI builds; skipped, exit 77, elsewhere, or where no private mount
-# namespace can be made): a 64 KiB tmpfs (in a private mount namespace, as cli_full_disk.sh) cannot hold a 128^2
-# force.npy. The run must fail naming the file and the rows not written, exit non-zero, and leave neither the
+# namespace can be made): a tmpfs (in a private mount namespace, as cli_full_disk.sh) of 64 KiB, of three quarters
+# of a 128^2 force.npy (rank 0's block fits, a later rank's does not), or full before the file (the header). The
+# run must fail naming the file and the rows not written, exit non-zero, and leave neither the
 # field nor a temporary file (findings-recheck.md, redteam6 M2: Open MPI's ompio printed its pwritev error,
 # returned success, and the run exited 0 with force.npy and gap.npy full of holes).
 #   cli_mpi_full_disk.sh PATH_TO_INDENTMAP
@@ -19,18 +20,36 @@ work=$(mktemp -d)
 trap 'umount "$work/tiny" 2>/dev/null; rm -rf "$work"' EXIT
 fail() { echo "FAILED: $*" >&2; exit 1; }
 mkdir "$work/tiny"
-mount -t tmpfs -o size=64k tmpfs "$work/tiny" || { echo "SKIPPED: cannot mount a tmpfs"; exit 77; }
 
-for k in 2 3 4; do
-  "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --n 128 --approach 3 --out "$work/tiny/out$k" \
+# The message of a short or failed write by any rank (rank k > 0's prefixed "rank k: "), in its two forms: Open
+# MPI's short count, or its error return.
+short_write='force.npy: MPI-IO (wrote [0-9]* whole rows of \[[0-9]*, [0-9]*\) into .*: expected all|write of .* failed)'
+
+# A run into a tmpfs of SIZE on K ranks must fail naming force.npy and leave neither it nor a temporary file.
+expect_refused() { # CASE K SIZE PATTERN
+  local case=$1 k=$2 size=$3 pattern=$4 out="$work/tiny/out$2"
+  mount -t tmpfs -o "size=$size" tmpfs "$work/tiny" || { echo "SKIPPED: cannot mount a tmpfs"; exit 77; }
+  [ -z "${fill:-}" ] || head -c "$fill" /dev/zero > "$work/tiny/filler" 2>/dev/null
+  "$mpiexec" -n $k --oversubscribe "$cli" mpi-indent --n 128 --approach 3 --out "$out" \
     > "$work/stdout" 2> "$work/stderr"
-  status=$?
-  [ $status -ne 0 ] || fail "$k ranks: exit 0 onto a full disk: $(ls -la "$work/tiny/out$k")"
-  grep -q "force.npy: MPI-IO wrote [0-9]* whole rows of \[0, [0-9]*) into .*: expected all" "$work/stderr" ||
-    fail "$k ranks: the message: $(cat "$work/stderr")"
-  [ ! -e "$work/tiny/out$k/force.npy" ] || fail "$k ranks: force.npy left on a full disk"
-  ! find "$work/tiny" -name '*.tmp.*' | grep -q . || fail "$k ranks: temporary files left: $(ls -a "$work/tiny/out$k")"
-  rm -rf "$work/tiny/out$k"
-done
+  local status=$?
+  [ $status -ne 0 ] || fail "$case, $k ranks: exit 0 onto a full disk: $(ls -la "$out")"
+  grep -Eq "$pattern" "$work/stderr" || fail "$case, $k ranks: the message: $(cat "$work/stderr")"
+  [ ! -e "$out/force.npy" ] || fail "$case, $k ranks: force.npy left on a full disk"
+  ! find "$work/tiny" -name '*.tmp.*' | grep -q . || fail "$case, $k ranks: temporary files left: $(ls -a "$out")"
+  umount "$work/tiny"
+}
+
+# 1. 64 KiB: not even rank 0's block of a 128^2 field (131200 bytes) on 2 to 4 ranks.
+for k in 2 3 4; do expect_refused "64 KiB" $k 64k "$short_write"; done
+
+# 2. Three quarters of the file on 4 ranks: rank 0's block (a quarter and the header) fits, a later rank's write
+# comes short (whichever writes last: the ranks write at once).
+bytes=$((128 + 128 * 128 * 8))
+expect_refused "3/4 of the file" 4 "$((bytes * 3 / 4 / 4096 * 4096))" "$short_write"
+
+# 3. A disk full before the file: rank 0's header is not written (Open MPI's short count of the header).
+fill=$((64 * 1024)) expect_refused "full before the file" 2 64k \
+  'force.npy: MPI-IO (wrote [0-9]* of the header.s [0-9]* bytes into .*: expected all|write of the header .* failed)'
 echo "a full disk under MPI-IO's fields fails the run, naming the file"
 echo "cli_mpi_full_disk: ok"

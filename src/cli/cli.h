@@ -32,13 +32,14 @@ int cli_mpi_indent(int argc, char **argv);
 
 /* SIGINT/SIGTERM/SIGHUP (interrupt.c): cli_interrupt_install makes them store their number in
  * cli_stop_signal (a second one removes the temporary files being written and ends the process);
- * cli_interrupt_exit_status is 128 + it. cli_interrupt_install_cleanup makes the first one remove
+ * cli_interrupt_report prints the interrupted work's message (im_last_error) when reporting (rank 0, or a
+ * single process) and returns the exit status, 128 + it. cli_interrupt_install_cleanup makes the first one remove
  * the temporary files and end the process (for commands with nothing to keep). 0, or -1 if
  * sigaction failed. */
 extern volatile sig_atomic_t cli_stop_signal;
 int cli_interrupt_install(void);
 int cli_interrupt_install_cleanup(void);
-int cli_interrupt_exit_status(void);
+int cli_interrupt_report(int reporting);
 
 /* Unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set, re-executes the program (argv as given) once
  * with GOMP_SPINCOUNT=CLI_SPIN_COUNT, so that idle OpenMP threads spin only briefly before they

@@ -659,9 +659,7 @@ int cli_indent(int argc, char **argv)
             fprintf(stderr, "(indentmap indent --help lists the options)\n");
         return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_USAGE;
     }
-    if (status == IM_EINTERRUPTED) {
-        fprintf(stderr, "indentmap: %s\n", im_last_error());
-        return cli_interrupt_exit_status();
-    }
+    if (status == IM_EINTERRUPTED)
+        return cli_interrupt_report(1);
     return status == IM_OK ? CLI_EXIT_OK : cli_report(status);
 }

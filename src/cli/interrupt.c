@@ -9,6 +9,7 @@
 #include "indentmap/status.h"
 
 #include <signal.h>
+#include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -60,4 +61,9 @@ int cli_interrupt_install(void) { return install(on_signal); }
 
 int cli_interrupt_install_cleanup(void) { return install(end_by_signal); }
 
-int cli_interrupt_exit_status(void) { return 128 + (int)cli_stop_signal; }
+int cli_interrupt_report(int reporting)
+{
+    if (reporting)
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+    return 128 + (int)cli_stop_signal;
+}

@@ -532,15 +532,6 @@ static int arm_signals(mpi_indent_options *o)
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }
 
-/* Rank 0 says why the run stopped; every rank's exit status is 128 + the signal it received (mpi_exit_code
- * takes the largest). */
-static int report_interruption(int rank)
-{
-    if (rank == 0)
-        fprintf(stderr, "indentmap: %s\n", im_last_error());
-    return cli_interrupt_exit_status();
-}
-
 int cli_mpi_indent(int argc, char **argv)
 {
     int provided, rank;
@@ -565,8 +556,11 @@ int cli_mpi_indent(int argc, char **argv)
         status = arm_signals(&o);
     if (status == IM_OK && parsed == 0)
         status = solve(&o, &result);
-    if (status == IM_EINTERRUPTED) /* the steps done are kept: said once, with the signal's exit status */
-        code = report_interruption(rank);
+    /* The steps done are kept: said once, by rank 0. Each rank's code is 128 + the signal it received (128 on a
+     * rank that received none); mpi_exit_code gives rank 0 the largest and the others 0, and mpirun exits with
+     * rank 0's, 128 + the signal, when the ranks were signalled (cli_mpi_signal); 1 when mpirun was (measured). */
+    if (status == IM_EINTERRUPTED)
+        code = cli_interrupt_report(rank == 0);
     else if (status != IM_OK)
         code = cli_report(status);
     else if (parsed == 0 && rank == 0 && !o.targets)

@@ -43,6 +43,7 @@ typedef struct history_run {
     char force_unit[40];       /* of loads and forces (units of E* delta^2) */
     run_figure_texts texts;    /* rank 0, with --out: what the figures carry (indent's, with this Command) */
     im_render_context *render; /* rank 0, --frames: opened before any step is solved, as indent's */
+    int record_failed;         /* rank 0: run.json could not be written (said once) */
 } history_run;
 
 /* Rank 0: the whole field of this rank's rows of values (caller frees; NULL elsewhere). Collective. */
@@ -288,7 +289,24 @@ static void write_repulsive_results(history_run *run, int done)
         json_object_set_new(run->record, "k_fit", periodic_k_fit_record(&k, run->slope_rms, "spectral"));
 }
 
-/* Rank 0: the adhesion's summary, and with --out the other results, the history figure and the record's end. */
+/* Rank 0, with --out: DIR/run.json of the done steps and what the record holds so far. After a failed or
+ * interrupted step the step's error stays the run's: a record that cannot be written is said on its own line. */
+static int record_steps(history_run *run, int done, int status)
+{
+    if (run->rank != 0 || !run->record || run->record_failed)
+        return status;
+    kept_error kept;
+    error_keep(&kept);
+    const int recorded = run_record_finish(run->o->out, run->record, done, status);
+    run->record_failed = recorded != IM_OK;
+    if (status == IM_OK)
+        return recorded;
+    if (recorded != IM_OK)
+        fprintf(stderr, "indentmap: %s\n", im_last_error());
+    return error_restore(&kept, status);
+}
+
+/* Rank 0: the adhesion's summary, and with --out the other results, the record's end and the history figure. */
 static int finish_record(history_run *run, int done, int status)
 {
     if (run->rank != 0)
@@ -305,9 +323,8 @@ static int finish_record(history_run *run, int done, int status)
         write_repulsive_results(run, done);
     if (status != IM_OK)
         error_restore(&kept, status); /* the step's error, not the fit's */
-    /* the record before the figure: after a signal mpirun kills the ranks a second later (docs/mpi.md) */
-    int outcome = run_record_finish(run->o->out, run->record, done, status);
-    outcome = status == IM_OK ? outcome : status;
+    /* the record (again, with the analyses' keys, after an interruption) before the figure: docs/mpi.md */
+    const int outcome = record_steps(run, done, status);
     error_keep(&kept); /* the step's or the record's error, not the figure's */
     write_history_figure(run, done);
     return outcome == IM_OK ? IM_OK : error_restore(&kept, outcome);
@@ -379,6 +396,8 @@ static int run_steps(history_run *run)
     if (status != IM_OK) /* done: the steps whose rows are written */
         im_fail_context(status, "step %d of %d (%s %g)", done + 1, o->target_count, o->targets_option,
                         o->targets[done]);
+    if (status == IM_EINTERRUPTED) /* mpirun kills the ranks a second after passing a signal on: the record first */
+        status = record_steps(run, done, status);
     status = mpi_collective_status(MPI_COMM_WORLD, draw_frames(run, done, status));
     if (status == IM_OK && o->out)
         status = write_last_fields(run);

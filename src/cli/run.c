@@ -65,11 +65,8 @@ static int launched_by_mpirun(void)
  * reporting rank (rank 0, or a single process) prints. */
 static int finish(int status, const im_scene *scene, int reporting)
 {
-    if (status == IM_EINTERRUPTED) {
-        if (reporting)
-            fprintf(stderr, "indentmap: %s\n", im_last_error());
-        return cli_interrupt_exit_status();
-    }
+    if (status == IM_EINTERRUPTED)
+        return cli_interrupt_report(reporting);
     if (status != IM_OK)
         return reporting                                                            ? cli_report(status)
                : status == IM_EINVAL || status == IM_EFORMAT || status == IM_ENOMEM ? CLI_EXIT_USAGE

@@ -173,27 +173,63 @@ static long make_header(int nx, int ny, char *header, size_t size)
     return total;
 }
 
-/* *written: this rank's rows written (transfer_rows). */
-static int write_file(MPI_Comm comm, const char *name, int nx, int ny, int y0, int rows, const double *data,
-                      int *written)
+/* Rank 0: the header at offset 0 of the temporary file NAME of PATH. Open MPI 4.1 returns success with a short
+ * count on a full disk (transfer_rows), so the count is compared as the rows' is. */
+static int write_header(MPI_File file, const char *path, const char *name, const char *header, int length)
 {
-    *written = 0;
+    MPI_Status transferred;
+    int written = 0;
+    int rc = MPI_File_write_at(file, 0, header, length, MPI_CHAR, &transferred);
+    if (rc == MPI_SUCCESS && MPI_Get_count(&transferred, MPI_CHAR, &written) != MPI_SUCCESS)
+        written = 0;
+    if (rc != MPI_SUCCESS)
+        return im_fail(IM_EIO, "%s: MPI-IO write of the header into %s failed", path, name);
+    if (written != length)
+        return im_fail(IM_EIO,
+                       "%s: MPI-IO wrote %d of the header's %d bytes into %s: expected all (a full disk or "
+                       "quota?)",
+                       path, written, length, name);
+    return IM_OK;
+}
+
+/* This rank's rows [y0, y0 + rows) after the header's LENGTH bytes, all of them or an error naming those written. */
+static int write_rows(MPI_File file, const char *path, const char *name, long length, int nx, int y0, int rows,
+                      const double *data)
+{
+    int written;
+    int rc = transfer_rows(file, length, nx, y0, rows, (double *)data, 1, &written);
+    if (rc != MPI_SUCCESS)
+        return im_fail(IM_EIO, "%s: MPI-IO write of %s failed", path, name);
+    if (written != rows)
+        return im_fail(IM_EIO,
+                       "%s: MPI-IO wrote %d whole rows of [%d, %d) into %s: expected all (a full disk or quota?)",
+                       path, written, y0, y0 + rows, name);
+    return IM_OK;
+}
+
+/* The temporary file NAME of PATH, this rank's part: the header (rank 0) and its rows. Collective (open, size,
+ * sync, close); the status is this rank's. */
+static int write_file(MPI_Comm comm, const char *path, const char *name, int nx, int ny, int y0, int rows,
+                      const double *data)
+{
     int rank;
     MPI_Comm_rank(comm, &rank);
     MPI_File file;
-    int rc = MPI_File_open(comm, name, MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
-    if (rc != MPI_SUCCESS)
-        return rc;
+    if (MPI_File_open(comm, name, MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file) != MPI_SUCCESS)
+        return im_fail(IM_EIO, "%s: MPI-IO cannot open %s", path, name);
     char header[256];
     long length = make_header(nx, ny, header, sizeof header);
-    rc = MPI_File_set_size(file, (MPI_Offset)length + (MPI_Offset)nx * ny * (MPI_Offset)sizeof(double));
-    if (rc == MPI_SUCCESS && rank == 0)
-        rc = MPI_File_write_at(file, 0, header, (int)length, MPI_CHAR, MPI_STATUS_IGNORE);
-    int rc_rows = transfer_rows(file, length, nx, y0, rows, (double *)data, 1, written);
-    rc = rc != MPI_SUCCESS ? rc : rc_rows;
+    int rc = MPI_File_set_size(file, (MPI_Offset)length + (MPI_Offset)nx * ny * (MPI_Offset)sizeof(double));
+    int status = rc == MPI_SUCCESS ? IM_OK : im_fail(IM_EIO, "%s: MPI-IO cannot size %s", path, name);
+    if (status == IM_OK && rank == 0)
+        status = write_header(file, path, name, header, (int)length);
+    if (status == IM_OK)
+        status = write_rows(file, path, name, length, nx, y0, rows, data);
     int rc_sync = MPI_File_sync(file);
     int rc_close = MPI_File_close(&file);
-    return rc != MPI_SUCCESS ? rc : rc_sync != MPI_SUCCESS ? rc_sync : rc_close;
+    if (status == IM_OK && (rc_sync != MPI_SUCCESS || rc_close != MPI_SUCCESS))
+        status = im_fail(IM_EIO, "%s: MPI-IO write of %s failed", path, name);
+    return status;
 }
 
 /* Rank 0 opens the output as every writer does (io.h's im_atomic_open: a symbolic link written through, a
@@ -218,14 +254,7 @@ int im_mpi_npy_write_rows(MPI_Comm comm, const char *path, int nx, int ny, int y
     if (status != IM_OK)
         return status;
     MPI_Bcast(file.temp_path, sizeof file.temp_path, MPI_CHAR, 0, comm);
-    int written, rc = write_file(comm, file.temp_path, nx, ny, y0, rows, data, &written);
-    if (rc != MPI_SUCCESS)
-        status = im_fail(IM_EIO, "%s: MPI-IO write of %s failed", path, file.temp_path);
-    else if (written != rows)
-        status = im_fail(IM_EIO,
-                         "%s: MPI-IO wrote %d whole rows of [%d, %d) into %s: expected all (a full disk or quota?)",
-                         path, written, y0, y0 + rows, file.temp_path);
-    status = mpi_collective_status(comm, status);
+    status = mpi_collective_status(comm, write_file(comm, path, file.temp_path, nx, ny, y0, rows, data));
     if (rank == 0 && status == IM_OK)
         status = im_atomic_commit(&file);
     else if (rank == 0)
