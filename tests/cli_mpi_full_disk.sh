@@ -40,7 +40,8 @@ expect_refused() { # CASE K SIZE PATTERN
   umount "$work/tiny"
 }
 
-# 1. 64 KiB: not even rank 0's block of a 128^2 field (131200 bytes) on 2 to 4 ranks.
+# 1. 64 KiB for a 128^2 field of 131200 bytes: rank 0's block does not fit on 2 ranks; on 3 and 4 it may, and a
+# later rank's write comes short (any rank's message is taken).
 for k in 2 3 4; do expect_refused "64 KiB" $k 64k "$short_write"; done
 
 # 2. Three quarters of the file on 4 ranks: rank 0's block (a quarter and the header) fits, a later rank's write

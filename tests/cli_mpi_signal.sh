@@ -44,7 +44,11 @@ check_interrupted() { # CASE OUT STATUS
 # sanitizers, where rank 0's drawing deadlocks in llvmpipe (CMakeLists.txt, cli_mpi_figures): there without frames.
 frames=--frames
 [ "${IM_SANITIZED:-0}" != 1 ] || frames=
-OMPI_MCA_odls_base_sigkill_timeout=5 timeout 120 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 128 \
+# Each case's bound on mpirun (a hang is what case 2 looks for): 120 s, 300 s under the sanitizers, where Open MPI's
+# start and LeakSanitizer's exits take seconds per rank on a loaded machine.
+limit=120
+[ "${IM_SANITIZED:-0}" != 1 ] || limit=300
+OMPI_MCA_odls_base_sigkill_timeout=5 timeout $limit "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 128 \
   --approach 1:10:200 --tol 1e-8 $frames --out "$work/out" > "$work/stdout" 2> "$work/stderr" &
 launcher=$!
 for _ in $(seq 2400); do [ "$(wc -l 2>/dev/null < "$work/out/history.csv" || echo 0)" -gt 3 ] && break; sleep 0.05; done
@@ -73,7 +77,7 @@ fi
 # before each step, the solver's each iteration), or they wait for each other in collectives that never match;
 # timeout ends such a hang. The signal is sent as soon as rank 1's handler is installed (SigCgt), so that it lands
 # before a step as often as inside one.
-timeout 120 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 256 --approach 1:10:200 --tol 1e-8 \
+timeout $limit "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 256 --approach 1:10:200 --tol 1e-8 \
   --out "$work/one" > "$work/stdout" 2> "$work/stderr" &
 launcher=$!
 rank1=
@@ -92,13 +96,14 @@ status=$?
 check_interrupted "SIGTERM to rank 1 alone" "$work/one" $status
 # 3. run.json cannot be written (a folder in its place, made while the ranks are frozen): its failure on a line of
 # its own, and still the step's message (the record's error had replaced it: not a word of the interruption).
-timeout 120 "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 64 --approach 1:10:200 --tol 1e-8 \
+timeout $limit "$mpiexec" -n 2 --oversubscribe "$cli" mpi-indent --n 64 --approach 1:10:200 --tol 1e-8 \
   --out "$work/norecord" > "$work/stdout" 2> "$work/stderr" &
 launcher=$!
 for _ in $(seq 2400); do [ "$(wc -l 2>/dev/null < "$work/norecord/history.csv" || echo 0)" -gt 3 ] && break; sleep 0.05; done
 ranks=$(pgrep -P "$(pgrep -P $launcher)")
+[ "$(echo $ranks | wc -w)" = 2 ] || fail "run.json unwritable: the ranks under mpirun: '$ranks'"
 kill -STOP $ranks
-mkdir -p "$work/norecord/run.json/kept"
+mkdir -p "$work/norecord/run.json/kept" || fail "run.json unwritable: could not put a folder in its place"
 kill -TERM $ranks
 kill -CONT $ranks
 wait $launcher
