@@ -121,16 +121,17 @@ printf '# Width: 3 um\n# Height: 6 um\n1 2 3\n4 5 6\n7 8 9\n' >"$dir/rect.txt"
 check "non-square pixels refused" expect_exit 2 "rect.txt: Width / columns and Height / rows: non-square pixels" \
   "$cli" surface --stats "$dir/rect.txt"
 check "the refusal names the spacings, the tolerance and the option" expect_exit 2 \
-  "x spacing 1 and y spacing 2 um differ by 0.667 of their mean, beyond the 1.53e-05 (2^-16) that rounding explains: resample them onto square pixels (--resample-square;" \
+  "x spacing 1 and y spacing 2 um differ by 0.667 of their mean, beyond the 0.002 (the extents' printed digits) that rounding explains: resample them onto square pixels (--resample-square;" \
   "$cli" surface --stats "$dir/rect.txt"
 
 # Square pixels (issue 25): spacings within 2^-16 of each other read as square (their mean, the
-# difference stated); beyond, --resample-square resamples onto the finer spacing (1 x 2 um: 3 x 5 of 1 um).
+# difference stated; extents printed with 6 digits, which leave less open than 2^-16; "3 um" above leaves
+# the most a header may, 0.002); beyond, --resample-square resamples onto the finer spacing (1 x 2 um: 3 x 5 of 1 um).
 check "--resample-square" bash -c "'$cli' surface --stats '$dir/rect.txt' --resample-square | grep -q 'grid             3 x 5, delta = 1 '"
 check "--resample-square is stated" bash -c "'$cli' surface --stats '$dir/rect.txt' --resample-square | grep -q 'pixels           3 x 3 of 1 x 2 .*m, resampled (bilinear) onto square pixels of 1 .*m'"
 check "--resample-square keeps the values" bash -c "'$cli' surface --stats '$dir/rect.txt' --resample-square --detrend none --window none | grep -q 'mean             5$'"
 check "--resample-square on generation refused" expect_exit 2 "use them with --stats" "$cli" surface --n 16 --resample-square
-printf '# Width: 3 um\n# Height: 3.00003 um\n1 2 3\n4 5 6\n7 8 9\n' >"$dir/near.txt"
+printf '# Width: 3.00000 um\n# Height: 3.00003 um\n1 2 3\n4 5 6\n7 8 9\n' >"$dir/near.txt"
 check "near-square pixels read as square" bash -c "'$cli' surface --stats '$dir/near.txt' | grep -q 'grid             3 x 3, delta = 1.00001 '"
 check "near-square pixels stated" bash -c "'$cli' surface --stats '$dir/near.txt' | grep -q 'pixels           x spacing 1 and y spacing 1.00001 .*m differ by 1e-05 of their mean, within the 1.53e-05 that rounding explains: read as square, of their mean'"
 check "square pixels say nothing" bash -c "! '$cli' surface --stats '$dir/s.npy' | grep -q '^pixels'"

@@ -145,10 +145,13 @@ static void impossible_grids_are_refused(void **state)
 }
 
 /* A Gwyddion text export of 4 x 4 heights 0..15, Width 4 µm and Height 4 (1 + stretch) µm. */
+/* Both extents printed to 17 digits, which leave the spacings open by less than 2^-16: the tolerance is
+ * IM_SQUARE_PIXEL_TOLERANCE itself. */
 static const char *write_export(const char *name, double stretch)
 {
     char text[512];
-    snprintf(text, sizeof text, "# Width: 4 um\n# Height: %.17g um\n0 1 2 3\n4 5 6 7\n8 9 10 11\n12 13 14 15\n",
+    snprintf(text, sizeof text,
+             "# Width: 4.0000000000000000 um\n# Height: %.16f um\n0 1 2 3\n4 5 6 7\n8 9 10 11\n12 13 14 15\n",
              4.0 * (1.0 + stretch));
     test_write_bytes(test_path(name), text, strlen(text));
     return test_path(name);
@@ -182,6 +185,59 @@ static void spacings_within_rounding_are_square(void **state)
     for (size_t i = 0; i < sizeof phrases / sizeof *phrases; ++i)
         if (!strstr(message, phrases[i]))
             fail_msg("message '%s' lacks '%s'", message, phrases[i]);
+}
+
+/* A Gwyddion text export of columns x rows points whose header prints the extents width and height. */
+static const char *write_printed_export(const char *name, const char *width, const char *height, int columns,
+                                        int rows)
+{
+    size_t size = 128 + (size_t)columns * rows * 4;
+    char *text = malloc(size);
+    assert_non_null(text);
+    int used = snprintf(text, size, "# Width: %s\n# Height: %s\n# Value units: m\n", width, height);
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i)
+            used += snprintf(text + used, size - (size_t)used, "%d%c", (i * 7 + j * 3) % 10,
+                             i + 1 < columns ? ' ' : '\n');
+    test_write_bytes(test_path(name), text, (size_t)used);
+    free(text);
+    return test_path(name);
+}
+
+/* A header that prints its extents with few digits leaves their ratio open by half a unit of each last
+ * digit: al3d-1.al3d exported by Gwyddion as text said "Width: 87.6 µm" and "Height: 129.7 µm" for 200 x
+ * 296 points (spacings 0.438 and 0.438176 µm, 4.0e-4 apart; its .gsf export reads square), refused at
+ * 2^-16. The tolerance is 0.05 / 87.6 + 0.05 / 129.7 there; the same extents printed to more digits, a
+ * hand-written 5% difference and the same file with --delta are held to 2^-16 or the limit. */
+static void printed_digits_widen_the_tolerance(void **state)
+{
+    (void)state;
+    im_field *f = NULL;
+    im_surface_read_info info;
+    const char *al3d = write_printed_export("al3d.txt", "87.6 \u00b5m", "129.7 \u00b5m", 200, 296);
+    if (im_surface_read_with(al3d, NULL, &f, &info) != IM_OK)
+        fail_msg("%s", im_last_error());
+    const double dx = 87.6 / 200, dy = 129.7 / 296, open = 0.05 / 87.6 + 0.05 / 129.7;
+    assert_close(info.square_tolerance, open, 1e-12);
+    assert_close(info.spacing_difference, fabs(dx - dy) / (0.5 * (dx + dy)), 1e-12);
+    assert_true(info.spacing_difference > IM_SQUARE_PIXEL_TOLERANCE && info.spacing_difference < open);
+    assert_close(f->delta, 0.5 * (dx + dy), 1e-15);
+    assert_string_equal(info.resampled, "");
+    im_field_free(f);
+    const char *exponent = write_printed_export("exponent.txt", "8.76e-5 m", "1.297e-4 m", 200, 296);
+    assert_int_equal(im_surface_read_with(exponent, NULL, &f, &info), IM_OK);
+    assert_close(info.square_tolerance, open, 1e-12);
+    im_field_free(f);
+    const char *digits = write_printed_export("digits.txt", "87.600000 \u00b5m", "129.700000 \u00b5m", 200, 296);
+    assert_int_equal(im_surface_read_with(digits, NULL, &f, &info), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "beyond the 1.53e-05 (2^-16) that rounding explains"));
+    const char *hand = write_printed_export("hand.txt", "4 um", "4.2 um", 4, 4);
+    assert_int_equal(im_surface_read_with(hand, NULL, &f, &info), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "differ by 0.0488 of their mean, beyond the 0.002 (the extents' printed "
+                                            "digits) that rounding explains"));
+    im_surface_read_options exact = {.set = {.delta_x = 0.438, .delta_y = 0.438175676}};
+    assert_int_equal(im_surface_read_with(al3d, &exact, &f, &info), IM_EFORMAT);
+    assert_non_null(strstr(im_last_error(), "--delta: non-square pixels"));
 }
 
 /* Width 3 µm, Height 6 µm on 3 x 3 points: pixels 1 x 2 µm, resampled onto 3 x 5 of 1 µm (rows 1
@@ -277,6 +333,7 @@ int main(void)
         cmocka_unit_test(a_missing_point_spreads_to_the_nodes_it_touches),
         cmocka_unit_test(impossible_grids_are_refused),
         cmocka_unit_test(spacings_within_rounding_are_square),
+        cmocka_unit_test(printed_digits_widen_the_tolerance),
         cmocka_unit_test(resample_square_reads_rectangular_pixels),
         cmocka_unit_test(an_instrument_file_with_tall_pixels),
     };

@@ -148,8 +148,15 @@ double im_length_unit_metres(const char *name, const char **canonical);
  * grid of 1.23456789e-8 m pixels, printed "6.32099e-06" and "3.16049e-06", differs by 1.6e-6; 2^-20
  * (1e-6) would refuse it. Taking the mean misplaces a point by at most 2^-17 spacings per spacing
  * from the first: half a pixel across the largest grid (IM_FIELD_MAX_SIDE), 0.03 across 4096.
+ * A text header that prints its extents with fewer digits (a Gwyddion export's "# Width: 87.6 µm" and
+ * "# Height: 129.7 µm", 200 x 296 points: spacings 0.438 and 0.438176 µm, 4e-4 apart) leaves their ratio
+ * open by half a unit of each last digit (0.05 / 87.6 + 0.05 / 129.7 = 9.6e-4): the tolerance is then
+ * that, up to IM_SQUARE_PIXEL_PRINTED_LIMIT (im_surface_read_info.square_tolerance says which applied).
  * Beyond it the pixels are refused unless resample_square is set. */
 #define IM_SQUARE_PIXEL_TOLERANCE (1.0 / 65536.0) /* 2^-16 */
+/* The most a header's printed digits may widen the tolerance: 2e-3, two 4-digit extents ("1.000 µm":
+ * 5e-4 each) with room; a hand-written "# Width: 4 um" and "# Height: 4.2 um" (5% apart) stays refused. */
+#define IM_SQUARE_PIXEL_PRINTED_LIMIT 2e-3
 
 /* Which index of a .npy array is x. indentmap writes and reads arrays of shape (ny, nx), rows along y
  * (the first index is y, as NumPy images are); SurfaceTopography's heights() are indexed [x, y], shape
@@ -194,6 +201,8 @@ typedef struct im_surface_read_info {
     char conversion[96];       /* how the stored values were converted, e.g. "'>i2' (int16) converted to
                                 float64; Fortran order transposed to C order"; "" when none */
     double spacing_difference; /* |used.delta_x - used.delta_y| / their mean: 0 for square pixels */
+    double square_tolerance;   /* the difference up to which pixels were square: IM_SQUARE_PIXEL_TOLERANCE, or
+                                more where a header's printed digits leave the spacings open (above) */
     char resampled[16];        /* how the grid was brought to square pixels: "bilinear" (resample_square,
                                 spacing_difference beyond IM_SQUARE_PIXEL_TOLERANCE), or "" when it
                                 was not resampled */

@@ -200,7 +200,9 @@ def read(path, channel=None, fill=False, resample_square=False, npy_order=None, 
     formats ignore it.
 
     Pixels whose x and y spacings differ by at most 2^-16 of their mean (what rounding in headers and
-    float32 storage explains) are read as square, of their mean spacing. Beyond that a FormatError names
+    float32 storage explains) are read as square, of their mean spacing; a text header that prints its
+    extents with fewer digits (Gwyddion's "# Width: 87.6 µm") widens that to what the digits leave open,
+    up to 0.002. Beyond that a FormatError names
     both spacings, unless ``resample_square=True``: then the heights are resampled bilinearly onto
     square pixels of the finer spacing, within the stored extent (more rows or columns; ``delta`` is
     that spacing).

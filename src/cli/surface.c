@@ -187,8 +187,9 @@ static void print_pixels(const im_surface_read_info *info)
                info->resampled_delta, space, u->lateral);
     else if (info->spacing_difference > 0.0)
         printf("pixels           x spacing %.9g and y spacing %.9g%s%s differ by %.3g of their mean, within the %.3g "
-               "that rounding explains: read as square, of their mean\n",
-               u->delta_x, u->delta_y, space, u->lateral, info->spacing_difference, IM_SQUARE_PIXEL_TOLERANCE);
+               "%sthat rounding explains: read as square, of their mean\n",
+               u->delta_x, u->delta_y, space, u->lateral, info->spacing_difference, info->square_tolerance,
+               info->square_tolerance > IM_SQUARE_PIXEL_TOLERANCE ? "(the extents' printed digits) " : "");
 }
 
 static const char *taper_name(const im_taper *taper)

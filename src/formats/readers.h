@@ -12,6 +12,9 @@
 typedef struct surface_stated {
     im_surface_units units;      /* what the file states (zeros and "" where nothing) */
     const char *spacing_keys;    /* e.g. "XReal / XRes and YReal / YRes", for messages */
+    double spacing_rounding;     /* how far the printed digits of the stated extents leave the ratio of the
+                                x and y spacings open, relative (a text header's "87.6 µm" and
+                                "129.7 µm": 9.6e-4); 0 for spacings stored as binary numbers */
     const char *lateral_key;     /* e.g. "XYUnits" */
     const char *height_key;      /* e.g. "ZUnits" */
     int height_unit_unknown;     /* 1: heights with no stated unit have an unknown one (a .gsf without

@@ -17,9 +17,28 @@ static const char *comment_value(const char *line, const char *key)
     return strncmp(at, key, length) == 0 ? at + length + strspn(at + length, " \t") : NULL;
 }
 
-/* A length > 0 followed by an optional unit, as Gwyddion's extents and Vision's pixel size state it. */
+/* Half a unit of the last digit printed in the number text .. end, relative to its value number > 0:
+ * how far the printed digits leave the value open ("87.6": 0.05 / 87.6, "1.250e-6": 0.0005 / 1.25). */
+static double printed_rounding(const char *text, const char *end, double number)
+{
+    const char *point = NULL, *exponent = end;
+    for (const char *c = text; c < end; ++c) {
+        if (*c == '.')
+            point = c;
+        else if (*c == 'e' || *c == 'E') {
+            exponent = c;
+            break;
+        }
+    }
+    long decimals = point ? (long)(exponent - point - 1) : 0;
+    long power = exponent < end ? strtol(exponent + 1, NULL, 10) : 0;
+    return 0.5 * pow(10.0, (double)(power - decimals)) / number;
+}
+
+/* A length > 0 followed by an optional unit, as Gwyddion's extents and Vision's pixel size state it;
+ * rounding (unless NULL): what its printed digits leave open (printed_rounding). */
 static int parse_length(const char *path, long line_number, const char *key, const char *value, double *length,
-                        char *unit, size_t unit_size)
+                        double *rounding, char *unit, size_t unit_size)
 {
     char *end;
     double number = number_parse(value, &end);
@@ -29,18 +48,20 @@ static int parse_length(const char *path, long line_number, const char *key, con
         return im_fail(IM_EFORMAT, "%s:%ld: %s '%.40s': expected a finite length > 0 and a unit", path, line_number,
                        key, value);
     *length = number;
+    if (rounding)
+        *rounding = printed_rounding(value, end, number);
     snprintf(unit, unit_size, "%s", words == 1 ? unit_text : "");
     return IM_OK;
 }
 
 /* One extent of a Gwyddion export under any of its spellings (English, German). */
 static int parse_extent(const char *path, long line_number, const char *line, const char *const keys[2],
-                        double *extent, char *unit, size_t unit_size)
+                        double *extent, double *rounding, char *unit, size_t unit_size)
 {
     for (int k = 0; k < 2; ++k) {
         const char *value = comment_value(line, keys[k]);
         if (value)
-            return parse_length(path, line_number, keys[k], value, extent, unit, unit_size);
+            return parse_length(path, line_number, keys[k], value, extent, rounding, unit, unit_size);
     }
     return IM_OK;
 }
@@ -77,11 +98,11 @@ int text_header_parse_comment(const char *path, long line_number, const char *li
 {
     static const char *const WIDTH[2] = {"Width:", "Breite:"}, *const HEIGHT[2] = {"Height:", "H\u00f6he:"};
     parse_shape_comment(line, line_number, header);
-    int status = parse_extent(path, line_number, line, WIDTH, &header->width, header->width_unit,
-                              sizeof header->width_unit);
+    int status = parse_extent(path, line_number, line, WIDTH, &header->width, &header->width_rounding,
+                              header->width_unit, sizeof header->width_unit);
     if (status == IM_OK)
-        status = parse_extent(path, line_number, line, HEIGHT, &header->height, header->height_unit,
-                              sizeof header->height_unit);
+        status = parse_extent(path, line_number, line, HEIGHT, &header->height, &header->height_rounding,
+                              header->height_unit, sizeof header->height_unit);
     const char *value = comment_value(line, "Value units:");
     if (status == IM_OK && value)
         status = parse_unit(path, line_number, "Value units", value, header->value_unit, sizeof header->value_unit);
@@ -131,7 +152,7 @@ int text_header_parse_vision(const char *path, long line_number, const char *lin
     if (vision_value(line, "h"))
         return parse_vision_grid(path, line_number, line, header);
     if ((value = vision_value(line, "pixel size")))
-        return parse_length(path, line_number, "pixel size", value, &header->pixel_size, header->pixel_unit,
+        return parse_length(path, line_number, "pixel size", value, &header->pixel_size, NULL, header->pixel_unit,
                             sizeof header->pixel_unit);
     if ((value = vision_value(line, "data unit")))
         return parse_unit(path, line_number, "data unit", value, header->data_unit, sizeof header->data_unit);
@@ -188,6 +209,8 @@ static int gwyddion_units(const char *path, const text_header *header, long colu
         stated->units.delta_x = header->width > 0.0 ? header->width / (double)columns : stated->units.delta_y;
         memcpy(stated->units.lateral, header->width > 0.0 ? header->width_unit : header->height_unit,
                sizeof stated->units.lateral);
+        if (header->width > 0.0 && height > 0.0) /* the ratio of the spacings is open by both roundings */
+            stated->spacing_rounding = header->width_rounding + header->height_rounding;
     }
     memcpy(stated->units.height, header->value_unit, sizeof stated->units.height);
     stated->unstated_height = "no '# Value units:' line"; /* Gwyddion states it: a line cut, or a hand edit */

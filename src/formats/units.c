@@ -72,6 +72,7 @@ static surface_stated merge_overrides(const surface_stated *stated, const im_sur
         merged.units.delta_x = set->delta_x;
         merged.units.delta_y = set->delta_y > 0.0 ? set->delta_y : set->delta_x;
         merged.spacing_keys = "--delta";
+        merged.spacing_rounding = 0.0; /* set exactly */
     }
     if (set && set->lateral[0] && !unit_converts(stated, options)) {
         memcpy(merged.units.lateral, set->lateral, sizeof merged.units.lateral);
@@ -92,19 +93,25 @@ static double spacing_difference(const im_surface_units *u)
     return u->delta_x > 0.0 ? fabs(u->delta_x - u->delta_y) / (0.5 * (u->delta_x + u->delta_y)) : 0.0;
 }
 
-/* Pixels square within IM_SQUARE_PIXEL_TOLERANCE (difference: spacing_difference), or to be
- * resampled; otherwise refused. */
-static int check_square_pixels(const char *path, const surface_stated *s, double difference, int resample)
+/* The difference up to which pixels are square (formats.h, IM_SQUARE_PIXEL_TOLERANCE). */
+static double square_tolerance(const surface_stated *s)
 {
-    if (difference <= IM_SQUARE_PIXEL_TOLERANCE || resample)
+    return fmax(IM_SQUARE_PIXEL_TOLERANCE, fmin(s->spacing_rounding, IM_SQUARE_PIXEL_PRINTED_LIMIT));
+}
+
+/* Pixels square within tolerance (difference: spacing_difference), or to be resampled; otherwise refused. */
+static int check_square_pixels(const char *path, const surface_stated *s, double difference, double tolerance,
+                               int resample)
+{
+    if (difference <= tolerance || resample)
         return IM_OK;
     const char *unit = s->units.lateral;
     return im_fail(IM_EFORMAT,
                    "%s: %s: non-square pixels, x spacing %.9g and y spacing %.9g%s%s differ by %.3g "
-                   "of their mean, beyond the %.3g (2^-16) that rounding explains: resample them onto square pixels "
+                   "of their mean, beyond the %.3g %s that rounding explains: resample them onto square pixels "
                    "(--resample-square; resample_square = yes in a scene, resample_square=True in Python)",
                    path, s->spacing_keys, s->units.delta_x, s->units.delta_y, unit[0] ? " " : "", unit, difference,
-                   IM_SQUARE_PIXEL_TOLERANCE);
+                   tolerance, tolerance > IM_SQUARE_PIXEL_TOLERANCE ? "(the extents' printed digits)" : "(2^-16)");
 }
 
 /* Metres per unit of a stated unit, or 0 after recording an error naming its key. */
@@ -251,12 +258,12 @@ int surface_finish(const char *path, im_field *field, const surface_stated *stat
 {
     surface_stated merged = merge_overrides(stated, options);
     const int resample = options && options->resample_square;
-    const double difference = spacing_difference(&merged.units);
+    const double difference = spacing_difference(&merged.units), tolerance = square_tolerance(&merged);
     double factor = 1.0, ratio = 1.0;
     /* what the file states wrong (a unit that is not a length), then its pixels, then what it leaves unstated */
     int status = apply_units(path, field, &merged, options, &factor, &ratio);
     if (status == IM_OK)
-        status = check_square_pixels(path, &merged, difference, resample);
+        status = check_square_pixels(path, &merged, difference, tolerance, resample);
     if (status == IM_OK)
         status = check_height_unit_stated(path, &merged);
     long filled = 0;
@@ -277,6 +284,7 @@ int surface_finish(const char *path, im_field *field, const surface_stated *stat
                                    .height_factor = factor,
                                    .filled = filled,
                                    .spacing_difference = difference,
+                                   .square_tolerance = tolerance,
                                    .resampled_delta = resampling ? field->delta : 0.0,
                                    .stored_nx = stored_nx,
                                    .stored_ny = stored_ny};

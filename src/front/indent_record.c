@@ -20,7 +20,7 @@ static json_t *pixels_record(const im_surface_read_info *info)
                                                        "stored_ny", info->stored_ny)
                                            : json_null();
     return json_pack("{s:f, s:f, s:f, s:f, s:o}", "delta_x", info->used.delta_x, "delta_y", info->used.delta_y,
-                     "relative_difference", info->spacing_difference, "tolerance", IM_SQUARE_PIXEL_TOLERANCE,
+                     "relative_difference", info->spacing_difference, "tolerance", info->square_tolerance,
                      "resampled", resampled);
 }
 
