@@ -117,14 +117,14 @@ check "unreachable first load: 'no step before it'" grep -q "step 1 of 1 (load 1
 "$cli" indent --smooth --n 64 --punch flat --radius 40 --approach 1 --out "$dir/wide" >/dev/null 2>"$dir/err"
 check "flat face past the edge: exit 1" test $? -eq 1
 check "flat face past the edge: refused before solving, naming --radius and the room" \
-    grep -qF "approach 1 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0), so any step beyond that touch has contact there (its face's radius 40 (indent --radius) reaches the 31 from its axis to the edge patches' centres)" "$dir/err"
+    grep -qF "approach 1 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0), so any step beyond that touch has contact there (its face's radius 40 (--radius) reaches the 31 from its axis to the edge patches' centres)" "$dir/err"
 check "flat face past the edge: not solved (no post-solve edge message)" bash -c '! grep -q "reached the edge" "$1"' _ "$dir/err"
 "$cli" indent --smooth --n 64 --punch flat --radius 40 --load 10 --out "$dir/wide_load" >/dev/null 2>"$dir/err"
 check "flat face past the edge under load control: refused before solving" \
     grep -q "load 10 cannot be reached on the 64 x 64 surface without contact at its edge" "$dir/err"
 # The room is to the edge patches' centres (31 here): radius 31 touches them, 30.9 does not.
 "$cli" indent --smooth --n 64 --punch flat --radius 31 --approach 1 --out "$dir/reaches" >/dev/null 2>"$dir/err"
-check "flat face reaching the edge patches' centres: refused" grep -q "radius 31 (indent --radius) reaches the 31" "$dir/err"
+check "flat face reaching the edge patches' centres: refused" grep -q "radius 31 (--radius) reaches the 31" "$dir/err"
 "$cli" indent --smooth --n 64 --punch flat --radius 30.9 --approach 1 --out "$dir/fits" >/dev/null 2>"$dir/err"
 check "flat face inside the room solves" test $? -eq 0
 # On a rough surface a face wider than the grid touches its highest points first: here one 0.243 under the

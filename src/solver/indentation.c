@@ -1048,7 +1048,7 @@ static int least_gap_on_edge(const im_indentation *run, double least, int *x, in
  * that touch. Such a patch, were it free, would be displaced by at least the approach beyond the touch, more
  * than any loaded patch is, which a compressive load cannot do (the half-space's displacement is largest on
  * its load: the maximum principle of the 1/r kernel). It is the smooth surface under a flat punch whose face
- * passes the edge (all of the face at the least gap, U7). Other edge patches within the approach may stay
+ * reaches the edge patches (all of the face at the least gap, U7). Other edge patches within the approach may stay
  * free (a neighbour's load lifts them), as a rough surface under a face wider than the grid often does: the
  * solve and check_edge decide those. Not with adhesion (its tension is a signed load), nor on a periodic
  * cell (no edge). */
@@ -1075,7 +1075,7 @@ static int check_first_touch_inside(const im_indentation *run, double target)
     char reach[192];
     if (run->punch.kind == IM_PUNCH_FLAT)
         snprintf(reach, sizeof reach,
-                 "its face's radius %g (indent --radius) reaches the %g from its axis to the edge patches' "
+                 "its face's radius %g (--radius) reaches the %g from its axis to the edge patches' "
                  "centres",
                  run->punch.radius, room);
     else
