@@ -113,4 +113,12 @@ refused bad_loads "--load '2,x': 'x' is not a number" --load 2,x
 refused tension "--load '2,-1'" --load 2,-1 --hardness 0.1
 refused profile_alone "--punch profile and --profile FILE go together" --approach 1 --punch profile
 refused profile_on_cell "--profile are the half-space's" --periodic --pressure 0.1 --profile "$work/profile.txt"
+# A step whose first touch lies on the edge, refused before its solve over the ranks as serially (U7): the smooth
+# surface under a flat face past the edge, on 3 ranks (the edge row 0 on rank 0, row 63 on another).
+timeout 300 "$mpiexec" -n 3 --oversubscribe "$cli" mpi-indent --n 64 --slope 0 --punch flat --radius 40 \
+  --approach 0.5,1 > /dev/null 2> "$work/first_touch.err"
+status=$?
+[ $status -eq 1 ] || fail "first touch on the edge: exit $status, expected 1: $(cat "$work/first_touch.err")"
+grep -qF "approach 0.5 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0)" "$work/first_touch.err" ||
+  fail "first touch on the edge: not refused before solving: $(cat "$work/first_touch.err")"
 echo "mpi-indent's histories of the half-space are indent's on 1 and 3 ranks"

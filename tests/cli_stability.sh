@@ -53,6 +53,17 @@ check "a contact radius of 7 patches is said to be unresolved, naming it" \
 "$cli" indent --smooth --n 256 --alpha 89.9999 --approach 1e-6,2e-6,4e-6,2e-5 --out "$dir/tiny" >/dev/null 2>"$dir/err"
 check "contacts of a few patches are said to be unresolved, every step on one line" \
   test "$(grep -c "steps 1 (1 patch), 2 (1 patch), 3 (9 patches), 4 (177 patches, radius 7.5): the contact covers too few patches for the grid to resolve it" "$dir/err")" = 1 -a "$(grep -c "too few" "$dir/err")" = 1
+# The notice names the punch it is about (U7: a flat punch's was the cone's): a flat punch's face of radius 1
+# covers 5 patches, and the notice's numbers are this run's own, A/A_punch = 5 / pi and N / (2 E* a w).
+"$cli" indent --smooth --n 64 --punch flat --radius 1 --approach 1 --out "$dir/flat1" >/dev/null 2>"$dir/err"
+check "a flat punch's notice is the flat punch's" \
+  grep -qF "step 1 (5 patches): the contact covers too few patches for the grid to resolve it (a smooth flat punch's face of radius 1 patch covers 5 patches, its area A/A_punch 1.59 and its load 1.18x Boussinesq's;" "$dir/err"
+check "a flat punch's notice does not speak of a cone" bash -c '! grep -q "cone" "$1"' _ "$dir/err"
+check "the flat punch's numbers are the run's: 5 patches, A/A_punch 1.59, N / (2 a w) 1.18" \
+  awk -F, 'NR == 2 { exit !($5 == 5 && sprintf("%.2f", $6) == "1.59" && sprintf("%.2f", $3 / 2) == "1.18") }' "$dir/flat1/history.csv"
+"$cli" indent --smooth --n 64 --punch sphere --radius 50 --approach 0.3 --out "$dir/sphere" >/dev/null 2>"$dir/err"
+check "a sphere's notice gives the cone's numbers as the cone's" \
+  grep -qF "the contact covers too few patches for the grid to resolve it (as measured for a cone: a smooth cone carries" "$dir/err"
 
 # ---- roughness ----
 for slope in 0 1e-6 1.0; do
@@ -100,6 +111,39 @@ check "unreachable load: 'the step before is in'" grep -q "; the step before is 
 check "contact at the edge: 'the 2 steps before are in'" grep -q "; the 2 steps before are in $dir/edge/history.csv" "$dir/err.edge"
 "$cli" indent --smooth --n 32 --load 100000 --out "$dir/first" >/dev/null 2>"$dir/err.first"
 check "unreachable first load: 'no step before it'" grep -q "step 1 of 1 (load 100000; no step before it was solved)" "$dir/err.first"
+# A flat punch's face wider than the room (U7): on a smooth surface all of the face touches at once, the edge
+# patches under it too, so the step is refused before solving (it was solved, then failed at the edge:
+# 1.0 s at n = 512, radius 320; 0.28 s refused). The message names the radius and the room.
+"$cli" indent --smooth --n 64 --punch flat --radius 40 --approach 1 --out "$dir/wide" >/dev/null 2>"$dir/err"
+check "flat face past the edge: exit 1" test $? -eq 1
+check "flat face past the edge: refused before solving, naming --radius and the room" \
+    grep -qF "approach 1 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0), so any step beyond that touch has contact there (its face's radius 40 (--radius) reaches the 31 from its axis to the edge patches' centres)" "$dir/err"
+check "flat face past the edge: not solved (no post-solve edge message)" bash -c '! grep -q "reached the edge" "$1"' _ "$dir/err"
+"$cli" indent --smooth --n 64 --punch flat --radius 40 --load 10 --out "$dir/wide_load" >/dev/null 2>"$dir/err"
+check "flat face past the edge under load control: refused before solving" \
+    grep -q "load 10 cannot be reached on the 64 x 64 surface without contact at its edge" "$dir/err"
+# The room is to the edge patches' centres (31 here): radius 31 touches them, 30.9 does not.
+"$cli" indent --smooth --n 64 --punch flat --radius 31 --approach 1 --out "$dir/reaches" >/dev/null 2>"$dir/err"
+check "flat face reaching the edge patches' centres: refused" grep -q "radius 31 (--radius) reaches the 31" "$dir/err"
+"$cli" indent --smooth --n 64 --punch flat --radius 30.9 --approach 1 --out "$dir/fits" >/dev/null 2>"$dir/err"
+check "flat face inside the room solves" test $? -eq 0
+# On a rough surface a face wider than the grid touches its highest points first: here one 0.243 under the
+# highest lies on the edge, inside the approach 0.25, yet the contact stays inside (the neighbours' load
+# lifts it), so the step solves; a "within the approach" rule would have refused it. Raising an edge patch
+# above all others makes the edge the first touch: refused before solving.
+"$cli" surface --n 64 --slope 0.1 --seed 2 --out "$dir/rough.npy" >/dev/null 2>&1
+/usr/bin/python3 -c '
+import sys, numpy as np
+h = np.load(sys.argv[1]); edge = np.concatenate([h[0], h[-1], h[:, 0], h[:, -1]])
+assert h.max() - edge.max() < 0.25 and h.argmax() // 64 not in (0, 63) and h.argmax() % 64 not in (0, 63)
+h[0, 10] = h.max() + 0.01; np.save(sys.argv[2], h)' "$dir/rough.npy" "$dir/rough_edge.npy"
+check "rough surfaces made" test $? -eq 0
+"$cli" indent "$dir/rough.npy" --punch flat --radius 100 --approach 0.25 --out "$dir/rough" >/dev/null 2>"$dir/err"
+check "rough, face wider than the grid, an edge patch within the approach: solves" test $? -eq 0
+check "rough, face wider than the grid: in contact (inside only: exit 0 above)" awk -F, 'NR == 2 { exit !($5 > 0) }' "$dir/rough/history.csv"
+"$cli" indent "$dir/rough_edge.npy" --punch flat --radius 100 --approach 0.05 --out "$dir/rough_edge" >/dev/null 2>"$dir/err"
+check "rough, first touch on the edge: refused before solving" \
+    grep -q "approach 0.05 cannot be reached on the 64 x 64 surface without contact at its edge: .* at patch (10, 0)" "$dir/err"
 
 # ---- sizes ----
 "$cli" indent --smooth --n 8 --approach 0.1,0.3 --out "$dir/g8" >/dev/null 2>&1

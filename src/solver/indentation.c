@@ -439,9 +439,10 @@ void im_indentation_free(im_indentation *run)
     free(run);
 }
 
-/* Whether surface row sy (or, with column set, column sy) holds a contact patch inside the
- * window; sets *at to its position along the row (column). */
-static int line_in_contact(const im_indentation *run, int line, int column, int *at)
+/* Whether surface row `line` (or, with column set, that column) holds a patch of the window whose value is
+ * > level (or, with at_most set, <= level); sets *at to its position along the row (column). */
+static int line_holds(const im_indentation *run, const double *values, double level, int at_most, int line,
+                      int column, int *at)
 {
     const im_window w = run->window;
     int first = column ? w.x0 : w.y0, extent = column ? w.nx : w.ny;
@@ -450,7 +451,7 @@ static int line_in_contact(const im_indentation *run, int line, int column, int 
     int length = column ? w.ny : w.nx;
     for (int k = 0; k < length; ++k) {
         size_t i = column ? (size_t)k * w.nx + (line - w.x0) : (size_t)(line - w.y0) * w.nx + k;
-        if (run->pressure[i] > 0) {
+        if (at_most ? values[i] <= level : values[i] > level) {
             *at = k + (column ? w.y0 : w.x0);
             return 1;
         }
@@ -468,19 +469,29 @@ static int on_edge_over_ranks(const im_indentation *run, const double *values, i
     return first != LONG_MAX;
 }
 
+/* Whether a window patch on the surface's outer row or column has a value > level (<= level with at_most):
+ * *x, *y the first such, row-major. One process only (over ranks: on_edge_over_ranks). */
+static int edge_holds(const im_indentation *run, const double *values, double level, int at_most, int *x, int *y)
+{
+    const int rows[2] = {0, run->ny - 1}, columns[2] = {0, run->nx - 1};
+    *x = *y = -1;
+    for (int k = 0; k < 2 && *x < 0; ++k) {
+        if (line_holds(run, values, level, at_most, rows[k], 0, x))
+            *y = rows[k];
+        else if (line_holds(run, values, level, at_most, columns[k], 1, y))
+            *x = columns[k];
+    }
+    return *x >= 0;
+}
+
 /* IM_EEDGE if a contact patch lies on the outer row or column of the surface. */
 static int check_edge(const im_indentation *run)
 {
-    const int rows[2] = {0, run->ny - 1}, columns[2] = {0, run->nx - 1};
     int sx = -1, sy = -1;
     if (run->ranks)
         on_edge_over_ranks(run, run->pressure, &sx, &sy);
-    for (int k = 0; k < 2 && sx < 0 && !run->ranks; ++k) {
-        if (line_in_contact(run, rows[k], 0, &sx))
-            sy = rows[k];
-        else if (line_in_contact(run, columns[k], 1, &sy))
-            sx = columns[k];
-    }
+    else
+        edge_holds(run, run->pressure, 0, 0, &sx, &sy);
     if (sx < 0)
         return IM_OK;
     return im_fail(IM_EEDGE,
@@ -1011,6 +1022,72 @@ static int solve_step(im_indentation *run, double target, im_step_result *out)
     return status;
 }
 
+/* Over the ranks too: whether a window patch whose undeformed gap is `least` lies on the surface's edge (*x, *y:
+ * the first, row-major). -1 where the ranks' scratch rows do not fit (on every rank). */
+static int least_gap_on_edge(const im_indentation *run, double least, int *x, int *y)
+{
+    if (!run->ranks)
+        return edge_holds(run, run->window_gap0, least, 1, x, y);
+    const size_t n = (size_t)run->window.nx * run->window.ny;
+    double *at_least = malloc(sizeof(double) * (n + 1)); /* + 1: a rank may hold no rows */
+    double failed = at_least == NULL;
+    combine(run, &failed, 1, ADHESION_MAX);
+    if (failed > 0) {
+        free(at_least);
+        return -1;
+    }
+    for (size_t i = 0; i < n; ++i)
+        at_least[i] = run->window_gap0[i] <= least;
+    const int on_edge = on_edge_over_ranks(run, at_least, x, y);
+    free(at_least);
+    return on_edge;
+}
+
+/* Before solving, IM_EEDGE when the step's contact would certainly reach the surface's edge: the punch first
+ * touches the surface on its outer row or column (a least undeformed gap there) and the step presses beyond
+ * that touch. Such a patch, were it free, would be displaced by at least the approach beyond the touch, more
+ * than any loaded patch is, which a compressive load cannot do (the half-space's displacement is largest on
+ * its load: the maximum principle of the 1/r kernel). It is the smooth surface under a flat punch whose face
+ * reaches the edge patches (all of the face at the least gap, U7). Other edge patches within the approach may stay
+ * free (a neighbour's load lifts them), as a rough surface under a face wider than the grid often does: the
+ * solve and check_edge decide those. Not with adhesion (its tension is a signed load), nor on a periodic
+ * cell (no edge). */
+static int check_first_touch_inside(const im_indentation *run, double target)
+{
+    if (run->adhesion || run->options.periodic || run->control == IM_CONTROL_MEAN_GAP)
+        return IM_OK;
+    const double touch = withdrawn_approach(run); /* the least gap: 0 until a hardness cap flattens it */
+    if (!(run->control == IM_CONTROL_LOAD ? target > 0 : target > touch))
+        return IM_OK;
+    int x, y;
+    const int on_edge = least_gap_on_edge(run, touch, &x, &y);
+    if (on_edge < 0)
+        return im_fail(IM_ENOMEM, "%s %g: the edge check's %d x %d rows", control_target(run->control), target,
+                       run->window.nx, run->window.ny);
+    if (!on_edge)
+        return IM_OK;
+    /* the room: from the axis to the nearest edge patch's centre, where a face's reach is judged */
+    double ax, ay;
+    im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
+    const double half = 0.5 * run->delta;
+    const double room = fmin(fmin(ax - half, run->nx * run->delta - half - ax),
+                             fmin(ay - half, run->ny * run->delta - half - ay));
+    char reach[192];
+    if (run->punch.kind == IM_PUNCH_FLAT)
+        snprintf(reach, sizeof reach,
+                 "its face's radius %g (--radius) reaches the %g from its axis to the edge patches' "
+                 "centres",
+                 run->punch.radius, room);
+    else
+        snprintf(reach, sizeof reach, "its axis is %g from the edge patches' centres", room);
+    return im_fail(IM_EEDGE,
+                   "%s %g cannot be reached on the %d x %d surface without contact at its edge: the %s punch first "
+                   "touches the surface on the edge, at patch (%d, %d), so any step beyond that touch has contact "
+                   "there (%s)",
+                   control_target(run->control), target, run->nx, run->ny, im_punch_name(run->punch.kind), x, y,
+                   reach);
+}
+
 int im_indentation_step(im_indentation *run, double target, im_step_result *out)
 {
     ARG_REQUIRE(run, "run");
@@ -1023,6 +1100,8 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     if (run->control == IM_CONTROL_MEAN_GAP && !(target > 0))
         return im_fail(IM_EINVAL, "mean gap = %g: expected > 0 (at 0 the cell is in full contact)", target);
     int status = check_reachable(run, target);
+    if (status == IM_OK)
+        status = check_first_touch_inside(run, target);
     if (status != IM_OK)
         return status;
     const double cell_capacity = run->options.hardness * cell_area(run);

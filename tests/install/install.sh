@@ -3,9 +3,12 @@
 # it twice, with pkg-config and with find_package(indentmap), and pip-installs the Python package
 # over it. Fails when a header, the library, the .pc file, the CMake package or the Python build is
 # missing or wrong.
-#   install.sh BUILD_DIR SOURCE_DIR
+# Where the library was built with MPI, tests/install/consumer_mpi.c (indentmap/mpi.h, which includes
+# <mpi.h>) is built the same ways, with pkg-config's indentmap-mpi and find_package's indentmap::mpi and
+# indentmap::indentmap_static, and run on 2 ranks by MPIEXEC (P8: no MPI include path before).
+#   install.sh BUILD_DIR SOURCE_DIR [MPIEXEC]
 set -euo pipefail
-build=$1 source=$2
+build=$1 source=$2 mpiexec=${3:-}
 prefix=$(mktemp -d)
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" >/dev/null
@@ -46,6 +49,30 @@ cmake --build "$prefix/consumer_build" >/dev/null
 # SIGPIPE that ldd then gets fails the pipeline now and then.)
 libraries=$(ldd "$prefix/consumer_build/consumer")
 grep -q "$soname" <<<"$libraries" || { echo "install: the consumer is not linked with $soname" >&2; exit 1; }
+# indentmap::indentmap_static: the archive, not the shared library.
+"$prefix/consumer_build/consumer_static"
+libraries=$(ldd "$prefix/consumer_build/consumer_static")
+! grep -q "$soname" <<<"$libraries" || { echo "install: consumer_static is linked with $soname" >&2; exit 1; }
+
+if grep -q "define IM_HAVE_MPI 1" "$prefix/include/indentmap/mpi_config.h"; then
+  [ -n "$mpiexec" ] || { echo "install: a library built with MPI, and no MPIEXEC to run its consumer" >&2; exit 1; }
+  source "$source/../mpi/open_mpi_env.sh"
+  # shellcheck disable=SC2046
+  cc -std=c11 -Wall -Wextra -Werror -o "$prefix/consumer_mpi_pc" "$source/consumer_mpi.c" \
+     $(pkg-config --cflags --libs indentmap-mpi) -lm -Wl,-rpath,"$lib"
+  # shellcheck disable=SC2046
+  cc -std=c11 -o "$prefix/consumer_mpi_static_pc" "$source/consumer_mpi.c" $(pkg-config --cflags indentmap-mpi) \
+     -Wl,--whole-archive "$lib/libindentmap.a" -Wl,--no-whole-archive \
+     $(pkg-config --static --libs indentmap-mpi | sed 's/-lindentmap//') -lm
+  for program in consumer_mpi_pc consumer_mpi_static_pc consumer_build/consumer_mpi consumer_build/consumer_mpi_static; do
+    OMP_NUM_THREADS=1 "$mpiexec" -n 2 -x OMP_NUM_THREADS "$prefix/$program"
+  done
+  libraries=$(ldd "$prefix/consumer_build/consumer_mpi")
+  grep -q "$soname" <<<"$libraries" || { echo "install: consumer_mpi is not linked with $soname" >&2; exit 1; }
+elif [ -e "$lib/pkgconfig/indentmap-mpi.pc" ]; then
+  echo "install: indentmap-mpi.pc installed by a build without MPI" >&2
+  exit 1
+fi
 
 # The Python package, pip-installed on top of the installed library (from a copy of python/, so the
 # build leaves nothing in the source tree), must import and solve.
@@ -59,4 +86,4 @@ history = im.indent(im.generate(32, slope=0.05, lambda_s=2), approaches=[1.0])
 assert history["contact_patches"][0] > 0
 print("install: pip-installed Python package", im.__version__, "solved", history["contact_patches"][0], "patches")
 ' "$prefix/site"
-echo "install: pkg-config, find_package and pip consumers ran against $soname"
+echo "install: pkg-config, find_package (shared and static) and pip consumers ran against $soname${mpiexec:+, MPI ones on 2 ranks}"
