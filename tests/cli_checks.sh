@@ -43,13 +43,19 @@ history_scene cone_w 32 cone displacement "1, 2, 60" fig5
 refused_before_work cone_w "cone_w.ini: [loading] steps (largest approach) = 60: the smooth contact radius a(w) of the punch"
 history_scene sphere_w 32 sphere displacement "0.1, 0.2, 0.6" fig6
 refused_before_work sphere_w "sphere_w.ini: [loading] steps (largest approach) = 0.6: the smooth contact radius a(w) of the punch = 17.3 patches"
+# A flat punch of radius 31.5 on 64 x 64 reaches the edge patches' centres 31 from the centred axis (patch
+# 32's centre): refused before work, as the solver refuses its first step (before: `run --check` passed it).
+history_scene flat_w 64 flat displacement "0.1" fig6
+sed -i 's/^radius = 500$/radius = 31.5/' "$dir/flat_w.ini"
+refused_before_work flat_w "flat_w.ini: [loading] steps (largest approach) = 0.1: the smooth contact radius a(w) of the punch = 31.5 patches reaches the edge of the 64 x 64 surface (expected a radius < 31 patches"
+check "flat_w: run --check refuses it too" expect_exit 2 "expected a radius < 31 patches" "$cli" run --check "$dir/flat_w.ini"
 # Fig. 7 over one step (before: the solve ran, then the figure failed with "x[1] = inf").
 history_scene one_step 32 cone load "300" fig7
 refused_before_work one_step "one_step.ini:15: plots = fig7 needs at least two [loading] steps (1 given)"
 # Steps that pass the smooth check but whose rough contact reaches the edge: the run fails and says
 # which step, instead of drawing the histories cut short.
-history_scene edge 32 cone load "100:780:4" fig7 0.5
-check "history at the edge fails" expect_exit 1 "step 3 of 4 (N* 553.333; the scene asks for every step" \
+history_scene edge 32 cone load "100:700:4" fig7 0.5
+check "history at the edge fails" expect_exit 1 "step 3 of 4 (N* 500; the scene asks for every step" \
   "$cli" run --quiet "$dir/edge.ini"
 check "history at the edge: no figure" test ! -e "$dir/out_edge/fig7.png"
 

@@ -121,4 +121,10 @@ status=$?
 [ $status -eq 1 ] || fail "first touch on the edge: exit $status, expected 1: $(cat "$work/first_touch.err")"
 grep -qF "approach 0.5 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0)" "$work/first_touch.err" ||
   fail "first touch on the edge: not refused before solving: $(cat "$work/first_touch.err")"
+# Radius 31.5: the first edge patch in row-major order is on column 63, row 27, on a middle rank, as serially
+# (cli_stability; the serial search once took row 63 before column 63's rows and named (27, 63)).
+timeout 300 "$mpiexec" -n 3 --oversubscribe "$cli" mpi-indent --n 64 --slope 0 --punch flat --radius 31.5 \
+  --approach 0.5,1 > /dev/null 2> "$work/first_touch_side.err"
+grep -qF "at patch (63, 27), so any step beyond that touch has contact there (its face's radius 31.5 reaches that patch's centre, 31.4006 from its axis)" "$work/first_touch_side.err" ||
+  fail "first touch on the side: $(cat "$work/first_touch_side.err")"
 echo "mpi-indent's histories of the half-space are indent's on 1 and 3 ranks"

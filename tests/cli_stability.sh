@@ -54,7 +54,8 @@ check "a contact radius of 7 patches is said to be unresolved, naming it" \
 check "contacts of a few patches are said to be unresolved, every step on one line" \
   test "$(grep -c "steps 1 (1 patch), 2 (1 patch), 3 (9 patches), 4 (177 patches, radius 7.5): the contact covers too few patches for the grid to resolve it" "$dir/err")" = 1 -a "$(grep -c "too few" "$dir/err")" = 1
 # The notice names the punch it is about (U7: a flat punch's was the cone's): a flat punch's face of radius 1
-# covers 5 patches, and the notice's numbers are this run's own, A/A_punch = 5 / pi and N / (2 E* a w).
+# covers 5 patches; the notice's numbers are constants measured once (radius 1, 3 and 10 on 64²), and at radius 1
+# they must be this run's own, A/A_punch = 5 / pi and N / (2 E* a w).
 "$cli" indent --smooth --n 64 --punch flat --radius 1 --approach 1 --out "$dir/flat1" >/dev/null 2>"$dir/err"
 check "a flat punch's notice is the flat punch's" \
   grep -qF "step 1 (5 patches): the contact covers too few patches for the grid to resolve it (a smooth flat punch's face of radius 1 patch covers 5 patches, its area A/A_punch 1.59 and its load 1.18x Boussinesq's;" "$dir/err"
@@ -116,15 +117,17 @@ check "unreachable first load: 'no step before it'" grep -q "step 1 of 1 (load 1
 # 1.0 s at n = 512, radius 320; 0.28 s refused). The message names the radius and the room.
 "$cli" indent --smooth --n 64 --punch flat --radius 40 --approach 1 --out "$dir/wide" >/dev/null 2>"$dir/err"
 check "flat face past the edge: exit 1" test $? -eq 1
-check "flat face past the edge: refused before solving, naming --radius and the room" \
-    grep -qF "approach 1 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0), so any step beyond that touch has contact there (its face's radius 40 (--radius) reaches the 31 from its axis to the edge patches' centres)" "$dir/err"
+check "flat face past the edge: refused before solving, naming the radius and the patch's distance" \
+    grep -qF "approach 1 cannot be reached on the 64 x 64 surface without contact at its edge: the flat punch first touches the surface on the edge, at patch (8, 0), so any step beyond that touch has contact there (its face's radius 40 reaches that patch's centre, 40 from its axis)" "$dir/err"
 check "flat face past the edge: not solved (no post-solve edge message)" bash -c '! grep -q "reached the edge" "$1"' _ "$dir/err"
 "$cli" indent --smooth --n 64 --punch flat --radius 40 --load 10 --out "$dir/wide_load" >/dev/null 2>"$dir/err"
 check "flat face past the edge under load control: refused before solving" \
     grep -q "load 10 cannot be reached on the 64 x 64 surface without contact at its edge" "$dir/err"
 # The room is to the edge patches' centres (31 here): radius 31 touches them, 30.9 does not.
 "$cli" indent --smooth --n 64 --punch flat --radius 31 --approach 1 --out "$dir/reaches" >/dev/null 2>"$dir/err"
-check "flat face reaching the edge patches' centres: refused" grep -q "radius 31 (--radius) reaches the 31" "$dir/err"
+check "flat face reaching the edge patches' centres: refused" grep -q "radius 31 reaches that patch's centre, 31 from its axis" "$dir/err"
+"$cli" indent --smooth --n 64 --punch flat --radius 31.5 --approach 1 --out "$dir/side" >/dev/null 2>"$dir/err"
+check "the first edge patch in row-major order, as over MPI ranks" grep -qF "at patch (63, 27), so any" "$dir/err"
 "$cli" indent --smooth --n 64 --punch flat --radius 30.9 --approach 1 --out "$dir/fits" >/dev/null 2>"$dir/err"
 check "flat face inside the room solves" test $? -eq 0
 # On a rough surface a face wider than the grid touches its highest points first: here one 0.243 under the

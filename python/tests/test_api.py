@@ -98,8 +98,11 @@ def test_plan_solve_errors_name_what_was_wrong():
 
 def test_edge_contact_is_an_exception():
     run = im.Indentation(np.zeros((16, 16)), im.Flat(20), largest=1.0)
-    with pytest.raises(im.EdgeContact):
-        run.step(1.0)
+    with pytest.raises(im.EdgeContact, match="cannot be reached .* without contact at its edge"):
+        run.step(1.0)  # refused before solving: the face's first touch is on the edge
+    rough = im.Indentation(im.generate(16, slope=0.3, seed=2), im.Cone(80), largest=2.0)
+    with pytest.raises(im.EdgeContact, match="contact reached the edge of the 16 x 16 surface"):
+        rough.step(2.0)  # solved, then found at the edge
 
 
 def test_arrays_converted_or_refused_as_documented(rough64):

@@ -64,18 +64,20 @@ static int ensemble_size(const im_scene *scene)
 
 /* ---- consistency ---- */
 
-/* The smooth contact must stay inside the surface: a disc of radius `radius` (patches), which
- * must be less than half the shorter side (else every solve ends at the surface's edge). `how`
- * says how the radius follows from the value. */
+/* The smooth contact must stay inside the surface: a disc of radius `radius` (patches) around the centred
+ * axis (im_indenter_axis: the centre of patch n / 2), which must stay short of the edge patches' centres,
+ * (n - 1) / 2 patches away on the nearer side of the shorter one (64: 31), as the solver judges it before a
+ * step (else every solve ends at the surface's edge). `how` says how the radius follows from the value. */
 static int check_radius_fits(const im_scene *scene, const grid *g, const char *key, double value, double radius,
                              const char *how)
 {
-    double half = 0.5 * (g->nx < g->ny ? g->nx : g->ny);
-    if (radius >= half)
+    int room = ((g->nx < g->ny ? g->nx : g->ny) - 1) / 2;
+    if (radius >= room)
         return im_fail(IM_EINVAL,
                        "%s: %s = %g: the smooth contact radius %s = %.1f patches reaches the edge of "
-                       "the %d x %d surface (expected a radius < %g patches; use a larger grid or smaller %s)",
-                       scene->path, key, value, how, radius, g->nx, g->ny, half,
+                       "the %d x %d surface (expected a radius < %d patches, from the axis to the edge patches' "
+                       "centres; use a larger grid or smaller %s)",
+                       scene->path, key, value, how, radius, g->nx, g->ny, room,
                        strstr(key, "steps") ? "steps" : "loads");
     return IM_OK;
 }
@@ -125,11 +127,12 @@ static int check_consistency(const im_scene *scene, const grid *g)
         status = check_contact_fits(scene, g, "[loading] load_star", scene->load_star);
     if (status == IM_OK)
         status = check_histories_fit(scene, g);
-    if (status == IM_OK && scene->punch == IM_PUNCH_FLAT && 2.0 * scene->radius >= (g->nx < g->ny ? g->nx : g->ny))
+    const int room = ((g->nx < g->ny ? g->nx : g->ny) - 1) / 2; /* as in check_radius_fits */
+    if (status == IM_OK && scene->punch == IM_PUNCH_FLAT && scene->radius >= room)
         status = im_fail(IM_EINVAL,
                          "%s: [punch] radius = %g: a flat punch as wide as the %d x %d surface "
-                         "(radius in patches; expected < %g)",
-                         scene->path, scene->radius, g->nx, g->ny, 0.5 * (g->nx < g->ny ? g->nx : g->ny));
+                         "(radius in patches; expected < %d, from the axis to the edge patches' centres)",
+                         scene->path, scene->radius, g->nx, g->ny, room);
     return status;
 }
 

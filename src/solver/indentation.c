@@ -470,16 +470,27 @@ static int on_edge_over_ranks(const im_indentation *run, const double *values, i
 }
 
 /* Whether a window patch on the surface's outer row or column has a value > level (<= level with at_most):
- * *x, *y the first such, row-major. One process only (over ranks: on_edge_over_ranks). */
+ * *x, *y the first such in row-major order, as over ranks (on_edge_over_ranks). One process only. */
 static int edge_holds(const im_indentation *run, const double *values, double level, int at_most, int *x, int *y)
 {
-    const int rows[2] = {0, run->ny - 1}, columns[2] = {0, run->nx - 1};
+    const int last_row = run->ny - 1, last_column = run->nx - 1;
+    int at, left, right; /* the first rows holding it in the outer columns */
     *x = *y = -1;
-    for (int k = 0; k < 2 && *x < 0; ++k) {
-        if (line_holds(run, values, level, at_most, rows[k], 0, x))
-            *y = rows[k];
-        else if (line_holds(run, values, level, at_most, columns[k], 1, y))
-            *x = columns[k];
+    if (line_holds(run, values, level, at_most, 0, 0, &at)) {
+        *x = at;
+        *y = 0;
+    } else {
+        if (!line_holds(run, values, level, at_most, 0, 1, &left))
+            left = INT_MAX;
+        if (!line_holds(run, values, level, at_most, last_column, 1, &right))
+            right = INT_MAX;
+        if ((left < right ? left : right) < last_row) {
+            *x = left <= right ? 0 : last_column;
+            *y = left <= right ? left : right;
+        } else if (line_holds(run, values, level, at_most, last_row, 0, &at)) {
+            *x = at;
+            *y = last_row;
+        }
     }
     return *x >= 0;
 }
@@ -1066,20 +1077,15 @@ static int check_first_touch_inside(const im_indentation *run, double target)
                        run->window.nx, run->window.ny);
     if (!on_edge)
         return IM_OK;
-    /* the room: from the axis to the nearest edge patch's centre, where a face's reach is judged */
-    double ax, ay;
+    double ax, ay; /* the distance from the axis to that patch's centre, where a face's reach is judged */
     im_indenter_axis(&run->punch, run->nx, run->ny, run->delta, &ax, &ay);
-    const double half = 0.5 * run->delta;
-    const double room = fmin(fmin(ax - half, run->nx * run->delta - half - ax),
-                             fmin(ay - half, run->ny * run->delta - half - ay));
-    char reach[192];
+    const double distance = hypot((x + 0.5) * run->delta - ax, (y + 0.5) * run->delta - ay);
+    char reach[160];
     if (run->punch.kind == IM_PUNCH_FLAT)
-        snprintf(reach, sizeof reach,
-                 "its face's radius %g (--radius) reaches the %g from its axis to the edge patches' "
-                 "centres",
-                 run->punch.radius, room);
+        snprintf(reach, sizeof reach, "its face's radius %g reaches that patch's centre, %g from its axis",
+                 run->punch.radius, distance);
     else
-        snprintf(reach, sizeof reach, "its axis is %g from the edge patches' centres", room);
+        snprintf(reach, sizeof reach, "that patch's centre is %g from its axis", distance);
     return im_fail(IM_EEDGE,
                    "%s %g cannot be reached on the %d x %d surface without contact at its edge: the %s punch first "
                    "touches the surface on the edge, at patch (%d, %d), so any step beyond that touch has contact "

@@ -24,7 +24,8 @@ static int solve_smooth_cone(const im_indenter *cone, double w, double *load)
     int y0 = 0, rows = 0, status = im_mpi_solver_create(MPI_COMM_WORLD, n, n, 1.0, &options, &solver);
     if (status == IM_OK)
         im_mpi_solver_rows(solver, &y0, &rows);
-    double *heights = calloc((size_t)rows * n + 1, sizeof *heights); /* + 1: a rank may hold no rows */
+    /* + 1: a rank may hold no rows; the cast: this file is also compiled as C++ (tests/install/cxx) */
+    double *heights = (double *)calloc((size_t)rows * n + 1, sizeof *heights);
     if (status == IM_OK)
         status = heights ? im_mpi_indentation_create(solver, heights, cone, IM_CONTROL_DISPLACEMENT, w, NULL, &run)
                          : IM_ENOMEM;

@@ -64,7 +64,12 @@ if grep -q "define IM_HAVE_MPI 1" "$prefix/include/indentmap/mpi_config.h"; then
   cc -std=c11 -o "$prefix/consumer_mpi_static_pc" "$source/consumer_mpi.c" $(pkg-config --cflags indentmap-mpi) \
      -Wl,--whole-archive "$lib/libindentmap.a" -Wl,--no-whole-archive \
      $(pkg-config --static --libs indentmap-mpi | sed 's/-lindentmap//') -lm
-  for program in consumer_mpi_pc consumer_mpi_static_pc consumer_build/consumer_mpi consumer_build/consumer_mpi_static; do
+  # A C++-only project: its FindMPI finds no MPI for C, so the package's targets must carry the build's MPI.
+  cmake -S "$source/cxx" -B "$prefix/consumer_cxx_build" -DCMAKE_PREFIX_PATH="$prefix" \
+        -DCMAKE_BUILD_RPATH="$lib" >/dev/null
+  cmake --build "$prefix/consumer_cxx_build" >/dev/null
+  for program in consumer_mpi_pc consumer_mpi_static_pc consumer_build/consumer_mpi consumer_build/consumer_mpi_static \
+                 consumer_cxx_build/consumer_mpi_cxx; do
     OMP_NUM_THREADS=1 "$mpiexec" -n 2 -x OMP_NUM_THREADS "$prefix/$program"
   done
   libraries=$(ldd "$prefix/consumer_build/consumer_mpi")
