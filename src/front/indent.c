@@ -495,6 +495,48 @@ static void note_auto_on_cpu(const indent_run_state *s, const im_indentation *ru
         indent_say(s, IM_LOG_WARNING, "%s", m.note);
 }
 
+/* The option that asks for the whole grid's fields, as the command line names it. */
+static const char *whole_grid_option(const im_indent_options *o)
+{
+    return o->frames ? "--frames" : o->fields ? "--fields" : "--distributions";
+}
+
+/* Fields and distributions convolve each step's force over the whole grid (im_indentation_fields_full)
+ * on a plan made at the first step: checked here, before any step, so that a run whose window fits but
+ * whose whole grid does not is refused at once instead of after its first solve (at 4096^2 and beyond,
+ * minutes). Counted: the convolution's plan where the solver's plan is not that of the whole grid (as
+ * solver/indentation.c decides) and the force, gap, displacement and plastic fields written. */
+static int check_whole_grid_memory(const indent_run_state *s, const im_field *surface, const im_indentation *run)
+{
+    const im_indent_options *o = s->options;
+    if (!(s->files.fields || s->files.distributions) || o->solver.periodic) /* a cell's solve covers it */
+        return IM_OK;
+    const im_solver_plan *plan = im_indentation_plan(run);
+    const im_window w = im_indentation_window(run);
+    const int on_cpu = strcmp(im_solver_plan_device(plan), "cpu") == 0;
+    im_solver_memory full = {.host_bytes = 0.0};
+    if (!(w.nx == surface->nx && w.ny == surface->ny && on_cpu && !im_solver_plan_measured(plan))) {
+        im_solver_options options = o->solver;
+        options.device = on_cpu ? IM_DEVICE_CPU : IM_DEVICE_GPU; /* where the run's own plan went */
+        int status = im_displacement_memory_needed(surface->nx, surface->ny, &options, &full);
+        if (status != IM_OK)
+            return status;
+    }
+    const double field = 8.0 * surface->nx * surface->ny,
+                 fields = s->files.fields && o->solver.hardness > 0 ? 4.0 : 3.0;
+    const double needed = full.host_bytes + fields * field;
+    const size_t available = im_memory_available();
+    if (available == 0 || needed <= (double)available)
+        return IM_OK;
+    return im_fail(IM_ENOMEM,
+                   "%s on the %d x %d surface: the whole grid's displacement needs about %.1f MiB (its "
+                   "convolution's plan %.1f MiB and %.0f fields of %.1f MiB) but only %.1f MiB are available; "
+                   "refused before any step was solved: leave out %s (history.csv holds every step's "
+                   "measures) or use a smaller grid (--crop)",
+                   whole_grid_option(o), surface->nx, surface->ny, needed / 1048576.0, full.host_bytes / 1048576.0,
+                   fields, field / 1048576.0, (double)available / 1048576.0, whole_grid_option(o));
+}
+
 /* The solver on the prepared surface, the folder and the record, the steps, the page. */
 static int run_on(indent_run_state *s, const im_field *surface, const im_theory_interface *rough)
 {
@@ -508,6 +550,8 @@ static int run_on(indent_run_state *s, const im_field *surface, const im_theory_
                                        &o->solver, &run);
     if (status == IM_OK)
         note_auto_on_cpu(s, run);
+    if (status == IM_OK)
+        status = check_whole_grid_memory(s, surface, run);
     if (status == IM_OK && o->solver.adhesion_work > 0)
         say_adhesion_law(s);
     run_folder folder = {.lock = {.fd = -1}};
