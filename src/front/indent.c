@@ -472,6 +472,8 @@ static int start_record(indent_run_state *s, const im_field *surface, const im_i
                                        &s->figure_texts);
     if (status == IM_OK)
         status = history_start(o->out, history);
+    if (status == IM_OK)
+        status = run_record_start(o->out, *record);
     if (*record && status != IM_OK)
         run_folder_record(folder, *record, 0, status);
     return status;
