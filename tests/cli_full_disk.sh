@@ -46,7 +46,7 @@ for f in "$dir"/whole/histories/*.csv; do
   check "$(basename "$f") as undisturbed" cmp -s <(history_rows "$f") <(history_rows "$dir/tiny/out/histories/$(basename "$f")")
 done
 
-# indent has no estimate: its field files fail at the file-size limit, with EFBIG, cleanly.
+# indent's disk estimate leaves the file-size limit out: its field files fail there, with EFBIG, cleanly.
 (ulimit -f 100; "$cli" indent --smooth --n 256 --approach 1:5:3 --fields --out "$dir/indent" >/dev/null 2>"$dir/indent.log"
  echo $? >"$dir/indent.status")
 check "file-size limit: exit 1" test "$(cat "$dir/indent.status")" -eq 1
@@ -64,11 +64,31 @@ check "animate, full disk: the frame and the reason" \
 check "animate, full disk: no libpng message" bash -c "! grep -q libpng '$dir/animate.log'"
 check "animate, full disk: no temporary file" bash -c "! find '$dir/tiny' -name '*.tmp.*' | grep -q ."
 
-# indent --fields onto a disk that fills mid-run (reliability finding 13): the step and the history are
-# named, and so is the record that could not be written after them (run.json was gone, unsaid).
+# indent --fields whose step files would not fit on the disk: refused before any step, with the estimate,
+# writing nothing (it solved and wrote steps until the disk was full: at 4096^2, 384 MiB a step, hours
+# in). The estimate is an upper bound of what a step writes: the first step's files of the same run on
+# a disk with room (printed to 0.01 MiB), and within 10% of it.
 rm -rf "$dir/tiny/filler" "$dir/tiny/frames" "$dir/tiny/out"
 "$cli" surface --n 128 --seed 1 --out "$dir/s128.npy" >/dev/null
-"$cli" indent "$dir/s128.npy" --approach 0.5:6:40 --fields --out "$dir/tiny/indent" >/dev/null 2>"$dir/indent_full.log"
+"$cli" indent "$dir/s128.npy" --approach 0.5:6:40 --fields --out "$dir/tiny/indent" >"$dir/indent_est.out" \
+  2>"$dir/indent_est.log"
+check "indent, too little disk: exit 1" test $? -eq 1
+check "indent, too little disk: the estimate and the free disk named" grep -q \
+  "^indentmap: --fields: the 40 steps' files of the 128 x 128 surface need about [0-9.]* MiB of disk ([0-9.]* MiB a step) but $dir/tiny/indent has only 2.0 MiB free; refused before any step was solved" \
+  "$dir/indent_est.log"
+check "indent, too little disk: no step solved, nothing written" \
+  bash -c "test ! -s '$dir/indent_est.out' && test ! -e '$dir/tiny/indent'"
+"$cli" indent "$dir/s128.npy" --approach 0.5 --fields --out "$dir/one_step" >/dev/null 2>&1
+written=$(cat "$dir"/one_step/*_0001.npy* | wc -c)
+per_step=$(sed -n 's/.*MiB of disk (\([0-9.]*\) MiB a step).*/\1/p' "$dir/indent_est.log")
+check "indent, too little disk: a step's estimate ($per_step MiB) >= what a step writes ($written bytes)" \
+  awk -v e="$per_step" -v w="$written" 'BEGIN { m = w / 1048576; exit !(m > 0 && e + 0.005 >= m && e - 0.005 < 1.1 * m) }'
+
+# indent --fields onto a disk that fills mid-run (reliability finding 13), the estimate skipped: the step
+# and the history are named, and so is the record that could not be written after them (run.json was
+# gone, unsaid).
+IM_NO_SPACE_CHECK=1 "$cli" indent "$dir/s128.npy" --approach 0.5:6:40 --fields --out "$dir/tiny/indent" \
+  >/dev/null 2>"$dir/indent_full.log"
 check "indent, full disk: exit 1" test $? -eq 1
 check "indent, full disk: the step and the history named" grep -Eq "(steps before are|step before is) in .*history.csv" "$dir/indent_full.log"
 check "indent, full disk: a run.json not written is said" \

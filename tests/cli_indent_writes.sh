@@ -23,6 +23,10 @@ wait "$pid" 2>/dev/null
 pid=
 check "indent: killed mid-run, history.csv holds whole lines only" \
   awk -F, 'NR == 1 { columns = NF } NR > 1 && (NF != columns || $1 != NR - 1) { bad = 1 } END { exit bad || NR < 2 }' busy/history.csv
+# run.json is written as the run starts, "running": a killed run (SIGKILL, the OOM killer) left none, and
+# with it no record of its surface and options beside the rows
+check "indent: killed mid-run, run.json says it was running" grep -q '"status": "running"' busy/run.json
+check "... with its arguments" grep -q '"--approach",' busy/run.json
 check "indent: the stale lock of a killed run is taken over" expect_exit 0 "taking over the stale lock" \
   "$cli" indent s.npy --approach 1 --out busy
 check "... and removed at the end" test ! -e busy/.lock

@@ -173,6 +173,21 @@ else
     check "a plan near the memory limit: the estimate" grep -q "solver plan 2048 x 2048 needs about [0-9.]* MiB but only" "$dir/err"
 fi
 
+# The whole grid's fields (--fields, --frames, --distributions) are convolved on a plan of the whole grid
+# made at the first step: a run whose window fits but whose whole grid does not is refused before any
+# step, with the estimate (the plan and 3 fields of 8 nx ny bytes: 2.0 MiB at 512^2), and writes
+# nothing; it solved step 1 and then failed, its folder made. The same run without --fields fits.
+IM_MEMORY_LIMIT_MIB=12 "$cli" indent --smooth --n 512 --approach 1,2 --out "$dir/capped" >/dev/null 2>&1
+check "512^2 without --fields under a 12 MiB cap: solved" test $? -eq 0
+IM_MEMORY_LIMIT_MIB=12 "$cli" indent --smooth --n 512 --approach 1,2 --fields --out "$dir/capped_fields" \
+    >"$dir/out" 2>"$dir/err"
+check "--fields over the cap: exit 2" test $? -eq 2
+check "--fields over the cap: the option, grid and fields named" grep -q \
+    "^indentmap: --fields on the 512 x 512 surface: the whole grid's displacement needs about [0-9.]* MiB (its convolution's plan [0-9.]* MiB and 3 fields of 2.0 MiB) but only 12.0 MiB are available; refused before any step" \
+    "$dir/err"
+check "--fields over the cap: no step solved" test ! -s "$dir/out"
+check "--fields over the cap: nothing written" test ! -e "$dir/capped_fields"
+
 # ---- precision: cold and warm starts reach the same answer ----
 "$cli" surface --n 64 --slope 0.16 --seed 2 --out "$dir/s.npy" >/dev/null
 # (at tol 1e-8, which the 1e-6 bar below was set for; the default is 1e-6)

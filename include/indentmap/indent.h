@@ -63,11 +63,13 @@ typedef struct im_indent_options {
     const char *e_star_unit; /* the unit of E*, for the records (NULL or "": none) */
     /* The outputs */
     const char *out;
-    int fields;        /* the step fields */
-    int frames;        /* frames/contact_NNNN.png (implies fields; needs OpenGL) */
-    int page_embed;    /* index.html carries its images as data URIs */
-    int distributions; /* the gap and patch distributions of every step */
-    int backend;       /* the frames' renderer: im_render_backend of render.h (0: auto) */
+    int fields;         /* the step fields */
+    int frames;         /* frames/contact_NNNN.png (implies fields; needs OpenGL) */
+    int page_embed;     /* index.html carries its images as data URIs */
+    int distributions;  /* the gap and patch distributions of every step */
+    int backend;        /* the frames' renderer: im_render_backend of render.h (0: auto) */
+    int no_space_check; /* 1: skip the check, before any step, of the free disk against the step files'
+                           estimated size (fields, frames; `indentmap indent` sets it from IM_NO_SPACE_CHECK) */
     /* The record: run.json's "arguments" (the options of the run as recorded, UTF-8; NULL: none; with
      * arguments_escaped 1 when one was not UTF-8), "from_record" (the record the run was made from,
      * NULL: none), and the figures' Command text (NULL: none). */

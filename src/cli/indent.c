@@ -141,6 +141,9 @@ static void usage(FILE *stream)
             "solved, so the steps already solved survive a later failure or a crash (no convergence:\n"
             "exit 1; contact at the surface's edge: exit 1). DIR is locked while the run writes there\n"
             "(DIR/.lock, as for scenes); the field files of an earlier run in DIR are removed first.\n"
+            "Before any step, --fields, --frames and --distributions are checked against the memory their\n"
+            "whole-grid convolution needs (exit 2) and the fields' and frames' files of every step against\n"
+            "the free disk (an upper bound, exit 1; IM_NO_SPACE_CHECK=1 skips it).\n"
             "Where N is not positive beyond the solver's tolerance (N <= tol max |N| of the steps so far)\n"
             "the ratio area_ratio = n_p delta^2 / A(N) is undefined and written as nan.\n");
 }
@@ -519,6 +522,7 @@ static int run_options(const indent_options *o, const char ***recorded, char *co
                                .frames = o->frames,
                                .page_embed = o->page_embed,
                                .distributions = o->distributions,
+                               .no_space_check = cli_space_check_off(),
                                .arguments = *recorded,
                                .argument_count = (int)count,
                                .arguments_escaped = o->arguments.escaped,

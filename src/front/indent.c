@@ -8,12 +8,14 @@
 #include "indentmap/io.h"
 #include "indentmap/status.h"
 
+#include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
 
 im_indent_options im_indent_options_default(void)
 {
@@ -489,6 +491,8 @@ static int start_record(indent_run_state *s, const im_field *surface, const im_i
                                        &s->figure_texts);
     if (status == IM_OK)
         status = history_start(o->out, history);
+    if (status == IM_OK)
+        status = run_record_start(o->out, *record);
     if (*record && status != IM_OK)
         run_folder_record(folder, *record, 0, status);
     return status;
@@ -514,6 +518,97 @@ static void note_auto_on_cpu(const indent_run_state *s, const im_indentation *ru
         indent_say(s, IM_LOG_WARNING, "%s", m.note);
 }
 
+/* The option that asks for the whole grid's fields, as the command line names it. */
+static const char *whole_grid_option(const im_indent_options *o)
+{
+    return o->frames ? "--frames" : o->fields ? "--fields" : "--distributions";
+}
+
+/* Fields and distributions convolve each step's force over the whole grid (im_indentation_fields_full)
+ * on a plan made at the first step: checked here, before any step, so that a run whose window fits but
+ * whose whole grid does not is refused at once instead of after its first solve (at 4096^2 and beyond,
+ * minutes). Counted: the convolution's plan where the solver's plan is not that of the whole grid (as
+ * solver/indentation.c decides) and the force, gap, displacement and plastic fields written. */
+static int check_whole_grid_memory(const indent_run_state *s, const im_field *surface, const im_indentation *run)
+{
+    const im_indent_options *o = s->options;
+    if (!(s->files.fields || s->files.distributions) || o->solver.periodic) /* a cell's solve covers it */
+        return IM_OK;
+    const im_solver_plan *plan = im_indentation_plan(run);
+    const im_window w = im_indentation_window(run);
+    const int on_cpu = strcmp(im_solver_plan_device(plan), "cpu") == 0;
+    im_solver_memory full = {.host_bytes = 0.0};
+    if (!(w.nx == surface->nx && w.ny == surface->ny && on_cpu && !im_solver_plan_measured(plan))) {
+        im_solver_options options = o->solver;
+        options.device = on_cpu ? IM_DEVICE_CPU : IM_DEVICE_GPU; /* where the run's own plan went */
+        int status = im_displacement_memory_needed(surface->nx, surface->ny, &options, &full);
+        if (status != IM_OK)
+            return status;
+    }
+    const double field = 8.0 * surface->nx * surface->ny,
+                 fields = s->files.fields && o->solver.hardness > 0 ? 4.0 : 3.0;
+    const double needed = full.host_bytes + fields * field;
+    const size_t available = im_memory_available();
+    if (available == 0 || needed <= (double)available)
+        return IM_OK;
+    return im_fail(IM_ENOMEM,
+                   "%s on the %d x %d surface: the whole grid's displacement needs about %.1f MiB (its "
+                   "convolution's plan %.1f MiB and %.0f fields of %.1f MiB) but only %.1f MiB are available; "
+                   "refused before any step was solved: leave out %s (history.csv holds every step's "
+                   "measures) or use a smaller grid (--crop)",
+                   whole_grid_option(o), surface->nx, surface->ny, needed / 1048576.0, full.host_bytes / 1048576.0,
+                   fields, field / 1048576.0, (double)available / 1048576.0, whole_grid_option(o));
+}
+
+/* The free bytes of the file system that will hold dir, from its nearest existing folder; -1 when it
+ * cannot be told (the writes will report a full disk). */
+static double free_bytes_for(const char *dir)
+{
+    char folder[PATH_MAX];
+    snprintf(folder, sizeof folder, "%s", dir);
+    struct statvfs info;
+    while (statvfs(folder, &info) != 0) {
+        char *slash = strrchr(folder, '/');
+        if (!slash && strcmp(folder, ".") == 0)
+            return -1.0;
+        if (!slash)
+            snprintf(folder, sizeof folder, ".");
+        else
+            slash[slash == folder ? 1 : 0] = '\0';
+    }
+    return (double)info.f_bavail * (double)info.f_frsize;
+}
+
+/* The step files (fields and frames) of every step against the free disk, before any step, as a scene's
+ * outputs are (src/scene/limits.c): at 4096^2 the fields are 384 MiB a step, and a disk that fills stops
+ * the run at that step, hours in. An upper bound: the fields at their size with a sidecar, a frame
+ * uncompressed (its PNG is about ten times smaller); the room the earlier run's step files leave when
+ * they are removed counts as free. The distributions' CSVs are not counted (a row per patch). */
+static int check_step_files_disk(const indent_run_state *s, const im_field *surface)
+{
+    const im_indent_options *o = s->options;
+    const double cells = (double)surface->nx * surface->ny, fields = step_field_count(o->solver.hardness);
+    const int scale = fields_frames_pixels_per_patch(surface->nx, surface->ny);
+    const double field_files = s->files.fields ? fields * (8.0 * cells + 128.0 + 1024.0) : 0.0;
+    const double frame = o->frames ? 3.0 * scale * scale * cells + 32768.0 : 0.0;
+    const double needed = o->target_count * (field_files + frame), free_bytes = free_bytes_for(o->out);
+    if (o->no_space_check || needed == 0.0 || free_bytes < 0.0)
+        return IM_OK;
+    const double earlier = indent_files_earlier_bytes(o->out);
+    if (needed <= free_bytes + earlier)
+        return IM_OK;
+    char earlier_text[96] = "";
+    if (earlier > 0.0)
+        snprintf(earlier_text, sizeof earlier_text, " (with %.1f MiB of an earlier run's step files there)",
+                 earlier / 1048576.0);
+    return im_fail(IM_EIO,
+                   "%s: the %d steps' files of the %d x %d surface need about %.1f MiB of disk (%.2f MiB a step) "
+                   "but %s has only %.1f MiB free%s; refused before any step was solved: this is an upper bound: "
+                   "IM_NO_SPACE_CHECK=1 runs anyway (a full disk then stops the run, keeping the steps it finished)",
+                   whole_grid_option(o), o->target_count, surface->nx, surface->ny, needed / 1048576.0,
+                   (field_files + frame) / 1048576.0, o->out, (free_bytes + earlier) / 1048576.0, earlier_text);
+}
+
 /* The solver on the prepared surface, the folder and the record, the steps, the page. */
 static int run_on(indent_run_state *s, const im_field *surface, const im_theory_interface *rough)
 {
@@ -527,6 +622,10 @@ static int run_on(indent_run_state *s, const im_field *surface, const im_theory_
                                        &o->solver, &run);
     if (status == IM_OK)
         note_auto_on_cpu(s, run);
+    if (status == IM_OK)
+        status = check_whole_grid_memory(s, surface, run);
+    if (status == IM_OK)
+        status = check_step_files_disk(s, surface);
     if (status == IM_OK && o->solver.adhesion_work > 0)
         say_adhesion_law(s);
     run_folder folder = {.lock = {.fd = -1}};

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* ---- the files ---- */
@@ -123,6 +124,35 @@ int indent_files_clear(const char *dir)
 {
     int status = clear_step_files(dir);
     return status == IM_OK ? clear_frames(dir) : status;
+}
+
+/* The bytes of the file name in dir (0 when it cannot be read). */
+static double file_bytes(const char *dir, const char *name)
+{
+    char path[PATH_MAX];
+    struct stat info;
+    return im_path_join(path, sizeof path, dir, name) == IM_OK && stat(path, &info) == 0 ? (double)info.st_size : 0.0;
+}
+
+double indent_files_earlier_bytes(const char *dir)
+{
+    double bytes = 0.0;
+    DIR *listing = opendir(dir);
+    for (struct dirent *entry; listing && (entry = readdir(listing)) != NULL;) {
+        const char *name = entry->d_name;
+        if (is_analysis_file(name) || field_step(name, STEP_FIELDS_MAX, 0) >= 0 || distribution_step(name) >= 0)
+            bytes += file_bytes(dir, name);
+    }
+    if (listing)
+        closedir(listing);
+    char folder[PATH_MAX];
+    listing = im_path_join(folder, sizeof folder, dir, "frames") == IM_OK ? opendir(folder) : NULL;
+    for (struct dirent *entry; listing && (entry = readdir(listing)) != NULL;)
+        if (step_of(entry->d_name, "contact_", FRAME_SUFFIXES, 1, 0) >= 0)
+            bytes += file_bytes(folder, entry->d_name);
+    if (listing)
+        closedir(listing);
+    return bytes;
 }
 
 /* ---- the steps ---- */

@@ -4,6 +4,7 @@
  * Entry points:
  *   indent_files_claims  whether a name in the folder is one the run writes (run_folder.h's claims)
  *   indent_files_clear   an earlier run's step files, analysis files and frames removed
+ *   indent_files_earlier_bytes  the bytes those files hold
  *   indent_run_steps     the steps solved, measured and written (fields, distributions, history.csv)
  *   indent_run_check     the folder and wisdom file apart from the inputs, before any work
  *   indent_run_record    run.json's record of the run (indent_record.c)
@@ -38,6 +39,10 @@ int indent_files_claims(const char *name, const void *files);
  * kept (io.h: the output guard names them). Call it while holding the folder's lock. IM_EIO naming a
  * file that cannot be removed or a folder that cannot be listed. */
 int indent_files_clear(const char *dir);
+
+/* The bytes held in dir by the files indent_files_clear removes (0 where dir does not exist): the room
+ * a run into dir gets back before writing its own. */
+double indent_files_earlier_bytes(const char *dir);
 
 /* The steps of a run, solved in order on run (im_indentation) into dir. */
 typedef struct indent_run_plan {

@@ -153,6 +153,14 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path)
                : im_fail(IM_ENOMEM, "run.json: out of memory");
 }
 
+int run_record_start(const char *dir, json_t *record)
+{
+    json_object_set_new(record, "steps_completed", json_integer(0));
+    json_object_set_new(record, "status", json_string("running"));
+    json_object_set_new(record, "error", json_string(""));
+    return run_record_write(dir, record);
+}
+
 int run_record_finish(const char *dir, json_t *record, int steps_done, int status)
 {
     json_object_set_new(record, "steps_completed", json_integer(steps_done));
