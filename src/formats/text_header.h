@@ -10,7 +10,7 @@
 #include "formats/readers.h"
 
 typedef struct text_header {
-    double width, height; /* Gwyddion's extents along x and y; 0 when absent */
+    double width, height;                   /* Gwyddion's extents along x and y; 0 when absent */
     double width_rounding, height_rounding; /* half a unit of each extent's last printed digit, relative to
                                                it ("87.6": 0.05 / 87.6); 0 when absent */
     char width_unit[16], height_unit[16], value_unit[16];

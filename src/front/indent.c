@@ -15,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/statvfs.h>
 
 im_indent_options im_indent_options_default(void)
 {
@@ -540,10 +539,12 @@ static int check_whole_grid_memory(const indent_run_state *s, const im_field *su
     im_solver_memory full = {.host_bytes = 0.0};
     if (!(w.nx == surface->nx && w.ny == surface->ny && on_cpu && !im_solver_plan_measured(plan))) {
         im_solver_options options = o->solver;
-        options.device = on_cpu ? IM_DEVICE_CPU : IM_DEVICE_GPU; /* where the run's own plan went */
+        if (on_cpu) /* where the run's own plan went; on a GPU, as asked (auto may take the CPU for the grid) */
+            options.device = IM_DEVICE_CPU;
         int status = im_displacement_memory_needed(surface->nx, surface->ny, &options, &full);
         if (status != IM_OK)
-            return status;
+            return im_fail_context(status, "%s: the whole %d x %d grid's displacement", whole_grid_option(o),
+                                   surface->nx, surface->ny);
     }
     const double field = 8.0 * surface->nx * surface->ny,
                  fields = s->files.fields && o->solver.hardness > 0 ? 4.0 : 3.0;
@@ -560,25 +561,6 @@ static int check_whole_grid_memory(const indent_run_state *s, const im_field *su
                    fields, field / 1048576.0, (double)available / 1048576.0, whole_grid_option(o));
 }
 
-/* The free bytes of the file system that will hold dir, from its nearest existing folder; -1 when it
- * cannot be told (the writes will report a full disk). */
-static double free_bytes_for(const char *dir)
-{
-    char folder[PATH_MAX];
-    snprintf(folder, sizeof folder, "%s", dir);
-    struct statvfs info;
-    while (statvfs(folder, &info) != 0) {
-        char *slash = strrchr(folder, '/');
-        if (!slash && strcmp(folder, ".") == 0)
-            return -1.0;
-        if (!slash)
-            snprintf(folder, sizeof folder, ".");
-        else
-            slash[slash == folder ? 1 : 0] = '\0';
-    }
-    return (double)info.f_bavail * (double)info.f_frsize;
-}
-
 /* The step files (fields and frames) of every step against the free disk, before any step, as a scene's
  * outputs are (src/scene/limits.c): at 4096^2 the fields are 384 MiB a step, and a disk that fills stops
  * the run at that step, hours in. An upper bound: the fields at their size with a sidecar, a frame
@@ -591,9 +573,15 @@ static int check_step_files_disk(const indent_run_state *s, const im_field *surf
     const int scale = fields_frames_pixels_per_patch(surface->nx, surface->ny);
     const double field_files = s->files.fields ? fields * (8.0 * cells + 128.0 + 1024.0) : 0.0;
     const double frame = o->frames ? 3.0 * scale * scale * cells + 32768.0 : 0.0;
-    const double needed = o->target_count * (field_files + frame), free_bytes = free_bytes_for(o->out);
-    if (o->no_space_check || needed == 0.0 || free_bytes < 0.0)
+    char folder[PATH_MAX];
+    const double needed = o->target_count * (field_files + frame),
+                 free_bytes = needed > 0.0 ? run_folder_free_disk(o->out, folder, sizeof folder) : -1.0;
+    if (o->no_space_check || needed == 0.0 || free_bytes == -1.0)
         return IM_OK;
+    if (free_bytes == -2.0)
+        return im_fail(IM_EIO,
+                       "--out %s: %s is on a file system that stores no files (no blocks, like /proc or /sys)",
+                       o->out, folder);
     const double earlier = indent_files_earlier_bytes(o->out);
     if (needed <= free_bytes + earlier)
         return IM_OK;

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* The solver options a run was made with. The accelerations of issue 15 are on unless switched
  * off, and off with a hardness (solver.h). */
@@ -161,14 +162,28 @@ int run_record_start(const char *dir, json_t *record)
     return run_record_write(dir, record);
 }
 
+/* A start record (run_record_start) whose run ended without its final record is removed: "running" would be
+ * false of a run that ended (a full disk: the final write fails and leaves the start record in place). */
+static void remove_start_record(const char *dir)
+{
+    char path[4096];
+    if (im_path_join(path, sizeof path, dir, "run.json") == IM_OK)
+        unlink(path);
+}
+
 int run_record_finish(const char *dir, json_t *record, int steps_done, int status)
 {
+    const char *was = json_string_value(json_object_get(record, "status"));
+    const int started = was && strcmp(was, "running") == 0;
     json_object_set_new(record, "steps_completed", json_integer(steps_done));
     json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
     char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
     im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);
     json_object_set_new(record, "error", json_string(error));
-    return run_record_write(dir, record);
+    int written = run_record_write(dir, record);
+    if (written != IM_OK && started)
+        remove_start_record(dir);
+    return written;
 }
 
 int run_record_load(const char *record, json_t **root)

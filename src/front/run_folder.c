@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 /* Two canonical forms of an existing path: with every symlink resolved (realpath), and with only
@@ -199,3 +200,36 @@ int run_folder_page(const run_folder *folder, const char *title, int embed_image
 }
 
 void run_folder_close(run_folder *folder) { im_folder_lock_release(&folder->lock); }
+
+size_t run_folder_existing_prefix(const char *path)
+{
+    char copy[PATH_MAX];
+    snprintf(copy, sizeof copy, "%s", path);
+    size_t n = strlen(copy);
+    struct stat info;
+    while (n > 0) {
+        copy[n] = '\0';
+        if (stat(copy, &info) == 0)
+            return n;
+        char *slash = strrchr(copy, '/');
+        if (!slash)
+            return 0;
+        n = slash == copy ? 1 : (size_t)(slash - copy);
+    }
+    return 0;
+}
+
+void run_folder_existing_ancestor(const char *path, char *out, size_t size)
+{
+    size_t n = run_folder_existing_prefix(path);
+    snprintf(out, size, "%.*s", n ? (int)n : 1, n ? path : ".");
+}
+
+double run_folder_free_disk(const char *dir, char *folder, size_t size)
+{
+    run_folder_existing_ancestor(dir, folder, size);
+    struct statvfs info;
+    if (statvfs(folder, &info) != 0)
+        return -1.0;
+    return info.f_blocks == 0 ? -2.0 : (double)info.f_bavail * (double)info.f_frsize;
+}

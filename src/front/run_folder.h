@@ -69,4 +69,15 @@ int run_folder_page(const run_folder *folder, const char *title, int embed_image
 /* Releases the lock; nothing for a folder not opened. */
 void run_folder_close(run_folder *folder);
 
+/* The length of path's longest leading part that exists (0: none; 1 for "/"). */
+size_t run_folder_existing_prefix(const char *path);
+
+/* The folder whose file system will hold path: its existing leading part, or ".". */
+void run_folder_existing_ancestor(const char *path, char *out, size_t size);
+
+/* The free bytes of the file system that will hold dir (a run's folder, made or not), whose nearest existing
+ * folder goes into folder: -1 when it cannot be told (the writes will report a full disk), -2 on a file system
+ * that stores no files (no blocks: /proc, /sys). The disk checks before a run (scene/limits.c, front/indent.c). */
+double run_folder_free_disk(const char *dir, char *folder, size_t size);
+
 #endif

@@ -3,6 +3,7 @@
  * estimates are upper bounds of the largest terms, not exact accounts: each solve's FFT plan and
  * fields, the fields the frames keep, and the files at their uncompressed sizes. */
 #include "front/front.h"
+#include "front/run_folder.h"
 #include "scene/contents.h"
 #include "indentmap/field.h"
 #include "indentmap/io.h"
@@ -25,7 +26,6 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
-#include <sys/statvfs.h>
 
 enum {
     PLOT_BYTES = 1 << 18, /* a plot's PNG and PDF together, besides any surface image it
@@ -475,33 +475,6 @@ static disk_estimate disk_needed(const im_scene *scene, const grid *g)
     return d;
 }
 
-/* The length of the longest leading part of path that exists (whole components; 1 for "/"), 0 if
- * none does (the output folder may not exist yet). */
-static size_t existing_prefix(const char *path)
-{
-    char copy[PATH_MAX];
-    snprintf(copy, sizeof copy, "%s", path);
-    size_t n = strlen(copy);
-    struct stat info;
-    while (n > 0) {
-        copy[n] = '\0';
-        if (stat(copy, &info) == 0)
-            return n;
-        char *slash = strrchr(copy, '/');
-        if (!slash)
-            return 0;
-        n = slash == copy ? 1 : (size_t)(slash - copy);
-    }
-    return 0;
-}
-
-/* The folder whose file system will hold path: its existing leading part, or ".". */
-static void existing_ancestor(const char *path, char *out, size_t size)
-{
-    size_t n = existing_prefix(path);
-    snprintf(out, size, "%.*s", n ? (int)n : 1, n ? path : ".");
-}
-
 static int check_disk(const im_scene *scene, const grid *g, int space_check, scene_limits *limits)
 {
     disk_estimate d = disk_needed(scene, g);
@@ -514,16 +487,14 @@ static int check_disk(const im_scene *scene, const grid *g, int space_check, sce
         return im_fail(IM_EIO, "%s: %s would be about %.1f MiB but the file-size limit (ulimit -f) is %.1f MiB",
                        scene->path, d.largest_name, d.largest / MIB, (double)limit.rlim_cur / MIB);
     char *folder = limits->disk_folder;
-    existing_ancestor(scene->output_dir, folder, sizeof limits->disk_folder);
-    struct statvfs info;
-    if (statvfs(folder, &info) != 0)
+    double free_bytes = run_folder_free_disk(scene->output_dir, folder, sizeof limits->disk_folder);
+    if (free_bytes == -1.0)
         return IM_OK;       /* cannot tell: the writes will report it */
-    if (info.f_blocks == 0) /* proc, sysfs: "0.0 MiB free" would read as a full disk */
+    if (free_bytes == -2.0) /* proc, sysfs: "0.0 MiB free" would read as a full disk */
         return im_fail(IM_EIO,
                        "%s: the output folder %s is on a file system that stores no files (%s has no "
                        "blocks, like /proc or /sys); give an output folder on a disk",
                        scene->path, scene->output_dir, folder);
-    double free_bytes = (double)info.f_bavail * (double)info.f_frsize;
     limits->disk_free = free_bytes;
     if (d.total > free_bytes && space_check)
         return im_fail(IM_EIO,
@@ -541,8 +512,8 @@ static int check_disk(const im_scene *scene, const grid *g, int space_check, sce
 static int absolute_path(const char *path, char *out)
 {
     char existing[PATH_MAX], resolved[PATH_MAX];
-    size_t n = existing_prefix(path);
-    existing_ancestor(path, existing, sizeof existing);
+    size_t n = run_folder_existing_prefix(path);
+    run_folder_existing_ancestor(path, existing, sizeof existing);
     if (!realpath(existing, resolved))
         return im_fail(IM_EIO, "%s: cannot resolve: %s", existing, strerror(errno));
     const char *tail = path + n;
