@@ -3,6 +3,7 @@
 #include "scene/contents.h"
 #include "scene/run_state.h"
 #include "core/args.h"
+#include "core/error_keep.h"
 #include "front/front.h"
 #include "front/run_folder.h"
 
@@ -271,8 +272,18 @@ static int write_record(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         scene_output_repair(options, record);
     if (status == IM_OK)
-        status = scene_write_record(scene);
+        status = scene_write_record(scene, 0, IM_OK);
     return status == IM_OK ? scene_outputs_open(scene, options) : status;
+}
+
+/* run.json again at the run's end with its status; a run that failed or was interrupted keeps its own
+ * error as the one returned, whether or not the record could be written. */
+static int finish_record(const im_scene *scene, int status)
+{
+    kept_error kept;
+    error_keep(&kept);
+    int written = scene_write_record(scene, 1, status);
+    return status != IM_OK ? error_restore(&kept, status) : written;
 }
 
 /* A path written under key resolved against the scene file's folder into out (size bytes):
@@ -441,6 +452,7 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
             status = run_scene_stages(scene, options, ranks);
         int recorded = scene_plans_record(scene); /* also after an interruption: what was solved is kept */
         status = scene_outputs_close(scene, status == IM_OK ? recorded : status);
+        status = finish_record(scene, status);
         status = write_viewer_page(scene, &folder, status);
     }
     run_folder_close(&folder);
