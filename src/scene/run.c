@@ -85,17 +85,17 @@ static int draws(const im_scene *scene, shaped_output output)
     return 0;
 }
 
-/* Whether the scene file gave [output] key: its contents hold each key given as "key = value" under its
- * section's "[section]" line. */
-static int output_key_given(const im_scene *scene, const char *key)
+/* Whether the scene file gave key in section ("[output]\n"): its contents hold each key given as
+ * "key = value" under its section's "[section]" line. */
+static int key_given(const im_scene *scene, const char *section, const char *key)
 {
     const size_t length = strlen(key);
-    int in_output = 0;
+    int in_section = 0;
     for (const char *line = scene->contents; line && *line; line = strchr(line, '\n')) {
         line += *line == '\n';
         if (*line == '[')
-            in_output = strncmp(line, "[output]\n", 9) == 0;
-        else if (in_output && strncmp(line, key, length) == 0 && strncmp(line + length, " = ", 3) == 0)
+            in_section = strncmp(line, section, strlen(section)) == 0;
+        else if (in_section && strncmp(line, key, length) == 0 && strncmp(line + length, " = ", 3) == 0)
             return 1;
     }
     return 0;
@@ -104,9 +104,16 @@ static int output_key_given(const im_scene *scene, const char *key)
 static void warn_unused_output_keys(const im_scene *scene, const im_scene_run_options *options)
 {
     for (size_t i = 0; i < sizeof SHAPING_KEYS / sizeof SHAPING_KEYS[0]; ++i)
-        if (!draws(scene, SHAPING_KEYS[i].output) && output_key_given(scene, SHAPING_KEYS[i].key))
+        if (!draws(scene, SHAPING_KEYS[i].output) && key_given(scene, "[output]\n", SHAPING_KEYS[i].key))
             scene_warn(options, "%s: [output] %s does nothing: it applies to %s, which this scene does not draw",
                        scene->path, SHAPING_KEYS[i].key, SHAPING_KEYS[i].what);
+    /* the table, panels, frames and distributions solve at load_star: steps only make histories */
+    if (!scene_wants_histories(scene) && key_given(scene, "[loading]\n", "steps"))
+        scene_warn(options,
+                   "%s: [loading] steps does nothing: the steps are the histories' (plots = fig5, fig6, fig7 or "
+                   "sphere, or [punch] periodic = yes), which this scene does not solve; its table, panels, "
+                   "frames and distributions are solved at load_star",
+                   scene->path);
 }
 
 static int check_runnable(const im_scene *scene)
