@@ -209,4 +209,15 @@ check "run --out twice" expect_exit 2 "--out given twice ('a', then 'b')" "$cli"
 check "theory --slope twice" expect_exit 2 "--slope given twice" "$cli" theory --alpha 80 --slope 0.1 --slope 0.2
 check "render --vmin twice" expect_exit 2 "--vmin given twice" "$cli" render contact x.npy --vmin 1 --vmin 2
 check "a flag twice changes nothing" "$cli" indent --smooth --smooth --n 32 --approach 1
+# [loading] steps in a scene that solves no history (a table at load_star) did nothing, silently: a
+# study of loads so written got one load. Warned about, naming the key; not where histories use it.
+printf '[scene]\noutput = %s\n[surfaces]\nn = 64\nslopes = 0.08\nseeds = 1:2\n[loading]\ncontrol = load\nload_star = 300\nsteps = 100:300:3\n[output]\ntable = yes\n' \
+  "$dir/steps_unused" >"$dir/steps_unused.ini"
+"$cli" run --check "$dir/steps_unused.ini" >/dev/null 2>"$dir/steps_unused.log"
+check "steps without histories: the check passes" test $? -eq 0
+check "steps without histories: warned, naming the key" grep -q "\[loading\] steps does nothing: the steps are the histories'" \
+  "$dir/steps_unused.log"
+sed 's/^table = yes/plots = fig7/' "$dir/steps_unused.ini" >"$dir/steps_used.ini"
+"$cli" run --check "$dir/steps_used.ini" >/dev/null 2>"$dir/steps_used.log"
+check "steps of fig7's histories: no warning" bash -c "! grep -q 'does nothing' '$dir/steps_used.log'"
 finish

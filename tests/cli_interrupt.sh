@@ -6,7 +6,9 @@
 # whose seconds column would change, are unchanged), and that the final table1.csv and histories
 # are byte for byte those of an uninterrupted run with the same thread count (each surface is
 # solved on one thread, so the order in which surfaces finish does not change any number).
-# Last, `indentmap indent` stopped with SIGINT between two steps.
+# run.json says where each run stands: "interrupted" (with the message) after a signal, "ok" at the end,
+# since a stopped run leaves the folder's tables and figures as they were. Last, `indentmap indent`
+# stopped with SIGINT between two steps.
 set -u
 cli=$1
 dir=$(mktemp -d)
@@ -47,6 +49,8 @@ check "no temporary files after SIGINT" no_temporary_files
 check "no lock left after SIGINT" test ! -e "$dir/cut/.lock"
 check "SIGINT kept a member" test "$(members table)" -ge 1
 check "SIGINT stopped before the end" test ! -e "$dir/cut/table1.csv"
+record_status() { python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); print(r["status"], r["error"])' "$1"; }
+check "SIGINT: run.json says interrupted" bash -c "[[ '$(record_status "$dir/cut/run.json")' == 'interrupted interrupted by signal 2'* ]]"
 mkdir "$dir/kept" && cp "$dir"/cut/table/member_*.csv "$dir/kept/"
 
 run_and_kill TERM 'histories/member_*.csv' --resume
@@ -58,6 +62,8 @@ check "SIGTERM stopped before the end" test "$(members histories)" -lt 8
 "$cli" run --quiet --resume "$dir/cut.ini" >/dev/null 2>"$dir/resume.log"
 check "resume finishes" test $? -eq 0
 check "no temporary files after resume" no_temporary_files
+check "resume: run.json says ok" test "$(record_status "$dir/cut/run.json")" = "ok "
+check "uninterrupted: run.json says ok" test "$(record_status "$dir/whole/run.json")" = "ok "
 for f in "$dir"/kept/*.csv; do
   check "kept $(basename "$f") read back, not solved again" cmp -s "$f" "$dir/cut/table/$(basename "$f")"
 done

@@ -61,12 +61,12 @@ check "png has the scene in a text chunk" grep -qa "small.ini" "$dir/out/contact
 check "run.json has a unit for every table column" /usr/bin/python3 -c "
 import csv, json, sys
 units = json.load(open('$dir/out/run.json'))['units']['columns']
-for table in ('results.csv', 'table1.csv', 'fig7.csv'):
+for table in ('results.csv', 'table1.csv', 'fig7.csv', 'table/member_01_6.csv'):
     header = next(csv.reader(open('$dir/out/' + table)))
     missing = [c for c in header if c not in units]
     if missing:
         sys.exit(f'{table}: no unit for {missing}')
-assert units['load'] == 'E* δ²' and units['height_rms_mean'] == 'δ', units"
+assert units['load'] == 'E* δ²' and units['height_rms_mean'] == 'δ' and units['height_rms'] == 'δ', units"
 check "the page heads results.csv's load with its unit" grep -q '<th>load<br><span class="unit">(E\* δ²)</span></th>' "$dir/out/index.html"
 
 # The table: the smooth family is solved once whatever the seeds, the rough one per seed.

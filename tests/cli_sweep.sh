@@ -5,7 +5,10 @@
 # contact at the load with the same smooth contact area N*), so (80 deg, 0.04) and
 # (70.5746 deg, 0.08), both at rho_c = 4.408, must give the same contact, to less than one grid
 # cell of the N* = 300 cells; the other two points (rho_c = 2.20, 8.82) differ from it. Keys:
-# --resume reads back every point it kept, and solves only a new angle.
+# --resume reads back every point it kept, and solves only a new angle. Statistics: each family's mean
+# and sample standard deviation in sweep.csv and the point's table1.csv are those of its members' files,
+# computed here; one surface a family has no spread (nan, no error bar), and table1.md shows the
+# paper's values only beside the paper's alpha, H and lambda_s.
 set -u
 cli=$1
 dir=$(mktemp -d)
@@ -15,13 +18,13 @@ scene() {
   cat >"$dir/s.ini" <<INI
 [scene]
 name = s
-output = $dir/out
+output = $dir/${3:-out}
 [surfaces]
 n = 64
 hurst = 0.8
 lambda_s = 4
 slopes = 0.04, 0.08
-seeds = 1:3
+seeds = ${2:-1:3}
 [punch]
 shape = cone
 alpha = $1
@@ -55,6 +58,35 @@ check "other rho_c, other A/A_cone" \
   awk -v a="$(value 2 7)" -v b="$(value 3 7)" -v c="$(value 4 7)" 'BEGIN { exit !(a != b && a != c) }'
 check "the point's table is its rows" awk -F, -v m="$(value 4 7)" \
   'NR == 2 { d = $7 - m; exit !(d * d < 1e-12) }' "$dir/out/alpha_70.5746_hurst_0.8_lambda_s_4/table1.csv"
+# The members' statistics, computed here from their files (area_ratio of table/member_FF_SEED.csv).
+members_statistics() {
+  python3 - "$dir/out/$1" "$t" <<'PY'
+import csv, glob, math, statistics, sys
+point, sweep = sys.argv[1], sys.argv[2]
+alpha = float(point.split("alpha_")[1].split("_")[0])
+table = {float(r["slope"]): r for r in csv.DictReader(open(point + "/table1.csv"))}
+rows = {float(r["slope"]): r for r in csv.DictReader(open(sweep)) if float(r["alpha"]) == alpha}
+families = {}
+for path in glob.glob(point + "/table/member_*.csv"):
+    member = next(csv.DictReader(open(path)))
+    families.setdefault(float(member["slope"]), []).append(float(member["area_ratio"]))
+ok = len(families) == 2 and all(len(v) == 3 for v in families.values())
+for slope, ratios in families.items():
+    mean, sd = statistics.mean(ratios), statistics.stdev(ratios)
+    row = rows[slope]
+    ok &= int(row["surfaces"]) == 3 and math.isclose(float(row["area_ratio_mean"]), mean, rel_tol=1e-9)
+    ok &= math.isclose(float(row["area_ratio_sd"]), sd, rel_tol=1e-9)
+    ok &= abs(float(table[slope]["area_ratio_mean"]) - mean) <= 5e-7 and abs(float(table[slope]["area_ratio_sd"]) - sd) <= 5e-7
+sys.exit(not ok)
+PY
+}
+check "alpha 80: sweep.csv and table1.csv hold the members' mean and sample sd" members_statistics alpha_80_hurst_0.8_lambda_s_4
+check "alpha 70.57: sweep.csv and table1.csv hold the members' mean and sample sd" \
+  members_statistics alpha_70.5746_hurst_0.8_lambda_s_4
+check "alpha 80: table1.md beside the paper's values" grep -q '^| 0.04 .*| 0.985 ± 0.031 (37211) |$' \
+  "$dir/out/alpha_80_hurst_0.8_lambda_s_4/table1.md"
+check "alpha 70.57: table1.md shows no paper value (it is the paper's alpha = 80)" \
+  bash -c "! grep -q '(37211)\|(35152)' '$dir/out/alpha_70.5746_hurst_0.8_lambda_s_4/table1.md'"
 touch "$dir/out/alpha_80_hurst_0.8_lambda_s_4/table/.im.tmp.killed" # as a killed run leaves one
 "$cli" run --resume "$dir/s.ini" >"$dir/log" 2>&1
 check "resume runs" test $? -eq 0
@@ -74,6 +106,15 @@ check "a lambda_s list runs" test $? -eq 0
 check "four points" test "$(grep -c '^indentmap: sweep point' "$dir/log")" -eq 4
 check "lambda_s = 8 solved anew" test "$(grep -c '6 solved, 0 read back' "$dir/log")" -eq 2
 check "sweep.csv: 8 rows" test "$(wc -l <"$t")" -eq 9
+# One surface a family: no standard deviation to give (it used to print 0, "± 0.000").
+scene "80, 70" 2 one
+"$cli" run --quiet "$dir/s.ini" >"$dir/log" 2>&1
+check "one seed runs" test $? -eq 0
+check "one seed: sweep.csv's sd is nan" test "$(awk -F, 'NR > 1 && $8 == "nan"' "$dir/one/sweep.csv" | wc -l)" -eq 4
+check "one seed: table1.csv's sds are nan" \
+  test "$(awk -F, 'NR > 1 && $8 == "nan" && $11 == "nan"' "$dir/one/alpha_80_hurst_0.8_lambda_s_4/table1.csv" | wc -l)" -eq 2
+check "one seed: table1.md without ±" \
+  grep -q '^| 0.08 | [0-9.]* | 2.20 | [0-9]* | [0-9.]* | 0.894 |' "$dir/one/alpha_80_hurst_0.8_lambda_s_4/table1.md"
 # The bundled angle sweep runs (from a scratch folder: its output is output/angle_sweep) and
 # A/A_cone rises with rho_c along the six angles, as eq. (12) does.
 scenes=$(cd "$(dirname "$0")/../scenes" && pwd)

@@ -255,6 +255,36 @@ static void test_fig7_statistics(void **state)
     assert_close(last, 600.0, 1e-12);
 }
 
+/* One surface of a family has no spread to estimate: fig7.csv's sd is nan (it was 0, a claim that
+ * the mean is exact), and the figure is drawn without its band. */
+static void test_fig7_one_surface_has_no_sd(void **state)
+{
+    (void)state;
+    static made_histories data;
+    make_histories(0, &data);
+    data.h.count = SEEDS + 1; /* the smooth family's surfaces and the rough family's first only */
+    const char *path = test_path("fig7_one.csv");
+    FILE *out = fopen(path, "w");
+    assert_non_null(out);
+    assert_int_equal(paper_write_area_ratio_statistics(&data.h, out), IM_OK);
+    fclose(out);
+    FILE *in = fopen(path, "r");
+    assert_non_null(in);
+    char line[256], sd[16];
+    assert_non_null(fgets(line, sizeof line, in));
+    int surfaces, rows = 0;
+    double slope, n_star, mean;
+    while (fgets(line, sizeof line, in)) {
+        assert_int_equal(sscanf(line, "%lf,%lf,%lf,%15[^,],%d", &slope, &n_star, &mean, sd, &surfaces), 5);
+        assert_string_equal(sd, "nan");
+        assert_int_equal(surfaces, 1);
+        assert_close(mean, 0.948 + 2e-5 * n_star, 1e-12); /* seed 0's ratio (0.0102 above the three's mean) */
+        ++rows;
+    }
+    fclose(in);
+    assert_int_equal(rows, 40);
+}
+
 /* The sphere's figure starts a surface at its first step of PAPER_MIN_PATCHES contact patches. */
 static void test_first_resolved_step(void **state)
 {
@@ -383,10 +413,15 @@ static void test_density_rows_of_three(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_builders_are_reentrant), cmocka_unit_test(test_fig7_needs_a_common_range),
-        cmocka_unit_test(test_fig7_needs_two_steps),   cmocka_unit_test(test_fig7_statistics),
-        cmocka_unit_test(test_first_resolved_step),    cmocka_unit_test(test_sweep_figure),
-        cmocka_unit_test(test_distribution_figure),    cmocka_unit_test(test_panel_columns),
+        cmocka_unit_test(test_builders_are_reentrant),
+        cmocka_unit_test(test_fig7_needs_a_common_range),
+        cmocka_unit_test(test_fig7_needs_two_steps),
+        cmocka_unit_test(test_fig7_statistics),
+        cmocka_unit_test(test_fig7_one_surface_has_no_sd),
+        cmocka_unit_test(test_first_resolved_step),
+        cmocka_unit_test(test_sweep_figure),
+        cmocka_unit_test(test_distribution_figure),
+        cmocka_unit_test(test_panel_columns),
         cmocka_unit_test(test_density_rows_of_three),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -212,6 +212,25 @@ static int slopes_line(char *out, size_t length)
     return count;
 }
 
+/* A seed range is of non-negative integers, first <= last: "-3:-1" was read by %llu as the seeds
+ * 2^64 - 3 .. 2^64 - 1 and solved, "4:1" refused as a range of too many seeds. */
+static void seed_ranges_are_checked(void **state)
+{
+    (void)state;
+    expect_error("negative_range.ini", "[surfaces]\nseeds = -3:-1\n", ":2: seeds = '-3:-1': a negative seed");
+    expect_error("negative_first.ini", "[surfaces]\nseeds = -1:2\n", ":2: seeds = '-1:2': a negative seed");
+    expect_error("negative_list.ini", "[surfaces]\nseeds = 1, -2\n", ":2: seeds = '1, -2': a negative seed");
+    expect_error("reversed.ini", "[surfaces]\nseeds = 4:1\n",
+                 ":2: seeds = '4:1': expected first:last with first <= last");
+    expect_error("too_many.ini", "[surfaces]\nseeds = 1:65\n",
+                 ":2: seeds = '1:65': expected first:last with at most 64");
+    im_scene *scene = NULL;
+    assert_int_equal(im_scene_load(write_scene("top.ini", "[surfaces]\nseeds = 0:63\n"), &scene), IM_OK);
+    assert_int_equal(scene->seed_count, 64);
+    assert_true(scene->seeds[63] == 63);
+    im_scene_free(scene);
+}
+
 /* inih reads into a buffer of INI_MAX_LINE bytes (200 in Debian's build) and would cut a longer
  * line in two, parsing the tail as a separate line or even as a continuation of the value. */
 static void long_lines_are_refused(void **state)
@@ -328,6 +347,7 @@ int main(void)
         cmocka_unit_test(refused_values_lie_outside_the_stated_range),
         cmocka_unit_test(errors_name_the_line),
         cmocka_unit_test(missing_file_is_an_io_error),
+        cmocka_unit_test(seed_ranges_are_checked),
         cmocka_unit_test(long_lines_are_refused),
         cmocka_unit_test(binary_and_unreadable_files_are_refused),
         cmocka_unit_test(bundled_scenes_parse),

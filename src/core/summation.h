@@ -28,6 +28,17 @@ static inline void compensated_add(compensated *c, double x)
 
 static inline double compensated_total(const compensated *c) { return c->sum + c->compensation; }
 
+/* The sample standard deviation (n - 1 in the denominator) of n values from their sum and sum of
+ * squares; NaN below two values: one surface has no spread to estimate, and 0 would claim an exact
+ * ensemble (the tables and fig. 7 print nan, and draw no error bar). */
+static inline double sample_sd(double sum, double sum_squares, int n)
+{
+    if (n < 2)
+        return NAN;
+    double mean = sum / n;
+    return sqrt(fmax(0.0, (sum_squares - n * mean * mean) / (n - 1)));
+}
+
 #define IM_SUM_BLOCK 4096
 #define IM_SUM_MAX_BLOCKS 1024
 

@@ -10,8 +10,19 @@
 
 #include <stdio.h>
 
-/* What each column is, in the run's base units. */
-typedef enum column_kind { NUMBER, LENGTH, AREA, FORCE, PRESSURE, STIFFNESS, WORK, SECONDS, DEGREES } column_kind;
+/* What each column is, in the run's base units; IDENTIFIER: a hexadecimal hash (a member's key, checksum). */
+typedef enum column_kind {
+    NUMBER,
+    LENGTH,
+    AREA,
+    FORCE,
+    PRESSURE,
+    STIFFNESS,
+    WORK,
+    SECONDS,
+    DEGREES,
+    IDENTIFIER
+} column_kind;
 
 typedef struct column_unit {
     const char *name;
@@ -66,9 +77,12 @@ static const column_unit COLUMNS[] = {
     {"dissipated", WORK},
     {"area_real_theory", AREA},
     {"stiffness_smooth", STIFFNESS},
-    /* a scene's results.csv, table1.csv, fig7.csv, sweep.csv, k_fit.csv, flat_k.csv and
-       flat/flat_contact.csv beside the names above */
+    /* a scene's results.csv, table1.csv, fig7.csv, sweep.csv, k_fit.csv, flat_k.csv,
+       flat/flat_contact.csv and table/member_FF_SEED.csv beside the names above */
     {"family", NUMBER},
+    {"height_rms", LENGTH},
+    {"key", IDENTIFIER},
+    {"checksum", IDENTIFIER},
     {"slope", NUMBER},
     {"seed", NUMBER},
     {"area_ratio_eq12", NUMBER},
@@ -111,7 +125,7 @@ json_t *column_units_record(const char *length, const char *force, const char *p
     snprintf(area, sizeof area, "%s²", length);
     snprintf(stiffness, sizeof stiffness, "%s / %s", force, length);
     snprintf(work, sizeof work, "%s %s", force, length);
-    const char *const units[] = {"1", length, area, force, pressure, stiffness, work, "s", "°"};
+    const char *const units[] = {"1", length, area, force, pressure, stiffness, work, "s", "°", "hex"};
     json_t *columns = json_object();
     for (size_t i = 0; columns && i < sizeof COLUMNS / sizeof *COLUMNS; ++i)
         if (json_object_set_new(columns, COLUMNS[i].name, json_string(units[COLUMNS[i].kind])) != 0) {

@@ -2,6 +2,7 @@
  * (N against w), Fig. 7 (A / A_cone against N*, mean and +- one standard deviation) and the
  * sphere's regimes (A / A_Hertz against N / N_c). */
 #include "paper/figures.h"
+#include "core/summation.h"
 
 #include "indentmap/plot.h"
 #include "indentmap/status.h"
@@ -226,7 +227,7 @@ static void mean_and_spread(const paper_histories *h, int f, double start, doubl
             sum_sq += y * y;
             ++n;
         }
-        double mu = sum / n, sd = n > 1 ? sqrt(fmax(0.0, (sum_sq - n * mu * mu) / (n - 1))) : 0.0;
+        double mu = sum / n, sd = sample_sd(sum, sum_sq, n);
         d->x[panel][k] = x;
         d->mean[panel][k] = mu;
         d->sd[panel][k] = sd;

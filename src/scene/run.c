@@ -3,6 +3,7 @@
 #include "scene/contents.h"
 #include "scene/run_state.h"
 #include "core/args.h"
+#include "core/error_keep.h"
 #include "front/front.h"
 #include "front/run_folder.h"
 
@@ -84,17 +85,17 @@ static int draws(const im_scene *scene, shaped_output output)
     return 0;
 }
 
-/* Whether the scene file gave [output] key: its contents hold each key given as "key = value" under its
- * section's "[section]" line. */
-static int output_key_given(const im_scene *scene, const char *key)
+/* Whether the scene file gave key in section ("[output]\n"): its contents hold each key given as
+ * "key = value" under its section's "[section]" line. */
+static int key_given(const im_scene *scene, const char *section, const char *key)
 {
     const size_t length = strlen(key);
-    int in_output = 0;
+    int in_section = 0;
     for (const char *line = scene->contents; line && *line; line = strchr(line, '\n')) {
         line += *line == '\n';
         if (*line == '[')
-            in_output = strncmp(line, "[output]\n", 9) == 0;
-        else if (in_output && strncmp(line, key, length) == 0 && strncmp(line + length, " = ", 3) == 0)
+            in_section = strncmp(line, section, strlen(section)) == 0;
+        else if (in_section && strncmp(line, key, length) == 0 && strncmp(line + length, " = ", 3) == 0)
             return 1;
     }
     return 0;
@@ -103,9 +104,16 @@ static int output_key_given(const im_scene *scene, const char *key)
 static void warn_unused_output_keys(const im_scene *scene, const im_scene_run_options *options)
 {
     for (size_t i = 0; i < sizeof SHAPING_KEYS / sizeof SHAPING_KEYS[0]; ++i)
-        if (!draws(scene, SHAPING_KEYS[i].output) && output_key_given(scene, SHAPING_KEYS[i].key))
+        if (!draws(scene, SHAPING_KEYS[i].output) && key_given(scene, "[output]\n", SHAPING_KEYS[i].key))
             scene_warn(options, "%s: [output] %s does nothing: it applies to %s, which this scene does not draw",
                        scene->path, SHAPING_KEYS[i].key, SHAPING_KEYS[i].what);
+    /* the table, panels, frames and distributions solve at load_star: steps only make histories */
+    if (!scene_wants_histories(scene) && key_given(scene, "[loading]\n", "steps"))
+        scene_warn(options,
+                   "%s: [loading] steps does nothing: the steps are the histories' (plots = fig5, fig6, fig7 or "
+                   "sphere, or [punch] periodic = yes), which this scene does not solve; its table, panels, "
+                   "frames and distributions are solved at load_star",
+                   scene->path);
 }
 
 static int check_runnable(const im_scene *scene)
@@ -271,8 +279,18 @@ static int write_record(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK)
         scene_output_repair(options, record);
     if (status == IM_OK)
-        status = scene_write_record(scene);
+        status = scene_write_record(scene, 0, IM_OK);
     return status == IM_OK ? scene_outputs_open(scene, options) : status;
+}
+
+/* run.json again at the run's end with its status; a run that failed or was interrupted keeps its own
+ * error as the one returned, whether or not the record could be written. */
+static int finish_record(const im_scene *scene, int status)
+{
+    kept_error kept;
+    error_keep(&kept);
+    int written = scene_write_record(scene, 1, status);
+    return status != IM_OK ? error_restore(&kept, status) : written;
 }
 
 /* A path written under key resolved against the scene file's folder into out (size bytes):
@@ -441,6 +459,7 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
             status = run_scene_stages(scene, options, ranks);
         int recorded = scene_plans_record(scene); /* also after an interruption: what was solved is kept */
         status = scene_outputs_close(scene, status == IM_OK ? recorded : status);
+        status = finish_record(scene, status);
         status = write_viewer_page(scene, &folder, status);
     }
     run_folder_close(&folder);

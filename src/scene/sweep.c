@@ -4,6 +4,7 @@
  * with plots = fig2, drawn against rho_c beside eq. (12) in the scene's own fig2. */
 #include "indentmap/status.h"
 #include "scene/contents.h"
+#include "core/summation.h"
 #include "paper/figures.h"
 #include "scene/labels.h"
 #include "scene/limits.h"
@@ -67,7 +68,7 @@ static sweep_row sweep_summary(const im_scene *point, const scene_member *member
                      point->slopes[family],
                      NAN,
                      NAN,
-                     0.0,
+                     NAN,
                      NAN,
                      0};
     double sum = 0.0, sum_squares = 0.0;
@@ -80,8 +81,7 @@ static sweep_row sweep_summary(const im_scene *point, const scene_member *member
     }
     if (row.count > 0)
         row.area_ratio = sum / row.count;
-    if (row.count > 1)
-        row.sd = sqrt(fmax(0.0, (sum_squares - row.count * row.area_ratio * row.area_ratio) / (row.count - 1)));
+    row.sd = row.slope == 0.0 ? 0.0 : sample_sd(sum, sum_squares, row.count); /* smooth: one surface, exact */
     row.eq12 = scene_eq12(point, row.slope, &row.rho_c);
     return row;
 }

@@ -262,9 +262,15 @@ int scene_parse_seeds(const key_spec *spec, const char *value, im_scene *scene)
 {
     unsigned long long first, last;
     int used = 0;
+    if (strchr(value, '-')) /* %llu would read "-3:-1" as the seeds 2^64 - 3 .. 2^64 - 1 */
+        return im_fail(IM_EFORMAT,
+                       "seeds = '%s': a negative seed: expected first:last or a list of non-negative integers",
+                       value);
     if (!(sscanf(value, "%llu : %llu%n", &first, &last, &used) == 2 && value[used] == '\0'))
         return parse_seed_list(spec, value, scene);
-    if (last < first || last - first >= spec->capacity)
+    if (last < first)
+        return im_fail(IM_EFORMAT, "seeds = '%s': expected first:last with first <= last", value);
+    if (last - first >= spec->capacity)
         return im_fail(IM_EFORMAT, "seeds = '%s': expected first:last with at most %zu seeds", value, spec->capacity);
     scene->seed_count = (int)(last - first + 1);
     for (int i = 0; i < scene->seed_count; ++i)
