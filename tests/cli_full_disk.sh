@@ -37,6 +37,10 @@ check "full disk: clear message" grep -q "write failed: No space left on device\
 check "full disk: no temporary file" bash -c "! find '$dir/tiny' -name '*.tmp.*' | grep -q ."
 check "full disk: no lock left" test ! -e "$dir/tiny/out/.lock"
 check "full disk: kept members are whole" bash -c "for f in '$dir'/tiny/out/table/member_*.csv; do [ \$(wc -l <\"\$f\") -eq 2 ] || exit 1; done"
+# The record written as the run started ("running") is not left behind when its end cannot be written on the
+# full disk, and the message says so (the scene's record once kept "running" without a word).
+check "full disk: no run.json left saying running" bash -c "! grep -qs '\"running\"' '$dir/tiny/out/run.json'"
+check "full disk: the record not written is said" grep -q "run.json was not written either" "$dir/full.log"
 
 rm "$dir/tiny/filler"
 "$cli" run --quiet --resume "$dir/tiny.ini" >/dev/null 2>"$dir/resume.log"

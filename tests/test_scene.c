@@ -217,9 +217,12 @@ static int slopes_line(char *out, size_t length)
 static void seed_ranges_are_checked(void **state)
 {
     (void)state;
-    expect_error("negative_range.ini", "[surfaces]\nseeds = -3:-1\n", ":2: seeds = '-3:-1': a negative seed");
-    expect_error("negative_first.ini", "[surfaces]\nseeds = -1:2\n", ":2: seeds = '-1:2': a negative seed");
-    expect_error("negative_list.ini", "[surfaces]\nseeds = 1, -2\n", ":2: seeds = '1, -2': a negative seed");
+    expect_error("negative_range.ini", "[surfaces]\nseeds = -3:-1\n", ":2: seeds = '-3:-1': a '-' (a negative seed");
+    expect_error("negative_first.ini", "[surfaces]\nseeds = -1:2\n", ":2: seeds = '-1:2': a '-' (a negative seed");
+    expect_error("negative_list.ini", "[surfaces]\nseeds = 1, -2\n", ":2: seeds = '1, -2': a '-' (a negative seed");
+    expect_error("dash_range.ini", "[surfaces]\nseeds = 1-3\n",
+                 ":2: seeds = '1-3': a '-' (a negative seed, or a range "
+                 "written first-last?)");
     expect_error("reversed.ini", "[surfaces]\nseeds = 4:1\n",
                  ":2: seeds = '4:1': expected first:last with first <= last");
     expect_error("too_many.ini", "[surfaces]\nseeds = 1:65\n",

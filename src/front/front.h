@@ -385,13 +385,14 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path);
 /* Writes the record to DIR/run.json atomically (2-space indentation, 17 digits). */
 int run_record_write(const char *dir, const json_t *record);
 
-/* The record as a run starts: "status" "running", no step completed, then run_record_write; so that a run
- * killed outright (SIGKILL, the OOM killer, a power cut) leaves its inputs and options beside the
- * history's rows. run_record_finish writes it again at the end. */
+/* The record as a run starts: "status" "running", then run_record_write; so that a run killed outright
+ * (SIGKILL, the OOM killer, a power cut) leaves its inputs and options beside its results (an indent
+ * history's rows, a scene's members). run_record_finish writes it again at the end. */
 int run_record_start(const char *dir, json_t *record);
 
-/* The record's end: "steps_completed", "status" ("ok" or the status's name) and "error" (the message of
- * a failed run, "" else), then run_record_write. */
+/* The record's end: "steps_completed" (where steps_done >= 0: an indentation's steps; a scene counts none),
+ * "status" ("ok" or the status's name) and "error" (the message of a failed run, "" else), then
+ * run_record_write; a start record whose end cannot be written is removed ("running" would be false). */
 int run_record_finish(const char *dir, json_t *record, int steps_done, int status);
 
 /* ---- a run made again from its record (`run --from-record`, `indent --from-record`) ---- */

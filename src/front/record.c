@@ -156,7 +156,6 @@ int run_record_add_input(json_t *inputs, const char *key, const char *path)
 
 int run_record_start(const char *dir, json_t *record)
 {
-    json_object_set_new(record, "steps_completed", json_integer(0));
     json_object_set_new(record, "status", json_string("running"));
     json_object_set_new(record, "error", json_string(""));
     return run_record_write(dir, record);
@@ -175,7 +174,8 @@ int run_record_finish(const char *dir, json_t *record, int steps_done, int statu
 {
     const char *was = json_string_value(json_object_get(record, "status"));
     const int started = was && strcmp(was, "running") == 0;
-    json_object_set_new(record, "steps_completed", json_integer(steps_done));
+    if (steps_done >= 0)
+        json_object_set_new(record, "steps_completed", json_integer(steps_done));
     json_object_set_new(record, "status", json_string(status == IM_OK ? "ok" : im_strstatus(status)));
     char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
     im_path_utf8(status == IM_OK ? "" : im_last_error(), error, sizeof error);

@@ -55,8 +55,8 @@ int run_folder_probe(const run_folder_rules *rules);
  * (io.h: im_folder_remove_temporaries). Close the folder whatever this returns. */
 int run_folder_open(const run_folder_rules *rules, int depth, run_folder *folder);
 
-/* Finishes record (repaired first, if rules.repair; record.c: run_record_finish, steps_done steps, the run's status and error) into
- * run.json. Returns status, the run's error still the last one, or, for a run that succeeded, whether
+/* Finishes record (repaired first, if rules.repair; record.c: run_record_finish, steps_done steps or -1 for
+ * none counted, the run's status and error) into run.json. Returns status, the run's error still the last one, or, for a run that succeeded, whether
  * the record was written (a run without its record did not finish). */
 int run_folder_record(const run_folder *folder, json_t *record, int steps_done, int status);
 

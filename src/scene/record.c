@@ -146,23 +146,11 @@ static json_t *theory_slope_record(const im_scene *scene)
                      "chosen_by", "generated surfaces (their target, [surfaces] slope_definition)");
 }
 
-/* "status" and "error": a run that stopped early leaves its folder's tables and figures as they were (an
- * earlier run's, or none), and its record says so. */
-static void add_status(json_t *root, int finished, int status)
-{
-    char error[4 * 1024 + 1]; /* a message may quote a path that is not UTF-8 */
-    im_path_utf8(finished && status != IM_OK ? im_last_error() : "", error, sizeof error);
-    json_object_set_new(root, "status",
-                        json_string(!finished         ? "running"
-                                    : status == IM_OK ? "ok"
-                                                      : im_strstatus(status)));
-    json_object_set_new(root, "error", json_string(error));
-}
-
 /* OUTPUT/run.json: the common record of every front end (front.h), with the scene's path, the
  * surface files it measured, a profile punch's file and a sweep's lists. */
-int scene_write_record(const im_scene *scene, int finished, int status)
+int scene_record_create(const im_scene *scene, json_t **record)
 {
+    *record = NULL;
     im_solver_options options = scene_solver_options(scene);
     run_record_solver solver = {.quality = scene->quality, .tol_from = tolerance_source(scene), .options = &options};
     json_t *root = run_record_create("indentmap run", "scene", scene->path, &solver);
@@ -189,10 +177,10 @@ int scene_write_record(const im_scene *scene, int finished, int status)
     json_object_set_new(root, "periodic", periodic_record(scene));
     json_object_set_new(root, "units", units_record(scene));
     json_object_set_new(root, "theory_slope_rms", theory_slope_record(scene));
-    add_status(root, finished, status);
-    int written = add_provenance(scene, root);
-    if (written == IM_OK)
-        written = run_record_write(scene->output_dir, root);
-    json_decref(root);
-    return written;
+    int status = add_provenance(scene, root);
+    if (status == IM_OK)
+        *record = root;
+    else
+        json_decref(root);
+    return status;
 }

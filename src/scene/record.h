@@ -4,9 +4,11 @@
 
 #include "indentmap/scene.h"
 
-/* OUTPUT/run.json: program, version, scene path, quality preset and solver tolerance (record.c), and
- * where the run stands: "status" "running" and "error" "" before it has finished (finished 0); once
- * finished, "ok" or the name of status with im_last_error() as "error". */
-int scene_write_record(const im_scene *scene, int finished, int status);
+#include <jansson.h>
+
+/* The run record of OUTPUT/run.json (*record, the caller's to free): program, version, scene path,
+ * quality preset and solver tolerance, the inputs' checksums (record.c). The run writes it as it starts
+ * and finishes it with its status (front.h: run_record_start; run_folder.h: run_folder_record). */
+int scene_record_create(const im_scene *scene, json_t **record);
 
 #endif

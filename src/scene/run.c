@@ -3,7 +3,6 @@
 #include "scene/contents.h"
 #include "scene/run_state.h"
 #include "core/args.h"
-#include "core/error_keep.h"
 #include "front/front.h"
 #include "front/run_folder.h"
 
@@ -271,26 +270,20 @@ static int write_viewer_page(const im_scene *scene, const run_folder *folder, in
 
 static int run_measured(const im_scene *scene, const im_scene_run_options *options, const scene_ranks_run *ranks);
 
-/* OUTPUT/run.json (a damaged one removed first), then the noting of the run's outputs from its time. */
-static int write_record(const im_scene *scene, const im_scene_run_options *options)
+/* OUTPUT/run.json as the run starts, "running" (a damaged one removed first; its end: run_folder_record). */
+static int start_record(const im_scene *scene, const im_scene_run_options *options, json_t **record)
 {
-    char record[IM_SCENE_PATH];
-    int status = im_path_join(record, sizeof record, scene->output_dir, "run.json");
+    char path[IM_SCENE_PATH];
+    int status = im_path_join(path, sizeof path, scene->output_dir, "run.json");
     if (status == IM_OK)
-        scene_output_repair(options, record);
+        scene_output_repair(options, path);
     if (status == IM_OK)
-        status = scene_write_record(scene, 0, IM_OK);
-    return status == IM_OK ? scene_outputs_open(scene, options) : status;
-}
-
-/* run.json again at the run's end with its status; a run that failed or was interrupted keeps its own
- * error as the one returned, whether or not the record could be written. */
-static int finish_record(const im_scene *scene, int status)
-{
-    kept_error kept;
-    error_keep(&kept);
-    int written = scene_write_record(scene, 1, status);
-    return status != IM_OK ? error_restore(&kept, status) : written;
+        status = scene_record_create(scene, record);
+    if (status == IM_OK && (status = run_record_start(scene->output_dir, *record)) != IM_OK) {
+        json_decref(*record);
+        *record = NULL;
+    }
+    return status;
 }
 
 /* A path written under key resolved against the scene file's folder into out (size bytes):
@@ -450,17 +443,21 @@ static int run_measured(const im_scene *scene, const im_scene_run_options *optio
     if (status == IM_OK && checked.resume && scene_plans_changed(scene, options))
         checked.resume = 0; /* the kept results' last bits are not this run's: a fresh run */
     options = &checked;
+    json_t *record = NULL;
     if (status == IM_OK)
-        status = write_record(scene, options);
-    if (status == IM_OK) {
+        status = start_record(scene, options, &record);
+    if (status == IM_OK && (status = scene_outputs_open(scene, options)) == IM_OK) {
         if (ranks) /* an MPI run: the ranks solve the members first */
             status = ranks->solve_members(scene, options, ranks->data);
         if (status == IM_OK)
             status = run_scene_stages(scene, options, ranks);
         int recorded = scene_plans_record(scene); /* also after an interruption: what was solved is kept */
         status = scene_outputs_close(scene, status == IM_OK ? recorded : status);
-        status = finish_record(scene, status);
+    }
+    if (record) { /* its status, the run's error kept; no step count (a scene counts none) */
+        status = run_folder_record(&folder, record, -1, status);
         status = write_viewer_page(scene, &folder, status);
+        json_decref(record);
     }
     run_folder_close(&folder);
     return status;

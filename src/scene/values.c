@@ -264,7 +264,8 @@ int scene_parse_seeds(const key_spec *spec, const char *value, im_scene *scene)
     int used = 0;
     if (strchr(value, '-')) /* %llu would read "-3:-1" as the seeds 2^64 - 3 .. 2^64 - 1 */
         return im_fail(IM_EFORMAT,
-                       "seeds = '%s': a negative seed: expected first:last or a list of non-negative integers",
+                       "seeds = '%s': a '-' (a negative seed, or a range written first-last?): expected first:last "
+                       "or a list of non-negative integers",
                        value);
     if (!(sscanf(value, "%llu : %llu%n", &first, &last, &used) == 2 && value[used] == '\0'))
         return parse_seed_list(spec, value, scene);
