@@ -34,10 +34,12 @@ int cli_mpi_indent(int argc, char **argv);
  * cli_stop_signal (a second one removes the temporary files being written and ends the process);
  * cli_interrupt_report prints the interrupted work's message (im_last_error) when reporting (rank 0, or a
  * single process) and returns the exit status, 128 + it. cli_interrupt_install_cleanup makes the first one remove
- * the temporary files and end the process (for commands with nothing to keep). 0, or -1 if
- * sigaction failed. */
+ * the temporary files and end the process (for commands with nothing to keep). cli_interrupt_install_unrestarted
+ * is cli_interrupt_install without SA_RESTART: a write blocked on a pipe fails with EINTR (mpi-indent under a
+ * signalled mpirun). 0, or -1 if sigaction failed. */
 extern volatile sig_atomic_t cli_stop_signal;
 int cli_interrupt_install(void);
+int cli_interrupt_install_unrestarted(void);
 int cli_interrupt_install_cleanup(void);
 int cli_interrupt_report(int reporting);
 

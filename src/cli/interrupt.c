@@ -39,13 +39,13 @@ static void on_signal(int signal_number)
     (void)written; /* nothing to do in a handler if stderr is gone */
 }
 
-static int install(void (*handler)(int))
+static int install(void (*handler)(int), int flags)
 {
     struct sigaction action;
     memset(&action, 0, sizeof action);
     action.sa_handler = handler;
     sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART; /* file writes in progress complete rather than fail with EINTR */
+    action.sa_flags = flags;
     cli_stop_signal = 0;
     im_set_stop_flag(&cli_stop_signal); /* file reads poll it too */
     /* A write past the file-size limit (ulimit -f) then fails with EFBIG and is reported, its
@@ -57,9 +57,15 @@ static int install(void (*handler)(int))
                : -1;
 }
 
-int cli_interrupt_install(void) { return install(on_signal); }
+/* SA_RESTART: a read or write of a pipe or terminal in progress completes rather than fails with EINTR. */
+int cli_interrupt_install(void) { return install(on_signal, SA_RESTART); }
 
-int cli_interrupt_install_cleanup(void) { return install(end_by_signal); }
+/* Without SA_RESTART: mpirun signalled itself stops reading its ranks' output and kills them a timeout after
+ * passing the signal on; a write blocked on that full pipe must return EINTR for the work to stop and be
+ * recorded in time (docs/mpi.md). Writes to regular files are not interrupted by a caught signal on Linux. */
+int cli_interrupt_install_unrestarted(void) { return install(on_signal, 0); }
+
+int cli_interrupt_install_cleanup(void) { return install(end_by_signal, SA_RESTART); }
 
 int cli_interrupt_report(int reporting)
 {

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 enum {
     OPT_SURFACE = 256,
@@ -266,6 +267,27 @@ int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *so
     return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
 }
 
+/* Rank 0: an earlier run's DIR/force.npy, gap.npy and force_map.npy removed before this one solves, so that a
+ * failed or interrupted run (which writes none: only a completed one does) leaves no other run's fields
+ * beside its own record. Kept: an input named there, and a symbolic link (written through, as every output:
+ * run.json's "fields" still says that none is this run's). */
+static int clear_earlier_fields(const mpi_indent_options *o)
+{
+    static const char *const NAMES[] = {"force.npy", "gap.npy", "force_map.npy"};
+    int rank, status = IM_OK;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    for (size_t i = 0; rank == 0 && status == IM_OK && i < sizeof NAMES / sizeof *NAMES; ++i) {
+        char path[4096];
+        struct stat info;
+        status = im_path_join(path, sizeof path, o->out, NAMES[i]);
+        if (status != IM_OK || lstat(path, &info) != 0 || S_ISLNK(info.st_mode) || im_output_check(path) != IM_OK)
+            continue;
+        if (unlink(path) != 0 && errno != ENOENT)
+            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field: %s", path, strerror(errno));
+    }
+    return mpi_collective_status(MPI_COMM_WORLD, status);
+}
+
 /* Every rank must read the same bytes from the surface and profile files (agree.h: a path may name other files on
  * other nodes). */
 static int same_files(const mpi_indent_options *o)
@@ -393,6 +415,8 @@ static int solve(mpi_indent_options *o, im_solve_result *result)
     status = all_allocated(heights != NULL, "heights", rows);
     if (status == IM_OK)
         status = load_heights(o, y0, rows, heights);
+    if (status == IM_OK && o->out)
+        status = clear_earlier_fields(o);
     if (status == IM_OK)
         status = o->targets ? mpi_indent_history(o, solver, heights) : solve_half_space(o, solver, heights, result);
     im_mpi_solver_free(solver);
@@ -523,11 +547,14 @@ static int parse(int argc, char **argv, mpi_indent_options *o)
 
 /* SIGINT, SIGTERM and SIGHUP (mpirun passes them on to every rank, then kills the ranks a second later) stop
  * every rank at the same iteration of a solve or before the same step of a history (mpi_periodic.c), so that
- * the steps done keep their record and figure, as indent's. Collective. */
+ * the steps done keep their record and figure, as indent's; without SA_RESTART, so that rank 0 blocked writing
+ * a row to the stdout mpirun no longer reads gets EINTR and reaches its check (mpi_periodic.c: print_line).
+ * Collective. */
 static int arm_signals(mpi_indent_options *o)
 {
-    int status = cli_interrupt_install() == 0 ? IM_OK
-                                              : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
+    int status = cli_interrupt_install_unrestarted() == 0
+                     ? IM_OK
+                     : im_fail(IM_EUNSUPPORTED, "cannot install the signal handlers");
     o->solver.stop = &cli_stop_signal;
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }

@@ -19,12 +19,15 @@
 #include "indentmap/measure.h"
 #include "indentmap/status.h"
 
+#include <errno.h>
 #include <jansson.h>
 #include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 typedef struct history_run {
     const mpi_indent_options *o;
@@ -144,6 +147,7 @@ static int add_blocks(const history_run *run, json_t *root)
     if (!o->surface_file)
         json_object_set_new(blocks, "seed", json_unsigned(o->surface.seed));
     json_object_set_new(blocks, "ranks", json_integer(ranks));
+    json_object_set_new(blocks, "fields", json_array()); /* none until the last step's are written */
     json_object_update(root, blocks);
     json_decref(blocks);
     json_t *inputs = json_array();
@@ -187,6 +191,23 @@ static const double *last_pressure(const history_run *run)
     return run->cell ? im_mpi_flat_contact_pressure(run->cell) : im_mpi_indentation_pressure(run->indentation);
 }
 
+/* Rank 0: a line of the history on stdout, written to the descriptor itself. mpirun signalled itself stops
+ * reading its ranks' output: a row blocked on that full pipe gives way (EINTR, arm_signals) to the interruption's
+ * record once a signal is caught, and is dropped (it is in history.csv); stdio would keep it and block again at
+ * exit until mpirun's SIGKILL. */
+static void print_line(const char *line)
+{
+    size_t left = strlen(line);
+    while (left > 0) {
+        const ssize_t written = write(STDOUT_FILENO, line, left);
+        if (written > 0) {
+            line += written;
+            left -= (size_t)written;
+        } else if (written == 0 || errno != EINTR || cli_stop_signal)
+            return; /* stdout gone or the run interrupted: the live view loses the row, not the run */
+    }
+}
+
 /* Step i: solved on every rank, its contact patches counted on rank 0 from the gathered forces, its row
  * measured (history.h), printed and appended to DIR/history.csv on rank 0. */
 static int run_step(history_run *run, int i)
@@ -209,8 +230,7 @@ static int run_step(history_run *run, int i)
         row->perimeter = patches.perimeter;
         char line[IM_HISTORY_LINE_MAX];
         im_history_format(row, line, sizeof line);
-        fputs(line, stdout);
-        fflush(stdout);
+        print_line(line);
     }
     if (status == IM_OK && run->rank == 0 && run->o->out)
         status = history_append(&run->history, row);
@@ -330,7 +350,7 @@ static int finish_record(history_run *run, int done, int status)
     return outcome == IM_OK ? IM_OK : error_restore(&kept, outcome);
 }
 
-/* DIR/force.npy and gap.npy of the last step. Collective. */
+/* DIR/force.npy and gap.npy of the last step, and run.json's "fields" naming them. Collective. */
 static int write_last_fields(const history_run *run)
 {
     int y0, rows;
@@ -343,6 +363,10 @@ static int write_last_fields(const history_run *run)
     if (status == IM_OK)
         status = mpi_indent_write_fields(run->o, run->solver, last_pressure(run), gap);
     free(gap);
+    if (status == IM_OK && run->record) /* rank 0: the record names the fields that are this run's */
+        json_object_set_new(run->record, "fields",
+                            run->o->map_factor > 0 ? json_pack("[sss]", "force.npy", "gap.npy", "force_map.npy")
+                                                   : json_pack("[ss]", "force.npy", "gap.npy"));
     return status;
 }
 
@@ -383,8 +407,8 @@ static int run_steps(history_run *run)
     const mpi_indent_options *o = run->o;
     int status = IM_OK, done = 0;
     if (run->rank == 0) {
-        printf("%s\n", im_history_columns());
-        fflush(stdout);
+        print_line(im_history_columns());
+        print_line("\n");
     }
     while (done < o->target_count) {
         const int signal = stop_agreed(o);
