@@ -267,13 +267,14 @@ int mpi_indent_write_fields(const mpi_indent_options *o, const im_mpi_solver *so
     return status == IM_OK && o->map_factor > 0 ? write_map(o, solver, pressure) : status;
 }
 
-/* Rank 0: an earlier run's DIR/force.npy, gap.npy and force_map.npy removed before this one solves, so that a
- * failed or interrupted run (which writes none: only a completed one does) leaves no other run's fields
- * beside its own record. Kept: an input named there, and a symbolic link (written through, as every output:
- * run.json's "fields" still says that none is this run's). */
+/* Rank 0: an earlier run's DIR/force.npy, gap.npy, force_map.npy and run.json removed before this one solves, so
+ * that a failed or interrupted run (which writes no fields: only a completed one does) leaves no other run's
+ * fields beside its own record, and a run that fails before its record (or a single step, which writes none)
+ * leaves no earlier record naming fields that are gone or not its. Kept: an input named there, and a symbolic
+ * link (written through, as every output: run.json's "fields" still says that none is this run's). */
 static int clear_earlier_fields(const mpi_indent_options *o)
 {
-    static const char *const NAMES[] = {"force.npy", "gap.npy", "force_map.npy"};
+    static const char *const NAMES[] = {"force.npy", "gap.npy", "force_map.npy", "run.json"};
     int rank, status = IM_OK;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     for (size_t i = 0; rank == 0 && status == IM_OK && i < sizeof NAMES / sizeof *NAMES; ++i) {
@@ -283,7 +284,7 @@ static int clear_earlier_fields(const mpi_indent_options *o)
         if (status != IM_OK || lstat(path, &info) != 0 || S_ISLNK(info.st_mode) || im_output_check(path) != IM_OK)
             continue;
         if (unlink(path) != 0 && errno != ENOENT)
-            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's field: %s", path, strerror(errno));
+            status = im_fail(IM_EIO, "%s: cannot remove the earlier run's file: %s", path, strerror(errno));
     }
     return mpi_collective_status(MPI_COMM_WORLD, status);
 }

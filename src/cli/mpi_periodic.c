@@ -20,6 +20,7 @@
 #include "indentmap/status.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <jansson.h>
 #include <limits.h>
 #include <math.h>
@@ -192,20 +193,31 @@ static const double *last_pressure(const history_run *run)
 }
 
 /* Rank 0: a line of the history on stdout, written to the descriptor itself. mpirun signalled itself stops
- * reading its ranks' output: a row blocked on that full pipe gives way (EINTR, arm_signals) to the interruption's
- * record once a signal is caught, and is dropped (it is in history.csv); stdio would keep it and block again at
- * exit until mpirun's SIGKILL. */
+ * reading its ranks' output: once a signal is caught, a write that would block (the pipe or pty full) gives way
+ * to the interruption's record and the rest of the row is dropped (it is in history.csv): stdout is then made
+ * non-blocking, checked before every write, so neither a write begun after the signal nor the rest of a row the
+ * signal cut short (a partial count, not EINTR) can block until mpirun's SIGKILL; a reader that still reads
+ * gets the whole row. stdio would keep the row and block again at exit. */
 static void print_line(const char *line)
 {
     size_t left = strlen(line);
+    int flags = -1; /* stdout's flags, restored (a singleton's stdout may be a terminal the shell shares) */
     while (left > 0) {
+        if (cli_stop_signal && flags < 0) {
+            flags = fcntl(STDOUT_FILENO, F_GETFL);
+            if (flags < 0 || fcntl(STDOUT_FILENO, F_SETFL, flags | O_NONBLOCK) != 0)
+                break; /* cannot tell whether the write would block: the row is in history.csv */
+        }
         const ssize_t written = write(STDOUT_FILENO, line, left);
         if (written > 0) {
             line += written;
             left -= (size_t)written;
-        } else if (written == 0 || errno != EINTR || cli_stop_signal)
-            return; /* stdout gone or the run interrupted: the live view loses the row, not the run */
+        } else if (written == 0 || errno != EINTR) {
+            break; /* stdout gone, or full once interrupted (EAGAIN): the live view loses the row, not the run */
+        }
     }
+    if (flags >= 0)
+        fcntl(STDOUT_FILENO, F_SETFL, flags);
 }
 
 /* Step i: solved on every rank, its contact patches counted on rank 0 from the gathered forces, its row
