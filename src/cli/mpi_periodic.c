@@ -202,6 +202,8 @@ static void print_line(const char *line)
 {
     size_t left = strlen(line);
     int flags = -1; /* stdout's flags, restored (a singleton's stdout may be a terminal the shell shares) */
+    if (!cli_stop_signal)
+        fflush(stdout); /* anything printed through stdio before comes first */
     while (left > 0) {
         if (cli_stop_signal && flags < 0) {
             flags = fcntl(STDOUT_FILENO, F_GETFL);

@@ -126,12 +126,15 @@ int indent_files_clear(const char *dir)
     return status == IM_OK ? clear_frames(dir) : status;
 }
 
-/* The bytes of the file name in dir (0 when it cannot be read). */
+/* The bytes removing the file name in dir frees (0 when it cannot be read, and for a symbolic link, which
+ * frees nothing of its target). */
 static double file_bytes(const char *dir, const char *name)
 {
     char path[PATH_MAX];
     struct stat info;
-    return im_path_join(path, sizeof path, dir, name) == IM_OK && stat(path, &info) == 0 ? (double)info.st_size : 0.0;
+    return im_path_join(path, sizeof path, dir, name) == IM_OK && lstat(path, &info) == 0 && S_ISREG(info.st_mode)
+               ? (double)info.st_size
+               : 0.0;
 }
 
 double indent_files_earlier_bytes(const char *dir)
