@@ -264,9 +264,10 @@ static int write_table_markdown(const im_scene *scene, const family_summary *row
             "A/A_cone at N* = %g (alpha = %g°, %d x %d, %d surface%s per h'rms, quality %s, tol %g), %s.\n\n",
             scene->load_star, scene->alpha_degrees, scene->surface.nx, scene->surface.ny, scene->seed_count,
             scene->seed_count == 1 ? "" : "s", scene->quality, scene->tol,
-            papers_setting(scene) ? "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref)"
-                                  : "without the paper's Table 1 beside it (its cones are of 80° on generated "
-                                    "surfaces of H = 0.8 and lambda_s = 4)");
+            papers_setting(scene)
+                ? "beside the paper's Table 1 (Icarus mean ± sd, and its n_p,ref)"
+                : "without the paper's Table 1 beside it (its cones are elastic, of 80°, on generated "
+                  "surfaces of H = 0.8 and lambda_s = 4)");
     if (scene->file_count > 0)
         fprintf(file.stream,
                 "The surface%s the %d file%s of `file`; h'rms is measured by %s of each surface as solved "
