@@ -1106,8 +1106,6 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
     if (run->control == IM_CONTROL_MEAN_GAP && !(target > 0))
         return im_fail(IM_EINVAL, "mean gap = %g: expected > 0 (at 0 the cell is in full contact)", target);
     int status = check_reachable(run, target);
-    if (status == IM_OK)
-        status = check_first_touch_inside(run, target);
     if (status != IM_OK)
         return status;
     const double cell_capacity = run->options.hardness * cell_area(run);
@@ -1116,8 +1114,11 @@ int im_indentation_step(im_indentation *run, double target, im_step_result *out)
                        "load %g: a periodic cell at hardness %g carries less than H_p A0 = %g (at that "
                        "load every patch would have yielded: full contact, no approach to find)",
                        target, run->options.hardness, cell_capacity);
-    team_choose(); /* every region of the step on the threads the other processes leave free (core/team_size.c) */
-    status = solve_step(run, target, out);
+    team_choose(); /* every region of the step on the threads the other processes leave free (core/team_size.c),
+                    * the first-touch check's reduction too (mpi_team) */
+    status = check_first_touch_inside(run, target);
+    if (status == IM_OK)
+        status = solve_step(run, target, out);
     team_restore();
     return status;
 }
